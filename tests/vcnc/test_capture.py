@@ -1,0 +1,67 @@
+"""Capture CSV contract (ARCHITECTURE.md, "Capture file") and the EMPS reader."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vcnc.capture import Capture, read_capture
+from vcnc.errors import CaptureError
+
+
+def _capture(n: int = 50) -> Capture:
+    t = np.arange(n) * 1e-3
+    ref = np.column_stack([np.sin(t), np.cos(t)])
+    return Capture(t=t, axes=("x", "y"), reference=ref, measured=ref * 0.99, control=ref * 0.1,
+                   meta={"machine": "test"})
+
+
+def test_round_trip(tmp_path):
+    c = _capture()
+    p = tmp_path / "c.csv"
+    c.to_csv(p)
+    r = read_capture(p)
+    assert r.axes == ("x", "y")
+    assert r.meta["machine"] == "test"
+    np.testing.assert_allclose(r.measured, c.measured, rtol=1e-11, atol=1e-12)
+    np.testing.assert_allclose(r.control, c.control, rtol=1e-11, atol=1e-12)
+    assert r.sample_time == pytest.approx(1e-3)
+
+
+@pytest.mark.parametrize(
+    "body, line, fragment",
+    [
+        ("t,x_ref,x\n0,0,0\n0.001,nan,0\n", 3, "not finite"),
+        ("t,x_ref,x\n0,0,0\n0.001,abc,0\n", 3, "not a number"),
+        ("t,x_ref,x\n0,0,0\n0,0,0\n", 3, "not increasing"),
+        ("t,x_ref,x\n0,0,0\n0.001,0,0\n0.002,0,0\n0.004,0,0\n", 5, "not uniform"),
+        ("t,x_ref,q\n0,0,0\n0.001,0,0\n", 1, "unknown column"),
+        ("# a: b\nt,x_ref,x\n0,0\n", 3, "fields"),
+    ],
+)
+def test_bad_csv_names_line(tmp_path, body, line, fragment):
+    p = tmp_path / "bad.csv"
+    p.write_text(body)
+    with pytest.raises(CaptureError) as info:
+        read_capture(p)
+    assert info.value.line == line
+    assert fragment in str(info.value)
+    assert str(p) in str(info.value)
+    assert isinstance(info.value, ValueError)
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(CaptureError, match="no such capture file"):
+        read_capture(tmp_path / "nope.csv")
+
+
+def test_emps_mat_in_mm(emps_dir):
+    c = read_capture(emps_dir / "DATA_EMPS.mat")
+    assert c.axes == ("x",)
+    assert len(c) == 24841  # EMPS README: 24841 samples
+    assert c.sample_time == pytest.approx(1e-3, rel=1e-4)  # EMPS README: Ts = 1 ms (float32 stamps)
+    # metres converted to mm: the reference travels over tens of mm, not hundredths
+    assert np.ptp(c.reference) > 10.0
+    assert "pulses_N" not in c.aux
+    p = read_capture(emps_dir / "DATA_EMPS_PULSES.mat")
+    assert set(np.unique(p.aux["pulses_N"])) <= {0.0, 5.0}

@@ -1,0 +1,1 @@
+"""toolpaths package."""

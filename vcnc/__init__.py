@@ -1,0 +1,76 @@
+"""vcnc: an open virtual CNC.
+
+The everyday API (ARCHITECTURE.md, "Python facade")::
+
+    import vcnc
+    machine = vcnc.machine("fadal-pid")            # a built-in name or a TOML file
+    program = vcnc.load_program("part.nc")         # ISO or Heidenhain, by content
+    setpoints = vcnc.interpolate(program, machine) # the machine's axis limits, Ts
+    capture = machine.simulate(setpoints)          # a Capture (also vcnc.read_capture(path))
+    model = vcnc.identify(capture, axis="x")       # fitted reduced model with its diagnosis
+
+Names are imported lazily so ``import vcnc`` stays fast and each part loads only when used.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+from vcnc.capture import Capture, read_capture
+from vcnc.errors import (
+    CaptureError,
+    ExportError,
+    GCodeError,
+    IdentificationError,
+    InputError,
+    MachineError,
+    ModelFileError,
+    SimulationError,
+    VcncError,
+)
+from vcnc.setpoints import Setpoints
+
+__version__ = "0.1.0"
+
+# public name -> "module:attribute", resolved on first use
+_LAZY: dict[str, str] = {
+    "load_program": "interpolators:load_program",
+    "parse_program": "interpolators:parse_program",
+    "interpolate": "vcnc.facade:interpolate",
+    "machine": "vcnc.machine:load_machine",
+    "Machine": "vcnc.machine:Machine",
+    "machines": "vcnc.machine:builtin_machines",
+    "identify": "identification:identify",
+    "ReducedAxisModel": "identification:ReducedAxisModel",
+    "load_model": "identification:load_model",
+    "compare": "vcnc.contour:compare",
+    "contour_error": "vcnc.contour:contour_error",
+    "export_fmu": "vcnc.fmu:export_fmu",
+}
+
+__all__ = [
+    "Capture",
+    "Setpoints",
+    "read_capture",
+    "VcncError",
+    "InputError",
+    "GCodeError",
+    "CaptureError",
+    "MachineError",
+    "ModelFileError",
+    "IdentificationError",
+    "SimulationError",
+    "ExportError",
+    *_LAZY,
+]
+
+
+def __getattr__(name: str) -> Any:
+    target = _LAZY.get(name)
+    if target is None:
+        raise AttributeError(f"module 'vcnc' has no attribute {name!r}")
+    modname, attr = target.split(":")
+    value = getattr(importlib.import_module(modname), attr)
+    globals()[name] = value
+    return value

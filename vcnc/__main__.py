@@ -1,0 +1,5 @@
+import sys
+
+from vcnc.cli import main
+
+sys.exit(main())

@@ -1,0 +1,1 @@
+"""Sub-commands of the vcnc command line, one module each (see ``vcnc.cli``)."""
