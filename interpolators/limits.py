@@ -1,0 +1,45 @@
+"""Kinematic limits of one machine axis, used by the feed-profile planners."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from vcnc.errors import InputError
+
+__all__ = ["AxisLimits"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class AxisLimits:
+    """Limits of one axis.
+
+    Attributes
+    ----------
+    velocity : float
+        Maximum axis velocity [mm/s] for feed moves.
+    acceleration : float
+        Maximum axis acceleration [mm/s^2].
+    jerk : float
+        Maximum axis jerk [mm/s^3] (used by the S-curve profile; ``inf`` allowed for trapezoid only).
+    rapid : float, optional
+        Rapid traverse rate [mm/s] for G00 / FMAX; defaults to ``velocity``.
+    """
+
+    velocity: float
+    acceleration: float
+    jerk: float = math.inf
+    rapid: float | None = None
+
+    def __post_init__(self) -> None:
+        for name, unit in (("velocity", "mm/s"), ("acceleration", "mm/s^2"), ("jerk", "mm/s^3")):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and v > 0 and not math.isnan(v)):
+                raise InputError(f"axis limit {name} must be > 0 {unit}, got {v!r}")
+        if self.rapid is not None and not (self.rapid > 0 and math.isfinite(self.rapid)):
+            raise InputError(f"axis limit rapid must be a finite value > 0 mm/s, got {self.rapid!r}")
+
+    @property
+    def rapid_rate(self) -> float:
+        """Rapid traverse rate [mm/s]."""
+        return self.velocity if self.rapid is None else self.rapid
