@@ -7,7 +7,7 @@ EMPS   := $(abspath ../shared/data/emps)
 export VCNC_EMPS_DIR ?= $(if $(wildcard $(EMPS)/DATA_EMPS.mat),$(EMPS),)
 export MPLBACKEND ?= Agg
 
-.PHONY: demo test lint venv bench clean
+.PHONY: demo test lint venv bench clean chromium
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -22,7 +22,11 @@ venv: $(STAMP)
 demo: $(STAMP)
 	$(BIN)/vcnc demo
 
-test: $(STAMP)
+# The report test renders index.html in Debian's headless Chromium; install it when missing.
+chromium:
+	@command -v chromium >/dev/null 2>&1 || { apt-get update -qq && apt-get install -y -qq chromium >/dev/null; }
+
+test: $(STAMP) chromium
 	$(BIN)/ruff check .
 	$(BIN)/python -m pytest -q
 

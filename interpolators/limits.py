@@ -7,7 +7,7 @@ import math
 
 from vcnc.errors import InputError
 
-__all__ = ["AxisLimits"]
+__all__ = ["AxisLimits", "DEFAULT_LIMITS"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -43,3 +43,13 @@ class AxisLimits:
     def rapid_rate(self) -> float:
         """Rapid traverse rate [mm/s]."""
         return self.velocity if self.rapid is None else self.rapid
+
+
+#: Limits used when no machine is given (``interpolate(limits=None)``, ``vcnc interpolate``
+#: without ``--machine``), the same for x, y and z: feed velocity 250 mm/s (15 m/min, the largest
+#: feed of the thesis' identification tests, Sec. 4.3.2), acceleration 2000 mm/s^2 (the
+#: interpolator limit of the thesis' identification test, Sec. 3.4), jerk 50 000 mm/s^3
+#: (50 m/s^3, a typical machining-centre value) and rapid rate 500 mm/s (30 m/min).
+DEFAULT_LIMITS: dict[str, AxisLimits] = {
+    axis: AxisLimits(velocity=250.0, acceleration=2000.0, jerk=50_000.0, rapid=500.0) for axis in ("x", "y", "z")
+}

@@ -1,0 +1,109 @@
+"""Interpolation throughput: setpoints per second for a 10,000-block random program.
+
+Run: ``.venv/bin/python benchmarks/interpolation.py [--blocks N] [--repeat R]``
+
+Prints, for each profile, the time of ``interpolate`` (parsing timed apart) and the setpoints per
+second, and a reference measured in the same run: a naive per-sample Python evaluation (a Python
+loop per sample calling ruckig's ``Trajectory.at_time`` for the S-curve, the trapezoid formulas
+for the trapezoid, then mapping to x/y position, velocity, acceleration) on a subset of the
+blocks. Note the program's blocks move diagonally in XY, so path speed is capped by the axes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import ruckig  # noqa: E402
+
+import toolpaths  # noqa: E402
+from interpolators import DEFAULT_LIMITS, interpolate, parse_program  # noqa: E402
+
+
+def _naive_trapezoid(blocks, V, A, Ts):
+    """Per-sample Python loop: trapezoid formulas, then x/y position, velocity, acceleration."""
+    rows = []
+    for b in blocks:
+        L = b.length
+        ux, uy = (b.target[:2] - b.start[:2]) / L
+        vp = min(V, math.sqrt(L * A))
+        ta = vp / A
+        tc = (L - vp * vp / A) / vp
+        T = 2 * ta + tc
+        t = 0.0
+        while t < T:
+            if t < ta:
+                s, v, a = 0.5 * A * t * t, A * t, A
+            elif t < ta + tc:
+                s, v, a = 0.5 * A * ta * ta + vp * (t - ta), vp, 0.0
+            else:
+                td = T - t
+                s, v, a = L - 0.5 * A * td * td, A * td, -A
+            rows.append((b.start[0] + ux * s, b.start[1] + uy * s, ux * v, uy * v, ux * a, uy * a))
+            t += Ts
+    return len(rows)
+
+
+def _naive_scurve(blocks, V, A, J, Ts):
+    """Per-sample ruckig Trajectory.at_time loop, then x/y position, velocity, acceleration."""
+    otg = ruckig.Ruckig(1)
+    inp = ruckig.InputParameter(1)
+    traj = ruckig.Trajectory(1)
+    rows = []
+    for b in blocks:
+        L = b.length
+        ux, uy = (b.target[:2] - b.start[:2]) / L
+        inp.current_position, inp.current_velocity, inp.current_acceleration = [0.0], [0.0], [0.0]
+        inp.target_position, inp.target_velocity, inp.target_acceleration = [L], [0.0], [0.0]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [V], [A], [J]
+        otg.calculate(inp, traj)
+        t = 0.0
+        while t < traj.duration:
+            (s,), (v,), (a,) = traj.at_time(t)
+            rows.append((b.start[0] + ux * s, b.start[1] + uy * s, ux * v, uy * v, ux * a, uy * a))
+            t += Ts
+    return len(rows)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--blocks", type=int, default=10_000)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--subset", type=int, default=300, help="blocks evaluated by the naive reference")
+    args = ap.parse_args()
+    text = toolpaths.random_moves(args.blocks, 10.0, 12000.0, seed=1, axes=("x", "y"))
+    t0 = time.perf_counter()
+    prog = parse_program(text)
+    t_parse = time.perf_counter() - t0
+    print(f"program: {args.blocks} random XY moves within +/-10 mm at F12000 (Table 3.2 style); "
+          f"parse {t_parse:.3f} s ({args.blocks / t_parse:,.0f} blocks/s)")
+    lim = DEFAULT_LIMITS["x"]
+    subset = [b for b in prog.blocks[1 : 1 + args.subset] if b.length > 0]
+    for profile in ("trapezoid", "scurve"):
+        best = math.inf
+        for _ in range(args.repeat):
+            t0 = time.perf_counter()
+            sp = interpolate(prog, profile=profile)
+            best = min(best, time.perf_counter() - t0)
+        rate = len(sp) / best
+        t0 = time.perf_counter()
+        if profile == "trapezoid":
+            n_ref = _naive_trapezoid(subset, 200.0, lim.acceleration, sp.sample_time)
+        else:
+            n_ref = _naive_scurve(subset, 200.0, lim.acceleration, lim.jerk, sp.sample_time)
+        ref_rate = n_ref / (time.perf_counter() - t0)
+        print(f"{profile:9s}: {len(sp):,} setpoints ({sp.duration:.1f} s of motion) in {best:.3f} s = "
+              f"{rate / 1e6:.2f} M setpoints/s; naive per-sample Python reference "
+              f"{'(ruckig at_time)' if profile == 'scurve' else '(formulas)'}: {ref_rate / 1e6:.3f} M/s; "
+              f"ratio {rate / ref_rate:.1f}x")
+        del sp
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

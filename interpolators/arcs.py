@@ -1,0 +1,151 @@
+"""Arc construction from programmed words (centre or radius), shared by both dialects."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from toolpaths.geometry import PLANE_AXES, Arc
+from vcnc.errors import InputError
+
+__all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius"]
+
+#: Largest accepted difference between the start and end radius of a centre-programmed arc, and
+#: largest accepted excess of the chord over the diameter of a radius-programmed arc [mm].
+ARC_TOLERANCE: float = 0.002
+
+
+class ArcWordError(ValueError):
+    """Arc words that describe no arc; the parser adds the location."""
+
+    def __init__(self, message: str, expected: str) -> None:
+        super().__init__(message)
+        self.message = message
+        self.expected = expected
+
+
+def _arc(start: np.ndarray, end: np.ndarray, center: np.ndarray, *, ccw: bool, plane: int) -> Arc:
+    try:
+        return Arc(start, end, center, ccw=ccw, plane=plane)
+    except InputError as exc:  # numerically degenerate (e.g. tiny radius at huge coordinates)
+        raise ArcWordError(f"degenerate arc: {exc.message}", "an arc with a radius well above 1e-9 mm") from None
+
+
+def _in_plane(v: np.ndarray, plane: int) -> np.ndarray:
+    p, q = PLANE_AXES[plane]
+    return np.array([v[p], v[q]])
+
+
+def arc_from_center(
+    start: np.ndarray,
+    end: np.ndarray,
+    center: np.ndarray,
+    *,
+    ccw: bool,
+    plane: int,
+    tolerance: float = ARC_TOLERANCE,
+) -> Arc:
+    """Arc from start to end about a programmed centre.
+
+    Parameters
+    ----------
+    start, end, center : ndarray, shape (3,)
+        [mm]. The centre's normal coordinate is ignored.
+    ccw : bool
+        Counter-clockwise (G03 / DR+).
+    plane : int
+        Normal-axis index (2: G17 XY, 1: G18 ZX, 0: G19 YZ).
+    tolerance : float
+        Largest accepted ``|end radius - start radius|`` [mm].
+
+    Returns
+    -------
+    Arc
+        End equal to start in the plane gives a full circle. Otherwise the centre is moved to
+        the nearest point of the chord's perpendicular bisector (by at most ``tolerance``) so that
+        both ends lie exactly on the circle.
+
+    Raises
+    ------
+    ArcWordError
+        Radius zero, or end point off the circle by more than ``tolerance``.
+    """
+    p, q = PLANE_AXES[plane]
+    a, b, c = _in_plane(start, plane), _in_plane(end, plane), _in_plane(center, plane)
+    ra = float(np.hypot(*(a - c)))
+    rb = float(np.hypot(*(b - c)))
+    if ra <= 1e-9:
+        raise ArcWordError("arc radius is zero: the centre is the start point", "a centre offset I/J/K != 0")
+    if abs(ra - rb) > tolerance:
+        raise ArcWordError(
+            f"arc end point is not on the circle: start radius {ra:.6g} mm, end radius {rb:.6g} mm "
+            f"(difference {abs(ra - rb):.3g} mm > tolerance {tolerance:g} mm)",
+            "an end point on the circle through the start point",
+        )
+    chord = b - a
+    clen = float(np.hypot(*chord))
+    if clen > 1e-12 * max(ra, 1.0):
+        m = 0.5 * (a + b)
+        perp = np.array([-chord[1], chord[0]]) / clen
+        c = m + perp * float((c - m) @ perp)
+    else:
+        b = a  # full circle: the end is the start in the plane
+    c3 = np.array(start, dtype=float)
+    c3[p], c3[q] = c[0], c[1]
+    e3 = np.array(end, dtype=float)
+    e3[p], e3[q] = b[0], b[1]
+    return _arc(start, e3, c3, ccw=ccw, plane=plane)
+
+
+def arc_from_radius(
+    start: np.ndarray,
+    end: np.ndarray,
+    radius: float,
+    *,
+    ccw: bool,
+    plane: int,
+    tolerance: float = ARC_TOLERANCE,
+) -> Arc:
+    """Arc from start to end with a programmed radius (ISO ``R``, Heidenhain ``CR``).
+
+    Parameters
+    ----------
+    radius : float
+        [mm]; positive for a sweep of at most 180 degrees, negative for more.
+    tolerance : float
+        Largest accepted excess of the chord over the diameter [mm]; within it the arc is a
+        half circle.
+
+    Raises
+    ------
+    ArcWordError
+        Zero radius, end point equal to start (a full circle needs a centre), or chord longer
+        than the diameter by more than ``tolerance``.
+    """
+    p, q = PLANE_AXES[plane]
+    a, b = _in_plane(start, plane), _in_plane(end, plane)
+    r = abs(float(radius))
+    if r <= 1e-9:
+        raise ArcWordError("arc radius R must not be zero", "R != 0 mm")
+    chord = b - a
+    clen = float(np.hypot(*chord))
+    if clen <= 1e-9:
+        raise ArcWordError(
+            "a radius arc cannot end at its start point (a full circle needs a centre)",
+            "I/J/K (or CC) for a full circle",
+        )
+    if clen > 2.0 * r + tolerance:
+        raise ArcWordError(
+            f"arc chord {clen:.6g} mm is longer than the diameter 2R = {2 * r:.6g} mm", "|R| >= half the chord"
+        )
+    h = math.sqrt(max(r * r - 0.25 * clen * clen, 0.0))
+    left = np.array([-chord[1], chord[0]]) / clen
+    # the centre of a <=180 degree counter-clockwise arc lies to the left of the chord
+    side = 1.0 if (ccw == (radius > 0)) else -1.0
+    c = 0.5 * (a + b) + side * h * left
+    if clen > 2.0 * r:  # within tolerance: a half circle of radius clen/2
+        c = 0.5 * (a + b)
+    c3 = np.array(start, dtype=float)
+    c3[p], c3[q] = c[0], c[1]
+    return _arc(start, end, c3, ccw=ccw, plane=plane)

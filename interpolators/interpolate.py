@@ -1,0 +1,384 @@
+"""From a program to sampled setpoints: path, feed profile, sampling."""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from interpolators.kinematics import (
+    CENTRIPETAL_SHARE,
+    JERK_SPEED_SHARE,
+    AxisLimitArrays,
+    junction_speed_limit,
+    path_limits,
+)
+from interpolators.limits import DEFAULT_LIMITS, AxisLimits
+from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
+from interpolators.profiles import PROFILES, scurve_phases, trapezoid_phases
+from interpolators.program import Program
+from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
+from toolpaths.packed import HOLD, PackedSegments
+from vcnc.errors import GCodeError, InputError
+from vcnc.setpoints import Setpoints
+
+__all__ = ["interpolate", "MAX_SAMPLES"]
+
+log = logging.getLogger(__name__)
+
+#: Junctions whose geometric speed bound is below this share of the neighbouring segments' speed
+#: bounds are exact stops (passing them barely moving is not worth the acceleration reserve).
+MIN_JUNCTION_SPEED_SHARE: float = 0.1
+
+#: Default bound on the number of samples ``interpolate`` produces (guards memory).
+MAX_SAMPLES: int = 50_000_000
+
+
+class _Chain:
+    """Consecutive items planned together, starting and ending at rest."""
+
+    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell")
+
+    def __init__(self) -> None:
+        self.segments: list[Line | Arc | np.ndarray] = []
+        self.blocks: list[int] = []
+        self.feeds: list[float] = []
+        self.rapid: list[bool] = []
+        self.tolerances: list[float] = []
+        self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
+
+
+def _chains(program: Program) -> list[_Chain]:
+    chains: list[_Chain] = []
+    cur: _Chain | None = None
+    for i, b in enumerate(program.blocks):
+        if b.kind == "dwell":
+            cur = None
+            if b.dwell > 0:
+                ch = _Chain()
+                ch.segments.append(np.array(b.start, dtype=float))
+                ch.blocks.append(i)
+                ch.feeds.append(0.0)
+                ch.rapid.append(False)
+                ch.dwell = b.dwell
+                chains.append(ch)
+            continue
+        seg = b.segment
+        if seg is None or seg.length <= 0:
+            continue  # zero-length moves take no time
+        if cur is None:
+            cur = _Chain()
+            chains.append(cur)
+        cur.segments.append(seg)
+        cur.blocks.append(i)
+        cur.feeds.append(b.feed)
+        cur.rapid.append(b.kind == "rapid")
+        cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+        if b.exact_stop:
+            cur = None
+    return chains
+
+
+def _resolve_limits(limits: Mapping[str, AxisLimits] | None) -> dict[str, AxisLimits]:
+    if limits is None:
+        return dict(DEFAULT_LIMITS)
+    if not isinstance(limits, Mapping):
+        raise InputError(f"limits must be a dict of axis name -> AxisLimits, got {type(limits).__name__}")
+    return {str(k).lower(): v for k, v in limits.items()}
+
+
+def interpolate(
+    program: Program,
+    *,
+    limits: Mapping[str, AxisLimits] | None = None,
+    sample_time: float = 1e-3,
+    profile: str = "trapezoid",
+    max_samples: int = MAX_SAMPLES,
+) -> Setpoints:
+    """Interpolate a program into setpoints sampled every ``sample_time``.
+
+    Parameters
+    ----------
+    program : Program
+        From :func:`interpolators.parse_program` / :func:`interpolators.load_program`.
+    limits : dict of str to AxisLimits, optional
+        Per-axis limits (velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3], rapid [mm/s]);
+        :data:`interpolators.DEFAULT_LIMITS` when omitted. Every axis the program moves needs
+        an entry.
+    sample_time : float
+        Interpolation period Ts [s] (default 1 ms).
+    profile : {"trapezoid", "scurve"}
+        Trapezoidal (velocity and acceleration limited, closed form) or S-curve (also jerk
+        limited; profiles computed by ruckig).
+    max_samples : int
+        Refuse programs that would need more samples than this (memory guard).
+
+    Returns
+    -------
+    Setpoints
+        Axes ``program.axes``; ``block`` indexes ``program.blocks``; ``path`` is the geometry the
+        samples follow (a :class:`toolpaths.Path`: the programmed one, with blend arcs at G64
+        corners); ``meta`` records ``source``, ``profile``, ``dialect``, ``sample_time``,
+        ``duration`` and, when corners were blended, ``programmed_path``.
+
+    Notes
+    -----
+    * Every chain of blocks between two stops (each block under G61, the default) starts and
+      ends at rest. Its duration is rounded up to a whole number of samples by slowing it down
+      uniformly (speeds scale by ``T/T'``, accelerations by its square, jerks by its cube), so
+      every stop, and every exact-stop block end point, falls exactly on a sample.
+    * G00 / F MAX is a straight line at the largest speed that keeps every moving axis at or
+      below its rapid rate.
+    * Programmed feeds above the axes' velocity limits are clamped to them; on arcs the speed is
+      further capped so that the centripetal acceleration (and, for the S-curve, jerk) fits the
+      axis limits (see :mod:`interpolators.kinematics`).
+    * Dwells are rounded up to whole samples.
+
+    Raises
+    ------
+    vcnc.InputError
+        Bad limits, sample time or profile name, or missing limits for a moving axis.
+    vcnc.GCodeError
+        A program that would need more than ``max_samples`` samples.
+    """
+    if profile not in PROFILES:
+        raise InputError(f"unknown profile {profile!r}", expected=" or ".join(PROFILES))
+    if not (isinstance(sample_time, (int, float)) and math.isfinite(sample_time) and sample_time > 0):
+        raise InputError(f"sample_time must be a finite value > 0 s, got {sample_time!r}")
+    if not isinstance(program, Program):
+        raise InputError(f"program must be a Program (see parse_program), got {type(program).__name__}")
+    Ts = float(sample_time)
+    jerk_limited = profile == "scurve"
+    lim_dict = _resolve_limits(limits)
+    chains = _chains(program)
+    moving: set[int] = set()
+    for ch in chains:
+        for seg in ch.segments:
+            if isinstance(seg, (Line, Arc)):
+                d = np.abs(seg.end - seg.start)
+                moving.update(int(i) for i in np.flatnonzero(d > 0))
+                if isinstance(seg, Arc):
+                    moving.update(seg.plane_axes)
+    lim = AxisLimitArrays(lim_dict, moving)
+    if jerk_limited:
+        bad = [AXIS_LETTERS[i] for i in sorted(moving) if not math.isfinite(lim.jerk[i])]
+        if bad:
+            raise InputError(f"the S-curve profile needs finite jerk limits; axis {', '.join(bad)} has none")
+    lim_chain = lim.scaled(acceleration=1.0 - JUNCTION_SHARE, jerk=1.0 - JUNCTION_SHARE)
+
+    # 1. geometry of each chain (blend G64 corners)
+    all_segs: list[Line | Arc | np.ndarray] = []
+    seg_block: list[int] = []
+    seg_chain: list[int] = []
+    seg_feed: list[float] = []
+    seg_rapid: list[bool] = []
+    blended = False
+    for c, ch in enumerate(chains):
+        segs, blks = ch.segments, ch.blocks
+        if len(segs) > 1:
+            segs, blks = blend_corners(segs, blks, ch.tolerances, worth=_blend_worth(ch, lim, Ts, jerk_limited))
+            blended = blended or len(segs) != len(ch.segments)
+        feed_of = dict(zip(ch.blocks, ch.feeds))
+        rapid_of = dict(zip(ch.blocks, ch.rapid))
+        for s, b in zip(segs, blks):
+            all_segs.append(s)
+            seg_block.append(b)
+            seg_chain.append(c)
+            seg_feed.append(feed_of[b])
+            seg_rapid.append(rapid_of[b])
+    n_seg = len(all_segs)
+    packed = PackedSegments.from_segments(all_segs)
+    L = packed.length
+    seg_chain_a = np.asarray(seg_chain, dtype=np.int64)
+
+    # 2. geometric speed bound at each junction inside a chain; a junction whose bound is
+    # negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
+    # chains passing junctions at speed pay the JUNCTION_SHARE reserve
+    inner = np.flatnonzero(seg_chain_a[1:] == seg_chain_a[:-1]) if n_seg > 1 else np.zeros(0, dtype=np.int64)
+    jl = np.zeros(len(inner))
+    if len(inner):
+        ones, zeros = np.ones(len(inner)), np.zeros(len(inner))
+        _, t_out, k_out = packed.evaluate(inner, L[inner], ones, zeros)
+        _, t_in, k_in = packed.evaluate(inner + 1, zeros, ones, zeros)
+        jl = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=JUNCTION_SHARE,
+                                  jerk_limited=jerk_limited)
+        # worth passing at speed only if the bound is a fair share of the neighbours' speeds
+        motion_idx = np.flatnonzero(packed.kind != HOLD)
+        v_full = np.zeros(n_seg)
+        if len(motion_idx):
+            v_full[motion_idx] = path_limits(_subset(packed, motion_idx), np.asarray(seg_feed)[motion_idx],
+                                             np.asarray(seg_rapid, dtype=bool)[motion_idx], lim,
+                                             jerk_limited=jerk_limited)[0]
+        v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
+        split = inner[jl <= v_stop]
+        keep_j = jl > v_stop
+        inner, jl = inner[keep_j], jl[keep_j]
+    else:
+        split = inner
+    new_chain = np.ones(n_seg, dtype=bool)
+    if n_seg:
+        new_chain[1:] = seg_chain_a[1:] != seg_chain_a[:-1]
+        new_chain[split + 1] = True
+    old_chain = seg_chain_a
+    seg_chain_a = np.cumsum(new_chain) - 1
+    n_chains = int(seg_chain_a[-1]) + 1 if n_seg else 0
+    dwell_of_chain = np.zeros(n_chains)
+    if n_seg:
+        dwell_of_chain[seg_chain_a] = np.array([ch.dwell for ch in chains])[old_chain]
+    chain_len = np.bincount(seg_chain_a, minlength=n_chains) if n_seg else np.zeros(0, dtype=np.int64)
+    in_multi = chain_len[seg_chain_a] > 1 if n_seg else np.zeros(0, dtype=bool)
+
+    # 3. path bounds per segment
+    v_max = np.zeros(n_seg)
+    a_max = np.ones(n_seg)
+    j_max = np.ones(n_seg)
+    motion = packed.kind != HOLD
+    feed_a = np.asarray(seg_feed, dtype=float)
+    rapid_a = np.asarray(seg_rapid, dtype=bool)
+    for mask, lims in ((motion & ~in_multi, lim), (motion & in_multi, lim_chain)):
+        idx = np.flatnonzero(mask)
+        if len(idx):
+            sub = _subset(packed, idx)
+            v, a, j = path_limits(sub, feed_a[idx], rapid_a[idx], lims, jerk_limited=jerk_limited)
+            v_max[idx], a_max[idx], j_max[idx] = v, a, j
+
+    # 4. junction speeds (entry v0 and exit v1 of each segment)
+    v0 = np.zeros(n_seg)
+    v1 = np.zeros(n_seg)
+    multi_chains = np.flatnonzero(chain_len > 1)
+    if len(multi_chains):
+        first = np.concatenate([[0], np.cumsum(chain_len)[:-1]])
+        jl_at = dict(zip(inner.tolist(), jl.tolist()))
+        for c in multi_chains:
+            s0, n = first[c], chain_len[c]
+            sl = slice(s0, s0 + n)
+            vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl],
+                                 np.array([jl_at[k] for k in range(s0, s0 + n - 1)]), jerk_limited=jerk_limited)
+            v0[sl], v1[sl] = vj[:-1], vj[1:]
+
+    # 5. profiles
+    mi = np.flatnonzero(motion)
+    if jerk_limited:
+        dur, p0, pv, pa, pj = scurve_phases(packed.length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
+    else:
+        dur, p0, pv, pa, pj = trapezoid_phases(packed.length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi])
+    n_ph = dur.shape[1]
+    seg_dur = np.zeros(n_seg)
+    seg_dur[mi] = dur.sum(axis=1)
+    hold = np.flatnonzero(~motion)
+    seg_dur[hold] = dwell_of_chain[seg_chain_a[hold]]
+
+    # 6. whole samples per chain; uniform slow-down (lambda <= 1) to fit them
+    chain_T = np.bincount(seg_chain_a, weights=seg_dur, minlength=n_chains) if n_seg else np.zeros(0)
+    chain_N = np.ceil(chain_T / Ts * (1.0 - 1e-12)).astype(np.int64)
+    chain_N = np.maximum(chain_N, 1)
+    total_N = int(chain_N.sum())
+    if total_N + 1 > max_samples:
+        raise GCodeError(
+            f"program needs {total_N + 1} samples at Ts = {Ts:g} s ({total_N * Ts:.6g} s), more than max_samples = "
+            f"{max_samples}",
+            file=program.source,
+            expected="a shorter program, a larger sample time or a larger max_samples",
+        )
+    lam = np.where(chain_T > 0, chain_T / (chain_N * Ts), 1.0)
+    chain_t0 = np.concatenate([[0], np.cumsum(chain_N)[:-1]]) * Ts if n_chains else np.zeros(0)
+
+    # phase table: one row per phase of positive duration
+    ph_seg = np.concatenate([np.repeat(mi, n_ph), hold])
+    lam_ph = lam[seg_chain_a[ph_seg]]
+    ph_dur = np.concatenate([dur.reshape(-1), seg_dur[hold]]) / lam_ph
+    ph_p = np.concatenate([p0.reshape(-1), np.zeros(len(hold))])
+    ph_v = np.concatenate([pv.reshape(-1), np.zeros(len(hold))]) * lam_ph
+    ph_a = np.concatenate([pa.reshape(-1), np.zeros(len(hold))]) * lam_ph**2
+    ph_j = np.concatenate([pj.reshape(-1), np.zeros(len(hold))]) * lam_ph**3
+    order = np.argsort(ph_seg, kind="stable")
+    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j = (x[order] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j))
+    # start time of each phase inside its chain
+    ph_chain = seg_chain_a[ph_seg]
+    csum = np.cumsum(ph_dur)
+    chain_first_ph = np.searchsorted(ph_chain, np.arange(n_chains))
+    excl = csum - ph_dur
+    base = excl[chain_first_ph] if n_chains else np.zeros(0)
+    ph_start = chain_t0[ph_chain] + (excl - base[ph_chain])
+    # the last phase of a segment ends exactly at the segment end (no rounding residue)
+    last_of_seg = np.ones(len(ph_seg), dtype=bool)
+    last_of_seg[:-1] = ph_seg[1:] != ph_seg[:-1]
+    keep = (ph_dur > 0) | last_of_seg
+    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
+        x[keep] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg)
+    )
+
+    # 7. sample
+    axes = program.axes or ("x",)
+    ax_idx = [AXIS_LETTERS.index(a) for a in axes]
+    t = np.arange(total_N + 1) * Ts
+    seg_block_a = np.asarray(seg_block, dtype=np.int64)
+    if len(ph_seg) == 0:
+        start = program.blocks[0].start if program.blocks else np.zeros(3)
+        pos = np.broadcast_to(start[ax_idx], (1, len(axes))).copy()
+        return Setpoints(
+            t=np.zeros(1), axes=axes, position=pos, velocity=np.zeros_like(pos), acceleration=np.zeros_like(pos),
+            block=np.full(1, 0 if program.blocks else -1, dtype=np.int64), sample_time=Ts,
+            path=program.path(), meta=_meta(program, profile, Ts, 0.0),
+        )
+    k = np.searchsorted(ph_start, t, side="right") - 1
+    np.clip(k, 0, len(ph_start) - 1, out=k)
+    tau = np.clip(t - ph_start[k], 0.0, ph_dur[k])
+    jj, aa, vv = ph_j[k], ph_a[k], ph_v[k]
+    s = ph_p[k] + tau * (vv + tau * (0.5 * aa + tau * (jj / 6.0)))
+    v = vv + tau * (aa + 0.5 * jj * tau)
+    a = aa + jj * tau
+    seg = ph_seg[k]
+    s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), packed.length[seg], s)
+    s[-1] = packed.length[seg[-1]]  # the program ends at rest exactly on its end point
+    v[-1] = a[-1] = 0.0
+    pos, vel, acc = packed.evaluate(seg, s, v, a)
+    # the last sample of a chain is at rest at its end
+    pos = pos[:, ax_idx]
+    vel = vel[:, ax_idx]
+    acc = acc[:, ax_idx]
+    geom_path = Path(segments=tuple(s_ for s_ in all_segs if not isinstance(s_, np.ndarray)),
+                     blocks=tuple(b for s_, b in zip(all_segs, seg_block) if not isinstance(s_, np.ndarray)),
+                     axes=axes)
+    meta = _meta(program, profile, Ts, float(t[-1]))
+    if blended:
+        meta["programmed_path"] = program.path()
+    return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=seg_block_a[seg],
+                     sample_time=Ts, path=geom_path, meta=meta)
+
+
+def _blend_worth(ch: _Chain, lim: AxisLimitArrays, Ts: float, jerk_limited: bool):
+    """Predicate: is the blend arc's speed bound a fair share of the adjoining lines' feeds?"""
+
+    def worth(k: int, arc: Arc) -> bool:
+        p, q = arc.plane_axes
+        A = min(lim.acceleration[p], lim.acceleration[q]) * (1.0 - JUNCTION_SHARE)
+        R = arc.radius
+        v = math.sqrt(CENTRIPETAL_SHARE * A * R)
+        if jerk_limited:
+            J = min(lim.jerk[p], lim.jerk[q])
+            v = min(v, math.cbrt(JERK_SPEED_SHARE * J * (1.0 - JUNCTION_SHARE) * R * R),
+                    math.sqrt(JUNCTION_SHARE * J * Ts * R))  # curvature step line -> arc
+        feeds = [ch.feeds[k], ch.feeds[k + 1]]
+        caps = [min(lim.rapid[p], lim.rapid[q]) if ch.rapid[i] else min(f, lim.velocity[p], lim.velocity[q])
+                for i, f in zip((k, k + 1), feeds)]
+        return v >= MIN_JUNCTION_SPEED_SHARE * min(caps)
+
+    return worth
+
+
+def _meta(program: Program, profile: str, Ts: float, duration: float) -> dict:
+    return {
+        "source": program.source,
+        "dialect": program.dialect,
+        "profile": profile,
+        "sample_time": Ts,
+        "duration": duration,
+        "blocks": len(program.blocks),
+    }
+
+
+def _subset(packed: PackedSegments, idx: np.ndarray) -> PackedSegments:
+    return PackedSegments(**{f: getattr(packed, f)[idx] for f in packed.__dataclass_fields__})

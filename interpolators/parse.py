@@ -1,0 +1,68 @@
+"""Entry points of the G-code readers: dialect detection, text and file input."""
+
+from __future__ import annotations
+
+import os
+
+from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
+from interpolators.iso import parse_iso
+from interpolators.program import Program
+from vcnc.errors import GCodeError
+
+__all__ = ["parse_program", "load_program", "detect_dialect"]
+
+
+def detect_dialect(text: str) -> str:
+    """``"heidenhain"`` for conversational text (a ``BEGIN PGM`` line, or a first block that is a
+    block number followed by ``L``, ``C``, ``CC``, ``CR``, ``TOOL CALL``, ...), else ``"iso"``."""
+    return "heidenhain" if looks_like_heidenhain(text) else "iso"
+
+
+def parse_program(text: str, *, source: str | None = None) -> Program:
+    """Parse program text, ISO or Heidenhain conversational (detected from the content).
+
+    Parameters
+    ----------
+    text : str
+        The program.
+    source : str, optional
+        Name of the file (or other label) reported in errors and kept in ``Program.source``.
+
+    Returns
+    -------
+    Program
+        Blocks with positions in mm and feeds in mm/s.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        Bad input, with file, line, column, the offending text and what was expected.
+    """
+    if not isinstance(text, str):
+        raise GCodeError(f"program text must be a str, got {type(text).__name__}", file=source)
+    if detect_dialect(text) == "heidenhain":
+        return parse_heidenhain(text, source=source)
+    return parse_iso(text, source=source)
+
+
+def load_program(path: str | os.PathLike[str]) -> Program:
+    """Read and parse a program file (UTF-8, or Latin-1 if it is not valid UTF-8).
+
+    Raises
+    ------
+    vcnc.GCodeError
+        Unreadable file or bad program.
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, "rb") as fh:
+            raw = fh.read()
+    except OSError as exc:
+        raise GCodeError(f"cannot read program: {exc.strerror or exc}", file=name) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    return parse_program(text, source=name)

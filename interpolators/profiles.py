@@ -1,0 +1,207 @@
+"""Feed profiles along one segment: trapezoidal (closed form) and S-curve (ruckig).
+
+A profile is a list of phases of constant path jerk; each phase has a duration and its state at
+the start (path position, speed, acceleration), so the path position inside a phase is the
+cubic ``p0 + v0 t + a0 t^2/2 + j t^3/6``. Both profiles share this form, which lets the sampler
+evaluate any mix of them at once.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import ruckig
+
+from vcnc.errors import VcncError
+
+__all__ = [
+    "PROFILES",
+    "trapezoid_phases",
+    "scurve_phases",
+    "trapezoid_reach",
+    "scurve_reach",
+    "trapezoid_duration",
+]
+
+#: Names accepted by ``interpolate(profile=...)``.
+PROFILES: tuple[str, ...] = ("trapezoid", "scurve")
+
+
+def trapezoid_duration(length: np.ndarray, v_max: np.ndarray, a_max: np.ndarray) -> np.ndarray:
+    """Duration of rest-to-rest trapezoidal moves [s].
+
+    ``T = L/V + V/A`` when the cruise speed is reached (``L >= V^2/A``), else ``2 sqrt(L/A)``.
+    """
+    L, V, A = np.asarray(length, float), np.asarray(v_max, float), np.asarray(a_max, float)
+    return np.where(L >= V * V / A, L / V + V / A, 2.0 * np.sqrt(L / A))
+
+
+def trapezoid_phases(
+    length: np.ndarray, v0: np.ndarray, v1: np.ndarray, v_max: np.ndarray, a_max: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Time-optimal trapezoidal profiles, vectorised over segments.
+
+    Parameters
+    ----------
+    length : ndarray, shape (n,)
+        Segment length [mm] (> 0).
+    v0, v1 : ndarray, shape (n,)
+        Entry and exit speed [mm/s]; must satisfy ``|v1^2 - v0^2| <= 2 a_max L`` and
+        ``v0, v1 <= v_max``.
+    v_max, a_max : ndarray, shape (n,)
+        Speed [mm/s] and acceleration [mm/s^2] bounds.
+
+    Returns
+    -------
+    duration, p0, v0, a0, jerk : ndarray, shape (n, 3)
+        Phases accelerate / cruise / decelerate: durations [s] and start states [mm, mm/s,
+        mm/s^2]; jerk is zero.
+    """
+    L = np.asarray(length, float)
+    v0 = np.asarray(v0, float)
+    v1 = np.asarray(v1, float)
+    V = np.asarray(v_max, float)
+    A = np.asarray(a_max, float)
+    vp = np.minimum(V, np.sqrt(np.maximum(A * L + 0.5 * (v0 * v0 + v1 * v1), 0.0)))
+    vp = np.maximum(vp, np.maximum(v0, v1))
+    t1 = (vp - v0) / A
+    t3 = (vp - v1) / A
+    s1 = 0.5 * (vp + v0) * t1
+    s3 = 0.5 * (vp + v1) * t3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t2 = np.where(vp > 0, np.maximum(L - s1 - s3, 0.0) / vp, 0.0)
+    n = len(L)
+    dur = np.stack([t1, t2, t3], axis=1)
+    p0 = np.stack([np.zeros(n), s1, s1 + vp * t2], axis=1)
+    pv = np.stack([v0, vp, vp], axis=1)
+    pa = np.stack([A, np.zeros(n), -A], axis=1)
+    return dur, p0, pv, pa, np.zeros((n, 3))
+
+
+def trapezoid_reach(v: float, length: float, a_max: float) -> float:
+    """Largest speed reachable from ``v`` [mm/s] over ``length`` [mm] at ``a_max`` [mm/s^2]."""
+    return math.sqrt(v * v + 2.0 * a_max * length)
+
+
+def scurve_reach(v: float, length: float, a_max: float, j_max: float) -> float:
+    """Largest speed reachable from ``v`` over ``length`` with zero acceleration at both ends.
+
+    A jerk-limited speed change ``dv`` with zero end accelerations takes ``T = dv/A + A/J`` when
+    ``dv >= A^2/J`` and ``T = 2 sqrt(dv/J)`` otherwise; its acceleration is symmetric in time,
+    so it covers ``(v0 + v1) T / 2``. Solving for ``dv`` is a cubic (short change) or a quadratic
+    (long change) in closed form.
+
+    Parameters
+    ----------
+    v : float
+        Start speed [mm/s] (>= 0).
+    length : float
+        [mm]
+    a_max, j_max : float
+        [mm/s^2], [mm/s^3]
+
+    Returns
+    -------
+    float
+        [mm/s]
+    """
+    if length <= 0:
+        return v
+    A, J = a_max, j_max
+    dv_lim = A * A / J
+    # short change: x = sqrt(dv): x^3 + 2 v x - L sqrt(J) = 0 (one positive real root)
+    p, q = 2.0 * v, -length * math.sqrt(J)
+    disc = (q / 2.0) ** 2 + (p / 3.0) ** 3
+    sd = math.sqrt(disc)
+    x = math.copysign(abs(-q / 2.0 + sd) ** (1.0 / 3.0), -q / 2.0 + sd) + math.copysign(
+        abs(-q / 2.0 - sd) ** (1.0 / 3.0), -q / 2.0 - sd
+    )
+    for _ in range(2):  # Newton polish: the Cardano sum loses digits when v is large
+        x -= (x * x * x + p * x + q) / (3.0 * x * x + p)
+    dv = x * x
+    if dv > dv_lim:
+        # long change: J dv^2 + (2 v J + A^2) dv + 2 v A^2 - 2 L A J = 0
+        b = 2.0 * v * J + A * A
+        c = 2.0 * v * A * A - 2.0 * length * A * J
+        dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
+    return v + max(dv, 0.0)
+
+
+class _Ruckig:
+    """One reusable 1-DoF ruckig instance (offline calculation)."""
+
+    def __init__(self) -> None:
+        self.otg = ruckig.Ruckig(1)
+        self.inp = ruckig.InputParameter(1)
+        self.traj = ruckig.Trajectory(1)
+        self.inp.current_position = [0.0]
+        self.inp.current_acceleration = [0.0]
+        self.inp.target_acceleration = [0.0]
+        self.inp.min_velocity = [0.0]
+
+    def profile(self, L: float, v0: float, v1: float, V: float, A: float, J: float):
+        inp = self.inp
+        inp.current_velocity = [v0]
+        inp.target_position = [L]
+        inp.target_velocity = [v1]
+        inp.max_velocity = [V]
+        inp.max_acceleration = [A]
+        inp.max_jerk = [J]
+        res = self.otg.calculate(inp, self.traj)
+        if res not in (ruckig.Result.Working, ruckig.Result.Finished):
+            raise VcncError(
+                f"ruckig found no S-curve profile (result {res}) for length {L!r} mm, speeds {v0!r} -> {v1!r} mm/s, "
+                f"limits v {V!r} mm/s, a {A!r} mm/s^2, j {J!r} mm/s^3"
+            )
+        prof = self.traj.profiles[0][0]
+        if prof.brake.duration > 0 or prof.accel.duration > 0:  # pragma: no cover - states are within limits
+            raise VcncError("ruckig returned a profile with a pre-phase; start state outside the limits")
+        return self.traj.duration, prof
+
+
+_RUCKIG: _Ruckig | None = None
+
+
+def scurve_phases(
+    length: np.ndarray, v0: np.ndarray, v1: np.ndarray, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Time-optimal jerk-limited profiles computed by ruckig, one per segment.
+
+    Each segment is planned as a 1-DoF ruckig problem on its arc length: from position 0,
+    speed ``v0``, acceleration 0 to position ``length``, speed ``v1``, acceleration 0, with
+    ``0 <= v <= v_max``, ``|a| <= a_max``, ``|j| <= j_max``. The seven phases of ruckig's profile
+    (``Trajectory.profiles``) are returned as they are.
+
+    Returns
+    -------
+    duration, p0, v0, a0, jerk : ndarray, shape (n, 7)
+        Phase durations [s], start states [mm, mm/s, mm/s^2] and jerks [mm/s^3].
+    """
+    global _RUCKIG
+    if _RUCKIG is None:
+        _RUCKIG = _Ruckig()
+    rk = _RUCKIG
+    n = len(length)
+    dur = np.zeros((n, 7))
+    p0 = np.zeros((n, 7))
+    pv = np.zeros((n, 7))
+    pa = np.zeros((n, 7))
+    pj = np.zeros((n, 7))
+    for i in range(n):
+        _, prof = rk.profile(float(length[i]), float(v0[i]), float(v1[i]), float(v_max[i]), float(a_max[i]),
+                             float(j_max[i]))
+        dur[i] = prof.t
+        pj[i] = prof.j
+        p0[i] = prof.p[:7]
+        pv[i] = prof.v[:7]
+        pa[i] = prof.a[:7]
+    return dur, p0, pv, pa, pj
+
+
+def ruckig_duration(length: float, v0: float, v1: float, v_max: float, a_max: float, j_max: float) -> float:
+    """Duration [s] ruckig computes for one segment (reference for tests)."""
+    global _RUCKIG
+    if _RUCKIG is None:
+        _RUCKIG = _Ruckig()
+    return _RUCKIG.profile(length, v0, v1, v_max, a_max, j_max)[0]

@@ -1,0 +1,106 @@
+"""A parsed part program: the executable blocks, dialect independent."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
+
+__all__ = ["Block", "Program", "BLOCK_KINDS"]
+
+#: Kinds of executable blocks.
+BLOCK_KINDS: tuple[str, ...] = ("rapid", "line", "arc", "dwell")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class Block:
+    """One executable block (a motion or a dwell).
+
+    Attributes
+    ----------
+    line : int
+        1-based line of the block in the source text.
+    number : int or None
+        Block number as written (``N`` word or Heidenhain block number), if any.
+    text : str
+        The source line (stripped).
+    kind : str
+        ``"rapid"`` (G00 / FMAX: a straight line at the machine's rapid rate), ``"line"`` (G01 / L),
+        ``"arc"`` (G02 / G03 / C / CR, possibly helical) or ``"dwell"`` (G04).
+    start, target : ndarray, shape (3,)
+        Position before and after the block, ``(x, y, z)`` [mm].
+    feed : float
+        Programmed path feed [mm/s]; ``inf`` for rapids (the machine's rapid rate applies) and
+        ``0`` for dwells.
+    segment : Line or Arc or None
+        Exact geometry of the motion (``None`` for a dwell).
+    dwell : float
+        Dwell time [s] (0 for motions).
+    exact_stop : bool
+        True if the block ends at rest (G61, the default); False for continuous path (G64),
+        where the look-ahead may pass the block end at speed.
+    tolerance : float or None
+        Path tolerance of G64 ``P`` [mm]; ``None`` selects ``interpolators.DEFAULT_TOLERANCE``.
+    """
+
+    line: int
+    number: int | None = None
+    text: str = ""
+    kind: str
+    start: np.ndarray
+    target: np.ndarray
+    feed: float
+    segment: Line | Arc | None = None
+    dwell: float = 0.0
+    exact_stop: bool = True
+    tolerance: float | None = None
+
+    @property
+    def length(self) -> float:
+        """Path length of the block [mm] (0 for a dwell)."""
+        return 0.0 if self.segment is None else self.segment.length
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class Program:
+    """A parsed program.
+
+    Attributes
+    ----------
+    blocks : tuple of Block
+        Executable blocks in order (non-motion lines such as comments, ``BLK FORM`` or ``M03``
+        do not appear). Sample ``block`` indices of :class:`vcnc.Setpoints` index this tuple.
+    source : str or None
+        File name (or label) the text came from.
+    dialect : str
+        ``"iso"`` or ``"heidenhain"``.
+    axes : tuple of str
+        Axes the program uses (written in an axis word or moved by an arc), canonical order.
+    name : str or None
+        Program name (Heidenhain ``BEGIN PGM`` name or ISO ``O`` number), if given.
+    """
+
+    blocks: tuple[Block, ...]
+    source: str | None = None
+    dialect: str = "iso"
+    axes: tuple[str, ...] = ()
+    name: str | None = None
+
+    def __len__(self) -> int:
+        return len(self.blocks)
+
+    @property
+    def end_position(self) -> np.ndarray:
+        """Position after the last block [mm] (the origin for an empty program)."""
+        return self.blocks[-1].target.copy() if self.blocks else np.zeros(3)
+
+    def path(self) -> Path:
+        """The programmed geometry: one segment per motion block of non-zero length."""
+        segs, idx = [], []
+        for i, b in enumerate(self.blocks):
+            if b.segment is not None and b.segment.length > 0:
+                segs.append(b.segment)
+                idx.append(i)
+        return Path(segments=tuple(segs), blocks=tuple(idx), axes=self.axes or AXIS_LETTERS)

@@ -1,0 +1,51 @@
+"""``vcnc interpolate`` and ``vcnc toolpath``: outputs, exit statuses, no partial files."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vcnc.cli import main
+
+
+def test_toolpath_then_interpolate(tmp_path, capsys):
+    prog = tmp_path / "circle.nc"
+    assert main(["toolpath", "circle", "--radius", "5", "--feed", "6000", "--center", "1,2", "-o", str(prog)]) == 0
+    out = tmp_path / "sp.csv"
+    png = tmp_path / "sp.png"
+    assert main(["interpolate", str(prog), "-o", str(out), "--profile", "scurve", "--ts", "0.002",
+                 "--plot", str(png)]) == 0
+    header = out.read_text().splitlines()[0].split(",")
+    assert header == ["t", "x_ref", "x_vel", "x_acc", "y_ref", "y_vel", "y_acc", "block"]
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert np.allclose(np.diff(data[:, 0]), 0.002)
+    assert png.stat().st_size > 1000
+
+
+def test_identification_programs(tmp_path, capsys):
+    for args in (["--kind", "random", "--n", "20", "--seed", "3"], ["--kind", "slow", "--n", "10"],
+                 ["--kind", "fast", "--n", "10"]):
+        f = tmp_path / "id.nc"
+        assert main(["toolpath", "identification", *args, "-o", str(f)]) == 0
+        assert main(["interpolate", str(f), "-o", str(tmp_path / "id.csv")]) == 0
+    assert main(["toolpath", "diamond", "--side", "10"]) == 0
+    assert "G01" in capsys.readouterr().out
+
+
+def test_bad_program_exit_2_and_no_output(tmp_path, capsys):
+    prog = tmp_path / "bad.nc"
+    prog.write_text("G01 X10 F100\nG01 X5 Q3\n")
+    out = tmp_path / "sp.csv"
+    assert main(["interpolate", str(prog), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and f"{prog}:2:8" in err
+    assert not out.exists() and list(tmp_path.iterdir()) == [prog]
+
+
+def test_missing_program_exit_2(tmp_path, capsys):
+    assert main(["interpolate", str(tmp_path / "none.nc"), "-o", str(tmp_path / "x.csv")]) == 2
+    assert "cannot read" in capsys.readouterr().err
+
+
+def test_bad_toolpath_option_exit_2(tmp_path, capsys):
+    assert main(["toolpath", "circle", "--radius", "-1", "-o", str(tmp_path / "c.nc")]) == 2
+    assert not (tmp_path / "c.nc").exists()

@@ -1,0 +1,303 @@
+"""Exact path geometry: straight lines, circular arcs and helices in 3-D.
+
+All points are length-3 float arrays ``(x, y, z)`` in millimetres. Every primitive is
+parametrised by its arc length ``s`` [mm], ``0 <= s <= length``; ``point_at(0)`` is exactly
+``start`` and ``point_at(length)`` is exactly ``end`` (bit for bit, not only to rounding).
+
+Arc planes follow ISO 6983 / Fanuc: the plane is named by its normal axis, and the two in-plane
+axes ``(p, q)`` are ordered so that ``(p, q, normal)`` is right-handed:
+
+====== ======= ============ ==============
+G code  plane   ``plane``    ``plane_axes``
+====== ======= ============ ==============
+G17     XY      2 (z)        (0, 1)  x, y
+G18     ZX      1 (y)        (2, 0)  z, x
+G19     YZ      0 (x)        (1, 2)  y, z
+====== ======= ============ ==============
+
+Counter-clockwise (``ccw=True``, G03, Heidenhain ``DR+``) means the in-plane angle, measured
+from ``p`` towards ``q``, increases: counter-clockwise when looking from the positive normal
+axis towards the origin.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterator, Sequence
+
+import numpy as np
+
+from vcnc.errors import InputError
+
+__all__ = ["Line", "Arc", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS"]
+
+#: Axis letters of the three linear axes, in index order.
+AXIS_LETTERS: tuple[str, str, str] = ("x", "y", "z")
+
+#: normal-axis index -> the two in-plane axis indices (p, q), right-handed with the normal.
+PLANE_AXES: dict[int, tuple[int, int]] = {2: (0, 1), 1: (2, 0), 0: (1, 2)}
+
+
+def _point(value: Sequence[float] | np.ndarray, name: str) -> np.ndarray:
+    arr = np.array(value, dtype=float).reshape(-1)
+    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+        raise InputError(f"{name} must be 3 finite coordinates [mm], got {value!r}")
+    arr.setflags(write=False)
+    return arr
+
+
+class Line:
+    """Straight segment from ``start`` to ``end``.
+
+    Parameters
+    ----------
+    start, end : array_like, shape (3,)
+        End points [mm].
+
+    Attributes
+    ----------
+    start, end : ndarray, shape (3,)
+        End points [mm] (read-only arrays).
+    length : float
+        Length [mm].
+    direction : ndarray, shape (3,)
+        Unit tangent (zero vector for a zero-length line).
+    """
+
+    __slots__ = ("start", "end", "length", "direction")
+    kind = "line"
+
+    def __init__(self, start: Sequence[float] | np.ndarray, end: Sequence[float] | np.ndarray) -> None:
+        self.start = _point(start, "Line start")
+        self.end = _point(end, "Line end")
+        d = self.end - self.start
+        self.length = float(np.sqrt(d @ d))
+        u = d / self.length if self.length > 0 else np.zeros(3)
+        u.setflags(write=False)
+        self.direction = u
+
+    def point_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Points at arc length ``s`` [mm]; shape ``s.shape + (3,)``."""
+        s = np.asarray(s, dtype=float)
+        if self.length == 0:
+            return np.broadcast_to(self.start, s.shape + (3,)).copy()
+        f = (s / self.length)[..., None]
+        p = self.start + (self.end - self.start) * f
+        return np.where((s >= self.length)[..., None], self.end, np.where((s <= 0)[..., None], self.start, p))
+
+    def tangent_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Unit tangents d(point)/ds at ``s``; shape ``s.shape + (3,)``."""
+        s = np.asarray(s, dtype=float)
+        return np.broadcast_to(self.direction, s.shape + (3,)).copy()
+
+    def curvature_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Curvature vectors d^2(point)/ds^2 [1/mm] (zero for a line)."""
+        s = np.asarray(s, dtype=float)
+        return np.zeros(s.shape + (3,))
+
+    def __repr__(self) -> str:
+        return f"Line(start={self.start.tolist()}, end={self.end.tolist()})"
+
+
+class Arc:
+    """Circular arc, optionally helical along the plane normal.
+
+    Parameters
+    ----------
+    start, end : array_like, shape (3,)
+        End points [mm]. ``start`` must lie at distance ``radius`` from ``center`` in the plane;
+        the in-plane position of ``end`` must lie on the same circle (checked to 1e-9 relative;
+        the G-code parser checks programs against a looser, documented tolerance and moves the
+        centre so that both ends are exactly on the circle).
+    center : array_like, shape (3,)
+        Centre [mm]; its normal-axis coordinate is ignored and replaced by ``start``'s.
+    ccw : bool
+        Direction: True counter-clockwise (G03, DR+), False clockwise (G02, DR-).
+    plane : int
+        Index of the normal axis: 2 for XY (G17), 1 for ZX (G18), 0 for YZ (G19).
+    turns : int
+        Extra full turns (>= 0) added to the sweep.
+
+    Attributes
+    ----------
+    start, end, center : ndarray, shape (3,)
+        [mm]; ``center[plane] == start[plane]``.
+    radius : float
+        Radius [mm] (> 0).
+    plane : int
+        Normal-axis index (see module table).
+    plane_axes : tuple of int
+        In-plane axis indices ``(p, q)``.
+    ccw : bool
+        True if counter-clockwise seen from the positive normal axis.
+    start_angle : float
+        Angle of ``start`` about ``center``, from ``p`` towards ``q`` [rad].
+    sweep : float
+        Signed swept angle [rad]; positive counter-clockwise; ``abs(sweep) <= 2*pi*(turns+1)``;
+        a full circle (end equal to start in the plane) has ``abs(sweep) == 2*pi``.
+    helix : float
+        Displacement along the normal axis over the arc, ``end[plane] - start[plane]`` [mm].
+    length : float
+        Arc length ``hypot(radius*|sweep|, helix)`` [mm].
+    """
+
+    __slots__ = (
+        "start", "end", "center", "radius", "plane", "plane_axes", "ccw",
+        "start_angle", "sweep", "helix", "length", "_ep", "_eq", "_en",
+    )
+    kind = "arc"
+
+    def __init__(
+        self,
+        start: Sequence[float] | np.ndarray,
+        end: Sequence[float] | np.ndarray,
+        center: Sequence[float] | np.ndarray,
+        *,
+        ccw: bool,
+        plane: int = 2,
+        turns: int = 0,
+    ) -> None:
+        if plane not in PLANE_AXES:
+            raise InputError(f"Arc plane must be the normal axis index 0, 1 or 2, got {plane!r}")
+        if int(turns) != turns or turns < 0:
+            raise InputError(f"Arc turns must be an integer >= 0, got {turns!r}")
+        self.start = _point(start, "Arc start")
+        self.end = _point(end, "Arc end")
+        c = np.array(_point(center, "Arc center"))
+        c[plane] = self.start[plane]
+        c.setflags(write=False)
+        self.center = c
+        self.plane = int(plane)
+        p, q = PLANE_AXES[plane]
+        self.plane_axes = (p, q)
+        self.ccw = bool(ccw)
+        rs = math.hypot(self.start[p] - c[p], self.start[q] - c[q])
+        re = math.hypot(self.end[p] - c[p], self.end[q] - c[q])
+        if not rs > 0:
+            raise InputError("Arc radius must be > 0 mm (start point equals centre)")
+        if abs(rs - re) > 1e-9 * max(rs, 1.0):
+            raise InputError(f"Arc end is not on the circle: start radius {rs!r} mm, end radius {re!r} mm")
+        self.radius = rs
+        a0 = math.atan2(self.start[q] - c[q], self.start[p] - c[p])
+        a1 = math.atan2(self.end[q] - c[q], self.end[p] - c[p])
+        chord = math.hypot(self.end[p] - self.start[p], self.end[q] - self.start[q])
+        two_pi = 2.0 * math.pi
+        if chord <= 1e-12 * max(rs, 1.0):
+            sweep = two_pi
+        else:
+            sweep = (a1 - a0) % two_pi if ccw else (a0 - a1) % two_pi
+            if sweep == 0.0:  # chord > 0 but angles round equal: the shortest representable arc
+                sweep = 1e-300
+        sweep += two_pi * int(turns)
+        self.start_angle = a0
+        self.sweep = sweep if ccw else -sweep
+        self.helix = float(self.end[plane] - self.start[plane])
+        self.length = math.hypot(rs * abs(self.sweep), self.helix)
+        ep = np.zeros(3)
+        ep[p] = 1.0
+        eq = np.zeros(3)
+        eq[q] = 1.0
+        en = np.zeros(3)
+        en[plane] = 1.0
+        self._ep, self._eq, self._en = ep, eq, en
+
+    def angle_at(self, s: np.ndarray | float) -> np.ndarray:
+        """In-plane angle about the centre at arc length ``s`` [rad]."""
+        return self.start_angle + self.sweep * (np.asarray(s, dtype=float) / self.length)
+
+    def point_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Points at arc length ``s`` [mm]; shape ``s.shape + (3,)``."""
+        s = np.asarray(s, dtype=float)
+        f = s / self.length
+        phi = (self.start_angle + self.sweep * f)[..., None]
+        pts = self.center + self.radius * (np.cos(phi) * self._ep + np.sin(phi) * self._eq)
+        pts = pts + (self.helix * f)[..., None] * self._en
+        return np.where((s >= self.length)[..., None], self.end, np.where((s <= 0)[..., None], self.start, pts))
+
+    def tangent_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Unit tangents d(point)/ds at ``s``; shape ``s.shape + (3,)``."""
+        s = np.asarray(s, dtype=float)
+        phi = self.angle_at(s)[..., None]
+        w = self.radius * self.sweep / self.length
+        return w * (-np.sin(phi) * self._ep + np.cos(phi) * self._eq) + (self.helix / self.length) * self._en
+
+    def curvature_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Curvature vectors d^2(point)/ds^2 [1/mm], pointing to the helix axis."""
+        s = np.asarray(s, dtype=float)
+        phi = self.angle_at(s)[..., None]
+        k = self.radius * (self.sweep / self.length) ** 2
+        return -k * (np.cos(phi) * self._ep + np.sin(phi) * self._eq)
+
+    def __repr__(self) -> str:
+        return (
+            f"Arc(start={self.start.tolist()}, end={self.end.tolist()}, center={self.center.tolist()}, "
+            f"ccw={self.ccw}, plane={self.plane}, sweep={self.sweep:.6g})"
+        )
+
+
+Segment = Line | Arc
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class Path:
+    """Ordered exact primitives of a toolpath.
+
+    Attributes
+    ----------
+    segments : tuple of Line or Arc
+        The primitives, each starting where the previous one ends (for a program path;
+        a path with blended corners starts a new segment where the blend leaves the line).
+    blocks : tuple of int
+        For each segment, the index of the program block it belongs to (``Program.blocks``).
+    axes : tuple of str
+        Axes the path is reported on (canonical order, subset of ``x, y, z``).
+    """
+
+    segments: tuple[Segment, ...]
+    blocks: tuple[int, ...]
+    axes: tuple[str, ...] = AXIS_LETTERS
+
+    def __post_init__(self) -> None:
+        if len(self.segments) != len(self.blocks):
+            raise InputError(
+                f"Path needs one block index per segment: {len(self.segments)} segments, {len(self.blocks)} blocks"
+            )
+
+    def __len__(self) -> int:
+        return len(self.segments)
+
+    def __iter__(self) -> Iterator[Segment]:
+        return iter(self.segments)
+
+    def __getitem__(self, i: int) -> Segment:
+        return self.segments[i]
+
+    @property
+    def length(self) -> float:
+        """Total length [mm]."""
+        return float(sum(seg.length for seg in self.segments))
+
+    def points(self, *, step: float = 0.1) -> np.ndarray:
+        """Points along the whole path, at most ``step`` [mm] apart (for plots); shape (M, 3)."""
+        out = []
+        for seg in self.segments:
+            n = max(2, int(math.ceil(seg.length / step)) + 1)
+            out.append(seg.point_at(np.linspace(0.0, seg.length, n)))
+        return np.concatenate(out) if out else np.zeros((0, 3))
+
+    def plot(self, ax=None, **kwargs):  # noqa: ANN001 - matplotlib Axes
+        """Draw the path in the plane of its first two axes; returns the Axes."""
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots()
+        idx = [AXIS_LETTERS.index(a) for a in self.axes if a in AXIS_LETTERS][:2] or [0, 1]
+        if len(idx) == 1:
+            idx = [idx[0], 1 if idx[0] != 1 else 0]
+        pts = self.points()
+        ax.plot(pts[:, idx[0]], pts[:, idx[1]], **kwargs)
+        ax.set_xlabel(f"{AXIS_LETTERS[idx[0]]} [mm]")
+        ax.set_ylabel(f"{AXIS_LETTERS[idx[1]]} [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        return ax

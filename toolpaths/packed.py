@@ -1,0 +1,163 @@
+"""Segments packed into arrays, for evaluating many points on mixed lines and arcs at once."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from toolpaths.geometry import Arc, Line
+
+__all__ = ["PackedSegments", "LINE", "ARC", "HOLD"]
+
+#: Segment kinds in :attr:`PackedSegments.kind`.
+LINE, ARC, HOLD = 0, 1, 2
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class PackedSegments:
+    """Array form of a sequence of segments.
+
+    Attributes
+    ----------
+    kind : ndarray of int, shape (n,)
+        ``LINE`` (0), ``ARC`` (1) or ``HOLD`` (2: a fixed point, e.g. a dwell; ``start == end``).
+    length : ndarray, shape (n,)
+        Arc length [mm] (0 for a hold).
+    start, end : ndarray, shape (n, 3)
+        End points [mm].
+    center, e_p, e_q, e_n : ndarray, shape (n, 3)
+        Arc centre [mm] and unit vectors of the in-plane axes p, q and of the normal (zero rows
+        for lines and holds).
+    radius, start_angle, sweep, helix : ndarray, shape (n,)
+        Arc radius [mm], start angle [rad], signed sweep [rad], helix rise [mm] (zero for lines).
+    """
+
+    kind: np.ndarray
+    length: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    center: np.ndarray
+    e_p: np.ndarray
+    e_q: np.ndarray
+    e_n: np.ndarray
+    radius: np.ndarray
+    start_angle: np.ndarray
+    sweep: np.ndarray
+    helix: np.ndarray
+
+    @classmethod
+    def from_segments(cls, segments: Sequence[Line | Arc | np.ndarray]) -> PackedSegments:
+        """Pack lines, arcs and hold points (a length-3 array [mm] stands for a hold)."""
+        n = len(segments)
+        kind = np.zeros(n, dtype=np.int64)
+        length = np.zeros(n)
+        start = np.zeros((n, 3))
+        end = np.zeros((n, 3))
+        center = np.zeros((n, 3))
+        e_p = np.zeros((n, 3))
+        e_q = np.zeros((n, 3))
+        e_n = np.zeros((n, 3))
+        radius = np.zeros(n)
+        start_angle = np.zeros(n)
+        sweep = np.zeros(n)
+        helix = np.zeros(n)
+        for i, seg in enumerate(segments):
+            if isinstance(seg, Line):
+                kind[i] = LINE
+                length[i] = seg.length
+                start[i], end[i] = seg.start, seg.end
+            elif isinstance(seg, Arc):
+                kind[i] = ARC
+                length[i] = seg.length
+                start[i], end[i] = seg.start, seg.end
+                center[i] = seg.center
+                p, q = seg.plane_axes
+                e_p[i, p] = 1.0
+                e_q[i, q] = 1.0
+                e_n[i, seg.plane] = 1.0
+                radius[i] = seg.radius
+                start_angle[i] = seg.start_angle
+                sweep[i] = seg.sweep
+                helix[i] = seg.helix
+            else:
+                kind[i] = HOLD
+                start[i] = end[i] = np.asarray(seg, dtype=float)
+        return cls(kind=kind, length=length, start=start, end=end, center=center, e_p=e_p, e_q=e_q, e_n=e_n,
+                   radius=radius, start_angle=start_angle, sweep=sweep, helix=helix)
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def evaluate(
+        self, seg: np.ndarray, s: np.ndarray, v: np.ndarray | None = None, a: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """Position, velocity and acceleration of points moving along the segments.
+
+        Parameters
+        ----------
+        seg : ndarray of int, shape (m,)
+            Segment index of each point.
+        s : ndarray, shape (m,)
+            Arc length along its segment [mm], clipped to ``[0, length]``.
+        v, a : ndarray, shape (m,), optional
+            Path speed [mm/s] and path acceleration ds^2/dt^2 [mm/s^2].
+
+        Returns
+        -------
+        position : ndarray, shape (m, 3)
+            [mm]; exactly ``start`` at ``s <= 0`` and exactly ``end`` at ``s >= length``.
+        velocity, acceleration : ndarray, shape (m, 3) or None
+            ``tangent * v`` [mm/s] and ``tangent * a + curvature * v**2`` [mm/s^2] (None when
+            ``v`` / ``a`` are not given; the acceleration needs ``v``).
+        """
+        seg = np.asarray(seg, dtype=np.int64)
+        L = self.length[seg]
+        s = np.clip(np.asarray(s, dtype=float), 0.0, L)
+        m = len(seg)
+        pos = np.empty((m, 3))
+        tan = np.zeros((m, 3)) if v is not None else None
+        curv = np.zeros((m, 3)) if a is not None else None
+        kind = self.kind[seg]
+        safe_L = np.where(L > 0, L, 1.0)
+        f = s / safe_L
+
+        il = np.flatnonzero(kind == LINE)
+        if len(il):
+            sl = seg[il]
+            d = self.end[sl] - self.start[sl]
+            pos[il] = self.start[sl] + d * f[il, None]
+            if tan is not None:
+                tan[il] = d / safe_L[il, None]
+        ih = np.flatnonzero(kind == HOLD)
+        if len(ih):
+            pos[ih] = self.start[seg[ih]]
+        ia = np.flatnonzero(kind == ARC)
+        if len(ia):
+            sa = seg[ia]
+            fa = f[ia]
+            sw = self.sweep[sa]
+            phi = self.start_angle[sa] + sw * fa
+            c, sn = np.cos(phi)[:, None], np.sin(phi)[:, None]
+            ep, eq, en = self.e_p[sa], self.e_q[sa], self.e_n[sa]
+            r = self.radius[sa][:, None]
+            hel = self.helix[sa][:, None]
+            radial = c * ep + sn * eq
+            pos[ia] = self.center[sa] + r * radial + (hel * fa[:, None]) * en
+            La = safe_L[ia][:, None]
+            if tan is not None:
+                tan[ia] = (r * sw[:, None] / La) * (c * eq - sn * ep) + (hel / La) * en
+            if curv is not None:
+                curv[ia] = -(r * (sw[:, None] / La) ** 2) * radial
+        at_end = (s >= L) & (kind != HOLD)
+        pos[at_end] = self.end[seg[at_end]]
+        at_start = (s <= 0) & (kind != HOLD)
+        pos[at_start] = self.start[seg[at_start]]
+        vel = acc = None
+        if v is not None:
+            v = np.asarray(v, dtype=float)
+            vel = tan * v[:, None]
+            if a is not None:
+                acc = tan * np.asarray(a, dtype=float)[:, None] + curv * (v * v)[:, None]
+        return pos, vel, acc

@@ -1,0 +1,107 @@
+"""``vcnc interpolate``: G-code program -> sampled axis setpoints (CSV, optional plot)."""
+
+from __future__ import annotations
+
+import argparse
+import io
+import logging
+
+HELP = "interpolate a program (ISO or Heidenhain) into setpoints sampled every Ts (CSV)"
+
+log = logging.getLogger(__name__)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("program", help="part program (ISO G-code or Heidenhain conversational, detected)")
+    parser.add_argument("-o", "--output", required=True, metavar="CSV",
+                        help="setpoints file: t, <axis>_ref, <axis>_vel, <axis>_acc, block")
+    parser.add_argument("--profile", choices=("trapezoid", "scurve"), default="trapezoid",
+                        help="feed profile: trapezoid (acceleration limited) or scurve (jerk limited, ruckig)")
+    parser.add_argument("--ts", type=float, default=None, metavar="S",
+                        help="sample time [s] (default: the machine's, else 0.001)")
+    parser.add_argument("--plot", metavar="PNG", help="also draw the path and speed/acceleration over time")
+    parser.add_argument("--machine", metavar="NAME|FILE",
+                        help="take axis limits and Ts from a machine (default: interpolators.DEFAULT_LIMITS)")
+
+
+def _machine(name: str):
+    import importlib
+
+    from vcnc.errors import VcncError
+
+    try:
+        mod = importlib.import_module("vcnc.machine")
+    except ModuleNotFoundError as exc:
+        if exc.name != "vcnc.machine":
+            raise
+        raise VcncError(
+            f"--machine {name!r}: machine definitions (vcnc.machine) are not available in this installation yet; "
+            "run without --machine to use the default limits"
+        ) from None
+    return mod.load_machine(name)
+
+
+def plot_setpoints(setpoints, *, title: str | None = None):
+    """Figure with the path (left) and path speed / acceleration magnitude over time (right)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    fig, (ax_path, ax_v) = plt.subplots(1, 2, figsize=(11, 4.5))
+    pos = setpoints.position
+    if pos.shape[1] >= 2:
+        ax_path.plot(pos[:, 0], pos[:, 1], lw=1)
+        ax_path.set_xlabel(f"{setpoints.axes[0]} [mm]")
+        ax_path.set_ylabel(f"{setpoints.axes[1]} [mm]")
+        ax_path.set_aspect("equal", adjustable="datalim")
+    else:
+        ax_path.plot(setpoints.t, pos[:, 0], lw=1)
+        ax_path.set_xlabel("t [s]")
+        ax_path.set_ylabel(f"{setpoints.axes[0]} [mm]")
+    ax_path.set_title("path")
+    speed = np.linalg.norm(setpoints.velocity, axis=1)
+    acc = np.linalg.norm(setpoints.acceleration, axis=1)
+    ax_v.plot(setpoints.t, speed, lw=1, color="C0")
+    ax_v.set_xlabel("t [s]")
+    ax_v.set_ylabel("speed [mm/s]", color="C0")
+    ax_a = ax_v.twinx()
+    ax_a.plot(setpoints.t, acc, lw=0.8, color="C3", alpha=0.7)
+    ax_a.set_ylabel("|acceleration| [mm/s^2]", color="C3")
+    ax_v.set_title("speed and acceleration")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def run(args: argparse.Namespace) -> int:
+    from interpolators import interpolate, load_program
+    from vcnc._io import atomic_path
+
+    program = load_program(args.program)
+    limits = None
+    ts = 1e-3
+    if args.machine:
+        machine = _machine(args.machine)
+        limits = machine.limits
+        ts = float(getattr(machine, "sample_time", ts) or ts)
+    if args.ts is not None:
+        ts = args.ts
+    sp = interpolate(program, limits=limits, sample_time=ts, profile=args.profile)
+    png = None
+    if args.plot:
+        import matplotlib.pyplot as plt
+
+        fig = plot_setpoints(sp, title=f"{args.program} ({args.profile}, Ts = {ts:g} s)")
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=120)
+        plt.close(fig)
+        png = buf.getvalue()
+    sp.to_csv(args.output)
+    if png is not None:
+        with atomic_path(args.plot) as tmp:
+            tmp.write_bytes(png)
+    log.info("%d samples, %.6g s, axes %s -> %s", len(sp), sp.duration, ",".join(sp.axes), args.output)
+    return 0
