@@ -1,0 +1,36 @@
+"""Slow measurement drift (thermal growth of the screw, scale offset)."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import ClassVar
+
+from drives._record import Record
+
+__all__ = ["Drift"]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Drift(Record):
+    """A slowly growing offset between the measured and the true table position.
+
+    Parameters
+    ----------
+    rate : float
+        Initial drift rate [mm/s] (signed), e.g. 2e-5 mm/s = 72 um/h for screw growth.
+    time_constant : float
+        Thermal time constant [s]; 0 gives a linear drift ``rate * t``, otherwise the offset
+        ``rate * tau * (1 - exp(-t / tau))`` settles at ``rate * tau``.
+    """
+
+    rate: float
+    time_constant: float = 0.0
+
+    UNITS: ClassVar[dict[str, str]] = {"rate": "mm/s", "time_constant": "s"}
+    TABLE: ClassVar[str] = "drift"
+
+    def __post_init__(self) -> None:
+        self._finite("rate")
+        self._nonnegative("time_constant")
+        if abs(self.rate) > 1.0:
+            raise self._fail("rate", "must be at most 1 mm/s in magnitude")

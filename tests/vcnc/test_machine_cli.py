@@ -1,0 +1,107 @@
+"""``vcnc machines`` and ``vcnc simulate``: output contracts, exit statuses, no partial output."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import interpolators
+import vcnc
+from vcnc.cli import main
+from vcnc.machine import builtin_machine_text, builtin_machines
+from vcnc.setpoints import Setpoints
+
+PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"
+
+
+@pytest.fixture
+def program(tmp_path: Path) -> Path:
+    p = tmp_path / "part.nc"
+    p.write_text(PROGRAM)
+    return p
+
+
+@pytest.fixture(autouse=True)
+def _fake_interpolator(monkeypatch):
+    """The CLI contract is tested independently of the interpolator: a fixed two-axis motion."""
+
+    def load_program(path):
+        if "bad" in str(path):
+            raise vcnc.GCodeError("unknown word Q", file=str(path), line=3, column=1)
+        return str(path)
+
+    def interpolate(program, *, limits, sample_time, profile):
+        assert profile in ("trapezoid", "scurve") and set(limits) >= {"x", "y"}
+        t = np.arange(0, 1.0, sample_time)
+        pos = np.c_[5 * np.sin(np.pi * t) ** 2, 5 * np.sin(2 * np.pi * t) ** 2]
+        return Setpoints.from_positions(pos, sample_time=sample_time, axes=("x", "y"))
+
+    monkeypatch.setattr(interpolators, "load_program", load_program, raising=False)
+    monkeypatch.setattr(interpolators, "interpolate", interpolate, raising=False)
+
+
+def test_machines_lists_all(capsys) -> None:
+    assert main(["machines"]) == 0
+    out = capsys.readouterr().out
+    for n in builtin_machines():
+        assert n in out
+
+
+def test_machines_show_prints_toml(capsys) -> None:
+    assert main(["machines", "--show", "fadal-pid"]) == 0
+    assert capsys.readouterr().out.strip() == builtin_machine_text("fadal-pid").strip()
+
+
+def test_machines_show_unknown_exit_2(capsys) -> None:
+    assert main(["machines", "--show", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and "fadal-pid" in err
+
+
+def test_simulate_writes_capture_json_report(tmp_path: Path, program: Path, caplog) -> None:
+    out, js, rep = tmp_path / "c.csv", tmp_path / "s.json", tmp_path / "rep"
+    rc = main(["simulate", str(program), "--machine", "fadal-pid", "-o", str(out), "--json", str(js),
+               "--report", str(rep), "--seed", "3"])
+    assert rc == 0
+    cap = vcnc.read_capture(out)
+    assert cap.axes == ("x", "y") and cap.control is not None and cap.meta["machine"] == "fadal-pid"
+    s = json.loads(js.read_text())
+    assert s["samples"] == len(cap) and s["sample_time"] == 0.001 and s["axes"] == ["x", "y"]
+    for a in "xy":
+        e = (cap.reference[:, "xy".index(a)] - cap.measured[:, "xy".index(a)]) * 1e3
+        assert s["tracking"][a]["max_um"] == pytest.approx(np.max(np.abs(e)), rel=1e-6)
+    import importlib.util
+
+    if importlib.util.find_spec("vcnc.contour") is None:
+        assert "contour" not in s
+    assert (rep / "tracking.png").is_file() and (rep / "path.png").is_file() and (rep / "index.html").is_file()
+
+
+def test_simulate_same_seed_same_capture(tmp_path: Path, program: Path) -> None:
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    for p in (a, b):
+        assert main(["simulate", str(program), "--machine", "fadal-ppi", "-o", str(p), "--seed", "7"]) == 0
+    assert a.read_text() == b.read_text()
+
+
+def test_simulate_bad_machine_file_exit_2_nothing_written(tmp_path: Path, program: Path, capsys) -> None:
+    bad = tmp_path / "bad_machine.toml"
+    bad.write_text(builtin_machine_text("fadal-pid").replace("inertia = 0.003 ", "inertia = -1 ", 1))
+    out = tmp_path / "c.csv"
+    rc = main(["simulate", str(program), "--machine", str(bad), "-o", str(out), "--json", str(tmp_path / "s.json")])
+    assert rc == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and f"{bad}:" in err and "inertia" in err and "kg m^2" in err
+    assert set(tmp_path.iterdir()) == {bad, program}
+
+
+def test_simulate_bad_program_exit_2(tmp_path: Path, capsys) -> None:
+    prog = tmp_path / "bad.nc"
+    prog.write_text("G01 Q5\n")
+    rc = main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")])
+    assert rc == 2
+    assert not (tmp_path / "c.csv").exists()
+    assert "bad.nc:3" in capsys.readouterr().err

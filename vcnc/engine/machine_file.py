@@ -1,0 +1,289 @@
+"""Machine definition files (TOML): schema check with file and line in every message.
+
+Layout::
+
+    name = "my-mill"              # optional, defaults to the file name
+    description = "..."
+    sample_time = 0.001           # s
+
+    [axes.x]
+    feedback = "motor"            # or "table"
+    substeps = 1
+    [axes.x.limits]               # velocity mm/s, acceleration mm/s^2, jerk mm/s^3, rapid mm/s
+    [axes.x.drive]                # type = "ballscrew" | "linear" | "discrete", then its fields
+    [axes.x.controller]           # type = "pid" | "ppi" | "smc" | "ppc" | "pdf", then its fields
+    [axes.x.friction]             # optional non-idealities, one table each:
+    [axes.x.backlash]             #   friction backlash encoder dac saturation noise delay
+    ...                           #   resonance position_periodic load drift
+
+or, for an axis simulated by an FMU: ``[axes.x] fmu = "drive.fmu"`` (with ``[axes.x.limits]``).
+Field names and units are those of the ``drives`` and ``controllers`` records.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import tomllib
+import typing
+from pathlib import Path
+from typing import Any
+
+import controllers
+import drives
+from interpolators.limits import AxisLimits
+from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
+from vcnc.errors import InputError, MachineError
+from vcnc.setpoints import AXIS_NAMES
+
+__all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
+
+_TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": ""}
+_AXIS_KEYS = {"feedback", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
+_LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class MachineSpec:
+    """What a machine file defines (axes in file order; FMU axes as their file path)."""
+
+    name: str
+    description: str
+    sample_time: float
+    axes: dict[str, Any]
+    limits: dict[str, AxisLimits]
+
+
+class LineIndex:
+    """Line numbers of the keys and tables of a TOML text (for error messages)."""
+
+    _HEADER = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+    _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\.\"' ]+?)\s*=")
+
+    def __init__(self, text: str) -> None:
+        self.lines: dict[tuple[str, ...], int] = {}
+        table: tuple[str, ...] = ()
+        for i, line in enumerate(text.splitlines(), start=1):
+            m = self._HEADER.match(line)
+            if m:
+                table = self._split(m.group(1))
+                self.lines.setdefault(table, i)
+                continue
+            m = self._KEY.match(line)
+            if m:
+                self.lines.setdefault(table + self._split(m.group(1)), i)
+
+    @staticmethod
+    def _split(dotted: str) -> tuple[str, ...]:
+        return tuple(p.strip().strip("\"'") for p in dotted.split("."))
+
+    def line(self, *path: str) -> int | None:
+        """Line of ``path`` (a key or table), else of its nearest enclosing table."""
+        p = tuple(path)
+        while p:
+            if p in self.lines:
+                return self.lines[p]
+            p = p[:-1]
+        return None
+
+
+def _type_name(ann: str) -> str:
+    ann = ann.replace(" | None", "")
+    return {"float": "a number", "int": "an integer", "str": "a string", "bool": "true or false"}.get(
+        ann, "a list of numbers" if ann.startswith("tuple") else ann
+    )
+
+
+def _annotation(t: Any) -> str:
+    return t if isinstance(t, str) else getattr(t, "__name__", str(t))
+
+
+def _coerce(value: Any, ann: str) -> Any:
+    """Value converted to the field type ``ann`` or raise TypeError."""
+    base = ann.replace(" | None", "").strip()
+    if base == "float":
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise TypeError
+        return float(value)
+    if base == "int":
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError
+        return value
+    if base == "bool":
+        if not isinstance(value, bool):
+            raise TypeError
+        return value
+    if base == "str":
+        if not isinstance(value, str):
+            raise TypeError
+        return value
+    if base.startswith("tuple"):
+        if not isinstance(value, list) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value
+        ):
+            raise TypeError
+        return tuple(float(v) for v in value)
+    return value
+
+
+def _build(
+    cls: type, table: dict[str, Any], path: tuple[str, ...], where: _Where, *, skip: tuple[str, ...] = ()
+) -> Any:
+    """Instantiate a record class from a TOML table: unknown/missing keys, types, values."""
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    units = getattr(cls, "UNITS", {})
+    hints = {n: _annotation(f.type) for n, f in fields.items()}
+    kwargs: dict[str, Any] = {}
+    for key, value in table.items():
+        if key in skip:
+            continue
+        if key not in fields:
+            allowed = ", ".join(f"{k} [{units.get(k, '')}]" if units.get(k) else k for k in fields)
+            what = getattr(cls, "TABLE", "") or cls.__name__
+            raise where.error(f"unknown key '{'.'.join(path + (key,))}' for {what}; expected one of: {allowed}",
+                              path + (key,))
+        try:
+            kwargs[key] = _coerce(value, hints[key])
+        except TypeError:
+            unit = f" [{units[key]}]" if units.get(key) else ""
+            raise where.error(
+                f"'{'.'.join(path + (key,))}'{unit} must be {_type_name(hints[key])}, "
+                f"got {type(value).__name__} {value!r}",
+                path + (key,),
+            ) from None
+    missing = [
+        n
+        for n, f in fields.items()
+        if n not in kwargs
+        and n not in skip
+        and f.default is dataclasses.MISSING
+        and f.default_factory is dataclasses.MISSING
+    ]
+    if missing:
+        k = missing[0]
+        unit = f" [{units[k]}]" if units.get(k) else ""
+        raise where.error(f"missing key '{'.'.join(path + (k,))}'{unit} ({_type_name(hints[k])})", path)
+    try:
+        return cls(**kwargs)
+    except InputError as exc:
+        key = getattr(exc, "key", None)
+        raise where.error(exc.message if exc.text is None else f"{exc.message} (got {exc.text})",
+                          path + ((key,) if key else ())) from None
+
+
+class _Where:
+    def __init__(self, file: str, index: LineIndex) -> None:
+        self.file = file
+        self.index = index
+
+    def error(self, message: str, path: tuple[str, ...]) -> MachineError:
+        return MachineError(message, file=self.file, line=self.index.line(*path))
+
+
+def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpec:
+    """Parse and check a machine definition; MachineError names the key, unit, file and line."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)(?:, column (\d+))?", str(exc))
+        raise MachineError(
+            f"not valid TOML: {exc}", file=file, line=int(m.group(1)) if m else None,
+            column=int(m.group(2)) if m and m.group(2) else None,
+        ) from None
+    where = _Where(file, LineIndex(text))
+    for key in data:
+        if key not in _TOP_KEYS:
+            raise where.error(f"unknown key '{key}'; expected one of: {', '.join(_TOP_KEYS)}", (key,))
+    name = data.get("name", default_name)
+    if not isinstance(name, str) or not name:
+        raise where.error("'name' must be a non-empty string", ("name",))
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise where.error("'description' must be a string", ("description",))
+    if "sample_time" not in data:
+        raise where.error("missing key 'sample_time' [s] (the servo and interpolation period)", ())
+    ts = data["sample_time"]
+    if isinstance(ts, bool) or not isinstance(ts, (int, float)) or not (math.isfinite(ts) and 1e-6 <= ts <= 1.0):
+        raise where.error(f"'sample_time' [s] must be a number in [1e-6, 1], got {ts!r}", ("sample_time",))
+    axes_tab = data.get("axes")
+    if not isinstance(axes_tab, dict) or not axes_tab:
+        raise where.error("missing table [axes.<name>]: a machine needs at least one axis", ("axes",))
+    axes: dict[str, Any] = {}
+    limits: dict[str, AxisLimits] = {}
+    for a, tab in axes_tab.items():
+        path = ("axes", a)
+        if a not in AXIS_NAMES:
+            raise where.error(f"unknown axis name '{a}'; expected one of {', '.join(AXIS_NAMES)}", path)
+        if not isinstance(tab, dict):
+            raise where.error(f"'axes.{a}' must be a table", path)
+        for key in tab:
+            if key not in _AXIS_KEYS:
+                raise where.error(f"unknown key 'axes.{a}.{key}'; expected one of: {', '.join(sorted(_AXIS_KEYS))}",
+                                  path + (key,))
+        if "limits" not in tab or not isinstance(tab["limits"], dict):
+            raise where.error(f"missing table [axes.{a}.limits] (velocity mm/s, acceleration mm/s^2, jerk mm/s^3)",
+                              path)
+        limits[a] = _build_limits(tab["limits"], path + ("limits",), where)
+        if "fmu" in tab:
+            extra = [k for k in tab if k not in ("fmu", "limits")]
+            if extra:
+                raise where.error(f"axes.{a}.{extra[0]} cannot be combined with 'fmu' (the FMU is the whole axis)",
+                                  path + (extra[0],))
+            if not isinstance(tab["fmu"], str):
+                raise where.error(f"'axes.{a}.fmu' must be a file path string", path + ("fmu",))
+            fmu = Path(tab["fmu"])
+            if not fmu.is_absolute() and file and not file.startswith("<"):
+                fmu = Path(file).parent / fmu
+            axes[a] = ("fmu", str(fmu), where.index.line(*path, "fmu"))
+            continue
+        for req in ("drive", "controller"):
+            if req not in tab or not isinstance(tab[req], dict):
+                raise where.error(f"missing table [axes.{a}.{req}]", path)
+        drive = _build_typed(tab["drive"], drives.PLANTS, path + ("drive",), where)
+        ctrl = _build_typed(tab["controller"], controllers.CONTROLLERS, path + ("controller",), where)
+        kwargs: dict[str, Any] = {}
+        for f in NONIDEALITY_FIELDS:
+            if f in tab:
+                if not isinstance(tab[f], dict):
+                    raise where.error(f"'axes.{a}.{f}' must be a table", path + (f,))
+                kwargs[f] = _build(drives.NONIDEALITIES[f if f != "load" else "load"], tab[f], path + (f,), where)
+        for key in ("feedback", "substeps"):
+            if key in tab:
+                kwargs[key] = tab[key]
+        try:
+            axes[a] = AxisDefinition(name=a, drive=drive, controller=ctrl, limits=limits[a], **kwargs)
+        except InputError as exc:
+            key = getattr(exc, "key", None)
+            raise where.error(exc.message, path + ((key,) if key else ())) from None
+    return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits)
+
+
+def _build_typed(table: dict[str, Any], registry: dict[str, type], path: tuple[str, ...], where: _Where) -> Any:
+    kind = table.get("type")
+    if kind is None:
+        raise where.error(f"missing key '{'.'.join(path)}.type'; expected one of: {', '.join(registry)}", path)
+    if kind not in registry:
+        raise where.error(f"'{'.'.join(path)}.type' must be one of: {', '.join(registry)}; got {kind!r}",
+                          path + ("type",))
+    return _build(registry[kind], table, path, where, skip=("type",))
+
+
+def _build_limits(table: dict[str, Any], path: tuple[str, ...], where: _Where) -> AxisLimits:
+    for key, value in table.items():
+        if key not in _LIMIT_UNITS:
+            raise where.error(
+                f"unknown key '{'.'.join(path + (key,))}'; expected one of: "
+                + ", ".join(f"{k} [{u}]" for k, u in _LIMIT_UNITS.items()),
+                path + (key,),
+            )
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (value > 0 and math.isfinite(value)):
+            raise where.error(f"'{'.'.join(path + (key,))}' [{_LIMIT_UNITS[key]}] must be a finite number > 0, "
+                              f"got {value!r}", path + (key,))
+    for key in ("velocity", "acceleration"):
+        if key not in table:
+            raise where.error(f"missing key '{'.'.join(path + (key,))}' [{_LIMIT_UNITS[key]}]", path)
+    return AxisLimits(**{k: float(v) for k, v in table.items()})
+
+
+_ = typing  # annotations are read as strings

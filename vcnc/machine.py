@@ -1,0 +1,524 @@
+"""Virtual machines: axes of drives and controllers simulated from setpoints into captures.
+
+A machine comes from a built-in name (``vcnc machines`` lists them) or a TOML file (schema in
+:mod:`vcnc.engine.machine_file`)::
+
+    m = load_machine("fadal-pid")
+    capture = m.simulate(setpoints, seed=1)
+    m.axis("x").reduced_parameters()          # a1..d1 of Eq. (3.3)
+    g_track, g_dist = m.axis("x").closed_loop(m.sample_time)
+    worse = m.with_axis_options("x", backlash=0.02)          # one non-ideality changed
+    worse = m.with_effect("x", "resonance")                  # a diagnosis effect, realistic size
+
+Axes may also be external objects (an identified model, an FMU) with
+``simulate_reference(reference, sample_time) -> measured`` [mm]; see :meth:`Machine.from_axes`.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import dataclasses
+import importlib.resources
+import logging
+import math
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+import drives
+from interpolators.limits import AxisLimits
+from vcnc.capture import Capture
+from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
+from vcnc.engine.machine_file import parse_machine_text
+from vcnc.errors import InputError, MachineError, SimulationError
+from vcnc.setpoints import AXIS_NAMES, Setpoints
+
+__all__ = [
+    "Machine",
+    "AxisDefinition",
+    "ExternalAxis",
+    "load_machine",
+    "builtin_machines",
+    "builtin_machine_text",
+    "EFFECTS",
+    "realistic_effect",
+]
+
+log = logging.getLogger(__name__)
+
+_BUILTIN_PACKAGE = "vcnc.machines"
+
+
+@runtime_checkable
+class ExternalAxis(Protocol):
+    """An axis simulated outside the compiled kernel (identified model, FMU, ...)."""
+
+    def simulate_reference(self, reference: np.ndarray, sample_time: float) -> np.ndarray:
+        """Measured position [mm] for the commanded position ``reference`` [mm]."""
+        ...
+
+
+def builtin_machines() -> list[str]:
+    """Names of the built-in machines (sorted)."""
+    root = importlib.resources.files(_BUILTIN_PACKAGE)
+    return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
+
+
+def builtin_machine_text(name: str) -> str:
+    """TOML text of a built-in machine; MachineError listing the names if unknown."""
+    if name not in builtin_machines():
+        raise MachineError(f"unknown machine {name!r}; built-in machines: {', '.join(builtin_machines())}")
+    return (importlib.resources.files(_BUILTIN_PACKAGE) / f"{name}.toml").read_text()
+
+
+def load_machine(name_or_path: str | Path) -> Machine:
+    """A built-in machine by name, or a machine TOML file.
+
+    Raises
+    ------
+    MachineError
+        Unknown name (listing the built-in names), unreadable file, or a definition that fails
+        the schema (naming the key, its unit, the file and the line).
+    """
+    s = str(name_or_path)
+    if s in builtin_machines():
+        text = builtin_machine_text(s)
+        return Machine._from_text(text, file=f"<built-in {s}>", default_name=s)
+    p = Path(s)
+    if p.suffix.lower() != ".toml" and not p.exists():
+        raise MachineError(
+            f"unknown machine {s!r}: neither a built-in name ({', '.join(builtin_machines())}) nor a .toml file"
+        )
+    try:
+        text = p.read_text()
+    except OSError as exc:
+        raise MachineError(f"cannot read machine file ({exc.strerror or exc})", file=s) from None
+    return Machine._from_text(text, file=s, default_name=p.stem)
+
+
+class Machine:
+    """A multi-axis virtual machine.
+
+    Attributes
+    ----------
+    name : str
+        Machine name (built-in name or the TOML ``name``).
+    axes : tuple of str
+        Axis names in definition order.
+    sample_time : float
+        Servo and interpolation period Ts [s].
+    limits : dict of str to AxisLimits
+        Kinematic limits per axis for the interpolator.
+    description : str
+        Free text.
+    source : str or None
+        Where the definition came from.
+    """
+
+    def __init__(
+        self,
+        *,
+        name: str,
+        axes: Mapping[str, AxisDefinition | ExternalAxis],
+        sample_time: float,
+        limits: Mapping[str, AxisLimits],
+        description: str = "",
+        source: str | None = None,
+    ) -> None:
+        if not (isinstance(sample_time, (int, float)) and math.isfinite(sample_time) and sample_time > 0):
+            raise MachineError(f"Machine.sample_time [s] must be a finite number > 0, got {sample_time!r}")
+        if not axes:
+            raise MachineError("a machine needs at least one axis")
+        for a, ax in axes.items():
+            if a not in AXIS_NAMES:
+                raise MachineError(f"unknown axis name {a!r}; expected some of {AXIS_NAMES}")
+            if not isinstance(ax, AxisDefinition) and not isinstance(ax, ExternalAxis):
+                raise MachineError(
+                    f"axis {a}: {type(ax).__name__} is neither an AxisDefinition nor has "
+                    "simulate_reference(reference, sample_time)"
+                )
+            if a not in limits:
+                raise MachineError(f"axis {a}: no limits given (AxisLimits: velocity, acceleration, jerk)")
+        self.name = name
+        self._axes = dict(axes)
+        self.axes: tuple[str, ...] = tuple(axes)
+        self.sample_time = float(sample_time)
+        self.limits: dict[str, AxisLimits] = {a: limits[a] for a in self.axes}
+        self.description = description
+        self.source = source
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def _from_text(cls, text: str, *, file: str, default_name: str) -> Machine:
+        spec = parse_machine_text(text, file=file, default_name=default_name)
+        axes: dict[str, Any] = {}
+        for a, ax in spec.axes.items():
+            if isinstance(ax, tuple) and ax[0] == "fmu":
+                axes[a] = _load_fmu_axis(ax[1], file=file, line=ax[2])
+            else:
+                axes[a] = ax
+        return cls(
+            name=spec.name,
+            axes=axes,
+            sample_time=spec.sample_time,
+            limits=spec.limits,
+            description=spec.description,
+            source=file,
+        )
+
+    @classmethod
+    def from_axes(
+        cls,
+        axes: Mapping[str, AxisDefinition | ExternalAxis],
+        *,
+        sample_time: float,
+        limits: Mapping[str, AxisLimits] | None = None,
+        name: str = "custom",
+        description: str = "",
+    ) -> Machine:
+        """A machine from axis objects.
+
+        Parameters
+        ----------
+        axes : mapping of axis name to AxisDefinition or external axis
+            External axes implement ``simulate_reference(reference: ndarray, sample_time: float)
+            -> ndarray`` giving the measured position [mm] for the commanded one [mm] (an identified
+            reduced model, ``vcnc.fmu.FmuAxis``); they are simulated outside the compiled kernel.
+        sample_time : float
+            Ts [s].
+        limits : mapping of axis name to AxisLimits, optional
+            Defaults to the AxisDefinition's own limits, or an external axis' ``limits``
+            attribute.
+        """
+        lim: dict[str, AxisLimits] = {}
+        for a, ax in axes.items():
+            if limits is not None and a in limits:
+                lim[a] = limits[a]
+            elif isinstance(ax, AxisDefinition):
+                lim[a] = ax.limits
+            elif isinstance(getattr(ax, "limits", None), AxisLimits):
+                lim[a] = ax.limits
+        return cls(name=name, axes=axes, sample_time=sample_time, limits=lim, description=description)
+
+    # ------------------------------------------------------------------ access
+    def axis(self, name: str) -> AxisDefinition | ExternalAxis:
+        """The definition of axis ``name`` (an AxisDefinition, or the external axis object)."""
+        try:
+            return self._axes[name]
+        except KeyError:
+            raise MachineError(f"machine {self.name!r} has no axis {name!r} (axes: {', '.join(self.axes)})") from None
+
+    def __repr__(self) -> str:
+        return f"Machine(name={self.name!r}, axes={self.axes}, sample_time={self.sample_time})"
+
+    # ------------------------------------------------------------------ variants
+    def with_axis(self, name: str, definition: AxisDefinition | ExternalAxis, *, suffix: str = "") -> Machine:
+        """A copy with axis ``name`` replaced (or added)."""
+        axes = dict(self._axes)
+        axes[name] = definition
+        limits = dict(self.limits)
+        if isinstance(definition, AxisDefinition):
+            limits[name] = definition.limits
+        return Machine(
+            name=self.name + suffix,
+            axes=axes,
+            sample_time=self.sample_time,
+            limits=limits,
+            description=self.description,
+            source=self.source,
+        )
+
+    def with_axis_options(
+        self,
+        axis: str,
+        *,
+        friction: drives.Friction | None | object = ...,
+        backlash: drives.Backlash | float | None | object = ...,
+        encoder: drives.Encoder | float | None | object = ...,
+        dac: drives.DAC | None | object = ...,
+        saturation: drives.Saturation | None | object = ...,
+        noise: drives.MeasurementNoise | float | None | object = ...,
+        delay: drives.ComputationalDelay | int | None | object = ...,
+        resonance: drives.StructuralMode | None | object = ...,
+        position_periodic: drives.PositionPeriodic | None | object = ...,
+        load: drives.ExternalLoad | None | object = ...,
+        drift: drives.Drift | float | None | object = ...,
+        feedback: str | object = ...,
+        substeps: int | object = ...,
+        controller: Any = ...,
+        drive: Any = ...,
+    ) -> Machine:
+        """A copy of the machine with non-idealities of one axis set, replaced or removed.
+
+        Every keyword left out keeps its value; ``None`` removes the effect. Shorthands:
+        ``backlash=0.02`` [mm width], ``encoder=5e-4`` [mm], ``noise=1e-4`` [mm std],
+        ``delay=1`` [samples], ``drift=2e-5`` [mm/s]. Records of ``drives`` give full control, e.g.
+        ``resonance=drives.StructuralMode(frequency_hz=80, damping=0.03)``. The new machine's name
+        gets a ``+`` suffix.
+        """
+        ax = self.axis(axis)
+        if not isinstance(ax, AxisDefinition):
+            raise MachineError(f"axis {axis} of {self.name!r} is external; its options cannot be changed")
+        shorthand = {
+            "backlash": lambda v: drives.Backlash(width=float(v)),
+            "encoder": lambda v: drives.Encoder(resolution=float(v)),
+            "noise": lambda v: drives.MeasurementNoise(std=float(v)),
+            "delay": lambda v: drives.ComputationalDelay(samples=int(v)),
+            "drift": lambda v: drives.Drift(rate=float(v)),
+        }
+        given = {
+            "friction": friction,
+            "backlash": backlash,
+            "encoder": encoder,
+            "dac": dac,
+            "saturation": saturation,
+            "noise": noise,
+            "delay": delay,
+            "resonance": resonance,
+            "position_periodic": position_periodic,
+            "load": load,
+            "drift": drift,
+            "feedback": feedback,
+            "substeps": substeps,
+            "controller": controller,
+            "drive": drive,
+        }
+        changes: dict[str, Any] = {}
+        for k, v in given.items():
+            if v is ...:
+                continue
+            if k in shorthand and isinstance(v, (int, float)) and not isinstance(v, bool):
+                v = shorthand[k](v)
+            changes[k] = v
+        return self.with_axis(axis, dataclasses.replace(ax, **changes), suffix="+")
+
+    def with_effect(self, axis: str, effect: str, parameters: Mapping[str, float] | None = None) -> Machine:
+        """A copy with one diagnosis effect (ARCHITECTURE.md vocabulary) added at a realistic size.
+
+        ``effect`` is one of :data:`EFFECTS`; ``parameters`` override the defaults of
+        :func:`realistic_effect` (same keys).
+        """
+        ax = self.axis(axis)
+        if not isinstance(ax, AxisDefinition):
+            raise MachineError(f"axis {axis} of {self.name!r} is external; effects cannot be added")
+        changes = realistic_effect(ax, effect, parameters)
+        m = self.with_axis(axis, dataclasses.replace(ax, **changes), suffix=f"+{effect}")
+        return m
+
+    # ------------------------------------------------------------------ simulation
+    def simulate(self, setpoints: Setpoints, *, seed: int | None = None) -> Capture:
+        """Simulate the commanded motion; deterministic for a given seed.
+
+        Parameters
+        ----------
+        setpoints : Setpoints
+            Commanded position [mm], velocity [mm/s], acceleration [mm/s^2] per axis, sampled at
+            the machine's ``sample_time``. Axes of the machine absent from the setpoints are not
+            simulated; an axis in the setpoints that the machine lacks is an error.
+        seed : int, optional
+            Seed of the measurement noise (``None`` means 0: runs are always reproducible).
+
+        Returns
+        -------
+        Capture
+            ``reference``, ``measured`` [mm], and when every axis is compiled also ``table`` (true
+            table position [mm]), ``velocity`` [mm/s], ``control`` [V] and ``friction`` (dry friction
+            as control signal [V]). ``path`` is the setpoints' path; ``meta`` records the machine
+            name, seed and sample time. Each axis starts at rest at its first commanded position.
+        """
+        from vcnc.engine.kernel import simulate_axis
+
+        if not isinstance(setpoints, Setpoints):
+            raise InputError(f"simulate needs Setpoints, got {type(setpoints).__name__}")
+        if not math.isclose(setpoints.sample_time, self.sample_time, rel_tol=1e-6):
+            raise InputError(
+                f"setpoints are sampled at {setpoints.sample_time} s but machine {self.name!r} runs at "
+                f"sample_time {self.sample_time} s; interpolate with the machine's sample time"
+            )
+        missing = [a for a in setpoints.axes if a not in self._axes]
+        if missing:
+            raise InputError(
+                f"setpoints command axis {', '.join(missing)} which machine {self.name!r} does not have "
+                f"(axes: {', '.join(self.axes)})"
+            )
+        seed_v = 0 if seed is None else int(seed)
+        if not 0 <= seed_v < 2**32:
+            raise InputError(f"seed must be an integer in [0, 2**32), got {seed!r}")
+        n = len(setpoints)
+        k = len(setpoints.axes)
+        measured = np.empty((n, k))
+        table = np.empty((n, k))
+        velocity = np.empty((n, k))
+        control = np.empty((n, k))
+        friction = np.empty((n, k))
+        all_compiled = True
+        jobs = []
+        for i, a in enumerate(setpoints.axes):
+            ax = self._axes[a]
+            ref = np.ascontiguousarray(setpoints.position[:, i], dtype=float)
+            if not isinstance(ax, AxisDefinition):
+                all_compiled = False
+                y = np.asarray(ax.simulate_reference(ref, self.sample_time), dtype=float).reshape(-1)
+                if y.shape != (n,):
+                    raise SimulationError(f"external axis {a} returned {y.shape[0]} samples, expected {n}")
+                measured[:, i] = y
+                continue
+            p, c = ax.pack(self.sample_time)
+            ref_c = np.ascontiguousarray(ax.controller.prefilter(ref, ax.drive, self.sample_time), dtype=float)
+            # each axis gets its own noise stream, derived from the seed and the axis name
+            axis_seed = (seed_v * 7919 + AXIS_NAMES.index(a) * 104729) % (2**32)
+            args = (
+                ref_c,
+                np.ascontiguousarray(setpoints.velocity[:, i], dtype=float),
+                np.ascontiguousarray(setpoints.acceleration[:, i], dtype=float),
+                p,
+                c,
+                float(ref[0]) if n else 0.0,
+                axis_seed,
+                np.empty((n, 5)),
+            )
+            jobs.append((i, a, args))
+        if n:
+            # the kernel releases the GIL: long multi-axis runs use one thread per axis
+            if len(jobs) > 1 and n * len(jobs) >= 200_000:
+                with concurrent.futures.ThreadPoolExecutor(max_workers=min(len(jobs), os.cpu_count() or 1)) as ex:
+                    status = list(ex.map(lambda job: simulate_axis(*job[2]), jobs))
+            else:
+                status = [simulate_axis(*job[2]) for job in jobs]
+            for (_i, a, _args), st in zip(jobs, status):
+                if st >= 0:
+                    raise SimulationError(
+                        f"machine {self.name!r}, axis {a}: the simulation diverged at "
+                        f"t = {st * self.sample_time:.6g} s (unstable loop?)"
+                    )
+        for i, _a, args in jobs:
+            out = args[-1]
+            measured[:, i] = out[:, 0]
+            table[:, i] = out[:, 1]
+            velocity[:, i] = out[:, 2]
+            control[:, i] = out[:, 3]
+            friction[:, i] = out[:, 4]
+        meta = {"machine": self.name, "seed": seed_v, "sample_time": self.sample_time}
+        return Capture(
+            t=np.asarray(setpoints.t, dtype=float),
+            axes=tuple(setpoints.axes),
+            reference=np.array(setpoints.position, dtype=float),
+            measured=measured,
+            control=control if all_compiled else None,
+            table=table if all_compiled else None,
+            velocity=velocity if all_compiled else None,
+            friction=friction if all_compiled else None,
+            meta=meta,
+            path=setpoints.path,
+        )
+
+
+def _load_fmu_axis(path: str, *, file: str, line: int | None) -> ExternalAxis:
+    try:
+        from vcnc.fmu import FmuAxis  # type: ignore[attr-defined]
+    except ImportError as exc:
+        raise MachineError(f"FMU axes need vcnc.fmu.FmuAxis, which is not available ({exc})", file=file,
+                           line=line) from None
+    try:
+        return FmuAxis(path)
+    except InputError as exc:
+        raise MachineError(f"fmu = {path!r}: {exc}", file=file, line=line) from None
+
+
+# ---------------------------------------------------------------------- effects
+#: diagnosis effect names (ARCHITECTURE.md) that :meth:`Machine.with_effect` can add
+EFFECTS: tuple[str, ...] = (
+    "friction_stribeck",
+    "friction_viscous_asymmetric",
+    "backlash",
+    "position_periodic",
+    "time_periodic",
+    "resonance",
+    "delay",
+    "saturation",
+    "drift",
+)
+
+
+def realistic_effect(
+    axis: AxisDefinition, effect: str, parameters: Mapping[str, float] | None = None
+) -> dict[str, Any]:
+    """Field changes of ``axis`` that add ``effect`` at a realistic magnitude.
+
+    Defaults (override by ``parameters``, same keys):
+
+    - friction_stribeck: ``static_ratio`` 1.5 (static / Coulomb), ``stribeck_velocity_mm_s`` 2.0;
+      an axis without Coulomb friction gets 2 % of the force at 1 V first.
+    - friction_viscous_asymmetric: ``asymmetry`` 0.3: viscous +/-30 % by direction.
+    - backlash: ``width_mm`` 0.01.
+    - position_periodic: ``period_mm`` the screw lead (10 mm for others), ``amplitude_n`` 5 % of the
+      force at 1 V (a torque ripple), ``position_amplitude_mm`` 0.
+    - time_periodic: ``period_s`` 0.5, ``amplitude_n`` 10 % of the force at 1 V.
+    - resonance: ``frequency_hz`` 60, ``damping`` 0.05, ``load_fraction`` 0.5.
+    - delay: ``samples`` 2.
+    - saturation: ``voltage_limit_v`` 1.0 (reached by the accelerations of an identification test).
+    - drift: ``rate_mm_s`` 2e-4, ``time_constant_s`` 0 (linear).
+    """
+    if effect not in EFFECTS:
+        raise MachineError(f"unknown effect {effect!r}; expected one of: {', '.join(EFFECTS)}")
+    p = dict(parameters or {})
+
+    def get(key: str, default: float) -> float:
+        return float(p.pop(key, default))
+
+    fpv = axis.drive.force_per_volt
+    out: dict[str, Any]
+    if effect in ("friction_stribeck", "friction_viscous_asymmetric", "position_periodic", "time_periodic",
+                  "resonance") and axis.discrete_plant:
+        raise MachineError(
+            f"effect {effect!r} needs a physical plant; axis {axis.name} is a discrete transfer function"
+        )
+    if effect == "friction_stribeck":
+        f = axis.friction or drives.Friction(coulomb_positive=0.02 * fpv, coulomb_negative=0.02 * fpv)
+        ratio = get("static_ratio", 1.5)
+        out = {"friction": dataclasses.replace(
+            f,
+            static_positive=f.coulomb_positive * ratio,
+            static_negative=f.coulomb_negative * ratio,
+            stribeck_velocity=get("stribeck_velocity_mm_s", 2.0),
+        ), "substeps": max(axis.substeps, 10)}
+    elif effect == "friction_viscous_asymmetric":
+        f = axis.friction or drives.Friction()
+        b = axis.drive.viscous_rate * axis.drive.equivalent_mass
+        if b == 0:
+            b = 0.5 * axis.drive.equivalent_mass
+        a = get("asymmetry", 0.3)
+        out = {"friction": dataclasses.replace(f, viscous_positive=b * (1 - a), viscous_negative=b * (1 + a))}
+    elif effect == "backlash":
+        out = {"backlash": drives.Backlash(width=get("width_mm", 0.01))}
+    elif effect == "position_periodic":
+        lead = getattr(axis.drive, "lead", 10.0)
+        out = {"position_periodic": drives.PositionPeriodic(
+            period=get("period_mm", lead),
+            force_amplitude=get("amplitude_n", 0.05 * fpv),
+            position_amplitude=get("position_amplitude_mm", 0.0),
+        )}
+    elif effect == "time_periodic":
+        old = axis.load or drives.ExternalLoad()
+        out = {"load": dataclasses.replace(old, amplitude=get("amplitude_n", 0.1 * fpv), period=get("period_s", 0.5))}
+    elif effect == "resonance":
+        out = {"resonance": drives.StructuralMode(
+            frequency_hz=get("frequency_hz", 60.0),
+            damping=get("damping", 0.05),
+            load_fraction=get("load_fraction", 0.5),
+        )}
+    elif effect == "delay":
+        out = {"delay": drives.ComputationalDelay(samples=int(get("samples", 2)))}
+    elif effect == "saturation":
+        out = {"saturation": drives.Saturation(voltage_limit=get("voltage_limit_v", 1.0))}
+    else:  # drift
+        out = {"drift": drives.Drift(rate=get("rate_mm_s", 2e-4), time_constant=get("time_constant_s", 0.0))}
+    if p:
+        raise MachineError(f"unknown parameter(s) {sorted(p)} for effect {effect!r}")
+    return out
+
+
+_ = NONIDEALITY_FIELDS

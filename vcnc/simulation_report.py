@@ -1,0 +1,113 @@
+"""Summary (ARCHITECTURE.md, ``vcnc simulate`` JSON) and plots of a simulated capture."""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from vcnc.capture import Capture
+
+if TYPE_CHECKING:
+    from vcnc.report import Report
+
+__all__ = ["summarize", "build_report", "moving_axes"]
+
+log = logging.getLogger(__name__)
+
+
+def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
+    """Axes whose commanded position changes by more than ``tol`` [mm]."""
+    return [a for i, a in enumerate(capture.axes) if np.ptp(capture.reference[:, i]) > tol]
+
+
+def summarize(capture: Capture) -> dict[str, Any]:
+    """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``.
+
+    Tracking error e = x_r - x of the measured position. "contour" comes from
+    ``vcnc.contour.contour_metrics(capture)`` for two or more moving axes; it is left out (and the
+    reason logged) when that module is not available or the capture has no programmed path.
+    """
+    e = (capture.reference - capture.measured) * 1e3
+    out: dict[str, Any] = {
+        "samples": len(capture),
+        "sample_time": float(capture.meta.get("sample_time") or capture.sample_time),
+        "axes": list(capture.axes),
+        "tracking": {
+            a: {"max_um": float(np.max(np.abs(e[:, i]))), "rms_um": float(np.sqrt(np.mean(e[:, i] ** 2)))}
+            for i, a in enumerate(capture.axes)
+        },
+    }
+    if len(moving_axes(capture)) >= 2:
+        try:
+            from vcnc.contour import contour_metrics
+        except ImportError as exc:
+            log.warning("contour error left out of the summary: vcnc.contour is not available (%s)", exc)
+        else:
+            c = contour_metrics(capture)
+            if c is None:
+                log.warning("contour error left out of the summary: the setpoints carry no programmed path")
+            else:
+                out["contour"] = {"max_um": float(c["max_um"]), "rms_um": float(c["rms_um"])}
+    return out
+
+
+def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
+    """A :class:`vcnc.report.Report` of a simulation: the summary table, ``tracking.png`` (error
+    [um] and control [V] per axis) and, for two or more moving axes, ``path.png`` (commanded path
+    and the measured one with the error magnified). Nothing is written until ``Report.write``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from vcnc.report import Report
+
+    rep = Report(f"vcnc simulate: {capture.meta.get('program', '')} on {capture.meta.get('machine', '')}")
+    rep.summary = summary
+    rep.table(
+        ["axis", "max tracking error [um]", "rms tracking error [um]"],
+        [[a, s["max_um"], s["rms_um"]] for a, s in summary["tracking"].items()],
+        caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, seed {capture.meta.get('seed')}",
+    )
+    n = len(capture.axes)
+    rows = 2 if capture.control is not None else 1
+    fig, axs = plt.subplots(rows, n, figsize=(5 * n, 3.2 * rows), squeeze=False, sharex=True)
+    t = capture.t
+    for i, a in enumerate(capture.axes):
+        e = (capture.reference[:, i] - capture.measured[:, i]) * 1e3
+        ax = axs[0, i]
+        ax.plot(t, e, lw=0.8)
+        s = summary["tracking"][a]
+        ax.set_title(f"axis {a}: tracking error (max {s['max_um']:.2f} um, rms {s['rms_um']:.2f} um)", fontsize=9)
+        ax.set_ylabel("x_r - x [um]")
+        ax.grid(alpha=0.3)
+        if rows == 2:
+            axs[1, i].plot(t, capture.control[:, i], lw=0.8, color="C1")
+            axs[1, i].set_ylabel("control u [V]")
+            axs[1, i].grid(alpha=0.3)
+        axs[-1, i].set_xlabel("t [s]")
+    fig.tight_layout()
+    rep.figure("tracking", fig, caption="tracking error and control signal per axis")
+    mov = moving_axes(capture)
+    if len(mov) >= 2:
+        i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
+        r = capture.reference[:, [i, j]]
+        err = capture.measured[:, [i, j]] - r
+        extent = float(np.max(np.ptp(r, axis=0)))
+        emax = float(np.max(np.abs(err))) or 1.0
+        gain = max(1.0, float(10 ** np.floor(np.log10(max(0.05 * extent / emax, 1e-12)))))
+        fig, ax = plt.subplots(figsize=(6, 6))
+        ax.plot(r[:, 0], r[:, 1], lw=0.8, label="commanded")
+        ax.plot(r[:, 0] + gain * err[:, 0], r[:, 1] + gain * err[:, 1], lw=0.8, label=f"measured, error x{gain:g}")
+        ax.set_xlabel(f"{mov[0]} [mm]")
+        ax.set_ylabel(f"{mov[1]} [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        c = summary.get("contour")
+        ax.set_title("path" + (f" (contour error max {c['max_um']:.2f} um)" if c else ""), fontsize=9)
+        fig.tight_layout()
+        rep.figure("path", fig, caption=f"path of axes {mov[0]}, {mov[1]} with the error magnified {gain:g} times")
+    return rep
