@@ -1,0 +1,67 @@
+"""Identification speed on the Table 3.2 test (22,000 samples at 1 ms), beside the thesis' figures.
+
+Run: ``.venv/bin/python benchmarks/identification.py``. Prints wall times (best of several runs)
+of the regressor + statistics, each solver, and the output-error refinement; the thesis reports
+2-3 min for its GA and 15-20 min for the Lagrange-multiplier solution (Matlab, Pentium IV, Sec. 4.3).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+# this script is named like the package: keep its own folder off the import path
+sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+
+import numpy as np  # noqa: E402
+
+from identification import GAOptions, identify, statistics  # noqa: E402
+from identification.solve import solve_statistics  # noqa: E402
+from identification.synthetic import FADAL_PID_X, back_and_forth_reference, random_moves_reference, synthetic_capture  # noqa: E402
+
+
+def best(fn, repeat=5):
+    times, out = [], None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def main() -> None:
+    xr = random_moves_reference(seed=1)
+    cap = synthetic_capture(FADAL_PID_X, xr, noise=2e-4, resolution=1e-3, seed=3)
+    x, T = cap.measured[:, 0], cap.sample_time
+    print(f"capture: {x.size} samples, Ts {T * 1e3:g} ms (Table 3.2 style, fadal PID x axis of Table 3.4)")
+    identify(cap, refine="none")  # compile numba, warm caches
+    t_reg, st = best(lambda: statistics(xr, x, T))
+    t_ex, ex = best(lambda: solve_statistics(st, sample_time=T))
+    print(f"regressor + statistics            {t_reg * 1e3:8.1f} ms")
+    total = 1e3 * (t_reg + t_ex)
+    print(f"exact (variable projection)       {t_ex * 1e3:8.1f} ms   total {total:.1f} ms (goal <= 50 ms)")
+    for bounds in ({"zeta": (0.6, 2.0)}, {"omega_n_hz": (0.2, 25.0)}):
+        t_b, r = best(lambda b=bounds: solve_statistics(st, bounds=b, sample_time=T), repeat=3)
+        t_k, k = best(lambda b=bounds: solve_statistics(st, bounds=b, method="kkt", sample_time=T), repeat=1)
+        print(
+            f"  constrained {bounds}: exact {t_b * 1e3:.1f} ms, kkt {t_k:.2f} s "
+            f"(thesis LM: 15-20 min), |f_kkt/f_exact - 1| = {abs(k.objective / r.objective - 1):.1e}"
+        )
+    t_k, k = best(lambda: solve_statistics(st, method="kkt", sample_time=T), repeat=1)
+    print(f"kkt (27 activation cases)         {t_k:8.2f} s    (thesis LM: 15-20 min)")
+    t_g, g = best(lambda: solve_statistics(st, method="ga", sample_time=T, ga_options=GAOptions()), repeat=1)
+    dp = max(abs(g.poles[n] / ex.poles[n] - 1) for n in ("omega_n_hz", "zeta", "p_hz"))
+    print(f"ga (4000 x 300)                   {t_g:8.2f} s    (thesis GA: 2-3 min); max pole deviation {100 * dp:.1f}%")
+    t_oe, m = best(lambda: identify(cap), repeat=1)
+    print(f"identify with output-error        {t_oe:8.2f} s")
+    val = back_and_forth_reference()
+    e_true = val - synthetic_capture(FADAL_PID_X, val).measured[:, 0]
+    ee = identify(cap, refine="none")
+    for label, mod in (("equation error", ee), ("output error", m)):
+        d = np.sqrt(np.mean(((val - mod.simulate(val)) - e_true) ** 2)) / np.sqrt(np.mean(e_true**2))
+        print(f"held-out Sec. 4.3.1 move, {label:15s}: tracking-error mismatch {100 * d:.2f}% RMS")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,258 @@
+"""The constrained identification problem reduced to the three pole variables.
+
+Eq. (4.8)-(4.12) of the thesis split theta into theta_1 = (alpha_i, alpha_1, alpha_2), fixed by
+the poles (p, omega_n, zeta) through Eq. (3.14), and theta_2 (beta_0, beta_1, beta_2, delta+,
+delta-, plus any extra linear columns) given by least squares for fixed theta_1 (Eq. 4.9). Here
+the same elimination is done on the triangular factor of the statistics (variable projection):
+with the columns ordered [theta_2 | theta_1 | Y] and U upper triangular,
+
+    U = [[A22, A21, a2y],
+         [  0,   T,   c],          f(theta_1) = 1/2 (|T theta_1 - c|^2 + rho^2)   (= Eq. 4.12)
+         [  0,   0, rho]]          theta_2 = A22^{-1} (a2y - A21 theta_1)          (= Eq. 4.9)
+
+which is Eq. (4.12) without forming it from P, R, gamma (so the objective keeps its digits when
+it is 1e-9 of gamma). ``rho^2 / 2`` is the unconstrained least-squares optimum.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg
+
+from identification.bounds import PoleBounds
+from identification.poles import TWO_PI, denominator, pole_splits, theta1, theta1_jacobian
+from identification.regressor import COLUMN_DESCRIPTIONS, SufficientStatistics
+from vcnc.errors import IdentificationError
+
+__all__ = ["ReducedProblem", "table31_case"]
+
+#: Relative size under which a normalised pivot means a column is a combination of the others.
+_RANK_TOL = 1e-11
+
+
+def table31_case(active: dict[str, str]) -> int | None:
+    """Case number of Table 3.1 for an active set, or None when an upper p/omega_n bound is active.
+
+    ``active`` maps ``p``, ``omega_n``, ``zeta`` to ``"lower"``, ``"upper"`` or ``"free"``.
+    Case = 1 + [h3: zeta = zeta_min] + 2 [h2: omega_n = omega_n,min] + 4 [h1: p = p_min]
+    + 8 [h4: zeta = zeta_max].
+    """
+    if active.get("p") == "upper" or active.get("omega_n") == "upper":
+        return None
+    return (
+        1
+        + (active.get("zeta") == "lower")
+        + 2 * (active.get("omega_n") == "lower")
+        + 4 * (active.get("p") == "lower")
+        + 8 * (active.get("zeta") == "upper")
+    )
+
+
+class ReducedProblem:
+    """f(p, omega_n, zeta) and theta_2 from sufficient statistics (module docstring).
+
+    Parameters
+    ----------
+    stats : SufficientStatistics
+        Statistics of [Phi, Y] with Phi's first 8 columns in the order of Eq. (3.11); further
+        columns are extra linear terms solved with theta_2.
+    bounds : PoleBounds
+        The search box.
+
+    Raises
+    ------
+    IdentificationError
+        When a column of Phi is identically zero (e.g. no negative velocity: delta- not
+        identifiable) or a theta_2 column is a linear combination of the others.
+    """
+
+    def __init__(self, stats: SufficientStatistics, bounds: PoleBounds) -> None:
+        self.bounds = bounds
+        self.names = stats.names
+        n = stats.n_columns
+        self.n_theta2 = n - 3
+        _check_columns(stats)
+        U = stats.factor
+        if U.shape[0] < n + 1:
+            U = np.vstack([U, np.zeros((n + 1 - U.shape[0], n + 1))])
+        perm = list(range(3, n)) + [0, 1, 2, n]
+        Up = scipy.linalg.qr(U[:, perm], mode="r", check_finite=False)[0][: n + 1]
+        norms = np.linalg.norm(Up[:, :n], axis=0)
+        norms[norms == 0] = 1.0
+        Up = Up.copy()
+        Up[:, :n] /= norms
+        scale = stats.scale
+        d_y = scale[n]
+        g = scale[perm[:n]] / (norms * d_y)  # theta = g * theta'' (column-normalised coordinates)
+        k2 = self.n_theta2
+        piv = np.abs(np.diag(Up)[:k2])
+        if piv.size and piv.min() < _RANK_TOL * max(1.0, piv.max()):
+            j = perm[int(np.argmin(piv))]
+            name = self.names[j]
+            raise IdentificationError(
+                f"regressor column {name!r} ({COLUMN_DESCRIPTIONS.get(name, 'extra column')}) is a linear "
+                "combination of the other columns: its parameter is not identifiable from this capture"
+            )
+        self._A22 = Up[:k2, :k2]
+        self._A21 = Up[:k2, k2 : k2 + 3]
+        self._a2y = Up[:k2, n]
+        self._g1 = g[k2:]
+        self._g2 = g[:k2]
+        self.T = Up[k2 : k2 + 3, k2 : k2 + 3] / self._g1[None, :]  # acts on theta_1 directly
+        self.c = Up[k2 : k2 + 3, n]
+        self.rho = float(abs(Up[n, n]))
+        self.y_scale = float(d_y)
+        self._fscale = 0.5 / (d_y * d_y)
+        self.nfev = 0
+
+    # ------------------------------------------------------------------ objective
+    def objective_theta1(self, th1: np.ndarray) -> np.ndarray:
+        """f [mm^2] for theta_1 of shape (..., 3) (Eq. 4.12)."""
+        r = np.asarray(th1) @ self.T.T - self.c
+        self.nfev += int(np.prod(r.shape[:-1])) if r.ndim > 1 else 1
+        return self._fscale * (np.sum(r * r, axis=-1) + self.rho**2)
+
+    def objective(self, p, omega_n, zeta) -> np.ndarray:
+        """f [mm^2] at p, omega_n [rad/s], zeta [-] (vectorised)."""
+        return self.objective_theta1(theta1(p, omega_n, zeta))
+
+    @property
+    def unconstrained_objective(self) -> float:
+        """Objective of the unconstrained least-squares solution (Case 1 of Table 3.1) [mm^2]."""
+        return self._fscale * self.rho**2
+
+    def residual(self, v: np.ndarray) -> np.ndarray:
+        """r(v) with f = 1/2 (|r|^2 + rho^2) / d_y^2 (for Gauss-Newton), v = (p, omega_n, zeta) [rad/s]."""
+        self.nfev += 1
+        return theta1(v[0], v[1], v[2]) @ self.T.T - self.c
+
+    def residual_jacobian(self, v: np.ndarray) -> np.ndarray:
+        """d r / d v (3x3)."""
+        return self.T @ theta1_jacobian(v[0], v[1], v[2])
+
+    def gradient(self, v: np.ndarray) -> np.ndarray:
+        """df/dv [mm^2 per rad/s, rad/s, -]."""
+        r = self.residual(v)
+        return 2.0 * self._fscale * (self.residual_jacobian(v).T @ r)
+
+    # ------------------------------------------------------------- unconstrained
+    def unconstrained_theta1(self) -> np.ndarray | None:
+        """theta_1 of the unconstrained minimum, or None when T is singular."""
+        try:
+            th = scipy.linalg.solve_triangular(self.T * 1.0, self.c)
+        except (np.linalg.LinAlgError, ValueError):
+            return None
+        if not np.all(np.isfinite(th)):
+            return None
+        return th
+
+    def unconstrained_poles(self) -> list[np.ndarray]:
+        """Every (p, omega_n, zeta) [rad/s] that realises the unconstrained minimum (maybe none)."""
+        th = self.unconstrained_theta1()
+        if th is None or th[2] <= 0:
+            return []
+        a2 = 1.0 / th[2]
+        splits = pole_splits(th[1] * a2, a2, th[0] * a2)
+        return [np.array([s["p_hz"] * TWO_PI, s["omega_n_hz"] * TWO_PI, s["zeta"]]) for s in splits]
+
+    # ---------------------------------------------------------------- parameters
+    def theta2(self, th1: np.ndarray) -> np.ndarray:
+        """theta_2 (beta_0, beta_1, beta_2, delta+, delta-, extras) for theta_1 (Eq. 4.9)."""
+        rhs = self._a2y - self._A21 @ (np.asarray(th1, float) / self._g1)
+        return self._g2 * scipy.linalg.solve_triangular(self._A22, rhs)
+
+    def parameters(self, v: np.ndarray) -> tuple[dict[str, float], np.ndarray, np.ndarray]:
+        """Model parameters for v = (p, omega_n, zeta) [rad/s].
+
+        Returns
+        -------
+        parameters : dict
+            a1..d1 of Eq. (3.3) via Eq. (3.10).
+        theta : ndarray
+            The full normalised vector (theta_1, theta_2).
+        extra : ndarray
+            Coefficients of extra columns multiplied by a2 (same scaling as d0, d1).
+        """
+        p, wn, z = (float(x) for x in v)
+        a1, a2, a3 = denominator(p, wn, z)
+        th1 = theta1(p, wn, z)
+        th2 = self.theta2(th1)
+        params = {
+            "a1": a1,
+            "a2": a2,
+            "a3": a3,
+            "b0": th2[2] * a2,
+            "b1": th2[1] * a2,
+            "b2": th2[0] * a2,
+            "d0": th2[3] * a2,
+            "d1": th2[4] * a2,
+        }
+        return params, np.concatenate([th1, th2]), th2[5:] * a2
+
+    # ------------------------------------------------------------------- KKT
+    def kkt_report(self, v: np.ndarray, *, rtol: float = 1e-7) -> dict:
+        """Active bounds, multipliers and projected gradient at v (rad/s).
+
+        A bound is active when v is within ``rtol`` (relative to the box width) of it. The
+        multiplier of an active bound is the objective's slope into the box (>= 0 at a minimum).
+        The projected gradient is scaled by the box widths (so its entries are in mm^2).
+        """
+        box = self.bounds.rad()
+        grad = self.gradient(v)
+        active, mult, proj = {}, {}, []
+        for i, name in enumerate(("p", "omega_n", "zeta")):
+            lo, hi = box[i]
+            width = hi - lo
+            g = grad[i] * width
+            if v[i] - lo <= rtol * width:
+                active[name] = "lower"
+                mult[name] = g
+                proj.append(min(g, 0.0))
+            elif hi - v[i] <= rtol * width:
+                active[name] = "upper"
+                mult[name] = -g
+                proj.append(max(g, 0.0))
+            else:
+                active[name] = "free"
+                proj.append(g)
+        return {
+            "active": active,
+            "multipliers": mult,
+            "projected_gradient": float(np.max(np.abs(proj))),
+            "case": table31_case(active),
+        }
+
+    def clip(self, v: np.ndarray) -> np.ndarray:
+        """v clipped into the box (rad/s)."""
+        box = self.bounds.rad()
+        return np.array([min(max(v[i], box[i][0]), box[i][1]) for i in range(3)])
+
+    def in_box(self, v: np.ndarray, *, rtol: float = 1e-12) -> bool:
+        box = self.bounds.rad()
+        return all(box[i][0] * (1 - rtol) <= v[i] <= box[i][1] * (1 + rtol) for i in range(3))
+
+
+def _check_columns(stats: SufficientStatistics) -> None:
+    """Name a regressor column that is identically zero."""
+    for j, name in enumerate(stats.names):
+        if stats.absmax[j] > 0:
+            continue
+        if name == "-NV":
+            raise IdentificationError(
+                "friction not identifiable: the axis never moved in the negative direction (no sample with "
+                "negative measured velocity); the test must move both ways"
+            )
+        if name == "-PV":
+            raise IdentificationError(
+                "friction not identifiable: the axis never moved in the positive direction (no sample with "
+                "positive measured velocity); the test must move both ways"
+            )
+        if name == "e_i":
+            raise IdentificationError(
+                "the measured position equals the reference at every sample: no tracking error to identify from"
+            )
+        raise IdentificationError(
+            f"regressor column {name!r} ({COLUMN_DESCRIPTIONS.get(name, 'extra column')}) is zero at every "
+            "sample: its parameter is not identifiable"
+        )
+

@@ -1,0 +1,119 @@
+"""identify(): checks on the capture, the pipeline, the command line, real EMPS data."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from identification import identify, load_model
+from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
+from vcnc.capture import Capture
+from vcnc.cli import main
+from vcnc.errors import CaptureError, IdentificationError
+
+EMPS = Path("/work/shared/data/emps")
+T = 1e-3
+
+
+def _cap(xr, x, t=None):
+    t = np.arange(len(xr)) * T if t is None else t
+    return Capture(t=t, axes=("x",), reference=np.asarray(xr, float)[:, None], measured=np.asarray(x, float)[:, None])
+
+
+@pytest.fixture(scope="module")
+def small_capture():
+    return synthetic_capture(FADAL_PID_X, random_moves_reference(moves=40, seed=2), noise=2e-4, seed=1)
+
+
+def test_identify_small_capture(small_capture):
+    m = identify(small_capture, refine="none")
+    assert m.method == "exact" and m.is_stable()
+    assert m.fit["rms_um"] > 0 and m.fit["solver"]["success"]
+    assert m.bounds == {"p_hz": (0.2, 500.0), "omega_n_hz": (0.2, 500.0), "zeta": (0.2, 2.0)}  # Sec. 4.3
+    assert m.effects == [] and m.validation == {}
+
+
+@pytest.mark.parametrize(
+    ("make", "error", "match"),
+    [
+        (lambda c: dataclasses.replace(c, measured=np.where(np.arange(len(c))[:, None] == 700, np.nan, c.measured)),
+         CaptureError, "not finite at sample 700"),
+        (lambda c: dataclasses.replace(c, t=c.t * np.where(np.arange(len(c)) > 900, 1.01, 1.0)), CaptureError,
+         "not uniform"),
+        (lambda c: dataclasses.replace(c, t=np.where(np.arange(len(c)) == 900, 0.0, c.t)), CaptureError,
+         "not increasing"),
+        (lambda c: c.slice(0, 400), IdentificationError, "only 400 samples"),
+        (lambda c: _cap(np.zeros(len(c)), np.zeros(len(c))), IdentificationError, "no motion"),
+        (lambda c: _cap(np.abs(c.reference[:, 0]) + 0 * np.maximum.accumulate(c.reference[:, 0]),
+                        np.maximum.accumulate(c.measured[:, 0])), IdentificationError, "one direction only"),
+        (lambda c: _cap(c.reference[:, 0], c.reference[:, 0]), IdentificationError, "identical to the reference"),
+        (lambda c: _cap(c.reference[:, 0] / 1000, c.measured[:, 0] / 1000), IdentificationError, "look like metres"),
+    ],
+)
+def test_bad_captures_are_rejected_with_the_reason(small_capture, make, error, match):
+    with pytest.raises(error, match=match):
+        identify(make(small_capture))
+
+
+def test_unknown_axis(small_capture):
+    with pytest.raises(CaptureError, match="axis 'y' is not in the capture"):
+        identify(small_capture, axis="y")
+
+
+def test_cli_identify_writes_model_and_report(tmp_path, small_capture, capsys):
+    src = tmp_path / "cap.csv"
+    small_capture.to_csv(src)
+    out = tmp_path / "model.json"
+    rep = tmp_path / "report"
+    assert main(["identify", str(src), "--json", str(out), "--report", str(rep), "--no-diagnose"]) == 0
+    m = load_model(out)
+    assert m.method == "exact+oe" and m.fit["rms_um"] < 1.0
+    assert {"index.html", "frf.png", "tracking.png", "model.json"} <= {p.name for p in rep.iterdir()}
+    assert "poles: omega_n" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("t,x_ref,x\n0,0,0\n0.001,nan,0\n", "not finite"),
+        ("t,x_ref,x,q\n0,0,0,1\n", "unknown column"),
+    ],
+)
+def test_cli_bad_input_exit_2_no_output(tmp_path, capsys, text, match):
+    src = tmp_path / "bad.csv"
+    src.write_text(text)
+    out = tmp_path / "model.json"
+    assert main(["identify", str(src), "--json", str(out), "--report", str(tmp_path / "rep")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and match in err and "bad.csv" in err
+    assert not out.exists() and not (tmp_path / "rep").exists()
+
+
+def test_cli_too_short_exit_2(tmp_path, small_capture, capsys):
+    src = tmp_path / "short.csv"
+    small_capture.slice(0, 300).to_csv(src)
+    assert main(["identify", str(src), "--json", str(tmp_path / "m.json")]) == 2
+    assert "only 300 samples" in capsys.readouterr().err
+    assert not (tmp_path / "m.json").exists()
+
+
+def test_emps_real_data():
+    """EMPS (README: closed loop about 20 Hz, tracking error RMS about 0.58 mm): the identified model
+    predicts the estimation run within 2% of its tracking error and the validation run (force pulses,
+    not modelled) within 20%."""
+    from vcnc.capture import read_capture
+
+    est = read_capture(EMPS / "DATA_EMPS.mat")
+    m = identify(est)
+    assert 15.0 < m.poles["omega_n_hz"] < 25.0
+    track = np.sqrt(np.mean((est.reference[:, 0] - est.measured[:, 0]) ** 2)) * 1e3
+    assert 500 < track < 650
+    assert m.fit["rms_um"] < 0.02 * track
+    val = read_capture(EMPS / "DATA_EMPS_PULSES.mat")
+    e = val.measured[:, 0] - m.simulate(val.reference[:, 0], sample_time=val.sample_time)
+    assert np.sqrt(np.mean(e**2)) * 1e3 < 0.2 * track
+    json.dumps(m.to_dict())
