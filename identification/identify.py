@@ -28,7 +28,7 @@ from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 from identification.solve import METHODS, SolveResult, solve_statistics
-from vcnc.capture import Capture, _check_time
+from vcnc.capture import Capture, check_sampling
 from vcnc.errors import CaptureError, IdentificationError, VcncError
 
 __all__ = ["identify", "Identifier", "check_capture", "MIN_SAMPLES", "REFINEMENTS"]
@@ -69,7 +69,7 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             raise CaptureError(
                 f"column {name!r} is not finite at sample {int(bad[0])} (value {arr[bad[0]]!r})", file=src
             )
-    _check_time(t, src or "<capture>")
+    check_sampling(t, src or "<capture>")
     T = float(np.median(np.diff(t)))
     span = float(np.ptp(xr))
     if span == 0.0 and float(np.ptp(x)) == 0.0:
