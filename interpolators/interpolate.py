@@ -9,17 +9,16 @@ from collections.abc import Mapping
 import numpy as np
 
 from interpolators.kinematics import (
-    CENTRIPETAL_SHARE,
-    JERK_SPEED_SHARE,
     AxisLimitArrays,
+    curved_speed_bound,
     junction_speed_limit,
     path_limits,
 )
 from interpolators.limits import DEFAULT_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
-from interpolators.profiles import PROFILES, scurve_phases, trapezoid_phases
+from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
 from interpolators.program import Program
-from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
+from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.errors import GCodeError, InputError
 from vcnc.setpoints import Setpoints
@@ -31,6 +30,11 @@ log = logging.getLogger(__name__)
 #: Junctions whose geometric speed bound is below this share of the neighbouring segments' speed
 #: bounds are exact stops (passing them barely moving is not worth the acceleration reserve).
 MIN_JUNCTION_SPEED_SHARE: float = 0.1
+
+#: Share of the axis limits below which a junction's discontinuity counts as continuous: chains
+#: whose junctions are all below it (G2 blends, tangent steps at rounding level) plan with the full
+#: limits instead of reserving JUNCTION_SHARE.
+NEGLIGIBLE_SHARE: float = 1e-7
 
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
@@ -119,8 +123,10 @@ def interpolate(
     -------
     Setpoints
         Axes ``program.axes``; ``block`` indexes ``program.blocks``; ``path`` is the geometry the
-        samples follow (a :class:`toolpaths.Path`: the programmed one, with blend arcs at G64
-        corners); ``meta`` records ``source``, ``profile``, ``dialect``, ``sample_time``,
+        samples follow (a :class:`toolpaths.Path`: the programmed one, with blends at G64 corners:
+        tangent arcs for the trapezoid, curvature-continuous clothoid pairs
+        (:class:`toolpaths.geometry.ClothoidPair`) for the S-curve and for corners outside the
+        principal planes); ``meta`` records ``source``, ``profile``, ``dialect``, ``sample_time``,
         ``duration`` and, when corners were blended, ``programmed_path``.
 
     Notes
@@ -135,6 +141,11 @@ def interpolate(
       further capped so that the centripetal acceleration (and, for the S-curve, jerk) fits the
       axis limits (see :mod:`interpolators.kinematics`).
     * Dwells are rounded up to whole samples.
+    * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
+      faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
+      Chains whose junctions are all continuous (blends, rounding-level steps; see
+      :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
+      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it.
 
     Raises
     ------
@@ -178,7 +189,8 @@ def interpolate(
     for c, ch in enumerate(chains):
         segs, blks = ch.segments, ch.blocks
         if len(segs) > 1:
-            segs, blks = blend_corners(segs, blks, ch.tolerances, worth=_blend_worth(ch, lim, Ts, jerk_limited))
+            segs, blks = blend_corners(segs, blks, ch.tolerances, worth=_blend_worth(ch, lim, jerk_limited),
+                                       curvature_continuous=jerk_limited)
             blended = blended or len(segs) != len(ch.segments)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))
@@ -195,7 +207,7 @@ def interpolate(
 
     # 2. geometric speed bound at each junction inside a chain; a junction whose bound is
     # negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
-    # chains passing junctions at speed pay the JUNCTION_SHARE reserve
+    # chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve
     inner = np.flatnonzero(seg_chain_a[1:] == seg_chain_a[:-1]) if n_seg > 1 else np.zeros(0, dtype=np.int64)
     jl = np.zeros(len(inner))
     if len(inner):
@@ -208,15 +220,19 @@ def interpolate(
         motion_idx = np.flatnonzero(packed.kind != HOLD)
         v_full = np.zeros(n_seg)
         if len(motion_idx):
-            v_full[motion_idx] = path_limits(_subset(packed, motion_idx), np.asarray(seg_feed)[motion_idx],
+            v_full[motion_idx] = path_limits(packed.subset(motion_idx), np.asarray(seg_feed)[motion_idx],
                                              np.asarray(seg_rapid, dtype=bool)[motion_idx], lim,
                                              jerk_limited=jerk_limited)[0]
         v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
         split = inner[jl <= v_stop]
         keep_j = jl > v_stop
+        # continuous junctions (G2 blends, rounding-level steps) need no reserve
+        jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
+                                       jerk_limited=jerk_limited)
+        rough = inner[keep_j & (jl_tiny < np.maximum(v_full[inner], v_full[inner + 1]))]
         inner, jl = inner[keep_j], jl[keep_j]
     else:
-        split = inner
+        split = rough = inner
     new_chain = np.ones(n_seg, dtype=bool)
     if n_seg:
         new_chain[1:] = seg_chain_a[1:] != seg_chain_a[:-1]
@@ -228,7 +244,9 @@ def interpolate(
     if n_seg:
         dwell_of_chain[seg_chain_a] = np.array([ch.dwell for ch in chains])[old_chain]
     chain_len = np.bincount(seg_chain_a, minlength=n_chains) if n_seg else np.zeros(0, dtype=np.int64)
-    in_multi = chain_len[seg_chain_a] > 1 if n_seg else np.zeros(0, dtype=bool)
+    reserved = np.zeros(n_chains, dtype=bool)
+    reserved[seg_chain_a[rough]] = True
+    in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
 
     # 3. path bounds per segment
     v_max = np.zeros(n_seg)
@@ -240,7 +258,7 @@ def interpolate(
     for mask, lims in ((motion & ~in_multi, lim), (motion & in_multi, lim_chain)):
         idx = np.flatnonzero(mask)
         if len(idx):
-            sub = _subset(packed, idx)
+            sub = packed.subset(idx)
             v, a, j = path_limits(sub, feed_a[idx], rapid_a[idx], lims, jerk_limited=jerk_limited)
             v_max[idx], a_max[idx], j_max[idx] = v, a, j
 
@@ -349,24 +367,56 @@ def interpolate(
                      sample_time=Ts, path=geom_path, meta=meta)
 
 
-def _blend_worth(ch: _Chain, lim: AxisLimitArrays, Ts: float, jerk_limited: bool):
-    """Predicate: is the blend arc's speed bound a fair share of the adjoining lines' feeds?"""
+def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
+    """Predicate: is passing the corner through the blend faster than stopping at it?
 
-    def worth(k: int, arc: Arc) -> bool:
-        p, q = arc.plane_axes
-        A = min(lim.acceleration[p], lim.acceleration[q]) * (1.0 - JUNCTION_SHARE)
-        R = arc.radius
-        v = math.sqrt(CENTRIPETAL_SHARE * A * R)
-        if jerk_limited:
-            J = min(lim.jerk[p], lim.jerk[q])
-            v = min(v, math.cbrt(JERK_SPEED_SHARE * J * (1.0 - JUNCTION_SHARE) * R * R),
-                    math.sqrt(JUNCTION_SHARE * J * Ts * R))  # curvature step line -> arc
-        feeds = [ch.feeds[k], ch.feeds[k + 1]]
-        caps = [min(lim.rapid[p], lim.rapid[q]) if ch.rapid[i] else min(f, lim.velocity[p], lim.velocity[q])
-                for i, f in zip((k, k + 1), feeds)]
-        return v >= MIN_JUNCTION_SPEED_SHARE * min(caps)
+    Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can
+    reach over half their length): stopping takes two speed changes ``V -> 0 -> V``; blending
+    takes ``V -> v_b``, the blend of length ``l`` at ``v_b`` (its speed bound) and ``v_b -> V``.
+    Both are compared over the same distance (the shorter one completed at ``V``). A speed change
+    ``dv`` with zero end accelerations takes ``dv/A + A/J`` or ``2 sqrt(dv/J)`` (``dv/A``
+    without jerk limit). This keeps G64 from crawling through sharp corners a stop passes faster.
+    """
+    share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
+
+    def worth(k: int, blend: Arc | ClothoidPair) -> bool:
+        if isinstance(blend, Arc):
+            axes = list(blend.plane_axes)
+            kappa, dkappa = 1.0 / blend.radius, 0.0
+        else:
+            axes = [i for i in range(3) if abs(blend.normal[i]) < 1.0 - 1e-12]  # axes in the corner plane
+            kappa, dkappa = blend.peak_curvature, blend.sharpness
+        v_b = float(curved_speed_bound(kappa, dkappa, share * float(np.min(lim.acceleration[axes])),
+                                       share * float(np.min(lim.jerk[axes])), jerk_limited=jerk_limited))
+        V, A, J = math.inf, math.inf, math.inf
+        for i in (k, k + 1):
+            u = ch.segments[i].direction
+            A_i, J_i = _line_bound(lim.acceleration, u), _line_bound(lim.jerk, u)
+            half = 0.5 * ch.segments[i].length
+            reach = scurve_reach(0.0, half, A_i, J_i) if jerk_limited else trapezoid_reach(0.0, half, A_i)
+            V = min(V, reach, _line_bound(lim.rapid if ch.rapid[i] else lim.velocity, u,
+                                          math.inf if ch.rapid[i] else ch.feeds[i]))
+            A, J = min(A, A_i), min(J, J_i)
+        if v_b >= V:
+            return True
+
+        def change(dv: float) -> float:
+            if not jerk_limited:
+                return dv / A
+            return dv / A + A / J if dv >= A * A / J else 2.0 * math.sqrt(dv / J)
+
+        t_stop, t_pass = 2.0 * change(V), 2.0 * change(V - v_b) + blend.length / v_b
+        d_stop, d_pass = V * change(V), (V + v_b) * change(V - v_b) + blend.length
+        return t_pass + max(d_stop - d_pass, 0.0) / V <= t_stop + max(d_pass - d_stop, 0.0) / V
 
     return worth
+
+
+def _line_bound(limit: np.ndarray, direction: np.ndarray, cap: float = math.inf) -> float:
+    """Largest path value along ``direction`` keeping every axis within ``limit``, at most ``cap``."""
+    u = np.abs(direction)
+    with np.errstate(divide="ignore"):
+        return min(cap, float(np.min(np.where(u > 1e-15, limit / u, np.inf))))
 
 
 def _meta(program: Program, profile: str, Ts: float, duration: float) -> dict:
@@ -380,5 +430,4 @@ def _meta(program: Program, profile: str, Ts: float, duration: float) -> dict:
     }
 
 
-def _subset(packed: PackedSegments, idx: np.ndarray) -> PackedSegments:
-    return PackedSegments(**{f: getattr(packed, f)[idx] for f in packed.__dataclass_fields__})
+

@@ -20,6 +20,12 @@ limits of the two in-plane axes:
 The helix axis sees ``v sin(alpha)``, ``a sin(alpha)``, ``j sin(alpha)`` and is bounded like a
 line. The bounds are therefore sufficient (not necessary): no axis can exceed its limit
 anywhere on the arc, whatever the orientation of the arc.
+
+Clothoid blends (:class:`toolpaths.ClothoidPair`, curvature ``k`` up to ``k_max`` and
+``|dk/ds| = c``) lie in one plane of any orientation: the axis share of that plane is
+``m_i = |(u_in_i, w_in_i)|``, the jerk vector ``(j - k^2 v^3) t + (3 k v a + c v^3) n``, and the
+same shares apply with ``v^3 (k_max^2 + c) <= JERK_SPEED_SHARE * J``; the velocity bound uses
+the largest ``|t_i|`` over the turn.
 """
 
 from __future__ import annotations
@@ -28,13 +34,14 @@ import numpy as np
 
 from interpolators.limits import AxisLimits
 from toolpaths.geometry import AXIS_LETTERS
-from toolpaths.packed import ARC, LINE, PackedSegments
+from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
 from vcnc.errors import InputError
 
 __all__ = [
     "AxisLimitArrays",
     "path_limits",
     "junction_speed_limit",
+    "curved_speed_bound",
     "CENTRIPETAL_SHARE",
     "JERK_SPEED_SHARE",
     "JERK_ACCEL_SHARE",
@@ -145,37 +152,36 @@ def path_limits(
         sin_a = np.abs(packed.helix[ia]) / L
         inplane = packed.e_p[ia] + packed.e_q[ia]  # 1 on the two in-plane axes
         normal = packed.e_n[ia]
-        big = np.inf
-
-        def plane_min(lim_rows: np.ndarray) -> np.ndarray:
-            return np.where(inplane > 0, lim_rows, big).min(axis=1)
-
-        def normal_val(lim_rows: np.ndarray) -> np.ndarray:
-            return np.where(normal > 0, lim_rows, big).min(axis=1)
-
-        acc_rows = np.broadcast_to(limits.acceleration, (len(ia), 3))
-        jerk_rows = np.broadcast_to(limits.jerk, (len(ia), 3))
-        V_p, V_n = plane_min(vel_lim[ia]), normal_val(vel_lim[ia])
-        A_p, A_n = plane_min(acc_rows), normal_val(acc_rows)
-        J_p, J_n = plane_min(jerk_rows), normal_val(jerk_rows)
+        V_p = _weighted_min(vel_lim[ia], inplane)
+        A_p = _weighted_min(limits.acceleration, inplane)
+        J_p = _weighted_min(limits.jerk, inplane)
         with np.errstate(divide="ignore", invalid="ignore"):
             v = np.minimum(v_max[ia], V_p / cos_a)
-            v = np.minimum(v, np.where(sin_a > 0, V_n / sin_a, np.inf))
-            v = np.minimum(v, np.sqrt(CENTRIPETAL_SHARE * A_p * R) / cos_a)
+            v = np.minimum(v, np.where(sin_a > 0, _weighted_min(vel_lim[ia], normal) / sin_a, np.inf))
+            v, a, j = _curved_bounds(v, cos_a, 1.0 / R, np.zeros(len(ia)), A_p, J_p, jerk_limited=jerk_limited)
+            a = np.minimum(a, np.where(sin_a > 0, _weighted_min(limits.acceleration, normal) / sin_a, np.inf))
             if jerk_limited:
-                v = np.minimum(v, np.cbrt(JERK_SPEED_SHARE * J_p * R * R) / cos_a)
-            vp = v * cos_a
-            a_n = vp * vp / R
-            a = np.sqrt(np.maximum(A_p * A_p - a_n * a_n, 0.0)) / cos_a
-            a = np.minimum(a, np.where(sin_a > 0, A_n / sin_a, np.inf))
-            if jerk_limited:
-                a = np.minimum(a, JERK_ACCEL_SHARE * J_p * R / (3.0 * vp * cos_a))
-                j_left = J_p - vp**3 / (R * R) - 3.0 * vp * (a * cos_a) / R
-                j = np.maximum(j_left, 0.0) / cos_a
-                j = np.minimum(j, np.where(sin_a > 0, J_n / sin_a, np.inf))
-            else:
-                j = np.full(len(ia), np.inf)
+                j = np.minimum(j, np.where(sin_a > 0, _weighted_min(limits.jerk, normal) / sin_a, np.inf))
         v_max[ia], a_max[ia], j_max[ia] = v, a, j
+
+    ic = np.flatnonzero(kind == CLOTHOID)
+    if len(ic):
+        fr = packed.frame[ic]
+        u_in, w_in, u_out = fr[:, 0], fr[:, 1], fr[:, 2]
+        # tangent and normal stay in the corner plane: |t_i|, |n_i| <= m_i = |(u_in_i, w_in_i)|
+        m = np.hypot(u_in, w_in)
+        cos_t = np.clip(np.einsum("ij,ij->i", u_in, u_out), -1.0, 1.0)
+        theta = np.arccos(cos_t)
+        # largest |t_i| while the tangent turns from u_in to u_out: m_i if the turn passes the
+        # angle where axis i is tangent, else the larger end value
+        psi = np.mod(np.arctan2(w_in, u_in), np.pi)
+        t_abs = np.where(psi <= theta[:, None], m, np.maximum(np.abs(u_in), np.abs(u_out)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v = np.minimum(v_max[ic], _min_ratio_rows(vel_lim[ic], t_abs))
+            v, a, j = _curved_bounds(v, np.ones(len(ic)), packed.sharpness[ic] * 0.5 * packed.length[ic],
+                                     packed.sharpness[ic], _min_ratio(limits.acceleration, m),
+                                     _min_ratio(limits.jerk, m), jerk_limited=jerk_limited)
+        v_max[ic], a_max[ic], j_max[ic] = v, a, j
     if not (np.all(v_max > 0) and np.all(a_max > 0) and np.all(j_max > 0)):  # pragma: no cover - limits > 0
         raise InputError("axis limits leave no admissible path speed")
     if not np.all(np.isfinite(v_max)):
@@ -183,6 +189,48 @@ def path_limits(
     if not np.all(np.isfinite(a_max)):
         raise InputError("the path acceleration is unbounded: give finite axis acceleration limits")
     return v_max, a_max, j_max
+
+
+def _weighted_min(limit: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """min over the axes where ``mask`` > 0 of ``limit`` (shape (3,) or (n, 3)); inf when none."""
+    return np.where(mask > 0, limit, np.inf).min(axis=1)
+
+
+def curved_speed_bound(
+    kappa: np.ndarray | float, dkappa: np.ndarray | float, A: np.ndarray | float, J: np.ndarray | float, *,
+    jerk_limited: bool
+) -> np.ndarray:
+    """Largest in-plane speed [mm/s] on a curve of curvature ``kappa`` [1/mm] and ``|dk/ds|`` [1/mm^2].
+
+    ``v^2 kappa <= CENTRIPETAL_SHARE A`` and, jerk limited, ``v^3 (kappa^2 + dkappa) <=
+    JERK_SPEED_SHARE J`` (``A``, ``J``: in-plane acceleration [mm/s^2] and jerk [mm/s^3] bounds).
+    """
+    kappa, dkappa = np.asarray(kappa, float), np.asarray(dkappa, float)
+    with np.errstate(divide="ignore"):
+        v = np.sqrt(CENTRIPETAL_SHARE * np.asarray(A, float) / kappa)
+        if jerk_limited:
+            v = np.minimum(v, np.cbrt(JERK_SPEED_SHARE * np.asarray(J, float) / (kappa * kappa + dkappa)))
+    return v
+
+
+def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool):
+    """Speed, acceleration and jerk bounds on a curve (in-plane share ``cos_a`` of the motion).
+
+    In the tangent/normal frame the in-plane acceleration is ``(a_p, k v_p^2)`` and the jerk
+    ``(j_p - k^2 v_p^3, 3 k v_p a_p + k' v_p^3)``; each in-plane axis component is bounded by the
+    norm, so the bounds hold whatever the orientation of the plane (module docstring).
+    """
+    v = np.minimum(v, curved_speed_bound(kappa, dkappa, A_p, J_p, jerk_limited=jerk_limited) / cos_a)
+    vp = v * cos_a
+    a_n = vp * vp * kappa
+    a = np.sqrt(np.maximum(A_p * A_p - a_n * a_n, 0.0)) / cos_a
+    if jerk_limited:
+        a = np.minimum(a, JERK_ACCEL_SHARE * J_p / (3.0 * vp * kappa * cos_a))
+        j_left = J_p - vp**3 * (kappa * kappa + dkappa) - 3.0 * vp * (a * cos_a) * kappa
+        j = np.maximum(j_left, 0.0) / cos_a
+    else:
+        j = np.full(len(v), np.inf)
+    return v, a, j
 
 
 def _min_ratio_rows(limit_rows: np.ndarray, share: np.ndarray) -> np.ndarray:

@@ -1,13 +1,23 @@
 """Continuous-path (G64) look-ahead: corner blending and junction speeds.
 
-Corners between two straight lines lying in a principal plane (XY, ZX, YZ) are replaced by a
-tangent circular arc whose distance from the corner is at most the path tolerance (G64 ``P``, or
-:data:`DEFAULT_TOLERANCE`) and which uses at most half of either line. The path then stays
-tangent-continuous, and the arc's own speed bound (centripetal acceleration and, for the
-S-curve, jerk; see :mod:`interpolators.kinematics`) sets the corner speed.
+Corners between two straight lines are replaced by a blend whose distance from the corner is at
+most the path tolerance (G64 ``P``, or :data:`DEFAULT_TOLERANCE`) and which uses at most half of
+either line:
 
-Junctions that remain discontinuous (line/arc corners, reversals, corners out of the principal
-planes, curvature steps) are passed at a speed that keeps the step within one sample: see
+* a symmetric clothoid pair (:class:`toolpaths.geometry.ClothoidPair`) when the blend must be
+  curvature continuous (``curvature_continuous=True``, the S-curve: a curvature step at speed
+  is an acceleration step, which the jerk limit forbids) or when the corner plane is not a
+  principal plane (no :class:`toolpaths.Arc` exists there);
+* otherwise a tangent circular arc, whose curvature step at its ends costs nothing under a
+  trapezoidal profile (acceleration steps are allowed) and whose peak curvature is half the
+  clothoid pair's, so the corner is passed faster.
+
+The path then stays tangent-continuous (and, with clothoids, curvature-continuous), and the
+blend's own speed bound (centripetal acceleration and, for the S-curve, jerk including the
+curvature derivative; see :mod:`interpolators.kinematics`) sets the corner speed.
+
+Junctions that remain discontinuous (line/arc and arc/arc corners, reversals, curvature steps of
+tangent-continuous line/arc and arc/arc junctions) are passed at a speed that keeps the step within one sample: see
 :func:`interpolators.kinematics.junction_speed_limit`. A backward and a forward pass then
 lower the junction speeds until every segment can change from its entry to its exit speed
 within its length (exactly for the trapezoid, with zero end accelerations for the S-curve).
@@ -21,7 +31,7 @@ from collections.abc import Callable
 import numpy as np
 
 from interpolators.profiles import scurve_reach, trapezoid_reach
-from toolpaths.geometry import Arc, Line
+from toolpaths.geometry import Arc, ClothoidPair, Line
 from vcnc.errors import InputError
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "blend_corners", "junction_speeds"]
@@ -37,8 +47,12 @@ _MIN_BLEND_ANGLE = 1e-7
 _MAX_BLEND_ANGLE = math.pi - 1e-3
 
 
-def _blend(a: Line, b: Line, tolerance: float) -> tuple[np.ndarray, Arc, np.ndarray] | None:
-    """Tangent arc replacing the corner a.end == b.start, or None when not blendable."""
+Blend = Arc | ClothoidPair
+
+
+def _blend(a: Line, b: Line, tolerance: float, *, curvature_continuous: bool
+           ) -> tuple[np.ndarray, Blend, np.ndarray] | None:
+    """Blend replacing the corner a.end == b.start, or None when not blendable."""
     ua, ub = a.direction, b.direction
     cos_t = float(np.clip(ua @ ub, -1.0, 1.0))
     theta = math.acos(cos_t)
@@ -47,13 +61,16 @@ def _blend(a: Line, b: Line, tolerance: float) -> tuple[np.ndarray, Arc, np.ndar
     n = np.cross(ua, ub)
     plane = int(np.argmax(np.abs(n)))
     nn = abs(n[plane])
-    if np.max(np.abs(np.delete(n, plane))) > 1e-12 * nn or abs(ua[plane]) > 1e-12 or abs(ub[plane]) > 1e-12:
-        return None  # corner plane is not a principal plane
+    principal = not (np.max(np.abs(np.delete(n, plane))) > 1e-12 * nn or abs(ua[plane]) > 1e-12
+                     or abs(ub[plane]) > 1e-12)
+    d_max = 0.5 * min(a.length, b.length)
+    if curvature_continuous or not principal:
+        clo = ClothoidPair.for_corner(a.end, ua, ub, tolerance=tolerance, max_leg=d_max)
+        return None if clo is None else (clo.start, clo, clo.end)
     half = 0.5 * theta
     sec_m1 = 1.0 / math.cos(half) - 1.0
     radius = tolerance / sec_m1 if sec_m1 > 0 else math.inf
     d = radius * math.tan(half)
-    d_max = 0.5 * min(a.length, b.length)
     if d > d_max:
         d = d_max
         radius = d / math.tan(half)
@@ -77,8 +94,9 @@ def blend_corners(
     blocks: list[int],
     tolerances: list[float],
     *,
-    worth: Callable[[int, Arc], bool] | None = None,
-) -> tuple[list[Line | Arc], list[int]]:
+    worth: Callable[[int, Blend], bool] | None = None,
+    curvature_continuous: bool = False,
+) -> tuple[list[Line | Arc | ClothoidPair], list[int]]:
     """Blend line/line corners of a continuous chain.
 
     Parameters
@@ -90,8 +108,12 @@ def blend_corners(
     tolerances : list of float
         Path tolerance [mm] of each junction ``k`` (between segment ``k`` and ``k+1``).
     worth : callable, optional
-        ``worth(k, arc)`` decides whether blending junction ``k`` with ``arc`` pays off (e.g. the
-        arc's speed bound is a fair share of the lines' feeds); a rejected corner stays sharp.
+        ``worth(k, blend)`` decides whether blending junction ``k`` with ``blend`` pays off (e.g.
+        the blend's speed bound is a fair share of the lines' feeds); a rejected corner stays
+        sharp.
+    curvature_continuous : bool
+        Blend every corner with a clothoid pair (G2); otherwise with a circular arc where the
+        corner lies in a principal plane and with a clothoid pair elsewhere.
 
     Returns
     -------
@@ -99,7 +121,7 @@ def blend_corners(
         The chain with blend arcs inserted (a blend belongs to the block of the incoming line)
         and the lines shortened accordingly; zero-length leftovers are dropped.
     """
-    out: list[Line | Arc] = []
+    out: list[Line | Arc | ClothoidPair] = []
     out_blocks: list[int] = []
     cur = segments[0]
     for k in range(len(segments) - 1):
@@ -107,7 +129,7 @@ def blend_corners(
         res = None
         if isinstance(cur, Line) and isinstance(nxt, Line) and cur.length > 0 and nxt.length > 0:
             # the original lengths bound the blends: each end may take at most half a line
-            res = _blend(segments[k], nxt, tolerances[k])
+            res = _blend(segments[k], nxt, tolerances[k], curvature_continuous=curvature_continuous)
             if res is not None and worth is not None and not worth(k, res[1]):
                 res = None
         if res is None:

@@ -1,4 +1,4 @@
-"""Exact path geometry: straight lines, circular arcs and helices in 3-D.
+"""Exact path geometry: straight lines, circular arcs, helices and clothoid corner blends in 3-D.
 
 All points are length-3 float arrays ``(x, y, z)`` in millimetres. Every primitive is
 parametrised by its arc length ``s`` [mm], ``0 <= s <= length``; ``point_at(0)`` is exactly
@@ -18,6 +18,11 @@ G19     YZ      0 (x)        (1, 2)  y, z
 Counter-clockwise (``ccw=True``, G03, Heidenhain ``DR+``) means the in-plane angle, measured
 from ``p`` towards ``q``, increases: counter-clockwise when looking from the positive normal
 axis towards the origin.
+
+:class:`ClothoidPair` is the curvature-continuous corner blend of the G64 look-ahead: two Euler
+spirals (curvature linear in arc length) in the plane of a corner, from zero curvature on the
+incoming line to a peak at the middle and back to zero on the outgoing line. It may lie in any
+plane, not only the principal ones.
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ import numpy as np
 
 from vcnc.errors import InputError
 
-__all__ = ["Line", "Arc", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS"]
+__all__ = ["Line", "Arc", "ClothoidPair", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS", "euler_spiral"]
 
 #: Axis letters of the three linear axes, in index order.
 AXIS_LETTERS: tuple[str, str, str] = ("x", "y", "z")
@@ -236,7 +241,221 @@ class Arc:
         )
 
 
-Segment = Line | Arc
+def euler_spiral(phi: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+    """Normalised Euler-spiral integrals ``X(phi) = int_0^1 cos(phi u^2) du`` and ``Y`` (sin).
+
+    A clothoid of sharpness ``c`` [1/mm^2] starting with zero curvature along ``e_x`` reaches
+    ``(s X(c s^2/2), s Y(c s^2/2))`` at arc length ``s``. Power series, exact to rounding for
+    ``|phi| <= pi/2`` (the blends use ``phi <= theta/2 < pi/2``).
+    """
+    phi = np.asarray(phi, dtype=float)
+    x = np.zeros_like(phi)
+    y = np.zeros_like(phi)
+    term = np.ones_like(phi)  # phi^k / k!
+    for k in range(28):
+        sign = 1.0 if k % 4 < 2 else -1.0  # i^k = 1, i, -1, -i
+        if k % 2 == 0:
+            x = x + sign * term / (2 * k + 1)
+        else:
+            y = y + sign * term / (2 * k + 1)
+        term = term * phi / (k + 1)
+    return x, y
+
+
+class ClothoidPair:
+    """Symmetric pair of clothoids (Euler spirals) blending the corner of two straight lines.
+
+    The curve leaves ``start`` along ``corner - start`` with zero curvature, its curvature grows
+    linearly with arc length up to ``peak_curvature`` at the middle (where the tangent has turned
+    by half the ``deflection``) and falls linearly back to zero at ``end``, where it is tangent to
+    ``end - corner``. Position, tangent and curvature are continuous across both ends and the
+    middle: joined to the two lines the path is curvature continuous (G2).
+
+    Parameters
+    ----------
+    start, corner, end : array_like, shape (3,)
+        Tangent points on the incoming and outgoing lines and the corner between them [mm];
+        ``|corner - start| == |end - corner|`` (checked to 1e-9 relative), deflection in
+        ``(0, pi)``.
+
+    Attributes
+    ----------
+    start, end, corner : ndarray, shape (3,)
+        [mm] (read-only arrays).
+    length : float
+        Arc length [mm] (``2 * half_length``).
+    half_length : float
+        Length of each clothoid [mm].
+    deflection : float
+        Angle between the incoming and outgoing directions [rad].
+    sharpness : float
+        Magnitude of the curvature derivative ``|dk/ds|`` [1/mm^2].
+    peak_curvature : float
+        Curvature at the middle [1/mm] (the largest on the blend).
+    deviation : float
+        Distance of the middle point from the corner [mm], the largest distance of the blend
+        from the two lines it replaces.
+    u_in, u_out : ndarray, shape (3,)
+        Unit directions of the incoming and outgoing lines.
+    w_in, w_out : ndarray, shape (3,)
+        Unit in-plane normals at ``start`` and ``end``, pointing to the inside of the turn.
+    normal : ndarray, shape (3,)
+        Unit normal of the corner plane, ``u_in x u_out / |u_in x u_out|``.
+
+    Notes
+    -----
+    With ``phi = sharpness s^2 / 2`` the first half is ``start + s X(phi) u_in + s Y(phi) w_in``
+    and the second half, with ``r = length - s``, ``end - r X(phi_r) u_out + r Y(phi_r) w_out``
+    (:func:`euler_spiral`). For a deflection ``theta`` and half length ``lam``: sharpness
+    ``theta / lam^2``, peak curvature ``2 theta / length``, tangent length
+    ``|corner - start| = lam (X + Y tan(theta/2))`` and deviation ``lam Y / cos(theta/2)``,
+    with ``X, Y`` at ``phi = theta/2``: both lengths are proportional to ``lam`` for a given
+    deflection (:meth:`for_corner` uses this to fit the blend to a tolerance in closed form).
+
+    Nearest point (for contour errors): the foot ``s`` of a point ``P`` solves
+    ``g(s) = (P - point_at(s)) . tangent_at(s) = 0``, ``g'(s) = -1 + (P - point_at(s)) .
+    curvature_at(s)``; :meth:`nearest` runs Newton's method on each half from the projection of
+    ``P`` on the incoming / outgoing line (``g' < 0`` near the curve since the deviation of
+    interest is far below the radius of curvature).
+    """
+
+    __slots__ = ("start", "end", "corner", "length", "half_length", "deflection", "sharpness", "peak_curvature",
+                 "deviation", "u_in", "u_out", "w_in", "w_out", "normal")
+    kind = "clothoid"
+
+    def __init__(
+        self,
+        start: Sequence[float] | np.ndarray,
+        corner: Sequence[float] | np.ndarray,
+        end: Sequence[float] | np.ndarray,
+    ) -> None:
+        self.start = _point(start, "ClothoidPair start")
+        self.corner = _point(corner, "ClothoidPair corner")
+        self.end = _point(end, "ClothoidPair end")
+        a = self.corner - self.start
+        b = self.end - self.corner
+        da, db = float(np.sqrt(a @ a)), float(np.sqrt(b @ b))
+        if not (da > 0 and db > 0):
+            raise InputError("ClothoidPair needs start, corner and end distinct")
+        if abs(da - db) > 1e-9 * max(da, db):
+            raise InputError(f"ClothoidPair legs must be equal: |corner - start| = {da!r}, |end - corner| = {db!r}")
+        ua, ub = a / da, b / db
+        cos_t = float(np.clip(ua @ ub, -1.0, 1.0))
+        n = np.cross(ua, ub)
+        nn = float(np.sqrt(n @ n))
+        theta = math.atan2(nn, cos_t)
+        if not (nn > 0 and 0.0 < theta < math.pi):
+            raise InputError(f"ClothoidPair deflection must be in (0, pi) rad, got {theta!r}")
+        w_in = ub - cos_t * ua
+        w_in = w_in / np.sqrt(w_in @ w_in)
+        w_out = cos_t * ub - ua
+        w_out = w_out / np.sqrt(w_out @ w_out)
+        d = 0.5 * (da + db)
+        half = 0.5 * theta
+        xm, ym = (float(v) for v in euler_spiral(half))
+        lam = d / (xm + ym * math.tan(half))
+        for name, v in (("u_in", ua), ("u_out", ub), ("w_in", w_in), ("w_out", w_out), ("normal", n / nn)):
+            v = np.array(v, dtype=float)
+            v.setflags(write=False)
+            setattr(self, name, v)
+        self.half_length = lam
+        self.length = 2.0 * lam
+        self.deflection = theta
+        self.sharpness = theta / (lam * lam)
+        self.peak_curvature = theta / lam
+        self.deviation = lam * ym / math.cos(half)
+
+    @staticmethod
+    def shape_factors(deflection: float) -> tuple[float, float]:
+        """Tangent length and deviation per unit half length [-] for a ``deflection`` [rad]."""
+        half = 0.5 * deflection
+        xm, ym = (float(v) for v in euler_spiral(half))
+        return xm + ym * math.tan(half), ym / math.cos(half)
+
+    @classmethod
+    def for_corner(cls, corner: np.ndarray, u_in: np.ndarray, u_out: np.ndarray, *, tolerance: float,
+                   max_leg: float) -> ClothoidPair | None:
+        """Largest blend of the corner with deviation <= ``tolerance`` [mm] and legs <= ``max_leg`` [mm].
+
+        ``u_in``, ``u_out`` are the unit directions of the lines; None when the corner cannot be
+        blended (deflection not in (0, pi), or degenerate sizes).
+        """
+        cos_t = float(np.clip(u_in @ u_out, -1.0, 1.0))
+        theta = math.atan2(float(np.linalg.norm(np.cross(u_in, u_out))), cos_t)
+        if not (0.0 < theta < math.pi) or not (tolerance > 0 and max_leg > 0):
+            return None
+        leg_f, dev_f = cls.shape_factors(theta)
+        lam = min(tolerance / dev_f, max_leg / leg_f)
+        d = lam * leg_f
+        if not (d > 1e-9):
+            return None
+        try:
+            return cls(corner - d * u_in, corner, corner + d * u_out)
+        except InputError:
+            return None
+
+    def _halves(self, s: np.ndarray):
+        s = np.asarray(s, dtype=float)
+        first = s <= self.half_length
+        r = np.clip(np.where(first, s, self.length - s), 0.0, self.half_length)
+        phi = 0.5 * self.sharpness * r * r
+        return s, first[..., None], r, phi
+
+    def point_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Points at arc length ``s`` [mm]; shape ``s.shape + (3,)``."""
+        s, first, r, phi = self._halves(s)
+        x, y = euler_spiral(phi)
+        x, y = (r * x)[..., None], (r * y)[..., None]
+        pts = np.where(first, self.start + x * self.u_in + y * self.w_in, self.end - x * self.u_out + y * self.w_out)
+        return np.where((s >= self.length)[..., None], self.end, np.where((s <= 0)[..., None], self.start, pts))
+
+    def tangent_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Unit tangents d(point)/ds at ``s``; shape ``s.shape + (3,)``."""
+        _, first, _, phi = self._halves(s)
+        c, sn = np.cos(phi)[..., None], np.sin(phi)[..., None]
+        return np.where(first, c * self.u_in + sn * self.w_in, c * self.u_out - sn * self.w_out)
+
+    def curvature_at(self, s: np.ndarray | float) -> np.ndarray:
+        """Curvature vectors d^2(point)/ds^2 [1/mm], pointing to the inside of the turn."""
+        _, first, r, phi = self._halves(s)
+        c, sn = np.cos(phi)[..., None], np.sin(phi)[..., None]
+        k = (self.sharpness * r)[..., None]
+        return k * np.where(first, c * self.w_in - sn * self.u_in, c * self.w_out + sn * self.u_out)
+
+    def nearest(self, points: np.ndarray, *, iterations: int = 8) -> tuple[np.ndarray, np.ndarray]:
+        """Arc length [mm] of the nearest point on the blend and the distance [mm] to it.
+
+        Parameters
+        ----------
+        points : array_like, shape (m, 3)
+            [mm]
+
+        Returns
+        -------
+        s, distance : ndarray, shape (m,)
+        """
+        P = np.asarray(points, dtype=float).reshape(-1, 3)
+        best_s = np.zeros(len(P))
+        best_d = np.full(len(P), np.inf)
+        for lo, hi, s0 in ((0.0, self.half_length, (P - self.start) @ self.u_in),
+                           (self.half_length, self.length, self.length - (self.end - P) @ self.u_out)):
+            s = np.clip(s0, lo, hi)
+            for _ in range(iterations):
+                e = P - self.point_at(s)
+                g = np.einsum("ij,ij->i", e, self.tangent_at(s))
+                dg = -1.0 + np.einsum("ij,ij->i", e, self.curvature_at(s))
+                s = np.clip(s - g / np.where(dg < -1e-12, dg, -1e-12), lo, hi)
+            d = np.linalg.norm(P - self.point_at(s), axis=1)
+            better = d < best_d
+            best_s, best_d = np.where(better, s, best_s), np.where(better, d, best_d)
+        return best_s, best_d
+
+    def __repr__(self) -> str:
+        return (f"ClothoidPair(start={self.start.tolist()}, corner={self.corner.tolist()}, end={self.end.tolist()}, "
+                f"deflection={self.deflection:.6g})")
+
+
+Segment = Line | Arc | ClothoidPair
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -245,7 +464,7 @@ class Path:
 
     Attributes
     ----------
-    segments : tuple of Line or Arc
+    segments : tuple of Line, Arc or ClothoidPair
         The primitives, each starting where the previous one ends (for a program path;
         a path with blended corners starts a new segment where the blend leaves the line).
     blocks : tuple of int

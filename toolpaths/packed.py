@@ -1,4 +1,4 @@
-"""Segments packed into arrays, for evaluating many points on mixed lines and arcs at once."""
+"""Segments packed into arrays, for evaluating many points on mixed lines, arcs and clothoid blends at once."""
 
 from __future__ import annotations
 
@@ -7,12 +7,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from toolpaths.geometry import Arc, Line
+from toolpaths.geometry import Arc, ClothoidPair, Line, euler_spiral
 
-__all__ = ["PackedSegments", "LINE", "ARC", "HOLD"]
+__all__ = ["PackedSegments", "LINE", "ARC", "HOLD", "CLOTHOID"]
 
 #: Segment kinds in :attr:`PackedSegments.kind`.
-LINE, ARC, HOLD = 0, 1, 2
+LINE, ARC, HOLD, CLOTHOID = 0, 1, 2, 3
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -22,7 +22,8 @@ class PackedSegments:
     Attributes
     ----------
     kind : ndarray of int, shape (n,)
-        ``LINE`` (0), ``ARC`` (1) or ``HOLD`` (2: a fixed point, e.g. a dwell; ``start == end``).
+        ``LINE`` (0), ``ARC`` (1), ``HOLD`` (2: a fixed point, e.g. a dwell; ``start == end``) or
+        ``CLOTHOID`` (3: a :class:`toolpaths.ClothoidPair` corner blend).
     length : ndarray, shape (n,)
         Arc length [mm] (0 for a hold).
     start, end : ndarray, shape (n, 3)
@@ -32,6 +33,12 @@ class PackedSegments:
         for lines and holds).
     radius, start_angle, sweep, helix : ndarray, shape (n,)
         Arc radius [mm], start angle [rad], signed sweep [rad], helix rise [mm] (zero for lines).
+    frame : ndarray, shape (n, 4, 3), optional
+        Clothoid blends: ``u_in, w_in, u_out, w_out`` (see :class:`toolpaths.ClothoidPair`);
+        zero rows for the other kinds. None when there is no clothoid.
+    sharpness : ndarray, shape (n,), optional
+        Clothoid blends: ``|dk/ds|`` [1/mm^2] (zero for the other kinds); None when there is no
+        clothoid.
     """
 
     kind: np.ndarray
@@ -46,10 +53,12 @@ class PackedSegments:
     start_angle: np.ndarray
     sweep: np.ndarray
     helix: np.ndarray
+    frame: np.ndarray | None = None
+    sharpness: np.ndarray | None = None
 
     @classmethod
-    def from_segments(cls, segments: Sequence[Line | Arc | np.ndarray]) -> PackedSegments:
-        """Pack lines, arcs and hold points (a length-3 array [mm] stands for a hold)."""
+    def from_segments(cls, segments: Sequence[Line | Arc | ClothoidPair | np.ndarray]) -> PackedSegments:
+        """Pack lines, arcs, clothoid blends and hold points (a length-3 array [mm] stands for a hold)."""
         n = len(segments)
         kind = np.zeros(n, dtype=np.int64)
         length = np.zeros(n)
@@ -63,6 +72,7 @@ class PackedSegments:
         start_angle = np.zeros(n)
         sweep = np.zeros(n)
         helix = np.zeros(n)
+        frame = sharpness = None
         for i, seg in enumerate(segments):
             if isinstance(seg, Line):
                 kind[i] = LINE
@@ -81,11 +91,25 @@ class PackedSegments:
                 start_angle[i] = seg.start_angle
                 sweep[i] = seg.sweep
                 helix[i] = seg.helix
+            elif isinstance(seg, ClothoidPair):
+                if frame is None:
+                    frame, sharpness = np.zeros((n, 4, 3)), np.zeros(n)
+                kind[i] = CLOTHOID
+                length[i] = seg.length
+                start[i], end[i] = seg.start, seg.end
+                frame[i] = (seg.u_in, seg.w_in, seg.u_out, seg.w_out)
+                sharpness[i] = seg.sharpness
             else:
                 kind[i] = HOLD
                 start[i] = end[i] = np.asarray(seg, dtype=float)
         return cls(kind=kind, length=length, start=start, end=end, center=center, e_p=e_p, e_q=e_q, e_n=e_n,
-                   radius=radius, start_angle=start_angle, sweep=sweep, helix=helix)
+                   radius=radius, start_angle=start_angle, sweep=sweep, helix=helix, frame=frame,
+                   sharpness=sharpness)
+
+    def subset(self, idx: np.ndarray) -> PackedSegments:
+        """The segments ``idx`` (an index array or boolean mask) as a new PackedSegments."""
+        return PackedSegments(**{f: None if getattr(self, f) is None else getattr(self, f)[idx]
+                                 for f in self.__dataclass_fields__})
 
     def __len__(self) -> int:
         return len(self.kind)
@@ -150,6 +174,25 @@ class PackedSegments:
                 tan[ia] = (r * sw[:, None] / La) * (c * eq - sn * ep) + (hel / La) * en
             if curv is not None:
                 curv[ia] = -(r * (sw[:, None] / La) ** 2) * radial
+        ic = np.flatnonzero(kind == CLOTHOID)
+        if len(ic):
+            sc = seg[ic]
+            Lc, s_c = L[ic], s[ic]
+            first = (s_c <= 0.5 * Lc)[:, None]
+            r = np.where(first[:, 0], s_c, Lc - s_c)
+            phi = 0.5 * self.sharpness[sc] * r * r
+            fr = self.frame[sc]
+            u = np.where(first, fr[:, 0], fr[:, 2])
+            w = np.where(first, fr[:, 1], fr[:, 3])
+            sgn = np.where(first[:, 0], 1.0, -1.0)  # the second half runs backwards from the end
+            x, y = euler_spiral(phi)
+            pos[ic] = np.where(first, self.start[sc], self.end[sc]) + (sgn * r * x)[:, None] * u + (r * y)[:, None] * w
+            if tan is not None or curv is not None:
+                c, sn = np.cos(phi)[:, None], np.sin(phi)[:, None]
+                if tan is not None:
+                    tan[ic] = c * u + (sgn[:, None] * sn) * w
+                if curv is not None:
+                    curv[ic] = (self.sharpness[sc] * r)[:, None] * (c * w - (sgn[:, None] * sn) * u)
         at_end = (s >= L) & (kind != HOLD)
         pos[at_end] = self.end[seg[at_end]]
         at_start = (s <= 0) & (kind != HOLD)
