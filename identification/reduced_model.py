@@ -58,16 +58,21 @@ position chatters by about a micrometre (|d| T^2 scale). Implementations that mu
 bit therefore need the same operation order (below) and no fused multiply-add (C:
 ``-ffp-contract=off``).
 
-**Initial state**: at rest at x_r,0, the steady state of a constant reference (x = x_r)::
-
-    z_0 = x_r,0 [1 - b0, (a1 - b1)/W, (a2 - b2)/W^2],   xi_0 = z_0 - N x_r,0.
+**Initial state**: at rest at x_r,0, the steady state of a constant reference (x = x_r).
+The loop runs on deviations from the first reference sample, ``r_k = x_r,k - x_r,0`` (the
+model is linear in the reference and G_track(0) = 1), so the state at rest is exactly zero,
+v_0 == 0 and the friction stays off until the reference moves; the position is
+``x_k = (... + d r_k) + x_r,0``. (In absolute coordinates the rest state
+``z_0 = x_r,0 [1 - b0, (a1 - b1)/W, (a2 - b2)/W^2]`` leaves rounding noise of ~1e-13 mm/s in
+v_0, enough to switch the friction on at sample 0.)
 
 **Order of floating-point operations** per sample (sums left to right)::
 
-    x_k  = ((C0 xi0 + C1 xi1) + C2 xi2) + d xr_k
-    v_k  = (((Cv0 xi0 + Cv1 xi1) + Cv2 xi2) + dv xr_k) + dvs (xr_k - xr_{k-1})
+    r_k  = xr_k - xr_0
+    x_k  = (((C0 xi0 + C1 xi1) + C2 xi2) + d r_k) + xr_0
+    v_k  = (((Cv0 xi0 + Cv1 xi1) + Cv2 xi2) + dv r_k) + dvs (r_k - r_{k-1})
     w_k  = f_k + wext_k
-    xi'_i = (((Phi_i0 xi0 + Phi_i1 xi1) + Phi_i2 xi2) + Gamma_i0 xr_k) + Gamma_i1 w_k
+    xi'_i = (((Phi_i0 xi0 + Phi_i1 xi1) + Phi_i2 xi2) + Gamma_i0 r_k) + Gamma_i1 w_k
 
 :func:`discretize` returns these matrices (:class:`DiscreteModel`); :func:`simulate` runs the
 loop compiled with numba.
@@ -336,7 +341,11 @@ def simulate(
     m = discretize(parameters, sample_time)
     pos = np.empty_like(xr)
     vel = np.empty_like(xr)
-    _run(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.xi0, m.d0, m.d1, xr, wext, pos, vel)
+    # Deviations from the first reference sample: the state at rest is then exactly zero, so
+    # v_0 == 0 and the friction stays off until the reference moves (see "Initial state").
+    r0 = float(xr[0])
+    _run(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.xi0, m.d0, m.d1, xr - r0, wext, pos, vel)
+    pos += r0
     return (pos, vel) if return_velocity else pos
 
 

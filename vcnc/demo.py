@@ -218,11 +218,12 @@ def _compare_solvers(capture: Capture, axis: str) -> list[dict[str, Any]]:
     """Equation-error optimum of each solver on the same statistics, with run times."""
     import identification
 
-    stats = identification.statistics(capture, axis=axis)
+    reference, measured, ts = identification.check_capture(capture, axis)
+    stats = identification.statistics(reference, measured, ts)
     rows = []
     for method in ("exact", "kkt", "ga"):
         t0 = time.perf_counter()
-        res = identification.solve_statistics(stats, method=method)
+        res = identification.solve_statistics(stats, method=method, sample_time=ts, seed=0)
         dt = time.perf_counter() - t0
         rows.append({"method": method, "time_s": dt, "objective": float(res.objective), "poles": dict(res.poles)})
     best = min(r["objective"] for r in rows)

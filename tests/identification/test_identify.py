@@ -30,7 +30,7 @@ def small_capture():
 
 
 def test_identify_small_capture(small_capture):
-    m = identify(small_capture, refine="none")
+    m = identify(small_capture, refine="none", diagnose=False)
     assert m.method == "exact" and m.is_stable()
     assert m.fit["rms_um"] > 0 and m.fit["solver"]["success"]
     assert m.bounds == {"p_hz": (0.2, 500.0), "omega_n_hz": (0.2, 500.0), "zeta": (0.2, 2.0)}  # Sec. 4.3

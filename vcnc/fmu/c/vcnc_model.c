@@ -114,10 +114,11 @@ static int same_linear_model(const vcnc_parameters *a, const vcnc_parameters *b)
            a->b2 == b->b2 && a->sample_time == b->sample_time;
 }
 
+/* Position for the absolute reference u [mm]; the state lives in deviations from r0. */
 static double linear_position(const vcnc_model *m, double u)
 {
     const vcnc_discrete *dm = &m->dm;
-    return ((dm->c[0] * m->xi[0] + dm->c[1] * m->xi[1]) + dm->c[2] * m->xi[2]) + dm->d * u;
+    return (((dm->c[0] * m->xi[0] + dm->c[1] * m->xi[1]) + dm->c[2] * m->xi[2]) + dm->d * (u - m->r0)) + m->r0;
 }
 
 int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
@@ -132,8 +133,10 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
         if (vcnc_model_discretize(&m->par, &m->dm, msg, msg_size) != 0) return -1;
         m->exported = 0;
     }
-    for (i = 0; i < NX; i++) m->xi[i] = m->dm.xi0[i] * u;
-    m->prev = u;
+    /* At rest: in deviations from r0 the state is exactly zero (v_0 == 0, no friction). */
+    m->r0 = u;
+    for (i = 0; i < NX; i++) m->xi[i] = 0.0;
+    m->prev = 0.0;
     for (i = 0; i < m->par.delay; i++) m->history[i] = u;
     m->head = 0;
     m->play = linear_position(m, u);
@@ -167,13 +170,13 @@ void vcnc_model_step(vcnc_model *m)
 {
     const vcnc_discrete *dm = &m->dm;
     const double *phi = dm->phi, *g = dm->gamma, *xi = m->xi;
-    double r = model_input(m);
+    double r = model_input(m) - m->r0;
     double v = (((dm->cv[0] * xi[0] + dm->cv[1] * xi[1]) + dm->cv[2] * xi[2]) + dm->dv * r) + dm->dvs * (r - m->prev);
     double f = v > 0.0 ? m->par.d0 : (v < 0.0 ? m->par.d1 : 0.0);
     double w = f + m->w_ext;
     double n0, n1, n2;
 
-    if (m->par.backlash > 0.0) m->play = lost_motion(m, linear_position(m, r));
+    if (m->par.backlash > 0.0) m->play = lost_motion(m, linear_position(m, r + m->r0));
     n0 = (((phi[0] * xi[0] + phi[1] * xi[1]) + phi[2] * xi[2]) + g[0] * r) + g[1] * w;
     n1 = (((phi[3] * xi[0] + phi[4] * xi[1]) + phi[5] * xi[2]) + g[2] * r) + g[3] * w;
     n2 = (((phi[6] * xi[0] + phi[7] * xi[1]) + phi[8] * xi[2]) + g[4] * r) + g[5] * w;

@@ -63,6 +63,7 @@ typedef struct {
     int head;
     /* inputs */
     double x_ref;            /* commanded position [mm] */
+    double r0;               /* x_ref at initialisation [mm]: the loop runs on x_ref - r0 */
     double w_ext;            /* external disturbance [mm/s^2] */
 } vcnc_model;
 
