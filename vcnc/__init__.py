@@ -38,7 +38,7 @@ _LAZY: dict[str, str] = {
     "load_program": "interpolators:load_program",
     "parse_program": "interpolators:parse_program",
     "interpolate": "vcnc.facade:interpolate",
-    "machine": "vcnc.machine:load_machine",
+    "machine": "vcnc.machine",  # a callable module: vcnc.machine("fadal-pid") loads a machine
     "Machine": "vcnc.machine:Machine",
     "machines": "vcnc.machine:builtin_machines",
     "identify": "identification:identify",
@@ -47,6 +47,7 @@ _LAZY: dict[str, str] = {
     "compare": "vcnc.contour:compare",
     "contour_error": "vcnc.contour:contour_error",
     "export_fmu": "vcnc.fmu:export_fmu",
+    "sweep": "vcnc.sweep",  # a callable module: vcnc.sweep(spec, ...) runs a sweep
 }
 
 __all__ = [
@@ -70,7 +71,8 @@ def __getattr__(name: str) -> Any:
     target = _LAZY.get(name)
     if target is None:
         raise AttributeError(f"module 'vcnc' has no attribute {name!r}")
-    modname, attr = target.split(":")
-    value = getattr(importlib.import_module(modname), attr)
+    modname, _, attr = target.partition(":")
+    module = importlib.import_module(modname)
+    value = getattr(module, attr) if attr else module
     globals()[name] = value
     return value

@@ -30,6 +30,7 @@ import numpy as np
 
 import drives
 from interpolators.limits import AxisLimits
+from vcnc._callable import make_callable
 from vcnc.capture import Capture
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
 from vcnc.engine.machine_file import parse_machine_text
@@ -522,3 +523,6 @@ def realistic_effect(
 
 
 _ = NONIDEALITY_FIELDS
+
+# ``vcnc.machine`` is both this module and the facade function: calling the module loads a machine.
+make_callable(__name__, load_machine)

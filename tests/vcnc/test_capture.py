@@ -65,3 +65,13 @@ def test_emps_mat_in_mm(emps_dir):
     assert "pulses_N" not in c.aux
     p = read_capture(emps_dir / "DATA_EMPS_PULSES.mat")
     assert set(np.unique(p.aux["pulses_N"])) <= {0.0, 5.0}
+
+
+def test_written_files_get_the_usual_mode(tmp_path):
+    import os
+
+    p = tmp_path / "c.csv"
+    _capture().to_csv(p)
+    mask = os.umask(0)
+    os.umask(mask)
+    assert p.stat().st_mode & 0o777 == 0o666 & ~mask

@@ -23,9 +23,7 @@ point), ``store.py`` (journal and results file), ``run.py`` (the Dask client sid
 
 from __future__ import annotations
 
-import sys
-import types
-
+from vcnc._callable import make_callable
 from vcnc.sweep.plot import plot_summary, write_plot
 from vcnc.sweep.run import PointFunction, SweepResult, sweep
 from vcnc.sweep.spec import MAGNITUDE_KEYS, SweepSpec, load_spec, parse_spec
@@ -46,12 +44,5 @@ __all__ = [
 ]
 
 
-class _CallableModule(types.ModuleType):
-    """Once ``vcnc.sweep`` is imported as a module, ``vcnc.sweep`` names the module rather than
-    the facade function; calling the module calls :func:`sweep`, so ``vcnc.sweep(...)`` works
-    whichever was imported first."""
-
-    __call__ = staticmethod(sweep)
-
-
-sys.modules[__name__].__class__ = _CallableModule
+# ``vcnc.sweep`` is both this module and the facade function: calling the module calls sweep().
+make_callable(__name__, sweep)
