@@ -1,0 +1,89 @@
+"""``vcnc compare``: contour error of a toolpath on the true machine vs. as predicted by models.
+
+``--model`` is given once for all axes (the same model on each moving axis, as in the thesis'
+X/Y cases when one axis was identified) or once per axis as ``AXIS=FILE``
+(``--model x=mx.json --model y=my.json``). The two forms do not mix. Everything is computed
+before anything is written; a failure leaves no file behind.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from vcnc.errors import InputError
+
+HELP = "compare the contour error of a toolpath on a true machine with that predicted by axis models"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--truth", required=True, metavar="NAME|FILE",
+                        help="built-in machine name or machine TOML file (all non-idealities on)")
+    parser.add_argument("--model", required=True, action="append", metavar="[AXIS=]MODEL.json",
+                        help="model file: once for all axes, or AXIS=FILE once per axis")
+    parser.add_argument("--toolpath", default="circle", metavar="circle|diamond|PROGRAM",
+                        help="built-in toolpath (circle 40 mm diameter, diamond 40 mm across) or a program file")
+    parser.add_argument("--feed", type=float, default=None, metavar="MM_S",
+                        help="feed of the built-in toolpaths [mm/s] (default 200)")
+    parser.add_argument("--acceleration", type=float, default=None, metavar="MM_S2",
+                        help="axis acceleration limit of the interpolation [mm/s^2] (default: the machine's)")
+    parser.add_argument("--profile", choices=("trapezoid", "scurve"), default="trapezoid", help="feed profile")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the true machine's measurement noise")
+    parser.add_argument("--json", metavar="F", help="write the summary JSON")
+    parser.add_argument("--report", metavar="DIR", help="write an HTML report with figures into DIR")
+
+
+def parse_models(values: list[str]) -> str | dict[str, str]:
+    """``--model`` values -> one file, or a dict axis -> file; InputError on a bad form."""
+    from vcnc.setpoints import AXIS_NAMES
+
+    per_axis: dict[str, str] = {}
+    plain: list[str] = []
+    for v in values:
+        axis, sep, file = v.partition("=")
+        if sep and axis.strip().lower() in AXIS_NAMES and not file.strip():
+            raise InputError(f"--model {v!r}: no model file after '='", expected="AXIS=FILE")
+        if sep and axis.strip().lower() in AXIS_NAMES:
+            a = axis.strip().lower()
+            if a in per_axis:
+                raise InputError(f"--model given twice for axis {a}", text=v)
+            per_axis[a] = file
+        elif sep and len(axis) <= 2:
+            raise InputError(f"--model {v!r}: unknown axis {axis!r}", expected=f"AXIS=FILE with AXIS one of "
+                             f"{', '.join(AXIS_NAMES)}")
+        else:
+            plain.append(v)
+    if plain and per_axis:
+        raise InputError("--model: give either one file for all axes or AXIS=FILE for each axis, not both")
+    if len(plain) > 1:
+        raise InputError(f"--model given {len(plain)} times without an axis; use AXIS=FILE for each axis")
+    return plain[0] if plain else per_axis
+
+
+def run(args: argparse.Namespace) -> int:
+    from vcnc.contour_compare import compare
+
+    models = parse_models(args.model)
+    result = compare(args.truth, models, args.toolpath, feed=args.feed, acceleration=args.acceleration,
+                     profile=args.profile, seed=args.seed)
+    summary = result.to_dict()
+    rep = result.report() if args.report else None
+    if args.json:
+        result.to_json(args.json)
+    if rep is not None:
+        rep.write(args.report)
+    out = sys.stdout
+    t, p, pe = summary["true"], summary["predicted"], summary["prediction_error_pct"]
+    out.write(f"{summary['toolpath']} on {summary['truth']}: {summary['samples']} samples, "
+              f"Ts {summary['sample_time']:g} s\n")
+    out.write(f"true      contour error: max {t['contour_max_um']:.4g} um, rms {t['contour_rms_um']:.4g} um\n")
+    label = "augmented" if "before_augmentation" in summary else "predicted"
+    if "before_augmentation" in summary:
+        b = summary["before_augmentation"]
+        out.write(f"identified contour error: max {b['contour_max_um']:.4g} um, rms {b['contour_rms_um']:.4g} um "
+                  f"(max {b['prediction_error_pct']['max']:+.2f} %, rms {b['prediction_error_pct']['rms']:+.2f} %)\n")
+    out.write(f"{label:9s} contour error: max {p['contour_max_um']:.4g} um, rms {p['contour_rms_um']:.4g} um "
+              f"(max {pe['max']:+.2f} %, rms {pe['rms']:+.2f} %)\n")
+    for note in summary.get("notes", []):
+        out.write(f"note: {note}\n")
+    return 0

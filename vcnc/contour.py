@@ -1,0 +1,634 @@
+"""Contour error: the shortest distance from the actual tool position to the programmed path.
+
+The path is the exact geometry of the program (:class:`toolpaths.Path`: lines, arcs, helices), not
+a polyline through the setpoints, so the error of an ideal machine is zero to rounding on every
+primitive, and a lag along a straight line is no contour error at all.
+
+Finding the nearest point efficiently
+-------------------------------------
+Samples are ordered along the path. When the commanded positions are known (every simulated or
+captured run has them), they are first located on the path by a monotone walk (the commanded
+segment index never decreases; each step looks ahead only as far as the command moved). The
+actual position of sample k is then projected, in closed form (lines, arcs) or by a 1-D Newton
+iteration (helices), onto the segments the command visited between ``k - back`` and
+``k + ahead`` samples (``window_s``, default 0.5 s back and 0.05 s ahead: the tool may lag several
+segments behind at corners). Segments whose bounding sphere is farther than the best distance
+found are skipped. Without commanded positions every segment is a candidate (a robust but slower
+global search). Coincident geometry (a circle run twice, a full circle's start and end) is told
+apart by the arc length of the command.
+
+Sign
+----
+For a planar path (all motion in one coordinate plane, arcs in that plane) the error is signed:
+positive to the right of the direction of travel seen from the positive plane normal, i.e.
+outside a counter-clockwise contour (a circle cut with G03, the diamond of
+:func:`toolpaths.diamond`) and inside a clockwise one; negative on the other side. Where the
+nearest point is a corner the side is judged from the bisector of the two tangents (an overshoot
+of a convex corner is outside), and an overshoot of the path's first or last point counts as
+positive. For paths moving three axes the error is the (positive) distance.
+
+Units: positions and errors mm in the arrays, metrics in um (``*_um``), arc length mm.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
+from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
+from vcnc.errors import InputError
+
+__all__ = ["ContourError", "contour_error", "contour_metrics", "path_features", "feed_segments", "auto_magnification",
+           "moving_axes"]
+
+# ``compare`` and ``ContourReport`` (vcnc.contour_compare) are also reachable from here, lazily.
+
+log = logging.getLogger(__name__)
+
+#: Default search window (back, ahead) [s] around each sample's commanded segment.
+WINDOW_S: tuple[float, float] = (0.5, 0.05)
+
+#: Tangent-direction change [deg] above which a junction of two segments counts as a corner.
+CORNER_ANGLE_DEG = 1.0
+
+#: Half width [mm] of the stretch of path around a corner or quadrant change whose largest error
+#: is reported for it.
+FEATURE_WINDOW_MM = 2.0
+
+#: A commanded position farther than this [mm] from the path means the capture and the path do
+#: not belong together.
+REFERENCE_TOLERANCE_MM = 0.05
+
+
+# --------------------------------------------------------------------------------- geometry
+@dataclasses.dataclass(frozen=True, eq=False)
+class _Geometry:
+    """Segments packed into arrays, projected onto the axes the positions have."""
+
+    kind: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    direc: np.ndarray
+    length: np.ndarray
+    center: np.ndarray
+    ep: np.ndarray
+    eq: np.ndarray
+    en: np.ndarray
+    radius: np.ndarray
+    phi0: np.ndarray
+    sweep: np.ndarray
+    helix: np.ndarray
+    frame: np.ndarray  # (M, 4, 3) clothoid blends: u_in, w_in, u_out, w_out
+    sharp: np.ndarray  # (M,) clothoid sharpness [1/mm^2]
+    cum: np.ndarray  # (M + 1,) arc length at the start of each segment, and the total
+    sphere_c: np.ndarray
+    sphere_r: np.ndarray
+    t_start: np.ndarray  # unit tangents at the start and end of each segment
+    t_end: np.ndarray
+
+    def arrays(self) -> tuple:
+        return (self.kind, self.start, self.end, self.direc, self.length, self.center, self.ep, self.eq, self.en,
+                self.radius, self.phi0, self.sweep, self.helix, self.frame, self.sharp)
+
+    def search_arrays(self) -> tuple:
+        return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end
+
+
+def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
+    """Pack ``path``, with the coordinates of absent axes set to zero."""
+    mask = np.array([1.0 if p else 0.0 for p in present])
+    M = len(path.segments)
+    kind = np.zeros(M, dtype=np.int64)
+    start = np.zeros((M, 3))
+    end = np.zeros((M, 3))
+    direc = np.zeros((M, 3))
+    length = np.zeros(M)
+    center = np.zeros((M, 3))
+    ep = np.zeros((M, 3))
+    eq = np.zeros((M, 3))
+    en = np.zeros((M, 3))
+    radius = np.zeros(M)
+    phi0 = np.zeros(M)
+    sweep = np.zeros(M)
+    helix = np.zeros(M)
+    frame = np.zeros((M, 4, 3))
+    sharp = np.zeros(M)
+    corner = np.zeros((M, 3))
+    for i, seg in enumerate(path.segments):
+        a, b = np.asarray(seg.start) * mask, np.asarray(seg.end) * mask
+        start[i], end[i] = a, b
+        if isinstance(seg, Line):
+            kind[i] = LINE
+            d = b - a
+            L = float(np.sqrt(d @ d))
+            length[i] = L
+            direc[i] = d / L if L > 0 else 0.0
+        elif isinstance(seg, Arc):
+            p, q = seg.plane_axes
+            if not (present[p] and present[q]):
+                raise InputError(
+                    f"segment {i} is an arc in the {AXIS_LETTERS[p]}{AXIS_LETTERS[q]} plane but the positions have "
+                    f"no {AXIS_LETTERS[p] if not present[p] else AXIS_LETTERS[q]} axis; "
+                    "an arc cannot be projected onto the axes given"
+                )
+            kind[i] = ARC
+            center[i] = np.asarray(seg.center) * mask
+            ep[i, p] = eq[i, q] = 1.0
+            en[i, seg.plane] = 1.0
+            radius[i] = seg.radius
+            phi0[i] = seg.start_angle
+            sweep[i] = seg.sweep
+            helix[i] = seg.helix if present[seg.plane] else 0.0
+            length[i] = math.hypot(seg.radius * abs(seg.sweep), helix[i])
+        elif isinstance(seg, ClothoidPair):
+            fr = np.array([seg.u_in, seg.w_in, seg.u_out, seg.w_out])
+            if np.any(fr[:, [k for k in range(3) if not present[k]]] != 0.0):
+                raise InputError(
+                    f"segment {i} is a corner blend that moves an axis the positions do not have; "
+                    "give positions for every axis the program moves"
+                )
+            kind[i] = CLOTHOID
+            frame[i] = fr
+            sharp[i] = seg.sharpness
+            length[i] = seg.length
+            corner[i] = np.asarray(seg.corner) * mask
+        else:
+            raise InputError(f"segment {i} of the path is not a Line, Arc or ClothoidPair: {type(seg).__name__}")
+    cum = np.concatenate([[0.0], np.cumsum(length)])
+    sphere_c = np.where((kind == LINE)[:, None], 0.5 * (start + end), center + 0.5 * helix[:, None] * en)
+    sphere_r = np.where(kind == LINE, 0.5 * length, np.hypot(radius, 0.5 * helix))
+    clo = kind == CLOTHOID  # a blend lies inside the triangle start-corner-end
+    sphere_c[clo] = corner[clo]
+    sphere_r[clo] = np.linalg.norm(start[clo] - corner[clo], axis=1)
+    t_start = direc.copy()
+    t_end = direc.copy()
+    for i in np.flatnonzero(clo):
+        t_start[i] = frame[i, 0]
+        t_end[i] = frame[i, 2]
+    for i in np.flatnonzero(kind == ARC):
+        sig = 1.0 if sweep[i] > 0 else -1.0
+        scale = length[i] / abs(sweep[i])
+        for psi, out in ((phi0[i], t_start), (phi0[i] + sweep[i], t_end)):
+            out[i] = (radius[i] * sig * (-math.sin(psi) * ep[i] + math.cos(psi) * eq[i])
+                      + helix[i] / abs(sweep[i]) * en[i]) / scale
+    return _Geometry(kind, start, end, direc, length, center, ep, eq, en, radius, phi0, sweep, helix, frame, sharp,
+                     cum, sphere_c, sphere_r, t_start, t_end)
+
+
+def _plane_normal(g: _Geometry) -> int | None:
+    """Index of the normal axis when the (projected) path lies in one coordinate plane, else None."""
+    if len(g.kind) == 0:
+        return None
+    pts = np.concatenate([g.start, g.end])
+    moving = [bool(np.ptp(pts[:, i]) > 1e-12 * (1.0 + np.abs(pts[:, i]).max())) for i in range(3)]
+    arcs = g.kind == ARC
+    normals = {int(np.argmax(row)) for row in g.en[arcs]}
+    if np.any(g.helix[arcs] != 0.0) or len(normals) > 1:
+        return None
+    if normals:
+        (nrm,) = normals
+        return nrm if not moving[nrm] else None
+    still = [i for i in (2, 1, 0) if not moving[i]]
+    return still[0] if still else None
+
+
+def path_features(path: Path, *, corner_angle_deg: float = CORNER_ANGLE_DEG) -> dict[str, np.ndarray]:
+    """Corners and quadrant changes of a path, as arc lengths [mm] from its start.
+
+    Corners are junctions where the tangent turns by more than ``corner_angle_deg``, and the
+    middles of G64 corner blends (:class:`toolpaths.ClothoidPair`). Quadrant
+    changes are the points inside arcs where the in-plane angle crosses a multiple of 90 degrees:
+    one axis reverses there (friction and backlash glitches).
+
+    Returns
+    -------
+    dict
+        ``corners`` and ``quadrants``: ndarray of arc lengths [mm].
+    """
+    cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in path.segments])])
+    segs = path.segments
+    # a G64 blend is a segment that is not the first of its block (the look-ahead gives the
+    # blend the block of the line it leaves), or a clothoid pair
+    blend = [isinstance(seg, ClothoidPair) or (i > 0 and path.blocks[i] == path.blocks[i - 1])
+             for i, seg in enumerate(segs)]
+    corners = [cum[i] + 0.5 * seg.length for i, seg in enumerate(segs) if blend[i]]
+    cos_lim = math.cos(math.radians(corner_angle_deg))
+    for i in range(len(segs) - 1):
+        t_out = segs[i].tangent_at(segs[i].length)
+        t_in = segs[i + 1].tangent_at(0.0)
+        if float(np.dot(t_out, t_in)) < cos_lim:
+            corners.append(cum[i + 1])
+    quadrants = []
+    for i, seg in enumerate(segs):
+        if isinstance(seg, Arc) and not blend[i]:
+            a0, sw = seg.start_angle, seg.sweep
+            lo, hi = sorted((a0, a0 + sw))
+            k = math.floor(lo / (math.pi / 2)) + 1
+            while k * math.pi / 2 < hi - 1e-9:
+                ang = k * math.pi / 2
+                if ang > lo + 1e-9:
+                    quadrants.append(cum[i] + (ang - a0) / sw * seg.length)
+                k += 1
+    return {"corners": np.sort(np.asarray(corners)), "quadrants": np.sort(np.asarray(quadrants))}
+
+
+# --------------------------------------------------------------------------------- result
+def _stats_um(e: np.ndarray) -> dict[str, float]:
+    if e.size == 0:
+        return {"max_um": float("nan"), "rms_um": float("nan")}
+    return {"max_um": float(np.max(np.abs(e)) * 1e3), "rms_um": float(np.sqrt(np.mean(e * e)) * 1e3)}
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class ContourError:
+    """Contour (and tracking) error of one run along a path.
+
+    Attributes
+    ----------
+    error : ndarray, shape (N,)
+        Contour error [mm]: signed for planar paths (positive right of the travel, i.e. outside
+        a counter-clockwise contour; see the module notes), the distance otherwise.
+    signed : bool
+        Whether ``error`` carries a sign.
+    normal : int or None
+        Normal-axis index of the plane of a planar path (2 for XY).
+    segment : ndarray of int, shape (N,)
+        Index of the path segment holding the nearest point.
+    arc_length : ndarray, shape (N,)
+        Path arc length of the nearest point [mm].
+    positions : ndarray, shape (N, k)
+        Actual positions [mm], columns ``axes``.
+    axes : tuple of str
+        Column names of ``positions``.
+    path : toolpaths.Path
+        The programmed path.
+    t : ndarray, shape (N,), optional
+        Time [s].
+    tracking : ndarray, shape (N, k), optional
+        Tracking error, commanded minus actual position per axis [mm].
+    commanded_segment, commanded_arc_length : ndarray, optional
+        Where the command was on the path at each sample (segment index, arc length [mm]).
+    include : ndarray of bool, shape (N,), optional
+        Samples the metrics cover (e.g. feed moves only, rapids excluded); all when None.
+    """
+
+    error: np.ndarray
+    signed: bool
+    normal: int | None
+    segment: np.ndarray
+    arc_length: np.ndarray
+    positions: np.ndarray
+    axes: tuple[str, ...]
+    path: Path
+    t: np.ndarray | None = None
+    tracking: np.ndarray | None = None
+    commanded_segment: np.ndarray | None = None
+    commanded_arc_length: np.ndarray | None = None
+    include: np.ndarray | None = None
+
+    def __len__(self) -> int:
+        return len(self.error)
+
+    @property
+    def distance(self) -> np.ndarray:
+        """Unsigned contour error [mm]."""
+        return np.abs(self.error)
+
+    def _covered(self) -> np.ndarray:
+        return np.ones(len(self.error), dtype=bool) if self.include is None else self.include
+
+    def metrics(self, *, window_mm: float = FEATURE_WINDOW_MM) -> dict[str, Any]:
+        """Summary numbers [um].
+
+        Parameters
+        ----------
+        window_mm : float
+            Half width [mm] of the stretch of path around each corner / quadrant change whose
+            largest error is attributed to it.
+
+        Returns
+        -------
+        dict
+            ``max_um``, ``rms_um`` (over the covered samples); for a signed error also
+            ``max_outside_um`` (largest positive) and ``max_inside_um`` (largest negative, as a
+            positive number); ``corners`` and ``quadrants``: lists of ``{"arc_length_mm",
+            "position_mm", "max_um"}``, and ``corner_max_um`` / ``quadrant_max_um`` (NaN when
+            there are none); ``tracking``: per axis ``{"max_um", "rms_um"}`` when known;
+            ``samples``: samples covered.
+        """
+        cov = self._covered()
+        e = self.error[cov]
+        out: dict[str, Any] = {**_stats_um(e), "samples": int(cov.sum())}
+        if self.signed:
+            out["max_outside_um"] = float(max(0.0, e.max()) * 1e3) if e.size else float("nan")
+            out["max_inside_um"] = float(max(0.0, -e.min()) * 1e3) if e.size else float("nan")
+        feats = path_features(self.path)
+        s = self.arc_length[cov]
+        for key, name in (("corners", "corner_max_um"), ("quadrants", "quadrant_max_um")):
+            items = []
+            for s0 in feats[key]:
+                sel = np.abs(s - s0) <= window_mm
+                if not np.any(sel):
+                    continue
+                pos = _point_at(self.path, float(s0))
+                items.append({
+                    "arc_length_mm": float(s0),
+                    "position_mm": [float(v) for v in pos],
+                    "max_um": float(np.max(np.abs(e[sel])) * 1e3),
+                })
+            out[key] = items
+            out[name] = max((it["max_um"] for it in items), default=float("nan"))
+        if self.tracking is not None:
+            out["tracking"] = {a: _stats_um(self.tracking[cov, i]) for i, a in enumerate(self.axes)}
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """Metrics plus what the error was measured on (JSON-ready)."""
+        return {"signed": self.signed, "samples_total": len(self), "axes": list(self.axes), **self.metrics()}
+
+    def magnified(self, magnification: float) -> np.ndarray:
+        """Positions [mm] (x, y, z) of the path's nearest points displaced by the magnified error.
+
+        The picture of the thesis' contouring figures: the deviation from the path is drawn
+        ``magnification`` times its size.
+        """
+        foot = _points_at(self.path, self.segment, self.arc_length)
+        pos = np.zeros((len(self), 3))
+        for i, a in enumerate(self.axes):
+            if a in AXIS_LETTERS:
+                pos[:, AXIS_LETTERS.index(a)] = self.positions[:, i]
+        present = [a in self.axes for a in AXIS_LETTERS]
+        foot = foot * np.array([1.0 if p else 0.0 for p in present])
+        return foot + magnification * (pos - foot)
+
+    def plot(self, ax=None, *, magnification: float | None = None, label: str = "actual", **kwargs):  # noqa: ANN001
+        """Draw the path and the actual contour with its error magnified; returns the Axes.
+
+        ``magnification`` defaults to a 1-2-5 value that draws the largest error at about 10 %
+        of the path's extent.
+        """
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots()
+        if magnification is None:
+            magnification = auto_magnification(self.path, float(np.max(np.abs(self.error), initial=0.0)))
+        i, j = _plot_axes(self)
+        pts = self.path.points(step=max(self.path.length / 2000, 1e-3))
+        ax.plot(pts[:, i], pts[:, j], color="0.6", lw=1.0, label="programmed")
+        cov = self._covered()
+        mag = self.magnified(magnification)
+        mag = np.where(cov[:, None], mag, np.nan)
+        ax.plot(mag[:, i], mag[:, j], label=f"{label} (error x{magnification:g})", **kwargs)
+        ax.set_xlabel(f"{AXIS_LETTERS[i]} [mm]")
+        ax.set_ylabel(f"{AXIS_LETTERS[j]} [mm]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.legend(loc="best", fontsize="small")
+        return ax
+
+    def plot_error(self, ax=None, *, label: str = "actual", **kwargs):  # noqa: ANN001
+        """Contour error [um] against path arc length [mm]; returns the Axes."""
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots()
+        cov = self._covered()
+        s = np.where(cov, self.arc_length, np.nan)
+        ax.plot(s, self.error * 1e3, label=label, **kwargs)
+        ax.set_xlabel("path arc length [mm]")
+        ax.set_ylabel("contour error [um]" + (" (+ right of travel)" if self.signed else ""))
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="best", fontsize="small")
+        return ax
+
+
+def auto_magnification(path: Path, max_error_mm: float) -> float:
+    """A 1-2-5 magnification that draws ``max_error_mm`` at about 10 % of the path's extent."""
+    pts = path.points(step=max(path.length / 500, 1e-3)) if len(path) else np.zeros((1, 3))
+    extent = float(np.max(np.ptp(pts, axis=0))) if len(pts) else 1.0
+    if not (max_error_mm > 0 and extent > 0):
+        return 1.0
+    raw = 0.1 * extent / max_error_mm
+    exp = math.floor(math.log10(raw))
+    for m in (5, 2, 1):
+        if m * 10**exp <= raw:
+            return float(m * 10**exp)
+    return float(10**exp)  # pragma: no cover
+
+
+def _plot_axes(ce: ContourError) -> tuple[int, int]:
+    if ce.normal is not None:
+        from toolpaths.geometry import PLANE_AXES
+
+        p, q = PLANE_AXES[ce.normal]
+        return (p, q) if p < q else (q, p)
+    idx = [AXIS_LETTERS.index(a) for a in ce.axes if a in AXIS_LETTERS]
+    return (idx + [1, 0])[:2] if len(idx) < 2 else (idx[0], idx[1])
+
+
+def _point_at(path: Path, s: float) -> np.ndarray:
+    cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in path.segments])])
+    i = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(path) - 1))
+    return path.segments[i].point_at(s - cum[i])
+
+
+def _points_at(path: Path, seg: np.ndarray, s: np.ndarray) -> np.ndarray:
+    from toolpaths.packed import PackedSegments
+
+    cum = np.concatenate([[0.0], np.cumsum([g.length for g in path.segments])])
+    packed = PackedSegments.from_segments(list(path.segments))
+    return packed.evaluate(seg, s - cum[seg])[0]
+
+
+# --------------------------------------------------------------------------------- evaluation
+def _columns(axes: Sequence[str], n_cols: int) -> np.ndarray:
+    axes = tuple(str(a) for a in axes)
+    if len(axes) != n_cols:
+        raise InputError(f"positions have {n_cols} column(s) but {len(axes)} axis name(s) were given: {axes}")
+    cols = np.full(3, -1, dtype=np.int64)
+    for i, a in enumerate(AXIS_LETTERS):
+        if a in axes:
+            cols[i] = axes.index(a)
+    if np.all(cols < 0):
+        raise InputError(f"contour error needs at least one of the axes x, y, z; got {axes}")
+    return cols
+
+
+def _as_positions(name: str, arr: Any, n: int | None = None) -> np.ndarray:
+    a = np.asarray(arr, dtype=float)
+    if a.ndim == 1:
+        a = a[:, None]
+    if a.ndim != 2:
+        raise InputError(f"{name} must be an array of shape (N, n_axes) [mm], got shape {a.shape}")
+    if n is not None and a.shape[0] != n:
+        raise InputError(f"{name} has {a.shape[0]} samples but positions have {n}")
+    bad = np.flatnonzero(~np.isfinite(a).all(axis=1))
+    if bad.size:
+        raise InputError(f"{name} is not finite at sample {int(bad[0])}")
+    return np.ascontiguousarray(a)
+
+
+def contour_error(
+    path: Path,
+    positions: np.ndarray,
+    axes: Sequence[str],
+    *,
+    reference: np.ndarray | None = None,
+    sample_time: float | None = None,
+    t: np.ndarray | None = None,
+    window_s: tuple[float, float] = WINDOW_S,
+    include_segments: np.ndarray | None = None,
+) -> ContourError:
+    """Contour error of sampled positions with respect to an exact path.
+
+    Parameters
+    ----------
+    path : toolpaths.Path
+        Programmed geometry (``Setpoints.path`` / ``Capture.path``).
+    positions : ndarray, shape (N, k)
+        Actual positions [mm], ordered in time, columns ``axes``.
+    axes : sequence of str
+        Column names; x, y, z enter the distance (other axes are ignored). The path is projected
+        onto the axes present (a missing axis does not count), so an arc needs both its plane
+        axes.
+    reference : ndarray, shape (N, k), optional
+        Commanded positions [mm], same columns. When given, the nearest point is searched near
+        the command (see the module notes) and the tracking error is recorded; without it every
+        segment is searched.
+    sample_time : float, optional
+        Sampling period [s] that turns ``window_s`` into samples (default: from ``t``, else 1 ms).
+    t : ndarray, shape (N,), optional
+        Time stamps [s], kept for plots.
+    window_s : (float, float)
+        How far back and ahead of each sample [s] the command's segments are searched.
+    include_segments : ndarray of bool, shape (n_segments,), optional
+        Segments whose samples (by the commanded segment) the metrics cover, e.g. feed moves
+        only. All samples when None.
+
+    Returns
+    -------
+    ContourError
+
+    Raises
+    ------
+    vcnc.InputError
+        Shapes that do not match, non-finite values, an empty path, an arc whose plane axes are
+        missing, or a reference that does not follow the path (farther than
+        :data:`REFERENCE_TOLERANCE_MM`).
+    """
+    if not isinstance(path, Path):
+        raise InputError(f"path must be a toolpaths.Path, got {type(path).__name__}")
+    if len(path) == 0:
+        raise InputError("the path has no segments: there is no contour to measure an error from")
+    P = _as_positions("positions", positions)
+    N = P.shape[0]
+    cols = _columns(axes, P.shape[1])
+    present = [c >= 0 for c in cols]
+    g = _pack(path, present)
+    normal = _plane_normal(g)
+    nvec = np.zeros(3)
+    if normal is not None:
+        nvec[normal] = 1.0
+    if sample_time is None:
+        sample_time = float(np.median(np.diff(t))) if t is not None and len(t) > 1 else 1e-3
+    if not (math.isfinite(sample_time) and sample_time > 0):
+        raise InputError(f"sample_time must be a finite value > 0 s, got {sample_time!r}")
+    back = int(math.ceil(window_s[0] / sample_time))
+    ahead = int(math.ceil(window_s[1] / sample_time))
+    tracking = cseg = s_cmd = None
+    if reference is not None:
+        R = _as_positions("reference", reference, N)
+        if R.shape[1] != P.shape[1]:
+            raise InputError(f"reference has {R.shape[1]} columns but positions have {P.shape[1]}")
+        tol = 1e-9 * (1.0 + float(g.cum[-1]))
+        cseg, s_cmd, dref = locate(R, cols, *g.arrays(), g.cum, tol)
+        if N and float(dref.max()) > REFERENCE_TOLERANCE_MM:
+            k = int(np.argmax(dref))
+            raise InputError(
+                f"the commanded position at sample {k} is {dref[k]:.4g} mm from the path (more than "
+                f"{REFERENCE_TOLERANCE_MM} mm): the path does not belong to these positions"
+            )
+        tracking = R - P
+        err, seg, s = nearest(P, cols, *g.arrays(), *g.search_arrays(), cseg, s_cmd, back, ahead, nvec,
+                              normal is not None)
+    else:
+        empty_i = np.zeros(0, dtype=np.int64)
+        err, seg, s = nearest(P, cols, *g.arrays(), *g.search_arrays(), empty_i, np.zeros(0), back, ahead, nvec,
+                              normal is not None)
+    include = None
+    if include_segments is not None:
+        inc = np.asarray(include_segments, dtype=bool)
+        if inc.shape != (len(path),):
+            raise InputError(f"include_segments needs one flag per segment ({len(path)}), got shape {inc.shape}")
+        include = inc[cseg if cseg is not None else seg]
+    return ContourError(
+        error=err,
+        signed=normal is not None,
+        normal=normal,
+        segment=seg,
+        arc_length=s,
+        positions=P,
+        axes=tuple(str(a) for a in axes),
+        path=path,
+        t=None if t is None else np.asarray(t, dtype=float),
+        tracking=tracking,
+        commanded_segment=cseg,
+        commanded_arc_length=s_cmd,
+        include=include,
+    )
+
+
+def moving_axes(reference: np.ndarray, axes: Sequence[str]) -> list[str]:
+    """Linear axes (x, y, z) whose commanded position changes."""
+    ref = np.asarray(reference, dtype=float)
+    return [a for i, a in enumerate(axes) if a in AXIS_LETTERS and ref.shape[0] and float(np.ptp(ref[:, i])) > 0]
+
+
+def feed_segments(path: Path, program: Any) -> np.ndarray | None:
+    """Flags of the path segments that are feed moves (not G00 / FMAX), for ``include_segments``.
+
+    ``program`` is the :class:`interpolators.Program` the path was interpolated from (``path.blocks``
+    index its blocks). None when the path has no feed move at all (then every sample counts).
+    """
+    kinds = [program.blocks[b].kind if 0 <= b < len(program.blocks) else "line" for b in path.blocks]
+    inc = np.array([k != "rapid" for k in kinds], dtype=bool)
+    return inc if inc.any() else None
+
+
+def contour_metrics(capture: Any, *, include_segments: np.ndarray | None = None) -> dict[str, float] | None:
+    """The ``contour`` entry of the ``vcnc simulate`` summary: ``{"max_um", "rms_um"}``.
+
+    Parameters
+    ----------
+    capture : vcnc.Capture
+        With ``path`` (the programmed geometry) and ``reference``/``measured``.
+    include_segments : ndarray of bool, optional
+        Segments the metrics cover (see :func:`contour_error`).
+
+    Returns
+    -------
+    dict or None
+        None when fewer than two of x, y, z move (a contour needs two axes) or the capture has
+        no path.
+    """
+    if getattr(capture, "path", None) is None or len(moving_axes(capture.reference, capture.axes)) < 2:
+        return None
+    ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference,
+                       t=capture.t, include_segments=include_segments)
+    m = ce.metrics()
+    return {"max_um": m["max_um"], "rms_um": m["rms_um"]}
+
+
+def __getattr__(name: str) -> Any:
+    # compare / ContourReport live in vcnc.contour_compare (which imports this module)
+    if name in ("compare", "ContourReport"):
+        from vcnc import contour_compare
+
+        return getattr(contour_compare, name)
+    raise AttributeError(f"module 'vcnc.contour' has no attribute {name!r}")

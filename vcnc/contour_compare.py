@@ -1,0 +1,560 @@
+"""Virtual process planning: the contour error of a 'true' machine against that of its models.
+
+The same setpoints run on the true machine (a built-in name, a TOML file or a Machine, every
+non-ideality on) and on a *predicted machine* whose axes are identified models
+(:meth:`vcnc.Machine.from_axes`); the contour errors of both runs are measured on the exact
+programmed path (:func:`vcnc.contour.contour_error`) and compared, as the thesis does in Figs.
+3.6, 3.7, 3.9, 3.11, 3.14, 4.9 and 4.10. The truth may also be a real capture: its commanded
+positions are then passed through the models (Sec. 4.3.3: "the command trajectory captured from
+the machine's interpolator was passed through the virtual drive models").
+
+Models
+------
+A model file holds one axis. ``models`` is either one model for every moving axis (the thesis'
+ball-screw bench, Sec. 3.4.2, where one identified axis stands for both X and Y) or a mapping
+axis -> model. A model that carries diagnosis ``effects`` and simulates them (an augmented model)
+is compared twice: as given ("augmented", the summary's ``predicted``) and reduced to its
+identified linear part (``model.reduced()``: "identified", the summary's ``before_augmentation``).
+The diagnosis may have refitted the parameters, so that part can differ slightly from the model
+identified before the diagnosis; compare that model itself for the strict "before".
+
+Toolpaths
+---------
+``"circle"``: a full circle of 40 mm diameter (R = 20 mm) counter-clockwise from (20, 0);
+``"diamond"``: the square turned by 45 degrees with vertices 20 mm from the centre on the axes (the
+same 40 mm extent as the circle; side 28.28 mm), counter-clockwise. Both at 200 mm/s (F12000)
+unless ``feed`` says otherwise, started with a rapid from the origin and a dwell of
+:data:`SETTLE_S` so that the contour starts from rest; the rapid is excluded from the metrics
+(contour errors of positioning moves do not mark the part). Any other string is a
+program file (ISO or Heidenhain); a :class:`interpolators.Program` or :class:`vcnc.Setpoints` may
+be given directly. A single-axis true machine drives every axis of the toolpath with copies of
+its axis (the thesis ran its single-axis bench this way, Fig. 3.14).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import logging
+import math
+import os
+from collections.abc import Mapping
+from pathlib import Path as FsPath
+from typing import Any
+
+import numpy as np
+
+from vcnc.capture import Capture
+from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes
+from vcnc.errors import InputError
+from vcnc.setpoints import Setpoints
+
+__all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S"]
+
+log = logging.getLogger(__name__)
+
+#: Built-in toolpaths and their size: circle radius [mm], diamond side [mm] (vertices 20 mm out).
+SHAPES: dict[str, float] = {"circle": 20.0, "diamond": 40.0 / math.sqrt(2.0)}
+
+#: Feed of the built-in toolpaths [mm/s] (200 mm/s: Secs. 3.4.1 and 4.3.3 of the thesis).
+DEFAULT_FEED_MM_S = 200.0
+
+#: Time [s] the final position is held after the program so that the axes settle.
+SETTLE_S = 0.2
+
+_LABELS = ("true", "augmented", "identified")
+
+
+def _pct(pred: float, true: float) -> float:
+    return float(100.0 * (pred - true) / true) if true > 0 else float("nan")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class ContourReport:
+    """True and predicted contour errors of one toolpath.
+
+    Attributes
+    ----------
+    toolpath : str
+        Name of the toolpath (``circle``, ``diamond`` or the program file).
+    truth : str
+        Name of the true machine or capture.
+    setpoints : Setpoints
+        The commanded motion both runs received.
+    true : ContourError
+        Contour error of the true machine.
+    predicted : dict of str to ContourError
+        ``"identified"`` (the reduced models) and, when the models carry effects they simulate,
+        ``"augmented"``.
+    models : dict
+        Per label, per axis: a short description of the model used.
+    notes : list of str
+        What the numbers rest on (e.g. a copied axis, effects that could not be simulated).
+    """
+
+    toolpath: str
+    truth: str
+    setpoints: Setpoints
+    true: ContourError
+    predicted: dict[str, ContourError]
+    models: dict = dataclasses.field(default_factory=dict)
+    notes: list = dataclasses.field(default_factory=list)
+
+    @property
+    def main_label(self) -> str:
+        """The prediction of the models as given: ``augmented`` when present, else ``identified``."""
+        return "augmented" if "augmented" in self.predicted else "identified"
+
+    def metrics(self) -> dict[str, dict[str, Any]]:
+        """Metrics of every run (see :meth:`ContourError.metrics`), by label."""
+        out = {"true": self.true.metrics()}
+        out.update({k: v.metrics() for k, v in self.predicted.items()})
+        return out
+
+    def prediction_error_pct(self, label: str | None = None) -> dict[str, float]:
+        """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
+        label = label or self.main_label
+        t, p = self.true.metrics(), self.predicted[label].metrics()
+        return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``vcnc compare`` summary (ARCHITECTURE.md contract), with details beside it."""
+        m = self.metrics()
+
+        def block(label: str) -> dict[str, Any]:
+            x = m[label]
+            out = {"contour_max_um": x["max_um"], "contour_rms_um": x["rms_um"],
+                   "corner_max_um": _nan_none(x["corner_max_um"]), "quadrant_max_um": _nan_none(x["quadrant_max_um"])}
+            if self.true.signed:
+                out["max_outside_um"] = x["max_outside_um"]
+                out["max_inside_um"] = x["max_inside_um"]
+            if "tracking" in x:
+                out["tracking"] = x["tracking"]
+            return out
+
+        main = self.main_label
+        d: dict[str, Any] = {
+            "toolpath": self.toolpath,
+            "true": block("true"),
+            "predicted": block(main),
+            "prediction_error_pct": self.prediction_error_pct(main),
+        }
+        if main == "augmented":
+            d["before_augmentation"] = {**block("identified"),
+                                        "prediction_error_pct": self.prediction_error_pct("identified")}
+        d["truth"] = self.truth
+        d["models"] = self.models
+        d["samples"] = len(self.setpoints)
+        d["sample_time"] = self.setpoints.sample_time
+        d["metrics_cover"] = int(m["true"]["samples"])
+        d["signed"] = self.true.signed
+        if self.notes:
+            d["notes"] = list(self.notes)
+        return d
+
+    def to_json(self, path: str | os.PathLike[str]) -> None:
+        """Write :meth:`to_dict` as JSON (atomic)."""
+        from vcnc._io import atomic_path
+
+        text = json.dumps(_plain(self.to_dict()), indent=2) + "\n"
+        with atomic_path(path) as tmp:
+            tmp.write_text(text)
+
+    # ------------------------------------------------------------------ plots
+    def _runs(self) -> list[tuple[str, ContourError]]:
+        labels = [k for k in ("identified", "augmented") if k in self.predicted]
+        return [("true", self.true)] + [(k, self.predicted[k]) for k in labels]
+
+    def plot_contour(self, ax=None, *, magnification: float | None = None):  # noqa: ANN001 - matplotlib Axes
+        """The path with the true and predicted contour errors magnified (thesis style)."""
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots(figsize=(6, 6))
+        if magnification is None:
+            worst = max(float(np.max(np.abs(ce.error[ce._covered()]), initial=0.0)) for _, ce in self._runs())
+            magnification = auto_magnification(self.true.path, worst)
+        styles = {"true": {"color": "k", "lw": 1.4}, "identified": {"color": "C0", "ls": "--"},
+                  "augmented": {"color": "C3", "ls": ":"}}
+        for i, (label, ce) in enumerate(self._runs()):
+            if i == 0:
+                ce.plot(ax, magnification=magnification, label=label, **styles[label])
+            else:
+                mag = np.where(ce._covered()[:, None], ce.magnified(magnification), np.nan)
+                a, b = _plane(self.true)
+                ax.plot(mag[:, a], mag[:, b], label=f"{label} (error x{magnification:g})", **styles[label])
+        ax.legend(loc="best", fontsize="small")
+        ax.set_title(f"{self.toolpath} on {self.truth}: contour error x{magnification:g}")
+        return ax
+
+    def plot_error(self, ax=None):  # noqa: ANN001 - matplotlib Axes
+        """Contour error [um] against path arc length [mm], true and predicted overlaid."""
+        styles = {"true": {"color": "k", "lw": 1.4}, "identified": {"color": "C0", "ls": "--"},
+                  "augmented": {"color": "C3", "ls": ":"}}
+        for label, ce in self._runs():
+            ax = ce.plot_error(ax, label=label, **styles[label])
+        return ax
+
+    def plot(self, ax=None):  # noqa: ANN001 - matplotlib Axes or a pair of them
+        """Both pictures: the magnified contour and the error along the path.
+
+        ``ax``: None (a new figure), one Axes (the magnified contour only) or two Axes.
+        Returns the Axes used.
+        """
+        if ax is None:
+            import matplotlib.pyplot as plt
+
+            _, ax = plt.subplots(1, 2, figsize=(13, 5.5))
+        if isinstance(ax, (list, tuple, np.ndarray)):
+            axes = list(np.ravel(ax))
+            self.plot_contour(axes[0])
+            if len(axes) > 1:
+                self.plot_error(axes[1])
+            return ax
+        return self.plot_contour(ax)
+
+    def report(self):  # -> vcnc.report.Report
+        """An HTML report (:class:`vcnc.report.Report`): metrics table, both figures, summary."""
+        from matplotlib.figure import Figure
+
+        from vcnc.report import Report
+
+        rep = Report(f"vcnc compare: {self.toolpath} on {self.truth}")
+        rep.heading("Contour error: true machine and prediction")
+        m = self.metrics()
+        rows = []
+        for label, _ in self._runs():
+            x = m[label]
+            pe = self.prediction_error_pct(label) if label != "true" else {"max": float("nan"), "rms": float("nan")}
+            rows.append([label, x["max_um"], x["rms_um"], x["corner_max_um"], x["quadrant_max_um"], pe["max"],
+                         pe["rms"]])
+        rep.table(["run", "max [um]", "RMS [um]", "corners max [um]", "quadrants max [um]", "max error [%]",
+                   "RMS error [%]"], rows,
+                  caption="Prediction error = 100 (predicted - true) / true. Feed moves only (rapids excluded).")
+        trows = []
+        for label, _ in self._runs():
+            for a, v in m[label].get("tracking", {}).items():
+                trows.append([label, a, v["max_um"], v["rms_um"]])
+        if trows:
+            rep.table(["run", "axis", "tracking max [um]", "tracking RMS [um]"], trows)
+        if self.models:
+            rep.table(["model", "axis", "description"],
+                      [[lab, a, desc] for lab, per in self.models.items() for a, desc in per.items()])
+        for note in self.notes:
+            rep.text(note)
+        fig = Figure(figsize=(7, 7))
+        self.plot_contour(fig.subplots())
+        rep.figure("contour", fig, caption="Programmed path (grey) and the contours, errors magnified")
+        fig = Figure(figsize=(10, 4.5))
+        self.plot_error(fig.subplots())
+        rep.figure("contour_error", fig, caption="Contour error along the path, true and predicted")
+        rep.summary = _plain(self.to_dict())
+        return rep
+
+
+def _plane(ce: ContourError) -> tuple[int, int]:
+    from vcnc.contour import _plot_axes
+
+    return _plot_axes(ce)
+
+
+def _nan_none(v: float) -> float | None:
+    return None if v is None or (isinstance(v, float) and math.isnan(v)) else v
+
+
+def _plain(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        return None if math.isnan(float(obj)) else float(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    return obj
+
+
+# ------------------------------------------------------------------------------ inputs
+def _truth_machine(truth: Any):
+    from vcnc.machine import Machine, load_machine
+
+    if isinstance(truth, Machine):
+        return truth
+    if isinstance(truth, (str, os.PathLike)):
+        return load_machine(truth)
+    raise InputError(f"truth must be a machine name, a machine TOML file, a Machine or a Capture; got "
+                     f"{type(truth).__name__}")
+
+
+def _load_one(model: Any, where: str):
+    if isinstance(model, (str, os.PathLike)):
+        from identification import load_model
+
+        return load_model(model)
+    if not hasattr(model, "simulate_reference"):
+        raise InputError(f"{where}: a model needs simulate_reference(reference, sample_time); got "
+                         f"{type(model).__name__}")
+    return model
+
+
+def _models_per_axis(models: Any, axes: tuple[str, ...]) -> dict[str, Any]:
+    if isinstance(models, Mapping):
+        if not models:
+            raise InputError("no model given; give one model for all axes or one per axis")
+        unknown = [a for a in models if a not in axes]
+        missing = [a for a in axes if a not in models]
+        if missing:
+            raise InputError(
+                f"no model for axis {', '.join(missing)} (models given for {', '.join(models)}); give one model "
+                "per moving axis, or a single model for all axes"
+            )
+        if unknown:
+            log.info("models for axes %s are not used: the toolpath moves %s", unknown, axes)
+        return {a: _load_one(models[a], f"model of axis {a}") for a in axes}
+    one = _load_one(models, "model")
+    return {a: one for a in axes}
+
+
+def _identified_part(model: Any):
+    """The model without its diagnosis effects (the reduced linear model of Eq. 3.3).
+
+    ``model.reduced()`` (identification.AugmentedAxisModel) when the model has it; a model with
+    no effects is its own identified part.
+    """
+    if not getattr(model, "effects", None):
+        return model
+    reduced = getattr(model, "reduced", None)
+    if callable(reduced):
+        reduced = reduced()
+    if reduced is not None and hasattr(reduced, "simulate_reference"):
+        return reduced
+    return model
+
+
+def _describe(model: Any) -> str:
+    poles = getattr(model, "poles", None) or {}
+    parts = [type(model).__name__]
+    if poles:
+        parts.append(", ".join(f"{k} {float(v):.4g}" for k, v in poles.items()))
+    effects = getattr(model, "effects", None)
+    if effects:
+        parts.append("effects: " + ", ".join(str(e.get("name", "?")) if isinstance(e, dict) else str(e)
+                                             for e in effects))
+    return "; ".join(parts)
+
+
+def _shape_program(name: str, feed_mm_s: float) -> str:
+    import toolpaths
+
+    f = feed_mm_s * 60.0
+    text = toolpaths.circle(SHAPES["circle"], f) if name == "circle" else toolpaths.diamond(SHAPES["diamond"], f)
+    # a dwell after the rapid: the contour starts from rest, as in the thesis' tests
+    lines = text.splitlines()
+    i = next(k for k, line in enumerate(lines) if "G00" in line)
+    lines.insert(i + 1, f"G04 P{SETTLE_S * 1000:g}")
+    return "\n".join(lines) + "\n"
+
+
+def _program(toolpath: Any, feed: float | None):
+    """(program or None, setpoints or None, name)."""
+    import interpolators
+
+    if isinstance(toolpath, Setpoints):
+        if toolpath.path is None:
+            raise InputError("the setpoints have no path (Setpoints.path); the contour needs the programmed geometry")
+        return None, toolpath, str(toolpath.meta.get("source") or "setpoints")
+    if isinstance(toolpath, interpolators.Program):
+        return toolpath, None, str(toolpath.source or "program")
+    if isinstance(toolpath, str) and toolpath in SHAPES:
+        f = DEFAULT_FEED_MM_S if feed is None else feed
+        if not (isinstance(f, (int, float)) and math.isfinite(f) and f > 0):
+            raise InputError(f"feed must be a finite value > 0 mm/s, got {feed!r}")
+        return interpolators.parse_program(_shape_program(toolpath, f), source=f"<{toolpath}>"), None, toolpath
+    if isinstance(toolpath, (str, os.PathLike)):
+        p = FsPath(toolpath)
+        if not p.is_file():
+            raise InputError(
+                f"toolpath {str(toolpath)!r} is neither a built-in toolpath ({', '.join(SHAPES)}) nor a program file",
+                file=str(toolpath),
+            )
+        if feed is not None:
+            raise InputError("feed applies to the built-in toolpaths only; a program sets its own feeds (F)")
+        return interpolators.load_program(p), None, str(toolpath)
+    raise InputError(f"toolpath must be 'circle', 'diamond', a program file, a Program or Setpoints; got "
+                     f"{type(toolpath).__name__}")
+
+
+def _limits(machine, axes: tuple[str, ...], acceleration: float | None, feed: float | None) -> dict:
+    from interpolators import AxisLimits
+
+    src = machine.limits
+    base = src[axes[0]] if len(src) == 1 else None
+    out = {}
+    for a in axes:
+        lim = src.get(a, base)
+        if acceleration is not None:
+            if not (isinstance(acceleration, (int, float)) and math.isfinite(acceleration) and acceleration > 0):
+                raise InputError(f"acceleration must be a finite value > 0 mm/s^2, got {acceleration!r}")
+            lim = dataclasses.replace(lim, acceleration=float(acceleration))
+        if feed is not None and lim.velocity < feed:
+            lim = dataclasses.replace(lim, velocity=float(feed), rapid=max(lim.rapid_rate, float(feed)))
+        out[a] = lim if isinstance(lim, AxisLimits) else AxisLimits(**dataclasses.asdict(lim))
+    return out
+
+
+def _with_settle(sp: Setpoints, seconds: float) -> Setpoints:
+    n = int(round(seconds / sp.sample_time))
+    if n <= 0:
+        return sp
+    pos = np.vstack([sp.position, np.repeat(sp.position[-1:], n, axis=0)])
+    zeros = np.zeros((n, len(sp.axes)))
+    return dataclasses.replace(
+        sp,
+        t=np.arange(len(sp) + n) * sp.sample_time,
+        position=pos,
+        velocity=np.vstack([sp.velocity, zeros]),
+        acceleration=np.vstack([sp.acceleration, zeros]),
+        block=np.concatenate([sp.block, np.full(n, sp.block[-1])]),
+    )
+
+
+def _expand_machine(machine, axes: tuple[str, ...], notes: list[str]):
+    """The machine itself, or a copy driving every axis of the toolpath with its single axis."""
+    from vcnc.machine import Machine
+
+    missing = [a for a in axes if a not in machine.axes]
+    if not missing:
+        return machine
+    if len(machine.axes) != 1:
+        raise InputError(
+            f"the toolpath moves axis {', '.join(missing)} which machine {machine.name!r} does not have "
+            f"(axes: {', '.join(machine.axes)})"
+        )
+    (only,) = machine.axes
+    ax = machine.axis(only)
+    axes_map = {}
+    for a in axes:
+        axes_map[a] = dataclasses.replace(ax, name=a) if dataclasses.is_dataclass(ax) and hasattr(ax, "name") else ax
+    notes.append(f"machine {machine.name!r} has one axis ({only}); each of {', '.join(axes)} is a copy of it")
+    return Machine.from_axes(axes_map, sample_time=machine.sample_time,
+                             limits={a: machine.limits[only] for a in axes}, name=machine.name,
+                             description=machine.description)
+
+
+# ------------------------------------------------------------------------------ compare
+def compare(
+    truth: Any,
+    models: Any,
+    toolpath: Any = "circle",
+    *,
+    feed: float | None = None,
+    acceleration: float | None = None,
+    profile: str = "trapezoid",
+    seed: int = 0,
+    settle_s: float = SETTLE_S,
+) -> ContourReport:
+    """Contour error of a toolpath on the true machine and as predicted by axis models.
+
+    Parameters
+    ----------
+    truth : str, os.PathLike, vcnc.Machine or vcnc.Capture
+        Built-in machine name or machine TOML (every non-ideality on), a Machine, or a capture of
+        a real run (its ``reference`` is the command both see; needs ``path``, or a program as
+        ``toolpath`` whose programmed geometry is then used).
+    models : model, path, or mapping of axis -> model or path
+        One ``vcnc.axis-model/1`` file / model object for every moving axis, or one per axis.
+        Objects need ``simulate_reference(reference, sample_time)``.
+    toolpath : {"circle", "diamond"}, path, Program or Setpoints
+        See the module notes.
+    feed : float, optional
+        Feed of the built-in toolpaths [mm/s] (default 200).
+    acceleration : float, optional
+        Axis acceleration limit of the interpolation [mm/s^2] (default: the true machine's).
+        The thesis' cases: 2000 (Sec. 3.4.1), 600 (Sec. 3.4.2 at 100 mm/s).
+    profile : {"trapezoid", "scurve"}
+        Feed profile of the interpolation.
+    seed : int
+        Seed of the true machine's measurement noise.
+    settle_s : float
+        The final position is held this long [s] after the program so the axes settle.
+
+    Returns
+    -------
+    ContourReport
+
+    Raises
+    ------
+    vcnc.InputError
+        Unknown machine or toolpath, unreadable model or program (naming the file and line), a
+        model missing for a moving axis, a capture without a path.
+    """
+    import interpolators
+
+    notes: list[str] = []
+    capture = truth if isinstance(truth, Capture) else None
+    if capture is not None:
+        program = None
+        if toolpath is not None and not (isinstance(toolpath, str) and toolpath in SHAPES):
+            program, _, tp_name = _program(toolpath, None)
+        else:
+            tp_name = str(capture.meta.get("program") or capture.source or "capture")
+        path = program.path() if program is not None else capture.path
+        if path is None:
+            raise InputError("the capture has no path; give the program it ran as toolpath", file=capture.source)
+        axes = tuple(a for a in capture.axes if a in ("x", "y", "z"))
+        sp = Setpoints.from_positions(capture.reference[:, [capture.axis_index(a) for a in axes]],
+                                      sample_time=capture.sample_time, axes=axes)
+        sp = dataclasses.replace(sp, path=path)
+        true_measured = capture.measured[:, [capture.axis_index(a) for a in axes]]
+        truth_name = capture.source or "capture"
+        sample_time = capture.sample_time
+    else:
+        machine = _truth_machine(truth)
+        program, sp, tp_name = _program(toolpath, feed)
+        if sp is None:
+            axes = program.axes or ("x",)
+            machine = _expand_machine(machine, tuple(axes), notes)
+            limits = _limits(machine, tuple(axes), acceleration, feed)
+            sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
+        else:
+            machine = _expand_machine(machine, tuple(sp.axes), notes)
+        sp = _with_settle(sp, settle_s)
+        axes = tuple(sp.axes)
+        cap = machine.simulate(sp, seed=seed)
+        true_measured = cap.measured
+        truth_name = machine.name
+        sample_time = machine.sample_time
+        path = sp.path
+    moving = moving_axes(sp.position, axes)
+    if len(moving) < 2:
+        notes.append(f"the toolpath moves only {', '.join(moving) or 'no axis'}: the contour error is the "
+                     "deviation from a straight line")
+    per_axis = _models_per_axis(models, axes)
+    from vcnc.machine import Machine
+
+    identified = {a: _identified_part(m) for a, m in per_axis.items()}
+    augmented = per_axis if any(identified[a] is not per_axis[a] for a in axes) else None
+    plain_with_effects = [a for a, m in per_axis.items() if getattr(m, "effects", None) and identified[a] is m]
+    if plain_with_effects:
+        notes.append(f"the models of {', '.join(plain_with_effects)} list effects but offer no reduced() part; "
+                     "they are shown as given")
+    # the predicted machine's limits only label it (its setpoints are given); any valid record does
+    limits = {a: interpolators.DEFAULT_LIMITS["x"] for a in axes}
+    include = None if program is None else feed_segments(path, program)
+    kw = {"reference": sp.position, "t": sp.t, "sample_time": sample_time, "include_segments": include}
+    true_ce = contour_error(path, true_measured, axes, **kw)
+    predicted: dict[str, ContourError] = {}
+    descr: dict[str, dict[str, str]] = {}
+    for label, mods in (("identified", identified), ("augmented", augmented)):
+        if mods is None:
+            continue
+        pm = Machine.from_axes(mods, sample_time=sample_time, limits=limits, name=f"{label} models")
+        pred = pm.simulate(sp, seed=seed).measured
+        if not np.all(np.isfinite(pred)):
+            raise InputError(f"the {label} model prediction is not finite (an unstable model?)")
+        predicted[label] = contour_error(path, pred, axes, **kw)
+        descr[label] = {a: _describe(m) for a, m in mods.items()}
+    if include is not None:
+        notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
+    return ContourReport(toolpath=tp_name, truth=truth_name, setpoints=sp, true=true_ce, predicted=predicted,
+                         models=descr, notes=notes)
