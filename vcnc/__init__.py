@@ -44,7 +44,8 @@ _LAZY: dict[str, str] = {
     "identify": "identification:identify",
     "ReducedAxisModel": "identification:ReducedAxisModel",
     "load_model": "identification:load_model",
-    "compare": "vcnc.contour:compare",
+    "compare": "vcnc.contour_compare:compare",
+    "ContourReport": "vcnc.contour_compare:ContourReport",
     "contour_error": "vcnc.contour:contour_error",
     "export_fmu": "vcnc.fmu:export_fmu",
     "sweep": "vcnc.sweep",  # a callable module: vcnc.sweep(spec, ...) runs a sweep
