@@ -400,7 +400,15 @@ class ContourError:
             _, ax = plt.subplots()
         cov = self._covered()
         s = np.where(cov, self.arc_length, np.nan)
-        ax.plot(s, self.error * 1e3, label=label, **kwargs)
+        e = self.error * 1e3
+        # Break the line where the nearest point jumps along the path (the seam of a closed
+        # contour, where samples near the start/end point belong to either end).
+        span = float(np.nanmax(s) - np.nanmin(s)) if np.any(cov) else 0.0
+        jumps = np.flatnonzero(np.abs(np.diff(s)) > max(0.05 * span, 1e-9)) + 1
+        if jumps.size:
+            s = np.insert(s, jumps, np.nan)
+            e = np.insert(e, jumps, np.nan)
+        ax.plot(s, e, label=label, **kwargs)
         ax.set_xlabel("path arc length [mm]")
         ax.set_ylabel("contour error [um]" + (" (+ right of travel)" if self.signed else ""))
         ax.grid(True, alpha=0.3)

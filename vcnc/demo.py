@@ -173,6 +173,7 @@ def run_demo(
         with stages.stage("contours"):
             contour_rows, contour_figs = _contours(truth, models, augmented, feed_mm_s)
         summary["contours"] = contour_rows
+        summary["contour_feed_mm_s"] = feed_mm_s
 
         fmu_info: dict[str, Any] | None = None
         with stages.stage("fmu"):
@@ -233,27 +234,32 @@ def _compare_solvers(capture: Capture, axis: str) -> list[dict[str, Any]]:
 
 
 def _contours(truth: Any, models: dict, augmented: dict, feed_mm_s: float):
-    import toolpaths
-    from vcnc.contour import compare
+    """Circle and diamond on the true machine vs the identified and the augmented models.
 
-    feed = feed_mm_s * 60.0
+    One comparison per toolpath: :func:`vcnc.compare` runs the augmented models as given and
+    their reduced (linear) part as the "identified" prediction.
+    """
+    from vcnc.contour_compare import compare
+
     rows = []
     figs = []
-    for name, text in (("circle", toolpaths.circle(20.0, feed)), ("diamond", toolpaths.diamond(40.0, feed))):
-        rep_id = compare(truth, models, toolpath=text, name=name)
-        rep_aug = compare(truth, augmented, toolpath=text, name=name)
+    for name in ("circle", "diamond"):
+        rep = compare(truth, augmented, name, feed=feed_mm_s)
+        m = rep.metrics()
+        ident = m["identified"]
+        aug = m.get("augmented", ident)
         rows.append({
             "toolpath": name,
-            "true_max_um": rep_id.true_metrics["max_um"],
-            "true_rms_um": rep_id.true_metrics["rms_um"],
-            "identified_max_um": rep_id.predicted_metrics["max_um"],
-            "identified_rms_um": rep_id.predicted_metrics["rms_um"],
-            "augmented_max_um": rep_aug.predicted_metrics["max_um"],
-            "augmented_rms_um": rep_aug.predicted_metrics["rms_um"],
-            "identified_error_pct_max": rep_id.prediction_error_pct["max"],
-            "augmented_error_pct_max": rep_aug.prediction_error_pct["max"],
+            "true_max_um": m["true"]["max_um"],
+            "true_rms_um": m["true"]["rms_um"],
+            "identified_max_um": ident["max_um"],
+            "identified_rms_um": ident["rms_um"],
+            "augmented_max_um": aug["max_um"],
+            "augmented_rms_um": aug["rms_um"],
+            "identified_error_pct_max": rep.prediction_error_pct("identified")["max"],
+            "augmented_error_pct_max": rep.prediction_error_pct()["max"],
         })
-        figs.append((name, rep_id, rep_aug))
+        figs.append((name, rep))
     return rows, figs
 
 
@@ -294,21 +300,30 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
     report.heading("Identification test")
     i = capture.axis_index(effect_axis)
     t = capture.t
-    fig, axs = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
+    fig, axs = plt.subplots(2, 1, figsize=(10, 6.5))
     pred = models[effect_axis].simulate(capture.reference[:, i], sample_time=capture.sample_time)
     pred_aug = augmented[effect_axis].simulate(capture.reference[:, i], sample_time=capture.sample_time)
-    axs[0].plot(t, capture.reference[:, i], label="commanded", lw=1)
-    axs[0].plot(t, capture.measured[:, i], label="measured (true machine)", lw=1)
-    axs[0].plot(t, pred, "--", label="predicted (identified)", lw=1)
+    # a window of a few moves, so that the lag of measured behind commanded is visible
+    w = (t >= 2.0) & (t <= 4.0)
+    axs[0].plot(t[w], capture.reference[w, i], label="commanded", lw=1.2)
+    axs[0].plot(t[w], capture.measured[w, i], label="measured (true machine)", lw=1.2)
+    axs[0].plot(t[w], pred[w], "--", label="predicted (identified model)", lw=1.2)
     axs[0].set_ylabel(f"{effect_axis} [mm]")
-    axs[0].legend(loc="upper right")
-    axs[1].plot(t, (capture.reference[:, i] - capture.measured[:, i]) * 1e3, label="true tracking error", lw=1)
-    axs[1].plot(t, (capture.reference[:, i] - pred) * 1e3, label="identified model", lw=1)
-    axs[1].plot(t, (capture.reference[:, i] - pred_aug) * 1e3, label="augmented model", lw=1, alpha=0.8)
-    axs[1].set_ylabel("tracking error [um]")
+    axs[0].set_xlabel("time [s] (2 s window)")
+    axs[0].legend(loc="best", fontsize="small")
+    axs[0].grid(True, alpha=0.3)
+    err_id = (capture.measured[:, i] - pred) * 1e3
+    err_aug = (capture.measured[:, i] - pred_aug) * 1e3
+    axs[1].plot(t, err_id, lw=0.8, label=f"identified model (RMS {np.sqrt(np.mean(err_id**2)):.3g} um)")
+    axs[1].plot(t, err_aug, lw=0.8, alpha=0.8, label=f"augmented model (RMS {np.sqrt(np.mean(err_aug**2)):.3g} um)")
+    axs[1].set_ylabel("measured - predicted [um]")
     axs[1].set_xlabel("time [s]")
-    axs[1].legend(loc="upper right")
-    fig.suptitle(f"Axis {effect_axis}: commanded, measured and predicted position")
+    axs[1].legend(loc="best", fontsize="small")
+    axs[1].grid(True, alpha=0.3)
+    track = _um(capture.reference[:, i] - capture.measured[:, i])
+    fig.suptitle(f"Axis {effect_axis}: commanded, measured and predicted position "
+                 f"(true tracking error RMS {track['rms_um']:.3g} um)")
+    fig.tight_layout()
     report.figure("identification_test", fig, caption="Commanded vs measured vs predicted position.")
 
     # parameters
@@ -353,9 +368,11 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
     report.table(["toolpath", "true max [um]", "identified max [um]", "augmented max [um]",
                   "identified error [%]", "augmented error [%]"], rows,
                  caption="Maximum contour error: true machine vs predictions")
-    for name, rep_id, rep_aug in contour_figs:
-        fig = rep_aug.plot(reference=rep_id)
-        report.figure(f"contour_{name}", fig, caption=f"{name}: contour error, true vs predicted (magnified).")
+    for name, rep in contour_figs:
+        axs = rep.plot()
+        report.figure(f"contour_{name}", axs[0].figure,
+                      caption=f"{name} at {summary['contour_feed_mm_s']:g} mm/s: contour error magnified, true vs "
+                      "identified vs augmented, and along the path.")
 
     # fmu
     report.heading("FMU export")
@@ -390,11 +407,17 @@ def _frf_figure(model: Any, machine: Any, axis: str):
 
 
 def _diagnosis_figures(report: Report, capture: Capture, models: dict, augmented: dict, axis: str) -> None:
-    from identification import residual as res
-
-    fig = res.residual_figure(capture, models[axis], augmented[axis], axis=axis)
+    fig = _residual_figure(capture, models[axis], augmented[axis], axis)
     report.figure(f"residual_{axis}", fig,
                   caption=f"Axis {axis}: residual before/after vs time, velocity and position; spectrum.")
+
+
+def _residual_figure(capture: Capture, before: Any, after: Any, axis: str):
+    from identification.residual import plot_before_after
+
+    i = capture.axis_index(axis)
+    axes = plot_before_after(capture.reference[:, i], capture.measured[:, i], capture.sample_time, before, after)
+    return np.ravel(axes)[0].figure
 
 
 # --------------------------------------------------------------------------- EMPS
@@ -452,9 +475,7 @@ def run_emps_demo(
             report.table(["effect", "parameters", "RMS before [um]", "RMS after [um]"], rows,
                          caption="Effects the data supports, in the order added (held-out judgement)")
             with stages.stage("report"):
-                from identification import residual as res
-
-                fig = res.residual_figure(cap, model, aug, axis="x")
+                fig = _residual_figure(cap, model, aug, "x")
                 report.figure(f"residual_{name}", fig, caption=f"{name}: residual before and after.")
         report.summary = summary
         report.write(out)
