@@ -1,0 +1,695 @@
+"""Where each effect's nonlinear parameters come from: one search per effect, on training rows.
+
+Every search returns :class:`Candidate` objects: the current model's effects plus one new effect,
+with a starting point for the joint refit. Searches only *propose*; the diagnosis refits every
+proposal jointly and judges it on held-out data (:mod:`identification.diagnosis`).
+
+Two cheap screens serve them:
+
+* the **equation error** (Eq. 3.11 plus the current disturbance columns), unconstrained: a
+  disturbance effect adds columns ``-g(v, x, t)``; its score is the drop of the training residual
+  sum of squares when the columns are added (partial regression, so the reduced parameters are
+  re-estimated with it). Periods (time, position) and the Stribeck velocity are searched on it;
+  for time periods the residual's spectrum gives the starting peaks;
+* the **simulation error** for elements and output terms: the training RMS of a simulation with
+  the element (after a Gauss-Newton step of the reduced parameters, so that a shift the reduced
+  model could absorb earns no credit).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+
+import numpy as np
+import scipy.linalg
+import scipy.signal
+
+from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
+from identification.effects._base import Effect
+from identification.effects.backlash import Backlash
+from identification.effects.delay import Delay
+from identification.effects.drift import Drift
+from identification.effects.friction_stribeck import FrictionStribeck
+from identification.effects.friction_viscous_asymmetric import FrictionViscousAsymmetric
+from identification.effects.position_periodic import PositionPeriodic
+from identification.effects.resonance import Resonance
+from identification.effects.saturation import Saturation
+from identification.effects.time_periodic import TimePeriodic
+from identification.regressor import RegressorOptions, SufficientStatistics, regressor
+from identification.solve import solve_statistics
+
+__all__ = ["Data", "Candidate", "SearchContext", "SEARCHES"]
+
+#: derivative filter for the split-form regressions (Savitzky-Golay, centred: no delay)
+_SG_WINDOW, _SG_ORDER = 9, 3
+
+
+@dataclasses.dataclass(eq=False)
+class Data:
+    """One axis of a capture prepared for the diagnosis.
+
+    ``ntr`` splits the samples: rows ``[0, ntr)`` identify, rows ``[ntr, n)`` validate.
+    """
+
+    xr: np.ndarray
+    x: np.ndarray
+    T: float
+    ntr: int
+    bounds: object
+
+    def __post_init__(self) -> None:
+        self.n = self.x.size
+        self.t = np.arange(self.n) * self.T
+        opt = RegressorOptions()
+        self.h = opt.half_width
+        self.phi, self.y = regressor(self.xr, self.x, self.T, options=opt)
+        self.rows = np.arange(self.h, self.n - self.h)  # sample index of each regressor row
+        self.v = -self.phi[:, 1]
+        self.tr_rows = self.rows < self.ntr
+        self.va_rows = ~self.tr_rows
+        # smoothed derivatives for the split-form regressions
+        self.vs = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=1, delta=self.T)
+        self.as_ = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
+        self.vrs = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=1, delta=self.T)
+        self.ars = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
+
+    @property
+    def span(self) -> float:
+        return float(np.ptp(self.x))
+
+
+@dataclasses.dataclass(eq=False)
+class Candidate:
+    """A proposal: ``effect`` added to the current model, refit starting at ``start``."""
+
+    effect: Effect
+    start: AugmentedAxisModel
+    screen_rms_um: float
+    evidence: dict
+
+
+def disturbance_columns(effects, v: np.ndarray, x: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Equation-error columns ``-(w terms)/1`` of disturbance effects at fixed parameters (one per effect)."""
+    cols = []
+    for e in effects:
+        if e.KIND != "disturbance":
+            continue
+        spec_w = _w_of(e, v, x, t)
+        cols.append(-spec_w)
+    return np.column_stack(cols) if cols else np.zeros((v.size, 0))
+
+
+def _w_of(e: Effect, v, x, t) -> np.ndarray:
+    if isinstance(e, FrictionStribeck):
+        return FrictionStribeck.basis(v, e.velocity) @ np.array([e.excess_positive, e.excess_negative])
+    if isinstance(e, FrictionViscousAsymmetric):
+        return e.coefficient * np.abs(v)
+    if isinstance(e, PositionPeriodic):
+        return PositionPeriodic.basis(x, e.period, e.harmonics) @ np.array(e.coefficients).ravel()
+    if isinstance(e, TimePeriodic):
+        return e.load(t)
+    raise TypeError(e)
+
+
+class SearchContext:
+    """The current model and what every search needs (training rows only, except where said)."""
+
+    def __init__(self, data: Data, model: AugmentedAxisModel) -> None:
+        self.data = data
+        self.model = model
+        d = data
+        self.yhat = model.simulate(d.xr)
+        self.r = d.x - self.yhat
+        self.train_rms_um = _rms(self.r[: d.ntr]) * 1e3
+        # equation-error base: Eq. 3.11 columns plus the current disturbance terms as fixed offsets
+        tr = d.tr_rows
+        vv, xx, tt = d.v[tr], d.y[tr], d.t[d.rows[tr]]
+        off = np.zeros(int(tr.sum()))
+        a2 = model.parameters["a2"]
+        for e in model.elements:
+            if e.KIND == "disturbance":
+                off -= _w_of(e, vv, xx, tt) / a2
+        self._ee_y = d.y[tr] - off
+        self._ee_base = d.phi[tr]
+        q, _ = np.linalg.qr(self._ee_base / np.linalg.norm(self._ee_base, axis=0))
+        self._q = q
+        self._ee_r = self._ee_y - q @ (q.T @ self._ee_y)
+        self.ee_rss = float(self._ee_r @ self._ee_r)
+        self._J: np.ndarray | None = None
+        self._Jq: np.ndarray | None = None
+
+    # ---------------------------------------------------------------- equation-error screen
+    def ee_partial(self, cols: np.ndarray) -> tuple[float, np.ndarray]:
+        """(training RSS with ``cols`` added, their coefficients) - cols are on the training rows."""
+        g = cols - self._q @ (self._q.T @ cols)
+        beta = _solve_ls(g, self._ee_r)
+        res = self._ee_r - g @ beta
+        return float(res @ res), beta
+
+    def ee_rows(self):
+        """(v, x, t) of the training regressor rows."""
+        d = self.data
+        tr = d.tr_rows
+        return d.v[tr], d.y[tr], d.t[d.rows[tr]]
+
+    def ee_validation_rss(self, cols_tr: np.ndarray, cols_va: np.ndarray) -> float:
+        """Validation RSS of the unconstrained equation error with extra columns fitted on training rows."""
+        d = self.data
+        theta = _solve_ls(np.hstack([self._ee_base, cols_tr]), self._ee_y)
+        va = d.va_rows
+        a2 = self.model.parameters["a2"]
+        vv, xx, tt = d.v[va], d.y[va], d.t[d.rows[va]]
+        off = np.zeros(int(va.sum()))
+        for e in self.model.elements:
+            if e.KIND == "disturbance":
+                off -= _w_of(e, vv, xx, tt) / a2
+        res = d.y[va] - off - np.hstack([d.phi[va], cols_va]) @ theta
+        return float(res @ res)
+
+    def ee_constrained_start(self, effect: Effect, extra_cols_tr: np.ndarray,
+                             setter: Callable[[np.ndarray], Effect]) -> AugmentedAxisModel | None:
+        """Joint constrained equation-error solve (pole bounds kept) with the new columns.
+
+        Only for a model without elements (the equation error of Eq. 3.11 knows none of them).
+        """
+        if self.model.structured:
+            return None
+        d = self.data
+        tr = d.tr_rows
+        vv, xx, tt = self.ee_rows()
+        old = [e for e in self.model.elements if e.KIND == "disturbance"]
+        cols_old = [_basis_cols(e, vv, xx, tt) for e in old]
+        blocks = [d.phi[tr]] + [-c for c in cols_old] + [extra_cols_tr]
+        A = np.hstack(blocks)
+        st = SufficientStatistics(A.shape[1])
+        try:
+            st.update(A, d.y[tr])
+            sol = solve_statistics(st, bounds=d.bounds)
+        except Exception:  # noqa: BLE001 - a rank-deficient proposal is simply not used
+            return None
+        extra = np.asarray(sol.extra, float)
+        new_old = []
+        i = 0
+        for e, c in zip(old, cols_old):
+            k = c.shape[1]
+            new_old.append(_with_basis_coef(e, extra[i: i + k]))
+            i += k
+        neff = setter(extra[i:])
+        others = [e for e in self.model.elements if e.KIND != "disturbance"]
+        return augment(self.model, new_old + others + [neff], parameters=sol.parameters)
+
+    # ---------------------------------------------------------------- simulation screen
+    @property
+    def J(self) -> np.ndarray:
+        """Sensitivity of the simulated output to the 8 reduced parameters (all samples)."""
+        if self._J is None:
+            self._J = sensitivity(self.model, self.data.xr)
+        return self._J
+
+    def sim_score(self, model: AugmentedAxisModel) -> tuple[float, np.ndarray]:
+        """Training RMS [um] of ``model`` after one Gauss-Newton step of the reduced parameters."""
+        d = self.data
+        y = model.simulate(d.xr)
+        if not np.all(np.isfinite(y)):
+            return math.inf, y
+        r = (d.x - y)[: d.ntr]
+        if self._Jq is None:
+            J = self.J[: d.ntr]
+            sc = np.linalg.norm(J, axis=0)
+            sc[sc == 0] = 1.0
+            self._Jq = np.linalg.qr(J / sc)[0]
+        return _rms(r - self._Jq @ (self._Jq.T @ r)) * 1e3, y
+
+    def gn_refine(self, model: AugmentedAxisModel, iterations: int = 2) -> tuple[float, AugmentedAxisModel]:
+        """Gauss-Newton iterations of the 8 reduced parameters on the training rows (effects fixed).
+
+        Returns the training RMS [um] and the improved model; inf when the model diverges.
+        """
+        d = self.data
+        y = model.simulate(d.xr)
+        if not np.all(np.isfinite(y)):
+            return math.inf, model
+        rms = _rms((d.x - y)[: d.ntr]) * 1e3
+        keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
+        for _ in range(iterations):
+            r = (d.x - y)[: d.ntr]
+            J = sensitivity(model, d.xr, one_sided=True)[: d.ntr]
+            sc = np.linalg.norm(J, axis=0)
+            sc[sc == 0] = 1.0
+            beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
+            improved = False
+            for alpha in (1.0, 0.5, 0.25):
+                p = {k: model.parameters[k] + alpha * b for k, b in zip(keys, beta)}
+                if p["a3"] <= 0:
+                    continue
+                m2 = augment(model, model.elements, parameters=p)
+                y2 = m2.simulate(d.xr)
+                if not np.all(np.isfinite(y2)):
+                    continue
+                rms2 = _rms((d.x - y2)[: d.ntr]) * 1e3
+                if rms2 < rms:
+                    model, y, rms, improved = m2, y2, rms2, True
+                    break
+            if not improved:
+                break
+        return rms, model
+
+    def residual_spectrum(self, rows: slice | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(frequency [Hz], amplitude [um]) of the training simulation residual (Hann window)."""
+        d = self.data
+        r = self.r[: d.ntr] if rows is None else self.r[rows]
+        r = r - np.mean(r)
+        w = np.hanning(r.size)
+        nfft = 1 << int(math.ceil(math.log2(4 * r.size)))
+        amp = np.abs(np.fft.rfft(r * w, nfft)) * 2.0 / np.sum(w) * 1e3
+        return np.fft.rfftfreq(nfft, d.T), amp
+
+
+def _solve_ls(A: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Least squares by a column-scaled QR (faster than SVD; the columns here are independent)."""
+    sc = np.linalg.norm(A, axis=0)
+    sc[sc == 0] = 1.0
+    q, r = np.linalg.qr(A / sc)
+    try:
+        beta = scipy.linalg.solve_triangular(r, q.T @ y)
+    except (np.linalg.LinAlgError, ValueError):
+        beta = np.linalg.lstsq(A / sc, y, rcond=None)[0]
+    if not np.all(np.isfinite(beta)):
+        beta = np.linalg.lstsq(A / sc, y, rcond=None)[0]
+    return beta / sc
+
+
+def _rms(a: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(a * a))) if a.size else 0.0
+
+
+def _basis_cols(e: Effect, v, x, t) -> np.ndarray:
+    """The w-basis of a disturbance effect at its nonlinear parameter (coefficients free)."""
+    if isinstance(e, FrictionStribeck):
+        return FrictionStribeck.basis(v, e.velocity)
+    if isinstance(e, FrictionViscousAsymmetric):
+        return FrictionViscousAsymmetric.basis(v)
+    if isinstance(e, PositionPeriodic):
+        return PositionPeriodic.basis(x, e.period, e.harmonics)
+    if isinstance(e, TimePeriodic):
+        b = TimePeriodic.basis(t, e.period, e.harmonics)
+        return np.column_stack([np.ones(t.size), b]) if e.with_mean else b
+    raise TypeError(e)
+
+
+def _with_basis_coef(e: Effect, coef: np.ndarray) -> Effect:
+    if isinstance(e, TimePeriodic) and e.with_mean:
+        return e.with_coefficients(coef[1:], mean=coef[0])
+    return e.with_coefficients(coef)
+
+
+def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False) -> np.ndarray:
+    """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8)."""
+    p0 = dict(model.parameters)
+    spec = model.spec(xr.size)
+    cols = []
+    y0 = simulate_augmented(p0, xr, spec) if one_sided else None
+    for k in ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1"):
+        step = 1e-4 * max(abs(p0[k]), 1e-3 * max(abs(p0["b1"]), 1.0))
+        if k in ("b0",):
+            step = 1e-4
+        pp, pm = dict(p0), dict(p0)
+        pp[k] += step
+        pm[k] -= step
+        if one_sided:
+            cols.append((simulate_augmented(pp, xr, spec) - y0) / step)
+            continue
+        if pm["a3"] <= 0:
+            pm[k] = p0[k]
+            s = step
+        else:
+            s = 2 * step
+        yp = simulate_augmented(pp, xr, spec)
+        ym = simulate_augmented(pm, xr, spec)
+        cols.append((yp - ym) / s)
+    J = np.column_stack(cols)
+    J[~np.isfinite(J)] = 0.0
+    return J
+
+
+# ------------------------------------------------------------------------------ the searches
+
+
+def _ee_candidate(ctx: SearchContext, effect: Effect, cols_tr: np.ndarray, evidence: dict) -> Candidate | None:
+    """Candidate of a disturbance effect from its EE columns: the better of two starts."""
+    rss, beta = ctx.ee_partial(-cols_tr)
+    a2 = ctx.model.parameters["a2"]
+    starts = [augment(ctx.model, list(ctx.model.elements) + [_with_basis_coef(effect, beta * a2)])]
+    cs = ctx.ee_constrained_start(effect, -cols_tr, lambda c: _with_basis_coef(effect, c))
+    if cs is not None:
+        starts.append(cs)
+    best, best_rms = None, math.inf
+    for s in starts:
+        y = s.simulate(ctx.data.xr)
+        if not np.all(np.isfinite(y)):
+            continue
+        rms = _rms((ctx.data.x - y)[: ctx.data.ntr]) * 1e3
+        if rms < best_rms:
+            best, best_rms = s, rms
+    if best is None:
+        return None
+    ev = dict(evidence)
+    ev["ee_rss_reduction_pct"] = 100.0 * (1.0 - rss / ctx.ee_rss) if ctx.ee_rss > 0 else 0.0
+    return Candidate(effect=best.elements[-1], start=best, screen_rms_um=best_rms, evidence=ev)
+
+
+def search_friction_viscous_asymmetric(ctx: SearchContext) -> list[Candidate]:
+    v, x, t = ctx.ee_rows()
+    e = FrictionViscousAsymmetric()
+    c = _ee_candidate(ctx, e, FrictionViscousAsymmetric.basis(v), {"search": "linear column -|v| (no search)"})
+    return [c] if c else []
+
+
+def search_friction_stribeck(ctx: SearchContext) -> list[Candidate]:
+    v, x, t = ctx.ee_rows()
+    grid = FrictionStribeck.grid(float(np.max(np.abs(v))))
+    rss = np.array([ctx.ee_partial(-FrictionStribeck.basis(v, vs))[0] for vs in grid])
+    i = int(np.argmin(rss))
+    vs = float(grid[i])
+    ev = {"search": f"Stribeck velocity over {grid[0]:.3g}..{grid[-1]:.3g} mm/s ({grid.size} values, equation error)",
+          "best_mm_s": vs}
+    c = _ee_candidate(ctx, FrictionStribeck(velocity=vs), FrictionStribeck.basis(v, vs), ev)
+    return [c] if c else []
+
+
+def _golden(f, a: float, b: float, iters: int = 30) -> float:
+    g = (math.sqrt(5) - 1) / 2
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iters):
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            fd = f(d)
+    return 0.5 * (a + b)
+
+
+def _choose_harmonics(ctx: SearchContext, make_cols, ladder) -> int:
+    """Harmonic count with the least validation equation error (coefficients fitted on training rows)."""
+    d = ctx.data
+    best_h, best = ladder[0], math.inf
+    for h in ladder:
+        tr = make_cols(d.tr_rows, h)
+        va = make_cols(d.va_rows, h)
+        r = ctx.ee_validation_rss(-tr, -va)
+        if r < best * (1 - 1e-3):
+            best_h, best = h, r
+    return best_h
+
+
+def search_position_periodic(ctx: SearchContext) -> list[Candidate]:
+    d = ctx.data
+    v, x, t = ctx.ee_rows()
+    grid = PositionPeriodic.grid(d.span)
+    rss = np.array([ctx.ee_partial(-PositionPeriodic.basis(x, p, 1))[0] for p in grid])
+    i = int(np.argmin(rss))
+    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+    p = _golden(lambda q: ctx.ee_partial(-PositionPeriodic.basis(x, q, 1))[0], lo, hi, 25)
+
+    def cols(mask, h):
+        return PositionPeriodic.basis(d.y[mask], p, h)
+
+    H = _choose_harmonics(ctx, cols, [1, 2, 3, 4])
+    ev = {"search": f"period over {grid[0]:.3g}..{grid[-1]:.3g} mm ({grid.size} values, equation error), "
+                    f"refined by golden section; {H} harmonics by validation equation error",
+          "best_mm": p}
+    e = PositionPeriodic(period=p, coefficients=((0.0, 0.0),) * H)
+    c = _ee_candidate(ctx, e, PositionPeriodic.basis(x, p, H), ev)
+    return [c] if c else []
+
+
+def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
+    d = ctx.data
+    v, x, t = ctx.ee_rows()
+    # spectrum of the equation-error residual (the load itself, unfiltered by the loop)
+    r = ctx._ee_r
+    nfft = 1 << int(math.ceil(math.log2(8 * r.size)))
+    win = np.hanning(r.size)
+    amp = np.abs(np.fft.rfft((r - r.mean()) * win, nfft))
+    f = np.fft.rfftfreq(nfft, d.T)
+    dur = r.size * d.T
+    ok = (f >= 2.5 / dur) & (f <= 0.1 / d.T)
+    if not np.any(ok):
+        return []
+    fa, aa = f[ok], amp[ok]
+    peaks, _ = scipy.signal.find_peaks(aa)
+    if peaks.size == 0:
+        return []
+    top = peaks[np.argsort(aa[peaks])[::-1][:4]]
+    best = None
+    for pk in top:
+        f0 = float(fa[pk])
+        fc, df = f0, 1.0 / dur
+
+        def obj(ff):
+            return ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, 1))[0]
+
+        ff = _golden(obj, fc - df, fc + df, 30)
+        val = obj(ff)
+        if best is None or val < best[0]:
+            best = (val, ff, f0)
+    _, f1, fpeak = best
+    P = 1.0 / f1
+    hmax = max(1, int(0.1 / d.T / f1))
+    ladder = [h for h in (1, 2, 3, 5, 8, 12, 16, 24, 32, 48, 64) if h <= hmax]
+
+    def cols(mask, h):
+        return TimePeriodic.basis(d.t[d.rows[mask]], P, h)
+
+    H = _choose_harmonics(ctx, cols, ladder)
+    # period refined with all chosen harmonics (their phase drift over the record pins it down)
+    P = 1.0 / _golden(lambda ff: ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, H))[0],
+                      f1 * (1 - 0.3 / (dur * f1)), f1 * (1 + 0.3 / (dur * f1)), 30)
+    # a constant part when the axis stands still long enough to separate it from Coulomb friction
+    still = np.mean(v == 0.0)
+    use_mean = still > 0.05
+    base = TimePeriodic.basis(t, P, H)
+    cols_tr = np.column_stack([np.ones(t.size), base]) if use_mean else base
+    e = TimePeriodic(period=P, coefficients=((0.0, 0.0),) * H, with_mean=bool(use_mean))
+    ev = {"search": "largest peaks of the equation-error residual spectrum, refined by golden section; "
+                    f"{H} harmonics by validation equation error",
+          "spectral_peak_hz": fpeak, "best_s": P, "standstill_fraction": float(still)}
+    c = _ee_candidate(ctx, e, cols_tr, ev)
+    return [c] if c else []
+
+
+def search_drift(ctx: SearchContext) -> list[Candidate]:
+    d = ctx.data
+    J = np.column_stack([ctx.J, d.t])[: d.ntr]
+    beta, *_ = np.linalg.lstsq(J, ctx.r[: d.ntr], rcond=None)
+    e = Drift(rate=float(beta[-1]))
+    m = augment(ctx.model, list(ctx.model.elements) + [e])
+    score, _ = ctx.sim_score(m)
+    return [Candidate(effect=e, start=m, screen_rms_um=score,
+                      evidence={"search": "linear in the output error (Gauss-Newton step)", "rate_mm_s": e.rate})]
+
+
+def _LOWPASS(T: float):
+    """4th-order Butterworth at 0.08/T (80 Hz at 1 kHz): above servo bandwidths, below the noise."""
+    return scipy.signal.butter(4, 0.16, btype="low")
+
+
+def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
+    """Least squares of the sampled split form (module augmented) with u held ``delay`` samples.
+
+    The zero-order-hold double integrator gives, per row k (u_k applied over [k, k+1))::
+
+        2 (x_{k+1} - 2 x_k + x_{k-1}) / T^2 = (u_k + u_{k-1}) - (w_k + w_{k-1}) - c (x_{k+1} - x_{k-1}) / T
+        u_k = [b1 v_r - (a1 - c) (y_j - y_{j-1}) / T + a2 e + a3 e_i + (b2 - a2) x_r + b0 a_r]_{j = k - delay}
+
+    linear in (b1, a1 - c, a2, a3, b2 - a2, b0, d0, d1, c) - exact for that form when the friction
+    does not switch inside a sample.
+    """
+    x, xr, T = d.x, d.xr, d.T
+    n = d.n
+    e = xr - x
+    ei = T * np.cumsum(e)
+    vr = np.diff(xr, prepend=xr[0]) / T
+    ar = np.diff(vr, prepend=0.0) / T
+    dy = np.diff(x, prepend=x[0]) / T
+    g = np.column_stack([vr, -dy, e, ei, xr, ar])
+    idx = np.arange(n)
+    j = np.clip(idx - delay, 1, n - 1)
+    reg = g[j] + g[j - 1]
+    kp, km = np.clip(idx + 1, 0, n - 1), np.clip(idx - 1, 0, n - 1)
+    km2 = np.clip(idx - 2, 0, n - 1)
+    vk = x[kp] - x[km]
+    vk1 = x[idx] - x[km2]
+    fr = np.column_stack([-((vk > 0).astype(float) + (vk1 > 0)), -((vk < 0).astype(float) + (vk1 < 0))])
+    A = np.column_stack([reg, fr, -vk / T])
+    y = 2.0 * (x[kp] - 2.0 * x + x[km]) / (T * T)
+    # the same zero-phase low-pass on both sides keeps the (linear) relation and removes the
+    # encoder noise that the second difference amplifies (and that would correlate with -dy)
+    bf, af = _LOWPASS(T)
+    A = scipy.signal.filtfilt(bf, af, A, axis=0)
+    y = scipy.signal.filtfilt(bf, af, y)
+    k = rows[(rows >= delay + 30) & (rows < n - 30)]
+    A, y = A[k], y[k]
+    th = _solve_ls(A, y)
+    # trimmed least squares: rows where the law does not hold (an amplifier limit, a stick-slip
+    # event) are dropped with their neighbours, then the fit is repeated
+    res = y - A @ th
+    mad = 1.4826 * float(np.median(np.abs(res - np.median(res))))
+    out = np.abs(res) > 5.0 * max(mad, 1e-12)
+    if 0 < out.sum() < 0.2 * out.size:
+        out = np.convolve(out, np.ones(2 * delay + 41), mode="same") > 0
+        th = _solve_ls(A[~out], y[~out])
+        A, y = A[~out], y[~out]
+    b1, kd, a2, a3, ff, b0, d0, d1, c = th
+    c = float(min(max(c, 1e-3), 0.5 * max(kd, 1e-3)))
+    a1 = kd + c
+    if not (a3 > 0 and a2 > 0 and a1 > 0):
+        return None
+    res = y - A @ th
+    mad = 1.4826 * float(np.median(np.abs(res - np.median(res))))
+    return {"parameters": {"a1": a1, "a2": a2, "a3": a3, "b0": b0, "b1": b1, "b2": ff + a2, "d0": d0, "d1": d1},
+            "viscous_rate": c, "robust_rms": mad}
+
+
+def search_delay(ctx: SearchContext) -> list[Candidate]:
+    """Delay: every 0..MAX samples, started from the sampled split-form regression, by simulation.
+
+    The regression (exact for that form at the true delay, trimmed of rows where the law does not
+    hold) gives each delay its parameters; each is simulated (with a Gauss-Newton step of the
+    reduced parameters) and the delay with the least training error wins unless it is 0.
+    """
+    d = ctx.data
+    rows = np.arange(4, d.ntr - 1)
+    scores = {}
+    best = None
+    others = list(ctx.model.elements)
+    for n in range(0, Delay.MAX + 1):
+        reg = _digital_regression(d, n, rows)
+        if reg is None:
+            continue
+        e = Delay(samples=n, sample_time=d.T)
+        s_ = augment(ctx.model, others + [e], parameters=reg["parameters"], viscous_rate=reg["viscous_rate"])
+        sc, _ = ctx.sim_score(s_)
+        scores[n] = sc
+        if best is None or sc < best[0]:
+            best = (sc, n, s_)
+    if best is None or best[1] == 0:
+        return []
+    sc, n, s_ = best
+    return [Candidate(effect=s_.elements[-1], start=s_, screen_rms_um=sc,
+                      evidence={"search": f"delays 0..{Delay.MAX} samples: sampled split-form regression (trimmed "
+                                          "least squares) then simulation",
+                                "screen_rms_um_by_samples": {str(k): v for k, v in scores.items()}})]
+
+
+def search_saturation(ctx: SearchContext) -> list[Candidate]:
+    d = ctx.data
+    p = ctx.model.parameters
+    delay = next((e.samples for e in ctx.model.elements if isinstance(e, Delay)), 0)
+    rows = np.arange(_SG_WINDOW, d.ntr - _SG_WINDOW)
+    w = np.where(d.vs > 0, p["d0"], np.where(d.vs < 0, p["d1"], 0.0))
+    demand = np.abs(d.as_ + w)[rows]
+    u0 = float(np.percentile(demand, 99.5))
+    best = None
+    tried = {}
+    others = [e for e in ctx.model.elements if not isinstance(e, Saturation)]
+    for f in (0.8, 0.9, 1.0, 1.1, 1.25, 1.5):
+        U = u0 * f
+        ok = demand < 0.85 * U
+        # rows next to saturated ones see the smoothing window of the derivatives
+        bad = np.convolve(~ok, np.ones(2 * _SG_WINDOW + 1), mode="same") > 0
+        keep = rows[~bad]
+        e = Saturation(limit=U)
+        starts = [augment(ctx.model, others + [e], viscous_rate=max(1e-3, 0.02 * p["a1"]))]
+        if 200 < keep.size < rows.size:
+            reg = _digital_regression(d, delay, keep)
+            if reg is not None:
+                starts.append(augment(ctx.model, others + [e], parameters=reg["parameters"],
+                                      viscous_rate=reg["viscous_rate"]))
+        for s_ in starts:
+            sc, _ = ctx.sim_score(s_)
+            tried[f"{U:.4g}"] = min(tried.get(f"{U:.4g}", math.inf), sc)
+            if best is None or sc < best[0]:
+                best = (sc, s_)
+    if best is None:
+        return []
+    sc, s_ = best
+    return [Candidate(effect=s_.elements[-1], start=s_, screen_rms_um=sc,
+                      evidence={"search": "limits around the 99.5th percentile of the measured acceleration demand; "
+                                          "sampled split form regressed on the unsaturated samples",
+                                "demand_p995_mm_s2": u0, "screen_rms_um_by_limit": tried})]
+
+
+def search_backlash(ctx: SearchContext) -> list[Candidate]:
+    best = None
+    tried = {}
+    cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
+    for b in np.geomspace(1e-3, 0.3, 12):
+        e = Backlash(width=float(b))
+        s = augment(ctx.model, list(ctx.model.elements) + [e], viscous_rate=cvis)
+        sc, _ = ctx.sim_score(s)
+        tried[f"{b * 1e3:.3g}"] = sc
+        if best is None or sc < best[0]:
+            best = (sc, b, s)
+    sc, b, s = best
+    # refine between the neighbours of the best grid width
+    lo, hi = math.log(b / 1.8), math.log(b * 1.8)
+    bb = math.exp(_golden(lambda q: ctx.sim_score(augment(
+        ctx.model, list(ctx.model.elements) + [Backlash(width=math.exp(q))], viscous_rate=cvis))[0], lo, hi, 12))
+    s = augment(ctx.model, list(ctx.model.elements) + [Backlash(width=bb)], viscous_rate=cvis)
+    sc, _ = ctx.sim_score(s)
+    return [Candidate(effect=s.elements[-1], start=s, screen_rms_um=sc,
+                      evidence={"search": "widths 1 um..0.3 mm (simulation), refined by golden section",
+                                "screen_rms_um_by_width_um": tried})]
+
+
+def search_resonance(ctx: SearchContext) -> list[Candidate]:
+    """Mode frequency on a log grid (20 Hz .. 0.3/T, measured at the motor), each with two Gauss-Newton
+    iterations of the reduced parameters (a mode distorts the reduced fit, so the residual spectrum
+    peaks at the closed-loop mode, not at the structural one); the best is also tried measured at
+    the table, and refined between its grid neighbours."""
+    d = ctx.data
+    cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
+    others = list(ctx.model.elements)
+    grid = np.geomspace(20.0, 0.3 / d.T, 10)
+    tried = {}
+    best = None
+
+    def score(f, side):
+        e = Resonance(frequency=float(f), damping=0.05, table_fraction=0.5, measured_at=side)
+        sc, m = ctx.gn_refine(augment(ctx.model, others + [e], viscous_rate=cvis), 2)
+        return sc, m
+
+    for f in grid:
+        sc, m = score(f, "motor")
+        tried[f"{f:.4g}"] = sc
+        if best is None or sc < best[0]:
+            best = (sc, m, f)
+    sc_t, m_t = score(best[2], "table")
+    if sc_t < best[0]:
+        best = (sc_t, m_t, best[2])
+    sc, m, f = best
+    return [Candidate(effect=m.elements[-1], start=m, screen_rms_um=sc,
+                      evidence={"search": f"frequencies {grid[0]:.3g}..{grid[-1]:.3g} Hz (log grid, simulation with "
+                                          "the reduced parameters re-estimated), motor or table measurement",
+                                "screen_rms_um_by_frequency_hz": tried})]
+
+
+#: effect name -> its search
+SEARCHES: dict[str, Callable[[SearchContext], list[Candidate]]] = {
+    "friction_stribeck": search_friction_stribeck,
+    "friction_viscous_asymmetric": search_friction_viscous_asymmetric,
+    "backlash": search_backlash,
+    "position_periodic": search_position_periodic,
+    "time_periodic": search_time_periodic,
+    "resonance": search_resonance,
+    "delay": search_delay,
+    "saturation": search_saturation,
+    "drift": search_drift,
+}

@@ -1,0 +1,207 @@
+"""Residual analysis of a capture against an identified model: what the model fails to explain.
+
+Two residuals (thesis Sec. 3.2-3.3):
+
+* **simulation (output) error** ``x_k - x_hat_k``: the measured position minus the model's
+  free-run prediction from the reference alone (``model.simulate``) - what a user of the model
+  sees;
+* **equation error** ``Y_k - Phi_k theta``: the residual of the regression of Eq. (3.11) at the
+  model's parameters (theta from a1..d1 by Eq. 3.10), computed from measured derivatives. It is
+  not filtered by the closed loop, so an unmodelled force shows in it with its own waveform
+  (a square-wave load stays square), and it points at *when* and *at which state* the model's
+  force balance fails.
+
+Views (:class:`ResidualAnalysis`): against time, velocity (where friction effects and reversals
+show), position (position-periodic forces, lead error), acceleration (saturation, inertia), and the
+amplitude spectrum (periodic loads, resonances).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+from identification.reduced_model import ReducedAxisModel
+from identification.regressor import RegressorOptions, regressor
+
+__all__ = ["ResidualAnalysis", "analyse", "equation_error", "spectrum", "binned", "plot_before_after"]
+
+
+def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.ndarray,
+                   sample_time: float, *, options: RegressorOptions | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Equation error of Eq. (3.11) at the model's parameters.
+
+    Returns
+    -------
+    rows : ndarray of int
+        Sample index of each regressor row.
+    residual : ndarray
+        ``Y - Phi theta`` [mm] (disturbance effects of an augmented model included in the
+        prediction).
+    """
+    opt = options or RegressorOptions()
+    phi, y = regressor(reference, measured, sample_time, options=opt)
+    p = model.parameters
+    a2 = p["a2"]
+    theta = np.array([p["a3"], p["a1"], 1.0, p["b2"], p["b1"], p["b0"], p["d0"], p["d1"]]) / a2
+    pred = phi @ theta
+    rows = np.arange(opt.half_width, opt.half_width + y.size)
+    elements = getattr(model, "elements", ())
+    if elements:
+        from identification.effects.search import _w_of
+
+        v, t = -phi[:, 1], rows * sample_time
+        for e in elements:
+            if e.KIND == "disturbance":
+                pred = pred - _w_of(e, v, y, t) / a2
+    return rows, y - pred
+
+
+def spectrum(residual: np.ndarray, sample_time: float) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided amplitude spectrum (Hann window, mean removed): (frequency [Hz], amplitude [unit of input])."""
+    r = np.asarray(residual, float)
+    r = r - r.mean()
+    w = np.hanning(r.size)
+    amp = np.abs(np.fft.rfft(r * w)) * 2.0 / max(np.sum(w), 1e-300)
+    return np.fft.rfftfreq(r.size, sample_time), amp
+
+
+def binned(x: np.ndarray, r: np.ndarray, bins: int = 40) -> dict[str, np.ndarray]:
+    """Mean and RMS of ``r`` in equal-count bins of ``x`` (``center``, ``mean``, ``rms``, ``count``)."""
+    x = np.asarray(x, float)
+    r = np.asarray(r, float)
+    edges = np.unique(np.quantile(x, np.linspace(0, 1, bins + 1)))
+    idx = np.clip(np.searchsorted(edges, x, side="right") - 1, 0, max(edges.size - 2, 0))
+    k = max(edges.size - 1, 1)
+    count = np.bincount(idx, minlength=k).astype(float)
+    s = np.bincount(idx, weights=r, minlength=k)
+    s2 = np.bincount(idx, weights=r * r, minlength=k)
+    cx = np.bincount(idx, weights=x, minlength=k)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return {"center": cx / count, "mean": s / count, "rms": np.sqrt(s2 / count), "count": count}
+
+
+@dataclasses.dataclass(eq=False)
+class ResidualAnalysis:
+    """Residuals of one capture axis against a model, with the views of the module docstring.
+
+    Attributes
+    ----------
+    t : ndarray
+        Time [s].
+    reference, measured, predicted : ndarray
+        x_r, x and the model's prediction x_hat [mm].
+    simulation_error : ndarray
+        x - x_hat [mm].
+    velocity, acceleration : ndarray
+        Commanded velocity [mm/s] and acceleration [mm/s^2] (central differences of x_r: the
+        state the residual is plotted against, free of measurement noise).
+    eq_rows, equation_error : ndarray
+        Regressor row sample indices and the equation error [mm].
+    """
+
+    t: np.ndarray
+    reference: np.ndarray
+    measured: np.ndarray
+    predicted: np.ndarray
+    simulation_error: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    eq_rows: np.ndarray
+    equation_error: np.ndarray
+    sample_time: float
+
+    def metrics(self) -> dict[str, Any]:
+        """RMS and max of both residuals [um]."""
+        e, q = self.simulation_error, self.equation_error
+        return {"simulation": {"rms_um": _rms(e) * 1e3, "max_um": float(np.max(np.abs(e))) * 1e3},
+                "equation": {"rms_um": _rms(q) * 1e3, "max_um": float(np.max(np.abs(q))) * 1e3}}
+
+    def spectrum(self, which: str = "simulation") -> tuple[np.ndarray, np.ndarray]:
+        """Amplitude spectrum [um] of the ``simulation`` or ``equation`` error."""
+        r = self.simulation_error if which == "simulation" else self.equation_error
+        f, a = spectrum(r, self.sample_time)
+        return f, a * 1e3
+
+    def against(self, what: str, *, bins: int = 40) -> dict[str, np.ndarray]:
+        """Binned simulation error [um] against ``velocity``, ``position`` or ``acceleration``."""
+        x = {"velocity": self.velocity, "position": self.reference, "acceleration": self.acceleration}[what]
+        return binned(x, self.simulation_error * 1e3, bins)
+
+    def reversal_profile(self, half_window: int = 50) -> tuple[np.ndarray, np.ndarray]:
+        """Mean simulation error [um] around commanded velocity reversals (+ to - and - to +, signed)."""
+        v = self.velocity
+        s = np.sign(v)
+        nz = np.flatnonzero(s != 0)
+        idx = nz[1:][s[nz[1:]] != s[nz[:-1]]]
+        idx = idx[(idx > half_window) & (idx < v.size - half_window)]
+        if idx.size == 0:
+            return np.arange(-half_window, half_window + 1) * self.sample_time, np.zeros(2 * half_window + 1)
+        segs = np.array([self.simulation_error[i - half_window:i + half_window + 1] * -s[i] for i in idx])
+        return np.arange(-half_window, half_window + 1) * self.sample_time, segs.mean(axis=0) * 1e3
+
+    def plot(self, ax=None, *, label: str = "", color=None):
+        """Residual vs time, velocity, position and its spectrum (4 axes)."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(2, 2, figsize=(11, 7))
+        a = np.asarray(ax).ravel()
+        a[0].plot(self.t, self.simulation_error * 1e3, lw=0.6, label=label, color=color)
+        a[0].set_xlabel("time [s]")
+        a[0].set_ylabel("simulation error [um]")
+        for k, what, unit in ((1, "velocity", "mm/s"), (2, "position", "mm")):
+            b = self.against(what)
+            a[k].plot(b["center"], b["mean"], ".-", lw=0.8, label=label, color=color)
+            a[k].set_xlabel(f"commanded {what} [{unit}]")
+            a[k].set_ylabel("mean error per bin [um]")
+        f, amp = self.spectrum()
+        a[3].semilogy(f[1:], amp[1:] + 1e-12, lw=0.7, label=label, color=color)
+        a[3].set_xlabel("frequency [Hz]")
+        a[3].set_ylabel("amplitude [um]")
+        a[3].set_xlim(0, min(0.5 / self.sample_time, 100.0))
+        for x in a:
+            x.grid(True, alpha=0.3)
+        return a
+
+
+def analyse(model: ReducedAxisModel, reference: np.ndarray, measured: np.ndarray,
+            sample_time: float) -> ResidualAnalysis:
+    """Residual analysis of ``measured`` [mm] against ``model`` driven by ``reference`` [mm]."""
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    pred = model.simulate(xr, sample_time=sample_time)
+    rows, eq = equation_error(model, xr, x, sample_time)
+    v = np.gradient(xr, sample_time)
+    a = np.gradient(v, sample_time)
+    return ResidualAnalysis(t=np.arange(x.size) * sample_time, reference=xr, measured=x, predicted=pred,
+                            simulation_error=x - pred, velocity=v, acceleration=a, eq_rows=rows,
+                            equation_error=eq, sample_time=sample_time)
+
+
+def _rms(a: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.square(a))))
+
+
+def plot_before_after(reference: np.ndarray, measured: np.ndarray, sample_time: float,
+                      before: ReducedAxisModel, after: ReducedAxisModel, ax=None):
+    """The report figure: residual before (reduced model) and after (augmented) against time,
+    velocity and position, and their spectra.
+
+    Returns
+    -------
+    ndarray of 4 Axes (a new 2 x 2 figure when ``ax`` is None).
+    """
+    rb = analyse(before, reference, measured, sample_time)
+    ra = analyse(after, reference, measured, sample_time)
+    mb, ma = rb.metrics()["simulation"], ra.metrics()["simulation"]
+    names = [e.get("name") for e in (after.effects or [])]
+    axes = rb.plot(ax, label=f"reduced model (RMS {mb['rms_um']:.3g} um)", color="tab:red")
+    ra.plot(axes, label=f"+ {', '.join(names) or 'no effect'} (RMS {ma['rms_um']:.3g} um)", color="tab:blue")
+    axes[0].legend(fontsize=8)
+    fig = axes[0].figure
+    fig.suptitle("residual of the measured position: before and after the diagnosis")
+    fig.tight_layout()
+    return axes

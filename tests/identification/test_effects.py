@@ -1,0 +1,144 @@
+"""The effect elements and the augmented model (identification.effects, identification.augmented)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import vcnc
+from identification.augmented import AugmentedAxisModel, SimSpec, augment, from_model, simulate_augmented
+from identification.effects import (
+    EFFECTS,
+    Backlash,
+    Delay,
+    Drift,
+    FrictionStribeck,
+    FrictionViscousAsymmetric,
+    PositionPeriodic,
+    Resonance,
+    Saturation,
+    TimePeriodic,
+    effect_from_record,
+)
+from identification.model_file import model_from_dict, model_to_dict
+from identification.reduced_model import ReducedAxisModel, simulate
+from identification.synthetic import FADAL_PID_X, random_moves_reference
+from vcnc.errors import InputError
+from vcnc.machine import EFFECTS as MACHINE_EFFECTS
+
+TS = 1e-3
+
+EXAMPLES = [
+    FrictionStribeck(velocity=3.0, excess_positive=200.0, excess_negative=-150.0),
+    FrictionViscousAsymmetric(coefficient=-0.8),
+    Backlash(width=0.01),
+    PositionPeriodic(period=10.0, coefficients=((40.0, -10.0), (5.0, 1.0))),
+    TimePeriodic(period=0.5, coefficients=((90.0, 20.0),), mean=3.0),
+    Resonance(frequency=60.0, damping=0.05, table_fraction=0.5, measured_at="motor"),
+    Delay(samples=2, sample_time=TS),
+    Saturation(limit=3500.0),
+    Drift(rate=2e-4),
+]
+
+
+@pytest.fixture(scope="module")
+def reference() -> np.ndarray:
+    return random_moves_reference(moves=30, seed=4)
+
+
+def test_vocabulary_is_the_architecture_one():
+    # ARCHITECTURE.md "Effect names" and the machines' with_effect use the same names
+    assert set(EFFECTS) == set(MACHINE_EFFECTS)
+    assert {type(e).NAME for e in EXAMPLES} == set(EFFECTS)
+
+
+@pytest.mark.parametrize("effect", EXAMPLES, ids=lambda e: e.NAME)
+def test_record_round_trip_and_units(effect):
+    rec = effect.record()
+    assert rec["name"] == effect.NAME and isinstance(rec["fmu"], bool)
+    back = effect_from_record(rec)
+    assert back.record()["parameters"] == rec["parameters"]
+    assert set(rec["parameters"]) <= set(effect.UNITS)
+
+
+def test_unknown_effect_record_is_refused():
+    with pytest.raises(InputError, match="unknown effect"):
+        effect_from_record({"name": "gremlins", "parameters": {}})
+    with pytest.raises(InputError, match="period_s"):
+        effect_from_record({"name": "time_periodic", "parameters": {"period_s": "soon"}})
+
+
+def test_no_effect_is_the_reduced_model_bit_for_bit(reference):
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS)
+    a = augment(m, [])
+    assert isinstance(a, AugmentedAxisModel)
+    assert np.array_equal(a.simulate(reference), simulate(FADAL_PID_X, reference, TS))
+    # a disturbance effect with zero coefficients changes nothing either
+    z = augment(m, [TimePeriodic(period=0.5), PositionPeriodic(period=10.0), FrictionViscousAsymmetric()])
+    assert np.array_equal(z.simulate(reference), simulate(FADAL_PID_X, reference, TS))
+
+
+def test_time_periodic_load_is_the_reduced_model_disturbance(reference):
+    e = TimePeriodic(period=0.37, coefficients=((80.0, -30.0), (10.0, 5.0)), mean=12.0)
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS)
+    w = e.load(np.arange(reference.size) * TS)
+    assert np.allclose(augment(m, [e]).simulate(reference), simulate(FADAL_PID_X, reference, TS, disturbance=w),
+                       rtol=0, atol=1e-12)
+
+
+def test_sampled_split_form_reproduces_the_virtual_machine_with_delay():
+    """The element form is the machine's structure: PID sampled with a zero-order hold, backward
+    differences, 2 samples of computational delay (no noise, quantisation, limit; no friction, which
+    the machine integrates exactly and the model holds over each sample like Eq. 3.3's sampled form)."""
+    base = vcnc.machine("fadal-pid").with_axis_options("x", backlash=None, noise=None, encoder=None, dac=None,
+                                                         saturation=None, friction=None)
+    m = base.with_effect("x", "delay")
+    sp = vcnc.interpolate(vcnc.parse_program("G00 X0 F12000\nG01 X5\nX-3\nX2.5\nX0\nM30\n"), m)
+    cap = m.simulate(sp)
+    truth = m.axis("x").reduced_parameters()
+    c = m.axis("x").drive.viscous_rate
+    model = augment(ReducedAxisModel(parameters=truth, sample_time=TS), [Delay(samples=2, sample_time=TS)],
+                    viscous_rate=c)
+    err = model.simulate(cap.reference[:, 0]) - cap.measured[:, 0]
+    assert np.max(np.abs(err)) < 1e-7  # mm
+
+
+def test_elements_change_the_response_as_physics_says(reference):
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS)
+    null = augment(m, [Delay(samples=0, sample_time=TS)], viscous_rate=2.55).simulate(reference)
+    # a limit far above every demand, a play of zero width: the null form
+    assert np.allclose(augment(m, [Saturation(limit=1e9)], viscous_rate=2.55).simulate(reference), null, atol=1e-12)
+    # backlash: lost motion at reversals of about its width, tracking otherwise
+    bl = augment(m, [Backlash(width=0.02)], viscous_rate=2.55).simulate(reference)
+    assert 0.002 < np.max(np.abs(bl - null)) < 0.05
+    # a limit below the demand slows the moves down
+    sat = augment(m, [Saturation(limit=1000.0)], viscous_rate=2.55).simulate(reference)
+    assert np.sqrt(np.mean((sat - reference) ** 2)) > np.sqrt(np.mean((null - reference) ** 2))
+    # drift is an output offset growing linearly
+    dr = augment(m, [Drift(rate=1e-3)]).simulate(reference)
+    t = np.arange(reference.size) * TS
+    assert np.allclose(dr - simulate(FADAL_PID_X, reference, TS), 1e-3 * t)
+
+
+def test_unstable_candidate_gives_nan_not_an_exception(reference):
+    sp = SimSpec(n=reference.size, sample_time=TS, wext=np.zeros(reference.size), structured=True, delay=8,
+                 viscous_rate=1.0)
+    y = simulate_augmented(FADAL_PID_X, reference, sp)
+    assert np.isnan(y[-1])
+
+
+def test_model_file_round_trip_keeps_the_effects(reference):
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS, axis="x")
+    els = [Delay(samples=2, sample_time=TS), TimePeriodic(period=0.5, coefficients=((50.0, 0.0),))]
+    recs = [e.record() for e in els]
+    recs[0]["parameters"]["plant_viscous_rate_1_s"] = 2.55
+    a = augment(m, els, viscous_rate=2.55, effects=recs)
+    back = from_model(model_from_dict(model_to_dict(a)))  # the hook model_file would call
+    assert isinstance(back, AugmentedAxisModel) and back.viscous_rate == 2.55
+    assert np.array_equal(back.simulate(reference), a.simulate(reference))
+    assert from_model(m) is m
+
+
+def test_fmu_flags():
+    assert all(isinstance(cls.FMU, bool) for cls in EFFECTS.values())
+    assert augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS), EXAMPLES[:2]).fmu_representable
