@@ -35,7 +35,7 @@ def main() -> None:
     cap = synthetic_capture(FADAL_PID_X, xr, noise=2e-4, resolution=1e-3, seed=3)
     x, T = cap.measured[:, 0], cap.sample_time
     print(f"capture: {x.size} samples, Ts {T * 1e3:g} ms (Table 3.2 style, fadal PID x axis of Table 3.4)")
-    identify(cap, refine="none")  # compile numba, warm caches
+    identify(cap, refine="none", diagnose=False)  # compile numba, warm caches
     t_reg, st = best(lambda: statistics(xr, x, T))
     t_ex, ex = best(lambda: solve_statistics(st, sample_time=T))
     print(f"regressor + statistics            {t_reg * 1e3:8.1f} ms")
@@ -53,11 +53,11 @@ def main() -> None:
     t_g, g = best(lambda: solve_statistics(st, method="ga", sample_time=T, ga_options=GAOptions()), repeat=1)
     dp = max(abs(g.poles[n] / ex.poles[n] - 1) for n in ("omega_n_hz", "zeta", "p_hz"))
     print(f"ga (4000 x 300)                   {t_g:8.2f} s    (thesis GA: 2-3 min); max pole deviation {100 * dp:.1f}%")
-    t_oe, m = best(lambda: identify(cap), repeat=1)
+    t_oe, m = best(lambda: identify(cap, diagnose=False), repeat=1)
     print(f"identify with output-error        {t_oe:8.2f} s")
     val = back_and_forth_reference()
     e_true = val - synthetic_capture(FADAL_PID_X, val).measured[:, 0]
-    ee = identify(cap, refine="none")
+    ee = identify(cap, refine="none", diagnose=False)
     for label, mod in (("equation error", ee), ("output error", m)):
         d = np.sqrt(np.mean(((val - mod.simulate(val)) - e_true) ** 2)) / np.sqrt(np.mean(e_true**2))
         print(f"held-out Sec. 4.3.1 move, {label:15s}: tracking-error mismatch {100 * d:.2f}% RMS")

@@ -123,7 +123,7 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
         if key in d and not isinstance(d[key], typ):
             raise ModelFileError(f"key '{key}' must be a JSON {'object' if typ is dict else 'array'}", file=source)
     try:
-        return ReducedAxisModel(
+        model = ReducedAxisModel(
             parameters=values,
             sample_time=ts,
             axis=axis,
@@ -136,6 +136,16 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
         )
     except InputError as exc:
         raise ModelFileError(exc.message, file=source) from exc
+    if not model.effects:
+        return model
+    # Effects found by the residual diagnosis: rebuild their elements so the loaded model
+    # simulates them (identification.augmented).
+    from identification.augmented import from_model
+
+    try:
+        return from_model(model)
+    except InputError as exc:
+        raise ModelFileError(f"key 'effects': {exc.message}", file=source) from exc
 
 
 def load_model(path: str | os.PathLike[str]) -> ReducedAxisModel:

@@ -108,7 +108,7 @@ def test_emps_real_data():
     from vcnc.capture import read_capture
 
     est = read_capture(EMPS / "DATA_EMPS.mat")
-    m = identify(est)
+    m = identify(est, diagnose=False)
     assert 15.0 < m.poles["omega_n_hz"] < 25.0
     track = np.sqrt(np.mean((est.reference[:, 0] - est.measured[:, 0]) ** 2)) * 1e3
     assert 500 < track < 650

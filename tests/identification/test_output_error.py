@@ -15,7 +15,7 @@ def _rms(a):
 
 @pytest.fixture(scope="module")
 def models(pid_capture):
-    return identify(pid_capture, refine="none"), identify(pid_capture)
+    return identify(pid_capture, refine="none", diagnose=False), identify(pid_capture, diagnose=False)
 
 
 def test_output_error_predicts_held_out_data_better(models):

@@ -45,7 +45,7 @@ def test_identified_model_is_stable_and_inside_bounds(case):
     xr = random_moves_reference(moves=12, span=5.0, seed=seed % 1000)
     cap = synthetic_capture(params, xr, noise=noise, seed=seed)
     bounds = PoleBounds(p_hz=(lo, 500.0), omega_n_hz=(lo, 500.0), zeta=(0.2, 2.0))
-    m = identify(cap, bounds=bounds, refine="none")
+    m = identify(cap, bounds=bounds, refine="none", diagnose=False)
     assert m.is_stable()
     assert bounds.contains(m.poles, rtol=1e-9)
     assert np.all(np.isfinite(m.simulate(xr)))

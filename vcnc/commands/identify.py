@@ -29,6 +29,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", metavar="MODEL.json", help="write the model file (vcnc.axis-model/1)")
     parser.add_argument("--report", metavar="DIR", help="write an HTML report with figures into DIR")
     parser.add_argument("--no-diagnose", action="store_true", help="skip the residual diagnosis")
+    parser.add_argument("--p-min-hz", type=float, default=None,
+                        help="lower bound of the real pole p [Hz] (default 0.2; lower it for loops without "
+                             "integral action, e.g. EMPS)")
+    parser.add_argument("--omega-min-hz", type=float, default=None, help="lower bound of omega_n [Hz] (default 0.2)")
+    parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
+                        help="bounds of the damping ratio (default 0.2 2.0)")
 
 
 def _report(capture, model, axis: str):
@@ -82,9 +88,39 @@ def _report(capture, model, axis: str):
     fig = Figure(figsize=(10, 6))
     model.plot(fig.subplots(2, 2, sharex=True))
     rep.figure("frf", fig, caption="Tracking and disturbance FRFs of the identified model (cf. Fig. 3.5)")
+    if model.validation:
+        from identification.diagnosis import before_after_rows, report_figure
+
+        rep.heading("Residual diagnosis: effects the reduced model lacks")
+        rows = before_after_rows(model)
+        if rows:
+            keys = list(rows[0])
+            rep.table(keys, [[r.get(k) for k in keys] for r in rows],
+                      caption="RMS and max error [um] of the reduced model, each effect in turn, and the final model")
+        axs = report_figure(capture, model, axis=axis)
+        import numpy as np
+
+        rep.figure("residual", np.ravel(axs)[0].figure,
+                   caption="Residual before and after the diagnosis: time, velocity, position, spectrum")
     rep.summary = {"model": model.to_dict()}
     rep.attach("model.json", (json.dumps(model.to_dict(), indent=2) + "\n").encode())
     return rep
+
+
+def _bounds(args: argparse.Namespace, capture) -> dict | None:
+    """The pole box from the command line (thesis defaults for what is not given)."""
+    if args.p_min_hz is None and args.omega_min_hz is None and args.zeta is None:
+        return None
+    from identification.bounds import default_bounds
+
+    b = default_bounds(capture.sample_time).as_dict()
+    if args.p_min_hz is not None:
+        b["p_hz"] = (args.p_min_hz, b["p_hz"][1])
+    if args.omega_min_hz is not None:
+        b["omega_n_hz"] = (args.omega_min_hz, b["omega_n_hz"][1])
+    if args.zeta is not None:
+        b["zeta"] = tuple(args.zeta)
+    return b
 
 
 def run(args: argparse.Namespace) -> int:
@@ -96,6 +132,7 @@ def run(args: argparse.Namespace) -> int:
     model = identify(
         capture,
         axis=axis,
+        bounds=_bounds(args, capture),
         method=args.method,
         refine=args.refine,
         seed=args.seed,
@@ -114,6 +151,8 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
     out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} um, max {fit['max_um']:.4g} um\n")
-    if model.effects:
-        out.write("effects: " + ", ".join(e.get("name", "?") for e in model.effects) + "\n")
+    if model.validation:
+        from identification.diagnosis import format_before_after
+
+        out.write(format_before_after(model).rstrip("\n") + "\n")
     return 0
