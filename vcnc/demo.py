@@ -358,8 +358,7 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
         if not m.effects:
             rows.append([a, "(none found)", "", val.get("rms_before_um", math.nan), val.get("rms_after_um", math.nan)])
         for e in m.effects:
-            params = ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
-                               for k, v in e.get("parameters", {}).items())
+            params = _fmt_params(e.get("parameters", {}))
             rows.append([a, e["name"], params, e.get("rms_before_um", math.nan), e.get("rms_after_um", math.nan)])
     report.table(["axis", "effect", "parameters", "RMS before [um]", "RMS after [um]"], rows,
                  caption="Effects found on held-out data, in the order they were added")
@@ -390,6 +389,19 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
         report.text(f"FMU not exported: {info.get('reason')}")
     for a, m in augmented.items():
         report.attach(f"model_{a}.json", _model_bytes(m), caption=f"axis {a} model (vcnc.axis-model/1)")
+
+
+def _fmt_params(params: dict) -> str:
+    """``k=v`` list for a table; arrays (Fourier coefficients) shown by their size only."""
+    out = []
+    for k, v in params.items():
+        if isinstance(v, (list, tuple, np.ndarray)):
+            out.append(f"{k}=[{len(v)} values]")
+        elif isinstance(v, float):
+            out.append(f"{k}={v:.4g}")
+        else:
+            out.append(f"{k}={v}")
+    return ", ".join(out)
 
 
 def _model_bytes(model: Any) -> bytes:
@@ -472,8 +484,7 @@ def run_emps_demo(
             report.text(f"{len(cap)} samples at {cap.sample_time * 1e3:.3f} ms; pole box {EMPS_BOUNDS}; "
                         "identified poles: "
                         + ", ".join(f"{k} {v:.4g}" for k, v in model.poles.items()))
-            rows = [[e["name"], ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
-                                          for k, v in e.get("parameters", {}).items()),
+            rows = [[e["name"], _fmt_params(e.get("parameters", {})),
                      e.get("rms_before_um", math.nan), e.get("rms_after_um", math.nan)] for e in aug.effects]
             if not rows:
                 rows = [["(none found)", "", math.nan, math.nan]]
