@@ -55,7 +55,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from identification.reduced_model import ReducedAxisModel, discretize
+from identification.reduced_model import ReducedAxisModel, discretize, run_exact, w_terms
 from vcnc.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
@@ -124,60 +124,6 @@ class SimSpec:
 
 
 # ------------------------------------------------------------------------------------ kernels
-
-
-@numba.njit(cache=True, nogil=True)
-def _w_terms(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
-    w = 0.0
-    if st[0] > 0.0:
-        if v > 0.0:
-            r = v / st[0]
-            w += st[1] * math.exp(-r * r)
-        elif v < 0.0:
-            r = v / st[0]
-            w += st[2] * math.exp(-r * r)
-    if asym != 0.0:
-        w += asym * abs(v)
-    if pp_period > 0.0:
-        th = 2.0 * math.pi * x / pp_period
-        for h in range(pp_coef.shape[0]):
-            a = (h + 1) * th
-            w += pp_coef[h, 0] * math.sin(a) + pp_coef[h, 1] * math.cos(a)
-    return w
-
-
-@numba.njit(cache=True, nogil=True)
-def _run_exact(phi, gamma, c, d, cv, dv, dvs, xi0, d0, d1, xr, wext, st, asym, pp_period, pp_coef,
-               pos, vel):  # pragma: no cover - compiled
-    """The loop of identification.reduced_model._run with w_k extended by the disturbance effects."""
-    x0 = xi0[0] * xr[0]
-    x1 = xi0[1] * xr[0]
-    x2 = xi0[2] * xr[0]
-    prev = xr[0]
-    for k in range(xr.shape[0]):
-        r = xr[k]
-        p = ((c[0] * x0 + c[1] * x1) + c[2] * x2) + d * r
-        pos[k] = p
-        v = (((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dv * r) + dvs * (r - prev)
-        vel[k] = v
-        if v > 0.0:
-            f = d0
-        elif v < 0.0:
-            f = d1
-        else:
-            f = 0.0
-        w = f + wext[k]
-        w += _w_terms(v, p, st, asym, pp_period, pp_coef)
-        n0 = (((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 0] * r) + gamma[0, 1] * w
-        n1 = (((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 0] * r) + gamma[1, 1] * w
-        n2 = (((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 0] * r) + gamma[2, 1] * w
-        x0, x1, x2 = n0, n1, n2
-        prev = r
-        if not abs(p) < 1e9:
-            for j in range(k, xr.shape[0]):
-                pos[j] = np.nan
-                vel[j] = np.nan
-            return
 
 
 @numba.njit(cache=True, nogil=True)
@@ -261,7 +207,7 @@ def _run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, p
             w = d1
         else:
             w = 0.0
-        w += wext[k] + _w_terms(vf, xf, st, asym, pp_period, pp_coef)
+        w += wext[k] + w_terms(vf, xf, st, asym, pp_period, pp_coef)
         for _ in range(m):
             if two_mass:
                 fs = kspr * (xm - xt) + cdmp * (vm - vt)
@@ -318,7 +264,7 @@ def simulate_augmented(
                    int(spec.delay), float(spec.saturation), float(spec.backlash), res, pos, vel)
     else:
         dm = discretize(p, T)
-        _run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.xi0, dm.d0, dm.d1, xr, wext, st,
+        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,
                    float(spec.asym), float(spec.pp_period), pp_coef, pos, vel)
     if spec.offset is not None:
         pos = pos + spec.offset

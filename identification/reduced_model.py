@@ -271,14 +271,44 @@ def _discretize_cached(values: tuple[float, ...], T: float) -> DiscreteModel:
 
 
 @numba.njit(cache=True, nogil=True)
-def _run(phi, gamma, c, d, cv, dv, dvs, xi0, d0, d1, xr, wext, pos, vel):  # pragma: no cover - compiled
-    x0 = xi0[0] * xr[0]
-    x1 = xi0[1] * xr[0]
-    x2 = xi0[2] * xr[0]
-    prev = xr[0]
+def w_terms(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
+    """Disturbance terms of the diagnosis effects [mm/s^2] (identification.augmented) at model
+    velocity v [mm/s] and position x [mm]: Stribeck ``st = (v_s, d+, d-)`` (v_s <= 0: none),
+    asymmetric viscous ``asym |v|``, position-periodic Fourier series ``pp_coef[h] = (sin, cos)``
+    of period ``pp_period`` (<= 0: none). All zero for the plain reduced model."""
+    w = 0.0
+    if st[0] > 0.0:
+        if v > 0.0:
+            r = v / st[0]
+            w += st[1] * math.exp(-r * r)
+        elif v < 0.0:
+            r = v / st[0]
+            w += st[2] * math.exp(-r * r)
+    if asym != 0.0:
+        w += asym * abs(v)
+    if pp_period > 0.0:
+        th = 2.0 * math.pi * x / pp_period
+        for h in range(pp_coef.shape[0]):
+            a = (h + 1) * th
+            w += pp_coef[h, 0] * math.sin(a) + pp_coef[h, 1] * math.cos(a)
+    return w
+
+
+@numba.njit(cache=True, nogil=True)
+def run_exact(phi, gamma, c, d, cv, dv, dvs, d0, d1, xr, wext, st, asym, pp_period, pp_coef,
+              pos, vel):  # pragma: no cover - compiled
+    """The exact sampled loop of the module docstring (deviations from xr[0]), with w_k extended
+    by :func:`w_terms`. Fills ``pos`` and ``vel``; NaN from the sample where |x| exceeds 1e9 mm
+    (a diverging candidate model) instead of overflowing."""
+    r0 = xr[0]
+    x0 = 0.0
+    x1 = 0.0
+    x2 = 0.0
+    prev = 0.0
     for k in range(xr.shape[0]):
-        r = xr[k]
-        pos[k] = ((c[0] * x0 + c[1] * x1) + c[2] * x2) + d * r
+        r = xr[k] - r0
+        p = (((c[0] * x0 + c[1] * x1) + c[2] * x2) + d * r) + r0
+        pos[k] = p
         v = (((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dv * r) + dvs * (r - prev)
         vel[k] = v
         if v > 0.0:
@@ -288,11 +318,21 @@ def _run(phi, gamma, c, d, cv, dv, dvs, xi0, d0, d1, xr, wext, pos, vel):  # pra
         else:
             f = 0.0
         w = f + wext[k]
+        w += w_terms(v, p, st, asym, pp_period, pp_coef)
         n0 = (((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 0] * r) + gamma[0, 1] * w
         n1 = (((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 0] * r) + gamma[1, 1] * w
         n2 = (((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 0] * r) + gamma[2, 1] * w
         x0, x1, x2 = n0, n1, n2
         prev = r
+        if not abs(p) < 1e9:
+            for j in range(k, xr.shape[0]):
+                pos[j] = np.nan
+                vel[j] = np.nan
+            return
+
+
+_NO_STRIBECK = np.zeros(3)
+_NO_FOURIER = np.zeros((1, 2))
 
 
 def simulate(
@@ -341,11 +381,10 @@ def simulate(
     m = discretize(parameters, sample_time)
     pos = np.empty_like(xr)
     vel = np.empty_like(xr)
-    # Deviations from the first reference sample: the state at rest is then exactly zero, so
-    # v_0 == 0 and the friction stays off until the reference moves (see "Initial state").
-    r0 = float(xr[0])
-    _run(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.xi0, m.d0, m.d1, xr - r0, wext, pos, vel)
-    pos += r0
+    # The loop runs on deviations from the first reference sample: the state at rest is then
+    # exactly zero, so v_0 == 0 and the friction stays off until the reference moves.
+    run_exact(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.d0, m.d1, xr, wext, _NO_STRIBECK, 0.0, 0.0,
+              _NO_FOURIER, pos, vel)
     return (pos, vel) if return_velocity else pos
 
 
