@@ -20,15 +20,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from vcnc.fmu import REPRESENTABLE_EFFECTS, export_fmu, export_spec
+    from vcnc.fmu import export_fmu, export_spec
 
     spec = export_spec(args.model)  # a bad model file fails here, before any build
     path = export_fmu(args.model, args.output, fmi_version=args.fmi)
-    effects = [
-        f"{name}={value}"
-        for name, value in (("backlash", spec.backlash), ("delay", spec.delay_samples))
-        if value and name in REPRESENTABLE_EFFECTS
-    ]
+    effects = spec.effect_names
     print(
         f"wrote {path}: FMI {args.fmi}.0 Co-Simulation, model {spec.model_identifier}, "
         f"step {spec.sample_time:g} s" + (f", effects {', '.join(effects)}" if effects else "")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 from vcnc.fmu._spec import ExportSpec
-from vcnc.fmu._variables import UNITS, VARIABLES, Variable
+from vcnc.fmu._variables import UNITS, Variable
 
 __all__ = ["model_description", "build_description", "TOKEN_PLACEHOLDER"]
 
@@ -62,9 +62,9 @@ def _type_attributes(v: Variable, start: dict) -> dict[str, str]:
     return attrs
 
 
-def _outputs_and_inputs():
-    outputs = [v for v in VARIABLES if v.causality == "output"]
-    x_ref = next(v for v in VARIABLES if v.name == "x_ref")
+def _outputs_and_inputs(variables: tuple[Variable, ...]):
+    outputs = [v for v in variables if v.causality == "output"]
+    x_ref = next(v for v in variables if v.name == "x_ref")
     return outputs, x_ref
 
 
@@ -77,8 +77,11 @@ def model_description(spec: ExportSpec, *, fmi_version: int, sources: list[str],
     description = (
         f"vcnc reduced closed-loop model of axis {spec.axis} (Eq. 3.3 of Wong's thesis), "
         f"discrete-time at {spec.sample_time!r} s"
+        + (f", with effects {', '.join(e.NAME for e in spec.elements)}"
+           + (" (sampled controller + plant form)" if spec.structured else "") if spec.elements else "")
     )
-    outputs, x_ref = _outputs_and_inputs()
+    variables = spec.variables
+    outputs, x_ref = _outputs_and_inputs(variables)
     if fmi_version == 2:
         root = ET.Element("fmiModelDescription", fmiVersion="2.0", modelName=ident, guid=token,
                           description=description, generationTool=f"vcnc {__version__}",
@@ -94,7 +97,7 @@ def model_description(spec: ExportSpec, *, fmi_version: int, sources: list[str],
         ET.SubElement(root, "DefaultExperiment", startTime="0.0", stepSize=repr(float(spec.sample_time)))
         mv = ET.SubElement(root, "ModelVariables")
         index = {}
-        for v in VARIABLES:
+        for v in variables:
             if v.causality == "independent":
                 continue  # FMI 2 has no time variable
             sv = ET.SubElement(mv, "ScalarVariable", _common_attributes(v))
@@ -118,7 +121,7 @@ def model_description(spec: ExportSpec, *, fmi_version: int, sources: list[str],
         _log_categories(root)
         ET.SubElement(root, "DefaultExperiment", startTime="0.0", stepSize=repr(float(spec.sample_time)))
         mv = ET.SubElement(root, "ModelVariables")
-        for v in VARIABLES:
+        for v in variables:
             attrs = _common_attributes(v)
             attrs.update(_type_attributes(v, start))
             ET.SubElement(mv, "Float64" if v.type == "float" else "Int32", attrs)

@@ -1,6 +1,8 @@
-"""What an exported FMU must output: ``identification.simulate`` plus the representable effects.
+"""What an exported FMU must output: ``model.simulate()`` of the model it was exported from.
 
-The export checks its binary against this before reporting success; the tests use it too.
+For a model without effects that is :func:`identification.simulate` (the reduced model's
+contract); with effects it is :meth:`identification.augmented.AugmentedAxisModel.simulate`. The
+export checks its binary against this before reporting success; the tests use it too.
 """
 
 from __future__ import annotations
@@ -9,29 +11,32 @@ import numpy as np
 
 from vcnc.fmu._spec import ExportSpec
 
-__all__ = ["expected_position"]
-
-
-def _play(x: np.ndarray, width: float) -> np.ndarray:
-    """Play operator of total width ``width`` [mm], centred at the first sample."""
-    half = 0.5 * width
-    out = np.empty_like(x)
-    load = x[0]
-    for k, xk in enumerate(x):  # test oracle only: short signals
-        if xk - load > half:
-            load = xk - half
-        elif xk - load < -half:
-            load = xk + half
-        out[k] = load
-    return out
+__all__ = ["expected_position", "check_reference"]
 
 
 def expected_position(spec: ExportSpec, reference: np.ndarray, *, disturbance: np.ndarray | None = None) -> np.ndarray:
     """Measured position [mm] the FMU of ``spec`` gives for ``reference`` [mm] (and ``disturbance``)."""
-    from identification import simulate
+    return spec.model().simulate(np.asarray(reference, dtype=float), disturbance=disturbance)
 
-    ref = np.asarray(reference, dtype=float)
-    n = spec.delay_samples
-    seen = ref if n == 0 else np.concatenate([np.full(min(n, ref.size), ref[0]), ref[: max(ref.size - n, 0)]])
-    x = simulate(spec.parameters, seen, spec.sample_time, disturbance=disturbance)
-    return _play(x, spec.backlash) if spec.backlash > 0 else x
+
+def check_reference(n: int, sample_time: float, *, seed: int = 0, start: float = 0.0) -> np.ndarray:
+    """An identification test [mm]: random smooth point-to-point moves of up to 20 mm with dwells.
+
+    Both directions, accelerations, constant-velocity-free reversals and standstill: every effect
+    is exercised. ``sample_time`` [s] scales the move durations (40..300 samples at 1 ms).
+    """
+    rng = np.random.default_rng(seed)
+    scale = 0.001 / float(sample_time)
+    out = np.empty(n)
+    k, pos = 0, float(start)
+    while k < n:
+        target = rng.uniform(-20.0, 20.0)
+        m = max(2, int(rng.integers(40, 300) * scale))
+        s = 0.5 - 0.5 * np.cos(np.pi * np.arange(1, m + 1) / m)
+        seg = pos + (target - pos) * s
+        dwell = np.full(int(rng.integers(0, 80) * scale), target)
+        seg = np.concatenate([seg, dwell])[: n - k]
+        out[k : k + seg.size] = seg
+        k += seg.size
+        pos = target
+    return out

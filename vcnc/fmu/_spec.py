@@ -1,4 +1,10 @@
-"""What gets exported: the model's parameters and the effects the FMU can represent."""
+"""What gets exported: the model's parameters and the effects the FMU represents exactly.
+
+An FMU represents an effect only when its binary reproduces ``model.simulate()`` of the
+:class:`identification.augmented.AugmentedAxisModel` with that effect (to
+:data:`vcnc.fmu.CHECK_TOLERANCE_MM`, checked at every export); any other effect makes the export
+fail with an :class:`~vcnc.errors.ExportError` naming it.
+"""
 
 from __future__ import annotations
 
@@ -8,17 +14,29 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from vcnc.errors import ExportError, ModelFileError
-from vcnc.fmu._variables import MAX_DELAY
+from vcnc.errors import ExportError, InputError, ModelFileError
+from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, Variable, variables
 
 __all__ = ["ExportSpec", "REPRESENTABLE_EFFECTS", "export_spec"]
 
 PARAMETER_NAMES = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
 
-#: effect name -> (its parameter in the model file, FMU parameter, meaning in the FMU)
-REPRESENTABLE_EFFECTS: dict[str, tuple[str, str, str]] = {
-    "delay": ("samples", "delay_samples", "transport delay of the command by whole samples"),
-    "backlash": ("width", "backlash", "play operator of total width [mm] on the measured position, centred at rest"),
+#: effect name (identification.effects vocabulary) -> how the FMU represents it (its FMU parameters)
+REPRESENTABLE_EFFECTS: dict[str, str] = {
+    "friction_stribeck": "(PV s+ + NV s-) exp(-(v/v_s)^2) in w: stribeck_velocity, stribeck_excess_positive, "
+                         "stribeck_excess_negative",
+    "friction_viscous_asymmetric": "k_a |v| in w: viscous_asymmetry",
+    "position_periodic": "Fourier series in x in w: position_period, position_periodic_sin_<h>/_cos_<h> "
+                         "(harmonics fixed at export)",
+    "time_periodic": "Fourier series in t in w: time_period, time_mean, time_periodic_sin_<h>/_cos_<h> "
+                     "(harmonics fixed at export; t from initialisation)",
+    "drift": "rate * t added to the measured position: drift_rate",
+    "delay": "control action delayed by whole samples in the split loop: delay_samples, plant_viscous_rate",
+    "saturation": "acceleration demand clipped in the split loop: saturation_limit, plant_viscous_rate",
+    "backlash": "play between the driven mass and the measured position in the split loop: backlash_width, "
+                "plant_viscous_rate",
+    "resonance": "two-mass plant in the split loop: resonance_frequency, resonance_damping, "
+                 "resonance_table_fraction, plant_viscous_rate (measured_at fixed at export)",
 }
 
 
@@ -34,36 +52,98 @@ class ExportSpec:
         Sample time [s]; the FMU's ``DefaultExperiment`` step size.
     parameters : dict
         a1..d1 of Eq. (3.3) (units of ``identification.reduced_model.PARAMETER_UNITS``).
-    backlash : float
-        Effect ``backlash``: total lost motion [mm]; 0 for none.
-    delay_samples : int
-        Effect ``delay``: command delay [samples]; 0 for none.
+    elements : tuple
+        The effects (``identification.effects`` instances) of the model, all representable.
+    viscous_rate : float
+        Plant viscous rate c [1/s] of the split form (used when an element is present).
     """
 
     axis: str
     sample_time: float
     parameters: dict
-    backlash: float = 0.0
-    delay_samples: int = 0
+    elements: tuple = ()
+    viscous_rate: float = 0.0
 
     @property
     def model_identifier(self) -> str:
         return f"vcnc_axis_{self.axis}"
 
+    @property
+    def structured(self) -> bool:
+        """True when an element needs the split (plant + sampled controller) form."""
+        return any(e.KIND == "element" for e in self.elements)
+
+    def effect(self, name: str) -> Any:
+        """The element called ``name``, or None."""
+        return next((e for e in self.elements if e.NAME == name), None)
+
+    @property
+    def effect_names(self) -> list[str]:
+        """Names of the exported effects, in the model's order (for reports)."""
+        return [e.NAME for e in self.elements]
+
+    @property
+    def harmonics(self) -> dict[str, int]:
+        """Effect name -> Fourier harmonics (0 for the non-periodic ones), in the FMU's order."""
+        return {name: int(getattr(self.effect(name), "harmonics", 0)) for name in REPRESENTABLE_EFFECTS
+                if self.effect(name) is not None}
+
+    @property
+    def variables(self) -> tuple[Variable, ...]:
+        """The FMU's variables."""
+        return variables(self.harmonics, structured=self.structured)
+
+    def model(self) -> Any:
+        """The Python model the FMU reproduces (its ``simulate`` is the export check's oracle)."""
+        from identification import ReducedAxisModel
+        from identification.augmented import augment
+
+        base = ReducedAxisModel(parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis)
+        if not self.elements:
+            return base
+        return augment(base, list(self.elements), viscous_rate=self.viscous_rate)
+
     def start(self) -> dict[str, float | int]:
-        """Start value of every variable with one (name -> value)."""
-        return {
+        """Start value of every variable of the FMU with one (name -> value)."""
+        out: dict[str, float | int] = {
             "x_ref": 0.0,
             "w_ext": 0.0,
             **{k: float(self.parameters[k]) for k in PARAMETER_NAMES},
             "sample_time": float(self.sample_time),
-            "backlash": float(self.backlash),
-            "delay_samples": int(self.delay_samples),
         }
+        for e in self.elements:
+            name = e.NAME
+            if name == "friction_stribeck":
+                out.update(stribeck_velocity=float(e.velocity), stribeck_excess_positive=float(e.excess_positive),
+                           stribeck_excess_negative=float(e.excess_negative))
+            elif name == "friction_viscous_asymmetric":
+                out["viscous_asymmetry"] = float(e.coefficient)
+            elif name in ("position_periodic", "time_periodic"):
+                if name == "position_periodic":
+                    out["position_period"] = float(e.period)
+                else:
+                    out.update(time_period=float(e.period), time_mean=float(e.mean))
+                for h, (s, c) in enumerate(e.coefficients, start=1):
+                    out[f"{name}_sin_{h}"] = float(s)
+                    out[f"{name}_cos_{h}"] = float(c)
+            elif name == "drift":
+                out["drift_rate"] = float(e.rate)
+            elif name == "delay":
+                out["delay_samples"] = int(e.samples)
+            elif name == "saturation":
+                out["saturation_limit"] = float(e.limit)
+            elif name == "backlash":
+                out["backlash_width"] = float(e.width)
+            elif name == "resonance":
+                out.update(resonance_frequency=float(e.frequency), resonance_damping=float(e.damping),
+                           resonance_table_fraction=float(e.table_fraction))
+        if self.structured:
+            out["plant_viscous_rate"] = float(self.viscous_rate)
+        return out
 
 
 def _load(model: Any):
-    """A ReducedAxisModel from a path, a model-file dictionary or the model itself."""
+    """A ReducedAxisModel (an AugmentedAxisModel when it has effects) from a path, a dict or the model."""
     from identification import load_model
     from identification.model_file import model_from_dict
 
@@ -76,14 +156,29 @@ def _load(model: Any):
     raise TypeError(f"model must be a model file path, a model dictionary or a ReducedAxisModel, got {type(model)}")
 
 
-def _effect_value(effect: Mapping, name: str, key: str) -> float:
-    params = effect.get("parameters") or {}
-    if not isinstance(params, Mapping) or key not in params:
-        raise ModelFileError(f"effect '{name}' needs parameter '{key}'", text=repr(effect.get("parameters")))
-    value = params[key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
-        raise ModelFileError(f"effect '{name}' parameter '{key}' must be a finite number", text=repr(value))
-    return float(value)
+def _check_values(e: Any, source: str | None) -> None:
+    """Effect parameters the Python model accepts but cannot simulate (NaN) or the FMU cannot hold."""
+    name = e.NAME
+    if name == "time_periodic" and not e.period > 0:
+        raise ModelFileError("effect 'time_periodic' parameter 'period_s' must be > 0", file=source,
+                             text=repr(e.period))
+    numbers = {k: v for k, v in e.parameters().items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    for k, v in numbers.items():
+        if not math.isfinite(float(v)):
+            raise ModelFileError(f"effect '{name}' parameter '{k}' must be a finite number", file=source, text=repr(v))
+    if name in ("position_periodic", "time_periodic"):
+        coef = [float(x) for pair in e.coefficients for x in pair]
+        if not all(math.isfinite(x) for x in coef):
+            raise ModelFileError(f"effect '{name}' coefficients must be finite numbers", file=source)
+        if len(e.coefficients) > MAX_HARMONICS:
+            raise ExportError(f"effect '{name}' has {len(e.coefficients)} harmonics; an FMU holds at most "
+                              f"{MAX_HARMONICS}")
+    if name == "delay" and not 0 <= e.samples <= MAX_DELAY:
+        raise ModelFileError(f"effect 'delay' parameter 'samples' must be a whole number in [0, {MAX_DELAY}]",
+                             file=source, text=repr(e.samples))
+    if name == "resonance" and e.frequency > 0 and not 0 < e.table_fraction < 1:
+        raise ModelFileError("effect 'resonance' parameter 'table_fraction' must be in (0, 1)", file=source,
+                             text=repr(e.table_fraction))
 
 
 def export_spec(model: Any) -> ExportSpec:
@@ -94,45 +189,43 @@ def export_spec(model: Any) -> ExportSpec:
     ModelFileError
         A model file that breaks the ``vcnc.axis-model/1`` contract (also a malformed effect).
     ExportError
-        Effects the FMU cannot represent (named in the message).
+        Effects the FMU cannot represent exactly (named in the message, with the representable ones).
     """
+    from identification.augmented import AugmentedAxisModel, from_model
+    from identification.effects import EFFECTS
+
     m = _load(model)
     source = str(model) if isinstance(model, (str, os.PathLike)) else None
-    values: dict[str, float | int] = {"backlash": 0.0, "delay_samples": 0}
-    unsupported = []
-    for effect in list(getattr(m, "effects", None) or []):
-        if not isinstance(effect, Mapping) or not isinstance(effect.get("name"), str):
-            raise ModelFileError("each entry of 'effects' must be an object with a 'name'", file=source,
-                                 text=repr(effect))
-        name = effect["name"]
-        if name not in REPRESENTABLE_EFFECTS:
-            unsupported.append(name)
-            continue
-        key, target, _ = REPRESENTABLE_EFFECTS[name]
+    if not isinstance(m, AugmentedAxisModel):
         try:
-            value = _effect_value(effect, name, key)
-        except ModelFileError as exc:
-            raise exc.at(file=source) from None
-        if name == "delay":
-            if value != int(value) or not 0 <= value <= MAX_DELAY:
-                raise ModelFileError(f"effect 'delay' parameter 'samples' must be a whole number in [0, {MAX_DELAY}]",
-                                     file=source, text=repr(value))
-            values[target] = int(value)
-        else:
-            if value < 0:
-                raise ModelFileError("effect 'backlash' parameter 'width' [mm] must be >= 0", file=source,
-                                     text=repr(value))
-            values[target] = value
+            m = from_model(m)  # a model object carrying effect records
+        except InputError as exc:
+            raise ModelFileError(f"key 'effects': {exc.message}", file=source) from exc
+    elements = tuple(getattr(m, "elements", ()) or ())
+    unsupported, seen, duplicated = [], set(), set()
+    for e in elements:
+        name = getattr(e, "NAME", None) or type(e).__name__
+        if name not in REPRESENTABLE_EFFECTS or type(e) is not EFFECTS.get(name):
+            unsupported.append(name)
+        elif name in seen:
+            duplicated.add(name)
+        seen.add(name)
+    where = f" of {source}" if source else ""
     if unsupported:
         raise ExportError(
-            f"the FMU cannot represent the effect(s) {', '.join(sorted(set(unsupported)))}"
-            + (f" of {source}" if source else "")
-            + f"; representable: {', '.join(REPRESENTABLE_EFFECTS)} (or export the model without those effects)"
+            f"the FMU cannot represent the effect(s) {', '.join(sorted(set(unsupported)))}{where}; "
+            f"representable: {', '.join(REPRESENTABLE_EFFECTS)} (or export the model without those effects)"
         )
+    if duplicated:
+        raise ExportError(f"the effect(s) {', '.join(sorted(duplicated))}{where} appear more than once; an FMU "
+                          "represents each effect at most once")
+    for e in elements:
+        _check_values(e, source)
+    assert set(EFFECT_VARIABLES) == set(REPRESENTABLE_EFFECTS)
     return ExportSpec(
         axis=str(getattr(m, "axis", "x")),
         sample_time=float(m.sample_time),
         parameters={k: float(m.parameters[k]) for k in PARAMETER_NAMES},
-        backlash=float(values["backlash"]),
-        delay_samples=int(values["delay_samples"]),
+        elements=elements,
+        viscous_rate=float(getattr(m, "viscous_rate", 0.0)),
     )

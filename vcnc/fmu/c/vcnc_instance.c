@@ -31,6 +31,8 @@ void vcnc_logf(const vcnc_instance *inst, vcnc_status status, const char *catego
 static void set_defaults(vcnc_instance *inst)
 {
     vcnc_parameters *p = &inst->s.model.par;
+    static const double pp_coef[] = VCNC_START_PP_COEF, tp_coef[] = VCNC_START_TP_COEF;
+    int i;
     memset(&inst->s, 0, sizeof(inst->s));
     p->a1 = VCNC_START_A1;
     p->a2 = VCNC_START_A2;
@@ -41,8 +43,28 @@ static void set_defaults(vcnc_instance *inst)
     p->d0 = VCNC_START_D0;
     p->d1 = VCNC_START_D1;
     p->sample_time = VCNC_START_SAMPLE_TIME;
-    p->backlash = VCNC_START_BACKLASH;
+    p->stribeck[0] = VCNC_START_STRIBECK_VELOCITY;
+    p->stribeck[1] = VCNC_START_STRIBECK_EXCESS_POSITIVE;
+    p->stribeck[2] = VCNC_START_STRIBECK_EXCESS_NEGATIVE;
+    p->asym = VCNC_START_VISCOUS_ASYMMETRY;
+    p->pp_period = VCNC_START_POSITION_PERIOD;
+    p->pp_harmonics = VCNC_PP_HARMONICS;
+    for (i = 0; i < 2 * VCNC_PP_HARMONICS; i++) p->pp_coef[i] = pp_coef[i];
+    p->tp_on = VCNC_TP_ON;
+    p->tp_period = VCNC_START_TIME_PERIOD;
+    p->tp_mean = VCNC_START_TIME_MEAN;
+    p->tp_harmonics = VCNC_TP_HARMONICS;
+    for (i = 0; i < 2 * VCNC_TP_HARMONICS; i++) p->tp_coef[i] = tp_coef[i];
+    p->drift = VCNC_START_DRIFT_RATE;
+    p->structured = VCNC_STRUCTURED;
+    p->viscous_rate = VCNC_START_PLANT_VISCOUS_RATE;
     p->delay = VCNC_START_DELAY_SAMPLES;
+    p->saturation = VCNC_START_SATURATION_LIMIT;
+    p->backlash = VCNC_START_BACKLASH_WIDTH;
+    p->res[0] = VCNC_START_RESONANCE_FREQUENCY;
+    p->res[1] = VCNC_START_RESONANCE_DAMPING;
+    p->res[2] = VCNC_START_RESONANCE_TABLE_FRACTION;
+    p->res[3] = VCNC_RES_TABLE;
     inst->s.model.x_ref = VCNC_START_X_REF;
     inst->s.model.w_ext = VCNC_START_W_EXT;
     inst->s.phase = VCNC_INSTANTIATED;
@@ -138,9 +160,13 @@ vcnc_status vcnc_terminate(vcnc_instance *inst)
     return VCNC_OK;
 }
 
+#define SLOT(NAME, field) case VCNC_VR_##NAME: return VCNC_HAS_##NAME ? (field) : NULL
+
 static double *parameter_slot(vcnc_instance *inst, unsigned int vr)
 {
     vcnc_parameters *p = &inst->s.model.par;
+    if (vr >= VCNC_VR_PP_COEF0 && vr < VCNC_VR_PP_COEF0 + 2u * VCNC_PP_HARMONICS) return &p->pp_coef[vr - VCNC_VR_PP_COEF0];
+    if (vr >= VCNC_VR_TP_COEF0 && vr < VCNC_VR_TP_COEF0 + 2u * VCNC_TP_HARMONICS) return &p->tp_coef[vr - VCNC_VR_TP_COEF0];
     switch (vr) {
     case VCNC_VR_A1: return &p->a1;
     case VCNC_VR_A2: return &p->a2;
@@ -151,7 +177,20 @@ static double *parameter_slot(vcnc_instance *inst, unsigned int vr)
     case VCNC_VR_D0: return &p->d0;
     case VCNC_VR_D1: return &p->d1;
     case VCNC_VR_SAMPLE_TIME: return &p->sample_time;
-    case VCNC_VR_BACKLASH: return &p->backlash;
+    SLOT(STRIBECK_VELOCITY, &p->stribeck[0]);
+    SLOT(STRIBECK_EXCESS_POSITIVE, &p->stribeck[1]);
+    SLOT(STRIBECK_EXCESS_NEGATIVE, &p->stribeck[2]);
+    SLOT(VISCOUS_ASYMMETRY, &p->asym);
+    SLOT(POSITION_PERIOD, &p->pp_period);
+    SLOT(TIME_PERIOD, &p->tp_period);
+    SLOT(TIME_MEAN, &p->tp_mean);
+    SLOT(DRIFT_RATE, &p->drift);
+    SLOT(PLANT_VISCOUS_RATE, &p->viscous_rate);
+    SLOT(SATURATION_LIMIT, &p->saturation);
+    SLOT(BACKLASH_WIDTH, &p->backlash);
+    SLOT(RESONANCE_FREQUENCY, &p->res[0]);
+    SLOT(RESONANCE_DAMPING, &p->res[1]);
+    SLOT(RESONANCE_TABLE_FRACTION, &p->res[2]);
     default: return NULL;
     }
 }
@@ -226,7 +265,7 @@ vcnc_status vcnc_get_int(vcnc_instance *inst, const unsigned int vr[], size_t n,
 {
     size_t i;
     for (i = 0; i < n; i++) {
-        if (vr[i] != VCNC_VR_DELAY_SAMPLES) return bad_reference(inst, vr[i], "Int32/Integer");
+        if (vr[i] != VCNC_VR_DELAY_SAMPLES || !VCNC_HAS_DELAY_SAMPLES) return bad_reference(inst, vr[i], "Int32/Integer");
         values[i] = inst->s.model.par.delay;
     }
     return VCNC_OK;
@@ -237,7 +276,7 @@ vcnc_status vcnc_set_int(vcnc_instance *inst, const unsigned int vr[], size_t n,
     size_t i;
     int before_step = inst->s.phase == VCNC_INSTANTIATED || inst->s.phase == VCNC_INITIALIZATION;
     for (i = 0; i < n; i++) {
-        if (vr[i] != VCNC_VR_DELAY_SAMPLES) return bad_reference(inst, vr[i], "Int32/Integer");
+        if (vr[i] != VCNC_VR_DELAY_SAMPLES || !VCNC_HAS_DELAY_SAMPLES) return bad_reference(inst, vr[i], "Int32/Integer");
         if (!before_step) return not_now(inst, vr[i]);
         if (values[i] < 0 || values[i] > VCNC_MAX_DELAY) {
             vcnc_logf(inst, VCNC_ERROR, "logStatusError", "delay_samples must be in [0, %d], got %d", VCNC_MAX_DELAY,
@@ -280,7 +319,7 @@ vcnc_status vcnc_do_step(vcnc_instance *inst, double current_time, double step_s
     n = (long long)count;
     for (k = 0; k < n; k++) vcnc_model_step(&inst->s.model);
     inst->s.steps += n;
-    if (!isfinite(inst->s.model.xi[0]) || !isfinite(inst->s.model.xi[1]) || !isfinite(inst->s.model.xi[2])) {
+    if (vcnc_model_diverged(&inst->s.model)) {
         vcnc_logf(inst, VCNC_ERROR, "logStatusError", "the axis model diverged at t = %.17g s (unstable parameters?)",
                   vcnc_time(inst));
         return VCNC_ERROR;

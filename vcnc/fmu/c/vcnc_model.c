@@ -8,6 +8,8 @@
 #include "vcnc_linalg.h"
 
 #define NX VCNC_NX
+#define VCNC_PI 3.141592653589793
+#define VCNC_SUBSTEPS 10 /* identification.augmented.SUBSTEPS */
 
 static int fail(char *msg, size_t msg_size, const char *text)
 {
@@ -88,22 +90,43 @@ int vcnc_model_discretize(const vcnc_parameters *p, vcnc_discrete *dm, char *msg
 
 static int check_parameters(const vcnc_parameters *p, char *msg, size_t msg_size)
 {
-    const double values[] = {p->a1, p->a2, p->a3, p->b0, p->b1, p->b2, p->d0, p->d1, p->sample_time, p->backlash};
-    const char *names[] = {"a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1", "sample_time", "backlash"};
+    const double values[] = {p->a1, p->a2, p->a3, p->b0, p->b1, p->b2, p->d0, p->d1, p->sample_time,
+                             p->stribeck[0], p->stribeck[1], p->stribeck[2], p->asym, p->pp_period,
+                             p->tp_period, p->tp_mean, p->drift, p->viscous_rate, p->backlash,
+                             p->res[0], p->res[1], p->res[2]};
+    const char *names[] = {"a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1", "sample_time",
+                           "stribeck_velocity", "stribeck_excess_positive", "stribeck_excess_negative",
+                           "viscous_asymmetry", "position_period", "time_period", "time_mean", "drift_rate",
+                           "plant_viscous_rate", "backlash_width", "resonance_frequency", "resonance_damping",
+                           "resonance_table_fraction"};
     char text[160];
     size_t i;
+    int h;
     for (i = 0; i < sizeof(values) / sizeof(values[0]); i++) {
         if (!isfinite(values[i])) {
             snprintf(text, sizeof(text), "parameter %s is not finite", names[i]);
             return fail(msg, msg_size, text);
         }
     }
+    for (h = 0; h < 2 * p->pp_harmonics; h++) {
+        if (!isfinite(p->pp_coef[h])) return fail(msg, msg_size, "a position_periodic coefficient is not finite");
+    }
+    for (h = 0; h < 2 * p->tp_harmonics; h++) {
+        if (!isfinite(p->tp_coef[h])) return fail(msg, msg_size, "a time_periodic coefficient is not finite");
+    }
     if (!(p->sample_time > 0.0)) return fail(msg, msg_size, "parameter sample_time [s] must be > 0");
     if (!(p->a3 > 0.0)) return fail(msg, msg_size, "parameter a3 [1/s^3] must be > 0 (a stable closed loop)");
-    if (p->backlash < 0.0) return fail(msg, msg_size, "parameter backlash [mm] must be >= 0");
-    if (p->delay < 0 || p->delay > VCNC_MAX_DELAY) {
-        snprintf(text, sizeof(text), "parameter delay_samples must be in [0, %d], got %d", VCNC_MAX_DELAY, p->delay);
-        return fail(msg, msg_size, text);
+    if (p->tp_on && !(p->tp_period > 0.0)) return fail(msg, msg_size, "parameter time_period [s] must be > 0");
+    if (p->structured) {
+        if (isnan(p->saturation)) return fail(msg, msg_size, "parameter saturation_limit is not a number");
+        if (p->delay < 0 || p->delay > VCNC_MAX_DELAY) {
+            snprintf(text, sizeof(text), "parameter delay_samples must be in [0, %d], got %d", VCNC_MAX_DELAY,
+                     p->delay);
+            return fail(msg, msg_size, text);
+        }
+        if (p->res[0] > 0.0 && !(p->res[2] > 0.0 && p->res[2] < 1.0)) {
+            return fail(msg, msg_size, "parameter resonance_table_fraction must be in (0, 1)");
+        }
     }
     return 0;
 }
@@ -114,6 +137,59 @@ static int same_linear_model(const vcnc_parameters *a, const vcnc_parameters *b)
            a->b2 == b->b2 && a->sample_time == b->sample_time;
 }
 
+/* ------------------------------------------------------------------------- effects */
+
+/* identification.augmented._w_terms: the disturbance effects at velocity v, position x. */
+static double w_terms(const vcnc_parameters *p, double v, double x)
+{
+    double w = 0.0;
+    int h;
+    if (p->stribeck[0] > 0.0) {
+        if (v > 0.0) {
+            double r = v / p->stribeck[0];
+            w += p->stribeck[1] * exp(-r * r);
+        } else if (v < 0.0) {
+            double r = v / p->stribeck[0];
+            w += p->stribeck[2] * exp(-r * r);
+        }
+    }
+    if (p->asym != 0.0) w += p->asym * fabs(v);
+    if (p->pp_period > 0.0) {
+        double th = 2.0 * VCNC_PI * x / p->pp_period;
+        for (h = 0; h < p->pp_harmonics; h++) {
+            double a = (double)(h + 1) * th;
+            w += p->pp_coef[2 * h] * sin(a) + p->pp_coef[2 * h + 1] * cos(a);
+        }
+    }
+    return w;
+}
+
+/* Disturbance known in time at sample k: the input w_ext plus the time_periodic load
+ * (TimePeriodic.sampled_load: mean + sum_h C_h sin(h phi) + D_h cos(h phi), phi = 2 pi k T / P). */
+static double wext(const vcnc_model *m)
+{
+    const vcnc_parameters *p = &m->par;
+    double phase, load;
+    int h;
+    if (!p->tp_on) return m->w_ext;
+    phase = 2.0 * VCNC_PI * (double)m->k * p->sample_time / p->tp_period;
+    load = 0.0;
+    for (h = 0; h < p->tp_harmonics; h++) {
+        double a = phase * (double)(h + 1);
+        load += sin(a) * p->tp_coef[2 * h];
+        load += cos(a) * p->tp_coef[2 * h + 1];
+    }
+    return m->w_ext + (p->tp_mean + load);
+}
+
+/* Drift.pack: rate * t_k, t_k = k T. */
+static double drift(const vcnc_model *m)
+{
+    return m->par.drift * ((double)m->k * m->par.sample_time);
+}
+
+/* -------------------------------------------------------------------------- exact form */
+
 /* Position for the absolute reference u [mm]; the state lives in deviations from r0. */
 static double linear_position(const vcnc_model *m, double u)
 {
@@ -121,62 +197,17 @@ static double linear_position(const vcnc_model *m, double u)
     return (((dm->c[0] * m->xi[0] + dm->c[1] * m->xi[1]) + dm->c[2] * m->xi[2]) + dm->d * (u - m->r0)) + m->r0;
 }
 
-int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
-{
-    double u = m->x_ref, position, error;
-    int i;
-    if (check_parameters(&m->par, msg, msg_size) != 0) return -1;
-    if (same_linear_model(&m->par, &vcnc_exported_parameters)) {
-        m->dm = vcnc_exported_discrete;
-        m->exported = 1;
-    } else {
-        if (vcnc_model_discretize(&m->par, &m->dm, msg, msg_size) != 0) return -1;
-        m->exported = 0;
-    }
-    /* At rest: in deviations from r0 the state is exactly zero (v_0 == 0, no friction). */
-    m->r0 = u;
-    for (i = 0; i < NX; i++) m->xi[i] = 0.0;
-    m->prev = 0.0;
-    for (i = 0; i < m->par.delay; i++) m->history[i] = u;
-    m->head = 0;
-    m->play = linear_position(m, u);
-    vcnc_model_outputs(m, &position, &error);
-    if (!isfinite(position)) return fail(msg, msg_size, "the initial state is not finite");
-    return 0;
-}
-
-static double model_input(const vcnc_model *m)
-{
-    return m->par.delay > 0 ? m->history[m->head] : m->x_ref;
-}
-
-static double lost_motion(const vcnc_model *m, double x)
-{
-    double half = 0.5 * m->par.backlash;
-    if (half <= 0.0) return x;
-    if (x - m->play > half) return x - half;
-    if (x - m->play < -half) return x + half;
-    return m->play;
-}
-
-void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_error)
-{
-    double p = lost_motion(m, linear_position(m, model_input(m)));
-    *position = p;
-    *tracking_error = m->x_ref - p;
-}
-
-void vcnc_model_step(vcnc_model *m)
+static void exact_step(vcnc_model *m)
 {
     const vcnc_discrete *dm = &m->dm;
     const double *phi = dm->phi, *g = dm->gamma, *xi = m->xi;
-    double r = model_input(m) - m->r0;
+    double r = m->x_ref - m->r0;
     double v = (((dm->cv[0] * xi[0] + dm->cv[1] * xi[1]) + dm->cv[2] * xi[2]) + dm->dv * r) + dm->dvs * (r - m->prev);
     double f = v > 0.0 ? m->par.d0 : (v < 0.0 ? m->par.d1 : 0.0);
-    double w = f + m->w_ext;
+    double w = f + wext(m);
     double n0, n1, n2;
 
-    if (m->par.backlash > 0.0) m->play = lost_motion(m, linear_position(m, r + m->r0));
+    w += w_terms(&m->par, v, linear_position(m, m->x_ref));
     n0 = (((phi[0] * xi[0] + phi[1] * xi[1]) + phi[2] * xi[2]) + g[0] * r) + g[1] * w;
     n1 = (((phi[3] * xi[0] + phi[4] * xi[1]) + phi[5] * xi[2]) + g[2] * r) + g[3] * w;
     n2 = (((phi[6] * xi[0] + phi[7] * xi[1]) + phi[8] * xi[2]) + g[4] * r) + g[5] * w;
@@ -184,8 +215,161 @@ void vcnc_model_step(vcnc_model *m)
     m->xi[1] = n1;
     m->xi[2] = n2;
     m->prev = r;
-    if (m->par.delay > 0) {
-        m->history[m->head] = m->x_ref;
-        m->head = (m->head + 1) % m->par.delay;
+}
+
+/* -------------------------------------------------------------------------- split form */
+
+static double split_measurement(const vcnc_model *m)
+{
+    const vcnc_parameters *p = &m->par;
+    if (p->backlash > 0.0) return m->xb;
+    return (p->res[0] > 0.0 && p->res[3] > 0.5) ? m->xt : m->xm;
+}
+
+/* identification.augmented._rigid: exact step of x'' = acc - c x' over h (acc held). */
+static void rigid(double *x, double *v, double acc, double c, double h)
+{
+    double ch = c * h, e, p1, p2, x1, v1;
+    if (ch < 1e-6) {
+        e = 1.0 - ch;
+        p1 = h * (1.0 - 0.5 * ch);
+        p2 = h * h * (0.5 - ch / 6.0);
+    } else {
+        e = exp(-ch);
+        p1 = -expm1(-ch) / c;
+        p2 = (h - p1) / c;
     }
+    x1 = *x + *v * p1 + acc * p2;
+    v1 = *v * e + acc * p1;
+    *x = x1;
+    *v = v1;
+}
+
+static void split_step(vcnc_model *m)
+{
+    const vcnc_parameters *p = &m->par;
+    const double T = p->sample_time, a1 = p->a1, a2 = p->a2, a3 = p->a3, cvis = p->viscous_rate;
+    const int steps = p->substeps, two_mass = p->res[0] > 0.0, meas_table = p->res[3] > 0.5;
+    const double h = T / steps, kd = a1 - cvis, ff = p->b2 - a2, rr = p->res[2], bl = p->backlash;
+    const double xr = m->x_ref;
+    double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, vf, xf, w;
+    int i;
+    if (two_mass) {
+        double om = 2.0 * VCNC_PI * p->res[0];
+        kspr = om * om * rr * (1.0 - rr);
+        cdmp = 2.0 * p->res[1] * om * rr * (1.0 - rr);
+    }
+    /* sampled controller (Eq. 3.3 split) */
+    y = split_measurement(m);
+    e = xr - y;
+    m->integ += T * e;
+    vr = (xr - m->rprev) / T;
+    ar = m->k > 1 ? (vr - m->vrprev) / T : 0.0;
+    u = p->b1 * vr - kd * (y - m->yprev) / T + a2 * e + a3 * m->integ + ff * xr + p->b0 * ar;
+    m->yprev = y;
+    m->rprev = xr;
+    m->vrprev = vr;
+    if (p->delay > 0) {
+        int n = p->delay + 1;
+        m->ubuf[m->k % n] = u;
+        u = m->k >= p->delay ? m->ubuf[(m->k + 1) % n] : 0.0;
+    }
+    if (u > p->saturation) {
+        u = p->saturation;
+    } else if (u < -p->saturation) {
+        u = -p->saturation;
+    }
+    /* plant over the sample (u, w held) */
+    vf = two_mass ? m->vt : m->vm;
+    xf = two_mass ? m->xt : m->xm;
+    w = vf > 0.0 ? p->d0 : (vf < 0.0 ? p->d1 : 0.0);
+    w += wext(m) + w_terms(p, vf, xf);
+    for (i = 0; i < steps; i++) {
+        if (two_mass) {
+            double fs = kspr * (m->xm - m->xt) + cdmp * (m->vm - m->vt);
+            m->vm += h * (u - fs) / (1.0 - rr);
+            m->xm += h * m->vm;
+            m->vt += h * ((fs - w - cvis * m->vt) / rr);
+            m->xt += h * m->vt;
+        } else {
+            rigid(&m->xm, &m->vm, u - w, cvis, h);
+        }
+        if (bl > 0.0) {
+            double mech = (two_mass && meas_table) ? m->xt : m->xm, half = 0.5 * bl;
+            if (mech - m->xb > half) {
+                m->xb = mech - half;
+            } else if (mech - m->xb < -half) {
+                m->xb = mech + half;
+            }
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------- the model */
+
+int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
+{
+    double u = m->x_ref, position, error;
+    vcnc_parameters *p = &m->par;
+    int i;
+    if (check_parameters(p, msg, msg_size) != 0) return -1;
+    m->k = 0;
+    m->r0 = u;
+    if (p->structured) {
+        /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
+        p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
+        if (p->res[0] > 0.0) {
+            double need = ceil(40.0 * p->res[0] * p->sample_time);
+            if (!(need < 1e7)) return fail(msg, msg_size, "resonance_frequency * sample_time is too large");
+            if ((int)need > p->substeps) p->substeps = (int)need;
+        }
+        m->xm = u;
+        m->vm = 0.0;
+        m->xt = u;
+        m->vt = 0.0;
+        m->xb = u;
+        m->integ = -(p->b2 - p->a2) * u / p->a3;
+        for (i = 0; i <= VCNC_MAX_DELAY; i++) m->ubuf[i] = 0.0;
+        m->yprev = u;
+        m->rprev = u;
+        m->vrprev = 0.0;
+    } else {
+        if (same_linear_model(p, &vcnc_exported_parameters)) {
+            m->dm = vcnc_exported_discrete;
+            m->exported = 1;
+        } else {
+            if (vcnc_model_discretize(p, &m->dm, msg, msg_size) != 0) return -1;
+            m->exported = 0;
+        }
+        /* At rest: in deviations from r0 the state is exactly zero (v_0 == 0, no friction). */
+        for (i = 0; i < NX; i++) m->xi[i] = 0.0;
+        m->prev = 0.0;
+    }
+    vcnc_model_outputs(m, &position, &error);
+    if (!isfinite(position)) return fail(msg, msg_size, "the initial state is not finite");
+    return 0;
+}
+
+void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_error)
+{
+    double pos = m->par.structured ? split_measurement(m) : linear_position(m, m->x_ref);
+    if (m->par.drift != 0.0) pos = pos + drift(m);
+    *position = pos;
+    *tracking_error = m->x_ref - pos;
+}
+
+void vcnc_model_step(vcnc_model *m)
+{
+    if (m->par.structured) {
+        split_step(m);
+    } else {
+        exact_step(m);
+    }
+    m->k++;
+}
+
+int vcnc_model_diverged(const vcnc_model *m)
+{
+    if (m->par.structured) return !(fabs(m->xm) < 1e9 && fabs(m->vm) < 1e12);
+    return !isfinite(m->xi[0]) || !isfinite(m->xi[1]) || !isfinite(m->xi[2]);
 }

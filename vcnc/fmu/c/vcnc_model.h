@@ -1,29 +1,34 @@
-/* The vcnc reduced closed-loop axis model, sampled at the sample time (no FMI in this file).
+/* The vcnc axis model, sampled at the sample time (no FMI in this file).
  *
- * This is the simulation contract of identification/reduced_model.py, reproduced operation by
- * operation (same realisation, same discretisation, same order of floating-point sums):
+ * Two forms, chosen at export (VCNC_STRUCTURED in vcnc_config.h), each reproducing the Python
+ * model operation by operation (same order of floating-point operations; built without fused
+ * multiply-add, -ffp-contract=off):
+ *
+ * EXACT FORM (the reduced model, plus the disturbance/output effects of a diagnosis):
+ * the simulation contract of identification/reduced_model.py, with w extended as in
+ * identification/augmented.py (_run_exact, _w_terms):
  *
  *     (s^3 + a1 s^2 + a2 s + a3) x = (b0 s^3 + b1 s^2 + b2 s + a3) x_r - s w      (Eq. 3.3 * s)
- *     w = PV(v) d0 + NV(v) d1 + w_ext                                           [mm/s^2]
  *
  * scaled observer-canonical realisation (time scale W = a3^(1/3)), x_r by first-order hold and
  * w by zero-order hold from the exponential of the 6x6 augmented matrix, causal state
- * xi = z - N x_r:
- *     x_k  = C xi_k + d x_r,k
- *     v_k  = Cv xi_k + dv x_r,k + dvs (x_r,k - x_r,k-1)
- *     w_k  = (d0 if v_k > 0, d1 if v_k < 0, else 0) + w_ext,k        held over [k, k+1)
- *     xi_{k+1} = Phi xi_k + Gamma[:,0] x_r,k + Gamma[:,1] w_k
- * starting at rest at x_r,0 (xi_0 = xi0 x_r,0).
+ * xi = z - N x_r, run on deviations r_k = x_r,k - x_r,0 from the first reference sample:
+ *     x_k  = (C xi_k + d r_k) + x_r,0
+ *     v_k  = Cv xi_k + dv r_k + dvs (r_k - r_k-1)
+ *     w_k  = ((d0 if v_k > 0, d1 if v_k < 0, else 0) + wext_k) + e(v_k, x_k)   held over [k, k+1)
+ *     xi_{k+1} = Phi xi_k + Gamma[:,0] r_k + Gamma[:,1] w_k
+ * starting at rest (xi_0 = 0). wext_k = w_ext,k (input) + the time_periodic load at t_k = k T;
+ * e(v, x) = friction_stribeck + friction_viscous_asymmetric + position_periodic terms
+ * (identification.augmented._w_terms). The measured position adds the drift rate * t_k.
  *
  * The discretisation is computed here (vcnc_linalg.c's matrix exponential) whenever the
  * parameters differ from those the FMU was exported with; for the exported parameters the
- * matrices computed by scipy at export are used, so the FMU reproduces model.simulate() bit for
+ * matrices computed by scipy at export are used, so the FMU reproduces the Python model bit for
  * bit.
  *
- * Effects (optional, neutral at their defaults):
- *   delay    the model sees x_r,k-delay (a transport delay of the command, whole samples);
- *   backlash the measured position follows the linear position through a lost-motion element of
- *            total width `backlash` [mm].
+ * SPLIT FORM (an in-loop element: delay, saturation, backlash, resonance): the sampled
+ * controller + plant loop of identification.augmented._run_split, in absolute coordinates, with
+ * the same disturbance terms (evaluated at the driven mass) and drift.
  */
 #ifndef VCNC_MODEL_H
 #define VCNC_MODEL_H
@@ -31,15 +36,34 @@
 #include <stddef.h>
 
 #define VCNC_NX 3            /* states of the reduced model */
-#define VCNC_MAX_DELAY 4096  /* longest input delay [samples] */
+#define VCNC_MAX_DELAY 4096  /* longest control delay [samples] (split form) */
+#define VCNC_MAX_HARMONICS 64 /* longest Fourier series of the periodic effects */
 
 typedef struct {
     double a1, a2, a3;       /* denominator of Eq. 3.3: [1/s], [1/s^2], [1/s^3] */
     double b0, b1, b2;       /* numerator of Eq. 3.3: [1], [1/s], [1/s^2] */
     double d0, d1;           /* friction for positive / negative velocity [mm/s^2] */
     double sample_time;      /* [s] */
-    double backlash;         /* lost motion, total width [mm]; 0 = none */
-    int delay;               /* command delay [samples]; 0 = none */
+    /* disturbance effects (neutral at 0) */
+    double stribeck[3];      /* v_s [mm/s] (<= 0: off), s+ [mm/s^2], s- [mm/s^2] */
+    double asym;             /* k_a [1/s]: k_a |v| in w */
+    double pp_period;        /* P_x [mm] (<= 0: off) */
+    double pp_coef[2 * VCNC_MAX_HARMONICS]; /* (A_h, B_h) [mm/s^2], h = 1..pp_harmonics */
+    int pp_harmonics;        /* structural */
+    int tp_on;               /* structural: time_periodic present */
+    double tp_period;        /* P_t [s] (> 0) */
+    double tp_mean;          /* [mm/s^2] */
+    double tp_coef[2 * VCNC_MAX_HARMONICS]; /* (C_h, D_h) [mm/s^2], h = 1..tp_harmonics */
+    int tp_harmonics;        /* structural */
+    double drift;            /* output drift rate [mm/s] */
+    /* split form (structural: structured) */
+    int structured;
+    double viscous_rate;     /* plant viscous rate c [1/s] */
+    int delay;               /* control delay [samples] */
+    double saturation;       /* u_max [mm/s^2] (inf: none) */
+    double backlash;         /* play width [mm] (<= 0: none) */
+    double res[4];           /* f [Hz] (<= 0: rigid), zeta, table share r, measured at table (1/0) */
+    int substeps;            /* plant steps per sample (computed at initialisation) */
 } vcnc_parameters;
 
 /* The sampled model (identification.reduced_model.DiscreteModel). */
@@ -55,15 +79,17 @@ typedef struct {
     vcnc_parameters par;
     vcnc_discrete dm;
     int exported;                    /* dm is the one embedded at export */
-    /* state */
+    long long k;                     /* samples since initialisation */
+    /* exact-form state */
     double xi[VCNC_NX];
-    double prev;                     /* model input of the previous sample [mm] */
-    double play;             /* backlash: position of the load side [mm] */
-    double history[VCNC_MAX_DELAY]; /* delay line of x_r, ring buffer */
-    int head;
+    double prev;                     /* r of the previous sample [mm] */
+    /* split-form state */
+    double xm, vm, xt, vt, xb;       /* driven (motor) mass, table, load side of the play [mm, mm/s] */
+    double integ, yprev, rprev, vrprev;
+    double ubuf[VCNC_MAX_DELAY + 1]; /* delay line of u */
     /* inputs */
     double x_ref;            /* commanded position [mm] */
-    double r0;               /* x_ref at initialisation [mm]: the loop runs on x_ref - r0 */
+    double r0;               /* x_ref at initialisation [mm]: the exact form runs on x_ref - r0 */
     double w_ext;            /* external disturbance [mm/s^2] */
 } vcnc_model;
 
@@ -75,7 +101,7 @@ void vcnc_model_realise(const vcnc_parameters *p, double A[9], double B[6], doub
 /* Sample the model at p->sample_time. Returns 0, or -1 with a reason in msg. */
 int vcnc_model_discretize(const vcnc_parameters *p, vcnc_discrete *dm, char *msg, size_t msg_size);
 
-/* The parameters and discretisation embedded at export (vcnc_config.h). */
+/* The parameters and discretisation embedded at export (vcnc_exported.c). */
 extern const vcnc_parameters vcnc_exported_parameters;
 extern const vcnc_discrete vcnc_exported_discrete;
 
@@ -84,10 +110,13 @@ extern const vcnc_discrete vcnc_exported_discrete;
 int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size);
 
 /* Measured position [mm] and tracking error x_ref - position [mm] for the current state and
- * inputs (direct feedthrough: reflects x_ref as soon as it is set). */
+ * inputs (exact form: direct feedthrough, reflects x_ref as soon as it is set). */
 void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_error);
 
 /* Advance one sample with the current inputs held. */
 void vcnc_model_step(vcnc_model *m);
+
+/* 0 while the state is finite (and, split form, bounded as in the Python model). */
+int vcnc_model_diverged(const vcnc_model *m);
 
 #endif
