@@ -1,4 +1,4 @@
-"""Slow measurement drift (thermal growth of the screw, scale offset)."""
+"""Slow drift of the position feedback relative to the table (thermal growth of the screw, scale offset)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,13 @@ __all__ = ["Drift"]
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Drift(Record):
-    """A slowly growing offset between the measured and the true table position.
+    """A slowly growing offset d(t) between the position feedback and the true table position.
+
+    The sensor the loop closes on reads ``table + d(t)``: a drifting scale or encoder, or thermal
+    growth of the screw between the motor encoder and the table (the same on a rigid axis). The
+    loop holds the reading on the command, so the table ends up at ``command - d(t)``: a capture
+    that records the feedback (``measurement = "feedback"``) does not show the drift, one that
+    records an independent table scale (``measurement = "table"``) does, as ``-d(t)``.
 
     Parameters
     ----------

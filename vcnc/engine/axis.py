@@ -50,6 +50,14 @@ class AxisDefinition:
     feedback : str
         "motor": position measured on the motor side (rotary encoder, semi-closed loop);
         "table": measured at the table by a linear scale (closed loop).
+    measurement : str
+        What a capture's ``measured`` records. "feedback" (default): the signal the loop closes on
+        (motor encoder or linear scale, per ``feedback``), with its drift, noise and rounding.
+        "table": an independent linear scale (or laser) reading the true table position, with the
+        axis' ``noise`` (an independent draw) and ``encoder`` resolution but without the feedback's
+        ``drift``; the loop still closes on ``feedback``. With ``feedback = "motor"`` this is a
+        semi-closed loop observed by a scale: nut backlash, lead errors and a thermal drift between
+        encoder and table become visible in ``measured``.
     substeps : int
         Integration steps per sample for the rigid plant [-]; 1 is exact without a Stribeck
         curve (the solution is analytic between friction events), more resolve the Stribeck curve
@@ -63,6 +71,7 @@ class AxisDefinition:
     controller: Controller
     limits: AxisLimits
     feedback: str = "motor"
+    measurement: str = "feedback"
     substeps: int = 1
     friction: drives.Friction | None = None
     backlash: drives.Backlash | None = None
@@ -76,7 +85,7 @@ class AxisDefinition:
     load: drives.ExternalLoad | None = None
     drift: drives.Drift | None = None
 
-    UNITS: ClassVar[dict[str, str]] = {"feedback": "", "substeps": "", "name": ""}
+    UNITS: ClassVar[dict[str, str]] = {"feedback": "", "measurement": "", "substeps": "", "name": ""}
 
     def __post_init__(self) -> None:
         def fail(field: str, message: str) -> MachineError:
@@ -86,6 +95,8 @@ class AxisDefinition:
 
         if self.feedback not in ("motor", "table"):
             raise fail("feedback", f"must be 'motor' or 'table' (got {self.feedback!r})")
+        if self.measurement not in ("feedback", "table"):
+            raise fail("measurement", f"must be 'feedback' or 'table' (got {self.measurement!r})")
         if isinstance(self.substeps, bool) or not isinstance(self.substeps, int) or not 1 <= self.substeps <= 1000:
             raise fail("substeps", f"must be an integer in [1, 1000] (got {self.substeps!r})")
         if not isinstance(self.controller, Controller):
@@ -218,6 +229,7 @@ class AxisDefinition:
                 p[L.LOAD_PERIOD] = self.load.period
                 p[L.LOAD_PHASE] = self.load.phase
         p[L.FEEDBACK_TABLE] = 1.0 if self.feedback == "table" else 0.0
+        p[L.MEASURE_TABLE] = 1.0 if self.measurement == "table" else 0.0
         if self.encoder is not None:
             p[L.ENC_RES] = self.encoder.resolution
         if self.noise is not None:

@@ -5,7 +5,9 @@ vector (layout in :mod:`vcnc.engine.layout`), so a new machine never triggers a 
 compiled code is cached on disk (``cache=True``).
 
 Per sample k (period Ts): the feedback y_k is formed (motor or table position, lead error,
-drift, seeded Gaussian noise, encoder rounding), the control law computes u_k, the computational
+drift, seeded Gaussian noise, encoder rounding) and recorded as the measured position, unless an
+independent table scale is recorded instead (table position, its own noise draw, the same
+rounding, no drift), the control law computes u_k, the computational
 delay, DAC quantisation/range and amplifier limit act on it, and the plant advances over
 [k Ts, (k+1) Ts) with u held (zero-order hold). The rigid plant is integrated exactly
 (exponential solution between friction events, with the instants where the velocity reaches zero
@@ -44,6 +46,7 @@ from vcnc.engine.layout import (
     LOAD_CONST,
     LOAD_PERIOD,
     LOAD_PHASE,
+    MEASURE_TABLE,
     NOISE_STD,
     OUT_CONTROL,
     OUT_FRICTION,
@@ -221,6 +224,7 @@ def simulate_axis(
     en, p1n, p2n = _phi(bn, h)
     backlash = P[BACKLASH]
     fb_table = P[FEEDBACK_TABLE] > 0.5
+    meas_table = P[MEASURE_TABLE] > 0.5
     enc = P[ENC_RES]
     inv_enc = 1.0 / enc if enc > 0.0 else 0.0
     noise = P[NOISE_STD]
@@ -306,8 +310,14 @@ def simulate_axis(
                 y += drift_rate * drift_tau * (-math.expm1(-t / drift_tau))
             else:
                 y += drift_rate * t
+        ym = table
         if noise > 0.0:
-            if have_spare:
+            if meas_table:
+                # two sensors: one pair per sample (feedback, scale)
+                g1, g2 = _normal_pair(rng)
+                y += noise * g1
+                ym += noise * g2
+            elif have_spare:
                 y += noise * spare
                 have_spare = False
             else:
@@ -316,6 +326,9 @@ def simulate_axis(
                 y += noise * g1
         if enc > 0.0:
             y = enc * math.floor(y * inv_enc + 0.5)
+            ym = enc * math.floor(ym * inv_enc + 0.5)
+        if not meas_table:
+            ym = y
         if k == 0:
             y1 = y
             y2 = y
@@ -384,7 +397,7 @@ def simulate_axis(
             u = sat
         elif u < -sat:
             u = -sat
-        out[k, 0] = y
+        out[k, 0] = ym
         out[k, 1] = table
         out[k, 2] = vel_table
         out[k, 3] = u

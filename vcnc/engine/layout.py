@@ -43,6 +43,7 @@ DPLANT_ORDER = 31  # discrete plant order n
 DPLANT_SCALE = 32  # mm per output unit
 SAMPLE_TIME = 33  # [s]
 CTRL_KIND = 34
+MEASURE_TABLE = 35  # 1: the capture records an independent linear scale on the table, 0: the feedback
 N_PLANT = 40
 
 #: discrete plant coefficients b1..bn, a1..an follow the plant block (max order 8)

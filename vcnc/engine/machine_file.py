@@ -8,6 +8,7 @@ Layout::
 
     [axes.x]
     feedback = "motor"            # or "table"
+    measurement = "feedback"      # or "table": captures record a linear scale on the table
     substeps = 1
     [axes.x.limits]               # velocity mm/s, acceleration mm/s^2, jerk mm/s^3, rapid mm/s
     [axes.x.drive]                # type = "ballscrew" | "linear" | "discrete", then its fields
@@ -40,7 +41,7 @@ from vcnc.setpoints import AXIS_NAMES
 __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": ""}
-_AXIS_KEYS = {"feedback", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
+_AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
 
@@ -248,7 +249,7 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
                 if not isinstance(tab[f], dict):
                     raise where.error(f"'axes.{a}.{f}' must be a table", path + (f,))
                 kwargs[f] = _build(drives.NONIDEALITIES[f if f != "load" else "load"], tab[f], path + (f,), where)
-        for key in ("feedback", "substeps"):
+        for key in ("feedback", "measurement", "substeps"):
             if key in tab:
                 kwargs[key] = tab[key]
         try:
