@@ -339,6 +339,12 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
             rows.append([a, k, tp.get(k, math.nan), v])
     report.table(["axis", "parameter", "true (linearised)", "identified"], rows,
                  caption="Parameters of Eq. 3.3 (a1 1/s, a2 1/s^2, a3 1/s^3, b0 -, b1 1/s, b2 1/s^2, d0/d1 mm/s^2)")
+    report.text(
+        "'true (linearised)' is Eq. 3.4/3.5 evaluated from the controller gains as if the loop were "
+        "continuous; the virtual machine runs its controller sampled at 1 ms with a DAC, an encoder and "
+        "friction, so its effective closed loop is faster and less damped than that formula says. The "
+        "identified model describes the machine as it behaves, which is what its contour predictions need."
+    )
     rows = []
     for r in solver_rows:
         rows.append([r["method"], r["time_s"] * 1e3, r["objective"], r["objective_rel_to_best"],
