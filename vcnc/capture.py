@@ -46,7 +46,8 @@ class Capture:
     reference : ndarray, shape (N, n_axes)
         Commanded position [mm].
     measured : ndarray, shape (N, n_axes)
-        Measured (feedback) position [mm].
+        Measured position [mm]: what the capture records (the feedback encoder, or on a
+        simulated axis with ``measurement = "table"`` a linear scale on the table).
     control : ndarray, shape (N, n_axes), optional
         Control signal [V].
     table, velocity, friction : ndarray, shape (N, n_axes), optional
