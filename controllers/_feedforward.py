@@ -5,8 +5,9 @@ from __future__ import annotations
 from typing import Any
 
 import control
+import numpy as np
 
-from controllers._base import VELOCITY_FILTERS, velocity_estimator
+from controllers._base import N_PARAMS, VELOCITY_FILTERS, velocity_estimator
 
 __all__ = ["common_checks", "integrator", "coulomb_after_feedforward", "filter_code", "FF_UNITS"]
 
@@ -39,3 +40,12 @@ def derivative(name: str, sample_time: float) -> control.TransferFunction:
 def coulomb_after_feedforward(c: Any, coulomb: tuple[float, float]) -> tuple[float, float]:
     """Coulomb friction left after the friction feedforward [V] (d+ >= 0, d- <= 0)."""
     return coulomb[0] - c.friction_feedforward_positive, coulomb[1] + c.friction_feedforward_negative
+
+
+def pack_law(c: Any, gains: tuple[float, float, float, float, float]) -> np.ndarray:
+    """Parameter vector of a continuous-law controller for the compiled kernel: the law's five
+    gains, then the friction feedforward (+, -) and the velocity-filter code; zeros after."""
+    p = np.zeros(N_PARAMS)
+    p[:8] = [*gains, c.friction_feedforward_positive, c.friction_feedforward_negative,
+             filter_code(c.velocity_filter)]
+    return p

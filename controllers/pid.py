@@ -7,14 +7,14 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from controllers._base import N_PARAMS, Controller, DiscreteLaw
+from controllers._base import Controller, DiscreteLaw
 from controllers._feedforward import (
     FF_UNITS,
     common_checks,
     coulomb_after_feedforward,
     derivative,
-    filter_code,
     integrator,
+    pack_law,
 )
 
 __all__ = ["PID"]
@@ -76,18 +76,7 @@ class PID(Controller):
         common_checks(self)
 
     def pack(self, drive: Any, sample_time: float) -> np.ndarray:
-        p = np.zeros(N_PARAMS)
-        p[:8] = [
-            self.kp,
-            self.ki,
-            self.kd,
-            self.kv,
-            self.ka,
-            self.friction_feedforward_positive,
-            self.friction_feedforward_negative,
-            filter_code(self.velocity_filter),
-        ]
-        return p
+        return pack_law(self, (self.kp, self.ki, self.kd, self.kv, self.ka))
 
     def reduced_parameters(self, drive: Any, *, coulomb: tuple[float, float] = (0.0, 0.0)) -> dict[str, float]:
         """Eq. (3.5) of the thesis."""

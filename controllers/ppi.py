@@ -7,8 +7,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from controllers._base import N_PARAMS, Controller, DiscreteLaw, velocity_estimator
-from controllers._feedforward import FF_UNITS, common_checks, coulomb_after_feedforward, filter_code, integrator
+from controllers._base import Controller, DiscreteLaw, velocity_estimator
+from controllers._feedforward import FF_UNITS, common_checks, coulomb_after_feedforward, integrator, pack_law
 
 __all__ = ["PPI"]
 
@@ -69,18 +69,7 @@ class PPI(Controller):
         common_checks(self)
 
     def pack(self, drive: Any, sample_time: float) -> np.ndarray:
-        p = np.zeros(N_PARAMS)
-        p[:8] = [
-            self.kp,
-            self.ki,
-            self.kd,
-            self.kv,
-            self.ka,
-            self.friction_feedforward_positive,
-            self.friction_feedforward_negative,
-            filter_code(self.velocity_filter),
-        ]
-        return p
+        return pack_law(self, (self.kp, self.ki, self.kd, self.kv, self.ka))
 
     def reduced_parameters(self, drive: Any, *, coulomb: tuple[float, float] = (0.0, 0.0)) -> dict[str, float]:
         """Eq. (3.4) of the thesis."""

@@ -7,8 +7,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from controllers._base import N_PARAMS, Controller, DiscreteLaw, velocity_estimator
-from controllers._feedforward import FF_UNITS, common_checks, coulomb_after_feedforward, filter_code, integrator
+from controllers._base import Controller, DiscreteLaw, velocity_estimator
+from controllers._feedforward import FF_UNITS, common_checks, coulomb_after_feedforward, integrator, pack_law
 
 __all__ = ["SlidingMode"]
 
@@ -86,18 +86,7 @@ class SlidingMode(Controller):
 
     def pack(self, drive: Any, sample_time: float) -> np.ndarray:
         m, c = self.estimates(drive)
-        p = np.zeros(N_PARAMS)
-        p[:8] = [
-            self.lam,
-            self.ks,
-            self.rho,
-            m,
-            c,
-            self.friction_feedforward_positive,
-            self.friction_feedforward_negative,
-            filter_code(self.velocity_filter),
-        ]
-        return p
+        return pack_law(self, (self.lam, self.ks, self.rho, m, c))
 
     def reduced_parameters(self, drive: Any, *, coulomb: tuple[float, float] = (0.0, 0.0)) -> dict[str, float]:
         g, beta = drive.gain, drive.viscous_rate
