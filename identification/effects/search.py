@@ -19,6 +19,7 @@ Two cheap screens serve them:
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 from collections.abc import Callable
 
@@ -39,6 +40,8 @@ from identification.effects.saturation import Saturation
 from identification.effects.time_periodic import TimePeriodic
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
+
+log = logging.getLogger(__name__)
 
 __all__ = ["Data", "Candidate", "SearchContext", "SEARCHES"]
 
@@ -471,6 +474,12 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
     # period refined with all chosen harmonics (their phase drift over the record pins it down)
     P = 1.0 / _golden(lambda ff: ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, H))[0],
                       f1 * (1 - 0.3 / (dur * f1)), f1 * (1 + 0.3 / (dur * f1)), 30)
+    locked = reference_repeats(d.xr, P, d.T)
+    if locked is not None:
+        # A load with this period cannot be told from anything the reference drives (friction,
+        # a mode, a position-dependent term): the reference itself repeats with m P. Not a finding.
+        log.info("time_periodic: period %.5g s rejected: the reference repeats every %d x %.5g s", P, locked, P)
+        return []
     # a constant part when the axis stands still long enough to separate it from Coulomb friction
     still = np.mean(v == 0.0)
     use_mean = still > 0.05
@@ -482,6 +491,27 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
           "spectral_peak_hz": fpeak, "best_s": P, "standstill_fraction": float(still)}
     c = _ee_candidate(ctx, e, cols_tr, ev)
     return [c] if c else []
+
+
+def reference_repeats(xr: np.ndarray, period: float, sample_time: float, *, multiples: int = 4,
+                      tolerance: float = 0.05) -> int | None:
+    """The smallest m <= ``multiples`` such that the reference repeats after m ``period`` [s]
+    (RMS of x_r(t + m P) - x_r(t) below ``tolerance`` of the reference's RMS variation), or None.
+
+    A time-periodic load is identifiable only when its period is not locked to the excitation.
+    """
+    xr = np.asarray(xr, float)
+    spread = float(np.std(xr))
+    if spread == 0.0:
+        return None
+    for m in range(1, multiples + 1):
+        lag = int(round(m * period / sample_time))
+        if lag <= 0 or lag >= xr.size // 2:
+            break
+        diff = xr[lag:] - xr[:-lag]
+        if float(np.sqrt(np.mean(diff**2))) < tolerance * spread:
+            return m
+    return None
 
 
 def search_drift(ctx: SearchContext) -> list[Candidate]:

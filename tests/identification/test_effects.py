@@ -142,3 +142,18 @@ def test_model_file_round_trip_keeps_the_effects(reference):
 def test_fmu_flags():
     assert all(isinstance(cls.FMU, bool) for cls in EFFECTS.values())
     assert augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS), EXAMPLES[:2]).fmu_representable
+
+
+def test_time_periodic_load_locked_to_the_reference_is_not_identifiable():
+    """A load whose period the reference itself repeats with cannot be told from reference-driven
+    effects (friction, modes): the search refuses such periods."""
+    from identification.effects.search import reference_repeats
+
+    T = 1e-3
+    t = np.arange(20000) * T
+    xr = 5.0 * np.sin(2 * np.pi * t / 2.0)  # repeats every 2 s
+    assert reference_repeats(xr, 2.0, T) == 1
+    assert reference_repeats(xr, 1.0, T) == 2  # a load at 1 s is locked too (2 x 1 s)
+    assert reference_repeats(xr, 0.7, T) is None
+    rng = np.random.default_rng(0)
+    assert reference_repeats(np.cumsum(rng.normal(size=t.size)), 0.5, T) is None
