@@ -4,7 +4,9 @@ Stages (each timed and shown in the report):
 
 1. generate the rapid-identification program (thesis Table 3.2 style, random moves on X and Y);
 2. simulate it on the "true" virtual machine, which hides an effect the identifier is not told
-   about (default: nut backlash larger than the machine's nominal value on X);
+   about (default: nut backlash four times the machine's nominal value on X, with the X loop
+   closed on a linear scale so that the lost motion is inside the loop and in the capture; on
+   the semi-closed-loop Fadal the motor encoder never sees backlash);
 3. identify the reduced model of each axis (exact solver; GA and Lagrange/KKT for comparison,
    with their run times);
 4. diagnose the residual, name the hidden effect, add it, report the error before and after;
