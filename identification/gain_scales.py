@@ -173,21 +173,25 @@ def pdf_gain_scales(
     else:
         b = np.asarray(plant[0], float)
         a = np.asarray(plant[1], float)
-        yk = np.zeros_like(y)
-        for k in range(y.size):
-            acc = 0.0
-            for j in range(1, b.size):
-                if k - j >= 0:
-                    acc += b[j] * u[k - j]
-            for j in range(1, a.size):
-                if k - j >= 0:
-                    acc -= a[j] * y[k - j]
-            yk[k] = acc / a[0]
+        yk = np.array([_plant_output(b, a, u, y, k) for k in range(y.size)])
     k0 = 2
     phi = np.column_stack([e[k0:], u[k0 - 1 : -1], yk[k0:] - y[k0 - 1 : -1]])
     return identify_gain_scales(
         phi, u[k0:], (ki * sample_time, 1.0, -kf), known={1: 1.0}, names=("k1", "k_u", "k2")
     )
+
+
+def _plant_output(b: np.ndarray, a: np.ndarray, u: np.ndarray, y: np.ndarray, k: int) -> float:
+    """y(k) of P(z) = (b0 + b1 z^-1 + ...)/(a0 + a1 z^-1 + ...) from past u and y (b0 unused:
+    the plant has at least one sample of delay)."""
+    acc = 0.0
+    for j in range(1, b.size):
+        if k - j >= 0:
+            acc += b[j] * u[k - j]
+    for j in range(1, a.size):
+        if k - j >= 0:
+            acc -= a[j] * y[k - j]
+    return acc / a[0]
 
 
 def simulate_pdf_loop(
@@ -210,14 +214,7 @@ def simulate_pdf_loop(
     n = r.size
     y, u, e = np.zeros(n), np.zeros(n), np.zeros(n)
     for k in range(n):
-        acc = 0.0
-        for j in range(1, b.size):
-            if k - j >= 0:
-                acc += b[j] * u[k - j]
-        for j in range(1, a.size):
-            if k - j >= 0:
-                acc -= a[j] * y[k - j]
-        y[k] = acc / a[0]
+        y[k] = _plant_output(b, a, u, y, k)
         e[k] = r[k] - y[k]
         du = ki * sample_time * k1 * e[k] - kf * k2 * (y[k] - (y[k - 1] if k else 0.0))
         u[k] = (u[k - 1] if k else 0.0) + du
