@@ -53,8 +53,9 @@ class Capture:
     table, velocity, friction : ndarray, shape (N, n_axes), optional
         Simulation only: true table position [mm], true velocity [mm/s], friction [V equivalent].
     aux : dict of str to ndarray
-        Further signals of the source that are not part of the model (e.g. EMPS ``pulses_N``);
-        identification never reads them.
+        Further signals of the source that are not part of the model (e.g. EMPS ``pulses_N``; a
+        simulation's ``measured_true``, the true position of the measured point without sensor
+        noise, quantisation and drift, shape (N, n_axes)); identification never reads them.
     meta : dict
         ``# key: value`` lines of the file, provenance.
     source : str, optional

@@ -82,7 +82,9 @@ class ContourReport:
     setpoints : Setpoints
         The commanded motion both runs received.
     true : ContourError
-        Contour error of the true machine.
+        Contour error of the true machine: for a simulated machine, of the true position of each
+        axis' measured point (``Capture.aux["measured_true"]``: what its sensor reads, without the
+        sensor's noise, quantisation and drift); for a real capture, of its measured positions.
     predicted : dict of str to ContourError
         ``"identified"`` (the reduced models) and, when the models carry effects they simulate,
         ``"augmented"``.
@@ -90,6 +92,9 @@ class ContourReport:
         Per label, per axis: a short description of the model used.
     notes : list of str
         What the numbers rest on (e.g. a copied axis, effects that could not be simulated).
+    true_as_measured : ContourError or None
+        Simulated truth only: the contour error of the true machine as its sensors read it
+        (``Capture.measured``: noise, encoder steps and drift included), shown beside ``true``.
     """
 
     toolpath: str
@@ -99,6 +104,7 @@ class ContourReport:
     predicted: dict[str, ContourError]
     models: dict = dataclasses.field(default_factory=dict)
     notes: list = dataclasses.field(default_factory=list)
+    true_as_measured: ContourError | None = None
 
     @property
     def main_label(self) -> str:
@@ -108,6 +114,8 @@ class ContourReport:
     def metrics(self) -> dict[str, dict[str, Any]]:
         """Metrics of every run (see :meth:`ContourError.metrics`), by label."""
         out = {"true": self.true.metrics()}
+        if self.true_as_measured is not None:
+            out["true_as_measured"] = self.true_as_measured.metrics()
         out.update({k: v.metrics() for k, v in self.predicted.items()})
         return out
 
@@ -115,6 +123,14 @@ class ContourReport:
         """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
         label = label or self.main_label
         t, p = self.true.metrics(), self.predicted[label].metrics()
+        return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+
+    def prediction_error_as_measured_pct(self, label: str | None = None) -> dict[str, float] | None:
+        """As :meth:`prediction_error_pct`, against :attr:`true_as_measured` (None without it)."""
+        if self.true_as_measured is None:
+            return None
+        label = label or self.main_label
+        t, p = self.true_as_measured.metrics(), self.predicted[label].metrics()
         return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
 
     def to_dict(self) -> dict[str, Any]:
@@ -142,6 +158,9 @@ class ContourReport:
         if main == "augmented":
             d["before_augmentation"] = {**block("identified"),
                                         "prediction_error_pct": self.prediction_error_pct("identified")}
+        if self.true_as_measured is not None:
+            d["true_as_measured"] = {**block("true_as_measured"),
+                                     "prediction_error_pct": self.prediction_error_as_measured_pct(main)}
         d["truth"] = self.truth
         d["models"] = self.models
         d["samples"] = len(self.setpoints)
@@ -223,11 +242,16 @@ class ContourReport:
         rep.heading("Contour error: true machine and prediction")
         m = self.metrics()
         rows = []
+        nan = {"max": float("nan"), "rms": float("nan")}
         for label, _ in self._runs():
             x = m[label]
-            pe = self.prediction_error_pct(label) if label != "true" else {"max": float("nan"), "rms": float("nan")}
+            pe = self.prediction_error_pct(label) if label != "true" else nan
             rows.append([label, x["max_um"], x["rms_um"], x["corner_max_um"], x["quadrant_max_um"], pe["max"],
                          pe["rms"]])
+            if label == "true" and "true_as_measured" in m:
+                x = m["true_as_measured"]
+                rows.append(["true, as its sensors read it", x["max_um"], x["rms_um"], x["corner_max_um"],
+                             x["quadrant_max_um"], nan["max"], nan["rms"]])
         rep.table(["run", "max [um]", "RMS [um]", "corners max [um]", "quadrants max [um]", "max error [%]",
                    "RMS error [%]"], rows,
                   caption="Prediction error = 100 (predicted - true) / true. Feed moves only (rapids excluded).")
@@ -506,6 +530,7 @@ def compare(
                                       sample_time=capture.sample_time, axes=axes)
         sp = dataclasses.replace(sp, path=path)
         true_measured = capture.measured[:, [capture.axis_index(a) for a in axes]]
+        sensor = None
         truth_name = capture.source or "capture"
         sample_time = capture.sample_time
     else:
@@ -521,7 +546,9 @@ def compare(
         sp = _with_settle(sp, settle_s)
         axes = tuple(sp.axes)
         cap = machine.simulate(sp, seed=seed)
-        true_measured = cap.measured
+        # the truth is where the axes are; the sensor's reading of it is reported beside it
+        true_measured = cap.aux.get("measured_true", cap.measured)
+        sensor = cap.measured if "measured_true" in cap.aux else None
         truth_name = machine.name
         sample_time = machine.sample_time
         path = sp.path
@@ -543,6 +570,7 @@ def compare(
     include = None if program is None else feed_segments(path, program)
     kw = {"reference": sp.position, "t": sp.t, "sample_time": sample_time, "include_segments": include}
     true_ce = contour_error(path, true_measured, axes, **kw)
+    true_sensor = None if sensor is None else contour_error(path, sensor, axes, **kw)
     predicted: dict[str, ContourError] = {}
     descr: dict[str, dict[str, str]] = {}
     for label, mods in (("identified", identified), ("augmented", augmented)):
@@ -557,4 +585,4 @@ def compare(
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=tp_name, truth=truth_name, setpoints=sp, true=true_ce, predicted=predicted,
-                         models=descr, notes=notes)
+                         models=descr, notes=notes, true_as_measured=true_sensor)

@@ -33,6 +33,7 @@ from interpolators.limits import AxisLimits
 from vcnc._callable import make_callable
 from vcnc.capture import Capture
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
+from vcnc.engine.layout import N_OUT
 from vcnc.engine.machine_file import parse_machine_text
 from vcnc.errors import InputError, MachineError, SimulationError
 from vcnc.setpoints import AXIS_NAMES, Setpoints
@@ -341,9 +342,11 @@ class Machine:
         Capture
             ``reference``, ``measured`` [mm] (the feedback signal, or a table scale for an axis with
             ``measurement = "table"``), and when every axis is compiled also ``table`` (true
-            table position [mm]), ``velocity`` [mm/s], ``control`` [V] and ``friction`` (dry friction
-            as control signal [V]). ``path`` is the setpoints' path; ``meta`` records the machine
-            name, seed and sample time. Each axis starts at rest at its first commanded position.
+            table position [mm]), ``velocity`` [mm/s], ``control`` [V], ``friction`` (dry friction
+            as control signal [V]) and ``aux["measured_true"]``: the true position of the measured
+            point [mm], i.e. ``measured`` without sensor noise, encoder quantisation and drift.
+            ``path`` is the setpoints' path; ``meta`` records the machine name, seed and sample time.
+            Each axis starts at rest at its first commanded position.
         """
         from vcnc.engine.kernel import simulate_axis
 
@@ -370,6 +373,7 @@ class Machine:
         velocity = np.empty((n, k))
         control = np.empty((n, k))
         friction = np.empty((n, k))
+        position = np.empty((n, k))
         all_compiled = True
         jobs = []
         for i, a in enumerate(setpoints.axes):
@@ -394,7 +398,7 @@ class Machine:
                 c,
                 float(ref[0]) if n else 0.0,
                 axis_seed,
-                np.empty((n, 5)),
+                np.empty((n, N_OUT)),
             )
             jobs.append((i, a, args))
         if n:
@@ -417,6 +421,7 @@ class Machine:
             velocity[:, i] = out[:, 2]
             control[:, i] = out[:, 3]
             friction[:, i] = out[:, 4]
+            position[:, i] = out[:, 5]
         meta = {"machine": self.name, "seed": seed_v, "sample_time": self.sample_time}
         return Capture(
             t=np.asarray(setpoints.t, dtype=float),
@@ -427,6 +432,7 @@ class Machine:
             table=table if all_compiled else None,
             velocity=velocity if all_compiled else None,
             friction=friction if all_compiled else None,
+            aux={"measured_true": position} if all_compiled else {},
             meta=meta,
             path=setpoints.path,
         )
@@ -625,7 +631,7 @@ def reference_control(
     pos = np.ascontiguousarray(sp.position[:, i], dtype=float)
     p, c = ax.pack(ts)
     ref = np.ascontiguousarray(ax.controller.prefilter(pos, ax.drive, ts), dtype=float)
-    out = np.empty((len(pos), 5))
+    out = np.empty((len(pos), N_OUT))
     status = simulate_axis(
         ref,
         np.ascontiguousarray(sp.velocity[:, i], dtype=float),

@@ -94,6 +94,16 @@ def test_capture_contract() -> None:
     for name in ("measured", "table", "velocity", "control", "friction"):
         assert getattr(cap, name).shape == (500, 1)
     assert np.max(np.abs(cap.control)) <= 7.5  # 15 A / 2 A/V
+    # the true position of the measured point: the reading without noise (0.1 um) and 0.25 um steps
+    true = cap.aux["measured_true"]
+    assert true.shape == (500, 1)
+    err = cap.measured - true
+    assert 0.0 < np.std(err) < 5e-4 and np.max(np.abs(err)) < 2e-3
+    clean = BASE.with_axis_options("x", noise=None, encoder=None).simulate(sp)
+    np.testing.assert_array_equal(clean.measured, clean.aux["measured_true"])
+    # a table scale records the table: its true position is the table's
+    scale = BASE.with_axis_options("x", measurement="table", backlash=0.01).simulate(sp)
+    np.testing.assert_array_equal(scale.aux["measured_true"], scale.table)
 
 
 def test_unstable_loop_reports_divergence() -> None:

@@ -51,6 +51,7 @@ from vcnc.engine.layout import (
     OUT_CONTROL,
     OUT_FRICTION,
     OUT_MEASURED,
+    OUT_POSITION,
     OUT_TABLE,
     OUT_VELOCITY,
     PLANT_KIND,
@@ -193,12 +194,13 @@ def simulate_axis(
     seed: int,
     out: np.ndarray,
 ) -> int:
-    """Simulate one axis; fills ``out`` (N, 5) and returns -1, or the sample index of divergence.
+    """Simulate one axis; fills ``out`` (N, 6) and returns -1, or the sample index of divergence.
 
     ``ref``, ``vel``, ``acc``: reference fed to the law [mm] (already pre-filtered), commanded
     velocity [mm/s] and acceleration [mm/s^2]. ``P``: plant/option vector, ``C``: law vector.
     ``x0``: initial position [mm] (at rest). Output columns: measured, table [mm], velocity [mm/s],
-    applied control [V], dry friction [V].
+    applied control [V], dry friction [V], true position of the measured point [mm] (the measured
+    signal without sensor noise, encoder quantisation and drift).
     """
     rng = np.empty(1, dtype=np.uint64)
     rng[0] = np.uint64(seed) * _GOLDEN
@@ -401,6 +403,7 @@ def simulate_axis(
         out[k, 1] = table
         out[k, 2] = vel_table
         out[k, 3] = u
+        out[k, 5] = table if (fb_table or meas_table) else xm
         # ---------------------------------------------------------------- plant
         fric_out = 0.0
         if plant == 0:
@@ -477,4 +480,4 @@ def simulate_axis(
 
 
 # keep the output column names importable next to the kernel
-OUTPUT_COLUMNS = (OUT_MEASURED, OUT_TABLE, OUT_VELOCITY, OUT_CONTROL, OUT_FRICTION)
+OUTPUT_COLUMNS = (OUT_MEASURED, OUT_TABLE, OUT_VELOCITY, OUT_CONTROL, OUT_FRICTION, OUT_POSITION)

@@ -57,4 +57,5 @@ OUT_TABLE = 1
 OUT_VELOCITY = 2
 OUT_CONTROL = 3
 OUT_FRICTION = 4
-N_OUT = 5
+OUT_POSITION = 5  # true position of the measured point [mm]: no sensor noise, quantisation, drift
+N_OUT = 6
