@@ -116,6 +116,55 @@ class ReducedProblem:
         """f [mm^2] at p, omega_n [rad/s], zeta [-] (vectorised)."""
         return self.objective_theta1(theta1(p, omega_n, zeta))
 
+    def valley(self, v: np.ndarray, *, tolerance: float = 0.01, points: tuple[int, int, int] = (96, 96, 46)) -> dict:
+        """How well the data pin the poles down: the pole ranges where f stays within
+        ``tolerance`` (relative) of its value at ``v`` = (p, omega_n, zeta) [rad/s, rad/s, -].
+
+        f is evaluated on a grid over the search box (``points`` in p and omega_n, log-spaced,
+        and zeta) and each variable's range is that of the grid points with f <= (1 + tolerance)
+        f(v), widened to include v. Where feedforward cancels the closed-loop poles (thesis
+        Table 3.5, Table 4.2) the valley spans much of the box; a well-excited feedback loop
+        pins it to a grid step. ``identifiable`` says omega_n stays within 25 % and zeta within
+        0.15 of the solution.
+
+        Returns
+        -------
+        dict
+            ``tolerance``, ``p_hz``, ``omega_n_hz``, ``zeta`` (each ``[lo, hi]``), ``identifiable``.
+        """
+        box = self.bounds.rad()
+        ps = np.geomspace(box[0][0], box[0][1], points[0])
+        ws = np.geomspace(box[1][0], box[1][1], points[1])
+        zs = np.linspace(box[2][0], box[2][1], points[2])
+        f0 = float(self.objective_theta1(theta1(*v)))
+        limit = (1.0 + tolerance) * f0
+        nfev = self.nfev
+        ok_p = np.zeros(ps.size, bool)
+        ok_w = np.zeros(ws.size, bool)
+        ok_z = np.zeros(zs.size, bool)
+        W, Z = np.meshgrid(ws, zs, indexing="ij")
+        for i, p in enumerate(ps):
+            ok = self.objective(p, W, Z) <= limit
+            if ok.any():
+                ok_p[i] = True
+                ok_w |= ok.any(axis=1)
+                ok_z |= ok.any(axis=0)
+        self.nfev = nfev  # a diagnostic, not part of the solve
+
+        def span(grid, mask, x):
+            vals = np.append(grid[mask], x)
+            return [float(vals.min()), float(vals.max())]
+
+        pr, wr, zr = span(ps, ok_p, v[0]), span(ws, ok_w, v[1]), span(zs, ok_z, v[2])
+        return {
+            "tolerance": tolerance,
+            "p_hz": [pr[0] / TWO_PI, pr[1] / TWO_PI],
+            "omega_n_hz": [wr[0] / TWO_PI, wr[1] / TWO_PI],
+            "zeta": zr,
+            "identifiable": bool(wr[0] >= v[1] / 1.25 and wr[1] <= 1.25 * v[1] and zr[0] >= v[2] - 0.15
+                                 and zr[1] <= v[2] + 0.15),
+        }
+
     @property
     def unconstrained_objective(self) -> float:
         """Objective of the unconstrained least-squares solution (Case 1 of Table 3.1) [mm^2]."""

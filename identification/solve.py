@@ -80,7 +80,9 @@ class SolveResult:
     time_s : float
         Wall time of the solve [s].
     details : dict
-        Method-specific information (e.g. GA history, KKT case table).
+        Method-specific information (e.g. GA history, KKT case table), and ``identifiability``:
+        the pole ranges where the objective stays within 1 % of the solution's
+        (:meth:`~identification.problem.ReducedProblem.valley`; not part of ``time_s``).
     """
 
     parameters: dict
@@ -123,6 +125,7 @@ class SolveResult:
             "case": self.case,
             "time_s": self.time_s,
             "extra": [float(v) for v in self.extra],
+            "identifiability": self.details.get("identifiability"),
         }
 
     def to_json(self, path) -> None:
@@ -233,6 +236,7 @@ def solve_statistics(
         raise IdentificationError("the solution has non-finite parameters (degenerate statistics)")
     details = {k: val for k, val in out.items() if k not in ("v", "objective", "nfev", "nit", "message")}
     details["kkt"] = kkt
+    details["identifiability"] = problem.valley(v)
     return SolveResult(
         parameters=params,
         poles={"omega_n_hz": v[1] / TWO_PI, "zeta": float(v[2]), "p_hz": v[0] / TWO_PI},

@@ -17,7 +17,7 @@ REPO = Path(__file__).resolve().parents[1]
 def emps_dir() -> Path:
     """Folder of the EMPS data (``VCNC_EMPS_DIR``); skips, saying so, where it is absent."""
     d = os.environ.get("VCNC_EMPS_DIR") or str(REPO.parent / "shared" / "data" / "emps")
-    p = Path(d)
+    p = Path(d).resolve()  # absolute: examples run in other working directories
     if not (p / "DATA_EMPS.mat").is_file():
         pytest.skip(f"EMPS data not found in {p} (set VCNC_EMPS_DIR to the folder holding DATA_EMPS.mat)")
     return p

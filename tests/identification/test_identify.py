@@ -76,6 +76,29 @@ def test_cli_identify_writes_model_and_report(tmp_path, small_capture, capsys):
     assert "poles: omega_n" in capsys.readouterr().out
 
 
+def test_cli_says_when_the_poles_are_weakly_identifiable(tmp_path, capsys):
+    """ZPETC cancels the closed loop (Table 4.2): the command line says the poles are weakly
+    identifiable, with the valley of the objective; a plain feedback loop gets no such line."""
+    import interpolators
+    from identification.synthetic import table_3_2_program
+    from vcnc.machine import load_machine
+
+    m = load_machine("ballscrew-zpetc")
+    prog = interpolators.parse_program(table_3_2_program(moves=60))
+    cap = m.simulate(interpolators.interpolate(prog, limits=m.limits, sample_time=m.sample_time), seed=0)
+    cap.to_csv(tmp_path / "zpetc.csv")
+    assert main(["identify", str(tmp_path / "zpetc.csv"), "--no-diagnose"]) == 0
+    assert "poles weakly identifiable" in capsys.readouterr().out
+    assert main(["identify", str(tmp_path / "zpetc.csv"), "--no-diagnose", "--json", str(tmp_path / "m.json")]) == 0
+    valley = json.loads((tmp_path / "m.json").read_text())["fit"]["solver"]["identifiability"]
+    assert valley["identifiable"] is False and valley["tolerance"] == 0.01
+    src = tmp_path / "pid.csv"
+    synthetic_capture(FADAL_PID_X, random_moves_reference(moves=40, seed=2), noise=2e-4, seed=1).to_csv(src)
+    capsys.readouterr()
+    assert main(["identify", str(src), "--no-diagnose"]) == 0
+    assert "weakly" not in capsys.readouterr().out
+
+
 @pytest.mark.parametrize(
     ("text", "match"),
     [

@@ -67,26 +67,47 @@ def test_validation_tracking_error_within_5_percent(name, pid):
     assert _tracking_mismatch(m, model) < 0.05
 
 
+def _rms_level_error(machine, model):
+    """|RMS(predicted tracking error) / RMS(true tracking error) - 1| on the Sec. 4.3.1 move."""
+    vc = validation_capture(machine)
+    xr = vc.reference[:, 0]
+    e_true = xr - vc.measured[:, 0]
+    e_pred = xr - model.simulate(xr, sample_time=vc.sample_time)
+    return abs(float(np.sqrt(np.mean(e_pred**2)) / np.sqrt(np.mean(e_true**2))) - 1.0)
+
+
 def test_smc_pole_zero_cancellation():
     """Table 3.5: feedforward cancels poles and zeros (G_track ~ 1); the tracking error of the validation move
-    is ~1.4 um, at the level of encoder steps and DAC noise. The identified model is stable, flat in tracking
-    (|G_track| within 5% of 1 up to 30 Hz) and predicts that error no worse than the true reduced model does."""
+    is only ~1.4 um RMS. The identified model is stable, flat in tracking (|G_track| within 5% of 1 up to
+    30 Hz), predicts the RMS of that error within 5 % (measured: 1.1 %) and its course no worse than the true
+    reduced model does (sample by sample 22 %: 0.15 um of the 0.32 um difference is the sensor's noise and
+    encoder steps, the rest the discrete loop that the continuous reduced model only approximates)."""
     m, _, model = _identify("fadal-smc")
     true = ReducedAxisModel(parameters=m.axis("x").reduced_parameters(), sample_time=m.sample_time)
     f = np.linspace(0.1, 30.0, 50)
     assert np.all(np.abs(np.abs(model.G_track(2j * np.pi * f)) - 1) < 0.05)
+    assert _rms_level_error(m, model) < 0.05
     assert _tracking_mismatch(m, model) <= _tracking_mismatch(m, true) + 0.05
 
 
-def test_ballscrew_zpetc_table_4_2_situation():
+def test_ballscrew_zpetc_table_4_2_situation(pid):
     """Table 4.2: ZPETC cancels the closed-loop dynamics, the poles are not identifiable. The paper's
-    solution sat near zeta_min; ours is stable and inside the bounds and still predicts the ~5 um RMS
-    tracking error of the validation move within 25%."""
+    solution sat near zeta_min; ours is stable and inside the bounds, in a valley of the objective that
+    spans a factor 2 in omega_n (within 1 % of the minimum: about 20-42 Hz, the true 30 Hz inside), and
+    still predicts the ~5 um RMS tracking error of the validation move within 25% (1.25 um encoder
+    steps alone account for 7 %). The same measure pins the PID loop's poles to a grid step."""
     m, _, model = _identify("ballscrew-zpetc")
     b = model.bounds
     assert model.is_stable()
     assert b["zeta"][0] <= model.poles["zeta"] <= b["zeta"][1]
     assert _tracking_mismatch(m, model) < 0.25
+    valley = model.fit["solver"]["identifiability"]
+    assert not valley["identifiable"]
+    assert valley["omega_n_hz"][1] / valley["omega_n_hz"][0] > 1.5
+    assert valley["omega_n_hz"][0] <= 30.0 <= valley["omega_n_hz"][1]
+    pid_valley = pid[2].fit["solver"]["identifiability"]
+    assert pid_valley["identifiable"]
+    assert pid_valley["omega_n_hz"][1] / pid_valley["omega_n_hz"][0] < 1.1
 
 
 def test_chevalier_pdf_scale_gains_within_1_percent():

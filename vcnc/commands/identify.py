@@ -59,6 +59,16 @@ def _report(capture, model, axis: str):
          ["p [Hz]", model.poles.get("p_hz")]],
         caption=f"method {model.method}; bounds {model.bounds}",
     )
+    valley = model.fit.get("solver", {}).get("identifiability")
+    if valley:
+        rep.table(
+            ["pole variable", "range with the equation error within " + f"{valley['tolerance']:.0%} of its minimum"],
+            [["omega_n [Hz]", f"{valley['omega_n_hz'][0]:.4g} - {valley['omega_n_hz'][1]:.4g}"],
+             ["zeta [-]", f"{valley['zeta'][0]:.3g} - {valley['zeta'][1]:.3g}"],
+             ["p [Hz]", f"{valley['p_hz'][0]:.4g} - {valley['p_hz'][1]:.4g}"]],
+            caption="identifiable" if valley["identifiable"] else
+            "weakly identifiable poles: feedforward cancels the closed loop (cf. thesis Tables 3.5, 4.2)",
+        )
     rep.table(
         ["", "frequency [Hz]", "damping [-]"],
         [[f"pole {j + 1}", r["frequency_hz"], r["damping"]] for j, r in enumerate(model.pole_table())]
@@ -151,6 +161,15 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
     out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} um, max {fit['max_um']:.4g} um\n")
+    valley = fit.get("solver", {}).get("identifiability")
+    if valley and not valley["identifiable"]:
+        out.write(
+            f"poles weakly identifiable: the equation error stays within {valley['tolerance']:.0%} of its minimum "
+            f"for omega_n {valley['omega_n_hz'][0]:.3g}-{valley['omega_n_hz'][1]:.3g} Hz, zeta "
+            f"{valley['zeta'][0]:.2f}-{valley['zeta'][1]:.2f}, p {valley['p_hz'][0]:.3g}-{valley['p_hz'][1]:.3g} Hz "
+            "(feedforward cancelling the closed loop, cf. thesis Tables 3.5 and 4.2); the model still predicts "
+            "the capture as reported above\n"
+        )
     if model.validation:
         from identification.diagnosis import format_before_after
 

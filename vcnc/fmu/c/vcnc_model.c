@@ -245,6 +245,76 @@ static void rigid(double *x, double *v, double acc, double c, double h)
     *v = v1;
 }
 
+/* identification.augmented._kinetic: friction while moving with velocity v != 0. */
+static double kinetic(const vcnc_parameters *p, double v)
+{
+    double f = v > 0.0 ? p->d0 : p->d1;
+    if (p->stribeck[0] > 0.0) {
+        double r = v / p->stribeck[0];
+        f += (v > 0.0 ? p->stribeck[1] : p->stribeck[2]) * exp(-r * r);
+    }
+    if (p->asym != 0.0) f += p->asym * fabs(v);
+    return f;
+}
+
+/* The position-periodic load at x (w_terms at rest without the friction terms). */
+static double pp_load(const vcnc_parameters *p, double x)
+{
+    double w = 0.0;
+    int h;
+    if (p->pp_period > 0.0) {
+        double th = 2.0 * VCNC_PI * x / p->pp_period;
+        for (h = 0; h < p->pp_harmonics; h++) {
+            double a = (double)(h + 1) * th;
+            w += p->pp_coef[2 * h] * sin(a) + p->pp_coef[2 * h + 1] * cos(a);
+        }
+    }
+    return w;
+}
+
+/* identification.augmented._friction_step: step h of mass x'' = force - F - c x' with friction F
+ * that sticks (Karnopp) within the static levels [lo, hi]; lo > hi switches on sign(v). */
+static void friction_step(const vcnc_parameters *p, double *x, double *v, double force, double mass, double c,
+                          double h, double lo, double hi)
+{
+    int stick = lo <= hi;
+    double f, dirn;
+    if (*v == 0.0) {
+        if (!stick) {
+            f = 0.0;
+            dirn = 0.0;
+        } else if (force > hi) {
+            f = hi;
+            dirn = 1.0;
+        } else if (force < lo) {
+            f = lo;
+            dirn = -1.0;
+        } else {
+            *v = 0.0;
+            return;
+        }
+    } else {
+        f = kinetic(p, *v);
+        dirn = *v > 0.0 ? 1.0 : -1.0;
+    }
+    {
+        double a = (force - f) / mass, cm = c / mass, x0 = *x, v0 = *v;
+        rigid(x, v, a, cm, h);
+        if (stick && *v * dirn < 0.0 && v0 != 0.0) {
+            /* the motion stops inside the step: stick there, or break away for the rest */
+            double ts = -v0 / (a - cm * v0);
+            if (ts < 0.0) ts = 0.0;
+            if (ts > h) ts = h;
+            *x = x0 + v0 * ts + 0.5 * (a - cm * v0) * ts * ts;
+            *v = 0.0;
+            if (lo <= force && force <= hi) return;
+            rigid(x, v, (force - (force > hi ? hi : lo)) / mass, cm, h - ts);
+            return;
+        }
+        if (stick && *v * dirn < 0.0) *v = 0.0;
+    }
+}
+
 static void split_step(vcnc_model *m)
 {
     const vcnc_parameters *p = &m->par;
@@ -252,7 +322,7 @@ static void split_step(vcnc_model *m)
     const int steps = p->substeps, two_mass = p->res[0] > 0.0, meas_table = p->res[3] > 0.5;
     const double h = T / steps, kd = a1 - cvis, ff = p->b2 - a2, rr = p->res[2], bl = p->backlash;
     const double xr = m->x_ref;
-    double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, vf, xf, w;
+    double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, lo, hi, we;
     int i;
     if (two_mass) {
         double om = 2.0 * VCNC_PI * p->res[0];
@@ -279,20 +349,19 @@ static void split_step(vcnc_model *m)
     } else if (u < -p->saturation) {
         u = -p->saturation;
     }
-    /* plant over the sample (u, w held) */
-    vf = two_mass ? m->vt : m->vm;
-    xf = two_mass ? m->xt : m->xm;
-    w = vf > 0.0 ? p->d0 : (vf < 0.0 ? p->d1 : 0.0);
-    w += wext(m) + w_terms(p, vf, xf);
+    /* plant over the sample (u held); friction sticks within the static levels */
+    lo = p->d1 + (p->stribeck[0] > 0.0 ? p->stribeck[2] : 0.0);
+    hi = p->d0 + (p->stribeck[0] > 0.0 ? p->stribeck[1] : 0.0);
+    we = wext(m);
     for (i = 0; i < steps; i++) {
+        double load = we + pp_load(p, two_mass ? m->xt : m->xm);
         if (two_mass) {
             double fs = kspr * (m->xm - m->xt) + cdmp * (m->vm - m->vt);
             m->vm += h * (u - fs) / (1.0 - rr);
             m->xm += h * m->vm;
-            m->vt += h * ((fs - w - cvis * m->vt) / rr);
-            m->xt += h * m->vt;
+            friction_step(p, &m->xt, &m->vt, fs - load, rr, cvis, h, lo, hi);
         } else {
-            rigid(&m->xm, &m->vm, u - w, cvis, h);
+            friction_step(p, &m->xm, &m->vm, u - load, 1.0, cvis, h, lo, hi);
         }
         if (bl > 0.0) {
             double mech = (two_mass && meas_table) ? m->xt : m->xm, half = 0.5 * bl;
@@ -316,8 +385,8 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
     m->k = 0;
     m->r0 = u;
     if (p->structured) {
-        /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
-        p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
+        /* augmented.simulate_augmented: SUBSTEPS plant steps per sample, more for a fast mode */
+        p->substeps = VCNC_SUBSTEPS;
         if (p->res[0] > 0.0) {
             double need = ceil(40.0 * p->res[0] * p->sample_time);
             if (!(need < 1e7)) return fail(msg, msg_size, "resonance_frequency * sample_time is too large");
