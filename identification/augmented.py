@@ -134,17 +134,19 @@ class SimSpec:
 
 
 @numba.njit(cache=True, nogil=True)
-def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
-    """Exact step of x'' = acc - c x' over h (acc held)."""
+def _rigid_coef(c, h):  # pragma: no cover - compiled
+    """(e, p1, p2) of the exact step of x'' = acc - c x' over h: v' = e v + p1 acc, x' = x + p1 v + p2 acc."""
     ch = c * h
     if ch < 1e-6:
-        e = 1.0 - ch
-        p1 = h * (1.0 - 0.5 * ch)
-        p2 = h * h * (0.5 - ch / 6.0)
-    else:
-        e = math.exp(-ch)
-        p1 = -math.expm1(-ch) / c
-        p2 = (h - p1) / c
+        return 1.0 - ch, h * (1.0 - 0.5 * ch), h * h * (0.5 - ch / 6.0)
+    p1 = -math.expm1(-ch) / c
+    return math.exp(-ch), p1, (h - p1) / c
+
+
+@numba.njit(cache=True, nogil=True)
+def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
+    """Exact step of x'' = acc - c x' over h (acc held)."""
+    e, p1, p2 = _rigid_coef(c, h)
     return x + v * p1 + acc * p2, v * e + acc * p1
 
 
@@ -162,15 +164,17 @@ def _kinetic(v, d0, d1, st, asym):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True)
-def _friction_step(x, v, force, mass, c, h, d0, d1, st, asym, lo, hi):  # pragma: no cover - compiled
+def _friction_step(x, v, force, mass, c, h, coef, d0, d1, st, asym, lo, hi):  # pragma: no cover - compiled
     """Step h of ``mass x'' = force - F - c x'`` with friction F that sticks (Karnopp).
 
     At rest the mass stays at rest while ``lo <= force <= hi`` (the static levels, Coulomb plus
     Stribeck excess); it breaks away against the static level; moving, F is the kinetic friction
-    of its direction and a step that would reverse the velocity ends at rest. ``lo > hi`` (an
-    identified friction without a stiction band) switches on sign(v) instead, 0 at rest.
+    of its direction and a step that would reverse the velocity ends at rest. ``lo >= hi`` (no
+    friction, or an identified friction without a stiction band) switches on sign(v) instead, 0
+    at rest.
+    ``coef`` is :func:`_rigid_coef` of (c / mass, h), computed once per run.
     """
-    stick = lo <= hi
+    stick = lo < hi
     if v == 0.0:
         if not stick:
             f = 0.0
@@ -188,7 +192,8 @@ def _friction_step(x, v, force, mass, c, h, d0, d1, st, asym, lo, hi):  # pragma
         dirn = 1.0 if v > 0.0 else -1.0
     a = (force - f) / mass
     cm = c / mass
-    x1, v1 = _rigid(x, v, a, cm, h)
+    x1 = x + v * coef[1] + a * coef[2]
+    v1 = v * coef[0] + a * coef[1]
     if stick and v1 * dirn < 0.0 and v != 0.0:
         # the motion stops inside the step (at ts, linear estimate): stick there, or break away
         # against the static level for the rest of the step
@@ -223,6 +228,7 @@ def _run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, p
     lo = d1 + (st[2] if st[0] > 0.0 else 0.0)
     hi = d0 + (st[1] if st[0] > 0.0 else 0.0)
     no_st = np.zeros(3)
+    coef = _rigid_coef(cvis / rr, h) if two_mass else _rigid_coef(cvis, h)
     xm = xr[0]
     vm = 0.0
     xt = xr[0]
@@ -271,9 +277,9 @@ def _run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, p
                 fs = kspr * (xm - xt) + cdmp * (vm - vt)
                 vm += h * (u - fs) / (1.0 - rr)
                 xm += h * vm
-                xt, vt = _friction_step(xt, vt, fs - load, rr, cvis, h, d0, d1, st, asym, lo, hi)
+                xt, vt = _friction_step(xt, vt, fs - load, rr, cvis, h, coef, d0, d1, st, asym, lo, hi)
             else:
-                xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, d0, d1, st, asym, lo, hi)
+                xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, coef, d0, d1, st, asym, lo, hi)
             if bl > 0.0:
                 mech = xt if (two_mass and meas_table) else xm
                 half = 0.5 * bl
@@ -311,9 +317,10 @@ def simulate_augmented(
     st = np.ascontiguousarray(spec.stribeck, dtype=float)
     if spec.structured:
         res = np.ascontiguousarray(spec.resonance, dtype=float)
-        # SUBSTEPS plant steps per sample (friction stops and sticks within the sample; the play
-        # operator and the two-mass plant need them too), more for a fast mode
-        m = int(substeps)
+        # the rigid plant is integrated exactly over a sample (u held; a stop inside it is found
+        # and the rest of the sample stuck or broken away): steps only for the play operator and
+        # the two-mass plant, more for a fast mode
+        m = 1 if (res[0] <= 0 and spec.backlash <= 0) else int(substeps)
         if res[0] > 0:
             m = max(m, int(math.ceil(40.0 * res[0] * T)))
         _run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),

@@ -105,8 +105,9 @@ def test_sampled_split_form_reproduces_the_virtual_machine_with_delay():
 
 def test_split_form_friction_sticks_like_the_machine():
     """With the machine's Coulomb friction on (it stops and sticks, Karnopp), the split form with
-    stiction reproduces the machine to 0.5 nm over reversals and short moves (sampled sign(v)
-    switching, the earlier form, was 1.1 um off here)."""
+    stiction reproduces the machine to 0.07 um over reversals and short moves, one exact step per
+    sample with the stop found inside it (sampled sign(v) switching, the earlier form, was 1.1 um
+    off here; ten steps per sample, 0.5 nm)."""
     base = vcnc.machine("fadal-pid").with_axis_options("x", backlash=None, noise=None, encoder=None, dac=None,
                                                          saturation=None)
     m = base.with_effect("x", "delay")
@@ -115,7 +116,7 @@ def test_split_form_friction_sticks_like_the_machine():
     model = augment(ReducedAxisModel(parameters=m.axis("x").reduced_parameters(), sample_time=TS),
                     [Delay(samples=2, sample_time=TS)], viscous_rate=m.axis("x").drive.viscous_rate)
     err = model.simulate(cap.reference[:, 0]) - cap.measured[:, 0]
-    assert np.max(np.abs(err)) < 1e-5  # mm; the tracking error itself reaches 142 um
+    assert np.max(np.abs(err)) < 1e-4  # mm; the tracking error itself reaches 142 um
 
 
 def test_elements_change_the_response_as_physics_says(reference):

@@ -273,11 +273,11 @@ static double pp_load(const vcnc_parameters *p, double x)
 }
 
 /* identification.augmented._friction_step: step h of mass x'' = force - F - c x' with friction F
- * that sticks (Karnopp) within the static levels [lo, hi]; lo > hi switches on sign(v). */
+ * that sticks (Karnopp) within the static levels [lo, hi]; lo >= hi switches on sign(v). */
 static void friction_step(const vcnc_parameters *p, double *x, double *v, double force, double mass, double c,
                           double h, double lo, double hi)
 {
-    int stick = lo <= hi;
+    int stick = lo < hi;
     double f, dirn;
     if (*v == 0.0) {
         if (!stick) {
@@ -385,8 +385,8 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
     m->k = 0;
     m->r0 = u;
     if (p->structured) {
-        /* augmented.simulate_augmented: SUBSTEPS plant steps per sample, more for a fast mode */
-        p->substeps = VCNC_SUBSTEPS;
+        /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
+        p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
         if (p->res[0] > 0.0) {
             double need = ceil(40.0 * p->res[0] * p->sample_time);
             if (!(need < 1e7)) return fail(msg, msg_size, "resonance_frequency * sample_time is too large");
