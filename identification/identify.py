@@ -164,7 +164,8 @@ def identify(
     stats = SufficientStatistics(8)
     for phi, y in iter_regressor(xr, x, T, options=opt):
         stats.update(phi, y)
-    sol: SolveResult = solve_statistics(stats, bounds=b, method=method, seed=seed, ga_options=ga_options)
+    sol: SolveResult = solve_statistics(stats, bounds=b, method=method, seed=seed, ga_options=ga_options,
+                                        identifiability=True)
     params, poles = dict(sol.parameters), dict(sol.poles)
     ee_err = x - simulate(params, xr, T)
     fit = {
