@@ -113,3 +113,43 @@ def test_zero_friction_column_is_named():
     P[7, 7] = 0.0
     with pytest.raises(IdentificationError, match="negative direction"):
         solve(P, np.ones(8) * 0.1, 10.0)
+
+
+def test_identifiability_valley_holds_every_near_optimum():
+    """The valley (profiles of the objective) contains every point within 1 % of the optimum: here the
+    GA's distant near-optimum on the P-PI machine (feedforward: G_track ~ 1, Table 3.3) and random
+    points of the box; the P-PI poles are reported weakly identifiable, the PID machine's are pinned."""
+    import interpolators
+    from identification.bounds import as_bounds
+    from identification.poles import TWO_PI
+    from identification.problem import ReducedProblem
+    from identification.synthetic import table_3_2_program
+    from vcnc.machine import load_machine
+
+    m = load_machine("fadal-ppi")
+    sp = interpolators.interpolate(interpolators.parse_program(table_3_2_program()), limits=m.limits,
+                                   sample_time=m.sample_time)
+    cap = m.simulate(sp, seed=0)
+    from identification.regressor import statistics
+
+    st = statistics(cap.reference[:, 0], cap.measured[:, 0], cap.sample_time)
+    ex = solve_statistics(st, sample_time=cap.sample_time, identifiability=True)
+    ga = solve_statistics(st, sample_time=cap.sample_time, method="ga")  # 4000 x 300, seeded
+    valley = ex.details["identifiability"]
+    assert not valley["identifiable"]
+    prob = ReducedProblem(st, as_bounds(None, cap.sample_time))
+    rng = np.random.default_rng(0)
+    box = prob.bounds.rad()
+    u = rng.uniform(size=(200_000, 3))
+    p = box[0][0] * (box[0][1] / box[0][0]) ** u[:, 0]
+    w = box[1][0] * (box[1][1] / box[1][0]) ** u[:, 1]
+    z = box[2][0] + (box[2][1] - box[2][0]) * u[:, 2]
+    near = prob.objective(p, w, z) <= 1.01 * ex.objective
+    pts = np.column_stack([p[near] / TWO_PI, w[near] / TWO_PI, z[near]])
+    assert ga.objective <= 1.01 * ex.objective and abs(ga.poles["omega_n_hz"] / ex.poles["omega_n_hz"] - 1) > 0.5
+    pts = np.vstack([pts, ga.x])
+    # the profiles are on a grid of 48 values: allow one grid step of slack in p and omega_n
+    step = (box[1][1] / box[1][0]) ** (1 / 47)
+    for k, key in enumerate(("p_hz", "omega_n_hz")):
+        assert np.all(pts[:, k] >= valley[key][0] / step) and np.all(pts[:, k] <= valley[key][1] * step), key
+    assert np.all(pts[:, 2] >= valley["zeta"][0] - 0.04) and np.all(pts[:, 2] <= valley["zeta"][1] + 0.04)
