@@ -28,7 +28,8 @@ multiply out and compare with Eq. 3.3)::
 which is Eq. (3.3) for any plant viscous rate c [1/s] (0 <= c < a1). The controller is taken as
 what it is on a CNC, a sampled law: evaluated once per sample on the measured y_k, derivatives
 by backward differences, the integral by the rectangle rule, u held over the sample (zero-order
-hold); the plant is integrated exactly over ``SUBSTEPS`` steps per sample (u held). Friction acts
+hold); the plant is integrated exactly over the sample (u held; ``SUBSTEPS`` steps for the play
+operator and the two-mass plant). Friction acts
 on the (table) mass as it does on a machine: kinetic friction of the direction of motion (Coulomb
 d0/d1 plus the Stribeck and asymmetric viscous terms) while it moves, and stiction at rest: a
 mass that stops stays at rest while the force on it lies between the static levels d1 (+ s-) and
@@ -62,7 +63,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from identification.reduced_model import ReducedAxisModel, discretize, run_exact, w_terms
+from identification.reduced_model import _NO_FOURIER, ReducedAxisModel, discretize, run_exact, w_terms
 from vcnc.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
@@ -152,15 +153,9 @@ def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
 
 @numba.njit(cache=True, nogil=True)
 def _kinetic(v, d0, d1, st, asym):  # pragma: no cover - compiled
-    """Friction while moving with velocity v != 0 [mm/s^2 of the whole mass]: Coulomb, Stribeck
-    excess and asymmetric viscous (the velocity terms of :func:`w_terms`)."""
-    f = d0 if v > 0.0 else d1
-    if st[0] > 0.0:
-        r = v / st[0]
-        f += (st[1] if v > 0.0 else st[2]) * math.exp(-r * r)
-    if asym != 0.0:
-        f += asym * abs(v)
-    return f
+    """Friction while moving with velocity v != 0 [mm/s^2 of the whole mass]: Coulomb plus the
+    velocity terms of :func:`w_terms` (Stribeck excess, asymmetric viscous)."""
+    return (d0 if v > 0.0 else d1) + w_terms(v, 0.0, st, asym, 0.0, _NO_FOURIER)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -191,12 +186,12 @@ def _friction_step(x, v, force, mass, c, h, coef, d0, d1, st, asym, lo, hi):  # 
         f = _kinetic(v, d0, d1, st, asym)
         dirn = 1.0 if v > 0.0 else -1.0
     a = (force - f) / mass
-    cm = c / mass
     x1 = x + v * coef[1] + a * coef[2]
     v1 = v * coef[0] + a * coef[1]
     if stick and v1 * dirn < 0.0 and v != 0.0:
         # the motion stops inside the step (at ts, linear estimate): stick there, or break away
         # against the static level for the rest of the step
+        cm = c / mass
         ts = min(max(-v / (a - cm * v), 0.0), h)
         x1 = x + v * ts + 0.5 * (a - cm * v) * ts * ts
         if lo <= force <= hi:

@@ -141,7 +141,10 @@ class ReducedProblem:
         G = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)  # coarse grid (n0, n1, n2, 3)
 
         def f(u):
-            return self.objective_theta1(theta1(np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]))
+            return self.objective(np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2])
+
+        def r(u):  # residual of Gauss-Newton (self.residual), vectorised over the rows of u
+            return self.residual(np.stack([np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]]))
 
         fg = f(G)
         f0 = float(self.objective_theta1(theta1(*v)))
@@ -159,13 +162,13 @@ class ReducedProblem:
             lam = np.full(vals.size, 1e-3)
             for _ in range(iterations):  # damped Gauss-Newton on r = T theta1(u) - c, per slice
                 h = 1e-6 * np.maximum(1.0, np.abs(u))
-                r0 = self._r(u)
+                r0 = r(u)
                 J = np.empty(r0.shape + (2,))
                 for k, j in enumerate(free):
                     d = np.zeros(3)
                     d[j] = 1.0
                     hj = h[:, j:j + 1]
-                    J[..., k] = (self._r(u + hj * d) - self._r(u - hj * d)) / (2 * hj)
+                    J[..., k] = (r(u + hj * d) - r(u - hj * d)) / (2 * hj)
                 JtJ = np.einsum("nik,nil->nkl", J, J) + lam[:, None, None] * np.eye(2)
                 step = -np.linalg.solve(JtJ, np.einsum("nik,ni->nk", J, r0)[..., None])[..., 0]
                 un = u.copy()
@@ -187,10 +190,6 @@ class ReducedProblem:
             "identifiable": bool(out["omega_n_hz"][0] >= wn / 1.25 and out["omega_n_hz"][1] <= 1.25 * wn
                                  and out["zeta"][0] >= z - 0.15 and out["zeta"][1] <= z + 0.15),
         }
-
-    def _r(self, u: np.ndarray) -> np.ndarray:
-        """T theta1 - c at u = (log p, log omega_n, zeta), vectorised over leading axes."""
-        return theta1(np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]) @ self.T.T - self.c
 
     @property
     def unconstrained_objective(self) -> float:

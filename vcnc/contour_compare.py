@@ -69,6 +69,12 @@ def _pct(pred: float, true: float) -> float:
     return float(100.0 * (pred - true) / true) if true > 0 else float("nan")
 
 
+def _pct_of(true: ContourError, pred: ContourError) -> dict[str, float]:
+    """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
+    t, p = true.metrics(), pred.metrics()
+    return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class ContourReport:
     """True and predicted contour errors of one toolpath.
@@ -121,17 +127,13 @@ class ContourReport:
 
     def prediction_error_pct(self, label: str | None = None) -> dict[str, float]:
         """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
-        label = label or self.main_label
-        t, p = self.true.metrics(), self.predicted[label].metrics()
-        return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+        return _pct_of(self.true, self.predicted[label or self.main_label])
 
     def prediction_error_as_measured_pct(self, label: str | None = None) -> dict[str, float] | None:
         """As :meth:`prediction_error_pct`, against :attr:`true_as_measured` (None without it)."""
         if self.true_as_measured is None:
             return None
-        label = label or self.main_label
-        t, p = self.true_as_measured.metrics(), self.predicted[label].metrics()
-        return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+        return _pct_of(self.true_as_measured, self.predicted[label or self.main_label])
 
     def to_dict(self) -> dict[str, Any]:
         """The ``vcnc compare`` summary (ARCHITECTURE.md contract), with details beside it."""

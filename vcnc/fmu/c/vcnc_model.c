@@ -139,11 +139,10 @@ static int same_linear_model(const vcnc_parameters *a, const vcnc_parameters *b)
 
 /* ------------------------------------------------------------------------- effects */
 
-/* identification.augmented._w_terms: the disturbance effects at velocity v, position x. */
-static double w_terms(const vcnc_parameters *p, double v, double x)
+/* The velocity terms of identification.reduced_model.w_terms (Stribeck excess, asymmetric viscous). */
+static double velocity_terms(const vcnc_parameters *p, double v)
 {
     double w = 0.0;
-    int h;
     if (p->stribeck[0] > 0.0) {
         if (v > 0.0) {
             double r = v / p->stribeck[0];
@@ -154,6 +153,13 @@ static double w_terms(const vcnc_parameters *p, double v, double x)
         }
     }
     if (p->asym != 0.0) w += p->asym * fabs(v);
+    return w;
+}
+
+/* w plus the position-periodic load at x, harmonic by harmonic (the order of w_terms). */
+static double add_pp(const vcnc_parameters *p, double x, double w)
+{
+    int h;
     if (p->pp_period > 0.0) {
         double th = 2.0 * VCNC_PI * x / p->pp_period;
         for (h = 0; h < p->pp_harmonics; h++) {
@@ -162,6 +168,12 @@ static double w_terms(const vcnc_parameters *p, double v, double x)
         }
     }
     return w;
+}
+
+/* identification.reduced_model.w_terms: the disturbance effects at velocity v, position x. */
+static double w_terms(const vcnc_parameters *p, double v, double x)
+{
+    return add_pp(p, x, velocity_terms(p, v));
 }
 
 /* Disturbance known in time at sample k: the input w_ext plus the time_periodic load
@@ -248,28 +260,7 @@ static void rigid(double *x, double *v, double acc, double c, double h)
 /* identification.augmented._kinetic: friction while moving with velocity v != 0. */
 static double kinetic(const vcnc_parameters *p, double v)
 {
-    double f = v > 0.0 ? p->d0 : p->d1;
-    if (p->stribeck[0] > 0.0) {
-        double r = v / p->stribeck[0];
-        f += (v > 0.0 ? p->stribeck[1] : p->stribeck[2]) * exp(-r * r);
-    }
-    if (p->asym != 0.0) f += p->asym * fabs(v);
-    return f;
-}
-
-/* The position-periodic load at x (w_terms at rest without the friction terms). */
-static double pp_load(const vcnc_parameters *p, double x)
-{
-    double w = 0.0;
-    int h;
-    if (p->pp_period > 0.0) {
-        double th = 2.0 * VCNC_PI * x / p->pp_period;
-        for (h = 0; h < p->pp_harmonics; h++) {
-            double a = (double)(h + 1) * th;
-            w += p->pp_coef[2 * h] * sin(a) + p->pp_coef[2 * h + 1] * cos(a);
-        }
-    }
-    return w;
+    return (v > 0.0 ? p->d0 : p->d1) + velocity_terms(p, v);
 }
 
 /* identification.augmented._friction_step: step h of mass x'' = force - F - c x' with friction F
@@ -298,11 +289,11 @@ static void friction_step(const vcnc_parameters *p, double *x, double *v, double
         dirn = *v > 0.0 ? 1.0 : -1.0;
     }
     {
-        double a = (force - f) / mass, cm = c / mass, x0 = *x, v0 = *v;
-        rigid(x, v, a, cm, h);
+        double a = (force - f) / mass, x0 = *x, v0 = *v;
+        rigid(x, v, a, c / mass, h);
         if (stick && *v * dirn < 0.0 && v0 != 0.0) {
             /* the motion stops inside the step: stick there, or break away for the rest */
-            double ts = -v0 / (a - cm * v0);
+            double cm = c / mass, ts = -v0 / (a - cm * v0);
             if (ts < 0.0) ts = 0.0;
             if (ts > h) ts = h;
             *x = x0 + v0 * ts + 0.5 * (a - cm * v0) * ts * ts;
@@ -354,7 +345,7 @@ static void split_step(vcnc_model *m)
     hi = p->d0 + (p->stribeck[0] > 0.0 ? p->stribeck[1] : 0.0);
     we = wext(m);
     for (i = 0; i < steps; i++) {
-        double load = we + pp_load(p, two_mass ? m->xt : m->xm);
+        double load = we + add_pp(p, two_mass ? m->xt : m->xm, 0.0);
         if (two_mass) {
             double fs = kspr * (m->xm - m->xt) + cdmp * (m->vm - m->vt);
             m->vm += h * (u - fs) / (1.0 - rr);
