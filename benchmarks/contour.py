@@ -7,7 +7,9 @@ search (exact projection on every segment, numpy) on the same data (timed on a s
 Part 2 (accuracy): the thesis' cases (Secs. 3.4.1 / 3.4.2): identify each axis from a Table
 3.2-style random-move test on the true machine, then compare the contour error of the true machine
 and of the models, before and after the residual diagnosis (when ``identification.diagnosis``
-exists), and for fadal-smc also with the true machine's measurement noise off.
+exists), and for fadal-smc also with the true machine's measurement noise off. A truth with
+measurement noise is the mean of ten noise realisations (vcnc.contour_compare); "single runs"
+gives the range of the prediction error against each realisation alone.
 
 Run: ``python benchmarks/contour.py [--samples N] [--moves N] [--skip-thesis] [--skip-speed]``.
 """
@@ -119,7 +121,7 @@ def thesis(moves: int) -> None:
 
     print(f"\nthesis cases: models identified from {moves} random moves (+/-10 mm, 200 mm/s), true vs predicted "
           "max contour error")
-    print(f"{'machine':16s} {'toolpath':8s} {'true um':>9s} {'ident um':>9s} {'err %':>7s} "
+    print(f"{'machine':16s} {'toolpath':8s} {'true um':>9s} {'ident um':>9s} {'err %':>7s} {'single runs %':>15s} "
           f"{'augm um':>9s} {'err %':>7s}  effects")
     for name, feed, acc in CASES:
         m = load_machine(name)
@@ -134,8 +136,10 @@ def thesis(moves: int) -> None:
         one = len(m.axes) == 1
         for tp in (("circle", "diamond") if feed is None else ("circle",)):
             r = compare(name, plain[m.axes[0]] if one else plain, tp, feed=feed, acceleration=acc).to_dict()
+            rng = r.get("prediction_error_pct_range", {}).get("max")
+            single = f"{rng[0]:+.1f}..{rng[1]:+.1f}" if rng else "(one run)"
             line = (f"{name:16s} {tp:8s} {r['true']['contour_max_um']:9.2f} {r['predicted']['contour_max_um']:9.2f} "
-                    f"{r['prediction_error_pct']['max']:+7.2f}")
+                    f"{r['prediction_error_pct']['max']:+7.2f} {single:>15s}")
             if aug is not None:
                 ra = compare(name, aug[m.axes[0]] if one else aug, tp, feed=feed, acceleration=acc).to_dict()
                 effects = sorted({e.get("name", "?") for mod in aug.values() for e in (mod.effects or [])})

@@ -29,6 +29,18 @@ unless ``feed`` says otherwise, started with a rapid from the origin and a dwell
 program file (ISO or Heidenhain); a :class:`interpolators.Program` or :class:`vcnc.Setpoints` may
 be given directly. A single-axis true machine drives every axis of the toolpath with copies of
 its axis (the thesis ran its single-axis bench this way, Fig. 3.14).
+
+Noise realisations
+------------------
+Measurement noise inside a true machine's loop makes its contour error a random quantity: the
+loop acts on the noisy reading, and at reversals the noise dithers the friction. On the fadal-smc
+diamond the true maximum ranges over 8.81-9.06 um across ten noise seeds (+/-1.4 %), a spread
+of the order of the model error being judged. A deterministic model predicts the *expected*
+contour error, so a simulated truth with measurement noise is run :data:`TRUTH_RUNS` times
+(seeds ``seed, seed + 1, ...``): ``true`` reports the mean of the runs' metrics and their range,
+the prediction error is taken against the mean, and its range against the single runs is
+reported beside it. The histories and plots show the first run. A noise-free truth (or a real
+capture) is run once.
 """
 
 from __future__ import annotations
@@ -49,7 +61,7 @@ from vcnc.contour import ContourError, auto_magnification, contour_error, feed_s
 from vcnc.errors import InputError
 from vcnc.setpoints import Setpoints
 
-__all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S"]
+__all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S", "TRUTH_RUNS"]
 
 log = logging.getLogger(__name__)
 
@@ -62,6 +74,9 @@ DEFAULT_FEED_MM_S = 200.0
 #: Time [s] the final position is held after the program so that the axes settle.
 SETTLE_S = 0.2
 
+#: Noise realisations of a simulated truth with measurement noise (module notes).
+TRUTH_RUNS = 10
+
 _LABELS = ("true", "augmented", "identified")
 
 
@@ -69,10 +84,26 @@ def _pct(pred: float, true: float) -> float:
     return float(100.0 * (pred - true) / true) if true > 0 else float("nan")
 
 
-def _pct_of(true: ContourError, pred: ContourError) -> dict[str, float]:
-    """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
-    t, p = true.metrics(), pred.metrics()
+def _pct_of(t: Mapping[str, Any], p: Mapping[str, Any]) -> dict[str, float]:
+    """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%], from metrics."""
     return {"max": _pct(p["max_um"], t["max_um"]), "rms": _pct(p["rms_um"], t["rms_um"])}
+
+
+def _mean_tree(items: list) -> Any:
+    """Element-wise mean of metrics of the same layout (dicts, lists, numbers; NaN where all are)."""
+    first = items[0]
+    if isinstance(first, Mapping):
+        return {k: _mean_tree([it[k] for it in items]) for k in first}
+    if isinstance(first, (list, tuple)):
+        return [_mean_tree([it[i] for it in items]) for i in range(len(first))]
+    if isinstance(first, bool) or not isinstance(first, (int, float, np.number)):
+        return first
+    vals = np.array([float(v) for v in items])
+    if np.all(np.isnan(vals)):
+        return float("nan")
+    if isinstance(first, (int, np.integer)) and np.all(vals == vals[0]):
+        return int(first)
+    return float(np.nanmean(vals))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -101,6 +132,11 @@ class ContourReport:
     true_as_measured : ContourError or None
         Simulated truth only: the contour error of the true machine as its sensors read it
         (``Capture.measured``: noise, encoder steps and drift included), shown beside ``true``.
+    true_runs, true_as_measured_runs : list of dict
+        Metrics of every noise realisation of a simulated truth (module notes), ``true`` being
+        the first; empty for a single run.
+    seeds : list of int
+        Noise seeds of the truth's runs (empty for a real capture).
     """
 
     toolpath: str
@@ -111,6 +147,14 @@ class ContourReport:
     models: dict = dataclasses.field(default_factory=dict)
     notes: list = dataclasses.field(default_factory=list)
     true_as_measured: ContourError | None = None
+    true_runs: list = dataclasses.field(default_factory=list)
+    true_as_measured_runs: list = dataclasses.field(default_factory=list)
+    seeds: list = dataclasses.field(default_factory=list)
+
+    @property
+    def runs(self) -> int:
+        """Noise realisations of the truth behind ``metrics()["true"]``."""
+        return max(1, len(self.true_runs))
 
     @property
     def main_label(self) -> str:
@@ -118,22 +162,45 @@ class ContourReport:
         return "augmented" if "augmented" in self.predicted else "identified"
 
     def metrics(self) -> dict[str, dict[str, Any]]:
-        """Metrics of every run (see :meth:`ContourError.metrics`), by label."""
-        out = {"true": self.true.metrics()}
+        """Metrics of every run (see :meth:`ContourError.metrics`), by label; the truth's are the
+        mean over its noise realisations."""
+        out = {"true": _mean_tree(self.true_runs) if self.true_runs else self.true.metrics()}
         if self.true_as_measured is not None:
-            out["true_as_measured"] = self.true_as_measured.metrics()
+            out["true_as_measured"] = (_mean_tree(self.true_as_measured_runs) if self.true_as_measured_runs
+                                       else self.true_as_measured.metrics())
         out.update({k: v.metrics() for k, v in self.predicted.items()})
         return out
 
     def prediction_error_pct(self, label: str | None = None) -> dict[str, float]:
-        """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%]."""
-        return _pct_of(self.true, self.predicted[label or self.main_label])
+        """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%], against the
+        mean of the truth's noise realisations."""
+        return _pct_of(self.metrics()["true"], self.predicted[label or self.main_label].metrics())
 
     def prediction_error_as_measured_pct(self, label: str | None = None) -> dict[str, float] | None:
         """As :meth:`prediction_error_pct`, against :attr:`true_as_measured` (None without it)."""
         if self.true_as_measured is None:
             return None
-        return _pct_of(self.true_as_measured, self.predicted[label or self.main_label])
+        return _pct_of(self.metrics()["true_as_measured"], self.predicted[label or self.main_label].metrics())
+
+    def prediction_error_range_pct(self, label: str | None = None) -> dict[str, list[float]] | None:
+        """``{"max": [lo, hi], "rms": [lo, hi]}``: the prediction error [%] against each single
+        noise realisation of the truth (None for a single run)."""
+        if not self.true_runs:
+            return None
+        p = self.predicted[label or self.main_label].metrics()
+        per = [_pct_of(t, p) for t in self.true_runs]
+        return {k: [min(x[k] for x in per), max(x[k] for x in per)] for k in ("max", "rms")}
+
+    def true_spread(self) -> dict[str, list[float]] | None:
+        """``{"contour_max_um": [lo, hi], "contour_rms_um": [lo, hi]}`` over the truth's noise
+        realisations (None for a single run)."""
+        if not self.true_runs:
+            return None
+        out = {}
+        for k in ("max", "rms"):
+            vals = [t[f"{k}_um"] for t in self.true_runs]
+            out[f"contour_{k}_um"] = [min(vals), max(vals)]
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """The ``vcnc compare`` summary (ARCHITECTURE.md contract), with details beside it."""
@@ -151,15 +218,25 @@ class ContourReport:
             return out
 
         main = self.main_label
+        true = block("true")
+        if self.seeds:
+            true["runs"] = self.runs
+            true["seeds"] = list(self.seeds)
+        if self.true_runs:
+            true["spread"] = self.true_spread()
         d: dict[str, Any] = {
             "toolpath": self.toolpath,
-            "true": block("true"),
+            "true": true,
             "predicted": block(main),
             "prediction_error_pct": self.prediction_error_pct(main),
         }
+        if self.true_runs:
+            d["prediction_error_pct_range"] = self.prediction_error_range_pct(main)
         if main == "augmented":
             d["before_augmentation"] = {**block("identified"),
                                         "prediction_error_pct": self.prediction_error_pct("identified")}
+            if self.true_runs:
+                d["before_augmentation"]["prediction_error_pct_range"] = self.prediction_error_range_pct("identified")
         if self.true_as_measured is not None:
             d["true_as_measured"] = {**block("true_as_measured"),
                                      "prediction_error_pct": self.prediction_error_as_measured_pct(main)}
@@ -245,10 +322,15 @@ class ContourReport:
         m = self.metrics()
         rows = []
         nan = {"max": float("nan"), "rms": float("nan")}
+        spread = self.true_spread()
         for label, _ in self._runs():
             x = m[label]
             pe = self.prediction_error_pct(label) if label != "true" else nan
-            rows.append([label, x["max_um"], x["rms_um"], x["corner_max_um"], x["quadrant_max_um"], pe["max"],
+            name = label
+            if label == "true" and spread is not None:
+                lo, hi = spread["contour_max_um"]
+                name = f"true, mean of {self.runs} noise realisations (max {lo:.4g}-{hi:.4g} um)"
+            rows.append([name, x["max_um"], x["rms_um"], x["corner_max_um"], x["quadrant_max_um"], pe["max"],
                          pe["rms"]])
             if label == "true" and "true_as_measured" in m:
                 x = m["true_as_measured"]
@@ -256,7 +338,10 @@ class ContourReport:
                              x["quadrant_max_um"], nan["max"], nan["rms"]])
         rep.table(["run", "max [um]", "RMS [um]", "corners max [um]", "quadrants max [um]", "max error [%]",
                    "RMS error [%]"], rows,
-                  caption="Prediction error = 100 (predicted - true) / true. Feed moves only (rapids excluded).")
+                  caption="Prediction error = 100 (predicted - true) / true. Feed moves only (rapids excluded)."
+                  + (f" The truth has measurement noise in its loop: its numbers are the mean of {self.runs} "
+                     f"noise realisations (seeds {self.seeds[0]}-{self.seeds[-1]}), the figures show the first."
+                     if self.true_runs else ""))
         trows = []
         for label, _ in self._runs():
             for a, v in m[label].get("tracking", {}).items():
@@ -478,6 +563,7 @@ def compare(
     profile: str = "trapezoid",
     seed: int = 0,
     settle_s: float = SETTLE_S,
+    truth_runs: int | None = None,
 ) -> ContourReport:
     """Contour error of a toolpath on the true machine and as predicted by axis models.
 
@@ -500,9 +586,13 @@ def compare(
     profile : {"trapezoid", "scurve"}
         Feed profile of the interpolation.
     seed : int
-        Seed of the true machine's measurement noise.
+        Seed of the true machine's measurement noise (of its first run).
     settle_s : float
         The final position is held this long [s] after the program so the axes settle.
+    truth_runs : int, optional
+        Noise realisations of a simulated truth, seeds ``seed .. seed + truth_runs - 1`` (module
+        notes); default :data:`TRUTH_RUNS` when an axis of the true machine has measurement noise,
+        else 1.
 
     Returns
     -------
@@ -516,7 +606,11 @@ def compare(
     """
     import interpolators
 
+    if truth_runs is not None and not (isinstance(truth_runs, (int, np.integer)) and not isinstance(truth_runs, bool)
+                                       and 1 <= truth_runs <= 1000):
+        raise InputError(f"truth_runs must be an integer in [1, 1000], got {truth_runs!r}")
     notes: list[str] = []
+    seeds: list[int] = []
     capture = truth if isinstance(truth, Capture) else None
     if capture is not None:
         program = None
@@ -531,8 +625,11 @@ def compare(
         sp = Setpoints.from_positions(capture.reference[:, [capture.axis_index(a) for a in axes]],
                                       sample_time=capture.sample_time, axes=axes)
         sp = dataclasses.replace(sp, path=path)
-        true_measured = capture.measured[:, [capture.axis_index(a) for a in axes]]
-        sensor = None
+        measured = capture.measured[:, [capture.axis_index(a) for a in axes]]
+
+        def run_truth(_seed):
+            return measured, None
+
         truth_name = capture.source or "capture"
         sample_time = capture.sample_time
     else:
@@ -547,10 +644,16 @@ def compare(
             machine = _expand_machine(machine, tuple(sp.axes), notes)
         sp = _with_settle(sp, settle_s)
         axes = tuple(sp.axes)
-        cap = machine.simulate(sp, seed=seed)
-        # the truth is where the axes are; the sensor's reading of it is reported beside it
-        true_measured = cap.aux.get("measured_true", cap.measured)
-        sensor = cap.measured if "measured_true" in cap.aux else None
+        n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
+        seeds = [int(seed) + k for k in range(int(n_runs))]
+
+        def run_truth(s):
+            # the truth is where the axes are; the sensor's reading of it is reported beside it
+            cap = machine.simulate(sp, seed=s)
+            if "measured_true" in cap.aux:
+                return cap.aux["measured_true"], cap.measured
+            return cap.measured, None
+
         truth_name = machine.name
         sample_time = machine.sample_time
         path = sp.path
@@ -571,8 +674,23 @@ def compare(
     limits = {a: interpolators.DEFAULT_LIMITS["x"] for a in axes}
     include = None if program is None else feed_segments(path, program)
     kw = {"reference": sp.position, "t": sp.t, "sample_time": sample_time, "include_segments": include}
-    true_ce = contour_error(path, true_measured, axes, **kw)
-    true_sensor = None if sensor is None else contour_error(path, sensor, axes, **kw)
+    # one run at a time: only the first run's histories are kept, the others leave their metrics
+    true_ce = true_sensor = None
+    true_runs: list[dict] = []
+    sensor_runs: list[dict] = []
+    for k, s in enumerate(seeds or [seed]):
+        pos, sensor = run_truth(s)
+        ce = contour_error(path, pos, axes, **kw)
+        ce_sensor = None if sensor is None else contour_error(path, sensor, axes, **kw)
+        if k == 0:
+            true_ce, true_sensor = ce, ce_sensor
+        true_runs.append(ce.metrics())
+        if ce_sensor is not None:
+            sensor_runs.append(ce_sensor.metrics())
+    several = len(true_runs) > 1
+    if several:
+        notes.append(f"the true machine has measurement noise in its loop: its contour error is the mean of "
+                     f"{len(true_runs)} noise realisations (seeds {seeds[0]}-{seeds[-1]}); plots show the first")
     predicted: dict[str, ContourError] = {}
     descr: dict[str, dict[str, str]] = {}
     for label, mods in (("identified", identified), ("augmented", augmented)):
@@ -587,4 +705,15 @@ def compare(
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=tp_name, truth=truth_name, setpoints=sp, true=true_ce, predicted=predicted,
-                         models=descr, notes=notes, true_as_measured=true_sensor)
+                         models=descr, notes=notes, true_as_measured=true_sensor,
+                         true_runs=true_runs if several else [],
+                         true_as_measured_runs=sensor_runs if several else [], seeds=seeds)
+
+
+def _noisy(machine, axes: tuple[str, ...]) -> bool:
+    """True when a moving axis of the machine has measurement noise (a random truth)."""
+    for a in axes:
+        noise = getattr(machine.axis(a), "noise", None) if a in machine.axes else None
+        if noise is not None and float(getattr(noise, "std", 0.0)) > 0.0:
+            return True
+    return False

@@ -12,7 +12,6 @@ of the true machine's (the VCNC literature reports 10 %).
 
 from __future__ import annotations
 
-import importlib.util
 import json
 
 import numpy as np
@@ -21,6 +20,7 @@ import pytest
 import interpolators
 import toolpaths
 from identification import ReducedAxisModel, identify
+from identification.diagnosis import diagnose
 from vcnc.capture import Capture
 from vcnc.cli import main
 from vcnc.contour_compare import compare
@@ -34,16 +34,6 @@ CASES = {  # machine: (toolpaths, feed [mm/s], acceleration [mm/s^2])
     "ballscrew-ppc": (("circle",), 100.0, 600.0),
     "ballscrew-zpetc": (("circle",), 100.0, 600.0),
 }
-
-#: fadal-smc misses the 5 % target on the diamond: its contour error is only 7-9 um; the circle is
-#: predicted to -1.4 % and the diamond to +5.9 % (4.5-5.9 % over identification seeds 1-3; the
-#: thesis' 200 moves: +5.3 %). Both against the true position of the measured point; as the
-#: sensor reads it (0.1 um noise, 0.25 um encoder steps add about 0.4 um to the true maximum) the
-#: circle is -6.1 % and the diamond +5.6 %. The limit is the structure: a reduced model fitted by
-#: output error to the SMC diamond run itself predicts its maximum at -6.9 %. Established: within 7 %.
-ESTABLISHED_PCT = {"fadal-smc": 7.0}
-
-_HAS_DIAGNOSIS = importlib.util.find_spec("identification.diagnosis") is not None
 
 
 def _identify(name: str) -> tuple[dict, object]:
@@ -59,38 +49,76 @@ def _one_or_all(models: dict):
 
 @pytest.fixture(scope="session")
 def thesis_results() -> dict:
-    """Per (machine, toolpath): the ContourReport of the identified models."""
+    """Per (machine, toolpath): the ContourReport of the identified models and, when the residual
+    diagnosis added effects, of the augmented ones (the report then holds both)."""
     out = {}
     for name, (paths, feed, acc) in CASES.items():
-        models, _ = _identify(name)
+        models, cap = _identify(name)
+        augmented = {a: diagnose(cap, models[a], axis=a) for a in models}
+        out["models", name] = models
         for tp in paths:
             out[name, tp] = compare(name, _one_or_all(models), tp, feed=feed, acceleration=acc)
+            out[name, tp, "augmented"] = compare(name, _one_or_all(augmented), tp, feed=feed, acceleration=acc)
     return out
 
 
-@pytest.mark.parametrize(("name", "toolpath"), [(n, tp) for n, (tps, _, _) in CASES.items() for tp in tps])
+THESIS_CASES = [(n, tp) for n, (tps, _, _) in CASES.items() for tp in tps]
+
+
+@pytest.mark.parametrize(("name", "toolpath"), THESIS_CASES)
 def test_thesis_case_predicted_max_contour_error(thesis_results, name, toolpath):
+    """Issue 6 target: predicted max contour error within 5 % of the true machine's. The truths
+    have measurement noise in their loops, so the reference is the mean of ten noise realisations
+    (vcnc.contour_compare module notes); against single realisations the fadal-smc diamond ranges
+    over +3.0..+5.9 % (its true maximum over 8.81-9.06 um)."""
     d = thesis_results[name, toolpath].to_dict()
     assert d["true"]["contour_max_um"] > 1.0
-    assert abs(d["prediction_error_pct"]["max"]) <= ESTABLISHED_PCT.get(name, 5.0), d["prediction_error_pct"]
+    m = load_machine(name)
+    noisy = any(m.axis(a).noise is not None for a in m.axes)  # the ball-screw bench: encoder steps only
+    assert d["true"]["runs"] == (10 if noisy else 1)
+    assert abs(d["prediction_error_pct"]["max"]) <= 5.0, d["prediction_error_pct"]
 
 
-@pytest.mark.skipif(not _HAS_DIAGNOSIS, reason="identification.diagnosis (issue 5) not available")
-def test_thesis_case_after_augmentation():
-    """Before and after the residual diagnosis, on the fastest case (all cases: benchmarks/contour.py)."""
-    from identification.diagnosis import diagnose
-
-    name = "ballscrew-zpetc"
-    _, feed, acc = CASES[name]
-    models, cap = _identify(name)
-    aug = diagnose(cap, models["x"], axis="x")
-    before = compare(name, models["x"], "circle", feed=feed, acceleration=acc).to_dict()
-    after = compare(name, aug, "circle", feed=feed, acceleration=acc).to_dict()
-    assert abs(after["prediction_error_pct"]["max"]) <= 5.0
-    if aug.effects:
-        assert "before_augmentation" in after
+@pytest.mark.parametrize(("name", "toolpath"), THESIS_CASES)
+def test_thesis_case_after_augmentation(thesis_results, name, toolpath):
+    """Before and after the residual diagnosis: both within 5 %; when the diagnosis finds nothing
+    (these clean machines) the model and its prediction are unchanged."""
+    before = thesis_results[name, toolpath].to_dict()
+    rep = thesis_results[name, toolpath, "augmented"]
+    after = rep.to_dict()
+    assert abs(after["prediction_error_pct"]["max"]) <= 5.0, after["prediction_error_pct"]
+    if rep.main_label == "augmented":
+        assert abs(after["before_augmentation"]["prediction_error_pct"]["max"]) <= 5.0
     else:  # nothing significant found: the model is unchanged, and so is the prediction
         assert after["prediction_error_pct"] == before["prediction_error_pct"]
+
+
+def test_noisy_truth_is_judged_on_the_mean_of_its_noise_realisations(thesis_results):
+    """The mean over the runs is the reference; each run's numbers and the error against each
+    single run are reported beside it; truth_runs=1 is the single seeded run."""
+    rep = thesis_results["fadal-smc", "diamond"]
+    d = rep.to_dict()
+    assert rep.runs == 10 and d["true"]["seeds"] == list(range(10))
+    maxima = [r["max_um"] for r in rep.true_runs]
+    assert len(set(maxima)) > 1  # the noise changes the true contour error
+    assert d["true"]["contour_max_um"] == pytest.approx(float(np.mean(maxima)))
+    assert d["true"]["spread"]["contour_max_um"] == [min(maxima), max(maxima)]
+    lo, hi = d["prediction_error_pct_range"]["max"]
+    assert lo <= d["prediction_error_pct"]["max"] <= hi
+    assert rep.true.metrics()["max_um"] == maxima[0]  # histories and plots: the first run
+    assert "noise realisations" in " ".join(d["notes"])
+    single = compare("fadal-smc", thesis_results["models", "fadal-smc"], "diamond", truth_runs=1).to_dict()
+    assert "spread" not in single["true"] and single["true"]["runs"] == 1
+    assert single["true"]["contour_max_um"] == maxima[0]
+
+
+def test_noise_free_truth_runs_once():
+    _, models = _exact_machine()
+    quiet = load_machine("fadal-pid").with_axis_options("x", noise=None).with_axis_options("y", noise=None)
+    rep = compare(quiet, models, "circle", feed=100.0)
+    assert rep.runs == 1 and rep.true_runs == [] and "spread" not in rep.to_dict()["true"]
+    with pytest.raises(InputError, match="truth_runs"):
+        compare("fadal-pid", models, "circle", truth_runs=0)
 
 
 def test_augmented_model_is_compared_before_and_after():
