@@ -259,6 +259,11 @@ class ContourReport:
             tmp.write_text(text)
 
     # ------------------------------------------------------------------ plots
+    def _legend(self, label: str) -> str:
+        if label == "true" and self.true_runs:
+            return f"true (noise seed {self.seeds[0]}, 1 of {self.runs})"
+        return label
+
     def _runs(self) -> list[tuple[str, ContourError]]:
         labels = [k for k in ("identified", "augmented") if k in self.predicted]
         return [("true", self.true)] + [(k, self.predicted[k]) for k in labels]
@@ -276,7 +281,7 @@ class ContourReport:
                   "augmented": {"color": "C3", "ls": ":"}}
         for i, (label, ce) in enumerate(self._runs()):
             if i == 0:
-                ce.plot(ax, magnification=magnification, label=label, **styles[label])
+                ce.plot(ax, magnification=magnification, label=self._legend(label), **styles[label])
             else:
                 mag = np.where(ce._covered()[:, None], ce.magnified(magnification), np.nan)
                 a, b = _plane(self.true)
@@ -290,7 +295,7 @@ class ContourReport:
         styles = {"true": {"color": "k", "lw": 1.4}, "identified": {"color": "C0", "ls": "--"},
                   "augmented": {"color": "C3", "ls": ":"}}
         for label, ce in self._runs():
-            ax = ce.plot_error(ax, label=label, **styles[label])
+            ax = ce.plot_error(ax, label=self._legend(label), **styles[label])
         return ax
 
     def plot(self, ax=None):  # noqa: ANN001 - matplotlib Axes or a pair of them
