@@ -378,7 +378,9 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
              r["identified_error_pct_max"], r["augmented_error_pct_max"]] for r in contour_rows]
     report.table(["toolpath", "true max [um]", "identified max [um]", "augmented max [um]",
                   "identified error [%]", "augmented error [%]"], rows,
-                 caption="Maximum contour error: true machine vs predictions")
+                 caption="Maximum contour error: true machine vs predictions"
+                 + (f" (true: mean of {contour_figs[0][1].runs} noise realisations of the machine; the figures "
+                    "show the first)" if contour_figs and contour_figs[0][1].runs > 1 else ""))
     for name, rep in contour_figs:
         axs = rep.plot()
         report.figure(f"contour_{name}", axs[0].figure,
