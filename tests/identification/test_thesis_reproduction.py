@@ -76,13 +76,32 @@ def _rms_level_error(machine, model):
     return abs(float(np.sqrt(np.mean(e_pred**2)) / np.sqrt(np.mean(e_true**2))) - 1.0)
 
 
-def test_smc_pole_zero_cancellation():
+@pytest.fixture(scope="module")
+def smc():
+    return _identify("fadal-smc")
+
+
+def test_three_methods_agree_on_the_feedforward_loop(smc):
+    """Sec. 4.3 (GA within 2-3 % of LM) on the SMC loop, whose feedforward cancels poles and zeros
+    (Table 3.5), through the whole pipeline (solver + output-error refinement): exact, ga and kkt
+    land on the same model (measured: 2e-6 relative). Where the equation error has two near-equal
+    minima (fadal-ppi, Table 3.3: 0.05 % apart in objective, omega_n 14 vs 64 Hz) the GA settles in
+    either; test_solvers.py::test_identifiability_valley_holds_every_near_optimum covers that case."""
+    m, cap, exact = smc
+    for method in ("ga", "kkt"):
+        other = identify(cap, diagnose=False, method=method)
+        for k, v in exact.parameters.items():
+            assert other.parameters[k] == pytest.approx(v, rel=0.03), (method, k)
+        assert other.fit["rms_um"] == pytest.approx(exact.fit["rms_um"], rel=1e-3)
+
+
+def test_smc_pole_zero_cancellation(smc):
     """Table 3.5: feedforward cancels poles and zeros (G_track ~ 1); the tracking error of the validation move
     is only ~1.4 um RMS. The identified model is stable, flat in tracking (|G_track| within 5% of 1 up to
     30 Hz), predicts the RMS of that error within 5 % (measured: 1.1 %) and its course no worse than the true
     reduced model does (sample by sample 22 %: 0.15 um of the 0.32 um difference is the sensor's noise and
     encoder steps, the rest the discrete loop that the continuous reduced model only approximates)."""
-    m, _, model = _identify("fadal-smc")
+    m, _, model = smc
     true = ReducedAxisModel(parameters=m.axis("x").reduced_parameters(), sample_time=m.sample_time)
     f = np.linspace(0.1, 30.0, 50)
     assert np.all(np.abs(np.abs(model.G_track(2j * np.pi * f)) - 1) < 0.05)
