@@ -33,9 +33,9 @@ its axis (the thesis ran its single-axis bench this way, Fig. 3.14).
 Noise realisations
 ------------------
 Measurement noise inside a true machine's loop makes its contour error a random quantity: the
-loop acts on the noisy reading, and at reversals the noise dithers the friction. On the fadal-smc
-diamond the true maximum ranges over 8.81-9.06 um across ten noise seeds (+/-1.4 %), a spread
-of the order of the model error being judged. A deterministic model predicts the *expected*
+loop acts on the noisy reading. On the fadal-smc diamond the true maximum ranges over 8.81-9.06 um
+across ten noise seeds (+/-1.4 %; 9.04 um with the noise off), a spread of the order of the model
+error being judged. A deterministic model predicts the *expected*
 contour error, so a simulated truth with measurement noise is run :data:`TRUTH_RUNS` times
 (seeds ``seed, seed + 1, ...``): ``true`` reports the mean of the runs' metrics and their range,
 the prediction error is taken against the mean, and its range against the single runs is
@@ -164,23 +164,26 @@ class ContourReport:
     def metrics(self) -> dict[str, dict[str, Any]]:
         """Metrics of every run (see :meth:`ContourError.metrics`), by label; the truth's are the
         mean over its noise realisations."""
-        out = {"true": _mean_tree(self.true_runs) if self.true_runs else self.true.metrics()}
+        out = {"true": self._true_metrics()}
         if self.true_as_measured is not None:
-            out["true_as_measured"] = (_mean_tree(self.true_as_measured_runs) if self.true_as_measured_runs
-                                       else self.true_as_measured.metrics())
+            out["true_as_measured"] = self._true_metrics(as_measured=True)
         out.update({k: v.metrics() for k, v in self.predicted.items()})
         return out
+
+    def _true_metrics(self, *, as_measured: bool = False) -> dict[str, Any]:
+        runs = self.true_as_measured_runs if as_measured else self.true_runs
+        return _mean_tree(runs) if runs else (self.true_as_measured if as_measured else self.true).metrics()
 
     def prediction_error_pct(self, label: str | None = None) -> dict[str, float]:
         """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%], against the
         mean of the truth's noise realisations."""
-        return _pct_of(self.metrics()["true"], self.predicted[label or self.main_label].metrics())
+        return _pct_of(self._true_metrics(), self.predicted[label or self.main_label].metrics())
 
     def prediction_error_as_measured_pct(self, label: str | None = None) -> dict[str, float] | None:
         """As :meth:`prediction_error_pct`, against :attr:`true_as_measured` (None without it)."""
         if self.true_as_measured is None:
             return None
-        return _pct_of(self.metrics()["true_as_measured"], self.predicted[label or self.main_label].metrics())
+        return _pct_of(self._true_metrics(as_measured=True), self.predicted[label or self.main_label].metrics())
 
     def prediction_error_range_pct(self, label: str | None = None) -> dict[str, list[float]] | None:
         """``{"max": [lo, hi], "rms": [lo, hi]}``: the prediction error [%] against each single
