@@ -6,10 +6,10 @@ search (exact projection on every segment, numpy) on the same data (timed on a s
 
 Part 2 (accuracy): the thesis' cases (Secs. 3.4.1 / 3.4.2): identify each axis from a Table
 3.2-style random-move test on the true machine, then compare the contour error of the true machine
-and of the models, before and after the residual diagnosis (when ``identification.diagnosis``
-exists), and for fadal-smc also with the true machine's measurement noise off. A truth with
-measurement noise is the mean of ten noise realisations (vcnc.contour_compare); "single runs"
-gives the range of the prediction error against each realisation alone.
+and of the models, before and after the residual diagnosis, and for fadal-smc also with the true
+machine's measurement noise off. A truth with measurement noise is the mean of ten noise
+realisations (vcnc.contour_compare); "single runs" gives the range of the prediction error against
+each realisation alone.
 
 Run: ``python benchmarks/contour.py [--samples N] [--moves N] [--skip-thesis] [--skip-speed]``.
 """
@@ -17,7 +17,6 @@ Run: ``python benchmarks/contour.py [--samples N] [--moves N] [--skip-thesis] [-
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import math
 import sys
 import time
@@ -116,8 +115,8 @@ CASES = [("fadal-pid", None, None), ("fadal-ppi", None, None), ("fadal-smc", Non
 
 
 def thesis(moves: int) -> None:
-    has_diag = importlib.util.find_spec("identification.diagnosis") is not None
     from identification import identify
+    from identification.diagnosis import diagnose
 
     print(f"\nthesis cases: models identified from {moves} random moves (+/-10 mm, 200 mm/s), true vs predicted "
           "max contour error")
@@ -128,11 +127,7 @@ def thesis(moves: int) -> None:
         prog = interpolators.parse_program(toolpaths.random_moves(moves, 10.0, 12000, seed=1, axes=m.axes))
         cap = m.simulate(interpolators.interpolate(prog, limits=m.limits, sample_time=m.sample_time), seed=1)
         plain = {a: identify(cap, axis=a, diagnose=False) for a in m.axes}
-        aug = None
-        if has_diag:
-            from identification.diagnosis import diagnose
-
-            aug = {a: diagnose(cap, plain[a], axis=a) for a in m.axes}
+        aug = {a: diagnose(cap, plain[a], axis=a) for a in m.axes}
         one = len(m.axes) == 1
         for tp in (("circle", "diamond") if feed is None else ("circle",)):
             r = compare(name, plain[m.axes[0]] if one else plain, tp, feed=feed, acceleration=acc).to_dict()
@@ -140,11 +135,10 @@ def thesis(moves: int) -> None:
             single = f"{rng[0]:+.1f}..{rng[1]:+.1f}" if rng else "(one run)"
             line = (f"{name:16s} {tp:8s} {r['true']['contour_max_um']:9.2f} {r['predicted']['contour_max_um']:9.2f} "
                     f"{r['prediction_error_pct']['max']:+7.2f} {single:>15s}")
-            if aug is not None:
-                ra = compare(name, aug[m.axes[0]] if one else aug, tp, feed=feed, acceleration=acc).to_dict()
-                effects = sorted({e.get("name", "?") for mod in aug.values() for e in (mod.effects or [])})
-                line += (f" {ra['predicted']['contour_max_um']:9.2f} {ra['prediction_error_pct']['max']:+7.2f}  "
-                         f"{', '.join(effects) or 'none found'}")
+            ra = compare(name, aug[m.axes[0]] if one else aug, tp, feed=feed, acceleration=acc).to_dict()
+            effects = sorted({e.get("name", "?") for mod in aug.values() for e in (mod.effects or [])})
+            line += (f" {ra['predicted']['contour_max_um']:9.2f} {ra['prediction_error_pct']['max']:+7.2f}  "
+                     f"{', '.join(effects) or 'none found'}")
             print(line, flush=True)
             if name == "fadal-smc":
                 quiet = m

@@ -633,11 +633,7 @@ def compare(
         sp = Setpoints.from_positions(capture.reference[:, [capture.axis_index(a) for a in axes]],
                                       sample_time=capture.sample_time, axes=axes)
         sp = dataclasses.replace(sp, path=path)
-        measured = capture.measured[:, [capture.axis_index(a) for a in axes]]
-
-        def run_truth(_seed):
-            return measured, None
-
+        truth_positions = iter([(capture.measured[:, [capture.axis_index(a) for a in axes]], None)])
         truth_name = capture.source or "capture"
         sample_time = capture.sample_time
     else:
@@ -654,14 +650,8 @@ def compare(
         axes = tuple(sp.axes)
         n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
         seeds = [int(seed) + k for k in range(int(n_runs))]
-
-        def run_truth(s):
-            # the truth is where the axes are; the sensor's reading of it is reported beside it
-            cap = machine.simulate(sp, seed=s)
-            if "measured_true" in cap.aux:
-                return cap.aux["measured_true"], cap.measured
-            return cap.measured, None
-
+        # lazily, one run at a time: (where the axes are, what the sensors read) per noise seed
+        truth_positions = (_truth_run(machine, sp, s) for s in seeds)
         truth_name = machine.name
         sample_time = machine.sample_time
         path = sp.path
@@ -682,12 +672,11 @@ def compare(
     limits = {a: interpolators.DEFAULT_LIMITS["x"] for a in axes}
     include = None if program is None else feed_segments(path, program)
     kw = {"reference": sp.position, "t": sp.t, "sample_time": sample_time, "include_segments": include}
-    # one run at a time: only the first run's histories are kept, the others leave their metrics
+    # only the first run's histories are kept, the others leave their metrics
     true_ce = true_sensor = None
     true_runs: list[dict] = []
     sensor_runs: list[dict] = []
-    for k, s in enumerate(seeds or [seed]):
-        pos, sensor = run_truth(s)
+    for k, (pos, sensor) in enumerate(truth_positions):
         ce = contour_error(path, pos, axes, **kw)
         ce_sensor = None if sensor is None else contour_error(path, sensor, axes, **kw)
         if k == 0:
@@ -716,6 +705,15 @@ def compare(
                          models=descr, notes=notes, true_as_measured=true_sensor,
                          true_runs=true_runs if several else [],
                          true_as_measured_runs=sensor_runs if several else [], seeds=seeds)
+
+
+def _truth_run(machine, sp: Setpoints, seed: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """One run of a simulated truth: the true position of each axis' measured point [mm] and, when
+    the simulation tells them apart, the sensors' reading of it (else None)."""
+    cap = machine.simulate(sp, seed=seed)
+    if "measured_true" in cap.aux:
+        return cap.aux["measured_true"], cap.measured
+    return cap.measured, None
 
 
 def _noisy(machine, axes: tuple[str, ...]) -> bool:

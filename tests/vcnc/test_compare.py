@@ -245,6 +245,7 @@ def test_cli_compare(tmp_path, capsys):
         (["--model", "MX", "--toolpath", "nope.nc"], "nope.nc"),
         (["--model", "MX", "--toolpath", "BAD"], "BAD.nc:2"),
         (["--model", "MX", "--truth", "no-such-machine"], "no-such-machine"),
+        (["--model", "MX", "--truth-runs", "0"], "truth_runs"),
     ],
 )
 def test_cli_bad_input_exits_2_without_output(tmp_path, capsys, args, message):
