@@ -19,6 +19,9 @@ As written in the thesis (Eqs. 4.1-4.7, Sec. 4.2.1-4.2.5 and the settings of Sec
 
 Population 4000 and 300 generations by default (Sec. 4.3). The best candidate ever evaluated is
 returned (selection alone is not elitist across generations). Seeded: same seed, same result.
+The search runs over the whole box, as written; where all three poles are real the box holds up
+to three labellings of the same model (``identification.poles.canonical``), and the GA may settle
+in any of them: the best candidate and the history are reported in the canonical one.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ import math
 
 import numpy as np
 
+from identification.poles import canonical
 from identification.problem import ReducedProblem
 from vcnc.errors import IdentificationError
 
@@ -137,6 +141,10 @@ def solve_ga(problem: ReducedProblem, options: GAOptions | None = None, *, seed:
         winners = np.where(f[i] <= f[j], i, j)
         pop = children[np.concatenate([top, winners])]
     v = np.array([best_v[2], best_v[0], best_v[1]])
+    # the history in the labelling results are reported in (slowest real pole as p), as in Fig. 4.4
+    box = problem.bounds.rad()
+    for row in hist_v:
+        row[2], row[0], row[1] = canonical(row[2], row[0], row[1], box)
     return {
         "v": v,
         "objective": best_f,

@@ -22,6 +22,9 @@ __all__ = [
     "theta1",
     "theta1_jacobian",
     "poles_from_denominator",
+    "pole_splits",
+    "canonical",
+    "canonical_mask",
     "pole_table",
     "zero_table",
 ]
@@ -123,6 +126,69 @@ def pole_splits(a1: float, a2: float, a3: float) -> list[dict[str, float]]:
         wn = math.sqrt(c0)
         out.append({"p_hz": p / TWO_PI, "omega_n_hz": wn / TWO_PI, "zeta": c1 / (2.0 * wn)})
     return out
+
+
+def _splits_of(p, omega_n, zeta):
+    """The three labellings of an all-real pole set, slowest ``p`` first (vectorised).
+
+    For arrays p, omega_n [rad/s] and zeta > 1 [-], returns (P, W, Z, own), P, W, Z of shape
+    (..., 3): split j takes the j-th slowest root as p and the other two as the pair; ``own`` is
+    the index of the given labelling (ties go to the slower index).
+    """
+    p, wn, z = np.broadcast_arrays(*(np.asarray(a, float) for a in (p, omega_n, zeta)))
+    s = np.sqrt(np.maximum(z * z - 1.0, 0.0))
+    roots = np.stack([p, wn * (z - s), wn * (z + s)], axis=-1)
+    order = np.argsort(roots, axis=-1, kind="stable")
+    r = np.take_along_axis(roots, order, axis=-1)
+    own = np.argmax(order == 0, axis=-1)
+    P = r
+    rest = np.stack([r[..., [1, 2]], r[..., [0, 2]], r[..., [0, 1]]], axis=-2)  # (..., 3, 2)
+    W = np.sqrt(rest[..., 0] * rest[..., 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Z = (rest[..., 0] + rest[..., 1]) / (2.0 * W)
+    return P, W, Z, own
+
+
+def _in_box(P, W, Z, box, rtol: float = 1e-9) -> np.ndarray:
+    (plo, phi), (wlo, whi), (zlo, zhi) = box
+    return (
+        (P >= plo * (1 - rtol)) & (P <= phi * (1 + rtol)) & (W >= wlo * (1 - rtol)) & (W <= whi * (1 + rtol))
+        & (Z >= zlo * (1 - rtol)) & (Z <= zhi * (1 + rtol))
+    )
+
+
+def canonical_mask(p, omega_n, zeta, box) -> np.ndarray:
+    """True where (p, omega_n, zeta) [rad/s, rad/s, -] is the canonical labelling of its poles.
+
+    With zeta > 1 all three poles are real and (p, omega_n, zeta) is one of up to three labellings
+    of the same characteristic polynomial (which root is ``p``): the objective of Eq. (3.12), the
+    model parameters a1..d1 and every prediction are the same for all of them. The canonical one
+    is the first labelling inside ``box`` ((p_lo, p_hi), (wn_lo, wn_hi), (zeta_lo, zeta_hi)) [rad/s]
+    in the order slowest ``p`` first (as :func:`pole_splits`, and as the thesis' tables label the
+    slow real pole p). Points with zeta <= 1 (a complex or double pair), and points none of whose
+    labellings lies in the box, are canonical.
+    """
+    P, W, Z, own = _splits_of(p, omega_n, zeta)
+    inside = _in_box(P, W, Z, box)
+    first = np.argmax(inside, axis=-1)
+    real = np.asarray(zeta, float) > 1.0
+    return ~real | ~np.any(inside, axis=-1) | (first == own)
+
+
+def canonical(p: float, omega_n: float, zeta: float, box) -> tuple[float, float, float]:
+    """The canonical labelling (see :func:`canonical_mask`) of the poles of (p, omega_n, zeta).
+
+    Frequencies in rad/s; ``box`` as in :func:`canonical_mask`. Returns the point unchanged when
+    zeta <= 1 or when no labelling lies in the box.
+    """
+    if not zeta > 1.0:
+        return float(p), float(omega_n), float(zeta)
+    P, W, Z, own = _splits_of(p, omega_n, zeta)
+    inside = _in_box(P, W, Z, box)
+    for j in range(3):
+        if inside[j]:
+            return (float(p), float(omega_n), float(zeta)) if j == own else (float(P[j]), float(W[j]), float(Z[j]))
+    return float(p), float(omega_n), float(zeta)
 
 
 def _root_table(roots: np.ndarray) -> list[dict[str, float]]:

@@ -20,7 +20,7 @@ import numpy as np
 import scipy.linalg
 
 from identification.bounds import PoleBounds
-from identification.poles import TWO_PI, denominator, pole_splits, theta1, theta1_jacobian
+from identification.poles import TWO_PI, canonical_mask, denominator, pole_splits, theta1, theta1_jacobian
 from identification.regressor import COLUMN_DESCRIPTIONS, SufficientStatistics
 from vcnc.errors import IdentificationError
 
@@ -126,6 +126,9 @@ class ReducedProblem:
         include v. Where feedforward cancels the closed-loop poles (thesis Tables 3.5 and 4.2) the
         profile is flat over much of the box; a well-excited feedback loop pins it to one value.
         ``identifiable`` says omega_n stays within 25 % and zeta within 0.15 of the solution.
+        Only canonical labellings (:func:`~identification.poles.canonical_mask`) are profiled: with
+        three real poles, the other labellings of the solution's poles have the same objective and
+        would show as a second valley far away in (p, omega_n, zeta) although the model is the same.
 
         Returns
         -------
@@ -140,8 +143,9 @@ class ReducedProblem:
         axes = [np.linspace(lo[i], hi[i], points if i < 2 else max(points // 2, 8)) for i in range(3)]
         G = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)  # coarse grid (n0, n1, n2, 3)
 
-        def f(u):
-            return self.objective(np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2])
+        def f(u):  # other labellings of the same poles are left out (they would mirror the valley)
+            p, wn, z = np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]
+            return np.where(canonical_mask(p, wn, z, box), self.objective(p, wn, z), np.inf)
 
         def r(u):  # residual of Gauss-Newton (self.residual), vectorised over the rows of u
             return self.residual(np.stack([np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]]))

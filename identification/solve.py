@@ -32,7 +32,7 @@ from identification.bounds import PoleBounds, as_bounds
 from identification.exact import ExactOptions, solve_exact
 from identification.ga import GAOptions, solve_ga
 from identification.kkt import solve_kkt
-from identification.poles import TWO_PI
+from identification.poles import TWO_PI, canonical
 from identification.problem import ReducedProblem
 from identification.regressor import SufficientStatistics
 from vcnc.errors import IdentificationError
@@ -51,7 +51,10 @@ class SolveResult:
     parameters : dict
         a1..d1 of Eq. (3.3) (units in ``identification.reduced_model.PARAMETER_UNITS``).
     poles : dict
-        ``omega_n_hz`` [Hz], ``zeta`` [-], ``p_hz`` [Hz].
+        ``omega_n_hz`` [Hz], ``zeta`` [-], ``p_hz`` [Hz], in the canonical labelling
+        (:func:`identification.poles.canonical`: when all three poles are real, p is the slowest
+        whose pair fits the bounds). A solver's point in another labelling of the same poles (same
+        objective, same a1..d1) is relabelled, and ``details["relabelled_from"]`` keeps it.
     objective : float
         f of Eq. (3.12) at the solution [mm^2].
     unconstrained_objective : float
@@ -231,6 +234,10 @@ def solve_statistics(
     else:
         out = solve_kkt(problem)
     v = np.asarray(out["v"], float)
+    # the same poles, labelled canonically (slowest real pole as p when all three are real)
+    vc = np.array(canonical(*v, b.rad()))
+    relabelled = not np.array_equal(vc, v)
+    v_raw, v = v, vc
     params, theta, extra = problem.parameters(v)
     kkt = problem.kkt_report(v)
     elapsed = time.perf_counter() - t0
@@ -242,6 +249,9 @@ def solve_statistics(
         raise IdentificationError("the solution has non-finite parameters (degenerate statistics)")
     details = {k: val for k, val in out.items() if k not in ("v", "objective", "nfev", "nit", "message")}
     details["kkt"] = kkt
+    if relabelled:
+        details["relabelled_from"] = {"p_hz": v_raw[0] / TWO_PI, "omega_n_hz": v_raw[1] / TWO_PI,
+                                      "zeta": float(v_raw[2])}
     if identifiability:
         details["identifiability"] = problem.valley(v)
     return SolveResult(

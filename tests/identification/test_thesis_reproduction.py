@@ -7,6 +7,8 @@ examples/01_thesis_reproduction.py.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -26,6 +28,7 @@ def validation_capture(machine):
     return machine.simulate(sp, seed=1)
 
 
+@functools.cache
 def _identify(name):
     m = load_machine(name)
     sp = interpolators.interpolate(
@@ -81,18 +84,23 @@ def smc():
     return _identify("fadal-smc")
 
 
-def test_three_methods_agree_on_the_feedforward_loop(smc):
-    """Sec. 4.3 (GA within 2-3 % of LM) on the SMC loop, whose feedforward cancels poles and zeros
-    (Table 3.5), through the whole pipeline (solver + output-error refinement): exact, ga and kkt
-    land on the same model (measured: 2e-6 relative). Where the equation error has two near-equal
-    minima (fadal-ppi, Table 3.3: 0.05 % apart in objective, omega_n 14 vs 64 Hz) the GA settles in
-    either; test_solvers.py::test_identifiability_valley_holds_every_near_optimum covers that case."""
-    m, cap, exact = smc
+@pytest.mark.parametrize("name", ["fadal-pid", "fadal-ppi", "fadal-smc"])
+def test_three_methods_agree(name):
+    """Sec. 4.3 (GA within 2-3 % of LM): on the three thesis loops (Tables 3.3-3.5) exact, ga and kkt
+    give the same identified model through the whole pipeline (solver + output-error refinement);
+    measured: within 1e-5 relative in a1..d1. On fadal-ppi the GA alone ends in the mirror labelling
+    of the same three real poles and stalls along the valley of the fast pair (up to 9 % in omega_n,
+    see test_solvers.py::test_ga_mirror_is_the_same_model_relabelled); its relabelled start lets the
+    refinement reach the same model (started in the mirror labelling it stopped 31 % away, where the
+    two fast poles meet)."""
+    m, cap, exact = _identify(name)
     for method in ("ga", "kkt"):
         other = identify(cap, diagnose=False, method=method)
         for k, v in exact.parameters.items():
-            assert other.parameters[k] == pytest.approx(v, rel=0.03), (method, k)
-        assert other.fit["rms_um"] == pytest.approx(exact.fit["rms_um"], rel=1e-3)
+            assert other.parameters[k] == pytest.approx(v, rel=1e-3), (method, k)
+        for k, v in exact.poles.items():
+            assert other.poles[k] == pytest.approx(v, rel=1e-3), (method, k)
+        assert other.fit["rms_um"] == pytest.approx(exact.fit["rms_um"], rel=1e-4)
 
 
 def test_smc_pole_zero_cancellation(smc):
