@@ -11,6 +11,8 @@ import dataclasses
 import math
 from collections.abc import Mapping
 
+import numpy as np
+
 from vcnc.errors import IdentificationError
 
 __all__ = ["PoleBounds", "default_bounds", "as_bounds"]
@@ -66,11 +68,16 @@ class PoleBounds:
 
     def contains(self, poles: Mapping[str, float], *, rtol: float = 1e-9) -> bool:
         """True when (p_hz, omega_n_hz, zeta) lie in the box (with a relative tolerance)."""
-        for name, (lo, hi) in self.as_dict().items():
-            v = poles[name]
-            if v < lo * (1 - rtol) or v > hi * (1 + rtol):
-                return False
-        return True
+        k = 2.0 * math.pi
+        return bool(self.contains_rad(poles["p_hz"] * k, poles["omega_n_hz"] * k, poles["zeta"], rtol=rtol))
+
+    def contains_rad(self, p, omega_n, zeta, *, rtol: float = 1e-9) -> np.ndarray:
+        """Vectorised :meth:`contains` for p, omega_n [rad/s] and zeta [-] (arrays broadcast)."""
+        inside = True
+        for v, (lo, hi) in zip((p, omega_n, zeta), self.rad()):
+            v = np.asarray(v, float)
+            inside = inside & (v >= lo * (1 - rtol)) & (v <= hi * (1 + rtol))
+        return np.asarray(inside)
 
 
 def default_bounds(sample_time: float | None = None) -> PoleBounds:

@@ -142,9 +142,8 @@ def solve_ga(problem: ReducedProblem, options: GAOptions | None = None, *, seed:
         pop = children[np.concatenate([top, winners])]
     v = np.array([best_v[2], best_v[0], best_v[1]])
     # the history in the labelling results are reported in (slowest real pole as p), as in Fig. 4.4
-    box = problem.bounds.rad()
     for row in hist_v:
-        row[2], row[0], row[1] = canonical(row[2], row[0], row[1], box)
+        row[2], row[0], row[1] = canonical(row[2], row[0], row[1], problem.bounds)
     return {
         "v": v,
         "objective": best_f,

@@ -75,11 +75,10 @@ def refine_output_error(
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
     a2 = parameters["a2"]
-    box = bounds.rad()
     # start from the canonical labelling: with p the slowest of three real poles, the fast pair can
     # turn complex through zeta = 1; labelled otherwise, a fast real pole shares nothing with the
     # pair, and the search stalls where the two fast poles meet (31 % off on fadal-ppi's GA start)
-    p0, w0, z0 = canonical(poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"], box)
+    p0, w0, z0 = canonical(poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"], bounds)
     x0 = np.array(
         [
             math.log(p0),
@@ -92,6 +91,7 @@ def refine_output_error(
             parameters["d1"] / a2,
         ]
     )
+    box = bounds.rad()
     lo = np.array([math.log(box[0][0]), math.log(box[1][0]), box[2][0]] + [-np.inf] * 5)
     hi = np.array([math.log(box[0][1]), math.log(box[1][1]), box[2][1]] + [np.inf] * 5)
     x0 = np.clip(x0, lo, hi)
@@ -110,7 +110,7 @@ def refine_output_error(
     )
     x = res.x if res.cost <= start_cost else x0
     params = _params_from(x)
-    p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), box)
+    p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
     return {
         "parameters": params,
         "poles": {"omega_n_hz": wn / TWO_PI, "zeta": z, "p_hz": p / TWO_PI},

@@ -141,54 +141,40 @@ def _splits_of(p, omega_n, zeta):
     order = np.argsort(roots, axis=-1, kind="stable")
     r = np.take_along_axis(roots, order, axis=-1)
     own = np.argmax(order == 0, axis=-1)
-    P = r
     rest = np.stack([r[..., [1, 2]], r[..., [0, 2]], r[..., [0, 1]]], axis=-2)  # (..., 3, 2)
     W = np.sqrt(rest[..., 0] * rest[..., 1])
     with np.errstate(divide="ignore", invalid="ignore"):
         Z = (rest[..., 0] + rest[..., 1]) / (2.0 * W)
-    return P, W, Z, own
+    return r, W, Z, own
 
 
-def _in_box(P, W, Z, box, rtol: float = 1e-9) -> np.ndarray:
-    (plo, phi), (wlo, whi), (zlo, zhi) = box
-    return (
-        (P >= plo * (1 - rtol)) & (P <= phi * (1 + rtol)) & (W >= wlo * (1 - rtol)) & (W <= whi * (1 + rtol))
-        & (Z >= zlo * (1 - rtol)) & (Z <= zhi * (1 + rtol))
-    )
-
-
-def canonical_mask(p, omega_n, zeta, box) -> np.ndarray:
+def canonical_mask(p, omega_n, zeta, bounds) -> np.ndarray:
     """True where (p, omega_n, zeta) [rad/s, rad/s, -] is the canonical labelling of its poles.
 
     With zeta > 1 all three poles are real and (p, omega_n, zeta) is one of up to three labellings
     of the same characteristic polynomial (which root is ``p``): the objective of Eq. (3.12), the
     model parameters a1..d1 and every prediction are the same for all of them. The canonical one
-    is the first labelling inside ``box`` ((p_lo, p_hi), (wn_lo, wn_hi), (zeta_lo, zeta_hi)) [rad/s]
-    in the order slowest ``p`` first (as :func:`pole_splits`, and as the thesis' tables label the
-    slow real pole p). Points with zeta <= 1 (a complex or double pair), and points none of whose
+    is the first labelling inside ``bounds`` (a :class:`~identification.bounds.PoleBounds`) in the
+    order slowest ``p`` first (as :func:`pole_splits`, and as the thesis' tables label the slow
+    real pole p). Points with zeta <= 1 (a complex or double pair), and points none of whose
     labellings lies in the box, are canonical.
     """
     P, W, Z, own = _splits_of(p, omega_n, zeta)
-    inside = _in_box(P, W, Z, box)
-    first = np.argmax(inside, axis=-1)
+    inside = bounds.contains_rad(P, W, Z)
     real = np.asarray(zeta, float) > 1.0
-    return ~real | ~np.any(inside, axis=-1) | (first == own)
+    return ~real | ~np.any(inside, axis=-1) | (np.argmax(inside, axis=-1) == own)
 
 
-def canonical(p: float, omega_n: float, zeta: float, box) -> tuple[float, float, float]:
+def canonical(p: float, omega_n: float, zeta: float, bounds) -> tuple[float, float, float]:
     """The canonical labelling (see :func:`canonical_mask`) of the poles of (p, omega_n, zeta).
 
-    Frequencies in rad/s; ``box`` as in :func:`canonical_mask`. Returns the point unchanged when
-    zeta <= 1 or when no labelling lies in the box.
+    Frequencies in rad/s. Returns the point unchanged when it is canonical.
     """
-    if not zeta > 1.0:
+    if canonical_mask(p, omega_n, zeta, bounds):
         return float(p), float(omega_n), float(zeta)
-    P, W, Z, own = _splits_of(p, omega_n, zeta)
-    inside = _in_box(P, W, Z, box)
-    for j in range(3):
-        if inside[j]:
-            return (float(p), float(omega_n), float(zeta)) if j == own else (float(P[j]), float(W[j]), float(Z[j]))
-    return float(p), float(omega_n), float(zeta)
+    P, W, Z, _ = _splits_of(p, omega_n, zeta)
+    j = int(np.argmax(bounds.contains_rad(P, W, Z)))
+    return float(P[j]), float(W[j]), float(Z[j])
 
 
 def _root_table(roots: np.ndarray) -> list[dict[str, float]]:

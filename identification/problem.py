@@ -145,7 +145,7 @@ class ReducedProblem:
 
         def f(u):  # other labellings of the same poles are left out (they would mirror the valley)
             p, wn, z = np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]
-            return np.where(canonical_mask(p, wn, z, box), self.objective(p, wn, z), np.inf)
+            return np.where(canonical_mask(p, wn, z, self.bounds), self.objective(p, wn, z), np.inf)
 
         def r(u):  # residual of Gauss-Newton (self.residual), vectorised over the rows of u
             return self.residual(np.stack([np.exp(u[..., 0]), np.exp(u[..., 1]), u[..., 2]]))

@@ -219,7 +219,7 @@ def solve_statistics(
     """:func:`solve` on accumulated statistics (same parameters).
 
     ``identifiability=True`` also maps the valley of the objective around the solution
-    (:meth:`~identification.problem.ReducedProblem.valley`, about 15 ms; not in ``time_s``) into
+    (:meth:`~identification.problem.ReducedProblem.valley`, about 35 ms on the Table 3.2 test; not in ``time_s``) into
     ``details["identifiability"]``; :func:`identification.identify` asks for it.
     """
     if method not in METHODS:
@@ -233,11 +233,8 @@ def solve_statistics(
         out = solve_ga(problem, ga_options, seed=seed)
     else:
         out = solve_kkt(problem)
-    v = np.asarray(out["v"], float)
-    # the same poles, labelled canonically (slowest real pole as p when all three are real)
-    vc = np.array(canonical(*v, b.rad()))
-    relabelled = not np.array_equal(vc, v)
-    v_raw, v = v, vc
+    v_raw = np.asarray(out["v"], float)
+    v = np.array(canonical(*v_raw, b))  # the same poles, slowest real pole as p when all are real
     params, theta, extra = problem.parameters(v)
     kkt = problem.kkt_report(v)
     elapsed = time.perf_counter() - t0
@@ -249,7 +246,7 @@ def solve_statistics(
         raise IdentificationError("the solution has non-finite parameters (degenerate statistics)")
     details = {k: val for k, val in out.items() if k not in ("v", "objective", "nfev", "nit", "message")}
     details["kkt"] = kkt
-    if relabelled:
+    if not np.array_equal(v, v_raw):
         details["relabelled_from"] = {"p_hz": v_raw[0] / TWO_PI, "omega_n_hz": v_raw[1] / TWO_PI,
                                       "zeta": float(v_raw[2])}
     if identifiability:

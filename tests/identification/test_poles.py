@@ -3,13 +3,15 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from identification.bounds import default_bounds
 from identification.poles import TWO_PI, canonical, canonical_mask, denominator, pole_splits
 
-BOX = default_bounds(1e-3).rad()
+BOUNDS = default_bounds(1e-3)
 
 
 def _labellings(roots_hz):
@@ -28,14 +30,13 @@ def test_every_labelling_maps_to_the_slowest_p():
     for _ in range(200):
         roots = np.sort(rng.uniform(1.0, 120.0, 3))
         labs = _labellings(roots)
-        fits = [lab for lab in labs if default_bounds(1e-3).contains(
-            {"p_hz": lab[0] / TWO_PI, "omega_n_hz": lab[1] / TWO_PI, "zeta": lab[2]})]
+        fits = [lab for lab in labs if BOUNDS.contains_rad(*lab)]
         want = fits[0]  # slowest p whose pair fits zeta <= 2
         for lab in fits:
-            c = canonical(*lab, BOX)
+            c = canonical(*lab, BOUNDS)
             assert c == pytest.approx(want, rel=1e-9)
             assert np.allclose(denominator(*c), denominator(*lab), rtol=1e-9)  # same polynomial
-        mask = canonical_mask(*np.array(fits).T, BOX)
+        mask = canonical_mask(*np.array(fits).T, BOUNDS)
         assert mask.tolist() == [i == 0 for i in range(len(fits))]
 
 
@@ -44,25 +45,25 @@ def test_the_pair_must_fit_the_bounds():
     labelling takes p = 5 Hz (pair 1 and 100 Hz would need zeta 5.05; pair 1 and 5 Hz: zeta 1.34)."""
     slow, mid, fast = _labellings([1.0, 5.0, 100.0])
     assert slow[2] > 2.0
-    c = canonical(*fast, BOX)
+    c = canonical(*fast, BOUNDS)
     assert c[0] / TWO_PI == pytest.approx(100.0) and c[2] == pytest.approx(1.342, abs=1e-3)
-    assert canonical_mask(*fast, BOX)
-    assert canonical(*mid, BOX) == pytest.approx(fast, rel=1e-12)  # mid itself needs zeta 5.05: outside
-    assert not canonical_mask(*mid, BOX)
-    wide = ((BOX[0]), (BOX[1]), (0.2, 3.0))
+    assert canonical_mask(*fast, BOUNDS)
+    assert canonical(*mid, BOUNDS) == pytest.approx(fast, rel=1e-12)  # mid itself needs zeta 5.05: outside
+    assert not canonical_mask(*mid, BOUNDS)
+    wide = dataclasses.replace(BOUNDS, zeta=(0.2, 3.0))
     assert canonical(*fast, wide) == pytest.approx(slow, rel=1e-12)
 
 
 def test_complex_and_double_pairs_are_kept():
     for z in (0.3, 0.99, 1.0):
         v = (10.0 * TWO_PI, 50.0 * TWO_PI, z)
-        assert canonical(*v, BOX) == v
-        assert canonical_mask(*v, BOX)
+        assert canonical(*v, BOUNDS) == v
+        assert canonical_mask(*v, BOUNDS)
 
 
 def test_pole_splits_lists_the_canonical_labelling_first():
     p, wn, z = _labellings([3.0, 40.0, 90.0])[2]
     first = pole_splits(*denominator(p, wn, z))[0]
-    c = canonical(p, wn, z, BOX)
+    c = canonical(p, wn, z, BOUNDS)
     assert first["p_hz"] * TWO_PI == pytest.approx(c[0], rel=1e-9)
     assert first["omega_n_hz"] * TWO_PI == pytest.approx(c[1], rel=1e-9)

@@ -147,8 +147,7 @@ def test_ga_mirror_is_the_same_model_relabelled(ppi_statistics):
     assert ga.poles["p_hz"] == pytest.approx(ex.poles["p_hz"], rel=1e-3)  # same slow pole
     assert ga.objective <= 1.01 * ex.objective
     # the raw point and its relabelling are the same model
-    box = ga.bounds.rad()
-    v = canonical(raw["p_hz"] * TWO_PI, raw["omega_n_hz"] * TWO_PI, raw["zeta"], box)
+    v = canonical(raw["p_hz"] * TWO_PI, raw["omega_n_hz"] * TWO_PI, raw["zeta"], ga.bounds)
     assert np.allclose(np.array(v) / [TWO_PI, TWO_PI, 1], ga.x[[0, 1, 2]], rtol=1e-12)
     prob = ReducedProblem(st, ga.bounds)
     u = np.array([raw["p_hz"] * TWO_PI, raw["omega_n_hz"] * TWO_PI, raw["zeta"]])
@@ -188,9 +187,8 @@ def test_identifiability_valley_holds_every_near_optimum(ppi_statistics):
         z = np.clip(c[2] + 0.25 * u[:, 2], *box[2])
         near = prob.objective(p, w, z) <= 1.01 * ex.objective
         assert near.sum() >= 20
-        pts += [canonical(*x, box) for x in zip(p[near], w[near], z[near])]
+        pts += [canonical(*x, prob.bounds) for x in zip(p[near], w[near], z[near])]
     pts = np.array(pts) / [TWO_PI, TWO_PI, 1]
-    pts = np.array([canonical(*x, box) for x in zip(p[near], w[near], z[near])]) / [TWO_PI, TWO_PI, 1]
     pts = np.vstack([pts, ga.x])
     # the profiles are on grids (48 log-spaced values of p and omega_n, 24 of zeta): a range ends at the
     # last grid value inside, so allow one grid step of slack
