@@ -12,11 +12,13 @@ import functools
 import numpy as np
 import pytest
 
+import drives
 import interpolators
 from identification import ReducedAxisModel, identify
 from identification.gain_scales import PAPER_K1, PAPER_K2, pdf_gain_scales
 from identification.synthetic import VALIDATION_PROGRAM, table_3_2_program
 from interpolators.limits import AxisLimits
+from vcnc.contour_compare import compare
 from vcnc.machine import load_machine
 
 
@@ -30,7 +32,10 @@ def validation_capture(machine):
 
 @functools.cache
 def _identify(name):
-    m = load_machine(name)
+    return _identify_machine(load_machine(name))
+
+
+def _identify_machine(m):
     sp = interpolators.interpolate(
         interpolators.parse_program(table_3_2_program()), limits=m.limits, sample_time=m.sample_time
     )
@@ -119,7 +124,8 @@ def test_smc_pole_zero_cancellation(smc):
 
 def test_ballscrew_zpetc_table_4_2_situation(pid):
     """Table 4.2: ZPETC cancels the closed-loop dynamics, the poles are not identifiable. The paper's
-    solution sat near zeta_min; ours is stable and inside the bounds, in a valley of the objective that
+    solution sat near zeta_min; on the rigid virtual bench ours is stable and inside the bounds (for the
+    bound, see the next test: it takes the bench's structure), in a valley of the objective that
     spans a factor 2 in omega_n (within 1 % of the minimum: about 20-42 Hz, the true 30 Hz inside), and
     still predicts the ~5 um RMS tracking error of the validation move within 25% (1.25 um encoder
     steps alone account for 7 %). The same measure pins the PID loop's poles to a grid step."""
@@ -135,6 +141,54 @@ def test_ballscrew_zpetc_table_4_2_situation(pid):
     pid_valley = pid[2].fit["solver"]["identifiability"]
     assert pid_valley["identifiable"]
     assert pid_valley["omega_n_hz"][1] / pid_valley["omega_n_hz"][0] < 1.1
+
+
+#: A first axial mode for the ball-screw bench (not published: a lightly damped mode below Nyquist,
+#: most of the inertia on the table side).
+AXIAL_MODE = drives.StructuralMode(frequency_hz=80.0, damping=0.05, load_fraction=0.7)
+
+
+def test_ballscrew_zpetc_with_an_axial_mode_sits_on_the_damping_bound():
+    """Table 4.2: on the real bench the LM solution was 77.83 Hz / zeta 0.203 / p 4.36 Hz, zeta "very
+    close to its minimum acceptable limit" 0.2. The rigid virtual bench does not land there (test
+    above: its optimum is inside the box on every program tried). A real ball screw has axial modes;
+    with one (AXIAL_MODE) the ZPETC, having cancelled the rigid closed loop, leaves the mode's lightly
+    damped residue as the dynamics the three poles must fit, and the equation-error solution sits on
+    zeta_min (Table 3.1 case 2; measured 57.1 Hz / 0.200 / 4.91 Hz; the GA 57.1 / 0.201 / 4.88, as the
+    paper's GA sat beside its LM), the refined model beside it (27.2 Hz / 0.204 / 8.96 Hz). The same
+    mode without the ZPETC (ballscrew-ppc) leaves every bound free (measured 37.1 Hz / 0.61 /
+    13.3 Hz): the cancellation is what drives the solution to the bound.
+    Over modes of 60 Hz (damping 0.02-0.1, load fraction 0.3-0.7) and 80 Hz at load fraction 0.7 the
+    solution was on zeta_min every time; at 80 Hz / 0.5 it sat at 0.23-0.25, from 100 Hz up at 0.26-0.52.
+
+    The model still predicts the tracking error: the peak of the Sec. 4.3.1 move within 10 %
+    (measured +2.5 %), its RMS within 15 % (+9.5 %; sample by sample the mode's ringing is not
+    reproduced, 63 %), and the max contour error of the Fig. 3.14 circle (100 mm/s, 600 mm/s^2)
+    within 10 % (+3.0 %)."""
+    m = load_machine("ballscrew-zpetc").with_axis_options("x", resonance=AXIAL_MODE)
+    _, cap, model = _identify_machine(m)
+    ee, b = model.fit["solver"], model.bounds
+    assert ee["case"] == 2 and ee["active"] == {"p": "free", "omega_n": "free", "zeta": "lower"}
+    assert ee["poles"]["zeta"] == pytest.approx(b["zeta"][0], abs=1e-9)
+    assert ee["objective"] > ee["unconstrained_objective"]  # the bound bites
+    assert ee["poles"]["p_hz"] < ee["poles"]["omega_n_hz"] / 5  # slow real pole, fast lightly damped pair
+    assert model.is_stable()
+    assert b["zeta"][0] <= model.poles["zeta"] <= 1.1 * b["zeta"][0]  # the refined model near the bound
+    ga = identify(cap, method="ga", refine="none", diagnose=False)  # Table 4.2: GA beside LM at the bound
+    for k, v in ee["poles"].items():
+        assert ga.poles[k] == pytest.approx(v, rel=0.03), k
+
+    vc = validation_capture(m)
+    xr = vc.reference[:, 0]
+    e_true = xr - vc.measured[:, 0]
+    e_pred = xr - model.simulate(xr, sample_time=vc.sample_time)
+    assert np.max(np.abs(e_pred)) == pytest.approx(np.max(np.abs(e_true)), rel=0.10)
+    assert _rms_level_error(m, model) < 0.15
+    circle = compare(m, model, "circle", feed=100.0, acceleration=600.0).to_dict()
+    assert abs(circle["prediction_error_pct"]["max"]) <= 10.0
+
+    rigid_loop = load_machine("ballscrew-ppc").with_axis_options("x", resonance=AXIAL_MODE)
+    assert all(v == "free" for v in _identify_machine(rigid_loop)[2].fit["solver"]["active"].values())
 
 
 def test_chevalier_pdf_scale_gains_within_1_percent():
