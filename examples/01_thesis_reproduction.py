@@ -21,10 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
-import drives
 import interpolators
 from identification import ReducedAxisModel, identify
-from identification.synthetic import VALIDATION_PROGRAM, table_3_2_program
+from identification.synthetic import BALLSCREW_AXIAL_MODE, VALIDATION_PROGRAM, table_3_2_program
 from interpolators.limits import AxisLimits
 from vcnc.errors import MachineError
 from vcnc.machine import load_machine
@@ -33,24 +32,22 @@ from vcnc.machine import load_machine
 PAPER_PID = {"omega_n_hz": 38.21, "zeta": 0.42, "p_hz": 1.89}
 #: The paper's ZPETC + PPC + KF ball-screw estimate (Table 4.2, LM): 77.83 Hz, 0.203, 4.36 Hz.
 PAPER_ZPETC = {"omega_n_hz": 77.83, "zeta": 0.203, "p_hz": 4.36}
-#: A first axial mode of the ball-screw bench (not published; see tests/identification/
-#: test_thesis_reproduction.py::test_ballscrew_zpetc_with_an_axial_mode_sits_on_the_damping_bound).
-AXIAL_MODE = drives.StructuralMode(frequency_hz=80.0, damping=0.05, load_fraction=0.7)
 
 
 def machines():
+    """(label, figure file stem, machine) of every case."""
     for name in ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-zpetc"):
-        yield name, load_machine(name)
-    yield "ballscrew-zpetc + 80 Hz axial mode", load_machine("ballscrew-zpetc").with_axis_options(
-        "x", resonance=AXIAL_MODE
-    )
+        yield name, name, load_machine(name)
+    mode = BALLSCREW_AXIAL_MODE  # see test_thesis_reproduction.py::test_ballscrew_zpetc_with_an_axial_mode_...
+    yield (f"ballscrew-zpetc + {mode.frequency_hz:g} Hz axial mode", "ballscrew-zpetc_mode",
+           load_machine("ballscrew-zpetc").with_axis_options("x", resonance=mode))
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--plots", type=Path, help="folder for FRF figures")
     args = ap.parse_args()
-    for name, m in machines():
+    for name, stem, m in machines():
         sp = interpolators.interpolate(
             interpolators.parse_program(table_3_2_program()), limits=m.limits, sample_time=m.sample_time
         )
@@ -89,7 +86,7 @@ def main() -> None:
         print(f"  equation-error solution: Table 3.1 case {ee['case']}, active constraints: {', '.join(active)}")
         zeros = ", ".join(f"{z['frequency_hz']:.2f} Hz/{z['damping']:.2f}" for z in model.zero_table())
         print(f"  zeros of G_track (exact+oe): {zeros}")
-        val = model.fit["solver"]["identifiability"]
+        val = ee["identifiability"]
         rms_level = np.sqrt(np.mean(e_pred**2)) / np.sqrt(np.mean(e_true**2)) - 1.0
         print(f"  predicted RMS tracking error {100 * rms_level:+.1f}% of the true one; poles "
               f"{'identifiable' if val['identifiable'] else 'weakly identifiable'}: within 1% of the minimum for "
@@ -104,7 +101,7 @@ def main() -> None:
             args.plots.mkdir(parents=True, exist_ok=True)
             axes = model.plot(truth=truth)
             axes[0].figure.suptitle(f"{name}: identified vs true FRFs (cf. Fig. 3.5)")
-            axes[0].figure.savefig(args.plots / f"{name.split()[0]}{'_mode' if ' ' in name else ''}_frf.png", dpi=110)
+            axes[0].figure.savefig(args.plots / f"{stem}_frf.png", dpi=110)
             plt.close(axes[0].figure)
 
 

@@ -12,11 +12,10 @@ import functools
 import numpy as np
 import pytest
 
-import drives
 import interpolators
 from identification import ReducedAxisModel, identify
 from identification.gain_scales import PAPER_K1, PAPER_K2, pdf_gain_scales
-from identification.synthetic import VALIDATION_PROGRAM, table_3_2_program
+from identification.synthetic import BALLSCREW_AXIAL_MODE, VALIDATION_PROGRAM, table_3_2_program
 from interpolators.limits import AxisLimits
 from vcnc.contour_compare import compare
 from vcnc.machine import load_machine
@@ -44,11 +43,16 @@ def _identify_machine(m):
     return m, cap, identify(cap, diagnose=False)
 
 
-def _tracking_mismatch(machine, model):
+def _validation_errors(machine, model):
+    """(true, predicted) tracking errors of the Sec. 4.3.1 move on ``machine`` [mm]."""
     vc = validation_capture(machine)
     xr = vc.reference[:, 0]
-    e_true = xr - vc.measured[:, 0]
-    e_pred = xr - model.simulate(xr, sample_time=vc.sample_time)
+    return xr - vc.measured[:, 0], xr - model.simulate(xr, sample_time=vc.sample_time)
+
+
+def _tracking_mismatch(machine, model):
+    """RMS(predicted - true tracking error) / RMS(true tracking error) on the Sec. 4.3.1 move."""
+    e_true, e_pred = _validation_errors(machine, model)
     return float(np.sqrt(np.mean((e_true - e_pred) ** 2)) / np.sqrt(np.mean(e_true**2)))
 
 
@@ -75,12 +79,8 @@ def test_validation_tracking_error_within_5_percent(name, pid):
     assert _tracking_mismatch(m, model) < 0.05
 
 
-def _rms_level_error(machine, model):
-    """|RMS(predicted tracking error) / RMS(true tracking error) - 1| on the Sec. 4.3.1 move."""
-    vc = validation_capture(machine)
-    xr = vc.reference[:, 0]
-    e_true = xr - vc.measured[:, 0]
-    e_pred = xr - model.simulate(xr, sample_time=vc.sample_time)
+def _rms_level_error(e_true, e_pred):
+    """|RMS(predicted tracking error) / RMS(true tracking error) - 1|."""
     return abs(float(np.sqrt(np.mean(e_pred**2)) / np.sqrt(np.mean(e_true**2))) - 1.0)
 
 
@@ -118,7 +118,7 @@ def test_smc_pole_zero_cancellation(smc):
     true = ReducedAxisModel(parameters=m.axis("x").reduced_parameters(), sample_time=m.sample_time)
     f = np.linspace(0.1, 30.0, 50)
     assert np.all(np.abs(np.abs(model.G_track(2j * np.pi * f)) - 1) < 0.05)
-    assert _rms_level_error(m, model) < 0.05
+    assert _rms_level_error(*_validation_errors(m, model)) < 0.05
     assert _tracking_mismatch(m, model) <= _tracking_mismatch(m, true) + 0.05
 
 
@@ -143,16 +143,11 @@ def test_ballscrew_zpetc_table_4_2_situation(pid):
     assert pid_valley["omega_n_hz"][1] / pid_valley["omega_n_hz"][0] < 1.1
 
 
-#: A first axial mode for the ball-screw bench (not published: a lightly damped mode below Nyquist,
-#: most of the inertia on the table side).
-AXIAL_MODE = drives.StructuralMode(frequency_hz=80.0, damping=0.05, load_fraction=0.7)
-
-
 def test_ballscrew_zpetc_with_an_axial_mode_sits_on_the_damping_bound():
     """Table 4.2: on the real bench the LM solution was 77.83 Hz / zeta 0.203 / p 4.36 Hz, zeta "very
     close to its minimum acceptable limit" 0.2. The rigid virtual bench does not land there (test
     above: its optimum is inside the box on every program tried). A real ball screw has axial modes;
-    with one (AXIAL_MODE) the ZPETC, having cancelled the rigid closed loop, leaves the mode's lightly
+    with one (BALLSCREW_AXIAL_MODE) the ZPETC, having cancelled the rigid closed loop, leaves the mode's lightly
     damped residue as the dynamics the three poles must fit, and the equation-error solution sits on
     zeta_min (Table 3.1 case 2; measured 57.1 Hz / 0.200 / 4.91 Hz; the GA 57.1 / 0.201 / 4.88, as the
     paper's GA sat beside its LM), the refined model beside it (27.2 Hz / 0.204 / 8.96 Hz). The same
@@ -165,7 +160,7 @@ def test_ballscrew_zpetc_with_an_axial_mode_sits_on_the_damping_bound():
     (measured +2.5 %), its RMS within 15 % (+9.5 %; sample by sample the mode's ringing is not
     reproduced, 63 %), and the max contour error of the Fig. 3.14 circle (100 mm/s, 600 mm/s^2)
     within 10 % (+3.0 %)."""
-    m = load_machine("ballscrew-zpetc").with_axis_options("x", resonance=AXIAL_MODE)
+    m = load_machine("ballscrew-zpetc").with_axis_options("x", resonance=BALLSCREW_AXIAL_MODE)
     _, cap, model = _identify_machine(m)
     ee, b = model.fit["solver"], model.bounds
     assert ee["case"] == 2 and ee["active"] == {"p": "free", "omega_n": "free", "zeta": "lower"}
@@ -178,16 +173,13 @@ def test_ballscrew_zpetc_with_an_axial_mode_sits_on_the_damping_bound():
     for k, v in ee["poles"].items():
         assert ga.poles[k] == pytest.approx(v, rel=0.03), k
 
-    vc = validation_capture(m)
-    xr = vc.reference[:, 0]
-    e_true = xr - vc.measured[:, 0]
-    e_pred = xr - model.simulate(xr, sample_time=vc.sample_time)
+    e_true, e_pred = _validation_errors(m, model)
     assert np.max(np.abs(e_pred)) == pytest.approx(np.max(np.abs(e_true)), rel=0.10)
-    assert _rms_level_error(m, model) < 0.15
+    assert _rms_level_error(e_true, e_pred) < 0.15
     circle = compare(m, model, "circle", feed=100.0, acceleration=600.0).to_dict()
     assert abs(circle["prediction_error_pct"]["max"]) <= 10.0
 
-    rigid_loop = load_machine("ballscrew-ppc").with_axis_options("x", resonance=AXIAL_MODE)
+    rigid_loop = load_machine("ballscrew-ppc").with_axis_options("x", resonance=BALLSCREW_AXIAL_MODE)
     assert all(v == "free" for v in _identify_machine(rigid_loop)[2].fit["solver"]["active"].values())
 
 
