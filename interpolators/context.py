@@ -1,0 +1,179 @@
+"""Machine context of a part program: what a control knows besides the program text.
+
+A real control runs a program against its own tables: work offsets (G54-G59, G92), the tool
+table (length and radius per tool), its home and second reference positions (G28/G30), and the
+dialect of the language it speaks (unit of ``G04 P``, default units, default path mode). The
+readers of both dialects take one :class:`MachineContext`; the machine TOML fills it
+(``[program]`` tables, see ``vcnc machines --show``), and the defaults change nothing: zero
+offsets, an empty tool table (tool length and radius 0), home at the origin.
+
+Positions are machine coordinates [mm]; the program's coordinates are machine coordinates minus
+the active work offset and tool length offset, as in LinuxCNC
+(https://linuxcnc.org/docs/html/gcode/coordinates.html) and Fanuc.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from types import MappingProxyType
+
+import numpy as np
+
+from vcnc.errors import InputError
+
+__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT"]
+
+#: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
+WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+
+
+def _xyz(value, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+        raise InputError(f"{name} must be three finite numbers (x, y, z) [mm], got {value!r}")
+    arr = arr.copy()
+    arr.setflags(write=False)
+    return arr
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Tool:
+    """One entry of the tool table.
+
+    Attributes
+    ----------
+    number : int
+        Tool number (``T`` word, Heidenhain ``TOOL CALL n``), >= 0.
+    length : float
+        Tool length offset [mm] (G43 H / ``TOOL CALL``: added along the tool axis).
+    radius : float
+        Tool radius [mm] (G41/G42 D, Heidenhain RL/RR), >= 0.
+    comment : str
+        Free text (LinuxCNC tool tables carry one).
+    """
+
+    number: int
+    length: float = 0.0
+    radius: float = 0.0
+    comment: str = ""
+
+    def __post_init__(self) -> None:
+        if int(self.number) != self.number or self.number < 0:
+            raise InputError(f"tool number must be an integer >= 0, got {self.number!r}")
+        if not math.isfinite(self.length):
+            raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
+        if not (math.isfinite(self.radius) and self.radius >= 0):
+            raise InputError(f"tool {self.number}: radius must be >= 0 [mm], got {self.radius!r}")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Dialect:
+    """What differs between controls that read the same words.
+
+    Attributes
+    ----------
+    name : str
+        ``"linuxcnc"``, ``"fanuc"``, ``"haas"``, ``"grbl"`` or ``"heidenhain"``.
+    dwell_p_unit : {"s", "ms"}
+        Unit of ``G04 P``: seconds in LinuxCNC and grbl, milliseconds (integer P) in Fanuc and
+        Haas.
+    default_units : {"mm", "inch"}
+        Units of a program that states neither G20 nor G21 (a warning note is given).
+    continuous_path : bool
+        Path mode of a program that states neither G61 nor G64: True (continuous path, G64) on
+        every control listed here.
+    tolerance : float or None
+        Path tolerance of the default continuous-path mode [mm]; ``None`` selects
+        :data:`interpolators.DEFAULT_TOLERANCE`.
+    """
+
+    name: str = "linuxcnc"
+    dwell_p_unit: str = "s"
+    default_units: str = "mm"
+    continuous_path: bool = True
+    tolerance: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.dwell_p_unit not in ("s", "ms"):
+            raise InputError(f"dialect {self.name}: dwell_p_unit must be 's' or 'ms', got {self.dwell_p_unit!r}")
+        if self.default_units not in ("mm", "inch"):
+            raise InputError(f"dialect {self.name}: default_units must be 'mm' or 'inch', "
+                             f"got {self.default_units!r}")
+        if self.tolerance is not None and not (math.isfinite(self.tolerance) and self.tolerance > 0):
+            raise InputError(f"dialect {self.name}: tolerance must be > 0 [mm], got {self.tolerance!r}")
+
+
+#: Built-in dialects (``--dialect NAME``). Sources: LinuxCNC G-code reference (G4 P in seconds,
+#: http://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g4); Fanuc 0i / Haas mill manuals (G04 P
+#: in milliseconds without a decimal point); grbl wiki (G4 P in seconds).
+DIALECTS: Mapping[str, Dialect] = MappingProxyType({
+    "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
+    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms"),
+    "haas": Dialect(name="haas", dwell_p_unit="ms"),
+    "grbl": Dialect(name="grbl", dwell_p_unit="s"),
+    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
+})
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class MachineContext:
+    """Tables and settings a control applies to a program.
+
+    Attributes
+    ----------
+    work_offsets : mapping of str to ndarray (3,)
+        Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`)
+        [mm, machine coordinates]. Missing codes are zero. G54 is active at program start.
+    tools : mapping of int to Tool
+        Tool table by tool number. A tool missing from it has length and radius 0 (with a note).
+    home : ndarray (3,)
+        Home position, where every program starts, and G28's reference point [mm, machine].
+    reference2 : ndarray (3,)
+        Second reference position, G30's [mm, machine].
+    dialect : Dialect
+        Dialect of the ISO reader (the Heidenhain reader ignores it but for ``tolerance``).
+    rotary_axes : tuple of str
+        Rotary axes the machine has (``"a"``, ``"b"``, ``"c"``); words of others are errors.
+    """
+
+    work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    tools: Mapping[int, Tool] = dataclasses.field(default_factory=dict)
+    home: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    reference2: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    dialect: Dialect = dataclasses.field(default_factory=Dialect)
+    rotary_axes: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        offsets = {}
+        for code, value in dict(self.work_offsets).items():
+            if code not in WORK_OFFSETS:
+                raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
+            offsets[code] = _xyz(value, f"work offset {code}")
+        object.__setattr__(self, "work_offsets", MappingProxyType(offsets))
+        tools = {}
+        for number, tool in dict(self.tools).items():
+            if not isinstance(tool, Tool) or tool.number != number:
+                raise InputError(f"tool table entry {number!r} must be a Tool with number {number!r}")
+            tools[int(number)] = tool
+        object.__setattr__(self, "tools", MappingProxyType(tools))
+        object.__setattr__(self, "home", _xyz(self.home, "home"))
+        object.__setattr__(self, "reference2", _xyz(self.reference2, "reference2"))
+        bad = [a for a in self.rotary_axes if a not in ("a", "b", "c")]
+        if bad:
+            raise InputError(f"rotary_axes must be among 'a', 'b', 'c', got {bad!r}")
+
+    def offset(self, code: str) -> np.ndarray:
+        """Work offset of ``code`` (``"G54"`` ...) [mm]; zero when the table has none."""
+        if code not in WORK_OFFSETS:
+            raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
+        return self.work_offsets.get(code, np.zeros(3))
+
+    def tool(self, number: int) -> Tool | None:
+        """The tool table's entry for ``number``, or None when the table has none."""
+        return self.tools.get(int(number))
+
+
+#: The context of a machine that states none: it changes nothing.
+DEFAULT_CONTEXT = MachineContext()
