@@ -1,89 +1,183 @@
-"""Reader of Heidenhain conversational (plain-language) programs.
+"""Reader of Heidenhain conversational (Klartext) programs, as TNC programs are really written.
 
-Accepted blocks, each optionally preceded by its block number (as in the thesis' Tables 4.3
-and 4.4)::
+The reader runs the program as a TNC does (Q parameters, jumps, subprograms, repeats and cycles
+are executed, not merely parsed) and records the motion as :class:`~interpolators.program.Block`
+s in machine coordinates. One module per concern:
 
-    0 BEGIN PGM RAPIDIDENT MM         name and unit (MM or INCH)
-    ;comment                          also after a block
-    1 BLK FORM 0.1 Z X-50 Y-50 Z-50   workpiece blank (accepted, no motion)
-    3 TOOL CALL 0 Z                   tool call (no motion); the tool axis selects the plane
-    4 L Z+200.000 F MAX               straight line; F MAX / FMAX = rapid, for this block only
-    5 L X+0 Y+0 R0 F MAX M3           R0 (no radius compensation) accepted; RL/RR are errors
-    7 L X-0.000 F 15000.000           F [mm/min] (in INCH programs [0.1 inch/min]), modal
-    9 L IX+0.5                        I prefix: incremental coordinate
-    200 L +0.009                      a signed number without axis letter repeats the single
-                                      axis of the previous L block (the tables are written so)
-    10 CC X+25 Y+25                   circle centre (CC alone: the current position)
-    11 C X+45 Y+25 DR+                arc to the end point about CC; DR+ counter-clockwise;
-                                      end = start gives a full circle; a tool-axis coordinate
-                                      makes a helix
-    12 CR X+5 Y+5 R+20 DR-            arc by radius (R- for more than 180 degrees)
-    206 M30                           M2/M30 end; M3, M4, M5, M8, M9 ignored
-    207 END PGM RAPIDIDENT MM         end (nothing after it is read)
+* :mod:`interpolators.heidenhain_words`: blocks, comments, ``~`` continuations, words and values;
+* :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
+* :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
+* :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 7, 9, 32, 200, 203, 205.
 
-A trailing ``*`` (older TNC block end) is ignored. Anything else (CT, CP, RND, CHF, LBL, CYCL,
-FN, Q parameters, rotary axes) is an error naming the line and column.
+Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
+
+    0 BEGIN PGM NAME MM             name and unit (MM or INCH); END PGM ends the run
+    * - Drill1                      structure block (skipped); ;comment anywhere
+    BLK FORM 0.1 Z X.. Y.. Z..      workpiece blank (skipped)
+    TOOL DEF 5 L+10 R+3             tool data in the program (replace the tool table's entry)
+    TOOL CALL 5 Z S3000 DL+0.1 DR-0.2
+                                    tool axis (plane), tool length along it (table or TOOL DEF,
+                                    plus DL) and radius for RL/RR (plus DR), from the next move on
+    L X+10 IY-5 R0 F200 M3          line; I = incremental; F MAX / FMAX: rapid (this block only);
+                                    F [mm/min] (INCH: [0.1 in/min]) modal; FQ5 feed from Q5
+    L +0.009                        a number without axis letter repeats the single axis of the
+                                    previous L block (the thesis' Tables 4.3/4.4 are written so)
+    CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position)
+    C X+45 Y+25 DR+                 arc about CC (end = start: full circle; tool-axis coordinate: helix)
+    CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
+    CT X+10 Y+0                     arc tangent to the preceding element
+    LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
+                                    polar line / arc about CC (helix with a tool-axis word)
+    RND R5, CHF 2                   rounding / chamfer of the corner between two lines
+    STOP, M0, M1                    program stop: no motion (noted)
+    L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
+    L X+0 M92                       M92: relative to the machine-defined position context.home
+    L M140 MB MAX                   retract along the tool axis to context.home's coordinate
+                                    (the machine's limit stands in for the software limit switch)
+    M2, M30                         end of the main program (subprograms follow)
+    FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
+    FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
+    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn
+                                    prints are noted; SYSREAD of the nominal position (ID240:
+                                    machine coordinates; ID270: active coordinates) reads the
+                                    simulated position (the control reads the same after a STOP
+                                    without jogging)
+    LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
+    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99 or CYCL CALL
+
+Unit conversion: positions mm, feeds mm/s. Machine coordinates = program coordinates + the
+preset (``context.offset("G54")``) + the datum shift of cycle 7 + the tool length along the
+tool axis. ``RL``/``RR`` with a tool radius other than 0 and anything not listed (APPR/DEP, FK,
+PATTERN DEF, CYCL CALL PAT, rotary axes, other cycles and FN functions) are errors naming the
+function, line and column.
 """
 
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
 
-from interpolators._words import INCH, NUMBER_RE, Where, checked_float, lines_of, token_at
+from interpolators._words import INCH, Where
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
+from interpolators.context import DEFAULT_CONTEXT, MachineContext
+from interpolators.heidenhain_cycles import (
+    CYCLE_RE,
+    MACHINING_CYCLES,
+    DrillCycle,
+    drill_cycle,
+    legacy_value,
+    pecking_cycle,
+    q_assignments,
+)
+from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
+from interpolators.heidenhain_params import FN_ARITHMETIC, FN_CONDITIONS, Q_NAME_RE, QParameters
+from interpolators.heidenhain_paths import (
+    PathGeometryError,
+    chamfer_corner,
+    end_tangent,
+    helical_arc,
+    polar_angle,
+    polar_point,
+    round_corner,
+    tangential_arc,
+)
+from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.program import Block, Program
-from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Line
+from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
-_HEAD_RE = re.compile(r"\s*(\d+)?\s*")
-_KEYWORD_RE = re.compile(r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CC|CR|C|L|M)(?![A-Z])", re.I)
-_WORD_RE = re.compile(
-    r"(?P<fmax>F\s*MAX\b)|(?P<fauto>F\s*AUTO\b)|(?P<feed>F)\s*(?P<fv>[+-]?(?:\d+\.?\d*|\.\d+))"
-    r"|(?P<inc>I?)(?P<axis>[XYZ])\s*(?P<av>[+-]?(?:\d+\.?\d*|\.\d+))"
-    r"|(?P<bare>[+-](?:\d+\.?\d*|\.\d+))"
-    r"|(?P<dr>DR\s*[+-])"
-    r"|(?P<rcomp>R[LR0])(?![\d.])"
-    r"|(?P<rad>R)\s*(?P<rv>[+-]?(?:\d+\.?\d*|\.\d+))"
-    r"|(?P<m>M)\s*(?P<mv>\d+)",
+_KEYWORD_RE = re.compile(
+    r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
+    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?![A-Z])",
     re.I,
 )
-_M_OK = {2, 3, 4, 5, 8, 9, 30}
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
+#: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
+_M_END = (2, 30)
+_M_STOP = (0, 1)
+_DETECT_RE = re.compile(
+    r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?![A-Z])",
+    re.I,
+)
 
 
 def looks_like_heidenhain(text: str) -> bool:
     """True if the text reads as Heidenhain conversational rather than ISO G-code.
 
     A ``BEGIN PGM`` line anywhere, or a first meaningful line made of a block number followed by
-    a conversational keyword (``L``, ``C``, ``CC``, ``CR``, ``TOOL CALL``, ``BLK FORM``, ...).
+    a conversational keyword (``L``, ``C``, ``CC``, ``CR``, ``TOOL CALL``, ``CYCL DEF``, ...).
     """
     if re.search(r"^\s*\d*\s*BEGIN\s+PGM\b", text, re.I | re.M):
         return True
-    for raw in lines_of(text):
+    for raw in text.split("\n"):
         s = raw.split(";", 1)[0].strip()
-        if not s or s.startswith(("(", "%")):
+        if not s or s.startswith(("(", "%", "*")):
             continue
-        return re.match(r"\d+\s*(L|CC|CR|C|TOOL\s+CALL|BLK\s+FORM|END\s+PGM)(?![A-Z])", s, re.I) is not None
+        return _DETECT_RE.match(s) is not None
     return False
 
 
-class _State:
-    __slots__ = ("pos", "plane", "inch", "feed", "center", "last_axes")
+class _Machine:
+    """Run-time state of the control while the program runs."""
 
-    def __init__(self) -> None:
-        self.pos = np.zeros(3)
+    def __init__(self, context: MachineContext, source: str | None) -> None:
+        self.context = context
+        self.source = source
+        self.pos = np.array(context.home, dtype=float)  # machine coordinates [mm]
         self.plane = 2
         self.inch = False
         self.feed: float | None = None
-        self.center: np.ndarray | None = None
+        self.pole: np.ndarray | None = None
         self.last_axes: list[int] = []
+        self.tool_defs: dict[int, tuple[float, float]] = {}
+        self.tool_length = 0.0
+        self.tool_radius = 0.0
+        self.shift = np.zeros(3)
+        self.comp = "R0"
+        self.ccw: bool | None = None
+        self.exact_stop = True
+        self.tolerance: float | None = None
+        self.cycle: DrillCycle | None = None
+        self.cycle_items: dict[int, float] = {}
+        self.params = QParameters()
+        self.blocks: list[Block] = []
+        self.used: set[int] = set()
+        self.notes: list[str] = []
+        self.pending: tuple[str, float, float | None, Where] | None = None  # RND/CHF waiting for its next line
+
+    # --- coordinates -------------------------------------------------------------------------
+    @property
+    def scale(self) -> float:
+        return INCH if self.inch else 1.0
+
+    @property
+    def feed_scale(self) -> float:
+        return (INCH / 10.0 if self.inch else 1.0) / 60.0
+
+    def origin(self) -> np.ndarray:
+        """Program zero in machine coordinates [mm]."""
+        o = self.context.offset("G54") + self.shift
+        o = np.array(o, dtype=float)
+        o[self.plane] += self.tool_length
+        return o
+
+    def note(self, text: str) -> None:
+        if text not in self.notes:
+            self.notes.append(text)
+
+    def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0) -> None:
+        self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
+                                 line=where.line, number=number, text=where.text, start=self.pos.copy(),
+                                 exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell))
+        self.pos = np.array(target, dtype=float)
 
 
-def parse_heidenhain(text: str, *, source: str | None = None) -> Program:
-    """Parse a Heidenhain conversational program into a :class:`Program`.
+def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
+    """Run a Heidenhain conversational program and return its motion as a :class:`Program`.
 
     Parameters
     ----------
@@ -91,219 +185,612 @@ def parse_heidenhain(text: str, *, source: str | None = None) -> Program:
         Program text.
     source : str, optional
         File name used in error messages and recorded in ``Program.source``.
+    context : MachineContext
+        Tool table, preset (the ``G54`` work offset), home position and path tolerance of the
+        machine; the default changes nothing.
 
     Raises
     ------
     vcnc.GCodeError
         With file, line, column, the offending text and what was expected.
     """
-    st = _State()
-    blocks: list[Block] = []
-    used: set[int] = set()
+    blocks = source_blocks(text)
+    labels = LabelTable(blocks, source)
+    m = _Machine(context, source)
     name = None
-    for lineno, raw in enumerate(lines_of(text), start=1):
-        where = Where(source, lineno, raw.strip())
-        code = raw.split(";", 1)[0].rstrip()
-        if code.endswith("*"):
-            code = code[:-1].rstrip()
-        if not code.strip():
-            continue
-        m = _HEAD_RE.match(code)
-        number = int(m.group(1)) if m.group(1) else None
-        pos = m.end()
-        if pos >= len(code):
-            continue  # a bare block number
-        k = _KEYWORD_RE.match(code, pos)
+    stack: list[Frame] = []
+    repeats: dict[int, int] = {}
+    pc = 0
+    executed = 0
+    while pc < len(blocks):
+        blk = blocks[pc]
+        where = blk.where(source)
+        executed += 1
+        if executed > MAX_EXECUTED:
+            where.fail(f"the program does not end: more than {MAX_EXECUTED} blocks run (endless jump or repeat?)",
+                       column=blk.column, text=blk.code, expected="a program that reaches M30 or END PGM")
+        pc += 1
+        k = _KEYWORD_RE.match(blk.code)
         if k is None:
-            tok = token_at(code, pos)
-            where.fail(f"unknown or unsupported block {tok!r}", column=pos + 1, text=tok,
-                       expected="BEGIN PGM, END PGM, BLK FORM, TOOL CALL, L, CC, C, CR or M")
+            tok = blk.code.split()[0]
+            where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
+                       expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, FN, Qn =, M")
         kw = re.sub(r"\s+", " ", k.group(1).upper())
-        rest_at = k.end() if kw != "M" else pos
+        col0 = blk.column
         if kw == "BEGIN PGM":
-            parts = code[rest_at:].split()
+            parts = blk.code[k.end():].split()
             name = parts[0] if parts else None
             unit = parts[1].upper() if len(parts) > 1 else "MM"
             if unit not in ("MM", "INCH"):
-                col = code.upper().rfind(parts[1].upper()) + 1
+                col = blk.code.upper().rfind(parts[1].upper()) + col0
                 where.fail(f"unknown program unit {parts[1]!r}", column=col, text=parts[1], expected="MM or INCH")
-            st.inch = unit == "INCH"
+            m.inch = unit == "INCH"
             continue
         if kw == "END PGM":
             break
-        if kw in ("BLK FORM", "TOOL DEF"):
+        if kw == "BLK FORM":
+            continue
+        if kw == "LBL":
+            lm = LABEL_RE.match(blk.code)
+            if lm is None:
+                where.fail("malformed label", column=col0, text=blk.code, expected="LBL n or LBL \"NAME\"")
+            if label_key(lm) == "0" and stack:
+                frame = stack[-1]
+                frame.runs_left -= 1
+                if frame.runs_left > 0:
+                    pc = labels.where_of[frame.label] + 1
+                else:
+                    stack.pop()
+                    pc = frame.return_to
+            continue
+        if kw == "CALL LBL":
+            cm = CALL_RE.match(blk.code)
+            if cm is None:
+                where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
+            key = label_key(cm)
+            target = labels.find(key, where, column=col0, text=blk.code)
+            rep = int(cm.group(5)[:6]) if cm.group(5) else 0
+            index = pc - 1
+            if cm.group(5) is not None and target < index:  # program-section repeat
+                left = repeats.get(index, rep)
+                if left > 0:
+                    repeats[index] = left - 1
+                    pc = target + 1
+                else:
+                    repeats.pop(index, None)
+                continue
+            if len(stack) >= MAX_NESTING:
+                where.fail(f"subprogram calls nested deeper than {MAX_NESTING} levels", column=col0,
+                           text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
+            stack.append(Frame(return_to=pc, label=key, runs_left=rep + 1))
+            pc = target + 1
+            continue
+        if kw.startswith("FN"):
+            jump = _function(blk, k.end(), m, where)
+            if jump is not None:
+                pc = labels.find(jump, where, column=col0, text=blk.code) + 1
+            continue
+        if kw.endswith("="):
+            qn = Q_NAME_RE.match(blk.code).group(0)
+            m.params.set(qn, m.params.evaluate(blk.code[k.end():], where, column=col0 + k.end()), where, column=col0)
+            continue
+        if kw == "TOOL DEF":
+            _tool_def(blk, k.end(), m, where)
             continue
         if kw == "TOOL CALL":
-            for t in re.finditer(r"(?<![A-Z0-9.+-])([XYZ])(?![A-Z0-9.+-])", code[rest_at:], re.I):
-                st.plane = _PLANE_OF_TOOL_AXIS[t.group(1).upper()]
+            _tool_call(blk, k.end(), m, where)
+            continue
+        if kw in ("CYCL DEF", "CYCLE DEF"):
+            if kw == "CYCLE DEF":
+                m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
+            _cycle_def(blk, m, where)
+            continue
+        if kw == "CYCL CALL":
+            rest = blk.code[k.end():]
+            if re.match(r"\s*(PAT|POS)\b", rest, re.I):
+                where.fail("CYCL CALL PAT/POS is not supported", column=col0 + k.end(), text=rest.strip(),
+                           expected="CYCL CALL or M99 at each hole")
+            words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+            ended = _m_functions(words, m, where, blk, motion=False)
+            _cycle_call(m, where, blk)
+            if ended:
                 break
             continue
-        words = _words(code, rest_at, where)
-        ended = _execute(kw, words, st, blocks, used, where, number, pos + 1)
-        if ended:
+        if kw in ("APPR", "DEP", "CALL PGM", "PATTERN DEF", "CTP"):
+            where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
+                       expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
+        if kw == "STOP":
+            m.note("STOP: program stop (no motion)")
+            words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+            if _m_functions(words, m, where, blk, motion=False):
+                break
+            continue
+        if kw == "M":
+            words = read_words(blk.code, 0, where, m.params, column0=col0)
+            if _m_functions(words, m, where, blk, motion=False):
+                break
+            continue
+        if kw in ("RND", "CHF"):
+            _corner_def(kw, blk, k.end(), m, where)
+            continue
+        words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+        if _motion(kw, words, m, where, blk):
             break
-    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
-    return Program(blocks=tuple(blocks), source=source, dialect="heidenhain", axes=axes, name=name)
+    if m.pending is not None:
+        kind, _, _, pw = m.pending
+        pw.fail(f"{kind} at the end of the contour", column=1, text=pw.text, expected=f"a line after {kind}")
+    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
+    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name)
 
 
-def _words(code: str, pos: int, where: Where) -> list[tuple[str, object, int, str]]:
-    out = []
-    n = len(code)
-    while pos < n:
-        if code[pos] in " \t":
-            pos += 1
+# --- Q parameter functions ---------------------------------------------------------------------
+
+_FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
+
+
+def _function(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> str | None:
+    """Run an ``FN n:`` block; returns the label to jump to, if any."""
+    code = blk.code
+    fm = _FN_RE.match(code)
+    n = int(fm.group(1)[:6])
+    rest = code[fm.end():]
+    col = blk.column + fm.end()
+    if n in FN_ARITHMETIC:
+        am = re.match(r"(Q[LR]?\d+)\s*=\s*", rest, re.I)
+        if am is None:
+            where.fail(f"FN {n} without 'Qn ='", column=col, text=rest.strip(), expected="FN n: Qn = ...")
+        op, fn = FN_ARITHMETIC[n]
+        body = rest[am.end():]
+        bcol = col + am.end()
+        if op is None:
+            value = m.params.evaluate(body, where, column=bcol)
+        elif op in ("SQRT", "SIN", "COS"):
+            om = re.match(rf"\s*{op}\s*", body, re.I)
+            if om is None:
+                where.fail(f"FN {n} expects {op}", column=bcol, text=body.strip(), expected=f"FN {n}: Qn = {op} value")
+            arg = m.params.evaluate(body[om.end():], where, column=bcol + om.end())
+            try:
+                value = fn(arg)
+            except ValueError:
+                where.fail(f"FN {n}: {op} of {arg!r} is undefined", column=bcol, text=body.strip(),
+                           expected="an argument in the function's domain")
+        else:
+            a, b = _two_operands(body, op, where, m, bcol)
+            if op == "DIV" and b == 0:
+                where.fail("FN 4: division by zero", column=bcol, text=body.strip(), expected="a divisor != 0")
+            value = fn(a, b)
+        m.params.set(am.group(1), value, where, column=col)
+        return None
+    if n in FN_CONDITIONS:
+        op, test = FN_CONDITIONS[n]
+        cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
+        if cm is None:
+            where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
+                       expected=f"FN {n}: IF a {op} b GOTO LBL n")
+        a = m.params.evaluate(cm.group(1), where, column=col + cm.start(1))
+        b = m.params.evaluate(cm.group(2), where, column=col + cm.start(2))
+        lm = LABEL_RE.match(cm.group(3))
+        if lm is None:
+            where.fail("malformed jump label", column=col + cm.start(3), text=cm.group(3), expected="LBL n")
+        return label_key(lm) if test(a, b) else None
+    if n in (15, 16):
+        m.note(f"FN {n}: PRINT output ignored")
+        return None
+    if n == 14:
+        where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
+                   expected="a program run without FN 14")
+    if n == 18:
+        sm = re.match(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)\s+IDX\s*(\d+)\s*$", rest, re.I)
+        if sm is None or int(sm.group(2)) not in (240, 270) or sm.group(3) != "1" or not 1 <= int(sm.group(4)) <= 3:
+            where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
+                       expected="SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position)")
+        axis = int(sm.group(4)) - 1
+        value = m.pos[axis] if sm.group(2) == "240" else m.pos[axis] - m.origin()[axis]
+        m.params.set(sm.group(1), value / m.scale, where, column=col)
+        m.note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        return None
+    where.fail(f"FN {n} is not supported", column=blk.column, text=code[:fm.end()].strip(),
+               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270")
+
+
+def _two_operands(body: str, op: str, where: Where, m: _Machine, column: int) -> tuple[float, float]:
+    # the operator word sits between two signed operands: "+Q1 + +5", "+8 DIV +Q2", "+5 LEN +4"
+    pat = re.escape(op) if op in "+-*" else rf"\b{op}\b"
+    for om in re.finditer(rf"(?<=[\dA-Z.)])\s*{pat}\s*", body, re.I):
+        left, right = body[: om.start()], body[om.end():]
+        if left.strip() and right.strip():
+            return (m.params.evaluate(left, where, column=column),
+                    m.params.evaluate(right, where, column=column + om.end()))
+    where.fail(f"expected two operands around {op}", column=column, text=body.strip(), expected=f"a {op} b")
+
+
+# --- tools -----------------------------------------------------------------------------------
+
+def _tool_def(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    code = blk.code
+    tm = re.match(r"\s*(\d+)", code[pos:])
+    if tm is None:
+        where.fail("TOOL DEF without a tool number", column=blk.column + pos, text=code, expected="TOOL DEF n L.. R..")
+    length = radius = 0.0
+    j = pos + tm.end()
+    while j < len(code):
+        wm = re.compile(r"\s*([LR])(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, j)
+        if wm is None:
+            if code[j:].strip():
+                tok = code[j:].split()[0]
+                where.fail(f"unknown word {tok!r} in TOOL DEF", column=blk.column + j, text=tok,
+                           expected="L (length) and R (radius)")
+            break
+        v, j = read_value(code, wm.end(), where, m.params, what=wm.group(1), column0=blk.column)
+        if wm.group(1).upper() == "L":
+            length = v
+        else:
+            radius = v
+    m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
+
+
+def _tool_call(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    code = blk.code
+    rest = code[pos:]
+    nm = re.match(r"\s*(\d+)?", rest)
+    number = int(nm.group(1)[:9]) if nm.group(1) else None
+    j = pos + nm.end()
+    dl = dr = 0.0
+    while j < len(code):
+        wm = re.compile(r"\s*(?:(DL|DR2|DR|S|F)(?=\s*[+-]?\s*[\d.Q(])|([XYZ])(?![\w+-.]))", re.I).match(code, j)
+        if wm is None:
+            if code[j:].strip():
+                tok = code[j:].split()[0]
+                where.fail(f"unknown word {tok!r} in TOOL CALL", column=blk.column + j, text=tok,
+                           expected="TOOL CALL n [X|Y|Z] [S..] [F..] [DL..] [DR..]")
+            break
+        if wm.group(2):
+            m.plane = _PLANE_OF_TOOL_AXIS[wm.group(2).upper()]
+            j = wm.end()
             continue
-        m = _WORD_RE.match(code, pos)
-        col = pos + 1
-        if m is None or (m.end() < n and code[m.end()] not in " \t"):
-            tok = token_at(code, pos)
-            num = re.sub(r"^I?[XYZF]\s*", "", tok, flags=re.I)
-            if re.match(r"I?[XYZF]", tok, re.I) and not NUMBER_RE.fullmatch(num):
-                where.fail(f"malformed number in {tok!r}", column=col, text=tok, expected="a signed decimal number")
-            if re.match(r"I?[ABCUVW][+-]?[\d.]", tok, re.I):
-                where.fail(f"axis {tok[0]!r} is not supported (vcnc interpolates X, Y, Z)", column=col, text=tok,
-                           expected="X, Y or Z")
-            where.fail(f"unknown word {tok!r}", column=col, text=tok,
-                       expected="X/Y/Z (I for incremental), R0, F, F MAX, DR+/DR-, R, or M")
-        tok = m.group(0)
-        g = m.lastgroup
-        if m.group("fmax"):
-            out.append(("FMAX", None, col, tok))
-        elif m.group("fauto"):
-            where.fail("F AUTO is not supported", column=col, text=tok, expected="F <mm/min> or F MAX")
-        elif m.group("feed"):
-            out.append(("F", checked_float(m.group("fv"), where, column=col, what="F"), col, tok))
-        elif m.group("axis"):
-            value = checked_float(m.group("av"), where, column=col, what="a coordinate")
-            out.append(("I" * bool(m.group("inc")) + m.group("axis").upper(), value, col, tok))
-        elif m.group("bare"):
-            value = checked_float(m.group("bare"), where, column=col, what="a coordinate")
-            out.append(("BARE", value, col, tok))
-        elif m.group("dr"):
-            out.append(("DR", tok.replace(" ", "")[-1], col, tok))
-        elif m.group("rcomp"):
-            c = tok.upper()
-            if c != "R0":
-                where.fail(f"radius compensation {c} is not supported", column=col, text=tok,
-                           expected="R0 (programmed contour = tool centre path)")
-            out.append(("R0", None, col, tok))
-        elif m.group("rad"):
-            out.append(("R", checked_float(m.group("rv"), where, column=col, what="R"), col, tok))
-        elif m.group("m"):
-            out.append(("M", int(m.group("mv")[:9]), col, tok))
-        else:  # pragma: no cover - every alternative is handled above
-            raise AssertionError(g)
-        pos = m.end()
-    return out
-
-
-def _execute(kw, words, st: _State, blocks, used, where: Where, number, kw_col) -> bool:  # noqa: C901
-    seen: dict[str, tuple[object, int, str]] = {}
-    ended = False
-    for key, value, col, tok in words:
-        if key == "M":
-            if value not in _M_OK:
-                where.fail(f"unknown M function {tok!r}", column=col, text=tok,
-                           expected="M2 or M30 (end), M3, M4, M5, M8 or M9 (ignored)")
-            ended = ended or value in (2, 30)
-            continue
-        base = key[-1] if key in ("IX", "IY", "IZ") else key
-        if base in seen or (key == "BARE" and any(k in seen for k in "XYZ")):
-            where.fail(f"word {tok!r} repeats an axis or setting of this block", column=col, text=tok,
-                       expected="each word at most once per block")
-        if key in ("F", "FMAX") and ("F" in seen or "FMAX" in seen):
-            where.fail("two feeds in one block", column=col, text=tok, expected="one F word")
-        seen[base if base in "XYZ" else key] = (value if key not in ("IX", "IY", "IZ") else ("I", value), col, tok)
-    if kw == "M":
-        return ended
-    scale = INCH if st.inch else 1.0
-    if "F" in seen:
-        f, col, tok = seen["F"]
-        if not f > 0:
-            where.fail("feed F must be > 0", column=col, text=tok, expected="F > 0 [mm/min]")
-        st.feed = f * (INCH / 10.0 if st.inch else 1.0) / 60.0
-
-    def coord(axis: str) -> float | None:
-        if axis not in seen:
-            return None
-        v = seen[axis][0]
-        i = "XYZ".index(axis)
-        if isinstance(v, tuple):
-            used.add(i)
-            return st.pos[i] + v[1] * scale
-        used.add(i)
-        return v * scale
-
-    if "BARE" in seen:
-        v, col, tok = seen.pop("BARE")
-        if kw != "L" or len(st.last_axes) != 1:
-            where.fail("coordinate without an axis letter", column=col, text=tok,
-                       expected="an axis letter (X, Y or Z) before the number")
-        seen["XYZ"[st.last_axes[0]]] = (v, col, tok)
-
-    if kw == "CC":
-        bad = [k for k in seen if k not in ("X", "Y", "Z")]
-        if bad:
-            _, col, tok = seen[bad[0]]
-            where.fail(f"word {tok!r} not allowed in CC", column=col, text=tok, expected="CC with plane coordinates")
-        c = st.pos.copy()
-        p, q = PLANE_AXES[st.plane]
-        for a in seen:
-            i = "XYZ".index(a)
-            if i not in (p, q):
-                _, col, tok = seen[a]
-                where.fail(f"CC coordinate {tok!r} is not in the working plane", column=col, text=tok,
-                           expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
-            c[i] = coord(a)
-        st.center = c
-        return ended
-
-    axis_keys = [a for a in "XYZ" if a in seen]
-    if not axis_keys and kw in ("L", "CR"):
-        where.fail(f"{kw} block without coordinates", column=kw_col, text=where.text,
-                   expected="at least one of X, Y, Z")
-    target = st.pos.copy()
-    for a in axis_keys:
-        target["XYZ".index(a)] = coord(a)
-    rapid = "FMAX" in seen
-    if kw != "L" and rapid:
-        _, col, tok = seen["FMAX"]
-        where.fail("F MAX is not allowed on arcs", column=col, text=tok, expected="a feed F [mm/min]")
-    if not rapid and st.feed is None:
-        where.fail(f"{kw} feed move without a feed", column=kw_col, text=where.text, expected="F > 0 [mm/min] or F MAX")
-    common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), exact_stop=True)
-    if kw == "L":
-        extra = [k for k in seen if k in ("DR", "R")]
-        if extra:
-            _, col, tok = seen[extra[0]]
-            where.fail(f"word {tok!r} not allowed in L", column=col, text=tok, expected="coordinates, R0, F, M")
-        st.last_axes = ["XYZ".index(a) for a in axis_keys]
-        blk = Block(kind="rapid" if rapid else "line", target=target, feed=np.inf if rapid else st.feed,
-                    segment=Line(st.pos, target), **common)
-    else:
-        p, q = PLANE_AXES[st.plane]
-        used.update((p, q))
-        if "DR" not in seen:
-            where.fail(f"{kw} arc without direction", column=kw_col, text=where.text, expected="DR+ or DR-")
-        ccw = seen["DR"][0] == "+"
-        try:
-            if kw == "C":
-                if "R" in seen:
-                    _, col, tok = seen["R"]
-                    where.fail("radius word in a C block", column=col, text=tok, expected="CR for a radius arc")
-                if st.center is None:
-                    where.fail("C arc without a circle centre", column=kw_col, text=where.text,
-                               expected="a CC block before C")
-                seg = arc_from_center(st.pos, target, st.center, ccw=ccw, plane=st.plane)
+        v, j = read_value(code, wm.end(), where, m.params, what=wm.group(1), column0=blk.column)
+        word = wm.group(1).upper()
+        if word == "DL":
+            dl = v * m.scale
+        elif word == "DR":
+            dr = v * m.scale
+    if number is not None:
+        if number in m.tool_defs:
+            length, radius = m.tool_defs[number]
+        else:
+            tool = m.context.tool(number)
+            if tool is None:
+                if number != 0:
+                    m.note(f"tool {number} is not in the tool table: length and radius 0")
+                length = radius = 0.0
             else:
-                if "R" not in seen:
-                    where.fail("CR arc without radius", column=kw_col, text=where.text, expected="R+ or R- [mm]")
-                seg = arc_from_radius(st.pos, target, seen["R"][0] * scale, ccw=ccw, plane=st.plane)
-        except ArcWordError as exc:
-            col, tok = (seen["R"][1], seen["R"][2]) if "R" in seen else (kw_col, where.text)
-            where.fail(exc.message, column=col, text=tok, expected=exc.expected)
-        target = np.array(seg.end)
-        blk = Block(kind="arc", target=target, feed=st.feed, segment=seg, **common)
-    blocks.append(blk)
-    st.pos = target
+                length, radius = tool.length, tool.radius
+        m.tool_length = length + dl
+        m.tool_radius = radius + dr
+
+
+# --- cycles ----------------------------------------------------------------------------------
+
+def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
+    cm = CYCLE_RE.match(blk.code)
+    if cm is None:
+        where.fail("malformed cycle definition", column=blk.column, text=blk.code, expected="CYCL DEF n[.m] ...")
+    number = int(cm.group(1)[:6])
+    sub = int(cm.group(2)) if cm.group(2) is not None else None
+    rest = cm.group(3)
+    col = blk.column + cm.start(3)
+    if number not in (1, 7, 9, 32, 200, 203, 205):
+        where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
+                   expected="CYCL DEF 1, 7, 9, 32, 200, 203 or 205")
+    if number >= 200:
+        q = q_assignments(rest, where, m.params, column0=col)
+        m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column)
+        return
+    if sub in (None, 0):
+        if number == 1:
+            m.cycle_items = {}
+        return
+    if number == 7:
+        words = read_words(rest, 0, where, m.params, column0=col)
+        for w in words:
+            if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
+                where.fail(f"word {w.text!r} in a datum shift", column=w.column, text=w.text,
+                           expected="X, Y or Z (IX.. incremental)")
+            i = "XYZ".index(w.key[-1])
+            m.shift[i] = (m.shift[i] if w.key.startswith("I") else 0.0) + w.value * m.scale
+        return
+    value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
+    if number == 9:
+        if value is None or value < 0:
+            where.fail("dwell time must be >= 0 [s]", column=col, text=rest.strip(), expected="CYCL DEF 9.1 DWELL t")
+        m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+    elif number == 32:
+        if sub == 1:
+            if value is not None and not value > 0:
+                where.fail("tolerance T must be > 0 [mm]", column=col, text=rest.strip(), expected="T > 0 [mm]")
+            m.exact_stop = False
+            m.tolerance = value * m.scale if value is not None else m.context.dialect.tolerance
+    else:  # cycle 1 PECKING: items 1.1 .. 1.5
+        if value is None:
+            where.fail(f"cycle 1.{sub} without a value", column=col, text=blk.code, expected="a number")
+        m.cycle_items[sub] = value
+        if sub == 5:
+            m.cycle = pecking_cycle(m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                    column=blk.column)
+
+
+def _cycle_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
+    if m.cycle is None:
+        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
+                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
+    where.fail(f"running drilling cycle {m.cycle.number} (M99, CYCL CALL) is not supported", column=blk.column,
+               text=blk.code, expected="the hole's moves written as L blocks")
+
+
+# --- M functions -----------------------------------------------------------------------------
+
+def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
+    """Check the M words of a block without motion words; True when the program ends here."""
+    ended = False
+    for w in words:
+        if w.key == "M":
+            ended = _one_m(w, m) or ended
+            if w.value in (91, 92, 99, 140) and not motion:
+                if w.value == 99:
+                    _cycle_call(m, where, blk)
+                elif w.value == 140:
+                    continue
+                else:
+                    m.note(f"M{w.value} in a block without coordinates has no effect")
+        elif w.key == "MBMAX" or w.key == "MB":
+            continue
+        elif not motion:
+            where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
+                       expected="M functions")
     return ended
+
+
+def _one_m(w: Word, m: _Machine) -> bool:
+    if w.value in _M_END:
+        return True
+    if w.value in _M_STOP:
+        m.note(f"M{w.value}: program stop (no motion)")
+    elif w.value not in (3, 4, 5, 8, 9, 91, 92, 99, 140):
+        m.note(f"M{w.value} ignored (no motion)")
+    return False
+
+
+# --- contour ---------------------------------------------------------------------------------
+
+def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    code = blk.code
+    rm = re.compile(r"\s*R(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, pos) if kw == "RND" else None
+    j = rm.end() if rm else pos
+    value, j = read_value(code, j, where, m.params, what=kw, column0=blk.column)
+    words = read_words(code, j, where, m.params, column0=blk.column)
+    feed = None
+    for w in words:
+        if w.key == "F":
+            if not w.value > 0:
+                where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
+            feed = w.value * m.feed_scale
+        elif w.key != "M":
+            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text, expected="F or M")
+    last = m.blocks[-1] if m.blocks else None
+    if last is None or last.kind != "line" or m.pending is not None:
+        where.fail(f"{kw} must follow a straight line L", column=blk.column, text=code.split()[0],
+                   expected=f"L ... then {kw} then L ...")
+    m.pending = (kw, value * m.scale, feed, where)
+
+
+def _plane_coords(seen: dict[str, Word], m: _Machine, where: Where, *, m9x: int | None) -> tuple[np.ndarray, set]:
+    target = m.pos.copy()
+    origin = m.origin()
+    if m9x == 91:
+        origin = np.zeros(3)
+    elif m9x == 92:
+        origin = np.array(m.context.home, dtype=float)
+    written = set()
+    for a in "XYZ":
+        i = "XYZ".index(a)
+        if a in seen:
+            target[i] = origin[i] + seen[a].value * m.scale
+            written.add(i)
+        elif "I" + a in seen:
+            target[i] = m.pos[i] + seen["I" + a].value * m.scale
+            written.add(i)
+    return target, written
+
+
+def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:  # noqa: C901
+    """Run a motion block (L, LP, C, CR, CT, CP, CC); True when it ends the program."""
+    seen: dict[str, Word] = {}
+    ms: list[Word] = []
+    bases: set[str] = set()
+    for w in words:
+        if w.key == "M":
+            ms.append(w)
+            continue
+        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+                "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
+        if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
+            where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
+                       expected="each word at most once per block")
+        bases.add(base)
+        seen[w.key] = w
+        if base == "RCOMP":
+            seen["RCOMP"] = w
+    mvals = [w.value for w in ms]
+    m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
+    ended = any(_one_m(w, m) for w in ms)
+    if "BARE" in seen:
+        w = seen.pop("BARE")
+        if kw != "L" or len(m.last_axes) != 1:
+            where.fail("coordinate without an axis letter", column=w.column, text=w.text,
+                       expected="an axis letter (X, Y or Z) before the number")
+        seen["XYZ"[m.last_axes[0]]] = w
+    allowed = {
+        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX"},
+        "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
+        "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
+        "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
+        "CT": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"},
+        "CP": {"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
+        "CC": {"X", "Y", "Z", "IX", "IY", "IZ"},
+    }[kw]
+    for key, w in seen.items():
+        if key not in allowed:
+            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
+                       expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != 'RCOMP')))
+    if kw == "CC":
+        target, written = _plane_coords(seen, m, where, m9x=m9x)
+        p, q = PLANE_AXES[m.plane]
+        for i in written:
+            if i not in (p, q):
+                w = seen.get("XYZ"[i]) or seen["I" + "XYZ"[i]]
+                where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
+                           expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
+        m.pole = target
+        m.used.update(written)
+        return ended
+    if "RCOMP" in seen:
+        comp = seen["RCOMP"].key
+        if comp != "R0" and m.tool_radius != 0.0:
+            w = seen["RCOMP"]
+            where.fail(f"radius compensation {comp} with tool radius {m.tool_radius:g} mm is not supported",
+                       column=w.column, text=w.text, expected="R0, or a tool of radius 0")
+        m.comp = comp
+    rapid = "FMAX" in seen
+    if "F" in seen:
+        w = seen["F"]
+        if not w.value > 0:
+            where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
+        m.feed = w.value * m.feed_scale
+    if rapid and kw not in ("L", "LP"):
+        w = seen["FMAX"]
+        where.fail("F MAX is not allowed on arcs", column=w.column, text=w.text, expected="a feed F [mm/min]")
+    if "MBMAX" in seen or "MB" in seen:
+        if 140 not in mvals:
+            w = seen.get("MBMAX") or seen["MB"]
+            where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
+    target, written = _plane_coords(seen, m, where, m9x=m9x)
+    m.used.update(written)
+    feed = math.inf if rapid else m.feed
+    if kw == "L" and not written and not ms:
+        where.fail("L block without coordinates", column=blk.column, text=where.text,
+                   expected="at least one of X, Y, Z")
+    if kw in ("L", "LP") and (written or kw == "LP"):
+        if kw == "LP":
+            if m.pole is None:
+                where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
+            r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
+            pr = seen["PR"].value * m.scale if "PR" in seen else r0 + (seen["IPR"].value * m.scale if "IPR" in seen
+                                                                        else 0.0)
+            pa = seen["PA"].value if "PA" in seen else a0 + (seen["IPA"].value if "IPA" in seen else 0.0)
+            target = polar_point(m.pole, pr, pa, plane=m.plane, base=target)
+            m.used.update(PLANE_AXES[m.plane])
+        m.last_axes = sorted(written) if kw == "L" else []
+        if not rapid and m.feed is None:
+            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
+                       expected="F > 0 [mm/min] or F MAX")
+        if m.pending is not None:
+            _resolve_corner(m, target, where)
+        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number)
+    elif kw in ("C", "CR", "CT", "CP"):
+        if m.feed is None:
+            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
+                       expected="F > 0 [mm/min]")
+        if m.pending is not None:
+            kind, _, _, pw = m.pending
+            pw.fail(f"{kind} before an arc is not supported", column=1, text=pw.text, expected=f"a line after {kind}")
+        seg = _arc(kw, seen, target, m, where, blk)
+        m.used.update(PLANE_AXES[m.plane])
+        m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
+    if 140 in mvals:
+        if "MBMAX" in seen:
+            retract = m.pos.copy()
+            retract[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
+        elif "MB" in seen:
+            retract = m.pos.copy()
+            retract[m.plane] += abs(seen["MB"].value) * m.scale
+        else:
+            retract = None
+            m.note("M140 without MB: no retraction")
+        if retract is not None:
+            m.used.add(m.plane)
+            m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+    if 99 in mvals:
+        _cycle_call(m, where, blk)
+    return ended
+
+
+def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
+    plane = m.plane
+    dr = seen.get("DR")
+    ccw = (dr.value == "+") if dr is not None else m.ccw
+    try:
+        if kw == "CT":
+            if not m.blocks or m.blocks[-1].segment is None:
+                where.fail("CT without a preceding contour element", column=blk.column, text=where.text,
+                           expected="an L, C, CR, CT or CP block before CT")
+            return tangential_arc(m.pos, end_tangent(m.blocks[-1].segment, plane), target, plane=plane)
+        if kw == "CP":
+            if m.pole is None:
+                where.fail("CP without a pole", column=blk.column, text=where.text, expected="a CC block before CP")
+            _, a0 = polar_angle(m.pos, m.pole, plane=plane)
+            if "IPA" in seen:
+                sweep = seen["IPA"].value
+                if dr is not None and (sweep > 0) != ccw:
+                    w = seen["IPA"]
+                    where.fail("IPA and DR have different signs", column=w.column, text=w.text,
+                               expected="the same sign for IPA and DR (manual: 'enter the same sign')")
+            elif "PA" in seen:
+                if ccw is None:
+                    where.fail("CP arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
+                delta = (seen["PA"].value - a0) % 360.0
+                sweep = (delta or 360.0) if ccw else -((-delta) % 360.0 or 360.0)
+            else:
+                where.fail("CP without an angle", column=blk.column, text=where.text, expected="PA or IPA")
+            seg = helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])
+            m.ccw = sweep > 0
+            return seg
+        if ccw is None:
+            where.fail(f"{kw} arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
+        m.ccw = ccw
+        if kw == "C":
+            if m.pole is None:
+                where.fail("C arc without a circle centre", column=blk.column, text=where.text,
+                           expected="a CC block before C")
+            return arc_from_center(m.pos, target, m.pole, ccw=ccw, plane=plane)
+        if "R" not in seen:
+            where.fail("CR arc without radius", column=blk.column, text=where.text, expected="R+ or R- [mm]")
+        return arc_from_radius(m.pos, target, seen["R"].value * m.scale, ccw=ccw, plane=plane)
+    except (ArcWordError, PathGeometryError) as exc:
+        w = seen.get("R") or seen.get("IPA") or seen.get("PA")
+        col, tok = (w.column, w.text) if w is not None else (blk.column, where.text)
+        where.fail(exc.message, column=col, text=tok, expected=exc.expected)
+
+
+def _resolve_corner(m: _Machine, target: np.ndarray, where: Where) -> None:
+    """Trim the previous line and insert the RND arc / CHF line before the line to ``target``."""
+    kind, value, feed, pw = m.pending
+    m.pending = None
+    prev = m.blocks.pop()
+    a, corner = prev.start, prev.target
+    try:
+        if kind == "RND":
+            t1, arc, t2 = round_corner(a, corner, target, value, plane=m.plane)
+        else:
+            t1, t2 = chamfer_corner(a, corner, target, value, plane=m.plane)
+    except PathGeometryError as exc:
+        pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
+    m.pos = np.array(a, dtype=float)
+    m.blocks.append(Block(kind=prev.kind, target=t1, feed=prev.feed, segment=Line(a, t1), line=prev.line,
+                          number=prev.number, text=prev.text, start=np.array(a), exact_stop=prev.exact_stop,
+                          tolerance=prev.tolerance))
+    m.pos = np.array(t1)
+    corner_feed = feed if feed is not None else prev.feed
+    if kind == "RND":
+        m.emit("arc", t2, arc, corner_feed, pw, None)
+    else:
+        m.emit("line", t2, Line(t1, t2), corner_feed, pw, None)

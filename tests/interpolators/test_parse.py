@@ -174,11 +174,13 @@ BAD = [
     ("G17 G02 X1 K1 F1\n", 1, 12, "outside the arc plane"),
     ("G01 A10 F1\n", 1, 5, "not supported"),
     ("G04\n", 1, 1, "exactly one of P"),
-    ("1 L X+10 F MAX\n2 L X+10 RL\n", 2, 10, "radius compensation"),
+    ("1 L X+10 F MAX\n2 L X+10 RX\n", 2, 10, "unknown word"),
     ("1 L X+10\n", 1, 3, "without a feed"),
     ("1 L X+1 F100\n2 C X+2 Y+0 DR+\n", 2, 3, "without a circle centre"),
     ("1 L X+1 F100\n2 CC X+0 Y+0\n3 C X+0 Y+3 DR+\n", 3, 3, "not on the circle"),
-    ("0 BEGIN PGM X MM\n1 CYCL DEF 200\n", 2, 3, "unknown or unsupported"),
+    ("0 BEGIN PGM X MM\n1 CYCL DEF 17.0 RIGID TAPPING\n", 2, 3, "cycle 17 is not supported"),
+    ("0 BEGIN PGM X MM\n1 CYCL DEF 200 DRILLING Q200=+2\n", 2, 3, "cycle 200 lacks Q201"),
+    ("0 BEGIN PGM X MM\n1 APPR LT X+0 Y+0 LEN5 RL\n", 2, 3, "APPR is not supported"),
     ("1 L X+1 Y+1 F100\n2 L +3\n", 2, 5, "without an axis letter"),
 ]
 

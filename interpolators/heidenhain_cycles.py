@@ -1,0 +1,188 @@
+"""Cycles of Heidenhain conversational programs: ``CYCL DEF`` blocks and their parameters.
+
+Sources: HEIDENHAIN TNC 426/430 user's manual ("Cycles for drilling", cycle 1 PECKING; cycles
+200 DRILLING, 203 UNIVERSAL DRILLING, 205 UNIVERSAL PECKING; "Coordinate transformation
+cycles", 7 DATUM SHIFT; "Special cycles", 9 DWELL TIME and 32 TOLERANCE), TNC 320 user's
+manual 340 55x-03 p. 238 (the Q parameters: Q200 set-up clearance, incremental from the
+surface; Q201 depth, incremental from the surface, its sign the working direction; Q203
+surface coordinate, absolute; Q204 2nd set-up clearance, incremental from the surface).
+
+Supported definitions (one ``CYCL DEF n.m`` line per item for the old cycles; the 200 series
+as one block of ``Qnnn=value`` assignments, possibly continued over lines with ``~``):
+
+========================= ==================================================================
+``CYCL DEF 1.0 PECKING``  1.1 SET UP (or DIST) clearance, 1.2 DEPTH, 1.3 PECKG (or PLNGNG)
+                          plunge depth, 1.4 DWELL [s], 1.5 F [mm/min]; drills from the
+                          current position (set-up clearance above the surface)
+``CYCL DEF 7.0 DATUM ..`` 7.1 X, 7.2 Y, 7.3 Z: datum shift (``IX``: added to the last shift)
+``CYCL DEF 9.0 DWELL ..`` 9.1 DWELL (or TIME) t [s]: a dwell right away
+``CYCL DEF 32.0 TOL..``   32.1 T [mm] (empty: the machine's default); 32.2 ignored
+``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211 (Q395 must be 0: depth at the tip)
+``CYCL DEF 203``          as 200, plus Q212 decrement, Q213 breaks, Q205 minimum plunge, Q208
+                          retraction feed, Q256 chip-break retraction
+``CYCL DEF 205``          as 203 (Q212, Q205, Q208, Q256, Q257 chip-break depth), Q258/Q259
+                          advanced stop distances
+========================= ==================================================================
+
+The Q parameters of a definition are also assigned in the program's parameter store, as the
+TNC does. Machining cycles run where they are called (``M99``, ``CYCL CALL``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+
+from interpolators._words import Where
+from interpolators.heidenhain_params import QParameters
+from interpolators.heidenhain_words import read_value
+
+__all__ = ["CYCLE_RE", "DrillCycle", "MACHINING_CYCLES", "q_assignments", "legacy_value", "pecking_cycle",
+           "drill_cycle"]
+
+#: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
+CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
+
+#: Cycles run by M99 / CYCL CALL.
+MACHINING_CYCLES: tuple[int, ...] = (1, 200, 203, 205)
+
+_Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class DrillCycle:
+    """A drilling cycle as defined, in program units converted to mm, mm/s and s.
+
+    Attributes
+    ----------
+    number : int
+        Cycle number (1, 200, 203 or 205).
+    setup : float
+        Set-up clearance above the surface [mm] (>= 0).
+    depth : float
+        Hole depth from the surface [mm]; its sign is the working direction along the tool axis.
+    plunge : float
+        Plunging depth per infeed [mm] (> 0; a depth at least the hole's drills in one pass).
+    feed : float
+        Drilling feed [mm/s].
+    dwell_top, dwell_bottom : float
+        Dwell at the set-up clearance between infeeds / at the hole bottom [s].
+    surface : float or None
+        Surface coordinate in the tool axis [mm, program]; ``None`` for cycle 1 (the surface is
+        the set-up clearance below the starting point).
+    second_setup : float
+        2nd set-up clearance from the surface [mm]: the end height of a 200-series cycle.
+    decrement : float
+        Q212: each infeed is smaller by this [mm] (203/205), down to ``min_plunge``.
+    min_plunge : float
+        Q205: smallest infeed [mm].
+    chip_breaks : int
+        Q213 (203): chip breaks before a full retraction; 0 retracts every infeed.
+    chip_break : float
+        Q256: retraction of a chip break [mm].
+    retract_feed : float or None
+        Q208: retraction feed [mm/s]; ``None`` (or 0 in the program) retracts at rapid.
+    """
+
+    number: int
+    setup: float
+    depth: float
+    plunge: float
+    feed: float
+    dwell_top: float = 0.0
+    dwell_bottom: float = 0.0
+    surface: float | None = None
+    second_setup: float = 0.0
+    decrement: float = 0.0
+    min_plunge: float = 0.0
+    chip_breaks: int = 0
+    chip_break: float = 0.0
+    retract_feed: float | None = None
+
+
+def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
+    """The ``Qnnn=value`` assignments of a 200-series definition (values may be Q parameters)."""
+    out: dict[int, float] = {}
+    pos = 0
+    words = re.compile(r"\s*[A-Z][A-Z .\-/]*(?=\s+Q\d|\s*$)", re.I)
+    m = words.match(rest, pos)  # the cycle's name: DRILLING, UNIVERSAL PECKING, ...
+    if m:
+        pos = m.end()
+    while pos < len(rest) and rest[pos:].strip():
+        m = _Q_RE.match(rest, pos)
+        if m is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
+                       expected="Qnnn=value assignments")
+        value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
+        out[int(m.group(1))] = value
+        params.set(f"Q{m.group(1)}", value, where, column=column0 + m.start())
+    return out
+
+
+def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, what: str) -> float | None:
+    """The value of an old-style cycle line (``DIST27.5``, ``SET UP 2``, ``F 500``, ``T0.05``,
+    ``DWELL 1.5``, ``5``): the number (or Q parameter) after the item's name; None when empty."""
+    m = re.match(r"\s*([A-Z][A-Z\- ]*?)?\s*(?=[+-]?\s*(?:\d|\.\d|Q))", rest, re.I)
+    if m is None:
+        if rest.strip() == "":
+            return None
+        where.fail(f"no value for {what} in {rest.strip()!r}", column=column0, text=rest.strip(),
+                   expected=f"{what} followed by a number")
+    value, end = read_value(rest, m.end(), where, params, what=what, column0=column0)
+    if rest[end:].strip():
+        tok = rest[end:].strip()
+        where.fail(f"unexpected {tok!r} after {what}", column=column0 + end, text=tok, expected="one value")
+    return value
+
+
+def pecking_cycle(items: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                  column: int) -> DrillCycle:
+    """Cycle 1 PECKING from its items 1.1 .. 1.5 (program units; ``scale`` [mm per unit],
+    ``feed_scale`` [mm/s per program feed unit])."""
+    missing = [f"1.{k}" for k in (1, 2, 3, 5) if k not in items]
+    if missing:
+        where.fail(f"cycle 1 PECKING lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="1.1 set-up clearance, 1.2 depth, 1.3 plunging depth, 1.4 dwell, 1.5 feed")
+    return _checked(DrillCycle(number=1, setup=abs(items[1]) * scale, depth=items[2] * scale,
+                               plunge=abs(items[3]) * scale, feed=items[5] * feed_scale,
+                               dwell_top=0.0, dwell_bottom=items.get(4, 0.0)), where, column)
+
+
+def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                column: int) -> DrillCycle:
+    """Cycle 200, 203 or 205 from its Q parameters."""
+    need = [200, 201, 206, 203, 204]
+    missing = [f"Q{k}" for k in need if k not in q]
+    if missing:
+        where.fail(f"cycle {number} lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="Q200 set-up clearance, Q201 depth, Q206 feed, Q203 surface, Q204 2nd set-up clearance")
+    if q.get(395, 0.0) != 0.0:
+        where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
+                   column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
+    depth = q[201] * scale
+    plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
+    retract = q.get(208, 0.0)
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=plunge, feed=q[206] * feed_scale,
+        dwell_top=q.get(210, 0.0), dwell_bottom=q.get(211, 0.0), surface=q[203] * scale,
+        second_setup=q[204] * scale, decrement=abs(q.get(212, 0.0)) * scale,
+        min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
+        chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
+        retract_feed=retract * feed_scale if retract > 0 else None), where, column)
+
+
+def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
+    if not cycle.feed > 0:
+        where.fail(f"cycle {cycle.number}: the drilling feed must be > 0", column=column, text=where.text,
+                   expected="a feed > 0 [mm/min]")
+    if cycle.depth == 0:
+        where.fail(f"cycle {cycle.number}: depth 0 (the TNC does not run the cycle)", column=column, text=where.text,
+                   expected="a depth != 0 [mm]")
+    if cycle.plunge <= 0:
+        where.fail(f"cycle {cycle.number}: plunging depth must be > 0", column=column, text=where.text,
+                   expected="a plunging depth > 0 [mm]")
+    if cycle.dwell_top < 0 or cycle.dwell_bottom < 0:
+        where.fail(f"cycle {cycle.number}: negative dwell", column=column, text=where.text, expected="dwell >= 0 [s]")
+    return cycle
+

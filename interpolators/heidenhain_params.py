@@ -1,0 +1,210 @@
+"""Q parameters of Heidenhain conversational programs: values, formulas and the FN functions.
+
+Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q parameters"
+(iTNC 530 / TNC 640 conversational programming; TNC 426/430 manual, section 10):
+
+* ``Q1 = <formula>`` (and ``QL``/``QR`` local and remanent parameters, kept here in one store):
+  ``+ - * /``, ``^`` (power), parentheses, and the functions ``SIN COS TAN ASIN ACOS ATAN``
+  (angles in degrees), ``SQ`` (square), ``SQRT``, ``LN``, ``LOG`` (base 10), ``EXP``, ``PI``,
+  ``NEG``, ``INT`` (truncate), ``ABS``, ``FRAC`` and ``SGN``. A function applies to the operand
+  after it, with or without parentheses (``INT Q4``, ``SQRT(Q4)``). "Multiplication and division
+  before addition and subtraction"; ``^`` binds tighter than both.
+* ``FN 0: Q5 = +60`` assign, ``FN 1`` add, ``FN 2`` subtract, ``FN 3`` multiply, ``FN 4: Q = a DIV b``
+  divide (division by 0 is an error), ``FN 5: SQRT``, ``FN 6: SIN``, ``FN 7: COS``,
+  ``FN 8: a LEN b`` (root sum of squares), ``FN 13: a ANG b`` (angle of the vector (a, b) in degrees).
+* ``FN 9/10/11/12: IF a EQU/NE/GT/LT b GOTO LBL n`` conditions (the jump itself is the reader's).
+
+A parameter used before it is set reads 0, as on the TNC after a reset of the Q parameters.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from interpolators._words import MAX_MAGNITUDE, Where
+
+__all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE"]
+
+#: A parameter name: ``Q12``, ``QL3``, ``QR7``.
+Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
+
+_TOKEN_RE = re.compile(
+    r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/^()]))", re.I
+)
+
+_FUNCTIONS = {
+    "SIN": lambda v: math.sin(math.radians(v)),
+    "COS": lambda v: math.cos(math.radians(v)),
+    "TAN": lambda v: math.tan(math.radians(v)),
+    "ASIN": lambda v: math.degrees(math.asin(v)),
+    "ACOS": lambda v: math.degrees(math.acos(v)),
+    "ATAN": lambda v: math.degrees(math.atan(v)),
+    "SQ": lambda v: v * v,
+    "SQRT": math.sqrt,
+    "LN": math.log,
+    "LOG": math.log10,
+    "EXP": math.exp,
+    "NEG": lambda v: -v,
+    "INT": lambda v: float(math.trunc(v)),
+    "ABS": abs,
+    "FRAC": lambda v: v - math.trunc(v),
+    "SGN": lambda v: float((v > 0) - (v < 0)),
+}
+
+#: ``FN n`` arithmetic: number -> (operator word between the operands or None, function).
+FN_ARITHMETIC = {
+    0: (None, lambda a: a),
+    1: ("+", lambda a, b: a + b),
+    2: ("-", lambda a, b: a - b),
+    3: ("*", lambda a, b: a * b),
+    4: ("DIV", lambda a, b: a / b),
+    5: ("SQRT", math.sqrt),
+    6: ("SIN", _FUNCTIONS["SIN"]),
+    7: ("COS", _FUNCTIONS["COS"]),
+    8: ("LEN", lambda a, b: math.hypot(a, b)),
+    13: ("ANG", lambda a, b: math.degrees(math.atan2(b, a))),
+}
+
+#: ``FN 9`` .. ``FN 12`` jump conditions: number -> (comparison word, test).
+FN_CONDITIONS = {
+    9: ("EQU", lambda a, b: a == b),
+    10: ("NE", lambda a, b: a != b),
+    11: ("GT", lambda a, b: a > b),
+    12: ("LT", lambda a, b: a < b),
+}
+
+
+class QParameters:
+    """The Q-parameter store of one program run and the formula evaluator."""
+
+    def __init__(self) -> None:
+        self._values: dict[str, float] = {}
+
+    def get(self, name: str) -> float:
+        """Value of ``name`` (``"Q5"``, ``"QL2"``); 0 when never set."""
+        return self._values.get(name.upper(), 0.0)
+
+    def set(self, name: str, value: float, where: Where, *, column: int | None = None) -> None:
+        """Assign ``value`` to ``name``, checking it is finite and within the number range."""
+        if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
+            where.fail(f"{name.upper()} = {value!r} is out of range", column=column, text=where.text,
+                       expected=f"a finite value of magnitude <= {MAX_MAGNITUDE:g}")
+        self._values[name.upper()] = float(value)
+
+    def evaluate(self, text: str, where: Where, *, column: int = 1) -> float:
+        """Value of a formula (or a plain signed number or parameter) [the parameters' units].
+
+        Raises
+        ------
+        vcnc.GCodeError
+            Malformed formula, unknown function, division by zero or a function outside its
+            domain (``SQRT`` of a negative number, ...), naming the formula.
+        """
+        tokens = []
+        pos = 0
+        while pos < len(text):
+            if text[pos:].strip() == "":
+                break
+            m = _TOKEN_RE.match(text, pos)
+            if m is None:
+                where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
+                           expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+            kind = m.lastgroup
+            tokens.append((kind, m.group(kind).upper()))
+            pos = m.end()
+        parser = _Formula(tokens, self, where, text.strip(), column)
+        value = parser.expression()
+        if parser.i != len(tokens):
+            parser.fail("unexpected " + repr(tokens[parser.i][1]))
+        if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
+            parser.fail(f"result {value!r} out of range")
+        return value
+
+
+class _Formula:
+    """Recursive-descent evaluation of a token list."""
+
+    def __init__(self, tokens, params: QParameters, where: Where, text: str, column: int) -> None:
+        self.tokens, self.params, self.where, self.text, self.column = tokens, params, where, text, column
+        self.i = 0
+
+    def fail(self, why: str):
+        self.where.fail(f"bad formula {self.text!r}: {why}", column=self.column, text=self.text,
+                        expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.i] if self.i < len(self.tokens) else None
+
+    def expression(self) -> float:
+        value = self.term()
+        while (t := self.peek()) is not None and t[1] in "+-" and t[0] == "op":
+            self.i += 1
+            rhs = self.term()
+            value = value + rhs if t[1] == "+" else value - rhs
+        return value
+
+    def term(self) -> float:
+        value = self.power()
+        while (t := self.peek()) is not None and t[0] == "op" and t[1] in "*/":
+            self.i += 1
+            rhs = self.power()
+            if t[1] == "/":
+                if rhs == 0:
+                    self.fail("division by zero")
+                value = value / rhs
+            else:
+                value = value * rhs
+        return value
+
+    def power(self) -> float:
+        base = self.unary()
+        t = self.peek()
+        if t is not None and t == ("op", "^"):
+            self.i += 1
+            exponent = self.power()
+            try:
+                result = math.pow(base, exponent)
+            except (ValueError, OverflowError):
+                self.fail(f"{base!r} ^ {exponent!r} is undefined")
+            return result
+        return base
+
+    def unary(self) -> float:
+        t = self.peek()
+        if t is None:
+            self.fail("missing operand")
+        if t[0] == "op" and t[1] in "+-":
+            self.i += 1
+            v = self.unary()
+            return -v if t[1] == "-" else v
+        if t[0] == "name":
+            self.i += 1
+            if t[1] == "PI":
+                return math.pi
+            fn = _FUNCTIONS.get(t[1])
+            if fn is None:
+                self.fail(f"unknown function {t[1]!r}")
+            arg = self.unary()
+            try:
+                return float(fn(arg))
+            except (ValueError, OverflowError):
+                self.fail(f"{t[1]} of {arg!r} is undefined")
+        return self.primary()
+
+    def primary(self) -> float:
+        t = self.peek()
+        if t is None:
+            self.fail("missing operand")
+        self.i += 1
+        if t[0] == "num":
+            return float(t[1])
+        if t[0] == "q":
+            return self.params.get(t[1])
+        if t == ("op", "("):
+            v = self.expression()
+            if self.peek() != ("op", ")"):
+                self.fail("missing ')'")
+            self.i += 1
+            return v
+        self.fail(f"unexpected {t[1]!r}")

@@ -1,0 +1,180 @@
+"""Path geometry of Heidenhain conversational programs: polar coordinates, CT, RND and CHF.
+
+Sources: HEIDENHAIN TNC 620 Klartext programming user's manual (01/2022), "Path contours -
+Cartesian coordinates" (p. 154-163: CHF "chamfer between two straight lines, chamfer side
+length"; RND "circular arc with tangential connection to the preceding and subsequent contour
+elements, rounding radius R"; CT "circular arc with tangential connection to the preceding
+contour element, coordinates of the arc end point") and "Path contours - polar coordinates"
+(TNC 620 manual 340 56x-01, p. 173; TNC 426/430 manual p. 153: the pole ``CC``; ``LP PR PA``;
+``CP PA DR`` about the pole with radius = distance start-pole; a helix is ``CP IPA`` with a
+tool-axis coordinate; "for incremental coordinates, enter the same sign for DR and PA").
+
+Angles ``PA`` are measured from the angle reference axis of the working plane (X in XY, Y in
+YZ, Z in ZX: the first axis ``p`` of :data:`toolpaths.geometry.PLANE_AXES`) towards the second.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+
+__all__ = ["PathGeometryError", "polar_point", "polar_angle", "helical_arc", "end_tangent",
+           "tangential_arc", "round_corner", "chamfer_corner"]
+
+
+class PathGeometryError(ValueError):
+    """Path words that describe no contour element; the reader adds the location."""
+
+    def __init__(self, message: str, expected: str) -> None:
+        super().__init__(message)
+        self.message = message
+        self.expected = expected
+
+
+def polar_point(pole: np.ndarray, radius: float, angle_deg: float, *, plane: int, base: np.ndarray) -> np.ndarray:
+    """Point at ``radius`` [mm] and ``angle_deg`` [deg] about ``pole`` in the plane; other axes from ``base``."""
+    p, q = PLANE_AXES[plane]
+    out = np.array(base, dtype=float)
+    a = math.radians(angle_deg)
+    out[p] = pole[p] + radius * math.cos(a)
+    out[q] = pole[q] + radius * math.sin(a)
+    return out
+
+
+def polar_angle(point: np.ndarray, pole: np.ndarray, *, plane: int) -> tuple[float, float]:
+    """Polar radius [mm] and angle [deg] of ``point`` about ``pole`` in the plane."""
+    p, q = PLANE_AXES[plane]
+    dx, dy = point[p] - pole[p], point[q] - pole[q]
+    return math.hypot(dx, dy), math.degrees(math.atan2(dy, dx))
+
+
+def helical_arc(start: np.ndarray, pole: np.ndarray, sweep_deg: float, *, plane: int, axis_end: float) -> Arc:
+    """Arc (helix when ``axis_end`` differs from the start) about ``pole`` through ``sweep_deg`` [deg].
+
+    ``sweep_deg`` is signed (positive counter-clockwise) and may exceed 360 degrees (``CP IPA+1834``):
+    the whole turns become :class:`~toolpaths.geometry.Arc` ``turns``.
+    """
+    radius, a0 = polar_angle(start, pole, plane=plane)
+    if radius <= 1e-9:
+        raise PathGeometryError("arc radius is zero: the start point is the pole CC", "a pole CC away from the start")
+    if sweep_deg == 0:
+        raise PathGeometryError("arc angle is zero", "IPA != 0 (or PA different from the start angle)")
+    ccw = sweep_deg > 0
+    magnitude = abs(sweep_deg)
+    whole = math.floor(magnitude / 360.0 + 1e-12)
+    rest = magnitude - 360.0 * whole
+    end = polar_point(pole, radius, a0 + sweep_deg, plane=plane, base=start)
+    end[plane] = axis_end
+    if rest <= 1e-9:  # a whole number of turns: end equals start in the plane
+        p, q = PLANE_AXES[plane]
+        end[p], end[q] = start[p], start[q]
+        turns = whole - 1
+    else:
+        turns = whole
+    center = np.array(start, dtype=float)
+    p, q = PLANE_AXES[plane]
+    center[p], center[q] = pole[p], pole[q]
+    return Arc(start, end, center, ccw=ccw, plane=plane, turns=turns)
+
+
+def end_tangent(segment: Line | Arc, plane: int) -> np.ndarray:
+    """Unit tangent at the end of ``segment`` projected on the plane, as an in-plane 2-vector."""
+    t = np.asarray(segment.tangent_at(segment.length), dtype=float).reshape(3)
+    p, q = PLANE_AXES[plane]
+    v = np.array([t[p], t[q]])
+    n = float(np.hypot(*v))
+    if n <= 1e-12:
+        raise PathGeometryError("the preceding contour element has no direction in the working plane",
+                                "a preceding line or arc in the working plane")
+    return v / n
+
+
+def tangential_arc(start: np.ndarray, tangent: np.ndarray, end: np.ndarray, *, plane: int) -> Arc:
+    """Arc ``CT`` from ``start`` (leaving along the in-plane ``tangent``) to ``end``."""
+    p, q = PLANE_AXES[plane]
+    d = np.array([end[p] - start[p], end[q] - start[q]])
+    left = np.array([-tangent[1], tangent[0]])
+    dn = float(d @ left)
+    dd = float(d @ d)
+    if dd <= 1e-18 or abs(dn) <= 1e-9 * math.sqrt(dd):
+        raise PathGeometryError("CT end point lies on the tangent of the preceding element (no arc)",
+                                "an end point off the preceding element's tangent (or an L block)")
+    s = dd / (2.0 * dn)
+    center = np.array(start, dtype=float)
+    center[p] += s * left[0]
+    center[q] += s * left[1]
+    # exactly on the circle: both ends at radius |s| by construction, up to rounding
+    return Arc(start, _on_circle(end, center, abs(s), plane), center, ccw=s > 0, plane=plane)
+
+
+def _on_circle(point: np.ndarray, center: np.ndarray, radius: float, plane: int) -> np.ndarray:
+    p, q = PLANE_AXES[plane]
+    out = np.array(point, dtype=float)
+    v = np.array([out[p] - center[p], out[q] - center[q]])
+    n = float(np.hypot(*v))
+    out[p], out[q] = center[p] + v[0] * radius / n, center[q] + v[1] * radius / n
+    return out
+
+
+def _corner(a: np.ndarray, corner: np.ndarray, b: np.ndarray, plane: int, what: str):
+    if abs(a[plane] - corner[plane]) > 1e-9 or abs(b[plane] - corner[plane]) > 1e-9:
+        raise PathGeometryError(f"{what} needs two straight lines in the working plane",
+                                "lines without a tool-axis move before and after the corner")
+    p, q = PLANE_AXES[plane]
+    u1 = np.array([corner[p] - a[p], corner[q] - a[q]])
+    u2 = np.array([b[p] - corner[p], b[q] - corner[q]])
+    l1, l2 = float(np.hypot(*u1)), float(np.hypot(*u2))
+    if l1 <= 1e-9 or l2 <= 1e-9:
+        raise PathGeometryError(f"{what} at a corner with a zero-length line", "two lines of non-zero length")
+    return u1 / l1, u2 / l2, l1, l2
+
+
+def round_corner(a: np.ndarray, corner: np.ndarray, b: np.ndarray, radius: float, *, plane: int):
+    """``RND R``: the two tangent points and the rounding arc between lines a-corner and corner-b.
+
+    Returns ``(t1, arc, t2)`` [mm]; raises :class:`PathGeometryError` when the lines are collinear
+    or too short for the radius.
+    """
+    u1, u2, l1, l2 = _corner(a, corner, b, plane, "RND")
+    if radius <= 0:
+        raise PathGeometryError("rounding radius must be > 0", "RND R > 0 [mm]")
+    cross = float(u1[0] * u2[1] - u1[1] * u2[0])
+    turn = math.atan2(abs(cross), float(u1 @ u2))
+    if turn <= 1e-9:
+        raise PathGeometryError("RND between collinear lines", "a corner between the lines")
+    if turn >= math.pi - 1e-9:
+        raise PathGeometryError("RND at a reversal of direction", "a corner of less than 180 degrees")
+    d = radius * math.tan(turn / 2.0)
+    if d > l1 + 1e-9 or d > l2 + 1e-9:
+        raise PathGeometryError(f"rounding radius {radius:g} mm does not fit: it needs {d:.6g} mm of each line",
+                                "a smaller RND radius or longer lines")
+    p, q = PLANE_AXES[plane]
+    t1 = np.array(corner, dtype=float)
+    t2 = np.array(corner, dtype=float)
+    t1[p], t1[q] = corner[p] - u1[0] * d, corner[q] - u1[1] * d
+    t2[p], t2[q] = corner[p] + u2[0] * d, corner[q] + u2[1] * d
+    side = 1.0 if cross > 0 else -1.0
+    center = np.array(t1)
+    center[p] += -u1[1] * radius * side
+    center[q] += u1[0] * radius * side
+    arc = Arc(t1, _on_circle(t2, center, radius, plane), center, ccw=cross > 0, plane=plane)
+    return t1, arc, np.array(arc.end)
+
+
+def chamfer_corner(a: np.ndarray, corner: np.ndarray, b: np.ndarray, length: float, *, plane: int):
+    """``CHF L``: the points at ``length`` [mm] before and after the corner (the chamfer's ends)."""
+    u1, u2, l1, l2 = _corner(a, corner, b, plane, "CHF")
+    if length <= 0:
+        raise PathGeometryError("chamfer length must be > 0", "CHF > 0 [mm]")
+    if length > l1 + 1e-9 or length > l2 + 1e-9:
+        raise PathGeometryError(f"chamfer side length {length:g} mm is longer than a line of the corner",
+                                "a chamfer shorter than both lines")
+    p, q = PLANE_AXES[plane]
+    t1 = np.array(corner, dtype=float)
+    t2 = np.array(corner, dtype=float)
+    t1[p], t1[q] = corner[p] - u1[0] * length, corner[q] - u1[1] * length
+    t2[p], t2[q] = corner[p] + u2[0] * length, corner[q] + u2[1] * length
+    return t1, t2

@@ -1,0 +1,205 @@
+"""Blocks and words of Heidenhain conversational programs (the lexical layer of the reader).
+
+A program line is ``[block number] <keyword> <words> [;comment]`` (HEIDENHAIN TNC 640 user's
+manual, "Programming fundamentals: NC blocks"). This module
+
+* splits the text into :class:`SourceBlock` s: ``;`` comments removed, lines ending in ``~``
+  joined with the next (a cycle definition written one Q parameter per line, as the TNC saves it),
+  the old block end ``*`` dropped, and ``* ...`` structure blocks recognised;
+* reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
+  incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
+  ``F``/``F MAX``/``FMAX``, ``M``, ``MB MAX``, and a value that is a number, a Q parameter
+  (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+
+from interpolators._words import NUMBER_RE, Where, lines_of, token_at
+from interpolators.heidenhain_params import Q_NAME_RE, QParameters
+
+__all__ = ["SourceBlock", "Word", "source_blocks", "read_words", "read_value"]
+
+
+@dataclasses.dataclass(frozen=True)
+class SourceBlock:
+    """One block of the program text.
+
+    Attributes
+    ----------
+    line : int
+        1-based line of the block's first line.
+    number : int or None
+        Block number as written.
+    code : str
+        The block without number, comment and ``*`` end (continuation lines joined).
+    column : int
+        1-based column of ``code`` in the first line.
+    text : str
+        The stripped source line (for messages).
+    """
+
+    line: int
+    number: int | None
+    code: str
+    column: int
+    text: str
+
+    def where(self, source: str | None) -> Where:
+        """Source position of this block for error messages."""
+        return Where(source, self.line, self.text)
+
+
+@dataclasses.dataclass(frozen=True)
+class Word:
+    """One word of a block: ``key`` (``"X"``, ``"IX"``, ``"F"``, ``"FMAX"``, ``"DR"``, ...)."""
+
+    key: str
+    value: object
+    column: int
+    text: str
+
+
+_HEAD_RE = re.compile(r"\s*(\d+)?\s*")
+
+
+def _strip_comment(line: str) -> str:
+    return line.split(";", 1)[0]
+
+
+def source_blocks(text: str) -> list[SourceBlock]:
+    """The blocks of a program text (empty lines, comments and ``*`` structure blocks left out)."""
+    out: list[SourceBlock] = []
+    lines = lines_of(text)
+    i = 0
+    while i < len(lines):
+        first = i
+        parts: list[str] = []
+        while True:
+            raw = lines[i].rstrip()
+            more = raw.endswith("~") and i + 1 < len(lines)
+            part = _strip_comment(raw[:-1] if more else raw)
+            parts.append(part.strip() if parts else part.rstrip())
+            i += 1
+            if not more:
+                break
+        code = " ".join(p for p in parts if p)
+        if code.endswith("*"):
+            code = code[:-1].rstrip()
+        m = _HEAD_RE.match(code)
+        number = int(m.group(1)[:9]) if m.group(1) else None
+        pos = m.end()
+        rest = code[pos:]
+        if not rest.strip() or rest.startswith("*"):
+            continue
+        out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip()))
+    return out
+
+
+_VALUE_HEAD_RE = re.compile(r"\s*([+-]?)\s*")
+
+
+def read_value(code: str, pos: int, where: Where, params: QParameters, *, what: str, column0: int) -> tuple[float, int]:
+    """Read a value at ``pos``: signed number, signed Q parameter or ``(formula)``.
+
+    Returns the value and the position after it. ``column0`` is the 1-based column of
+    ``code[0]`` in the source line.
+    """
+    m = _VALUE_HEAD_RE.match(code, pos)
+    sign = -1.0 if m.group(1) == "-" else 1.0
+    j = m.end()
+    if j < len(code) and code[j] == "(":
+        depth, k = 0, j
+        while k < len(code):
+            depth += {"(": 1, ")": -1}.get(code[k], 0)
+            k += 1
+            if depth == 0:
+                break
+        if depth:
+            where.fail(f"unclosed '(' in {what}", column=column0 + j, text=code[j:].strip(), expected="')'")
+        return sign * params.evaluate(code[j:k], where, column=column0 + j), k
+    q = Q_NAME_RE.match(code, j)
+    if q is not None:
+        return sign * params.get(q.group(0)), q.end()
+    n = NUMBER_RE.match(code, j)
+    if n is None or n.group(0)[0] in "+-":
+        tok = token_at(code, pos)
+        where.fail(f"malformed number for {what} in {tok!r}", column=column0 + pos, text=tok,
+                   expected="a signed number, a Q parameter (X+Q1) or a formula in parentheses")
+    end = n.end()
+    if end < len(code) and (code[end] == "." or code[end].isalnum()):
+        tok = token_at(code, pos)
+        where.fail(f"malformed number for {what} in {tok!r}", column=column0 + pos, text=tok,
+                   expected="a signed number, a Q parameter (X+Q1) or a formula in parentheses")
+    return sign * float(n.group(0)), end
+
+
+_WORD_RE = re.compile(
+    r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
+    r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
+    r"|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
+    r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
+    re.I,
+)
+
+#: Words a motion block may carry, for messages.
+WORDS_EXPECTED = ("X/Y/Z (I for incremental), PR/PA, R, DR+/DR-, R0/RL/RR, F, F MAX, M or MB MAX; "
+                  "values may be numbers, Q parameters or (formulas)")
+
+
+def read_words(code: str, pos: int, where: Where, params: QParameters, *, column0: int) -> list[Word]:
+    """The words of a block from ``pos`` on (see the module text), with values evaluated.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        An unknown word, a rotary axis, ``F AUTO`` or a malformed value, naming the column.
+    """
+    out: list[Word] = []
+    n = len(code)
+    while pos < n:
+        if code[pos] in " \t":
+            pos += 1
+            continue
+        col = column0 + pos
+        m = _WORD_RE.match(code, pos)
+        if m is None:
+            tok = token_at(code, pos)
+            where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
+        kind = m.lastgroup
+        tok = m.group(0)
+        end = m.end()
+        if kind == "fmax":
+            out.append(Word("FMAX", None, col, tok))
+        elif kind == "mbmax":
+            out.append(Word("MBMAX", None, col, tok))
+        elif kind == "fauto":
+            where.fail("F AUTO is not supported", column=col, text=tok, expected="F <mm/min>, FQn or F MAX")
+        elif kind == "dr":
+            out.append(Word("DR", tok.replace(" ", "")[-1], col, tok))
+        elif kind == "rcomp":
+            out.append(Word(tok.upper(), None, col, tok))
+        elif kind == "rot":
+            where.fail(f"axis {tok.upper()!r} is not supported (vcnc interpolates X, Y, Z)", column=col,
+                       text=token_at(code, pos), expected="X, Y or Z")
+        elif kind == "m":
+            mm = re.compile(r"M\s*(\d+)", re.I).match(code, pos)
+            end = mm.end()
+            if end < n and not code[end].isspace():
+                tok = token_at(code, pos)
+                where.fail(f"malformed M function {tok!r}", column=col, text=tok, expected="M followed by digits")
+            out.append(Word("M", int(mm.group(1)[:9]), col, mm.group(0)))
+        elif kind == "mb":
+            value, end = read_value(code, end, where, params, what="MB", column0=column0)
+            out.append(Word("MB", value, col, code[pos:end]))
+        else:
+            key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "rad": "R", "bare": "BARE"}[kind]
+            value, end = read_value(code, end, where, params, what=key, column0=column0)
+            out.append(Word(key, value, col, code[pos:end].strip()))
+        if end < n and code[end] not in " \t":
+            tok = token_at(code, pos)
+            where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
+        pos = end
+    return out

@@ -1,0 +1,242 @@
+"""Heidenhain conversational reader: hand-written programs per function (issue #19) with exact
+expected end points, and the real programs of the corpus checked against a simple reference."""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from interpolators import interpolate, load_program, parse_program
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n"
+
+
+def run(body: str, **kw):
+    return parse_heidenhain(HEAD + body + "\nEND PGM T MM\n", source="t.h", **kw)
+
+
+def ends(prog):
+    return [b.target.tolist() for b in prog.blocks]
+
+
+def test_comments_structure_and_stops():
+    prog = run("; a comment\n1 BLK FORM 0.1 Z X+0 Y+0 Z-10\n* - Contour 1\n2 TOOL DEF 3 L+0 R+0\n"
+               "3 TOOL CALL 3 Z S3000\n4 STOP\n5 M0\n6 M1\n7 M3 M8 M12\n8 L X+5 Y+2 R0 FMAX ;rapid\n9 M30")
+    assert ends(prog) == [[5.0, 2.0, 0.0]]
+    assert prog.blocks[0].kind == "rapid" and prog.name == "T"
+
+
+def test_tool_length_from_table_tool_def_and_dl():
+    ctx = MachineContext(tools={5: Tool(number=5, length=100.0, radius=0.0)})
+    prog = run("TOOL CALL 5 Z\nL Z+10 FMAX\nTOOL CALL 5 Z DL-0.5\nL Z+10 FMAX\nTOOL DEF 5 L+20 R+0\n"
+               "TOOL CALL 5 Z\nL Z+10 FMAX", context=ctx)
+    assert [b.target[2] for b in prog.blocks] == [110.0, 109.5, 30.0]
+
+
+def test_m91_m92_m140_and_datum_shift():
+    ctx = MachineContext(tools={1: Tool(number=1, length=50.0)}, home=(0, 0, 400),
+                         work_offsets={"G54": (100, 0, 0)})
+    prog = run("TOOL CALL 1 Z\nL X+0 Y+0 Z+5 FMAX\nL Z-10 FMAX M91\nL X+1 FMAX M92\n"
+               "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+10\nCYCL DEF 7.2 Y+5\nL X+0 Y+0 FMAX\n"
+               "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 IX+1\nL X+0 FMAX\nL M140 MB MAX\nL M140 MB+20", context=ctx)
+    assert ends(prog) == [[100, 0, 55], [100, 0, -10], [1, 0, -10], [110, 5, -10], [111, 5, -10],
+                          [111, 5, 400], [111, 5, 420]]
+
+
+def test_q_parameter_arithmetic_fn0_to_fn13():
+    prog = run("FN 0: Q1 = +6\nFN 1: Q2 = +Q1 + +4\nFN 2: Q3 = +Q2 - -2\nFN 3: Q4 = +Q3 * -Q1\nFN 4: Q5 = +Q4 DIV +8\n"
+               "FN 5: Q6 = SQRT +Q4 * -1\nFN 8: Q7 = +3 LEN +4\nFN 13: Q8 = +0 ANG +2\nFN 6: Q9 = SIN +30\n"
+               "L X+Q2 Y-Q5 Z+Q7 F100\nL X+Q8 Y+Q3 Z+Q9\nL X+(Q6*Q6) Y+0 Z+0")
+    # Q2 = 10, Q3 = 12, Q4 = -72, Q5 = -9, Q7 = 5, Q8 = 90, Q9 = 0.5
+    assert ends(prog)[:2] == [[10, 9, 5], [90, 12, pytest.approx(0.5)]]
+    assert prog.blocks[2].target[0] == pytest.approx(72.0)  # Q6 = SQRT(-72 * -1), squared
+
+
+def test_formulas_precedence_and_functions():
+    prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
+               "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
+               "QL6 = Q1 - Q2\nL X+Q1 Y+Q2 Z+Q3 F100\nL X+Q4 Y+Q5 Z+QL6")
+    b = prog.blocks
+    assert b[0].target.tolist() == [50.0, 20.0, pytest.approx(6.0 + 2 / 3)]
+    assert b[1].target.tolist() == pytest.approx([15.0, 0.75 - 1 - 1 + 0.5 + 45 + 2 + 1 + math.pi, 30.0])
+
+
+def test_conditional_jumps_count_a_loop():
+    prog = run("Q1 = 0\nLBL 1\nQ1 = Q1 + 1\nL X+Q1 F100\nFN 12: IF +Q1 LT +4 GOTO LBL 1\n"
+               "FN 9: IF +Q1 EQU +4 GOTO LBL \"DONE\"\nL X+99\nLBL \"DONE\"\nL Y+1")
+    assert [b.target[0] for b in prog.blocks] == [1, 2, 3, 4, 4]
+    assert prog.blocks[-1].target[1] == 1
+
+
+def test_section_repeat_and_subprograms_after_m30():
+    prog = run("L X+0 Y+0 F100\nLBL 1\nL IX+1\nCALL LBL 1 REP 2/2\nCALL LBL 5\nCALL LBL \"SQ\" REP 1\nL Y+9\nM30\n"
+               "LBL 5\nL IY+10\nCALL LBL \"SQ\"\nLBL 0\nLBL \"SQ\"\nL IX+100\nLBL 0")
+    x = [b.target[0] for b in prog.blocks]
+    y = [b.target[1] for b in prog.blocks]
+    # section LBL 1 runs 3 times; LBL 5 calls SQ once; SQ called with REP 1 runs twice
+    assert x == [0, 1, 2, 3, 3, 103, 203, 303, 303]
+    assert y == [0, 0, 0, 0, 10, 10, 10, 10, 9]
+
+
+def test_polar_lines_and_helix():
+    prog = run("CC X+10 Y+0\nL X+20 Y+0 Z+0 F100\nLP PR+10 PA+90\nLP IPA+90\nCP IPA+450 IZ-5 DR+\nCP PA+0 DR-")
+    b = prog.blocks
+    assert b[1].target.tolist() == pytest.approx([10, 10, 0])
+    assert b[2].target.tolist() == pytest.approx([0, 0, 0])
+    helix = b[3].segment
+    assert helix.sweep == pytest.approx(math.radians(450)) and helix.helix == pytest.approx(-5)
+    assert b[3].target.tolist() == pytest.approx([10, -10, -5])
+    # from -90 degrees clockwise to PA 0: three quarters of a turn
+    assert b[4].segment.sweep == pytest.approx(-1.5 * math.pi) and b[4].target.tolist() == pytest.approx([20, 0, -5])
+
+
+def test_whole_turns_helix_and_c_full_circle():
+    prog = run("CC X+0 Y+0\nL X+5 Y+0 Z+0 F100\nCP IPA+720 Z-2 DR+\nC DR-")
+    assert prog.blocks[1].segment.sweep == pytest.approx(4 * math.pi)
+    assert prog.blocks[1].target.tolist() == pytest.approx([5, 0, -2])
+    assert prog.blocks[2].segment.sweep == pytest.approx(-2 * math.pi)
+
+
+def test_ct_tangential_arc():
+    prog = run("L X+0 Y+0 F100\nL X+10\nCT X+20 Y+10")
+    arc = prog.blocks[2].segment
+    assert arc.center.tolist() == pytest.approx([10, 10, 0]) and arc.sweep == pytest.approx(math.pi / 2)
+    assert prog.blocks[2].target.tolist() == [20, 10, 0]
+
+
+def test_rnd_and_chf_between_lines():
+    prog = run("L X+0 Y+0 F100\nL X+10\nRND R2 F50\nL Y+10\nCHF 3\nL X+0")
+    b = prog.blocks
+    assert [x.kind for x in b] == ["line", "line", "arc", "line", "line", "line"]
+    assert b[1].target.tolist() == pytest.approx([8, 0, 0]) and b[2].target.tolist() == pytest.approx([10, 2, 0])
+    assert b[2].segment.radius == pytest.approx(2) and b[2].feed == pytest.approx(50 / 60)
+    assert b[3].target.tolist() == pytest.approx([10, 7, 0]) and b[4].target.tolist() == pytest.approx([7, 10, 0])
+    assert b[5].target.tolist() == [0, 10, 0] and b[5].feed == pytest.approx(100 / 60)
+
+
+def test_radius_compensation_words():
+    prog = run("TOOL CALL 0 Z\nL X+0 Y+0 RL F100\nL X+10 R0")  # tool radius 0: the contour is the path
+    assert ends(prog) == [[0, 0, 0], [10, 0, 0]]
+    ctx = MachineContext(tools={2: Tool(number=2, radius=3.0)})
+    with pytest.raises(GCodeError, match="radius compensation RR"):
+        run("TOOL CALL 2 Z\nL X+0 Y+0 RR F100", context=ctx)
+
+
+def test_dwell_and_tolerance_cycles():
+    prog = run("L X+1 F100\nCYCL DEF 9.0 DWELL TIME\nCYCL DEF 9.1 DWELL 1.5\nCYCL DEF 32.0 TOLERANCE\n"
+               "CYCL DEF 32.1 T0.05\nL X+2\nCYCL DEF 32.1\nL X+3")
+    b = prog.blocks
+    assert b[1].kind == "dwell" and b[1].dwell == 1.5
+    assert (b[0].exact_stop, b[2].exact_stop, b[2].tolerance, b[3].tolerance) == (True, False, 0.05, None)
+
+
+def test_cycle_definitions_take_q_parameters():
+    # the Q parameters of a definition are set in the program's store, as the TNC does
+    prog = run("Q9 = 4\nCYCL DEF 200 DRILLING ~\n Q200=+2 ;SET-UP CLEARANCE ~\n Q201=-Q9 ;DEPTH ~\n"
+               " Q206=+100 ~\n Q202=+2 ~\n Q210=+0 ~\n Q203=+0 ~\n Q204=+5 ~\n Q211=+0\nL X+Q201 Y+Q200 F100")
+    assert ends(prog) == [[-4, 2, 0]]
+
+
+BAD = [
+    ("CYCL DEF 17.0 RIGID TAPPING", "cycle 17 is not supported"),
+    ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
+    ("L X+1 F100\nAPPR LT X+0 Y+0 LEN5 RL", "APPR is not supported"),
+    ("CALL LBL 7", "label 7 is not defined"),
+    ("Q1 = 0\nQ2 = 5 / Q1", "division by zero"),
+    ("FN 4: Q2 = +5 DIV +0", "division by zero"),
+    ("Q1 = SQRT(-1)", "SQRT of -1"),
+    ("L X+1 F100\nRND R20\nL Y+1", "does not fit"),
+    ("L X+1 F100\nCT X+2 Y+0", "on the tangent"),
+    ("M99", "without a machining cycle"),
+    ("L B+10 F100", "axis 'B'"),
+    ("FN 14: ERROR = 1000", "FN 14"),
+    ("CYCL CALL PAT F100", "CYCL CALL PAT"),
+    ("L X+nan F100", "malformed number"),
+]
+
+
+@pytest.mark.parametrize("body, words", BAD)
+def test_errors_name_the_function(body, words):
+    with pytest.raises(GCodeError) as info:
+        run(body)
+    assert words in str(info.value)
+    assert info.value.file == "t.h" and info.value.line >= 2 and info.value.column >= 1
+
+
+def test_detection_of_real_file_headers():
+    text = "0  BEGIN PGM spot-drill MM \n1 L X+1 R0 FMAX\n2 END PGM spot-drill MM\n"
+    assert parse_program(text).dialect == "heidenhain"
+    assert parse_program("; header\n* - part\n1 CYCL DEF 7.0 DATUM SHIFT\n2 L X+1 FMAX\n").dialect == "heidenhain"
+
+
+# --- the corpus -------------------------------------------------------------------------------
+
+CORPUS = Path(__file__).resolve().parents[3] / "shared" / "data" / "gcode-corpus"
+_LIT = r"[+-]?\s*\d*\.?\d+"
+
+
+def _reference_ends(path: Path) -> dict[int, list[tuple[int, float]]]:
+    """Independent reference: the machine coordinates that an ``L`` line with literal absolute
+    coordinates must reach, from a straight reading of the text (datum shifts with literal
+    values and TOOL DEF lengths tracked; everything after a shift by a Q parameter is left out)."""
+    shift = [0.0, 0.0, 0.0]
+    lengths: dict[int, float] = {}
+    length = 0.0
+    known = True
+    out: dict[int, list[tuple[int, float]]] = {}
+    for lineno, raw in enumerate(path.read_bytes().decode("latin-1").split("\n"), start=1):
+        code = re.sub(r"^\s*\d+\s*", "", raw.split(";")[0]).strip()
+        if m := re.match(rf"CYCLE? DEF 7\.([123])\s+(I?)[XYZ]\s*({_LIT})\s*$", code):
+            i = int(m.group(1)) - 1
+            shift[i] = (shift[i] if m.group(2) else 0.0) + float(m.group(3).replace(" ", ""))
+        elif re.match(r"CYCLE? DEF 7\.[123]", code):
+            known = False
+        elif m := re.match(rf"TOOL DEF (\d+) L({_LIT})", code):
+            lengths[int(m.group(1))] = float(m.group(2))
+        elif m := re.match(r"TOOL CALL (\d+)", code):
+            length = lengths.get(int(m.group(1)), 0.0)
+        elif known and code.startswith("L ") and not re.search(r"Q|\bI[XYZ]|M9[12]|M140", code):
+            axes = re.findall(rf"\b([XYZ])({_LIT})", code)
+            if axes:
+                out[lineno] = [("XYZ".index(a), float(v.replace(" ", "")) + shift["XYZ".index(a)]
+                                + (length if a == "Z" else 0.0)) for a, v in axes]
+    return out
+
+
+@pytest.mark.skipif(not CORPUS.is_dir(), reason=f"corpus not found at {CORPUS} (shared data absent)")
+def test_corpus_programs_run_and_end_where_the_text_says():
+    files = sorted(CORPUS.glob("*.h"))
+    assert len(files) == 47
+    ran, failed = [], {}
+    for f in files:
+        try:
+            prog = load_program(f)
+        except GCodeError as exc:
+            assert exc.line is not None and exc.expected, str(exc)
+            failed[f.name] = str(exc)
+            continue
+        ran.append(f.name)
+        ref = _reference_ends(f)
+        pos = np.zeros(3)
+        checked = 0
+        for b in prog.blocks:
+            assert np.array_equal(b.start, pos), (f.name, b.line)
+            pos = b.target
+            if b.kind != "dwell" and b.line in ref and b.text.split(";")[0].strip().split()[-1] != "M99":
+                for axis, value in ref[b.line]:
+                    assert b.target[axis] == pytest.approx(value, abs=1e-9), (f.name, b.line, b.text)
+                checked += 1
+        if len(prog.blocks) > 0 and prog.blocks[0].kind != "dwell":
+            assert checked > 0 or not ref, f.name
+        if os.environ.get("VCNC_CORPUS_INTERPOLATE") and prog.blocks:
+            interpolate(prog)
+    print(f"{len(ran)} of {len(files)} Heidenhain programs run; rejected: {failed}")
+    assert len(ran) >= 28
