@@ -747,8 +747,10 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
             elif "PA" in seen:
                 if ccw is None:
                     where.fail("CP arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
-                delta = (seen["PA"].value - a0) % 360.0
-                sweep = (delta or 360.0) if ccw else -((-delta) % 360.0 or 360.0)
+                delta = (seen["PA"].value - a0) % 360.0  # [0, 360): the counter-clockwise angle to the end
+                if delta <= 1e-9 or delta >= 360.0 - 1e-9:
+                    delta = 0.0  # the end is the start: a full circle
+                sweep = (delta or 360.0) if ccw else -((360.0 - delta) if delta else 360.0)
             else:
                 where.fail("CP without an angle", column=blk.column, text=where.text, expected="PA or IPA")
             seg = helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])

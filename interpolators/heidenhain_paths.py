@@ -60,7 +60,7 @@ def helical_arc(start: np.ndarray, pole: np.ndarray, sweep_deg: float, *, plane:
     radius, a0 = polar_angle(start, pole, plane=plane)
     if radius <= 1e-9:
         raise PathGeometryError("arc radius is zero: the start point is the pole CC", "a pole CC away from the start")
-    if sweep_deg == 0:
+    if abs(sweep_deg) <= 1e-9:
         raise PathGeometryError("arc angle is zero", "IPA != 0 (or PA different from the start angle)")
     ccw = sweep_deg > 0
     magnitude = abs(sweep_deg)
