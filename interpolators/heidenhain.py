@@ -69,6 +69,7 @@ from interpolators.heidenhain_cycles import (
     DrillCycle,
     drill_cycle,
     legacy_value,
+    pattern_positions,
     pecking_cycle,
     q_assignments,
 )
@@ -143,6 +144,7 @@ class _Machine:
         self.tolerance: float | None = None
         self.cycle: DrillCycle | None = None
         self.cycle_items: dict[int, float] = {}
+        self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
         self.blocks: list[Block] = []
         self.used: set[int] = set()
@@ -285,18 +287,27 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
                 m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
             _cycle_def(blk, m, where)
             continue
+        if kw == "PATTERN DEF":
+            m.pattern = pattern_positions(blk.code[k.end():], where, m.params, column0=col0 + k.end())
+            continue
         if kw == "CYCL CALL":
             rest = blk.code[k.end():]
-            if re.match(r"\s*(PAT|POS)\b", rest, re.I):
-                where.fail("CYCL CALL PAT/POS is not supported", column=col0 + k.end(), text=rest.strip(),
-                           expected="CYCL CALL or M99 at each hole")
-            words = read_words(blk.code, k.end(), where, m.params, column0=col0)
-            ended = _m_functions(words, m, where, blk, motion=False)
-            _cycle_call(m, where, blk)
+            pat = re.match(r"\s*(PAT|POS)(?![A-Z])", rest, re.I)
+            if pat is not None and pat.group(1).upper() == "POS":
+                where.fail("CYCL CALL POS is not supported", column=col0 + k.end() + pat.start(1), text="POS",
+                           expected="CYCL CALL, CYCL CALL PAT or M99")
+            words = read_words(blk.code, k.end() + (pat.end() if pat else 0), where, m.params, column0=col0)
+            if any(w.key in ("F", "FMAX") for w in words):
+                m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
+            ended = _m_functions([w for w in words if w.key not in ("F", "FMAX")], m, where, blk, motion=False)
+            if pat is None:
+                _cycle_call(m, where, blk)
+            else:
+                _pattern_call(m, where, blk)
             if ended:
                 break
             continue
-        if kw in ("APPR", "DEP", "CALL PGM", "PATTERN DEF", "CTP"):
+        if kw in ("APPR", "DEP", "CALL PGM", "CTP"):
             where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
                        expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
         if kw == "STOP":
@@ -519,7 +530,30 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                                     column=blk.column)
 
 
-def _cycle_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """``CYCL CALL PAT``: the cycle at every position of the last ``PATTERN DEF``."""
+    if m.pattern is None:
+        where.fail("CYCL CALL PAT without a PATTERN DEF", column=blk.column, text=blk.code,
+                   expected="PATTERN DEF POS1 (...) before CYCL CALL PAT")
+    origin = m.origin()
+    p, q = PLANE_AXES[m.plane]
+    point = m.pos.copy()
+    for pos in m.pattern:
+        for i in (p, q):
+            a = "XYZ"[i]
+            if a in pos:
+                point[i] = origin[i] + pos[a] * m.scale
+            elif "I" + a in pos:
+                point[i] += pos["I" + a] * m.scale
+        axis = "XYZ"[m.plane]
+        if "I" + axis in pos:
+            where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
+                       expected=f"{axis} (absolute) in PATTERN DEF")
+        _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale)
+
+
+def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
+                surface_shift: float = 0.0) -> None:
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")

@@ -35,10 +35,10 @@ import re
 
 from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
-from interpolators.heidenhain_words import read_value
+from interpolators.heidenhain_words import read_value, read_words
 
 __all__ = ["CYCLE_RE", "DrillCycle", "MACHINING_CYCLES", "q_assignments", "legacy_value", "pecking_cycle",
-           "drill_cycle"]
+           "drill_cycle", "pattern_positions"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -186,3 +186,37 @@ def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
         where.fail(f"cycle {cycle.number}: negative dwell", column=column, text=where.text, expected="dwell >= 0 [s]")
     return cycle
 
+
+
+_POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
+
+
+def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: int) -> list[dict[str, float]]:
+    """The machining positions of ``PATTERN DEF POS1 (X+25 Y+33.5 Z+0) POS2 (...)`` (TNC 640
+    user's manual, "Pattern definition PATTERN DEF": up to 9 positions; ``Z`` is the workpiece
+    surface there, added to the cycle's Q203; ``IX``/``IY`` are from the previous position).
+
+    Returns one dict per position with the words as written (``"X"``, ``"IY"``, ``"Z"`` ...) in
+    program units. Other pattern forms (ROW, PATTERN, FRAME, CIRC, PITCHCIRC) are errors.
+    """
+    out: list[dict[str, float]] = []
+    pos = 0
+    while rest[pos:].strip():
+        m = _POS_RE.match(rest, pos)
+        if m is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
+                       expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...)")
+        words = read_words(rest, m.start(2), where, params, column0=column0) if m.group(2).strip() else []
+        point: dict[str, float] = {}
+        for w in words:
+            if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ") or w.key[-1] in {k[-1] for k in point}:
+                where.fail(f"word {w.text!r} in a pattern position", column=w.column, text=w.text,
+                           expected="X, Y, Z (each once; IX, IY incremental)")
+            point[w.key] = float(w.value)
+        out.append(point)
+        pos = m.end()
+    if not out or len(out) > 9:
+        where.fail(f"PATTERN DEF with {len(out)} positions", column=column0, text=rest.strip(),
+                   expected="1 to 9 positions POS1 .. POS9")
+    return out

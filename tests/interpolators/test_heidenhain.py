@@ -157,7 +157,8 @@ BAD = [
     ("M99", "without a machining cycle"),
     ("L B+10 F100", "axis 'B'"),
     ("FN 14: ERROR = 1000", "FN 14"),
-    ("CYCL CALL PAT F100", "CYCL CALL PAT"),
+    ("CYCL CALL PAT F100", "without a PATTERN DEF"),
+    ("PATTERN DEF ROW1 (X+0 Y+0 D+5 NUM4)", "pattern 'ROW1' is not supported"),
     ("L X+nan F100", "malformed number"),
 ]
 
