@@ -750,7 +750,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         else:
             retract = None
             m.note("M140 without MB: no retraction")
-        if retract is not None:
+        if retract is not None and retract[m.plane] != m.pos[m.plane]:
             m.used.add(m.plane)
             m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
     if 99 in mvals:
