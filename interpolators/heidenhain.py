@@ -30,6 +30,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
                                     polar line / arc about CC (helix with a tool-axis word)
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
+    APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
+                                    straight approach / departure tangential to the contour
     STOP, M0, M1                    program stop: no motion (noted)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
     L X+0 M92                       M92: relative to the machine-defined position context.home
@@ -44,13 +46,15 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99 or CYCL CALL
+    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99, CYCL CALL or CYCL CALL PAT
+    PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
 
 Unit conversion: positions mm, feeds mm/s. Machine coordinates = program coordinates + the
 preset (``context.offset("G54")``) + the datum shift of cycle 7 + the tool length along the
-tool axis. ``RL``/``RR`` with a tool radius other than 0 and anything not listed (APPR/DEP, FK,
-PATTERN DEF, CYCL CALL PAT, rotary axes, other cycles and FN functions) are errors naming the
-function, line and column.
+tool axis. ``RL``/``RR`` with a tool radius other than 0 and anything not listed (other APPR/DEP
+forms, FK, other pattern forms, rotary axes, other cycles and FN functions) are errors naming
+the function, line and column. ``CYCLE DEF``, which the SolidWorks TNC post writes for
+``CYCL DEF``, is read as such.
 """
 
 from __future__ import annotations
@@ -150,6 +154,8 @@ class _Machine:
         self.used: set[int] = set()
         self.notes: list[str] = []
         self.pending: tuple[str, float, float | None, Where] | None = None  # RND/CHF waiting for its next line
+        self.approach: dict | None = None  # APPR LT waiting for the first contour element
+        self.last_rapid = False
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -176,6 +182,7 @@ class _Machine:
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell))
         self.pos = np.array(target, dtype=float)
+        self.last_rapid = kind == "rapid"
 
 
 def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
@@ -307,7 +314,11 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
             if ended:
                 break
             continue
-        if kw in ("APPR", "DEP", "CALL PGM", "CTP"):
+        if kw in ("APPR", "DEP"):
+            if _approach_depart(kw, blk, k.end(), m, where):
+                break
+            continue
+        if kw in ("CALL PGM", "CTP"):
             where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
                        expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
         if kw == "STOP":
@@ -330,6 +341,10 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     if m.pending is not None:
         kind, _, _, pw = m.pending
         pw.fail(f"{kind} at the end of the contour", column=1, text=pw.text, expected=f"a line after {kind}")
+    if m.approach is not None:
+        pw = m.approach["where"]
+        pw.fail("APPR LT without a following contour element", column=1, text=pw.text,
+                expected="an L or arc block after APPR LT")
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name)
 
@@ -729,6 +744,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
                        expected="F > 0 [mm/min] or F MAX")
         if m.pending is not None:
             _resolve_corner(m, target, where)
+        if m.approach is not None:
+            p, q = PLANE_AXES[m.plane]
+            _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
         m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number)
     elif kw in ("C", "CR", "CT", "CP"):
         if m.feed is None:
@@ -739,6 +757,10 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             pw.fail(f"{kind} before an arc is not supported", column=1, text=pw.text, expected=f"a line after {kind}")
         seg = _arc(kw, seen, target, m, where, blk)
         m.used.update(PLANE_AXES[m.plane])
+        if m.approach is not None:
+            p, q = PLANE_AXES[m.plane]
+            t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
+            _resolve_approach(m, np.array([t[p], t[q]]), where)
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
     if 140 in mvals:
         if "MBMAX" in seen:
@@ -830,3 +852,97 @@ def _resolve_corner(m: _Machine, target: np.ndarray, where: Where) -> None:
         m.emit("arc", t2, arc, corner_feed, pw, None)
     else:
         m.emit("line", t2, Line(t1, t2), corner_feed, pw, None)
+
+
+# --- approach and departure ----------------------------------------------------------------------
+
+def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+    """``APPR LT`` / ``DEP LT`` (TNC 640 user's manual 1/2015, "Approaching and departing a
+    contour", p. 213; TNC7 basic manual "APPR LT"): the straight approach tangential to the first
+    contour element through the auxiliary point PH at ``LEN`` before the first contour point PA,
+    and the straight departure tangential to the last element to PN at ``LEN`` after it. PS to PH
+    runs at the last programmed feed (rapid if the last move was rapid); a tool-axis coordinate is
+    reached after PH (APPR) or after PN (DEP). Other forms (LN, CT, LCT, polar) are errors."""
+    code = blk.code
+    fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
+    form = fm.group(1).upper() if fm else ""
+    if form != "LT":
+        where.fail(f"{kw} {form} is not supported", column=blk.column, text=f"{kw} {form}".strip(),
+                   expected=f"{kw} LT (straight line, tangential)")
+    words = read_words(code, fm.end(), where, m.params, column0=blk.column)
+    seen = {}
+    for w in words:
+        key = w.key
+        if key not in ("X", "Y", "Z", "IX", "IY", "IZ", "LEN", "R0", "RL", "RR", "F", "FMAX", "M"):
+            where.fail(f"word {w.text!r} not allowed in {kw} LT", column=w.column, text=w.text,
+                       expected="X, Y, Z, LEN, R0/RL/RR, F, M")
+        if key != "M":
+            seen[key] = w
+    ended = any(_one_m(w, m) for w in words if w.key == "M")
+    if "LEN" not in seen or not seen["LEN"].value > 0:
+        w = seen.get("LEN")
+        where.fail(f"{kw} LT needs LEN > 0", column=w.column if w else blk.column, text=w.text if w else code,
+                   expected="LEN > 0 [mm]")
+    length = seen["LEN"].value * m.scale
+    for comp in ("R0", "RL", "RR"):
+        if comp in seen:
+            if comp != "R0" and m.tool_radius != 0.0:
+                w = seen[comp]
+                where.fail(f"radius compensation {comp} with tool radius {m.tool_radius:g} mm is not supported",
+                           column=w.column, text=w.text, expected="R0, or a tool of radius 0")
+            m.comp = comp
+    prev_feed = m.feed
+    if "F" in seen:
+        if not seen["F"].value > 0:
+            where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
+        m.feed = seen["F"].value * m.feed_scale
+    if m.feed is None:
+        where.fail(f"{kw} LT without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
+    target, written = _plane_coords(seen, m, where, m9x=None)
+    m.used.update(written)
+    p, q = PLANE_AXES[m.plane]
+    if kw == "APPR":
+        m.approach = {"ps": m.pos.copy(), "len": length, "rapid": m.last_rapid, "feed": prev_feed or m.feed,
+                      "where": where, "number": blk.number}
+        m.pos = target  # the first contour point PA: where the next element starts
+        return ended
+    if not m.blocks or m.blocks[-1].segment is None:
+        where.fail("DEP LT without a preceding contour element", column=blk.column, text=code,
+                   expected="a contour element before DEP LT")
+    try:
+        t = end_tangent(m.blocks[-1].segment, m.plane)
+    except PathGeometryError as exc:
+        where.fail(exc.message, column=blk.column, text=code, expected=exc.expected)
+    pn = m.pos.copy()
+    pn[p] += length * t[0]
+    pn[q] += length * t[1]
+    m.emit("line", pn, Line(m.pos, pn), m.feed, where, blk.number)
+    if target[m.plane] != m.pos[m.plane]:
+        up = m.pos.copy()
+        up[m.plane] = target[m.plane]
+        m.emit("line", up, Line(m.pos, up), m.feed, where, blk.number)
+    return ended
+
+
+def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
+    """Emit PS -> PH -> (depth) -> PA of a pending APPR LT, PH at LEN before PA against ``direction``."""
+    a = m.approach
+    m.approach = None
+    n = float(np.hypot(*direction))
+    pw = a["where"]
+    if n <= 1e-12:
+        pw.fail("the first contour element after APPR LT has no direction in the working plane", column=1,
+                text=pw.text, expected="a first contour element in the working plane")
+    pa = m.pos.copy()
+    p, q = PLANE_AXES[m.plane]
+    ph = np.array(a["ps"], dtype=float)
+    ph[p] = pa[p] - a["len"] * direction[0] / n
+    ph[q] = pa[q] - a["len"] * direction[1] / n
+    m.pos = np.array(a["ps"], dtype=float)
+    m.emit("rapid" if a["rapid"] else "line", ph, Line(m.pos, ph), math.inf if a["rapid"] else a["feed"], pw,
+           a["number"])
+    if ph[m.plane] != pa[m.plane]:
+        down = ph.copy()
+        down[m.plane] = pa[m.plane]
+        m.emit("line", down, Line(m.pos, down), m.feed, pw, a["number"])
+    m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])

@@ -121,6 +121,20 @@ def test_rnd_and_chf_between_lines():
     assert b[5].target.tolist() == [0, 10, 0] and b[5].feed == pytest.approx(100 / 60)
 
 
+def test_appr_lt_and_dep_lt():
+    # TNC 640 manual p. 213: PS -> PH (last feed), then the depth, then PH -> PA tangential to the
+    # first contour element, PH at LEN before PA; DEP LT: LEN along the last element's tangent
+    prog = run("L X+40 Y+10 Z+0 R0 F300\nAPPR LT X+20 Y+20 Z-10 LEN15 RR F100\nL X+35 Y+35\nDEP LT LEN5 R0")
+    h = 15 / math.sqrt(2)
+    d = 5 / math.sqrt(2)
+    expected = [[40, 10, 0], [20 - h, 20 - h, 0], [20 - h, 20 - h, -10], [20, 20, -10], [35, 35, -10],
+                [35 + d, 35 + d, -10]]
+    assert np.allclose(ends(prog), expected, rtol=0, atol=1e-12)
+    assert [b.feed * 60 for b in prog.blocks[1:]] == pytest.approx([300, 100, 100, 100, 100])
+    with pytest.raises(GCodeError, match="APPR LN is not supported"):
+        run("L X+0 F100\nAPPR LN X+1 Y+1 LEN2 RL")
+
+
 def test_radius_compensation_words():
     prog = run("TOOL CALL 0 Z\nL X+0 Y+0 RL F100\nL X+10 R0")  # tool radius 0: the contour is the path
     assert ends(prog) == [[0, 0, 0], [10, 0, 0]]
@@ -147,7 +161,8 @@ def test_cycle_definitions_take_q_parameters():
 BAD = [
     ("CYCL DEF 17.0 RIGID TAPPING", "cycle 17 is not supported"),
     ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
-    ("L X+1 F100\nAPPR LT X+0 Y+0 LEN5 RL", "APPR is not supported"),
+    ("L X+1 F100\nAPPR LT X+0 Y+0 LEN5 RL", "without a following contour element"),
+    ("L X+1 F100\nAPPR LCT X+0 Y+0 R5 RL", "APPR LCT is not supported"),
     ("CALL LBL 7", "label 7 is not defined"),
     ("Q1 = 0\nQ2 = 5 / Q1", "division by zero"),
     ("FN 4: Q2 = +5 DIV +0", "division by zero"),
