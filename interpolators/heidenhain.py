@@ -185,7 +185,8 @@ class _Machine:
         self.last_rapid = kind == "rapid"
 
 
-def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
+def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
+                     max_executed: int = MAX_EXECUTED) -> Program:
     """Run a Heidenhain conversational program and return its motion as a :class:`Program`.
 
     Parameters
@@ -197,6 +198,9 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     context : MachineContext
         Tool table, preset (the ``G54`` work offset), home position and path tolerance of the
         machine; the default changes nothing.
+    max_executed : int
+        Most blocks the run may execute (jumps and repeats count every pass) before the program
+        is judged endless and rejected.
 
     Raises
     ------
@@ -215,8 +219,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         blk = blocks[pc]
         where = blk.where(source)
         executed += 1
-        if executed > MAX_EXECUTED:
-            where.fail(f"the program does not end: more than {MAX_EXECUTED} blocks run (endless jump or repeat?)",
+        if executed > max_executed:
+            where.fail(f"the program does not end: more than {max_executed} blocks run (endless jump or repeat?)",
                        column=blk.column, text=blk.code, expected="a program that reaches M30 or END PGM")
         pc += 1
         k = _KEYWORD_RE.match(blk.code)

@@ -38,8 +38,8 @@ CALL_RE = re.compile(r"CALL\s+LBL\s*(?:\"([^\"]+)\"|'([^']+)'|(\d+)|([A-Z_]\w*))
 
 #: Deepest nesting of subprogram calls (TNC 640 user's manual: 19 levels).
 MAX_NESTING: int = 19
-#: Most blocks one program run may execute before it is judged endless.
-MAX_EXECUTED: int = 2_000_000
+#: Most blocks one program run may execute before it is judged endless (about 5 s of reading).
+MAX_EXECUTED: int = 500_000
 
 
 def label_key(match: re.Match) -> str:

@@ -75,6 +75,11 @@ def test_conditional_jumps_count_a_loop():
     assert prog.blocks[-1].target[1] == 1
 
 
+def test_endless_jump_is_an_error():
+    with pytest.raises(GCodeError, match="does not end: more than 1000 blocks"):
+        run("LBL 1\nL IX+1 F100\nFN 9: IF +0 EQU +0 GOTO LBL 1", max_executed=1000)
+
+
 def test_section_repeat_and_subprograms_after_m30():
     prog = run("L X+0 Y+0 F100\nLBL 1\nL IX+1\nCALL LBL 1 REP 2/2\nCALL LBL 5\nCALL LBL \"SQ\" REP 1\nL Y+9\nM30\n"
                "LBL 5\nL IY+10\nCALL LBL \"SQ\"\nLBL 0\nLBL \"SQ\"\nL IX+100\nLBL 0")
