@@ -59,6 +59,7 @@ the function, line and column. ``CYCLE DEF``, which the SolidWorks TNC post writ
 
 from __future__ import annotations
 
+import logging
 import math
 import re
 
@@ -94,6 +95,8 @@ from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
+
+log = logging.getLogger(__name__)
 
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
@@ -174,6 +177,7 @@ class _Machine:
         return o
 
     def note(self, text: str) -> None:
+        """Record what the run ignored or read in a particular way (logged once per program)."""
         if text not in self.notes:
             self.notes.append(text)
 
@@ -349,6 +353,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         pw = m.approach["where"]
         pw.fail("APPR LT without a following contour element", column=1, text=pw.text,
                 expected="an L or arc block after APPR LT")
+    for text in m.notes:
+        log.info("%s: %s", source or "<program>", text)
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name)
 
