@@ -209,15 +209,18 @@ CORPUS = Path(__file__).resolve().parents[3] / "shared" / "data" / "gcode-corpus
 _LIT = r"[+-]?\s*\d*\.?\d+"
 
 
-def _reference_ends(path: Path) -> dict[int, list[tuple[int, float]]]:
-    """Independent reference: the machine coordinates that an ``L`` line with literal absolute
-    coordinates must reach, from a straight reading of the text (datum shifts with literal
-    values and TOOL DEF lengths tracked; everything after a shift by a Q parameter is left out)."""
+def _reference_ends(path: Path):
+    """Independent reference from a straight reading of the text: the machine coordinates that an
+    ``L`` or ``C`` line with literal absolute coordinates must reach, and the pole (last literal
+    ``CC``) of each ``CP`` line (datum shifts with literal values and TOOL DEF lengths tracked;
+    everything after a shift by a Q parameter is left out)."""
     shift = [0.0, 0.0, 0.0]
     lengths: dict[int, float] = {}
     length = 0.0
     known = True
     out: dict[int, list[tuple[int, float]]] = {}
+    poles: dict[int, list[tuple[int, float]]] = {}
+    pole = None
     for lineno, raw in enumerate(path.read_bytes().decode("latin-1").split("\n"), start=1):
         code = re.sub(r"^\s*\d+\s*", "", raw.split(";")[0]).strip()
         if m := re.match(rf"CYCLE? DEF 7\.([123])\s+(I?)[XYZ]\s*({_LIT})\s*$", code):
@@ -229,12 +232,17 @@ def _reference_ends(path: Path) -> dict[int, list[tuple[int, float]]]:
             lengths[int(m.group(1))] = float(m.group(2))
         elif m := re.match(r"TOOL CALL (\d+)", code):
             length = lengths.get(int(m.group(1)), 0.0)
-        elif known and code.startswith("L ") and not re.search(r"Q|\bI[XYZ]|M9[12]|M140", code):
+        elif known and re.match(r"(L|C|CC) ", code) and not re.search(r"Q|\bI[XYZ]|M9[12]|M140", code):
             axes = re.findall(rf"\b([XYZ])({_LIT})", code)
-            if axes:
-                out[lineno] = [("XYZ".index(a), float(v.replace(" ", "")) + shift["XYZ".index(a)]
-                                + (length if a == "Z" else 0.0)) for a, v in axes]
-    return out
+            values = [("XYZ".index(a), float(v.replace(" ", "")) + shift["XYZ".index(a)]
+                       + (length if a == "Z" else 0.0)) for a, v in axes]
+            if code.startswith("CC "):
+                pole = values
+            elif axes:
+                out[lineno] = values
+        elif known and code.startswith("CP ") and pole is not None:
+            poles[lineno] = pole
+    return out, poles
 
 
 @pytest.mark.skipif(not CORPUS.is_dir(), reason=f"corpus not found at {CORPUS} (shared data absent)")
@@ -242,6 +250,7 @@ def test_corpus_programs_run_and_end_where_the_text_says():
     files = sorted(CORPUS.glob("*.h"))
     assert len(files) == 47
     ran, failed = [], {}
+    total_checked = 0
     for f in files:
         try:
             prog = load_program(f)
@@ -250,7 +259,7 @@ def test_corpus_programs_run_and_end_where_the_text_says():
             failed[f.name] = str(exc)
             continue
         ran.append(f.name)
-        ref = _reference_ends(f)
+        ref, poles = _reference_ends(f)
         pos = np.zeros(3)
         checked = 0
         for b in prog.blocks:
@@ -260,11 +269,18 @@ def test_corpus_programs_run_and_end_where_the_text_says():
                 for axis, value in ref[b.line]:
                     assert b.target[axis] == pytest.approx(value, abs=1e-9), (f.name, b.line, b.text)
                 checked += 1
+            if b.line in poles:  # a CP arc ends on its circle about the pole
+                c = dict(poles[b.line])
+                r0 = math.hypot(b.start[0] - c[0], b.start[1] - c[1])
+                assert math.hypot(b.target[0] - c[0], b.target[1] - c[1]) == pytest.approx(r0, abs=1e-9)
+                checked += 1
+        total_checked += checked
         if len(prog.blocks) > 0 and prog.blocks[0].kind != "dwell":
             assert checked > 0 or not ref, f.name
         if 0 < len(prog.blocks) <= INTERPOLATED_BLOCKS:
             setpoints = interpolate(prog)
             last = [prog.blocks[-1].target["xyz".index(a)] for a in setpoints.axes]
             assert np.allclose(setpoints.position[-1], last, atol=1e-6), f.name
-    print(f"{len(ran)} of {len(files)} Heidenhain programs run; rejected: {failed}")
-    assert len(ran) >= 28
+    print(f"{len(ran)} of {len(files)} Heidenhain programs run, {total_checked} block ends checked; "
+          f"rejected: {failed}")
+    assert len(ran) >= 29 and total_checked > 10000
