@@ -73,6 +73,7 @@ from interpolators.heidenhain_cycles import (
     MACHINING_CYCLES,
     DrillCycle,
     drill_cycle,
+    hole_moves,
     legacy_value,
     pattern_positions,
     pecking_cycle,
@@ -579,11 +580,39 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
 
 def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
                 surface_shift: float = 0.0) -> None:
+    """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
+    reached at rapid at the clearance height, the 2nd set-up clearance)."""
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    where.fail(f"running drilling cycle {m.cycle.number} (M99, CYCL CALL) is not supported", column=blk.column,
-               text=blk.code, expected="the hole's moves written as L blocks")
+    c = m.cycle
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    if c.surface is None:
+        surface = m.pos[axis] + d * c.setup
+    else:
+        surface = m.origin()[axis] + c.surface + surface_shift
+    if hole is not None:
+        clear = surface - d * max(c.setup, c.second_setup) if c.surface is not None else m.pos[axis]
+        if d * (m.pos[axis] - clear) > 0:  # below the clearance height
+            _axis_move(m, "rapid", clear, math.inf, where, blk)
+        target = np.array(hole, dtype=float)
+        target[axis] = m.pos[axis]
+        if not np.array_equal(target, m.pos):
+            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+    for mv in hole_moves(c, start=m.pos[axis], surface=surface):
+        if mv.kind == "dwell":
+            m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
+        else:
+            _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
+    m.used.add(axis)
+
+
+def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, blk: SourceBlock) -> None:
+    if level != m.pos[m.plane]:
+        target = m.pos.copy()
+        target[m.plane] = level
+        m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
 
 
 # --- M functions -----------------------------------------------------------------------------
@@ -735,9 +764,6 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     target, written = _plane_coords(seen, m, where, m9x=m9x)
     m.used.update(written)
     feed = math.inf if rapid else m.feed
-    if kw == "L" and not written and not ms:
-        where.fail("L block without coordinates", column=blk.column, text=where.text,
-                   expected="at least one of X, Y, Z")
     if kw in ("L", "LP") and (written or kw == "LP"):
         if kw == "LP":
             if m.pole is None:

@@ -31,14 +31,15 @@ TNC does. Machining cycles run where they are called (``M99``, ``CYCL CALL``).
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 
 from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
-__all__ = ["CYCLE_RE", "DrillCycle", "MACHINING_CYCLES", "q_assignments", "legacy_value", "pecking_cycle",
-           "drill_cycle", "pattern_positions"]
+__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "q_assignments", "legacy_value",
+           "pecking_cycle", "drill_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -81,7 +82,11 @@ class DrillCycle:
     chip_break : float
         Q256: retraction of a chip break [mm].
     retract_feed : float or None
-        Q208: retraction feed [mm/s]; ``None`` (or 0 in the program) retracts at rapid.
+        Q208 (203): retraction feed [mm/s]; ``None`` retracts at rapid.
+    advance : float or None
+        Advanced stop distance [mm]: how far above the last depth a re-entry at rapid stops
+        (205: Q258); ``None``: the cycle's own rule (1: 0.6 mm, or depth/50 up to 7 mm, for holes
+        deeper than 30 mm; 200/203: the set-up clearance).
     """
 
     number: int
@@ -98,6 +103,7 @@ class DrillCycle:
     chip_breaks: int = 0
     chip_break: float = 0.0
     retract_feed: float | None = None
+    advance: float | None = None
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -160,16 +166,21 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
+    if number == 205 and q.get(257, 0.0) != 0.0:
+        where.fail("cycle 205: chip breaking within an infeed (Q257 != 0) is not supported", column=column,
+                   text=where.text, expected="Q257=0")
     depth = q[201] * scale
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
-    retract = q.get(208, 0.0)
+    # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
+    retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
     return _checked(DrillCycle(
         number=number, setup=abs(q[200]) * scale, depth=depth, plunge=plunge, feed=q[206] * feed_scale,
         dwell_top=q.get(210, 0.0), dwell_bottom=q.get(211, 0.0), surface=q[203] * scale,
         second_setup=q[204] * scale, decrement=abs(q.get(212, 0.0)) * scale,
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
-        retract_feed=retract * feed_scale if retract > 0 else None), where, column)
+        retract_feed=retract * feed_scale if retract > 0 else None,
+        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -207,7 +218,7 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
             tok = rest[pos:].split()[0]
             where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
                        expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...)")
-        words = read_words(rest, m.start(2), where, params, column0=column0) if m.group(2).strip() else []
+        words = read_words(rest[: m.end(2)], m.start(2), where, params, column0=column0)
         point: dict[str, float] = {}
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ") or w.key[-1] in {k[-1] for k in point}:
@@ -219,4 +230,89 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
     if not out or len(out) > 9:
         where.fail(f"PATTERN DEF with {len(out)} positions", column=column0, text=rest.strip(),
                    expected="1 to 9 positions POS1 .. POS9")
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class AxisMove:
+    """One move of a drilling cycle along the tool axis (the hole's in-plane position is fixed).
+
+    Attributes
+    ----------
+    kind : {"rapid", "line", "dwell"}
+    level : float
+        Tool-axis coordinate at the end of the move [mm, machine].
+    feed : float
+        [mm/s]; ``inf`` for rapids, 0 for dwells.
+    dwell : float
+        [s] for a dwell.
+    """
+
+    kind: str
+    level: float
+    feed: float = math.inf
+    dwell: float = 0.0
+
+
+def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisMove]:
+    """The tool-axis moves of one hole, the TNC way (TNC 426/430 user's manual, "Cycles for
+    drilling"; values from the cycle's definition):
+
+    * cycle 1: drill at F from the starting point ``start`` to the first plunging depth (below
+      the surface, which lies the set-up clearance ahead); retract at FMAX to the starting point,
+      advance at FMAX to the advanced stop distance t above the last depth (t = 0.6 mm for a
+      total depth up to 30 mm, else depth/50, at most 7 mm), drill the next infeed; at the bottom
+      dwell, then FMAX back to the starting point;
+    * cycles 200/203/205: FMAX to the set-up clearance above the surface, drill to the plunging
+      depth, FMAX back to the set-up clearance, dwell Q210 there, FMAX to the set-up clearance
+      (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
+      203 breaks the chip Q213 times by retracting Q256 before a full retraction; at the bottom
+      dwell Q211, retract (203: at Q208) to the set-up clearance and, when it is higher, to the
+      2nd set-up clearance.
+
+    ``start`` and ``surface`` are tool-axis coordinates [mm, machine]; the sign of the depth is the
+    working direction.
+    """
+    d = -1.0 if cycle.depth < 0 else 1.0
+    total = abs(cycle.depth)
+    out: list[AxisMove] = []
+    if cycle.number == 1:
+        top = start
+        advance = 0.6 if total <= 30.0 else min(total / 50.0, 7.0)
+    else:
+        top = surface - d * cycle.setup
+        advance = cycle.setup if cycle.advance is None else cycle.advance
+        out.append(AxisMove("rapid", top))
+    retract_kind, retract_feed = ("line", cycle.retract_feed) if cycle.retract_feed else ("rapid", math.inf)
+    done = 0.0
+    plunge = cycle.plunge
+    breaks = 0
+    at_top = True
+    while done < total - 1e-12:
+        if done > 0.0 and at_top:
+            if cycle.dwell_top > 0:
+                out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
+            reentry = surface + d * (done - advance)
+            if d * (reentry - top) > 0:  # only when below the retraction level
+                out.append(AxisMove("rapid", reentry))
+        step = min(plunge, total - done)
+        done += step
+        out.append(AxisMove("line", surface + d * done, cycle.feed))
+        if cycle.decrement:
+            plunge = max(plunge - cycle.decrement, cycle.min_plunge, 1e-3)
+        if done >= total - 1e-12:
+            break
+        if breaks < cycle.chip_breaks:
+            breaks += 1
+            out.append(AxisMove(retract_kind, surface + d * (done - cycle.chip_break), retract_feed))
+            at_top = False
+            continue
+        breaks = 0
+        out.append(AxisMove(retract_kind, top, retract_feed))
+        at_top = True
+    if cycle.dwell_bottom > 0:
+        out.append(AxisMove("dwell", surface + d * total, 0.0, cycle.dwell_bottom))
+    out.append(AxisMove(retract_kind, top, retract_feed))
+    if cycle.number != 1 and cycle.second_setup > cycle.setup:
+        out.append(AxisMove("rapid", surface - d * cycle.second_setup))
     return out

@@ -166,6 +166,55 @@ def test_cycle_definitions_take_q_parameters():
     assert ends(prog) == [[-4, 2, 0]]
 
 
+def axis_moves(prog, first=0):
+    """(kind, z [mm], feed [mm/min] or dwell [s]) of the blocks from ``first`` on."""
+    return [(b.kind, round(float(b.target[2]), 9), b.dwell if b.kind == "dwell" else
+             (math.inf if b.kind == "rapid" else round(b.feed * 60, 9))) for b in prog.blocks[first:]]
+
+
+def test_cycle_200_pecks_dwells_and_second_clearance():
+    prog = run("L X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 200 DRILLING Q200=+2 Q201=-10 Q206=+120 Q202=+4 Q210=+0.5 "
+               "Q203=+0 Q204=+20 Q211=+1\nL FMAX M99")
+    inf = math.inf
+    assert axis_moves(prog, 1) == [
+        ("rapid", 2, inf), ("line", -4, 120), ("rapid", 2, inf), ("dwell", 2, 0.5), ("rapid", -2, inf),
+        ("line", -8, 120), ("rapid", 2, inf), ("dwell", 2, 0.5), ("rapid", -6, inf), ("line", -10, 120),
+        ("dwell", -10, 1.0), ("rapid", 2, inf), ("rapid", 20, inf)]
+    assert all(b.target[:2].tolist() == [10, 20] for b in prog.blocks)
+
+
+def test_cycle_1_pecking_from_the_starting_point():
+    # DIST 25 from Z+25: surface at 0; advanced stop distance 0.6 mm (depth <= 30 mm)
+    prog = run("L X+0 Y+0 Z+25 R0 FMAX\nCYCL DEF 1.0 PECKING\nCYCL DEF 1.1 DIST25\nCYCL DEF 1.2 DEPTH-10\n"
+               "CYCL DEF 1.3 PLNGNG4\nCYCL DEF 1.4 DWELL0\nCYCL DEF 1.5 F600\nCYCL CALL")
+    inf = math.inf
+    assert axis_moves(prog, 1) == [
+        ("line", -4, 600), ("rapid", 25, inf), ("rapid", -3.4, inf), ("line", -8, 600), ("rapid", 25, inf),
+        ("rapid", -7.4, inf), ("line", -10, 600), ("rapid", 25, inf)]
+
+
+def test_cycle_203_decrement_and_chip_breaking():
+    prog = run("L X+0 Y+0 Z+2 R0 FMAX\nCYCL DEF 203 UNIVERSAL DRILLING Q200=+2 Q201=-9 Q206=+60 Q202=+3 Q210=+0 "
+               "Q203=+0 Q204=+2 Q212=+1 Q213=+1 Q205=+1 Q211=+0 Q208=+0 Q256=+0.5\nL M99")
+    r = math.inf
+    assert axis_moves(prog, 1) == [
+        ("line", -3, 60), ("line", -2.5, 60), ("line", -5, 60), ("line", 2, 60), ("rapid", -3, r), ("line", -6, 60),
+        ("line", -5.5, 60), ("line", -7, 60), ("line", 2, 60), ("rapid", -5, r), ("line", -8, 60),
+        ("line", -7.5, 60), ("line", -9, 60), ("line", 2, 60)]
+
+
+def test_cycle_205_advanced_stop_and_pattern_call():
+    prog = run("L X+0 Y+0 Z+50 R0 FMAX\nPATTERN DEF ~\nPOS1 (X+10 Y+0 Z+0) ~\nPOS2 (IX+5 Y+5 Z-1)\n"
+               "CYCL DEF 205 UNIVERSAL PECKING Q200=+2 Q201=-6 Q206=+60 Q202=+3 Q203=+0 Q204=+10 Q212=+0 "
+               "Q205=+0 Q258=+0.5 Q259=+0.5 Q257=+0 Q256=+0.2 Q211=+0\nCYCL CALL PAT FMAX")
+    inf = math.inf
+    assert ends(prog)[1] == [10, 0, 50] and ends(prog)[9] == [15, 5, 10]  # in the plane at the clearance
+    assert axis_moves(prog, 2)[:7] == [("rapid", 2, inf), ("line", -3, 60), ("rapid", 2, inf),
+                                       ("rapid", -2.5, inf), ("line", -6, 60), ("rapid", 2, inf), ("rapid", 10, inf)]
+    assert axis_moves(prog, 10) == [("rapid", 1, inf), ("line", -4, 60), ("rapid", 1, inf), ("rapid", -3.5, inf),
+                                   ("line", -7, 60), ("rapid", 1, inf), ("rapid", 9, inf)]
+
+
 BAD = [
     ("CYCL DEF 17.0 RIGID TAPPING", "cycle 17 is not supported"),
     ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
@@ -283,4 +332,4 @@ def test_corpus_programs_run_and_end_where_the_text_says():
             assert np.allclose(setpoints.position[-1], last, atol=1e-6), f.name
     print(f"{len(ran)} of {len(files)} Heidenhain programs run, {total_checked} block ends checked; "
           f"rejected: {failed}")
-    assert len(ran) >= 29 and total_checked > 10000
+    assert len(ran) >= 41 and total_checked > 20000
