@@ -71,6 +71,14 @@ def test_formulas_precedence_and_functions():
     assert b[1].target.tolist() == pytest.approx([15.0, 0.75 - 1 - 1 + 0.5 + 45 + 2 + 1 + math.pi, 30.0])
 
 
+def test_q_parameters_in_feeds_and_inch_programs():
+    prog = run("FN 0: Q58 = +1200\nL X+1 FQ58\nL X-Q58 F(Q58/2)")
+    assert [b.feed for b in prog.blocks] == [20.0, 10.0] and prog.blocks[1].target[0] == -1200
+    inch = parse_heidenhain("0 BEGIN PGM I INCH\n1 L X+1 F10\n2 CC X+0 Y+0\n3 C X+0 Y+1 DR+\n4 END PGM I INCH\n")
+    assert inch.blocks[0].target[0] == pytest.approx(25.4) and inch.blocks[0].feed == pytest.approx(10 * 2.54 / 60)
+    assert inch.blocks[1].target.tolist() == pytest.approx([0, 25.4, 0])
+
+
 def test_conditional_jumps_count_a_loop():
     prog = run("Q1 = 0\nLBL 1\nQ1 = Q1 + 1\nL X+Q1 F100\nFN 12: IF +Q1 LT +4 GOTO LBL 1\n"
                "FN 9: IF +Q1 EQU +4 GOTO LBL \"DONE\"\nL X+99\nLBL \"DONE\"\nL Y+1")
