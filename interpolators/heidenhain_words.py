@@ -124,6 +124,9 @@ def read_value(code: str, pos: int, where: Where, params: QParameters, *, what: 
     if q is not None:
         return sign * params.get(q.group(0)), q.end()
     n = NUMBER_RE.match(code, j)
+    if re.match(r"(nan|inf)(?![A-Z])", code[j:], re.I):
+        where.fail(f"{what} is {code[j:j + 3]!r}, not a number (an undefined value written by the post-processor)",
+                   column=column0 + pos, text=token_at(code, pos), expected="a finite number")
     if n is None or n.group(0)[0] in "+-":
         tok = token_at(code, pos)
         where.fail(f"malformed number for {what} in {tok!r}", column=column0 + pos, text=tok,

@@ -239,7 +239,8 @@ BAD = [
     ("FN 14: ERROR = 1000", "FN 14"),
     ("CYCL CALL PAT F100", "without a PATTERN DEF"),
     ("PATTERN DEF ROW1 (X+0 Y+0 D+5 NUM4)", "pattern 'ROW1' is not supported"),
-    ("L X+nan F100", "malformed number"),
+    ("L X+nan F100", "not a number"),
+    ("L X+1.2.3 F100", "malformed number"),
 ]
 
 
