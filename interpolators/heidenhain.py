@@ -80,7 +80,7 @@ from interpolators.heidenhain_cycles import (
     q_assignments,
 )
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
-from interpolators.heidenhain_params import FN_ARITHMETIC, FN_CONDITIONS, Q_NAME_RE, QParameters
+from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
 from interpolators.heidenhain_paths import (
     PathGeometryError,
     chamfer_corner,
@@ -284,7 +284,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
             pc = target + 1
             continue
         if kw.startswith("FN"):
-            jump = _function(blk, k.end(), m, where)
+            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.origin(),
+                                scale=m.scale, note=m.note)
             if jump is not None:
                 pc = labels.find(jump, where, column=col0, text=blk.code) + 1
             continue
@@ -358,87 +359,6 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         log.info("%s: %s", source or "<program>", text)
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name)
-
-
-# --- Q parameter functions ---------------------------------------------------------------------
-
-_FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
-
-
-def _function(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> str | None:
-    """Run an ``FN n:`` block; returns the label to jump to, if any."""
-    code = blk.code
-    fm = _FN_RE.match(code)
-    n = int(fm.group(1)[:6])
-    rest = code[fm.end():]
-    col = blk.column + fm.end()
-    if n in FN_ARITHMETIC:
-        am = re.match(r"(Q[LR]?\d+)\s*=\s*", rest, re.I)
-        if am is None:
-            where.fail(f"FN {n} without 'Qn ='", column=col, text=rest.strip(), expected="FN n: Qn = ...")
-        op, fn = FN_ARITHMETIC[n]
-        body = rest[am.end():]
-        bcol = col + am.end()
-        if op is None:
-            value = m.params.evaluate(body, where, column=bcol)
-        elif op in ("SQRT", "SIN", "COS"):
-            om = re.match(rf"\s*{op}\s*", body, re.I)
-            if om is None:
-                where.fail(f"FN {n} expects {op}", column=bcol, text=body.strip(), expected=f"FN {n}: Qn = {op} value")
-            arg = m.params.evaluate(body[om.end():], where, column=bcol + om.end())
-            try:
-                value = fn(arg)
-            except ValueError:
-                where.fail(f"FN {n}: {op} of {arg!r} is undefined", column=bcol, text=body.strip(),
-                           expected="an argument in the function's domain")
-        else:
-            a, b = _two_operands(body, op, where, m, bcol)
-            if op == "DIV" and b == 0:
-                where.fail("FN 4: division by zero", column=bcol, text=body.strip(), expected="a divisor != 0")
-            value = fn(a, b)
-        m.params.set(am.group(1), value, where, column=col)
-        return None
-    if n in FN_CONDITIONS:
-        op, test = FN_CONDITIONS[n]
-        cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
-        if cm is None:
-            where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
-                       expected=f"FN {n}: IF a {op} b GOTO LBL n")
-        a = m.params.evaluate(cm.group(1), where, column=col + cm.start(1))
-        b = m.params.evaluate(cm.group(2), where, column=col + cm.start(2))
-        lm = LABEL_RE.match(cm.group(3))
-        if lm is None:
-            where.fail("malformed jump label", column=col + cm.start(3), text=cm.group(3), expected="LBL n")
-        return label_key(lm) if test(a, b) else None
-    if n in (15, 16):
-        m.note(f"FN {n}: PRINT output ignored")
-        return None
-    if n == 14:
-        where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
-                   expected="a program run without FN 14")
-    if n == 18:
-        sm = re.match(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)\s+IDX\s*(\d+)\s*$", rest, re.I)
-        if sm is None or int(sm.group(2)) not in (240, 270) or sm.group(3) != "1" or not 1 <= int(sm.group(4)) <= 3:
-            where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
-                       expected="SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position)")
-        axis = int(sm.group(4)) - 1
-        value = m.pos[axis] if sm.group(2) == "240" else m.pos[axis] - m.origin()[axis]
-        m.params.set(sm.group(1), value / m.scale, where, column=col)
-        m.note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
-        return None
-    where.fail(f"FN {n} is not supported", column=blk.column, text=code[:fm.end()].strip(),
-               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270")
-
-
-def _two_operands(body: str, op: str, where: Where, m: _Machine, column: int) -> tuple[float, float]:
-    # the operator word sits between two signed operands: "+Q1 + +5", "+8 DIV +Q2", "+5 LEN +4"
-    pat = re.escape(op) if op in "+-*" else rf"\b{op}\b"
-    for om in re.finditer(rf"(?<=[\dA-Z.)])\s*{pat}\s*", body, re.I):
-        left, right = body[: om.start()], body[om.end():]
-        if left.strip() and right.strip():
-            return (m.params.evaluate(left, where, column=column),
-                    m.params.evaluate(right, where, column=column + om.end()))
-    where.fail(f"expected two operands around {op}", column=column, text=body.strip(), expected=f"a {op} b")
 
 
 # --- tools -----------------------------------------------------------------------------------

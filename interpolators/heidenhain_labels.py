@@ -24,9 +24,12 @@ from __future__ import annotations
 
 import dataclasses
 import re
+from typing import TYPE_CHECKING
 
 from interpolators._words import Where
-from interpolators.heidenhain_words import SourceBlock
+
+if TYPE_CHECKING:  # the words module reads Q parameters, whose FN jumps name labels
+    from interpolators.heidenhain_words import SourceBlock
 
 __all__ = ["LABEL_RE", "CALL_RE", "MAX_NESTING", "MAX_EXECUTED", "LabelTable", "Frame", "label_key"]
 

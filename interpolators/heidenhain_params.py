@@ -13,6 +13,11 @@ Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q para
   divide (division by 0 is an error), ``FN 5: SQRT``, ``FN 6: SIN``, ``FN 7: COS``,
   ``FN 8: a LEN b`` (root sum of squares), ``FN 13: a ANG b`` (angle of the vector (a, b) in degrees).
 * ``FN 9/10/11/12: IF a EQU/NE/GT/LT b GOTO LBL n`` conditions (the jump itself is the reader's).
+* ``FN 14: ERROR`` stops the run with an error; ``FN 15/16`` prints are noted and skipped;
+  ``FN 18: SYSREAD Qn = ID240 NR1 IDXi`` (nominal position, machine coordinates) and
+  ``ID270 NR1 IDXi`` (position in the active coordinate system) read the simulated position:
+  a simulation has no operator jogging the axes at a ``STOP``, so programs that measure
+  positions set by hand read the position where the program left the tool.
 
 A parameter used before it is set reads 0, as on the TNC after a reset of the Q parameters.
 """
@@ -21,10 +26,14 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
+
+import numpy as np
 
 from interpolators._words import MAX_MAGNITUDE, Where
+from interpolators.heidenhain_labels import LABEL_RE, label_key
 
-__all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE"]
+__all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE", "run_function"]
 
 #: A parameter name: ``Q12``, ``QL3``, ``QR7``.
 Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
@@ -208,3 +217,97 @@ class _Formula:
             self.i += 1
             return v
         self.fail(f"unexpected {t[1]!r}")
+
+
+_FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
+
+
+def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
+                 origin: np.ndarray, scale: float, note: Callable[[str], None]) -> str | None:
+    """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
+
+    Parameters
+    ----------
+    position, origin : ndarray (3,)
+        Tool position and program zero [mm, machine] for ``FN 18 SYSREAD``.
+    scale : float
+        mm per program unit (25.4 in INCH programs).
+    note : callable
+        Receives what was ignored or read in a particular way.
+
+    Returns
+    -------
+    str or None
+        The label to jump to (``FN 9`` .. ``FN 12`` whose condition holds), else None.
+    """
+    fm = _FN_RE.match(code)
+    n = int(fm.group(1)[:6])
+    rest = code[fm.end():]
+    col = column + fm.end()
+    if n in FN_ARITHMETIC:
+        am = re.match(r"(Q[LR]?\d+)\s*=\s*", rest, re.I)
+        if am is None:
+            where.fail(f"FN {n} without 'Qn ='", column=col, text=rest.strip(), expected="FN n: Qn = ...")
+        op, fn = FN_ARITHMETIC[n]
+        body = rest[am.end():]
+        bcol = col + am.end()
+        if op is None:
+            value = params.evaluate(body, where, column=bcol)
+        elif op in ("SQRT", "SIN", "COS"):
+            om = re.match(rf"\s*{op}\s*", body, re.I)
+            if om is None:
+                where.fail(f"FN {n} expects {op}", column=bcol, text=body.strip(), expected=f"FN {n}: Qn = {op} value")
+            arg = params.evaluate(body[om.end():], where, column=bcol + om.end())
+            try:
+                value = fn(arg)
+            except ValueError:
+                where.fail(f"FN {n}: {op} of {arg!r} is undefined", column=bcol, text=body.strip(),
+                           expected="an argument in the function's domain")
+        else:
+            a, b = _two_operands(body, op, params, where, bcol)
+            if op == "DIV" and b == 0:
+                where.fail("FN 4: division by zero", column=bcol, text=body.strip(), expected="a divisor != 0")
+            value = fn(a, b)
+        params.set(am.group(1), value, where, column=col)
+        return None
+    if n in FN_CONDITIONS:
+        op, test = FN_CONDITIONS[n]
+        cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
+        if cm is None:
+            where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
+                       expected=f"FN {n}: IF a {op} b GOTO LBL n")
+        a = params.evaluate(cm.group(1), where, column=col + cm.start(1))
+        b = params.evaluate(cm.group(2), where, column=col + cm.start(2))
+        lm = LABEL_RE.match(cm.group(3))
+        if lm is None:
+            where.fail("malformed jump label", column=col + cm.start(3), text=cm.group(3), expected="LBL n")
+        return label_key(lm) if test(a, b) else None
+    if n in (15, 16):
+        note(f"FN {n}: PRINT output ignored")
+        return None
+    if n == 14:
+        where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
+                   expected="a program run without FN 14")
+    if n == 18:
+        sm = re.match(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)\s+IDX\s*(\d+)\s*$", rest, re.I)
+        if sm is None or int(sm.group(2)) not in (240, 270) or sm.group(3) != "1" or not 1 <= int(sm.group(4)) <= 3:
+            where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
+                       expected="SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position)")
+        axis = int(sm.group(4)) - 1
+        value = position[axis] if sm.group(2) == "240" else position[axis] - origin[axis]
+        params.set(sm.group(1), value / scale, where, column=col)
+        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        return None
+    where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
+               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270")
+
+
+def _two_operands(body: str, op: str, params: QParameters, where: Where, column: int) -> tuple[float, float]:
+    # the operator word sits between two signed operands: "+Q1 + +5", "+8 DIV +Q2", "+5 LEN +4"
+    pat = re.escape(op) if op in "+-*" else rf"\b{op}\b"
+    for om in re.finditer(rf"(?<=[\dA-Z.)])\s*{pat}\s*", body, re.I):
+        left, right = body[: om.start()], body[om.end():]
+        if left.strip() and right.strip():
+            return (params.evaluate(left, where, column=column),
+                    params.evaluate(right, where, column=column + om.end()))
+    where.fail(f"expected two operands around {op}", column=column, text=body.strip(), expected=f"a {op} b")
