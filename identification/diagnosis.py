@@ -52,6 +52,7 @@ from identification.effects import EFFECTS
 from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
 from identification.poles import TWO_PI, denominator
 from identification.reduced_model import ReducedAxisModel
+from identification.segments import FoldPlan, active_mask, folds, motion_segments
 from vcnc.capture import Capture
 from vcnc.errors import IdentificationError
 
@@ -76,8 +77,11 @@ class DiagnosisOptions:
 
     Attributes
     ----------
-    train_fraction : float
-        Share of samples (from the start) that identify; the rest validates [-].
+    folds : int
+        Contiguous validation folds wanted (cut at idle points or reversals; fewer when a fold
+        would lack motion in either direction) [-].
+    margin_s : float
+        Margin kept around every moving stretch when idle stretches are trimmed [s].
     min_gain : float
         Smallest relative drop of the held-out RMS for an effect to be added [-].
     min_gain_um : float
@@ -95,7 +99,8 @@ class DiagnosisOptions:
         to be refitted [-] (saves refits of proposals without evidence).
     """
 
-    train_fraction: float = 0.7
+    folds: int = 4
+    margin_s: float = 0.2
     min_gain: float = 0.25
     min_gain_um: float = 0.05
     max_effects: int = 3
@@ -105,8 +110,10 @@ class DiagnosisOptions:
     min_screen: float = 0.05
 
     def __post_init__(self) -> None:
-        if not 0.3 <= self.train_fraction <= 0.9:
-            raise IdentificationError(f"train_fraction must lie in [0.3, 0.9] (got {self.train_fraction!r})")
+        if not 2 <= self.folds <= 20:
+            raise IdentificationError(f"folds must lie in [2, 20] (got {self.folds!r})")
+        if not 0.0 <= self.margin_s:
+            raise IdentificationError(f"margin_s must be >= 0 s (got {self.margin_s!r})")
         unknown = [e for e in self.effects if e not in EFFECTS]
         if unknown:
             raise IdentificationError(f"unknown effect(s) {unknown}; expected some of {', '.join(EFFECTS)}")
@@ -124,6 +131,8 @@ class Stage:
     identification_rms_um: float = math.nan
     identification_max_um: float = math.nan
     evidence: dict = dataclasses.field(default_factory=dict)
+    fold_rms_um: list = dataclasses.field(default_factory=list)
+    fold_max_um: list = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass(eq=False)
@@ -136,6 +145,7 @@ class DiagnosisReport:
     rounds: list
     data: Data
     time_s: float
+    plan: FoldPlan | None = None
 
     @property
     def effects(self) -> list[str]:
@@ -175,58 +185,89 @@ def _params_from(z: np.ndarray) -> dict[str, float]:
             "d1": z[7] * a2}
 
 
-def refit(model: AugmentedAxisModel, data: Data, stop: int, *, max_nfev: int = 40) -> AugmentedAxisModel:
-    """Joint output-error refit on samples ``[0, stop)`` of every continuous parameter.
+class _Layout:
+    """The refit's coordinates of a model: ``z`` (log poles, reduced parameters over a2, the
+    split form's viscous share, the effects' free parameters), their bounds, and the model and
+    simulated output of any ``z``."""
+
+    def __init__(self, model: AugmentedAxisModel, data: Data) -> None:
+        box = data.bounds.rad()
+        poles = model.poles
+        if not poles or not data.bounds.contains(poles, rtol=1e-6):
+            poles = {"p_hz": min(max(poles.get("p_hz", 1.0), data.bounds.p_hz[0]), data.bounds.p_hz[1]),
+                     "omega_n_hz": min(max(poles.get("omega_n_hz", 10.0), data.bounds.omega_n_hz[0]),
+                                       data.bounds.omega_n_hz[1]),
+                     "zeta": min(max(poles.get("zeta", 0.7), data.bounds.zeta[0]), data.bounds.zeta[1])}
+        z0 = list(_theta_from(model.parameters, poles))
+        lo: list[float] = [math.log(box[0][0]), math.log(box[1][0]), box[2][0]] + [-np.inf] * 5
+        hi = [math.log(box[0][1]), math.log(box[1][1]), box[2][1]] + [np.inf] * 5
+        self.structured = model.structured
+        if self.structured:
+            q = min(max(model.viscous_rate / model.parameters["a1"], 1e-5), 0.9)
+            z0.append(math.log(q))
+            lo.append(math.log(1e-5))
+            hi.append(math.log(0.95))
+        self.slices = []
+        linear = [False] * len(z0)
+        for e in model.elements:
+            fr = e.free()
+            self.slices.append((len(z0), len(fr)))
+            for f in fr:
+                z0.append(min(max(f.value, f.lo), f.hi))
+                lo.append(f.lo)
+                hi.append(f.hi)
+                linear.append(f.linear)
+        self.lo, self.hi = np.array(lo, float), np.array(hi, float)
+        pad = 1e-9 * np.where(np.isfinite(self.hi - self.lo), self.hi - self.lo, 0.0)
+        self.lo_pad, self.hi_pad = self.lo + pad, self.hi - pad
+        self.z0 = np.clip(np.array(z0, float), self.lo_pad, self.hi_pad)
+        self.lin = np.array(linear, bool)
+        self.model = model
+        self.data = data
+
+    def build(self, z: np.ndarray) -> tuple[dict, list, float]:
+        params = _params_from(z)
+        elements = [e.with_free(z[i:i + k]) if k else e for e, (i, k) in zip(self.model.elements, self.slices)]
+        c = math.exp(z[8]) * params["a1"] if self.structured else 0.0
+        return params, elements, c
+
+    def simulate(self, z: np.ndarray) -> np.ndarray:
+        """Simulated output [mm] over the whole record."""
+        params, elements, c = self.build(z)
+        m = AugmentedAxisModel(parameters=params, sample_time=self.data.T, elements=tuple(elements), viscous_rate=c,
+                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0})
+        return simulate_augmented(params, self.data.xr, m.spec(self.data.n))
+
+    def model_of(self, z: np.ndarray) -> AugmentedAxisModel:
+        params, elements, c = self.build(z)
+        return augment(self.model, elements, parameters=params, viscous_rate=c,
+                       poles={"omega_n_hz": math.exp(z[1]) / TWO_PI, "zeta": float(z[2]),
+                              "p_hz": math.exp(z[0]) / TWO_PI})
+
+
+def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, max_nfev: int = 40
+          ) -> AugmentedAxisModel:
+    """Joint output-error refit of every continuous parameter on ``samples``.
+
+    ``samples`` is a boolean mask over the record (or an int: the first ``samples``). The
+    simulation always runs over the whole record (the model predicts from the reference alone);
+    only the error on the chosen samples counts.
 
     Reduced parameters as in :mod:`identification.output_error` (poles inside ``data.bounds``),
     the split form's plant viscous rate (as a share of a1) when an element is present, and every
     effect's :meth:`~identification.effects.Effect.free` parameters.
     """
-    box = data.bounds.rad()
-    poles = model.poles
-    if not poles or not data.bounds.contains(poles, rtol=1e-6):
-        poles = {"p_hz": min(max(poles.get("p_hz", 1.0), data.bounds.p_hz[0]), data.bounds.p_hz[1]),
-                 "omega_n_hz": min(max(poles.get("omega_n_hz", 10.0), data.bounds.omega_n_hz[0]),
-                                   data.bounds.omega_n_hz[1]),
-                 "zeta": min(max(poles.get("zeta", 0.7), data.bounds.zeta[0]), data.bounds.zeta[1])}
-    z0 = list(_theta_from(model.parameters, poles))
-    lo: list[float] = [math.log(box[0][0]), math.log(box[1][0]), box[2][0]] + [-np.inf] * 5
-    hi = [math.log(box[0][1]), math.log(box[1][1]), box[2][1]] + [np.inf] * 5
-    structured = model.structured
-    if structured:
-        q = min(max(model.viscous_rate / model.parameters["a1"], 1e-5), 0.9)
-        z0.append(math.log(q))
-        lo.append(math.log(1e-5))
-        hi.append(math.log(0.95))
-    slices = []
-    linear = [False] * len(z0)
-    for e in model.elements:
-        fr = e.free()
-        slices.append((len(z0), len(fr)))
-        for f in fr:
-            z0.append(min(max(f.value, f.lo), f.hi))
-            lo.append(f.lo)
-            hi.append(f.hi)
-            linear.append(f.linear)
-    lo_a, hi_a = np.array(lo, float), np.array(hi, float)
-    pad = 1e-9 * np.where(np.isfinite(hi_a - lo_a), hi_a - lo_a, 0.0)
-    z0 = np.clip(np.array(z0, float), lo_a + pad, hi_a - pad)
-    lin = np.array(linear, bool)
-    xr, xm = data.xr, data.x[:stop]
-    n = xr.size
-
-    def build(z):
-        params = _params_from(z)
-        elements = [e.with_free(z[i:i + k]) if k else e for e, (i, k) in zip(model.elements, slices)]
-        c = math.exp(z[8]) * params["a1"] if structured else 0.0
-        return params, elements, c
+    lay = _Layout(model, data)
+    z0, lo_a, hi_a, lin = lay.z0, lay.lo, lay.hi, lay.lin
+    n = data.n
+    if isinstance(samples, (int, np.integer)):
+        sel = np.arange(n) < int(samples)
+    else:
+        sel = np.asarray(samples, bool)
+    xm = data.x[sel]
 
     def fun(z):
-        params, elements, c = build(z)
-        m = AugmentedAxisModel(parameters=params, sample_time=data.T, elements=tuple(elements), viscous_rate=c,
-                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0})
-        y = simulate_augmented(params, xr, m.spec(n))[:stop]
-        r = y - xm
+        r = lay.simulate(z)[sel] - xm
         bad = ~np.isfinite(r)
         if bad.any():
             r[bad] = 10.0
@@ -287,20 +328,116 @@ def refit(model: AugmentedAxisModel, data: Data, stop: int, *, max_nfev: int = 4
             z = linear_step(z)
             z = solve(z, ~lin, max(10, max_nfev // 3))
         z = linear_step(z)
-    params, elements, c = build(z)
-    return augment(model, elements, parameters=params, viscous_rate=c,
-                   poles={"omega_n_hz": math.exp(z[1]) / TWO_PI, "zeta": float(z[2]), "p_hz": math.exp(z[0]) / TWO_PI})
+    return lay.model_of(z)
 
 
 # ------------------------------------------------------------------------------------ diagnose
 
 
-def _errors(model: ReducedAxisModel, data: Data, start: int, stop: int) -> tuple[float, float]:
+def _errors(model: ReducedAxisModel, data: Data, mask: np.ndarray) -> tuple[float, float]:
+    """(RMS, max) [um] of the simulation error of ``model`` on the samples ``mask``."""
     y = model.simulate(data.xr)
-    e = (data.x - y)[start:stop]
+    e = (data.x - y)[mask]
+    if not e.size:
+        return math.nan, math.nan
     if not np.all(np.isfinite(e)):
         return math.inf, math.inf
     return float(np.sqrt(np.mean(e * e)) * 1e3), float(np.max(np.abs(e)) * 1e3)
+
+
+@dataclasses.dataclass(eq=False)
+class _Judged:
+    """A model fitted on all active samples and judged on every fold (fitted on the others)."""
+
+    model: AugmentedAxisModel
+    rms_um: float
+    max_um: float
+    fold_rms_um: list
+    fold_max_um: list
+
+    @property
+    def held_out_rms_um(self) -> float:
+        """Pooled held-out RMS over the folds [um]."""
+        return self._pooled[0]
+
+    @property
+    def held_out_max_um(self) -> float:
+        return self._pooled[1]
+
+    def pool(self, counts: list[int]) -> None:
+        sse = sum(r * r * c for r, c in zip(self.fold_rms_um, counts) if math.isfinite(r) or r == math.inf)
+        tot = sum(counts)
+        rms = math.sqrt(sse / tot) if tot else math.nan
+        self._pooled = (rms, max(self.fold_max_um) if self.fold_max_um else math.nan)
+
+
+def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: DiagnosisOptions, *,
+           fitted: bool = False) -> _Judged:
+    """Fit ``model`` on all active samples (unless ``fitted``), then hold out each fold in turn.
+
+    Each fold's model is the fit on all active samples moved by one Gauss-Newton step fitted on
+    the other folds' samples (an approximate leave-a-block-out refit, as approximate leave-one-out
+    cross-validation does for single samples: Rad and Maleki, "A scalable estimate of the
+    out-of-sample prediction error via approximate leave-one-out cross-validation", JRSS B 82, 2020).
+    The sensitivities are computed once (one simulation per parameter) and shared by all folds;
+    the step is a truncated-SVD solution (directions whose singular value is below
+    ``1e-3`` of the largest are left at the full fit: a parameter only the held-out fold
+    determines, such as a constant load seen only at the start of the record, must not wander),
+    halved while it raises the training error. Cost: ``n_parameters + 1 + ~k`` simulations.
+    """
+    full = model if fitted else refit(model, data, plan.active, max_nfev=opt.max_nfev)
+    r, m = _errors(full, data, plan.active)
+    lay = _Layout(full, data)
+    z = lay.z0
+    y0 = lay.simulate(z)
+    cols = []
+    for i in range(z.size):
+        step = 1e-6 * max(abs(z[i]), 1.0)
+        if z[i] + step > lay.hi[i]:
+            step = -step
+        zz = z.copy()
+        zz[i] += step
+        cols.append((lay.simulate(zz) - y0) / step)
+    J = np.column_stack(cols)
+    J[~np.isfinite(J)] = 0.0
+    res = data.x - y0
+    fr, fm = [], []
+    for i in range(len(plan.folds)):
+        held = plan.mask(i)
+        tr = plan.active & ~held
+        sc = np.linalg.norm(J[tr], axis=0)
+        sc[sc == 0] = 1.0
+        u, sv, vt = np.linalg.svd(J[tr] / sc, full_matrices=False)
+        keep = sv > 1e-3 * sv[0] if sv.size and sv[0] > 0 else np.zeros(sv.size, bool)
+        delta = (vt[keep].T @ ((u[:, keep].T @ res[tr]) / sv[keep])) / sc
+        c0 = float(res[tr] @ res[tr])
+        best_y = y0
+        for alpha in (1.0, 0.5, 0.25):
+            zi = np.clip(z + alpha * delta, lay.lo_pad, lay.hi_pad)
+            yi = lay.simulate(zi)
+            e = (data.x - yi)[tr]
+            if np.all(np.isfinite(e)) and float(e @ e) < c0:
+                best_y = yi
+                break
+        e = (data.x - best_y)[held]
+        if not e.size:
+            fr.append(math.nan)
+            fm.append(math.nan)
+        elif not np.all(np.isfinite(e)):
+            fr.append(math.inf)
+            fm.append(math.inf)
+        else:
+            fr.append(float(np.sqrt(np.mean(e * e)) * 1e3))
+            fm.append(float(np.max(np.abs(e)) * 1e3))
+    j = _Judged(model=full, rms_um=r, max_um=m, fold_rms_um=fr, fold_max_um=fm)
+    j.pool([f.active for f in plan.folds])
+    return j
+
+
+def _contradicting_folds(before: list[float], after: list[float], opt: DiagnosisOptions) -> list[int]:
+    """Folds whose held-out RMS rises by >= min_gain and >= min_gain_um with the effect."""
+    return [i for i, (b, a) in enumerate(zip(before, after))
+            if a - b >= opt.min_gain_um and (b <= 0 or (a - b) / b >= opt.min_gain)]
 
 
 def diagnose(capture: Capture, model: ReducedAxisModel, *, axis: str,
@@ -335,14 +472,24 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
     t_start = time.perf_counter()
     opt = options or DiagnosisOptions()
     xr, x, T = check_capture(capture, axis)
-    n = x.size
-    ntr = int(round(opt.train_fraction * n))
+    xr = np.ascontiguousarray(xr, float)
+    x = np.ascontiguousarray(x, float)
+    active = active_mask(xr, x, T, opt.margin_s)
+    plan = folds(xr, active, opt.folds)
+    for w in plan.warnings:
+        log.warning("diagnosis: %s", w)
+    # the searches fit on every active sample outside the last fold and check their own choices
+    # (harmonic counts) on it; the folds judge
+    last = plan.mask(len(plan.folds) - 1)
     bounds = as_bounds(model.bounds or None, T)
-    data = Data(xr=np.ascontiguousarray(xr, float), x=np.ascontiguousarray(x, float), T=T, ntr=ntr, bounds=bounds)
-    base = augment(model, [])
-    cur = refit(base, data, ntr, max_nfev=opt.max_nfev)
-    vr, vm = _errors(cur, data, ntr, n)
-    stages = [Stage(effect=None, train_model=cur, full_model=model, validation_rms_um=vr, validation_max_um=vm)]
+    data = Data(xr=xr, x=x, T=T, train=active & ~last, valid=last, bounds=bounds, active=active)
+    counts = [f.active for f in plan.folds]
+    base = _judge(augment(model, []), data, plan, opt)
+    cur = base.model
+    stages = [Stage(effect=None, train_model=cur, full_model=model, validation_rms_um=base.held_out_rms_um,
+                    validation_max_um=base.held_out_max_um, fold_rms_um=base.fold_rms_um,
+                    fold_max_um=base.fold_max_um)]
+    cur_rms = base.rms_um
     rounds: list[dict] = []
     for _ in range(opt.max_effects):
         present = {e.NAME for e in cur.elements}
@@ -361,62 +508,75 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
         # only proposals whose screen shows evidence (a training-error drop of >= min_screen) are refitted
         cands_ev = [c for c in cands if c.screen_rms_um <= (1.0 - opt.min_screen) * ctx.train_rms_um]
         for c in cands_ev[: opt.top]:
-            m = refit(c.start, data, ntr, max_nfev=opt.max_nfev)
-            r_va, m_va = _errors(m, data, ntr, n)
-            r_tr, _ = _errors(m, data, 0, ntr)
-            tried.append((r_va, m_va, r_tr, m, c))
-        log.info("round %d: %s", len(rounds) + 1, [(t[4].effect.NAME, round(t[0], 4)) for t in tried])
+            m = refit(c.start, data, active, max_nfev=opt.max_nfev)
+            r_fit, m_fit = _errors(m, data, active)
+            # an in-sample drop below half the criterion cannot become a held-out drop that meets it
+            if _gain(cur_rms, r_fit) >= 0.5 * opt.min_gain:
+                j = _judge(m, data, plan, opt, fitted=True)
+            else:
+                j = _Judged(model=m, rms_um=r_fit, max_um=m_fit, fold_rms_um=[], fold_max_um=[])
+                j._pooled = (math.inf, math.inf)
+            tried.append((j, c))
+        log.info("round %d: %s", len(rounds) + 1, [(t[1].effect.NAME, round(t[0].held_out_rms_um, 4)) for t in tried])
         rounds.append({
             "screened": {c.effect.NAME: round(c.screen_rms_um, 5) for c in cands},
             "equation_error_drop_pct": {c.effect.NAME: round(c.evidence["ee_rss_reduction_pct"], 3) for c in cands
                                         if "ee_rss_reduction_pct" in c.evidence},
-            "refitted": {t[4].effect.NAME: {"validation_rms_um": round(t[0], 5),
-                                            "identification_rms_um": round(t[2], 5)} for t in tried},
+            "refitted": {t[1].effect.NAME: {"validation_rms_um": round(t[0].held_out_rms_um, 5),
+                                            "identification_rms_um": round(t[0].rms_um, 5),
+                                            "fold_rms_um": [round(v, 5) for v in t[0].fold_rms_um]}
+                         for t in tried},
             "current_validation_rms_um": stages[-1].validation_rms_um,
-            "current_identification_rms_um": ctx.train_rms_um,
+            "current_identification_rms_um": cur_rms,
         })
         if not tried:
             break
         prev = stages[-1].validation_rms_um
         chosen = None
-        for r_va, m_va, r_tr, m, c in sorted(tried, key=lambda t: t[0]):
+        for j, c in sorted(tried, key=lambda t: t[0].held_out_rms_um):
+            r_va = j.held_out_rms_um
             gain = _gain(prev, r_va)
-            ok = gain >= opt.min_gain and (prev - r_va) >= opt.min_gain_um and r_tr < ctx.train_rms_um
+            against = _contradicting_folds(stages[-1].fold_rms_um, j.fold_rms_um, opt)
+            ok = gain >= opt.min_gain and (prev - r_va) >= opt.min_gain_um and j.rms_um < cur_rms and not against
+            if against:
+                rounds[-1].setdefault("contradicted_by_folds", {})[c.effect.NAME] = [i + 1 for i in against]
             nested = None
             if ok and c.effect.KIND == "element":
                 # the element must beat its own null (the sampled split form without it), refitted
-                null = refit(_null_of(m, c.effect.NAME), data, ntr, max_nfev=opt.max_nfev)
-                r_null, _ = _errors(null, data, ntr, n)
+                null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
+                r_null = null.held_out_rms_um
                 nested = _gain(r_null, r_va)
                 ok = nested >= opt.min_gain and (r_null - r_va) >= opt.min_gain_um
                 rounds[-1].setdefault("nested", {})[c.effect.NAME] = {"null_validation_rms_um": r_null,
                                                                      "gain_pct": 100.0 * nested}
             if ok:
-                chosen = (r_va, m_va, m, c, gain, nested)
+                chosen = (j, c, gain, nested)
                 break
-        best_name = min(tried, key=lambda t: t[0])[4].effect.NAME
-        rounds[-1]["best"] = best_name
-        rounds[-1]["gain_pct"] = 100.0 * _gain(prev, min(t[0] for t in tried))
-        rounds[-1]["accepted"] = chosen[3].effect.NAME if chosen else None
+        best = min(tried, key=lambda t: t[0].held_out_rms_um)
+        rounds[-1]["best"] = best[1].effect.NAME
+        rounds[-1]["gain_pct"] = 100.0 * _gain(prev, best[0].held_out_rms_um)
+        rounds[-1]["accepted"] = chosen[1].effect.NAME if chosen else None
         if chosen is None:
             break
-        r_va, m_va, m, c, gain, nested = chosen
+        j, c, gain, nested = chosen
         ev = dict(c.evidence)
         ev["validation_gain_pct"] = 100.0 * gain
         if nested is not None:
             ev["validation_gain_over_null_pct"] = 100.0 * nested
-        ev["candidates_validation_rms_um"] = {t[4].effect.NAME: t[0] for t in sorted(tried, key=lambda t: t[0])}
-        stages.append(Stage(effect=c.effect.NAME, train_model=m, full_model=None, validation_rms_um=r_va,
-                            validation_max_um=m_va, evidence=ev))
-        cur = m
-    # identification-data errors: every stage refitted on all samples
-    stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, 0, n)
-    for s in stages[1:]:
-        s.full_model = refit(s.train_model, data, n, max_nfev=opt.max_nfev)
-        s.identification_rms_um, s.identification_max_um = _errors(s.full_model, data, 0, n)
-    final = _final_model(model, stages, opt, data, rounds)
+        ev["candidates_validation_rms_um"] = {t[1].effect.NAME: t[0].held_out_rms_um
+                                              for t in sorted(tried, key=lambda t: t[0].held_out_rms_um)}
+        ev["fold_rms_before_um"] = list(stages[-1].fold_rms_um)
+        ev["fold_rms_after_um"] = list(j.fold_rms_um)
+        stages.append(Stage(effect=c.effect.NAME, train_model=j.model, full_model=j.model,
+                            validation_rms_um=j.held_out_rms_um, validation_max_um=j.held_out_max_um,
+                            identification_rms_um=j.rms_um, identification_max_um=j.max_um, evidence=ev,
+                            fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um))
+        cur, cur_rms = j.model, j.rms_um
+    # the reduced model's identification-data error, on the active samples
+    stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
+    final = _final_model(model, stages, opt, data, rounds, plan, counts)
     return DiagnosisReport(model=final, reduced=model, stages=stages, rounds=rounds, data=data,
-                           time_s=time.perf_counter() - t_start)
+                           time_s=time.perf_counter() - t_start, plan=plan)
 
 
 def _gain(before: float, after: float) -> float:
@@ -452,19 +612,39 @@ def _poles_on_bounds(model: ReducedAxisModel, data: Data) -> list[str]:
 
 
 def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOptions, data: Data,
-                 rounds: list[dict]) -> ReducedAxisModel:
+                 rounds: list[dict], plan: FoldPlan, counts: list[int]) -> ReducedAxisModel:
+    T = data.T
+    fold_rows = []
+    for i, f in enumerate(plan.folds):
+        fold_rows.append({"window_s": f.window_s(T), "active_samples": f.active,
+                          "positive_samples": f.positive, "negative_samples": f.negative,
+                          "rms_before_um": stages[0].fold_rms_um[i], "rms_after_um": stages[-1].fold_rms_um[i],
+                          "max_before_um": stages[0].fold_max_um[i], "max_after_um": stages[-1].fold_max_um[i]})
+    segs = motion_segments(plan.active)
     validation = {
         "rms_before_um": stages[0].validation_rms_um,
         "rms_after_um": stages[-1].validation_rms_um,
         "max_before_um": stages[0].validation_max_um,
         "max_after_um": stages[-1].validation_max_um,
-        "split": f"first {opt.train_fraction:.0%} of the samples identify, the last {1 - opt.train_fraction:.0%} "
-                 "validate (blocked in time)",
-        "criterion": f"add the effect with the lowest held-out simulation RMS when it lowers it by >= "
-                     f"{opt.min_gain:.0%} and >= {opt.min_gain_um} um and lowers the identification-block RMS",
-        "samples": {"identification": data.ntr, "validation": data.n - data.ntr},
+        "split": f"{len(plan.folds)} contiguous folds cut where the reference stands still or reverses; each is "
+                 "held out in turn (the fit on all active samples moved by a Gauss-Newton step fitted on the other "
+                 "folds) and the held-out errors pooled; "
+                 f"idle stretches trimmed with a {opt.margin_s:g} s margin",
+        "criterion": f"add the effect with the lowest pooled held-out simulation RMS when it lowers it by >= "
+                     f"{opt.min_gain:.0%} and >= {opt.min_gain_um} um, lowers the error on all active samples, and "
+                     f"no fold's held-out RMS rises by >= {opt.min_gain:.0%} and >= {opt.min_gain_um} um",
+        "folds": fold_rows,
+        "active": {"margin_s": opt.margin_s, "active_samples": int(plan.active.sum()),
+                   "idle_samples": int(plan.active.size - plan.active.sum()),
+                   "segments_s": [[a * T, b * T] for a, b in segs[:50]], "segments": len(segs)},
+        "samples": {"identification": int(plan.active.sum()), "validation": int(sum(counts))},
         "rounds": _jsonable(rounds),
     }
+    if plan.warnings:
+        validation["warnings"] = list(plan.warnings)
+    final_model = stages[-1].full_model if len(stages) > 1 else model
+    stopped = not rounds or rounds[-1].get("accepted") is None
+    validation["unexplained"] = _unexplained(final_model, data, plan, stopped)
     # a reduced model whose poles sit on the search box is a structural warning (e.g. no integral
     # action, p -> 0, below the thesis' 0.2 Hz bound): effects found then may compensate for it
     on_bounds = _poles_on_bounds(model, data)
@@ -504,6 +684,31 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     fit["max_um"] = stages[-1].identification_max_um
     return augment(last, last.elements, axis=model.axis, method=model.method, fit=fit, effects=records,
                    validation=validation, bounds=dict(model.bounds))
+
+
+#: explained share of the residual's variance above which a state "explains" it [-] (time: slow
+#: trends and the residual's own correlation explain some of any residual, hence the higher bar)
+_STRUCTURE_SHARE = {"position": 0.2, "velocity": 0.2, "direction": 0.2, "acceleration": 0.2, "time": 0.35}
+
+
+def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: bool) -> dict[str, Any]:
+    """Evidence on the final residual (:func:`identification.residual.residual_evidence`) and a statement."""
+    from identification.residual import residual_evidence
+
+    y = model.simulate(data.xr)
+    ev = residual_evidence(data.x - y, data.xr, data.T, plan.active)
+    hits = [k for k, lim in _STRUCTURE_SHARE.items() if ev["explained_share"].get(k, 0.0) >= lim]
+    ev["structured"] = bool(hits)
+    peaks = ", ".join(f"{p['frequency_hz']:.4g} Hz ({p['amplitude_um']:.3g} um)" for p in ev["spectral_peaks"][:3])
+    if hits:
+        what = ", ".join(f"{k} ({100 * ev['explained_share'][k]:.0f} % of its variance)" for k in hits)
+        head = ("no effect of the vocabulary explains the remaining residual" if stopped
+                else "the remaining residual (effects stopped at max_effects)")
+        ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}"
+    else:
+        ev["statement"] = (f"the remaining residual (RMS {ev['rms_um']:.3g} um) shows no dependence on position, "
+                           f"velocity, direction, acceleration or time; spectral peaks {peaks}")
+    return ev
 
 
 def _jsonable(obj):
@@ -584,6 +789,14 @@ def format_before_after(model: ReducedAxisModel) -> str:
         lines.append(f"validation: {v['split']}")
     if not model.effects:
         lines.append("diagnosis: no effect lowers the held-out error significantly; the reduced model stands")
+    for fo in v.get("folds") or []:
+        w = fo.get("window_s") or [math.nan, math.nan]
+        lines.append(f"  fold {w[0]:8.3f}..{w[1]:8.3f} s ({fo.get('active_samples')} active samples): held-out RMS "
+                     f"{f(fo.get('rms_before_um'))} -> {f(fo.get('rms_after_um'))} um")
     if v.get("warning"):
         lines.append(f"warning: {v['warning']}")
+    for w in v.get("warnings") or []:
+        lines.append(f"warning: {w}")
+    if (v.get("unexplained") or {}).get("statement"):
+        lines.append(f"residual: {v['unexplained']['statement']}")
     return "\n".join(lines)

@@ -26,7 +26,8 @@ import numpy as np
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, regressor
 
-__all__ = ["ResidualAnalysis", "analyse", "equation_error", "spectrum", "binned", "plot_before_after"]
+__all__ = ["ResidualAnalysis", "analyse", "equation_error", "spectrum", "binned", "plot_before_after",
+           "residual_evidence"]
 
 
 def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.ndarray,
@@ -81,6 +82,72 @@ def binned(x: np.ndarray, r: np.ndarray, bins: int = 40) -> dict[str, np.ndarray
     cx = np.bincount(idx, weights=x, minlength=k)
     with np.errstate(invalid="ignore", divide="ignore"):
         return {"center": cx / count, "mean": s / count, "rms": np.sqrt(s2 / count), "count": count}
+
+
+def residual_evidence(residual: np.ndarray, reference: np.ndarray, sample_time: float,
+                      active: np.ndarray | None = None, *, peaks: int = 5) -> dict[str, Any]:
+    """What a residual correlates with, for a person to act on when no named effect explains it.
+
+    Parameters
+    ----------
+    residual : ndarray, shape (N,)
+        Simulation error x - x_hat [mm].
+    reference : ndarray, shape (N,)
+        Commanded position [mm] (its derivatives are the states the residual is set against: free
+        of measurement noise).
+    sample_time : float
+        T [s].
+    active : ndarray of bool, optional
+        Samples to analyse (default all).
+    peaks : int
+        Spectral peaks listed.
+
+    Returns
+    -------
+    dict
+        ``rms_um``; ``spectral_peaks`` (``frequency_hz``, ``amplitude_um``, largest first; the
+        Hann-windowed amplitude spectrum of the residual over the analysed samples);
+        ``correlation`` (Pearson coefficient [-] with ``position``, ``velocity``, ``direction``
+        (sign of the velocity), ``acceleration`` and ``time``); ``explained_share`` (share of the
+        residual's variance explained by its mean in 20 equal-count bins of each, which also
+        catches a dependence that is not linear [-]); ``strongest`` (the largest of those).
+    """
+    r = np.asarray(residual, float)
+    xr = np.asarray(reference, float)
+    m = np.ones(r.size, bool) if active is None else np.asarray(active, bool)
+    v = np.gradient(xr, sample_time)
+    a = np.gradient(v, sample_time)
+    t = np.arange(r.size) * sample_time
+    signals = {"position": xr, "velocity": v, "direction": np.sign(v), "acceleration": a, "time": t}
+    rr = r[m]
+    out: dict[str, Any] = {"rms_um": float(np.sqrt(np.mean(rr * rr)) * 1e3) if rr.size else float("nan")}
+    f, amp = spectrum(rr, sample_time)
+    ok = f > 0
+    f, amp = f[ok], amp[ok]
+    interior = np.flatnonzero((amp[1:-1] > amp[:-2]) & (amp[1:-1] >= amp[2:])) + 1 if amp.size > 2 else np.array([])
+    top = interior[np.argsort(amp[interior])[::-1][:peaks]] if interior.size else np.array([], int)
+    out["spectral_peaks"] = [{"frequency_hz": float(f[i]), "amplitude_um": float(amp[i] * 1e3)} for i in top]
+    corr, share = {}, {}
+    var = float(np.var(rr)) if rr.size else 0.0
+    for name, s in signals.items():
+        sm = s[m]
+        if rr.size < 3 or np.ptp(sm) == 0 or var == 0:
+            corr[name], share[name] = 0.0, 0.0
+            continue
+        corr[name] = float(np.corrcoef(sm, rr)[0, 1])
+        if name == "direction":
+            groups = [rr[sm == k] for k in (-1.0, 0.0, 1.0) if np.any(sm == k)]
+            between = sum(g.size * (g.mean() - rr.mean()) ** 2 for g in groups) / rr.size
+        else:
+            b = binned(sm, rr, 20)
+            c = np.nan_to_num(b["count"])
+            between = float(np.sum(c * (np.nan_to_num(b["mean"]) - rr.mean()) ** 2) / max(c.sum(), 1.0))
+        share[name] = float(between / var)
+    out["correlation"] = corr
+    out["explained_share"] = share
+    best = max(share, key=share.get)
+    out["strongest"] = {"with": best, "explained_share": share[best], "correlation": corr[best]}
+    return out
 
 
 @dataclasses.dataclass(eq=False)

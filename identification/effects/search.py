@@ -53,14 +53,18 @@ _SG_WINDOW, _SG_ORDER = 9, 3
 class Data:
     """One axis of a capture prepared for the diagnosis.
 
-    ``ntr`` splits the samples: rows ``[0, ntr)`` identify, rows ``[ntr, n)`` validate.
+    ``train`` marks the samples the searches fit on; ``valid`` those that check a search's own
+    choices (harmonic counts); both are boolean over the samples. Idle stretches are in neither
+    (:mod:`identification.segments`). ``active`` marks every sample that identifies or validates.
     """
 
     xr: np.ndarray
     x: np.ndarray
     T: float
-    ntr: int
+    train: np.ndarray
+    valid: np.ndarray
     bounds: object
+    active: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         self.n = self.x.size
@@ -70,8 +74,12 @@ class Data:
         self.phi, self.y = regressor(self.xr, self.x, self.T, options=opt)
         self.rows = np.arange(self.h, self.n - self.h)  # sample index of each regressor row
         self.v = -self.phi[:, 1]
-        self.tr_rows = self.rows < self.ntr
-        self.va_rows = ~self.tr_rows
+        self.train = np.asarray(self.train, bool)
+        self.valid = np.asarray(self.valid, bool)
+        if self.active is None:
+            self.active = self.train | self.valid
+        self.tr_rows = self.train[self.rows]
+        self.va_rows = self.valid[self.rows]
         # smoothed derivatives for the split-form regressions
         self.vs = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=1, delta=self.T)
         self.as_ = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
@@ -125,7 +133,7 @@ class SearchContext:
         d = data
         self.yhat = model.simulate(d.xr)
         self.r = d.x - self.yhat
-        self.train_rms_um = _rms(self.r[: d.ntr]) * 1e3
+        self.train_rms_um = _rms(self.r[d.train]) * 1e3
         # equation-error base: Eq. 3.11 columns plus the current disturbance terms as fixed offsets
         tr = d.tr_rows
         vv, xx, tt = d.v[tr], d.y[tr], d.t[d.rows[tr]]
@@ -217,9 +225,9 @@ class SearchContext:
         y = model.simulate(d.xr)
         if not np.all(np.isfinite(y)):
             return math.inf, y
-        r = (d.x - y)[: d.ntr]
+        r = (d.x - y)[d.train]
         if self._Jq is None:
-            J = self.J[: d.ntr]
+            J = self.J[d.train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             self._Jq = np.linalg.qr(J / sc)[0]
@@ -234,11 +242,11 @@ class SearchContext:
         y = model.simulate(d.xr)
         if not np.all(np.isfinite(y)):
             return math.inf, model
-        rms = _rms((d.x - y)[: d.ntr]) * 1e3
+        rms = _rms((d.x - y)[d.train]) * 1e3
         keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
         for _ in range(iterations):
-            r = (d.x - y)[: d.ntr]
-            J = sensitivity(model, d.xr, one_sided=True)[: d.ntr]
+            r = (d.x - y)[d.train]
+            J = sensitivity(model, d.xr, one_sided=True)[d.train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
@@ -251,7 +259,7 @@ class SearchContext:
                 y2 = m2.simulate(d.xr)
                 if not np.all(np.isfinite(y2)):
                     continue
-                rms2 = _rms((d.x - y2)[: d.ntr]) * 1e3
+                rms2 = _rms((d.x - y2)[d.train]) * 1e3
                 if rms2 < rms:
                     model, y, rms, improved = m2, y2, rms2, True
                     break
@@ -262,7 +270,7 @@ class SearchContext:
     def residual_spectrum(self, rows: slice | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(frequency [Hz], amplitude [um]) of the training simulation residual (Hann window)."""
         d = self.data
-        r = self.r[: d.ntr] if rows is None else self.r[rows]
+        r = self.r[d.train] if rows is None else self.r[rows]
         r = r - np.mean(r)
         w = np.hanning(r.size)
         nfft = 1 << int(math.ceil(math.log2(4 * r.size)))
@@ -282,6 +290,12 @@ def _solve_ls(A: np.ndarray, y: np.ndarray) -> np.ndarray:
     if not np.all(np.isfinite(beta)):
         beta = np.linalg.lstsq(A / sc, y, rcond=None)[0]
     return beta / sc
+
+
+def _train_rows(d: Data, edge: int) -> np.ndarray:
+    """Training sample indices at least ``edge`` samples from either end of the record."""
+    k = np.flatnonzero(d.train)
+    return k[(k >= edge) & (k < d.n - edge)]
 
 
 def _rms(a: np.ndarray) -> float:
@@ -353,7 +367,7 @@ def _ee_candidate(ctx: SearchContext, effect: Effect, cols_tr: np.ndarray, evide
         y = s.simulate(ctx.data.xr)
         if not np.all(np.isfinite(y)):
             continue
-        rms = _rms((ctx.data.x - y)[: ctx.data.ntr]) * 1e3
+        rms = _rms((ctx.data.x - y)[ctx.data.train]) * 1e3
         if rms < best_rms:
             best, best_rms = s, rms
     if best is None:
@@ -516,8 +530,8 @@ def reference_repeats(xr: np.ndarray, period: float, sample_time: float, *, mult
 
 def search_drift(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
-    J = np.column_stack([ctx.J, d.t])[: d.ntr]
-    beta, *_ = np.linalg.lstsq(J, ctx.r[: d.ntr], rcond=None)
+    J = np.column_stack([ctx.J, d.t])[d.train]
+    beta, *_ = np.linalg.lstsq(J, ctx.r[d.train], rcond=None)
     e = Drift(rate=float(beta[-1]))
     m = augment(ctx.model, list(ctx.model.elements) + [e])
     score, _ = ctx.sim_score(m)
@@ -595,7 +609,7 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
     reduced parameters) and the delay with the least training error wins unless it is 0.
     """
     d = ctx.data
-    rows = np.arange(4, d.ntr - 1)
+    rows = _train_rows(d, 4)
     scores = {}
     best = None
     others = list(ctx.model.elements)
@@ -622,7 +636,7 @@ def search_saturation(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
     p = ctx.model.parameters
     delay = next((e.samples for e in ctx.model.elements if isinstance(e, Delay)), 0)
-    rows = np.arange(_SG_WINDOW, d.ntr - _SG_WINDOW)
+    rows = _train_rows(d, _SG_WINDOW)
     w = np.where(d.vs > 0, p["d0"], np.where(d.vs < 0, p["d1"], 0.0))
     demand = np.abs(d.as_ + w)[rows]
     u0 = float(np.percentile(demand, 99.5))

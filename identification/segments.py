@@ -1,0 +1,212 @@
+"""Where a capture moves: idle stretches trimmed with a margin, contiguous validation folds.
+
+A stretch where the axis stands still carries no information about the loop's dynamics: a model
+fitted or judged there is judged on nothing (issue #16: a held-out tail that was the machine at
+rest gave a held-out error of 0.001 um). :func:`active_mask` marks the samples that identify and
+validate; :func:`motion_segments` lists its contiguous stretches; :func:`folds` cuts the record
+into contiguous folds at points where the reference stands still or reverses, each containing
+motion in both directions where the capture allows it, and says what is missing where it does not.
+
+Cross-validation with contiguous blocks (not random samples) is what dependent time series
+need: a block of the record is held out whole so that the fitted model must predict it from the
+reference alone (Bergmeir and Benitez, "On the use of cross-validation for time series predictor
+evaluation", Information Sciences 191, 2012; scikit-learn's ``TimeSeriesSplit`` keeps order for
+the same reason).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from vcnc.errors import IdentificationError
+
+__all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds"]
+
+#: a reference step smaller than this share of the reference's largest step counts as standing still [-]
+_STILL_SHARE = 1e-6
+
+
+def _moving(reference: np.ndarray) -> np.ndarray:
+    """Per sample: True where the reference changes towards the next sample."""
+    xr = np.asarray(reference, float)
+    dx = np.abs(np.diff(xr, append=xr[-1]))
+    scale = float(np.max(dx)) if dx.size else 0.0
+    return dx > _STILL_SHARE * scale if scale > 0 else np.zeros(xr.size, bool)
+
+
+def active_mask(reference: np.ndarray, measured: np.ndarray, sample_time: float, margin_s: float = 0.2) -> np.ndarray:
+    """Samples that identify and validate: the reference moving, widened by ``margin_s`` each side.
+
+    Parameters
+    ----------
+    reference : ndarray, shape (N,)
+        Commanded position [mm].
+    measured : ndarray, shape (N,)
+        Measured position [mm]; where the reference stands still but the axis still moves by more
+        than the measurement's resolution (a settling tail, a load pushing the axis) the sample
+        stays active too.
+    sample_time : float
+        T [s].
+    margin_s : float
+        Margin kept before and after each moving stretch [s] (the settling and the loop's
+        response to the start of a move belong to it).
+
+    Returns
+    -------
+    ndarray of bool, shape (N,)
+    """
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    if xr.shape != x.shape or xr.ndim != 1:
+        raise IdentificationError(f"reference and measured must be 1-D of the same length (got {xr.shape}, {x.shape})")
+    move = _moving(xr)
+    # the axis moving by itself while the reference stands still (a settling tail, a load pushing
+    # it): the tracking error more than 10 robust deviations away from its resting value
+    rest = (x - xr)[~move]
+    if rest.size:
+        med = float(np.median(rest))
+        mad = 1.4826 * float(np.median(np.abs(rest - med)))
+        tiny = 1e-9 * max(float(np.ptp(xr)), 1.0)
+        move |= np.abs(x - xr - med) > max(10.0 * mad, tiny)
+    k = int(round(max(margin_s, 0.0) / sample_time))
+    if k > 0 and move.any():
+        move = np.convolve(move.astype(float), np.ones(2 * k + 1), mode="same") > 0.5
+    return move
+
+
+def motion_segments(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Contiguous stretches ``[start, stop)`` of samples where ``mask`` is True."""
+    m = np.asarray(mask, bool).astype(np.int8)
+    edges = np.diff(np.concatenate([[0], m, [0]]))
+    return [(int(a), int(b)) for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1))]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Fold:
+    """One contiguous validation fold: samples ``[start, stop)``, judged on its active samples.
+
+    Attributes
+    ----------
+    start, stop : int
+        Sample range.
+    active : int
+        Active samples inside the range.
+    positive, negative : int
+        Active samples where the reference moves in + and - direction.
+    """
+
+    start: int
+    stop: int
+    active: int
+    positive: int
+    negative: int
+
+    def window_s(self, sample_time: float) -> list[float]:
+        """[t_start, t_stop] [s] from the first sample."""
+        return [self.start * sample_time, self.stop * sample_time]
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class FoldPlan:
+    """The folds of a capture and the warnings about what they lack."""
+
+    folds: tuple[Fold, ...]
+    active: np.ndarray
+    warnings: tuple[str, ...] = ()
+
+    def mask(self, i: int) -> np.ndarray:
+        """Active samples of fold ``i``."""
+        f = self.folds[i]
+        m = np.zeros(self.active.size, bool)
+        m[f.start:f.stop] = True
+        return m & self.active
+
+
+def _fold(xr: np.ndarray, active: np.ndarray, a: int, b: int) -> Fold:
+    v = np.diff(xr[a:b], append=xr[b - 1] if b > a else 0.0)
+    act = active[a:b]
+    scale = float(np.max(np.abs(np.diff(xr)))) if xr.size > 1 else 0.0
+    tol = _STILL_SHARE * scale
+    return Fold(start=a, stop=b, active=int(act.sum()), positive=int(np.sum(act & (v > tol))),
+                negative=int(np.sum(act & (v < -tol))))
+
+
+def folds(reference: np.ndarray, active: np.ndarray, k: int = 4, *, min_share: float = 0.05) -> FoldPlan:
+    """Cut the record into at most ``k`` contiguous folds at idle points or reversals.
+
+    Cuts are placed at samples where the reference stands still or reverses, as near as possible
+    to equal shares of the active samples. Neighbouring folds are merged while one of them lacks
+    motion in either direction (at least ``min_share`` of its active samples each way), down to
+    two folds; what remains missing is returned as a warning.
+
+    Parameters
+    ----------
+    reference : ndarray, shape (N,)
+        Commanded position [mm].
+    active : ndarray of bool, shape (N,)
+        :func:`active_mask`.
+    k : int
+        Folds wanted (>= 2).
+
+    Returns
+    -------
+    FoldPlan
+
+    Raises
+    ------
+    IdentificationError
+        When the capture has no motion, or too little to cut two folds.
+    """
+    xr = np.asarray(reference, float)
+    active = np.asarray(active, bool)
+    n = xr.size
+    if k < 2:
+        raise IdentificationError(f"folds: k must be >= 2 (got {k})")
+    nact = int(active.sum())
+    if nact == 0:
+        raise IdentificationError("the capture never moves (the reference stands still throughout): nothing to "
+                                  "identify or validate")
+    dxr = np.diff(xr, append=xr[-1])
+    still = np.abs(dxr) <= _STILL_SHARE * max(float(np.max(np.abs(dxr))), 1e-300)
+    sgn = np.sign(dxr)
+    reversal = np.zeros(n, bool)
+    nzi = np.flatnonzero(sgn != 0)
+    if nzi.size > 1:
+        flips = nzi[1:][sgn[nzi[1:]] != sgn[nzi[:-1]]]
+        reversal[flips] = True
+    cand = np.flatnonzero(still | reversal)
+    cum = np.cumsum(active)
+    cuts = [0]
+    for j in range(1, k):
+        target = j * nact / k
+        i_t = int(np.searchsorted(cum, target))
+        if cand.size == 0:
+            break
+        c = int(cand[np.argmin(np.abs(cand - i_t))])
+        if c > cuts[-1] and cum[c - 1] - (cum[cuts[-1] - 1] if cuts[-1] > 0 else 0) > min_share * nact:
+            cuts.append(c)
+    cuts.append(n)
+    fl = [_fold(xr, active, a, b) for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
+
+    def lacking(f: Fold) -> bool:
+        return f.active == 0 or min(f.positive, f.negative) < min_share * f.active
+
+    while len(fl) > 2 and any(lacking(f) for f in fl):
+        i = next(j for j, f in enumerate(fl) if lacking(f))
+        j = i - 1 if i == len(fl) - 1 or (i > 0 and fl[i - 1].active <= fl[i + 1].active) else i + 1
+        a, b = min(i, j), max(i, j)
+        fl[a:b + 1] = [_fold(xr, active, fl[a].start, fl[b].stop)]
+    warnings = []
+    if len(fl) < 2:
+        raise IdentificationError(f"the capture's motion ({nact} active samples) cannot be cut into two validation "
+                                  "folds at points where the reference stands still or reverses")
+    for i, f in enumerate(fl):
+        if f.active == 0:
+            warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) is at rest: it validates nothing")
+        elif min(f.positive, f.negative) < min_share * f.active:
+            missing = "negative" if f.negative < f.positive else "positive"
+            warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) has no {missing} motion: "
+                            "direction-dependent effects are not validated there")
+    return FoldPlan(folds=tuple(fl), active=active, warnings=tuple(warnings))
