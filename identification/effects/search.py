@@ -211,6 +211,20 @@ class SearchContext:
         others = [e for e in self.model.elements if e.KIND != "disturbance"]
         return augment(self.model, new_old + others + [neff], parameters=sol.parameters)
 
+    def ee_residual_active(self) -> tuple[np.ndarray, np.ndarray]:
+        """(time [s], equation-error residual) on every active regressor row, the reduced
+        parameters fitted on the training rows (what the searches see, extended over the checks)."""
+        d = self.data
+        rows = d.active[d.rows]
+        theta = _solve_ls(self._ee_base, self._ee_y)
+        a2 = self.model.parameters["a2"]
+        vv, xx, tt = d.v[rows], d.y[rows], d.t[d.rows[rows]]
+        off = np.zeros(int(rows.sum()))
+        for e in self.model.elements:
+            if e.KIND == "disturbance":
+                off -= _w_of(e, vv, xx, tt) / a2
+        return tt, d.y[rows] - off - d.phi[rows] @ theta
+
     # ---------------------------------------------------------------- simulation screen
     @property
     def J(self) -> np.ndarray:
@@ -311,7 +325,7 @@ def _basis_cols(e: Effect, v, x, t) -> np.ndarray:
     if isinstance(e, PositionPeriodic):
         return PositionPeriodic.basis(x, e.period, e.harmonics)
     if isinstance(e, TimePeriodic):
-        b = TimePeriodic.basis(t, e.period, e.harmonics)
+        b = e.window_basis(t)
         return np.column_stack([np.ones(t.size), b]) if e.with_mean else b
     raise TypeError(e)
 
@@ -446,6 +460,81 @@ def search_position_periodic(ctx: SearchContext) -> list[Candidate]:
     return [c] if c else []
 
 
+def load_envelope(t: np.ndarray, r: np.ndarray, frequency: float, bin_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Short-time amplitude of the line ``frequency`` [Hz] in ``r``: (bin centres [s], amplitude).
+
+    The residual is demodulated at the line (``2 |mean(r exp(-2 pi i f t))|`` over bins of
+    ``bin_s`` seconds): one row of a short-time Fourier transform, evaluated at the line's own
+    frequency rather than on the FFT grid (scipy.signal.ShortTimeFFT documents the general
+    transform). Bins with fewer than half their samples (or 20) are NaN (no data: an idle stretch).
+    """
+    t = np.asarray(t, float)
+    r = np.asarray(r, float) - np.mean(r)
+    edges = np.arange(t[0], t[-1] + bin_s, bin_s)
+    idx = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, edges.size - 1)
+    z = r * np.exp(-2j * np.pi * frequency * t)
+    k = edges.size
+    cnt = np.bincount(idx, minlength=k).astype(float)
+    re = np.bincount(idx, weights=z.real, minlength=k)
+    im = np.bincount(idx, weights=z.imag, minlength=k)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        amp = 2.0 * np.hypot(re, im) / cnt
+    dt = float(np.median(np.diff(t))) if t.size > 1 else bin_s
+    amp[cnt < max(20.0, 0.5 * bin_s / dt)] = np.nan
+    return edges + 0.5 * bin_s, amp
+
+
+def _find_window(t: np.ndarray, r: np.ndarray, f1: float, dur: float) -> tuple[float, float, float] | None:
+    """(t_on, t_off, bin width) [s] where the line f1 is on, when it is off for a clear part of
+    the record (else None).
+
+    Bins of max(10 periods, 1 % of the record); the line is on where its short-time amplitude is
+    at least a quarter of its typical on-level (the 90th percentile of the bins); a window is
+    reported only when the bins outside it (at least 10 % of those with data) have a median below
+    a fifth of that level.
+    """
+    bin_s = max(10.0 / f1, 0.01 * dur)
+    c, amp = load_envelope(t, r, f1, bin_s)
+    ok = np.isfinite(amp)
+    if ok.sum() < 5:
+        return None
+    top = float(np.nanpercentile(amp, 90))
+    on = ok & (amp >= 0.25 * top)
+    # the longest run of on-bins (bins without data do not break a run)
+    runs, start, last = [], None, None
+    for i in range(c.size):
+        if on[i]:
+            start = i if start is None else start
+            last = i
+        elif ok[i] and start is not None:
+            runs.append((start, last))
+            start = None
+    if start is not None:
+        runs.append((start, last))
+    if not runs:
+        return None
+    i0, i1 = max(runs, key=lambda ab: int(on[ab[0]:ab[1] + 1].sum()))
+    t0, t1 = c[i0] - 0.5 * bin_s, c[i1] + 0.5 * bin_s
+    outside = ok & ((c < t0) | (c > t1))
+    if outside.sum() < 0.1 * ok.sum() or float(np.median(amp[outside])) >= 0.2 * top:
+        return None
+    return float(max(t0, t[0])), float(min(t1, t[-1] + 1e-12)), float(bin_s)
+
+
+def _refine_window(ctx: SearchContext, t: np.ndarray, f1: float, window: tuple, step: float) -> tuple:
+    """Window edges moved by up to one bin (``step`` [s]) each to the least training equation error."""
+    t0, t1 = window
+
+    def rss(a, b):
+        if not b > a:
+            return math.inf
+        return ctx.ee_partial(-TimePeriodic(period=1.0 / f1, window=(a, b)).window_basis(t))[0]
+
+    t0 = min(np.linspace(t0 - step, t0 + step, 17), key=lambda a: rss(a, t1))
+    t1 = min(np.linspace(t1 - step, t1 + step, 17), key=lambda b: rss(t0, b))
+    return float(t0), float(t1)
+
+
 def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
     v, x, t = ctx.ee_rows()
@@ -456,7 +545,8 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
     amp = np.abs(np.fft.rfft((r - r.mean()) * win, nfft))
     f = np.fft.rfftfreq(nfft, d.T)
     dur = r.size * d.T
-    ok = (f >= 2.5 / dur) & (f <= 0.1 / d.T)
+    # up to 0.4/T: at a 3 ms sampling a 55 Hz shaker is at 0.165/T
+    ok = (f >= 2.5 / dur) & (f <= 0.4 / d.T)
     if not np.any(ok):
         return []
     fa, aa = f[ok], amp[ok]
@@ -477,32 +567,62 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
         if best is None or val < best[0]:
             best = (val, ff, f0)
     _, f1, fpeak = best
+    # a load on for part of the record only: its window from the short-time amplitude of the line,
+    # the frequency refined with the window applied (the line is as sharp as the window is long)
+    # the window is looked for over every active row (the load may run into the check fold)
+    t_all, r_all = ctx.ee_residual_active()
+    found = _find_window(t_all, r_all, f1, float(t_all[-1] - t_all[0]))
+    window = None
+    if found is not None:
+        window = _refine_window(ctx, t, f1, found[:2], found[2])
+        wdur = window[1] - window[0]
+
+        def objw(ff):
+            e = TimePeriodic(period=1.0 / ff, window=window)
+            return ctx.ee_partial(-e.window_basis(t))[0]
+
+        f1 = _golden(objw, f1 - 1.0 / wdur, f1 + 1.0 / wdur, 30)
     P = 1.0 / f1
     hmax = max(1, int(0.1 / d.T / f1))
     ladder = [h for h in (1, 2, 3, 5, 8, 12, 16, 24, 32, 48, 64) if h <= hmax]
 
     def cols(mask, h):
-        return TimePeriodic.basis(d.t[d.rows[mask]], P, h)
+        return TimePeriodic(period=P, coefficients=((0.0, 0.0),) * h, window=window).window_basis(
+            d.t[d.rows[mask]])
 
     H = _choose_harmonics(ctx, cols, ladder)
     # period refined with all chosen harmonics (their phase drift over the record pins it down)
-    P = 1.0 / _golden(lambda ff: ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, H))[0],
-                      f1 * (1 - 0.3 / (dur * f1)), f1 * (1 + 0.3 / (dur * f1)), 30)
+    span = (window[1] - window[0]) if window is not None else dur
+    P = 1.0 / _golden(lambda ff: ctx.ee_partial(-TimePeriodic(period=1.0 / ff, coefficients=((0.0, 0.0),) * H,
+                                                               window=window).window_basis(t))[0],
+                      f1 * (1 - 0.3 / (span * f1)), f1 * (1 + 0.3 / (span * f1)), 30)
     locked = reference_repeats(d.xr, P, d.T)
     if locked is not None:
         # A load with this period cannot be told from anything the reference drives (friction,
         # a mode, a position-dependent term): the reference itself repeats with m P. Not a finding.
         log.info("time_periodic: period %.5g s rejected: the reference repeats every %d x %.5g s", P, locked, P)
         return []
+    e = TimePeriodic(period=P, coefficients=((0.0, 0.0),) * H, window=window)
+    ramp = None
+    if window is not None:
+        # a ramped amplitude when the envelope's two ends fit the training rows better
+        er = dataclasses.replace(e, coefficients_end=((0.0, 0.0),) * H)
+        rss_c = ctx.ee_partial(-e.window_basis(t))[0]
+        rss_r = ctx.ee_partial(-er.window_basis(t))[0]
+        # ... by at least 5 % of what the constant-amplitude line explains
+        ramp = (rss_c - rss_r) >= 0.05 * max(ctx.ee_rss - rss_c, 0.0) and rss_r < rss_c
+        if ramp:
+            e = er
     # a constant part when the axis stands still long enough to separate it from Coulomb friction
     still = np.mean(v == 0.0)
     use_mean = still > 0.05
-    base = TimePeriodic.basis(t, P, H)
+    base = e.window_basis(t)
     cols_tr = np.column_stack([np.ones(t.size), base]) if use_mean else base
-    e = TimePeriodic(period=P, coefficients=((0.0, 0.0),) * H, with_mean=bool(use_mean))
+    e = dataclasses.replace(e, with_mean=bool(use_mean))
     ev = {"search": "largest peaks of the equation-error residual spectrum, refined by golden section; "
-                    f"{H} harmonics by validation equation error",
-          "spectral_peak_hz": fpeak, "best_s": P, "standstill_fraction": float(still)}
+                    f"{H} harmonics by validation equation error; window from the line's short-time amplitude",
+          "spectral_peak_hz": fpeak, "best_s": P, "standstill_fraction": float(still),
+          "window_s": list(window) if window is not None else None, "ramped": bool(ramp)}
     c = _ee_candidate(ctx, e, cols_tr, ev)
     return [c] if c else []
 
