@@ -205,6 +205,9 @@ def folds(reference: np.ndarray, active: np.ndarray, k: int = 4, *, min_share: f
     for i, f in enumerate(fl):
         if f.active == 0:
             warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) is at rest: it validates nothing")
+        elif f.positive + f.negative == 0:
+            warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) holds only the settling margin of "
+                            "a move (the reference does not move in it): it validates the settling only")
         elif min(f.positive, f.negative) < min_share * f.active:
             missing = "negative" if f.negative < f.positive else "positive"
             warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) has no {missing} motion: "

@@ -1,0 +1,168 @@
+"""Validation that judges something (issue #16): idle stretches trimmed, contiguous folds, a load
+that comes and goes, and the residual's evidence when nothing is named.
+
+Captures come from the reduced model of the thesis' Fadal x axis (``identification.synthetic``,
+Table 3.4 parameters) with the project's random moves, 2 s of standstill before and after, white
+measurement noise of 0.2 um and a 0.1 um encoder; the windowed load is injected as the external
+disturbance w of the augmented model (``AugmentedAxisModel.simulate(disturbance=...)``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from identification import identify
+from identification.augmented import augment
+from identification.diagnosis import diagnose_report, format_before_after
+from identification.effects import TimePeriodic, effect_from_record
+from identification.reduced_model import ReducedAxisModel
+from identification.segments import active_mask, folds, motion_segments
+from identification.synthetic import FADAL_PID_X, random_moves_reference
+from vcnc.capture import Capture
+from vcnc.errors import IdentificationError, InputError
+
+IDLE_S = 2.0
+SHAKER_HZ = 55.0
+
+
+def _capture(sample_time: float, load: bool) -> tuple[Capture, tuple[float, float]]:
+    T = sample_time
+    xr = random_moves_reference(moves=40, span=10.0, feed=200.0, acceleration=2000.0, sample_time=T, dwell=0.05,
+                                seed=3)
+    idle = int(round(IDLE_S / T))
+    xr = np.concatenate([np.full(idle, xr[0]), xr, np.full(idle, xr[-1])])
+    n = xr.size
+    t = np.arange(n) * T
+    t0 = 0.35 * t[-1]
+    window = (t0, t0 + 4.0)  # on for 4 s, amplitude ramped from 30 % to 100 %
+    env = np.where((t >= window[0]) & (t < window[1]), 0.3 + 0.7 * (t - window[0]) / 4.0, 0.0)
+    w = 300.0 * env * np.sin(2 * np.pi * SHAKER_HZ * t + 0.3) if load else np.zeros(n)  # [mm/s^2]
+    x = augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=T), []).simulate(xr, disturbance=w)
+    x = np.round((x + np.random.default_rng(1).normal(0.0, 0.2e-3, n)) / 1e-4) * 1e-4
+    return Capture(t=t, axes=("x",), reference=xr[:, None], measured=x[:, None], meta={"source": "test"}), window
+
+
+_CACHE: dict = {}
+
+
+def _report(sample_time: float, load: bool):
+    key = (sample_time, load)
+    if key not in _CACHE:
+        cap, window = _capture(sample_time, load)
+        _CACHE[key] = (diagnose_report(cap, identify(cap, axis="x", diagnose=False), axis="x"), window, cap)
+    return _CACHE[key]
+
+
+# ------------------------------------------------------------------------------ segments
+
+
+def test_idle_stretches_are_trimmed_with_their_margin():
+    cap, _ = _capture(1e-3, False)
+    xr, x = cap.reference[:, 0], cap.measured[:, 0]
+    act = active_mask(xr, x, 1e-3, 0.2)
+    segs = motion_segments(act)
+    assert len(segs) == 1, segs
+    a, b = segs[0]
+    moving = np.flatnonzero(np.diff(xr) != 0)
+    assert abs(a - (moving[0] - 200)) <= 3, (a, moving[0])
+    # the margin, and the settling after the last move (the axis still moves while the reference rests)
+    assert moving[-1] + 200 <= b <= moving[-1] + 300, (b, moving[-1])
+
+
+def test_folds_contain_both_directions_and_cut_where_the_reference_rests_or_reverses():
+    cap, _ = _capture(1e-3, False)
+    xr = cap.reference[:, 0]
+    plan = folds(xr, active_mask(xr, cap.measured[:, 0], 1e-3), 4)
+    assert len(plan.folds) == 4 and not plan.warnings
+    v = np.diff(xr, append=xr[-1])
+    for f in plan.folds:
+        assert f.positive > 0.05 * f.active and f.negative > 0.05 * f.active
+        if f.start > 0:  # the cut: the reference stands still there or changes direction
+            assert v[f.start] == 0 or np.sign(v[f.start]) != np.sign(v[f.start - 1])
+
+
+def test_a_capture_that_never_moves_is_an_error_and_one_way_motion_a_warning():
+    T = 1e-3
+    still = np.zeros(3000)
+    with pytest.raises(IdentificationError, match="never moves"):
+        folds(still, active_mask(still, still, T), 4)
+    one_way = np.concatenate([np.zeros(500), np.cumsum(np.full(4000, 0.01)), np.full(500, 40.0)])
+    one_way[1500:1700] = one_way[1500]  # a rest inside, so that the record can be cut
+    plan = folds(one_way, active_mask(one_way, one_way, T), 4)
+    assert any("no negative motion" in w for w in plan.warnings), plan.warnings
+
+
+# ------------------------------------------------------------------------------ diagnosis
+
+
+def test_idle_seconds_do_not_validate_and_the_report_names_the_folds():
+    rep, _, cap = _report(1e-3, False)
+    v = rep.model.validation
+    assert rep.effects == [], rep.rounds
+    idle = v["active"]["idle_samples"]
+    assert idle >= 2 * (IDLE_S - 0.25) / 1e-3, v["active"]  # both idle stretches, less the margins
+    assert len(v["folds"]) >= 3
+    for f in v["folds"]:
+        assert f["active_samples"] > 0 and math.isfinite(f["rms_before_um"])
+        # no fold is a stretch of standstill: its held-out error is at least the noise (0.2 um)
+        assert f["rms_before_um"] > 0.15, f
+    text = format_before_after(rep.model)
+    assert "fold" in text and "held-out" in text
+
+
+@pytest.mark.parametrize("sample_time", [1e-3, 3e-3])
+def test_windowed_ramped_load_is_named_with_frequency_window_and_envelope(sample_time):
+    rep, window, _ = _report(sample_time, True)
+    assert rep.effects[:1] == ["time_periodic"], rep.rounds
+    p = rep.model.effects[0]["parameters"]
+    assert abs(1.0 / p["period_s"] - SHAKER_HZ) <= 0.02 * SHAKER_HZ, p
+    assert abs(p["window_s"][0] - window[0]) <= 0.2 and abs(p["window_s"][1] - window[1]) <= 0.2, (p, window)
+    # the envelope ramps up (true 90 -> 300 mm/s^2)
+    assert p["amplitude_end_mm_s2"] > 2.0 * p["amplitude_start_mm_s2"], p
+    assert abs(p["amplitude_end_mm_s2"] - 300.0) <= 0.25 * 300.0, p
+    v = rep.model.validation
+    assert v["rms_after_um"] <= 0.5 * v["rms_before_um"], v
+    for f in v["folds"]:
+        lo, hi = f["window_s"]
+        if hi <= window[0] or lo >= window[1]:  # a fold outside the window: the effect costs nothing
+            assert f["rms_after_um"] <= 1.1 * f["rms_before_um"] + 0.01, f
+        elif lo >= window[0] and hi <= window[1]:  # inside: it confirms it
+            assert f["rms_after_um"] <= 0.6 * f["rms_before_um"], f
+    assert rep.model.effects[0]["fmu"] is False  # the FMU has no window yet
+    assert "resonance" not in rep.effects
+
+
+def test_clean_twin_of_the_windowed_load_claims_nothing():
+    rep, _, _ = _report(1e-3, False)
+    assert rep.effects == [], rep.rounds
+
+
+def test_unexplained_residual_names_its_spectral_peak_and_associations():
+    # the windowed load with time_periodic taken out of the vocabulary: nothing may be forced onto it,
+    # and the evidence points at the 55 Hz line
+    from identification.diagnosis import DiagnosisOptions
+    from identification.effects import EFFECTS
+
+    cap, _ = _capture(1e-3, True)
+    opts = DiagnosisOptions(effects=tuple(e for e in EFFECTS if e != "time_periodic"))
+    rep = diagnose_report(cap, identify(cap, axis="x", diagnose=False), axis="x", options=opts)
+    ev = rep.model.validation["unexplained"]
+    assert abs(ev["spectral_peaks"][0]["frequency_hz"] - SHAKER_HZ) < 1.0, ev["spectral_peaks"]
+    assert set(ev["correlation"]) == {"position", "velocity", "direction", "acceleration", "time"}
+    assert ev["statement"]
+
+
+def test_windowed_record_round_trips_and_rejects_bad_windows():
+    e = TimePeriodic(period=0.02, coefficients=((1.0, 2.0),), window=(1.0, 3.0), coefficients_end=((3.0, 0.0),))
+    back = effect_from_record(e.record())
+    assert back == e
+    t = np.array([0.5, 1.0, 2.0, 2.999, 3.0])
+    w = e.load(t)
+    assert w[0] == 0.0 and w[-1] == 0.0 and w[1] != 0.0
+    with pytest.raises(InputError, match="window_s"):
+        TimePeriodic.from_parameters({"period_s": 0.02, "window_s": [3.0, 1.0]})
+    with pytest.raises(InputError, match="needs 'window_s'"):
+        TimePeriodic.from_parameters({"period_s": 0.02, "coefficients_end_mm_s2": [[1.0, 0.0]]})
