@@ -166,3 +166,13 @@ def test_windowed_record_round_trips_and_rejects_bad_windows():
         TimePeriodic.from_parameters({"period_s": 0.02, "window_s": [3.0, 1.0]})
     with pytest.raises(InputError, match="needs 'window_s'"):
         TimePeriodic.from_parameters({"period_s": 0.02, "coefficients_end_mm_s2": [[1.0, 0.0]]})
+
+
+def test_fmu_export_refuses_a_windowed_load_instead_of_dropping_the_window(tmp_path):
+    from vcnc.errors import ExportError
+    from vcnc.fmu import export_fmu
+
+    e = TimePeriodic(period=0.02, coefficients=((1.0, 0.0),), window=(1.0, 2.0))
+    m = augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=1e-3), [e])
+    with pytest.raises(ExportError, match="window"):
+        export_fmu(m, tmp_path / "x.fmu")

@@ -159,6 +159,10 @@ def _load(model: Any):
 def _check_values(e: Any, source: str | None) -> None:
     """Effect parameters the Python model accepts but cannot simulate (NaN) or the FMU cannot hold."""
     name = e.NAME
+    if name == "time_periodic" and getattr(e, "window", None) is not None:
+        raise ExportError(f"effect 'time_periodic' acts only in the window {list(e.window)} s (with its amplitude "
+                          "envelope); the FMU's load has no window yet, so it cannot be exported without changing "
+                          "the model")
     if name == "time_periodic" and not e.period > 0:
         raise ModelFileError("effect 'time_periodic' parameter 'period_s' must be > 0", file=source,
                              text=repr(e.period))
