@@ -49,6 +49,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99, CYCL CALL or CYCL CALL PAT
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
 
+Path mode: blocks end at rest (``Block.exact_stop``), as the thesis' identification programs
+(Tables 4.3 and 4.4) are run, until ``CYCL DEF 32.1 T..`` sets a path tolerance; from then on
+the path is continuous with that tolerance (``32.1`` without T: ``context.dialect.tolerance``).
+
 Unit conversion: positions mm, feeds mm/s. Machine coordinates = program coordinates + the
 preset (``context.offset("G54")``) + the datum shift of cycle 7 + the tool length along the
 tool axis. ``RL``/``RR`` with a tool radius other than 0 and anything not listed (other APPR/DEP
