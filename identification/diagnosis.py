@@ -7,10 +7,13 @@ the model augmented with the effects the data support (an
 
 Procedure (forward selection judged on held-out data)
 -----------------------------------------------------
-1. **Split.** The first ``train_fraction`` (70 %) of the samples identify, the last 30 %
-   validate (a blocked split in time: the validation block is never seen by any fit, and a
-   time-periodic load or a drift must extrapolate into it). The reduced model is refitted on the
-   identification block (output error from the given model, pole bounds kept).
+1. **Trim and fold.** Idle stretches (the reference at rest and the axis settled, outside
+   ``margin_s`` around every move) neither identify nor validate
+   (:func:`identification.segments.active_mask`). The record is cut into ``folds`` contiguous
+   folds at points where the reference rests or reverses, merged until each moves in both
+   directions (:func:`identification.segments.folds`; what is still missing is a warning, a
+   capture that never moves an error). The searches fit on the active samples outside the last
+   fold and check their own choices (harmonic counts) on it.
 2. **Search.** Every effect not yet in the model proposes its best instance
    (:mod:`identification.effects.search`: equation-error partial regressions for disturbance
    terms with their nonlinear parameter searched - Stribeck velocity, position period, time
@@ -19,15 +22,21 @@ Procedure (forward selection judged on held-out data)
    resonance frequencies from the residual spectrum).
 3. **Refit.** The ``top`` proposals with the lowest screening error are refitted jointly - all
    reduced parameters with the pole bounds of Eq. (3.8), the effect's parameters (including its
-   nonlinear ones, except whole-sample delays) and the parameters of the effects already in - by
-   output error (simulation error) on the identification block.
-4. **Judge.** The proposal with the lowest held-out simulation RMS is added when it lowers the
-   held-out RMS by at least ``min_gain`` (25 %) relative *and* by ``min_gain_um`` (0.05 um)
-   absolute, and lowers the identification-block RMS too. Steps 2-4 repeat (at most
-   ``max_effects`` times) until no proposal passes.
-5. **Report.** Each stage (reduced model, then each effect in turn) is refitted on all samples
-   for the identification-data error; the held-out error is that of the stage fitted on the
-   identification block. Both go into ``effects[]`` and ``validation``.
+   nonlinear ones, except whole-sample delays and a load's window) and the parameters of the
+   effects already in - by output error (simulation error) on all active samples.
+4. **Judge.** Each refitted proposal is judged on every fold held out in turn (the fit moved by
+   one Gauss-Newton step fitted on the other folds, sensitivities shared by the folds:
+   :func:`_judge`). The proposal with the lowest pooled held-out simulation RMS is added when it
+   lowers it by at least ``min_gain`` (25 %) relative *and* by ``min_gain_um`` (0.05 um)
+   absolute, lowers the error on all active samples, and no fold's held-out RMS rises by as much
+   (a fold where a windowed load is off costs nothing and gains nothing; the folds where it acts
+   must carry the gain). An element must also beat its own null (the sampled split form without
+   it). Steps 2-4 repeat (at most ``max_effects`` times) until no proposal passes.
+5. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
+   the active stretches and the warnings; ``validation.unexplained`` the final residual's
+   spectral peaks and its association with position, velocity, direction, acceleration and time
+   (:func:`identification.residual.residual_evidence`), so that what no named effect explains is
+   said with evidence instead of forced onto a name.
 
 The 25 % criterion: on clean captures of the project's virtual machines (different seeds and
 programs) the best spurious proposal lowers the held-out RMS by at most about 10 % (the reduced

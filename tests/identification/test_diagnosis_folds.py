@@ -176,3 +176,35 @@ def test_fmu_export_refuses_a_windowed_load_instead_of_dropping_the_window(tmp_p
     m = augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=1e-3), [e])
     with pytest.raises(ExportError, match="window"):
         export_fmu(m, tmp_path / "x.fmu")
+
+
+# ------------------------------------------------------------------------------ another simulator's loop
+
+
+@pytest.mark.parametrize(("sample_time", "element", "expected"), [
+    (1e-3, "delay", "delay"),  # one sample inside the loop: was missed (the split-form regression is noise-biased)
+    (2e-3, "resonance", "resonance"),  # a 150 Hz mode, damping 0.1: above the old 0.3/T grid and unstable at 0.05
+])
+def test_loop_of_another_form_one_sample_delay_and_150_hz_mode_are_named(sample_time, element, expected):
+    """The truth is the sampled split loop (``identification.augmented``, plant viscous rate 4 1/s)
+    rather than the virtual machine's drive: another simulator's loop, with 0.2 um noise."""
+    from identification.effects import Delay, Resonance
+
+    T = sample_time
+    xr = random_moves_reference(moves=40, span=10.0, feed=200.0, acceleration=2000.0, sample_time=T, dwell=0.05,
+                                seed=3)
+    el = Resonance(frequency=150.0, damping=0.1, table_fraction=0.5) if element == "resonance" else Delay(
+        samples=1, sample_time=T)
+    truth = augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=T), [el], viscous_rate=4.0)
+    x = truth.simulate(xr)
+    x = np.round((x + np.random.default_rng(1).normal(0.0, 0.2e-3, x.size)) / 1e-4) * 1e-4
+    cap = Capture(t=np.arange(x.size) * T, axes=("x",), reference=xr[:, None], measured=x[:, None], meta={})
+    rep = diagnose_report(cap, identify(cap, axis="x", diagnose=False), axis="x")
+    assert rep.effects[:1] == [expected], rep.rounds
+    p = rep.model.effects[0]["parameters"]
+    if expected == "delay":
+        assert p["samples"] == 1
+    else:
+        assert abs(p["frequency_hz"] - 150.0) <= 0.05 * 150.0 and 0.05 <= p["damping"] <= 0.2, p
+    v = rep.model.validation
+    assert v["rms_after_um"] <= 0.3 * v["rms_before_um"], v
