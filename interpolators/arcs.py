@@ -9,11 +9,35 @@ import numpy as np
 from toolpaths.geometry import PLANE_AXES, Arc
 from vcnc.errors import InputError
 
-__all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius"]
+__all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius", "spiral_tolerance",
+           "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE"]
 
 #: Largest accepted difference between the start and end radius of a centre-programmed arc, and
 #: largest accepted excess of the chord over the diameter of a radius-programmed arc [mm].
 ARC_TOLERANCE: float = 0.002
+
+
+#: LinuxCNC's end-radius tolerances of centre-format arcs (interp_internal.hh:
+#: CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH = 2 * 0.01 mm * sqrt 2 / 2 * 0.001 in * sqrt 2, and
+#: SPIRAL_RELATIVE_TOLERANCE = 0.001), in mm.
+SPIRAL_ABS_TOLERANCE_MM: float = 2 * 0.01 * math.sqrt(2.0)
+SPIRAL_ABS_TOLERANCE_INCH: float = 2 * 0.001 * math.sqrt(2.0) * 25.4
+SPIRAL_RELATIVE_TOLERANCE: float = 0.001
+
+
+def spiral_tolerance(start: np.ndarray, end: np.ndarray, center: np.ndarray, *, plane: int, inch: bool) -> float:
+    """Largest end-radius mismatch [mm] LinuxCNC accepts for this centre-format arc.
+
+    LinuxCNC (interp_arc.cc, ``arc_data_ijk``) refuses an arc when the difference of the start and
+    end radii exceeds 100 times the absolute tolerance, or exceeds both the absolute tolerance
+    (0.0283 mm; 0.00283 in under G20) and 0.1 % of the larger radius. Within that it runs a
+    spiral; vcnc moves the centre onto the chord's bisector instead (an exact arc through both
+    programmed end points), which departs from LinuxCNC's spiral by at most the mismatch.
+    """
+    a, b, c = _in_plane(start, plane), _in_plane(end, plane), _in_plane(center, plane)
+    rmax = max(float(np.hypot(*(a - c))), float(np.hypot(*(b - c))))
+    abs_tol = SPIRAL_ABS_TOLERANCE_INCH if inch else SPIRAL_ABS_TOLERANCE_MM
+    return min(100.0 * abs_tol, max(abs_tol, SPIRAL_RELATIVE_TOLERANCE * rmax))
 
 
 class ArcWordError(ValueError):

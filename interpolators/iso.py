@@ -1,119 +1,175 @@
-"""Reader of ISO 6983 / Fanuc-style G-code.
+"""Reader of ISO 6983 G-code as LinuxCNC, Fanuc and Haas controls run it.
 
-Accepted words (case-insensitive; spaces between the address letter and its number allowed,
-as in ``N0010 G01 X 0.258`` of the thesis' Table 3.2):
+Semantics follow the LinuxCNC G-code reference (https://linuxcnc.org/docs/html/gcode/g-code.html,
+https://linuxcnc.org/docs/html/gcode/m-code.html, and for coordinates
+https://linuxcnc.org/docs/html/gcode/coordinates.html); where Fanuc/Haas differ the
+:class:`interpolators.context.Dialect` says how (unit of ``G04 P``).
 
-========= ==============================================================================
-``N``      block number (ignored)              ``O``  program number (the program name)
-``G00``    rapid: a straight line at the machine's rapid rate (not a dog-leg)
-``G01``    linear feed move                    ``G02``/``G03`` clockwise / counter-clockwise arc
-``G04``    dwell, ``P`` [ms] or ``X`` [s]      ``G17/G18/G19`` arc plane XY / ZX / YZ
-``G20/21`` inch / mm input                     ``G90/G91`` absolute / incremental X Y Z
-``G61``    exact stop (default): every block starts and ends at rest
-``G64``    continuous path; optional ``P`` path tolerance [mm, inch under G20]
-``G94``    feed per minute (the only feed mode; accepted)
-``G40/G49/G80`` cancel cutter / length compensation, canned cycle (the only states; accepted)
-``X Y Z``  end point [mm or inch]              ``I J K`` arc centre, incremental from the start
-``R``      arc radius (negative: sweep over 180 degrees; full circles need I/J/K)
-``F``      feed [mm/min, in/min under G20]     ``S``  spindle speed (ignored)
-``M02/M30`` program end (later lines are not read); ``M03/M04/M05/M08/M09`` ignored
-========= ==============================================================================
+Coordinates. Blocks carry **machine coordinates** [mm]: the programmed value plus the active work
+offset (G54-G59.3 from the machine's table), the G92 offset and the tool length offset (G43/G44
+with H, along Z). A program starts at the machine's home position. G53 takes the block's axis words
+as machine coordinates; G28/G30 go through the programmed intermediate point to the home / second
+reference position (only the axes named move; no words: all axes); G28.1/G30.1 store the current
+position as the reference; G10 L2/L20 set a work offset.
 
-Comments ``( ... )`` and ``; ...``, and ``%`` tape marks are skipped. Any other word is an error.
-The program starts at the origin, in G00-less state: axis words before any motion code are an
-error, as is an explicit motion code without axis words (except a full circle given by I/J/K).
+Accepted words and codes (case-insensitive; spaces inside words allowed):
+
+========================= =======================================================================
+``G0 G1 G2 G3``           rapid, feed, clockwise / counter-clockwise arc; alone on a line they set
+                          the motion mode only
+``G4``                    dwell ``P`` (seconds under LinuxCNC/grbl, milliseconds under Fanuc/Haas)
+                          or ``X`` [s]
+``G17 G18 G19``           arc plane; ``G20 G21`` inch / mm (a program with neither runs in the
+                          dialect's default unit, with a note); ``G90 G91`` absolute / incremental
+``G90.1 G91.1``           arc centre I J K absolute / incremental (default)
+``G61 G61.1 G64``         exact stop; continuous path with ``P`` tolerance (``Q`` noted). A program
+                          with neither runs in the dialect's default (continuous path)
+``G73 G81-G86 G89 G80``   drilling cycles with R, Q, P, L/K and G98/G99 (:mod:`interpolators.iso_cycles`)
+``G40 G41 G42``           cutter compensation: accepted with tool radius 0 (the path is unchanged);
+                          a non-zero radius is an error naming it
+``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
+``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``; ``G53``; ``G28 G30 G28.1 G30.1``
+``G94``                   feed per minute; ``G93``/``G95`` are errors naming them
+``T M6``                  tool select / change (no motion; the tool's length applies with G43)
+``S M3 M4 M5 M7 M8 M9``   spindle and coolant (noted); ``M0 M1 M60`` program stops (noted);
+                          ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
+========================= =======================================================================
+
+Out of scope, each an error naming the feature: parameters and expressions, O-word subroutines,
+M98/M99 subprograms, rotary axes A B C on a machine without them, U V W, probing G38.x, threading
+G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar G15/G16, scaling G50/G51,
+rotation G68, user M codes M100-M199, G93/G95 feed modes.
 """
 
 from __future__ import annotations
 
+import collections
+import dataclasses
+
 import numpy as np
 
-from interpolators._words import INCH, Where, lines_of, read_number, token_at
-from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
+from interpolators._words import INCH, Where, lines_of
+from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
+from interpolators.iso_words import Word, read_words, strip_comments
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Line
 
 __all__ = ["parse_iso"]
 
-_LETTERS = set("NOGMFXYZIJKRPS")
-_G_GROUP = {
-    0: "motion", 1: "motion", 2: "motion", 3: "motion", 4: "dwell",
-    17: "plane", 18: "plane", 19: "plane", 20: "units", 21: "units",
-    90: "distance", 91: "distance", 61: "path", 64: "path", 94: "feed mode",
-    40: "cutter compensation", 49: "length compensation", 80: "canned cycle",
+#: G codes the reader runs, keyed by round(10 * code): (modal group, name).
+_G: dict[int, tuple[str, str]] = {
+    **{k: ("motion", n) for k, n in ((0, "rapid"), (10, "linear feed"), (20, "clockwise arc"),
+                                       (30, "counter-clockwise arc"), (800, "cycle cancel"))},
+    **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
+                                          (82, "G82 drilling cycle with dwell"),
+                                          (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
+                                          (85, "G85 boring cycle"), (86, "G86 boring cycle"),
+                                          (89, "G89 boring cycle with dwell"))},
+    40: ("dwell", "dwell"),
+    100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
+    281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
+    301: ("nonmodal", "G30.1 store reference"), 530: ("nonmodal", "G53 machine coordinates"),
+    920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
+    922: ("nonmodal", "G92.2 offset suspend"), 923: ("nonmodal", "G92.3 offset restore"),
+    170: ("plane", "XY"), 180: ("plane", "ZX"), 190: ("plane", "YZ"),
+    200: ("units", "inch"), 210: ("units", "mm"),
+    900: ("distance", "absolute"), 910: ("distance", "incremental"),
+    901: ("arc distance", "absolute"), 911: ("arc distance", "incremental"),
+    930: ("feed mode", "inverse time"), 940: ("feed mode", "per minute"), 950: ("feed mode", "per revolution"),
+    400: ("cutter compensation", "off"), 410: ("cutter compensation", "left"),
+    420: ("cutter compensation", "right"), 411: ("cutter compensation", "left"),
+    421: ("cutter compensation", "right"),
+    430: ("length compensation", "G43"), 431: ("length compensation", "G43.1"),
+    440: ("length compensation", "G44"), 490: ("length compensation", "G49"),
+    980: ("return mode", "G98"), 990: ("return mode", "G99"),
+    610: ("path", "exact stop"), 611: ("path", "exact stop"), 640: ("path", "continuous"),
+    960: ("spindle mode", "constant surface speed"), 970: ("spindle mode", "rpm"),
+    690: ("rotation", "cancel"), 500: ("scaling", "cancel"), 150: ("polar", "cancel"),
+    **{round(float(c[1:]) * 10): ("coordinate system", c) for c in WORK_OFFSETS},
 }
-_M_OK = {2, 3, 4, 5, 8, 9, 30}
-_PLANE_OF_G = {17: 2, 18: 1, 19: 0}
+
+#: G codes named in an error (round(10 * code) -> feature).
+_G_UNSUPPORTED: dict[int, str] = {
+    **{k: "G38 probing" for k in (382, 383, 384, 385)},
+    330: "G33 spindle-synchronised motion (threading)", 331: "G33.1 rigid tapping",
+    760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
+    700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
+    740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
+    50: "G5 cubic spline", 51: "G5.1 quadratic spline", 52: "G5.2 NURBS", 160: "G16 polar coordinates",
+    510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
+    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)", 650: "G65 macro call",
+    520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
+    432: "G43.2 additional tool length offset",
+}
+
+_PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
+
+_M_NOTES = {
+    0: "M0/M1 program stop", 1: "M0/M1 program stop", 60: "M60 pallet change stop",
+    3: "S/M3-M5 spindle", 4: "S/M3-M5 spindle", 5: "S/M3-M5 spindle", 19: "M19 spindle orient",
+    6: "T/M6 tool change", 7: "M7-M9 coolant", 8: "M7-M9 coolant", 9: "M7-M9 coolant",
+    48: "M48-M53 overrides", 49: "M48-M53 overrides", 50: "M48-M53 overrides", 51: "M48-M53 overrides",
+    52: "M48-M53 overrides", 53: "M48-M53 overrides", 61: "M61 set tool number",
+    70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
+}
 
 
-def _strip_comments(raw: str, where: Where) -> str:
-    """Blank out comments, keeping columns."""
-    out = list(raw)
-    i = 0
-    n = len(raw)
-    while i < n:
-        ch = raw[i]
-        if ch == ";":
-            for k in range(i, n):
-                out[k] = " "
-            break
-        if ch == "(":
-            j = raw.find(")", i + 1)
-            if j < 0:
-                where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
-            for k in range(i, j + 1):
-                out[k] = " "
-            i = j + 1
-            continue
-        if ch == ")":
-            where.fail("')' without '('", column=i + 1, text=")", expected="a word")
-        i += 1
-    return "".join(out)
-
-
-def _words(code: str, where: Where) -> list[tuple[str, float, int, str]]:
-    """(letter, value, 1-based column, text) for each word of a comment-free line."""
-    words = []
-    i, n = 0, len(code)
-    while i < n:
-        ch = code[i]
-        if ch in " \t\r\f\v":
-            i += 1
-            continue
-        up = ch.upper()
-        if up in "ABCUVW" and up.isalpha():
-            where.fail(f"axis word {up!r} is not supported (vcnc interpolates the linear axes X, Y, Z)",
-                       column=i + 1, text=token_at(code, i), expected="X, Y or Z")
-        if up not in _LETTERS:
-            tok = token_at(code, i)
-            where.fail(
-                f"unknown word {tok!r}",
-                column=i + 1,
-                text=tok,
-                expected="one of the words N O G M F X Y Z I J K R P S",
-            )
-        value, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)
-        words.append((up, value, i + 1, code[i:end].strip()))
-        i = end
-    return words
-
-
-class _State:
-    __slots__ = ("pos", "motion", "plane", "inch", "incremental", "exact_stop", "tolerance", "feed")
+class _Notes:
+    """What a run ignored or assumed, counted: ``Program.notes`` lines."""
 
     def __init__(self) -> None:
-        self.pos = np.zeros(3)
-        self.motion: int | None = None
-        self.plane = 2
-        self.inch = False
-        self.incremental = False
-        self.exact_stop = True
-        self.tolerance: float | None = None
-        self.feed: float | None = None  # mm/s
+        self.counts: collections.Counter[str] = collections.Counter()
+
+    def add(self, what: str) -> None:
+        self.counts[what] += 1
+
+    def lines(self) -> tuple[str, ...]:
+        return tuple(f"{k} x{v}" if v > 1 else k for k, v in self.counts.items())
 
 
-def parse_iso(text: str, *, source: str | None = None) -> Program:
-    """Parse ISO / Fanuc G-code text into a :class:`Program`.
+@dataclasses.dataclass
+class _State:
+    """Modal state of the interpreter (positions are machine coordinates [mm])."""
+
+    context: MachineContext
+    pos: np.ndarray
+    motion: int | None = None  # round(10 * G) of the modal motion
+    plane: int = 2
+    inch: bool = False
+    units_stated: bool = False
+    incremental: bool = False
+    arc_incremental: bool = True
+    exact_stop: bool = False
+    tolerance: float | None = None
+    feed: float | None = None  # mm/s
+    wcs: str = "G54"
+    g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    tool_length: float = 0.0
+    tool_selected: int | None = None
+    tool_current: int | None = None
+    home: np.ndarray | None = None
+    reference2: np.ndarray | None = None
+    offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    retract_r: bool = False  # G99
+    cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
+    comp_side: str | None = None
+
+    @property
+    def scale(self) -> float:
+        return INCH if self.inch else 1.0
+
+    def offset(self) -> np.ndarray:
+        """Machine minus program coordinates [mm]."""
+        o = self.offsets.get(self.wcs)
+        base = self.context.offset(self.wcs) if o is None else o
+        return base + self.g92 + np.array([0.0, 0.0, self.tool_length])
+
+
+def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
+    """Parse ISO / Fanuc / LinuxCNC G-code text into a :class:`Program`.
 
     Parameters
     ----------
@@ -121,19 +177,26 @@ def parse_iso(text: str, *, source: str | None = None) -> Program:
         Program text.
     source : str, optional
         File name used in error messages and recorded in ``Program.source``.
+    context : MachineContext
+        Work offsets, tool table, home and reference positions and the dialect of the machine.
 
     Raises
     ------
     vcnc.GCodeError
-        With file, line, column, the offending text and what was expected.
+        With file, line, column, the offending text and what was expected; an unsupported
+        feature is named (``G38 probing: ...``).
     """
-    st = _State()
+    dialect = context.dialect
+    st = _State(context=context, pos=np.array(context.home, dtype=float),
+                inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
+                tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2))
+    notes = _Notes()
     blocks: list[Block] = []
     used: set[int] = set()
     name: str | None = None
     for lineno, raw in enumerate(lines_of(text), start=1):
         where = Where(source, lineno, raw.strip())
-        code = _strip_comments(raw, where)
+        code = strip_comments(raw, where)
         stripped = code.strip()
         if not stripped:
             continue
@@ -142,176 +205,497 @@ def parse_iso(text: str, *, source: str | None = None) -> Program:
                 where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=stripped,
                            expected="'%' alone")
             continue
-        words = _words(code, where)
+        if stripped.startswith("/"):
+            notes.add("/ block delete lines run (switch off)")
+            code = code.replace("/", " ", 1)
+        words = read_words(code, where)
         if name is None:
-            for letter, value, _, _ in words:
-                if letter == "O":
-                    name = f"O{value:g}"
-        ended = _execute(words, st, blocks, used, where)
-        if ended:
+            for w in words:
+                if w.letter == "O":
+                    name = f"O{w.value:g}"
+        if _execute(words, st, blocks, used, where, notes):
             break
+    if not st.units_stated and any(b.kind != "dwell" for b in blocks):
+        notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
-    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name)
+    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
 
 
-def _execute(words, st: _State, blocks: list[Block], used: set[int], where: Where) -> bool:  # noqa: C901
-    """Apply one block's words to the state; append its executable block. True at program end."""
-    seen: dict[str, tuple[float, int, str]] = {}
-    gcodes: dict[str, tuple[int, int, str]] = {}
-    mcodes: list[tuple[int, int]] = []
-    number = None
-    for letter, value, col, tok in words:
-        if letter == "G":
-            g = int(round(value))
-            if g != value or g not in _G_GROUP:
-                where.fail(f"unknown G code {tok!r}", column=col, text=tok,
-                           expected="G00-G04, G17-G21, G40, G49, G61, G64, G80, G90, G91 or G94")
-            grp = _G_GROUP[g]
-            if grp in gcodes:
-                where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][2]} and {tok})",
-                           column=col, text=tok, expected=f"one {grp} code per block")
-            gcodes[grp] = (g, col, tok)
-        elif letter == "M":
-            m = int(round(value))
-            if m != value or m not in _M_OK:
-                where.fail(f"unknown M code {tok!r}", column=col, text=tok,
-                           expected="M02 or M30 (end), M03, M04, M05, M08 or M09 (ignored)")
-            mcodes.append((m, col))
+def _gkey(w: Word, where: Where) -> int:
+    key = round(w.value * 10)
+    if abs(w.value * 10 - key) > 1e-6:
+        where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text, expected="a G code such as G1 or G91.1")
+    return key
+
+
+def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
+    """Sort a block's words: G codes by group, M codes, the other words by letter."""
+    seen: dict[str, Word] = {}
+    gcodes: dict[str, tuple[int, Word]] = {}
+    mcodes: list[tuple[int, Word]] = []
+    for w in words:
+        if w.letter == "G":
+            key = _gkey(w, where)
+            if key in _G_UNSUPPORTED:
+                where.fail(f"{_G_UNSUPPORTED[key]}: not supported", column=w.column, text=w.text,
+                           expected="milling G codes (see vcnc's ISO reader)")
+            if key not in _G:
+                where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
+                           expected="a G code of LinuxCNC's milling set")
+            grp = _G[key][0]
+            if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
+                    "motion", (0,))[0] == 800:
+                # "G80 G00": Fanuc posts cancel the cycle and set the motion in one block
+                if key == 800:
+                    continue
+            elif grp in gcodes:
+                where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
+                           column=w.column, text=w.text, expected=f"one {grp} code per block")
+            gcodes[grp] = (key, w)
+        elif w.letter == "M":
+            m = int(round(w.value))
+            if m != w.value or m < 0:
+                where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
+            if m in (98, 99):
+                where.fail(f"M{m} subprogram {'call' if m == 98 else 'return'}: subprograms are not supported",
+                           column=w.column, text=w.text, expected="a program without M98/M99 subprograms")
+            if 100 <= m <= 199:
+                where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
+                           column=w.column, text=w.text, expected="M codes below 100")
+            if m > 199:
+                where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
+            mcodes.append((m, w))
         else:
-            if letter in seen:
-                where.fail(f"word {letter} appears twice in one block", column=col, text=tok,
-                           expected=f"at most one {letter} word")
-            seen[letter] = (value, col, tok)
-            if letter == "N":
-                number = int(value) if value == int(value) else None
-    # modal settings first: they apply to this block's own words
+            if w.letter in "UVW":
+                where.fail(f"axis word {w.letter!r}: secondary linear axes U V W are not supported",
+                           column=w.column, text=w.text, expected="X, Y or Z")
+            if w.letter in "ABC" and w.letter.lower() not in st.context.rotary_axes:
+                where.fail(f"axis word {w.letter!r} is not supported: this machine has no rotary axis "
+                           f"{w.letter} (vcnc interpolates the linear axes X, Y, Z)",
+                           column=w.column, text=w.text, expected="X, Y or Z")
+            if w.letter in "ABC":
+                where.fail(f"rotary axis {w.letter}: interpolation of rotary axes is not supported",
+                           column=w.column, text=w.text, expected="X, Y or Z")
+            if w.letter in seen:
+                where.fail(f"word {w.letter} appears twice in one block", column=w.column, text=w.text,
+                           expected=f"at most one {w.letter} word")
+            seen[w.letter] = w
+    return seen, gcodes, mcodes
+
+
+def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,  # noqa: C901
+             notes: _Notes) -> bool:
+    """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
+    seen, gcodes, mcodes = _collect(words, where, notes, st)
+    number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
+    ctx = st.context
+    # order of execution (LinuxCNC G-code overview, "Order of Execution")
+    if "feed mode" in gcodes:
+        key, w = gcodes["feed mode"]
+        if key != 940:
+            where.fail(f"{w.text.upper()} {_G[key][1]} feed mode: not supported (feeds are per minute)",
+                       column=w.column, text=w.text, expected="G94 feed per minute")
+    # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
-        st.inch = gcodes["units"][0] == 20
+        st.inch = gcodes["units"][0] == 200
+        st.units_stated = True
     if "plane" in gcodes:
-        st.plane = _PLANE_OF_G[gcodes["plane"][0]]
+        st.plane = _PLANE_OF[_G[gcodes["plane"][0]][1]]
     if "distance" in gcodes:
-        st.incremental = gcodes["distance"][0] == 91
-    scale = INCH if st.inch else 1.0
-    dwell_g = "dwell" in gcodes
-    if "P" in seen and not dwell_g and "path" not in gcodes:
-        _, col, tok = seen["P"]
-        where.fail("word P needs G04 (dwell [ms]) or G64 (path tolerance)", column=col, text=tok,
-                   expected="G04 P<ms> or G64 P<tolerance>")
-    if "path" in gcodes:
-        g, gcol, gtok = gcodes["path"]
-        st.exact_stop = g == 61
-        if g == 64 and "P" in seen and not dwell_g:
-            tol, col, tok = seen["P"]
-            if not tol > 0:
-                where.fail("G64 path tolerance P must be > 0", column=col, text=tok, expected="P > 0 [mm]")
-            st.tolerance = tol * scale
-        elif g == 64:
-            st.tolerance = None
+        st.incremental = gcodes["distance"][0] == 910
+    if "arc distance" in gcodes:
+        st.arc_incremental = gcodes["arc distance"][0] == 911
     if "F" in seen:
-        f, col, tok = seen["F"]
-        if not f > 0:
-            where.fail("feed F must be > 0", column=col, text=tok,
-                       expected="F > 0 [in/min]" if st.inch else "F > 0 [mm/min]")
-        st.feed = f * scale / 60.0
-    if "S" in seen and seen["S"][0] < 0:
-        _, col, tok = seen["S"]
-        where.fail("spindle speed S must be >= 0", column=col, text=tok, expected="S >= 0 [rev/min]")
-    ended = any(m in (2, 30) for m, _ in mcodes)
-
-    if dwell_g:
-        g, gcol, gtok = gcodes["dwell"]
-        if "motion" in gcodes:
-            where.fail("G04 cannot share a block with a motion code", column=gcodes["motion"][1],
-                       text=gcodes["motion"][2], expected="G04 in a block of its own")
-        bad = [w for w in ("Y", "Z", "I", "J", "K", "R") if w in seen]
-        if bad:
-            _, col, tok = seen[bad[0]]
-            where.fail(f"word {bad[0]} not allowed in a dwell block", column=col, text=tok,
-                       expected="G04 P<ms> or G04 X<s>")
-        if ("P" in seen) == ("X" in seen):
-            where.fail("G04 needs exactly one of P (milliseconds) or X (seconds)", column=gcol, text=gtok,
-                       expected="G04 P<ms> or G04 X<s>")
-        val, col, tok = seen["P"] if "P" in seen else seen["X"]
-        seconds = val / 1000.0 if "P" in seen else val
-        if seconds < 0:
-            where.fail("dwell time must be >= 0", column=col, text=tok, expected="a dwell time >= 0")
-        blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
-                            target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True,
-                            tolerance=st.tolerance))
-        return ended
-
+        f = seen["F"]
+        scale = st.scale
+        if not f.value > 0:
+            where.fail("feed F must be > 0", column=f.column, text=f.text,
+                       expected="F > 0 [in/min]" if scale != 1.0 else "F > 0 [mm/min]")
+        st.feed = f.value * scale / 60.0
+    if "S" in seen:
+        if seen["S"].value < 0:
+            w = seen["S"]
+            where.fail("spindle speed S must be >= 0", column=w.column, text=w.text, expected="S >= 0 [rev/min]")
+        notes.add("S/M3-M5 spindle")
+    if "T" in seen:
+        w = seen["T"]
+        if w.value != int(w.value) or w.value < 0:
+            where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
+                       expected="T0, T1, ...")
+        st.tool_selected = int(w.value)
+        if ctx.tool(st.tool_selected) is None and st.tool_selected != 0:
+            notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
+    ended = False
+    for m, _ in mcodes:
+        if m in (2, 30):
+            ended = True
+        elif m == 6:
+            st.tool_current = st.tool_selected
+            notes.add("T/M6 tool change")
+        elif m == 61:
+            if "Q" in seen:
+                st.tool_current = int(seen["Q"].value)
+            notes.add(_M_NOTES[m])
+        elif m in _M_NOTES:
+            notes.add(_M_NOTES[m])
+        else:
+            notes.add(f"M{m} (no motion)")
+    # modal settings
+    if "spindle mode" in gcodes:
+        notes.add("G96/G97 spindle mode")
+    for grp in ("rotation", "scaling", "polar"):
+        if grp in gcodes:
+            notes.add(f"{gcodes[grp][1].text.upper()} cancel")
+    scale = st.scale
+    if "cutter compensation" in gcodes:
+        _cutter_compensation(gcodes["cutter compensation"], seen, st, where, notes)
+    if "length compensation" in gcodes:
+        _length_compensation(gcodes["length compensation"], seen, st, where, notes)
+    if "coordinate system" in gcodes:
+        st.wcs = _G[gcodes["coordinate system"][0]][1]
+    if "path" in gcodes:
+        key, w = gcodes["path"]
+        st.exact_stop = key != 640
+        if key == 640 and "P" in seen and "dwell" not in gcodes and seen["P"].value != 0:
+            tol = seen["P"]
+            if not tol.value > 0:
+                where.fail("G64 path tolerance P must be >= 0", column=tol.column, text=tol.text,
+                           expected="P >= 0 [mm] (P0: no tolerance given)")
+            st.tolerance = tol.value * scale
+        elif key == 640:
+            st.tolerance = None
+        if key == 640 and "Q" in seen:
+            notes.add("G64 Q naive-CAM tolerance (segments are blended, not merged)")
+    if "return mode" in gcodes:
+        st.retract_r = gcodes["return mode"][0] == 990
+    if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
+        _dwell(gcodes, seen, st, blocks, where, number)
+        if "motion" not in gcodes:
+            return ended
+        seen = {k: v for k, v in seen.items() if k not in ("P",) and not (k == "X" and "P" not in seen)}
+    if "nonmodal" in gcodes:
+        handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
+        if handled:
+            return ended
+    _check_p_q(seen, gcodes, st, where)
     if "motion" in gcodes:
-        st.motion = gcodes["motion"][0]
+        key = gcodes["motion"][0]
+        in_cycle = st.motion is not None and st.motion >= 730
+        if key == 800:
+            st.motion = st.cycle.motion_before if in_cycle else st.motion
+        else:
+            if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
+                st.cycle = CycleWords(motion_before=st.motion)
+            st.motion = key
+    elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
+        st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
-    has_r = "R" in seen
-    if not axis_words and "motion" not in gcodes:
-        if arc_words or has_r:
-            w = (arc_words or ["R"])[0]
-            _, col, tok = seen[w]
-            where.fail(f"word {w} without an arc motion", column=col, text=tok, expected="G02 or G03 with X/Y/Z")
+    _unused_words(seen, gcodes, st, notes)
+    if st.motion is not None and st.motion >= 730:
+        if axis_words:
+            _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
+    if not axis_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
+        for letter in ("I", "J", "K", "R"):
+            if letter in seen:
+                w = seen[letter]
+                where.fail(f"word {letter} without an arc motion", column=w.column, text=w.text,
+                           expected="G02 or G03 with X/Y/Z")
+        return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
     if st.motion is None:
-        _, col, tok = seen[axis_words[0]]
-        where.fail("axis words before any motion code", column=col, text=tok,
+        w = seen[axis_words[0]]
+        where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
-    motion = st.motion
-    mcol, mtok = (gcodes["motion"][1], gcodes["motion"][2]) if "motion" in gcodes else (
-        seen[axis_words[0]][1], seen[axis_words[0]][2])
-    if motion in (0, 1) and (arc_words or has_r):
-        w = (arc_words or ["R"])[0]
-        _, col, tok = seen[w]
-        where.fail(f"word {w} is only allowed on arcs (G02/G03)", column=col, text=tok,
-                   expected="X, Y, Z and F on G00/G01")
-    if not axis_words and not (motion in (2, 3) and arc_words):
-        where.fail(f"G{motion:02d} without axis words", column=mcol, text=mtok,
-                   expected="at least one of X, Y, Z")
+    target = _target(seen, axis_words, st, machine=False)
+    _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
+    return ended
+
+
+def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
+    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
+    if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
+        w = seen["P"]
+        where.fail("word P needs G04 (dwell), G64 (path tolerance), G10 or a drilling cycle", column=w.column,
+                   text=w.text, expected="G04 P<time> or G64 P<tolerance>")
+    for letter in ("Q", "L"):
+        if letter in seen and not cycle and not ("path" in gcodes and letter == "Q") \
+                and not ("nonmodal" in gcodes and letter == "L"):
+            w = seen[letter]
+            where.fail(f"unknown word {w.text!r} outside a drilling cycle", column=w.column, text=w.text,
+                       expected=f"{letter} only in drilling cycles (G73, G83)" if letter == "Q" else
+                       f"{letter} only in drilling cycles or G10")
+
+
+def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
+    """H and D words without the compensation that reads them: noted (Fanuc posts write them apart)."""
+    if "H" in seen and "length compensation" not in gcodes:
+        notes.add("H word without G43 (ignored)")
+    if "D" in seen and "cutter compensation" not in gcodes:
+        notes.add("D word without G41/G42 (ignored)")
+
+
+def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
+    """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)."""
     target = st.pos.copy()
-    for w in axis_words:
-        i = "XYZ".index(w)
-        v = seen[w][0] * scale
-        target[i] = st.pos[i] + v if st.incremental else v
-        used.add(i)
+    off = st.offset()
+    for letter in axis_words:
+        i = "XYZ".index(letter)
+        v = seen[letter].value * st.scale
+        if machine:
+            target[i] = v
+        elif st.incremental:
+            target[i] = st.pos[i] + v
+        else:
+            target[i] = v + off[i]
+    return target
+
+
+def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, used, where: Where, number) -> None:
+    motion = st.motion
+    mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
+    mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
+    code = f"G{motion // 10:02d}"
+    if motion in (0, 10) and (arc_words or "R" in seen):
+        w = seen[(arc_words or ["R"])[0]]
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
+                   expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.feed is None:
-        where.fail(f"G{motion:02d} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+        where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+    for letter in axis_words:
+        used.add("XYZ".index(letter))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
-    if motion in (0, 1):
-        seg = Line(st.pos, target)
+    if motion in (0, 10):
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else st.feed,
-                    segment=seg, **common)
+                    segment=Line(st.pos, target), **common)
     else:
+        seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
-        ccw = motion == 3
-        if arc_words and has_r:
-            _, col, tok = seen["R"]
-            where.fail("arc with both I/J/K and R", column=col, text=tok, expected="either I/J/K or R")
-        try:
-            if has_r:
-                seg = arc_from_radius(st.pos, target, seen["R"][0] * scale, ccw=ccw, plane=st.plane)
-            elif arc_words:
-                allowed = {"XYZ"[p], "XYZ"[q]}
-                offs = np.zeros(3)
-                for w in arc_words:
-                    i = "IJK".index(w)
-                    if "XYZ"[i] not in allowed:
-                        _, col, tok = seen[w]
-                        plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
-                        where.fail(f"word {w} is outside the arc plane ({plane_g})", column=col, text=tok,
-                                   expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g}")
-                    offs[i] = seen[w][0] * scale
-                seg = arc_from_center(st.pos, target, st.pos + offs, ccw=ccw, plane=st.plane)
-            else:
-                where.fail(f"G{motion:02d} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok,
-                           expected="I/J/K or R")
-        except ArcWordError as exc:
-            w = "R" if has_r else (arc_words[0] if arc_words else None)
-            col, tok = (seen[w][1], seen[w][2]) if w else (mcol, mtok)
-            where.fail(exc.message, column=col, text=tok, expected=exc.expected)
         target = np.array(seg.end)
         common["target"] = target
         blk = Block(kind="arc", feed=st.feed, segment=seg, **common)
     blocks.append(blk)
     st.pos = target
-    return ended
+
+
+def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
+    p, q = PLANE_AXES[st.plane]
+    ccw = st.motion == 30
+    has_r = "R" in seen
+    allowed = {"IJK"[p], "IJK"[q]}
+    plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
+    for letter in arc_words:
+        w = seen[letter]
+        if letter not in allowed and w.value != 0.0:
+            where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
+                       expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
+    in_plane = [w for w in arc_words if w in allowed]
+    if in_plane and has_r:
+        w = seen["R"]
+        where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
+    try:
+        if has_r:
+            return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane)
+        if in_plane:
+            if st.arc_incremental:
+                center = st.pos.copy()
+                for letter in in_plane:
+                    center["IJK".index(letter)] += seen[letter].value * st.scale
+            else:  # G90.1: absolute centre in program coordinates
+                center = st.pos.copy()
+                off = st.offset()
+                for letter in in_plane:
+                    i = "IJK".index(letter)
+                    center[i] = seen[letter].value * st.scale + off[i]
+            return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
+                                   tolerance=spiral_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch))
+        where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
+    except ArcWordError as exc:
+        w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)
+        col, tok = (w.column, w.text) if w is not None else (mcol, mtok)
+        where.fail(exc.message, column=col, text=tok, expected=exc.expected)
+    raise AssertionError("unreachable")
+
+
+def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
+    key, gw = gcodes["dwell"]
+    if "motion" in gcodes and "P" not in seen:
+        w = gcodes["motion"][1]
+        where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
+                   expected="G04 P<time> G01 X..")
+    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R") if w in seen]
+    if bad:
+        w = seen[bad[0]]
+        where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
+                   expected="G04 P<time> or G04 X<s>")
+    unit = st.context.dialect.dwell_p_unit
+    if ("P" in seen) == ("X" in seen):
+        where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
+                   expected=f"G04 P<{unit}> or G04 X<s>")
+    w = seen["P"] if "P" in seen else seen["X"]
+    seconds = w.value / 1000.0 if ("P" in seen and unit == "ms") else w.value
+    if seconds < 0:
+        where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
+    blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
+                        target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True, tolerance=st.tolerance))
+    return False
+
+
+def _cutter_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
+    key, w = entry
+    if key == 400:
+        st.comp_side = None
+        return
+    dynamic = key in (411, 421)
+    if "D" in seen and dynamic:
+        radius = seen["D"].value * st.scale / 2.0
+    else:
+        tool = st.context.tool(int(seen["D"].value)) if "D" in seen else (
+            st.context.tool(st.tool_current) if st.tool_current is not None else None)
+        radius = 0.0 if tool is None else tool.radius
+    if radius != 0.0:
+        where.fail(f"{w.text.upper()} cutter radius compensation with a tool radius of {radius:g} mm: "
+                   "not supported (only radius 0)", column=w.column, text=w.text,
+                   expected="a tool radius of 0 in the tool table, or a program of tool-centre paths")
+    st.comp_side = "left" if key in (410, 411) else "right"
+    notes.add("G41/G42 with tool radius 0 (path unchanged)")
+
+
+def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
+    key, w = entry
+    if key == 490:
+        st.tool_length = 0.0
+        return
+    if key == 431:
+        z = seen.get("Z")
+        if z is None:
+            where.fail("G43.1 needs the tool length as a Z word", column=w.column, text=w.text,
+                       expected="G43.1 Z<length>")
+        st.tool_length = z.value * st.scale
+        seen.pop("Z")
+        return
+    h = seen.pop("H", None)
+    number = int(h.value) if h is not None else st.tool_current
+    tool = st.context.tool(number) if number is not None else None
+    length = 0.0 if tool is None else tool.length
+    if tool is None and number not in (None, 0):
+        notes.add(f"H{number} not in the tool table (length 0)")
+    st.tool_length = -length if key == 440 else length
+    notes.add("G43/G44 tool length from the table")
+
+
+def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, notes: _Notes) -> bool:  # noqa: C901
+    """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
+    key, w = gcodes["nonmodal"]
+    axis_words = [a for a in ("X", "Y", "Z") if a in seen]
+    if key == 530:  # G53: this block's motion in machine coordinates
+        motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
+        if motion not in (0, 10):
+            where.fail("G53 needs G0 or G1", column=w.column, text=w.text, expected="G53 G0/G1 with axis words")
+        if "motion" in gcodes:
+            st.motion = motion
+        target = _target(seen, axis_words, st, machine=True)
+        _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number)
+        return True
+    if key in (280, 300):
+        ref = st.home if key == 280 else st.reference2
+        if axis_words:
+            mid = _target(seen, axis_words, st, machine=False)
+            _rapid(mid, st, blocks, used, where, number, axis_words)
+            end = st.pos.copy()
+            for a in axis_words:
+                end["XYZ".index(a)] = ref["XYZ".index(a)]
+            _rapid(end, st, blocks, used, where, number, axis_words)
+        else:
+            _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"])
+        notes.add("G28/G30 reference return")
+        return True
+    if key in (281, 301):
+        if key == 281:
+            st.home = st.pos.copy()
+        else:
+            st.reference2 = st.pos.copy()
+        return True
+    if key == 920:
+        if not axis_words:
+            where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
+        base = st.offset() - st.g92
+        for a in axis_words:
+            i = "XYZ".index(a)
+            st.g92[i] = st.pos[i] - base[i] - seen[a].value * st.scale
+        st.g92_saved = st.g92.copy()
+        notes.add("G92 offset")
+        return True
+    if key in (921, 922):
+        if key == 921:
+            st.g92_saved = np.zeros(3)
+        st.g92 = np.zeros(3)
+        return True
+    if key == 923:
+        st.g92 = st.g92_saved.copy()
+        return True
+    if key == 100:
+        _g10(seen, st, where, w)
+        notes.add("G10 offsets set")
+        return True
+    return False
+
+
+def _g10(seen, st: _State, where: Where, w: Word) -> None:
+    l_word, p_word = seen.get("L"), seen.get("P")
+    if l_word is None or int(l_word.value) not in (2, 20):
+        where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
+                   expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+    p = int(p_word.value) if p_word is not None else 0
+    code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
+    if code is None:
+        where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
+                   expected="P0 (current) .. P9")
+    current = st.offsets.get(code, st.context.offset(code)).copy()
+    for a in ("X", "Y", "Z"):
+        if a in seen:
+            i = "XYZ".index(a)
+            v = seen[a].value * st.scale
+            if int(l_word.value) == 2:
+                current[i] = v
+            else:  # L20: the current position gets coordinate v
+                current[i] = st.pos[i] - st.g92[i] - (st.tool_length if i == 2 else 0.0) - v
+    st.offsets[code] = current
+
+
+def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words) -> None:
+    for a in axis_words:
+        used.add("XYZ".index(a))
+    blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid", start=st.pos.copy(),
+                        target=target.copy(), feed=np.inf, segment=Line(st.pos, target), exact_stop=st.exact_stop,
+                        tolerance=st.tolerance))
+    st.pos = target.copy()
+
+
+def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:
+    """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
+    name = _G[st.motion][1]
+    mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
+    if st.plane != 2:
+        where.fail(f"{name}: only in the XY plane (G17)", column=mw.column, text=mw.text, expected="G17")
+    if st.feed is None and st.motion != 0:
+        where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
+    off = st.offset()
+    try:
+        moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
+                            offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
+                            feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms")
+    except CycleError as exc:
+        w = seen.get(exc.letter, mw) if exc.letter else mw
+        where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)
+    for mv in moves:
+        used.update(i for i in range(3) if mv.target[i] != st.pos[i])
+        common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(),
+                      target=mv.target.copy(), exact_stop=True, tolerance=st.tolerance)
+        if mv.kind == "dwell":
+            blocks.append(Block(kind="dwell", feed=0.0, dwell=mv.dwell, **common))
+        else:
+            blocks.append(Block(kind=mv.kind, feed=mv.feed, segment=Line(st.pos, mv.target), **common))
+            st.pos = mv.target.copy()

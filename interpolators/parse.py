@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 
+from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
 from interpolators.iso import parse_iso
 from interpolators.program import Program
@@ -18,7 +19,7 @@ def detect_dialect(text: str) -> str:
     return "heidenhain" if looks_like_heidenhain(text) else "iso"
 
 
-def parse_program(text: str, *, source: str | None = None) -> Program:
+def parse_program(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
     """Parse program text, ISO or Heidenhain conversational (detected from the content).
 
     Parameters
@@ -27,6 +28,8 @@ def parse_program(text: str, *, source: str | None = None) -> Program:
         The program.
     source : str, optional
         Name of the file (or other label) reported in errors and kept in ``Program.source``.
+    context : MachineContext
+        The machine's work offsets, tool table, home positions and dialect (default: none).
 
     Returns
     -------
@@ -41,11 +44,11 @@ def parse_program(text: str, *, source: str | None = None) -> Program:
     if not isinstance(text, str):
         raise GCodeError(f"program text must be a str, got {type(text).__name__}", file=source)
     if detect_dialect(text) == "heidenhain":
-        return parse_heidenhain(text, source=source)
-    return parse_iso(text, source=source)
+        return parse_heidenhain(text, source=source, context=context)
+    return parse_iso(text, source=source, context=context)
 
 
-def load_program(path: str | os.PathLike[str]) -> Program:
+def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFAULT_CONTEXT) -> Program:
     """Read and parse a program file (UTF-8, or Latin-1 if it is not valid UTF-8).
 
     Raises
@@ -65,4 +68,4 @@ def load_program(path: str | os.PathLike[str]) -> Program:
         text = raw.decode("latin-1")
     if text.startswith("\ufeff"):
         text = text[1:]
-    return parse_program(text, source=name)
+    return parse_program(text, source=name, context=context)

@@ -80,6 +80,9 @@ class Program:
         Axes the program uses (written in an axis word or moved by an arc), canonical order.
     name : str or None
         Program name (Heidenhain ``BEGIN PGM`` name or ISO ``O`` number), if given.
+    notes : tuple of str
+        What the reader accepted without motion or assumed, one line per kind with its count
+        (``"T/M6 tool change x3"``, ``"no G20/G21: mm assumed (linuxcnc default)"``).
     """
 
     blocks: tuple[Block, ...]
@@ -87,6 +90,7 @@ class Program:
     dialect: str = "iso"
     axes: tuple[str, ...] = ()
     name: str | None = None
+    notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return len(self.blocks)

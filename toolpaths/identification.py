@@ -45,7 +45,8 @@ def random_moves(
 
     ISO output reproduces the table's layout: ``N0000 G00 X0.000 F12000`` then
     ``N0010 G01 X 0.258`` (a space stands for the plus sign, three decimals, N step 10), and a
-    final ``M30``.
+    final ``M30``. A first line ``G21 G61`` states mm and exact stop, which the table leaves to the
+    control: every move starts and ends at rest, whatever the control's default path mode.
 
     Parameters
     ----------
@@ -73,7 +74,7 @@ def random_moves(
             w.line(dict(zip(ax, row.tolist())), feed=float(feed))
         return w.end()
     width = max(4, len(str(10 * (n + 1))))
-    lines = [f"N{0:0{width}d} G00 " + " ".join(f"{a.upper()}0.000" for a in ax) + f" F{f}"]
+    lines = ["G21 G61", f"N{0:0{width}d} G00 " + " ".join(f"{a.upper()}0.000" for a in ax) + f" F{f}"]
     for i, row in enumerate(targets, start=1):
         words = " ".join(f"{a.upper()}{' ' if v >= 0 else '-'}{abs(v):.3f}" for a, v in zip(ax, row))
         lines.append(f"N{10 * i:0{width}d} G01 {words}")

@@ -24,7 +24,7 @@ LIMITS = {
 def _random_program(seed: int, n: int = 30, *, g64: bool = False) -> str:
     """Lines, R arcs (<= and > 180 deg), IJK arcs, helices and other planes, random feeds."""
     rng = np.random.default_rng(seed)
-    out = ["G21 G90 G17" + (" G64 P0.02" if g64 else "")]
+    out = ["G21 G90 G17" + (" G64 P0.02" if g64 else " G61")]  # the default path mode is G64
     pos = np.zeros(3)
     for _ in range(n):
         kind = rng.integers(0, 4)
@@ -214,7 +214,7 @@ def test_rapid_is_straight_at_rapid_rate():
 
 
 def test_dwell_and_sample_time():
-    prog = parse_program("G01 X1 F600\nG04 P12.5\nG01 X0\n")
+    prog = parse_program("G01 X1 F600\nG04 P0.0125\nG01 X0\n")  # LinuxCNC: P in seconds
     sp = interpolate(prog, sample_time=0.5e-3)
     dwell = sp.block == 1
     assert dwell.sum() == 25 and np.all(sp.position[dwell, 0] == 1.0) and np.all(sp.velocity[dwell] == 0)

@@ -10,6 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from interpolators import ARC_TOLERANCE, detect_dialect, load_program, parse_program
+from interpolators.arcs import SPIRAL_ABS_TOLERANCE_MM
 from vcnc.errors import GCodeError
 
 # Thesis (seeds/000), Table 3.2, first column and some of the second, as printed.
@@ -103,7 +104,7 @@ def test_detect_dialect():
 
 def test_modal_units_distance_and_dwell():
     prog = parse_program(
-        "%\nO1234 (test)\nG20 G91 G01 X1 F10 ; one inch\nX1\nG21 G90 G00 Z5\nG04 P250\nG04 X1.5\nM30\nG01 X99\n%\n"
+        "%\nO1234 (test)\nG20 G91 G01 X1 F10 ; one inch\nX1\nG21 G90 G00 Z5\nG04 P0.25\nG04 X1.5\nM30\nG01 X99\n%\n"
     )
     assert prog.name == "O1234"
     b = prog.blocks
@@ -161,15 +162,16 @@ BAD = [
     ("G01 X F100\n", 1, 5, "malformed number"),
     ("G01 X10\n", 1, 1, "without a feed"),
     ("G01 X10 F0\n", 1, 9, "feed F must be > 0"),
-    ("N10 G01 F100\n", 1, 5, "without axis words"),
+    ("G01 X1 F10\nG83 X1 R1 Z-2 F10\n", 2, 1, "peck depth Q"),
     ("X10\n", 1, 1, "before any motion code"),
     ("G02 X10 Y0 I4 F100\n", 1, 12, "not on the circle"),
     ("G02 X30 Y0 R10 F100\n", 1, 12, "longer than the diameter"),
     ("G02 X10 Y0 F100\n", 1, 1, "needs a centre"),
     ("G00 G01 X1 F1\n", 1, 5, "motion group"),
     ("G01 X1 X2 F1\n", 1, 8, "twice"),
-    ("G01 X1 F10 M06\n", 1, 12, "unknown M code"),
-    ("G99 X1\n", 1, 1, "unknown G code"),
+    ("G01 X1 F10 M150\n", 1, 12, "user M code"),
+    ("G38.2 Z-1 F10\n", 1, 1, "G38 probing"),
+    ("G01 X1 F10\nG7.5 X2\n", 2, 1, "unknown G code"),
     ("G01 X1 (open comment\n", 1, 8, "unclosed comment"),
     ("G17 G02 X1 K1 F1\n", 1, 12, "outside the arc plane"),
     ("G01 A10 F1\n", 1, 5, "not supported"),
@@ -198,9 +200,14 @@ def test_errors_name_line_column(text, line, column, words):
 
 
 def test_arc_tolerance_is_stated():
-    parse_program(f"G02 X{10 + 0.9 * ARC_TOLERANCE} Y0 I5 F100\n")
+    # ISO arcs: LinuxCNC's end-radius tolerance (interp_internal.hh CENTER_ARC_RADIUS_TOLERANCE_MM)
+    parse_program(f"G02 X{10 + 0.9 * SPIRAL_ABS_TOLERANCE_MM} Y0 I5 F100\n")
     with pytest.raises(GCodeError, match="tolerance"):
-        parse_program(f"G02 X{10 + 1.5 * ARC_TOLERANCE} Y0 I5 F100\n")
+        parse_program(f"G02 X{10 + 1.5 * SPIRAL_ABS_TOLERANCE_MM} Y0 I5 F100\n")
+    # Heidenhain arcs keep vcnc's own ARC_TOLERANCE
+    parse_program(f"1 L X+0 Y+0 F100\n2 CC X+5 Y+0\n3 C X+{10 + 0.9 * ARC_TOLERANCE} Y+0 DR-\n")
+    with pytest.raises(GCodeError, match="tolerance"):
+        parse_program(f"1 L X+0 Y+0 F100\n2 CC X+5 Y+0\n3 C X+{10 + 1.5 * ARC_TOLERANCE} Y+0 DR-\n")
 
 
 def test_load_program_missing_file(tmp_path):

@@ -14,8 +14,9 @@ from interpolators import interpolate, load_program, parse_program
 def test_random_moves_table_3_2_style():
     text = tp.random_moves(200, 10.0, 12000.0, seed=7)
     lines = text.splitlines()
-    assert lines[0] == "N0000 G00 X0.000 F12000"
-    for ln in lines[1:-1]:
+    assert lines[0] == "G21 G61"  # mm and exact stop stated, not left to the control's default
+    assert lines[1] == "N0000 G00 X0.000 F12000"
+    for ln in lines[2:-1]:
         assert re.fullmatch(r"N\d{4} G01 X[ -]\d\.\d{3}", ln), ln
     assert lines[-1].endswith("M30")
     assert text == tp.random_moves(200, 10.0, 12000.0, seed=7)

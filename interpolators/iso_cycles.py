@@ -1,0 +1,169 @@
+"""Drilling canned cycles of ISO G-code (G73, G81-G86, G89) as ordinary rapid, feed and dwell moves.
+
+Semantics of LinuxCNC's G-code reference ("Canned Cycles",
+https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc), in the XY plane:
+
+* **Preliminary motion**: if the tool is below the R plane, rapid up to R; rapid in X Y to the
+  hole; rapid down to R.
+* **Levels**: under G90 the Z word is the bottom and R the retract plane (program coordinates);
+  under G91 R is an increment from the Z where the block starts and Z an increment from R, and X Y
+  step incrementally for each of the L (LinuxCNC) or K (Fanuc) repeats. Under G90, L repeats drill
+  the same hole.
+* **Return**: G99 to the R plane; G98 to the higher of R and the Z at the start of the series of
+  contiguous cycles (the "initial level").
+* **Holes**: G81 feed to Z, rapid out; G82 also dwells P; G83 pecks Q, rapid to R after each
+  peck and back down to 0.010 in (0.254 mm) above the last depth; G73 pecks Q with a chip-break
+  retract of 0.010 in; G85 feeds in and out; G89 dwells, then feeds out; G86 dwells and rapids
+  out (spindle stopped); G84 (Fanuc tapping) feeds in and out.
+
+The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "RAPID_DELTA_INCH"]
+
+#: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
+RAPID_DELTA_INCH = 0.010
+
+
+class CycleError(ValueError):
+    """Cycle words that describe no cycle; ``letter`` names the word at fault."""
+
+    def __init__(self, message: str, *, letter: str | None = None, expected: str = "valid cycle words") -> None:
+        super().__init__(message)
+        self.letter = letter
+        self.expected = expected
+
+
+@dataclasses.dataclass
+class CycleWords:
+    """Sticky state of a series of canned cycles (program values as written, before scaling)."""
+
+    initial: float | None = None  # Z at the start of the series [mm, machine]
+    motion_before: int | None = None  # modal motion before the series (restored by G80, as Fanuc does)
+    r: float | None = None
+    z: float | None = None
+    q: float | None = None
+    p: float | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class HoleMove:
+    """One move of a cycle: ``kind`` "rapid" | "line" | "dwell", ``target`` [mm, machine],
+    ``feed`` [mm/s] (inf for rapids, 0 for dwells), ``dwell`` [s]."""
+
+    kind: str
+    target: np.ndarray
+    feed: float = math.inf
+    dwell: float = 0.0
+
+
+def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
+                scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool) -> list[HoleMove]:
+    """The moves of one canned-cycle block.
+
+    Parameters
+    ----------
+    g : int
+        Cycle code (73, 81, 82, 83, 84, 85, 86, 89).
+    words : dict
+        The block's words as written (``X Y Z R Q P L K``), not yet scaled.
+    cycle : CycleWords
+        Sticky state of the series, updated in place (R, Z, Q, P).
+    pos : ndarray (3,)
+        Current position [mm, machine].
+    offset : ndarray (3,)
+        Machine minus program coordinates [mm] (work, G92 and tool length offsets).
+    scale : float
+        mm per program unit (25.4 under G20).
+    incremental : bool
+        G91.
+    retract_r : bool
+        G99 (return to R) instead of G98.
+    feed : float
+        Feed [mm/s].
+    dwell_p_ms : bool
+        ``P`` in milliseconds (Fanuc/Haas) rather than seconds (LinuxCNC).
+
+    Raises
+    ------
+    CycleError
+        Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
+    """
+    for letter in ("R", "Z", "Q", "P"):
+        if letter in words:
+            setattr(cycle, letter.lower(), words[letter])
+    if cycle.r is None:
+        raise CycleError("no R (retract plane) word", letter=None, expected="R<retract level>")
+    if cycle.z is None:
+        raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
+    repeats = words.get("L", words.get("K", 1.0))
+    if repeats != int(repeats) or repeats < 0:
+        rl = "L" if "L" in words else "K"
+        raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
+    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
+        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
+    dwell = 0.0
+    if g in (82, 86, 89) and cycle.p is not None:
+        dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
+        if dwell < 0:
+            raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
+    z0 = float(pos[2])
+    if cycle.initial is None:
+        cycle.initial = z0
+    if incremental:
+        r = z0 + cycle.r * scale
+        bottom = r + cycle.z * scale
+    else:
+        r = cycle.r * scale + offset[2]
+        bottom = cycle.z * scale + offset[2]
+    if bottom > r:
+        raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
+                         letter="Z" if "Z" in words else "R", expected="Z below R")
+    clear = r if retract_r else max(r, cycle.initial)
+    delta = RAPID_DELTA_INCH * 25.4
+    out: list[HoleMove] = []
+    cur = pos.astype(float).copy()
+
+    def go(kind: str, x: float, y: float, z: float, f: float = math.inf) -> None:
+        nonlocal cur
+        target = np.array([x, y, z])
+        if np.array_equal(target, cur):
+            return
+        out.append(HoleMove(kind, target, f))
+        cur = target
+
+    if cur[2] < r:
+        go("rapid", cur[0], cur[1], r)
+    for _ in range(int(repeats)):
+        x, y = cur[0], cur[1]
+        if incremental:
+            x += words.get("X", 0.0) * scale
+            y += words.get("Y", 0.0) * scale
+        else:
+            x = words["X"] * scale + offset[0] if "X" in words else x
+            y = words["Y"] * scale + offset[1] if "Y" in words else y
+        go("rapid", x, y, cur[2])
+        go("rapid", x, y, r)
+        if g in (73, 83):
+            q = cycle.q * scale
+            depth = r - q
+            while depth > bottom:
+                go("line", x, y, depth, feed)
+                go("rapid", x, y, r if g == 83 else depth + delta)
+                if g == 83:
+                    go("rapid", x, y, depth + delta)
+                depth -= q
+        go("line", x, y, bottom, feed)
+        if dwell > 0:
+            out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
+        if g in (84, 85, 89):
+            go("line", x, y, r, feed)
+        go("rapid", x, y, clear)
+    return out
