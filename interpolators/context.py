@@ -23,7 +23,7 @@ import numpy as np
 
 from vcnc.errors import InputError
 
-__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT"]
+__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "read_tool_table"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
@@ -177,3 +177,47 @@ class MachineContext:
 
 #: The context of a machine that states none: it changes nothing.
 DEFAULT_CONTEXT = MachineContext()
+
+
+def read_tool_table(path: str) -> dict[int, Tool]:
+    """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line).
+
+    Following LinuxCNC's tool-table format (https://linuxcnc.org/docs/html/config/tool-table.html):
+    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter [machine units, mm here], ``Z`` tool
+    length offset; other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are
+    empty or only a comment are skipped.
+
+    Raises
+    ------
+    InputError
+        Unreadable file, or a line without ``T`` or with a malformed word (file and line named).
+    """
+    import re
+
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            lines = fh.read().splitlines()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read tool table: {exc.strerror or exc}") from None
+    tools: dict[int, Tool] = {}
+    word = re.compile(r"([A-Za-z])\s*([+-]?(?:\d+\.?\d*|\.\d+))")
+    for lineno, raw in enumerate(lines, start=1):
+        code, _, comment = raw.partition(";")
+        if not code.strip():
+            continue
+        words: dict[str, float] = {}
+        pos = 0
+        for m in word.finditer(code):
+            if code[pos:m.start()].strip():
+                break
+            words[m.group(1).upper()] = float(m.group(2))
+            pos = m.end()
+        if code[pos:].strip():
+            raise InputError(f"{path}:{lineno}: malformed tool-table word {code[pos:].split()[0]!r}; "
+                             "expected words such as T1 P1 D6.0 Z+12.5")
+        if "T" not in words:
+            raise InputError(f"{path}:{lineno}: tool-table line without a T word; expected T<number> ...")
+        number = int(words["T"])
+        tools[number] = Tool(number=number, length=words.get("Z", 0.0), radius=words.get("D", 0.0) / 2.0,
+                             comment=comment.strip())
+    return tools

@@ -29,6 +29,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 
 import drives
+from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.limits import AxisLimits
 from vcnc._callable import make_callable
 from vcnc.capture import Capture
@@ -119,6 +120,9 @@ class Machine:
         Free text.
     source : str or None
         Where the definition came from.
+    context : MachineContext
+        What the control applies to part programs: work offsets, tool table, home and reference
+        positions, dialect (the TOML's ``[program]`` table; the default changes nothing).
     """
 
     def __init__(
@@ -130,6 +134,7 @@ class Machine:
         limits: Mapping[str, AxisLimits],
         description: str = "",
         source: str | None = None,
+        context: MachineContext = DEFAULT_CONTEXT,
     ) -> None:
         if not (isinstance(sample_time, (int, float)) and math.isfinite(sample_time) and sample_time > 0):
             raise MachineError(f"Machine.sample_time [s] must be a finite number > 0, got {sample_time!r}")
@@ -152,6 +157,7 @@ class Machine:
         self.limits: dict[str, AxisLimits] = {a: limits[a] for a in self.axes}
         self.description = description
         self.source = source
+        self.context = context
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -170,6 +176,7 @@ class Machine:
             limits=spec.limits,
             description=spec.description,
             source=file,
+            context=spec.context,
         )
 
     @classmethod
@@ -232,6 +239,7 @@ class Machine:
             limits=limits,
             description=self.description,
             source=self.source,
+            context=self.context,
         )
 
     def with_axis_options(

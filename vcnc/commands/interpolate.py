@@ -21,7 +21,78 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="sample time [s] (default: the machine's, else 0.001)")
     parser.add_argument("--plot", metavar="PNG", help="also draw the path and speed/acceleration over time")
     parser.add_argument("--machine", metavar="NAME|FILE",
-                        help="take axis limits and Ts from a machine (default: interpolators.DEFAULT_LIMITS)")
+                        help="take axis limits, Ts and the program context (work offsets, tool table, home, "
+                             "dialect) from a machine (default: interpolators.DEFAULT_LIMITS, no offsets)")
+    add_context_arguments(parser)
+    parser.add_argument("--blocks", metavar="CSV",
+                        help="also write the interpreted motion blocks: block, line, kind, x, y, z (machine "
+                             "coordinates, mm), cx, cy, cz (arc centre), feed (mm/min)")
+
+
+def add_context_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--dialect`` and ``--tool-table``, shared by the commands that read part programs."""
+    parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl"),
+                        help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas) "
+                             "(default: the machine's, else linuxcnc)")
+    parser.add_argument("--tool-table", metavar="FILE",
+                        help="LinuxCNC tool table (T1 P1 D6.0 Z+12.5 ;comment) for G43 H and G41/G42 D")
+
+
+def program_context(args: argparse.Namespace, machine=None):
+    """The MachineContext for reading a program: the machine's, with --dialect/--tool-table applied."""
+    import dataclasses
+
+    from interpolators.context import DEFAULT_CONTEXT, DIALECTS, read_tool_table
+
+    context = machine.context if machine is not None else DEFAULT_CONTEXT
+    changes = {}
+    if getattr(args, "dialect", None):
+        old = context.dialect
+        changes["dialect"] = dataclasses.replace(DIALECTS[args.dialect], default_units=old.default_units,
+                                                 continuous_path=old.continuous_path, tolerance=old.tolerance)
+    if getattr(args, "tool_table", None):
+        changes["tools"] = {**context.tools, **read_tool_table(args.tool_table)}
+    return dataclasses.replace(context, **changes) if changes else context
+
+
+def blocks_table(program) -> tuple[list[str], list[list]]:
+    """Header and rows of ``--blocks``: what LinuxCNC's canonical calls carry, one row per block."""
+    import numpy as np
+
+    from toolpaths.geometry import Arc
+
+    header = ["block", "line", "kind", "x", "y", "z", "cx", "cy", "cz", "feed"]
+    rows = []
+    for i, b in enumerate(program.blocks):
+        if b.kind == "dwell":
+            kind = "dwell"
+        elif b.kind == "arc":
+            kind = "arc_ccw" if b.segment.ccw else "arc_cw"
+        else:
+            kind = "rapid" if b.kind == "rapid" else "feed"
+        centre = list(b.segment.center) if isinstance(b.segment, Arc) else [np.nan] * 3
+        feed = b.feed * 60.0 if np.isfinite(b.feed) else np.nan
+        rows.append([i, b.line, kind, *map(float, b.target), *map(float, centre), feed])
+    return header, rows
+
+
+def write_blocks(program, path: str) -> None:
+    """Write :func:`blocks_table` as CSV (atomically; empty fields for no centre / no feed)."""
+    import csv
+
+    from vcnc._io import atomic_path
+
+    header, rows = blocks_table(program)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        for r in rows:
+            w.writerow([v if isinstance(v, (int, str)) else ("" if v != v else f"{float(v):.12g}") for v in r])
+
+
+def notes_summary(program) -> str | None:
+    """One line naming what the reader accepted without motion or assumed, or None."""
+    return "ignored/noted: " + ", ".join(program.notes) if program.notes else None
 
 
 def _machine(name: str):
@@ -80,13 +151,17 @@ def run(args: argparse.Namespace) -> int:
     from interpolators import interpolate, load_program
     from vcnc._io import atomic_path
 
-    program = load_program(args.program)
     limits = None
     ts = 1e-3
+    machine = None
     if args.machine:
         machine = _machine(args.machine)
         limits = machine.limits
         ts = float(getattr(machine, "sample_time", ts) or ts)
+    program = load_program(args.program, context=program_context(args, machine))
+    summary = notes_summary(program)
+    if summary:
+        print(f"{args.program}: {summary}")
     if args.ts is not None:
         ts = args.ts
     sp = interpolate(program, limits=limits, sample_time=ts, profile=args.profile)
@@ -100,6 +175,8 @@ def run(args: argparse.Namespace) -> int:
         plt.close(fig)
         png = buf.getvalue()
     sp.to_csv(args.output)
+    if args.blocks:
+        write_blocks(program, args.blocks)
     if png is not None:
         with atomic_path(args.plot) as tmp:
             tmp.write_bytes(png)

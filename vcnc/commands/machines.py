@@ -7,6 +7,27 @@ import sys
 
 HELP = "list built-in machines (--show NAME|FILE prints a definition)"
 
+#: The machine context of part programs, printed (commented out, with its defaults) by ``--show``
+#: after a definition that has no ``[program]`` table of its own.
+PROGRAM_TABLE_DOC = """
+# Machine context of part programs (optional; these defaults change nothing). Uncomment to use.
+# [program]
+# dialect = "linuxcnc"           # linuxcnc | fanuc | haas | grbl: G04 P in s (linuxcnc, grbl) or ms
+# default_units = "mm"           # units of a program that states neither G20 nor G21 (mm | inch)
+# continuous_path = true         # path mode of a program that states neither G61 nor G64
+# tolerance = 0.01               # mm, path tolerance of that continuous-path mode
+# home = [0.0, 0.0, 0.0]         # mm, machine coordinates: where programs start; G28's position
+# reference2 = [0.0, 0.0, 0.0]   # mm, machine coordinates: G30's position
+# tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length)
+#
+# [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
+# G54 = [0.0, 0.0, 0.0]
+#
+# [program.tools.1]              # per tool number: G43 H1 applies the length, G41/G42 D1 the radius
+# length = 0.0                   # mm
+# radius = 0.0                   # mm
+"""
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--show", metavar="NAME|FILE", help="print the TOML definition of a machine")
@@ -24,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
             with open(machine.source or name) as fh:
                 text = fh.read()
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        if "[program" not in text:
+            sys.stdout.write(PROGRAM_TABLE_DOC)
         return 0
     names = builtin_machines()
     width = max(len(n) for n in names)

@@ -8,6 +8,8 @@ import json
 import logging
 from pathlib import Path
 
+from vcnc.commands.interpolate import add_context_arguments, notes_summary, program_context
+
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
 log = logging.getLogger(__name__)
@@ -21,6 +23,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--report", metavar="DIR", help="write plots: tracking error and control per axis, path")
     parser.add_argument("--profile", choices=("trapezoid", "scurve"), default="trapezoid", help="feed profile")
     parser.add_argument("--seed", type=int, default=0, help="seed of the measurement noise (default 0)")
+    add_context_arguments(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -30,7 +33,10 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.simulation_report import build_report, summarize
 
     machine = load_machine(args.machine)
-    program = interpolators.load_program(args.program)
+    program = interpolators.load_program(args.program, context=program_context(args, machine))
+    summary_line = notes_summary(program)
+    if summary_line:
+        print(f"{args.program}: {summary_line}")
     setpoints = interpolators.interpolate(
         program, limits=machine.limits, sample_time=machine.sample_time, profile=args.profile
     )

@@ -17,6 +17,17 @@ Layout::
     [axes.x.backlash]             #   friction backlash encoder dac saturation noise delay
     ...                           #   resonance position_periodic load drift
 
+    [program]                     # optional machine context of part programs (defaults change nothing)
+    dialect = "linuxcnc"          # linuxcnc | fanuc | haas | grbl: unit of G04 P (s | ms)
+    default_units = "mm"          # units of a program without G20/G21 (mm | inch)
+    continuous_path = true        # path mode of a program without G61/G64
+    tolerance = 0.01              # mm, path tolerance of that mode (optional)
+    home = [0.0, 0.0, 0.0]        # mm, machine coordinates: program start and G28
+    reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
+    tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
+    [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3
+    [program.tools.1]             # mm: length = 12.5, radius = 3.0 (per tool number)
+
 or, for an axis simulated by an FMU: ``[axes.x] fmu = "drive.fmu"`` (with ``[axes.x.limits]``).
 Field names and units are those of the ``drives`` and ``controllers`` records.
 """
@@ -33,6 +44,7 @@ from typing import Any
 
 import controllers
 import drives
+from interpolators.context import DIALECTS, WORK_OFFSETS, MachineContext, Tool, read_tool_table
 from interpolators.limits import AxisLimits
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
 from vcnc.errors import InputError, MachineError
@@ -40,7 +52,9 @@ from vcnc.setpoints import AXIS_NAMES
 
 __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
-_TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": ""}
+_TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
+_PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
+                 "work_offsets", "tools")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -54,6 +68,7 @@ class MachineSpec:
     sample_time: float
     axes: dict[str, Any]
     limits: dict[str, AxisLimits]
+    context: MachineContext = dataclasses.field(default_factory=MachineContext)
 
 
 class LineIndex:
@@ -257,7 +272,93 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
         except InputError as exc:
             key = getattr(exc, "key", None)
             raise where.error(exc.message, path + ((key,) if key else ())) from None
-    return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits)
+    context = _build_context(data.get("program", {}), where, file)
+    return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits,
+                       context=context)
+
+
+def _xyz_value(value: Any, path: tuple[str, ...], where: _Where) -> list[float]:
+    if (not isinstance(value, list) or len(value) != 3
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)):
+        raise where.error(f"'{'.'.join(path)}' [mm] must be three numbers [x, y, z], got {value!r}", path)
+    return [float(v) for v in value]
+
+
+def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noqa: C901
+    """The ``[program]`` table: dialect, home and reference positions, work offsets, tool table."""
+    path = ("program",)
+    if not isinstance(tab, dict):
+        raise where.error("'program' must be a table", path)
+    for key in tab:
+        if key not in _PROGRAM_KEYS:
+            raise where.error(f"unknown key 'program.{key}'; expected one of: {', '.join(_PROGRAM_KEYS)}",
+                              path + (key,))
+    name = tab.get("dialect", "linuxcnc")
+    if name not in DIALECTS or name == "heidenhain":
+        raise where.error(f"'program.dialect' must be one of linuxcnc, fanuc, haas, grbl, got {name!r}",
+                          path + ("dialect",))
+    changes: dict[str, Any] = {}
+    units = tab.get("default_units")
+    if units is not None:
+        if units not in ("mm", "inch"):
+            raise where.error(f"'program.default_units' must be 'mm' or 'inch', got {units!r}",
+                              path + ("default_units",))
+        changes["default_units"] = units
+    if "continuous_path" in tab:
+        if not isinstance(tab["continuous_path"], bool):
+            raise where.error("'program.continuous_path' must be true or false", path + ("continuous_path",))
+        changes["continuous_path"] = tab["continuous_path"]
+    if "tolerance" in tab:
+        tol = tab["tolerance"]
+        if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not (math.isfinite(tol) and tol > 0):
+            raise where.error(f"'program.tolerance' [mm] must be a number > 0, got {tol!r}", path + ("tolerance",))
+        changes["tolerance"] = float(tol)
+    dialect = dataclasses.replace(DIALECTS[name], **changes)
+    kwargs: dict[str, Any] = {"dialect": dialect}
+    for key in ("home", "reference2"):
+        if key in tab:
+            kwargs[key] = _xyz_value(tab[key], path + (key,), where)
+    offsets = tab.get("work_offsets", {})
+    if not isinstance(offsets, dict):
+        raise where.error("'program.work_offsets' must be a table of G54 = [x, y, z] ...", path + ("work_offsets",))
+    for code in offsets:
+        if code not in WORK_OFFSETS:
+            raise where.error(f"unknown work offset 'program.work_offsets.{code}'; expected one of: "
+                              f"{', '.join(WORK_OFFSETS)}", path + ("work_offsets", code))
+    kwargs["work_offsets"] = {c: _xyz_value(v, path + ("work_offsets", c), where) for c, v in offsets.items()}
+    tools: dict[int, Tool] = {}
+    if "tool_table" in tab:
+        tt = tab["tool_table"]
+        if not isinstance(tt, str):
+            raise where.error("'program.tool_table' must be a file path string", path + ("tool_table",))
+        ttp = Path(tt)
+        if not ttp.is_absolute() and file and not file.startswith("<"):
+            ttp = Path(file).parent / ttp
+        try:
+            tools.update(read_tool_table(str(ttp)))
+        except InputError as exc:
+            raise where.error(exc.message, path + ("tool_table",)) from None
+    tools_tab = tab.get("tools", {})
+    if not isinstance(tools_tab, dict):
+        raise where.error("'program.tools' must be tables [program.tools.<number>]", path + ("tools",))
+    for number, entry in tools_tab.items():
+        tpath = path + ("tools", number)
+        if not number.isdigit() or not isinstance(entry, dict):
+            raise where.error(f"'program.tools.{number}' must be a table named by a tool number", tpath)
+        for key in entry:
+            if key not in ("length", "radius", "comment"):
+                raise where.error(f"unknown key 'program.tools.{number}.{key}'; expected length [mm], radius [mm], "
+                                  "comment", tpath + (key,))
+        try:
+            tools[int(number)] = Tool(number=int(number), length=float(entry.get("length", 0.0)),
+                                      radius=float(entry.get("radius", 0.0)), comment=str(entry.get("comment", "")))
+        except (InputError, TypeError, ValueError) as exc:
+            raise where.error(f"program.tools.{number}: {getattr(exc, 'message', exc)}", tpath) from None
+    kwargs["tools"] = tools
+    try:
+        return MachineContext(**kwargs)
+    except InputError as exc:
+        raise where.error(exc.message, path) from None
 
 
 def _build_typed(table: dict[str, Any], registry: dict[str, type], path: tuple[str, ...], where: _Where) -> Any:
