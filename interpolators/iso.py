@@ -35,24 +35,27 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
 ========================= =======================================================================
 
-Out of scope, each an error naming the feature: parameters and expressions, O-word subroutines,
-M98/M99 subprograms, rotary axes A B C on a machine without them, U V W, probing G38.x, threading
-G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar G15/G16, scaling G50/G51,
-rotation G68, user M codes M100-M199, G93/G95 feed modes.
+Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
+:mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
+file). Out of scope, each an error naming the feature: rotary axes A B C on a machine without
+them, U V W, probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines
+G5.x, polar G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G93/G95 feed modes.
 """
 
 from __future__ import annotations
 
 import collections
 import dataclasses
+import re
 
 import numpy as np
 
-from interpolators._words import INCH, Where, lines_of
+from interpolators._words import INCH, Where
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
-from interpolators.iso_words import Word, read_words, strip_comments
+from interpolators.iso_flow import run
+from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Line
 
@@ -193,32 +196,22 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     notes = _Notes()
     blocks: list[Block] = []
     used: set[int] = set()
-    name: str | None = None
-    for lineno, raw in enumerate(lines_of(text), start=1):
-        where = Where(source, lineno, raw.strip())
-        code = strip_comments(raw, where)
-        stripped = code.strip()
-        if not stripped:
-            continue
-        if stripped.startswith("%"):
-            if stripped != "%":
-                where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=stripped,
-                           expected="'%' alone")
-            continue
-        if stripped.startswith("/"):
+    name = _program_name(text)
+    for fl in run(text, source=source):
+        if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
-            code = code.replace("/", " ", 1)
-        words = read_words(code, where)
-        if name is None:
-            for w in words:
-                if w.letter == "O":
-                    name = f"O{w.value:g}"
-        if _execute(words, st, blocks, used, where, notes):
+        if _execute(fl.words, st, blocks, used, Where(source, fl.line, fl.raw), notes):
             break
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
+
+
+def _program_name(text: str) -> str | None:
+    """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
+    m = re.search(r"^\s*(?:%\s*)?(?:[oO]|:)\s*(\d+)\b(?!\s*[a-zA-Z])", text, re.M)
+    return f"O{int(m.group(1))}" if m else None
 
 
 def _gkey(w: Word, where: Where) -> int:
@@ -256,9 +249,6 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             m = int(round(w.value))
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
-            if m in (98, 99):
-                where.fail(f"M{m} subprogram {'call' if m == 98 else 'return'}: subprograms are not supported",
-                           column=w.column, text=w.text, expected="a program without M98/M99 subprograms")
             if 100 <= m <= 199:
                 where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
                            column=w.column, text=w.text, expected="M codes below 100")

@@ -2,7 +2,8 @@
 
 Follows the LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html):
 letters are case-insensitive, spaces may stand between a letter and its number, ``( ... )``
-comments end at the first ``)`` (no nesting; a ``(`` inside a comment is text), ``;`` comments
+comments may nest (``(a (b) c)``: CAM posts write them; LinuxCNC would end the comment at the
+first ``)`` and then reject the rest), ``;`` comments
 run to the end of the line, ``/`` at the start of a line marks a block-delete line (executed: the
 block-delete switch is off, as in LinuxCNC's default), and ``%`` lines demarcate the program.
 Parameters (``#``), expressions (``[``) and O-words are named as such when met.
@@ -31,7 +32,7 @@ class Word:
 
 
 def strip_comments(raw: str, where: Where) -> str:
-    """Blank out comments, keeping columns. An unclosed ``(`` is an error."""
+    """Blank out comments (nested parentheses allowed), keeping columns. An unclosed ``(`` is an error."""
     out = list(raw)
     i, n = 0, len(raw)
     while i < n:
@@ -40,11 +41,14 @@ def strip_comments(raw: str, where: Where) -> str:
             out[i:] = " " * (n - i)
             break
         if ch == "(":
-            j = raw.find(")", i + 1)
-            if j < 0:
+            depth, j = 1, i + 1
+            while j < n and depth:
+                depth += {"(": 1, ")": -1}.get(raw[j], 0)
+                j += 1
+            if depth:
                 where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
-            out[i : j + 1] = " " * (j + 1 - i)
-            i = j + 1
+            out[i:j] = " " * (j - i)
+            i = j
             continue
         if ch == ")":
             where.fail("')' without '('", column=i + 1, text=")", expected="a word")
@@ -62,22 +66,6 @@ def read_words(code: str, where: Where) -> list[Word]:
             i += 1
             continue
         up = ch.upper()
-        if ch == "#":
-            tok = token_at(code, i)
-            where.fail(f"parameter {tok!r}: numbered and named parameters (#) are not supported",
-                       column=i + 1, text=tok, expected="plain numbers in words")
-        if ch == "[":
-            tok = token_at(code, i)
-            where.fail(f"expression {tok!r}: [expressions] are not supported", column=i + 1, text=tok,
-                       expected="plain numbers in words")
-        if up == "O" and i + 1 < n and (code[i + 1] == "<" or not _number_follows(code, i + 1)):
-            tok = token_at(code, i)
-            where.fail(f"O-word {tok!r}: O-word subroutines and control flow are not supported",
-                       column=i + 1, text=tok, expected="a program without O-word subroutines")
-        if up == "O" and _oword_keyword_follows(code, i + 1):
-            tok = code[i:].strip()
-            where.fail(f"O-word {tok!r}: O-word subroutines and control flow are not supported",
-                       column=i + 1, text=tok, expected="a program without O-word subroutines")
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
             where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,
@@ -86,23 +74,3 @@ def read_words(code: str, where: Where) -> list[Word]:
         words.append(Word(up, value, i + 1, code[i:end].strip()))
         i = end
     return words
-
-
-def _number_follows(code: str, pos: int) -> bool:
-    j = pos
-    while j < len(code) and code[j] in " \t":
-        j += 1
-    return j < len(code) and (code[j].isdigit() or code[j] in "+-.")
-
-
-_O_KEYWORDS = ("sub", "endsub", "call", "if", "elseif", "else", "endif", "while", "endwhile", "do", "repeat",
-               "endrepeat", "return", "break", "continue")
-
-
-def _oword_keyword_follows(code: str, pos: int) -> bool:
-    """True for ``o100 sub``-style lines (an O number followed by a control keyword)."""
-    j = pos
-    while j < len(code) and (code[j].isdigit() or code[j] in " \t"):
-        j += 1
-    rest = code[j:].lower()
-    return any(rest.startswith(k) and (len(rest) == len(k) or not rest[len(k)].isalpha()) for k in _O_KEYWORDS)

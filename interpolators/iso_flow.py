@@ -1,0 +1,328 @@
+"""Program flow of ISO G-code: O-word subroutines and control flow, Fanuc M98/M99 subprograms.
+
+LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
+
+* ``o100 sub`` ... ``o100 endsub`` defines a subroutine (also ``o<name> sub``), skipped where it
+  stands; ``o100 call [a] [b] ...`` runs it with ``#1``, ``#2``, ... = the arguments (local),
+  ``o100 return [v]`` / ``endsub [v]`` leave it (the value goes to ``#<_value>``);
+* ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``, ``do``/``while``,
+  ``repeat [n]``/``endrepeat``, ``break`` and ``continue``, each tied by its O number or name;
+* a subroutine defined in another file (``o<name> call`` without a ``sub`` here) is an error.
+
+Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M98 P1000 L3``
+runs the program ``O1000`` of the same file three times; ``M99`` returns, and in the main
+program ends it (the control would rewind; vcnc runs the program once).
+
+:func:`run` yields the lines to execute in order, with their words read (parameters and
+expressions evaluated by :mod:`interpolators.iso_params`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from collections.abc import Iterator
+
+from interpolators._words import Where, lines_of
+from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
+from interpolators.iso_words import Word, read_words, strip_comments
+
+__all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
+
+#: Largest number of lines a program may execute (a guard against endless loops).
+MAX_EXECUTED_LINES = 5_000_000
+
+_O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+)\s*([a-zA-Z]+)?(.*)$")
+_FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
+_KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
+             "repeat", "endrepeat", "break", "continue"}
+
+
+@dataclasses.dataclass(frozen=True)
+class FlowLine:
+    """One executed line: 1-based source ``line``, its ``raw`` text and its ``words``."""
+
+    line: int
+    raw: str
+    words: list[Word]
+
+
+@dataclasses.dataclass(frozen=True)
+class _OWord:
+    label: str
+    keyword: str
+    rest: str
+    column: int  # 1-based column of the rest
+
+
+@dataclasses.dataclass
+class _Frame:
+    return_pc: int
+    start_pc: int
+    repeats: int
+    params: bool  # an O-word call (has a parameter frame) rather than M98
+
+
+class _Program:
+    """The lines of a program, classified, with the O-word structure indexed."""
+
+    def __init__(self, text: str, source: str | None) -> None:
+        self.source = source
+        self.raw = lines_of(text)
+        self.code: list[str | None] = []
+        self.oword: dict[int, _OWord] = {}
+        self.fanuc: dict[int, int] = {}
+        self.by_label: dict[str, list[int]] = {}
+        for i, raw in enumerate(self.raw):
+            where = self.where(i)
+            code = strip_comments(raw, where)
+            s = code.strip()
+            if not s or s == "%":
+                self.code.append(None)
+                continue
+            if s.startswith("%"):
+                where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=s, expected="'%' alone")
+            if s.startswith("/"):
+                code = code.replace("/", " ", 1)
+            m = _O_LINE.match(code)
+            if m and m.group(2) and m.group(2).lower() in _KEYWORDS:
+                label = m.group(1).lower().replace(" ", "")
+                self.oword[i] = _OWord(label, m.group(2).lower(), m.group(3), m.start(3) + 1)
+                self.by_label.setdefault(label, []).append(i)
+                self.code.append(None)
+                continue
+            if m and m.group(2):
+                where.fail(f"O-word {m.group(2)!r}: unknown O-word keyword", column=m.start(2) + 1, text=m.group(2),
+                           expected="sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, "
+                                    "repeat, endrepeat, break or continue")
+            fm = _FANUC_PROGRAM.match(code)
+            if fm:
+                self.fanuc.setdefault(int(fm.group(1)), i)
+                self.code.append(None)
+                continue
+            if m and m.group(1).startswith("<"):
+                where.fail(f"O-word o{m.group(1)} without a keyword", column=1, text=s, expected="o<name> call ...")
+            self.code.append(code)
+
+    def where(self, i: int) -> Where:
+        return Where(self.source, i + 1, self.raw[i].strip())
+
+    def fail(self, i: int, message: str, expected: str) -> None:
+        ow = self.oword.get(i)
+        self.where(i).fail(message, column=1, text=self.raw[i].strip(),
+                           expected=expected if ow is None else expected)
+
+    def next_of(self, i: int, keywords: tuple[str, ...]) -> int:
+        """The next line after ``i`` with the same O label and one of ``keywords``."""
+        label = self.oword[i].label
+        for j in self.by_label[label]:
+            if j > i and self.oword[j].keyword in keywords:
+                return j
+        ow = self.oword[i]
+        self.fail(i, f"O-word o{label} {ow.keyword}: no matching {' or '.join(keywords)}",
+                  f"o{label} {keywords[-1]} closing it")
+        raise AssertionError("unreachable")
+
+    def prev_of(self, i: int, keywords: tuple[str, ...]) -> int | None:
+        label = self.oword[i].label
+        for j in reversed(self.by_label[label]):
+            if j < i and self.oword[j].keyword in keywords:
+                return j
+        return None
+
+    def sub_start(self, label: str) -> int | None:
+        for j in self.by_label.get(label, ()):
+            if self.oword[j].keyword == "sub":
+                return j
+        return None
+
+
+def _args(prog: _Program, i: int, params: Parameters) -> list[float]:
+    """The bracketed values after an O-word keyword (call arguments, conditions, counts)."""
+    ow = prog.oword[i]
+    raw = prog.raw[i]
+    code = strip_comments(raw, prog.where(i))
+    pos = ow.column - 1
+    values = []
+    while True:
+        while pos < len(code) and code[pos] in " \t\r":
+            pos += 1
+        if pos >= len(code):
+            return values
+        v, pos = evaluate_at(code, pos, prog.where(i), params)
+        values.append(v)
+
+
+def _condition(prog: _Program, i: int, params: Parameters) -> bool:
+    values = _args(prog, i, params)
+    if len(values) != 1:
+        ow = prog.oword[i]
+        prog.fail(i, f"O-word o{ow.label} {ow.keyword} needs one condition [expression]",
+                  f"o{ow.label} {ow.keyword} [expression]")
+    return values[0] != 0.0
+
+
+def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
+        max_lines: int = MAX_EXECUTED_LINES) -> Iterator[FlowLine]:
+    """Yield the lines of a program in execution order, their words read.
+
+    The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
+    line whose ``M99`` is replaced by ``M30``.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
+    """
+    prog = _Program(text, source)
+    params = Parameters() if params is None else params
+    frames: list[_Frame] = []
+    taken: dict[str, bool] = {}
+    repeats: dict[int, int] = {}
+    pc = 0
+    executed = 0
+    n = len(prog.code)
+    while pc < n:
+        executed += 1
+        if executed > max_lines:
+            prog.fail(pc, f"more than {max_lines} executed lines: an endless loop?", "a loop that ends")
+        ow = prog.oword.get(pc)
+        if ow is not None:
+            pc = _oword(prog, pc, ow, params, frames, taken, repeats)
+            continue
+        code = prog.code[pc]
+        if code is None:
+            pc += 1
+            continue
+        where = prog.where(pc)
+        words = read_line(code, where, params) if has_parameters(code) else read_words(code, where)
+        m98 = next((w for w in words if w.letter == "M" and w.value == 98), None)
+        m99 = next((w for w in words if w.letter == "M" and w.value == 99), None)
+        if m98 is None and m99 is None:
+            yield FlowLine(pc + 1, where.text, words)
+            pc += 1
+            continue
+        if m98 is not None:
+            p = next((w for w in words if w.letter == "P"), None)
+            if p is None or p.value != int(p.value) or int(p.value) not in prog.fanuc:
+                target = "no P word" if p is None else f"program O{p.value:g} is not in this file"
+                where.fail(f"M98 subprogram call: {target}", column=m98.column, text=m98.text,
+                           expected="M98 P<number> of an O<number> program in the same file")
+            count = next((int(w.value) for w in words if w.letter in "LK"), 1)
+            rest = [w for w in words if w is not m98 and w.letter not in "PLK"]
+            if rest:
+                yield FlowLine(pc + 1, where.text, rest)
+            if count > 0:
+                start = prog.fanuc[int(p.value)] + 1
+                frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, params=False))
+                pc = start
+            else:
+                pc += 1
+            continue
+        rest = [w for w in words if w is not m99]
+        if not frames:
+            yield FlowLine(pc + 1, where.text, rest + [Word("M", 30.0, m99.column, m99.text)])
+            return
+        if rest:
+            yield FlowLine(pc + 1, where.text, rest)
+        frame = frames[-1]
+        if frame.params:
+            prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
+        if frame.repeats > 0:
+            frame.repeats -= 1
+            pc = frame.start_pc
+        else:
+            frames.pop()
+            pc = frame.return_pc
+
+
+def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list[_Frame],  # noqa: C901
+           taken: dict[str, bool], repeats: dict[int, int]) -> int:
+    """Execute one O-word line; returns the next program counter."""
+    k = ow.keyword
+    if k == "sub":
+        return prog.next_of(pc, ("endsub",)) + 1
+    if k == "call":
+        start = prog.sub_start(ow.label)
+        if start is None:
+            prog.fail(pc, f"O-word o{ow.label} call: the subroutine is not defined in this file "
+                          "(subroutines in other files are not supported)", f"o{ow.label} sub ... endsub in the file")
+        args = _args(prog, pc, params)
+        params.push(args)
+        frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, params=True))
+        return start + 1
+    if k in ("endsub", "return"):
+        values = _args(prog, pc, params)
+        if not frames or not frames[-1].params:
+            if k == "endsub" and not frames:
+                prog.fail(pc, f"O-word o{ow.label} endsub without a call", "o-word call of the subroutine")
+            prog.fail(pc, f"O-word o{ow.label} {k} outside a subroutine", "return inside o-sub ... endsub")
+        frame = frames.pop()
+        params.pop()
+        if values:
+            params.named["_value"] = values[0]
+        return frame.return_pc
+    if k == "if":
+        if _condition(prog, pc, params):
+            taken[ow.label] = True
+            return pc + 1
+        taken[ow.label] = False
+        return prog.next_of(pc, ("elseif", "else", "endif"))
+    if k == "elseif":
+        if taken.get(ow.label, False):
+            return prog.next_of(pc, ("endif",))
+        if _condition(prog, pc, params):
+            taken[ow.label] = True
+            return pc + 1
+        return prog.next_of(pc, ("elseif", "else", "endif"))
+    if k == "else":
+        if taken.get(ow.label, False):
+            return prog.next_of(pc, ("endif",))
+        return pc + 1
+    if k == "endif":
+        taken.pop(ow.label, None)
+        return pc + 1
+    if k == "do":
+        return pc + 1
+    if k == "while":
+        do = prog.prev_of(pc, ("do",))
+        if do is not None and not any(prog.oword[j].keyword == "endwhile" for j in prog.by_label[ow.label]):
+            return do + 1 if _condition(prog, pc, params) else pc + 1
+        return pc + 1 if _condition(prog, pc, params) else prog.next_of(pc, ("endwhile",)) + 1
+    if k == "endwhile":
+        head = prog.prev_of(pc, ("while",))
+        if head is None:
+            prog.fail(pc, f"O-word o{ow.label} endwhile without while", f"o{ow.label} while [condition]")
+        return head
+    if k == "repeat":
+        if pc not in repeats:
+            values = _args(prog, pc, params)
+            if len(values) != 1 or values[0] != int(values[0]) or values[0] < 0:
+                prog.fail(pc, f"O-word o{ow.label} repeat needs a whole count >= 0", f"o{ow.label} repeat [n]")
+            repeats[pc] = int(values[0])
+        if repeats[pc] > 0:
+            repeats[pc] -= 1
+            return pc + 1
+        del repeats[pc]
+        return prog.next_of(pc, ("endrepeat",)) + 1
+    if k == "endrepeat":
+        head = prog.prev_of(pc, ("repeat",))
+        if head is None:
+            prog.fail(pc, f"O-word o{ow.label} endrepeat without repeat", f"o{ow.label} repeat [n]")
+        return head
+    # break / continue: the loop of the same label
+    head = prog.prev_of(pc, ("while", "repeat", "do"))
+    if head is None:
+        prog.fail(pc, f"O-word o{ow.label} {k} outside a loop", f"{k} inside o{ow.label} while/repeat/do")
+    kind = prog.oword[head].keyword
+    if kind == "repeat":
+        end = prog.next_of(head, ("endrepeat",))
+        if k == "break":
+            repeats.pop(head, None)
+            return end + 1
+        return head
+    if kind == "do":
+        closer = prog.next_of(head, ("while",))
+        return closer + 1 if k == "break" else closer
+    end = prog.next_of(head, ("endwhile",))
+    return end + 1 if k == "break" else head

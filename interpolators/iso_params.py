@@ -1,0 +1,301 @@
+"""Parameters and expressions of ISO G-code, as LinuxCNC defines them.
+
+LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, sections
+"Parameters", "Expressions", "Binary Operators", "Functions"):
+
+* numbered parameters ``#1`` .. ``#5399`` (unset ones read 0; ``#1``-``#30`` are local to a
+  subroutine call, where they hold its arguments), named parameters ``#<name>`` (local to the
+  subroutine unless the name starts with ``_``: global; reading an unset one is an error);
+* an assignment ``#1 = value`` takes effect after the whole line is read, so ``#1=2 X#1`` moves to
+  the old value of ``#1``;
+* expressions ``[ ... ]`` with ``**`` (power), ``* / MOD``, ``+ -``, ``EQ NE GT GE LT LE`` and
+  ``AND OR XOR``, in falling precedence, left to right within a level; unary minus on any value;
+* functions ``ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN`` of ``[arg]`` (angles in
+  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]``.
+
+System parameters that read the machine state (``#5220`` and above) are not modelled: reading one
+is an error naming it.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from interpolators._words import MAX_MAGNITUDE, Where, token_at
+from interpolators.iso_words import WORD_LETTERS, Word
+
+__all__ = ["Parameters", "read_line", "evaluate_at", "has_parameters"]
+
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
+_NAME = re.compile(r"<([^>]*)>")
+_FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN", "SIN", "SQRT",
+              "TAN")
+_BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
+#: Highest numbered parameter a program may read or set without naming machine state.
+_MAX_USER_PARAMETER = 5219
+
+
+class Parameters:
+    """Parameter store: global numbered and named parameters and a stack of call frames."""
+
+    def __init__(self) -> None:
+        self.numbered: dict[int, float] = {}
+        self.named: dict[str, float] = {}
+        self.frames: list[tuple[dict[int, float], dict[str, float]]] = []
+
+    def _local_numbered(self, n: int) -> dict[int, float]:
+        return self.frames[-1][0] if self.frames and 1 <= n <= 30 else self.numbered
+
+    def _scope(self, name: str) -> dict[str, float]:
+        return self.frames[-1][1] if self.frames and not name.startswith("_") else self.named
+
+    def get_numbered(self, n: int, where: Where, column: int, text: str) -> float:
+        if n < 1 or n > _MAX_USER_PARAMETER:
+            where.fail(f"parameter #{n}: system parameters (machine state, #5220 and above) are not supported",
+                       column=column, text=text, expected="a parameter #1 .. #5219")
+        return self._local_numbered(n).get(n, 0.0)
+
+    def get_named(self, name: str, where: Where, column: int, text: str) -> float:
+        key = name.lower().replace(" ", "")
+        scope = self._scope(key)
+        if key not in scope:
+            where.fail(f"named parameter #<{name}> is read before it is set", column=column, text=text,
+                       expected=f"#<{name}> = value before its first use")
+        return scope[key]
+
+    def exists(self, name: str) -> bool:
+        key = name.lower().replace(" ", "")
+        return key in self._scope(key)
+
+    def assign(self, key: int | str, value: float, where: Where, column: int, text: str) -> None:
+        if isinstance(key, int):
+            if key < 1 or key > _MAX_USER_PARAMETER:
+                where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
+                           expected="a parameter #1 .. #5219")
+            self._local_numbered(key)[key] = value
+        else:
+            k = key.lower().replace(" ", "")
+            self._scope(k)[k] = value
+
+    def push(self, args: list[float]) -> None:
+        """Enter a subroutine: ``#1``.. hold ``args``, the other locals start unset."""
+        self.frames.append(({i + 1: v for i, v in enumerate(args)}, {}))
+
+    def pop(self) -> None:
+        self.frames.pop()
+
+
+def has_parameters(code: str) -> bool:
+    """True when a line needs the parameter reader (``#`` or ``[``)."""
+    return "#" in code or "[" in code
+
+
+class _Reader:
+    """Recursive-descent reader of LinuxCNC real values on one comment-free line."""
+
+    def __init__(self, code: str, where: Where, params: Parameters) -> None:
+        self.code = code
+        self.up = code.upper()
+        self.where = where
+        self.params = params
+
+    def skip(self, pos: int) -> int:
+        while pos < len(self.code) and self.code[pos] in " \t\r":
+            pos += 1
+        return pos
+
+    def fail(self, message: str, pos: int, expected: str):
+        tok = token_at(self.code, min(pos, max(len(self.code) - 1, 0)))
+        self.where.fail(message, column=pos + 1, text=tok, expected=expected)
+
+    def parameter(self, pos: int) -> tuple[int | str, int]:
+        """``#n``, ``#<name>`` or ``#[expr]``/``##n`` at ``pos`` (the ``#``): the key and end."""
+        p = self.skip(pos + 1)
+        if p < len(self.code) and self.code[p] == "<":
+            m = _NAME.match(self.code, p)
+            if m is None:
+                self.fail("unclosed parameter name", pos, "#<name>")
+            return m.group(1), m.end()
+        value, end = self.real(p)
+        if value != int(value):
+            self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
+        return int(value), end
+
+    def read_parameter(self, pos: int) -> tuple[float, int]:
+        key, end = self.parameter(pos)
+        text = self.code[pos:end]
+        if isinstance(key, int):
+            return self.params.get_numbered(key, self.where, pos + 1, text), end
+        return self.params.get_named(key, self.where, pos + 1, text), end
+
+    def real(self, pos: int) -> tuple[float, int]:
+        """A real value: number, parameter, [expression], function, with unary signs."""
+        p = self.skip(pos)
+        if p >= len(self.code):
+            self.fail("missing value", pos, "a number, #parameter or [expression]")
+        ch = self.code[p]
+        if ch in "+-" and not _NUMBER.match(self.code, p):
+            v, end = self.real(p + 1)
+            return (-v if ch == "-" else v), end
+        if ch == "[":
+            v, end = self.expression(p + 1)
+            end = self.skip(end)
+            if end >= len(self.code) or self.code[end] != "]":
+                self.fail("unclosed '[' in an expression", p, "']' closing the expression")
+            return v, end + 1
+        if ch == "#":
+            return self.read_parameter(p)
+        m = _NUMBER.match(self.code, p)
+        if m:
+            v = float(m.group(0))
+            if abs(v) > MAX_MAGNITUDE:
+                self.fail("number out of range", p, f"a magnitude <= {MAX_MAGNITUDE:g}")
+            return v, m.end()
+        for name in _FUNCTIONS:
+            if self.up.startswith(name, p):
+                return self.function(name, p)
+        self.fail("malformed value", p, "a number, #parameter, [expression] or function such as SIN[30]")
+        raise AssertionError("unreachable")
+
+    def function(self, name: str, p: int) -> tuple[float, int]:
+        q = self.skip(p + len(name))
+        if q >= len(self.code) or self.code[q] != "[":
+            self.fail(f"function {name} needs its argument in [ ]", p, f"{name}[value]")
+        if name == "EXISTS":
+            q2 = self.skip(q + 1)
+            m = _NAME.match(self.code, q2 + 1) if self.code[q2:q2 + 1] == "#" else None
+            end = self.skip(m.end()) if m else q2
+            if m is None or self.code[end:end + 1] != "]":
+                self.fail("EXISTS needs a named parameter", p, "EXISTS[#<name>]")
+            return (1.0 if self.params.exists(m.group(1)) else 0.0), end + 1
+        arg, end = self.real(q)
+        if name == "ATAN":
+            s = self.skip(end)
+            if self.code[s:s + 1] != "/":
+                self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]")
+            x, end = self.real(s + 1)
+            return math.degrees(math.atan2(arg, x)), end
+        try:
+            return _apply(name, arg), end
+        except (ValueError, OverflowError):
+            self.fail(f"{name}[{arg:g}] is undefined", p, f"an argument in the domain of {name}")
+        raise AssertionError("unreachable")
+
+    def expression(self, pos: int, level: int = 0) -> tuple[float, int]:
+        """Binary expression at precedence ``level`` (0: logic, lowest)."""
+        if level == len(_BINARY):
+            return self.real(pos)
+        left, p = self.expression(pos, level + 1)
+        while True:
+            q = self.skip(p)
+            op = next((o for o in sorted(_BINARY[level], key=len, reverse=True) if self.up.startswith(o, q)), None)
+            if op is None or (op == "*" and self.up.startswith("**", q)):
+                return left, p
+            right, p = self.expression(q + len(op), level + 1)
+            left = self.binary(op, left, right, q)
+
+    def binary(self, op: str, a: float, b: float, pos: int) -> float:
+        if op in ("/", "MOD") and b == 0:
+            self.fail("division by zero", pos, "a divisor other than 0")
+        try:
+            return _binary(op, a, b)
+        except (ValueError, OverflowError, ZeroDivisionError, TypeError):
+            self.fail(f"{a:g} {op} {b:g} is undefined", pos, "a defined arithmetic result")
+        raise AssertionError("unreachable")
+
+
+_COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": float.__ge__, "LT": float.__lt__,
+            "LE": float.__le__}
+
+
+def _binary(op: str, a: float, b: float) -> float:
+    a, b = float(a), float(b)
+    if op == "**":
+        return float(a ** b)
+    if op == "*":
+        return a * b
+    if op == "/":
+        return a / b
+    if op == "MOD":  # LinuxCNC: fmod, made non-negative
+        m = math.fmod(a, b)
+        return m + abs(b) if m < 0 else m
+    if op == "+":
+        return a + b
+    if op == "-":
+        return a - b
+    if op in _COMPARE:
+        return 1.0 if _COMPARE[op](a, b) else 0.0
+    if op == "AND":
+        return 1.0 if (a != 0 and b != 0) else 0.0
+    if op == "OR":
+        return 1.0 if (a != 0 or b != 0) else 0.0
+    return 1.0 if (a != 0) != (b != 0) else 0.0  # XOR
+
+
+def _apply(name: str, x: float) -> float:
+    if name == "ABS":
+        return abs(x)
+    if name == "ACOS":
+        return math.degrees(math.acos(x))
+    if name == "ASIN":
+        return math.degrees(math.asin(x))
+    if name == "COS":
+        return math.cos(math.radians(x))
+    if name == "SIN":
+        return math.sin(math.radians(x))
+    if name == "TAN":
+        return math.tan(math.radians(x))
+    if name == "EXP":
+        return math.exp(x)
+    if name == "LN":
+        return math.log(x)
+    if name == "SQRT":
+        return math.sqrt(x)
+    if name == "FIX":
+        return float(math.floor(x))
+    if name == "FUP":
+        return float(math.ceil(x))
+    if name == "ROUND":
+        return float(math.floor(x + 0.5)) if x >= 0 else -float(math.floor(-x + 0.5))
+    raise ValueError(name)
+
+
+def evaluate_at(code: str, pos: int, where: Where, params: Parameters) -> tuple[float, int]:
+    """The real value (usually a ``[expression]``) starting at ``pos``; returns (value, end)."""
+    return _Reader(code, where, params).real(pos)
+
+
+def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
+    """Words of a comment-free line whose values may be parameters or expressions.
+
+    Parameter assignments on the line are applied after all its values are read (LinuxCNC).
+    """
+    r = _Reader(code, where, params)
+    words: list[Word] = []
+    assignments: list[tuple[int | str, float, int, str]] = []
+    i, n = 0, len(code)
+    while i < n:
+        ch = code[i]
+        if ch in " \t\r\f\v":
+            i += 1
+            continue
+        if ch == "#":
+            key, end = r.parameter(i)
+            eq = r.skip(end)
+            if code[eq:eq + 1] != "=":
+                r.fail("a parameter outside a word must be assigned", i, "#n = value")
+            value, end = r.real(eq + 1)
+            assignments.append((key, value, i + 1, code[i:end].strip()))
+            i = end
+            continue
+        up = ch.upper()
+        if up not in WORD_LETTERS:
+            r.fail(f"unknown word {token_at(code, i)!r}", i,
+                   "a word of the letters " + " ".join(sorted(WORD_LETTERS)) + " or a #parameter assignment")
+        value, end = r.real(i + 1)
+        words.append(Word(up, value, i + 1, code[i:end].strip()))
+        i = end
+    for key, value, column, text in assignments:
+        params.assign(key, value, where, column, text)
+    return words
