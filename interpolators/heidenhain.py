@@ -63,7 +63,6 @@ the function, line and column. ``CYCLE DEF``, which the SolidWorks TNC post writ
 
 from __future__ import annotations
 
-import logging
 import math
 import re
 
@@ -100,8 +99,6 @@ from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
-
-log = logging.getLogger(__name__)
 
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
@@ -160,7 +157,7 @@ class _Machine:
         self.params = QParameters()
         self.blocks: list[Block] = []
         self.used: set[int] = set()
-        self.notes: list[str] = []
+        self.notes: dict[str, int] = {}
         self.pending: tuple[str, float, float | None, Where] | None = None  # RND/CHF waiting for its next line
         self.approach: dict | None = None  # APPR LT waiting for the first contour element
         self.last_rapid = False
@@ -182,9 +179,8 @@ class _Machine:
         return o
 
     def note(self, text: str) -> None:
-        """Record what the run ignored or read in a particular way (logged once per program)."""
-        if text not in self.notes:
-            self.notes.append(text)
+        """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
+        self.notes[text] = self.notes.get(text, 0) + 1
 
     def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0) -> None:
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
@@ -359,10 +355,9 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         pw = m.approach["where"]
         pw.fail("APPR LT without a following contour element", column=1, text=pw.text,
                 expected="an L or arc block after APPR LT")
-    for text in m.notes:
-        log.info("%s: %s", source or "<program>", text)
+    notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
-    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name)
+    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 
 # --- tools -----------------------------------------------------------------------------------

@@ -26,14 +26,13 @@ def ends(prog):
     return [b.target.tolist() for b in prog.blocks]
 
 
-def test_comments_structure_and_stops(caplog):
-    caplog.set_level("INFO", logger="interpolators.heidenhain")
+def test_comments_structure_and_stops():
     prog = run("; a comment\n1 BLK FORM 0.1 Z X+0 Y+0 Z-10\n* - Contour 1\n2 TOOL DEF 3 L+0 R+0\n"
                "3 TOOL CALL 3 Z S3000\n4 STOP\n5 M0\n6 M1\n7 M3 M8 M12\n8 L X+5 Y+2 R0 FMAX ;rapid\n9 M30")
     assert ends(prog) == [[5.0, 2.0, 0.0]]
     assert prog.blocks[0].kind == "rapid" and prog.name == "T"
-    notes = caplog.text
-    assert "STOP: program stop" in notes and "M1: program stop" in notes and "M12 ignored" in notes
+    assert prog.notes == ("STOP: program stop (no motion)", "M0: program stop (no motion)",
+                          "M1: program stop (no motion)", "M12 ignored (no motion)")
 
 
 def test_tool_length_from_table_tool_def_and_dl():
