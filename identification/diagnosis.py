@@ -539,6 +539,7 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
             "current_identification_rms_um": cur_rms,
         })
         if not tried:
+            rounds[-1]["accepted"] = None
             break
         prev = stages[-1].validation_rms_um
         chosen = None
