@@ -61,6 +61,7 @@ from identification.effects import EFFECTS
 from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
 from identification.poles import TWO_PI, denominator
 from identification.reduced_model import ReducedAxisModel
+from identification.residual import motion_coherence
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
 from vcnc.capture import Capture
 from vcnc.errors import IdentificationError
@@ -551,6 +552,13 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
             if against:
                 rounds[-1].setdefault("contradicted_by_folds", {})[c.effect.NAME] = [i + 1 for i in against]
             nested = None
+            if ok and c.effect.NAME == "resonance":
+                # a mode is claimed only when the axis' own motion excites it: the residual's line
+                # must be coherent with the commanded acceleration (not an external line)
+                e_new = next(e for e in j.model.elements if e.NAME == "resonance")
+                coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
+                rounds[-1]["resonance_motion_coherence"] = coh
+                ok = coh >= _MIN_MODE_COHERENCE
             if ok and c.effect.KIND == "element":
                 # the element must beat its own null (the sampled split form without it), refitted
                 null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
@@ -573,6 +581,8 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
         ev["validation_gain_pct"] = 100.0 * gain
         if nested is not None:
             ev["validation_gain_over_null_pct"] = 100.0 * nested
+        if "resonance_motion_coherence" in rounds[-1] and c.effect.NAME == "resonance":
+            ev["motion_coherence"] = rounds[-1]["resonance_motion_coherence"]
         ev["candidates_validation_rms_um"] = {t[1].effect.NAME: t[0].held_out_rms_um
                                               for t in sorted(tried, key=lambda t: t[0].held_out_rms_um)}
         ev["fold_rms_before_um"] = list(stages[-1].fold_rms_um)
@@ -695,6 +705,10 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     return augment(last, last.elements, axis=model.axis, method=model.method, fit=fit, effects=records,
                    validation=validation, bounds=dict(model.bounds))
 
+
+#: smallest coherence of the residual with the commanded acceleration near a claimed mode [-]
+#: (0.9 for a mode the motion excites, 0.09 for an external 55 Hz line: residual.motion_coherence)
+_MIN_MODE_COHERENCE = 0.5
 
 #: explained share of the residual's variance above which a state "explains" it [-] (time: slow
 #: trends and the residual's own correlation explain some of any residual, hence the higher bar)

@@ -27,7 +27,7 @@ from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, regressor
 
 __all__ = ["ResidualAnalysis", "analyse", "equation_error", "spectrum", "binned", "plot_before_after",
-           "residual_evidence"]
+           "residual_evidence", "motion_coherence"]
 
 
 def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.ndarray,
@@ -148,6 +148,33 @@ def residual_evidence(residual: np.ndarray, reference: np.ndarray, sample_time: 
     best = max(share, key=share.get)
     out["strongest"] = {"with": best, "explained_share": share[best], "correlation": corr[best]}
     return out
+
+
+def motion_coherence(residual: np.ndarray, reference: np.ndarray, sample_time: float, active: np.ndarray,
+                     frequencies: list[float], *, band: float = 0.2) -> float:
+    """Largest magnitude-squared coherence [-] of the residual with the commanded acceleration
+    within +/- ``band`` of any of ``frequencies`` [Hz].
+
+    A mode the axis' own motion excites answers the reference: its line in the residual is
+    coherent with the commanded acceleration (0.9 for the fadal-pid 60 Hz mode); an external
+    line (a shaker) is not (0.09 for a 55 Hz shaker; ``tests/identification/test_diagnosis_folds.py``).
+    Welch estimate (``scipy.signal.coherence``, segments of about 0.5 s) over the active samples.
+    """
+    import scipy.signal
+
+    r = np.asarray(residual, float)[active]
+    v = np.gradient(np.asarray(reference, float), sample_time)
+    a = np.gradient(v, sample_time)[active]
+    nper = int(2 ** np.ceil(np.log2(0.5 / sample_time)))
+    if r.size < 2 * nper:
+        nper = max(16, int(2 ** np.floor(np.log2(max(r.size // 4, 16)))))
+    f, c = scipy.signal.coherence(r, a, fs=1.0 / sample_time, nperseg=nper)
+    best = 0.0
+    for f0 in frequencies:
+        sel = (f >= (1 - band) * f0) & (f <= (1 + band) * f0)
+        if sel.any():
+            best = max(best, float(np.nanmax(c[sel])))
+    return best
 
 
 @dataclasses.dataclass(eq=False)
