@@ -362,7 +362,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         _dwell(gcodes, seen, st, blocks, where, number)
         if "motion" not in gcodes:
             return ended
-        seen = {k: v for k, v in seen.items() if k not in ("P",) and not (k == "X" and "P" not in seen)}
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -521,6 +521,8 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
         where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
                    expected="G04 P<time> or G04 X<s>")
     unit = st.context.dialect.dwell_p_unit
+    if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
+        seen = {k: v for k, v in seen.items() if k != "X"}
     if ("P" in seen) == ("X" in seen):
         where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
                    expected=f"G04 P<{unit}> or G04 X<s>")

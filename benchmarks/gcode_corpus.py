@@ -1,0 +1,125 @@
+"""Run every program of the shared G-code corpus through vcnc: accepted and rejected by reason.
+
+Reads ``../shared/data/gcode-corpus`` (``MANIFEST.tsv``: file, source repository, path, size,
+origin tag; or the folder in ``VCNC_GCODE_CORPUS``). For each program: ``load_program`` (ISO or
+Heidenhain, by content), then ``interpolate`` with the default limits (S-curve off) up to
+``--max-samples`` samples. Prints accepted/rejected counts overall, by origin and by dialect, the
+rejections grouped by the feature their message names, the share of milling programs that run
+(lathe, probing and remap programs are out of scope, classified by the feature named), and the
+interpolation rate in setpoints/s.
+
+Usage: ``python benchmarks/gcode_corpus.py [--parse-only] [--list]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import csv
+import os
+import re
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from interpolators import interpolate, load_program  # noqa: E402
+from vcnc.errors import GCodeError  # noqa: E402
+
+#: Features whose programs are not milling programs (out of scope by the issue): matched against
+#: the rejection message.
+OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G33|threading|G38 probing|user M code|rigid tapping", re.I)
+
+
+def corpus_dir() -> Path | None:
+    """The corpus folder, or None when it is absent."""
+    env = os.environ.get("VCNC_GCODE_CORPUS")
+    d = Path(env) if env else ROOT.parent / "shared" / "data" / "gcode-corpus"
+    return d if (d / "MANIFEST.tsv").is_file() else None
+
+
+def manifest(d: Path) -> list[dict[str, str]]:
+    with open(d / "MANIFEST.tsv", newline="") as fh:
+        return list(csv.DictReader(fh, delimiter="\t"))
+
+
+def reason(message: str) -> str:
+    """The feature a rejection names: the message without file position and the offending text."""
+    text = message.split(": ", 1)[-1]
+    text = re.sub(r" \(got .*", "", text)
+    text = re.sub(r"; expected .*", "", text)
+    return text[:90]
+
+
+def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_000_000) -> dict:
+    """Run the corpus; returns the per-program outcomes and the totals."""
+    rows = manifest(d)
+    out = []
+    samples = 0
+    t_interp = 0.0
+    for r in rows:
+        path = d / r["file"]
+        rec = {"file": r["file"], "origin": r["origin"], "ok": False, "reason": "", "dialect": ""}
+        try:
+            prog = load_program(path)
+            rec["dialect"] = prog.dialect
+            if interpolate_too and prog.blocks:
+                t0 = time.perf_counter()
+                sp = interpolate(prog, max_samples=max_samples)
+                t_interp += time.perf_counter() - t0
+                samples += len(sp)
+            rec["ok"] = True
+        except GCodeError as exc:
+            rec["reason"] = reason(str(exc))
+            if "max_samples" in str(exc):
+                rec["ok"] = True  # parsed; too long to sample here
+                rec["reason"] = ""
+        out.append(rec)
+    return {"programs": out, "samples": samples, "interpolation_s": t_interp}
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--parse-only", action="store_true", help="do not interpolate")
+    ap.add_argument("--list", action="store_true", help="list every rejection with its message")
+    args = ap.parse_args()
+    d = corpus_dir()
+    if d is None:
+        print("gcode corpus not found (../shared/data/gcode-corpus): nothing to run")
+        return 0
+    t0 = time.perf_counter()
+    res = run_corpus(d, interpolate_too=not args.parse_only)
+    wall = time.perf_counter() - t0
+    progs = res["programs"]
+    ok = sum(p["ok"] for p in progs)
+    print(f"corpus: {len(progs)} programs, {ok} accepted, {len(progs) - ok} rejected ({wall:.1f} s)")
+    milling = [p for p in progs if p["ok"] or not OUT_OF_SCOPE.search(p["reason"])]
+    mok = sum(p["ok"] for p in milling)
+    print(f"milling programs (rejections naming lathe/probing/threading/remap features excluded): "
+          f"{mok} of {len(milling)} run = {100 * mok / len(milling):.1f} %")
+    by_origin = collections.defaultdict(lambda: [0, 0])
+    for p in progs:
+        by_origin[p["origin"]][0] += p["ok"]
+        by_origin[p["origin"]][1] += 1
+    print("\nby origin:")
+    for o, (a, n) in sorted(by_origin.items()):
+        print(f"  {o:<34} {a:>3} / {n:<3}")
+    reasons = collections.Counter(p["reason"] for p in progs if not p["ok"])
+    print("\nrejections by feature:")
+    for r, c in reasons.most_common():
+        print(f"  {c:>3}  {r}")
+    if args.list:
+        print("\nrejected programs:")
+        for p in progs:
+            if not p["ok"]:
+                print(f"  {p['file']}: {p['reason']}")
+    if not args.parse_only and res["interpolation_s"] > 0:
+        print(f"\ninterpolation: {res['samples']} setpoints in {res['interpolation_s']:.1f} s = "
+              f"{res['samples'] / res['interpolation_s']:.3g} setpoints/s (trapezoid, default limits, Ts 1 ms)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
