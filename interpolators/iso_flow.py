@@ -104,6 +104,20 @@ class _Program:
                 where.fail(f"O-word o{m.group(1)} without a keyword", column=1, text=s, expected="o<name> call ...")
             self.code.append(code)
 
+        self._check_structure()
+
+    def _check_structure(self) -> None:
+        """Every opening O-word has its closing one after it (LinuxCNC checks this before running)."""
+        closers = {"sub": ("endsub",), "if": ("endif",), "repeat": ("endrepeat",), "do": ("while",)}
+        for i, ow in self.oword.items():
+            if ow.keyword == "while":
+                opened_by_do = any(self.oword[j].keyword == "do" and j < i for j in self.by_label[ow.label])
+                if opened_by_do:
+                    continue
+                self.next_of(i, ("endwhile",))
+            elif ow.keyword in closers:
+                self.next_of(i, closers[ow.keyword])
+
     def where(self, i: int) -> Where:
         return Where(self.source, i + 1, self.raw[i].strip())
 

@@ -1,0 +1,251 @@
+"""Hand-written ISO programs for each feature of the reader, with the end points LinuxCNC's
+G-code reference gives (https://linuxcnc.org/docs/html/gcode/g-code.html, o-code.html,
+overview.html), written out."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators import iso_flow, parse_program
+from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table
+from interpolators.iso_cycles import RAPID_DELTA_INCH
+from vcnc.errors import GCodeError, InputError
+
+CTX = MachineContext(
+    work_offsets={"G54": (100.0, 50.0, -20.0), "G55": (200.0, 0.0, 0.0)},
+    tools={1: Tool(number=1, length=12.5, radius=0.0), 2: Tool(number=2, length=-3.0, radius=3.0)},
+    home=(0.0, 0.0, 100.0), reference2=(10.0, 20.0, 90.0),
+)
+
+
+def ends(text: str, context: MachineContext = CTX, *, kinds: bool = False):
+    prog = parse_program(text, context=context)
+    pts = [b.target.tolist() for b in prog.blocks if b.kind != "dwell"]
+    return (pts, [b.kind for b in prog.blocks]) if kinds else pts
+
+
+def test_program_starts_at_home_and_work_offsets_apply():
+    prog = parse_program("G21 G90\nG0 X1 Y2 Z3\nG55 X1\nG54\nG91 X1\n", context=CTX)
+    assert prog.blocks[0].start.tolist() == [0, 0, 100]
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, -17], [201, 52, -17], [202, 52, -17]]
+
+
+def test_tool_length_g43_h_and_current_tool_g49():
+    # G43 with H1 adds 12.5 mm along Z; G43 without H takes the tool of the last M6; G49 cancels
+    pts = ends("G21 G90 G54\nT1 M6\nG43 H1 G0 Z10\nG49 G0 Z10\nT2 M6\nG43\nG0 Z10\nG44 H1 Z10\n")
+    assert [p[2] for p in pts] == [2.5, -10.0, -13.0, -22.5]
+
+
+def test_g28_through_the_intermediate_point_and_g30():
+    pts = ends("G21 G90 G54 G0 X0 Y0 Z0\nG28 Z5\nG30\n")
+    # intermediate Z5 (program) = -15 machine, then only Z goes home (100); G30: all axes
+    assert pts == [[100, 50, -20], [100, 50, -15], [100, 50, 100], [10, 20, 90]]
+
+
+def test_g28_incremental_zero_is_the_fanuc_idiom():
+    assert ends("G21 G90 G54 G0 X1 Y1 Z1\nG91 G28 Z0\n")[-2:] == [[101, 51, -19], [101, 51, 100]]
+
+
+def test_g53_machine_coordinates_for_one_block():
+    assert ends("G21 G90 G54 G0 X0\nG53 G0 Z-5\nX1\n") == [[100, 0, 100], [100, 0, -5], [101, 0, -5]]
+
+
+def test_g92_offsets_and_g92_1():
+    pts = ends("G21 G90 G54\nG0 X10 Y0 Z0\nG92 X0\nG0 X5\nG92.1\nG0 X5\n")
+    assert [p[0] for p in pts] == [110, 115, 105]
+
+
+def test_g10_l2_and_l20_set_work_offsets():
+    pts = ends("G21 G90\nG10 L2 P2 X7 Y8 Z9\nG55 G0 X0 Y0 Z0\nG10 L20 P2 X1\nG0 X1\n")
+    assert pts == [[7, 8, 9], [7, 8, 9]]
+
+
+def test_words_without_motion_are_noted_not_refused():
+    prog = parse_program("%\nO0100 (demo)\nN10 G17 G40 G49 G80 G90 G94\nT1 M6\nS2000 M3\nM8\nG0\nG1 F300\n"
+                         "X1\nM1\nM5 M9\nM30\n%\n", context=CTX)
+    assert prog.name == "O100"
+    assert [b.kind for b in prog.blocks] == ["line"]
+    notes = " ".join(prog.notes)
+    for what in ("T/M6 tool change", "S/M3-M5 spindle", "M7-M9 coolant", "M0/M1 program stop",
+                 "no G20/G21: mm assumed"):
+        assert what in notes, notes
+
+
+def test_motion_word_alone_sets_the_mode():
+    pts, kinds = ends("G21 G0 G90\nX1\nG1 F100\nY1\n", MachineContext(), kinds=True)
+    assert pts == [[1, 0, 0], [1, 1, 0]] and kinds == ["rapid", "line"]
+
+
+def test_arc_centre_modes_and_zero_out_of_plane_words():
+    inc = ends("G21 G90 G0 X10 Y0\nG17 G91.1 G3 X0 Y10 I-10 J0 K0 F100\n", MachineContext())
+    absolute = ends("G21 G90 G0 X10 Y0\nG17 G90.1 G3 X0 Y10 I0 J0 F100\n", MachineContext())
+    assert inc == absolute == [[10, 0, 0], [0, 10, 0]]
+    with pytest.raises(GCodeError, match="outside the arc plane"):
+        parse_program("G21 G17 G3 X0 Y10 I-10 K1 F100\n")
+
+
+def test_arc_end_radius_within_linuxcnc_tolerance_is_accepted():
+    # inch program, 4 decimals: end radius off by 0.0001 in (FreeCAD/Fusion output)
+    prog = parse_program("G20 G90 G0 X1 Y0\nG3 X0 Y1.0001 I-1 J0 F10\n")
+    arc = prog.blocks[1].segment
+    assert np.allclose(arc.end, [0, 1.0001 * 25.4, 0])
+    with pytest.raises(GCodeError, match="tolerance"):
+        parse_program("G21 G90 G0 X10 Y0\nG3 X0 Y10.05 I-10 J0 F10\n")
+
+
+def test_g81_returns_to_initial_level_under_g98_and_to_r_under_g99():
+    g98 = ends("G21 G90 G0 X0 Y0 Z10\nG98 G81 X1 Y1 Z-2 R2 F120\nX2\nG80\n", MachineContext())
+    assert g98 == [[0, 0, 10], [1, 1, 10], [1, 1, 2], [1, 1, -2], [1, 1, 10], [2, 1, 10], [2, 1, 2], [2, 1, -2],
+                   [2, 1, 10]]
+    g99 = ends("G21 G90 G0 X0 Y0 Z10\nG99 G81 X1 Y1 Z-2 R2 F120\nX2\n", MachineContext())
+    assert g99[3:] == [[1, 1, -2], [1, 1, 2], [2, 1, 2], [2, 1, -2], [2, 1, 2]]
+
+
+def test_g83_pecks_retract_to_r_and_g73_breaks_chips():
+    d = RAPID_DELTA_INCH * 25.4
+    g83 = ends("G21 G90 G0 X0 Y0 Z5\nG83 X0 Y0 Z-2.5 R1 Q1 F60\n", MachineContext())
+    zs = [p[2] for p in g83[1:]]
+    assert zs == pytest.approx([1, 0, 1, d, -1, 1, -1 + d, -2, 1, -2 + d, -2.5, 5])
+    g73 = ends("G21 G90 G0 X0 Y0 Z5\nG99 G73 X0 Y0 Z-2.5 R1 Q1 F60\n", MachineContext())
+    assert [p[2] for p in g73[1:]] == pytest.approx([1, 0, d, -1, -1 + d, -2, -2 + d, -2.5, 1])
+
+
+def test_g82_dwell_and_g85_feed_out():
+    prog = parse_program("G21 G90 G0 X0 Y0 Z5\nG99 G82 X1 Z-1 R1 P0.5 F60\nG85 X2 Z-1 R1 F60\n")
+    kinds = [(b.kind, round(b.dwell, 3)) for b in prog.blocks]
+    assert ("dwell", 0.5) in kinds
+    last = prog.blocks[-2:]
+    assert last[0].kind == "line" and last[0].target.tolist() == [2, 0, -1]
+    assert last[1].kind == "line" and last[1].target.tolist() == [2, 0, 1]  # feeds out to R
+
+
+def test_incremental_cycle_with_repeats():
+    # G91: R from the start Z, Z from R, X/Y step per repeat (LinuxCNC G81 example with L)
+    pts = ends("G21 G90 G0 X0 Y0 Z5\nG91 G98 G81 X2 Y0 R-4 Z-3 L3 F60\n", MachineContext())
+    holes = [p for p in pts if p[2] == -2]
+    assert holes == [[2, 0, -2], [4, 0, -2], [6, 0, -2]]
+    assert pts[-1] == [6, 0, 5]
+
+
+def test_cycle_errors_name_the_cycle():
+    with pytest.raises(GCodeError, match="G83 peck drilling cycle: peck depth Q"):
+        parse_program("G21 G90 G0 Z5\nG83 X0 Y0 Z-1 R1 F10\n")
+    with pytest.raises(GCodeError, match="G81 drilling cycle: no R"):
+        parse_program("G21 G90 G0 Z5\nG81 X0 Y0 Z-1 F10\n")
+
+
+def test_fanuc_g80_restores_the_motion_mode():
+    assert ends("G21 G90 G1 F100 X0 Y0 Z5\nG81 X1 R1 Z-1\nG80\nX3\n", MachineContext())[-1] == [3, 0, 5]
+
+
+def test_parameters_and_expressions():
+    text = ("G21 G90\n#1 = 2\n#<r> = [#1 * 3 + 1]\nG1 F100 X#<r> Y[SIN[30] * 4] Z[2 ** 3 - 7 MOD 3]\n"
+            "#2 = [ATAN[1]/[1]]\nX#2 #2 = 100\nY#2\n#3 = [FIX[-1.5] + FUP[1.2] + ROUND[2.5] + ABS[-1] + SQRT[16]]\n"
+            "Z#3\nX[[1 LT 2] AND [3 GE 3]]\n")
+    pts = ends(text, MachineContext())
+    assert pts[0] == pytest.approx([7, 2, 7])
+    assert pts[1][0] == pytest.approx(45.0)  # the line's assignment takes effect after the line
+    assert pts[2][1] == pytest.approx(100.0)
+    assert pts[3][2] == pytest.approx(-2 + 2 + 3 + 1 + 4)
+    assert pts[4][0] == 1.0
+
+
+def test_o_word_subroutine_loops_and_conditions():
+    text = """G21 G90 G1 F100
+o<side> sub
+  G91 X#1
+  o<side> return
+  X999
+o<side> endsub
+#<i> = 0
+o10 while [#<i> LT 3]
+  o<side> call [2]
+  #<i> = [#<i> + 1]
+  o11 if [#<i> EQ 2]
+    o10 break
+  o11 endif
+o10 endwhile
+o20 repeat [2]
+  o<side> call [0.5]
+o20 endrepeat
+o30 do
+  o<side> call [-1]
+o30 while [0]
+o40 if [0]
+  X100
+o40 elseif [1]
+  X0.25
+o40 else
+  X200
+o40 endif
+M30
+"""
+    xs = [p[0] for p in ends(text, MachineContext())]
+    assert xs == pytest.approx([2, 4, 4.5, 5, 4, 4.25])
+
+
+def test_fanuc_m98_subprogram_with_repeats_and_m99():
+    text = "%\nO1000\nG21 G91 G1 F100\nM98 P2000 L3\nX10\nM30\nO2000\nY1\nM99\n%\n"
+    pts = ends(text, MachineContext())
+    assert pts == [[0, 1, 0], [0, 2, 0], [0, 3, 0], [10, 3, 0]]
+
+
+def test_flow_errors():
+    with pytest.raises(GCodeError, match="not defined in this file"):
+        parse_program("o<elsewhere> call\n")
+    with pytest.raises(GCodeError, match="no matching endwhile"):
+        parse_program("o1 while [1]\nG0 X1\n")
+    with pytest.raises(GCodeError, match="endless loop"):
+        list(iso_flow.run("G21 G0 X0\no1 while [1]\nG4 P0\no1 endwhile\n", max_lines=10_000))
+    with pytest.raises(GCodeError, match="division by zero"):
+        parse_program("#1 = [1 / 0]\n")
+    with pytest.raises(GCodeError, match="read before it is set"):
+        parse_program("G0 X#<nothing>\n")
+    with pytest.raises(GCodeError, match="system parameters"):
+        parse_program("G0 X#5420\n")
+
+
+def test_dialect_dwell_unit_and_default_path_mode():
+    linuxcnc = parse_program("G21 G4 P2\n").blocks[0].dwell
+    fanuc = parse_program("G21 G4 P2000\n", context=MachineContext(dialect=DIALECTS["fanuc"])).blocks[0].dwell
+    assert linuxcnc == fanuc == 2.0
+    assert parse_program("G21 G1 X1 F100\n").blocks[0].exact_stop is False  # continuous path by default
+    stop = MachineContext(dialect=DIALECTS["linuxcnc"].__class__(name="x", continuous_path=False))
+    assert parse_program("G21 G1 X1 F100\n", context=stop).blocks[0].exact_stop is True
+    inch = MachineContext(dialect=DIALECTS["haas"].__class__(name="haas", dwell_p_unit="ms", default_units="inch"))
+    prog = parse_program("G1 X1 F10\n", context=inch)
+    assert prog.blocks[0].target[0] == 25.4 and any("inch assumed" in n for n in prog.notes)
+
+
+def test_unsupported_features_are_named():
+    for text, feature in (("G38.2 Z-5 F10\n", "G38 probing"), ("G76 P1 Z-1\n", "G76 threading"),
+                          ("G7\n", "lathe diameter mode"), ("G0 A10\n", "rotary axis A"),
+                          ("M101\n", "user M code"), ("G95 F0.1\n", "feed mode")):
+        with pytest.raises(GCodeError, match=feature):
+            parse_program(text)
+
+
+def test_cutter_compensation_with_radius_zero_keeps_the_path_and_refuses_a_radius():
+    assert ends("G21 G90 G41 G1 X10 F100\nG40 X0\n", MachineContext()) == [[10, 0, 0], [0, 0, 0]]
+    with pytest.raises(GCodeError, match="G41 cutter radius compensation with a tool radius of 3 mm"):
+        parse_program("G21 G90 G41 D2 G1 X10 F100\n", context=CTX)
+
+
+def test_linuxcnc_tool_table(tmp_path):
+    f = tmp_path / "tool.tbl"
+    f.write_text("T1 P1 D6.0 Z+12.5 ;end mill\n\n;comment only\nT2 P2 Z-1 D0.5\n")
+    tools = read_tool_table(str(f))
+    assert tools[1] == Tool(number=1, length=12.5, radius=3.0, comment="end mill")
+    assert tools[2].radius == 0.25 and tools[2].length == -1.0
+    f.write_text("P1 D6\n")
+    with pytest.raises(InputError, match=r"tool\.tbl:1: tool-table line without a T word"):
+        read_tool_table(str(f))
+
+
+def test_helix_and_full_circle_with_offsets():
+    prog = parse_program("G21 G90 G54 G0 X10 Y0 Z0\nG3 I-10 Z-1 F100\n", context=CTX)
+    arc = prog.blocks[1].segment
+    assert arc.center.tolist()[:2] == [100, 50] and math.isclose(arc.sweep, 2 * math.pi)
