@@ -1,0 +1,340 @@
+"""Cutter radius compensation (ISO G41/G42/G40, Heidenhain RL/RR/R0) of lines and arcs in the active plane.
+
+The tool centre is moved by the tool radius ``r`` to the left (G41, RL) or right (G42, RR) of the
+programmed contour, seen in the direction of travel with the plane normal pointing at the viewer.
+The rules are LinuxCNC's (G-code reference, "G41, G42 Cutter Compensation" and "Cutter
+Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.html; source
+``src/emc/rs274ngc/interp_convert.cc``, ``convert_straight_comp1`` / ``convert_straight_comp2`` /
+``convert_arc_comp2``):
+
+* **Entry move** (the first move with motion in the plane after G41/G42): a straight line from
+  the uncompensated position to the programmed end point moved by ``r`` perpendicular to the
+  entry move itself (``convert_straight_comp1``: ``alpha = atan2(py - cy, px - cx) +/- pi/2``).
+  It must be longer than ``r`` ("Length of cutter compensation entry move is not greater than the
+  tool radius"). With ``entry="perpendicular"`` the entry ends at the first contour point moved by
+  ``r`` perpendicular to the first contour element, as the TNC approaches a contour with RL/RR
+  (TNC 640 user's manual, "Tool radius compensation": "the tool is positioned perpendicular to
+  the first contour element at the starting point").
+* **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
+  programmed corner point joins the two offset elements; it carries the ``line``/``text`` and
+  the feed of the block it leads into.
+* **Inside corners**: both offset elements end at their intersection. When they do not
+  intersect, or an element would have to run backwards to reach it (the element is shorter than
+  what the tool needs), the program gouges and :class:`CompensationError` is raised, as
+  LinuxCNC's "Concave corner with cutter radius comp" and "Cutter gouging with cutter radius
+  comp".
+* **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
+  than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
+  comp".
+* **Exit move** (the first move after G40/R0): a straight line from the compensated position to
+  the programmed end point, without a corner.
+
+Moves along the tool axis only and dwells stay where the tool is (shifted in the plane with it).
+Entry and exit moves must be straight lines (LinuxCNC accepts an arc entry; vcnc refuses it with
+a named error).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from interpolators.program import Block
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+from vcnc.errors import InputError
+
+__all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES"]
+
+#: Compensation sides: G41/RL is "left", G42/RR is "right".
+SIDES: tuple[str, str] = ("left", "right")
+
+#: Entry rules: LinuxCNC's (perpendicular to the entry move) or the TNC's (perpendicular to the first contour element).
+ENTRY_RULES: tuple[str, str] = ("linuxcnc", "perpendicular")
+
+#: Points closer than this are the same point [mm].
+_EPS = 1e-9
+
+
+class CompensationError(InputError):
+    """A compensated run the tool cannot follow (gouge, arc smaller than the tool, bad entry or exit).
+
+    Parameters
+    ----------
+    message : str
+        What is wrong, in LinuxCNC's words where LinuxCNC has them.
+    index : int
+        Index into the ``blocks`` given to :func:`compensate` of the block at fault.
+    """
+
+    def __init__(self, message: str, index: int) -> None:
+        super().__init__(message)
+        self.index = int(index)
+
+
+@dataclasses.dataclass(kw_only=True)
+class _Offset:
+    """One offset element in plane coordinates: a line ``a -> b`` or an arc about ``c``."""
+
+    index: int
+    kind: str  # "line" or "arc"
+    a: np.ndarray  # (2,) start in the plane [mm]
+    b: np.ndarray  # (2,) end in the plane [mm]
+    za: float  # tool-axis coordinate at the start [mm]
+    zb: float  # tool-axis coordinate at the end [mm]
+    c: np.ndarray | None = None  # arc centre (2,) [mm]
+    radius: float = 0.0  # arc radius [mm]
+    ccw: bool = True
+    a0: np.ndarray | None = None  # untrimmed start, for the gouge check
+    b0: np.ndarray | None = None  # untrimmed end
+
+    def tangent(self, point: np.ndarray) -> np.ndarray:
+        """Unit tangent at ``point`` (a point of the element)."""
+        if self.kind == "line":
+            d = self.b0 - self.a0
+            return d / math.hypot(*d)
+        u = (point - self.c) / self.radius
+        return np.array([-u[1], u[0]]) if self.ccw else np.array([u[1], -u[0]])
+
+    def param(self, point: np.ndarray) -> float:
+        """Position of ``point`` along the untrimmed element [mm of line, rad of arc] from its start."""
+        if self.kind == "line":
+            d = self.b0 - self.a0
+            return float((point - self.a0) @ d / math.hypot(*d))
+        ang0 = math.atan2(*(self.a0 - self.c)[::-1])
+        ang = math.atan2(*(point - self.c)[::-1])
+        return ((ang - ang0) if self.ccw else (ang0 - ang)) % (2.0 * math.pi)
+
+    def extent(self) -> float:
+        """Length [mm] of the untrimmed line, or sweep [rad] of the untrimmed arc."""
+        if self.kind == "line":
+            return math.hypot(*(self.b0 - self.a0))
+        s = self.param(self.b0)
+        return s if s > _EPS else 2.0 * math.pi
+
+    def z_at(self, point: np.ndarray) -> float:
+        """Tool-axis coordinate at ``point``, linear in the position along the element."""
+        f = min(max(self.param(point) / self.extent(), 0.0), 1.0)
+        return self.za + (self.zb - self.za) * f
+
+
+def _left(t: np.ndarray) -> np.ndarray:
+    return np.array([-t[1], t[0]])
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> float:
+    return float(u[0] * v[1] - u[1] * v[0])
+
+
+def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
+    """Intersections of the full line or circle of ``e1`` with that of ``e2`` (plane coordinates)."""
+    if e1.kind == "line" and e2.kind == "line":
+        d, e = e1.b0 - e1.a0, e2.b0 - e2.a0
+        den = _cross(d, e)
+        if abs(den) <= _EPS * math.hypot(*d) * math.hypot(*e):
+            return []
+        t = _cross(e2.a0 - e1.a0, e) / den
+        return [e1.a0 + t * d]
+    if e1.kind == "arc" and e2.kind == "line":
+        e1, e2 = e2, e1
+    if e1.kind == "line":  # line e1, circle e2
+        d = e1.b0 - e1.a0
+        d = d / math.hypot(*d)
+        w = e1.a0 - e2.c
+        b = float(w @ d)
+        disc = b * b - (float(w @ w) - e2.radius**2)
+        if disc < 0.0:
+            return []
+        h = math.sqrt(disc)
+        return [e1.a0 + (-b - h) * d, e1.a0 + (-b + h) * d]
+    dv = e2.c - e1.c
+    dist = math.hypot(*dv)
+    if dist <= _EPS or dist > e1.radius + e2.radius or dist < abs(e1.radius - e2.radius):
+        return []
+    x = (dist**2 + e1.radius**2 - e2.radius**2) / (2.0 * dist)
+    h = math.sqrt(max(e1.radius**2 - x * x, 0.0))
+    base = e1.c + x * dv / dist
+    n = _left(dv / dist)
+    return [base + h * n, base - h * n]
+
+
+def compensate(
+    blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc"
+) -> list[Block]:
+    """Tool-centre path of one compensated run.
+
+    Parameters
+    ----------
+    blocks : sequence of Block
+        One compensated run, programmed contour: from the entry move (the first motion after
+        G41/G42, or the block with RL/RR) up to and including the exit move (the first motion
+        after G40 / the block with R0, or the run's last block when the program ends). Blocks
+        before the first block with motion in the plane pass unchanged; the entry move and the
+        exit move must be lines or rapids. A run whose only motion in the plane is its entry
+        move ends with the tool offset.
+    side : {"left", "right"}
+        Tool left (G41, RL) or right (G42, RR) of the contour in the direction of travel.
+    radius : float
+        Tool radius [mm] (>= 0; 0 returns the blocks unchanged).
+    plane : int
+        Normal-axis index of the compensation plane: 2 XY (G17), 1 ZX (G18), 0 YZ (G19).
+    entry : {"linuxcnc", "perpendicular"}
+        Where the entry move ends: the programmed point moved perpendicular to the entry move
+        (LinuxCNC) or perpendicular to the first contour element (Heidenhain TNC).
+
+    Returns
+    -------
+    list of Block
+        The run with corrected ``start``/``target``/``segment`` in order, plus one arc block at
+        each outside corner (carrying the ``line``, ``number``, ``text``, feed and path mode of the
+        block it leads into).
+
+    Raises
+    ------
+    CompensationError
+        For a gouge, an inside arc not larger than the tool, an entry move not longer than the
+        tool radius, an arc entry or exit move; ``index`` names the block.
+    """
+    if side not in SIDES:
+        raise InputError(f"compensation side must be one of {SIDES}, got {side!r}")
+    if entry not in ENTRY_RULES:
+        raise InputError(f"compensation entry must be one of {ENTRY_RULES}, got {entry!r}")
+    if plane not in PLANE_AXES:
+        raise InputError(f"compensation plane must be the normal axis index 0, 1 or 2, got {plane!r}")
+    if not (radius >= 0.0 and math.isfinite(radius)):
+        raise InputError(f"tool radius must be finite and >= 0 mm, got {radius!r}")
+    blocks = list(blocks)
+    if radius == 0.0:
+        return blocks
+    p, q = PLANE_AXES[plane]
+    s = 1.0 if side == "left" else -1.0
+
+    def flat(v: np.ndarray) -> np.ndarray:
+        return np.array([v[p], v[q]], dtype=float)
+
+    movers = [i for i, b in enumerate(blocks)
+              if b.segment is not None and (b.kind == "arc" or math.hypot(*(flat(b.target) - flat(b.start))) > _EPS)]
+    if not movers:
+        return blocks
+    first = movers[0]
+    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 else None
+    contour = [i for i in movers[1:] if i != last]
+    for i in (first, last):
+        if i is not None and blocks[i].kind == "arc":
+            what = "entry" if i == first else "exit"
+            raise CompensationError(f"cutter compensation {what} move must be a straight line, not an arc", i)
+
+    offsets: list[_Offset] = []
+    for i in contour:
+        b = blocks[i]
+        a2, b2 = flat(b.start), flat(b.target)
+        if b.kind == "arc":
+            arc = b.segment
+            c = flat(arc.center)
+            new_r = arc.radius - s * radius * (1.0 if arc.ccw else -1.0)
+            if new_r <= _EPS * max(arc.radius, 1.0):
+                raise CompensationError(
+                    f"tool radius {radius:g} mm not less than arc radius {arc.radius:g} mm with cutter radius comp", i)
+            ua, ub = (a2 - c) / arc.radius, (b2 - c) / arc.radius
+            el = _Offset(index=i, kind="arc", a=c + new_r * ua, b=c + new_r * ub, za=float(b.start[plane]),
+                         zb=float(b.target[plane]), c=c, radius=new_r, ccw=arc.ccw)
+        else:
+            d = b2 - a2
+            n = s * radius * _left(d / math.hypot(*d))
+            el = _Offset(index=i, kind="line", a=a2 + n, b=b2 + n, za=float(b.start[plane]), zb=float(b.target[plane]))
+        el.a0, el.b0 = el.a.copy(), el.b.copy()
+        offsets.append(el)
+
+    # entry move
+    eb = blocks[first]
+    e_start, e_prog = flat(eb.start), flat(eb.target)
+    dist = math.hypot(*(e_prog - e_start))
+    if entry == "perpendicular" and offsets:
+        e_end = offsets[0].a.copy()
+    else:
+        if dist <= radius:
+            raise CompensationError(
+                f"length of cutter compensation entry move ({dist:g} mm) is not greater than the tool radius "
+                f"({radius:g} mm)", first)
+        e_end = e_prog + s * radius * _left((e_prog - e_start) / dist)
+    ent = _Offset(index=first, kind="line", a=e_start, b=e_end, za=float(eb.start[plane]), zb=float(eb.target[plane]))
+    ent.a0, ent.b0 = ent.a.copy(), ent.b.copy()
+    chain = [ent, *offsets]
+
+    # corners between consecutive elements
+    corners: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}  # index of B -> (centre, from, to)
+    for el_a, el_b in zip(chain[:-1], chain[1:]):
+        gap = math.hypot(*(el_a.b - el_b.a))
+        if gap <= 1e-7:
+            el_b.a = el_a.b.copy()
+            continue
+        corner = flat(blocks[el_a.index].target)
+        ta, tb = el_a.tangent(el_a.b), el_b.tangent(el_b.a)
+        cr = _cross(ta, tb)
+        outside = s * cr < -1e-12 or (abs(cr) <= 1e-12 and float(ta @ tb) < 0.0)
+        if outside:
+            corners[el_b.index] = (corner, el_a.b.copy(), el_b.a.copy())
+            continue
+        cands = _intersections(el_a, el_b)
+        if not cands:
+            raise CompensationError("concave corner with cutter radius comp: the offset elements do not meet",
+                                    el_b.index)
+        x = min(cands, key=lambda v: math.hypot(*(v - corner)))
+        el_a.b, el_b.a = x.copy(), x.copy()
+
+    # gouge check: every element still runs forward within its untrimmed extent
+    for el in chain:
+        ext = el.extent()
+        tol = 1e-9 * max(ext, 1.0)
+        t0 = 0.0 if el is ent else el.param(el.a)
+        t1 = el.param(el.b) if el.kind == "line" else (el.param(el.b) or ext)
+        if el.kind == "arc" and t0 > ext + tol:
+            t0 -= 2.0 * math.pi
+        if not (-tol <= t0 < t1 - tol and t1 <= ext + tol):
+            raise CompensationError("cutter gouging with cutter radius comp: the element is too short for the tool "
+                                    "(or the turn is too tight) at this radius", el.index)
+
+    def point3(template: np.ndarray, xy: np.ndarray, z: float) -> np.ndarray:
+        v = np.array(template, dtype=float)
+        v[p], v[q] = xy
+        v[plane] = z
+        return v
+
+    by_index = {el.index: el for el in chain}
+    out: list[Block] = []
+    tool = None  # tool position in the plane once the entry move has been made
+    for i, b in enumerate(blocks):
+        if i < first:
+            out.append(b)
+            continue
+        if i == last:
+            start = point3(b.start, tool, float(b.start[plane]))
+            out.append(dataclasses.replace(b, start=start, segment=Line(start, b.target)))
+            continue
+        el = by_index.get(i)
+        if el is None:  # tool-axis move or dwell: stays where the tool is
+            st, tg = point3(b.start, tool, float(b.start[plane])), point3(b.target, tool, float(b.target[plane]))
+            seg = None if b.segment is None else Line(st, tg)
+            out.append(dataclasses.replace(b, start=st, target=tg, segment=seg))
+            continue
+        z0 = float(b.start[plane])
+        if i in corners:
+            centre, frm, to = corners[i]
+            cs, ce = point3(b.start, frm, z0), point3(b.start, to, z0)
+            arc = Arc(cs, ce, point3(b.start, centre, z0), ccw=(side == "right"), plane=plane)
+            feed = b.feed if math.isfinite(b.feed) else out[-1].feed
+            out.append(dataclasses.replace(b, kind="arc", start=cs, target=ce, segment=arc, feed=feed, dwell=0.0))
+        za = el.za if el is ent else el.z_at(el.a)
+        zb = el.z_at(el.b)
+        st, tg = point3(b.start, el.a, za), point3(b.target, el.b, zb)
+        if el.kind == "arc":  # intersections onto the circle to rounding, as Arc requires
+            st = point3(b.start, el.c + el.radius * (el.a - el.c) / math.hypot(*(el.a - el.c)), za)
+            tg = point3(b.target, el.c + el.radius * (el.b - el.c) / math.hypot(*(el.b - el.c)), zb)
+            seg = Arc(st, tg, point3(b.start, el.c, za), ccw=el.ccw, plane=plane)
+        else:
+            seg = Line(st, tg)
+        out.append(dataclasses.replace(b, start=st, target=tg, segment=seg))
+        tool = el.b.copy()
+    return out

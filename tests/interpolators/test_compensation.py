@@ -1,0 +1,229 @@
+"""Cutter radius compensation: LinuxCNC's entry, corner and exit rules with exact expected tool-centre points.
+
+Every expected point below is worked out by hand from the rules in :mod:`interpolators.compensation`
+(offset by the tool radius, arcs about the programmed point at outside corners, intersections at
+inside corners).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.compensation import CompensationError, compensate
+from interpolators.program import Block
+from toolpaths.geometry import Arc, Line
+
+
+def _p(v: list[float]) -> np.ndarray:
+    return np.array(list(v) + [0.0] * (3 - len(v)), dtype=float)
+
+
+def _line(a: list[float], b: list[float], line: int, *, kind: str = "line", feed: float = 10.0) -> Block:
+    a3, b3 = _p(a), _p(b)
+    return Block(line=line, text=f"N{line}", kind=kind, start=a3, target=b3, feed=feed, segment=Line(a3, b3))
+
+
+def _arc(a: list[float], b: list[float], c: list[float], line: int, *, ccw: bool, plane: int = 2) -> Block:
+    a3, b3 = _p(a), _p(b)
+    return Block(line=line, text=f"N{line}", kind="arc", start=a3, target=b3, feed=10.0,
+                 segment=Arc(a3, b3, _p(c), ccw=ccw, plane=plane))
+
+
+def _polyline(points: list[list[float]]) -> list[Block]:
+    return [_line(points[k], points[k + 1], k + 1) for k in range(len(points) - 1)]
+
+
+def _check(out: list[Block], expected: list[tuple]) -> None:
+    """``expected``: (line, kind, start, target, arc centre or None, ccw or None) per output block."""
+    assert len(out) == len(expected)
+    for b, (line, kind, start, target, centre, ccw) in zip(out, expected):
+        assert (b.line, b.kind) == (line, kind)
+        np.testing.assert_allclose(b.start, _p(start), atol=1e-12)
+        np.testing.assert_allclose(b.target, _p(target), atol=1e-12)
+        np.testing.assert_array_equal(b.segment.start, b.start)
+        np.testing.assert_array_equal(b.segment.end, b.target)
+        if centre is None:
+            assert isinstance(b.segment, Line)
+        else:
+            assert isinstance(b.segment, Arc)
+            np.testing.assert_allclose(b.segment.center, _p(centre), atol=1e-12)
+            assert b.segment.ccw is ccw
+    for prev, nxt in zip(out[:-1], out[1:]):  # the tool path is continuous
+        np.testing.assert_allclose(prev.target, nxt.start, atol=1e-12)
+
+
+def test_outline_outside_corners_get_arcs_and_entry_meets_first_side():
+    # G41 r=2 around the outside of the square 0..20 travelling clockwise, entry from (-10,-10).
+    out = compensate(_polyline([[-10, -10], [0, 0], [0, 20], [20, 20], [20, 0], [0, 0], [-10, -10]]),
+                     side="left", radius=2.0, plane=2)
+    # entry ends at (0,0) + 2 * (-1, 1)/sqrt(2) (convert_straight_comp1), then is cut back to x = -2 (inside corner)
+    ex, ey = -math.sqrt(2.0), math.sqrt(2.0)
+    y_in = -10.0 + (ey + 10.0) * (-2.0 + 10.0) / (ex + 10.0)
+    _check(out, [
+        (1, "line", [-10, -10], [-2, y_in], None, None),
+        (2, "line", [-2, y_in], [-2, 20], None, None),
+        (3, "arc", [-2, 20], [0, 22], [0, 20], False),
+        (3, "line", [0, 22], [20, 22], None, None),
+        (4, "arc", [20, 22], [22, 20], [20, 20], False),
+        (4, "line", [22, 20], [22, 0], None, None),
+        (5, "arc", [22, 0], [20, -2], [20, 0], False),
+        (5, "line", [20, -2], [0, -2], None, None),
+        (6, "line", [0, -2], [-10, -10], None, None),  # exit: straight to the programmed point
+    ])
+    assert out[2].text == "N3" and out[2].feed == 10.0
+
+
+def test_pocket_inside_corners_are_intersections():
+    # G41 r=2 inside the square 0..20 travelling counter-clockwise, entry from the centre.
+    out = compensate(_polyline([[10, 10], [0, 0], [20, 0], [20, 20], [0, 20], [0, 0], [10, 10]]),
+                     side="left", radius=2.0, plane=2)
+    ex, ey = math.sqrt(2.0), -math.sqrt(2.0)  # (0,0) + 2 * (1,-1)/sqrt(2)
+    x_in = 10.0 + (ex - 10.0) * (2.0 - 10.0) / (ey - 10.0)
+    _check(out, [
+        (1, "line", [10, 10], [x_in, 2], None, None),
+        (2, "line", [x_in, 2], [18, 2], None, None),
+        (3, "line", [18, 2], [18, 18], None, None),
+        (4, "line", [18, 18], [2, 18], None, None),
+        (5, "line", [2, 18], [2, 0], None, None),  # the last element ends perpendicular (LinuxCNC)
+        (6, "line", [2, 0], [10, 10], None, None),
+    ])
+
+
+def test_right_side_mirrors_left():
+    # the same clockwise outline with G42 puts the tool inside: the entry turns away from the tool (arc about
+    # the programmed point), the corners of the square are intersections
+    out = compensate(_polyline([[-10, -10], [0, 0], [0, 20], [20, 20], [20, 0], [0, 0], [-10, -10]]),
+                     side="right", radius=2.0, plane=2)
+    e = [math.sqrt(2.0), -math.sqrt(2.0)]  # (0,0) + 2 * (1,-1)/sqrt(2)
+    _check(out, [
+        (1, "line", [-10, -10], e, None, None),
+        (2, "arc", e, [2, 0], [0, 0], True),
+        (2, "line", [2, 0], [2, 18], None, None),
+        (3, "line", [2, 18], [18, 18], None, None),
+        (4, "line", [18, 18], [18, 2], None, None),
+        (5, "line", [18, 2], [0, 2], None, None),
+        (6, "line", [0, 2], [-10, -10], None, None),
+    ])
+
+
+@pytest.mark.parametrize(("side", "r_arc", "x_side"), [("right", 12.0, 22.0), ("left", 8.0, 18.0)])
+def test_line_arc_line_tangent_junctions(side, r_arc, x_side):
+    # line along +x, counter-clockwise quarter arc about (10,10), line along +y: tangent, so no corner blocks
+    d = 2.0 if side == "right" else -2.0
+    blocks = [_line([-10, 0], [0, 0], 1),
+              _line([0, 0], [10, 0], 2), _arc([10, 0], [20, 10], [10, 10], 3, ccw=True),
+              _line([20, 10], [20, 20], 4), _line([20, 20], [20, 30], 5)]
+    out = compensate(blocks, side=side, radius=2.0, plane=2)
+    y_side = -d
+    _check(out, [
+        (1, "line", [-10, 0], [0, y_side], None, None),
+        (2, "line", [0, y_side], [10, y_side], None, None),
+        (3, "arc", [10, y_side], [x_side, 10], [10, 10], True),
+        (4, "line", [x_side, 10], [x_side, 20], None, None),
+        (5, "line", [x_side, 20], [20, 30], None, None),
+    ])
+    assert out[2].segment.radius == pytest.approx(r_arc, abs=1e-12)
+
+
+def _two_arcs() -> list[Block]:
+    # counter-clockwise arc about (0,0) ending at (0,10) heading -x, then counter-clockwise arc about
+    # (-10,10) leaving (0,10) heading +y: a 90 degree right turn at (0,10)
+    return [_line([10, -20], [10, 0], 1), _arc([10, 0], [0, 10], [0, 0], 2, ccw=True),
+            _arc([0, 10], [-10, 20], [-10, 10], 3, ccw=True), _line([-10, 20], [-10, 40], 4)]
+
+
+def test_arc_arc_outside_corner_left():
+    out = compensate(_two_arcs(), side="left", radius=2.0, plane=2)
+    _check(out, [
+        (1, "line", [10, -20], [8, 0], None, None),
+        (2, "arc", [8, 0], [0, 8], [0, 0], True),
+        (3, "arc", [0, 8], [-2, 10], [0, 10], False),  # corner arc about the programmed corner
+        (3, "arc", [-2, 10], [-10, 18], [-10, 10], True),
+        (4, "line", [-10, 18], [-10, 40], None, None),
+    ])
+
+
+def test_arc_arc_inside_corner_right():
+    out = compensate(_two_arcs(), side="right", radius=2.0, plane=2)
+    # circles of radius 12 about (0,0) and (-10,10) meet at (-5,5) + sqrt(94) (1,1)/sqrt(2)
+    x = [-5.0 + math.sqrt(47.0), 5.0 + math.sqrt(47.0)]
+    _check(out, [
+        (1, "line", [10, -20], [12, 0], None, None),
+        (2, "arc", [12, 0], x, [0, 0], True),
+        (3, "arc", x, [-10, 22], [-10, 10], True),
+        (4, "line", [-10, 22], [-10, 40], None, None),
+    ])
+
+
+def test_perpendicular_entry_reaches_first_element_offset():
+    out = compensate(_polyline([[10, 10], [0, 0], [20, 0], [20, 20], [30, 30]]), side="left", radius=2.0, plane=2,
+                     entry="perpendicular")
+    _check(out, [
+        (1, "line", [10, 10], [0, 2], None, None),
+        (2, "line", [0, 2], [18, 2], None, None),
+        (3, "line", [18, 2], [18, 20], None, None),
+        (4, "line", [18, 20], [30, 30], None, None),
+    ])
+
+
+def test_tool_axis_moves_and_dwells_follow_the_tool():
+    a, b, c = _p([0, 0, 5]), _p([0, 0, -1]), _p([10, 0, -1])
+    plunge = Block(line=3, kind="line", start=a, target=b, feed=5.0, segment=Line(a, b))
+    dwell = Block(line=4, kind="dwell", start=b, target=b, feed=0.0, dwell=0.5)
+    blocks = [_line([-10, 0, 5], [0, 0, 5], 1), plunge, dwell,
+              Block(line=5, kind="line", start=b, target=c, feed=10.0, segment=Line(b, c)),
+              _line([10, 0, -1], [10, 10, -1], 6)]
+    out = compensate(blocks, side="right", radius=1.0, plane=2)
+    assert [(b.line, b.kind) for b in out] == [(1, "line"), (3, "line"), (4, "dwell"), (5, "line"), (6, "line")]
+    expected = [([-10, 0, 5], [0, -1, 5]), ([0, -1, 5], [0, -1, -1]), ([0, -1, -1], [0, -1, -1]),
+                ([0, -1, -1], [10, -1, -1]), ([10, -1, -1], [10, 10, -1])]
+    for b, (start, target) in zip(out, expected):
+        np.testing.assert_allclose(b.start, start, atol=1e-12)
+        np.testing.assert_allclose(b.target, target, atol=1e-12)
+    assert out[2].segment is None and out[2].dwell == 0.5
+
+
+def test_zx_plane():
+    # G18: in-plane axes (z, x), tool axis y; left of travel along +z is +x
+    blocks = [_line([0, 5, -10], [0, 5, 0], 1), _line([0, 5, 0], [0, 5, 10], 2), _line([0, 5, 10], [10, 5, 10], 3)]
+    out = compensate(blocks, side="left", radius=2.0, plane=1)
+    _check(out, [
+        (1, "line", [0, 5, -10], [2, 5, 0], None, None),
+        (2, "line", [2, 5, 0], [2, 5, 10], None, None),
+        (3, "line", [2, 5, 10], [10, 5, 10], None, None),
+    ])
+
+
+def test_zero_radius_is_identity():
+    blocks = _two_arcs()
+    out = compensate(blocks, side="left", radius=0.0, plane=2)
+    assert len(out) == len(blocks) and all(o is b for o, b in zip(out, blocks))
+
+
+def test_gouge_in_a_slot_narrower_than_the_tool():
+    # the 1 mm step cannot be followed by a tool of radius 2: its offset would run backwards
+    blocks = _polyline([[-10, 0], [0, 0], [10, 0], [10, 1], [0, 1], [-10, 1]])
+    with pytest.raises(CompensationError, match="gouging") as err:
+        compensate(blocks, side="left", radius=2.0, plane=2)
+    assert err.value.index == 2
+    assert isinstance(err.value, ValueError)
+
+
+def test_tool_larger_than_inside_arc():
+    blocks = [_line([1, -10], [1, 0], 1), _arc([1, 0], [0, 1], [0, 0], 2, ccw=True), _line([0, 1], [-10, 1], 3)]
+    with pytest.raises(CompensationError, match="not less than arc radius") as err:
+        compensate(blocks, side="left", radius=2.0, plane=2)
+    assert err.value.index == 1
+    compensate(blocks, side="right", radius=2.0, plane=2)  # outside the arc it is fine
+
+
+def test_entry_errors():
+    with pytest.raises(CompensationError, match="entry move .* not greater than the tool radius") as err:
+        compensate(_polyline([[1, 0], [0, 0], [0, 10]]), side="left", radius=2.0, plane=2)
+    assert err.value.index == 0
+    with pytest.raises(CompensationError, match="entry move must be a straight line"):
+        compensate([_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2)],
+                   side="left", radius=2.0, plane=2)
