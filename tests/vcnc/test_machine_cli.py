@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -10,8 +11,10 @@ import pytest
 
 import interpolators
 import vcnc
+from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
-from vcnc.machine import builtin_machine_text, builtin_machines
+from vcnc.commands.machines import PROGRAM_TABLE_DOC
+from vcnc.machine import builtin_machine_text, builtin_machines, load_machine
 from vcnc.setpoints import Setpoints
 
 PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"
@@ -50,9 +53,23 @@ def test_machines_lists_all(capsys) -> None:
         assert n in out
 
 
-def test_machines_show_prints_toml(capsys) -> None:
+def test_machines_show_prints_toml(capsys, tmp_path) -> None:
     assert main(["machines", "--show", "fadal-pid"]) == 0
-    assert capsys.readouterr().out.strip() == builtin_machine_text("fadal-pid").strip()
+    out = capsys.readouterr().out
+    text = builtin_machine_text("fadal-pid").strip()
+    assert out.startswith(text) and out.rstrip().endswith(PROGRAM_TABLE_DOC.rstrip())
+    # the documented [program] table, uncommented, is a valid machine file whose defaults change nothing
+    doc = "\n".join(ln[2:] if ln.startswith(("# [", "# G54", "# length", "# radius")) or
+                    (ln.startswith("# ") and ln[2:3].islower() and " = " in ln) else ln
+                    for ln in PROGRAM_TABLE_DOC.splitlines())
+    uncommented = text + "\n" + doc
+    f = tmp_path / "m.toml"
+    f.write_text(uncommented.replace('tool_table = "tools.tbl"', ""))
+    m = load_machine(f)
+    assert m.context.dialect.tolerance == interpolators.DEFAULT_TOLERANCE  # the documented value is the default
+    assert dataclasses.replace(m.context.dialect, tolerance=None) == DEFAULT_CONTEXT.dialect
+    assert m.context.tools[1].length == 0.0
+    assert m.context.offset("G54").tolist() == [0, 0, 0] and m.context.home.tolist() == [0, 0, 0]
 
 
 def test_machines_show_unknown_exit_2(capsys) -> None:
