@@ -1,0 +1,105 @@
+"""Drilling canned cycles (:func:`interpolators.iso_cycles.cycle_moves`): exact move lists against LinuxCNC 2.9.
+
+Expected moves follow LinuxCNC's G-code reference ("Canned Cycles": preliminary motion, G98/G99,
+L repeats under G91) and ``src/emc/rs274ngc/interp_cycles.cc`` (``convert_cycle_g83``: feed to
+``r - q``, rapid to R, rapid down to ``G83_RAPID_DELTA`` = 0.010 in = 0.254 mm above the last
+depth; G73 retracts by the same delta), with K as Fanuc's and Haas's repeat word.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
+
+INF = math.inf
+D = 0.254  # G83_RAPID_DELTA 0.010 in [mm]
+
+
+def _moves(g: int, words: dict[str, float], *, pos=(0.0, 0.0, 10.0), g99: bool = False, incremental: bool = False,
+           feed: float = 2.0, p_ms: bool = False, scale: float = 1.0) -> list[tuple]:
+    out = cycle_moves(g, words, cycle=CycleWords(), pos=np.array(pos, dtype=float), offset=np.zeros(3), scale=scale,
+                      incremental=incremental, retract_r=g99, feed=feed, dwell_p_ms=p_ms)
+    return [(m.kind, *np.round(m.target, 9).tolist(), m.feed, m.dwell) for m in out]
+
+
+def test_g81_g98_returns_to_initial_level_g99_to_r():
+    words = {"X": 1.0, "Y": 1.0, "Z": -2.0, "R": 2.0}
+    into = [("rapid", 1, 1, 10, INF, 0), ("rapid", 1, 1, 2, INF, 0), ("line", 1, 1, -2, 2.0, 0)]
+    assert _moves(81, words) == [*into, ("rapid", 1, 1, 10, INF, 0)]
+    assert _moves(81, words, g99=True) == [*into, ("rapid", 1, 1, 2, INF, 0)]
+
+
+def test_preliminary_rapid_up_to_r_when_below_it():
+    # start below R: rapid up to R first; G98 then returns to max(R, initial Z) = R
+    assert _moves(81, {"X": 1.0, "Y": 0.0, "Z": -2.0, "R": 2.0}, pos=(0.0, 0.0, 0.0)) == [
+        ("rapid", 0, 0, 2, INF, 0), ("rapid", 1, 0, 2, INF, 0), ("line", 1, 0, -2, 2.0, 0), ("rapid", 1, 0, 2, INF, 0)]
+
+
+def test_g82_dwells_at_the_bottom_in_seconds_or_milliseconds():
+    expected = [("rapid", 0, 0, 1, INF, 0), ("line", 0, 0, -1, 2.0, 0), ("dwell", 0, 0, -1, 0.0, 0.5),
+                ("rapid", 0, 0, 10, INF, 0)]
+    assert _moves(82, {"X": 0.0, "Y": 0.0, "Z": -1.0, "R": 1.0, "P": 0.5}) == expected
+    assert _moves(82, {"X": 0.0, "Y": 0.0, "Z": -1.0, "R": 1.0, "P": 500.0}, p_ms=True) == expected
+
+
+def test_g83_full_retract_pecks():
+    assert _moves(83, {"X": 0.0, "Y": 0.0, "Z": -2.5, "R": 1.0, "Q": 1.0}, pos=(0.0, 0.0, 5.0), feed=1.0) == [
+        ("rapid", 0, 0, 1, INF, 0),
+        ("line", 0, 0, 0, 1.0, 0), ("rapid", 0, 0, 1, INF, 0), ("rapid", 0, 0, D, INF, 0),
+        ("line", 0, 0, -1, 1.0, 0), ("rapid", 0, 0, 1, INF, 0), ("rapid", 0, 0, -1 + D, INF, 0),
+        ("line", 0, 0, -2, 1.0, 0), ("rapid", 0, 0, 1, INF, 0), ("rapid", 0, 0, -2 + D, INF, 0),
+        ("line", 0, 0, -2.5, 1.0, 0), ("rapid", 0, 0, 5, INF, 0)]
+
+
+def test_g73_chip_break_pecks():
+    assert _moves(73, {"X": 0.0, "Y": 0.0, "Z": -2.5, "R": 1.0, "Q": 1.0}, pos=(0.0, 0.0, 5.0), feed=1.0,
+                  g99=True) == [
+        ("rapid", 0, 0, 1, INF, 0),
+        ("line", 0, 0, 0, 1.0, 0), ("rapid", 0, 0, D, INF, 0),
+        ("line", 0, 0, -1, 1.0, 0), ("rapid", 0, 0, -1 + D, INF, 0),
+        ("line", 0, 0, -2, 1.0, 0), ("rapid", 0, 0, -2 + D, INF, 0),
+        ("line", 0, 0, -2.5, 1.0, 0), ("rapid", 0, 0, 1, INF, 0)]
+
+
+def test_g85_and_g89_feed_out_to_r():
+    words = {"X": 0.0, "Y": 0.0, "Z": -1.0, "R": 1.0}
+    assert _moves(85, words) == [("rapid", 0, 0, 1, INF, 0), ("line", 0, 0, -1, 2.0, 0), ("line", 0, 0, 1, 2.0, 0),
+                                 ("rapid", 0, 0, 10, INF, 0)]
+    assert _moves(89, {**words, "P": 0.25}, g99=True) == [
+        ("rapid", 0, 0, 1, INF, 0), ("line", 0, 0, -1, 2.0, 0), ("dwell", 0, 0, -1, 0.0, 0.25),
+        ("line", 0, 0, 1, 2.0, 0)]
+
+
+@pytest.mark.parametrize("repeat", ["L", "K"])
+def test_incremental_repeats_step_in_xy(repeat):
+    # LinuxCNC's G81 example with L: G91 R from the start Z, Z from R, X Y stepped per repeat
+    moves = _moves(81, {"X": 2.0, "Y": 1.0, "R": -4.0, "Z": -3.0, repeat: 3.0}, pos=(0.0, 0.0, 5.0), incremental=True)
+    expected = []
+    for k in (1, 2, 3):
+        expected += [("rapid", 2 * k, k, 5, INF, 0), ("rapid", 2 * k, k, 1, INF, 0), ("line", 2 * k, k, -2, 2.0, 0),
+                     ("rapid", 2 * k, k, 5, INF, 0)]
+    assert moves == expected
+
+
+def test_inch_words_scaled_but_peck_clearance_stays_0_010_in():
+    moves = _moves(83, {"X": 0.0, "Y": 0.0, "Z": -0.1, "R": 0.0, "Q": 0.06}, pos=(0.0, 0.0, 0.0), feed=1.0,
+                   scale=25.4, g99=True)
+    assert moves == [("line", 0, 0, -1.524, 1.0, 0), ("rapid", 0, 0, 0, INF, 0), ("rapid", 0, 0, -1.524 + D, INF, 0),
+                     ("line", 0, 0, -2.54, 1.0, 0), ("rapid", 0, 0, 0, INF, 0)]
+
+
+@pytest.mark.parametrize(("g", "words", "match"), [
+    (83, {"Z": -1.0, "R": 1.0}, "peck depth Q must be > 0"),
+    (73, {"Z": -1.0, "R": 1.0, "Q": 0.0}, "peck depth Q must be > 0"),
+    (81, {"Z": -1.0}, "no R"),
+    (81, {"R": 1.0}, "no Z"),
+    (81, {"Z": 2.0, "R": 1.0}, "above the R plane"),
+    (81, {"Z": -1.0, "R": 1.0, "L": 1.5}, "repeat count"),
+])
+def test_invalid_words_are_named(g, words, match):
+    with pytest.raises(CycleError, match=match):
+        _moves(g, {"X": 0.0, "Y": 0.0, **words})
