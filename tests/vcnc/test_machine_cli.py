@@ -31,10 +31,11 @@ def program(tmp_path: Path) -> Path:
 def _fake_interpolator(monkeypatch):
     """The CLI contract is tested independently of the interpolator: a fixed two-axis motion."""
 
-    def load_program(path):
+    def load_program(path, *, context):
+        assert context is not None  # the machine's program context is passed on
         if "bad" in str(path):
             raise vcnc.GCodeError("unknown word Q", file=str(path), line=3, column=1)
-        return str(path)
+        return interpolators.Program(blocks=(), source=str(path))
 
     def interpolate(program, *, limits, sample_time, profile):
         assert profile in ("trapezoid", "scurve") and set(limits) >= {"x", "y"}
