@@ -17,7 +17,8 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   the first contour element at the starting point").
 * **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
   programmed corner point joins the two offset elements; it carries the ``line``/``text`` and
-  the feed of the block it leads into.
+  the feed of the block it leads into (of the last feed move before it when that block is a
+  rapid).
 * **Inside corners**: both offset elements end at their intersection. When they do not
   intersect, or an element would have to run backwards to reach it (the element is shorter than
   what the tool needs), the program gouges and :class:`CompensationError` is raised, as
@@ -324,7 +325,10 @@ def compensate(
             centre, frm, to = corners[i]
             cs, ce = point3(b.start, frm, z0), point3(b.start, to, z0)
             arc = Arc(cs, ce, point3(b.start, centre, z0), ccw=(side == "right"), plane=plane)
-            feed = b.feed if math.isfinite(b.feed) else out[-1].feed
+            feeds = [f for f in (b.feed, *(o.feed for o in reversed(out))) if 0.0 < f < math.inf]
+            if not feeds:
+                raise CompensationError("outside corner between rapid moves: no feed for the corner arc", i)
+            feed = feeds[0]
             out.append(dataclasses.replace(b, kind="arc", start=cs, target=ce, segment=arc, feed=feed, dwell=0.0))
         za = el.za if el is ent else el.z_at(el.a)
         zb = el.z_at(el.b)

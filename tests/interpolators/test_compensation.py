@@ -227,3 +227,32 @@ def test_entry_errors():
     with pytest.raises(CompensationError, match="entry move must be a straight line"):
         compensate([_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2)],
                    side="left", radius=2.0, plane=2)
+
+
+def test_corner_arc_after_a_rapid_takes_the_last_feed_and_a_reversal_turns_half_a_circle():
+    blocks = [_line([-10, 0], [0, 0], 1, feed=7.0), _line([0, 0], [10, 0], 2, kind="rapid", feed=math.inf),
+              _line([10, 0], [0, 0], 3, kind="rapid", feed=math.inf), _line([0, 0], [0, -10], 4)]
+    out = compensate(blocks, side="left", radius=1.0, plane=2)
+    _check(out, [
+        (1, "line", [-10, 0], [0, 1], None, None),
+        (2, "rapid", [0, 1], [10, 1], None, None),
+        (3, "arc", [10, 1], [10, -1], [10, 0], False),
+        (3, "rapid", [10, -1], [0, -1], None, None),
+        (4, "line", [0, -1], [0, -10], None, None),
+    ])
+    assert out[2].feed == 7.0 and out[2].segment.sweep == pytest.approx(-math.pi, abs=1e-15)
+
+
+def test_full_circle_outside_and_z_only_exit_keeps_the_offset():
+    # right of a counter-clockwise full circle of radius 10 (outside): radius 12; a Z-only last block
+    # (Heidenhain "L Z+50 R0") moves at the offset position
+    a, b = _p([10, 0, -1]), _p([10, 0, 50])
+    blocks = [_line([10, -20, -1], [10, 0, -1], 1), _arc([10, 0, -1], [10, 0, -1], [0, 0, -1], 2, ccw=True),
+              Block(line=3, kind="rapid", start=a, target=b, feed=math.inf, segment=Line(a, b))]
+    out = compensate(blocks, side="right", radius=2.0, plane=2)
+    _check(out, [
+        (1, "line", [10, -20, -1], [12, 0, -1], None, None),
+        (2, "arc", [12, 0, -1], [12, 0, -1], [0, 0, -1], True),
+        (3, "rapid", [12, 0, -1], [12, 0, 50], None, None),
+    ])
+    assert out[1].segment.sweep == pytest.approx(2 * math.pi) and out[1].segment.radius == pytest.approx(12.0)
