@@ -16,14 +16,18 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   (TNC 640 user's manual, "Tool radius compensation": "the tool is positioned perpendicular to
   the first contour element at the starting point").
 * **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
-  programmed corner point joins the two offset elements; it carries the ``line``/``text`` and
+  programmed corner point joins the two offset elements (a line after a turn of at most
+  :data:`CONVEX_TOLERANCE` instead starts where the tool is, as LinuxCNC's "convex, one arc
+  needed" case); it carries the ``line``/``text`` and
   the feed of the block it leads into (of the last feed move before it when that block is a
   rapid).
-* **Inside corners**: both offset elements end at their intersection. When they do not
-  intersect, or an element would have to run backwards to reach it (the element is shorter than
-  what the tool needs), the program gouges and :class:`CompensationError` is raised, as
-  LinuxCNC's "Concave corner with cutter radius comp" and "Cutter gouging with cutter radius
-  comp".
+* **Inside corners**: both offset elements end at their intersection (after the entry move,
+  with the entry's parallel offset, as ``convert_straight_comp2``/``convert_arc_comp2`` do). When
+  they do not intersect, or an element would have to run backwards to reach it (the element is
+  shorter than what the tool needs), the program gouges and :class:`CompensationError` is raised
+  with LinuxCNC's messages (``move_endpoint_and_flush`` in ``interp_queue.cc``: "Straight feed in
+  concave corner cannot be reached by the tool without gouging", "Arc move in concave corner ...",
+  "Arc to arc motion makes a corner the compensated tool can't fit in without gouging").
 * **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
   than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
   comp".
@@ -47,13 +51,16 @@ from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.errors import InputError
 
-__all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES"]
+__all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES", "CONVEX_TOLERANCE"]
 
 #: Compensation sides: G41/RL is "left", G42/RR is "right".
 SIDES: tuple[str, str] = ("left", "right")
 
 #: Entry rules: LinuxCNC's (perpendicular to the entry move) or the TNC's (perpendicular to the first contour element).
 ENTRY_RULES: tuple[str, str] = ("linuxcnc", "perpendicular")
+
+#: Convex corners of at most this turn [rad] join a line without a corner arc (LinuxCNC TOLERANCE_CONCAVE_CORNER).
+CONVEX_TOLERANCE = 0.05
 
 #: Points closer than this are the same point [mm].
 _EPS = 1e-9
@@ -261,7 +268,9 @@ def compensate(
                 f"({radius:g} mm)", first)
         e_end = e_prog + s * radius * _left((e_prog - e_start) / dist)
     ent = _Offset(index=first, kind="line", a=e_start, b=e_end, za=float(eb.start[plane]), zb=float(eb.target[plane]))
-    ent.a0, ent.b0 = ent.a.copy(), ent.b.copy()
+    # an inside corner after the entry is cut on the entry's parallel offset, as convert_*_comp2 take the
+    # direction of the last cut from the programmed point to the tool; the entry still starts where the tool is
+    ent.a0, ent.b0 = (e_start + (e_end - e_prog) if entry == "linuxcnc" else e_start.copy()), e_end.copy()
     chain = [ent, *offsets]
 
     # corners between consecutive elements
@@ -274,28 +283,35 @@ def compensate(
         corner = flat(blocks[el_a.index].target)
         ta, tb = el_a.tangent(el_a.b), el_b.tangent(el_b.a)
         cr = _cross(ta, tb)
-        outside = s * cr < -1e-12 or (abs(cr) <= 1e-12 and float(ta @ tb) < 0.0)
-        if outside:
-            corners[el_b.index] = (corner, el_a.b.copy(), el_b.a.copy())
+        # turn away from the tool side [rad] (a reversal is a half turn round the outside)
+        bend = math.pi if abs(cr) <= 1e-12 and float(ta @ tb) < 0.0 else -s * math.atan2(cr, float(ta @ tb))
+        if bend > 0.0:  # convex
+            if bend <= CONVEX_TOLERANCE and el_b.kind == "line":
+                el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()  # LinuxCNC's "convex, one arc needed"
+            else:
+                corners[el_b.index] = (corner, el_a.b.copy(), el_b.a.copy())
             continue
         cands = _intersections(el_a, el_b)
         if not cands:
-            raise CompensationError("concave corner with cutter radius comp: the offset elements do not meet",
-                                    el_b.index)
+            what = "Arc to arc motion makes a corner the compensated tool can't fit in" if (
+                el_a.kind == el_b.kind == "arc") else "Arc move in concave corner cannot be reached by the tool"
+            raise CompensationError(f"{what} without gouging (tool radius {radius:g} mm)", el_b.index)
         x = min(cands, key=lambda v: math.hypot(*(v - corner)))
         el_a.b, el_b.a = x.copy(), x.copy()
 
     # gouge check: every element still runs forward within its untrimmed extent
     for el in chain:
         ext = el.extent()
-        tol = 1e-9 * max(ext, 1.0)
+        tol = 1e-9 * ext + 1e-7 / (1.0 if el.kind == "line" else el.radius)
         t0 = 0.0 if el is ent else el.param(el.a)
         t1 = el.param(el.b) if el.kind == "line" else (el.param(el.b) or ext)
         if el.kind == "arc" and t0 > ext + tol:
             t0 -= 2.0 * math.pi
         if not (-tol <= t0 < t1 - tol and t1 <= ext + tol):
-            raise CompensationError("cutter gouging with cutter radius comp: the element is too short for the tool "
-                                    "(or the turn is too tight) at this radius", el.index)
+            what = "Arc move" if el.kind == "arc" else (
+                "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed")
+            raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "
+                                    f"(tool radius {radius:g} mm)", el.index)
 
     def point3(template: np.ndarray, xy: np.ndarray, z: float) -> np.ndarray:
         v = np.array(template, dtype=float)

@@ -59,9 +59,9 @@ def test_outline_outside_corners_get_arcs_and_entry_meets_first_side():
     # G41 r=2 around the outside of the square 0..20 travelling clockwise, entry from (-10,-10).
     out = compensate(_polyline([[-10, -10], [0, 0], [0, 20], [20, 20], [20, 0], [0, 0], [-10, -10]]),
                      side="left", radius=2.0, plane=2)
-    # entry ends at (0,0) + 2 * (-1, 1)/sqrt(2) (convert_straight_comp1), then is cut back to x = -2 (inside corner)
-    ex, ey = -math.sqrt(2.0), math.sqrt(2.0)
-    y_in = -10.0 + (ey + 10.0) * (-2.0 + 10.0) / (ex + 10.0)
+    # entry ends at (0,0) + 2 * (-1, 1)/sqrt(2) (convert_straight_comp1); the inside corner with x = -2 is taken on
+    # the entry's parallel offset y = x + 2 sqrt(2)
+    y_in = -2.0 + 2.0 * math.sqrt(2.0)
     _check(out, [
         (1, "line", [-10, -10], [-2, y_in], None, None),
         (2, "line", [-2, y_in], [-2, 20], None, None),
@@ -80,8 +80,7 @@ def test_pocket_inside_corners_are_intersections():
     # G41 r=2 inside the square 0..20 travelling counter-clockwise, entry from the centre.
     out = compensate(_polyline([[10, 10], [0, 0], [20, 0], [20, 20], [0, 20], [0, 0], [10, 10]]),
                      side="left", radius=2.0, plane=2)
-    ex, ey = math.sqrt(2.0), -math.sqrt(2.0)  # (0,0) + 2 * (1,-1)/sqrt(2)
-    x_in = 10.0 + (ex - 10.0) * (2.0 - 10.0) / (ey - 10.0)
+    x_in = 2.0 + 2.0 * math.sqrt(2.0)  # y = 2 on the entry's parallel offset y = x - 2 sqrt(2)
     _check(out, [
         (1, "line", [10, 10], [x_in, 2], None, None),
         (2, "line", [x_in, 2], [18, 2], None, None),
@@ -206,7 +205,8 @@ def test_zero_radius_is_identity():
 def test_gouge_in_a_slot_narrower_than_the_tool():
     # the 1 mm step cannot be followed by a tool of radius 2: its offset would run backwards
     blocks = _polyline([[-10, 0], [0, 0], [10, 0], [10, 1], [0, 1], [-10, 1]])
-    with pytest.raises(CompensationError, match="gouging") as err:
+    gouge = "Straight feed in concave corner cannot be reached by the tool without gouging"
+    with pytest.raises(CompensationError, match=gouge) as err:
         compensate(blocks, side="left", radius=2.0, plane=2)
     assert err.value.index == 2
     assert isinstance(err.value, ValueError)
@@ -256,3 +256,28 @@ def test_full_circle_outside_and_z_only_exit_keeps_the_offset():
         (3, "rapid", [12, 0, -1], [12, 0, 50], None, None),
     ])
     assert out[1].segment.sweep == pytest.approx(2 * math.pi) and out[1].segment.radius == pytest.approx(12.0)
+
+
+def test_small_convex_turn_joins_lines_without_a_corner_arc():
+    # a right turn of atan(0.02) = 0.02 rad < CONVEX_TOLERANCE (0.05 rad) with the tool on the left
+    out = compensate(_polyline([[-10, 0], [0, 0], [10, 0], [20, -0.2], [30, -10]]), side="left", radius=2.0, plane=2)
+    n = np.array([0.2, 10.0]) / math.hypot(0.2, 10.0)
+    end3 = [20.0 + 2.0 * n[0], -0.2 + 2.0 * n[1]]
+    _check(out, [
+        (1, "line", [-10, 0], [0, 2], None, None),
+        (2, "line", [0, 2], [10, 2], None, None),
+        (3, "line", [10, 2], end3, None, None),
+        (4, "line", end3, [30, -10], None, None),
+    ])
+
+
+def test_arcs_that_cannot_meet_inside_name_the_corner():
+    # a lens (circles of radius 1 about (-0.5,0) and (0.5,0)) run counter-clockwise with the tool inside: the
+    # offset circles of radius 1 - 0.6 = 0.4 are 1 mm apart and never meet at the lens tip
+    h = math.sqrt(0.75)
+    blocks = [_line([0, -3], [0, -h], 1), _arc([0, -h], [0, h], [-0.5, 0], 2, ccw=True),
+              _arc([0, h], [0, -h], [0.5, 0], 3, ccw=True), _line([0, -h], [0, -3], 4)]
+    with pytest.raises(CompensationError, match="Arc to arc motion makes a corner the compensated tool can't fit") as e:
+        compensate(blocks, side="left", radius=0.6, plane=2)
+    assert e.value.index == 2
+    compensate(blocks, side="left", radius=0.4, plane=2)  # a smaller tool fits
