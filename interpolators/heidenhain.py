@@ -55,10 +55,12 @@ the path is continuous with that tolerance (``32.1`` without T: ``context.dialec
 
 Unit conversion: positions mm, feeds mm/s. Machine coordinates = program coordinates + the
 preset (``context.offset("G54")``) + the datum shift of cycle 7 + the tool length along the
-tool axis. ``RL``/``RR`` with a tool radius other than 0 and anything not listed (other APPR/DEP
-forms, FK, other pattern forms, rotary axes, other cycles and FN functions) are errors naming
-the function, line and column. ``CYCLE DEF``, which the SolidWorks TNC post writes for
-``CYCL DEF``, is read as such.
+tool axis. ``RL``/``RR`` offset the contour by the tool radius (table or TOOL DEF, plus DR)
+from the RL/RR block (the entry move, ending perpendicular to the first contour element as on
+the TNC) to the R0 block (the exit move), by :func:`interpolators.compensation.compensate`.
+Anything not listed (other APPR/DEP forms, FK, other pattern forms, rotary axes, other cycles
+and FN functions) is an error naming the function, line and column. ``CYCLE DEF``, which the
+SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
 
 from __future__ import annotations
@@ -70,6 +72,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
+from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
@@ -148,6 +151,9 @@ class _Machine:
         self.tool_radius = 0.0
         self.shift = np.zeros(3)
         self.comp = "R0"
+        self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
+        self.comp_side = "RL"
+        self.comp_radius = 0.0
         self.ccw: bool | None = None
         self.exact_stop = True
         self.tolerance: float | None = None
@@ -355,6 +361,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         pw = m.approach["where"]
         pw.fail("APPR LT without a following contour element", column=1, text=pw.text,
                 expected="an L or arc block after APPR LT")
+    if m.comp != "R0":
+        _finish_compensation(m)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
@@ -660,13 +668,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         m.pole = target
         m.used.update(written)
         return ended
-    if "RCOMP" in seen:
-        comp = seen["RCOMP"].key
-        if comp != "R0" and m.tool_radius != 0.0:
-            w = seen["RCOMP"]
-            where.fail(f"radius compensation {comp} with tool radius {m.tool_radius:g} mm is not supported",
-                       column=w.column, text=w.text, expected="R0, or a tool of radius 0")
-        m.comp = comp
+    exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
     rapid = "FMAX" in seen
     if "F" in seen:
         w = seen["F"]
@@ -717,6 +719,8 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
             _resolve_approach(m, np.array([t[p], t[q]]), where)
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
+    if exit_run:
+        _finish_compensation(m)
     if 140 in mvals:
         if "MBMAX" in seen:
             retract = m.pos.copy()
@@ -839,13 +843,10 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
         where.fail(f"{kw} LT needs LEN > 0", column=w.column if w else blk.column, text=w.text if w else code,
                    expected="LEN > 0 [mm]")
     length = seen["LEN"].value * m.scale
+    exit_run = False
     for comp in ("R0", "RL", "RR"):
         if comp in seen:
-            if comp != "R0" and m.tool_radius != 0.0:
-                w = seen[comp]
-                where.fail(f"radius compensation {comp} with tool radius {m.tool_radius:g} mm is not supported",
-                           column=w.column, text=w.text, expected="R0, or a tool of radius 0")
-            m.comp = comp
+            exit_run = _set_compensation(seen[comp], m, where)
     prev_feed = m.feed
     if "F" in seen:
         if not seen["F"].value > 0:
@@ -872,6 +873,8 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     pn[p] += length * t[0]
     pn[q] += length * t[1]
     m.emit("line", pn, Line(m.pos, pn), m.feed, where, blk.number)
+    if exit_run:
+        _finish_compensation(m)
     if target[m.plane] != m.pos[m.plane]:
         up = m.pos.copy()
         up[m.plane] = target[m.plane]
@@ -901,3 +904,47 @@ def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
         down[m.plane] = pa[m.plane]
         m.emit("line", down, Line(m.pos, down), m.feed, pw, a["number"])
     m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])
+
+
+# --- radius compensation -------------------------------------------------------------------------
+
+def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
+    """Switch RL/RR/R0 at a motion block; True when this block is the exit move of a run.
+
+    The block with RL/RR is the entry move of a compensated run and the first block with R0 its
+    exit move (TNC 640 user's manual, "Tool radius compensation": RL/RR take effect in the
+    block that programs them; R0 cancels it), as in :func:`interpolators.compensation.compensate`.
+    """
+    comp = word.key
+    if comp == m.comp:
+        return False
+    if comp != "R0" and m.comp != "R0":
+        where.fail(f"{comp} while {m.comp} is active", column=word.column, text=word.text,
+                   expected="R0 between RL and RR")
+    m.comp = comp
+    if comp == "R0":
+        return True
+    m.comp_start = len(m.blocks)
+    m.comp_side = comp
+    m.comp_radius = m.tool_radius
+    return False
+
+
+def _finish_compensation(m: _Machine) -> None:
+    """Replace the blocks of the finished run by the tool-centre path."""
+    start, m.comp_start = m.comp_start, None
+    side = "left" if m.comp_side == "RL" else "right"
+    m.comp = "R0"
+    run = m.blocks[start:]
+    if m.comp_radius == 0.0 or not run:
+        return
+    try:
+        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular")
+    except CompensationError as exc:
+        b = run[min(exc.index, len(run) - 1)]
+        Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}", column=1,
+                                              text=b.text,
+                                              expected="a contour the tool of radius "
+                                                       f"{m.comp_radius:g} mm can follow")
+    m.blocks[start:] = new
+    m.pos = np.array(new[-1].target, dtype=float)

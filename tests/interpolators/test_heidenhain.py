@@ -153,9 +153,21 @@ def test_appr_lt_and_dep_lt():
 def test_radius_compensation_words():
     prog = run("TOOL CALL 0 Z\nL X+0 Y+0 RL F100\nL X+10 R0")  # tool radius 0: the contour is the path
     assert ends(prog) == [[0, 0, 0], [10, 0, 0]]
-    ctx = MachineContext(tools={2: Tool(number=2, radius=3.0)})
-    with pytest.raises(GCodeError, match="radius compensation RR"):
-        run("TOOL CALL 2 Z\nL X+0 Y+0 RR F100", context=ctx)
+    # a 20 mm square, tool radius 2: RL runs inside (intersections at the corners), RR outside
+    # (an arc at each corner); the entry ends perpendicular to the first contour element (TNC)
+    ctx = MachineContext(tools={2: Tool(number=2, radius=2.0)})
+    square = "TOOL CALL 2 Z\nL X-10 Y-5 Z+0 R0 FMAX\nL X+0 Y+0 {} F100\nL X+20\nL Y+20\nL X+0\nL Y+0\nL X-10 Y-5 R0"
+    left = run(square.format("RL"), context=ctx)
+    assert np.allclose(ends(left), [[-10, -5, 0], [0, 2, 0], [18, 2, 0], [18, 18, 0], [2, 18, 0], [2, 0, 0],
+                                    [-10, -5, 0]], atol=1e-12)
+    right = run(square.format("RR"), context=ctx)
+    assert [b.kind for b in right.blocks].count("arc") == 3
+    assert np.allclose(ends(right)[1:3], [[0, -2, 0], [20, -2, 0]], atol=1e-12)
+    assert np.allclose(right.blocks[3].segment.center, [20, 0, 0]) and right.blocks[3].segment.radius == 2.0
+    with pytest.raises(GCodeError, match="RR while RL is active"):
+        run("L X+0 Y+0 RL F100\nL X+5 RR", context=ctx)
+    with pytest.raises(GCodeError, match="radius compensation RL"):  # an arc smaller than the tool, inside
+        run("TOOL CALL 2 Z\nL X+0 Y+0 R0 F100\nL X+10 RL\nCC X+11 Y+0\nC X+12 Y+0 DR+\nL X+20 R0", context=ctx)
 
 
 def test_dwell_and_tolerance_cycles():
