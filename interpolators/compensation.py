@@ -18,7 +18,8 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
 * **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
   programmed corner point joins the two offset elements (a line after a turn of at most
   :data:`CONVEX_TOLERANCE` instead starts where the tool is, as LinuxCNC's "convex, one arc
-  needed" case); it carries the ``line``/``text`` and
+  needed" case; before an arc, or where 4-decimal programs make the offsets disagree with the
+  tangents, a short line bridges the gap instead); it carries the ``line``/``text`` and
   the feed of the block it leads into (of the last feed move before it when that block is a
   rapid).
 * **Inside corners**: both offset elements end at their intersection (after the entry move,
@@ -289,7 +290,12 @@ def compensate(
             if bend <= CONVEX_TOLERANCE and el_b.kind == "line":
                 el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()  # LinuxCNC's "convex, one arc needed"
             else:
-                corners[el_b.index] = (corner, el_a.b.copy(), el_b.a.copy())
+                u, v = el_a.b - corner, el_b.a - corner
+                sweep = (math.atan2(v[1], v[0]) - math.atan2(u[1], u[0])) * (1.0 if side == "right" else -1.0)
+                # a turn within the tolerance before an arc, or offsets that disagree with the tangents (programs
+                # rounded to 4 decimals), is bridged by a straight line instead of an arc
+                arc = bend > CONVEX_TOLERANCE and sweep % (2.0 * math.pi) <= math.pi + 1e-9
+                corners[el_b.index] = (corner if arc else None, el_a.b.copy(), el_b.a.copy())
             continue
         cands = _intersections(el_a, el_b)
         if not cands:
@@ -340,12 +346,15 @@ def compensate(
         if i in corners:
             centre, frm, to = corners[i]
             cs, ce = point3(b.start, frm, z0), point3(b.start, to, z0)
-            arc = Arc(cs, ce, point3(b.start, centre, z0), ccw=(side == "right"), plane=plane)
+            if centre is None:
+                seg, kind = Line(cs, ce), "line"
+            else:
+                seg, kind = Arc(cs, ce, point3(b.start, centre, z0), ccw=(side == "right"), plane=plane), "arc"
             feeds = [f for f in (b.feed, *(o.feed for o in reversed(out))) if 0.0 < f < math.inf]
             if not feeds:
                 raise CompensationError("outside corner between rapid moves: no feed for the corner arc", i)
             feed = feeds[0]
-            out.append(dataclasses.replace(b, kind="arc", start=cs, target=ce, segment=arc, feed=feed, dwell=0.0))
+            out.append(dataclasses.replace(b, kind=kind, start=cs, target=ce, segment=seg, feed=feed, dwell=0.0))
         za = el.za if el is ent else el.z_at(el.a)
         zb = el.z_at(el.b)
         st, tg = point3(b.start, el.a, za), point3(b.target, el.b, zb)

@@ -281,3 +281,24 @@ def test_arcs_that_cannot_meet_inside_name_the_corner():
         compensate(blocks, side="left", radius=0.6, plane=2)
     assert e.value.index == 2
     compensate(blocks, side="left", radius=0.4, plane=2)  # a smaller tool fits
+
+
+def test_small_convex_turn_into_an_arc_is_bridged_by_a_line():
+    # a clockwise arc of radius 10 leaving (10,0) 0.02 rad to the right of the incoming line, tool on the left
+    # (outside the arc, radius 12): no corner arc of 0.02 rad, a straight bridge from (10,2) to the arc's start
+    c = np.array([10.0 - 10.0 * math.sin(0.02), -10.0 * math.cos(0.02)])
+    u0 = (np.array([10.0, 0.0]) - c) / 10.0
+    u1 = np.array([math.cos(math.atan2(u0[1], u0[0]) - 0.5), math.sin(math.atan2(u0[1], u0[0]) - 0.5)])
+    end = c + 10.0 * u1
+    blocks = [_line([-10, 0], [0, 0], 1), _line([0, 0], [10, 0], 2),
+              _arc([10, 0], end.tolist(), c.tolist(), 3, ccw=False), _line(end.tolist(), [30, -30], 4)]
+    out = compensate(blocks, side="left", radius=2.0, plane=2)
+    s3, e3 = (c + 12.0 * u0).tolist(), (c + 12.0 * u1).tolist()
+    _check(out, [
+        (1, "line", [-10, 0], [0, 2], None, None),
+        (2, "line", [0, 2], [10, 2], None, None),
+        (3, "line", [10, 2], s3, None, None),
+        (3, "arc", s3, e3, c.tolist(), False),
+        (4, "line", e3, [30, -30], None, None),
+    ])
+    assert out[2].length == pytest.approx(2.0 * 0.02, rel=1e-3)  # chord of the 0.02 rad turn at radius 2
