@@ -95,6 +95,7 @@ class _Offset:
     zb: float  # tool-axis coordinate at the end [mm]
     c: np.ndarray | None = None  # arc centre (2,) [mm]
     radius: float = 0.0  # arc radius [mm]
+    turns: int = 0  # extra full turns of the arc (G2/G3 P > 1)
     ccw: bool = True
     a0: np.ndarray | None = None  # untrimmed start, for the gouge check
     b0: np.ndarray | None = None  # untrimmed end
@@ -248,7 +249,8 @@ def compensate(
                     f"tool radius {radius:g} mm not less than arc radius {arc.radius:g} mm with cutter radius comp", i)
             ua, ub = (a2 - c) / arc.radius, (b2 - c) / arc.radius
             el = _Offset(index=i, kind="arc", a=c + new_r * ua, b=c + new_r * ub, za=float(b.start[plane]),
-                         zb=float(b.target[plane]), c=c, radius=new_r, ccw=arc.ccw)
+                         zb=float(b.target[plane]), c=c, radius=new_r, ccw=arc.ccw,
+                         turns=max(math.ceil(abs(arc.sweep) / (2.0 * math.pi) - 1e-9) - 1, 0))
         else:
             d = b2 - a2
             n = s * radius * _left(d / math.hypot(*d))
@@ -361,7 +363,7 @@ def compensate(
         if el.kind == "arc":  # intersections onto the circle to rounding, as Arc requires
             st = point3(b.start, el.c + el.radius * (el.a - el.c) / math.hypot(*(el.a - el.c)), za)
             tg = point3(b.target, el.c + el.radius * (el.b - el.c) / math.hypot(*(el.b - el.c)), zb)
-            seg = Arc(st, tg, point3(b.start, el.c, za), ccw=el.ccw, plane=plane)
+            seg = Arc(st, tg, point3(b.start, el.c, za), ccw=el.ccw, plane=plane, turns=el.turns)
         else:
             seg = Line(st, tg)
         out.append(dataclasses.replace(b, start=st, target=tg, segment=seg))

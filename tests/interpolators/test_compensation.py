@@ -302,3 +302,15 @@ def test_small_convex_turn_into_an_arc_is_bridged_by_a_line():
         (4, "line", e3, [30, -30], None, None),
     ])
     assert out[2].length == pytest.approx(2.0 * 0.02, rel=1e-3)  # chord of the 0.02 rad turn at radius 2
+
+
+def test_helix_of_three_turns_keeps_its_turns():
+    # G3 P3 down 3 mm inside a circle of radius 10 with a tool of radius 2: radius 8, 3 turns, same pitch
+    a, b = _p([10, 0, 0]), _p([10, 0, -3])
+    helix = Block(line=2, kind="arc", start=a, target=b, feed=10.0,
+                  segment=Arc(a, b, _p([0, 0, 0]), ccw=True, plane=2, turns=2))
+    out = compensate([_line([10, -10], [10, 0], 1), helix, _line([10, 0, -3], [0, 0, -3], 3)],
+                     side="left", radius=2.0, plane=2)
+    arc = out[1].segment
+    np.testing.assert_allclose([arc.start, arc.end], [[8, 0, 0], [8, 0, -3]], atol=1e-12)
+    assert arc.sweep == pytest.approx(6.0 * math.pi) and arc.radius == pytest.approx(8.0) and arc.helix == -3.0
