@@ -380,11 +380,12 @@ class AugmentedAxisModel(ReducedAxisModel):
             raise InputError(f"reference must be a non-empty one-dimensional array (got shape {xr.shape})")
         if not np.all(np.isfinite(xr)):
             raise InputError("reference [mm] holds NaN or inf")
+        xr = self.loop_reference(xr, sample_time)
         return simulate_augmented(self.parameters, xr, self.spec(xr.size, sample_time, disturbance=disturbance))
 
     def velocity(self, reference: np.ndarray, *, sample_time: float | None = None) -> np.ndarray:
         """Model velocity at the measured point [mm/s]."""
-        xr = np.asarray(reference, dtype=float)
+        xr = self.loop_reference(np.asarray(reference, dtype=float), sample_time)
         return simulate_augmented(self.parameters, xr, self.spec(xr.size, sample_time), return_velocity=True)[1]
 
     @property
@@ -396,7 +397,7 @@ class AugmentedAxisModel(ReducedAxisModel):
         """The plain reduced model (same parameters, no elements)."""
         return ReducedAxisModel(
             parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis, method=self.method,
-            poles=dict(self.poles), bounds=dict(self.bounds), fit=dict(self.fit),
+            poles=dict(self.poles), bounds=dict(self.bounds), fit=dict(self.fit), delay_s=self.delay_s,
         )
 
 

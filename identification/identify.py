@@ -23,6 +23,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from identification.bounds import PoleBounds, as_bounds
+from identification.dead_time import estimate_delay, loop_capture
 from identification.ga import GAOptions
 from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
@@ -124,6 +125,7 @@ def identify(
     regressor_options: RegressorOptions | None = None,
     seed: int = 0,
     ga_options: GAOptions | None = None,
+    delay: str | float = "auto",
 ) -> ReducedAxisModel:
     """Identify the reduced model of one axis from a capture (thesis Ch. 3-4, plus refinement).
 
@@ -147,6 +149,10 @@ def identify(
     seed : int
         Random seed of the GA.
     ga_options : GAOptions, optional
+    delay : "auto" or float
+        Dead time between the recorded reference and the loop [s]: ``"auto"`` (default) estimates
+        it (:func:`identification.dead_time.estimate_delay`, +-0.3 s), a number fixes it (0: none).
+        The model is fitted on the delayed reference and carries ``delay_s``.
 
     Returns
     -------
@@ -160,6 +166,10 @@ def identify(
         raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
     opt = regressor_options or RegressorOptions()
     xr, x, T = check_capture(capture, axis, options=opt)
+    delay_s, delay_fit = _dead_time(delay, xr, x, T, opt)
+    if delay_s:
+        capture = loop_capture(capture, axis, delay_s / T)
+        xr, x, T = check_capture(capture, axis, options=opt)
     b = as_bounds(bounds, T)
     stats = SufficientStatistics(8)
     for phi, y in iter_regressor(xr, x, T, options=opt):
@@ -173,6 +183,7 @@ def identify(
         "solver": sol.to_dict(),
         "samples": int(x.size),
         "regressor": dataclasses.asdict(opt),
+        "delay": delay_fit,
     }
     label = method
     if refine == "output-error":
@@ -198,7 +209,22 @@ def identify(
     )
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
-    return _maybe_diagnose(capture, model, axis, diagnose)
+    model = _maybe_diagnose(capture, model, axis, diagnose)  # in the loop's time frame
+    return dataclasses.replace(model, delay_s=delay_s) if delay_s else model
+
+
+def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions):
+    """``(delay_s, record)``: the estimated or given dead time [s] and what to report of it."""
+    if isinstance(delay, str):
+        if delay != "auto":
+            raise IdentificationError(f"delay must be 'auto' or a number of seconds, got {delay!r}")
+        est = estimate_delay(xr, x, T, options=opt)
+        log.info("reference dead time: %.4g s (%.3g samples)", est.delay_s, est.samples)
+        return est.delay_s, {"estimated": True, **est.to_dict()}
+    d = float(delay)
+    if not (math.isfinite(d) and abs(d) < x.size * T / 3):
+        raise IdentificationError(f"delay [s] must be finite and shorter than a third of the record, got {delay!r}")
+    return d, {"estimated": False, "delay_s": d}
 
 
 def _maybe_diagnose(capture: Capture, model: ReducedAxisModel, axis: str, diagnose: bool | None):
@@ -232,6 +258,7 @@ class Identifier:
     regressor_options: RegressorOptions | None = None
     seed: int = 0
     ga_options: GAOptions | None = None
+    delay: str | float = "auto"
 
     def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
         """The fitted model of ``axis``."""
@@ -245,4 +272,5 @@ class Identifier:
             regressor_options=self.regressor_options,
             seed=self.seed,
             ga_options=self.ga_options,
+            delay=self.delay,
         )

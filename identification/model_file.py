@@ -13,7 +13,8 @@ Layout (ARCHITECTURE.md, "Model file")::
 :data:`identification.reduced_model.PARAMETER_UNITS`; ``bounds`` are the pole bounds of
 Eq. (3.8) the solver used (the thesis' defaults, Sec. 4.3: 0.2 Hz to the Nyquist frequency for
 p and omega_n, 0.2 to 2.0 for zeta). Extra keys are kept on reading (``units`` is written for
-readers).
+readers). A model with a reference dead time is written as ``vcnc.axis-model/2`` with the extra key
+``delay_s`` [s] (:mod:`identification.dead_time`); both formats are read.
 """
 
 from __future__ import annotations
@@ -29,9 +30,13 @@ from vcnc._io import atomic_path
 from vcnc.errors import InputError, ModelFileError
 from vcnc.setpoints import AXIS_NAMES
 
-__all__ = ["FORMAT", "model_to_dict", "model_from_dict", "write_model", "load_model"]
+__all__ = ["FORMAT", "FORMAT_DELAY", "FORMATS", "model_to_dict", "model_from_dict", "write_model", "load_model"]
 
 FORMAT = "vcnc.axis-model/1"
+#: Format of a model with a reference dead time (``delay_s`` != 0); a ``/1`` reader refuses it
+#: rather than predict without the delay.
+FORMAT_DELAY = "vcnc.axis-model/2"
+FORMATS = (FORMAT, FORMAT_DELAY)
 
 
 def _plain(obj: Any) -> Any:
@@ -52,10 +57,12 @@ def _plain(obj: Any) -> Any:
 
 
 def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
-    """The model as a plain ``vcnc.axis-model/1`` dictionary."""
+    """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one)."""
+    delay = {"delay_s": model.delay_s} if model.delay_s else {}
     return _plain(
         {
-            "format": FORMAT,
+            "format": FORMAT_DELAY if model.delay_s else FORMAT,
+            **delay,
             "axis": model.axis,
             "sample_time": model.sample_time,
             "method": model.method,
@@ -91,8 +98,9 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
     if not isinstance(d, dict):
         raise ModelFileError("a model file must hold a JSON object", file=source)
     fmt = d.get("format")
-    if fmt != FORMAT:
-        raise ModelFileError(f"key 'format' must be {FORMAT!r}", file=source, text=repr(fmt))
+    if fmt not in FORMATS:
+        raise ModelFileError(f"key 'format' must be {FORMAT!r} or {FORMAT_DELAY!r}", file=source, text=repr(fmt))
+    delay_s = _number(d, "delay_s", "", source) if fmt == FORMAT_DELAY else 0.0
     axis = d.get("axis", "x")
     if axis not in AXIS_NAMES:
         raise ModelFileError(f"key 'axis' must be one of {', '.join(AXIS_NAMES)}", file=source, text=repr(axis))
@@ -133,6 +141,7 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
             fit=dict(d.get("fit") or {}),
             effects=list(d.get("effects") or []),
             validation=dict(d.get("validation") or {}),
+            delay_s=delay_s,
         )
     except InputError as exc:
         raise ModelFileError(exc.message, file=source) from exc

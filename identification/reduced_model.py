@@ -90,6 +90,7 @@ import numba
 import numpy as np
 import scipy.linalg
 
+from identification.dead_time import delay_reference
 from identification.poles import pole_splits, pole_table, zero_table
 from vcnc.errors import InputError
 
@@ -416,6 +417,10 @@ class ReducedAxisModel:
         Effects added by the residual diagnosis (issue 5); empty for a plain reduced model.
     validation : dict
         ``rms_before_um``/``rms_after_um`` of the diagnosis; empty when not run.
+    delay_s : float
+        Dead time between the recorded reference and the loop [s] (:mod:`identification.dead_time`):
+        every simulation delays the reference it is given by this much first (> 0: the recorded
+        reference leads).
     """
 
     parameters: dict
@@ -427,9 +432,12 @@ class ReducedAxisModel:
     fit: dict = dataclasses.field(default_factory=dict)
     effects: list = dataclasses.field(default_factory=list)
     validation: dict = dataclasses.field(default_factory=dict)
+    delay_s: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "parameters", _params(self.parameters))
+        if not math.isfinite(self.delay_s):
+            raise InputError(f"delay_s [s] must be finite (got {self.delay_s!r})")
         if not (math.isfinite(self.sample_time) and self.sample_time > 0):
             raise InputError(f"sample_time [s] must be positive (got {self.sample_time!r})")
         if not self.poles:
@@ -452,7 +460,15 @@ class ReducedAxisModel:
         discretisation and friction switching.
         """
         T = self.sample_time if sample_time is None else sample_time
-        return simulate(self.parameters, reference, T, disturbance=disturbance)
+        return simulate(self.parameters, self.loop_reference(reference, T), T, disturbance=disturbance)
+
+    def loop_reference(self, reference: np.ndarray, sample_time: float | None = None) -> np.ndarray:
+        """The reference the loop receives: ``reference`` [mm] delayed by :attr:`delay_s`."""
+        xr = np.asarray(reference, dtype=float)
+        if self.delay_s == 0.0:
+            return xr
+        T = self.sample_time if sample_time is None else sample_time
+        return delay_reference(xr, self.delay_s / T)
 
     def simulate_reference(self, reference: np.ndarray, sample_time: float) -> np.ndarray:
         """Machine-axis protocol: predicted position [mm] for a sampled reference [mm]."""
@@ -461,7 +477,7 @@ class ReducedAxisModel:
     def velocity(self, reference: np.ndarray, *, sample_time: float | None = None) -> np.ndarray:
         """Model velocity v_k [mm/s] (the signal that switches the friction)."""
         T = self.sample_time if sample_time is None else sample_time
-        return simulate(self.parameters, reference, T, return_velocity=True)[1]
+        return simulate(self.parameters, self.loop_reference(reference, T), T, return_velocity=True)[1]
 
     def discretize(self, sample_time: float | None = None) -> DiscreteModel:
         """The sampled model at ``sample_time`` [s] (default the model's)."""

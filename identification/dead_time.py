@@ -1,0 +1,195 @@
+"""Dead time between the recorded reference and the position loop.
+
+Production controls record the commanded position ahead of what the position loop receives
+(setpoint buffering, trace channels sampled at another point of the interpolation chain): on a
+Heidenhain iTNC 530 TNCscope trace about 0.1 s. The reduced model of Eq. (3.3) has no dead time;
+fitted to such data it bends its poles to imitate one and predicts badly. vcnc therefore
+identifies the model on the reference delayed by ``delay_s``:
+
+    x_loop(t) = x_recorded(t - delay_s)
+
+``delay_s`` > 0 when the recorded reference leads (the usual case), < 0 when it was logged late.
+The shift is whole and fractional samples; between samples the reference is interpolated
+linearly (:func:`delay_reference`, also the rule of the FMU's delay line). Before the record, the
+delayed reference holds its first value; past it, its last.
+
+:func:`estimate_delay` scans the shift over +-``max_delay_s`` (0.3 s by default) on the
+residual of the regression of Eq. (3.11), coarse to fine, and refines the best whole-sample shift
+to a hundredth of a sample. Every
+candidate is judged on the same samples (the first and last ``max_delay_s`` are left out), so
+the objectives compare. The estimate is the dead time the model needs: the recording offset plus
+the sampled loop's own lag that the continuous model lacks (about one loop sample). Shifts below
+:data:`MIN_DELAY_SAMPLES` are reported as 0: so short a shift cannot be told from an in-loop delay
+of the control action, which the diagnosis' ``delay`` effect models (and which a reference shift
+would wrongly absorb).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
+from vcnc.capture import Capture
+
+__all__ = ["delay_reference", "estimate_delay", "loop_capture", "DelayEstimate", "MAX_DELAY_S", "MIN_DELAY_SAMPLES"]
+
+#: Default half-width of the scan [s].
+MAX_DELAY_S = 0.3
+#: Shortest shift reported [samples]; shorter ones are left to the loop model and its diagnosis.
+#: Measured on fadal-pid (1 ms): no shift gives 1.3 samples (the sampled loop's own lag, which the
+#: continuous Eq. 3.3 lacks), an in-loop delay of the control action of 1 and 2 samples 2.4 and 3.5.
+MIN_DELAY_SAMPLES = 5.0
+#: Resolution of the fractional part of the estimate [samples].
+FRACTION_TOLERANCE = 0.01
+
+
+def delay_reference(reference: np.ndarray, samples: float) -> np.ndarray:
+    """``reference`` delayed by ``samples`` (whole and fractional; negative advances it).
+
+    Linear interpolation between samples; before the record the first value is held, past it
+    the last.
+    """
+    xr = np.asarray(reference, dtype=float)
+    if samples == 0.0:
+        return xr.copy()
+    k = np.arange(xr.size, dtype=float) - float(samples)
+    return np.interp(k, np.arange(xr.size, dtype=float), xr)
+
+
+def loop_capture(capture: Capture, axis: str, samples: float) -> Capture:
+    """``capture`` with ``axis``' reference delayed by ``samples``, without the samples the shift
+    leaves unknown (the first ``ceil(samples)`` for a delay, the last for an advance)."""
+    if samples == 0.0:
+        return capture
+    n = capture.t.size
+    cut = int(math.ceil(abs(samples)))
+    keep = slice(cut, n) if samples > 0 else slice(0, n - cut)
+    i = capture.axis_index(axis)
+    reference = np.array(capture.reference, dtype=float)
+    reference[:, i] = delay_reference(reference[:, i], samples)
+
+    def part(a):
+        return a[keep] if isinstance(a, np.ndarray) and a.ndim >= 1 and a.shape[0] == n else a
+
+    changes = {f.name: part(getattr(capture, f.name)) for f in dataclasses.fields(capture)
+               if isinstance(getattr(capture, f.name), np.ndarray)}
+    changes["reference"] = reference[keep]
+    changes["aux"] = {k: part(v) for k, v in capture.aux.items()}
+    return dataclasses.replace(capture, **changes)
+
+
+@dataclasses.dataclass(frozen=True)
+class DelayEstimate:
+    """Result of :func:`estimate_delay`.
+
+    Attributes
+    ----------
+    delay_s : float
+        Estimated dead time [s] (0 when below :data:`MIN_DELAY_SAMPLES`).
+    samples : float
+        The same in samples (before the threshold).
+    objective_ratio : float
+        Equation-error objective at the estimate over the objective without a shift [-].
+    scanned_s : tuple of float
+        The scanned range [s].
+    """
+
+    delay_s: float
+    samples: float
+    objective_ratio: float
+    scanned_s: tuple[float, float]
+
+    def to_dict(self) -> dict:
+        return {"delay_s": self.delay_s, "samples": self.samples, "objective_ratio": self.objective_ratio,
+                "scanned_s": list(self.scanned_s)}
+
+
+def _rss(xr: np.ndarray, x: np.ndarray, T: float, samples: float, margin: int, opt: RegressorOptions) -> float:
+    """Residual sum of squares of the unconstrained regression of Eq. (3.11) on the shifted reference."""
+    shifted = delay_reference(xr, samples)[margin:xr.size - margin]
+    stats = SufficientStatistics(8)
+    for phi, y in iter_regressor(shifted, x[margin:x.size - margin], T, options=opt):
+        stats.update(phi, y)
+    return float((stats.factor[-1, -1] / stats.scale[-1]) ** 2)
+
+
+def _golden_integer(f, lo: int, hi: int) -> int:
+    """Integer minimiser of a unimodal ``f`` on [lo, hi] by golden-section steps."""
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    while hi - lo > 3:
+        a = int(round(hi - g * (hi - lo)))
+        b = int(round(lo + g * (hi - lo)))
+        if a == b:
+            b = a + 1
+        if f(a) <= f(b):
+            hi = b
+        else:
+            lo = a
+    return min(range(lo, hi + 1), key=f)
+
+
+def estimate_delay(reference: np.ndarray, measured: np.ndarray, sample_time: float, *,
+                   options: RegressorOptions | None = None, max_delay_s: float = MAX_DELAY_S) -> DelayEstimate:
+    """Dead time [s] between the recorded reference and the loop (see the module docstring).
+
+    Parameters
+    ----------
+    reference, measured : ndarray
+        Recorded commanded and measured positions [mm].
+    sample_time : float
+        [s].
+    options : RegressorOptions, optional
+    max_delay_s : float
+        Half-width of the scan [s] (limited to a sixth of the record).
+
+    Notes
+    -----
+    The objective is the residual of the regression of Eq. (3.11) on the delayed reference (the
+    least-squares fit before the pole box: the box guarantees stability, not the timing). The
+    scan runs coarse on the record decimated to about 4 ms, then golden-section on whole samples
+    around the best coarse shift, then golden section on the fraction within one sample of it.
+    """
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    opt = options or RegressorOptions()
+    n = xr.size
+    dmax = int(min(round(max_delay_s / sample_time), n // 6))
+    if dmax < 2:
+        return DelayEstimate(0.0, 0.0, 1.0, (0.0, 0.0))
+    margin = dmax + 1
+    q = max(1, int(round(0.004 / sample_time)))
+    xr_q, x_q, dq = xr[::q], x[::q], dmax // q
+    coarse: dict[int, float] = {}
+    if dq >= 2:
+        step = max(1, dq // 15)
+        for d in sorted({*range(-dq, dq + 1, step), 0}):
+            coarse[d] = _rss(xr_q, x_q, sample_time * q, float(d), dq + 1, opt)
+        best_q = min(coarse, key=coarse.get)
+        lo, hi = max(-dmax, (best_q - step) * q - q), min(dmax, (best_q + step) * q + q)
+    else:
+        lo, hi = -dmax, dmax
+    cache: dict[float, float] = {}
+
+    def f(d: float) -> float:
+        if d not in cache:
+            cache[d] = _rss(xr, x, sample_time, d, margin, opt)
+        return cache[d]
+
+    best = _golden_integer(f, lo, hi)
+    a, b = max(best - 1.0, -dmax), min(best + 1.0, float(dmax))
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    while b - a > FRACTION_TOLERANCE:  # golden section on the fraction
+        c, d = b - g * (b - a), a + g * (b - a)
+        if f(c) <= f(d):
+            b = d
+        else:
+            a = c
+    samples = min((best, 0.5 * (a + b)), key=lambda v: f(float(v)))
+    samples = float(samples)
+    base = f(0.0)
+    ratio = f(samples) / base if base > 0 and math.isfinite(base) else 1.0
+    delay = samples * sample_time if abs(samples) >= MIN_DELAY_SAMPLES else 0.0
+    return DelayEstimate(delay, samples, ratio, (-dmax * sample_time, dmax * sample_time))
