@@ -126,6 +126,8 @@ class _Offset:
 
     def z_at(self, point: np.ndarray) -> float:
         """Tool-axis coordinate at ``point``, linear in the position along the element."""
+        if np.array_equal(point, self.b0):  # the untrimmed end (also of a full circle, whose param is 0)
+            return self.zb
         f = min(max(self.param(point) / self.extent(), 0.0), 1.0)
         return self.za + (self.zb - self.za) * f
 
@@ -357,7 +359,7 @@ def compensate(
                 raise CompensationError("outside corner between rapid moves: no feed for the corner arc", i)
             feed = feeds[0]
             out.append(dataclasses.replace(b, kind=kind, start=cs, target=ce, segment=seg, feed=feed, dwell=0.0))
-        za = el.za if el is ent else el.z_at(el.a)
+        za = el.za if el is ent or np.array_equal(el.a, el.a0) else el.z_at(el.a)
         zb = el.z_at(el.b)
         st, tg = point3(b.start, el.a, za), point3(b.target, el.b, zb)
         if el.kind == "arc":  # intersections onto the circle to rounding, as Arc requires
