@@ -15,7 +15,7 @@ import numpy as np
 
 from vcnc.errors import IdentificationError
 
-__all__ = ["PoleBounds", "default_bounds", "as_bounds"]
+__all__ = ["PoleBounds", "default_bounds", "as_bounds", "WIDE_P_MIN_HZ"]
 
 #: Nyquist frequency assumed when no sample time is known: Ts = 1 ms, as in the thesis' data.
 DEFAULT_NYQUIST_HZ = 500.0
@@ -92,10 +92,19 @@ def default_bounds(sample_time: float | None = None) -> PoleBounds:
     return PoleBounds(p_hz=(0.2, nyq), omega_n_hz=(0.2, nyq), zeta=(0.2, 2.0))
 
 
-def as_bounds(bounds: PoleBounds | Mapping | None, sample_time: float | None = None) -> PoleBounds:
-    """Normalise ``bounds`` (None, a mapping or PoleBounds); missing keys take the defaults."""
-    if bounds is None:
+#: Lower bound of p [Hz] of the widened box of :func:`identification.identify` (a loop without
+#: integral action has p -> 0; any p > 0 keeps the loop stable, Eq. 3.8).
+WIDE_P_MIN_HZ = 1e-3
+
+
+def as_bounds(bounds: PoleBounds | Mapping | str | None, sample_time: float | None = None) -> PoleBounds:
+    """Normalise ``bounds`` (None or ``"thesis"``: the thesis' box; a mapping; PoleBounds); missing keys
+    take the defaults."""
+    if bounds is None or bounds == "thesis":
         return default_bounds(sample_time)
+    if isinstance(bounds, str):
+        raise IdentificationError(f"bounds must be 'thesis', a mapping of p_hz, omega_n_hz, zeta or PoleBounds; "
+                                  f"got {bounds!r}")
     if isinstance(bounds, PoleBounds):
         return bounds
     if not isinstance(bounds, Mapping):
