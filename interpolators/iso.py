@@ -25,8 +25,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ``G61 G61.1 G64``         exact stop; continuous path with ``P`` tolerance (``Q`` noted). A program
                           with neither runs in the dialect's default (continuous path)
 ``G73 G81-G86 G89 G80``   drilling cycles with R, Q, P, L/K and G98/G99 (:mod:`interpolators.iso_cycles`)
-``G40 G41 G42``           cutter compensation: accepted with tool radius 0 (the path is unchanged);
-                          a non-zero radius is an error naming it
+``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
+                          LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``; ``G53``; ``G28 G30 G28.1 G30.1``
 ``G94``                   feed per minute; ``G93``/``G95`` are errors naming them
@@ -52,6 +52,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
@@ -158,7 +159,11 @@ class _State:
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     retract_r: bool = False  # G99
     cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
-    comp_side: str | None = None
+    comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
+    comp_radius: float = 0.0
+    comp_code: str = ""
+    comp_start: int | None = None  # index of the run's first block
+    comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
     @property
     def scale(self) -> float:
@@ -200,8 +205,13 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     for fl in run(text, source=source):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
-        if _execute(fl.words, st, blocks, used, Where(source, fl.line, fl.raw), notes):
+        ended = _execute(fl.words, st, blocks, used, Where(source, fl.line, fl.raw), notes)
+        if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
+            _finish_compensation(st, blocks, source)
+        if ended:
             break
+    if st.comp_start is not None:
+        _finish_compensation(st, blocks, source)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
@@ -338,7 +348,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
     scale = st.scale
     if "cutter compensation" in gcodes:
-        _cutter_compensation(gcodes["cutter compensation"], seen, st, where, notes)
+        _cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
     if "length compensation" in gcodes:
         _length_compensation(gcodes["length compensation"], seen, st, where, notes)
     if "coordinate system" in gcodes:
@@ -535,11 +545,18 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
     return False
 
 
-def _cutter_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
+def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
+    """G40/G41/G42 (LinuxCNC "G41, G42 Cutter Compensation"): the run of blocks from the entry move to
+    the exit move after G40 is offset by :func:`interpolators.compensation.compensate`."""
     key, w = entry
     if key == 400:
+        if st.comp_start is not None:
+            st.comp_close_at = len(blocks)
         st.comp_side = None
         return
+    if st.comp_side is not None:
+        where.fail(f"{w.text.upper()}: cutter radius compensation is already on", column=w.column, text=w.text,
+                   expected="G40 before switching compensation")
     dynamic = key in (411, 421)
     if "D" in seen and dynamic:
         radius = seen["D"].value * st.scale / 2.0
@@ -547,12 +564,32 @@ def _cutter_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         tool = st.context.tool(int(seen["D"].value)) if "D" in seen else (
             st.context.tool(st.tool_current) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
-    if radius != 0.0:
-        where.fail(f"{w.text.upper()} cutter radius compensation with a tool radius of {radius:g} mm: "
-                   "not supported (only radius 0)", column=w.column, text=w.text,
-                   expected="a tool radius of 0 in the tool table, or a program of tool-centre paths")
     st.comp_side = "left" if key in (410, 411) else "right"
-    notes.add("G41/G42 with tool radius 0 (path unchanged)")
+    st.comp_code = w.text.upper()
+    if radius == 0.0:
+        notes.add("G41/G42 with tool radius 0 (path unchanged)")
+        return
+    st.comp_radius = radius
+    st.comp_start = len(blocks)
+    notes.add("G41/G42 cutter radius compensation")
+
+
+def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
+    """Replace the finished compensated run by the tool-centre path."""
+    start, st.comp_start, st.comp_close_at = st.comp_start, None, None
+    run = blocks[start:]
+    if not run:
+        return
+    try:
+        new = compensate(run, side="left" if st.comp_code.startswith("G41") else "right", radius=st.comp_radius,
+                         plane=st.plane)
+    except CompensationError as exc:
+        b = run[min(exc.index, len(run) - 1)]
+        Where(source, b.line, b.text).fail(
+            f"{st.comp_code} cutter radius compensation: {exc.message}", column=1, text=b.text,
+            expected=f"a contour a tool of radius {st.comp_radius:g} mm can follow")
+    blocks[start:] = new
+    st.pos = np.array(new[-1].target, dtype=float)
 
 
 def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:

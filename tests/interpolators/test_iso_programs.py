@@ -228,10 +228,24 @@ def test_unsupported_features_are_named():
             parse_program(text)
 
 
-def test_cutter_compensation_with_radius_zero_keeps_the_path_and_refuses_a_radius():
+def test_cutter_compensation_with_radius_zero_keeps_the_path():
     assert ends("G21 G90 G41 G1 X10 F100\nG40 X0\n", MachineContext()) == [[10, 0, 0], [0, 0, 0]]
-    with pytest.raises(GCodeError, match="G41 cutter radius compensation with a tool radius of 3 mm"):
-        parse_program("G21 G90 G41 D2 G1 X10 F100\n", context=CTX)
+
+
+def test_cutter_compensation_inside_a_square_with_d_from_the_tool_table():
+    # G41 (left of travel) on a counter-clockwise square: the tool runs inside, 3 mm (tool 2) off
+    # each side; inside corners are intersections; the entry ends 3 mm left of the entry move,
+    # then an arc about the programmed corner turns onto the first side (LinuxCNC entry rule)
+    prog = parse_program("G21 G90 G17 G0 X-5 Y-5 Z0\nT2 M6\nG41 D2 G1 X0 Y0 F100\nX20\nY20\nX0\nY0\n"
+                         "G40 G0 X-5 Y-5\n", context=MachineContext(tools={2: Tool(number=2, radius=3.0)}))
+    pts = [np.round(b.target[:2], 9).tolist() for b in prog.blocks]
+    s = round(3 / math.sqrt(2), 9)
+    assert pts == [[-5, -5], [-s, s], [0, 3], [17, 3], [17, 17], [3, 17], [3, 0], [-5, -5]]
+    arc = prog.blocks[2].segment
+    assert arc.center.tolist()[:2] == [0, 0] and arc.radius == pytest.approx(3.0)
+    with pytest.raises(GCodeError, match="G41 cutter radius compensation"):
+        parse_program("G21 G90 G0 X-5 Y0\nG41 D2 G1 X0 Y0 F100\nX20\nY1\nX0\nG40 X-5\n",
+                      context=MachineContext(tools={2: Tool(number=2, radius=3.0)}))
 
 
 def test_linuxcnc_tool_table(tmp_path):
