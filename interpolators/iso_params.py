@@ -23,7 +23,7 @@ import math
 import re
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
-from interpolators.iso_words import WORD_LETTERS, Word
+from interpolators.iso_words import Word, read_words
 
 __all__ = ["Parameters", "read_line", "evaluate_at", "has_parameters"]
 
@@ -272,30 +272,18 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     Parameter assignments on the line are applied after all its values are read (LinuxCNC).
     """
     r = _Reader(code, where, params)
-    words: list[Word] = []
     assignments: list[tuple[int | str, float, int, str]] = []
-    i, n = 0, len(code)
-    while i < n:
-        ch = code[i]
-        if ch in " \t\r\f\v":
-            i += 1
-            continue
-        if ch == "#":
-            key, end = r.parameter(i)
-            eq = r.skip(end)
-            if code[eq:eq + 1] != "=":
-                r.fail("a parameter outside a word must be assigned", i, "#n = value")
-            value, end = r.real(eq + 1)
-            assignments.append((key, value, i + 1, code[i:end].strip()))
-            i = end
-            continue
-        up = ch.upper()
-        if up not in WORD_LETTERS:
-            r.fail(f"unknown word {token_at(code, i)!r}", i,
-                   "a word of the letters " + " ".join(sorted(WORD_LETTERS)) + " or a #parameter assignment")
-        value, end = r.real(i + 1)
-        words.append(Word(up, value, i + 1, code[i:end].strip()))
-        i = end
+
+    def assign(i: int) -> int:
+        key, end = r.parameter(i)
+        eq = r.skip(end)
+        if code[eq:eq + 1] != "=":
+            r.fail("a parameter outside a word must be assigned", i, "#n = value")
+        value, end = r.real(eq + 1)
+        assignments.append((key, value, i + 1, code[i:end].strip()))
+        return end
+
+    words = read_words(code, where, value=lambda pos, letter: r.real(pos), assignment=assign)
     for key, value, column, text in assignments:
         params.assign(key, value, where, column, text)
     return words

@@ -12,6 +12,7 @@ Parameters (``#``), expressions (``[``) and O-words are named as such when met.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 from interpolators._words import Where, read_number, token_at
 
@@ -56,8 +57,14 @@ def strip_comments(raw: str, where: Where) -> str:
     return "".join(out)
 
 
-def read_words(code: str, where: Where) -> list[Word]:
-    """The words of a comment-free line, left to right."""
+def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float, int]] | None = None,
+               assignment: Callable[[int], int] | None = None) -> list[Word]:
+    """The words of a comment-free line, left to right.
+
+    ``value(pos, letter)`` reads a word's value after its letter (default: a plain decimal number);
+    ``assignment(pos)`` handles a ``#`` where a word would start and returns where it ends (default:
+    none allowed). :mod:`interpolators.iso_params` passes both to read parameters and expressions.
+    """
     words: list[Word] = []
     i, n = 0, len(code)
     while i < n:
@@ -65,12 +72,18 @@ def read_words(code: str, where: Where) -> list[Word]:
         if ch in " \t\r\f\v":
             i += 1
             continue
+        if ch == "#" and assignment is not None:
+            i = assignment(i)
+            continue
         up = ch.upper()
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
             where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
-        value, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)
-        words.append(Word(up, value, i + 1, code[i:end].strip()))
+        if value is None:
+            v, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)
+        else:
+            v, end = value(i + 1, up)
+        words.append(Word(up, v, i + 1, code[i:end].strip()))
         i = end
     return words
