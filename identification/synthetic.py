@@ -172,16 +172,17 @@ def synthetic_capture(
 
 
 def table_3_2_program(*, seed: int = 1, moves: int = 200, span: float = 10.0, feed: float = 12000.0) -> str:
-    """G-code of the Table 3.2 kind: random G01 moves within +/- span [mm] at F feed [mm/min]."""
+    """G-code of the Table 3.2 kind: random G01 moves within +/- span [mm] at F feed [mm/min], in mm
+    and exact stop (stated: every move starts and ends at rest, whatever the control's default)."""
     rng = np.random.default_rng(seed)
-    lines = [f"N0000 G00 X0.000 F{feed:g}"]
+    lines = ["G21 G61", f"N0000 G00 X0.000 F{feed:g}"]
     lines += [f"N{10 * (i + 1):04d} G01 X{v:.3f}" for i, v in enumerate(rng.uniform(-span, span, moves))]
     return "\n".join(lines) + "\n"
 
 
 #: Sec. 4.3.1 validation move: +/-20 mm back and forth at 70.71 mm/s (F4242.6); the 424.26 mm/s^2
 #: acceleration comes from the axis limits the caller interpolates with.
-VALIDATION_PROGRAM = "G00 X0\nG01 X20.000 F4242.6\nG01 X-20.000\nG01 X20.000\nG01 X-20.000\nG01 X0\n"
+VALIDATION_PROGRAM = "G21 G61\nG00 X0\nG01 X20.000 F4242.6\nG01 X-20.000\nG01 X20.000\nG01 X-20.000\nG01 X0\n"
 
 
 #: A first axial mode for the thesis' ball-screw bench (Sec. 3.4.2), not published: a lightly damped
