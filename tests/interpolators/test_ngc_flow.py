@@ -47,3 +47,35 @@ def test_block_delete_is_off_so_the_line_runs():
 def test_errors_name_the_problem(text, needle):
     with pytest.raises(GCodeError, match=needle):
         _words(text, max_lines=1000)
+
+
+def test_mod_is_non_negative_and_fix_fup_are_floor_and_ceiling():
+    # LinuxCNC interp_internal.cc: fmod made non-negative by adding |divisor|; FIX = floor, FUP = ceil.
+    assert _words("G1 X[-7 MOD 3] Y[FIX[-1.5]] Z[FUP[-1.5]]\n") == [(1, [("G", 1.0), ("X", 2.0), ("Y", -2.0),
+                                                                         ("Z", -1.0)])]
+
+
+def test_m98_with_l_repeats_a_program_after_m30():
+    lines = _words("O1\nG0 X1\nM98 P2 L2\nM30\nO2\nG1 Y1\nM99\n")
+    assert [n for n, _ in lines[:4]] == [2, 6, 6, 4]
+
+
+def test_globals_persist_and_locals_stay_in_the_sub():
+    text = "#<_g>=1\no1 sub\n#<loc>=5\n#<_g>=[#<_g>+1]\no1 endsub\no1 call\nG1 X#<_g> Y[EXISTS[#<loc>]]\nM30\n"
+    assert _words(text)[0] == (7, [("G", 1.0), ("X", 2.0), ("Y", 0.0)])
+
+
+def test_do_while_with_continue_and_repeat():
+    text = "#1=0\no1 do\n#1=[#1+1]\no1 if [#1 EQ 2]\no1 continue\no1 endif\nG1 X#1\no1 while [#1 LT 4]\n"
+    assert [w[1][1] for _, w in _words(text)] == [1.0, 3.0, 4.0]
+    assert len(_words("o1 repeat [3]\nG1 X1\no1 endrepeat\n")) == 3
+
+
+@pytest.mark.parametrize(("text", "needle"), [
+    ("o1 sub\nG1 X1\n", "no matching endsub"),
+    ("o1 endwhile\n", "endwhile without while"),
+    ("o<other> call\n", "not defined in this file"),
+])
+def test_structure_errors(text, needle):
+    with pytest.raises(GCodeError, match=needle):
+        _words(text)
