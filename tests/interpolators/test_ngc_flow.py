@@ -4,6 +4,8 @@ Expected values are worked out from the LinuxCNC manual ("Numbered Parameters", 
 https://linuxcnc.org/docs/html/gcode/overview.html and .../o-code.html).
 """
 
+import pathlib
+
 import pytest
 
 from interpolators.iso_flow import run
@@ -79,3 +81,23 @@ def test_do_while_with_continue_and_repeat():
 def test_structure_errors(text, needle):
     with pytest.raises(GCodeError, match=needle):
         _words(text)
+
+
+_CORPUS = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "data" / "gcode-corpus"
+#: LinuxCNC nc_files programs of the shared corpus (MANIFEST.tsv) built on parameters, O-word subs and loops.
+_FLOW_PROGRAMS = ("0010_cone.ngc", "0011_daisy.ngc", "0012_factorial.ngc", "0013_flowsnake.ngc",
+                  "0014_g20sub.ngc", "0061_bezel_ex_37tick.ngc", "0043_retval.ngc", "0045_skeleton.ngc",
+                  "0054_useful-subroutines.ngc", "0104_circles.ngc")
+
+
+@pytest.mark.parametrize("name", _FLOW_PROGRAMS)
+def test_corpus_programs_with_parameters_and_o_words_run(name):
+    path = _CORPUS / name
+    if not path.is_file():
+        pytest.skip(f"gcode corpus absent ({path})")
+    executed = 0
+    for fl in run(path.read_text(errors="replace"), source=str(path), max_lines=200_000):
+        executed += 1
+        if any(w.letter == "M" and w.value in (2.0, 30.0) for w in fl.words):
+            break
+    assert executed > 0
