@@ -87,7 +87,7 @@ _CORPUS = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "data"
 #: LinuxCNC nc_files programs of the shared corpus (MANIFEST.tsv) built on parameters, O-word subs and loops.
 _FLOW_PROGRAMS = ("0010_cone.ngc", "0011_daisy.ngc", "0012_factorial.ngc", "0013_flowsnake.ngc",
                   "0014_g20sub.ngc", "0061_bezel_ex_37tick.ngc", "0043_retval.ngc", "0045_skeleton.ngc",
-                  "0054_useful-subroutines.ngc", "0104_circles.ngc")
+                  "0054_useful-subroutines.ngc", "0037_mmount.ngc")
 
 
 @pytest.mark.parametrize("name", _FLOW_PROGRAMS)
