@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from vcnc.errors import ExportError, InputError, ModelFileError
-from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, Variable, variables
+from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, MAX_REF_DELAY, Variable, variables
 
 __all__ = ["ExportSpec", "REPRESENTABLE_EFFECTS", "export_spec"]
 
@@ -56,6 +56,9 @@ class ExportSpec:
         The effects (``identification.effects`` instances) of the model, all representable.
     viscous_rate : float
         Plant viscous rate c [1/s] of the split form (used when an element is present).
+    delay_s : float
+        Reference dead time [s] (>= 0, the model's ``delay_s``): the loop runs on ``x_ref`` delayed
+        by it; the FMU's parameter ``reference_delay_s`` (present only when it is not zero).
     """
 
     axis: str
@@ -63,6 +66,7 @@ class ExportSpec:
     parameters: dict
     elements: tuple = ()
     viscous_rate: float = 0.0
+    delay_s: float = 0.0
 
     @property
     def model_identifier(self) -> str:
@@ -91,14 +95,15 @@ class ExportSpec:
     @property
     def variables(self) -> tuple[Variable, ...]:
         """The FMU's variables."""
-        return variables(self.harmonics, structured=self.structured)
+        return variables(self.harmonics, structured=self.structured, reference_delay=self.delay_s != 0.0)
 
     def model(self) -> Any:
         """The Python model the FMU reproduces (its ``simulate`` is the export check's oracle)."""
         from identification import ReducedAxisModel
         from identification.augmented import augment
 
-        base = ReducedAxisModel(parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis)
+        base = ReducedAxisModel(parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis,
+                                delay_s=self.delay_s)
         if not self.elements:
             return base
         return augment(base, list(self.elements), viscous_rate=self.viscous_rate)
@@ -139,6 +144,8 @@ class ExportSpec:
                            resonance_table_fraction=float(e.table_fraction))
         if self.structured:
             out["plant_viscous_rate"] = float(self.viscous_rate)
+        if self.delay_s != 0.0:
+            out["reference_delay_s"] = float(self.delay_s)
         return out
 
 
@@ -193,7 +200,8 @@ def export_spec(model: Any) -> ExportSpec:
     ModelFileError
         A model file that breaks the ``vcnc.axis-model/1`` contract (also a malformed effect).
     ExportError
-        Effects the FMU cannot represent exactly (named in the message, with the representable ones).
+        Effects the FMU cannot represent exactly (named in the message, with the representable ones);
+        a negative (non-causal) or too long reference dead time ``delay_s``.
     """
     from identification.augmented import AugmentedAxisModel, from_model
     from identification.effects import EFFECTS
@@ -225,6 +233,13 @@ def export_spec(model: Any) -> ExportSpec:
                           "represents each effect at most once")
     for e in elements:
         _check_values(e, source)
+    delay_s = float(getattr(m, "delay_s", 0.0) or 0.0)
+    if not math.isfinite(delay_s) or delay_s < 0.0:
+        raise ExportError(f"the reference dead time delay_s = {delay_s!r} s{where} is negative (the recorded "
+                          "reference lags the loop): the FMU would need future inputs, so it cannot be exported")
+    if delay_s / float(m.sample_time) > MAX_REF_DELAY:
+        raise ExportError(f"the reference dead time delay_s = {delay_s!r} s{where} is longer than an FMU holds "
+                          f"({MAX_REF_DELAY} samples of {float(m.sample_time)!r} s)")
     assert set(EFFECT_VARIABLES) == set(REPRESENTABLE_EFFECTS)
     return ExportSpec(
         axis=str(getattr(m, "axis", "x")),
@@ -232,4 +247,5 @@ def export_spec(model: Any) -> ExportSpec:
         parameters={k: float(m.parameters[k]) for k in PARAMETER_NAMES},
         elements=elements,
         viscous_rate=float(getattr(m, "viscous_rate", 0.0)),
+        delay_s=delay_s,
     )

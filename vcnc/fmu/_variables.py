@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import dataclasses
 
-__all__ = ["Variable", "VARIABLES", "UNITS", "MAX_DELAY", "MAX_HARMONICS", "EFFECT_VARIABLES", "variables", "variable"]
+__all__ = ["Variable", "VARIABLES", "UNITS", "MAX_DELAY", "MAX_REF_DELAY", "MAX_HARMONICS", "EFFECT_VARIABLES",
+           "REFERENCE_DELAY", "variables", "variable"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -167,9 +168,17 @@ EFFECT_VARIABLES: dict[str, tuple[Variable, ...]] = {
 PLANT_VISCOUS_RATE = Variable(name="plant_viscous_rate", vr=30, causality="parameter", unit="1/s",
                               description="split form: plant viscous rate c (controller derivative gain a1 - c)")
 
+#: longest reference dead time [samples]; VCNC_MAX_REF_DELAY in c/vcnc_model.h (a test checks they agree)
+MAX_REF_DELAY = 4096
+
+#: the reference dead time of the model (``delay_s``), present when it is not zero
+REFERENCE_DELAY = Variable(name="reference_delay_s", vr=40, causality="parameter", unit="s", minimum=0.0,
+                           description="dead time of the reference: the loop runs on x_ref delayed by it, "
+                                       "linearly interpolated between samples (identification.dead_time)")
+
 #: every scalar variable any FMU may have (the C configuration defines all their macros)
 ALL_SCALARS: tuple[Variable, ...] = (
-    *BASE_VARIABLES, *(v for vs in EFFECT_VARIABLES.values() for v in vs), PLANT_VISCOUS_RATE
+    *BASE_VARIABLES, *(v for vs in EFFECT_VARIABLES.values() for v in vs), PLANT_VISCOUS_RATE, REFERENCE_DELAY
 )
 
 
@@ -186,8 +195,12 @@ def coefficient_variables(effect: str, harmonics: int) -> tuple[Variable, ...]:
     return tuple(out)
 
 
-def variables(effects: dict[str, int] | None = None, *, structured: bool = False) -> tuple[Variable, ...]:
-    """The variables of an FMU with ``effects`` (effect name -> harmonics, 0 for non-periodic ones)."""
+def variables(effects: dict[str, int] | None = None, *, structured: bool = False,
+              reference_delay: bool = False) -> tuple[Variable, ...]:
+    """The variables of an FMU with ``effects`` (effect name -> harmonics, 0 for non-periodic ones).
+
+    ``reference_delay`` adds the ``reference_delay_s`` parameter (a model with ``delay_s`` != 0).
+    """
     out = list(BASE_VARIABLES)
     for name, harmonics in (effects or {}).items():
         out += EFFECT_VARIABLES[name]
@@ -195,6 +208,8 @@ def variables(effects: dict[str, int] | None = None, *, structured: bool = False
             out += coefficient_variables(name, harmonics)
     if structured:
         out.append(PLANT_VISCOUS_RATE)
+    if reference_delay:
+        out.append(REFERENCE_DELAY)
     return tuple(sorted(out, key=lambda v: v.vr))
 
 

@@ -115,6 +115,11 @@ static int check_parameters(const vcnc_parameters *p, char *msg, size_t msg_size
         if (!isfinite(p->tp_coef[h])) return fail(msg, msg_size, "a time_periodic coefficient is not finite");
     }
     if (!(p->sample_time > 0.0)) return fail(msg, msg_size, "parameter sample_time [s] must be > 0");
+    if (!(p->ref_delay_s >= 0.0 && p->ref_delay_s / p->sample_time <= VCNC_MAX_REF_DELAY)) {
+        snprintf(text, sizeof(text), "parameter reference_delay_s must be in [0, %d sample times], got %.17g s",
+                 VCNC_MAX_REF_DELAY, p->ref_delay_s);
+        return fail(msg, msg_size, text);
+    }
     if (!(p->a3 > 0.0)) return fail(msg, msg_size, "parameter a3 [1/s^3] must be > 0 (a stable closed loop)");
     if (p->tp_on && !(p->tp_period > 0.0)) return fail(msg, msg_size, "parameter time_period [s] must be > 0");
     if (p->structured) {
@@ -202,6 +207,26 @@ static double drift(const vcnc_model *m)
 
 /* -------------------------------------------------------------------------- exact form */
 
+/* identification.dead_time.delay_reference: the reference the loop receives at sample k, x_ref
+ * delayed by ref_delay samples with numpy.interp's arithmetic (numpy/_core/src/multiarray/
+ * compiled_base.c, arr_interp: slope * (x - xp[j]) + fp[j], slope = (fp[j+1] - fp[j]) / 1.0); before
+ * the record the first value is held. Past values come from the ring buffer rbuf. */
+static double loop_ref(const vcnc_model *m)
+{
+    const double s = m->par.ref_delay;
+    const int n = VCNC_MAX_REF_DELAY + 2;
+    double xq, lo, hi;
+    long long j;
+    if (s == 0.0) return m->x_ref;
+    xq = (double)m->k - s;
+    if (xq <= 0.0) return m->k == 0 ? m->x_ref : m->rfirst;
+    j = (long long)floor(xq);
+    lo = m->rbuf[j % n];
+    if ((double)j == xq) return lo;
+    hi = j + 1 == m->k ? m->x_ref : m->rbuf[(j + 1) % n];
+    return (hi - lo) * (xq - (double)j) + lo;
+}
+
 /* Position for the absolute reference u [mm]; the state lives in deviations from r0. */
 static double linear_position(const vcnc_model *m, double u)
 {
@@ -213,13 +238,13 @@ static void exact_step(vcnc_model *m)
 {
     const vcnc_discrete *dm = &m->dm;
     const double *phi = dm->phi, *g = dm->gamma, *xi = m->xi;
-    double r = m->x_ref - m->r0;
+    double r = loop_ref(m) - m->r0;
     double v = (((dm->cv[0] * xi[0] + dm->cv[1] * xi[1]) + dm->cv[2] * xi[2]) + dm->dv * r) + dm->dvs * (r - m->prev);
     double f = v > 0.0 ? m->par.d0 : (v < 0.0 ? m->par.d1 : 0.0);
     double w = f + wext(m);
     double n0, n1, n2;
 
-    w += w_terms(&m->par, v, linear_position(m, m->x_ref));
+    w += w_terms(&m->par, v, linear_position(m, loop_ref(m)));
     n0 = (((phi[0] * xi[0] + phi[1] * xi[1]) + phi[2] * xi[2]) + g[0] * r) + g[1] * w;
     n1 = (((phi[3] * xi[0] + phi[4] * xi[1]) + phi[5] * xi[2]) + g[2] * r) + g[3] * w;
     n2 = (((phi[6] * xi[0] + phi[7] * xi[1]) + phi[8] * xi[2]) + g[4] * r) + g[5] * w;
@@ -312,7 +337,7 @@ static void split_step(vcnc_model *m)
     const double T = p->sample_time, a1 = p->a1, a2 = p->a2, a3 = p->a3, cvis = p->viscous_rate;
     const int steps = p->substeps, two_mass = p->res[0] > 0.0, meas_table = p->res[3] > 0.5;
     const double h = T / steps, kd = a1 - cvis, ff = p->b2 - a2, rr = p->res[2], bl = p->backlash;
-    const double xr = m->x_ref;
+    const double xr = loop_ref(m);
     double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, lo, hi, we;
     int i;
     if (two_mass) {
@@ -375,6 +400,7 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
     if (check_parameters(p, msg, msg_size) != 0) return -1;
     m->k = 0;
     m->r0 = u;
+    p->ref_delay = p->ref_delay_s / p->sample_time;
     if (p->structured) {
         /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
         p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
@@ -412,7 +438,7 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
 
 void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_error)
 {
-    double pos = m->par.structured ? split_measurement(m) : linear_position(m, m->x_ref);
+    double pos = m->par.structured ? split_measurement(m) : linear_position(m, loop_ref(m));
     if (m->par.drift != 0.0) pos = pos + drift(m);
     *position = pos;
     *tracking_error = m->x_ref - pos;
@@ -425,6 +451,8 @@ void vcnc_model_step(vcnc_model *m)
     } else {
         exact_step(m);
     }
+    if (m->k == 0) m->rfirst = m->x_ref;
+    m->rbuf[m->k % (VCNC_MAX_REF_DELAY + 2)] = m->x_ref;
     m->k++;
 }
 

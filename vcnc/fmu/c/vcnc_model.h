@@ -37,6 +37,7 @@
 
 #define VCNC_NX 3            /* states of the reduced model */
 #define VCNC_MAX_DELAY 4096  /* longest control delay [samples] (split form) */
+#define VCNC_MAX_REF_DELAY 4096 /* longest reference dead time [samples] (delay_s of the model) */
 #define VCNC_MAX_HARMONICS 64 /* longest Fourier series of the periodic effects */
 
 typedef struct {
@@ -56,6 +57,8 @@ typedef struct {
     double tp_coef[2 * VCNC_MAX_HARMONICS]; /* (C_h, D_h) [mm/s^2], h = 1..tp_harmonics */
     int tp_harmonics;        /* structural */
     double drift;            /* output drift rate [mm/s] */
+    double ref_delay_s;      /* reference dead time [s] (>= 0): the loop runs on x_ref delayed by it */
+    double ref_delay;        /* the same in samples (computed at initialisation) */
     /* split form (structural: structured) */
     int structured;
     double viscous_rate;     /* plant viscous rate c [1/s] */
@@ -89,6 +92,8 @@ typedef struct {
     double ubuf[VCNC_MAX_DELAY + 1]; /* delay line of u */
     /* inputs */
     double x_ref;            /* commanded position [mm] */
+    double rbuf[VCNC_MAX_REF_DELAY + 2]; /* past x_ref, for the reference dead time */
+    double rfirst;           /* x_ref of sample 0 [mm] */
     double r0;               /* x_ref at initialisation [mm]: the exact form runs on x_ref - r0 */
     double w_ext;            /* external disturbance [mm/s^2] */
 } vcnc_model;
