@@ -455,6 +455,9 @@ def _describe(model: Any) -> str:
     parts = [type(model).__name__]
     if poles:
         parts.append(", ".join(f"{k} {float(v):.4g}" for k, v in poles.items()))
+    delay_s = float(getattr(model, "delay_s", 0.0) or 0.0)
+    if delay_s:
+        parts.append(f"reference dead time {delay_s:.4g} s (simulated on the delayed reference)")
     effects = getattr(model, "effects", None)
     if effects:
         parts.append("effects: " + ", ".join(str(e.get("name", "?")) if isinstance(e, dict) else str(e)

@@ -33,8 +33,38 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="lower bound of the real pole p [Hz] (default 0.2; lower it for loops without "
                              "integral action, e.g. EMPS)")
     parser.add_argument("--omega-min-hz", type=float, default=None, help="lower bound of omega_n [Hz] (default 0.2)")
+    parser.add_argument("--delay", type=_delay, default="auto", metavar="auto|SECONDS",
+                        help="dead time of the recorded reference [s] (> 0: it leads the loop); 'auto' estimates it "
+                             "(default auto, kept only when it halves the prediction error)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
+
+
+def _delay(text: str) -> str | float:
+    """``--delay``: 'auto' or a finite number of seconds (argparse turns the ValueError into exit 2)."""
+    if text == "auto":
+        return text
+    value = float(text)
+    if value != value or value in (float("inf"), float("-inf")):
+        raise ValueError(text)
+    return value
+
+
+def delay_lines(model) -> list[str]:
+    """What to say of the reference dead time ``model.delay_s`` and its ``fit['delay']`` record."""
+    rec = model.fit.get("delay") or {}
+    T = model.sample_time
+    d = float(getattr(model, "delay_s", 0.0))
+    if rec.get("estimated"):
+        how = (f"estimated {rec.get('samples', 0.0):.3g} samples (objective ratio "
+               f"{rec.get('objective_ratio', float('nan')):.3g})")
+        if "rms_with_um" in rec:
+            how += f", prediction {rec['rms_without_um']:.4g} -> {rec['rms_with_um']:.4g} um with the shift"
+    elif rec:
+        how = "given"
+    else:
+        how = "none"
+    return [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
 
 
 def _report(capture, model, axis: str):
@@ -76,6 +106,8 @@ def _report(capture, model, axis: str):
         caption="Poles and zeros as in Tables 3.3-3.5",
     )
     rep.heading("Fit")
+    for line in delay_lines(model):
+        rep.text(line)
     rep.table(
         ["prediction of the capture", "RMS [um]", "max [um]"],
         [
@@ -147,6 +179,7 @@ def run(args: argparse.Namespace) -> int:
         refine=args.refine,
         seed=args.seed,
         diagnose=False if args.no_diagnose else None,
+        delay=args.delay,
     )
     rep = _report(capture, model, axis) if args.report else None
     if args.json:
@@ -161,6 +194,8 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
     out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} um, max {fit['max_um']:.4g} um\n")
+    for line in delay_lines(model):
+        out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
         out.write(
