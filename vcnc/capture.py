@@ -182,6 +182,12 @@ def read_capture(path: str | os.PathLike[str]) -> Capture:
         raise CaptureError("no such capture file", file=str(p))
     if p.suffix.lower() == ".mat":
         return _read_emps_mat(p)
+    with p.open("rb") as f:
+        head = f.read(16)
+    if head.startswith(b"%TNCscopeNT"):
+        from vcnc.traces.tncscope import read_tncscope  # traces import this module; detected by content
+
+        return read_tncscope(p)
     return _read_csv(p)
 
 

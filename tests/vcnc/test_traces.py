@@ -36,3 +36,12 @@ def test_tncscope_time_backwards(tmp_path):
     _write(f, t, np.zeros(10), np.zeros(10))
     with pytest.raises(CaptureError, match="time does not increase"):
         read_tncscope(f)
+
+
+def test_read_capture_detects_tncscope_by_content(tmp_path):
+    from vcnc.capture import read_capture
+
+    t = np.arange(50) * 3000.0
+    f = tmp_path / "trace.txt"
+    _write(f, t, np.zeros(50), np.zeros(50))
+    assert read_capture(f).axes == ("y",)
