@@ -7,7 +7,7 @@ EMPS   := $(abspath ../shared/data/emps)
 export VCNC_EMPS_DIR ?= $(if $(wildcard $(EMPS)/DATA_EMPS.mat),$(EMPS),)
 export MPLBACKEND ?= Agg
 
-.PHONY: demo test lint venv bench clean chromium
+.PHONY: demo test test-fast lint venv bench clean chromium
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -29,6 +29,11 @@ chromium:
 test: $(STAMP) chromium
 	$(BIN)/ruff check .
 	$(BIN)/python -m pytest -q
+
+# The quick loop: everything but the end-to-end tests marked `slow` (`make test` runs them all).
+test-fast: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/python -m pytest -q -m "not slow"
 
 bench: $(STAMP)
 	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done

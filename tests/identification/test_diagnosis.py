@@ -19,6 +19,8 @@ from identification import identify
 from identification.diagnosis import DiagnosisOptions, before_after_rows, diagnose_report, format_before_after
 from identification.model_file import model_from_dict, model_to_dict
 
+pytestmark = pytest.mark.slow  # every test diagnoses a full capture (tens of seconds each)
+
 MOVES = 40
 K_J = 1008.0  # K/J of the fadal-pid x axis [mm/(V s^2)]: amplifier 2 A/V, 0.95 N m/A, lead 10 mm, J 0.003
 

@@ -58,6 +58,7 @@ def test_emps_equation_error_quick_look(emps):
     assert 1.7 < base < 2.0 and 1.4 < asym < 1.6
 
 
+@pytest.mark.slow
 def test_emps_diagnosis_reports_what_the_data_support(emps):
     model = identify(emps, axis="x", bounds=BOUNDS)  # identify runs the diagnosis
     assert model.is_stable()
@@ -75,6 +76,7 @@ def test_emps_diagnosis_reports_what_the_data_support(emps):
         assert e["evidence"]["validation_gain_pct"] >= 25.0
 
 
+@pytest.mark.slow
 def test_pulses_periodic_load_found_without_pulses_n(pulses_report, pulses):
     rep = pulses_report
     assert rep.effects == ["time_periodic"], rep.rounds
@@ -85,6 +87,7 @@ def test_pulses_periodic_load_found_without_pulses_n(pulses_report, pulses):
     assert v["rms_after_um"] <= v["rms_before_um"] / 10.0
 
 
+@pytest.mark.slow
 def test_pulses_estimated_load_matches_pulses_n(pulses_report, pulses):
     tp = next(e for e in pulses_report.model.elements if e.NAME == "time_periodic")
     w = tp.load(pulses.t - pulses.t[0])  # [mm/s^2], a disturbance opposing the control

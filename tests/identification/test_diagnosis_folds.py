@@ -98,6 +98,7 @@ def test_a_capture_that_never_moves_is_an_error_and_one_way_motion_a_warning():
 # ------------------------------------------------------------------------------ diagnosis
 
 
+@pytest.mark.slow
 def test_idle_seconds_do_not_validate_and_the_report_names_the_folds():
     rep, _, cap = _report(1e-3, False)
     v = rep.model.validation
@@ -113,6 +114,7 @@ def test_idle_seconds_do_not_validate_and_the_report_names_the_folds():
     assert "fold" in text and "held-out" in text
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sample_time", [1e-3, 3e-3])
 def test_windowed_ramped_load_is_named_with_frequency_window_and_envelope(sample_time):
     rep, window, _ = _report(sample_time, True)
@@ -135,11 +137,13 @@ def test_windowed_ramped_load_is_named_with_frequency_window_and_envelope(sample
     assert "resonance" not in rep.effects
 
 
+@pytest.mark.slow
 def test_clean_twin_of_the_windowed_load_claims_nothing():
     rep, _, _ = _report(1e-3, False)
     assert rep.effects == [], rep.rounds
 
 
+@pytest.mark.slow
 def test_unexplained_residual_names_its_spectral_peak_and_associations():
     # the windowed load with time_periodic taken out of the vocabulary: nothing may be forced onto it,
     # and the evidence points at the 55 Hz line
@@ -182,6 +186,7 @@ def test_fmu_export_refuses_a_windowed_load_instead_of_dropping_the_window(tmp_p
 # ------------------------------------------------------------------------------ another simulator's loop
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("sample_time", "element", "expected"), [
     (1e-3, "delay", "delay"),  # one sample inside the loop: was missed (the split-form regression is noise-biased)
     (2e-3, "resonance", "resonance"),  # a 150 Hz mode, damping 0.1: above the old 0.3/T grid and unstable at 0.05
