@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "export-fmu": "export_fmu",
     "demo": "demo",
     "sweep": "sweep",
+    "convert": "convert",
 }
 
 

@@ -45,3 +45,32 @@ def test_read_capture_detects_tncscope_by_content(tmp_path):
     f = tmp_path / "trace.txt"
     _write(f, t, np.zeros(50), np.zeros(50))
     assert read_capture(f).axes == ("y",)
+
+
+def test_convert_writes_the_same_capture(tmp_path, capsys):
+    from vcnc.capture import read_capture
+    from vcnc.cli import main
+
+    t = np.arange(100) * 3000.0
+    ref = np.round(np.cos(t * 1e-5), 6)
+    f = tmp_path / "y.sco"
+    _write(f, t, ref, ref - 0.002)
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out)]) == 0
+    assert "axes y" in capsys.readouterr().out
+    cap = read_capture(out)
+    np.testing.assert_allclose(cap.reference[:, 0], ref, rtol=0, atol=1e-12)
+    assert cap.meta["format"] == "TNCscope"
+
+
+def test_convert_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):
+    from vcnc.cli import main
+
+    t = np.arange(10) * 3000.0
+    t[4] = 0.0
+    f = tmp_path / "y.sco"
+    _write(f, t, np.zeros(10), np.zeros(10))
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out)]) == 2
+    assert "error:" in capsys.readouterr().err
+    assert not out.exists()
