@@ -74,3 +74,29 @@ def test_convert_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):
     assert main(["convert", str(f), "-o", str(out)]) == 2
     assert "error:" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_identify_trace_and_converted_csv_give_the_same_model(tmp_path):
+    """`vcnc identify trace.sco` and `vcnc identify capture.csv` (written by convert) agree exactly."""
+    import json
+
+    from scipy.signal import lfilter
+
+    from vcnc.cli import main
+
+    n = 600
+    t = np.arange(n) * 3000.0
+    ref = np.round(10.0 * np.sin(2 * np.pi * 1.5 * t * 1e-6) ** 3, 6)
+    a = np.exp(-0.003 / 0.02)  # first-order lag, 20 ms time constant, 3 ms sampling
+    act = np.round(lfilter([1 - a], [1, -a], ref), 6)
+    sco = tmp_path / "trace.sco"
+    _write(sco, t, ref, act)
+    csv = tmp_path / "capture.csv"
+    assert main(["convert", str(sco), "-o", str(csv)]) == 0
+    models = []
+    for src in (sco, csv):
+        out = tmp_path / f"{src.stem}.json"
+        assert main(["identify", str(src), "--no-diagnose", "--json", str(out)]) == 0
+        models.append(json.loads(out.read_text()))
+    assert models[0].get("parameters") == models[1].get("parameters")
+    assert models[0].get("parameters")
