@@ -100,3 +100,27 @@ def test_identify_trace_and_converted_csv_give_the_same_model(tmp_path):
         models.append(json.loads(out.read_text()))
     assert models[0].get("parameters") == models[1].get("parameters")
     assert models[0].get("parameters")
+
+
+def test_tncscope_bad_input_names_line_and_channels(tmp_path):
+    f = tmp_path / "y.sco"
+    _write(f, np.arange(5) * 3000.0, np.zeros(5), np.zeros(5))
+    text = f.read_bytes().decode("latin-1")
+    f.write_bytes(text.replace("%CHANNELTYPE=s ist", "%CHANNELTYPE=v ist").encode("latin-1"))
+    with pytest.raises(CaptureError, match="no commanded/measured position pair.*s soll/Y"):
+        read_tncscope(f)
+    f.write_bytes((text + "15000;1.0;\r\n").encode("latin-1"))
+    with pytest.raises(CaptureError, match="row has 2 values, expected 3") as exc:
+        read_tncscope(f)
+    assert exc.value.line == 22
+    f.write_bytes(text.replace("0.000000;0.000000;\r\n", "abc;0;\r\n", 1).encode("latin-1"))
+    with pytest.raises(CaptureError, match="non-numeric"):
+        read_tncscope(f)
+
+
+def test_tncscope_english_channel_names(tmp_path):
+    f = tmp_path / "y.sco"
+    _write(f, np.arange(5) * 3000.0, np.ones(5), np.ones(5))
+    text = f.read_bytes().decode("latin-1").replace("s soll", "s nom").replace("s ist", "s act")
+    f.write_bytes(text.encode("latin-1"))
+    assert read_tncscope(f).axes == ("y",)

@@ -79,7 +79,10 @@ def read_tncscope(path: str | os.PathLike[str]) -> Capture:
         s = line.strip().rstrip(";")
         if not s:
             continue
-        vals = [float(v) for v in s.split(";")]
+        try:
+            vals = [float(v) for v in s.split(";")]
+        except ValueError:
+            raise CaptureError(f"non-numeric value in row {s!r}; channels: {found}", file=src, line=i) from None
         if width is None:
             width = len(vals)
         elif len(vals) != width:
