@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 
 HELP = "identify the reduced closed-loop model of an axis from a capture (CSV or EMPS .mat)"
@@ -41,12 +42,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _delay(text: str) -> str | float:
-    """``--delay``: 'auto' or a finite number of seconds (argparse turns the ValueError into exit 2)."""
+    """``--delay``: 'auto' or a finite number of seconds (anything else exits 2, named by argparse)."""
     if text == "auto":
         return text
-    value = float(text)
-    if value != value or value in (float("inf"), float("-inf")):
-        raise ValueError(text)
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected 'auto' or a finite number of seconds, got {text!r}")
     return value
 
 
