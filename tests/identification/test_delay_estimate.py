@@ -113,3 +113,19 @@ def test_cli_identify_given_delay_is_printed(capture, tmp_path, capsys):
         main(["identify", str(path), "--delay", "soon"])
     assert exc.value.code == 2
     assert "expected 'auto' or a finite number of seconds, got 'soon'" in capsys.readouterr().err
+
+
+def test_compare_runs_the_model_on_the_delayed_reference():
+    """vcnc compare predicts with the model's simulate: a dead time delays the predicted contour."""
+    from vcnc.contour_compare import compare
+    from vcnc.machine import Machine
+
+    m = vcnc.machine("fadal-pid")
+    models = {a: ReducedAxisModel(parameters=m.axis(a).reduced_parameters(), sample_time=m.sample_time, axis=a)
+              for a in m.axes}
+    truth = Machine.from_axes(models, sample_time=m.sample_time, limits=m.limits, name="exact")
+    late = {a: dataclasses.replace(md, delay_s=0.01) for a, md in models.items()}
+    exact, delayed = compare(truth, models, "circle", feed=100.0), compare(truth, late, "circle", feed=100.0)
+    assert exact.to_dict()["prediction_error_pct"] == {"max": 0.0, "rms": 0.0}
+    assert np.max(np.abs(delayed.predicted["identified"].error - exact.predicted["identified"].error)) > 1e-3
+    assert all("reference dead time 0.01 s" in text for text in delayed.models["identified"].values())
