@@ -1,0 +1,148 @@
+"""Cases ported from LinuxCNC's own interpreter tests (github.com/LinuxCNC/linuxcnc, tests/interp/g81/g17/g98
+and g17/g99: a test .ngc and its expected canonical calls). The programs are the test programs without comments;
+the end points are the STRAIGHT_TRAVERSE/STRAIGHT_FEED X, Y, Z of the ``expected`` files [inch], written out."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import MachineContext
+from vcnc.errors import GCodeError
+
+INCH = 25.4  # [mm/inch]
+
+#: tests/interp/g81/g17/g98 program (G20, G17) [inch].
+PROGRAM_G98 = """\
+g17
+g98
+g90
+g20
+f10
+g0 x0 y0 z2
+g81 x1 y1 z-1 r1
+g81 x1 y2 z0.5 r3
+g81 x1 y3 z4 r5
+g90 g0 x10 y0 z2
+g91 g81 x1 y1 z-2 r-1 l2
+g90 g0 x20 y0 z2
+g91 g81 x1 y1 z-2.5 r1 l2
+g90 g0 x30 y0 z2
+g91 g81 x1 y1 z-1 r3 l2
+m2
+"""
+#: tests/interp/g81/g17/g98/expected: (kind, X, Y, Z) [inch], rapid = STRAIGHT_TRAVERSE, line = STRAIGHT_FEED.
+EXPECTED_G98 = [
+    ('rapid', 0.0, 0.0, 2.0),
+    ('rapid', 1.0, 1.0, 2.0),
+    ('rapid', 1.0, 1.0, 1.0),
+    ('line', 1.0, 1.0, -1.0),
+    ('rapid', 1.0, 1.0, 2.0),
+    ('rapid', 1.0, 1.0, 3.0),
+    ('rapid', 1.0, 2.0, 3.0),
+    ('line', 1.0, 2.0, 0.5),
+    ('rapid', 1.0, 2.0, 3.0),
+    ('rapid', 1.0, 2.0, 5.0),
+    ('rapid', 1.0, 3.0, 5.0),
+    ('line', 1.0, 3.0, 4.0),
+    ('rapid', 1.0, 3.0, 5.0),
+    ('rapid', 10.0, 0.0, 2.0),
+    ('rapid', 11.0, 1.0, 2.0),
+    ('rapid', 11.0, 1.0, 1.0),
+    ('line', 11.0, 1.0, -1.0),
+    ('rapid', 11.0, 1.0, 2.0),
+    ('rapid', 12.0, 2.0, 2.0),
+    ('rapid', 12.0, 2.0, 1.0),
+    ('line', 12.0, 2.0, -1.0),
+    ('rapid', 12.0, 2.0, 2.0),
+    ('rapid', 20.0, 0.0, 2.0),
+    ('rapid', 20.0, 0.0, 3.0),
+    ('rapid', 21.0, 1.0, 3.0),
+    ('line', 21.0, 1.0, 0.5),
+    ('rapid', 21.0, 1.0, 3.0),
+    ('rapid', 22.0, 2.0, 3.0),
+    ('line', 22.0, 2.0, 0.5),
+    ('rapid', 22.0, 2.0, 3.0),
+    ('rapid', 30.0, 0.0, 2.0),
+    ('rapid', 30.0, 0.0, 5.0),
+    ('rapid', 31.0, 1.0, 5.0),
+    ('line', 31.0, 1.0, 4.0),
+    ('rapid', 31.0, 1.0, 5.0),
+    ('rapid', 32.0, 2.0, 5.0),
+    ('line', 32.0, 2.0, 4.0),
+    ('rapid', 32.0, 2.0, 5.0),
+]
+
+#: tests/interp/g81/g17/g99 program (G20, G17) [inch].
+PROGRAM_G99 = """\
+g17
+g99
+g90
+g20
+f10
+g0 x0 y0 z2
+g81 x1 y1 z-1 r1
+g81 x1 y2 z0.5 r3
+g81 x1 y3 z4 r5
+g90 g0 x10 y0 z2
+g91 g81 x1 y1 z-2 r-1 l2
+g90 g0 x20 y0 z2
+g91 g81 x1 y1 z-2.5 r1 l2
+g90 g0 x30 y0 z2
+g91 g81 x1 y1 z-1 r3 l2
+m2
+"""
+#: tests/interp/g81/g17/g99/expected: (kind, X, Y, Z) [inch], rapid = STRAIGHT_TRAVERSE, line = STRAIGHT_FEED.
+EXPECTED_G99 = [
+    ('rapid', 0.0, 0.0, 2.0),
+    ('rapid', 1.0, 1.0, 2.0),
+    ('rapid', 1.0, 1.0, 1.0),
+    ('line', 1.0, 1.0, -1.0),
+    ('rapid', 1.0, 1.0, 1.0),
+    ('rapid', 1.0, 1.0, 3.0),
+    ('rapid', 1.0, 2.0, 3.0),
+    ('line', 1.0, 2.0, 0.5),
+    ('rapid', 1.0, 2.0, 3.0),
+    ('rapid', 1.0, 2.0, 5.0),
+    ('rapid', 1.0, 3.0, 5.0),
+    ('line', 1.0, 3.0, 4.0),
+    ('rapid', 1.0, 3.0, 5.0),
+    ('rapid', 10.0, 0.0, 2.0),
+    ('rapid', 11.0, 1.0, 2.0),
+    ('rapid', 11.0, 1.0, 1.0),
+    ('line', 11.0, 1.0, -1.0),
+    ('rapid', 11.0, 1.0, 1.0),
+    ('rapid', 12.0, 2.0, 1.0),
+    ('line', 12.0, 2.0, -1.0),
+    ('rapid', 12.0, 2.0, 1.0),
+    ('rapid', 20.0, 0.0, 2.0),
+    ('rapid', 20.0, 0.0, 3.0),
+    ('rapid', 21.0, 1.0, 3.0),
+    ('line', 21.0, 1.0, 0.5),
+    ('rapid', 21.0, 1.0, 3.0),
+    ('rapid', 22.0, 2.0, 3.0),
+    ('line', 22.0, 2.0, 0.5),
+    ('rapid', 22.0, 2.0, 3.0),
+    ('rapid', 30.0, 0.0, 2.0),
+    ('rapid', 30.0, 0.0, 5.0),
+    ('rapid', 31.0, 1.0, 5.0),
+    ('line', 31.0, 1.0, 4.0),
+    ('rapid', 31.0, 1.0, 5.0),
+    ('rapid', 32.0, 2.0, 5.0),
+    ('line', 32.0, 2.0, 4.0),
+    ('rapid', 32.0, 2.0, 5.0),
+]
+
+
+@pytest.mark.parametrize(("program", "expected"), [(PROGRAM_G98, EXPECTED_G98), (PROGRAM_G99, EXPECTED_G99)],
+                         ids=["g17-g98-g81", "g17-g99-g81"])
+def test_g81_canonical_moves_match_linuxcnc(program, expected):
+    prog = parse_program(program, context=MachineContext())
+    got = [(b.kind, *(round(v / INCH, 4) for v in b.target)) for b in prog.blocks if b.kind != "dwell"]
+    assert got == expected
+
+
+def test_g81_outside_g17_is_refused_by_name():
+    # LinuxCNC runs tests/interp/g81/g18 and g19 too; vcnc's cycles are XY-plane only and say so.
+    with pytest.raises(GCodeError, match="only in the XY plane"):
+        parse_program("G18 G98 G90 G20 F10\nG0 X0 Y0 Z2\nG81 X1 Y1 Z-1 R1\n", context=MachineContext())
