@@ -146,3 +146,32 @@ def test_g81_outside_g17_is_refused_by_name():
     # LinuxCNC runs tests/interp/g81/g18 and g19 too; vcnc's cycles are XY-plane only and say so.
     with pytest.raises(GCodeError, match="only in the XY plane"):
         parse_program("G18 G98 G90 G20 F10\nG0 X0 Y0 Z2\nG81 X1 Y1 Z-1 R1\n", context=MachineContext())
+
+
+#: tests/interp/m98m99/01-basics/test.ngc (Fanuc-style M98 P1 L3 sub drilling three holes; units as in the file).
+PROGRAM_M98 = """\
+%
+F40
+G90 G0 X0 Y0 Z0.25
+M98 P1 L3
+M30
+O1
+G91 G0 X1
+G90 G99 G81 Z-1.0 R0.25
+M99
+%
+"""
+#: tests/interp/m98m99/01-basics/expected, consecutive repeats dropped (LinuxCNC emits a zero-length
+#: STRAIGHT_TRAVERSE to the R plane when the tool is already there; vcnc emits no zero-length block).
+EXPECTED_M98 = [
+    ("rapid", 0.0, 0.0, 0.25),
+    ("rapid", 1.0, 0.0, 0.25), ("line", 1.0, 0.0, -1.0), ("rapid", 1.0, 0.0, 0.25),
+    ("rapid", 2.0, 0.0, 0.25), ("line", 2.0, 0.0, -1.0), ("rapid", 2.0, 0.0, 0.25),
+    ("rapid", 3.0, 0.0, 0.25), ("line", 3.0, 0.0, -1.0), ("rapid", 3.0, 0.0, 0.25),
+]
+
+
+def test_m98_sub_with_g81_matches_linuxcnc():
+    prog = parse_program(PROGRAM_M98, context=MachineContext())
+    got = [(b.kind, *(round(float(v), 4) for v in b.target)) for b in prog.blocks if b.kind in ("rapid", "line")]
+    assert got == EXPECTED_M98
