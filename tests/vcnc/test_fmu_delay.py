@@ -16,7 +16,7 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from identification import ReducedAxisModel
+from identification import ReducedAxisModel, load_model
 from vcnc.errors import ExportError
 from vcnc.fmu import FmuAxis, export_fmu, export_spec
 from vcnc.fmu._oracle import check_reference
@@ -95,3 +95,28 @@ def test_zero_delay_adds_no_parameter(model):
     spec = export_spec(dataclasses.replace(model, delay_s=0.0))
     assert spec.delay_s == 0.0 and "reference_delay_s" not in {v.name for v in spec.variables}
     assert "reference_delay_s" not in spec.start()
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("structured", [False, True])
+def test_dead_time_with_effects_equals_model_bit_for_bit(version, structured, tmp_path):
+    """The delay line feeds both forms: the exact one (a disturbance effect) and the split one (an element)."""
+    from identification.augmented import augment
+    from identification.effects import Backlash, FrictionStribeck
+
+    # the 25 Hz loop of tests/vcnc/test_fmu_effects.py at 1 ms, a 12.5-sample dead time
+    base = ReducedAxisModel(parameters={"a1": 300.0, "a2": 3.0e4, "a3": 1.0e6, "b0": 0.0, "b1": 150.0, "b2": 2.8e4,
+                                        "d0": 80.0, "d1": -70.0}, sample_time=0.001, axis="y", delay_s=0.0125)
+    elements = [FrictionStribeck(velocity=2.0, excess_positive=30.0, excess_negative=-25.0)]
+    if structured:
+        elements.append(Backlash(width=0.01))
+    model = augment(base, elements, viscous_rate=12.0 if structured else 0.0)
+    assert model.delay_s == 0.0125
+    path = tmp_path / "model.json"
+    model.to_json(path)
+    export_fmu(path, tmp_path / "d.fmu", fmi_version=version)
+    ref = check_reference(3000, 0.001, seed=2)
+    with FmuAxis(tmp_path / "d.fmu") as axis:
+        got = axis.simulate_reference(ref, 0.001)
+    np.testing.assert_array_equal(got, load_model(path).simulate(ref))  # the model file's model
+    assert load_model(path).delay_s == 0.0125
