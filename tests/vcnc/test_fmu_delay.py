@@ -7,6 +7,7 @@ numpy.interp of the past inputs, with numpy's arithmetic.
 from __future__ import annotations
 
 import dataclasses
+import json
 import shutil
 from importlib import resources
 from pathlib import Path
@@ -101,7 +102,7 @@ def test_zero_delay_adds_no_parameter(model):
 @pytest.mark.parametrize("structured", [False, True])
 def test_dead_time_with_effects_equals_model_bit_for_bit(version, structured, tmp_path):
     """The delay line feeds both forms: the exact one (a disturbance effect) and the split one (an element)."""
-    from identification.augmented import augment
+    from identification.augmented import from_model as augment_model
     from identification.effects import Backlash, FrictionStribeck
 
     # the 25 Hz loop of tests/vcnc/test_fmu_effects.py at 1 ms, a 12.5-sample dead time
@@ -110,13 +111,19 @@ def test_dead_time_with_effects_equals_model_bit_for_bit(version, structured, tm
     elements = [FrictionStribeck(velocity=2.0, excess_positive=30.0, excess_negative=-25.0)]
     if structured:
         elements.append(Backlash(width=0.01))
-    model = augment(base, elements, viscous_rate=12.0 if structured else 0.0)
-    assert model.delay_s == 0.0125
+    data = base.to_dict()  # effect records in the model file, as the diagnosis writes them
+    data["effects"] = [e.record() for e in elements]
     path = tmp_path / "model.json"
-    model.to_json(path)
+    path.write_text(json.dumps(data))
+    model = load_model(path)
+    assert model.delay_s == 0.0125 and len(model.effects) == len(elements)
     export_fmu(path, tmp_path / "d.fmu", fmi_version=version)
+    spec = export_spec(path)
+    assert spec.effect_names == [e.NAME for e in elements] and spec.structured == structured
     ref = check_reference(3000, 0.001, seed=2)
     with FmuAxis(tmp_path / "d.fmu") as axis:
         got = axis.simulate_reference(ref, 0.001)
-    np.testing.assert_array_equal(got, load_model(path).simulate(ref))  # the model file's model
-    assert load_model(path).delay_s == 0.0125
+    expected = augment_model(model).simulate(ref)
+    np.testing.assert_array_equal(got, expected)
+    undelayed = augment_model(dataclasses.replace(model, delay_s=0.0)).simulate(ref)
+    assert np.max(np.abs(expected - undelayed)) > 0.1
