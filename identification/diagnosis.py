@@ -56,7 +56,7 @@ import numpy as np
 import scipy.optimize
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
-from identification.bounds import as_bounds
+from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.effects import EFFECTS
 from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
 from identification.poles import TWO_PI, denominator
@@ -624,7 +624,8 @@ def _poles_on_bounds(model: ReducedAxisModel, data: Data) -> list[str]:
         v = (model.poles or {}).get(k)
         if v is None:
             continue
-        if v <= lo * (1 + 1e-6):
+        if v <= lo * (1 + 1e-6) and not (k == "p_hz" and lo <= WIDE_P_MIN_HZ):
+            # p on the widened 1 mHz bound is a loop without integral action (p -> 0), as identify decided
             out.append(f"{k} = {v:.4g} at its lower bound")
         elif v >= hi * (1 - 1e-6):
             out.append(f"{k} = {v:.4g} at its upper bound")
