@@ -3,10 +3,11 @@
 EMPS (Janot, Gautier, Brunot 2019; data in ``../shared/data/emps``, set ``VCNC_EMPS_DIR``
 otherwise): a DC motor and ball screw under a P-P cascade *without integral action*, so the real
 pole p of the reduced model goes to 0: ``identify`` sees the slow pole on the thesis' 0.2 Hz bound
-and lets p go down to 1 mHz by itself (``fit.bounds_widened``), no flag needed. For each run the reduced model is identified, the residual diagnosis adds the effects
-the held-out data support, and the before/after table is printed. On ``DATA_EMPS_PULSES`` the
-estimated periodic load is compared with ``pulses_N`` (never shown to the identifier). With
-``--plots DIR`` the residual before/after figures are saved.
+and lets p go down to 1 mHz by itself (``fit.bounds_widened``), no flag needed. For each run the
+reduced model is identified, the residual diagnosis adds the effects the held-out data support,
+and the before/after table is printed. On ``DATA_EMPS_PULSES`` the estimated periodic load is
+compared with ``pulses_N`` (never shown to the identifier). With ``--plots DIR`` the residual
+before/after figures are saved.
 
 Run: ``.venv/bin/python examples/02_emps_diagnosis.py [--plots DIR]``
 """

@@ -393,6 +393,17 @@ class AugmentedAxisModel(ReducedAxisModel):
         """True when every element can be exported to an FMU (see each effect's ``FMU`` flag)."""
         return all(e.FMU for e in self.elements)
 
+    def effect_records(self) -> list[dict[str, Any]]:
+        """The model-file records of the elements (``name``, ``parameters``; an in-loop element also
+        carries the plant's viscous rate, which it needs to be rebuilt)."""
+        out = []
+        for e in self.elements:
+            rec = e.record()
+            if e.KIND == "element":
+                rec["parameters"]["plant_viscous_rate_1_s"] = self.viscous_rate
+            out.append(rec)
+        return out
+
     def reduced(self) -> ReducedAxisModel:
         """The plain reduced model (same parameters, no elements)."""
         return ReducedAxisModel(

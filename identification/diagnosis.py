@@ -679,11 +679,10 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     last: AugmentedAxisModel = stages[-1].full_model  # type: ignore[assignment]
     records = []
     by_name = {e.NAME: e for e in last.elements}
+    base = {r["name"]: r for r in last.effect_records()}
     for prev, s in zip(stages[:-1], stages[1:]):
         e = by_name[s.effect]
-        rec = e.record()
-        if e.KIND == "element":
-            rec["parameters"]["plant_viscous_rate_1_s"] = last.viscous_rate
+        rec = base[s.effect]
         rec.update({
             "rms_before_um": prev.identification_rms_um,
             "rms_after_um": s.identification_rms_um,

@@ -71,7 +71,7 @@ def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
             "poles": model.poles,
             "bounds": model.bounds,
             "fit": model.fit,
-            "effects": model.effects,
+            "effects": model.effects or (model.effect_records() if hasattr(model, "effect_records") else []),
             "validation": model.validation,
         }
     )

@@ -173,3 +173,14 @@ def test_time_periodic_load_locked_to_the_reference_is_not_identifiable():
     assert reference_repeats(xr, 0.7, T) is None
     rng = np.random.default_rng(0)
     assert reference_repeats(np.cumsum(rng.normal(size=t.size)), 0.5, T) is None
+
+
+def test_an_augmented_model_built_in_python_keeps_its_elements_in_the_model_file(reference):
+    """``augment(...)`` without the diagnosis has elements but no effect records: the file gets
+    the elements' records, so the reloaded model simulates the same (helper finding, session 6)."""
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS)
+    model = augment(m, [Backlash(width=0.02), Drift(rate=1e-3)], viscous_rate=2.55)
+    d = model_to_dict(model)
+    assert [e["name"] for e in d["effects"]] == ["backlash", "drift"]
+    again = model_from_dict(d)
+    assert np.array_equal(again.simulate(reference), model.simulate(reference))
