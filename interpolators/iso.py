@@ -37,9 +37,10 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
-file). Out of scope, each an error naming the feature: rotary axes A B C on a machine without
-them, U V W, probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines
-G5.x, polar G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G93/G95 feed modes.
+file). Out of scope, each an error naming the feature: rotary axes A B C (a word that keeps the
+axis at 0, ``A0``, is accepted with a note), U V W, probing G38.x, threading G33/G76, lathe codes
+(G7/G8, G70-G72, G74, G75), splines G5.x, polar G15/G16, scaling G50/G51, rotation G68, user M
+codes M100-M199, G93/G95 feed modes.
 """
 
 from __future__ import annotations
@@ -269,6 +270,11 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if w.letter in "UVW":
                 where.fail(f"axis word {w.letter!r}: secondary linear axes U V W are not supported",
                            column=w.column, text=w.text, expected="X, Y or Z")
+            if w.letter in "ABC" and w.value == 0.0:
+                # a rotary word that keeps the axis where it starts (0): no rotary motion (CAM posts
+                # write "A0" on 3-axis work); any other value is refused below
+                notes.add(f"{w.letter}0 (rotary axis {w.letter} stays at 0)")
+                continue
             if w.letter in "ABC" and w.letter.lower() not in st.context.rotary_axes:
                 where.fail(f"axis word {w.letter!r} is not supported: this machine has no rotary axis "
                            f"{w.letter} (vcnc interpolates the linear axes X, Y, Z)",
@@ -554,7 +560,7 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
             st.comp_close_at = len(blocks)
         st.comp_side = None
         return
-    if st.comp_side is not None:
+    if st.comp_start is not None:
         where.fail(f"{w.text.upper()}: cutter radius compensation is already on", column=w.column, text=w.text,
                    expected="G40 before switching compensation")
     dynamic = key in (411, 421)

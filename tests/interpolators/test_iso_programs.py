@@ -222,7 +222,7 @@ def test_dialect_dwell_unit_and_default_path_mode():
 
 def test_unsupported_features_are_named():
     for text, feature in (("G38.2 Z-5 F10\n", "G38 probing"), ("G76 P1 Z-1\n", "G76 threading"),
-                          ("G7\n", "lathe diameter mode"), ("G0 A10\n", "rotary axis A"),
+                          ("G7\n", "lathe diameter mode"), ("G0 A10\n", "no rotary axis A"),
                           ("M101\n", "user M code"), ("G95 F0.1\n", "feed mode")):
         with pytest.raises(GCodeError, match=feature):
             parse_program(text)
@@ -263,3 +263,9 @@ def test_helix_and_full_circle_with_offsets():
     prog = parse_program("G21 G90 G54 G0 X10 Y0 Z0\nG3 I-10 Z-1 F100\n", context=CTX)
     arc = prog.blocks[1].segment
     assert arc.center.tolist()[:2] == [100, 50] and math.isclose(arc.sweep, 2 * math.pi)
+
+
+def test_a_rotary_word_that_keeps_the_axis_at_zero_is_noted():
+    prog = parse_program("G21 G90 G0 X1 A0\nG1 X2 B0 F100\n")
+    assert [b.target[0] for b in prog.blocks] == [1, 2]
+    assert "A0 (rotary axis A stays at 0)" in prog.notes and "B0 (rotary axis B stays at 0)" in prog.notes
