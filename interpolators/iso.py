@@ -289,13 +289,53 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
     return seen, gcodes, mcodes
 
 
-def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,  # noqa: C901
+def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,
              notes: _Notes) -> bool:
     """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
     seen, gcodes, mcodes = _collect(words, where, notes, st)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
-    ctx = st.context
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
+    _modes(seen, gcodes, st, where, notes)
+    ended = _m_codes(mcodes, seen, st, notes)
+    _modal_settings(seen, gcodes, st, blocks, where, notes)
+    if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
+        _dwell(gcodes, seen, st, blocks, where, number)
+        if "motion" not in gcodes:
+            return ended
+        seen = {k: v for k, v in seen.items() if k != "P"}
+    if "nonmodal" in gcodes:
+        handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
+        if handled:
+            return ended
+    _check_p_q(seen, gcodes, st, where)
+    _motion_mode(gcodes, words, st)
+    axis_words = [w for w in ("X", "Y", "Z") if w in seen]
+    arc_words = [w for w in ("I", "J", "K") if w in seen]
+    _unused_words(seen, gcodes, st, notes)
+    if st.motion is not None and st.motion >= 730:
+        if axis_words:
+            _canned_cycle(seen, gcodes, st, blocks, used, where, number)
+        return ended
+    if not axis_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
+        for letter in ("I", "J", "K", "R"):
+            if letter in seen:
+                w = seen[letter]
+                where.fail(f"word {letter} without an arc motion", column=w.column, text=w.text,
+                           expected="G02 or G03 with X/Y/Z")
+        return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
+    if st.motion is None:
+        w = seen[axis_words[0]]
+        where.fail("axis words before any motion code", column=w.column, text=w.text,
+                   expected="G00, G01, G02 or G03 before the first axis word")
+    target = _target(seen, axis_words, st, machine=False)
+    _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
+    return ended
+
+
+
+
+def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
+    """Feed mode, units, plane, distance modes, F, S and T: they apply to this block's own words."""
     if "feed mode" in gcodes:
         key, w = gcodes["feed mode"]
         if key != 940:
@@ -329,8 +369,12 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
                        expected="T0, T1, ...")
         st.tool_selected = int(w.value)
-        if ctx.tool(st.tool_selected) is None and st.tool_selected != 0:
+        if st.context.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
+
+
+def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
+    """M codes: tool change and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
         if m in (2, 30):
@@ -346,7 +390,11 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             notes.add(_M_NOTES[m])
         else:
             notes.add(f"M{m} (no motion)")
-    # modal settings
+    return ended
+
+
+def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
+    """Compensation, length offsets, work offsets, path mode and return level."""
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
@@ -374,16 +422,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             notes.add("G64 Q naive-CAM tolerance (segments are blended, not merged)")
     if "return mode" in gcodes:
         st.retract_r = gcodes["return mode"][0] == 990
-    if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
-        _dwell(gcodes, seen, st, blocks, where, number)
-        if "motion" not in gcodes:
-            return ended
-        seen = {k: v for k, v in seen.items() if k != "P"}
-    if "nonmodal" in gcodes:
-        handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
-        if handled:
-            return ended
-    _check_p_q(seen, gcodes, st, where)
+
+
+def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
+    """The modal motion; a drilling cycle remembers the motion before its series (G80 restores it)."""
     if "motion" in gcodes:
         key = gcodes["motion"][0]
         in_cycle = st.motion is not None and st.motion >= 730
@@ -395,27 +437,6 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             st.motion = key
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
-    axis_words = [w for w in ("X", "Y", "Z") if w in seen]
-    arc_words = [w for w in ("I", "J", "K") if w in seen]
-    _unused_words(seen, gcodes, st, notes)
-    if st.motion is not None and st.motion >= 730:
-        if axis_words:
-            _canned_cycle(seen, gcodes, st, blocks, used, where, number)
-        return ended
-    if not axis_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
-        for letter in ("I", "J", "K", "R"):
-            if letter in seen:
-                w = seen[letter]
-                where.fail(f"word {letter} without an arc motion", column=w.column, text=w.text,
-                           expected="G02 or G03 with X/Y/Z")
-        return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
-    if st.motion is None:
-        w = seen[axis_words[0]]
-        where.fail("axis words before any motion code", column=w.column, text=w.text,
-                   expected="G00, G01, G02 or G03 before the first axis word")
-    target = _target(seen, axis_words, st, machine=False)
-    _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
-    return ended
 
 
 def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
