@@ -9,7 +9,7 @@ import control
 import numpy as np
 
 from drives._record import Record
-from vcnc.errors import MachineError
+from vcnc.core.errors import MachineError
 
 __all__ = ["Controller", "DiscreteLaw", "VELOCITY_FILTERS", "velocity_estimator", "plant_zoh", "N_PARAMS"]
 

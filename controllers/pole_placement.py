@@ -16,7 +16,7 @@ import scipy.linalg
 
 from controllers._base import N_PARAMS, Controller, DiscreteLaw
 from controllers.zpetc import ZPETC, design_zpetc
-from vcnc.errors import MachineError
+from vcnc.core.errors import MachineError
 
 __all__ = ["PolePlacement", "design_pole_placement", "PolePlacementDesign"]
 

@@ -12,7 +12,7 @@ import dataclasses
 import math
 from typing import Any, ClassVar
 
-from vcnc.errors import MachineError
+from vcnc.core.errors import MachineError
 
 __all__ = ["Record", "record_error"]
 

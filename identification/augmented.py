@@ -64,7 +64,7 @@ import numba
 import numpy as np
 
 from identification.reduced_model import _NO_FOURIER, ReducedAxisModel, discretize, run_exact, w_terms
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
 

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["PoleBounds", "default_bounds", "as_bounds", "WIDE_P_MIN_HZ"]
 

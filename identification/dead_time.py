@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
-from vcnc.capture import Capture
+from vcnc.core.capture import Capture
 
 __all__ = ["delay_reference", "estimate_delay", "loop_capture", "DelayEstimate", "MAX_DELAY_S", "MIN_DELAY_SAMPLES"]
 

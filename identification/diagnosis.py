@@ -63,8 +63,8 @@ from identification.poles import TWO_PI, denominator
 from identification.reduced_model import ReducedAxisModel
 from identification.residual import motion_coherence
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
-from vcnc.capture import Capture
-from vcnc.errors import IdentificationError
+from vcnc.core.capture import Capture
+from vcnc.core.errors import IdentificationError
 
 __all__ = [
     "report_figure",

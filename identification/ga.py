@@ -33,7 +33,7 @@ import numpy as np
 
 from identification.poles import canonical
 from identification.problem import ReducedProblem
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["GAOptions", "solve_ga"]
 

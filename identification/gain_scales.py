@@ -28,7 +28,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["GainScaleResult", "identify_gain_scales", "pdf_gain_scales", "simulate_pdf_loop", "overshoot"]
 

@@ -29,8 +29,8 @@ from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 from identification.solve import METHODS, SolveResult, solve_statistics
-from vcnc.capture import Capture, check_sampling
-from vcnc.errors import CaptureError, IdentificationError, VcncError
+from vcnc.core.capture import Capture, check_sampling
+from vcnc.core.errors import CaptureError, IdentificationError, VcncError
 
 __all__ = ["identify", "Identifier", "check_capture", "MIN_SAMPLES", "REFINEMENTS"]
 

@@ -26,9 +26,9 @@ from pathlib import Path
 from typing import Any
 
 from identification.reduced_model import PARAMETER_NAMES, PARAMETER_UNITS, ReducedAxisModel
-from vcnc._io import atomic_path
-from vcnc.errors import InputError, ModelFileError
-from vcnc.setpoints import AXIS_NAMES
+from vcnc.core.errors import InputError, ModelFileError
+from vcnc.core.io import atomic_path
+from vcnc.core.setpoints import AXIS_NAMES
 
 __all__ = ["FORMAT", "FORMAT_DELAY", "FORMATS", "model_to_dict", "model_from_dict", "write_model", "load_model"]
 

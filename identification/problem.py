@@ -22,7 +22,7 @@ import scipy.linalg
 from identification.bounds import PoleBounds
 from identification.poles import TWO_PI, canonical_mask, denominator, pole_splits, theta1, theta1_jacobian
 from identification.regressor import COLUMN_DESCRIPTIONS, SufficientStatistics
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["ReducedProblem", "table31_case"]
 

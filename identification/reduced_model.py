@@ -92,7 +92,7 @@ import scipy.linalg
 
 from identification.dead_time import delay_reference
 from identification.poles import pole_splits, pole_table, zero_table
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = [
     "PARAMETER_NAMES",

@@ -37,7 +37,7 @@ import numpy as np
 import scipy.linalg
 import scipy.signal
 
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = [
     "COLUMNS",

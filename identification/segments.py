@@ -20,7 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds"]
 

@@ -35,7 +35,7 @@ from identification.kkt import solve_kkt
 from identification.poles import TWO_PI, canonical
 from identification.problem import ReducedProblem
 from identification.regressor import SufficientStatistics
-from vcnc.errors import IdentificationError
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["SolveResult", "solve", "solve_statistics", "METHODS"]
 
@@ -135,7 +135,7 @@ class SolveResult:
         """Write :meth:`to_dict` as JSON (atomic)."""
         import json
 
-        from vcnc._io import atomic_path
+        from vcnc.core.io import atomic_path
 
         with atomic_path(path) as tmp:
             tmp.write_text(json.dumps(self.to_dict(), indent=2) + "\n")

@@ -14,8 +14,8 @@ import numpy as np
 
 from drives.resonance import StructuralMode
 from identification.reduced_model import simulate
-from vcnc.capture import Capture
-from vcnc.errors import InputError
+from vcnc.core.capture import Capture
+from vcnc.core.errors import InputError
 
 __all__ = [
     "random_moves_reference",

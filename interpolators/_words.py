@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import re
 
-from vcnc.errors import GCodeError
+from vcnc.core.errors import GCodeError
 
 #: A decimal number as written in part programs: optional sign, digits with an optional point
 #: (``12``, ``-0.79``, ``+.5``, ``5.``); no exponent.

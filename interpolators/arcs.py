@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from toolpaths.geometry import PLANE_AXES, Arc
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius", "spiral_tolerance",
            "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE"]

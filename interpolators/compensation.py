@@ -50,7 +50,7 @@ import numpy as np
 
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES", "CONVEX_TOLERANCE"]
 

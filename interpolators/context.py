@@ -21,7 +21,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "read_tool_table"]
 

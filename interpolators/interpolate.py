@@ -20,8 +20,8 @@ from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapez
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import HOLD, PackedSegments
-from vcnc.errors import GCodeError, InputError
-from vcnc.setpoints import Setpoints
+from vcnc.core.errors import GCodeError, InputError
+from vcnc.core.setpoints import Setpoints
 
 __all__ = ["interpolate", "MAX_SAMPLES"]
 

@@ -35,7 +35,7 @@ import numpy as np
 from interpolators.limits import AxisLimits
 from toolpaths.geometry import AXIS_LETTERS
 from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = [
     "AxisLimitArrays",

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["AxisLimits", "DEFAULT_LIMITS"]
 

@@ -32,7 +32,7 @@ import numpy as np
 
 from interpolators.profiles import scurve_reach, trapezoid_reach
 from toolpaths.geometry import Arc, ClothoidPair, Line
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "blend_corners", "junction_speeds"]
 

@@ -8,7 +8,7 @@ from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
 from interpolators.iso import parse_iso
 from interpolators.program import Program
-from vcnc.errors import GCodeError
+from vcnc.core.errors import GCodeError
 
 __all__ = ["parse_program", "load_program", "detect_dialect"]
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import ruckig
 
-from vcnc.errors import VcncError
+from vcnc.core.errors import VcncError
 
 __all__ = [
     "PROFILES",

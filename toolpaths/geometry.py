@@ -33,7 +33,7 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["Line", "Arc", "ClothoidPair", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS", "euler_spiral"]
 

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from toolpaths.writer import ProgramWriter
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["random_moves", "heidenhain_identification", "IDENTIFICATION_KINDS"]
 

@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 
 from toolpaths.writer import ProgramWriter
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["circle", "diamond", "back_and_forth"]
 

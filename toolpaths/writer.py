@@ -5,8 +5,8 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 
-from vcnc._io import atomic_path
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
+from vcnc.core.io import atomic_path
 
 __all__ = ["ProgramWriter", "write_program", "DIALECTS"]
 

@@ -18,7 +18,7 @@ import logging
 import sys
 from collections.abc import Sequence
 
-from vcnc.errors import InputError, VcncError
+from vcnc.core.errors import InputError, VcncError
 
 __all__ = ["main", "COMMANDS"]
 

@@ -42,7 +42,7 @@ import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["ContourError", "contour_error", "contour_metrics", "path_features", "feed_segments", "auto_magnification",
            "moving_axes"]

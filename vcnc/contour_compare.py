@@ -56,10 +56,10 @@ from typing import Any
 
 import numpy as np
 
-from vcnc.capture import Capture
 from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes
-from vcnc.errors import InputError
-from vcnc.setpoints import Setpoints
+from vcnc.core.capture import Capture
+from vcnc.core.errors import InputError
+from vcnc.core.setpoints import Setpoints
 
 __all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S", "TRUTH_RUNS"]
 
@@ -255,7 +255,7 @@ class ContourReport:
 
     def to_json(self, path: str | os.PathLike[str]) -> None:
         """Write :meth:`to_dict` as JSON (atomic)."""
-        from vcnc._io import atomic_path
+        from vcnc.core.io import atomic_path
 
         text = json.dumps(_plain(self.to_dict()), indent=2) + "\n"
         with atomic_path(path) as tmp:

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from vcnc.capture import Capture, read_capture
-from vcnc.errors import CaptureError, VcncError
+from vcnc.core.errors import CaptureError, VcncError
 from vcnc.report import Report
 
 __all__ = ["run_demo", "run_emps_demo", "DEFAULT_MACHINE", "DEFAULT_EFFECT", "EMPS_URL"]

@@ -1,12 +1,16 @@
-"""Exception types of vcnc.
+"""Exception types of vcnc (defined in :mod:`vcnc.core.errors`, re-exported here)."""
 
-Every error raised on purpose by vcnc derives from :class:`VcncError`. Errors caused by bad input
-(a malformed program, capture, machine or model file, an impossible parameter) also derive from
-:class:`ValueError` through :class:`InputError`; the command line turns those into one line
-``error: FILE:LINE:COLUMN: message`` on stderr and exit status 2.
-"""
-
-from __future__ import annotations
+from vcnc.core.errors import (
+    CaptureError,
+    ExportError,
+    GCodeError,
+    IdentificationError,
+    InputError,
+    MachineError,
+    ModelFileError,
+    SimulationError,
+    VcncError,
+)
 
 __all__ = [
     "VcncError",
@@ -19,99 +23,3 @@ __all__ = [
     "SimulationError",
     "ExportError",
 ]
-
-
-class VcncError(Exception):
-    """Base class of every error vcnc raises on purpose."""
-
-
-class InputError(VcncError, ValueError):
-    """Bad input: names where it is (file, line, column), what came and what was expected.
-
-    Parameters
-    ----------
-    message : str
-        What is wrong, naming the parameter and its unit where there is one.
-    file : str, optional
-        The file at fault.
-    line, column : int, optional
-        1-based position in the file.
-    text : str, optional
-        The offending text.
-    expected : str, optional
-        What was expected instead.
-    """
-
-    def __init__(
-        self,
-        message: str,
-        *,
-        file: str | None = None,
-        line: int | None = None,
-        column: int | None = None,
-        text: str | None = None,
-        expected: str | None = None,
-    ) -> None:
-        self.message = message
-        self.file = None if file is None else str(file)
-        self.line = line
-        self.column = column
-        self.text = text
-        self.expected = expected
-        super().__init__(self.__str__())
-
-    @property
-    def location(self) -> str:
-        """``FILE:LINE:COLUMN`` (the parts that are known), or ``""``."""
-        parts = [self.file or "<input>"] if (self.file or self.line) else []
-        if self.line is not None:
-            parts.append(str(self.line))
-            if self.column is not None:
-                parts.append(str(self.column))
-        return ":".join(parts)
-
-    def __str__(self) -> str:
-        msg = self.message
-        if self.text is not None and repr(self.text) not in msg:
-            msg += f" (got {self.text!r})"
-        if self.expected is not None and "expected" not in msg:
-            msg += f"; expected {self.expected}"
-        loc = self.location
-        return f"{loc}: {msg}" if loc else msg
-
-    def at(self, *, file: str | None = None, line: int | None = None) -> InputError:
-        """Fill in a location not known where the error was raised; returns self."""
-        if file is not None and self.file is None:
-            self.file = str(file)
-        if line is not None and self.line is None:
-            self.line = line
-        self.args = (self.__str__(),)
-        return self
-
-
-class GCodeError(InputError):
-    """A part program that cannot be parsed or interpolated."""
-
-
-class CaptureError(InputError):
-    """A capture (CSV or EMPS .mat) that cannot be read or used."""
-
-
-class MachineError(InputError):
-    """A machine definition (TOML or built-in name) that is malformed or physically impossible."""
-
-
-class ModelFileError(InputError):
-    """A model JSON file that does not follow the ``vcnc.axis-model/1`` contract."""
-
-
-class IdentificationError(InputError):
-    """Data from which the requested model cannot be identified (says why)."""
-
-
-class SimulationError(VcncError):
-    """A simulation that failed at run time (e.g. diverged)."""
-
-
-class ExportError(VcncError):
-    """An FMU that could not be built or did not validate."""

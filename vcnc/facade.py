@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING
 
-from vcnc.setpoints import Setpoints
+from vcnc.core.setpoints import Setpoints
 
 if TYPE_CHECKING:  # pragma: no cover
     from interpolators import Program

@@ -32,12 +32,12 @@ import drives
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.limits import AxisLimits
 from vcnc._callable import make_callable
-from vcnc.capture import Capture
+from vcnc.core.capture import Capture
+from vcnc.core.errors import InputError, MachineError, SimulationError
+from vcnc.core.setpoints import AXIS_NAMES, Setpoints
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
 from vcnc.engine.layout import N_OUT
 from vcnc.engine.machine_file import parse_machine_text
-from vcnc.errors import InputError, MachineError, SimulationError
-from vcnc.setpoints import AXIS_NAMES, Setpoints
 
 __all__ = [
     "Machine",

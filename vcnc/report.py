@@ -19,7 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from vcnc._io import atomic_dir
+from vcnc.core.io import atomic_dir
 
 __all__ = ["Report"]
 

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from vcnc.capture import Capture
+from vcnc.core.capture import Capture
 
 if TYPE_CHECKING:
     from vcnc.report import Report

@@ -35,7 +35,7 @@ from identification.effects.position_periodic import PositionPeriodic
 from identification.effects.resonance import Resonance
 from identification.effects.saturation import Saturation
 from identification.effects.time_periodic import TimePeriodic
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = [
     "Effect",

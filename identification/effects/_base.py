@@ -9,7 +9,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["Effect", "Free"]
 

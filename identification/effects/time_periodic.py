@@ -16,7 +16,7 @@ import numpy as np
 
 from identification.effects._base import Effect, Free
 from identification.effects._fourier import fourier_basis, fourier_eval
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["TimePeriodic"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 HELP = "compare the contour error of a toolpath on a true machine with that predicted by axis models"
 
@@ -38,7 +38,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def parse_models(values: list[str]) -> str | dict[str, str]:
     """``--model`` values -> one file, or a dict axis -> file; InputError on a bad form."""
-    from vcnc.setpoints import AXIS_NAMES
+    from vcnc.core.setpoints import AXIS_NAMES
 
     per_axis: dict[str, str] = {}
     plain: list[str] = []

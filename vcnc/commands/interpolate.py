@@ -80,7 +80,7 @@ def write_blocks(program, path: str) -> None:
     """Write :func:`blocks_table` as CSV (atomically; empty fields for no centre / no feed)."""
     import csv
 
-    from vcnc._io import atomic_path
+    from vcnc.core.io import atomic_path
 
     header, rows = blocks_table(program)
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
@@ -98,7 +98,7 @@ def notes_summary(program) -> str | None:
 def _machine(name: str):
     import importlib
 
-    from vcnc.errors import VcncError
+    from vcnc.core.errors import VcncError
 
     try:
         mod = importlib.import_module("vcnc.machine")
@@ -149,7 +149,7 @@ def plot_setpoints(setpoints, *, title: str | None = None):
 
 def run(args: argparse.Namespace) -> int:
     from interpolators import interpolate, load_program
-    from vcnc._io import atomic_path
+    from vcnc.core.io import atomic_path
 
     limits = None
     ts = 1e-3

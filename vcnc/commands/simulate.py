@@ -28,7 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import interpolators
-    from vcnc._io import atomic_path
+    from vcnc.core.io import atomic_path
     from vcnc.machine import load_machine
     from vcnc.simulation_report import build_report, summarize
 

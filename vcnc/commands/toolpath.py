@@ -46,7 +46,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import toolpaths
-    from vcnc.errors import InputError
+    from vcnc.core.errors import InputError
 
     def opt_feed(default: float) -> float:
         return default if args.feed is None else args.feed

@@ -12,8 +12,8 @@ import numpy as np
 import drives
 from controllers._base import Controller, discrete_closed_loop
 from interpolators.limits import AxisLimits
+from vcnc.core.errors import MachineError
 from vcnc.engine import layout as L
-from vcnc.errors import MachineError
 
 __all__ = ["AxisDefinition", "NONIDEALITY_FIELDS"]
 

@@ -46,9 +46,9 @@ import controllers
 import drives
 from interpolators.context import DIALECTS, WORK_OFFSETS, MachineContext, Tool, read_tool_table
 from interpolators.limits import AxisLimits
+from vcnc.core.errors import InputError, MachineError
+from vcnc.core.setpoints import AXIS_NAMES
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
-from vcnc.errors import InputError, MachineError
-from vcnc.setpoints import AXIS_NAMES
 
 __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 

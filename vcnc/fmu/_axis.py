@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from vcnc.errors import MachineError, SimulationError
+from vcnc.core.errors import MachineError, SimulationError
 
 __all__ = ["FmuAxis"]
 

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from vcnc._io import atomic_path
-from vcnc.errors import ExportError, SimulationError
+from vcnc.core.errors import ExportError, SimulationError
+from vcnc.core.io import atomic_path
 from vcnc.fmu._description import TOKEN_PLACEHOLDER, build_description, model_description
 from vcnc.fmu._sources import compiled_sources, source_files
 from vcnc.fmu._spec import ExportSpec, export_spec

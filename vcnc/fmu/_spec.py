@@ -14,7 +14,7 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from vcnc.errors import ExportError, InputError, ModelFileError
+from vcnc.core.errors import ExportError, InputError, ModelFileError
 from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, MAX_REF_DELAY, Variable, variables
 
 __all__ = ["ExportSpec", "REPRESENTABLE_EFFECTS", "export_spec"]

@@ -113,7 +113,7 @@ def write_plot(table: pa.Table, path: str | os.PathLike[str]) -> None:
     """Write the summary plot to an image file (atomic; no pyplot, no GUI backend)."""
     from matplotlib.figure import Figure
 
-    from vcnc._io import atomic_path
+    from vcnc.core.io import atomic_path
 
     rows = _ok_rows(table)
     panels = _panels(rows)

@@ -15,7 +15,7 @@ import traceback
 from collections.abc import Mapping
 from typing import Any
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = ["run_point", "machine_variant", "program_text", "FEEDBACK_GAINS"]
 

@@ -20,7 +20,7 @@ from typing import Any
 
 import pyarrow as pa
 
-from vcnc.errors import InputError, VcncError
+from vcnc.core.errors import InputError, VcncError
 from vcnc.sweep.spec import SweepSpec, load_spec
 from vcnc.sweep.store import ResultStore
 

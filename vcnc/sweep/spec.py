@@ -63,7 +63,7 @@ from typing import Any
 
 import numpy as np
 
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
 
 __all__ = [
     "SweepSpec",
@@ -368,7 +368,7 @@ def parse_spec(text: str, *, file: str | None = None, base_dir: str = ".") -> Sw
         raise v.fail("sweep", "n", "n is only for mode = \"random\"; a grid takes every combination")
     seed = v.integer("sweep", "seed", sweep.get("seed", 0), minimum=0)
     axis = v.string("sweep", "axis", sweep.get("axis", "x"))
-    from vcnc.setpoints import AXIS_NAMES
+    from vcnc.core.setpoints import AXIS_NAMES
 
     v.choice("sweep", "axis", axis, tuple(AXIS_NAMES))
     profile = v.choice("sweep", "profile", sweep.get("profile", "trapezoid"), PROFILES)

@@ -22,8 +22,8 @@ from typing import Any
 
 import pyarrow as pa
 
-from vcnc._io import atomic_path
-from vcnc.errors import InputError
+from vcnc.core.errors import InputError
+from vcnc.core.io import atomic_path
 
 __all__ = ["ResultStore", "COLUMNS", "FORMATS", "read_results", "rows_to_table"]
 

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from vcnc.capture import Capture
-from vcnc.errors import CaptureError
+from vcnc.core.capture import Capture
+from vcnc.core.errors import CaptureError
 
 MAGIC = "%TNCscopeNT"
 COMMANDED = ("s soll", "s nom")
