@@ -631,12 +631,3 @@ def contour_metrics(capture: Any, *, include_segments: np.ndarray | None = None)
                        t=capture.t, include_segments=include_segments)
     m = ce.metrics()
     return {"max_um": m["max_um"], "rms_um": m["rms_um"]}
-
-
-def __getattr__(name: str) -> Any:
-    # compare / ContourReport live in vcnc.contour_compare (which imports this module)
-    if name in ("compare", "ContourReport"):
-        from vcnc import contour_compare
-
-        return getattr(contour_compare, name)
-    raise AttributeError(f"module 'vcnc.contour' has no attribute {name!r}")

@@ -447,11 +447,8 @@ class Machine:
 
 
 def _load_fmu_axis(path: str, *, file: str, line: int | None) -> ExternalAxis:
-    try:
-        from vcnc.fmu import FmuAxis  # type: ignore[attr-defined]
-    except ImportError as exc:
-        raise MachineError(f"FMU axes need vcnc.fmu.FmuAxis, which is not available ({exc})", file=file,
-                           line=line) from None
+    from vcnc.engine.fmu_axis import FmuAxis  # loads fmpy, only for machines with FMU axes
+
     try:
         return FmuAxis(path)
     except InputError as exc:

@@ -84,7 +84,7 @@ def test_missing_file_and_unknown_name(tmp_path: Path) -> None:
         load_machine("absent")
 
 
-def test_fmu_axis_needs_vcnc_fmu(tmp_path: Path) -> None:
+def test_fmu_axis_with_a_missing_file_names_file_and_line(tmp_path: Path) -> None:
     text = 'sample_time = 0.001\n[axes.x]\nfmu = "nope.fmu"\n[axes.x.limits]\nvelocity = 1.0\nacceleration = 9.0\n'
     p = write(tmp_path, text)
     with pytest.raises(MachineError) as info:

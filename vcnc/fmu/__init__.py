@@ -30,7 +30,7 @@ approximately. (The former FMU-only ``delay``/``backlash`` of the command and th
 gone: those records are the diagnosis' in-loop effects now.)
 """
 
-from vcnc.fmu._axis import FmuAxis
+from vcnc.engine.fmu_axis import FmuAxis
 from vcnc.fmu._export import CHECK_TOLERANCE_MM, export_fmu, fmu_files
 from vcnc.fmu._oracle import expected_position
 from vcnc.fmu._spec import REPRESENTABLE_EFFECTS, ExportSpec, export_spec

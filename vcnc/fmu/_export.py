@@ -128,7 +128,7 @@ def _check(fmu: Path, spec: ExportSpec) -> None:
 
     from fmpy.validation import validate_fmu
 
-    from vcnc.fmu._axis import FmuAxis
+    from vcnc.engine.fmu_axis import FmuAxis
     from vcnc.fmu._oracle import check_reference, expected_position
 
     problems = validate_fmu(str(fmu))
