@@ -183,8 +183,39 @@ def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
         lines = p.read_text().splitlines()
     except UnicodeDecodeError as exc:
         raise CaptureError("capture file is not text (expected CSV)", file=src) from exc
+    meta, header_idx = _comment_lines(lines, src)
+    names = [c.strip() for c in lines[header_idx].split(",")]
+    axes = _header_axes(names, src, header_idx + 1)
+    data, row_lines = _data_rows(lines, header_idx, names, src)
+    check_sampling(data[:, 0], src, row_lines)
+
+    def stack(suffix: str | None) -> np.ndarray | None:
+        wanted = [a if suffix is None else f"{a}_{suffix}" for a in axes]
+        cs = [data[:, names.index(c)] if c in names else None for c in wanted]
+        if all(c is None for c in cs):
+            return None
+        if any(c is None for c in cs):
+            missing = [a for a, c in zip(axes, cs) if c is None]
+            raise CaptureError(
+                f"column '_{suffix}' given for some axes but not for {missing}", file=src, line=header_idx + 1
+            )
+        return np.column_stack(cs)
+
+    kwargs = {attr: stack(suffix) for suffix, attr in OPTIONAL_SUFFIXES.items()}
+    return Capture(
+        t=data[:, 0],
+        axes=tuple(axes),
+        reference=stack("ref"),
+        measured=stack(None),
+        meta=meta,
+        source=src,
+        **kwargs,
+    )
+
+
+def _comment_lines(lines: list[str], src: str) -> tuple[dict[str, str], int]:
+    """The ``# key: value`` lines before the header, and the header's index in ``lines``."""
     meta: dict[str, str] = {}
-    header_idx = None
     for i, line in enumerate(lines):
         s = line.strip()
         if not s:
@@ -195,12 +226,12 @@ def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
                 k, v = body.split(":", 1)
                 meta[k.strip()] = v.strip()
             continue
-        header_idx = i
-        break
-    if header_idx is None:
-        raise CaptureError("no header line found; expected 't,<axis>_ref,<axis>,...'", file=src)
-    names = [c.strip() for c in lines[header_idx].split(",")]
-    hline = header_idx + 1
+        return meta, i
+    raise CaptureError("no header line found; expected 't,<axis>_ref,<axis>,...'", file=src)
+
+
+def _header_axes(names: list[str], src: str, hline: int) -> list[str]:
+    """Axes of a header ``t,<a>_ref,<a>,...`` (line ``hline``), checked against the contract."""
     if names[0] != "t":
         raise CaptureError(
             "first column must be 't' (time, s)", file=src, line=hline, column=1, text=names[0]
@@ -229,6 +260,12 @@ def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
                 raise CaptureError(f"axis {a!r} has no column {need!r}", file=src, line=hline)
     if not axes:
         raise CaptureError("no axis columns; expected '<axis>_ref' and '<axis>'", file=src, line=hline)
+    return axes
+
+
+def _data_rows(lines: list[str], header_idx: int, names: list[str], src: str) -> tuple[np.ndarray, list[int]]:
+    """The numeric rows after the header, and the file line of each (finite numbers, as many as
+    the header's columns, at least two rows)."""
     rows: list[list[float]] = []
     row_lines: list[int] = []
     for i in range(header_idx + 1, len(lines)):
@@ -257,34 +294,7 @@ def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
         row_lines.append(i + 1)
     if len(rows) < 2:
         raise CaptureError(f"only {len(rows)} data row(s); a capture needs at least 2", file=src)
-    data = np.asarray(rows)
-    t = data[:, 0]
-    check_sampling(t, src, row_lines)
-
-    def col(name: str) -> np.ndarray | None:
-        return data[:, names.index(name)] if name in names else None
-
-    def stack(suffix: str | None) -> np.ndarray | None:
-        cs = [col(a if suffix is None else f"{a}_{suffix}") for a in axes]
-        if all(c is None for c in cs):
-            return None
-        if any(c is None for c in cs):
-            missing = [a for a, c in zip(axes, cs) if c is None]
-            raise CaptureError(
-                f"column '_{suffix}' given for some axes but not for {missing}", file=src, line=hline
-            )
-        return np.column_stack(cs)
-
-    kwargs = {attr: stack(suffix) for suffix, attr in OPTIONAL_SUFFIXES.items()}
-    return Capture(
-        t=t,
-        axes=tuple(axes),
-        reference=stack("ref"),
-        measured=stack(None),
-        meta=meta,
-        source=src,
-        **kwargs,
-    )
+    return np.asarray(rows), row_lines
 
 
 def check_sampling(t: np.ndarray, src: str | None, row_lines: list[int] | None = None) -> None:
