@@ -8,16 +8,18 @@ Public surface:
   the regression of Eqs. (3.9)-(3.11) and its streamed statistics (Eq. 3.19);
 * :func:`solve` (P, R, gamma) and :func:`solve_statistics` - the constrained problem with methods
   ``exact``, ``ga`` (Sec. 4.2) and ``kkt`` (Sec. 3.3);
-* :func:`identify` / :class:`Identifier` - capture in, model out; :func:`load_model` - model file;
+* :func:`identify` / :class:`Identifier` - capture in, model out (the fit, then the residual diagnosis);
+  :func:`load_model` - model file;
 * :func:`identify_gain_scales` - controller scale gains of an integer PDF loop (Liu et al. 2008).
 """
 
 from identification.bounds import PoleBounds, default_bounds
+from identification.capture_checks import check_capture
 from identification.exact import ExactOptions
 from identification.ga import GAOptions
 from identification.gain_scales import GainScaleResult, identify_gain_scales, pdf_gain_scales
-from identification.identify import Identifier, check_capture, identify
 from identification.model_file import load_model
+from identification.pipeline import Identifier, identify
 from identification.reduced_model import (
     PARAMETER_NAMES,
     PARAMETER_UNITS,

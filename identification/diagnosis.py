@@ -57,6 +57,7 @@ import scipy.optimize
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
+from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
 from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
 from identification.poles import TWO_PI, denominator
@@ -477,8 +478,6 @@ def diagnose(capture: Capture, model: ReducedAxisModel, *, axis: str,
 def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
                     options: DiagnosisOptions | None = None) -> DiagnosisReport:
     """:func:`diagnose` with everything it found: stages, candidates per round, data split."""
-    from identification.identify import check_capture
-
     t_start = time.perf_counter()
     opt = options or DiagnosisOptions()
     xr, x, T = check_capture(capture, axis)
@@ -753,7 +752,6 @@ def report_figure(capture: Capture, model: ReducedAxisModel, *, axis: str, ax=No
     Works from a diagnosed model alone: the reduced model is rebuilt from
     ``model.fit["reduced_model"]`` (the model itself when nothing was added). Returns 4 Axes.
     """
-    from identification.identify import check_capture
     from identification.residual import plot_before_after
 
     xr, x, T = check_capture(capture, axis)

@@ -1,11 +1,12 @@
-"""``identify``: a capture in, a fitted :class:`ReducedAxisModel` out.
+"""The fit: a capture in, a :class:`ReducedAxisModel` out (no diagnosis).
 
-Steps: check the capture axis (:func:`check_capture`), stream the regression of Eq. (3.11) into
-sufficient statistics, solve the constrained problem (:func:`identification.solve`), optionally
-refine by output error (:mod:`identification.output_error`), measure the fit by simulating the
-model on the capture's reference, and - when the module ``identification.diagnosis`` exists -
-hand the model to the residual diagnosis (``diagnose(capture, model, axis=...)``, which returns
-the model with ``effects`` and ``validation`` filled in).
+Steps: check the capture axis (:func:`identification.capture_checks.check_capture`), estimate the
+reference dead time (:mod:`identification.dead_time`), stream the regression of Eq. (3.11) into
+sufficient statistics, solve the constrained problem (:func:`identification.solve`), widen the
+pole box when the data put p on its bound, refine by output error
+(:mod:`identification.output_error`), and measure the fit by simulating the model on the
+capture's reference. :func:`identification.identify` (:mod:`identification.pipeline`) runs this
+fit and then the residual diagnosis.
 
 The default refinement is ``"output-error"``: on held-out data it predicts the tracking error
 better than the equation-error solution it starts from (evidence in
@@ -15,7 +16,6 @@ better than the equation-error solution it starts from (evidence in
 from __future__ import annotations
 
 import dataclasses
-import importlib
 import logging
 import math
 from collections.abc import Mapping
@@ -23,111 +23,40 @@ from collections.abc import Mapping
 import numpy as np
 
 from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
+from identification.capture_checks import check_capture
 from identification.dead_time import delay_reference, estimate_delay, loop_capture
 from identification.ga import GAOptions
 from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 from identification.solve import METHODS, SolveResult, solve_statistics
-from vcnc.core.capture import Capture, check_sampling
-from vcnc.core.errors import CaptureError, IdentificationError, VcncError
+from vcnc.core.capture import Capture
+from vcnc.core.errors import IdentificationError
 
-__all__ = ["identify", "Identifier", "check_capture", "MIN_SAMPLES", "REFINEMENTS"]
+__all__ = ["fit_reduced_model", "REFINEMENTS"]
 
 log = logging.getLogger(__name__)
 
-#: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms).
-MIN_SAMPLES = 500
-
+#: Refinements of the equation-error solution.
 REFINEMENTS: tuple[str, ...] = ("output-error", "none")
-
-
-def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | None = None) -> tuple:
-    """Validate one axis of a capture for identification; returns ``(reference, measured, T)``.
-
-    Raises
-    ------
-    CaptureError
-        Unknown axis, NaN/inf, time not increasing or not uniform.
-    IdentificationError
-        Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
-        measurement identical to the reference, positions that look like metres.
-    """
-    src = capture.source
-    i = capture.axis_index(axis)
-    t = np.asarray(capture.t, float)
-    n = t.size
-    if n < MIN_SAMPLES:
-        raise IdentificationError(
-            f"only {n} samples; identification needs at least {MIN_SAMPLES} (the thesis' test has 22,000 at 1 ms)",
-            file=src,
-        )
-    xr = np.asarray(capture.reference[:, i], float)
-    x = np.asarray(capture.measured[:, i], float)
-    for name, arr in (("t", t), (f"{axis}_ref", xr), (axis, x)):
-        bad = np.flatnonzero(~np.isfinite(arr))
-        if bad.size:
-            raise CaptureError(
-                f"column {name!r} is not finite at sample {int(bad[0])} (value {arr[bad[0]]!r})", file=src
-            )
-    check_sampling(t, src or "<capture>")
-    T = float(np.median(np.diff(t)))
-    span = float(np.ptp(xr))
-    if span == 0.0 and float(np.ptp(x)) == 0.0:
-        raise IdentificationError(
-            f"no motion on axis {axis!r}: reference and measurement stay at {xr[0]!r} mm", file=src
-        )
-    if span == 0.0:
-        raise IdentificationError(
-            f"no commanded motion on axis {axis!r}: the reference stays at {xr[0]!r} mm", file=src
-        )
-    vmax = float(np.max(np.abs(np.diff(xr)))) / T
-    if span < 1.0 and vmax < 2.0:
-        raise IdentificationError(
-            f"positions on axis {axis!r} look like metres, not mm: the reference spans {span:.4g} mm at a peak "
-            f"speed of {vmax:.4g} mm/s; convert the capture to mm (a test this small could not be identified anyway)",
-            file=src,
-        )
-    if np.array_equal(xr, x):
-        raise IdentificationError(
-            f"the measured position of axis {axis!r} is identical to the reference at every sample: no tracking "
-            f"error to identify from (was '{axis}_ref' copied into '{axis}'?)",
-            file=src,
-        )
-    opt = options or RegressorOptions()
-    v = np.diff(x) / T
-    db = opt.velocity_deadband
-    n_pos, n_neg = int(np.sum(v > db)), int(np.sum(v < -db))
-    need = max(20, int(0.01 * (n_pos + n_neg)))
-    if n_pos < need or n_neg < need:
-        which = "negative" if n_neg < need else "positive"
-        raise IdentificationError(
-            f"friction not identifiable: axis {axis!r} moves in one direction only ({n_pos} samples with positive "
-            f"and {n_neg} with negative measured velocity; at least {need} of each needed); the test must also move "
-            f"in the {which} direction",
-            file=src,
-        )
-    return xr, x, T
-
 
 def _fit_metrics(err: np.ndarray) -> dict[str, float]:
     return {"rms_um": float(np.sqrt(np.mean(err * err)) * 1e3), "max_um": float(np.max(np.abs(err)) * 1e3)}
 
 
-def identify(
+def fit_reduced_model(
     capture: Capture,
     *,
     axis: str = "x",
     method: str = "exact",
     bounds: PoleBounds | Mapping | None = None,
     refine: str = "output-error",
-    diagnose: bool | None = None,
     regressor_options: RegressorOptions | None = None,
     seed: int = 0,
     ga_options: GAOptions | None = None,
     delay: str | float = "auto",
 ) -> ReducedAxisModel:
-    """Identify the reduced model of one axis from a capture (thesis Ch. 3-4, plus refinement).
+    """Fit the reduced model of one axis to a capture (thesis Ch. 3-4, plus refinement).
 
     Parameters
     ----------
@@ -144,9 +73,6 @@ def identify(
         thesis' box as it is.
     refine : {"output-error", "none"}
         Output-error refinement of the solution (default; see module docstring).
-    diagnose : bool, optional
-        Residual diagnosis: None (default) runs it when ``identification.diagnosis`` exists,
-        False never, True requires it.
     regressor_options : RegressorOptions, optional
         Derivatives, dead band, integration rule.
     seed : int
@@ -161,7 +87,7 @@ def identify(
     -------
     ReducedAxisModel
         With ``fit`` holding the prediction of the capture (``rms_um``, ``max_um``) and the solver
-        report (``solver``), ``method`` (e.g. ``"exact+oe"``) and ``bounds``.
+        report (``solver``), ``method`` (e.g. ``"exact+oe"``), ``bounds`` and ``delay_s``.
     """
     if method not in METHODS:
         raise IdentificationError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
@@ -182,10 +108,8 @@ def identify(
     widened = None
     if bounds is None:
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
-    params, poles = dict(sol.parameters), dict(sol.poles)
-    ee_err = x - simulate(params, xr, T)
     fit = {
-        "equation_error": {**_fit_metrics(ee_err), "objective_mm2": sol.objective},
+        "equation_error": {**_fit_metrics(x - simulate(sol.parameters, xr, T)), "objective_mm2": sol.objective},
         "solver": sol.to_dict(),
         "samples": int(x.size),
         "regressor": dataclasses.asdict(opt),
@@ -193,20 +117,11 @@ def identify(
     }
     if widened is not None:
         fit["bounds_widened"] = widened
-    label = method
-    if refine == "output-error":
-        oe = refine_output_error(params, poles, xr, x, T, bounds=b)
-        err = x - simulate(oe["parameters"], xr, T)
-        if np.sqrt(np.mean(err * err)) <= np.sqrt(np.mean(ee_err * ee_err)):
-            params, poles = oe["parameters"], oe["poles"]
-            label = f"{method}+oe"
-            fit["output_error"] = {"nfev": oe["nfev"], "message": oe["message"], "cost_mm2": oe["cost"]}
-        else:  # pragma: no cover - the refinement starts at the solution and only accepts descent
-            err = ee_err
-    else:
-        err = ee_err
+    params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit)
     fit.update(_fit_metrics(err))
-    model = ReducedAxisModel(
+    if not math.isfinite(fit["rms_um"]):
+        raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
+    return ReducedAxisModel(
         parameters=params,
         sample_time=T,
         axis=axis,
@@ -214,11 +129,24 @@ def identify(
         poles=poles,
         bounds=b.as_dict(),
         fit=fit,
+        delay_s=delay_s,
     )
-    if not math.isfinite(fit["rms_um"]):
-        raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
-    model = _maybe_diagnose(capture, model, axis, diagnose)  # in the loop's time frame
-    return dataclasses.replace(model, delay_s=delay_s) if delay_s else model
+
+
+def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, *, method: str, refine: str,
+            fit: dict) -> tuple[dict, dict, str, np.ndarray]:
+    """``(parameters, poles, method label, prediction error [mm])`` after the output-error
+    refinement (kept only when it predicts no worse; recorded in ``fit["output_error"]``)."""
+    params, poles = dict(sol.parameters), dict(sol.poles)
+    err = x - simulate(params, xr, T)
+    if refine != "output-error":
+        return params, poles, method, err
+    oe = refine_output_error(params, poles, xr, x, T, bounds=b)
+    oe_err = x - simulate(oe["parameters"], xr, T)
+    if not np.sqrt(np.mean(oe_err * oe_err)) <= np.sqrt(np.mean(err * err)):  # pragma: no cover - descent only
+        return params, poles, method, err
+    fit["output_error"] = {"nfev": oe["nfev"], "message": oe["message"], "cost_mm2": oe["cost"]}
+    return oe["parameters"], oe["poles"], f"{method}+oe", oe_err
 
 
 def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, xr: np.ndarray, x: np.ndarray,
@@ -291,52 +219,3 @@ def _prediction_rms(xr: np.ndarray, x: np.ndarray, T: float, samples: float, opt
     sol = solve_statistics(st, bounds=b, method="exact")
     err = x[keep] - simulate(sol.parameters, ref, T)
     return float(np.sqrt(np.mean(err * err)))
-
-
-def _maybe_diagnose(capture: Capture, model: ReducedAxisModel, axis: str, diagnose: bool | None):
-    if diagnose is False:
-        return model
-    try:
-        mod = importlib.import_module("identification.diagnosis")
-    except ModuleNotFoundError as exc:
-        if exc.name != "identification.diagnosis":
-            raise
-        if diagnose:
-            raise VcncError(
-                "residual diagnosis was requested but is not available (no identification.diagnosis)"
-            ) from None
-        log.info("residual diagnosis not available; returning the reduced model")
-        return model
-    return mod.diagnose(capture, model, axis=axis)
-
-
-@dataclasses.dataclass(frozen=True, kw_only=True)
-class Identifier:
-    """Estimator form of :func:`identify`: configure once, ``fit(capture)`` per axis.
-
-    Attributes mirror the keyword arguments of :func:`identify`.
-    """
-
-    method: str = "exact"
-    bounds: PoleBounds | None = None
-    refine: str = "output-error"
-    diagnose: bool | None = None
-    regressor_options: RegressorOptions | None = None
-    seed: int = 0
-    ga_options: GAOptions | None = None
-    delay: str | float = "auto"
-
-    def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
-        """The fitted model of ``axis``."""
-        return identify(
-            capture,
-            axis=axis,
-            method=self.method,
-            bounds=self.bounds,
-            refine=self.refine,
-            diagnose=self.diagnose,
-            regressor_options=self.regressor_options,
-            seed=self.seed,
-            ga_options=self.ga_options,
-            delay=self.delay,
-        )

@@ -1,0 +1,95 @@
+"""``identify``: the whole job on one axis — fit the reduced model, then diagnose its residual.
+
+The fit (:func:`identification.identify.fit_reduced_model`) and the diagnosis
+(:func:`identification.diagnosis.diagnose`) do not import each other; this module runs one after
+the other. A model with a reference dead time is diagnosed in the loop's time frame (the capture
+with its reference delayed by ``delay_s``) and keeps its ``delay_s``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+
+from identification.bounds import PoleBounds
+from identification.dead_time import loop_capture
+from identification.diagnosis import diagnose as diagnose_residual
+from identification.ga import GAOptions
+from identification.identify import fit_reduced_model
+from identification.reduced_model import ReducedAxisModel
+from identification.regressor import RegressorOptions
+from vcnc.core.capture import Capture
+
+__all__ = ["identify", "Identifier"]
+
+
+def identify(
+    capture: Capture,
+    *,
+    axis: str = "x",
+    method: str = "exact",
+    bounds: PoleBounds | Mapping | str | None = None,
+    refine: str = "output-error",
+    diagnose: bool = True,
+    regressor_options: RegressorOptions | None = None,
+    seed: int = 0,
+    ga_options: GAOptions | None = None,
+    delay: str | float = "auto",
+) -> ReducedAxisModel:
+    """Identify the model of one axis from a capture: the reduced model (thesis Ch. 3-4) and, by
+    default, the physical effects its residual shows.
+
+    Parameters
+    ----------
+    capture, axis, method, bounds, refine, regressor_options, seed, ga_options, delay
+        As for :func:`identification.identify.fit_reduced_model`.
+    diagnose : bool
+        Run the residual diagnosis (default). False returns the fitted reduced model.
+
+    Returns
+    -------
+    ReducedAxisModel
+        The fitted model; after the diagnosis an :class:`identification.augmented.AugmentedAxisModel`
+        when effects were added, with ``effects`` and ``validation`` filled in.
+    """
+    model = fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
+                              regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
+    if not diagnose:
+        return model
+    if not model.delay_s:
+        return diagnose_residual(capture, model, axis=axis)
+    in_loop = loop_capture(capture, axis, model.delay_s / model.sample_time)
+    diagnosed = diagnose_residual(in_loop, dataclasses.replace(model, delay_s=0.0), axis=axis)
+    return dataclasses.replace(diagnosed, delay_s=model.delay_s)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Identifier:
+    """Estimator form of :func:`identify`: configure once, ``fit(capture)`` per axis.
+
+    Attributes mirror the keyword arguments of :func:`identify`.
+    """
+
+    method: str = "exact"
+    bounds: PoleBounds | None = None
+    refine: str = "output-error"
+    diagnose: bool = True
+    regressor_options: RegressorOptions | None = None
+    seed: int = 0
+    ga_options: GAOptions | None = None
+    delay: str | float = "auto"
+
+    def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
+        """The fitted model of ``axis``."""
+        return identify(
+            capture,
+            axis=axis,
+            method=self.method,
+            bounds=self.bounds,
+            refine=self.refine,
+            diagnose=self.diagnose,
+            regressor_options=self.regressor_options,
+            seed=self.seed,
+            ga_options=self.ga_options,
+            delay=self.delay,
+        )
