@@ -63,7 +63,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from identification.reduced_model import _NO_FOURIER, ReducedAxisModel, discretize, run_exact, w_terms
+from identification.reduced_model import NO_FOURIER, ReducedAxisModel, discretize, run_exact, w_terms
 from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
@@ -155,7 +155,7 @@ def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
 def _kinetic(v, d0, d1, st, asym):  # pragma: no cover - compiled
     """Friction while moving with velocity v != 0 [mm/s^2 of the whole mass]: Coulomb plus the
     velocity terms of :func:`w_terms` (Stribeck excess, asymmetric viscous)."""
-    return (d0 if v > 0.0 else d1) + w_terms(v, 0.0, st, asym, 0.0, _NO_FOURIER)
+    return (d0 if v > 0.0 else d1) + w_terms(v, 0.0, st, asym, 0.0, NO_FOURIER)
 
 
 @numba.njit(cache=True, nogil=True)

@@ -1,20 +1,7 @@
-"""The model file ``vcnc.axis-model/1`` (JSON): writing, reading and validation.
-
-Layout (ARCHITECTURE.md, "Model file")::
-
-    {"format": "vcnc.axis-model/1", "axis": "x", "sample_time": 0.001, "method": "exact",
-     "parameters": {"a1":..,"a2":..,"a3":..,"b0":..,"b1":..,"b2":..,"d0":..,"d1":..},
-     "poles": {"omega_n_hz":..,"zeta":..,"p_hz":..},
-     "bounds": {"p_hz": [lo, hi], "omega_n_hz": [lo, hi], "zeta": [lo, hi]},
-     "fit": {"rms_um":..,"max_um":.., ...},
-     "effects": [...], "validation": {...}}
-
-``parameters`` are those of Eq. (3.3) in the units of
-:data:`identification.reduced_model.PARAMETER_UNITS`; ``bounds`` are the pole bounds of
-Eq. (3.8) the solver used (the thesis' defaults, Sec. 4.3: 0.2 Hz to the Nyquist frequency for
-p and omega_n, 0.2 to 2.0 for zeta). Extra keys are kept on reading (``units`` is written for
-readers). A model with a reference dead time is written as ``vcnc.axis-model/2`` with the extra key
-``delay_s`` [s] (:mod:`identification.dead_time`); both formats are read.
+"""Reading the model file (``vcnc.axis-model/1`` and ``/2``, :mod:`identification.model_format`):
+validation with errors naming the key at fault, and the rebuilt model — an
+:class:`identification.augmented.AugmentedAxisModel` when the file lists effects, so that the loaded
+model simulates them. Extra keys are kept on reading.
 """
 
 from __future__ import annotations
@@ -25,63 +12,14 @@ import os
 from pathlib import Path
 from typing import Any
 
-from identification.reduced_model import PARAMETER_NAMES, PARAMETER_UNITS, ReducedAxisModel
+from identification.augmented import from_model
+from identification.model_format import FORMAT, FORMAT_DELAY, FORMATS
+from identification.parameters import PARAMETER_NAMES
+from identification.reduced_model import ReducedAxisModel
+from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.errors import InputError, ModelFileError
-from vcnc.core.io import atomic_path
-from vcnc.core.setpoints import AXIS_NAMES
 
-__all__ = ["FORMAT", "FORMAT_DELAY", "FORMATS", "model_to_dict", "model_from_dict", "write_model", "load_model"]
-
-FORMAT = "vcnc.axis-model/1"
-#: Format of a model with a reference dead time (``delay_s`` != 0); a ``/1`` reader refuses it
-#: rather than predict without the delay.
-FORMAT_DELAY = "vcnc.axis-model/2"
-FORMATS = (FORMAT, FORMAT_DELAY)
-
-
-def _plain(obj: Any) -> Any:
-    """JSON-safe copy (numpy scalars/arrays to Python, tuples to lists, non-finite to None)."""
-    import numpy as np
-
-    if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _plain(obj.tolist())
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
-def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
-    """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one)."""
-    delay = {"delay_s": model.delay_s} if model.delay_s else {}
-    return _plain(
-        {
-            "format": FORMAT_DELAY if model.delay_s else FORMAT,
-            **delay,
-            "axis": model.axis,
-            "sample_time": model.sample_time,
-            "method": model.method,
-            "parameters": {k: model.parameters[k] for k in PARAMETER_NAMES},
-            "units": {**PARAMETER_UNITS, "sample_time": "s"},
-            "poles": model.poles,
-            "bounds": model.bounds,
-            "fit": model.fit,
-            "effects": model.effects or (model.effect_records() if hasattr(model, "effect_records") else []),
-            "validation": model.validation,
-        }
-    )
-
-
-def write_model(model: ReducedAxisModel, path: str | os.PathLike[str]) -> None:
-    """Write ``model`` to ``path`` as JSON, atomically."""
-    text = json.dumps(model_to_dict(model), indent=2) + "\n"
-    with atomic_path(path) as tmp:
-        tmp.write_text(text)
+__all__ = ["model_from_dict", "load_model"]
 
 
 def _number(d: dict, key: str, where: str, src: str | None) -> float:
@@ -149,8 +87,6 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
         return model
     # Effects found by the residual diagnosis: rebuild their elements so the loaded model
     # simulates them (identification.augmented).
-    from identification.augmented import from_model
-
     try:
         return from_model(model)
     except InputError as exc:

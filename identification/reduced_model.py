@@ -91,6 +91,8 @@ import numpy as np
 import scipy.linalg
 
 from identification.dead_time import delay_reference
+from identification.model_format import model_to_dict, write_model
+from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
 from identification.poles import pole_splits, pole_table, zero_table
 from vcnc.core.errors import InputError
 
@@ -103,21 +105,6 @@ __all__ = [
     "simulate",
     "ReducedAxisModel",
 ]
-
-#: Parameter names of Eq. (3.3), in the order of the model file.
-PARAMETER_NAMES: tuple[str, ...] = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
-
-#: Unit of each parameter.
-PARAMETER_UNITS: dict[str, str] = {
-    "a1": "1/s",
-    "a2": "1/s^2",
-    "a3": "1/s^3",
-    "b0": "-",
-    "b1": "1/s",
-    "b2": "1/s^2",
-    "d0": "mm/s^2",
-    "d1": "mm/s^2",
-}
 
 
 def _params(parameters: Mapping[str, float]) -> dict[str, float]:
@@ -333,7 +320,8 @@ def run_exact(phi, gamma, c, d, cv, dv, dvs, d0, d1, xr, wext, st, asym, pp_peri
 
 
 _NO_STRIBECK = np.zeros(3)
-_NO_FOURIER = np.zeros((1, 2))
+#: Empty position-periodic coefficient table (no Fourier terms) for the compiled friction terms.
+NO_FOURIER = np.zeros((1, 2))
 
 
 def simulate(
@@ -385,7 +373,7 @@ def simulate(
     # The loop runs on deviations from the first reference sample: the state at rest is then
     # exactly zero, so v_0 == 0 and the friction stays off until the reference moves.
     run_exact(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.d0, m.d1, xr, wext, _NO_STRIBECK, 0.0, 0.0,
-              _NO_FOURIER, pos, vel)
+              NO_FOURIER, pos, vel)
     return (pos, vel) if return_velocity else pos
 
 
@@ -563,12 +551,8 @@ class ReducedAxisModel:
     # --------------------------------------------------------------------- files
     def to_dict(self) -> dict[str, Any]:
         """The model as a ``vcnc.axis-model/1`` dictionary (ARCHITECTURE.md, "Model file")."""
-        from identification.model_file import model_to_dict
-
         return model_to_dict(self)
 
     def to_json(self, path) -> None:
         """Write the model file (atomic: nothing half-written on failure)."""
-        from identification.model_file import write_model
-
         write_model(self, path)

@@ -17,7 +17,8 @@ import pytest
 import vcnc
 from identification import identify
 from identification.diagnosis import DiagnosisOptions, before_after_rows, diagnose_report, format_before_after
-from identification.model_file import model_from_dict, model_to_dict
+from identification.model_file import model_from_dict
+from identification.model_format import model_to_dict
 
 pytestmark = pytest.mark.slow  # every test diagnoses a full capture (tens of seconds each)
 

@@ -20,7 +20,8 @@ from identification.effects import (
     TimePeriodic,
     effect_from_record,
 )
-from identification.model_file import model_from_dict, model_to_dict
+from identification.model_file import model_from_dict
+from identification.model_format import model_to_dict
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.synthetic import FADAL_PID_X, random_moves_reference
 from vcnc.errors import InputError

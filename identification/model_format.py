@@ -1,0 +1,85 @@
+"""The model file format ``vcnc.axis-model/1`` (``/2`` with a reference dead time): the model as a
+plain dictionary, and writing it.
+
+Layout (ARCHITECTURE.md, "Model file")::
+
+    {"format": "vcnc.axis-model/1", "axis": "x", "sample_time": 0.001, "method": "exact",
+     "parameters": {"a1":..,"a2":..,"a3":..,"b0":..,"b1":..,"b2":..,"d0":..,"d1":..},
+     "poles": {"omega_n_hz":..,"zeta":..,"p_hz":..},
+     "bounds": {"p_hz": [lo, hi], "omega_n_hz": [lo, hi], "zeta": [lo, hi]},
+     "fit": {"rms_um":..,"max_um":.., ...},
+     "effects": [...], "validation": {...}}
+
+``parameters`` are those of Eq. (3.3) in the units of
+:data:`identification.parameters.PARAMETER_UNITS`; ``bounds`` are the pole bounds of
+Eq. (3.8) the solver used (the thesis' defaults, Sec. 4.3: 0.2 Hz to the Nyquist frequency for
+p and omega_n, 0.2 to 2.0 for zeta). ``units`` is written for readers. A model with a reference
+dead time is written as ``vcnc.axis-model/2`` with the extra key ``delay_s`` [s]
+(:mod:`identification.dead_time`). Reading and validation: :mod:`identification.model_file`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from typing import TYPE_CHECKING, Any
+
+from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
+from vcnc.core.io import atomic_path
+
+if TYPE_CHECKING:
+    from identification.reduced_model import ReducedAxisModel
+
+__all__ = ["FORMAT", "FORMAT_DELAY", "FORMATS", "model_to_dict", "write_model"]
+
+FORMAT = "vcnc.axis-model/1"
+#: Format of a model with a reference dead time (``delay_s`` != 0); a ``/1`` reader refuses it
+#: rather than predict without the delay.
+FORMAT_DELAY = "vcnc.axis-model/2"
+FORMATS = (FORMAT, FORMAT_DELAY)
+
+
+def _plain(obj: Any) -> Any:
+    """JSON-safe copy (numpy scalars/arrays to Python, tuples to lists, non-finite to None)."""
+    import numpy as np
+
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _plain(obj.tolist())
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
+def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
+    """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one)."""
+    delay = {"delay_s": model.delay_s} if model.delay_s else {}
+    return _plain(
+        {
+            "format": FORMAT_DELAY if model.delay_s else FORMAT,
+            **delay,
+            "axis": model.axis,
+            "sample_time": model.sample_time,
+            "method": model.method,
+            "parameters": {k: model.parameters[k] for k in PARAMETER_NAMES},
+            "units": {**PARAMETER_UNITS, "sample_time": "s"},
+            "poles": model.poles,
+            "bounds": model.bounds,
+            "fit": model.fit,
+            "effects": model.effects or (model.effect_records() if hasattr(model, "effect_records") else []),
+            "validation": model.validation,
+        }
+    )
+
+
+def write_model(model: ReducedAxisModel, path: str | os.PathLike[str]) -> None:
+    """Write ``model`` to ``path`` as JSON, atomically."""
+    text = json.dumps(model_to_dict(model), indent=2) + "\n"
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
