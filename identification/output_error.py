@@ -21,25 +21,11 @@ import numpy as np
 import scipy.optimize
 
 from identification.bounds import PoleBounds
-from identification.poles import TWO_PI, canonical, denominator
+from identification.parameters import from_search, search_box, to_search
+from identification.poles import TWO_PI, canonical
 from identification.reduced_model import simulate
 
 __all__ = ["refine_output_error"]
-
-
-def _params_from(x: np.ndarray) -> dict[str, float]:
-    p, wn, z = math.exp(x[0]), math.exp(x[1]), x[2]
-    a1, a2, a3 = denominator(p, wn, z)
-    return {
-        "a1": a1,
-        "a2": a2,
-        "a3": a3,
-        "b2": x[3] * a2,
-        "b1": x[4] * a2,
-        "b0": x[5] * a2,
-        "d0": x[6] * a2,
-        "d1": x[7] * a2,
-    }
 
 
 def refine_output_error(
@@ -74,33 +60,19 @@ def refine_output_error(
     """
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
-    a2 = parameters["a2"]
     # start from the canonical labelling: with p the slowest of three real poles, the fast pair can
     # turn complex through zeta = 1; labelled otherwise, a fast real pole shares nothing with the
     # pair, and the search stalls where the two fast poles meet (31 % off on fadal-ppi's GA start)
     p0, w0, z0 = canonical(poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"], bounds)
-    x0 = np.array(
-        [
-            math.log(p0),
-            math.log(w0),
-            z0,
-            parameters["b2"] / a2,
-            parameters["b1"] / a2,
-            parameters["b0"] / a2,
-            parameters["d0"] / a2,
-            parameters["d1"] / a2,
-        ]
-    )
-    box = bounds.rad()
-    lo = np.array([math.log(box[0][0]), math.log(box[1][0]), box[2][0]] + [-np.inf] * 5)
-    hi = np.array([math.log(box[0][1]), math.log(box[1][1]), box[2][1]] + [np.inf] * 5)
+    x0 = to_search(parameters, p0, w0, z0)
+    lo, hi = search_box(bounds)
     x0 = np.clip(x0, lo, hi)
     # typical sizes, so that finite-difference steps are meaningful for every variable
     typ = np.maximum(np.abs(x0), 1e-3 * np.max(np.abs(x0[3:6])) + 1e-12)
     typ[:3] = 1.0
 
     def fun(x):
-        return simulate(_params_from(x), xr, sample_time) - xm
+        return simulate(from_search(x), xr, sample_time) - xm
 
     r0 = fun(x0)
     start_cost = 0.5 * float(r0 @ r0)
@@ -109,7 +81,7 @@ def refine_output_error(
         ftol=1e-12,
     )
     x = res.x if res.cost <= start_cost else x0
-    params = _params_from(x)
+    params = from_search(x)
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
     return {
         "parameters": params,
