@@ -1,25 +1,4 @@
 """Exception types of vcnc (defined in :mod:`vcnc.core.errors`, re-exported here)."""
 
-from vcnc.core.errors import (
-    CaptureError,
-    ExportError,
-    GCodeError,
-    IdentificationError,
-    InputError,
-    MachineError,
-    ModelFileError,
-    SimulationError,
-    VcncError,
-)
-
-__all__ = [
-    "VcncError",
-    "InputError",
-    "GCodeError",
-    "CaptureError",
-    "MachineError",
-    "ModelFileError",
-    "IdentificationError",
-    "SimulationError",
-    "ExportError",
-]
+from vcnc.core.errors import *  # noqa: F403 - the public path of the exception types
+from vcnc.core.errors import __all__ as __all__
