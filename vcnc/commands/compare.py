@@ -11,14 +11,16 @@ from __future__ import annotations
 import argparse
 import sys
 
+from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.errors import InputError
 
 HELP = "compare the contour error of a toolpath on a true machine with that predicted by axis models"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--truth", required=True, metavar="NAME|FILE",
-                        help="built-in machine name or machine TOML file (all non-idealities on)")
+    parser.add_argument("--truth", required=True, metavar="NAME|FILE|CAPTURE",
+                        help="built-in machine name or machine TOML file (all non-idealities on), or a capture or "
+                             "control trace of the toolpath run on the real machine (detected by content)")
     parser.add_argument("--model", required=True, action="append", metavar="[AXIS=]MODEL.json",
                         help="model file: once for all axes, or AXIS=FILE once per axis")
     parser.add_argument("--toolpath", default="circle", metavar="circle|diamond|PROGRAM",
@@ -34,6 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "their mean (default 10 when the machine has measurement noise, else 1)")
     parser.add_argument("--json", metavar="F", help="write the summary JSON")
     parser.add_argument("--report", metavar="DIR", help="write an HTML report with figures into DIR")
+    add_trace_arguments(parser)
 
 
 def parse_models(values: list[str]) -> str | dict[str, str]:
@@ -63,11 +66,24 @@ def parse_models(values: list[str]) -> str | dict[str, str]:
     return plain[0] if plain else per_axis
 
 
+def _truth(args: argparse.Namespace):
+    """``--truth``: a machine name or TOML file as given, or the capture a trace file holds."""
+    from pathlib import Path
+
+    from vcnc.traces import trace_format
+
+    trace_options = args.columns or args.time_unit or args.unit or args.axis_names
+    if Path(args.truth).is_file() and (trace_options or trace_format(args.truth) != "delimited"):
+        return read_trace_argument(args.truth, args)
+    return args.truth
+
+
 def run(args: argparse.Namespace) -> int:
     from vcnc.contour_compare import compare
 
     models = parse_models(args.model)
-    result = compare(args.truth, models, args.toolpath, feed=args.feed, acceleration=args.acceleration,
+    truth = _truth(args)
+    result = compare(truth, models, args.toolpath, feed=args.feed, acceleration=args.acceleration,
                      profile=args.profile, seed=args.seed, truth_runs=args.truth_runs)
     summary = result.to_dict()
     rep = result.report() if args.report else None

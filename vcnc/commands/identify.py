@@ -13,11 +13,15 @@ import json
 import math
 import sys
 
-HELP = "identify the reduced closed-loop model of an axis from a capture (CSV or EMPS .mat)"
+from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
+
+HELP = "identify the reduced closed-loop model of an axis from a capture (CSV, control trace or EMPS .mat)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("capture", metavar="CAPTURE", help="capture CSV or EMPS .mat file")
+    parser.add_argument("capture", metavar="CAPTURE",
+                        help="capture CSV, control trace (TNCscope, SINUMERIK XML, TwinCAT, halscope, delimited "
+                             "text) or EMPS .mat file, detected by content")
     parser.add_argument("--axis", default=None, help="axis to identify (default: x, or the only axis)")
     parser.add_argument("--method", choices=("exact", "ga", "kkt"), default="exact", help="constrained solver")
     parser.add_argument(
@@ -39,6 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default auto, kept only when it halves the prediction error)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
+    add_trace_arguments(parser)
 
 
 def _delay(text: str) -> str | float:
@@ -171,9 +176,8 @@ def _bounds(args: argparse.Namespace, capture) -> dict | None:
 
 def run(args: argparse.Namespace) -> int:
     from identification import identify
-    from vcnc.capture import read_capture
 
-    capture = read_capture(args.capture)
+    capture = read_trace_argument(args.capture, args)
     axis = args.axis or ("x" if "x" in capture.axes or len(capture.axes) != 1 else capture.axes[0])
     model = identify(
         capture,
@@ -182,7 +186,7 @@ def run(args: argparse.Namespace) -> int:
         method=args.method,
         refine=args.refine,
         seed=args.seed,
-        diagnose=False if args.no_diagnose else None,
+        diagnose=not args.no_diagnose,
         delay=args.delay,
     )
     rep = _report(capture, model, axis) if args.report else None

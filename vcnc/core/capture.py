@@ -111,13 +111,19 @@ class Capture:
     def axis(self, axis: str) -> Capture:
         """A one-axis capture (views, no copy)."""
         i = self.axis_index(axis)
+        return self._columns((axis,), slice(i, i + 1))
 
+    def select_axes(self, axes: tuple[str, ...]) -> Capture:
+        """The capture of ``axes`` only, in that order (CaptureError naming the axes present)."""
+        return self._columns(tuple(axes), [self.axis_index(a) for a in axes])
+
+    def _columns(self, axes: tuple[str, ...], cols: slice | list[int]) -> Capture:
         def col(a: np.ndarray | None) -> np.ndarray | None:
-            return None if a is None else a[:, i : i + 1]
+            return None if a is None else a[:, cols]
 
         return dataclasses.replace(
             self,
-            axes=(axis,),
+            axes=axes,
             reference=col(self.reference),
             measured=col(self.measured),
             control=col(self.control),

@@ -1,5 +1,93 @@
-"""Readers for axis traces exported by CNC controls (issue #17); each produces a `vcnc.capture.Capture`."""
+"""Readers for the axis traces CNC controls export, each producing a :class:`vcnc.core.capture.Capture`.
 
+:func:`read_trace` detects the format by content, not by file name:
+
+- the capture CSV of ARCHITECTURE.md (header ``t,<axis>_ref,<axis>,...``);
+- Heidenhain TNCscope text export (:mod:`vcnc.traces.tncscope`);
+- Siemens SINUMERIK trace XML (:mod:`vcnc.traces.sinumerik`);
+- LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text, with a
+  column mapping (:mod:`vcnc.traces.delimited`);
+- the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from vcnc.core.capture import Capture, read_capture_csv
+from vcnc.core.errors import CaptureError
+from vcnc.traces import emps, sinumerik, tncscope
+from vcnc.traces.delimited import looks_like_halscope, looks_like_twincat, parse_columns, read_delimited
+from vcnc.traces.emps import read_emps_mat
+from vcnc.traces.sinumerik import read_sinumerik
 from vcnc.traces.tncscope import read_tncscope
 
-__all__ = ["read_tncscope"]
+__all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "read_delimited", "read_emps_mat",
+           "parse_columns"]
+
+
+def trace_format(path: str | os.PathLike[str]) -> str:
+    """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
+    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"capture-csv"`` or ``"delimited"``."""
+    with Path(path).open("rb") as f:
+        head = f.read(20000)
+    if head.startswith(emps.MAGIC):
+        return "emps-mat"
+    if head.startswith(tncscope.MAGIC.encode()):
+        return "tncscope"
+    if sinumerik.MAGIC.encode() in head[:4096]:
+        return "sinumerik"
+    text = head.decode("latin-1")
+    if looks_like_halscope(text):
+        return "halscope"
+    if looks_like_twincat(text):
+        return "twincat"
+    for line in text.splitlines():
+        s = line.strip().lstrip("\ufeff")
+        if s and not s.startswith("#"):
+            return "capture-csv" if s.split(",")[0].strip() == "t" else "delimited"
+    return "delimited"
+
+
+def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
+               time_unit: str | None = None, unit: str | None = None,
+               axes: Sequence[str] | None = None) -> Capture:
+    """Read any supported trace (module docstring) into a capture.
+
+    Parameters
+    ----------
+    path : path-like
+        The trace file.
+    columns : mapping, optional
+        Capture column -> source column for delimited text (``{"t": "Time", "x_ref": "PosCmd",
+        "x": "PosAct"}``); given, the file is read as delimited text.
+    time_unit, unit : str, optional
+        Units of time (s, ms, us) and positions (mm, um, m, in, deg) in delimited text.
+    axes : sequence of str, optional
+        Names of the axes of a SINUMERIK trace (in axis-number order) or a halscope log (joint order).
+
+    Raises
+    ------
+    CaptureError
+        Missing file, or a file its reader rejects (naming the file, the line or element, and the
+        channels found).
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise CaptureError("no such capture file", file=str(p))
+    fmt = trace_format(p)
+    delimited_options = columns is not None or time_unit is not None or unit is not None
+    if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
+        raise CaptureError(f"--columns/--time-unit/--unit apply to delimited text, not to a {fmt} file",
+                           file=str(p))
+    if fmt == "emps-mat":
+        return read_emps_mat(p)
+    if fmt == "tncscope":
+        return read_tncscope(p)
+    if fmt == "sinumerik":
+        return read_sinumerik(p, axes=tuple(axes) if axes else None)
+    if fmt == "capture-csv" and not delimited_options:
+        return read_capture_csv(p)
+    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes)

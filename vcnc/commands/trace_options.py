@@ -1,0 +1,35 @@
+"""Command-line options for reading a trace (``convert``, ``identify``, ``compare --truth``)."""
+
+from __future__ import annotations
+
+import argparse
+
+from vcnc.core.capture import Capture
+
+__all__ = ["add_trace_arguments", "read_trace_argument"]
+
+
+def add_trace_arguments(parser: argparse.ArgumentParser, *, axes: bool = True) -> None:
+    """The column mapping and units of delimited text, and the axis names of a trace."""
+    group = parser.add_argument_group("trace formats (detected by content; see README, 'Bring your own machine')")
+    group.add_argument("--columns", metavar="t=NAME,x_ref=NAME,x=NAME",
+                       help="delimited text: which column is time, commanded and measured position per axis "
+                            "(header names, or 1-based column numbers)")
+    group.add_argument("--time-unit", choices=("s", "ms", "us"), default=None,
+                       help="delimited text: unit of the time column (default s; TwinCAT ms)")
+    group.add_argument("--unit", choices=("mm", "um", "m", "in", "deg"), default=None,
+                       help="delimited text: unit of the positions (default mm; deg for rotary axes a b c)")
+    if axes:
+        group.add_argument("--axis-names", metavar="A,B,...", default=None,
+                           help="names of the traced axes (SINUMERIK: in axis-number order; halscope: in joint "
+                                "order); default x,y,z,...")
+
+
+def read_trace_argument(path: str, args: argparse.Namespace) -> Capture:
+    """Read ``path`` with the options of :func:`add_trace_arguments` (CaptureError on bad input)."""
+    from vcnc.traces import parse_columns, read_trace
+
+    names = getattr(args, "axis_names", None)
+    return read_trace(path, columns=parse_columns(args.columns) if args.columns else None,
+                      time_unit=args.time_unit, unit=args.unit,
+                      axes=tuple(a.strip().lower() for a in names.split(",")) if names else None)
