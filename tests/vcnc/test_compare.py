@@ -207,6 +207,22 @@ def test_program_file_and_real_capture_as_truth(tmp_path):
         compare(real, models, None)
 
 
+def test_cli_truth_may_be_a_capture_file(tmp_path, capsys):
+    """`vcnc compare --truth CAPTURE --toolpath PROGRAM`: the capture is read by content (issue #17)."""
+    truth, models = _exact_machine()
+    prog = tmp_path / "part.nc"
+    prog.write_text("G90 G17\nG00 X0 Y0\nG01 X10 Y0 F9000\nG02 X20 Y-10 I0 J-10\nG01 X0 Y-10\nM30\n")
+    rep = compare(truth, models, str(prog))
+    truth.simulate(rep.setpoints).to_csv(tmp_path / "real.csv")
+    for a, m in models.items():
+        m.to_json(tmp_path / f"m{a}.json")
+    out = tmp_path / "c.json"
+    assert main(["compare", "--truth", str(tmp_path / "real.csv"), "--model", f"x={tmp_path / 'mx.json'}",
+                 "--model", f"y={tmp_path / 'my.json'}", "--toolpath", str(prog), "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["truth"] == str(tmp_path / "real.csv")
+    assert d["true"]["contour_max_um"] == pytest.approx(rep.to_dict()["true"]["contour_max_um"], rel=1e-6)
+
 def test_report_and_plot(tmp_path):
     import matplotlib
 

@@ -209,6 +209,8 @@ def test_rotary_axis_in_degrees(capture, tmp_path, capsys):
     assert main(["convert", str(f), "-o", str(out), "--columns", "t=time,a_ref=cmd,a=act", "--unit", "deg"]) == 0
     assert "axes a [deg]" in capsys.readouterr().out
     assert read_capture(out).axes == ("a",)
+    assert main(["identify", str(out), "--no-diagnose"]) == 0
+    assert "rms" in (summary := capsys.readouterr().out) and " mdeg, max " in summary and " um" not in summary
     assert main(["convert", str(f), "-o", str(out), "--columns", "t=time,x_ref=cmd,x=act", "--unit", "deg"]) == 2
     assert "unit 'deg' is for rotary axes" in capsys.readouterr().err
 

@@ -14,6 +14,7 @@ import math
 import sys
 
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
+from vcnc.core.axes import axis_unit
 
 HELP = "identify the reduced closed-loop model of an axis from a capture (CSV, control trace or EMPS .mat)"
 
@@ -68,7 +69,8 @@ def delay_lines(model) -> list[str]:
         how = (f"estimated {rec.get('samples', 0.0):.3g} samples (objective ratio "
                f"{rec.get('objective_ratio', float('nan')):.3g})")
         if "rms_with_um" in rec:
-            how += f", prediction {rec['rms_without_um']:.4g} -> {rec['rms_with_um']:.4g} um with the shift"
+            how += (f", prediction {rec['rms_without_um']:.4g} -> {rec['rms_with_um']:.4g} "
+                    f"{axis_unit(model.axis, small=True)} with the shift")
     elif rec:
         how = "given"
     else:
@@ -88,6 +90,7 @@ def _report(capture, model, axis: str):
     x = capture.measured[:, i]
     xp = model.simulate(xr)
     rep = Report(f"vcnc identify: axis {axis} of {capture.source or 'capture'}")
+    u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
     rep.heading("Model parameters (Eq. 3.3)")
     from identification.reduced_model import PARAMETER_UNITS
 
@@ -118,7 +121,7 @@ def _report(capture, model, axis: str):
     for line in delay_lines(model):
         rep.text(line)
     rep.table(
-        ["prediction of the capture", "RMS [um]", "max [um]"],
+        ["prediction of the capture", f"RMS [{u}]", f"max [{u}]"],
         [
             ["identified model", model.fit["rms_um"], model.fit["max_um"]],
             ["equation-error solution", model.fit["equation_error"]["rms_um"], model.fit["equation_error"]["max_um"]],
@@ -130,10 +133,10 @@ def _report(capture, model, axis: str):
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     ax1.plot(t, (xr - x) * 1e3, label="measured tracking error")
     ax1.plot(t, (xr - xp) * 1e3, "--", label="predicted tracking error")
-    ax1.set_ylabel("x_r - x [um]")
+    ax1.set_ylabel(f"x_r - x [{u}]")
     ax1.legend()
     ax2.plot(t, (x - xp) * 1e3, color="C3")
-    ax2.set_ylabel("residual x - x_pred [um]")
+    ax2.set_ylabel(f"residual x - x_pred [{u}]")
     ax2.set_xlabel("time [s]")
     rep.figure("tracking", fig, caption="Measured vs predicted tracking error, and the residual")
     fig = Figure(figsize=(10, 6))
@@ -147,7 +150,7 @@ def _report(capture, model, axis: str):
         if rows:
             keys = list(rows[0])
             rep.table(keys, [[r.get(k) for k in keys] for r in rows],
-                      caption="RMS and max error [um] of the reduced model, each effect in turn, and the final model")
+                      caption=f"RMS and max error [{u}] of the reduced model, each effect in turn, and the final model")
         axs = report_figure(capture, model, axis=axis)
         import numpy as np
 
@@ -201,7 +204,8 @@ def run(args: argparse.Namespace) -> int:
         f"poles: omega_n {poles['omega_n_hz']:.4g} Hz, zeta {poles['zeta']:.4g}, p {poles['p_hz']:.4g} Hz\n"
     )
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
-    out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} um, max {fit['max_um']:.4g} um\n")
+    u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
+    out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} {u}, max {fit['max_um']:.4g} {u}\n")
     for line in delay_lines(model):
         out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
