@@ -46,7 +46,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99, CYCL CALL or CYCL CALL PAT
+    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
+                                    CYCL CALL POS
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
 
 Path mode: blocks end at rest (``Block.exact_stop``), as the thesis' identification programs
@@ -109,6 +110,8 @@ _KEYWORD_RE = re.compile(
     re.I,
 )
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
+#: Blocks of FK free contour programming (FPOL pole, FL/FLT lines, FC/FCT arcs, FSELECT).
+_FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
 #: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
 _M_END = (2, 30)
 _M_STOP = (0, 1)
@@ -237,6 +240,9 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         k = _KEYWORD_RE.match(blk.code)
         if k is None:
             tok = blk.code.split()[0]
+            if tok.upper() in _FK_WORDS:  # TNC 640 user's manual, "FK free contour programming"
+                where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
+                           expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
             where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
                        expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, FN, Qn =, M")
         kw = re.sub(r"\s+", " ", k.group(1).upper())
@@ -316,17 +322,18 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         if kw == "CYCL CALL":
             rest = blk.code[k.end():]
             pat = re.match(r"\s*(PAT|POS)(?![A-Z])", rest, re.I)
-            if pat is not None and pat.group(1).upper() == "POS":
-                where.fail("CYCL CALL POS is not supported", column=col0 + k.end() + pat.start(1), text="POS",
-                           expected="CYCL CALL, CYCL CALL PAT or M99")
+            kind = pat.group(1).upper() if pat else ""
             words = read_words(blk.code, k.end() + (pat.end() if pat else 0), where, m.params, column0=col0)
-            if any(w.key in ("F", "FMAX") for w in words):
+            if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
                 m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
-            ended = _m_functions([w for w in words if w.key not in ("F", "FMAX")], m, where, blk, motion=False)
-            if pat is None:
-                _cycle_call(m, where, blk)
-            else:
+            moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
+            ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
+            if kind == "POS":
+                _position_call([w for w in words if w.key in moves], m, where, blk)
+            elif kind == "PAT":
                 _pattern_call(m, where, blk)
+            else:
+                _cycle_call(m, where, blk)
             if ended:
                 break
             continue
@@ -503,6 +510,48 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
             where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
                        expected=f"{axis} (absolute) in PATTERN DEF")
         _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale)
+
+
+def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
+
+    TNC 640 user's manual (cycle programming, "Calling a cycle with CYCL CALL POS"): all three
+    coordinates are programmed; the tool-axis coordinate is the starting position and an
+    additional datum shift of the cycle's surface; the TNC moves without radius compensation, at
+    the feed of the block (F MAX: rapid), first in the working plane and then in the tool axis
+    when the tool is above the surface (Q203), else first in the tool axis to the clearance
+    height, then in the plane, then in the tool axis.
+    """
+    if m.cycle is None:
+        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
+                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
+    seen = {w.key: w for w in words}
+    for a in "XYZ":
+        if a not in seen and "I" + a not in seen:
+            where.fail(f"CYCL CALL POS without {a}", column=blk.column, text=blk.code,
+                       expected="CYCL CALL POS X.. Y.. Z.. (all three coordinates)")
+    if "F" in seen and not seen["F"].value > 0:
+        where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
+    feed = seen["F"].value * m.feed_scale if "F" in seen else (math.inf if "FMAX" in seen else m.feed)
+    if feed is None:
+        where.fail("CYCL CALL POS without a feed", column=blk.column, text=blk.code, expected="F or F MAX")
+    target, _ = _plane_coords(seen, m, where, m9x=None)
+    axis, c = m.plane, m.cycle
+    shift = target[axis] - m.origin()[axis]
+    d = -1.0 if c.depth < 0 else 1.0
+    surface = m.pos[axis] + d * c.setup if c.surface is None else m.origin()[axis] + c.surface + shift
+    kind = "rapid" if math.isinf(feed) else "line"
+    in_plane = target.copy()
+    if d * (m.pos[axis] - surface) < 0:  # above the surface: plane first, then the tool axis
+        in_plane[axis] = m.pos[axis]
+    else:  # at or below it: up to the clearance height first
+        _axis_move(m, kind, surface - d * max(c.setup, c.second_setup), feed, where, blk)
+        in_plane[axis] = m.pos[axis]
+    if not np.array_equal(in_plane, m.pos):
+        m.emit(kind, in_plane, Line(m.pos, in_plane), feed, where, blk.number)
+    _axis_move(m, kind, target[axis], feed, where, blk)
+    m.used.update(range(3))
+    _cycle_call(m, where, blk, surface_shift=shift)
 
 
 def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,

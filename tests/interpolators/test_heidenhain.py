@@ -234,6 +234,20 @@ def test_cycle_205_advanced_stop_and_pattern_call():
                                    ("line", -7, 60), ("rapid", 1, inf), ("rapid", 9, inf)]
 
 
+
+def test_cycl_call_pos_moves_then_runs_the_cycle_with_z_as_a_datum_shift():
+    """TNC 640 user's manual, "Calling a cycle with CYCL CALL POS": above the surface the tool goes
+    first in the plane, then in the tool axis; the tool-axis coordinate shifts the surface Q203."""
+    prog = run("L X+0 Y+0 Z+100 R0 FMAX\nCYCL DEF 200 DRILLING Q200=+2 Q201=-5 Q206=+150 Q202=+5 Q210=+0 "
+               "Q203=+0 Q204=+50 Q211=+0\nCYCL CALL POS X+10 Y+10 Z+0 FMAX\nCYCL CALL POS X+20 Y+10 Z-2 F500")
+    inf = math.inf
+    assert ends(prog)[1:3] == [[10, 10, 100], [10, 10, 0]]
+    assert axis_moves(prog, 3)[:4] == [("rapid", 2, inf), ("line", -5, 150), ("rapid", 2, inf), ("rapid", 50, inf)]
+    second = [b for b in prog.blocks if b.line == 5]
+    assert [b.target.tolist() for b in second[:2]] == [[20, 10, 50], [20, 10, -2]]  # the plane, then Z, at F500
+    assert second[0].feed == pytest.approx(500 / 60) and second[1].feed == pytest.approx(500 / 60)
+    assert [b.target[2] for b in second[2:]] == [0, -7, 0, 48]  # surface -2: clearance 0, depth -7, 2nd 48
+
 BAD = [
     ("CYCL DEF 17.0 RIGID TAPPING", "cycle 17 is not supported"),
     ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
@@ -252,6 +266,9 @@ BAD = [
     ("PATTERN DEF ROW1 (X+0 Y+0 D+5 NUM4)", "pattern 'ROW1' is not supported"),
     ("L X+nan F100", "not a number"),
     ("L X+1.2.3 F100", "malformed number"),
+    ("L X+0 Y+0 FMAX\nFL X+10 Y+0", "FK free contour programming (FL) is not supported"),
+    ("CYCL DEF 200 DRILLING Q200=+2 Q201=-5 Q206=+100 Q202=+5 Q203=+0 Q204=+20\nCYCL CALL POS X+1 Y+1 FMAX",
+     "CYCL CALL POS without Z"),
 ]
 
 
