@@ -66,6 +66,7 @@ SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 
@@ -95,7 +96,7 @@ from interpolators.heidenhain_paths import (
     helical_arc,
     polar_angle,
     polar_point,
-    round_corner,
+    round_elements,
     tangential_arc,
 )
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
@@ -641,9 +642,12 @@ def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) 
         elif w.key != "M":
             where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text, expected="F or M")
     last = m.blocks[-1] if m.blocks else None
-    if last is None or last.kind != "line" or m.pending is not None:
-        where.fail(f"{kw} must follow a straight line L", column=blk.column, text=code.split()[0],
-                   expected=f"L ... then {kw} then L ...")
+    # TNC 620 manual: CHF joins two straight lines; RND any two contour elements
+    kinds = ("line",) if kw == "CHF" else ("line", "arc")
+    if last is None or last.kind not in kinds or m.pending is not None:
+        what = "a straight line L" if kw == "CHF" else "a line or an arc"
+        where.fail(f"{kw} must follow {what}", column=blk.column, text=code.split()[0],
+                   expected=f"L ... then {kw} then L ..." if kw == "CHF" else "L/C/CR/CT/CP, then RND, then L/C/...")
     m.pending = (kw, value * m.scale, feed, where)
 
 
@@ -749,7 +753,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
                        expected="F > 0 [mm/min] or F MAX")
         if m.pending is not None:
-            _resolve_corner(m, target, where)
+            _resolve_corner(m, Line(m.pos, target), where)
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
@@ -758,10 +762,13 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
                        expected="F > 0 [mm/min]")
-        if m.pending is not None:
-            kind, _, _, pw = m.pending
-            pw.fail(f"{kind} before an arc is not supported", column=1, text=pw.text, expected=f"a line after {kind}")
+        if m.pending is not None and m.pending[0] == "CHF":
+            pw = m.pending[3]
+            pw.fail("CHF before an arc: a chamfer joins two straight lines", column=1, text=pw.text,
+                    expected="a line after CHF (RND rounds a corner with an arc)")
         seg = _arc(kw, seen, target, m, where, blk)
+        if m.pending is not None:
+            seg = _resolve_corner(m, seg, where)
         m.used.update(PLANE_AXES[m.plane])
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
@@ -837,29 +844,26 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
         where.fail(exc.message, column=col, text=tok, expected=exc.expected)
 
 
-def _resolve_corner(m: _Machine, target: np.ndarray, where: Where) -> None:
-    """Trim the previous line and insert the RND arc / CHF line before the line to ``target``."""
+def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc:
+    """Trim the previous element and insert the RND arc / CHF line before ``second`` (the next
+    element, starting at the corner); returns ``second`` trimmed to start where the corner ends."""
     kind, value, feed, pw = m.pending
     m.pending = None
     prev = m.blocks.pop()
-    a, corner = prev.start, prev.target
     try:
         if kind == "RND":
-            t1, arc, t2 = round_corner(a, corner, target, value, plane=m.plane)
+            first, corner_seg, second = round_elements(prev.segment, second, value, plane=m.plane)
         else:
-            t1, t2 = chamfer_corner(a, corner, target, value, plane=m.plane)
+            t1, t2 = chamfer_corner(prev.start, prev.target, second.end, value, plane=m.plane)
+            first, corner_seg, second = Line(prev.start, t1), Line(t1, t2), Line(t2, second.end)
     except PathGeometryError as exc:
         pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
-    m.pos = np.array(a, dtype=float)
-    m.blocks.append(Block(kind=prev.kind, target=t1, feed=prev.feed, segment=Line(a, t1), line=prev.line,
-                          number=prev.number, text=prev.text, start=np.array(a), exact_stop=prev.exact_stop,
-                          tolerance=prev.tolerance))
-    m.pos = np.array(t1)
-    corner_feed = feed if feed is not None else prev.feed
-    if kind == "RND":
-        m.emit("arc", t2, arc, corner_feed, pw, None)
-    else:
-        m.emit("line", t2, Line(t1, t2), corner_feed, pw, None)
+    m.pos = np.array(prev.start, dtype=float)
+    m.blocks.append(dataclasses.replace(prev, target=np.array(first.end), segment=first))
+    m.pos = np.array(first.end)
+    m.emit("arc" if kind == "RND" else "line", np.array(corner_seg.end), corner_seg,
+           feed if feed is not None else prev.feed, pw, None)
+    return second
 
 
 # --- approach and departure ----------------------------------------------------------------------

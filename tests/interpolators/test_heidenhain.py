@@ -136,6 +136,38 @@ def test_rnd_and_chf_between_lines():
     assert b[5].target.tolist() == [0, 10, 0] and b[5].feed == pytest.approx(100 / 60)
 
 
+
+def _tangent_to(seg, point, centre, r):
+    """The rounding circle (centre, r) touches ``seg`` at ``point``: on both, normal to seg there."""
+    assert np.hypot(*(point[:2] - centre[:2])) == pytest.approx(r, abs=1e-9)
+    if hasattr(seg, "center"):  # an arc: the two centres and the point are collinear
+        a, b = point[:2] - seg.center[:2], centre[:2] - seg.center[:2]
+        assert abs(a[0] * b[1] - a[1] * b[0]) == pytest.approx(0, abs=1e-9)
+    else:
+        d = (seg.end - seg.start)[:2]
+        assert float(d @ (centre[:2] - point[:2])) == pytest.approx(0, abs=1e-9)
+
+
+def test_rnd_next_to_arcs():
+    """TNC 620 manual, "Rounding corners RND": tangential to the preceding and the following
+    element, lines or arcs; here a line into an arc and an arc into a line."""
+    prog = run("L X+0 Y+0 F100\nL X+10\nRND R2\nCC X+20 Y+0\nC X+30 Y+0 DR+\nRND R1\nL X+40 Y+10")
+    b = prog.blocks
+    assert [x.kind for x in b] == ["line", "line", "arc", "arc", "arc", "line"]
+    fillet, big, second = b[2].segment, b[3].segment, b[4].segment
+    assert fillet.radius == pytest.approx(2) and not fillet.ccw  # the corner turns right
+    _tangent_to(b[1].segment, b[1].target, fillet.center, 2)
+    _tangent_to(big, big.start, fillet.center, 2)
+    assert np.hypot(*(fillet.center[:2] - np.array([20, 0]))) == pytest.approx(12)  # outside the arc: R + r
+    assert second.radius == pytest.approx(1) and not second.ccw  # north, then north-east: a right turn
+    _tangent_to(big, big.end, second.center, 1)
+    _tangent_to(b[5].segment, b[5].start, second.center, 1)
+    assert b[5].target.tolist() == [40, 10, 0] and big.center.tolist() == [20, 0, 0]
+    with pytest.raises(GCodeError, match="CHF before an arc: a chamfer joins two straight lines"):
+        run("L X+0 Y+0 F100\nL X+10\nCHF 1\nCC X+20 Y+0\nC X+30 Y+0 DR+")
+    with pytest.raises(GCodeError, match="meet tangentially"):
+        run("L X+0 Y+0 F100\nL X+10\nRND R1\nCC X+10 Y+10\nC X+20 Y+10 DR+")
+
 def test_appr_lt_and_dep_lt():
     # TNC 640 manual p. 213: PS -> PH (last feed), then the depth, then PH -> PA tangential to the
     # first contour element, PH at LEN before PA; DEP LT: LEN along the last element's tangent
