@@ -222,146 +222,16 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     vcnc.GCodeError
         With file, line, column, the offending text and what was expected.
     """
-    blocks = source_blocks(text)
-    labels = LabelTable(blocks, source)
     m = _Machine(context, source)
-    name = None
-    stack: list[Frame] = []
-    repeats: dict[int, int] = {}
-    pc = 0
-    executed = 0
-    while pc < len(blocks):
-        blk = blocks[pc]
-        where = blk.where(source)
-        executed += 1
-        if executed > max_executed:
-            where.fail(f"the program does not end: more than {max_executed} blocks run (endless jump or repeat?)",
-                       column=blk.column, text=blk.code, expected="a program that reaches M30 or END PGM")
-        pc += 1
-        k = _KEYWORD_RE.match(blk.code)
-        if k is None:
-            tok = blk.code.split()[0]
-            if tok.upper() in _FK_WORDS:  # TNC 640 user's manual, "FK free contour programming"
-                where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
-                           expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
-            where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
-                       expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, FN, Qn =, M")
-        kw = re.sub(r"\s+", " ", k.group(1).upper())
-        col0 = blk.column
-        if kw == "BEGIN PGM":
-            parts = blk.code[k.end():].split()
-            name = parts[0] if parts else None
-            unit = parts[1].upper() if len(parts) > 1 else "MM"
-            if unit not in ("MM", "INCH"):
-                col = blk.code.upper().rfind(parts[1].upper()) + col0
-                where.fail(f"unknown program unit {parts[1]!r}", column=col, text=parts[1], expected="MM or INCH")
-            m.inch = unit == "INCH"
-            continue
-        if kw == "END PGM":
-            break
-        if kw == "BLK FORM":
-            continue
-        if kw == "LBL":
-            lm = LABEL_RE.match(blk.code)
-            if lm is None:
-                where.fail("malformed label", column=col0, text=blk.code, expected="LBL n or LBL \"NAME\"")
-            if label_key(lm) == "0" and stack:
-                frame = stack[-1]
-                frame.runs_left -= 1
-                if frame.runs_left > 0:
-                    pc = labels.where_of[frame.label] + 1
-                else:
-                    stack.pop()
-                    pc = frame.return_to
-            continue
-        if kw == "CALL LBL":
-            cm = CALL_RE.match(blk.code)
-            if cm is None:
-                where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
-            key = label_key(cm)
-            target = labels.find(key, where, column=col0, text=blk.code)
-            rep = int(cm.group(5)[:6]) if cm.group(5) else 0
-            index = pc - 1
-            if cm.group(5) is not None and target < index:  # program-section repeat
-                left = repeats.get(index, rep)
-                if left > 0:
-                    repeats[index] = left - 1
-                    pc = target + 1
-                else:
-                    repeats.pop(index, None)
-                continue
-            if len(stack) >= MAX_NESTING:
-                where.fail(f"subprogram calls nested deeper than {MAX_NESTING} levels", column=col0,
-                           text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
-            stack.append(Frame(return_to=pc, label=key, runs_left=rep + 1))
-            pc = target + 1
-            continue
-        if kw.startswith("FN"):
-            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.origin(),
-                                scale=m.scale, note=m.note)
-            if jump is not None:
-                pc = labels.find(jump, where, column=col0, text=blk.code) + 1
-            continue
-        if kw.endswith("="):
-            qn = Q_NAME_RE.match(blk.code).group(0)
-            m.params.set(qn, m.params.evaluate(blk.code[k.end():], where, column=col0 + k.end()), where, column=col0)
-            continue
-        if kw == "TOOL DEF":
-            _tool_def(blk, k.end(), m, where)
-            continue
-        if kw == "TOOL CALL":
-            _tool_call(blk, k.end(), m, where)
-            continue
-        if kw in ("CYCL DEF", "CYCLE DEF"):
-            if kw == "CYCLE DEF":
-                m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
-            _cycle_def(blk, m, where)
-            continue
-        if kw == "PATTERN DEF":
-            m.pattern = pattern_positions(blk.code[k.end():], where, m.params, column0=col0 + k.end())
-            continue
-        if kw == "CYCL CALL":
-            rest = blk.code[k.end():]
-            pat = re.match(r"\s*(PAT|POS)(?![A-Z])", rest, re.I)
-            kind = pat.group(1).upper() if pat else ""
-            words = read_words(blk.code, k.end() + (pat.end() if pat else 0), where, m.params, column0=col0)
-            if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
-                m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
-            moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
-            ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
-            if kind == "POS":
-                _position_call([w for w in words if w.key in moves], m, where, blk)
-            elif kind == "PAT":
-                _pattern_call(m, where, blk)
-            else:
-                _cycle_call(m, where, blk)
-            if ended:
-                break
-            continue
-        if kw in ("APPR", "DEP"):
-            if _approach_depart(kw, blk, k.end(), m, where):
-                break
-            continue
-        if kw in ("CALL PGM", "CTP"):
-            where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
-                       expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
-        if kw == "STOP":
-            m.note("STOP: program stop (no motion)")
-            words = read_words(blk.code, k.end(), where, m.params, column0=col0)
-            if _m_functions(words, m, where, blk, motion=False):
-                break
-            continue
-        if kw == "M":
-            words = read_words(blk.code, 0, where, m.params, column0=col0)
-            if _m_functions(words, m, where, blk, motion=False):
-                break
-            continue
-        if kw in ("RND", "CHF"):
-            _corner_def(kw, blk, k.end(), m, where)
-            continue
-        words = read_words(blk.code, k.end(), where, m.params, column0=col0)
-        if _motion(kw, words, m, where, blk):
-            break
+    name = _Run(m, source_blocks(text), source, max_executed).run()
+    _check_contour_closed(m)
+    notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
+    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
+    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
+
+
+def _check_contour_closed(m: _Machine) -> None:
+    """Nothing left waiting at the end: RND/CHF, APPR LT, a radius-compensated run."""
     if m.pending is not None:
         kind, _, _, pw = m.pending
         pw.fail(f"{kind} at the end of the contour", column=1, text=pw.text, expected=f"a line after {kind}")
@@ -371,14 +241,174 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
                 expected="an L or arc block after APPR LT")
     if m.comp != "R0":
         _finish_compensation(m)
-    notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
-    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
-    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
+
+
+class _Run:
+    """The program flow: block by block, with label jumps, section repeats and subprogram calls
+    (:mod:`interpolators.heidenhain_labels`); each block's meaning is a function of this module."""
+
+    def __init__(self, m: _Machine, blocks: list[SourceBlock], source: str | None, max_executed: int) -> None:
+        self.m, self.blocks, self.source, self.max_executed = m, blocks, source, max_executed
+        self.labels = LabelTable(blocks, source)
+        self.stack: list[Frame] = []
+        self.repeats: dict[int, int] = {}
+        self.pc = 0
+        self.executed = 0
+        self.name: str | None = None
+
+    def run(self) -> str | None:
+        """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
+        while self.pc < len(self.blocks):
+            blk = self.blocks[self.pc]
+            where = blk.where(self.source)
+            self.executed += 1
+            if self.executed > self.max_executed:
+                where.fail(f"the program does not end: more than {self.max_executed} blocks run (endless jump or "
+                           "repeat?)", column=blk.column, text=blk.code,
+                           expected="a program that reaches M30 or END PGM")
+            self.pc += 1
+            k = _KEYWORD_RE.match(blk.code)
+            if k is None:
+                _unknown_block(blk, where)
+            if self.block(re.sub(r"\s+", " ", k.group(1).upper()), k, blk, where):
+                break
+        return self.name
+
+    def block(self, kw: str, k: re.Match, blk: SourceBlock, where: Where) -> bool:
+        """Carry out one block; True when the program ends here."""
+        m, col0 = self.m, blk.column
+        if kw == "BEGIN PGM":
+            self.name = _begin_pgm(blk, k, m, where)
+            return False
+        if kw == "END PGM":
+            return True
+        if kw in ("LBL", "CALL LBL") or kw.startswith("FN"):
+            self.flow(kw, blk, where)
+            return False
+        if kw.endswith("="):
+            qn = Q_NAME_RE.match(blk.code).group(0)
+            m.params.set(qn, m.params.evaluate(blk.code[k.end():], where, column=col0 + k.end()), where, column=col0)
+            return False
+        handler = _HANDLERS.get(kw)
+        if handler is not None:
+            return bool(handler(kw, blk, k.end(), m, where))
+        if kw in ("CALL PGM", "CTP"):
+            where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
+                       expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
+        words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+        return _motion(kw, words, m, where, blk)
+
+    def flow(self, kw: str, blk: SourceBlock, where: Where) -> None:
+        """LBL (the end of a called subprogram at LBL 0), CALL LBL, FN (jumps)."""
+        m, col0 = self.m, blk.column
+        if kw.startswith("FN"):
+            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.origin(),
+                                scale=m.scale, note=m.note)
+            if jump is not None:
+                self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
+        elif kw == "LBL":
+            lm = LABEL_RE.match(blk.code)
+            if lm is None:
+                where.fail("malformed label", column=col0, text=blk.code, expected="LBL n or LBL \"NAME\"")
+            if label_key(lm) == "0" and self.stack:
+                frame = self.stack[-1]
+                frame.runs_left -= 1
+                if frame.runs_left > 0:
+                    self.pc = self.labels.where_of[frame.label] + 1
+                else:
+                    self.stack.pop()
+                    self.pc = frame.return_to
+        else:
+            self.call_label(blk, where)
+
+    def call_label(self, blk: SourceBlock, where: Where) -> None:
+        """``CALL LBL n [REP k]``: a program-section repeat (backwards, with REP) or a subprogram call."""
+        col0 = blk.column
+        cm = CALL_RE.match(blk.code)
+        if cm is None:
+            where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
+        key = label_key(cm)
+        target = self.labels.find(key, where, column=col0, text=blk.code)
+        rep = int(cm.group(5)[:6]) if cm.group(5) else 0
+        index = self.pc - 1
+        if cm.group(5) is not None and target < index:  # program-section repeat
+            left = self.repeats.get(index, rep)
+            if left > 0:
+                self.repeats[index] = left - 1
+                self.pc = target + 1
+            else:
+                self.repeats.pop(index, None)
+            return
+        if len(self.stack) >= MAX_NESTING:
+            where.fail(f"subprogram calls nested deeper than {MAX_NESTING} levels", column=col0,
+                       text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
+        self.stack.append(Frame(return_to=self.pc, label=key, runs_left=rep + 1))
+        self.pc = target + 1
+
+
+def _unknown_block(blk: SourceBlock, where: Where) -> None:
+    tok = blk.code.split()[0]
+    if tok.upper() in _FK_WORDS:  # TNC 640 user's manual, "FK free contour programming"
+        where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
+                   expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
+    where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
+               expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, FN, Qn =, M")
+
+
+def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
+    """``BEGIN PGM name MM|INCH``: the program's unit; returns its name."""
+    parts = blk.code[k.end():].split()
+    unit = parts[1].upper() if len(parts) > 1 else "MM"
+    if unit not in ("MM", "INCH"):
+        col = blk.code.upper().rfind(parts[1].upper()) + blk.column
+        where.fail(f"unknown program unit {parts[1]!r}", column=col, text=parts[1], expected="MM or INCH")
+    m.inch = unit == "INCH"
+    return parts[0] if parts else None
+
+
+def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    if kw == "CYCLE DEF":
+        m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
+    _cycle_def(blk, m, where)
+
+
+def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    m.pattern = pattern_positions(blk.code[pos:], where, m.params, column0=blk.column + pos)
+
+
+def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+    """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
+    pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
+    kind = pat.group(1).upper() if pat else ""
+    words = read_words(blk.code, pos + (pat.end() if pat else 0), where, m.params, column0=blk.column)
+    if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
+        m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
+    moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
+    ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
+    if kind == "POS":
+        _position_call([w for w in words if w.key in moves], m, where, blk)
+    elif kind == "PAT":
+        _pattern_call(m, where, blk)
+    else:
+        _cycle_call(m, where, blk)
+    return ended
+
+
+def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+    """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
+    if kw == "STOP":
+        m.note("STOP: program stop (no motion)")
+    words = read_words(blk.code, pos if kw == "STOP" else 0, where, m.params, column0=blk.column)
+    return _m_functions(words, m, where, blk, motion=False)
+
+
+def _ignore(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """BLK FORM: the workpiece blank for the control's graphics, no motion."""
 
 
 # --- tools -----------------------------------------------------------------------------------
 
-def _tool_def(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     tm = re.match(r"\s*(\d+)", code[pos:])
     if tm is None:
@@ -401,7 +431,7 @@ def _tool_def(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
 
 
-def _tool_call(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     rest = code[pos:]
     nm = re.match(r"\s*(\d+)?", rest)
@@ -670,56 +700,14 @@ def _plane_coords(seen: dict[str, Word], m: _Machine, where: Where, *, m9x: int 
     return target, written
 
 
-def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:  # noqa: C901
+def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
     """Run a motion block (L, LP, C, CR, CT, CP, CC); True when it ends the program."""
-    seen: dict[str, Word] = {}
-    ms: list[Word] = []
-    bases: set[str] = set()
-    for w in words:
-        if w.key == "M":
-            ms.append(w)
-            continue
-        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
-                "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
-        if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
-            where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
-                       expected="each word at most once per block")
-        bases.add(base)
-        seen[w.key] = w
-        if base == "RCOMP":
-            seen["RCOMP"] = w
+    seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
     ended = any(_one_m(w, m) for w in ms)
-    if "BARE" in seen:
-        w = seen.pop("BARE")
-        if kw != "L" or len(m.last_axes) != 1:
-            where.fail("coordinate without an axis letter", column=w.column, text=w.text,
-                       expected="an axis letter (X, Y or Z) before the number")
-        seen["XYZ"[m.last_axes[0]]] = w
-    allowed = {
-        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX"},
-        "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
-        "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
-        "CT": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"},
-        "CP": {"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CC": {"X", "Y", "Z", "IX", "IY", "IZ"},
-    }[kw]
-    for key, w in seen.items():
-        if key not in allowed:
-            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
-                       expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != 'RCOMP')))
     if kw == "CC":
-        target, written = _plane_coords(seen, m, where, m9x=m9x)
-        p, q = PLANE_AXES[m.plane]
-        for i in written:
-            if i not in (p, q):
-                w = seen.get("XYZ"[i]) or seen["I" + "XYZ"[i]]
-                where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
-                           expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
-        m.pole = target
-        m.used.update(written)
+        _pole(seen, m, where, m9x)
         return ended
     exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
     rapid = "FMAX" in seen
@@ -777,6 +765,12 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
     if exit_run:
         _finish_compensation(m)
+    _retract_and_call(seen, mvals, m, where, blk)
+    return ended
+
+
+def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle."""
     if 140 in mvals:
         if "MBMAX" in seen:
             retract = m.pos.copy()
@@ -792,7 +786,59 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
     if 99 in mvals:
         _cycle_call(m, where, blk)
-    return ended
+
+
+def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
+    """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
+    seen: dict[str, Word] = {}
+    ms: list[Word] = []
+    bases: set[str] = set()
+    for w in words:
+        if w.key == "M":
+            ms.append(w)
+            continue
+        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+                "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
+        if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
+            where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
+                       expected="each word at most once per block")
+        bases.add(base)
+        seen[w.key] = w
+        if base == "RCOMP":
+            seen["RCOMP"] = w
+    if "BARE" in seen:
+        w = seen.pop("BARE")
+        if kw != "L" or len(m.last_axes) != 1:
+            where.fail("coordinate without an axis letter", column=w.column, text=w.text,
+                       expected="an axis letter (X, Y or Z) before the number")
+        seen["XYZ"[m.last_axes[0]]] = w
+    allowed = {
+        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX"},
+        "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
+        "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
+        "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
+        "CT": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"},
+        "CP": {"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
+        "CC": {"X", "Y", "Z", "IX", "IY", "IZ"},
+    }[kw]
+    for key, w in seen.items():
+        if key not in allowed:
+            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
+                       expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != 'RCOMP')))
+    return seen, ms
+
+
+def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:
+    """``CC``: the circle centre and pole, in the working plane."""
+    target, written = _plane_coords(seen, m, where, m9x=m9x)
+    p, q = PLANE_AXES[m.plane]
+    for i in written:
+        if i not in (p, q):
+            w = seen.get("XYZ"[i]) or seen["I" + "XYZ"[i]]
+            where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
+                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
+    m.pole = target
+    m.used.update(written)
 
 
 def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
@@ -1001,3 +1047,22 @@ def _finish_compensation(m: _Machine) -> None:
                                                        f"{m.comp_radius:g} mm can follow")
     m.blocks[start:] = new
     m.pos = np.array(new[-1].target, dtype=float)
+
+
+#: What each keyword block does (the flow keywords and motions are handled by :class:`_Run`);
+#: a handler returns True when the program ends at the block (M2/M30).
+_HANDLERS = {
+    "BLK FORM": _ignore,
+    "TOOL DEF": _tool_def,
+    "TOOL CALL": _tool_call,
+    "CYCL DEF": _cycle_def_block,
+    "CYCLE DEF": _cycle_def_block,
+    "PATTERN DEF": _pattern_def,
+    "CYCL CALL": _cycle_call_block,
+    "APPR": _approach_depart,
+    "DEP": _approach_depart,
+    "STOP": _stop_or_m,
+    "M": _stop_or_m,
+    "RND": _corner_def,
+    "CHF": _corner_def,
+}
