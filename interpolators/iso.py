@@ -57,6 +57,7 @@ from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
+from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Line
@@ -303,6 +304,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         if "motion" not in gcodes:
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
+    polar = [w for w in POLAR_LETTERS if w in seen]
+    if polar:
+        _check_polar(seen, gcodes, st, where, seen[polar[0]])
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -313,9 +317,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
-        if axis_words:
+        if axis_words or polar:
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
+    axis_words += polar  # "@" and "^" move X and Y
     if not axis_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
         for letter in ("I", "J", "K", "R"):
             if letter in seen:
@@ -327,7 +332,11 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = seen[axis_words[0]]
         where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
-    target = _target(seen, axis_words, st, machine=False)
+    try:
+        target = _target(seen, axis_words, st, machine=False)
+    except PolarError as exc:
+        w = seen["@"] if "@" in seen else seen["^"]
+        where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
 
@@ -463,10 +472,13 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
 
 
 def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
-    """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)."""
+    """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
+    or its polar words ``@ ^`` with Z."""
     target = st.pos.copy()
     off = st.offset()
     for letter in axis_words:
+        if letter in POLAR_LETTERS:
+            continue
         i = "XYZ".index(letter)
         v = seen[letter].value * st.scale
         if machine:
@@ -475,7 +487,26 @@ def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
             target[i] = st.pos[i] + v
         else:
             target[i] = v + off[i]
+    if "@" in seen or "^" in seen:
+        x, y = polar_xy(st.pos[0] - off[0], st.pos[1] - off[1], incremental=st.incremental,
+                        distance=seen["@"].value * st.scale if "@" in seen else None,
+                        angle_deg=seen["^"].value if "^" in seen else None)
+        target[0], target[1] = x + off[0], y + off[1]
     return target
+
+
+def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:
+    """Polar words only on motion in the XY plane, without X or Y (LinuxCNC interp_internal.cc)."""
+    if "nonmodal" in gcodes:
+        where.fail("polar coordinates @ ^ can only be used for motion", column=w.column, text=w.text,
+                   expected="@ and ^ on G0, G1, G2, G3 or a canned cycle")
+    if st.plane != 2:
+        where.fail("polar coordinates @ ^ are only in the XY plane (G17)", column=w.column, text=w.text,
+                   expected="G17 before polar words")
+    for letter in ("X", "Y"):
+        if letter in seen:
+            where.fail(f"polar coordinates @ ^ and {letter} in one block", column=seen[letter].column,
+                       text=seen[letter].text, expected="either X/Y or @/^")
 
 
 def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, used, where: Where, number) -> None:
@@ -490,7 +521,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     if motion != 0 and st.feed is None:
         where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
     for letter in axis_words:
-        used.add("XYZ".index(letter))
+        used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
     if motion in (0, 10):

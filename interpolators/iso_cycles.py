@@ -26,6 +26,8 @@ import math
 
 import numpy as np
 
+from interpolators.iso_polar import PolarError, polar_xy
+
 __all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "RAPID_DELTA_INCH"]
 
 #: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
@@ -142,13 +144,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if cur[2] < r:
         go("rapid", cur[0], cur[1], r)
     for _ in range(int(repeats)):
-        x, y = cur[0], cur[1]
-        if incremental:
-            x += words.get("X", 0.0) * scale
-            y += words.get("Y", 0.0) * scale
-        else:
-            x = words["X"] * scale + offset[0] if "X" in words else x
-            y = words["Y"] * scale + offset[1] if "Y" in words else y
+        x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
         go("rapid", x, y, cur[2])
         go("rapid", x, y, r)
         if g in (73, 83):
@@ -167,3 +163,26 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out
+
+
+def _hole(words: dict[str, float], cur: np.ndarray, *, offset: np.ndarray, scale: float,
+          incremental: bool) -> tuple[float, float]:
+    """X, Y [mm, machine] of the next hole: X/Y words, or LinuxCNC polar words ``@ ^``
+    (``CYCLE_MACRO`` in interp_internal.hh: under G91 each repeat adds X/Y, then @ to the
+    distance and ^ to the angle about the program origin)."""
+    x, y = float(cur[0]), float(cur[1])
+    if incremental:
+        x += words.get("X", 0.0) * scale
+        y += words.get("Y", 0.0) * scale
+    else:
+        x = words["X"] * scale + offset[0] if "X" in words else x
+        y = words["Y"] * scale + offset[1] if "Y" in words else y
+    if "@" in words or "^" in words:
+        try:
+            px, py = polar_xy(x - offset[0], y - offset[1], incremental=incremental,
+                              distance=words["@"] * scale if "@" in words else None, angle_deg=words.get("^"))
+        except PolarError as exc:
+            raise CycleError(str(exc), letter="@" if "@" in words else "^",
+                             expected="a start point away from X0 Y0") from None
+        x, y = px + offset[0], py + offset[1]
+    return x, y

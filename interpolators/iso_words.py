@@ -18,8 +18,9 @@ from interpolators._words import Where, read_number, token_at
 
 __all__ = ["Word", "strip_comments", "read_words", "WORD_LETTERS"]
 
-#: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor).
-WORD_LETTERS = set("ABCDFGHIJKLMNOPQRSTUVWXYZ")
+#: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
+#: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
+WORD_LETTERS = set("ABCDFGHIJKLMNOPQRSTUVWXYZ@^")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -269,3 +269,26 @@ def test_a_rotary_word_that_keeps_the_axis_at_zero_is_noted():
     prog = parse_program("G21 G90 G0 X1 A0\nG1 X2 B0 F100\n")
     assert [b.target[0] for b in prog.blocks] == [1, 2]
     assert "A0 (rotary axis A stays at 0)" in prog.notes and "B0 (rotary axis B stays at 0)" in prog.notes
+
+
+def test_polar_coordinates_absolute_incremental_and_in_cycles():
+    """LinuxCNC G-code overview, "Polar Coordinates" (and interp_find.cc): G90 @ ^ about the
+    program origin; G91 adds @ to the distance and ^ to the angle; cycles repeat the increments."""
+    ctx = MachineContext()
+    square = ends("G21 G90 F100\nG1 @10 ^90\nG91 ^90\n^90\n^90\n", ctx)
+    np.testing.assert_allclose(square, [[0, 10, 0], [-10, 0, 0], [0, -10, 0], [10, 0, 0]], atol=1e-12)
+    spiral = ends("G21 G90 F100\nG1 X10 Y0\nG91 @.5 ^90\n", ctx)
+    np.testing.assert_allclose(spiral[-1], [0, 10.5, 0], atol=1e-12)  # @ first, then ^ (interp_find.cc)
+    keep_r = ends("G21 G90 G54 F100\nG1 X3 Y4\n^0\n", CTX)  # G90 ^ alone keeps the distance, about G54's zero
+    np.testing.assert_allclose(keep_r[-1], [105, 50, 100], atol=1e-12)  # Z stays at home
+    holes = parse_program("G21 G90 G0 X15 Y0 Z5\nG91 G81 R1 Z-6 ^120 L3 F60\n", context=ctx)
+    bottoms = [b.target[:2] for b in holes.blocks if b.kind == "line"]
+    np.testing.assert_allclose(bottoms, [[15 * math.cos(a), 15 * math.sin(a)] for a in
+                                         (2 * math.pi / 3, 4 * math.pi / 3, 2 * math.pi)], atol=1e-12)
+    for text, message in [("G21 G1 F100 X1 @2 ^3\n", r"polar coordinates @ \^ and X"),
+                          ("G21 G18 G1 F100 @2 ^3\n", "only in the XY plane"),
+                          ("G21 G91 G1 F100 ^90\n", "indeterminate at the origin"),
+                          ("G21 G1 F100 @5\n", "without an angle"),
+                          ("G21 G28 @1 ^2\n", "can only be used for motion")]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=ctx)
