@@ -29,7 +29,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``; ``G53``; ``G28 G30 G28.1 G30.1``
-``G94``                   feed per minute; ``G93``/``G95`` are errors naming them
+``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
+                          feed per minute (which resets the feed: an F must follow); ``G95`` is an error
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
 ``S M3 M4 M5 M7 M8 M9``   spindle and coolant (noted); ``M0 M1 M60`` program stops (noted);
                           ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
@@ -40,7 +41,7 @@ Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params`
 file). Out of scope, each an error naming the feature: rotary axes A B C (a word that keeps the
 axis at 0, ``A0``, is accepted with a note), U V W, probing G38.x, threading G33/G76, lathe codes
 (G7/G8, G70-G72, G74, G75), splines G5.x, polar G15/G16, scaling G50/G51, rotation G68, user M
-codes M100-M199, G93/G95 feed modes.
+codes M100-M199, G95 feed per revolution.
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ from interpolators.iso_flow import run
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
-from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Line
+from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_iso"]
 
@@ -150,6 +151,8 @@ class _State:
     exact_stop: bool = False
     tolerance: float | None = None
     feed: float | None = None  # mm/s
+    inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
+    block_f: float | None = None  # the F word of the block being run [1/min under G93]
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -346,10 +349,15 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     """Feed mode, units, plane, distance modes, F, S and T: they apply to this block's own words."""
     if "feed mode" in gcodes:
+        # LinuxCNC convert_feed_mode: G93 inverse time; G94 resets the feed rate to 0 (an F must follow)
         key, w = gcodes["feed mode"]
-        if key != 940:
+        if key == 950:
             where.fail(f"{w.text.upper()} {_G[key][1]} feed mode: not supported (feeds are per minute)",
-                       column=w.column, text=w.text, expected="G94 feed per minute")
+                       column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
+        if key == 940 and st.inverse_time:
+            st.feed = None
+        st.inverse_time = key == 930
+    st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
         st.inch = gcodes["units"][0] == 200
@@ -365,8 +373,10 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         scale = st.scale
         if not f.value > 0:
             where.fail("feed F must be > 0", column=f.column, text=f.text,
-                       expected="F > 0 [in/min]" if scale != 1.0 else "F > 0 [mm/min]")
-        st.feed = f.value * scale / 60.0
+                       expected="F > 0 [1/min]" if st.inverse_time else "F > 0 [in/min]" if scale != 1.0 else
+                       "F > 0 [mm/min]")
+        if not st.inverse_time:
+            st.feed = f.value * scale / 60.0
     if "S" in seen:
         if seen["S"].value < 0:
             w = seen["S"]
@@ -518,24 +528,36 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         w = seen[(arc_words or ["R"])[0]]
         where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
                    expected="X, Y, Z and F on G00/G01")
-    if motion != 0 and st.feed is None:
+    if motion != 0 and st.inverse_time and st.block_f is None:
+        where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
+                   expected="F<1/minutes> on every G1/G2/G3 block under G93")
+    if motion != 0 and not st.inverse_time and st.feed is None:
         where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
     for letter in axis_words:
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
     if motion in (0, 10):
-        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else st.feed,
-                    segment=Line(st.pos, target), **common)
+        seg = Line(st.pos, target)
+        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg),
+                    segment=seg, **common)
     else:
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
         target = np.array(seg.end)
         common["target"] = target
-        blk = Block(kind="arc", feed=st.feed, segment=seg, **common)
+        blk = Block(kind="arc", feed=_feed(st, seg), segment=seg, **common)
     blocks.append(blk)
     st.pos = target
+
+
+def _feed(st: _State, seg: Line | Arc) -> float:
+    """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
+    time 1/F minutes (LinuxCNC G-code reference, G93)."""
+    if not st.inverse_time:
+        return st.feed
+    return seg.length * st.block_f / 60.0 if seg.length > 0 else np.inf
 
 
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
@@ -767,6 +789,9 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
     if st.plane != 2:
         where.fail(f"{name}: only in the XY plane (G17)", column=mw.column, text=mw.text, expected="G17")
+    if st.inverse_time:
+        where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
+                   expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
     off = st.offset()

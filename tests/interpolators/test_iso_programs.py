@@ -292,3 +292,18 @@ def test_polar_coordinates_absolute_incremental_and_in_cycles():
                           ("G21 G28 @1 ^2\n", "can only be used for motion")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=ctx)
+
+
+def test_g93_inverse_time_feed():
+    """LinuxCNC G-code reference, G93: F means the move takes 1/F minutes; an F on every G1/G2/G3
+    block; G94 resets the feed rate (interp_convert.cc convert_feed_mode)."""
+    prog = parse_program("G21 G90 G0 X0 Y0\nG93 G1 X30 F2\nG2 X30 Y20 I0 J10 F6\nG94 G1 X0 F600\n",
+                         context=MachineContext())
+    line, arc, back = prog.blocks[1:]
+    assert line.feed == pytest.approx(30 * 2 / 60)  # 30 mm in 0.5 min
+    assert arc.feed == pytest.approx(10 * math.pi * 6 / 60)  # a half circle of R10 in 1/6 min
+    assert back.feed == pytest.approx(600 / 60)
+    with pytest.raises(GCodeError, match="inverse time \\(G93\\) without an F word"):
+        parse_program("G21 G93 G1 X1 F2\nX2\n", context=MachineContext())
+    with pytest.raises(GCodeError, match="feed move without a feed"):
+        parse_program("G21 G1 F100 X1\nG93 G1 X2 F3\nG94\nX3\n", context=MachineContext())
