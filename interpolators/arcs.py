@@ -10,7 +10,7 @@ from toolpaths.geometry import PLANE_AXES, Arc
 from vcnc.core.errors import InputError
 
 __all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius", "spiral_tolerance",
-           "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE"]
+           "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE", "RADIUS_TOLERANCE_MM"]
 
 #: Largest accepted difference between the start and end radius of a centre-programmed arc, and
 #: largest accepted excess of the chord over the diameter of a radius-programmed arc [mm].
@@ -23,6 +23,11 @@ ARC_TOLERANCE: float = 0.002
 SPIRAL_ABS_TOLERANCE_MM: float = 2 * 0.01 * math.sqrt(2.0)
 SPIRAL_ABS_TOLERANCE_INCH: float = 2 * 0.001 * math.sqrt(2.0) * 25.4
 SPIRAL_RELATIVE_TOLERANCE: float = 0.001
+
+#: LinuxCNC's tolerance of radius-format arcs (interp_internal.hh RADIUS_TOLERANCE_INCH = 0.00005 in,
+#: RADIUS_TOLERANCE_MM the same length in mm; interp_arc.cc arc_data_r accepts a half chord longer
+#: than |R| by at most this and then takes the arc as a half circle) [mm].
+RADIUS_TOLERANCE_MM: float = 0.00005 * 25.4
 
 
 def spiral_tolerance(start: np.ndarray, end: np.ndarray, center: np.ndarray, *, plane: int, inch: bool) -> float:

@@ -53,7 +53,7 @@ import re
 import numpy as np
 
 from interpolators._words import INCH, Where
-from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.arcs import RADIUS_TOLERANCE_MM, ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
@@ -577,7 +577,8 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
     try:
         if has_r:
-            return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane)
+            return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
+                                   tolerance=2.0 * RADIUS_TOLERANCE_MM)
         if in_plane:
             if st.arc_incremental:
                 center = st.pos.copy()

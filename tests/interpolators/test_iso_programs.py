@@ -307,3 +307,13 @@ def test_g93_inverse_time_feed():
         parse_program("G21 G93 G1 X1 F2\nX2\n", context=MachineContext())
     with pytest.raises(GCodeError, match="feed move without a feed"):
         parse_program("G21 G1 F100 X1\nG93 G1 X2 F3\nG94\nX3\n", context=MachineContext())
+
+
+def test_radius_arc_chord_tolerance_is_linuxcncs():
+    """interp_arc.cc arc_data_r: a half chord up to RADIUS_TOLERANCE (0.00005 in = 0.00127 mm)
+    longer than |R| is a half circle; more is an error."""
+    ok = parse_program("G21 G0 X0 Y0\nG2 X10.0024 Y0 R5 F100\n", context=MachineContext())
+    arc = ok.blocks[-1].segment
+    assert arc.radius == pytest.approx(5.0012) and abs(arc.sweep) == pytest.approx(math.pi)
+    with pytest.raises(GCodeError, match="longer than the diameter"):
+        parse_program("G21 G0 X0 Y0\nG2 X10.003 Y0 R5 F100\n", context=MachineContext())
