@@ -120,7 +120,12 @@ _M_NOTES = {
     48: "M48-M53 overrides", 49: "M48-M53 overrides", 50: "M48-M53 overrides", 51: "M48-M53 overrides",
     52: "M48-M53 overrides", 53: "M48-M53 overrides", 61: "M61 set tool number",
     70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
+    **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
 }
+
+#: Words the I/O M codes read (LinuxCNC M-code reference: M62-M65 P<output>; M66 P|E<input>
+#: L<wait mode> Q<timeout>; M67/M68 E<analog output> Q<value>): theirs, not the motion's.
+_IO_WORDS = ("P", "E", "L", "Q")
 
 
 class _Notes:
@@ -301,6 +306,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
+    seen = _io_words(mcodes, seen, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         _dwell(gcodes, seen, st, blocks, where, number)
@@ -410,6 +416,17 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
         else:
             notes.add(f"M{m} (no motion)")
     return ended
+
+
+def _io_words(mcodes, seen, where: Where) -> dict:
+    """``seen`` without the words of the block's I/O M code (M62-M68); E elsewhere is an error."""
+    if any(62 <= m <= 68 for m, _ in mcodes):
+        return {k: v for k, v in seen.items() if k not in _IO_WORDS}
+    if "E" in seen:
+        w = seen["E"]
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,
+                   expected="E only with M66, M67 or M68")
+    return seen
 
 
 def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:

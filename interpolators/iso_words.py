@@ -20,7 +20,7 @@ __all__ = ["Word", "strip_comments", "read_words", "WORD_LETTERS"]
 
 #: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
 #: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
-WORD_LETTERS = set("ABCDFGHIJKLMNOPQRSTUVWXYZ@^")
+WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 
 
 @dataclasses.dataclass(frozen=True)

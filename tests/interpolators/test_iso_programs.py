@@ -317,3 +317,13 @@ def test_radius_arc_chord_tolerance_is_linuxcncs():
     assert arc.radius == pytest.approx(5.0012) and abs(arc.sweep) == pytest.approx(math.pi)
     with pytest.raises(GCodeError, match="longer than the diameter"):
         parse_program("G21 G0 X0 Y0\nG2 X10.003 Y0 R5 F100\n", context=MachineContext())
+
+
+def test_io_m_codes_take_their_words():
+    """LinuxCNC M62-M68 (digital/analog outputs, M66 wait): their P/E/L/Q words are theirs, noted,
+    no motion; E anywhere else is an error."""
+    prog = parse_program("G21 M68 E0 Q0\nM64 P2\nM66 E1 L3 Q5\nG1 X5 F100\n", context=MachineContext())
+    assert [b.target.tolist() for b in prog.blocks] == [[5, 0, 0]]
+    assert "M62-M68 digital/analog I/O x3" in prog.notes
+    with pytest.raises(GCodeError, match="outside M66-M68"):
+        parse_program("G21 G1 X1 F100 E3\n", context=MachineContext())
