@@ -34,6 +34,9 @@ MAX_EXECUTED_LINES = 5_000_000
 
 _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+)\s*([a-zA-Z]+)?(.*)$")
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
+#: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
+#: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).
+_NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
 
@@ -85,6 +88,9 @@ class _Program:
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             m = _O_LINE.match(code)
+            if _NAMED_PROGRAM.match(code) and not (m and m.group(2) and m.group(2).lower() in _KEYWORDS):
+                self.code.append(None)  # "O7997A", "OWASHER": the program's name
+                continue
             if m and m.group(2) and m.group(2).lower() in _KEYWORDS:
                 label = m.group(1).lower().replace(" ", "")
                 self.oword[i] = _OWord(label, m.group(2).lower(), m.group(3), m.start(3) + 1)

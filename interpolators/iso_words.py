@@ -3,7 +3,8 @@
 Follows the LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html):
 letters are case-insensitive, spaces may stand between a letter and its number, ``( ... )``
 comments may nest (``(a (b) c)``: CAM posts write them; LinuxCNC would end the comment at the
-first ``)`` and then reject the rest), ``;`` comments
+first ``)`` and then reject the rest); a ``(`` inside a comment that does not close as nested is
+text, the comment ending at the first ``)`` (``(X+1 (move up)``, Fanuc), ``;`` comments
 run to the end of the line, ``/`` at the start of a line marks a block-delete line (executed: the
 block-delete switch is off, as in LinuxCNC's default), and ``%`` lines demarcate the program.
 Parameters (``#``), expressions (``[``) and O-words are named as such when met.
@@ -48,7 +49,10 @@ def strip_comments(raw: str, where: Where) -> str:
                 depth += {"(": 1, ")": -1}.get(raw[j], 0)
                 j += 1
             if depth:
-                where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
+                # not nested after all: as Fanuc and LinuxCNC read it, the comment ends at the first ')'
+                j = raw.find(")", i) + 1
+                if j == 0:
+                    where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
             out[i:j] = " " * (j - i)
             i = j
             continue

@@ -327,3 +327,13 @@ def test_io_m_codes_take_their_words():
     assert "M62-M68 digital/analog I/O x3" in prog.notes
     with pytest.raises(GCodeError, match="outside M66-M68"):
         parse_program("G21 G1 X1 F100 E3\n", context=MachineContext())
+
+
+def test_named_programs_and_a_paren_inside_a_comment():
+    """Shop programs name themselves "O7997A" or "OWASHER"; "(X1 (move up)" is one comment that
+    ends at the first ')' (it does not close as a nested one)."""
+    prog = parse_program("%\nOWASHER(washer)\nG21 G1 X1 F100 (X2 (move up)\nO7997A\nG1 X3\n%\n",
+                         context=MachineContext())
+    assert [b.target[0] for b in prog.blocks] == [1, 3]
+    with pytest.raises(GCodeError, match="unclosed comment"):
+        parse_program("G21 G1 X1 F100 (no end\n", context=MachineContext())
