@@ -79,3 +79,17 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
         where.fail(f"malformed number for {what}", column=w0 + 1, text=token_at(line, w0),
                    expected="a decimal number")
     return value, end
+
+
+def program_text(path: str) -> str:
+    """A program file's text: UTF-8, or Latin-1 when it is not valid UTF-8; without a BOM.
+
+    Raises ``OSError`` when the file cannot be read (the callers name the file and the line).
+    """
+    with open(path, "rb") as fh:
+        raw = fh.read()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    return text[1:] if text.startswith("\ufeff") else text

@@ -49,6 +49,7 @@ from __future__ import annotations
 import collections
 import dataclasses
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -212,10 +213,14 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     blocks: list[Block] = []
     used: set[int] = set()
     name = _program_name(text)
+    external: set[str | None] = set()  # files of subprograms called from this one
     for fl in run(text, source=source):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
-        ended = _execute(fl.words, st, blocks, used, Where(source, fl.line, fl.raw), notes)
+        if fl.file != source and fl.file not in external:
+            external.add(fl.file)
+            notes.add(f"subprogram from {Path(fl.file).name}")
+        ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
             _finish_compensation(st, blocks, source)
         if ended:

@@ -7,11 +7,13 @@ LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
   ``o100 return [v]`` / ``endsub [v]`` leave it (the value goes to ``#<_value>``);
 * ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``, ``do``/``while``,
   ``repeat [n]``/``endrepeat``, ``break`` and ``continue``, each tied by its O number or name;
-* a subroutine defined in another file (``o<name> call`` without a ``sub`` here) is an error.
+* ``o<name> call`` of a subroutine not in the file runs ``<name>.ngc`` of the program's folder,
+  as LinuxCNC finds it on its SUBROUTINE_PATH.
 
 Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M98 P1000 L3``
-runs the program ``O1000`` of the same file three times; ``M99`` returns, and in the main
-program ends it (the control would rewind; vcnc runs the program once).
+runs the program ``O1000`` three times, from the same file or else from the program file of its
+folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, and in the
+main program ends it (the control would rewind; vcnc runs the program once).
 
 :func:`run` yields the lines to execute in order, with their words read (parameters and
 expressions evaluated by :mod:`interpolators.iso_params`).
@@ -22,8 +24,9 @@ from __future__ import annotations
 import dataclasses
 import re
 from collections.abc import Iterator
+from pathlib import Path
 
-from interpolators._words import Where, lines_of
+from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import Word, read_words, strip_comments
 
@@ -36,6 +39,8 @@ _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+)\s*([a-zA-Z]+)?
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
 #: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).
+#: File suffixes of part programs searched for a subprogram in another file.
+_PROGRAM_SUFFIXES = frozenset({".nc", ".ngc", ".cnc", ".tap", ".gcode", ".txt", ".iso", ".min", ".mpf", ".spf", ""})
 _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
@@ -43,11 +48,12 @@ _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif",
 
 @dataclasses.dataclass(frozen=True)
 class FlowLine:
-    """One executed line: 1-based source ``line``, its ``raw`` text and its ``words``."""
+    """One executed line: 1-based ``line`` of its ``file``, its ``raw`` text and its ``words``."""
 
     line: int
     raw: str
     words: list[Word]
+    file: str | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,12 +77,24 @@ class _Program:
 
     def __init__(self, text: str, source: str | None) -> None:
         self.source = source
-        self.raw = lines_of(text)
+        self.raw: list[str] = []
+        self.sources: list[str | None] = []
         self.code: list[str | None] = []
         self.oword: dict[int, _OWord] = {}
         self.fanuc: dict[int, int] = {}
         self.by_label: dict[str, list[int]] = {}
-        for i, raw in enumerate(self.raw):
+        self.files: set[str] = set()
+        self.first_line: dict[str | None, int] = {}  # index of each file's first line
+        self._index(text, source)
+        self.main_end = len(self.code)
+
+    def _index(self, text: str, source: str | None) -> None:
+        """Append the lines of ``text`` (from ``source``), classified, O-words and numbers indexed."""
+        self.first_line.setdefault(source, len(self.code))
+        for raw in lines_of(text):
+            i = len(self.code)
+            self.raw.append(raw)
+            self.sources.append(source)
             where = self.where(i)
             code = strip_comments(raw, where)
             s = code.strip()
@@ -109,7 +127,6 @@ class _Program:
             if m and m.group(1).startswith("<"):
                 where.fail(f"O-word o{m.group(1)} without a keyword", column=1, text=s, expected="o<name> call ...")
             self.code.append(code)
-
         self._check_structure()
 
     def _check_structure(self) -> None:
@@ -125,7 +142,49 @@ class _Program:
                 self.next_of(i, closers[ow.keyword])
 
     def where(self, i: int) -> Where:
-        return Where(self.source, i + 1, self.raw[i].strip())
+        src = self.sources[i]  # line numbers count within each file
+        return Where(src, i - self.first_line[src] + 1, self.raw[i].strip())
+
+    def include(self, path: Path) -> None:
+        """Append another program file (a subprogram it holds), once."""
+        key = str(path)
+        if key in self.files:
+            return
+        self.files.add(key)
+        self._index(program_text(key), key)
+        self._check_structure()
+
+    def external_fanuc(self, number: int) -> int | None:
+        """Index of program ``O<number>`` after including the file of the main program's directory
+        that holds it: Fanuc and Haas keep programs in memory by number, a file per program; the
+        candidates are the files whose name ends with the number (``o1002.nc``,
+        ``gauge_tool_o1002.cnc``, ``1002.nc``), and the one holding an ``O1002`` line is taken."""
+        if number in self.fanuc:
+            return self.fanuc[number]
+        if self.source is None:
+            return None
+        pattern = re.compile(rf"(?:^|[^0-9])[oO]?0*{number}$")
+        folder = Path(self.source).parent
+        for cand in sorted(folder.iterdir()) if folder.is_dir() else ():
+            if cand.is_file() and cand.suffix.lower() in _PROGRAM_SUFFIXES and pattern.search(cand.stem):
+                try:
+                    text = program_text(str(cand))
+                except OSError:
+                    continue
+                if re.search(rf"^\s*[oO:]0*{number}\b", text, re.M):
+                    self.include(cand)
+                    return self.fanuc.get(number)
+        return None
+
+    def external_sub(self, label: str) -> int | None:
+        """Start of subroutine ``o<label>`` after including ``<label>.ngc`` from the main
+        program's directory (LinuxCNC searches its SUBROUTINE_PATH for ``<name>.ngc``)."""
+        if self.sub_start(label) is not None or self.source is None or not label.startswith("<"):
+            return self.sub_start(label)
+        cand = Path(self.source).parent / f"{label[1:-1]}.ngc"
+        if cand.is_file():
+            self.include(cand)
+        return self.sub_start(label)
 
     def fail(self, i: int, message: str, expected: str) -> None:
         ow = self.oword.get(i)
@@ -201,8 +260,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     repeats: dict[int, int] = {}
     pc = 0
     executed = 0
-    n = len(prog.code)
-    while pc < n:
+    while pc < len(prog.code) and (frames or pc < prog.main_end):
         executed += 1
         if executed > max_lines:
             prog.fail(pc, f"more than {max_lines} executed lines: an endless loop?", "a loop that ends")
@@ -219,19 +277,20 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         m98 = next((w for w in words if w.letter == "M" and w.value == 98), None)
         m99 = next((w for w in words if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
-            yield FlowLine(pc + 1, where.text, words)
+            yield FlowLine(where.line, where.text, words, where.file)
             pc += 1
             continue
         if m98 is not None:
             p = next((w for w in words if w.letter == "P"), None)
-            if p is None or p.value != int(p.value) or int(p.value) not in prog.fanuc:
-                target = "no P word" if p is None else f"program O{p.value:g} is not in this file"
+            if p is None or p.value != int(p.value) or prog.external_fanuc(int(p.value)) is None:
+                target = "no P word" if p is None else (f"program O{p.value:g} is neither in this file nor in a "
+                                                        "program file of its folder")
                 where.fail(f"M98 subprogram call: {target}", column=m98.column, text=m98.text,
-                           expected="M98 P<number> of an O<number> program in the same file")
+                           expected="M98 P<number> of an O<number> program in this file or its folder")
             count = next((int(w.value) for w in words if w.letter in "LK"), 1)
             rest = [w for w in words if w is not m98 and w.letter not in "PLK"]
             if rest:
-                yield FlowLine(pc + 1, where.text, rest)
+                yield FlowLine(where.line, where.text, rest, where.file)
             if count > 0:
                 start = prog.fanuc[int(p.value)] + 1
                 frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, params=False))
@@ -241,10 +300,10 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             continue
         rest = [w for w in words if w is not m99]
         if not frames:
-            yield FlowLine(pc + 1, where.text, rest + [Word("M", 30.0, m99.column, m99.text)])
+            yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
             return
         if rest:
-            yield FlowLine(pc + 1, where.text, rest)
+            yield FlowLine(where.line, where.text, rest, where.file)
         frame = frames[-1]
         if frame.params:
             prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
@@ -263,10 +322,10 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
     if k == "sub":
         return prog.next_of(pc, ("endsub",)) + 1
     if k == "call":
-        start = prog.sub_start(ow.label)
+        start = prog.external_sub(ow.label)
         if start is None:
-            prog.fail(pc, f"O-word o{ow.label} call: the subroutine is not defined in this file "
-                          "(subroutines in other files are not supported)", f"o{ow.label} sub ... endsub in the file")
+            prog.fail(pc, f"O-word o{ow.label} call: the subroutine is neither in this file nor in "
+                          f"{ow.label.strip('<>')}.ngc beside it", f"o{ow.label} sub ... endsub")
         args = _args(prog, pc, params)
         params.push(args)
         frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, params=True))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 
+from interpolators._words import program_text
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
 from interpolators.iso import parse_iso
@@ -58,14 +59,7 @@ def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFA
     """
     name = os.fspath(path)
     try:
-        with open(name, "rb") as fh:
-            raw = fh.read()
+        text = program_text(name)
     except OSError as exc:
         raise GCodeError(f"cannot read program: {exc.strerror or exc}", file=name) from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")
-    if text.startswith("\ufeff"):
-        text = text[1:]
     return parse_program(text, source=name, context=context)

@@ -194,7 +194,7 @@ def test_fanuc_m98_subprogram_with_repeats_and_m99():
 
 
 def test_flow_errors():
-    with pytest.raises(GCodeError, match="not defined in this file"):
+    with pytest.raises(GCodeError, match="neither in this file nor in elsewhere.ngc"):
         parse_program("o<elsewhere> call\n")
     with pytest.raises(GCodeError, match="no matching endwhile"):
         parse_program("o1 while [1]\nG0 X1\n")

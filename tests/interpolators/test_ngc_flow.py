@@ -76,7 +76,7 @@ def test_do_while_with_continue_and_repeat():
 @pytest.mark.parametrize(("text", "needle"), [
     ("o1 sub\nG1 X1\n", "no matching endsub"),
     ("o1 endwhile\n", "endwhile without while"),
-    ("o<other> call\n", "not defined in this file"),
+    ("o<other> call\n", "neither in this file nor in other.ngc"),
 ])
 def test_structure_errors(text, needle):
     with pytest.raises(GCodeError, match=needle):
@@ -101,3 +101,23 @@ def test_corpus_programs_with_parameters_and_o_words_run(name):
         if any(w.letter == "M" and w.value in (2.0, 30.0) for w in fl.words):
             break
     assert executed > 0
+
+
+def test_subprograms_from_other_files_of_the_folder(tmp_path):
+    """Fanuc/Haas keep programs by number: M98 P2001 runs the file of the folder that holds O2001;
+    LinuxCNC finds o<side> in side.ngc (its SUBROUTINE_PATH). Errors there name that file."""
+    from interpolators import load_program
+
+    (tmp_path / "main.nc").write_text("G21 G90 F600\nG0 X0 Y0\nM98 P2001 L2\no<side> call [5]\nM30\n")
+    (tmp_path / "part_o2001.nc").write_text("%\nO2001 (step)\nG91 G1 X10\nG90\nM99\n%\n")
+    (tmp_path / "side.ngc").write_text("o<side> sub\nG1 Y#1\no<side> endsub\nM2\n")
+    prog = load_program(tmp_path / "main.nc")
+    assert [b.target.tolist() for b in prog.blocks] == [[0, 0, 0], [10, 0, 0], [20, 0, 0], [20, 5, 0]]
+    assert {"subprogram from part_o2001.nc", "subprogram from side.ngc"} <= set(prog.notes)
+    (tmp_path / "side.ngc").write_text("o<side> sub\nG1 Y#1 Q7\no<side> endsub\nM2\n")
+    with pytest.raises(GCodeError) as info:
+        load_program(tmp_path / "main.nc")
+    assert info.value.file == str(tmp_path / "side.ngc") and info.value.line == 2
+    (tmp_path / "main.nc").write_text("G21 M98 P3003\nM30\n")
+    with pytest.raises(GCodeError, match="O3003 is neither in this file nor in a program file of its folder"):
+        load_program(tmp_path / "main.nc")
