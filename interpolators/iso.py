@@ -104,6 +104,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     330: "G33 spindle-synchronised motion (threading)", 331: "G33.1 rigid tapping",
     760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
+    711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
     50: "G5 cubic spline", 51: "G5.1 quadratic spline", 52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
@@ -277,8 +278,9 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if 100 <= m <= 199:
                 where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
-            if m > 199:
-                where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
+            if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI)
+                where.fail(f"remapped or user M code {w.text!r} (above M199: defined by a machine configuration): "
+                           "not supported", column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
             if w.letter in "UVW":
@@ -424,9 +426,11 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
 
 
 def _io_words(mcodes, seen, where: Where) -> dict:
-    """``seen`` without the words of the block's I/O M code (M62-M68); E elsewhere is an error."""
+    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q); E elsewhere is an error."""
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
+    if any(m == 61 for m, _ in mcodes):  # M61 Q<tool>: the Q is the tool number, read by _m_codes
+        seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:
         w = seen["E"]
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,

@@ -34,6 +34,9 @@ _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP
 _BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
 #: Highest numbered parameter a program may read or set without naming machine state.
 _MAX_USER_PARAMETER = 5219
+#: System parameters a program may set: #5599, LinuxCNC's switch for (DEBUG,) output
+#: (LinuxCNC "Numbered Parameters"); it moves nothing.
+_WRITABLE_SYSTEM = frozenset({5599})
 
 
 class Parameters:
@@ -70,9 +73,9 @@ class Parameters:
 
     def assign(self, key: int | str, value: float, where: Where, column: int, text: str) -> None:
         if isinstance(key, int):
-            if key < 1 or key > _MAX_USER_PARAMETER:
+            if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
-                           expected="a parameter #1 .. #5219")
+                           expected="a parameter #1 .. #5219 (or #5599, the DEBUG output switch)")
             self._local_numbered(key)[key] = value
         else:
             k = key.lower().replace(" ", "")

@@ -337,3 +337,12 @@ def test_named_programs_and_a_paren_inside_a_comment():
     assert [b.target[0] for b in prog.blocks] == [1, 3]
     with pytest.raises(GCodeError, match="unclosed comment"):
         parse_program("G21 G1 X1 F100 (no end\n", context=MachineContext())
+
+
+def test_m61_q_sets_the_tool_and_5599_may_be_set():
+    """LinuxCNC M61 Q<tool> sets the current tool (G43 then takes its length); #5599 switches
+    (DEBUG,) output and may be written; other system parameters may not."""
+    prog = parse_program("G21 #5599 = 1\nM61 Q1 G43\nG0 Z0\n", context=CTX)
+    assert prog.blocks[-1].target[2] == pytest.approx(-20 + 12.5)  # G54 Z -20, tool 1 length 12.5
+    with pytest.raises(GCodeError, match="system parameters cannot be set"):
+        parse_program("G21 #5220 = 2\n", context=CTX)
