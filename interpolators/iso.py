@@ -17,6 +17,9 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ========================= =======================================================================
 ``G0 G1 G2 G3``           rapid, feed, clockwise / counter-clockwise arc; alone on a line they set
                           the motion mode only
+``G5 G5.1``               cubic / quadratic spline in XY (I J, P Q control offsets), run as chords
+                          within 1 um (:mod:`interpolators.iso_splines`)
+``@ ^``                   LinuxCNC polar distance and angle instead of X Y (:mod:`interpolators.iso_polar`)
 ``G4``                    dwell ``P`` (seconds under LinuxCNC/grbl, milliseconds under Fanuc/Haas)
                           or ``X`` [s]
 ``G17 G18 G19``           arc plane; ``G20 G21`` inch / mm (a program with neither runs in the
@@ -60,6 +63,7 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_splines import bezier_chords
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
@@ -69,7 +73,8 @@ __all__ = ["parse_iso"]
 #: G codes the reader runs, keyed by round(10 * code): (modal group, name).
 _G: dict[int, tuple[str, str]] = {
     **{k: ("motion", n) for k, n in ((0, "rapid"), (10, "linear feed"), (20, "clockwise arc"),
-                                       (30, "counter-clockwise arc"), (800, "cycle cancel"))},
+                                       (30, "counter-clockwise arc"), (800, "cycle cancel"),
+                                       (50, "G5 cubic spline"), (51, "G5.1 quadratic spline"))},
     **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
                                           (82, "G82 drilling cycle with dwell"),
                                           (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
@@ -106,7 +111,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
-    50: "G5 cubic spline", 51: "G5.1 quadratic spline", 52: "G5.2 NURBS", 160: "G16 polar coordinates",
+    52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)", 650: "G65 macro call",
     520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
@@ -160,6 +165,7 @@ class _State:
     feed: float | None = None  # mm/s
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -486,6 +492,8 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
 
 def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
+    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
+        return
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
         where.fail("word P needs G04 (dwell), G64 (path tolerance), G10 or a drilling cycle", column=w.column,
@@ -563,6 +571,11 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
+    if motion in (50, 51):
+        used.update((0, 1))
+        _spline(seen, target, st, blocks, where, common, mcol, mtok)
+        return
+    st.spline_pq = None
     if motion in (0, 10):
         seg = Line(st.pos, target)
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg),
@@ -576,6 +589,50 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="arc", feed=_feed(st, seg), segment=seg, **common)
     blocks.append(blk)
     st.pos = target
+
+
+def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
+    """G5 / G5.1 (LinuxCNC G-code reference): a Bezier curve in XY as chord blocks
+    (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental."""
+    code = "G5" if st.motion == 50 else "G5.1"
+    if st.plane != 2:
+        where.fail(f"{code} spline: only in the XY plane (G17)", column=mcol, text=mtok, expected="G17")
+    if "Z" in seen:
+        w = seen["Z"]
+        where.fail(f"{code} spline: only X and Y move", column=w.column, text=w.text, expected="X and Y words")
+    s = st.scale
+    p0 = st.pos.copy()
+    if st.motion == 51:
+        ij = np.array([seen["I"].value if "I" in seen else 0.0, seen["J"].value if "J" in seen else 0.0, 0.0])
+        if not ij.any():
+            where.fail("G5.1 spline: I and J both unspecified or zero", column=mcol, text=mtok,
+                       expected="I and/or J: the control point's offset from the start")
+        control = [p0, p0 + ij * s, target]
+    else:
+        if "P" not in seen or "Q" not in seen:
+            where.fail("G5 spline: P and Q must both be given", column=mcol, text=mtok,
+                       expected="P and Q: the second control point's offset from the end point")
+        if ("I" in seen) != ("J" in seen):
+            where.fail("G5 spline: I and J must be given together", column=mcol, text=mtok, expected="I and J")
+        if "I" in seen:
+            ij = np.array([seen["I"].value, seen["J"].value, 0.0]) * s
+        elif st.spline_pq is not None:
+            ij = -st.spline_pq  # the tangent of the previous G5 continues
+        else:
+            where.fail("G5 spline: I and J are needed on the first G5 of a series", column=mcol, text=mtok,
+                       expected="I and J")
+        pq = np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
+        control = [p0, p0 + ij, target + pq, target]
+        st.spline_pq = pq
+    if st.motion == 51:
+        st.spline_pq = None
+    start = p0
+    for point in bezier_chords(control):
+        seg = Line(start, point)
+        blocks.append(Block(kind="line", feed=_feed(st, seg), segment=seg,
+                            **{**common, "start": start.copy(), "target": point.copy()}))
+        start = point
+    st.pos = np.array(target, dtype=float)
 
 
 def _feed(st: _State, seg: Line | Arc) -> float:

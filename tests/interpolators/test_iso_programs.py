@@ -346,3 +346,26 @@ def test_m61_q_sets_the_tool_and_5599_may_be_set():
     assert prog.blocks[-1].target[2] == pytest.approx(-20 + 12.5)  # G54 Z -20, tool 1 length 12.5
     with pytest.raises(GCodeError, match="system parameters cannot be set"):
         parse_program("G21 #5220 = 2\n", context=CTX)
+
+
+def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
+    """LinuxCNC G-code reference: G5.1 X2 I2 J-8 from X-2 Y4 is the parabola y = x^2 (inch);
+    G5 without I J continues the previous G5's tangent (I J = -P -Q)."""
+    prog = parse_program("G20 G90 G17 F10\nG0 X-2 Y4\nG5.1 X2 I2 J-8\n", context=MachineContext())
+    pts = np.array([b.target for b in prog.blocks[1:]]) / 25.4
+    assert np.allclose(pts[:, 1], pts[:, 0] ** 2, atol=1e-12) and pts[-1].tolist() == [2, 4, 0]
+    mid = (pts[:-1] + pts[1:]) / 2  # the chords stay within 1 um of the curve
+    assert np.max(np.abs(mid[:, 1] - mid[:, 0] ** 2)) * 25.4 <= 0.001
+    prog = parse_program("G21 G90 G17 F100\nG0 X0 Y0\nG5 I0 J3 P0 Q-3 X1 Y1\nG5 P0 Q-3 X2 Y2\n",
+                         context=MachineContext())
+    ends_ = [b.target for b in prog.blocks]
+    first_end = [i for i, p in enumerate(ends_) if p.tolist() == [1, 1, 0]][0]
+    into, out = ends_[first_end] - ends_[first_end - 1], ends_[first_end + 1] - ends_[first_end]
+    assert abs(into[0] * out[1] - into[1] * out[0]) <= 1e-6 * np.linalg.norm(into) * np.linalg.norm(out)
+    assert ends_[-1].tolist() == [2, 2, 0]
+    for text, message in [("G21 F1 G5 X1 Y1 I1 J1\n", "P and Q must both be given"),
+                          ("G21 F1 G5 X1 Y1 P1 Q1\n", "I and J are needed on the first G5"),
+                          ("G21 F1 G5.1 X1 Y1\n", "I and J both unspecified"),
+                          ("G21 F1 G18 G5.1 X1 I1\n", "only in the XY plane")]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
