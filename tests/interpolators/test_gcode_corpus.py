@@ -106,10 +106,10 @@ def test_every_rejection_is_a_clean_error_naming_the_feature(outcomes):
 def test_share_of_programs_that_run(outcomes):
     ok = sum(not isinstance(o, GCodeError) for o in outcomes.values())
     milling = [o for o in outcomes.values() if not isinstance(o, GCodeError) or not OUT_OF_SCOPE.search(str(o))]
-    # measured 2026-11-23: 282 of 341 read, 85.5 % of the milling programs (the rejections: rotary
-    # moves, lathe, probing and threading codes, programs without a feed, subprograms in other files, ...)
-    assert ok >= 280
-    assert ok / len(milling) >= 0.85
+    # measured 2026-11-23 (session 7): 292 of 341 read, 89.8 % of the milling programs (the rejections:
+    # rotary moves, lathe, probing and threading codes, programs without a feed, Fanuc macro B, ...)
+    assert ok >= 292
+    assert ok / len(milling) >= 0.89
 
 
 def test_block_end_points_match_an_independent_reference(outcomes):
