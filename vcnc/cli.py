@@ -52,12 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress details")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, modname in COMMANDS.items():
-        try:
-            mod = importlib.import_module(f"vcnc.commands.{modname}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"vcnc.commands.{modname}":
-                raise
-            continue  # command not built yet: it is simply absent from the CLI
+        mod = importlib.import_module(f"vcnc.commands.{modname}")
         p = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
         p.set_defaults(_run=mod.run)

@@ -77,7 +77,6 @@ SETTLE_S = 0.2
 #: Noise realisations of a simulated truth with measurement noise (module notes).
 TRUTH_RUNS = 10
 
-_LABELS = ("true", "augmented", "identified")
 
 
 def _pct(pred: float, true: float) -> float:

@@ -35,7 +35,7 @@ from vcnc._callable import make_callable
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError, MachineError, SimulationError
 from vcnc.core.setpoints import AXIS_NAMES, Setpoints
-from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
+from vcnc.engine.axis import AxisDefinition
 from vcnc.engine.layout import N_OUT
 from vcnc.engine.machine_file import parse_machine_text
 
@@ -648,7 +648,6 @@ def reference_control(
     return out[:, 3].copy()
 
 
-_ = NONIDEALITY_FIELDS
 
 # ``vcnc.machine`` is both this module and the facade function: calling the module loads a machine.
 make_callable(__name__, load_machine)

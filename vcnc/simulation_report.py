@@ -40,16 +40,13 @@ def summarize(capture: Capture) -> dict[str, Any]:
         },
     }
     if len(moving_axes(capture)) >= 2:
-        try:
-            from vcnc.contour import contour_metrics
-        except ImportError as exc:
-            log.warning("contour error left out of the summary: vcnc.contour is not available (%s)", exc)
+        from vcnc.contour import contour_metrics
+
+        c = contour_metrics(capture)
+        if c is None:
+            log.warning("contour error left out of the summary: the setpoints carry no programmed path")
         else:
-            c = contour_metrics(capture)
-            if c is None:
-                log.warning("contour error left out of the summary: the setpoints carry no programmed path")
-            else:
-                out["contour"] = {"max_um": float(c["max_um"]), "rms_um": float(c["rms_um"])}
+            out["contour"] = {"max_um": float(c["max_um"]), "rms_um": float(c["rms_um"])}
     return out
 
 

@@ -96,20 +96,9 @@ def notes_summary(program) -> str | None:
 
 
 def _machine(name: str):
-    import importlib
+    from vcnc.machine import load_machine
 
-    from vcnc.core.errors import VcncError
-
-    try:
-        mod = importlib.import_module("vcnc.machine")
-    except ModuleNotFoundError as exc:
-        if exc.name != "vcnc.machine":
-            raise
-        raise VcncError(
-            f"--machine {name!r}: machine definitions (vcnc.machine) are not available in this installation yet; "
-            "run without --machine to use the default limits"
-        ) from None
-    return mod.load_machine(name)
+    return load_machine(name)
 
 
 def plot_setpoints(setpoints, *, title: str | None = None):

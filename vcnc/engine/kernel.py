@@ -48,12 +48,6 @@ from vcnc.engine.layout import (
     LOAD_PHASE,
     MEASURE_TABLE,
     NOISE_STD,
-    OUT_CONTROL,
-    OUT_FRICTION,
-    OUT_MEASURED,
-    OUT_POSITION,
-    OUT_TABLE,
-    OUT_VELOCITY,
     PLANT_KIND,
     PP_FORCE,
     PP_PERIOD,
@@ -477,7 +471,3 @@ def simulate_axis(
         if not (abs(xm) < 1e9 and abs(vm) < 1e12):
             return k
     return -1
-
-
-# keep the output column names importable next to the kernel
-OUTPUT_COLUMNS = (OUT_MEASURED, OUT_TABLE, OUT_VELOCITY, OUT_CONTROL, OUT_FRICTION, OUT_POSITION)
