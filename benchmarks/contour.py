@@ -32,7 +32,7 @@ import interpolators  # noqa: E402
 import toolpaths  # noqa: E402
 from vcnc.contour import contour_error  # noqa: E402
 from vcnc.contour_compare import compare  # noqa: E402
-from vcnc.machine import load_machine  # noqa: E402
+from vcnc.engine.machine import load_machine  # noqa: E402
 
 
 def _program(repeats: int) -> str:

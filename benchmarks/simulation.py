@@ -17,7 +17,7 @@ import time
 import control
 import numpy as np
 
-from vcnc.machine import Machine, load_machine
+from vcnc.engine.machine import Machine, load_machine
 from vcnc.setpoints import Setpoints
 
 

@@ -43,7 +43,7 @@ SPEC = textwrap.dedent("""
 def run(workers: int, tmp: Path, tag: str) -> tuple[float, float, float, float, float]:
     """(points/s over the whole computation, points/s after the first result, wall s, median point
     time s, parallelism = sum of point times / computing time)."""
-    from vcnc.sweep import sweep
+    from vcnc.sweeps import sweep
 
     spec = tmp / "bench.toml"
     spec.write_text(SPEC)

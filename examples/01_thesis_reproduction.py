@@ -25,8 +25,8 @@ import interpolators
 from identification import ReducedAxisModel, identify
 from identification.synthetic import BALLSCREW_AXIAL_MODE, VALIDATION_PROGRAM, table_3_2_program
 from interpolators.limits import AxisLimits
+from vcnc.engine.machine import load_machine
 from vcnc.errors import MachineError
-from vcnc.machine import load_machine
 
 #: The paper's PID estimate (Table 4.1, LM): omega_n 38.21 Hz, zeta 0.42, p 1.89 Hz.
 PAPER_PID = {"omega_n_hz": 38.21, "zeta": 0.42, "p_hz": 1.89}

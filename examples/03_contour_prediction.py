@@ -22,7 +22,7 @@ import interpolators
 import toolpaths
 from identification import identify
 from vcnc.contour_compare import compare
-from vcnc.machine import load_machine
+from vcnc.engine.machine import load_machine
 
 
 def main(out: Path) -> None:

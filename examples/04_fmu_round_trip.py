@@ -17,8 +17,8 @@ from fmpy.validation import validate_fmu
 
 from identification import ReducedAxisModel, load_model
 from interpolators.limits import AxisLimits
+from vcnc.engine.machine import Machine
 from vcnc.fmu import FmuAxis, export_fmu
-from vcnc.machine import Machine
 from vcnc.setpoints import Setpoints
 
 TYPICAL = {"a1": 600.0, "a2": 1.5e5, "a3": 1.2e7, "b0": 0.02, "b1": 300.0, "b2": 1.4e5, "d0": 80.0, "d1": -70.0}

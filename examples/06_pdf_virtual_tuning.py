@@ -22,7 +22,7 @@ import numpy as np
 import interpolators
 import toolpaths
 from identification.gain_scales import PAPER_K1, PAPER_K2, overshoot, pdf_gain_scales
-from vcnc.machine import load_machine
+from vcnc.engine.machine import load_machine
 from vcnc.setpoints import Setpoints
 
 #: Settings compared by the paper (seed 004, Sec. 4).

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from vcnc.sweep import load_spec
+from vcnc.sweeps import load_spec
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

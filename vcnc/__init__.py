@@ -38,9 +38,9 @@ _LAZY: dict[str, str] = {
     "load_program": "interpolators:load_program",
     "parse_program": "interpolators:parse_program",
     "interpolate": "vcnc.facade:interpolate",
-    "machine": "vcnc.machine",  # a callable module: vcnc.machine("fadal-pid") loads a machine
-    "Machine": "vcnc.machine:Machine",
-    "machines": "vcnc.machine:builtin_machines",
+    "machine": "vcnc.engine.machine:load_machine",
+    "Machine": "vcnc.engine.machine:Machine",
+    "machines": "vcnc.engine.machine:builtin_machines",
     "identify": "identification:identify",
     "ReducedAxisModel": "identification:ReducedAxisModel",
     "load_model": "identification:load_model",
@@ -48,7 +48,7 @@ _LAZY: dict[str, str] = {
     "ContourReport": "vcnc.contour_compare:ContourReport",
     "contour_error": "vcnc.contour:contour_error",
     "export_fmu": "vcnc.fmu:export_fmu",
-    "sweep": "vcnc.sweep",  # a callable module: vcnc.sweep(spec, ...) runs a sweep
+    "sweep": "vcnc.sweeps:sweep",
 }
 
 __all__ = [
@@ -77,3 +77,7 @@ def __getattr__(name: str) -> Any:
     value = getattr(module, attr) if attr else module
     globals()[name] = value
     return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

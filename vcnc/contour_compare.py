@@ -394,7 +394,7 @@ def _plain(obj: Any) -> Any:
 
 # ------------------------------------------------------------------------------ inputs
 def _truth_machine(truth: Any):
-    from vcnc.machine import Machine, load_machine
+    from vcnc.engine.machine import Machine, load_machine
 
     if isinstance(truth, Machine):
         return truth
@@ -541,7 +541,7 @@ def _with_settle(sp: Setpoints, seconds: float) -> Setpoints:
 
 def _expand_machine(machine, axes: tuple[str, ...], notes: list[str]):
     """The machine itself, or a copy driving every axis of the toolpath with its single axis."""
-    from vcnc.machine import Machine
+    from vcnc.engine.machine import Machine
 
     missing = [a for a in axes if a not in machine.axes]
     if not missing:
@@ -662,7 +662,7 @@ def compare(
         notes.append(f"the toolpath moves only {', '.join(moving) or 'no axis'}: the contour error is the "
                      "deviation from a straight line")
     per_axis = _models_per_axis(models, axes)
-    from vcnc.machine import Machine
+    from vcnc.engine.machine import Machine
 
     identified = {a: _identified_part(m) for a, m in per_axis.items()}
     augmented = per_axis if any(identified[a] is not per_axis[a] for a in axes) else None

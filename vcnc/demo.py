@@ -127,7 +127,7 @@ def run_demo(
     import identification
     import interpolators
     import toolpaths
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     stages = _Stages(
         ["program", "simulate", "identify", "compare solvers", "diagnose", "contours", "fmu", "report"],

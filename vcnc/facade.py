@@ -9,7 +9,7 @@ from vcnc.core.setpoints import Setpoints
 
 if TYPE_CHECKING:  # pragma: no cover
     from interpolators import Program
-    from vcnc.machine import Machine
+    from vcnc.engine.machine import Machine
 
 __all__ = ["interpolate"]
 
@@ -43,7 +43,7 @@ def interpolate(
     ts = sample_time
     if machine is not None:
         if isinstance(machine, (str, os.PathLike)):
-            from vcnc.machine import load_machine
+            from vcnc.engine.machine import load_machine
 
             machine = load_machine(machine)
         limits = machine.limits

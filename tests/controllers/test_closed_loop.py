@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from controllers import frequency_response
-from vcnc.machine import builtin_machines, load_machine
+from vcnc.engine.machine import builtin_machines, load_machine
 from vcnc.setpoints import Setpoints
 
 FREQS = np.array([1.0, 3.0, 7.0, 13.0, 20.0, 30.0, 40.0, 50.0])

@@ -15,8 +15,8 @@ import pytest
 import controllers
 import drives
 from drives._record import Record
+from vcnc.engine.machine import load_machine
 from vcnc.errors import MachineError
-from vcnc.machine import load_machine
 from vcnc.setpoints import Setpoints
 
 BASE = load_machine("fadal-pid")

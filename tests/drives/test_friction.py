@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import drives
-from vcnc.machine import load_machine
+from vcnc.engine.machine import load_machine
 from vcnc.setpoints import Setpoints
 
 BASE = load_machine("fadal-pid")

@@ -120,7 +120,7 @@ def test_cli_identify_given_delay_is_printed(capture, tmp_path, capsys):
 def test_compare_runs_the_model_on_the_delayed_reference():
     """vcnc compare predicts with the model's simulate: a dead time delays the predicted contour."""
     from vcnc.contour_compare import compare
-    from vcnc.machine import Machine
+    from vcnc.engine.machine import Machine
 
     m = vcnc.machine("fadal-pid")
     models = {a: ReducedAxisModel(parameters=m.axis(a).reduced_parameters(), sample_time=m.sample_time, axis=a)

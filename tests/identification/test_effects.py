@@ -24,8 +24,8 @@ from identification.model_file import model_from_dict
 from identification.model_format import model_to_dict
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.synthetic import FADAL_PID_X, random_moves_reference
+from vcnc.engine.machine import EFFECTS as MACHINE_EFFECTS
 from vcnc.errors import InputError
-from vcnc.machine import EFFECTS as MACHINE_EFFECTS
 
 TS = 1e-3
 

@@ -81,7 +81,7 @@ def test_cli_says_when_the_poles_are_weakly_identifiable(tmp_path, capsys):
     identifiable, with the valley of the objective; a plain feedback loop gets no such line."""
     import interpolators
     from identification.synthetic import table_3_2_program
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     m = load_machine("ballscrew-zpetc")
     prog = interpolators.parse_program(table_3_2_program(moves=60))

@@ -140,7 +140,7 @@ def ppi_statistics():
     import interpolators
     from identification.regressor import statistics
     from identification.synthetic import table_3_2_program
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     m = load_machine("fadal-ppi")
     sp = interpolators.interpolate(interpolators.parse_program(table_3_2_program()), limits=m.limits,

@@ -18,7 +18,7 @@ from identification.gain_scales import PAPER_K1, PAPER_K2, pdf_gain_scales
 from identification.synthetic import BALLSCREW_AXIAL_MODE, VALIDATION_PROGRAM, table_3_2_program
 from interpolators.limits import AxisLimits
 from vcnc.contour_compare import compare
-from vcnc.machine import load_machine
+from vcnc.engine.machine import load_machine
 
 
 def validation_capture(machine):

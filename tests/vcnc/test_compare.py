@@ -24,8 +24,8 @@ from identification.diagnosis import diagnose
 from vcnc.capture import Capture
 from vcnc.cli import main
 from vcnc.contour_compare import compare
+from vcnc.engine.machine import Machine, load_machine
 from vcnc.errors import InputError
-from vcnc.machine import Machine, load_machine
 
 CASES = {  # machine: (toolpaths, feed [mm/s], acceleration [mm/s^2])
     "fadal-pid": (("circle", "diamond"), None, None),

@@ -445,7 +445,7 @@ def test_fmu_axis_input_and_output_selection(fmus):
 def test_round_trip_fmu_axis_is_the_true_machine(fmus, model, tmp_path):
     """Export, then let the FMU be an axis of a vcnc machine: the same capture as the model."""
     from interpolators.limits import AxisLimits
-    from vcnc.machine import Machine, load_machine
+    from vcnc.engine.machine import Machine, load_machine
     from vcnc.setpoints import Setpoints
 
     ref = np.column_stack([identification_reference(6_000, TS, seed=21, start=5.0),
@@ -469,7 +469,7 @@ def test_round_trip_fmu_axis_is_the_true_machine(fmus, model, tmp_path):
 
 
 def test_machine_file_naming_a_broken_fmu_is_a_machine_error(tmp_path):
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     (tmp_path / "broken.fmu").write_bytes(b"not a zip")
     toml = tmp_path / "m.toml"

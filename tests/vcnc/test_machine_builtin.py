@@ -6,8 +6,8 @@ import control
 import numpy as np
 import pytest
 
+from vcnc.engine.machine import builtin_machines, load_machine
 from vcnc.errors import MachineError
-from vcnc.machine import builtin_machines, load_machine
 
 NAMES = ["ballscrew-ppc", "ballscrew-zpetc", "chevalier-pdf", "emps", "fadal-pid", "fadal-ppi", "fadal-smc"]
 

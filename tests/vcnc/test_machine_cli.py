@@ -14,7 +14,7 @@ import vcnc
 from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
 from vcnc.commands.machines import PROGRAM_TABLE_DOC
-from vcnc.machine import builtin_machine_text, builtin_machines, load_machine
+from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
 from vcnc.setpoints import Setpoints
 
 PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"

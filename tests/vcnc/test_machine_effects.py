@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from vcnc.engine.machine import load_machine, reference_control
 from vcnc.errors import MachineError
-from vcnc.machine import load_machine, reference_control
 from vcnc.setpoints import Setpoints
 
 BASE = load_machine("fadal-pid").with_axis_options("x", backlash=None)
@@ -102,7 +102,7 @@ def test_stribeck_default() -> None:
 
 
 def test_machine_file_measurement_key() -> None:
-    from vcnc.machine import Machine, builtin_machine_text
+    from vcnc.engine.machine import Machine, builtin_machine_text
 
     text = builtin_machine_text("fadal-pid").replace(
         'feedback = "motor"          # rotary encoder on the motor (semi-closed loop)\n\n[axes.x.limits]',

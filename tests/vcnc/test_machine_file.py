@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
+from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import MachineError
-from vcnc.machine import builtin_machine_text, load_machine
 
 
 def write(tmp_path: Path, text: str) -> Path:

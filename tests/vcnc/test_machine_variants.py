@@ -7,8 +7,8 @@ import pytest
 
 import drives
 from interpolators.limits import AxisLimits
+from vcnc.engine.machine import EFFECTS, Machine, load_machine
 from vcnc.errors import InputError, MachineError
-from vcnc.machine import EFFECTS, Machine, load_machine
 from vcnc.setpoints import Setpoints
 
 BASE = load_machine("fadal-pid")

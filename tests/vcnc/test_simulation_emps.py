@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 import vcnc
-from vcnc.machine import load_machine
+from vcnc.engine.machine import load_machine
 from vcnc.setpoints import Setpoints
 
 

@@ -21,7 +21,7 @@ import cloudpickle
 import pytest
 
 from vcnc.cli import main
-from vcnc.sweep import read_results, sweep
+from vcnc.sweeps import read_results, sweep
 
 pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
 
@@ -195,7 +195,7 @@ def test_real_simulation_identification_and_failure(cluster, tmp_path):
 
 
 def test_cli_sweep_on_the_scheduler_and_bad_input(cluster, tmp_path, capsys):
-    from vcnc.machine import builtin_machine_text
+    from vcnc.engine.machine import builtin_machine_text
 
     text = builtin_machine_text("fadal-pid").replace('name = "fadal-pid"', 'name = "mill"')
     (tmp_path / "mill.toml").write_text(text)

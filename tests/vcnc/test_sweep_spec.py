@@ -7,7 +7,7 @@ import textwrap
 import pytest
 
 from vcnc.errors import InputError
-from vcnc.sweep.spec import MAGNITUDE_KEYS, load_spec, parse_spec
+from vcnc.sweeps.spec import MAGNITUDE_KEYS, load_spec, parse_spec
 
 
 def spec(text: str, **kw):
@@ -123,14 +123,14 @@ def test_unknown_machine_and_missing_files_are_input_errors(tmp_path):
 
 
 def test_every_effect_has_a_magnitude_parameter():
-    from vcnc.machine import EFFECTS
+    from vcnc.engine.machine import EFFECTS
 
     assert set(MAGNITUDE_KEYS) == set(EFFECTS)
 
 
 def test_machine_variant_applies_gain_noise_and_every_effect():
-    from vcnc.machine import EFFECTS, load_machine
-    from vcnc.sweep.point import machine_variant
+    from vcnc.engine.machine import EFFECTS, load_machine
+    from vcnc.sweeps.point import machine_variant
 
     base = load_machine("fadal-pid")
     pts = spec("""

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from vcnc.errors import InputError
-from vcnc.sweep.store import ResultStore, read_results
+from vcnc.sweeps.store import ResultStore, read_results
 
 
 def _row(i: int, **kw):

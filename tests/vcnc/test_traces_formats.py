@@ -41,7 +41,8 @@ def _sinumerik(path, t, ref, *, fe=None, meas=None, axis=7, meas_every=2):
     head = ['<?xml version="1.0" encoding="UTF-8"?>', '<traceSession version="1">', "<traceData>", "<dataFrame>",
             '<frameHeader name="frame1"/>',
             f'<dataSignal id="f1" key="s14" name="/Nck/!SD/nckServoDataCmdPos2ndEnc64 [u1, {axis}]" '
-            f'description="Position setpoint (64 bit)" interval="0.001000" datapointCount="{t.size}" unitsType="posn"/>',
+            f'description="Position setpoint (64 bit)" interval="0.001000" datapointCount="{t.size}" '
+            'unitsType="posn"/>',
             '<dataSignal id="f2" key="s15" name="/Nck/!SD/nckServoDataActVelMot64 [u1, 3]" '
             'description="Actual speed (64 bit)" interval="0.001000" unitsType="vel"/>']
     if fe is not None:

@@ -96,7 +96,7 @@ def notes_summary(program) -> str | None:
 
 
 def _machine(name: str):
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     return load_machine(name)
 

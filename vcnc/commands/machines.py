@@ -34,7 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from vcnc.machine import builtin_machine_text, builtin_machines, load_machine
+    from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
 
     if args.show:
         name = args.show

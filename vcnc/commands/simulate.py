@@ -29,7 +29,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     import interpolators
     from vcnc.core.io import atomic_path
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
     from vcnc.simulation_report import build_report, summarize
 
     machine = load_machine(args.machine)

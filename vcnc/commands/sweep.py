@@ -41,7 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import InputError
-    from vcnc.sweep import load_spec, sweep, write_plot
+    from vcnc.sweeps import load_spec, sweep, write_plot
 
     if args.plot and not args.plot.lower().endswith((".png", ".svg", ".pdf")):
         raise InputError("--plot must name a .png, .svg or .pdf file", file=args.plot)

@@ -1,2 +1,2 @@
-"""The simulation engine under `vcnc.machine`: axis definitions, the machine file, the data layout
-and the compiled kernel that runs the drives."""
+"""The simulation engine: :class:`~vcnc.engine.machine.Machine` (``vcnc.machine(name)`` loads one),
+axis definitions, the machine file, the data layout, FMU axes and the compiled kernel."""

@@ -35,7 +35,7 @@ NONIDEALITY_FIELDS: tuple[str, ...] = (
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class AxisDefinition:
-    """One axis of a :class:`vcnc.machine.Machine`.
+    """One axis of a :class:`vcnc.engine.machine.Machine`.
 
     Parameters
     ----------

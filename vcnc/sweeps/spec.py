@@ -15,7 +15,7 @@ Schema (also in ``docs/sweep.md``)::
     feed = {min = 3000, max = 12000, num = 4}   # [mm/min]; not used by program files
     gain = [0.8, 1.0, 1.25]  # scale of the controller's feedback gains [-]
     noise = [0, 1e-4]        # measurement noise std on every axis [mm] (0: none); absent: the machine's
-    effect = ["none", "backlash"]      # diagnosis vocabulary (vcnc.machine.EFFECTS) or "none"
+    effect = ["none", "backlash"]      # diagnosis vocabulary (vcnc.engine.machine.EFFECTS) or "none"
     magnitude = [0.005, 0.02]          # size of the effect's main parameter (unit per effect)
     seed = {min = 0, max = 9, num = 10}  # seed of the simulated measurement noise
 
@@ -40,7 +40,7 @@ The main parameter that ``magnitude`` sets, per effect (:data:`MAGNITUDE_KEYS`):
 [mm], friction_stribeck static/Coulomb ratio [-], friction_viscous_asymmetric asymmetry [-],
 position_periodic and time_periodic force amplitude [N], resonance load fraction [-], delay
 [samples], saturation voltage limit [V], drift rate [mm/s]. Without ``magnitude`` the effect gets
-the realistic default of :func:`vcnc.machine.realistic_effect`.
+the realistic default of :func:`vcnc.engine.machine.realistic_effect`.
 
 Each point has a stable id: a hash of everything that determines its result (parameters,
 toolpath geometry, outputs, and the content of machine and program files). Points that come out
@@ -81,7 +81,7 @@ BUILTIN_TOOLPATHS: tuple[str, ...] = ("circle", "diamond", "identification")
 PROFILES: tuple[str, ...] = ("trapezoid", "scurve")
 METHODS: tuple[str, ...] = ("exact", "ga", "kkt")
 
-#: effect -> the parameter of :func:`vcnc.machine.realistic_effect` that ``magnitude`` sets
+#: effect -> the parameter of :func:`vcnc.engine.machine.realistic_effect` that ``magnitude`` sets
 MAGNITUDE_KEYS: dict[str, str] = {
     "friction_stribeck": "static_ratio",
     "friction_viscous_asymmetric": "asymmetry",
@@ -211,7 +211,7 @@ class SweepSpec:
 
     def _check_machines(self, machines: Mapping[str, str], files: _FileCache) -> None:
         # a bad machine is bad input of the whole sweep: found here, not once per point on a worker
-        from vcnc.machine import load_machine
+        from vcnc.engine.machine import load_machine
 
         for name, ref in machines.items():
             try:
@@ -498,7 +498,7 @@ class _Validator:
         if spec.kind == "str":
             s = self.string("parameters", name, value)
             if name == "effect":
-                from vcnc.machine import EFFECTS
+                from vcnc.engine.machine import EFFECTS
 
                 self.choice("parameters", name, s, ("none", *EFFECTS))
             return s

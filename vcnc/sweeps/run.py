@@ -21,8 +21,8 @@ from typing import Any
 import pyarrow as pa
 
 from vcnc.core.errors import InputError, VcncError
-from vcnc.sweep.spec import SweepSpec, load_spec
-from vcnc.sweep.store import ResultStore
+from vcnc.sweeps.spec import SweepSpec, load_spec
+from vcnc.sweeps.store import ResultStore
 
 __all__ = ["sweep", "SweepResult", "PointFunction"]
 
@@ -47,7 +47,7 @@ class SweepResult:
     ----------
     table : pyarrow.Table
         One row per point (this run's and earlier runs'): parameters, ``status``, ``error``,
-        metrics and timings (columns in :data:`vcnc.sweep.store.COLUMNS`).
+        metrics and timings (columns in :data:`vcnc.sweeps.store.COLUMNS`).
     path : Path
         The results file.
     computed : int
@@ -91,8 +91,8 @@ class SweepResult:
         return self.table.to_pandas()
 
     def plot(self, ax=None):  # noqa: ANN001, ANN201 - matplotlib
-        """Summary plot (:func:`vcnc.sweep.plot.plot_summary`); returns the Figure."""
-        from vcnc.sweep.plot import plot_summary
+        """Summary plot (:func:`vcnc.sweeps.plot.plot_summary`); returns the Figure."""
+        from vcnc.sweeps.plot import plot_summary
 
         return plot_summary(self.table, ax=ax)
 
@@ -186,7 +186,7 @@ def sweep(
     Parameters
     ----------
     spec : SweepSpec or path
-        The sweep (a spec TOML file, schema in :mod:`vcnc.sweep.spec`).
+        The sweep (a spec TOML file, schema in :mod:`vcnc.sweeps.spec`).
     output : path
         ``*.parquet`` or ``*.csv``. Points whose id is already in it (or in its journal
         ``<output>.partial.jsonl`` left by an interrupted run) are not computed again.
@@ -199,7 +199,7 @@ def sweep(
     retry_failed : bool
         Compute again the points recorded with ``status = "error"``.
     point_function : callable, optional
-        Runs on the workers: task dict in, row out (default :func:`vcnc.sweep.point.run_point`,
+        Runs on the workers: task dict in, row out (default :func:`vcnc.sweeps.point.run_point`,
         the real simulation). Must be importable by the workers.
     callback : callable, optional
         Called on the client with each row right after it is written (e.g. to watch progress).
@@ -240,7 +240,7 @@ def sweep(
         table = store.consolidate()
         return SweepResult(table=table, path=store.output, skipped=skipped)
     if point_function is None:
-        from vcnc.sweep.point import run_point
+        from vcnc.sweeps.point import run_point
 
         point_function = run_point
     with _quiet_distributed(), _client(scheduler, workers, len(todo)) as client:

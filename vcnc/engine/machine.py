@@ -31,7 +31,6 @@ import numpy as np
 import drives
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.limits import AxisLimits
-from vcnc._callable import make_callable
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError, MachineError, SimulationError
 from vcnc.core.setpoints import AXIS_NAMES, Setpoints
@@ -646,8 +645,3 @@ def reference_control(
     if status >= 0:
         raise MachineError(f"axis {axis.name}: the reference identification test diverged at sample {status}")
     return out[:, 3].copy()
-
-
-
-# ``vcnc.machine`` is both this module and the facade function: calling the module loads a machine.
-make_callable(__name__, load_machine)

@@ -26,10 +26,10 @@ FEEDBACK_GAINS: tuple[str, ...] = ("kp", "ki", "kd")
 
 
 @functools.lru_cache(maxsize=16)
-def _base_machine(ref: str, digest: str | None):  # noqa: ANN202 - vcnc.machine.Machine, imported lazily
+def _base_machine(ref: str, digest: str | None):  # noqa: ANN202 - vcnc.engine.machine.Machine, imported lazily
     # ``digest`` (of a machine file's content) is part of the key: a long-lived worker must not
     # reuse a machine whose file has changed since
-    from vcnc.machine import load_machine
+    from vcnc.engine.machine import load_machine
 
     return load_machine(ref)
 
@@ -39,10 +39,10 @@ def machine_variant(task: Mapping[str, Any]):  # noqa: ANN201 - Machine
 
     ``gain`` scales the feedback gains (:data:`FEEDBACK_GAINS`) of every axis' controller;
     ``noise`` [mm] replaces the measurement noise of every axis (0 removes it); ``effect`` is added
-    to the sweep axis at ``magnitude`` (see :data:`vcnc.sweep.spec.MAGNITUDE_KEYS`).
+    to the sweep axis at ``magnitude`` (see :data:`vcnc.sweeps.spec.MAGNITUDE_KEYS`).
     """
     from vcnc.engine.axis import AxisDefinition
-    from vcnc.sweep.spec import MAGNITUDE_KEYS
+    from vcnc.sweeps.spec import MAGNITUDE_KEYS
 
     m = _base_machine(task["machine_ref"], task.get("machine_digest"))
     gain = task.get("gain", 1.0)

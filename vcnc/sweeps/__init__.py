@@ -10,7 +10,7 @@
 
 A sweep is a grid or a random sample over machines, controller gain scales, feeds, toolpaths,
 measurement noise, injected effects and their magnitude, and noise seeds (spec schema in
-:mod:`vcnc.sweep.spec` and ``docs/sweep.md``). Each point simulates the machine variant on the
+:mod:`vcnc.sweeps.spec` and ``docs/sweep.md``). Each point simulates the machine variant on the
 toolpath and records tracking and contour errors; optionally it identifies the axis (error of the
 identified poles and parameters against the true loop) and diagnoses it (was the injected effect
 named?). Results are appended as points finish; an interrupted sweep resumes without computing
@@ -23,11 +23,10 @@ point), ``store.py`` (journal and results file), ``run.py`` (the Dask client sid
 
 from __future__ import annotations
 
-from vcnc._callable import make_callable
-from vcnc.sweep.plot import plot_summary, write_plot
-from vcnc.sweep.run import PointFunction, SweepResult, sweep
-from vcnc.sweep.spec import MAGNITUDE_KEYS, SweepSpec, load_spec, parse_spec
-from vcnc.sweep.store import COLUMNS, read_results
+from vcnc.sweeps.plot import plot_summary, write_plot
+from vcnc.sweeps.run import PointFunction, SweepResult, sweep
+from vcnc.sweeps.spec import MAGNITUDE_KEYS, SweepSpec, load_spec, parse_spec
+from vcnc.sweeps.store import COLUMNS, read_results
 
 __all__ = [
     "sweep",
@@ -42,7 +41,3 @@ __all__ = [
     "COLUMNS",
     "MAGNITUDE_KEYS",
 ]
-
-
-# ``vcnc.sweep`` is both this module and the facade function: calling the module calls sweep().
-make_callable(__name__, sweep)
