@@ -430,6 +430,12 @@ def _models_per_axis(models: Any, axes: tuple[str, ...]) -> dict[str, Any]:
             log.info("models for axes %s are not used: the toolpath moves %s", unknown, axes)
         return {a: _load_one(models[a], f"model of axis {a}") for a in axes}
     one = _load_one(models, "model")
+    own = getattr(one, "axis", None)
+    borrowed = [a for a in axes if own is not None and a != own]
+    if borrowed:
+        log.warning("the model of axis %s stands in for axis %s, which has no model of its own: the prediction "
+                    "assumes the axes are alike (give --model %s=FILE for each axis)", own, ", ".join(borrowed),
+                    "/".join(borrowed))
     return {a: one for a in axes}
 
 
@@ -447,6 +453,12 @@ def _identified_part(model: Any):
     if reduced is not None and hasattr(reduced, "simulate_reference"):
         return reduced
     return model
+
+
+def _stand_in(model: Any, axis: str) -> str:
+    """A note when ``model`` was identified on another axis than the one it predicts."""
+    own = getattr(model, "axis", None)
+    return f" (the model of axis {own}: axis {axis} has none of its own)" if own not in (None, axis) else ""
 
 
 def _describe(model: Any) -> str:
@@ -700,7 +712,7 @@ def compare(
         if not np.all(np.isfinite(pred)):
             raise InputError(f"the {label} model prediction is not finite (an unstable model?)")
         predicted[label] = contour_error(path, pred, axes, **kw)
-        descr[label] = {a: _describe(m) for a, m in mods.items()}
+        descr[label] = {a: _describe(m) + _stand_in(m, a) for a, m in mods.items()}
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=tp_name, truth=truth_name, setpoints=sp, true=true_ce, predicted=predicted,

@@ -187,9 +187,21 @@ def test_one_model_for_all_axes_and_from_files(tmp_path):
     r1 = compare(truth, str(tmp_path / "mx.json"), "circle", feed=100.0)
     r2 = compare(truth, {"x": models["x"], "y": models["x"]}, "circle", feed=100.0)
     np.testing.assert_array_equal(r1.predicted["identified"].error, r2.predicted["identified"].error)
+    # issue #21: a model standing in for an axis without one is said, in the log and the report
+    assert "axis y has none of its own" in r1.models["identified"]["y"]
+    assert "none of its own" not in r1.models["identified"]["x"]
     with pytest.raises(InputError, match="no model for axis y"):
         compare(truth, {"x": models["x"]}, "circle")
 
+
+
+def test_cli_one_model_for_two_axes_warns(tmp_path, caplog):
+    truth, models = _exact_machine()
+    models["x"].to_json(tmp_path / "mx.json")
+    with caplog.at_level("WARNING"):
+        assert main(["compare", "--truth", "fadal-pid", "--model", str(tmp_path / "mx.json"), "--toolpath",
+                     "diamond", "--json", str(tmp_path / "c.json")]) == 0
+    assert "the model of axis x stands in for axis y" in caplog.text
 
 def test_program_file_and_real_capture_as_truth(tmp_path):
     truth, models = _exact_machine()
