@@ -46,7 +46,7 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
                 f"column {name!r} is not finite at sample {int(bad[0])} (value {arr[bad[0]]!r})", file=src
             )
     check_sampling(t, src or "<capture>")
-    T = float(np.median(np.diff(t)))
+    T = capture.sample_time  # the nominal period (time stamps as decimals give 0.0010000000000000009)
     span = float(np.ptp(xr))
     if span == 0.0 and float(np.ptp(x)) == 0.0:
         raise IdentificationError(

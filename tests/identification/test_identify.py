@@ -35,6 +35,8 @@ def test_identify_small_capture(small_capture):
     assert m.fit["rms_um"] > 0 and m.fit["solver"]["success"]
     assert m.bounds == {"p_hz": (0.2, 500.0), "omega_n_hz": (0.2, 500.0), "zeta": (0.2, 2.0)}  # Sec. 4.3
     assert m.effects == [] and m.validation == {}
+    # the capture's nominal period, not the mean step of decimal time stamps (0.0010000000000000009)
+    assert m.sample_time == 0.001 and m.to_dict()["sample_time"] == 0.001
 
 
 @pytest.mark.parametrize(
