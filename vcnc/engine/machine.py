@@ -29,6 +29,8 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 
 import drives
+from drives.effects import EFFECT_NAMES
+from drives.effects import EFFECTS as EFFECT_REGISTRY
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.limits import AxisLimits
 from vcnc.core.capture import Capture
@@ -455,18 +457,9 @@ def _load_fmu_axis(path: str, *, file: str, line: int | None) -> ExternalAxis:
 
 
 # ---------------------------------------------------------------------- effects
-#: diagnosis effect names (ARCHITECTURE.md) that :meth:`Machine.with_effect` can add
-EFFECTS: tuple[str, ...] = (
-    "friction_stribeck",
-    "friction_viscous_asymmetric",
-    "backlash",
-    "position_periodic",
-    "time_periodic",
-    "resonance",
-    "delay",
-    "saturation",
-    "drift",
-)
+#: diagnosis effect names (ARCHITECTURE.md; the registry :mod:`drives.effects`) that
+#: :meth:`Machine.with_effect` can add
+EFFECTS: tuple[str, ...] = EFFECT_NAMES
 
 
 def realistic_effect(
@@ -525,89 +518,136 @@ def realistic_effect(
     ``sample_time`` [s] is the servo period used for the saturation reference move (the machine's,
     when called through :meth:`Machine.with_effect`; default 1 ms, or the discrete plant's).
     """
-    if effect not in EFFECTS:
+    info = EFFECT_REGISTRY.get(effect)
+    if info is None:
         raise MachineError(f"unknown effect {effect!r}; expected one of: {', '.join(EFFECTS)}")
-    p = dict(parameters or {})
-
-    def get(key: str, default: float) -> float:
-        return float(p.pop(key, default))
-
-    def choice(key: str, default: str, allowed: tuple[str, ...]) -> str:
-        v = p.pop(key, default)
-        if v not in allowed:
-            raise MachineError(f"effect {effect!r}: {key} must be one of {', '.join(map(repr, allowed))}, got {v!r}")
-        return str(v)
-
-    fpv = axis.drive.force_per_volt
-    out: dict[str, Any]
-    if effect in ("friction_stribeck", "friction_viscous_asymmetric", "position_periodic", "time_periodic",
-                  "resonance", "backlash") and axis.discrete_plant:
+    if info.needs_plant and axis.discrete_plant:
         raise MachineError(
             f"effect {effect!r} needs a physical plant; axis {axis.name} is a discrete transfer function"
         )
-    if effect == "friction_stribeck":
-        f = axis.friction or drives.Friction(coulomb_positive=0.02 * fpv, coulomb_negative=0.02 * fpv)
-        ratio = get("static_ratio", 2.0)
-        out = {"friction": dataclasses.replace(
-            f,
-            static_positive=f.coulomb_positive * ratio,
-            static_negative=f.coulomb_negative * ratio,
-            stribeck_velocity=get("stribeck_velocity_mm_s", 5.0),
-        ), "substeps": max(axis.substeps, 10)}
-    elif effect == "friction_viscous_asymmetric":
-        f = axis.friction or drives.Friction()
-        b = axis.drive.viscous_rate * axis.drive.equivalent_mass
-        if b == 0:
-            b = 0.5 * axis.drive.equivalent_mass
-        a = get("asymmetry", 0.3)
-        out = {"friction": dataclasses.replace(f, viscous_positive=b * (1 - a), viscous_negative=b * (1 + a))}
-    elif effect == "backlash":
-        out = {"backlash": drives.Backlash(width=get("width_mm", 0.01))}
-        fb = choice("feedback", "table", ("table", "motor", "axis"))
-        if fb == "table":
-            out["feedback"] = "table"
-        elif fb == "motor":
-            out["feedback"] = "motor"
-            out["measurement"] = "table"
-    elif effect == "position_periodic":
-        lead = getattr(axis.drive, "lead", 10.0)
-        out = {"position_periodic": drives.PositionPeriodic(
-            period=get("period_mm", lead),
-            force_amplitude=get("amplitude_n", 0.05 * fpv),
-            position_amplitude=get("position_amplitude_mm", 0.0),
-        )}
-    elif effect == "time_periodic":
-        old = axis.load or drives.ExternalLoad()
-        out = {"load": dataclasses.replace(old, amplitude=get("amplitude_n", 0.1 * fpv), period=get("period_s", 0.5))}
-    elif effect == "resonance":
-        out = {"resonance": drives.StructuralMode(
-            frequency_hz=get("frequency_hz", 60.0),
-            damping=get("damping", 0.05),
-            load_fraction=get("load_fraction", 0.5),
-        )}
-    elif effect == "delay":
-        out = {"delay": drives.ComputationalDelay(samples=int(get("samples", 2)))}
-    elif effect == "saturation":
-        if "voltage_limit_v" in p:
-            if "saturated_fraction" in p:
-                raise MachineError("effect 'saturation': give voltage_limit_v or saturated_fraction, not both")
-            limit = get("voltage_limit_v", 0.0)
-        else:
-            frac = get("saturated_fraction", 0.03)
-            if not 0.0 < frac < 1.0:
-                raise MachineError(f"effect 'saturation': saturated_fraction must be in (0, 1), got {frac!r}")
-            u = np.abs(reference_control(axis, sample_time))
-            limit = float(np.quantile(u, 1.0 - frac))
-            if not (math.isfinite(limit) and limit > 0):
-                raise MachineError(f"axis {axis.name}: the reference test gives no control level to saturate; "
-                                   "give the saturation effect an explicit voltage_limit_v")
-        out = {"saturation": drives.Saturation(voltage_limit=limit)}
-    else:  # drift
-        out = {"drift": drives.Drift(rate=get("rate_mm_s", 2e-4), time_constant=get("time_constant_s", 0.0))}
-        out["measurement"] = choice("measurement", "table", ("table", "feedback"))
-    if p:
-        raise MachineError(f"unknown parameter(s) {sorted(p)} for effect {effect!r}")
+    p = _EffectParameters(effect, parameters)
+    out = _REALISTIC[effect](axis, p, sample_time)
+    p.all_used()
     return out
+
+
+class _EffectParameters:
+    """The caller's parameters of one effect, taken one by one with their defaults."""
+
+    def __init__(self, effect: str, parameters: Mapping[str, Any] | None) -> None:
+        self.effect = effect
+        self.left = dict(parameters or {})
+
+    def get(self, key: str, default: float) -> float:
+        return float(self.left.pop(key, default))
+
+    def choice(self, key: str, default: str, allowed: tuple[str, ...]) -> str:
+        v = self.left.pop(key, default)
+        if v not in allowed:
+            raise MachineError(f"effect {self.effect!r}: {key} must be one of {', '.join(map(repr, allowed))}, "
+                               f"got {v!r}")
+        return str(v)
+
+    def all_used(self) -> None:
+        if self.left:
+            raise MachineError(f"unknown parameter(s) {sorted(self.left)} for effect {self.effect!r}")
+
+
+def _stribeck(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    fpv = axis.drive.force_per_volt
+    f = axis.friction or drives.Friction(coulomb_positive=0.02 * fpv, coulomb_negative=0.02 * fpv)
+    ratio = p.get("static_ratio", 2.0)
+    return {"friction": dataclasses.replace(
+        f,
+        static_positive=f.coulomb_positive * ratio,
+        static_negative=f.coulomb_negative * ratio,
+        stribeck_velocity=p.get("stribeck_velocity_mm_s", 5.0),
+    ), "substeps": max(axis.substeps, 10)}
+
+
+def _viscous_asymmetric(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    f = axis.friction or drives.Friction()
+    b = axis.drive.viscous_rate * axis.drive.equivalent_mass
+    if b == 0:
+        b = 0.5 * axis.drive.equivalent_mass
+    a = p.get("asymmetry", 0.3)
+    return {"friction": dataclasses.replace(f, viscous_positive=b * (1 - a), viscous_negative=b * (1 + a))}
+
+
+def _backlash(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    out: dict[str, Any] = {"backlash": drives.Backlash(width=p.get("width_mm", 0.01))}
+    fb = p.choice("feedback", "table", ("table", "motor", "axis"))
+    if fb == "table":
+        out["feedback"] = "table"
+    elif fb == "motor":
+        out["feedback"] = "motor"
+        out["measurement"] = "table"
+    return out
+
+
+def _position_periodic(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    lead = getattr(axis.drive, "lead", 10.0)
+    return {"position_periodic": drives.PositionPeriodic(
+        period=p.get("period_mm", lead),
+        force_amplitude=p.get("amplitude_n", 0.05 * axis.drive.force_per_volt),
+        position_amplitude=p.get("position_amplitude_mm", 0.0),
+    )}
+
+
+def _time_periodic(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    old = axis.load or drives.ExternalLoad()
+    return {"load": dataclasses.replace(old, amplitude=p.get("amplitude_n", 0.1 * axis.drive.force_per_volt),
+                                        period=p.get("period_s", 0.5))}
+
+
+def _resonance(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    return {"resonance": drives.StructuralMode(
+        frequency_hz=p.get("frequency_hz", 60.0),
+        damping=p.get("damping", 0.05),
+        load_fraction=p.get("load_fraction", 0.5),
+    )}
+
+
+def _delay(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    return {"delay": drives.ComputationalDelay(samples=int(p.get("samples", 2)))}
+
+
+def _saturation(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    if "voltage_limit_v" in p.left:
+        if "saturated_fraction" in p.left:
+            raise MachineError("effect 'saturation': give voltage_limit_v or saturated_fraction, not both")
+        limit = p.get("voltage_limit_v", 0.0)
+    else:
+        frac = p.get("saturated_fraction", 0.03)
+        if not 0.0 < frac < 1.0:
+            raise MachineError(f"effect 'saturation': saturated_fraction must be in (0, 1), got {frac!r}")
+        u = np.abs(reference_control(axis, sample_time))
+        limit = float(np.quantile(u, 1.0 - frac))
+        if not (math.isfinite(limit) and limit > 0):
+            raise MachineError(f"axis {axis.name}: the reference test gives no control level to saturate; "
+                               "give the saturation effect an explicit voltage_limit_v")
+    return {"saturation": drives.Saturation(voltage_limit=limit)}
+
+
+def _drift(axis: AxisDefinition, p: _EffectParameters, sample_time: float | None) -> dict[str, Any]:
+    out: dict[str, Any] = {"drift": drives.Drift(rate=p.get("rate_mm_s", 2e-4),
+                                                 time_constant=p.get("time_constant_s", 0.0))}
+    out["measurement"] = p.choice("measurement", "table", ("table", "feedback"))
+    return out
+
+
+#: effect name -> the builder of its realistic default (the registry's parameters, with defaults).
+_REALISTIC = {
+    "friction_stribeck": _stribeck,
+    "friction_viscous_asymmetric": _viscous_asymmetric,
+    "backlash": _backlash,
+    "position_periodic": _position_periodic,
+    "time_periodic": _time_periodic,
+    "resonance": _resonance,
+    "delay": _delay,
+    "saturation": _saturation,
+    "drift": _drift,
+}
 
 
 def reference_control(

@@ -14,6 +14,7 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
+from drives.effects import EFFECTS as EFFECT_REGISTRY
 from vcnc.core.errors import ExportError, InputError, ModelFileError
 from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, MAX_REF_DELAY, Variable, variables
 
@@ -21,23 +22,8 @@ __all__ = ["ExportSpec", "REPRESENTABLE_EFFECTS", "export_spec"]
 
 PARAMETER_NAMES = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
 
-#: effect name (identification.effects vocabulary) -> how the FMU represents it (its FMU parameters)
-REPRESENTABLE_EFFECTS: dict[str, str] = {
-    "friction_stribeck": "(PV s+ + NV s-) exp(-(v/v_s)^2) in w: stribeck_velocity, stribeck_excess_positive, "
-                         "stribeck_excess_negative",
-    "friction_viscous_asymmetric": "k_a |v| in w: viscous_asymmetry",
-    "position_periodic": "Fourier series in x in w: position_period, position_periodic_sin_<h>/_cos_<h> "
-                         "(harmonics fixed at export)",
-    "time_periodic": "Fourier series in t in w: time_period, time_mean, time_periodic_sin_<h>/_cos_<h> "
-                     "(harmonics fixed at export; t from initialisation)",
-    "drift": "rate * t added to the measured position: drift_rate",
-    "delay": "control action delayed by whole samples in the split loop: delay_samples, plant_viscous_rate",
-    "saturation": "acceleration demand clipped in the split loop: saturation_limit, plant_viscous_rate",
-    "backlash": "play between the driven mass and the measured position in the split loop: backlash_width, "
-                "plant_viscous_rate",
-    "resonance": "two-mass plant in the split loop: resonance_frequency, resonance_damping, "
-                 "resonance_table_fraction, plant_viscous_rate (measured_at fixed at export)",
-}
+#: effect name -> how the FMU represents it (its FMU parameters): every effect of the registry
+REPRESENTABLE_EFFECTS: dict[str, str] = {name: info.fmu for name, info in EFFECT_REGISTRY.items()}
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -63,6 +63,7 @@ from typing import Any
 
 import numpy as np
 
+from drives.effects import EFFECTS as EFFECT_REGISTRY
 from vcnc.core.errors import InputError
 
 __all__ = [
@@ -82,17 +83,8 @@ PROFILES: tuple[str, ...] = ("trapezoid", "scurve")
 METHODS: tuple[str, ...] = ("exact", "ga", "kkt")
 
 #: effect -> the parameter of :func:`vcnc.engine.machine.realistic_effect` that ``magnitude`` sets
-MAGNITUDE_KEYS: dict[str, str] = {
-    "friction_stribeck": "static_ratio",
-    "friction_viscous_asymmetric": "asymmetry",
-    "backlash": "width_mm",
-    "position_periodic": "amplitude_n",
-    "time_periodic": "amplitude_n",
-    "resonance": "load_fraction",
-    "delay": "samples",
-    "saturation": "voltage_limit_v",
-    "drift": "rate_mm_s",
-}
+#: (the registry :mod:`drives.effects`)
+MAGNITUDE_KEYS: dict[str, str] = {name: info.magnitude for name, info in EFFECT_REGISTRY.items()}
 
 
 @dataclasses.dataclass(frozen=True)
