@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
+from toolpaths.packed import PackedSegments
 from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
 from vcnc.core.errors import InputError
 
@@ -100,36 +101,10 @@ class _Geometry:
         return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end
 
 
-def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
-    """Pack ``path``, with the coordinates of absent axes set to zero."""
-    mask = np.array([1.0 if p else 0.0 for p in present])
-    M = len(path.segments)
-    kind = np.zeros(M, dtype=np.int64)
-    start = np.zeros((M, 3))
-    end = np.zeros((M, 3))
-    direc = np.zeros((M, 3))
-    length = np.zeros(M)
-    center = np.zeros((M, 3))
-    ep = np.zeros((M, 3))
-    eq = np.zeros((M, 3))
-    en = np.zeros((M, 3))
-    radius = np.zeros(M)
-    phi0 = np.zeros(M)
-    sweep = np.zeros(M)
-    helix = np.zeros(M)
-    frame = np.zeros((M, 4, 3))
-    sharp = np.zeros(M)
-    corner = np.zeros((M, 3))
+def _check_projectable(path: Path, present: Sequence[bool]) -> None:
+    """InputError unless every segment of ``path`` projects onto the axes ``present``."""
     for i, seg in enumerate(path.segments):
-        a, b = np.asarray(seg.start) * mask, np.asarray(seg.end) * mask
-        start[i], end[i] = a, b
-        if isinstance(seg, Line):
-            kind[i] = LINE
-            d = b - a
-            L = float(np.sqrt(d @ d))
-            length[i] = L
-            direc[i] = d / L if L > 0 else 0.0
-        elif isinstance(seg, Arc):
+        if isinstance(seg, Arc):
             p, q = seg.plane_axes
             if not (present[p] and present[q]):
                 raise InputError(
@@ -137,15 +112,6 @@ def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
                     f"no {AXIS_LETTERS[p] if not present[p] else AXIS_LETTERS[q]} axis; "
                     "an arc cannot be projected onto the axes given"
                 )
-            kind[i] = ARC
-            center[i] = np.asarray(seg.center) * mask
-            ep[i, p] = eq[i, q] = 1.0
-            en[i, seg.plane] = 1.0
-            radius[i] = seg.radius
-            phi0[i] = seg.start_angle
-            sweep[i] = seg.sweep
-            helix[i] = seg.helix if present[seg.plane] else 0.0
-            length[i] = math.hypot(seg.radius * abs(seg.sweep), helix[i])
         elif isinstance(seg, ClothoidPair):
             fr = np.array([seg.u_in, seg.w_in, seg.u_out, seg.w_out])
             if np.any(fr[:, [k for k in range(3) if not present[k]]] != 0.0):
@@ -153,13 +119,37 @@ def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
                     f"segment {i} is a corner blend that moves an axis the positions do not have; "
                     "give positions for every axis the program moves"
                 )
-            kind[i] = CLOTHOID
-            frame[i] = fr
-            sharp[i] = seg.sharpness
-            length[i] = seg.length
-            corner[i] = np.asarray(seg.corner) * mask
-        else:
+        elif not isinstance(seg, Line):
             raise InputError(f"segment {i} of the path is not a Line, Arc or ClothoidPair: {type(seg).__name__}")
+
+
+def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
+    """Pack ``path`` (:class:`toolpaths.packed.PackedSegments`), with the coordinates of absent
+    axes set to zero."""
+    _check_projectable(path, present)
+    ps = PackedSegments.from_segments(path.segments)
+    mask = np.array([1.0 if p else 0.0 for p in present])
+    M = len(ps)
+    kind = ps.kind  # the contour kernel uses the packer's kinds (lines, arcs, clothoid blends; no holds here)
+    start, end, center = ps.start * mask, ps.end * mask, ps.center * mask
+    ep, eq, en = ps.e_p, ps.e_q, ps.e_n
+    radius, phi0, sweep = ps.radius, ps.start_angle, ps.sweep
+    helix = np.where(en @ mask > 0, ps.helix, 0.0)
+    frame = ps.frame if ps.frame is not None else np.zeros((M, 4, 3))
+    sharp = ps.sharpness if ps.sharpness is not None else np.zeros(M)
+    direc = np.zeros((M, 3))
+    length = ps.length.copy()
+    corner = np.zeros((M, 3))
+    for i, seg in enumerate(path.segments):
+        if kind[i] == LINE:
+            d = end[i] - start[i]
+            L = float(np.sqrt(d @ d))
+            length[i] = L
+            direc[i] = d / L if L > 0 else 0.0
+        elif kind[i] == ARC:
+            length[i] = math.hypot(seg.radius * abs(seg.sweep), helix[i])
+        else:
+            corner[i] = np.asarray(seg.corner) * mask
     cum = np.concatenate([[0.0], np.cumsum(length)])
     sphere_c = np.where((kind == LINE)[:, None], 0.5 * (start + end), center + 0.5 * helix[:, None] * en)
     sphere_r = np.where(kind == LINE, 0.5 * length, np.hypot(radius, 0.5 * helix))

@@ -20,9 +20,9 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["LINE", "ARC", "CLOTHOID", "locate", "nearest", "TIE_MM"]
+from toolpaths.packed import ARC, CLOTHOID, LINE
 
-LINE, ARC, CLOTHOID = 0, 1, 2
+__all__ = ["LINE", "ARC", "CLOTHOID", "locate", "nearest", "TIE_MM"]
 
 #: Distances closer than this [mm] count as equal; ties go to the candidate nearest in arc length
 #: to the hint (the commanded position), which separates coincident geometry (a circle run twice).
