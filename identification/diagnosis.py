@@ -66,6 +66,7 @@ from identification.residual import motion_coherence
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
+from vcnc.core.jsonsafe import plain
 
 __all__ = [
     "report_figure",
@@ -658,7 +659,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
                    "idle_samples": int(plan.active.size - plan.active.sum()),
                    "segments_s": [[a * T, b * T] for a, b in segs[:50]], "segments": len(segs)},
         "samples": {"identification": int(plan.active.sum()), "validation": int(sum(counts))},
-        "rounds": _jsonable(rounds),
+        "rounds": plain(rounds),
     }
     if plan.warnings:
         validation["warnings"] = list(plan.warnings)
@@ -693,7 +694,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
             "validation_max_after_um": s.validation_max_um,
             "description": e.DESCRIPTION,
             "summary": e.summary(),
-            "evidence": _jsonable(s.evidence),
+            "evidence": plain(s.evidence),
         })
         records.append(rec)
     fit = dict(model.fit)
@@ -732,18 +733,6 @@ def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: b
         ev["statement"] = (f"the remaining residual (RMS {ev['rms_um']:.3g} um) shows no dependence on position, "
                            f"velocity, direction, acceleration or time; spectral peaks {peaks}")
     return ev
-
-
-def _jsonable(obj):
-    if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, (np.floating, np.integer)):
-        return obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
 
 
 def report_figure(capture: Capture, model: ReducedAxisModel, *, axis: str, ax=None):

@@ -32,6 +32,7 @@ from identification.regressor import RegressorOptions, SufficientStatistics, ite
 from identification.solve import METHODS, SolveResult, solve_statistics
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
+from vcnc.core.metrics import error_metrics
 
 __all__ = ["fit_reduced_model", "REFINEMENTS"]
 
@@ -40,8 +41,6 @@ log = logging.getLogger(__name__)
 #: Refinements of the equation-error solution.
 REFINEMENTS: tuple[str, ...] = ("output-error", "none")
 
-def _fit_metrics(err: np.ndarray) -> dict[str, float]:
-    return {"rms_um": float(np.sqrt(np.mean(err * err)) * 1e3), "max_um": float(np.max(np.abs(err)) * 1e3)}
 
 
 def fit_reduced_model(
@@ -109,7 +108,7 @@ def fit_reduced_model(
     if bounds is None:
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
     fit = {
-        "equation_error": {**_fit_metrics(x - simulate(sol.parameters, xr, T)), "objective_mm2": sol.objective},
+        "equation_error": {**error_metrics(x - simulate(sol.parameters, xr, T)), "objective_mm2": sol.objective},
         "solver": sol.to_dict(),
         "samples": int(x.size),
         "regressor": dataclasses.asdict(opt),
@@ -118,7 +117,7 @@ def fit_reduced_model(
     if widened is not None:
         fit["bounds_widened"] = widened
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit)
-    fit.update(_fit_metrics(err))
+    fit.update(error_metrics(err))
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
     return ReducedAxisModel(

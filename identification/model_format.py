@@ -21,12 +21,12 @@ dead time is written as ``vcnc.axis-model/2`` with the extra key ``delay_s`` [s]
 from __future__ import annotations
 
 import json
-import math
 import os
 from typing import TYPE_CHECKING, Any
 
 from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
 from vcnc.core.io import atomic_path
+from vcnc.core.jsonsafe import plain
 
 if TYPE_CHECKING:
     from identification.reduced_model import ReducedAxisModel
@@ -40,27 +40,10 @@ FORMAT_DELAY = "vcnc.axis-model/2"
 FORMATS = (FORMAT, FORMAT_DELAY)
 
 
-def _plain(obj: Any) -> Any:
-    """JSON-safe copy (numpy scalars/arrays to Python, tuples to lists, non-finite to None)."""
-    import numpy as np
-
-    if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _plain(obj.tolist())
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
     """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one)."""
     delay = {"delay_s": model.delay_s} if model.delay_s else {}
-    return _plain(
+    return plain(
         {
             "format": FORMAT_DELAY if model.delay_s else FORMAT,
             **delay,

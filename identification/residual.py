@@ -25,6 +25,7 @@ import numpy as np
 
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, regressor
+from vcnc.core.metrics import error_metrics
 
 __all__ = ["ResidualAnalysis", "analyse", "equation_error", "spectrum", "binned", "plot_before_after",
            "residual_evidence", "motion_coherence"]
@@ -210,8 +211,7 @@ class ResidualAnalysis:
     def metrics(self) -> dict[str, Any]:
         """RMS and max of both residuals [um]."""
         e, q = self.simulation_error, self.equation_error
-        return {"simulation": {"rms_um": _rms(e) * 1e3, "max_um": float(np.max(np.abs(e))) * 1e3},
-                "equation": {"rms_um": _rms(q) * 1e3, "max_um": float(np.max(np.abs(q))) * 1e3}}
+        return {"simulation": error_metrics(e), "equation": error_metrics(q)}
 
     def spectrum(self, which: str = "simulation") -> tuple[np.ndarray, np.ndarray]:
         """Amplitude spectrum [um] of the ``simulation`` or ``equation`` error."""

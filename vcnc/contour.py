@@ -44,6 +44,7 @@ from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import PackedSegments
 from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
 from vcnc.core.errors import InputError
+from vcnc.core.metrics import error_metrics
 
 __all__ = ["ContourError", "contour_error", "contour_metrics", "path_features", "feed_segments", "auto_magnification",
            "moving_axes"]
@@ -229,12 +230,6 @@ def path_features(path: Path, *, corner_angle_deg: float = CORNER_ANGLE_DEG) -> 
 
 
 # --------------------------------------------------------------------------------- result
-def _stats_um(e: np.ndarray) -> dict[str, float]:
-    if e.size == 0:
-        return {"max_um": float("nan"), "rms_um": float("nan")}
-    return {"max_um": float(np.max(np.abs(e)) * 1e3), "rms_um": float(np.sqrt(np.mean(e * e)) * 1e3)}
-
-
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class ContourError:
     """Contour (and tracking) error of one run along a path.
@@ -314,7 +309,7 @@ class ContourError:
         """
         cov = self._covered()
         e = self.error[cov]
-        out: dict[str, Any] = {**_stats_um(e), "samples": int(cov.sum())}
+        out: dict[str, Any] = {**error_metrics(e), "samples": int(cov.sum())}
         if self.signed:
             out["max_outside_um"] = float(max(0.0, e.max()) * 1e3) if e.size else float("nan")
             out["max_inside_um"] = float(max(0.0, -e.min()) * 1e3) if e.size else float("nan")
@@ -335,7 +330,7 @@ class ContourError:
             out[key] = items
             out[name] = max((it["max_um"] for it in items), default=float("nan"))
         if self.tracking is not None:
-            out["tracking"] = {a: _stats_um(self.tracking[cov, i]) for i, a in enumerate(self.axes)}
+            out["tracking"] = {a: error_metrics(self.tracking[cov, i]) for i, a in enumerate(self.axes)}
         return out
 
     def to_dict(self) -> dict[str, Any]:

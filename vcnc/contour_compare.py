@@ -59,6 +59,7 @@ import numpy as np
 from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
+from vcnc.core.jsonsafe import plain
 from vcnc.core.setpoints import Setpoints
 
 __all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S", "TRUTH_RUNS"]
@@ -76,7 +77,6 @@ SETTLE_S = 0.2
 
 #: Noise realisations of a simulated truth with measurement noise (module notes).
 TRUTH_RUNS = 10
-
 
 
 def _pct(pred: float, true: float) -> float:
@@ -256,7 +256,7 @@ class ContourReport:
         """Write :meth:`to_dict` as JSON (atomic)."""
         from vcnc.core.io import atomic_path
 
-        text = json.dumps(_plain(self.to_dict()), indent=2) + "\n"
+        text = json.dumps(plain(self.to_dict()), indent=2) + "\n"
         with atomic_path(path) as tmp:
             tmp.write_text(text)
 
@@ -366,7 +366,7 @@ class ContourReport:
         fig = Figure(figsize=(10, 4.5))
         self.plot_error(fig.subplots())
         rep.figure("contour_error", fig, caption="Contour error along the path, true and predicted")
-        rep.summary = _plain(self.to_dict())
+        rep.summary = plain(self.to_dict())
         return rep
 
 
@@ -378,18 +378,6 @@ def _plane(ce: ContourError) -> tuple[int, int]:
 
 def _nan_none(v: float) -> float | None:
     return None if v is None or (isinstance(v, float) and math.isnan(v)) else v
-
-
-def _plain(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
-    if isinstance(obj, (np.floating, float)):
-        return None if math.isnan(float(obj)) else float(obj)
-    if isinstance(obj, np.integer):
-        return int(obj)
-    return obj
 
 
 # ------------------------------------------------------------------------------ inputs

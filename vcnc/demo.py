@@ -34,6 +34,7 @@ import numpy as np
 
 from vcnc.capture import Capture, read_capture
 from vcnc.core.errors import CaptureError, VcncError
+from vcnc.core.metrics import error_metrics
 from vcnc.report import Report
 
 __all__ = ["run_demo", "run_emps_demo", "DEFAULT_MACHINE", "DEFAULT_EFFECT", "EMPS_URL"]
@@ -80,9 +81,6 @@ class _Stages:
             self._bar.close()
 
 
-def _um(x: np.ndarray) -> dict[str, float]:
-    x = np.asarray(x, dtype=float)
-    return {"rms_um": float(np.sqrt(np.mean(x**2)) * 1e3), "max_um": float(np.max(np.abs(x)) * 1e3)}
 
 
 def run_demo(
@@ -326,7 +324,7 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
     axs[1].set_xlabel("time [s]")
     axs[1].legend(loc="best", fontsize="small")
     axs[1].grid(True, alpha=0.3)
-    track = _um(capture.reference[:, i] - capture.measured[:, i])
+    track = error_metrics(capture.reference[:, i] - capture.measured[:, i])
     fig.suptitle(f"Axis {effect_axis}: commanded, measured and predicted position "
                  f"(true tracking error RMS {track['rms_um']:.3g} um)")
     fig.tight_layout()

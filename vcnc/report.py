@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from vcnc.core.io import atomic_dir
+from vcnc.core.jsonsafe import plain
 
 __all__ = ["Report"]
 
@@ -125,7 +126,7 @@ class Report:
                     (tmp / name).write_bytes(src)
                 else:
                     shutil.copyfile(src, tmp / name)
-            (tmp / "summary.json").write_text(json.dumps(_jsonable(self.summary), indent=2) + "\n")
+            (tmp / "summary.json").write_text(json.dumps(plain(self.summary), indent=2) + "\n")
             (tmp / "index.html").write_text(self.html())
         return folder
 
@@ -136,23 +137,6 @@ def _fmt(v: Any) -> str:
             return "-"
         return f"{v:.4g}"
     return str(v)
-
-
-def _jsonable(obj: Any) -> Any:
-    """Plain JSON types (numpy scalars and arrays converted, NaN -> null)."""
-    import numpy as np
-
-    if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _jsonable(obj.tolist())
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
 
 
 _CSS = """

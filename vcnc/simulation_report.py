@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from vcnc.core.capture import Capture
+from vcnc.core.metrics import error_metrics
 
 if TYPE_CHECKING:
     from vcnc.report import Report
@@ -29,14 +30,13 @@ def summarize(capture: Capture) -> dict[str, Any]:
     ``vcnc.contour.contour_metrics(capture)`` for two or more moving axes; it is left out (and the
     reason logged) when that module is not available or the capture has no programmed path.
     """
-    e = (capture.reference - capture.measured) * 1e3
+    e = capture.reference - capture.measured
     out: dict[str, Any] = {
         "samples": len(capture),
         "sample_time": float(capture.meta.get("sample_time") or capture.sample_time),
         "axes": list(capture.axes),
         "tracking": {
-            a: {"max_um": float(np.max(np.abs(e[:, i]))), "rms_um": float(np.sqrt(np.mean(e[:, i] ** 2)))}
-            for i, a in enumerate(capture.axes)
+            a: error_metrics(e[:, i]) for i, a in enumerate(capture.axes)
         },
     }
     if len(moving_axes(capture)) >= 2:

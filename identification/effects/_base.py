@@ -10,6 +10,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from vcnc.core.errors import InputError
+from vcnc.core.jsonsafe import plain
 
 __all__ = ["Effect", "Free"]
 
@@ -70,7 +71,7 @@ class Effect:
 
     def record(self) -> dict[str, Any]:
         """``{"name": .., "parameters": {..}, "units": {..}, "fmu": ..}``."""
-        return {"name": self.NAME, "parameters": _plain(self.parameters()), "units": dict(self.UNITS),
+        return {"name": self.NAME, "parameters": plain(self.parameters()), "units": dict(self.UNITS),
                 "fmu": self.FMU}
 
     def summary(self) -> str:
@@ -101,11 +102,3 @@ class Effect:
         return float(v)
 
 
-def _plain(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {k: _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple, np.ndarray)):
-        return [_plain(v) for v in obj]
-    if isinstance(obj, np.generic):
-        return obj.item()
-    return obj

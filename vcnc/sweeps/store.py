@@ -13,7 +13,6 @@ from __future__ import annotations
 import csv
 import json
 import logging
-import math
 import os
 import time
 from collections.abc import Iterable, Mapping
@@ -24,6 +23,7 @@ import pyarrow as pa
 
 from vcnc.core.errors import InputError
 from vcnc.core.io import atomic_path
+from vcnc.core.jsonsafe import plain
 
 __all__ = ["ResultStore", "COLUMNS", "FORMATS", "read_results", "rows_to_table"]
 
@@ -66,15 +66,6 @@ COLUMNS: dict[str, pa.DataType] = {
 _FSYNC_PERIOD_S = 2.0
 
 
-def _plain(v: Any) -> Any:
-    """JSON-able plain value (numpy scalars to Python; non-finite floats to None)."""
-    if hasattr(v, "item") and not isinstance(v, (str, bytes)):
-        v = v.item()
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    return v
-
-
 def rows_to_table(rows: Iterable[Mapping[str, Any]]) -> pa.Table:
     """A pyarrow Table of result rows: :data:`COLUMNS` typed, further columns inferred."""
     rows = list(rows)
@@ -85,7 +76,7 @@ def rows_to_table(rows: Iterable[Mapping[str, Any]]) -> pa.Table:
                 names.append(k)
     arrays = []
     for name in names:
-        values = [_plain(r.get(name)) for r in rows]
+        values = [plain(r.get(name)) for r in rows]
         if name in COLUMNS:
             arrays.append(pa.array(values, type=COLUMNS[name]))
             continue
@@ -212,7 +203,7 @@ class ResultStore:
         """Append one finished point to the journal (flushed at once)."""
         if self._fh is None:
             self.open()
-        self._fh.write(json.dumps({k: _plain(v) for k, v in row.items()}, default=str) + "\n")
+        self._fh.write(json.dumps({k: plain(v) for k, v in row.items()}, default=str) + "\n")
         self._fh.flush()
         now = time.monotonic()
         if now - self._last_sync > _FSYNC_PERIOD_S:
