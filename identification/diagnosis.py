@@ -60,7 +60,8 @@ from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
 from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
-from identification.poles import TWO_PI, denominator
+from identification.parameters import from_search, search_box, to_search
+from identification.poles import TWO_PI
 from identification.reduced_model import ReducedAxisModel
 from identification.residual import motion_coherence
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
@@ -182,37 +183,20 @@ class DiagnosisReport:
 # ------------------------------------------------------------------------------------ refit
 
 
-def _theta_from(params: dict, poles: dict) -> np.ndarray:
-    a2 = params["a2"]
-    return np.array([
-        math.log(poles["p_hz"] * TWO_PI), math.log(poles["omega_n_hz"] * TWO_PI), poles["zeta"],
-        params["b2"] / a2, params["b1"] / a2, params["b0"] / a2, params["d0"] / a2, params["d1"] / a2,
-    ])
-
-
-def _params_from(z: np.ndarray) -> dict[str, float]:
-    p, wn, zeta = math.exp(z[0]), math.exp(z[1]), z[2]
-    a1, a2, a3 = denominator(p, wn, zeta)
-    return {"a1": a1, "a2": a2, "a3": a3, "b2": z[3] * a2, "b1": z[4] * a2, "b0": z[5] * a2, "d0": z[6] * a2,
-            "d1": z[7] * a2}
-
-
 class _Layout:
     """The refit's coordinates of a model: ``z`` (log poles, reduced parameters over a2, the
     split form's viscous share, the effects' free parameters), their bounds, and the model and
     simulated output of any ``z``."""
 
     def __init__(self, model: AugmentedAxisModel, data: Data) -> None:
-        box = data.bounds.rad()
         poles = model.poles
         if not poles or not data.bounds.contains(poles, rtol=1e-6):
             poles = {"p_hz": min(max(poles.get("p_hz", 1.0), data.bounds.p_hz[0]), data.bounds.p_hz[1]),
                      "omega_n_hz": min(max(poles.get("omega_n_hz", 10.0), data.bounds.omega_n_hz[0]),
                                        data.bounds.omega_n_hz[1]),
                      "zeta": min(max(poles.get("zeta", 0.7), data.bounds.zeta[0]), data.bounds.zeta[1])}
-        z0 = list(_theta_from(model.parameters, poles))
-        lo: list[float] = [math.log(box[0][0]), math.log(box[1][0]), box[2][0]] + [-np.inf] * 5
-        hi = [math.log(box[0][1]), math.log(box[1][1]), box[2][1]] + [np.inf] * 5
+        z0 = list(to_search(model.parameters, poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"]))
+        lo, hi = (list(b) for b in search_box(data.bounds))
         self.structured = model.structured
         if self.structured:
             q = min(max(model.viscous_rate / model.parameters["a1"], 1e-5), 0.9)
@@ -238,7 +222,7 @@ class _Layout:
         self.data = data
 
     def build(self, z: np.ndarray) -> tuple[dict, list, float]:
-        params = _params_from(z)
+        params = from_search(z)
         elements = [e.with_free(z[i:i + k]) if k else e for e, (i, k) in zip(self.model.elements, self.slices)]
         c = math.exp(z[8]) * params["a1"] if self.structured else 0.0
         return params, elements, c

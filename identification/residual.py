@@ -52,12 +52,12 @@ def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.
     rows = np.arange(opt.half_width, opt.half_width + y.size)
     elements = getattr(model, "elements", ())
     if elements:
-        from identification.effects.search import _w_of
+        from identification.effects.search import w_of
 
         v, t = -phi[:, 1], rows * sample_time
         for e in elements:
             if e.KIND == "disturbance":
-                pred = pred - _w_of(e, v, y, t) / a2
+                pred = pred - w_of(e, v, y, t) / a2
     return rows, y - pred
 
 

@@ -43,7 +43,7 @@ from identification.solve import solve_statistics
 
 log = logging.getLogger(__name__)
 
-__all__ = ["Data", "Candidate", "SearchContext", "SEARCHES"]
+__all__ = ["Data", "Candidate", "SearchContext", "SEARCHES", "w_of"]
 
 #: derivative filter for the split-form regressions (Savitzky-Golay, centred: no delay)
 _SG_WINDOW, _SG_ORDER = 9, 3
@@ -107,12 +107,13 @@ def disturbance_columns(effects, v: np.ndarray, x: np.ndarray, t: np.ndarray) ->
     for e in effects:
         if e.KIND != "disturbance":
             continue
-        spec_w = _w_of(e, v, x, t)
+        spec_w = w_of(e, v, x, t)
         cols.append(-spec_w)
     return np.column_stack(cols) if cols else np.zeros((v.size, 0))
 
 
-def _w_of(e: Effect, v, x, t) -> np.ndarray:
+def w_of(e: Effect, v, x, t) -> np.ndarray:
+    """The disturbance term [mm/s^2] a disturbance effect adds at velocity ``v``, position ``x``, time ``t``."""
     if isinstance(e, FrictionStribeck):
         return FrictionStribeck.basis(v, e.velocity) @ np.array([e.excess_positive, e.excess_negative])
     if isinstance(e, FrictionViscousAsymmetric):
@@ -141,7 +142,7 @@ class SearchContext:
         a2 = model.parameters["a2"]
         for e in model.elements:
             if e.KIND == "disturbance":
-                off -= _w_of(e, vv, xx, tt) / a2
+                off -= w_of(e, vv, xx, tt) / a2
         self._ee_y = d.y[tr] - off
         self._ee_base = d.phi[tr]
         q, _ = np.linalg.qr(self._ee_base / np.linalg.norm(self._ee_base, axis=0))
@@ -175,7 +176,7 @@ class SearchContext:
         off = np.zeros(int(va.sum()))
         for e in self.model.elements:
             if e.KIND == "disturbance":
-                off -= _w_of(e, vv, xx, tt) / a2
+                off -= w_of(e, vv, xx, tt) / a2
         res = d.y[va] - off - np.hstack([d.phi[va], cols_va]) @ theta
         return float(res @ res)
 
@@ -222,7 +223,7 @@ class SearchContext:
         off = np.zeros(int(rows.sum()))
         for e in self.model.elements:
             if e.KIND == "disturbance":
-                off -= _w_of(e, vv, xx, tt) / a2
+                off -= w_of(e, vv, xx, tt) / a2
         return tt, d.y[rows] - off - d.phi[rows] @ theta
 
     # ---------------------------------------------------------------- simulation screen
