@@ -47,7 +47,7 @@ from vcnc.core.errors import InputError
 from vcnc.core.metrics import error_metrics
 
 __all__ = ["ContourError", "contour_error", "contour_metrics", "path_features", "feed_segments", "auto_magnification",
-           "moving_axes"]
+           "moving_axes", "plot_plane"]
 
 # ``compare`` and ``ContourReport`` (vcnc.contour_compare) are also reachable from here, lazily.
 
@@ -364,7 +364,7 @@ class ContourError:
             _, ax = plt.subplots()
         if magnification is None:
             magnification = auto_magnification(self.path, float(np.max(np.abs(self.error), initial=0.0)))
-        i, j = _plot_axes(self)
+        i, j = plot_plane(self)
         pts = self.path.points(step=max(self.path.length / 2000, 1e-3))
         ax.plot(pts[:, i], pts[:, j], color="0.6", lw=1.0, label="programmed")
         cov = self._covered()
@@ -415,7 +415,8 @@ def auto_magnification(path: Path, max_error_mm: float) -> float:
     return float(10**exp)  # pragma: no cover
 
 
-def _plot_axes(ce: ContourError) -> tuple[int, int]:
+def plot_plane(ce: ContourError) -> tuple[int, int]:
+    """Indices of the two axes a plot of ``ce`` shows (its plane, or the first two axes)."""
     if ce.normal is not None:
         from toolpaths.geometry import PLANE_AXES
 

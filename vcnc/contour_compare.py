@@ -56,7 +56,7 @@ from typing import Any
 
 import numpy as np
 
-from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes
+from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes, plot_plane
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
 from vcnc.core.jsonsafe import plain
@@ -286,7 +286,7 @@ class ContourReport:
                 ce.plot(ax, magnification=magnification, label=self._legend(label), **styles[label])
             else:
                 mag = np.where(ce._covered()[:, None], ce.magnified(magnification), np.nan)
-                a, b = _plane(self.true)
+                a, b = plot_plane(self.true)
                 ax.plot(mag[:, a], mag[:, b], label=f"{label} (error x{magnification:g})", **styles[label])
         ax.legend(loc="best", fontsize="small")
         ax.set_title(f"{self.toolpath} on {self.truth}: contour error x{magnification:g}")
@@ -368,12 +368,6 @@ class ContourReport:
         rep.figure("contour_error", fig, caption="Contour error along the path, true and predicted")
         rep.summary = plain(self.to_dict())
         return rep
-
-
-def _plane(ce: ContourError) -> tuple[int, int]:
-    from vcnc.contour import _plot_axes
-
-    return _plot_axes(ce)
 
 
 def _nan_none(v: float) -> float | None:
