@@ -50,17 +50,29 @@ import json
 import logging
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from pathlib import Path as FsPath
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
+from interpolators.program import Program
 from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes, plot_plane
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
 from vcnc.core.jsonsafe import plain
 from vcnc.core.setpoints import Setpoints
+from vcnc.engine.machine import Machine
+
+
+class AxisModel(Protocol):
+    """What compare needs of an axis model (identification.ReducedAxisModel, an FMU axis, ...)."""
+
+    def simulate_reference(self, reference: np.ndarray, sample_time: float) -> np.ndarray: ...
+
+
+#: A model object, or its model file (``vcnc.axis-model/1`` or ``/2``).
+ModelSource = AxisModel | str | os.PathLike[str]
 
 __all__ = ["compare", "ContourReport", "SHAPES", "DEFAULT_FEED_MM_S", "SETTLE_S", "TRUTH_RUNS"]
 
@@ -375,8 +387,8 @@ def _nan_none(v: float) -> float | None:
 
 
 # ------------------------------------------------------------------------------ inputs
-def _truth_machine(truth: Any):
-    from vcnc.engine.machine import Machine, load_machine
+def _truth_machine(truth: Any) -> Machine:
+    from vcnc.engine.machine import load_machine
 
     if isinstance(truth, Machine):
         return truth
@@ -558,9 +570,9 @@ def _expand_machine(machine, axes: tuple[str, ...], notes: list[str]):
 
 # ------------------------------------------------------------------------------ compare
 def compare(
-    truth: Any,
-    models: Any,
-    toolpath: Any = "circle",
+    truth: str | os.PathLike[str] | Machine | Capture,
+    models: ModelSource | Mapping[str, ModelSource],
+    toolpath: str | os.PathLike[str] | Program | Setpoints | None = "circle",
     *,
     feed: float | None = None,
     acceleration: float | None = None,
@@ -608,99 +620,139 @@ def compare(
         Unknown machine or toolpath, unreadable model or program (naming the file and line), a
         model missing for a moving axis, a capture without a path.
     """
-    import interpolators
-
     if truth_runs is not None and not (isinstance(truth_runs, (int, np.integer)) and not isinstance(truth_runs, bool)
                                        and 1 <= truth_runs <= 1000):
         raise InputError(f"truth_runs must be an integer in [1, 1000], got {truth_runs!r}")
-    notes: list[str] = []
-    seeds: list[int] = []
-    capture = truth if isinstance(truth, Capture) else None
-    if capture is not None:
-        program = None
-        if toolpath is not None and not (isinstance(toolpath, str) and toolpath in SHAPES):
-            program, _, tp_name = _program(toolpath, None)
-        else:
-            tp_name = str(capture.meta.get("program") or capture.source or "capture")
-        path = program.path() if program is not None else capture.path
-        if path is None:
-            raise InputError("the capture has no path; give the program it ran as toolpath", file=capture.source)
-        axes = tuple(a for a in capture.axes if a in ("x", "y", "z"))
-        sp = Setpoints.from_positions(capture.reference[:, [capture.axis_index(a) for a in axes]],
-                                      sample_time=capture.sample_time, axes=axes)
-        sp = dataclasses.replace(sp, path=path)
-        truth_positions = iter([(capture.measured[:, [capture.axis_index(a) for a in axes]], None)])
-        truth_name = capture.source or "capture"
-        sample_time = capture.sample_time
+    if isinstance(truth, Capture):
+        run = _captured_truth(truth, toolpath)
     else:
-        machine = _truth_machine(truth)
-        program, sp, tp_name = _program(toolpath, feed)
-        if sp is None:
-            axes = program.axes or ("x",)
-            machine = _expand_machine(machine, tuple(axes), notes)
-            limits = _limits(machine, tuple(axes), acceleration, feed)
-            sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
-        else:
-            machine = _expand_machine(machine, tuple(sp.axes), notes)
-        sp = _with_settle(sp, settle_s)
-        axes = tuple(sp.axes)
-        n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
-        seeds = [int(seed) + k for k in range(int(n_runs))]
-        # lazily, one run at a time: (where the axes are, what the sensors read) per noise seed
-        truth_positions = (_truth_run(machine, sp, s) for s in seeds)
-        truth_name = machine.name
-        sample_time = machine.sample_time
-        path = sp.path
-    moving = moving_axes(sp.position, axes)
+        run = _simulated_truth(truth, toolpath, feed=feed, acceleration=acceleration, profile=profile, seed=seed,
+                               settle_s=settle_s, truth_runs=truth_runs)
+    notes = run.notes
+    moving = moving_axes(run.setpoints.position, run.axes)
     if len(moving) < 2:
         notes.append(f"the toolpath moves only {', '.join(moving) or 'no axis'}: the contour error is the "
                      "deviation from a straight line")
-    per_axis = _models_per_axis(models, axes)
-    from vcnc.engine.machine import Machine
+    include = None if run.program is None else feed_segments(run.path, run.program)
+    kw = {"reference": run.setpoints.position, "t": run.setpoints.t, "sample_time": run.sample_time,
+          "include_segments": include}
+    true_ce, true_sensor, true_runs, sensor_runs = _true_contours(run, kw)
+    several = len(true_runs) > 1
+    if several:
+        notes.append(f"the true machine has measurement noise in its loop: its contour error is the mean of "
+                     f"{len(true_runs)} noise realisations (seeds {run.seeds[0]}-{run.seeds[-1]}); plots show the "
+                     "first")
+    predicted, descr = _predictions(_models_per_axis(models, run.axes), run, kw, seed=seed, notes=notes)
+    if include is not None:
+        notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
+    return ContourReport(toolpath=run.toolpath, truth=run.name, setpoints=run.setpoints, true=true_ce,
+                         predicted=predicted, models=descr, notes=notes, true_as_measured=true_sensor,
+                         true_runs=true_runs if several else [],
+                         true_as_measured_runs=sensor_runs if several else [], seeds=run.seeds)
 
-    identified = {a: _identified_part(m) for a, m in per_axis.items()}
-    augmented = per_axis if any(identified[a] is not per_axis[a] for a in axes) else None
-    plain_with_effects = [a for a, m in per_axis.items() if getattr(m, "effects", None) and identified[a] is m]
-    if plain_with_effects:
-        notes.append(f"the models of {', '.join(plain_with_effects)} list effects but offer no reduced() part; "
-                     "they are shown as given")
-    # the predicted machine's limits only label it (its setpoints are given); any valid record does
-    limits = {a: interpolators.DEFAULT_LIMITS["x"] for a in axes}
-    include = None if program is None else feed_segments(path, program)
-    kw = {"reference": sp.position, "t": sp.t, "sample_time": sample_time, "include_segments": include}
-    # only the first run's histories are kept, the others leave their metrics
+
+@dataclasses.dataclass
+class _Truth:
+    """The true side of a comparison: the commanded setpoints, the programmed path, and the true
+    positions (and sensor readings) of each run."""
+
+    setpoints: Setpoints
+    axes: tuple[str, ...]
+    path: Any
+    program: Program | None
+    toolpath: str
+    name: str
+    sample_time: float
+    positions: Iterator[tuple[np.ndarray, np.ndarray | None]]
+    seeds: list[int]
+    notes: list[str]
+
+
+def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program | Setpoints | None) -> _Truth:
+    """A real run: its commanded positions are the setpoints, its measured ones the truth."""
+    program = None
+    if toolpath is not None and not (isinstance(toolpath, str) and toolpath in SHAPES):
+        program, _, tp_name = _program(toolpath, None)
+    else:
+        tp_name = str(capture.meta.get("program") or capture.source or "capture")
+    path = program.path() if program is not None else capture.path
+    if path is None:
+        raise InputError("the capture has no path; give the program it ran as toolpath", file=capture.source)
+    axes = tuple(a for a in capture.axes if a in ("x", "y", "z"))
+    cols = [capture.axis_index(a) for a in axes]
+    sp = Setpoints.from_positions(capture.reference[:, cols], sample_time=capture.sample_time, axes=axes)
+    return _Truth(setpoints=dataclasses.replace(sp, path=path), axes=axes, path=path, program=program,
+                  toolpath=tp_name, name=capture.source or "capture", sample_time=capture.sample_time,
+                  positions=iter([(capture.measured[:, cols], None)]), seeds=[], notes=[])
+
+
+def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed: float | None,
+                     acceleration: float | None, profile: str, seed: int, settle_s: float,
+                     truth_runs: int | None) -> _Truth:
+    """The true machine run on the toolpath, lazily, one noise seed at a time."""
+    import interpolators
+
+    notes: list[str] = []
+    machine = _truth_machine(truth)
+    program, sp, tp_name = _program(toolpath, feed)
+    if sp is None:
+        axes = program.axes or ("x",)
+        machine = _expand_machine(machine, tuple(axes), notes)
+        limits = _limits(machine, tuple(axes), acceleration, feed)
+        sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
+    else:
+        machine = _expand_machine(machine, tuple(sp.axes), notes)
+    sp = _with_settle(sp, settle_s)
+    axes = tuple(sp.axes)
+    n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
+    seeds = [int(seed) + k for k in range(int(n_runs))]
+    return _Truth(setpoints=sp, axes=axes, path=sp.path, program=program, toolpath=tp_name, name=machine.name,
+                  sample_time=machine.sample_time, positions=(_truth_run(machine, sp, s) for s in seeds),
+                  seeds=seeds, notes=notes)
+
+
+def _true_contours(run: _Truth, kw: dict) -> tuple[ContourError, ContourError | None, list[dict], list[dict]]:
+    """The first run's contour errors (true position, sensor reading) and every run's metrics."""
     true_ce = true_sensor = None
     true_runs: list[dict] = []
     sensor_runs: list[dict] = []
-    for k, (pos, sensor) in enumerate(truth_positions):
-        ce = contour_error(path, pos, axes, **kw)
-        ce_sensor = None if sensor is None else contour_error(path, sensor, axes, **kw)
+    for k, (pos, sensor) in enumerate(run.positions):
+        ce = contour_error(run.path, pos, run.axes, **kw)
+        ce_sensor = None if sensor is None else contour_error(run.path, sensor, run.axes, **kw)
         if k == 0:
             true_ce, true_sensor = ce, ce_sensor
         true_runs.append(ce.metrics())
         if ce_sensor is not None:
             sensor_runs.append(ce_sensor.metrics())
-    several = len(true_runs) > 1
-    if several:
-        notes.append(f"the true machine has measurement noise in its loop: its contour error is the mean of "
-                     f"{len(true_runs)} noise realisations (seeds {seeds[0]}-{seeds[-1]}); plots show the first")
+    return true_ce, true_sensor, true_runs, sensor_runs
+
+
+def _predictions(per_axis: dict[str, Any], run: _Truth, kw: dict, *, seed: int, notes: list[str]
+                 ) -> tuple[dict[str, ContourError], dict[str, dict[str, str]]]:
+    """Contour errors predicted by the models' identified parts and, when they have effects, by
+    the models as given; and a description of each model."""
+    import interpolators
+
+    identified = {a: _identified_part(m) for a, m in per_axis.items()}
+    augmented = per_axis if any(identified[a] is not per_axis[a] for a in run.axes) else None
+    plain_with_effects = [a for a, m in per_axis.items() if getattr(m, "effects", None) and identified[a] is m]
+    if plain_with_effects:
+        notes.append(f"the models of {', '.join(plain_with_effects)} list effects but offer no reduced() part; "
+                     "they are shown as given")
+    # the predicted machine's limits only label it (its setpoints are given); any valid record does
+    limits = {a: interpolators.DEFAULT_LIMITS["x"] for a in run.axes}
     predicted: dict[str, ContourError] = {}
     descr: dict[str, dict[str, str]] = {}
     for label, mods in (("identified", identified), ("augmented", augmented)):
         if mods is None:
             continue
-        pm = Machine.from_axes(mods, sample_time=sample_time, limits=limits, name=f"{label} models")
-        pred = pm.simulate(sp, seed=seed).measured
+        pm = Machine.from_axes(mods, sample_time=run.sample_time, limits=limits, name=f"{label} models")
+        pred = pm.simulate(run.setpoints, seed=seed).measured
         if not np.all(np.isfinite(pred)):
             raise InputError(f"the {label} model prediction is not finite (an unstable model?)")
-        predicted[label] = contour_error(path, pred, axes, **kw)
+        predicted[label] = contour_error(run.path, pred, run.axes, **kw)
         descr[label] = {a: _describe(m) + _stand_in(m, a) for a, m in mods.items()}
-    if include is not None:
-        notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
-    return ContourReport(toolpath=tp_name, truth=truth_name, setpoints=sp, true=true_ce, predicted=predicted,
-                         models=descr, notes=notes, true_as_measured=true_sensor,
-                         true_runs=true_runs if several else [],
-                         true_as_measured_runs=sensor_runs if several else [], seeds=seeds)
+    return predicted, descr
 
 
 def _truth_run(machine, sp: Setpoints, seed: int) -> tuple[np.ndarray, np.ndarray | None]:
