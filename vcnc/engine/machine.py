@@ -357,8 +357,32 @@ class Machine:
             ``path`` is the setpoints' path; ``meta`` records the machine name, seed and sample time.
             Each axis starts at rest at its first commanded position.
         """
-        from vcnc.engine.kernel import simulate_axis
+        seed_v = self._check_run(setpoints, seed)
+        n = len(setpoints)
+        out = np.empty((n, len(setpoints.axes), N_OUT))
+        jobs, external = self._axis_jobs(setpoints, seed_v)
+        self._run_jobs(jobs, n, out)
+        measured, table, velocity, control, friction, position = (out[:, :, c].copy() for c in range(6))
+        for i, y in external.items():
+            measured[:, i] = y
+        all_compiled = not external
+        meta = {"machine": self.name, "seed": seed_v, "sample_time": self.sample_time}
+        return Capture(
+            t=np.asarray(setpoints.t, dtype=float),
+            axes=tuple(setpoints.axes),
+            reference=np.array(setpoints.position, dtype=float),
+            measured=measured,
+            control=control if all_compiled else None,
+            table=table if all_compiled else None,
+            velocity=velocity if all_compiled else None,
+            friction=friction if all_compiled else None,
+            aux={"measured_true": position} if all_compiled else {},
+            meta=meta,
+            path=setpoints.path,
+        )
 
+    def _check_run(self, setpoints: Setpoints, seed: int | None) -> int:
+        """InputError unless ``setpoints`` fit this machine; the noise seed to use."""
         if not isinstance(setpoints, Setpoints):
             raise InputError(f"simulate needs Setpoints, got {type(setpoints).__name__}")
         if not math.isclose(setpoints.sample_time, self.sample_time, rel_tol=1e-6):
@@ -375,25 +399,21 @@ class Machine:
         seed_v = 0 if seed is None else int(seed)
         if not 0 <= seed_v < 2**32:
             raise InputError(f"seed must be an integer in [0, 2**32), got {seed!r}")
+        return seed_v
+
+    def _axis_jobs(self, setpoints: Setpoints, seed_v: int) -> tuple[list, dict[int, np.ndarray]]:
+        """The compiled axes' kernel calls, and the measured position of the external axes (run here)
+        by column."""
         n = len(setpoints)
-        k = len(setpoints.axes)
-        measured = np.empty((n, k))
-        table = np.empty((n, k))
-        velocity = np.empty((n, k))
-        control = np.empty((n, k))
-        friction = np.empty((n, k))
-        position = np.empty((n, k))
-        all_compiled = True
-        jobs = []
+        jobs, external = [], {}
         for i, a in enumerate(setpoints.axes):
             ax = self._axes[a]
             ref = np.ascontiguousarray(setpoints.position[:, i], dtype=float)
             if not isinstance(ax, AxisDefinition):
-                all_compiled = False
                 y = np.asarray(ax.simulate_reference(ref, self.sample_time), dtype=float).reshape(-1)
                 if y.shape != (n,):
                     raise SimulationError(f"external axis {a} returned {y.shape[0]} samples, expected {n}")
-                measured[:, i] = y
+                external[i] = y
                 continue
             p, c = ax.pack(self.sample_time)
             ref_c = np.ascontiguousarray(ax.controller.prefilter(ref, ax.drive, self.sample_time), dtype=float)
@@ -410,8 +430,14 @@ class Machine:
                 np.empty((n, N_OUT)),
             )
             jobs.append((i, a, args))
+        return jobs, external
+
+    def _run_jobs(self, jobs: list, n: int, out: np.ndarray) -> None:
+        """Run the kernel calls (one thread per axis for long multi-axis runs: the kernel releases the
+        GIL) and copy their outputs into place."""
+        from vcnc.engine.kernel import simulate_axis
+
         if n:
-            # the kernel releases the GIL: long multi-axis runs use one thread per axis
             if len(jobs) > 1 and n * len(jobs) >= 200_000:
                 with concurrent.futures.ThreadPoolExecutor(max_workers=min(len(jobs), os.cpu_count() or 1)) as ex:
                     status = list(ex.map(lambda job: simulate_axis(*job[2]), jobs))
@@ -424,27 +450,7 @@ class Machine:
                         f"t = {st * self.sample_time:.6g} s (unstable loop?)"
                     )
         for i, _a, args in jobs:
-            out = args[-1]
-            measured[:, i] = out[:, 0]
-            table[:, i] = out[:, 1]
-            velocity[:, i] = out[:, 2]
-            control[:, i] = out[:, 3]
-            friction[:, i] = out[:, 4]
-            position[:, i] = out[:, 5]
-        meta = {"machine": self.name, "seed": seed_v, "sample_time": self.sample_time}
-        return Capture(
-            t=np.asarray(setpoints.t, dtype=float),
-            axes=tuple(setpoints.axes),
-            reference=np.array(setpoints.position, dtype=float),
-            measured=measured,
-            control=control if all_compiled else None,
-            table=table if all_compiled else None,
-            velocity=velocity if all_compiled else None,
-            friction=friction if all_compiled else None,
-            aux={"measured_true": position} if all_compiled else {},
-            meta=meta,
-            path=setpoints.path,
-        )
+            out[:, i, :] = args[-1]
 
 
 def _load_fmu_axis(path: str, *, file: str, line: int | None) -> ExternalAxis:
