@@ -468,6 +468,20 @@ def _as_positions(name: str, arr: Any, n: int | None = None) -> np.ndarray:
     return np.ascontiguousarray(a)
 
 
+def _commanded_points(R: np.ndarray, cols: list[int], g: _Geometry) -> tuple[np.ndarray, np.ndarray]:
+    """Segment and arc length of each commanded position on the path; InputError when a command
+    lies off the path (the path does not belong to the positions)."""
+    tol = 1e-9 * (1.0 + float(g.cum[-1]))
+    cseg, s_cmd, dref = locate(R, cols, *g.arrays(), g.cum, tol)
+    if len(R) and float(dref.max()) > REFERENCE_TOLERANCE_MM:
+        k = int(np.argmax(dref))
+        raise InputError(
+            f"the commanded position at sample {k} is {dref[k]:.4g} mm from the path (more than "
+            f"{REFERENCE_TOLERANCE_MM} mm): the path does not belong to these positions"
+        )
+    return cseg, s_cmd
+
+
 def contour_error(
     path: Path,
     positions: np.ndarray,
@@ -540,21 +554,13 @@ def contour_error(
         R = _as_positions("reference", reference, N)
         if R.shape[1] != P.shape[1]:
             raise InputError(f"reference has {R.shape[1]} columns but positions have {P.shape[1]}")
-        tol = 1e-9 * (1.0 + float(g.cum[-1]))
-        cseg, s_cmd, dref = locate(R, cols, *g.arrays(), g.cum, tol)
-        if N and float(dref.max()) > REFERENCE_TOLERANCE_MM:
-            k = int(np.argmax(dref))
-            raise InputError(
-                f"the commanded position at sample {k} is {dref[k]:.4g} mm from the path (more than "
-                f"{REFERENCE_TOLERANCE_MM} mm): the path does not belong to these positions"
-            )
+        cseg, s_cmd = _commanded_points(R, cols, g)
         tracking = R - P
-        err, seg, s = nearest(P, cols, *g.arrays(), *g.search_arrays(), cseg, s_cmd, back, ahead, nvec,
-                              normal is not None)
-    else:
-        empty_i = np.zeros(0, dtype=np.int64)
-        err, seg, s = nearest(P, cols, *g.arrays(), *g.search_arrays(), empty_i, np.zeros(0), back, ahead, nvec,
-                              normal is not None)
+    # without a command every segment is searched (empty hints)
+    hint_seg = cseg if cseg is not None else np.zeros(0, dtype=np.int64)
+    hint_s = s_cmd if s_cmd is not None else np.zeros(0)
+    err, seg, s = nearest(P, cols, *g.arrays(), *g.search_arrays(), hint_seg, hint_s, back, ahead, nvec,
+                          normal is not None)
     include = None
     if include_segments is not None:
         inc = np.asarray(include_segments, dtype=bool)
