@@ -209,25 +209,15 @@ def compensate(
         For a gouge, an inside arc not larger than the tool, an entry move not longer than the
         tool radius, an arc entry or exit move; ``index`` names the block.
     """
-    if side not in SIDES:
-        raise InputError(f"compensation side must be one of {SIDES}, got {side!r}")
-    if entry not in ENTRY_RULES:
-        raise InputError(f"compensation entry must be one of {ENTRY_RULES}, got {entry!r}")
-    if plane not in PLANE_AXES:
-        raise InputError(f"compensation plane must be the normal axis index 0, 1 or 2, got {plane!r}")
-    if not (radius >= 0.0 and math.isfinite(radius)):
-        raise InputError(f"tool radius must be finite and >= 0 mm, got {radius!r}")
+    _check_arguments(side, entry, plane, radius)
     blocks = list(blocks)
     if radius == 0.0:
         return blocks
     p, q = PLANE_AXES[plane]
     s = 1.0 if side == "left" else -1.0
-
-    def flat(v: np.ndarray) -> np.ndarray:
-        return np.array([v[p], v[q]], dtype=float)
-
     movers = [i for i, b in enumerate(blocks)
-              if b.segment is not None and (b.kind == "arc" or math.hypot(*(flat(b.target) - flat(b.start))) > _EPS)]
+              if b.segment is not None and (b.kind == "arc" or math.hypot(*(_flat(b.target, plane) -
+                                                                             _flat(b.start, plane))) > _EPS)]
     if not movers:
         return blocks
     first = movers[0]
@@ -237,14 +227,41 @@ def compensate(
         if i is not None and blocks[i].kind == "arc":
             what = "entry" if i == first else "exit"
             raise CompensationError(f"cutter compensation {what} move must be a straight line, not an arc", i)
+    offsets = _offset_elements(blocks, contour, s=s, radius=radius, plane=plane)
+    ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
+    chain = [ent, *offsets]
+    corners = _join_corners(chain, blocks, side=side, s=s, radius=radius, plane=plane)
+    _check_gouges(chain, ent, blocks, radius)
+    return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
+
+def _flat(v: np.ndarray, plane: int) -> np.ndarray:
+    """The in-plane coordinates (p, q) of a 3-D point."""
+    p, q = PLANE_AXES[plane]
+    return np.array([v[p], v[q]], dtype=float)
+
+
+def _check_arguments(side: str, entry: str, plane: int, radius: float) -> None:
+    if side not in SIDES:
+        raise InputError(f"compensation side must be one of {SIDES}, got {side!r}")
+    if entry not in ENTRY_RULES:
+        raise InputError(f"compensation entry must be one of {ENTRY_RULES}, got {entry!r}")
+    if plane not in PLANE_AXES:
+        raise InputError(f"compensation plane must be the normal axis index 0, 1 or 2, got {plane!r}")
+    if not (radius >= 0.0 and math.isfinite(radius)):
+        raise InputError(f"tool radius must be finite and >= 0 mm, got {radius!r}")
+
+
+def _offset_elements(blocks: list[Block], contour: list[int], *, s: float, radius: float,
+                     plane: int) -> list[_Offset]:
+    """The contour's lines and arcs moved by the tool radius to the tool's side (``s`` +1 left)."""
     offsets: list[_Offset] = []
     for i in contour:
         b = blocks[i]
-        a2, b2 = flat(b.start), flat(b.target)
+        a2, b2 = _flat(b.start, plane), _flat(b.target, plane)
         if b.kind == "arc":
             arc = b.segment
-            c = flat(arc.center)
+            c = _flat(arc.center, plane)
             new_r = arc.radius - s * radius * (1.0 if arc.ccw else -1.0)
             if new_r <= _EPS * max(arc.radius, 1.0):
                 raise CompensationError(
@@ -260,9 +277,14 @@ def compensate(
         el.a0, el.b0 = el.a.copy(), el.b.copy()
         offsets.append(el)
 
+    return offsets
+
+
+def _entry_element(eb: Block, first: int, offsets: list[_Offset], *, entry: str, s: float, radius: float,
+                   plane: int) -> _Offset:
+    """The entry move, ending at the tool position of the entry rule."""
     # entry move
-    eb = blocks[first]
-    e_start, e_prog = flat(eb.start), flat(eb.target)
+    e_start, e_prog = _flat(eb.start, plane), _flat(eb.target, plane)
     dist = math.hypot(*(e_prog - e_start))
     if entry == "perpendicular" and offsets:
         e_end = offsets[0].a.copy()
@@ -276,8 +298,13 @@ def compensate(
     # an inside corner after the entry is cut on the entry's parallel offset, as convert_*_comp2 take the
     # direction of the last cut from the programmed point to the tool; the entry still starts where the tool is
     ent.a0, ent.b0 = (e_start + (e_end - e_prog) if entry == "linuxcnc" else e_start.copy()), e_end.copy()
-    chain = [ent, *offsets]
+    return ent
 
+
+def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: float, radius: float,
+                  plane: int) -> dict[int, tuple]:
+    """Trim the elements at inside corners (intersections) and return the outside corners' arcs
+    (or bridging lines): index of the following block -> (centre or None, from, to)."""
     # corners between consecutive elements
     corners: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}  # index of B -> (centre, from, to)
     for el_a, el_b in zip(chain[:-1], chain[1:]):
@@ -285,7 +312,7 @@ def compensate(
         if gap <= 1e-7:
             el_b.a = el_a.b.copy()
             continue
-        corner = flat(blocks[el_a.index].target)
+        corner = _flat(blocks[el_a.index].target, plane)
         ta, tb = el_a.tangent(el_a.b), el_b.tangent(el_b.a)
         cr = _cross(ta, tb)
         # turn away from the tool side [rad] (a reversal is a half turn round the outside)
@@ -309,6 +336,11 @@ def compensate(
         x = min(cands, key=lambda v: math.hypot(*(v - corner)))
         el_a.b, el_b.a = x.copy(), x.copy()
 
+    return corners
+
+
+def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float) -> None:
+    """CompensationError unless every element still runs forward within its untrimmed extent."""
     # gouge check: every element still runs forward within its untrimmed extent
     for el in chain:
         ext = el.extent()
@@ -322,6 +354,13 @@ def compensate(
                 "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed")
             raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "
                                     f"(tool radius {radius:g} mm)", el.index)
+
+
+def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, tuple], *, first: int, last: int | None,
+              side: str, plane: int) -> list[Block]:
+    """The compensated blocks: the run's blocks on the tool-centre path, corner arcs inserted."""
+    p, q = PLANE_AXES[plane]
+    ent = chain[0]
 
     def point3(template: np.ndarray, xy: np.ndarray, z: float) -> np.ndarray:
         v = np.array(template, dtype=float)

@@ -123,8 +123,6 @@ def run_demo(
         The summary also written to ``summary.json``.
     """
     import identification
-    import interpolators
-    import toolpaths
     from vcnc.engine.machine import load_machine
 
     stages = _Stages(
@@ -139,21 +137,7 @@ def run_demo(
         summary["hidden_effect"] = hidden
         axes = [a for a in truth.axes][:2]
 
-        with stages.stage("program"):
-            program_text = toolpaths.random_moves(200, 10.0, 12000.0, seed=seed, axes=axes)
-            program = interpolators.parse_program(program_text, source="identification.nc")
-            setpoints = interpolators.interpolate(
-                program, limits=truth.limits, sample_time=truth.sample_time, profile="trapezoid"
-            )
-        with stages.stage("simulate"):
-            capture = truth.simulate(setpoints, seed=seed)
-        summary["identification_test"] = {
-            "blocks": len(program.blocks),
-            "samples": len(capture),
-            "duration_s": float(capture.t[-1]),
-            "axes": axes,
-        }
-
+        capture = _identification_test(truth, axes, seed, stages, summary)
         with stages.stage("identify"):
             models = {a: identification.identify(capture, axis=a, diagnose=False) for a in axes}
         with stages.stage("compare solvers"):
@@ -162,16 +146,7 @@ def run_demo(
             from identification.diagnosis import diagnose
 
             augmented = {a: diagnose(capture, models[a], axis=a) for a in axes}
-
-        summary["axes"] = {}
-        for a in axes:
-            truth_params = _truth_parameters(nominal, a)
-            summary["axes"][a] = {
-                "identified": {"parameters": models[a].parameters, "poles": models[a].poles, "fit": models[a].fit},
-                "true_parameters": truth_params,
-                "effects": augmented[a].effects,
-                "validation": augmented[a].validation,
-            }
+        summary["axes"] = {a: _axis_summary(nominal, a, models[a], augmented[a]) for a in axes}
         summary["solvers"] = solver_rows
 
         with stages.stage("contours"):
@@ -285,10 +260,41 @@ def _export_fmu(model: Any, out: str | os.PathLike[str]) -> dict[str, Any]:
 
 
 # --------------------------------------------------------------------------- report
+def _identification_test(truth: Any, axes: list[str], seed: int, stages: _Stages, summary: dict) -> Capture:
+    """The rapid-identification test (200 random moves, thesis Table 3.2 style) run on the true machine."""
+    import interpolators
+    import toolpaths
+
+    with stages.stage("program"):
+        program_text = toolpaths.random_moves(200, 10.0, 12000.0, seed=seed, axes=axes)
+        program = interpolators.parse_program(program_text, source="identification.nc")
+        setpoints = interpolators.interpolate(
+            program, limits=truth.limits, sample_time=truth.sample_time, profile="trapezoid"
+        )
+    with stages.stage("simulate"):
+        capture = truth.simulate(setpoints, seed=seed)
+    summary["identification_test"] = {
+        "blocks": len(program.blocks),
+        "samples": len(capture),
+        "duration_s": float(capture.t[-1]),
+        "axes": axes,
+    }
+    return capture
+
+
+def _axis_summary(nominal: Any, axis: str, model: Any, augmented: Any) -> dict[str, Any]:
+    """What the summary says of one axis: the identified model, the true parameters, the effects."""
+    return {
+        "identified": {"parameters": model.parameters, "poles": model.poles, "fit": model.fit},
+        "true_parameters": _truth_parameters(nominal, axis),
+        "effects": augmented.effects,
+        "validation": augmented.validation,
+    }
+
+
 def _write_story(report: Report, summary: dict, capture: Capture, models: dict, augmented: dict, nominal: Any,
                  solver_rows: list, contour_rows: list, contour_figs: list, effect_axis: str) -> None:
-    import matplotlib.pyplot as plt
-
+    """The demo's report, section by section."""
     hidden = summary["hidden_effect"]
     report.text(
         "A rapid-identification test (200 random moves, thesis Table 3.2 style) runs on the virtual "
@@ -300,7 +306,18 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
         "contour predictions of the true machine, the identified and the augmented models are compared."
     )
 
-    # identification test: commanded, measured, predicted
+    _story_identification_test(report, capture, models, augmented, effect_axis)
+    _story_models(report, summary, models, nominal, solver_rows, effect_axis)
+    _story_diagnosis(report, capture, models, augmented, effect_axis)
+    _story_contours(report, summary, contour_rows, contour_figs)
+    _story_fmu(report, summary, augmented, effect_axis)
+
+
+def _story_identification_test(report: Report, capture: Capture, models: dict, augmented: dict,
+                               effect_axis: str) -> None:
+    """Commanded, measured and predicted position of the identification test."""
+    import matplotlib.pyplot as plt
+
     report.heading("Identification test")
     i = capture.axis_index(effect_axis)
     t = capture.t
@@ -330,7 +347,10 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
     fig.tight_layout()
     report.figure("identification_test", fig, caption="Commanded vs measured vs predicted position.")
 
-    # parameters
+
+def _story_models(report: Report, summary: dict, models: dict, nominal: Any, solver_rows: list,
+                  effect_axis: str) -> None:
+    """The identified parameters against the true ones, the solvers, the FRFs."""
     report.heading("Identified models")
     rows = []
     for a, m in models.items():
@@ -356,7 +376,9 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
         fig, _ = _frf_figure(m, nominal, a)
         report.figure(f"frf_{a}", fig, caption=f"Axis {a}: tracking and disturbance FRFs, true vs identified.")
 
-    # diagnosis
+
+def _story_diagnosis(report: Report, capture: Capture, models: dict, augmented: dict, effect_axis: str) -> None:
+    """The effects the diagnosis found and its figures."""
     report.heading("Residual diagnosis: what the reduced model does not explain")
     rows = []
     for a, m in augmented.items():
@@ -370,7 +392,9 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
                  caption="Effects found on held-out data, in the order they were added")
     _diagnosis_figures(report, capture, models, augmented, effect_axis)
 
-    # contours
+
+def _story_contours(report: Report, summary: dict, contour_rows: list, contour_figs: list) -> None:
+    """True and predicted contour errors."""
     report.heading("Contour prediction")
     rows = [[r["toolpath"], r["true_max_um"], r["identified_max_um"], r["augmented_max_um"],
              r["identified_error_pct_max"], r["augmented_error_pct_max"]] for r in contour_rows]
@@ -385,7 +409,9 @@ def _write_story(report: Report, summary: dict, capture: Capture, models: dict, 
                       caption=f"{name} at {summary['contour_feed_mm_s']:g} mm/s: contour error magnified, true vs "
                       "identified vs augmented, and along the path.")
 
-    # fmu
+
+def _story_fmu(report: Report, summary: dict, augmented: dict, effect_axis: str) -> None:
+    """The exported FMU and the model files."""
     report.heading("FMU export")
     info = summary.get("fmu")
     if info and info.get("exported"):
