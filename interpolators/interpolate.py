@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 from collections.abc import Mapping
@@ -162,8 +163,45 @@ def interpolate(
         raise InputError(f"program must be a Program (see parse_program), got {type(program).__name__}")
     Ts = float(sample_time)
     jerk_limited = profile == "scurve"
-    lim_dict = _resolve_limits(limits)
     chains = _chains(program)
+    lim = _axis_limits(chains, limits, jerk_limited)
+    g = _geometry(chains, lim, jerk_limited)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited)
+    v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
+    v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
+    ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
+    return _sample(program, g, ph, total_N, Ts, profile)
+
+
+@dataclasses.dataclass
+class _Geom:
+    """Step 1: the chains' segments (G64 corners blended), packed, with their block, chain, feed."""
+
+    segments: list
+    block: list[int]
+    chain: np.ndarray
+    feed: np.ndarray
+    rapid: np.ndarray
+    packed: PackedSegments
+    blended: bool
+
+
+@dataclasses.dataclass
+class _Chains:
+    """Step 2: the chains after splitting at corners that must be stops."""
+
+    of_segment: np.ndarray
+    count: int
+    dwell: np.ndarray
+    length: np.ndarray
+    reserved_segment: np.ndarray  # segments of chains that pass a discontinuity at speed
+    inner: np.ndarray  # junctions passed at speed (index of the segment before)
+    junction_limit: np.ndarray
+
+
+def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
+                 jerk_limited: bool) -> AxisLimitArrays:
+    """The limits of the axes the chains move (finite jerks for the S-curve)."""
     moving: set[int] = set()
     for ch in chains:
         for seg in ch.segments:
@@ -172,14 +210,16 @@ def interpolate(
                 moving.update(int(i) for i in np.flatnonzero(d > 0))
                 if isinstance(seg, Arc):
                     moving.update(seg.plane_axes)
-    lim = AxisLimitArrays(lim_dict, moving)
+    lim = AxisLimitArrays(_resolve_limits(limits), moving)
     if jerk_limited:
         bad = [AXIS_LETTERS[i] for i in sorted(moving) if not math.isfinite(lim.jerk[i])]
         if bad:
             raise InputError(f"the S-curve profile needs finite jerk limits; axis {', '.join(bad)} has none")
-    lim_chain = lim.scaled(acceleration=1.0 - JUNCTION_SHARE, jerk=1.0 - JUNCTION_SHARE)
+    return lim
 
-    # 1. geometry of each chain (blend G64 corners)
+
+def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool) -> _Geom:
+    """1. The geometry of each chain, its G64 corners blended."""
     all_segs: list[Line | Arc | np.ndarray] = []
     seg_block: list[int] = []
     seg_chain: list[int] = []
@@ -200,14 +240,18 @@ def interpolate(
             seg_chain.append(c)
             seg_feed.append(feed_of[b])
             seg_rapid.append(rapid_of[b])
-    n_seg = len(all_segs)
-    packed = PackedSegments.from_segments(all_segs)
-    L = packed.length
-    seg_chain_a = np.asarray(seg_chain, dtype=np.int64)
+    return _Geom(segments=all_segs, block=seg_block, chain=np.asarray(seg_chain, dtype=np.int64),
+                 feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
+                 packed=PackedSegments.from_segments(all_segs), blended=blended)
 
-    # 2. geometric speed bound at each junction inside a chain; a junction whose bound is
-    # negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
-    # chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve
+
+def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool) -> _Chains:
+    """2. The geometric speed bound at each junction inside a chain; a junction whose bound is
+    negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
+    chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve."""
+    packed, seg_chain_a = g.packed, g.chain
+    n_seg = len(g.segments)
+    L = packed.length
     inner = np.flatnonzero(seg_chain_a[1:] == seg_chain_a[:-1]) if n_seg > 1 else np.zeros(0, dtype=np.int64)
     jl = np.zeros(len(inner))
     if len(inner):
@@ -220,9 +264,8 @@ def interpolate(
         motion_idx = np.flatnonzero(packed.kind != HOLD)
         v_full = np.zeros(n_seg)
         if len(motion_idx):
-            v_full[motion_idx] = path_limits(packed.subset(motion_idx), np.asarray(seg_feed)[motion_idx],
-                                             np.asarray(seg_rapid, dtype=bool)[motion_idx], lim,
-                                             jerk_limited=jerk_limited)[0]
+            v_full[motion_idx] = path_limits(packed.subset(motion_idx), g.feed[motion_idx], g.rapid[motion_idx],
+                                             lim, jerk_limited=jerk_limited)[0]
         v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
         split = inner[jl <= v_stop]
         keep_j = jl > v_stop
@@ -247,36 +290,58 @@ def interpolate(
     reserved = np.zeros(n_chains, dtype=bool)
     reserved[seg_chain_a[rough]] = True
     in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
+    return _Chains(of_segment=seg_chain_a, count=n_chains, dwell=dwell_of_chain, length=chain_len,
+                   reserved_segment=in_multi, inner=inner, junction_limit=jl)
 
-    # 3. path bounds per segment
+
+def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """3. The path's speed, acceleration and jerk bounds per segment (chains passing a
+    discontinuity at speed keep JUNCTION_SHARE of the limits in reserve)."""
+    n_seg = len(g.segments)
+    lim_chain = lim.scaled(acceleration=1.0 - JUNCTION_SHARE, jerk=1.0 - JUNCTION_SHARE)
     v_max = np.zeros(n_seg)
     a_max = np.ones(n_seg)
     j_max = np.ones(n_seg)
-    motion = packed.kind != HOLD
-    feed_a = np.asarray(seg_feed, dtype=float)
-    rapid_a = np.asarray(seg_rapid, dtype=bool)
-    for mask, lims in ((motion & ~in_multi, lim), (motion & in_multi, lim_chain)):
+    motion = g.packed.kind != HOLD
+    for mask, lims in ((motion & ~c.reserved_segment, lim), (motion & c.reserved_segment, lim_chain)):
         idx = np.flatnonzero(mask)
         if len(idx):
-            sub = packed.subset(idx)
-            v, a, j = path_limits(sub, feed_a[idx], rapid_a[idx], lims, jerk_limited=jerk_limited)
+            sub = g.packed.subset(idx)
+            v, a, j = path_limits(sub, g.feed[idx], g.rapid[idx], lims, jerk_limited=jerk_limited)
             v_max[idx], a_max[idx], j_max[idx] = v, a, j
+    return v_max, a_max, j_max
 
-    # 4. junction speeds (entry v0 and exit v1 of each segment)
+
+def _junction_speeds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
+                     jerk_limited: bool) -> tuple[np.ndarray, np.ndarray]:
+    """4. Entry and exit speed of each segment (the look-ahead over each chain)."""
+    n_seg = len(g.segments)
+    L = g.packed.length
     v0 = np.zeros(n_seg)
     v1 = np.zeros(n_seg)
-    multi_chains = np.flatnonzero(chain_len > 1)
+    multi_chains = np.flatnonzero(c.length > 1)
     if len(multi_chains):
-        first = np.concatenate([[0], np.cumsum(chain_len)[:-1]])
-        jl_at = dict(zip(inner.tolist(), jl.tolist()))
-        for c in multi_chains:
-            s0, n = first[c], chain_len[c]
+        first = np.concatenate([[0], np.cumsum(c.length)[:-1]])
+        jl_at = dict(zip(c.inner.tolist(), c.junction_limit.tolist()))
+        for k in multi_chains:
+            s0, n = first[k], c.length[k]
             sl = slice(s0, s0 + n)
             vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl],
-                                 np.array([jl_at[k] for k in range(s0, s0 + n - 1)]), jerk_limited=jerk_limited)
+                                 np.array([jl_at[i] for i in range(s0, s0 + n - 1)]), jerk_limited=jerk_limited)
             v0[sl], v1[sl] = vj[:-1], vj[1:]
+    return v0, v1
 
-    # 5. profiles
+
+def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndarray, a_max: np.ndarray,
+            j_max: np.ndarray, Ts: float, jerk_limited: bool, program: Program, max_samples: int
+            ) -> tuple[dict[str, np.ndarray], int]:
+    """5-6. The profiles of the segments, each chain stretched to whole samples: the phase table
+    (segment, start time, duration, position, speed, acceleration, jerk) and the number of samples."""
+    packed = g.packed
+    n_seg = len(g.segments)
+    seg_chain_a, n_chains = c.of_segment, c.count
+    motion = packed.kind != HOLD
     mi = np.flatnonzero(motion)
     if jerk_limited:
         dur, p0, pv, pa, pj = scurve_phases(packed.length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
@@ -286,9 +351,8 @@ def interpolate(
     seg_dur = np.zeros(n_seg)
     seg_dur[mi] = dur.sum(axis=1)
     hold = np.flatnonzero(~motion)
-    seg_dur[hold] = dwell_of_chain[seg_chain_a[hold]]
-
-    # 6. whole samples per chain; uniform slow-down (lambda <= 1) to fit them
+    seg_dur[hold] = c.dwell[seg_chain_a[hold]]
+    # whole samples per chain; uniform slow-down (lambda <= 1) to fit them
     chain_T = np.bincount(seg_chain_a, weights=seg_dur, minlength=n_chains) if n_seg else np.zeros(0)
     chain_N = np.ceil(chain_T / Ts * (1.0 - 1e-12)).astype(np.int64)
     chain_N = np.maximum(chain_N, 1)
@@ -327,8 +391,16 @@ def interpolate(
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
         x[keep] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg)
     )
+    return {"seg": ph_seg, "dur": ph_dur, "p": ph_p, "v": ph_v, "a": ph_a, "j": ph_j, "start": ph_start,
+            "last": last_of_seg}, total_N
 
-    # 7. sample
+
+def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int, Ts: float,
+            profile: str) -> Setpoints:
+    """7. The setpoints at every sample time."""
+    packed, all_segs, seg_block = g.packed, g.segments, g.block
+    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
+        ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
     axes = program.axes or ("x",)
     ax_idx = [AXIS_LETTERS.index(a) for a in axes]
     t = np.arange(total_N + 1) * Ts
@@ -361,7 +433,7 @@ def interpolate(
                      blocks=tuple(b for s_, b in zip(all_segs, seg_block) if not isinstance(s_, np.ndarray)),
                      axes=axes)
     meta = _meta(program, profile, Ts, float(t[-1]))
-    if blended:
+    if g.blended:
         meta["programmed_path"] = program.path()
     return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=seg_block_a[seg],
                      sample_time=Ts, path=geom_path, meta=meta)
