@@ -486,101 +486,132 @@ def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
     cur_rms = base.rms_um
     rounds: list[dict] = []
     for _ in range(opt.max_effects):
-        present = {e.NAME for e in cur.elements}
         ctx = SearchContext(data, cur)
-        cands: list[Candidate] = []
-        for name in opt.effects:
-            if name in present:
-                continue
-            try:
-                cands.extend(SEARCHES[name](ctx))
-            except (np.linalg.LinAlgError, ValueError, IdentificationError) as exc:
-                log.info("search for %s failed: %s", name, exc)
-        cands = [c for c in cands if math.isfinite(c.screen_rms_um)]
-        cands.sort(key=lambda c: c.screen_rms_um)
-        tried = []
-        # only proposals whose screen shows evidence (a training-error drop of >= min_screen) are refitted
-        cands_ev = [c for c in cands if c.screen_rms_um <= (1.0 - opt.min_screen) * ctx.train_rms_um]
-        for c in cands_ev[: opt.top]:
-            m = refit(c.start, data, active, max_nfev=opt.max_nfev)
-            r_fit, m_fit = _errors(m, data, active)
-            # an in-sample drop below half the criterion cannot become a held-out drop that meets it
-            if _gain(cur_rms, r_fit) >= 0.5 * opt.min_gain:
-                j = _judge(m, data, plan, opt, fitted=True)
-            else:
-                j = _Judged(model=m, rms_um=r_fit, max_um=m_fit, fold_rms_um=[], fold_max_um=[])
-                j._pooled = (math.inf, math.inf)
-            tried.append((j, c))
+        cands = _proposals(ctx, cur, opt)
+        tried = _refitted(cands, ctx, data, plan, active, cur_rms, opt)
         log.info("round %d: %s", len(rounds) + 1, [(t[1].effect.NAME, round(t[0].held_out_rms_um, 4)) for t in tried])
-        rounds.append({
-            "screened": {c.effect.NAME: round(c.screen_rms_um, 5) for c in cands},
-            "equation_error_drop_pct": {c.effect.NAME: round(c.evidence["ee_rss_reduction_pct"], 3) for c in cands
-                                        if "ee_rss_reduction_pct" in c.evidence},
-            "refitted": {t[1].effect.NAME: {"validation_rms_um": round(t[0].held_out_rms_um, 5),
-                                            "identification_rms_um": round(t[0].rms_um, 5),
-                                            "fold_rms_um": [round(v, 5) for v in t[0].fold_rms_um]}
-                         for t in tried},
-            "current_validation_rms_um": stages[-1].validation_rms_um,
-            "current_identification_rms_um": cur_rms,
-        })
+        rounds.append(_round_record(cands, tried, stages[-1], cur_rms))
         if not tried:
             rounds[-1]["accepted"] = None
             break
-        prev = stages[-1].validation_rms_um
-        chosen = None
-        for j, c in sorted(tried, key=lambda t: t[0].held_out_rms_um):
-            r_va = j.held_out_rms_um
-            gain = _gain(prev, r_va)
-            against = _contradicting_folds(stages[-1].fold_rms_um, j.fold_rms_um, opt)
-            ok = gain >= opt.min_gain and (prev - r_va) >= opt.min_gain_um and j.rms_um < cur_rms and not against
-            if against:
-                rounds[-1].setdefault("contradicted_by_folds", {})[c.effect.NAME] = [i + 1 for i in against]
-            nested = None
-            if ok and c.effect.NAME == "resonance":
-                # a mode is claimed only when the axis' own motion excites it: the residual's line
-                # must be coherent with the commanded acceleration (not an external line)
-                e_new = next(e for e in j.model.elements if e.NAME == "resonance")
-                coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
-                rounds[-1]["resonance_motion_coherence"] = coh
-                ok = coh >= _MIN_MODE_COHERENCE
-            if ok and c.effect.KIND == "element":
-                # the element must beat its own null (the sampled split form without it), refitted
-                null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
-                r_null = null.held_out_rms_um
-                nested = _gain(r_null, r_va)
-                ok = nested >= opt.min_gain and (r_null - r_va) >= opt.min_gain_um
-                rounds[-1].setdefault("nested", {})[c.effect.NAME] = {"null_validation_rms_um": r_null,
-                                                                     "gain_pct": 100.0 * nested}
-            if ok:
-                chosen = (j, c, gain, nested)
-                break
-        best = min(tried, key=lambda t: t[0].held_out_rms_um)
-        rounds[-1]["best"] = best[1].effect.NAME
-        rounds[-1]["gain_pct"] = 100.0 * _gain(prev, best[0].held_out_rms_um)
-        rounds[-1]["accepted"] = chosen[1].effect.NAME if chosen else None
+        chosen = _choose(tried, ctx, data, plan, active, stages[-1], cur_rms, rounds[-1], opt)
         if chosen is None:
             break
-        j, c, gain, nested = chosen
-        ev = dict(c.evidence)
-        ev["validation_gain_pct"] = 100.0 * gain
-        if nested is not None:
-            ev["validation_gain_over_null_pct"] = 100.0 * nested
-        if "resonance_motion_coherence" in rounds[-1] and c.effect.NAME == "resonance":
-            ev["motion_coherence"] = rounds[-1]["resonance_motion_coherence"]
-        ev["candidates_validation_rms_um"] = {t[1].effect.NAME: t[0].held_out_rms_um
-                                              for t in sorted(tried, key=lambda t: t[0].held_out_rms_um)}
-        ev["fold_rms_before_um"] = list(stages[-1].fold_rms_um)
-        ev["fold_rms_after_um"] = list(j.fold_rms_um)
-        stages.append(Stage(effect=c.effect.NAME, train_model=j.model, full_model=j.model,
-                            validation_rms_um=j.held_out_rms_um, validation_max_um=j.held_out_max_um,
-                            identification_rms_um=j.rms_um, identification_max_um=j.max_um, evidence=ev,
-                            fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um))
-        cur, cur_rms = j.model, j.rms_um
+        stages.append(_accepted_stage(chosen, tried, stages[-1], rounds[-1]))
+        cur, cur_rms = stages[-1].full_model, stages[-1].identification_rms_um
     # the reduced model's identification-data error, on the active samples
     stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
     final = _final_model(model, stages, opt, data, rounds, plan, counts)
     return DiagnosisReport(model=final, reduced=model, stages=stages, rounds=rounds, data=data,
                            time_s=time.perf_counter() - t_start, plan=plan)
+
+
+def _proposals(ctx: SearchContext, cur: AugmentedAxisModel, opt: DiagnosisOptions) -> list[Candidate]:
+    """Every search's proposals for an effect the model does not have yet, best screen first."""
+    present = {e.NAME for e in cur.elements}
+    cands: list[Candidate] = []
+    for name in opt.effects:
+        if name in present:
+            continue
+        try:
+            cands.extend(SEARCHES[name](ctx))
+        except (np.linalg.LinAlgError, ValueError, IdentificationError) as exc:
+            log.info("search for %s failed: %s", name, exc)
+    cands = [c for c in cands if math.isfinite(c.screen_rms_um)]
+    cands.sort(key=lambda c: c.screen_rms_um)
+    return cands
+
+
+def _refitted(cands: list[Candidate], ctx: SearchContext, data: Data, plan, active: np.ndarray, cur_rms: float,
+              opt: DiagnosisOptions) -> list[tuple]:
+    """The proposals with evidence, refitted jointly and judged on the folds: ``(judged, candidate)``."""
+    tried = []
+    # only proposals whose screen shows evidence (a training-error drop of >= min_screen) are refitted
+    cands_ev = [c for c in cands if c.screen_rms_um <= (1.0 - opt.min_screen) * ctx.train_rms_um]
+    for c in cands_ev[: opt.top]:
+        m = refit(c.start, data, active, max_nfev=opt.max_nfev)
+        r_fit, m_fit = _errors(m, data, active)
+        # an in-sample drop below half the criterion cannot become a held-out drop that meets it
+        if _gain(cur_rms, r_fit) >= 0.5 * opt.min_gain:
+            j = _judge(m, data, plan, opt, fitted=True)
+        else:
+            j = _Judged(model=m, rms_um=r_fit, max_um=m_fit, fold_rms_um=[], fold_max_um=[])
+            j._pooled = (math.inf, math.inf)
+        tried.append((j, c))
+    return tried
+
+
+def _round_record(cands: list[Candidate], tried: list[tuple], stage: Stage, cur_rms: float) -> dict:
+    """What a round saw: the screen, the refits, the current errors."""
+    return {
+        "screened": {c.effect.NAME: round(c.screen_rms_um, 5) for c in cands},
+        "equation_error_drop_pct": {c.effect.NAME: round(c.evidence["ee_rss_reduction_pct"], 3) for c in cands
+                                    if "ee_rss_reduction_pct" in c.evidence},
+        "refitted": {t[1].effect.NAME: {"validation_rms_um": round(t[0].held_out_rms_um, 5),
+                                        "identification_rms_um": round(t[0].rms_um, 5),
+                                        "fold_rms_um": [round(v, 5) for v in t[0].fold_rms_um]}
+                     for t in tried},
+        "current_validation_rms_um": stage.validation_rms_um,
+        "current_identification_rms_um": cur_rms,
+    }
+
+
+def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np.ndarray, stage: Stage,
+            cur_rms: float, record: dict, opt: DiagnosisOptions) -> tuple | None:
+    """The best refitted proposal that passes every test (held-out gain, no contradicting fold, a
+    mode the motion excites, beating its own null), or None; ``record`` notes why."""
+    prev = stage.validation_rms_um
+    chosen = None
+    for j, c in sorted(tried, key=lambda t: t[0].held_out_rms_um):
+        r_va = j.held_out_rms_um
+        gain = _gain(prev, r_va)
+        against = _contradicting_folds(stage.fold_rms_um, j.fold_rms_um, opt)
+        ok = gain >= opt.min_gain and (prev - r_va) >= opt.min_gain_um and j.rms_um < cur_rms and not against
+        if against:
+            record.setdefault("contradicted_by_folds", {})[c.effect.NAME] = [i + 1 for i in against]
+        nested = None
+        if ok and c.effect.NAME == "resonance":
+            # a mode is claimed only when the axis' own motion excites it: the residual's line
+            # must be coherent with the commanded acceleration (not an external line)
+            e_new = next(e for e in j.model.elements if e.NAME == "resonance")
+            coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
+            record["resonance_motion_coherence"] = coh
+            ok = coh >= _MIN_MODE_COHERENCE
+        if ok and c.effect.KIND == "element":
+            # the element must beat its own null (the sampled split form without it), refitted
+            null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
+            r_null = null.held_out_rms_um
+            nested = _gain(r_null, r_va)
+            ok = nested >= opt.min_gain and (r_null - r_va) >= opt.min_gain_um
+            record.setdefault("nested", {})[c.effect.NAME] = {"null_validation_rms_um": r_null,
+                                                              "gain_pct": 100.0 * nested}
+        if ok:
+            chosen = (j, c, gain, nested)
+            break
+    best = min(tried, key=lambda t: t[0].held_out_rms_um)
+    record["best"] = best[1].effect.NAME
+    record["gain_pct"] = 100.0 * _gain(prev, best[0].held_out_rms_um)
+    record["accepted"] = chosen[1].effect.NAME if chosen else None
+    return chosen
+
+
+def _accepted_stage(chosen: tuple, tried: list[tuple], stage: Stage, record: dict) -> Stage:
+    """The stage of an accepted effect, with its evidence."""
+    j, c, gain, nested = chosen
+    ev = dict(c.evidence)
+    ev["validation_gain_pct"] = 100.0 * gain
+    if nested is not None:
+        ev["validation_gain_over_null_pct"] = 100.0 * nested
+    if "resonance_motion_coherence" in record and c.effect.NAME == "resonance":
+        ev["motion_coherence"] = record["resonance_motion_coherence"]
+    ev["candidates_validation_rms_um"] = {t[1].effect.NAME: t[0].held_out_rms_um
+                                          for t in sorted(tried, key=lambda t: t[0].held_out_rms_um)}
+    ev["fold_rms_before_um"] = list(stage.fold_rms_um)
+    ev["fold_rms_after_um"] = list(j.fold_rms_um)
+    return Stage(effect=c.effect.NAME, train_model=j.model, full_model=j.model,
+                 validation_rms_um=j.held_out_rms_um, validation_max_um=j.held_out_max_um,
+                 identification_rms_um=j.rms_um, identification_max_um=j.max_um, evidence=ev,
+                 fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um)
 
 
 def _gain(before: float, after: float) -> float:
