@@ -15,7 +15,7 @@ Procedure (forward selection judged on held-out data)
    capture that never moves an error). The searches fit on the active samples outside the last
    fold and check their own choices (harmonic counts) on it.
 2. **Search.** Every effect not yet in the model proposes its best instance
-   (:mod:`identification.effects.search`: equation-error partial regressions for disturbance
+   (:mod:`identification.searches`: equation-error partial regressions for disturbance
    terms with their nonlinear parameter searched - Stribeck velocity, position period, time
    period from the residual spectrum, harmonics by validation equation error - and simulations
    for the structured elements: delays 1..8 samples, saturation limits, backlash widths,
@@ -59,11 +59,11 @@ from identification.augmented import AugmentedAxisModel, augment, simulate_augme
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
-from identification.effects.search import SEARCHES, Candidate, Data, SearchContext
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
 from identification.reduced_model import ReducedAxisModel
 from identification.residual import motion_coherence
+from identification.searches import SEARCHES, Candidate, Data, SearchContext
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError

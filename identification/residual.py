@@ -52,7 +52,7 @@ def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.
     rows = np.arange(opt.half_width, opt.half_width + y.size)
     elements = getattr(model, "elements", ())
     if elements:
-        from identification.effects.search import w_of
+        from identification.searches import w_of
 
         v, t = -phi[:, 1], rows * sample_time
         for e in elements:

@@ -164,7 +164,7 @@ def test_fmu_flags():
 def test_time_periodic_load_locked_to_the_reference_is_not_identifiable():
     """A load whose period the reference itself repeats with cannot be told from reference-driven
     effects (friction, modes): the search refuses such periods."""
-    from identification.effects.search import reference_repeats
+    from identification.searches import reference_repeats
 
     T = 1e-3
     t = np.arange(20000) * T

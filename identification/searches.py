@@ -28,16 +28,18 @@ import scipy.linalg
 import scipy.signal
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
-from identification.effects._base import Effect
-from identification.effects.backlash import Backlash
-from identification.effects.delay import Delay
-from identification.effects.drift import Drift
-from identification.effects.friction_stribeck import FrictionStribeck
-from identification.effects.friction_viscous_asymmetric import FrictionViscousAsymmetric
-from identification.effects.position_periodic import PositionPeriodic
-from identification.effects.resonance import Resonance
-from identification.effects.saturation import Saturation
-from identification.effects.time_periodic import TimePeriodic
+from identification.effects import (
+    Backlash,
+    Delay,
+    Drift,
+    Effect,
+    FrictionStribeck,
+    FrictionViscousAsymmetric,
+    PositionPeriodic,
+    Resonance,
+    Saturation,
+    TimePeriodic,
+)
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
 
