@@ -60,10 +60,10 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import numba
 import numpy as np
 
-from identification.reduced_model import NO_FOURIER, ReducedAxisModel, discretize, run_exact, w_terms
+from identification.kernels import run_exact, run_split
+from identification.reduced_model import ReducedAxisModel, discretize
 from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
@@ -131,164 +131,6 @@ class SimSpec:
         return np.arange(self.n) * self.sample_time
 
 
-# ------------------------------------------------------------------------------------ kernels
-
-
-@numba.njit(cache=True, nogil=True)
-def _rigid_coef(c, h):  # pragma: no cover - compiled
-    """(e, p1, p2) of the exact step of x'' = acc - c x' over h: v' = e v + p1 acc, x' = x + p1 v + p2 acc."""
-    ch = c * h
-    if ch < 1e-6:
-        return 1.0 - ch, h * (1.0 - 0.5 * ch), h * h * (0.5 - ch / 6.0)
-    p1 = -math.expm1(-ch) / c
-    return math.exp(-ch), p1, (h - p1) / c
-
-
-@numba.njit(cache=True, nogil=True)
-def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
-    """Exact step of x'' = acc - c x' over h (acc held)."""
-    e, p1, p2 = _rigid_coef(c, h)
-    return x + v * p1 + acc * p2, v * e + acc * p1
-
-
-@numba.njit(cache=True, nogil=True)
-def _kinetic(v, d0, d1, st, asym):  # pragma: no cover - compiled
-    """Friction while moving with velocity v != 0 [mm/s^2 of the whole mass]: Coulomb plus the
-    velocity terms of :func:`w_terms` (Stribeck excess, asymmetric viscous)."""
-    return (d0 if v > 0.0 else d1) + w_terms(v, 0.0, st, asym, 0.0, NO_FOURIER)
-
-
-@numba.njit(cache=True, nogil=True)
-def _friction_step(x, v, force, mass, c, h, coef, d0, d1, st, asym, lo, hi):  # pragma: no cover - compiled
-    """Step h of ``mass x'' = force - F - c x'`` with friction F that sticks (Karnopp).
-
-    At rest the mass stays at rest while ``lo <= force <= hi`` (the static levels, Coulomb plus
-    Stribeck excess); it breaks away against the static level; moving, F is the kinetic friction
-    of its direction and a step that would reverse the velocity ends at rest. ``lo >= hi`` (no
-    friction, or an identified friction without a stiction band) switches on sign(v) instead, 0
-    at rest.
-    ``coef`` is :func:`_rigid_coef` of (c / mass, h), computed once per run.
-    """
-    stick = lo < hi
-    if v == 0.0:
-        if not stick:
-            f = 0.0
-            dirn = 0.0
-        elif force > hi:
-            f = hi
-            dirn = 1.0
-        elif force < lo:
-            f = lo
-            dirn = -1.0
-        else:
-            return x, 0.0
-    else:
-        f = _kinetic(v, d0, d1, st, asym)
-        dirn = 1.0 if v > 0.0 else -1.0
-    a = (force - f) / mass
-    x1 = x + v * coef[1] + a * coef[2]
-    v1 = v * coef[0] + a * coef[1]
-    if stick and v1 * dirn < 0.0 and v != 0.0:
-        # the motion stops inside the step (at ts, linear estimate): stick there, or break away
-        # against the static level for the rest of the step
-        cm = c / mass
-        ts = min(max(-v / (a - cm * v), 0.0), h)
-        x1 = x + v * ts + 0.5 * (a - cm * v) * ts * ts
-        if lo <= force <= hi:
-            return x1, 0.0
-        return _rigid(x1, 0.0, (force - (hi if force > hi else lo)) / mass, cm, h - ts)
-    if stick and v1 * dirn < 0.0:
-        v1 = 0.0
-    return x1, v1
-
-
-@numba.njit(cache=True, nogil=True)
-def _run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
-               delay, umax, bl, res, pos, vel):  # pragma: no cover - compiled
-    """The sampled split form of the module docstring; the plant takes m steps per sample."""
-    n = xr.shape[0]
-    h = T / m
-    kd = a1 - cvis
-    ff = b2 - a2
-    two_mass = res[0] > 0.0
-    meas_table = res[3] > 0.5
-    rr = res[2]
-    kspr = 0.0
-    cdmp = 0.0
-    if two_mass:
-        om = 2.0 * math.pi * res[0]
-        kspr = om * om * rr * (1.0 - rr)
-        cdmp = 2.0 * res[1] * om * rr * (1.0 - rr)
-    # static friction levels (Coulomb plus the Stribeck excess at rest)
-    lo = d1 + (st[2] if st[0] > 0.0 else 0.0)
-    hi = d0 + (st[1] if st[0] > 0.0 else 0.0)
-    no_st = np.zeros(3)
-    coef = _rigid_coef(cvis / rr, h) if two_mass else _rigid_coef(cvis, h)
-    xm = xr[0]
-    vm = 0.0
-    xt = xr[0]
-    vt = 0.0
-    xb = xr[0]
-    integ = -ff * xr[0] / a3
-    ubuf = np.zeros(delay + 1)
-    yprev = xr[0]
-    rprev = xr[0]
-    vrprev = 0.0
-    for k in range(n):
-        # ------------------------------------------------ measurement at the sample
-        if two_mass and meas_table:
-            y = xt
-            vy = vt
-        else:
-            y = xm
-            vy = vm
-        if bl > 0.0:
-            y = xb
-            if abs((xm if not (two_mass and meas_table) else xt) - xb) < 0.5 * bl * (1.0 - 1e-12):
-                vy = 0.0
-        pos[k] = y
-        vel[k] = vy
-        # ------------------------------------------------ sampled controller (Eq. 3.3 split)
-        e = xr[k] - y
-        integ += T * e
-        vr = (xr[k] - rprev) / T
-        ar = (vr - vrprev) / T if k > 1 else 0.0
-        u = b1 * vr - kd * (y - yprev) / T + a2 * e + a3 * integ + ff * xr[k] + b0 * ar
-        yprev = y
-        rprev = xr[k]
-        vrprev = vr
-        if delay > 0:
-            ubuf[k % (delay + 1)] = u
-            u = ubuf[(k + 1) % (delay + 1)] if k >= delay else 0.0
-        if u > umax:
-            u = umax
-        elif u < -umax:
-            u = -umax
-        # ------------------------------------------------ plant over the sample (u held)
-        for _ in range(m):
-            # loads that are not friction: w_ext (held) and the position-periodic force
-            load = wext[k] + w_terms(0.0, xt if two_mass else xm, no_st, 0.0, pp_period, pp_coef)
-            if two_mass:
-                fs = kspr * (xm - xt) + cdmp * (vm - vt)
-                vm += h * (u - fs) / (1.0 - rr)
-                xm += h * vm
-                xt, vt = _friction_step(xt, vt, fs - load, rr, cvis, h, coef, d0, d1, st, asym, lo, hi)
-            else:
-                xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, coef, d0, d1, st, asym, lo, hi)
-            if bl > 0.0:
-                mech = xt if (two_mass and meas_table) else xm
-                half = 0.5 * bl
-                if mech - xb > half:
-                    xb = mech - half
-                elif mech - xb < -half:
-                    xb = mech + half
-        if not (abs(xm) < 1e9 and abs(vm) < 1e12):
-            for q in range(k, n):
-                pos[q] = np.nan
-                vel[q] = np.nan
-            return
-
-
 def simulate_augmented(
     parameters: Mapping[str, float],
     reference: np.ndarray,
@@ -318,7 +160,7 @@ def simulate_augmented(
         m = 1 if (res[0] <= 0 and spec.backlash <= 0) else int(substeps)
         if res[0] > 0:
             m = max(m, int(math.ceil(40.0 * res[0] * T)))
-        _run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),
+        run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),
                    p["d0"], p["d1"], wext, st, float(spec.asym), float(spec.pp_period), pp_coef,
                    int(spec.delay), float(spec.saturation), float(spec.backlash), res, pos, vel)
     else:

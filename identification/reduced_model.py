@@ -86,11 +86,11 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-import numba
 import numpy as np
 import scipy.linalg
 
 from identification.dead_time import delay_reference
+from identification.kernels import NO_FOURIER, NO_STRIBECK, run_exact
 from identification.model_format import model_to_dict, write_model
 from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
 from identification.poles import pole_splits, pole_table, zero_table
@@ -258,72 +258,6 @@ def _discretize_cached(values: tuple[float, ...], T: float) -> DiscreteModel:
     )
 
 
-@numba.njit(cache=True, nogil=True)
-def w_terms(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
-    """Disturbance terms of the diagnosis effects [mm/s^2] (identification.augmented) at model
-    velocity v [mm/s] and position x [mm]: Stribeck ``st = (v_s, d+, d-)`` (v_s <= 0: none),
-    asymmetric viscous ``asym |v|``, position-periodic Fourier series ``pp_coef[h] = (sin, cos)``
-    of period ``pp_period`` (<= 0: none). All zero for the plain reduced model."""
-    w = 0.0
-    if st[0] > 0.0:
-        if v > 0.0:
-            r = v / st[0]
-            w += st[1] * math.exp(-r * r)
-        elif v < 0.0:
-            r = v / st[0]
-            w += st[2] * math.exp(-r * r)
-    if asym != 0.0:
-        w += asym * abs(v)
-    if pp_period > 0.0:
-        th = 2.0 * math.pi * x / pp_period
-        for h in range(pp_coef.shape[0]):
-            a = (h + 1) * th
-            w += pp_coef[h, 0] * math.sin(a) + pp_coef[h, 1] * math.cos(a)
-    return w
-
-
-@numba.njit(cache=True, nogil=True)
-def run_exact(phi, gamma, c, d, cv, dv, dvs, d0, d1, xr, wext, st, asym, pp_period, pp_coef,
-              pos, vel):  # pragma: no cover - compiled
-    """The exact sampled loop of the module docstring (deviations from xr[0]), with w_k extended
-    by :func:`w_terms`. Fills ``pos`` and ``vel``; NaN from the sample where |x| exceeds 1e9 mm
-    (a diverging candidate model) instead of overflowing."""
-    r0 = xr[0]
-    x0 = 0.0
-    x1 = 0.0
-    x2 = 0.0
-    prev = 0.0
-    for k in range(xr.shape[0]):
-        r = xr[k] - r0
-        p = (((c[0] * x0 + c[1] * x1) + c[2] * x2) + d * r) + r0
-        pos[k] = p
-        v = (((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dv * r) + dvs * (r - prev)
-        vel[k] = v
-        if v > 0.0:
-            f = d0
-        elif v < 0.0:
-            f = d1
-        else:
-            f = 0.0
-        w = f + wext[k]
-        w += w_terms(v, p, st, asym, pp_period, pp_coef)
-        n0 = (((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 0] * r) + gamma[0, 1] * w
-        n1 = (((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 0] * r) + gamma[1, 1] * w
-        n2 = (((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 0] * r) + gamma[2, 1] * w
-        x0, x1, x2 = n0, n1, n2
-        prev = r
-        if not abs(p) < 1e9:
-            for j in range(k, xr.shape[0]):
-                pos[j] = np.nan
-                vel[j] = np.nan
-            return
-
-
-_NO_STRIBECK = np.zeros(3)
-#: Empty position-periodic coefficient table (no Fourier terms) for the compiled friction terms.
-NO_FOURIER = np.zeros((1, 2))
-
-
 def simulate(
     parameters: Mapping[str, float],
     reference: np.ndarray,
@@ -372,7 +306,7 @@ def simulate(
     vel = np.empty_like(xr)
     # The loop runs on deviations from the first reference sample: the state at rest is then
     # exactly zero, so v_0 == 0 and the friction stays off until the reference moves.
-    run_exact(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.d0, m.d1, xr, wext, _NO_STRIBECK, 0.0, 0.0,
+    run_exact(m.phi, m.gamma, m.c, m.d, m.cv, m.dv, m.dvs, m.d0, m.d1, xr, wext, NO_STRIBECK, 0.0, 0.0,
               NO_FOURIER, pos, vel)
     return (pos, vel) if return_velocity else pos
 

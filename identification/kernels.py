@@ -1,0 +1,235 @@
+"""The compiled loops of the identification models (numba), in one place: the reduced model's
+exact sampled loop (Eq. 3.3 discretised, :mod:`identification.reduced_model`) with the diagnosis'
+disturbance terms, and the split loop of an augmented model (a rigid or two-mass plant with
+friction, backlash, delay and saturation, :mod:`identification.augmented`)."""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+__all__ = ["w_terms", "run_exact", "run_split", "NO_STRIBECK", "NO_FOURIER"]
+
+
+@numba.njit(cache=True, nogil=True)
+def w_terms(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
+    """Disturbance terms of the diagnosis effects [mm/s^2] (identification.augmented) at model
+    velocity v [mm/s] and position x [mm]: Stribeck ``st = (v_s, d+, d-)`` (v_s <= 0: none),
+    asymmetric viscous ``asym |v|``, position-periodic Fourier series ``pp_coef[h] = (sin, cos)``
+    of period ``pp_period`` (<= 0: none). All zero for the plain reduced model."""
+    w = 0.0
+    if st[0] > 0.0:
+        if v > 0.0:
+            r = v / st[0]
+            w += st[1] * math.exp(-r * r)
+        elif v < 0.0:
+            r = v / st[0]
+            w += st[2] * math.exp(-r * r)
+    if asym != 0.0:
+        w += asym * abs(v)
+    if pp_period > 0.0:
+        th = 2.0 * math.pi * x / pp_period
+        for h in range(pp_coef.shape[0]):
+            a = (h + 1) * th
+            w += pp_coef[h, 0] * math.sin(a) + pp_coef[h, 1] * math.cos(a)
+    return w
+
+
+@numba.njit(cache=True, nogil=True)
+def run_exact(phi, gamma, c, d, cv, dv, dvs, d0, d1, xr, wext, st, asym, pp_period, pp_coef,
+              pos, vel):  # pragma: no cover - compiled
+    """The exact sampled loop of the module docstring (deviations from xr[0]), with w_k extended
+    by :func:`w_terms`. Fills ``pos`` and ``vel``; NaN from the sample where |x| exceeds 1e9 mm
+    (a diverging candidate model) instead of overflowing."""
+    r0 = xr[0]
+    x0 = 0.0
+    x1 = 0.0
+    x2 = 0.0
+    prev = 0.0
+    for k in range(xr.shape[0]):
+        r = xr[k] - r0
+        p = (((c[0] * x0 + c[1] * x1) + c[2] * x2) + d * r) + r0
+        pos[k] = p
+        v = (((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dv * r) + dvs * (r - prev)
+        vel[k] = v
+        if v > 0.0:
+            f = d0
+        elif v < 0.0:
+            f = d1
+        else:
+            f = 0.0
+        w = f + wext[k]
+        w += w_terms(v, p, st, asym, pp_period, pp_coef)
+        n0 = (((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 0] * r) + gamma[0, 1] * w
+        n1 = (((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 0] * r) + gamma[1, 1] * w
+        n2 = (((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 0] * r) + gamma[2, 1] * w
+        x0, x1, x2 = n0, n1, n2
+        prev = r
+        if not abs(p) < 1e9:
+            for j in range(k, xr.shape[0]):
+                pos[j] = np.nan
+                vel[j] = np.nan
+            return
+
+
+#: No Stribeck term (v_s <= 0) for the compiled friction terms.
+NO_STRIBECK = np.zeros(3)
+#: Empty position-periodic coefficient table (no Fourier terms) for the compiled friction terms.
+NO_FOURIER = np.zeros((1, 2))
+
+
+@numba.njit(cache=True, nogil=True)
+def _rigid_coef(c, h):  # pragma: no cover - compiled
+    """(e, p1, p2) of the exact step of x'' = acc - c x' over h: v' = e v + p1 acc, x' = x + p1 v + p2 acc."""
+    ch = c * h
+    if ch < 1e-6:
+        return 1.0 - ch, h * (1.0 - 0.5 * ch), h * h * (0.5 - ch / 6.0)
+    p1 = -math.expm1(-ch) / c
+    return math.exp(-ch), p1, (h - p1) / c
+
+
+@numba.njit(cache=True, nogil=True)
+def _rigid(x, v, acc, c, h):  # pragma: no cover - compiled
+    """Exact step of x'' = acc - c x' over h (acc held)."""
+    e, p1, p2 = _rigid_coef(c, h)
+    return x + v * p1 + acc * p2, v * e + acc * p1
+
+
+@numba.njit(cache=True, nogil=True)
+def _kinetic(v, d0, d1, st, asym):  # pragma: no cover - compiled
+    """Friction while moving with velocity v != 0 [mm/s^2 of the whole mass]: Coulomb plus the
+    velocity terms of :func:`w_terms` (Stribeck excess, asymmetric viscous)."""
+    return (d0 if v > 0.0 else d1) + w_terms(v, 0.0, st, asym, 0.0, NO_FOURIER)
+
+
+@numba.njit(cache=True, nogil=True)
+def _friction_step(x, v, force, mass, c, h, coef, d0, d1, st, asym, lo, hi):  # pragma: no cover - compiled
+    """Step h of ``mass x'' = force - F - c x'`` with friction F that sticks (Karnopp).
+
+    At rest the mass stays at rest while ``lo <= force <= hi`` (the static levels, Coulomb plus
+    Stribeck excess); it breaks away against the static level; moving, F is the kinetic friction
+    of its direction and a step that would reverse the velocity ends at rest. ``lo >= hi`` (no
+    friction, or an identified friction without a stiction band) switches on sign(v) instead, 0
+    at rest.
+    ``coef`` is :func:`_rigid_coef` of (c / mass, h), computed once per run.
+    """
+    stick = lo < hi
+    if v == 0.0:
+        if not stick:
+            f = 0.0
+            dirn = 0.0
+        elif force > hi:
+            f = hi
+            dirn = 1.0
+        elif force < lo:
+            f = lo
+            dirn = -1.0
+        else:
+            return x, 0.0
+    else:
+        f = _kinetic(v, d0, d1, st, asym)
+        dirn = 1.0 if v > 0.0 else -1.0
+    a = (force - f) / mass
+    x1 = x + v * coef[1] + a * coef[2]
+    v1 = v * coef[0] + a * coef[1]
+    if stick and v1 * dirn < 0.0 and v != 0.0:
+        # the motion stops inside the step (at ts, linear estimate): stick there, or break away
+        # against the static level for the rest of the step
+        cm = c / mass
+        ts = min(max(-v / (a - cm * v), 0.0), h)
+        x1 = x + v * ts + 0.5 * (a - cm * v) * ts * ts
+        if lo <= force <= hi:
+            return x1, 0.0
+        return _rigid(x1, 0.0, (force - (hi if force > hi else lo)) / mass, cm, h - ts)
+    if stick and v1 * dirn < 0.0:
+        v1 = 0.0
+    return x1, v1
+
+
+@numba.njit(cache=True, nogil=True)
+def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
+               delay, umax, bl, res, pos, vel):  # pragma: no cover - compiled
+    """The sampled split form of the module docstring; the plant takes m steps per sample."""
+    n = xr.shape[0]
+    h = T / m
+    kd = a1 - cvis
+    ff = b2 - a2
+    two_mass = res[0] > 0.0
+    meas_table = res[3] > 0.5
+    rr = res[2]
+    kspr = 0.0
+    cdmp = 0.0
+    if two_mass:
+        om = 2.0 * math.pi * res[0]
+        kspr = om * om * rr * (1.0 - rr)
+        cdmp = 2.0 * res[1] * om * rr * (1.0 - rr)
+    # static friction levels (Coulomb plus the Stribeck excess at rest)
+    lo = d1 + (st[2] if st[0] > 0.0 else 0.0)
+    hi = d0 + (st[1] if st[0] > 0.0 else 0.0)
+    no_st = np.zeros(3)
+    coef = _rigid_coef(cvis / rr, h) if two_mass else _rigid_coef(cvis, h)
+    xm = xr[0]
+    vm = 0.0
+    xt = xr[0]
+    vt = 0.0
+    xb = xr[0]
+    integ = -ff * xr[0] / a3
+    ubuf = np.zeros(delay + 1)
+    yprev = xr[0]
+    rprev = xr[0]
+    vrprev = 0.0
+    for k in range(n):
+        # ------------------------------------------------ measurement at the sample
+        if two_mass and meas_table:
+            y = xt
+            vy = vt
+        else:
+            y = xm
+            vy = vm
+        if bl > 0.0:
+            y = xb
+            if abs((xm if not (two_mass and meas_table) else xt) - xb) < 0.5 * bl * (1.0 - 1e-12):
+                vy = 0.0
+        pos[k] = y
+        vel[k] = vy
+        # ------------------------------------------------ sampled controller (Eq. 3.3 split)
+        e = xr[k] - y
+        integ += T * e
+        vr = (xr[k] - rprev) / T
+        ar = (vr - vrprev) / T if k > 1 else 0.0
+        u = b1 * vr - kd * (y - yprev) / T + a2 * e + a3 * integ + ff * xr[k] + b0 * ar
+        yprev = y
+        rprev = xr[k]
+        vrprev = vr
+        if delay > 0:
+            ubuf[k % (delay + 1)] = u
+            u = ubuf[(k + 1) % (delay + 1)] if k >= delay else 0.0
+        if u > umax:
+            u = umax
+        elif u < -umax:
+            u = -umax
+        # ------------------------------------------------ plant over the sample (u held)
+        for _ in range(m):
+            # loads that are not friction: w_ext (held) and the position-periodic force
+            load = wext[k] + w_terms(0.0, xt if two_mass else xm, no_st, 0.0, pp_period, pp_coef)
+            if two_mass:
+                fs = kspr * (xm - xt) + cdmp * (vm - vt)
+                vm += h * (u - fs) / (1.0 - rr)
+                xm += h * vm
+                xt, vt = _friction_step(xt, vt, fs - load, rr, cvis, h, coef, d0, d1, st, asym, lo, hi)
+            else:
+                xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, coef, d0, d1, st, asym, lo, hi)
+            if bl > 0.0:
+                mech = xt if (two_mass and meas_table) else xm
+                half = 0.5 * bl
+                if mech - xb > half:
+                    xb = mech - half
+                elif mech - xb < -half:
+                    xb = mech + half
+        if not (abs(xm) < 1e9 and abs(vm) < 1e12):
+            for q in range(k, n):
+                pos[q] = np.nan
+                vel[q] = np.nan
+            return
