@@ -11,6 +11,8 @@ import pytest
 
 from vcnc.sweeps import load_spec
 
+pytestmark = pytest.mark.slow  # runs every example script (minutes)
+
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 

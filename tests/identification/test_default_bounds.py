@@ -22,6 +22,7 @@ def pulses(emps_dir):
     return cap
 
 
+@pytest.mark.slow  # identifies and diagnoses the EMPS runs (minutes)
 def test_emps_box_widens_without_flags(pulses):
     model = identify(pulses, axis="x", diagnose=False)
     widened = model.fit["bounds_widened"]
@@ -43,6 +44,7 @@ def test_thesis_machines_keep_the_thesis_box(pid_capture):
     assert default.parameters == thesis.parameters
 
 
+@pytest.mark.slow  # identifies and diagnoses the EMPS runs (minutes)
 def test_emps_pulses_no_flags_names_the_1_s_load_and_cuts_the_held_out_error_tenfold(pulses):
     """Issue #16: ``vcnc identify DATA_EMPS_PULSES.mat`` with no flags names time_periodic (1.0 s)
     first and cuts the held-out error at least 10x (measured: 65.8 -> 2.5 um over 4 folds)."""

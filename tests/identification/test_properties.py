@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -38,6 +39,7 @@ def drives(draw):
     return params, seed, noise, lo
 
 
+@pytest.mark.slow  # hypothesis over identifications, ~20 s
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
 @given(drives())
 def test_identified_model_is_stable_and_inside_bounds(case):

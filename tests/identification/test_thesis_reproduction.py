@@ -20,6 +20,8 @@ from interpolators.limits import AxisLimits
 from vcnc.contour_compare import compare
 from vcnc.engine.machine import load_machine
 
+pytestmark = pytest.mark.slow  # identifies every thesis machine with three solvers
+
 
 def validation_capture(machine):
     """Sec. 4.3.1: +/-20 mm back and forth at 70.71 mm/s with 424.26 mm/s^2."""

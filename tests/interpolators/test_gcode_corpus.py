@@ -21,7 +21,8 @@ from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 CORPUS = corpus_dir()
-pytestmark = pytest.mark.skipif(CORPUS is None, reason="gcode corpus absent (../shared/data/gcode-corpus)")
+pytestmark = [pytest.mark.skipif(CORPUS is None, reason="gcode corpus absent (../shared/data/gcode-corpus)"),
+              pytest.mark.slow]  # reads the 341 corpus programs (~1 min)
 
 _WORD = re.compile(r"([A-Za-z])\s*([+-]?(?:\d+\.?\d*|\.\d+))")
 #: Anything outside the plain subset the reference follows.

@@ -65,6 +65,7 @@ def thesis_results() -> dict:
 THESIS_CASES = [(n, tp) for n, (tps, _, _) in CASES.items() for tp in tps]
 
 
+@pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)
 @pytest.mark.parametrize(("name", "toolpath"), THESIS_CASES)
 def test_thesis_case_predicted_max_contour_error(thesis_results, name, toolpath):
     """Issue 6 target: predicted max contour error within 5 % of the true machine's. The truths
@@ -79,6 +80,7 @@ def test_thesis_case_predicted_max_contour_error(thesis_results, name, toolpath)
     assert abs(d["prediction_error_pct"]["max"]) <= 5.0, d["prediction_error_pct"]
 
 
+@pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)
 @pytest.mark.parametrize(("name", "toolpath"), THESIS_CASES)
 def test_thesis_case_after_augmentation(thesis_results, name, toolpath):
     """Before and after the residual diagnosis: both within 5 %; when the diagnosis finds nothing
@@ -93,6 +95,7 @@ def test_thesis_case_after_augmentation(thesis_results, name, toolpath):
         assert after["prediction_error_pct"] == before["prediction_error_pct"]
 
 
+@pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)
 def test_noisy_truth_is_judged_on_the_mean_of_its_noise_realisations(thesis_results):
     """The mean over the runs is the reference; each run's numbers and the error against each
     single run are reported beside it; truth_runs=1 is the single seeded run."""
@@ -143,6 +146,7 @@ def test_augmented_model_is_compared_before_and_after():
     assert d["prediction_error_pct"]["max"] != 0.0
 
 
+@pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)
 def test_truth_is_where_the_axes_are_and_the_sensor_reading_is_beside_it(thesis_results, tmp_path):
     """A simulated truth is judged on the true position of its measured points; the sensor's
     reading (noise, encoder steps) is reported beside it, with the prediction error against it."""
@@ -156,6 +160,7 @@ def test_truth_is_where_the_axes_are_and_the_sensor_reading_is_beside_it(thesis_
     assert "true, as its sensors read it" in (tmp_path / "r" / "index.html").read_text()
 
 
+@pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)
 def test_single_axis_bench_drives_both_axes(thesis_results):
     rep = thesis_results["ballscrew-ppc", "circle"]
     assert rep.setpoints.axes == ("x", "y")

@@ -18,6 +18,8 @@ import pytest
 
 from vcnc import demo
 
+pytestmark = pytest.mark.slow  # runs the demo end to end (minutes)
+
 CHROMIUM_FLAGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",

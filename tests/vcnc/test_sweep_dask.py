@@ -23,7 +23,7 @@ import pytest
 from vcnc.cli import main
 from vcnc.sweeps import read_results, sweep
 
-pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+pytestmark = [pytest.mark.filterwarnings("ignore::DeprecationWarning"), pytest.mark.slow]  # starts Dask clusters
 
 # the workers receive this module's point function by value: they need not import the tests
 cloudpickle.register_pickle_by_value(sys.modules[__name__])
