@@ -15,6 +15,7 @@ Public surface:
 
 from identification.bounds import PoleBounds, default_bounds
 from identification.capture_checks import check_capture
+from identification.effect_record import EffectRecord
 from identification.exact import ExactOptions
 from identification.ga import GAOptions
 from identification.gain_scales import GainScaleResult, identify_gain_scales, pdf_gain_scales
@@ -40,6 +41,7 @@ from identification.solve import METHODS, SolveResult, solve, solve_statistics
 
 __all__ = [
     "ReducedAxisModel",
+    "EffectRecord",
     "DiscreteModel",
     "discretize",
     "simulate",

@@ -90,6 +90,7 @@ import numpy as np
 import scipy.linalg
 
 from identification.dead_time import delay_reference
+from identification.effect_record import EffectRecord
 from identification.kernels import NO_FOURIER, NO_STRIBECK, run_exact
 from identification.model_format import model_to_dict, write_model
 from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
@@ -335,8 +336,9 @@ class ReducedAxisModel:
         Search box used: ``{"p_hz": (lo, hi), "omega_n_hz": (lo, hi), "zeta": (lo, hi)}``.
     fit : dict
         Prediction of the identification data: ``rms_um``, ``max_um`` and solver details.
-    effects : list of dict
-        Effects added by the residual diagnosis (issue 5); empty for a plain reduced model.
+    effects : list of EffectRecord
+        Effects added by the residual diagnosis (:class:`identification.effect_record.EffectRecord`,
+        typed records that read as the model file's mappings); empty for a plain reduced model.
     validation : dict
         ``rms_before_um``/``rms_after_um`` of the diagnosis; empty when not run.
     delay_s : float
@@ -352,12 +354,13 @@ class ReducedAxisModel:
     poles: dict = dataclasses.field(default_factory=dict)
     bounds: dict = dataclasses.field(default_factory=dict)
     fit: dict = dataclasses.field(default_factory=dict)
-    effects: list = dataclasses.field(default_factory=list)
+    effects: list[EffectRecord] = dataclasses.field(default_factory=list)
     validation: dict = dataclasses.field(default_factory=dict)
     delay_s: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "parameters", _params(self.parameters))
+        object.__setattr__(self, "effects", [EffectRecord(e) for e in self.effects])
         if not math.isfinite(self.delay_s):
             raise InputError(f"delay_s [s] must be finite (got {self.delay_s!r})")
         if not (math.isfinite(self.sample_time) and self.sample_time > 0):

@@ -185,3 +185,21 @@ def test_an_augmented_model_built_in_python_keeps_its_elements_in_the_model_file
     assert [e["name"] for e in d["effects"]] == ["backlash", "drift"]
     again = model_from_dict(d)
     assert np.array_equal(again.simulate(reference), model.simulate(reference))
+
+
+def test_model_effects_are_typed_records_that_read_as_the_files_mappings(tmp_path):
+    """issue #21: model.effects holds EffectRecord objects (typed attributes) beside model.elements."""
+    from identification import EffectRecord, load_model
+
+    rec = {"name": "backlash", "parameters": {"width_mm": 0.01, "plant_viscous_rate_1_s": 30.0},
+           "rms_before_um": 2.0, "rms_after_um": 0.5, "summary": "play 10 um"}
+    m = from_model(ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=TS, effects=[rec]))
+    (e,) = m.effects
+    assert isinstance(e, EffectRecord) and e == rec and dict(e) == rec
+    assert (e.name, e.parameters["width_mm"], e.rms_before_um, e.rms_after_um, e.summary) == (
+        "backlash", 0.01, 2.0, 0.5, "play 10 um")
+    m.to_json(tmp_path / "m.json")
+    back = load_model(tmp_path / "m.json")
+    assert isinstance(back.effects[0], EffectRecord) and back.effects[0] == rec
+    with pytest.raises(InputError, match="'name' string"):
+        ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=TS, effects=[{"parameters": {}}])

@@ -4,6 +4,7 @@ neither; they are written as ``null``)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -14,7 +15,7 @@ __all__ = ["plain"]
 def plain(obj: Any) -> Any:
     """A JSON-safe copy of ``obj``: dict keys as str, tuples and arrays as lists, numpy scalars as
     Python numbers, non-finite floats as None."""
-    if isinstance(obj, dict):
+    if isinstance(obj, Mapping):
         return {str(k): plain(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
         return [plain(v) for v in obj]
