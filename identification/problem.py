@@ -20,6 +20,7 @@ import numpy as np
 import scipy.linalg
 
 from identification.bounds import PoleBounds
+from identification.parameters import search_box
 from identification.poles import TWO_PI, canonical_mask, denominator, pole_splits, theta1, theta1_jacobian
 from identification.regressor import COLUMN_DESCRIPTIONS, SufficientStatistics
 from vcnc.core.errors import IdentificationError
@@ -136,10 +137,8 @@ class ReducedProblem:
             ``tolerance``, ``p_hz``, ``omega_n_hz``, ``zeta`` (each ``[lo, hi]``), ``identifiable``.
         """
         nfev = self.nfev
-        box = self.bounds.rad()
-        # coordinates u = (log p, log omega_n, zeta): the box is a box in u
-        lo = np.array([np.log(box[0][0]), np.log(box[1][0]), box[2][0]])
-        hi = np.array([np.log(box[0][1]), np.log(box[1][1]), box[2][1]])
+        # coordinates u = (log p, log omega_n, zeta), the poles' search variables: the box is a box in u
+        lo, hi = (b[:3] for b in search_box(self.bounds))
         axes = [np.linspace(lo[i], hi[i], points if i < 2 else max(points // 2, 8)) for i in range(3)]
         G = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)  # coarse grid (n0, n1, n2, 3)
 

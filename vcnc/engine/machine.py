@@ -519,7 +519,7 @@ def realistic_effect(
       records an independent linear scale on the table, where the table is seen to drift by
       ``-rate`` (the loop holds the drifting reading on the command). "feedback": the capture
       records the drifting feedback itself, which the loop keeps on the command, so the drift
-      shows only in ``Capture.table`` (the behaviour before ``measurement`` existed).
+      shows only in ``Capture.table``.
 
     ``sample_time`` [s] is the servo period used for the saturation reference move (the machine's,
     when called through :meth:`Machine.with_effect`; default 1 ms, or the discrete plant's).
