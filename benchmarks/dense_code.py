@@ -4,7 +4,8 @@ Run: ``.venv/bin/python benchmarks/dense_code.py [--chords N] [--feed F] [--deci
 
 Prints, for each profile, the motion duration of the single arc and of the chord polygon, their
 ratio (issue #18 item 8 asks for <= 1.25), the worst distance of the setpoints from the
-programmed chords (not yet printed), the worst axis velocity/acceleration utilisation from finite differences of
+programmed chords (nearest of the two chords at the nearest chord end point),
+the worst axis velocity/acceleration utilisation from finite differences of
 the sampled positions, and the interpolation CPU time (setpoints/s).
 """
 
@@ -35,6 +36,32 @@ def _programs(n: int, feed: float, decimals: int) -> tuple[str, str, float]:
     return arc, "\n".join(lines) + "\n", r
 
 
+def _chord_points(n: int, r: float, decimals: int) -> np.ndarray:
+    """The programmed path's points (x, y) [mm]: the origin (where programs start), the circle's start
+    point, then the chord end points rounded as written."""
+    a = 2 * np.pi * np.arange(n + 1) / n
+    pts = np.round(np.c_[r * np.cos(a), r * np.sin(a)], decimals)
+    pts[0] = (r, 0.0)
+    return np.vstack([(0.0, 0.0), pts])
+
+
+def _chord_deviation(sp, pts: np.ndarray) -> float:
+    """Worst distance [mm] of the setpoints from the chord polygon ``pts``: for each setpoint, the
+    nearer of the two chords meeting at its nearest chord end point."""
+    from scipy.spatial import cKDTree
+
+    xy = np.c_[sp.position[:, sp.axis_index("x")], sp.position[:, sp.axis_index("y")]]
+    _, k = cKDTree(pts).query(xy)
+    best = np.full(len(xy), np.inf)
+    for j0 in (k - 1, k):
+        j0 = np.clip(j0, 0, len(pts) - 2)
+        a, b = pts[j0], pts[j0 + 1]
+        ab = b - a
+        t = np.clip(((xy - a) * ab).sum(1) / np.maximum((ab * ab).sum(1), 1e-300), 0.0, 1.0)
+        best = np.minimum(best, np.hypot(*(xy - a - t[:, None] * ab).T))
+    return float(best.max())
+
+
 def _utilisation(sp, Ts: float) -> tuple[float, float]:
     """Worst |v|/v_max and |a|/a_max over the x and y axes from finite differences."""
     uv = ua = 0.0
@@ -63,7 +90,9 @@ def main() -> None:
         cpu = time.process_time() - t0
         ratio = sp.duration / sp_arc.duration
         uv, ua = _utilisation(sp, Ts)
-        util = f"worst v {uv:.3f}, a {ua:.3f} of the axis limits"
+        dev = _chord_deviation(sp, _chord_points(args.chords, r, args.decimals))
+        util = (f"worst deviation from the chords {dev * 1e3:.2f} um (tolerance 10 um); "
+                f"worst v {uv:.3f}, a {ua:.3f} of the axis limits")
         print(f"{profile:9s}: arc {sp_arc.duration:.3f} s, {args.chords} chords {sp.duration:.3f} s, "
               f"ratio {ratio:.2f} (target <= 1.25); {util}; "
               f"{len(sp):,} setpoints in {cpu:.2f} s CPU = {len(sp) / cpu:,.0f} setpoints/s; radius {r:.3f} mm")
