@@ -1,5 +1,6 @@
-"""The parameters of the reduced closed-loop model, Eq. (3.3) of the thesis: names, units, and the
-search variables the refinements (output error, the diagnosis' joint refits) move in."""
+"""The parameters of the reduced closed-loop model, Eq. (3.3) of the thesis: their names and units
+(defined in :mod:`vcnc.core.axes`, shared with the FMU export) and the search variables the
+refinements (output error, the diagnosis' joint refits) move in."""
 
 from __future__ import annotations
 
@@ -10,24 +11,10 @@ import numpy as np
 
 from identification.bounds import PoleBounds
 from identification.poles import TWO_PI, denominator
+from vcnc.core.axes import PARAMETER_NAMES, PARAMETER_UNITS
 
 __all__ = ["PARAMETER_NAMES", "PARAMETER_UNITS", "N_SEARCH", "to_search", "from_search", "poles_of_search",
            "search_box"]
-
-#: Parameter names of Eq. (3.3), in the order of the model file.
-PARAMETER_NAMES: tuple[str, ...] = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
-
-#: Unit of each parameter.
-PARAMETER_UNITS: dict[str, str] = {
-    "a1": "1/s",
-    "a2": "1/s^2",
-    "a3": "1/s^3",
-    "b0": "-",
-    "b1": "1/s",
-    "b2": "1/s^2",
-    "d0": "mm/s^2",
-    "d1": "mm/s^2",
-}
 
 
 # ------------------------------------------------------------------ search variables

@@ -1,8 +1,9 @@
-"""Axis names and their units: linear axes in mm, rotary axes in degrees."""
+"""Names every package shares: the axes and their units (linear axes in mm, rotary axes in degrees),
+and the parameters of the reduced closed-loop axis model, Eq. (3.3) of the thesis, with their units."""
 
 from __future__ import annotations
 
-__all__ = ["AXIS_NAMES", "ROTARY_AXES", "axis_unit"]
+__all__ = ["AXIS_NAMES", "ROTARY_AXES", "axis_unit", "PARAMETER_NAMES", "PARAMETER_UNITS"]
 
 #: Axis names in their canonical order (ARCHITECTURE.md, capture file).
 AXIS_NAMES: tuple[str, ...] = ("x", "y", "z", "a", "b", "c")
@@ -17,3 +18,19 @@ def axis_unit(axis: str, *, small: bool = False) -> str:
     if axis.lower() in ROTARY_AXES:
         return "mdeg" if small else "deg"
     return "um" if small else "mm"
+
+
+#: Parameter names of the reduced model, Eq. (3.3), in the order of the model file.
+PARAMETER_NAMES: tuple[str, ...] = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
+
+#: Unit of each parameter.
+PARAMETER_UNITS: dict[str, str] = {
+    "a1": "1/s",
+    "a2": "1/s^2",
+    "a3": "1/s^3",
+    "b0": "-",
+    "b1": "1/s",
+    "b2": "1/s^2",
+    "d0": "mm/s^2",
+    "d1": "mm/s^2",
+}

@@ -15,12 +15,12 @@ from collections.abc import Mapping
 from typing import Any
 
 from drives.effects import EFFECTS as EFFECT_REGISTRY
+from vcnc.core.axes import PARAMETER_NAMES
 from vcnc.core.errors import ExportError, InputError, ModelFileError
 from vcnc.fmu._variables import EFFECT_VARIABLES, MAX_DELAY, MAX_HARMONICS, MAX_REF_DELAY, Variable, variables
 
 __all__ = ["ExportSpec", "REPRESENTABLE_EFFECTS", "export_spec"]
 
-PARAMETER_NAMES = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
 
 #: effect name -> how the FMU represents it (its FMU parameters): every effect of the registry
 REPRESENTABLE_EFFECTS: dict[str, str] = {name: info.fmu for name, info in EFFECT_REGISTRY.items()}
