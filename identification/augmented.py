@@ -56,17 +56,20 @@ PID law on the same rigid plant; tests/identification/test_effects.py).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
+import scipy.linalg
 
 from identification.kernels import run_exact, run_split
 from identification.reduced_model import ReducedAxisModel, discretize
 from vcnc.core.errors import InputError
 
-__all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "augment", "from_model"]
+__all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "two_mass_matrices", "augment",
+           "from_model"]
 
 #: Integration steps per sample of the split (element) form.
 SUBSTEPS = 10
@@ -131,6 +134,54 @@ class SimSpec:
         return np.arange(self.n) * self.sample_time
 
 
+def two_mass_matrices(resonance: np.ndarray, viscous_rate: float, sample_time: float, substeps: int) -> np.ndarray:
+    """Exact steps of the two-mass plant with its inputs held: ``(3, 4, 6)`` for the kernel.
+
+    States (x_m, v_m, x_t, v_t) [mm, mm/s] of the motor (mass 1 - r) and the table (mass r)
+    joined by the spring k = w^2 r (1 - r) and the damper c = 2 zeta w r (1 - r) (w = 2 pi f), the
+    plant viscous rate c_v on the table; inputs u (on the motor) and g (friction and loads
+    against the table) [mm/s^2 of the whole mass]::
+
+        dv_m/dt = (u - k (x_m - x_t) - c (v_m - v_t)) / (1 - r)
+        dv_t/dt = (k (x_m - x_t) + c (v_m - v_t) - c_v v_t - g) / r
+
+    ``[0]`` is ``[Ad | Bd]`` over a substep ``sample_time / substeps``, ``[1]`` over the whole
+    sample, ``[2][:2, :4]`` the motor's step with the table stuck at x_t (states x_m, v_m; inputs
+    u, x_t). Zero for a rigid plant (``resonance[0] <= 0``). Each is the exponential of the block
+    matrix ``[[A, B], [0, 0]] h`` (zero-order hold of the inputs), so the plant's mode is exact at
+    any frequency.
+    """
+    if resonance[0] <= 0:
+        return np.zeros((3, 4, 6))
+    return _two_mass_matrices(float(resonance[0]), float(resonance[1]), float(resonance[2]), float(viscous_rate),
+                              float(sample_time), int(substeps)).copy()
+
+
+@functools.lru_cache(maxsize=256)
+def _two_mass_matrices(f: float, zeta: float, r: float, viscous_rate: float, sample_time: float,
+                       substeps: int) -> np.ndarray:
+    """:func:`two_mass_matrices` of a mode (cached: a Jacobian varies the loop, not the mode)."""
+    out = np.zeros((3, 4, 6))
+    om = 2.0 * math.pi * f
+    ks_m, cs_m = om * om * r, 2.0 * zeta * om * r  # k / (1 - r), c / (1 - r)
+    ks_t, cs_t = om * om * (1.0 - r), 2.0 * zeta * om * (1.0 - r)  # k / r, c / r
+    slide = np.zeros((6, 6))
+    slide[0, 1] = 1.0
+    slide[1, :4] = (-ks_m, -cs_m, ks_m, cs_m)
+    slide[1, 4] = 1.0 / (1.0 - r)
+    slide[2, 3] = 1.0
+    slide[3, :4] = (ks_t, cs_t, -ks_t, -cs_t - viscous_rate / r)
+    slide[3, 5] = -1.0 / r
+    stuck = np.zeros((4, 4))
+    stuck[0, 1] = 1.0
+    stuck[1, :] = (-ks_m, -cs_m, 1.0 / (1.0 - r), ks_m)
+    h = sample_time / substeps
+    out[0] = scipy.linalg.expm(slide * h)[:4]
+    out[1] = scipy.linalg.expm(slide * sample_time)[:4]
+    out[2, :2, :4] = scipy.linalg.expm(stuck * h)[:2]
+    return out
+
+
 def simulate_augmented(
     parameters: Mapping[str, float],
     reference: np.ndarray,
@@ -158,11 +209,10 @@ def simulate_augmented(
         # and the rest of the sample stuck or broken away): steps only for the play operator and
         # the two-mass plant, more for a fast mode
         m = 1 if (res[0] <= 0 and spec.backlash <= 0) else int(substeps)
-        if res[0] > 0:
-            m = max(m, int(math.ceil(40.0 * res[0] * T)))
+        tm = two_mass_matrices(res, float(spec.viscous_rate), T, m)
         run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),
-                   p["d0"], p["d1"], wext, st, float(spec.asym), float(spec.pp_period), pp_coef,
-                   int(spec.delay), float(spec.saturation), float(spec.backlash), res, pos, vel)
+                  p["d0"], p["d1"], wext, st, float(spec.asym), float(spec.pp_period), pp_coef,
+                  int(spec.delay), float(spec.saturation), float(spec.backlash), res, tm, pos, vel)
     else:
         dm = discretize(p, T)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,

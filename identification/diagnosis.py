@@ -59,6 +59,7 @@ from identification.augmented import AugmentedAxisModel, augment, simulate_augme
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
+from identification.parallel import thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
 from identification.reduced_model import ReducedAxisModel
@@ -282,7 +283,7 @@ def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, m
         try:
             res = scipy.optimize.least_squares(f, z[idx], bounds=(lo_a[idx], hi_a[idx]), method="trf",
                                                x_scale="jac", diff_step=1e-6, max_nfev=nfev, xtol=1e-10,
-                                               ftol=1e-10)
+                                               ftol=1e-10, workers=thread_map)
         except ValueError:  # pragma: no cover - infeasible start after clipping
             return z
         if 2 * res.cost <= float(r0 @ r0):
@@ -295,13 +296,14 @@ def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, m
         simulation each), halved until it lowers the error."""
         idx = np.flatnonzero(lin)
         r0 = fun(z)
-        cols = []
-        for i in idx:
+
+        def column(i):
             step = 1e-3 * max(abs(z[i]), 1.0)
             zz = z.copy()
             zz[i] += step
-            cols.append((fun(zz) - r0) / step)
-        J = np.column_stack(cols)
+            return (fun(zz) - r0) / step
+
+        J = np.column_stack(thread_map(column, idx))
         sc = np.linalg.norm(J, axis=0)
         sc[sc == 0] = 1.0
         delta = -np.linalg.lstsq(J / sc, r0, rcond=None)[0] / sc
@@ -386,19 +388,21 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
     lay = _Layout(full, data)
     z = lay.z0
     y0 = lay.simulate(z)
-    cols = []
-    for i in range(z.size):
+
+    def column(i):
         step = 1e-6 * max(abs(z[i]), 1.0)
         if z[i] + step > lay.hi[i]:
             step = -step
         zz = z.copy()
         zz[i] += step
-        cols.append((lay.simulate(zz) - y0) / step)
-    J = np.column_stack(cols)
+        return (lay.simulate(zz) - y0) / step
+
+    J = np.column_stack(thread_map(column, range(z.size)))
     J[~np.isfinite(J)] = 0.0
     res = data.x - y0
-    fr, fm = [], []
-    for i in range(len(plan.folds)):
+
+    def held_out(i):
+        """(RMS, max) [um] on fold i of the full fit moved by one step fitted on the other folds."""
         held = plan.mask(i)
         tr = plan.active & ~held
         sc = np.linalg.norm(J[tr], axis=0)
@@ -417,14 +421,14 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
                 break
         e = (data.x - best_y)[held]
         if not e.size:
-            fr.append(math.nan)
-            fm.append(math.nan)
-        elif not np.all(np.isfinite(e)):
-            fr.append(math.inf)
-            fm.append(math.inf)
-        else:
-            fr.append(float(np.sqrt(np.mean(e * e)) * 1e3))
-            fm.append(float(np.max(np.abs(e)) * 1e3))
+            return math.nan, math.nan
+        if not np.all(np.isfinite(e)):
+            return math.inf, math.inf
+        return float(np.sqrt(np.mean(e * e)) * 1e3), float(np.max(np.abs(e)) * 1e3)
+
+    per_fold = thread_map(held_out, range(len(plan.folds)))
+    fr = [f[0] for f in per_fold]
+    fm = [f[1] for f in per_fold]
     j = _Judged(model=full, rms_um=r, max_um=m, fold_rms_um=fr, fold_max_um=fm)
     j.pool([f.active for f in plan.folds])
     return j

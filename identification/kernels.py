@@ -149,9 +149,59 @@ def _friction_step(x, v, force, mass, c, h, coef, d0, d1, st, asym, lo, hi):  # 
 
 
 @numba.njit(cache=True, nogil=True)
+def _tm_slide(D, xm, vm, xt, vt, u, g):  # pragma: no cover - compiled
+    """Exact step of the sliding two-mass plant: ``D = [Ad | Bd]`` (4 x 6), inputs (u, g)."""
+    n0 = D[0, 0] * xm + D[0, 1] * vm + D[0, 2] * xt + D[0, 3] * vt + D[0, 4] * u + D[0, 5] * g
+    n1 = D[1, 0] * xm + D[1, 1] * vm + D[1, 2] * xt + D[1, 3] * vt + D[1, 4] * u + D[1, 5] * g
+    n2 = D[2, 0] * xm + D[2, 1] * vm + D[2, 2] * xt + D[2, 3] * vt + D[2, 4] * u + D[2, 5] * g
+    n3 = D[3, 0] * xm + D[3, 1] * vm + D[3, 2] * xt + D[3, 3] * vt + D[3, 4] * u + D[3, 5] * g
+    return n0, n1, n2, n3
+
+
+@numba.njit(cache=True, nogil=True)
+def _tm_substep(D, S, kspr, cdmp, xm, vm, xt, vt, u, load, d0, d1, st, asym, lo, hi):  # pragma: no cover
+    """One substep of the two-mass plant (exact linear steps ``D``, stuck table ``S``, both from
+    :func:`identification.augmented.two_mass_matrices`) with the table's friction held over it:
+    kinetic friction of its direction while it moves, stiction at rest (the table stays while the
+    spring force less the load lies between the static levels ``lo`` and ``hi``, else breaks away
+    against them); a step that would reverse a sticking table ends at rest."""
+    stick = lo < hi
+    if vt == 0.0:
+        net = kspr * (xm - xt) + cdmp * vm - load
+        if not stick:
+            f = 0.0
+            dirn = 0.0
+        elif net > hi:
+            f = hi
+            dirn = 1.0
+        elif net < lo:
+            f = lo
+            dirn = -1.0
+        else:
+            n0 = S[0, 0] * xm + S[0, 1] * vm + S[0, 2] * u + S[0, 3] * xt
+            n1 = S[1, 0] * xm + S[1, 1] * vm + S[1, 2] * u + S[1, 3] * xt
+            return n0, n1, xt, 0.0
+    else:
+        f = _kinetic(vt, d0, d1, st, asym)
+        dirn = 1.0 if vt > 0.0 else -1.0
+    xm, vm, xt, v1 = _tm_slide(D, xm, vm, xt, vt, u, f + load)
+    if stick and v1 * dirn < 0.0:
+        v1 = 0.0
+    return xm, vm, xt, v1
+
+
+
+@numba.njit(cache=True, nogil=True)
 def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
-               delay, umax, bl, res, pos, vel):  # pragma: no cover - compiled
-    """The sampled split form of the module docstring; the plant takes m steps per sample."""
+              delay, umax, bl, res, tm, pos, vel):  # pragma: no cover - compiled
+    """The sampled split form of the module docstring; the plant takes m steps per sample.
+
+    The two-mass plant (``res[0] > 0``) steps exactly with the matrices ``tm`` of
+    :func:`identification.augmented.two_mass_matrices` (a substep, the whole sample, the stuck
+    table). A sample whose table slides on faster than the Stribeck range (``3 v_s``) at both its
+    ends, with no play, asymmetric viscous or position-periodic term, is one exact step (friction
+    is then constant over it, so the m substeps would give the same result); any other sample
+    takes the m substeps."""
     n = xr.shape[0]
     h = T / m
     kd = a1 - cvis
@@ -169,7 +219,10 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     lo = d1 + (st[2] if st[0] > 0.0 else 0.0)
     hi = d0 + (st[1] if st[0] > 0.0 else 0.0)
     no_st = np.zeros(3)
-    coef = _rigid_coef(cvis / rr, h) if two_mass else _rigid_coef(cvis, h)
+    coef = _rigid_coef(cvis, h)
+    # whole-sample steps of the two-mass plant: only while friction is constant over the sample
+    whole = bl <= 0.0 and asym == 0.0 and pp_period <= 0.0
+    vguard = 3.0 * st[0] if st[0] > 0.0 else 0.0
     xm = xr[0]
     vm = 0.0
     xt = xr[0]
@@ -211,14 +264,18 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
         elif u < -umax:
             u = -umax
         # ------------------------------------------------ plant over the sample (u held)
-        for _ in range(m):
+        steps = m
+        if two_mass and whole and abs(vt) > vguard:
+            n0, n1, n2, n3 = _tm_slide(tm[1], xm, vm, xt, vt, u, _kinetic(vt, d0, d1, st, 0.0) + wext[k])
+            if n3 * vt > 0.0 and abs(n3) > vguard:
+                xm, vm, xt, vt = n0, n1, n2, n3
+                steps = 0
+        for _ in range(steps):
             # loads that are not friction: w_ext (held) and the position-periodic force
             load = wext[k] + w_terms(0.0, xt if two_mass else xm, no_st, 0.0, pp_period, pp_coef)
             if two_mass:
-                fs = kspr * (xm - xt) + cdmp * (vm - vt)
-                vm += h * (u - fs) / (1.0 - rr)
-                xm += h * vm
-                xt, vt = _friction_step(xt, vt, fs - load, rr, cvis, h, coef, d0, d1, st, asym, lo, hi)
+                xm, vm, xt, vt = _tm_substep(tm[0], tm[2], kspr, cdmp, xm, vm, xt, vt, u, load, d0, d1, st, asym,
+                                             lo, hi)
             else:
                 xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, coef, d0, d1, st, asym, lo, hi)
             if bl > 0.0:

@@ -40,6 +40,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
+from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
 
@@ -343,9 +344,9 @@ def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = 
     """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8)."""
     p0 = dict(model.parameters)
     spec = model.spec(xr.size)
-    cols = []
     y0 = simulate_augmented(p0, xr, spec) if one_sided else None
-    for k in ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1"):
+
+    def column(k):
         step = 1e-4 * max(abs(p0[k]), 1e-3 * max(abs(p0["b1"]), 1.0))
         if k in ("b0",):
             step = 1e-4
@@ -353,8 +354,7 @@ def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = 
         pp[k] += step
         pm[k] -= step
         if one_sided:
-            cols.append((simulate_augmented(pp, xr, spec) - y0) / step)
-            continue
+            return (simulate_augmented(pp, xr, spec) - y0) / step
         if pm["a3"] <= 0:
             pm[k] = p0[k]
             s = step
@@ -362,7 +362,9 @@ def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = 
             s = 2 * step
         yp = simulate_augmented(pp, xr, spec)
         ym = simulate_augmented(pm, xr, spec)
-        cols.append((yp - ym) / s)
+        return (yp - ym) / s
+
+    cols = thread_map(column, ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1"))
     J = np.column_stack(cols)
     J[~np.isfinite(J)] = 0.0
     return J
@@ -808,10 +810,12 @@ def search_backlash(ctx: SearchContext) -> list[Candidate]:
     best = None
     tried = {}
     cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
-    for b in np.geomspace(1e-3, 0.3, 12):
-        e = Backlash(width=float(b))
-        s = augment(ctx.model, list(ctx.model.elements) + [e], viscous_rate=cvis)
-        sc, _ = ctx.sim_score(s)
+    widths = np.geomspace(1e-3, 0.3, 12)
+    starts = [augment(ctx.model, list(ctx.model.elements) + [Backlash(width=float(b))], viscous_rate=cvis)
+              for b in widths]
+    # the first serially: it computes the shared sensitivities the others reuse
+    scores = [ctx.sim_score(starts[0])] + thread_map(ctx.sim_score, starts[1:])
+    for b, s, (sc, _) in zip(widths, starts, scores):
         tried[f"{b * 1e3:.3g}"] = sc
         if best is None or sc < best[0]:
             best = (sc, b, s)
@@ -849,8 +853,7 @@ def search_resonance(ctx: SearchContext) -> list[Candidate]:
         sc, m = ctx.gn_refine(augment(ctx.model, others + [e], viscous_rate=cvis), 2)
         return sc, m
 
-    for f in grid:
-        sc, m = score(f, "motor")
+    for f, (sc, m) in zip(grid, thread_map(lambda f: score(f, "motor"), grid)):
         tried[f"{f:.4g}"] = sc
         if best is None or sc < best[0]:
             best = (sc, m, f)

@@ -6,6 +6,8 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
+
 from vcnc.fmu._spec import ExportSpec
 from vcnc.fmu._variables import ALL_SCALARS, COEFFICIENT_BASE, MAX_HARMONICS
 
@@ -98,9 +100,13 @@ def _config_header(spec: ExportSpec, token: str) -> str:
 def _exported_c(spec: ExportSpec) -> str:
     """The parameters and their scipy discretisation, embedded for bit-exact reproduction."""
     from identification import discretize
+    from identification.augmented import SUBSTEPS, two_mass_matrices
 
     p = spec.parameters
     dm = discretize(p, spec.sample_time)
+    mode = spec.effect("resonance")
+    res = np.array([mode.frequency, mode.damping, mode.table_fraction, 0.0] if mode is not None else [0.0] * 4)
+    tm = two_mass_matrices(res, spec.viscous_rate, spec.sample_time, SUBSTEPS)
 
     def arr(values) -> str:
         return "{" + ", ".join(_c_double(x) for x in values) + "}"
@@ -122,6 +128,13 @@ def _exported_c(spec: ExportSpec) -> str:
             f"    {arr(dm.c)}, {_c_double(dm.d)},",
             f"    {arr(dm.cv)}, {_c_double(dm.dv)}, {_c_double(dm.dvs)},",
             f"    {arr(dm.xi0)}",
+            "};",
+            "",
+            "/* The two-mass steps of the exported mode (identification.augmented.two_mass_matrices). */",
+            "const vcnc_two_mass vcnc_exported_two_mass = {",
+            f"    {', '.join(_c_double(float(x)) for x in res[:3])}, {_c_double(float(spec.viscous_rate))},",
+            f"    {_c_double(spec.sample_time)}, {SUBSTEPS},",
+            f"    {arr(tm.ravel())}",
             "};",
             "",
         ]

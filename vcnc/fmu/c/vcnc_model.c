@@ -331,6 +331,95 @@ static void friction_step(const vcnc_parameters *p, double *x, double *v, double
     }
 }
 
+/* identification.kernels._tm_slide: exact step of the sliding two-mass plant, D = [Ad | Bd] (4 x 6). */
+static void tm_slide(const double *D, double s[4], double u, double g)
+{
+    double n[4];
+    int i;
+    for (i = 0; i < 4; i++) {
+        const double *d = D + 6 * i;
+        n[i] = d[0] * s[0] + d[1] * s[1] + d[2] * s[2] + d[3] * s[3] + d[4] * u + d[5] * g;
+    }
+    for (i = 0; i < 4; i++) s[i] = n[i];
+}
+
+/* identification.kernels._tm_substep: a substep of the two-mass plant with the table's friction
+ * held (stiction at rest within [lo, hi]); s = (xm, vm, xt, vt). */
+static void tm_substep(const vcnc_parameters *p, double kspr, double cdmp, double s[4], double u, double load,
+                       double lo, double hi)
+{
+    int stick = lo < hi;
+    double f, dirn;
+    if (s[3] == 0.0) {
+        double net = kspr * (s[0] - s[2]) + cdmp * s[1] - load;
+        if (!stick) {
+            f = 0.0;
+            dirn = 0.0;
+        } else if (net > hi) {
+            f = hi;
+            dirn = 1.0;
+        } else if (net < lo) {
+            f = lo;
+            dirn = -1.0;
+        } else {
+            const double *S = p->tm + 48;
+            double n0 = S[0] * s[0] + S[1] * s[1] + S[2] * u + S[3] * s[2];
+            double n1 = S[6] * s[0] + S[7] * s[1] + S[8] * u + S[9] * s[2];
+            s[0] = n0;
+            s[1] = n1;
+            s[3] = 0.0;
+            return;
+        }
+    } else {
+        f = kinetic(p, s[3]);
+        dirn = s[3] > 0.0 ? 1.0 : -1.0;
+    }
+    tm_slide(p->tm, s, u, f + load);
+    if (stick && s[3] * dirn < 0.0) s[3] = 0.0;
+}
+
+/* identification.augmented.two_mass_matrices, with vcnc_expm. */
+static int two_mass_matrices(vcnc_parameters *p, char *msg, size_t msg_size)
+{
+    double om = 2.0 * VCNC_PI * p->res[0], zeta = p->res[1], r = p->res[2];
+    double ks_m = om * om * r, cs_m = 2.0 * zeta * om * r;
+    double ks_t = om * om * (1.0 - r), cs_t = 2.0 * zeta * om * (1.0 - r);
+    double A[36], M[36], E[36], S[16], SM[16], SE[16], h = p->sample_time / p->substeps;
+    int i, j, k;
+    memset(A, 0, sizeof(A));
+    memset(S, 0, sizeof(S));
+    A[0 * 6 + 1] = 1.0;
+    A[1 * 6 + 0] = -ks_m;
+    A[1 * 6 + 1] = -cs_m;
+    A[1 * 6 + 2] = ks_m;
+    A[1 * 6 + 3] = cs_m;
+    A[1 * 6 + 4] = 1.0 / (1.0 - r);
+    A[2 * 6 + 3] = 1.0;
+    A[3 * 6 + 0] = ks_t;
+    A[3 * 6 + 1] = cs_t;
+    A[3 * 6 + 2] = -ks_t;
+    A[3 * 6 + 3] = -cs_t - p->viscous_rate / r;
+    A[3 * 6 + 5] = -1.0 / r;
+    S[0 * 4 + 1] = 1.0;
+    S[1 * 4 + 0] = -ks_m;
+    S[1 * 4 + 1] = -cs_m;
+    S[1 * 4 + 2] = 1.0 / (1.0 - r);
+    S[1 * 4 + 3] = ks_m;
+    memset(p->tm, 0, sizeof(p->tm));
+    for (k = 0; k < 2; k++) {
+        double t = k == 0 ? h : p->sample_time;
+        for (i = 0; i < 36; i++) M[i] = A[i] * t;
+        if (vcnc_expm(6, M, E) != 0) return fail(msg, msg_size, "matrix exponential of the two-mass plant failed");
+        for (i = 0; i < 4; i++)
+            for (j = 0; j < 6; j++) p->tm[24 * k + 6 * i + j] = E[6 * i + j];
+    }
+    for (i = 0; i < 16; i++) SM[i] = S[i] * h;
+    if (vcnc_expm(4, SM, SE) != 0) return fail(msg, msg_size, "matrix exponential of the two-mass plant failed");
+    for (i = 0; i < 2; i++)
+        for (j = 0; j < 4; j++) p->tm[48 + 6 * i + j] = SE[4 * i + j];
+    return 0;
+}
+
 static void split_step(vcnc_model *m)
 {
     const vcnc_parameters *p = &m->par;
@@ -338,8 +427,9 @@ static void split_step(vcnc_model *m)
     const int steps = p->substeps, two_mass = p->res[0] > 0.0, meas_table = p->res[3] > 0.5;
     const double h = T / steps, kd = a1 - cvis, ff = p->b2 - a2, rr = p->res[2], bl = p->backlash;
     const double xr = loop_ref(m);
-    double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, lo, hi, we;
-    int i;
+    double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, lo, hi, we, s4[4] = {0.0, 0.0, 0.0, 0.0};
+    const double vguard = p->stribeck[0] > 0.0 ? 3.0 * p->stribeck[0] : 0.0;
+    int i, n_steps;
     if (two_mass) {
         double om = 2.0 * VCNC_PI * p->res[0];
         kspr = om * om * rr * (1.0 - rr);
@@ -369,24 +459,43 @@ static void split_step(vcnc_model *m)
     lo = p->d1 + (p->stribeck[0] > 0.0 ? p->stribeck[2] : 0.0);
     hi = p->d0 + (p->stribeck[0] > 0.0 ? p->stribeck[1] : 0.0);
     we = wext(m);
-    for (i = 0; i < steps; i++) {
-        double load = we + add_pp(p, two_mass ? m->xt : m->xm, 0.0);
+    n_steps = steps;
+    if (two_mass) {
+        s4[0] = m->xm;
+        s4[1] = m->vm;
+        s4[2] = m->xt;
+        s4[3] = m->vt;
+    }
+    /* a whole-sample step while friction is constant over it (identification.kernels.run_split) */
+    if (two_mass && bl <= 0.0 && p->asym == 0.0 && p->pp_period <= 0.0 && fabs(m->vt) > vguard) {
+        double n4[4] = {s4[0], s4[1], s4[2], s4[3]};
+        tm_slide(p->tm + 24, n4, u, kinetic(p, m->vt) + we);
+        if (n4[3] * m->vt > 0.0 && fabs(n4[3]) > vguard) {
+            for (i = 0; i < 4; i++) s4[i] = n4[i];
+            n_steps = 0;
+        }
+    }
+    for (i = 0; i < n_steps; i++) {
+        double load = we + add_pp(p, two_mass ? s4[2] : m->xm, 0.0);
         if (two_mass) {
-            double fs = kspr * (m->xm - m->xt) + cdmp * (m->vm - m->vt);
-            m->vm += h * (u - fs) / (1.0 - rr);
-            m->xm += h * m->vm;
-            friction_step(p, &m->xt, &m->vt, fs - load, rr, cvis, h, lo, hi);
+            tm_substep(p, kspr, cdmp, s4, u, load, lo, hi);
         } else {
             friction_step(p, &m->xm, &m->vm, u - load, 1.0, cvis, h, lo, hi);
         }
         if (bl > 0.0) {
-            double mech = (two_mass && meas_table) ? m->xt : m->xm, half = 0.5 * bl;
+            double mech = two_mass ? (meas_table ? s4[2] : s4[0]) : m->xm, half = 0.5 * bl;
             if (mech - m->xb > half) {
                 m->xb = mech - half;
             } else if (mech - m->xb < -half) {
                 m->xb = mech + half;
             }
         }
+    }
+    if (two_mass) {
+        m->xm = s4[0];
+        m->vm = s4[1];
+        m->xt = s4[2];
+        m->vt = s4[3];
     }
 }
 
@@ -405,9 +514,13 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
         /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
         p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
         if (p->res[0] > 0.0) {
-            double need = ceil(40.0 * p->res[0] * p->sample_time);
-            if (!(need < 1e7)) return fail(msg, msg_size, "resonance_frequency * sample_time is too large");
-            if ((int)need > p->substeps) p->substeps = (int)need;
+            const vcnc_two_mass *x = &vcnc_exported_two_mass;
+            if (x->f == p->res[0] && x->zeta == p->res[1] && x->r == p->res[2] &&
+                x->viscous_rate == p->viscous_rate && x->sample_time == p->sample_time && x->substeps == p->substeps) {
+                memcpy(p->tm, x->tm, sizeof(p->tm)); /* computed by scipy at export: bit-exact */
+            } else if (two_mass_matrices(p, msg, msg_size) != 0) {
+                return -1;
+            }
         }
         m->xm = u;
         m->vm = 0.0;

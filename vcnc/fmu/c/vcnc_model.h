@@ -67,7 +67,16 @@ typedef struct {
     double backlash;         /* play width [mm] (<= 0: none) */
     double res[4];           /* f [Hz] (<= 0: rigid), zeta, table share r, measured at table (1/0) */
     int substeps;            /* plant steps per sample (computed at initialisation) */
+    double tm[3 * 4 * 6];    /* exact two-mass steps (identification.augmented.two_mass_matrices; computed
+                                at initialisation): [Ad | Bd] over a substep, over the sample, stuck table */
 } vcnc_parameters;
+
+/* The two-mass steps embedded at export, with the mode they were computed for. */
+typedef struct {
+    double f, zeta, r, viscous_rate, sample_time;
+    int substeps;
+    double tm[3 * 4 * 6];
+} vcnc_two_mass;
 
 /* The sampled model (identification.reduced_model.DiscreteModel). */
 typedef struct {
@@ -109,6 +118,7 @@ int vcnc_model_discretize(const vcnc_parameters *p, vcnc_discrete *dm, char *msg
 /* The parameters and discretisation embedded at export (vcnc_exported.c). */
 extern const vcnc_parameters vcnc_exported_parameters;
 extern const vcnc_discrete vcnc_exported_discrete;
+extern const vcnc_two_mass vcnc_exported_two_mass;
 
 /* Check the parameters, discretise, and put the model at rest at the current x_ref.
  * Returns 0, or -1 with a reason in msg. */
