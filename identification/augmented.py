@@ -29,7 +29,9 @@ which is Eq. (3.3) for any plant viscous rate c [1/s] (0 <= c < a1). The control
 what it is on a CNC, a sampled law: evaluated once per sample on the measured y_k, derivatives
 by backward differences, the integral by the rectangle rule, u held over the sample (zero-order
 hold); the plant is integrated exactly over the sample (u held; ``SUBSTEPS`` steps for the play
-operator and the two-mass plant). Friction acts
+operator and the two-mass plant, whose linear part steps exactly by the matrix exponential of
+:func:`two_mass_matrices` at any mode frequency, with the table's friction held over a substep; a
+sample over which the table slides on beyond the Stribeck range is one exact step). Friction acts
 on the (table) mass as it does on a machine: kinetic friction of the direction of motion (Coulomb
 d0/d1 plus the Stribeck and asymmetric viscous terms) while it moves, and stiction at rest: a
 mass that stops stays at rest while the force on it lies between the static levels d1 (+ s-) and
