@@ -59,7 +59,7 @@ from identification.augmented import AugmentedAxisModel, augment, simulate_augme
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
-from identification.parallel import thread_map
+from identification.parallel import serial_blas, thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
 from identification.reduced_model import ReducedAxisModel
@@ -466,8 +466,19 @@ def diagnose(capture: Capture, model: ReducedAxisModel, *, axis: str,
 
 def diagnose_report(capture: Capture, model: ReducedAxisModel, *, axis: str,
                     options: DiagnosisOptions | None = None) -> DiagnosisReport:
-    """:func:`diagnose` with everything it found: stages, candidates per round, data split."""
+    """:func:`diagnose` with everything it found: stages, candidates per round, data split.
+
+    The simulations run on the worker threads of :mod:`identification.parallel`, the linear algebra
+    with one BLAS thread (tall, narrow matrices: :func:`~identification.parallel.serial_blas`).
+    """
     t_start = time.perf_counter()
+    with serial_blas():
+        return _diagnose(capture, model, axis, options, t_start)
+
+
+def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: DiagnosisOptions | None,
+              t_start: float) -> DiagnosisReport:
+    """The body of :func:`diagnose_report`."""
     opt = options or DiagnosisOptions()
     xr, x, T = check_capture(capture, axis)
     xr = np.ascontiguousarray(xr, float)
