@@ -524,15 +524,17 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
 def _proposals(ctx: SearchContext, cur: AugmentedAxisModel, opt: DiagnosisOptions) -> list[Candidate]:
     """Every search's proposals for an effect the model does not have yet, best screen first."""
     present = {e.NAME for e in cur.elements}
-    cands: list[Candidate] = []
-    for name in opt.effects:
-        if name in present:
-            continue
+
+    def search(name: str) -> list[Candidate]:
         try:
-            cands.extend(SEARCHES[name](ctx))
+            return SEARCHES[name](ctx)
         except (np.linalg.LinAlgError, ValueError, IdentificationError) as exc:
             log.info("search for %s failed: %s", name, exc)
-    cands = [c for c in cands if math.isfinite(c.screen_rms_um)]
+            return []
+
+    # the searches are independent: side by side on the worker threads, in a fixed order
+    found = thread_map(search, [name for name in opt.effects if name not in present])
+    cands = [c for cs in found for c in cs if math.isfinite(c.screen_rms_um)]
     cands.sort(key=lambda c: c.screen_rms_um)
     return cands
 

@@ -16,6 +16,7 @@ from identification.dead_time import loop_capture
 from identification.diagnosis import diagnose as diagnose_residual
 from identification.ga import GAOptions
 from identification.identify import fit_reduced_model
+from identification.parallel import serial_blas
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions
 from vcnc.core.capture import Capture
@@ -52,8 +53,9 @@ def identify(
         The fitted model; after the diagnosis an :class:`identification.augmented.AugmentedAxisModel`
         when effects were added, with ``effects`` and ``validation`` filled in.
     """
-    model = fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
-                              regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
+    with serial_blas():  # tall, narrow least squares: one BLAS thread is faster (identification.parallel)
+        model = fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
+                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
     if not diagnose:
         return model
     if not model.delay_s:
