@@ -223,3 +223,22 @@ def test_corpus_secondary_linear_axes_are_a_clear_error(name, letter):
         pytest.skip(f"G-code corpus absent ({CORPUS}): set VCNC_GCODE_CORPUS to run the rotary corpus programs")
     with pytest.raises(GCodeError, match=f"axis word '{letter}': secondary linear axes U V W"):
         load_program(path, context=INTERPOLATION_CONTEXT)
+
+
+def test_inch_programs_scale_xyz_but_not_angles():
+    prog = parse_program("G20 G90 G1 A90 F600\nX1 A0\n", context=CTX)
+    assert prog.blocks[0].feed == pytest.approx(10.0)  # 600 deg/min: angles are never scaled by G20
+    assert prog.blocks[1].feed == pytest.approx(600 * 25.4 / 60) and prog.blocks[1].target[0] == 25.4
+
+
+@pytest.mark.parametrize("text, feature", [
+    ("G21 G92 A10\n", "G92 offset on rotary axis A"),
+    ("G21 G10 L2 P1 B5\n", "G10 offsets on rotary axis B"),
+    ("G21 G0 Z5\nG81 X1 Y1 Z-1 R1 A10 F100\n", "G81 drilling cycle with rotary axis word A"),
+    ("G21 G4 P1 A10\n", "word A not allowed in a dwell block"),
+    ("G21 G41.1 D2 G1 X10 F100\nX20 A30\n", "rotary axis word A under cutter compensation"),
+    ("G21 G5.1 X2 I1 J1 A10 F100\n", "G5 spline with rotary axis word A"),
+])
+def test_unsupported_rotary_uses_name_the_feature(text, feature):
+    with pytest.raises(GCodeError, match=feature):
+        parse_program(text, context=CTX)
