@@ -42,6 +42,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
+from identification.normal_equations import solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
@@ -162,7 +163,7 @@ class SearchContext:
     def ee_partial(self, cols: np.ndarray) -> tuple[float, np.ndarray]:
         """(training RSS with ``cols`` added, their coefficients) - cols are on the training rows."""
         g = cols - self._q @ (self._q.T @ cols)
-        beta = _solve_ls(g, self._ee_r)
+        beta = solve_scaled(g, self._ee_r)
         res = self._ee_r - g @ beta
         return float(res @ res), beta
 
