@@ -2,8 +2,10 @@
 
 Reads ``../shared/data/gcode-corpus`` (``MANIFEST.tsv``: file, source repository, path, size,
 origin tag; or the folder in ``VCNC_GCODE_CORPUS``). For each program: ``load_program`` (ISO or
-Heidenhain, by content), then ``interpolate`` with the default limits (S-curve off) up to
-``--max-samples`` samples. Prints accepted/rejected counts overall, by origin and by dialect, the
+Heidenhain, by content; the context of ``vcnc interpolate`` without a machine,
+``INTERPOLATION_CONTEXT``: rotary axes A B C), then ``interpolate`` with the default limits
+(S-curve off) up to ``--max-samples`` samples. Prints accepted/rejected counts overall, by origin
+and by dialect, the
 rejections grouped by the feature their message names, the share of milling programs that run
 (lathe, probing and remap programs are out of scope, classified by the feature named), and the
 interpolation rate in setpoints/s.
@@ -26,6 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from interpolators import interpolate, load_program  # noqa: E402
+from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
 
 #: Features whose programs are not milling programs (out of scope by the issue): matched against
@@ -63,7 +66,7 @@ def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_00
         path = d / r["file"]
         rec = {"file": r["file"], "origin": r["origin"], "ok": False, "reason": "", "dialect": ""}
         try:
-            prog = load_program(path)
+            prog = load_program(path, context=INTERPOLATION_CONTEXT)
             rec["dialect"] = prog.dialect
             if interpolate_too and prog.blocks:
                 t0 = time.perf_counter()

@@ -23,7 +23,8 @@ import numpy as np
 
 from vcnc.core.errors import InputError
 
-__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "read_tool_table"]
+__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
+           "read_tool_table"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
@@ -135,7 +136,9 @@ class MachineContext:
     dialect : Dialect
         Dialect of the ISO reader (the Heidenhain reader ignores it but for ``tolerance``).
     rotary_axes : tuple of str
-        Rotary axes the machine has (``"a"``, ``"b"``, ``"c"``); words of others are errors.
+        Rotary axes the machine has (``"a"``, ``"b"``, ``"c"``), positioned in degrees; words of
+        others are errors naming the axis (``A0`` is accepted with a note). A machine file sets
+        them from its ``[axes.a]`` ... tables; :data:`INTERPOLATION_CONTEXT` has all three.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -175,8 +178,13 @@ class MachineContext:
         return self.tools.get(int(number))
 
 
-#: The context of a machine that states none: it changes nothing.
+#: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).
 DEFAULT_CONTEXT = MachineContext()
+
+#: The context of interpolation without a machine (``vcnc interpolate`` without ``--machine``, the
+#: corpus benchmark): the default tables, and every rotary axis a, b, c, so that 4- and 5-axis
+#: programs read; ``vcnc simulate`` and ``--machine`` use the machine's own axes instead.
+INTERPOLATION_CONTEXT = MachineContext(rotary_axes=("a", "b", "c"))
 
 
 def read_tool_table(path: str) -> dict[int, Tool]:

@@ -14,13 +14,15 @@ from interpolators.kinematics import (
     curved_speed_bound,
     junction_speed_limit,
     path_limits,
+    rotary_path_bounds,
 )
-from interpolators.limits import DEFAULT_LIMITS, AxisLimits
+from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import HOLD, PackedSegments
+from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.errors import GCodeError, InputError
 from vcnc.core.setpoints import Setpoints
 
@@ -44,7 +46,7 @@ MAX_SAMPLES: int = 50_000_000
 class _Chain:
     """Consecutive items planned together, starting and ending at rest."""
 
-    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell")
+    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell", "rotary")
 
     def __init__(self) -> None:
         self.segments: list[Line | Arc | np.ndarray] = []
@@ -53,6 +55,7 @@ class _Chain:
         self.rapid: list[bool] = []
         self.tolerances: list[float] = []
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
+        self.rotary = False  # a block moving a rotary axis: a chain of its own (exact stop at both ends)
 
 
 def _chains(program: Program) -> list[_Chain]:
@@ -71,6 +74,10 @@ def _chains(program: Program) -> list[_Chain]:
                 chains.append(ch)
             continue
         seg = b.segment
+        if b.rotary_start is not None and np.any(b.rotary_delta != 0):
+            cur = None
+            chains.append(_rotary_chain(i, b))
+            continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
         if cur is None:
@@ -86,9 +93,23 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
+def _rotary_chain(i: int, b) -> _Chain:
+    """The chain of one block that moves a rotary axis: its XYZ segment, or for a pure rotary move
+    a hold at its XYZ position (the profile then runs along the rotary distance)."""
+    ch = _Chain()
+    seg = b.segment
+    ch.segments.append(seg if seg is not None and seg.length > 0 else np.array(b.start, dtype=float))
+    ch.blocks.append(i)
+    ch.feeds.append(b.feed)
+    ch.rapid.append(b.kind == "rapid")
+    ch.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+    ch.rotary = True
+    return ch
+
+
 def _resolve_limits(limits: Mapping[str, AxisLimits] | None) -> dict[str, AxisLimits]:
     if limits is None:
-        return dict(DEFAULT_LIMITS)
+        return {**DEFAULT_LIMITS, **DEFAULT_ROTARY_LIMITS}
     if not isinstance(limits, Mapping):
         raise InputError(f"limits must be a dict of axis name -> AxisLimits, got {type(limits).__name__}")
     return {str(k).lower(): v for k, v in limits.items()}
@@ -165,12 +186,25 @@ def interpolate(
     jerk_limited = profile == "scurve"
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
-    g = _geometry(chains, lim, jerk_limited)
+    g = _geometry(chains, lim, jerk_limited, program)
     c = _corner_stops(g, chains, lim, Ts, jerk_limited)
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
+    if g.rotary is not None:
+        v_max, a_max, j_max = _rotary_bounds(g, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
     v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
+
+
+@dataclasses.dataclass
+class _Rotary:
+    """The rotary axes a, b, c along the segments: ``start + (s / length) * delta`` at path
+    parameter ``s``; a pure rotary move is a hold whose path is its rotary distance."""
+
+    start: np.ndarray  # (n_seg, 3) [deg]
+    delta: np.ndarray  # (n_seg, 3) [deg]
+    length: np.ndarray  # (n_seg,) path length of the profile [mm, or deg on a pure rotary move]
+    pure: np.ndarray  # (n_seg,) bool: X, Y, Z still, the profile runs along the rotary distance
 
 
 @dataclasses.dataclass
@@ -184,6 +218,7 @@ class _Geom:
     rapid: np.ndarray
     packed: PackedSegments
     blended: bool
+    rotary: _Rotary | None = None  # None: the program moves no rotary axis
 
 
 @dataclasses.dataclass
@@ -218,7 +253,7 @@ def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
     return lim
 
 
-def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool) -> _Geom:
+def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, program: Program) -> _Geom:
     """1. The geometry of each chain, its G64 corners blended."""
     all_segs: list[Line | Arc | np.ndarray] = []
     seg_block: list[int] = []
@@ -240,9 +275,57 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool) ->
             seg_chain.append(c)
             seg_feed.append(feed_of[b])
             seg_rapid.append(rapid_of[b])
+    packed = PackedSegments.from_segments(all_segs)
+    rotary = None
+    if any(b.rotary_start is not None for b in program.blocks):
+        rotary = _rotary_geometry(chains, seg_block, seg_chain, program, packed)
     return _Geom(segments=all_segs, block=seg_block, chain=np.asarray(seg_chain, dtype=np.int64),
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
-                 packed=PackedSegments.from_segments(all_segs), blended=blended)
+                 packed=packed, blended=blended, rotary=rotary)
+
+
+def _rotary_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
+                     packed: PackedSegments) -> _Rotary:
+    """Rotary start and motion of each segment; only a rotary chain's (single) segment moves them."""
+    n = len(seg_block)
+    start = np.zeros((n, 3))
+    delta = np.zeros((n, 3))
+    length = np.array(packed.length, dtype=float)
+    pure = np.zeros(n, dtype=bool)
+    for k, (b, c) in enumerate(zip(seg_block, seg_chain)):
+        blk = program.blocks[b]
+        if blk.rotary_start is not None:
+            start[k] = blk.rotary_start
+        if chains[c].rotary:
+            delta[k] = blk.rotary_delta
+            if packed.kind[k] == HOLD:
+                pure[k] = True
+                length[k] = blk.rotary_length
+    return _Rotary(start=start, delta=delta, length=length, pure=pure)
+
+
+def _rotary_bounds(g: _Geom, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
+                   limits: Mapping[str, AxisLimits], jerk_limited: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """3b. The path bounds of segments that move rotary axes, capped so that every rotary axis
+    stays within its limits; a pure rotary move's speed is its feed [deg/s] (RS274/NGC 3,
+    Sec. 2.1.2.5) or, for a rapid, the rotary rapid rates."""
+    r = g.rotary
+    idx = np.flatnonzero(np.any(r.delta != 0, axis=1))
+    if not len(idx):
+        return v_max, a_max, j_max
+    v_max, a_max, j_max = v_max.copy(), a_max.copy(), j_max.copy()
+    ratio = np.abs(r.delta[idx]) / r.length[idx, None]
+    v, a, j = rotary_path_bounds(ratio, g.rapid[idx], limits)
+    pure = r.pure[idx]
+    feed = np.where(g.rapid[idx], np.inf, g.feed[idx])
+    v_max[idx] = np.where(pure, np.minimum(feed, v), np.minimum(v_max[idx], v))
+    a_max[idx] = np.where(pure, a, np.minimum(a_max[idx], a))
+    j_max[idx] = np.where(pure, j, np.minimum(j_max[idx], j))
+    if not np.all(np.isfinite(v_max[idx])):
+        raise InputError("a rapid rotary move needs a finite rapid rate on its axes")
+    if jerk_limited and not np.all(np.isfinite(j_max[idx])):
+        raise InputError("the S-curve profile needs finite jerk limits on the rotary axes the program moves")
+    return v_max, a_max, j_max
 
 
 def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool) -> _Chains:
@@ -342,11 +425,15 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     n_seg = len(g.segments)
     seg_chain_a, n_chains = c.of_segment, c.count
     motion = packed.kind != HOLD
+    length = packed.length
+    if g.rotary is not None:  # a pure rotary move is a hold in XYZ with a profile along its rotary distance
+        motion = motion | g.rotary.pure
+        length = g.rotary.length
     mi = np.flatnonzero(motion)
     if jerk_limited:
-        dur, p0, pv, pa, pj = scurve_phases(packed.length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
+        dur, p0, pv, pa, pj = scurve_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
     else:
-        dur, p0, pv, pa, pj = trapezoid_phases(packed.length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi])
+        dur, p0, pv, pa, pj = trapezoid_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi])
     n_ph = dur.shape[1]
     seg_dur = np.zeros(n_seg)
     seg_dur[mi] = dur.sum(axis=1)
@@ -402,11 +489,18 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
         ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
     axes = program.axes or ("x",)
-    ax_idx = [AXIS_LETTERS.index(a) for a in axes]
+    ax_idx = [AXIS_NAMES.index(a) for a in axes]
+    linear = tuple(a for a in axes if a in AXIS_LETTERS) or AXIS_LETTERS
+    length = packed.length if g.rotary is None else g.rotary.length
     t = np.arange(total_N + 1) * Ts
     seg_block_a = np.asarray(seg_block, dtype=np.int64)
     if len(ph_seg) == 0:
-        start = program.blocks[0].start if program.blocks else np.zeros(3)
+        first = program.blocks[0] if program.blocks else None
+        start = np.zeros(6)
+        if first is not None:
+            start[:3] = first.start
+            if first.rotary_start is not None:
+                start[3:] = first.rotary_start
         pos = np.broadcast_to(start[ax_idx], (1, len(axes))).copy()
         return Setpoints(
             t=np.zeros(1), axes=axes, position=pos, velocity=np.zeros_like(pos), acceleration=np.zeros_like(pos),
@@ -421,22 +515,35 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     v = vv + tau * (aa + 0.5 * jj * tau)
     a = aa + jj * tau
     seg = ph_seg[k]
-    s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), packed.length[seg], s)
-    s[-1] = packed.length[seg[-1]]  # the program ends at rest exactly on its end point
+    s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), length[seg], s)
+    s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
     v[-1] = a[-1] = 0.0
     pos, vel, acc = packed.evaluate(seg, s, v, a)
+    if g.rotary is not None:
+        pos, vel, acc = _with_rotary(g.rotary, seg, s, v, a, pos, vel, acc)
     # the last sample of a chain is at rest at its end
     pos = pos[:, ax_idx]
     vel = vel[:, ax_idx]
     acc = acc[:, ax_idx]
     geom_path = Path(segments=tuple(s_ for s_ in all_segs if not isinstance(s_, np.ndarray)),
                      blocks=tuple(b for s_, b in zip(all_segs, seg_block) if not isinstance(s_, np.ndarray)),
-                     axes=axes)
+                     axes=linear)
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
     return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=seg_block_a[seg],
                      sample_time=Ts, path=geom_path, meta=meta)
+
+
+def _with_rotary(r: _Rotary, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,
+                 vel: np.ndarray, acc: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The x, y, z columns followed by a, b, c [deg, deg/s, deg/s^2]: the rotary axes move in
+    proportion to the path parameter ``s`` (module :mod:`interpolators.kinematics`)."""
+    L = r.length[seg]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        per_s = np.where(L[:, None] > 0, r.delta[seg] / L[:, None], 0.0)  # [deg per path unit]
+    rot = r.start[seg] + per_s * s[:, None]
+    return (np.hstack([pos, rot]), np.hstack([vel, per_s * v[:, None]]), np.hstack([acc, per_s * a[:, None]]))
 
 
 def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):

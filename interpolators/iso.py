@@ -41,10 +41,13 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
-file). Out of scope, each an error naming the feature: rotary axes A B C (a word that keeps the
-axis at 0, ``A0``, is accepted with a note), U V W, probing G38.x, threading G33/G76, lathe codes
-(G7/G8, G70-G72, G74, G75), splines G5.x, polar G15/G16, scaling G50/G51, rotation G68, user M
-codes M100-M199, G95 feed per revolution.
+file). Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
+G0/G1/G2/G3 (an arc with a rotary word turns the axis in proportion, as LinuxCNC does), G90/G91,
+G53, G28/G30, G93 (:mod:`interpolators.iso_rotary`). Out of scope, each an error naming the
+feature: a rotary axis the machine lacks (a word that keeps the axis at 0, ``A0``, is accepted with
+a note), rotary words in G92/G10, cycles, splines, dwells and under cutter compensation, U V W,
+probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
+G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 """
 
 from __future__ import annotations
@@ -63,10 +66,12 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_rotary import ROTARY_LETTERS, fill_rotary, rotary_target
 from interpolators.iso_splines import bezier_chords
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
-from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_iso"]
 
@@ -163,6 +168,11 @@ class _State:
     exact_stop: bool = False
     tolerance: float | None = None
     feed: float | None = None  # mm/s
+    feed_rotary: float | None = None  # the same F word as deg/s, for pure rotary moves (never scaled by G20)
+    rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # rotary a, b, c [deg, machine]
+    rotary_used: bool = False  # a rotary word moved (or set) an axis: every block carries rotary positions
+    home_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G28 rotary reference [deg]
+    reference2_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G30's [deg]
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
@@ -236,7 +246,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         _finish_compensation(st, blocks, source)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
-    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
+    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
+    if st.rotary_used:
+        blocks = fill_rotary(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
 
 
@@ -292,18 +304,17 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if w.letter in "UVW":
                 where.fail(f"axis word {w.letter!r}: secondary linear axes U V W are not supported",
                            column=w.column, text=w.text, expected="X, Y or Z")
-            if w.letter in "ABC" and w.value == 0.0:
+            lacks = w.letter in ROTARY_LETTERS and w.letter.lower() not in st.context.rotary_axes
+            if lacks and w.value == 0.0:
                 # a rotary word that keeps the axis where it starts (0): no rotary motion (CAM posts
                 # write "A0" on 3-axis work); any other value is refused below
                 notes.add(f"{w.letter}0 (rotary axis {w.letter} stays at 0)")
                 continue
-            if w.letter in "ABC" and w.letter.lower() not in st.context.rotary_axes:
+            if lacks:
+                axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.rotary_axes)])
                 where.fail(f"axis word {w.letter!r} is not supported: this machine has no rotary axis "
-                           f"{w.letter} (vcnc interpolates the linear axes X, Y, Z)",
-                           column=w.column, text=w.text, expected="X, Y or Z")
-            if w.letter in "ABC":
-                where.fail(f"rotary axis {w.letter}: interpolation of rotary axes is not supported",
-                           column=w.column, text=w.text, expected="X, Y or Z")
+                           f"{w.letter} (its axes: {axes})", column=w.column, text=w.text,
+                           expected=f"axis words {axes}")
             if w.letter in seen:
                 where.fail(f"word {w.letter} appears twice in one block", column=w.column, text=w.text,
                            expected=f"at most one {w.letter} word")
@@ -337,13 +348,18 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     _motion_mode(gcodes, words, st)
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
+    rot_words = [w for w in ROTARY_LETTERS if w in seen]
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
+        if rot_words:
+            w = seen[rot_words[0]]
+            where.fail(f"{_G[st.motion][1]} with rotary axis word {w.letter}: not supported", column=w.column,
+                       text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
         if axis_words or polar:
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
-    if not axis_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
+    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
         for letter in ("I", "J", "K", "R"):
             if letter in seen:
                 w = seen[letter]
@@ -351,7 +367,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
                            expected="G02 or G03 with X/Y/Z")
         return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
     if st.motion is None:
-        w = seen[axis_words[0]]
+        w = seen[(axis_words or rot_words)[0]]
         where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
     try:
@@ -374,7 +390,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             where.fail(f"{w.text.upper()} {_G[key][1]} feed mode: not supported (feeds are per minute)",
                        column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
         if key == 940 and st.inverse_time:
-            st.feed = None
+            st.feed = st.feed_rotary = None
         st.inverse_time = key == 930
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
@@ -396,6 +412,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
                        "F > 0 [mm/min]")
         if not st.inverse_time:
             st.feed = f.value * scale / 60.0
+            st.feed_rotary = f.value / 60.0
     if "S" in seen:
         if seen["S"].value < 0:
             w = seen["S"]
@@ -553,11 +570,13 @@ def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:
                        text=seen[letter].text, expected="either X/Y or @/^")
 
 
-def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, used, where: Where, number) -> None:
+def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, used, where: Where, number, *,
+            machine: bool = False) -> None:
     motion = st.motion
     mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
     mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
     code = f"G{motion // 10:02d}"
+    rot = _rotary_words(seen, motion, st, where, used, machine=machine)
     if motion in (0, 10) and (arc_words or "R" in seen):
         w = seen[(arc_words or ["R"])[0]]
         where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
@@ -571,14 +590,17 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
+    if rot is not None:
+        common.update(rotary_start=st.rot.copy(), rotary_target=rot)
     if motion in (50, 51):
         used.update((0, 1))
         _spline(seen, target, st, blocks, where, common, mcol, mtok)
         return
     st.spline_pq = None
+    turn = 0.0 if rot is None else float(np.linalg.norm(rot - st.rot))
     if motion in (0, 10):
         seg = Line(st.pos, target)
-        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg),
+        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
@@ -586,9 +608,29 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         used.update((p, q))
         target = np.array(seg.end)
         common["target"] = target
-        blk = Block(kind="arc", feed=_feed(st, seg), segment=seg, **common)
+        blk = Block(kind="arc", feed=_feed(st, seg, turn), segment=seg, **common)
     blocks.append(blk)
     st.pos = target
+    if rot is not None:
+        st.rot = rot
+
+
+def _rotary_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
+    """End angles of the block's A B C words [deg] (:mod:`interpolators.iso_rotary`), or None without
+    rotary words; splines and cutter compensation do not take them."""
+    letters = [w for w in ROTARY_LETTERS if w in seen]
+    if not letters:
+        return None
+    w = seen[letters[0]]
+    if motion in (50, 51):
+        where.fail(f"G5 spline with rotary axis word {w.letter}: not supported", column=w.column, text=w.text,
+                   expected="X and Y on a spline")
+    if st.comp_side is not None:
+        where.fail(f"rotary axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
+                   column=w.column, text=w.text, expected="G40 before rotary motion")
+    st.rotary_used = True
+    used.update(3 + ROTARY_LETTERS.index(letter) for letter in letters)
+    return rotary_target({k: seen[k].value for k in letters}, st.rot, incremental=st.incremental, machine=machine)
 
 
 def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
@@ -635,9 +677,12 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
     st.pos = np.array(target, dtype=float)
 
 
-def _feed(st: _State, seg: Line | Arc) -> float:
+def _feed(st: _State, seg: Line | Arc, turn: float = 0.0) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
-    time 1/F minutes (LinuxCNC G-code reference, G93)."""
+    time 1/F minutes (LinuxCNC G-code reference, G93). A pure rotary move (``seg`` of length 0,
+    ``turn`` [deg] the rotary distance) has its feed in deg/s (RS274/NGC 3, Sec. 2.1.2.5)."""
+    if seg.length == 0 and turn > 0:
+        return turn * st.block_f / 60.0 if st.inverse_time else st.feed_rotary
     if not st.inverse_time:
         return st.feed
     return seg.length * st.block_f / 60.0 if seg.length > 0 else np.inf
@@ -689,7 +734,7 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
         w = gcodes["motion"][1]
         where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
                    expected="G04 P<time> G01 X..")
-    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R") if w in seen]
+    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *ROTARY_LETTERS) if w in seen]
     if bad:
         w = seen[bad[0]]
         where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
@@ -790,27 +835,23 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         if "motion" in gcodes:
             st.motion = motion
         target = _target(seen, axis_words, st, machine=True)
-        _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number)
+        _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True
     if key in (280, 300):
-        ref = st.home if key == 280 else st.reference2
-        if axis_words:
-            mid = _target(seen, axis_words, st, machine=False)
-            _rapid(mid, st, blocks, used, where, number, axis_words)
-            end = st.pos.copy()
-            for a in axis_words:
-                end["XYZ".index(a)] = ref["XYZ".index(a)]
-            _rapid(end, st, blocks, used, where, number, axis_words)
-        else:
-            _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"])
+        _reference_return(key, seen, axis_words, st, blocks, used, where, number)
         notes.add("G28/G30 reference return")
         return True
     if key in (281, 301):
         if key == 281:
-            st.home = st.pos.copy()
+            st.home, st.home_rot = st.pos.copy(), st.rot.copy()
         else:
-            st.reference2 = st.pos.copy()
+            st.reference2, st.reference2_rot = st.pos.copy(), st.rot.copy()
         return True
+    rot_words = [a for a in ROTARY_LETTERS if a in seen]
+    if rot_words and key in (100, 920):
+        rw = seen[rot_words[0]]
+        where.fail(f"{'G92 offset' if key == 920 else 'G10 offsets'} on rotary axis {rw.letter}: not supported "
+                   "(rotary work offsets are 0)", column=rw.column, text=rw.text, expected="X, Y, Z words")
     if key == 920:
         if not axis_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
@@ -858,13 +899,45 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     st.offsets[code] = current
 
 
-def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words) -> None:
+def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:
+    """G28/G30: through the programmed intermediate point to the reference, only the axes named
+    (rotary words too); without axis words every axis, the rotary axes to their reference angles."""
+    ref = st.home if key == 280 else st.reference2
+    ref_rot = st.home_rot if key == 280 else st.reference2_rot
+    rot_words = [a for a in ROTARY_LETTERS if a in seen]
+    if axis_words or rot_words:
+        mid = _target(seen, axis_words, st, machine=False)
+        mid_rot = None
+        if rot_words:
+            st.rotary_used = True
+            used.update(3 + ROTARY_LETTERS.index(a) for a in rot_words)
+            mid_rot = rotary_target({a: seen[a].value for a in rot_words}, st.rot, incremental=st.incremental)
+        _rapid(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
+        end = st.pos.copy()
+        for a in axis_words:
+            end["XYZ".index(a)] = ref["XYZ".index(a)]
+        end_rot = None
+        if rot_words:
+            end_rot = st.rot.copy()
+            for a in rot_words:
+                end_rot[ROTARY_LETTERS.index(a)] = ref_rot[ROTARY_LETTERS.index(a)]
+        _rapid(end, st, blocks, used, where, number, axis_words, rot=end_rot)
+    else:
+        back = st.rotary_used and bool(np.any(st.rot != ref_rot))
+        _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+
+
+def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
+    """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the rotary angles ``rot`` [deg]."""
     for a in axis_words:
         used.add("XYZ".index(a))
+    extra = {} if rot is None else {"rotary_start": st.rot.copy(), "rotary_target": np.array(rot, dtype=float)}
     blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid", start=st.pos.copy(),
                         target=target.copy(), feed=np.inf, segment=Line(st.pos, target), exact_stop=st.exact_stop,
-                        tolerance=st.tolerance))
+                        tolerance=st.tolerance, **extra))
     st.pos = target.copy()
+    if rot is not None:
+        st.rot = np.array(rot, dtype=float)
 
 
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:

@@ -26,20 +26,29 @@ Clothoid blends (:class:`toolpaths.ClothoidPair`, curvature ``k`` up to ``k_max`
 ``m_i = |(u_in_i, w_in_i)|``, the jerk vector ``(j - k^2 v^3) t + (3 k v a + c v^3) n``, and the
 same shares apply with ``v^3 (k_max^2 + c) <= JERK_SPEED_SHARE * J``; the velocity bound uses
 the largest ``|t_i|`` over the turn.
+
+Rotary axes (:func:`rotary_path_bounds`) move in proportion to the path parameter ``s``: axis
+``i`` turns ``ratio_i = |dr_i| / L`` degrees per unit of path, so its velocity, acceleration and
+jerk are ``ratio_i`` times the path's, with no curvature term; ``v <= V_i/ratio_i`` and so on, as
+for a line.
 """
 
 from __future__ import annotations
+
+from collections.abc import Mapping
 
 import numpy as np
 
 from interpolators.limits import AxisLimits
 from toolpaths.geometry import AXIS_LETTERS
 from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
+from vcnc.core.axes import ROTARY_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = [
     "AxisLimitArrays",
     "path_limits",
+    "rotary_path_bounds",
     "junction_speed_limit",
     "curved_speed_bound",
     "CENTRIPETAL_SHARE",
@@ -272,3 +281,47 @@ def junction_speed_limit(
         v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, dk)))
     return v
 
+
+
+def rotary_path_bounds(
+    ratio: np.ndarray, rapid: np.ndarray, limits: Mapping[str, AxisLimits]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bounds of path speed, acceleration and jerk that keep the rotary axes within their limits.
+
+    Parameters
+    ----------
+    ratio : ndarray, shape (n, 3)
+        ``|dr_i| / L`` of each segment for the axes a, b, c: rotary motion per unit of path
+        [deg/mm, or deg/deg on a pure rotary move whose path is the rotary distance].
+    rapid : ndarray of bool, shape (n,)
+        True for rapid moves (the rotary rapid rates bound the speed instead of the velocities).
+    limits : mapping of str to AxisLimits
+        Limits by axis name [deg/s, deg/s^2, deg/s^3]; every rotary axis that moves needs one.
+
+    Returns
+    -------
+    v_max, a_max, j_max : ndarray, shape (n,)
+        Path bounds [path unit/s, /s^2, /s^3]; ``inf`` where no rotary axis moves.
+
+    Raises
+    ------
+    InputError
+        A moving rotary axis without limits.
+    """
+    n = len(ratio)
+    vel = np.full((n, 3), np.inf)
+    acc = np.full(3, np.inf)
+    jerk = np.full(3, np.inf)
+    for i, a in enumerate(ROTARY_NAMES):
+        moves = bool(np.any(ratio[:, i] > 0))
+        lim = limits.get(a)
+        if lim is None:
+            if moves:
+                raise InputError(f"no limits for rotary axis {a!r}, which the program moves",
+                                 expected=f"limits for axis {a!r} [deg/s, deg/s^2, deg/s^3]")
+            continue
+        if not isinstance(lim, AxisLimits):
+            raise InputError(f"limits[{a!r}] must be an AxisLimits, got {type(lim).__name__}")
+        vel[:, i] = np.where(rapid, lim.rapid_rate, lim.velocity)
+        acc[i], jerk[i] = lim.acceleration, lim.jerk
+    return _min_ratio_rows(vel, ratio), _min_ratio(acc, ratio), _min_ratio(jerk, ratio)

@@ -7,23 +7,24 @@ import math
 
 from vcnc.core.errors import InputError
 
-__all__ = ["AxisLimits", "DEFAULT_LIMITS"]
+__all__ = ["AxisLimits", "DEFAULT_LIMITS", "DEFAULT_ROTARY_LIMITS"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class AxisLimits:
-    """Limits of one axis.
+    """Limits of one axis: a linear axis in mm, a rotary axis (a, b, c) in deg.
 
     Attributes
     ----------
     velocity : float
-        Maximum axis velocity [mm/s] for feed moves.
+        Maximum axis velocity [mm/s] (rotary: [deg/s]) for feed moves.
     acceleration : float
-        Maximum axis acceleration [mm/s^2].
+        Maximum axis acceleration [mm/s^2] (rotary: [deg/s^2]).
     jerk : float
-        Maximum axis jerk [mm/s^3] (used by the S-curve profile; ``inf`` allowed for trapezoid only).
+        Maximum axis jerk [mm/s^3] (rotary: [deg/s^3]; used by the S-curve profile; ``inf`` allowed
+        for trapezoid only).
     rapid : float, optional
-        Rapid traverse rate [mm/s] for G00 / FMAX; defaults to ``velocity``.
+        Rapid traverse rate [mm/s] (rotary: [deg/s]) for G00 / FMAX; defaults to ``velocity``.
     """
 
     velocity: float
@@ -52,4 +53,12 @@ class AxisLimits:
 #: (50 m/s^3, a typical machining-centre value) and rapid rate 500 mm/s (30 m/min).
 DEFAULT_LIMITS: dict[str, AxisLimits] = {
     axis: AxisLimits(velocity=250.0, acceleration=2000.0, jerk=50_000.0, rapid=500.0) for axis in ("x", "y", "z")
+}
+
+#: Rotary-axis limits used when no machine is given, the same for a, b and c: feed velocity
+#: 180 deg/s (30 rev/min), acceleration 1800 deg/s^2 (full feed speed in 0.1 s), jerk
+#: 36 000 deg/s^3 (full acceleration in 0.05 s) and rapid rate 360 deg/s (60 rev/min), the order of
+#: a compact fourth-axis rotary table. A machine file states its own (``[axes.a.limits]``, in deg).
+DEFAULT_ROTARY_LIMITS: dict[str, AxisLimits] = {
+    axis: AxisLimits(velocity=180.0, acceleration=1800.0, jerk=36_000.0, rapid=360.0) for axis in ("a", "b", "c")
 }

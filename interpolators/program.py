@@ -33,7 +33,8 @@ class Block:
         Position before and after the block, ``(x, y, z)`` [mm].
     feed : float
         Programmed path feed [mm/s]; ``inf`` for rapids (the machine's rapid rate applies) and
-        ``0`` for dwells.
+        ``0`` for dwells. On a pure rotary move (X, Y, Z still, see :attr:`rotary_length`) it is
+        the angular feed [deg/s] along the rotary distance.
     segment : Line or Arc or None
         Exact geometry of the motion (``None`` for a dwell).
     dwell : float
@@ -43,6 +44,10 @@ class Block:
         where the look-ahead may pass the block end at speed.
     tolerance : float or None
         Path tolerance of G64 ``P`` [mm]; ``None`` selects ``interpolators.DEFAULT_TOLERANCE``.
+    rotary_start, rotary_target : ndarray, shape (3,), or None
+        Rotary axis positions ``(a, b, c)`` [deg] before and after the block; ``None`` in a
+        program that moves no rotary axis. The rotary axes move in proportion to the path
+        (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path).
     """
 
     line: int
@@ -56,11 +61,26 @@ class Block:
     dwell: float = 0.0
     exact_stop: bool = True
     tolerance: float | None = None
+    rotary_start: np.ndarray | None = None
+    rotary_target: np.ndarray | None = None
 
     @property
     def length(self) -> float:
         """Path length of the block [mm] (0 for a dwell)."""
         return 0.0 if self.segment is None else self.segment.length
+
+    @property
+    def rotary_delta(self) -> np.ndarray:
+        """Rotary motion ``(da, db, dc)`` of the block [deg] (zeros without rotary axes)."""
+        if self.rotary_start is None or self.rotary_target is None:
+            return np.zeros(3)
+        return np.asarray(self.rotary_target, dtype=float) - np.asarray(self.rotary_start, dtype=float)
+
+    @property
+    def rotary_length(self) -> float:
+        """Rotary distance ``sqrt(da^2 + db^2 + dc^2)`` [deg]: the path of a pure rotary move, whose
+        feed is in deg/min (RS274/NGC 3, Sec. 2.1.2.5, case C)."""
+        return float(np.linalg.norm(self.rotary_delta))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -77,7 +97,8 @@ class Program:
     dialect : str
         ``"iso"`` or ``"heidenhain"``.
     axes : tuple of str
-        Axes the program uses (written in an axis word or moved by an arc), canonical order.
+        Axes the program uses (written in an axis word or moved by an arc), canonical order
+        (``vcnc.core.axes.AXIS_NAMES``: x, y, z, then the rotary axes a, b, c).
     name : str or None
         Program name (Heidenhain ``BEGIN PGM`` name or ISO ``O`` number), if given.
     notes : tuple of str
@@ -101,10 +122,12 @@ class Program:
         return self.blocks[-1].target.copy() if self.blocks else np.zeros(3)
 
     def path(self) -> Path:
-        """The programmed geometry: one segment per motion block of non-zero length."""
+        """The programmed geometry: one segment per motion block of non-zero length (the linear
+        axes x, y, z; rotary positions are in the blocks)."""
         segs, idx = [], []
         for i, b in enumerate(self.blocks):
             if b.segment is not None and b.segment.length > 0:
                 segs.append(b.segment)
                 idx.append(i)
-        return Path(segments=tuple(segs), blocks=tuple(idx), axes=self.axes or AXIS_LETTERS)
+        linear = tuple(a for a in self.axes if a in AXIS_LETTERS)
+        return Path(segments=tuple(segs), blocks=tuple(idx), axes=linear or AXIS_LETTERS)

@@ -3,13 +3,16 @@ and the parameters of the reduced closed-loop axis model, Eq. (3.3) of the thesi
 
 from __future__ import annotations
 
-__all__ = ["AXIS_NAMES", "ROTARY_AXES", "axis_unit", "PARAMETER_NAMES", "PARAMETER_UNITS"]
+__all__ = ["AXIS_NAMES", "ROTARY_AXES", "ROTARY_NAMES", "axis_unit", "PARAMETER_NAMES", "PARAMETER_UNITS"]
 
 #: Axis names in their canonical order (ARCHITECTURE.md, capture file).
 AXIS_NAMES: tuple[str, ...] = ("x", "y", "z", "a", "b", "c")
 
 #: Rotary axes, positioned in degrees (ISO 841: A, B, C turn about X, Y, Z).
 ROTARY_AXES: frozenset[str] = frozenset({"a", "b", "c"})
+
+#: Rotary axes in their canonical order (the columns of rotary position arrays).
+ROTARY_NAMES: tuple[str, str, str] = ("a", "b", "c")
 
 
 def axis_unit(axis: str, *, small: bool = False) -> str:

@@ -1,0 +1,225 @@
+"""Rotary axes A, B, C: read, fed and limited as LinuxCNC and RS274/NGC 3 define them.
+
+Feed semantics (RS274/NGC 3, NISTIR 6556, Sec. 2.1.2.5; LinuxCNC G-code overview, "Feed Rate"):
+with X, Y or Z moving, F is along the XYZ path and the rotary axes move in proportion; with only
+rotary axes moving, F is in deg/min along ``sqrt(dA^2 + dB^2 + dC^2)``; under G93 a block takes
+``1/F`` minutes.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from interpolators import DEFAULT_LIMITS, interpolate, load_program, parse_program
+from interpolators.context import DEFAULT_CONTEXT, INTERPOLATION_CONTEXT, MachineContext
+from interpolators.limits import DEFAULT_ROTARY_LIMITS, AxisLimits
+from vcnc.cli import main
+from vcnc.commands.interpolate import blocks_table
+from vcnc.core.axes import AXIS_NAMES
+from vcnc.engine.machine_file import parse_machine_text
+from vcnc.errors import GCodeError, InputError
+
+CTX = MachineContext(rotary_axes=("a", "b", "c"))
+LIMITS = {**DEFAULT_LIMITS, **DEFAULT_ROTARY_LIMITS}
+CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().parents[3] / "shared" / "data"
+                             / "gcode-corpus"))
+
+
+def _trapezoid_time(length: float, v: float, a: float) -> float:
+    """Rest-to-rest time of a trapezoidal profile over ``length`` at speed ``v``, acceleration ``a``."""
+    return length / v + v / a if v * v / a <= length else 2.0 * math.sqrt(length / a)
+
+
+def _check_limits(sp, program, *, jerk: bool = False) -> None:
+    """Finite-difference velocity and acceleration of every axis within its limit (rapid rate on
+    rapids), and the analytic velocity/acceleration columns too."""
+    Ts = sp.sample_time
+    rapid = np.array([b.kind == "rapid" for b in program.blocks])
+    for i, axis in enumerate(sp.axes):
+        lim = LIMITS[axis]
+        p = sp.position[:, i]
+        v_fd = np.diff(p) / Ts
+        blk = sp.block[1:]
+        v_lim = np.where(rapid[blk], lim.rapid_rate, lim.velocity)
+        assert np.all(np.abs(v_fd) <= v_lim * (1 + 1e-9) + 1e-9), axis
+        assert np.all(np.abs(sp.velocity[:, i]) <= np.where(rapid[sp.block], lim.rapid_rate, lim.velocity)
+                      * (1 + 1e-9) + 1e-9), axis
+        a_fd = np.diff(p, 2) / Ts**2
+        assert np.all(np.abs(a_fd) <= lim.acceleration * (1 + 1e-6) + 1e-6), (axis, np.abs(a_fd).max())
+        assert np.all(np.abs(sp.acceleration[:, i]) <= lim.acceleration * (1 + 1e-9)), axis
+        if jerk:
+            j_fd = np.diff(sp.acceleration[:, i]) / Ts
+            assert np.all(np.abs(j_fd) <= lim.jerk * (1 + 1e-6) + 1e-6), (axis, np.abs(j_fd).max())
+
+
+def test_pure_rotary_move_feed_is_degrees_per_minute():
+    prog = parse_program("G21 G90 G1 A90 F600\n", context=CTX)
+    (b,) = prog.blocks
+    assert prog.axes == ("a",) and b.feed == pytest.approx(10.0)  # 600 deg/min
+    assert b.rotary_length == 90 and np.all(b.target == 0)
+    sp = interpolate(prog)
+    lim = DEFAULT_ROTARY_LIMITS["a"]
+    # time = angle / feed plus the acceleration ramp, rounded up to whole samples
+    assert sp.duration == pytest.approx(_trapezoid_time(90.0, 10.0, lim.acceleration), abs=1.5e-3)
+    # (the profile is slowed uniformly by < 0.1 % so that it ends on a sample)
+    assert sp.position[-1, 0] == pytest.approx(90.0) and sp.velocity[:, 0].max() == pytest.approx(10.0, rel=1e-3)
+
+
+def test_two_rotary_axes_share_the_feed_along_their_euclidean_distance():
+    prog = parse_program("G21 G90 G1 A30 B40 F600\n", context=CTX)
+    sp = interpolate(prog)
+    assert prog.axes == ("a", "b")
+    speed = np.hypot(sp.velocity[:, 0], sp.velocity[:, 1])
+    assert speed.max() == pytest.approx(10.0, rel=1e-3)  # along D = sqrt(30^2 + 40^2) = 50 deg
+    assert sp.duration == pytest.approx(_trapezoid_time(50.0, 10.0, 1800.0 / 0.8), abs=1.5e-3)
+    assert np.allclose(sp.position[:, 1] * 3, sp.position[:, 0] * 4)
+
+
+def test_xyz_feed_with_rotary_in_proportion():
+    prog = parse_program("G21 G90 G1 X10 A90 F600\n", context=CTX)
+    sp = interpolate(prog)
+    x, a = sp.position[:, 0], sp.position[:, 1]
+    assert sp.axes == ("x", "a")
+    assert np.allclose(a, 9.0 * x) and np.allclose(sp.velocity[:, 1], 9.0 * sp.velocity[:, 0])
+    assert sp.velocity[:, 0].max() == pytest.approx(10.0, rel=1e-3)  # F along X: 600 mm/min
+    # A reaches its acceleration limit first: the path acceleration is 1800 / 9 = 200 mm/s^2
+    assert sp.duration == pytest.approx(_trapezoid_time(10.0, 10.0, 200.0), abs=1.5e-3)
+    _check_limits(sp, prog)
+
+
+def test_rotary_limit_caps_the_xyz_feed():
+    prog = parse_program("G21 G90 G1 X1 A360 F6000\n", context=CTX)
+    sp = interpolate(prog)
+    assert np.abs(sp.velocity[:, 1]).max() == pytest.approx(DEFAULT_ROTARY_LIMITS["a"].velocity)
+    _check_limits(sp, prog)
+
+
+def test_incremental_rotary_words_and_rapids():
+    prog = parse_program("G21 G91 G0 A30\nA30\nG1 B-45 F600\nG90 C10 F600\n", context=CTX)
+    assert [b.rotary_target.tolist() for b in prog.blocks] == [[30, 0, 0], [60, 0, 0], [60, -45, 0],
+                                                               [60, -45, 10]]
+    sp = interpolate(prog)
+    assert sp.axes == ("a", "b", "c") and np.allclose(sp.position[-1], [60, -45, 10])
+    assert np.abs(sp.velocity[:, 0]).max() <= DEFAULT_ROTARY_LIMITS["a"].rapid_rate
+    _check_limits(sp, prog)
+
+
+def test_inverse_time_with_rotary():
+    prog = parse_program("G21 G90 G93 G1 X10 A90 F6\nA0 F2\n", context=CTX)
+    b1, b2 = prog.blocks
+    assert b1.feed == pytest.approx(10.0 * 6 / 60)  # XYZ length over 1/6 min
+    assert b2.feed == pytest.approx(90.0 * 2 / 60)  # pure rotary: its rotary distance over 1/2 min
+    sp = interpolate(prog)
+    t1 = _trapezoid_time(10.0, 1.0, 200.0)
+    t2 = _trapezoid_time(90.0, 3.0, 1800.0)
+    assert sp.duration == pytest.approx(t1 + t2, abs=3e-3)
+    _check_limits(sp, prog)
+
+
+def test_arc_with_a_rotary_word_turns_it_along_the_arc():
+    prog = parse_program("G21 G17 G90 G0 X10 Y0\nG3 X-10 Y0 I-10 J0 A180 F600\n", context=CTX)
+    sp = interpolate(prog)
+    on_arc = sp.block == 1
+    x, y, a = (sp.position[on_arc, sp.axes.index(k)] for k in ("x", "y", "a"))
+    angle = np.degrees(np.arctan2(y, x))
+    assert np.allclose(a, angle, atol=1e-6)  # 180 deg over the half circle, in proportion to its length
+    _check_limits(sp, prog)
+
+
+def test_reference_return_machine_coordinates_and_offsets():
+    prog = parse_program("G21 G90 G54 G0 X5 A45\nG91 G28 A0\nG90 G53 G0 B30\nG0 A10\nG28\n",
+                         context=MachineContext(rotary_axes=("a", "b"), work_offsets={"G54": (1, 2, 3)}))
+    ends = [b.rotary_target.tolist() for b in prog.blocks]
+    # G28 A0 incremental: through the current angle (intermediate point +0) to the reference 0
+    assert ends == [[45, 0, 0], [45, 0, 0], [0, 0, 0], [0, 30, 0], [10, 30, 0], [0, 0, 0]]
+    assert prog.blocks[0].target.tolist() == [6, 0, 0]  # the work offset applies to X Y Z only
+
+
+def test_limits_held_both_profiles_on_a_mixed_program():
+    text = ("G21 G90 G64 P0.01 G0 X0 Y0 Z5 A0\nG1 Z0 F1200\nG1 X20 A90 F3000\nG1 Y20 B-30\nG2 X0 Y20 I-10 J0 A180\n"
+            "G1 A270 F6000\nG0 X0 Y0 A0 B0\nG1 X5 F3000\nX10\nY5\n")
+    prog = parse_program(text, context=CTX)
+    for profile in ("trapezoid", "scurve"):
+        sp = interpolate(prog, profile=profile)
+        assert sp.axes == ("x", "y", "z", "a", "b")
+        ends = np.array([np.r_[b.target, b.rotary_target[:2]] for b in prog.blocks])
+        assert np.allclose(sp.position[-1], ends[-1])
+        _check_limits(sp, prog, jerk=profile == "scurve")
+
+
+def test_non_rotary_program_has_no_rotary_positions():
+    prog = parse_program("G21 G90 G1 X10 F600\n", context=CTX)
+    assert prog.blocks[0].rotary_start is None and prog.axes == ("x",)
+
+
+def test_machine_without_the_axis_is_a_clear_error():
+    with pytest.raises(GCodeError, match="this machine has no rotary axis B"):
+        parse_program("G21 G0 X1 B10\n", context=DEFAULT_CONTEXT)
+    with pytest.raises(GCodeError, match="no rotary axis C .*its axes: X, Y, Z, A"):
+        parse_program("G21 G0 C10\n", context=MachineContext(rotary_axes=("a",)))
+    with pytest.raises(InputError, match="no limits for rotary axis 'a'"):
+        interpolate(parse_program("G21 G1 A10 F100\n", context=CTX),
+                    limits={"x": AxisLimits(velocity=1, acceleration=1)})
+
+
+def test_machine_file_declares_its_rotary_axes(tmp_path, capsys):
+    fadal = (Path(__file__).resolve().parents[2] / "vcnc" / "machines" / "fadal-pid.toml").read_text()
+    rotary = re.sub(r"\[axes\.y", "[axes.a", fadal)
+    spec = parse_machine_text(rotary, file="rotary.toml", default_name="rotary")
+    assert spec.context.rotary_axes == ("a",)
+    assert parse_machine_text(fadal, file="fadal.toml", default_name="fadal").context.rotary_axes == ()
+    prog = parse_program("G21 G1 X1 A10 F600\n", context=spec.context)
+    assert prog.axes == ("x", "a")
+    prog_file = tmp_path / "b.ngc"
+    prog_file.write_text("G21 G90 G1 X1 B10 F600\n")
+    assert main(["simulate", str(prog_file), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")]) == 2
+    err = capsys.readouterr().err
+    assert f"{prog_file}:1:15: axis word 'B' is not supported: this machine has no rotary axis B" in err
+    assert not (tmp_path / "c.csv").exists()
+
+
+def test_cli_blocks_csv_has_rotary_columns(tmp_path, capsys):
+    prog = tmp_path / "rot.ngc"
+    prog.write_text("G21 G90 G0 X1 A10\nG1 A40 F600\nG4 P0.5\nG3 X-1 Y0 I-1 J0 A0 F600\n")
+    out, blocks = tmp_path / "sp.csv", tmp_path / "blocks.csv"
+    assert main(["interpolate", str(prog), "-o", str(out), "--blocks", str(blocks)]) == 0
+    lines = blocks.read_text().splitlines()
+    assert lines[0] == "block,line,kind,x,y,z,a,cx,cy,cz,feed"
+    assert [r.split(",")[6] for r in lines[1:]] == ["10", "40", "40", "0"]
+    assert lines[2].split(",")[-1] == "600"  # the pure rotary move's feed [deg/min]
+    header = out.read_text().splitlines()[0].split(",")
+    assert header[-4:] == ["a_ref", "a_vel", "a_acc", "block"]
+    header_rows = blocks_table(parse_program("G21 G1 X1 F100\n", context=CTX))[0]
+    assert "a" not in header_rows  # columns only for the rotary axes the program uses
+
+
+CORPUS_ROTARY = ("0004_b-index.ngc", "0011_daisy.ngc", "0284_1-Spool.nc")
+
+
+@pytest.mark.parametrize("name", CORPUS_ROTARY)
+def test_corpus_rotary_programs_run_within_limits(name):
+    path = CORPUS / name
+    if not path.is_file():
+        pytest.skip(f"G-code corpus absent ({CORPUS}): set VCNC_GCODE_CORPUS to run the rotary corpus programs")
+    prog = load_program(path, context=INTERPOLATION_CONTEXT)
+    assert any(a in prog.axes for a in "abc")
+    sp = interpolate(prog, sample_time=2e-3)
+    last = prog.blocks[-1]
+    end = dict(zip(AXIS_NAMES, [*last.target, *last.rotary_target]))
+    assert np.allclose(sp.position[-1], [end[a] for a in sp.axes])
+    _check_limits(sp, prog)
+
+
+@pytest.mark.parametrize("name, letter", [("0010_cone.ngc", "W"), ("0105_foam.ngc", "U")])
+def test_corpus_secondary_linear_axes_are_a_clear_error(name, letter):
+    path = CORPUS / name
+    if not path.is_file():
+        pytest.skip(f"G-code corpus absent ({CORPUS}): set VCNC_GCODE_CORPUS to run the rotary corpus programs")
+    with pytest.raises(GCodeError, match=f"axis word '{letter}': secondary linear axes U V W"):
+        load_program(path, context=INTERPOLATION_CONTEXT)
