@@ -153,6 +153,10 @@ def interpolate(
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
       at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it.
+    * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
+      the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
+      samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
+      polyline (:data:`CURVE_PATH_STEP`).
 
     Raises
     ------
