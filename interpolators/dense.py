@@ -224,8 +224,8 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCur
     return tuple(out)
 
 
-def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple
-           ) -> list[tuple[int, int, MergedRun | None]]:
+def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,
+           turns: np.ndarray) -> list[tuple[int, int, MergedRun | None]]:
     """Fit lines ``lo..hi-1``; split at the sharpest junction when no curve fits."""
     if hi - lo < DENSE_MIN_SEGMENTS:
         return [(k, k + 1, None) for k in range(lo, hi)]
@@ -244,10 +244,9 @@ def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float
         run = MergedRun(pieces=_pieces(spl, points[0], points[-1]), vertex_u=u,
                         blocks=np.asarray(blocks[lo:hi], dtype=np.int64))
         return [(lo, hi, run)]
-    turns = [_turn(segments[k].direction, segments[k + 1].direction) for k in range(lo, hi - 1)]
-    k = lo + 1 + int(np.argmax(turns))
-    return (_merge(segments, lo, k, blocks, tolerance, (before, None))
-            + _merge(segments, k, hi, blocks, tolerance, (None, after)))
+    k = lo + 1 + int(np.argmax(turns[lo:hi - 1]))
+    return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns)
+            + _merge(segments, k, hi, blocks, tolerance, (None, after), turns))
 
 
 def _is_dense(seg, feed: float, rapid: bool) -> bool:
@@ -280,22 +279,25 @@ def merge_dense_runs(
         For each returned piece, the run it belongs to.
     """
     n = len(segments)
+    dense = [_is_dense(s, f, r) for s, f, r in zip(segments, feeds, rapid)]
+    # turn [rad] at each junction between two lines
+    d = np.array([s.direction if isinstance(s, Line) else np.full(3, np.nan) for s in segments])
+    turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
     spans: list[tuple[int, int, MergedRun | None]] = []
     k = 0
     while k < n:
-        if not _is_dense(segments[k], feeds[k], rapid[k]):
+        if not dense[k]:
             spans.append((k, k + 1, None))
             k += 1
             continue
         e = k + 1
-        while (e < n and _is_dense(segments[e], feeds[e], rapid[e]) and feeds[e] == feeds[k]
-               and tolerances[e - 1] == tolerances[k] and tolerances[e - 1] > 0
-               and _turn(segments[e - 1].direction, segments[e].direction) <= DENSE_MAX_TURN):
+        while (e < n and dense[e] and feeds[e] == feeds[k] and tolerances[e - 1] == tolerances[k]
+               and tolerances[e - 1] > 0 and turns[e - 1] <= DENSE_MAX_TURN):
             e += 1
         before = segments[k - 1] if k > 0 and isinstance(segments[k - 1], (Line, Arc)) else None
         after = segments[e] if e < n and isinstance(segments[e], (Line, Arc)) else None
         tol = tolerances[k] if e - k > 1 else 0.0
-        spans.extend(_merge(segments, k, e, blocks, tol, (before, after)) if tol > 0
+        spans.extend(_merge(segments, k, e, blocks, tol, (before, after), turns) if tol > 0
                      else [(i, i + 1, None) for i in range(k, e)])
         k = e
     out: list = []

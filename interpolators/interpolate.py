@@ -11,6 +11,7 @@ import numpy as np
 
 from interpolators.dense import MergedRun, merge_dense_runs
 from interpolators.kinematics import (
+    CURVE_BOUND_MARGIN,
     AxisLimitArrays,
     curve_limits,
     curved_speed_bound,
@@ -39,9 +40,9 @@ MIN_JUNCTION_SPEED_SHARE: float = 0.1
 #: limits instead of reserving JUNCTION_SHARE.
 NEGLIGIBLE_SHARE: float = 1e-7
 
-#: Spacing [mm] of the points of a smooth curve (a merged run of dense lines) in ``Setpoints.path``:
-#: the polyline deviates from the curve by ``CURVE_PATH_STEP^2 k / 8`` (0.1 um at a curvature of 1/12.7 mm).
-CURVE_PATH_STEP: float = 0.1
+#: Largest distance [mm] of the polyline that stands for a smooth curve (a merged run of dense
+#: lines) in ``Setpoints.path`` from the curve: points ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart.
+CURVE_PATH_ERROR: float = 1e-4
 
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
@@ -156,7 +157,7 @@ def interpolate(
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
       samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
-      polyline (:data:`CURVE_PATH_STEP`).
+      polyline (within :data:`CURVE_PATH_ERROR`).
 
     Raises
     ------
@@ -506,9 +507,8 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
 
 
 def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
-    """The geometry the samples follow; a smooth curve piece as the polyline of its points
-    :data:`CURVE_PATH_STEP` apart (within a fraction of a micrometre of the curve), each line
-    with the block of its middle."""
+    """The geometry the samples follow; a smooth curve piece as a polyline of its points within
+    :data:`CURVE_PATH_ERROR` of the curve, each line with the block of its middle."""
     segs: list = []
     blocks: list[int] = []
     for i, (s_, b) in enumerate(zip(g.segments, g.block)):
@@ -518,7 +518,8 @@ def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
             segs.append(s_)
             blocks.append(b)
             continue
-        n = max(1, int(math.ceil(s_.length / CURVE_PATH_STEP)))
+        kappa = s_.bounds()[0] * CURVE_BOUND_MARGIN
+        n = max(1, int(math.ceil(s_.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
         s_k = np.linspace(0.0, s_.length, n + 1)
         pts = s_.point_at(s_k)
         mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))

@@ -15,7 +15,9 @@ from scipy.spatial import cKDTree
 
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program
 from interpolators.dense import DENSE_MAX_LENGTH, merge_dense_runs
+from interpolators.interpolate import CURVE_PATH_ERROR
 from toolpaths.geometry import Line
+from vcnc.contour import contour_error
 
 #: Relative margin on the finite-difference limit checks: the profiles meet the limits exactly
 #: (time-optimal), and differences of positions of ~10 mm carry rounding errors of ~1e-15 mm,
@@ -61,7 +63,6 @@ def _assert_limits(sp, jerk: bool) -> None:
             assert np.abs(np.diff(a) / Ts).max() <= lim.jerk * (1 + LIMIT_MARGIN), ax
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
 def test_chord_circle_runs_like_the_arc(profile):
     pts, r = _chord_circle(10_000)
@@ -141,3 +142,35 @@ def test_runs_are_found_and_split_at_sharp_corners():
         assert merge_dense_runs(segs, list(range(n)), **args)[2] == {}
     long = [Line((0, 0, 0), (DENSE_MAX_LENGTH * 1.5, 0.01, 0))] * 20
     assert merge_dense_runs(long, list(range(20)), [100.0] * 20, [False] * 20, [TOL] * 20)[2] == {}
+
+
+def _random_dense_program(seed: int) -> str:
+    """Smooth random 3-D curves written as dense chords (5-80 um, 4 decimals), joined by sharp
+    corners, with a raster of 0.5 mm steps and 90 deg turns (dense but not smooth) between them."""
+    rng = np.random.default_rng(seed)
+    pts = [np.zeros(3)]
+    for _ in range(3):
+        s = np.concatenate([[0.0], np.cumsum(rng.uniform(0.005, 0.08, 600))])
+        w = rng.uniform(0.05, 0.4, 3)
+        amp = rng.uniform(2.0, 10.0, 3) * np.array([1.0, 1.0, 0.2])
+        ph = rng.uniform(0, 2 * np.pi, 3)
+        curve = amp * (np.sin(w * s[:, None] + ph) - np.sin(ph))
+        pts.extend(pts[-1] + curve[1:])
+        for k in range(12):  # raster: 0.5 mm steps turning 90 degrees
+            pts.append(pts[-1] + (np.array([0.5, 0, 0]) if k % 2 == 0 else np.array([0, 0.5, 0])))
+    p = np.round(np.array(pts), 4)
+    return _program(p, 120.0)
+
+
+@pytest.mark.parametrize("seed", [3, 4, 5])
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_random_dense_curves(seed, profile):
+    program = parse_program(_random_dense_program(seed))
+    sp = interpolate(program, profile=profile)
+    assert _distance_to_path(sp) <= TOL
+    _assert_limits(sp, jerk=profile == "scurve")
+    assert np.all(np.diff(sp.block) >= 0)
+    assert np.array_equal(sp.position[-1], program.end_position[[("xyz").index(a) for a in sp.axes]])
+    # the path the setpoints report is the one they follow: an ideal machine has no contour error
+    ideal = contour_error(sp.path, sp.position, sp.axes, reference=sp.position, sample_time=sp.sample_time)
+    assert np.abs(ideal.error).max() <= CURVE_PATH_ERROR * (1 + 1e-6)
