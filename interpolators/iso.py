@@ -113,7 +113,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
-    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)", 650: "G65 macro call",
+    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
 }
@@ -242,7 +242,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
 
 def _program_name(text: str) -> str | None:
     """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
-    m = re.search(r"^\s*(?:%\s*)?(?:[oO]|:)\s*(\d+)\b(?!\s*[a-zA-Z])", text, re.M)
+    m = re.search(r"^[ \t]*(?:%[ \t]*)?(?:[oO]|:)[ \t]*(\d+)\b(?![ \t]*[a-zA-Z])", text, re.M)
     return f"O{int(m.group(1))}" if m else None
 
 

@@ -369,3 +369,73 @@ def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
                           ("G21 F1 G18 G5.1 X1 I1\n", "only in the XY plane")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+#: A Haas-style main program calling macro O9001 with G65 (the Pythagorean side, as in Don Payne's
+#: advanced-arcs example): B = sqrt(C^2 - A^2) is stored in the variable whose number V gives.
+PROGRAM_G65 = """\
+G21 G90 G0 X0 Y0 Z0
+#1 = 7.
+#10100 = 0.
+G65 P9001 A3. C5. V10100.
+G1 F100 X#10100 Y#1
+G65 P9002 A1. I2. J3. K4. I5. J6. K7.
+G65 P9003 L3 A10.
+M30
+O9001
+#[#22] = SQRT[[#3 * #3] - [#1 * #1]]
+M99
+O9002
+G1 X#7 Y#9 Z#6
+M99
+O9003
+#1 = #1 + 1.
+G1 X#1
+M99
+"""
+
+
+def test_g65_macro_call_arguments_locals_and_repeats():
+    """Fanuc/Haas custom macro B, G65 simple call: A C V -> #1 #3 #22 (argument specification I),
+    the n-th I J K -> #(3n+1)..#(3n+3) (specification II); the call gets fresh locals (the caller's
+    #1 = 7 is back after M99); with L3 the arguments are set once and the locals carry over from one
+    repetition to the next (Haas mill operator's manual, "Local Variables"); #10100 is a Haas NGC
+    general-purpose variable."""
+    pts = ends(PROGRAM_G65, MachineContext())
+    assert pts[1] == [4.0, 7.0, 0.0]  # B = sqrt(25 - 9) = 4 into #10100; the caller's #1 is 7 again
+    assert pts[2] == [5.0, 7.0, 4.0]  # #7 = second I, #9 = second K, #6 = first K
+    assert [p[0] for p in pts[3:]] == [11.0, 12.0, 13.0]
+
+
+def test_g65_errors_name_the_problem():
+    """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
+    16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
+    #[#22] names when the argument V was not given); G, L, N, O, P are no argument addresses."""
+    for text, message in [
+        ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
+        ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
+        ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_fanuc_macro_text_that_is_not_run_is_named():
+    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); IF..GOTO and WHILE..DO
+    are named in an error; a ':' program-number address (ISO code) needs its number; a '/' after a
+    word's value is neither arithmetic (which needs brackets) nor a block skip that vcnc reads."""
+    pts = ends("G21 G90 F100\n#1 = 5.\n#2 = [#1 - 1] / 2 + 1\nG1 X#2\n", MachineContext())
+    assert pts == [[3.0, 0.0, 0.0]]
+    assert parse_program(":1234\nG21 G0 X1\n", context=MachineContext()).name == "O1234"
+    for text, message in [
+        ("G21\nIF [#1 EQ 0] GOTO 10\nN10 G0 X1\n", "macro B IF \\[..\\] GOTO n branch: not supported"),
+        ("G21\nWHILE [#1 LT 3] DO1\nEND1\n", "macro B WHILE \\[..\\] DO n loop"),
+        ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
+        ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
+        ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
+        ("O[your six digit birthdate]\nG21\n", "'your' is neither a number"),
+        ("G21 G1 [your xy start position] F12\n", "'\\[your xy start position\\]' in brackets where a word"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
