@@ -165,6 +165,8 @@ class _State:
     feed: float | None = None  # mm/s
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
+    subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -216,6 +218,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2))
+    st.subprogram = _ends_with_m99(text)
     notes = _Notes()
     blocks: list[Block] = []
     used: set[int] = set()
@@ -238,6 +241,15 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in used)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
+
+
+def _ends_with_m99(text: str) -> bool:
+    """True when the last block of the text (comments, ``%`` and blank lines aside) has M99."""
+    for raw in reversed(text.splitlines()):
+        code = re.sub(r"\([^)]*\)|;.*", "", raw).strip()
+        if code and code != "%":
+            return re.search(r"M\s*0*99(?![0-9.])", code, re.I) is not None
+    return False
 
 
 def _program_name(text: str) -> str | None:
@@ -375,6 +387,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
                        column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
         if key == 940 and st.inverse_time:
             st.feed = None
+            st.feed_reset = True
         st.inverse_time = key == 930
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
@@ -559,14 +572,15 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
     code = f"G{motion // 10:02d}"
     if motion in (0, 10) and (arc_words or "R" in seen):
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
         w = seen[(arc_words or ["R"])[0]]
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
-                   expected="X, Y, Z and F on G00/G01")
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it)",
+                   column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
     if motion != 0 and not st.inverse_time and st.feed is None:
-        where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+        _no_feed(st, where, code, mcol, mtok)
     for letter in axis_words:
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
@@ -589,6 +603,18 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="arc", feed=_feed(st, seg), segment=seg, **common)
     blocks.append(blk)
     st.pos = target
+
+
+def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
+    rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
+    zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
+    why = "no F word before it"
+    if st.subprogram:
+        why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
+    elif st.feed_reset:
+        why = "G94 after G93 resets the feed; no F word since"
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
 
 
 def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:

@@ -102,7 +102,11 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         if letter in words:
             setattr(cycle, letter.lower(), words[letter])
     if cycle.r is None:
-        raise CycleError("no R (retract plane) word", letter=None, expected="R<retract level>")
+        # LinuxCNC interp_cycles.cc convert_cycle: NCE_R_CLEARANCE_PLANE_UNSPECIFIED_IN_CYCLE when the
+        # first block after another motion mode has no R; the R level has no default
+        raise CycleError("no R (retract plane) word in the first block of the series (R has no default; "
+                         "LinuxCNC: 'R clearance plane unspecified in cycle')", letter=None,
+                         expected="R<retract level>")
     if cycle.z is None:
         raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
     repeats = words.get("L", words.get("K", 1.0))

@@ -146,6 +146,7 @@ class _Program:
                 self.code.append(None)
                 continue
             if m and m.group(2):
+                # LinuxCNC interp_read.cc read_o: "Unknown control command in o word"
                 where.fail(f"O-word {m.group(2)!r}: unknown O-word keyword", column=m.start(2) + 1, text=m.group(2),
                            expected="sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, "
                                     "repeat, endrepeat, break or continue")

@@ -439,3 +439,21 @@ def test_fanuc_macro_text_that_is_not_run_is_named():
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+def test_rejections_name_the_controls_rule():
+    """Programs every control refuses get an error saying why: a feed move before any F (LinuxCNC
+    "Cannot do g1 with zero feed rate", grbl error 22), with a hint when the file is a subprogram
+    that ends with M99 (its caller sets the feed); a first cycle block without R (LinuxCNC "R
+    clearance plane unspecified in cycle"); I on G0 (LinuxCNC "I word with no G2, G3 ... to use it",
+    grbl error 36); an unknown O-word keyword (LinuxCNC "Unknown control command in o word")."""
+    for text, message in [
+        ("G21 G0 X1\nG1 X2\nM30\n", "G01 feed move without a feed: no F word before it \\(got"),
+        ("O1002\nG21 G1 X2\nM99\n%\n", "ends with M99: a subprogram, whose feed comes from the program that calls it"),
+        ("G21 F1\nG93 G1 X1 F2\nG94 G1 X2\n", "G94 after G93 resets the feed"),
+        ("G21 F100 G0 Z5\nG81 G98 Z-1\n", "no R \\(retract plane\\) word in the first block of the series"),
+        ("G21 G0 X1 Y0 I0 J-1\n", "word I is only allowed on arcs \\(G02/G03\\), not on G00"),
+        ("G21\no<g20sub> callsub\n", "O-word 'callsub': unknown O-word keyword"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
