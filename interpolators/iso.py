@@ -57,7 +57,13 @@ from pathlib import Path
 import numpy as np
 
 from interpolators._words import INCH, Where
-from interpolators.arcs import RADIUS_TOLERANCE_MM, ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.arcs import (
+    ArcWordError,
+    arc_from_center,
+    arc_from_radius,
+    center_arc_tolerance,
+    radius_arc_tolerance,
+)
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
@@ -681,13 +687,14 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
             where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
                        expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
     in_plane = [w for w in arc_words if w in allowed]
+    rule = st.context.dialect.arc_rule
     if in_plane and has_r:
         w = seen["R"]
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
     try:
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
-                                   tolerance=2.0 * RADIUS_TOLERANCE_MM)
+                                   tolerance=radius_arc_tolerance(rule))
         if in_plane:
             if st.arc_incremental:
                 center = st.pos.copy()
@@ -700,7 +707,8 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                     i = "IJK".index(letter)
                     center[i] = seen[letter].value * st.scale + off[i]
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
-                                   tolerance=spiral_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch))
+                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                  inch=st.inch, rule=rule))
         where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
     except ArcWordError as exc:
         w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)

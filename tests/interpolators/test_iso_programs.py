@@ -4,6 +4,7 @@ overview.html), written out."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -457,3 +458,32 @@ def test_rejections_name_the_controls_rule():
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+def test_arc_end_radius_rule_follows_the_dialect():
+    """grbl 1.1 (gcode.c, "[Arc definition error]") refuses an end-radius mismatch above 0.005 mm that
+    exceeds 0.5 mm or 0.1 % of the start radius, and any excess of an R arc's chord over the diameter;
+    LinuxCNC (interp_arc.cc) accepts 0.0283 mm absolute or 0.1 % of the larger radius, at most
+    2.83 mm, and an R chord up to 0.00254 mm longer than the diameter."""
+    grbl = MachineContext(dialect=DIALECTS["grbl"])
+    linuxcnc = MachineContext(dialect=DIALECTS["linuxcnc"])
+
+    def arc(radius: float, mismatch: float) -> str:  # G2 from (r, 0) about the origin to (0, r + mismatch)
+        return f"G21 G90 F100\nG0 X{radius} Y0\nG3 X0 Y{radius + mismatch:.6f} I{-radius} J0\n"
+
+    for text, grbl_ok, linuxcnc_ok in [
+        (arc(1.0, 0.004), True, True),      # within grbl's 0.005 mm
+        (arc(1.0, 0.006), False, True),     # > 0.005 mm and > 0.1 % of 1 mm; LinuxCNC: < 0.0283 mm
+        (arc(100.0, 0.08), True, True),     # 0.1 % of 100 mm = 0.1 mm for both
+        (arc(1000.0, 0.6), False, True),    # grbl: > 0.5 mm; LinuxCNC: 0.1 % of 1000 mm = 1 mm
+        ("G21 G90 F100\nG0 X0 Y0\nG2 X10.001 Y0 R5\n", False, True),  # chord 0.001 mm over 2R
+    ]:
+        for context, ok in ((grbl, grbl_ok), (linuxcnc, linuxcnc_ok)):
+            if ok:
+                end = parse_program(text, context=context).blocks[-1].target
+                assert end[1] == pytest.approx(float(text.split("Y")[-1].split()[0]), abs=1e-12)
+            else:
+                with pytest.raises(GCodeError, match="arc end point is not on the circle|longer than the diameter"):
+                    parse_program(text, context=context)
+    with pytest.raises(InputError, match="arc_rule"):
+        dataclasses.replace(DIALECTS["fanuc"], arc_rule="fanuc")
