@@ -3,10 +3,11 @@
 Semantics of LinuxCNC's G-code reference ("Canned Cycles",
 https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc), in the XY plane:
 
-* **Preliminary motion**: if the tool is below the R plane, rapid up to R; rapid in X Y to the
-  hole; rapid down to R.
+* **Preliminary motion**: if the initial level (the Z at the start of the series) is below the R
+  plane, rapid up to R; then for the first hole of the block, if the tool is above R, rapid in X Y
+  at its height and down to R, else rapid to the hole at the clear level and down to R.
 * **Levels**: under G90 the Z word is the bottom and R the retract plane (program coordinates);
-  under G91 R is an increment from the Z where the block starts and Z an increment from R, and X Y
+  under G91 R is an increment from the initial level of the series and Z an increment from R, and X Y
   step incrementally for each of the L (LinuxCNC) or K (Fanuc) repeats. Under G90, L repeats drill
   the same hole.
 * **Return**: G99 to the R plane; G98 to the higher of R and the Z at the start of the series of
@@ -123,8 +124,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     z0 = float(pos[2])
     if cycle.initial is None:
         cycle.initial = z0
-    if incremental:
-        r = z0 + cycle.r * scale
+    if incremental:  # LinuxCNC convert_cycle_xy: r = R + the initial level (cycle_il), not the current Z
+        r = cycle.initial + cycle.r * scale
         bottom = r + cycle.z * scale
     else:
         r = cycle.r * scale + offset[2]
@@ -132,7 +133,6 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
-    clear = r if retract_r else max(r, cycle.initial)
     delta = RAPID_DELTA_INCH * 25.4
     out: list[HoleMove] = []
     cur = pos.astype(float).copy()
@@ -145,11 +145,18 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         out.append(HoleMove(kind, target, f))
         cur = target
 
-    if cur[2] < r:
+    # levels and approach as LinuxCNC's convert_cycle_xy and CYCLE_MACRO (interp_internal.hh)
+    old = cycle.initial
+    if old < r:  # the initial level is below R: straight up to R first
         go("rapid", cur[0], cur[1], r)
-    for _ in range(int(repeats)):
+        old = r
+    clear = r if retract_r else old
+    for k in range(int(repeats)):
         x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
-        go("rapid", x, y, cur[2])
+        if k == 0 and cur[2] > r:  # over at the current height, then down to R
+            go("rapid", x, y, cur[2])
+        else:  # the tool is at the clear level (or below it): over at the clear level
+            go("rapid", x, y, clear)
         go("rapid", x, y, r)
         if g in (73, 83):
             q = cycle.q * scale
