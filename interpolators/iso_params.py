@@ -19,7 +19,9 @@ System parameters that read the machine state (``#5220`` and above) are not mode
 is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call, :mod:`interpolators.iso_flow`)
 differs in two ways the store follows: a macro call's locals are ``#1``-``#33`` (Haas mill
 operator's manual, "Local Variables": "Local variables range between #1 and #33 ... During a G65
-call, all new local variables are cleared"), and the Haas Next Generation Control numbers its
+call, all new local variables are cleared"; reading one that neither an argument nor an
+assignment set is an error, since Fanuc's vacant variable is not 0: ``X#24`` leaves the X word
+out), and the Haas Next Generation Control numbers its
 general-purpose variables ``#10000``-``#10999`` ("saved on power off", Haas NGC macro variable
 table, e.g. https://zappettiniconsulting.com/wiki/haas-system-variables); they are global parameters
 here (the NGC's second, legacy number of some of them, ``#100``-``#199`` and ``#500``-``#999``, is a
@@ -74,7 +76,14 @@ class Parameters:
         if (n < 1 or n > _MAX_USER_PARAMETER) and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: system parameters (machine state, #5220 and above) are not supported",
                        column=column, text=text, expected="a parameter #1 .. #5219")
-        return self._local_numbered(n).get(n, 0.0)
+        store = self._local_numbered(n)
+        if n not in store and self.frames and self.frames[-1][2] == MACRO_LOCALS and n <= MACRO_LOCALS:
+            # Fanuc: a vacant variable leaves its word out (X#24 moves no X) and is not 0 in every
+            # operation; vcnc reads unset parameters as 0 (LinuxCNC), which would move X to 0
+            where.fail(f"#{n} is vacant in this G65 macro (no argument set it): Fanuc's vacant variables "
+                       "(a word X#24 left out) are not supported", column=column, text=text,
+                       expected=f"a G65 argument or an assignment that sets #{n} before it is read")
+        return store.get(n, 0.0)
 
     def get_named(self, name: str, where: Where, column: int, text: str) -> float:
         key = name.lower().replace(" ", "")
@@ -91,9 +100,10 @@ class Parameters:
     def assign(self, key: int | str, value: float, where: Where, column: int, text: str) -> None:
         if isinstance(key, int):
             if key == 0:
-                where.fail("parameter #0 cannot be set: #0 is the null variable (Fanuc macro B: always vacant; "
-                           "a #[#n] whose #n is vacant, e.g. a G65 argument not given, names it)",
-                           column=column, text=text, expected="a parameter #1 .. #5219 or a G65 argument that is given")
+                where.fail("parameter #0 cannot be set: #0 is the null variable (Fanuc macro B: always vacant); "
+                           "a #[#n] whose #n is unset names it, as in a macro program run on its own instead of "
+                           "through its G65 call", column=column, text=text,
+                           expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
             if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
                            expected="a parameter #1 .. #5219 (or #5599, the DEBUG output switch)")

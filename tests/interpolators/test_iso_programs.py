@@ -411,12 +411,16 @@ def test_g65_macro_call_arguments_locals_and_repeats():
 def test_g65_errors_name_the_problem():
     """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
     16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
-    #[#22] names when the argument V was not given); G, L, N, O, P are no argument addresses."""
+    #[#22] names when the macro program runs on its own); G, L, N, O, P are no argument addresses; a
+    vacant local read in the macro would leave its word out on Fanuc (X#24 with no X argument moves
+    no X), which vcnc does not model: an error rather than a move to X0."""
     for text, message in [
         ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
-        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#22 is vacant in this G65 macro"),
+        ("O9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
         ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
         ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
+        ("G21 F1\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", "#24 is vacant in this G65 macro"),
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
