@@ -49,7 +49,9 @@ __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
 #: Largest number of lines a program may execute (a guard against endless loops).
 MAX_EXECUTED_LINES = 5_000_000
 
-_O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+)\s*([a-zA-Z]+)?(.*)$")
+#: An O-word line: label (``<name>``, a number, or a computed number ``#1``, ``#<n>``, ``[expr]``), keyword, rest.
+_O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s*\d+|\[(?:[^\[\]]|\[[^\[\]]*\])*\])"
+                     r"\s*([a-zA-Z]+)?(.*)$")
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
 #: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).
@@ -81,6 +83,7 @@ class _OWord:
     keyword: str
     rest: str
     column: int  # 1-based column of the rest
+    computed: int = 0  # 1-based column of a computed label (o#1 call, O[#2*10] call), else 0
 
 
 @dataclasses.dataclass
@@ -140,8 +143,17 @@ class _Program:
                 self.code.append(None)  # "O7997A", "OWASHER": the program's name
                 continue
             if m and m.group(2) and m.group(2).lower() in _KEYWORDS:
+                keyword = m.group(2).lower()
                 label = m.group(1).lower().replace(" ", "")
-                self.oword[i] = _OWord(label, m.group(2).lower(), m.group(3), m.start(3) + 1)
+                if label[0] in "#[":  # LinuxCNC read_o reads the number as any integer value
+                    if keyword != "call":
+                        where.fail(f"O-word o{m.group(1)} {keyword}: only a call may compute its O number",
+                                   column=m.start(1) + 1, text=s, expected=f"o<number> {keyword}")
+                    self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1, computed=m.start(1) + 1)
+                    self.code.append(None)
+                    continue
+                label = str(int(label)) if label.isdigit() else label  # o0100 is o100 (read as an integer)
+                self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1)
                 self.by_label.setdefault(label, []).append(i)
                 self.code.append(None)
                 continue
@@ -156,6 +168,9 @@ class _Program:
                 self.code.append(None)
                 continue
             if m and m.group(1).startswith("<"):
+                if source == self.source and all(c is None for c in self.code[self.first_line[source]:]):
+                    self.code.append(None)  # "O<name>" first in the main program: its title (LinuxCNC)
+                    continue
                 where.fail(f"O-word o{m.group(1)} without a keyword", column=1, text=s, expected="o<name> call ...")
             self.code.append(code)
         self._check_structure()
@@ -261,6 +276,15 @@ def _args(prog: _Program, i: int, params: Parameters) -> list[float]:
             return values
         v, pos = evaluate_at(code, pos, prog.where(i), params)
         values.append(v)
+
+
+def _computed_label(prog: _Program, i: int, ow: _OWord, params: Parameters) -> str:
+    """The O number of ``o#1 call`` / ``O[#2*10] call``: the value, a whole number."""
+    code = strip_comments(prog.raw[i], prog.where(i))
+    value, _ = evaluate_at(code, ow.computed - 1, prog.where(i), params)
+    if value != int(value):
+        prog.fail(i, f"O-word call: the computed O number {value:g} is not a whole number", "o[integer] call")
+    return str(int(value))
 
 
 def _condition(prog: _Program, i: int, params: Parameters) -> bool:
@@ -405,10 +429,11 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
     if k == "sub":
         return prog.next_of(pc, ("endsub",)) + 1
     if k == "call":
-        start = prog.external_sub(ow.label)
+        label = _computed_label(prog, pc, ow, params) if ow.computed else ow.label
+        start = prog.external_sub(label)
         if start is None:
-            prog.fail(pc, f"O-word o{ow.label} call: the subroutine is neither in this file nor in "
-                          f"{ow.label.strip('<>')}.ngc beside it", f"o{ow.label} sub ... endsub")
+            prog.fail(pc, f"O-word o{label} call: the subroutine is neither in this file nor in "
+                          f"{label.strip('<>')}.ngc beside it", f"o{label} sub ... endsub")
         args = _args(prog, pc, params)
         params.push(args)
         frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))
@@ -421,8 +446,9 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
             prog.fail(pc, f"O-word o{ow.label} {k} outside a subroutine", "return inside o-sub ... endsub")
         frame = frames.pop()
         params.pop()
-        if values:
-            params.named["_value"] = values[0]
+        # LinuxCNC interp_read.cc read_o: a return without a value sets #<_value> to 0
+        params.named["_value"] = values[0] if values else 0.0
+        params.named["_value_returned"] = 1.0 if values else 0.0
         return frame.return_pc
     if k == "if":
         if _condition(prog, pc, params):

@@ -13,7 +13,10 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
 * expressions ``[ ... ]`` with ``**`` (power), ``* / MOD``, ``+ -``, ``EQ NE GT GE LT LE`` and
   ``AND OR XOR``, in falling precedence, left to right within a level; unary minus on any value;
 * functions ``ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN`` of ``[arg]`` (angles in
-  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]``.
+  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]`` (``EXISTS[#n]``: 1 for 1 <= n < 5602);
+* a parameter number may be any value: ``##1``, ``#[#1+1]``, even ``#ATAN[1]/[1]`` (#45);
+* ``#<_value>`` (the value the last subroutine returned, 0 if none) and ``#<_value_returned>``
+  are predefined and start at 0.
 
 System parameters that read the machine state (``#5220`` and above) are not modelled: reading one
 is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call, :mod:`interpolators.iso_flow`)
@@ -48,6 +51,8 @@ _MAX_USER_PARAMETER = 5219
 #: System parameters a program may set: #5599, LinuxCNC's switch for (DEBUG,) output
 #: (LinuxCNC "Numbered Parameters"); it moves nothing.
 _WRITABLE_SYSTEM = frozenset({5599})
+#: LinuxCNC's number of numbered parameters (RS274NGC_MAX_PARAMETERS): EXISTS[#n] is 1 for 1 <= n < it.
+_LINUXCNC_PARAMETERS = 5602
 #: Haas NGC general-purpose macro variables (global, readable and writable).
 _HAAS_GENERAL = range(10000, 11000)
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
@@ -60,7 +65,7 @@ class Parameters:
 
     def __init__(self) -> None:
         self.numbered: dict[int, float] = {}
-        self.named: dict[str, float] = {}
+        self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
 
     def _local_numbered(self, n: int) -> dict[int, float]:
@@ -155,7 +160,7 @@ class _Reader:
             if m is None:
                 self.fail("unclosed parameter name", pos, "#<name>")
             return m.group(1), m.end()
-        if p < len(self.code) and self.code[p].isalpha():
+        if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
             name = re.match(r"[A-Za-z_]\w*", self.code[p:]).group(0)
             self.fail(f"'#{name}' is not a parameter (#region and $ lines of G-code simulators are not G-code)",
                       pos, "#<number>, #<name> or #[expression]")
@@ -212,13 +217,16 @@ class _Reader:
         q = self.skip(p + len(name))
         if q >= len(self.code) or self.code[q] != "[":
             self.fail(f"function {name} needs its argument in [ ]", p, f"{name}[value]")
-        if name == "EXISTS":
+        if name == "EXISTS":  # LinuxCNC read_parameter(check_exists): a number exists when 1 <= n < 5602
             q2 = self.skip(q + 1)
-            m = _NAME.match(self.code, q2 + 1) if self.code[q2:q2 + 1] == "#" else None
-            end = self.skip(m.end()) if m else q2
-            if m is None or self.code[end:end + 1] != "]":
-                self.fail("EXISTS needs a named parameter", p, "EXISTS[#<name>]")
-            return (1.0 if self.params.exists(m.group(1)) else 0.0), end + 1
+            if self.code[q2:q2 + 1] != "#":
+                self.fail("EXISTS needs a parameter", p, "EXISTS[#<name>] or EXISTS[#n]")
+            key, end = self.parameter(q2)
+            end = self.skip(end)
+            if self.code[end:end + 1] != "]":
+                self.fail("EXISTS needs one parameter in [ ]", p, "EXISTS[#<name>] or EXISTS[#n]")
+            found = self.params.exists(key) if isinstance(key, str) else 1 <= key < _LINUXCNC_PARAMETERS
+            return (1.0 if found else 0.0), end + 1
         arg, end = self.real(q)
         if name == "ATAN":
             s = self.skip(end)
