@@ -93,6 +93,9 @@ class Dialect:
         LinuxCNC's absolute and relative tolerances, or grbl's (0.005 mm, 0.1 % of the radius, at
         most 0.5 mm; no excess of an R arc's chord over the diameter). Fanuc and Haas check against
         a machine parameter (Fanuc No. 3410) and use LinuxCNC's rule here.
+    tap_out_to_r : bool
+        G84 tapping feeds out to the R plane and rapids on to the clear level (Fanuc, Haas: True);
+        LinuxCNC feeds out to the clear level (False).
     """
 
     name: str = "linuxcnc"
@@ -101,6 +104,7 @@ class Dialect:
     continuous_path: bool = True
     tolerance: float | None = None
     arc_rule: str = "linuxcnc"
+    tap_out_to_r: bool = False
 
     def __post_init__(self) -> None:
         if self.arc_rule not in ARC_RULES:
@@ -120,8 +124,8 @@ class Dialect:
 #: in milliseconds without a decimal point); grbl wiki (G4 P in seconds).
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
-    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms"),
-    "haas": Dialect(name="haas", dwell_p_unit="ms"),
+    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
+    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
     "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl"),
     "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
 })

@@ -15,7 +15,10 @@ https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc)
 * **Holes**: G81 feed to Z, rapid out; G82 also dwells P; G83 pecks Q, rapid to R after each
   peck and back down to 0.010 in (0.254 mm) above the last depth; G73 pecks Q with a chip-break
   retract of 0.010 in; G85 feeds in and out; G89 dwells, then feeds out; G86 dwells and rapids
-  out (spindle stopped); G84 (Fanuc tapping) feeds in and out.
+  out (spindle stopped); G84 (tapping) feeds in, dwells P, and feeds out: to the clear level in
+  LinuxCNC (interp_cycles.cc ``convert_cycle_g74_g84``), to R and then rapid to the clear level in
+  Fanuc and Haas (Haas "G84 Tapping Canned Cycle": feed to the R plane, rapid to the starting
+  plane), as the dialect says (:attr:`interpolators.context.Dialect.tap_out_to_r`).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
 """
@@ -68,7 +71,8 @@ class HoleMove:
 
 
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
-                scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool) -> list[HoleMove]:
+                scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
+                tap_out_to_r: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block.
 
     Parameters
@@ -93,6 +97,9 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         Feed [mm/s].
     dwell_p_ms : bool
         ``P`` in milliseconds (Fanuc/Haas) rather than seconds (LinuxCNC).
+    tap_out_to_r : bool
+        G84 feeds out to the R plane and rapids on to the clear level (Fanuc, Haas), rather than
+        feeding out to the clear level (LinuxCNC).
 
     Raises
     ------
@@ -117,7 +124,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
         raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
     dwell = 0.0
-    if g in (82, 86, 89) and cycle.p is not None:
+    if g in (82, 84, 86, 89) and cycle.p is not None:
         dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
         if dwell < 0:
             raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
@@ -170,7 +177,9 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
-        if g in (84, 85, 89):
+        if g == 84 and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
+            go("line", x, y, clear, feed)
+        elif g in (84, 85, 89):
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out

@@ -128,3 +128,17 @@ def test_later_blocks_of_a_series_use_the_initial_level_as_linuxcnc():
                    incremental=False) == [
         ("rapid", 1, 0, 3), ("rapid", 1, 0, 1), ("line", 1, 0, -1), ("rapid", 1, 0, 1),
         ("rapid", 2, 0, 2), ("line", 2, 0, -1), ("rapid", 2, 0, 2)]
+
+
+def test_g84_feeds_out_to_the_clear_level_or_to_r_by_dialect():
+    """LinuxCNC's G84 feeds out to the clear level (interp_cycles.cc convert_cycle_g74_g84); Fanuc's
+    and Haas's feed out to R and rapid to the initial level under G98 (Haas "G84 Tapping Canned
+    Cycle"); both dwell P at the bottom."""
+    words = {"X": 1.0, "Y": 0.0, "Z": -2.0, "R": 2.0, "P": 0.5}
+    into = [("rapid", 1, 0, 10, INF, 0), ("rapid", 1, 0, 2, INF, 0), ("line", 1, 0, -2, 2.0, 0),
+            ("dwell", 1, 0, -2, 0.0, 0.5)]
+    assert _moves(84, words) == [*into, ("line", 1, 0, 10, 2.0, 0)]
+    out = cycle_moves(84, words, cycle=CycleWords(), pos=np.array([0.0, 0.0, 10.0]), offset=np.zeros(3), scale=1.0,
+                      incremental=False, retract_r=False, feed=2.0, dwell_p_ms=False, tap_out_to_r=True)
+    assert [(m.kind, *m.target.tolist(), m.feed, m.dwell) for m in out] == [
+        *into, ("line", 1, 0, 2, 2.0, 0), ("rapid", 1, 0, 10, INF, 0)]

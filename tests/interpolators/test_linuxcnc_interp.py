@@ -225,3 +225,29 @@ def test_m98_loops_with_an_incremental_cycle_match_linuxcnc():
     got = [(b.kind, *(round(float(v), 4) for v in b.target)) for b in prog.blocks if b.kind in ("rapid", "line")]
     got = [g for i, g in enumerate(got) if i == 0 or got[i - 1][1:] != g[1:]]  # zero-length G0 repeats
     assert got == EXPECTED_M98_LOOPS
+
+
+#: tests/interp/g84/g17/g98/expected: the program of g81/g17/g98 with G84 (and M3 S1000); LinuxCNC's
+#: tap feeds out to the clear level (interp_cycles.cc convert_cycle_g74_g84) [inch].
+EXPECTED_G84_G98 = [
+    ('rapid', 0.0, 0.0, 2.0), ('rapid', 1.0, 1.0, 2.0), ('rapid', 1.0, 1.0, 1.0),
+    ('line', 1.0, 1.0, -1.0), ('line', 1.0, 1.0, 2.0), ('rapid', 1.0, 1.0, 3.0),
+    ('rapid', 1.0, 2.0, 3.0), ('line', 1.0, 2.0, 0.5), ('line', 1.0, 2.0, 3.0),
+    ('rapid', 1.0, 2.0, 5.0), ('rapid', 1.0, 3.0, 5.0), ('line', 1.0, 3.0, 4.0),
+    ('line', 1.0, 3.0, 5.0), ('rapid', 10.0, 0.0, 2.0), ('rapid', 11.0, 1.0, 2.0),
+    ('rapid', 11.0, 1.0, 1.0), ('line', 11.0, 1.0, -1.0), ('line', 11.0, 1.0, 2.0),
+    ('rapid', 12.0, 2.0, 2.0), ('rapid', 12.0, 2.0, 1.0), ('line', 12.0, 2.0, -1.0),
+    ('line', 12.0, 2.0, 2.0), ('rapid', 20.0, 0.0, 2.0), ('rapid', 20.0, 0.0, 3.0),
+    ('rapid', 21.0, 1.0, 3.0), ('line', 21.0, 1.0, 0.5), ('line', 21.0, 1.0, 3.0),
+    ('rapid', 22.0, 2.0, 3.0), ('line', 22.0, 2.0, 0.5), ('line', 22.0, 2.0, 3.0),
+    ('rapid', 30.0, 0.0, 2.0), ('rapid', 30.0, 0.0, 5.0), ('rapid', 31.0, 1.0, 5.0),
+    ('line', 31.0, 1.0, 4.0), ('line', 31.0, 1.0, 5.0), ('rapid', 32.0, 2.0, 5.0),
+    ('line', 32.0, 2.0, 4.0), ('line', 32.0, 2.0, 5.0),
+]
+
+
+def test_g84_taps_out_to_the_clear_level_as_linuxcnc():
+    program = PROGRAM_G98.replace("g81", "g84").replace("f10\n", "f10\nM3 S1000\n")
+    prog = parse_program(program, context=MachineContext())
+    got = [(b.kind, *(round(v / INCH, 4) for v in b.target)) for b in prog.blocks if b.kind != "dwell"]
+    assert got == EXPECTED_G84_G98
