@@ -60,7 +60,13 @@ from pathlib import Path
 import numpy as np
 
 from interpolators._words import INCH, Where
-from interpolators.arcs import RADIUS_TOLERANCE_MM, ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.arcs import (
+    ArcWordError,
+    arc_from_center,
+    arc_from_radius,
+    center_arc_tolerance,
+    radius_arc_tolerance,
+)
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
@@ -118,7 +124,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
-    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)", 650: "G65 macro call",
+    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
 }
@@ -175,6 +181,8 @@ class _State:
     reference2_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G30's [deg]
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
+    subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -226,6 +234,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2))
+    st.subprogram = _ends_with_m99(text)
     notes = _Notes()
     blocks: list[Block] = []
     used: set[int] = set()
@@ -252,9 +261,18 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
 
 
+def _ends_with_m99(text: str) -> bool:
+    """True when the last block of the text (comments, ``%`` and blank lines aside) has M99."""
+    for raw in reversed(text.splitlines()):
+        code = re.sub(r"\([^)]*\)|;.*", "", raw).strip()
+        if code and code != "%":
+            return re.search(r"M\s*0*99(?![0-9.])", code, re.I) is not None
+    return False
+
+
 def _program_name(text: str) -> str | None:
     """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
-    m = re.search(r"^\s*(?:%\s*)?(?:[oO]|:)\s*(\d+)\b(?!\s*[a-zA-Z])", text, re.M)
+    m = re.search(r"^[ \t]*(?:%[ \t]*)?(?:[oO]|:)[ \t]*(\d+)\b(?![ \t]*[a-zA-Z])", text, re.M)
     return f"O{int(m.group(1))}" if m else None
 
 
@@ -391,6 +409,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
                        column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
         if key == 940 and st.inverse_time:
             st.feed = st.feed_rotary = None
+            st.feed_reset = True
         st.inverse_time = key == 930
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
@@ -578,14 +597,15 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     code = f"G{motion // 10:02d}"
     rot = _rotary_words(seen, motion, st, where, used, machine=machine)
     if motion in (0, 10) and (arc_words or "R" in seen):
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
         w = seen[(arc_words or ["R"])[0]]
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
-                   expected="X, Y, Z and F on G00/G01")
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it)",
+                   column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
     if motion != 0 and not st.inverse_time and st.feed is None:
-        where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+        _no_feed(st, where, code, mcol, mtok)
     for letter in axis_words:
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
@@ -631,6 +651,18 @@ def _rotary_words(seen, motion: int, st: _State, where: Where, used: set[int], *
     st.rotary_used = True
     used.update(3 + ROTARY_LETTERS.index(letter) for letter in letters)
     return rotary_target({k: seen[k].value for k in letters}, st.rot, incremental=st.incremental, machine=machine)
+
+
+def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
+    rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
+    zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
+    why = "no F word before it"
+    if st.subprogram:
+        why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
+    elif st.feed_reset:
+        why = "G94 after G93 resets the feed; no F word since"
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
 
 
 def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
@@ -700,13 +732,14 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
             where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
                        expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
     in_plane = [w for w in arc_words if w in allowed]
+    rule = st.context.dialect.arc_rule
     if in_plane and has_r:
         w = seen["R"]
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
     try:
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
-                                   tolerance=2.0 * RADIUS_TOLERANCE_MM)
+                                   tolerance=radius_arc_tolerance(rule))
         if in_plane:
             if st.arc_incremental:
                 center = st.pos.copy()
@@ -719,7 +752,8 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                     i = "IJK".index(letter)
                     center[i] = seen[letter].value * st.scale + off[i]
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
-                                   tolerance=spiral_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch))
+                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                  inch=st.inch, rule=rule))
         where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
     except ArcWordError as exc:
         w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)
@@ -955,7 +989,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     try:
         moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
-                            feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms")
+                            feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
+                            tap_out_to_r=st.context.dialect.tap_out_to_r)
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)

@@ -4,6 +4,7 @@ overview.html), written out."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -369,3 +370,124 @@ def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
                           ("G21 F1 G18 G5.1 X1 I1\n", "only in the XY plane")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+#: A Haas-style main program calling macro O9001 with G65 (the Pythagorean side, as in Don Payne's
+#: advanced-arcs example): B = sqrt(C^2 - A^2) is stored in the variable whose number V gives.
+PROGRAM_G65 = """\
+G21 G90 G0 X0 Y0 Z0
+#1 = 7.
+#10100 = 0.
+G65 P9001 A3. C5. V10100.
+G1 F100 X#10100 Y#1
+G65 P9002 A1. I2. J3. K4. I5. J6. K7.
+G65 P9003 L3 A10.
+M30
+O9001
+#[#22] = SQRT[[#3 * #3] - [#1 * #1]]
+M99
+O9002
+G1 X#7 Y#9 Z#6
+M99
+O9003
+#1 = #1 + 1.
+G1 X#1
+M99
+"""
+
+
+def test_g65_macro_call_arguments_locals_and_repeats():
+    """Fanuc/Haas custom macro B, G65 simple call: A C V -> #1 #3 #22 (argument specification I),
+    the n-th I J K -> #(3n+1)..#(3n+3) (specification II); the call gets fresh locals (the caller's
+    #1 = 7 is back after M99); with L3 the arguments are set once and the locals carry over from one
+    repetition to the next (Haas mill operator's manual, "Local Variables"); #10100 is a Haas NGC
+    general-purpose variable."""
+    pts = ends(PROGRAM_G65, MachineContext())
+    assert pts[1] == [4.0, 7.0, 0.0]  # B = sqrt(25 - 9) = 4 into #10100; the caller's #1 is 7 again
+    assert pts[2] == [5.0, 7.0, 4.0]  # #7 = second I, #9 = second K, #6 = first K
+    assert [p[0] for p in pts[3:]] == [11.0, 12.0, 13.0]
+
+
+def test_g65_errors_name_the_problem():
+    """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
+    16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
+    #[#22] names when the macro program runs on its own); G, L, N, O, P are no argument addresses; a
+    vacant local read in the macro would leave its word out on Fanuc (X#24 with no X argument moves
+    no X), which vcnc does not model: an error rather than a move to X0."""
+    for text, message in [
+        ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#22 is vacant in this G65 macro"),
+        ("O9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
+        ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
+        ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
+        ("G21 F1\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", "#24 is vacant in this G65 macro"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_fanuc_macro_text_that_is_not_run_is_named():
+    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); IF..GOTO and WHILE..DO
+    are named in an error; a ':' program-number address (ISO code) needs its number; a '/' after a
+    word's value is neither arithmetic (which needs brackets) nor a block skip that vcnc reads."""
+    pts = ends("G21 G90 F100\n#1 = 5.\n#2 = [#1 - 1] / 2 + 1\nG1 X#2\n", MachineContext())
+    assert pts == [[3.0, 0.0, 0.0]]
+    assert parse_program(":1234\nG21 G0 X1\n", context=MachineContext()).name == "O1234"
+    for text, message in [
+        ("G21\nIF [#1 EQ 0] GOTO 10\nN10 G0 X1\n", "macro B IF \\[..\\] GOTO n branch: not supported"),
+        ("G21\nWHILE [#1 LT 3] DO1\nEND1\n", "macro B WHILE \\[..\\] DO n loop"),
+        ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
+        ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
+        ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
+        ("O[your six digit birthdate]\nG21\n", "'your' is neither a number"),
+        ("G21 G1 [your xy start position] F12\n", "'\\[your xy start position\\]' in brackets where a word"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_rejections_name_the_controls_rule():
+    """Programs every control refuses get an error saying why: a feed move before any F (LinuxCNC
+    "Cannot do g1 with zero feed rate", grbl error 22), with a hint when the file is a subprogram
+    that ends with M99 (its caller sets the feed); a first cycle block without R (LinuxCNC "R
+    clearance plane unspecified in cycle"); I on G0 (LinuxCNC "I word with no G2, G3 ... to use it",
+    grbl error 36); an unknown O-word keyword (LinuxCNC "Unknown control command in o word")."""
+    for text, message in [
+        ("G21 G0 X1\nG1 X2\nM30\n", "G01 feed move without a feed: no F word before it \\(got"),
+        ("O1002\nG21 G1 X2\nM99\n%\n", "ends with M99: a subprogram, whose feed comes from the program that calls it"),
+        ("G21 F1\nG93 G1 X1 F2\nG94 G1 X2\n", "G94 after G93 resets the feed"),
+        ("G21 F100 G0 Z5\nG81 G98 Z-1\n", "no R \\(retract plane\\) word in the first block of the series"),
+        ("G21 G0 X1 Y0 I0 J-1\n", "word I is only allowed on arcs \\(G02/G03\\), not on G00"),
+        ("G21\no<g20sub> callsub\n", "O-word 'callsub': unknown O-word keyword"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_arc_end_radius_rule_follows_the_dialect():
+    """grbl 1.1 (gcode.c, "[Arc definition error]") refuses an end-radius mismatch above 0.005 mm that
+    exceeds 0.5 mm or 0.1 % of the start radius, and any excess of an R arc's chord over the diameter;
+    LinuxCNC (interp_arc.cc) accepts 0.0283 mm absolute or 0.1 % of the larger radius, at most
+    2.83 mm, and an R chord up to 0.00254 mm longer than the diameter."""
+    grbl = MachineContext(dialect=DIALECTS["grbl"])
+    linuxcnc = MachineContext(dialect=DIALECTS["linuxcnc"])
+
+    def arc(radius: float, mismatch: float) -> str:  # G2 from (r, 0) about the origin to (0, r + mismatch)
+        return f"G21 G90 F100\nG0 X{radius} Y0\nG3 X0 Y{radius + mismatch:.6f} I{-radius} J0\n"
+
+    for text, grbl_ok, linuxcnc_ok in [
+        (arc(1.0, 0.004), True, True),      # within grbl's 0.005 mm
+        (arc(1.0, 0.006), False, True),     # > 0.005 mm and > 0.1 % of 1 mm; LinuxCNC: < 0.0283 mm
+        (arc(100.0, 0.08), True, True),     # 0.1 % of 100 mm = 0.1 mm for both
+        (arc(1000.0, 0.6), False, True),    # grbl: > 0.5 mm; LinuxCNC: 0.1 % of 1000 mm = 1 mm
+        ("G21 G90 F100\nG0 X0 Y0\nG2 X10.001 Y0 R5\n", False, True),  # chord 0.001 mm over 2R
+    ]:
+        for context, ok in ((grbl, grbl_ok), (linuxcnc, linuxcnc_ok)):
+            if ok:
+                end = parse_program(text, context=context).blocks[-1].target
+                assert end[1] == pytest.approx(float(text.split("Y")[-1].split()[0]), abs=1e-12)
+            else:
+                with pytest.raises(GCodeError, match="arc end point is not on the circle|longer than the diameter"):
+                    parse_program(text, context=context)
+    with pytest.raises(InputError, match="arc_rule"):
+        dataclasses.replace(DIALECTS["fanuc"], arc_rule="fanuc")
