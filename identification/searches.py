@@ -19,6 +19,7 @@ Two cheap screens serve them:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import math
 import threading
@@ -706,8 +707,10 @@ def search_drift(ctx: SearchContext) -> list[Candidate]:
                       evidence={"search": "linear in the output error (Gauss-Newton step)", "rate_mm_s": e.rate})]
 
 
+@functools.lru_cache(maxsize=1)
 def _LOWPASS(T: float):
-    """4th-order Butterworth at 0.08/T (80 Hz at 1 kHz): above servo bandwidths, below the noise."""
+    """4th-order Butterworth at 0.08/T (80 Hz at 1 kHz): above servo bandwidths, below the noise
+    (designed once: the design is the same at every T)."""
     return scipy.signal.butter(4, 0.16, btype="low")
 
 
