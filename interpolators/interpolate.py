@@ -137,9 +137,10 @@ def interpolate(
     program : Program
         From :func:`interpolators.parse_program` / :func:`interpolators.load_program`.
     limits : dict of str to AxisLimits, optional
-        Per-axis limits (velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3], rapid [mm/s]);
-        :data:`interpolators.DEFAULT_LIMITS` when omitted. Every axis the program moves needs
-        an entry.
+        Per-axis limits (velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3], rapid [mm/s];
+        rotary axes a, b, c in deg); :data:`interpolators.DEFAULT_LIMITS` and
+        :data:`interpolators.DEFAULT_ROTARY_LIMITS` when omitted. Every axis the program moves
+        needs an entry.
     sample_time : float
         Interpolation period Ts [s] (default 1 ms).
     profile : {"trapezoid", "scurve"}
@@ -170,6 +171,12 @@ def interpolate(
       further capped so that the centripetal acceleration (and, for the S-curve, jerk) fits the
       axis limits (see :mod:`interpolators.kinematics`).
     * Dwells are rounded up to whole samples.
+    * Rotary axes (``Block.rotary_start``/``rotary_target`` [deg]) move in proportion to the path:
+      with X, Y or Z moving the profile runs along the XYZ path at its feed; a pure rotary move's
+      profile runs along its rotary distance at its feed [deg/s] (RS274/NGC 3, Sec. 2.1.2.5). The
+      path bounds are capped so that each rotary axis keeps its limits
+      (:func:`interpolators.kinematics.rotary_path_bounds`), and a block that moves a rotary axis
+      starts and ends at rest. Setpoint columns ``a, b, c`` are in deg.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see

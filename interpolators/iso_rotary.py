@@ -11,6 +11,11 @@ Sec. 2.1.2.5 "Feed Rate"):
 * With only rotary axes moving, F is in deg/min along ``D = sqrt(dA^2 + dB^2 + dC^2)``.
 * Under G93 (inverse time) the block takes ``1/F`` minutes either way.
 
+LinuxCNC's canon does the same (``src/emc/task/emccanon.cc``: ``SET_FEED_RATE`` keeps a linear
+feed converted from program units and an angular feed in deg/min; ``getStraightVelocity`` calls a
+move with X/Y/Z (or U/V/W) "cartesian" and measures it along XYZ, a move of A/B/C alone
+"angular", measured along ``sqrt(da^2 + db^2 + dc^2)``, citing NIST IR 6556 Sec. 2.1.2.5).
+
 A machine (:class:`interpolators.context.MachineContext`) names the rotary axes it has; a word of
 another axis is an error naming it (a word ``A0`` on a machine without A is accepted with a note,
 as CAM posts write it on 3-axis work).

@@ -26,7 +26,8 @@ class Setpoints:
     axes : tuple of str
         Axis names, in the column order of the arrays (subset of ``AXIS_NAMES``).
     position, velocity, acceleration : ndarray, shape (N, n_axes)
-        Commanded position [mm], velocity [mm/s], acceleration [mm/s^2].
+        Commanded position [mm], velocity [mm/s], acceleration [mm/s^2]; on the rotary axes
+        a, b, c [deg], [deg/s], [deg/s^2].
     block : ndarray of int, shape (N,)
         Index of the program block each sample belongs to (-1 where none, e.g. padding).
     sample_time : float
