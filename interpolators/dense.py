@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import scipy.sparse
@@ -144,10 +145,12 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
         blocks.append(scipy.sparse.csc_matrix(np.concatenate([column(col) * d[i] for i in range(3)])))
     A = scipy.sparse.hstack(blocks, format="csc")
     b = np.asarray(rhs).T.reshape(-1)
-    try:
-        x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
-    except RuntimeError:
-        return None
+    with warnings.catch_warnings():  # a singular system (too few points per knot) is a failed fit
+        warnings.simplefilter("ignore", scipy.sparse.linalg.MatrixRankWarning)
+        try:
+            x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
+        except RuntimeError:
+            return None
     if not np.all(np.isfinite(x)):
         return None
     c[free] = x[:3 * nf].reshape(3, nf).T
