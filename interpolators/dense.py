@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import scipy.sparse
@@ -144,10 +145,12 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
         blocks.append(scipy.sparse.csc_matrix(np.concatenate([column(col) * d[i] for i in range(3)])))
     A = scipy.sparse.hstack(blocks, format="csc")
     b = np.asarray(rhs).T.reshape(-1)
-    try:
-        x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
-    except RuntimeError:
-        return None
+    with warnings.catch_warnings():  # a singular system (too few points per knot) is a failed fit
+        warnings.simplefilter("ignore", scipy.sparse.linalg.MatrixRankWarning)
+        try:
+            x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
+        except RuntimeError:
+            return None
     if not np.all(np.isfinite(x)):
         return None
     c[free] = x[:3 * nf].reshape(3, nf).T
@@ -214,14 +217,9 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCur
     n_p = max(2, int(round(approx[-1] / PIECE_LENGTH))) if len(knots) > 2 else 1
     cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
     brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
-    out = []
-    for i in range(len(brk) - 1):
-        out.append(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
-                               end=end if i == len(brk) - 2 else None))
-    if len(out) > 1:  # neighbouring pieces share their end points bit for bit
-        out = [SplineCurve(spl, p.u0, p.u1, start=out[i - 1].end if i else p.start, end=p.end)
-               for i, p in enumerate(out)]
-    return tuple(out)
+    # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
+    return tuple(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
+                             end=end if i == len(brk) - 2 else None) for i in range(len(brk) - 1))
 
 
 def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,
