@@ -875,6 +875,10 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
                    expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+    r_word = seen.get("R")
+    if r_word is not None and r_word.value != 0.0:  # LinuxCNC G10 L2/L20 R: rotation of the XY plane
+        where.fail("G10 R: rotation of a coordinate system about Z is not supported", column=r_word.column,
+                   text=r_word.text, expected="G10 L2/L20 without R (or R0)")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
     if code is None:

@@ -62,6 +62,11 @@ def test_g92_offsets_and_g92_1():
 def test_g10_l2_and_l20_set_work_offsets():
     pts = ends("G21 G90\nG10 L2 P2 X7 Y8 Z9\nG55 G0 X0 Y0 Z0\nG10 L20 P2 X1\nG0 X1\n")
     assert pts == [[7, 8, 9], [7, 8, 9]]
+    # LinuxCNC's G10 L2 R rotates the coordinate system (tests/interp/g10/g10-l2-while-active): not
+    # modelled, so refused rather than ignored; R0 is no rotation
+    assert ends("G21 G90\nG10 L2 P1 X1 R0\nG54 G0 X0\n", MachineContext()) == [[1, 0, 0]]
+    with pytest.raises(GCodeError, match="G10 R: rotation of a coordinate system"):
+        parse_program("G21\nG10 L2 P1 R-45\n", context=MachineContext())
 
 
 def test_words_without_motion_are_noted_not_refused():
