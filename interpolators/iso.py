@@ -582,7 +582,12 @@ def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
         for letter in axis_words:
             i = "XYZ".index(letter)
             prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
-        return st.to_machine(prog)
+        target = st.pos.copy()  # axes without words stay exactly where they are
+        if "X" in axis_words or "Y" in axis_words:
+            target[:2] = st.to_machine(prog)[:2]
+        if "Z" in axis_words:
+            target[2] = st.to_machine(prog)[2]
+        return target
     target = st.pos.copy()
     off = st.offset()
     for letter in axis_words:
