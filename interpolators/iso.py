@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+import math
 import re
 from pathlib import Path
 
@@ -73,7 +74,7 @@ from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_rotary import ROTARY_LETTERS, fill_rotary, rotary_target
-from interpolators.iso_splines import bezier_chords
+from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -201,9 +202,36 @@ class _State:
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
+    rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+
     @property
     def scale(self) -> float:
         return INCH if self.inch else 1.0
+
+    @property
+    def rotation(self) -> float:
+        """Rotation of the active coordinate system about Z (G10 L2 R) [deg]."""
+        return self.rotations.get(self.wcs, 0.0)
+
+    def _rotated_parts(self) -> tuple[np.ndarray, np.ndarray, float, float]:
+        off = self.offset()
+        base = off - self.g92 - np.array([0.0, 0.0, self.tool_length])
+        a = np.radians(self.rotation)
+        return off, base, float(np.cos(a)), float(np.sin(a))
+
+    def to_machine(self, prog: np.ndarray) -> np.ndarray:
+        """Machine coordinates [mm] of program coordinates under a rotated coordinate system:
+        X Y plus the G92 offset, rotated about the work offset's origin, plus the work offset
+        (LinuxCNC emccanon.cc rotate_and_offset_pos); Z plus all offsets."""
+        off, base, c, s = self._rotated_parts()
+        x, y = prog[0] + self.g92[0], prog[1] + self.g92[1]
+        return np.array([c * x - s * y + base[0], s * x + c * y + base[1], prog[2] + off[2]])
+
+    def to_program(self, machine: np.ndarray) -> np.ndarray:
+        """Inverse of :meth:`to_machine`."""
+        off, base, c, s = self._rotated_parts()
+        x, y = machine[0] - base[0], machine[1] - base[1]
+        return np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
 
     def offset(self) -> np.ndarray:
         """Machine minus program coordinates [mm]."""
@@ -367,6 +395,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in ROTARY_LETTERS if w in seen]
+    if st.rotation and (axis_words or polar):
+        _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
         if rot_words:
@@ -397,6 +427,16 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     return ended
 
 
+
+
+def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
+    """Moves a rotated coordinate system (G10 R) supports: G0-G3 (G18/G19 arcs as chords)."""
+    what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
+            and st.motion not in (800,) else None)
+    if what is not None:
+        w = words[0]
+        where.fail(f"{what} in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
+                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0")
 
 
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
@@ -554,6 +594,17 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
 def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
+    if st.rotation and not machine:  # G10 R: the words are coordinates of the rotated system
+        prog = st.to_program(st.pos)
+        for letter in axis_words:
+            i = "XYZ".index(letter)
+            prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
+        target = st.pos.copy()  # axes without words stay exactly where they are
+        if "X" in axis_words or "Y" in axis_words:
+            target[:2] = st.to_machine(prog)[:2]
+        if "Z" in axis_words:
+            target[2] = st.to_machine(prog)[2]
+        return target
     target = st.pos.copy()
     off = st.offset()
     for letter in axis_words:
@@ -623,6 +674,10 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
+        if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
+            used.update((0, 1, 2))
+            _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
+            return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
@@ -651,6 +706,27 @@ def _rotary_words(seen, motion: int, st: _State, where: Where, used: set[int], *
     st.rotary_used = True
     used.update(3 + ROTARY_LETTERS.index(letter) for letter in letters)
     return rotary_target({k: seen[k].value for k in letters}, st.rot, incremental=st.incremental, machine=machine)
+
+
+def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Where, common: dict, code: str,
+                        mcol: int, mtok: str) -> None:
+    """A G18/G19 arc in a coordinate system rotated about Z (G10 R): built in program coordinates,
+    where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
+    machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
+    start_p, end_p = st.to_program(st.pos), st.to_program(target)
+    shadow = dataclasses.replace(st, pos=start_p, rotations={}, offsets={st.wcs: np.zeros(3)},
+                                 g92=np.zeros(3), tool_length=0.0)
+    arc = _arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
+    step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
+    n = max(1, math.ceil(abs(arc.sweep) / step))
+    speed = arc.length * st.block_f / 60.0 if st.inverse_time else st.feed  # the arc's feed on each chord
+    start = st.pos.copy()
+    for k in range(1, n + 1):
+        point = target.copy() if k == n else st.to_machine(arc.point_at(arc.length * k / n))
+        blocks.append(Block(kind="line", feed=speed, segment=Line(start, point),
+                            **{**common, "start": start.copy(), "target": point.copy()}))
+        start = point
+    st.pos = np.array(target, dtype=float)
 
 
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
@@ -740,6 +816,16 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
                                    tolerance=radius_arc_tolerance(rule))
+        if in_plane and st.rotation:  # the centre words are in the rotated system (XY plane only)
+            prog = st.to_program(st.pos)
+            for letter in in_plane:
+                i = "IJK".index(letter)
+                prog[i] = prog[i] + seen[letter].value * st.scale if st.arc_incremental else \
+                    seen[letter].value * st.scale
+            center = st.to_machine(prog)
+            return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
+                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                  inch=st.inch, rule=rule))
         if in_plane:
             if st.arc_incremental:
                 center = st.pos.copy()
@@ -887,6 +973,9 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         where.fail(f"{'G92 offset' if key == 920 else 'G10 offsets'} on rotary axis {rw.letter}: not supported "
                    "(rotary work offsets are 0)", column=rw.column, text=rw.text, expected="X, Y, Z words")
     if key == 920:
+        if st.rotation:
+            where.fail(f"G92 in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
+                       column=w.column, text=w.text, expected="G92 with G10 L2 R0")
         if not axis_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
         base = st.offset() - st.g92
@@ -916,8 +1005,13 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
                    expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+    r_word = seen.get("R")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
+    if int(l_word.value) == 20 and (st.rotations.get(code, 0.0) or (r_word is not None and r_word.value)):
+        w = r_word if r_word is not None else l_word
+        where.fail("G10 L20 on a rotated coordinate system (G10 R): not supported", column=w.column,
+                   text=w.text, expected="G10 L2 for a rotated coordinate system")
     if code is None:
         where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
                    expected="P0 (current) .. P9")
@@ -931,6 +1025,8 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
             else:  # L20: the current position gets coordinate v
                 current[i] = st.pos[i] - st.g92[i] - (st.tool_length if i == 2 else 0.0) - v
     st.offsets[code] = current
+    if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
+        st.rotations[code] = r_word.value
 
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:

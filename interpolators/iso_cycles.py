@@ -106,28 +106,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     CycleError
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
-    for letter in ("R", "Z", "Q", "P"):
-        if letter in words:
-            setattr(cycle, letter.lower(), words[letter])
-    if cycle.r is None:
-        # LinuxCNC interp_cycles.cc convert_cycle: NCE_R_CLEARANCE_PLANE_UNSPECIFIED_IN_CYCLE when the
-        # first block after another motion mode has no R; the R level has no default
-        raise CycleError("no R (retract plane) word in the first block of the series (R has no default; "
-                         "LinuxCNC: 'R clearance plane unspecified in cycle')", letter=None,
-                         expected="R<retract level>")
-    if cycle.z is None:
-        raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
-    repeats = words.get("L", words.get("K", 1.0))
-    if repeats != int(repeats) or repeats < 0:
-        rl = "L" if "L" in words else "K"
-        raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
-    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
-        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
-    dwell = 0.0
-    if g in (82, 84, 86, 89) and cycle.p is not None:
-        dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
-        if dwell < 0:
-            raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
+    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
     z0 = float(pos[2])
     if cycle.initial is None:
         cycle.initial = z0
@@ -158,7 +137,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         go("rapid", cur[0], cur[1], r)
         old = r
     clear = r if retract_r else old
-    for k in range(int(repeats)):
+    for k in range(repeats):
         x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
         if k == 0 and cur[2] > r:  # over at the current height, then down to R
             go("rapid", x, y, cur[2])
@@ -183,6 +162,33 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out
+
+
+def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool) -> tuple[int, float]:
+    """Update the series' sticky R Z Q P from the block; returns the repeat count and the dwell [s]."""
+    for letter in ("R", "Z", "Q", "P"):
+        if letter in words:
+            setattr(cycle, letter.lower(), words[letter])
+    if cycle.r is None:
+        # LinuxCNC interp_cycles.cc convert_cycle: NCE_R_CLEARANCE_PLANE_UNSPECIFIED_IN_CYCLE when the
+        # first block after another motion mode has no R; the R level has no default
+        raise CycleError("no R (retract plane) word in the first block of the series (R has no default; "
+                         "LinuxCNC: 'R clearance plane unspecified in cycle')", letter=None,
+                         expected="R<retract level>")
+    if cycle.z is None:
+        raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
+    repeats = words.get("L", words.get("K", 1.0))
+    if repeats != int(repeats) or repeats < 0:
+        rl = "L" if "L" in words else "K"
+        raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
+    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
+        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
+    dwell = 0.0
+    if g in (82, 84, 86, 89) and cycle.p is not None:
+        dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
+        if dwell < 0:
+            raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
+    return int(repeats), dwell
 
 
 def _hole(words: dict[str, float], cur: np.ndarray, *, offset: np.ndarray, scale: float,

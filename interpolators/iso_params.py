@@ -18,16 +18,16 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
 * ``#<_value>`` (the value the last subroutine returned, 0 if none) and ``#<_value_returned>``
   are predefined and start at 0.
 
-System parameters that read the machine state (``#5220`` and above) are not modelled: reading one
-is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call, :mod:`interpolators.iso_flow`)
-differs in two ways the store follows: a macro call's locals are ``#1``-``#33`` (Haas mill
-operator's manual, "Local Variables": "Local variables range between #1 and #33 ... During a G65
-call, all new local variables are cleared"; reading one that neither an argument nor an
-assignment set is an error, since Fanuc's vacant variable is not 0: ``X#24`` leaves the X word
-out), and the Haas Next Generation Control numbers its
-general-purpose variables ``#10000``-``#10999`` ("saved on power off", Haas NGC macro variable
-table, e.g. https://zappettiniconsulting.com/wiki/haas-system-variables); they are global parameters
-here (the NGC's second, legacy number of some of them, ``#100``-``#199`` and ``#500``-``#999``, is a
+System parameters that read the machine state (``#5001`` and above, unless the program set them)
+are not modelled: reading one is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call,
+:mod:`interpolators.iso_flow`) differs in two ways the store follows: a macro call's locals are
+``#1``-``#33`` (Haas mill operator's manual, "Local Variables": "Local variables range between #1
+and #33 ... During a G65 call, all new local variables are cleared"; reading one that neither an
+argument nor an assignment set is an error, since Fanuc's vacant variable is not 0: ``X#24``
+leaves the X word out), and the Haas Next Generation Control numbers its general-purpose variables
+``#10000``-``#10999`` ("saved on power off", Haas NGC macro variable table, e.g.
+https://zappettiniconsulting.com/wiki/haas-system-variables); they are global parameters here (the
+NGC's second, legacy number of some of them, ``#100``-``#199`` and ``#500``-``#999``, is a
 different parameter here). ``#0`` is Fanuc's null variable, always vacant and never set.
 """
 
@@ -46,7 +46,12 @@ _NAME = re.compile(r"<([^>]*)>")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN", "SIN", "SQRT",
               "TAN")
 _BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
-#: Highest numbered parameter a program may read or set without naming machine state.
+#: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
+#: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
+#: #5211-#5219 G92 offsets, ...; Fanuc's #5001-#5028 are positions too): reading one the program has
+#: not set is an error rather than a silent 0.
+_LAST_USER_PARAMETER = 5000
+#: Highest numbered parameter a program may set without naming machine state.
 _MAX_USER_PARAMETER = 5219
 #: System parameters a program may set: #5599, LinuxCNC's switch for (DEBUG,) output
 #: (LinuxCNC "Numbered Parameters"); it moves nothing.
@@ -78,10 +83,12 @@ class Parameters:
         if n == 0:
             where.fail("parameter #0 is the null variable (Fanuc macro B: always vacant; a word such as X#0 is "
                        "left out): not supported", column=column, text=text, expected="a parameter #1 .. #5219")
-        if (n < 1 or n > _MAX_USER_PARAMETER) and n not in _HAAS_GENERAL:
-            where.fail(f"parameter #{n}: system parameters (machine state, #5220 and above) are not supported",
-                       column=column, text=text, expected="a parameter #1 .. #5219")
         store = self._local_numbered(n)
+        if (n < 1 or n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) \
+                and n not in _HAAS_GENERAL:
+            where.fail(f"parameter #{n}: system parameters (machine state: positions, probe results, G28/G30/G92 "
+                       "and work offsets, tool data; #5001 and above) are not supported", column=column, text=text,
+                       expected="a parameter #1 .. #5000, or one the program has set")
         if n not in store and self.frames and self.frames[-1][2] == MACRO_LOCALS and n <= MACRO_LOCALS:
             # Fanuc: a vacant variable leaves its word out (X#24 moves no X) and is not 0 in every
             # operation; vcnc reads unset parameters as 0 (LinuxCNC), which would move X to 0

@@ -251,3 +251,32 @@ def test_g84_taps_out_to_the_clear_level_as_linuxcnc():
     prog = parse_program(program, context=MachineContext())
     got = [(b.kind, *(round(v / INCH, 4) for v in b.target)) for b in prog.blocks if b.kind != "dwell"]
     assert got == EXPECTED_G84_G98
+
+
+#: tests/interp/g10/g10-l2-while-active/test.ngc without its (debug) lines [inch].
+PROGRAM_G10_ROTATION = """\
+g54
+g20
+g10 l2 p1 x0 y0 z0 r0
+g1 x0 y0 z0 f60
+g10 l2 p1 x1
+g1 x0 y0 z0
+g10 l2 p1 r-45
+g1 y sqrt[2]
+g10 l2 p1 x2 y1 r90
+g1 y3
+g10 l2 p1 x0 y0
+g1 x0 y0
+g10 l2 p1 r0
+m2
+"""
+#: Its expected STRAIGHT_FEEDs (0,0,0) (0,0,0) (0,1.4142,0) (0,3,0) (0,0,0) in machine coordinates:
+#: rotated by the SET_XY_ROTATION in effect and moved by SET_G5X_OFFSET (emccanon.cc
+#: rotate_and_offset_pos: X Y plus G92, rotated, plus the work offset) [inch].
+EXPECTED_G10_ROTATION = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (2.0, 1.0, 0.0), (-1.0, 1.0, 0.0), (0.0, 0.0, 0.0)]
+
+
+def test_g10_l2_rotation_while_active_matches_linuxcnc():
+    prog = parse_program(PROGRAM_G10_ROTATION, context=MachineContext())
+    got = [tuple(round(v / INCH, 4) + 0.0 for v in b.target) for b in prog.blocks]
+    assert got == EXPECTED_G10_ROTATION

@@ -160,3 +160,24 @@ def test_call_with_a_computed_o_number_and_a_named_main_program():
         _words("o#1 sub\no1 endsub\n")
     with pytest.raises(GCodeError, match="without a keyword"):
         _words("G0 X1\nO<late>\n")
+
+
+def test_machine_state_parameters_are_not_read_as_zero():
+    """LinuxCNC keeps machine state above #5000 (#5021-#5029 machine position, tests/interp/
+    machine-coord-params; #5061 probe result; #5161 G28 home; #5211 G92 offset), Fanuc its positions
+    in #5001-#5028: reading one the program has not set is an error, not a silent 0."""
+    for number in (5021, 5061, 5161, 5211):
+        with pytest.raises(GCodeError, match=f"parameter #{number}: system parameters"):
+            _words(f"#1 = #{number}\n")
+    assert _words("#5100 = 7\nG0 X#5100\n") == [(2, [("G", 0.0), ("X", 7.0)])]
+
+
+def test_m98_shares_the_callers_parameters_and_o_call_has_locals():
+    """LinuxCNC tests/interp/m98m99/02-variables, its PRINTs as moves: an M98 subprogram sees and
+    changes the caller's #1 #30 #31 (Fanuc parameters are global); an O-word sub starts with #1-#30
+    unset (0) and its #1 #30 are gone on return, while #31 is global."""
+    text = ("#1 = 42.01\n#30 = 42.30\n#31 = 42.31\nM98 P1\nG0 X#1 Y#30 Z#31\n#1 = 42.01\n#30 = 42.30\n"
+            "#31 = 42.31\nO2 call\nG0 X#1 Y#30 Z#31\nM30\nO1\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n"
+            "#31 = 13.31\nM99\nO2 sub\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n#31 = 13.31\nO2 endsub\n")
+    moves = [[v for _, v in w[1:]] for _, w in _words(text)][:4]
+    assert moves == [[42.01, 42.3, 42.31], [13.01, 13.3, 13.31], [0.0, 0.0, 42.31], [42.01, 42.3, 13.31]]
