@@ -675,6 +675,10 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
                     segment=seg, **common)
     else:
         if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
+            if rot is not None:
+                w = seen[next(k for k in ROTARY_LETTERS if k in seen)]
+                where.fail(f"{code} arc with rotary axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
+                           "not supported", column=w.column, text=w.text, expected="no A, B, C on this arc")
             used.update((0, 1, 2))
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
