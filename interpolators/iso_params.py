@@ -84,6 +84,9 @@ class Parameters:
             where.fail("parameter #0 is the null variable (Fanuc macro B: always vacant; a word such as X#0 is "
                        "left out): not supported", column=column, text=text, expected="a parameter #1 .. #5219")
         store = self._local_numbered(n)
+        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
+            where.fail(f"parameter number #{n} out of range", column=column, text=text,
+                       expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
         if (n < 1 or n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) \
                 and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: system parameters (machine state: positions, probe results, G28/G30/G92 "

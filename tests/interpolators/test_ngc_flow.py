@@ -130,6 +130,9 @@ def test_exists_of_numbered_and_computed_parameters():
     text = ("#<a>=999\nG0 X EXISTS[#1] Y EXISTS[#99999] Z EXISTS[#<a>]\n#1=2\n#2=99999\n"
             "G0 X EXISTS[##1] Y EXISTS[##2] Z EXISTS[###1]\n")
     assert [[v for _, v in w[1:]] for _, w in _words(text)] == [[1.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
+    # tests/interp/bad/exists-3.ngc: ###2 reads #99999, "Parameter number out of range"
+    with pytest.raises(GCodeError, match="parameter number #99999 out of range"):
+        _words("#2=99999\nG0 X EXISTS[###2]\n")
 
 
 def test_a_parameter_number_may_be_a_function_value():
