@@ -780,12 +780,13 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
         st.spline_pq = pq
     if st.motion == 51:
         st.spline_pq = None
-    start = p0
-    for point in bezier_chords(control):
-        seg = Line(start, point)
-        blocks.append(Block(kind="line", feed=_feed(st, seg), segment=seg,
-                            **{**common, "start": start.copy(), "target": point.copy()}))
-        start = point
+    points = [p0, *bezier_chords(control)]
+    segs = [Line(a, b) for a, b in zip(points[:-1], points[1:])]
+    # under G93 the whole spline takes the block's 1/F minutes: one speed along all its chords
+    speed = sum(g.length for g in segs) * st.block_f / 60.0 if st.inverse_time else None
+    for seg in segs:
+        blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
+                            **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
     st.pos = np.array(target, dtype=float)
 
 

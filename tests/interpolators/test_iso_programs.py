@@ -337,6 +337,12 @@ def test_g93_inverse_time_feed():
         parse_program("G21 G93 G1 X1 F2\nX2\n", context=MachineContext())
     with pytest.raises(GCodeError, match="feed move without a feed"):
         parse_program("G21 G1 F100 X1\nG93 G1 X2 F3\nG94\nX3\n", context=MachineContext())
+    # a G5.1 spline under G93 takes its 1/F minutes as a whole, over all its chords
+    spline = parse_program("G21 G90 G0 X0 Y0\nG93 G5.1 X20 Y0 I10 J10 F4\n", context=MachineContext())
+    chords = spline.blocks[1:]
+    assert len(chords) > 10
+    minutes = sum(b.segment.length / b.feed for b in chords) / 60.0
+    assert minutes == pytest.approx(1 / 4)
 
 
 def test_radius_arc_chord_tolerance_is_linuxcncs():
