@@ -59,6 +59,7 @@ from identification.augmented import AugmentedAxisModel, augment, simulate_augme
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
+from identification.normal_equations import solve_scaled, truncated_step
 from identification.parallel import serial_blas, thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
@@ -304,9 +305,7 @@ def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, m
             return (fun(zz) - r0) / step
 
         J = np.column_stack(thread_map(column, idx))
-        sc = np.linalg.norm(J, axis=0)
-        sc[sc == 0] = 1.0
-        delta = -np.linalg.lstsq(J / sc, r0, rcond=None)[0] / sc
+        delta = -solve_scaled(J, r0)
         c0 = float(r0 @ r0)
         for alpha in (1.0, 0.5, 0.25):
             zz = z.copy()
@@ -405,11 +404,7 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
         """(RMS, max) [um] on fold i of the full fit moved by one step fitted on the other folds."""
         held = plan.mask(i)
         tr = plan.active & ~held
-        sc = np.linalg.norm(J[tr], axis=0)
-        sc[sc == 0] = 1.0
-        u, sv, vt = np.linalg.svd(J[tr] / sc, full_matrices=False)
-        keep = sv > 1e-3 * sv[0] if sv.size and sv[0] > 0 else np.zeros(sv.size, bool)
-        delta = (vt[keep].T @ ((u[:, keep].T @ res[tr]) / sv[keep])) / sc
+        delta = truncated_step(J[tr], res[tr], 1e-3)
         c0 = float(res[tr] @ res[tr])
         best_y = y0
         for alpha in (1.0, 0.5, 0.25):

@@ -192,16 +192,27 @@ def _tm_substep(D, S, kspr, cdmp, xm, vm, xt, vt, u, load, d0, d1, st, asym, lo,
 
 
 @numba.njit(cache=True, nogil=True)
+def _play(mech, xb, half):  # pragma: no cover - compiled
+    """Play operator: the load side ``xb`` follows the driven side ``mech`` within +/- ``half``."""
+    if mech - xb > half:
+        return mech - half
+    if mech - xb < -half:
+        return mech + half
+    return xb
+
+
+@numba.njit(cache=True, nogil=True)
 def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
               delay, umax, bl, res, tm, pos, vel):  # pragma: no cover - compiled
     """The sampled split form of the module docstring; the plant takes m steps per sample.
 
     The two-mass plant (``res[0] > 0``) steps exactly with the matrices ``tm`` of
     :func:`identification.augmented.two_mass_matrices` (a substep, the whole sample, the stuck
-    table). A sample whose table slides on faster than the Stribeck range (``3 v_s``) at both its
-    ends, with no play, asymmetric viscous or position-periodic term, is one exact step (friction
-    is then constant over it, so the m substeps would give the same result); any other sample
-    takes the m substeps."""
+    table). A sample whose driven mass (the table of a two-mass plant, which must then have no play)
+    slides on faster than the Stribeck range (``3 v_s``) at both its ends, with no asymmetric
+    viscous or position-periodic term, is one exact step (friction is then constant over it and the
+    motion monotone, so the m substeps would give the same result); any other sample takes the m
+    substeps."""
     n = xr.shape[0]
     h = T / m
     kd = a1 - cvis
@@ -220,9 +231,11 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     hi = d0 + (st[1] if st[0] > 0.0 else 0.0)
     no_st = np.zeros(3)
     coef = _rigid_coef(cvis, h)
-    # whole-sample steps of the two-mass plant: only while friction is constant over the sample
-    whole = bl <= 0.0 and asym == 0.0 and pp_period <= 0.0
+    coef_whole = _rigid_coef(cvis, T)
+    # whole-sample steps: only while friction is constant over the sample
+    whole = asym == 0.0 and pp_period <= 0.0
     vguard = 3.0 * st[0] if st[0] > 0.0 else 0.0
+    half = 0.5 * bl
     xm = xr[0]
     vm = 0.0
     xt = xr[0]
@@ -265,11 +278,20 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
             u = -umax
         # ------------------------------------------------ plant over the sample (u held)
         steps = m
-        if two_mass and whole and abs(vt) > vguard:
+        if two_mass and whole and bl <= 0.0 and abs(vt) > vguard:
             n0, n1, n2, n3 = _tm_slide(tm[1], xm, vm, xt, vt, u, _kinetic(vt, d0, d1, st, 0.0) + wext[k])
             if n3 * vt > 0.0 and abs(n3) > vguard:
                 xm, vm, xt, vt = n0, n1, n2, n3
                 steps = 0
+        elif not two_mass and m > 1 and whole and abs(vm) > vguard:
+            # the rigid mass slides on (its velocity is monotone over the step): the play operator
+            # sees a monotone motion, so its end state is that of the m substeps
+            x1, v1 = _friction_step(xm, vm, u - wext[k], 1.0, cvis, T, coef_whole, d0, d1, st, asym, lo, hi)
+            if v1 * vm > 0.0 and abs(v1) > vguard:
+                xm, vm = x1, v1
+                steps = 0
+                if bl > 0.0:
+                    xb = _play(xm, xb, half)
         for _ in range(steps):
             # loads that are not friction: w_ext (held) and the position-periodic force
             load = wext[k] + w_terms(0.0, xt if two_mass else xm, no_st, 0.0, pp_period, pp_coef)
@@ -279,12 +301,7 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
             else:
                 xm, vm = _friction_step(xm, vm, u - load, 1.0, cvis, h, coef, d0, d1, st, asym, lo, hi)
             if bl > 0.0:
-                mech = xt if (two_mass and meas_table) else xm
-                half = 0.5 * bl
-                if mech - xb > half:
-                    xb = mech - half
-                elif mech - xb < -half:
-                    xb = mech + half
+                xb = _play(xt if (two_mass and meas_table) else xm, xb, half)
         if not (abs(xm) < 1e9 and abs(vm) < 1e12):
             for q in range(k, n):
                 pos[q] = np.nan

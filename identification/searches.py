@@ -19,6 +19,7 @@ Two cheap screens serve them:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import math
 import threading
@@ -42,6 +43,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
+from identification.normal_equations import solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
@@ -162,7 +164,7 @@ class SearchContext:
     def ee_partial(self, cols: np.ndarray) -> tuple[float, np.ndarray]:
         """(training RSS with ``cols`` added, their coefficients) - cols are on the training rows."""
         g = cols - self._q @ (self._q.T @ cols)
-        beta = _solve_ls(g, self._ee_r)
+        beta = solve_scaled(g, self._ee_r)
         res = self._ee_r - g @ beta
         return float(res @ res), beta
 
@@ -705,8 +707,10 @@ def search_drift(ctx: SearchContext) -> list[Candidate]:
                       evidence={"search": "linear in the output error (Gauss-Newton step)", "rate_mm_s": e.rate})]
 
 
+@functools.lru_cache(maxsize=1)
 def _LOWPASS(T: float):
-    """4th-order Butterworth at 0.08/T (80 Hz at 1 kHz): above servo bandwidths, below the noise."""
+    """4th-order Butterworth at 0.08/T (80 Hz at 1 kHz): above servo bandwidths, below the noise
+    (designed once: the design is the same at every T)."""
     return scipy.signal.butter(4, 0.16, btype="low")
 
 

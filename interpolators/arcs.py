@@ -10,7 +10,8 @@ from toolpaths.geometry import PLANE_AXES, Arc
 from vcnc.core.errors import InputError
 
 __all__ = ["ARC_TOLERANCE", "ArcWordError", "arc_from_center", "arc_from_radius", "spiral_tolerance",
-           "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE", "RADIUS_TOLERANCE_MM"]
+           "SPIRAL_ABS_TOLERANCE_MM", "SPIRAL_ABS_TOLERANCE_INCH", "SPIRAL_RELATIVE_TOLERANCE", "RADIUS_TOLERANCE_MM",
+           "ARC_RULES", "center_arc_tolerance", "radius_arc_tolerance"]
 
 #: Largest accepted difference between the start and end radius of a centre-programmed arc, and
 #: largest accepted excess of the chord over the diameter of a radius-programmed arc [mm].
@@ -43,6 +44,44 @@ def spiral_tolerance(start: np.ndarray, end: np.ndarray, center: np.ndarray, *, 
     rmax = max(float(np.hypot(*(a - c))), float(np.hypot(*(b - c))))
     abs_tol = SPIRAL_ABS_TOLERANCE_INCH if inch else SPIRAL_ABS_TOLERANCE_MM
     return min(100.0 * abs_tol, max(abs_tol, SPIRAL_RELATIVE_TOLERANCE * rmax))
+
+
+#: Controls whose end-radius rule is written here (``Dialect.arc_rule``).
+ARC_RULES: tuple[str, ...] = ("linuxcnc", "grbl")
+
+#: grbl 1.1's end-radius rule of centre-format arcs (gcode.c, "[Arc definition error]"): a mismatch
+#: above 0.005 mm is refused when it exceeds 0.5 mm or 0.1 % of the start radius [mm, -, mm].
+GRBL_ABS_TOLERANCE_MM: float = 0.005
+GRBL_RELATIVE_TOLERANCE: float = 0.001
+GRBL_MAX_MISMATCH_MM: float = 0.5
+
+#: Excess of a radius-format arc's chord over the diameter that is floating-point noise, not a
+#: programming error [mm] (grbl refuses any excess: ``4 R^2 - chord^2 < 0`` is error 33).
+_FLOAT_NOISE_MM: float = 1e-9
+
+
+def center_arc_tolerance(start: np.ndarray, end: np.ndarray, center: np.ndarray, *, plane: int, inch: bool,
+                         rule: str = "linuxcnc") -> float:
+    """Largest end-radius mismatch [mm] the control of ``rule`` accepts for this centre-format arc.
+
+    ``"linuxcnc"``: :func:`spiral_tolerance`. ``"grbl"``: ``max(0.005, min(0.5, 0.001 * r_start))``
+    mm whatever the units (grbl converts to mm before its check; gcode.c of grbl 1.1). Fanuc and
+    Haas check against a machine parameter (Fanuc No. 3410, set by the machine builder; alarm
+    PS0020 above it), which vcnc does not know: their dialects use LinuxCNC's rule.
+    """
+    if rule == "grbl":
+        a, c = _in_plane(start, plane), _in_plane(center, plane)
+        r_start = float(np.hypot(*(a - c)))
+        return max(GRBL_ABS_TOLERANCE_MM, min(GRBL_MAX_MISMATCH_MM, GRBL_RELATIVE_TOLERANCE * r_start))
+    return spiral_tolerance(start, end, center, plane=plane, inch=inch)
+
+
+def radius_arc_tolerance(rule: str = "linuxcnc") -> float:
+    """Largest excess of a radius-format arc's chord over the diameter [mm] the control of ``rule``
+    accepts (then a half circle): LinuxCNC twice ``RADIUS_TOLERANCE_MM`` (its tolerance is on the
+    half chord, interp_arc.cc ``arc_data_r``); grbl none (gcode.c: ``h_x2_div_d < 0`` is "Arc radius
+    error")."""
+    return _FLOAT_NOISE_MM if rule == "grbl" else 2.0 * RADIUS_TOLERANCE_MM
 
 
 class ArcWordError(ValueError):

@@ -21,6 +21,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from interpolators.arcs import ARC_RULES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
@@ -88,6 +89,14 @@ class Dialect:
     tolerance : float or None
         Path tolerance of the default continuous-path mode [mm]; ``None`` selects
         :data:`interpolators.DEFAULT_TOLERANCE`.
+    arc_rule : {"linuxcnc", "grbl"}
+        Whose check of an arc's end point applies (:func:`interpolators.arcs.center_arc_tolerance`):
+        LinuxCNC's absolute and relative tolerances, or grbl's (0.005 mm, 0.1 % of the radius, at
+        most 0.5 mm; no excess of an R arc's chord over the diameter). Fanuc and Haas check against
+        a machine parameter (Fanuc No. 3410) and use LinuxCNC's rule here.
+    tap_out_to_r : bool
+        G84 tapping feeds out to the R plane and rapids on to the clear level (Fanuc, Haas: True);
+        LinuxCNC feeds out to the clear level (False).
     """
 
     name: str = "linuxcnc"
@@ -95,8 +104,13 @@ class Dialect:
     default_units: str = "mm"
     continuous_path: bool = True
     tolerance: float | None = None
+    arc_rule: str = "linuxcnc"
+    tap_out_to_r: bool = False
 
     def __post_init__(self) -> None:
+        if self.arc_rule not in ARC_RULES:
+            raise InputError(f"dialect {self.name}: arc_rule must be one of {', '.join(ARC_RULES)}, "
+                             f"got {self.arc_rule!r}")
         if self.dwell_p_unit not in ("s", "ms"):
             raise InputError(f"dialect {self.name}: dwell_p_unit must be 's' or 'ms', got {self.dwell_p_unit!r}")
         if self.default_units not in ("mm", "inch"):
@@ -111,9 +125,9 @@ class Dialect:
 #: in milliseconds without a decimal point); grbl wiki (G4 P in seconds).
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
-    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms"),
-    "haas": Dialect(name="haas", dwell_p_unit="ms"),
-    "grbl": Dialect(name="grbl", dwell_p_unit="s"),
+    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
+    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
+    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl"),
     "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
 })
 

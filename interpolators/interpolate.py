@@ -9,8 +9,11 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from interpolators.dense import MergedRun, merge_dense_runs
 from interpolators.kinematics import (
+    CURVE_BOUND_MARGIN,
     AxisLimitArrays,
+    curve_limits,
     curved_speed_bound,
     junction_speed_limit,
     path_limits,
@@ -20,7 +23,7 @@ from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, AxisLimi
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
 from interpolators.program import Program
-from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
+from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.errors import GCodeError, InputError
@@ -38,6 +41,10 @@ MIN_JUNCTION_SPEED_SHARE: float = 0.1
 #: whose junctions are all below it (G2 blends, tangent steps at rounding level) plan with the full
 #: limits instead of reserving JUNCTION_SHARE.
 NEGLIGIBLE_SHARE: float = 1e-7
+
+#: Largest distance [mm] of the polyline that stands for a smooth curve (a merged run of dense
+#: lines) in ``Setpoints.path`` from the curve: points ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart.
+CURVE_PATH_ERROR: float = 1e-4
 
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
@@ -175,6 +182,10 @@ def interpolate(
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
       at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it.
+    * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
+      the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
+      samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
+      polyline (within :data:`CURVE_PATH_ERROR`).
 
     Raises
     ------
@@ -225,6 +236,7 @@ class _Geom:
     rapid: np.ndarray
     packed: PackedSegments
     blended: bool
+    runs: dict[int, MergedRun]  # segment index -> the dense run its SplineCurve piece belongs to
     rotary: _Rotary | None = None  # None: the program moves no rotary axis
 
 
@@ -268,27 +280,37 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     seg_feed: list[float] = []
     seg_rapid: list[bool] = []
     blended = False
+    runs: dict[int, MergedRun] = {}
     for c, ch in enumerate(chains):
         segs, blks = ch.segments, ch.blocks
+        run_of: dict[int, MergedRun] = {}
         if len(segs) > 1:
-            segs, blks = blend_corners(segs, blks, ch.tolerances, worth=_blend_worth(ch, lim, jerk_limited),
-                                       curvature_continuous=jerk_limited)
-            blended = blended or len(segs) != len(ch.segments)
+            ch, run_of = _merged(ch)
+            segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
+                                       worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
+            blended = blended or len(segs) != len(ch.segments) or bool(run_of)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))
         for s, b in zip(segs, blks):
+            if id(s) in run_of:
+                runs[len(all_segs)] = run_of[id(s)]
             all_segs.append(s)
             seg_block.append(b)
             seg_chain.append(c)
             seg_feed.append(feed_of[b])
             seg_rapid.append(rapid_of[b])
-    packed = PackedSegments.from_segments(all_segs)
+    # a curve piece is packed as the chord of its end points with the curve's length; _evaluate and
+    # _limits give its own geometry and bounds
+    packed = PackedSegments.from_segments([Line(s.start, s.end) if isinstance(s, SplineCurve) else s
+                                           for s in all_segs])
+    for i in runs:
+        packed.length[i] = all_segs[i].length
     rotary = None
     if any(b.rotary_start is not None for b in program.blocks):
         rotary = _rotary_geometry(chains, seg_block, seg_chain, program, packed)
     return _Geom(segments=all_segs, block=seg_block, chain=np.asarray(seg_chain, dtype=np.int64),
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
-                 packed=packed, blended=blended, rotary=rotary)
+                 packed=packed, blended=blended, runs=runs, rotary=rotary)
 
 
 def _rotary_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
@@ -335,6 +357,51 @@ def _rotary_bounds(g: _Geom, v_max: np.ndarray, a_max: np.ndarray, j_max: np.nda
     return v_max, a_max, j_max
 
 
+def _merged(ch: _Chain) -> tuple[_Chain, dict[int, MergedRun]]:
+    """The chain with its runs of dense short lines merged into smooth curves
+    (:func:`interpolators.dense.merge_dense_runs`), and the run of each curve piece (by ``id``)."""
+    segs, first, runs = merge_dense_runs(ch.segments, ch.blocks, ch.feeds, ch.rapid, ch.tolerances)
+    if not runs:
+        return ch, {}
+    out = _Chain()
+    out.segments = segs
+    out.blocks = [ch.blocks[i] for i in first]
+    out.feeds = [ch.feeds[i] for i in first]
+    out.rapid = [ch.rapid[i] for i in first]
+    last = [*(f - 1 for f in first[1:]), len(ch.segments) - 1]
+    out.tolerances = [ch.tolerances[i] for i in last]
+    return out, {id(segs[k]): run for k, run in runs.items()}
+
+
+def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Position, velocity and acceleration on the segments ``seg`` at arc lengths ``s``
+    (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
+    pos, vel, acc = g.packed.evaluate(seg, s, v, a)
+    if g.runs:
+        for i in np.unique(seg[np.isin(seg, list(g.runs))]):
+            rows = np.flatnonzero(seg == i)
+            curve = g.segments[i]
+            s_i = np.clip(s[rows], 0.0, curve.length)
+            tan, curv = curve.frame(curve.parameter_at(s_i))
+            pos[rows] = curve.point_at(s_i)
+            vel[rows] = tan * v[rows, None]
+            acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
+    return pos, vel, acc
+
+
+def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`path_limits` of the motion segments ``idx``; smooth curve pieces by :func:`curve_limits`."""
+    v, a, j = path_limits(g.packed.subset(idx), g.feed[idx], g.rapid[idx], lims, jerk_limited=jerk_limited)
+    on_curve = np.flatnonzero(np.isin(idx, list(g.runs))) if g.runs else np.zeros(0, dtype=np.int64)
+    if len(on_curve):
+        k = idx[on_curve]
+        v[on_curve], a[on_curve], j[on_curve] = curve_limits([g.segments[i] for i in k], g.feed[k], lims,
+                                                             jerk_limited=jerk_limited)
+    return v, a, j
+
+
 def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool) -> _Chains:
     """2. The geometric speed bound at each junction inside a chain; a junction whose bound is
     negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
@@ -346,16 +413,15 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
     jl = np.zeros(len(inner))
     if len(inner):
         ones, zeros = np.ones(len(inner)), np.zeros(len(inner))
-        _, t_out, k_out = packed.evaluate(inner, L[inner], ones, zeros)
-        _, t_in, k_in = packed.evaluate(inner + 1, zeros, ones, zeros)
+        _, t_out, k_out = _evaluate(g, inner, L[inner], ones, zeros)
+        _, t_in, k_in = _evaluate(g, inner + 1, zeros, ones, zeros)
         jl = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=JUNCTION_SHARE,
                                   jerk_limited=jerk_limited)
         # worth passing at speed only if the bound is a fair share of the neighbours' speeds
         motion_idx = np.flatnonzero(packed.kind != HOLD)
         v_full = np.zeros(n_seg)
         if len(motion_idx):
-            v_full[motion_idx] = path_limits(packed.subset(motion_idx), g.feed[motion_idx], g.rapid[motion_idx],
-                                             lim, jerk_limited=jerk_limited)[0]
+            v_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)[0]
         v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
         split = inner[jl <= v_stop]
         keep_j = jl > v_stop
@@ -397,8 +463,7 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool
     for mask, lims in ((motion & ~c.reserved_segment, lim), (motion & c.reserved_segment, lim_chain)):
         idx = np.flatnonzero(mask)
         if len(idx):
-            sub = g.packed.subset(idx)
-            v, a, j = path_limits(sub, g.feed[idx], g.rapid[idx], lims, jerk_limited=jerk_limited)
+            v, a, j = _limits(g, idx, lims, jerk_limited)
             v_max[idx], a_max[idx], j_max[idx] = v, a, j
     return v_max, a_max, j_max
 
@@ -525,21 +590,45 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), length[seg], s)
     s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
     v[-1] = a[-1] = 0.0
-    pos, vel, acc = packed.evaluate(seg, s, v, a)
+    pos, vel, acc = _evaluate(g, seg, s, v, a)
     if g.rotary is not None:
         pos, vel, acc = _with_rotary(g.rotary, seg, s, v, a, pos, vel, acc)
     # the last sample of a chain is at rest at its end
     pos = pos[:, ax_idx]
     vel = vel[:, ax_idx]
     acc = acc[:, ax_idx]
-    geom_path = Path(segments=tuple(s_ for s_ in all_segs if not isinstance(s_, np.ndarray)),
-                     blocks=tuple(b for s_, b in zip(all_segs, seg_block) if not isinstance(s_, np.ndarray)),
-                     axes=linear)
+    block = seg_block_a[seg]
+    for i, run in g.runs.items():
+        rows = np.flatnonzero(seg == i)
+        block[rows] = run.block_at(all_segs[i].parameter_at(s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
-    return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=seg_block_a[seg],
-                     sample_time=Ts, path=geom_path, meta=meta)
+    return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=block,
+                     sample_time=Ts, path=_sampled_path(g, linear), meta=meta)
+
+
+def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
+    """The geometry the samples follow; a smooth curve piece as a polyline of its points within
+    :data:`CURVE_PATH_ERROR` of the curve, each line with the block of its middle."""
+    segs: list = []
+    blocks: list[int] = []
+    for i, (s_, b) in enumerate(zip(g.segments, g.block)):
+        if isinstance(s_, np.ndarray):
+            continue
+        if i not in g.runs:
+            segs.append(s_)
+            blocks.append(b)
+            continue
+        kappa = s_.bounds()[0] * CURVE_BOUND_MARGIN
+        n = max(1, int(math.ceil(s_.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
+        s_k = np.linspace(0.0, s_.length, n + 1)
+        pts = s_.point_at(s_k)
+        mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))
+        for k in range(n):
+            segs.append(Line(pts[k], pts[k + 1]))
+            blocks.append(int(mid_blocks[k]))
+    return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
 
 
 def _with_rotary(r: _Rotary, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,

@@ -54,20 +54,27 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+import math
 import re
 from pathlib import Path
 
 import numpy as np
 
 from interpolators._words import INCH, Where
-from interpolators.arcs import RADIUS_TOLERANCE_MM, ArcWordError, arc_from_center, arc_from_radius, spiral_tolerance
+from interpolators.arcs import (
+    ArcWordError,
+    arc_from_center,
+    arc_from_radius,
+    center_arc_tolerance,
+    radius_arc_tolerance,
+)
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_rotary import ROTARY_LETTERS, fill_rotary, rotary_target
-from interpolators.iso_splines import bezier_chords
+from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -118,7 +125,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
-    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)", 650: "G65 macro call",
+    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
 }
@@ -175,6 +182,8 @@ class _State:
     reference2_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G30's [deg]
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
+    subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -193,9 +202,36 @@ class _State:
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
+    rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+
     @property
     def scale(self) -> float:
         return INCH if self.inch else 1.0
+
+    @property
+    def rotation(self) -> float:
+        """Rotation of the active coordinate system about Z (G10 L2 R) [deg]."""
+        return self.rotations.get(self.wcs, 0.0)
+
+    def _rotated_parts(self) -> tuple[np.ndarray, np.ndarray, float, float]:
+        off = self.offset()
+        base = off - self.g92 - np.array([0.0, 0.0, self.tool_length])
+        a = np.radians(self.rotation)
+        return off, base, float(np.cos(a)), float(np.sin(a))
+
+    def to_machine(self, prog: np.ndarray) -> np.ndarray:
+        """Machine coordinates [mm] of program coordinates under a rotated coordinate system:
+        X Y plus the G92 offset, rotated about the work offset's origin, plus the work offset
+        (LinuxCNC emccanon.cc rotate_and_offset_pos); Z plus all offsets."""
+        off, base, c, s = self._rotated_parts()
+        x, y = prog[0] + self.g92[0], prog[1] + self.g92[1]
+        return np.array([c * x - s * y + base[0], s * x + c * y + base[1], prog[2] + off[2]])
+
+    def to_program(self, machine: np.ndarray) -> np.ndarray:
+        """Inverse of :meth:`to_machine`."""
+        off, base, c, s = self._rotated_parts()
+        x, y = machine[0] - base[0], machine[1] - base[1]
+        return np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
 
     def offset(self) -> np.ndarray:
         """Machine minus program coordinates [mm]."""
@@ -226,6 +262,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2))
+    st.subprogram = _ends_with_m99(text)
     notes = _Notes()
     blocks: list[Block] = []
     used: set[int] = set()
@@ -252,9 +289,18 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
 
 
+def _ends_with_m99(text: str) -> bool:
+    """True when the last block of the text (comments, ``%`` and blank lines aside) has M99."""
+    for raw in reversed(text.splitlines()):
+        code = re.sub(r"\([^)]*\)|;.*", "", raw).strip()
+        if code and code != "%":
+            return re.search(r"M\s*0*99(?![0-9.])", code, re.I) is not None
+    return False
+
+
 def _program_name(text: str) -> str | None:
     """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
-    m = re.search(r"^\s*(?:%\s*)?(?:[oO]|:)\s*(\d+)\b(?!\s*[a-zA-Z])", text, re.M)
+    m = re.search(r"^[ \t]*(?:%[ \t]*)?(?:[oO]|:)[ \t]*(\d+)\b(?![ \t]*[a-zA-Z])", text, re.M)
     return f"O{int(m.group(1))}" if m else None
 
 
@@ -349,6 +395,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in ROTARY_LETTERS if w in seen]
+    if st.rotation and (axis_words or polar):
+        _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
         if rot_words:
@@ -381,6 +429,16 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
 
 
+def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
+    """Moves a rotated coordinate system (G10 R) supports: G0-G3 (G18/G19 arcs as chords)."""
+    what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
+            and st.motion not in (800,) else None)
+    if what is not None:
+        w = words[0]
+        where.fail(f"{what} in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
+                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0")
+
+
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     """Feed mode, units, plane, distance modes, F, S and T: they apply to this block's own words."""
     if "feed mode" in gcodes:
@@ -391,6 +449,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
                        column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
         if key == 940 and st.inverse_time:
             st.feed = st.feed_rotary = None
+            st.feed_reset = True
         st.inverse_time = key == 930
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
@@ -535,6 +594,17 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
 def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
+    if st.rotation and not machine:  # G10 R: the words are coordinates of the rotated system
+        prog = st.to_program(st.pos)
+        for letter in axis_words:
+            i = "XYZ".index(letter)
+            prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
+        target = st.pos.copy()  # axes without words stay exactly where they are
+        if "X" in axis_words or "Y" in axis_words:
+            target[:2] = st.to_machine(prog)[:2]
+        if "Z" in axis_words:
+            target[2] = st.to_machine(prog)[2]
+        return target
     target = st.pos.copy()
     off = st.offset()
     for letter in axis_words:
@@ -578,14 +648,15 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     code = f"G{motion // 10:02d}"
     rot = _rotary_words(seen, motion, st, where, used, machine=machine)
     if motion in (0, 10) and (arc_words or "R" in seen):
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
         w = seen[(arc_words or ["R"])[0]]
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03)", column=w.column, text=w.text,
-                   expected="X, Y, Z and F on G00/G01")
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it)",
+                   column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
     if motion != 0 and not st.inverse_time and st.feed is None:
-        where.fail(f"{code} feed move without a feed", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+        _no_feed(st, where, code, mcol, mtok)
     for letter in axis_words:
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
@@ -603,6 +674,14 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
+        if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
+            if rot is not None:
+                w = seen[next(k for k in ROTARY_LETTERS if k in seen)]
+                where.fail(f"{code} arc with rotary axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
+                           "not supported", column=w.column, text=w.text, expected="no A, B, C on this arc")
+            used.update((0, 1, 2))
+            _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
+            return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
@@ -631,6 +710,39 @@ def _rotary_words(seen, motion: int, st: _State, where: Where, used: set[int], *
     st.rotary_used = True
     used.update(3 + ROTARY_LETTERS.index(letter) for letter in letters)
     return rotary_target({k: seen[k].value for k in letters}, st.rot, incremental=st.incremental, machine=machine)
+
+
+def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Where, common: dict, code: str,
+                        mcol: int, mtok: str) -> None:
+    """A G18/G19 arc in a coordinate system rotated about Z (G10 R): built in program coordinates,
+    where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
+    machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
+    start_p, end_p = st.to_program(st.pos), st.to_program(target)
+    shadow = dataclasses.replace(st, pos=start_p, rotations={}, offsets={st.wcs: np.zeros(3)},
+                                 g92=np.zeros(3), tool_length=0.0)
+    arc = _arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
+    step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
+    n = max(1, math.ceil(abs(arc.sweep) / step))
+    speed = arc.length * st.block_f / 60.0 if st.inverse_time else st.feed  # the arc's feed on each chord
+    start = st.pos.copy()
+    for k in range(1, n + 1):
+        point = target.copy() if k == n else st.to_machine(arc.point_at(arc.length * k / n))
+        blocks.append(Block(kind="line", feed=speed, segment=Line(start, point),
+                            **{**common, "start": start.copy(), "target": point.copy()}))
+        start = point
+    st.pos = np.array(target, dtype=float)
+
+
+def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
+    rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
+    zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
+    why = "no F word before it"
+    if st.subprogram:
+        why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
+    elif st.feed_reset:
+        why = "G94 after G93 resets the feed; no F word since"
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
 
 
 def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
@@ -668,12 +780,13 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
         st.spline_pq = pq
     if st.motion == 51:
         st.spline_pq = None
-    start = p0
-    for point in bezier_chords(control):
-        seg = Line(start, point)
-        blocks.append(Block(kind="line", feed=_feed(st, seg), segment=seg,
-                            **{**common, "start": start.copy(), "target": point.copy()}))
-        start = point
+    points = [p0, *bezier_chords(control)]
+    segs = [Line(a, b) for a, b in zip(points[:-1], points[1:])]
+    # under G93 the whole spline takes the block's 1/F minutes: one speed along all its chords
+    speed = sum(g.length for g in segs) * st.block_f / 60.0 if st.inverse_time else None
+    for seg in segs:
+        blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
+                            **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
     st.pos = np.array(target, dtype=float)
 
 
@@ -700,13 +813,24 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
             where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
                        expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
     in_plane = [w for w in arc_words if w in allowed]
+    rule = st.context.dialect.arc_rule
     if in_plane and has_r:
         w = seen["R"]
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
     try:
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
-                                   tolerance=2.0 * RADIUS_TOLERANCE_MM)
+                                   tolerance=radius_arc_tolerance(rule))
+        if in_plane and st.rotation:  # the centre words are in the rotated system (XY plane only)
+            prog = st.to_program(st.pos)
+            for letter in in_plane:
+                i = "IJK".index(letter)
+                prog[i] = prog[i] + seen[letter].value * st.scale if st.arc_incremental else \
+                    seen[letter].value * st.scale
+            center = st.to_machine(prog)
+            return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
+                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                  inch=st.inch, rule=rule))
         if in_plane:
             if st.arc_incremental:
                 center = st.pos.copy()
@@ -719,7 +843,8 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                     i = "IJK".index(letter)
                     center[i] = seen[letter].value * st.scale + off[i]
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
-                                   tolerance=spiral_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch))
+                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                  inch=st.inch, rule=rule))
         where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
     except ArcWordError as exc:
         w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)
@@ -853,6 +978,9 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         where.fail(f"{'G92 offset' if key == 920 else 'G10 offsets'} on rotary axis {rw.letter}: not supported "
                    "(rotary work offsets are 0)", column=rw.column, text=rw.text, expected="X, Y, Z words")
     if key == 920:
+        if st.rotation:
+            where.fail(f"G92 in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
+                       column=w.column, text=w.text, expected="G92 with G10 L2 R0")
         if not axis_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
         base = st.offset() - st.g92
@@ -882,8 +1010,13 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
                    expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+    r_word = seen.get("R")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
+    if int(l_word.value) == 20 and (st.rotations.get(code, 0.0) or (r_word is not None and r_word.value)):
+        w = r_word if r_word is not None else l_word
+        where.fail("G10 L20 on a rotated coordinate system (G10 R): not supported", column=w.column,
+                   text=w.text, expected="G10 L2 for a rotated coordinate system")
     if code is None:
         where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
                    expected="P0 (current) .. P9")
@@ -897,6 +1030,8 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
             else:  # L20: the current position gets coordinate v
                 current[i] = st.pos[i] - st.g92[i] - (st.tool_length if i == 2 else 0.0) - v
     st.offsets[code] = current
+    if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
+        st.rotations[code] = r_word.value
 
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:
@@ -955,7 +1090,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     try:
         moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
-                            feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms")
+                            feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
+                            tap_out_to_r=st.context.dialect.tap_out_to_r)
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)

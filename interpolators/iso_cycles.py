@@ -3,10 +3,11 @@
 Semantics of LinuxCNC's G-code reference ("Canned Cycles",
 https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc), in the XY plane:
 
-* **Preliminary motion**: if the tool is below the R plane, rapid up to R; rapid in X Y to the
-  hole; rapid down to R.
+* **Preliminary motion**: if the initial level (the Z at the start of the series) is below the R
+  plane, rapid up to R; then for the first hole of the block, if the tool is above R, rapid in X Y
+  at its height and down to R, else rapid to the hole at the clear level and down to R.
 * **Levels**: under G90 the Z word is the bottom and R the retract plane (program coordinates);
-  under G91 R is an increment from the Z where the block starts and Z an increment from R, and X Y
+  under G91 R is an increment from the initial level of the series and Z an increment from R, and X Y
   step incrementally for each of the L (LinuxCNC) or K (Fanuc) repeats. Under G90, L repeats drill
   the same hole.
 * **Return**: G99 to the R plane; G98 to the higher of R and the Z at the start of the series of
@@ -14,7 +15,10 @@ https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc)
 * **Holes**: G81 feed to Z, rapid out; G82 also dwells P; G83 pecks Q, rapid to R after each
   peck and back down to 0.010 in (0.254 mm) above the last depth; G73 pecks Q with a chip-break
   retract of 0.010 in; G85 feeds in and out; G89 dwells, then feeds out; G86 dwells and rapids
-  out (spindle stopped); G84 (Fanuc tapping) feeds in and out.
+  out (spindle stopped); G84 (tapping) feeds in, dwells P, and feeds out: to the clear level in
+  LinuxCNC (interp_cycles.cc ``convert_cycle_g74_g84``), to R and then rapid to the clear level in
+  Fanuc and Haas (Haas "G84 Tapping Canned Cycle": feed to the R plane, rapid to the starting
+  plane), as the dialect says (:attr:`interpolators.context.Dialect.tap_out_to_r`).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
 """
@@ -67,7 +71,8 @@ class HoleMove:
 
 
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
-                scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool) -> list[HoleMove]:
+                scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
+                tap_out_to_r: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block.
 
     Parameters
@@ -92,35 +97,21 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         Feed [mm/s].
     dwell_p_ms : bool
         ``P`` in milliseconds (Fanuc/Haas) rather than seconds (LinuxCNC).
+    tap_out_to_r : bool
+        G84 feeds out to the R plane and rapids on to the clear level (Fanuc, Haas), rather than
+        feeding out to the clear level (LinuxCNC).
 
     Raises
     ------
     CycleError
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
-    for letter in ("R", "Z", "Q", "P"):
-        if letter in words:
-            setattr(cycle, letter.lower(), words[letter])
-    if cycle.r is None:
-        raise CycleError("no R (retract plane) word", letter=None, expected="R<retract level>")
-    if cycle.z is None:
-        raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
-    repeats = words.get("L", words.get("K", 1.0))
-    if repeats != int(repeats) or repeats < 0:
-        rl = "L" if "L" in words else "K"
-        raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
-    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
-        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
-    dwell = 0.0
-    if g in (82, 86, 89) and cycle.p is not None:
-        dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
-        if dwell < 0:
-            raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
+    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
     z0 = float(pos[2])
     if cycle.initial is None:
         cycle.initial = z0
-    if incremental:
-        r = z0 + cycle.r * scale
+    if incremental:  # LinuxCNC convert_cycle_xy: r = R + the initial level (cycle_il), not the current Z
+        r = cycle.initial + cycle.r * scale
         bottom = r + cycle.z * scale
     else:
         r = cycle.r * scale + offset[2]
@@ -128,7 +119,6 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
-    clear = r if retract_r else max(r, cycle.initial)
     delta = RAPID_DELTA_INCH * 25.4
     out: list[HoleMove] = []
     cur = pos.astype(float).copy()
@@ -141,11 +131,18 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         out.append(HoleMove(kind, target, f))
         cur = target
 
-    if cur[2] < r:
+    # levels and approach as LinuxCNC's convert_cycle_xy and CYCLE_MACRO (interp_internal.hh)
+    old = cycle.initial
+    if old < r:  # the initial level is below R: straight up to R first
         go("rapid", cur[0], cur[1], r)
-    for _ in range(int(repeats)):
+        old = r
+    clear = r if retract_r else old
+    for k in range(repeats):
         x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
-        go("rapid", x, y, cur[2])
+        if k == 0 and cur[2] > r:  # over at the current height, then down to R
+            go("rapid", x, y, cur[2])
+        else:  # the tool is at the clear level (or below it): over at the clear level
+            go("rapid", x, y, clear)
         go("rapid", x, y, r)
         if g in (73, 83):
             q = cycle.q * scale
@@ -159,10 +156,39 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
-        if g in (84, 85, 89):
+        if g == 84 and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
+            go("line", x, y, clear, feed)
+        elif g in (84, 85, 89):
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out
+
+
+def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool) -> tuple[int, float]:
+    """Update the series' sticky R Z Q P from the block; returns the repeat count and the dwell [s]."""
+    for letter in ("R", "Z", "Q", "P"):
+        if letter in words:
+            setattr(cycle, letter.lower(), words[letter])
+    if cycle.r is None:
+        # LinuxCNC interp_cycles.cc convert_cycle: NCE_R_CLEARANCE_PLANE_UNSPECIFIED_IN_CYCLE when the
+        # first block after another motion mode has no R; the R level has no default
+        raise CycleError("no R (retract plane) word in the first block of the series (R has no default; "
+                         "LinuxCNC: 'R clearance plane unspecified in cycle')", letter=None,
+                         expected="R<retract level>")
+    if cycle.z is None:
+        raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
+    repeats = words.get("L", words.get("K", 1.0))
+    if repeats != int(repeats) or repeats < 0:
+        rl = "L" if "L" in words else "K"
+        raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
+    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
+        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
+    dwell = 0.0
+    if g in (82, 84, 86, 89) and cycle.p is not None:
+        dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
+        if dwell < 0:
+            raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
+    return int(repeats), dwell
 
 
 def _hole(words: dict[str, float], cur: np.ndarray, *, offset: np.ndarray, scale: float,

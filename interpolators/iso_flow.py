@@ -15,6 +15,20 @@ runs the program ``O1000`` three times, from the same file or else from the prog
 folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, and in the
 main program ends it (the control would rewind; vcnc runs the program once).
 
+Fanuc/Haas custom macro B simple call ``G65 P9001 L2 A1. C2.5 V10100.`` (Fanuc Series 16i/18i
+operator's manual B-63684EN, 16 "Custom macro", "Simple call (G65)"; Haas mill operator's manual,
+"G65 Macro Subroutine Call" and "Local Variables"): runs program ``O9001`` (found as for M98) L
+times with a new set of locals ``#1``-``#33``, vacant but for the arguments: A B C -> #1 #2 #3,
+I J K -> #4 #5 #6, D E F -> #7 #8 #9, H -> #11, M -> #13, Q R S T U V W X Y Z -> #17 .. #26, and
+the n-th repeated I J K -> #(3n+1) #(3n+2) #(3n+3) (argument specification II; the later word wins).
+The arguments are set on the first repetition only; ``M99`` returns. An argument written as a
+number without a decimal point is an error: the control scales it by its least input increment
+("The value of an argument passed without a decimal point may vary according to the system
+configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``WHILE [..] DO n`` and
+``END n``, is named in an error.
+
+A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
+
 :func:`run` yields the lines to execute in order, with their words read (parameters and
 expressions evaluated by :mod:`interpolators.iso_params`).
 """
@@ -35,13 +49,20 @@ __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
 #: Largest number of lines a program may execute (a guard against endless loops).
 MAX_EXECUTED_LINES = 5_000_000
 
-_O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+)\s*([a-zA-Z]+)?(.*)$")
+#: An O-word line: label (``<name>``, a number, or a computed number ``#1``, ``#<n>``, ``[expr]``), keyword, rest.
+_O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s*\d+|\[(?:[^\[\]]|\[[^\[\]]*\])*\])"
+                     r"\s*([a-zA-Z]+)?(.*)$")
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
 #: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).
 #: File suffixes of part programs searched for a subprogram in another file.
 _PROGRAM_SUFFIXES = frozenset({".nc", ".ngc", ".cnc", ".tap", ".gcode", ".txt", ".iso", ".min", ".mpf", ".spf", ""})
 _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
+#: Fanuc custom macro B statements (not run): branch IF..GOTO, GOTO, loop WHILE..DO / END.
+_MACRO_B = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?(IF\s*\[|GOTO\s*[\d#\[]|WHILE\s*\[|END\s*\d|DO\s*\d)", re.I)
+#: G65 argument letters (argument specification I) -> local variable number.
+_G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
+                  **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
 
@@ -62,6 +83,7 @@ class _OWord:
     keyword: str
     rest: str
     column: int  # 1-based column of the rest
+    computed: int = 0  # 1-based column of a computed label (o#1 call, O[#2*10] call), else 0
 
 
 @dataclasses.dataclass
@@ -69,7 +91,7 @@ class _Frame:
     return_pc: int
     start_pc: int
     repeats: int
-    params: bool  # an O-word call (has a parameter frame) rather than M98
+    kind: str  # "oword" (o-call: parameter frame, endsub returns), "m98" or "g65" (M99 returns)
 
 
 class _Program:
@@ -105,17 +127,38 @@ class _Program:
                 where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=s, expected="'%' alone")
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
+            if s.startswith(":") and not _FANUC_PROGRAM.match(code):
+                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number",
+                           column=code.index(":") + 1, text=s,
+                           expected="':' followed by the program number, e.g. :1234")
+            mb = _MACRO_B.match(code)
+            if mb:
+                stmt = re.sub(r"[\s\[\d#]", "", mb.group(1)).upper()
+                name = {"IF": "IF [..] GOTO n branch", "GOTO": "GOTO n branch", "WHILE": "WHILE [..] DO n loop",
+                        "END": "END n (end of a WHILE loop)", "DO": "DO n loop"}[stmt]
+                where.fail(f"Fanuc custom macro B {name}: not supported", column=mb.start(1) + 1, text=s,
+                           expected="LinuxCNC O-word control flow (o100 if [..] / o100 while [..])")
             m = _O_LINE.match(code)
             if _NAMED_PROGRAM.match(code) and not (m and m.group(2) and m.group(2).lower() in _KEYWORDS):
                 self.code.append(None)  # "O7997A", "OWASHER": the program's name
                 continue
             if m and m.group(2) and m.group(2).lower() in _KEYWORDS:
+                keyword = m.group(2).lower()
                 label = m.group(1).lower().replace(" ", "")
-                self.oword[i] = _OWord(label, m.group(2).lower(), m.group(3), m.start(3) + 1)
+                if label[0] in "#[":  # LinuxCNC read_o reads the number as any integer value
+                    if keyword != "call":
+                        where.fail(f"O-word o{m.group(1)} {keyword}: only a call may compute its O number",
+                                   column=m.start(1) + 1, text=s, expected=f"o<number> {keyword}")
+                    self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1, computed=m.start(1) + 1)
+                    self.code.append(None)
+                    continue
+                label = str(int(label)) if label.isdigit() else label  # o0100 is o100 (read as an integer)
+                self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1)
                 self.by_label.setdefault(label, []).append(i)
                 self.code.append(None)
                 continue
             if m and m.group(2):
+                # LinuxCNC interp_read.cc read_o: "Unknown control command in o word"
                 where.fail(f"O-word {m.group(2)!r}: unknown O-word keyword", column=m.start(2) + 1, text=m.group(2),
                            expected="sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, "
                                     "repeat, endrepeat, break or continue")
@@ -125,6 +168,9 @@ class _Program:
                 self.code.append(None)
                 continue
             if m and m.group(1).startswith("<"):
+                if source == self.source and all(c is None for c in self.code[self.first_line[source]:]):
+                    self.code.append(None)  # "O<name>" first in the main program: its title (LinuxCNC)
+                    continue
                 where.fail(f"O-word o{m.group(1)} without a keyword", column=1, text=s, expected="o<name> call ...")
             self.code.append(code)
         self._check_structure()
@@ -232,6 +278,15 @@ def _args(prog: _Program, i: int, params: Parameters) -> list[float]:
         values.append(v)
 
 
+def _computed_label(prog: _Program, i: int, ow: _OWord, params: Parameters) -> str:
+    """The O number of ``o#1 call`` / ``O[#2*10] call``: the value, a whole number."""
+    code = strip_comments(prog.raw[i], prog.where(i))
+    value, _ = evaluate_at(code, ow.computed - 1, prog.where(i), params)
+    if value != int(value):
+        prog.fail(i, f"O-word call: the computed O number {value:g} is not a whole number", "o[integer] call")
+    return str(int(value))
+
+
 def _condition(prog: _Program, i: int, params: Parameters) -> bool:
     values = _args(prog, i, params)
     if len(values) != 1:
@@ -274,6 +329,10 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             continue
         where = prog.where(pc)
         words = read_line(code, where, params) if has_parameters(code) else read_words(code, where)
+        g65 = next((w for w in words if w.letter == "G" and w.value == 65), None)
+        if g65 is not None:
+            pc = _macro_call(prog, pc, words, g65, params, frames)
+            continue
         m98 = next((w for w in words if w.letter == "M" and w.value == 98), None)
         m99 = next((w for w in words if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
@@ -281,19 +340,13 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc += 1
             continue
         if m98 is not None:
-            p = next((w for w in words if w.letter == "P"), None)
-            if p is None or p.value != int(p.value) or prog.external_fanuc(int(p.value)) is None:
-                target = "no P word" if p is None else (f"program O{p.value:g} is neither in this file nor in a "
-                                                        "program file of its folder")
-                where.fail(f"M98 subprogram call: {target}", column=m98.column, text=m98.text,
-                           expected="M98 P<number> of an O<number> program in this file or its folder")
+            start = _called_program(prog, words, m98, where, "M98 subprogram call")
             count = next((int(w.value) for w in words if w.letter in "LK"), 1)
             rest = [w for w in words if w is not m98 and w.letter not in "PLK"]
             if rest:
                 yield FlowLine(where.line, where.text, rest, where.file)
             if count > 0:
-                start = prog.fanuc[int(p.value)] + 1
-                frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, params=False))
+                frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
                 pc = start
             else:
                 pc += 1
@@ -305,14 +358,68 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if rest:
             yield FlowLine(where.line, where.text, rest, where.file)
         frame = frames[-1]
-        if frame.params:
+        if frame.kind == "oword":
             prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
-        if frame.repeats > 0:
+        if frame.repeats > 0:  # a G65 repetition keeps the locals as the last one left them (Haas manual)
             frame.repeats -= 1
             pc = frame.start_pc
         else:
             frames.pop()
+            if frame.kind == "g65":
+                params.pop()
             pc = frame.return_pc
+
+
+def _called_program(prog: _Program, words: list[Word], call: Word, where: Where, what: str) -> int:
+    """First line of the program ``O<P>`` that an M98 or G65 block calls."""
+    p = next((w for w in words if w.letter == "P"), None)
+    if p is None or p.value != int(p.value) or prog.external_fanuc(int(p.value)) is None:
+        target = "no P word" if p is None else (f"program O{p.value:g} is neither in this file nor in a "
+                                                "program file of its folder")
+        where.fail(f"{what}: {target}", column=call.column, text=call.text,
+                   expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder")
+    return prog.fanuc[int(p.value)] + 1
+
+
+def _macro_call(prog: _Program, pc: int, words: list[Word], g65: Word, params: Parameters,
+                frames: list[_Frame]) -> int:
+    """A G65 block: enter program ``O<P>`` with its arguments as locals; returns the next program counter."""
+    where = prog.where(pc)
+    start = _called_program(prog, words, g65, where, "G65 macro call")
+    locals_: dict[int, float] = {}
+    seen_ijk = {"I": 0, "J": 0, "K": 0}
+    count = 1
+    for w in words:
+        if w is g65 or w.letter in "NP":
+            continue
+        if w.letter == "L":
+            if w.value != int(w.value) or w.value < 0:
+                where.fail("G65 macro call: the repeat count L must be a whole number >= 0", column=w.column,
+                           text=w.text, expected="L1, L2, ...")
+            count = int(w.value)
+            continue
+        if w.letter not in _G65_ARGUMENTS:
+            where.fail(f"G65 macro call: {w.letter} is not an argument address", column=w.column, text=w.text,
+                       expected="arguments A-F, H, I-K, M, Q-Z (not G, L, N, O, P)")
+        if re.fullmatch(r"[A-Za-z]\s*[+-]?\d+", w.text):
+            where.fail(f"G65 macro call: argument {w.text!r} without a decimal point (the control scales it by its "
+                       "least input increment, which depends on the machine)", column=w.column, text=w.text,
+                       expected=f"{w.letter}{w.text[1:].strip()}. (with a decimal point)")
+        if w.letter in seen_ijk:  # argument specification II: the n-th I J K set #(3n+1) .. #(3n+3)
+            n = seen_ijk[w.letter]
+            seen_ijk[w.letter] += 1
+            number = 4 + 3 * n + "IJK".index(w.letter)
+            if number > 33:
+                where.fail("G65 macro call: more than ten I J K argument sets", column=w.column, text=w.text,
+                           expected="at most ten I, J and K words each")
+        else:
+            number = _G65_ARGUMENTS[w.letter]
+        locals_[number] = w.value
+    if count == 0:
+        return pc + 1
+    params.push_macro(locals_)
+    frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="g65"))
+    return start
 
 
 def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list[_Frame],  # noqa: C901
@@ -322,24 +429,26 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
     if k == "sub":
         return prog.next_of(pc, ("endsub",)) + 1
     if k == "call":
-        start = prog.external_sub(ow.label)
+        label = _computed_label(prog, pc, ow, params) if ow.computed else ow.label
+        start = prog.external_sub(label)
         if start is None:
-            prog.fail(pc, f"O-word o{ow.label} call: the subroutine is neither in this file nor in "
-                          f"{ow.label.strip('<>')}.ngc beside it", f"o{ow.label} sub ... endsub")
+            prog.fail(pc, f"O-word o{label} call: the subroutine is neither in this file nor in "
+                          f"{label.strip('<>')}.ngc beside it", f"o{label} sub ... endsub")
         args = _args(prog, pc, params)
         params.push(args)
-        frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, params=True))
+        frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))
         return start + 1
     if k in ("endsub", "return"):
         values = _args(prog, pc, params)
-        if not frames or not frames[-1].params:
+        if not frames or frames[-1].kind != "oword":
             if k == "endsub" and not frames:
                 prog.fail(pc, f"O-word o{ow.label} endsub without a call", "o-word call of the subroutine")
             prog.fail(pc, f"O-word o{ow.label} {k} outside a subroutine", "return inside o-sub ... endsub")
         frame = frames.pop()
         params.pop()
-        if values:
-            params.named["_value"] = values[0]
+        # LinuxCNC interp_read.cc read_o: a return without a value sets #<_value> to 0
+        params.named["_value"] = values[0] if values else 0.0
+        params.named["_value_returned"] = 1.0 if values else 0.0
         return frame.return_pc
     if k == "if":
         if _condition(prog, pc, params):

@@ -7,14 +7,28 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
   subroutine call, where they hold its arguments), named parameters ``#<name>`` (local to the
   subroutine unless the name starts with ``_``: global; reading an unset one is an error);
 * an assignment ``#1 = value`` takes effect after the whole line is read, so ``#1=2 X#1`` moves to
-  the old value of ``#1``;
+  the old value of ``#1``; its value may be an expression without enclosing brackets,
+  ``#152=[#146-#140]/2``, as Fanuc custom macro B writes it (LinuxCNC would reject the text after
+  the first value);
 * expressions ``[ ... ]`` with ``**`` (power), ``* / MOD``, ``+ -``, ``EQ NE GT GE LT LE`` and
   ``AND OR XOR``, in falling precedence, left to right within a level; unary minus on any value;
 * functions ``ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN`` of ``[arg]`` (angles in
-  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]``.
+  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]`` (``EXISTS[#n]``: 1 for 1 <= n < 5602);
+* a parameter number may be any value: ``##1``, ``#[#1+1]``, even ``#ATAN[1]/[1]`` (#45);
+* ``#<_value>`` (the value the last subroutine returned, 0 if none) and ``#<_value_returned>``
+  are predefined and start at 0.
 
-System parameters that read the machine state (``#5220`` and above) are not modelled: reading one
-is an error naming it.
+System parameters that read the machine state (``#5001`` and above, unless the program set them)
+are not modelled: reading one is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call,
+:mod:`interpolators.iso_flow`) differs in two ways the store follows: a macro call's locals are
+``#1``-``#33`` (Haas mill operator's manual, "Local Variables": "Local variables range between #1
+and #33 ... During a G65 call, all new local variables are cleared"; reading one that neither an
+argument nor an assignment set is an error, since Fanuc's vacant variable is not 0: ``X#24``
+leaves the X word out), and the Haas Next Generation Control numbers its general-purpose variables
+``#10000``-``#10999`` ("saved on power off", Haas NGC macro variable table, e.g.
+https://zappettiniconsulting.com/wiki/haas-system-variables); they are global parameters here (the
+NGC's second, legacy number of some of them, ``#100``-``#199`` and ``#500``-``#999``, is a
+different parameter here). ``#0`` is Fanuc's null variable, always vacant and never set.
 """
 
 from __future__ import annotations
@@ -32,11 +46,23 @@ _NAME = re.compile(r"<([^>]*)>")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN", "SIN", "SQRT",
               "TAN")
 _BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
-#: Highest numbered parameter a program may read or set without naming machine state.
+#: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
+#: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
+#: #5211-#5219 G92 offsets, ...; Fanuc's #5001-#5028 are positions too): reading one the program has
+#: not set is an error rather than a silent 0.
+_LAST_USER_PARAMETER = 5000
+#: Highest numbered parameter a program may set without naming machine state.
 _MAX_USER_PARAMETER = 5219
 #: System parameters a program may set: #5599, LinuxCNC's switch for (DEBUG,) output
 #: (LinuxCNC "Numbered Parameters"); it moves nothing.
 _WRITABLE_SYSTEM = frozenset({5599})
+#: LinuxCNC's number of numbered parameters (RS274NGC_MAX_PARAMETERS): EXISTS[#n] is 1 for 1 <= n < it.
+_LINUXCNC_PARAMETERS = 5602
+#: Haas NGC general-purpose macro variables (global, readable and writable).
+_HAAS_GENERAL = range(10000, 11000)
+#: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
+OWORD_LOCALS = 30
+MACRO_LOCALS = 33
 
 
 class Parameters:
@@ -44,20 +70,35 @@ class Parameters:
 
     def __init__(self) -> None:
         self.numbered: dict[int, float] = {}
-        self.named: dict[str, float] = {}
-        self.frames: list[tuple[dict[int, float], dict[str, float]]] = []
+        self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
+        self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
 
     def _local_numbered(self, n: int) -> dict[int, float]:
-        return self.frames[-1][0] if self.frames and 1 <= n <= 30 else self.numbered
+        return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
 
     def _scope(self, name: str) -> dict[str, float]:
         return self.frames[-1][1] if self.frames and not name.startswith("_") else self.named
 
     def get_numbered(self, n: int, where: Where, column: int, text: str) -> float:
-        if n < 1 or n > _MAX_USER_PARAMETER:
-            where.fail(f"parameter #{n}: system parameters (machine state, #5220 and above) are not supported",
-                       column=column, text=text, expected="a parameter #1 .. #5219")
-        return self._local_numbered(n).get(n, 0.0)
+        if n == 0:
+            where.fail("parameter #0 is the null variable (Fanuc macro B: always vacant; a word such as X#0 is "
+                       "left out): not supported", column=column, text=text, expected="a parameter #1 .. #5219")
+        store = self._local_numbered(n)
+        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
+            where.fail(f"parameter number #{n} out of range", column=column, text=text,
+                       expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
+        if (n < 1 or n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) \
+                and n not in _HAAS_GENERAL:
+            where.fail(f"parameter #{n}: system parameters (machine state: positions, probe results, G28/G30/G92 "
+                       "and work offsets, tool data; #5001 and above) are not supported", column=column, text=text,
+                       expected="a parameter #1 .. #5000, or one the program has set")
+        if n not in store and self.frames and self.frames[-1][2] == MACRO_LOCALS and n <= MACRO_LOCALS:
+            # Fanuc: a vacant variable leaves its word out (X#24 moves no X) and is not 0 in every
+            # operation; vcnc reads unset parameters as 0 (LinuxCNC), which would move X to 0
+            where.fail(f"#{n} is vacant in this G65 macro (no argument set it): Fanuc's vacant variables "
+                       "(a word X#24 left out) are not supported", column=column, text=text,
+                       expected=f"a G65 argument or an assignment that sets #{n} before it is read")
+        return store.get(n, 0.0)
 
     def get_named(self, name: str, where: Where, column: int, text: str) -> float:
         key = name.lower().replace(" ", "")
@@ -73,7 +114,12 @@ class Parameters:
 
     def assign(self, key: int | str, value: float, where: Where, column: int, text: str) -> None:
         if isinstance(key, int):
-            if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM:
+            if key == 0:
+                where.fail("parameter #0 cannot be set: #0 is the null variable (Fanuc macro B: always vacant); "
+                           "a #[#n] whose #n is unset names it, as in a macro program run on its own instead of "
+                           "through its G65 call", column=column, text=text,
+                           expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
+            if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
                            expected="a parameter #1 .. #5219 (or #5599, the DEBUG output switch)")
             self._local_numbered(key)[key] = value
@@ -82,8 +128,12 @@ class Parameters:
             self._scope(k)[k] = value
 
     def push(self, args: list[float]) -> None:
-        """Enter a subroutine: ``#1``.. hold ``args``, the other locals start unset."""
-        self.frames.append(({i + 1: v for i, v in enumerate(args)}, {}))
+        """Enter an O-word subroutine: ``#1``.. hold ``args``, the other locals (to ``#30``) start unset."""
+        self.frames.append(({i + 1: v for i, v in enumerate(args)}, {}, OWORD_LOCALS))
+
+    def push_macro(self, values: dict[int, float]) -> None:
+        """Enter a G65 macro: the locals ``#1``-``#33`` named by ``values`` are set, the others vacant."""
+        self.frames.append((dict(values), {}, MACRO_LOCALS))
 
     def pop(self) -> None:
         self.frames.pop()
@@ -120,6 +170,10 @@ class _Reader:
             if m is None:
                 self.fail("unclosed parameter name", pos, "#<name>")
             return m.group(1), m.end()
+        if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
+            name = re.match(r"[A-Za-z_]\w*", self.code[p:]).group(0)
+            self.fail(f"'#{name}' is not a parameter (#region and $ lines of G-code simulators are not G-code)",
+                      pos, "#<number>, #<name> or #[expression]")
         value, end = self.real(p)
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
@@ -158,6 +212,14 @@ class _Reader:
         for name in _FUNCTIONS:
             if self.up.startswith(name, p):
                 return self.function(name, p)
+        word = re.match(r"[A-Za-z]\w*", self.code[p:])
+        if word and self.code[self.skip(p + word.end()):].startswith("["):
+            self.fail(f"malformed value: unknown function {word.group(0)!r}", p,
+                      "a function of " + ", ".join(_FUNCTIONS))
+        if word:
+            self.fail(f"malformed value: '{word.group(0)}' is neither a number, a parameter nor a function (text "
+                      "left in brackets, such as a template's placeholder?)", p,
+                      "a number, #parameter, [expression] or function such as SIN[30]")
         self.fail("malformed value", p, "a number, #parameter, [expression] or function such as SIN[30]")
         raise AssertionError("unreachable")
 
@@ -165,13 +227,16 @@ class _Reader:
         q = self.skip(p + len(name))
         if q >= len(self.code) or self.code[q] != "[":
             self.fail(f"function {name} needs its argument in [ ]", p, f"{name}[value]")
-        if name == "EXISTS":
+        if name == "EXISTS":  # LinuxCNC read_parameter(check_exists): a number exists when 1 <= n < 5602
             q2 = self.skip(q + 1)
-            m = _NAME.match(self.code, q2 + 1) if self.code[q2:q2 + 1] == "#" else None
-            end = self.skip(m.end()) if m else q2
-            if m is None or self.code[end:end + 1] != "]":
-                self.fail("EXISTS needs a named parameter", p, "EXISTS[#<name>]")
-            return (1.0 if self.params.exists(m.group(1)) else 0.0), end + 1
+            if self.code[q2:q2 + 1] != "#":
+                self.fail("EXISTS needs a parameter", p, "EXISTS[#<name>] or EXISTS[#n]")
+            key, end = self.parameter(q2)
+            end = self.skip(end)
+            if self.code[end:end + 1] != "]":
+                self.fail("EXISTS needs one parameter in [ ]", p, "EXISTS[#<name>] or EXISTS[#n]")
+            found = self.params.exists(key) if isinstance(key, str) else 1 <= key < _LINUXCNC_PARAMETERS
+            return (1.0 if found else 0.0), end + 1
         arg, end = self.real(q)
         if name == "ATAN":
             s = self.skip(end)
@@ -282,7 +347,7 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         eq = r.skip(end)
         if code[eq:eq + 1] != "=":
             r.fail("a parameter outside a word must be assigned", i, "#n = value")
-        value, end = r.real(eq + 1)
+        value, end = r.expression(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
         assignments.append((key, value, i + 1, code[i:end].strip()))
         return end
 

@@ -13,6 +13,7 @@ Parameters (``#``), expressions (``[``) and O-words are named as such when met.
 from __future__ import annotations
 
 import dataclasses
+import re
 from collections.abc import Callable
 
 from interpolators._words import Where, read_number, token_at
@@ -81,6 +82,16 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             i = assignment(i)
             continue
         up = ch.upper()
+        if ch == "/" and words:
+            tok = re.match(r"/[0-9.]*", code[i:]).group(0)
+            where.fail(f"'{tok}' after the word {words[-1].text!r}: arithmetic on a word's value needs brackets "
+                       f"({words[-1].letter}[...{tok}]), and a '/' block skip inside a block is not supported",
+                       column=i + 1, text=tok, expected=f"{words[-1].letter}[expression]")
+        if ch == "[":
+            close = code.find("]", i)
+            tok = code[i:close + 1] if close > i else token_at(code, i)
+            where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder?)",
+                       column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
             where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,

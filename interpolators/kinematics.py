@@ -40,7 +40,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from interpolators.limits import AxisLimits
-from toolpaths.geometry import AXIS_LETTERS
+from toolpaths.geometry import AXIS_LETTERS, SplineCurve
 from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
 from vcnc.core.axes import ROTARY_NAMES
 from vcnc.core.errors import InputError
@@ -51,6 +51,7 @@ __all__ = [
     "rotary_path_bounds",
     "junction_speed_limit",
     "curved_speed_bound",
+    "curve_limits",
     "CENTRIPETAL_SHARE",
     "JERK_SPEED_SHARE",
     "JERK_ACCEL_SHARE",
@@ -62,6 +63,9 @@ CENTRIPETAL_SHARE: float = 0.7
 JERK_SPEED_SHARE: float = 0.3
 #: Share of the axis jerk limit taken by ``3 v a / R`` on an arc (S-curve).
 JERK_ACCEL_SHARE: float = 0.3
+#: Factor on the largest curvature and curvature derivative sampled on a smooth curve (the
+#: samples may miss the exact maximum between them by a fraction of a percent).
+CURVE_BOUND_MARGIN: float = 1.02
 
 
 class AxisLimitArrays:
@@ -198,6 +202,43 @@ def path_limits(
     if not np.all(np.isfinite(a_max)):
         raise InputError("the path acceleration is unbounded: give finite axis acceleration limits")
     return v_max, a_max, j_max
+
+
+def curve_limits(
+    curves: list[SplineCurve], feed: np.ndarray, limits: AxisLimitArrays, *, jerk_limited: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bounds of path speed, acceleration and jerk on smooth curves (:class:`toolpaths.geometry.SplineCurve`).
+
+    A curve in any orientation: every axis the curve moves sees at most the norm of the
+    acceleration vector ``(a, k v^2)`` and of the jerk vector, whose normal part is at most
+    ``3 k v a + |dk/ds|_perp v^3``, so the clothoid bounds apply with the curve's largest
+    curvature and curvature derivative (:meth:`SplineCurve.bounds`, times :data:`CURVE_BOUND_MARGIN`)
+    and ``A``, ``J`` the smallest limits of the moving axes; the speed also keeps ``v |t_i| <= V_i``.
+
+    Parameters
+    ----------
+    curves : list of SplineCurve
+    feed : ndarray, shape (n,)
+        Programmed feed [mm/s].
+    limits : AxisLimitArrays
+    jerk_limited : bool
+
+    Returns
+    -------
+    v_max, a_max, j_max : ndarray, shape (n,)
+        [mm/s], [mm/s^2], [mm/s^3]
+    """
+    n = len(curves)
+    kappa, dkappa, t_abs = np.zeros(n), np.zeros(n), np.zeros((n, 3))
+    for i, c in enumerate(curves):
+        kappa[i], dkappa[i], t_abs[i] = c.bounds()
+    kappa, dkappa = kappa * CURVE_BOUND_MARGIN, dkappa * CURVE_BOUND_MARGIN
+    moving = (t_abs > 0).astype(float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = np.minimum(np.asarray(feed, float), _min_ratio(limits.velocity, t_abs))
+        v, a, j = _curved_bounds(v, np.ones(n), kappa, dkappa, _min_ratio(limits.acceleration, moving),
+                                 _min_ratio(limits.jerk, moving), jerk_limited=jerk_limited)
+    return v, a, j
 
 
 def _weighted_min(limit: np.ndarray, mask: np.ndarray) -> np.ndarray:

@@ -1,5 +1,8 @@
 """Continuous-path (G64) look-ahead: corner blending and junction speeds.
 
+Runs of dense short lines (CAM output) are first merged into smooth curves within the tolerance
+(:mod:`interpolators.dense`); the corners left between lines are blended here.
+
 Corners between two straight lines are replaced by a blend whose distance from the corner is at
 most the path tolerance (G64 ``P``, or :data:`DEFAULT_TOLERANCE`) and which uses at most half of
 either line:

@@ -8,12 +8,23 @@ __all__ = ["fourier_basis", "fourier_eval"]
 
 
 def fourier_basis(phase: np.ndarray, harmonics: int) -> np.ndarray:
-    """Columns sin(h phase), cos(h phase) for h = 1..harmonics (interleaved), phase [rad]."""
-    h = np.arange(1, harmonics + 1)
-    a = np.outer(phase, h)
+    """Columns sin(h phase), cos(h phase) for h = 1..harmonics (interleaved), phase [rad].
+
+    The first harmonic by ``sin``/``cos``, the others by the angle-addition recurrence
+    ``sin((h+1) p) = sin(h p) cos p + cos(h p) sin p`` (and its cosine twin): two
+    transcendental evaluations per sample instead of two per harmonic, with a rounding error that
+    grows like h * 1e-16 (below 1e-14 at the 64 harmonics a search may choose).
+    """
+    phase = np.asarray(phase, float)
     out = np.empty((phase.size, 2 * harmonics))
-    out[:, 0::2] = np.sin(a)
-    out[:, 1::2] = np.cos(a)
+    if harmonics < 1:
+        return out
+    s1, c1 = np.sin(phase), np.cos(phase)
+    out[:, 0], out[:, 1] = s1, c1
+    for h in range(1, harmonics):
+        s, c = out[:, 2 * h - 2], out[:, 2 * h - 1]
+        out[:, 2 * h] = s * c1 + c * s1
+        out[:, 2 * h + 1] = c * c1 - s * s1
     return out
 
 

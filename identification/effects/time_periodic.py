@@ -21,7 +21,7 @@ from vcnc.core.errors import InputError
 __all__ = ["TimePeriodic"]
 
 
-@functools.lru_cache(maxsize=2)
+@functools.lru_cache(maxsize=8)
 def _sampled_basis(period: float, n: int, sample_time: float, harmonics: int) -> np.ndarray:
     b = fourier_basis(2.0 * np.pi * np.arange(n) * sample_time / period, harmonics)
     b.flags.writeable = False

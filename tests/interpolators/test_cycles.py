@@ -103,3 +103,42 @@ def test_inch_words_scaled_but_peck_clearance_stays_0_010_in():
 def test_invalid_words_are_named(g, words, match):
     with pytest.raises(CycleError, match=match):
         _moves(g, {"X": 0.0, "Y": 0.0, **words})
+
+
+def _series(blocks: list[dict[str, float]], *, pos, g99: bool, incremental: bool) -> list[tuple]:
+    """Moves of consecutive cycle blocks of one series (one CycleWords), each from where the last ended."""
+    cycle, cur, out = CycleWords(), np.array(pos, dtype=float), []
+    for words in blocks:
+        moves = cycle_moves(81, words, cycle=cycle, pos=cur, offset=np.zeros(3), scale=1.0, incremental=incremental,
+                            retract_r=g99, feed=2.0, dwell_p_ms=False)
+        out += [(m.kind, *np.round(m.target, 9).tolist()) for m in moves]
+        cur = moves[-1].target
+    return out
+
+
+def test_later_blocks_of_a_series_use_the_initial_level_as_linuxcnc():
+    """interp_cycles.cc convert_cycle_xy: under G91, R is an increment from the series' initial level
+    (cycle_il), not from the current Z (G99 left the tool at R1.5 after the first hole, yet the second
+    hole's R is 1 + 0.5 again); and CYCLE_MACRO goes to a hole at the clear level when the tool is not
+    above R (the second G90 block, R raised to 2 from R1, rapids straight from (1, 0, 1) to (2, 0, 2))."""
+    assert _series([{"X": 1.0, "Z": -1.0, "R": 0.5}, {"X": 1.0}], pos=(0, 0, 1), g99=True, incremental=True) == [
+        ("rapid", 0, 0, 1.5), ("rapid", 1, 0, 1.5), ("line", 1, 0, 0.5), ("rapid", 1, 0, 1.5),
+        ("rapid", 2, 0, 1.5), ("line", 2, 0, 0.5), ("rapid", 2, 0, 1.5)]
+    assert _series([{"X": 1.0, "Z": -1.0, "R": 1.0}, {"X": 2.0, "R": 2.0}], pos=(0, 0, 3), g99=True,
+                   incremental=False) == [
+        ("rapid", 1, 0, 3), ("rapid", 1, 0, 1), ("line", 1, 0, -1), ("rapid", 1, 0, 1),
+        ("rapid", 2, 0, 2), ("line", 2, 0, -1), ("rapid", 2, 0, 2)]
+
+
+def test_g84_feeds_out_to_the_clear_level_or_to_r_by_dialect():
+    """LinuxCNC's G84 feeds out to the clear level (interp_cycles.cc convert_cycle_g74_g84); Fanuc's
+    and Haas's feed out to R and rapid to the initial level under G98 (Haas "G84 Tapping Canned
+    Cycle"); both dwell P at the bottom."""
+    words = {"X": 1.0, "Y": 0.0, "Z": -2.0, "R": 2.0, "P": 0.5}
+    into = [("rapid", 1, 0, 10, INF, 0), ("rapid", 1, 0, 2, INF, 0), ("line", 1, 0, -2, 2.0, 0),
+            ("dwell", 1, 0, -2, 0.0, 0.5)]
+    assert _moves(84, words) == [*into, ("line", 1, 0, 10, 2.0, 0)]
+    out = cycle_moves(84, words, cycle=CycleWords(), pos=np.array([0.0, 0.0, 10.0]), offset=np.zeros(3), scale=1.0,
+                      incremental=False, retract_r=False, feed=2.0, dwell_p_ms=False, tap_out_to_r=True)
+    assert [(m.kind, *m.target.tolist(), m.feed, m.dwell) for m in out] == [
+        *into, ("line", 1, 0, 2, 2.0, 0), ("rapid", 1, 0, 10, INF, 0)]

@@ -4,6 +4,7 @@ overview.html), written out."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -61,6 +62,35 @@ def test_g92_offsets_and_g92_1():
 def test_g10_l2_and_l20_set_work_offsets():
     pts = ends("G21 G90\nG10 L2 P2 X7 Y8 Z9\nG55 G0 X0 Y0 Z0\nG10 L20 P2 X1\nG0 X1\n")
     assert pts == [[7, 8, 9], [7, 8, 9]]
+
+
+
+def test_g10_r_rotates_the_coordinate_system_about_its_origin():
+    """LinuxCNC G10 L2 R: program X Y (plus G92) are rotated about the work offset's origin
+    (emccanon.cc rotate_and_offset_pos); G91 steps and arc centres are in the rotated system. With
+    G54 at (10, 0) turned 90 degrees, program (1, 0) is machine (10, 1), G91 X1 moves along machine
+    +Y, and a clockwise arc about program (0, 0) turns about machine (10, 0); a G18/G19 arc, which
+    then lies in no axis plane, runs as chords within 1 um. What a rotation does not model is
+    refused: cycles, G92, G10 L20."""
+    prog = parse_program("G21 G90 F100\nG10 L2 P1 X10 R90\nG0 X1 Y0\nG91 G1 X1\nG90 G2 X0 Y-2 I-2 J0\n",
+                         context=MachineContext())
+    assert [np.round(b.target, 12).tolist() for b in prog.blocks] == [[10, 1, 0], [10, 2, 0], [12, 0, 0]]
+    assert np.allclose(prog.blocks[-1].segment.center, [10, 0, 0]) and not prog.blocks[-1].segment.ccw
+    assert ends("G21 G90\nG10 L2 P1 X1 R0\nG54 G0 X0\n", MachineContext()) == [[1, 0, 0]]
+    # a G19 half circle about program (0, 0, 1) turned 90 degrees lies in the machine XZ plane: chords
+    # whose ends are on that circle and whose middles are within 1 um of it
+    prog = parse_program("G21 G90 F100\nG10 L2 P1 R90\nG0 X0 Y0 Z0\nG19 G2 Y0 Z2 K1\n", context=MachineContext())
+    pts = np.array([b.target for b in prog.blocks[1:]])
+    assert len(pts) == math.ceil(math.pi / (2 * math.acos(1 - 0.001)))  # chords of 1 um sagitta on R1
+    assert pts[-1].tolist() == [0, 0, 2] and np.all(np.abs(pts[:, 1]) < 1e-12)
+    assert np.allclose(np.hypot(pts[:, 0], pts[:, 2] - 1.0), 1.0, atol=1e-12)
+    mid = (np.vstack([[0, 0, 0], pts[:-1]]) + pts) / 2
+    assert np.all(1.0 - np.hypot(mid[:, 0], mid[:, 2] - 1.0) <= 0.001)
+    for text, message in [("G21 F1\nG10 L2 P1 R30\nG81 X1 Z-1 R1\n", "G81 drilling cycle in a rotated"),
+                          ("G21\nG10 L2 P1 R30\nG92 X0\n", "G92 in a rotated coordinate system"),
+                          ("G21\nG10 L20 P1 X0 R30\n", "G10 L20 on a rotated coordinate system")]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
 
 
 def test_words_without_motion_are_noted_not_refused():
@@ -307,6 +337,12 @@ def test_g93_inverse_time_feed():
         parse_program("G21 G93 G1 X1 F2\nX2\n", context=MachineContext())
     with pytest.raises(GCodeError, match="feed move without a feed"):
         parse_program("G21 G1 F100 X1\nG93 G1 X2 F3\nG94\nX3\n", context=MachineContext())
+    # a G5.1 spline under G93 takes its 1/F minutes as a whole, over all its chords
+    spline = parse_program("G21 G90 G0 X0 Y0\nG93 G5.1 X20 Y0 I10 J10 F4\n", context=MachineContext())
+    chords = spline.blocks[1:]
+    assert len(chords) > 10
+    minutes = sum(b.segment.length / b.feed for b in chords) / 60.0
+    assert minutes == pytest.approx(1 / 4)
 
 
 def test_radius_arc_chord_tolerance_is_linuxcncs():
@@ -369,3 +405,124 @@ def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
                           ("G21 F1 G18 G5.1 X1 I1\n", "only in the XY plane")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+#: A Haas-style main program calling macro O9001 with G65 (the Pythagorean side, as in Don Payne's
+#: advanced-arcs example): B = sqrt(C^2 - A^2) is stored in the variable whose number V gives.
+PROGRAM_G65 = """\
+G21 G90 G0 X0 Y0 Z0
+#1 = 7.
+#10100 = 0.
+G65 P9001 A3. C5. V10100.
+G1 F100 X#10100 Y#1
+G65 P9002 A1. I2. J3. K4. I5. J6. K7.
+G65 P9003 L3 A10.
+M30
+O9001
+#[#22] = SQRT[[#3 * #3] - [#1 * #1]]
+M99
+O9002
+G1 X#7 Y#9 Z#6
+M99
+O9003
+#1 = #1 + 1.
+G1 X#1
+M99
+"""
+
+
+def test_g65_macro_call_arguments_locals_and_repeats():
+    """Fanuc/Haas custom macro B, G65 simple call: A C V -> #1 #3 #22 (argument specification I),
+    the n-th I J K -> #(3n+1)..#(3n+3) (specification II); the call gets fresh locals (the caller's
+    #1 = 7 is back after M99); with L3 the arguments are set once and the locals carry over from one
+    repetition to the next (Haas mill operator's manual, "Local Variables"); #10100 is a Haas NGC
+    general-purpose variable."""
+    pts = ends(PROGRAM_G65, MachineContext())
+    assert pts[1] == [4.0, 7.0, 0.0]  # B = sqrt(25 - 9) = 4 into #10100; the caller's #1 is 7 again
+    assert pts[2] == [5.0, 7.0, 4.0]  # #7 = second I, #9 = second K, #6 = first K
+    assert [p[0] for p in pts[3:]] == [11.0, 12.0, 13.0]
+
+
+def test_g65_errors_name_the_problem():
+    """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
+    16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
+    #[#22] names when the macro program runs on its own); G, L, N, O, P are no argument addresses; a
+    vacant local read in the macro would leave its word out on Fanuc (X#24 with no X argument moves
+    no X), which vcnc does not model: an error rather than a move to X0."""
+    for text, message in [
+        ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#22 is vacant in this G65 macro"),
+        ("O9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
+        ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
+        ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
+        ("G21 F1\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", "#24 is vacant in this G65 macro"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_fanuc_macro_text_that_is_not_run_is_named():
+    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); IF..GOTO and WHILE..DO
+    are named in an error; a ':' program-number address (ISO code) needs its number; a '/' after a
+    word's value is neither arithmetic (which needs brackets) nor a block skip that vcnc reads."""
+    pts = ends("G21 G90 F100\n#1 = 5.\n#2 = [#1 - 1] / 2 + 1\nG1 X#2\n", MachineContext())
+    assert pts == [[3.0, 0.0, 0.0]]
+    assert parse_program(":1234\nG21 G0 X1\n", context=MachineContext()).name == "O1234"
+    for text, message in [
+        ("G21\nIF [#1 EQ 0] GOTO 10\nN10 G0 X1\n", "macro B IF \\[..\\] GOTO n branch: not supported"),
+        ("G21\nWHILE [#1 LT 3] DO1\nEND1\n", "macro B WHILE \\[..\\] DO n loop"),
+        ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
+        ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
+        ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
+        ("O[your six digit birthdate]\nG21\n", "'your' is neither a number"),
+        ("G21 G1 [your xy start position] F12\n", "'\\[your xy start position\\]' in brackets where a word"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_rejections_name_the_controls_rule():
+    """Programs every control refuses get an error saying why: a feed move before any F (LinuxCNC
+    "Cannot do g1 with zero feed rate", grbl error 22), with a hint when the file is a subprogram
+    that ends with M99 (its caller sets the feed); a first cycle block without R (LinuxCNC "R
+    clearance plane unspecified in cycle"); I on G0 (LinuxCNC "I word with no G2, G3 ... to use it",
+    grbl error 36); an unknown O-word keyword (LinuxCNC "Unknown control command in o word")."""
+    for text, message in [
+        ("G21 G0 X1\nG1 X2\nM30\n", "G01 feed move without a feed: no F word before it \\(got"),
+        ("O1002\nG21 G1 X2\nM99\n%\n", "ends with M99: a subprogram, whose feed comes from the program that calls it"),
+        ("G21 F1\nG93 G1 X1 F2\nG94 G1 X2\n", "G94 after G93 resets the feed"),
+        ("G21 F100 G0 Z5\nG81 G98 Z-1\n", "no R \\(retract plane\\) word in the first block of the series"),
+        ("G21 G0 X1 Y0 I0 J-1\n", "word I is only allowed on arcs \\(G02/G03\\), not on G00"),
+        ("G21\no<g20sub> callsub\n", "O-word 'callsub': unknown O-word keyword"),
+    ]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(text, context=MachineContext())
+
+
+def test_arc_end_radius_rule_follows_the_dialect():
+    """grbl 1.1 (gcode.c, "[Arc definition error]") refuses an end-radius mismatch above 0.005 mm that
+    exceeds 0.5 mm or 0.1 % of the start radius, and any excess of an R arc's chord over the diameter;
+    LinuxCNC (interp_arc.cc) accepts 0.0283 mm absolute or 0.1 % of the larger radius, at most
+    2.83 mm, and an R chord up to 0.00254 mm longer than the diameter."""
+    grbl = MachineContext(dialect=DIALECTS["grbl"])
+    linuxcnc = MachineContext(dialect=DIALECTS["linuxcnc"])
+
+    def arc(radius: float, mismatch: float) -> str:  # G2 from (r, 0) about the origin to (0, r + mismatch)
+        return f"G21 G90 F100\nG0 X{radius} Y0\nG3 X0 Y{radius + mismatch:.6f} I{-radius} J0\n"
+
+    for text, grbl_ok, linuxcnc_ok in [
+        (arc(1.0, 0.004), True, True),      # within grbl's 0.005 mm
+        (arc(1.0, 0.006), False, True),     # > 0.005 mm and > 0.1 % of 1 mm; LinuxCNC: < 0.0283 mm
+        (arc(100.0, 0.08), True, True),     # 0.1 % of 100 mm = 0.1 mm for both
+        (arc(1000.0, 0.6), False, True),    # grbl: > 0.5 mm; LinuxCNC: 0.1 % of 1000 mm = 1 mm
+        ("G21 G90 F100\nG0 X0 Y0\nG2 X10.001 Y0 R5\n", False, True),  # chord 0.001 mm over 2R
+    ]:
+        for context, ok in ((grbl, grbl_ok), (linuxcnc, linuxcnc_ok)):
+            if ok:
+                end = parse_program(text, context=context).blocks[-1].target
+                assert end[1] == pytest.approx(float(text.split("Y")[-1].split()[0]), abs=1e-12)
+            else:
+                with pytest.raises(GCodeError, match="arc end point is not on the circle|longer than the diameter"):
+                    parse_program(text, context=context)
+    with pytest.raises(InputError, match="arc_rule"):
+        dataclasses.replace(DIALECTS["fanuc"], arc_rule="fanuc")

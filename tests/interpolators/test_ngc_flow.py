@@ -121,3 +121,66 @@ def test_subprograms_from_other_files_of_the_folder(tmp_path):
     (tmp_path / "main.nc").write_text("G21 M98 P3003\nM30\n")
     with pytest.raises(GCodeError, match="O3003 is neither in this file nor in a program file of its folder"):
         load_program(tmp_path / "main.nc")
+
+
+def test_exists_of_numbered_and_computed_parameters():
+    """LinuxCNC tests/interp/exists: EXISTS[#n] is 1 for 1 <= n < 5602 (read_parameter with
+    check_exists), the number itself may be a parameter (##1 = #2 = 99999); expected STRAIGHT_TRAVERSE
+    (1, 0, 1) and (1, 0, 0)."""
+    text = ("#<a>=999\nG0 X EXISTS[#1] Y EXISTS[#99999] Z EXISTS[#<a>]\n#1=2\n#2=99999\n"
+            "G0 X EXISTS[##1] Y EXISTS[##2] Z EXISTS[###1]\n")
+    assert [[v for _, v in w[1:]] for _, w in _words(text)] == [[1.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
+    # tests/interp/bad/exists-3.ngc: ###2 reads #99999, "Parameter number out of range"
+    with pytest.raises(GCodeError, match="parameter number #99999 out of range"):
+        _words("#2=99999\nG0 X EXISTS[###2]\n")
+
+
+def test_a_parameter_number_may_be_a_function_value():
+    """LinuxCNC tests/interp/namedparam-bug424: #atan[1]/[1]=3 sets #45 (ATAN[1]/[1] = 45 degrees)."""
+    assert _words("#<a>=2\n#atan[1]/[1]=3\n#3=4\ng0 x#<a> y#45 z#3\n") == [
+        (4, [("G", 0.0), ("X", 2.0), ("Y", 3.0), ("Z", 4.0)])]
+
+
+def test_value_starts_at_0_and_a_return_without_value_resets_it():
+    """LinuxCNC tests/interp/return-value: #<_value> is 0 before any call, a plain return sets it to
+    0, return [v] and endsub [v] to v (interp_read.cc read_o)."""
+    text = ("o1 sub\no2 if [#1 GT 0]\no1 return [123*[#1]]\no2 endif\no3 if [#1 LT 0]\no1 return\no3 endif\n"
+            "o1 endsub [4712]\nG0 X#<_value>\no1 call [2]\nG0 X#<_value> Y#<_value_returned>\no1 call [-1]\n"
+            "G0 X#<_value> Y#<_value_returned>\no1 call [0]\nG0 X#<_value>\n")
+    assert [w[1][1] for _, w in _words(text)] == [0.0, 246.0, 0.0, 4712.0]
+    assert [w[2][1] for _, w in _words(text) if len(w) > 2] == [1.0, 0.0]
+
+
+def test_call_with_a_computed_o_number_and_a_named_main_program():
+    """LinuxCNC tests/interp/m98m99/14-o-expression-call and oword-bug315-p2: O[#2*10] call runs o100,
+    o#<sub> call runs o2, M98 P[expression] runs O200; m98m99/13-named-program: O<MyProgram> first in
+    the file is the program's title."""
+    text = ("#2 = 10\nO[#2 * 10] call\nM98 P[5 * 5 * 2 * 2 + 100]\n#<sub> = 2\no#<sub> call\nM30\n"
+            "O100 sub\nG0 X1\nO100 endsub\no2 sub\nG0 X2\no2 endsub\nO200\nG0 X3\nM99\n")
+    assert [w[1][1] for _, w in _words(text)[:3]] == [1.0, 3.0, 2.0]
+    assert _words("%\nO<MyProgram>\nG0 X1\nM30\n%\n")[0] == (3, [("G", 0.0), ("X", 1.0)])
+    with pytest.raises(GCodeError, match="only a call may compute its O number"):
+        _words("o#1 sub\no1 endsub\n")
+    with pytest.raises(GCodeError, match="without a keyword"):
+        _words("G0 X1\nO<late>\n")
+
+
+def test_machine_state_parameters_are_not_read_as_zero():
+    """LinuxCNC keeps machine state above #5000 (#5021-#5029 machine position, tests/interp/
+    machine-coord-params; #5061 probe result; #5161 G28 home; #5211 G92 offset), Fanuc its positions
+    in #5001-#5028: reading one the program has not set is an error, not a silent 0."""
+    for number in (5021, 5061, 5161, 5211):
+        with pytest.raises(GCodeError, match=f"parameter #{number}: system parameters"):
+            _words(f"#1 = #{number}\n")
+    assert _words("#5100 = 7\nG0 X#5100\n") == [(2, [("G", 0.0), ("X", 7.0)])]
+
+
+def test_m98_shares_the_callers_parameters_and_o_call_has_locals():
+    """LinuxCNC tests/interp/m98m99/02-variables, its PRINTs as moves: an M98 subprogram sees and
+    changes the caller's #1 #30 #31 (Fanuc parameters are global); an O-word sub starts with #1-#30
+    unset (0) and its #1 #30 are gone on return, while #31 is global."""
+    text = ("#1 = 42.01\n#30 = 42.30\n#31 = 42.31\nM98 P1\nG0 X#1 Y#30 Z#31\n#1 = 42.01\n#30 = 42.30\n"
+            "#31 = 42.31\nO2 call\nG0 X#1 Y#30 Z#31\nM30\nO1\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n"
+            "#31 = 13.31\nM99\nO2 sub\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n#31 = 13.31\nO2 endsub\n")
+    moves = [[v for _, v in w[1:]] for _, w in _words(text)][:4]
+    assert moves == [[42.01, 42.3, 42.31], [13.01, 13.3, 13.31], [0.0, 0.0, 42.31], [42.01, 42.3, 13.31]]

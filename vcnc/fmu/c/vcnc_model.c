@@ -420,6 +420,14 @@ static int two_mass_matrices(vcnc_parameters *p, char *msg, size_t msg_size)
     return 0;
 }
 
+/* identification.kernels._play: the load side xb follows the driven side within +/- half. */
+static double play(double mech, double xb, double half)
+{
+    if (mech - xb > half) return mech - half;
+    if (mech - xb < -half) return mech + half;
+    return xb;
+}
+
 static void split_step(vcnc_model *m)
 {
     const vcnc_parameters *p = &m->par;
@@ -474,6 +482,15 @@ static void split_step(vcnc_model *m)
             for (i = 0; i < 4; i++) s4[i] = n4[i];
             n_steps = 0;
         }
+    } else if (!two_mass && steps > 1 && p->asym == 0.0 && p->pp_period <= 0.0 && fabs(m->vm) > vguard) {
+        double x1 = m->xm, v1 = m->vm;
+        friction_step(p, &x1, &v1, u - we, 1.0, cvis, T, lo, hi);
+        if (v1 * m->vm > 0.0 && fabs(v1) > vguard) {
+            m->xm = x1;
+            m->vm = v1;
+            n_steps = 0;
+            if (bl > 0.0) m->xb = play(m->xm, m->xb, 0.5 * bl);
+        }
     }
     for (i = 0; i < n_steps; i++) {
         double load = we + add_pp(p, two_mass ? s4[2] : m->xm, 0.0);
@@ -482,14 +499,7 @@ static void split_step(vcnc_model *m)
         } else {
             friction_step(p, &m->xm, &m->vm, u - load, 1.0, cvis, h, lo, hi);
         }
-        if (bl > 0.0) {
-            double mech = two_mass ? (meas_table ? s4[2] : s4[0]) : m->xm, half = 0.5 * bl;
-            if (mech - m->xb > half) {
-                m->xb = mech - half;
-            } else if (mech - m->xb < -half) {
-                m->xb = mech + half;
-            }
-        }
+        if (bl > 0.0) m->xb = play(two_mass ? (meas_table ? s4[2] : s4[0]) : m->xm, m->xb, 0.5 * bl);
     }
     if (two_mass) {
         m->xm = s4[0];

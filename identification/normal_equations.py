@@ -1,0 +1,63 @@
+"""Least squares on tall, narrow matrices through their Gram matrix.
+
+The diagnosis solves many least-squares problems with a record's samples as rows (20,000 and more)
+and a few to a hundred and thirty columns (Jacobians, Fourier bases). A QR or SVD of such a matrix
+reads and rewrites it several times; its Gram matrix ``A'A`` costs one pass (a BLAS-3 product) and
+the rest is p x p work. Measured 2026-11-23 on the 2-core development machine with one BLAS thread,
+24,841 x 100: SVD 178-282 ms, QR 250 ms, ``A'A`` 11 ms.
+
+Squaring the matrix squares its condition number, so both solvers here scale the columns to unit
+norm first and fall back on an orthogonal factorisation when the scaled Gram matrix is too
+ill-conditioned for the result to keep ~6 correct digits (condition number of the scaled ``A``
+above 1e5).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["solve_scaled", "truncated_step"]
+
+#: Largest condition number of the scaled Gram matrix solved through it (cond(A)^2 <= 1e10).
+MAX_GRAM_CONDITION = 1e10
+
+
+def _scaled(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    sc = np.linalg.norm(A, axis=0)
+    sc[sc == 0] = 1.0
+    return A / sc, sc
+
+
+def solve_scaled(A: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Least-squares solution of ``A x = y`` (columns scaled to unit norm).
+
+    Through the Gram matrix when it is well enough conditioned (module docstring), else by
+    ``numpy.linalg.lstsq`` (SVD).
+    """
+    As, sc = _scaled(np.asarray(A, float))
+    if As.shape[1] == 0:
+        return np.zeros(0)
+    G = As.T @ As
+    w, V = np.linalg.eigh(G)
+    if np.all(np.isfinite(w)) and w[0] > w[-1] / MAX_GRAM_CONDITION:
+        x = V @ ((V.T @ (As.T @ y)) / w)
+    else:
+        x = np.linalg.lstsq(As, y, rcond=None)[0]
+    return x / sc
+
+
+def truncated_step(A: np.ndarray, y: np.ndarray, relative: float = 1e-3) -> np.ndarray:
+    """Truncated-SVD least-squares solution of ``A x = y`` with the columns scaled to unit norm.
+
+    Directions whose singular value is below ``relative`` times the largest are left out. Computed
+    from the eigen-decomposition of the scaled Gram matrix (singular values squared): exact up to
+    rounding relative to the largest eigenvalue, ~1e-16, far below the cut at ``relative^2``.
+    """
+    As, sc = _scaled(np.asarray(A, float))
+    if As.shape[1] == 0:
+        return np.zeros(0)
+    w, V = np.linalg.eigh(As.T @ As)
+    top = w[-1] if w.size else 0.0
+    keep = w > (relative * relative) * top if top > 0 else np.zeros(w.size, bool)
+    Vk = V[:, keep]
+    return (Vk @ ((Vk.T @ (As.T @ y)) / w[keep])) / sc

@@ -1,0 +1,313 @@
+"""Dense CAM code under G64: runs of short lines merged into one smooth curve within the tolerance.
+
+CAM systems write curved surfaces as thousands of short chords (a few micrometres to a fraction
+of a millimetre), with their end points rounded to the output resolution (4 decimals). Blending
+each junction on its own cannot pass such a run at the speed of the curve it approximates: a
+blend may use at most half of each chord, and the rounded points turn by up to ten times the
+true turn per junction, so the blends' radii are a fraction of the curve's. LinuxCNC faces the
+same problem: its naive-CAM detector (``G64 P- Q-``, "Q: naive cam tolerance", LinuxCNC G-code
+reference, https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g64) merges collinear runs
+within ``Q`` into one line, and its trajectory planner looks ahead over many segments
+(``tpRunOptimization`` in ``src/emc/tp/tp.c``, blend arcs in ``src/emc/tp/blendmath.c``).
+
+Here a run of consecutive short feed lines (:data:`DENSE_MAX_LENGTH`, at least
+:data:`DENSE_MIN_SEGMENTS`, junction turns up to :data:`DENSE_MAX_TURN`, same feed and
+tolerance) is replaced by one cubic B-spline curve (:class:`toolpaths.geometry.SplineCurve`):
+
+* it passes exactly through the run's first and last programmed points;
+* its coefficients are the least-squares fit to all the run's points, parametrised by chord
+  length, with interior knots every ``q`` points (knot spacing up to :data:`MAX_KNOT_SPACING`;
+  the rounding noise of the points averages out over a knot interval, so the curvature is that of
+  the curve the chords approximate, not of the rounded points);
+* where the run continues a line or arc tangentially (turn up to :data:`DENSE_MAX_TURN`), its end
+  tangent is that segment's, so the junction stays tangent-continuous;
+* it is accepted only if every point of it (checked at :data:`CHECK_POINTS` points per chord)
+  lies within :data:`FIT_SHARE` of the path tolerance from the chords; otherwise the knot
+  spacing is halved, and a run that no spacing fits is split at its sharpest junction.
+
+The curve is cut at knots into pieces of about :data:`PIECE_LENGTH`, each a segment of the chain
+with its own speed bound from its largest curvature and curvature derivative
+(:func:`interpolators.kinematics.curve_limits`); the pieces join with continuous curvature.
+Programs without such runs (every G61 program, lines longer than :data:`DENSE_MAX_LENGTH`) are
+planned exactly as before.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+import scipy.sparse
+import scipy.sparse.linalg
+from scipy.interpolate import BSpline
+
+from toolpaths.geometry import Arc, Line, SplineCurve
+
+__all__ = [
+    "DENSE_MAX_LENGTH",
+    "DENSE_MAX_TURN",
+    "DENSE_MIN_SEGMENTS",
+    "FIT_SHARE",
+    "MAX_KNOT_SPACING",
+    "PIECE_LENGTH",
+    "CHECK_POINTS",
+    "MergedRun",
+    "fit_run",
+    "merge_dense_runs",
+]
+
+#: Lines at most this long [mm] may be merged.
+DENSE_MAX_LENGTH: float = 1.0
+#: Largest turn [rad] at a junction inside a run (sharper corners end the run and stay corners).
+DENSE_MAX_TURN: float = 0.2
+#: Fewest lines merged into one curve.
+DENSE_MIN_SEGMENTS: int = 8
+#: Share of the path tolerance the fitted curve may deviate from the chords.
+FIT_SHARE: float = 0.9
+#: Largest knot spacing [mm] tried first.
+MAX_KNOT_SPACING: float = 4.0
+#: Target length of the pieces a fitted curve is cut into [mm].
+PIECE_LENGTH: float = 2.0
+#: Points per chord at which the fitted curve's distance from the chords is checked.
+CHECK_POINTS: int = 8
+#: Fewest programmed points per knot interval.
+_MIN_POINTS_PER_KNOT = 4
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class MergedRun:
+    """A run of short lines replaced by a smooth curve.
+
+    Attributes
+    ----------
+    pieces : tuple of SplineCurve
+        The curve, cut into segments.
+    vertex_u : ndarray, shape (n + 1,)
+        Curve parameter of each programmed point of the run (cumulative chord length [mm]).
+    blocks : ndarray of int, shape (n,)
+        Program block of each chord.
+    """
+
+    pieces: tuple[SplineCurve, ...]
+    vertex_u: np.ndarray
+    blocks: np.ndarray
+
+    def block_at(self, u: np.ndarray) -> np.ndarray:
+        """Block of the chord whose parameter range holds each curve parameter ``u``."""
+        j = np.searchsorted(self.vertex_u, np.asarray(u, dtype=float), side="right") - 1
+        return self.blocks[np.clip(j, 0, len(self.blocks) - 1)]
+
+
+def _chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:
+    """Largest distance [mm] of ``curve`` (points at parameters ``u_eval``) from the chords of
+    ``points`` (vertex parameters ``u``), each point against its own chord and the two beside it."""
+    n = len(points) - 1
+    j = np.clip(np.searchsorted(u, u_eval, side="right") - 1, 0, n - 1)
+    best = np.full(len(u_eval), np.inf)
+    for dj in (-1, 0, 1):
+        k = np.clip(j + dj, 0, n - 1)
+        a, ab = points[k], points[k + 1] - points[k]
+        t = np.clip(np.einsum("ij,ij->i", curve - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
+        best = np.minimum(best, np.linalg.norm(curve - a - t[:, None] * ab, axis=1))
+    return float(best.max())
+
+
+def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple) -> np.ndarray | None:
+    """Coefficients of the clamped cubic spline through the first and last point, least squares to
+    the others; an end tangent fixes the second (second-last) coefficient's direction."""
+    B = BSpline.design_matrix(u, knots, 3).tocsc()
+    m = B.shape[1]
+    c = np.zeros((m, 3))
+    c[0], c[-1] = points[0], points[-1]
+    fixed = [0, m - 1]
+    cols = []  # (column of the unknown, direction or None)
+    t0, t1 = tangents
+    if t0 is not None:
+        cols.append((1, t0))
+        fixed.append(1)
+    if t1 is not None and m - 2 > 1:
+        cols.append((m - 2, -t1))
+        fixed.append(m - 2)
+    free = np.setdiff1d(np.arange(m), fixed)
+
+    def column(j: int) -> np.ndarray:
+        return B[:, [j]].toarray()
+
+    rhs = points - column(0) * points[0] - column(m - 1) * points[-1]
+    for col, _ in cols:  # c[col] = end point + alpha * direction
+        rhs = rhs - column(col) * points[0 if col == 1 else -1]
+    # unknowns: the free coefficients (coordinate-wise) and one alpha per imposed tangent
+    nf = len(free)
+    blocks = [scipy.sparse.kron(scipy.sparse.eye(3), B[:, free], format="csc")]
+    for col, d in cols:
+        blocks.append(scipy.sparse.csc_matrix(np.concatenate([column(col) * d[i] for i in range(3)])))
+    A = scipy.sparse.hstack(blocks, format="csc")
+    b = np.asarray(rhs).T.reshape(-1)
+    with warnings.catch_warnings():  # a singular system (too few points per knot) is a failed fit
+        warnings.simplefilter("ignore", scipy.sparse.linalg.MatrixRankWarning)
+        try:
+            x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
+        except RuntimeError:
+            return None
+    if not np.all(np.isfinite(x)):
+        return None
+    c[free] = x[:3 * nf].reshape(3, nf).T
+    for i, (col, d) in enumerate(cols):
+        alpha = x[3 * nf + i]
+        if alpha <= 0:
+            return None  # the tangent would point backwards
+        c[col] = points[0 if col == 1 else -1] + alpha * d
+    return c
+
+
+def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, None)) -> BSpline | None:
+    """Smooth cubic spline within ``FIT_SHARE * tolerance`` of the chords through ``points``.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n + 1, 3)
+        The run's programmed points [mm].
+    tolerance : float
+        Path tolerance [mm].
+    tangents : tuple of (ndarray or None)
+        Unit tangents imposed at the start and end (None: free).
+
+    Returns
+    -------
+    BSpline or None
+        Parametrised by cumulative chord length; None when no knot spacing fits.
+    """
+    u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    n = len(points) - 1
+    f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
+    u_eval = np.append((u[:-1, None] + np.diff(u)[:, None] * f).ravel(), u[-1])
+    mean_chord = u[-1] / n
+    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / mean_chord))
+    while True:
+        n_int = max(1, round(n / q))
+        inner = u[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
+        knots = np.concatenate([[0.0] * 4, inner, [u[-1]] * 4])
+        c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
+        if c is not None:
+            spl = BSpline(knots, c, 3)
+            if _chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
+                return spl
+        if q <= _MIN_POINTS_PER_KNOT:
+            return None
+        q = max(_MIN_POINTS_PER_KNOT, q // 2)
+
+
+def _turn(a: np.ndarray, b: np.ndarray) -> float:
+    return math.acos(float(np.clip(a @ b, -1.0, 1.0)))
+
+
+def _end_tangent(seg, at_start: bool) -> np.ndarray:
+    """Unit tangent of ``seg`` at its end (``at_start=False``) or start."""
+    if isinstance(seg, Line):
+        return seg.direction
+    return np.asarray(seg.tangent_at(0.0 if at_start else seg.length), dtype=float)
+
+
+def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCurve, ...]:
+    """The curve cut at knots into pieces of about PIECE_LENGTH (at least two, so that no piece is closed)."""
+    knots = np.unique(spl.t)
+    approx = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(spl(knots), axis=0), axis=1))])
+    n_p = max(2, int(round(approx[-1] / PIECE_LENGTH))) if len(knots) > 2 else 1
+    cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
+    brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
+    # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
+    return tuple(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
+                             end=end if i == len(brk) - 2 else None) for i in range(len(brk) - 1))
+
+
+def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,
+           turns: np.ndarray) -> list[tuple[int, int, MergedRun | None]]:
+    """Fit lines ``lo..hi-1``; split at the sharpest junction when no curve fits."""
+    if hi - lo < DENSE_MIN_SEGMENTS:
+        return [(k, k + 1, None) for k in range(lo, hi)]
+    points = np.array([segments[lo].start] + [segments[k].end for k in range(lo, hi)])
+    before, after = neighbours
+    t0 = t1 = None
+    if before is not None and _turn(_end_tangent(before, False), segments[lo].direction) <= DENSE_MAX_TURN:
+        t0 = _end_tangent(before, False)
+    if after is not None and _turn(segments[hi - 1].direction, _end_tangent(after, True)) <= DENSE_MAX_TURN:
+        t1 = _end_tangent(after, True)
+    spl = fit_run(points, tolerance, tangents=(t0, t1))
+    if spl is None and (t0 is not None or t1 is not None):
+        spl = fit_run(points, tolerance)
+    if spl is not None:
+        u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+        run = MergedRun(pieces=_pieces(spl, points[0], points[-1]), vertex_u=u,
+                        blocks=np.asarray(blocks[lo:hi], dtype=np.int64))
+        return [(lo, hi, run)]
+    k = lo + 1 + int(np.argmax(turns[lo:hi - 1]))
+    return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns)
+            + _merge(segments, k, hi, blocks, tolerance, (None, after), turns))
+
+
+def _is_dense(seg, feed: float, rapid: bool) -> bool:
+    return isinstance(seg, Line) and not rapid and 0 < seg.length <= DENSE_MAX_LENGTH and feed > 0
+
+
+def merge_dense_runs(
+    segments: list, blocks: list[int], feeds: list[float], rapid: list[bool], tolerances: list[float]
+) -> tuple[list, list[int], dict[int, MergedRun]]:
+    """Replace runs of dense short lines of one G64 chain by fitted smooth curves.
+
+    Parameters
+    ----------
+    segments : list of Line or Arc
+        Consecutive segments of one chain.
+    blocks, feeds, rapid : list
+        Per segment: program block, feed [mm/s], rapid flag.
+    tolerances : list of float
+        Path tolerance [mm] of each junction ``k`` (between segment ``k`` and ``k + 1``).
+
+    Returns
+    -------
+    segments : list
+        The chain with each merged run replaced by its pieces.
+    first : list of int
+        For each returned segment, the index of the first input segment it stands for (its feed,
+        rapid flag and block; the tolerance after it is that of the last input segment it
+        replaces, ``last[k]`` = ``first[k + 1] - 1``).
+    runs : dict of int to MergedRun
+        For each returned piece, the run it belongs to.
+    """
+    n = len(segments)
+    dense = [_is_dense(s, f, r) for s, f, r in zip(segments, feeds, rapid)]
+    # turn [rad] at each junction between two lines
+    d = np.array([s.direction if isinstance(s, Line) else np.full(3, np.nan) for s in segments])
+    turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
+    spans: list[tuple[int, int, MergedRun | None]] = []
+    k = 0
+    while k < n:
+        if not dense[k]:
+            spans.append((k, k + 1, None))
+            k += 1
+            continue
+        e = k + 1
+        while (e < n and dense[e] and feeds[e] == feeds[k] and tolerances[e - 1] == tolerances[k]
+               and tolerances[e - 1] > 0 and turns[e - 1] <= DENSE_MAX_TURN):
+            e += 1
+        before = segments[k - 1] if k > 0 and isinstance(segments[k - 1], (Line, Arc)) else None
+        after = segments[e] if e < n and isinstance(segments[e], (Line, Arc)) else None
+        tol = tolerances[k] if e - k > 1 else 0.0
+        spans.extend(_merge(segments, k, e, blocks, tol, (before, after), turns) if tol > 0
+                     else [(i, i + 1, None) for i in range(k, e)])
+        k = e
+    out: list = []
+    first: list[int] = []
+    runs: dict[int, MergedRun] = {}
+    for lo, _hi, run in spans:
+        if run is None:
+            out.append(segments[lo])
+            first.append(lo)
+            continue
+        for p in run.pieces:
+            runs[len(out)] = run
+            out.append(p)
+            first.append(lo)
+    return out, first, runs
