@@ -174,3 +174,19 @@ def test_random_dense_curves(seed, profile):
     # the path the setpoints report is the one they follow: an ideal machine has no contour error
     ideal = contour_error(sp.path, sp.position, sp.axes, reference=sp.position, sample_time=sp.sample_time)
     assert np.abs(ideal.error).max() <= CURVE_PATH_ERROR * (1 + 1e-6)
+
+
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_dense_arc_between_tangent_lines_runs_like_the_arc(profile):
+    """A quarter circle of 2,000 chords joining two lines tangentially runs as the G3 arc does
+    (the curve's end tangents are the lines' directions, so the junctions stay tangent)."""
+    a = np.linspace(-np.pi / 2, 0.0, 2001)
+    pts = np.round(np.c_[20 + 10 * np.cos(a), 10 + 10 * np.sin(a)], 4)
+    head = f"G21 G90 G17 G64 P{TOL}\nG1 X0 Y0 F9000\nX20 Y0\n"
+    dense = head + "\n".join(f"X{x:.4f} Y{y:.4f}" for x, y in pts[1:]) + "\nX30 Y30\n"
+    arc = head + "G3 X30 Y10 I0 J10\nG1 X30 Y30\n"
+    sp = interpolate(parse_program(dense), profile=profile)
+    sp_arc = interpolate(parse_program(arc), profile=profile)
+    assert sp.duration <= 1.02 * sp_arc.duration  # measured 1.006 (trapezoid), 1.008 (S-curve)
+    assert _distance_to_path(sp) <= TOL
+    _assert_limits(sp, jerk=profile == "scurve")
