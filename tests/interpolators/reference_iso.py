@@ -52,6 +52,10 @@ __all__ = ["Expected", "ReferenceError", "iso_reference"]
 PECK_CLEARANCE_IN = 0.010
 
 
+#: Relative rounding allowance when comparing two program positions (is Z below R?) [mm/mm].
+_EPS = 1e-9
+
+
 class ReferenceError(Exception):
     """The program uses something this reference does not model (the test reports it)."""
 
@@ -78,6 +82,24 @@ class Expected:
         ``end`` (spline chords, compensated blocks with inserted corner arcs); ``"optional"``: one
         row or none (a zero-length move LinuxCNC may leave out, e.g. a cycle's rapid to R when
         already at R).
+    centre : ndarray (3,) or None
+        Arc centre [mm, machine]; its two in-plane coordinates are checked.
+    centre_tolerance : float
+        How far the reader's centre may be from ``centre`` [mm]: 1 um, plus, when the programmed
+        centre is not equidistant from the start and the end (CAM output rounded to 3-4
+        decimals: radii ``rs`` and ``re`` differ), ``2 |rs - re| max(rs, re) / chord``: LinuxCNC
+        then keeps the centre and makes a spiral, a reader may fit an arc through both ends with
+        its centre on their bisector, which lies ``|rs^2 - re^2| / (2 chord)`` from the centre.
+    plane : tuple of int
+        Indices of the arc plane's axes (G17: x, y; G18: z, x; G19: y, z).
+    element : tuple or None
+        Under G41/G42: the programmed element, ``("line", start, end)`` or ``("arc", centre, radius,
+        plane)`` [mm, machine]. The compensated end must lie one tool radius from it (within
+        ``tolerance`` + 1 um: the offset path runs at the radius from its element, at an inside
+        corner the intersection of two offsets and at an outside corner the offset of the end);
+        for the entry move (``entry``) at most one radius from it.
+    entry : bool
+        The first move under G41/G42 (LinuxCNC's entry move, from the uncompensated point).
     """
 
     line: int
@@ -85,6 +107,11 @@ class Expected:
     end: np.ndarray
     tolerance: float = 0.0
     rows: str = "one"
+    centre: np.ndarray | None = None
+    centre_tolerance: float = 0.0
+    plane: tuple[int, int] = (0, 1)
+    element: tuple | None = None
+    entry: bool = False
 
 
 # ----------------------------------------------------------------------------------------------
@@ -358,7 +385,8 @@ class _Machine:
         self.tool_length = 0.0
         self.selected = self.loaded = 0
         self.comp_radius: float | None = None
-        self.after_comp = False
+        self.comp_entry = False
+        self.arc_absolute = False
         self.retract = 98
         self.cycle_clear: float | None = None
         self.sticky: dict[str, float] = {}
@@ -401,11 +429,20 @@ class _Machine:
             t[0], t[1] = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
         return t
 
-    def emit(self, line: int, kind: str | None, end: np.ndarray, *, rows: str = "one") -> None:
+    def emit(self, line: int, kind: str | None, end: np.ndarray, *, rows: str = "one",
+             centre: np.ndarray | None = None, centre_tolerance: float = 0.0) -> None:
+        plane = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[self.plane]
         if self.comp_radius and kind != "dwell":
-            self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last"))
+            if centre is None:
+                element = ("line", self.pos.copy(), end.copy())
+            else:
+                element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane)
+            self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
+                                     element=element, entry=self.comp_entry))
+            self.comp_entry = False
         else:
-            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows))
+            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre, plane=plane,
+                                     centre_tolerance=centre_tolerance))
         self.pos = end.copy()
 
     def move(self, line: int, kind: str, prog: np.ndarray, *, optional: bool = False) -> None:
@@ -428,11 +465,12 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.scale = 25.4 if code == 200 else 1.0
     for code in g:
         if code == 400:
-            m.comp_radius, m.after_comp = None, True
+            m.comp_radius = None
         elif code in (410, 420):
             number = int(words["d"][-1]) if "d" in words else m.loaded
             tool = m.ctx.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
+            m.comp_entry = True
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
@@ -450,6 +488,8 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.wcs = _WCS[code]
         elif code in (900, 910):
             m.incremental = code == 910
+        elif code in (901, 911):
+            m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
 
@@ -535,9 +575,39 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if m.motion in (0, 10):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
     elif m.motion in (20, 30):
-        m.emit(line, "arc_cw" if m.motion == 20 else "arc_ccw", end)
+        centre = _centre(m, words, end)
+        a, b = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+        rs, re_ = (math.hypot(p[a] - centre[a], p[b] - centre[b]) for p in (m.pos, end))
+        chord = math.hypot(end[a] - m.pos[a], end[b] - m.pos[b])
+        slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
+        m.emit(line, "arc_cw" if m.motion == 20 else "arc_ccw", end, centre=centre, centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+def _centre(m: _Machine, words: dict, end: np.ndarray) -> np.ndarray:
+    """Arc centre [mm, machine] (g-code.adoc "G2, G3 Arcs"): I J K offsets from the start (G91.1,
+    the default) or positions (G90.1); or R, the centre on the right of the chord for G2 with
+    R > 0, on the left for G3, the other side for R < 0 (the longer arc)."""
+    a, b = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+    start_p, end_p = m.to_program(m.pos), m.to_program(end)
+    centre = start_p.copy()
+    if "r" in words:
+        radius = words["r"][-1] * m.scale
+        chord = np.array([end_p[a] - start_p[a], end_p[b] - start_p[b]])
+        half = np.linalg.norm(chord) / 2
+        h = math.sqrt(max(radius * radius - half * half, 0.0))
+        unit = chord / (2 * half)
+        left = np.array([-unit[1], unit[0]])
+        side = (1.0 if m.motion == 30 else -1.0) * (1.0 if radius > 0 else -1.0)
+        mid = np.array([start_p[a], start_p[b]]) + chord / 2
+        centre[a], centre[b] = mid + side * h * left
+    else:
+        for i, k in enumerate("ijk"):
+            if i in (a, b):
+                v = words.get(k, [0.0])[-1] * m.scale
+                centre[i] = v if m.arc_absolute else start_p[i] + v
+    return m.to_machine(centre)
 
 
 def _cycle(m: _Machine, line: int, words: dict) -> None:
@@ -556,7 +626,7 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
     clear = max(m.cycle_clear, r) if m.retract == 98 else r
     repeats = int(words["l"][-1]) if "l" in words else 1
-    if cur[2] < r:
+    if cur[2] < r - _EPS * max(1.0, abs(r)):
         cur[2] = r
         m.move(line, "rapid", cur.copy())
     xy = cur[:2].copy()
@@ -584,11 +654,11 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         delta = m.sticky["q"] * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
-        while depth > bottom:
-            m.move(line, "feed", at(depth))
-            if code == 83:
-                m.move(line, "rapid", at(r))
-            m.move(line, "rapid", at(depth + step))
+        while depth > bottom:  # LinuxCNC's loop; a last peck within rounding of the bottom may be left out
+            rows = "optional" if depth - bottom <= _EPS * max(1.0, abs(bottom)) else "one"
+            for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
+                m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
+                m.pos = m.out[-1].end.copy()
             depth -= delta
     m.move(line, "feed", at(bottom))
     if code in (82, 89):

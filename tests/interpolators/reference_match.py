@@ -13,7 +13,7 @@ import dataclasses
 
 import numpy as np
 
-__all__ = ["Match", "match_blocks", "END_TOLERANCE"]
+__all__ = ["Match", "match_blocks", "END_TOLERANCE", "COMP_TOLERANCE"]
 
 #: Rounding allowance on an exact end point: relative to the coordinates' size [mm/mm].
 END_TOLERANCE = 1e-9
@@ -47,20 +47,60 @@ def _close(got: np.ndarray, want: np.ndarray, tolerance: float) -> bool:
     return float(np.linalg.norm(got - want)) <= tolerance + END_TOLERANCE * scale * 10
 
 
+#: Allowance on a compensated end's distance from its programmed element [mm].
+COMP_TOLERANCE = 1e-6
+
+
+def _element_distance(point: np.ndarray, element: tuple) -> float:
+    """Distance of a point from a programmed line segment, or from an arc's circle in its plane
+    (with the out-of-plane offset from the nearer end's height ignored)."""
+    if element[0] == "line":
+        a, b = element[1], element[2]
+        d = b - a
+        t = 0.0 if not d.any() else float(np.clip(np.dot(point - a, d) / np.dot(d, d), 0.0, 1.0))
+        return float(np.linalg.norm(point - (a + t * d)))
+    _, centre, radius, (i, j) = element
+    return abs(float(np.hypot(point[i] - centre[i], point[j] - centre[j])) - radius)
+
+
+def _comp_ok(got: np.ndarray, e) -> bool:
+    d = _element_distance(got, e.element)
+    if e.entry:
+        return d <= e.tolerance + COMP_TOLERANCE
+    return abs(d - e.tolerance) <= COMP_TOLERANCE
+
+
+def _centre_ok(row: list, e) -> bool:
+    if e.centre is None:
+        return True
+    got = np.array(row[6:9], float)
+    return all(abs(got[k] - e.centre[k]) <= e.centre_tolerance for k in e.plane)
+
+
+def _failure(why: str, rows: list[list], i: int, e, j: int, exact: int, within: int) -> Match:
+    got = rows[i][:6] if i < len(rows) else "no row"
+    return Match(rows=len(rows), exact=exact, within=within,
+                 mismatch=f"{why}: expected #{j} line {e.line} {e.kind} {np.round(e.end, 6).tolist()}"
+                          f" (tol {e.tolerance:g}), reader row {got}")
+
+
+def _last_row(expected: list, j: int, rows: list[list], i: int) -> int:
+    """Index of the last row of the block ``expected[j]`` that starts at row ``i`` (same line)."""
+    e, k = expected[j], i
+    while k + 1 < len(rows) and rows[k + 1][1] == e.line and rows[k][1] == e.line \
+            and not _next_is(expected, j, rows[k + 1]):
+        k += 1
+    return k
+
+
 def match_blocks(expected: list, rows: list[list]) -> Match:
     """Compare expected blocks with the reader's rows, in order."""
     i = exact = within = 0
     for j, e in enumerate(expected):
-        def bad(why: str, _i=i, _e=e, _j=j) -> Match:
-            got = rows[_i][:6] if _i < len(rows) else "no row"
-            return Match(rows=len(rows), exact=exact, within=within,
-                         mismatch=f"{why}: expected #{_j} line {_e.line} {_e.kind} {np.round(_e.end, 6).tolist()}"
-                                  f" (tol {_e.tolerance:g}), reader row {got}")
-
         if i >= len(rows):
             if e.rows == "optional":
                 continue
-            return bad("reader has fewer rows")
+            return _failure("reader has fewer rows", rows, i, e, j, exact, within)
         row = rows[i]
         got = np.array(row[3:6], float)
         ok_kind = e.kind is None or row[2] == e.kind
@@ -69,24 +109,22 @@ def match_blocks(expected: list, rows: list[list]) -> Match:
                 i, exact = i + 1, exact + 1
             continue
         if e.rows == "last":
-            k = i
-            while k + 1 < len(rows) and rows[k + 1][1] == e.line and rows[k][1] == e.line \
-                    and not _next_is(expected, j, rows[k + 1]):
-                k += 1
+            k = _last_row(expected, j, rows, i)
             row, got = rows[k], np.array(rows[k][3:6], float)
-            if row[1] != e.line or not _close(got, e.end, e.tolerance):
-                i = k
-                return bad("end point differs" if row[1] == e.line else "line differs")
+            ok = _comp_ok(got, e) if e.element is not None else _close(got, e.end, e.tolerance)
+            if row[1] != e.line or not ok:
+                return _failure("end point differs" if row[1] == e.line else "line differs", rows, k, e, j, exact,
+                                within)
             within += k - i + (1 if e.tolerance > 0 else 0)
             exact += 0 if e.tolerance > 0 else 1
             i = k + 1
             continue
-        if row[1] != e.line:
-            return bad("line differs")
-        if not ok_kind:
-            return bad("kind differs")
-        if not _close(got, e.end, e.tolerance):
-            return bad("end point differs")
+        why = ("line differs" if row[1] != e.line else "kind differs" if not ok_kind
+               else "end point differs" if not _close(got, e.end, e.tolerance)
+               else f"arc centre differs (reader {row[6:9]}, expected {np.round(e.centre, 6).tolist()})"
+               if not _centre_ok(row, e) else None)
+        if why:
+            return _failure(why, rows, i, e, j, exact, within)
         if e.tolerance > 0:
             within += 1
         else:
