@@ -94,10 +94,12 @@ class Expected:
         Indices of the arc plane's axes (G17: x, y; G18: z, x; G19: y, z).
     element : tuple or None
         Under G41/G42: the programmed element, ``("line", start, end)`` or ``("arc", centre, radius,
-        plane)`` [mm, machine]. The compensated end must lie one tool radius from it (within
-        ``tolerance`` + 1 um: the offset path runs at the radius from its element, at an inside
-        corner the intersection of two offsets and at an outside corner the offset of the end);
-        for the entry move (``entry``) at most one radius from it.
+        plane, start)`` [mm, machine]. The compensated end must lie one tool radius from it (within
+        1 um: the offset path runs at the radius from its element, at an inside corner the
+        intersection of two offsets and at an outside corner the offset of the end; for an arc in
+        its plane); for the entry move (``entry``) at most one radius from it. A compensated arc's
+        end keeps its programmed height along the plane normal, within half the block's travel
+        along it (a helix trimmed at an inside corner ends a little short of its height).
     entry : bool
         The first move under G41/G42 (LinuxCNC's entry move, from the uncompensated point).
     """
@@ -436,7 +438,7 @@ class _Machine:
             if centre is None:
                 element = ("line", self.pos.copy(), end.copy())
             else:
-                element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane)
+                element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane, self.pos.copy())
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
                                      element=element, entry=self.comp_entry))
             self.comp_entry = False

@@ -59,11 +59,16 @@ def _element_distance(point: np.ndarray, element: tuple) -> float:
         d = b - a
         t = 0.0 if not d.any() else float(np.clip(np.dot(point - a, d) / np.dot(d, d), 0.0, 1.0))
         return float(np.linalg.norm(point - (a + t * d)))
-    _, centre, radius, (i, j) = element
+    _, centre, radius, (i, j), _ = element
     return abs(float(np.hypot(point[i] - centre[i], point[j] - centre[j])) - radius)
 
 
 def _comp_ok(got: np.ndarray, e) -> bool:
+    if e.element[0] == "arc":
+        normal = 3 - sum(e.element[3])
+        rise = abs(e.end[normal] - e.element[4][normal])
+        if abs(got[normal] - e.end[normal]) > 0.5 * rise + COMP_TOLERANCE:
+            return False
     d = _element_distance(got, e.element)
     if e.entry:
         return d <= e.tolerance + COMP_TOLERANCE
@@ -141,4 +146,7 @@ def _next_is(expected: list, j: int, row: list) -> bool:
     if j + 1 >= len(expected):
         return False
     n = expected[j + 1]
-    return n.line == row[1] and n.rows != "last" and _close(np.array(row[3:6], float), n.end, n.tolerance)
+    got = np.array(row[3:6], float)
+    if n.element is not None:
+        return n.line == row[1] and _comp_ok(got, n)
+    return n.line == row[1] and n.rows != "last" and _close(got, n.end, n.tolerance)
