@@ -18,6 +18,7 @@ import functools
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from benchmarks.gcode_corpus import OUT_OF_SCOPE, corpus_dir, manifest, reason
@@ -196,3 +197,34 @@ def test_compensated_block_ends_lie_one_tool_radius_from_the_programmed_path(out
     # rejected as gouging or with an arc entry/exit: LinuxCNC rejects them too), 297 compensated blocks
     # checked; 2 with the known G40 exit mismatch
     assert len(results) >= 11 and within >= 200, (len(results), within)
+
+
+def _ends(expected) -> list[list[float]]:
+    return [np.round(e.end, 9).tolist() for e in expected if e.rows != "optional"]
+
+
+def test_the_iso_reference_reproduces_the_linuxcnc_manual_examples():
+    """The reference itself, on the worked examples of LinuxCNC's g-code.adoc (inch, zero context)."""
+    ctx = MachineContext()
+    # "G81 Example 2 - Relative Position": from (1, 2, 3); R 1.8 and Z -0.6 incremental, L3
+    ref = iso_reference("G20\nG0 X1 Y2 Z3\nG91 G98 G81 X4 Y5 Z-0.6 R1.8 L3 F10\n", ctx)
+    want = [(1, 2, 3), (1, 2, 4.8), (5, 7, 4.8), (5, 7, 4.2), (5, 7, 4.8), (9, 12, 4.8), (9, 12, 4.2),
+            (9, 12, 4.8), (13, 17, 4.8), (13, 17, 4.2), (13, 17, 4.8)]
+    assert np.allclose(_ends(ref), np.array(want) * 25.4)
+    # "Polar Square": G91 ^90 turns the point about the XY zero
+    ref = iso_reference("G20\nF100 G1 @.5 ^90\nG91 ^90\n^90\n^90\n^90\n", ctx)
+    assert np.allclose(_ends(ref), np.array([(0, .5, 0), (-.5, 0, 0), (0, -.5, 0), (.5, 0, 0), (0, .5, 0)]) * 25.4)
+    # G83 pecks: back to R between pecks, down again to 0.010 in above the last depth
+    ref = iso_reference("G20\nG0 Z1\nG90 G99 G83 X0 Y0 Z-0.25 R0.1 Q0.15 F10\n", ctx)
+    zs = [e[2] / 25.4 for e in _ends(ref)]
+    assert np.allclose(zs, [1, 0.1, -0.05, 0.1, -0.04, -0.2, 0.1, -0.19, -0.25, 0.1])
+
+
+def test_the_heidenhain_reference_follows_the_tnc_pecking_cycle():
+    """TNC cycle 1 as the TNC 370 manual describes it: from the start, 10 mm deep in 4 mm pecks below a
+    surface 2 mm down, FMAX back to the start and down to 0.6 mm before the last depth."""
+    prog = ("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+2 FMAX\n2 CYCL DEF 1.0 PECKING\n3 CYCL DEF 1.1 SET UP -2\n"
+            "4 CYCL DEF 1.2 DEPTH -10\n5 CYCL DEF 1.3 PECKG -4\n6 CYCL DEF 1.4 DWELL 0\n7 CYCL DEF 1.5 F100\n"
+            "8 L FMAX M99\n9 END PGM T MM\n")
+    zs = [e[2] for e in _ends(heidenhain_reference(prog, MachineContext()))]
+    assert np.allclose(zs, [2, -4, 2, -3.4, -8, 2, -7.4, -10, 2])
