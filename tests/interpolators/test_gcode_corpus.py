@@ -177,9 +177,10 @@ def test_block_end_points_match_an_independent_reference(outcomes):
     rows = sum(m.rows for _, m in results.values())
     exact = sum(m.exact for _, m in results.values())
     within = sum(m.within for _, m in results.values())
-    # measured 2026-11-23: 292 programs (41 Heidenhain), 534,143 rows; 532,613 checked exactly (99.71 %),
-    # 1,461 spline chords within their block (0.27 %); the rest follow the first mismatch of the 4
-    # known ones. All 41 Heidenhain programs (25,026 rows) agree.
+    # measured 2026-11-23 (session 8), all 292 under TEST_CONTEXT: 534,146 rows; 532,636 checked exactly
+    # (line, kind, end point, arc centre: 99.72 %), 1,463 spline chords within their block (0.27 %); the
+    # 47 rows left follow the first disagreement of the 4 known mismatches. The 41 Heidenhain programs
+    # (25,029 rows) all agree.
     assert len(results) >= 292 and len(heidenhain) >= 41
     assert exact / rows >= 0.997 and (exact + within) / rows >= 0.999, (rows, exact, within)
 
@@ -193,9 +194,9 @@ def test_compensated_block_ends_lie_one_tool_radius_from_the_programmed_path(out
     assert not unmodelled, unmodelled
     _assert_known(results)
     within = sum(m.within for _, m in results.values())
-    # measured 2026-11-23: 22 G41/G42 programs, 11 of them run with the 0.5 mm radius (the others are
-    # rejected as gouging or with an arc entry/exit: LinuxCNC rejects them too), 297 compensated blocks
-    # checked; 2 with the known G40 exit mismatch
+    # measured 2026-11-23 (session 8): 11 of the accepted G41/G42 programs run with the 0.5 mm radius (the
+    # others are rejected as gouging or for an arc entry/exit move, as LinuxCNC rejects them); 297 rows
+    # checked against the radius; 2 programs with the known G40 exit mismatch
     assert len(results) >= 11 and within >= 200, (len(results), within)
 
 
