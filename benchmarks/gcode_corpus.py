@@ -27,7 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from interpolators import interpolate, load_program  # noqa: E402
+from interpolators import detect_dialect, interpolate, load_program  # noqa: E402
 from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
 
@@ -76,6 +76,7 @@ def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_00
             rec["ok"] = True
         except GCodeError as exc:
             rec["reason"] = reason(str(exc))
+            rec["dialect"] = detect_dialect(path.read_bytes().decode("latin-1")) if path.is_file() else ""
             if "max_samples" in str(exc):
                 rec["ok"] = True  # parsed; too long to sample here
                 rec["reason"] = ""
@@ -109,6 +110,13 @@ def main() -> int:
     print("\nby origin:")
     for o, (a, n) in sorted(by_origin.items()):
         print(f"  {o:<34} {a:>3} / {n:<3}")
+    by_dialect = collections.defaultdict(lambda: [0, 0])
+    for p in progs:
+        by_dialect[p["dialect"]][0] += p["ok"]
+        by_dialect[p["dialect"]][1] += 1
+    print("\nby dialect (of the text, also for the rejected programs):")
+    for o, (a, n) in sorted(by_dialect.items()):
+        print(f"  {o:<34} {a:>3} / {n:<3} = {100 * a / n:.1f} %")
     reasons = collections.Counter(p["reason"] for p in progs if not p["ok"])
     print("\nrejections by feature:")
     for r, c in reasons.most_common():

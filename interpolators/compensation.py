@@ -173,7 +173,7 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 
 
 def compensate(
-    blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc"
+    blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -195,6 +195,11 @@ def compensate(
     entry : {"linuxcnc", "perpendicular"}
         Where the entry move ends: the programmed point moved perpendicular to the entry move
         (LinuxCNC) or perpendicular to the first contour element (Heidenhain TNC).
+    closed : bool
+        The run's last block is the exit move after G40 even when it has no motion in the plane (a
+        ``G0 Z..`` retract): it runs from the tool position to its programmed point, as LinuxCNC
+        takes the programmed position for the current one when compensation goes off
+        (``convert_cutter_compensation_off``: ``current_x = program_x``).
 
     Returns
     -------
@@ -222,6 +227,9 @@ def compensate(
         return blocks
     first = movers[0]
     last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 else None
+    end = len(blocks) - 1
+    if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
+        last = end
     contour = [i for i in movers[1:] if i != last]
     for i in (first, last):
         if i is not None and blocks[i].kind == "arc":

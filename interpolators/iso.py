@@ -910,13 +910,14 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
 
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
     """Replace the finished compensated run by the tool-centre path."""
+    closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
     run = blocks[start:]
     if not run:
         return
     try:
         new = compensate(run, side="left" if st.comp_code.startswith("G41") else "right", radius=st.comp_radius,
-                         plane=st.plane)
+                         plane=st.plane, closed=closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(
@@ -959,6 +960,8 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
             where.fail("G53 needs G0 or G1", column=w.column, text=w.text, expected="G53 G0/G1 with axis words")
         if "motion" in gcodes:
             st.motion = motion
+        if not axis_words and not any(a in seen for a in ROTARY_LETTERS):
+            return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         target = _target(seen, axis_words, st, machine=True)
         _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True

@@ -1,86 +1,98 @@
 """The shared corpus of real part programs (../shared/data/gcode-corpus, 341 programs).
 
-Every program is read; a rejection must be a GCodeError naming file, line and the feature. For
-each accepted ISO program of the plain subset (no parameters, O-words, cycles, reference returns
-or offsets), the block end points are recomputed by an independent reference written here from
-LinuxCNC's G-code semantics (modal G0-G3, G90/G91, G20/G21, comments, M2/M30), and compared with
-the reader's ``--blocks`` table. The full run with interpolation and the rejection list is
-``benchmarks/gcode_corpus.py``.
+Every program is read; a rejection must be a GCodeError naming file, line and the feature. Every
+accepted program, ISO and Heidenhain, is checked block by block against an independent reference
+written in this folder from the controls' documentation (``reference_iso``: LinuxCNC's G-code
+semantics; ``reference_heidenhain``: the TNC conversational manuals), aligned with the reader's
+``--blocks`` table by ``reference_match``: for each block the line, the kind, the end point in
+machine coordinates and, for arcs, the centre. The programs run against a machine context with
+non-zero work offsets, tool lengths, home and second reference position (:data:`TEST_CONTEXT`),
+so that offsets, G43/TOOL CALL, G28/G30, G53, M91/M92 are checked and not multiplied by zero;
+the G41/G42 programs run once more with a tool radius (:data:`RADIUS_CONTEXT`). The full run
+with interpolation and the rejection list is ``benchmarks/gcode_corpus.py``.
 """
 
 from __future__ import annotations
 
+import functools
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from benchmarks.gcode_corpus import OUT_OF_SCOPE, corpus_dir, manifest, reason
 from interpolators import load_program
+from interpolators.context import INTERPOLATION_CONTEXT, WORK_OFFSETS, MachineContext, Tool
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_iso import ReferenceError, clean_line, iso_reference
+from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 CORPUS = corpus_dir()
 pytestmark = [pytest.mark.skipif(CORPUS is None, reason="gcode corpus absent (../shared/data/gcode-corpus)"),
-              pytest.mark.slow]  # reads the 341 corpus programs (~1 min)
+              pytest.mark.slow]  # reads the corpus twice and checks 534,143 blocks (~3-5 min on 2 busy cores)
 
-_WORD = re.compile(r"([A-Za-z])\s*([+-]?(?:\d+\.?\d*|\.\d+))")
-#: Anything outside the plain subset the reference follows.
-_NOT_PLAIN = re.compile(r"[#\[\]<>@^]|\bG0*(?:28|30|53|92|10|43|44|73|8\d|4\.|4 )|\bM9[89]|^\s*o\d|\bG90\.1",
-                        re.I | re.M)
+#: Distinct non-zero work offsets (G54 ... G59.3) [mm], tools 1-399 with distinct lengths (tool 0,
+#: "no tool", is not in the table), home and second reference away from the origin.
+TEST_CONTEXT = MachineContext(
+    work_offsets={c: (10.0 + 7 * i, -20.0 + 3 * i, 5.0 - 2 * i) for i, c in enumerate(WORK_OFFSETS)},
+    tools={n: Tool(number=n, length=20.0 + 0.25 * n) for n in range(1, 400)},
+    home=(-5.0, 7.0, 60.0), reference2=(15.0, -25.0, 40.0), rotary_axes=("a", "b", "c"))
+#: As TEST_CONTEXT, with a tool radius of 0.5 mm, for the G41/G42 programs.
+RADIUS_CONTEXT = MachineContext(
+    work_offsets=TEST_CONTEXT.work_offsets, home=TEST_CONTEXT.home, reference2=TEST_CONTEXT.reference2,
+    tools={n: Tool(number=n, length=20.0 + 0.25 * n, radius=0.5) for n in range(1, 400)},
+    rotary_axes=("a", "b", "c"))
 
-
-def _strip(line: str) -> str:
-    out, depth = [], 0
-    for ch in line:
-        if ch == ";" and depth == 0:
-            break
-        if ch == "(":
-            depth += 1
-        elif ch == ")":
-            depth -= 1
-        elif depth == 0:
-            out.append(ch)
-    return "".join(out)
+#: Known disagreements of the readers with the reference (reader bugs, reported; the readers are
+#: not this module's to change): (program, context) -> what differs. Each is asserted to still
+#: differ, so that a fix makes this test ask for its entry to be removed.
+KNOWN_MISMATCHES: dict[tuple[str, str], str] = {}  # (the last three, G10 L2 R, G53 alone, G40 exits, fixed)
 
 
-def reference_end_points(text: str) -> list[np.ndarray] | None:
-    """Programmed end points of the motion blocks, LinuxCNC semantics, or None outside the subset."""
-    if _NOT_PLAIN.search(text):
-        return None
-    pos = np.zeros(3)
-    motion = None
-    inch = False
-    incremental = False
-    ends = []
-    for raw in text.splitlines():
-        code = _strip(raw).strip()
-        if not code or code.startswith("%"):
+def read_text(path: Path) -> str:
+    """A program's text: UTF-8, else Latin-1."""
+    raw = path.read_bytes()
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")
+
+
+@functools.cache
+def numbered_program(number: str) -> str | None:
+    """The text of the corpus file that is the numbered program ``O<number>`` (for ``M98 P``)."""
+    for path in sorted(CORPUS.iterdir()):
+        if path.suffix.lower() in (".tsv", ".md"):
             continue
-        code = code.lstrip("/")
-        words = [(m.group(1).upper(), float(m.group(2))) for m in _WORD.finditer(code)]
-        gs = [v for k, v in words if k == "G"]
-        ms = [v for k, v in words if k == "M"]
-        for g in gs:
-            if g in (20, 21):
-                inch = g == 20
-            elif g in (90, 91):
-                incremental = g == 91
-            elif g in (0, 1, 2, 3):
-                motion = int(g)
-        axes = {k: v for k, v in words if k in "XYZ"}
-        has_arc_centre = any(k in "IJKR" for k, _ in words)
-        if axes or (motion in (2, 3) and has_arc_centre and any(g in (2, 3) for g in gs)):
-            scale = 25.4 if inch else 1.0
-            target = pos.copy()
-            for k, v in axes.items():
-                i = "XYZ".index(k)
-                target[i] = pos[i] + v * scale if incremental else v * scale
-            ends.append(target)
-            pos = target
-        if any(m in (2, 30) for m in ms):
-            break
-    return ends
+        text = read_text(path)
+        if any(re.fullmatch(rf"o0*{number}", clean_line(ln)) for ln in text.splitlines()[:5]):
+            return text
+    return None
+
+
+def check_program(name: str, context: MachineContext):
+    """Load a corpus program against ``context`` and compare it with the reference.
+
+    Returns the :class:`~tests.interpolators.reference_match.Match`, or None when the reader
+    rejects the program in this context.
+    """
+    path = CORPUS / name
+    try:
+        prog = load_program(path, context=context)
+    except GCodeError:
+        return None
+    text = read_text(path)
+    if prog.dialect == "heidenhain":
+        expected = heidenhain_reference(text, context)
+    else:
+        expected = iso_reference(text, context, resolve=numbered_program)
+    header, rows = blocks_table(prog)
+    n_rot = len(header) - 10  # a, b, c columns of a program that moves rotary axes: their angles are
+    rows = [r[:6] + r[6 + n_rot:] for r in rows]  # checked by test_rotary.py, the X Y Z ends here
+    return match_blocks(expected, rows)
 
 
 @pytest.fixture(scope="module")
@@ -89,7 +101,7 @@ def outcomes():
     for r in manifest(CORPUS):
         path = CORPUS / r["file"]
         try:
-            res[r["file"]] = load_program(path)
+            res[r["file"]] = load_program(path, context=INTERPOLATION_CONTEXT)  # as the corpus benchmark
         except GCodeError as exc:
             res[r["file"]] = exc
     return res
@@ -106,30 +118,110 @@ def test_every_rejection_is_a_clean_error_naming_the_feature(outcomes):
 
 def test_share_of_programs_that_run(outcomes):
     ok = sum(not isinstance(o, GCodeError) for o in outcomes.values())
-    milling = [o for o in outcomes.values() if not isinstance(o, GCodeError) or not OUT_OF_SCOPE.search(str(o))]
-    # measured 2026-11-23 (session 8): 292 of 341 read, 89.8 % of the milling programs. The milling
+    # classified by the feature the message names, not by the file name in it (0169_lathe_jaws_o4001.cnc
+    # mills soft jaws for a lathe: a milling program)
+    milling = [o for o in outcomes.values()
+               if not isinstance(o, GCodeError) or not OUT_OF_SCOPE.search(reason(str(o)))]
+    # measured 2026-11-23 (session 8): 295 of 341 read, 90.8 % of the milling programs. The milling
     # rejections are programs every control named refuses (feed moves before any F, a first cycle block
     # without R, arc end points 1 mm and more off the circle, I on G0, a template, a ':' without number),
     # programs of another machine (plasma M codes, CNCSimulator directives, a punch press), Fanuc macro B
-    # branches and machine-position reads, a missing subprogram file, and rotary moves.
-    assert ok >= 292
-    assert ok / len(milling) >= 0.89
+    # branches and machine-position reads, a missing subprogram file, U/V/W axes, and Heidenhain setup
+    # programs that need the operator to jog at STOP.
+    assert ok >= 295
+    assert ok / len(milling) >= 0.90
+
+
+
+
+def _compare_all(names: list[str], context: MachineContext, label: str, fallback: MachineContext | None):
+    """Per program: (context label, Match); unmodelled programs and mismatches as lists."""
+    results, unmodelled = {}, []
+    for name in names:
+        try:
+            m, used = check_program(name, context), label
+            if m is None and fallback is not None:
+                m, used = check_program(name, fallback), "default"
+        except ReferenceError as exc:
+            unmodelled.append(f"{name}: {exc}")
+            continue
+        if m is not None:
+            results[name] = (used, m)
+    return results, unmodelled
+
+
+def _assert_known(results: dict) -> None:
+    """Every mismatch is a known one, and every known one of these programs still mismatches."""
+    new = [f"{name} [{used}]: {m.mismatch}" for name, (used, m) in results.items()
+           if m.mismatch and (name, used) not in KNOWN_MISMATCHES]
+    fixed = [f"{name} [{used}]: {KNOWN_MISMATCHES[name, used]}" for name, (used, m) in results.items()
+             if not m.mismatch and (name, used) in KNOWN_MISMATCHES]
+    assert not new, "block ends that disagree with the reference:\n" + "\n".join(new)
+    assert not fixed, "known mismatches that are gone (remove them from KNOWN_MISMATCHES):\n" + "\n".join(fixed)
 
 
 def test_block_end_points_match_an_independent_reference(outcomes):
-    checked = blocks = 0
-    for name, prog in outcomes.items():
-        if isinstance(prog, GCodeError) or prog.dialect != "iso":
-            continue
-        ref = reference_end_points((CORPUS / name).read_text(encoding="latin-1"))
-        if ref is None:
-            continue
-        header, rows = blocks_table(prog)
-        ends = [np.array(r[3:6], float) for r in rows if r[2] != "dwell"]
-        assert len(ends) == len(ref), name
-        if ends:
-            err = np.abs(np.array(ends) - np.array(ref)).max()
-            assert err <= 1e-9 * max(1.0, np.abs(np.array(ref)).max()), (name, err)
-        checked += 1
-        blocks += len(ends)
-    assert checked >= 90 and blocks >= 300_000, (checked, blocks)  # measured: 97 programs, 343,539 blocks
+    accepted = [name for name, o in outcomes.items() if not isinstance(o, GCodeError)]
+    results, unmodelled = _compare_all(accepted, TEST_CONTEXT, "test", MachineContext())
+    assert not unmodelled, "programs the reference does not model:\n" + "\n".join(unmodelled)
+    assert sorted(results) == sorted(accepted)  # every accepted program is checked
+    print("\nprogram, dialect, context, rows, checked exactly, checked within a tolerance, first mismatch")
+    for name, (used, m) in results.items():
+        print(f"{name}, {outcomes[name].dialect}, {used}, {m.rows}, {m.exact}, {m.within}, {m.mismatch or ''}")
+    _assert_known(results)
+    heidenhain = [n for n in results if outcomes[n].dialect == "heidenhain"]
+    rows = sum(m.rows for _, m in results.values())
+    exact = sum(m.exact for _, m in results.values())
+    within = sum(m.within for _, m in results.values())
+    # measured 2026-11-23 (session 8), all 295 under TEST_CONTEXT (with the rotary axes): 535,100 rows;
+    # 533,196 checked exactly (line, kind, end point, arc centre: 99.64 %), 1,904 within their block
+    # (spline chords; chords of the XZ/YZ arcs of a rotated system, 0096/0097); none left unchecked.
+    # The 41 Heidenhain programs (25,029 rows) all agree.
+    assert len(results) >= 295 and len(heidenhain) >= 41
+    assert exact / rows >= 0.996 and exact + within == rows, (rows, exact, within)
+
+
+def test_compensated_block_ends_lie_one_tool_radius_from_the_programmed_path(outcomes):
+    """G41/G42 with a 0.5 mm tool radius: each compensated end one radius from its programmed line or
+    arc (the entry move at most one radius), the move after G40 at the programmed point."""
+    comp = [name for name, o in outcomes.items() if not isinstance(o, GCodeError) and o.dialect == "iso"
+            and re.search(r"^[^;(\n]*\bG4[12]\b", read_text(CORPUS / name), re.I | re.M)]
+    results, unmodelled = _compare_all(comp, RADIUS_CONTEXT, "radius", None)
+    assert not unmodelled, unmodelled
+    _assert_known(results)
+    within = sum(m.within for _, m in results.values())
+    # measured 2026-11-23 (session 8): 11 of the accepted G41/G42 programs run with the 0.5 mm radius (the
+    # others are rejected as gouging or for an arc entry/exit move, as LinuxCNC rejects them); 297 rows
+    # checked against the radius; 2 programs with the known G40 exit mismatch
+    assert len(results) >= 11 and within >= 200, (len(results), within)
+
+
+def _ends(expected) -> list[list[float]]:
+    return [np.round(e.end, 9).tolist() for e in expected if e.rows != "optional"]
+
+
+def test_the_iso_reference_reproduces_the_linuxcnc_manual_examples():
+    """The reference itself, on the worked examples of LinuxCNC's g-code.adoc (inch, zero context)."""
+    ctx = MachineContext()
+    # "G81 Example 2 - Relative Position": from (1, 2, 3); R 1.8 and Z -0.6 incremental, L3
+    ref = iso_reference("G20\nG0 X1 Y2 Z3\nG91 G98 G81 X4 Y5 Z-0.6 R1.8 L3 F10\n", ctx)
+    want = [(1, 2, 3), (1, 2, 4.8), (5, 7, 4.8), (5, 7, 4.2), (5, 7, 4.8), (9, 12, 4.8), (9, 12, 4.2),
+            (9, 12, 4.8), (13, 17, 4.8), (13, 17, 4.2), (13, 17, 4.8)]
+    assert np.allclose(_ends(ref), np.array(want) * 25.4)
+    # "Polar Square": G91 ^90 turns the point about the XY zero
+    ref = iso_reference("G20\nF100 G1 @.5 ^90\nG91 ^90\n^90\n^90\n^90\n", ctx)
+    assert np.allclose(_ends(ref), np.array([(0, .5, 0), (-.5, 0, 0), (0, -.5, 0), (.5, 0, 0), (0, .5, 0)]) * 25.4)
+    # G83 pecks: back to R between pecks, down again to 0.010 in above the last depth
+    ref = iso_reference("G20\nG0 Z1\nG90 G99 G83 X0 Y0 Z-0.25 R0.1 Q0.15 F10\n", ctx)
+    zs = [e[2] / 25.4 for e in _ends(ref)]
+    assert np.allclose(zs, [1, 0.1, -0.05, 0.1, -0.04, -0.2, 0.1, -0.19, -0.25, 0.1])
+
+
+def test_the_heidenhain_reference_follows_the_tnc_pecking_cycle():
+    """TNC cycle 1 as the TNC 370 manual describes it: from the start, 10 mm deep in 4 mm pecks below a
+    surface 2 mm down, FMAX back to the start and down to 0.6 mm before the last depth."""
+    prog = ("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+2 FMAX\n2 CYCL DEF 1.0 PECKING\n3 CYCL DEF 1.1 SET UP -2\n"
+            "4 CYCL DEF 1.2 DEPTH -10\n5 CYCL DEF 1.3 PECKG -4\n6 CYCL DEF 1.4 DWELL 0\n7 CYCL DEF 1.5 F100\n"
+            "8 L FMAX M99\n9 END PGM T MM\n")
+    zs = [e[2] for e in _ends(heidenhain_reference(prog, MachineContext()))]
+    assert np.allclose(zs, [2, -4, 2, -3.4, -8, 2, -7.4, -10, 2])

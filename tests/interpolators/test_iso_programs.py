@@ -526,3 +526,24 @@ def test_arc_end_radius_rule_follows_the_dialect():
                     parse_program(text, context=context)
     with pytest.raises(InputError, match="arc_rule"):
         dataclasses.replace(DIALECTS["fanuc"], arc_rule="fanuc")
+
+
+def test_exit_move_after_g40_without_xy_words_returns_to_the_programmed_path():
+    """LinuxCNC interp_convert.cc convert_cutter_compensation_off: the programmed position becomes
+    the current one, so the first move after G40 (here a Z retract) ends at its programmed X Y and
+    every later move follows the program (found by the corpus reference: 0054, 0134)."""
+    from interpolators.context import Tool
+
+    ctx = MachineContext(tools={1: Tool(number=1, radius=1.0)})
+    prog = parse_program("G21 G90 G0 X0 Y0 Z5\nG1 F100 G41 D1 X-5 Y0\nX-10\nG40\nG0 Z10\nX-20\n", context=ctx)
+    *_, contour, exit_move, after = prog.blocks
+    assert contour.target[1] == pytest.approx(-1.0)  # left of a move towards -X: y - 1
+    assert exit_move.target.tolist() == pytest.approx([-10.0, 0.0, 10.0])
+    assert after.start.tolist() == pytest.approx([-10.0, 0.0, 10.0])
+    assert after.target.tolist() == pytest.approx([-20.0, 0.0, 10.0])
+
+
+def test_g53_without_axis_words_moves_nothing():
+    """A Fanuc post's "G53 G49 M05": G53 with no axis word is no motion (it made a zero-length move)."""
+    prog = parse_program("G21 G90 G0 X1 Y2 Z3\nG53 G49 M05\nG0 X4\n", context=MachineContext())
+    assert [b.line for b in prog.blocks] == [1, 3]

@@ -1,0 +1,561 @@
+"""An independent reference for where the blocks of a Heidenhain conversational program end.
+
+Test code only: it imports nothing of the readers (``interpolators.heidenhain*``), only the
+machine context's tables. Written from the HEIDENHAIN TNC conversational user's manuals
+(TNC 320/370/426/640, iTNC 530; e.g. https://www.easymanua.ls/heidenhain/tnc-370/manual?p=195
+for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92):
+
+- Blocks: a leading block number, ``;`` comments, ``*`` structure blocks, ``~`` continuation
+  lines (the block is reported at its first line), ``BEGIN PGM name MM|INCH``, ``END PGM``.
+- Machine position = program position + preset (``context.offset("G54")``) + the datum shift of
+  ``CYCL DEF 7`` + the tool length along Z (``TOOL CALL n``: the length of ``TOOL DEF n`` in the
+  program, else the tool table's, plus ``DL``). The length applies from the next move (the tool
+  does not move at the TOOL CALL; an axis not named keeps its machine position).
+- ``M91``: the block's coordinates are machine coordinates, and the tool length is not
+  compensated (TNC 426B manual: "The tool length, however, is not compensated"); ``M92``:
+  relative to the machine-defined position (here ``context.home``). ``L M140 MB MAX``: retract
+  along the tool axis to the limit (here ``context.home``'s Z; no motion when the tool is above it).
+- Paths: ``L`` (``I`` words incremental, ``FMAX``/``F MAX`` rapid), ``CC`` (pole; a missing or
+  ``I`` coordinate from the current position), ``C`` about CC (``DR+`` counter-clockwise; a Z word:
+  helix), ``CP IPA`` (polar arc from the current angle about the pole, radius = distance to the
+  pole), ``APPR LT``/``DEP LT`` (straight approach tangential to the first element, ``LEN`` before
+  it; straight departure ``LEN`` along the last element).
+- Q parameters: ``FN 0``-``FN 4``, formulas with ``+ - * / ^``, parentheses and the functions
+  ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
+  LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
+  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
+- Labels: ``CALL LBL n REP k``: the section from ``LBL n`` repeated k times (then the counter is
+  reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program ends at ``M2``/``M30``/
+  ``END PGM``.
+- Cycles: ``CYCL DEF 7`` (datum shift, ``I`` values add), ``9`` (dwell, runs at once), ``32``
+  (tolerance, no motion), ``1`` PECKING (from the current position: feed to each plunging depth
+  below the surface (start + set-up clearance toward the depth), rapid back to the start, rapid
+  to the previous depth less the advanced stop distance ``t`` (0.6 mm up to 30 mm of depth, else
+  depth/50, at most 7 mm), at the bottom dwell and rapid to the start) and ``200`` DRILLING (rapid to
+  Q203 + Q200, feed per Q202 to Q203 + Q201, between pecks rapid to Q203 + Q200 and back to Q200
+  above the last depth, dwell Q211 at the bottom, rapid to Q203 + Q200 and then to Q203 + Q204),
+  called by ``M99`` or ``CYCL CALL`` at the current position.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+
+from tests.interpolators.reference_iso import Expected, ReferenceError
+
+__all__ = ["heidenhain_reference"]
+
+_EPS = 1e-9
+
+
+def _blocks(text: str) -> list[tuple[int, str]]:
+    """(first line, text) of each block: comments removed, continuations joined, numbers dropped."""
+    out, buf, first = [], [], None
+    for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
+        cont = raw.rstrip().endswith("~")
+        code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+        if first is None:
+            first = no
+            code = re.sub(r"^\d+\s*", "", code)
+        buf.append(code)
+        if not cont:
+            out.append((first, " ".join(b for b in buf if b).strip()))
+            buf, first = [], None
+    return [(no, b) for no, b in out if b and not b.startswith("*")]
+
+
+class _Formula:
+    """Recursive-descent Heidenhain formula: + - * / ^, parentheses, unary functions, Q values."""
+
+    _FUNCS = {"SQRT": math.sqrt, "SIN": lambda v: math.sin(math.radians(v)),
+              "COS": lambda v: math.cos(math.radians(v)), "TAN": lambda v: math.tan(math.radians(v)),
+              "ASIN": lambda v: math.degrees(math.asin(v)), "ACOS": lambda v: math.degrees(math.acos(v)),
+              "ATAN": lambda v: math.degrees(math.atan(v)), "ABS": abs, "INT": lambda v: float(math.trunc(v)),
+              "NEG": lambda v: -v, "FRAC": lambda v: v - math.trunc(v), "LN": math.log, "LOG": math.log10,
+              "EXP": math.exp}
+
+    def __init__(self, text: str, q: dict):
+        self.toks = re.findall(r"\d+\.?\d*|\.\d+|Q[LR]?\d+|[A-Z]+|[-+*/^()]", text.upper())
+        self.i = 0
+        self.q = q
+
+    def value(self) -> float:
+        v = self.expr()
+        if self.i != len(self.toks):
+            raise ReferenceError(f"formula: unexpected {self.toks[self.i:]}")
+        return v
+
+    def peek(self) -> str | None:
+        return self.toks[self.i] if self.i < len(self.toks) else None
+
+    def take(self) -> str:
+        self.i += 1
+        return self.toks[self.i - 1]
+
+    def expr(self) -> float:
+        v = self.term()
+        while self.peek() in ("+", "-"):
+            v = v + self.term() if self.take() == "+" else v - self.term()
+        return v
+
+    def term(self) -> float:
+        v = self.power()
+        while self.peek() in ("*", "/"):
+            v = v * self.power() if self.take() == "*" else v / self.power()
+        return v
+
+    def power(self) -> float:
+        v = self.unary()
+        if self.peek() == "^":
+            self.take()
+            return v ** self.power()
+        return v
+
+    def unary(self) -> float:
+        t = self.take()
+        if t in ("+", "-"):
+            v = self.unary()
+            return -v if t == "-" else v
+        if t == "(":
+            v = self.expr()
+            self.take()
+            return v
+        if t in self._FUNCS:
+            return float(self._FUNCS[t](self.unary()))
+        if t == "PI":
+            return math.pi
+        if t.startswith("Q"):
+            return self.q.get(t, 0.0)
+        return float(t)
+
+
+def _val(text: str, q: dict) -> float:
+    """A word value: a number or a Q parameter, with sign (``+Q11``, ``-Q5``, ``-2.5``)."""
+    return _Formula(text, q).value()
+
+
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX)?)")
+
+
+def _words(rest: str, q: dict) -> dict[str, float | str]:
+    s = re.sub(r"\s+", "", rest.upper())
+    out: dict[str, float | str] = {}
+    pos = 0
+    for m in _WORD.finditer(s):
+        if m.start() != pos:
+            raise ReferenceError(f"unread text {s[pos:m.start()]!r}")
+        pos = m.end()
+        key, v = m.group(1), m.group(2)
+        if key == "M":
+            out.setdefault("M", [])
+            out["M"].append(int(v))
+        elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX"):
+            out[key] = v
+        else:
+            out[key] = _val(v, q)
+    if pos != len(s):
+        raise ReferenceError(f"unread text {s[pos:]!r}")
+    return out
+
+
+class _Tnc:
+    """Machine state: positions in machine coordinates [mm]."""
+
+    def __init__(self, context):
+        self.ctx = context
+        self.pos = np.array(context.home, float)
+        self.scale = 1.0
+        self.shift = np.zeros(3)
+        self.length = 0.0
+        self.radius = 0.0
+        self.comp = False
+        self.entry = False
+        self.tool_defs: dict[int, tuple[float, float]] = {}
+        self.pole = np.zeros(2)
+        self.q: dict[str, float] = {}
+        self.cycle: tuple | None = None
+        self.out: list[Expected] = []
+        self.last_dir: np.ndarray | None = None
+
+    def origin(self) -> np.ndarray:
+        o = np.array(self.ctx.offset("G54"), float) + self.shift
+        o[2] += self.length
+        return o
+
+    def prog(self) -> np.ndarray:
+        return self.pos - self.origin()
+
+    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None) -> None:
+        start = self.pos.copy()
+        if self.comp and self.radius > 0 and kind != "dwell":
+            element = ("line", start, end.copy()) if centre is None else \
+                ("arc", centre, float(np.hypot(*(end - centre)[:2])), (0, 1), start)
+            self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.radius, rows="last",
+                                     element=element, entry=self.entry))
+            self.entry = False
+        else:
+            slack = 0.0
+            if centre is not None:
+                rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end))
+                chord = float(np.hypot(*(end - start)[:2]))
+                slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
+            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre,
+                                     centre_tolerance=1e-6 + slack))
+        if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
+            d = np.array([*(end - start)[:2], 0.0])
+            self.last_dir = None if centre is not None else d / np.linalg.norm(d)
+        self.pos = end.copy()
+
+    def target(self, w: dict) -> np.ndarray:
+        """Machine end point of the axis words (M91/M92 and I words)."""
+        ms = w.get("M", [])
+        if 91 in ms or 92 in ms:
+            base = np.zeros(3) if 91 in ms else np.array(self.ctx.home, float)
+            end = self.pos.copy()
+            for i, a in enumerate("XYZ"):
+                if a in w:
+                    end[i] = base[i] + w[a] * self.scale
+            return end
+        p = self.prog()
+        for i, a in enumerate("XYZ"):
+            if a in w:
+                p[i] = w[a] * self.scale
+            if "I" + a in w:
+                p[i] += w["I" + a] * self.scale
+        return p + self.origin()
+
+
+def _comp_words(t: _Tnc, w: dict) -> None:
+    if "RL" in w or "RR" in w:
+        t.entry = not t.comp
+        t.comp = True
+    elif "R0" in w:
+        t.comp = False
+
+
+def _line_block(t: _Tnc, line: int, w: dict) -> None:
+    """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
+    _comp_words(t, w)
+    axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
+    kind = "rapid" if "FMAX" in w else "feed"
+    if axes:
+        t.emit(line, kind, t.target(w))
+    elif "MB" not in w and 99 in w.get("M", []):
+        t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
+    if "MB" in w:
+        if w["MB"] != "MAX":
+            raise ReferenceError("M140 MB with a distance")
+        end = t.pos.copy()
+        end[2] = max(t.ctx.home[2], t.pos[2])  # a retract: never down (home stands in for the limit)
+        t.emit(line, "rapid", end, rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
+    if 99 in w.get("M", []):
+        _run_cycle(t, line)
+
+
+def _pole(t: _Tnc, w: dict) -> None:
+    p = t.prog()
+    for i, a in enumerate("XY"):
+        if a in w:
+            t.pole[i] = w[a] * t.scale
+        elif "I" + a in w:
+            t.pole[i] = p[i] + w["I" + a] * t.scale
+        else:
+            t.pole[i] = p[i]
+
+
+def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
+    """``C`` about the pole to X/Y, or ``CP`` by the angle IPA/PA; a Z word makes a helix."""
+    _comp_words(t, w)
+    p = t.prog()
+    if polar:
+        r = math.hypot(p[0] - t.pole[0], p[1] - t.pole[1])
+        a = math.degrees(math.atan2(p[1] - t.pole[1], p[0] - t.pole[0]))
+        a = a + w["IPA"] if "IPA" in w else w["PA"]
+        if "PR" in w or "IPR" in w:
+            raise ReferenceError("CP with a radius word")
+        end_p = p.copy()
+        end_p[:2] = t.pole + r * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
+        if "Z" in w:
+            end_p[2] = w["Z"] * t.scale
+        if "IZ" in w:
+            end_p[2] += w["IZ"] * t.scale
+        end = end_p + t.origin()
+    else:
+        end = t.target(w)
+    centre = np.array([t.pole[0], t.pole[1], t.prog()[2]]) + t.origin()
+    t.emit(line, "arc_ccw" if w.get("DR", "+") == "+" else "arc_cw", end, centre=centre)
+
+
+def _approach(t: _Tnc, line: int, w: dict) -> None:
+    """``APPR LT``: the last of its moves ends at the contour's first point P_A."""
+    _comp_words(t, w)
+    t.emit(line, "feed", t.target(w), rows="last")
+
+
+def _depart(t: _Tnc, line: int, w: dict) -> None:
+    """``DEP LT LEN``: straight on along the last element's direction by LEN."""
+    if t.last_dir is None:
+        raise ReferenceError("DEP LT without a preceding element")
+    end = t.pos + t.last_dir * w["LEN"] * t.scale
+    if "R0" in w:
+        t.comp = False
+    t.emit(line, "feed", end, rows="last")
+
+
+def _last_number(text: str, q: dict) -> float:
+    m = re.findall(r"[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)", text)
+    if not m:
+        raise ReferenceError(f"no value in {text!r}")
+    return _val(m[-1].replace(" ", ""), q)
+
+
+def _cycle_def(t: _Tnc, line: int, text: str) -> None:
+    """``CYCL DEF n.k ...`` (and the SolidWorks spelling ``CYCLE DEF``)."""
+    m = re.match(r"CYCLE? DEF\s*(\d+)(?:\.(\d+))?\s*(.*)$", text)
+    number, sub, rest = int(m.group(1)), int(m.group(2) or 0), m.group(3)
+    if number == 7 and sub > 0:
+        w = _words(rest, t.q)
+        for i, a in enumerate("XYZ"):
+            if a in w:
+                t.shift[i] = w[a] * t.scale
+            if "I" + a in w:
+                t.shift[i] += w["I" + a] * t.scale
+    elif number == 9 and sub == 1:
+        t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy()))
+    elif number == 32 or (number in (7, 9) and sub == 0):
+        pass
+    elif number == 1:
+        if sub == 0:
+            t.cycle = ("1", {})
+        elif sub in (1, 2, 3, 4, 5):
+            t.cycle[1][sub] = _last_number(rest, t.q)
+    elif number == 200 and sub == 0:
+        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q2\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        t.cycle = ("200", params)
+    else:
+        raise ReferenceError(f"CYCL DEF {number}")
+
+
+def _move_z(t: _Tnc, line: int, kind: str, z: float, *, optional: bool = False) -> None:
+    """A tool-axis move to program height ``z``."""
+    end = t.pos.copy()
+    end[2] = z * t.scale + t.origin()[2]
+    rows = "optional" if optional and abs(end[2] - t.pos[2]) <= _EPS * max(1.0, abs(end[2])) else "one"
+    t.emit(line, kind, end, rows=rows)
+
+
+def _dwell(t: _Tnc, line: int, seconds: float) -> None:
+    t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one" if seconds > 0 else "optional"))
+
+
+def _run_cycle(t: _Tnc, line: int) -> None:
+    """The defined machining cycle at the current position."""
+    if t.cycle is None:
+        raise ReferenceError("cycle call without a machining cycle")
+    kind, p = t.cycle
+    start = t.prog()[2] / t.scale
+    if kind == "1":
+        setup, depth, plunge, dwell = abs(p[1]), p[2], abs(p[3]), p[4]
+        sgn = -1.0 if depth < 0 else 1.0
+        surface = start + sgn * setup
+        bottom = surface + depth
+        advance = 0.6 if abs(depth) * t.scale <= 30 else min(abs(depth) * t.scale / 50, 7.0)
+        advance /= t.scale
+        levels = _levels(surface, bottom, sgn, plunge)
+        for k, z in enumerate(levels):
+            if k:
+                _move_z(t, line, "rapid", start)
+                _move_z(t, line, "rapid", levels[k - 1] - sgn * advance)
+            _move_z(t, line, "feed", z)
+        _dwell(t, line, dwell)
+        _move_z(t, line, "rapid", start)
+        return
+    surface, setup, depth = p["Q203"], p["Q200"], p["Q201"]
+    plunge, second = p["Q202"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    levels = _levels(surface, surface + depth, sgn, plunge)
+    for k, z in enumerate(levels):
+        if k:
+            _move_z(t, line, "rapid", clear)
+            _dwell(t, line, p.get("Q210", 0.0))
+            _move_z(t, line, "rapid", levels[k - 1] - sgn * setup)
+        _move_z(t, line, "feed", z)
+    _dwell(t, line, p.get("Q211", 0.0))
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[float]:
+    """The plunging depths from the surface to the bottom (the last one the bottom)."""
+    levels, k = [], 1
+    while plunge > 0 and (surface + sgn * k * plunge - bottom) * sgn < -_EPS:
+        levels.append(surface + sgn * k * plunge)
+        k += 1
+    return [*levels, bottom]
+
+
+def _tool(t: _Tnc, text: str) -> None:
+    """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``."""
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+)\s*(.*)$", text)
+    if m is None:
+        raise ReferenceError(f"tool block {text!r}")
+    number, rest = int(m.group(2)), m.group(3).upper()
+
+    def word(name: str) -> float:
+        w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
+
+    if m.group(1) == "DEF":
+        t.tool_defs[number] = (word("L"), word("R"))
+        return
+    axis = re.match(r"\s*([XYZ])\b", rest)
+    if axis and axis.group(1) != "Z":
+        raise ReferenceError(f"tool axis {axis.group(1)}")
+    if number in t.tool_defs:
+        length, radius = t.tool_defs[number]
+    else:
+        tool = t.ctx.tool(number)
+        length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
+    t.length = length + word("DL")
+    t.radius = radius + word("DR")
+
+
+_FN_CMP = {"EQU": lambda a, b: a == b, "NE": lambda a, b: a != b, "GT": lambda a, b: a > b,
+           "LT": lambda a, b: a < b}
+
+
+def _fn(t: _Tnc, text: str) -> str | None:
+    """``FN n: ...``; returns the label of a jump taken, else None."""
+    m = re.match(r"FN\s*(\d+)\s*:?\s*(.*)$", text)
+    n, rest = int(m.group(1)), m.group(2)
+    if n in (0, 1, 2, 3, 4):
+        q, expr = rest.split("=", 1)
+        if n:
+            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*[-+*/]\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
+            va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
+            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb}[n]
+        else:
+            value = _Formula(expr, t.q).value()
+        t.q[q.strip().upper()] = value
+    elif n in (9, 10, 11, 12):
+        m2 = re.match(r"IF\s*([-+]?\s*[\w.]+)\s*(EQU|NE|GT|LT)\s*([-+]?\s*[\w.]+)\s*GOTO\s*LBL\s*(\S+)", rest)
+        a, op, b, label = m2.groups()
+        if _FN_CMP[op](_val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)):
+            return label.strip('"')
+    elif n == 15:
+        pass
+    elif n == 18:
+        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*IDX\s*(\d+)", rest)
+        q, ident, nr, idx = m2.groups()
+        if nr != "1" or ident not in ("240", "270"):
+            raise ReferenceError(f"FN 18 ID{ident} NR{nr}")
+        pos = t.pos if ident == "240" else t.prog()
+        t.q[q] = float(pos[int(idx) - 1]) / t.scale
+    else:
+        raise ReferenceError(f"FN {n}")
+    return None
+
+
+def _label_of(text: str) -> str:
+    return re.match(r"LBL\s*(\S+)", text).group(1).strip('"')
+
+
+def heidenhain_reference(text: str, context) -> list[Expected]:
+    """The expected ``--blocks`` rows of a Heidenhain conversational program run against ``context``.
+
+    Parameters
+    ----------
+    text : str
+        The program.
+    context : interpolators.context.MachineContext
+        The tables the reader is given (preset ``G54``, tools, home).
+
+    Returns
+    -------
+    list of Expected
+        One entry per motion or dwell, in order.
+
+    Raises
+    ------
+    ReferenceError
+        The program uses a function this reference does not model.
+    """
+    blocks = _blocks(text)
+    labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
+    t = _Tnc(context)
+    counters: dict[int, int] = {}
+    stack: list[int] = []
+    pc, steps = 0, 0
+    while pc < len(blocks):
+        steps += 1
+        if steps > 2_000_000:
+            raise ReferenceError("more than 2e6 blocks executed")
+        line, b = blocks[pc]
+        up = b.upper()
+        nxt = pc + 1
+        if up.startswith("END PGM"):
+            break
+        if up.startswith("BEGIN PGM"):
+            t.scale = 25.4 if up.split()[-1] == "INCH" else 1.0
+        elif up.startswith("CALL LBL"):
+            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(\d+))?", up)
+            target = labels[m.group(1).strip('"')]
+            if m.group(2) is None:
+                stack.append(pc + 1)
+                nxt = target + 1
+            else:
+                left = counters.get(pc, int(m.group(2)))
+                if left > 0:
+                    counters[pc] = left - 1
+                    nxt = target + 1
+                else:
+                    counters.pop(pc, None)
+        elif up.startswith("LBL"):
+            if _label_of(up) == "0" and stack:
+                nxt = stack.pop()
+        elif up.startswith("FN"):
+            label = _fn(t, b)
+            if label is not None:
+                nxt = labels[label] + 1
+        elif re.match(r"Q\d+\s*=", up):
+            q, expr = up.split("=", 1)
+            t.q[q.strip()] = _Formula(expr, t.q).value()
+        elif up.startswith("TOOL"):
+            _tool(t, up)
+        elif re.match(r"CYCLE? DEF", up):
+            _cycle_def(t, line, up)
+        elif up.startswith("CYCL CALL"):
+            if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
+                raise ReferenceError(up)
+            _run_cycle(t, line)
+        elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
+            raise ReferenceError(f"block {b!r}")
+        if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):
+            break
+        pc = nxt
+    return t.out
+
+
+def _motion(t: _Tnc, line: int, up: str) -> bool | None:
+    """A path block; None when ``up`` is none."""
+    for key, fn in (("APPR LT", _approach), ("DEP LT", _depart)):
+        if up.startswith(key):
+            fn(t, line, _words(up[len(key):], t.q))
+            return True
+    head, _, rest = up.partition(" ")
+    if head == "L":
+        _line_block(t, line, _words(rest, t.q))
+    elif head == "CC":
+        _pole(t, _words(rest, t.q))
+    elif head in ("C", "CP"):
+        _arc(t, line, _words(rest, t.q), polar=head == "CP")
+    elif head in ("CR", "CT", "LP", "RND", "CHF", "APPR", "DEP"):
+        raise ReferenceError(f"{head} block")
+    else:
+        return None
+    return True

@@ -1,0 +1,860 @@
+"""An independent reference for where the blocks of an ISO (RS274/NGC) program end.
+
+Test code only: it imports nothing of the readers (``interpolators.iso*``), only the machine
+context's tables (:class:`interpolators.context.MachineContext`, the same offsets, tools, home and
+reference positions the reader is given). It is written from the LinuxCNC G-code documentation
+(LinuxCNC/linuxcnc ``docs/src/gcode/g-code.adoc``, ``overview.adoc``, ``coordinates.adoc``,
+``o-code.adoc``; https://linuxcnc.org/docs/html/gcode/g-code.html) and, for ``M98``/``M99``, the
+Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call"):
+
+- Lines: ``( )`` and ``;`` comments, ``/`` block delete (off: the block runs), ``N`` numbers,
+  ``%`` marks, spaces ignored, case ignored (overview.adoc "Format of a line").
+- Order of execution on a line (overview.adoc "G-code order of execution"): parameter settings
+  (read before any is set), dwell, plane, units, cutter compensation, tool length, coordinate
+  system, distance mode, retract mode, G28/G30/G10/G92, motion (as modified by G53), stops.
+- Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool length along
+  Z (``coordinates.adoc``; LinuxCNC applies the XY rotation of ``G10 L2 R`` about the coordinate
+  system origin).
+- G28/G30: with axis words a rapid to that point (program coordinates, with offsets), then a rapid
+  of the named axes to the home / second reference position; without axis words, every axis to it
+  (g-code.adoc "G28, G28.1"). G53: the named axes go to machine coordinates.
+- Canned cycles G73, G81-G89 (g-code.adoc "G80-G89 Canned Cycles", "G73", "G83", "G98, G99"):
+  preliminary rapid to R when below it (once), per repeat a rapid in XY, a rapid to R, the feed
+  to the bottom (pecks of Q for G73/G83 with the 0.254 mm / 0.010 in clearance, G83 back to R
+  between pecks), dwell for G82/G89, the feed out for G85/G89, and the retract to clear Z
+  (G98: the Z before the series if above R, else R; G99: R). In G91, X/Y/R are increments from
+  the current position and Z from R; polar ``@ ^`` repeats add to the polar position.
+- Parameters ``#n``, ``#<local>``, ``#<_global>``, expressions in ``[ ]`` with the documented
+  precedence (``**``; ``* / MOD``; ``+ -``; comparisons; ``AND OR XOR``) and functions
+  (overview.adoc "Expressions", "Unary Operation Value"); O-words sub/endsub/call/return,
+  if/elseif/else/endif, while/endwhile, do/while, repeat/endrepeat, break/continue
+  (o-code.adoc), call arguments in ``#1..#30``, return value in ``#<_value>``.
+- Polar ``@ ^`` (overview.adoc "Polar Coordinates"): from the XY zero of the current system,
+  cumulative in G91.
+- G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
+- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`.
+
+What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
+with the reader's ``--blocks`` rows.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+
+import numpy as np
+
+__all__ = ["Expected", "ReferenceError", "iso_reference"]
+
+#: G73/G83 peck clearance of LinuxCNC's defaults (g-code.adoc "G73", "G83") [program units: in].
+PECK_CLEARANCE_IN = 0.010
+
+
+#: Relative rounding allowance when comparing two program positions (is Z below R?) [mm/mm].
+_EPS = 1e-9
+
+
+class ReferenceError(Exception):
+    """The program uses something this reference does not model (the test reports it)."""
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Expected:
+    """What one programmed motion produces in the ``--blocks`` table.
+
+    Attributes
+    ----------
+    line : int
+        1-based source line of the block.
+    kind : str
+        ``rapid``, ``feed``, ``arc_cw``, ``arc_ccw`` or ``dwell``; ``None`` when any kind is right
+        (a compensated block may become a line and a corner arc).
+    end : ndarray (3,)
+        End point in machine coordinates [mm] (for a dwell: where the tool stands).
+    tolerance : float
+        How far the reader's end may be from ``end`` [mm]: 0 (exact, up to rounding) except for
+        blocks under G41/G42, where it is the tool radius (the compensated end is one radius
+        from the programmed point, and a corner arc inserted at an outside corner ends there too).
+    rows : str
+        ``"one"``: exactly one row; ``"last"``: one or more rows with this line whose last ends at
+        ``end`` (spline chords, compensated blocks with inserted corner arcs); ``"optional"``: one
+        row or none (a zero-length move LinuxCNC may leave out, e.g. a cycle's rapid to R when
+        already at R).
+    centre : ndarray (3,) or None
+        Arc centre [mm, machine]; its two in-plane coordinates are checked.
+    centre_tolerance : float
+        How far the reader's centre may be from ``centre`` [mm]: 1 um, plus, when the programmed
+        centre is not equidistant from the start and the end (CAM output rounded to 3-4
+        decimals: radii ``rs`` and ``re`` differ), ``2 |rs - re| max(rs, re) / chord``: LinuxCNC
+        then keeps the centre and makes a spiral, a reader may fit an arc through both ends with
+        its centre on their bisector, which lies ``|rs^2 - re^2| / (2 chord)`` from the centre.
+    plane : tuple of int
+        Indices of the arc plane's axes (G17: x, y; G18: z, x; G19: y, z).
+    element : tuple or None
+        Under G41/G42: the programmed element, ``("line", start, end)`` or ``("arc", centre, radius,
+        plane, start)`` [mm, machine]. The compensated end must lie one tool radius from it (within
+        1 um: the offset path runs at the radius from its element, at an inside corner the
+        intersection of two offsets and at an outside corner the offset of the end; for an arc in
+        its plane); for the entry move (``entry``) at most one radius from it. A compensated arc's
+        end keeps its programmed height along the plane normal, within half the block's travel
+        along it (a helix trimmed at an inside corner ends a little short of its height).
+    entry : bool
+        The first move under G41/G42 (LinuxCNC's entry move, from the uncompensated point).
+    """
+
+    line: int
+    kind: str | None
+    end: np.ndarray
+    tolerance: float = 0.0
+    rows: str = "one"
+    centre: np.ndarray | None = None
+    centre_tolerance: float = 0.0
+    plane: tuple[int, int] = (0, 1)
+    element: tuple | None = None
+    entry: bool = False
+
+
+# ----------------------------------------------------------------------------------------------
+# Lines and expressions
+
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
+_FUNCS = ("abs", "acos", "asin", "atan", "cos", "exp", "fix", "fup", "round", "ln", "sin", "sqrt", "tan",
+          "exists")
+_BINOPS = [("**", 4), ("*", 3), ("/", 3), ("mod", 3), ("+", 2), ("-", 2), ("eq", 1), ("ne", 1), ("gt", 1),
+           ("ge", 1), ("lt", 1), ("le", 1), ("and", 0), ("or", 0), ("xor", 0)]
+
+
+def clean_line(raw: str) -> str:
+    """The line without comments and spaces, lower case (overview.adoc: spaces and case ignored)."""
+    out, depth = [], 0
+    for ch in raw:
+        if depth == 0 and ch == ";":
+            break
+        if ch == "(":
+            depth += 1
+        elif ch == ")" and depth:
+            depth -= 1
+        elif depth == 0 and not ch.isspace():
+            out.append(ch)
+    return "".join(out).lower()
+
+
+class _Eval:
+    """Recursive-descent reader of real values on one cleaned line, against the parameters."""
+
+    def __init__(self, text: str, params: _Params):
+        self.s = text
+        self.i = 0
+        self.p = params
+
+    def peek(self, n: int = 1) -> str:
+        return self.s[self.i:self.i + n]
+
+    def expect(self, tok: str) -> None:
+        if not self.s.startswith(tok, self.i):
+            raise ReferenceError(f"expected {tok!r} at {self.s[self.i:self.i + 20]!r}")
+        self.i += len(tok)
+
+    def param_ref(self) -> str | int:
+        """After ``#``: the parameter's key (int or name)."""
+        self.expect("#")
+        if self.peek() == "<":
+            j = self.s.index(">", self.i)
+            name = self.s[self.i + 1:j]
+            self.i = j + 1
+            return name
+        return int(round(self.real()))
+
+    def real(self) -> float:
+        c = self.peek()
+        if c == "[":
+            return self.expr()
+        if c == "#":
+            return self.p.get(self.param_ref())
+        if c in "+-":
+            self.i += 1
+            v = self.real()
+            return -v if c == "-" else v
+        for f in _FUNCS:
+            if self.s.startswith(f, self.i) and self.s[self.i + len(f):self.i + len(f) + 1] == "[":
+                self.i += len(f)
+                return self.func(f)
+        m = _NUMBER.match(self.s, self.i)
+        if not m:
+            raise ReferenceError(f"no value at {self.s[self.i:self.i + 20]!r}")
+        self.i = m.end()
+        return float(m.group())
+
+    def func(self, f: str) -> float:
+        if f == "exists":
+            self.expect("[")
+            key = self.param_ref()
+            self.expect("]")
+            return 1.0 if self.p.exists(key) else 0.0
+        a = self.expr()
+        if f == "atan":
+            self.expect("/")
+            b = self.expr()
+            return math.degrees(math.atan2(a, b))
+        table = {"abs": abs, "acos": lambda v: math.degrees(math.acos(v)),
+                 "asin": lambda v: math.degrees(math.asin(v)), "cos": lambda v: math.cos(math.radians(v)),
+                 "exp": math.exp, "fix": math.floor, "fup": math.ceil, "round": lambda v: float(math.floor(v + 0.5)),
+                 "ln": math.log, "sin": lambda v: math.sin(math.radians(v)), "sqrt": math.sqrt,
+                 "tan": lambda v: math.tan(math.radians(v))}
+        return float(table[f](a))
+
+    def expr(self) -> float:
+        """``[ value op value ... ]`` with LinuxCNC's precedence, left to right within a level."""
+        self.expect("[")
+        vals, ops = [self.real()], []
+        while self.peek() != "]":
+            tok, prec = next(((t, p) for t, p in _BINOPS if self.s.startswith(t, self.i)), (None, None))
+            if tok is None:
+                raise ReferenceError(f"bad operator at {self.s[self.i:self.i + 20]!r}")
+            self.i += len(tok)
+            while ops and ops[-1][1] >= prec:
+                _reduce(vals, ops)
+            ops.append((tok, prec))
+            vals.append(self.real())
+        self.i += 1
+        while ops:
+            _reduce(vals, ops)
+        return vals[0]
+
+
+def _reduce(vals: list[float], ops: list) -> None:
+    b, a = vals.pop(), vals.pop()
+    op = ops.pop()[0]
+    res = {"**": lambda: a ** b, "*": lambda: a * b, "/": lambda: a / b, "mod": lambda: math.fmod(a, b) % abs(b)
+           if b else math.nan, "+": lambda: a + b, "-": lambda: a - b, "eq": lambda: float(a == b),
+           "ne": lambda: float(a != b), "gt": lambda: float(a > b), "ge": lambda: float(a >= b),
+           "lt": lambda: float(a < b), "le": lambda: float(a <= b), "and": lambda: float(bool(a) and bool(b)),
+           "or": lambda: float(bool(a) or bool(b)), "xor": lambda: float(bool(a) != bool(b))}[op]()
+    vals.append(res)
+
+
+class _Params:
+    """Numbered parameters (global), named ``#<_global>`` and ``#<local>`` (per call level)."""
+
+    def __init__(self):
+        self.numbered: dict[int, float] = {}
+        self.globals: dict[str, float] = {}
+        self.frames: list[dict] = [{}]
+
+    def get(self, key: str | int) -> float:
+        if isinstance(key, int):
+            return self.numbered.get(key, 0.0)
+        if key.startswith("_"):
+            if key not in self.globals:
+                raise ReferenceError(f"global #<{key}> read before it is set")
+            return self.globals[key]
+        if key not in self.frames[-1]:
+            raise ReferenceError(f"#<{key}> read before it is set")
+        return self.frames[-1][key]
+
+    def exists(self, key: str | int) -> bool:
+        if isinstance(key, int):
+            return True
+        return key in (self.globals if key.startswith("_") else self.frames[-1])
+
+    def set(self, key: str | int, value: float) -> None:
+        if isinstance(key, int):
+            self.numbered[key] = value
+        elif key.startswith("_"):
+            self.globals[key] = value
+        else:
+            self.frames[-1][key] = value
+
+
+@dataclasses.dataclass
+class _Line:
+    """One cleaned line: O-word statement or words and parameter settings (still unevaluated text)."""
+
+    number: int
+    text: str
+    oname: str | None = None
+    okey: str | None = None
+    orest: str = ""
+
+
+_OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|"
+                    r"endrepeat|break|continue)?(.*)$")
+
+
+def _lines(text: str) -> list[_Line]:
+    out = []
+    for no, raw in enumerate(text.splitlines(), start=1):
+        s = clean_line(raw)
+        if s.startswith("/"):
+            s = s[1:]
+        s = re.sub(r"^n\d+(\.\d*)?", "", s)
+        m = _OWORD.match(s)
+        if m:
+            out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3)))
+        else:
+            out.append(_Line(no, s))
+    return out
+
+
+def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
+    """Words (letter -> values in order) and parameter settings of a line, values evaluated."""
+    ev = _Eval(line, params)
+    words: dict[str, list[float]] = {}
+    sets = []
+    while ev.i < len(ev.s):
+        c = ev.peek()
+        if c == "#":
+            key = ev.param_ref()
+            ev.expect("=")
+            sets.append((key, ev.real()))
+        elif c in "@^":
+            ev.i += 1
+            words.setdefault(c, []).append(ev.real())
+        elif c.isalpha():
+            ev.i += 1
+            words.setdefault(c, []).append(ev.real())
+        elif c == "%":
+            ev.i += 1
+        else:
+            raise ReferenceError(f"unexpected {ev.s[ev.i:ev.i + 20]!r}")
+    return words, sets
+
+
+# ----------------------------------------------------------------------------------------------
+# O-word structure
+
+def _structure(lines: list[_Line]) -> dict:
+    """Matching ends of the O-word blocks: sub, if/elseif/else, while, do/while, repeat."""
+    subs, ends, branches, owner, fanuc = {}, {}, {}, {}, {}
+    stack: list[tuple[str, str, int]] = []
+    for i, ln in enumerate(lines):
+        k, name = ln.okey, ln.oname
+        if name is None:
+            continue
+        if k is None:
+            fanuc[name] = i
+        elif k in ("sub", "if", "repeat") or (k == "while" and not (stack and stack[-1][:2] == (name, "do"))) \
+                or k == "do":
+            stack.append((name, k, i))
+            if k == "if":
+                branches[i] = []
+        elif k == "while":  # closes a do
+            _, _, j = stack.pop()
+            ends[j] = i
+        elif k in ("endsub", "endif", "endwhile", "endrepeat"):
+            while stack and stack[-1][0] != name:
+                stack.pop()
+            _, opener, j = stack.pop()
+            ends[j] = i
+            if opener == "sub":
+                subs[name] = j
+            if opener == "if":
+                for b in branches[j]:
+                    ends[b] = i
+        elif k in ("elseif", "else"):
+            j = next(s[2] for s in reversed(stack) if s[0] == name and s[1] == "if")
+            branches[j].append(i)
+        elif k in ("break", "continue"):
+            owner[i] = next(s[2] for s in reversed(stack) if s[0] == name and s[1] in ("while", "do", "repeat"))
+    return {"subs": subs, "ends": ends, "branches": branches, "owner": owner, "fanuc": fanuc, "lines": lines}
+
+
+# ----------------------------------------------------------------------------------------------
+# The machine
+
+_CYCLES = (73, 81, 82, 83, 85, 89)
+_WCS = {540: "G54", 550: "G55", 560: "G56", 570: "G57", 580: "G58", 590: "G59", 591: "G59.1", 592: "G59.2",
+        593: "G59.3"}
+
+
+class _Machine:
+    """Modal state of the control; positions in machine coordinates [mm]."""
+
+    def __init__(self, context):
+        self.ctx = context
+        self.pos = np.array(context.home, float)
+        self.scale = 25.4 if context.dialect.default_units == "inch" else 1.0
+        self.incremental = False
+        self.motion: int | None = None
+        self.linear: int | None = None
+        self.plane = 17
+        self.wcs = "G54"
+        self.offsets = {code: np.array(context.offset(code), float) for code in _WCS.values()}
+        self.rotation = dict.fromkeys(_WCS.values(), 0.0)
+        self.g92 = np.zeros(3)
+        self.tool_length = 0.0
+        self.selected = self.loaded = 0
+        self.comp_radius: float | None = None
+        self.comp_entry = False
+        self.arc_absolute = False
+        self.retract = 98
+        self.cycle_clear: float | None = None
+        self.sticky: dict[str, float] = {}
+        self.out: list[Expected] = []
+
+    # coordinates ------------------------------------------------------------------------------
+    def _rot(self, v: np.ndarray, sign: float) -> np.ndarray:
+        a = math.radians(sign * self.rotation[self.wcs])
+        c, s = math.cos(a), math.sin(a)
+        return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
+
+    def to_machine(self, prog: np.ndarray) -> np.ndarray:
+        """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
+        m = self._rot(prog + self.g92, 1.0) + self.offsets[self.wcs]
+        m[2] += self.tool_length
+        return m
+
+    def to_program(self, machine: np.ndarray) -> np.ndarray:
+        v = machine - self.offsets[self.wcs]
+        v[2] -= self.tool_length
+        return self._rot(v, -1.0) - self.g92
+
+    def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
+        """Program coordinates of the block's end from X/Y/Z (and polar) words."""
+        inc = self.incremental if incremental is None else incremental
+        cur = self.to_program(self.pos)
+        t = cur.copy()
+        for i, a in enumerate("xyz"):
+            if a in words:
+                v = words[a][-1] * self.scale
+                t[i] = cur[i] + v if inc else v
+        if "@" in words or "^" in words:
+            r, ang = math.hypot(cur[0], cur[1]), math.degrees(math.atan2(cur[1], cur[0]))
+            if inc:
+                r += words.get("@", [0.0])[-1] * self.scale
+                ang += words.get("^", [0.0])[-1]
+            else:
+                r = words["@"][-1] * self.scale if "@" in words else r
+                ang = words["^"][-1] if "^" in words else ang
+            t[0], t[1] = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
+        return t
+
+    def emit(self, line: int, kind: str | None, end: np.ndarray, *, rows: str = "one",
+             centre: np.ndarray | None = None, centre_tolerance: float = 0.0) -> None:
+        plane = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[self.plane]
+        if self.comp_radius and kind != "dwell":
+            if centre is None:
+                element = ("line", self.pos.copy(), end.copy())
+            else:
+                element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane, self.pos.copy())
+            self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
+                                     element=element, entry=self.comp_entry))
+            self.comp_entry = False
+        else:
+            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre, plane=plane,
+                                     centre_tolerance=centre_tolerance))
+        self.pos = end.copy()
+
+    def move(self, line: int, kind: str, prog: np.ndarray, *, optional: bool = False) -> None:
+        end = self.to_machine(prog)
+        rows = "optional" if optional and np.allclose(end, self.pos, atol=1e-12) else "one"
+        self.emit(line, kind, end, rows=rows)
+
+
+def _codes(words: dict, letter: str) -> list[int]:
+    """G or M codes of a line as integers x10 (``G59.1`` -> 591, ``G1`` -> 10)."""
+    return [int(round(v * 10)) for v in words.get(letter, [])]
+
+
+def _modes(m: _Machine, g: list[int], words: dict) -> None:
+    """Steps 12-19 of the order of execution: plane, units, compensation, tool length, system, modes."""
+    for code in g:
+        if code in (170, 180, 190):
+            m.plane = code // 10
+        elif code in (200, 210):
+            m.scale = 25.4 if code == 200 else 1.0
+    for code in g:
+        if code == 400:
+            m.comp_radius = None
+        elif code in (410, 420):
+            number = int(words["d"][-1]) if "d" in words else m.loaded
+            tool = m.ctx.tool(number)
+            m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
+            m.comp_entry = True
+        elif code in (411, 421):
+            raise ReferenceError("G41.1/G42.1 dynamic compensation")
+    for code in g:
+        if code == 430:
+            number = int(words["h"][-1]) if "h" in words else m.loaded
+            tool = m.ctx.tool(number)
+            length = tool.length if tool is not None else 0.0
+            m.tool_length = length
+        elif code == 490:
+            m.tool_length = 0.0
+        elif code in (431, 432, 440):
+            raise ReferenceError(f"G{code / 10:g} tool length mode")
+    for code in g:
+        if code in _WCS:
+            m.wcs = _WCS[code]
+        elif code in (900, 910):
+            m.incremental = code == 910
+        elif code in (901, 911):
+            m.arc_absolute = code == 901
+        elif code in (980, 990):
+            m.retract = code // 10
+
+
+def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
+    """Step 20: G28/G30, G10, G92 family. True when the axis words were used here."""
+    for code in g:
+        if code in (280, 300):
+            home = m.ctx.home if code == 280 else m.ctx.reference2
+            axes = [i for i, a in enumerate("xyz") if a in words]
+            if axes:
+                m.move(line, "rapid", m.target(words), optional=True)
+            end = m.pos.copy()
+            for i in axes or range(3):
+                end[i] = home[i]
+            m.emit(line, "rapid", end)
+            return True
+        if code in (281, 301, 531):
+            raise ReferenceError(f"G{code / 10:g}")
+        if code == 100:
+            _g10(m, words)
+            return True
+        if code == 920:
+            prog_no_g92 = m.to_program(m.pos) + m.g92
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    m.g92[i] = prog_no_g92[i] - words[a][-1] * m.scale
+            return True
+        if code in (921, 922):
+            m.g92 = np.zeros(3)
+        elif code == 923:
+            raise ReferenceError("G92.3")
+    return False
+
+
+def _g10(m: _Machine, words: dict) -> None:
+    """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
+    kind = int(words["l"][-1])
+    p = int(words["p"][-1]) if "p" in words else 0
+    if kind not in (2, 20):
+        raise ReferenceError(f"G10 L{kind}")
+    code = m.wcs if p == 0 else list(_WCS.values())[p - 1]
+    here = m.to_program(m.pos) + m.g92  # current position in the active system, without G92
+    base = m.offsets[m.wcs] if kind == 20 else None
+    for i, a in enumerate("xyz"):
+        if a in words:
+            v = words[a][-1] * m.scale
+            if kind == 2:
+                m.offsets[code][i] = v
+            else:
+                m.offsets[code][i] = base[i] + here[i] - v
+    if "r" in words:
+        m.rotation[code] = words["r"][-1]
+
+
+def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:
+    """Step 21: the motion of the active mode (as modified by G53)."""
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 800) or c // 10 in _CYCLES]
+    for code in explicit:
+        m.motion = code
+        if code // 10 not in _CYCLES:
+            m.cycle_clear = None
+        if code == 800:  # Fanuc: the cycles are group 09, G80 gives back the G0-G3 mode before them
+            m.motion = m.linear
+        elif code // 10 not in _CYCLES:
+            m.linear = code
+    if 530 in g and axes:
+        if m.motion not in (0, 10):
+            raise ReferenceError("G53 without G0/G1 motion")
+        end = m.pos.copy()
+        for i, a in enumerate("xyz"):
+            if a in words:
+                end[i] = words[a][-1] * m.scale
+        m.emit(line, "rapid" if m.motion == 0 else "feed", end)
+        return
+    arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
+    if not (axes or arc_alone) or m.motion is None:
+        return
+    if m.motion // 10 in _CYCLES:
+        _cycle(m, line, words)
+        return
+    end = m.to_machine(m.target(words))
+    if m.motion in (0, 10):
+        m.emit(line, "rapid" if m.motion == 0 else "feed", end)
+    elif m.motion in (20, 30) and m.rotation[m.wcs] and m.plane != 17:
+        # an XZ/YZ arc of a system rotated about Z lies in no axis plane: the reader runs it as
+        # chords (as LinuxCNC's canon does for such arcs); the end of the last one is checked
+        m.emit(line, "feed", end, rows="last")
+    elif m.motion in (20, 30):
+        centre = _centre(m, words, end)
+        a, b = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+        rs, re_ = (math.hypot(p[a] - centre[a], p[b] - centre[b]) for p in (m.pos, end))
+        chord = math.hypot(end[a] - m.pos[a], end[b] - m.pos[b])
+        slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
+        m.emit(line, "arc_cw" if m.motion == 20 else "arc_ccw", end, centre=centre, centre_tolerance=1e-6 + slack)
+    else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
+        m.emit(line, "feed", end, rows="last")
+
+
+def _centre(m: _Machine, words: dict, end: np.ndarray) -> np.ndarray:
+    """Arc centre [mm, machine] (g-code.adoc "G2, G3 Arcs"): I J K offsets from the start (G91.1,
+    the default) or positions (G90.1); or R, the centre on the right of the chord for G2 with
+    R > 0, on the left for G3, the other side for R < 0 (the longer arc)."""
+    a, b = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+    start_p, end_p = m.to_program(m.pos), m.to_program(end)
+    centre = start_p.copy()
+    if "r" in words:
+        radius = words["r"][-1] * m.scale
+        chord = np.array([end_p[a] - start_p[a], end_p[b] - start_p[b]])
+        half = np.linalg.norm(chord) / 2
+        h = math.sqrt(max(radius * radius - half * half, 0.0))
+        unit = chord / (2 * half)
+        left = np.array([-unit[1], unit[0]])
+        side = (1.0 if m.motion == 30 else -1.0) * (1.0 if radius > 0 else -1.0)
+        mid = np.array([start_p[a], start_p[b]]) + chord / 2
+        centre[a], centre[b] = mid + side * h * left
+    else:
+        for i, k in enumerate("ijk"):
+            if i in (a, b):
+                v = words.get(k, [0.0])[-1] * m.scale
+                centre[i] = v if m.arc_absolute else start_p[i] + v
+    return m.to_machine(centre)
+
+
+def _cycle(m: _Machine, line: int, words: dict) -> None:
+    """One canned-cycle block (g-code.adoc "G80-G89 Canned Cycles"), XY plane."""
+    if m.plane != 17:
+        raise ReferenceError(f"canned cycle in plane G{m.plane}")
+    code = m.motion // 10
+    for k in "rzqp":
+        if k in words:
+            m.sticky[k] = words[k][-1]
+    cur = m.to_program(m.pos)
+    if m.cycle_clear is None:
+        m.cycle_clear = cur[2]
+    s = m.scale
+    # G91: R from the series' initial level, which LinuxCNC keeps from the series' first block
+    # (interp_cycles.cc convert_cycle_xy: r = r_number + cycle_il)
+    r = (m.cycle_clear + m.sticky["r"] * s) if m.incremental else m.sticky["r"] * s
+    bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
+    clear = max(m.cycle_clear, r) if m.retract == 98 else r
+    repeats = int(words["l"][-1]) if "l" in words else 1
+    if cur[2] < r - _EPS * max(1.0, abs(r)):
+        cur[2] = r
+        m.move(line, "rapid", cur.copy())
+    xy = cur[:2].copy()
+    polar = "@" in words or "^" in words
+    for _ in range(repeats):
+        if polar:
+            xy = m.target(words)[:2]
+        elif m.incremental:
+            xy = xy + np.array([words.get(a, [0.0])[-1] * s for a in "xy"])
+        else:
+            xy = np.array([words[a][-1] * s if a in words else xy[i] for i, a in enumerate("xy")])
+        z_now = m.to_program(m.pos)[2]
+        m.move(line, "rapid", np.array([*xy, z_now]), optional=True)
+        m.move(line, "rapid", np.array([*xy, r]), optional=True)
+        _hole(m, line, code, xy, r, bottom, clear)
+
+
+def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: float, clear: float) -> None:
+    """The moves of one hole, from the R plane."""
+    def at(z: float) -> np.ndarray:
+        return np.array([*xy, z])
+
+    dwell = m.sticky.get("p", 0.0)
+    if code in (73, 83):
+        delta = m.sticky["q"] * m.scale
+        step = PECK_CLEARANCE_IN * 25.4
+        depth = r - delta
+        while depth > bottom:  # LinuxCNC's loop; a last peck within rounding of the bottom may be left out
+            rows = "optional" if depth - bottom <= _EPS * max(1.0, abs(bottom)) else "one"
+            for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
+                m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
+                m.pos = m.out[-1].end.copy()
+            depth -= delta
+    m.move(line, "feed", at(bottom))
+    if code in (82, 89):
+        m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
+    if code == 85:
+        m.move(line, "feed", at(r))
+        m.move(line, "rapid", at(clear), optional=True)
+    elif code == 89:
+        m.move(line, "feed", at(clear))
+    else:
+        m.move(line, "rapid", at(clear))
+
+
+def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
+    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m98"``/``"m99"`` or None."""
+    words, sets = _words(ln.text, params)
+    for key, value in sets:
+        params.set(key, value)
+    g, mc = _codes(words, "g"), _codes(words, "m")
+    if "t" in words:
+        m.selected = int(words["t"][-1])
+    if 60 in mc:
+        m.loaded = m.selected
+    if 40 in g:
+        m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
+    _modes(m, g, words)
+    axes = any(a in words for a in "xyz@^abc")  # a block with only A/B/C words moves (rotary axes; X Y Z stay)
+    used = _non_modal(m, ln.number, g, words)
+    if not used:
+        _motion(m, ln.number, g, words, axes)
+    if any(c in (20, 300) for c in mc):
+        return "end"
+    if 980 in mc:
+        return "m98"
+    if 990 in mc:
+        return "m99"
+    return None
+
+
+def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
+    """The expected ``--blocks`` rows of an ISO program run against ``context``.
+
+    Parameters
+    ----------
+    text : str
+        The program.
+    context : interpolators.context.MachineContext
+        The tables the reader is given (work offsets, tools, home, second reference, dialect).
+    resolve : callable, optional
+        ``resolve("1002")`` gives the text of a numbered subprogram ``O1002`` that ``M98 P1002``
+        calls and the file does not hold (a Fanuc control has it in its memory), or None.
+
+    Returns
+    -------
+    list of Expected
+        One entry per motion or dwell, in order.
+
+    Raises
+    ------
+    ReferenceError
+        The program uses a feature this reference does not model.
+    """
+    lines = _lines(text.lstrip("\ufeff"))
+    own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
+    for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"m0*98p(\d+)", ln.text)} - own):
+        other = resolve(target) if resolve is not None else None
+        if other is not None:  # a numbered subprogram from its own file (Fanuc: in the control's memory)
+            lines += _lines(other.lstrip("\ufeff"))
+    st = _structure(lines)
+    m, params = _Machine(context), _Params()
+    frames: list[dict] = []
+    counters: dict[int, int] = {}
+    percent = 0
+    pc, steps = 0, 0
+    while pc < len(lines):
+        steps += 1
+        if steps > 5_000_000:
+            raise ReferenceError("more than 5e6 lines executed")
+        ln = lines[pc]
+        if ln.text.startswith("%"):
+            percent += 1
+            if percent == 2:
+                break
+            pc += 1
+            continue
+        if ln.oname is not None:
+            pc = _oword(ln, pc, st, params, frames, counters)
+            if pc < 0:
+                break
+            continue
+        if not ln.text:
+            pc += 1
+            continue
+        res = _block(m, params, ln)
+        if res == "end":
+            break
+        if res == "m98":
+            words, _ = _words(ln.text, params)
+            target = str(int(words["p"][-1]))
+            if target not in st["fanuc"]:
+                raise ReferenceError(f"M98 P{target}: no O{target} in the file")
+            count = int(words["l"][-1]) if "l" in words else 1
+            frames.append({"kind": "m98", "ret": pc + 1, "start": st["fanuc"][target] + 1, "left": count - 1})
+            pc = st["fanuc"][target] + 1
+            continue
+        if res == "m99":
+            if not frames or frames[-1]["kind"] != "m98":
+                break
+            f = frames[-1]
+            if f["left"] > 0:
+                f["left"] -= 1
+                pc = f["start"]
+            else:
+                frames.pop()
+                pc = f["ret"]
+            continue
+        pc += 1
+    return m.out
+
+
+def _cond(ln: _Line, params: _Params) -> float:
+    return _Eval(ln.orest, params).expr()
+
+
+def _oword(ln: _Line, pc: int, st: dict, params: _Params, frames: list, counters: dict) -> int:
+    """Run an O-word line; returns the next line index (-1: program end)."""
+    k, ends = ln.okey, st["ends"]
+    if k is None:  # a Fanuc program number: O1001 opens the main program or a numbered subprogram
+        return pc + 1
+    if k == "sub":
+        return ends[pc] + 1
+    if k == "call":
+        if ln.oname not in st["subs"]:
+            raise ReferenceError(f"o<{ln.oname}> call of a subroutine outside the file")
+        ev, args = _Eval(ln.orest, params), []
+        while ev.i < len(ev.s):
+            args.append(ev.expr())
+        saved = {i: params.numbered.get(i, 0.0) for i in range(1, 31)}
+        for i in range(1, 31):
+            params.numbered[i] = args[i - 1] if i <= len(args) else 0.0
+        params.frames.append({})
+        frames.append({"kind": "sub", "ret": pc + 1, "saved": saved})
+        return st["subs"][ln.oname] + 1
+    if k in ("endsub", "return"):
+        if ln.orest:
+            params.globals["_value"] = _Eval(ln.orest, params).expr()
+        if not frames or frames[-1]["kind"] != "sub":
+            return -1
+        f = frames.pop()
+        params.frames.pop()
+        params.numbered.update(f["saved"])
+        return f["ret"]
+    if k == "if":
+        if _cond(ln, params):
+            return pc + 1
+        for b in st["branches"][pc]:
+            bl = st["lines"][b]
+            if bl.okey == "else" or _cond(bl, params):
+                return b + 1
+        return ends[pc] + 1
+    if k in ("elseif", "else"):
+        return ends[pc] + 1
+    if k == "endif":
+        return pc + 1
+    if k == "while" and pc in ends:  # while [...] ... endwhile
+        return pc + 1 if _cond(ln, params) else ends[pc] + 1
+    if k == "while":  # the end of a do ... while
+        opener = next(j for j, e in ends.items() if e == pc)
+        return opener + 1 if _cond(ln, params) else pc + 1
+    if k == "endwhile":
+        return next(j for j, e in ends.items() if e == pc)
+    if k == "do":
+        return pc + 1
+    if k == "repeat":
+        left = counters.get(pc)
+        if left is None:
+            left = int(round(_cond(ln, params)))
+        if left <= 0:
+            counters.pop(pc, None)
+            return ends[pc] + 1
+        counters[pc] = left - 1
+        return pc + 1
+    if k == "endrepeat":
+        return next(j for j, e in ends.items() if e == pc)
+    if k in ("break", "continue"):
+        opener = st["owner"][pc]
+        if k == "break":
+            counters.pop(opener, None)
+            return ends[opener] + 1
+        return ends[opener] if st["lines"][opener].okey == "do" else opener
+    raise ReferenceError(f"O-word {k}")
