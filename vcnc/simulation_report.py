@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from vcnc.core.axes import ROTARY_AXES, axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.metrics import error_metrics
 
@@ -26,7 +27,8 @@ def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
 def summarize(capture: Capture) -> dict[str, Any]:
     """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``.
 
-    Tracking error e = x_r - x of the measured position. "contour" comes from
+    Tracking error e = x_r - x of the measured position, in 1/1000 of the axis unit: um on a linear
+    axis, mdeg on a rotary one (the keys keep the ``_um`` of the summary contract). "contour" comes from
     ``vcnc.contour.contour_metrics(capture)`` for two or more moving axes; it is left out (and the
     reason logged) when that module is not available or the capture has no programmed path.
     """
@@ -64,8 +66,8 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     rep = Report(f"vcnc simulate: {capture.meta.get('program', '')} on {capture.meta.get('machine', '')}")
     rep.summary = summary
     rep.table(
-        ["axis", "max tracking error [um]", "rms tracking error [um]"],
-        [[a, s["max_um"], s["rms_um"]] for a, s in summary["tracking"].items()],
+        ["axis", "max tracking error", "rms tracking error", "unit"],
+        [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],
         caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, seed {capture.meta.get('seed')}",
     )
     n = len(capture.axes)
@@ -77,8 +79,9 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
         ax = axs[0, i]
         ax.plot(t, e, lw=0.8)
         s = summary["tracking"][a]
-        ax.set_title(f"axis {a}: tracking error (max {s['max_um']:.2f} um, rms {s['rms_um']:.2f} um)", fontsize=9)
-        ax.set_ylabel("x_r - x [um]")
+        u = axis_unit(a, small=True)
+        ax.set_title(f"axis {a}: tracking error (max {s['max_um']:.2f} {u}, rms {s['rms_um']:.2f} {u})", fontsize=9)
+        ax.set_ylabel(f"{a}_r - {a} [{u}]")
         ax.grid(alpha=0.3)
         if rows == 2:
             axs[1, i].plot(t, capture.control[:, i], lw=0.8, color="C1")
@@ -87,7 +90,7 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
         axs[-1, i].set_xlabel("t [s]")
     fig.tight_layout()
     rep.figure("tracking", fig, caption="tracking error and control signal per axis")
-    mov = moving_axes(capture)
+    mov = [a for a in moving_axes(capture) if a not in ROTARY_AXES]  # the path of the linear axes
     if len(mov) >= 2:
         i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
         r = capture.reference[:, [i, j]]

@@ -242,3 +242,20 @@ def test_inch_programs_scale_xyz_but_not_angles():
 def test_unsupported_rotary_uses_name_the_feature(text, feature):
     with pytest.raises(GCodeError, match=feature):
         parse_program(text, context=CTX)
+
+
+def test_simulate_report_gives_rotary_errors_in_mdeg(tmp_path):
+    """`vcnc simulate` on a machine with X and A: the A tracking error is labelled mdeg in the
+    report's table and figure, and the path figure holds only the linear axes."""
+    fadal = (Path(__file__).resolve().parents[2] / "vcnc" / "machines" / "fadal-pid.toml").read_text()
+    machine = tmp_path / "xa.toml"
+    machine.write_text(re.sub(r"\[axes\.y", "[axes.a", fadal))
+    prog = tmp_path / "p.ngc"
+    prog.write_text("G21 G90 G0 X0 A0\nG1 F600 X10 A30\nG0 A0\nM2\n")
+    report = tmp_path / "sim"
+    assert main(["simulate", str(prog), "--machine", str(machine), "-o", str(tmp_path / "c.csv"),
+                 "--report", str(report)]) == 0
+    html = (report / "index.html").read_text()
+    assert "mdeg" in html and "um" in html
+    assert (report / "tracking.png").is_file()
+    assert not (report / "path.png").exists()  # one linear axis moves: no XY path to draw
