@@ -239,6 +239,11 @@ class _Geom:
     runs: dict[int, MergedRun]  # segment index -> the dense run its SplineCurve piece belongs to
     rotary: _Rotary | None = None  # None: the program moves no rotary axis
 
+    @property
+    def profile_length(self) -> np.ndarray:
+        """Length each segment's profile runs along [mm; deg on a pure rotary move]."""
+        return self.packed.length if self.rotary is None else self.rotary.length
+
 
 @dataclasses.dataclass
 class _Chains:
@@ -497,10 +502,9 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     n_seg = len(g.segments)
     seg_chain_a, n_chains = c.of_segment, c.count
     motion = packed.kind != HOLD
-    length = packed.length
+    length = g.profile_length
     if g.rotary is not None:  # a pure rotary move is a hold in XYZ with a profile along its rotary distance
         motion = motion | g.rotary.pure
-        length = g.rotary.length
     mi = np.flatnonzero(motion)
     if jerk_limited:
         dur, p0, pv, pa, pj = scurve_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
@@ -557,13 +561,13 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
 def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int, Ts: float,
             profile: str) -> Setpoints:
     """7. The setpoints at every sample time."""
-    packed, all_segs, seg_block = g.packed, g.segments, g.block
+    all_segs, seg_block = g.segments, g.block
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
         ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
     axes = program.axes or ("x",)
     ax_idx = [AXIS_NAMES.index(a) for a in axes]
     linear = tuple(a for a in axes if a in AXIS_LETTERS) or AXIS_LETTERS
-    length = packed.length if g.rotary is None else g.rotary.length
+    length = g.profile_length
     t = np.arange(total_N + 1) * Ts
     seg_block_a = np.asarray(seg_block, dtype=np.int64)
     if len(ph_seg) == 0:
