@@ -59,7 +59,7 @@ from identification.augmented import AugmentedAxisModel, augment, simulate_augme
 from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
-from identification.normal_equations import solve_scaled, truncated_step
+from identification.least_squares import solve_scaled, truncated_step
 from identification.parallel import serial_blas, thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI

@@ -27,7 +27,6 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 import scipy.signal
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
@@ -43,7 +42,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
-from identification.normal_equations import solve_scaled
+from identification.least_squares import solve_qr, solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
@@ -207,7 +206,7 @@ class SearchContext:
     def ee_validation_rss(self, cols_tr: np.ndarray, cols_va: np.ndarray) -> float:
         """Validation RSS of the unconstrained equation error with extra columns fitted on training rows."""
         d = self.data
-        theta = _solve_ls(np.hstack([self._ee_base, cols_tr]), self._ee_y)
+        theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
         va = d.va_rows
         a2 = self.model.parameters["a2"]
         vv, xx, tt = d.v[va], d.y[va], d.t[d.rows[va]]
@@ -255,7 +254,7 @@ class SearchContext:
         parameters fitted on the training rows (what the searches see, extended over the checks)."""
         d = self.data
         rows = d.active[d.rows]
-        theta = _solve_ls(self._ee_base, self._ee_y)
+        theta = solve_qr(self._ee_base, self._ee_y)
         a2 = self.model.parameters["a2"]
         vv, xx, tt = d.v[rows], d.y[rows], d.t[d.rows[rows]]
         off = np.zeros(int(rows.sum()))
@@ -337,20 +336,6 @@ class SearchContext:
         nfft = 1 << int(math.ceil(math.log2(4 * r.size)))
         amp = np.abs(np.fft.rfft(r * w, nfft)) * 2.0 / np.sum(w) * 1e3
         return np.fft.rfftfreq(nfft, d.T), amp
-
-
-def _solve_ls(A: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Least squares by a column-scaled QR (faster than SVD; the columns here are independent)."""
-    sc = np.linalg.norm(A, axis=0)
-    sc[sc == 0] = 1.0
-    q, r = np.linalg.qr(A / sc)
-    try:
-        beta = scipy.linalg.solve_triangular(r, q.T @ y)
-    except (np.linalg.LinAlgError, ValueError):
-        beta = np.linalg.lstsq(A / sc, y, rcond=None)[0]
-    if not np.all(np.isfinite(beta)):
-        beta = np.linalg.lstsq(A / sc, y, rcond=None)[0]
-    return beta / sc
 
 
 def _train_rows(d: Data, edge: int) -> np.ndarray:
@@ -750,7 +735,7 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
     y = scipy.signal.filtfilt(bf, af, y)
     k = rows[(rows >= delay + 30) & (rows < n - 30)]
     A, y = A[k], y[k]
-    th = _solve_ls(A, y)
+    th = solve_qr(A, y)
     # trimmed least squares: rows where the law does not hold (an amplifier limit, a stick-slip
     # event) are dropped with their neighbours, then the fit is repeated
     res = y - A @ th
@@ -758,7 +743,7 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
     out = np.abs(res) > 5.0 * max(mad, 1e-12)
     if 0 < out.sum() < 0.2 * out.size:
         out = np.convolve(out, np.ones(2 * delay + 41), mode="same") > 0
-        th = _solve_ls(A[~out], y[~out])
+        th = solve_qr(A[~out], y[~out])
         A, y = A[~out], y[~out]
     b1, kd, a2, a3, ff, b0, d0, d1, c = th
     c = float(min(max(c, 1e-3), 0.5 * max(kd, 1e-3)))

@@ -1,4 +1,4 @@
-"""Least squares on tall, narrow matrices through their Gram matrix.
+"""Least squares on tall, narrow matrices, columns scaled to unit norm: by QR, or through the Gram matrix.
 
 The diagnosis solves many least-squares problems with a record's samples as rows (20,000 and more)
 and a few to a hundred and thirty columns (Jacobians, Fourier bases). A QR or SVD of such a matrix
@@ -15,8 +15,9 @@ above 1e5).
 from __future__ import annotations
 
 import numpy as np
+import scipy.linalg
 
-__all__ = ["solve_scaled", "truncated_step"]
+__all__ = ["solve_qr", "solve_scaled", "truncated_step"]
 
 #: Largest condition number of the scaled Gram matrix solved through it (cond(A)^2 <= 1e10).
 MAX_GRAM_CONDITION = 1e10
@@ -26,6 +27,20 @@ def _scaled(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     sc = np.linalg.norm(A, axis=0)
     sc[sc == 0] = 1.0
     return A / sc, sc
+
+
+def solve_qr(A: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Least-squares solution of ``A x = y`` by a column-scaled QR (for a base whose columns may be
+    ill-conditioned, such as the regressor of Eq. 3.11); ``numpy.linalg.lstsq`` when R is singular."""
+    As, sc = _scaled(np.asarray(A, float))
+    q, r = np.linalg.qr(As)
+    try:
+        beta = scipy.linalg.solve_triangular(r, q.T @ y)
+    except (np.linalg.LinAlgError, ValueError):
+        beta = np.linalg.lstsq(As, y, rcond=None)[0]
+    if not np.all(np.isfinite(beta)):
+        beta = np.linalg.lstsq(As, y, rcond=None)[0]
+    return beta / sc
 
 
 def solve_scaled(A: np.ndarray, y: np.ndarray) -> np.ndarray:
