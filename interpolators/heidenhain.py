@@ -86,6 +86,7 @@ from interpolators.heidenhain_cycles import (
     pattern_positions,
     pecking_cycle,
     q_assignments,
+    scaled_cycle,
 )
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
@@ -99,6 +100,7 @@ from interpolators.heidenhain_paths import (
     round_elements,
     tangential_arc,
 )
+from interpolators.heidenhain_transforms import TRANSFORM_CYCLES, Transform, TransformError, transform_item
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
@@ -154,6 +156,7 @@ class _Machine:
         self.tool_length = 0.0
         self.tool_radius = 0.0
         self.shift = np.zeros(3)
+        self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
         self.comp_side = "RL"
@@ -187,6 +190,39 @@ class _Machine:
         o = np.array(o, dtype=float)
         o[self.plane] += self.tool_length
         return o
+
+    def to_machine(self, point: np.ndarray) -> np.ndarray:
+        """Machine coordinates [mm] of the program point ``point`` [mm] (cycles 8, 10, 11, 26 applied)."""
+        return self.origin() + self.transform.apply(point, self.plane)
+
+    def to_program(self, position: np.ndarray) -> np.ndarray:
+        """Program coordinates [mm] of the machine position ``position`` [mm]."""
+        return self.transform.invert(np.asarray(position, dtype=float) - self.origin(), self.plane)
+
+    def axis_level(self, value: float) -> float:
+        """Machine tool-axis coordinate [mm] of the program tool-axis coordinate ``value`` [mm]."""
+        if self.transform.identity:
+            return self.origin()[self.plane] + value
+        point = np.zeros(3)
+        point[self.plane] = value
+        return float(self.to_machine(point)[self.plane])
+
+    def lengths(self, where: Where) -> float:
+        """Factor of lengths in the working plane (1 without transformation) [-]; an error at
+        ``where`` when cycle 26 scales the plane's axes differently."""
+        if self.transform.identity:
+            return 1.0
+        try:
+            return self.transform.length(self.plane)
+        except TransformError as exc:
+            where.fail(exc.message, column=1, text=where.text, expected=exc.expected)
+
+    def active_origin(self) -> np.ndarray:
+        """The machine position minus its program coordinates (the program zero without rotation,
+        mirror or scaling) [mm]: what ``FN 18 SYSREAD ID270`` subtracts."""
+        if self.transform.identity:
+            return self.origin()
+        return self.pos - self.to_program(self.pos)
 
     def note(self, text: str) -> None:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
@@ -302,7 +338,7 @@ class _Run:
         """LBL (the end of a called subprogram at LBL 0), CALL LBL, FN (jumps)."""
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
-            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.origin(),
+            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
                                 scale=m.scale, note=m.note)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
@@ -481,9 +517,9 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     sub = int(cm.group(2)) if cm.group(2) is not None else None
     rest = cm.group(3)
     col = blk.column + cm.start(3)
-    if number not in (1, 7, 9, 32, 200, 203, 205):
+    if number not in (1, 7, 9, 19, 32, *TRANSFORM_CYCLES, 200, 203, 205):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 7, 9, 32, 200, 203 or 205")
+                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 19 (reset), 26, 32, 200, 203 or 205")
     if number >= 200:
         q = q_assignments(rest, where, m.params, column0=col)
         m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column)
@@ -491,6 +527,13 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if sub in (None, 0):
         if number == 1:
             m.cycle_items = {}
+        return
+    if number in TRANSFORM_CYCLES:
+        if sub == 1:
+            _transform_cycle(number, rest, m, where, col)
+        return
+    if number == 19:
+        _tilt_cycle(rest, m, where, col)
         return
     if number == 7:
         words = read_words(rest, 0, where, m.params, column0=col)
@@ -521,21 +564,40 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                                     column=blk.column)
 
 
+def _transform_cycle(number: int, rest: str, m: _Machine, where: Where, col: int) -> None:
+    """Item ``.1`` of cycles 8, 10, 11, 26 (:mod:`interpolators.heidenhain_transforms`)."""
+    t = transform_item(number, rest, m.transform, where, m.params, column0=col, scale=m.scale)
+    if t.mirror[m.plane]:
+        where.fail(f"cycle 8 MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=rest.strip(),
+                   expected="mirrored axes of the working plane (the TNC cannot mirror the tool axis)")
+    if m.comp != "R0" and t != m.transform:
+        where.fail(f"cycle {number} while radius compensation {m.comp} is active", column=col, text=rest.strip(),
+                   expected="R0 before a coordinate transformation (the TNC cancels RL/RR there)")
+    m.transform = t
+
+
+def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+    """``CYCL DEF 19.1 A+0 B+0 C+0`` (or no angle) cancels a tilted working plane, which is no motion
+    here; any other angle tilts the plane, which vcnc does not model (TNC 640 manual, cycle 19
+    WORKING PLANE)."""
+    for am in re.finditer(r"([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
+        value, _ = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)
+        if value != 0.0:
+            where.fail("cycle 19 WORKING PLANE (a tilted working plane) is not supported", column=col + am.start(),
+                       text=rest.strip(), expected="3-axis machining (19.1 with all angles 0 cancels the tilt)")
+    m.note("CYCL DEF 19 with angles 0: no tilted working plane (no motion)")
+
+
 def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """``CYCL CALL PAT``: the cycle at every position of the last ``PATTERN DEF``."""
     if m.pattern is None:
         where.fail("CYCL CALL PAT without a PATTERN DEF", column=blk.column, text=blk.code,
                    expected="PATTERN DEF POS1 (...) before CYCL CALL PAT")
-    origin = m.origin()
     p, q = PLANE_AXES[m.plane]
     point = m.pos.copy()
     for pos in m.pattern:
-        for i in (p, q):
-            a = "XYZ"[i]
-            if a in pos:
-                point[i] = origin[i] + pos[a] * m.scale
-            elif "I" + a in pos:
-                point[i] += pos["I" + a] * m.scale
+        values = {k: v * m.scale for k, v in pos.items() if k[-1] in ("XYZ"[p], "XYZ"[q])}
+        point, _ = _program_target(m, values, point)
         axis = "XYZ"[m.plane]
         if "I" + axis in pos:
             where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
@@ -567,10 +629,10 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     if feed is None:
         where.fail("CYCL CALL POS without a feed", column=blk.column, text=blk.code, expected="F or F MAX")
     target, _ = _plane_coords(seen, m, where, m9x=None)
-    axis, c = m.plane, m.cycle
-    shift = target[axis] - m.origin()[axis]
+    axis, c = m.plane, _active_cycle(m)
+    shift = target[axis] - m.origin()[axis] if m.transform.identity else m.to_program(target)[axis]
     d = -1.0 if c.depth < 0 else 1.0
-    surface = m.pos[axis] + d * c.setup if c.surface is None else m.origin()[axis] + c.surface + shift
+    surface = m.pos[axis] + d * c.setup if c.surface is None else _surface_level(m, c.surface, shift)
     kind = "rapid" if math.isinf(feed) else "line"
     in_plane = target.copy()
     if d * (m.pos[axis] - surface) < 0:  # above the surface: plane first, then the tool axis
@@ -592,13 +654,13 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    c = m.cycle
+    c = _active_cycle(m)
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
     if c.surface is None:
         surface = m.pos[axis] + d * c.setup
     else:
-        surface = m.origin()[axis] + c.surface + surface_shift
+        surface = _surface_level(m, c.surface, surface_shift)
     if hole is not None:
         clear = surface - d * max(c.setup, c.second_setup) if c.surface is not None else m.pos[axis]
         if d * (m.pos[axis] - clear) > 0:  # below the clearance height
@@ -613,6 +675,22 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
         else:
             _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
     m.used.add(axis)
+
+
+def _active_cycle(m: _Machine) -> DrillCycle:
+    """The defined machining cycle with its tool-axis lengths scaled by cycles 11/26 ("the scaling
+    factor also affects the dimensions in cycles")."""
+    if m.transform.identity:
+        return m.cycle
+    return scaled_cycle(m.cycle, m.transform.axis_factor(m.plane))
+
+
+def _surface_level(m: _Machine, surface: float, shift: float) -> float:
+    """Machine tool-axis coordinate [mm] of a cycle's surface (Q203) [mm] plus an extra ``shift``
+    (a pattern position's or CYCL CALL POS's tool-axis coordinate) [mm]."""
+    if m.transform.identity:
+        return m.origin()[m.plane] + surface + shift
+    return m.axis_level(surface + shift)
 
 
 def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, blk: SourceBlock) -> None:
@@ -678,26 +756,41 @@ def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) 
         what = "a straight line L" if kw == "CHF" else "a line or an arc"
         where.fail(f"{kw} must follow {what}", column=blk.column, text=code.split()[0],
                    expected=f"L ... then {kw} then L ..." if kw == "CHF" else "L/C/CR/CT/CP, then RND, then L/C/...")
-    m.pending = (kw, value * m.scale, feed, where)
+    m.pending = (kw, value * m.scale * m.lengths(where), feed, where)
 
 
 def _plane_coords(seen: dict[str, Word], m: _Machine, where: Where, *, m9x: int | None) -> tuple[np.ndarray, set]:
-    target = m.pos.copy()
-    origin = m.origin()
-    if m9x == 91:
-        origin = np.zeros(3)
-    elif m9x == 92:
-        origin = np.array(m.context.home, dtype=float)
+    """Machine end point [mm] of the axis words of a block, and the axes written (M91: machine
+    coordinates, M92: from ``context.home``; neither transformed)."""
+    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
+    if m9x is None:
+        return _program_target(m, values, m.pos)
+    origin = np.zeros(3) if m9x == 91 else np.array(m.context.home, dtype=float)
+    return _absolute_target(values, m.pos, origin)
+
+
+def _absolute_target(values: dict[str, float], base: np.ndarray, origin: np.ndarray) -> tuple[np.ndarray, set]:
+    """``base`` with the axes of ``values`` [mm] set: absolute from ``origin``, ``I`` from ``base``."""
+    target = np.array(base, dtype=float)
     written = set()
-    for a in "XYZ":
-        i = "XYZ".index(a)
-        if a in seen:
-            target[i] = origin[i] + seen[a].value * m.scale
+    for i, a in enumerate("XYZ"):
+        if a in values:
+            target[i] = origin[i] + values[a]
             written.add(i)
-        elif "I" + a in seen:
-            target[i] = m.pos[i] + seen["I" + a].value * m.scale
+        elif "I" + a in values:
+            target[i] = base[i] + values["I" + a]
             written.add(i)
     return target, written
+
+
+def _program_target(m: _Machine, values: dict[str, float], base: np.ndarray) -> tuple[np.ndarray, set]:
+    """Machine point [mm] of program axis values [mm] (``"X"`` absolute, ``"IX"`` incremental) from the
+    machine point ``base``, through the active transformations; an axis not written keeps its program
+    coordinate (with none active: its machine coordinate, exactly)."""
+    if m.transform.identity:
+        return _absolute_target(values, base, m.origin())
+    prog, written = _absolute_target(values, m.to_program(base), np.zeros(3))
+    return m.to_machine(prog), written
 
 
 def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
@@ -731,9 +824,10 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             if m.pole is None:
                 where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
             r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
-            pr = seen["PR"].value * m.scale if "PR" in seen else r0 + (seen["IPR"].value * m.scale if "IPR" in seen
-                                                                        else 0.0)
-            pa = seen["PA"].value if "PA" in seen else a0 + (seen["IPA"].value if "IPA" in seen else 0.0)
+            k, t = m.scale * m.lengths(where), m.transform
+            pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
+            pa = (t.angle(seen["PA"].value, m.plane) if "PA" in seen
+                  else a0 + (t.sweep(seen["IPA"].value, m.plane) if "IPA" in seen else 0.0))
             target = polar_point(m.pole, pr, pa, plane=m.plane, base=target)
             m.used.update(PLANE_AXES[m.plane])
         m.last_axes = sorted(written) if kw == "L" else []
@@ -842,9 +936,13 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
 
 
 def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
+    """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
+    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way."""
     plane = m.plane
     dr = seen.get("DR")
     ccw = (dr.value == "+") if dr is not None else m.ccw
+    k = m.lengths(where)
+    flips = m.transform.flips(plane)
     try:
         if kw == "CT":
             if not m.blocks or m.blocks[-1].segment is None:
@@ -861,18 +959,20 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
                     w = seen["IPA"]
                     where.fail("IPA and DR have different signs", column=w.column, text=w.text,
                                expected="the same sign for IPA and DR (manual: 'enter the same sign')")
+                m.ccw = sweep > 0
+                sweep = m.transform.sweep(sweep, plane)
             elif "PA" in seen:
                 if ccw is None:
                     where.fail("CP arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
-                delta = (seen["PA"].value - a0) % 360.0  # [0, 360): the counter-clockwise angle to the end
+                # [0, 360): the counter-clockwise angle to the end
+                delta = (m.transform.angle(seen["PA"].value, plane) - a0) % 360.0
                 if delta <= 1e-9 or delta >= 360.0 - 1e-9:
                     delta = 0.0  # the end is the start: a full circle
-                sweep = (delta or 360.0) if ccw else -((360.0 - delta) if delta else 360.0)
+                m.ccw = ccw
+                sweep = (delta or 360.0) if ccw != flips else -((360.0 - delta) if delta else 360.0)
             else:
                 where.fail("CP without an angle", column=blk.column, text=where.text, expected="PA or IPA")
-            seg = helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])
-            m.ccw = sweep > 0
-            return seg
+            return helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])
         if ccw is None:
             where.fail(f"{kw} arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
         m.ccw = ccw
@@ -880,10 +980,10 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
             if m.pole is None:
                 where.fail("C arc without a circle centre", column=blk.column, text=where.text,
                            expected="a CC block before C")
-            return arc_from_center(m.pos, target, m.pole, ccw=ccw, plane=plane)
+            return arc_from_center(m.pos, target, m.pole, ccw=ccw != flips, plane=plane)
         if "R" not in seen:
             where.fail("CR arc without radius", column=blk.column, text=where.text, expected="R+ or R- [mm]")
-        return arc_from_radius(m.pos, target, seen["R"].value * m.scale, ccw=ccw, plane=plane)
+        return arc_from_radius(m.pos, target, seen["R"].value * m.scale * k, ccw=ccw != flips, plane=plane)
     except (ArcWordError, PathGeometryError) as exc:
         w = seen.get("R") or seen.get("IPA") or seen.get("PA")
         col, tok = (w.column, w.text) if w is not None else (blk.column, where.text)
@@ -941,7 +1041,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
         w = seen.get("LEN")
         where.fail(f"{kw} LT needs LEN > 0", column=w.column if w else blk.column, text=w.text if w else code,
                    expected="LEN > 0 [mm]")
-    length = seen["LEN"].value * m.scale
+    length = seen["LEN"].value * m.scale * m.lengths(where)
     exit_run = False
     for comp in ("R0", "RL", "RR"):
         if comp in seen:
@@ -1024,7 +1124,8 @@ def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
     if comp == "R0":
         return True
     m.comp_start = len(m.blocks)
-    m.comp_side = comp
+    # a mirrored contour has its left side on the right (TNC: "the machining direction is reversed")
+    m.comp_side = {"RL": "RR", "RR": "RL"}[comp] if m.transform.flips(m.plane) else comp
     m.comp_radius = m.tool_radius
     return False
 

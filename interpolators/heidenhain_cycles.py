@@ -39,7 +39,7 @@ from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "q_assignments", "legacy_value",
-           "pecking_cycle", "drill_cycle", "pattern_positions", "hole_moves"]
+           "pecking_cycle", "drill_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -197,6 +197,17 @@ def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
         where.fail(f"cycle {cycle.number}: negative dwell", column=column, text=where.text, expected="dwell >= 0 [s]")
     return cycle
 
+
+
+def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
+    """The cycle with its tool-axis lengths (not the surface coordinate) multiplied by ``factor`` [-]."""
+    def f(v: float | None) -> float | None:
+        return None if v is None else v * factor
+
+    return dataclasses.replace(cycle, setup=cycle.setup * factor, depth=cycle.depth * factor,
+                               plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
+                               decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
+                               chip_break=cycle.chip_break * factor, advance=f(cycle.advance))
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
