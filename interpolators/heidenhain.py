@@ -69,10 +69,11 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 
-from interpolators._words import INCH, Where
+from interpolators._words import INCH, Where, program_text
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
@@ -100,6 +101,7 @@ from interpolators.heidenhain_paths import (
     round_elements,
     tangential_arc,
 )
+from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
 from interpolators.heidenhain_transforms import TRANSFORM_CYCLES, Transform, TransformError, transform_item
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.program import Block, Program
@@ -109,6 +111,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
+    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM"
     r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?![A-Z])",
     re.I,
 )
@@ -174,6 +177,7 @@ class _Machine:
         self.pending: tuple[str, float, float | None, Where] | None = None  # RND/CHF waiting for its next line
         self.approach: dict | None = None  # APPR LT waiting for the first contour element
         self.last_rapid = False
+        self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -283,8 +287,10 @@ class _Run:
     """The program flow: block by block, with label jumps, section repeats and subprogram calls
     (:mod:`interpolators.heidenhain_labels`); each block's meaning is a function of this module."""
 
-    def __init__(self, m: _Machine, blocks: list[SourceBlock], source: str | None, max_executed: int) -> None:
+    def __init__(self, m: _Machine, blocks: list[SourceBlock], source: str | None, max_executed: int, *,
+                 callers: tuple[str, ...] = ()) -> None:
         self.m, self.blocks, self.source, self.max_executed = m, blocks, source, max_executed
+        self.callers = callers  # files of the programs that called this one (CALL PGM), outermost first
         self.labels = LabelTable(blocks, source)
         self.stack: list[Frame] = []
         self.repeats: dict[int, int] = {}
@@ -306,7 +312,11 @@ class _Run:
             k = _KEYWORD_RE.match(blk.code)
             if k is None:
                 _unknown_block(blk, where)
-            if self.block(re.sub(r"\s+", " ", k.group(1).upper()), k, blk, where):
+            kw = re.sub(r"\s+", " ", k.group(1).upper())
+            if self.block(kw, k, blk, where):
+                if self.callers and kw != "END PGM":
+                    where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
+                               expected="END PGM (TNC manual: the called program must not contain M2 or M30)")
                 break
         return self.name
 
@@ -328,7 +338,10 @@ class _Run:
         handler = _HANDLERS.get(kw)
         if handler is not None:
             return bool(handler(kw, blk, k.end(), m, where))
-        if kw in ("CALL PGM", "CTP"):
+        if kw in ("CALL PGM", "CALL SELECTED PGM", "SEL PGM"):
+            self.program_call(kw, blk, where)
+            return False
+        if kw == "CTP":
             where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
                        expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
         words = read_words(blk.code, k.end(), where, m.params, column0=col0)
@@ -356,6 +369,45 @@ class _Run:
                     self.pc = frame.return_to
         else:
             self.call_label(blk, where)
+
+    def program_call(self, kw: str, blk: SourceBlock, where: Where) -> None:
+        """``SEL PGM``, ``CALL PGM``, ``CALL SELECTED PGM`` (:mod:`interpolators.heidenhain_programs`):
+        the called program runs on the same machine state (Q parameters, tool, transformations,
+        position) in its own unit; its blocks report its own file and lines."""
+        m, col0 = self.m, blk.column
+        rx = SEL_PGM_RE if kw == "SEL PGM" else CALL_PGM_RE
+        cm = rx.match(blk.code)
+        if cm is None:
+            where.fail(f"malformed {kw}", column=col0, text=blk.code, expected=f"{kw} name")
+        if kw == "SEL PGM":
+            m.selected = (cm.group(1), col0 + cm.start(1))
+            return
+        name, col = (cm.group(1), col0 + cm.start(1)) if kw == "CALL PGM" else (m.selected or (None, col0))
+        if name is None:
+            where.fail("CALL SELECTED PGM without SEL PGM", column=col0, text=blk.code,
+                       expected="SEL PGM name before CALL SELECTED PGM")
+        path, on_drive = find_program(name, self.source, where, column=col)
+        if on_drive:
+            m.note(f"CALL PGM {name}: the control drive path was looked up in the calling program's directory")
+        here = str(path.resolve())
+        if here in self.callers or (self.source is not None and here == str(Path(self.source).resolve())):
+            where.fail(f"CALL PGM {name} calls a program that is running (an endless loop)", column=col,
+                       text=name, expected="a called program that does not call its caller")
+        if len(self.callers) >= MAX_NESTING:
+            where.fail(f"program calls nested deeper than {MAX_NESTING} levels", column=col, text=name,
+                       expected=f"at most {MAX_NESTING} nested CALL PGM")
+        try:
+            text = program_text(str(path))
+        except OSError as exc:
+            where.fail(f"CALL PGM {name}: cannot read {str(path)!r}: {exc.strerror or exc}", column=col, text=name,
+                       expected="a readable program file")
+        callers = (*self.callers, str(Path(self.source).resolve()))
+        inch, source = m.inch, m.source
+        m.source = str(path)
+        sub = _Run(m, source_blocks(text), str(path), self.max_executed - self.executed, callers=callers)
+        sub.run()
+        self.executed += sub.executed
+        m.inch, m.source = inch, source
 
     def call_label(self, blk: SourceBlock, where: Where) -> None:
         """``CALL LBL n [REP k]``: a program-section repeat (backwards, with REP) or a subprogram call."""
