@@ -179,14 +179,35 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
+        self.rot = 0.0  # cycle 10 [deg]
+        self.scl = 1.0  # cycle 11
+        self.factors = np.ones(3)  # cycle 26
+        self.centre = np.zeros(3)  # cycle 26 [mm]
 
     def origin(self) -> np.ndarray:
         o = np.array(self.ctx.offset("G54"), float) + self.shift
         o[2] += self.length
         return o
 
+    def affine(self) -> tuple[np.ndarray, np.ndarray]:
+        """``machine = origin + A @ p + b`` for a program point p: the axes mirrored after the
+        rotation, the rotation after the scaling (cycles 8, 10, 11, 26 in their numbering order)."""
+        c, s = math.cos(math.radians(self.rot)), math.sin(math.radians(self.rot))
+        outer = np.diag(self.mirror) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        return outer @ np.diag(self.scl * self.factors), outer @ (self.scl * (1.0 - self.factors) * self.centre)
+
+    def machine(self, p: np.ndarray) -> np.ndarray:
+        a, b = self.affine()
+        return self.origin() + a @ p + b
+
     def prog(self) -> np.ndarray:
-        return self.pos - self.origin()
+        a, b = self.affine()
+        return np.linalg.solve(a, self.pos - self.origin() - b)
+
+    def turns_over(self) -> bool:
+        """True when the plane's sense of rotation is reversed (one of X, Y mirrored)."""
+        return self.mirror[0] * self.mirror[1] < 0
 
     def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None) -> None:
         start = self.pos.copy()
@@ -225,7 +246,7 @@ class _Tnc:
                 p[i] = w[a] * self.scale
             if "I" + a in w:
                 p[i] += w["I" + a] * self.scale
-        return p + self.origin()
+        return self.machine(p)
 
 
 def _comp_words(t: _Tnc, w: dict) -> None:
@@ -282,11 +303,12 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
             end_p[2] = w["Z"] * t.scale
         if "IZ" in w:
             end_p[2] += w["IZ"] * t.scale
-        end = end_p + t.origin()
+        end = t.machine(end_p)
     else:
         end = t.target(w)
-    centre = np.array([t.pole[0], t.pole[1], t.prog()[2]]) + t.origin()
-    t.emit(line, "arc_ccw" if w.get("DR", "+") == "+" else "arc_cw", end, centre=centre)
+    centre = t.machine(np.array([t.pole[0], t.pole[1], t.prog()[2]]))
+    ccw = (w.get("DR", "+") == "+") != t.turns_over()
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
 
 
 def _approach(t: _Tnc, line: int, w: dict) -> None:
@@ -325,8 +347,13 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
                 t.shift[i] += w["I" + a] * t.scale
     elif number == 9 and sub == 1:
         t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy()))
-    elif number == 32 or (number in (7, 9) and sub == 0):
+    elif number == 32 or (number in (7, 8, 9, 10, 11, 26) and sub == 0):
         pass
+    elif number in (8, 10, 11, 26) and sub == 1:
+        _transform(t, number, rest)
+    elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
+        if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
+            raise ReferenceError("CYCL DEF 19 with a tilt")
     elif number == 1:
         if sub == 0:
             t.cycle = ("1", {})
@@ -339,10 +366,29 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         raise ReferenceError(f"CYCL DEF {number}")
 
 
+def _transform(t: _Tnc, number: int, rest: str) -> None:
+    """Item 1 of cycle 8 (mirrored axes, none: off), 10 (ROT/IROT [deg]), 11 (SCL), 26 (factors, CC centre)."""
+    text = re.sub(r"\s+", "", rest)
+    if number == 8:
+        t.mirror = np.array([-1.0 if a in text else 1.0 for a in "XYZ"])
+    elif number == 10:
+        m = re.fullmatch(r"(I?)ROT(.+)", text)
+        t.rot = (t.rot if m.group(1) else 0.0) + _val(m.group(2), t.q)
+    elif number == 11:
+        t.scl = _val(re.fullmatch(r"SCL(.+)", text).group(1), t.q)
+    else:
+        for cc, axis, v in re.findall(r"(CC)?([XYZ])([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", text):
+            i = "XYZ".index(axis)
+            if cc:
+                t.centre[i] = _val(v, t.q) * t.scale
+            else:
+                t.factors[i] = _val(v, t.q)
+
+
 def _move_z(t: _Tnc, line: int, kind: str, z: float, *, optional: bool = False) -> None:
     """A tool-axis move to program height ``z``."""
     end = t.pos.copy()
-    end[2] = z * t.scale + t.origin()[2]
+    end[2] = t.machine(np.array([0.0, 0.0, z * t.scale]))[2]
     rows = "optional" if optional and abs(end[2] - t.pos[2]) <= _EPS * max(1.0, abs(end[2])) else "one"
     t.emit(line, kind, end, rows=rows)
 
@@ -465,7 +511,7 @@ def _label_of(text: str) -> str:
     return re.match(r"LBL\s*(\S+)", text).group(1).strip('"')
 
 
-def heidenhain_reference(text: str, context) -> list[Expected]:
+def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
     """The expected ``--blocks`` rows of a Heidenhain conversational program run against ``context``.
 
     Parameters
@@ -474,6 +520,10 @@ def heidenhain_reference(text: str, context) -> list[Expected]:
         The program.
     context : interpolators.context.MachineContext
         The tables the reader is given (preset ``G54``, tools, home).
+    resolve : callable, optional
+        ``resolve(name) -> text`` of the program a ``CALL PGM name`` runs (the called program
+        shares the Q parameters and transformations, has its own unit and labels, and returns at
+        its ``END PGM``); without it a CALL PGM is not modelled.
 
     Returns
     -------
@@ -485,9 +535,16 @@ def heidenhain_reference(text: str, context) -> list[Expected]:
     ReferenceError
         The program uses a function this reference does not model.
     """
+    t = _Tnc(context)
+    _execute(t, text, resolve, called=False)
+    return t.out
+
+
+def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
+    """Run one program's blocks on the machine state ``t`` (a called one: to its END PGM)."""
     blocks = _blocks(text)
     labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
-    t = _Tnc(context)
+    scale = t.scale
     counters: dict[int, int] = {}
     stack: list[int] = []
     pc, steps = 0, 0
@@ -502,6 +559,10 @@ def heidenhain_reference(text: str, context) -> list[Expected]:
             break
         if up.startswith("BEGIN PGM"):
             t.scale = 25.4 if up.split()[-1] == "INCH" else 1.0
+        elif up.startswith("CALL PGM"):
+            if resolve is None:
+                raise ReferenceError("CALL PGM without a resolver")
+            _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
         elif up.startswith("CALL LBL"):
             m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(\d+))?", up)
             target = labels[m.group(1).strip('"')]
@@ -536,9 +597,11 @@ def heidenhain_reference(text: str, context) -> list[Expected]:
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):
+            if called:
+                raise ReferenceError("M2/M30 in a called program")
             break
         pc = nxt
-    return t.out
+    t.scale = scale
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
