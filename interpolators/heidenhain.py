@@ -80,10 +80,13 @@ from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
     MACHINING_CYCLES,
+    PATTERN_CYCLES,
     DrillCycle,
+    PatternCycle,
     drill_cycle,
     hole_moves,
     legacy_value,
+    pattern_cycle,
     pattern_positions,
     pecking_cycle,
     q_assignments,
@@ -178,6 +181,7 @@ class _Machine:
         self.approach: dict | None = None  # APPR LT waiting for the first contour element
         self.last_rapid = False
         self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
+        self.spindle: float | None = None  # spindle speed of the last TOOL CALL S [rpm]
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -544,6 +548,8 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
             dl = v * m.scale
         elif word == "DR":
             dr = v * m.scale
+        elif word == "S":
+            m.spindle = v
     if number is not None:
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
@@ -569,12 +575,19 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     sub = int(cm.group(2)) if cm.group(2) is not None else None
     rest = cm.group(3)
     col = blk.column + cm.start(3)
-    if number not in (1, 7, 9, 19, 32, *TRANSFORM_CYCLES, 200, 203, 205):
+    if number not in (1, 7, 9, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 19 (reset), 26, 32, 200, 203 or 205")
+                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 19 (reset), 26, 32, 200-203, 205-207, 209, 220, 221, 240")
     if number >= 200:
         q = q_assignments(rest, where, m.params, column0=col)
-        m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column)
+        if number in PATTERN_CYCLES:
+            if q.get(365, 0.0):
+                m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
+            _pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
+                               blk)
+            return
+        m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
+                              spindle=m.spindle)
         return
     if sub in (None, 0):
         if number == 1:
@@ -721,12 +734,48 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
         target[axis] = m.pos[axis]
         if not np.array_equal(target, m.pos):
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+    _hole(m, c, surface, where, blk)
+
+
+def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """The moves of cycle ``c`` at the current position in the plane, ``surface`` [mm, machine]."""
+    axis = m.plane
+    centre = m.pos.copy()
+    p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
         if mv.kind == "dwell":
             m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
+        elif mv.kind == "plane":
+            target, _ = _program_target(m, {"I" + "XYZ"[p]: mv.offset[0], "I" + "XYZ"[q]: mv.offset[1]}, centre)
+            target[axis] = m.pos[axis]
+            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
         else:
             _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
     m.used.add(axis)
+
+
+def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """Cycle 220/221 runs the last machining cycle at each of its positions (TNC 320 cycle manual,
+    cycle 220 "Cycle run": at rapid to the 2nd set-up clearance, to the first position in the
+    plane, the machining cycle from the set-up clearance; to the next positions at the set-up
+    clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
+    machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
+    if m.cycle is None or m.cycle.surface is None:
+        where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
+                   text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
+    base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
+    scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))
+    axis, p, q = m.plane, *PLANE_AXES[m.plane]
+    d = -1.0 if scaled.depth < 0 else 1.0
+    surface = _surface_level(m, scaled.surface, 0.0)
+    _axis_move(m, "rapid", surface - d * max(scaled.setup, scaled.second_setup), math.inf, where, blk)
+    for k, (u, v) in enumerate(pat.points):
+        target, _ = _program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
+        target[axis] = m.pos[axis]
+        if not np.array_equal(target, m.pos):
+            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+        last = k == len(pat.points) - 1
+        _hole(m, scaled if pat.high or last else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
 
 
 def _active_cycle(m: _Machine) -> DrillCycle:

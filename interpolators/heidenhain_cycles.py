@@ -38,14 +38,28 @@ from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
-__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "q_assignments", "legacy_value",
+__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
+           "q_assignments", "legacy_value", "required_q", "PatternCycle", "pattern_cycle",
            "pecking_cycle", "drill_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 200, 203, 205)
+MACHINING_CYCLES: tuple[int, ...] = (1, 200, 201, 202, 203, 205, 206, 207, 209, 240)
+#: Pattern cycles: DEF-active, they run the last machining cycle at each position.
+PATTERN_CYCLES: tuple[int, ...] = (220, 221)
+#: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
+BORING_DISENGAGE = 0.2
+
+#: The Q parameters a cycle definition must give (TNC 320 cycle programming manual, the cycles' parameter
+#: lists; the others have the defaults of the TNC's cycle dialog).
+_REQUIRED = {
+    200: (200, 201, 206, 203, 204), 201: (200, 201, 206, 203, 204), 202: (200, 201, 206, 203, 204),
+    203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
+    207: (200, 201, 239, 203, 204), 209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
+}
 
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 
@@ -87,6 +101,9 @@ class DrillCycle:
         Advanced stop distance [mm]: how far above the last depth a re-entry at rapid stops
         (205: Q258); ``None``: the cycle's own rule (1: 0.6 mm, or depth/50 up to 7 mm, for holes
         deeper than 30 mm; 200/203: the set-up clearance).
+    disengage : tuple of float
+        Cycle 202: the move off the wall at the bottom, in the working plane's (reference, minor)
+        axes [mm, program directions] (Q214; (0, 0): none).
     """
 
     number: int
@@ -104,6 +121,7 @@ class DrillCycle:
     chip_break: float = 0.0
     retract_feed: float | None = None
     advance: float | None = None
+    disengage: tuple[float, float] = (0.0, 0.0)
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -155,32 +173,77 @@ def pecking_cycle(items: dict[int, float], *, feed_scale: float, scale: float, w
                                dwell_top=0.0, dwell_bottom=items.get(4, 0.0)), where, column)
 
 
-def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                column: int) -> DrillCycle:
-    """Cycle 200, 203 or 205 from its Q parameters."""
-    need = [200, 201, 206, 203, 204]
-    missing = [f"Q{k}" for k in need if k not in q]
+def required_q(number: int, q: dict[int, float], where: Where, column: int) -> None:
+    """An error naming the Q parameters that cycle ``number``'s definition lacks."""
+    missing = [f"Q{k}" for k in _REQUIRED[number] if k not in q]
     if missing:
         where.fail(f"cycle {number} lacks {', '.join(missing)}", column=column, text=where.text,
-                   expected="Q200 set-up clearance, Q201 depth, Q206 feed, Q203 surface, Q204 2nd set-up clearance")
+                   expected="the cycle's Q parameters: " + " ".join(f"Q{k}" for k in _REQUIRED[number]))
+
+
+def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                column: int, spindle: float | None = None) -> DrillCycle:
+    """A 200-series machining cycle from its Q parameters (TNC 320 cycle programming manual 9/2016,
+    "Fixed cycles: drilling" and "tapping"; ``spindle`` [rpm] is the speed of the last TOOL CALL,
+    whose product with the pitch Q239 is the feed of 207 and 209):
+
+    * 200 DRILLING, 203 UNIVERSAL DRILLING, 205 UNIVERSAL PECKING: pecks (see :func:`hole_moves`);
+    * 201 REAMING: feed to depth, dwell Q211, retract at Q208 (0: at Q206) to the set-up clearance;
+    * 202 BORING: as 201, then at the bottom the spindle is oriented and the tool moved off the
+      wall by 0.2 mm (a fixed value) in the direction Q214 (1/3: minus/plus the reference axis,
+      2/4: minus/plus the minor axis, 0: none) before the retraction at Q208 (0: Q206); back over
+      the centre of the hole at the set-up clearance (our reading), then to the 2nd set-up clearance;
+    * 206 TAPPING: feed to depth, dwell Q211, retract at the feed Q206;
+    * 207 RIGID TAPPING: feed = S x pitch Q239 to depth and back to the set-up clearance;
+    * 209 TAPPING WITH CHIP BREAKING: infeeds Q257, after each the tool backs off by Q256 x pitch
+      (Q256 = 0: out to the set-up clearance) at the feed times Q403 (default 1), as it retracts at
+      the bottom;
+    * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back.
+    """
+    required_q(number, q, where, column)
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
+    if number == 240 and q.get(343, 0.0) != 0.0:
+        where.fail("cycle 240: Q343=1 (centering to a diameter) needs the tool's point angle", column=column,
+                   text=where.text, expected="Q343=0 (depth Q201)")
     if number == 205 and q.get(257, 0.0) != 0.0:
         where.fail("cycle 205: chip breaking within an infeed (Q257 != 0) is not supported", column=column,
                    text=where.text, expected="Q257=0")
     depth = q[201] * scale
+    base = dict(number=number, setup=abs(q[200]) * scale, depth=depth, surface=q[203] * scale,
+                second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0))
+    if number in (207, 209):
+        if not spindle:
+            where.fail(f"cycle {number}: the feed is the spindle speed times the pitch, and no speed is known",
+                       column=column, text=where.text, expected="TOOL CALL .. S<rpm> before the cycle")
+        feed = spindle * abs(q[239]) * scale / 60.0
+        pitch = abs(q[239]) * scale
+        back = feed * (q.get(403, 0.0) or 1.0)
+        if number == 207:
+            return _checked(DrillCycle(plunge=abs(depth), feed=feed, retract_feed=feed, **base), where, column)
+        plunge = abs(q[257]) * scale or abs(depth)
+        chip = abs(q.get(256, 0.0)) * pitch
+        return _checked(DrillCycle(plunge=plunge, feed=feed, retract_feed=back, chip_breaks=10 ** 9 if chip else 0,
+                                   chip_break=chip, **base), where, column)
+    feed = q[206] * feed_scale
+    if number in (201, 202, 206):
+        back = (q.get(208, 0.0) or q[206]) * feed_scale if number != 206 else feed
+        side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q.get(214, 0.0)), (0.0, 0.0))
+        off = tuple(BORING_DISENGAGE * v for v in side) if number == 202 else (0.0, 0.0)
+        return _checked(DrillCycle(plunge=abs(depth), feed=feed, retract_feed=back, disengage=off, **base),
+                        where, column)
+    if number == 240:
+        return _checked(DrillCycle(plunge=abs(depth), feed=feed, **base), where, column)
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
     # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
     retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
     return _checked(DrillCycle(
-        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=plunge, feed=q[206] * feed_scale,
-        dwell_top=q.get(210, 0.0), dwell_bottom=q.get(211, 0.0), surface=q[203] * scale,
-        second_setup=q[204] * scale, decrement=abs(q.get(212, 0.0)) * scale,
+        plunge=plunge, feed=feed, dwell_top=q.get(210, 0.0), decrement=abs(q.get(212, 0.0)) * scale,
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
         retract_feed=retract * feed_scale if retract > 0 else None,
-        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None), where, column)
+        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None, **base), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -207,7 +270,73 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
     return dataclasses.replace(cycle, setup=cycle.setup * factor, depth=cycle.depth * factor,
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
-                               chip_break=cycle.chip_break * factor, advance=f(cycle.advance))
+                               chip_break=cycle.chip_break * factor, advance=f(cycle.advance),
+                               disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class PatternCycle:
+    """Cycle 220 POLAR PATTERN or 221 CARTESIAN PATTERN, in mm.
+
+    Attributes
+    ----------
+    number : int
+        220 or 221.
+    points : tuple of (float, float)
+        The machining positions in the working plane's (reference, minor) axes [mm, program], in
+        the order the TNC machines them.
+    setup, surface, second_setup : float
+        Q200, Q203, Q204 [mm]: they replace the machining cycle's own.
+    high : bool
+        Q301 = 1: between the positions the tool moves at the 2nd set-up clearance (0: at the set-up
+        clearance).
+    """
+
+    number: int
+    points: tuple[tuple[float, float], ...]
+    setup: float
+    surface: float
+    second_setup: float
+    high: bool
+
+
+def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Where, column: int) -> PatternCycle:
+    """Cycle 220 or 221 from its Q parameters (TNC 320 user's manual for cycle programming 9/2016,
+    "Fixed cycles: pattern definitions", p. 176-181):
+
+    * 220: Q241 positions on the circle of diameter Q244 about (Q216, Q217), from the starting angle
+      Q245 in steps of Q247; Q247 = 0: the step is (Q246 - Q245) / (Q241 - 1), on a full circle
+      (Q246 - Q245 = +-360) (Q246 - Q245) / Q241;
+    * 221: Q242 columns spaced Q237 along the reference axis and Q243 lines spaced Q238 from the
+      starting point (Q225, Q226), turned by Q224 about it; the TNC machines the first line in
+      the positive direction of the reference axis, the next one back (meander).
+
+    ``Q365`` = 1 of cycle 220 (moving between positions along the pitch circle) is read as
+    straight moves (noted by the reader). A definition lacking a parameter is an error naming it.
+    """
+    required_q(number, q, where, column)
+    if number == 220:
+        n = int(q[241])
+        if n < 1:
+            where.fail("cycle 220: Q241 must be >= 1", column=column, text=where.text, expected="Q241 >= 1")
+        span = q[246] - q[245]
+        step = q[247] or (span / n if abs(abs(span) - 360.0) <= 1e-9 else (span / (n - 1) if n > 1 else 0.0))
+        r = q[244] / 2.0
+        pts = [(q[216] + r * math.cos(math.radians(q[245] + k * step)),
+                q[217] + r * math.sin(math.radians(q[245] + k * step))) for k in range(n)]
+    else:
+        cols, rows = int(q[242]), int(q[243])
+        if cols < 1 or rows < 1:
+            where.fail("cycle 221: Q242 and Q243 must be >= 1", column=column, text=where.text,
+                       expected="Q242 >= 1 and Q243 >= 1")
+        a = math.radians(q.get(224, 0.0))
+        pts = []
+        for j in range(rows):
+            for i in (range(cols) if j % 2 == 0 else reversed(range(cols))):
+                u, v = i * q[237], j * q[238]
+                pts.append((q[225] + u * math.cos(a) - v * math.sin(a), q[226] + u * math.sin(a) + v * math.cos(a)))
+    return PatternCycle(number=number, points=tuple((x * scale, y * scale) for x, y in pts), setup=abs(q[200]) * scale,
+                        surface=q[203] * scale, second_setup=q[204] * scale, high=q.get(301, 0.0) != 0.0)
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
@@ -250,19 +379,24 @@ class AxisMove:
 
     Attributes
     ----------
-    kind : {"rapid", "line", "dwell"}
+    kind : {"rapid", "line", "dwell", "plane"}
+        ``"plane"``: a rapid in the working plane to ``offset`` from the hole's centre.
     level : float
         Tool-axis coordinate at the end of the move [mm, machine].
     feed : float
         [mm/s]; ``inf`` for rapids, 0 for dwells.
     dwell : float
         [s] for a dwell.
+    offset : tuple of float
+        For ``"plane"``: where the tool goes, from the hole's centre in the working plane's
+        (reference, minor) axes [mm, program directions].
     """
 
     kind: str
     level: float
     feed: float = math.inf
     dwell: float = 0.0
+    offset: tuple[float, float] = (0.0, 0.0)
 
 
 def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisMove]:
@@ -279,7 +413,10 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
       (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
       203 breaks the chip Q213 times by retracting Q256 before a full retraction; at the bottom
       dwell Q211, retract (203: at Q208) to the set-up clearance and, when it is higher, to the
-      2nd set-up clearance.
+      2nd set-up clearance;
+    * the other 200-series cycles (:func:`drill_cycle`): the same moves with one infeed (209: Q257
+      infeeds, each followed by a back-off), a tap re-entering at its feed, cycle 202's moves off
+      the wall and back as ``"plane"`` moves.
 
     ``start`` and ``surface`` are tool-axis coordinates [mm, machine]; the sign of the depth is the
     working direction.
@@ -304,7 +441,7 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
             if cycle.dwell_top > 0:
                 out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
             reentry = surface + d * (done - advance)
-            if d * (reentry - top) > 0:  # only when below the retraction level
+            if d * (reentry - top) > 0 and cycle.number not in (206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)
         done += step
@@ -323,7 +460,11 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
         at_top = True
     if cycle.dwell_bottom > 0:
         out.append(AxisMove("dwell", surface + d * total, 0.0, cycle.dwell_bottom))
+    if cycle.disengage != (0.0, 0.0):
+        out.append(AxisMove("plane", surface + d * total, offset=cycle.disengage))
     out.append(AxisMove(retract_kind, top, retract_feed))
+    if cycle.disengage != (0.0, 0.0):
+        out.append(AxisMove("plane", top))
     if cycle.number != 1 and cycle.second_setup > cycle.setup:
         out.append(AxisMove("rapid", surface - d * cycle.second_setup))
     return out
