@@ -359,9 +359,14 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = ("1", {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number == 200 and sub == 0:
-        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q2\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
-        t.cycle = ("200", params)
+    elif number in (200, 201, 202, 206, 207, 209, 220, 221, 240) and sub == 0:
+        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        for k, v in params.items():
+            t.q[k] = v
+        if number in (220, 221):
+            _pattern(t, line, number, params)
+        else:
+            t.cycle = (str(number), params)
     else:
         raise ReferenceError(f"CYCL DEF {number}")
 
@@ -419,6 +424,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         _dwell(t, line, dwell)
         _move_z(t, line, "rapid", start)
         return
+    if kind != "200":
+        _one_pass_cycle(t, line, kind, p)
+        return
     surface, setup, depth = p["Q203"], p["Q200"], p["Q201"]
     plunge, second = p["Q202"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
@@ -434,6 +442,67 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering: in to
+    the depth (209: in steps of Q257, backing off Q256 pitches after each, 0: out to the set-up
+    clearance), dwell Q211 (not 207/209), 202: 0.2 mm off the wall in the Q214 direction; out (240:
+    rapid, the others at a feed) to the set-up clearance, 202: back over the centre; up to Q204."""
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear = surface - sgn * setup
+    bottom = surface + depth
+    _move_z(t, line, "rapid", clear, optional=True)
+    if kind == "209":
+        back = abs(p.get("Q256", 0.0) * p["Q239"])
+        levels = _levels(surface, bottom, sgn, abs(p["Q257"]) or abs(depth))
+        for z in levels[:-1]:
+            _move_z(t, line, "feed", z)
+            _move_z(t, line, "feed", z - sgn * back if back else clear)
+    _move_z(t, line, "feed", bottom)
+    if kind not in ("207", "209"):
+        _dwell(t, line, p.get("Q211", 0.0))
+    centre = t.prog()
+    side = {1: (-1, 0), 2: (0, -1), 3: (1, 0), 4: (0, 1)}.get(int(p.get("Q214", 0))) if kind == "202" else None
+    if side:
+        t.emit(line, "rapid", t.machine(centre + np.array([side[0], side[1], 0.0]) * 0.2))
+    _move_z(t, line, "rapid" if kind == "240" else "feed", clear)
+    if side:
+        centre[2] = t.prog()[2]
+        t.emit(line, "rapid", t.machine(centre))
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
+    """Cycle 220 (positions on a pitch circle) or 221 (a grid, meandering, turned by Q224 about its
+    start): at each, the last machining cycle with the pattern's Q200/Q203/Q204, first reached over
+    the 2nd set-up clearance, the next ones at the set-up clearance (Q301 = 1: the 2nd)."""
+    if number == 220:
+        n = int(p["Q241"])
+        span = p["Q246"] - p["Q245"]
+        step = p["Q247"] if p["Q247"] else (span / n if abs(span) == 360 else span / max(n - 1, 1))
+        r = p["Q244"] / 2
+        points = [(p["Q216"] + r * math.cos(math.radians(p["Q245"] + k * step)),
+                   p["Q217"] + r * math.sin(math.radians(p["Q245"] + k * step))) for k in range(n)]
+    else:
+        rot = math.radians(p.get("Q224", 0.0))
+        grid = [(i if j % 2 == 0 else int(p["Q242"]) - 1 - i, j) for j in range(int(p["Q243"]))
+                for i in range(int(p["Q242"]))]
+        points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
+                   p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
+    kind, cyc = t.cycle
+    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
+    for k, (x, y) in enumerate(points):
+        here = t.prog()
+        here[0], here[1] = x * t.scale, y * t.scale
+        t.emit(line, "rapid", t.machine(here), rows="optional" if np.allclose(t.machine(here), t.pos) else "one")
+        last = k == len(points) - 1
+        second = p["Q204"] if last or p.get("Q301", 0) else 0.0
+        t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
+        _run_cycle(t, line)
+    t.cycle = (kind, cyc)
 
 
 def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[float]:

@@ -1,0 +1,102 @@
+"""Heidenhain machining cycles 201, 202, 206, 207, 209, 240 and the pattern cycles 220, 221: hand-written
+programs with the tool-axis moves worked out by hand from the TNC 320 cycle programming manual, each
+also checked against the independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S500\n2 L X+0 Y+0 Z+50 R0 FMAX\n"
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+
+
+def run(body: str):
+    text = HEAD + body + "\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact == len(prog.blocks)
+    return prog
+
+
+def moves(prog):
+    """(kind, x, y, z, feed [mm/min] or dwell [s]) after the first rapid."""
+    return [(b.kind, *np.round(b.target, 6).tolist(), b.dwell if b.kind == "dwell" else round(b.feed * 60, 6))
+            for b in prog.blocks[1:]]
+
+
+def test_reaming_201_retracts_at_q208():
+    prog = run("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100 Q211=0.5 Q208=200 Q203=+0 Q204=20\nL X+5 FMAX M99")
+    assert moves(prog) == [("rapid", 5, 0, 50, math.inf), ("rapid", 5, 0, 2, math.inf), ("line", 5, 0, -10, 100),
+                           ("dwell", 5, 0, -10, 0.5), ("line", 5, 0, 2, 200), ("rapid", 5, 0, 20, math.inf)]
+
+
+def test_boring_202_moves_off_the_wall_before_the_retraction():
+    prog = run("CYCL DEF 202 BORING Q200=2 Q201=-10 Q206=100 Q211=0 Q208=0 Q203=+0 Q204=20 Q214=4 Q336=0\nCYCL CALL")
+    assert moves(prog) == [("rapid", 0, 0, 2, math.inf), ("line", 0, 0, -10, 100), ("rapid", 0, 0.2, -10, math.inf),
+                           ("line", 0, 0.2, 2, 100), ("rapid", 0, 0, 2, math.inf), ("rapid", 0, 0, 20, math.inf)]
+
+
+def test_tapping_206_and_rigid_tapping_207_feed_in_and_out():
+    prog = run("CYCL DEF 206 TAPPING NEW Q200=2 Q201=-8 Q206=150 Q211=0.25 Q203=+0 Q204=5\nCYCL CALL\n"
+               "CYCL DEF 207 RIGID TAPPING NEW Q200=2 Q201=-8 Q239=+1.25 Q203=+0 Q204=5\nCYCL CALL")
+    assert moves(prog) == [("rapid", 0, 0, 2, math.inf), ("line", 0, 0, -8, 150), ("dwell", 0, 0, -8, 0.25),
+                           ("line", 0, 0, 2, 150), ("rapid", 0, 0, 5, math.inf),
+                           ("rapid", 0, 0, 2, math.inf), ("line", 0, 0, -8, 625), ("line", 0, 0, 2, 625),
+                           ("rapid", 0, 0, 5, math.inf)]  # 207: S500 x 1.25 mm = 625 mm/min
+
+
+def test_tapping_with_chip_breaking_209_backs_off_pitches():
+    prog = run("CYCL DEF 209 TAPPING W/ CHIP BRKG Q200=2 Q201=-10 Q239=+1 Q203=+0 Q204=20 Q257=4 Q256=1 Q336=0 "
+               "Q403=2\nCYCL CALL")
+    zs = [(b.kind, b.target[2], round(b.feed * 60, 6)) for b in prog.blocks[1:]]
+    assert zs == [("rapid", 2, math.inf), ("line", -4, 500), ("line", -3, 1000), ("line", -8, 500),
+                  ("line", -7, 1000), ("line", -10, 500), ("line", 2, 1000), ("rapid", 20, math.inf)]
+
+
+def test_polar_pattern_220_runs_centering_240_on_a_full_circle():
+    prog = run("CYCL DEF 240 CENTERING Q200=2 Q343=0 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20\n"
+               "CYCL DEF 220 POLAR PATTERN Q216=+50 Q217=+50 Q244=20 Q245=+0 Q246=+360 Q247=+0 Q241=4 Q200=2 "
+               "Q203=+1 Q204=30 Q301=0 Q365=0")
+    holes = [b.target[:2] for b in prog.blocks if b.kind == "line"]
+    assert np.allclose(holes, [[60, 50], [50, 60], [40, 50], [50, 40]])
+    zs = [b.target[2] for b in prog.blocks[1:]]
+    # 2nd set-up clearance 1 + 30, over the first hole, down to the set-up clearance 3, depth -1, back to 3,
+    # to the next hole at 3; after the last: 31
+    assert zs == [31, 31, 3, -1, 3, 3, -1, 3, 3, -1, 3, 3, -1, 3, 31]
+
+
+def test_cartesian_pattern_221_meanders_and_turns_about_its_start():
+    prog = run("CYCL DEF 200 DRILLING Q200=2 Q201=-3 Q206=100 Q202=3 Q210=0 Q203=+0 Q204=30 Q211=0\n"
+               "CYCL DEF 221 CARTESIAN PATTERN Q225=+10 Q226=+10 Q237=+10 Q238=+5 Q242=3 Q243=2 Q224=+90 "
+               "Q200=2 Q203=+0 Q204=30 Q301=1")
+    holes = [b.target[:2] for b in prog.blocks if b.kind == "line"]
+    assert np.allclose(holes, [[10, 10], [10, 20], [10, 30], [5, 30], [5, 20], [5, 10]])
+    plane = [b for b in prog.blocks[1:] if b.kind == "rapid" and not np.allclose(b.start[:2], b.target[:2])]
+    assert len(plane) == 6 and all(b.start[2] == b.target[2] == 30 for b in plane)  # Q301=1: at the 2nd clearance
+
+
+@pytest.mark.parametrize("body, words", [
+    ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
+    ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
+    ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
+    ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
+    ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20", "Q343=1"),
+    ("CYCL DEF 220 POLAR PATTERN Q216=+50 Q217=+50 Q244=20 Q245=+0 Q246=+360 Q247=+0 Q241=4 Q200=2 Q203=+1 "
+     "Q204=30", "cycle 220 without a machining cycle"),
+])
+def test_errors_name_the_cycle(body, words):
+    with pytest.raises(GCodeError) as info:
+        parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", source="t.h")
+    assert words in str(info.value)
+    assert info.value.file == "t.h" and info.value.line >= 2
