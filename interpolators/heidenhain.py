@@ -105,7 +105,14 @@ from interpolators.heidenhain_paths import (
     tangential_arc,
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
-from interpolators.heidenhain_transforms import TRANSFORM_CYCLES, Transform, TransformError, transform_item
+from interpolators.heidenhain_transforms import (
+    TRANSFORM_CYCLES,
+    Transform,
+    TransformError,
+    tilt_block,
+    trans_block,
+    transform_item,
+)
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
@@ -114,7 +121,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
-    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM"
+    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
     r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?![A-Z])",
     re.I,
 )
@@ -501,10 +508,20 @@ def _ignore(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> N
 # --- tools -----------------------------------------------------------------------------------
 
 def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``TOOL DEF n L.. R..``: the tool's data in the program; ``TOOL DEF n`` (or a quoted name)
+    alone pre-selects the next tool for the tool changer (TNC 640 user's manual, "Tool
+    pre-selection with TOOL DEF"): no data, no motion."""
     code = blk.code
-    tm = re.match(r"\s*(\d+)", code[pos:])
+    tm = re.match(r"\s*(\d+|\"[^\"]*\"|'[^']*')", code[pos:])
     if tm is None:
         where.fail("TOOL DEF without a tool number", column=blk.column + pos, text=code, expected="TOOL DEF n L.. R..")
+    if not code[pos + tm.end():].strip() or not tm.group(1)[0].isdigit():
+        if code[pos + tm.end():].strip():
+            tok = code[pos + tm.end():].split()[0]
+            where.fail(f"unknown word {tok!r} after a tool name in TOOL DEF", column=blk.column + pos + tm.end(),
+                       text=tok, expected="TOOL DEF \"name\" (a pre-selection)")
+        m.note("TOOL DEF pre-selection: no motion")
+        return
     length = radius = 0.0
     j = pos + tm.end()
     while j < len(code):
@@ -526,8 +543,11 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+)?", rest)
-    number = int(nm.group(1)[:9]) if nm.group(1) else None
+    nm = re.match(r"\s*(\d+|\"[^\"]*\"|'[^']*')?", rest)
+    number = int(nm.group(1)[:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
+    if named:
+        m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")
     j = pos + nm.end()
     dl = dr = 0.0
     while j < len(code):
@@ -563,6 +583,8 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
                 length, radius = tool.length, tool.radius
         m.tool_length = length + dl
         m.tool_radius = radius + dr
+    elif named:
+        m.tool_length, m.tool_radius = dl, dr
 
 
 # --- cycles ----------------------------------------------------------------------------------
@@ -606,8 +628,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
                 where.fail(f"word {w.text!r} in a datum shift", column=w.column, text=w.text,
                            expected="X, Y or Z (IX.. incremental)")
-            i = "XYZ".index(w.key[-1])
-            m.shift[i] = (m.shift[i] if w.key.startswith("I") else 0.0) + w.value * m.scale
+        _datum_shift({w.key: w.value for w in words}, m)
         return
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
@@ -629,14 +650,42 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                                     column=blk.column)
 
 
+def _datum_shift(values: dict[str, float], m: _Machine) -> None:
+    """Cycle 7 / TRANS DATUM: ``X`` shifts from the preset, ``IX`` from the last shift [program units]."""
+    for key, value in values.items():
+        i = "XYZ".index(key[-1])
+        m.shift[i] = (m.shift[i] if key.startswith("I") else 0.0) + value * m.scale
+
+
+def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``PLANE``, ``FUNCTION``: no motion when nothing tilts, else an error naming the function."""
+    m.note(tilt_block(kw, blk.code[pos:], where, m.params, column0=blk.column + pos))
+
+
+def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``TRANS DATUM|MIRROR|ROTATION|SCALE``: the transformations of cycles 7, 8, 10, 11."""
+    col = blk.column + pos
+    t, shift = trans_block(blk.code[pos:], m.transform, where, m.params, column0=col, scale=m.scale)
+    if shift is not None:
+        if not shift:
+            m.shift = np.zeros(3)
+        _datum_shift(shift, m)
+    elif t != m.transform:
+        _set_transform(t, "TRANS", m, where, col, blk.code[pos:])
+
+
 def _transform_cycle(number: int, rest: str, m: _Machine, where: Where, col: int) -> None:
     """Item ``.1`` of cycles 8, 10, 11, 26 (:mod:`interpolators.heidenhain_transforms`)."""
     t = transform_item(number, rest, m.transform, where, m.params, column0=col, scale=m.scale)
+    _set_transform(t, f"cycle {number}", m, where, col, rest)
+
+
+def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int, text: str) -> None:
     if t.mirror[m.plane]:
-        where.fail(f"cycle 8 MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=rest.strip(),
+        where.fail(f"MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=text.strip(),
                    expected="mirrored axes of the working plane (the TNC cannot mirror the tool axis)")
     if m.comp != "R0" and t != m.transform:
-        where.fail(f"cycle {number} while radius compensation {m.comp} is active", column=col, text=rest.strip(),
+        where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=text.strip(),
                    expected="R0 before a coordinate transformation (the TNC cancels RL/RR there)")
     m.transform = t
 
@@ -808,7 +857,7 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
     ended = False
     for w in words:
         if w.key == "M":
-            ended = _one_m(w, m) or ended
+            ended = _one_m(w, m, where) or ended
             if w.value in (91, 92, 99, 140) and not motion:
                 if w.value == 99:
                     _cycle_call(m, where, blk)
@@ -824,7 +873,10 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
     return ended
 
 
-def _one_m(w: Word, m: _Machine) -> bool:
+def _one_m(w: Word, m: _Machine, where: Where) -> bool:
+    if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
+        where.fail("M128 (TCPM, tool centre point management) is not supported", column=w.column, text=w.text,
+                   expected="3-axis machining (M128 needs the machine's kinematics)")
     if w.value in _M_END:
         return True
     if w.value in _M_STOP:
@@ -899,7 +951,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
-    ended = any(_one_m(w, m) for w in ms)
+    ended = any(_one_m(w, m, where) for w in ms)
     if kw == "CC":
         _pole(seen, m, where, m9x)
         return ended
@@ -1137,7 +1189,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
                        expected="X, Y, Z, LEN, R0/RL/RR, F, M")
         if key != "M":
             seen[key] = w
-    ended = any(_one_m(w, m) for w in words if w.key == "M")
+    ended = any(_one_m(w, m, where) for w in words if w.key == "M")
     if "LEN" not in seen or not seen["LEN"].value > 0:
         w = seen.get("LEN")
         where.fail(f"{kw} LT needs LEN > 0", column=w.column if w else blk.column, text=w.text if w else code,
@@ -1267,4 +1319,7 @@ _HANDLERS = {
     "M": _stop_or_m,
     "RND": _corner_def,
     "CHF": _corner_def,
+    "PLANE": _tilt,
+    "FUNCTION": _tilt,
+    "TRANS": _trans,
 }

@@ -40,7 +40,7 @@ from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value
 from toolpaths.geometry import PLANE_AXES
 
-__all__ = ["Transform", "TransformError", "TRANSFORM_CYCLES", "transform_item"]
+__all__ = ["Transform", "TransformError", "TRANSFORM_CYCLES", "transform_item", "tilt_block", "trans_block"]
 
 
 class TransformError(ValueError):
@@ -217,3 +217,69 @@ def _rest_empty(rest: str, end: int, where: Where, column0: int) -> None:
 def _positive(value: float, what: str, where: Where, column0: int, text: str) -> None:
     if not value > 0:
         where.fail(f"{what} must be > 0", column=column0, text=text, expected="a factor > 0")
+
+
+_TILT_ANGLE_RE = re.compile(r"(SP[ABC]|PROPR|PROMIN|EULPR|EULNU|EULROT|ROT|[ABC])(?=\s*[+-]?\s*[\d.Q(])", re.I)
+
+
+def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0: int) -> str:
+    """``PLANE ...``, ``FUNCTION ...``: the note of a block that tilts nothing, else an error naming it.
+
+    TNC 640 user's manual, "Tilting the working plane (software option 1)": ``PLANE RESET`` cancels
+    a tilt; ``PLANE SPATIAL/PROJECTED/EULER/RELATIVE/AXIAL`` with all angles 0 keeps the tool axis
+    (no tilt; vcnc moves no rotary axis for it); any other angle, ``PLANE VECTOR``/``POINTS``, and
+    ``FUNCTION TCPM`` (tool centre point management, as ``M128``) need the machine's kinematics,
+    which vcnc does not model: an error naming the function. ``FUNCTION RESET TCPM`` and
+    ``FUNCTION MODE MILL`` change nothing on a milling machine.
+    """
+    words = rest.split()
+    form = words[0].upper() if words else ""
+    what = f"{kw} {form}".strip()
+    if kw == "FUNCTION":
+        second = words[1].upper() if len(words) > 1 else ""
+        if (form, second) in (("RESET", "TCPM"), ("MODE", "MILL")):
+            return f"{kw} {form} {second}: no motion"
+        where.fail(f"{what} is not supported", column=column0, text=what,
+                   expected="3-axis machining (FUNCTION TCPM needs the machine's kinematics)")
+    if form == "RESET":
+        return "PLANE RESET: no tilted working plane (no motion)"
+    if form in ("SPATIAL", "PROJECTED", "EULER", "RELATIVE", "AXIAL"):
+        nonzero = [am.group(1).upper() for am in _TILT_ANGLE_RE.finditer(rest)
+                   if read_value(rest, am.end(), where, params, what=am.group(1), column0=column0)[0] != 0.0]
+        if not nonzero:
+            return f"{what} with angles 0: no tilt (no motion)"
+    where.fail(f"{what} (a tilted working plane) is not supported", column=column0, text=what,
+               expected="3-axis machining: PLANE RESET, or PLANE .. with all angles 0")
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def trans_block(rest: str, transform: Transform, where: Where, params: QParameters, *, column0: int,
+                scale: float) -> tuple[Transform, dict[str, float] | None]:
+    """``TRANS MIRROR|ROTATION|SCALE ...`` (the transformation after it) and ``TRANS DATUM ...``
+    (the shift words ``{"X": .., "IX": ..}`` in program units, ``{}`` for RESET), TNC 640 user's
+    manual, "Coordinate transformations: TRANS DATUM", and the TNC7 manual's TRANS MIRROR, TRANS
+    ROTATION, TRANS SCALE: the same transformations as cycles 7, 8, 10, 11; ``RESET`` cancels one."""
+    m = re.match(r"\s*(DATUM|MIRROR|ROTATION|SCALE)\s*(AXIS|RESET)?\s*", rest, re.I)
+    if m is None:
+        tok = (rest.split() or ["TRANS"])[0]
+        where.fail(f"TRANS {tok} is not supported", column=column0, text=tok,
+                   expected="TRANS DATUM, MIRROR, ROTATION or SCALE")
+    kind, sub, body = m.group(1).upper(), (m.group(2) or "").upper(), rest[m.end():]
+    col = column0 + m.end()
+    if kind == "DATUM":
+        if sub == "RESET":
+            return transform, {}
+        shift: dict[str, float] = {}
+        for am in re.finditer(r"\s*(I?[XYZ])(?=\s*[+-]?\s*[\d.Q(])", body, re.I):
+            shift[am.group(1).upper()] = read_value(body, am.end(), where, params, what=am.group(1),
+                                                    column0=col)[0]
+        if not shift:
+            where.fail("TRANS DATUM without an axis value", column=col, text=body.strip() or "TRANS DATUM",
+                       expected="TRANS DATUM AXIS X.. Y.. Z.. or TRANS DATUM RESET (a datum TABLE is not supported)")
+        return transform, shift
+    default = Transform()
+    if sub == "RESET":
+        field = {"MIRROR": "mirror", "ROTATION": "rotation", "SCALE": "scale"}[kind]
+        return dataclasses.replace(transform, **{field: getattr(default, field)}), None
+    number = {"MIRROR": 8, "ROTATION": 10, "SCALE": 11}[kind]
+    return transform_item(number, body, transform, where, params, column0=col, scale=scale), None
