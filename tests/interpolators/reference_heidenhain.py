@@ -390,6 +390,25 @@ def _transform(t: _Tnc, number: int, rest: str) -> None:
                 t.factors[i] = _val(v, t.q)
 
 
+def _trans(t: _Tnc, up: str) -> None:
+    """TRANS DATUM AXIS (as cycle 7) / RESET, TRANS MIRROR AXIS, TRANS ROTATION, TRANS SCALE (as 8, 10, 11) / RESET."""
+    m = re.match(r"TRANS\s+(DATUM|MIRROR|ROTATION|SCALE)\s*(AXIS|RESET)?\s*(.*)$", up)
+    kind, sub, rest = m.groups()
+    if sub == "RESET":
+        if kind == "DATUM":
+            t.shift = np.zeros(3)
+        elif kind == "MIRROR":
+            t.mirror = np.ones(3)
+        elif kind == "ROTATION":
+            t.rot = 0.0
+        else:
+            t.scl = 1.0
+    elif kind == "DATUM":
+        _cycle_def(t, 0, "CYCL DEF 7.1 " + rest)
+    else:
+        _transform(t, {"MIRROR": 8, "ROTATION": 10, "SCALE": 11}[kind], rest)
+
+
 def _move_z(t: _Tnc, line: int, kind: str, z: float, *, optional: bool = False) -> None:
     """A tool-axis move to program height ``z``."""
     end = t.pos.copy()
@@ -657,6 +676,12 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             t.q[q.strip()] = _Formula(expr, t.q).value()
         elif up.startswith("TOOL"):
             _tool(t, up)
+        elif up.startswith("TRANS"):
+            _trans(t, up)
+        elif up.startswith(("PLANE", "FUNCTION")):
+            if not (up.startswith(("PLANE RESET", "FUNCTION RESET TCPM", "FUNCTION MODE MILL"))
+                    or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
+                raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)
         elif up.startswith("CYCL CALL"):

@@ -88,7 +88,36 @@ def test_cycle_19_reset_is_no_motion_and_tilts_are_errors():
     assert len(prog.blocks) == 2
 
 
+def test_trans_functions_are_the_transformation_cycles():
+    prog = run("L X+0 Y+0 Z+0 R0 F100\nTRANS DATUM AXIS X+10 Y+5\nL X+0 Y+0\nTRANS DATUM AXIS IX+1\nL X+0 Y+0\n"
+               "TRANS ROTATION ROT+90\nL X+1 Y+0\nTRANS MIRROR AXIS Y\nL X+1 Y+0\nTRANS SCALE SCL2\nL X+1 Y+0\n"
+               "TRANS SCALE RESET\nTRANS MIRROR RESET\nTRANS ROTATION RESET\nTRANS DATUM RESET\nL X+1 Y+0",
+               context=MachineContext())
+    # rotation first, then the mirror of Y: (1, 0) -> (0, 1) -> (0, -1), about the datum (11, 5)
+    assert ends(prog, origin=(0, 0, 0)) == [[0, 0, 0], [10, 5, 0], [11, 5, 0], [11, 6, 0], [11, 4, 0], [11, 3, 0],
+                                            [1, 0, 0]]
+
+
+def test_plane_reset_and_zero_angles_are_no_motion():
+    prog = run("L X+1 Y+1 Z+1 R0 F100\nPLANE RESET STAY\nPLANE SPATIAL SPA+0 SPB+0 SPC+0 TURN MB MAX FMAX SEQ+\n"
+               "FUNCTION RESET TCPM\nL X+2", context=MachineContext())
+    assert len(prog.blocks) == 2 and any("PLANE RESET" in n for n in prog.notes)
+
+
+def test_tool_def_alone_preselects_and_tool_call_by_name():
+    ctx = MachineContext(tools={3: Tool(number=3, length=50.0)})
+    prog = parse_heidenhain(HEAD + "TOOL CALL 3 Z\nTOOL DEF 4\nL X+0 Y+0 Z+0 R0 FMAX\nTOOL CALL \"MILL_D10\" Z S3000 "
+                            "DL+0.5\nL Z+0 FMAX\nEND PGM T MM\n", source="t.h", context=ctx)
+    assert [b.target[2] for b in prog.blocks] == [50.0, 0.5]
+    assert any('"MILL_D10"' in n for n in prog.notes)
+
+
 @pytest.mark.parametrize("body, words", [
+    ("PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN FMAX", "PLANE SPATIAL (a tilted working plane) is not supported"),
+    ("PLANE VECTOR BX+1 BY+0 BZ+0 NX+0 NY+0 NZ+1 STAY", "PLANE VECTOR"),
+    ("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS", "FUNCTION TCPM is not supported"),
+    ("L X+0 Y+0 R0 FMAX M128", "M128 (TCPM"),
+    ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM without an axis value"),
     ("CYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 Z", "MIRROR IMAGE of the tool axis Z"),
     ("CYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL 0", "SCL must be > 0"),
     ("CYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 45", "cycle 10 ROTATION without ROT"),
