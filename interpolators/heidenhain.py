@@ -8,7 +8,11 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 7, 9, 32, 200, 203, 205.
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 7, 9, 32, 200-203, 205-207, 209, 240 and the
+  pattern cycles 220, 221;
+* :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
+  (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
+* :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
 
@@ -46,21 +50,30 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/200/203/205   cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
+    CYCL DEF 7/9/32/1/200-203/205-207/209/240
+                                    cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
+    CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
+    CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
+                                    follow a mirror); CYCL DEF 19 / PLANE with angles 0, PLANE RESET:
+                                    no motion
+    CALL PGM name, SEL PGM name, CALL SELECTED PGM
+                                    another program file (from the caller's directory), run on the
+                                    same machine state in its own unit
 
 Path mode: blocks end at rest (``Block.exact_stop``), as the thesis' identification programs
 (Tables 4.3 and 4.4) are run, until ``CYCL DEF 32.1 T..`` sets a path tolerance; from then on
 the path is continuous with that tolerance (``32.1`` without T: ``context.dialect.tolerance``).
 
-Unit conversion: positions mm, feeds mm/s. Machine coordinates = program coordinates + the
-preset (``context.offset("G54")``) + the datum shift of cycle 7 + the tool length along the
-tool axis. ``RL``/``RR`` offset the contour by the tool radius (table or TOOL DEF, plus DR)
-from the RL/RR block (the entry move, ending perpendicular to the first contour element as on
-the TNC) to the R0 block (the exit move), by :func:`interpolators.compensation.compensate`.
-Anything not listed (other APPR/DEP forms, FK, other pattern forms, rotary axes, other cycles
-and FN functions) is an error naming the function, line and column. ``CYCLE DEF``, which the
+Unit conversion: positions mm, feeds mm/s. Machine coordinates = the program coordinates
+mirrored, rotated and scaled (cycles 8, 10, 11, 26) + the preset (``context.offset("G54")``) + the
+datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
+the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
+perpendicular to the first contour element as on the TNC) to the R0 block (the exit move), by
+:func:`interpolators.compensation.compensate`. Anything not listed (other APPR/DEP forms, FK,
+other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
+naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
 
@@ -451,7 +464,8 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
         where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
                    expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
     where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
-               expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, FN, Qn =, M")
+               expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, CALL PGM, FN, "
+                        "Qn =, TRANS, M")
 
 
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
