@@ -202,6 +202,7 @@ class _Machine:
         self.last_rapid = False
         self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
         self.spindle: float | None = None  # spindle speed of the last TOOL CALL S [rpm]
+        self.modal_call = False  # M89: every positioning block calls the cycle
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -498,6 +499,7 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: W
         m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
     moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
     ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
+    m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
         _position_call([w for w in words if w.key in moves], m, where, blk)
     elif kind == "PAT":
@@ -872,9 +874,12 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
     for w in words:
         if w.key == "M":
             ended = _one_m(w, m, where) or ended
-            if w.value in (91, 92, 99, 140) and not motion:
+            if w.value in (89, 91, 92, 99, 140) and not motion:
                 if w.value == 99:
+                    m.modal_call = False
                     _cycle_call(m, where, blk)
+                elif w.value == 89:
+                    m.modal_call = True
                 elif w.value == 140:
                     continue
                 else:
@@ -895,7 +900,7 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
         return True
     if w.value in _M_STOP:
         m.note(f"M{w.value}: program stop (no motion)")
-    elif w.value not in (3, 4, 5, 8, 9, 91, 92, 99, 140):
+    elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False
 
@@ -1026,12 +1031,17 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
     if exit_run:
         _finish_compensation(m)
-    _retract_and_call(seen, mvals, m, where, blk)
+    _retract_and_call(seen, mvals, m, where, blk, positioned=kw in ("L", "LP") and bool(written))
     return ended
 
 
-def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle."""
+def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, where: Where, blk: SourceBlock, *,
+                      positioned: bool) -> None:
+    """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle, and so
+    does every positioning block (an L or LP with coordinates) from ``M89`` on, until ``M99`` or
+    ``CYCL CALL`` (TNC 406/306 technical manual, "M-function M89": "for every following
+    positioning block there will be a call of the last-programmed machining cycle. M89 is canceled
+    by M99 or a CYCL CALL block"; the M89 block itself calls at its end)."""
     if 140 in mvals:
         if "MBMAX" in seen:
             retract = m.pos.copy()
@@ -1045,7 +1055,12 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, wh
         if retract is not None and retract[m.plane] != m.pos[m.plane]:
             m.used.add(m.plane)
             m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+    if 89 in mvals:
+        m.modal_call = True
     if 99 in mvals:
+        m.modal_call = False
+        _cycle_call(m, where, blk)
+    elif m.modal_call and positioned:
         _cycle_call(m, where, blk)
 
 

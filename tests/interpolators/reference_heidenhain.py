@@ -179,6 +179,7 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.modal = False  # M89 active
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
         self.rot = 0.0  # cycle 10 [deg]
         self.scl = 1.0  # cycle 11
@@ -272,7 +273,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         end = t.pos.copy()
         end[2] = max(t.ctx.home[2], t.pos[2])  # a retract: never down (home stands in for the limit)
         t.emit(line, "rapid", end, rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
-    if 99 in w.get("M", []):
+    ms = w.get("M", [])
+    t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
+    if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
 
 
@@ -687,7 +690,13 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CYCL CALL"):
             if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
                 raise ReferenceError(up)
+            t.modal = False
             _run_cycle(t, line)
+        elif re.fullmatch(r"(M\d+\s*)+", up):
+            ms = [int(v) for v in re.findall(r"M(\d+)", up)]
+            t.modal = (t.modal or 89 in ms) and 99 not in ms
+            if 99 in ms:
+                _run_cycle(t, line)
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):

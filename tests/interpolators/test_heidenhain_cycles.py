@@ -86,6 +86,13 @@ def test_cartesian_pattern_221_meanders_and_turns_about_its_start():
     assert len(plane) == 6 and all(b.start[2] == b.target[2] == 30 for b in plane)  # Q301=1: at the 2nd clearance
 
 
+def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
+    prog = run("CYCL DEF 240 CENTERING Q200=2 Q343=0 Q201=-1 Q206=100 Q211=0 Q203=+0 Q204=10\n"
+               "L X+10 Y+0 FMAX M89\nL X+20 F500\nCC X+0 Y+0\nL X+30 M99\nL X+40\nM89\nL X+50\nCYCL CALL\nL X+60")
+    holes = [b.target[0] for b in prog.blocks if b.kind == "line" and b.target[2] < 0]
+    assert holes == [10, 20, 30, 50, 50]  # X40 after M99: no call; CYCL CALL at X50 ends M89: none at X60
+
+
 @pytest.mark.parametrize("body, words", [
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
