@@ -4,7 +4,9 @@ A program line is ``[block number] <keyword> <words> [;comment]`` (HEIDENHAIN TN
 manual, "Programming fundamentals: NC blocks"). This module
 
 * splits the text into :class:`SourceBlock` s: ``;`` comments removed, lines ending in ``~``
-  joined with the next (a cycle definition written one Q parameter per line, as the TNC saves it),
+  joined with the next (a cycle definition written one Q parameter per line, as the TNC saves it;
+  the older TNCs' ``Qnnn=`` / ``POSn (..)`` lines without ``~`` and block number after a
+  ``CYCL DEF 2xx`` / ``PATTERN DEF`` too),
   the old block end ``*`` dropped, and ``* ...`` structure blocks recognised;
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
@@ -69,6 +71,23 @@ def _strip_comment(line: str) -> str:
     return line.split(";", 1)[0]
 
 
+_DEFINITION_RE = re.compile(r"\s*\d*\s*(?:(CYCLE?\s+DEF\s*\d{3})|(PATTERN\s+DEF))(?![\d.])", re.I)
+_Q_LINE_RE = re.compile(r"\s*Q\d+\s*=", re.I)
+_POS_LINE_RE = re.compile(r"\s*POS\d+\s*\(", re.I)
+
+
+def _continues(first: str, line: str) -> bool:
+    """True when ``line`` is a parameter line of the definition that ``first`` begins: the
+    ``Qnnn=value ;comment`` lines after ``CYCL DEF 2xx`` and the ``POSn (...)`` lines after
+    ``PATTERN DEF``, written without a block number and without ``~`` as the iTNC 530 and TNC
+    426/430 save them (iTNC 530 user's manual, cycle examples: "11 CYCL DEF 200 DRILLING /
+    Q200=2 ;SET-UP CLEARANCE / ...")."""
+    m = _DEFINITION_RE.match(first)
+    if m is None:
+        return False
+    return (_Q_LINE_RE if m.group(1) else _POS_LINE_RE).match(line) is not None
+
+
 def source_blocks(text: str) -> list[SourceBlock]:
     """The blocks of a program text (empty lines, comments and ``*`` structure blocks left out)."""
     out: list[SourceBlock] = []
@@ -85,6 +104,9 @@ def source_blocks(text: str) -> list[SourceBlock]:
             i += 1
             if not more:
                 break
+        while i < len(lines) and _continues(parts[0], lines[i]):
+            parts.append(_strip_comment(lines[i]).strip().rstrip("~").strip())
+            i += 1
         code = " ".join(p for p in parts if p)
         if code.endswith("*"):
             code = code[:-1].rstrip()

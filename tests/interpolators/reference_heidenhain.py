@@ -52,11 +52,18 @@ _EPS = 1e-9
 
 
 def _blocks(text: str) -> list[tuple[int, str]]:
-    """(first line, text) of each block: comments removed, continuations joined, numbers dropped."""
+    """(first line, text) of each block: comments removed, continuations joined (``~``; and the
+    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
+    older TNCs save them), numbers dropped."""
     out, buf, first = [], [], None
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
         code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+        if first is None and out and (
+                (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
+                or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
+            out[-1] = (out[-1][0], out[-1][1] + " " + code)
+            continue
         if first is None:
             first = no
             code = re.sub(r"^\d+\s*", "", code)
@@ -180,6 +187,7 @@ class _Tnc:
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
         self.modal = False  # M89 active
+        self.pattern: list[dict] = []  # PATTERN DEF positions
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
         self.rot = 0.0  # cycle 10 [deg]
         self.scl = 1.0  # cycle 11
@@ -496,6 +504,26 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _pattern_def_call(t: _Tnc, line: int) -> None:
+    """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
+    up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
+    kind, cyc = t.cycle
+    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    for w in t.pattern:
+        p = {**cyc, "Q203": cyc["Q203"] + w.get("Z", 0.0)}
+        clear = p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0))
+        if sgn * (t.prog()[2] / t.scale - clear) > _EPS:
+            _move_z(t, line, "rapid", clear)
+        here = t.prog()
+        for i, a in enumerate("XY"):
+            here[i] = w[a] * t.scale if a in w else here[i] + w.get("I" + a, 0.0) * t.scale
+        if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
+            t.emit(line, "rapid", t.machine(here))
+        t.cycle = (kind, p)
+        _run_cycle(t, line)
+    t.cycle = (kind, cyc)
+
+
 def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
     """Cycle 220 (positions on a pitch circle) or 221 (a grid, meandering, turned by Q224 about its
     start): at each, the last machining cycle with the pattern's Q200/Q203/Q204, first reached over
@@ -687,6 +715,11 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)
+        elif up.startswith("PATTERN DEF"):
+            t.pattern = [_words(inner, t.q) for inner in re.findall(r"POS\d+\s*\(([^)]*)\)", up)]
+        elif up.startswith("CYCL CALL PAT"):
+            t.modal = False
+            _pattern_def_call(t, line)
         elif up.startswith("CYCL CALL"):
             if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
                 raise ReferenceError(up)

@@ -93,6 +93,15 @@ def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
     assert holes == [10, 20, 30, 50, 50]  # X40 after M99: no call; CYCL CALL at X50 ends M89: none at X60
 
 
+def test_parameter_lines_without_tilde_as_older_tncs_save_them():
+    prog = run("3 CYCL DEF 200 DRILLING\n  Q200=+2    ;SET-UP CLEARANCE\n  Q201=-6   ;DEPTH\n"
+               "  Q206=+150  ;FEED RATE FOR PLNGNG\n  Q202=+3 ;PLUNGING DEPTH\n  Q210=+0\n  Q203=+0\n  Q204=+50\n"
+               "  Q211=+0\n4 PATTERN DEF\n  POS1 (X+25 Y+30 Z+0)\n  POS2 (X+15 IY+5 Z-1)\n5 CYCL CALL PAT FMAX M13")
+    holes = [b.target.tolist() for b in prog.blocks if b.kind == "line"]
+    assert holes == [[25, 30, -3], [25, 30, -6], [15, 35, -4], [15, 35, -7]]
+    assert {b.line for b in prog.blocks[1:]} == {16}  # the line of CYCL CALL PAT
+
+
 @pytest.mark.parametrize("body, words", [
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
