@@ -805,6 +805,9 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """The moves of cycle ``c`` at the current position in the plane, ``surface`` [mm, machine]."""
     axis = m.plane
+    if c.number == 208:
+        _bore_milling(m, c, surface, where, blk)
+        return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
@@ -817,6 +820,47 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         else:
             _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
     m.used.add(axis)
+
+
+def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 208 BORE MILLING at the current position (TNC 320 user's manual for cycle programming,
+    "BORE MILLING (Cycle 208)", cycle run: to the set-up clearance at FMAX, to the circumference,
+    a helix at the feed Q206 to the depth, a full circle there, back to the centre, out at FMAX to
+    the set-up clearance and the 2nd one). The helix runs on the diameter Q335 less the tool
+    diameter, from the set-up clearance down by Q334 per turn; it starts on the reference axis
+    side, reached on a straight line at the feed (the TNC rounds that approach: our reading).
+    A tool as wide as the hole drills straight down ("bores directly to the entered depth").
+    """
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    r = c.bore_diameter / 2.0 - m.tool_radius
+    if r < -1e-9:
+        where.fail(f"cycle 208: the tool (radius {m.tool_radius:g} mm) is wider than the hole "
+                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
+                   expected="a tool radius of at most Q335 / 2")
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    centre = m.pos.copy()
+    m.used.add(axis)
+    if r <= 1e-9:
+        _axis_move(m, "line", bottom, c.feed, where, blk)
+    else:
+        k = m.lengths(where)
+        start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
+        m.emit("line", start, Line(m.pos, start), c.feed, where, blk.number)
+        turns = abs(bottom - top) / c.helix_pitch
+        sweep = m.transform.sweep(360.0 * turns * (1.0 if c.climb else -1.0), axis)
+        for turn in (sweep, math.copysign(360.0, sweep)):  # the helix, then a full circle at the depth
+            seg = helical_arc(m.pos, centre, turn, plane=axis, axis_end=bottom)
+            m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+        back = centre.copy()
+        back[axis] = bottom
+        m.emit("line", back, Line(m.pos, back), c.feed, where, blk.number)
+        m.used.update((p, q))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
 
 
 def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:

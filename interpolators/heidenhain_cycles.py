@@ -46,7 +46,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 200, 201, 202, 203, 205, 206, 207, 209, 240)
+MACHINING_CYCLES: tuple[int, ...] = (1, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
@@ -57,7 +57,8 @@ BORING_DISENGAGE = 0.2
 _REQUIRED = {
     200: (200, 201, 206, 203, 204), 201: (200, 201, 206, 203, 204), 202: (200, 201, 206, 203, 204),
     203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
-    207: (200, 201, 239, 203, 204), 209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
+    209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -104,6 +105,12 @@ class DrillCycle:
     disengage : tuple of float
         Cycle 202: the move off the wall at the bottom, in the working plane's (reference, minor)
         axes [mm, program directions] (Q214; (0, 0): none).
+    bore_diameter : float
+        Cycle 208: the nominal diameter Q335 [mm] (0 for the other cycles).
+    helix_pitch : float
+        Cycle 208: the infeed per helix turn Q334 [mm].
+    climb : bool
+        Cycle 208: climb milling with M3 (Q351 = +1: counter-clockwise), else up-cut (clockwise).
     """
 
     number: int
@@ -122,6 +129,9 @@ class DrillCycle:
     retract_feed: float | None = None
     advance: float | None = None
     disengage: tuple[float, float] = (0.0, 0.0)
+    bore_diameter: float = 0.0
+    helix_pitch: float = 0.0
+    climb: bool = True
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -198,7 +208,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     * 209 TAPPING WITH CHIP BREAKING: infeeds Q257, after each the tool backs off by Q256 x pitch
       (Q256 = 0: out to the set-up clearance) at the feed times Q403 (default 1), as it retracts at
       the bottom;
-    * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back.
+    * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back;
+    * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (the reader's
+      ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
     if q.get(395, 0.0) != 0.0:
@@ -235,6 +247,12 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
                         where, column)
     if number == 240:
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, **base), where, column)
+    if number == 208:
+        if not q[334] > 0 or not q[335] > 0:
+            where.fail("cycle 208: Q334 (infeed per helix) and Q335 (diameter) must be > 0", column=column,
+                       text=where.text, expected="Q334 > 0 and Q335 > 0 [mm]")
+        return _checked(DrillCycle(plunge=abs(depth), feed=feed, bore_diameter=q[335] * scale,
+                                   helix_pitch=q[334] * scale, climb=q.get(351, 1.0) >= 0, **base), where, column)
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
     # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
     retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
@@ -271,7 +289,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
                                chip_break=cycle.chip_break * factor, advance=f(cycle.advance),
-                               disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor))
+                               disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
+                               bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

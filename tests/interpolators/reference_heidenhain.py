@@ -370,7 +370,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = ("1", {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 206, 207, 209, 220, 221, 240) and sub == 0:
+    elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -454,6 +454,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         _dwell(t, line, dwell)
         _move_z(t, line, "rapid", start)
         return
+    if kind == "208":
+        _bore_milling(t, line, p)
+        return
     if kind != "200":
         _one_pass_cycle(t, line, kind, p)
         return
@@ -470,6 +473,36 @@ def _run_cycle(t: _Tnc, line: int) -> None:
             _move_z(t, line, "rapid", levels[k - 1] - sgn * setup)
         _move_z(t, line, "feed", z)
     _dwell(t, line, p.get("Q211", 0.0))
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
+    """208: to the set-up clearance, along the reference axis to the helix radius Q335/2 - R, the helix
+    (Q334 per turn, Q351 >= 0 counter-clockwise) down to the depth, one more turn, back to the centre,
+    rapid out (set-up clearance, then Q204)."""
+    if t.scl != 1 or not np.all(t.factors == 1):
+        raise ReferenceError("208 under scaling")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    centre = t.prog()
+    r = p["Q335"] * t.scale / 2 - t.radius
+    bottom = (surface + depth) * t.scale
+    if r > 1e-9:
+        t.emit(line, "feed", t.machine(centre + np.array([r, 0.0, 0.0])))
+        angle = math.radians(360.0 * abs(depth + sgn * setup) / p["Q334"]) * (1 if p.get("Q351", 1) >= 0 else -1)
+        end = centre + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+        end[2] = bottom
+        ccw = (angle > 0) != t.turns_over()
+        for _ in range(2):
+            t.emit(line, "arc_ccw" if ccw else "arc_cw", t.machine(end),
+                   centre=t.machine(np.array([centre[0], centre[1], bottom])))
+        centre[2] = bottom
+        t.emit(line, "feed", t.machine(centre))
+    else:
+        _move_z(t, line, "feed", surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 

@@ -86,6 +86,20 @@ def test_cartesian_pattern_221_meanders_and_turns_about_its_start():
     assert len(plane) == 6 and all(b.start[2] == b.target[2] == 30 for b in plane)  # Q301=1: at the 2nd clearance
 
 
+def test_bore_milling_208_helix_then_a_full_circle():
+    prog = run("TOOL DEF 1 L+0 R+3\nTOOL CALL 1 Z S1000\nL X+10 Y+10 FMAX\n"
+               "CYCL DEF 208 BORE MILLING Q200=2 Q201=-10 Q206=150 Q334=5 Q203=+0 Q204=20 Q335=16 Q342=0 Q351=-1\n"
+               "CYCL CALL")
+    b = prog.blocks[2:]
+    a = math.radians(-360 * 12 / 5)  # 12 mm down at 5 mm per turn, clockwise (up-cut)
+    assert [x.kind for x in b] == ["rapid", "line", "arc", "arc", "line", "rapid", "rapid"]
+    assert np.allclose(b[1].target, [15, 10, 2])  # on the helix radius 8 - 3 along +X
+    assert np.allclose(b[2].target, [10 + 5 * math.cos(a), 10 + 5 * math.sin(a), -10]) and not b[2].segment.ccw
+    assert b[2].length == pytest.approx(math.hypot(2.4 * 2 * math.pi * 5, 12))
+    assert np.allclose(b[3].target, b[2].target) and b[3].length == pytest.approx(2 * math.pi * 5)
+    assert [x.target[2] for x in b[4:]] == [-10, 2, 20]
+
+
 def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
     prog = run("CYCL DEF 240 CENTERING Q200=2 Q343=0 Q201=-1 Q206=100 Q211=0 Q203=+0 Q204=10\n"
                "L X+10 Y+0 FMAX M89\nL X+20 F500\nCC X+0 Y+0\nL X+30 M99\nL X+40\nM89\nL X+50\nCYCL CALL\nL X+60")
