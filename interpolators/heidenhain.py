@@ -109,7 +109,9 @@ from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
 from interpolators.heidenhain_paths import (
     PathGeometryError,
+    approach_start,
     chamfer_corner,
+    departure_element,
     end_tangent,
     helical_arc,
     polar_angle,
@@ -302,8 +304,9 @@ def _check_contour_closed(m: _Machine) -> None:
         pw.fail(f"{kind} at the end of the contour", column=1, text=pw.text, expected=f"a line after {kind}")
     if m.approach is not None:
         pw = m.approach["where"]
-        pw.fail("APPR LT without a following contour element", column=1, text=pw.text,
-                expected="an L or arc block after APPR LT")
+        form = m.approach["form"]
+        pw.fail(f"APPR {form} without a following contour element", column=1, text=pw.text,
+                expected=f"an L or arc block after APPR {form}")
     if m.comp != "R0":
         _finish_compensation(m)
 
@@ -1241,63 +1244,69 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
 # --- approach and departure ----------------------------------------------------------------------
 
 def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
-    """``APPR LT`` / ``DEP LT`` (TNC 640 user's manual 1/2015, "Approaching and departing a
-    contour", p. 213; TNC7 basic manual "APPR LT"): the straight approach tangential to the first
-    contour element through the auxiliary point PH at ``LEN`` before the first contour point PA,
-    and the straight departure tangential to the last element to PN at ``LEN`` after it. PS to PH
-    runs at the last programmed feed (rapid if the last move was rapid); a tool-axis coordinate is
-    reached after PH (APPR) or after PN (DEP). Other forms (LN, CT, LCT, polar) are errors."""
+    """``APPR LT|LN|CT`` / ``DEP LT|LN|CT`` (TNC 640 user's manual 1/2015, "Approaching and departing
+    a contour", p. 213; TNC7 manual "APPR LT", "APPR LN", "APPR CT"): the approach through the
+    auxiliary point PH (LT: ``LEN`` before the first contour point PA along the first element; LN:
+    ``LEN`` off it, perpendicular, on the tool's side; CT: the start of the arc of radius ``R``
+    through the centre angle ``CCA`` that ends tangentially at PA) and the departure from the last
+    contour point (LT: ``LEN`` on along the last element; LN: ``LEN`` off it, perpendicular; CT: the
+    arc leaving it tangentially). PS to PH runs at the last programmed feed (rapid if the last move
+    was rapid); a tool-axis coordinate is reached after PH (APPR) or after PN (DEP). LN and CT need
+    RL or RR (the tool's side; R's sign and the side give the arc's sense). LCT and the polar forms
+    are errors."""
     code = blk.code
     fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
     form = fm.group(1).upper() if fm else ""
-    if form != "LT":
+    if form not in ("LT", "LN", "CT"):
         where.fail(f"{kw} {form} is not supported", column=blk.column, text=f"{kw} {form}".strip(),
-                   expected=f"{kw} LT (straight line, tangential)")
+                   expected=f"{kw} LT, {kw} LN or {kw} CT")
+    what = f"{kw} {form}"
     words = read_words(code, fm.end(), where, m.params, column0=blk.column)
+    keys = ("LEN",) if form != "CT" else ("CCA", "R")
     seen = {}
     for w in words:
-        key = w.key
-        if key not in ("X", "Y", "Z", "IX", "IY", "IZ", "LEN", "R0", "RL", "RR", "F", "FMAX", "M"):
-            where.fail(f"word {w.text!r} not allowed in {kw} LT", column=w.column, text=w.text,
-                       expected="X, Y, Z, LEN, R0/RL/RR, F, M")
-        if key != "M":
-            seen[key] = w
+        if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ", "R0", "RL", "RR", "F", "FMAX", "M", *keys):
+            where.fail(f"word {w.text!r} not allowed in {what}", column=w.column, text=w.text,
+                       expected=f"X, Y, Z, {', '.join(keys)}, R0/RL/RR, F, M")
+        if w.key != "M":
+            seen[w.key] = w
     ended = any(_one_m(w, m, where) for w in words if w.key == "M")
-    if "LEN" not in seen or not seen["LEN"].value > 0:
-        w = seen.get("LEN")
-        where.fail(f"{kw} LT needs LEN > 0", column=w.column if w else blk.column, text=w.text if w else code,
-                   expected="LEN > 0 [mm]")
-    length = seen["LEN"].value * m.scale * m.lengths(where)
+    for key in keys:
+        w = seen.get(key)
+        if w is None or (key == "LEN" and not w.value > 0):
+            where.fail(f"{what} needs {key}" + (" > 0" if key == "LEN" else ""), column=w.column if w else blk.column,
+                       text=w.text if w else code, expected=f"{key} [mm]" if key != "CCA" else "CCA [deg]")
+    k = m.scale * m.lengths(where)
+    sizes = {"length": seen["LEN"].value * k if "LEN" in seen else 0.0,
+             "radius": seen["R"].value * k if "R" in seen else 0.0,
+             "angle": seen["CCA"].value if "CCA" in seen else 0.0}
+    was = m.comp
     exit_run = False
     for comp in ("R0", "RL", "RR"):
         if comp in seen:
             exit_run = _set_compensation(seen[comp], m, where)
+    active = m.comp if kw == "APPR" else was
+    if form != "LT" and active == "R0":
+        where.fail(f"{what} without radius compensation", column=blk.column, text=code,
+                   expected=f"{what} with RL or RR (the tool's side)")
+    sizes["side"] = 1.0 if m.comp_side == "RL" else -1.0
     prev_feed = m.feed
     if "F" in seen:
         if not seen["F"].value > 0:
             where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
         m.feed = seen["F"].value * m.feed_scale
     if m.feed is None:
-        where.fail(f"{kw} LT without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
+        where.fail(f"{what} without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
     target, written = _plane_coords(seen, m, where, m9x=None)
     m.used.update(written)
-    p, q = PLANE_AXES[m.plane]
     if kw == "APPR":
-        m.approach = {"ps": m.pos.copy(), "len": length, "rapid": m.last_rapid, "feed": prev_feed or m.feed,
-                      "where": where, "number": blk.number}
+        m.approach = {"ps": m.pos.copy(), "form": form, **sizes, "rapid": m.last_rapid,
+                      "feed": prev_feed or m.feed, "where": where, "number": blk.number}
         m.pos = target  # the first contour point PA: where the next element starts
         return ended
-    if not m.blocks or m.blocks[-1].segment is None:
-        where.fail("DEP LT without a preceding contour element", column=blk.column, text=code,
-                   expected="a contour element before DEP LT")
-    try:
-        t = end_tangent(m.blocks[-1].segment, m.plane)
-    except PathGeometryError as exc:
-        where.fail(exc.message, column=blk.column, text=code, expected=exc.expected)
-    pn = m.pos.copy()
-    pn[p] += length * t[0]
-    pn[q] += length * t[1]
-    m.emit("line", pn, Line(m.pos, pn), m.feed, where, blk.number)
+    if form == "LN":  # TNC 640 manual: "PN is separated from PE by the distance LEN plus the tool radius"
+        sizes["length"] += m.comp_radius
+    _depart(form, sizes, target, m, where, blk)
     if exit_run:
         _finish_compensation(m)
     if target[m.plane] != m.pos[m.plane]:
@@ -1307,20 +1316,45 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     return ended
 
 
+def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine, where: Where,
+            blk: SourceBlock) -> None:
+    """The departure move of DEP LT/LN/CT from the end of the last contour element."""
+    if not m.blocks or m.blocks[-1].segment is None:
+        where.fail(f"DEP {form} without a preceding contour element", column=blk.column, text=blk.code,
+                   expected=f"a contour element before DEP {form}")
+    try:
+        t = end_tangent(m.blocks[-1].segment, m.plane)
+        seg = departure_element(form, m.pos, t, plane=m.plane, **sizes)
+    except PathGeometryError as exc:
+        where.fail(exc.message, column=blk.column, text=blk.code, expected=exc.expected)
+    m.emit("line" if isinstance(seg, Line) else "arc", np.array(seg.end), seg, m.feed, where, blk.number)
+
+
 def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
-    """Emit PS -> PH -> (depth) -> PA of a pending APPR LT, PH at LEN before PA against ``direction``."""
+    """Emit PS -> PH -> (depth) -> PA of a pending APPR, PH from the first element's ``direction`` at PA."""
     a = m.approach
     m.approach = None
     n = float(np.hypot(*direction))
     pw = a["where"]
     if n <= 1e-12:
-        pw.fail("the first contour element after APPR LT has no direction in the working plane", column=1,
+        pw.fail(f"the first contour element after APPR {a['form']} has no direction in the working plane", column=1,
                 text=pw.text, expected="a first contour element in the working plane")
     pa = m.pos.copy()
     p, q = PLANE_AXES[m.plane]
-    ph = np.array(a["ps"], dtype=float)
-    ph[p] = pa[p] - a["len"] * direction[0] / n
-    ph[q] = pa[q] - a["len"] * direction[1] / n
+    arc = None
+    if a["form"] == "LT":
+        ph = np.array(a["ps"], dtype=float)
+        ph[p] = pa[p] - a["length"] * direction[0] / n
+        ph[q] = pa[q] - a["length"] * direction[1] / n
+    else:
+        if a["form"] == "LN":  # "PH is separated from PA by the distance LEN plus the tool radius"
+            a["length"] += m.comp_radius
+        try:
+            ph, arc = approach_start(a["form"], pa, direction / n, length=a["length"], radius=a["radius"],
+                                     angle=a["angle"], side=a["side"], plane=m.plane)
+        except PathGeometryError as exc:
+            pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
+        ph[m.plane] = a["ps"][m.plane]
     m.pos = np.array(a["ps"], dtype=float)
     m.emit("rapid" if a["rapid"] else "line", ph, Line(m.pos, ph), math.inf if a["rapid"] else a["feed"], pw,
            a["number"])
@@ -1328,7 +1362,12 @@ def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
         down = ph.copy()
         down[m.plane] = pa[m.plane]
         m.emit("line", down, Line(m.pos, down), m.feed, pw, a["number"])
-    m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])
+    if arc is None:
+        if a["form"] == "LN" and m.comp_start is not None:
+            m.comp_start = len(m.blocks)  # PH -> PA is the entry move: it ends at PA, off by the radius
+        m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])
+    else:
+        m.emit("arc", pa, Arc(m.pos, pa, arc.center, ccw=arc.ccw, plane=m.plane), m.feed, pw, a["number"])
 
 
 # --- radius compensation -------------------------------------------------------------------------

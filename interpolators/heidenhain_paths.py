@@ -22,7 +22,8 @@ import numpy as np
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 __all__ = ["PathGeometryError", "polar_point", "polar_angle", "helical_arc", "end_tangent",
-           "tangential_arc", "round_corner", "round_elements", "chamfer_corner"]
+           "tangential_arc", "round_corner", "round_elements", "chamfer_corner", "approach_start",
+           "departure_element"]
 
 
 class PathGeometryError(ValueError):
@@ -299,3 +300,72 @@ def round_elements(first: Line | Arc, second: Line | Arc, radius: float, *, plan
             return head, Arc(a, _on_circle(b, c3, radius, plane), c3, ccw=cross > 0, plane=plane), tail
     raise PathGeometryError(f"rounding radius {radius:g} mm does not fit between the elements",
                             "a smaller RND radius or longer elements")
+
+
+def _turned(point: np.ndarray, centre: np.ndarray, angle_deg: float, plane: int) -> np.ndarray:
+    """``point`` turned about ``centre`` by ``angle_deg`` [deg] (counter-clockwise positive) in the plane."""
+    p, q = PLANE_AXES[plane]
+    a = math.radians(angle_deg)
+    dx, dy = point[p] - centre[p], point[q] - centre[q]
+    out = np.array(point, dtype=float)
+    out[p] = centre[p] + dx * math.cos(a) - dy * math.sin(a)
+    out[q] = centre[q] + dx * math.sin(a) + dy * math.cos(a)
+    return out
+
+
+def _arc_side(form: str, side: float, radius: float, angle: float) -> bool:
+    """The sense of an approach/departure arc (TNC7 user's manual, "APPR CT": RL and R > 0, or RR
+    and R < 0: counter-clockwise; RL and R < 0, or RR and R > 0: clockwise)."""
+    if radius == 0 or not 0 < angle <= 360:
+        raise PathGeometryError(f"{form} needs R != 0 and 0 < CCA <= 360", "R+.. (or R-..) and CCA between 0 and 360")
+    return (side > 0) == (radius > 0)
+
+
+def approach_start(form: str, pa: np.ndarray, tangent: np.ndarray, *, length: float, radius: float,
+                   angle: float, side: float, plane: int) -> tuple[np.ndarray, Arc | None]:
+    """The auxiliary point PH of ``APPR LT|LN|CT`` before the first contour point PA, and for CT the arc
+    PH -> PA (TNC 640 user's manual, "Approaching and departing a contour"; TNC7 manual "APPR LN",
+    "APPR CT").
+
+    ``tangent`` is the first contour element's unit direction at PA in the plane (2-vector), ``side``
+    +1 when the tool runs left of the contour (RL), -1 right (RR): LT puts PH ``length`` [mm] back
+    along the tangent, LN ``length`` off the contour on the tool's side (perpendicular), CT at the
+    start of the arc of ``radius`` [mm] through ``angle`` [deg] (CCA) that ends at PA tangentially.
+    PH keeps PA's tool-axis coordinate (the caller moves it).
+    """
+    p, q = PLANE_AXES[plane]
+    left = np.array([-tangent[1], tangent[0]])
+    ph = np.array(pa, dtype=float)
+    if form == "LT":
+        ph[p], ph[q] = pa[p] - length * tangent[0], pa[q] - length * tangent[1]
+        return ph, None
+    if form == "LN":
+        ph[p], ph[q] = pa[p] + side * length * left[0], pa[q] + side * length * left[1]
+        return ph, None
+    ccw = _arc_side("APPR CT", side, radius, angle)
+    centre = np.array(pa, dtype=float)
+    s = abs(radius) * (1.0 if ccw else -1.0)
+    centre[p], centre[q] = pa[p] + s * left[0], pa[q] + s * left[1]
+    ph = _turned(pa, centre, -angle if ccw else angle, plane)
+    return ph, Arc(ph, np.array(pa, dtype=float), centre, ccw=ccw, plane=plane)
+
+
+def departure_element(form: str, pe: np.ndarray, tangent: np.ndarray, *, length: float, radius: float,
+                      angle: float, side: float, plane: int) -> Line | Arc:
+    """The move of ``DEP LT|LN|CT`` from the last contour point PE (the mirror of
+    :func:`approach_start`): LT ``length`` [mm] on along the last element's ``tangent``, LN
+    ``length`` off the contour on the tool's side, CT the arc of ``radius`` through ``angle`` [deg]
+    leaving PE tangentially."""
+    p, q = PLANE_AXES[plane]
+    left = np.array([-tangent[1], tangent[0]])
+    pn = np.array(pe, dtype=float)
+    if form in ("LT", "LN"):
+        step = tangent if form == "LT" else side * left
+        pn[p], pn[q] = pe[p] + length * step[0], pe[q] + length * step[1]
+        return Line(np.array(pe, dtype=float), pn)
+    ccw = _arc_side("DEP CT", side, radius, angle)
+    centre = np.array(pe, dtype=float)
+    s = abs(radius) * (1.0 if ccw else -1.0)
+    centre[p], centre[q] = pe[p] + s * left[0], pe[q] + s * left[1]
+    return Arc(np.array(pe, dtype=float), _turned(pe, centre, angle if ccw else -angle, plane), centre, ccw=ccw,
+               plane=plane)

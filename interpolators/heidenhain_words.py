@@ -164,13 +164,13 @@ def read_value(code: str, pos: int, where: Where, params: QParameters, *, what: 
 _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
-    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
+    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
     r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )
 
 #: Words a motion block may carry, for messages.
-WORDS_EXPECTED = ("X/Y/Z (I for incremental), PR/PA, R, DR+/DR-, R0/RL/RR, F, F MAX, M, MB MAX or LEN; "
+WORDS_EXPECTED = ("X/Y/Z (I for incremental), PR/PA, R, DR+/DR-, R0/RL/RR, F, F MAX, M, MB MAX, LEN or CCA; "
                   "values may be numbers, Q parameters or (formulas)")
 
 
@@ -221,7 +221,7 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             out.append(Word("MB", value, col, code[pos:end]))
         else:
             key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "rad": "R", "bare": "BARE",
-                   "len": "LEN"}[kind]
+                   "len": "LEN", "cca": "CCA"}[kind]
             value, end = read_value(code, end, where, params, what=key, column0=column0)
             out.append(Word(key, value, col, code[pos:end].strip()))
         if end < n and code[end] not in " \t":

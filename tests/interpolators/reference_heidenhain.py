@@ -144,7 +144,7 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX)?)")
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX)?)")
 
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:
@@ -179,6 +179,7 @@ class _Tnc:
         self.length = 0.0
         self.radius = 0.0
         self.comp = False
+        self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.pole = np.zeros(2)
@@ -260,6 +261,7 @@ class _Tnc:
 
 def _comp_words(t: _Tnc, w: dict) -> None:
     if "RL" in w or "RR" in w:
+        t.side = 1.0 if "RL" in w else -1.0
         t.entry = not t.comp
         t.comp = True
     elif "R0" in w:
@@ -322,20 +324,33 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
 
 
-def _approach(t: _Tnc, line: int, w: dict) -> None:
-    """``APPR LT``: the last of its moves ends at the contour's first point P_A."""
+def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
+    """``APPR LT|LN|CT``: the last of its moves (a line; CT: an arc) ends at the contour's first point P_A."""
     _comp_words(t, w)
-    t.emit(line, "feed", t.target(w), rows="last")
+    t.emit(line, "feed" if form != "CT" else None, t.target(w), rows="last")
 
 
-def _depart(t: _Tnc, line: int, w: dict) -> None:
-    """``DEP LT LEN``: straight on along the last element's direction by LEN."""
-    if t.last_dir is None:
-        raise ReferenceError("DEP LT without a preceding element")
-    end = t.pos + t.last_dir * w["LEN"] * t.scale
+def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
+    """``DEP LT LEN``: straight on along the last element's direction by LEN; ``DEP LN LEN``: LEN to the
+    tool's side (RL: left), square to it; ``DEP CT CCA R``: on the arc tangent to it, turning
+    counter-clockwise for RL with R > 0 or RR with R < 0, through CCA."""
+    if t.last_dir is None or t.scl != 1 or not np.all(t.factors == 1):
+        raise ReferenceError("DEP without a preceding line (or under scaling)")
+    side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes
+    left = np.array([-t.last_dir[1], t.last_dir[0], 0.0])
+    if form == "LT":
+        end = t.pos + t.last_dir * w["LEN"] * t.scale
+    elif form == "LN":  # PN is LEN plus the tool radius off the last contour point
+        end = t.pos + side * left * (w["LEN"] * t.scale + (t.radius if t.comp else 0.0))
+    else:
+        turn = 1.0 if (side > 0) == (w["R"] > 0) else -1.0
+        centre = t.pos + turn * abs(w["R"]) * t.scale * left
+        a = math.radians(turn * w["CCA"])
+        v = t.pos - centre
+        end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a), 0])
     if "R0" in w:
         t.comp = False
-    t.emit(line, "feed", end, rows="last")
+    t.emit(line, "feed" if form != "CT" else None, end, rows="last")
 
 
 def _last_number(text: str, q: dict) -> float:
@@ -775,9 +790,13 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     """A path block; None when ``up`` is none."""
-    for key, fn in (("APPR LT", _approach), ("DEP LT", _depart)):
+    for key in ("APPR LT", "APPR LN", "APPR CT"):
         if up.startswith(key):
-            fn(t, line, _words(up[len(key):], t.q))
+            _approach(t, line, _words(up[len(key):], t.q), key[-2:])
+            return True
+    for form in ("LT", "LN", "CT"):
+        if up.startswith("DEP " + form):
+            _depart(t, line, _words(up[6:], t.q), form)
             return True
     head, _, rest = up.partition(" ")
     if head == "L":

@@ -13,6 +13,9 @@ import pytest
 from interpolators import interpolate, load_program, parse_program
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 HEAD = "0 BEGIN PGM T MM\n"
@@ -178,8 +181,38 @@ def test_appr_lt_and_dep_lt():
                 [35 + d, 35 + d, -10]]
     assert np.allclose(ends(prog), expected, rtol=0, atol=1e-12)
     assert [b.feed * 60 for b in prog.blocks[1:]] == pytest.approx([300, 100, 100, 100, 100])
-    with pytest.raises(GCodeError, match="APPR LN is not supported"):
-        run("L X+0 F100\nAPPR LN X+1 Y+1 LEN2 RL")
+    with pytest.raises(GCodeError, match="APPR LCT is not supported"):
+        run("L X+0 F100\nAPPR LCT X+1 Y+1 R2 RL")
+    with pytest.raises(GCodeError, match="APPR LN without radius compensation"):
+        run("L X+0 F100\nAPPR LN X+1 Y+1 LEN2 R0\nL X+5")
+
+
+def test_appr_ln_ct_and_dep_ln_ct():
+    # TNC7 manual "APPR LN": PH at LEN from PA, perpendicular to the first element, on the tool's side
+    # (RR: right of the direction +X, so below); "APPR CT": RR with R+ turns clockwise, the arc ending
+    # tangentially at PA; CCA 90 from PH; DEP LN / DEP CT the same from the last contour point
+    prog = run(PROGRAM_LN_CT)
+    assert np.allclose(ends(prog)[1:5], [[0, -10, 5], [0, -10, -1], [0, 0, -1], [10, 0, -1]], atol=1e-12)
+    assert np.allclose(ends(prog)[5], [10, -4, -1])  # DEP LN: 4 on the right of +X
+    b = prog.blocks
+    # APPR CT: clockwise arc of radius 5 centred at (0, -5): 90 degrees back from PA = (0, 0) is (-5, -5)
+    assert np.allclose(ends(prog)[7:10], [[-5, -5, 5], [-5, -5, -1], [0, 0, -1]], atol=1e-12)
+    assert b[9].kind == "arc" and not b[9].segment.ccw and np.allclose(b[9].segment.center[:2], [0, -5])
+    # DEP CT with RR and R-: counter-clockwise, centre (10, 2), half a turn to (10, 4)
+    assert b[11].segment.ccw and np.allclose(ends(prog)[11], [10, 4, -1]) and np.allclose(
+        b[11].segment.center[:2], [10, 2])
+    with_radius = "\n".join(ln for ln in PROGRAM_LN_CT.split("\n") if not ln.startswith("DEP CT")) + "\nDEP LN LEN1 R0"
+    for tool, body in (("R+0", PROGRAM_LN_CT), ("R+1", with_radius)):
+        text = HEAD + f"TOOL DEF 1 L+0 {tool}\nTOOL CALL 1 Z\n" + body + "\nEND PGM T MM\n"
+        prog = parse_heidenhain(text, source="t.h")
+        match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+        assert match.mismatch is None, match.mismatch  # against the reference, also with a tool radius
+    with pytest.raises(GCodeError, match="exit move must be a straight line"):  # compensate() ends on a line
+        run("TOOL DEF 1 L+0 R+1\nTOOL CALL 1 Z\n" + PROGRAM_LN_CT)
+
+
+PROGRAM_LN_CT = ("L X-20 Y-20 Z+5 R0 F300\nAPPR LN X+0 Y+0 Z-1 LEN10 RR F100\nL X+10 Y+0\nDEP LN LEN4 R0\n"
+                 "L X-20 Y-20 Z+5 FMAX\nAPPR CT X+0 Y+0 Z-1 CCA90 R+5 RR F100\nL X+10 Y+0\nDEP CT CCA180 R-2 R0")
 
 
 def test_radius_compensation_words():
