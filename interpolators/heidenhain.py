@@ -205,6 +205,8 @@ class _Machine:
         self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
         self.spindle: float | None = None  # spindle speed of the last TOOL CALL S [rpm]
         self.modal_call = False  # M89: every positioning block calls the cycle
+        self.cycle_program: tuple[str, int] | None = None  # cycle 12 PGM CALL: the program and its column
+        self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -328,6 +330,15 @@ class _Run:
 
     def run(self) -> str | None:
         """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
+        caller, self.m.runner = self.m.runner, self  # cycle 12 runs programs through the running program
+        try:
+            self.steps()
+        finally:
+            self.m.runner = caller
+        return self.name
+
+    def steps(self) -> None:
+        """The blocks of this program, in the order the flow takes them."""
         while self.pc < len(self.blocks):
             blk = self.blocks[self.pc]
             where = blk.where(self.source)
@@ -346,7 +357,6 @@ class _Run:
                     where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
                                expected="END PGM (TNC manual: the called program must not contain M2 or M30)")
                 break
-        return self.name
 
     def block(self, kw: str, k: re.Match, blk: SourceBlock, where: Where) -> bool:
         """Carry out one block; True when the program ends here."""
@@ -414,6 +424,11 @@ class _Run:
         if name is None:
             where.fail("CALL SELECTED PGM without SEL PGM", column=col0, text=blk.code,
                        expected="SEL PGM name before CALL SELECTED PGM")
+        self.run_program(name, col, where)
+
+    def run_program(self, name: str, col: int, where: Where) -> None:
+        """Run the program file ``name`` (written at column ``col`` of the calling block)."""
+        m = self.m
         path, on_drive = find_program(name, self.source, where, column=col)
         if on_drive:
             m.note(f"CALL PGM {name}: the control drive path was looked up in the calling program's directory")
@@ -616,9 +631,18 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     sub = int(cm.group(2)) if cm.group(2) is not None else None
     rest = cm.group(3)
     col = blk.column + cm.start(3)
-    if number not in (1, 7, 9, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
+    if number not in (1, 7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 19 (reset), 26, 32, 200-203, 205-207, 209, 220, 221, 240")
+                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 12, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240")
+    if number in MACHINING_CYCLES and (number != 1 or sub in (None, 0)):
+        m.cycle_program = None
+    if number == 12 and sub == 1:
+        pm = re.match(r"\s*PGM\s+(\"[^\"]+\"|'[^']+'|\S+)\s*$", rest, re.I)
+        if pm is None:
+            where.fail("malformed cycle 12 PGM CALL", column=col, text=rest.strip(),
+                       expected="CYCL DEF 12.1 PGM name")
+        m.cycle_program = (pm.group(1), col + pm.start(1))
+        return
     if number >= 200:
         q = q_assignments(rest, where, m.params, column0=col)
         if number in PATTERN_CYCLES:
@@ -783,7 +807,15 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
 def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
                 surface_shift: float = 0.0) -> None:
     """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
-    reached at rapid at the clearance height, the 2nd set-up clearance)."""
+    reached at rapid at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
+    CALL`` the cycle is that program (TNC 640 manual, cycle 12 PGM CALL: "the program is called
+    like a cycle"), run as ``CALL PGM``, where the tool is."""
+    if m.cycle_program is not None:
+        if hole is not None or surface_shift:
+            where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
+                       text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
+        m.runner.run_program(*m.cycle_program, where)
+        return
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")

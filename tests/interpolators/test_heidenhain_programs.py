@@ -73,6 +73,18 @@ def test_transformations_of_a_called_program_stay_in_effect(tmp_path):
     assert np.allclose(prog.blocks[-1].target, [10, 25, 0])
 
 
+def test_cycle_12_calls_a_program_like_a_cycle(tmp_path):
+    write(tmp_path, "hole.h", "1 L IZ-2 F50\n2 L IZ+2 FMAX")
+    main = write(tmp_path, "main.h", "1 L X+0 Y+0 Z+0 R0 F100\n2 CYCL DEF 12.0 PGM CALL\n3 CYCL DEF 12.1 PGM hole\n"
+                                     "4 L X+5 FMAX M99\n5 L X+9 FMAX\n6 CYCL CALL\n"
+                                     "7 CYCL DEF 200 DRILLING Q200=2 Q201=-3 Q206=100 Q202=3 Q210=0 Q203=+0 Q204=5\n"
+                                     "8 L X+20 FMAX M99")
+    prog = load_program(main, context=CTX)
+    ends = [(b.target[0] - 10, b.target[2]) for b in prog.blocks]
+    assert ends == [(0, 0), (5, 0), (5, -2), (5, 0), (9, 0), (9, -2), (9, 0), (20, 0), (20, 2), (20, -3), (20, 2),
+                    (20, 5)]  # after CYCL DEF 200 the cycle is the drilling cycle again
+
+
 @pytest.mark.parametrize("files, body, words", [
     ({}, "CALL PGM NOPE", "no program 'NOPE.h'"),
     ({"e.h": "1 L X+1 F100 M30"}, "CALL PGM e", "M2/M30 in a called program"),
