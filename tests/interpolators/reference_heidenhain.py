@@ -189,6 +189,7 @@ class _Tnc:
         self.last_dir: np.ndarray | None = None
         self.modal = False  # M89 active
         self.pattern: list[dict] = []  # PATTERN DEF positions
+        self.resolve = None  # name -> text of a called program
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
         self.rot = 0.0  # cycle 10 [deg]
         self.scl = 1.0  # cycle 11
@@ -377,6 +378,12 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         pass
     elif number in (8, 10, 11, 26) and sub == 1:
         _transform(t, number, rest)
+    elif number == 12 and sub == 1:  # PGM CALL: the program is the cycle
+        if t.resolve is None:
+            raise ReferenceError("cycle 12 without a resolver")
+        t.cycle = ("12", rest.split(None, 1)[1].strip().strip('"'))
+    elif number == 12:
+        pass
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
@@ -452,6 +459,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if t.cycle is None:
         raise ReferenceError("cycle call without a machining cycle")
     kind, p = t.cycle
+    if kind == "12":
+        _execute(t, t.resolve(p), t.resolve, called=True)
+        return
     start = t.prog()[2] / t.scale
     if kind == "1":
         setup, depth, plunge, dwell = abs(p[1]), p[2], abs(p[3]), p[4]
@@ -703,6 +713,7 @@ def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
         The program uses a function this reference does not model.
     """
     t = _Tnc(context)
+    t.resolve = resolve
     _execute(t, text, resolve, called=False)
     return t.out
 
