@@ -631,6 +631,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     sub = int(cm.group(2)) if cm.group(2) is not None else None
     rest = cm.group(3)
     col = blk.column + cm.start(3)
+    if number == 247:  # TNC 640 cycle manual, "DATUM SETTING (Cycle 247)": activates a preset table row
+        where.fail("cycle 247 DATUM SETTING is not supported (vcnc's machine context has one preset, G54, "
+                   "and no preset table)", column=blk.column, text=blk.code.strip(),
+                   expected="the preset in the machine's [program] table (G54) and CYCL DEF 7 / TRANS DATUM shifts")
     if number not in (1, 7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
                    expected="CYCL DEF 1, 7, 8, 9, 10, 11, 12, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240")
