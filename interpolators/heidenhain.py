@@ -677,6 +677,9 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                            expected="X, Y or Z (IX.. incremental)")
         _datum_shift({w.key: w.value for w in words}, m)
         return
+    if number == 32 and sub >= 2:  # 32.2 HSC-MODE / TA: the control's smoothing filter, not modelled
+        m.note(f"CYCL DEF 32.{sub} {rest.strip()} ignored")
+        return
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:

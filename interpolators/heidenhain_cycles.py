@@ -157,7 +157,7 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int)
 def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, what: str) -> float | None:
     """The value of an old-style cycle line (``DIST27.5``, ``SET UP 2``, ``F 500``, ``T0.05``,
     ``DWELL 1.5``, ``5``): the number (or Q parameter) after the item's name; None when empty."""
-    m = re.match(r"\s*([A-Z][A-Z\- ]*?)?\s*(?=[+-]?\s*(?:\d|\.\d|Q))", rest, re.I)
+    m = re.match(r"\s*([A-Z][A-Z\-. ]*?)?\s*(?=[+-]?\s*(?:\d|\.\d|Q))", rest, re.I)  # V.ZEIT: German TNCs
     if m is None:
         if rest.strip() == "":
             return None

@@ -100,6 +100,18 @@ def test_bore_milling_208_helix_then_a_full_circle():
     assert [x.target[2] for x in b[4:]] == [-10, 2, 20]
 
 
+def test_forms_of_real_posts_fusion_32_2_and_german_cycle_names():
+    # Fusion 360's TNC post writes "CYCL DEF 32.2 HSC-MODE:0 TA0.5"; German TNCs name the items
+    # ("9.1 V.ZEIT 1", "1.1 ABST 2") and the cycles in German
+    prog = run("CYCL DEF 32.0 TOLERANCE\nCYCL DEF 32.1 T0.01\nCYCL DEF 32.2 HSC-MODE:0 TA0.5\n"
+               "CYCL DEF 9.0 VERWEILZEIT\nCYCL DEF 9.1 V.ZEIT 1.5\nCYCL DEF 1.0 TIEFBOHREN\nCYCL DEF 1.1 ABST 2\n"
+               "CYCL DEF 1.2 TIEFE -4\nCYCL DEF 1.3 ZUSTLG 4\nCYCL DEF 1.4 V.ZEIT 0\nCYCL DEF 1.5 F100\n"
+               "L X+0 Y+0 Z+2 FMAX M99")
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [1.5]
+    assert [b.target[2] for b in prog.blocks[2:]] == [2, -4, 2]
+    assert any("32.2 HSC-MODE:0 TA0.5 ignored" in n for n in prog.notes)
+
+
 def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
     prog = run("CYCL DEF 240 CENTERING Q200=2 Q343=0 Q201=-1 Q206=100 Q211=0 Q203=+0 Q204=10\n"
                "L X+10 Y+0 FMAX M89\nL X+20 F500\nCC X+0 Y+0\nL X+30 M99\nL X+40\nM89\nL X+50\nCYCL CALL\nL X+60")
