@@ -708,8 +708,23 @@ def _datum_shift(values: dict[str, float], m: _Machine) -> None:
 
 
 def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
-    """``PLANE``, ``FUNCTION``: no motion when nothing tilts, else an error naming the function."""
-    m.note(tilt_block(kw, blk.code[pos:], where, m.params, column0=blk.column + pos))
+    """``PLANE``, ``FUNCTION``: no motion when nothing tilts, else an error naming the function;
+    ``FUNCTION DWELL TIME t`` / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640
+    user's manual, "Defining a dwell time: FUNCTION DWELL")."""
+    dm = re.match(r"\s*DWELL\s+(TIME|REV)\s*", blk.code[pos:], re.I) if kw == "FUNCTION" else None
+    if dm is None:
+        m.note(tilt_block(kw, blk.code[pos:], where, m.params, column0=blk.column + pos))
+        return
+    col = blk.column + pos
+    value, end = read_value(blk.code[pos:], dm.end(), where, m.params, what=dm.group(1).upper(), column0=col)
+    if value < 0 or blk.code[pos + end:].strip():
+        where.fail("malformed FUNCTION DWELL", column=col, text=blk.code, expected="FUNCTION DWELL TIME t [s] or REV r")
+    if dm.group(1).upper() == "REV":
+        if not m.spindle:
+            where.fail("FUNCTION DWELL REV without a spindle speed", column=col, text=blk.code,
+                       expected="TOOL CALL .. S<rpm> before it")
+        value = value * 60.0 / m.spindle
+    m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
 
 
 def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
@@ -979,6 +994,9 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
 
 
 def _one_m(w: Word, m: _Machine, where: Where) -> bool:
+    if w.value == 136:  # TNC 640 manual, "Feed rate in millimeters per spindle revolution: M136"
+        where.fail("M136 (feed per spindle revolution) is not supported", column=w.column, text=w.text,
+                   expected="feeds in mm/min (M137 or no M136)")
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
         where.fail("M128 (TCPM, tool centre point management) is not supported", column=w.column, text=w.text,
                    expected="3-axis machining (M128 needs the machine's kinematics)")

@@ -110,6 +110,8 @@ def test_forms_of_real_posts_fusion_32_2_and_german_cycle_names():
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [1.5]
     assert [b.target[2] for b in prog.blocks[2:]] == [2, -4, 2]
     assert any("32.2 HSC-MODE:0 TA0.5 ignored" in n for n in prog.notes)
+    dwell = parse_heidenhain(HEAD + "FUNCTION DWELL TIME 2\nFUNCTION DWELL REV 10\nEND PGM T MM\n", source="t.h")
+    assert [b.dwell for b in dwell.blocks[1:]] == [2.0, pytest.approx(1.2)]  # 10 turns at S500
 
 
 def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
@@ -130,6 +132,7 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
 
 @pytest.mark.parametrize("body, words", [
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
+    ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
