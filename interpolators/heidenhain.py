@@ -1314,19 +1314,25 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     code = blk.code
     fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
     form = fm.group(1).upper() if fm else ""
-    if form not in ("LT", "LN", "CT"):
-        where.fail(f"{kw} {form} is not supported", column=blk.column, text=f"{kw} {form}".strip(),
-                   expected=f"{kw} LT, {kw} LN or {kw} CT")
     what = f"{kw} {form}"
+    polar = kw == "APPR" and form in ("PLT", "PLN", "PCT")  # PA given by PR, PA about the pole CC
+    form = form[1:] if polar else form
+    if form not in ("LT", "LN", "CT"):
+        where.fail(f"{what} is not supported", column=blk.column, text=what,
+                   expected=f"{kw} LT, {kw} LN or {kw} CT" + (" (APPR PLT, PLN, PCT: polar)" if kw == "APPR" else ""))
     words = read_words(code, fm.end(), where, m.params, column0=blk.column)
     keys = ("LEN",) if form != "CT" else ("CCA", "R")
+    axes = ("PR", "PA", "Z", "IZ") if polar else ("X", "Y", "Z", "IX", "IY", "IZ")
     seen = {}
     for w in words:
-        if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ", "R0", "RL", "RR", "F", "FMAX", "M", *keys):
+        if w.key not in (*axes, "R0", "RL", "RR", "F", "FMAX", "M", *keys):
             where.fail(f"word {w.text!r} not allowed in {what}", column=w.column, text=w.text,
-                       expected=f"X, Y, Z, {', '.join(keys)}, R0/RL/RR, F, M")
+                       expected=f"{', '.join(axes)}, {', '.join(keys)}, R0/RL/RR, F, M")
         if w.key != "M":
             seen[w.key] = w
+    if polar and (m.pole is None or "PR" not in seen or "PA" not in seen):
+        where.fail(f"{what} needs a pole CC, PR and PA", column=blk.column, text=code,
+                   expected=f"CC X.. Y.. before {what} PR.. PA..")
     ended = any(_one_m(w, m, where) for w in words if w.key == "M")
     for key in keys:
         w = seen.get(key)
@@ -1355,6 +1361,10 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if m.feed is None:
         where.fail(f"{what} without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
     target, written = _plane_coords(seen, m, where, m9x=None)
+    if polar:
+        target = polar_point(m.pole, seen["PR"].value * k, m.transform.angle(seen["PA"].value, m.plane),
+                             plane=m.plane, base=target)
+        written |= set(PLANE_AXES[m.plane])
     m.used.update(written)
     if kw == "APPR":
         m.approach = {"ps": m.pos.copy(), "form": form, **sizes, "rapid": m.last_rapid,

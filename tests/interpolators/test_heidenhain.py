@@ -207,6 +207,8 @@ def test_appr_ln_ct_and_dep_ln_ct():
         prog = parse_heidenhain(text, source="t.h")
         match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
         assert match.mismatch is None, match.mismatch  # against the reference, also with a tool radius
+    polar = run("CC X+0 Y+0\nL X-20 Y-20 Z+5 R0 F300\nAPPR PLN PR+10 PA+90 Z-1 LEN5 RR F100\nL X+0 Y+20")
+    assert np.allclose(ends(polar)[1:4], [[5, 10, 5], [5, 10, -1], [0, 10, -1]], atol=1e-12)  # PA (0, 10)
     with pytest.raises(GCodeError, match="exit move must be a straight line"):  # compensate() ends on a line
         run("TOOL DEF 1 L+0 R+1\nTOOL CALL 1 Z\n" + PROGRAM_LN_CT)
 
