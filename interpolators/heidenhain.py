@@ -109,9 +109,11 @@ from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
 from interpolators.heidenhain_paths import (
     PathGeometryError,
+    approach_lct,
     approach_start,
     chamfer_corner,
     departure_element,
+    departure_lct,
     end_tangent,
     helical_arc,
     polar_angle,
@@ -1315,13 +1317,13 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
     form = fm.group(1).upper() if fm else ""
     what = f"{kw} {form}"
-    polar = kw == "APPR" and form in ("PLT", "PLN", "PCT")  # PA given by PR, PA about the pole CC
+    polar = form in ("PLT", "PLN", "PCT", "PLCT") and (kw == "APPR" or form == "PLCT")  # PR, PA about CC
     form = form[1:] if polar else form
-    if form not in ("LT", "LN", "CT"):
+    if form not in ("LT", "LN", "CT", "LCT"):
         where.fail(f"{what} is not supported", column=blk.column, text=what,
-                   expected=f"{kw} LT, {kw} LN or {kw} CT" + (" (APPR PLT, PLN, PCT: polar)" if kw == "APPR" else ""))
+                   expected=f"{kw} LT, LN, CT or LCT (polar: APPR PLT, PLN, PCT, PLCT, DEP PLCT)")
     words = read_words(code, fm.end(), where, m.params, column0=blk.column)
-    keys = ("LEN",) if form != "CT" else ("CCA", "R")
+    keys = {"CT": ("CCA", "R"), "LCT": ("R",)}.get(form, ("LEN",))
     axes = ("PR", "PA", "Z", "IZ") if polar else ("X", "Y", "Z", "IX", "IY", "IZ")
     seen = {}
     for w in words:
@@ -1391,10 +1393,14 @@ def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine,
                    expected=f"a contour element before DEP {form}")
     try:
         t = end_tangent(m.blocks[-1].segment, m.plane)
-        seg = departure_element(form, m.pos, t, plane=m.plane, **sizes)
+        if form == "LCT":
+            segs = departure_lct(m.pos, target, t, radius=sizes["radius"], side=sizes["side"], plane=m.plane)
+        else:
+            segs = (departure_element(form, m.pos, t, plane=m.plane, **sizes),)
     except PathGeometryError as exc:
         where.fail(exc.message, column=blk.column, text=blk.code, expected=exc.expected)
-    m.emit("line" if isinstance(seg, Line) else "arc", np.array(seg.end), seg, m.feed, where, blk.number)
+    for seg in segs:
+        m.emit("line" if isinstance(seg, Line) else "arc", np.array(seg.end), seg, m.feed, where, blk.number)
 
 
 def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
@@ -1417,8 +1423,11 @@ def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
         if a["form"] == "LN":  # "PH is separated from PA by the distance LEN plus the tool radius"
             a["length"] += m.comp_radius
         try:
-            ph, arc = approach_start(a["form"], pa, direction / n, length=a["length"], radius=a["radius"],
-                                     angle=a["angle"], side=a["side"], plane=m.plane)
+            if a["form"] == "LCT":
+                ph, arc = approach_lct(a["ps"], pa, direction / n, radius=a["radius"], side=a["side"], plane=m.plane)
+            else:
+                ph, arc = approach_start(a["form"], pa, direction / n, length=a["length"], radius=a["radius"],
+                                         angle=a["angle"], side=a["side"], plane=m.plane)
         except PathGeometryError as exc:
             pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
         ph[m.plane] = a["ps"][m.plane]

@@ -23,7 +23,7 @@ from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 __all__ = ["PathGeometryError", "polar_point", "polar_angle", "helical_arc", "end_tangent",
            "tangential_arc", "round_corner", "round_elements", "chamfer_corner", "approach_start",
-           "departure_element"]
+           "departure_element", "approach_lct", "departure_lct"]
 
 
 class PathGeometryError(ValueError):
@@ -369,3 +369,61 @@ def departure_element(form: str, pe: np.ndarray, tangent: np.ndarray, *, length:
     centre[p], centre[q] = pe[p] + s * left[0], pe[q] + s * left[1]
     return Arc(np.array(pe, dtype=float), _turned(pe, centre, angle if ccw else -angle, plane), centre, ccw=ccw,
                plane=plane)
+
+
+def _tangent_point(centre: np.ndarray, radius: float, point: np.ndarray, *, ccw: bool, leaving: bool,
+                   plane: int) -> np.ndarray:
+    """The point where a line through ``point`` touches the circle (``centre``, ``radius``) so that the
+    line runs on along the circle's sense (``ccw``): into the circle (``leaving`` False: the line ends
+    there) or out of it (``leaving`` True: the line starts there). Tool-axis coordinate of ``centre``."""
+    p, q = PLANE_AXES[plane]
+    v = np.array([point[p] - centre[p], point[q] - centre[q]])
+    dist = float(np.hypot(*v))
+    if dist <= radius * (1 + 1e-12):
+        raise PathGeometryError(f"the point lies inside the arc of radius {radius:g} mm (no tangent line)",
+                                "a smaller R or a point farther from the contour")
+    theta, half = math.atan2(v[1], v[0]), math.acos(radius / dist)
+    for phi in (theta + half, theta - half):
+        u = np.array([math.cos(phi), math.sin(phi)])
+        along = np.array([-u[1], u[0]]) if ccw else np.array([u[1], -u[0]])  # the circle's direction at u
+        line = v - radius * u  # from the tangent point to the point
+        if (float(line @ along) > 0) == leaving:
+            out = np.array(centre, dtype=float)
+            out[p], out[q] = centre[p] + radius * u[0], centre[q] + radius * u[1]
+            return out
+    raise AssertionError("one of the two tangents runs along the circle")  # pragma: no cover
+
+
+def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
+                 plane: int) -> tuple[np.ndarray, Arc]:
+    """``APPR LCT`` (TNC7 user's manual, "APPR LCT"): the line from PS touches at PH the arc of
+    ``radius`` [mm] that ends at PA tangentially to the first contour element (``tangent``); the arc
+    turns towards the tool's ``side`` (RL: counter-clockwise). Returns PH (PA's tool-axis
+    coordinate) and the arc PH -> PA."""
+    if not radius > 0:
+        raise PathGeometryError("APPR LCT needs R > 0", "R+.. [mm]")
+    p, q = PLANE_AXES[plane]
+    ccw = side > 0
+    centre = np.array(pa, dtype=float)
+    centre[p], centre[q] = pa[p] - side * radius * tangent[1], pa[q] + side * radius * tangent[0]
+    start = np.array(ps, dtype=float)
+    start[plane] = pa[plane]
+    ph = _tangent_point(centre, radius, start, ccw=ccw, leaving=False, plane=plane)
+    return ph, Arc(ph, np.array(pa, dtype=float), centre, ccw=ccw, plane=plane)
+
+
+def departure_lct(pe: np.ndarray, pn: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
+                  plane: int) -> tuple[Arc, Line]:
+    """``DEP LCT`` (TNC7 user's manual, "DEP LCT"): the arc of ``radius`` [mm] leaving PE tangentially to
+    the last contour element (``tangent``), turning towards the tool's ``side``, to PH, where the line
+    to PN (in the plane of PE) touches it."""
+    if not radius > 0:
+        raise PathGeometryError("DEP LCT needs R > 0", "R+.. [mm]")
+    p, q = PLANE_AXES[plane]
+    ccw = side > 0
+    centre = np.array(pe, dtype=float)
+    centre[p], centre[q] = pe[p] - side * radius * tangent[1], pe[q] + side * radius * tangent[0]
+    end = np.array(pn, dtype=float)
+    end[plane] = pe[plane]
+    ph = _tangent_point(centre, radius, end, ccw=ccw, leaving=True, plane=plane)
+    return Arc(np.array(pe, dtype=float), ph, centre, ccw=ccw, plane=plane), Line(ph, end)

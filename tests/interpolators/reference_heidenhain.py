@@ -328,7 +328,7 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
     """``APPR LT|LN|CT``: the last of its moves (a line; CT: an arc) ends at the contour's first point P_A."""
     _comp_words(t, w)
-    t.emit(line, "feed" if form != "CT" else None, t.target(w), rows="last")
+    t.emit(line, "feed" if form in ("LT", "LN") else None, t.target(w), rows="last")
 
 
 def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
@@ -801,10 +801,15 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     """A path block; None when ``up`` is none."""
-    for key in ("APPR LT", "APPR LN", "APPR CT"):
+    for key in ("APPR LCT", "APPR LT", "APPR LN", "APPR CT"):
         if up.startswith(key):
-            _approach(t, line, _words(up[len(key):], t.q), key[-2:])
+            _approach(t, line, _words(up[len(key):], t.q), key.split()[1])
             return True
+    if up.startswith("DEP LCT"):  # the arc leaving the contour, then the line to the programmed PN
+        w = _words(up[7:], t.q)
+        t.comp = t.comp and "R0" not in w
+        t.emit(line, "feed", t.target(w), rows="last")
+        return True
     for form in ("LT", "LN", "CT"):
         if up.startswith("DEP " + form):
             _depart(t, line, _words(up[6:], t.q), form)

@@ -181,8 +181,8 @@ def test_appr_lt_and_dep_lt():
                 [35 + d, 35 + d, -10]]
     assert np.allclose(ends(prog), expected, rtol=0, atol=1e-12)
     assert [b.feed * 60 for b in prog.blocks[1:]] == pytest.approx([300, 100, 100, 100, 100])
-    with pytest.raises(GCodeError, match="APPR LCT is not supported"):
-        run("L X+0 F100\nAPPR LCT X+1 Y+1 R2 RL")
+    with pytest.raises(GCodeError, match="DEP PLT is not supported"):
+        run("L X+0 F100\nL X+1\nDEP PLT LEN2")
     with pytest.raises(GCodeError, match="APPR LN without radius compensation"):
         run("L X+0 F100\nAPPR LN X+1 Y+1 LEN2 R0\nL X+5")
 
@@ -211,6 +211,19 @@ def test_appr_ln_ct_and_dep_ln_ct():
     assert np.allclose(ends(polar)[1:4], [[5, 10, 5], [5, 10, -1], [0, 10, -1]], atol=1e-12)  # PA (0, 10)
     with pytest.raises(GCodeError, match="exit move must be a straight line"):  # compensate() ends on a line
         run("TOOL DEF 1 L+0 R+1\nTOOL CALL 1 Z\n" + PROGRAM_LN_CT)
+
+
+def test_appr_lct_and_dep_lct():
+    # TNC7 manual "APPR LCT": a line from PS touching the arc of radius R that ends tangentially at PA
+    # (RL: counter-clockwise, centre (0, 5)); "DEP LCT": the arc leaving PE, then the line to PN touching it
+    prog = run("L X-5 Y+20 Z+5 R0 F300\nAPPR LCT X+0 Y+0 Z-1 R5 RL F100\nL X+10 Y+0\nDEP LCT X+15 Y+20 Z+5 R5 R0")
+    assert np.allclose(ends(prog), [[-5, 20, 5], [-5, 5, 5], [-5, 5, -1], [0, 0, -1], [10, 0, -1], [15, 5, -1],
+                                    [15, 20, -1], [15, 20, 5]], atol=1e-9)
+    assert prog.blocks[3].segment.ccw and prog.blocks[5].segment.ccw
+    text = (HEAD + "L X-5 Y+20 Z+5 R0 F300\nAPPR LCT X+0 Y+0 Z-1 R5 RL F100\nL X+10 Y+0\nDEP LCT X+15 Y+20 R5 R0\n"
+            "END PGM T MM\n")
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(parse_heidenhain(text))[1])
+    assert match.mismatch is None, match.mismatch
 
 
 PROGRAM_LN_CT = ("L X-20 Y-20 Z+5 R0 F300\nAPPR LN X+0 Y+0 Z-1 LEN10 RR F100\nL X+10 Y+0\nDEP LN LEN4 R0\n"
@@ -319,7 +332,7 @@ BAD = [
     ("CYCL DEF 17.0 RIGID TAPPING", "cycle 17 is not supported"),
     ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
     ("L X+1 F100\nAPPR LT X+0 Y+0 LEN5 RL", "without a following contour element"),
-    ("L X+1 F100\nAPPR LCT X+0 Y+0 R5 RL", "APPR LCT is not supported"),
+    ("L X+1 F100\nAPPR LCT X+0 Y+0 R5 R0\nL X+5", "APPR LCT without radius compensation"),
     ("CALL LBL 7", "label 7 is not defined"),
     ("Q1 = 0\nQ2 = 5 / Q1", "division by zero"),
     ("FN 4: Q2 = +5 DIV +0", "division by zero"),
