@@ -35,7 +35,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     polar line / arc about CC (helix with a tool-axis word)
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
-                                    straight approach / departure tangential to the contour
+                                    straight approach / departure tangential to the contour; LN
+                                    perpendicular, CT on an arc (CCA, R), LCT line and arc (R);
+                                    APPR PLT/PLN/PCT/PLCT, DEP PLCT: PA / PN by PR, PA
     STOP, M0, M1                    program stop: no motion (noted)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
     L X+0 M92                       M92: relative to the machine-defined position context.home
@@ -71,7 +73,7 @@ mirrored, rotated and scaled (cycles 8, 10, 11, 26) + the preset (``context.offs
 datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
 the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
 perpendicular to the first contour element as on the TNC) to the R0 block (the exit move), by
-:func:`interpolators.compensation.compensate`. Anything not listed (other APPR/DEP forms, FK,
+:func:`interpolators.compensation.compensate`. Anything not listed (DEP CT ending RL/RR, FK,
 other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
