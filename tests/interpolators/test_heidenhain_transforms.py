@@ -56,6 +56,17 @@ def test_mirror_image_reverses_arcs_and_keeps_rotation_inside_the_mirror():
     assert not b[2].segment.ccw and not b[3].segment.ccw  # DR+ mirrored in one axis turns clockwise
 
 
+def test_polar_moves_turn_and_mirror_with_the_coordinate_system():
+    prog = parse_heidenhain(HEAD + "CC X+0 Y+0\nL X+10 Y+0 Z+0 R0 F100\nCYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 ROT+90\n"
+                            "LP PR+10 PA+0\nCP IPA+90 DR+\nCYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 Y\nLP PR+5 PA+0\n"
+                            "CP PA+90 DR+\nEND PGM T MM\n", source="t.h")
+    b = prog.blocks
+    # rotated: PA 0 -> 90 deg, (0, 10); IPA+90 -> (-10, 0); rotated then Y mirrored: PA 0 -> (0, -5),
+    # PA 90 -> rotated (-5, 0), mirrored (-5, 0), reached clockwise (DR+ mirrored once)
+    assert np.allclose([x.target[:2] for x in b[1:]], [[0, 10], [-10, 0], [0, -5], [-5, 0]], atol=1e-12)
+    assert b[2].segment.ccw and not b[4].segment.ccw and abs(b[4].segment.sweep) == pytest.approx(np.pi / 2)
+
+
 def test_scaling_and_axis_specific_scaling():
     prog = run("TOOL CALL 1 Z\nL X+0 Y+0 Z+10 R0 F100\nCYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL 0.5\n"
                "L X+10 Y+20 Z+4\nCC X+0 Y+20\nC X-10 Y+20 DR-\nCYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL 1\n"
