@@ -486,9 +486,26 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
     if tok.upper() in _FK_WORDS:  # TNC 640 user's manual, "FK free contour programming"
         where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
                    expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
+    head = re.match(r"[A-Z]*", tok.upper()).group(0)  # QS1 = ...: QS
+    known = _KNOWN_UNSUPPORTED.get(head)
+    if known is not None:
+        where.fail(f"{known} is not supported", column=blk.column, text=tok,
+                   expected="3-axis contours of L, C, CR, CT, CP, LP, RND, CHF and the supported cycles")
     where.fail(f"unknown or unsupported block {tok!r}", column=blk.column, text=tok,
                expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, CALL PGM, FN, "
                         "Qn =, TRANS, M")
+
+
+#: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
+_KNOWN_UNSUPPORTED = {
+    "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
+    "SPL": "SPL (spline interpolation)",
+    "LN": "LN (a straight line with 3-D tool compensation)",
+    "QS": "QS (string parameters)",
+    "DECLARE": "DECLARE (string parameters)",
+    "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
+    "SQL": "SQL (table access)",
+}
 
 
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:

@@ -133,6 +133,7 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
 @pytest.mark.parametrize("body, words", [
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
+    ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
