@@ -691,6 +691,9 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         _tilt_cycle(rest, m, where, col)
         return
     if number == 7:
+        if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
+            where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
+                       column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
         words = read_words(rest, 0, where, m.params, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
