@@ -94,6 +94,7 @@ from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
+    LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
     DrillCycle,
@@ -106,6 +107,7 @@ from interpolators.heidenhain_cycles import (
     pecking_cycle,
     q_assignments,
     scaled_cycle,
+    tapping_cycle,
 )
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
@@ -656,10 +658,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         where.fail("cycle 247 DATUM SETTING is not supported (vcnc's machine context has one preset, G54, "
                    "and no preset table)", column=blk.column, text=blk.code.strip(),
                    expected="the preset in the machine's [program] table (G54) and CYCL DEF 7 / TRANS DATUM shifts")
-    if number not in (1, 7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
+    if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 7, 8, 9, 10, 11, 12, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240")
-    if number in MACHINING_CYCLES and (number != 1 or sub in (None, 0)):
+                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240")
+    if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
         pm = re.match(r"\s*PGM\s+(\"[^\"]+\"|'[^']+'|\S+)\s*$", rest, re.I)
@@ -680,7 +682,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                               spindle=m.spindle)
         return
     if sub in (None, 0):
-        if number == 1:
+        if number in LEGACY_CYCLES:
             m.cycle_items = {}
         return
     if number in TRANSFORM_CYCLES:
@@ -715,13 +717,16 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                 where.fail("tolerance T must be > 0 [mm]", column=col, text=rest.strip(), expected="T > 0 [mm]")
             m.exact_stop = False
             m.tolerance = value * m.scale if value is not None else m.context.dialect.tolerance
-    else:  # cycle 1 PECKING: items 1.1 .. 1.5
+    else:  # cycles 1 PECKING (1.1 .. 1.5), 2 TAPPING (2.1 .. 2.4), 17 RIGID TAPPING (17.1 .. 17.3)
         if value is None:
-            where.fail(f"cycle 1.{sub} without a value", column=col, text=blk.code, expected="a number")
+            where.fail(f"cycle {number}.{sub} without a value", column=col, text=blk.code, expected="a number")
         m.cycle_items[sub] = value
-        if sub == 5:
+        if sub == LEGACY_CYCLES[number] and number == 1:
             m.cycle = pecking_cycle(m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column)
+        elif sub == LEGACY_CYCLES[number]:
+            m.cycle = tapping_cycle(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                    column=blk.column, spindle=m.spindle)
 
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:

@@ -39,14 +39,15 @@ from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
-           "q_assignments", "legacy_value", "required_q", "PatternCycle", "pattern_cycle",
+           "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
+           "pattern_cycle",
            "pecking_cycle", "drill_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
@@ -168,6 +169,35 @@ def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, 
         tok = rest[end:].strip()
         where.fail(f"unexpected {tok!r} after {what}", column=column0 + end, text=tok, expected="one value")
     return value
+
+
+#: The old cycles defined item by item (``CYCL DEF n.1`` ...): number -> the item that completes the definition.
+LEGACY_CYCLES: dict[int, int] = {1: 5, 2: 4, 17: 3}
+
+
+def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                  column: int, spindle: float | None) -> DrillCycle:
+    """The old tapping cycles from the starting point, the set-up clearance ahead of the surface (TNC
+    426/430 user's manual, "Cycles for drilling"): 2 TAPPING (2.1 set-up clearance, 2.2 depth, 2.3
+    dwell [s], 2.4 feed F: in at F, dwell, reversed out at F to the starting point) and 17 RIGID
+    TAPPING (17.1 set-up clearance, 17.2 depth, 17.3 pitch: in and out at S x pitch)."""
+    need = (1, 2, 4) if number == 2 else (1, 2, 3)
+    missing = [f"{number}.{k}" for k in need if k not in items]
+    if missing:
+        where.fail(f"cycle {number} TAPPING lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected=f"{number}.1 set-up clearance, {number}.2 depth, "
+                            + ("2.3 dwell, 2.4 feed" if number == 2 else "17.3 pitch"))
+    if number == 2:
+        feed = items[4] * feed_scale
+    else:
+        if not spindle:
+            where.fail("cycle 17: the feed is the spindle speed times the pitch, and no speed is known",
+                       column=column, text=where.text, expected="TOOL CALL .. S<rpm> before the cycle")
+        feed = spindle * abs(items[3]) * scale / 60.0
+    depth = items[2] * scale
+    return _checked(DrillCycle(number=number, setup=abs(items[1]) * scale, depth=depth, plunge=abs(depth), feed=feed,
+                               dwell_bottom=items.get(3, 0.0) if number == 2 else 0.0, retract_feed=feed),
+                    where, column)
 
 
 def pecking_cycle(items: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -460,7 +490,7 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
             if cycle.dwell_top > 0:
                 out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
             reentry = surface + d * (done - advance)
-            if d * (reentry - top) > 0 and cycle.number not in (206, 207, 209):  # a tap follows its thread
+            if d * (reentry - top) > 0 and cycle.number not in (2, 17, 206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)
         done += step

@@ -387,9 +387,9 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
-    elif number == 1:
+    elif number in (1, 2, 17):
         if sub == 0:
-            t.cycle = ("1", {})
+            t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
     elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240) and sub == 0:
@@ -481,6 +481,13 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "208":
         _bore_milling(t, line, p)
+        return
+    if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
+        sgn = -1.0 if p[2] < 0 else 1.0
+        _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
+        if kind == "2":
+            _dwell(t, line, p.get(3, 0.0))
+        _move_z(t, line, "feed", start)
         return
     if kind != "200":
         _one_pass_cycle(t, line, kind, p)

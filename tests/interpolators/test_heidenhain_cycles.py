@@ -114,6 +114,15 @@ def test_forms_of_real_posts_fusion_32_2_and_german_cycle_names():
     assert [b.dwell for b in dwell.blocks[1:]] == [2.0, pytest.approx(1.2)]  # 10 turns at S500
 
 
+def test_old_tapping_cycles_2_and_17_from_the_starting_point():
+    # TNC 426/430 manual: 2 TAPPING in at F, dwell, out at F; 17 RIGID TAPPING at S x pitch (S500 x 1)
+    prog = run("L X+50 Y+50 Z+2 FMAX\nCYCL DEF 2.0 TAPPING\nCYCL DEF 2.1 SET UP 2\nCYCL DEF 2.2 DEPTH -12\n"
+               "CYCL DEF 2.3 DWELL 0.5\nCYCL DEF 2.4 F100\nCYCL CALL\nCYCL DEF 17.0 RIGID TAPPING\n"
+               "CYCL DEF 17.1 SET UP 2\nCYCL DEF 17.2 DEPTH -10\nCYCL DEF 17.3 PITCH +1\nCYCL CALL")
+    assert moves(prog)[1:] == [("line", 50, 50, -12, 100), ("dwell", 50, 50, -12, 0.5), ("line", 50, 50, 2, 100),
+                               ("line", 50, 50, -10, 500), ("line", 50, 50, 2, 500)]
+
+
 def test_m89_calls_the_cycle_at_every_positioning_block_until_m99():
     prog = run("CYCL DEF 240 CENTERING Q200=2 Q343=0 Q201=-1 Q206=100 Q211=0 Q203=+0 Q204=10\n"
                "L X+10 Y+0 FMAX M89\nL X+20 F500\nCC X+0 Y+0\nL X+30 M99\nL X+40\nM89\nL X+50\nCYCL CALL\nL X+60")
