@@ -22,6 +22,10 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
                           retraction feed, Q256 chip-break retraction
 ``CYCL DEF 205``          as 203 (Q212, Q205, Q208, Q256, Q257 chip-break depth), Q258/Q259
                           advanced stop distances
+``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
+``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
+                          (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
 
 The Q parameters of a definition are also assigned in the program's parameter store, as the
