@@ -69,7 +69,8 @@ Path mode: blocks end at rest (``Block.exact_stop``), as the thesis' identificat
 the path is continuous with that tolerance (``32.1`` without T: ``context.dialect.tolerance``).
 
 Unit conversion: positions mm, feeds mm/s. Machine coordinates = the program coordinates
-mirrored, rotated and scaled (cycles 8, 10, 11, 26) + the preset (``context.offset("G54")``) + the
+mirrored, rotated and scaled (cycles 8, 10, 11, 26) + the preset (``context.offset("G54")``; cycle 247
+selects another work offset of the context) + the
 datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
 the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
 perpendicular to the first contour element as on the TNC) to the R0 block (the exit move), by
@@ -91,7 +92,7 @@ import numpy as np
 from interpolators._words import INCH, Where, program_text
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
 from interpolators.compensation import CompensationError, compensate
-from interpolators.context import DEFAULT_CONTEXT, MachineContext
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
     LEGACY_CYCLES,
@@ -190,6 +191,7 @@ class _Machine:
         self.tool_length = 0.0
         self.tool_radius = 0.0
         self.shift = np.zeros(3)
+        self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
         self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
@@ -225,7 +227,7 @@ class _Machine:
 
     def origin(self) -> np.ndarray:
         """Program zero in machine coordinates [mm]."""
-        o = self.context.offset("G54") + self.shift
+        o = self.context.offset(self.preset) + self.shift
         o = np.array(o, dtype=float)
         o[self.plane] += self.tool_length
         return o
@@ -654,13 +656,12 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     sub = int(cm.group(2)) if cm.group(2) is not None else None
     rest = cm.group(3)
     col = blk.column + cm.start(3)
-    if number == 247:  # TNC 640 cycle manual, "DATUM SETTING (Cycle 247)": activates a preset table row
-        where.fail("cycle 247 DATUM SETTING is not supported (vcnc's machine context has one preset, G54, "
-                   "and no preset table)", column=blk.column, text=blk.code.strip(),
-                   expected="the preset in the machine's [program] table (G54) and CYCL DEF 7 / TRANS DATUM shifts")
+    if number == 247:
+        _preset_cycle(rest, m, where, col)
+        return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240")
+                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240, 247")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -727,6 +728,30 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         elif sub == LEGACY_CYCLES[number]:
             m.cycle = tapping_cycle(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column, spindle=m.spindle)
+
+
+def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+    """``CYCL DEF 247 DATUM SETTING Q339=n`` activates row n of the preset table (TNC 640 cycle
+    manual, "DATUM SETTING (Cycle 247)"). The machine context's work offsets stand in for that
+    table in the order of :data:`interpolators.context.WORK_OFFSETS`, as the CAM posts number them
+    (G54 = preset 1, G55 = 2, ... G59.3 = 9); row 0, the preset set by hand, is G54, the context's
+    preset at the program start. "When activating a preset from the preset table, the control resets
+    the datum shift, mirroring, rotation, scaling factor and axis-specific scaling factor" (TNC
+    640 cycle manual, cycle 247, notes)."""
+    q = q_assignments(rest, where, m.params, column0=col)
+    if 339 not in q:
+        where.fail("cycle 247 lacks Q339", column=col, text=rest.strip(), expected="Q339 = the preset number")
+    n = int(q[339])
+    if n != q[339] or not 0 <= n <= len(WORK_OFFSETS):
+        where.fail(f"cycle 247: preset {q[339]:g} is not in the machine context's table", column=col,
+                   text=rest.strip(), expected=f"Q339 = 0 .. {len(WORK_OFFSETS)} (G54 .. G59.3)")
+    if m.comp != "R0":
+        where.fail(f"cycle 247 while radius compensation {m.comp} is active", column=col, text=rest.strip(),
+                   expected="R0 before a new preset")
+    m.preset = WORK_OFFSETS[max(n - 1, 0)]
+    m.shift = np.zeros(3)
+    m.transform = Transform()
+    m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
 
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:

@@ -188,6 +188,7 @@ class _Tnc:
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
         self.modal = False  # M89 active
+        self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54)
         self.pattern: list[dict] = []  # PATTERN DEF positions
         self.resolve = None  # name -> text of a called program
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
@@ -197,7 +198,7 @@ class _Tnc:
         self.centre = np.zeros(3)  # cycle 26 [mm]
 
     def origin(self) -> np.ndarray:
-        o = np.array(self.ctx.offset("G54"), float) + self.shift
+        o = np.array(self.ctx.offset(self.preset), float) + self.shift
         o[2] += self.length
         return o
 
@@ -378,6 +379,10 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         pass
     elif number in (8, 10, 11, 26) and sub == 1:
         _transform(t, number, rest)
+    elif number == 247:
+        n = int(_val(re.search(r"Q339\s*=\s*([-+]?\s*[\w.]+)", rest).group(1).replace(" ", ""), t.q))
+        t.preset = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")[max(n - 1, 0)]
+        t.shift, t.mirror, t.rot, t.scl, t.factors = np.zeros(3), np.ones(3), 0.0, 1.0, np.ones(3)  # all reset
     elif number == 12 and sub == 1:  # PGM CALL: the program is the cycle
         if t.resolve is None:
             raise ReferenceError("cycle 12 without a resolver")
