@@ -1,7 +1,8 @@
 """The compiled loops of the identification models (numba), in one place: the reduced model's
 exact sampled loop (Eq. 3.3 discretised, :mod:`identification.reduced_model`) with the diagnosis'
 disturbance terms, and the split loop of an augmented model (a rigid or two-mass plant with
-friction, backlash, delay and saturation, :mod:`identification.augmented`).
+friction, backlash, delay and saturation, :mod:`identification.augmented`); and the moments of
+the sinusoid columns a period search screens (:func:`sinusoid_moments`).
 
 The helpers of the loops are inlined into them (``inline='always'``): numba otherwise compiles
 them as calls, and on the long capture of ``benchmarks/diagnosis.py`` the split loop of a
@@ -15,7 +16,7 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["w_terms", "run_exact", "run_split", "NO_STRIBECK", "NO_FOURIER"]
+__all__ = ["w_terms", "run_exact", "run_split", "sinusoid_moments", "NO_STRIBECK", "NO_FOURIER"]
 
 
 @numba.njit(cache=True, nogil=True, inline='always')
@@ -313,3 +314,41 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
                 pos[q] = np.nan
                 vel[q] = np.nan
             return
+
+
+@numba.njit(cache=True, nogil=True)
+def sinusoid_moments(scaled, periods, r, q):  # pragma: no cover - compiled
+    """Moments of the columns ``sin(scaled / p)``, ``cos(scaled / p)`` for every period ``p``.
+
+    ``scaled`` is ``2 pi`` times the coordinate (position [mm] or time [s]), ``r`` (n,) a residual,
+    ``q`` (n, k) a basis. Returns ``(m, qs, qc)``: ``m[j] = (s.s, s.c, c.c, r.s, r.c)`` of period j,
+    ``qs[j] = q' s`` and ``qc[j] = q' c``. One pass per period, the columns never stored: a grid of
+    400 periods over 16,000 rows took 0.12 s, the batched products of the stored columns 0.22 s
+    (2026-11-23); the sin and cos themselves are most of it.
+    """
+    n, k = q.shape
+    npr = periods.shape[0]
+    m = np.zeros((npr, 5))
+    qs = np.zeros((npr, k))
+    qc = np.zeros((npr, k))
+    for j in range(npr):
+        p = periods[j]
+        a0 = a1 = a2 = a3 = a4 = 0.0
+        for i in range(n):
+            ph = scaled[i] / p
+            sv = math.sin(ph)
+            cv = math.cos(ph)
+            a0 += sv * sv
+            a1 += sv * cv
+            a2 += cv * cv
+            a3 += r[i] * sv
+            a4 += r[i] * cv
+            for u in range(k):
+                qs[j, u] += q[i, u] * sv
+                qc[j, u] += q[i, u] * cv
+        m[j, 0] = a0
+        m[j, 1] = a1
+        m[j, 2] = a2
+        m[j, 3] = a3
+        m[j, 4] = a4
+    return m, qs, qc

@@ -23,8 +23,7 @@ import functools
 import logging
 import math
 import threading
-from collections.abc import Callable, Sequence
-from typing import Any
+from collections.abc import Callable
 
 import numpy as np
 import scipy.signal
@@ -42,6 +41,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
+from identification.kernels import sinusoid_moments
 from identification.least_squares import solve_qr, solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
@@ -167,35 +167,32 @@ class SearchContext:
         res = self._ee_r - g @ beta
         return float(res @ res), beta
 
-    def ee_partial_many(self, make_cols: Callable[[Any], np.ndarray], values: Sequence[Any],
-                        batch: int = 40) -> np.ndarray:
-        """Training RSS of :meth:`ee_partial` for the columns ``make_cols(v)`` of each value, batched.
+    def ee_partial_sinusoids(self, coordinate: np.ndarray, periods: np.ndarray) -> np.ndarray:
+        """Training RSS of :meth:`ee_partial` with the columns sin, cos(2 pi coordinate / p) added,
+        for every period p of ``periods`` (``coordinate`` on the training rows).
 
         With the residual r orthogonal to the base Q (``_q``), adding columns C leaves the RSS
-        ``r.r - (C'r)' G^-1 (C'r)`` with ``G = C'C - (Q'C)'(Q'C)``: a few matrix products per batch
-        of values instead of a QR each (columns scaled to unit norm for the solve).
+        ``r.r - (C'r)' G^-1 (C'r)`` with ``G = C'C - (Q'C)'(Q'C)`` (columns scaled to unit norm
+        for the solve); the moments come from one compiled pass per period
+        (:func:`identification.kernels.sinusoid_moments`), the columns are never stored.
         """
         q, r = self._q, self._ee_r
-        rr = float(r @ r)
-        out = []
-        for i in range(0, len(values), batch):
-            cols = [make_cols(v) for v in values[i:i + batch]]
-            b, k = len(cols), cols[0].shape[1]
-            c = np.hstack(cols)  # (n, b k): value j's columns at j k .. j k + k - 1
-            c = c / np.maximum(np.linalg.norm(c, axis=0), 1e-300)
-            qc = (q.T @ c).reshape(q.shape[1], b, k)
-            g = np.empty((b, k, k))
-            for u in range(k):
-                for w in range(u, k):
-                    g[:, u, w] = g[:, w, u] = np.einsum("nb,nb->b", c[:, u::k], c[:, w::k])
-            g -= np.einsum("jbu,jbw->buw", qc, qc)
-            rc = (r @ c).reshape(b, k)
-            try:
-                sol = np.linalg.solve(g, rc[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                sol = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(g, rc)])
-            out.append(rr - np.einsum("bk,bk->b", rc, sol))
-        return np.concatenate(out) if out else np.zeros(0)
+        scaled = np.ascontiguousarray(2.0 * np.pi * np.asarray(coordinate, float))
+        m, qs, qc = sinusoid_moments(scaled, np.ascontiguousarray(periods, float), np.ascontiguousarray(r),
+                                     np.ascontiguousarray(q))
+        ns = np.maximum(np.sqrt(m[:, 0]), 1e-300)
+        nc = np.maximum(np.sqrt(m[:, 2]), 1e-300)
+        qs, qc = qs / ns[:, None], qc / nc[:, None]
+        g = np.empty((periods.size, 2, 2))
+        g[:, 0, 0] = m[:, 0] / (ns * ns) - np.einsum("pk,pk->p", qs, qs)
+        g[:, 1, 1] = m[:, 2] / (nc * nc) - np.einsum("pk,pk->p", qc, qc)
+        g[:, 0, 1] = g[:, 1, 0] = m[:, 1] / (ns * nc) - np.einsum("pk,pk->p", qs, qc)
+        rc = np.column_stack([m[:, 3] / ns, m[:, 4] / nc])
+        try:
+            sol = np.linalg.solve(g, rc[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            sol = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(g, rc)])
+        return float(r @ r) - np.einsum("pk,pk->p", rc, sol)
 
     def ee_rows(self):
         """(v, x, t) of the training regressor rows."""
@@ -476,7 +473,7 @@ def search_position_periodic(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
     v, x, t = ctx.ee_rows()
     grid = PositionPeriodic.grid(d.span)
-    rss = ctx.ee_partial_many(lambda p: PositionPeriodic.basis(x, p, 1), grid)
+    rss = ctx.ee_partial_sinusoids(x, grid)
     i = int(np.argmin(rss))
     lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
     p = _golden(lambda q: ctx.ee_partial(-PositionPeriodic.basis(x, q, 1))[0], lo, hi, 25)
