@@ -303,7 +303,7 @@ class SearchContext:
         keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
         for _ in range(iterations):
             r = (d.x - y)[d.train]
-            J = sensitivity(model, d.xr, one_sided=True)[d.train]
+            J = sensitivity(model, d.xr, one_sided=True, y0=y)[d.train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
@@ -365,11 +365,14 @@ def _with_basis_coef(e: Effect, coef: np.ndarray) -> Effect:
     return e.with_coefficients(coef)
 
 
-def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False) -> np.ndarray:
-    """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8)."""
+def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False,
+                y0: np.ndarray | None = None) -> np.ndarray:
+    """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8);
+    ``y0``, the model's own output, saves a simulation for forward differences."""
     p0 = dict(model.parameters)
     spec = model.spec(xr.size)
-    y0 = simulate_augmented(p0, xr, spec) if one_sided else None
+    if one_sided and y0 is None:
+        y0 = simulate_augmented(p0, xr, spec)
 
     def column(k):
         step = 1e-4 * max(abs(p0[k]), 1e-3 * max(abs(p0["b1"]), 1.0))
