@@ -141,6 +141,14 @@ class SearchContext:
         self.yhat = model.simulate(d.xr)
         self.r = d.x - self.yhat
         self.train_rms_um = _rms(self.r[d.train]) * 1e3
+        # the searches score on the training rows only, so their simulations stop at the last one:
+        # the loop is causal, its output on those rows is the same (the last fold, which checks,
+        # closes the record: identification.segments.folds)
+        k = np.flatnonzero(d.train)
+        self.horizon = int(k[-1]) + 1 if k.size else d.n
+        self.xr_fit = d.xr[:self.horizon]
+        self.x_fit = d.x[:self.horizon]
+        self.train_fit = d.train[:self.horizon]
         # equation-error base: Eq. 3.11 columns plus the current disturbance terms as fixed offsets
         tr = d.tr_rows
         vv, xx, tt = d.v[tr], d.y[tr], d.t[d.rows[tr]]
@@ -261,12 +269,16 @@ class SearchContext:
         return tt, d.y[rows] - off - d.phi[rows] @ theta
 
     # ---------------------------------------------------------------- simulation screen
+    def fit_output(self, model: AugmentedAxisModel) -> np.ndarray:
+        """Simulated output [mm] of ``model`` up to the last training sample (``horizon``)."""
+        return model.simulate(self.xr_fit)
+
     @property
     def J(self) -> np.ndarray:
-        """Sensitivity of the simulated output to the 8 reduced parameters (all samples)."""
+        """Sensitivity of the simulated output to the 8 reduced parameters (samples to ``horizon``)."""
         with self._lock:  # the searches run side by side: compute it once
             if self._J is None:
-                self._J = sensitivity(self.model, self.data.xr)
+                self._J = sensitivity(self.model, self.xr_fit)
         return self._J
 
     def _screen_q(self) -> np.ndarray:
@@ -274,19 +286,19 @@ class SearchContext:
         J = self.J
         with self._lock:
             if self._Jq is None:
-                Jt = J[self.data.train]
+                Jt = J[self.train_fit]
                 sc = np.linalg.norm(Jt, axis=0)
                 sc[sc == 0] = 1.0
                 self._Jq = np.linalg.qr(Jt / sc)[0]
         return self._Jq
 
     def sim_score(self, model: AugmentedAxisModel) -> tuple[float, np.ndarray]:
-        """Training RMS [um] of ``model`` after one Gauss-Newton step of the reduced parameters."""
-        d = self.data
-        y = model.simulate(d.xr)
+        """Training RMS [um] of ``model`` after one Gauss-Newton step of the reduced parameters, and
+        its output (to ``horizon``)."""
+        y = self.fit_output(model)
         if not np.all(np.isfinite(y)):
             return math.inf, y
-        r = (d.x - y)[d.train]
+        r = (self.x_fit - y)[self.train_fit]
         q = self._screen_q()
         return _rms(r - q @ (q.T @ r)) * 1e3, y
 
@@ -295,15 +307,15 @@ class SearchContext:
 
         Returns the training RMS [um] and the improved model; inf when the model diverges.
         """
-        d = self.data
-        y = model.simulate(d.xr)
+        y = self.fit_output(model)
         if not np.all(np.isfinite(y)):
             return math.inf, model
-        rms = _rms((d.x - y)[d.train]) * 1e3
+        x, train = self.x_fit, self.train_fit
+        rms = _rms((x - y)[train]) * 1e3
         keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
         for _ in range(iterations):
-            r = (d.x - y)[d.train]
-            J = sensitivity(model, d.xr, one_sided=True, y0=y)[d.train]
+            r = (x - y)[train]
+            J = sensitivity(model, self.xr_fit, one_sided=True, y0=y)[train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
@@ -313,10 +325,10 @@ class SearchContext:
                 if p["a3"] <= 0:
                     continue
                 m2 = augment(model, model.elements, parameters=p)
-                y2 = m2.simulate(d.xr)
+                y2 = self.fit_output(m2)
                 if not np.all(np.isfinite(y2)):
                     continue
-                rms2 = _rms((d.x - y2)[d.train]) * 1e3
+                rms2 = _rms((x - y2)[train]) * 1e3
                 if rms2 < rms:
                     model, y, rms, improved = m2, y2, rms2, True
                     break
@@ -411,10 +423,10 @@ def _ee_candidate(ctx: SearchContext, effect: Effect, cols_tr: np.ndarray, evide
         starts.append(cs)
     best, best_rms = None, math.inf
     for s in starts:
-        y = s.simulate(ctx.data.xr)
+        y = ctx.fit_output(s)
         if not np.all(np.isfinite(y)):
             continue
-        rms = _rms((ctx.data.x - y)[ctx.data.train]) * 1e3
+        rms = _rms((ctx.x_fit - y)[ctx.train_fit]) * 1e3
         if rms < best_rms:
             best, best_rms = s, rms
     if best is None:
@@ -683,7 +695,7 @@ def reference_repeats(xr: np.ndarray, period: float, sample_time: float, *, mult
 
 def search_drift(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
-    J = np.column_stack([ctx.J, d.t])[d.train]
+    J = np.column_stack([ctx.J, d.t[:ctx.horizon]])[ctx.train_fit]
     beta, *_ = np.linalg.lstsq(J, ctx.r[d.train], rcond=None)
     e = Drift(rate=float(beta[-1]))
     m = augment(ctx.model, list(ctx.model.elements) + [e])
