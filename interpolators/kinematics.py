@@ -27,10 +27,10 @@ Clothoid blends (:class:`toolpaths.ClothoidPair`, curvature ``k`` up to ``k_max`
 same shares apply with ``v^3 (k_max^2 + c) <= JERK_SPEED_SHARE * J``; the velocity bound uses
 the largest ``|t_i|`` over the turn.
 
-Rotary axes (:func:`rotary_path_bounds`) move in proportion to the path parameter ``s``: axis
-``i`` turns ``ratio_i = |dr_i| / L`` degrees per unit of path, so its velocity, acceleration and
-jerk are ``ratio_i`` times the path's, with no curvature term; ``v <= V_i/ratio_i`` and so on, as
-for a line.
+The axes beyond X, Y, Z, rotary a, b, c and secondary linear u, v, w (:func:`extra_path_bounds`),
+move in proportion to the path parameter ``s``: axis ``i`` moves ``ratio_i = |dr_i| / L`` degrees
+(or mm) per unit of path, so its velocity, acceleration and jerk are ``ratio_i`` times the path's,
+with no curvature term; ``v <= V_i/ratio_i`` and so on, as for a line.
 """
 
 from __future__ import annotations
@@ -42,13 +42,13 @@ import numpy as np
 from interpolators.limits import AxisLimits
 from toolpaths.geometry import AXIS_LETTERS, SplineCurve
 from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
-from vcnc.core.axes import ROTARY_NAMES
+from vcnc.core.axes import EXTRA_NAMES, ROTARY_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = [
     "AxisLimitArrays",
     "path_limits",
-    "rotary_path_bounds",
+    "extra_path_bounds",
     "junction_speed_limit",
     "curved_speed_bound",
     "curve_limits",
@@ -324,42 +324,45 @@ def junction_speed_limit(
 
 
 
-def rotary_path_bounds(
+def extra_path_bounds(
     ratio: np.ndarray, rapid: np.ndarray, limits: Mapping[str, AxisLimits]
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Bounds of path speed, acceleration and jerk that keep the rotary axes within their limits.
+    """Bounds of path speed, acceleration and jerk that keep the axes beyond X, Y, Z within their limits.
 
     Parameters
     ----------
-    ratio : ndarray, shape (n, 3)
-        ``|dr_i| / L`` of each segment for the axes a, b, c: rotary motion per unit of path
-        [deg/mm, or deg/deg on a pure rotary move whose path is the rotary distance].
+    ratio : ndarray, shape (n, 6)
+        ``|dr_i| / L`` of each segment for the axes a, b, c, u, v, w (``EXTRA_NAMES``): motion
+        per unit of path [deg/mm, mm/mm; per deg or mm of a move whose path is its own distance,
+        X, Y, Z still].
     rapid : ndarray of bool, shape (n,)
-        True for rapid moves (the rotary rapid rates bound the speed instead of the velocities).
+        True for rapid moves (the rapid rates bound the speed instead of the velocities).
     limits : mapping of str to AxisLimits
-        Limits by axis name [deg/s, deg/s^2, deg/s^3]; every rotary axis that moves needs one.
+        Limits by axis name [deg/s, deg/s^2, deg/s^3 on a, b, c; mm/s ... on u, v, w]; every
+        axis that moves needs one.
 
     Returns
     -------
     v_max, a_max, j_max : ndarray, shape (n,)
-        Path bounds [path unit/s, /s^2, /s^3]; ``inf`` where no rotary axis moves.
+        Path bounds [path unit/s, /s^2, /s^3]; ``inf`` where none of these axes moves.
 
     Raises
     ------
     InputError
-        A moving rotary axis without limits.
+        A moving axis without limits.
     """
-    n = len(ratio)
-    vel = np.full((n, 3), np.inf)
-    acc = np.full(3, np.inf)
-    jerk = np.full(3, np.inf)
-    for i, a in enumerate(ROTARY_NAMES):
+    n, k = ratio.shape
+    vel = np.full((n, k), np.inf)
+    acc = np.full(k, np.inf)
+    jerk = np.full(k, np.inf)
+    for i, a in enumerate(EXTRA_NAMES):
         moves = bool(np.any(ratio[:, i] > 0))
         lim = limits.get(a)
         if lim is None:
             if moves:
-                raise InputError(f"no limits for rotary axis {a!r}, which the program moves",
-                                 expected=f"limits for axis {a!r} [deg/s, deg/s^2, deg/s^3]")
+                kind, unit = ("rotary axis", "deg") if a in ROTARY_NAMES else ("secondary linear axis", "mm")
+                raise InputError(f"no limits for {kind} {a!r}, which the program moves",
+                                 expected=f"limits for axis {a!r} [{unit}/s, {unit}/s^2, {unit}/s^3]")
             continue
         if not isinstance(lim, AxisLimits):
             raise InputError(f"limits[{a!r}] must be an AxisLimits, got {type(lim).__name__}")
