@@ -519,6 +519,9 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.tool_length = length
         elif code == 490:
             m.tool_length = 0.0
+        elif code == 431 and "z" in words and not any(a in words for a in "xyabcuvw"):
+            # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
+            m.tool_length = words.pop("z")[-1] * m.scale
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     for code in g:

@@ -134,9 +134,9 @@ def test_share_of_programs_that_run(outcomes):
     # rejections are programs every control named refuses (feed moves before any F, a first cycle block
     # without R, arc end points 1 mm and more off the circle, I on G0, a template, a ':' without number),
     # programs of another machine (plasma M codes, CNCSimulator directives, a punch press), Fanuc macro B
-    # branches and machine-position reads, a missing subprogram file, U/V/W axes, and Heidenhain setup
-    # programs that need the operator to jog at STOP.
-    assert ok >= 295
+    # branches and machine-position reads, a missing subprogram file, and Heidenhain setup programs that
+    # need the operator to jog at STOP. U/V/W axes (session 9): 0010_cone.ngc and 0105_foam.ngc gained.
+    assert ok >= 297
     assert ok / len(milling) >= 0.90
 
 
@@ -185,7 +185,7 @@ def test_block_end_points_match_an_independent_reference(outcomes):
     # 533,196 checked exactly (line, kind, end point, arc centre: 99.64 %), 1,904 within their block
     # (spline chords; chords of the XZ/YZ arcs of a rotated system, 0096/0097); none left unchecked.
     # The 41 Heidenhain programs (25,029 rows) all agree.
-    assert len(results) >= 295 and len(heidenhain) >= 41
+    assert len(results) >= 297 and len(heidenhain) >= 41
     assert exact / rows >= 0.996 and exact + within == rows, (rows, exact, within)
 
 
