@@ -181,8 +181,8 @@ def test_block_end_points_match_an_independent_reference(outcomes):
     rows = sum(m.rows for _, m in results.values())
     exact = sum(m.exact for _, m in results.values())
     within = sum(m.within for _, m in results.values())
-    # measured 2026-11-23 (session 8), all 295 under TEST_CONTEXT (with the rotary axes): 535,100 rows;
-    # 533,196 checked exactly (line, kind, end point, arc centre: 99.64 %), 1,904 within their block
+    # measured 2026-11-23 (session 9), all 297 under TEST_CONTEXT (with the axes A-W): 535,230 rows;
+    # 533,326 checked exactly (line, kind, end point with the a-w ends, arc centre: 99.64 %), 1,904 within their block
     # (spline chords; chords of the XZ/YZ arcs of a rotated system, 0096/0097); none left unchecked.
     # The 41 Heidenhain programs (25,029 rows) all agree.
     assert len(results) >= 297 and len(heidenhain) >= 41
