@@ -15,6 +15,7 @@ from interpolators.kinematics import (
     AxisLimitArrays,
     curve_limits,
     curved_speed_bound,
+    extra_junction_speed_limit,
     extra_path_bounds,
     junction_speed_limit,
     path_limits,
@@ -62,7 +63,7 @@ class _Chain:
         self.rapid: list[bool] = []
         self.tolerances: list[float] = []
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
-        self.extra = False  # a block moving an axis beyond X, Y, Z: a chain of its own (exact stop at both ends)
+        self.extra = False  # blocks moving an axis beyond X, Y, Z (and only such blocks): see _extra_block
 
 
 def _chains(program: Program) -> list[_Chain]:
@@ -82,12 +83,11 @@ def _chains(program: Program) -> list[_Chain]:
             continue
         seg = b.segment
         if b.extra_start is not None and np.any(b.extra_delta != 0):
-            cur = None
-            chains.append(_extra_chain(i, b))
+            cur = _extra_block(chains, cur, i, b)
             continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
-        if cur is None:
+        if cur is None or cur.extra:
             cur = _Chain()
             chains.append(cur)
         cur.segments.append(seg)
@@ -100,18 +100,29 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
-def _extra_chain(i: int, b) -> _Chain:
-    """The chain of one block that moves an axis beyond X, Y, Z: its XYZ segment, or with X, Y, Z
-    still a hold at its XYZ position (the profile then runs along ``Block.extra_length``)."""
-    ch = _Chain()
+def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b) -> _Chain | None:
+    """Add a block that moves an axis beyond X, Y, Z; returns the chain the next block may join.
+
+    A feed move with X, Y or Z moving joins the chain of the previous such block when that one
+    did not end in exact stop (G64): look-ahead passes their junction at speed, bounded for every
+    axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains are neither
+    blended nor merged, the axes follow the programmed segments. Any other such block (a rapid, a
+    move with X, Y, Z still: a hold at its XYZ position whose profile runs along
+    ``Block.extra_length``) is a chain of its own, at rest at both ends.
+    """
     seg = b.segment
-    ch.segments.append(seg if seg is not None and seg.length > 0 else np.array(b.start, dtype=float))
-    ch.blocks.append(i)
-    ch.feeds.append(b.feed)
-    ch.rapid.append(b.kind == "rapid")
-    ch.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
-    ch.extra = True
-    return ch
+    moves_xyz = seg is not None and seg.length > 0
+    joins = moves_xyz and b.kind != "rapid"
+    if not (joins and cur is not None and cur.extra):
+        cur = _Chain()
+        cur.extra = True
+        chains.append(cur)
+    cur.segments.append(seg if moves_xyz else np.array(b.start, dtype=float))
+    cur.blocks.append(i)
+    cur.feeds.append(b.feed)
+    cur.rapid.append(b.kind == "rapid")
+    cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+    return cur if joins and not b.exact_stop else None
 
 
 def _resolve_limits(limits: Mapping[str, AxisLimits] | None) -> dict[str, AxisLimits]:
@@ -176,9 +187,11 @@ def interpolate(
       profile runs along the XYZ path at its feed; with X, Y, Z still along the U V W distance at
       the feed [mm/s], or with U, V, W still too along the rotary distance at the feed [deg/s]
       (RS274/NGC 3, Sec. 2.1.2.5; ``Block.extra_length``). The path bounds are capped so that each
-      of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`), and a
-      block that moves one of them starts and ends at rest. Setpoint columns ``a, b, c`` are in
-      deg, ``u, v, w`` in mm.
+      of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
+      G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
+      velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
+      see ``_extra_block``); other blocks moving them start and end at rest. Setpoint columns
+      ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
@@ -207,10 +220,10 @@ def interpolate(
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
     g = _geometry(chains, lim, jerk_limited, program)
-    c = _corner_stops(g, chains, lim, Ts, jerk_limited)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
-        v_max, a_max, j_max = _extra_bounds(g, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
+        v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
     v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
@@ -291,7 +304,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     for c, ch in enumerate(chains):
         segs, blks = ch.segments, ch.blocks
         run_of: dict[int, MergedRun] = {}
-        if len(segs) > 1:
+        if len(segs) > 1 and not ch.extra:
             ch, run_of = _merged(ch)
             segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
                                        worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
@@ -322,8 +335,8 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
 
 def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
                      packed: PackedSegments) -> _Extra:
-    """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's (single)
-    segment moves them."""
+    """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's segments
+    (one per block) move them."""
     n = len(seg_block)
     start = np.zeros((n, len(EXTRA_NAMES)))
     delta = np.zeros((n, len(EXTRA_NAMES)))
@@ -341,11 +354,13 @@ def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[
     return _Extra(start=start, delta=delta, length=length, pure=pure)
 
 
-def _extra_bounds(g: _Geom, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
-                   limits: Mapping[str, AxisLimits], jerk_limited: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
+                  limits: Mapping[str, AxisLimits], jerk_limited: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """3b. The path bounds of segments that move the axes beyond X, Y, Z, capped so that each stays
-    within its limits; with X, Y, Z still the speed is the feed along ``Block.extra_length``
-    [mm/s or deg/s] (RS274/NGC 3, Sec. 2.1.2.5) or, for a rapid, the axes' rapid rates."""
+    within its limits (chains passing a junction at speed keep JUNCTION_SHARE of the acceleration
+    and jerk limits in reserve, as for X, Y, Z); with X, Y, Z still the speed is the feed along
+    ``Block.extra_length`` [mm/s or deg/s] (RS274/NGC 3, Sec. 2.1.2.5) or, for a rapid, the axes'
+    rapid rates."""
     r = g.extra
     idx = np.flatnonzero(np.any(r.delta != 0, axis=1))
     if not len(idx):
@@ -353,6 +368,8 @@ def _extra_bounds(g: _Geom, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndar
     v_max, a_max, j_max = v_max.copy(), a_max.copy(), j_max.copy()
     ratio = np.abs(r.delta[idx]) / r.length[idx, None]
     v, a, j = extra_path_bounds(ratio, g.rapid[idx], limits)
+    share = np.where(c.reserved_segment[idx], 1.0 - JUNCTION_SHARE, 1.0)  # the bounds scale with A and J
+    a, j = a * share, j * share
     pure = r.pure[idx]
     feed = np.where(g.rapid[idx], np.inf, g.feed[idx])
     v_max[idx] = np.where(pure, np.minimum(feed, v), np.minimum(v_max[idx], v))
@@ -410,10 +427,12 @@ def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
     return v, a, j
 
 
-def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool) -> _Chains:
+def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool,
+                  limits: Mapping[str, AxisLimits]) -> _Chains:
     """2. The geometric speed bound at each junction inside a chain; a junction whose bound is
     negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
-    chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve."""
+    chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve. The axes
+    beyond X, Y, Z take part by the same rule (their rate steps, :func:`_extra_junctions`)."""
     packed, seg_chain_a = g.packed, g.chain
     n_seg = len(g.segments)
     L = packed.length
@@ -430,12 +449,14 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         v_full = np.zeros(n_seg)
         if len(motion_idx):
             v_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)[0]
-        v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
-        split = inner[jl <= v_stop]
-        keep_j = jl > v_stop
         # continuous junctions (G2 blends, rounding-level steps) need no reserve
         jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
                                        jerk_limited=jerk_limited)
+        if g.extra is not None:
+            jl, jl_tiny = _extra_junctions(g, inner, jl, jl_tiny, v_full, limits, Ts, jerk_limited)
+        v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
+        split = inner[jl <= v_stop]
+        keep_j = jl > v_stop
         rough = inner[keep_j & (jl_tiny < np.maximum(v_full[inner], v_full[inner + 1]))]
         inner, jl = inner[keep_j], jl[keep_j]
     else:
@@ -456,6 +477,28 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
     in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
     return _Chains(of_segment=seg_chain_a, count=n_chains, dwell=dwell_of_chain, length=chain_len,
                    reserved_segment=in_multi, inner=inner, junction_limit=jl)
+
+
+def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.ndarray, v_full: np.ndarray,
+                     limits: Mapping[str, AxisLimits], Ts: float, jerk_limited: bool
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """2b. The junction bounds (at JUNCTION_SHARE and at NEGLIGIBLE_SHARE) lowered for the rate steps
+    of the axes beyond X, Y, Z (:func:`interpolators.kinematics.extra_junction_speed_limit`, the
+    XYZ tangent rule per axis); ``v_full`` (in place) capped by their limits on the segments that
+    move them."""
+    r = g.extra
+    moving = np.flatnonzero(np.any(r.delta != 0, axis=1))
+    if len(moving):
+        ratio = np.abs(r.delta[moving]) / r.length[moving, None]
+        v_full[moving] = np.minimum(v_full[moving], extra_path_bounds(ratio, g.rapid[moving], limits)[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0)
+    step = rate[inner + 1] - rate[inner]
+    jl = np.minimum(jl, extra_junction_speed_limit(step, limits, sample_time=Ts, share=JUNCTION_SHARE,
+                                                   jerk_limited=jerk_limited))
+    jl_tiny = np.minimum(jl_tiny, extra_junction_speed_limit(step, limits, sample_time=Ts, share=NEGLIGIBLE_SHARE,
+                                                             jerk_limited=jerk_limited))
+    return jl, jl_tiny
 
 
 def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool

@@ -50,6 +50,7 @@ __all__ = [
     "path_limits",
     "extra_path_bounds",
     "junction_speed_limit",
+    "extra_junction_speed_limit",
     "curved_speed_bound",
     "curve_limits",
     "CENTRIPETAL_SHARE",
@@ -314,13 +315,56 @@ def junction_speed_limit(
     ndarray, shape (m,)
         [mm/s]
     """
-    dt = np.abs(tangent_jump)
-    dk = np.abs(curvature_jump)
-    v = _min_ratio(share * limits.acceleration * sample_time, dt)
+    v = _step_speed_limit(limits.acceleration, limits.jerk, np.abs(tangent_jump), sample_time=sample_time,
+                          share=share, jerk_limited=jerk_limited)
     if jerk_limited:
-        v = np.minimum(v, _min_ratio(share * limits.jerk * sample_time**2, dt))
-        v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, dk)))
+        v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, np.abs(curvature_jump))))
     return v
+
+
+def _step_speed_limit(acceleration: np.ndarray, jerk: np.ndarray, step: np.ndarray, *, sample_time: float,
+                      share: float, jerk_limited: bool) -> np.ndarray:
+    """Largest path speed ``v`` whose axis velocity steps ``v |step_i|``, passed within one sample, use
+    at most ``share`` of each axis' acceleration (and, jerk limited, jerk) limit."""
+    v = _min_ratio(share * acceleration * sample_time, step)
+    if jerk_limited:
+        v = np.minimum(v, _min_ratio(share * jerk * sample_time**2, step))
+    return v
+
+
+def extra_junction_speed_limit(
+    rate_jump: np.ndarray,
+    limits: Mapping[str, AxisLimits],
+    *,
+    sample_time: float,
+    share: float,
+    jerk_limited: bool,
+) -> np.ndarray:
+    """Largest path speed at junctions where the axes beyond X, Y, Z change their rate.
+
+    The criterion of :func:`junction_speed_limit` for the tangent, applied to each of the axes
+    a, b, c, u, v, w: their velocity steps ``v |dr_i|`` are passed within one sample using at most
+    ``share`` of the axis' acceleration limit (``v |dr_i| <= share A_i Ts``) and, for the S-curve,
+    of its jerk limit (``v |dr_i| <= share J_i Ts^2``). These axes move linearly along each segment
+    (no curvature term); the profile's zero path acceleration at junctions (S-curve) leaves them no
+    acceleration step.
+
+    Parameters
+    ----------
+    rate_jump : ndarray, shape (m, 6)
+        Change of ``dr_i / ds`` (motion per unit of path [deg/mm, mm/mm]) across each junction.
+    limits : mapping of str to AxisLimits
+        Limits by axis name; an axis without limits adds no bound.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        [path unit/s]
+    """
+    acc = np.array([limits[a].acceleration if a in limits else np.inf for a in EXTRA_NAMES])
+    jerk = np.array([limits[a].jerk if a in limits else np.inf for a in EXTRA_NAMES])
+    return _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share,
+                             jerk_limited=jerk_limited)
 
 
 
