@@ -113,3 +113,29 @@ def test_straight_xyz_with_a_constant_rate_is_one_profile():
     assert a.duration == pytest.approx(b.duration, abs=2e-3)
     assert np.allclose(a.position[-1], b.position[-1])
     _check_limits(a, split)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_random_nine_axis_programs_hold_every_limit(seed):
+    """Random G64 programs moving all nine axes (fixed seeds): every axis within its limits by finite
+    differences, both profiles, two sample times; many junctions passed at speed."""
+    rng = np.random.default_rng(seed)
+    lines = [f"G21 G90 G64 P{rng.choice([0.001, 0.01, 0.1])} G1 F{rng.choice([600, 3000, 12000])}"]
+    p = np.zeros(9)
+    for _ in range(30):
+        p = p + np.r_[1.0, rng.normal(0, 0.01, 2), rng.normal(0.5, 0.01, 3), rng.normal(0.2, 0.005, 3)]
+        if rng.random() < 0.2:  # now and then a rough step of a few axes, or a rapid
+            p = p + rng.normal(0, 1, 9) * (rng.random(9) < 0.3)
+        code = "G0" if rng.random() < 0.1 else "G1"
+        lines.append(code + " " + " ".join(f"{a}{v:.4f}" for a, v in zip("XYZABCUVW", p)))
+    prog = parse_program("\n".join(lines) + "\n", context=CTX)
+    passed = 0
+    for profile, sample_time in (("trapezoid", 1e-3), ("trapezoid", 4e-3), ("scurve", 1e-3), ("scurve", 4e-3)):
+        sp = interpolate(prog, profile=profile, sample_time=sample_time)
+        assert sp.axes == ("x", "y", "z", "a", "b", "c", "u", "v", "w")
+        assert np.allclose(sp.position[-1], [*prog.blocks[-1].target, *prog.blocks[-1].extra_target])
+        _check_limits(sp, prog, jerk=profile == "scurve")
+        still = np.all(np.abs(sp.velocity) < 1e-9, axis=1)
+        ends = [np.flatnonzero(sp.block == k)[-1] + 1 for k in range(len(prog.blocks) - 1)]
+        passed += int(np.sum(~still[ends]))
+    assert passed > 0
