@@ -141,6 +141,13 @@ def test_reference_return_machine_coordinates_and_offsets():
     assert prog.blocks[0].target.tolist() == [6, 0, 0]  # the work offset applies to X Y Z only
 
 
+def test_rotary_g92_and_g10_offsets_as_linuxcnc():
+    """LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 and work offsets of A, B, C too."""
+    prog = parse_program("G21 G90 G0 A10\nG92 A0\nG0 A5\nG92.1\nG10 L2 P1 B-20\nG0 B0\nG91 B5\n", context=CTX)
+    assert [b.extra_target[:3].tolist() for b in prog.blocks] == [[10, 0, 0], [15, 0, 0], [15, -20, 0],
+                                                                   [15, -15, 0]]
+
+
 def test_limits_held_both_profiles_on_a_mixed_program():
     text = ("G21 G90 G64 P0.01 G0 X0 Y0 Z5 A0\nG1 Z0 F1200\nG1 X20 A90 F3000\nG1 Y20 B-30\nG2 X0 Y20 I-10 J0 A180\n"
             "G1 A270 F6000\nG0 X0 Y0 A0 B0\nG1 X5 F3000\nX10\nY5\n")
