@@ -579,7 +579,10 @@ def _g10(m: _Machine, words: dict) -> None:
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
     code = m.wcs if p == 0 else list(_WCS.values())[p - 1]
-    here = m.to_program(m.pos) + m.g92  # current position in the active system, without G92
+    # the current position in the active system, G92 included: L20 makes it the given value (LinuxCNC
+    # interp_convert.cc convert_setup with interp_find.cc find_current_in_system, which takes the G92
+    # offset off when it is on)
+    here = m.to_program(m.pos)
     base = m.offsets[m.wcs] if kind == 20 else None
     for i, a in enumerate("xyz"):
         if a in words:
