@@ -26,6 +26,7 @@ import threading
 from collections.abc import Callable
 
 import numpy as np
+import scipy.linalg
 import scipy.signal
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
@@ -159,7 +160,8 @@ class SearchContext:
                 off -= w_of(e, vv, xx, tt) / a2
         self._ee_y = d.y[tr] - off
         self._ee_base = d.phi[tr]
-        q, _ = np.linalg.qr(self._ee_base / np.linalg.norm(self._ee_base, axis=0))
+        self._base_sc = np.linalg.norm(self._ee_base, axis=0)
+        q, self._base_r = np.linalg.qr(self._ee_base / self._base_sc)
         self._q = q
         self._ee_r = self._ee_y - q @ (q.T @ self._ee_y)
         self.ee_rss = float(self._ee_r @ self._ee_r)
@@ -209,9 +211,23 @@ class SearchContext:
         return d.v[tr], d.y[tr], d.t[d.rows[tr]]
 
     def ee_validation_rss(self, cols_tr: np.ndarray, cols_va: np.ndarray) -> float:
-        """Validation RSS of the unconstrained equation error with extra columns fitted on training rows."""
+        """Validation RSS of the unconstrained equation error with extra columns fitted on training rows.
+
+        The base's QR is the context's: the extra columns' coefficients come from their part
+        orthogonal to it (as in :meth:`ee_partial`), the base's by back-substitution; one QR of
+        the base and the extra columns together is the fallback when that base is singular.
+        """
         d = self.data
-        theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
+        g = cols_tr - self._q @ (self._q.T @ cols_tr)
+        beta = solve_scaled(g, self._ee_r)
+        try:
+            theta_b = scipy.linalg.solve_triangular(self._base_r, self._q.T @ (self._ee_y - cols_tr @ beta))
+        except (np.linalg.LinAlgError, ValueError):
+            theta_b = np.full(self._base_sc.size, np.nan)
+        if np.all(np.isfinite(theta_b)) and np.all(np.isfinite(beta)):
+            theta = np.concatenate([theta_b / self._base_sc, beta])
+        else:
+            theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
         va = d.va_rows
         a2 = self.model.parameters["a2"]
         vv, xx, tt = d.v[va], d.y[va], d.t[d.rows[va]]
