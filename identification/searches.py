@@ -507,7 +507,7 @@ def search_position_periodic(ctx: SearchContext) -> list[Candidate]:
     rss = ctx.ee_partial_sinusoids(x, grid)
     i = int(np.argmin(rss))
     lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    p = _golden(lambda q: ctx.ee_partial(-PositionPeriodic.basis(x, q, 1))[0], lo, hi, 25)
+    p = _golden(lambda q: float(ctx.ee_partial_sinusoids(x, np.array([q]))[0]), lo, hi, 25)
 
     def cols(mask, h):
         return PositionPeriodic.basis(d.y[mask], p, h)
@@ -621,7 +621,7 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
         fc, df = f0, 1.0 / dur
 
         def obj(ff):
-            return ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, 1))[0]
+            return float(ctx.ee_partial_sinusoids(t, np.array([1.0 / ff]))[0])
 
         ff = _golden(obj, fc - df, fc + df, 30)
         val = obj(ff)
