@@ -1,0 +1,184 @@
+"""The part-program readers on inputs nobody wrote tests for: mutated real and hand-written programs.
+
+Seeds are the small programs of the shared corpus (``../shared/data/gcode-corpus``, ISO and
+Heidenhain) and the hand-written programs below (subprograms, loops, labels, parameters). Each
+example applies a few mutations (lines deleted, duplicated, swapped, the file cut mid-line, a
+number replaced by ``nan``/``inf``/``1e308``/``-0``/nothing, stray words and characters, CR/LF
+mixes, a BOM, tabs, long lines, unbalanced brackets and comments, ``%`` and ``N`` numbers at odd
+places, huge repeat counts, recursion) and requires that :func:`interpolators.load_program` and
+:func:`interpolators.interpolate` either succeed with finite setpoints or raise
+:class:`vcnc.errors.InputError` naming the file (and the line, for the reader). A program that
+takes longer than :data:`EXAMPLE_SECONDS` fails the test: endless loops must stop at the readers'
+own limits (``iso_flow.MAX_EXECUTED_LINES``, ``heidenhain_labels.MAX_EXECUTED``).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import signal
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from benchmarks.gcode_corpus import corpus_dir, manifest
+from interpolators import interpolate, load_program
+from interpolators.context import INTERPOLATION_CONTEXT
+from vcnc.errors import InputError
+
+CORPUS = corpus_dir()
+#: Wall-clock bound of one example [s] (reading plus interpolation of a small program).
+EXAMPLE_SECONDS = 20.0
+#: Sample budget of one interpolation: long enough for the seeds, short enough to stay fast.
+MAX_SAMPLES = 300_000
+#: Corpus programs up to this size [bytes] are seeds.
+SEED_BYTES = 2500
+
+HAND_SEEDS = {
+    "osub.ngc": "G21 G90 G17\no100 sub\n  G1 X[#1] Y[#2] F600\no100 endsub\n#1 = 2\no101 while [#1 LT 6]\n"
+                "  o100 call [#1] [#1*2]\n  #1 = [#1 + 1]\no101 endwhile\no102 repeat [3]\n  G91 G1 X1\n"
+                "o102 endrepeat\nG90 G2 X10 Y0 I5 J0\nM2\n",
+    "fanuc.nc": "%\nO1000 (MAIN)\nG21 G90 G54\nT1 M6\nG0 X0 Y0 Z5\nM98 P2000 L2\nG81 X5 Y5 Z-2 R1 F100\nG80\n"
+                "M30\nO2000\nG91 G1 X2 F300\nG90\nM99\n%\n",
+    "params.ngc": "#<side> = 5\n#3 = [SIN[30] * 4]\nG21 G0 X0 Y0\nG64 P0.01\nG1 X#<side> Y#3 F1200\n"
+                  "G1 X[#<side> * 2] Y[ABS[-#3]]\nG3 X0 Y0 R20\nM30\n",
+    "tnc.h": "0 BEGIN PGM FUZZ MM\n1 BLK FORM 0.1 Z X+0 Y+0 Z-20\n2 BLK FORM 0.2 X+100 Y+100 Z+0\n"
+             "3 TOOL CALL 1 Z S3000\n4 Q1 = 5\n5 L X+0 Y+0 Z+5 R0 FMAX\n6 LBL 1\n7 L IX+Q1 F500\n8 LBL 0\n"
+             "9 CALL LBL 1 REP 3\n10 CC X+20 Y+0\n11 C X+25 Y+0 DR+\n12 CALL LBL 2\n13 M30\n14 LBL 2\n"
+             "15 L IY+2\n16 LBL 0\n17 END PGM FUZZ MM\n",
+}
+
+#: Stray words and characters inserted at random places.
+TOKENS = ["G", "X", "#", "[", "]", "(", ")", "O", "Q", ";", "%", "N", "*", "=", "G1", "G2 X1 Y1 R0", "G3 I0 J0",
+          "X1e5", "F0", "F-5", "G4 P-1", "M98 P1 L99999", "L99999", "REP 99999", "o1 call", "o1 sub", "o1 endsub",
+          "o7 while [1]", "o7 endwhile", "#1=[#1+1]", "CALL LBL 1 REP 65535", "LBL 1", "LBL 0", "CALL LBL 1",
+          "CYCL DEF 200", "Q1 = 1/0", "FN 4: Q1 = 1 DIV 0", "(nested (comment))", "((", "))", "\u00e9\u00df\u2603",
+          "\ufeff", "\t", "\x00", "N99999999999999999999", "G1 X[1/0]", "G1 X[SQRT[-1]]", "#<x>", "#<>",
+          "G10 L2 P99 X1", "T99999999", "S1e9", "G64 P-1", "G5.2", "G41 D1", "G43 H-1", "*   - structure"]
+#: What a number can become.
+NUMBERS = ["nan", "inf", "-inf", "1e308", "-0", "", "1e9", "99999999999", ".", "-", "+-1", "0x10", "1_0", "1..2"]
+
+
+def _seeds() -> dict[str, str]:
+    seeds = dict(HAND_SEEDS)
+    if CORPUS is not None:
+        for row in manifest(CORPUS):
+            path = CORPUS / row["file"]
+            if path.is_file() and path.stat().st_size <= SEED_BYTES:
+                seeds[row["file"]] = path.read_bytes().decode("utf-8", errors="replace")
+    return seeds
+
+
+SEEDS = _seeds()
+SEED_NAMES = sorted(SEEDS)
+
+
+def _mutate(text: str, op: str, a: int, b: int, token: str) -> str:
+    """Apply one mutation ``op`` at positions chosen by ``a`` and ``b`` (any non-negative ints)."""
+    lines = text.split("\n")
+    i, j = a % len(lines), b % len(lines)
+    if op == "delete":
+        del lines[i]
+    elif op == "duplicate":
+        lines.insert(i, lines[i])
+    elif op == "swap":
+        lines[i], lines[j] = lines[j], lines[i]
+    elif op == "truncate":
+        return text[: a % (len(text) + 1)]
+    elif op == "number":
+        nums = list(re.finditer(r"[+-]?(?:\d+\.?\d*|\.\d+)", text))
+        if nums:
+            m = nums[a % len(nums)]
+            return text[: m.start()] + NUMBERS[b % len(NUMBERS)] + text[m.end():]
+    elif op == "insert":
+        line = lines[i]
+        k = b % (len(line) + 1)
+        lines[i] = line[:k] + token + line[k:]
+    elif op == "newline":
+        lines.insert(i, token)
+    elif op == "crlf":
+        lines[i] = lines[i] + ("\r" if b % 2 else "\r\r")
+    elif op == "bom":
+        return "\ufeff" + text
+    elif op == "long":
+        lines[i] = lines[i] + " " + "X1 " * (2000 + b % 20000)
+    elif op == "renumber":
+        lines[i] = f"N{b % 100000} " + lines[i]
+    elif op == "percent":
+        lines.insert(i, "%")
+    return "\n".join(lines)
+
+
+OPS = ["delete", "duplicate", "swap", "truncate", "number", "insert", "newline", "crlf", "bom", "long", "renumber",
+       "percent"]
+MUTATION = st.tuples(st.sampled_from(OPS), st.integers(0, 10**6), st.integers(0, 10**6), st.sampled_from(TOKENS))
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise _Timeout
+
+
+def _check(tmp_path: Path, name: str, text: str) -> None:
+    """Load and interpolate ``text`` written as ``name``: success with finite setpoints, or an InputError."""
+    path = tmp_path / name
+    path.write_bytes(text.encode("utf-8", errors="surrogatepass"))
+    previous = signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, EXAMPLE_SECONDS)
+    stage = "load_program"
+    try:
+        program = load_program(path, context=INTERPOLATION_CONTEXT)
+        stage = "interpolate"
+        sp = interpolate(program, max_samples=MAX_SAMPLES)
+    except _Timeout:
+        pytest.fail(f"{stage} took more than {EXAMPLE_SECONDS} s on:\n{text[:2000]!r}")
+    except InputError as exc:
+        assert exc.file == str(path), f"{stage}: error does not name the file: {exc}"
+        if stage == "load_program":
+            assert exc.line is not None, f"error does not name a line: {exc}"
+        assert "\n" not in str(exc).strip(), f"error is not one line: {exc!r}"
+        return
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    assert np.all(np.isfinite(sp.position)), "non-finite setpoints"
+    # rapids carry feed = inf; nothing may be nan, and every end point is finite
+    assert not any(math.isnan(b.feed) for b in program.blocks), "nan feed"
+    assert all(np.all(np.isfinite(b.target)) for b in program.blocks), "non-finite end point"
+
+
+def _run(tmp_path: Path, seed: int, mutations: list) -> None:
+    name = SEED_NAMES[seed % len(SEED_NAMES)]
+    text = SEEDS[name]
+    for op, a, b, token in mutations:
+        text = _mutate(text, op, a, b, token)
+    _check(tmp_path, name, text)
+
+
+COMMON = {"derandomize": True, "deadline": None, "database": None,
+          "suppress_health_check": [HealthCheck.function_scoped_fixture, HealthCheck.too_slow]}
+
+
+@settings(max_examples=120, **COMMON)
+@given(seed=st.integers(0, 10**6), mutations=st.lists(MUTATION, min_size=1, max_size=4))
+def test_mutated_programs_fail_cleanly(tmp_path, seed, mutations):
+    _run(tmp_path, seed, mutations)
+
+
+@pytest.mark.slow
+@settings(max_examples=2000, **COMMON)
+@given(seed=st.integers(0, 10**6), mutations=st.lists(MUTATION, min_size=1, max_size=8))
+def test_mutated_programs_fail_cleanly_many(tmp_path, seed, mutations):
+    _run(tmp_path, seed, mutations)
+
+
+def test_corpus_seeds_present():
+    if CORPUS is None:
+        pytest.skip("gcode corpus absent (../shared/data/gcode-corpus): fuzzing the hand-written seeds only")
+    assert len(SEEDS) > len(HAND_SEEDS)
