@@ -46,8 +46,9 @@ from interpolators.iso_words import Word, read_words, strip_comments
 
 __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
 
-#: Largest number of lines a program may execute (a guard against endless loops).
-MAX_EXECUTED_LINES = 5_000_000
+#: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
+#: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
+MAX_EXECUTED_LINES = 300_000
 
 #: An O-word line: label (``<name>``, a number, or a computed number ``#1``, ``#<n>``, ``[expr]``), keyword, rest.
 _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s*\d+|\[(?:[^\[\]]|\[[^\[\]]*\])*\])"
@@ -317,8 +318,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     executed = 0
     while pc < len(prog.code) and (frames or pc < prog.main_end):
         executed += 1
-        if executed > max_lines:
-            prog.fail(pc, f"more than {max_lines} executed lines: an endless loop?", "a loop that ends")
+        if executed > max_lines + len(prog.code):
+            prog.fail(pc, f"more than {max_lines} lines executed beyond the program's {len(prog.code)}: an endless "
+                      "loop?", "a loop that ends")
         ow = prog.oword.get(pc)
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)

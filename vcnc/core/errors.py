@@ -21,6 +21,11 @@ __all__ = [
 ]
 
 
+#: Longest offending text an error message quotes [characters]; a longer one (a 40 kB line) is cut, with its
+#: length, and a message longer than twice this is cut too, so that the error stays one readable line.
+MAX_SHOWN_TEXT: int = 120
+
+
 class VcncError(Exception):
     """Base class of every error vcnc raises on purpose."""
 
@@ -72,8 +77,13 @@ class InputError(VcncError, ValueError):
 
     def __str__(self) -> str:
         msg = self.message
+        if len(msg) > 2 * MAX_SHOWN_TEXT:  # a message quoting a whole long line
+            msg = msg[: 2 * MAX_SHOWN_TEXT] + "..."
         if self.text is not None and repr(self.text) not in msg:
-            msg += f" (got {self.text!r})"
+            if len(self.text) <= MAX_SHOWN_TEXT:
+                msg += f" (got {self.text!r})"
+            else:
+                msg += f" (got {self.text[:MAX_SHOWN_TEXT] + '...'!r}, {len(self.text)} characters)"
         if self.expected is not None and "expected" not in msg:
             msg += f"; expected {self.expected}"
         loc = self.location
