@@ -54,6 +54,8 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
+#: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
+MAX_INFEEDS: int = 100_000
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
 BORING_DISENGAGE = 0.2
 
@@ -310,6 +312,11 @@ def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
                    expected="a plunging depth > 0 [mm]")
     if cycle.dwell_top < 0 or cycle.dwell_bottom < 0:
         where.fail(f"cycle {cycle.number}: negative dwell", column=column, text=where.text, expected="dwell >= 0 [s]")
+    smallest = min(cycle.plunge, max(cycle.min_plunge, 1e-3)) if cycle.decrement else cycle.plunge
+    if abs(cycle.depth) / smallest > MAX_INFEEDS:  # Q202=0.0000001 would make moves for hours, filling the memory
+        where.fail(f"cycle {cycle.number}: {abs(cycle.depth):g} mm in infeeds of {smallest:g} mm are more than "
+                   f"{MAX_INFEEDS} infeeds", column=column, text=where.text,
+                   expected="a larger plunging depth (Q202, Q205) or a smaller depth")
     return cycle
 
 

@@ -123,7 +123,10 @@ class QParameters:
             tokens.append((kind, m.group(kind).upper()))
             pos = m.end()
         parser = _Formula(tokens, self, where, text.strip(), column)
-        value = parser.expression()
+        try:
+            value = parser.expression()
+        except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
+            parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
         if parser.i != len(tokens):
             parser.fail("unexpected " + repr(tokens[parser.i][1]))
         if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):

@@ -32,10 +32,14 @@ import numpy as np
 
 from interpolators.iso_polar import PolarError, polar_xy
 
-__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "RAPID_DELTA_INCH"]
+__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES"]
 
 #: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
 RAPID_DELTA_INCH = 0.010
+
+#: Most moves one cycle block may make (holes x pecks): a guard against a peck depth Q or a repeat count L
+#: that would make millions of moves (a mistyped ``Q0.0000001``, ``L99999999``).
+MAX_CYCLE_MOVES = 1_000_000
 
 
 class CycleError(ValueError):
@@ -119,6 +123,11 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
+    pecks = math.ceil((r - bottom) / (cycle.q * scale)) if g in (73, 83) else 1
+    if repeats * (pecks + 3) > MAX_CYCLE_MOVES:  # L99999999 or Q0.0000001 would run for hours, filling the memory
+        raise CycleError(f"{repeats} holes of {pecks} pecks each exceed {MAX_CYCLE_MOVES} cycle moves",
+                         letter="Q" if pecks > 1 and "Q" in words else next((c for c in "LK" if c in words), None),
+                         expected="a larger peck depth Q or fewer repeats L")
     delta = RAPID_DELTA_INCH * 25.4
     out: list[HoleMove] = []
     cur = pos.astype(float).copy()

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 import re
+from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_words import Word, read_words
@@ -329,9 +330,19 @@ def _apply(name: str, x: float) -> float:
     raise ValueError(name)
 
 
+def _too_deep(where: Where) -> NoReturn:
+    """Thousands of nested brackets, signs or ``#``: the recursive reader ran out of stack (no program nests so)."""
+    where.fail("expression nested deeper than this reader follows", text=where.text if len(where.text) < 60 else None,
+               expected="an expression nested a few levels")
+    raise AssertionError("unreachable")
+
+
 def evaluate_at(code: str, pos: int, where: Where, params: Parameters) -> tuple[float, int]:
     """The real value (usually a ``[expression]``) starting at ``pos``; returns (value, end)."""
-    return _Reader(code, where, params).real(pos)
+    try:
+        return _Reader(code, where, params).real(pos)
+    except RecursionError:
+        _too_deep(where)
 
 
 def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
@@ -351,7 +362,10 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         assignments.append((key, value, i + 1, code[i:end].strip()))
         return end
 
-    words = read_words(code, where, value=lambda pos, letter: r.real(pos), assignment=assign)
+    try:
+        words = read_words(code, where, value=lambda pos, letter: r.real(pos), assignment=assign)
+    except RecursionError:
+        _too_deep(where)
     for key, value, column, text in assignments:
         params.assign(key, value, where, column, text)
     return words

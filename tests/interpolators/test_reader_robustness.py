@@ -209,3 +209,29 @@ def test_a_huge_line_is_quoted_short():
     message = str(info.value)
     assert message.startswith("long.nc:2:") and re.search(r"\.\.\.', 600\d\d characters\)", message)
     assert len(message) < 600 and "\n" not in message
+
+
+@pytest.mark.parametrize("block, word", [("G83 X1 Y1 Z-1 R1 Q0.0000001", "Q0.0000001"),
+                                          ("G81 X1 Y1 Z-1 R1 L999999999", "L999999999")])
+def test_cycle_with_millions_of_moves_is_refused(block, word):
+    """``Q0.0000001`` or ``L999999999`` ran for hours (10^7 .. 10^9 moves); now an error naming the word."""
+    with pytest.raises(GCodeError, match=rf"c\.nc:2:\d+: G8[13] .*cycle: .* exceed 1000000 cycle moves.*{word}"):
+        parse_program(f"G21\n{block} F100\nM2\n", source="c.nc")
+
+
+def test_tnc_cycle_with_a_tiny_plunging_depth_is_refused():
+    """Cycle 200 with ``Q202=0.0000001`` ran for hours; now an error naming the cycle."""
+    text = ("0 BEGIN PGM C MM\n1 CYCL DEF 200 DRILLING Q200=2 Q201=-20 Q206=150 Q202=0.0000001 Q210=0 Q203=+0"
+            " Q204=50 Q211=0\n2 L X+1 Y+1 FMAX M99\n3 END PGM C MM\n")
+    with pytest.raises(GCodeError, match=r"c\.h:2:\d+: cycle 200: .* more than 100000 infeeds"):
+        parse_program(text, source="c.h")
+
+
+@pytest.mark.parametrize("text", ["G21\n#1=[" + "[" * 3000 + "1" + "]" * 3001 + "\nM2\n",
+                                  "G21\nG1 X[" + "-" * 3000 + "1] F100\nM2\n",
+                                  "0 BEGIN PGM N MM\n1 Q1 = " + "SIN " * 3000 + "1\n2 END PGM N MM\n",
+                                  "0 BEGIN PGM N MM\n1 Q1 = " + "(" * 3000 + "1" + ")" * 3000 + "\n2 END PGM N MM\n"])
+def test_expression_nested_thousands_deep_is_an_error(text):
+    """3000 nested brackets, signs or functions raised Python's RecursionError; now a GCodeError at the line."""
+    with pytest.raises(GCodeError, match=r"n\.nc:2(:\d+)?: .*nested deeper than this reader follows"):
+        parse_program(text, source="n.nc")

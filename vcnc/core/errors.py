@@ -22,7 +22,7 @@ __all__ = [
 
 
 #: Longest offending text an error message quotes [characters]; a longer one (a 40 kB line) is cut, with its
-#: length, and a message longer than twice this is cut too, so that the error stays one readable line.
+#: length, and a message longer than twice this keeps its start and end, so that the error stays one readable line.
 MAX_SHOWN_TEXT: int = 120
 
 
@@ -77,8 +77,8 @@ class InputError(VcncError, ValueError):
 
     def __str__(self) -> str:
         msg = self.message
-        if len(msg) > 2 * MAX_SHOWN_TEXT:  # a message quoting a whole long line
-            msg = msg[: 2 * MAX_SHOWN_TEXT] + "..."
+        if len(msg) > 2 * MAX_SHOWN_TEXT:  # a message quoting a whole long line: its middle goes
+            msg = msg[:MAX_SHOWN_TEXT] + " ... " + msg[-MAX_SHOWN_TEXT:]
         if self.text is not None and repr(self.text) not in msg:
             if len(self.text) <= MAX_SHOWN_TEXT:
                 msg += f" (got {self.text!r})"
