@@ -29,6 +29,7 @@ from benchmarks.gcode_corpus import corpus_dir, manifest
 from interpolators import interpolate, load_program, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.iso_flow import run
+from vcnc.cli import main
 from vcnc.errors import GCodeError, InputError
 
 CORPUS = corpus_dir()
@@ -59,7 +60,9 @@ TOKENS = ["G", "X", "#", "[", "]", "(", ")", "O", "Q", ";", "%", "N", "*", "=", 
           "o7 while [1]", "o7 endwhile", "#1=[#1+1]", "CALL LBL 1 REP 65535", "LBL 1", "LBL 0", "CALL LBL 1",
           "CYCL DEF 200", "Q1 = 1/0", "FN 4: Q1 = 1 DIV 0", "(nested (comment))", "((", "))", "\u00e9\u00df\u2603",
           "\ufeff", "\t", "\x00", "N99999999999999999999", "G1 X[1/0]", "G1 X[SQRT[-1]]", "#<x>", "#<>",
-          "G10 L2 P99 X1", "T99999999", "S1e9", "G64 P-1", "G5.2", "G41 D1", "G43 H-1", "*   - structure"]
+          "G10 L2 P99 X1", "T99999999", "S1e9", "G64 P-1", "G5.2", "G41 D1", "G43 H-1", "*   - structure",
+          "G83 X1 Y1 Z-1 R1 Q0.0000001", "G81 R1 Z-1 L999999999", "Q202=0.0000001", "[" * 2000, "-" * 2000,
+          "(" * 2000, "SIN " * 2000, "M98 P1000 L99999", "G65 P1000"]
 #: What a number can become.
 NUMBERS = ["nan", "inf", "-inf", "1e308", "-0", "", "1e9", "99999999999", ".", "-", "+-1", "0x10", "1_0", "1..2"]
 
@@ -169,7 +172,7 @@ def _run(seed: int, mutations: list) -> None:
 COMMON = {"derandomize": True, "deadline": None, "database": None, "suppress_health_check": [HealthCheck.too_slow]}
 
 
-@settings(max_examples=120, **COMMON)
+@settings(max_examples=200, **COMMON)
 @given(seed=st.integers(0, 10**6), mutations=st.lists(MUTATION, min_size=1, max_size=4))
 def test_mutated_programs_fail_cleanly(seed, mutations):
     _run(seed, mutations)
@@ -235,3 +238,14 @@ def test_expression_nested_thousands_deep_is_an_error(text):
     """3000 nested brackets, signs or functions raised Python's RecursionError; now a GCodeError at the line."""
     with pytest.raises(GCodeError, match=r"n\.nc:2(:\d+)?: .*nested deeper than this reader follows"):
         parse_program(text, source="n.nc")
+
+
+def test_cli_on_a_broken_program_exits_2_with_one_line_and_no_output(tmp_path, capsys):
+    """``vcnc interpolate`` on a cycle of 10^7 pecks was killed for memory (exit 137); now exit 2, one line."""
+    prog = tmp_path / "pecks.nc"
+    prog.write_text("G21\nG1 X1 F100\nG83 X1 Y1 Z-1 R1 Q0.0000001 F100\nM2\n")
+    out, blocks = tmp_path / "sp.csv", tmp_path / "blocks.csv"
+    assert main(["interpolate", str(prog), "-o", str(out), "--blocks", str(blocks)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}:3:") and err.count("\n") == 1 and "Q0.0000001" in err
+    assert not out.exists() and not blocks.exists()
