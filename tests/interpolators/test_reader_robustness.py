@@ -249,3 +249,11 @@ def test_cli_on_a_broken_program_exits_2_with_one_line_and_no_output(tmp_path, c
     err = capsys.readouterr().err
     assert err.startswith(f"error: {prog}:3:") and err.count("\n") == 1 and "Q0.0000001" in err
     assert not out.exists() and not blocks.exists()
+
+
+def test_a_huge_name_in_the_expected_part_is_cut():
+    """An 8 kB O-word name came back whole in the 'expected' part of the message."""
+    name = "sin" * 3000
+    with pytest.raises(GCodeError) as info:
+        parse_program(f"o<{name}> sub\nG1 X1 F100\n", source="o.ngc")
+    assert str(info.value).startswith("o.ngc:1:") and len(str(info.value)) < 1000

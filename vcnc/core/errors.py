@@ -85,7 +85,10 @@ class InputError(VcncError, ValueError):
             else:
                 msg += f" (got {self.text[:MAX_SHOWN_TEXT] + '...'!r}, {len(self.text)} characters)"
         if self.expected is not None and "expected" not in msg:
-            msg += f"; expected {self.expected}"
+            expected = self.expected
+            if len(expected) > 2 * MAX_SHOWN_TEXT:
+                expected = expected[:MAX_SHOWN_TEXT] + " ... " + expected[-MAX_SHOWN_TEXT:]
+            msg += f"; expected {expected}"
         loc = self.location
         return f"{loc}: {msg}" if loc else msg
 
