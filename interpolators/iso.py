@@ -40,8 +40,9 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ========================= =======================================================================
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
-:mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
-file). Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
+:mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms, ``G65``
+macro calls), :mod:`interpolators.iso_macro` (Fanuc/Haas macro B ``IF``/``GOTO``/``WHILE``), and
+the system parameters (``#5021``.., :mod:`interpolators.iso_system`) read from this reader's state. Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
 G0/G1/G2/G3 (an arc with a rotary word turns the axis in proportion, as LinuxCNC does), G90/G91,
 G53, G28/G30, G93 (:mod:`interpolators.iso_rotary`). Out of scope, each an error naming the
 feature: a rotary axis the machine lacks (a word that keeps the axis at 0, ``A0``, is accepted with
@@ -72,9 +73,11 @@ from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
+from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_rotary import ROTARY_LETTERS, fill_rotary, rotary_target
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
+from interpolators.iso_system import system_parameter
 from interpolators.iso_words import Word
 from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -203,6 +206,7 @@ class _State:
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+    stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
 
     @property
     def scale(self) -> float:
@@ -268,13 +272,20 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     used: set[int] = set()
     name = _program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
-    for fl in run(text, source=source):
+    macro_b = dialect.name in ("fanuc", "haas")
+    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b))
+    for fl in run(text, source=source, params=params):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
+        count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
+        if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
+            st.stopped = True  # the operator may jog: positions are unknown until the next move
+        elif len(blocks) > count:
+            st.stopped = False
         if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
             _finish_compensation(st, blocks, source)
         if ended:

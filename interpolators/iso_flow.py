@@ -24,8 +24,8 @@ the n-th repeated I J K -> #(3n+1) #(3n+2) #(3n+3) (argument specification II; t
 The arguments are set on the first repetition only; ``M99`` returns. An argument written as a
 number without a decimal point is an error: the control scales it by its least input increment
 ("The value of an argument passed without a decimal point may vary according to the system
-configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``WHILE [..] DO n`` and
-``END n``, is named in an error.
+configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``IF [..] THEN``,
+``GOTO n`` and ``WHILE [..] DO m`` / ``END m``, runs as :mod:`interpolators.iso_macro` describes.
 
 A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
 
@@ -41,6 +41,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
+from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import Word, read_words, strip_comments
 
@@ -58,8 +59,6 @@ _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: File suffixes of part programs searched for a subprogram in another file.
 _PROGRAM_SUFFIXES = frozenset({".nc", ".ngc", ".cnc", ".tap", ".gcode", ".txt", ".iso", ".min", ".mpf", ".spf", ""})
 _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
-#: Fanuc custom macro B statements (not run): branch IF..GOTO, GOTO, loop WHILE..DO / END.
-_MACRO_B = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?(IF\s*\[|GOTO\s*[\d#\[]|WHILE\s*\[|END\s*\d|DO\s*\d)", re.I)
 #: G65 argument letters (argument specification I) -> local variable number.
 _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
@@ -97,7 +96,7 @@ class _Frame:
 class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
-    def __init__(self, text: str, source: str | None) -> None:
+    def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES) -> None:
         self.source = source
         self.raw: list[str] = []
         self.sources: list[str | None] = []
@@ -107,12 +106,15 @@ class _Program:
         self.by_label: dict[str, list[int]] = {}
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
+        self.macro = MacroFlow(max_passes=max_loop_passes)
+        self.span = 0
         self._index(text, source)
         self.main_end = len(self.code)
 
     def _index(self, text: str, source: str | None) -> None:
         """Append the lines of ``text`` (from ``source``), classified, O-words and numbers indexed."""
         self.first_line.setdefault(source, len(self.code))
+        self.span += 1  # each file, and each O program in it, is a program of its own (macro B GOTO)
         for raw in lines_of(text):
             i = len(self.code)
             self.raw.append(raw)
@@ -120,6 +122,9 @@ class _Program:
             where = self.where(i)
             code = strip_comments(raw, where)
             s = code.strip()
+            if _FANUC_PROGRAM.match(code) or _NAMED_PROGRAM.match(code):
+                self.span += 1
+            self.macro.add_line(i, None, self.span, where)
             if not s or s == "%":
                 self.code.append(None)
                 continue
@@ -131,13 +136,9 @@ class _Program:
                 where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number",
                            column=code.index(":") + 1, text=s,
                            expected="':' followed by the program number, e.g. :1234")
-            mb = _MACRO_B.match(code)
-            if mb:
-                stmt = re.sub(r"[\s\[\d#]", "", mb.group(1)).upper()
-                name = {"IF": "IF [..] GOTO n branch", "GOTO": "GOTO n branch", "WHILE": "WHILE [..] DO n loop",
-                        "END": "END n (end of a WHILE loop)", "DO": "DO n loop"}[stmt]
-                where.fail(f"Fanuc custom macro B {name}: not supported", column=mb.start(1) + 1, text=s,
-                           expected="LinuxCNC O-word control flow (o100 if [..] / o100 while [..])")
+            if self.macro.add_line(i, code, self.span, where) is not None:
+                self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
+                continue
             m = _O_LINE.match(code)
             if _NAMED_PROGRAM.match(code) and not (m and m.group(2) and m.group(2).lower() in _KEYWORDS):
                 self.code.append(None)  # "O7997A", "OWASHER": the program's name
@@ -176,7 +177,9 @@ class _Program:
         self._check_structure()
 
     def _check_structure(self) -> None:
-        """Every opening O-word has its closing one after it (LinuxCNC checks this before running)."""
+        """Every opening O-word has its closing one after it (LinuxCNC checks this before running),
+        every macro B ``DO m`` its ``END m``."""
+        self.macro.match_loops(self.where)
         closers = {"sub": ("endsub",), "if": ("endif",), "repeat": ("endrepeat",), "do": ("while",)}
         for i, ow in self.oword.items():
             if ow.keyword == "while":
@@ -297,8 +300,11 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
-        max_lines: int = MAX_EXECUTED_LINES) -> Iterator[FlowLine]:
+        max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
+
+    ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
+    backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -308,7 +314,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source)
+    prog = _Program(text, source, max_loop_passes=max_loop_passes)
     params = Parameters() if params is None else params
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
@@ -322,6 +328,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         ow = prog.oword.get(pc)
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
+            continue
+        if pc in prog.macro.statements:
+            pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
         code = prog.code[pc]
         if code is None:

@@ -234,8 +234,10 @@ def test_flow_errors():
         parse_program("#1 = [1 / 0]\n")
     with pytest.raises(GCodeError, match="read before it is set"):
         parse_program("G0 X#<nothing>\n")
-    with pytest.raises(GCodeError, match="system parameters"):
-        parse_program("G0 X#5420\n")
+    with pytest.raises(GCodeError, match="#5061: the probe result"):
+        parse_program("G0 X#5061\n")
+    with pytest.raises(GCodeError, match="#5420 is read-only"):
+        parse_program("#5420 = 1\n")
 
 
 def test_dialect_dwell_unit_and_default_path_mode():
@@ -380,8 +382,10 @@ def test_m61_q_sets_the_tool_and_5599_may_be_set():
     (DEBUG,) output and may be written; other system parameters may not."""
     prog = parse_program("G21 #5599 = 1\nM61 Q1 G43\nG0 Z0\n", context=CTX)
     assert prog.blocks[-1].target[2] == pytest.approx(-20 + 12.5)  # G54 Z -20, tool 1 length 12.5
-    with pytest.raises(GCodeError, match="system parameters cannot be set"):
+    with pytest.raises(GCodeError, match="#5220 is read-only"):
         parse_program("G21 #5220 = 2\n", context=CTX)
+    with pytest.raises(GCodeError, match="system parameters cannot be set"):
+        parse_program("G21 #5500 = 2\n", context=CTX)
 
 
 def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
@@ -446,31 +450,32 @@ def test_g65_macro_call_arguments_locals_and_repeats():
 def test_g65_errors_name_the_problem():
     """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
     16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
-    #[#22] names when the macro program runs on its own); G, L, N, O, P are no argument addresses; a
-    vacant local read in the macro would leave its word out on Fanuc (X#24 with no X argument moves
-    no X), which vcnc does not model: an error rather than a move to X0."""
+    #[#22] names when #22 is vacant: no V argument, or the macro program run on its own); G, L, N, O,
+    P are no argument addresses. A vacant local read in the macro leaves its word out (X#24 with no X
+    argument moves no X: Fanuc 0i-MD B-64304EN, "Undefined variable")."""
     for text, message in [
         ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
-        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#22 is vacant in this G65 macro"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
         ("O9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
         ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
         ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
-        ("G21 F1\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", "#24 is vacant in this G65 macro"),
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+    assert ends("G21 F1\nG0 X2\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", MachineContext())[-1] == [2, 3, 0]
 
 
 def test_fanuc_macro_text_that_is_not_run_is_named():
-    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); IF..GOTO and WHILE..DO
-    are named in an error; a ':' program-number address (ISO code) needs its number; a '/' after a
-    word's value is neither arithmetic (which needs brackets) nor a block skip that vcnc reads."""
+    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); a GOTO to a missing
+    block and crossing WHILE..DO loops are named in an error; a ':' program-number address (ISO
+    code) needs its number; a '/' after a word's value is neither arithmetic (which needs brackets)
+    nor a block skip that vcnc reads."""
     pts = ends("G21 G90 F100\n#1 = 5.\n#2 = [#1 - 1] / 2 + 1\nG1 X#2\n", MachineContext())
     assert pts == [[3.0, 0.0, 0.0]]
     assert parse_program(":1234\nG21 G0 X1\n", context=MachineContext()).name == "O1234"
     for text, message in [
-        ("G21\nIF [#1 EQ 0] GOTO 10\nN10 G0 X1\n", "macro B IF \\[..\\] GOTO n branch: not supported"),
-        ("G21\nWHILE [#1 LT 3] DO1\nEND1\n", "macro B WHILE \\[..\\] DO n loop"),
+        ("G21\nIF [#1 EQ 0] GOTO 10\nN11 G0 X1\n", "GOTO 10: no block N10 in this program"),
+        ("G21\nWHILE [#1 LT 3] DO1\nEND2\n", "END 2 closes no open DO 2"),
         ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
         ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
         ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
