@@ -51,7 +51,9 @@ class Tool:
     length : float
         Tool length offset [mm] (G43 H / ``TOOL CALL``: added along the tool axis).
     radius : float
-        Tool radius [mm] (G41/G42 D, Heidenhain RL/RR), >= 0.
+        Tool radius [mm] (G41/G42 D, Heidenhain RL/RR). A negative radius (a tool table holding the
+        difference between the actual and a nominal diameter) makes G41 offset as G42 by its
+        magnitude and G42 as G41 (LinuxCNC ``interp_convert.cc`` convert_cutter_compensation_on).
     comment : str
         Free text (LinuxCNC tool tables carry one).
     """
@@ -66,8 +68,8 @@ class Tool:
             raise InputError(f"tool number must be an integer >= 0, got {self.number!r}")
         if not math.isfinite(self.length):
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
-        if not (math.isfinite(self.radius) and self.radius >= 0):
-            raise InputError(f"tool {self.number}: radius must be >= 0 [mm], got {self.radius!r}")
+        if not math.isfinite(self.radius):
+            raise InputError(f"tool {self.number}: radius must be finite [mm], got {self.radius!r}")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -97,6 +99,9 @@ class Dialect:
     tap_out_to_r : bool
         G84 tapping feeds out to the R plane and rapids on to the clear level (Fanuc, Haas: True);
         LinuxCNC feeds out to the clear level (False).
+    subroutine_path : tuple of str
+        Folders searched for ``<name>.ngc`` of an ``o<name> call`` after the program's own folder
+        (LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``); a relative folder starts at the program's.
     """
 
     name: str = "linuxcnc"
@@ -106,6 +111,7 @@ class Dialect:
     tolerance: float | None = None
     arc_rule: str = "linuxcnc"
     tap_out_to_r: bool = False
+    subroutine_path: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.arc_rule not in ARC_RULES:

@@ -40,15 +40,18 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ========================= =======================================================================
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
-:mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms, ``G65``
-macro calls), :mod:`interpolators.iso_macro` (Fanuc/Haas macro B ``IF``/``GOTO``/``WHILE``), and
-the system parameters (``#5021``.., :mod:`interpolators.iso_system`) read from this reader's state. Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
+:mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
+file). Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
 G0/G1/G2/G3 (an arc with a rotary word turns the axis in proportion, as LinuxCNC does), G90/G91,
 G53, G28/G30, G93 (:mod:`interpolators.iso_rotary`). Out of scope, each an error naming the
 feature: a rotary axis the machine lacks (a word that keeps the axis at 0, ``A0``, is accepted with
 a note), rotary words in G92/G10, cycles, splines, dwells and under cutter compensation, U V W,
 probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
+
+Fanuc ``G65`` macro calls: :mod:`interpolators.iso_flow`; Fanuc/Haas macro B ``IF``/``GOTO``/
+``WHILE``: :mod:`interpolators.iso_macro`; system parameters (``#5021``.., read from this
+reader's state): :mod:`interpolators.iso_system`.
 """
 
 from __future__ import annotations
@@ -201,6 +204,7 @@ class _State:
     cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
+    comp_run_side: str = "left"  # side of the run being compensated (kept after G40 clears comp_side)
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
@@ -274,7 +278,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b))
-    for fl in run(text, source=source, params=params):
+    for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path)):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -910,11 +914,15 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
             st.context.tool(st.tool_current) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
     st.comp_side = "left" if key in (410, 411) else "right"
+    if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
+        radius = -radius
+        st.comp_side = "right" if st.comp_side == "left" else "left"
     st.comp_code = w.text.upper()
     if radius == 0.0:
         notes.add("G41/G42 with tool radius 0 (path unchanged)")
         return
     st.comp_radius = radius
+    st.comp_run_side = st.comp_side
     st.comp_start = len(blocks)
     notes.add("G41/G42 cutter radius compensation")
 
@@ -927,8 +935,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     if not run:
         return
     try:
-        new = compensate(run, side="left" if st.comp_code.startswith("G41") else "right", radius=st.comp_radius,
-                         plane=st.plane, closed=closed)
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

@@ -7,8 +7,10 @@ LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
   ``o100 return [v]`` / ``endsub [v]`` leave it (the value goes to ``#<_value>``);
 * ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``, ``do``/``while``,
   ``repeat [n]``/``endrepeat``, ``break`` and ``continue``, each tied by its O number or name;
-* ``o<name> call`` of a subroutine not in the file runs ``<name>.ngc`` of the program's folder,
-  as LinuxCNC finds it on its SUBROUTINE_PATH.
+* ``o<name> call`` of a subroutine not in the file runs ``<name>.ngc`` of the program's folder
+  or of a folder of the dialect's ``subroutine_path``, as LinuxCNC finds it on its INI's
+  SUBROUTINE_PATH; a numbered subroutine in such a file cannot be called (LinuxCNC reads the file
+  from its ``o<name> sub`` on), and subroutine definitions do not nest.
 
 Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M98 P1000 L3``
 runs the program ``O1000`` three times, from the same file or else from the program file of its
@@ -96,8 +98,10 @@ class _Frame:
 class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
-    def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES) -> None:
+    def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
+                 subroutine_path: tuple[str, ...] = ()) -> None:
         self.source = source
+        self.subroutine_path = subroutine_path
         self.raw: list[str] = []
         self.sources: list[str | None] = []
         self.code: list[str | None] = []
@@ -181,6 +185,7 @@ class _Program:
         every macro B ``DO m`` its ``END m``."""
         self.macro.match_loops(self.where)
         closers = {"sub": ("endsub",), "if": ("endif",), "repeat": ("endrepeat",), "do": ("while",)}
+        self._check_nested_subs()
         for i, ow in self.oword.items():
             if ow.keyword == "while":
                 opened_by_do = any(self.oword[j].keyword == "do" and j < i for j in self.by_label[ow.label])
@@ -189,6 +194,21 @@ class _Program:
                 self.next_of(i, ("endwhile",))
             elif ow.keyword in closers:
                 self.next_of(i, closers[ow.keyword])
+
+    def _check_nested_subs(self) -> None:
+        """A subroutine definition inside another is an error (LinuxCNC tests/interp/nested-sub-error:
+        ``o100 sub`` between ``o<nested> sub`` and its ``endsub``)."""
+        inside: int | None = None
+        for i in sorted(self.oword):
+            ow = self.oword[i]
+            if ow.keyword == "sub":
+                if inside is not None and self.sources[inside] == self.sources[i]:
+                    outer = self.oword[inside].label
+                    self.fail(i, f"O-word o{ow.label} sub inside the definition of o{outer}: subroutine "
+                                 "definitions cannot nest", f"o{outer} endsub before o{ow.label} sub")
+                inside = i
+            elif ow.keyword == "endsub" and inside is not None and ow.label == self.oword[inside].label:
+                inside = None
 
     def where(self, i: int) -> Where:
         src = self.sources[i]  # line numbers count within each file
@@ -227,12 +247,16 @@ class _Program:
 
     def external_sub(self, label: str) -> int | None:
         """Start of subroutine ``o<label>`` after including ``<label>.ngc`` from the main
-        program's directory (LinuxCNC searches its SUBROUTINE_PATH for ``<name>.ngc``)."""
+        program's directory or a folder of :attr:`subroutine_path` (LinuxCNC searches its INI's
+        SUBROUTINE_PATH for ``<name>.ngc``; relative folders start at the program's)."""
         if self.sub_start(label) is not None or self.source is None or not label.startswith("<"):
             return self.sub_start(label)
-        cand = Path(self.source).parent / f"{label[1:-1]}.ngc"
-        if cand.is_file():
-            self.include(cand)
+        folder = Path(self.source).parent
+        for place in (folder, *(folder / p for p in self.subroutine_path)):
+            cand = place / f"{label[1:-1]}.ngc"
+            if cand.is_file():
+                self.include(cand)
+                break
         return self.sub_start(label)
 
     def fail(self, i: int, message: str, expected: str) -> None:
@@ -300,11 +324,13 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
-        max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES) -> Iterator[FlowLine]:
+        max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
+        subroutine_path: tuple[str, ...] = ()) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
     backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
+    ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -314,7 +340,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source, max_loop_passes=max_loop_passes)
+    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path)
     params = Parameters() if params is None else params
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
@@ -443,6 +469,12 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
         if start is None:
             prog.fail(pc, f"O-word o{label} call: the subroutine is neither in this file nor in "
                           f"{label.strip('<>')}.ngc beside it", f"o{label} sub ... endsub")
+        if not label.startswith("<") and prog.sources[start] != prog.source:
+            # LinuxCNC interp_o_word.cc: LinuxCNC reads a subroutine file from its o<name> sub on, so a
+            # numbered subroutine there is neither in its offset table nor a file of its own
+            prog.fail(pc, f"O-word o{label} call: subroutine o{label} is defined in the subroutine file "
+                          f"{Path(prog.sources[start]).name}, where LinuxCNC does not find numbered subroutines",
+                      f"o{label} sub in the main program, or a named o<name> sub in <name>.ngc")
         args = _args(prog, pc, params)
         params.push(args)
         frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))

@@ -4,10 +4,19 @@ the end points are the STRAIGHT_TRAVERSE/STRAIGHT_FEED X, Y, Z of the ``expected
 
 from __future__ import annotations
 
+import io
+import math
+import os
+import re
+import subprocess
+import tarfile
+from pathlib import Path
+
+import numpy as np
 import pytest
 
-from interpolators import parse_program
-from interpolators.context import MachineContext
+from interpolators import load_program, parse_program
+from interpolators.context import Dialect, MachineContext, read_tool_table
 from vcnc.errors import GCodeError
 
 INCH = 25.4  # [mm/inch]
@@ -280,3 +289,128 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
     prog = parse_program(PROGRAM_G10_ROTATION, context=MachineContext())
     got = [tuple(round(v / INCH, 4) + 0.0 for v in b.target) for b in prog.blocks]
     assert got == EXPECTED_G10_ROTATION
+
+
+# --- LinuxCNC's tests/interp, run in place ---------------------------------------------------------------------
+#
+# Each case of LinuxCNC's interpreter tests is a program and the canonical calls rs274 prints for it. The cases are
+# read from a LinuxCNC checkout when one is present (VCNC_LINUXCNC_REPO, a git directory; never copied into this
+# repository): the program runs through vcnc with the case's tool table and SUBROUTINE_PATH, and the end points of
+# STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED, mapped to machine coordinates with the offsets the calls set
+# (SET_G5X_OFFSET, SET_G92_OFFSET, SET_XY_ROTATION, USE_TOOL_LENGTH_OFFSET) in the units they name, are compared
+# with the blocks' (zero-length moves dropped, as vcnc emits none). A case whose test.sh keeps only MESSAGE lines
+# checks that vcnc accepts the program; one whose test.sh expects rs274 to fail checks that vcnc refuses it.
+
+_LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
+
+#: Cases whose motion vcnc reproduces (tests/interp/<case>).
+INTERP_MOTION = ("exists", "flowsnake", "g81/g17/g98", "g81/g17/g99", "g84/g17/g98", "g84/g17/g99",
+                 "inverse-time-with-comp", "m98m99/01-basics", "m98m99/05-M98-loops",
+                 "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2", "rotation/g28")
+#: Cases whose expected output is (debug)/(print) messages only: vcnc runs them (messages are not modelled).
+INTERP_ACCEPTED = ("do-while-break", "fractional-linenumbers", "g6164", "m98m99/02-variables", "m98m99/07-nested-subs",
+                   "m98m99/08-sub-follows-main", "m98m99/10-M98-P001", "m98m99/14-o-expression-call",
+                   "magic_comments/param_format_printing", "machine-coord-params", "oword-bug315", "return-value",
+                   "sequence-number", "sub-call-from-sub", "subs-follow-main")
+#: Cases rs274 refuses, and vcnc with it.
+INTERP_REFUSED = ("m98m99/04-M98-but-no-sub", "m98m99/06-error-mixed-sub-styles", "nested-sub-error",
+                  "nested-sub-in-file-error")
+
+
+def _case_dir(case: str, tmp_path: Path) -> Path:
+    if not (_LINUXCNC_REPO / "HEAD").is_file() and not (_LINUXCNC_REPO / ".git").exists():
+        pytest.skip(f"LinuxCNC checkout absent ({_LINUXCNC_REPO}; set VCNC_LINUXCNC_REPO)")
+    archive = subprocess.run(["git", "-C", str(_LINUXCNC_REPO), "archive", "HEAD", f"tests/interp/{case}"],
+                             capture_output=True, check=True).stdout
+    with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+        tar.extractall(tmp_path, filter="data")
+    return tmp_path / "tests" / "interp" / case
+
+
+def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
+    """The programs test.sh runs, the context its options give (-t tool table, -i SUBROUTINE_PATH), test.sh."""
+    sh = (case_dir / "test.sh").read_text()
+    args = " ".join(re.findall(r"rs274\s+([^|\n;]*)", sh)).split()
+    tools = read_tool_table(str(case_dir / args[args.index("-t") + 1])) if "-t" in args else {}
+    path: tuple[str, ...] = ()
+    if "-i" in args:
+        m = re.search(r"SUBROUTINE_PATH\s*=\s*(\S+)", (case_dir / args[args.index("-i") + 1]).read_text())
+        path = tuple(m.group(1).split(":")) if m else ()
+    programs = [case_dir / a for a in args if a.endswith(".ngc")] or sorted(case_dir.glob("*.ngc"))
+    return programs, MachineContext(tools=tools, rotary_axes=("a", "b", "c"),
+                                    dialect=Dialect(subroutine_path=path)), sh
+
+
+def _canonical_moves(expected: str) -> list[tuple[str, np.ndarray]]:
+    """(kind, end point [mm, machine]) of the STRAIGHT_TRAVERSE/STRAIGHT_FEED/ARC_FEED calls of an expected file.
+
+    Canonical calls carry program coordinates in the current units (emccanon.cc rotate_and_offset_pos adds the
+    offsets); ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end, ...) names the end in the
+    plane's axes: XY (x, y; z), YZ (y, z; x), XZ (z, x; y).
+    """
+    unit, g5x, g92, rotation, tool, plane = 1.0, np.zeros(3), np.zeros(3), 0.0, np.zeros(3), "XY"
+    moves = []
+    for name, args in re.findall(r"\b([A-Z_]+)\((.*)\)", expected):
+        nums = [float(v) for v in re.findall(r"[-+]?\d+(?:\.\d+)?", args)]
+        if name == "USE_LENGTH_UNITS":
+            unit = INCH if "INCHES" in args else 10.0 if "CM" in args else 1.0
+        elif name == "SET_G5X_OFFSET":
+            g5x = np.array(nums[1:4])
+        elif name == "SET_G92_OFFSET":
+            g92 = np.array(nums[:3])
+        elif name == "SET_XY_ROTATION":
+            rotation = math.radians(nums[0])
+        elif name == "USE_TOOL_LENGTH_OFFSET":
+            tool = np.array(nums[:3])
+        elif name == "SELECT_PLANE":
+            plane = args.rsplit("_", 1)[-1].strip()
+        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
+            if name == "ARC_FEED":
+                e1, e2, _, _, _, e3 = nums[:6]
+                p = np.array({"XY": (e1, e2, e3), "YZ": (e3, e1, e2), "XZ": (e2, e3, e1)}[plane])
+            else:
+                p = np.array(nums[:3])
+            x, y = p[0] + g92[0], p[1] + g92[1]
+            c, s = math.cos(rotation), math.sin(rotation)
+            machine = np.array([c * x - s * y, s * x + c * y, p[2] + g92[2]]) + g5x + tool
+            kind = {"STRAIGHT_TRAVERSE": "rapid", "STRAIGHT_FEED": "line", "ARC_FEED": "arc"}[name]
+            moves.append((kind, machine * unit))
+    return moves
+
+
+def _without_repeats(moves: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
+    out: list[tuple[str, np.ndarray]] = []
+    for kind, p in moves:
+        if not (out and kind != "arc" and np.allclose(out[-1][1], p, atol=1e-6)):
+            out.append((kind, p))
+    return out
+
+
+@pytest.mark.parametrize("case", INTERP_MOTION)
+def test_linuxcnc_interp_case_motion(case, tmp_path):
+    case_dir = _case_dir(case, tmp_path)
+    programs, context, _ = _rs274_run(case_dir)
+    want = _without_repeats(_canonical_moves((case_dir / "expected").read_text()))
+    got = _without_repeats([("arc" if b.kind.startswith("arc") else b.kind, np.asarray(b.target, dtype=float))
+                            for p in programs for b in load_program(p, context=context).blocks if b.kind != "dwell"])
+    assert [k for k, _ in got] == [k for k, _ in want]
+    # 4-decimal canonical output: 0.0001 inch = 0.00254 mm
+    assert np.allclose(np.array([p for _, p in got]), np.array([p for _, p in want]), atol=3e-3)
+
+
+@pytest.mark.parametrize("case", INTERP_ACCEPTED)
+def test_linuxcnc_interp_case_runs(case, tmp_path):
+    case_dir = _case_dir(case, tmp_path)
+    programs, context, sh = _rs274_run(case_dir)
+    assert "awk '/" in sh or not _canonical_moves((case_dir / "expected").read_text())  # messages only
+    for p in programs:
+        load_program(p, context=context)
+
+
+@pytest.mark.parametrize("case", INTERP_REFUSED)
+def test_linuxcnc_interp_case_refused(case, tmp_path):
+    case_dir = _case_dir(case, tmp_path)
+    programs, context, _ = _rs274_run(case_dir)
+    for p in programs:
+        with pytest.raises(GCodeError):
+            load_program(p, context=context)
