@@ -73,7 +73,7 @@ from interpolators.arcs import (
     radius_arc_tolerance,
 )
 from interpolators.compensation import CompensationError, compensate
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_params import Parameters
@@ -211,6 +211,11 @@ class _State:
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
+    tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
+
+    def tool(self, number: int) -> Tool | None:
+        """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
+        return self.tools.get(int(number)) or self.context.tool(number)
 
     @property
     def scale(self) -> float:
@@ -498,7 +503,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
                        expected="T0, T1, ...")
         st.tool_selected = int(w.value)
-        if st.context.tool(st.tool_selected) is None and st.tool_selected != 0:
+        if st.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
 
 
@@ -910,8 +915,8 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
     if "D" in seen and dynamic:
         radius = seen["D"].value * st.scale / 2.0
     else:
-        tool = st.context.tool(int(seen["D"].value)) if "D" in seen else (
-            st.context.tool(st.tool_current) if st.tool_current is not None else None)
+        tool = st.tool(int(seen["D"].value)) if "D" in seen else (
+            st.tool(st.tool_current) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
     st.comp_side = "left" if key in (410, 411) else "right"
     if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
@@ -960,7 +965,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         return
     h = seen.pop("H", None)
     number = int(h.value) if h is not None else st.tool_current
-    tool = st.context.tool(number) if number is not None else None
+    tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
     if tool is None and number not in (None, 0):
         notes.add(f"H{number} not in the tool table (length 0)")
@@ -1028,9 +1033,12 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
 
 def _g10(seen, st: _State, where: Where, w: Word) -> None:
     l_word, p_word = seen.get("L"), seen.get("P")
+    if l_word is not None and int(l_word.value) in (1, 10, 11):
+        _g10_tool(int(l_word.value), seen, st, where, w)
+        return
     if l_word is None or int(l_word.value) not in (2, 20):
-        where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
-                   expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+        where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
+                   text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
     r_word = seen.get("R")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
@@ -1053,6 +1061,47 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     st.offsets[code] = current
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
+
+
+def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
+    """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
+    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the length Z and the radius R directly;
+    L10 sets the length so that the current position, in the current coordinate system without tool
+    length offset, gets the programmed Z; L11 the same in G59.3 without the G92 offset. The change
+    applies at the next G43 (the offset in effect is not changed). Tool X/Y offsets (lathe tools) are
+    not modelled: one that comes out other than 0 is an error."""
+    p_word = seen.get("P")
+    if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
+        where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
+                   text=w.text, expected=f"G10 L{level} P<tool> Z.. R..")
+    if not any(k in seen for k in ("X", "Y", "Z", "R")):
+        where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
+                   expected=f"G10 L{level} P<tool> with Z and/or R")
+    for i, a in enumerate(("X", "Y")):
+        if a not in seen:
+            continue
+        value = seen[a].value * st.scale
+        if level != 1:  # the offset that makes the current position read the value (see Z below)
+            origin = st.offset() if level == 10 else st.offsets.get("G59.3", st.context.offset("G59.3"))
+            value = st.pos[i] - origin[i] - value
+        if abs(value) > 1e-9 or (level != 1 and st.rotation):
+            where.fail(f"G10 L{level} {a}: tool {a} offsets (lathe tools) are not supported; only 0 is",
+                       column=seen[a].column, text=seen[a].text,
+                       expected=f"G10 L{level} P<tool> Z.. R.. (tool length and radius)")
+    number = int(p_word.value)
+    tool = st.tool(number) or Tool(number=number)
+    length = tool.length
+    if "Z" in seen:
+        z = seen["Z"].value * st.scale
+        if level == 1:
+            length = z
+        elif level == 10:
+            length = st.pos[2] - st.offset()[2] + st.tool_length - z
+        else:
+            fixture = st.offsets.get("G59.3", st.context.offset("G59.3"))
+            length = st.pos[2] - fixture[2] - z
+    radius = seen["R"].value * st.scale if "R" in seen else tool.radius
+    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius))
 
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:

@@ -39,7 +39,7 @@ from typing import Protocol
 
 import numpy as np
 
-from interpolators.context import WORK_OFFSETS, MachineContext
+from interpolators.context import WORK_OFFSETS, MachineContext, Tool
 
 __all__ = ["ReaderState", "system_parameter", "POSITION_PARAMETERS"]
 
@@ -70,6 +70,8 @@ class ReaderState(Protocol):
     def scale(self) -> float: ...
 
     def to_program(self, machine: np.ndarray) -> np.ndarray: ...
+
+    def tool(self, number: int) -> Tool | None: ...
 
 
 def _nine(linear: np.ndarray, rotary: np.ndarray, scale: float) -> list[float]:
@@ -108,7 +110,7 @@ def _tool(n: int, st: ReaderState) -> float | None:
     number = st.tool_current or 0
     if n == 5400:
         return float(number)
-    tool = st.context.tool(number) if number else None
+    tool = st.tool(number) if number else None
     if n in range(5401, 5410):
         return float(tool.length) if (tool is not None and n == 5403) else 0.0
     if n == 5410:

@@ -314,3 +314,19 @@ def test_helix_of_three_turns_keeps_its_turns():
     arc = out[1].segment
     np.testing.assert_allclose([arc.start, arc.end], [[8, 0, 0], [8, 0, -3]], atol=1e-12)
     assert arc.sweep == pytest.approx(6.0 * math.pi) and arc.radius == pytest.approx(8.0) and arc.helix == -3.0
+
+
+def test_negative_tool_radius_swaps_the_side_as_linuxcnc():
+    """LinuxCNC convert_cutter_compensation_on: a negative radius (G41.1 D-1, or a negative tool-table
+    diameter) switches G41 to G42 with the radius' magnitude (tests/interp/crazy-paths, inside-corners)."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext, Tool
+
+    text = "G21 G90 F100\nG0 X0 Y0\n{} G1 X10\nG1 X20\nG40 G1 X30\n"
+    swapped = parse_program(text.format("G41.1 D-2"), context=MachineContext())
+    right = parse_program(text.format("G42.1 D2"), context=MachineContext())
+    assert [b.target.tolist() for b in swapped.blocks] == [b.target.tolist() for b in right.blocks]
+    assert swapped.blocks[1].target[1] == pytest.approx(-1.0)  # G42: the tool 1 mm right of +X
+    table = MachineContext(tools={4: Tool(number=4, radius=-1.0)})
+    from_table = parse_program(text.format("T4 M6 G41 D4"), context=table)
+    assert [b.target.tolist() for b in from_table.blocks] == [b.target.tolist() for b in right.blocks]

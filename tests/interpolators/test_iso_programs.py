@@ -552,3 +552,23 @@ def test_g53_without_axis_words_moves_nothing():
     """A Fanuc post's "G53 G49 M05": G53 with no axis word is no motion (it made a zero-length move)."""
     prog = parse_program("G21 G90 G0 X1 Y2 Z3\nG53 G49 M05\nG0 X4\n", context=MachineContext())
     assert [b.line for b in prog.blocks] == [1, 3]
+
+
+def test_g10_l1_l10_l11_write_the_tool_table_and_g43_reads_it():
+    """LinuxCNC "G10 L1/L10/L11" (interp_convert.cc convert_setup_tool): L1 sets tool P's length Z and
+    radius R; L10 the length that makes the current Z read the programmed value in the current system
+    (without the tool length offset); L11 the same in G59.3 without G92. The next G43 applies it."""
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, -20.0), "G59.3": (0.0, 0.0, -50.0)})
+    text = ("G21 G90 F100\nG10 L1 P1 Z5 R2\nT1 M6 G43\nG0 X0 Y0 Z0\nG0 Z1\nG10 L10 P1 Z0\nG43\nG0 Z2\n"
+            "G10 L11 P2 Z3\nT2 M6 G43\nG0 Z0\nG41 G1 X10\nG40 G1 X20\n")
+    pts = ends(text, ctx)
+    assert pts[0] == [0.0, 0.0, -15.0]  # G54 Z-20 + length 5
+    # at machine Z -14 (program 1): L10 Z0 makes the length -14 + 20 = 6, so Z2 is machine -20 + 6 + 2
+    assert pts[2] == [0.0, 0.0, -12.0]
+    # L11 P2 Z3 at machine -12: length -12 + 50 - 3 = 35; G43 with tool 2, Z0 at -20 + 35
+    assert pts[3] == [0.0, 0.0, 15.0]
+    assert pts[4][1] == 0.0  # tool 2 has no radius: G41 leaves the path
+    with pytest.raises(GCodeError, match="tool X offsets .* only 0 is"):
+        parse_program("G21 G10 L1 P1 X1\n", context=ctx)
+    with pytest.raises(GCodeError, match="G10 L1 without offsets"):
+        parse_program("G21 G10 L1 P1\n", context=ctx)

@@ -185,3 +185,27 @@ def test_m98_shares_the_callers_parameters_and_o_call_has_locals():
             "#31 = 13.31\nM99\nO2 sub\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n#31 = 13.31\nO2 endsub\n")
     moves = [[v for _, v in w[1:]] for _, w in _words(text)][:4]
     assert moves == [[42.01, 42.3, 42.31], [13.01, 13.3, 13.31], [0.0, 0.0, 42.31], [42.01, 42.3, 13.31]]
+
+
+def test_subroutine_path_and_linuxcnc_sub_file_rules(tmp_path):
+    """LinuxCNC tests/interp sub-call-from-sub (SUBROUTINE_PATH=subs: a sub file calls another),
+    nested-sub-error (a sub defined inside another) and nested-sub-in-file-error (a numbered sub of a
+    sub file is not found)."""
+    from interpolators import load_program
+    from interpolators.context import Dialect, MachineContext
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (tmp_path / "main.ngc").write_text("G21 F100\no<caller> call [1] [2]\nM2\n")
+    (subs / "caller.ngc").write_text("o<caller> sub\no<helper> call [#1 + 3]\no<caller> endsub\nM2\n")
+    (subs / "helper.ngc").write_text("o<helper> sub\nG1 X#1\no<helper> endsub\nM2\n")
+    ctx = MachineContext(dialect=Dialect(subroutine_path=("subs",)))
+    assert load_program(tmp_path / "main.ngc", context=ctx).blocks[0].target.tolist() == [4.0, 0.0, 0.0]
+    with pytest.raises(GCodeError, match="neither in this file nor in caller.ngc"):
+        load_program(tmp_path / "main.ngc")
+    (subs / "caller.ngc").write_text("o<caller> sub\no100 sub\no100 endsub\no<caller> endsub\nM2\n")
+    with pytest.raises(GCodeError, match="o100 sub inside the definition of o<caller>"):
+        load_program(tmp_path / "main.ngc", context=ctx)
+    (subs / "caller.ngc").write_text("o<caller> sub\no200 call\no<caller> endsub\no200 sub\no200 endsub\nM2\n")
+    with pytest.raises(GCodeError, match="o200 is defined in the subroutine file caller.ngc"):
+        load_program(tmp_path / "main.ngc", context=ctx)
