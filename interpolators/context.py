@@ -207,13 +207,14 @@ DEFAULT_CONTEXT = MachineContext()
 INTERPOLATION_CONTEXT = MachineContext(rotary_axes=("a", "b", "c"))
 
 
-def read_tool_table(path: str) -> dict[int, Tool]:
+def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
     """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line).
 
     Following LinuxCNC's tool-table format (https://linuxcnc.org/docs/html/config/tool-table.html):
-    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter [machine units, mm here], ``Z`` tool
-    length offset; other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are
-    empty or only a comment are skipped.
+    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter and ``Z`` tool length offset in the
+    machine's units (``units``: ``"mm"``, or ``"inch"`` for a table of an inch machine, converted to
+    mm); other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are empty or only
+    a comment are skipped.
 
     Raises
     ------
@@ -222,6 +223,9 @@ def read_tool_table(path: str) -> dict[int, Tool]:
     """
     import re
 
+    if units not in ("mm", "inch"):
+        raise InputError(f"tool table units must be 'mm' or 'inch', got {units!r}")
+    scale = 25.4 if units == "inch" else 1.0
     try:
         with open(path, encoding="utf-8", errors="replace") as fh:
             lines = fh.read().splitlines()
@@ -246,6 +250,6 @@ def read_tool_table(path: str) -> dict[int, Tool]:
         if "T" not in words:
             raise InputError(f"{path}:{lineno}: tool-table line without a T word; expected T<number> ...")
         number = int(words["T"])
-        tools[number] = Tool(number=number, length=words.get("Z", 0.0), radius=words.get("D", 0.0) / 2.0,
-                             comment=comment.strip())
+        tools[number] = Tool(number=number, length=words.get("Z", 0.0) * scale,
+                             radius=words.get("D", 0.0) * scale / 2.0, comment=comment.strip())
     return tools

@@ -21,7 +21,9 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
 
 System parameters that read the machine state (``#5001`` and above) come from the reader's state
 (:mod:`interpolators.iso_system`: positions, offsets, tools; read-only); one it does not model is an
-error naming it unless the program has set it.
+error naming it unless the program has set it. So do LinuxCNC's read-only named aliases ``#<_x>`` ..
+``#<_w>`` (#5420..), ``#<_abs_x>`` .. (#5021..) and ``#<_current_tool>`` (#5400); ``#<_ini[..]..>``
+(INI file values) is an error, as is assigning any of them.
 
 Fanuc/Haas custom macro B (Fanuc 0i-MD operator's manual B-64304EN, "Custom macro", "Variables";
 Mitsubishi M700V programming manual 13.5 "User macro", "Undefined variables"; Haas mill operator's
@@ -73,6 +75,10 @@ _WRITABLE_SYSTEM = frozenset({5599})
 _LINUXCNC_PARAMETERS = 5602
 #: Haas NGC general-purpose macro variables (global, readable and writable).
 _HAAS_GENERAL = range(10000, 11000)
+#: LinuxCNC's predefined read-only named parameters that alias system parameters ("Predefined Named
+#: Parameters": #<_x> = #5420 ... #<_w> = #5428, #<_abs_x> = #5021 ..., #<_current_tool> = #5400).
+_NAMED_SYSTEM = {**{f"_{a}": 5420 + i for i, a in enumerate("xyzabcuvw")},
+                 **{f"_abs_{a}": 5021 + i for i, a in enumerate("xyzabcuvw")}, "_current_tool": 5400}
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -136,6 +142,12 @@ class Parameters:
 
     def get_named(self, name: str, where: Where, column: int, text: str) -> float:
         key = name.lower().replace(" ", "")
+        if key.startswith("_ini["):
+            where.fail(f"named parameter #<{name}>: INI file values are not available (vcnc reads no INI file)",
+                       column=column, text=text, expected="a parameter the program sets")
+        if key in _NAMED_SYSTEM and self.system is not None:
+            value = self.get_numbered(_NAMED_SYSTEM[key], where, column, text)
+            return 0.0 if value is None else value
         scope = self._scope(key)
         if key not in scope:
             where.fail(f"named parameter #<{name}> is read before it is set", column=column, text=text,
@@ -169,6 +181,10 @@ class Parameters:
                 store[key] = value
         else:
             k = key.lower().replace(" ", "")
+            if k.startswith("_ini[") or (k in _NAMED_SYSTEM and self.system is not None):
+                # LinuxCNC "Cannot assign to read-only parameter" (tests/interp/iniparam-failassign)
+                where.fail(f"named parameter #<{key}> is read-only", column=column, text=text,
+                           expected="a named parameter of the program's own")
             if value is None:
                 where.fail(f"named parameter #<{key}> cannot be set to a vacant value", column=column, text=text,
                            expected="a value")

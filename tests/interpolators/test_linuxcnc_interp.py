@@ -304,7 +304,7 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
 _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
 
 #: Cases whose motion vcnc reproduces (tests/interp/<case>).
-INTERP_MOTION = ("exists", "flowsnake", "g81/g17/g98", "g81/g17/g99", "g84/g17/g98", "g84/g17/g99",
+INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g81/g17/g98", "g81/g17/g99", "g84/g17/g98", "g84/g17/g99",
                  "inverse-time-with-comp", "m98m99/01-basics", "m98m99/05-M98-loops",
                  "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2", "rotation/g28")
 #: Cases whose expected output is (debug)/(print) messages only: vcnc runs them (messages are not modelled).
@@ -313,7 +313,8 @@ INTERP_ACCEPTED = ("do-while-break", "fractional-linenumbers", "g6164", "m98m99/
                    "magic_comments/param_format_printing", "machine-coord-params", "oword-bug315", "return-value",
                    "sequence-number", "sub-call-from-sub", "subs-follow-main")
 #: Cases rs274 refuses, and vcnc with it.
-INTERP_REFUSED = ("m98m99/04-M98-but-no-sub", "m98m99/06-error-mixed-sub-styles", "nested-sub-error",
+INTERP_REFUSED = ("iniparam-failassign", "m98m99/03-error-M98-no-P-word", "m98m99/04-M98-but-no-sub",
+                  "m98m99/06-error-mixed-sub-styles", "nested-sub-error",
                   "nested-sub-in-file-error")
 
 
@@ -331,7 +332,9 @@ def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
     """The programs test.sh runs, the context its options give (-t tool table, -i SUBROUTINE_PATH), test.sh."""
     sh = (case_dir / "test.sh").read_text()
     args = " ".join(re.findall(r"rs274\s+([^|\n;]*)", sh)).split()
-    tools = read_tool_table(str(case_dir / args[args.index("-t") + 1])) if "-t" in args else {}
+    # rs274 standalone runs an inch machine: its tool table is in inch (cam-nisley: D0.0625 cuts 0.79375 mm wide
+    # of the G21 path)
+    tools = read_tool_table(str(case_dir / args[args.index("-t") + 1]), units="inch") if "-t" in args else {}
     path: tuple[str, ...] = ()
     if "-i" in args:
         m = re.search(r"SUBROUTINE_PATH\s*=\s*(\S+)", (case_dir / args[args.index("-i") + 1]).read_text())

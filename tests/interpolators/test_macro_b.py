@@ -201,3 +201,14 @@ def test_fanuc_block_end_and_work_position_variables():
     assert _ends("G21 F100\nG10 L2 P1 X5\nG54 G1 X1 Y2\nG1 X[#5001 + 1] Y#5042\n")[-1] == [7, 2, 0]
     with pytest.raises(GCodeError, match="#5001"):
         parse_program("G21 G1 X#5001\n")
+
+
+def test_linuxcnc_named_aliases_of_system_parameters():
+    """LinuxCNC "Predefined Named Parameters": #<_x> is #5420, #<_abs_x> #5021, #<_current_tool> #5400;
+    they and #<_ini[section]name> are read-only; INI values are not available to vcnc."""
+    ctx = MachineContext(work_offsets={"G54": (5.0, 0.0, 0.0)})
+    assert _ends("G21 G0 X1\nT3 M6\nG0 Y[#<_x> + #<_abs_x>] Z#<_current_tool>\n", ctx)[-1] == [6.0, 7.0, 3.0]
+    with pytest.raises(GCodeError, match="#<_x> is read-only"):
+        parse_program("#<_x> = 1\n")
+    with pytest.raises(GCodeError, match="INI file values are not available"):
+        parse_program("G0 X#<_ini[vars]toolchange_x>\n")
