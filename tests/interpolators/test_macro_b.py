@@ -212,3 +212,26 @@ def test_linuxcnc_named_aliases_of_system_parameters():
         parse_program("#<_x> = 1\n")
     with pytest.raises(GCodeError, match="INI file values are not available"):
         parse_program("G0 X#<_ini[vars]toolchange_x>\n")
+
+
+#: Macro B programs whose block ends the independent reference (tests/interpolators/reference_iso.py,
+#: written from the Fanuc manual without the reader's code) predicts too.
+_REFERENCE_PROGRAMS = [
+    "G21 G90 F600\n#101 = 0\nWHILE [#101 LT 3] DO1\n#102 = 0\nWHILE [#102 LT 2] DO2\nG1 X[#101 * 5] Y[#102 * 5]\n"
+    "#102 = #102 + 1\nEND2\n#101 = #101 + 1\nEND1\nM30\n",
+    "G21 G90 F600\n#1 = 1\nN10 G1 X#1\n#1 = #1 + 1\nIF [#1 LE 3] GOTO 10\nGOTO 20\nG1 X99\nN20 G1 Y5\nM30\n",
+    "G21 F1\nG1 X1 Y1\n#1 = 2\nIF [#1 EQ 3] THEN #3 = 7\nIF [#1 EQ 2] THEN #4 = 9\nG1 X#3 Y#4\n",
+    "G21 F100\n#1 = 1\n#2 = 2\nIF [#1 EQ 1] AND [#2 EQ 3] GOTO 7\nG1 X1\nIF [#1 EQ 1] OR [#2 EQ 3] GOTO 8\nG1 X2\n"
+    "N8 IF [#1 EQ 1] XOR [#2 EQ 2] GOTO 9\nG1 X3\nN9 M30\n",
+    "G21 F100\nG1 X5 Y#0\n#3=#0\nIF [#3 EQ #0] GOTO 5\nG1 X7\nN5 G1 X8\nM30\n",
+    "G21 F100\nN1 G1 X1\nM98 P100\nM30\nO100\nGOTO 1\nG1 X5\nN1 G1 Y7\nM99\n",
+]
+
+
+@pytest.mark.parametrize("text", _REFERENCE_PROGRAMS)
+def test_macro_b_block_ends_match_the_independent_reference(text):
+    from tests.interpolators.reference_iso import iso_reference
+
+    ctx = MachineContext(work_offsets={"G54": (1.0, 2.0, 3.0)})
+    got = [b.target.round(9).tolist() for b in parse_program(text, context=ctx).blocks]
+    assert got == [e.end.round(9).tolist() for e in iso_reference(text, ctx)]
