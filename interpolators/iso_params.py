@@ -37,6 +37,11 @@ manual, "Macros"):
   functions vacant counts 0 (``#1 + 10`` is 10, ``#1 * 5`` is 0); in comparisons ``EQ`` and ``NE``
   tell vacant from 0 (``#1 EQ #0`` holds, ``#1 EQ 0`` does not) while ``GT GE LT LE`` take it as 0;
   a vacant condition is false.
+* under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
+  parameters: the modal information ``#4001``.. comes from the reader's state
+  (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
+  other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
+  feed-hold switches), and reading an unmodelled one is an error naming it.
 * a G65 macro call's locals are ``#1``-``#33`` per call level (Haas, "Local Variables": "Local
   variables range between #1 and #33 ... During a G65 call, all new local variables are cleared");
   ``#100``-``#199`` and ``#500``-``#999`` are common (global) variables, and the Haas Next
@@ -79,6 +84,11 @@ _HAAS_GENERAL = range(10000, 11000)
 #: Parameters": #<_x> = #5420 ... #<_w> = #5428, #<_abs_x> = #5021 ..., #<_current_tool> = #5400).
 _NAMED_SYSTEM = {**{f"_{a}": 5420 + i for i, a in enumerate("xyzabcuvw")},
                  **{f"_abs_{a}": 5021 + i for i, a in enumerate("xyzabcuvw")}, "_current_tool": 5400}
+#: Fanuc/Haas system variables below #5000 (interface signals #1000-, tool offsets #2001-, alarm #3000,
+#: clocks and settings #3001-, modal information #4001-): under LinuxCNC they are user parameters.
+_FANUC_SYSTEM = range(1000, 5000)
+#: Fanuc/Haas macro alarm: setting it stops the program with an alarm.
+_FANUC_ALARM = 3000
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -123,13 +133,18 @@ class Parameters:
         if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
-        state, why = self.system(n) if self.system is not None and n > _LAST_USER_PARAMETER else (None, "")
+        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if state is not None:
             return state
         if why:
             where.fail(f"parameter #{n}: {why}", column=column, text=text,
                        expected="a parameter whose value the program determines")
         store = self._local_numbered(n)
+        if self.macro_b and n in _FANUC_SYSTEM and n not in store:
+            where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
+                       "alarms, clocks, modal information) is not modelled", column=column, text=text,
+                       expected="a common variable #100-#199, #500-#999, or a modelled one (#4001-#4015 modal "
+                                "G codes, #4109 F, #4120 T, #5001.. positions)")
         if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
                        column=column, text=text,
@@ -139,6 +154,10 @@ class Parameters:
                                                and n <= MACRO_LOCALS)):
             return None
         return store.get(n, 0.0)
+
+    def _is_system(self, n: int) -> bool:
+        """Whether ``#n`` may report machine state: above #5000, and under macro B #1000-#4999 too."""
+        return n > _LAST_USER_PARAMETER or (self.macro_b and n in _FANUC_SYSTEM)
 
     def get_named(self, name: str, where: Where, column: int, text: str) -> float:
         key = name.lower().replace(" ", "")
@@ -166,7 +185,11 @@ class Parameters:
                            "a #[#n] whose #n is unset names it, as in a macro program run on its own instead of "
                            "through its G65 call", column=column, text=text,
                            expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
-            state, why = self.system(key) if self.system is not None and key > _LAST_USER_PARAMETER else (None, "")
+            if self.macro_b and key == _FANUC_ALARM:
+                # Fanuc/Haas: "#3000 = n (message)" stops the program with macro alarm n (Haas: "Alarms")
+                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}: the program raises an alarm "
+                           "here", column=column, text=where.text, expected="a program that does not reach its alarm")
+            state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
             if state is not None or why:
                 reason = f"it reports {why}" if why else "it reports the machine state"
                 where.fail(f"parameter #{key} is read-only: {reason}", column=column, text=text,

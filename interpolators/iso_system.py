@@ -29,6 +29,12 @@ coordinate position", "#5041-#5046 present work coordinate position"): under tho
 ``#5001``-``#5008`` is the end point of the last block and ``#5041``-``#5048`` the current position,
 both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block).
 
+Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
+information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
+17/18/19, ``#4003`` 90/91, ``#4005`` 94/93, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4009`` 80 or the
+cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
+T (the tool in the spindle).
+
 A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
 operator may have jogged the machine: an error naming that, not a guess.
 """
@@ -64,7 +70,16 @@ class ReaderState(Protocol):
     offsets: dict[str, np.ndarray]
     rotations: dict[str, float]
     comp_side: str | None
+    comp_code: str
     stopped: bool
+    motion: int | None
+    plane: int
+    incremental: bool
+    inverse_time: bool
+    inch: bool
+    retract_r: bool
+    exact_stop: bool
+    feed: float | None
 
     @property
     def scale(self) -> float: ...
@@ -118,6 +133,21 @@ def _tool(n: int, st: ReaderState) -> float | None:
     return None
 
 
+def _fanuc_modal(n: int, st: ReaderState) -> float | None:
+    """Fanuc/Haas modal information #4001.. (the G code of each group in effect, F and T)."""
+    if n == 4001:
+        return st.motion / 10 if st.motion in (0, 10, 20, 30) else None
+    if n == 4009:
+        return st.motion / 10 if st.motion is not None and st.motion >= 730 else 80.0
+    wcs = st.wcs[1:]
+    table = {4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane], 4003: 91.0 if st.incremental else 90.0,
+             4005: 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
+             4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]),
+             4010: 99.0 if st.retract_r else 98.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
+             4109: 0.0 if st.feed is None else st.feed * 60.0 / st.scale, 4120: float(st.tool_current or 0)}
+    return table.get(n)
+
+
 def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[float | None, str]:
     """The value of system parameter ``#n`` from the reader's state, or ``(None, why)``.
 
@@ -126,6 +156,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     """
     if n in POSITION_PARAMETERS:
         return _position(n, st, fanuc)
+    if 4001 <= n <= 4130:
+        return (_fanuc_modal(n, st) if fanuc else None), ""
     if 5061 <= n <= 5070:
         return None, "the probe result (G38 probing is not supported)"
     if 5081 <= n <= 5089:
