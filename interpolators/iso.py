@@ -1004,15 +1004,13 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         where.fail(f"{'G92 offset' if key == 920 else 'G10 offsets'} on rotary axis {rw.letter}: not supported "
                    "(rotary work offsets are 0)", column=rw.column, text=rw.text, expected="X, Y, Z words")
     if key == 920:
-        if st.rotation:
-            where.fail(f"G92 in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
-                       column=w.column, text=w.text, expected="G92 with G10 L2 R0")
         if not axis_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
-        base = st.offset() - st.g92
+        # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
+        current = st.to_program(st.pos)
         for a in axis_words:
             i = "XYZ".index(a)
-            st.g92[i] = st.pos[i] - base[i] - seen[a].value * st.scale
+            st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
         st.g92_saved = st.g92.copy()
         notes.add("G92 offset")
         return True

@@ -70,13 +70,17 @@ def test_g10_r_rotates_the_coordinate_system_about_its_origin():
     (emccanon.cc rotate_and_offset_pos); G91 steps and arc centres are in the rotated system. With
     G54 at (10, 0) turned 90 degrees, program (1, 0) is machine (10, 1), G91 X1 moves along machine
     +Y, and a clockwise arc about program (0, 0) turns about machine (10, 0); a G18/G19 arc, which
-    then lies in no axis plane, runs as chords within 1 um. What a rotation does not model is
-    refused: cycles, G92, G10 L20."""
+    then lies in no axis plane, runs as chords within 1 um. G92 takes its offset in the rotated
+    system (LinuxCNC convert_axis_offsets: offset = current + offset - value; tests/interp/g10/
+    g10-with-g92). What a rotation does not model is refused: cycles, G10 L20."""
     prog = parse_program("G21 G90 F100\nG10 L2 P1 X10 R90\nG0 X1 Y0\nG91 G1 X1\nG90 G2 X0 Y-2 I-2 J0\n",
                          context=MachineContext())
     assert [np.round(b.target, 12).tolist() for b in prog.blocks] == [[10, 1, 0], [10, 2, 0], [12, 0, 0]]
     assert np.allclose(prog.blocks[-1].segment.center, [10, 0, 0]) and not prog.blocks[-1].segment.ccw
     assert ends("G21 G90\nG10 L2 P1 X1 R0\nG54 G0 X0\n", MachineContext()) == [[1, 0, 0]]
+    # G92 X0 at program (1, 0): offset (1, 0); program (1, 0) is then (2, 0) turned 90 degrees, plus (10, 0)
+    pts = ends("G21 G90\nG10 L2 P1 X10 R90\nG0 X1 Y0\nG92 X0 Y0\nG0 X1 Y0\n", MachineContext())
+    assert np.round(pts[-1], 12).tolist() == [10, 2, 0]
     # a G19 half circle about program (0, 0, 1) turned 90 degrees lies in the machine XZ plane: chords
     # whose ends are on that circle and whose middles are within 1 um of it
     prog = parse_program("G21 G90 F100\nG10 L2 P1 R90\nG0 X0 Y0 Z0\nG19 G2 Y0 Z2 K1\n", context=MachineContext())
@@ -87,7 +91,6 @@ def test_g10_r_rotates_the_coordinate_system_about_its_origin():
     mid = (np.vstack([[0, 0, 0], pts[:-1]]) + pts) / 2
     assert np.all(1.0 - np.hypot(mid[:, 0], mid[:, 2] - 1.0) <= 0.001)
     for text, message in [("G21 F1\nG10 L2 P1 R30\nG81 X1 Z-1 R1\n", "G81 drilling cycle in a rotated"),
-                          ("G21\nG10 L2 P1 R30\nG92 X0\n", "G92 in a rotated coordinate system"),
                           ("G21\nG10 L20 P1 X0 R30\n", "G10 L20 on a rotated coordinate system")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
