@@ -31,7 +31,7 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
-``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``; ``G53``; ``G28 G30 G28.1 G30.1``
+``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
 ``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
                           feed per minute (which resets the feed: an F must follow); ``G95`` is an error
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
@@ -102,7 +102,7 @@ _G: dict[int, tuple[str, str]] = {
     100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
     281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
     301: ("nonmodal", "G30.1 store reference"), 530: ("nonmodal", "G53 machine coordinates"),
-    920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
+    520: ("nonmodal", "G52 local offset"), 920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
     922: ("nonmodal", "G92.2 offset suspend"), 923: ("nonmodal", "G92.3 offset restore"),
     170: ("plane", "XY"), 180: ("plane", "ZX"), 190: ("plane", "YZ"),
     200: ("units", "inch"), 210: ("units", "mm"),
@@ -132,7 +132,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
-    520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
+    171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
 }
 
@@ -194,6 +194,7 @@ class _State:
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
     tool_length: float = 0.0
     tool_selected: int | None = None
     tool_current: int | None = None
@@ -998,6 +999,10 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         else:
             st.reference2, st.reference2_rot = st.pos.copy(), st.rot.copy()
         return True
+    if key == 520:
+        _local_offset(seen, axis_words, st, where, w)
+        notes.add("G52 local offset")
+        return True
     rot_words = [a for a in ROTARY_LETTERS if a in seen]
     if rot_words and key in (100, 920):
         rw = seen[rot_words[0]]
@@ -1012,21 +1017,41 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
             i = "XYZ".index(a)
             st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
         st.g92_saved = st.g92.copy()
+        st.g92_applied = True
         notes.add("G92 offset")
         return True
     if key in (921, 922):
         if key == 921:
             st.g92_saved = np.zeros(3)
         st.g92 = np.zeros(3)
+        st.g92_applied = False
         return True
     if key == 923:
         st.g92 = st.g92_saved.copy()
+        st.g92_applied = True
         return True
     if key == 100:
         _g10(seen, st, where, w)
         notes.add("G10 offsets set")
         return True
     return False
+
+
+def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
+    """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
+    convert_axis_offsets, G_52: axis_offset = value; Fanuc "Local coordinate system"); it is the offset
+    G92 sets too (#5211..), cleared by G92.1 and suspended by G92.2."""
+    rot_words = [a for a in ROTARY_LETTERS if a in seen]
+    if rot_words:
+        rw = seen[rot_words[0]]
+        where.fail(f"G52 local offset on rotary axis {rw.letter}: not supported", column=rw.column, text=rw.text,
+                   expected="G52 X.. Y.. Z..")
+    if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
+        where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
+    for a in axis_words:
+        st.g92["XYZ".index(a)] = seen[a].value * st.scale
+    st.g92_saved = st.g92.copy()
+    st.g92_applied = True
 
 
 def _g10(seen, st: _State, where: Where, w: Word) -> None:

@@ -9,7 +9,8 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
 ``#5061``-``#5070``       probe result: an error (G38 probing is not supported)
 ``#5081``-``#5089``       tool length offset in effect (G43/G43.1; Z only, 0 under G49), program units
 ``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units: mm, deg]
-``#5210``                 1 when a G92 offset is applied; ``#5211``-``#5219`` that offset [mm]
+``#5210``                 1 while a G92/G52 offset is applied; ``#5211``-``#5219`` that offset, kept
+                          while G92.2 suspends it [mm]
 ``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
 ``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [mm, deg], ``#5241``.. G55, every 20
                           up to ``#5381``-``#5390`` G59.3
@@ -61,6 +62,8 @@ class ReaderState(Protocol):
     rot: np.ndarray  # rotary a, b, c [deg]
     wcs: str
     g92: np.ndarray
+    g92_saved: np.ndarray
+    g92_applied: bool
     tool_length: float
     tool_current: int | None
     home: np.ndarray | None
@@ -168,9 +171,9 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         linear = np.zeros(3) if home is None else home
         return _nine(linear, rot, 1.0)[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:
-        return (1.0 if np.any(st.g92 != 0) else 0.0), ""
-    if 5211 <= n <= 5219:
-        return _nine(st.g92, np.zeros(3), 1.0)[n - 5211], ""
+        return (1.0 if st.g92_applied else 0.0), ""
+    if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
+        return _nine(st.g92_saved, np.zeros(3), 1.0)[n - 5211], ""
     if n == 5220:
         return float(WORK_OFFSETS.index(st.wcs) + 1), ""
     if 5221 <= n <= 5390:

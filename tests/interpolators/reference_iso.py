@@ -563,6 +563,11 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code == 100:
             _g10(m, words)
             return True
+        if code == 520:  # g-code.adoc "G52 Local Coordinate System Offset": the offset is the value
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    m.g92[i] = words[a][-1] * m.scale
+            return True
         if code == 920:
             prog_no_g92 = m.to_program(m.pos) + m.g92
             for i, a in enumerate("xyz"):

@@ -575,3 +575,12 @@ def test_g10_l1_l10_l11_write_the_tool_table_and_g43_reads_it():
         parse_program("G21 G10 L1 P1 X1\n", context=ctx)
     with pytest.raises(GCodeError, match="G10 L1 without offsets"):
         parse_program("G21 G10 L1 P1\n", context=ctx)
+
+
+def test_g52_sets_the_shared_offset_and_5210_follows_g92_family():
+    """LinuxCNC convert_axis_offsets G_52: the named axes' offset becomes the value (not a position);
+    G92.2 suspends it, G92.3 restores it; #5210 says whether it is applied, #5211.. keep the stored
+    offset (tests/interp/g52/g52-g92-interaction)."""
+    text = ("G21 G90\nG0 X5 Y5\nG52 X2 Y3\nG0 X0 Y0\nG92.2\nG0 X#5210 Y#5212\nG92.3\nG0 X#5210 Y0\nG92.1\n"
+            "G0 X#5211 Y#5210\n")
+    assert ends(text, MachineContext()) == [[5, 5, 0], [2, 3, 0], [0, 3, 0], [3, 3, 0], [0, 0, 0]]
