@@ -1065,22 +1065,18 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     r_word = seen.get("R")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
-    if int(l_word.value) == 20 and (st.rotations.get(code, 0.0) or (r_word is not None and r_word.value)):
-        w = r_word if r_word is not None else l_word
-        where.fail("G10 L20 on a rotated coordinate system (G10 R): not supported", column=w.column,
-                   text=w.text, expected="G10 L2 for a rotated coordinate system")
+    if int(l_word.value) == 20 and r_word is not None:  # LinuxCNC convert_setup: "R not allowed in G10 L20"
+        where.fail("R not allowed in G10 L20", column=r_word.column, text=r_word.text,
+                   expected="G10 L2 P<n> R<angle> to rotate a coordinate system")
     if code is None:
         where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
                    expected="P0 (current) .. P9")
     current = st.offsets.get(code, st.context.offset(code)).copy()
+    if int(l_word.value) == 20:
+        current = _l20_offset(seen, st, current, st.rotations.get(code, 0.0))
     for a in ("X", "Y", "Z"):
-        if a in seen:
-            i = "XYZ".index(a)
-            v = seen[a].value * st.scale
-            if int(l_word.value) == 2:
-                current[i] = v
-            else:  # L20: the current position gets coordinate v
-                current[i] = st.pos[i] - st.g92[i] - (st.tool_length if i == 2 else 0.0) - v
+        if a in seen and int(l_word.value) == 2:
+            current["XYZ".index(a)] = seen[a].value * st.scale
     st.offsets[code] = current
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
@@ -1125,6 +1121,25 @@ def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
             length = st.pos[2] - fixture[2] - z
     radius = seen["R"].value * st.scale if "R" in seen else tool.radius
     st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius))
+
+
+def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.ndarray:
+    """G10 L20: the offset of a system (rotated by ``rotation`` [deg]) that makes the current position
+    read the programmed values there (LinuxCNC interp_convert.cc convert_setup: the old and the desired
+    position are rotated into the unrotated frame; an axis not named keeps its current coordinate).
+    Machine = R (program + G92) + offset, so offset = machine - R (desired + G92)."""
+    a = math.radians(rotation)
+    c, s = math.cos(a), math.sin(a)
+    dx, dy = st.pos[0] - offset[0], st.pos[1] - offset[1]
+    here = np.array([c * dx + s * dy - st.g92[0], -s * dx + c * dy - st.g92[1]])  # current X Y in that system
+    new = offset.copy()
+    if "X" in seen or "Y" in seen:
+        want = np.array([seen[k].value * st.scale if k in seen else here[i] for i, k in enumerate("XY")]) + st.g92[:2]
+        new[0] = st.pos[0] - (c * want[0] - s * want[1])
+        new[1] = st.pos[1] - (s * want[0] + c * want[1])
+    if "Z" in seen:
+        new[2] = st.pos[2] - st.g92[2] - st.tool_length - seen["Z"].value * st.scale
+    return new
 
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:

@@ -304,7 +304,8 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
 _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
 
 #: Cases whose motion vcnc reproduces (tests/interp/<case>).
-INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active", "g10/g10-with-g92", "g81/g17/g98",
+INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active", "g10/g10-l20-while-active",
+                 "g10/g10-with-g92", "g81/g17/g98",
                  "g81/g17/g99", "g84/g17/g98", "g84/g17/g99", "inverse-time-with-comp", "m98m99/01-basics",
                  "m98m99/05-M98-loops", "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2",
                  "rotation/g28", "rotation/g53", "g10/g10-l11")
