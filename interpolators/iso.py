@@ -1187,8 +1187,6 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     name = _G[st.motion][1]
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
-    if st.plane != 2:
-        where.fail(f"{name}: only in the XY plane (G17)", column=mw.column, text=mw.text, expected="G17")
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
@@ -1199,7 +1197,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
-                            tap_out_to_r=st.context.dialect.tap_out_to_r)
+                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)

@@ -671,14 +671,24 @@ def _centre(m: _Machine, words: dict, end: np.ndarray) -> np.ndarray:
 
 
 def _cycle(m: _Machine, line: int, words: dict) -> None:
-    """One canned-cycle block (g-code.adoc "G80-G89 Canned Cycles"), XY plane."""
-    if m.plane != 17:
-        raise ReferenceError(f"canned cycle in plane G{m.plane}")
+    """One canned-cycle block (g-code.adoc "G80-G89 Canned Cycles"): in G17 the holes are drilled along
+    Z, in G18 along Y (Z X place them), in G19 along X (Y Z place them): "the cycle is performed in the
+    plane selected"."""
+    axes = {17: (0, 1, 2), 18: (2, 0, 1), 19: (1, 2, 0)}[m.plane]
+    first, second, depth = ("xyz"[a] for a in axes)
+
+    def prog(v) -> np.ndarray:  # plane coordinates (first, second, depth) -> program X Y Z
+        out = np.empty(3)
+        out[list(axes)] = v
+        return out
+
     code = m.motion // 10
-    for k in "rzqp":
+    for k in "rqp":
         if k in words:
             m.sticky[k] = words[k][-1]
-    cur = m.to_program(m.pos)
+    if depth in words:
+        m.sticky["z"] = words[depth][-1]
+    cur = m.to_program(m.pos)[list(axes)]
     if m.cycle_clear is None:
         m.cycle_clear = cur[2]
     s = m.scale
@@ -690,26 +700,28 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     repeats = int(words["l"][-1]) if "l" in words else 1
     if cur[2] < r - _EPS * max(1.0, abs(r)):
         cur[2] = r
-        m.move(line, "rapid", cur.copy())
+        m.move(line, "rapid", prog(cur))
     xy = cur[:2].copy()
     polar = "@" in words or "^" in words
+    if polar and m.plane != 17:
+        raise ReferenceError("polar words outside G17")
     for _ in range(repeats):
         if polar:
             xy = m.target(words)[:2]
         elif m.incremental:
-            xy = xy + np.array([words.get(a, [0.0])[-1] * s for a in "xy"])
+            xy = xy + np.array([words.get(a, [0.0])[-1] * s for a in (first, second)])
         else:
-            xy = np.array([words[a][-1] * s if a in words else xy[i] for i, a in enumerate("xy")])
-        z_now = m.to_program(m.pos)[2]
-        m.move(line, "rapid", np.array([*xy, z_now]), optional=True)
-        m.move(line, "rapid", np.array([*xy, r]), optional=True)
-        _hole(m, line, code, xy, r, bottom, clear)
+            xy = np.array([words[a][-1] * s if a in words else xy[i] for i, a in enumerate((first, second))])
+        z_now = m.to_program(m.pos)[axes[2]]
+        m.move(line, "rapid", prog([*xy, z_now]), optional=True)
+        m.move(line, "rapid", prog([*xy, r]), optional=True)
+        _hole(m, line, code, xy, r, bottom, clear, prog)
 
 
-def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: float, clear: float) -> None:
-    """The moves of one hole, from the R plane."""
+def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: float, clear: float, prog) -> None:
+    """The moves of one hole, from the R plane (``prog`` maps plane coordinates to program X Y Z)."""
     def at(z: float) -> np.ndarray:
-        return np.array([*xy, z])
+        return prog([*xy, z])
 
     dwell = m.sticky.get("p", 0.0)
     if code in (73, 83):

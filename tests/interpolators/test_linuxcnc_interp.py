@@ -151,10 +151,13 @@ def test_g81_canonical_moves_match_linuxcnc(program, expected):
     assert got == expected
 
 
-def test_g81_outside_g17_is_refused_by_name():
-    # LinuxCNC runs tests/interp/g81/g18 and g19 too; vcnc's cycles are XY-plane only and say so.
-    with pytest.raises(GCodeError, match="only in the XY plane"):
-        parse_program("G18 G98 G90 G20 F10\nG0 X0 Y0 Z2\nG81 X1 Y1 Z-1 R1\n", context=MachineContext())
+def test_g81_in_g18_drills_along_y():
+    """LinuxCNC "Canned Cycles" in G18 (tests/interp/g81/g18): Z X place the hole, Y is the bottom and
+    R a Y level; G98 returns to the Y the series started at."""
+    prog = parse_program("G18 G98 G90 G20 F10\nG0 X0 Y2 Z0\nG81 X1 Z1 Y-1 R1\n", context=MachineContext())
+    got = [(b.kind, *(round(v / INCH, 4) + 0.0 for v in b.target)) for b in prog.blocks]
+    assert got == [("rapid", 0.0, 2.0, 0.0), ("rapid", 1.0, 2.0, 1.0), ("rapid", 1.0, 1.0, 1.0),
+                   ("line", 1.0, -1.0, 1.0), ("rapid", 1.0, 2.0, 1.0)]
 
 
 #: tests/interp/m98m99/01-basics/test.ngc (Fanuc-style M98 P1 L3 sub drilling three holes; units as in the file).
@@ -305,7 +308,7 @@ _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxC
 
 #: Cases whose motion vcnc reproduces (tests/interp/<case>).
 INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active", "g10/g10-l20-while-active",
-                 "g10/g10-with-g92", "g81/g17/g98",
+                 "g10/g10-with-g92", "g81/g17/g98", "g81/g18/g98", "g81/g18/g99", "g81/g19/g98", "g81/g19/g99",
                  "g81/g17/g99", "g84/g17/g98", "g84/g17/g99", "inverse-time-with-comp", "m98m99/01-basics",
                  "m98m99/05-M98-loops", "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2",
                  "rotation/g28", "rotation/g53", "g10/g10-l11")
