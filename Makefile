@@ -6,6 +6,8 @@ STAMP  := $(VENV)/.installed
 EMPS   := $(abspath ../shared/data/emps)
 export VCNC_EMPS_DIR ?= $(if $(wildcard $(EMPS)/DATA_EMPS.mat),$(EMPS),)
 export MPLBACKEND ?= Agg
+# pytest-xdist workers for the test targets (one per core by default; 0 runs in this process)
+PYTEST_WORKERS ?= auto
 
 .PHONY: demo test test-fast lint venv bench clean chromium
 
@@ -29,13 +31,13 @@ chromium:
 test: $(STAMP) chromium
 	$(BIN)/ruff check .
 	$(BIN)/lint-imports
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(PYTEST_WORKERS)
 
 # The quick loop: everything but the end-to-end tests marked `slow` (`make test` runs them all).
 test-fast: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/lint-imports
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(BIN)/python -m pytest -q -n $(PYTEST_WORKERS) -m "not slow"
 
 bench: $(STAMP)
 	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done

@@ -3,7 +3,7 @@
 Reads ``../shared/data/gcode-corpus`` (``MANIFEST.tsv``: file, source repository, path, size,
 origin tag; or the folder in ``VCNC_GCODE_CORPUS``). For each program: ``load_program`` (ISO or
 Heidenhain, by content; the context of ``vcnc interpolate`` without a machine,
-``INTERPOLATION_CONTEXT``: rotary axes A B C), then ``interpolate`` with the default limits
+``INTERPOLATION_CONTEXT``: axes A B C U V W), then ``interpolate`` with the default limits
 (S-curve off) up to ``--max-samples`` samples. Prints accepted/rejected counts overall, by origin
 and by dialect, the
 rejections grouped by the feature their message names, the share of milling programs that run

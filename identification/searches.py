@@ -23,10 +23,10 @@ import functools
 import logging
 import math
 import threading
-from collections.abc import Callable, Sequence
-from typing import Any
+from collections.abc import Callable
 
 import numpy as np
+import scipy.linalg
 import scipy.signal
 
 from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
@@ -42,6 +42,7 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
+from identification.kernels import sinusoid_moments
 from identification.least_squares import solve_qr, solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
@@ -141,6 +142,14 @@ class SearchContext:
         self.yhat = model.simulate(d.xr)
         self.r = d.x - self.yhat
         self.train_rms_um = _rms(self.r[d.train]) * 1e3
+        # the searches score on the training rows only, so their simulations stop at the last one:
+        # the loop is causal, its output on those rows is the same (the last fold, which checks,
+        # closes the record: identification.segments.folds)
+        k = np.flatnonzero(d.train)
+        self.horizon = int(k[-1]) + 1 if k.size else d.n
+        self.xr_fit = d.xr[:self.horizon]
+        self.x_fit = d.x[:self.horizon]
+        self.train_fit = d.train[:self.horizon]
         # equation-error base: Eq. 3.11 columns plus the current disturbance terms as fixed offsets
         tr = d.tr_rows
         vv, xx, tt = d.v[tr], d.y[tr], d.t[d.rows[tr]]
@@ -151,7 +160,8 @@ class SearchContext:
                 off -= w_of(e, vv, xx, tt) / a2
         self._ee_y = d.y[tr] - off
         self._ee_base = d.phi[tr]
-        q, _ = np.linalg.qr(self._ee_base / np.linalg.norm(self._ee_base, axis=0))
+        self._base_sc = np.linalg.norm(self._ee_base, axis=0)
+        q, self._base_r = np.linalg.qr(self._ee_base / self._base_sc)
         self._q = q
         self._ee_r = self._ee_y - q @ (q.T @ self._ee_y)
         self.ee_rss = float(self._ee_r @ self._ee_r)
@@ -167,35 +177,32 @@ class SearchContext:
         res = self._ee_r - g @ beta
         return float(res @ res), beta
 
-    def ee_partial_many(self, make_cols: Callable[[Any], np.ndarray], values: Sequence[Any],
-                        batch: int = 40) -> np.ndarray:
-        """Training RSS of :meth:`ee_partial` for the columns ``make_cols(v)`` of each value, batched.
+    def ee_partial_sinusoids(self, coordinate: np.ndarray, periods: np.ndarray) -> np.ndarray:
+        """Training RSS of :meth:`ee_partial` with the columns sin, cos(2 pi coordinate / p) added,
+        for every period p of ``periods`` (``coordinate`` on the training rows).
 
         With the residual r orthogonal to the base Q (``_q``), adding columns C leaves the RSS
-        ``r.r - (C'r)' G^-1 (C'r)`` with ``G = C'C - (Q'C)'(Q'C)``: a few matrix products per batch
-        of values instead of a QR each (columns scaled to unit norm for the solve).
+        ``r.r - (C'r)' G^-1 (C'r)`` with ``G = C'C - (Q'C)'(Q'C)`` (columns scaled to unit norm
+        for the solve); the moments come from one compiled pass per period
+        (:func:`identification.kernels.sinusoid_moments`), the columns are never stored.
         """
         q, r = self._q, self._ee_r
-        rr = float(r @ r)
-        out = []
-        for i in range(0, len(values), batch):
-            cols = [make_cols(v) for v in values[i:i + batch]]
-            b, k = len(cols), cols[0].shape[1]
-            c = np.hstack(cols)  # (n, b k): value j's columns at j k .. j k + k - 1
-            c = c / np.maximum(np.linalg.norm(c, axis=0), 1e-300)
-            qc = (q.T @ c).reshape(q.shape[1], b, k)
-            g = np.empty((b, k, k))
-            for u in range(k):
-                for w in range(u, k):
-                    g[:, u, w] = g[:, w, u] = np.einsum("nb,nb->b", c[:, u::k], c[:, w::k])
-            g -= np.einsum("jbu,jbw->buw", qc, qc)
-            rc = (r @ c).reshape(b, k)
-            try:
-                sol = np.linalg.solve(g, rc[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                sol = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(g, rc)])
-            out.append(rr - np.einsum("bk,bk->b", rc, sol))
-        return np.concatenate(out) if out else np.zeros(0)
+        scaled = np.ascontiguousarray(2.0 * np.pi * np.asarray(coordinate, float))
+        m, qs, qc = sinusoid_moments(scaled, np.ascontiguousarray(periods, float), np.ascontiguousarray(r),
+                                     np.ascontiguousarray(q))
+        ns = np.maximum(np.sqrt(m[:, 0]), 1e-300)
+        nc = np.maximum(np.sqrt(m[:, 2]), 1e-300)
+        qs, qc = qs / ns[:, None], qc / nc[:, None]
+        g = np.empty((periods.size, 2, 2))
+        g[:, 0, 0] = m[:, 0] / (ns * ns) - np.einsum("pk,pk->p", qs, qs)
+        g[:, 1, 1] = m[:, 2] / (nc * nc) - np.einsum("pk,pk->p", qc, qc)
+        g[:, 0, 1] = g[:, 1, 0] = m[:, 1] / (ns * nc) - np.einsum("pk,pk->p", qs, qc)
+        rc = np.column_stack([m[:, 3] / ns, m[:, 4] / nc])
+        try:
+            sol = np.linalg.solve(g, rc[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            sol = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(g, rc)])
+        return float(r @ r) - np.einsum("pk,pk->p", rc, sol)
 
     def ee_rows(self):
         """(v, x, t) of the training regressor rows."""
@@ -204,9 +211,23 @@ class SearchContext:
         return d.v[tr], d.y[tr], d.t[d.rows[tr]]
 
     def ee_validation_rss(self, cols_tr: np.ndarray, cols_va: np.ndarray) -> float:
-        """Validation RSS of the unconstrained equation error with extra columns fitted on training rows."""
+        """Validation RSS of the unconstrained equation error with extra columns fitted on training rows.
+
+        The base's QR is the context's: the extra columns' coefficients come from their part
+        orthogonal to it (as in :meth:`ee_partial`), the base's by back-substitution; one QR of
+        the base and the extra columns together is the fallback when that base is singular.
+        """
         d = self.data
-        theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
+        g = cols_tr - self._q @ (self._q.T @ cols_tr)
+        beta = solve_scaled(g, self._ee_r)
+        try:
+            theta_b = scipy.linalg.solve_triangular(self._base_r, self._q.T @ (self._ee_y - cols_tr @ beta))
+        except (np.linalg.LinAlgError, ValueError):
+            theta_b = np.full(self._base_sc.size, np.nan)
+        if np.all(np.isfinite(theta_b)) and np.all(np.isfinite(beta)):
+            theta = np.concatenate([theta_b / self._base_sc, beta])
+        else:
+            theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
         va = d.va_rows
         a2 = self.model.parameters["a2"]
         vv, xx, tt = d.v[va], d.y[va], d.t[d.rows[va]]
@@ -264,12 +285,16 @@ class SearchContext:
         return tt, d.y[rows] - off - d.phi[rows] @ theta
 
     # ---------------------------------------------------------------- simulation screen
+    def fit_output(self, model: AugmentedAxisModel) -> np.ndarray:
+        """Simulated output [mm] of ``model`` up to the last training sample (``horizon``)."""
+        return model.simulate(self.xr_fit)
+
     @property
     def J(self) -> np.ndarray:
-        """Sensitivity of the simulated output to the 8 reduced parameters (all samples)."""
+        """Sensitivity of the simulated output to the 8 reduced parameters (samples to ``horizon``)."""
         with self._lock:  # the searches run side by side: compute it once
             if self._J is None:
-                self._J = sensitivity(self.model, self.data.xr)
+                self._J = sensitivity(self.model, self.xr_fit)
         return self._J
 
     def _screen_q(self) -> np.ndarray:
@@ -277,19 +302,19 @@ class SearchContext:
         J = self.J
         with self._lock:
             if self._Jq is None:
-                Jt = J[self.data.train]
+                Jt = J[self.train_fit]
                 sc = np.linalg.norm(Jt, axis=0)
                 sc[sc == 0] = 1.0
                 self._Jq = np.linalg.qr(Jt / sc)[0]
         return self._Jq
 
     def sim_score(self, model: AugmentedAxisModel) -> tuple[float, np.ndarray]:
-        """Training RMS [um] of ``model`` after one Gauss-Newton step of the reduced parameters."""
-        d = self.data
-        y = model.simulate(d.xr)
+        """Training RMS [um] of ``model`` after one Gauss-Newton step of the reduced parameters, and
+        its output (to ``horizon``)."""
+        y = self.fit_output(model)
         if not np.all(np.isfinite(y)):
             return math.inf, y
-        r = (d.x - y)[d.train]
+        r = (self.x_fit - y)[self.train_fit]
         q = self._screen_q()
         return _rms(r - q @ (q.T @ r)) * 1e3, y
 
@@ -298,15 +323,15 @@ class SearchContext:
 
         Returns the training RMS [um] and the improved model; inf when the model diverges.
         """
-        d = self.data
-        y = model.simulate(d.xr)
+        y = self.fit_output(model)
         if not np.all(np.isfinite(y)):
             return math.inf, model
-        rms = _rms((d.x - y)[d.train]) * 1e3
+        x, train = self.x_fit, self.train_fit
+        rms = _rms((x - y)[train]) * 1e3
         keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
         for _ in range(iterations):
-            r = (d.x - y)[d.train]
-            J = sensitivity(model, d.xr, one_sided=True)[d.train]
+            r = (x - y)[train]
+            J = sensitivity(model, self.xr_fit, one_sided=True, y0=y)[train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
@@ -316,10 +341,10 @@ class SearchContext:
                 if p["a3"] <= 0:
                     continue
                 m2 = augment(model, model.elements, parameters=p)
-                y2 = m2.simulate(d.xr)
+                y2 = self.fit_output(m2)
                 if not np.all(np.isfinite(y2)):
                     continue
-                rms2 = _rms((d.x - y2)[d.train]) * 1e3
+                rms2 = _rms((x - y2)[train]) * 1e3
                 if rms2 < rms:
                     model, y, rms, improved = m2, y2, rms2, True
                     break
@@ -368,11 +393,14 @@ def _with_basis_coef(e: Effect, coef: np.ndarray) -> Effect:
     return e.with_coefficients(coef)
 
 
-def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False) -> np.ndarray:
-    """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8)."""
+def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False,
+                y0: np.ndarray | None = None) -> np.ndarray:
+    """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8);
+    ``y0``, the model's own output, saves a simulation for forward differences."""
     p0 = dict(model.parameters)
     spec = model.spec(xr.size)
-    y0 = simulate_augmented(p0, xr, spec) if one_sided else None
+    if one_sided and y0 is None:
+        y0 = simulate_augmented(p0, xr, spec)
 
     def column(k):
         step = 1e-4 * max(abs(p0[k]), 1e-3 * max(abs(p0["b1"]), 1.0))
@@ -411,10 +439,10 @@ def _ee_candidate(ctx: SearchContext, effect: Effect, cols_tr: np.ndarray, evide
         starts.append(cs)
     best, best_rms = None, math.inf
     for s in starts:
-        y = s.simulate(ctx.data.xr)
+        y = ctx.fit_output(s)
         if not np.all(np.isfinite(y)):
             continue
-        rms = _rms((ctx.data.x - y)[ctx.data.train]) * 1e3
+        rms = _rms((ctx.x_fit - y)[ctx.train_fit]) * 1e3
         if rms < best_rms:
             best, best_rms = s, rms
     if best is None:
@@ -476,10 +504,10 @@ def search_position_periodic(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
     v, x, t = ctx.ee_rows()
     grid = PositionPeriodic.grid(d.span)
-    rss = ctx.ee_partial_many(lambda p: PositionPeriodic.basis(x, p, 1), grid)
+    rss = ctx.ee_partial_sinusoids(x, grid)
     i = int(np.argmin(rss))
     lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    p = _golden(lambda q: ctx.ee_partial(-PositionPeriodic.basis(x, q, 1))[0], lo, hi, 25)
+    p = _golden(lambda q: float(ctx.ee_partial_sinusoids(x, np.array([q]))[0]), lo, hi, 25)
 
     def cols(mask, h):
         return PositionPeriodic.basis(d.y[mask], p, h)
@@ -593,7 +621,7 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
         fc, df = f0, 1.0 / dur
 
         def obj(ff):
-            return ctx.ee_partial(-TimePeriodic.basis(t, 1.0 / ff, 1))[0]
+            return float(ctx.ee_partial_sinusoids(t, np.array([1.0 / ff]))[0])
 
         ff = _golden(obj, fc - df, fc + df, 30)
         val = obj(ff)
@@ -683,7 +711,7 @@ def reference_repeats(xr: np.ndarray, period: float, sample_time: float, *, mult
 
 def search_drift(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
-    J = np.column_stack([ctx.J, d.t])[d.train]
+    J = np.column_stack([ctx.J, d.t[:ctx.horizon]])[ctx.train_fit]
     beta, *_ = np.linalg.lstsq(J, ctx.r[d.train], rcond=None)
     e = Drift(rate=float(beta[-1]))
     m = augment(ctx.model, list(ctx.model.elements) + [e])

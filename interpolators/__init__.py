@@ -11,7 +11,7 @@ Units: positions mm, feeds mm/s inside (``F`` is mm/min in the program), time s.
 
 from interpolators.arcs import ARC_TOLERANCE
 from interpolators.interpolate import MAX_SAMPLES, interpolate
-from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, AxisLimits
+from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE
 from interpolators.parse import detect_dialect, load_program, parse_program
 from interpolators.profiles import PROFILES
@@ -23,6 +23,7 @@ __all__ = [
     "Block",
     "DEFAULT_LIMITS",
     "DEFAULT_ROTARY_LIMITS",
+    "DEFAULT_SECONDARY_LIMITS",
     "DEFAULT_TOLERANCE",
     "MAX_SAMPLES",
     "PROFILES",

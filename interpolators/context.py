@@ -22,6 +22,7 @@ from types import MappingProxyType
 import numpy as np
 
 from interpolators.arcs import ARC_RULES
+from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
@@ -155,10 +156,12 @@ class MachineContext:
         Second reference position, G30's [mm, machine].
     dialect : Dialect
         Dialect of the ISO reader (the Heidenhain reader ignores it but for ``tolerance``).
-    rotary_axes : tuple of str
-        Rotary axes the machine has (``"a"``, ``"b"``, ``"c"``), positioned in degrees; words of
-        others are errors naming the axis (``A0`` is accepted with a note). A machine file sets
-        them from its ``[axes.a]`` ... tables; :data:`INTERPOLATION_CONTEXT` has all three.
+    extra_axes : tuple of str
+        The axes beyond X, Y, Z the machine has, among ``vcnc.core.axes.EXTRA_NAMES``: rotary
+        ``"a"``, ``"b"``, ``"c"`` [deg] and secondary linear ``"u"``, ``"v"``, ``"w"`` [mm],
+        parallel to X, Y, Z; words of others are errors naming the axis (``A0``, ``U0`` are
+        accepted with a note). A machine file sets them from its ``[axes.a]`` ... tables;
+        :data:`INTERPOLATION_CONTEXT` has all six.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -166,7 +169,7 @@ class MachineContext:
     home: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     reference2: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     dialect: Dialect = dataclasses.field(default_factory=Dialect)
-    rotary_axes: tuple[str, ...] = ()
+    extra_axes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         offsets = {}
@@ -183,9 +186,9 @@ class MachineContext:
         object.__setattr__(self, "tools", MappingProxyType(tools))
         object.__setattr__(self, "home", _xyz(self.home, "home"))
         object.__setattr__(self, "reference2", _xyz(self.reference2, "reference2"))
-        bad = [a for a in self.rotary_axes if a not in ("a", "b", "c")]
+        bad = [a for a in self.extra_axes if a not in EXTRA_NAMES]
         if bad:
-            raise InputError(f"rotary_axes must be among 'a', 'b', 'c', got {bad!r}")
+            raise InputError(f"extra_axes must be among {', '.join(map(repr, EXTRA_NAMES))}, got {bad!r}")
 
     def offset(self, code: str) -> np.ndarray:
         """Work offset of ``code`` (``"G54"`` ...) [mm]; zero when the table has none."""
@@ -202,9 +205,10 @@ class MachineContext:
 DEFAULT_CONTEXT = MachineContext()
 
 #: The context of interpolation without a machine (``vcnc interpolate`` without ``--machine``, the
-#: corpus benchmark): the default tables, and every rotary axis a, b, c, so that 4- and 5-axis
-#: programs read; ``vcnc simulate`` and ``--machine`` use the machine's own axes instead.
-INTERPOLATION_CONTEXT = MachineContext(rotary_axes=("a", "b", "c"))
+#: corpus benchmark): the default tables, and every axis beyond X, Y, Z (rotary a, b, c; secondary
+#: linear u, v, w), so that 4- and 5-axis and XYUV programs read; ``vcnc simulate`` and
+#: ``--machine`` use the machine's own axes instead.
+INTERPOLATION_CONTEXT = MachineContext(extra_axes=EXTRA_NAMES)
 
 
 def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:

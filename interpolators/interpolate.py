@@ -15,17 +15,18 @@ from interpolators.kinematics import (
     AxisLimitArrays,
     curve_limits,
     curved_speed_bound,
+    extra_junction_speed_limit,
+    extra_path_bounds,
     junction_speed_limit,
     path_limits,
-    rotary_path_bounds,
 )
-from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, AxisLimits
+from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
-from vcnc.core.axes import AXIS_NAMES
+from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import GCodeError, InputError
 from vcnc.core.setpoints import Setpoints
 
@@ -53,7 +54,7 @@ MAX_SAMPLES: int = 50_000_000
 class _Chain:
     """Consecutive items planned together, starting and ending at rest."""
 
-    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell", "rotary")
+    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell", "extra")
 
     def __init__(self) -> None:
         self.segments: list[Line | Arc | np.ndarray] = []
@@ -62,7 +63,7 @@ class _Chain:
         self.rapid: list[bool] = []
         self.tolerances: list[float] = []
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
-        self.rotary = False  # a block moving a rotary axis: a chain of its own (exact stop at both ends)
+        self.extra = False  # blocks moving an axis beyond X, Y, Z (and only such blocks): see _extra_block
 
 
 def _chains(program: Program) -> list[_Chain]:
@@ -81,13 +82,12 @@ def _chains(program: Program) -> list[_Chain]:
                 chains.append(ch)
             continue
         seg = b.segment
-        if b.rotary_start is not None and np.any(b.rotary_delta != 0):
-            cur = None
-            chains.append(_rotary_chain(i, b))
+        if b.extra_start is not None and np.any(b.extra_delta != 0):
+            cur = _extra_block(chains, cur, i, b)
             continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
-        if cur is None:
+        if cur is None or cur.extra:
             cur = _Chain()
             chains.append(cur)
         cur.segments.append(seg)
@@ -100,23 +100,34 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
-def _rotary_chain(i: int, b) -> _Chain:
-    """The chain of one block that moves a rotary axis: its XYZ segment, or for a pure rotary move
-    a hold at its XYZ position (the profile then runs along the rotary distance)."""
-    ch = _Chain()
+def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b) -> _Chain | None:
+    """Add a block that moves an axis beyond X, Y, Z; returns the chain the next block may join.
+
+    A feed move with X, Y or Z moving joins the chain of the previous such block when that one
+    did not end in exact stop (G64): look-ahead passes their junction at speed, bounded for every
+    axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains are neither
+    blended nor merged, the axes follow the programmed segments. Any other such block (a rapid, a
+    move with X, Y, Z still: a hold at its XYZ position whose profile runs along
+    ``Block.extra_length``) is a chain of its own, at rest at both ends.
+    """
     seg = b.segment
-    ch.segments.append(seg if seg is not None and seg.length > 0 else np.array(b.start, dtype=float))
-    ch.blocks.append(i)
-    ch.feeds.append(b.feed)
-    ch.rapid.append(b.kind == "rapid")
-    ch.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
-    ch.rotary = True
-    return ch
+    moves_xyz = seg is not None and seg.length > 0
+    joins = moves_xyz and b.kind != "rapid"
+    if not (joins and cur is not None and cur.extra):
+        cur = _Chain()
+        cur.extra = True
+        chains.append(cur)
+    cur.segments.append(seg if moves_xyz else np.array(b.start, dtype=float))
+    cur.blocks.append(i)
+    cur.feeds.append(b.feed)
+    cur.rapid.append(b.kind == "rapid")
+    cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+    return cur if joins and not b.exact_stop else None
 
 
 def _resolve_limits(limits: Mapping[str, AxisLimits] | None) -> dict[str, AxisLimits]:
     if limits is None:
-        return {**DEFAULT_LIMITS, **DEFAULT_ROTARY_LIMITS}
+        return {**DEFAULT_LIMITS, **DEFAULT_ROTARY_LIMITS, **DEFAULT_SECONDARY_LIMITS}
     if not isinstance(limits, Mapping):
         raise InputError(f"limits must be a dict of axis name -> AxisLimits, got {type(limits).__name__}")
     return {str(k).lower(): v for k, v in limits.items()}
@@ -138,9 +149,9 @@ def interpolate(
         From :func:`interpolators.parse_program` / :func:`interpolators.load_program`.
     limits : dict of str to AxisLimits, optional
         Per-axis limits (velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3], rapid [mm/s];
-        rotary axes a, b, c in deg); :data:`interpolators.DEFAULT_LIMITS` and
-        :data:`interpolators.DEFAULT_ROTARY_LIMITS` when omitted. Every axis the program moves
-        needs an entry.
+        rotary axes a, b, c in deg); :data:`interpolators.DEFAULT_LIMITS`,
+        :data:`interpolators.DEFAULT_ROTARY_LIMITS` and :data:`interpolators.DEFAULT_SECONDARY_LIMITS`
+        when omitted. Every axis the program moves needs an entry.
     sample_time : float
         Interpolation period Ts [s] (default 1 ms).
     profile : {"trapezoid", "scurve"}
@@ -171,12 +182,16 @@ def interpolate(
       further capped so that the centripetal acceleration (and, for the S-curve, jerk) fits the
       axis limits (see :mod:`interpolators.kinematics`).
     * Dwells are rounded up to whole samples.
-    * Rotary axes (``Block.rotary_start``/``rotary_target`` [deg]) move in proportion to the path:
-      with X, Y or Z moving the profile runs along the XYZ path at its feed; a pure rotary move's
-      profile runs along its rotary distance at its feed [deg/s] (RS274/NGC 3, Sec. 2.1.2.5). The
-      path bounds are capped so that each rotary axis keeps its limits
-      (:func:`interpolators.kinematics.rotary_path_bounds`), and a block that moves a rotary axis
-      starts and ends at rest. Setpoint columns ``a, b, c`` are in deg.
+    * The axes beyond X, Y, Z (``Block.extra_start``/``extra_target``: rotary a, b, c [deg],
+      secondary linear u, v, w [mm]) move in proportion to the path: with X, Y or Z moving the
+      profile runs along the XYZ path at its feed; with X, Y, Z still along the U V W distance at
+      the feed [mm/s], or with U, V, W still too along the rotary distance at the feed [deg/s]
+      (RS274/NGC 3, Sec. 2.1.2.5; ``Block.extra_length``). The path bounds are capped so that each
+      of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
+      G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
+      velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
+      see ``_extra_block``); other blocks moving them start and end at rest. Setpoint columns
+      ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
@@ -205,24 +220,24 @@ def interpolate(
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
     g = _geometry(chains, lim, jerk_limited, program)
-    c = _corner_stops(g, chains, lim, Ts, jerk_limited)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
-    if g.rotary is not None:
-        v_max, a_max, j_max = _rotary_bounds(g, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
+    if g.extra is not None:
+        v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
     v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
 
 @dataclasses.dataclass
-class _Rotary:
-    """The rotary axes a, b, c along the segments: ``start + (s / length) * delta`` at path
-    parameter ``s``; a pure rotary move is a hold whose path is its rotary distance."""
+class _Extra:
+    """The axes a, b, c, u, v, w along the segments: ``start + (s / length) * delta`` at path
+    parameter ``s``; a move with X, Y, Z still is a hold whose path is ``Block.extra_length``."""
 
-    start: np.ndarray  # (n_seg, 3) [deg]
-    delta: np.ndarray  # (n_seg, 3) [deg]
+    start: np.ndarray  # (n_seg, 6) [deg, mm]
+    delta: np.ndarray  # (n_seg, 6) [deg, mm]
     length: np.ndarray  # (n_seg,) path length of the profile [mm, or deg on a pure rotary move]
-    pure: np.ndarray  # (n_seg,) bool: X, Y, Z still, the profile runs along the rotary distance
+    pure: np.ndarray  # (n_seg,) bool: X, Y, Z still, the profile runs along Block.extra_length
 
 
 @dataclasses.dataclass
@@ -237,12 +252,12 @@ class _Geom:
     packed: PackedSegments
     blended: bool
     runs: dict[int, MergedRun]  # segment index -> the dense run its SplineCurve piece belongs to
-    rotary: _Rotary | None = None  # None: the program moves no rotary axis
+    extra: _Extra | None = None  # None: the program moves no axis beyond X, Y, Z
 
     @property
     def profile_length(self) -> np.ndarray:
         """Length each segment's profile runs along [mm; deg on a pure rotary move]."""
-        return self.packed.length if self.rotary is None else self.rotary.length
+        return self.packed.length if self.extra is None else self.extra.length
 
 
 @dataclasses.dataclass
@@ -289,7 +304,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     for c, ch in enumerate(chains):
         segs, blks = ch.segments, ch.blocks
         run_of: dict[int, MergedRun] = {}
-        if len(segs) > 1:
+        if len(segs) > 1 and not ch.extra:
             ch, run_of = _merged(ch)
             segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
                                        worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
@@ -310,55 +325,60 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
                                            for s in all_segs])
     for i in runs:
         packed.length[i] = all_segs[i].length
-    rotary = None
-    if any(b.rotary_start is not None for b in program.blocks):
-        rotary = _rotary_geometry(chains, seg_block, seg_chain, program, packed)
+    extra = None
+    if any(b.extra_start is not None for b in program.blocks):
+        extra = _extra_geometry(chains, seg_block, seg_chain, program, packed)
     return _Geom(segments=all_segs, block=seg_block, chain=np.asarray(seg_chain, dtype=np.int64),
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
-                 packed=packed, blended=blended, runs=runs, rotary=rotary)
+                 packed=packed, blended=blended, runs=runs, extra=extra)
 
 
-def _rotary_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
-                     packed: PackedSegments) -> _Rotary:
-    """Rotary start and motion of each segment; only a rotary chain's (single) segment moves them."""
+def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
+                     packed: PackedSegments) -> _Extra:
+    """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's segments
+    (one per block) move them."""
     n = len(seg_block)
-    start = np.zeros((n, 3))
-    delta = np.zeros((n, 3))
+    start = np.zeros((n, len(EXTRA_NAMES)))
+    delta = np.zeros((n, len(EXTRA_NAMES)))
     length = np.array(packed.length, dtype=float)
     pure = np.zeros(n, dtype=bool)
     for k, (b, c) in enumerate(zip(seg_block, seg_chain)):
         blk = program.blocks[b]
-        if blk.rotary_start is not None:
-            start[k] = blk.rotary_start
-        if chains[c].rotary:
-            delta[k] = blk.rotary_delta
+        if blk.extra_start is not None:
+            start[k] = blk.extra_start
+        if chains[c].extra:
+            delta[k] = blk.extra_delta
             if packed.kind[k] == HOLD:
                 pure[k] = True
-                length[k] = blk.rotary_length
-    return _Rotary(start=start, delta=delta, length=length, pure=pure)
+                length[k] = blk.extra_length
+    return _Extra(start=start, delta=delta, length=length, pure=pure)
 
 
-def _rotary_bounds(g: _Geom, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
-                   limits: Mapping[str, AxisLimits], jerk_limited: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """3b. The path bounds of segments that move rotary axes, capped so that every rotary axis
-    stays within its limits; a pure rotary move's speed is its feed [deg/s] (RS274/NGC 3,
-    Sec. 2.1.2.5) or, for a rapid, the rotary rapid rates."""
-    r = g.rotary
+def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
+                  limits: Mapping[str, AxisLimits], jerk_limited: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """3b. The path bounds of segments that move the axes beyond X, Y, Z, capped so that each stays
+    within its limits (chains passing a junction at speed keep JUNCTION_SHARE of the acceleration
+    and jerk limits in reserve, as for X, Y, Z); with X, Y, Z still the speed is the feed along
+    ``Block.extra_length`` [mm/s or deg/s] (RS274/NGC 3, Sec. 2.1.2.5) or, for a rapid, the axes'
+    rapid rates."""
+    r = g.extra
     idx = np.flatnonzero(np.any(r.delta != 0, axis=1))
     if not len(idx):
         return v_max, a_max, j_max
     v_max, a_max, j_max = v_max.copy(), a_max.copy(), j_max.copy()
     ratio = np.abs(r.delta[idx]) / r.length[idx, None]
-    v, a, j = rotary_path_bounds(ratio, g.rapid[idx], limits)
+    v, a, j = extra_path_bounds(ratio, g.rapid[idx], limits)
+    share = np.where(c.reserved_segment[idx], 1.0 - JUNCTION_SHARE, 1.0)  # the bounds scale with A and J
+    a, j = a * share, j * share
     pure = r.pure[idx]
     feed = np.where(g.rapid[idx], np.inf, g.feed[idx])
     v_max[idx] = np.where(pure, np.minimum(feed, v), np.minimum(v_max[idx], v))
     a_max[idx] = np.where(pure, a, np.minimum(a_max[idx], a))
     j_max[idx] = np.where(pure, j, np.minimum(j_max[idx], j))
     if not np.all(np.isfinite(v_max[idx])):
-        raise InputError("a rapid rotary move needs a finite rapid rate on its axes")
+        raise InputError("a rapid of the axes beyond X, Y, Z needs a finite rapid rate on its axes")
     if jerk_limited and not np.all(np.isfinite(j_max[idx])):
-        raise InputError("the S-curve profile needs finite jerk limits on the rotary axes the program moves")
+        raise InputError("the S-curve profile needs finite jerk limits on the A-W axes the program moves")
     return v_max, a_max, j_max
 
 
@@ -407,10 +427,12 @@ def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
     return v, a, j
 
 
-def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool) -> _Chains:
+def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool,
+                  limits: Mapping[str, AxisLimits]) -> _Chains:
     """2. The geometric speed bound at each junction inside a chain; a junction whose bound is
     negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
-    chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve."""
+    chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve. The axes
+    beyond X, Y, Z take part by the same rule (their rate steps, :func:`_extra_junctions`)."""
     packed, seg_chain_a = g.packed, g.chain
     n_seg = len(g.segments)
     L = packed.length
@@ -427,12 +449,14 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         v_full = np.zeros(n_seg)
         if len(motion_idx):
             v_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)[0]
-        v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
-        split = inner[jl <= v_stop]
-        keep_j = jl > v_stop
         # continuous junctions (G2 blends, rounding-level steps) need no reserve
         jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
                                        jerk_limited=jerk_limited)
+        if g.extra is not None:
+            jl, jl_tiny = _extra_junctions(g, inner, jl, jl_tiny, v_full, limits, Ts, jerk_limited)
+        v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
+        split = inner[jl <= v_stop]
+        keep_j = jl > v_stop
         rough = inner[keep_j & (jl_tiny < np.maximum(v_full[inner], v_full[inner + 1]))]
         inner, jl = inner[keep_j], jl[keep_j]
     else:
@@ -453,6 +477,28 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
     in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
     return _Chains(of_segment=seg_chain_a, count=n_chains, dwell=dwell_of_chain, length=chain_len,
                    reserved_segment=in_multi, inner=inner, junction_limit=jl)
+
+
+def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.ndarray, v_full: np.ndarray,
+                     limits: Mapping[str, AxisLimits], Ts: float, jerk_limited: bool
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """2b. The junction bounds (at JUNCTION_SHARE and at NEGLIGIBLE_SHARE) lowered for the rate steps
+    of the axes beyond X, Y, Z (:func:`interpolators.kinematics.extra_junction_speed_limit`, the
+    XYZ tangent rule per axis); ``v_full`` (in place) capped by their limits on the segments that
+    move them."""
+    r = g.extra
+    moving = np.flatnonzero(np.any(r.delta != 0, axis=1))
+    if len(moving):
+        ratio = np.abs(r.delta[moving]) / r.length[moving, None]
+        v_full[moving] = np.minimum(v_full[moving], extra_path_bounds(ratio, g.rapid[moving], limits)[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0)
+    step = rate[inner + 1] - rate[inner]
+    jl = np.minimum(jl, extra_junction_speed_limit(step, limits, sample_time=Ts, share=JUNCTION_SHARE,
+                                                   jerk_limited=jerk_limited))
+    jl_tiny = np.minimum(jl_tiny, extra_junction_speed_limit(step, limits, sample_time=Ts, share=NEGLIGIBLE_SHARE,
+                                                             jerk_limited=jerk_limited))
+    return jl, jl_tiny
 
 
 def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool
@@ -503,8 +549,8 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     seg_chain_a, n_chains = c.of_segment, c.count
     motion = packed.kind != HOLD
     length = g.profile_length
-    if g.rotary is not None:  # a pure rotary move is a hold in XYZ with a profile along its rotary distance
-        motion = motion | g.rotary.pure
+    if g.extra is not None:  # X, Y, Z still: a hold in XYZ with a profile along Block.extra_length
+        motion = motion | g.extra.pure
     mi = np.flatnonzero(motion)
     if jerk_limited:
         dur, p0, pv, pa, pj = scurve_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
@@ -572,11 +618,11 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     seg_block_a = np.asarray(seg_block, dtype=np.int64)
     if len(ph_seg) == 0:
         first = program.blocks[0] if program.blocks else None
-        start = np.zeros(6)
+        start = np.zeros(len(AXIS_NAMES))
         if first is not None:
             start[:3] = first.start
-            if first.rotary_start is not None:
-                start[3:] = first.rotary_start
+            if first.extra_start is not None:
+                start[3:] = first.extra_start
         pos = np.broadcast_to(start[ax_idx], (1, len(axes))).copy()
         return Setpoints(
             t=np.zeros(1), axes=axes, position=pos, velocity=np.zeros_like(pos), acceleration=np.zeros_like(pos),
@@ -595,8 +641,8 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
     v[-1] = a[-1] = 0.0
     pos, vel, acc = _evaluate(g, seg, s, v, a)
-    if g.rotary is not None:
-        pos, vel, acc = _with_rotary(g.rotary, seg, s, v, a, pos, vel, acc)
+    if g.extra is not None:
+        pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
     # the last sample of a chain is at rest at its end
     pos = pos[:, ax_idx]
     vel = vel[:, ax_idx]
@@ -635,9 +681,9 @@ def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
     return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
 
 
-def _with_rotary(r: _Rotary, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,
+def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,
                  vel: np.ndarray, acc: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The x, y, z columns followed by a, b, c [deg, deg/s, deg/s^2]: the rotary axes move in
+    """The x, y, z columns followed by a, b, c [deg, deg/s, deg/s^2], u, v, w [mm, ...]: they move in
     proportion to the path parameter ``s`` (module :mod:`interpolators.kinematics`)."""
     L = r.length[seg]
     with np.errstate(divide="ignore", invalid="ignore"):

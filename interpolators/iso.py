@@ -41,11 +41,12 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
-file). Rotary axes A B C [deg] on a machine that has them (``MachineContext.rotary_axes``):
-G0/G1/G2/G3 (an arc with a rotary word turns the axis in proportion, as LinuxCNC does), G90/G91,
-G53, G28/G30, G93 (:mod:`interpolators.iso_rotary`). Out of scope, each an error naming the
-feature: a rotary axis the machine lacks (a word that keeps the axis at 0, ``A0``, is accepted with
-a note), rotary words in G92/G10, cycles, splines, dwells and under cutter compensation, U V W,
+file). Rotary axes A B C [deg] and secondary linear axes U V W [mm] on a machine that has them
+(``MachineContext.extra_axes``): G0/G1/G2/G3 (an arc with such a word moves the axis in proportion,
+as LinuxCNC does), G90/G91, G53, G28/G30, G92/G10 offsets, G93 (:mod:`interpolators.iso_axes`).
+Out of scope, each an error naming the feature: an axis the machine lacks (a word that keeps the
+axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
+cutter compensation,
 probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 
@@ -74,11 +75,11 @@ from interpolators.arcs import (
 )
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
+from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
-from interpolators.iso_rotary import ROTARY_LETTERS, fill_rotary, rotary_target
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
 from interpolators.iso_words import Word
@@ -182,10 +183,14 @@ class _State:
     tolerance: float | None = None
     feed: float | None = None  # mm/s
     feed_rotary: float | None = None  # the same F word as deg/s, for pure rotary moves (never scaled by G20)
-    rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # rotary a, b, c [deg, machine]
-    rotary_used: bool = False  # a rotary word moved (or set) an axis: every block carries rotary positions
-    home_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G28 rotary reference [deg]
-    reference2_rot: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # G30's [deg]
+    # the axes beyond X Y Z: a, b, c [deg], u, v, w [mm] (machine), their G92 and work offsets
+    extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))
+    extra_used: bool = False  # an A-W word moved (or set) an axis: every block carries their positions
+    home_extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))  # G28 reference [deg, mm]
+    reference2_extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))  # G30's
+    g92_extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))
+    g92_extra_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))
+    extra_offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # set by G10 (table: 0)
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
@@ -247,6 +252,10 @@ class _State:
         x, y = machine[0] - base[0], machine[1] - base[1]
         return np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
 
+    def extra_offset(self) -> np.ndarray:
+        """Machine minus program positions of a, b, c [deg], u, v, w [mm]: work plus G92 offset."""
+        return self.extra_offsets.get(self.wcs, np.zeros(6)) + self.g92_extra
+
     def offset(self) -> np.ndarray:
         """Machine minus program coordinates [mm]."""
         o = self.offsets.get(self.wcs)
@@ -305,8 +314,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
-    if st.rotary_used:
-        blocks = fill_rotary(blocks)
+    if st.extra_used:
+        blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
 
 
@@ -368,18 +377,16 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                            "not supported", column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
-            if w.letter in "UVW":
-                where.fail(f"axis word {w.letter!r}: secondary linear axes U V W are not supported",
-                           column=w.column, text=w.text, expected="X, Y or Z")
-            lacks = w.letter in ROTARY_LETTERS and w.letter.lower() not in st.context.rotary_axes
+            lacks = w.letter in EXTRA_LETTERS and w.letter.lower() not in st.context.extra_axes
+            kind = "rotary axis" if w.letter in ROTARY_LETTERS else "secondary linear axis"
             if lacks and w.value == 0.0:
-                # a rotary word that keeps the axis where it starts (0): no rotary motion (CAM posts
-                # write "A0" on 3-axis work); any other value is refused below
-                notes.add(f"{w.letter}0 (rotary axis {w.letter} stays at 0)")
+                # a word that keeps the axis where it starts (0): no motion (CAM posts write "A0" on
+                # 3-axis work); any other value is refused below
+                notes.add(f"{w.letter}0 ({kind} {w.letter} stays at 0)")
                 continue
             if lacks:
-                axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.rotary_axes)])
-                where.fail(f"axis word {w.letter!r} is not supported: this machine has no rotary axis "
+                axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.extra_axes)])
+                where.fail(f"axis word {w.letter!r} is not supported: this machine has no {kind} "
                            f"{w.letter} (its axes: {axes})", column=w.column, text=w.text,
                            expected=f"axis words {axes}")
             if w.letter in seen:
@@ -415,14 +422,14 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     _motion_mode(gcodes, words, st)
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
-    rot_words = [w for w in ROTARY_LETTERS if w in seen]
+    rot_words = [w for w in EXTRA_LETTERS if w in seen]
     if st.rotation and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
         if rot_words:
             w = seen[rot_words[0]]
-            where.fail(f"{_G[st.motion][1]} with rotary axis word {w.letter}: not supported", column=w.column,
+            where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                        text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
         if axis_words or polar:
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
@@ -667,7 +674,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
     mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
     code = f"G{motion // 10:02d}"
-    rot = _rotary_words(seen, motion, st, where, used, machine=machine)
+    rot = _extra_words(seen, motion, st, where, used, machine=machine)
     if motion in (0, 10) and (arc_words or "R" in seen):
         # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
         w = seen[(arc_words or ["R"])[0]]
@@ -683,13 +690,13 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
                   exact_stop=st.exact_stop, tolerance=st.tolerance)
     if rot is not None:
-        common.update(rotary_start=st.rot.copy(), rotary_target=rot)
+        common.update(extra_start=st.extra.copy(), extra_target=rot)
     if motion in (50, 51):
         used.update((0, 1))
         _spline(seen, target, st, blocks, where, common, mcol, mtok)
         return
     st.spline_pq = None
-    turn = 0.0 if rot is None else float(np.linalg.norm(rot - st.rot))
+    turn = np.zeros(6) if rot is None else rot - st.extra
     if motion in (0, 10):
         seg = Line(st.pos, target)
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
@@ -697,9 +704,9 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     else:
         if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
             if rot is not None:
-                w = seen[next(k for k in ROTARY_LETTERS if k in seen)]
-                where.fail(f"{code} arc with rotary axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
-                           "not supported", column=w.column, text=w.text, expected="no A, B, C on this arc")
+                w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
+                where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
+                           "not supported", column=w.column, text=w.text, expected="no A, B, C, U, V, W on this arc")
             used.update((0, 1, 2))
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
@@ -712,25 +719,26 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     blocks.append(blk)
     st.pos = target
     if rot is not None:
-        st.rot = rot
+        st.extra = rot
 
 
-def _rotary_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
-    """End angles of the block's A B C words [deg] (:mod:`interpolators.iso_rotary`), or None without
-    rotary words; splines and cutter compensation do not take them."""
-    letters = [w for w in ROTARY_LETTERS if w in seen]
+def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
+    """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
+    None without such words; splines and cutter compensation do not take them."""
+    letters = [w for w in EXTRA_LETTERS if w in seen]
     if not letters:
         return None
     w = seen[letters[0]]
     if motion in (50, 51):
-        where.fail(f"G5 spline with rotary axis word {w.letter}: not supported", column=w.column, text=w.text,
+        where.fail(f"G5 spline with axis word {w.letter}: not supported", column=w.column, text=w.text,
                    expected="X and Y on a spline")
     if st.comp_side is not None:
-        where.fail(f"rotary axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
-                   column=w.column, text=w.text, expected="G40 before rotary motion")
-    st.rotary_used = True
-    used.update(3 + ROTARY_LETTERS.index(letter) for letter in letters)
-    return rotary_target({k: seen[k].value for k in letters}, st.rot, incremental=st.incremental, machine=machine)
+        where.fail(f"axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
+                   column=w.column, text=w.text, expected="G40 before A, B, C, U, V, W motion")
+    st.extra_used = True
+    used.update(3 + EXTRA_LETTERS.index(letter) for letter in letters)
+    return extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(), incremental=st.incremental,
+                        scale=st.scale, machine=machine)
 
 
 def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Where, common: dict, code: str,
@@ -811,12 +819,18 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
     st.pos = np.array(target, dtype=float)
 
 
-def _feed(st: _State, seg: Line | Arc, turn: float = 0.0) -> float:
+def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
-    time 1/F minutes (LinuxCNC G-code reference, G93). A pure rotary move (``seg`` of length 0,
-    ``turn`` [deg] the rotary distance) has its feed in deg/s (RS274/NGC 3, Sec. 2.1.2.5)."""
-    if seg.length == 0 and turn > 0:
-        return turn * st.block_f / 60.0 if st.inverse_time else st.feed_rotary
+    time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
+    0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
+    [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
+    Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`)."""
+    if seg.length == 0 and turn is not None and np.any(turn != 0):
+        linear = bool(np.any(turn[3:] != 0))
+        length = float(np.linalg.norm(turn[3:] if linear else turn[:3]))
+        if st.inverse_time:
+            return length * st.block_f / 60.0
+        return st.feed if linear else st.feed_rotary
     if not st.inverse_time:
         return st.feed
     return seg.length * st.block_f / 60.0 if seg.length > 0 else np.inf
@@ -880,7 +894,7 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
         w = gcodes["motion"][1]
         where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
                    expected="G04 P<time> G01 X..")
-    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *ROTARY_LETTERS) if w in seen]
+    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen]
     if bad:
         w = seen[bad[0]]
         where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
@@ -984,7 +998,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
             where.fail("G53 needs G0 or G1", column=w.column, text=w.text, expected="G53 G0/G1 with axis words")
         if "motion" in gcodes:
             st.motion = motion
-        if not axis_words and not any(a in seen for a in ROTARY_LETTERS):
+        if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         target = _target(seen, axis_words, st, machine=True)
         _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
@@ -995,39 +1009,41 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         return True
     if key in (281, 301):
         if key == 281:
-            st.home, st.home_rot = st.pos.copy(), st.rot.copy()
+            st.home, st.home_extra = st.pos.copy(), st.extra.copy()
         else:
-            st.reference2, st.reference2_rot = st.pos.copy(), st.rot.copy()
+            st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
         return True
     if key == 520:
         _local_offset(seen, axis_words, st, where, w)
         notes.add("G52 local offset")
         return True
-    rot_words = [a for a in ROTARY_LETTERS if a in seen]
-    if rot_words and key in (100, 920):
-        rw = seen[rot_words[0]]
-        where.fail(f"{'G92 offset' if key == 920 else 'G10 offsets'} on rotary axis {rw.letter}: not supported "
-                   "(rotary work offsets are 0)", column=rw.column, text=rw.text, expected="X, Y, Z words")
+    rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if key == 920:
-        if not axis_words:
+        if not axis_words and not rot_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
         # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
         current = st.to_program(st.pos)
         for a in axis_words:
             i = "XYZ".index(a)
             st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
-        st.g92_saved = st.g92.copy()
+        # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
+        # the offset that makes the axis' current position the programmed value
+        v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
+        given = ~np.isnan(v)
+        work = st.extra_offset() - st.g92_extra
+        st.g92_extra[given] = (st.extra - work - v)[given]
+        st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
         st.g92_applied = True
         notes.add("G92 offset")
         return True
     if key in (921, 922):
         if key == 921:
-            st.g92_saved = np.zeros(3)
-        st.g92 = np.zeros(3)
+            st.g92_saved, st.g92_extra_saved = np.zeros(3), np.zeros(6)
+        st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
         return True
     if key == 923:
-        st.g92 = st.g92_saved.copy()
+        st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
         st.g92_applied = True
         return True
     if key == 100:
@@ -1041,16 +1057,14 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
     convert_axis_offsets, G_52: axis_offset = value; Fanuc "Local coordinate system"); it is the offset
     G92 sets too (#5211..), cleared by G92.1 and suspended by G92.2."""
-    rot_words = [a for a in ROTARY_LETTERS if a in seen]
-    if rot_words:
-        rw = seen[rot_words[0]]
-        where.fail(f"G52 local offset on rotary axis {rw.letter}: not supported", column=rw.column, text=rw.text,
-                   expected="G52 X.. Y.. Z..")
     if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
         where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
     for a in axis_words:
         st.g92["XYZ".index(a)] = seen[a].value * st.scale
-    st.g92_saved = st.g92.copy()
+    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
+    given = ~np.isnan(v)
+    st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
+    st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
     st.g92_applied = True
 
 
@@ -1078,6 +1092,12 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
         if a in seen and int(l_word.value) == 2:
             current["XYZ".index(a)] = seen[a].value * st.scale
     st.offsets[code] = current
+    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
+    given = ~np.isnan(v)
+    if np.any(given):  # L2: the offset is the value; L20: the offset that makes the current position the value
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[given] = (v if int(l_word.value) == 2 else st.extra - st.g92_extra - v)[given]
+        st.extra_offsets[code] = extra
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
 
@@ -1144,43 +1164,44 @@ def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.nda
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:
     """G28/G30: through the programmed intermediate point to the reference, only the axes named
-    (rotary words too); without axis words every axis, the rotary axes to their reference angles."""
+    (A-W words too); without axis words every axis, A-W to their reference positions."""
     ref = st.home if key == 280 else st.reference2
-    ref_rot = st.home_rot if key == 280 else st.reference2_rot
-    rot_words = [a for a in ROTARY_LETTERS if a in seen]
+    ref_rot = st.home_extra if key == 280 else st.reference2_extra
+    rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if axis_words or rot_words:
         mid = _target(seen, axis_words, st, machine=False)
         mid_rot = None
         if rot_words:
-            st.rotary_used = True
-            used.update(3 + ROTARY_LETTERS.index(a) for a in rot_words)
-            mid_rot = rotary_target({a: seen[a].value for a in rot_words}, st.rot, incremental=st.incremental)
+            st.extra_used = True
+            used.update(3 + EXTRA_LETTERS.index(a) for a in rot_words)
+            mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
+                                   incremental=st.incremental, scale=st.scale)
         _rapid(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
         end = st.pos.copy()
         for a in axis_words:
             end["XYZ".index(a)] = ref["XYZ".index(a)]
         end_rot = None
         if rot_words:
-            end_rot = st.rot.copy()
+            end_rot = st.extra.copy()
             for a in rot_words:
-                end_rot[ROTARY_LETTERS.index(a)] = ref_rot[ROTARY_LETTERS.index(a)]
+                end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
         _rapid(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
-        back = st.rotary_used and bool(np.any(st.rot != ref_rot))
+        back = st.extra_used and bool(np.any(st.extra != ref_rot))
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
 
 
 def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
-    """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the rotary angles ``rot`` [deg]."""
+    """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the extra axes to ``rot`` [deg, mm]."""
     for a in axis_words:
         used.add("XYZ".index(a))
-    extra = {} if rot is None else {"rotary_start": st.rot.copy(), "rotary_target": np.array(rot, dtype=float)}
+    extra = {} if rot is None else {"extra_start": st.extra.copy(), "extra_target": np.array(rot, dtype=float)}
     blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid", start=st.pos.copy(),
                         target=target.copy(), feed=np.inf, segment=Line(st.pos, target), exact_stop=st.exact_stop,
                         tolerance=st.tolerance, **extra))
     st.pos = target.copy()
     if rot is not None:
-        st.rot = np.array(rot, dtype=float)
+        st.extra = np.array(rot, dtype=float)
 
 
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:

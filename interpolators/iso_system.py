@@ -21,8 +21,8 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
 ========================= ==========================================================================
 
 vcnc machines are metric: the stored tables (offsets, references, tools) read in mm, as a
-LinuxCNC machine configured in mm; positions follow G20/G21; rotary axes are never scaled. U V W
-read 0 (vcnc machines have none), rotary offsets too (they cannot be set).
+LinuxCNC machine configured in mm; positions follow G20/G21 (X Y Z U V W); rotary axes (deg) are
+never scaled.
 
 Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System variables"; Haas
 mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
@@ -59,7 +59,7 @@ class ReaderState(Protocol):
 
     context: MachineContext
     pos: np.ndarray  # machine coordinates [mm]
-    rot: np.ndarray  # rotary a, b, c [deg]
+    extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
     g92: np.ndarray
     g92_saved: np.ndarray
@@ -68,8 +68,10 @@ class ReaderState(Protocol):
     tool_current: int | None
     home: np.ndarray | None
     reference2: np.ndarray | None
-    home_rot: np.ndarray
-    reference2_rot: np.ndarray
+    home_extra: np.ndarray
+    reference2_extra: np.ndarray
+    g92_extra_saved: np.ndarray
+    extra_offsets: dict[str, np.ndarray]
     offsets: dict[str, np.ndarray]
     rotations: dict[str, float]
     comp_side: str | None
@@ -89,12 +91,15 @@ class ReaderState(Protocol):
 
     def to_program(self, machine: np.ndarray) -> np.ndarray: ...
 
+    def extra_offset(self) -> np.ndarray: ...
+
     def tool(self, number: int) -> Tool | None: ...
 
 
-def _nine(linear: np.ndarray, rotary: np.ndarray, scale: float) -> list[float]:
-    """X Y Z (divided by ``scale``), A B C (deg), U V W (0)."""
-    return [*(float(v) / scale for v in linear), *(float(v) for v in rotary), 0.0, 0.0, 0.0]
+def _nine(linear: np.ndarray, extra: np.ndarray, scale: float) -> list[float]:
+    """X Y Z and U V W (divided by ``scale``), A B C (deg) from ``linear`` (x, y, z) and ``extra``
+    (a, b, c, u, v, w)."""
+    return [*(float(v) / scale for v in linear), *(float(v) for v in extra[:3]), *(float(v) / scale for v in extra[3:])]
 
 
 def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
@@ -105,10 +110,10 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
         return None, ("the position after a program stop (M0/M1/M60) is where the operator jogged the machine, "
                       "which a program file does not say")
     if base == 5021:
-        return _nine(st.pos, st.rot, st.scale)[n - 5021], ""
+        return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
     if st.comp_side is not None:
         return None, "the current position cannot be read with cutter radius compensation on (LinuxCNC)"
-    values = _nine(st.to_program(st.pos), st.rot, st.scale)
+    values = _nine(st.to_program(st.pos), st.extra - st.extra_offset(), st.scale)
     return values[n - base], ""
 
 
@@ -121,7 +126,7 @@ def _work_offset(n: int, st: ReaderState) -> float | None:
         return float(st.rotations.get(code, 0.0))
     off = st.offsets.get(code)
     xyz = st.context.offset(code) if off is None else off
-    return float(xyz[j]) if j < 3 else 0.0
+    return float(xyz[j]) if j < 3 else float(st.extra_offsets.get(code, np.zeros(6))[j - 3])
 
 
 def _tool(n: int, st: ReaderState) -> float | None:
@@ -167,13 +172,13 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return (st.tool_length / st.scale if n == 5083 else 0.0), ""
     if 5161 <= n <= 5169 or 5181 <= n <= 5189:
         home = st.home if n < 5180 else st.reference2
-        rot = st.home_rot if n < 5180 else st.reference2_rot
+        rot = st.home_extra if n < 5180 else st.reference2_extra
         linear = np.zeros(3) if home is None else home
         return _nine(linear, rot, 1.0)[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:
         return (1.0 if st.g92_applied else 0.0), ""
     if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
-        return _nine(st.g92_saved, np.zeros(3), 1.0)[n - 5211], ""
+        return _nine(st.g92_saved, st.g92_extra_saved, 1.0)[n - 5211], ""
     if n == 5220:
         return float(WORK_OFFSETS.index(st.wcs) + 1), ""
     if 5221 <= n <= 5390:

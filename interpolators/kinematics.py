@@ -27,10 +27,10 @@ Clothoid blends (:class:`toolpaths.ClothoidPair`, curvature ``k`` up to ``k_max`
 same shares apply with ``v^3 (k_max^2 + c) <= JERK_SPEED_SHARE * J``; the velocity bound uses
 the largest ``|t_i|`` over the turn.
 
-Rotary axes (:func:`rotary_path_bounds`) move in proportion to the path parameter ``s``: axis
-``i`` turns ``ratio_i = |dr_i| / L`` degrees per unit of path, so its velocity, acceleration and
-jerk are ``ratio_i`` times the path's, with no curvature term; ``v <= V_i/ratio_i`` and so on, as
-for a line.
+The axes beyond X, Y, Z, rotary a, b, c and secondary linear u, v, w (:func:`extra_path_bounds`),
+move in proportion to the path parameter ``s``: axis ``i`` moves ``ratio_i = |dr_i| / L`` degrees
+(or mm) per unit of path, so its velocity, acceleration and jerk are ``ratio_i`` times the path's,
+with no curvature term; ``v <= V_i/ratio_i`` and so on, as for a line.
 """
 
 from __future__ import annotations
@@ -42,14 +42,15 @@ import numpy as np
 from interpolators.limits import AxisLimits
 from toolpaths.geometry import AXIS_LETTERS, SplineCurve
 from toolpaths.packed import ARC, CLOTHOID, LINE, PackedSegments
-from vcnc.core.axes import ROTARY_NAMES
+from vcnc.core.axes import EXTRA_NAMES, ROTARY_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = [
     "AxisLimitArrays",
     "path_limits",
-    "rotary_path_bounds",
+    "extra_path_bounds",
     "junction_speed_limit",
+    "extra_junction_speed_limit",
     "curved_speed_bound",
     "curve_limits",
     "CENTRIPETAL_SHARE",
@@ -314,52 +315,98 @@ def junction_speed_limit(
     ndarray, shape (m,)
         [mm/s]
     """
-    dt = np.abs(tangent_jump)
-    dk = np.abs(curvature_jump)
-    v = _min_ratio(share * limits.acceleration * sample_time, dt)
+    v = _step_speed_limit(limits.acceleration, limits.jerk, np.abs(tangent_jump), sample_time=sample_time,
+                          share=share, jerk_limited=jerk_limited)
     if jerk_limited:
-        v = np.minimum(v, _min_ratio(share * limits.jerk * sample_time**2, dt))
-        v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, dk)))
+        v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, np.abs(curvature_jump))))
     return v
 
 
+def _step_speed_limit(acceleration: np.ndarray, jerk: np.ndarray, step: np.ndarray, *, sample_time: float,
+                      share: float, jerk_limited: bool) -> np.ndarray:
+    """Largest path speed ``v`` whose axis velocity steps ``v |step_i|``, passed within one sample, use
+    at most ``share`` of each axis' acceleration (and, jerk limited, jerk) limit."""
+    v = _min_ratio(share * acceleration * sample_time, step)
+    if jerk_limited:
+        v = np.minimum(v, _min_ratio(share * jerk * sample_time**2, step))
+    return v
 
-def rotary_path_bounds(
-    ratio: np.ndarray, rapid: np.ndarray, limits: Mapping[str, AxisLimits]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Bounds of path speed, acceleration and jerk that keep the rotary axes within their limits.
+
+def extra_junction_speed_limit(
+    rate_jump: np.ndarray,
+    limits: Mapping[str, AxisLimits],
+    *,
+    sample_time: float,
+    share: float,
+    jerk_limited: bool,
+) -> np.ndarray:
+    """Largest path speed at junctions where the axes beyond X, Y, Z change their rate.
+
+    The criterion of :func:`junction_speed_limit` for the tangent, applied to each of the axes
+    a, b, c, u, v, w: their velocity steps ``v |dr_i|`` are passed within one sample using at most
+    ``share`` of the axis' acceleration limit (``v |dr_i| <= share A_i Ts``) and, for the S-curve,
+    of its jerk limit (``v |dr_i| <= share J_i Ts^2``). These axes move linearly along each segment
+    (no curvature term); the profile's zero path acceleration at junctions (S-curve) leaves them no
+    acceleration step.
 
     Parameters
     ----------
-    ratio : ndarray, shape (n, 3)
-        ``|dr_i| / L`` of each segment for the axes a, b, c: rotary motion per unit of path
-        [deg/mm, or deg/deg on a pure rotary move whose path is the rotary distance].
-    rapid : ndarray of bool, shape (n,)
-        True for rapid moves (the rotary rapid rates bound the speed instead of the velocities).
+    rate_jump : ndarray, shape (m, 6)
+        Change of ``dr_i / ds`` (motion per unit of path [deg/mm, mm/mm]) across each junction.
     limits : mapping of str to AxisLimits
-        Limits by axis name [deg/s, deg/s^2, deg/s^3]; every rotary axis that moves needs one.
+        Limits by axis name; an axis without limits adds no bound.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        [path unit/s]
+    """
+    acc = np.array([limits[a].acceleration if a in limits else np.inf for a in EXTRA_NAMES])
+    jerk = np.array([limits[a].jerk if a in limits else np.inf for a in EXTRA_NAMES])
+    return _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share,
+                             jerk_limited=jerk_limited)
+
+
+
+def extra_path_bounds(
+    ratio: np.ndarray, rapid: np.ndarray, limits: Mapping[str, AxisLimits]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bounds of path speed, acceleration and jerk that keep the axes beyond X, Y, Z within their limits.
+
+    Parameters
+    ----------
+    ratio : ndarray, shape (n, 6)
+        ``|dr_i| / L`` of each segment for the axes a, b, c, u, v, w (``EXTRA_NAMES``): motion
+        per unit of path [deg/mm, mm/mm; per deg or mm of a move whose path is its own distance,
+        X, Y, Z still].
+    rapid : ndarray of bool, shape (n,)
+        True for rapid moves (the rapid rates bound the speed instead of the velocities).
+    limits : mapping of str to AxisLimits
+        Limits by axis name [deg/s, deg/s^2, deg/s^3 on a, b, c; mm/s ... on u, v, w]; every
+        axis that moves needs one.
 
     Returns
     -------
     v_max, a_max, j_max : ndarray, shape (n,)
-        Path bounds [path unit/s, /s^2, /s^3]; ``inf`` where no rotary axis moves.
+        Path bounds [path unit/s, /s^2, /s^3]; ``inf`` where none of these axes moves.
 
     Raises
     ------
     InputError
-        A moving rotary axis without limits.
+        A moving axis without limits.
     """
-    n = len(ratio)
-    vel = np.full((n, 3), np.inf)
-    acc = np.full(3, np.inf)
-    jerk = np.full(3, np.inf)
-    for i, a in enumerate(ROTARY_NAMES):
+    n, k = ratio.shape
+    vel = np.full((n, k), np.inf)
+    acc = np.full(k, np.inf)
+    jerk = np.full(k, np.inf)
+    for i, a in enumerate(EXTRA_NAMES):
         moves = bool(np.any(ratio[:, i] > 0))
         lim = limits.get(a)
         if lim is None:
             if moves:
-                raise InputError(f"no limits for rotary axis {a!r}, which the program moves",
-                                 expected=f"limits for axis {a!r} [deg/s, deg/s^2, deg/s^3]")
+                kind, unit = ("rotary axis", "deg") if a in ROTARY_NAMES else ("secondary linear axis", "mm")
+                raise InputError(f"no limits for {kind} {a!r}, which the program moves",
+                                 expected=f"limits for axis {a!r} [{unit}/s, {unit}/s^2, {unit}/s^3]")
             continue
         if not isinstance(lim, AxisLimits):
             raise InputError(f"limits[{a!r}] must be an AxisLimits, got {type(lim).__name__}")

@@ -7,12 +7,12 @@ import math
 
 from vcnc.core.errors import InputError
 
-__all__ = ["AxisLimits", "DEFAULT_LIMITS", "DEFAULT_ROTARY_LIMITS"]
+__all__ = ["AxisLimits", "DEFAULT_LIMITS", "DEFAULT_ROTARY_LIMITS", "DEFAULT_SECONDARY_LIMITS"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class AxisLimits:
-    """Limits of one axis: a linear axis in mm, a rotary axis (a, b, c) in deg.
+    """Limits of one axis: a linear axis (x, y, z, u, v, w) in mm, a rotary axis (a, b, c) in deg.
 
     Attributes
     ----------
@@ -61,4 +61,10 @@ DEFAULT_LIMITS: dict[str, AxisLimits] = {
 #: a compact fourth-axis rotary table. A machine file states its own (``[axes.a.limits]``, in deg).
 DEFAULT_ROTARY_LIMITS: dict[str, AxisLimits] = {
     axis: AxisLimits(velocity=180.0, acceleration=1800.0, jerk=36_000.0, rapid=360.0) for axis in ("a", "b", "c")
+}
+
+#: Limits of the secondary linear axes u, v, w (parallel to x, y, z) used when no machine is given:
+#: those of :data:`DEFAULT_LIMITS`. A machine file states its own (``[axes.u.limits]``, in mm).
+DEFAULT_SECONDARY_LIMITS: dict[str, AxisLimits] = {
+    u: DEFAULT_LIMITS[x] for u, x in zip(("u", "v", "w"), ("x", "y", "z"))
 }

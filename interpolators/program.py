@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
+from vcnc.core.axes import EXTRA_NAMES
 
 __all__ = ["Block", "Program", "BLOCK_KINDS"]
 
@@ -33,8 +34,9 @@ class Block:
         Position before and after the block, ``(x, y, z)`` [mm].
     feed : float
         Programmed path feed [mm/s]; ``inf`` for rapids (the machine's rapid rate applies) and
-        ``0`` for dwells. On a pure rotary move (X, Y, Z still, see :attr:`rotary_length`) it is
-        the angular feed [deg/s] along the rotary distance.
+        ``0`` for dwells. On a move with X, Y, Z still (see :attr:`extra_length`) it is the feed
+        along the U V W distance [mm/s], or with U, V, W still too the angular feed [deg/s] along
+        the rotary distance.
     segment : Line or Arc or None
         Exact geometry of the motion (``None`` for a dwell).
     dwell : float
@@ -44,9 +46,10 @@ class Block:
         where the look-ahead may pass the block end at speed.
     tolerance : float or None
         Path tolerance of G64 ``P`` [mm]; ``None`` selects ``interpolators.DEFAULT_TOLERANCE``.
-    rotary_start, rotary_target : ndarray, shape (3,), or None
-        Rotary axis positions ``(a, b, c)`` [deg] before and after the block; ``None`` in a
-        program that moves no rotary axis. The rotary axes move in proportion to the path
+    extra_start, extra_target : ndarray, shape (6,), or None
+        Positions of the axes beyond X, Y, Z (``vcnc.core.axes.EXTRA_NAMES``: the rotary axes
+        ``a, b, c`` [deg], then the secondary linear axes ``u, v, w`` [mm]) before and after the
+        block; ``None`` in a program that moves none of them. They move in proportion to the path
         (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path).
     """
 
@@ -61,8 +64,8 @@ class Block:
     dwell: float = 0.0
     exact_stop: bool = True
     tolerance: float | None = None
-    rotary_start: np.ndarray | None = None
-    rotary_target: np.ndarray | None = None
+    extra_start: np.ndarray | None = None
+    extra_target: np.ndarray | None = None
 
     @property
     def length(self) -> float:
@@ -70,17 +73,21 @@ class Block:
         return 0.0 if self.segment is None else self.segment.length
 
     @property
-    def rotary_delta(self) -> np.ndarray:
-        """Rotary motion ``(da, db, dc)`` of the block [deg] (zeros without rotary axes)."""
-        if self.rotary_start is None or self.rotary_target is None:
-            return np.zeros(3)
-        return np.asarray(self.rotary_target, dtype=float) - np.asarray(self.rotary_start, dtype=float)
+    def extra_delta(self) -> np.ndarray:
+        """Motion ``(da, db, dc, du, dv, dw)`` of the axes beyond X, Y, Z [deg, mm] (zeros without them)."""
+        if self.extra_start is None or self.extra_target is None:
+            return np.zeros(len(EXTRA_NAMES))
+        return np.asarray(self.extra_target, dtype=float) - np.asarray(self.extra_start, dtype=float)
 
     @property
-    def rotary_length(self) -> float:
-        """Rotary distance ``sqrt(da^2 + db^2 + dc^2)`` [deg]: the path of a pure rotary move, whose
-        feed is in deg/min (RS274/NGC 3, Sec. 2.1.2.5, case C)."""
-        return float(np.linalg.norm(self.rotary_delta))
+    def extra_length(self) -> float:
+        """The path of a move with X, Y, Z still: the U V W distance ``sqrt(du^2 + dv^2 + dw^2)``
+        [mm] when U, V or W moves, else the rotary distance ``sqrt(da^2 + db^2 + dc^2)`` [deg]
+        (RS274/NGC 3, Sec. 2.1.2.5; LinuxCNC ``emccanon.cc`` ``getStraightVelocity``: the distance
+        of a move is along XYZ if they move, else along UVW, else along ABC)."""
+        d = self.extra_delta
+        secondary = float(np.linalg.norm(d[3:]))
+        return secondary if secondary > 0 else float(np.linalg.norm(d[:3]))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -98,7 +105,7 @@ class Program:
         ``"iso"`` or ``"heidenhain"``.
     axes : tuple of str
         Axes the program uses (written in an axis word or moved by an arc), canonical order
-        (``vcnc.core.axes.AXIS_NAMES``: x, y, z, then the rotary axes a, b, c).
+        (``vcnc.core.axes.AXIS_NAMES``: x, y, z, the rotary axes a, b, c, then u, v, w).
     name : str or None
         Program name (Heidenhain ``BEGIN PGM`` name or ISO ``O`` number), if given.
     notes : tuple of str
@@ -123,7 +130,7 @@ class Program:
 
     def path(self) -> Path:
         """The programmed geometry: one segment per motion block of non-zero length (the linear
-        axes x, y, z; rotary positions are in the blocks)."""
+        axes x, y, z; the other axes' positions are in the blocks)."""
         segs, idx = [], []
         for i, b in enumerate(self.blocks):
             if b.segment is not None and b.segment.length > 0:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from identification.kernels import fourier_series
+
 __all__ = ["fourier_basis", "fourier_eval"]
 
 
@@ -29,6 +31,8 @@ def fourier_basis(phase: np.ndarray, harmonics: int) -> np.ndarray:
 
 
 def fourier_eval(phase: np.ndarray, coef: np.ndarray) -> np.ndarray:
-    """sum_h A_h sin(h phase) + B_h cos(h phase) for coef of shape (H, 2)."""
-    coef = np.asarray(coef, float).reshape(-1, 2)
-    return fourier_basis(phase, coef.shape[0]) @ coef.ravel()
+    """sum_h A_h sin(h phase) + B_h cos(h phase) for coef of shape (H, 2) (the basis never stored:
+    :func:`identification.kernels.fourier_series`)."""
+    coef = np.ascontiguousarray(np.asarray(coef, float).reshape(-1, 2))
+    phase = np.asarray(phase, float)
+    return fourier_series(np.sin(phase).ravel(), np.cos(phase).ravel(), coef).reshape(phase.shape)

@@ -16,16 +16,20 @@ import numpy as np
 
 from identification.effects._base import Effect, Free
 from identification.effects._fourier import fourier_basis, fourier_eval
+from identification.kernels import fourier_series
 from vcnc.core.errors import InputError
 
 __all__ = ["TimePeriodic"]
 
 
 @functools.lru_cache(maxsize=8)
-def _sampled_basis(period: float, n: int, sample_time: float, harmonics: int) -> np.ndarray:
-    b = fourier_basis(2.0 * np.pi * np.arange(n) * sample_time / period, harmonics)
-    b.flags.writeable = False
-    return b
+def _sampled_phase(period: float, n: int, sample_time: float) -> tuple[np.ndarray, np.ndarray]:
+    """sin and cos of the phase 2 pi k T / P, k = 0..n-1 (cached: a refit's linear steps keep P)."""
+    ph = 2.0 * np.pi * np.arange(n) * sample_time / period
+    s1, c1 = np.sin(ph), np.cos(ph)
+    s1.flags.writeable = False
+    c1.flags.writeable = False
+    return s1, c1
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -111,14 +115,15 @@ class TimePeriodic(Effect):
         return self.mean + w
 
     def sampled_load(self, n: int, sample_time: float) -> np.ndarray:
-        """The load at t = k T, k = 0..n-1 (the basis is cached: refits change only coefficients)."""
-        b = _sampled_basis(float(self.period), int(n), float(sample_time), self.harmonics)
+        """The load at t = k T, k = 0..n-1."""
+        s1, c1 = _sampled_phase(float(self.period), int(n), float(sample_time))
+        w = fourier_series(s1, c1, np.array(self.coefficients, float).reshape(-1, 2))
         if self.window is None:
-            return self.mean + b @ np.asarray(self.coefficients, float).ravel()
+            return self.mean + w
         g0, g1 = self.envelope_weights(np.arange(n) * sample_time)
-        w = g0 * (b @ np.asarray(self.coefficients, float).ravel())
+        w = g0 * w
         if self.coefficients_end is not None:
-            w = w + g1 * (b @ np.asarray(self.coefficients_end, float).ravel())
+            w = w + g1 * fourier_series(s1, c1, np.array(self.coefficients_end, float).reshape(-1, 2))
         return self.mean + w
 
     def peak_to_peak(self) -> float:

@@ -36,6 +36,17 @@ PINNED = {
          "saturation": {"limit_mm_s2": 7567.871192930293, "plant_viscous_rate_1_s": 2.792754660168179}},
         (12.871952746911846, 0.20418537893181307),
     ),
+    # pinned after the exact two-mass step (commit bbc8578), which changed the plant
+    # itself: the damping went from 0.064 to 0.0547 (truth 0.05). The plant viscous rate is left out:
+    # it is weakly determined (starts one Gauss-Newton step apart gave 0.002 to 0.30 1/s with
+    # held-out errors within 3 %).
+    "resonance": (
+        None,
+        ["resonance"],
+        {"resonance": {"frequency_hz": 59.2594950575626, "damping": 0.05471873251009446,
+                       "table_fraction": 0.48565993052383694, "antiresonance_hz": 42.49943203875128}},
+        (4.276158923596426, 0.1899231981278713),
+    ),
     None: (None, [], {}, (0.38263512581688075, 0.38263512581688075)),
 }
 

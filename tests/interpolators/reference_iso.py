@@ -33,6 +33,13 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   cumulative in G91.
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
 - G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`.
+- The axes beyond X, Y, Z (g-code.adoc "G0", overview.adoc "Feed Rate", coordinates.adoc): A, B, C
+  [deg] and U, V, W [mm, inches under G20] go to their word's value plus the work and G92 offsets
+  of that axis (G91: plus the word; G53: the word), others stay. G92, G10 L2/L20 set those
+  offsets as for X, Y, Z (LinuxCNC ``interp_convert.cc`` ``convert_setup``: L20 makes the current
+  position, G92 included, the given value); the tool length and the G10 R rotation leave them
+  alone. G28/G30 take the named axes through the intermediate point to the reference (0 for
+  these axes), without words all of them.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -102,6 +109,8 @@ class Expected:
         along it (a helix trimmed at an inside corner ends a little short of its height).
     entry : bool
         The first move under G41/G42 (LinuxCNC's entry move, from the uncompensated point).
+    extra : ndarray (6,) or None
+        End of the axes a, b, c [deg], u, v, w [mm] in machine positions; checked exactly.
     """
 
     line: int
@@ -114,6 +123,7 @@ class Expected:
     plane: tuple[int, int] = (0, 1)
     element: tuple | None = None
     entry: bool = False
+    extra: np.ndarray | None = None
 
 
 # ----------------------------------------------------------------------------------------------
@@ -414,6 +424,9 @@ def _structure(lines: list[_Line]) -> dict:
 # The machine
 
 _CYCLES = (73, 81, 82, 83, 85, 89)
+#: The axes beyond X, Y, Z, in the order of :attr:`Expected.extra`; U, V, W scale with G20.
+_EXTRA = "abcuvw"
+
 _WCS = {540: "G54", 550: "G55", 560: "G56", 570: "G57", 580: "G58", 590: "G59", 591: "G59.1", 592: "G59.2",
         593: "G59.3"}
 
@@ -433,6 +446,9 @@ class _Machine:
         self.offsets = {code: np.array(context.offset(code), float) for code in _WCS.values()}
         self.rotation = dict.fromkeys(_WCS.values(), 0.0)
         self.g92 = np.zeros(3)
+        self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
+        self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
+        self.g92_extra = np.zeros(6)
         self.tool_length = 0.0
         self.selected = self.loaded = 0
         self.comp_radius: float | None = None
@@ -480,6 +496,22 @@ class _Machine:
             t[0], t[1] = r * math.cos(math.radians(ang)), r * math.sin(math.radians(ang))
         return t
 
+    def extra_words(self, words: dict) -> dict[int, float]:
+        """The A-W words of a block by axis index [deg, mm]."""
+        return {i: words[a][-1] * (1.0 if a in "abc" else self.scale) for i, a in enumerate(_EXTRA) if a in words}
+
+    def extra_end(self, words: dict, *, machine: bool = False) -> np.ndarray:
+        """Machine positions of a, b, c, u, v, w after a block with these words."""
+        end = self.extra.copy()
+        for i, v in self.extra_words(words).items():
+            if machine:
+                end[i] = v
+            elif self.incremental:
+                end[i] += v
+            else:
+                end[i] = v + self.extra_offsets[self.wcs][i] + self.g92_extra[i]
+        return end
+
     def emit(self, line: int, kind: str | None, end: np.ndarray, *, rows: str = "one",
              centre: np.ndarray | None = None, centre_tolerance: float = 0.0) -> None:
         plane = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[self.plane]
@@ -489,16 +521,20 @@ class _Machine:
             else:
                 element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane, self.pos.copy())
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
-                                     element=element, entry=self.comp_entry))
+                                     element=element, entry=self.comp_entry, extra=self.extra.copy()))
             self.comp_entry = False
         else:
             self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre, plane=plane,
-                                     centre_tolerance=centre_tolerance))
+                                     centre_tolerance=centre_tolerance, extra=self.extra.copy()))
         self.pos = end.copy()
 
-    def move(self, line: int, kind: str, prog: np.ndarray, *, optional: bool = False) -> None:
+    def move(self, line: int, kind: str, prog: np.ndarray, *, optional: bool = False, extra=None) -> None:
+        """A move to the program point ``prog`` (and the extra axes to ``extra``, machine positions)."""
         end = self.to_machine(prog)
-        rows = "optional" if optional and np.allclose(end, self.pos, atol=1e-12) else "one"
+        still = extra is None or np.allclose(extra, self.extra, atol=1e-12)
+        rows = "optional" if optional and still and np.allclose(end, self.pos, atol=1e-12) else "one"
+        if extra is not None:
+            self.extra = np.array(extra, float)
         self.emit(line, kind, end, rows=rows)
 
 
@@ -532,6 +568,9 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.tool_length = length
         elif code == 490:
             m.tool_length = 0.0
+        elif code == 431 and "z" in words and not any(a in words for a in "xyabcuvw"):
+            # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
+            m.tool_length = words.pop("z")[-1] * m.scale
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     for code in g:
@@ -551,11 +590,14 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code in (280, 300):
             home = m.ctx.home if code == 280 else m.ctx.reference2
             axes = [i for i, a in enumerate("xyz") if a in words]
-            if axes:
-                m.move(line, "rapid", m.target(words), optional=True)
+            extra = m.extra_words(words)
+            if axes or extra:
+                m.move(line, "rapid", m.target(words), optional=True, extra=m.extra_end(words))
             end = m.pos.copy()
-            for i in axes or range(3):
+            for i in axes if axes or extra else range(3):
                 end[i] = home[i]
+            for i in extra if axes or extra else range(6):
+                m.extra[i] = 0.0  # the reference position of a, b, c, u, v, w: 0
             m.emit(line, "rapid", end)
             return True
         if code in (281, 301, 531):
@@ -573,9 +615,12 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             for i, a in enumerate("xyz"):
                 if a in words:
                     m.g92[i] = prog_no_g92[i] - words[a][-1] * m.scale
+            for i, v in m.extra_words(words).items():
+                m.g92_extra[i] = m.extra[i] - m.extra_offsets[m.wcs][i] - v
             return True
         if code in (921, 922):
             m.g92 = np.zeros(3)
+            m.g92_extra = np.zeros(6)
         elif code == 923:
             raise ReferenceError("G92.3")
     return False
@@ -588,7 +633,10 @@ def _g10(m: _Machine, words: dict) -> None:
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
     code = m.wcs if p == 0 else list(_WCS.values())[p - 1]
-    here = m.to_program(m.pos) + m.g92  # current position in the active system, without G92
+    # the current position in the active system, G92 included: L20 makes it the given value (LinuxCNC
+    # interp_convert.cc convert_setup with interp_find.cc find_current_in_system, which takes the G92
+    # offset off when it is on)
+    here = m.to_program(m.pos)
     base = m.offsets[m.wcs] if kind == 20 else None
     for i, a in enumerate("xyz"):
         if a in words:
@@ -597,6 +645,8 @@ def _g10(m: _Machine, words: dict) -> None:
                 m.offsets[code][i] = v
             else:
                 m.offsets[code][i] = base[i] + here[i] - v
+    for i, v in m.extra_words(words).items():
+        m.extra_offsets[code][i] = v if kind == 2 else m.extra[i] - m.g92_extra[i] - v
     if "r" in words:
         m.rotation[code] = words["r"][-1]
 
@@ -619,6 +669,7 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         for i, a in enumerate("xyz"):
             if a in words:
                 end[i] = words[a][-1] * m.scale
+        m.extra = m.extra_end(words, machine=True)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
@@ -628,6 +679,7 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         _cycle(m, line, words)
         return
     end = m.to_machine(m.target(words))
+    m.extra = m.extra_end(words)
     if m.motion in (0, 10):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
     elif m.motion in (20, 30) and m.rotation[m.wcs] and m.plane != 17:
@@ -759,7 +811,7 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
     _modes(m, g, words)
-    axes = any(a in words for a in "xyz@^abc")  # a block with only A/B/C words moves (rotary axes; X Y Z stay)
+    axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
     if not used:
         _motion(m, ln.number, g, words, axes)

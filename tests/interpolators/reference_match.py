@@ -1,10 +1,11 @@
 """Align a reference's expected blocks with a reader's ``--blocks`` rows and compare the end points.
 
-The rows are ``vcnc.commands.interpolate.blocks_table`` rows: ``block, line, kind, x, y, z, ...``
-(end points in machine coordinates [mm]). The expected blocks are :class:`Expected`-like objects
-(``line``, ``kind``, ``end``, ``tolerance``, ``rows``) from ``reference_iso`` or
-``reference_heidenhain``. The comparison stops at the first disagreement (after it, the alignment
-means nothing) and says which rows were checked, and how.
+The rows are ``vcnc.commands.interpolate.blocks_table`` rows: ``block, line, kind, x, y, z, cx, cy,
+cz, feed`` (end points in machine coordinates [mm]), optionally followed by the six positions
+``a, b, c, u, v, w`` [deg, mm], which are then compared with an expected block's ``extra``. The
+expected blocks are :class:`Expected`-like objects (``line``, ``kind``, ``end``, ``tolerance``,
+``rows``) from ``reference_iso`` or ``reference_heidenhain``. The comparison stops at the first
+disagreement (after it, the alignment means nothing) and says which rows were checked, and how.
 """
 
 from __future__ import annotations
@@ -75,6 +76,14 @@ def _comp_ok(got: np.ndarray, e) -> bool:
     return abs(d - e.tolerance) <= COMP_TOLERANCE
 
 
+def _extra_ok(row: list, e) -> bool:
+    """The a, b, c, u, v, w ends (row columns 10-15), when both the row and the block have them."""
+    want = getattr(e, "extra", None)
+    if want is None or len(row) < 16:
+        return True
+    return _close(np.array(row[10:16], float), want, 0.0)
+
+
 def _centre_ok(row: list, e) -> bool:
     if e.centre is None:
         return True
@@ -83,9 +92,10 @@ def _centre_ok(row: list, e) -> bool:
 
 
 def _failure(why: str, rows: list[list], i: int, e, j: int, exact: int, within: int) -> Match:
-    got = rows[i][:6] if i < len(rows) else "no row"
+    got = rows[i][:6] + rows[i][10:] if i < len(rows) else "no row"
     return Match(rows=len(rows), exact=exact, within=within,
                  mismatch=f"{why}: expected #{j} line {e.line} {e.kind} {np.round(e.end, 6).tolist()}"
+                          f"{'' if getattr(e, 'extra', None) is None else ' ' + str(np.round(e.extra, 6).tolist())}"
                           f" (tol {e.tolerance:g}), reader row {got}")
 
 
@@ -110,13 +120,13 @@ def match_blocks(expected: list, rows: list[list]) -> Match:
         got = np.array(row[3:6], float)
         ok_kind = e.kind is None or row[2] == e.kind
         if e.rows == "optional":
-            if row[1] == e.line and ok_kind and _close(got, e.end, 0.0):
+            if row[1] == e.line and ok_kind and _close(got, e.end, 0.0) and _extra_ok(row, e):
                 i, exact = i + 1, exact + 1
             continue
         if e.rows == "last":
             k = _last_row(expected, j, rows, i)
             row, got = rows[k], np.array(rows[k][3:6], float)
-            ok = _comp_ok(got, e) if e.element is not None else _close(got, e.end, e.tolerance)
+            ok = (_comp_ok(got, e) if e.element is not None else _close(got, e.end, e.tolerance)) and _extra_ok(row, e)
             if row[1] != e.line or not ok:
                 return _failure("end point differs" if row[1] == e.line else "line differs", rows, k, e, j, exact,
                                 within)
@@ -126,6 +136,7 @@ def match_blocks(expected: list, rows: list[list]) -> Match:
             continue
         why = ("line differs" if row[1] != e.line else "kind differs" if not ok_kind
                else "end point differs" if not _close(got, e.end, e.tolerance)
+               else "end of the axes a, b, c, u, v, w differs" if not _extra_ok(row, e)
                else f"arc centre differs (reader {row[6:9]}, expected {np.round(e.centre, 6).tolist()})"
                if not _centre_ok(row, e) else None)
         if why:

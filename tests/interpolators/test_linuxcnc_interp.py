@@ -17,6 +17,7 @@ import pytest
 
 from interpolators import load_program, parse_program
 from interpolators.context import Dialect, MachineContext, read_tool_table
+from vcnc.core.axes import EXTRA_NAMES
 from vcnc.errors import GCodeError
 
 INCH = 25.4  # [mm/inch]
@@ -347,7 +348,7 @@ def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
         m = re.search(r"SUBROUTINE_PATH\s*=\s*(\S+)", (case_dir / args[args.index("-i") + 1]).read_text())
         path = tuple(m.group(1).split(":")) if m else ()
     programs = [case_dir / a for a in args if a.endswith(".ngc")] or sorted(case_dir.glob("*.ngc"))
-    return programs, MachineContext(tools=tools, rotary_axes=("a", "b", "c"),
+    return programs, MachineContext(tools=tools, extra_axes=EXTRA_NAMES,
                                     dialect=Dialect(subroutine_path=path)), sh
 
 

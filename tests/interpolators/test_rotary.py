@@ -25,7 +25,7 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.engine.machine_file import parse_machine_text
 from vcnc.errors import GCodeError, InputError
 
-CTX = MachineContext(rotary_axes=("a", "b", "c"))
+CTX = MachineContext(extra_axes=("a", "b", "c"))
 LIMITS = {**DEFAULT_LIMITS, **DEFAULT_ROTARY_LIMITS}
 CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().parents[3] / "shared" / "data"
                              / "gcode-corpus"))
@@ -62,7 +62,7 @@ def test_pure_rotary_move_feed_is_degrees_per_minute():
     prog = parse_program("G21 G90 G1 A90 F600\n", context=CTX)
     (b,) = prog.blocks
     assert prog.axes == ("a",) and b.feed == pytest.approx(10.0)  # 600 deg/min
-    assert b.rotary_length == 90 and np.all(b.target == 0)
+    assert b.extra_length == 90 and np.all(b.target == 0)
     sp = interpolate(prog)
     lim = DEFAULT_ROTARY_LIMITS["a"]
     # time = angle / feed plus the acceleration ramp, rounded up to whole samples
@@ -102,8 +102,8 @@ def test_rotary_limit_caps_the_xyz_feed():
 
 def test_incremental_rotary_words_and_rapids():
     prog = parse_program("G21 G91 G0 A30\nA30\nG1 B-45 F600\nG90 C10 F600\n", context=CTX)
-    assert [b.rotary_target.tolist() for b in prog.blocks] == [[30, 0, 0], [60, 0, 0], [60, -45, 0],
-                                                               [60, -45, 10]]
+    assert [b.extra_target[:3].tolist() for b in prog.blocks] == [[30, 0, 0], [60, 0, 0], [60, -45, 0],
+                                                                   [60, -45, 10]]
     sp = interpolate(prog)
     assert sp.axes == ("a", "b", "c") and np.allclose(sp.position[-1], [60, -45, 10])
     assert np.abs(sp.velocity[:, 0]).max() <= DEFAULT_ROTARY_LIMITS["a"].rapid_rate
@@ -134,11 +134,18 @@ def test_arc_with_a_rotary_word_turns_it_along_the_arc():
 
 def test_reference_return_machine_coordinates_and_offsets():
     prog = parse_program("G21 G90 G54 G0 X5 A45\nG91 G28 A0\nG90 G53 G0 B30\nG0 A10\nG28\n",
-                         context=MachineContext(rotary_axes=("a", "b"), work_offsets={"G54": (1, 2, 3)}))
-    ends = [b.rotary_target.tolist() for b in prog.blocks]
+                         context=MachineContext(extra_axes=("a", "b"), work_offsets={"G54": (1, 2, 3)}))
+    ends = [b.extra_target[:3].tolist() for b in prog.blocks]
     # G28 A0 incremental: through the current angle (intermediate point +0) to the reference 0
     assert ends == [[45, 0, 0], [45, 0, 0], [0, 0, 0], [0, 30, 0], [10, 30, 0], [0, 0, 0]]
     assert prog.blocks[0].target.tolist() == [6, 0, 0]  # the work offset applies to X Y Z only
+
+
+def test_rotary_g92_and_g10_offsets_as_linuxcnc():
+    """LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 and work offsets of A, B, C too."""
+    prog = parse_program("G21 G90 G0 A10\nG92 A0\nG0 A5\nG92.1\nG10 L2 P1 B-20\nG0 B0\nG91 B5\n", context=CTX)
+    assert [b.extra_target[:3].tolist() for b in prog.blocks] == [[10, 0, 0], [15, 0, 0], [15, -20, 0],
+                                                                   [15, -15, 0]]
 
 
 def test_limits_held_both_profiles_on_a_mixed_program():
@@ -148,21 +155,21 @@ def test_limits_held_both_profiles_on_a_mixed_program():
     for profile in ("trapezoid", "scurve"):
         sp = interpolate(prog, profile=profile)
         assert sp.axes == ("x", "y", "z", "a", "b")
-        ends = np.array([np.r_[b.target, b.rotary_target[:2]] for b in prog.blocks])
+        ends = np.array([np.r_[b.target, b.extra_target[:2]] for b in prog.blocks])
         assert np.allclose(sp.position[-1], ends[-1])
         _check_limits(sp, prog, jerk=profile == "scurve")
 
 
 def test_non_rotary_program_has_no_rotary_positions():
     prog = parse_program("G21 G90 G1 X10 F600\n", context=CTX)
-    assert prog.blocks[0].rotary_start is None and prog.axes == ("x",)
+    assert prog.blocks[0].extra_start is None and prog.axes == ("x",)
 
 
 def test_machine_without_the_axis_is_a_clear_error():
     with pytest.raises(GCodeError, match="this machine has no rotary axis B"):
         parse_program("G21 G0 X1 B10\n", context=DEFAULT_CONTEXT)
     with pytest.raises(GCodeError, match="no rotary axis C .*its axes: X, Y, Z, A"):
-        parse_program("G21 G0 C10\n", context=MachineContext(rotary_axes=("a",)))
+        parse_program("G21 G0 C10\n", context=MachineContext(extra_axes=("a",)))
     with pytest.raises(InputError, match="no limits for rotary axis 'a'"):
         interpolate(parse_program("G21 G1 A10 F100\n", context=CTX),
                     limits={"x": AxisLimits(velocity=1, acceleration=1)})
@@ -172,8 +179,8 @@ def test_machine_file_declares_its_rotary_axes(tmp_path, capsys):
     fadal = (Path(__file__).resolve().parents[2] / "vcnc" / "machines" / "fadal-pid.toml").read_text()
     rotary = re.sub(r"\[axes\.y", "[axes.a", fadal)
     spec = parse_machine_text(rotary, file="rotary.toml", default_name="rotary")
-    assert spec.context.rotary_axes == ("a",)
-    assert parse_machine_text(fadal, file="fadal.toml", default_name="fadal").context.rotary_axes == ()
+    assert spec.context.extra_axes == ("a",)
+    assert parse_machine_text(fadal, file="fadal.toml", default_name="fadal").context.extra_axes == ()
     prog = parse_program("G21 G1 X1 A10 F600\n", context=spec.context)
     assert prog.axes == ("x", "a")
     prog_file = tmp_path / "b.ngc"
@@ -211,18 +218,9 @@ def test_corpus_rotary_programs_run_within_limits(name):
     assert any(a in prog.axes for a in "abc")
     sp = interpolate(prog, sample_time=2e-3)
     last = prog.blocks[-1]
-    end = dict(zip(AXIS_NAMES, [*last.target, *last.rotary_target]))
+    end = dict(zip(AXIS_NAMES, [*last.target, *last.extra_target]))
     assert np.allclose(sp.position[-1], [end[a] for a in sp.axes])
     _check_limits(sp, prog)
-
-
-@pytest.mark.parametrize("name, letter", [("0010_cone.ngc", "W"), ("0105_foam.ngc", "U")])
-def test_corpus_secondary_linear_axes_are_a_clear_error(name, letter):
-    path = CORPUS / name
-    if not path.is_file():
-        pytest.skip(f"G-code corpus absent ({CORPUS}): set VCNC_GCODE_CORPUS to run the rotary corpus programs")
-    with pytest.raises(GCodeError, match=f"axis word '{letter}': secondary linear axes U V W"):
-        load_program(path, context=INTERPOLATION_CONTEXT)
 
 
 def test_inch_programs_scale_xyz_but_not_angles():
@@ -232,12 +230,10 @@ def test_inch_programs_scale_xyz_but_not_angles():
 
 
 @pytest.mark.parametrize("text, feature", [
-    ("G21 G92 A10\n", "G92 offset on rotary axis A"),
-    ("G21 G10 L2 P1 B5\n", "G10 offsets on rotary axis B"),
-    ("G21 G0 Z5\nG81 X1 Y1 Z-1 R1 A10 F100\n", "G81 drilling cycle with rotary axis word A"),
+    ("G21 G0 Z5\nG81 X1 Y1 Z-1 R1 A10 F100\n", "G81 drilling cycle with axis word A"),
     ("G21 G4 P1 A10\n", "word A not allowed in a dwell block"),
-    ("G21 G41.1 D2 G1 X10 F100\nX20 A30\n", "rotary axis word A under cutter compensation"),
-    ("G21 G5.1 X2 I1 J1 A10 F100\n", "G5 spline with rotary axis word A"),
+    ("G21 G41.1 D2 G1 X10 F100\nX20 A30\n", "axis word A under cutter compensation"),
+    ("G21 G5.1 X2 I1 J1 A10 F100\n", "G5 spline with axis word A"),
 ])
 def test_unsupported_rotary_uses_name_the_feature(text, feature):
     with pytest.raises(GCodeError, match=feature):

@@ -22,13 +22,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", metavar="PNG", help="also draw the path and speed/acceleration over time")
     parser.add_argument("--machine", metavar="NAME|FILE",
                         help="take axis limits, Ts and the program context (work offsets, tool table, home, "
-                             "dialect, rotary axes) from a machine (default: interpolators.DEFAULT_LIMITS and "
-                             "DEFAULT_ROTARY_LIMITS, no offsets, rotary axes A B C)")
+                             "dialect, axes A B C U V W) from a machine (default: interpolators.DEFAULT_LIMITS, "
+                             "DEFAULT_ROTARY_LIMITS and DEFAULT_SECONDARY_LIMITS, no offsets, axes A B C U V W)")
     add_context_arguments(parser)
     parser.add_argument("--blocks", metavar="CSV",
                         help="also write the interpreted motion blocks: block, line, kind, x, y, z (machine "
-                             "coordinates, mm), a, b, c (deg, the rotary axes the program uses), cx, cy, cz "
-                             "(arc centre), feed (mm/min; deg/min on a pure rotary move)")
+                             "coordinates, mm), a, b, c (deg), u, v, w (mm) for those the program uses, cx, cy, "
+                             "cz (arc centre), feed (mm/min; deg/min on a pure rotary move)")
 
 
 def add_context_arguments(parser: argparse.ArgumentParser) -> None:
@@ -42,7 +42,7 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
 
 def program_context(args: argparse.Namespace, machine=None):
     """The MachineContext for reading a program: the machine's (without one:
-    ``interpolators.context.INTERPOLATION_CONTEXT``, rotary axes A B C), with --dialect/--tool-table
+    ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect/--tool-table
     applied."""
     import dataclasses
 
@@ -62,15 +62,16 @@ def program_context(args: argparse.Namespace, machine=None):
 def blocks_table(program) -> tuple[list[str], list[list]]:
     """Header and rows of ``--blocks``: what LinuxCNC's canonical calls carry, one row per block.
 
-    Columns ``block, line, kind, x, y, z``, then ``a, b, c`` [deg] for the rotary axes the program
-    uses (``program.axes``), then ``cx, cy, cz, feed`` [mm/min; deg/min on a pure rotary move]."""
+    Columns ``block, line, kind, x, y, z``, then in LinuxCNC's axis order ``a, b, c`` [deg] and
+    ``u, v, w`` [mm] for those the program uses (``program.axes``), then ``cx, cy, cz, feed``
+    [mm/min; deg/min on a pure rotary move]."""
     import numpy as np
 
     from toolpaths.geometry import Arc
-    from vcnc.core.axes import ROTARY_NAMES
+    from vcnc.core.axes import EXTRA_NAMES
 
-    rotary = [i for i, a in enumerate(ROTARY_NAMES) if a in program.axes]
-    header = ["block", "line", "kind", "x", "y", "z", *(ROTARY_NAMES[i] for i in rotary), "cx", "cy", "cz", "feed"]
+    extra = [i for i, a in enumerate(EXTRA_NAMES) if a in program.axes]
+    header = ["block", "line", "kind", "x", "y", "z", *(EXTRA_NAMES[i] for i in extra), "cx", "cy", "cz", "feed"]
     rows = []
     for i, b in enumerate(program.blocks):
         if b.kind == "dwell":
@@ -81,7 +82,7 @@ def blocks_table(program) -> tuple[list[str], list[list]]:
             kind = "rapid" if b.kind == "rapid" else "feed"
         centre = list(b.segment.center) if isinstance(b.segment, Arc) else [np.nan] * 3
         feed = b.feed * 60.0 if np.isfinite(b.feed) else np.nan
-        angles = [float(b.rotary_target[k]) if b.rotary_target is not None else 0.0 for k in rotary]
+        angles = [float(b.extra_target[k]) if b.extra_target is not None else 0.0 for k in extra]
         rows.append([i, b.line, kind, *map(float, b.target), *angles, *map(float, centre), feed])
     return header, rows
 

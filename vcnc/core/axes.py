@@ -3,16 +3,25 @@ and the parameters of the reduced closed-loop axis model, Eq. (3.3) of the thesi
 
 from __future__ import annotations
 
-__all__ = ["AXIS_NAMES", "ROTARY_AXES", "ROTARY_NAMES", "axis_unit", "PARAMETER_NAMES", "PARAMETER_UNITS"]
+__all__ = ["AXIS_NAMES", "ROTARY_AXES", "ROTARY_NAMES", "SECONDARY_NAMES", "EXTRA_NAMES", "axis_unit",
+           "PARAMETER_NAMES", "PARAMETER_UNITS"]
 
-#: Axis names in their canonical order (ARCHITECTURE.md, capture file).
-AXIS_NAMES: tuple[str, ...] = ("x", "y", "z", "a", "b", "c")
+#: Axis names in their canonical order (ARCHITECTURE.md, capture file): LinuxCNC's order of the nine
+#: axes, X Y Z A B C U V W (LinuxCNC G-code overview, "Numbered Parameters" 5221-5229).
+AXIS_NAMES: tuple[str, ...] = ("x", "y", "z", "a", "b", "c", "u", "v", "w")
 
 #: Rotary axes, positioned in degrees (ISO 841: A, B, C turn about X, Y, Z).
 ROTARY_AXES: frozenset[str] = frozenset({"a", "b", "c"})
 
 #: Rotary axes in their canonical order (the columns of rotary position arrays).
 ROTARY_NAMES: tuple[str, str, str] = ("a", "b", "c")
+
+#: Secondary linear axes, parallel to X, Y, Z, positioned in mm (LinuxCNC G-code overview, "U V W").
+SECONDARY_NAMES: tuple[str, str, str] = ("u", "v", "w")
+
+#: The axes beyond X, Y, Z in their canonical order (the columns of ``Block.extra_start`` and
+#: ``extra_target``): the rotary axes [deg], then the secondary linear axes [mm].
+EXTRA_NAMES: tuple[str, ...] = ROTARY_NAMES + SECONDARY_NAMES
 
 
 def axis_unit(axis: str, *, small: bool = False) -> str:

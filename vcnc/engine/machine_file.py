@@ -46,7 +46,7 @@ import controllers
 import drives
 from interpolators.context import DIALECTS, WORK_OFFSETS, MachineContext, Tool, read_tool_table
 from interpolators.limits import AxisLimits
-from vcnc.core.axes import ROTARY_NAMES
+from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError, MachineError
 from vcnc.core.setpoints import AXIS_NAMES
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
@@ -274,8 +274,8 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
             key = getattr(exc, "key", None)
             raise where.error(exc.message, path + ((key,) if key else ())) from None
     context = _build_context(data.get("program", {}), where, file)
-    # the program may move the rotary axes the machine has (in degrees), and no others
-    context = dataclasses.replace(context, rotary_axes=tuple(a for a in ROTARY_NAMES if a in axes))
+    # the program may move the axes beyond X, Y, Z the machine has (a, b, c in degrees, u, v, w in mm), no others
+    context = dataclasses.replace(context, extra_axes=tuple(a for a in EXTRA_NAMES if a in axes))
     return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits,
                        context=context)
 
