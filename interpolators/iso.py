@@ -536,9 +536,11 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
 
 
 def _io_words(mcodes, seen, where: Where) -> dict:
-    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q); E elsewhere is an error."""
+    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P); E elsewhere is an error."""
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
+    if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation
+        seen = {k: v for k, v in seen.items() if k not in "RQP"}
     if any(m == 61 for m, _ in mcodes):  # M61 Q<tool>: the Q is the tool number, read by _m_codes
         seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:

@@ -14,8 +14,9 @@ LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
 
 Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M98 P1000 L3``
 runs the program ``O1000`` three times, from the same file or else from the program file of its
-folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, and in the
-main program ends it (the control would rewind; vcnc runs the program once).
+folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, ``M99 P<n>``
+to the block ``N<n>`` of the calling program, and in the main program ``M99`` ends it (the control
+would rewind; vcnc runs the program once).
 
 Fanuc/Haas custom macro B simple call ``G65 P9001 L2 A1. C2.5 V10100.`` (Fanuc Series 16i/18i
 operator's manual B-63684EN, 16 "Custom macro", "Simple call (G65)"; Haas mill operator's manual,
@@ -386,7 +387,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             else:
                 pc += 1
             continue
-        rest = [w for w in words if w is not m99]
+        back_to = next((w for w in words if w.letter == "P"), None) if frames else None
+        rest = [w for w in words if w is not m99 and w is not back_to]
         if not frames:
             yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
             return
@@ -402,7 +404,19 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             frames.pop()
             if frame.kind == "g65":
                 params.pop()
-            pc = frame.return_pc
+            pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
+
+
+def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
+    """``M99 P<n>`` in a subprogram: return to the block ``N<n>`` of the calling program instead of
+    the block after the call (Haas mill operator's manual, "M99 Subprogram Return or Loop": "M99 P
+    ... jumps to the N number in the calling program"), found as a macro B GOTO finds it."""
+    n = round(p.value)
+    target = prog.macro.find(n, frame.return_pc - 1) if p.value == n else None
+    if target is None:
+        where.fail(f"M99 P{p.value:g}: no block N{p.value:g} in the calling program", column=p.column, text=p.text,
+                   expected="M99 P<n> with a block N<n> in the program that called this one")
+    return target
 
 
 def _called_program(prog: _Program, words: list[Word], call: Word, where: Where, what: str) -> int:

@@ -201,15 +201,20 @@ class MacroFlow:
             where.fail("text after the GOTO target", column=end + 1, text=code[end:].strip(),
                        expected="GOTO n alone (n a number, #parameter or [expression])")
         n = math.floor(value + 0.5)
-        lines = self.numbers.get(self.span_of[pc], {}).get(n, [])
-        forward = [j for j in lines if j > pc]
-        target = forward[0] if forward else (lines[0] if lines else None)
+        target = self.find(n, pc)
         if target is None:
             where.fail(f"GOTO {n}: no block N{n} in this program", column=pos + 1, text=code.strip(),
                        expected=f"a block numbered N{n} in the same program")
         if target <= pc:
             self._count(pc, where, f"GOTO {n}")
         return target
+
+    def find(self, n: int, pc: int) -> int | None:
+        """The line numbered ``Nn`` in the program of line ``pc``: the first after it, else the first
+        from the program's start (Fanuc's sequence-number search); ``None`` when there is none."""
+        lines = self.numbers.get(self.span_of[pc], {}).get(n, [])
+        forward = [j for j in lines if j > pc]
+        return forward[0] if forward else (lines[0] if lines else None)
 
     def _count(self, pc: int, where: Where, what: str) -> None:
         self.passes[pc] = self.passes.get(pc, 0) + 1

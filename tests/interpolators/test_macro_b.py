@@ -249,3 +249,11 @@ def test_fanuc_modal_information_alarm_and_system_variables():
     with pytest.raises(GCodeError, match="#2001: this Fanuc system variable"):
         parse_program("G21 G0 X#2001\n", context=FANUC)
     assert _ends("G21 G0 X#2001\n", MachineContext()) == [[0.0, 0.0, 0.0]]
+
+
+def test_m99_p_returns_to_a_block_of_the_calling_program():
+    """Haas "M99 Subprogram Return or Loop": M99 P30 returns to N30 of the caller, skipping N20."""
+    text = "G21 F100\nM98 P100\nN20 G1 X5\nN30 G1 Y7\nM30\nO100\nG1 X1\nM99 P30\n"
+    assert _ends(text) == [[1, 0, 0], [1, 7, 0]]
+    with pytest.raises(GCodeError, match="M99 P40: no block N40 in the calling program"):
+        parse_program("G21 F100\nM98 P100\nM30\nO100\nG1 X1\nM99 P40\n", context=FANUC)
