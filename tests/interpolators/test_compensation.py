@@ -330,3 +330,16 @@ def test_negative_tool_radius_swaps_the_side_as_linuxcnc():
     table = MachineContext(tools={4: Tool(number=4, radius=-1.0)})
     from_table = parse_program(text.format("T4 M6 G41 D4"), context=table)
     assert [b.target.tolist() for b in from_table.blocks] == [b.target.tolist() for b in right.blocks]
+
+
+def test_reversal_from_an_arc_onto_a_line_whose_offsets_cross_is_an_inside_corner():
+    """LinuxCNC tests/interp/inside-corners: a G3 half circle ending downwards, then a line straight up
+    (a reversal). With G42 the arc's offset (radius 1 + 0.5) and the line's (X -1.5) cross at
+    (-1.5, sqrt(2)): both end there, as at any inside corner, with no corner arc."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext
+
+    prog = parse_program("G21 G90 F100\nG0 X-5 Y0\nG42.1 D1 G1 X0 Y0\nG3 X-2 Y0 I-1 J0\nG1 Y3\nG40 G1 X-5 Y5\n",
+                         context=MachineContext())
+    ends = [(b.kind, b.line, np.round(b.target, 9).tolist()) for b in prog.blocks]
+    assert ends[3:5] == [("arc", 4, [-1.5, round(math.sqrt(2.0), 9), 0.0]), ("line", 5, [-1.5, 3.0, 0.0])]
