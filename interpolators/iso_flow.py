@@ -30,6 +30,9 @@ number without a decimal point is an error: the control scales it by its least i
 configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``IF [..] THEN``,
 ``GOTO n`` and ``WHILE [..] DO m`` / ``END m``, runs as :mod:`interpolators.iso_macro` describes.
 
+A comment ``(ABORT, text)`` ends the run where it is reached with an error carrying the text, its
+parameters substituted (LinuxCNC G-code overview, "Abort Messages", "Comment Parameters").
+
 A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
 
 :func:`run` yields the lines to execute in order, with their words read (parameters and
@@ -45,7 +48,7 @@ from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
-from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
+from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line, substitute
 from interpolators.iso_words import Word, read_words, strip_comments
 
 __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
@@ -65,6 +68,8 @@ _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
 #: G65 argument letters (argument specification I) -> local variable number.
 _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
+#: LinuxCNC's abort message comment ``(ABORT, text)``.
+_ABORT = re.compile(r"\(\s*abort\s*,([^)]*)\)", re.I)
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
 
@@ -112,6 +117,7 @@ class _Program:
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
         self.macro = MacroFlow(max_passes=max_loop_passes)
+        self.aborts: dict[int, str] = {}  # line -> text of its (ABORT, text) comment
         self.span = 0
         self._index(text, source)
         self.main_end = len(self.code)
@@ -126,6 +132,9 @@ class _Program:
             self.sources.append(source)
             where = self.where(i)
             code = strip_comments(raw, where)
+            abort = _ABORT.search(raw)
+            if abort:
+                self.aborts[i] = abort.group(1).strip()
             s = code.strip()
             if _FANUC_PROGRAM.match(code) or _NAMED_PROGRAM.match(code):
                 self.span += 1
@@ -359,6 +368,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if pc in prog.macro.statements:
             pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
+        if pc in prog.aborts:  # LinuxCNC "Abort Messages": (ABORT, text) ends the run with the message
+            prog.fail(pc, f"(ABORT) the program aborts here: {substitute(prog.aborts[pc], params)}",
+                      "a program that does not reach its (ABORT, ...) comment")
         code = prog.code[pc]
         if code is None:
             pc += 1

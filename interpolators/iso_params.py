@@ -59,7 +59,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_words import Word, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "substitute"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
@@ -442,6 +442,24 @@ def _apply(name: str, x: float) -> float:
 def evaluate_at(code: str, pos: int, where: Where, params: Parameters) -> tuple[float, int]:
     """The real value (usually a ``[expression]``) starting at ``pos``; returns (value, end)."""
     return _Reader(code, where, params).real(pos)
+
+
+def substitute(text: str, params: Parameters) -> str:
+    """A message comment's text with its ``#n`` and ``#<name>`` replaced by their values as LinuxCNC
+    prints them (``%f``, "Comment Parameters"); a parameter without a value stays as written."""
+    where = Where(None, 0, text)
+
+    def value(m: re.Match) -> str:
+        try:
+            if m.group(1) is not None:
+                v = params.get_named(m.group(1), where, 1, m.group(0))
+            else:
+                v = params.get_numbered(int(m.group(2)), where, 1, m.group(0))
+        except ValueError:  # GCodeError: unset, out of range, INI values
+            return m.group(0)
+        return m.group(0) if v is None else f"{v:f}"
+
+    return re.sub(r"#<([^>]*)>|#(\d+)", value, text)
 
 
 def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) -> tuple[bool, int]:

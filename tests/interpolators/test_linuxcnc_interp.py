@@ -322,7 +322,7 @@ INTERP_ACCEPTED = ("do-while-break", "fractional-linenumbers", "g52/g52-g92-inte
                    "subs-follow-main")
 #: Cases that still differ, and why (not run: documentation for the next step).
 INTERP_DIFFERENT = {
-    "abort-hot-comment": "(abort, ...) comments end the program with an error in LinuxCNC; vcnc reads no comment",
+    "abort-hot-comment": "the (abort, ...) message prints #<_ini[a]value> as written (vcnc reads no INI file)",
     "crazy-paths": "cutter compensation: a concave arc corner LinuxCNC passes is a gouge error in vcnc",
     "inside-corners": "cutter compensation: the first 105 moves agree; an arc-arc inside corner (line 16/17) is 5 um "
         "from LinuxCNC's (0.0002 in: its intersection of the two offset arcs)",

@@ -209,3 +209,15 @@ def test_subroutine_path_and_linuxcnc_sub_file_rules(tmp_path):
     (subs / "caller.ngc").write_text("o<caller> sub\no200 call\no<caller> endsub\no200 sub\no200 endsub\nM2\n")
     with pytest.raises(GCodeError, match="o200 is defined in the subroutine file caller.ngc"):
         load_program(tmp_path / "main.ngc", context=ctx)
+
+
+def test_abort_comment_ends_the_run_with_its_message():
+    """LinuxCNC "Abort Messages" and tests/interp/abort-hot-comment: (ABORT, ...) inside a branch ends the
+    run when it is reached, its parameters printed as %f; an unreached one changes nothing."""
+    text = ("#42 = 0\n#<named> = 4711\no100 while [#42 lt 100]\no200 if [#42 eq 20]\n"
+            "(abort, param42=#42 named=#<named>)\no200 endif\n#42 = [#42 + 1]\no100 endwhile\nM2\n")
+    with pytest.raises(GCodeError, match=r"\(ABORT\) the program aborts here: param42=20.000000 named=4711.000000") \
+            as info:
+        _words(text)
+    assert info.value.line == 5
+    assert _words("o1 if [0]\n(ABORT, never)\no1 endif\nG0 X1\n") == [(4, [("G", 0.0), ("X", 1.0)])]
