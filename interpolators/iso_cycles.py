@@ -117,22 +117,30 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
     axes = CYCLE_AXES[plane]
-    if axes != (0, 1, 2):
-        if "@" in words or "^" in words:
-            raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
-                             letter="@" if "@" in words else "^", expected="G17 for polar words")
-        letters = {"XYZ"[j]: "XYZ"[a] for j, a in enumerate(axes)}  # permuted letter -> the word's letter
-        permuted = {k: v for k, v in words.items() if k not in "XYZ"}
-        permuted.update({j: words[a] for j, a in letters.items() if a in words})
-        try:
-            moves = cycle_moves(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)],
-                                scale=scale, incremental=incremental, retract_r=retract_r, feed=feed,
-                                dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)
-        except CycleError as exc:
-            exc.letter = letters.get(exc.letter, exc.letter)
-            raise
-        back = np.argsort(axes)
-        return [dataclasses.replace(m, target=m.target[back]) for m in moves]
+    if axes == (0, 1, 2):
+        return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
+                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)
+    if "@" in words or "^" in words:
+        raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
+                         letter="@" if "@" in words else "^", expected="G17 for polar words")
+    letters = {"XYZ"[j]: "XYZ"[a] for j, a in enumerate(axes)}  # permuted letter -> the word's letter
+    permuted = {k: v for k, v in words.items() if k not in "XYZ"}
+    permuted.update({j: words[a] for j, a in letters.items() if a in words})
+    try:
+        moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
+                          incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
+                          tap_out_to_r=tap_out_to_r)
+    except CycleError as exc:
+        exc.letter = letters.get(exc.letter, exc.letter)
+        raise
+    back = np.argsort(axes)
+    return [dataclasses.replace(m, target=m.target[back]) for m in moves]
+
+
+def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
+              scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
+              tap_out_to_r: bool) -> list[HoleMove]:
+    """:func:`cycle_moves` in the XY plane (drilling along Z)."""
     repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
     z0 = float(pos[2])
     if cycle.initial is None:
