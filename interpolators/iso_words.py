@@ -63,11 +63,12 @@ def strip_comments(raw: str, where: Where) -> str:
     return "".join(out)
 
 
-def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float, int]] | None = None,
+def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:
     """The words of a comment-free line, left to right.
 
-    ``value(pos, letter)`` reads a word's value after its letter (default: a plain decimal number);
+    ``value(pos, letter)`` reads a word's value after its letter (default: a plain decimal number;
+    ``None``, a Fanuc vacant variable, leaves the word out);
     ``assignment(pos)`` handles a ``#`` where a word would start and returns where it ends (default:
     none allowed). :mod:`interpolators.iso_params` passes both to read parameters and expressions.
     """
@@ -100,6 +101,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             v, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)
         else:
             v, end = value(i + 1, up)
-        words.append(Word(up, v, i + 1, code[i:end].strip()))
+        if v is not None:
+            words.append(Word(up, v, i + 1, code[i:end].strip()))
         i = end
     return words
