@@ -13,6 +13,7 @@ from interpolators.dense import MergedRun, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
     AxisLimitArrays,
+    curvature_step_speed_limit,
     curve_limits,
     curved_speed_bound,
     extra_junction_speed_limit,
@@ -447,8 +448,11 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         # worth passing at speed only if the bound is a fair share of the neighbours' speeds
         motion_idx = np.flatnonzero(packed.kind != HOLD)
         v_full = np.zeros(n_seg)
+        j_full = np.zeros(n_seg)
         if len(motion_idx):
-            v_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)[0]
+            v_full[motion_idx], _, j_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)
+        if jerk_limited:
+            jl = _curvature_steps(g, inner, t_out, k_in - k_out, v_full, j_full, jl, lim, Ts)
         # continuous junctions (G2 blends, rounding-level steps) need no reserve
         jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
                                        jerk_limited=jerk_limited)
@@ -477,6 +481,50 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
     in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
     return _Chains(of_segment=seg_chain_a, count=n_chains, dwell=dwell_of_chain, length=chain_len,
                    reserved_segment=in_multi, inner=inner, junction_limit=jl)
+
+
+def _curvature_steps(g: _Geom, inner: np.ndarray, tangent: np.ndarray, curvature_jump: np.ndarray,
+                     v_full: np.ndarray, j_full: np.ndarray, jl: np.ndarray, lim: AxisLimitArrays, Ts: float
+                     ) -> np.ndarray:
+    """2a. S-curve: the bound ``jl`` of tangent-continuous junctions with a curvature step (line/arc,
+    arc/arc of other radius, line/merged curve) raised to :func:`interpolators.kinematics.curvature_step_speed_limit`
+    (each axis' own jerk budget instead of the JUNCTION_SHARE reserve) where it is larger. It applies
+    between lines, arcs without helix and merged curve pieces whose tangents meet within
+    NEGLIGIBLE_SHARE and which are longer than the finite-difference window on both sides (one step
+    per window); ``j_full`` (the path jerk bounds with the whole limits) bounds the profiles' jerk."""
+    packed = g.packed
+    a, b = inner, inner + 1
+    t_in = _evaluate(g, b, np.zeros(len(b)), np.ones(len(b)), np.zeros(len(b)))[1]
+    tangent_ok = junction_speed_limit(t_in - tangent, np.zeros_like(tangent), lim, sample_time=Ts,
+                                      share=NEGLIGIBLE_SHARE, jerk_limited=True) >= np.maximum(v_full[a], v_full[b])
+    # where the JUNCTION_SHARE rule binds (a curvature step below rounding, e.g. between the pieces of one
+    # merged curve, does not)
+    stepped = tangent_ok & (np.abs(curvature_jump).max(axis=1) > 0) & (jl < np.maximum(v_full[a], v_full[b]))
+    kappa = np.zeros(len(g.segments))
+    dkappa = np.zeros(len(g.segments))
+    simple = np.ones(len(g.segments), dtype=bool)
+    for i in np.unique(np.concatenate([a[stepped], b[stepped]])):
+        seg = g.segments[i]
+        if i in g.runs:
+            k, dk, _ = seg.bounds()
+            kappa[i], dkappa[i] = k * CURVE_BOUND_MARGIN, dk * CURVE_BOUND_MARGIN
+        elif isinstance(seg, Arc):
+            kappa[i] = 1.0 / packed.radius[i]
+            simple[i] = packed.helix[i] == 0.0
+        else:
+            simple[i] = isinstance(seg, Line)
+    cand = np.flatnonzero(stepped & simple[a] & simple[b])
+    if not len(cand):
+        return jl
+    ia, ib = a[cand], b[cand]
+    jp = np.maximum(j_full[ia], j_full[ib])
+    v = curvature_step_speed_limit(tangent[cand], curvature_jump[cand], np.maximum(kappa[ia], kappa[ib]),
+                                   np.maximum(dkappa[ia], dkappa[ib]), jp, lim, sample_time=Ts)
+    window = 2.0 * 3.0 * (v + 4.5 * jp * Ts * Ts) * Ts  # both finite-difference windows inside the segments
+    fits = window < np.minimum(packed.length[ia], packed.length[ib])
+    out = jl.copy()
+    out[cand] = np.where(fits, np.maximum(jl[cand], v), jl[cand])
+    return out
 
 
 def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.ndarray, v_full: np.ndarray,

@@ -50,6 +50,7 @@ __all__ = [
     "path_limits",
     "extra_path_bounds",
     "junction_speed_limit",
+    "curvature_step_speed_limit",
     "extra_junction_speed_limit",
     "curved_speed_bound",
     "curve_limits",
@@ -320,6 +321,86 @@ def junction_speed_limit(
     if jerk_limited:
         v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, np.abs(curvature_jump))))
     return v
+
+
+def curvature_step_speed_limit(
+    tangent: np.ndarray,
+    curvature_jump: np.ndarray,
+    kappa: np.ndarray,
+    dkappa: np.ndarray,
+    path_jerk: np.ndarray,
+    limits: AxisLimitArrays,
+    *,
+    sample_time: float,
+) -> np.ndarray:
+    """Largest speed at tangent-continuous junctions with a curvature jump, jerk limited (S-curve).
+
+    At speed ``v`` the centripetal acceleration steps by ``v^2 dk`` at the junction: an axis
+    acceleration step ``v^2 |dk_i|``, which the samples see as a jerk of at most ``v^2 |dk_i| / Ts``
+    in the sample that holds the junction (the finite third difference of an acceleration step is
+    at most 0.75 of it). The rule of :func:`junction_speed_limit` (a step passed within one sample)
+    with each axis' own budget instead of a fixed share: the step may take what the axis' jerk limit
+    leaves beside the profile's smooth jerk in the samples around the junction,
+    ``v^2 |dk_i| <= (J_i - s_i(v)) Ts`` on each axis with a step (the others keep the segments'
+    bounds). With the path acceleration 0 at the junction (S-curve junctions) and ``|j| <= j_path``
+    on both sides, within the window ``d = 3 v_w Ts`` of the finite differences (speed
+    ``v_w = v + j_path (3 Ts)^2 / 2``, path acceleration ``a_w = 3 j_path Ts``) the axis jerk
+    ``t_i (j - k^2 v^3) + 3 k_i v a + (dk/ds)_perp,i v^3`` is at most
+    ``s_i = (|t_i| + k d) (j_path + k^2 v_w^3) + 3 k v_w a_w + k' v_w^3`` (``|dt/ds| = k``).
+    Where the tangent runs along an axis the step falls on the others, which then take nearly
+    their whole jerk limit. This is the control's rule for tangent, not curvature-continuous block
+    transitions: Beckhoff TwinCAT CNC, axis parameter P-AXIS-00154 ("at the block transition from
+    linear to circular block or vice versa, a jump in acceleration occurs, even if there is a
+    tangential transition ... the velocity is reduced to such an extent that the permissible jerk
+    at the block transition is maintained", per axis; P-AXIS-00340 the jerk at tangent continuous
+    transitions), and per axis as LinuxCNC's tangent kinks (``src/emc/tp/tp.c``
+    ``tpSetupTangent``: each axis' acceleration for the direction change within one
+    ``cycleTime``, ``findAccelScale``, sets ``kink_vel``).
+
+    Parameters
+    ----------
+    tangent : ndarray, shape (m, 3)
+        Unit tangent at each junction [-].
+    curvature_jump : ndarray, shape (m, 3)
+        Curvature-vector change across each junction [1/mm].
+    kappa, dkappa : ndarray, shape (m,)
+        Largest curvature [1/mm] and ``|dk/ds|`` normal to the tangent [1/mm^2] of the two segments.
+    path_jerk : ndarray, shape (m,)
+        Largest path jerk of the two segments' profiles [mm/s^3].
+    limits : AxisLimitArrays
+    sample_time : float
+        Ts [s].
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        [mm/s]; 0 where the smooth jerk alone leaves no budget.
+    """
+    Ts = sample_time
+    step = np.abs(curvature_jump)
+    # axes without a step (below rounding) keep the segments' own bounds
+    step = np.where(step > 1e-9 * step.max(axis=1, initial=0.0, keepdims=True), step, 0.0)
+    t_abs = np.abs(tangent)
+    J = limits.jerk[None, :]
+    kappa, dkappa, jp = kappa[:, None], dkappa[:, None], path_jerk[:, None]
+
+    def excess(v: np.ndarray) -> np.ndarray:
+        vw = v[:, None] + 4.5 * jp * Ts * Ts
+        smooth = ((t_abs + 3.0 * kappa * vw * Ts) * (jp + kappa * kappa * vw**3)
+                  + 9.0 * kappa * vw * jp * Ts + dkappa * vw**3)
+        use = (v[:, None] ** 2) * step / Ts + smooth
+        return np.max(np.where(np.isfinite(J) & (step > 0), use - J, -np.inf), axis=1)
+
+    lo = np.zeros(len(step))
+    hi = np.sqrt(_min_ratio(limits.jerk * Ts, step))
+    hi = np.where(np.isfinite(hi), hi, 0.0)  # no curvature step: the rule does not apply
+    ok = excess(lo) <= 0.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        good = excess(mid) <= 0.0
+        lo = np.where(good, mid, lo)
+        hi = np.where(good, hi, mid)
+    return np.where(ok, lo, 0.0)
 
 
 def _step_speed_limit(acceleration: np.ndarray, jerk: np.ndarray, step: np.ndarray, *, sample_time: float,
