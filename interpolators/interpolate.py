@@ -197,7 +197,10 @@ def interpolate(
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
-      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it.
+      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve:
+      tangent junctions with a curvature jump (line/arc, arc/arc, line/merged curve) are passed at
+      the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
+      (:func:`interpolators.kinematics.curvature_step_speed_limit`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
       samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
