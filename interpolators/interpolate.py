@@ -455,7 +455,7 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         if len(motion_idx):
             v_full[motion_idx], _, j_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)
         if jerk_limited:
-            jl = _curvature_steps(g, inner, t_out, k_in - k_out, v_full, j_full, jl, lim, Ts)
+            jl = _curvature_steps(g, inner, t_out, t_in - t_out, k_in - k_out, v_full, j_full, jl, lim, Ts)
         # continuous junctions (G2 blends, rounding-level steps) need no reserve
         jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
                                        jerk_limited=jerk_limited)
@@ -486,23 +486,20 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
                    reserved_segment=in_multi, inner=inner, junction_limit=jl)
 
 
-def _curvature_steps(g: _Geom, inner: np.ndarray, tangent: np.ndarray, curvature_jump: np.ndarray,
-                     v_full: np.ndarray, j_full: np.ndarray, jl: np.ndarray, lim: AxisLimitArrays, Ts: float
-                     ) -> np.ndarray:
-    """2a. S-curve: the bound ``jl`` of tangent-continuous junctions with a curvature step (line/arc,
-    arc/arc of other radius, line/merged curve) raised to :func:`interpolators.kinematics.curvature_step_speed_limit`
-    (each axis' own jerk budget instead of the JUNCTION_SHARE reserve) where it is larger. It applies
-    between lines, arcs without helix and merged curve pieces whose tangents meet within
-    NEGLIGIBLE_SHARE and which are longer than the finite-difference window on both sides (one step
-    per window); ``j_full`` (the path jerk bounds with the whole limits) bounds the profiles' jerk."""
+def _curvature_steps(g: _Geom, inner: np.ndarray, tangent: np.ndarray, tangent_jump: np.ndarray,
+                     curvature_jump: np.ndarray, v_full: np.ndarray, j_full: np.ndarray, jl: np.ndarray,
+                     lim: AxisLimitArrays, Ts: float) -> np.ndarray:
+    """2a. S-curve: the bound ``jl`` of the junctions with a curvature step where the JUNCTION_SHARE rule
+    binds (line/arc, arc/arc of another radius or sense, line/merged curve; tangent up to rounding)
+    raised to :func:`interpolators.kinematics.curvature_step_speed_limit` (each axis' own jerk budget)
+    where that is larger; the tangent step keeps its acceleration bound. It applies between lines, arcs
+    without helix and merged curve pieces longer than the finite-difference window on both sides (one
+    step per window); ``j_full`` (the path jerk bounds with the whole limits) bounds the profiles'
+    jerk. These junctions are not negligible (NEGLIGIBLE_SHARE), so their chains keep the
+    JUNCTION_SHARE reserve the rule counts on."""
     packed = g.packed
     a, b = inner, inner + 1
-    t_in = _evaluate(g, b, np.zeros(len(b)), np.ones(len(b)), np.zeros(len(b)))[1]
-    tangent_ok = junction_speed_limit(t_in - tangent, np.zeros_like(tangent), lim, sample_time=Ts,
-                                      share=NEGLIGIBLE_SHARE, jerk_limited=True) >= np.maximum(v_full[a], v_full[b])
-    # where the JUNCTION_SHARE rule binds (a curvature step below rounding, e.g. between the pieces of one
-    # merged curve, does not)
-    stepped = tangent_ok & (np.abs(curvature_jump).max(axis=1) > 0) & (jl < np.maximum(v_full[a], v_full[b]))
+    stepped = (np.abs(curvature_jump).max(axis=1) > 0) & (jl < np.maximum(v_full[a], v_full[b]))
     kappa = np.zeros(len(g.segments))
     dkappa = np.zeros(len(g.segments))
     simple = np.ones(len(g.segments), dtype=bool)
@@ -521,8 +518,11 @@ def _curvature_steps(g: _Geom, inner: np.ndarray, tangent: np.ndarray, curvature
         return jl
     ia, ib = a[cand], b[cand]
     jp = np.maximum(j_full[ia], j_full[ib])
-    v = curvature_step_speed_limit(tangent[cand], curvature_jump[cand], np.maximum(kappa[ia], kappa[ib]),
-                                   np.maximum(dkappa[ia], dkappa[ib]), jp, lim, sample_time=Ts)
+    v = curvature_step_speed_limit(tangent[cand], tangent_jump[cand], curvature_jump[cand],
+                                   np.maximum(kappa[ia], kappa[ib]), np.maximum(dkappa[ia], dkappa[ib]), jp, lim,
+                                   sample_time=Ts, share=JUNCTION_SHARE)
+    v = np.minimum(v, junction_speed_limit(tangent_jump[cand], np.zeros((len(cand), 3)), lim, sample_time=Ts,
+                                           share=JUNCTION_SHARE, jerk_limited=False))
     window = 2.0 * 3.0 * (v + 4.5 * jp * Ts * Ts) * Ts  # both finite-difference windows inside the segments
     fits = window < np.minimum(packed.length[ia], packed.length[ib])
     out = jl.copy()

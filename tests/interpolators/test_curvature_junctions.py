@@ -101,21 +101,29 @@ def _distance_to_chords(p: np.ndarray, pts: np.ndarray) -> np.ndarray:
 
 def test_rule_uses_each_axis_jerk_budget():
     """Tangent along X, curvature step along Y, no smooth jerk: ``v^2 dk / Ts = J_y``; the tangent axis has no
-    step and does not bound the speed; with the profile's jerk along Y the budget shrinks."""
+    step and does not bound the speed; the profile's jerk on the stepped axis shrinks the budget, at worst to
+    the reserve of the JUNCTION_SHARE rule; a rounding-level tangent step takes its share on the tangent axis."""
     lim = AxisLimitArrays(LIMITS, {0, 1})
-    Ts = 1e-3
+    Ts, Jy = 1e-3, LIMITS["y"].jerk
     t, dk = np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 0.2, 0.0]])
-    zero = np.zeros(1)
-    v = curvature_step_speed_limit(t, dk, zero, zero, zero, lim, sample_time=Ts)
-    assert v[0] == pytest.approx(math.sqrt(LIMITS["y"].jerk * Ts / 0.2), rel=1e-9)
-    v_t = curvature_step_speed_limit(np.array([[0.0, 1.0, 0.0]]), dk, zero, zero, np.array([0.5 * LIMITS["y"].jerk]),
-                                     lim, sample_time=Ts)
-    assert v_t[0] == pytest.approx(math.sqrt(0.5 * LIMITS["y"].jerk * Ts / 0.2), rel=1e-6)
-    # the fixed-share rule of junction_speed_limit is the floor it improves on
-    assert v[0] > math.sqrt(JUNCTION_SHARE * LIMITS["y"].jerk * Ts / 0.2)
-    full = curvature_step_speed_limit(t, dk, np.array([0.2]), zero, np.array([LIMITS["y"].jerk]), lim,
-                                      sample_time=Ts)
-    assert 0.0 < full[0] < v[0]
+    zero, none = np.zeros(1), np.zeros((1, 3))
+
+    def rule(tangent, tangent_jump, path_jerk, kappa=zero):
+        return curvature_step_speed_limit(tangent, tangent_jump, dk, kappa, zero, np.array([path_jerk]), lim,
+                                          sample_time=Ts, share=JUNCTION_SHARE)[0]
+
+    v = rule(t, none, 0.0)
+    assert v == pytest.approx(math.sqrt(Jy * Ts / 0.2), rel=1e-9)
+    along_y = np.array([[0.0, 1.0, 0.0]])
+    assert rule(along_y, none, 0.5 * Jy) == pytest.approx(math.sqrt(0.5 * Jy * Ts / 0.2), rel=1e-9)
+    share_rule = math.sqrt(JUNCTION_SHARE * Jy * Ts / 0.2)
+    assert rule(along_y, none, 2.0 * Jy) == pytest.approx(share_rule, rel=1e-9)
+    assert share_rule < rule(t, none, Jy, np.array([0.2])) < v
+    # a tangent step of 1e-6 on the tangent axis X (whose profile takes 0.9 of J_x) bounds it to 0.1 J_x Ts^2 / 1e-6
+    dt = np.array([[1e-6, 0.0, 0.0]])
+    v_dt = curvature_step_speed_limit(t, dt, 1e-9 * dk, zero, zero, np.array([10 * Jy]), lim, sample_time=Ts,
+                                      share=JUNCTION_SHARE)[0]
+    assert v_dt == pytest.approx(JUNCTION_SHARE * LIMITS["x"].jerk * Ts**2 / 1e-6, rel=1e-6)
 
 
 @pytest.mark.parametrize("Ts", SAMPLE_TIMES)
@@ -176,3 +184,35 @@ def test_trapezoid_unchanged_by_the_rule():
     _check_limits(sp, prog, LIMITS, jerk=False)
     arc_bound = math.sqrt(0.7 * LIMITS["y"].acceleration * 5.0)
     assert _junction_speeds(sp)[1:].min() >= 0.99 * arc_bound  # [0]: the rapid's end, at rest
+
+
+def _tangent_chain(seed: int, n: int = 24) -> str:
+    """Random G17 contours of lines and arcs, each tangent to the one before (random radii, senses, sweeps
+    of 90 deg from axis directions or any sweep, feeds), as a CAM contour of lines and corner radii."""
+    rng = np.random.default_rng(seed)
+    pos, ang = np.zeros(2), 0.5 * math.pi * rng.integers(0, 4)
+    out = ["G21 G90 G17 G64 P0.01", f"F{rng.uniform(1200, 9000):.0f}"]
+    for k in range(n):
+        if k % 2 == 0 or rng.random() < 0.3:
+            pos = pos + rng.uniform(0.5, 15.0) * np.array([math.cos(ang), math.sin(ang)])
+            out.append(f"G1 X{pos[0]:.9f} Y{pos[1]:.9f}")
+        else:
+            r, ccw = rng.uniform(0.5, 12.0), bool(rng.integers(0, 2))
+            sweep = 0.5 * math.pi if rng.random() < 0.6 else rng.uniform(0.2, 2.5)
+            sign = 1.0 if ccw else -1.0
+            centre = pos + sign * r * np.array([-math.sin(ang), math.cos(ang)])
+            a1 = math.atan2(*(pos - centre)[::-1]) + sign * sweep
+            end = centre + r * np.array([math.cos(a1), math.sin(a1)])
+            ij = centre - pos
+            out.append(f"G{3 if ccw else 2} X{end[0]:.9f} Y{end[1]:.9f} I{ij[0]:.9f} J{ij[1]:.9f}")
+            pos, ang = end, ang + sign * sweep
+    return "\n".join(out) + "\nM30\n"
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_random_tangent_contours_keep_every_limit(seed, Ts):
+    prog = parse_program(_tangent_chain(seed))
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    _check_limits(sp, prog, LIMITS, jerk=True)
+    _check_on_blocks(sp, prog)
