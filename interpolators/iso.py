@@ -50,6 +50,8 @@ cutter compensation,
 probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 
+LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
+``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
 Fanuc ``G65`` macro calls: :mod:`interpolators.iso_flow`; Fanuc/Haas macro B ``IF``/``GOTO``/
 ``WHILE``: :mod:`interpolators.iso_macro`; system parameters (``#5021``.., read from this
 reader's state): :mod:`interpolators.iso_system`.

@@ -7,6 +7,8 @@ first ``)`` and then reject the rest); a ``(`` inside a comment that does not cl
 text, the comment ending at the first ``)`` (``(X+1 (move up)``, Fanuc), ``;`` comments
 run to the end of the line, ``/`` at the start of a line marks a block-delete line (executed: the
 block-delete switch is off, as in LinuxCNC's default), and ``%`` lines demarcate the program.
+A line's last ``( ... )`` comment is its block comment (:func:`block_comment`), which LinuxCNC may read
+as an active comment (:mod:`interpolators.iso_messages`).
 Parameters (``#``), expressions (``[``) and O-words are named as such when met.
 """
 
