@@ -50,6 +50,8 @@ cutter compensation,
 probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 
+LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
+``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
 Fanuc ``G65`` macro calls: :mod:`interpolators.iso_flow`; Fanuc/Haas macro B ``IF``/``GOTO``/
 ``WHILE``: :mod:`interpolators.iso_macro`; system parameters (``#5021``.., read from this
 reader's state): :mod:`interpolators.iso_system`.
@@ -59,6 +61,7 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+import functools
 import math
 import re
 from pathlib import Path
@@ -83,7 +86,7 @@ from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
 from interpolators.iso_words import Word
-from interpolators.program import Block, Program
+from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.core.axes import AXIS_NAMES
 
@@ -293,7 +296,10 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b))
-    for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path)):
+    messages: list[Message] = []
+    on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
+    for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
+                  on_comment=on_comment):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -316,7 +322,19 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:
         blocks = fill_extra(blocks)
-    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
+    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
+                   messages=tuple(messages))
+
+
+def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:
+    """A LinuxCNC active comment the run reached (:mod:`interpolators.iso_messages`): a message, or a note
+    for the log file vcnc does not write and the Python code it does not run."""
+    if keyword in MESSAGE_KINDS:
+        messages.append(Message(line=where.line, kind=keyword, text=text, file=where.file))
+    if keyword in ("log", "logopen", "logappend", "logclose"):
+        notes.add("(LOG...) comments: no log file written")
+    elif keyword.startswith("py"):
+        notes.add(f"({keyword.upper()},...) Python comment not run")
 
 
 def _ends_with_m99(text: str) -> bool:

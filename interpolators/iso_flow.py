@@ -31,7 +31,10 @@ configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``IF [.
 ``GOTO n`` and ``WHILE [..] DO m`` / ``END m``, runs as :mod:`interpolators.iso_macro` describes.
 
 A comment ``(ABORT, text)`` ends the run where it is reached with an error carrying the text, its
-parameters substituted (LinuxCNC G-code overview, "Abort Messages", "Comment Parameters").
+parameters substituted (LinuxCNC G-code overview, "Abort Messages", "Comment Parameters"); the other
+active comments (``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)``,
+:mod:`interpolators.iso_messages`) go to the caller's ``on_comment`` where the run reaches them, after
+the parameters the line sets (LinuxCNC sets them before it executes the block).
 
 A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
 
@@ -43,13 +46,14 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
-from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line, substitute
-from interpolators.iso_words import Word, read_words, strip_comments
+from interpolators.iso_messages import active_comment, comment_output, expand
+from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
+from interpolators.iso_words import Word, block_comment, read_words, strip_comments
 
 __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
 
@@ -68,8 +72,6 @@ _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
 #: G65 argument letters (argument specification I) -> local variable number.
 _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
-#: LinuxCNC's abort message comment ``(ABORT, text)``.
-_ABORT = re.compile(r"\(\s*abort\s*,([^)]*)\)", re.I)
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
 
@@ -117,7 +119,7 @@ class _Program:
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
         self.macro = MacroFlow(max_passes=max_loop_passes)
-        self.aborts: dict[int, str] = {}  # line -> text of its (ABORT, text) comment
+        self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
         self.span = 0
         self._index(text, source)
         self.main_end = len(self.code)
@@ -132,9 +134,10 @@ class _Program:
             self.sources.append(source)
             where = self.where(i)
             code = strip_comments(raw, where)
-            abort = _ABORT.search(raw)
-            if abort:
-                self.aborts[i] = abort.group(1).strip()
+            comment = block_comment(raw, where)
+            active = None if comment is None else active_comment(comment)
+            if active is not None:
+                self.active[i] = active
             s = code.strip()
             if _FANUC_PROGRAM.match(code) or _NAMED_PROGRAM.match(code):
                 self.span += 1
@@ -335,12 +338,16 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
-        subroutine_path: tuple[str, ...] = ()) -> Iterator[FlowLine]:
+        subroutine_path: tuple[str, ...] = (),
+        on_comment: Callable[[str, str, Where], None] | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
     backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
     ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
+    ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
+    (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
+    comments.
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -368,15 +375,21 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if pc in prog.macro.statements:
             pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
-        if pc in prog.aborts:  # LinuxCNC "Abort Messages": (ABORT, text) ends the run with the message
-            prog.fail(pc, f"(ABORT) the program aborts here: {substitute(prog.aborts[pc], params)}",
-                      "a program that does not reach its (ABORT, ...) comment")
         code = prog.code[pc]
+        where = prog.where(pc)
+        words = [] if code is None else read_line(code, where, params) if has_parameters(code) else \
+            read_words(code, where)
+        if pc in prog.active:
+            keyword, text = prog.active[pc]
+            if keyword == "abort":  # LinuxCNC "Abort Messages": (ABORT, text) ends the run with the message
+                prog.fail(pc, f"(ABORT) the program aborts here: {expand(text, params, where).strip()}",
+                          "a program that does not reach its (ABORT, ...) comment")
+            shown = None if on_comment is None else comment_output(keyword, text, params, where)
+            if shown is not None:
+                on_comment(keyword, shown, where)
         if code is None:
             pc += 1
             continue
-        where = prog.where(pc)
-        words = read_line(code, where, params) if has_parameters(code) else read_words(code, where)
         g65 = next((w for w in words if w.letter == "G" and w.value == 65), None)
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames)

@@ -17,7 +17,8 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
   Fanuc's ``BIN`` (BCD to binary) and ``BCD`` (binary to BCD) of whole numbers >= 0;
 * a parameter number may be any value: ``##1``, ``#[#1+1]``, even ``#ATAN[1]/[1]`` (#45);
 * ``#<_value>`` (the value the last subroutine returned, 0 if none) and ``#<_value_returned>``
-  are predefined and start at 0.
+  are predefined and start at 0; ``#<_line>`` is the line being executed, counted in its file
+  (LinuxCNC ``interp_namedparams.cc`` NP_LINE: the sequence number, tests/interp/sequence-number).
 
 System parameters that read the machine state (``#5001`` and above) come from the reader's state
 (:mod:`interpolators.iso_system`: positions, offsets, tools; read-only); one it does not model is an
@@ -59,7 +60,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_words import Word, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "substitute"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
@@ -164,6 +165,8 @@ class Parameters:
         if key.startswith("_ini["):
             where.fail(f"named parameter #<{name}>: INI file values are not available (vcnc reads no INI file)",
                        column=column, text=text, expected="a parameter the program sets")
+        if key == "_line":
+            return float(where.line)
         if key in _NAMED_SYSTEM and self.system is not None:
             value = self.get_numbered(_NAMED_SYSTEM[key], where, column, text)
             return 0.0 if value is None else value
@@ -442,24 +445,6 @@ def _apply(name: str, x: float) -> float:
 def evaluate_at(code: str, pos: int, where: Where, params: Parameters) -> tuple[float, int]:
     """The real value (usually a ``[expression]``) starting at ``pos``; returns (value, end)."""
     return _Reader(code, where, params).real(pos)
-
-
-def substitute(text: str, params: Parameters) -> str:
-    """A message comment's text with its ``#n`` and ``#<name>`` replaced by their values as LinuxCNC
-    prints them (``%f``, "Comment Parameters"); a parameter without a value stays as written."""
-    where = Where(None, 0, text)
-
-    def value(m: re.Match) -> str:
-        try:
-            if m.group(1) is not None:
-                v = params.get_named(m.group(1), where, 1, m.group(0))
-            else:
-                v = params.get_numbered(int(m.group(2)), where, 1, m.group(0))
-        except ValueError:  # GCodeError: unset, out of range, INI values
-            return m.group(0)
-        return m.group(0) if v is None else f"{v:f}"
-
-    return re.sub(r"#<([^>]*)>|#(\d+)", value, text)
 
 
 def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) -> tuple[bool, int]:

@@ -303,7 +303,9 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
 # STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED, mapped to machine coordinates with the offsets the calls set
 # (SET_G5X_OFFSET, SET_G92_OFFSET, SET_XY_ROTATION, USE_TOOL_LENGTH_OFFSET) in the units they name, are compared
 # with the blocks' (zero-length moves dropped, as vcnc emits none). A case whose test.sh keeps only MESSAGE lines
-# checks that vcnc accepts the program; one whose test.sh expects rs274 to fail checks that vcnc refuses it.
+# checks that vcnc accepts the program; one whose test.sh expects rs274 to fail checks that vcnc refuses it. The
+# messages (MESSAGE calls of MSG and DEBUG comments, the lines PRINT comments print) are compared with
+# Program.messages, text and order, as the case's test.sh passes them on.
 
 _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
 
@@ -313,13 +315,8 @@ INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active",
                  "g81/g17/g99", "g84/g17/g98", "g84/g17/g99", "inverse-time-with-comp", "m98m99/01-basics",
                  "m98m99/05-M98-loops", "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2",
                  "rotation/g28", "rotation/g53", "g10/g10-l11", "unit-conversion")
-#: Cases whose expected output is (debug)/(print) messages only: vcnc runs them (messages are not modelled).
-INTERP_ACCEPTED = ("do-while-break", "fractional-linenumbers", "g52/g52-g92-interaction", "g6164", "m19",
-                   "m98m99/02-variables", "m98m99/07-nested-subs",
-                   "m98m99/08-sub-follows-main", "m98m99/10-M98-P001", "m98m99/13-named-program",
-                   "m98m99/14-o-expression-call", "magic_comments/param_format_printing", "machine-coord-params",
-                   "oword-bug315", "return-value", "rotation/abs-pts", "sequence-number", "sub-call-from-sub",
-                   "subs-follow-main")
+#: Cases whose expected output has no motion: vcnc runs them (the cases with messages are in INTERP_MESSAGES).
+INTERP_ACCEPTED = ("fractional-linenumbers", "g52/g52-g92-interaction", "g6164", "m19", "m98m99/13-named-program")
 #: Cases that still differ, and why (not run: documentation for the next step).
 INTERP_DIFFERENT = {
     "abort-hot-comment": "the (abort, ...) message prints #<_ini[a]value> as written (vcnc reads no INI file)",
@@ -436,6 +433,72 @@ def test_linuxcnc_interp_case_runs(case, tmp_path):
     assert "awk '/" in sh or not _canonical_moves((case_dir / "expected").read_text())  # messages only
     for p in programs:
         load_program(p, context=context)
+
+
+#: A canonical call line of rs274's output (``   12 N..... NAME(args)``, the counter dropped by test.sh's awk).
+_CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s+([A-Z_][A-Z0-9_.]*)\((.*)\)\s*$")
+
+
+def _shown(sh: str, line: str) -> str:
+    """An output line of rs274 as the case's test.sh passes it on: ``awk '{$1=""; print}'`` drops the
+    first field and joins the others with single spaces; ``sed 's/A/B/g'`` replaces."""
+    if "awk '{$1=\"\"; print}'" in sh:
+        line = " " + " ".join(line.split()[1:])
+    for old, new in re.findall(r"sed '?s/((?:[^/\\]|\\.)*)/((?:[^/\\]|\\.)*)/g", sh):
+        line = re.sub(old, new.replace("\\", ""), line)
+    return line
+
+
+def _expected_messages(expected: str) -> list[tuple[str, str]]:
+    """The messages of an expected file in order: ``("MESSAGE", text)`` / ``("LOG", text)`` for those canonical
+    calls (from MSG, DEBUG and LOG comments), ``("PRINT", line)`` for a line that is no canonical call (PRINT)."""
+    out = []
+    for line in expected.splitlines():
+        m = _CANONICAL.match(line)
+        if m is None:
+            out.append(("PRINT", line))
+        elif m.group(1) in ("MESSAGE", "LOG"):
+            out.append((m.group(1), m.group(2)[1:-1]))
+    return out
+
+
+def _vcnc_messages(messages, sh: str) -> list[tuple[str, str]]:
+    """vcnc's messages as rs274 prints them (saicanon.cc ``MESSAGE("%s")``, ``LOG("%s")``; PRINT as its text)
+    and the case's test.sh passes them on."""
+    out = []
+    for m in messages:
+        if m.kind == "print":
+            out.append(("PRINT", _shown(sh, m.text)))
+        else:
+            call = "LOG" if m.kind == "log" else "MESSAGE"
+            shown = _CANONICAL.match(_shown(sh, f"1 N..... {call}(\"{m.text}\")"))
+            out.append((call, shown.group(2)[1:-1]))
+    return out
+
+
+#: Cases whose messages (MSG/DEBUG as MESSAGE calls, PRINT lines) vcnc gives as rs274 does, text and order.
+INTERP_MESSAGES = ("cam-nisley", "do-while-break", "g10/g10-l2-while-active", "g10/g10-l20-while-active",
+                   "g10/g10-with-g92", "m98m99/02-variables", "m98m99/05-M98-loops", "m98m99/07-nested-subs",
+                   "m98m99/08-sub-follows-main", "m98m99/10-M98-P001", "m98m99/12-M99-endless-main-program",
+                   "m98m99/14-o-expression-call", "machine-coord-params", "magic_comments/param_format_printing",
+                   "oword-bug315", "oword-bug315-p2", "return-value", "rotation/abs-pts", "sequence-number",
+                   "sub-call-from-sub", "subs-follow-main")
+#: Cases with messages that differ, and why (not run).
+INTERP_MESSAGES_DIFFERENT = {
+    "g10/g10-l11 g52/g52-g92-interaction unit-conversion": "the stored offsets #5211.. (G92) and #5221.. (G54..) "
+        "read in mm (iso_system: a machine configured in mm); under G20 LinuxCNC's read in inch",
+    "g52/g92-offset-persistence": "G92 offsets persisting in a parameter file (rs274 -v) are not modelled",
+}
+
+
+@pytest.mark.parametrize("case", INTERP_MESSAGES)
+def test_linuxcnc_interp_case_messages(case, tmp_path):
+    case_dir = _case_dir(case, tmp_path)
+    programs, context, sh = _rs274_run(case_dir)
+    want = _expected_messages((case_dir / "expected").read_text())
+    got = [m for p in programs for m in _vcnc_messages(load_program(p, context=context).messages, sh)]
+    assert want  # a case with messages
+    assert got == want
 
 
 @pytest.mark.parametrize("case", INTERP_REFUSED)
