@@ -102,3 +102,10 @@ def test_cli_prints_msg_debug_and_print_on_stderr_with_file_and_line(tmp_path, c
     assert main(["interpolate", str(prog), "-o", str(tmp_path / "sp.csv")]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err == [f"{prog}:3: (MSG) Clamp the part", f"{prog}:5: (DEBUG) depth 6", f"{prog}:6: (PRINT) done"]
+
+
+def test_simulate_prints_the_messages_as_interpolate_does(tmp_path, capsys):
+    prog = tmp_path / "part.ngc"
+    prog.write_text("G21\n(MSG, Clamp the part)\nG1 X1 F600\nM2\n")
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "cap.csv")]) == 0
+    assert capsys.readouterr().err.splitlines() == [f"{prog}:2: (MSG) Clamp the part"]

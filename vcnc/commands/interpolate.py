@@ -116,6 +116,17 @@ def message_lines(program) -> list[str]:
             for m in program.messages if m.kind != "log"]
 
 
+def print_program_notes(program, path) -> None:
+    """What ``vcnc interpolate`` and ``vcnc simulate`` say about a program they read: its operator
+    messages on stderr (:func:`message_lines`), then the one-line summary of what was ignored or
+    noted on stdout (:func:`notes_summary`)."""
+    for line in message_lines(program):
+        print(line, file=sys.stderr)
+    summary = notes_summary(program)
+    if summary:
+        print(f"{path}: {summary}")
+
+
 def _machine(name: str):
     from vcnc.engine.machine import load_machine
 
@@ -169,11 +180,7 @@ def run(args: argparse.Namespace) -> int:
         limits = machine.limits
         ts = float(getattr(machine, "sample_time", ts) or ts)
     program = load_program(args.program, context=program_context(args, machine))
-    for line in message_lines(program):
-        print(line, file=sys.stderr)
-    summary = notes_summary(program)
-    if summary:
-        print(f"{args.program}: {summary}")
+    print_program_notes(program, args.program)
     if args.ts is not None:
         ts = args.ts
     sp = interpolate(program, limits=limits, sample_time=ts, profile=args.profile)
