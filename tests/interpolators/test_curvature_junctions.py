@@ -15,7 +15,8 @@ import pytest
 from interpolators import interpolate, parse_program
 from interpolators.kinematics import AxisLimitArrays, curvature_step_speed_limit
 from interpolators.lookahead import JUNCTION_SHARE
-from tests.interpolators.test_interpolate import LIMITS, _check_limits
+from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.test_interpolate import LIMITS
 from toolpaths.geometry import Arc
 
 SAMPLE_TIMES = (1e-3, 4e-3)
@@ -132,7 +133,7 @@ def test_rounded_rectangle_passes_its_tangent_junctions(Ts, angle, plane):
     text = _rounded_rectangle(angle, plane=plane)
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
-    _check_limits(sp, prog, LIMITS, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
     _check_on_blocks(sp, prog)
     if angle == 0.0:  # tangents along the axes: no stop at the 8 line/arc junctions
         assert np.all(_junction_speeds(sp)[1:] > 0.0)
@@ -156,7 +157,7 @@ def test_arc_into_arc_of_other_radius(Ts):
     text = _s_bends()
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
-    _check_limits(sp, prog, LIMITS, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
     _check_on_blocks(sp, prog)
     assert np.all(_junction_speeds(sp) > 0.0)
 
@@ -166,7 +167,7 @@ def test_line_into_merged_dense_arc(Ts):
     text, pts = _line_into_dense_arc()
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
-    _check_limits(sp, prog, LIMITS, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
     feed = np.array([b.kind != "rapid" for b in prog.blocks])[sp.block]
     assert _distance_to_chords(sp.position[feed, :2], pts).max() <= 0.01
     speed = np.linalg.norm(sp.velocity, axis=1)
@@ -181,7 +182,7 @@ def test_trapezoid_unchanged_by_the_rule():
     without a jerk limit."""
     prog = parse_program(_rounded_rectangle())
     sp = interpolate(prog, limits=LIMITS, profile="trapezoid")
-    _check_limits(sp, prog, LIMITS, jerk=False)
+    check_limits(sp, prog, LIMITS, jerk=False, feed=True)
     arc_bound = math.sqrt(0.7 * LIMITS["y"].acceleration * 5.0)
     assert _junction_speeds(sp)[1:].min() >= 0.99 * arc_bound  # [0]: the rapid's end, at rest
 
@@ -214,5 +215,5 @@ def _tangent_chain(seed: int, n: int = 24) -> str:
 def test_random_tangent_contours_keep_every_limit(seed, Ts):
     prog = parse_program(_tangent_chain(seed))
     sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
-    _check_limits(sp, prog, LIMITS, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
     _check_on_blocks(sp, prog)
