@@ -1,6 +1,6 @@
 """Dense CAM code under G64: a circle as one G3 arc against the same circle as 10,000 chords.
 
-Run: ``.venv/bin/python benchmarks/dense_code.py [--chords N] [--feed F] [--decimals D]``
+Run: ``.venv/bin/python benchmarks/dense_code.py [--chords N] [--feed F] [--decimals D] [--tangent-entry L]``
 
 Prints, for each profile, the motion duration of the single arc and of the chord polygon, their
 ratio (issue #18 item 8 asks for <= 1.25), the worst distance of the setpoints from the
@@ -10,7 +10,9 @@ the sampled positions, and the interpolation CPU time (setpoints/s).
 
 Under G64 the chords are merged into one smooth curve within the tolerance
 (:mod:`interpolators.dense`); before that (per-junction blends only) the ratios were 3.71
-(trapezoid) and 28.5 (S-curve).
+(trapezoid) and 28.5 (S-curve). ``--tangent-entry 10`` enters the circle along its tangent (a line
+into the arc or into the merged curve: a curvature jump, passed at speed under the S-curve by
+:func:`interpolators.kinematics.curvature_step_speed_limit`).
 """
 
 from __future__ import annotations
@@ -28,33 +30,41 @@ import numpy as np  # noqa: E402
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program  # noqa: E402
 
 
-def _programs(n: int, feed: float, decimals: int) -> tuple[str, str, float]:
+def _programs(n: int, feed: float, decimals: int, lead: float = 0.0) -> tuple[str, str, float]:
     """Single-arc and n-chord programs of a circle with 8 um chords (end points written with
-    ``decimals`` decimals, as CAM output is), and its radius [mm]."""
+    ``decimals`` decimals, as CAM output is), and its radius [mm]. With ``lead`` > 0 the circle is
+    entered along its tangent by a line of that length [mm] (a tangent junction with a curvature jump:
+    line/arc, line/merged curve), else from the origin at a right angle."""
     r = n * 0.008 / (2 * math.pi)
-    arc = f"G21 G90 G17 G64 P0.01\nG1 X{r:.6f} Y0 F{feed * 60:.1f}\nG3 X{r:.6f} Y0 I{-r:.6f} J0\n"
-    lines = [f"G21 G90 G17 G64 P0.01\nG1 X{r:.6f} Y0 F{feed * 60:.1f}"]
+    entry = f"G1 X{r:.6f} Y0 F{feed * 60:.1f}"
+    if lead > 0:
+        entry = f"G1 X{r:.6f} Y{-lead:.6f} F{feed * 60:.1f}\nG1 X{r:.6f} Y0"
+    arc = f"G21 G90 G17 G64 P0.01\n{entry}\nG3 X{r:.6f} Y0 I{-r:.6f} J0\n"
+    lines = [f"G21 G90 G17 G64 P0.01\n{entry}"]
     for k in range(1, n + 1):
         a = 2 * math.pi * k / n
         lines.append(f"G1 X{r * math.cos(a):.{decimals}f} Y{r * math.sin(a):.{decimals}f}")
     return arc, "\n".join(lines) + "\n", r
 
 
-def _chord_points(n: int, r: float, decimals: int) -> np.ndarray:
-    """The programmed path's points (x, y) [mm]: the origin (where programs start), the circle's start
-    point, then the chord end points rounded as written."""
+def _chord_points(n: int, r: float, decimals: int, lead: float = 0.0) -> np.ndarray:
+    """The programmed path's points (x, y) [mm]: the origin (where programs start), the lead-in's start
+    when ``lead`` > 0, the circle's start point, then the chord end points rounded as written."""
     a = 2 * np.pi * np.arange(n + 1) / n
     pts = np.round(np.c_[r * np.cos(a), r * np.sin(a)], decimals)
     pts[0] = (r, 0.0)
-    return np.vstack([(0.0, 0.0), pts])
+    head = [(0.0, 0.0), (r, -lead)] if lead > 0 else [(0.0, 0.0)]
+    return np.vstack([head, pts])
 
 
-def _chord_deviation(sp, pts: np.ndarray) -> float:
-    """Worst distance [mm] of the setpoints from the chord polygon ``pts``: for each setpoint, the
-    nearer of the two chords meeting at its nearest chord end point."""
+def _chord_deviation(sp, pts: np.ndarray, first_block: int = 0) -> float:
+    """Worst distance [mm] of the setpoints of blocks ``first_block`` on from the chord polygon ``pts``:
+    for each setpoint, the nearer of the two chords meeting at its nearest chord end point (a tangent
+    lead-in, a long line, is left out: its nearest end point may be a chord's)."""
     from scipy.spatial import cKDTree
 
-    xy = np.c_[sp.position[:, sp.axis_index("x")], sp.position[:, sp.axis_index("y")]]
+    on = sp.block >= first_block
+    xy = np.c_[sp.position[on, sp.axis_index("x")], sp.position[on, sp.axis_index("y")]]
     _, k = cKDTree(pts).query(xy)
     best = np.full(len(xy), np.inf)
     for j0 in (k - 1, k):
@@ -86,8 +96,10 @@ def main() -> None:
     ap.add_argument("--chords", type=int, default=10_000)
     ap.add_argument("--feed", type=float, default=200.0, help="feed [mm/s]")
     ap.add_argument("--decimals", type=int, default=4, help="decimals of the chord end points (CAM output: 4)")
+    ap.add_argument("--tangent-entry", type=float, default=0.0, metavar="L",
+                    help="enter the circle along its tangent by a line of L mm (default: from the origin, at 90 deg)")
     args = ap.parse_args()
-    arc_text, chord_text, r = _programs(args.chords, args.feed, args.decimals)
+    arc_text, chord_text, r = _programs(args.chords, args.feed, args.decimals, args.tangent_entry)
     Ts = 1e-3
     for profile in ("trapezoid", "scurve"):
         sp_arc = interpolate(parse_program(arc_text), profile=profile)
@@ -96,7 +108,8 @@ def main() -> None:
         cpu = time.process_time() - t0
         ratio = sp.duration / sp_arc.duration
         uv, ua, uj = _utilisation(sp, Ts)
-        dev = _chord_deviation(sp, _chord_points(args.chords, r, args.decimals))
+        dev = _chord_deviation(sp, _chord_points(args.chords, r, args.decimals, args.tangent_entry),
+                               2 if args.tangent_entry > 0 else 0)
         util = (f"worst deviation from the chords {dev * 1e3:.2f} um (tolerance 10 um); "
                 f"worst v {uv:.3f}, a {ua:.3f}" + (f", j {uj:.3f}" if profile == "scurve" else "")
                 + " of the axis limits")

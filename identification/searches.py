@@ -92,6 +92,9 @@ class Data:
         self.as_ = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
         self.vrs = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=1, delta=self.T)
         self.ars = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
+        #: delay [samples] -> the split-form regression's rows, filled by the searches
+        #: (:func:`_split_form_equations`)
+        self.split_form_equations: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
     @property
     def span(self) -> float:
@@ -727,17 +730,15 @@ def _LOWPASS(T: float):
     return scipy.signal.butter(4, 0.16, btype="low")
 
 
-def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
-    """Least squares of the sampled split form (module augmented) with u held ``delay`` samples.
+def _split_form_equations(d: Data, delay: int) -> tuple[np.ndarray, np.ndarray]:
+    """The low-passed rows ``(A, y)`` of :func:`_digital_regression` over the whole record.
 
-    The zero-order-hold double integrator gives, per row k (u_k applied over [k, k+1))::
-
-        2 (x_{k+1} - 2 x_k + x_{k-1}) / T^2 = (u_k + u_{k-1}) - (w_k + w_{k-1}) - c (x_{k+1} - x_{k-1}) / T
-        u_k = [b1 v_r - (a1 - c) (y_j - y_{j-1}) / T + a2 e + a3 e_i + (b2 - a2) x_r + b0 a_r]_{j = k - delay}
-
-    linear in (b1, a1 - c, a2, a3, b2 - a2, b0, d0, d1, c) - exact for that form when the friction
-    does not switch inside a sample.
+    They depend on the record and the delay only, so they are computed once per delay and kept on
+    ``d`` (the delay search of every round and the saturation search share them).
     """
+    cache = d.split_form_equations
+    if delay in cache:
+        return cache[delay]
     x, xr, T = d.x, d.xr, d.T
     n = d.n
     e = xr - x
@@ -759,8 +760,23 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
     # the same zero-phase low-pass on both sides keeps the (linear) relation and removes the
     # encoder noise that the second difference amplifies (and that would correlate with -dy)
     bf, af = _LOWPASS(T)
-    A = scipy.signal.filtfilt(bf, af, A, axis=0)
-    y = scipy.signal.filtfilt(bf, af, y)
+    cache[delay] = (scipy.signal.filtfilt(bf, af, A, axis=0), scipy.signal.filtfilt(bf, af, y))
+    return cache[delay]
+
+
+def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
+    """Least squares of the sampled split form (module augmented) with u held ``delay`` samples.
+
+    The zero-order-hold double integrator gives, per row k (u_k applied over [k, k+1))::
+
+        2 (x_{k+1} - 2 x_k + x_{k-1}) / T^2 = (u_k + u_{k-1}) - (w_k + w_{k-1}) - c (x_{k+1} - x_{k-1}) / T
+        u_k = [b1 v_r - (a1 - c) (y_j - y_{j-1}) / T + a2 e + a3 e_i + (b2 - a2) x_r + b0 a_r]_{j = k - delay}
+
+    linear in (b1, a1 - c, a2, a3, b2 - a2, b0, d0, d1, c) - exact for that form when the friction
+    does not switch inside a sample.
+    """
+    n = d.n
+    A, y = _split_form_equations(d, delay)
     k = rows[(rows >= delay + 30) & (rows < n - 30)]
     A, y = A[k], y[k]
     th = solve_qr(A, y)

@@ -66,6 +66,9 @@ CONVEX_TOLERANCE = 0.05
 #: Points closer than this are the same point [mm].
 _EPS = 1e-9
 
+#: Tangents whose cross product is within this of 0 (and pointing apart) meet in a reversal [-].
+_REVERSAL = 1e-6
+
 
 class CompensationError(InputError):
     """A compensated run the tool cannot follow (gouge, arc smaller than the tool, bad entry or exit).
@@ -325,6 +328,10 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: fl
         cr = _cross(ta, tb)
         # turn away from the tool side [rad] (a reversal is a half turn round the outside)
         bend = math.pi if abs(cr) <= 1e-12 and float(ta @ tb) < 0.0 else -s * math.atan2(cr, float(ta @ tb))
+        crossing = _crossing(el_a, el_b) if abs(cr) <= _REVERSAL and float(ta @ tb) < 0.0 else None
+        if crossing is not None:  # a reversal with an arc whose offsets cross: an inside corner (interp/inside-corners)
+            el_a.b, el_b.a = crossing.copy(), crossing.copy()
+            continue
         if bend > 0.0:  # convex
             if bend <= CONVEX_TOLERANCE and el_b.kind == "line":
                 el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()  # LinuxCNC's "convex, one arc needed"
@@ -345,6 +352,20 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: fl
         el_a.b, el_b.a = x.copy(), x.copy()
 
     return corners
+
+
+def _crossing(el_a: _Offset, el_b: _Offset) -> np.ndarray | None:
+    """At a reversal with an arc: where the two offset elements meet within their extents (``el_a``
+    after its current start, ``el_b`` before its end), the one nearest the end of ``el_a``. LinuxCNC
+    trims both there, as at any inside corner; a reversal between lines, or offsets that do not meet,
+    is a half turn round the outside (``None``)."""
+    if el_a.kind == el_b.kind == "line":
+        return None
+    tol = 1e-9
+    start = el_a.param(el_a.a)
+    found = [x for x in _intersections(el_a, el_b)
+             if start + tol < el_a.param(x) < el_a.extent() - tol and tol < el_b.param(x) < el_b.extent() - tol]
+    return max(found, key=el_a.param) if found else None
 
 
 def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float) -> None:

@@ -52,7 +52,9 @@ class Tool:
     length : float
         Tool length offset [mm] (G43 H / ``TOOL CALL``: added along the tool axis).
     radius : float
-        Tool radius [mm] (G41/G42 D, Heidenhain RL/RR), >= 0.
+        Tool radius [mm] (G41/G42 D, Heidenhain RL/RR). A negative radius (a tool table holding the
+        difference between the actual and a nominal diameter) makes G41 offset as G42 by its
+        magnitude and G42 as G41 (LinuxCNC ``interp_convert.cc`` convert_cutter_compensation_on).
     comment : str
         Free text (LinuxCNC tool tables carry one).
     """
@@ -67,8 +69,8 @@ class Tool:
             raise InputError(f"tool number must be an integer >= 0, got {self.number!r}")
         if not math.isfinite(self.length):
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
-        if not (math.isfinite(self.radius) and self.radius >= 0):
-            raise InputError(f"tool {self.number}: radius must be >= 0 [mm], got {self.radius!r}")
+        if not math.isfinite(self.radius):
+            raise InputError(f"tool {self.number}: radius must be finite [mm], got {self.radius!r}")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -98,6 +100,9 @@ class Dialect:
     tap_out_to_r : bool
         G84 tapping feeds out to the R plane and rapids on to the clear level (Fanuc, Haas: True);
         LinuxCNC feeds out to the clear level (False).
+    subroutine_path : tuple of str
+        Folders searched for ``<name>.ngc`` of an ``o<name> call`` after the program's own folder
+        (LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``); a relative folder starts at the program's.
     """
 
     name: str = "linuxcnc"
@@ -107,6 +112,7 @@ class Dialect:
     tolerance: float | None = None
     arc_rule: str = "linuxcnc"
     tap_out_to_r: bool = False
+    subroutine_path: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.arc_rule not in ARC_RULES:
@@ -205,13 +211,14 @@ DEFAULT_CONTEXT = MachineContext()
 INTERPOLATION_CONTEXT = MachineContext(extra_axes=EXTRA_NAMES)
 
 
-def read_tool_table(path: str) -> dict[int, Tool]:
+def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
     """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line).
 
     Following LinuxCNC's tool-table format (https://linuxcnc.org/docs/html/config/tool-table.html):
-    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter [machine units, mm here], ``Z`` tool
-    length offset; other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are
-    empty or only a comment are skipped.
+    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter and ``Z`` tool length offset in the
+    machine's units (``units``: ``"mm"``, or ``"inch"`` for a table of an inch machine, converted to
+    mm); other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are empty or only
+    a comment are skipped.
 
     Raises
     ------
@@ -220,6 +227,9 @@ def read_tool_table(path: str) -> dict[int, Tool]:
     """
     import re
 
+    if units not in ("mm", "inch"):
+        raise InputError(f"tool table units must be 'mm' or 'inch', got {units!r}")
+    scale = 25.4 if units == "inch" else 1.0
     try:
         with open(path, encoding="utf-8", errors="replace") as fh:
             lines = fh.read().splitlines()
@@ -244,6 +254,6 @@ def read_tool_table(path: str) -> dict[int, Tool]:
         if "T" not in words:
             raise InputError(f"{path}:{lineno}: tool-table line without a T word; expected T<number> ...")
         number = int(words["T"])
-        tools[number] = Tool(number=number, length=words.get("Z", 0.0), radius=words.get("D", 0.0) / 2.0,
-                             comment=comment.strip())
+        tools[number] = Tool(number=number, length=words.get("Z", 0.0) * scale,
+                             radius=words.get("D", 0.0) * scale / 2.0, comment=comment.strip())
     return tools

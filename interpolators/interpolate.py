@@ -13,6 +13,7 @@ from interpolators.dense import MergedRun, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
     AxisLimitArrays,
+    curvature_step_speed_limit,
     curve_limits,
     curved_speed_bound,
     extra_junction_speed_limit,
@@ -196,7 +197,10 @@ def interpolate(
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
-      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it.
+      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve:
+      tangent junctions with a curvature jump (line/arc, arc/arc, line/merged curve) are passed at
+      the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
+      (:func:`interpolators.kinematics.curvature_step_speed_limit`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
       samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
@@ -447,8 +451,11 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         # worth passing at speed only if the bound is a fair share of the neighbours' speeds
         motion_idx = np.flatnonzero(packed.kind != HOLD)
         v_full = np.zeros(n_seg)
+        j_full = np.zeros(n_seg)
         if len(motion_idx):
-            v_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)[0]
+            v_full[motion_idx], _, j_full[motion_idx] = _limits(g, motion_idx, lim, jerk_limited)
+        if jerk_limited:
+            jl = _curvature_steps(g, inner, t_out, t_in - t_out, k_in - k_out, v_full, j_full, jl, lim, Ts)
         # continuous junctions (G2 blends, rounding-level steps) need no reserve
         jl_tiny = junction_speed_limit(t_in - t_out, k_in - k_out, lim, sample_time=Ts, share=NEGLIGIBLE_SHARE,
                                        jerk_limited=jerk_limited)
@@ -477,6 +484,50 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
     in_multi = reserved[seg_chain_a] if n_seg else np.zeros(0, dtype=bool)
     return _Chains(of_segment=seg_chain_a, count=n_chains, dwell=dwell_of_chain, length=chain_len,
                    reserved_segment=in_multi, inner=inner, junction_limit=jl)
+
+
+def _curvature_steps(g: _Geom, inner: np.ndarray, tangent: np.ndarray, tangent_jump: np.ndarray,
+                     curvature_jump: np.ndarray, v_full: np.ndarray, j_full: np.ndarray, jl: np.ndarray,
+                     lim: AxisLimitArrays, Ts: float) -> np.ndarray:
+    """2a. S-curve: the bound ``jl`` of the junctions with a curvature step where the JUNCTION_SHARE rule
+    binds (line/arc, arc/arc of another radius or sense, line/merged curve; tangent up to rounding)
+    raised to :func:`interpolators.kinematics.curvature_step_speed_limit` (each axis' own jerk budget)
+    where that is larger; the tangent step keeps its acceleration bound. It applies between lines, arcs
+    without helix and merged curve pieces longer than the finite-difference window on both sides (one
+    step per window); ``j_full`` (the path jerk bounds with the whole limits) bounds the profiles'
+    jerk. These junctions are not negligible (NEGLIGIBLE_SHARE), so their chains keep the
+    JUNCTION_SHARE reserve the rule counts on."""
+    packed = g.packed
+    a, b = inner, inner + 1
+    stepped = (np.abs(curvature_jump).max(axis=1) > 0) & (jl < np.maximum(v_full[a], v_full[b]))
+    kappa = np.zeros(len(g.segments))
+    dkappa = np.zeros(len(g.segments))
+    simple = np.ones(len(g.segments), dtype=bool)
+    for i in np.unique(np.concatenate([a[stepped], b[stepped]])):
+        seg = g.segments[i]
+        if i in g.runs:
+            k, dk, _ = seg.bounds()
+            kappa[i], dkappa[i] = k * CURVE_BOUND_MARGIN, dk * CURVE_BOUND_MARGIN
+        elif isinstance(seg, Arc):
+            kappa[i] = 1.0 / packed.radius[i]
+            simple[i] = packed.helix[i] == 0.0
+        else:
+            simple[i] = isinstance(seg, Line)
+    cand = np.flatnonzero(stepped & simple[a] & simple[b])
+    if not len(cand):
+        return jl
+    ia, ib = a[cand], b[cand]
+    jp = np.maximum(j_full[ia], j_full[ib])
+    v = curvature_step_speed_limit(tangent[cand], tangent_jump[cand], curvature_jump[cand],
+                                   np.maximum(kappa[ia], kappa[ib]), np.maximum(dkappa[ia], dkappa[ib]), jp, lim,
+                                   sample_time=Ts, share=JUNCTION_SHARE)
+    v = np.minimum(v, junction_speed_limit(tangent_jump[cand], np.zeros((len(cand), 3)), lim, sample_time=Ts,
+                                           share=JUNCTION_SHARE, jerk_limited=False))
+    window = 2.0 * 3.0 * (v + 4.5 * jp * Ts * Ts) * Ts  # both finite-difference windows inside the segments
+    fits = window < np.minimum(packed.length[ia], packed.length[ib])
+    out = jl.copy()
+    out[cand] = np.where(fits, np.maximum(jl[cand], v), jl[cand])
+    return out
 
 
 def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.ndarray, v_full: np.ndarray,

@@ -31,7 +31,7 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
-``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``; ``G53``; ``G28 G30 G28.1 G30.1``
+``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
 ``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
                           feed per minute (which resets the feed: an F must follow); ``G95`` is an error
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
@@ -49,12 +49,19 @@ axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, spline
 cutter compensation,
 probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
+
+LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
+``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
+Fanuc ``G65`` macro calls: :mod:`interpolators.iso_flow`; Fanuc/Haas macro B ``IF``/``GOTO``/
+``WHILE``: :mod:`interpolators.iso_macro`; system parameters (``#5021``.., read from this
+reader's state): :mod:`interpolators.iso_system`.
 """
 
 from __future__ import annotations
 
 import collections
 import dataclasses
+import functools
 import math
 import re
 from pathlib import Path
@@ -70,14 +77,16 @@ from interpolators.arcs import (
     radius_arc_tolerance,
 )
 from interpolators.compensation import CompensationError, compensate
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
+from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
+from interpolators.iso_system import system_parameter
 from interpolators.iso_words import Word
-from interpolators.program import Block, Program
+from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.core.axes import AXIS_NAMES
 
@@ -97,7 +106,7 @@ _G: dict[int, tuple[str, str]] = {
     100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
     281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
     301: ("nonmodal", "G30.1 store reference"), 530: ("nonmodal", "G53 machine coordinates"),
-    920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
+    520: ("nonmodal", "G52 local offset"), 920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
     922: ("nonmodal", "G92.2 offset suspend"), 923: ("nonmodal", "G92.3 offset restore"),
     170: ("plane", "XY"), 180: ("plane", "ZX"), 190: ("plane", "YZ"),
     200: ("units", "inch"), 210: ("units", "mm"),
@@ -127,7 +136,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
-    520: "G52 local coordinate system", 171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
+    171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
 }
 
@@ -193,6 +202,7 @@ class _State:
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
     tool_length: float = 0.0
     tool_selected: int | None = None
     tool_current: int | None = None
@@ -203,11 +213,18 @@ class _State:
     cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
+    comp_run_side: str = "left"  # side of the run being compensated (kept after G40 clears comp_side)
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+    stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
+    tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
+
+    def tool(self, number: int) -> Tool | None:
+        """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
+        return self.tools.get(int(number)) or self.context.tool(number)
 
     @property
     def scale(self) -> float:
@@ -277,13 +294,23 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     used: set[int] = set()
     name = _program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
-    for fl in run(text, source=source):
+    macro_b = dialect.name in ("fanuc", "haas")
+    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b))
+    messages: list[Message] = []
+    on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
+    for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
+                  on_comment=on_comment):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
+        count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
+        if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
+            st.stopped = True  # the operator may jog: positions are unknown until the next move
+        elif len(blocks) > count:
+            st.stopped = False
         if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
             _finish_compensation(st, blocks, source)
         if ended:
@@ -295,7 +322,19 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:
         blocks = fill_extra(blocks)
-    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines())
+    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
+                   messages=tuple(messages))
+
+
+def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:
+    """A LinuxCNC active comment the run reached (:mod:`interpolators.iso_messages`): a message, or a note
+    for the log file vcnc does not write and the Python code it does not run."""
+    if keyword in MESSAGE_KINDS:
+        messages.append(Message(line=where.line, kind=keyword, text=text, file=where.file))
+    if keyword in ("log", "logopen", "logappend", "logclose"):
+        notes.add("(LOG...) comments: no log file written")
+    elif keyword.startswith("py"):
+        notes.add(f"({keyword.upper()},...) Python comment not run")
 
 
 def _ends_with_m99(text: str) -> bool:
@@ -490,7 +529,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
                        expected="T0, T1, ...")
         st.tool_selected = int(w.value)
-        if st.context.tool(st.tool_selected) is None and st.tool_selected != 0:
+        if st.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
 
 
@@ -515,9 +554,11 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
 
 
 def _io_words(mcodes, seen, where: Where) -> dict:
-    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q); E elsewhere is an error."""
+    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P); E elsewhere is an error."""
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
+    if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation
+        seen = {k: v for k, v in seen.items() if k not in "RQP"}
     if any(m == 61 for m, _ in mcodes):  # M61 Q<tool>: the Q is the tool number, read by _m_codes
         seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:
@@ -909,15 +950,19 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
     if "D" in seen and dynamic:
         radius = seen["D"].value * st.scale / 2.0
     else:
-        tool = st.context.tool(int(seen["D"].value)) if "D" in seen else (
-            st.context.tool(st.tool_current) if st.tool_current is not None else None)
+        tool = st.tool(int(seen["D"].value)) if "D" in seen else (
+            st.tool(st.tool_current) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
     st.comp_side = "left" if key in (410, 411) else "right"
+    if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
+        radius = -radius
+        st.comp_side = "right" if st.comp_side == "left" else "left"
     st.comp_code = w.text.upper()
     if radius == 0.0:
         notes.add("G41/G42 with tool radius 0 (path unchanged)")
         return
     st.comp_radius = radius
+    st.comp_run_side = st.comp_side
     st.comp_start = len(blocks)
     notes.add("G41/G42 cutter radius compensation")
 
@@ -930,8 +975,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     if not run:
         return
     try:
-        new = compensate(run, side="left" if st.comp_code.startswith("G41") else "right", radius=st.comp_radius,
-                         plane=st.plane, closed=closed)
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(
@@ -956,7 +1000,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         return
     h = seen.pop("H", None)
     number = int(h.value) if h is not None else st.tool_current
-    tool = st.context.tool(number) if number is not None else None
+    tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
     if tool is None and number not in (None, 0):
         notes.add(f"H{number} not in the tool table (length 0)")
@@ -989,17 +1033,19 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
         return True
+    if key == 520:
+        _local_offset(seen, axis_words, st, where, w)
+        notes.add("G52 local offset")
+        return True
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if key == 920:
-        if st.rotation:
-            where.fail(f"G92 in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
-                       column=w.column, text=w.text, expected="G92 with G10 L2 R0")
         if not axis_words and not rot_words:
             where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
-        base = st.offset() - st.g92
+        # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
+        current = st.to_program(st.pos)
         for a in axis_words:
             i = "XYZ".index(a)
-            st.g92[i] = st.pos[i] - base[i] - seen[a].value * st.scale
+            st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
         # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
         # the offset that makes the axis' current position the programmed value
         v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
@@ -1007,15 +1053,18 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         work = st.extra_offset() - st.g92_extra
         st.g92_extra[given] = (st.extra - work - v)[given]
         st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
+        st.g92_applied = True
         notes.add("G92 offset")
         return True
     if key in (921, 922):
         if key == 921:
             st.g92_saved, st.g92_extra_saved = np.zeros(3), np.zeros(6)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
+        st.g92_applied = False
         return True
     if key == 923:
         st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
+        st.g92_applied = True
         return True
     if key == 100:
         _g10(seen, st, where, w)
@@ -1024,30 +1073,44 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     return False
 
 
+def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
+    """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
+    convert_axis_offsets, G_52: axis_offset = value; Fanuc "Local coordinate system"); it is the offset
+    G92 sets too (#5211..), cleared by G92.1 and suspended by G92.2."""
+    if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
+        where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
+    for a in axis_words:
+        st.g92["XYZ".index(a)] = seen[a].value * st.scale
+    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
+    given = ~np.isnan(v)
+    st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
+    st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
+    st.g92_applied = True
+
+
 def _g10(seen, st: _State, where: Where, w: Word) -> None:
     l_word, p_word = seen.get("L"), seen.get("P")
+    if l_word is not None and int(l_word.value) in (1, 10, 11):
+        _g10_tool(int(l_word.value), seen, st, where, w)
+        return
     if l_word is None or int(l_word.value) not in (2, 20):
-        where.fail("G10: only L2 and L20 (work offsets) are supported", column=w.column, text=w.text,
-                   expected="G10 L2 P<n> X.. Y.. Z.. or G10 L20 P<n> ...")
+        where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
+                   text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
     r_word = seen.get("R")
     p = int(p_word.value) if p_word is not None else 0
     code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
-    if int(l_word.value) == 20 and (st.rotations.get(code, 0.0) or (r_word is not None and r_word.value)):
-        w = r_word if r_word is not None else l_word
-        where.fail("G10 L20 on a rotated coordinate system (G10 R): not supported", column=w.column,
-                   text=w.text, expected="G10 L2 for a rotated coordinate system")
+    if int(l_word.value) == 20 and r_word is not None:  # LinuxCNC convert_setup: "R not allowed in G10 L20"
+        where.fail("R not allowed in G10 L20", column=r_word.column, text=r_word.text,
+                   expected="G10 L2 P<n> R<angle> to rotate a coordinate system")
     if code is None:
         where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
                    expected="P0 (current) .. P9")
     current = st.offsets.get(code, st.context.offset(code)).copy()
+    if int(l_word.value) == 20:
+        current = _l20_offset(seen, st, current, st.rotations.get(code, 0.0))
     for a in ("X", "Y", "Z"):
-        if a in seen:
-            i = "XYZ".index(a)
-            v = seen[a].value * st.scale
-            if int(l_word.value) == 2:
-                current[i] = v
-            else:  # L20: the current position gets coordinate v
-                current[i] = st.pos[i] - st.g92[i] - (st.tool_length if i == 2 else 0.0) - v
+        if a in seen and int(l_word.value) == 2:
+            current["XYZ".index(a)] = seen[a].value * st.scale
     st.offsets[code] = current
     v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
     given = ~np.isnan(v)
@@ -1057,6 +1120,66 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
         st.extra_offsets[code] = extra
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
+
+
+def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
+    """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
+    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the length Z and the radius R directly;
+    L10 sets the length so that the current position, in the current coordinate system without tool
+    length offset, gets the programmed Z; L11 the same in G59.3 without the G92 offset. The change
+    applies at the next G43 (the offset in effect is not changed). Tool X/Y offsets (lathe tools) are
+    not modelled: one that comes out other than 0 is an error."""
+    p_word = seen.get("P")
+    if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
+        where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
+                   text=w.text, expected=f"G10 L{level} P<tool> Z.. R..")
+    if not any(k in seen for k in ("X", "Y", "Z", "R")):
+        where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
+                   expected=f"G10 L{level} P<tool> with Z and/or R")
+    for i, a in enumerate(("X", "Y")):
+        if a not in seen:
+            continue
+        value = seen[a].value * st.scale
+        if level != 1:  # the offset that makes the current position read the value (see Z below)
+            origin = st.offset() if level == 10 else st.offsets.get("G59.3", st.context.offset("G59.3"))
+            value = st.pos[i] - origin[i] - value
+        if abs(value) > 1e-9 or (level != 1 and st.rotation):
+            where.fail(f"G10 L{level} {a}: tool {a} offsets (lathe tools) are not supported; only 0 is",
+                       column=seen[a].column, text=seen[a].text,
+                       expected=f"G10 L{level} P<tool> Z.. R.. (tool length and radius)")
+    number = int(p_word.value)
+    tool = st.tool(number) or Tool(number=number)
+    length = tool.length
+    if "Z" in seen:
+        z = seen["Z"].value * st.scale
+        if level == 1:
+            length = z
+        elif level == 10:
+            length = st.pos[2] - st.offset()[2] + st.tool_length - z
+        else:
+            fixture = st.offsets.get("G59.3", st.context.offset("G59.3"))
+            length = st.pos[2] - fixture[2] - z
+    radius = seen["R"].value * st.scale if "R" in seen else tool.radius
+    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius))
+
+
+def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.ndarray:
+    """G10 L20: the offset of a system (rotated by ``rotation`` [deg]) that makes the current position
+    read the programmed values there (LinuxCNC interp_convert.cc convert_setup: the old and the desired
+    position are rotated into the unrotated frame; an axis not named keeps its current coordinate).
+    Machine = R (program + G92) + offset, so offset = machine - R (desired + G92)."""
+    a = math.radians(rotation)
+    c, s = math.cos(a), math.sin(a)
+    dx, dy = st.pos[0] - offset[0], st.pos[1] - offset[1]
+    here = np.array([c * dx + s * dy - st.g92[0], -s * dx + c * dy - st.g92[1]])  # current X Y in that system
+    new = offset.copy()
+    if "X" in seen or "Y" in seen:
+        want = np.array([seen[k].value * st.scale if k in seen else here[i] for i, k in enumerate("XY")]) + st.g92[:2]
+        new[0] = st.pos[0] - (c * want[0] - s * want[1])
+        new[1] = st.pos[1] - (s * want[0] + c * want[1])
+    if "Z" in seen:
+        new[2] = st.pos[2] - st.g92[2] - st.tool_length - seen["Z"].value * st.scale
+    return new
 
 
 def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:
@@ -1105,8 +1228,6 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     name = _G[st.motion][1]
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
-    if st.plane != 2:
-        where.fail(f"{name}: only in the XY plane (G17)", column=mw.column, text=mw.text, expected="G17")
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
@@ -1117,7 +1238,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
-                            tap_out_to_r=st.context.dialect.tap_out_to_r)
+                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)

@@ -1,7 +1,8 @@
 """Drilling canned cycles of ISO G-code (G73, G81-G86, G89) as ordinary rapid, feed and dwell moves.
 
 Semantics of LinuxCNC's G-code reference ("Canned Cycles",
-https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc), in the XY plane:
+https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g81 and interp_cycles.cc), written for the
+XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: drilling along Y / X):
 
 * **Preliminary motion**: if the initial level (the Z at the start of the series) is below the R
   plane, rapid up to R; then for the first hole of the block, if the tool is above R, rapid in X Y
@@ -32,7 +33,7 @@ import numpy as np
 
 from interpolators.iso_polar import PolarError, polar_xy
 
-__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES"]
+__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "CYCLE_AXES", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES"]
 
 #: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
 RAPID_DELTA_INCH = 0.010
@@ -74,10 +75,17 @@ class HoleMove:
     dwell: float = 0.0
 
 
+#: Axes of a cycle per plane (0 = G19 YZ, 1 = G18 ZX, 2 = G17 XY): the two hole-position axes, then the drilling
+#: axis (LinuxCNC interp_cycles.cc convert_cycle_xy / _zx: aa = Z, bb = X, cc = Y / _yz: aa = Y, bb = Z, cc = X).
+CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
+
+
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-                tap_out_to_r: bool = False) -> list[HoleMove]:
-    """The moves of one canned-cycle block.
+                tap_out_to_r: bool = False, plane: int = 2) -> list[HoleMove]:
+    """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
+    (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
+    "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
 
     Parameters
     ----------
@@ -104,12 +112,39 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     tap_out_to_r : bool
         G84 feeds out to the R plane and rapids on to the clear level (Fanuc, Haas), rather than
         feeding out to the clear level (LinuxCNC).
+    plane : int
+        2 (G17, drilling along Z), 1 (G18, along Y) or 0 (G19, along X).
 
     Raises
     ------
     CycleError
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
+    axes = CYCLE_AXES[plane]
+    if axes == (0, 1, 2):
+        return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
+                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)
+    if "@" in words or "^" in words:
+        raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
+                         letter="@" if "@" in words else "^", expected="G17 for polar words")
+    letters = {"XYZ"[j]: "XYZ"[a] for j, a in enumerate(axes)}  # permuted letter -> the word's letter
+    permuted = {k: v for k, v in words.items() if k not in "XYZ"}
+    permuted.update({j: words[a] for j, a in letters.items() if a in words})
+    try:
+        moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
+                          incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
+                          tap_out_to_r=tap_out_to_r)
+    except CycleError as exc:
+        exc.letter = letters.get(exc.letter, exc.letter)
+        raise
+    back = np.argsort(axes)
+    return [dataclasses.replace(m, target=m.target[back]) for m in moves]
+
+
+def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
+              scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
+              tap_out_to_r: bool) -> list[HoleMove]:
+    """:func:`cycle_moves` in the XY plane (drilling along Z)."""
     repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
     z0 = float(pos[2])
     if cycle.initial is None:

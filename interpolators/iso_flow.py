@@ -7,13 +7,16 @@ LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
   ``o100 return [v]`` / ``endsub [v]`` leave it (the value goes to ``#<_value>``);
 * ``if``/``elseif``/``else``/``endif``, ``while``/``endwhile``, ``do``/``while``,
   ``repeat [n]``/``endrepeat``, ``break`` and ``continue``, each tied by its O number or name;
-* ``o<name> call`` of a subroutine not in the file runs ``<name>.ngc`` of the program's folder,
-  as LinuxCNC finds it on its SUBROUTINE_PATH.
+* ``o<name> call`` of a subroutine not in the file runs ``<name>.ngc`` of the program's folder
+  or of a folder of the dialect's ``subroutine_path``, as LinuxCNC finds it on its INI's
+  SUBROUTINE_PATH; a numbered subroutine in such a file cannot be called (LinuxCNC reads the file
+  from its ``o<name> sub`` on), and subroutine definitions do not nest.
 
 Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M98 P1000 L3``
 runs the program ``O1000`` three times, from the same file or else from the program file of its
-folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, and in the
-main program ends it (the control would rewind; vcnc runs the program once).
+folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, ``M99 P<n>``
+to the block ``N<n>`` of the calling program, and in the main program ``M99`` ends it (the control
+would rewind; vcnc runs the program once).
 
 Fanuc/Haas custom macro B simple call ``G65 P9001 L2 A1. C2.5 V10100.`` (Fanuc Series 16i/18i
 operator's manual B-63684EN, 16 "Custom macro", "Simple call (G65)"; Haas mill operator's manual,
@@ -24,8 +27,14 @@ the n-th repeated I J K -> #(3n+1) #(3n+2) #(3n+3) (argument specification II; t
 The arguments are set on the first repetition only; ``M99`` returns. An argument written as a
 number without a decimal point is an error: the control scales it by its least input increment
 ("The value of an argument passed without a decimal point may vary according to the system
-configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``WHILE [..] DO n`` and
-``END n``, is named in an error.
+configuration of the machine"). The rest of macro B, ``IF [..] GOTO n``, ``IF [..] THEN``,
+``GOTO n`` and ``WHILE [..] DO m`` / ``END m``, runs as :mod:`interpolators.iso_macro` describes.
+
+A comment ``(ABORT, text)`` ends the run where it is reached with an error carrying the text, its
+parameters substituted (LinuxCNC G-code overview, "Abort Messages", "Comment Parameters"); the other
+active comments (``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)``,
+:mod:`interpolators.iso_messages`) go to the caller's ``on_comment`` where the run reaches them, after
+the parameters the line sets (LinuxCNC sets them before it executes the block).
 
 A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
 
@@ -37,12 +46,14 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
+from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
+from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
-from interpolators.iso_words import Word, read_words, strip_comments
+from interpolators.iso_words import Word, block_comment, read_words, strip_comments
 
 __all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
 
@@ -59,8 +70,6 @@ _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: File suffixes of part programs searched for a subprogram in another file.
 _PROGRAM_SUFFIXES = frozenset({".nc", ".ngc", ".cnc", ".tap", ".gcode", ".txt", ".iso", ".min", ".mpf", ".spf", ""})
 _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
-#: Fanuc custom macro B statements (not run): branch IF..GOTO, GOTO, loop WHILE..DO / END.
-_MACRO_B = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?(IF\s*\[|GOTO\s*[\d#\[]|WHILE\s*\[|END\s*\d|DO\s*\d)", re.I)
 #: G65 argument letters (argument specification I) -> local variable number.
 _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
@@ -98,8 +107,10 @@ class _Frame:
 class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
-    def __init__(self, text: str, source: str | None) -> None:
+    def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
+                 subroutine_path: tuple[str, ...] = ()) -> None:
         self.source = source
+        self.subroutine_path = subroutine_path
         self.raw: list[str] = []
         self.sources: list[str | None] = []
         self.code: list[str | None] = []
@@ -108,19 +119,30 @@ class _Program:
         self.by_label: dict[str, list[int]] = {}
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
+        self.macro = MacroFlow(max_passes=max_loop_passes)
+        self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
+        self.span = 0
         self._index(text, source)
         self.main_end = len(self.code)
 
     def _index(self, text: str, source: str | None) -> None:
         """Append the lines of ``text`` (from ``source``), classified, O-words and numbers indexed."""
         self.first_line.setdefault(source, len(self.code))
+        self.span += 1  # each file, and each O program in it, is a program of its own (macro B GOTO)
         for raw in lines_of(text):
             i = len(self.code)
             self.raw.append(raw)
             self.sources.append(source)
             where = self.where(i)
             code = strip_comments(raw, where)
+            comment = block_comment(raw, where)
+            active = None if comment is None else active_comment(comment)
+            if active is not None:
+                self.active[i] = active
             s = code.strip()
+            if _FANUC_PROGRAM.match(code) or _NAMED_PROGRAM.match(code):
+                self.span += 1
+            self.macro.add_line(i, None, self.span, where)
             if not s or s == "%":
                 self.code.append(None)
                 continue
@@ -132,13 +154,9 @@ class _Program:
                 where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number",
                            column=code.index(":") + 1, text=s,
                            expected="':' followed by the program number, e.g. :1234")
-            mb = _MACRO_B.match(code)
-            if mb:
-                stmt = re.sub(r"[\s\[\d#]", "", mb.group(1)).upper()
-                name = {"IF": "IF [..] GOTO n branch", "GOTO": "GOTO n branch", "WHILE": "WHILE [..] DO n loop",
-                        "END": "END n (end of a WHILE loop)", "DO": "DO n loop"}[stmt]
-                where.fail(f"Fanuc custom macro B {name}: not supported", column=mb.start(1) + 1, text=s,
-                           expected="LinuxCNC O-word control flow (o100 if [..] / o100 while [..])")
+            if self.macro.add_line(i, code, self.span, where) is not None:
+                self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
+                continue
             m = _O_LINE.match(code)
             if _NAMED_PROGRAM.match(code) and not (m and m.group(2) and m.group(2).lower() in _KEYWORDS):
                 self.code.append(None)  # "O7997A", "OWASHER": the program's name
@@ -177,8 +195,11 @@ class _Program:
         self._check_structure()
 
     def _check_structure(self) -> None:
-        """Every opening O-word has its closing one after it (LinuxCNC checks this before running)."""
+        """Every opening O-word has its closing one after it (LinuxCNC checks this before running),
+        every macro B ``DO m`` its ``END m``."""
+        self.macro.match_loops(self.where)
         closers = {"sub": ("endsub",), "if": ("endif",), "repeat": ("endrepeat",), "do": ("while",)}
+        self._check_nested_subs()
         for i, ow in self.oword.items():
             if ow.keyword == "while":
                 opened_by_do = any(self.oword[j].keyword == "do" and j < i for j in self.by_label[ow.label])
@@ -187,6 +208,21 @@ class _Program:
                 self.next_of(i, ("endwhile",))
             elif ow.keyword in closers:
                 self.next_of(i, closers[ow.keyword])
+
+    def _check_nested_subs(self) -> None:
+        """A subroutine definition inside another is an error (LinuxCNC tests/interp/nested-sub-error:
+        ``o100 sub`` between ``o<nested> sub`` and its ``endsub``)."""
+        inside: int | None = None
+        for i in sorted(self.oword):
+            ow = self.oword[i]
+            if ow.keyword == "sub":
+                if inside is not None and self.sources[inside] == self.sources[i]:
+                    outer = self.oword[inside].label
+                    self.fail(i, f"O-word o{ow.label} sub inside the definition of o{outer}: subroutine "
+                                 "definitions cannot nest", f"o{outer} endsub before o{ow.label} sub")
+                inside = i
+            elif ow.keyword == "endsub" and inside is not None and ow.label == self.oword[inside].label:
+                inside = None
 
     def where(self, i: int) -> Where:
         src = self.sources[i]  # line numbers count within each file
@@ -225,12 +261,16 @@ class _Program:
 
     def external_sub(self, label: str) -> int | None:
         """Start of subroutine ``o<label>`` after including ``<label>.ngc`` from the main
-        program's directory (LinuxCNC searches its SUBROUTINE_PATH for ``<name>.ngc``)."""
+        program's directory or a folder of :attr:`subroutine_path` (LinuxCNC searches its INI's
+        SUBROUTINE_PATH for ``<name>.ngc``; relative folders start at the program's)."""
         if self.sub_start(label) is not None or self.source is None or not label.startswith("<"):
             return self.sub_start(label)
-        cand = Path(self.source).parent / f"{label[1:-1]}.ngc"
-        if cand.is_file():
-            self.include(cand)
+        folder = Path(self.source).parent
+        for place in (folder, *(folder / p for p in self.subroutine_path)):
+            cand = place / f"{label[1:-1]}.ngc"
+            if cand.is_file():
+                self.include(cand)
+                break
         return self.sub_start(label)
 
     def fail(self, i: int, message: str, expected: str) -> None:
@@ -298,8 +338,17 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
-        max_lines: int = MAX_EXECUTED_LINES) -> Iterator[FlowLine]:
+        max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
+        subroutine_path: tuple[str, ...] = (),
+        on_comment: Callable[[str, str, Where], None] | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
+
+    ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
+    backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
+    ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
+    ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
+    (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
+    comments.
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -309,7 +358,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source)
+    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path)
     params = Parameters() if params is None else params
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
@@ -325,12 +374,24 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
+        if pc in prog.macro.statements:
+            pc = prog.macro.execute(pc, prog.where(pc), params)
+            continue
         code = prog.code[pc]
+        where = prog.where(pc)
+        words = [] if code is None else read_line(code, where, params) if has_parameters(code) else \
+            read_words(code, where)
+        if pc in prog.active:
+            keyword, text = prog.active[pc]
+            if keyword == "abort":  # LinuxCNC "Abort Messages": (ABORT, text) ends the run with the message
+                prog.fail(pc, f"(ABORT) the program aborts here: {expand(text, params, where).strip()}",
+                          "a program that does not reach its (ABORT, ...) comment")
+            shown = None if on_comment is None else comment_output(keyword, text, params, where)
+            if shown is not None:
+                on_comment(keyword, shown, where)
         if code is None:
             pc += 1
             continue
-        where = prog.where(pc)
-        words = read_line(code, where, params) if has_parameters(code) else read_words(code, where)
         g65 = next((w for w in words if w.letter == "G" and w.value == 65), None)
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames)
@@ -353,7 +414,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             else:
                 pc += 1
             continue
-        rest = [w for w in words if w is not m99]
+        back_to = next((w for w in words if w.letter == "P"), None) if frames else None
+        rest = [w for w in words if w is not m99 and w is not back_to]
         if not frames:
             yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
             return
@@ -369,7 +431,19 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             frames.pop()
             if frame.kind == "g65":
                 params.pop()
-            pc = frame.return_pc
+            pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
+
+
+def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
+    """``M99 P<n>`` in a subprogram: return to the block ``N<n>`` of the calling program instead of
+    the block after the call (Haas mill operator's manual, "M99 Subprogram Return or Loop": "M99 P
+    ... jumps to the N number in the calling program"), found as a macro B GOTO finds it."""
+    n = round(p.value)
+    target = prog.macro.find(n, frame.return_pc - 1) if p.value == n else None
+    if target is None:
+        where.fail(f"M99 P{p.value:g}: no block N{p.value:g} in the calling program", column=p.column, text=p.text,
+                   expected="M99 P<n> with a block N<n> in the program that called this one")
+    return target
 
 
 def _called_program(prog: _Program, words: list[Word], call: Word, where: Where, what: str) -> int:
@@ -436,6 +510,12 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
         if start is None:
             prog.fail(pc, f"O-word o{label} call: the subroutine is neither in this file nor in "
                           f"{label.strip('<>')}.ngc beside it", f"o{label} sub ... endsub")
+        if not label.startswith("<") and prog.sources[start] != prog.source:
+            # LinuxCNC interp_o_word.cc: LinuxCNC reads a subroutine file from its o<name> sub on, so a
+            # numbered subroutine there is neither in its offset table nor a file of its own
+            prog.fail(pc, f"O-word o{label} call: subroutine o{label} is defined in the subroutine file "
+                          f"{Path(prog.sources[start]).name}, where LinuxCNC does not find numbered subroutines",
+                      f"o{label} sub in the main program, or a named o<name> sub in <name>.ngc")
         args = _args(prog, pc, params)
         params.push(args)
         frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))

@@ -13,39 +13,60 @@ LinuxCNC G-code overview (https://linuxcnc.org/docs/html/gcode/overview.html, se
 * expressions ``[ ... ]`` with ``**`` (power), ``* / MOD``, ``+ -``, ``EQ NE GT GE LT LE`` and
   ``AND OR XOR``, in falling precedence, left to right within a level; unary minus on any value;
 * functions ``ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN`` of ``[arg]`` (angles in
-  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]`` (``EXISTS[#n]``: 1 for 1 <= n < 5602);
+  degrees), ``ATAN[y]/[x]`` and ``EXISTS[#<name>]`` (``EXISTS[#n]``: 1 for 1 <= n < 5602), and
+  Fanuc's ``BIN`` (BCD to binary) and ``BCD`` (binary to BCD) of whole numbers >= 0;
 * a parameter number may be any value: ``##1``, ``#[#1+1]``, even ``#ATAN[1]/[1]`` (#45);
 * ``#<_value>`` (the value the last subroutine returned, 0 if none) and ``#<_value_returned>``
-  are predefined and start at 0.
+  are predefined and start at 0; ``#<_line>`` is the line being executed, counted in its file
+  (LinuxCNC ``interp_namedparams.cc`` NP_LINE: the sequence number, tests/interp/sequence-number).
 
-System parameters that read the machine state (``#5001`` and above, unless the program set them)
-are not modelled: reading one is an error naming it. Fanuc/Haas custom macro B (a ``G65`` call,
-:mod:`interpolators.iso_flow`) differs in two ways the store follows: a macro call's locals are
-``#1``-``#33`` (Haas mill operator's manual, "Local Variables": "Local variables range between #1
-and #33 ... During a G65 call, all new local variables are cleared"; reading one that neither an
-argument nor an assignment set is an error, since Fanuc's vacant variable is not 0: ``X#24``
-leaves the X word out), and the Haas Next Generation Control numbers its general-purpose variables
-``#10000``-``#10999`` ("saved on power off", Haas NGC macro variable table, e.g.
-https://zappettiniconsulting.com/wiki/haas-system-variables); they are global parameters here (the
-NGC's second, legacy number of some of them, ``#100``-``#199`` and ``#500``-``#999``, is a
-different parameter here). ``#0`` is Fanuc's null variable, always vacant and never set.
+System parameters that read the machine state (``#5001`` and above) come from the reader's state
+(:mod:`interpolators.iso_system`: positions, offsets, tools; read-only); one it does not model is an
+error naming it unless the program has set it. So do LinuxCNC's read-only named aliases ``#<_x>`` ..
+``#<_w>`` (#5420..), ``#<_abs_x>`` .. (#5021..) and ``#<_current_tool>`` (#5400); ``#<_ini[..]..>``
+(INI file values) is an error, as is assigning any of them.
+
+Fanuc/Haas custom macro B (Fanuc 0i-MD operator's manual B-64304EN, "Custom macro", "Variables";
+Mitsubishi M700V programming manual 13.5 "User macro", "Undefined variables"; Haas mill operator's
+manual, "Macros"):
+
+* *vacant* variables: ``#0`` is always vacant and cannot be set; under the ``fanuc`` and ``haas``
+  dialects every numbered parameter no assignment has set is vacant, and the locals ``#1``-``#33``
+  of a G65 macro call are vacant but for its arguments under every dialect (LinuxCNC has no G65;
+  elsewhere LinuxCNC reads unset parameters as 0). A word whose value is a vacant parameter alone
+  is left out (``G0 X#1 Y10`` is ``G0 Y10``); ``#2 = #1`` makes ``#2`` vacant; in arithmetic and
+  functions vacant counts 0 (``#1 + 10`` is 10, ``#1 * 5`` is 0); in comparisons ``EQ`` and ``NE``
+  tell vacant from 0 (``#1 EQ #0`` holds, ``#1 EQ 0`` does not) while ``GT GE LT LE`` take it as 0;
+  a vacant condition is false.
+* under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
+  parameters: the modal information ``#4001``.. comes from the reader's state
+  (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
+  other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
+  feed-hold switches), and reading an unmodelled one is an error naming it.
+* a G65 macro call's locals are ``#1``-``#33`` per call level (Haas, "Local Variables": "Local
+  variables range between #1 and #33 ... During a G65 call, all new local variables are cleared");
+  ``#100``-``#199`` and ``#500``-``#999`` are common (global) variables, and the Haas Next
+  Generation Control's general-purpose variables ``#10000``-``#10999`` ("saved on power off", Haas
+  NGC macro variable table) are global parameters too (the NGC's second, legacy number of some of
+  them, ``#100``-``#199`` and ``#500``-``#999``, is a different parameter here).
 """
 
 from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_words import Word, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "has_parameters"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
-_FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN", "SIN", "SQRT",
-              "TAN")
+_FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "BCD", "BIN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN",
+              "SIN", "SQRT", "TAN")
 _BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
 #: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
 #: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
@@ -61,18 +82,45 @@ _WRITABLE_SYSTEM = frozenset({5599})
 _LINUXCNC_PARAMETERS = 5602
 #: Haas NGC general-purpose macro variables (global, readable and writable).
 _HAAS_GENERAL = range(10000, 11000)
+#: LinuxCNC's predefined read-only named parameters that alias system parameters ("Predefined Named
+#: Parameters": #<_x> = #5420 ... #<_w> = #5428, #<_abs_x> = #5021 ..., #<_current_tool> = #5400).
+_NAMED_SYSTEM = {**{f"_{a}": 5420 + i for i, a in enumerate("xyzabcuvw")},
+                 **{f"_abs_{a}": 5021 + i for i, a in enumerate("xyzabcuvw")}, "_current_tool": 5400}
+#: Fanuc/Haas system variables below #5000 (interface signals #1000-, tool offsets #2001-, alarm #3000,
+#: clocks and settings #3001-, modal information #4001-): under LinuxCNC they are user parameters.
+_FANUC_SYSTEM = range(1000, 5000)
+#: Fanuc/Haas macro alarm: setting it stops the program with an alarm.
+_FANUC_ALARM = 3000
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
 
 
 class Parameters:
-    """Parameter store: global numbered and named parameters and a stack of call frames."""
+    """Parameter store: global numbered and named parameters and a stack of call frames.
 
-    def __init__(self) -> None:
+    Parameters
+    ----------
+    macro_b : bool
+        Fanuc/Haas custom macro B semantics (the ``fanuc`` and ``haas`` dialects): a numbered
+        parameter no assignment has set is *vacant*, not 0, and ``FIX``/``FUP`` round towards / away
+        from zero. Without it, unset parameters read 0 (LinuxCNC) except the locals of a G65 macro
+        call, which are vacant under every dialect (LinuxCNC has no G65), and ``FIX``/``FUP`` are
+        floor and ceiling (LinuxCNC ``interp_execute.cc``).
+    system : callable, optional
+        ``system(n)`` gives ``(value, why)`` for the system parameter ``#n`` from the machine state
+        (:func:`interpolators.iso_system.system_parameter`): the value, or ``None`` with the reason
+        it cannot be known (an error naming it), or ``(None, "")`` when ``#n`` is not modelled. A
+        parameter it models is read-only.
+    """
+
+    def __init__(self, *, macro_b: bool = False,
+                 system: Callable[[int], tuple[float | None, str]] | None = None) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
+        self.macro_b = macro_b
+        self.system = system
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -80,29 +128,49 @@ class Parameters:
     def _scope(self, name: str) -> dict[str, float]:
         return self.frames[-1][1] if self.frames and not name.startswith("_") else self.named
 
-    def get_numbered(self, n: int, where: Where, column: int, text: str) -> float:
+    def get_numbered(self, n: int, where: Where, column: int, text: str) -> float | None:
+        """The value of ``#n``; ``None`` when it is vacant (``#0``, or unset under Fanuc semantics)."""
         if n == 0:
-            where.fail("parameter #0 is the null variable (Fanuc macro B: always vacant; a word such as X#0 is "
-                       "left out): not supported", column=column, text=text, expected="a parameter #1 .. #5219")
-        store = self._local_numbered(n)
+            return None  # Fanuc's null variable: always vacant
         if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
-        if (n < 1 or n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) \
-                and n not in _HAAS_GENERAL:
-            where.fail(f"parameter #{n}: system parameters (machine state: positions, probe results, G28/G30/G92 "
-                       "and work offsets, tool data; #5001 and above) are not supported", column=column, text=text,
-                       expected="a parameter #1 .. #5000, or one the program has set")
-        if n not in store and self.frames and self.frames[-1][2] == MACRO_LOCALS and n <= MACRO_LOCALS:
-            # Fanuc: a vacant variable leaves its word out (X#24 moves no X) and is not 0 in every
-            # operation; vcnc reads unset parameters as 0 (LinuxCNC), which would move X to 0
-            where.fail(f"#{n} is vacant in this G65 macro (no argument set it): Fanuc's vacant variables "
-                       "(a word X#24 left out) are not supported", column=column, text=text,
-                       expected=f"a G65 argument or an assignment that sets #{n} before it is read")
+        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
+        if state is not None:
+            return state
+        if why:
+            where.fail(f"parameter #{n}: {why}", column=column, text=text,
+                       expected="a parameter whose value the program determines")
+        store = self._local_numbered(n)
+        if self.macro_b and n in _FANUC_SYSTEM and n not in store:
+            where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
+                       "alarms, clocks, modal information) is not modelled", column=column, text=text,
+                       expected="a common variable #100-#199, #500-#999, or a modelled one (#4001-#4015 modal "
+                                "G codes, #4109 F, #4120 T, #5001.. positions)")
+        if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
+            where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
+                       column=column, text=text,
+                       expected="a parameter #1 .. #5000, one the program has set, or a modelled system parameter "
+                                "(#5161-#5169, #5181-#5189, #5211-#5219, #5220-#5389, #5400-#5409, #5420-#5428)")
+        if n not in store and (self.macro_b or (self.frames and self.frames[-1][2] == MACRO_LOCALS
+                                               and n <= MACRO_LOCALS)):
+            return None
         return store.get(n, 0.0)
+
+    def _is_system(self, n: int) -> bool:
+        """Whether ``#n`` may report machine state: above #5000, and under macro B #1000-#4999 too."""
+        return n > _LAST_USER_PARAMETER or (self.macro_b and n in _FANUC_SYSTEM)
 
     def get_named(self, name: str, where: Where, column: int, text: str) -> float:
         key = name.lower().replace(" ", "")
+        if key.startswith("_ini["):
+            where.fail(f"named parameter #<{name}>: INI file values are not available (vcnc reads no INI file)",
+                       column=column, text=text, expected="a parameter the program sets")
+        if key == "_line":
+            return float(where.line)
+        if key in _NAMED_SYSTEM and self.system is not None:
+            value = self.get_numbered(_NAMED_SYSTEM[key], where, column, text)
+            return 0.0 if value is None else value
         scope = self._scope(key)
         if key not in scope:
             where.fail(f"named parameter #<{name}> is read before it is set", column=column, text=text,
@@ -113,19 +181,40 @@ class Parameters:
         key = name.lower().replace(" ", "")
         return key in self._scope(key)
 
-    def assign(self, key: int | str, value: float, where: Where, column: int, text: str) -> None:
+    def assign(self, key: int | str, value: float | None, where: Where, column: int, text: str) -> None:
+        """Set a parameter; ``None`` (a vacant value, ``#1 = #0``) makes a numbered one vacant."""
         if isinstance(key, int):
             if key == 0:
                 where.fail("parameter #0 cannot be set: #0 is the null variable (Fanuc macro B: always vacant); "
                            "a #[#n] whose #n is unset names it, as in a macro program run on its own instead of "
                            "through its G65 call", column=column, text=text,
                            expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
+            if self.macro_b and key == _FANUC_ALARM:
+                # Fanuc/Haas: "#3000 = n (message)" stops the program with macro alarm n (Haas: "Alarms")
+                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}: the program raises an alarm "
+                           "here", column=column, text=where.text, expected="a program that does not reach its alarm")
+            state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
+            if state is not None or why:
+                reason = f"it reports {why}" if why else "it reports the machine state"
+                where.fail(f"parameter #{key} is read-only: {reason}", column=column, text=text,
+                           expected="a user parameter #1 .. #5000 (set offsets with G10, G92, G43)")
             if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
                            expected="a parameter #1 .. #5219 (or #5599, the DEBUG output switch)")
-            self._local_numbered(key)[key] = value
+            store = self._local_numbered(key)
+            if value is None:
+                store.pop(key, None)
+            else:
+                store[key] = value
         else:
             k = key.lower().replace(" ", "")
+            if k.startswith("_ini[") or (k in _NAMED_SYSTEM and self.system is not None):
+                # LinuxCNC "Cannot assign to read-only parameter" (tests/interp/iniparam-failassign)
+                where.fail(f"named parameter #<{key}> is read-only", column=column, text=text,
+                           expected="a named parameter of the program's own")
+            if value is None:
+                where.fail(f"named parameter #<{key}> cannot be set to a vacant value", column=column, text=text,
+                           expected="a value")
             self._scope(k)[k] = value
 
     def push(self, args: list[float]) -> None:
@@ -180,7 +269,7 @@ class _Reader:
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
         return int(value), end
 
-    def read_parameter(self, pos: int) -> tuple[float, int]:
+    def read_parameter(self, pos: int) -> tuple[float | None, int]:
         key, end = self.parameter(pos)
         text = self.code[pos:end]
         if isinstance(key, int):
@@ -188,14 +277,20 @@ class _Reader:
         return self.params.get_named(key, self.where, pos + 1, text), end
 
     def real(self, pos: int) -> tuple[float, int]:
-        """A real value: number, parameter, [expression], function, with unary signs."""
+        """A real value where a number is needed (a vacant one counts 0, as in Fanuc arithmetic)."""
+        v, end = self.operand(pos)
+        return (0.0 if v is None else v), end
+
+    def operand(self, pos: int) -> tuple[float | None, int]:
+        """A real value: number, parameter, [expression], function, with unary signs; ``None`` when
+        it is a vacant parameter alone (``#1``, ``-#1``, ``[#1]``), which Fanuc keeps vacant."""
         p = self.skip(pos)
         if p >= len(self.code):
             self.fail("missing value", pos, "a number, #parameter or [expression]")
         ch = self.code[p]
         if ch in "+-" and not _NUMBER.match(self.code, p):
-            v, end = self.real(p + 1)
-            return (-v if ch == "-" else v), end
+            v, end = self.operand(p + 1)
+            return (-v if ch == "-" and v is not None else v), end
         if ch == "[":
             v, end = self.expression(p + 1)
             end = self.skip(end)
@@ -245,16 +340,19 @@ class _Reader:
                 self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]")
             x, end = self.real(s + 1)
             return math.degrees(math.atan2(arg, x)), end
+        if self.params.macro_b and name in ("FIX", "FUP"):  # Fanuc: on the absolute value, sign kept
+            magnitude = math.floor(abs(arg)) if name == "FIX" else math.ceil(abs(arg))
+            return math.copysign(float(magnitude), arg) if magnitude else 0.0, end
         try:
             return _apply(name, arg), end
         except (ValueError, OverflowError):
             self.fail(f"{name}[{arg:g}] is undefined", p, f"an argument in the domain of {name}")
         raise AssertionError("unreachable")
 
-    def expression(self, pos: int, level: int = 0) -> tuple[float, int]:
-        """Binary expression at precedence ``level`` (0: logic, lowest)."""
+    def expression(self, pos: int, level: int = 0) -> tuple[float | None, int]:
+        """Binary expression at precedence ``level`` (0: logic, lowest); ``None`` for a vacant operand alone."""
         if level == len(_BINARY):
-            return self.real(pos)
+            return self.operand(pos)
         left, p = self.expression(pos, level + 1)
         while True:
             q = self.skip(p)
@@ -264,7 +362,12 @@ class _Reader:
             right, p = self.expression(q + len(op), level + 1)
             left = self.binary(op, left, right, q)
 
-    def binary(self, op: str, a: float, b: float, pos: int) -> float:
+    def binary(self, op: str, a: float | None, b: float | None, pos: int) -> float:
+        if op in ("EQ", "NE") and (a is None or b is None):
+            # Fanuc: vacant and 0 differ for EQ and NE only; vacant EQ vacant holds
+            same = a is None and b is None
+            return 1.0 if same == (op == "EQ") else 0.0
+        a, b = (0.0 if a is None else a), (0.0 if b is None else b)  # vacant counts 0 in arithmetic
         if op in ("/", "MOD") and b == 0:
             self.fail("division by zero", pos, "a divisor other than 0")
         try:
@@ -325,6 +428,16 @@ def _apply(name: str, x: float) -> float:
         return float(math.floor(x))
     if name == "FUP":
         return float(math.ceil(x))
+    if name in ("BIN", "BCD"):  # Fanuc: binary-coded decimal to binary and back, whole numbers >= 0
+        if x < 0 or x != int(x):
+            raise ValueError(name)
+        n = int(x)
+        if name == "BCD":
+            return float(int(str(n), 16))
+        digits = f"{n:x}"
+        if any(c not in "0123456789" for c in digits):
+            raise ValueError(name)
+        return float(int(digits))
     if name == "ROUND":
         return float(math.floor(x + 0.5)) if x >= 0 else -float(math.floor(-x + 0.5))
     raise ValueError(name)
@@ -345,13 +458,24 @@ def evaluate_at(code: str, pos: int, where: Where, params: Parameters) -> tuple[
         _too_deep(where)
 
 
+def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) -> tuple[bool, int]:
+    """A condition starting at ``pos`` (``[#1 EQ 2]``, also ``[a] AND [b]`` as macro B writes it):
+    true when its value is not 0; a vacant value is false. Returns (truth, end)."""
+    try:
+        value, end = _Reader(code, where, params).expression(pos)
+    except RecursionError:
+        _too_deep(where)
+    return (value is not None and value != 0.0), end
+
+
 def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     """Words of a comment-free line whose values may be parameters or expressions.
 
-    Parameter assignments on the line are applied after all its values are read (LinuxCNC).
+    Parameter assignments on the line are applied after all its values are read (LinuxCNC). A
+    word whose value is a vacant parameter alone (Fanuc: ``X#1`` with ``#1`` vacant) is left out.
     """
     r = _Reader(code, where, params)
-    assignments: list[tuple[int | str, float, int, str]] = []
+    assignments: list[tuple[int | str, float | None, int, str]] = []
 
     def assign(i: int) -> int:
         key, end = r.parameter(i)
@@ -363,7 +487,7 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         return end
 
     try:
-        words = read_words(code, where, value=lambda pos, letter: r.real(pos), assignment=assign)
+        words = read_words(code, where, value=lambda pos, letter: r.operand(pos), assignment=assign)
     except RecursionError:
         _too_deep(where)
     for key, value, column, text in assignments:

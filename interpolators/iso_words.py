@@ -7,6 +7,8 @@ first ``)`` and then reject the rest); a ``(`` inside a comment that does not cl
 text, the comment ending at the first ``)`` (``(X+1 (move up)``, Fanuc), ``;`` comments
 run to the end of the line, ``/`` at the start of a line marks a block-delete line (executed: the
 block-delete switch is off, as in LinuxCNC's default), and ``%`` lines demarcate the program.
+A line's last ``( ... )`` comment is its block comment (:func:`block_comment`), which LinuxCNC may read
+as an active comment (:mod:`interpolators.iso_messages`).
 Parameters (``#``), expressions (``[``) and O-words are named as such when met.
 """
 
@@ -18,7 +20,7 @@ from collections.abc import Callable
 
 from interpolators._words import Where, read_number, token_at
 
-__all__ = ["Word", "strip_comments", "read_words", "WORD_LETTERS"]
+__all__ = ["Word", "strip_comments", "comment_spans", "block_comment", "read_words", "WORD_LETTERS"]
 
 #: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
 #: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
@@ -35,15 +37,16 @@ class Word:
     text: str
 
 
-def strip_comments(raw: str, where: Where) -> str:
-    """Blank out comments (nested parentheses allowed), keeping columns. An unclosed ``(`` is an error."""
-    out = list(raw)
+def comment_spans(raw: str, where: Where) -> tuple[list[tuple[int, int]], int]:
+    """The ``( ... )`` comments of a line as ``(start, end)`` slices, the parentheses included (nested
+    parentheses allowed), and where a ``;`` comment starts (``len(raw)`` without one). An unclosed
+    ``(`` is an error."""
+    spans: list[tuple[int, int]] = []
     i, n = 0, len(raw)
     while i < n:
         ch = raw[i]
         if ch == ";":
-            out[i:] = " " * (n - i)
-            break
+            return spans, i
         if ch == "(":
             depth, j = 1, i + 1
             while j < n and depth:
@@ -54,20 +57,41 @@ def strip_comments(raw: str, where: Where) -> str:
                 j = raw.find(")", i) + 1
                 if j == 0:
                     where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
-            out[i:j] = " " * (j - i)
+            spans.append((i, j))
             i = j
             continue
         if ch == ")":
             where.fail("')' without '('", column=i + 1, text=")", expected="a word")
         i += 1
+    return spans, n
+
+
+def strip_comments(raw: str, where: Where) -> str:
+    """Blank out comments (nested parentheses allowed), keeping columns. An unclosed ``(`` is an error."""
+    out = list(raw)
+    spans, semicolon = comment_spans(raw, where)
+    for i, j in spans:
+        out[i:j] = " " * (j - i)
+    out[semicolon:] = " " * (len(raw) - semicolon)
     return "".join(out)
 
 
-def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float, int]] | None = None,
+def block_comment(raw: str, where: Where) -> str | None:
+    """The text of the line's last ``( ... )`` comment, without its parentheses: the one comment of
+    a LinuxCNC block (``interp_read.cc`` ``read_comment`` overwrites the block's comment with each
+    one read), which alone may be an active comment such as ``(DEBUG, ...)`` (G-code overview,
+    "Comments": "(foo)(debug,#1)" prints, "(debug,#1)(foo)" does not). A ``;`` comment is not one
+    (``read_semicolon`` only passes ``;py,`` on)."""
+    spans, _ = comment_spans(raw, where)
+    return raw[spans[-1][0] + 1:spans[-1][1] - 1] if spans else None
+
+
+def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:
     """The words of a comment-free line, left to right.
 
-    ``value(pos, letter)`` reads a word's value after its letter (default: a plain decimal number);
+    ``value(pos, letter)`` reads a word's value after its letter (default: a plain decimal number;
+    ``None``, a Fanuc vacant variable, leaves the word out);
     ``assignment(pos)`` handles a ``#`` where a word would start and returns where it ends (default:
     none allowed). :mod:`interpolators.iso_params` passes both to read parameters and expressions.
     """
@@ -100,6 +124,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             v, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)
         else:
             v, end = value(i + 1, up)
-        words.append(Word(up, v, i + 1, code[i:end].strip()))
+        if v is not None:
+            words.append(Word(up, v, i + 1, code[i:end].strip()))
         i = end
     return words

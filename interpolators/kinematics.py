@@ -50,6 +50,7 @@ __all__ = [
     "path_limits",
     "extra_path_bounds",
     "junction_speed_limit",
+    "curvature_step_speed_limit",
     "extra_junction_speed_limit",
     "curved_speed_bound",
     "curve_limits",
@@ -320,6 +321,91 @@ def junction_speed_limit(
     if jerk_limited:
         v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, np.abs(curvature_jump))))
     return v
+
+
+def curvature_step_speed_limit(
+    tangent: np.ndarray,
+    tangent_jump: np.ndarray,
+    curvature_jump: np.ndarray,
+    kappa: np.ndarray,
+    dkappa: np.ndarray,
+    path_jerk: np.ndarray,
+    limits: AxisLimitArrays,
+    *,
+    sample_time: float,
+    share: float,
+) -> np.ndarray:
+    """Largest speed at (nearly) tangent junctions with a curvature jump, jerk limited (S-curve).
+
+    At speed ``v`` the centripetal acceleration steps by ``v^2 dk`` at the junction: an axis
+    acceleration step ``v^2 |dk_i|``, which the samples see as a jerk of at most ``v^2 |dk_i| / Ts``
+    in the sample that holds the junction (the finite third difference of an acceleration step is
+    at most 0.75 of it); a tangent step (rounding of the program's numbers) adds the velocity step
+    ``v |dt_i|``, a jerk of at most ``v |dt_i| / Ts^2``. The rule of :func:`junction_speed_limit`
+    (the steps passed within one sample) with each axis' own budget instead of a fixed share: the
+    steps may take what the axis' jerk limit leaves beside the profile's smooth jerk ``s_i`` in the
+    samples around the junction, ``v |dt_i| / Ts^2 + v^2 |dk_i| / Ts <= J_i - s_i(v)`` on each axis
+    with a step. In a chain that keeps ``share`` of the limits in reserve ``s_i <= (1 - share) J_i``;
+    with the path acceleration 0 at the junction (S-curve junctions) and ``|j| <= j_path`` on both
+    sides, within the window ``d = 3 v_w Ts`` of the finite differences (speed
+    ``v_w = v + j_path (3 Ts)^2 / 2``, path acceleration ``a_w = 3 j_path Ts``) the axis jerk
+    ``t_i (j - k^2 v^3) + 3 k_i v a + (dk/ds)_perp,i v^3`` is also at most
+    ``(|t_i| + k d) (j_path + k^2 v_w^3) + 3 k v_w a_w + k' v_w^3`` (``|dt/ds| = k``).
+    Where the tangent runs along an axis the curvature step falls on the others, which then take
+    nearly their whole jerk limit; at other orientations the bound tends to the fixed share.
+    This is the control's rule for tangent, not curvature-continuous block transitions: Beckhoff
+    TwinCAT CNC, axis parameter P-AXIS-00154 ("at the block transition from linear to circular
+    block or vice versa, a jump in acceleration occurs, even if there is a tangential transition
+    ... the velocity is reduced to such an extent that the permissible jerk at the block transition
+    is maintained", per axis; P-AXIS-00340 the jerk at tangent continuous transitions), and per axis
+    as LinuxCNC's tangent kinks (``src/emc/tp/tp.c`` ``tpSetupTangent``: each axis' acceleration
+    for the direction change within one ``cycleTime``, ``findAccelScale``, sets ``kink_vel``).
+
+    Parameters
+    ----------
+    tangent : ndarray, shape (m, 3)
+        Unit tangent at the end of the segment before each junction [-].
+    tangent_jump, curvature_jump : ndarray, shape (m, 3)
+        Unit-tangent [-] and curvature-vector [1/mm] change across each junction.
+    kappa, dkappa : ndarray, shape (m,)
+        Largest curvature [1/mm] and ``|dk/ds|`` normal to the tangent [1/mm^2] of the two segments.
+    path_jerk : ndarray, shape (m,)
+        Largest path jerk of the two segments' profiles [mm/s^3].
+    limits : AxisLimitArrays
+    sample_time : float
+        Ts [s].
+    share : float
+        Share of the jerk limits the chain keeps in reserve for its junctions [-].
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        [mm/s]; 0 where the junction has no step or the smooth jerk leaves no budget.
+    """
+    Ts = sample_time
+    dk, dt = np.abs(curvature_jump), np.abs(tangent_jump)
+    t_abs = np.abs(tangent)
+    J = limits.jerk[None, :]
+    stepped = np.isfinite(J) & ((dk > 0) | (dt > 0))
+    kappa, dkappa, jp = kappa[:, None], dkappa[:, None], path_jerk[:, None]
+
+    def excess(v: np.ndarray) -> np.ndarray:
+        vw = v[:, None] + 4.5 * jp * Ts * Ts
+        smooth = ((t_abs + 3.0 * kappa * vw * Ts) * (jp + kappa * kappa * vw**3)
+                  + 9.0 * kappa * vw * jp * Ts + dkappa * vw**3)
+        smooth = np.minimum(smooth, (1.0 - share) * J)
+        use = v[:, None] * dt / (Ts * Ts) + (v[:, None] ** 2) * dk / Ts + smooth
+        return np.max(np.where(stepped, use - J, -np.inf), axis=1)
+
+    lo = np.zeros(len(dk))
+    hi = np.minimum(np.sqrt(_min_ratio(limits.jerk * Ts, dk)), _min_ratio(limits.jerk * Ts * Ts, dt))
+    hi = np.where(np.isfinite(hi), hi, 0.0)  # no step: the rule does not apply
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        good = excess(mid) <= 0.0
+        lo = np.where(good, mid, lo)
+        hi = np.where(good, hi, mid)
+    return lo
 
 
 def _step_speed_limit(acceleration: np.ndarray, jerk: np.ndarray, step: np.ndarray, *, sample_time: float,

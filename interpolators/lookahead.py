@@ -21,8 +21,9 @@ curvature derivative; see :mod:`interpolators.kinematics`) sets the corner speed
 
 Junctions that remain discontinuous (line/arc and arc/arc corners, reversals, curvature steps of
 tangent-continuous line/arc and arc/arc junctions) are passed at a speed that keeps the step within one sample: see
-:func:`interpolators.kinematics.junction_speed_limit`. A backward and a forward pass then
-lower the junction speeds until every segment can change from its entry to its exit speed
+:func:`interpolators.kinematics.junction_speed_limit` and, for the curvature steps of tangent junctions under the
+S-curve, :func:`interpolators.kinematics.curvature_step_speed_limit` (each axis' own jerk budget). A backward
+and a forward pass then lower the junction speeds until every segment can change from its entry to its exit speed
 within its length (exactly for the trapezoid, with zero end accelerations for the S-curve).
 """
 

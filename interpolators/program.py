@@ -8,11 +8,43 @@ import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
 from vcnc.core.axes import EXTRA_NAMES
+from vcnc.core.errors import InputError
 
-__all__ = ["Block", "Program", "BLOCK_KINDS"]
+__all__ = ["Block", "Message", "Program", "BLOCK_KINDS", "MESSAGE_KINDS"]
 
 #: Kinds of executable blocks.
 BLOCK_KINDS: tuple[str, ...] = ("rapid", "line", "arc", "dwell")
+#: Kinds of messages a program gives as it runs (LinuxCNC active comments, :mod:`interpolators.iso_messages`).
+MESSAGE_KINDS: tuple[str, ...] = ("msg", "debug", "print", "log")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class Message:
+    """A message the program gives where the run reaches it: a LinuxCNC ``(MSG, text)`` operator
+    message, a ``(DEBUG, text)`` (shown to the operator as MSG is), a ``(PRINT, text)`` (written to the
+    console) or a ``(LOG, text)`` (a line of the log file ``(LOGOPEN, file)`` names; vcnc writes no file).
+
+    Attributes
+    ----------
+    line : int
+        1-based line of the comment in its file.
+    kind : str
+        One of :data:`MESSAGE_KINDS`.
+    text : str
+        The text as the control shows it: after the comma, as written for MSG; for DEBUG, PRINT and
+        LOG with its parameters replaced by their values at that point of the run.
+    file : str or None
+        The file of the line (a subroutine file may differ from ``Program.source``).
+    """
+
+    line: int
+    kind: str
+    text: str
+    file: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in MESSAGE_KINDS:
+            raise InputError(f"message kind must be one of {', '.join(MESSAGE_KINDS)}, got {self.kind!r}")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -111,6 +143,10 @@ class Program:
     notes : tuple of str
         What the reader accepted without motion or assumed, one line per kind with its count
         (``"T/M6 tool change x3"``, ``"no G20/G21: mm assumed (linuxcnc default)"``).
+    messages : tuple of Message
+        The messages of the run in the order it gives them (a message in a loop once per pass):
+        LinuxCNC's active comments under the ``linuxcnc`` dialect; none under the others, where a
+        comment is a comment.
     """
 
     blocks: tuple[Block, ...]
@@ -119,6 +155,7 @@ class Program:
     axes: tuple[str, ...] = ()
     name: str | None = None
     notes: tuple[str, ...] = ()
+    messages: tuple[Message, ...] = ()
 
     def __len__(self) -> int:
         return len(self.blocks)

@@ -175,7 +175,7 @@ class _Eval:
             name = self.s[self.i + 1:j]
             self.i = j + 1
             return name
-        return int(round(self.real()))
+        return int(round(_number(self.real())))
 
     def real(self) -> float:
         c = self.peek()
@@ -203,10 +203,10 @@ class _Eval:
             key = self.param_ref()
             self.expect("]")
             return 1.0 if self.p.exists(key) else 0.0
-        a = self.expr()
+        a = _number(self.expr())
         if f == "atan":
             self.expect("/")
-            b = self.expr()
+            b = _number(self.expr())
             return math.degrees(math.atan2(a, b))
         table = {"abs": abs, "acos": lambda v: math.degrees(math.acos(v)),
                  "asin": lambda v: math.degrees(math.asin(v)), "cos": lambda v: math.cos(math.radians(v)),
@@ -218,25 +218,44 @@ class _Eval:
     def expr(self) -> float:
         """``[ value op value ... ]`` with LinuxCNC's precedence, left to right within a level."""
         self.expect("[")
+        value = self.chain(closed=True)
+        self.i += 1
+        return value
+
+    def chain(self, *, closed: bool) -> float:
+        """``value op value ...`` up to ``]`` (closed) or to the first thing that is no operator
+        (a Fanuc macro B assignment ``#1=#2+1``, a condition ``[a]and[b]``)."""
         vals, ops = [self.real()], []
-        while self.peek() != "]":
+        while self.i < len(self.s) and not (closed and self.peek() == "]"):
             tok, prec = next(((t, p) for t, p in _BINOPS if self.s.startswith(t, self.i)), (None, None))
             if tok is None:
+                if not closed:
+                    break
                 raise ReferenceError(f"bad operator at {self.s[self.i:self.i + 20]!r}")
             self.i += len(tok)
             while ops and ops[-1][1] >= prec:
                 _reduce(vals, ops)
             ops.append((tok, prec))
             vals.append(self.real())
-        self.i += 1
+        if closed and self.peek() != "]":
+            raise ReferenceError("unclosed [")
         while ops:
             _reduce(vals, ops)
         return vals[0]
 
 
+def _number(v: float) -> float:
+    """Fanuc: a vacant value (NaN here) counts 0 in arithmetic and functions."""
+    return 0.0 if math.isnan(v) else v
+
+
 def _reduce(vals: list[float], ops: list) -> None:
     b, a = vals.pop(), vals.pop()
     op = ops.pop()[0]
+    if op in ("eq", "ne") and (math.isnan(a) or math.isnan(b)):  # Fanuc: vacant differs from 0 for EQ/NE only
+        vals.append(float((math.isnan(a) and math.isnan(b)) == (op == "eq")))
+        return
+    a, b = _number(a), _number(b)
     res = {"**": lambda: a ** b, "*": lambda: a * b, "/": lambda: a / b, "mod": lambda: math.fmod(a, b) % abs(b)
            if b else math.nan, "+": lambda: a + b, "-": lambda: a - b, "eq": lambda: float(a == b),
            "ne": lambda: float(a != b), "gt": lambda: float(a > b), "ge": lambda: float(a >= b),
@@ -254,6 +273,8 @@ class _Params:
         self.frames: list[dict] = [{}]
 
     def get(self, key: str | int) -> float:
+        if key == 0:
+            return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int):
             return self.numbered.get(key, 0.0)
         if key.startswith("_"):
@@ -270,7 +291,11 @@ class _Params:
         return key in (self.globals if key.startswith("_") else self.frames[-1])
 
     def set(self, key: str | int, value: float) -> None:
-        if isinstance(key, int):
+        if key == 0:
+            raise ReferenceError("#0 set")
+        if isinstance(key, int) and math.isnan(value):
+            self.numbered.pop(key, None)  # #1 = #0: vacant again (reads 0 under LinuxCNC's rules)
+        elif isinstance(key, int):
             self.numbered[key] = value
         elif key.startswith("_"):
             self.globals[key] = value
@@ -287,6 +312,8 @@ class _Line:
     oname: str | None = None
     okey: str | None = None
     orest: str = ""
+    seq: int | None = None  # N number (a macro B GOTO target)
+    macro: tuple[str, str] | None = None  # Fanuc macro B statement: (if|goto|while|do|end, rest)
 
 
 _OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|"
@@ -299,13 +326,23 @@ def _lines(text: str) -> list[_Line]:
         s = clean_line(raw)
         if s.startswith("/"):
             s = s[1:]
-        s = re.sub(r"^n\d+(\.\d*)?", "", s)
+        n = re.match(r"^n(\d+)(\.\d*)?", s)
+        s = s[n.end():] if n else s
+        seq = int(n.group(1)) if n else None
         m = _OWORD.match(s)
+        mac = _MACRO.match(s)
         if m:
-            out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3)))
+            out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3), seq=seq))
+        elif mac:
+            kind = next(k for k in ("if", "goto", "while", "do", "end") if s.startswith(k))
+            out.append(_Line(no, s, seq=seq, macro=(kind, s[len(kind):])))
         else:
-            out.append(_Line(no, s))
+            out.append(_Line(no, s, seq=seq))
     return out
+
+
+#: Fanuc custom macro B statements (Fanuc 0i-MD B-64304EN "Branch and repetition"), on a cleaned line.
+_MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$)")
 
 
 def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
@@ -318,13 +355,12 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
         if c == "#":
             key = ev.param_ref()
             ev.expect("=")
-            sets.append((key, ev.real()))
-        elif c in "@^":
+            sets.append((key, ev.chain(closed=False)))
+        elif c in "@^" or c.isalpha():
             ev.i += 1
-            words.setdefault(c, []).append(ev.real())
-        elif c.isalpha():
-            ev.i += 1
-            words.setdefault(c, []).append(ev.real())
+            value = ev.real()
+            if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
+                words.setdefault(c, []).append(value)
         elif c == "%":
             ev.i += 1
         else:
@@ -339,8 +375,20 @@ def _structure(lines: list[_Line]) -> dict:
     """Matching ends of the O-word blocks: sub, if/elseif/else, while, do/while, repeat."""
     subs, ends, branches, owner, fanuc = {}, {}, {}, {}, {}
     stack: list[tuple[str, str, int]] = []
+    loops_open: list[int] = []
+    program_of: dict[int, int] = {}
+    program_start = 0
     for i, ln in enumerate(lines):
         k, name = ln.okey, ln.oname
+        if ln.macro is not None and ln.macro[0] in ("while", "do", "end"):
+            if ln.macro[0] == "end":
+                j = loops_open.pop()  # END m closes the innermost DO
+                ends[j], ends[i] = i, j
+            else:
+                loops_open.append(i)
+        if name is not None and k is None:
+            program_start = i  # an O number starts a program: GOTO searches within it
+        program_of[i] = program_start
         if name is None:
             continue
         if k is None:
@@ -368,7 +416,8 @@ def _structure(lines: list[_Line]) -> dict:
             branches[j].append(i)
         elif k in ("break", "continue"):
             owner[i] = next(s[2] for s in reversed(stack) if s[0] == name and s[1] in ("while", "do", "repeat"))
-    return {"subs": subs, "ends": ends, "branches": branches, "owner": owner, "fanuc": fanuc, "lines": lines}
+    return {"subs": subs, "ends": ends, "branches": branches, "owner": owner, "fanuc": fanuc, "lines": lines,
+            "program_of": program_of}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -556,6 +605,11 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code == 100:
             _g10(m, words)
             return True
+        if code == 520:  # g-code.adoc "G52 Local Coordinate System Offset": the offset is the value
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    m.g92[i] = words[a][-1] * m.scale
+            return True
         if code == 920:
             prog_no_g92 = m.to_program(m.pos) + m.g92
             for i, a in enumerate("xyz"):
@@ -669,14 +723,24 @@ def _centre(m: _Machine, words: dict, end: np.ndarray) -> np.ndarray:
 
 
 def _cycle(m: _Machine, line: int, words: dict) -> None:
-    """One canned-cycle block (g-code.adoc "G80-G89 Canned Cycles"), XY plane."""
-    if m.plane != 17:
-        raise ReferenceError(f"canned cycle in plane G{m.plane}")
+    """One canned-cycle block (g-code.adoc "G80-G89 Canned Cycles"): in G17 the holes are drilled along
+    Z, in G18 along Y (Z X place them), in G19 along X (Y Z place them): "the cycle is performed in the
+    plane selected"."""
+    axes = {17: (0, 1, 2), 18: (2, 0, 1), 19: (1, 2, 0)}[m.plane]
+    first, second, depth = ("xyz"[a] for a in axes)
+
+    def prog(v) -> np.ndarray:  # plane coordinates (first, second, depth) -> program X Y Z
+        out = np.empty(3)
+        out[list(axes)] = v
+        return out
+
     code = m.motion // 10
-    for k in "rzqp":
+    for k in "rqp":
         if k in words:
             m.sticky[k] = words[k][-1]
-    cur = m.to_program(m.pos)
+    if depth in words:
+        m.sticky["z"] = words[depth][-1]
+    cur = m.to_program(m.pos)[list(axes)]
     if m.cycle_clear is None:
         m.cycle_clear = cur[2]
     s = m.scale
@@ -688,26 +752,28 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     repeats = int(words["l"][-1]) if "l" in words else 1
     if cur[2] < r - _EPS * max(1.0, abs(r)):
         cur[2] = r
-        m.move(line, "rapid", cur.copy())
+        m.move(line, "rapid", prog(cur))
     xy = cur[:2].copy()
     polar = "@" in words or "^" in words
+    if polar and m.plane != 17:
+        raise ReferenceError("polar words outside G17")
     for _ in range(repeats):
         if polar:
             xy = m.target(words)[:2]
         elif m.incremental:
-            xy = xy + np.array([words.get(a, [0.0])[-1] * s for a in "xy"])
+            xy = xy + np.array([words.get(a, [0.0])[-1] * s for a in (first, second)])
         else:
-            xy = np.array([words[a][-1] * s if a in words else xy[i] for i, a in enumerate("xy")])
-        z_now = m.to_program(m.pos)[2]
-        m.move(line, "rapid", np.array([*xy, z_now]), optional=True)
-        m.move(line, "rapid", np.array([*xy, r]), optional=True)
-        _hole(m, line, code, xy, r, bottom, clear)
+            xy = np.array([words[a][-1] * s if a in words else xy[i] for i, a in enumerate((first, second))])
+        z_now = m.to_program(m.pos)[axes[2]]
+        m.move(line, "rapid", prog([*xy, z_now]), optional=True)
+        m.move(line, "rapid", prog([*xy, r]), optional=True)
+        _hole(m, line, code, xy, r, bottom, clear, prog)
 
 
-def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: float, clear: float) -> None:
-    """The moves of one hole, from the R plane."""
+def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: float, clear: float, prog) -> None:
+    """The moves of one hole, from the R plane (``prog`` maps plane coordinates to program X Y Z)."""
     def at(z: float) -> np.ndarray:
-        return np.array([*xy, z])
+        return prog([*xy, z])
 
     dwell = m.sticky.get("p", 0.0)
     if code in (73, 83):
@@ -809,6 +875,9 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             if pc < 0:
                 break
             continue
+        if ln.macro is not None:
+            pc = _macro(ln, pc, st, params)
+            continue
         if not ln.text:
             pc += 1
             continue
@@ -837,6 +906,47 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
+    """Run a macro B statement; returns the next line index. GOTO n: the first line numbered Nn
+    after this one in the same program, else the first from the program's start; IF [c] GOTO n /
+    THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE)."""
+    kind, rest = ln.macro
+    if kind == "do":
+        return pc + 1
+    if kind == "end":
+        return st["ends"][pc]
+    ev = _Eval(rest, params)
+    if kind == "goto":
+        return _goto(ev.chain(closed=False), pc, st)
+    holds = ev.chain(closed=False)
+    holds = not math.isnan(holds) and holds != 0
+    if kind == "while":
+        return pc + 1 if holds else st["ends"][pc] + 1
+    rest = ev.s[ev.i:]
+    if not holds:
+        return pc + 1
+    if rest.startswith("goto"):
+        return _goto(_Eval(rest[4:], params).chain(closed=False), pc, st)
+    if not rest.startswith("then"):
+        raise ReferenceError(f"IF without GOTO/THEN: {rest[:20]!r}")
+    words, sets = _words(rest[4:], params)
+    if words:
+        raise ReferenceError("NC words after THEN")
+    for key, value in sets:
+        params.set(key, value)
+    return pc + 1
+
+
+def _goto(value: float, pc: int, st: dict) -> int:
+    n = math.floor(_number(value) + 0.5)
+    start = st["program_of"][pc]
+    same = [i for i, ln in enumerate(st["lines"]) if ln.seq == n and st["program_of"].get(i) == start]
+    after = [i for i in same if i > pc]
+    if not (after or same):
+        raise ReferenceError(f"GOTO {n}: no N{n}")
+    return (after or same)[0]
 
 
 def _cond(ln: _Line, params: _Params) -> float:

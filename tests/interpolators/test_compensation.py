@@ -314,3 +314,32 @@ def test_helix_of_three_turns_keeps_its_turns():
     arc = out[1].segment
     np.testing.assert_allclose([arc.start, arc.end], [[8, 0, 0], [8, 0, -3]], atol=1e-12)
     assert arc.sweep == pytest.approx(6.0 * math.pi) and arc.radius == pytest.approx(8.0) and arc.helix == -3.0
+
+
+def test_negative_tool_radius_swaps_the_side_as_linuxcnc():
+    """LinuxCNC convert_cutter_compensation_on: a negative radius (G41.1 D-1, or a negative tool-table
+    diameter) switches G41 to G42 with the radius' magnitude (tests/interp/crazy-paths, inside-corners)."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext, Tool
+
+    text = "G21 G90 F100\nG0 X0 Y0\n{} G1 X10\nG1 X20\nG40 G1 X30\n"
+    swapped = parse_program(text.format("G41.1 D-2"), context=MachineContext())
+    right = parse_program(text.format("G42.1 D2"), context=MachineContext())
+    assert [b.target.tolist() for b in swapped.blocks] == [b.target.tolist() for b in right.blocks]
+    assert swapped.blocks[1].target[1] == pytest.approx(-1.0)  # G42: the tool 1 mm right of +X
+    table = MachineContext(tools={4: Tool(number=4, radius=-1.0)})
+    from_table = parse_program(text.format("T4 M6 G41 D4"), context=table)
+    assert [b.target.tolist() for b in from_table.blocks] == [b.target.tolist() for b in right.blocks]
+
+
+def test_reversal_from_an_arc_onto_a_line_whose_offsets_cross_is_an_inside_corner():
+    """LinuxCNC tests/interp/inside-corners: a G3 half circle ending downwards, then a line straight up
+    (a reversal). With G42 the arc's offset (radius 1 + 0.5) and the line's (X -1.5) cross at
+    (-1.5, sqrt(2)): both end there, as at any inside corner, with no corner arc."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext
+
+    prog = parse_program("G21 G90 F100\nG0 X-5 Y0\nG42.1 D1 G1 X0 Y0\nG3 X-2 Y0 I-1 J0\nG1 Y3\nG40 G1 X-5 Y5\n",
+                         context=MachineContext())
+    ends = [(b.kind, b.line, np.round(b.target, 9).tolist()) for b in prog.blocks]
+    assert ends[3:5] == [("arc", 4, [-1.5, round(math.sqrt(2.0), 9), 0.0]), ("line", 5, [-1.5, 3.0, 0.0])]

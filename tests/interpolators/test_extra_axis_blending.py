@@ -16,7 +16,8 @@ import pytest
 from interpolators import interpolate, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.limits import AxisLimits
-from tests.interpolators.test_secondary_axes import LIMITS, _check_limits
+from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.test_secondary_axes import LIMITS
 
 CTX = INTERPOLATION_CONTEXT
 
@@ -64,7 +65,7 @@ def test_g64_passes_gentle_junctions_at_speed_within_every_limit(profile, sample
     assert sp64.duration < 0.9 * sp61.duration
     # the reversal at the end is still a stop, and the program ends where it is programmed
     assert np.allclose(sp64.position[-1], 0.0)
-    _check_limits(sp64, g64, jerk=profile == "scurve")
+    check_limits(sp64, g64, LIMITS, jerk=profile == "scurve")
     _on_segments(sp64, g64)
 
 
@@ -74,7 +75,7 @@ def test_scurve_junction_rule_includes_the_jerk_limit():
     prog = parse_program(_wrap("G64 P0.01"), context=CTX)
     sp = interpolate(prog, profile="scurve", sample_time=1e-3)
     assert _at_rest(sp, range(2, 200)) > 100
-    _check_limits(sp, prog, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True)
 
 
 def test_a_low_rotary_acceleration_lowers_the_junction_speed():
@@ -101,7 +102,7 @@ def test_reversals_rapids_and_xyz_only_neighbours_stay_stops():
     still = np.all(np.abs(sp.velocity) < 1e-9, axis=1)
     for k in range(4):  # each block ends at rest
         assert still[np.flatnonzero(sp.block == k)[-1] + 1], k
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_straight_xyz_with_a_constant_rate_is_one_profile():
@@ -112,7 +113,7 @@ def test_straight_xyz_with_a_constant_rate_is_one_profile():
     a, b = interpolate(split), interpolate(whole)
     assert a.duration == pytest.approx(b.duration, abs=2e-3)
     assert np.allclose(a.position[-1], b.position[-1])
-    _check_limits(a, split)
+    check_limits(a, split, LIMITS)
 
 
 @pytest.mark.parametrize("seed", range(12))
@@ -134,7 +135,7 @@ def test_random_nine_axis_programs_hold_every_limit(seed):
         sp = interpolate(prog, profile=profile, sample_time=sample_time)
         assert sp.axes == ("x", "y", "z", "a", "b", "c", "u", "v", "w")
         assert np.allclose(sp.position[-1], [*prog.blocks[-1].target, *prog.blocks[-1].extra_target])
-        _check_limits(sp, prog, jerk=profile == "scurve")
+        check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
         still = np.all(np.abs(sp.velocity) < 1e-9, axis=1)
         ends = [np.flatnonzero(sp.block == k)[-1] + 1 for k in range(len(prog.blocks) - 1)]
         passed += int(np.sum(~still[ends]))

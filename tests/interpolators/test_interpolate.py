@@ -10,6 +10,7 @@ import pytest
 import toolpaths as tp
 from interpolators import DEFAULT_LIMITS, AxisLimits, interpolate, parse_program
 from interpolators.profiles import ruckig_duration, trapezoid_duration
+from tests.interpolators.setpoint_checks import check_limits
 from toolpaths import Arc
 from vcnc.errors import GCodeError, InputError
 
@@ -51,25 +52,6 @@ def _random_program(seed: int, n: int = 30, *, g64: bool = False) -> str:
             prog = parse_program("\n".join(out) + "\n")
             pos = prog.blocks[-1].target.copy()
     return "\n".join(out) + "\nM30\n"
-
-
-def _check_limits(sp, prog, limits, *, jerk: bool, rapids: bool = False):
-    Ts = sp.sample_time
-    for i, a in enumerate(sp.axes):
-        lim = limits[a]
-        vcap = lim.rapid_rate if rapids else lim.velocity
-        assert np.abs(sp.velocity[:, i]).max() <= vcap * (1 + REL), a
-        assert np.abs(sp.acceleration[:, i]).max() <= lim.acceleration * (1 + REL), a
-        p = sp.position[:, i]
-        assert np.abs(np.diff(p)).max() / Ts <= vcap * (1 + REL) + 1e-9, a
-        assert np.abs(np.diff(p, 2)).max() / Ts**2 <= lim.acceleration * (1 + REL) + 1e-6, a
-        if jerk:
-            assert np.abs(np.diff(sp.acceleration[:, i])).max() / Ts <= lim.jerk * (1 + REL), a
-            assert np.abs(np.diff(p, 3)).max() / Ts**3 <= lim.jerk * (1 + REL) + 1e-3, a
-    # path speed never above the programmed feed
-    speed = np.linalg.norm(sp.velocity, axis=1)
-    feed = np.array([b.feed for b in prog.blocks])[sp.block]
-    assert np.all(speed <= feed * (1 + REL) + 1e-12)
 
 
 def _check_exact_geometry(sp, prog):
@@ -118,7 +100,7 @@ def test_random_programs_exact_stop(profile, seed):
     assert sp.axes == ("x", "y", "z")
     assert sp.meta["profile"] == profile and len(sp.path) >= len(prog.blocks) - 1
     _check_exact_geometry(sp, prog)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     assert np.array_equal(sp.position[-1], prog.end_position)
     assert np.all(np.diff(sp.block) >= 0)
 
@@ -127,7 +109,7 @@ def test_random_programs_exact_stop(profile, seed):
 def test_random_programs_continuous_path(profile):
     prog = parse_program(_random_program(5, g64=True))
     sp = interpolate(prog, limits=LIMITS, profile=profile)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     assert np.array_equal(sp.position[-1], prog.end_position)
     stop = interpolate(parse_program(_random_program(5)), limits=LIMITS, profile=profile)
     assert sp.duration <= stop.duration + sp.sample_time  # never slower than stopping at every block
@@ -138,7 +120,7 @@ def test_g64_polygon_blends_within_tolerance(profile):
     text = "G64 P0.05 G01 X20 F9000\nY20\nX0 Y20\nX0 Y0\nX20 Y0\nX20 Y10\nG61 X20 Y12\n"
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile=profile)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     # every sample within the tolerance of the programmed polyline
     pts = sp.position
     corners = np.array([[0, 0], [20, 0], [20, 20], [0, 20], [0, 0], [20, 0], [20, 10], [20, 12]], float)
@@ -161,7 +143,7 @@ def test_g64_polyline_circle_within_limits(profile):
     text = f"G00 X20 Y0\nG64 P0.01 G01 X{pts[1, 0]:.4f} Y{pts[1, 1]:.4f} F9000\n{body}\n"
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile=profile)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve", rapids=True)
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     stop = interpolate(parse_program(text.replace("G64 P0.01", "G61")), limits=LIMITS, profile=profile)
     if profile == "trapezoid":  # blended corners passed at speed
         assert sp.duration < 0.6 * stop.duration
@@ -199,7 +181,7 @@ def test_arc_feed_capped_by_centripetal_acceleration():
     prog = parse_program("G01 X1 F12000\nG03 I-1\n")
     for profile in ("trapezoid", "scurve"):
         sp = interpolate(prog, profile=profile)
-        _check_limits(sp, prog, DEFAULT_LIMITS, jerk=profile == "scurve")
+        check_limits(sp, prog, DEFAULT_LIMITS, jerk=profile == "scurve", feed=True)
         on_arc = sp.block == 1
         speed = np.linalg.norm(sp.velocity[on_arc], axis=1)
         assert speed.max() <= math.sqrt(2000.0 * 1.0) + 1e-9
@@ -208,7 +190,7 @@ def test_arc_feed_capped_by_centripetal_acceleration():
 def test_rapid_is_straight_at_rapid_rate():
     prog = parse_program("G00 X100 Y50\n")
     sp = interpolate(prog, limits=LIMITS)
-    _check_limits(sp, prog, LIMITS, jerk=False, rapids=True)
+    check_limits(sp, prog, LIMITS, jerk=False, feed=True)
     assert np.abs(np.cross(np.c_[sp.position, np.zeros(len(sp))], [100, 50, 0])).max() < 1e-9
     assert np.abs(sp.velocity[:, 0]).max() == pytest.approx(LIMITS["x"].rapid_rate, rel=1e-3)
 
@@ -227,7 +209,7 @@ def test_thesis_programs_interpolate():
         prog = parse_program(text)
         for profile in ("trapezoid", "scurve"):
             sp = interpolate(prog, profile=profile)
-            _check_limits(sp, prog, DEFAULT_LIMITS, jerk=profile == "scurve", rapids=True)
+            check_limits(sp, prog, DEFAULT_LIMITS, jerk=profile == "scurve", feed=True)
             _check_exact_geometry(sp, prog)
 
 

@@ -70,13 +70,17 @@ def test_g10_r_rotates_the_coordinate_system_about_its_origin():
     (emccanon.cc rotate_and_offset_pos); G91 steps and arc centres are in the rotated system. With
     G54 at (10, 0) turned 90 degrees, program (1, 0) is machine (10, 1), G91 X1 moves along machine
     +Y, and a clockwise arc about program (0, 0) turns about machine (10, 0); a G18/G19 arc, which
-    then lies in no axis plane, runs as chords within 1 um. What a rotation does not model is
-    refused: cycles, G92, G10 L20."""
+    then lies in no axis plane, runs as chords within 1 um. G92 takes its offset in the rotated
+    system (LinuxCNC convert_axis_offsets: offset = current + offset - value; tests/interp/g10/
+    g10-with-g92). What a rotation does not model is refused: cycles."""
     prog = parse_program("G21 G90 F100\nG10 L2 P1 X10 R90\nG0 X1 Y0\nG91 G1 X1\nG90 G2 X0 Y-2 I-2 J0\n",
                          context=MachineContext())
     assert [np.round(b.target, 12).tolist() for b in prog.blocks] == [[10, 1, 0], [10, 2, 0], [12, 0, 0]]
     assert np.allclose(prog.blocks[-1].segment.center, [10, 0, 0]) and not prog.blocks[-1].segment.ccw
     assert ends("G21 G90\nG10 L2 P1 X1 R0\nG54 G0 X0\n", MachineContext()) == [[1, 0, 0]]
+    # G92 X0 at program (1, 0): offset (1, 0); program (1, 0) is then (2, 0) turned 90 degrees, plus (10, 0)
+    pts = ends("G21 G90\nG10 L2 P1 X10 R90\nG0 X1 Y0\nG92 X0 Y0\nG0 X1 Y0\n", MachineContext())
+    assert np.round(pts[-1], 12).tolist() == [10, 2, 0]
     # a G19 half circle about program (0, 0, 1) turned 90 degrees lies in the machine XZ plane: chords
     # whose ends are on that circle and whose middles are within 1 um of it
     prog = parse_program("G21 G90 F100\nG10 L2 P1 R90\nG0 X0 Y0 Z0\nG19 G2 Y0 Z2 K1\n", context=MachineContext())
@@ -87,10 +91,16 @@ def test_g10_r_rotates_the_coordinate_system_about_its_origin():
     mid = (np.vstack([[0, 0, 0], pts[:-1]]) + pts) / 2
     assert np.all(1.0 - np.hypot(mid[:, 0], mid[:, 2] - 1.0) <= 0.001)
     for text, message in [("G21 F1\nG10 L2 P1 R30\nG81 X1 Z-1 R1\n", "G81 drilling cycle in a rotated"),
-                          ("G21\nG10 L2 P1 R30\nG92 X0\n", "G92 in a rotated coordinate system"),
-                          ("G21\nG10 L20 P1 X0 R30\n", "G10 L20 on a rotated coordinate system")]:
+                          ("G21\nG10 L20 P1 X0 R30\n", "R not allowed in G10 L20")]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+    # G10 L20 in a system turned 45 degrees (tests/interp/g10/g10-l20-while-active): at machine (0, 0),
+    # L20 X-1 makes the position read X-1, so program X0 is one unit along the rotated X axis
+    pts = ends("G21 G90 F60\nG10 L2 P1 R45\nG53 G0 X0 Y0\nG10 L20 P1 X-1\nG1 X0\nG10 L20 P1 X1 Y1\nG1 X0 Y0\n",
+               MachineContext())
+    # then L20 X1 Y1 there: X0 Y0 is (-1, -1) along the rotated axes, machine (h, h) + (0, -2h)
+    h = math.sqrt(0.5)
+    assert np.allclose(pts[1:], [[h, h, 0], [h, -h, 0]])
 
 
 def test_words_without_motion_are_noted_not_refused():
@@ -234,8 +244,10 @@ def test_flow_errors():
         parse_program("#1 = [1 / 0]\n")
     with pytest.raises(GCodeError, match="read before it is set"):
         parse_program("G0 X#<nothing>\n")
-    with pytest.raises(GCodeError, match="system parameters"):
-        parse_program("G0 X#5420\n")
+    with pytest.raises(GCodeError, match="#5061: the probe result"):
+        parse_program("G0 X#5061\n")
+    with pytest.raises(GCodeError, match="#5420 is read-only"):
+        parse_program("#5420 = 1\n")
 
 
 def test_dialect_dwell_unit_and_default_path_mode():
@@ -380,8 +392,10 @@ def test_m61_q_sets_the_tool_and_5599_may_be_set():
     (DEBUG,) output and may be written; other system parameters may not."""
     prog = parse_program("G21 #5599 = 1\nM61 Q1 G43\nG0 Z0\n", context=CTX)
     assert prog.blocks[-1].target[2] == pytest.approx(-20 + 12.5)  # G54 Z -20, tool 1 length 12.5
-    with pytest.raises(GCodeError, match="system parameters cannot be set"):
+    with pytest.raises(GCodeError, match="#5220 is read-only"):
         parse_program("G21 #5220 = 2\n", context=CTX)
+    with pytest.raises(GCodeError, match="system parameters cannot be set"):
+        parse_program("G21 #5500 = 2\n", context=CTX)
 
 
 def test_g5_and_g5_1_splines_as_chords_within_a_micrometre():
@@ -446,31 +460,32 @@ def test_g65_macro_call_arguments_locals_and_repeats():
 def test_g65_errors_name_the_problem():
     """An argument without a decimal point is scaled by the machine's least input increment (Fanuc
     16i manual, "Simple call (G65)"): an error; #0, Fanuc's null variable, cannot be set (it is what
-    #[#22] names when the macro program runs on its own); G, L, N, O, P are no argument addresses; a
-    vacant local read in the macro would leave its word out on Fanuc (X#24 with no X argument moves
-    no X), which vcnc does not model: an error rather than a move to X0."""
+    #[#22] names when #22 is vacant: no V argument, or the macro program run on its own); G, L, N, O,
+    P are no argument addresses. A vacant local read in the macro leaves its word out (X#24 with no X
+    argument moves no X: Fanuc 0i-MD B-64304EN, "Undefined variable")."""
     for text, message in [
         ("G65 P9001 A3 C5. V100.\nM30\nO9001\nM99\n", "without a decimal point"),
-        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#22 is vacant in this G65 macro"),
+        ("G65 P9001 A3. C5.\nM30\nO9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
         ("O9001\n#[#22] = 1.\nM99\n", "#0 cannot be set"),
         ("G65 P9001 A3. O5.\nM30\nO9001\nM99\n", "O is not an argument address"),
         ("G65 P9005 A3.\nM30\n", "G65 macro call: program O9005 is neither in this file"),
-        ("G21 F1\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", "#24 is vacant in this G65 macro"),
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+    assert ends("G21 F1\nG0 X2\nG65 P9001 Y3.\nM30\nO9001\nG1 X#24 Y#25\nM99\n", MachineContext())[-1] == [2, 3, 0]
 
 
 def test_fanuc_macro_text_that_is_not_run_is_named():
-    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); IF..GOTO and WHILE..DO
-    are named in an error; a ':' program-number address (ISO code) needs its number; a '/' after a
-    word's value is neither arithmetic (which needs brackets) nor a block skip that vcnc reads."""
+    """A Fanuc macro B assignment needs no enclosing brackets (#2=[#1-1]/2); a GOTO to a missing
+    block and crossing WHILE..DO loops are named in an error; a ':' program-number address (ISO
+    code) needs its number; a '/' after a word's value is neither arithmetic (which needs brackets)
+    nor a block skip that vcnc reads."""
     pts = ends("G21 G90 F100\n#1 = 5.\n#2 = [#1 - 1] / 2 + 1\nG1 X#2\n", MachineContext())
     assert pts == [[3.0, 0.0, 0.0]]
     assert parse_program(":1234\nG21 G0 X1\n", context=MachineContext()).name == "O1234"
     for text, message in [
-        ("G21\nIF [#1 EQ 0] GOTO 10\nN10 G0 X1\n", "macro B IF \\[..\\] GOTO n branch: not supported"),
-        ("G21\nWHILE [#1 LT 3] DO1\nEND1\n", "macro B WHILE \\[..\\] DO n loop"),
+        ("G21\nIF [#1 EQ 0] GOTO 10\nN11 G0 X1\n", "GOTO 10: no block N10 in this program"),
+        ("G21\nWHILE [#1 LT 3] DO1\nEND2\n", "END 2 closes no open DO 2"),
         ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
         ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
         ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
@@ -547,3 +562,32 @@ def test_g53_without_axis_words_moves_nothing():
     """A Fanuc post's "G53 G49 M05": G53 with no axis word is no motion (it made a zero-length move)."""
     prog = parse_program("G21 G90 G0 X1 Y2 Z3\nG53 G49 M05\nG0 X4\n", context=MachineContext())
     assert [b.line for b in prog.blocks] == [1, 3]
+
+
+def test_g10_l1_l10_l11_write_the_tool_table_and_g43_reads_it():
+    """LinuxCNC "G10 L1/L10/L11" (interp_convert.cc convert_setup_tool): L1 sets tool P's length Z and
+    radius R; L10 the length that makes the current Z read the programmed value in the current system
+    (without the tool length offset); L11 the same in G59.3 without G92. The next G43 applies it."""
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, -20.0), "G59.3": (0.0, 0.0, -50.0)})
+    text = ("G21 G90 F100\nG10 L1 P1 Z5 R2\nT1 M6 G43\nG0 X0 Y0 Z0\nG0 Z1\nG10 L10 P1 Z0\nG43\nG0 Z2\n"
+            "G10 L11 P2 Z3\nT2 M6 G43\nG0 Z0\nG41 G1 X10\nG40 G1 X20\n")
+    pts = ends(text, ctx)
+    assert pts[0] == [0.0, 0.0, -15.0]  # G54 Z-20 + length 5
+    # at machine Z -14 (program 1): L10 Z0 makes the length -14 + 20 = 6, so Z2 is machine -20 + 6 + 2
+    assert pts[2] == [0.0, 0.0, -12.0]
+    # L11 P2 Z3 at machine -12: length -12 + 50 - 3 = 35; G43 with tool 2, Z0 at -20 + 35
+    assert pts[3] == [0.0, 0.0, 15.0]
+    assert pts[4][1] == 0.0  # tool 2 has no radius: G41 leaves the path
+    with pytest.raises(GCodeError, match="tool X offsets .* only 0 is"):
+        parse_program("G21 G10 L1 P1 X1\n", context=ctx)
+    with pytest.raises(GCodeError, match="G10 L1 without offsets"):
+        parse_program("G21 G10 L1 P1\n", context=ctx)
+
+
+def test_g52_sets_the_shared_offset_and_5210_follows_g92_family():
+    """LinuxCNC convert_axis_offsets G_52: the named axes' offset becomes the value (not a position);
+    G92.2 suspends it, G92.3 restores it; #5210 says whether it is applied, #5211.. keep the stored
+    offset (tests/interp/g52/g52-g92-interaction)."""
+    text = ("G21 G90\nG0 X5 Y5\nG52 X2 Y3\nG0 X0 Y0\nG92.2\nG0 X#5210 Y#5212\nG92.3\nG0 X#5210 Y0\nG92.1\n"
+            "G0 X#5211 Y#5210\n")
+    assert ends(text, MachineContext()) == [[5, 5, 0], [2, 3, 0], [0, 3, 0], [3, 3, 0], [0, 0, 0]]

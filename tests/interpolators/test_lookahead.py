@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from interpolators import interpolate, parse_program
-from tests.interpolators.test_interpolate import LIMITS, _check_limits
+from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.test_interpolate import LIMITS
 from toolpaths.geometry import ClothoidPair, Line
 from toolpaths.packed import PackedSegments
 
@@ -90,8 +91,8 @@ def test_polygon_of_1000_short_blocks(profile, gain):
     # measured: trapezoid 0.06, S-curve 0.03 (the chords are merged into one smooth curve, interpolators.dense;
     # with per-junction blends only they were 0.07 and 0.16)
     assert sp.duration < gain * stop.duration
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
-    _check_limits(stop, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
+    check_limits(stop, prog, LIMITS, jerk=profile == "scurve", feed=True)
     r = _ratios(sp, LIMITS)
     assert max(r["acc"], r["acc_fd"]) <= 1 + 1e-6
     if profile == "scurve":
@@ -121,7 +122,7 @@ def test_corner_outside_principal_planes_is_blended(profile):
     text = "G90 G64 P0.1 G01 X20 Y0 Z0 F6000\nX40 Y2 Z1\nX60 Y5 Z2\nG61 X80 Y6 Z4\n"  # 4-7 deg corners
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile=profile)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     assert sum(seg.kind == "clothoid" for seg in sp.path) == 3
     stop = interpolate(parse_program(text.replace("G64 P0.1", "G61")), limits=LIMITS, profile=profile)
     assert sp.duration < 0.9 * stop.duration  # measured: trapezoid 0.85, S-curve 0.75
@@ -159,7 +160,7 @@ def test_short_arcs_of_small_radius_at_high_feed(profile):
     text = _short_arcs_program("G64 P0.01")
     prog = parse_program(text)
     sp = interpolate(prog, limits=LIMITS, profile=profile)
-    _check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     r = _ratios(sp, LIMITS)
     assert max(r["acc"], r["acc_fd"]) <= 1 + 1e-6  # not 2-8x
     if profile == "scurve":

@@ -167,10 +167,11 @@ def test_call_with_a_computed_o_number_and_a_named_main_program():
 
 def test_machine_state_parameters_are_not_read_as_zero():
     """LinuxCNC keeps machine state above #5000 (#5021-#5029 machine position, tests/interp/
-    machine-coord-params; #5061 probe result; #5161 G28 home; #5211 G92 offset), Fanuc its positions
-    in #5001-#5028: reading one the program has not set is an error, not a silent 0."""
+    machine-coord-params; #5061 probe result; #5161 G28 home; #5211 G92 offset): the flow alone
+    does not know it, so reading one the program has not set is an error, not a silent 0
+    (:func:`interpolators.parse_program` supplies the machine state, tests/interpolators/test_macro_b.py)."""
     for number in (5021, 5061, 5161, 5211):
-        with pytest.raises(GCodeError, match=f"parameter #{number}: system parameters"):
+        with pytest.raises(GCodeError, match=f"parameter #{number}: this system parameter .* is not modelled"):
             _words(f"#1 = #{number}\n")
     assert _words("#5100 = 7\nG0 X#5100\n") == [(2, [("G", 0.0), ("X", 7.0)])]
 
@@ -184,3 +185,39 @@ def test_m98_shares_the_callers_parameters_and_o_call_has_locals():
             "#31 = 13.31\nM99\nO2 sub\nG1 X#1 Y#30 Z#31\n#1 = 13.01\n#30 = 13.30\n#31 = 13.31\nO2 endsub\n")
     moves = [[v for _, v in w[1:]] for _, w in _words(text)][:4]
     assert moves == [[42.01, 42.3, 42.31], [13.01, 13.3, 13.31], [0.0, 0.0, 42.31], [42.01, 42.3, 13.31]]
+
+
+def test_subroutine_path_and_linuxcnc_sub_file_rules(tmp_path):
+    """LinuxCNC tests/interp sub-call-from-sub (SUBROUTINE_PATH=subs: a sub file calls another),
+    nested-sub-error (a sub defined inside another) and nested-sub-in-file-error (a numbered sub of a
+    sub file is not found)."""
+    from interpolators import load_program
+    from interpolators.context import Dialect, MachineContext
+
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (tmp_path / "main.ngc").write_text("G21 F100\no<caller> call [1] [2]\nM2\n")
+    (subs / "caller.ngc").write_text("o<caller> sub\no<helper> call [#1 + 3]\no<caller> endsub\nM2\n")
+    (subs / "helper.ngc").write_text("o<helper> sub\nG1 X#1\no<helper> endsub\nM2\n")
+    ctx = MachineContext(dialect=Dialect(subroutine_path=("subs",)))
+    assert load_program(tmp_path / "main.ngc", context=ctx).blocks[0].target.tolist() == [4.0, 0.0, 0.0]
+    with pytest.raises(GCodeError, match="neither in this file nor in caller.ngc"):
+        load_program(tmp_path / "main.ngc")
+    (subs / "caller.ngc").write_text("o<caller> sub\no100 sub\no100 endsub\no<caller> endsub\nM2\n")
+    with pytest.raises(GCodeError, match="o100 sub inside the definition of o<caller>"):
+        load_program(tmp_path / "main.ngc", context=ctx)
+    (subs / "caller.ngc").write_text("o<caller> sub\no200 call\no<caller> endsub\no200 sub\no200 endsub\nM2\n")
+    with pytest.raises(GCodeError, match="o200 is defined in the subroutine file caller.ngc"):
+        load_program(tmp_path / "main.ngc", context=ctx)
+
+
+def test_abort_comment_ends_the_run_with_its_message():
+    """LinuxCNC "Abort Messages" and tests/interp/abort-hot-comment: (ABORT, ...) inside a branch ends the
+    run when it is reached, its parameters printed as %f; an unreached one changes nothing."""
+    text = ("#42 = 0\n#<named> = 4711\no100 while [#42 lt 100]\no200 if [#42 eq 20]\n"
+            "(abort, param42=#42 named=#<named>)\no200 endif\n#42 = [#42 + 1]\no100 endwhile\nM2\n")
+    with pytest.raises(GCodeError, match=r"\(ABORT\) the program aborts here: param42=20.000000 named=4711.000000") \
+            as info:
+        _words(text)
+    assert info.value.line == 5
+    assert _words("o1 if [0]\n(ABORT, never)\no1 endif\nG0 X1\n") == [(4, [("G", 0.0), ("X", 1.0)])]

@@ -8,7 +8,6 @@ rotary axes moving, F is in deg/min along ``sqrt(dA^2 + dB^2 + dC^2)``; under G9
 
 from __future__ import annotations
 
-import math
 import os
 import re
 from pathlib import Path
@@ -19,6 +18,7 @@ import pytest
 from interpolators import DEFAULT_LIMITS, interpolate, load_program, parse_program
 from interpolators.context import DEFAULT_CONTEXT, INTERPOLATION_CONTEXT, MachineContext
 from interpolators.limits import DEFAULT_ROTARY_LIMITS, AxisLimits
+from tests.interpolators.setpoint_checks import check_limits, trapezoid_time
 from vcnc.cli import main
 from vcnc.commands.interpolate import blocks_table
 from vcnc.core.axes import AXIS_NAMES
@@ -31,33 +31,6 @@ CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().paren
                              / "gcode-corpus"))
 
 
-def _trapezoid_time(length: float, v: float, a: float) -> float:
-    """Rest-to-rest time of a trapezoidal profile over ``length`` at speed ``v``, acceleration ``a``."""
-    return length / v + v / a if v * v / a <= length else 2.0 * math.sqrt(length / a)
-
-
-def _check_limits(sp, program, *, jerk: bool = False) -> None:
-    """Finite-difference velocity and acceleration of every axis within its limit (rapid rate on
-    rapids), and the analytic velocity/acceleration columns too."""
-    Ts = sp.sample_time
-    rapid = np.array([b.kind == "rapid" for b in program.blocks])
-    for i, axis in enumerate(sp.axes):
-        lim = LIMITS[axis]
-        p = sp.position[:, i]
-        v_fd = np.diff(p) / Ts
-        blk = sp.block[1:]
-        v_lim = np.where(rapid[blk], lim.rapid_rate, lim.velocity)
-        assert np.all(np.abs(v_fd) <= v_lim * (1 + 1e-9) + 1e-9), axis
-        assert np.all(np.abs(sp.velocity[:, i]) <= np.where(rapid[sp.block], lim.rapid_rate, lim.velocity)
-                      * (1 + 1e-9) + 1e-9), axis
-        a_fd = np.diff(p, 2) / Ts**2
-        assert np.all(np.abs(a_fd) <= lim.acceleration * (1 + 1e-6) + 1e-6), (axis, np.abs(a_fd).max())
-        assert np.all(np.abs(sp.acceleration[:, i]) <= lim.acceleration * (1 + 1e-9)), axis
-        if jerk:
-            j_fd = np.diff(sp.acceleration[:, i]) / Ts
-            assert np.all(np.abs(j_fd) <= lim.jerk * (1 + 1e-6) + 1e-6), (axis, np.abs(j_fd).max())
-
-
 def test_pure_rotary_move_feed_is_degrees_per_minute():
     prog = parse_program("G21 G90 G1 A90 F600\n", context=CTX)
     (b,) = prog.blocks
@@ -66,7 +39,7 @@ def test_pure_rotary_move_feed_is_degrees_per_minute():
     sp = interpolate(prog)
     lim = DEFAULT_ROTARY_LIMITS["a"]
     # time = angle / feed plus the acceleration ramp, rounded up to whole samples
-    assert sp.duration == pytest.approx(_trapezoid_time(90.0, 10.0, lim.acceleration), abs=1.5e-3)
+    assert sp.duration == pytest.approx(trapezoid_time(90.0, 10.0, lim.acceleration), abs=1.5e-3)
     # (the profile is slowed uniformly by < 0.1 % so that it ends on a sample)
     assert sp.position[-1, 0] == pytest.approx(90.0) and sp.velocity[:, 0].max() == pytest.approx(10.0, rel=1e-3)
 
@@ -77,7 +50,7 @@ def test_two_rotary_axes_share_the_feed_along_their_euclidean_distance():
     assert prog.axes == ("a", "b")
     speed = np.hypot(sp.velocity[:, 0], sp.velocity[:, 1])
     assert speed.max() == pytest.approx(10.0, rel=1e-3)  # along D = sqrt(30^2 + 40^2) = 50 deg
-    assert sp.duration == pytest.approx(_trapezoid_time(50.0, 10.0, 1800.0 / 0.8), abs=1.5e-3)
+    assert sp.duration == pytest.approx(trapezoid_time(50.0, 10.0, 1800.0 / 0.8), abs=1.5e-3)
     assert np.allclose(sp.position[:, 1] * 3, sp.position[:, 0] * 4)
 
 
@@ -89,15 +62,15 @@ def test_xyz_feed_with_rotary_in_proportion():
     assert np.allclose(a, 9.0 * x) and np.allclose(sp.velocity[:, 1], 9.0 * sp.velocity[:, 0])
     assert sp.velocity[:, 0].max() == pytest.approx(10.0, rel=1e-3)  # F along X: 600 mm/min
     # A reaches its acceleration limit first: the path acceleration is 1800 / 9 = 200 mm/s^2
-    assert sp.duration == pytest.approx(_trapezoid_time(10.0, 10.0, 200.0), abs=1.5e-3)
-    _check_limits(sp, prog)
+    assert sp.duration == pytest.approx(trapezoid_time(10.0, 10.0, 200.0), abs=1.5e-3)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_rotary_limit_caps_the_xyz_feed():
     prog = parse_program("G21 G90 G1 X1 A360 F6000\n", context=CTX)
     sp = interpolate(prog)
     assert np.abs(sp.velocity[:, 1]).max() == pytest.approx(DEFAULT_ROTARY_LIMITS["a"].velocity)
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_incremental_rotary_words_and_rapids():
@@ -107,7 +80,7 @@ def test_incremental_rotary_words_and_rapids():
     sp = interpolate(prog)
     assert sp.axes == ("a", "b", "c") and np.allclose(sp.position[-1], [60, -45, 10])
     assert np.abs(sp.velocity[:, 0]).max() <= DEFAULT_ROTARY_LIMITS["a"].rapid_rate
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_inverse_time_with_rotary():
@@ -116,10 +89,10 @@ def test_inverse_time_with_rotary():
     assert b1.feed == pytest.approx(10.0 * 6 / 60)  # XYZ length over 1/6 min
     assert b2.feed == pytest.approx(90.0 * 2 / 60)  # pure rotary: its rotary distance over 1/2 min
     sp = interpolate(prog)
-    t1 = _trapezoid_time(10.0, 1.0, 200.0)
-    t2 = _trapezoid_time(90.0, 3.0, 1800.0)
+    t1 = trapezoid_time(10.0, 1.0, 200.0)
+    t2 = trapezoid_time(90.0, 3.0, 1800.0)
     assert sp.duration == pytest.approx(t1 + t2, abs=3e-3)
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_arc_with_a_rotary_word_turns_it_along_the_arc():
@@ -129,7 +102,7 @@ def test_arc_with_a_rotary_word_turns_it_along_the_arc():
     x, y, a = (sp.position[on_arc, sp.axes.index(k)] for k in ("x", "y", "a"))
     angle = np.degrees(np.arctan2(y, x))
     assert np.allclose(a, angle, atol=1e-6)  # 180 deg over the half circle, in proportion to its length
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_reference_return_machine_coordinates_and_offsets():
@@ -157,7 +130,7 @@ def test_limits_held_both_profiles_on_a_mixed_program():
         assert sp.axes == ("x", "y", "z", "a", "b")
         ends = np.array([np.r_[b.target, b.extra_target[:2]] for b in prog.blocks])
         assert np.allclose(sp.position[-1], ends[-1])
-        _check_limits(sp, prog, jerk=profile == "scurve")
+        check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
 
 
 def test_non_rotary_program_has_no_rotary_positions():
@@ -220,7 +193,7 @@ def test_corpus_rotary_programs_run_within_limits(name):
     last = prog.blocks[-1]
     end = dict(zip(AXIS_NAMES, [*last.target, *last.extra_target]))
     assert np.allclose(sp.position[-1], [end[a] for a in sp.axes])
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_inch_programs_scale_xyz_but_not_angles():

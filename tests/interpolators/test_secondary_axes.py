@@ -9,7 +9,6 @@ X and Y only). U, V, W are parallel to X, Y, Z, in mm (inches under G20).
 
 from __future__ import annotations
 
-import math
 import os
 import re
 from pathlib import Path
@@ -20,6 +19,7 @@ import pytest
 from interpolators import DEFAULT_SECONDARY_LIMITS, interpolate, load_program, parse_program
 from interpolators.context import DEFAULT_CONTEXT, INTERPOLATION_CONTEXT, MachineContext
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS
+from tests.interpolators.setpoint_checks import check_limits, trapezoid_time
 from vcnc.cli import main
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.engine.machine_file import parse_machine_text
@@ -32,28 +32,6 @@ CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().paren
 U, V, W = 3, 4, 5  # columns of u, v, w in Block.extra_target (a, b, c, u, v, w)
 
 
-def _trapezoid_time(length: float, v: float, a: float) -> float:
-    """Rest-to-rest time of a trapezoidal profile over ``length`` at speed ``v``, acceleration ``a``."""
-    return length / v + v / a if v * v / a <= length else 2.0 * math.sqrt(length / a)
-
-
-def _check_limits(sp, program, *, jerk: bool = False) -> None:
-    """Every axis within its limits by finite differences of the sampled positions (rapid rate on
-    rapids), and in the analytic velocity/acceleration columns."""
-    Ts = sp.sample_time
-    rapid = np.array([b.kind == "rapid" for b in program.blocks])
-    for i, axis in enumerate(sp.axes):
-        lim = LIMITS[axis]
-        p = sp.position[:, i]
-        v_lim = np.where(rapid[sp.block[1:]], lim.rapid_rate, lim.velocity)
-        assert np.all(np.abs(np.diff(p) / Ts) <= v_lim * (1 + 1e-9) + 1e-9), axis
-        assert np.all(np.abs(np.diff(p, 2) / Ts**2) <= lim.acceleration * (1 + 1e-6) + 1e-6), axis
-        assert np.all(np.abs(sp.acceleration[:, i]) <= lim.acceleration * (1 + 1e-9)), axis
-        if jerk:
-            j_fd = np.diff(sp.acceleration[:, i]) / Ts
-            assert np.all(np.abs(j_fd) <= lim.jerk * (1 + 1e-6) + 1e-6), (axis, np.abs(j_fd).max())
-
-
 def test_pure_uvw_move_feed_is_along_the_uvw_distance():
     prog = parse_program("G21 G90 G1 U30 V40 F600\n", context=CTX)
     (b,) = prog.blocks
@@ -63,9 +41,9 @@ def test_pure_uvw_move_feed_is_along_the_uvw_distance():
     speed = np.hypot(sp.velocity[:, 0], sp.velocity[:, 1])
     assert speed.max() == pytest.approx(10.0, rel=1e-3)
     # V reaches its acceleration limit first: the path acceleration is 2000 / 0.8 mm/s^2
-    assert sp.duration == pytest.approx(_trapezoid_time(50.0, 10.0, 2000.0 / 0.8), abs=1.5e-3)
+    assert sp.duration == pytest.approx(trapezoid_time(50.0, 10.0, 2000.0 / 0.8), abs=1.5e-3)
     assert np.allclose(sp.position[-1], [30, 40]) and np.allclose(sp.position[:, 0] * 4, sp.position[:, 1] * 3)
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_xyuv_move_feed_is_along_xy_with_uv_in_proportion():
@@ -77,8 +55,8 @@ def test_xyuv_move_feed_is_along_xy_with_uv_in_proportion():
     assert np.hypot(sp.velocity[:, 0], sp.velocity[:, 1]).max() == pytest.approx(10.0, rel=1e-3)
     assert np.allclose(u, 2 * x) and np.allclose(v, 2 * y)
     # V (1.6 mm per mm of path) limits the path acceleration to 2000 / 1.6
-    assert sp.duration == pytest.approx(_trapezoid_time(50.0, 10.0, 2000.0 / 1.6), abs=1.5e-3)
-    _check_limits(sp, prog)
+    assert sp.duration == pytest.approx(trapezoid_time(50.0, 10.0, 2000.0 / 1.6), abs=1.5e-3)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_uvw_with_rotary_and_no_xyz_feeds_along_uvw():
@@ -91,7 +69,7 @@ def test_uvw_with_rotary_and_no_xyz_feeds_along_uvw():
     a, w = sp.position.T
     assert np.allclose(a, 4.5 * w)
     assert sp.velocity[:, 1].max() == pytest.approx(20.0, rel=1e-3)
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_xyz_with_uvw_feeds_along_xyz_only():
@@ -111,7 +89,7 @@ def test_incremental_inch_and_inverse_time():
     assert sp.axes == ("u", "v", "w") and np.allclose(sp.position[-1], [0, -5, 3])
     on_g93 = sp.block == 3
     assert sp.duration > 30 and np.sum(on_g93) * sp.sample_time == pytest.approx(30.0, abs=0.05)
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)
 
 
 def test_offsets_g92_g10_g53_and_reference_return():
@@ -140,7 +118,7 @@ def test_arc_with_uv_words_moves_them_in_proportion():
     x, y, u = (sp.position[on_arc, sp.axes.index(k)] for k in ("x", "y", "u"))
     turned = np.arctan2(y, x) / np.pi  # 0 .. 1 along the half circle
     assert np.allclose(u, 20 * turned, atol=1e-6)
-    _check_limits(sp, prog, jerk=True)
+    check_limits(sp, prog, LIMITS, jerk=True)
 
 
 def test_limits_held_on_a_mixed_program_both_profiles():
@@ -151,7 +129,7 @@ def test_limits_held_on_a_mixed_program_both_profiles():
         sp = interpolate(prog, profile=profile)
         assert sp.axes == ("x", "y", "z", "a", "u", "v", "w")
         assert np.allclose(sp.position[-1], [0, 0, -5, 30, 0, 0, 0])
-        _check_limits(sp, prog, jerk=profile == "scurve")
+        check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
 
 
 def test_machine_without_the_axis_is_a_clear_error():
@@ -213,4 +191,4 @@ def test_corpus_uvw_programs_run_within_limits(name, axes):
     last = prog.blocks[-1]
     end = dict(zip(AXIS_NAMES, [*last.target, *last.extra_target]))
     assert np.allclose(sp.position[-1], [end[a] for a in sp.axes])
-    _check_limits(sp, prog)
+    check_limits(sp, prog, LIMITS)

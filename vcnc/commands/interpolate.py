@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import io
 import logging
+import sys
 
 HELP = "interpolate a program (ISO or Heidenhain) into setpoints sampled every Ts (CSV)"
 
@@ -106,6 +107,26 @@ def notes_summary(program) -> str | None:
     return "ignored/noted: " + ", ".join(program.notes) if program.notes else None
 
 
+def message_lines(program) -> list[str]:
+    """The program's operator messages as ``vcnc interpolate`` prints them on stderr, one line each:
+    ``file:line: (MSG) text``, as LinuxCNC shows MSG and DEBUG comments to the operator and writes
+    PRINT comments to its console (G-code overview, "Messages", "Debug Messages", "Print
+    Messages"); LOG lines go to a log file vcnc does not write (a note says so)."""
+    return [f"{m.file or program.source}:{m.line}: ({m.kind.upper()}) {m.text.strip()}"
+            for m in program.messages if m.kind != "log"]
+
+
+def print_program_notes(program, path) -> None:
+    """What ``vcnc interpolate`` and ``vcnc simulate`` say about a program they read: its operator
+    messages on stderr (:func:`message_lines`), then the one-line summary of what was ignored or
+    noted on stdout (:func:`notes_summary`)."""
+    for line in message_lines(program):
+        print(line, file=sys.stderr)
+    summary = notes_summary(program)
+    if summary:
+        print(f"{path}: {summary}")
+
+
 def _machine(name: str):
     from vcnc.engine.machine import load_machine
 
@@ -159,9 +180,7 @@ def run(args: argparse.Namespace) -> int:
         limits = machine.limits
         ts = float(getattr(machine, "sample_time", ts) or ts)
     program = load_program(args.program, context=program_context(args, machine))
-    summary = notes_summary(program)
-    if summary:
-        print(f"{args.program}: {summary}")
+    print_program_notes(program, args.program)
     if args.ts is not None:
         ts = args.ts
     sp = interpolate(program, limits=limits, sample_time=ts, profile=args.profile)

@@ -8,7 +8,7 @@ import json
 import logging
 from pathlib import Path
 
-from vcnc.commands.interpolate import add_context_arguments, notes_summary, program_context
+from vcnc.commands.interpolate import add_context_arguments, print_program_notes, program_context
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
@@ -34,9 +34,7 @@ def run(args: argparse.Namespace) -> int:
 
     machine = load_machine(args.machine)
     program = interpolators.load_program(args.program, context=program_context(args, machine))
-    summary_line = notes_summary(program)
-    if summary_line:
-        print(f"{args.program}: {summary_line}")
+    print_program_notes(program, args.program)
     setpoints = interpolators.interpolate(
         program, limits=machine.limits, sample_time=machine.sample_time, profile=args.profile
     )

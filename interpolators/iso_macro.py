@@ -1,0 +1,223 @@
+"""Fanuc/Haas custom macro B control flow: ``IF [..] GOTO n``, ``IF [..] THEN``, ``GOTO n``, ``WHILE [..] DO m``.
+
+Sources: Fanuc Series 0i-MD operator's manual (B-64304EN), "Custom macro", "Branch and repetition"
+(the same chapter is "Custom macro" in the 16i/18i manual B-63684EN); Haas mill operator's manual,
+"Macros" ("GOTO", "IF", "WHILE"; "Computed branch (GOTO#n and GOTO [expression])",
+https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual/mill-macros.html).
+
+* ``GOTO n`` branches to the block with sequence number ``Nn`` of the same program; ``n`` may be a
+  parameter or an expression (``GOTO #1``, ``GOTO [#2+10]``), rounded to a whole number as Haas
+  does (4.49 goes to N4, 4.5 to N5). The block is searched forward from the branch, then from the
+  start of the program (Fanuc: a backward branch takes longer than a forward one for this reason);
+  the first block found with that number is taken. A missing number is an error naming it.
+* ``IF [condition] GOTO n`` branches when the condition holds, else the next block runs;
+  ``IF [condition] THEN #i = expression`` makes the assignment only when it holds (one macro
+  statement, no NC words). The condition may join bracketed comparisons, ``[#1 EQ 2] AND [#3 GT 0]``.
+* ``WHILE [condition] DO m`` ... ``END m`` repeats the blocks between while the condition holds
+  (tested at ``WHILE`` on each pass); ``DO m`` without ``WHILE`` repeats without end (left only
+  by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
+  closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
+  after another.
+* Comparisons ``EQ NE GT GE LT LE``, ``AND OR XOR`` and the functions are those of
+  :mod:`interpolators.iso_params`, which also holds the vacant-variable semantics (``#0``).
+
+Endless loops: a loop whose ``END`` (or a backward ``GOTO``) has sent execution back more than
+:data:`MAX_LOOP_PASSES` times in one run (a ``WHILE`` that ends starts its count afresh) is an
+error naming the line, as is any program running
+more than :data:`interpolators.iso_flow.MAX_EXECUTED_LINES` lines.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+
+from interpolators._words import Where
+from interpolators.iso_params import Parameters, evaluate_at, evaluate_condition, read_line
+
+__all__ = ["MAX_LOOP_PASSES", "Statement", "MacroFlow", "read_statement", "sequence_number"]
+
+#: Largest number of times one loop end (``END m``) or backward ``GOTO`` may send execution back in a run.
+MAX_LOOP_PASSES = 100_000
+#: Deepest nesting of ``DO`` loops (Fanuc: three levels, identification numbers 1-3).
+MAX_NESTING = 3
+
+_PREFIX = r"^\s*(?:N\s*\d+\s*)?"
+_IF = re.compile(_PREFIX + r"(IF)\s*\[", re.I)
+_WHILE = re.compile(_PREFIX + r"(WHILE)\s*\[.*\]\s*DO\s*(\d+)\s*$", re.I)
+_WHILE_START = re.compile(_PREFIX + r"(WHILE)\b", re.I)
+_DO = re.compile(_PREFIX + r"(DO)\s*(\d+)\s*$", re.I)
+_END = re.compile(_PREFIX + r"(END)\s*(\d+)\s*$", re.I)
+_GOTO = re.compile(_PREFIX + r"(GOTO)\s*(?=[\d#\[+])", re.I)
+_SEQUENCE = re.compile(r"^\s*N\s*(\d+)", re.I)
+_BRANCH = re.compile(r"\s*(GOTO|THEN)", re.I)
+
+
+@dataclasses.dataclass(frozen=True)
+class Statement:
+    """A macro B statement: ``kind`` (if, goto, while, do, end), the comment-free ``code`` of its
+    line, ``start`` (0-based column of the keyword) and ``loop`` (``m`` of ``DO m`` / ``END m``)."""
+
+    kind: str
+    code: str
+    start: int
+    loop: int = 0
+
+
+def sequence_number(code: str) -> int | None:
+    """The sequence number ``Nn`` that starts a comment-free line, if any."""
+    m = _SEQUENCE.match(code)
+    return int(m.group(1)) if m else None
+
+
+def read_statement(code: str, where: Where) -> Statement | None:
+    """The macro B statement of a comment-free line, or ``None`` for an ordinary block."""
+    m = _IF.match(code)
+    if m:
+        return Statement("if", code, m.start(1))
+    m = _WHILE.match(code) or _DO.match(code) or _END.match(code)
+    if m:
+        loop = int(m.group(2))
+        word = "END" if m.group(1).upper() == "END" else "DO"
+        if not 1 <= loop <= MAX_NESTING:
+            where.fail(f"{word} {loop}: loop identification number out of range", column=m.start(2) + 1,
+                       text=code.strip(), expected=f"{word} 1, 2 or 3 (Fanuc custom macro B)")
+        return Statement(m.group(1).lower(), code, m.start(1), loop)
+    m = _WHILE_START.match(code)
+    if m:
+        where.fail("WHILE without DO m at the end of its block", column=m.start(1) + 1, text=code.strip(),
+                   expected="WHILE [condition] DO m (m = 1, 2 or 3)")
+    m = _GOTO.match(code)
+    if m:
+        return Statement("goto", code, m.start(1))
+    return None
+
+
+class MacroFlow:
+    """The macro B statements of a program, its sequence numbers per program and its loops.
+
+    Lines are numbered as :class:`interpolators.iso_flow` numbers them (all files, one index); a
+    *program* (``span``) is the main program or one ``O`` program after it, or another file.
+    """
+
+    def __init__(self, *, max_passes: int = MAX_LOOP_PASSES) -> None:
+        self.max_passes = max_passes
+        self.statements: dict[int, Statement] = {}
+        self.span_of: list[int] = []
+        self.numbers: dict[int, dict[int, list[int]]] = {}  # span -> sequence number -> lines
+        self.partner: dict[int, int] = {}  # DO/WHILE line -> END line and back
+        self.passes: dict[int, int] = {}
+
+    def add_line(self, i: int, code: str | None, span: int, where: Where) -> Statement | None:
+        """Index line ``i`` (comment-free ``code``, ``None`` for a blank one) of program ``span``."""
+        while len(self.span_of) <= i:
+            self.span_of.append(span)
+        self.span_of[i] = span
+        if code is None:
+            return None
+        n = sequence_number(code)
+        if n is not None:
+            self.numbers.setdefault(span, {}).setdefault(n, []).append(i)
+        stmt = read_statement(code, where)
+        if stmt is not None:
+            self.statements[i] = stmt
+        return stmt
+
+    def match_loops(self, where_of) -> None:
+        """Pair each ``DO m`` with its ``END m`` within its program; crossing, unclosed and too
+        deep loops are errors (``where_of(i)`` gives the :class:`Where` of line ``i``)."""
+        self.partner.clear()
+        open_: list[int] = []
+        span = None
+        for i in sorted(self.statements):
+            stmt = self.statements[i]
+            if stmt.kind not in ("while", "do", "end"):
+                continue
+            if self.span_of[i] != span:
+                self._unclosed(open_, where_of)
+                span = self.span_of[i]
+            if stmt.kind != "end":
+                if len(open_) == MAX_NESTING:
+                    where_of(i).fail(f"DO {stmt.loop}: loops nested deeper than {MAX_NESTING}", column=stmt.start + 1,
+                                     text=stmt.code.strip(), expected=f"at most {MAX_NESTING} nested DO loops")
+                open_.append(i)
+                continue
+            if not open_ or self.statements[open_[-1]].loop != stmt.loop:
+                inner = f" (the innermost open loop is DO {self.statements[open_[-1]].loop})" if open_ else ""
+                where_of(i).fail(f"END {stmt.loop} closes no open DO {stmt.loop}{inner}: loops must nest, not cross",
+                                 column=stmt.start + 1, text=stmt.code.strip(),
+                                 expected=f"WHILE [..] DO {stmt.loop} before it in the same program")
+            head = open_.pop()
+            self.partner[head] = i
+            self.partner[i] = head
+        self._unclosed(open_, where_of)
+
+    def _unclosed(self, open_: list[int], where_of) -> None:
+        if open_:
+            i = open_[-1]
+            stmt = self.statements[i]
+            where_of(i).fail(f"DO {stmt.loop} without END {stmt.loop} in its program", column=stmt.start + 1,
+                             text=stmt.code.strip(), expected=f"END {stmt.loop} closing the loop")
+        open_.clear()
+
+    def execute(self, pc: int, where: Where, params: Parameters) -> int:
+        """Run the statement of line ``pc``; returns the next line to run."""
+        stmt = self.statements[pc]
+        code = stmt.code
+        if stmt.kind == "do":
+            return pc + 1
+        if stmt.kind == "while":
+            holds, _ = evaluate_condition(code, code.index("[", stmt.start), where, params)
+            if holds:
+                return pc + 1
+            self.passes.pop(self.partner[pc], None)  # the loop is left: a later run of it counts afresh
+            return self.partner[pc] + 1
+        if stmt.kind == "end":
+            self._count(pc, where, f"END {stmt.loop}: the loop DO {stmt.loop} it closes")
+            return self.partner[pc]
+        if stmt.kind == "goto":
+            return self._goto(pc, stmt.start + len("GOTO"), where, params)
+        holds, end = evaluate_condition(code, code.index("[", stmt.start), where, params)
+        m = _BRANCH.match(code, end)
+        if m is None:
+            where.fail("IF [condition] must be followed by GOTO n or THEN", column=end + 1, text=code.strip(),
+                       expected="IF [condition] GOTO n, or IF [condition] THEN #i = expression")
+        if not holds:
+            return pc + 1
+        if m.group(1).upper() == "GOTO":
+            return self._goto(pc, m.end(), where, params)
+        rest = " " * m.end() + code[m.end():]
+        words = read_line(rest, where, params)
+        if words:
+            where.fail(f"IF [..] THEN: NC word {words[0].text!r} after THEN", column=words[0].column,
+                       text=words[0].text, expected="one macro statement after THEN, e.g. THEN #3 = 0")
+        return pc + 1
+
+    def _goto(self, pc: int, pos: int, where: Where, params: Parameters) -> int:
+        code = self.statements[pc].code
+        value, end = evaluate_at(code, pos, where, params)
+        if code[end:].strip():
+            where.fail("text after the GOTO target", column=end + 1, text=code[end:].strip(),
+                       expected="GOTO n alone (n a number, #parameter or [expression])")
+        n = math.floor(value + 0.5)
+        target = self.find(n, pc)
+        if target is None:
+            where.fail(f"GOTO {n}: no block N{n} in this program", column=pos + 1, text=code.strip(),
+                       expected=f"a block numbered N{n} in the same program")
+        if target <= pc:
+            self._count(pc, where, f"GOTO {n}")
+        return target
+
+    def find(self, n: int, pc: int) -> int | None:
+        """The line numbered ``Nn`` in the program of line ``pc``: the first after it, else the first
+        from the program's start (Fanuc's sequence-number search); ``None`` when there is none."""
+        lines = self.numbers.get(self.span_of[pc], {}).get(n, [])
+        forward = [j for j in lines if j > pc]
+        return forward[0] if forward else (lines[0] if lines else None)
+
+    def _count(self, pc: int, where: Where, what: str) -> None:
+        self.passes[pc] = self.passes.get(pc, 0) + 1
+        if self.passes[pc] > self.max_passes:
+            where.fail(f"{what} has sent execution back more than {self.max_passes} times: an endless loop?",
+                       column=1, text=where.text, expected="a loop whose condition ends it")

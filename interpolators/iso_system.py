@@ -1,0 +1,188 @@
+"""System parameters of ISO G-code: the machine state a program reads through ``#5000`` and above.
+
+LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.html#sub:numbered-parameters;
+``interp_convert.cc`` ``get_abs_position``, ``rs274ngc_pre.cc``), all read-only here:
+
+========================= ==========================================================================
+``#5021``-``#5029``       current machine position (G53: no work, G92 or tool length offset) X Y Z A B C
+                          U V W, in program units (mm or inch; rotary axes deg)
+``#5061``-``#5070``       probe result: an error (G38 probing is not supported)
+``#5081``-``#5089``       tool length offset in effect (G43/G43.1; Z only, 0 under G49), program units
+``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units: mm, deg]
+``#5210``                 1 while a G92/G52 offset is applied; ``#5211``-``#5219`` that offset, kept
+                          while G92.2 suspends it [mm]
+``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
+``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [mm, deg], ``#5241``.. G55, every 20
+                          up to ``#5381``-``#5390`` G59.3
+``#5400``                 tool in the spindle (0 when none); ``#5401``-``#5409`` its stored offsets (Z:
+                          length), ``#5410`` its diameter [mm]
+``#5420``-``#5428``       current position in the active coordinate system with all offsets, program
+                          units (an error under cutter compensation, as LinuxCNC)
+========================= ==========================================================================
+
+vcnc machines are metric: the stored tables (offsets, references, tools) read in mm, as a
+LinuxCNC machine configured in mm; positions follow G20/G21 (X Y Z U V W); rotary axes (deg) are
+never scaled.
+
+Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System variables"; Haas
+mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
+coordinate position", "#5041-#5046 present work coordinate position"): under those dialects
+``#5001``-``#5008`` is the end point of the last block and ``#5041``-``#5048`` the current position,
+both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block).
+
+Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
+information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
+17/18/19, ``#4003`` 90/91, ``#4005`` 94/93, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4009`` 80 or the
+cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
+T (the tool in the spindle).
+
+A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
+operator may have jogged the machine: an error naming that, not a guess.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from interpolators.context import WORK_OFFSETS, MachineContext, Tool
+
+__all__ = ["ReaderState", "system_parameter", "POSITION_PARAMETERS"]
+
+#: Parameters that report the current position (machine, program, Fanuc block end / work position).
+POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
+
+
+class ReaderState(Protocol):
+    """What :func:`system_parameter` reads of the ISO executor's modal state."""
+
+    context: MachineContext
+    pos: np.ndarray  # machine coordinates [mm]
+    extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
+    wcs: str
+    g92: np.ndarray
+    g92_saved: np.ndarray
+    g92_applied: bool
+    tool_length: float
+    tool_current: int | None
+    home: np.ndarray | None
+    reference2: np.ndarray | None
+    home_extra: np.ndarray
+    reference2_extra: np.ndarray
+    g92_extra_saved: np.ndarray
+    extra_offsets: dict[str, np.ndarray]
+    offsets: dict[str, np.ndarray]
+    rotations: dict[str, float]
+    comp_side: str | None
+    comp_code: str
+    stopped: bool
+    motion: int | None
+    plane: int
+    incremental: bool
+    inverse_time: bool
+    inch: bool
+    retract_r: bool
+    exact_stop: bool
+    feed: float | None
+
+    @property
+    def scale(self) -> float: ...
+
+    def to_program(self, machine: np.ndarray) -> np.ndarray: ...
+
+    def extra_offset(self) -> np.ndarray: ...
+
+    def tool(self, number: int) -> Tool | None: ...
+
+
+def _nine(linear: np.ndarray, extra: np.ndarray, scale: float) -> list[float]:
+    """X Y Z and U V W (divided by ``scale``), A B C (deg) from ``linear`` (x, y, z) and ``extra``
+    (a, b, c, u, v, w)."""
+    return [*(float(v) / scale for v in linear), *(float(v) for v in extra[:3]), *(float(v) / scale for v in extra[3:])]
+
+
+def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
+    base = 5021 if n < 5030 and n >= 5021 else 5420 if n >= 5420 else (5001 if n < 5009 else 5041)
+    if base in (5001, 5041) and not fanuc:
+        return None, ""  # LinuxCNC: user parameters
+    if st.stopped:
+        return None, ("the position after a program stop (M0/M1/M60) is where the operator jogged the machine, "
+                      "which a program file does not say")
+    if base == 5021:
+        return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
+    if st.comp_side is not None:
+        return None, "the current position cannot be read with cutter radius compensation on (LinuxCNC)"
+    values = _nine(st.to_program(st.pos), st.extra - st.extra_offset(), st.scale)
+    return values[n - base], ""
+
+
+def _work_offset(n: int, st: ReaderState) -> float | None:
+    k, j = divmod(n - 5221, 20)
+    if k >= len(WORK_OFFSETS) or j > 9:
+        return None
+    code = WORK_OFFSETS[k]
+    if j == 9:
+        return float(st.rotations.get(code, 0.0))
+    off = st.offsets.get(code)
+    xyz = st.context.offset(code) if off is None else off
+    return float(xyz[j]) if j < 3 else float(st.extra_offsets.get(code, np.zeros(6))[j - 3])
+
+
+def _tool(n: int, st: ReaderState) -> float | None:
+    number = st.tool_current or 0
+    if n == 5400:
+        return float(number)
+    tool = st.tool(number) if number else None
+    if n in range(5401, 5410):
+        return float(tool.length) if (tool is not None and n == 5403) else 0.0
+    if n == 5410:
+        return 0.0 if tool is None else 2.0 * float(tool.radius)
+    return None
+
+
+def _fanuc_modal(n: int, st: ReaderState) -> float | None:
+    """Fanuc/Haas modal information #4001.. (the G code of each group in effect, F and T)."""
+    if n == 4001:
+        return st.motion / 10 if st.motion in (0, 10, 20, 30) else None
+    if n == 4009:
+        return st.motion / 10 if st.motion is not None and st.motion >= 730 else 80.0
+    wcs = st.wcs[1:]
+    table = {4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane], 4003: 91.0 if st.incremental else 90.0,
+             4005: 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
+             4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]),
+             4010: 99.0 if st.retract_r else 98.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
+             4109: 0.0 if st.feed is None else st.feed * 60.0 / st.scale, 4120: float(st.tool_current or 0)}
+    return table.get(n)
+
+
+def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[float | None, str]:
+    """The value of system parameter ``#n`` from the reader's state, or ``(None, why)``.
+
+    ``why`` is empty when vcnc does not model ``#n`` (the caller then reads the program's own
+    parameter or reports it), else the reason it cannot be known (a jogged or probed position).
+    """
+    if n in POSITION_PARAMETERS:
+        return _position(n, st, fanuc)
+    if 4001 <= n <= 4130:
+        return (_fanuc_modal(n, st) if fanuc else None), ""
+    if 5061 <= n <= 5070:
+        return None, "the probe result (G38 probing is not supported)"
+    if 5081 <= n <= 5089:
+        return (st.tool_length / st.scale if n == 5083 else 0.0), ""
+    if 5161 <= n <= 5169 or 5181 <= n <= 5189:
+        home = st.home if n < 5180 else st.reference2
+        rot = st.home_extra if n < 5180 else st.reference2_extra
+        linear = np.zeros(3) if home is None else home
+        return _nine(linear, rot, 1.0)[n - (5161 if n < 5180 else 5181)], ""
+    if n == 5210:
+        return (1.0 if st.g92_applied else 0.0), ""
+    if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
+        return _nine(st.g92_saved, st.g92_extra_saved, 1.0)[n - 5211], ""
+    if n == 5220:
+        return float(WORK_OFFSETS.index(st.wcs) + 1), ""
+    if 5221 <= n <= 5390:
+        return _work_offset(n, st), ""
+    if 5400 <= n <= 5410:
+        return _tool(n, st), ""
+    return None, ""

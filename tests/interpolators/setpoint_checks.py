@@ -1,0 +1,42 @@
+"""Checks of sampled setpoints shared by the interpolation tests: every axis limit by finite
+differences and in the analytic columns, and the rest-to-rest time of a trapezoidal profile."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["check_limits", "trapezoid_time"]
+
+
+def check_limits(sp, program, limits, *, jerk: bool = False, feed: bool = False, rel: float = 1e-6) -> None:
+    """Every axis of ``sp`` within ``limits[axis]``: the finite differences of the sampled positions and
+    the analytic velocity and acceleration columns (the rapid rate on rapid blocks, the velocity limit
+    elsewhere), and the jerk when ``jerk``; with ``feed`` also the X/Y/Z path speed never above the
+    block's programmed feed. ``rel`` is the relative allowance for rounding."""
+    Ts = sp.sample_time
+    rapid = np.array([b.kind == "rapid" for b in program.blocks])
+    for i, axis in enumerate(sp.axes):
+        lim = limits[axis]
+        p = sp.position[:, i]
+        v_lim = np.where(rapid[sp.block], lim.rapid_rate, lim.velocity) * (1 + rel) + 1e-9
+        assert np.all(np.abs(sp.velocity[:, i]) <= v_lim), axis
+        assert np.all(np.abs(np.diff(p)) / Ts <= v_lim[1:]), (axis, np.abs(np.diff(p)).max() / Ts)
+        assert np.all(np.abs(sp.acceleration[:, i]) <= lim.acceleration * (1 + rel)), axis
+        a_fd = np.abs(np.diff(p, 2)) / Ts**2
+        assert np.all(a_fd <= lim.acceleration * (1 + rel) + 1e-6), (axis, a_fd.max())
+        if jerk:
+            j_col = np.abs(np.diff(sp.acceleration[:, i])) / Ts
+            assert np.all(j_col <= lim.jerk * (1 + rel) + 1e-6), (axis, j_col.max())
+            assert np.all(np.abs(np.diff(p, 3)) / Ts**3 <= lim.jerk * (1 + rel) + 1e-3), axis
+    if feed:
+        xyz = [i for i, a in enumerate(sp.axes) if a in ("x", "y", "z")]
+        speed = np.linalg.norm(sp.velocity[:, xyz], axis=1)
+        programmed = np.array([b.feed for b in program.blocks])[sp.block]
+        assert np.all(speed <= programmed * (1 + rel) + 1e-12)
+
+
+def trapezoid_time(length: float, v: float, a: float) -> float:
+    """Rest-to-rest time [s] of a trapezoidal profile over ``length`` at speed ``v``, acceleration ``a``."""
+    return length / v + v / a if v * v / a <= length else 2.0 * math.sqrt(length / a)

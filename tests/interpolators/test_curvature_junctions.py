@@ -1,0 +1,219 @@
+"""S-curve look-ahead through tangent junctions with a curvature jump (line/arc, arc/arc, line/merged curve).
+
+Each program is checked at 1 and 4 ms: every axis keeps its velocity, acceleration and jerk limits (analytic
+columns and finite differences of the positions), the samples lie on the programmed geometry (lines and arcs
+within 1e-9 mm, merged dense chords within the G64 tolerance), and the tangent junctions are passed at speed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators import interpolate, parse_program
+from interpolators.kinematics import AxisLimitArrays, curvature_step_speed_limit
+from interpolators.lookahead import JUNCTION_SHARE
+from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.test_interpolate import LIMITS
+from toolpaths.geometry import Arc
+
+SAMPLE_TIMES = (1e-3, 4e-3)
+
+
+def _rounded_rectangle(angle_deg: float = 0.0, *, radius: float = 5.0, feed: float = 6000.0,
+                       plane: int = 17) -> str:
+    """A 50 x 30 mm rectangle with G3 corners of ``radius``, turned by ``angle_deg`` in its plane: every
+    junction is a tangent line/arc junction with a curvature step of 1/radius."""
+    w, h, r = 50.0, 30.0, radius
+    c, s = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
+
+    def rot(x: float, y: float) -> tuple[float, float]:
+        return c * x - s * y, s * x + c * y
+
+    p, q = {17: ("X", "Y"), 18: ("Z", "X"), 19: ("Y", "Z")}[plane]
+    ij = {17: ("I", "J"), 18: ("K", "I"), 19: ("J", "K")}[plane]
+    corners = [((w - r, 0), (w, r), (w - r, r)), ((w, h - r), (w - r, h), (w - r, h - r)),
+               ((r, h), (0, h - r), (r, h - r)), ((0, r), (r, 0), (r, r))]
+    x0, y0 = rot(r, 0)
+    out = [f"G21 G90 G{plane} G64 P0.01", f"G0 {p}{x0:.6f} {q}{y0:.6f}", f"F{feed:.0f}"]
+    for (ax, ay), (bx, by), (cx, cy) in corners:
+        a, b, cc = rot(ax, ay), rot(bx, by), rot(cx, cy)
+        out.append(f"G1 {p}{a[0]:.6f} {q}{a[1]:.6f}")
+        out.append(f"G3 {p}{b[0]:.6f} {q}{b[1]:.6f} {ij[0]}{cc[0] - a[0]:.6f} {ij[1]}{cc[1] - a[1]:.6f}")
+    return "\n".join(out) + "\nM30\n"
+
+
+def _s_bends(feed: float = 3000.0) -> str:
+    """Tangent arc/arc junctions: radius 10 into radius 5 of the other sense, and radius 5 into radius 12
+    of the same sense (curvature steps of 0.3 and 0.117 1/mm)."""
+    return (f"G21 G90 G17 G64 P0.01\nG0 X0 Y0\nF{feed:.0f}\nG2 X20 Y0 I10 J0\nG3 X30 Y0 I5 J0\n"
+            "G3 X6 Y0 I-12 J0\nG1 X6 Y-10\nM30\n")
+
+
+def _line_into_dense_arc(*, radius: float = 10.0, n: int = 400, feed: float = 3000.0) -> tuple[str, np.ndarray]:
+    """A line along X into a quarter circle of ``n`` 4-decimal chords (merged into one curve under G64),
+    then a line along Y; returns the program and the programmed corner points."""
+    pts = [(-20.0, 0.0), (0.0, 0.0)]
+    for k in range(1, n + 1):
+        a = 0.5 * math.pi * k / n
+        pts.append((round(radius * math.sin(a), 4), round(radius - radius * math.cos(a), 4)))
+    pts.append((pts[-1][0], pts[-1][1] + 20.0))
+    body = "\n".join(f"G1 X{x:.4f} Y{y:.4f}" for x, y in pts[1:])
+    return f"G21 G90 G17 G64 P0.01\nG0 X-20 Y0\nF{feed:.0f}\n{body}\nM30\n", np.array(pts)
+
+
+def _check_on_blocks(sp, prog) -> None:
+    """Every sample lies on the line or arc of its block within 1e-9 mm."""
+    cols = [("x", "y", "z").index(a) for a in sp.axes]
+    full = np.zeros((len(sp), 3))
+    full[:, cols] = sp.position
+    for k in np.unique(sp.block):
+        seg = prog.blocks[k].segment
+        pts = full[sp.block == k]
+        if seg is None:
+            assert np.abs(pts - prog.blocks[k].start).max() == 0
+        elif isinstance(seg, Arc):
+            p, q = seg.plane_axes
+            assert np.abs(np.hypot(pts[:, p] - seg.center[p], pts[:, q] - seg.center[q]) - seg.radius).max() <= 1e-9
+            assert np.abs(pts[:, seg.plane] - seg.start[seg.plane]).max() <= 1e-9
+        else:
+            d = pts - seg.start
+            along = d @ seg.direction
+            assert along.min() >= -1e-9 and along.max() <= seg.length + 1e-9
+            assert np.abs(d - np.outer(along, seg.direction)).max() <= 1e-9
+
+
+def _junction_speeds(sp) -> np.ndarray:
+    """Path speed at each sample where the block changes inside a motion (not at rest) [mm/s]."""
+    speed = np.linalg.norm(sp.velocity, axis=1)
+    change = np.flatnonzero(np.diff(sp.block) != 0) + 1
+    return speed[change]
+
+
+def _distance_to_chords(p: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    a, b = pts[:-1], pts[1:]
+    ab = b - a
+    t = np.clip(np.einsum("nkj,kj->nk", p[:, None, :] - a[None], ab) / np.einsum("kj,kj->k", ab, ab), 0.0, 1.0)
+    d = p[:, None, :] - a[None] - t[..., None] * ab[None]
+    return np.linalg.norm(d, axis=2).min(axis=1)
+
+
+def test_rule_uses_each_axis_jerk_budget():
+    """Tangent along X, curvature step along Y, no smooth jerk: ``v^2 dk / Ts = J_y``; the tangent axis has no
+    step and does not bound the speed; the profile's jerk on the stepped axis shrinks the budget, at worst to
+    the reserve of the JUNCTION_SHARE rule; a rounding-level tangent step takes its share on the tangent axis."""
+    lim = AxisLimitArrays(LIMITS, {0, 1})
+    Ts, Jy = 1e-3, LIMITS["y"].jerk
+    t, dk = np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 0.2, 0.0]])
+    zero, none = np.zeros(1), np.zeros((1, 3))
+
+    def rule(tangent, tangent_jump, path_jerk, kappa=zero):
+        return curvature_step_speed_limit(tangent, tangent_jump, dk, kappa, zero, np.array([path_jerk]), lim,
+                                          sample_time=Ts, share=JUNCTION_SHARE)[0]
+
+    v = rule(t, none, 0.0)
+    assert v == pytest.approx(math.sqrt(Jy * Ts / 0.2), rel=1e-9)
+    along_y = np.array([[0.0, 1.0, 0.0]])
+    assert rule(along_y, none, 0.5 * Jy) == pytest.approx(math.sqrt(0.5 * Jy * Ts / 0.2), rel=1e-9)
+    share_rule = math.sqrt(JUNCTION_SHARE * Jy * Ts / 0.2)
+    assert rule(along_y, none, 2.0 * Jy) == pytest.approx(share_rule, rel=1e-9)
+    assert share_rule < rule(t, none, Jy, np.array([0.2])) < v
+    # a tangent step of 1e-6 on the tangent axis X (whose profile takes 0.9 of J_x) bounds it to 0.1 J_x Ts^2 / 1e-6
+    dt = np.array([[1e-6, 0.0, 0.0]])
+    v_dt = curvature_step_speed_limit(t, dt, 1e-9 * dk, zero, zero, np.array([10 * Jy]), lim, sample_time=Ts,
+                                      share=JUNCTION_SHARE)[0]
+    assert v_dt == pytest.approx(JUNCTION_SHARE * LIMITS["x"].jerk * Ts**2 / 1e-6, rel=1e-6)
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+@pytest.mark.parametrize("angle, plane", [(0.0, 17), (30.0, 17), (0.0, 18), (-70.0, 19)])
+def test_rounded_rectangle_passes_its_tangent_junctions(Ts, angle, plane):
+    text = _rounded_rectangle(angle, plane=plane)
+    prog = parse_program(text)
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
+    _check_on_blocks(sp, prog)
+    if angle == 0.0:  # tangents along the axes: no stop at the 8 line/arc junctions
+        assert np.all(_junction_speeds(sp)[1:] > 0.0)
+    stop = interpolate(parse_program(text.replace("G64 P0.01", "G61")), limits=LIMITS, profile="scurve",
+                       sample_time=Ts)
+    assert sp.duration < stop.duration
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+def test_axis_aligned_junction_beats_the_share_rule(Ts):
+    """Where the tangent runs along an axis the step takes nearly the other axis' whole jerk budget: the junction
+    speed is above the JUNCTION_SHARE rule's (which stopped there before: below MIN_JUNCTION_SPEED_SHARE)."""
+    prog = parse_program(_rounded_rectangle())
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    share_rule = math.sqrt(JUNCTION_SHARE * min(LIMITS["x"].jerk, LIMITS["y"].jerk) * Ts * 5.0)
+    assert _junction_speeds(sp)[1:].min() > 2.0 * share_rule  # [0]: the rapid's end, at rest
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+def test_arc_into_arc_of_other_radius(Ts):
+    text = _s_bends()
+    prog = parse_program(text)
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
+    _check_on_blocks(sp, prog)
+    assert np.all(_junction_speeds(sp) > 0.0)
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+def test_line_into_merged_dense_arc(Ts):
+    text, pts = _line_into_dense_arc()
+    prog = parse_program(text)
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
+    feed = np.array([b.kind != "rapid" for b in prog.blocks])[sp.block]
+    assert _distance_to_chords(sp.position[feed, :2], pts).max() <= 0.01
+    speed = np.linalg.norm(sp.velocity, axis=1)
+    inner = np.flatnonzero(feed & (speed > 0))
+    # no stop from the first feed move's start to the last one's end
+    assert speed[inner[0]:inner[-1]].min() > 0.0
+    assert np.array_equal(sp.position[-1], prog.end_position[:2])
+
+
+def test_trapezoid_unchanged_by_the_rule():
+    """The trapezoid allows acceleration steps: its tangent junctions pass at the arcs' own bounds, with or
+    without a jerk limit."""
+    prog = parse_program(_rounded_rectangle())
+    sp = interpolate(prog, limits=LIMITS, profile="trapezoid")
+    check_limits(sp, prog, LIMITS, jerk=False, feed=True)
+    arc_bound = math.sqrt(0.7 * LIMITS["y"].acceleration * 5.0)
+    assert _junction_speeds(sp)[1:].min() >= 0.99 * arc_bound  # [0]: the rapid's end, at rest
+
+
+def _tangent_chain(seed: int, n: int = 24) -> str:
+    """Random G17 contours of lines and arcs, each tangent to the one before (random radii, senses, sweeps
+    of 90 deg from axis directions or any sweep, feeds), as a CAM contour of lines and corner radii."""
+    rng = np.random.default_rng(seed)
+    pos, ang = np.zeros(2), 0.5 * math.pi * rng.integers(0, 4)
+    out = ["G21 G90 G17 G64 P0.01", f"F{rng.uniform(1200, 9000):.0f}"]
+    for k in range(n):
+        if k % 2 == 0 or rng.random() < 0.3:
+            pos = pos + rng.uniform(0.5, 15.0) * np.array([math.cos(ang), math.sin(ang)])
+            out.append(f"G1 X{pos[0]:.9f} Y{pos[1]:.9f}")
+        else:
+            r, ccw = rng.uniform(0.5, 12.0), bool(rng.integers(0, 2))
+            sweep = 0.5 * math.pi if rng.random() < 0.6 else rng.uniform(0.2, 2.5)
+            sign = 1.0 if ccw else -1.0
+            centre = pos + sign * r * np.array([-math.sin(ang), math.cos(ang)])
+            a1 = math.atan2(*(pos - centre)[::-1]) + sign * sweep
+            end = centre + r * np.array([math.cos(a1), math.sin(a1)])
+            ij = centre - pos
+            out.append(f"G{3 if ccw else 2} X{end[0]:.9f} Y{end[1]:.9f} I{ij[0]:.9f} J{ij[1]:.9f}")
+            pos, ang = end, ang + sign * sweep
+    return "\n".join(out) + "\nM30\n"
+
+
+@pytest.mark.parametrize("Ts", SAMPLE_TIMES)
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_random_tangent_contours_keep_every_limit(seed, Ts):
+    prog = parse_program(_tangent_chain(seed))
+    sp = interpolate(prog, limits=LIMITS, profile="scurve", sample_time=Ts)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
+    _check_on_blocks(sp, prog)
