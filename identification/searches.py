@@ -166,6 +166,7 @@ class SearchContext:
         self._base_sc = np.linalg.norm(self._ee_base, axis=0)
         q, self._base_r = np.linalg.qr(self._ee_base / self._base_sc)
         self._q = q
+        self._q_t = np.ascontiguousarray(q.T)
         self._ee_r = self._ee_y - q @ (q.T @ self._ee_y)
         self.ee_rss = float(self._ee_r @ self._ee_r)
         self._J: np.ndarray | None = None
@@ -189,10 +190,10 @@ class SearchContext:
         for the solve); the moments come from one compiled pass per period
         (:func:`identification.kernels.sinusoid_moments`), the columns are never stored.
         """
-        q, r = self._q, self._ee_r
+        r = self._ee_r
         scaled = np.ascontiguousarray(2.0 * np.pi * np.asarray(coordinate, float))
         m, qs, qc = sinusoid_moments(scaled, np.ascontiguousarray(periods, float), np.ascontiguousarray(r),
-                                     np.ascontiguousarray(q))
+                                     self._q_t)
         ns = np.maximum(np.sqrt(m[:, 0]), 1e-300)
         nc = np.maximum(np.sqrt(m[:, 2]), 1e-300)
         qs, qc = qs / ns[:, None], qc / nc[:, None]
