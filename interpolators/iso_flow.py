@@ -55,11 +55,16 @@ from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import Word, block_comment, read_words, strip_comments
 
-__all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES"]
+__all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
 MAX_EXECUTED_LINES = 300_000
+
+#: Deepest nesting of subroutine and subprogram calls (O-word call, M98, G65): LinuxCNC refuses a tenth level
+#: (interp_internal.hh INTERP_SUB_ROUTINE_LEVELS = 10, interp_o_word.cc NCE_TOO_MANY_SUBROUTINE_LEVELS); Fanuc
+#: nests subprograms ten deep. A call that recurses without end stops here, at its line, not at the line limit.
+MAX_CALL_LEVELS = 10
 
 #: An O-word line: label (``<name>``, a number, or a computed number ``#1``, ``#<n>``, ``[expr]``), keyword, rest.
 _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s*\d+|\[(?:[^\[\]]|\[[^\[\]]*\])*\])"
@@ -409,7 +414,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             if rest:
                 yield FlowLine(where.line, where.text, rest, where.file)
             if count > 0:
-                frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
+                _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
                 pc = start
             else:
                 pc += 1
@@ -494,8 +499,16 @@ def _macro_call(prog: _Program, pc: int, words: list[Word], g65: Word, params: P
     if count == 0:
         return pc + 1
     params.push_macro(locals_)
-    frames.append(_Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="g65"))
+    _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="g65"))
     return start
+
+
+def _push(prog: _Program, pc: int, frames: list[_Frame], frame: _Frame) -> None:
+    """Enter a call made at line ``pc`` (:data:`MAX_CALL_LEVELS`)."""
+    if len(frames) + 1 >= MAX_CALL_LEVELS:
+        prog.fail(pc, f"subroutine calls nested {len(frames) + 1} deep (a call that never returns?)",
+                  f"at most {MAX_CALL_LEVELS - 1} nested calls")
+    frames.append(frame)
 
 
 def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list[_Frame],  # noqa: C901
@@ -518,7 +531,7 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
                       f"o{label} sub in the main program, or a named o<name> sub in <name>.ngc")
         args = _args(prog, pc, params)
         params.push(args)
-        frames.append(_Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))
+        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))
         return start + 1
     if k in ("endsub", "return"):
         values = _args(prog, pc, params)

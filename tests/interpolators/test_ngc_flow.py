@@ -221,3 +221,14 @@ def test_abort_comment_ends_the_run_with_its_message():
         _words(text)
     assert info.value.line == 5
     assert _words("o1 if [0]\n(ABORT, never)\no1 endif\nG0 X1\n") == [(4, [("G", 0.0), ("X", 1.0)])]
+
+
+def test_calls_nest_nine_deep_and_a_tenth_level_is_an_error_at_its_line():
+    # LinuxCNC interp_internal.hh INTERP_SUB_ROUTINE_LEVELS = 10: the tenth nested call level is refused
+    # (NCE_TOO_MANY_SUBROUTINE_LEVELS); a self-recursive call stops there at once, not at the line limit.
+    recurse = "o<r> sub\no<s> if [#1 GT 0]\no<r> call [#1-1]\no<s> endif\nG1 X#1\no<r> endsub\no<r> call [{}]\nM2\n"
+    assert len(_words(recurse.format(8))) == 10  # nine nested levels: G1 from each, then M2
+    with pytest.raises(GCodeError, match=r":3:1: subroutine calls nested 10 deep"):
+        _words(recurse.format(9))
+    with pytest.raises(GCodeError, match="nested 10 deep"):
+        _words("o<r> sub\no<r> call\no<r> endsub\no<r> call\nM2\n")
