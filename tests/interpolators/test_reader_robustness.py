@@ -33,8 +33,10 @@ from vcnc.cli import main
 from vcnc.errors import GCodeError, InputError
 
 CORPUS = corpus_dir()
-#: Wall-clock bound of one example [s] (reading plus interpolation of a small program).
-EXAMPLE_SECONDS = 20.0
+#: Wall-clock bound of one example [s] (reading plus interpolation of a small program). It catches hangs, not
+#: slow refusals: an endless loop of calls and moves runs to iso_flow.MAX_EXECUTED_LINES, about 8 s on the
+#: idle 2-core machine and over 20 s while two test suites ran on it at once (2026-11-23).
+EXAMPLE_SECONDS = 60.0
 #: Sample budget of one interpolation: long enough for the seeds, short enough to stay fast.
 MAX_SAMPLES = 300_000
 #: Corpus programs up to this size [bytes] are seeds.
