@@ -261,7 +261,7 @@ class _Reader:
                 self.fail("unclosed parameter name", pos, "#<name>")
             return m.group(1), m.end()
         if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
-            name = re.match(r"[A-Za-z_]\w*", self.code[p:]).group(0)
+            name = re.match(r"[^\W\d]\w*", self.code[p:]).group(0)  # any letter, as str.isalpha (e.g. 'À')
             self.fail(f"'#{name}' is not a parameter (#region and $ lines of G-code simulators are not G-code)",
                       pos, "#<number>, #<name> or #[expression]")
         value, end = self.real(p)

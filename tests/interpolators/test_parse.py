@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from interpolators import ARC_TOLERANCE, detect_dialect, load_program, parse_program
@@ -224,8 +224,9 @@ _LINE = st.lists(st.tuples(_WORD, _NUM).map("".join), max_size=8).map(" ".join)
 _PROGRAM = st.lists(_LINE, max_size=12).map("\n".join)
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
 @given(st.one_of(st.text(max_size=200), _PROGRAM))
+@example("#\u00c0")  # a non-ASCII letter after '#' crashed the parameter reader (found by this test on CI)
 def test_fuzz_only_gcode_errors(text):
     try:
         parse_program(text, source="fuzz.nc")
