@@ -394,6 +394,15 @@ def _tangent_point(centre: np.ndarray, radius: float, point: np.ndarray, *, ccw:
     raise AssertionError("one of the two tangents runs along the circle")  # pragma: no cover
 
 
+def _lct_centre(point: np.ndarray, tangent: np.ndarray, radius: float, side: float, plane: int) -> np.ndarray:
+    """Centre of the ``APPR/DEP LCT`` arc of ``radius`` [mm] through ``point`` (PA or PE), tangent there to
+    the contour's unit ``tangent`` (in-plane components), on the tool's ``side`` (+1 RL, -1 RR)."""
+    p, q = PLANE_AXES[plane]
+    centre = np.array(point, dtype=float)
+    centre[p], centre[q] = point[p] - side * radius * tangent[1], point[q] + side * radius * tangent[0]
+    return centre
+
+
 def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
                  plane: int) -> tuple[np.ndarray, Arc]:
     """``APPR LCT`` (TNC7 user's manual, "APPR LCT"): the line from PS touches at PH the arc of
@@ -402,10 +411,8 @@ def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius:
     coordinate) and the arc PH -> PA."""
     if not radius > 0:
         raise PathGeometryError("APPR LCT needs R > 0", "R+.. [mm]")
-    p, q = PLANE_AXES[plane]
     ccw = side > 0
-    centre = np.array(pa, dtype=float)
-    centre[p], centre[q] = pa[p] - side * radius * tangent[1], pa[q] + side * radius * tangent[0]
+    centre = _lct_centre(pa, tangent, radius, side, plane)
     start = np.array(ps, dtype=float)
     start[plane] = pa[plane]
     ph = _tangent_point(centre, radius, start, ccw=ccw, leaving=False, plane=plane)
@@ -419,10 +426,8 @@ def departure_lct(pe: np.ndarray, pn: np.ndarray, tangent: np.ndarray, *, radius
     to PN (in the plane of PE) touches it."""
     if not radius > 0:
         raise PathGeometryError("DEP LCT needs R > 0", "R+.. [mm]")
-    p, q = PLANE_AXES[plane]
     ccw = side > 0
-    centre = np.array(pe, dtype=float)
-    centre[p], centre[q] = pe[p] - side * radius * tangent[1], pe[q] + side * radius * tangent[0]
+    centre = _lct_centre(pe, tangent, radius, side, plane)
     end = np.array(pn, dtype=float)
     end[plane] = pe[plane]
     ph = _tangent_point(centre, radius, end, ccw=ccw, leaving=True, plane=plane)
