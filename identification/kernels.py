@@ -29,7 +29,8 @@ def w_terms(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
     w = 0.0
     if st[0] > 0.0 and v != 0.0:
         # exp(-q) is exactly 0 from q = 746 on, where libm's underflow path costs 4x a normal exp
-        q = (v / st[0]) * (v / st[0])
+        r = v / st[0]
+        q = r * r
         if q < 746.0:
             w += (st[1] if v > 0.0 else st[2]) * math.exp(-q)
     if asym != 0.0:
