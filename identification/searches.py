@@ -111,17 +111,6 @@ class Candidate:
     evidence: dict
 
 
-def disturbance_columns(effects, v: np.ndarray, x: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Equation-error columns ``-(w terms)/1`` of disturbance effects at fixed parameters (one per effect)."""
-    cols = []
-    for e in effects:
-        if e.KIND != "disturbance":
-            continue
-        spec_w = w_of(e, v, x, t)
-        cols.append(-spec_w)
-    return np.column_stack(cols) if cols else np.zeros((v.size, 0))
-
-
 def w_of(e: Effect, v, x, t) -> np.ndarray:
     """The disturbance term [mm/s^2] a disturbance effect adds at velocity ``v``, position ``x``, time ``t``."""
     if isinstance(e, FrictionStribeck):
