@@ -60,7 +60,7 @@ from identification.bounds import WIDE_P_MIN_HZ, as_bounds
 from identification.capture_checks import check_capture
 from identification.effects import EFFECTS
 from identification.least_squares import solve_scaled, truncated_step
-from identification.parallel import serial_blas, thread_map
+from identification.parallel import process_map, serial_blas, thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
 from identification.reduced_model import ReducedAxisModel
@@ -552,20 +552,23 @@ def _proposals(ctx: SearchContext, cur: AugmentedAxisModel, opt: DiagnosisOption
 def _refitted(cands: list[Candidate], ctx: SearchContext, data: Data, plan, active: np.ndarray, cur_rms: float,
               opt: DiagnosisOptions) -> list[tuple]:
     """The proposals with evidence, refitted jointly and judged on the folds: ``(judged, candidate)``."""
-    tried = []
     # only proposals whose screen shows evidence (a training-error drop of >= min_screen) are refitted
     cands_ev = [c for c in cands if c.screen_rms_um <= (1.0 - opt.min_screen) * ctx.train_rms_um]
-    for c in cands_ev[: opt.top]:
+
+    def refitted(c: Candidate) -> _Judged:
         m = refit(c.start, data, active, max_nfev=opt.max_nfev)
         r_fit, m_fit = _errors(m, data, active)
         # an in-sample drop below half the criterion cannot become a held-out drop that meets it
         if _gain(cur_rms, r_fit) >= 0.5 * opt.min_gain:
-            j = _judge(m, data, plan, opt, fitted=True)
-        else:
-            j = _Judged(model=m, rms_um=r_fit, max_um=m_fit, fold_rms_um=[], fold_max_um=[])
-            j._pooled = (math.inf, math.inf)
-        tried.append((j, c))
-    return tried
+            return _judge(m, data, plan, opt, fitted=True)
+        j = _Judged(model=m, rms_um=r_fit, max_um=m_fit, fold_rms_um=[], fold_max_um=[])
+        j._pooled = (math.inf, math.inf)
+        return j
+
+    # the refits are independent and mostly scipy's Python between the simulations: side by side
+    # in worker processes (identification.parallel: threads would contend for the GIL)
+    chosen = cands_ev[: opt.top]
+    return list(zip(process_map(refitted, chosen), chosen))
 
 
 def _round_record(cands: list[Candidate], tried: list[tuple], stage: Stage, cur_rms: float) -> dict:

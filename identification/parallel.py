@@ -7,6 +7,15 @@ lands in its own slot, so the outcome is the same, bit for bit, for any number o
 ``VCNC_THREADS`` (environment) caps the workers; the default is every core ``os.cpu_count()``
 reports.
 
+Coarse tasks that are mostly Python and small numpy steps between the compiled loops (a joint
+refit of the diagnosis: scipy's trust-region iterations around the simulations) do not scale on
+threads, which contend for the GIL: two refits of the long capture of ``benchmarks/diagnosis.py``
+took 0.47 s on one thread and 0.39 s on two, while two processes each running the whole
+diagnosis on one thread took as long as one alone (2.6 s; 2026-11-23, the 2-core development
+machine). :func:`process_map` runs such tasks in forked worker processes (Linux ``fork``: the
+workers share the capture and the compiled code copy-on-write, and only the results are pickled
+back); inside a worker every map runs serially, so the results are the same, bit for bit.
+
 The linear algebra of the diagnosis is on tall, narrow matrices (a record's samples by a dozen
 parameters), where a multi-threaded BLAS spends its time synchronising: an SVD of 21,648 x 11
 took 34 ms with two OpenBLAS threads and 4.4 ms with one (measured 2026-11-23 on the 2-core
@@ -17,7 +26,9 @@ then the simulations'.
 from __future__ import annotations
 
 import concurrent.futures
+import multiprocessing
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
@@ -25,11 +36,15 @@ from typing import Any
 
 from threadpoolctl import threadpool_limits
 
-__all__ = ["workers", "thread_map", "serial_blas"]
+__all__ = ["workers", "thread_map", "process_map", "serial_blas"]
 
 _POOL: concurrent.futures.ThreadPoolExecutor | None = None
 _LOCK = threading.Lock()
 _LOCAL = threading.local()
+#: True in a worker process of :func:`process_map`: its maps run serially.
+_FORKED = False
+#: The function and items of the running :func:`process_map` (its forked workers inherit them).
+_TASKS: tuple[Callable[[Any], Any], list[Any]] | None = None
 
 
 def workers() -> int:
@@ -57,7 +72,7 @@ def thread_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     A call made from inside a worker runs serially, so nested maps never wait on themselves.
     """
     items = list(items)
-    if len(items) < 2 or workers() < 2 or getattr(_LOCAL, "inside", False):
+    if len(items) < 2 or workers() < 2 or _FORKED or getattr(_LOCAL, "inside", False):
         return [fn(x) for x in items]
 
     def run(x):
@@ -68,6 +83,50 @@ def thread_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
             _LOCAL.inside = False
 
     return list(_pool().map(run, items))
+
+
+def _forked_worker() -> None:
+    global _FORKED
+    _FORKED = True
+
+
+def _run_task(i: int) -> tuple[bool, Any]:
+    """Task ``i`` of the running :func:`process_map`, in a worker: ``(True, result)`` or
+    ``(False, exception)`` (raised again in the caller)."""
+    assert _TASKS is not None
+    fn, items = _TASKS
+    try:
+        return True, fn(items[i])
+    except Exception as exc:  # noqa: BLE001 - handed back to the caller, which raises it
+        return False, exc
+
+
+def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
+    """``[fn(x) for x in items]``, evaluated in forked worker processes (in order, same results).
+
+    For coarse tasks that hold the GIL much of the time (module docstring). ``fn`` may be a
+    closure: the workers are forked after it exists and inherit it; only the task indices and
+    the results (which must pickle) cross the process boundary. The tasks are handed out in the
+    order given, one at a time, to whichever worker is free. An exception of a task is raised
+    here. Where ``fork`` is not the platform's way (not Linux), with fewer than two tasks or
+    workers, or when called from inside a worker, this is :func:`thread_map`.
+    """
+    global _TASKS
+    items = list(items)
+    n = min(workers(), len(items))
+    if n < 2 or _FORKED or _TASKS is not None or getattr(_LOCAL, "inside", False) \
+            or not sys.platform.startswith("linux"):
+        return thread_map(fn, items)
+    _TASKS = (fn, items)
+    try:
+        with multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker) as pool:
+            out = pool.map(_run_task, range(len(items)), chunksize=1)
+    finally:
+        _TASKS = None
+    for ok, value in out:
+        if not ok:
+            raise value
+    return [value for _, value in out]
 
 
 @contextmanager

@@ -1,0 +1,62 @@
+"""identification.parallel: the maps give the results of a plain loop, in order, wherever they run."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from identification.parallel import process_map, thread_map
+
+linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="process_map forks on Linux only")
+
+
+def test_thread_map_is_the_loop():
+    assert thread_map(lambda k: k * k, range(7)) == [k * k for k in range(7)]
+
+
+@linux_only
+def test_process_map_runs_closures_in_worker_processes_in_order(monkeypatch):
+    monkeypatch.setenv("VCNC_THREADS", "2")
+    data = np.arange(1000.0)  # inherited by the forked workers, never pickled
+    out = process_map(lambda k: (k, float(data[k:].sum()), os.getpid()), [5, 1, 9, 3])
+    assert [o[0] for o in out] == [5, 1, 9, 3]
+    assert [o[1] for o in out] == [float(data[k:].sum()) for k in (5, 1, 9, 3)]
+    assert os.getpid() not in {o[2] for o in out}
+
+
+@linux_only
+def test_process_map_inside_a_worker_runs_serially(monkeypatch):
+    monkeypatch.setenv("VCNC_THREADS", "2")
+
+    def inner(k):
+        pids = process_map(lambda j: os.getpid(), range(3))
+        threads = thread_map(lambda j: j + k, range(3))
+        return os.getpid(), pids, threads
+
+    out = process_map(inner, [10, 20])
+    for pid, pids, _ in out:
+        assert pids == [pid] * 3  # no second level of workers: the worker itself ran them
+        assert pid != os.getpid()
+    assert [t for _, _, t in out] == [[10, 11, 12], [20, 21, 22]]
+
+
+@linux_only
+def test_process_map_raises_a_task_s_exception(monkeypatch):
+    monkeypatch.setenv("VCNC_THREADS", "2")
+
+    def fail_on_two(k):
+        if k == 2:
+            raise ValueError(f"task {k} failed")
+        return k
+
+    with pytest.raises(ValueError, match="task 2 failed"):
+        process_map(fail_on_two, [1, 2, 3])
+    assert process_map(fail_on_two, [1, 3]) == [1, 3]  # the map is usable again afterwards
+
+
+def test_process_map_with_one_worker_stays_in_this_process(monkeypatch):
+    monkeypatch.setenv("VCNC_THREADS", "1")
+    assert process_map(lambda k: (k, os.getpid()), [1, 2]) == [(1, os.getpid()), (2, os.getpid())]
