@@ -217,6 +217,8 @@ class _State:
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
+    comp_centers: dict[int, np.ndarray] = dataclasses.field(default_factory=dict)  # programmed arc centres
+    arc_center: np.ndarray | None = None  # programmed centre (start + I/J/K) of the last arc read [mm]
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
@@ -731,6 +733,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
+        if st.comp_start is not None and st.arc_center is not None:
+            st.comp_centers[len(blocks)] = st.arc_center
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
         target = np.array(seg.end)
@@ -872,6 +876,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     if in_plane and has_r:
         w = seen["R"]
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
+    st.arc_center = None
     try:
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
@@ -883,6 +888,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                 prog[i] = prog[i] + seen[letter].value * st.scale if st.arc_incremental else \
                     seen[letter].value * st.scale
             center = st.to_machine(prog)
+            st.arc_center = center
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
                                    tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                   inch=st.inch, rule=rule))
@@ -897,6 +903,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                 for letter in in_plane:
                     i = "IJK".index(letter)
                     center[i] = seen[letter].value * st.scale + off[i]
+            st.arc_center = center
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
                                    tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                   inch=st.inch, rule=rule))
@@ -971,11 +978,13 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     """Replace the finished compensated run by the tool-centre path."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
+    centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
     run = blocks[start:]
     if not run:
         return
     try:
-        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed)
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed,
+                         centers=centers, inch=st.inch)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

@@ -229,18 +229,21 @@ def test_entry_errors():
                    side="left", radius=2.0, plane=2)
 
 
-def test_corner_arc_after_a_rapid_takes_the_last_feed_and_a_reversal_turns_half_a_circle():
+def test_a_rapid_reversal_goes_round_by_a_traverse():
+    # the reversal into the rapid (block 3) is an outside corner of a half turn (beta = pi, no arc before it):
+    # LinuxCNC's convert_straight_comp2 has no arc traverse and goes round it by a STRAIGHT_TRAVERSE from the
+    # tool (10, 1) to the programmed corner plus the radius on the new side (10, -1); block 4 is the exit move
     blocks = [_line([-10, 0], [0, 0], 1, feed=7.0), _line([0, 0], [10, 0], 2, kind="rapid", feed=math.inf),
               _line([10, 0], [0, 0], 3, kind="rapid", feed=math.inf), _line([0, 0], [0, -10], 4)]
     out = compensate(blocks, side="left", radius=1.0, plane=2)
     _check(out, [
         (1, "line", [-10, 0], [0, 1], None, None),
         (2, "rapid", [0, 1], [10, 1], None, None),
-        (3, "arc", [10, 1], [10, -1], [10, 0], False),
+        (3, "rapid", [10, 1], [10, -1], None, None),
         (3, "rapid", [10, -1], [0, -1], None, None),
         (4, "line", [0, -1], [0, -10], None, None),
     ])
-    assert out[2].feed == 7.0 and out[2].segment.sweep == pytest.approx(-math.pi, abs=1e-15)
+    assert out[2].feed == math.inf
 
 
 def test_full_circle_outside_and_z_only_exit_keeps_the_offset():
