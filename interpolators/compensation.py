@@ -176,7 +176,7 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 
 def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
-    centers: Mapping[int, np.ndarray] | None = None, inch: bool = False,
+    centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -185,7 +185,8 @@ def compensate(
     blocks : sequence of Block
         One compensated run, programmed contour: from the entry move (the first motion after
         G41/G42, or the block with RL/RR) up to and including the exit move (the first motion
-        after G40 / the block with R0, or the run's last block when the program ends). Blocks
+        after G40 / the block with R0, or the run's last block when the program ends, unless
+        ``open_end``). Blocks
         before the first block with motion in the plane pass unchanged; the entry move and the
         exit move must be lines or rapids. A run whose only motion in the plane is its entry
         move ends with the tool offset.
@@ -211,6 +212,10 @@ def compensate(
     inch : bool
         The program is in inch: an arc trimmed at an inside corner may sweep 0.001 rad more than
         programmed, 0.0254 rad in a mm program (``move_endpoint_and_flush``).
+    open_end : bool
+        The run has no exit move: the program ends with G41/G42 on, or with G40 and no motion after it.
+        Its last block is compensated as the others, as LinuxCNC's interpreter flushes the queued moves
+        as they are at the program end (tests/ccomp/mill-line-arc-entry).
 
     Returns
     -------
@@ -237,7 +242,7 @@ def compensate(
     if not movers:
         return blocks
     first = movers[0]
-    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 else None
+    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 and not open_end else None
     end = len(blocks) - 1
     if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
         last = end

@@ -984,7 +984,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
         return
     try:
         new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed,
-                         centers=centers, inch=st.inch)
+                         centers=centers, inch=st.inch, open_end=not closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(
