@@ -15,25 +15,33 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   ``r`` perpendicular to the first contour element, as the TNC approaches a contour with RL/RR
   (TNC 640 user's manual, "Tool radius compensation": "the tool is positioned perpendicular to
   the first contour element at the starting point").
-* **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
-  programmed corner point joins the two offset elements (a line after a turn of at most
-  :data:`CONVEX_TOLERANCE` instead starts where the tool is, as LinuxCNC's "convex, one arc
-  needed" case; before an arc, or where 4-decimal programs make the offsets disagree with the
-  tangents, a short line bridges the gap instead); it carries the ``line``/``text`` and
-  the feed of the block it leads into (of the last feed move before it when that block is a
-  rapid).
-* **Inside corners**: both offset elements end at their intersection (after the entry move,
-  with the entry's parallel offset, as ``convert_straight_comp2``/``convert_arc_comp2`` do). When
-  they do not intersect, or an element would have to run backwards to reach it (the element is
-  shorter than what the tool needs), the program gouges and :class:`CompensationError` is raised
-  with LinuxCNC's messages (``move_endpoint_and_flush`` in ``interp_queue.cc``: "Straight feed in
-  concave corner cannot be reached by the tool without gouging", "Arc move in concave corner ...",
-  "Arc to arc motion makes a corner the compensated tool can't fit in without gouging").
+* **Corners** are classified as LinuxCNC does (``convert_straight_comp2`` into a line,
+  ``convert_arc_comp2`` into an arc): ``beta`` is the turn away from the tool side, from the
+  direction of the programmed corner to the tool to the new element's programmed tangent. A turn
+  of more than ``small`` (:data:`CONVEX_TOLERANCE`, LinuxCNC's TOLERANCE_CONCAVE_CORNER) and at most
+  ``pi + small`` is an **outside corner**: an arc of radius ``r`` about the programmed corner point
+  joins the two offset elements (into a G0, which has no arc traverse, a straight rapid instead); it
+  carries the ``line``/``text`` and the feed of the block it leads into (of the last feed move
+  before it when that block is a rapid). A smaller turn has no corner: a line starts where the tool
+  is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a short bridging line.
+* **Inside corners** (``beta < -small`` or ``beta > pi + small``, and the near reversals of the
+  "h" and "m" shapes: ``beta`` within ``small`` of ``pi`` onto a line after an arc, or into an arc,
+  the tool is outside of): both offset elements end where they meet, by LinuxCNC's formulas (after
+  the entry move with the entry's parallel offset): line-line the intersection, line-arc and arc-line
+  the point ``asin``/``acos`` pick, arc-arc the intersection of the circles about the programmed
+  centres (start + I/J/K; the end point's radius -/+ ``r``). Where they cannot meet,
+  :class:`CompensationError` carries LinuxCNC's message ("Arc move in concave corner cannot be
+  reached by the tool without gouging", "Arc to straight motion makes a corner the compensated tool
+  can't fit in without gouging", "Arc to arc motion makes a corner ..."). A trimmed element gouges
+  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line that now runs against its
+  programmed direction ("Straight feed in concave corner cannot be reached by the tool without
+  gouging"), an arc whose sweep grew by more than 0.0254 rad (mm programs) or 0.001 rad (inch).
 * **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
   than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
   comp".
 * **Exit move** (the first move after G40/R0): a straight line from the compensated position to
-  the programmed end point, without a corner.
+  the programmed end point, without a corner. A program that ends with compensation on, or with G40
+  and no motion after it, has none: its last move is compensated as the others (``open_end``).
 
 Moves along the tool axis only and dwells stay where the tool is (shifted in the plane with it).
 Entry and exit moves must be straight lines (LinuxCNC accepts an arc entry; vcnc refuses it with
