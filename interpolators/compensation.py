@@ -44,8 +44,10 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   and no motion after it, has none: its last move is compensated as the others (``open_end``).
 
 Moves along the tool axis only and dwells stay where the tool is (shifted in the plane with it).
-Entry and exit moves must be straight lines (LinuxCNC accepts an arc entry; vcnc refuses it with
-a named error).
+An arc entry move (LinuxCNC's ``convert_arc_comp1``) ends at its programmed end moved by ``r``
+along the radius, about a new centre on the line from there through the programmed centre, as far
+from the start as from that end; the TNC's perpendicular entry must be a line. The exit move must be
+a line, as in LinuxCNC ("The move just after exiting cutter compensation mode must be straight").
 """
 
 from __future__ import annotations
@@ -195,9 +197,9 @@ def compensate(
         G41/G42, or the block with RL/RR) up to and including the exit move (the first motion
         after G40 / the block with R0, or the run's last block when the program ends, unless
         ``open_end``). Blocks
-        before the first block with motion in the plane pass unchanged; the entry move and the
-        exit move must be lines or rapids. A run whose only motion in the plane is its entry
-        move ends with the tool offset.
+        before the first block with motion in the plane pass unchanged; the exit move (and the
+        entry move with ``entry="perpendicular"``) must be a line or rapid. A run whose only
+        motion in the plane is its entry move ends with the tool offset.
     side : {"left", "right"}
         Tool left (G41, RL) or right (G42, RR) of the contour in the direction of travel.
     radius : float
@@ -236,7 +238,7 @@ def compensate(
     ------
     CompensationError
         For a gouge, an inside arc not larger than the tool, an entry move not longer than the
-        tool radius, an arc entry or exit move; ``index`` names the block.
+        tool radius, an arc exit move (or entry move under the TNC rule); ``index`` names the block.
     """
     _check_arguments(side, entry, plane, radius)
     blocks = list(blocks)
@@ -255,12 +257,15 @@ def compensate(
     if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
         last = end
     contour = [i for i in movers[1:] if i != last]
-    for i in (first, last):
-        if i is not None and blocks[i].kind == "arc":
-            what = "entry" if i == first else "exit"
-            raise CompensationError(f"cutter compensation {what} move must be a straight line, not an arc", i)
+    if last is not None and blocks[last].kind == "arc":  # LinuxCNC: "... must be straight, not an arc"
+        raise CompensationError("cutter compensation exit move must be a straight line, not an arc", last)
+    if entry == "perpendicular" and blocks[first].kind == "arc":
+        raise CompensationError("cutter compensation entry move must be a straight line, not an arc", first)
     offsets = _offset_elements(blocks, contour, s=s, radius=radius, plane=plane, centers=centers or {})
-    ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
+    if blocks[first].kind == "arc":
+        ent = _entry_arc(blocks[first], first, s=s, radius=radius, plane=plane, centers=centers or {})
+    else:
+        ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
     chain = [ent, *offsets]
     corners = _join_corners(chain, blocks, side=side, s=s, radius=radius, plane=plane)
     _check_gouges(chain, ent, blocks, radius, inch=inch)
@@ -333,6 +338,34 @@ def _entry_element(eb: Block, first: int, offsets: list[_Offset], *, entry: str,
     # direction of the last cut from the programmed point to the tool; the entry still starts where the tool is
     ent.a0, ent.b0 = (e_start + (e_end - e_prog) if entry == "linuxcnc" else e_start.copy()), e_end.copy()
     return ent
+
+
+def _entry_arc(eb: Block, first: int, *, s: float, radius: float, plane: int,
+               centers: Mapping[int, np.ndarray]) -> _Offset:
+    """An arc entry move, as LinuxCNC's ``convert_arc_comp1``: from the uncompensated position to the
+    programmed end moved by ``r`` along the radius (towards the centre with the tool inside), about a
+    new centre on the line from that end through the programmed centre, as far from both ends."""
+    arc = eb.segment
+    cur, end = _flat(eb.start, plane), _flat(eb.target, plane)
+    pc = _flat(centers[first], plane) if first in centers else _flat(arc.center, plane)
+    if math.hypot(*(end - cur)) <= radius:
+        raise CompensationError(f"Radius of cutter compensation entry arc is not greater than the tool radius "
+                                f"({radius:g} mm)", first)
+    inside = (s > 0.0) == arc.ccw
+    if inside and math.hypot(*(pc - cur)) <= radius:
+        raise CompensationError(f"Tool radius {radius:g} mm not less than arc radius with cutter radius comp", first)
+    away = (end - pc) / math.hypot(*(end - pc))
+    new_end = end + radius * (-away if inside else away)
+    ab = _angle(pc - new_end)
+    cos_a = math.cos(_angle(cur - new_end) - ab)
+    if abs(cos_a) < 1e-6:  # TOLERANCE_EQUAL
+        raise CompensationError(f"Tool radius {radius:g} mm not less than arc radius with cutter radius comp", first)
+    c = new_end + math.hypot(*(cur - new_end)) / 2.0 / cos_a * np.array([math.cos(ab), math.sin(ab)])
+    r_new = math.hypot(*(new_end - c))
+    el = _Offset(index=first, kind="arc", a=cur, b=new_end, za=float(eb.start[plane]), zb=float(eb.target[plane]),
+                 c=c, radius=r_new, ccw=arc.ccw, turns=max(math.ceil(abs(arc.sweep) / (2.0 * math.pi) - 1e-9) - 1, 0),
+                 a0=cur.copy(), b0=new_end.copy(), pc=c, pr=r_new)
+    return el
 
 
 def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: float, radius: float,
@@ -462,6 +495,14 @@ def _concave_point(el_a: _Offset, el_b: _Offset, corner: np.ndarray, theta: floa
     return el_a.pc + oldrad * np.array([math.cos(ang), math.sin(ang)])
 
 
+def _sweep(el: _Offset, a: np.ndarray, b: np.ndarray) -> float:
+    """Sweep [rad] of the arc element from ``a`` to ``b`` in its direction, with its extra turns (LinuxCNC's
+    ``find_turn``: equal angles are a full turn)."""
+    a0, a1 = _angle(a - el.c), _angle(b - el.c)
+    sweep = ((a1 - a0) if el.ccw else (a0 - a1)) % (2.0 * math.pi)
+    return (sweep if sweep > 1e-12 else 2.0 * math.pi) + 2.0 * math.pi * el.turns
+
+
 def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float, *, inch: bool) -> None:
     """CompensationError where a trimmed element gouges, by ``move_endpoint_and_flush`` (interp_queue.cc):
     a line that now runs against its programmed direction (the entry: against its offset direction), or
@@ -475,10 +516,8 @@ def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radiu
                 continue
             what = "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed"
         else:
-            a0, a1 = _angle(el.a - el.c), _angle(el.b - el.c)
-            sweep = ((a1 - a0) if el.ccw else (a0 - a1)) % (2.0 * math.pi)
-            sweep = (sweep if sweep > 1e-12 else 2.0 * math.pi) + 2.0 * math.pi * el.turns
-            if sweep <= abs(blocks[el.index].segment.sweep) + grow:
+            sweep = _sweep(el, el.a, el.b)
+            if sweep <= (_sweep(el, el.a0, el.b0) if el is ent else abs(blocks[el.index].segment.sweep)) + grow:
                 continue
             what = "Arc move"
         raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "

@@ -224,9 +224,31 @@ def test_entry_errors():
     with pytest.raises(CompensationError, match="entry move .* not greater than the tool radius") as err:
         compensate(_polyline([[1, 0], [0, 0], [0, 10]]), side="left", radius=2.0, plane=2)
     assert err.value.index == 0
-    with pytest.raises(CompensationError, match="entry move must be a straight line"):
+    with pytest.raises(CompensationError, match="entry move must be a straight line"):  # the TNC's rule
         compensate([_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2)],
+                   side="left", radius=2.0, plane=2, entry="perpendicular")
+    with pytest.raises(CompensationError, match="entry arc is not greater than the tool radius"):
+        compensate([_arc([1, 0], [0, 1], [0, 0], 1, ccw=True), _line([0, 1], [-10, 1], 2)],
                    side="left", radius=2.0, plane=2)
+    with pytest.raises(CompensationError, match="exit move must be a straight line"):
+        compensate([_line([10, -10], [10, 0], 1), _line([10, 0], [10, 5], 2),
+                    _arc([10, 5], [0, 15], [0, 5], 3, ccw=True)], side="left", radius=2.0, plane=2)
+
+
+def test_arc_entry_ends_one_radius_along_the_radius_about_a_new_centre():
+    """LinuxCNC convert_arc_comp1 (tests/ccomp/mill-zchanges): a G3 entry from (10, 0) to (0, 10) about
+    (0, 0) with the tool 2 mm to the left (inside) ends at (0, 10) moved 2 towards the centre, (0, 8),
+    about the centre on the line from there through (0, 0) as far from (10, 0) as from (0, 8):
+    (0, y) with 10**2 + y**2 = (8 - y)**2, y = -2.25 (radius 10.25). The next line (0, 10) -> (-10, 10)
+    then starts tangentially at its offset (0, 8)."""
+    blocks = [_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2),
+              _line([-10, 10], [-10, 20], 3)]
+    out = compensate(blocks, side="left", radius=2.0, plane=2)
+    _check(out, [
+        (1, "arc", [10, 0], [0, 8], [0, -2.25], True),
+        (2, "line", [0, 8], [-10, 8], None, None),
+        (3, "line", [-10, 8], [-10, 20], None, None),
+    ])
 
 
 def test_a_rapid_reversal_goes_round_by_a_traverse():
