@@ -459,3 +459,18 @@ def test_program_end_without_an_exit_move_compensates_the_last_arc():
     assert last.kind == "arc" and last.line == 11
     np.testing.assert_allclose(last.target[:2] / 25.4, [2.0, 3.5], atol=1e-9)
     np.testing.assert_allclose(last.segment.center[:2] / 25.4, [2.0, 2.0], atol=1e-9)
+
+
+def test_arc_trimmed_past_its_start_gouges_as_in_linuxcnc():
+    """LinuxCNC move_endpoint_and_flush: an arc whose trimmed sweep exceeds the programmed one by more than
+    0.0254 rad (mm program) gouges. A G3 of radius 5 about (0, 5) sweeps 0.2 rad from (0, 0); the line after
+    it turns up (+Y, concave with the tool on the left). Its offset X = 5 sin(0.2) - 1 = -0.0067 meets the
+    arc's offset circle (radius 4) at -90.1 degrees, before the arc's offset start (0, 1) at -90: the arc
+    would have to run 2 pi - 0.0017 rad."""
+    end = [5.0 * math.sin(0.2), 5.0 - 5.0 * math.cos(0.2)]
+    blocks = [_line([-10, 0], [0, 0], 1), _arc([0, 0], end, [0, 5], 2, ccw=True), _line(end, [end[0], 10], 3),
+              _line([end[0], 10], [end[0] - 10, 10], 4)]
+    with pytest.raises(CompensationError, match="Arc move in concave corner cannot be reached by the tool") as e:
+        compensate(blocks, side="left", radius=1.0, plane=2)
+    assert e.value.index == 1
+    compensate(blocks, side="left", radius=0.1, plane=2)  # a tool that fits: X = 0.893 meets the arc within it
