@@ -189,14 +189,18 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
             go("rapid", x, y, clear)
         go("rapid", x, y, r)
         if g in (73, 83):
-            q = cycle.q * scale
-            depth = r - q
-            while depth > bottom:
+            # LinuxCNC's loop (interp_cycles.cc convert_cycle_g83/g73) in program units, as it runs: a Q that
+            # divides R - Z makes the pecks LinuxCNC's rounding makes (no more, no fewer)
+            r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
+            bottom_p = r_p + cycle.z if incremental else cycle.z
+            depth_p = r_p - cycle.q
+            while depth_p > bottom_p:
+                depth = depth_p * scale + offset[2]
                 go("line", x, y, depth, feed)
                 go("rapid", x, y, r if g == 83 else depth + delta)
                 if g == 83:
                     go("rapid", x, y, depth + delta)
-                depth -= q
+                depth_p -= cycle.q
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
