@@ -295,7 +295,7 @@ class _Reader:
             v, end = self.expression(p + 1)
             end = self.skip(end)
             if end >= len(self.code) or self.code[end] != "]":
-                self.fail("unclosed '[' in an expression", p, "']' closing the expression")
+                self.unclosed(p, end)
             return v, end + 1
         if ch == "#":
             return self.read_parameter(p)
@@ -318,6 +318,23 @@ class _Reader:
                       "a number, #parameter, [expression] or function such as SIN[30]")
         self.fail("malformed value", p, "a number, #parameter, [expression] or function such as SIN[30]")
         raise AssertionError("unreachable")
+
+    def unclosed(self, start: int, end: int) -> NoReturn:
+        """The error for an expression opened at ``start`` that does not close at ``end``: the text
+        there, an exponent (``1e308``: RS274/NGC numbers have none; LinuxCNC interp_read.cc
+        read_operation says "Unknown operation name starting with e") or the end of the line."""
+        if end >= len(self.code) or self.code[end] in ";(":
+            self.fail("unclosed '[' in an expression", start, "']' closing the expression")
+        exponent = re.match(r"[eE][+-]?\d", self.code[end:])
+        if exponent and end > 0 and (self.code[end - 1].isdigit() or self.code[end - 1] == "."):
+            number = re.search(r"[\d.]+$", self.code[:end]).group(0)
+            tail = re.match(r"[eE][+-]?\d+", self.code[end:]).group(0)
+            self.fail(f"number with an exponent '{number}{tail}': G-code numbers have no exponent notation "
+                      "(LinuxCNC: unknown operation name starting with e)", end,
+                      "a plain decimal number such as 1000.0, or an operator (+ - * / ** MOD EQ AND ...) or ']'")
+        word = re.match(r"[A-Za-z]\w*", self.code[end:])
+        what = f"unknown operation '{word.group(0)}'" if word else f"unexpected '{self.code[end]}'"
+        self.fail(f"{what} in an expression", end, "an operator (+ - * / ** MOD EQ NE GT LT AND OR XOR) or ']'")
 
     def function(self, name: str, p: int) -> tuple[float, int]:
         q = self.skip(p + len(name))
