@@ -55,7 +55,7 @@ from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import Word, block_comment, read_words, strip_comments
 
-__all__ = ["FlowLine", "run", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
+__all__ = ["FlowLine", "run", "one_line_end", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
@@ -80,6 +80,13 @@ _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
+
+
+
+def one_line_end(text: str) -> str:
+    """``text`` with every line end as ``\\n``: CR LF (DOS), LF (Unix) and a bare CR (classic Mac OS
+    editors, some controls' serial output) each end one line, so lines are numbered as an editor shows them."""
+    return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -132,6 +139,7 @@ class _Program:
 
     def _index(self, text: str, source: str | None) -> None:
         """Append the lines of ``text`` (from ``source``), classified, O-words and numbers indexed."""
+        text = one_line_end(text)
         self.first_line.setdefault(source, len(self.code))
         self.span += 1  # each file, and each O program in it, is a program of its own (macro B GOTO)
         for raw in lines_of(text):

@@ -8,6 +8,7 @@ from interpolators._words import program_text
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
 from interpolators.iso import parse_iso
+from interpolators.iso_flow import one_line_end
 from interpolators.program import Program
 from vcnc.core.errors import GCodeError
 
@@ -44,6 +45,7 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
     """
     if not isinstance(text, str):
         raise GCodeError(f"program text must be a str, got {type(text).__name__}", file=source)
+    text = one_line_end(text)  # CR, LF and CR LF alike, for both readers
     if detect_dialect(text) == "heidenhain":
         return parse_heidenhain(text, source=source, context=context)
     return parse_iso(text, source=source, context=context)
