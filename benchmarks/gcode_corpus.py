@@ -33,7 +33,7 @@ from vcnc.errors import GCodeError  # noqa: E402
 
 #: Features whose programs are not milling programs (out of scope by the issue): matched against
 #: the rejection message.
-OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G33|threading|G38 probing|user M code|rigid tapping", re.I)
+OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G38 probing|user M code", re.I)
 
 
 def corpus_dir() -> Path | None:
@@ -101,7 +101,7 @@ def main() -> int:
     print(f"corpus: {len(progs)} programs, {ok} accepted, {len(progs) - ok} rejected ({wall:.1f} s)")
     milling = [p for p in progs if p["ok"] or not OUT_OF_SCOPE.search(p["reason"])]
     mok = sum(p["ok"] for p in milling)
-    print(f"milling programs (rejections naming lathe/probing/threading/remap features excluded): "
+    print(f"milling programs (rejections naming lathe/probing/remap features excluded): "
           f"{mok} of {len(milling)} run = {100 * mok / len(milling):.1f} %")
     by_origin = collections.defaultdict(lambda: [0, 0])
     for p in progs:

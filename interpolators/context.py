@@ -57,12 +57,19 @@ class Tool:
         magnitude and G42 as G41 (LinuxCNC ``interp_convert.cc`` convert_cutter_compensation_on).
     comment : str
         Free text (LinuxCNC tool tables carry one).
+    offset_x, offset_y : float
+        Tool offsets along X and Y [mm] (LinuxCNC tool-table columns X and Y, ``G10 L1 X.. Y..``;
+        lathe tools, or a milling head with an offset spindle): G43 applies them with the length, the
+        program's X and Y point then lies this far from the machine's (LinuxCNC g-code.adoc "G43":
+        "all the tool's offsets are applied").
     """
 
     number: int
     length: float = 0.0
     radius: float = 0.0
     comment: str = ""
+    offset_x: float = 0.0
+    offset_y: float = 0.0
 
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
@@ -71,6 +78,9 @@ class Tool:
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
         if not math.isfinite(self.radius):
             raise InputError(f"tool {self.number}: radius must be finite [mm], got {self.radius!r}")
+        if not (math.isfinite(self.offset_x) and math.isfinite(self.offset_y)):
+            raise InputError(f"tool {self.number}: X/Y offsets must be finite [mm], got "
+                             f"{self.offset_x!r}, {self.offset_y!r}")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -215,10 +225,10 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
     """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line).
 
     Following LinuxCNC's tool-table format (https://linuxcnc.org/docs/html/config/tool-table.html):
-    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter and ``Z`` tool length offset in the
-    machine's units (``units``: ``"mm"``, or ``"inch"`` for a table of an inch machine, converted to
-    mm); other offsets (``X Y A B C U V W I J Q``) are read and ignored. Lines that are empty or only
-    a comment are skipped.
+    ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter, ``Z`` tool length offset and ``X``
+    ``Y`` tool offsets in the machine's units (``units``: ``"mm"``, or ``"inch"`` for a table of an
+    inch machine, converted to mm); other offsets (``A B C U V W I J Q``) are read and ignored.
+    Lines that are empty or only a comment are skipped.
 
     Raises
     ------
@@ -255,5 +265,6 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
             raise InputError(f"{path}:{lineno}: tool-table line without a T word; expected T<number> ...")
         number = int(words["T"])
         tools[number] = Tool(number=number, length=words.get("Z", 0.0) * scale,
-                             radius=words.get("D", 0.0) * scale / 2.0, comment=comment.strip())
+                             radius=words.get("D", 0.0) * scale / 2.0, comment=comment.strip(),
+                             offset_x=words.get("X", 0.0) * scale, offset_y=words.get("Y", 0.0) * scale)
     return tools

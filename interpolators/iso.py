@@ -19,13 +19,15 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           the motion mode only
 ``G5 G5.1``               cubic / quadratic spline in XY (I J, P Q control offsets), run as chords
                           within 1 um (:mod:`interpolators.iso_splines`)
+``G33 G33.1``             spindle-synchronised feed (K x S) and rigid tapping (there and back)
 ``@ ^``                   LinuxCNC polar distance and angle instead of X Y (:mod:`interpolators.iso_polar`)
 ``G4``                    dwell ``P`` (seconds under LinuxCNC/grbl, milliseconds under Fanuc/Haas)
                           or ``X`` [s]
 ``G17 G18 G19``           arc plane; ``G20 G21`` inch / mm (a program with neither runs in the
                           dialect's default unit, with a note); ``G90 G91`` absolute / incremental
 ``G90.1 G91.1``           arc centre I J K absolute / incremental (default)
-``G61 G61.1 G64``         exact stop; continuous path with ``P`` tolerance (``Q`` noted). A program
+``G61 G61.1 G64``         exact stop; continuous path with ``P`` tolerance (``Q``, LinuxCNC 2.10's planner
+                          selection ``R`` noted). A program
                           with neither runs in the dialect's default (continuous path)
 ``G73 G81-G86 G89 G80``   drilling cycles with R, Q, P, L/K and G98/G99 (:mod:`interpolators.iso_cycles`)
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
@@ -47,7 +49,7 @@ as LinuxCNC does), G90/G91, G53, G28/G30, G92/G10 offsets, G93 (:mod:`interpolat
 Out of scope, each an error naming the feature: an axis the machine lacks (a word that keeps the
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
-probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
+probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
@@ -96,7 +98,8 @@ __all__ = ["parse_iso"]
 _G: dict[int, tuple[str, str]] = {
     **{k: ("motion", n) for k, n in ((0, "rapid"), (10, "linear feed"), (20, "clockwise arc"),
                                        (30, "counter-clockwise arc"), (800, "cycle cancel"),
-                                       (50, "G5 cubic spline"), (51, "G5.1 quadratic spline"))},
+                                       (50, "G5 cubic spline"), (51, "G5.1 quadratic spline"),
+                                       (330, "G33 spindle-synchronised motion"), (331, "G33.1 rigid tapping"))},
     **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
                                           (82, "G82 drilling cycle with dwell"),
                                           (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
@@ -128,7 +131,6 @@ _G: dict[int, tuple[str, str]] = {
 #: G codes named in an error (round(10 * code) -> feature).
 _G_UNSUPPORTED: dict[int, str] = {
     **{k: "G38 probing" for k in (382, 383, 384, 385)},
-    330: "G33 spindle-synchronised motion (threading)", 331: "G33.1 rigid tapping",
     760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
@@ -203,7 +205,8 @@ class _State:
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
-    tool_length: float = 0.0
+    tool_length: float = 0.0  # along Z [mm]
+    tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
     tool_current: int | None = None
     home: np.ndarray | None = None
@@ -223,6 +226,8 @@ class _State:
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
+    spindle_speed: float = 0.0  # S [rev/min]
+    spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -265,7 +270,7 @@ class _State:
         """Machine minus program coordinates [mm]."""
         o = self.offsets.get(self.wcs)
         base = self.context.offset(self.wcs) if o is None else o
-        return base + self.g92 + np.array([0.0, 0.0, self.tool_length])
+        return base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
 
 
 def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
@@ -424,6 +429,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
+    seen = _planner_word(seen, gcodes, mcodes, where, notes)
     seen = _io_words(mcodes, seen, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
@@ -455,6 +461,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
+    if not axis_words and not rot_words and st.motion in (330, 331) and "motion" in gcodes:
+        w = gcodes["motion"][1]
+        where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
+                   expected="at least one of X, Y, Z")
     if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
         for letter in ("I", "J", "K", "R"):
             if letter in seen:
@@ -524,6 +534,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         if seen["S"].value < 0:
             w = seen["S"]
             where.fail("spindle speed S must be >= 0", column=w.column, text=w.text, expected="S >= 0 [rev/min]")
+        st.spindle_speed = seen["S"].value
         notes.add("S/M3-M5 spindle")
     if "T" in seen:
         w = seen["T"]
@@ -539,8 +550,11 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
     """M codes: tool change and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
+        if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
+            st.spindle_turning = m in (3, 4)
         if m in (2, 30):
             ended = True
+            st.spindle_turning = False
         elif m == 6:
             st.tool_current = st.tool_selected
             notes.add("T/M6 tool change")
@@ -553,6 +567,25 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
         else:
             notes.add(f"M{m} (no motion)")
     return ended
+
+
+def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
+    """``seen`` without the R of ``G64 P.. R..``: LinuxCNC 2.10's trajectory planner selection.
+
+    LinuxCNC g-code.adoc "G64 R: planner selection": R0 (or negative) selects the trapezoidal
+    planner, R0.1..R1 (clamped) the jerk-limited one and its cornering aggressiveness; it changes
+    neither the path nor the end points, so it is accepted with a note (vcnc's look-ahead is its own).
+    An R on a line with M19 as well is an error (ambiguous, as LinuxCNC says); an R on G61 is left to
+    the other words' checks (an R without a code to use it).
+    """
+    if "R" not in seen or gcodes.get("path", (0,))[0] != 640:
+        return seen
+    w = seen["R"]
+    if any(m == 19 for m, _ in mcodes):
+        where.fail("word R on a line with both G64 and M19 is ambiguous (G64 planner or M19 angle)",
+                   column=w.column, text=w.text, expected="G64 R and M19 R on separate lines")
+    notes.add("G64 R planner selection (the path is unchanged)")
+    return {k: v for k, v in seen.items() if k != "R"}
 
 
 def _io_words(mcodes, seen, where: Where) -> dict:
@@ -696,6 +729,9 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
     mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
     code = f"G{motion // 10:02d}"
+    if motion in (330, 331):
+        _synchronised(seen, target, st, blocks, used, where, number, mcol, mtok)
+        return
     rot = _extra_words(seen, motion, st, where, used, machine=machine)
     if motion in (0, 10) and (arc_words or "R" in seen):
         # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
@@ -746,6 +782,52 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         st.extra = rot
 
 
+def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+    """G33 spindle-synchronised motion and G33.1 rigid tapping as feed moves.
+
+    LinuxCNC g-code.adoc "G33 Spindle Synchronized Motion" and "G33.1 Rigid Tapping",
+    interp_convert.cc ``convert_straight`` and interp_check.cc ``check_other_codes``: the axes move
+    K [mm/rev, in/rev under G20] along the drive line per spindle revolution, so the path feed is
+    K x S [rev/min] / 60 [mm/s]; G33.1 then goes back to its start, its spindle (and so its feed)
+    sped up by I (I < 1 counts as 1), and ends where it began. Errors as LinuxCNC's: no K word, an F
+    word, the spindle not turning (M3/M4); also S0 (no speed to follow). The overrun while the spindle
+    reverses at the bottom is not modelled: the moves end at the programmed point and the start.
+    """
+    name = _G[st.motion][1]
+    if "K" not in seen:
+        where.fail(f"{name} without a K word", column=mcol, text=mtok,
+                   expected="K<distance per spindle revolution> > 0 [mm/rev]")
+    k = seen["K"]
+    if not k.value > 0:
+        where.fail(f"{name}: K must be > 0", column=k.column, text=k.text, expected="K > 0 [mm/rev]")
+    bad = [w for w in ("F", "J", "R", *EXTRA_LETTERS, *(("I",) if st.motion == 330 else ())) if w in seen]
+    if bad:
+        w = seen[bad[0]]
+        why = " (the feed follows from K and the spindle speed)" if w.letter == "F" else ""
+        where.fail(f"{name} with word {w.letter}{why}: not allowed", column=w.column, text=w.text,
+                   expected="X, Y, Z, K" + (" and I" if st.motion == 331 else ""))
+    if not st.spindle_turning:
+        where.fail(f"{name} with the spindle not turning", column=mcol, text=mtok, expected="M3 or M4 before it")
+    if not st.spindle_speed > 0:
+        where.fail(f"{name} with spindle speed S0", column=mcol, text=mtok, expected="S > 0 [rev/min] before it")
+    if st.comp_side is not None:
+        where.fail(f"{name} under cutter compensation ({st.comp_code}): not supported", column=mcol, text=mtok,
+                   expected="G40 before it")
+    feed = k.value * st.scale * st.spindle_speed / 60.0
+    start = st.pos.copy()
+    used.update(i for i in range(3) if target[i] != start[i])
+    common = dict(line=where.line, number=number, text=where.text, tolerance=st.tolerance)
+    tap = st.motion == 331
+    blocks.append(Block(kind="line", feed=feed, segment=Line(start, target), start=start, target=target.copy(),
+                        exact_stop=st.exact_stop or tap, **common))
+    if tap:
+        back = feed * max(seen["I"].value, 1.0) if "I" in seen else feed
+        blocks.append(Block(kind="line", feed=back, segment=Line(target, start), start=target.copy(),
+                            target=start, exact_stop=True, **common))
+    else:
+        st.pos = target.copy()
+
+
 def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
     """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
     None without such words; splines and cutter compensation do not take them."""
@@ -772,7 +854,7 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
     start_p, end_p = st.to_program(st.pos), st.to_program(target)
     shadow = dataclasses.replace(st, pos=start_p, rotations={}, offsets={st.wcs: np.zeros(3)},
-                                 g92=np.zeros(3), tool_length=0.0)
+                                 g92=np.zeros(3), tool_length=0.0, tool_xy=np.zeros(2))
     arc = _arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
     step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
     n = max(1, math.ceil(abs(arc.sweep) / step))
@@ -998,14 +1080,17 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     key, w = entry
     if key == 490:
         st.tool_length = 0.0
+        st.tool_xy = np.zeros(2)
         return
     if key == 431:
-        z = seen.get("Z")
-        if z is None:
-            where.fail("G43.1 needs the tool length as a Z word", column=w.column, text=w.text,
-                       expected="G43.1 Z<length>")
-        st.tool_length = z.value * st.scale
-        seen.pop("Z")
+        # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
+        # are the offsets (no motion), an axis not named keeps its offset
+        if not any(a in seen for a in "XYZ"):
+            where.fail("G43.1 needs the tool offsets as axis words", column=w.column, text=w.text,
+                       expected="G43.1 Z<length> (and X, Y)")
+        old = [st.tool_xy[0], st.tool_xy[1], st.tool_length]
+        xyz = [seen.pop(a).value * st.scale if a in seen else old[i] for i, a in enumerate("XYZ")]
+        st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
     number = int(h.value) if h is not None else st.tool_current
@@ -1013,7 +1098,9 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     length = 0.0 if tool is None else tool.length
     if tool is None and number not in (None, 0):
         notes.add(f"H{number} not in the tool table (length 0)")
-    st.tool_length = -length if key == 440 else length
+    sign = -1.0 if key == 440 else 1.0
+    st.tool_length = sign * length
+    st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
     notes.add("G43/G44 tool length from the table")
 
 
@@ -1133,43 +1220,56 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
 
 def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
     """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
-    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the length Z and the radius R directly;
-    L10 sets the length so that the current position, in the current coordinate system without tool
-    length offset, gets the programmed Z; L11 the same in G59.3 without the G92 offset. The change
-    applies at the next G43 (the offset in effect is not changed). Tool X/Y offsets (lathe tools) are
-    not modelled: one that comes out other than 0 is an error."""
+    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the offsets X Y Z and the radius R
+    directly; L10 sets them so that the current position, in the current coordinate system without
+    tool offsets, reads the programmed values; L11 the same in G59.3 without the G92 offset. X and Y
+    are rotated with the system's rotation (G10 L2 R); an L10/L11 with only one of them keeps the
+    old offset's part along the other rotated axis. The change applies at the next G43 (the offset in
+    effect is not changed)."""
     p_word = seen.get("P")
     if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
         where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
-                   text=w.text, expected=f"G10 L{level} P<tool> Z.. R..")
+                   text=w.text, expected=f"G10 L{level} P<tool> X.. Y.. Z.. R..")
     if not any(k in seen for k in ("X", "Y", "Z", "R")):
         where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
-                   expected=f"G10 L{level} P<tool> with Z and/or R")
-    for i, a in enumerate(("X", "Y")):
-        if a not in seen:
-            continue
-        value = seen[a].value * st.scale
-        if level != 1:  # the offset that makes the current position read the value (see Z below)
-            origin = st.offset() if level == 10 else st.offsets.get("G59.3", st.context.offset("G59.3"))
-            value = st.pos[i] - origin[i] - value
-        if abs(value) > 1e-9 or (level != 1 and st.rotation):
-            where.fail(f"G10 L{level} {a}: tool {a} offsets (lathe tools) are not supported; only 0 is",
-                       column=seen[a].column, text=seen[a].text,
-                       expected=f"G10 L{level} P<tool> Z.. R.. (tool length and radius)")
+                   expected=f"G10 L{level} P<tool> with X, Y, Z and/or R")
     number = int(p_word.value)
     tool = st.tool(number) or Tool(number=number)
-    length = tool.length
-    if "Z" in seen:
-        z = seen["Z"].value * st.scale
-        if level == 1:
-            length = z
-        elif level == 10:
-            length = st.pos[2] - st.offset()[2] + st.tool_length - z
-        else:
-            fixture = st.offsets.get("G59.3", st.context.offset("G59.3"))
-            length = st.pos[2] - fixture[2] - z
+    value = {a: seen[a].value * st.scale for a in "XYZ" if a in seen}
+    xy, length = np.array([tool.offset_x, tool.offset_y]), tool.length
+    if level == 1:
+        xy = np.array([value.get("X", xy[0]), value.get("Y", xy[1])])
+        length = value.get("Z", length)
+    else:
+        here, rotation = _here_without_tool(st, fixture=level == 11)
+        a = math.radians(rotation)
+        c, s = math.cos(a), math.sin(a)
+        if "X" in value or "Y" in value:
+            # the old offset's part along the rotated axis not named is kept
+            old_u, old_v = c * xy[0] + s * xy[1], -s * xy[0] + c * xy[1]
+            u = here[0] - value["X"] if "X" in value else old_u
+            v = here[1] - value["Y"] if "Y" in value else old_v
+            xy = np.array([c * u - s * v, s * u + c * v])
+        if "Z" in value:
+            length = here[2] - value["Z"]
     radius = seen["R"].value * st.scale if "R" in seen else tool.radius
-    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius))
+    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius),
+                                           offset_x=float(xy[0]), offset_y=float(xy[1]))
+
+
+def _here_without_tool(st: _State, *, fixture: bool) -> tuple[np.ndarray, float]:
+    """The current position [mm] in the current system (``fixture``: in G59.3, without the G92 offset)
+    as if no tool offset were applied (the machine position less the work and G92 offsets only), and
+    that system's rotation [deg] (LinuxCNC interp_find.cc find_current_in_system_without_tlo)."""
+    wcs = "G59.3" if fixture else st.wcs
+    work = st.offsets.get(wcs)
+    work = st.context.offset(wcs) if work is None else work
+    rotation = st.rotations.get(wcs, 0.0)
+    g92 = np.zeros(3) if fixture else st.g92
+    m = st.pos - work
+    a = math.radians(rotation)
+    c, s = math.cos(a), math.sin(a)
+    return np.array([c * m[0] + s * m[1], -s * m[0] + c * m[1], m[2]]) - g92, rotation
 
 
 def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.ndarray:
@@ -1179,13 +1279,14 @@ def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.nda
     Machine = R (program + G92) + offset, so offset = machine - R (desired + G92)."""
     a = math.radians(rotation)
     c, s = math.cos(a), math.sin(a)
-    dx, dy = st.pos[0] - offset[0], st.pos[1] - offset[1]
+    px, py = st.pos[0] - st.tool_xy[0], st.pos[1] - st.tool_xy[1]  # without the tool's X Y offsets
+    dx, dy = px - offset[0], py - offset[1]
     here = np.array([c * dx + s * dy - st.g92[0], -s * dx + c * dy - st.g92[1]])  # current X Y in that system
     new = offset.copy()
     if "X" in seen or "Y" in seen:
         want = np.array([seen[k].value * st.scale if k in seen else here[i] for i, k in enumerate("XY")]) + st.g92[:2]
-        new[0] = st.pos[0] - (c * want[0] - s * want[1])
-        new[1] = st.pos[1] - (s * want[0] + c * want[1])
+        new[0] = px - (c * want[0] - s * want[1])
+        new[1] = py - (s * want[0] + c * want[1])
     if "Z" in seen:
         new[2] = st.pos[2] - st.g92[2] - st.tool_length - seen["Z"].value * st.scale
     return new

@@ -135,7 +135,9 @@ def _tool(n: int, st: ReaderState) -> float | None:
         return float(number)
     tool = st.tool(number) if number else None
     if n in range(5401, 5410):
-        return float(tool.length) if (tool is not None and n == 5403) else 0.0
+        if tool is None or n not in (5401, 5402, 5403):
+            return 0.0
+        return float({5401: tool.offset_x, 5402: tool.offset_y, 5403: tool.length}[n])
     if n == 5410:
         return 0.0 if tool is None else 2.0 * float(tool.radius)
     return None

@@ -12,9 +12,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - Order of execution on a line (overview.adoc "G-code order of execution"): parameter settings
   (read before any is set), dwell, plane, units, cutter compensation, tool length, coordinate
   system, distance mode, retract mode, G28/G30/G10/G92, motion (as modified by G53), stops.
-- Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool length along
-  Z (``coordinates.adoc``; LinuxCNC applies the XY rotation of ``G10 L2 R`` about the coordinate
-  system origin).
+- Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool offsets (length
+  along Z, the table's X Y offsets: g-code.adoc "G43") (``coordinates.adoc``; LinuxCNC applies the
+  XY rotation of ``G10 L2 R`` about the coordinate system origin).
 - G28/G30: with axis words a rapid to that point (program coordinates, with offsets), then a rapid
   of the named axes to the home / second reference position; without axis words, every axis to it
   (g-code.adoc "G28, G28.1"). G53: the named axes go to machine coordinates.
@@ -31,6 +31,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   (o-code.adoc), call arguments in ``#1..#30``, return value in ``#<_value>``.
 - Polar ``@ ^`` (overview.adoc "Polar Coordinates"): from the XY zero of the current system,
   cumulative in G91.
+- G33 (g-code.adoc "G33 Spindle Synchronized Motion"): a feed move to the end point; G33.1 ("G33.1
+  Rigid Tapping"): a feed move to the end point and one back to where it started.
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
 - G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`.
 - The axes beyond X, Y, Z (g-code.adoc "G0", overview.adoc "Feed Rate", coordinates.adoc): A, B, C
@@ -450,6 +452,7 @@ class _Machine:
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
         self.tool_length = 0.0
+        self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
         self.comp_radius: float | None = None
         self.comp_entry = False
@@ -469,11 +472,13 @@ class _Machine:
         """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
         m = self._rot(prog + self.g92, 1.0) + self.offsets[self.wcs]
         m[2] += self.tool_length
+        m[:2] += self.tool_xy
         return m
 
     def to_program(self, machine: np.ndarray) -> np.ndarray:
         v = machine - self.offsets[self.wcs]
         v[2] -= self.tool_length
+        v[:2] -= self.tool_xy
         return self._rot(v, -1.0) - self.g92
 
     def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
@@ -566,8 +571,10 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             tool = m.ctx.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
+            m.tool_xy = np.array([tool.offset_x, tool.offset_y]) if tool is not None else np.zeros(2)
         elif code == 490:
             m.tool_length = 0.0
+            m.tool_xy = np.zeros(2)
         elif code == 431 and "z" in words and not any(a in words for a in "xyabcuvw"):
             # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
             m.tool_length = words.pop("z")[-1] * m.scale
@@ -653,7 +660,7 @@ def _g10(m: _Machine, words: dict) -> None:
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:
     """Step 21: the motion of the active mode (as modified by G53)."""
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 800) or c // 10 in _CYCLES]
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in _CYCLES]
     for code in explicit:
         m.motion = code
         if code // 10 not in _CYCLES:
@@ -680,8 +687,12 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         return
     end = m.to_machine(m.target(words))
     m.extra = m.extra_end(words)
-    if m.motion in (0, 10):
+    if m.motion in (0, 10, 330):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
+    elif m.motion == 331:  # g-code.adoc "G33.1 Rigid Tapping": to the end point and back to the start
+        start = m.pos.copy()
+        m.emit(line, "feed", end)
+        m.emit(line, "feed", start)
     elif m.motion in (20, 30) and m.rotation[m.wcs] and m.plane != 17:
         # an XZ/YZ arc of a system rotated about Z lies in no axis plane: the reader runs it as
         # chords (as LinuxCNC's canon does for such arcs); the end of the last one is checked

@@ -314,21 +314,21 @@ INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active",
                  "g10/g10-with-g92", "g81/g17/g98", "g81/g18/g98", "g81/g18/g99", "g81/g19/g98", "g81/g19/g99",
                  "g81/g17/g99", "g84/g17/g98", "g84/g17/g99", "inverse-time-with-comp", "m98m99/01-basics",
                  "m98m99/05-M98-loops", "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2",
-                 "rotation/g28", "rotation/g53", "g10/g10-l11", "unit-conversion", "crazy-paths", "inside-corners")
+                 "rotation/g28", "rotation/g53", "g10/g10-l11", "unit-conversion", "crazy-paths", "inside-corners",
+                 "g33.1", "g10/g10-l1-l10")
 #: Cases whose expected output has no motion: vcnc runs them (the cases with messages are in INTERP_MESSAGES).
-INTERP_ACCEPTED = ("fractional-linenumbers", "g52/g52-g92-interaction", "g6164", "m19", "m98m99/13-named-program")
+INTERP_ACCEPTED = ("fractional-linenumbers", "g52/g52-g92-interaction", "g6164", "m19", "m98m99/13-named-program",
+                   "g64-r-planner")
 #: Cases that still differ, and why (not run: documentation for the next step).
 INTERP_DIFFERENT = {
     "abort-hot-comment": "the (abort, ...) message prints #<_ini[a]value> as written (vcnc reads no INI file)",
-    "g10/g10-l1-l10": "tool X/Y offsets (lathe tools) are not modelled: G10 L1 X1 is an error",
     "g84/g18/g98 g84/g18/g99 g84/g19/g98 g84/g19/g99": "LinuxCNC's convert_cycle_g74_g84 passes the XZ/YZ "
         "coordinates in another order (its expected file taps hole X1 Z1 Y-1 at X-1 Y1 Z1); vcnc taps the hole",
-    "g64-r-planner": "G64 R (a planner word of LinuxCNC 2.10) is not read",
     "iniparam": "#<_ini[..]> values: vcnc reads no INI file (an error naming it)",
     "m98m99/09-disable-fanuc-subs": "the INI switch that disables M98/M99 is not modelled (vcnc always runs them)",
     "oword-unwind": "rs274 -n 0 continues after an error; vcnc stops at it",
     "pymove python-self value-returned": "Python subroutines and remaps (out of scope, an error naming the call)",
-    "g33.1 g76 g71-* g72-*": "threading and lathe cycles (out of scope, an error naming them)",
+    "g76 g71-* g72-*": "lathe threading and lathe cycles (out of scope, an error naming them)",
 }
 #: Cases rs274 refuses, and vcnc with it.
 INTERP_REFUSED = ("iniparam-failassign", "m98m99/03-error-M98-no-P-word", "m98m99/04-M98-but-no-sub",
@@ -385,7 +385,7 @@ def _canonical_moves(expected: str) -> list[tuple[str, np.ndarray]]:
             tool = np.array(nums[:3])
         elif name == "SELECT_PLANE":
             plane = args.rsplit("_", 1)[-1].strip()
-        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
+        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "RIGID_TAP"):
             if name == "ARC_FEED":
                 e1, e2, _, _, _, e3 = nums[:6]
                 p = np.array({"XY": (e1, e2, e3), "YZ": (e3, e1, e2), "XZ": (e2, e3, e1)}[plane])
@@ -394,8 +394,11 @@ def _canonical_moves(expected: str) -> list[tuple[str, np.ndarray]]:
             x, y = p[0] + g92[0], p[1] + g92[1]
             c, s = math.cos(rotation), math.sin(rotation)
             machine = np.array([c * x - s * y, s * x + c * y, p[2] + g92[2]]) + g5x + tool
-            kind = {"STRAIGHT_TRAVERSE": "rapid", "STRAIGHT_FEED": "line", "ARC_FEED": "arc"}[name]
+            kind = {"STRAIGHT_TRAVERSE": "rapid", "STRAIGHT_FEED": "line", "ARC_FEED": "arc", "RIGID_TAP": "line"}[name]
+            start = moves[-1][1] if moves else np.zeros(3)
             moves.append((kind, machine * unit))
+            if name == "RIGID_TAP":  # RIGID_TAP(x, y, z, ..) taps to x, y, z and returns to its start (emccanon.cc)
+                moves.append(("line", start))
     return moves
 
 
