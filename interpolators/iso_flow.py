@@ -84,9 +84,11 @@ _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif",
 
 
 def one_line_end(text: str) -> str:
-    """``text`` with every line end as ``\\n``: CR LF (DOS), LF (Unix) and a bare CR (classic Mac OS
-    editors, some controls' serial output) each end one line, so lines are numbered as an editor shows them."""
-    return text.replace("\r\n", "\n").replace("\r", "\n")
+    """``text`` with its line ends as ``\\n``: CR LF (DOS) and LF (Unix) end a line, and in a text with
+    no LF at all (classic Mac OS editors, some controls' serial output) a bare CR does. A CR alone in a
+    text that has LF line ends stays part of its line (a stray CR in a comment does not split it, as
+    in the Heidenhain corpus files 0199-0201), so lines are numbered as an editor shows them."""
+    return text.replace("\r", "\n") if "\n" not in text else text.replace("\r\n", "\n")
 
 
 @dataclasses.dataclass(frozen=True)

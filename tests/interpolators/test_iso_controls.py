@@ -141,3 +141,9 @@ def test_expression_errors_name_the_real_problem_at_its_column(text, column, mes
     with pytest.raises(GCodeError, match=message) as err:
         parse_program(text, context=CTX)
     assert (err.value.line, err.value.column) == (1, column)
+
+
+def test_a_stray_cr_in_a_text_with_lf_line_ends_stays_in_its_line():
+    # a CR inside a comment of an LF file (Heidenhain corpus 0200_11.h has one) does not end the line
+    prog = parse_program("G21 G90 (tool 6 mm\r flute 32)\nG0 X1\n", context=CTX)
+    assert [(b.line, b.target.tolist()) for b in prog.blocks] == [(2, [1.0, 0.0, 50.0])]
