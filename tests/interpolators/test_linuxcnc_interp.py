@@ -485,8 +485,9 @@ INTERP_MESSAGES = ("cam-nisley", "do-while-break", "g10/g10-l2-while-active", "g
                    "sub-call-from-sub", "subs-follow-main")
 #: Cases with messages that differ, and why (not run).
 INTERP_MESSAGES_DIFFERENT = {
-    "g10/g10-l11 g52/g52-g92-interaction unit-conversion": "the stored offsets #5211.. (G92) and #5221.. (G54..) "
-        "read in mm (iso_system: a machine configured in mm); under G20 LinuxCNC's read in inch",
+    "g10/g10-l11 g10/g10-l1-l10 g52/g52-g92-interaction unit-conversion": "the stored offsets #5211.. (G92), "
+        "#5221.. (G54..) and tool offsets #5401.. read in mm (iso_system: a machine configured in mm); under G20 "
+        "LinuxCNC's read in inch (g10-l1-l10's values agree times 25.4)",
     "g52/g92-offset-persistence": "G92 offsets persisting in a parameter file (rs274 -v) are not modelled",
 }
 
