@@ -29,7 +29,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ``G61 G61.1 G64``         exact stop; continuous path with ``P`` tolerance (``Q``, LinuxCNC 2.10's planner
                           selection ``R`` noted). A program
                           with neither runs in the dialect's default (continuous path)
-``G73 G81-G86 G89 G80``   drilling cycles with R, Q, P, L/K and G98/G99 (:mod:`interpolators.iso_cycles`)
+``G73 G81-G86 G89 G80``   drilling cycles with R, Q, P, L/K and G98/G99 (:mod:`interpolators.iso_cycles`);
+                          ``G74`` left-hand tapping as G84 (spindle M4)
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
@@ -49,7 +50,7 @@ as LinuxCNC does), G90/G91, G53, G28/G30, G92/G10 offsets, G93 (:mod:`interpolat
 Out of scope, each an error naming the feature: an axis the machine lacks (a word that keeps the
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
-probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
+probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75), splines G5.x, polar
 G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
@@ -103,6 +104,7 @@ _G: dict[int, tuple[str, str]] = {
     **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
                                           (82, "G82 drilling cycle with dwell"),
                                           (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
+                                          (74, "G74 left-hand tapping cycle"),
                                           (85, "G85 boring cycle"), (86, "G86 boring cycle"),
                                           (89, "G89 boring cycle with dwell"))},
     40: ("dwell", "dwell"),
@@ -134,7 +136,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
-    740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
+    750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
@@ -228,6 +230,7 @@ class _State:
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
+    spindle_ccw: bool = False  # the last start was M4
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -552,6 +555,7 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
     for m, _ in mcodes:
         if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
             st.spindle_turning = m in (3, 4)
+            st.spindle_ccw = m == 4
         if m in (2, 30):
             ended = True
             st.spindle_turning = False
@@ -1343,6 +1347,10 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
+    if st.motion == 740 and not (st.spindle_turning and st.spindle_ccw):
+        # LinuxCNC interp_cycles.cc check_g74_g84_spindle: G74 taps left-hand, the spindle turning M4
+        where.fail(f"{name} with the spindle " + ("turning clockwise (M3)" if st.spindle_turning else "not turning"),
+                   column=mw.column, text=mw.text, expected="M4 (counter-clockwise) before G74")
     off = st.offset()
     try:
         moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,

@@ -90,7 +90,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     Parameters
     ----------
     g : int
-        Cycle code (73, 81, 82, 83, 84, 85, 86, 89).
+        Cycle code (73, 74, 81, 82, 83, 84, 85, 86, 89).
     words : dict
         The block's words as written (``X Y Z R Q P L K``), not yet scaled.
     cycle : CycleWords
@@ -121,6 +121,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
     axes = CYCLE_AXES[plane]
+    if g == 74:  # LinuxCNC convert_cycle_g74_g84: G74 taps left-hand, the moves of G84 (spindle M4 instead of M3)
+        g = 84
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
                          retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)

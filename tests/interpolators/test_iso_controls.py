@@ -147,3 +147,18 @@ def test_a_stray_cr_in_a_text_with_lf_line_ends_stays_in_its_line():
     # a CR inside a comment of an LF file (Heidenhain corpus 0200_11.h has one) does not end the line
     prog = parse_program("G21 G90 (tool 6 mm\r flute 32)\nG0 X1\n", context=CTX)
     assert [(b.line, b.target.tolist()) for b in prog.blocks] == [(2, [1.0, 0.0, 50.0])]
+
+
+def test_g74_left_hand_tapping_moves_as_g84_and_needs_m4():
+    # g-code.adoc "G74 Left-hand Tapping Cycle with Dwell": feed to Z, dwell P, feed out to the clear level
+    # (G98: the Z before the series), F = S x pitch (S100 x 1.25 mm = F125); interp_cycles.cc
+    # check_g74_g84_spindle refuses G74 with the spindle stopped or turning clockwise
+    moves = _moves("G21 G90 G98\nG0 X0 Y0 Z10\nS100 M4\nG74 X5 Y5 Z-3 R2 P0.5 F125\nG80\n")
+    assert [(k, p) for k, p, _ in moves] == [("rapid", [0.0, 0.0, 10.0]), ("rapid", [5.0, 5.0, 10.0]),
+                                             ("rapid", [5.0, 5.0, 2.0]), ("line", [5.0, 5.0, -3.0]),
+                                             ("dwell", [5.0, 5.0, -3.0]), ("line", [5.0, 5.0, 10.0])]
+    assert moves[3][2] == pytest.approx(125.0) and moves[5][2] == pytest.approx(125.0)
+    with pytest.raises(GCodeError, match="spindle turning clockwise"):
+        parse_program("G21 G90\nG0 Z10\nS100 M3\nG74 X5 Y5 Z-3 R2 F125\n", context=CTX)
+    with pytest.raises(GCodeError, match="spindle not turning"):
+        parse_program("G21 G90\nG0 Z10\nG74 X5 Y5 Z-3 R2 F125\n", context=CTX)
