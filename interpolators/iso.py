@@ -83,6 +83,7 @@ from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
 from interpolators.iso_words import Word
@@ -138,6 +139,12 @@ _G_UNSUPPORTED: dict[int, str] = {
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
+}
+
+#: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
+#: :data:`_G_UNSUPPORTED` (where LinuxCNC's meaning, or an error, stays).
+_MILL_G: dict[int, tuple[str, str]] = {
+    **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -367,6 +374,13 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
     for w in words:
         if w.letter == "G":
             key = _gkey(w, where)
+            mill = _MILL_G.get(key) if st.context.dialect.name in ("fanuc", "haas") else None
+            if mill is not None:
+                if mill[0] in gcodes:
+                    where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
+                               expected=f"one {mill[0]} code per block")
+                gcodes[mill[0]] = (key, w)
+                continue
             if key in _G_UNSUPPORTED:
                 where.fail(f"{_G_UNSUPPORTED[key]}: not supported", column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
@@ -422,6 +436,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
+    if "smoothing" in gcodes:
+        seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
@@ -531,6 +547,23 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         st.tool_selected = int(w.value)
         if st.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
+
+
+def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
+    """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
+    tolerance; returns ``seen`` without the words it reads."""
+    key, w = entry
+    try:
+        sm = smoothing(key, {k: v.value for k, v in seen.items()})
+    except SmoothingError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{SMOOTHING_CODES[key]}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    if sm.tolerance is not None:
+        st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
+    elif sm.reset:
+        st.tolerance = st.context.dialect.tolerance
+    notes.add(sm.note)
+    return {k: v for k, v in seen.items() if k not in sm.consumed}
 
 
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
