@@ -86,6 +86,7 @@ from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
+from interpolators.iso_transforms import Rotation, g68_rotation
 from interpolators.iso_words import Word
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -145,6 +146,7 @@ _G_UNSUPPORTED: dict[int, str] = {
 #: :data:`_G_UNSUPPORTED` (where LinuxCNC's meaning, or an error, stays).
 _MILL_G: dict[int, tuple[str, str]] = {
     **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
+    680: ("rotation", "G68 coordinate rotation"),
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -226,6 +228,7 @@ class _State:
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+    frame: Rotation | None = None  # Fanuc/Haas G68 rotation of the program coordinates
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
 
@@ -253,6 +256,8 @@ class _State:
         X Y plus the G92 offset, rotated about the work offset's origin, plus the work offset
         (LinuxCNC emccanon.cc rotate_and_offset_pos); Z plus all offsets."""
         off, base, c, s = self._rotated_parts()
+        if self.frame is not None:  # G68 first: it turns the program's own coordinates
+            prog = self.frame.forward(prog)
         x, y = prog[0] + self.g92[0], prog[1] + self.g92[1]
         return np.array([c * x - s * y + base[0], s * x + c * y + base[1], prog[2] + off[2]])
 
@@ -260,7 +265,8 @@ class _State:
         """Inverse of :meth:`to_machine`."""
         off, base, c, s = self._rotated_parts()
         x, y = machine[0] - base[0], machine[1] - base[1]
-        return np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
+        prog = np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
+        return prog if self.frame is None else self.frame.inverse(prog)
 
     def extra_offset(self) -> np.ndarray:
         """Machine minus program positions of a, b, c [deg], u, v, w [mm]: work plus G92 offset."""
@@ -448,6 +454,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     polar = [w for w in POLAR_LETTERS if w in seen]
     if polar:
         _check_polar(seen, gcodes, st, where, seen[polar[0]])
+    if gcodes.get("rotation", (0,))[0] == 680:
+        _g68(seen, st, where, gcodes["rotation"][1], notes)
+        return ended
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -457,7 +466,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
-    if st.rotation and (axis_words or polar):
+    if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
@@ -492,13 +501,35 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
 
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
-    """Moves a rotated coordinate system (G10 R) supports: G0-G3 (G18/G19 arcs as chords)."""
+    """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
+    as chords); under G68 alone canned cycles too."""
+    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730
     what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
-            and st.motion not in (800,) else None)
+            and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
-        where.fail(f"{what} in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
-                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0")
+        how = f"G10 R {st.rotation:g}" if st.rotation else f"G68 R {st.frame.angle:g}"
+        where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
+                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
+
+
+def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+    """G68: rotate the following blocks' coordinates (:mod:`interpolators.iso_transforms`); the block's
+    own words are the centre and the angle, nothing moves."""
+    other = [k for k in seen if k not in ("X", "Y", "Z", "R", "N", "F", "S", "T", "H", "D")]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail("G68 coordinate rotation: only the centre (axis words of the plane) and R, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected="G68 X.. Y.. R<angle> with G40")
+    axes = [a for a in ("X", "Y", "Z") if a in seen and "XYZ".index(a) not in PLANE_AXES[st.plane]]
+    if axes:
+        bad = seen[axes[0]]
+        where.fail(f"G68 coordinate rotation: {bad.letter} is not an axis of the plane of rotation",
+                   column=bad.column, text=bad.text, expected="the centre's two axes of the active plane and R")
+    st.frame = None
+    st.frame = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
+                            scale=st.scale)
+    notes.add("G68 coordinate rotation")
 
 
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
@@ -606,8 +637,10 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
-        if grp in gcodes:
+        if grp in gcodes and gcodes[grp][0] != 680:
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
+    if gcodes.get("rotation", (0,))[0] == 690:
+        st.frame = None
     scale = st.scale
     if "cutter compensation" in gcodes:
         _cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
@@ -675,7 +708,7 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
 def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
-    if st.rotation and not machine:  # G10 R: the words are coordinates of the rotated system
+    if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
         prog = st.to_program(st.pos)
         for letter in axis_words:
             i = "XYZ".index(letter)
@@ -755,7 +788,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
-        if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
+        if st.rotation and st.plane != 2 or st.frame is not None and st.frame.plane != st.plane:
+            # a G18/G19 arc of a system rotated about Z lies in no axis plane
             if rot is not None:
                 w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
                 where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
@@ -800,7 +834,7 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
     machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
     start_p, end_p = st.to_program(st.pos), st.to_program(target)
-    shadow = dataclasses.replace(st, pos=start_p, rotations={}, offsets={st.wcs: np.zeros(3)},
+    shadow = dataclasses.replace(st, pos=start_p, rotations={}, frame=None, offsets={st.wcs: np.zeros(3)},
                                  g92=np.zeros(3), tool_length=0.0)
     arc = _arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
     step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
@@ -909,7 +943,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
                                    tolerance=radius_arc_tolerance(rule))
-        if in_plane and st.rotation:  # the centre words are in the rotated system (XY plane only)
+        if in_plane and (st.rotation or st.frame is not None):  # the centre words are in the rotated system
             prog = st.to_program(st.pos)
             for letter in in_plane:
                 i = "IJK".index(letter)
@@ -1266,15 +1300,18 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
-    off = st.offset()
+    # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
+    pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
     try:
-        moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
+        moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)
+    if st.frame is not None:
+        moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:
         used.update(i for i in range(3) if mv.target[i] != st.pos[i])
         common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(),

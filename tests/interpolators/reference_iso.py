@@ -40,6 +40,12 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   position, G92 included, the given value); the tool length and the G10 R rotation leave them
   alone. G28/G30 take the named axes through the intermediate point to the reference (0 for
   these axes), without words all of them.
+- Fanuc / Haas mills (``fanuc``, ``haas`` dialects; Haas mill operator's manual "G68 Rotation", "G187
+  Smoothness Control", "G103"; Fanuc 0i-MF operator's manual "Coordinate system rotation", "AI
+  contour control"): G187, G103, G05.1, G08 and G05 P10000 move nothing (their words are theirs);
+  ``G68 X Y R`` (the plane's two axes, default the current position; R absolute [deg],
+  counter-clockwise) rotates the program coordinates of the following blocks about that centre
+  before any offset, G69 cancels.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -457,7 +463,18 @@ class _Machine:
         self.retract = 98
         self.cycle_clear: float | None = None
         self.sticky: dict[str, float] = {}
+        self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]
         self.out: list[Expected] = []
+
+    def _g68_turn(self, v: np.ndarray, sign: float) -> np.ndarray:
+        if self.g68 is None:
+            return v
+        (a, b), c, angle = self.g68
+        t = math.radians(sign * angle)
+        out = v.copy()
+        out[a] = c[a] + math.cos(t) * (v[a] - c[a]) - math.sin(t) * (v[b] - c[b])
+        out[b] = c[b] + math.sin(t) * (v[a] - c[a]) + math.cos(t) * (v[b] - c[b])
+        return out
 
     # coordinates ------------------------------------------------------------------------------
     def _rot(self, v: np.ndarray, sign: float) -> np.ndarray:
@@ -467,14 +484,14 @@ class _Machine:
 
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
         """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
-        m = self._rot(prog + self.g92, 1.0) + self.offsets[self.wcs]
+        m = self._rot(self._g68_turn(np.asarray(prog, float), 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
         m[2] += self.tool_length
         return m
 
     def to_program(self, machine: np.ndarray) -> np.ndarray:
         v = machine - self.offsets[self.wcs]
         v[2] -= self.tool_length
-        return self._rot(v, -1.0) - self.g92
+        return self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
 
     def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
         """Program coordinates of the block's end from X/Y/Z (and polar) words."""
@@ -545,6 +562,8 @@ def _codes(words: dict, letter: str) -> list[int]:
 
 def _modes(m: _Machine, g: list[int], words: dict) -> None:
     """Steps 12-19 of the order of execution: plane, units, compensation, tool length, system, modes."""
+    if m.ctx.dialect.name in ("fanuc", "haas"):
+        _mill_codes(m, g, words)
     for code in g:
         if code in (170, 180, 190):
             m.plane = code // 10
@@ -582,6 +601,28 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
+
+
+def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
+    """Fanuc/Haas look-ahead codes (their words taken off, the codes too) and G68/G69."""
+    for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
+        if code in g:
+            g.remove(code)
+            for k in letters:
+                words.pop(k, None)
+    for code in g:
+        if code in (170, 180, 190):
+            m.plane = code // 10
+    if 690 in g:
+        m.g68 = None
+    if 680 in g:
+        axes = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+        m.g68 = None
+        centre = m.to_program(m.pos)
+        for i in axes:
+            if "xyz"[i] in words:
+                centre[i] = words.pop("xyz"[i])[-1] * m.scale
+        m.g68 = (axes, centre, words.pop("r", [0.0])[-1])
 
 
 def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:

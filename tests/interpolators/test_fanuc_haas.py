@@ -1,0 +1,107 @@
+"""Fanuc and Haas mill features of the ``fanuc`` and ``haas`` dialects, with end points worked out by
+hand from the controls' manuals (Haas mill operator's manual, G-code chapter; Fanuc 0i-MF operator's
+manual), and each program also checked against the independent reference
+(:mod:`tests.interpolators.reference_iso`)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+BASE = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
+FANUC = dataclasses.replace(BASE, dialect=DIALECTS["fanuc"])
+HAAS = dataclasses.replace(BASE, dialect=DIALECTS["haas"])
+LINUXCNC = dataclasses.replace(BASE, dialect=DIALECTS["linuxcnc"])
+S = math.sqrt(0.5)
+
+
+def run(text: str, context: MachineContext = HAAS):
+    """The program's blocks, after checking them against the reference."""
+    prog = parse_program(text, context=context)
+    _, rows = blocks_table(prog)
+    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact + match.within == len(rows)
+    return prog
+
+
+def ends(text: str, context: MachineContext = HAAS) -> list[list[float]]:
+    """End points [mm, machine, less the G54 offset] of the non-dwell blocks, rounded to 1 nm."""
+    off = np.array([100.0, 50.0, -20.0])
+    return [np.round(b.target - off, 6).tolist() for b in run(text, context).blocks if b.kind != "dwell"]
+
+
+# --- look-ahead and smoothing words ------------------------------------------------------------------
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_lookahead_words_move_nothing(context):
+    text = ("G21 G90 G54\nG187 P3 E0.02\nG103 P4\nG05.1 Q1 R5\nG08 P1\nG05 P10000\nG0 X10 Y5 Z2\nG1 X20 F600\n"
+            "G05.1 Q0\nG08 P0\nG05 P0\nG187\nG1 X30\nM30\n")
+    prog = run(text, context)
+    assert [b.target.tolist() for b in prog.blocks] == [[110, 55, -18], [120, 55, -18], [130, 55, -18]]
+    # G187 E is the corner rounding: the path tolerance; G187 alone returns to the default
+    assert [b.tolerance for b in prog.blocks] == [0.02, 0.02, context.dialect.tolerance]
+    assert not prog.blocks[0].exact_stop
+    assert any("G187" in n for n in prog.notes) and any("G05.1" in n for n in prog.notes)
+
+
+def test_g187_e_in_inches_and_g05_1_q2_axis_words_are_no_motion():
+    prog = run("G20 G90 G54\nG187 P1 E0.001\nG05.1 Q2 X0 Y0 Z0\nG0 X1\n", FANUC)
+    assert prog.blocks[0].tolerance == pytest.approx(0.0254)
+    assert len(prog.blocks) == 1
+
+
+@pytest.mark.parametrize(("line", "message"), [("G187 P4", "G187 needs P1 or P2 or P3"),
+                                                ("G05 P3", "G05"), ("G08 P2", "G08 needs P0 or P1"),
+                                                ("G103 P16", "G103 P")])
+def test_lookahead_words_with_undefined_values_are_errors(line, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21\n{line}\n", context=FANUC)
+
+
+def test_linuxcnc_keeps_its_own_meanings():
+    with pytest.raises(GCodeError, match="unknown G code 'G187'"):
+        parse_program("G21\nG187 P1\n", context=LINUXCNC)
+    with pytest.raises(GCodeError, match="G68 coordinate rotation: not supported"):
+        parse_program("G21\nG68 X0 Y0 R10\n", context=LINUXCNC)
+
+
+# --- G68 / G69 coordinate rotation ---------------------------------------------------------------------
+
+def test_g68_rotates_lines_arcs_incremental_moves_and_cycles():
+    text = ("G21 G17 G90 G54\nG0 X0 Y0 Z5\nG68 X10 Y0 R90\nG1 X20 Y0 F600\nG2 X10 Y10 I-10 J0\n"
+            "G3 X10 Y-10 R10\nG91 G1 X5\nG90 G98 G81 X20 Y0 Z-2 R1\nG80\nG69\nG0 X20 Y0\nM30\n")
+    # about (10, 0) by 90 deg: (x, y) -> (10 - y, x - 10)
+    assert ends(text) == [[0, 0, 5], [10, 10, 5], [0, 0, 5], [20, 0, 5], [20, 5, 5],
+                          [10, 10, 5], [10, 10, 1], [10, 10, -2], [10, 10, 5], [20, 0, 5]]
+    prog = run(text)
+    arcs = [b for b in prog.blocks if b.kind == "arc"]
+    assert [np.round(np.array(a.segment.center) - [100, 50, -20], 6).tolist() for a in arcs] == [[10, 0, 5]] * 2
+    assert arcs[0].segment.ccw is False and arcs[1].segment.ccw is True
+
+
+def test_g68_centre_defaults_to_the_current_position_and_r_is_absolute_under_g91():
+    # Haas: no centre words -> the current position; Setting 73 off (default): R absolute
+    text = "G21 G90 G54\nG0 X10 Y10 Z0\nG91 G68 R45\nG68 R45\nG90 G1 X20 Y10 F100\nM30\n"
+    assert ends(text, FANUC) == [[10, 10, 0], pytest.approx([10 + 10 * S, 10 + 10 * S, 0], abs=1e-6)]
+
+
+def test_g68_in_g18_rotates_z_and_x():
+    # G18: the centre is X Z, counter-clockwise seen from +Y takes +Z to +X: (z, x) -> (-x, z) about (0, 0)
+    assert ends("G21 G90 G54\nG0 X0 Y0 Z0\nG18 G68 X0 Z0 R90\nG1 X10 Z0 F100\nG69 G17\nM30\n") == [
+        [0, 0, 0], [0, 0, -10]]
+
+
+def test_g68_rejects_a_word_it_does_not_read():
+    with pytest.raises(GCodeError, match="G68 coordinate rotation: only the centre"):
+        parse_program("G21\nG68 X0 Y0 R10 Q2\n", context=HAAS)
