@@ -103,7 +103,9 @@ _G: dict[int, tuple[str, str]] = {
                                           (82, "G82 drilling cycle with dwell"),
                                           (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
                                           (85, "G85 boring cycle"), (86, "G86 boring cycle"),
-                                          (89, "G89 boring cycle with dwell"))},
+                                          (89, "G89 boring cycle with dwell"), (74, "G74 counter tapping cycle"),
+                                          (76, "G76 fine boring cycle"), (87, "G87 back boring cycle"),
+                                          (77, "G77 back boring cycle"))},
     40: ("dwell", "dwell"),
     100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
     281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
@@ -136,7 +138,9 @@ _G_UNSUPPORTED: dict[int, str] = {
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     740: "G74 lathe peck cycle / counter tapping", 750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
-    510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
+    510: "G51 scaling", 680: "G68 coordinate rotation",
+    870: "G87 back boring cycle (Fanuc) / boring with manual retract (Haas)",
+    880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
@@ -147,6 +151,14 @@ _G_UNSUPPORTED: dict[int, str] = {
 _MILL_G: dict[int, tuple[str, str]] = {
     **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
     680: ("rotation", "G68 coordinate rotation"),
+    740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
+}
+
+#: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
+#: bores with a manual retract).
+_DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
+    "fanuc": {870: ("motion", "G87 back boring cycle")},
+    "haas": {770: ("motion", "G77 back boring cycle")},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -380,7 +392,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
     for w in words:
         if w.letter == "G":
             key = _gkey(w, where)
-            mill = _MILL_G.get(key) if st.context.dialect.name in ("fanuc", "haas") else None
+            dialect = st.context.dialect.name
+            mill = _MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G else None
             if mill is not None:
                 if mill[0] in gcodes:
                     where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
@@ -1303,7 +1316,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
     # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
     pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
     try:
-        moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
+        code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
+        moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)

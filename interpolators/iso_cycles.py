@@ -22,6 +22,22 @@ XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: dr
   plane), as the dialect says (:attr:`interpolators.context.Dialect.tap_out_to_r`).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
+
+Cycles of Fanuc and Haas mills (the ``fanuc`` and ``haas`` dialects; in LinuxCNC these codes are
+other things or errors):
+
+* **G74 counter tapping**: G84's motion with the spindle reversed (Fanuc 0i-MF operator's manual,
+  "Left-handed tapping cycle (G74)"; Haas "G74 Reverse Tap Canned Cycle"): feed to Z, dwell P,
+  feed out to R, rapid to the clear level.
+* **G76 fine boring** (Fanuc "Fine boring cycle (G76)"; Haas "G76 Fine Boring Canned Cycle"):
+  feed to Z, dwell P, oriented spindle stop, a rapid shift away from the wall, the rapid retract,
+  the shift back. The shift is Q along +X (sign ignored: Fanuc "specify a positive value for Q ...
+  set the shift direction, +X, -X, +Y or -Y, in parameter No. 6240", Haas Setting 27; both
+  default to +X), or I J (Fanuc with parameter SIJ, Haas: "I/J shift ... if Q is not specified").
+* **G87 back boring** (Fanuc "Back boring cycle (G87)"; Haas mill "G77 Back Bore Canned Cycle"):
+  at the hole, oriented stop and shift, rapid down to the R level (the bottom of the bore), shift
+  back, feed up to Z (above R), dwell P, shift, rapid up to the initial level, shift back. G99
+  cannot be used (the tool returns to the initial level).
 """
 
 from __future__ import annotations
@@ -62,6 +78,8 @@ class CycleWords:
     z: float | None = None
     q: float | None = None
     p: float | None = None
+    i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
+    j: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -90,7 +108,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     Parameters
     ----------
     g : int
-        Cycle code (73, 81, 82, 83, 84, 85, 86, 89).
+        Cycle code (73, 81, 82, 83, 84, 85, 86, 89; the Fanuc/Haas mill cycles 74, 76, 87).
     words : dict
         The block's words as written (``X Y Z R Q P L K``), not yet scaled.
     cycle : CycleWords
@@ -155,6 +173,9 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     else:
         r = cycle.r * scale + offset[2]
         bottom = cycle.z * scale + offset[2]
+    if g == 87:
+        return _back_bore(words, cycle=cycle, pos=pos, r=r, top=bottom, offset=offset, scale=scale,
+                          incremental=incremental, retract_r=retract_r, feed=feed, dwell=dwell)
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
@@ -200,9 +221,15 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
+        if g == 76:  # oriented stop, shift off the wall, rapid out, shift back
+            dx, dy = _shift(cycle, scale)
+            go("rapid", x + dx, y + dy, bottom)
+            go("rapid", x + dx, y + dy, clear)
+            go("rapid", x, y, clear)
+            continue
         if g == 84 and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
             go("line", x, y, clear, feed)
-        elif g in (84, 85, 89):
+        elif g in (74, 84, 85, 89):
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out
@@ -210,7 +237,7 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
 
 def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool) -> tuple[int, float]:
     """Update the series' sticky R Z Q P from the block; returns the repeat count and the dwell [s]."""
-    for letter in ("R", "Z", "Q", "P"):
+    for letter in ("R", "Z", "Q", "P", *(("I", "J") if g in (76, 87) else ())):
         if letter in words:
             setattr(cycle, letter.lower(), words[letter])
     if cycle.r is None:
@@ -228,11 +255,53 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
     if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
         raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
     dwell = 0.0
-    if g in (82, 84, 86, 89) and cycle.p is not None:
+    if g in (76, 87) and not cycle.q and not (cycle.i or cycle.j):
+        raise CycleError("no shift: Q (along +X) or I J", letter=None, expected="Q<shift> or I.. J..")
+    if g in (74, 82, 84, 76, 86, 87, 89) and cycle.p is not None:
         dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
         if dwell < 0:
             raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
     return int(repeats), dwell
+
+
+def _shift(cycle: CycleWords, scale: float) -> tuple[float, float]:
+    """The G76/G87 shift [mm] in the positioning plane: I J if given, else |Q| along +X."""
+    if cycle.i or cycle.j:
+        return (cycle.i or 0.0) * scale, (cycle.j or 0.0) * scale
+    return abs(cycle.q) * scale, 0.0
+
+
+def _back_bore(words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, r: float, top: float,
+               offset: np.ndarray, scale: float, incremental: bool, retract_r: bool, feed: float,
+               dwell: float) -> list[HoleMove]:
+    """G87 (Fanuc) / G77 (Haas) back boring: the holes from below, R the bottom and Z the top of the
+    bore [mm, machine] (see the module docstring)."""
+    if retract_r:
+        raise CycleError("G99 cannot be used: back boring returns to the initial level", letter=None,
+                         expected="G98")
+    initial = cycle.initial
+    if not r < top < initial:
+        raise CycleError(f"back boring needs R {r - offset[2]:g} below Z {top - offset[2]:g} below the initial "
+                         f"level {initial - offset[2]:g} mm", letter="R" if "R" in words else "Z",
+                         expected="R (bore bottom) < Z (top of the cut) < the initial level")
+    repeats = int(words.get("L", words.get("K", 1.0)))
+    dx, dy = _shift(cycle, scale)
+    out: list[HoleMove] = []
+    cur = pos.astype(float).copy()
+    for _ in range(repeats):
+        x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
+        steps = [("rapid", x, y, initial), ("rapid", x + dx, y + dy, initial), ("rapid", x + dx, y + dy, r),
+                 ("rapid", x, y, r), ("line", x, y, top), ("dwell", x, y, top), ("rapid", x + dx, y + dy, top),
+                 ("rapid", x + dx, y + dy, initial), ("rapid", x, y, initial)]
+        for kind, px, py, pz in steps:
+            target = np.array([px, py, pz])
+            if kind == "dwell":
+                if dwell > 0:
+                    out.append(HoleMove("dwell", target, 0.0, dwell))
+            elif not np.array_equal(target, cur):
+                out.append(HoleMove(kind, target, feed if kind == "line" else math.inf))
+                cur = target
+    return out
 
 
 def _hole(words: dict[str, float], cur: np.ndarray, *, offset: np.ndarray, scale: float,

@@ -45,7 +45,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   contour control"): G187, G103, G05.1, G08 and G05 P10000 move nothing (their words are theirs);
   ``G68 X Y R`` (the plane's two axes, default the current position; R absolute [deg],
   counter-clockwise) rotates the program coordinates of the following blocks about that centre
-  before any offset, G69 cancels.
+  before any offset, G69 cancels. Their mill cycles (Fanuc 0i-MF "Left-handed tapping cycle",
+  "Fine boring cycle", "Back boring cycle"; Haas "G74", "G76", "G77 Back Bore"): G74 as a tap (feed
+  in, dwell, feed out to R, rapid to clear); G76 feed in, dwell, rapid shift (I J, else Q along +X),
+  rapid to clear, rapid shift back; G87 (Haas G77) from the initial level: shift, rapid down to R,
+  shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -430,6 +434,7 @@ def _structure(lines: list[_Line]) -> dict:
 # The machine
 
 _CYCLES = (73, 81, 82, 83, 85, 89)
+_MILL_CYCLES = (74, 76, 87)
 #: The axes beyond X, Y, Z, in the order of :attr:`Expected.extra`; U, V, W scale with G20.
 _EXTRA = "abcuvw"
 
@@ -605,6 +610,8 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
 
 def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
     """Fanuc/Haas look-ahead codes (their words taken off, the codes too) and G68/G69."""
+    if m.ctx.dialect.name == "haas" and 770 in g:  # Haas G77 is Fanuc's G87
+        g[g.index(770)] = 870
     for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
         if code in g:
             g.remove(code)
@@ -694,14 +701,15 @@ def _g10(m: _Machine, words: dict) -> None:
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:
     """Step 21: the motion of the active mode (as modified by G53)."""
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 800) or c // 10 in _CYCLES]
+    cycles = _CYCLES + (_MILL_CYCLES if m.ctx.dialect.name in ("fanuc", "haas") else ())
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 800) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
-        if code // 10 not in _CYCLES:
+        if code // 10 not in cycles:
             m.cycle_clear = None
         if code == 800:  # Fanuc: the cycles are group 09, G80 gives back the G0-G3 mode before them
             m.motion = m.linear
-        elif code // 10 not in _CYCLES:
+        elif code // 10 not in cycles:
             m.linear = code
     if 530 in g and axes:
         if m.motion not in (0, 10):
@@ -716,7 +724,7 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
     if not (axes or arc_alone) or m.motion is None:
         return
-    if m.motion // 10 in _CYCLES:
+    if m.motion // 10 in cycles:
         _cycle(m, line, words)
         return
     end = m.to_machine(m.target(words))
@@ -776,7 +784,7 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
-    for k in "rqp":
+    for k in "rqpij":
         if k in words:
             m.sticky[k] = words[k][-1]
     if depth in words:
@@ -791,6 +799,9 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
     clear = max(m.cycle_clear, r) if m.retract == 98 else r
     repeats = int(words["l"][-1]) if "l" in words else 1
+    if code == 87:
+        _back_bore(m, line, words, cur, r, bottom, prog)
+        return
     if cur[2] < r - _EPS * max(1.0, abs(r)):
         cur[2] = r
         m.move(line, "rapid", prog(cur))
@@ -828,15 +839,49 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
                 m.pos = m.out[-1].end.copy()
             depth -= delta
     m.move(line, "feed", at(bottom))
-    if code in (82, 89):
+    if code in (74, 76, 82, 89):
         m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
-    if code == 85:
+    if code == 76:
+        shift = _shift(m)
+        for z in (bottom, clear):
+            m.move(line, "rapid", prog([*(xy + shift), z]))
+        m.move(line, "rapid", at(clear))
+    elif code == 74:
+        m.move(line, "feed", at(r))
+        m.move(line, "rapid", at(clear), optional=True)
+    elif code == 85:
         m.move(line, "feed", at(r))
         m.move(line, "rapid", at(clear), optional=True)
     elif code == 89:
         m.move(line, "feed", at(clear))
     else:
         m.move(line, "rapid", at(clear))
+
+
+def _shift(m: _Machine) -> np.ndarray:
+    """The G76/G87 shift in the hole plane [mm]: I J when given, else |Q| along the first axis."""
+    if m.sticky.get("i") or m.sticky.get("j"):
+        return np.array([m.sticky.get("i", 0.0), m.sticky.get("j", 0.0)]) * m.scale
+    return np.array([abs(m.sticky["q"]) * m.scale, 0.0])
+
+
+def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, top: float, prog) -> None:
+    """G87 back boring, each repeat from the initial level ``m.cycle_clear``."""
+    initial, shift = m.cycle_clear, _shift(m)
+    xy = cur[:2].copy()
+    for _ in range(int(words["l"][-1]) if "l" in words else 1):
+        if m.incremental:
+            xy = xy + np.array([words.get(a, [0.0])[-1] * m.scale for a in "xy"])
+        else:
+            xy = np.array([words[a][-1] * m.scale if a in words else xy[i] for i, a in enumerate("xy")])
+        m.move(line, "rapid", prog([*xy, initial]), optional=True)
+        for kind, at, z in (("rapid", xy + shift, initial), ("rapid", xy + shift, r), ("rapid", xy, r),
+                            ("feed", xy, top)):
+            m.move(line, kind, prog([*at, z]))
+        dwell = m.sticky.get("p", 0.0)
+        m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
+        for at, z in ((xy + shift, top), (xy + shift, initial), (xy, initial)):
+            m.move(line, "rapid", prog([*at, z]))
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:

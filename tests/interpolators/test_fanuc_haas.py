@@ -105,3 +105,45 @@ def test_g68_in_g18_rotates_z_and_x():
 def test_g68_rejects_a_word_it_does_not_read():
     with pytest.raises(GCodeError, match="G68 coordinate rotation: only the centre"):
         parse_program("G21\nG68 X0 Y0 R10 Q2\n", context=HAAS)
+
+
+# --- mill canned cycles: G74, G76, G87 (Haas G77) -------------------------------------------------------
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_g76_fine_boring_shifts_q_along_plus_x_at_the_bottom(context):
+    text = "G21 G17 G90 G54\nG0 X0 Y0 Z10\nG98 G76 X5 Y0 Z-10 R2 Q0.5 P500 F100\nG80\nM30\n"
+    prog = run(text, context)
+    assert ends(text, context) == [[0, 0, 10], [5, 0, 10], [5, 0, 2], [5, 0, -10], [5.5, 0, -10], [5.5, 0, 10],
+                                   [5, 0, 10]]
+    assert [b.kind for b in prog.blocks][3:5] == ["line", "dwell"] and prog.blocks[4].dwell == 0.5
+
+
+def test_g76_shift_by_i_j_and_g99_returns_to_r():
+    assert ends("G21 G90 G54\nG0 X0 Y0 Z10\nG99 G76 X5 Y5 Z-10 R2 I-0.3 J0.4 F100\nG80\n")[3:] == [
+        [5, 5, -10], [4.7, 5.4, -10], [4.7, 5.4, 2], [5, 5, 2]]
+
+
+def test_g74_counter_tap_moves_as_g84():
+    text = "G21 G90 G54\nG0 X0 Y0 Z10\nG99 G74 X10 Z-8 R3 F100\nG80\n"
+    assert ends(text, FANUC) == [[0, 0, 10], [10, 0, 10], [10, 0, 3], [10, 0, -8], [10, 0, 3]]
+    kinds = [b.kind for b in run(text, FANUC).blocks]
+    assert kinds == ["rapid", "rapid", "rapid", "line", "line"]
+
+
+@pytest.mark.parametrize(("context", "code"), [(FANUC, "G87"), (HAAS, "G77")])
+def test_back_boring_from_below(context, code):
+    # from the initial level Z3: shift 1 in +X, rapid down to R-20, back, feed up to Z-5, shift, rapid up
+    text = f"G21 G90 G54\nG0 X0 Y0 Z3\nG98 {code} X20 Y0 Z-5 R-20 Q1 F50\nG80\n"
+    assert ends(text, context) == [[0, 0, 3], [20, 0, 3], [21, 0, 3], [21, 0, -20], [20, 0, -20], [20, 0, -5],
+                                   [21, 0, -5], [21, 0, 3], [20, 0, 3]]
+    with pytest.raises(GCodeError, match="G99 cannot be used"):
+        parse_program(text.replace("G98", "G99"), context=context)
+
+
+@pytest.mark.parametrize(("context", "line", "message"), [
+    (HAAS, "G87 X0 Z-5 R-20 Q1 F50", "G87 .*manual retract"), (FANUC, "G88 X0 Z-5 R1 F50", "G88 boring cycle"),
+    (FANUC, "G77 X0 Z-5 R1 F50", "G77 back boring cycle"), (LINUXCNC, "G76 X0 Z-5 R1 F50", "G76 threading"),
+    (FANUC, "G76 X0 Z-5 R1 F50", "G76 fine boring cycle: no shift")])
+def test_cycles_a_dialect_does_not_run_are_named(context, line, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90\nG0 Z10\n{line}\n", context=context)
