@@ -81,6 +81,7 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext,
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
+from interpolators.iso_haas import PATTERN_CODES, PatternError, bolt_holes
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
@@ -158,7 +159,7 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle")},
-    "haas": {770: ("motion", "G77 back boring cycle")},
+    "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()}},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -470,6 +471,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if gcodes.get("rotation", (0,))[0] == 680:
         _g68(seen, st, where, gcodes["rotation"][1], notes)
         return ended
+    if "pattern" in gcodes:
+        _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
+        notes.add(PATTERN_CODES[gcodes["pattern"][0]])
+        return ended
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -524,6 +529,30 @@ def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]
         how = f"G10 R {st.rotation:g}" if st.rotation else f"G68 R {st.frame.angle:g}"
         where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
                    column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
+
+
+def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+    """Haas G70/G71/G72 (:mod:`interpolators.iso_haas`): the active canned cycle at every hole."""
+    key, w = entry
+    name = PATTERN_CODES[key]
+    if st.motion is None or st.motion < 730 or st.rotation:
+        where.fail(f"{name} without an active canned cycle" if not st.rotation else
+                   f"{name} in a coordinate system rotated by G10 R: not supported", column=w.column, text=w.text,
+                   expected="a drilling cycle (e.g. G81 ... L0) before it")
+    here = st.to_program(st.pos)
+    for i, a in enumerate("XY"):
+        if a in seen:
+            here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
+    try:
+        holes = bolt_holes(key, {k: v.value for k, v in seen.items()}, centre=(here[0], here[1]), scale=st.scale)
+    except PatternError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    for x, y in holes:
+        cur = st.to_program(st.pos)
+        xy = (x - cur[0], y - cur[1]) if st.incremental else (x, y)
+        words = {a: Word(letter=a, value=v / st.scale, column=w.column, text=w.text) for a, v in zip("XY", xy)}
+        _canned_cycle(words, {}, st, blocks, used, where, number)
 
 
 def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:

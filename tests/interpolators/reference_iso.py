@@ -49,7 +49,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   "Fine boring cycle", "Back boring cycle"; Haas "G74", "G76", "G77 Back Bore"): G74 as a tap (feed
   in, dwell, feed out to R, rapid to clear); G76 feed in, dwell, rapid shift (I J, else Q along +X),
   rapid to clear, rapid shift back; G87 (Haas G77) from the initial level: shift, rapid down to R,
-  shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back.
+  shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back. Haas G70 (L holes
+  on a circle of radius I about X Y or the current point, from J degrees), G71 (K degrees apart), G72
+  (along a line at J degrees, I apart, the first I from the start): the active cycle at each hole.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -635,6 +637,9 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
 def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
     """Step 20: G28/G30, G10, G92 family. True when the axis words were used here."""
     for code in g:
+        if code in (700, 710, 720) and m.ctx.dialect.name == "haas":
+            _pattern(m, line, code, words)
+            return True
         if code in (280, 300):
             home = m.ctx.home if code == 280 else m.ctx.reference2
             axes = [i for i, a in enumerate("xyz") if a in words]
@@ -672,6 +677,26 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         elif code == 923:
             raise ReferenceError("G92.3")
     return False
+
+
+def _pattern(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Haas G70 / G71 / G72: the active canned cycle at each hole, given as absolute X Y."""
+    centre = m.target({k: v for k, v in words.items() if k in "xy"})[:2]
+    n, size = int(words["l"][-1]), words["i"][-1] * m.scale
+    j = words.get("j", [0.0])[-1]
+    if code == 720:
+        points = [centre + size * (k + 1) * np.array([math.cos(math.radians(j)), math.sin(math.radians(j))])
+                  for k in range(n)]
+    else:
+        step = 360.0 / n if code == 700 else words["k"][-1]
+        points = [centre + size * np.array([math.cos(math.radians(j + k * step)), math.sin(math.radians(j + k * step))])
+                  for k in range(n)]
+    for p in points:
+        if m.incremental:  # an increment from the previous hole, as the cycle reads X Y under G91
+            here = m.to_program(m.pos)[:2]
+            _cycle(m, line, {"x": [(p[0] - here[0]) / m.scale], "y": [(p[1] - here[1]) / m.scale]})
+        else:
+            _cycle(m, line, {"x": [p[0] / m.scale], "y": [p[1] / m.scale]})
 
 
 def _g10(m: _Machine, words: dict) -> None:

@@ -147,3 +147,34 @@ def test_back_boring_from_below(context, code):
 def test_cycles_a_dialect_does_not_run_are_named(context, line, message):
     with pytest.raises(GCodeError, match=message):
         parse_program(f"G21 G90\nG0 Z10\n{line}\n", context=context)
+
+
+# --- Haas bolt-hole patterns G70, G71, G72 -------------------------------------------------------------
+
+def _holes(prog) -> list[list[float]]:
+    """X Y [mm, less G54] of the feeds to the bottom of each hole."""
+    return [np.round(b.target[:2] - [100.0, 50.0], 6).tolist() for b in prog.blocks if b.kind == "line"]
+
+
+def test_g70_bolt_hole_circle_about_the_current_point():
+    # Haas: L4 holes on radius I10 about X10 Y10, the first at J90 deg; the G81 block's L0 drills nothing
+    prog = run("G21 G90 G54\nG0 X10 Y10 Z5\nG98 G81 Z-2 R1 F100 L0\nG70 I10 J90 L4\nG80\nM30\n")
+    assert _holes(prog) == [[10, 20], [0, 10], [10, 0], [20, 10]]
+    assert ends("G21 G90 G54\nG0 X10 Y10 Z5\nG98 G81 Z-2 R1 F100 L0\nG70 I10 J90 L4\nG80\n")[-1] == [20, 10, 5]
+
+
+def test_g71_arc_and_g72_line_incremental():
+    prog = run("G21 G90 G54\nG0 X0 Y0 Z5\nG99 G81 Z-2 R1 F100 L0\nG71 I10 J0 K-90 L2\nG72 X0 Y0 I5 J90 L2\n"
+               "G80\nG91 G99 G81 Z-3 R-4 L0\nG72 I5 J0 L2\nM30\n")
+    assert _holes(prog) == [[10, 0], [0, -10], [0, 5], [0, 10], [5, 10], [10, 10]]
+    # G91: R-4 from the initial level Z1, Z-3 from R
+    assert [round(b.target[2] + 20.0, 6) for b in prog.blocks if b.kind == "line"][-2:] == [-6, -6]
+
+
+def test_bolt_holes_need_an_active_cycle_and_are_lathe_cycles_in_fanuc():
+    with pytest.raises(GCodeError, match="G70 bolt hole circle without an active canned cycle"):
+        parse_program("G21\nG0 X0 Y0 Z5\nG70 I10 J0 L4\n", context=HAAS)
+    with pytest.raises(GCodeError, match="G70 lathe finishing cycle: not supported"):
+        parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L4\n", context=FANUC)
+    with pytest.raises(GCodeError, match="the number of holes L"):
+        parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L2.5\n", context=HAAS)
