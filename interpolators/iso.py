@@ -87,7 +87,7 @@ from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
-from interpolators.iso_transforms import Rotation, g68_rotation
+from interpolators.iso_transforms import Frame, TransformError, g68_rotation, mirror, scaling
 from interpolators.iso_words import Word
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -153,6 +153,8 @@ _MILL_G: dict[int, tuple[str, str]] = {
     **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
     680: ("rotation", "G68 coordinate rotation"),
     740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
+    510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
+    511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
 }
 
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
@@ -241,7 +243,7 @@ class _State:
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
-    frame: Rotation | None = None  # Fanuc/Haas G68 rotation of the program coordinates
+    frame: Frame | None = None  # Fanuc/Haas G51.1 mirror, G51 scaling, G68 rotation of the program coordinates
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
 
@@ -471,6 +473,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if gcodes.get("rotation", (0,))[0] == 680:
         _g68(seen, st, where, gcodes["rotation"][1], notes)
         return ended
+    if gcodes.get("scaling", (0,))[0] == 510 or "mirror" in gcodes:
+        _scaling_mirror(gcodes, seen, st, where, notes)
+        return ended
     if "pattern" in gcodes:
         _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
         notes.add(PATTERN_CODES[gcodes["pattern"][0]])
@@ -521,12 +526,14 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
     as chords); under G68 alone canned cycles too."""
-    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730
+    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
+        st.frame.scaled or any(st.frame.mirror) and st.motion in (760, 870, 770))
     what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
-        how = f"G10 R {st.rotation:g}" if st.rotation else f"G68 R {st.frame.angle:g}"
+        how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \
+            "G51.1 mirror image" if st.frame.rotation is None else f"G68 R {st.frame.rotation.angle:g}"
         where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
                    column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
 
@@ -568,10 +575,42 @@ def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
         bad = seen[axes[0]]
         where.fail(f"G68 coordinate rotation: {bad.letter} is not an axis of the plane of rotation",
                    column=bad.column, text=bad.text, expected="the centre's two axes of the active plane and R")
-    st.frame = None
-    st.frame = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
+    base = st.frame or Frame()
+    st.frame = dataclasses.replace(base, rotation=None)
+    rotation = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
                             scale=st.scale)
+    _set_frame(st, dataclasses.replace(base, rotation=rotation))
     notes.add("G68 coordinate rotation")
+
+
+def _set_frame(st: _State, frame: Frame) -> None:
+    st.frame = None if frame.identity else frame
+
+
+def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> None:
+    """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
+    words are the centre / mirror lines, nothing moves."""
+    key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
+    other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail(f"{_MILL_G[key][1]}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected=f"{w.text.upper()} X.. Y.. with G40")
+    values = {k: v.value for k, v in seen.items()}
+    base = st.frame or Frame()
+    try:
+        if key == 510:
+            here = (dataclasses.replace(st, frame=dataclasses.replace(base, factors=(1.0, 1.0, 1.0)))
+                    .to_program(st.pos))
+            frame = scaling(base, values, {k: v.text for k, v in seen.items()}, current=here, scale=st.scale,
+                            thousandths=st.context.dialect.name == "fanuc")
+        else:
+            frame = mirror(base, values, on=key == 511, scale=st.scale)
+    except TransformError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{_MILL_G[key][1]}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    _set_frame(st, frame)
+    notes.add(_MILL_G[key][1])
 
 
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
@@ -679,10 +718,12 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
-        if grp in gcodes and gcodes[grp][0] != 680:
+        if grp in gcodes and gcodes[grp][0] not in (680, 510):
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
-    if gcodes.get("rotation", (0,))[0] == 690:
-        st.frame = None
+    if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
+        _set_frame(st, dataclasses.replace(st.frame, rotation=None))
+    if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:
+        _set_frame(st, dataclasses.replace(st.frame, factors=(1.0, 1.0, 1.0)))
     scale = st.scale
     if "cutter compensation" in gcodes:
         _cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
@@ -830,7 +871,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
-        if st.rotation and st.plane != 2 or st.frame is not None and st.frame.plane != st.plane:
+        if st.rotation and st.plane != 2 or _off_plane(st):
             # a G18/G19 arc of a system rotated about Z lies in no axis plane
             if rot is not None:
                 w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
@@ -849,6 +890,11 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     st.pos = target
     if rot is not None:
         st.extra = rot
+
+
+def _off_plane(st: _State) -> bool:
+    """True when a G68 rotation turns the arc plane out of the axis planes (a rotation in another plane)."""
+    return st.frame is not None and st.frame.rotation is not None and st.frame.rotation.plane != st.plane
 
 
 def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
@@ -969,6 +1015,13 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     p, q = PLANE_AXES[st.plane]
     ccw = st.motion == 30
     has_r = "R" in seen
+    factor = 1.0
+    if st.frame is not None and not _off_plane(st):  # G51.1 / G51 (Fanuc: mirror reverses G02 and G03)
+        ccw = ccw != st.frame.flips(st.plane)
+        factor = st.frame.length_factor(st.plane)
+        if factor is None:
+            where.fail(f"{code} arc under G51 scaling with different factors on its two axes (an ellipse): "
+                       "not supported", column=mcol, text=mtok, expected="equal scaling factors in the arc's plane")
     allowed = {"IJK"[p], "IJK"[q]}
     plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
     for letter in arc_words:
@@ -983,7 +1036,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
     try:
         if has_r:
-            return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
+            return arc_from_radius(st.pos, target, seen["R"].value * st.scale * factor, ccw=ccw, plane=st.plane,
                                    tolerance=radius_arc_tolerance(rule))
         if in_plane and (st.rotation or st.frame is not None):  # the centre words are in the rotated system
             prog = st.to_program(st.pos)
@@ -1065,6 +1118,8 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
     st.comp_side = "left" if key in (410, 411) else "right"
     if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
         radius = -radius
+        st.comp_side = "right" if st.comp_side == "left" else "left"
+    if st.frame is not None and st.frame.flips(st.plane):  # Fanuc: under a mirror image G41 offsets as G42
         st.comp_side = "right" if st.comp_side == "left" else "left"
     st.comp_code = w.text.upper()
     if radius == 0.0:

@@ -52,6 +52,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back. Haas G70 (L holes
   on a circle of radius I about X Y or the current point, from J degrees), G71 (K degrees apart), G72
   (along a line at J degrees, I apart, the first I from the start): the active cycle at each hole.
+  ``G51.1 X..`` mirrors X about that line (G50.1 cancels), ``G51 X Y Z P`` / ``I J K`` scales about
+  the centre (Fanuc: P I J K without a decimal point in 0.001), G50 cancels; a program point goes
+  through mirror, scaling, then rotation; an arc in a plane with one axis mirrored turns the other way.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -471,6 +474,8 @@ class _Machine:
         self.cycle_clear: float | None = None
         self.sticky: dict[str, float] = {}
         self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]
+        self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
+        self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.out: list[Expected] = []
 
     def _g68_turn(self, v: np.ndarray, sign: float) -> np.ndarray:
@@ -491,14 +496,18 @@ class _Machine:
 
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
         """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
-        m = self._rot(self._g68_turn(np.asarray(prog, float), 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
+        p = np.where(self.mirror, 2 * self.mirror_at - prog, np.asarray(prog, float))
+        p = self.scale_centre + self.factors * (p - self.scale_centre)
+        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
         m[2] += self.tool_length
         return m
 
     def to_program(self, machine: np.ndarray) -> np.ndarray:
         v = machine - self.offsets[self.wcs]
         v[2] -= self.tool_length
-        return self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
+        p = self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
+        p = self.scale_centre + (p - self.scale_centre) / self.factors
+        return np.where(self.mirror, 2 * self.mirror_at - p, p)
 
     def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
         """Program coordinates of the block's end from X/Y/Z (and polar) words."""
@@ -567,10 +576,11 @@ def _codes(words: dict, letter: str) -> list[int]:
     return [int(round(v * 10)) for v in words.get(letter, [])]
 
 
-def _modes(m: _Machine, g: list[int], words: dict) -> None:
+def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
     """Steps 12-19 of the order of execution: plane, units, compensation, tool length, system, modes."""
     if m.ctx.dialect.name in ("fanuc", "haas"):
         _mill_codes(m, g, words)
+        _mirror_scaling(m, g, words, text)
     for code in g:
         if code in (170, 180, 190):
             m.plane = code // 10
@@ -632,6 +642,34 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
             if "xyz"[i] in words:
                 centre[i] = words.pop("xyz"[i])[-1] * m.scale
         m.g68 = (axes, centre, words.pop("r", [0.0])[-1])
+
+
+def _mirror_scaling(m: _Machine, g: list[int], words: dict, text: str) -> None:
+    """G51.1 / G50.1 mirror and G51 / G50 scaling (their axis words taken off)."""
+    if 500 in g:
+        m.factors = np.ones(3)
+    if 511 in g or 501 in g:
+        for i, a in enumerate("xyz"):
+            if a in words:
+                value = words.pop(a)[-1] * m.scale
+                m.mirror[i] = 511 in g
+                m.mirror_at[i] = value if 511 in g else 0.0
+    if 510 in g:
+        m.factors = np.ones(3)
+        m.scale_centre = m.to_program(m.pos)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                m.scale_centre[i] = words.pop(a)[-1] * m.scale
+
+        def factor(k: str) -> float:
+            value = words.pop(k)[-1]
+            plain = re.search(rf"{k}\s*[-+]?\d+(?![\d.])", text) is not None
+            return value / 1000.0 if m.ctx.dialect.name == "fanuc" and plain else value
+
+        if "p" in words:
+            m.factors = np.full(3, factor("p"))
+        else:
+            m.factors = np.array([factor(k) if k in words else 1.0 for k in "ijk"])
 
 
 def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
@@ -766,7 +804,12 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         rs, re_ = (math.hypot(p[a] - centre[a], p[b] - centre[b]) for p in (m.pos, end))
         chord = math.hypot(end[a] - m.pos[a], end[b] - m.pos[b])
         slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
-        m.emit(line, "arc_cw" if m.motion == 20 else "arc_ccw", end, centre=centre, centre_tolerance=1e-6 + slack)
+        signs = np.where(m.mirror, -1.0, 1.0) * m.factors
+        if abs(m.factors[a]) != abs(m.factors[b]):
+            raise ReferenceError("an arc under unequal scaling")
+        flip = (signs[a] < 0) != (signs[b] < 0)  # one axis of the plane mirrored: G02 runs as G03
+        m.emit(line, "arc_cw" if (m.motion == 20) != flip else "arc_ccw", end, centre=centre,
+               centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
 
@@ -921,7 +964,7 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
-    _modes(m, g, words)
+    _modes(m, g, words, ln.text)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
     if not used:

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
@@ -178,3 +178,46 @@ def test_bolt_holes_need_an_active_cycle_and_are_lathe_cycles_in_fanuc():
         parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L4\n", context=FANUC)
     with pytest.raises(GCodeError, match="the number of holes L"):
         parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L2.5\n", context=HAAS)
+
+
+# --- G51.1 / G50.1 mirror image, G51 / G50 scaling -------------------------------------------------------
+
+MIRROR = ("G21 G17 G90 G54\nG0 X0 Y0 Z0\nG51.1 X0\nG1 X10 Y0 F100\nG2 X20 Y10 R10\nG3 X10 Y20 I-10 J0\n"
+          "G50.1 X0\nG1 X0 Y0\nM30\n")
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_g51_1_mirror_reverses_arcs(context):
+    # X mirrored about X0: x -> -x; G02 runs as G03 (Fanuc "Programmable mirror image")
+    prog = run(MIRROR, context)
+    assert ends(MIRROR, context) == [[0, 0, 0], [-10, 0, 0], [-20, 10, 0], [-10, 20, 0], [0, 0, 0]]
+    arcs = [b for b in prog.blocks if b.kind == "arc"]
+    assert [a.segment.ccw for a in arcs] == [True, False]
+    assert [np.round(np.array(a.segment.center)[:2] - [100, 50], 6).tolist() for a in arcs] == [[-20, 0], [-10, 10]]
+
+
+def test_g51_scaling_fanuc_p_in_thousandths_haas_p_as_written():
+    body = "G1 X10 Y0 F100\nG2 X20 Y10 R10\nG50\nG1 X0 Y0\n"
+    for context, p in ((FANUC, "P2000"), (FANUC, "P2."), (HAAS, "P2.")):
+        text = f"G21 G90 G54\nG0 X0 Y0 Z0\nG51 X0 Y0 {p}\n{body}"
+        assert ends(text, context) == [[0, 0, 0], [20, 0, 0], [40, 20, 0], [0, 0, 0]]
+
+
+def test_g51_per_axis_scaling_and_the_arc_it_cannot_scale():
+    assert ends("G21 G90 G54\nG0 X10 Y10 Z0\nG51 X10 Y10 I2000 J500\nG1 X20 Y20 F100\nG50\n", FANUC)[-1] == [30, 15, 0]
+    with pytest.raises(GCodeError, match="G02 arc under G51 scaling with different factors"):
+        parse_program("G21\nG0 X0 Y0\nG51 X0 Y0 I2000 J1000\nG2 X10 Y0 R5 F10\n", context=FANUC)
+
+
+def test_mirror_swaps_cutter_compensation_side():
+    # a 10 mm square traced counter-clockwise with G41 (tool radius 2) is cut from inside (x 2..8). Under a
+    # mirror in X it is traced clockwise; Fanuc offsets it as G42, so the tool is again inside: the exact
+    # mirror image, x -8..-2 (without the swap it would run outside, x -12..2)
+    ctx = dataclasses.replace(FANUC, tools={1: Tool(number=1, radius=2.0)})
+    square = "G41 D1 G1 X0 Y-5 F100\nX10\nY5\nX0\nY-5\nG40 G1 X-20 Y-20\n"
+    plain = parse_program(f"G21 G90 G54\nG0 X-20 Y-20 Z0\n{square}", context=ctx)
+    mirrored = parse_program(f"G21 G90 G54\nG0 X20 Y-20 Z0\nG51.1 X0\n{square}G50.1 X0\n", context=ctx)
+    a = [b.target[:2] - [100.0, 50.0] for b in plain.blocks if b.kind == "line"]
+    m = [b.target[:2] - [100.0, 50.0] for b in mirrored.blocks if b.kind == "line"]
+    assert [p[0] for p in a[1:-1]] == pytest.approx([8, 8, 2, 2])
+    assert np.allclose([[-p[0], p[1]] for p in a], m)
