@@ -81,7 +81,7 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext,
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
-from interpolators.iso_haas import PATTERN_CODES, PatternError, bolt_holes
+from interpolators.iso_haas import PATTERN_CODES, PatternError, bolt_holes, circular_pocket
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
@@ -161,7 +161,8 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle")},
-    "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()}},
+    "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
+             120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling")},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -480,6 +481,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
         notes.add(PATTERN_CODES[gcodes["pattern"][0]])
         return ended
+    if "pocket" in gcodes:
+        _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
+        notes.add("G12/G13 circular pocket milling")
+        return ended
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -560,6 +565,47 @@ def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> 
         xy = (x - cur[0], y - cur[1]) if st.incremental else (x, y)
         words = {a: Word(letter=a, value=v / st.scale, column=w.column, text=w.text) for a, v in zip("XY", xy)}
         _canned_cycle(words, {}, st, blocks, used, where, number)
+
+
+def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+    """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
+    key, w = entry
+    name = _DIALECT_G["haas"][key][1]
+    bad = ("no feed rate" if st.feed is None else "in inverse time (G93)" if st.inverse_time else
+           "with cutter compensation on (it implies its own)" if st.comp_side is not None else
+           "only in the XY plane (G17)" if st.plane != 2 else
+           "under scaling with different X and Y factors" if st.frame is not None
+           and st.frame.length_factor(2) is None else None)
+    if bad is not None:
+        where.fail(f"{name}: {bad}", column=w.column, text=w.text, expected="G17 G94 G40 and an F word")
+    tool = st.tool(int(seen["D"].value)) if "D" in seen else None
+    here = st.to_program(st.pos)
+    xy = [a for a in ("X", "Y") if a in seen]
+    if xy:  # to the centre first
+        for a in xy:
+            i = "XY".index(a)
+            here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
+        _rapid(st.to_machine(here), st, blocks, used, where, number, xy)
+    try:
+        moves = circular_pocket(key == 130, {k: v.value for k, v in seen.items()}, centre=tuple(here),
+                                scale=st.scale, incremental=st.incremental,
+                                tool_radius=0.0 if tool is None else tool.radius)
+    except PatternError as exc:
+        bad_word = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{name}: {exc}", column=bad_word.column, text=bad_word.text, expected=exc.expected)
+    flip = st.frame is not None and st.frame.flips(2)
+    used.update((0, 1, 2))
+    for mv in moves:
+        target = st.to_machine(np.array(mv.end))
+        common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
+                      exact_stop=st.exact_stop, tolerance=st.tolerance, feed=st.feed)
+        if mv.centre is None:
+            blocks.append(Block(kind="line", segment=Line(st.pos, target), **common))
+        else:
+            centre = st.to_machine(np.array([*mv.centre, mv.end[2]]))
+            arc = arc_from_center(st.pos, target, centre, ccw=mv.ccw != flip, plane=2)
+            blocks.append(Block(kind="arc", segment=arc, **common))
+        st.pos = target
 
 
 def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:

@@ -1,4 +1,5 @@
-"""Haas mill bolt-hole patterns: G70 bolt hole circle, G71 bolt hole arc, G72 bolt holes along an angle.
+"""Haas mill patterns and pocket: G70 bolt hole circle, G71 bolt hole arc, G72 bolt holes along an
+angle; G12 / G13 circular pocket milling.
 
 Haas mill operator's manual, G-codes chapter ("G70 Bolt Hole Circle", "G71 Bolt Hole Arc", "G72
 Bolt Holes Along an Angle", group 00, non-modal): each must come with an active canned cycle
@@ -13,13 +14,26 @@ usually written with ``L0`` so that it does not drill the pattern's centre.
 
 An ``X Y`` on the pattern's block moves the centre (start) there first, as the canned cycle's own
 X Y would. In the ``fanuc`` dialect G70-G72 are lathe cycles (not supported).
+
+G12 (clockwise) / G13 (counter-clockwise) circular pocket milling (Haas mill operator's manual
+"G12 Circular Pocket Milling CW / G13 Circular Pocket Milling CCW", group 00; a Yasnac-style cycle):
+the tool starts at the centre (X Y on the block move it there first, at rapid); ``Z`` is the depth
+(G91: an increment, repeated ``L`` times for deeper cuts); ``I`` the radius of the first circle (the
+finished one without K), ``K`` the finished radius, ``Q`` the step from one circle to the next (with
+K); ``D`` the tool whose radius the circles are offset by (cutter compensation is implied: G42 for
+G12, G41 for G13; D0 or none: the tool centre follows the programmed radii). Our reading of the
+manual's figure for each depth: feed down to Z at the centre, a half circle out to the first circle
+on its +X side, the full circle, for each further radius a half circle out to it and the full circle,
+then a feed straight back to the centre. The half circles turn the same way as the circles, so that
+the tool comes onto each circle along its tangent. In the ``fanuc`` dialect G12/G13 are not supported.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
-__all__ = ["PATTERN_CODES", "PatternError", "bolt_holes"]
+__all__ = ["PATTERN_CODES", "PatternError", "PocketMove", "bolt_holes", "circular_pocket"]
 
 #: The pattern codes, round(10 * G) -> name.
 PATTERN_CODES: dict[int, str] = {700: "G70 bolt hole circle", 710: "G71 bolt hole arc",
@@ -77,4 +91,81 @@ def bolt_holes(key: int, words: dict[str, float], *, centre: tuple[float, float]
         step = 360.0 / count if key == 700 else words["K"]
         a = math.radians(start + k * step)
         out.append((x0 + radius * math.cos(a), y0 + radius * math.sin(a)))
+    return out
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class PocketMove:
+    """One feed move of a circular pocket, in program coordinates [mm].
+
+    Attributes
+    ----------
+    end : tuple of float
+        End point (x, y, z).
+    centre : tuple of float or None
+        Arc centre (x, y) for an arc, None for a line.
+    ccw : bool
+        Counter-clockwise arc (G13).
+    """
+
+    end: tuple[float, float, float]
+    centre: tuple[float, float] | None = None
+    ccw: bool = False
+
+
+def circular_pocket(ccw: bool, words: dict[str, float], *, centre: tuple[float, float, float], scale: float,
+                    incremental: bool, tool_radius: float) -> list[PocketMove]:
+    """The feed moves of a G12 (``ccw`` False) / G13 block from the centre (see the module docstring).
+
+    Parameters
+    ----------
+    ccw : bool
+        G13.
+    words : dict
+        The block's words as written (I, K, Q, L, Z).
+    centre : tuple of float
+        The centre and the current Z [mm, program coordinates].
+    scale : float
+        mm per program unit.
+    incremental : bool
+        G91: Z is an increment per pass.
+    tool_radius : float
+        Radius of the D tool [mm], 0 for the tool centre.
+
+    Raises
+    ------
+    PatternError
+        No I or Z, K without Q (or Q <= 0), I not between the tool radius and K, a bad L.
+    """
+    for letter in ("I", "Z"):
+        if letter not in words:
+            raise PatternError(f"no {letter} word", letter=None, expected="I<radius> Z<depth> (K, Q, L, D)")
+    first = words["I"] * scale
+    last = words["K"] * scale if "K" in words else first
+    if "K" in words and not words.get("Q", 0.0) > 0:
+        raise PatternError("K (finished radius) needs a step Q > 0", letter="Q" if "Q" in words else "K",
+                           expected="I<first radius> K<finished radius> Q<step>")
+    if not tool_radius < first <= last:
+        raise PatternError(f"radii must satisfy tool radius {tool_radius:g} < I {first:g} <= K {last:g} mm",
+                           letter="I", expected="I greater than the tool radius, K not below I")
+    radii = [first]
+    if last > first:
+        step = words["Q"] * scale
+        count = math.ceil((last - first) / step - 1e-9)
+        radii = [min(first + k * step, last) for k in range(count + 1)]
+    loops = words.get("L", 1.0)
+    if loops != int(loops) or loops < 1:
+        raise PatternError("L (passes) must be a whole number >= 1", letter="L", expected="L1, L2, ...")
+    cx, cy, z = centre
+    out: list[PocketMove] = []
+    for _ in range(int(loops)):
+        z = z + words["Z"] * scale if incremental else words["Z"] * scale
+        out.append(PocketMove(end=(cx, cy, z)))
+        inner = 0.0
+        for r in (radius - tool_radius for radius in radii):
+            # a half circle from the last circle's +X point (the centre at first) out to this one's
+            out.append(PocketMove(end=(cx + r, cy, z), centre=(cx + (inner + r) / 2.0, cy), ccw=ccw))
+            out.append(PocketMove(end=(cx + r, cy, z), centre=(cx, cy), ccw=ccw))
+            inner = r
+        out.append(PocketMove(end=(cx, cy, z)))
     return out

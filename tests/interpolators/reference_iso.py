@@ -55,6 +55,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   ``G51.1 X..`` mirrors X about that line (G50.1 cancels), ``G51 X Y Z P`` / ``I J K`` scales about
   the centre (Fanuc: P I J K without a decimal point in 0.001), G50 cancels; a program point goes
   through mirror, scaling, then rotation; an arc in a plane with one axis mirrored turns the other way.
+  Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
+  pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
+  the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -678,6 +681,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code in (700, 710, 720) and m.ctx.dialect.name == "haas":
             _pattern(m, line, code, words)
             return True
+        if code in (120, 130) and m.ctx.dialect.name == "haas":
+            _pocket(m, line, code, words)
+            return True
         if code in (280, 300):
             home = m.ctx.home if code == 280 else m.ctx.reference2
             axes = [i for i, a in enumerate("xyz") if a in words]
@@ -715,6 +721,33 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         elif code == 923:
             raise ReferenceError("G92.3")
     return False
+
+
+def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Haas G12 / G13 circular pocket milling in G17."""
+    s = m.scale
+    centre = m.target({k: v for k, v in words.items() if k in "xy"})
+    if "x" in words or "y" in words:
+        m.move(line, "rapid", centre)
+    tool = m.ctx.tool(int(words["d"][-1])) if "d" in words else None
+    radius = tool.radius if tool is not None else 0.0
+    radii = [words["i"][-1] * s]
+    while "k" in words and radii[-1] < words["k"][-1] * s - 1e-9:
+        radii.append(min(radii[-1] + words["q"][-1] * s, words["k"][-1] * s))
+    signs = np.where(m.mirror, -1.0, 1.0) * m.factors
+    cw = (code == 120) != ((signs[0] < 0) != (signs[1] < 0))
+    z = centre[2]
+    for _ in range(int(words["l"][-1]) if "l" in words else 1):
+        z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
+        m.move(line, "feed", np.array([centre[0], centre[1], z]))
+        previous = 0.0
+        for r in (r - radius for r in radii):
+            end = m.to_machine(np.array([centre[0] + r, centre[1], z]))
+            for c in (centre[0] + (previous + r) / 2, centre[0]):
+                m.emit(line, "arc_cw" if cw else "arc_ccw", end, centre=m.to_machine(np.array([c, centre[1], z])),
+                       centre_tolerance=1e-6)
+            previous = r
+        m.move(line, "feed", np.array([centre[0], centre[1], z]))
 
 
 def _pattern(m: _Machine, line: int, code: int, words: dict) -> None:

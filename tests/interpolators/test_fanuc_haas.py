@@ -221,3 +221,37 @@ def test_mirror_swaps_cutter_compensation_side():
     m = [b.target[:2] - [100.0, 50.0] for b in mirrored.blocks if b.kind == "line"]
     assert [p[0] for p in a[1:-1]] == pytest.approx([8, 8, 2, 2])
     assert np.allclose([[-p[0], p[1]] for p in a], m)
+
+
+# --- Haas G12 / G13 circular pocket milling -------------------------------------------------------------
+
+def test_g12_single_circle_and_g13_stepped_radii():
+    text = ("G21 G90 G54\nG0 X10 Y10 Z1\nG12 I5 F300 Z-2\nG0 Z1\nG13 X30 Y10 I2 K6 Q2.5 Z-1\nM30\n")
+    prog = run(text)
+    rows = [(b.kind, np.round(b.target - [100, 50, -20], 6).tolist(),
+             None if b.kind != "arc" else (np.round(np.array(b.segment.center)[:2] - [100, 50], 6).tolist(),
+                                           b.segment.ccw)) for b in prog.blocks]
+    # G12 I5: down at the centre, half circle (centre 12.5) out to X15, the full circle, back to the centre
+    assert rows[1:5] == [("line", [10, 10, -2], None), ("arc", [15, 10, -2], ([12.5, 10], False)),
+                         ("arc", [15, 10, -2], ([10, 10], False)), ("line", [10, 10, -2], None)]
+    # G13 I2 K6 Q2.5: radii 2, 4.5, 6 (the last step cut short at K), counter-clockwise
+    arcs = [r for r in rows[7:] if r[0] == "arc"]
+    assert [(a[1][0], a[2][0][0], a[2][1]) for a in arcs] == [
+        (32, 31, True), (32, 30, True), (34.5, 33.25, True), (34.5, 30, True), (36, 35.25, True), (36, 30, True)]
+    assert rows[-1] == ("line", [30, 10, -1], None)
+
+
+def test_g12_tool_radius_and_incremental_passes():
+    ctx = dataclasses.replace(HAAS, tools={3: Tool(number=3, radius=1.5)})
+    prog = run("G21 G90 G54\nG0 X0 Y0 Z0\nG91 G12 I5 Z-1 L2 D3 F100\nM30\n", ctx)
+    ends_ = [np.round(b.target - [100, 50, -20], 6).tolist() for b in prog.blocks]
+    # the circle's radius less the tool's: 3.5; two passes, 1 mm deeper each
+    assert ends_[1:] == [[0, 0, -1], [3.5, 0, -1], [3.5, 0, -1], [0, 0, -1],
+                         [0, 0, -2], [3.5, 0, -2], [3.5, 0, -2], [0, 0, -2]]
+
+
+def test_g12_errors_and_fanuc():
+    with pytest.raises(GCodeError, match="G12 circular pocket milling: K .* needs a step Q"):
+        parse_program("G21\nG0 X0 Y0 Z0\nG12 I2 K6 Z-1 F100\n", context=HAAS)
+    with pytest.raises(GCodeError, match="G12 circular pocket \\(Haas\\): not supported"):
+        parse_program("G21\nG0 X0 Y0 Z0\nG12 I2 Z-1 F100\n", context=FANUC)
