@@ -162,7 +162,8 @@ _MILL_G: dict[int, tuple[str, str]] = {
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle")},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
-             120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling")},
+             120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
+             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel")},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -637,12 +638,15 @@ def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> No
     """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
     words are the centre / mirror lines, nothing moves."""
     key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
+    name = _MILL_G[key][1] if key in _MILL_G else _DIALECT_G["haas"][key][1]
     other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
     if other or st.comp_side is not None:
         bad = seen[other[0]] if other else w
-        where.fail(f"{_MILL_G[key][1]}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
+        where.fail(f"{name}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
                    "compensation", column=bad.column, text=bad.text, expected=f"{w.text.upper()} X.. Y.. with G40")
     values = {k: v.value for k, v in seen.items()}
+    if key in (1000, 1010):  # Haas: "mirror image will reflect programmed motion around your work coordinate
+        values = {k: 0.0 for k in values}  # zero point"; the axis words only name the axes
     base = st.frame or Frame()
     try:
         if key == 510:
@@ -651,12 +655,12 @@ def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> No
             frame = scaling(base, values, {k: v.text for k, v in seen.items()}, current=here, scale=st.scale,
                             thousandths=st.context.dialect.name == "fanuc")
         else:
-            frame = mirror(base, values, on=key == 511, scale=st.scale)
+            frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
     except TransformError as exc:
         bad = seen.get(exc.letter, w) if exc.letter else w
-        where.fail(f"{_MILL_G[key][1]}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
     _set_frame(st, frame)
-    notes.add(_MILL_G[key][1])
+    notes.add(name)
 
 
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:

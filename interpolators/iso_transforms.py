@@ -20,8 +20,11 @@ would be an ellipse: an error. G50 cancels.
 
 Programmable mirror image (Fanuc "Programmable mirror image (G50.1, G51.1)"): ``G51.1 X..`` mirrors
 the X axis about the line X = the value (likewise Y, Z); ``G50.1 X..`` cancels it for the axes
-named. With one axis of the plane mirrored "the direction of circular interpolation is reversed"
-(G02 runs as G03) and "the offset direction of cutter compensation is reversed" (G41 as G42).
+named. Haas G101 / G100 (Haas mill operator's manual, "G101 Enable Mirror Image": "mirror image
+will reflect programmed motion around your work coordinate zero point") mirror / restore the axes
+named about 0, the words' values unused. With one axis of the plane mirrored "the direction of
+circular interpolation is reversed" (G02 runs as G03) and "the offset direction of cutter
+compensation is reversed" (G41 as G42).
 
 When they are combined, Fanuc applies the mirror first, then the scaling, then the rotation: a
 program point ``p`` lies at ``rotate(scale(mirror(p)))`` in the untransformed program coordinates;

@@ -52,9 +52,10 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back. Haas G70 (L holes
   on a circle of radius I about X Y or the current point, from J degrees), G71 (K degrees apart), G72
   (along a line at J degrees, I apart, the first I from the start): the active cycle at each hole.
-  ``G51.1 X..`` mirrors X about that line (G50.1 cancels), ``G51 X Y Z P`` / ``I J K`` scales about
-  the centre (Fanuc: P I J K without a decimal point in 0.001), G50 cancels; a program point goes
-  through mirror, scaling, then rotation; an arc in a plane with one axis mirrored turns the other way.
+  ``G51.1 X..`` mirrors X about that line (G50.1 cancels; Haas G101 / G100 about 0), ``G51 X Y Z P``
+  / ``I J K`` scales about the centre (Fanuc: P I J K without a decimal point in 0.001), G50 cancels;
+  a program point goes through mirror, scaling, then rotation; an arc in a plane with one axis
+  mirrored turns the other way.
   Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
   pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
   the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
@@ -651,11 +652,12 @@ def _mirror_scaling(m: _Machine, g: list[int], words: dict, text: str) -> None:
     """G51.1 / G50.1 mirror and G51 / G50 scaling (their axis words taken off)."""
     if 500 in g:
         m.factors = np.ones(3)
-    if 511 in g or 501 in g:
+    haas = m.ctx.dialect.name == "haas" and (1010 in g or 1000 in g)  # G101 / G100: about the work zero
+    if 511 in g or 501 in g or haas:
         for i, a in enumerate("xyz"):
             if a in words:
                 value = words.pop(a)[-1] * m.scale
-                m.mirror[i] = 511 in g
+                m.mirror[i] = 511 in g or 1010 in g
                 m.mirror_at[i] = value if 511 in g else 0.0
     if 510 in g:
         m.factors = np.ones(3)

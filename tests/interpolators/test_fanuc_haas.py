@@ -255,3 +255,11 @@ def test_g12_errors_and_fanuc():
         parse_program("G21\nG0 X0 Y0 Z0\nG12 I2 K6 Z-1 F100\n", context=HAAS)
     with pytest.raises(GCodeError, match="G12 circular pocket \\(Haas\\): not supported"):
         parse_program("G21\nG0 X0 Y0 Z0\nG12 I2 Z-1 F100\n", context=FANUC)
+
+
+def test_haas_g101_mirrors_about_the_work_zero():
+    # Haas "G101 Enable Mirror Image": about the work coordinate zero, whatever the X value
+    text = "G21 G90 G54\nG0 X0 Y0 Z0\nG101 X5\nG1 X10 Y0 F100\nG2 X20 Y10 R10\nG100 X0\nG1 X0 Y0\nM30\n"
+    assert ends(text) == [[0, 0, 0], [-10, 0, 0], [-20, 10, 0], [0, 0, 0]]
+    with pytest.raises(GCodeError, match="unknown G code 'G101'"):
+        parse_program(text, context=FANUC)
