@@ -33,6 +33,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from interpolators.iso_cycles import MAX_CYCLE_MOVES
+
 __all__ = ["PATTERN_CODES", "PatternError", "PocketMove", "bolt_holes", "circular_pocket"]
 
 #: The pattern codes, round(10 * G) -> name.
@@ -76,6 +78,9 @@ def bolt_holes(key: int, words: dict[str, float], *, centre: tuple[float, float]
     count = words["L"]
     if count != int(count) or count < 1:
         raise PatternError("the number of holes L must be a whole number >= 1", letter="L", expected="L1, L2, ...")
+    if count > MAX_CYCLE_MOVES:
+        raise PatternError(f"{count:g} holes exceed {MAX_CYCLE_MOVES} cycle moves", letter="L",
+                           expected="fewer holes L")
     radius = words["I"] * scale
     if radius == 0:
         raise PatternError("I (radius / spacing) must not be 0", letter="I", expected="I != 0")
@@ -148,14 +153,14 @@ def circular_pocket(ccw: bool, words: dict[str, float], *, centre: tuple[float, 
     if not tool_radius < first <= last:
         raise PatternError(f"radii must satisfy tool radius {tool_radius:g} < I {first:g} <= K {last:g} mm",
                            letter="I", expected="I greater than the tool radius, K not below I")
-    radii = [first]
-    if last > first:
-        step = words["Q"] * scale
-        count = math.ceil((last - first) / step - 1e-9)
-        radii = [min(first + k * step, last) for k in range(count + 1)]
+    count = math.ceil((last - first) / (words["Q"] * scale) - 1e-9) if last > first else 0
     loops = words.get("L", 1.0)
     if loops != int(loops) or loops < 1:
         raise PatternError("L (passes) must be a whole number >= 1", letter="L", expected="L1, L2, ...")
+    if loops * (count + 1) > MAX_CYCLE_MOVES:
+        raise PatternError(f"{loops:g} passes of {count + 1} circles exceed {MAX_CYCLE_MOVES} moves",
+                           letter="L" if loops > 1 else "Q", expected="fewer passes L or a larger step Q")
+    radii = [min(first + k * words["Q"] * scale, last) for k in range(count + 1)] if count else [first]
     cx, cy, z = centre
     out: list[PocketMove] = []
     for _ in range(int(loops)):

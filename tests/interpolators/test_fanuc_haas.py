@@ -263,3 +263,10 @@ def test_haas_g101_mirrors_about_the_work_zero():
     assert ends(text) == [[0, 0, 0], [-10, 0, 0], [-20, 10, 0], [0, 0, 0]]
     with pytest.raises(GCodeError, match="unknown G code 'G101'"):
         parse_program(text, context=FANUC)
+
+
+def test_runaway_patterns_are_errors():
+    with pytest.raises(GCodeError, match="exceed"):
+        parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L99999999\n", context=HAAS)
+    with pytest.raises(GCodeError, match="exceed"):
+        parse_program("G21\nG0 X0 Y0 Z0\nG12 I1 K1000 Q0.0000001 Z-1 F100\n", context=HAAS)
