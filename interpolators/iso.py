@@ -39,6 +39,19 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
 ========================= =======================================================================
 
+Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its meanings and errors):
+
+========================= =======================================================================
+``G187 G103 G05.1 G08``   look-ahead and smoothing, noted; ``G187 E`` sets the path tolerance
+``G05 P10000``            (:mod:`interpolators.iso_smoothing`)
+``G68 G69``               coordinate rotation; ``G51 G50`` scaling; ``G51.1 G50.1`` mirror image,
+                          Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
+``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``)
+                          (:mod:`interpolators.iso_cycles`)
+``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
+                          pocket milling (:mod:`interpolators.iso_haas`)
+========================= =======================================================================
+
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
 file). Rotary axes A B C [deg] and secondary linear axes U V W [mm] on a machine that has them
@@ -47,8 +60,9 @@ as LinuxCNC does), G90/G91, G53, G28/G30, G92/G10 offsets, G93 (:mod:`interpolat
 Out of scope, each an error naming the feature: an axis the machine lacks (a word that keeps the
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
-probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75), splines G5.x, polar
-G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
+probing G38.x, threading G33/G76, lathe codes (G7/G8, G70-G72, G74, G75; in the Fanuc/Haas dialects
+the mill codes above), NURBS G5.2, polar G15/G16, scaling G51 and rotation G68 (LinuxCNC), manual-retract
+boring G88 (and Haas G87), user M codes M100-M199, G95 feed per revolution.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
 ``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
