@@ -562,6 +562,10 @@ def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> 
     """Haas G70/G71/G72 (:mod:`interpolators.iso_haas`): the active canned cycle at every hole."""
     key, w = entry
     name = PATTERN_CODES[key]
+    lathe = [k for k in ("P", "Q", "U", "W", "D", "R") if k in seen]
+    if lathe:  # "G70 P10 Q20": a Haas lathe program's finishing cycle, not the mill's bolt-hole pattern
+        where.fail(f"{_G_UNSUPPORTED[key]}: not supported (word {lathe[0]}: the lathe form; the mill's {name} "
+                   "takes I J K L)", column=w.column, text=w.text, expected="milling G codes (see vcnc's ISO reader)")
     if st.motion is None or st.motion < 730 or st.rotation:
         where.fail(f"{name} without an active canned cycle" if not st.rotation else
                    f"{name} in a coordinate system rotated by G10 R: not supported", column=w.column, text=w.text,

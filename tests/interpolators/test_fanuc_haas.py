@@ -270,3 +270,8 @@ def test_runaway_patterns_are_errors():
         parse_program("G21\nG0 X0 Y0 Z5\nG81 Z-1 R1 F10 L0\nG70 I10 J0 L99999999\n", context=HAAS)
     with pytest.raises(GCodeError, match="exceed"):
         parse_program("G21\nG0 X0 Y0 Z0\nG12 I1 K1000 Q0.0000001 Z-1 F100\n", context=HAAS)
+
+
+def test_haas_lathe_g70_form_is_named_as_the_lathe_cycle():
+    with pytest.raises(GCodeError, match="G70 lathe finishing cycle: not supported"):
+        parse_program("G21\nG0 X0 Z5\nG70 P10 Q20 F0.1\n", context=HAAS)
