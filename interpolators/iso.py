@@ -159,6 +159,11 @@ _G_UNSUPPORTED: dict[int, str] = {
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
+    682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
+    684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
+    434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
+    2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
+    541: "G54.1 P additional work offsets (Fanuc)", 1540: "G154 P additional work offsets (Haas)",
 }
 
 #: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
