@@ -15,36 +15,46 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   ``r`` perpendicular to the first contour element, as the TNC approaches a contour with RL/RR
   (TNC 640 user's manual, "Tool radius compensation": "the tool is positioned perpendicular to
   the first contour element at the starting point").
-* **Outside corners** (the path turns away from the tool): an arc of radius ``r`` about the
-  programmed corner point joins the two offset elements (a line after a turn of at most
-  :data:`CONVEX_TOLERANCE` instead starts where the tool is, as LinuxCNC's "convex, one arc
-  needed" case; before an arc, or where 4-decimal programs make the offsets disagree with the
-  tangents, a short line bridges the gap instead); it carries the ``line``/``text`` and
-  the feed of the block it leads into (of the last feed move before it when that block is a
-  rapid).
-* **Inside corners**: both offset elements end at their intersection (after the entry move,
-  with the entry's parallel offset, as ``convert_straight_comp2``/``convert_arc_comp2`` do). When
-  they do not intersect, or an element would have to run backwards to reach it (the element is
-  shorter than what the tool needs), the program gouges and :class:`CompensationError` is raised
-  with LinuxCNC's messages (``move_endpoint_and_flush`` in ``interp_queue.cc``: "Straight feed in
-  concave corner cannot be reached by the tool without gouging", "Arc move in concave corner ...",
-  "Arc to arc motion makes a corner the compensated tool can't fit in without gouging").
+* **Corners** are classified as LinuxCNC does (``convert_straight_comp2`` into a line,
+  ``convert_arc_comp2`` into an arc): ``beta`` is the turn away from the tool side, from the
+  direction of the programmed corner to the tool to the new element's programmed tangent. A turn
+  of more than ``small`` (:data:`CONVEX_TOLERANCE`, LinuxCNC's TOLERANCE_CONCAVE_CORNER) and at most
+  ``pi + small`` is an **outside corner**: an arc of radius ``r`` about the programmed corner point
+  joins the two offset elements (into a G0, which has no arc traverse, a straight rapid instead); it
+  carries the ``line``/``text`` and the feed of the block it leads into (of the last feed move
+  before it when that block is a rapid). A smaller turn has no corner: a line starts where the tool
+  is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a short bridging line.
+* **Inside corners** (``beta < -small`` or ``beta > pi + small``, and the near reversals of the
+  "h" and "m" shapes: ``beta`` within ``small`` of ``pi`` onto a line after an arc, or into an arc,
+  the tool is outside of): both offset elements end where they meet, by LinuxCNC's formulas (after
+  the entry move with the entry's parallel offset): line-line the intersection, line-arc and arc-line
+  the point ``asin``/``acos`` pick, arc-arc the intersection of the circles about the programmed
+  centres (start + I/J/K; the end point's radius -/+ ``r``). Where they cannot meet,
+  :class:`CompensationError` carries LinuxCNC's message ("Arc move in concave corner cannot be
+  reached by the tool without gouging", "Arc to straight motion makes a corner the compensated tool
+  can't fit in without gouging", "Arc to arc motion makes a corner ..."). A trimmed element gouges
+  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line that now runs against its
+  programmed direction ("Straight feed in concave corner cannot be reached by the tool without
+  gouging"), an arc whose sweep grew by more than 0.0254 rad (mm programs) or 0.001 rad (inch).
 * **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
   than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
   comp".
 * **Exit move** (the first move after G40/R0): a straight line from the compensated position to
-  the programmed end point, without a corner.
+  the programmed end point, without a corner. A program that ends with compensation on, or with G40
+  and no motion after it, has none: its last move is compensated as the others (``open_end``).
 
 Moves along the tool axis only and dwells stay where the tool is (shifted in the plane with it).
-Entry and exit moves must be straight lines (LinuxCNC accepts an arc entry; vcnc refuses it with
-a named error).
+An arc entry move (LinuxCNC's ``convert_arc_comp1``) ends at its programmed end moved by ``r``
+along the radius, about a new centre on the line from there through the programmed centre, as far
+from the start as from that end; the TNC's perpendicular entry must be a line. The exit move must be
+a line, as in LinuxCNC ("The move just after exiting cutter compensation mode must be straight").
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -65,9 +75,6 @@ CONVEX_TOLERANCE = 0.05
 
 #: Points closer than this are the same point [mm].
 _EPS = 1e-9
-
-#: Tangents whose cross product is within this of 0 (and pointing apart) meet in a reversal [-].
-_REVERSAL = 1e-6
 
 
 class CompensationError(InputError):
@@ -102,6 +109,8 @@ class _Offset:
     ccw: bool = True
     a0: np.ndarray | None = None  # untrimmed start, for the gouge check
     b0: np.ndarray | None = None  # untrimmed end
+    pc: np.ndarray | None = None  # programmed arc centre (2,) [mm], LinuxCNC's for the inside corners
+    pr: float = 0.0  # offset radius about ``pc`` at the programmed end [mm]
 
     def tangent(self, point: np.ndarray) -> np.ndarray:
         """Unit tangent at ``point`` (a point of the element)."""
@@ -176,7 +185,8 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 
 
 def compensate(
-    blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False
+    blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
+    centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -185,10 +195,11 @@ def compensate(
     blocks : sequence of Block
         One compensated run, programmed contour: from the entry move (the first motion after
         G41/G42, or the block with RL/RR) up to and including the exit move (the first motion
-        after G40 / the block with R0, or the run's last block when the program ends). Blocks
-        before the first block with motion in the plane pass unchanged; the entry move and the
-        exit move must be lines or rapids. A run whose only motion in the plane is its entry
-        move ends with the tool offset.
+        after G40 / the block with R0, or the run's last block when the program ends, unless
+        ``open_end``). Blocks
+        before the first block with motion in the plane pass unchanged; the exit move (and the
+        entry move with ``entry="perpendicular"``) must be a line or rapid. A run whose only
+        motion in the plane is its entry move ends with the tool offset.
     side : {"left", "right"}
         Tool left (G41, RL) or right (G42, RR) of the contour in the direction of travel.
     radius : float
@@ -203,6 +214,18 @@ def compensate(
         ``G0 Z..`` retract): it runs from the tool position to its programmed point, as LinuxCNC
         takes the programmed position for the current one when compensation goes off
         (``convert_cutter_compensation_off``: ``current_x = program_x``).
+    centers : mapping of int to ndarray, shape (3,), optional
+        Programmed centres [mm] of centre-format arcs by index into ``blocks`` (start plus I/J/K, before
+        :func:`interpolators.arcs.arc_from_center` moves the centre onto the chord's bisector). LinuxCNC
+        meets inside corners on circles about these, of the end point's radius plus or minus the tool
+        radius; without one an arc's own centre is taken.
+    inch : bool
+        The program is in inch: an arc trimmed at an inside corner may sweep 0.001 rad more than
+        programmed, 0.0254 rad in a mm program (``move_endpoint_and_flush``).
+    open_end : bool
+        The run has no exit move: the program ends with G41/G42 on, or with G40 and no motion after it.
+        Its last block is compensated as the others, as LinuxCNC's interpreter flushes the queued moves
+        as they are at the program end (tests/ccomp/mill-line-arc-entry).
 
     Returns
     -------
@@ -215,7 +238,7 @@ def compensate(
     ------
     CompensationError
         For a gouge, an inside arc not larger than the tool, an entry move not longer than the
-        tool radius, an arc entry or exit move; ``index`` names the block.
+        tool radius, an arc exit move (or entry move under the TNC rule); ``index`` names the block.
     """
     _check_arguments(side, entry, plane, radius)
     blocks = list(blocks)
@@ -229,20 +252,23 @@ def compensate(
     if not movers:
         return blocks
     first = movers[0]
-    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 else None
+    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 and not open_end else None
     end = len(blocks) - 1
     if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
         last = end
     contour = [i for i in movers[1:] if i != last]
-    for i in (first, last):
-        if i is not None and blocks[i].kind == "arc":
-            what = "entry" if i == first else "exit"
-            raise CompensationError(f"cutter compensation {what} move must be a straight line, not an arc", i)
-    offsets = _offset_elements(blocks, contour, s=s, radius=radius, plane=plane)
-    ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
+    if last is not None and blocks[last].kind == "arc":  # LinuxCNC: "... must be straight, not an arc"
+        raise CompensationError("cutter compensation exit move must be a straight line, not an arc", last)
+    if entry == "perpendicular" and blocks[first].kind == "arc":
+        raise CompensationError("cutter compensation entry move must be a straight line, not an arc", first)
+    offsets = _offset_elements(blocks, contour, s=s, radius=radius, plane=plane, centers=centers or {})
+    if blocks[first].kind == "arc":
+        ent = _entry_arc(blocks[first], first, s=s, radius=radius, plane=plane, centers=centers or {})
+    else:
+        ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
     chain = [ent, *offsets]
     corners = _join_corners(chain, blocks, side=side, s=s, radius=radius, plane=plane)
-    _check_gouges(chain, ent, blocks, radius)
+    _check_gouges(chain, ent, blocks, radius, inch=inch)
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
 
@@ -263,8 +289,8 @@ def _check_arguments(side: str, entry: str, plane: int, radius: float) -> None:
         raise InputError(f"tool radius must be finite and >= 0 mm, got {radius!r}")
 
 
-def _offset_elements(blocks: list[Block], contour: list[int], *, s: float, radius: float,
-                     plane: int) -> list[_Offset]:
+def _offset_elements(blocks: list[Block], contour: list[int], *, s: float, radius: float, plane: int,
+                     centers: Mapping[int, np.ndarray]) -> list[_Offset]:
     """The contour's lines and arcs moved by the tool radius to the tool's side (``s`` +1 left)."""
     offsets: list[_Offset] = []
     for i in contour:
@@ -281,6 +307,8 @@ def _offset_elements(blocks: list[Block], contour: list[int], *, s: float, radiu
             el = _Offset(index=i, kind="arc", a=c + new_r * ua, b=c + new_r * ub, za=float(b.start[plane]),
                          zb=float(b.target[plane]), c=c, radius=new_r, ccw=arc.ccw,
                          turns=max(math.ceil(abs(arc.sweep) / (2.0 * math.pi) - 1e-9) - 1, 0))
+            el.pc = _flat(centers[i], plane) if i in centers else c
+            el.pr = math.hypot(*(b2 - el.pc)) - s * radius * (1.0 if arc.ccw else -1.0)
         else:
             d = b2 - a2
             n = s * radius * _left(d / math.hypot(*d))
@@ -312,77 +340,188 @@ def _entry_element(eb: Block, first: int, offsets: list[_Offset], *, entry: str,
     return ent
 
 
+def _entry_arc(eb: Block, first: int, *, s: float, radius: float, plane: int,
+               centers: Mapping[int, np.ndarray]) -> _Offset:
+    """An arc entry move, as LinuxCNC's ``convert_arc_comp1``: from the uncompensated position to the
+    programmed end moved by ``r`` along the radius (towards the centre with the tool inside), about a
+    new centre on the line from that end through the programmed centre, as far from both ends."""
+    arc = eb.segment
+    cur, end = _flat(eb.start, plane), _flat(eb.target, plane)
+    pc = _flat(centers[first], plane) if first in centers else _flat(arc.center, plane)
+    if math.hypot(*(end - cur)) <= radius:
+        raise CompensationError(f"Radius of cutter compensation entry arc is not greater than the tool radius "
+                                f"({radius:g} mm)", first)
+    inside = (s > 0.0) == arc.ccw
+    if inside and math.hypot(*(pc - cur)) <= radius:
+        raise CompensationError(f"Tool radius {radius:g} mm not less than arc radius with cutter radius comp", first)
+    away = (end - pc) / math.hypot(*(end - pc))
+    new_end = end + radius * (-away if inside else away)
+    ab = _angle(pc - new_end)
+    cos_a = math.cos(_angle(cur - new_end) - ab)
+    if abs(cos_a) < 1e-6:  # TOLERANCE_EQUAL
+        raise CompensationError(f"Tool radius {radius:g} mm not less than arc radius with cutter radius comp", first)
+    c = new_end + math.hypot(*(cur - new_end)) / 2.0 / cos_a * np.array([math.cos(ab), math.sin(ab)])
+    r_new = math.hypot(*(new_end - c))
+    el = _Offset(index=first, kind="arc", a=cur, b=new_end, za=float(eb.start[plane]), zb=float(eb.target[plane]),
+                 c=c, radius=r_new, ccw=arc.ccw, turns=max(math.ceil(abs(arc.sweep) / (2.0 * math.pi) - 1e-9) - 1, 0),
+                 a0=cur.copy(), b0=new_end.copy(), pc=c, pr=r_new)
+    return el
+
+
 def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: float, radius: float,
                   plane: int) -> dict[int, tuple]:
-    """Trim the elements at inside corners (intersections) and return the outside corners' arcs
-    (or bridging lines): index of the following block -> (centre or None, from, to)."""
-    # corners between consecutive elements
-    corners: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}  # index of B -> (centre, from, to)
+    """Trim the elements at inside corners and return the outside corners' arcs (or bridging lines): index
+    of the following block -> (centre or None, from, to). LinuxCNC's ``convert_straight_comp2`` /
+    ``convert_arc_comp2`` decide the corner (:func:`_corner_kind`) and :func:`_concave_point` where the
+    elements meet inside."""
+    corners: dict[int, tuple] = {}
     for el_a, el_b in zip(chain[:-1], chain[1:]):
-        gap = math.hypot(*(el_a.b - el_b.a))
-        if gap <= 1e-7:
+        if math.hypot(*(el_a.b - el_b.a)) <= 1e-7:
             el_b.a = el_a.b.copy()
             continue
         corner = _flat(blocks[el_a.index].target, plane)
-        ta, tb = el_a.tangent(el_a.b), el_b.tangent(el_b.a)
-        cr = _cross(ta, tb)
-        # turn away from the tool side [rad] (a reversal is a half turn round the outside)
-        bend = math.pi if abs(cr) <= 1e-12 and float(ta @ tb) < 0.0 else -s * math.atan2(cr, float(ta @ tb))
-        crossing = _crossing(el_a, el_b) if abs(cr) <= _REVERSAL and float(ta @ tb) < 0.0 else None
-        if crossing is not None:  # a reversal with an arc whose offsets cross: an inside corner (interp/inside-corners)
-            el_a.b, el_b.a = crossing.copy(), crossing.copy()
-            continue
-        if bend > 0.0:  # convex
-            if bend <= CONVEX_TOLERANCE and el_b.kind == "line":
-                el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()  # LinuxCNC's "convex, one arc needed"
-            else:
-                u, v = el_a.b - corner, el_b.a - corner
-                sweep = (math.atan2(v[1], v[0]) - math.atan2(u[1], u[0])) * (1.0 if side == "right" else -1.0)
-                # a turn within the tolerance before an arc, or offsets that disagree with the tangents (programs
-                # rounded to 4 decimals), is bridged by a straight line instead of an arc
-                arc = bend > CONVEX_TOLERANCE and sweep % (2.0 * math.pi) <= math.pi + 1e-9
-                corners[el_b.index] = (corner if arc else None, el_a.b.copy(), el_b.a.copy())
-            continue
-        cands = _intersections(el_a, el_b)
-        if not cands:
-            what = "Arc to arc motion makes a corner the compensated tool can't fit in" if (
-                el_a.kind == el_b.kind == "arc") else "Arc move in concave corner cannot be reached by the tool"
-            raise CompensationError(f"{what} without gouging (tool radius {radius:g} mm)", el_b.index)
-        x = min(cands, key=lambda v: math.hypot(*(v - corner)))
-        el_a.b, el_b.a = x.copy(), x.copy()
-
+        kind, theta, beta = _corner_kind(el_a, el_b, corner, s)
+        if kind == "concave":
+            x = _concave_point(el_a, el_b, corner, theta, beta, s=s, radius=radius)
+            el_a.b, el_b.a = x.copy(), x.copy()
+        elif kind == "arc":
+            rapid = el_b.kind == "line" and blocks[el_b.index].kind == "rapid"  # G0: a traverse, no arc
+            corners[el_b.index] = (None if rapid else corner, el_a.b.copy(), el_b.a.copy())
+        elif el_b.kind == "line":  # LinuxCNC's "convex, one arc needed": the line starts where the tool is
+            el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()
+        else:  # LinuxCNC starts the arc where the tool is (a spiral); vcnc bridges the gap by a line
+            corners[el_b.index] = (None, el_a.b.copy(), el_b.a.copy())
     return corners
 
 
-def _crossing(el_a: _Offset, el_b: _Offset) -> np.ndarray | None:
-    """At a reversal with an arc: where the two offset elements meet within their extents (``el_a``
-    after its current start, ``el_b`` before its end), the one nearest the end of ``el_a``. LinuxCNC
-    trims both there, as at any inside corner; a reversal between lines, or offsets that do not meet,
-    is a half turn round the outside (``None``)."""
-    if el_a.kind == el_b.kind == "line":
-        return None
-    tol = 1e-9
-    start = el_a.param(el_a.a)
-    found = [x for x in _intersections(el_a, el_b)
-             if start + tol < el_a.param(x) < el_a.extent() - tol and tol < el_b.param(x) < el_b.extent() - tol]
-    return max(found, key=el_a.param) if found else None
+def _angle(v: np.ndarray) -> float:
+    return math.atan2(float(v[1]), float(v[0]))
 
 
-def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float) -> None:
-    """CompensationError unless every element still runs forward within its untrimmed extent."""
-    # gouge check: every element still runs forward within its untrimmed extent
+def _tool_inside(el: _Offset, s: float) -> bool:
+    """LinuxCNC's TOOL_INSIDE_ARC: tool left of a counter-clockwise arc or right of a clockwise one."""
+    return (s > 0.0) == el.ccw
+
+
+def _corner_kind(el_a: _Offset, el_b: _Offset, corner: np.ndarray, s: float) -> tuple[str, float, float]:
+    """The corner between two elements as LinuxCNC classifies it: ("concave" | "arc" | "straight", theta,
+    beta) [rad].
+
+    ``theta`` is the direction from the programmed corner to the tool at the end of ``el_a``; ``beta`` the
+    turn, positive away from the tool. Into a line (``convert_straight_comp2``) the corner is concave
+    when ``beta < -small`` or ``beta > pi + small``, or ``beta > pi - small`` after an arc the tool is
+    outside of (the "h" shape); into an arc (``convert_arc_comp2``, ``beta`` normalised to
+    [-pi/2, 3 pi/2]) when ``beta < -small``, ``beta > pi + small`` or ``|beta - pi| < small`` with the
+    tool outside the new arc (the "m" shape). Otherwise a turn over ``small`` (TOLERANCE_CONCAVE_CORNER)
+    gets a corner arc, a smaller one none ("straight").
+    """
+    small = CONVEX_TOLERANCE
+    theta = _angle(el_a.b0 - corner)
+    left = s > 0.0
+    if el_b.kind == "line":
+        alpha = _angle(el_b.b0 - el_b.a0)
+        if left:
+            th = theta + 2.0 * math.pi if theta < alpha else theta
+            beta = th - alpha - math.pi / 2.0
+        else:
+            al = alpha + 2.0 * math.pi if alpha < theta else alpha
+            beta = al - theta - math.pi / 2.0
+        concave = beta < -small or beta > math.pi + small or (
+            beta > math.pi - small and el_a.kind == "arc" and not _tool_inside(el_a, s))
+    else:
+        th = theta - math.pi / 2.0 if left else theta + math.pi / 2.0
+        delta = _angle(el_b.c - corner)
+        alpha = delta - math.pi / 2.0 if el_b.ccw else delta + math.pi / 2.0
+        beta = th - alpha if left else alpha - th
+        beta = beta - 2.0 * math.pi if beta > 1.5 * math.pi else beta + 2.0 * math.pi if beta < -math.pi / 2 else beta
+        concave = beta < -small or beta > math.pi + small or (
+            abs(beta - math.pi) < small and not _tool_inside(el_b, s))
+    return ("concave" if concave else "arc" if beta > small else "straight"), theta, beta
+
+
+def _concave_point(el_a: _Offset, el_b: _Offset, corner: np.ndarray, theta: float, beta: float, *, s: float,
+                   radius: float) -> np.ndarray:
+    """Where both elements end at an inside corner, by LinuxCNC's formulas (``convert_straight_comp2``:
+    line-line and arc-line; ``convert_arc_comp2``: line-arc and arc-arc); CompensationError with its
+    messages where the tool cannot reach the corner."""
+    fail = f"without gouging (tool radius {radius:g} mm)"
+    if el_b.kind == "line" and el_a.kind == "line":
+        cands = _intersections(el_a, el_b)
+        if not cands:
+            raise CompensationError(f"Zero degree inside corner is invalid for cutter compensation {fail}",
+                                    el_b.index)
+        return cands[0]
+    if el_b.kind == "line":  # arc -> line
+        oldrad = el_a.radius
+        th = _angle(el_b.b0 - el_b.a0) + (math.pi / 2.0 if el_a.ccw else -math.pi / 2.0)
+        inside = _tool_inside(el_a, s)
+        d = (oldrad + radius if inside else oldrad - radius) * math.cos(th - _angle(el_a.c - corner))
+        ratio = (d - radius if inside else d + radius) / oldrad
+        if abs(ratio) > 1.0:
+            raise CompensationError(f"Arc to straight motion makes a corner the compensated tool can't fit in {fail}",
+                                    el_b.index)
+        sign = -1.0 if inside == el_a.ccw else 1.0
+        ang = sign * math.acos(ratio) + th + math.pi
+        return el_a.c + oldrad * np.array([math.cos(ang), math.sin(ang)])
+    inside = _tool_inside(el_b, s)
+    if el_a.kind == "line":  # line -> arc
+        new_r = el_b.radius
+        th = theta - math.pi / 2.0 if s > 0.0 else theta + math.pi / 2.0
+        arc_r = new_r + radius if inside else new_r - radius
+        toward = arc_r * math.sin(beta - math.pi / 2.0) + (radius if inside else -radius)
+        ratio = toward / new_r
+        if abs(ratio) > 1.0:
+            raise CompensationError(f"Arc move in concave corner cannot be reached by the tool {fail}", el_b.index)
+        if inside:
+            ang = th + math.asin(ratio) if el_b.ccw else th - math.asin(ratio)
+        else:
+            ang = th + math.pi - math.asin(ratio) if el_b.ccw else th + math.pi + math.asin(ratio)
+        return el_b.c + new_r * np.array([math.cos(ang), math.sin(ang)])
+    # arc -> arc, on the circles about the programmed centres: where two offset circles meet at a small angle,
+    # moving a centre by the rounding of a 4-decimal program moves the corner by several um (tests/interp/
+    # inside-corners, line 17)
+    new_r = el_b.pr
+    oldrad = math.hypot(*(el_a.b0 - el_a.pc))
+    cc = math.hypot(*(el_b.pc - el_a.pc))
+    if cc <= _EPS:
+        raise CompensationError("Arc to arc motion is invalid because the arcs have the same center", el_b.index)
+    ratio = (oldrad**2 + cc**2 - new_r**2) / (2.0 * oldrad * cc)
+    if abs(ratio) > 1.0:
+        raise CompensationError(f"Arc to arc motion makes a corner the compensated tool can't fit in {fail}",
+                                el_b.index)
+    pullback = math.acos(ratio)
+    sign = 1.0 if _tool_inside(el_a, s) == el_b.ccw else -1.0
+    ang = _angle(el_b.pc - el_a.pc) + sign * pullback
+    return el_a.pc + oldrad * np.array([math.cos(ang), math.sin(ang)])
+
+
+def _sweep(el: _Offset, a: np.ndarray, b: np.ndarray) -> float:
+    """Sweep [rad] of the arc element from ``a`` to ``b`` in its direction, with its extra turns (LinuxCNC's
+    ``find_turn``: equal angles are a full turn)."""
+    a0, a1 = _angle(a - el.c), _angle(b - el.c)
+    sweep = ((a1 - a0) if el.ccw else (a0 - a1)) % (2.0 * math.pi)
+    return (sweep if sweep > 1e-12 else 2.0 * math.pi) + 2.0 * math.pi * el.turns
+
+
+def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float, *, inch: bool) -> None:
+    """CompensationError where a trimmed element gouges, by ``move_endpoint_and_flush`` (interp_queue.cc):
+    a line that now runs against its programmed direction (the entry: against its offset direction), or
+    an arc whose sweep grew by more than 0.0254 (mm programs) or 0.001 (inch programs) [rad] over the
+    programmed sweep."""
+    grow = 0.001 if inch else 0.0254
     for el in chain:
-        ext = el.extent()
-        tol = 1e-9 * ext + 1e-7 / (1.0 if el.kind == "line" else el.radius)
-        t0 = 0.0 if el is ent else el.param(el.a)
-        t1 = el.param(el.b) if el.kind == "line" else (el.param(el.b) or ext)
-        if el.kind == "arc" and t0 > ext + tol:
-            t0 -= 2.0 * math.pi
-        if not (-tol <= t0 < t1 - tol and t1 <= ext + tol):
-            what = "Arc move" if el.kind == "arc" else (
-                "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed")
-            raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "
-                                    f"(tool radius {radius:g} mm)", el.index)
+        if el.kind == "line":
+            ref = (el.a0 - el.a) if el is ent else (el.b0 - el.a0)
+            if float((el.b - el.a) @ ref) >= 0.0:
+                continue
+            what = "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed"
+        else:
+            sweep = _sweep(el, el.a, el.b)
+            if sweep <= (_sweep(el, el.a0, el.b0) if el is ent else abs(blocks[el.index].segment.sweep)) + grow:
+                continue
+            what = "Arc move"
+        raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "
+                                f"(tool radius {radius:g} mm)", el.index)
 
 
 def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, tuple], *, first: int, last: int | None,
@@ -419,10 +558,12 @@ def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, tupl
             centre, frm, to = corners[i]
             cs, ce = point3(b.start, frm, z0), point3(b.start, to, z0)
             if centre is None:
-                seg, kind = Line(cs, ce), "line"
+                seg, kind = Line(cs, ce), ("rapid" if b.kind == "rapid" else "line")
             else:
                 seg, kind = Arc(cs, ce, point3(b.start, centre, z0), ccw=(side == "right"), plane=plane), "arc"
             feeds = [f for f in (b.feed, *(o.feed for o in reversed(out))) if 0.0 < f < math.inf]
+            if kind == "rapid":
+                feeds = [math.inf]
             if not feeds:
                 raise CompensationError("outside corner between rapid moves: no feed for the corner arc", i)
             feed = feeds[0]

@@ -262,6 +262,8 @@ class _State:
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
+    comp_centers: dict[int, np.ndarray] = dataclasses.field(default_factory=dict)  # programmed arc centres
+    arc_center: np.ndarray | None = None  # programmed centre (start + I/J/K) of the last arc read [mm]
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
     frame: Frame | None = None  # Fanuc/Haas G51.1 mirror, G51 scaling, G68 rotation of the program coordinates
@@ -954,6 +956,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
+        if st.comp_start is not None and st.arc_center is not None:
+            st.comp_centers[len(blocks)] = st.arc_center
         p, q = PLANE_AXES[st.plane]
         used.update((p, q))
         target = np.array(seg.end)
@@ -1107,6 +1111,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     if in_plane and has_r:
         w = seen["R"]
         where.fail("arc with both I/J/K and R", column=w.column, text=w.text, expected="either I/J/K or R")
+    st.arc_center = None
     try:
         if has_r:
             return arc_from_radius(st.pos, target, seen["R"].value * st.scale * factor, ccw=ccw, plane=st.plane,
@@ -1118,6 +1123,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                 prog[i] = prog[i] + seen[letter].value * st.scale if st.arc_incremental else \
                     seen[letter].value * st.scale
             center = st.to_machine(prog)
+            st.arc_center = center
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
                                    tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                   inch=st.inch, rule=rule))
@@ -1132,6 +1138,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                 for letter in in_plane:
                     i = "IJK".index(letter)
                     center[i] = seen[letter].value * st.scale + off[i]
+            st.arc_center = center
             return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
                                    tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                   inch=st.inch, rule=rule))
@@ -1208,11 +1215,13 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     """Replace the finished compensated run by the tool-centre path."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
+    centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
     run = blocks[start:]
     if not run:
         return
     try:
-        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed)
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed,
+                         centers=centers, inch=st.inch, open_end=not closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

@@ -224,23 +224,48 @@ def test_entry_errors():
     with pytest.raises(CompensationError, match="entry move .* not greater than the tool radius") as err:
         compensate(_polyline([[1, 0], [0, 0], [0, 10]]), side="left", radius=2.0, plane=2)
     assert err.value.index == 0
-    with pytest.raises(CompensationError, match="entry move must be a straight line"):
+    with pytest.raises(CompensationError, match="entry move must be a straight line"):  # the TNC's rule
         compensate([_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2)],
+                   side="left", radius=2.0, plane=2, entry="perpendicular")
+    with pytest.raises(CompensationError, match="entry arc is not greater than the tool radius"):
+        compensate([_arc([1, 0], [0, 1], [0, 0], 1, ccw=True), _line([0, 1], [-10, 1], 2)],
                    side="left", radius=2.0, plane=2)
+    with pytest.raises(CompensationError, match="exit move must be a straight line"):
+        compensate([_line([10, -10], [10, 0], 1), _line([10, 0], [10, 5], 2),
+                    _arc([10, 5], [0, 15], [0, 5], 3, ccw=True)], side="left", radius=2.0, plane=2)
 
 
-def test_corner_arc_after_a_rapid_takes_the_last_feed_and_a_reversal_turns_half_a_circle():
+def test_arc_entry_ends_one_radius_along_the_radius_about_a_new_centre():
+    """LinuxCNC convert_arc_comp1 (tests/ccomp/mill-zchanges): a G3 entry from (10, 0) to (0, 10) about
+    (0, 0) with the tool 2 mm to the left (inside) ends at (0, 10) moved 2 towards the centre, (0, 8),
+    about the centre on the line from there through (0, 0) as far from (10, 0) as from (0, 8):
+    (0, y) with 10**2 + y**2 = (8 - y)**2, y = -2.25 (radius 10.25). The next line (0, 10) -> (-10, 10)
+    then starts tangentially at its offset (0, 8)."""
+    blocks = [_arc([10, 0], [0, 10], [0, 0], 1, ccw=True), _line([0, 10], [-10, 10], 2),
+              _line([-10, 10], [-10, 20], 3)]
+    out = compensate(blocks, side="left", radius=2.0, plane=2)
+    _check(out, [
+        (1, "arc", [10, 0], [0, 8], [0, -2.25], True),
+        (2, "line", [0, 8], [-10, 8], None, None),
+        (3, "line", [-10, 8], [-10, 20], None, None),
+    ])
+
+
+def test_a_rapid_reversal_goes_round_by_a_traverse():
+    # the reversal into the rapid (block 3) is an outside corner of a half turn (beta = pi, no arc before it):
+    # LinuxCNC's convert_straight_comp2 has no arc traverse and goes round it by a STRAIGHT_TRAVERSE from the
+    # tool (10, 1) to the programmed corner plus the radius on the new side (10, -1); block 4 is the exit move
     blocks = [_line([-10, 0], [0, 0], 1, feed=7.0), _line([0, 0], [10, 0], 2, kind="rapid", feed=math.inf),
               _line([10, 0], [0, 0], 3, kind="rapid", feed=math.inf), _line([0, 0], [0, -10], 4)]
     out = compensate(blocks, side="left", radius=1.0, plane=2)
     _check(out, [
         (1, "line", [-10, 0], [0, 1], None, None),
         (2, "rapid", [0, 1], [10, 1], None, None),
-        (3, "arc", [10, 1], [10, -1], [10, 0], False),
+        (3, "rapid", [10, 1], [10, -1], None, None),
         (3, "rapid", [10, -1], [0, -1], None, None),
         (4, "line", [0, -1], [0, -10], None, None),
     ])
-    assert out[2].feed == 7.0 and out[2].segment.sweep == pytest.approx(-math.pi, abs=1e-15)
+    assert out[2].feed == math.inf
 
 
 def test_full_circle_outside_and_z_only_exit_keeps_the_offset():
@@ -343,3 +368,109 @@ def test_reversal_from_an_arc_onto_a_line_whose_offsets_cross_is_an_inside_corne
                          context=MachineContext())
     ends = [(b.kind, b.line, np.round(b.target, 9).tolist()) for b in prog.blocks]
     assert ends[3:5] == [("arc", 4, [-1.5, round(math.sqrt(2.0), 9), 0.0]), ("line", 5, [-1.5, 3.0, 0.0])]
+
+
+def test_inside_corner_line_into_arc_meets_the_offset_circle():
+    """LinuxCNC convert_arc_comp2, concave line->arc: the line +X along Y=0 meets a G3 arc of radius 5
+    about (-3, 4), whose tangent at (0, 0) is (0.8, 0.6) (a left turn of 36.87 degrees: concave with the
+    tool on the left, inside the arc). The entry's parallel offset Y = 1 meets the offset circle of radius
+    5 - 1 = 4 at X = -3 + sqrt(4**2 - 3**2) = -3 + sqrt(7), the intersection nearer the corner; the arc
+    ends 1 mm inside its end (2, 4) at (1, 4); the exit runs to the programmed point."""
+    blocks = [_line([-10, 0], [0, 0], 1), _arc([0, 0], [2, 4], [-3, 4], 2, ccw=True), _line([2, 4], [2, 10], 3)]
+    out = compensate(blocks, side="left", radius=1.0, plane=2)
+    x = [-3.0 + math.sqrt(7.0), 1.0]
+    _check(out, [
+        (1, "line", [-10, 0], x, None, None),
+        (2, "arc", x, [1, 4], [-3, 4], True),
+        (3, "line", [1, 4], [2, 10], None, None),
+    ])
+
+
+def test_near_reversal_into_an_arc_the_tool_is_outside_of_is_an_inside_corner():
+    """LinuxCNC convert_arc_comp2's "m"/"h" rule (tests/interp/crazy-paths, line 106): a turn within
+    TOLERANCE_CONCAVE_CORNER (0.05 rad) of a half turn into an arc the tool is outside of is concave. The
+    line +X ends at (0, 0); a G2 arc of radius 5 about (-5 sin e, 5 cos e), e = 0.03, leaves it heading
+    0.03 rad short of -X; tool left, outside the arc (offset radius 6). The line's offset Y = 1 meets that
+    circle at X = -5 sin e - sqrt(6**2 - (5 cos e - 1)**2) (LinuxCNC's angle_from_center = theta + pi +
+    asin(l)): both end there, with no corner arc round the outside."""
+    e = 0.03
+    c = [-5.0 * math.sin(e), 5.0 * math.cos(e)]
+    end = [c[0] - 5.0, c[1]]
+    blocks = [_line([-10, 0], [0, 0], 1), _arc([0, 0], end, c, 2, ccw=False), _line(end, [end[0], 10], 3)]
+    out = compensate(blocks, side="left", radius=1.0, plane=2)
+    x = [c[0] - math.sqrt(36.0 - (c[1] - 1.0) ** 2), 1.0]
+    _check(out, [
+        (1, "line", [-10, 0], x, None, None),
+        (2, "arc", x, [c[0] - 6.0, c[1]], c, False),
+        (3, "line", [c[0] - 6.0, c[1]], [end[0], 10], None, None),
+    ])
+
+
+def test_arc_arc_inside_corner_meets_on_the_programmed_centres():
+    """LinuxCNC convert_arc_comp2, concave arc->arc (tests/interp/inside-corners, lines 16-17): the two
+    offset circles are about the programmed centres start + I/J, of the end point's radius -/+ the tool
+    radius (G41.1 D0.15: 0.075 in; the G3 with the tool inside, the G2 outside). 4-decimal words put the
+    G2's end 0.00009 in off its circle; vcnc's arc moves its centre onto the chord's bisector, but the corner
+    is where LinuxCNC's circles meet, nearer the corner (1.2281, 1.3456): its expected ARC_FEED end is
+    (1.2235, 1.0250) in."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext
+
+    prog = parse_program("G20 G17 G90 F8\nG0 X0 Y0\nG41.1 D0.15 G1 X0.6767 Y0.2334\nG1 X0.3359 Y0.4419\n"
+                         "G3 X1.2281 Y1.3456 I0.2921 J0.6039\nG2 X0.1253 Y0.9881 I-0.6093 J0\nG40 G1 X0 Y0\n",
+                         context=MachineContext())
+    c1, c2 = np.array([0.3359 + 0.2921, 0.4419 + 0.6039]), np.array([1.2281 - 0.6093, 1.3456])
+    r1 = math.hypot(*(np.array([1.2281, 1.3456]) - c1)) - 0.075
+    r2 = math.hypot(*(np.array([0.1253, 0.9881]) - c2)) + 0.075
+    d = math.hypot(*(c2 - c1))
+    a = (d * d + r1 * r1 - r2 * r2) / (2.0 * d)
+    u = (c2 - c1) / d
+    cands = [c1 + a * u + k * math.sqrt(r1 * r1 - a * a) * np.array([-u[1], u[0]]) for k in (1.0, -1.0)]
+    want = min(cands, key=lambda p: math.hypot(*(p - [1.2281, 1.3456])))
+    ends = [b.target[:2] / 25.4 for b in prog.blocks if b.line == 5]
+    # the end lies on vcnc's arc, whose centre moved 7e-6 in onto the bisector: 2e-6 in from LinuxCNC's point, where
+    # intersecting the circles about the moved centres would be 1.9e-4 in off
+    np.testing.assert_allclose(ends[-1], want, atol=1e-5)
+    np.testing.assert_allclose(want, [1.2235, 1.0250], atol=5e-5)  # LinuxCNC's, printed to 4 decimals
+
+
+def test_a_slot_narrower_than_the_tool_still_gouges_as_in_linuxcnc():
+    """LinuxCNC tests/interp/bad/ccomp-gouging.ngc: a 0.1 in step back under a 0.25 in tool; rs274 stops
+    with "Straight feed in concave corner cannot be reached by the tool without gouging"."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext
+    from vcnc.errors import GCodeError
+
+    with pytest.raises(GCodeError, match="Straight feed in concave corner cannot be reached by the tool"):
+        parse_program("G20\ng0x0y0z0\ng41.1d.25\ng1x1f1\ng1x2\ng1y.1\ng1x1\ng40\ng1x2\n", context=MachineContext())
+
+
+def test_program_end_without_an_exit_move_compensates_the_last_arc():
+    """LinuxCNC tests/ccomp/mill-line-arc-entry: G40 with no motion after it, then M2: the last G2 is an
+    ordinary compensated move (rs274's expected ARC_FEED(2.0, 3.5, 2.0, 2.0, -1): the tool 0.5 in outside
+    the programmed circle of radius 1 about (2, 2) at its end (2, 3))."""
+    from interpolators import parse_program
+    from interpolators.context import MachineContext
+
+    prog = parse_program("G20 F60\nG0 X1 Y5\nG41.1 D1 G1 Y4\nG3 X2 Y3 I1\nG2 X3 Y2 J-1\nG1 Y-1\nG2 X2 Y-2 I-1\n"
+                         "G1 X-2\nG2 X-2.6 Y-0.2 J1\nG1 X1.4 Y2.8\nG2 X2 Y3 I.6 J-.8\nG40\nM2\n",
+                         context=MachineContext())
+    last = prog.blocks[-1]
+    assert last.kind == "arc" and last.line == 11
+    np.testing.assert_allclose(last.target[:2] / 25.4, [2.0, 3.5], atol=1e-9)
+    np.testing.assert_allclose(last.segment.center[:2] / 25.4, [2.0, 2.0], atol=1e-9)
+
+
+def test_arc_trimmed_past_its_start_gouges_as_in_linuxcnc():
+    """LinuxCNC move_endpoint_and_flush: an arc whose trimmed sweep exceeds the programmed one by more than
+    0.0254 rad (mm program) gouges. A G3 of radius 5 about (0, 5) sweeps 0.2 rad from (0, 0); the line after
+    it turns up (+Y, concave with the tool on the left). Its offset X = 5 sin(0.2) - 1 = -0.0067 meets the
+    arc's offset circle (radius 4) at -90.1 degrees, before the arc's offset start (0, 1) at -90: the arc
+    would have to run 2 pi - 0.0017 rad."""
+    end = [5.0 * math.sin(0.2), 5.0 - 5.0 * math.cos(0.2)]
+    blocks = [_line([-10, 0], [0, 0], 1), _arc([0, 0], end, [0, 5], 2, ccw=True), _line(end, [end[0], 10], 3),
+              _line([end[0], 10], [end[0] - 10, 10], 4)]
+    with pytest.raises(CompensationError, match="Arc move in concave corner cannot be reached by the tool") as e:
+        compensate(blocks, side="left", radius=1.0, plane=2)
+    assert e.value.index == 1
+    compensate(blocks, side="left", radius=0.1, plane=2)  # a tool that fits: X = 0.893 meets the arc within it

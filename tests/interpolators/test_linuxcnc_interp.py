@@ -314,15 +314,12 @@ INTERP_MOTION = ("cam-nisley", "exists", "flowsnake", "g10/g10-l2-while-active",
                  "g10/g10-with-g92", "g81/g17/g98", "g81/g18/g98", "g81/g18/g99", "g81/g19/g98", "g81/g19/g99",
                  "g81/g17/g99", "g84/g17/g98", "g84/g17/g99", "inverse-time-with-comp", "m98m99/01-basics",
                  "m98m99/05-M98-loops", "m98m99/12-M99-endless-main-program", "namedparam-bug424", "oword-bug315-p2",
-                 "rotation/g28", "rotation/g53", "g10/g10-l11", "unit-conversion")
+                 "rotation/g28", "rotation/g53", "g10/g10-l11", "unit-conversion", "crazy-paths", "inside-corners")
 #: Cases whose expected output has no motion: vcnc runs them (the cases with messages are in INTERP_MESSAGES).
 INTERP_ACCEPTED = ("fractional-linenumbers", "g52/g52-g92-interaction", "g6164", "m19", "m98m99/13-named-program")
 #: Cases that still differ, and why (not run: documentation for the next step).
 INTERP_DIFFERENT = {
     "abort-hot-comment": "the (abort, ...) message prints #<_ini[a]value> as written (vcnc reads no INI file)",
-    "crazy-paths": "cutter compensation: a concave arc corner LinuxCNC passes is a gouge error in vcnc",
-    "inside-corners": "cutter compensation: the first 105 moves agree; an arc-arc inside corner (line 16/17) is 5 um "
-        "from LinuxCNC's (0.0002 in: its intersection of the two offset arcs)",
     "g10/g10-l1-l10": "tool X/Y offsets (lathe tools) are not modelled: G10 L1 X1 is an error",
     "g84/g18/g98 g84/g18/g99 g84/g19/g98 g84/g19/g99": "LinuxCNC's convert_cycle_g74_g84 passes the XZ/YZ "
         "coordinates in another order (its expected file taps hole X1 Z1 Y-1 at X-1 Y1 Z1); vcnc taps the hole",
