@@ -1486,7 +1486,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
-                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)
+                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
+                            haas=st.context.dialect.name == "haas")
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)

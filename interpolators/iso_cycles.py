@@ -38,6 +38,10 @@ other things or errors):
   at the hole, oriented stop and shift, rapid down to the R level (the bottom of the bore), shift
   back, feed up to Z (above R), dwell P, shift, rapid up to the initial level, shift back. G99
   cannot be used (the tool returns to the initial level).
+* **Haas G73 / G83 with I J K** (Haas mill operator's manual, "G83 Normal Peck Drilling": "I size of
+  first peck depth, J amount to reduce each peck, K minimum peck depth"): the pecks are I, I - J,
+  I - 2 J, ... but never less than K (used instead of Q when I is given); under the ``haas`` dialect
+  K is never a repeat count (Haas repeats with L), as it is on Fanuc.
 """
 
 from __future__ import annotations
@@ -80,6 +84,7 @@ class CycleWords:
     p: float | None = None
     i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
     j: float | None = None
+    k: float | None = None  # Haas G73/G83 minimum peck
 
 
 @dataclasses.dataclass(frozen=True)
@@ -100,7 +105,7 @@ CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-                tap_out_to_r: bool = False, plane: int = 2) -> list[HoleMove]:
+                tap_out_to_r: bool = False, plane: int = 2, haas: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
     (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
     "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
@@ -132,6 +137,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         feeding out to the clear level (LinuxCNC).
     plane : int
         2 (G17, drilling along Z), 1 (G18, along Y) or 0 (G19, along X).
+    haas : bool
+        Haas words: G73/G83 pecks from I J K, and K is not a repeat count.
 
     Raises
     ------
@@ -141,7 +148,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     axes = CYCLE_AXES[plane]
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
-                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)
+                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r,
+                         haas=haas)
     if "@" in words or "^" in words:
         raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
                          letter="@" if "@" in words else "^", expected="G17 for polar words")
@@ -151,7 +159,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     try:
         moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
-                          tap_out_to_r=tap_out_to_r)
+                          tap_out_to_r=tap_out_to_r, haas=haas)
     except CycleError as exc:
         exc.letter = letters.get(exc.letter, exc.letter)
         raise
@@ -161,9 +169,9 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
 
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-              tap_out_to_r: bool) -> list[HoleMove]:
+              tap_out_to_r: bool, haas: bool) -> list[HoleMove]:
     """:func:`cycle_moves` in the XY plane (drilling along Z)."""
-    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
+    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms, haas=haas)
     z0 = float(pos[2])
     if cycle.initial is None:
         cycle.initial = z0
@@ -179,7 +187,8 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
-    pecks = math.ceil((r - bottom) / (cycle.q * scale)) if g in (73, 83) else 1
+    depths = _peck_depths(cycle, r, bottom, scale, haas=haas) if g in (73, 83) else []
+    pecks = len(depths) + 1
     if repeats * (pecks + 3) > MAX_CYCLE_MOVES:  # L99999999 or Q0.0000001 would run for hours, filling the memory
         raise CycleError(f"{repeats} holes of {pecks} pecks each exceed {MAX_CYCLE_MOVES} cycle moves",
                          letter="Q" if pecks > 1 and "Q" in words else next((c for c in "LK" if c in words), None),
@@ -209,15 +218,11 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         else:  # the tool is at the clear level (or below it): over at the clear level
             go("rapid", x, y, clear)
         go("rapid", x, y, r)
-        if g in (73, 83):
-            q = cycle.q * scale
-            depth = r - q
-            while depth > bottom:
-                go("line", x, y, depth, feed)
-                go("rapid", x, y, r if g == 83 else depth + delta)
-                if g == 83:
-                    go("rapid", x, y, depth + delta)
-                depth -= q
+        for depth in depths:
+            go("line", x, y, depth, feed)
+            go("rapid", x, y, r if g == 83 else depth + delta)
+            if g == 83:
+                go("rapid", x, y, depth + delta)
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
@@ -235,9 +240,29 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     return out
 
 
-def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool) -> tuple[int, float]:
+def _peck_depths(cycle: CycleWords, r: float, bottom: float, scale: float, *, haas: bool) -> list[float]:
+    """The depths [mm] of the pecks above the bottom: every Q from R (LinuxCNC's loop), or under Haas
+    with I the pecks I, I - J, ... not below K; at most :data:`MAX_CYCLE_MOVES` + 1 of them."""
+    variable = haas and bool(cycle.i)
+    step = (cycle.i if variable else cycle.q) * scale
+    out: list[float] = []
+    depth = r - step
+    while depth > bottom and len(out) <= MAX_CYCLE_MOVES:
+        out.append(depth)
+        if variable:
+            step = max(step - (cycle.j or 0.0) * scale, (cycle.k or 0.0) * scale)
+            if step <= 0:
+                raise CycleError("peck depths I - n J reach 0 without a minimum K > 0", letter=None,
+                                 expected="K > 0 (the minimum peck)")
+        depth -= step
+    return out
+
+
+def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool,
+                  haas: bool = False) -> tuple[int, float]:
     """Update the series' sticky R Z Q P from the block; returns the repeat count and the dwell [s]."""
-    for letter in ("R", "Z", "Q", "P", *(("I", "J") if g in (76, 87) else ())):
+    shift = ("I", "J") if g in (76, 87) else ("I", "J", "K") if haas and g in (73, 83) else ()
+    for letter in ("R", "Z", "Q", "P", *shift):
         if letter in words:
             setattr(cycle, letter.lower(), words[letter])
     if cycle.r is None:
@@ -248,11 +273,11 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
                          expected="R<retract level>")
     if cycle.z is None:
         raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
-    repeats = words.get("L", words.get("K", 1.0))
+    repeats = words.get("L", 1.0 if haas else words.get("K", 1.0))
     if repeats != int(repeats) or repeats < 0:
         rl = "L" if "L" in words else "K"
         raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
-    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
+    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0) and not (haas and cycle.i and cycle.i > 0):
         raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
     dwell = 0.0
     if g in (76, 87) and not cycle.q and not (cycle.i or cycle.j):

@@ -887,7 +887,7 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
-    for k in "rqpij":
+    for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]
     if depth in words:
@@ -901,7 +901,9 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     r = (m.cycle_clear + m.sticky["r"] * s) if m.incremental else m.sticky["r"] * s
     bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
     clear = max(m.cycle_clear, r) if m.retract == 98 else r
-    repeats = int(words["l"][-1]) if "l" in words else 1
+    # Fanuc repeats a cycle K times (0i-MF "Canned cycle": "K: number of repeats"); LinuxCNC and Haas with L
+    fanuc_k = m.ctx.dialect.name == "fanuc" and "k" in words and "l" not in words
+    repeats = int(words["k"][-1]) if fanuc_k else int(words["l"][-1]) if "l" in words else 1
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
         return
@@ -932,7 +934,9 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
 
     dwell = m.sticky.get("p", 0.0)
     if code in (73, 83):
-        delta = m.sticky["q"] * m.scale
+        # Haas "G83": I the first peck, each next J less, never below K (instead of Q)
+        haas = m.ctx.dialect.name == "haas" and bool(m.sticky.get("i"))
+        delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
         while depth > bottom:  # LinuxCNC's loop; a last peck within rounding of the bottom may be left out
@@ -940,6 +944,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
             for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
                 m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
                 m.pos = m.out[-1].end.copy()
+            if haas:  # the next peck is J shorter
+                delta = max(delta - m.sticky.get("j", 0.0) * m.scale, m.sticky.get("k", 0.0) * m.scale)
             depth -= delta
     m.move(line, "feed", at(bottom))
     if code in (74, 76, 82, 89):

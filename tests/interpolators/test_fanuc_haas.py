@@ -283,3 +283,15 @@ def test_haas_lathe_g70_form_is_named_as_the_lathe_cycle():
 def test_five_axis_and_extended_offset_codes_are_named(code, message):
     with pytest.raises(GCodeError, match=message):
         parse_program(f"G21\n{code}\n", context=HAAS)
+
+
+def test_haas_g83_pecks_from_i_j_k_and_k_is_no_repeat_count():
+    # Haas "G83": first peck I3, each next J1 less, never below K1.5; R1 to Z-10 (11 mm):
+    # pecks to 1-3 = -2, -2-2 = -4, -4-1.5 = -5.5, -7, -8.5, -10 (the bottom)
+    text = "G21 G90 G54\nG0 X0 Y0 Z5\nG99 G83 X0 Y0 Z-10 R1 I3 J1 K1.5 F100\nG80\n"
+    prog = run(text)
+    feeds = [round(b.target[2] + 20.0, 6) for b in prog.blocks if b.kind == "line"]
+    assert feeds == [-2, -4, -5.5, -7, -8.5, -10]
+    # Fanuc: K is the repeat count (G91: two holes 5 mm apart)
+    fanuc = run("G21 G90 G54\nG0 X0 Y0 Z5\nG91 G99 G81 X5 Z-3 R-4 K2 F100\nG80\n", FANUC)
+    assert [round(b.target[0] - 100.0, 6) for b in fanuc.blocks if b.kind == "line"] == [5, 10]
