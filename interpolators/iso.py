@@ -46,8 +46,8 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
 ``G05 P10000``            (:mod:`interpolators.iso_smoothing`)
 ``G68 G69``               coordinate rotation; ``G51 G50`` scaling; ``G51.1 G50.1`` mirror image,
                           Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
-``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``)
-                          (:mod:`interpolators.iso_cycles`)
+``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``); Haas G73/G83
+                          pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
                           pocket milling (:mod:`interpolators.iso_haas`)
 ========================= =======================================================================
