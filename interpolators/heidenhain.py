@@ -74,7 +74,11 @@ selects another work offset of the context) + the
 datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
 the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
 perpendicular to the first contour element as on the TNC) to the R0 block (the exit move), by
-:func:`interpolators.compensation.compensate`. Anything not listed (DEP CT ending RL/RR, FK,
+:func:`interpolators.compensation.compensate`. The arc of ``DEP CT .. R0`` is the run's last contour
+element: the manuals give only the contour arc (TNC 640 user's manual, "Approaching and departing a
+contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
+grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
+next R0 block leaves from there). Anything not listed (FK,
 other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
@@ -1428,8 +1432,8 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if form == "LN":  # TNC 640 manual: "PN is separated from PE by the distance LEN plus the tool radius"
         sizes["length"] += m.comp_radius
     _depart(form, sizes, target, m, where, blk)
-    if exit_run:
-        _finish_compensation(m)
+    if exit_run:  # DEP CT under RL/RR: the arc is a compensated element, the run has no exit line
+        _finish_compensation(m, open_end=form == "CT")
     if target[m.plane] != m.pos[m.plane]:
         up = m.pos.copy()
         up[m.plane] = target[m.plane]
@@ -1523,8 +1527,9 @@ def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
     return False
 
 
-def _finish_compensation(m: _Machine) -> None:
-    """Replace the blocks of the finished run by the tool-centre path."""
+def _finish_compensation(m: _Machine, *, open_end: bool = False) -> None:
+    """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
+    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move."""
     start, m.comp_start = m.comp_start, None
     side = "left" if m.comp_side == "RL" else "right"
     m.comp = "R0"
@@ -1532,7 +1537,8 @@ def _finish_compensation(m: _Machine) -> None:
     if m.comp_radius == 0.0 or not run:
         return
     try:
-        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular")
+        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
+                         open_end=open_end)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}", column=1,

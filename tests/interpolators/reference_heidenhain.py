@@ -350,9 +350,17 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
         a = math.radians(turn * w["CCA"])
         v = t.pos - centre
         end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a), 0])
+    if "R0" in w and form != "CT":
+        t.comp = False
+    if form != "CT":
+        t.emit(line, "feed", end, rows="last")
+    else:  # the tool runs the arc compensated: its centre path is the circle about the arc's centre
+        t.emit(line, None, end, rows="last", centre=centre)
+    if form == "CT" and t.comp and t.radius > 0:  # the tool stops beside PN: inside the arc on its turning side
+        t.pos = end - (1.0 if (side > 0) == (turn > 0) else -1.0) * t.radius * (end - centre) / np.hypot(
+            *(end - centre)[:2])
     if "R0" in w:
         t.comp = False
-    t.emit(line, "feed" if form != "CT" else None, end, rows="last")
 
 
 def _last_number(text: str, q: dict) -> float:
