@@ -52,7 +52,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240
+    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -923,6 +923,9 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
         return
+    if c.number == 262:
+        _thread_milling(m, c, surface, where, blk)
+        return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
@@ -973,6 +976,53 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
         back[axis] = bottom
         m.emit("line", back, Line(m.pos, back), c.feed, where, blk.number)
         m.used.update((p, q))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 262 THREAD MILLING at the current position (TNC 426/430 user's manual, "THREAD MILLING
+    (Cycle 262)", process: FMAX to the set-up clearance, in at the pre-positioning feed Q253 to the
+    starting plane, a tangential approach to the thread diameter, the helix, a tangential departure back
+    to the centre, FMAX out to the set-up clearance and the 2nd set-up clearance).
+
+    The manual leaves the starting plane and the approach to the control; our reading, kept inside the
+    thread: the helix runs on the diameter Q335 less the tool diameter at the feed Q207, counter-clockwise
+    for climb milling (Q351 = +1, M3), and upward when that follows the thread (a right-hand thread
+    climb-milled, a left-hand one up-cut), else downward. Q355 = 0 turns once, over one pitch ending
+    (upward: starting) at the thread depth; Q355 = 1 runs from the depth to the surface (downward: the
+    reverse). The approach and the departure are half circles at the helix's end levels between the
+    centre and the helix, on the reference-axis side, in the helix's sense (so they join it tangentially).
+    """
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    r = c.bore_diameter / 2.0 - m.tool_radius
+    if r <= 1e-9:
+        where.fail(f"cycle 262: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
+                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
+                   expected="a tool radius below Q335 / 2")
+    upward = c.right_hand == c.climb
+    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
+    start_level, end_level = (bottom, far) if upward else (far, bottom)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+    centre = m.pos.copy()
+    k = m.lengths(where)
+    start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
+    start[axis] = start_level
+    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    turns = abs(far - bottom) / c.helix_pitch
+    for pole, sweep, level in (((centre + start) / 2.0, 180.0, start_level), (centre, 360.0 * turns, end_level)):
+        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    back = centre.copy()
+    back[axis] = end_level
+    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, sense), plane=axis, axis_end=end_level)
+    m.emit("arc", back, seg, c.feed, where, blk.number)
+    m.used.update((p, q, axis))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)

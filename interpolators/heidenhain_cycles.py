@@ -25,6 +25,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
 
@@ -45,13 +46,13 @@ from interpolators.heidenhain_words import read_value, read_words
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
-           "pecking_cycle", "drill_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
+           "pecking_cycle", "drill_cycle", "thread_milling_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -66,6 +67,7 @@ _REQUIRED = {
     203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -117,7 +119,13 @@ class DrillCycle:
     helix_pitch : float
         Cycle 208: the infeed per helix turn Q334 [mm].
     climb : bool
-        Cycle 208: climb milling with M3 (Q351 = +1: counter-clockwise), else up-cut (clockwise).
+        Cycles 208, 262: climb milling with M3 (Q351 = +1: counter-clockwise), else up-cut (clockwise).
+    right_hand : bool
+        Cycle 262: a right-hand thread (Q239 > 0); with ``climb`` it gives the milling direction.
+    continuous : bool
+        Cycle 262: Q355 = 1, one helix over the whole thread depth (else Q355 = 0: one 360 degree turn).
+    approach_feed : float
+        Cycle 262: Q253, the feed in and out along the tool axis [mm/s].
     """
 
     number: int
@@ -139,6 +147,9 @@ class DrillCycle:
     bore_diameter: float = 0.0
     helix_pitch: float = 0.0
     climb: bool = True
+    right_hand: bool = True
+    continuous: bool = False
+    approach_feed: float = 0.0
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -249,6 +260,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
+    if number == 262:
+        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
@@ -298,6 +311,29 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
         retract_feed=retract * feed_scale if retract > 0 else None,
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None, **base), where, column)
+
+
+def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                         column: int) -> DrillCycle:
+    """Cycle 262 THREAD MILLING from its Q parameters (TNC 426/430 user's manual, "THREAD MILLING
+    (Cycle 262)"): Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201 thread
+    depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the thread
+    depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351 climb
+    (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed. The moves are the reader's
+    ``_thread_milling``."""
+    steps = int(q[355])
+    if steps not in (0, 1) or q[355] != steps:
+        where.fail(f"cycle 262: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
+                   column=column, text=where.text, expected="Q355=0 (one helix) or Q355=1 (continuous)")
+    if q[239] == 0 or not q[335] > 0 or not q[253] > 0:
+        where.fail("cycle 262: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0", column=column,
+                   text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+    depth = q[201] * scale
+    return _checked(DrillCycle(number=262, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth),
+                               feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
+                               bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
+                               climb=q[351] >= 0, right_hand=q[239] > 0, continuous=steps == 1,
+                               approach_feed=q[253] * feed_scale), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:

@@ -405,7 +405,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240) and sub == 0:
+    elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -495,6 +495,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "208":
         _bore_milling(t, line, p)
         return
+    if kind == "262":
+        _thread_milling(t, line, p)
+        return
     if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
         sgn = -1.0 if p[2] < 0 else 1.0
         _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
@@ -548,6 +551,35 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
         t.emit(line, "feed", t.machine(centre))
     else:
         _move_z(t, line, "feed", surface + depth)
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
+    """262: to the set-up clearance, Q253 to the starting plane, a half circle out to the radius Q335/2 - R
+    on the +X side, the helix (Q351 >= 0 counter-clockwise; upward for a right-hand thread climb-milled or
+    a left-hand one up-cut; Q355 = 0 one pitch at the depth, 1 between the depth and the surface), a half
+    circle back to the centre, rapid out (set-up clearance, then Q204)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError("262 under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    pitch, ccw = abs(p["Q239"]), p["Q351"] >= 0
+    sgn = -1.0 if depth < 0 else 1.0
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    bottom = surface + depth
+    far = surface if p["Q355"] == 1 else bottom - sgn * pitch
+    z0, z1 = (bottom, far) if (p["Q239"] > 0) == ccw else (far, bottom)
+    _move_z(t, line, "feed", z0)
+    centre = t.prog()  # [mm], at the starting plane
+    r = p["Q335"] * t.scale / 2 - t.radius
+    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    kind = "arc_ccw" if ccw else "arc_cw"
+    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+    for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
+                      (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
+        t.emit(line, kind, t.machine(end), centre=t.machine(pole))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 

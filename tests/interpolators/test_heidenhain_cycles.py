@@ -155,3 +155,39 @@ def test_errors_name_the_cycle(body, words):
         parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", source="t.h")
     assert words in str(info.value)
     assert info.value.file == "t.h" and info.value.line >= 2
+
+
+THREAD = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 262 THREAD MILLING Q335=+12 {q} Q201=-6 "
+          "Q253=750 Q200=2 Q203=+0 Q204=20 Q207=300\nCYCL CALL")
+
+
+def test_thread_milling_262_one_helix_climbing_a_right_hand_thread():
+    # M6 x 1.5 inside, tool radius 4: helix radius 2 about (10, 20); right-hand + climb: counter-clockwise, upward
+    # from the depth -6 by one pitch; half circles in (centre (11, 20)) and out (centre (11, 20) at -4.5)
+    prog = run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0"))
+    got = [(b.kind, *np.round(b.target, 6).tolist(), round(b.feed * 60, 6)) for b in prog.blocks[2:]]
+    assert got == [("rapid", 10, 20, 2, math.inf), ("line", 10, 20, -6, 750), ("arc", 12, 20, -6, 300),
+                   ("arc", 12, 20, -4.5, 300), ("arc", 10, 20, -4.5, 300), ("rapid", 10, 20, 2, math.inf),
+                   ("rapid", 10, 20, 20, math.inf)]
+    arcs = [b.segment for b in prog.blocks if b.kind == "arc"]
+    assert all(a.ccw for a in arcs)
+    assert [a.center[:2].tolist() for a in arcs] == [[11, 20], [10, 20], [11, 20]]
+
+
+def test_thread_milling_262_continuous_and_downward_helices_stay_in_the_thread():
+    # up-cut on a right-hand thread: clockwise, downward; Q355=1: from the surface to the depth, 4 turns of 1.5
+    down = run(THREAD.format(q="Q239=+1.5 Q351=-1 Q355=1"))
+    zs = [b.target[2] for b in down.blocks[2:]]
+    assert zs == [2, 0, 0, -6, -6, 2, 20]
+    helix = down.blocks[5]
+    assert not helix.segment.ccw and np.allclose(helix.target, [12, 20, -6])
+    # a left-hand thread climb-milled runs downward too: from one pitch above the depth
+    left = run(THREAD.format(q="Q239=-1.5 Q351=+1 Q355=0"))
+    assert [b.target[2] for b in left.blocks[2:]] == [2, -4.5, -4.5, -6, -6, 2, 20]
+    for prog in (down, left, run(THREAD.format(q="Q239=+1.25 Q351=+1 Q355=1"))):
+        for b in prog.blocks[2:]:  # within the thread: radius 6 less the tool's 4, between the depth and the top
+            assert math.hypot(b.target[0] - 10, b.target[1] - 20) <= 2 + 1e-9 and -6 - 1e-9 <= b.target[2]
+    with pytest.raises(GCodeError, match="Q355=2"):
+        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=2"))
+    with pytest.raises(GCodeError, match="not narrower than the thread"):
+        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0").replace("R+4", "R+6"))
