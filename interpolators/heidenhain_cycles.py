@@ -20,7 +20,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211 (Q395 must be 0: depth at the tip)
 ``CYCL DEF 203``          as 200, plus Q212 decrement, Q213 breaks, Q205 minimum plunge, Q208
                           retraction feed, Q256 chip-break retraction
-``CYCL DEF 205``          as 203 (Q212, Q205, Q208, Q256, Q257 chip-break depth), Q258/Q259
+``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
                           advanced stop distances
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
@@ -105,6 +105,9 @@ class DrillCycle:
         Q213 (203): chip breaks before a full retraction; 0 retracts every infeed.
     chip_break : float
         Q256: retraction of a chip break [mm].
+    chip_depth : float
+        Q257 (205): within each infeed the tool breaks the chip (retracting ``chip_break`` at rapid) after
+        every ``chip_depth`` [mm]; 0: no chip breaking.
     retract_feed : float or None
         Q208 (203): retraction feed [mm/s]; ``None`` retracts at rapid.
     advance : float or None
@@ -141,6 +144,7 @@ class DrillCycle:
     min_plunge: float = 0.0
     chip_breaks: int = 0
     chip_break: float = 0.0
+    chip_depth: float = 0.0
     retract_feed: float | None = None
     advance: float | None = None
     disengage: tuple[float, float] = (0.0, 0.0)
@@ -268,9 +272,6 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     if number == 240 and q.get(343, 0.0) != 0.0:
         where.fail("cycle 240: Q343=1 (centering to a diameter) needs the tool's point angle", column=column,
                    text=where.text, expected="Q343=0 (depth Q201)")
-    if number == 205 and q.get(257, 0.0) != 0.0:
-        where.fail("cycle 205: chip breaking within an infeed (Q257 != 0) is not supported", column=column,
-                   text=where.text, expected="Q257=0")
     depth = q[201] * scale
     base = dict(number=number, setup=abs(q[200]) * scale, depth=depth, surface=q[203] * scale,
                 second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0))
@@ -310,7 +311,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
         retract_feed=retract * feed_scale if retract > 0 else None,
-        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None, **base), where, column)
+        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
+        chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -365,7 +367,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
     return dataclasses.replace(cycle, setup=cycle.setup * factor, depth=cycle.depth * factor,
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
-                               chip_break=cycle.chip_break * factor, advance=f(cycle.advance),
+                               chip_break=cycle.chip_break * factor, chip_depth=cycle.chip_depth * factor,
+                               advance=f(cycle.advance),
                                disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
                                bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor)
 
@@ -507,6 +510,9 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     * cycles 200/203/205: FMAX to the set-up clearance above the surface, drill to the plunging
       depth, FMAX back to the set-up clearance, dwell Q210 there, FMAX to the set-up clearance
       (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
+      205 breaks the chip within an infeed after every Q257, retracting Q256 at FMAX (TNC 426/430
+      user's manual, "UNIVERSAL PECKING (Cycle 205)": "Infeed depth for chip breaking Q257",
+      "Retraction rate for chip breaking Q256");
       203 breaks the chip Q213 times by retracting Q256 before a full retraction; at the bottom
       dwell Q211, retract (203: at Q208) to the set-up clearance and, when it is higher, to the
       2nd set-up clearance;
@@ -540,6 +546,11 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
             if d * (reentry - top) > 0 and cycle.number not in (2, 17, 206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)
+        cut = cycle.chip_depth
+        while 0.0 < cut < step - 1e-12:  # 205 Q257: chip breaks within the infeed, Q256 back at rapid
+            out.append(AxisMove("line", surface + d * (done + cut), cycle.feed))
+            out.append(AxisMove("rapid", surface + d * (done + cut - cycle.chip_break)))
+            cut += cycle.chip_depth
         done += step
         out.append(AxisMove("line", surface + d * done, cycle.feed))
         if cycle.decrement:

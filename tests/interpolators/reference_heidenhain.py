@@ -34,7 +34,10 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   depth/50, at most 7 mm), at the bottom dwell and rapid to the start) and ``200`` DRILLING (rapid to
   Q203 + Q200, feed per Q202 to Q203 + Q201, between pecks rapid to Q203 + Q200 and back to Q200
   above the last depth, dwell Q211 at the bottom, rapid to Q203 + Q200 and then to Q203 + Q204),
-  called by ``M99`` or ``CYCL CALL`` at the current position.
+  called by ``M99`` or ``CYCL CALL`` at the current position; ``203``/``205`` (pecks shrinking by
+  Q212 to Q205, 203's Q213 chip breaks, 205's chip breaks every Q257 and re-entry Q258 above the last
+  depth) and ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back).
+- ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 """
 
 from __future__ import annotations
@@ -405,7 +408,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240, 262) and sub == 0:
+    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -498,6 +501,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "262":
         _thread_milling(t, line, p)
         return
+    if kind in ("203", "205"):
+        _universal_drilling(t, line, kind, p)
+        return
     if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
         sgn = -1.0 if p[2] < 0 else 1.0
         _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
@@ -552,6 +558,48 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
     else:
         _move_z(t, line, "feed", surface + depth)
     _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """203/205: pecks of Q202 shrinking by Q212 to at least Q205; between pecks out to the set-up clearance
+    (203: at Q208, 0: Q206; 205: rapid), dwell Q210, rapid back to the set-up clearance (205: Q258) above
+    the last depth; 203: Q213 chip breaks (back Q256) before each full retraction; 205: a chip break (back
+    Q256 at rapid) after every Q257 within a peck; dwell Q211 at the bottom, out, then to Q204."""
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear, bottom = surface - sgn * setup, surface + depth
+    back = "feed" if kind == "203" else "rapid"
+    advance = setup if kind == "203" else abs(p.get("Q258", 0.2))
+    chip, every = abs(p.get("Q256", 0.2)), abs(p.get("Q257", 0.0)) if kind == "205" else 0.0
+    breaks = int(p.get("Q213", 0)) if kind == "203" else 0
+    _move_z(t, line, "rapid", clear, optional=True)
+    peck, z, n = abs(p["Q202"]) or abs(depth), surface, 0
+    while (bottom - z) * sgn > _EPS:
+        if n == 0 and z != surface:
+            _dwell(t, line, p.get("Q210", 0.0))
+            if (z - sgn * advance - clear) * sgn > 0:
+                _move_z(t, line, "rapid", z - sgn * advance)
+        target = bottom if (bottom - z - sgn * peck) * sgn <= _EPS else z + sgn * peck
+        mark = z + sgn * every
+        while every > 0 and (target - mark) * sgn > _EPS:
+            _move_z(t, line, "feed", mark)
+            _move_z(t, line, "rapid", mark - sgn * chip)
+            mark += sgn * every
+        _move_z(t, line, "feed", target)
+        z = target
+        if p.get("Q212", 0.0):
+            peck = max(peck - abs(p["Q212"]), abs(p.get("Q205", 0.0)), 1e-3)
+        if (bottom - z) * sgn <= _EPS:
+            break
+        if n < breaks:
+            n += 1
+            _move_z(t, line, back, z - sgn * chip)
+            continue
+        n = 0
+        _move_z(t, line, back, clear)
+    _dwell(t, line, p.get("Q211", 0.0))
+    _move_z(t, line, back, clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 

@@ -191,3 +191,24 @@ def test_thread_milling_262_continuous_and_downward_helices_stay_in_the_thread()
         run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=2"))
     with pytest.raises(GCodeError, match="not narrower than the thread"):
         run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0").replace("R+4", "R+6"))
+
+
+def test_universal_pecking_205_breaks_the_chip_every_q257_within_an_infeed():
+    # infeeds of 5; within each a chip break after every 2 mm, 0.5 back at rapid; between infeeds out to the
+    # set-up clearance and back to Q258 = 0.5 above the last depth
+    prog = run("CYCL DEF 205 UNIVERSAL PECKING Q200=2 Q201=-10 Q206=100 Q202=5 Q203=+0 Q204=20 Q212=0 Q205=0 "
+               "Q258=0.5 Q259=0.5 Q257=2 Q256=0.5 Q211=0\nCYCL CALL")
+    r = math.inf
+    assert [(b.kind, b.target[2], round(b.feed * 60, 6)) for b in prog.blocks[1:]] == [
+        ("rapid", 2, r), ("line", -2, 100), ("rapid", -1.5, r), ("line", -4, 100), ("rapid", -3.5, r),
+        ("line", -5, 100), ("rapid", 2, r), ("rapid", -4.5, r), ("line", -7, 100), ("rapid", -6.5, r),
+        ("line", -9, 100), ("rapid", -8.5, r), ("line", -10, 100), ("rapid", 2, r), ("rapid", 20, r)]
+
+
+def test_universal_drilling_203_is_checked_by_the_reference():
+    # decrement Q212, smallest infeed Q205, one chip break (Q213) before each retraction at Q208 (0: Q206)
+    prog = run("CYCL DEF 203 UNIVERSAL DRILLING Q200=+2 Q201=-9 Q206=+60 Q202=+3 Q210=+0.5 Q203=+0 Q204=+2 "
+               "Q212=+1 Q213=+1 Q205=+1 Q211=+0 Q208=+0 Q256=+0.5\nL X+5 FMAX M99")
+    assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3, -2.5, -5, 2, -6, -5.5, -7, 2, -8, -7.5,
+                                                                        -9, 2]
+    assert sum(b.kind == "dwell" for b in prog.blocks) == 2  # Q210 at the top before each re-entry
