@@ -52,7 +52,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/262
+    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/252/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -926,6 +926,9 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 262:
         _thread_milling(m, c, surface, where, blk)
         return
+    if c.number == 252:
+        _circular_pocket(m, c, surface, where, blk)
+        return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
@@ -1026,6 +1029,91 @@ def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, bl
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 252 CIRCULAR POCKET about the current position (TNC 640 user's manual for cycle programming,
+    "CIRCULAR POCKET (Cycle 252)", cycle run: FMAX to the set-up clearance, plunge in the centre to each
+    plunging depth, rough out from the inside, leaving the allowances Q368/Q369, then up by the set-up
+    clearance and at FMAX back to the centre; then finish the wall (in infeeds of Q338) approached
+    tangentially, then the floor from the inside out; FMAX to the set-up clearance and the 2nd one).
+
+    The manual leaves the roughing path to the control; our reading, kept inside the pocket: at each
+    depth (plunged vertically at Q206) full circles about the centre, Q370 x the tool radius apart, out to
+    the pocket radius less the allowance and the tool radius, each reached by a straight step outward
+    along the reference axis, at the milling feed Q207, counter-clockwise for climb milling (Q351 = +1).
+    The wall is finished at Q385 by a half circle out from the centre, a full circle and a half circle back
+    (as cycle 262); the floor by the roughing's circles at the depth out to the wall. Q215 = 0 finishes
+    only what has an allowance; Q215 = 2 finishes wall and floor.
+    """
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    wall = c.bore_diameter / 2.0 - m.tool_radius
+    rough = wall - c.side_allowance
+    if rough <= 1e-9:
+        where.fail(f"cycle 252: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket "
+                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
+                   expected="a tool radius plus Q368 below Q223 / 2")
+    step = c.stepover * m.tool_radius or wall
+    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    centre = m.pos.copy()
+    if c.operation in (0, 1):
+        for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
+            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            _pocket_rings(m, centre, rough, step, sense, c.feed, where, blk)
+            _back_to_centre(m, centre, level - d * c.setup, where, blk)
+    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+        for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
+            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            k = m.lengths(where)
+            start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
+            here = m.pos.copy()
+            for pole, sweep in (((here + start) / 2.0, 180.0), (here, 360.0), (None, 180.0)):
+                pole = (m.pos + here) / 2.0 if pole is None else pole
+                seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
+                m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
+    if c.operation == 2 or (c.operation == 0 and c.floor_allowance > 0):
+        _axis_move(m, "line", bottom, c.approach_feed, where, blk)
+        _pocket_rings(m, centre, wall, step, sense, c.finish_feed, where, blk)
+        _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
+    m.used.update(range(3))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]:
+    """The levels from ``surface`` in steps of ``step`` toward ``bottom`` (the last one ``bottom``) [mm]."""
+    n = max(1, math.ceil(abs(bottom - surface) / step - 1e-9))
+    return [surface + d * min(step * (i + 1), abs(bottom - surface)) for i in range(n)]
+
+
+def _pocket_rings(m: _Machine, centre: np.ndarray, radius: float, step: float, sense: float, feed: float,
+                  where: Where, blk: SourceBlock) -> None:
+    """Full circles about ``centre`` (at the tool's level), ``step`` apart out to ``radius`` [mm], each reached
+    by a straight step outward along the program's reference axis at ``feed`` [mm/s]."""
+    axis = m.plane
+    pole = centre.copy()
+    pole[axis] = m.pos[axis]
+    k = m.lengths(where)
+    r = 0.0
+    while r < radius - 1e-9:
+        r = min(r + step, radius)
+        out, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: r / k}, pole)
+        m.emit("line", out, Line(m.pos, out), feed, where, blk.number)
+        seg = helical_arc(m.pos, pole, math.copysign(360.0, sense), plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
+
+def _back_to_centre(m: _Machine, centre: np.ndarray, level: float, where: Where, blk: SourceBlock) -> None:
+    """At FMAX up to ``level`` [mm], then over the pocket's ``centre``."""
+    _axis_move(m, "rapid", level, math.inf, where, blk)
+    target = centre.copy()
+    target[m.plane] = level
+    if not np.array_equal(target, m.pos):
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
 def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:

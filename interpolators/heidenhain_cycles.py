@@ -25,6 +25,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
@@ -46,13 +47,14 @@ from interpolators.heidenhain_words import read_value, read_words
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
-           "pecking_cycle", "drill_cycle", "thread_milling_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
+           "pecking_cycle", "drill_cycle", "thread_milling_cycle",
+           "circular_pocket_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 262)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 252, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -68,6 +70,7 @@ _REQUIRED = {
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
+    252: (215, 223, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -128,7 +131,17 @@ class DrillCycle:
     continuous : bool
         Cycle 262: Q355 = 1, one helix over the whole thread depth (else Q355 = 0: one 360 degree turn).
     approach_feed : float
-        Cycle 262: Q253, the feed in and out along the tool axis [mm/s].
+        Cycle 262: Q253, the feed in and out along the tool axis [mm/s]; 252: Q206, the plunging feed.
+    side_allowance, floor_allowance : float
+        Cycle 252: Q368, Q369, the finishing allowances on the wall and the floor [mm].
+    stepover : float
+        Cycle 252: Q370, the path overlap factor: the rings are Q370 x the tool radius apart [-].
+    operation : int
+        Cycle 252: Q215, 0 roughing and finishing, 1 roughing only, 2 finishing only.
+    finish_infeed : float
+        Cycle 252: Q338, the infeed of the wall finishing [mm]; 0: one pass at the full depth.
+    finish_feed : float
+        Cycle 252: Q385, the finishing feed [mm/s].
     """
 
     number: int
@@ -154,6 +167,12 @@ class DrillCycle:
     right_hand: bool = True
     continuous: bool = False
     approach_feed: float = 0.0
+    side_allowance: float = 0.0
+    floor_allowance: float = 0.0
+    stepover: float = 1.0
+    operation: int = 0
+    finish_infeed: float = 0.0
+    finish_feed: float = 0.0
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -266,6 +285,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     required_q(number, q, where, column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number == 252:
+        return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
@@ -338,6 +359,31 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
                                approach_feed=q[253] * feed_scale), where, column)
 
 
+def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                          column: int) -> DrillCycle:
+    """Cycle 252 CIRCULAR POCKET from its Q parameters (TNC 640 user's manual for cycle programming,
+    "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
+    finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
+    depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
+    Q366 plunging (0 vertical; absent: vertical; 1 helical needs the tool table's plunge angle: an
+    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``."""
+    if q.get(366, 0.0) != 0.0:
+        where.fail(f"cycle 252: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
+                   column=column, text=where.text, expected="Q366=0 (vertical plunging)")
+    operation = int(q[215])
+    if operation not in (0, 1, 2) or not q[223] > 0 or not q.get(370, 1.0) > 0 or not q[206] > 0:
+        where.fail("cycle 252: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
+                   "Q206 > 0", column=column, text=where.text, expected="Q215 in 0..2, Q223 > 0, Q370 > 0, Q206 > 0")
+    depth = q[201] * scale
+    return _checked(DrillCycle(
+        number=252, setup=abs(q[200]) * scale, depth=depth, plunge=abs(q[202]) * scale or abs(depth),
+        feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale, bore_diameter=q[223] * scale,
+        climb=q.get(351, 1.0) >= 0, approach_feed=q[206] * feed_scale, side_allowance=abs(q.get(368, 0.0)) * scale,
+        floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
+        finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale),
+        where, column)
+
+
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
     if not cycle.feed > 0:
         where.fail(f"cycle {cycle.number}: the drilling feed must be > 0", column=column, text=where.text,
@@ -370,7 +416,10 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                chip_break=cycle.chip_break * factor, chip_depth=cycle.chip_depth * factor,
                                advance=f(cycle.advance),
                                disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
-                               bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor)
+                               bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor,
+                               side_allowance=cycle.side_allowance * factor,
+                               floor_allowance=cycle.floor_allowance * factor,
+                               finish_infeed=cycle.finish_infeed * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

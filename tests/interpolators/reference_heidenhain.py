@@ -36,7 +36,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   above the last depth, dwell Q211 at the bottom, rapid to Q203 + Q200 and then to Q203 + Q204),
   called by ``M99`` or ``CYCL CALL`` at the current position; ``203``/``205`` (pecks shrinking by
   Q212 to Q205, 203's Q213 chip breaks, 205's chip breaks every Q257 and re-entry Q258 above the last
-  depth) and ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back).
+  depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
+  ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 """
 
@@ -408,7 +409,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 262) and sub == 0:
+    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 252, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -500,6 +501,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "262":
         _thread_milling(t, line, p)
+        return
+    if kind == "252":
+        _circular_pocket(t, line, p)
         return
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
@@ -600,6 +604,60 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
         _move_z(t, line, back, clear)
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, back, clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
+    """252 (Q366 = 0): at each depth of Q202 (to the depth less Q369) from the centre out along +X in steps of
+    Q370 x R to circles up to Q223/2 - Q368 - R, then up by Q200 and back over the centre; finishing the wall
+    (Q215 = 2, or 0 with Q368 > 0) at each depth of Q338: half circle out to Q223/2 - R, full circle, half
+    circle back; the floor (Q215 = 2, or 0 with Q369 > 0) with the circles out to Q223/2 - R at the depth."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError("252 under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    op, side, floor = int(p["Q215"]), p.get("Q368", 0.0), p.get("Q369", 0.0)
+    kind = "arc_ccw" if p.get("Q351", 1) >= 0 else "arc_cw"
+    wall = p["Q223"] * t.scale / 2 - t.radius
+    step = p.get("Q370", 1.0) * t.radius or wall
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    centre = t.prog()
+
+    def depths(bottom: float, each: float) -> list[float]:
+        return _levels(surface, bottom, sgn, each)
+
+    def rings(radius: float) -> None:
+        r = 0.0
+        while r < radius - 1e-9:
+            r = min(r + step, radius)
+            at = np.array([centre[0] + r, centre[1], t.prog()[2]])
+            t.emit(line, "feed", t.machine(at))
+            t.emit(line, kind, t.machine(at), centre=t.machine(np.array([centre[0], centre[1], at[2]])))
+
+    def back(z: float) -> None:
+        _move_z(t, line, "rapid", z + -sgn * setup)
+        here = t.prog()
+        t.emit(line, "rapid", t.machine(np.array([centre[0], centre[1], here[2]])), rows="optional")
+
+    if op in (0, 1):
+        for z in depths(surface + depth - sgn * floor, p["Q202"] or abs(depth)):
+            _move_z(t, line, "feed", z)
+            rings(wall - side * t.scale)
+            back(z)
+    if op == 2 or (op == 0 and side > 0):
+        for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
+            _move_z(t, line, "feed", z)
+            mid = t.prog()
+            out = mid + np.array([wall, 0.0, 0.0])
+            for end, pole in ((out, mid + np.array([wall / 2, 0.0, 0.0])), (out, mid),
+                              (mid, mid + np.array([wall / 2, 0.0, 0.0]))):
+                t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    if op == 2 or (op == 0 and floor > 0):
+        _move_z(t, line, "feed", surface + depth, optional=True)
+        rings(wall)
+        back(surface + depth)
+    _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 

@@ -212,3 +212,42 @@ def test_universal_drilling_203_is_checked_by_the_reference():
     assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3, -2.5, -5, 2, -6, -5.5, -7, 2, -8, -7.5,
                                                                         -9, 2]
     assert sum(b.kind == "dwell" for b in prog.blocks) == 2  # Q210 at the top before each re-entry
+
+
+POCKET = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 252 CIRCULAR POCKET {q} Q223=20 "
+          "Q207=500 Q201=-5 Q202=2.5 Q206=150 Q200=2 Q203=+0 Q204=20 Q366=0 Q385=400\nCYCL CALL")
+
+
+def test_circular_pocket_252_roughs_in_rings_and_finishes_wall_and_floor():
+    # 20 mm pocket about (10, 20), tool radius 2, stepover Q370 x R = 2; allowances 0.5 side, 0.2 floor:
+    # roughing circles of radius 2, 4, 6 and 7.5 (10 - 0.5 - 2) at -2.5 and -4.8, then the wall at radius 8
+    # (half circle out, full circle, half circle back) and the floor at -5 with circles out to 8
+    prog = run(POCKET.format(q="Q215=0 Q368=0.5 Q369=0.2 Q338=0 Q351=+1 Q370=1"))
+    moves = [(b.kind, *np.round(b.target, 6).tolist(), round(b.feed * 60, 6)) for b in prog.blocks[2:]]
+    r = math.inf
+    level = [("line", 12, 20, -2.5, 500), ("arc", 12, 20, -2.5, 500), ("line", 14, 20, -2.5, 500),
+             ("arc", 14, 20, -2.5, 500), ("line", 16, 20, -2.5, 500), ("arc", 16, 20, -2.5, 500),
+             ("line", 17.5, 20, -2.5, 500), ("arc", 17.5, 20, -2.5, 500)]
+    assert moves[:12] == [("rapid", 10, 20, 2, r), ("line", 10, 20, -2.5, 150), *level,
+                          ("rapid", 17.5, 20, -0.5, r), ("rapid", 10, 20, -0.5, r)]
+    assert moves[12:21] == [("line", 10, 20, -4.8, 150), *[(k, x, y, -4.8, f) for k, x, y, _, f in level]]
+    assert moves[23:27] == [("line", 10, 20, -5, 150), ("arc", 18, 20, -5, 400), ("arc", 18, 20, -5, 400),
+                            ("arc", 10, 20, -5, 400)]
+    assert moves[-2:] == [("rapid", 10, 20, 2, r), ("rapid", 10, 20, 20, r)]
+    assert all(b.segment.ccw for b in prog.blocks if b.kind == "arc")  # climb milling with M3
+
+
+def test_circular_pocket_252_stays_inside_the_pocket():
+    for q in ("Q215=1 Q368=0 Q369=0 Q338=0 Q351=-1 Q370=1.4", "Q215=2 Q368=0 Q369=0 Q338=2 Q351=+1 Q370=0.5",
+              "Q215=0 Q368=0.3 Q369=0.3 Q338=1 Q351=-1 Q370=1"):
+        prog = run(POCKET.format(q=q))
+        for b in prog.blocks[2:]:
+            assert math.hypot(b.target[0] - 10, b.target[1] - 20) <= 10 - 2 + 1e-9 and b.target[2] >= -5 - 1e-9
+            if b.kind == "arc":  # the arcs' far side too: centre distance plus radius
+                c = b.segment.center
+                far = math.hypot(c[0] - 10, c[1] - 20) + math.hypot(b.target[0] - c[0], b.target[1] - c[1])
+                assert far <= 8 + 1e-9
+    with pytest.raises(GCodeError, match="Q366=1"):
+        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=1"))
+    with pytest.raises(GCodeError, match="fill the pocket"):
+        run(POCKET.format(q="Q215=0 Q368=8.5 Q369=0 Q338=0 Q351=1 Q370=1"))
