@@ -926,7 +926,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 262:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number == 252:
+    if c.number in (251, 252):
         _circular_pocket(m, c, surface, where, blk)
         return
     centre = m.pos.copy()
@@ -1059,14 +1059,23 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
     _axis_move(m, "rapid", top, math.inf, where, blk)
     centre = m.pos.copy()
+
+    def rings(allowance: float, feed: float) -> None:
+        if c.number == 251:
+            _rect_rings(m, c, centre, allowance, step, feed, where, blk)
+        else:
+            _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
     if c.operation in (0, 1):
         for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            _pocket_rings(m, centre, rough, step, sense, c.feed, where, blk)
+            rings(c.side_allowance, c.feed)
             _back_to_centre(m, centre, level - d * c.setup, where, blk)
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
+            if c.number == 251:
+                _rect_wall(m, c, centre, sense, where, blk)
+                continue
             k = m.lengths(where)
             start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
             here = m.pos.copy()
@@ -1076,12 +1085,76 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                 m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
     if c.operation == 2 or (c.operation == 0 and c.floor_allowance > 0):
         _axis_move(m, "line", bottom, c.approach_feed, where, blk)
-        _pocket_rings(m, centre, wall, step, sense, c.finish_feed, where, blk)
+        rings(0.0, c.finish_feed)
         _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
     m.used.update(range(3))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
+                where: Where, blk: SourceBlock) -> None:
+    """Cycle 251's roughing (or floor finishing) at the tool's level: rounded rectangles about ``centre``, the
+    outer one the pocket less ``allowance`` and the tool radius, the inner ones offset inward by equal steps of
+    at most ``step`` [mm]; each entered from the centre side along the pocket's reference axis."""
+    half = (c.sides[0] / 2.0 - allowance - m.tool_radius, c.sides[1] / 2.0 - allowance - m.tool_radius)
+    if min(half) <= 1e-9:
+        where.fail(f"cycle 251: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
+                   column=blk.column, text=blk.code, expected="a tool radius plus Q368 below Q218 / 2 and Q219 / 2")
+    n = max(1, math.ceil(min(half) / step - 1e-9))
+    inset = min(half) / n
+    corner = max(c.corner - allowance - m.tool_radius, 0.0)
+    for j in range(n - 1, -1, -1):
+        off = j * inset
+        _rect_path(m, c, centre, (half[0] - off, half[1] - off), max(corner - off, 0.0), feed, where, blk)
+
+
+def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 251's wall finishing at the tool's level: out from the centre, round the pocket less the tool
+    radius, back to the centre."""
+    half = (c.sides[0] / 2.0 - m.tool_radius, c.sides[1] / 2.0 - m.tool_radius)
+    _rect_path(m, c, centre, half, max(c.corner - m.tool_radius, 0.0), c.finish_feed, where, blk)
+    back = centre.copy()
+    back[m.plane] = m.pos[m.plane]
+    m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
+
+
+def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
+               feed: float, where: Where, blk: SourceBlock) -> None:
+    """From the tool's position a line to the middle of the rectangle's side on the reference axis, then
+    once round the rectangle of half sides ``half`` [mm] with corners rounded by ``corner`` [mm] about
+    ``centre`` turned by the cycle's angle, counter-clockwise for climb milling, at ``feed`` [mm/s]."""
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    k = m.lengths(where)
+    a, b = half
+    corner = min(corner, a, b)
+    s = 1.0 if c.climb else -1.0  # clockwise: the rectangle mirrored across the reference axis
+    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
+    level = centre.copy()
+    level[axis] = m.pos[axis]
+
+    def at(u: float, v: float) -> np.ndarray:
+        v *= s
+        pt, _ = _program_target(m, {"I" + "XYZ"[p]: (u * cos - v * sin) / k, "I" + "XYZ"[q]: (u * sin + v * cos) / k},
+                                level)
+        return pt
+
+    def line(u: float, v: float) -> None:
+        pt = at(u, v)
+        if np.linalg.norm(pt - m.pos) > 1e-12:
+            m.emit("line", pt, Line(m.pos, pt), feed, where, blk.number)
+
+    line(a, 0.0)
+    r = corner
+    for (u0, v0), (cu, cv) in (((a, b - r), (a - r, b - r)), ((-a + r, b), (-a + r, b - r)),
+                               ((-a, -b + r), (-a + r, -b + r)), ((a - r, -b), (a - r, -b + r))):
+        line(u0, v0)
+        if corner > 1e-12:
+            seg = helical_arc(m.pos, at(cu, cv), m.transform.sweep(90.0 * s, axis), plane=axis, axis_end=m.pos[axis])
+            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+    line(a, 0.0)
 
 
 def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]:

@@ -25,6 +25,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
@@ -54,7 +55,8 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 252, 262)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 251, 252,
+                                      262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -70,7 +72,7 @@ _REQUIRED = {
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
-    252: (215, 223, 201, 202, 206, 207, 200, 203, 204),
+    252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -142,6 +144,12 @@ class DrillCycle:
         Cycle 252: Q338, the infeed of the wall finishing [mm]; 0: one pass at the full depth.
     finish_feed : float
         Cycle 252: Q385, the finishing feed [mm/s].
+    sides : tuple of float
+        Cycle 251: Q218, Q219, the pocket's side lengths along its reference and minor axes [mm].
+    corner : float
+        Cycle 251: Q220, the pocket's corner radius [mm].
+    angle : float
+        Cycle 251: Q224, the pocket's rotation about its centre [deg].
     """
 
     number: int
@@ -173,6 +181,9 @@ class DrillCycle:
     operation: int = 0
     finish_infeed: float = 0.0
     finish_feed: float = 0.0
+    sides: tuple[float, float] = (0.0, 0.0)
+    corner: float = 0.0
+    angle: float = 0.0
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -285,8 +296,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     required_q(number, q, where, column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number == 252:
-        return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number in (251, 252):
+        return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
+                                     number=number)
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
@@ -360,13 +372,25 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
 
 
 def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                          column: int) -> DrillCycle:
+                          column: int, number: int = 252) -> DrillCycle:
     """Cycle 252 CIRCULAR POCKET from its Q parameters (TNC 640 user's manual for cycle programming,
     "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
     finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
     depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
     Q366 plunging (0 vertical; absent: vertical; 1 helical needs the tool table's plunge angle: an
-    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``."""
+    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
+
+    ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
+    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
+    over the pocket's centre). The moves are the reader's ``_rectangular_pocket``."""
+    if number == 251:
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle 251: Q367={q[367]:g} (the pocket beside the tool) is not supported", column=column,
+                       text=where.text, expected="Q367=0 (the tool over the pocket's centre)")
+        if not q[218] > 0 or not q[219] > 0:
+            where.fail("cycle 251: the side lengths Q218 and Q219 must be > 0", column=column, text=where.text,
+                       expected="Q218 > 0 and Q219 > 0 [mm]")
+        q = {**q, 223: min(q[218], q[219])}
     if q.get(366, 0.0) != 0.0:
         where.fail(f"cycle 252: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
                    column=column, text=where.text, expected="Q366=0 (vertical plunging)")
@@ -376,12 +400,13 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
                    "Q206 > 0", column=column, text=where.text, expected="Q215 in 0..2, Q223 > 0, Q370 > 0, Q206 > 0")
     depth = q[201] * scale
     return _checked(DrillCycle(
-        number=252, setup=abs(q[200]) * scale, depth=depth, plunge=abs(q[202]) * scale or abs(depth),
+        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=abs(q[202]) * scale or abs(depth),
         feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale, bore_diameter=q[223] * scale,
         climb=q.get(351, 1.0) >= 0, approach_feed=q[206] * feed_scale, side_allowance=abs(q.get(368, 0.0)) * scale,
         floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
-        finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale),
-        where, column)
+        finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
+        sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
+        angle=q.get(224, 0.0)), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -419,7 +444,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor,
                                side_allowance=cycle.side_allowance * factor,
                                floor_allowance=cycle.floor_allowance * factor,
-                               finish_infeed=cycle.finish_infeed * factor)
+                               finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
+                               sides=(cycle.sides[0] * factor, cycle.sides[1] * factor))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

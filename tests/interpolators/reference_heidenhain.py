@@ -37,7 +37,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   called by ``M99`` or ``CYCL CALL`` at the current position; ``203``/``205`` (pecks shrinking by
   Q212 to Q205, 203's Q213 chip breaks, 205's chip breaks every Q257 and re-entry Q258 above the last
   depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
-  ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing).
+  ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
+  RECTANGULAR POCKET (the same with rounded rectangles turned by Q224).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 """
 
@@ -409,7 +410,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 252, 262) and sub == 0:
+    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -502,7 +503,7 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "262":
         _thread_milling(t, line, p)
         return
-    if kind == "252":
+    if kind in ("251", "252"):
         _circular_pocket(t, line, p)
         return
     if kind in ("203", "205"):
@@ -618,7 +619,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     sgn = -1.0 if depth < 0 else 1.0
     op, side, floor = int(p["Q215"]), p.get("Q368", 0.0), p.get("Q369", 0.0)
     kind = "arc_ccw" if p.get("Q351", 1) >= 0 else "arc_cw"
-    wall = p["Q223"] * t.scale / 2 - t.radius
+    wall = (p["Q223"] if "Q218" not in p else min(p["Q218"], p["Q219"])) * t.scale / 2 - t.radius
     step = p.get("Q370", 1.0) * t.radius or wall
     clear = surface - sgn * setup
     _move_z(t, line, "rapid", clear, optional=True)
@@ -628,6 +629,8 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         return _levels(surface, bottom, sgn, each)
 
     def rings(radius: float) -> None:
+        if "Q218" in p:
+            return _rectangles(t, line, p, centre, kind, radius, step)
         r = 0.0
         while r < radius - 1e-9:
             r = min(r + step, radius)
@@ -649,6 +652,11 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
             _move_z(t, line, "feed", z)
             mid = t.prog()
+            if "Q218" in p:
+                half = (p["Q218"] * t.scale / 2 - t.radius, p["Q219"] * t.scale / 2 - t.radius)
+                _rectangle(t, line, p, mid, kind, half, max(p.get("Q220", 0.0) * t.scale - t.radius, 0.0))
+                t.emit(line, "feed", t.machine(mid))
+                continue
             out = mid + np.array([wall, 0.0, 0.0])
             for end, pole in ((out, mid + np.array([wall / 2, 0.0, 0.0])), (out, mid),
                               (mid, mid + np.array([wall / 2, 0.0, 0.0]))):
@@ -659,6 +667,49 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _rectangles(t: _Tnc, line: int, p: dict, centre: np.ndarray, kind: str, wall: float, step: float) -> None:
+    """251's rings: ``wall`` is the 252-style radius (min side / 2 - allowance - R); the outer rectangle is
+    the pocket less the same allowance and R, the inner ones offset inward by min half side / n each, n the
+    rings needed at ``step`` apart."""
+    allowance = min(p["Q218"], p["Q219"]) * t.scale / 2 - t.radius - wall
+    a, b = (p["Q218"] * t.scale / 2 - allowance - t.radius, p["Q219"] * t.scale / 2 - allowance - t.radius)
+    n = max(1, math.ceil(min(a, b) / step - 1e-9))
+    corner = max(p.get("Q220", 0.0) * t.scale - allowance - t.radius, 0.0)
+    here = t.prog()
+    for j in range(n - 1, -1, -1):
+        off = j * min(a, b) / n
+        _rectangle(t, line, p, np.array([centre[0], centre[1], here[2]]), kind, (a - off, b - off),
+                   max(corner - off, 0.0))
+
+
+def _rectangle(t: _Tnc, line: int, p: dict, centre: np.ndarray, kind: str, half: tuple, corner: float) -> None:
+    """A line to (a, 0), then once round the rectangle (corners rounded by ``corner``) back to (a, 0); local
+    axes turned by Q224, v mirrored for clockwise milling."""
+    a, b = half
+    r = min(corner, a, b)
+    s = 1.0 if kind == "arc_ccw" else -1.0
+    ang = math.radians(p.get("Q224", 0.0))
+
+    def pt(u: float, v: float) -> np.ndarray:
+        v *= s
+        return t.machine(centre + np.array([u * math.cos(ang) - v * math.sin(ang),
+                                            u * math.sin(ang) + v * math.cos(ang), 0.0]))
+
+    def go(u: float, v: float) -> None:
+        if np.linalg.norm(pt(u, v) - t.pos) > 1e-12:
+            t.emit(line, "feed", pt(u, v))
+
+    go(a, 0.0)
+    for (u0, v0), (cu, cv), (u1, v1) in (((a, b - r), (a - r, b - r), (a - r, b)),
+                                         ((-a + r, b), (-a + r, b - r), (-a, b - r)),
+                                         ((-a, -b + r), (-a + r, -b + r), (-a + r, -b)),
+                                         ((a - r, -b), (a - r, -b + r), (a, -b + r))):
+        go(u0, v0)
+        if r > 1e-12:
+            t.emit(line, kind, pt(u1, v1), centre=pt(cu, cv))
+    go(a, 0.0)
 
 
 def _thread_milling(t: _Tnc, line: int, p: dict) -> None:

@@ -143,7 +143,8 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
-    ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
+    ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 is not supported"),
+    ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 lacks Q218, Q219"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
     ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20", "Q343=1"),
@@ -251,3 +252,37 @@ def test_circular_pocket_252_stays_inside_the_pocket():
         run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=1"))
     with pytest.raises(GCodeError, match="fill the pocket"):
         run(POCKET.format(q="Q215=0 Q368=8.5 Q369=0 Q338=0 Q351=1 Q370=1"))
+
+
+RECT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 251 RECTANGULAR POCKET {q} Q218=30 "
+        "Q219=16 Q207=500 Q201=-2 Q202=2 Q206=150 Q200=2 Q203=+0 Q204=20 Q370=1 Q366=0 Q385=400 Q367=0\nCYCL CALL")
+
+
+def test_rectangular_pocket_251_roughs_in_rectangles_and_finishes_the_wall():
+    # 30 x 16 about (10, 20), tool radius 2, side allowance 0.5: the outer rectangle has half sides 12.5 x 5.5,
+    # its corners rounded by 3 - 0.5 - 2 = 0.5; 3 rings (5.5 / 2 mm stepover), inset by 5.5 / 3 each
+    prog = run(RECT.format(q="Q215=0 Q368=0.5 Q369=0 Q338=0 Q220=3 Q224=0 Q351=+1"))
+    b = prog.blocks
+    third = 5.5 / 3
+    assert np.allclose(b[4].target, [10 + 12.5 - 2 * third, 20, -2]) and b[4].kind == "line"
+    assert np.allclose(b[5].target, [10 + 12.5 - 2 * third, 20 + 5.5 - 2 * third, -2])
+    outer = [blk for blk in b if blk.kind == "arc" and round(blk.feed * 60) == 500]
+    assert len(outer) == 4 and all(a.segment.ccw for a in outer)
+    assert np.allclose(outer[0].segment.center[:2], [22, 25]) and np.allclose(outer[0].target[:2], [22, 25.5])
+    # the wall at half sides 13 x 6, corners 1, at Q385, then back to the centre
+    wall = [blk for blk in b if blk.feed * 60 == pytest.approx(400)]
+    assert np.allclose(wall[0].target, [23, 20, -2]) and np.allclose(wall[-1].target, [10, 20, -2])
+    assert np.allclose(wall[2].segment.center[:2], [22, 25]) and np.allclose(wall[2].target[:2], [22, 26])
+
+
+def test_rectangular_pocket_251_stays_inside_the_turned_pocket():
+    for q in ("Q215=0 Q368=0.5 Q369=0.2 Q338=1 Q220=3 Q224=30 Q351=+1", "Q215=2 Q368=0 Q369=0 Q338=0 Q220=0 Q224=-90 "
+              "Q351=-1", "Q215=1 Q368=0 Q369=0 Q338=0 Q220=9 Q224=0 Q351=-1"):
+        prog = run(RECT.format(q=q))
+        a = math.radians(float(q.split("Q224=")[1].split()[0]))
+        for blk in prog.blocks[2:]:  # in the pocket's own axes, within the half sides less the tool radius
+            dx, dy = blk.target[0] - 10, blk.target[1] - 20
+            u, v = dx * math.cos(a) + dy * math.sin(a), -dx * math.sin(a) + dy * math.cos(a)
+            assert abs(u) <= 13 + 1e-9 and abs(v) <= 6 + 1e-9 and blk.target[2] >= -2 - 1e-9
+    with pytest.raises(GCodeError, match="Q367=1"):
+        run(RECT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q367=0", "Q367=1"))
