@@ -52,7 +52,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/252/262
+    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/251/252/256/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -929,6 +929,9 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in (251, 252):
         _circular_pocket(m, c, surface, where, blk)
         return
+    if c.number == 256:
+        _rectangular_stud(m, c, surface, where, blk)
+        return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
@@ -1121,16 +1124,17 @@ def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, whe
 
 
 def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
-               feed: float, where: Where, blk: SourceBlock) -> None:
+               feed: float, where: Where, blk: SourceBlock, *, ccw: bool | None = None) -> None:
     """From the tool's position a line to the middle of the rectangle's side on the reference axis, then
     once round the rectangle of half sides ``half`` [mm] with corners rounded by ``corner`` [mm] about
-    ``centre`` turned by the cycle's angle, counter-clockwise for climb milling, at ``feed`` [mm/s]."""
+    ``centre`` turned by the cycle's angle, counter-clockwise for climb milling (or as ``ccw`` says), at
+    ``feed`` [mm/s]."""
     axis = m.plane
     p, q = PLANE_AXES[axis]
     k = m.lengths(where)
     a, b = half
     corner = min(corner, a, b)
-    s = 1.0 if c.climb else -1.0  # clockwise: the rectangle mirrored across the reference axis
+    s = 1.0 if (c.climb if ccw is None else ccw) else -1.0  # clockwise: mirrored across the reference axis
     cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
     level = centre.copy()
     level[axis] = m.pos[axis]
@@ -1155,6 +1159,73 @@ def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float
             seg = helical_arc(m.pos, at(cu, cv), m.transform.sweep(90.0 * s, axis), plane=axis, axis_end=m.pos[axis])
             m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
     line(a, 0.0)
+
+
+def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 256 RECTANGULAR STUD about the current position (TNC 640 user's manual for cycle programming
+    34059x-01, "RECTANGULAR STUD (Cycle 256)", cycle run: from the stud's centre along +X to the starting
+    position 2 mm right of the blank Q424; FMAX to the set-up clearance, at Q206 to the plunging depth; a
+    half circle tangentially onto the contour, one revolution; stepovers until the finished size; a half
+    circle tangentially off back to the starting position; the next plunging depth; FMAX out).
+
+    Our reading where the manual leaves it open: the revolutions run the rounded rectangle (Q218 x Q219,
+    corners Q220, turned by Q224) grown by Q368 and the tool radius, and at equal stepovers of at most Q370
+    x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
+    by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
+    the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
+    each depth of Q338, as roughing. The tool ends over the starting position.
+    """
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    grow = c.side_allowance + m.tool_radius
+    final = (c.sides[0] / 2.0 + grow, c.sides[1] / 2.0 + grow)
+    blank = (c.blank[0] / 2.0 + m.tool_radius, c.blank[1] / 2.0 + m.tool_radius)
+    span = max(blank[0] - final[0], blank[1] - final[1], 0.0)
+    n = max(1, math.ceil(span / (c.stepover * m.tool_radius or span or 1.0) - 1e-9))
+    cw = c.climb
+    k = m.lengths(where)
+    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
+    centre = m.pos.copy()
+    plane = PLANE_AXES[axis]
+
+    def at(u: float) -> np.ndarray:
+        pt, _ = _program_target(m, {"I" + "XYZ"[plane[0]]: u * cos / k, "I" + "XYZ"[plane[1]]: u * sin / k}, centre)
+        pt[axis] = m.pos[axis]
+        return pt
+
+    start_u = c.blank[0] / 2.0 + 2.0 + m.tool_radius
+    first = at(start_u)
+    m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    half = m.transform.sweep(180.0 if cw else -180.0, axis)  # the half circles: against the revolutions
+    passes = [(j * span / n, c.feed) for j in range(n - 1, -1, -1)]
+    levels = [(z, passes) for z in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d)]
+    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+        levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
+                                                                                c.finish_infeed or abs(c.depth), d)]
+    for level, rounds in levels:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        for i, (off, feed) in enumerate(rounds):
+            a = final[0] + off
+            if i == 0:
+                seg = helical_arc(m.pos, (m.pos + at(a)) / 2.0, half, plane=axis, axis_end=level)
+                m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+            _rect_path(m, c, _at_level(centre, axis, level), (a, final[1] + off), max(c.corner + grow + off, 0.0),
+                       feed, where, blk, ccw=not cw)
+        seg = helical_arc(m.pos, (m.pos + at(start_u)) / 2.0, half, plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, rounds[-1][1], where, blk.number)
+    m.used.update(range(3))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _at_level(point: np.ndarray, axis: int, level: float) -> np.ndarray:
+    """``point`` with its ``axis`` coordinate ``level``."""
+    out = point.copy()
+    out[axis] = level
+    return out
 
 
 def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]:

@@ -26,6 +26,8 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
+``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
+                          (:func:`circular_pocket_cycle`)
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
@@ -56,7 +58,7 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 251, 252,
-                                      262)
+                                      256, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -73,6 +75,7 @@ _REQUIRED = {
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
+    256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -150,6 +153,8 @@ class DrillCycle:
         Cycle 251: Q220, the pocket's corner radius [mm].
     angle : float
         Cycle 251: Q224, the pocket's rotation about its centre [deg].
+    blank : tuple of float
+        Cycle 256: Q424, Q425, the workpiece blank's side lengths [mm].
     """
 
     number: int
@@ -184,6 +189,7 @@ class DrillCycle:
     sides: tuple[float, float] = (0.0, 0.0)
     corner: float = 0.0
     angle: float = 0.0
+    blank: tuple[float, float] = (0.0, 0.0)
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -296,7 +302,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     required_q(number, q, where, column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number in (251, 252):
+    if number in (251, 252, 256):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
     if q.get(395, 0.0) != 0.0:
@@ -382,21 +388,26 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
     side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
-    over the pocket's centre). The moves are the reader's ``_rectangular_pocket``."""
-    if number == 251:
+    over the pocket's centre). The moves are the reader's ``_rectangular_pocket``.
+
+    ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
+    Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are the
+    reader's ``_rectangular_stud``."""
+    if number in (251, 256):
         if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle 251: Q367={q[367]:g} (the pocket beside the tool) is not supported", column=column,
-                       text=where.text, expected="Q367=0 (the tool over the pocket's centre)")
-        if not q[218] > 0 or not q[219] > 0:
-            where.fail("cycle 251: the side lengths Q218 and Q219 must be > 0", column=column, text=where.text,
-                       expected="Q218 > 0 and Q219 > 0 [mm]")
-        q = {**q, 223: min(q[218], q[219])}
+            where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
+                       column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
+        if not q[218] > 0 or not q[219] > 0 or (number == 256 and (q[424] < q[218] or q[425] < q[219])):
+            where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
+                       "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
+                       "Q425 >= Q219 [mm]")
+        q = {215: 0.0, **q, 223: min(q[218], q[219])}
     if q.get(366, 0.0) != 0.0:
-        where.fail(f"cycle 252: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
+        where.fail(f"cycle {number}: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
                    column=column, text=where.text, expected="Q366=0 (vertical plunging)")
     operation = int(q[215])
     if operation not in (0, 1, 2) or not q[223] > 0 or not q.get(370, 1.0) > 0 or not q[206] > 0:
-        where.fail("cycle 252: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
+        where.fail(f"cycle {number}: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
                    "Q206 > 0", column=column, text=where.text, expected="Q215 in 0..2, Q223 > 0, Q370 > 0, Q206 > 0")
     depth = q[201] * scale
     return _checked(DrillCycle(
@@ -406,7 +417,7 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
         finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
-        angle=q.get(224, 0.0)), where, column)
+        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale)), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -445,7 +456,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                side_allowance=cycle.side_allowance * factor,
                                floor_allowance=cycle.floor_allowance * factor,
                                finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
-                               sides=(cycle.sides[0] * factor, cycle.sides[1] * factor))
+                               sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
+                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

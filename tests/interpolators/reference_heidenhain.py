@@ -38,7 +38,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   Q212 to Q205, 203's Q213 chip breaks, 205's chip breaks every Q257 and re-entry Q258 above the last
   depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
   ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
-  RECTANGULAR POCKET (the same with rounded rectangles turned by Q224).
+  RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
+  (revolutions from the blank in to the stud, half circles on and off).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 """
 
@@ -410,7 +411,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 262) and sub == 0:
+    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -505,6 +506,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind in ("251", "252"):
         _circular_pocket(t, line, p)
+        return
+    if kind == "256":
+        _stud(t, line, p)
         return
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
@@ -666,6 +670,48 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         rings(wall)
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _stud(t: _Tnc, line: int, p: dict) -> None:
+    """256: rapid to 2 mm + R right of the blank Q424/2, FMAX to Q200, at each depth of Q202 (to the depth
+    less Q369): a half circle (counter-clockwise for climb) onto the first revolution, revolutions from the
+    blank (Q424 x Q425 + 2R) to the stud grown by Q368 + R in equal steps of at most Q370 x R, clockwise
+    for climb, a half circle back to the start; finishing (Q215 = 2, or 0 with Q368 > 0): the same with one
+    revolution round the stud grown by R at each depth of Q338; FMAX out (set-up clearance, Q204)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot or p.get("Q224", 0.0):
+        raise ReferenceError("256 under a transformation or turned")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    op, side = int(p.get("Q215", 0)), p.get("Q368", 0.0) * t.scale
+    R = t.radius
+    kind = "arc_cw" if p.get("Q351", 1) >= 0 else "arc_ccw"
+    back = "arc_ccw" if kind == "arc_cw" else "arc_cw"
+    a0, b0 = p["Q218"] * t.scale / 2 + side + R, p["Q219"] * t.scale / 2 + side + R
+    span = max(p["Q424"] * t.scale / 2 + R - a0, p["Q425"] * t.scale / 2 + R - b0, 0.0)
+    n = max(1, math.ceil(span / (p.get("Q370", 1.0) * R or span or 1.0) - 1e-9))
+    centre = t.prog()
+    start = centre + np.array([p["Q424"] * t.scale / 2 + 2 + R, 0.0, 0.0])
+    t.emit(line, "rapid", t.machine(start), rows="optional")
+    _move_z(t, line, "rapid", surface - sgn * setup, optional=True)
+    jobs = [(z, [j * span / n for j in range(n - 1, -1, -1)])
+            for z in _levels(surface, surface + depth - sgn * p.get("Q369", 0.0), sgn, p["Q202"] or abs(depth))]
+    if op == 2 or (op == 0 and side > 0):
+        jobs += [(z, [-side]) for z in _levels(surface, surface + depth, sgn, p.get("Q338", 0.0) or abs(depth))]
+    for z, offs in jobs:
+        _move_z(t, line, "feed", z, optional=True)
+        here = t.prog()
+        for i, off in enumerate(offs):
+            a = a0 + off
+            on = np.array([centre[0] + a, centre[1], here[2]])
+            if i == 0:
+                t.emit(line, back, t.machine(on), centre=t.machine((on + here) / 2))
+            _rectangle(t, line, {"Q224": 0.0}, np.array([centre[0], centre[1], here[2]]),
+                       "arc_ccw" if kind == "arc_ccw" else "arc_cw", (a, b0 + off),
+                       max(p.get("Q220", 0.0) * t.scale + side + R + off, 0.0))
+        end = np.array([start[0], start[1], here[2]])
+        t.emit(line, back, t.machine(end), centre=t.machine((end + t.prog()) / 2))
+    _move_z(t, line, "rapid", surface - sgn * setup)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 

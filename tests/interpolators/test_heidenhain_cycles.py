@@ -286,3 +286,41 @@ def test_rectangular_pocket_251_stays_inside_the_turned_pocket():
             assert abs(u) <= 13 + 1e-9 and abs(v) <= 6 + 1e-9 and blk.target[2] >= -2 - 1e-9
     with pytest.raises(GCodeError, match="Q367=1"):
         run(RECT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q367=0", "Q367=1"))
+
+
+STUD = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 256 RECTANGULAR STUD {q} Q218=20 Q424=26 "
+        "Q219=10 Q425=14 Q207=500 Q201=-2 Q202=2 Q206=150 Q200=2 Q203=+0 Q204=20 Q385=400 Q367=0\nCYCL CALL")
+
+
+def test_rectangular_stud_256_steps_in_from_the_blank():
+    # TNC 640 cycle manual, cycle 256: start 2 mm right of the blank (13 + 2 + R = 17 from the centre), a half
+    # circle onto the contour, revolutions stepping in from the blank (15 x 9 with R) to the stud plus Q368
+    # and R (12.5 x 7.5) in 2 steps of 1.25 (<= Q370 x R = 2), clockwise (climb), a half circle back out;
+    # then one finishing revolution at 12 x 7 (corner Q220 + R = 3) at Q385
+    prog = run(STUD.format(q="Q215=0 Q368=0.5 Q369=0 Q338=0 Q220=1 Q224=0 Q351=+1 Q370=1"))
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[2:5]] == [[27, 20, 50], [27, 20, 2], [27, 20, -2]]
+    assert b[5].kind == "arc" and b[5].segment.ccw and np.allclose(b[5].target, [23.75, 20, -2])
+    assert np.allclose(b[6].target, [23.75, 16, -2]) and not b[7].segment.ccw  # down the right side, clockwise
+    assert np.allclose(b[7].segment.center[:2], [19, 16]) and np.allclose(b[7].target[:2], [19, 11.25])
+    sides = sorted({round(float(blk.target[0]), 6) for blk in b if blk.kind == "line" and blk.target[1] == 20})
+    assert sides == [22, 22.5, 23.75, 27]  # the revolutions close on the reference axis; the plunge at 27
+    finish = [blk for blk in b if blk.feed * 60 == pytest.approx(400)]
+    assert np.allclose(finish[0].target, [22, 20, -2]) and np.allclose(finish[-1].target, [27, 20, -2])
+    assert np.allclose(b[-2].target, [27, 20, 2]) and np.allclose(b[-1].target, [27, 20, 20])
+
+
+def test_rectangular_stud_256_never_cuts_into_the_stud():
+    for q in ("Q215=1 Q368=0 Q369=0.3 Q338=0 Q220=0 Q224=0 Q351=-1 Q370=0.6",
+              "Q215=2 Q368=0 Q369=0 Q338=1 Q220=4 Q224=0 Q351=+1 Q370=1",
+              "Q215=0 Q368=0.2 Q369=0 Q338=0 Q220=2 Q224=30 Q351=+1 Q370=1.5"):
+        prog = run(STUD.format(q=q)) if "Q224=0 " in q else parse_heidenhain(
+            HEAD + STUD.format(q=q) + "\nEND PGM T MM\n", source="t.h", context=CTX)
+        a = math.radians(float(q.split("Q224=")[1].split()[0]))
+        for blk in prog.blocks[3:]:  # the tool centre stays R outside the stud 20 x 10 (its corners rounded)
+            dx, dy = blk.target[0] - 10, blk.target[1] - 20
+            u, v = abs(dx * math.cos(a) + dy * math.sin(a)), abs(-dx * math.sin(a) + dy * math.cos(a))
+            outside = math.hypot(max(u - 10, 0.0), max(v - 5, 0.0))
+            assert outside >= 2 - 1e-9 and blk.target[2] >= -2 - 1e-9
+    with pytest.raises(GCodeError, match="Q424, Q425 at least"):
+        run(STUD.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q424=26", "Q424=18"))
