@@ -52,7 +52,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240
+    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/251/252/256/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -74,7 +74,11 @@ selects another work offset of the context) + the
 datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
 the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
 perpendicular to the first contour element as on the TNC) to the R0 block (the exit move), by
-:func:`interpolators.compensation.compensate`. Anything not listed (DEP CT ending RL/RR, FK,
+:func:`interpolators.compensation.compensate`. The arc of ``DEP CT .. R0`` is the run's last contour
+element: the manuals give only the contour arc (TNC 640 user's manual, "Approaching and departing a
+contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
+grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
+next R0 block leaves from there). Anything not listed (FK,
 other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
@@ -919,6 +923,15 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
         return
+    if c.number == 262:
+        _thread_milling(m, c, surface, where, blk)
+        return
+    if c.number in (251, 252):
+        _circular_pocket(m, c, surface, where, blk)
+        return
+    if c.number == 256:
+        _rectangular_stud(m, c, surface, where, blk)
+        return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
     for mv in hole_moves(c, start=m.pos[axis], surface=surface):
@@ -972,6 +985,279 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 262 THREAD MILLING at the current position (TNC 426/430 user's manual, "THREAD MILLING
+    (Cycle 262)", process: FMAX to the set-up clearance, in at the pre-positioning feed Q253 to the
+    starting plane, a tangential approach to the thread diameter, the helix, a tangential departure back
+    to the centre, FMAX out to the set-up clearance and the 2nd set-up clearance).
+
+    The manual leaves the starting plane and the approach to the control; our reading, kept inside the
+    thread: the helix runs on the diameter Q335 less the tool diameter at the feed Q207, counter-clockwise
+    for climb milling (Q351 = +1, M3), and upward when that follows the thread (a right-hand thread
+    climb-milled, a left-hand one up-cut), else downward. Q355 = 0 turns once, over one pitch ending
+    (upward: starting) at the thread depth; Q355 = 1 runs from the depth to the surface (downward: the
+    reverse). The approach and the departure are half circles at the helix's end levels between the
+    centre and the helix, on the reference-axis side, in the helix's sense (so they join it tangentially).
+    """
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    r = c.bore_diameter / 2.0 - m.tool_radius
+    if r <= 1e-9:
+        where.fail(f"cycle 262: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
+                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
+                   expected="a tool radius below Q335 / 2")
+    upward = c.right_hand == c.climb
+    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
+    start_level, end_level = (bottom, far) if upward else (far, bottom)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+    centre = m.pos.copy()
+    k = m.lengths(where)
+    start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
+    start[axis] = start_level
+    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    turns = abs(far - bottom) / c.helix_pitch
+    for pole, sweep, level in (((centre + start) / 2.0, 180.0, start_level), (centre, 360.0 * turns, end_level)):
+        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    back = centre.copy()
+    back[axis] = end_level
+    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, sense), plane=axis, axis_end=end_level)
+    m.emit("arc", back, seg, c.feed, where, blk.number)
+    m.used.update((p, q, axis))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 252 CIRCULAR POCKET about the current position (TNC 640 user's manual for cycle programming,
+    "CIRCULAR POCKET (Cycle 252)", cycle run: FMAX to the set-up clearance, plunge in the centre to each
+    plunging depth, rough out from the inside, leaving the allowances Q368/Q369, then up by the set-up
+    clearance and at FMAX back to the centre; then finish the wall (in infeeds of Q338) approached
+    tangentially, then the floor from the inside out; FMAX to the set-up clearance and the 2nd one).
+
+    The manual leaves the roughing path to the control; our reading, kept inside the pocket: at each
+    depth (plunged vertically at Q206) full circles about the centre, Q370 x the tool radius apart, out to
+    the pocket radius less the allowance and the tool radius, each reached by a straight step outward
+    along the reference axis, at the milling feed Q207, counter-clockwise for climb milling (Q351 = +1).
+    The wall is finished at Q385 by a half circle out from the centre, a full circle and a half circle back
+    (as cycle 262); the floor by the roughing's circles at the depth out to the wall. Q215 = 0 finishes
+    only what has an allowance; Q215 = 2 finishes wall and floor.
+    """
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    wall = c.bore_diameter / 2.0 - m.tool_radius
+    rough = wall - c.side_allowance
+    if rough <= 1e-9:
+        where.fail(f"cycle 252: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket "
+                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
+                   expected="a tool radius plus Q368 below Q223 / 2")
+    step = c.stepover * m.tool_radius or wall
+    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    centre = m.pos.copy()
+
+    def rings(allowance: float, feed: float) -> None:
+        if c.number == 251:
+            _rect_rings(m, c, centre, allowance, step, feed, where, blk)
+        else:
+            _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
+    if c.operation in (0, 1):
+        for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
+            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            rings(c.side_allowance, c.feed)
+            _back_to_centre(m, centre, level - d * c.setup, where, blk)
+    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+        for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
+            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            if c.number == 251:
+                _rect_wall(m, c, centre, sense, where, blk)
+                continue
+            k = m.lengths(where)
+            start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
+            here = m.pos.copy()
+            for pole, sweep in (((here + start) / 2.0, 180.0), (here, 360.0), (None, 180.0)):
+                pole = (m.pos + here) / 2.0 if pole is None else pole
+                seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
+                m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
+    if c.operation == 2 or (c.operation == 0 and c.floor_allowance > 0):
+        _axis_move(m, "line", bottom, c.approach_feed, where, blk)
+        rings(0.0, c.finish_feed)
+        _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
+    m.used.update(range(3))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
+                where: Where, blk: SourceBlock) -> None:
+    """Cycle 251's roughing (or floor finishing) at the tool's level: rounded rectangles about ``centre``, the
+    outer one the pocket less ``allowance`` and the tool radius, the inner ones offset inward by equal steps of
+    at most ``step`` [mm]; each entered from the centre side along the pocket's reference axis."""
+    half = (c.sides[0] / 2.0 - allowance - m.tool_radius, c.sides[1] / 2.0 - allowance - m.tool_radius)
+    if min(half) <= 1e-9:
+        where.fail(f"cycle 251: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
+                   column=blk.column, text=blk.code, expected="a tool radius plus Q368 below Q218 / 2 and Q219 / 2")
+    n = max(1, math.ceil(min(half) / step - 1e-9))
+    inset = min(half) / n
+    corner = max(c.corner - allowance - m.tool_radius, 0.0)
+    for j in range(n - 1, -1, -1):
+        off = j * inset
+        _rect_path(m, c, centre, (half[0] - off, half[1] - off), max(corner - off, 0.0), feed, where, blk)
+
+
+def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 251's wall finishing at the tool's level: out from the centre, round the pocket less the tool
+    radius, back to the centre."""
+    half = (c.sides[0] / 2.0 - m.tool_radius, c.sides[1] / 2.0 - m.tool_radius)
+    _rect_path(m, c, centre, half, max(c.corner - m.tool_radius, 0.0), c.finish_feed, where, blk)
+    back = centre.copy()
+    back[m.plane] = m.pos[m.plane]
+    m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
+
+
+def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
+               feed: float, where: Where, blk: SourceBlock, *, ccw: bool | None = None) -> None:
+    """From the tool's position a line to the middle of the rectangle's side on the reference axis, then
+    once round the rectangle of half sides ``half`` [mm] with corners rounded by ``corner`` [mm] about
+    ``centre`` turned by the cycle's angle, counter-clockwise for climb milling (or as ``ccw`` says), at
+    ``feed`` [mm/s]."""
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    k = m.lengths(where)
+    a, b = half
+    corner = min(corner, a, b)
+    s = 1.0 if (c.climb if ccw is None else ccw) else -1.0  # clockwise: mirrored across the reference axis
+    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
+    level = centre.copy()
+    level[axis] = m.pos[axis]
+
+    def at(u: float, v: float) -> np.ndarray:
+        v *= s
+        pt, _ = _program_target(m, {"I" + "XYZ"[p]: (u * cos - v * sin) / k, "I" + "XYZ"[q]: (u * sin + v * cos) / k},
+                                level)
+        return pt
+
+    def line(u: float, v: float) -> None:
+        pt = at(u, v)
+        if np.linalg.norm(pt - m.pos) > 1e-12:
+            m.emit("line", pt, Line(m.pos, pt), feed, where, blk.number)
+
+    line(a, 0.0)
+    r = corner
+    for (u0, v0), (cu, cv) in (((a, b - r), (a - r, b - r)), ((-a + r, b), (-a + r, b - r)),
+                               ((-a, -b + r), (-a + r, -b + r)), ((a - r, -b), (a - r, -b + r))):
+        line(u0, v0)
+        if corner > 1e-12:
+            seg = helical_arc(m.pos, at(cu, cv), m.transform.sweep(90.0 * s, axis), plane=axis, axis_end=m.pos[axis])
+            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+    line(a, 0.0)
+
+
+def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycle 256 RECTANGULAR STUD about the current position (TNC 640 user's manual for cycle programming
+    34059x-01, "RECTANGULAR STUD (Cycle 256)", cycle run: from the stud's centre along +X to the starting
+    position 2 mm right of the blank Q424; FMAX to the set-up clearance, at Q206 to the plunging depth; a
+    half circle tangentially onto the contour, one revolution; stepovers until the finished size; a half
+    circle tangentially off back to the starting position; the next plunging depth; FMAX out).
+
+    Our reading where the manual leaves it open: the revolutions run the rounded rectangle (Q218 x Q219,
+    corners Q220, turned by Q224) grown by Q368 and the tool radius, and at equal stepovers of at most Q370
+    x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
+    by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
+    the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
+    each depth of Q338, as roughing. The tool ends over the starting position.
+    """
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    top, bottom = surface - d * c.setup, surface + c.depth
+    grow = c.side_allowance + m.tool_radius
+    final = (c.sides[0] / 2.0 + grow, c.sides[1] / 2.0 + grow)
+    blank = (c.blank[0] / 2.0 + m.tool_radius, c.blank[1] / 2.0 + m.tool_radius)
+    span = max(blank[0] - final[0], blank[1] - final[1], 0.0)
+    n = max(1, math.ceil(span / (c.stepover * m.tool_radius or span or 1.0) - 1e-9))
+    cw = c.climb
+    k = m.lengths(where)
+    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
+    centre = m.pos.copy()
+    plane = PLANE_AXES[axis]
+
+    def at(u: float) -> np.ndarray:
+        pt, _ = _program_target(m, {"I" + "XYZ"[plane[0]]: u * cos / k, "I" + "XYZ"[plane[1]]: u * sin / k}, centre)
+        pt[axis] = m.pos[axis]
+        return pt
+
+    start_u = c.blank[0] / 2.0 + 2.0 + m.tool_radius
+    first = at(start_u)
+    m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    half = m.transform.sweep(180.0 if cw else -180.0, axis)  # the half circles: against the revolutions
+    passes = [(j * span / n, c.feed) for j in range(n - 1, -1, -1)]
+    levels = [(z, passes) for z in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d)]
+    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+        levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
+                                                                                c.finish_infeed or abs(c.depth), d)]
+    for level, rounds in levels:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        for i, (off, feed) in enumerate(rounds):
+            a = final[0] + off
+            if i == 0:
+                seg = helical_arc(m.pos, (m.pos + at(a)) / 2.0, half, plane=axis, axis_end=level)
+                m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+            _rect_path(m, c, _at_level(centre, axis, level), (a, final[1] + off), max(c.corner + grow + off, 0.0),
+                       feed, where, blk, ccw=not cw)
+        seg = helical_arc(m.pos, (m.pos + at(start_u)) / 2.0, half, plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, rounds[-1][1], where, blk.number)
+    m.used.update(range(3))
+    _axis_move(m, "rapid", top, math.inf, where, blk)
+    if d * (surface - d * c.second_setup - top) < 0:
+        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _at_level(point: np.ndarray, axis: int, level: float) -> np.ndarray:
+    """``point`` with its ``axis`` coordinate ``level``."""
+    out = point.copy()
+    out[axis] = level
+    return out
+
+
+def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]:
+    """The levels from ``surface`` in steps of ``step`` toward ``bottom`` (the last one ``bottom``) [mm]."""
+    n = max(1, math.ceil(abs(bottom - surface) / step - 1e-9))
+    return [surface + d * min(step * (i + 1), abs(bottom - surface)) for i in range(n)]
+
+
+def _pocket_rings(m: _Machine, centre: np.ndarray, radius: float, step: float, sense: float, feed: float,
+                  where: Where, blk: SourceBlock) -> None:
+    """Full circles about ``centre`` (at the tool's level), ``step`` apart out to ``radius`` [mm], each reached
+    by a straight step outward along the program's reference axis at ``feed`` [mm/s]."""
+    axis = m.plane
+    pole = centre.copy()
+    pole[axis] = m.pos[axis]
+    k = m.lengths(where)
+    r = 0.0
+    while r < radius - 1e-9:
+        r = min(r + step, radius)
+        out, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: r / k}, pole)
+        m.emit("line", out, Line(m.pos, out), feed, where, blk.number)
+        seg = helical_arc(m.pos, pole, math.copysign(360.0, sense), plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
+
+def _back_to_centre(m: _Machine, centre: np.ndarray, level: float, where: Where, blk: SourceBlock) -> None:
+    """At FMAX up to ``level`` [mm], then over the pocket's ``centre``."""
+    _axis_move(m, "rapid", level, math.inf, where, blk)
+    target = centre.copy()
+    target[m.plane] = level
+    if not np.array_equal(target, m.pos):
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
 def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:
@@ -1428,8 +1714,8 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if form == "LN":  # TNC 640 manual: "PN is separated from PE by the distance LEN plus the tool radius"
         sizes["length"] += m.comp_radius
     _depart(form, sizes, target, m, where, blk)
-    if exit_run:
-        _finish_compensation(m)
+    if exit_run:  # DEP CT under RL/RR: the arc is a compensated element, the run has no exit line
+        _finish_compensation(m, open_end=form == "CT")
     if target[m.plane] != m.pos[m.plane]:
         up = m.pos.copy()
         up[m.plane] = target[m.plane]
@@ -1523,8 +1809,9 @@ def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
     return False
 
 
-def _finish_compensation(m: _Machine) -> None:
-    """Replace the blocks of the finished run by the tool-centre path."""
+def _finish_compensation(m: _Machine, *, open_end: bool = False) -> None:
+    """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
+    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move."""
     start, m.comp_start = m.comp_start, None
     side = "left" if m.comp_side == "RL" else "right"
     m.comp = "R0"
@@ -1532,7 +1819,8 @@ def _finish_compensation(m: _Machine) -> None:
     if m.comp_radius == 0.0 or not run:
         return
     try:
-        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular")
+        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
+                         open_end=open_end)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}", column=1,

@@ -20,11 +20,16 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211 (Q395 must be 0: depth at the tip)
 ``CYCL DEF 203``          as 200, plus Q212 decrement, Q213 breaks, Q205 minimum plunge, Q208
                           retraction feed, Q256 chip-break retraction
-``CYCL DEF 205``          as 203 (Q212, Q205, Q208, Q256, Q257 chip-break depth), Q258/Q259
+``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
                           advanced stop distances
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
+``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
+                          (:func:`circular_pocket_cycle`)
+``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
+``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
 
@@ -45,13 +50,15 @@ from interpolators.heidenhain_words import read_value, read_words
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
-           "pecking_cycle", "drill_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
+           "pecking_cycle", "drill_cycle", "thread_milling_cycle",
+           "circular_pocket_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 251, 252,
+                                      256, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -66,6 +73,9 @@ _REQUIRED = {
     203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
+    252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
+    256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -103,6 +113,9 @@ class DrillCycle:
         Q213 (203): chip breaks before a full retraction; 0 retracts every infeed.
     chip_break : float
         Q256: retraction of a chip break [mm].
+    chip_depth : float
+        Q257 (205): within each infeed the tool breaks the chip (retracting ``chip_break`` at rapid) after
+        every ``chip_depth`` [mm]; 0: no chip breaking.
     retract_feed : float or None
         Q208 (203): retraction feed [mm/s]; ``None`` retracts at rapid.
     advance : float or None
@@ -117,7 +130,31 @@ class DrillCycle:
     helix_pitch : float
         Cycle 208: the infeed per helix turn Q334 [mm].
     climb : bool
-        Cycle 208: climb milling with M3 (Q351 = +1: counter-clockwise), else up-cut (clockwise).
+        Cycles 208, 262: climb milling with M3 (Q351 = +1: counter-clockwise), else up-cut (clockwise).
+    right_hand : bool
+        Cycle 262: a right-hand thread (Q239 > 0); with ``climb`` it gives the milling direction.
+    continuous : bool
+        Cycle 262: Q355 = 1, one helix over the whole thread depth (else Q355 = 0: one 360 degree turn).
+    approach_feed : float
+        Cycle 262: Q253, the feed in and out along the tool axis [mm/s]; 252: Q206, the plunging feed.
+    side_allowance, floor_allowance : float
+        Cycle 252: Q368, Q369, the finishing allowances on the wall and the floor [mm].
+    stepover : float
+        Cycle 252: Q370, the path overlap factor: the rings are Q370 x the tool radius apart [-].
+    operation : int
+        Cycle 252: Q215, 0 roughing and finishing, 1 roughing only, 2 finishing only.
+    finish_infeed : float
+        Cycle 252: Q338, the infeed of the wall finishing [mm]; 0: one pass at the full depth.
+    finish_feed : float
+        Cycle 252: Q385, the finishing feed [mm/s].
+    sides : tuple of float
+        Cycle 251: Q218, Q219, the pocket's side lengths along its reference and minor axes [mm].
+    corner : float
+        Cycle 251: Q220, the pocket's corner radius [mm].
+    angle : float
+        Cycle 251: Q224, the pocket's rotation about its centre [deg].
+    blank : tuple of float
+        Cycle 256: Q424, Q425, the workpiece blank's side lengths [mm].
     """
 
     number: int
@@ -133,12 +170,26 @@ class DrillCycle:
     min_plunge: float = 0.0
     chip_breaks: int = 0
     chip_break: float = 0.0
+    chip_depth: float = 0.0
     retract_feed: float | None = None
     advance: float | None = None
     disengage: tuple[float, float] = (0.0, 0.0)
     bore_diameter: float = 0.0
     helix_pitch: float = 0.0
     climb: bool = True
+    right_hand: bool = True
+    continuous: bool = False
+    approach_feed: float = 0.0
+    side_allowance: float = 0.0
+    floor_allowance: float = 0.0
+    stepover: float = 1.0
+    operation: int = 0
+    finish_infeed: float = 0.0
+    finish_feed: float = 0.0
+    sides: tuple[float, float] = (0.0, 0.0)
+    corner: float = 0.0
+    angle: float = 0.0
+    blank: tuple[float, float] = (0.0, 0.0)
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -249,15 +300,17 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
+    if number == 262:
+        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number in (251, 252, 256):
+        return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
+                                     number=number)
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
     if number == 240 and q.get(343, 0.0) != 0.0:
         where.fail("cycle 240: Q343=1 (centering to a diameter) needs the tool's point angle", column=column,
                    text=where.text, expected="Q343=0 (depth Q201)")
-    if number == 205 and q.get(257, 0.0) != 0.0:
-        where.fail("cycle 205: chip breaking within an infeed (Q257 != 0) is not supported", column=column,
-                   text=where.text, expected="Q257=0")
     depth = q[201] * scale
     base = dict(number=number, setup=abs(q[200]) * scale, depth=depth, surface=q[203] * scale,
                 second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0))
@@ -297,7 +350,74 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
         retract_feed=retract * feed_scale if retract > 0 else None,
-        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None, **base), where, column)
+        advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
+        chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
+
+
+def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                         column: int) -> DrillCycle:
+    """Cycle 262 THREAD MILLING from its Q parameters (TNC 426/430 user's manual, "THREAD MILLING
+    (Cycle 262)"): Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201 thread
+    depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the thread
+    depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351 climb
+    (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed. The moves are the reader's
+    ``_thread_milling``."""
+    steps = int(q[355])
+    if steps not in (0, 1) or q[355] != steps:
+        where.fail(f"cycle 262: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
+                   column=column, text=where.text, expected="Q355=0 (one helix) or Q355=1 (continuous)")
+    if q[239] == 0 or not q[335] > 0 or not q[253] > 0:
+        where.fail("cycle 262: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0", column=column,
+                   text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+    depth = q[201] * scale
+    return _checked(DrillCycle(number=262, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth),
+                               feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
+                               bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
+                               climb=q[351] >= 0, right_hand=q[239] > 0, continuous=steps == 1,
+                               approach_feed=q[253] * feed_scale), where, column)
+
+
+def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                          column: int, number: int = 252) -> DrillCycle:
+    """Cycle 252 CIRCULAR POCKET from its Q parameters (TNC 640 user's manual for cycle programming,
+    "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
+    finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
+    depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
+    Q366 plunging (0 vertical; absent: vertical; 1 helical needs the tool table's plunge angle: an
+    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
+
+    ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
+    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
+    over the pocket's centre). The moves are the reader's ``_rectangular_pocket``.
+
+    ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
+    Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are the
+    reader's ``_rectangular_stud``."""
+    if number in (251, 256):
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
+                       column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
+        if not q[218] > 0 or not q[219] > 0 or (number == 256 and (q[424] < q[218] or q[425] < q[219])):
+            where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
+                       "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
+                       "Q425 >= Q219 [mm]")
+        q = {215: 0.0, **q, 223: min(q[218], q[219])}
+    if q.get(366, 0.0) != 0.0:
+        where.fail(f"cycle {number}: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
+                   column=column, text=where.text, expected="Q366=0 (vertical plunging)")
+    operation = int(q[215])
+    if operation not in (0, 1, 2) or not q[223] > 0 or not q.get(370, 1.0) > 0 or not q[206] > 0:
+        where.fail(f"cycle {number}: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
+                   "Q206 > 0", column=column, text=where.text, expected="Q215 in 0..2, Q223 > 0, Q370 > 0, Q206 > 0")
+    depth = q[201] * scale
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=abs(q[202]) * scale or abs(depth),
+        feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale, bore_diameter=q[223] * scale,
+        climb=q.get(351, 1.0) >= 0, approach_feed=q[206] * feed_scale, side_allowance=abs(q.get(368, 0.0)) * scale,
+        floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
+        finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
+        sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
+        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale)), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -329,9 +449,15 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
     return dataclasses.replace(cycle, setup=cycle.setup * factor, depth=cycle.depth * factor,
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
-                               chip_break=cycle.chip_break * factor, advance=f(cycle.advance),
+                               chip_break=cycle.chip_break * factor, chip_depth=cycle.chip_depth * factor,
+                               advance=f(cycle.advance),
                                disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
-                               bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor)
+                               bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor,
+                               side_allowance=cycle.side_allowance * factor,
+                               floor_allowance=cycle.floor_allowance * factor,
+                               finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
+                               sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
+                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor))
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -471,6 +597,9 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     * cycles 200/203/205: FMAX to the set-up clearance above the surface, drill to the plunging
       depth, FMAX back to the set-up clearance, dwell Q210 there, FMAX to the set-up clearance
       (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
+      205 breaks the chip within an infeed after every Q257, retracting Q256 at FMAX (TNC 426/430
+      user's manual, "UNIVERSAL PECKING (Cycle 205)": "Infeed depth for chip breaking Q257",
+      "Retraction rate for chip breaking Q256");
       203 breaks the chip Q213 times by retracting Q256 before a full retraction; at the bottom
       dwell Q211, retract (203: at Q208) to the set-up clearance and, when it is higher, to the
       2nd set-up clearance;
@@ -504,6 +633,11 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
             if d * (reentry - top) > 0 and cycle.number not in (2, 17, 206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)
+        cut = cycle.chip_depth
+        while 0.0 < cut < step - 1e-12:  # 205 Q257: chip breaks within the infeed, Q256 back at rapid
+            out.append(AxisMove("line", surface + d * (done + cut), cycle.feed))
+            out.append(AxisMove("rapid", surface + d * (done + cut - cycle.chip_break)))
+            cut += cycle.chip_depth
         done += step
         out.append(AxisMove("line", surface + d * done, cycle.feed))
         if cycle.decrement:

@@ -42,6 +42,19 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
 ========================= =======================================================================
 
+Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its meanings and errors):
+
+========================= =======================================================================
+``G187 G103 G05.1 G08``   look-ahead and smoothing, noted; ``G187 E`` sets the path tolerance
+``G05 P10000``            (:mod:`interpolators.iso_smoothing`)
+``G68 G69``               coordinate rotation; ``G51 G50`` scaling; ``G51.1 G50.1`` mirror image,
+                          Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
+``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``); Haas G73/G83
+                          pecks from I J K (:mod:`interpolators.iso_cycles`)
+``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
+                          pocket milling (:mod:`interpolators.iso_haas`)
+========================= =======================================================================
+
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
 file). Rotary axes A B C [deg] and secondary linear axes U V W [mm] on a machine that has them
@@ -50,8 +63,9 @@ as LinuxCNC does), G90/G91, G53, G28/G30, G92/G10 offsets, G93 (:mod:`interpolat
 Out of scope, each an error naming the feature: an axis the machine lacks (a word that keeps the
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
-probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75), splines G5.x, polar
-G15/G16, scaling G50/G51, rotation G68, user M codes M100-M199, G95 feed per revolution.
+probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
+the mill codes above), NURBS G5.2, polar G15/G16, scaling G51 and rotation G68 (LinuxCNC), manual-retract
+boring G88 (and Haas G87), user M codes M100-M199, G95 feed per revolution.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
 ``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
@@ -84,10 +98,13 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext,
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
 from interpolators.iso_flow import run
+from interpolators.iso_haas import PATTERN_CODES, PatternError, bolt_holes, circular_pocket
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
+from interpolators.iso_transforms import Frame, TransformError, g68_rotation, mirror, scaling
 from interpolators.iso_words import Word
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -104,9 +121,10 @@ _G: dict[int, tuple[str, str]] = {
     **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
                                           (82, "G82 drilling cycle with dwell"),
                                           (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
-                                          (74, "G74 left-hand tapping cycle"),
                                           (85, "G85 boring cycle"), (86, "G86 boring cycle"),
-                                          (89, "G89 boring cycle with dwell"))},
+                                          (89, "G89 boring cycle with dwell"), (74, "G74 left-hand tapping cycle"),
+                                          (76, "G76 fine boring cycle"), (87, "G87 back boring cycle"),
+                                          (77, "G77 back boring cycle"))},
     40: ("dwell", "dwell"),
     100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
     281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
@@ -138,10 +156,36 @@ _G_UNSUPPORTED: dict[int, str] = {
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     750: "G75 lathe grooving cycle",
     52: "G5.2 NURBS", 160: "G16 polar coordinates",
-    510: "G51 scaling", 680: "G68 coordinate rotation", 870: "G87 back boring cycle", 880: "G88 boring cycle",
+    510: "G51 scaling", 680: "G68 coordinate rotation",
+    870: "G87 back boring cycle (Fanuc) / boring with manual retract (Haas)",
+    880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
     432: "G43.2 additional tool length offset",
+    682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
+    684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
+    434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
+    2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
+    541: "G54.1 P additional work offsets (Fanuc)", 1540: "G154 P additional work offsets (Haas)",
+}
+
+#: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
+#: :data:`_G_UNSUPPORTED` (where LinuxCNC's meaning, or an error, stays).
+_MILL_G: dict[int, tuple[str, str]] = {
+    **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
+    680: ("rotation", "G68 coordinate rotation"),
+    740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
+    510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
+    511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
+}
+
+#: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
+#: bores with a manual retract).
+_DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
+    "fanuc": {870: ("motion", "G87 back boring cycle")},
+    "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
+             120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
+             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel")},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -226,6 +270,7 @@ class _State:
     arc_center: np.ndarray | None = None  # programmed centre (start + I/J/K) of the last arc read [mm]
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
+    frame: Frame | None = None  # Fanuc/Haas G51.1 mirror, G51 scaling, G68 rotation of the program coordinates
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
     spindle_speed: float = 0.0  # S [rev/min]
@@ -256,6 +301,8 @@ class _State:
         X Y plus the G92 offset, rotated about the work offset's origin, plus the work offset
         (LinuxCNC emccanon.cc rotate_and_offset_pos); Z plus all offsets."""
         off, base, c, s = self._rotated_parts()
+        if self.frame is not None:  # G68 first: it turns the program's own coordinates
+            prog = self.frame.forward(prog)
         x, y = prog[0] + self.g92[0], prog[1] + self.g92[1]
         return np.array([c * x - s * y + base[0], s * x + c * y + base[1], prog[2] + off[2]])
 
@@ -263,7 +310,8 @@ class _State:
         """Inverse of :meth:`to_machine`."""
         off, base, c, s = self._rotated_parts()
         x, y = machine[0] - base[0], machine[1] - base[1]
-        return np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
+        prog = np.array([c * x + s * y - self.g92[0], -s * x + c * y - self.g92[1], machine[2] - off[2]])
+        return prog if self.frame is None else self.frame.inverse(prog)
 
     def extra_offset(self) -> np.ndarray:
         """Machine minus program positions of a, b, c [deg], u, v, w [mm]: work plus G92 offset."""
@@ -377,6 +425,14 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
     for w in words:
         if w.letter == "G":
             key = _gkey(w, where)
+            dialect = st.context.dialect.name
+            mill = _MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G else None
+            if mill is not None:
+                if mill[0] in gcodes:
+                    where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
+                               expected=f"one {mill[0]} code per block")
+                gcodes[mill[0]] = (key, w)
+                continue
             if key in _G_UNSUPPORTED:
                 where.fail(f"{_G_UNSUPPORTED[key]}: not supported", column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
@@ -433,6 +489,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     _modes(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
+    if "smoothing" in gcodes:
+        seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
@@ -443,6 +501,20 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     polar = [w for w in POLAR_LETTERS if w in seen]
     if polar:
         _check_polar(seen, gcodes, st, where, seen[polar[0]])
+    if gcodes.get("rotation", (0,))[0] == 680:
+        _g68(seen, st, where, gcodes["rotation"][1], notes)
+        return ended
+    if gcodes.get("scaling", (0,))[0] == 510 or "mirror" in gcodes:
+        _scaling_mirror(gcodes, seen, st, where, notes)
+        return ended
+    if "pattern" in gcodes:
+        _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
+        notes.add(PATTERN_CODES[gcodes["pattern"][0]])
+        return ended
+    if "pocket" in gcodes:
+        _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
+        notes.add("G12/G13 circular pocket milling")
+        return ended
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -452,7 +524,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
-    if st.rotation and (axis_words or polar):
+    if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
@@ -491,13 +563,141 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
 
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
-    """Moves a rotated coordinate system (G10 R) supports: G0-G3 (G18/G19 arcs as chords)."""
+    """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
+    as chords); under G68 alone canned cycles too."""
+    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
+        st.frame.scaled or any(st.frame.mirror) and st.motion in (760, 870, 770))
     what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
-            and st.motion not in (800,) else None)
+            and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
-        where.fail(f"{what} in a rotated coordinate system (G10 R {st.rotation:g}): not supported",
-                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0")
+        how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \
+            "G51.1 mirror image" if st.frame.rotation is None else f"G68 R {st.frame.rotation.angle:g}"
+        where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
+                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
+
+
+def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+    """Haas G70/G71/G72 (:mod:`interpolators.iso_haas`): the active canned cycle at every hole."""
+    key, w = entry
+    name = PATTERN_CODES[key]
+    lathe = [k for k in ("P", "Q", "U", "W", "D", "R") if k in seen]
+    if lathe:  # "G70 P10 Q20": a Haas lathe program's finishing cycle, not the mill's bolt-hole pattern
+        where.fail(f"{_G_UNSUPPORTED[key]}: not supported (word {lathe[0]}: the lathe form; the mill's {name} "
+                   "takes I J K L)", column=w.column, text=w.text, expected="milling G codes (see vcnc's ISO reader)")
+    if st.motion is None or st.motion < 730 or st.rotation:
+        where.fail(f"{name} without an active canned cycle" if not st.rotation else
+                   f"{name} in a coordinate system rotated by G10 R: not supported", column=w.column, text=w.text,
+                   expected="a drilling cycle (e.g. G81 ... L0) before it")
+    here = st.to_program(st.pos)
+    for i, a in enumerate("XY"):
+        if a in seen:
+            here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
+    try:
+        holes = bolt_holes(key, {k: v.value for k, v in seen.items()}, centre=(here[0], here[1]), scale=st.scale)
+    except PatternError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    for x, y in holes:
+        cur = st.to_program(st.pos)
+        xy = (x - cur[0], y - cur[1]) if st.incremental else (x, y)
+        words = {a: Word(letter=a, value=v / st.scale, column=w.column, text=w.text) for a, v in zip("XY", xy)}
+        _canned_cycle(words, {}, st, blocks, used, where, number)
+
+
+def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+    """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
+    key, w = entry
+    name = _DIALECT_G["haas"][key][1]
+    bad = ("no feed rate" if st.feed is None else "in inverse time (G93)" if st.inverse_time else
+           "with cutter compensation on (it implies its own)" if st.comp_side is not None else
+           "only in the XY plane (G17)" if st.plane != 2 else
+           "under scaling with different X and Y factors" if st.frame is not None
+           and st.frame.length_factor(2) is None else None)
+    if bad is not None:
+        where.fail(f"{name}: {bad}", column=w.column, text=w.text, expected="G17 G94 G40 and an F word")
+    tool = st.tool(int(seen["D"].value)) if "D" in seen else None
+    here = st.to_program(st.pos)
+    xy = [a for a in ("X", "Y") if a in seen]
+    if xy:  # to the centre first
+        for a in xy:
+            i = "XY".index(a)
+            here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
+        _rapid(st.to_machine(here), st, blocks, used, where, number, xy)
+    try:
+        moves = circular_pocket(key == 130, {k: v.value for k, v in seen.items()}, centre=tuple(here),
+                                scale=st.scale, incremental=st.incremental,
+                                tool_radius=0.0 if tool is None else tool.radius)
+    except PatternError as exc:
+        bad_word = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{name}: {exc}", column=bad_word.column, text=bad_word.text, expected=exc.expected)
+    flip = st.frame is not None and st.frame.flips(2)
+    used.update((0, 1, 2))
+    for mv in moves:
+        target = st.to_machine(np.array(mv.end))
+        common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
+                      exact_stop=st.exact_stop, tolerance=st.tolerance, feed=st.feed)
+        if mv.centre is None:
+            blocks.append(Block(kind="line", segment=Line(st.pos, target), **common))
+        else:
+            centre = st.to_machine(np.array([*mv.centre, mv.end[2]]))
+            arc = arc_from_center(st.pos, target, centre, ccw=mv.ccw != flip, plane=2)
+            blocks.append(Block(kind="arc", segment=arc, **common))
+        st.pos = target
+
+
+def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+    """G68: rotate the following blocks' coordinates (:mod:`interpolators.iso_transforms`); the block's
+    own words are the centre and the angle, nothing moves."""
+    other = [k for k in seen if k not in ("X", "Y", "Z", "R", "N", "F", "S", "T", "H", "D")]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail("G68 coordinate rotation: only the centre (axis words of the plane) and R, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected="G68 X.. Y.. R<angle> with G40")
+    axes = [a for a in ("X", "Y", "Z") if a in seen and "XYZ".index(a) not in PLANE_AXES[st.plane]]
+    if axes:
+        bad = seen[axes[0]]
+        where.fail(f"G68 coordinate rotation: {bad.letter} is not an axis of the plane of rotation",
+                   column=bad.column, text=bad.text, expected="the centre's two axes of the active plane and R")
+    base = st.frame or Frame()
+    st.frame = dataclasses.replace(base, rotation=None)
+    rotation = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
+                            scale=st.scale)
+    _set_frame(st, dataclasses.replace(base, rotation=rotation))
+    notes.add("G68 coordinate rotation")
+
+
+def _set_frame(st: _State, frame: Frame) -> None:
+    st.frame = None if frame.identity else frame
+
+
+def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> None:
+    """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
+    words are the centre / mirror lines, nothing moves."""
+    key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
+    name = _MILL_G[key][1] if key in _MILL_G else _DIALECT_G["haas"][key][1]
+    other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail(f"{name}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected=f"{w.text.upper()} X.. Y.. with G40")
+    values = {k: v.value for k, v in seen.items()}
+    if key in (1000, 1010):  # Haas: "mirror image will reflect programmed motion around your work coordinate
+        values = {k: 0.0 for k in values}  # zero point"; the axis words only name the axes
+    base = st.frame or Frame()
+    try:
+        if key == 510:
+            here = (dataclasses.replace(st, frame=dataclasses.replace(base, factors=(1.0, 1.0, 1.0)))
+                    .to_program(st.pos))
+            frame = scaling(base, values, {k: v.text for k, v in seen.items()}, current=here, scale=st.scale,
+                            thousandths=st.context.dialect.name == "fanuc")
+        else:
+            frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
+    except TransformError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    _set_frame(st, frame)
+    notes.add(name)
 
 
 def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
@@ -547,6 +747,23 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         st.tool_selected = int(w.value)
         if st.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
+
+
+def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
+    """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
+    tolerance; returns ``seen`` without the words it reads."""
+    key, w = entry
+    try:
+        sm = smoothing(key, {k: v.value for k, v in seen.items()})
+    except SmoothingError as exc:
+        bad = seen.get(exc.letter, w) if exc.letter else w
+        where.fail(f"{SMOOTHING_CODES[key]}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    if sm.tolerance is not None:
+        st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
+    elif sm.reset:
+        st.tolerance = st.context.dialect.tolerance
+    notes.add(sm.note)
+    return {k: v for k, v in seen.items() if k not in sm.consumed}
 
 
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
@@ -612,8 +829,12 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
-        if grp in gcodes:
+        if grp in gcodes and gcodes[grp][0] not in (680, 510):
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
+    if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
+        _set_frame(st, dataclasses.replace(st.frame, rotation=None))
+    if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:
+        _set_frame(st, dataclasses.replace(st.frame, factors=(1.0, 1.0, 1.0)))
     scale = st.scale
     if "cutter compensation" in gcodes:
         _cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
@@ -681,7 +902,7 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
 def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
-    if st.rotation and not machine:  # G10 R: the words are coordinates of the rotated system
+    if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
         prog = st.to_program(st.pos)
         for letter in axis_words:
             i = "XYZ".index(letter)
@@ -764,7 +985,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
                     segment=seg, **common)
     else:
-        if st.rotation and st.plane != 2:  # a G18/G19 arc of a rotated system lies in no axis plane
+        if st.rotation and st.plane != 2 or _off_plane(st):
+            # a G18/G19 arc of a system rotated about Z lies in no axis plane
             if rot is not None:
                 w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
                 where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
@@ -832,6 +1054,11 @@ def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, 
         st.pos = target.copy()
 
 
+def _off_plane(st: _State) -> bool:
+    """True when a G68 rotation turns the arc plane out of the axis planes (a rotation in another plane)."""
+    return st.frame is not None and st.frame.rotation is not None and st.frame.rotation.plane != st.plane
+
+
 def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
     """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
     None without such words; splines and cutter compensation do not take them."""
@@ -857,7 +1084,7 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
     machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
     start_p, end_p = st.to_program(st.pos), st.to_program(target)
-    shadow = dataclasses.replace(st, pos=start_p, rotations={}, offsets={st.wcs: np.zeros(3)},
+    shadow = dataclasses.replace(st, pos=start_p, rotations={}, frame=None, offsets={st.wcs: np.zeros(3)},
                                  g92=np.zeros(3), tool_length=0.0, tool_xy=np.zeros(2))
     arc = _arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
     step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
@@ -950,6 +1177,13 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     p, q = PLANE_AXES[st.plane]
     ccw = st.motion == 30
     has_r = "R" in seen
+    factor = 1.0
+    if st.frame is not None and not _off_plane(st):  # G51.1 / G51 (Fanuc: mirror reverses G02 and G03)
+        ccw = ccw != st.frame.flips(st.plane)
+        factor = st.frame.length_factor(st.plane)
+        if factor is None:
+            where.fail(f"{code} arc under G51 scaling with different factors on its two axes (an ellipse): "
+                       "not supported", column=mcol, text=mtok, expected="equal scaling factors in the arc's plane")
     allowed = {"IJK"[p], "IJK"[q]}
     plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
     for letter in arc_words:
@@ -965,9 +1199,9 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     st.arc_center = None
     try:
         if has_r:
-            return arc_from_radius(st.pos, target, seen["R"].value * st.scale, ccw=ccw, plane=st.plane,
+            return arc_from_radius(st.pos, target, seen["R"].value * st.scale * factor, ccw=ccw, plane=st.plane,
                                    tolerance=radius_arc_tolerance(rule))
-        if in_plane and st.rotation:  # the centre words are in the rotated system (XY plane only)
+        if in_plane and (st.rotation or st.frame is not None):  # the centre words are in the rotated system
             prog = st.to_program(st.pos)
             for letter in in_plane:
                 i = "IJK".index(letter)
@@ -1049,6 +1283,8 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
     st.comp_side = "left" if key in (410, 411) else "right"
     if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
         radius = -radius
+        st.comp_side = "right" if st.comp_side == "left" else "left"
+    if st.frame is not None and st.frame.flips(st.plane):  # Fanuc: under a mirror image G41 offsets as G42
         st.comp_side = "right" if st.comp_side == "left" else "left"
     st.comp_code = w.text.upper()
     if radius == 0.0:
@@ -1347,19 +1583,24 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
-    if st.motion == 740 and not (st.spindle_turning and st.spindle_ccw):
+    if st.motion == 740 and st.context.dialect.name == "linuxcnc" and not (st.spindle_turning and st.spindle_ccw):
         # LinuxCNC interp_cycles.cc check_g74_g84_spindle: G74 taps left-hand, the spindle turning M4
         where.fail(f"{name} with the spindle " + ("turning clockwise (M3)" if st.spindle_turning else "not turning"),
                    column=mw.column, text=mw.text, expected="M4 (counter-clockwise) before G74")
-    off = st.offset()
+    # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
+    pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
     try:
-        moves = cycle_moves(st.motion // 10, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=st.pos,
+        code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
+        moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
-                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane)
+                            tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
+                            haas=st.context.dialect.name == "haas")
     except CycleError as exc:
         w = seen.get(exc.letter, mw) if exc.letter else mw
         where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)
+    if st.frame is not None:
+        moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:
         used.update(i for i in range(3) if mv.target[i] != st.pos[i])
         common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(),

@@ -22,6 +22,26 @@ XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: dr
   plane), as the dialect says (:attr:`interpolators.context.Dialect.tap_out_to_r`).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
+
+Cycles of Fanuc and Haas mills (the ``fanuc`` and ``haas`` dialects; in LinuxCNC these codes are
+other things or errors):
+
+* **G74 counter tapping**: G84's motion with the spindle reversed (Fanuc 0i-MF operator's manual,
+  "Left-handed tapping cycle (G74)"; Haas "G74 Reverse Tap Canned Cycle"): feed to Z, dwell P,
+  feed out to R, rapid to the clear level.
+* **G76 fine boring** (Fanuc "Fine boring cycle (G76)"; Haas "G76 Fine Boring Canned Cycle"):
+  feed to Z, dwell P, oriented spindle stop, a rapid shift away from the wall, the rapid retract,
+  the shift back. The shift is Q along +X (sign ignored: Fanuc "specify a positive value for Q ...
+  set the shift direction, +X, -X, +Y or -Y, in parameter No. 6240", Haas Setting 27; both
+  default to +X), or I J (Fanuc with parameter SIJ, Haas: "I/J shift ... if Q is not specified").
+* **G87 back boring** (Fanuc "Back boring cycle (G87)"; Haas mill "G77 Back Bore Canned Cycle"):
+  at the hole, oriented stop and shift, rapid down to the R level (the bottom of the bore), shift
+  back, feed up to Z (above R), dwell P, shift, rapid up to the initial level, shift back. G99
+  cannot be used (the tool returns to the initial level).
+* **Haas G73 / G83 with I J K** (Haas mill operator's manual, "G83 Normal Peck Drilling": "I size of
+  first peck depth, J amount to reduce each peck, K minimum peck depth"): the pecks are I, I - J,
+  I - 2 J, ... but never less than K (used instead of Q when I is given); under the ``haas`` dialect
+  K is never a repeat count (Haas repeats with L), as it is on Fanuc.
 """
 
 from __future__ import annotations
@@ -62,6 +82,9 @@ class CycleWords:
     z: float | None = None
     q: float | None = None
     p: float | None = None
+    i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
+    j: float | None = None
+    k: float | None = None  # Haas G73/G83 minimum peck
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,7 +105,7 @@ CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-                tap_out_to_r: bool = False, plane: int = 2) -> list[HoleMove]:
+                tap_out_to_r: bool = False, plane: int = 2, haas: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
     (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
     "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
@@ -90,7 +113,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     Parameters
     ----------
     g : int
-        Cycle code (73, 74, 81, 82, 83, 84, 85, 86, 89).
+        Cycle code (73, 74, 81, 82, 83, 84, 85, 86, 89; the Fanuc/Haas mill cycles 76, 87).
     words : dict
         The block's words as written (``X Y Z R Q P L K``), not yet scaled.
     cycle : CycleWords
@@ -114,6 +137,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         feeding out to the clear level (LinuxCNC).
     plane : int
         2 (G17, drilling along Z), 1 (G18, along Y) or 0 (G19, along X).
+    haas : bool
+        Haas words: G73/G83 pecks from I J K, and K is not a repeat count.
 
     Raises
     ------
@@ -121,11 +146,10 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         Missing R or Z, Q <= 0 for pecking cycles, R below the bottom, bad repeat count.
     """
     axes = CYCLE_AXES[plane]
-    if g == 74:  # LinuxCNC convert_cycle_g74_g84: G74 taps left-hand, the moves of G84 (spindle M4 instead of M3)
-        g = 84
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
-                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r)
+                         retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r,
+                         haas=haas)
     if "@" in words or "^" in words:
         raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
                          letter="@" if "@" in words else "^", expected="G17 for polar words")
@@ -135,7 +159,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     try:
         moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
-                          tap_out_to_r=tap_out_to_r)
+                          tap_out_to_r=tap_out_to_r, haas=haas)
     except CycleError as exc:
         exc.letter = letters.get(exc.letter, exc.letter)
         raise
@@ -145,9 +169,9 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
 
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-              tap_out_to_r: bool) -> list[HoleMove]:
+              tap_out_to_r: bool, haas: bool) -> list[HoleMove]:
     """:func:`cycle_moves` in the XY plane (drilling along Z)."""
-    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms)
+    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms, haas=haas)
     z0 = float(pos[2])
     if cycle.initial is None:
         cycle.initial = z0
@@ -157,10 +181,17 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     else:
         r = cycle.r * scale + offset[2]
         bottom = cycle.z * scale + offset[2]
+    if g == 87:
+        return _back_bore(words, cycle=cycle, pos=pos, r=r, top=bottom, offset=offset, scale=scale,
+                          incremental=incremental, retract_r=retract_r, feed=feed, dwell=dwell)
     if bottom > r:
         raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
                          letter="Z" if "Z" in words else "R", expected="Z below R")
-    pecks = math.ceil((r - bottom) / (cycle.q * scale)) if g in (73, 83) else 1
+    # LinuxCNC's loop runs in program units: a Q that divides R - Z makes the pecks its rounding makes
+    r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
+    bottom_p = r_p + cycle.z if incremental else cycle.z
+    depths = [d * scale + offset[2] for d in _peck_depths(cycle, r_p, bottom_p, haas=haas)] if g in (73, 83) else []
+    pecks = len(depths) + 1
     if repeats * (pecks + 3) > MAX_CYCLE_MOVES:  # L99999999 or Q0.0000001 would run for hours, filling the memory
         raise CycleError(f"{repeats} holes of {pecks} pecks each exceed {MAX_CYCLE_MOVES} cycle moves",
                          letter="Q" if pecks > 1 and "Q" in words else next((c for c in "LK" if c in words), None),
@@ -190,33 +221,53 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         else:  # the tool is at the clear level (or below it): over at the clear level
             go("rapid", x, y, clear)
         go("rapid", x, y, r)
-        if g in (73, 83):
-            # LinuxCNC's loop (interp_cycles.cc convert_cycle_g83/g73) in program units, as it runs: a Q that
-            # divides R - Z makes the pecks LinuxCNC's rounding makes (no more, no fewer)
-            r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
-            bottom_p = r_p + cycle.z if incremental else cycle.z
-            depth_p = r_p - cycle.q
-            while depth_p > bottom_p:
-                depth = depth_p * scale + offset[2]
-                go("line", x, y, depth, feed)
-                go("rapid", x, y, r if g == 83 else depth + delta)
-                if g == 83:
-                    go("rapid", x, y, depth + delta)
-                depth_p -= cycle.q
+        for depth in depths:
+            go("line", x, y, depth, feed)
+            go("rapid", x, y, r if g == 83 else depth + delta)
+            if g == 83:
+                go("rapid", x, y, depth + delta)
         go("line", x, y, bottom, feed)
         if dwell > 0:
             out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
-        if g == 84 and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
+        if g == 76:  # oriented stop, shift off the wall, rapid out, shift back
+            dx, dy = _shift(cycle, scale)
+            go("rapid", x + dx, y + dy, bottom)
+            go("rapid", x + dx, y + dy, clear)
+            go("rapid", x, y, clear)
+            continue
+        if g in (74, 84) and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
             go("line", x, y, clear, feed)
-        elif g in (84, 85, 89):
+        elif g in (74, 84, 85, 89):
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
     return out
 
 
-def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool) -> tuple[int, float]:
+def _peck_depths(cycle: CycleWords, r: float, bottom: float, *, haas: bool) -> list[float]:
+    """The depths of the pecks above the bottom, in program units and coordinates as ``r`` and
+    ``bottom``: every Q from R (LinuxCNC's loop, interp_cycles.cc convert_cycle_g83, run in program
+    units so that a Q that divides R - Z makes the pecks its rounding makes), or under Haas with I the
+    pecks I, I - J, ... not below K; at most :data:`MAX_CYCLE_MOVES` + 1 of them."""
+    variable = haas and bool(cycle.i)
+    step = cycle.i if variable else cycle.q
+    out: list[float] = []
+    depth = r - step
+    while depth > bottom and len(out) <= MAX_CYCLE_MOVES:
+        out.append(depth)
+        if variable:
+            step = max(step - (cycle.j or 0.0), cycle.k or 0.0)
+            if step <= 0:
+                raise CycleError("peck depths I - n J reach 0 without a minimum K > 0", letter=None,
+                                 expected="K > 0 (the minimum peck)")
+        depth -= step
+    return out
+
+
+def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p_ms: bool,
+                  haas: bool = False) -> tuple[int, float]:
     """Update the series' sticky R Z Q P from the block; returns the repeat count and the dwell [s]."""
-    for letter in ("R", "Z", "Q", "P"):
+    shift = ("I", "J") if g in (76, 87) else ("I", "J", "K") if haas and g in (73, 83) else ()
+    for letter in ("R", "Z", "Q", "P", *shift):
         if letter in words:
             setattr(cycle, letter.lower(), words[letter])
     if cycle.r is None:
@@ -227,18 +278,60 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
                          expected="R<retract level>")
     if cycle.z is None:
         raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
-    repeats = words.get("L", words.get("K", 1.0))
+    repeats = words.get("L", 1.0 if haas else words.get("K", 1.0))
     if repeats != int(repeats) or repeats < 0:
         rl = "L" if "L" in words else "K"
         raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
-    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0):
+    if g in (73, 83) and not (cycle.q is not None and cycle.q > 0) and not (haas and cycle.i and cycle.i > 0):
         raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
     dwell = 0.0
-    if g in (82, 84, 86, 89) and cycle.p is not None:
+    if g in (76, 87) and not cycle.q and not (cycle.i or cycle.j):
+        raise CycleError("no shift: Q (along +X) or I J", letter=None, expected="Q<shift> or I.. J..")
+    if g in (74, 82, 84, 76, 86, 87, 89) and cycle.p is not None:
         dwell = cycle.p / 1000.0 if dwell_p_ms else cycle.p
         if dwell < 0:
             raise CycleError("dwell P must be >= 0", letter="P", expected="P >= 0")
     return int(repeats), dwell
+
+
+def _shift(cycle: CycleWords, scale: float) -> tuple[float, float]:
+    """The G76/G87 shift [mm] in the positioning plane: I J if given, else |Q| along +X."""
+    if cycle.i or cycle.j:
+        return (cycle.i or 0.0) * scale, (cycle.j or 0.0) * scale
+    return abs(cycle.q) * scale, 0.0
+
+
+def _back_bore(words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, r: float, top: float,
+               offset: np.ndarray, scale: float, incremental: bool, retract_r: bool, feed: float,
+               dwell: float) -> list[HoleMove]:
+    """G87 (Fanuc) / G77 (Haas) back boring: the holes from below, R the bottom and Z the top of the
+    bore [mm, machine] (see the module docstring)."""
+    if retract_r:
+        raise CycleError("G99 cannot be used: back boring returns to the initial level", letter=None,
+                         expected="G98")
+    initial = cycle.initial
+    if not r < top < initial:
+        raise CycleError(f"back boring needs R {r - offset[2]:g} below Z {top - offset[2]:g} below the initial "
+                         f"level {initial - offset[2]:g} mm", letter="R" if "R" in words else "Z",
+                         expected="R (bore bottom) < Z (top of the cut) < the initial level")
+    repeats = int(words.get("L", words.get("K", 1.0)))
+    dx, dy = _shift(cycle, scale)
+    out: list[HoleMove] = []
+    cur = pos.astype(float).copy()
+    for _ in range(repeats):
+        x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
+        steps = [("rapid", x, y, initial), ("rapid", x + dx, y + dy, initial), ("rapid", x + dx, y + dy, r),
+                 ("rapid", x, y, r), ("line", x, y, top), ("dwell", x, y, top), ("rapid", x + dx, y + dy, top),
+                 ("rapid", x + dx, y + dy, initial), ("rapid", x, y, initial)]
+        for kind, px, py, pz in steps:
+            target = np.array([px, py, pz])
+            if kind == "dwell":
+                if dwell > 0:
+                    out.append(HoleMove("dwell", target, 0.0, dwell))
+            elif not np.array_equal(target, cur):
+                out.append(HoleMove(kind, target, feed if kind == "line" else math.inf))
+                cur = target
+    return out
 
 
 def _hole(words: dict[str, float], cur: np.ndarray, *, offset: np.ndarray, scale: float,

@@ -34,7 +34,13 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   depth/50, at most 7 mm), at the bottom dwell and rapid to the start) and ``200`` DRILLING (rapid to
   Q203 + Q200, feed per Q202 to Q203 + Q201, between pecks rapid to Q203 + Q200 and back to Q200
   above the last depth, dwell Q211 at the bottom, rapid to Q203 + Q200 and then to Q203 + Q204),
-  called by ``M99`` or ``CYCL CALL`` at the current position.
+  called by ``M99`` or ``CYCL CALL`` at the current position; ``203``/``205`` (pecks shrinking by
+  Q212 to Q205, 203's Q213 chip breaks, 205's chip breaks every Q257 and re-entry Q258 above the last
+  depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
+  ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
+  RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
+  (revolutions from the blank in to the stud, half circles on and off).
+- ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 """
 
 from __future__ import annotations
@@ -350,9 +356,17 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
         a = math.radians(turn * w["CCA"])
         v = t.pos - centre
         end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a), 0])
+    if "R0" in w and form != "CT":
+        t.comp = False
+    if form != "CT":
+        t.emit(line, "feed", end, rows="last")
+    else:  # the tool runs the arc compensated: its centre path is the circle about the arc's centre
+        t.emit(line, None, end, rows="last", centre=centre)
+    if form == "CT" and t.comp and t.radius > 0:  # the tool stops beside PN: inside the arc on its turning side
+        t.pos = end - (1.0 if (side > 0) == (turn > 0) else -1.0) * t.radius * (end - centre) / np.hypot(
+            *(end - centre)[:2])
     if "R0" in w:
         t.comp = False
-    t.emit(line, "feed" if form != "CT" else None, end, rows="last")
 
 
 def _last_number(text: str, q: dict) -> float:
@@ -397,7 +411,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 206, 207, 208, 209, 220, 221, 240) and sub == 0:
+    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
         params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
@@ -487,6 +501,18 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "208":
         _bore_milling(t, line, p)
         return
+    if kind == "262":
+        _thread_milling(t, line, p)
+        return
+    if kind in ("251", "252"):
+        _circular_pocket(t, line, p)
+        return
+    if kind == "256":
+        _stud(t, line, p)
+        return
+    if kind in ("203", "205"):
+        _universal_drilling(t, line, kind, p)
+        return
     if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
         sgn = -1.0 if p[2] < 0 else 1.0
         _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
@@ -540,6 +566,223 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
         t.emit(line, "feed", t.machine(centre))
     else:
         _move_z(t, line, "feed", surface + depth)
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """203/205: pecks of Q202 shrinking by Q212 to at least Q205; between pecks out to the set-up clearance
+    (203: at Q208, 0: Q206; 205: rapid), dwell Q210, rapid back to the set-up clearance (205: Q258) above
+    the last depth; 203: Q213 chip breaks (back Q256) before each full retraction; 205: a chip break (back
+    Q256 at rapid) after every Q257 within a peck; dwell Q211 at the bottom, out, then to Q204."""
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear, bottom = surface - sgn * setup, surface + depth
+    back = "feed" if kind == "203" else "rapid"
+    advance = setup if kind == "203" else abs(p.get("Q258", 0.2))
+    chip, every = abs(p.get("Q256", 0.2)), abs(p.get("Q257", 0.0)) if kind == "205" else 0.0
+    breaks = int(p.get("Q213", 0)) if kind == "203" else 0
+    _move_z(t, line, "rapid", clear, optional=True)
+    peck, z, n = abs(p["Q202"]) or abs(depth), surface, 0
+    while (bottom - z) * sgn > _EPS:
+        if n == 0 and z != surface:
+            _dwell(t, line, p.get("Q210", 0.0))
+            if (z - sgn * advance - clear) * sgn > 0:
+                _move_z(t, line, "rapid", z - sgn * advance)
+        target = bottom if (bottom - z - sgn * peck) * sgn <= _EPS else z + sgn * peck
+        mark = z + sgn * every
+        while every > 0 and (target - mark) * sgn > _EPS:
+            _move_z(t, line, "feed", mark)
+            _move_z(t, line, "rapid", mark - sgn * chip)
+            mark += sgn * every
+        _move_z(t, line, "feed", target)
+        z = target
+        if p.get("Q212", 0.0):
+            peck = max(peck - abs(p["Q212"]), abs(p.get("Q205", 0.0)), 1e-3)
+        if (bottom - z) * sgn <= _EPS:
+            break
+        if n < breaks:
+            n += 1
+            _move_z(t, line, back, z - sgn * chip)
+            continue
+        n = 0
+        _move_z(t, line, back, clear)
+    _dwell(t, line, p.get("Q211", 0.0))
+    _move_z(t, line, back, clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
+    """252 (Q366 = 0): at each depth of Q202 (to the depth less Q369) from the centre out along +X in steps of
+    Q370 x R to circles up to Q223/2 - Q368 - R, then up by Q200 and back over the centre; finishing the wall
+    (Q215 = 2, or 0 with Q368 > 0) at each depth of Q338: half circle out to Q223/2 - R, full circle, half
+    circle back; the floor (Q215 = 2, or 0 with Q369 > 0) with the circles out to Q223/2 - R at the depth."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError("252 under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    op, side, floor = int(p["Q215"]), p.get("Q368", 0.0), p.get("Q369", 0.0)
+    kind = "arc_ccw" if p.get("Q351", 1) >= 0 else "arc_cw"
+    wall = (p["Q223"] if "Q218" not in p else min(p["Q218"], p["Q219"])) * t.scale / 2 - t.radius
+    step = p.get("Q370", 1.0) * t.radius or wall
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    centre = t.prog()
+
+    def depths(bottom: float, each: float) -> list[float]:
+        return _levels(surface, bottom, sgn, each)
+
+    def rings(radius: float) -> None:
+        if "Q218" in p:
+            return _rectangles(t, line, p, centre, kind, radius, step)
+        r = 0.0
+        while r < radius - 1e-9:
+            r = min(r + step, radius)
+            at = np.array([centre[0] + r, centre[1], t.prog()[2]])
+            t.emit(line, "feed", t.machine(at))
+            t.emit(line, kind, t.machine(at), centre=t.machine(np.array([centre[0], centre[1], at[2]])))
+
+    def back(z: float) -> None:
+        _move_z(t, line, "rapid", z + -sgn * setup)
+        here = t.prog()
+        t.emit(line, "rapid", t.machine(np.array([centre[0], centre[1], here[2]])), rows="optional")
+
+    if op in (0, 1):
+        for z in depths(surface + depth - sgn * floor, p["Q202"] or abs(depth)):
+            _move_z(t, line, "feed", z)
+            rings(wall - side * t.scale)
+            back(z)
+    if op == 2 or (op == 0 and side > 0):
+        for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
+            _move_z(t, line, "feed", z)
+            mid = t.prog()
+            if "Q218" in p:
+                half = (p["Q218"] * t.scale / 2 - t.radius, p["Q219"] * t.scale / 2 - t.radius)
+                _rectangle(t, line, p, mid, kind, half, max(p.get("Q220", 0.0) * t.scale - t.radius, 0.0))
+                t.emit(line, "feed", t.machine(mid))
+                continue
+            out = mid + np.array([wall, 0.0, 0.0])
+            for end, pole in ((out, mid + np.array([wall / 2, 0.0, 0.0])), (out, mid),
+                              (mid, mid + np.array([wall / 2, 0.0, 0.0]))):
+                t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    if op == 2 or (op == 0 and floor > 0):
+        _move_z(t, line, "feed", surface + depth, optional=True)
+        rings(wall)
+        back(surface + depth)
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _stud(t: _Tnc, line: int, p: dict) -> None:
+    """256: rapid to 2 mm + R right of the blank Q424/2, FMAX to Q200, at each depth of Q202 (to the depth
+    less Q369): a half circle (counter-clockwise for climb) onto the first revolution, revolutions from the
+    blank (Q424 x Q425 + 2R) to the stud grown by Q368 + R in equal steps of at most Q370 x R, clockwise
+    for climb, a half circle back to the start; finishing (Q215 = 2, or 0 with Q368 > 0): the same with one
+    revolution round the stud grown by R at each depth of Q338; FMAX out (set-up clearance, Q204)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot or p.get("Q224", 0.0):
+        raise ReferenceError("256 under a transformation or turned")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    op, side = int(p.get("Q215", 0)), p.get("Q368", 0.0) * t.scale
+    R = t.radius
+    kind = "arc_cw" if p.get("Q351", 1) >= 0 else "arc_ccw"
+    back = "arc_ccw" if kind == "arc_cw" else "arc_cw"
+    a0, b0 = p["Q218"] * t.scale / 2 + side + R, p["Q219"] * t.scale / 2 + side + R
+    span = max(p["Q424"] * t.scale / 2 + R - a0, p["Q425"] * t.scale / 2 + R - b0, 0.0)
+    n = max(1, math.ceil(span / (p.get("Q370", 1.0) * R or span or 1.0) - 1e-9))
+    centre = t.prog()
+    start = centre + np.array([p["Q424"] * t.scale / 2 + 2 + R, 0.0, 0.0])
+    t.emit(line, "rapid", t.machine(start), rows="optional")
+    _move_z(t, line, "rapid", surface - sgn * setup, optional=True)
+    jobs = [(z, [j * span / n for j in range(n - 1, -1, -1)])
+            for z in _levels(surface, surface + depth - sgn * p.get("Q369", 0.0), sgn, p["Q202"] or abs(depth))]
+    if op == 2 or (op == 0 and side > 0):
+        jobs += [(z, [-side]) for z in _levels(surface, surface + depth, sgn, p.get("Q338", 0.0) or abs(depth))]
+    for z, offs in jobs:
+        _move_z(t, line, "feed", z, optional=True)
+        here = t.prog()
+        for i, off in enumerate(offs):
+            a = a0 + off
+            on = np.array([centre[0] + a, centre[1], here[2]])
+            if i == 0:
+                t.emit(line, back, t.machine(on), centre=t.machine((on + here) / 2))
+            _rectangle(t, line, {"Q224": 0.0}, np.array([centre[0], centre[1], here[2]]),
+                       "arc_ccw" if kind == "arc_ccw" else "arc_cw", (a, b0 + off),
+                       max(p.get("Q220", 0.0) * t.scale + side + R + off, 0.0))
+        end = np.array([start[0], start[1], here[2]])
+        t.emit(line, back, t.machine(end), centre=t.machine((end + t.prog()) / 2))
+    _move_z(t, line, "rapid", surface - sgn * setup)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _rectangles(t: _Tnc, line: int, p: dict, centre: np.ndarray, kind: str, wall: float, step: float) -> None:
+    """251's rings: ``wall`` is the 252-style radius (min side / 2 - allowance - R); the outer rectangle is
+    the pocket less the same allowance and R, the inner ones offset inward by min half side / n each, n the
+    rings needed at ``step`` apart."""
+    allowance = min(p["Q218"], p["Q219"]) * t.scale / 2 - t.radius - wall
+    a, b = (p["Q218"] * t.scale / 2 - allowance - t.radius, p["Q219"] * t.scale / 2 - allowance - t.radius)
+    n = max(1, math.ceil(min(a, b) / step - 1e-9))
+    corner = max(p.get("Q220", 0.0) * t.scale - allowance - t.radius, 0.0)
+    here = t.prog()
+    for j in range(n - 1, -1, -1):
+        off = j * min(a, b) / n
+        _rectangle(t, line, p, np.array([centre[0], centre[1], here[2]]), kind, (a - off, b - off),
+                   max(corner - off, 0.0))
+
+
+def _rectangle(t: _Tnc, line: int, p: dict, centre: np.ndarray, kind: str, half: tuple, corner: float) -> None:
+    """A line to (a, 0), then once round the rectangle (corners rounded by ``corner``) back to (a, 0); local
+    axes turned by Q224, v mirrored for clockwise milling."""
+    a, b = half
+    r = min(corner, a, b)
+    s = 1.0 if kind == "arc_ccw" else -1.0
+    ang = math.radians(p.get("Q224", 0.0))
+
+    def pt(u: float, v: float) -> np.ndarray:
+        v *= s
+        return t.machine(centre + np.array([u * math.cos(ang) - v * math.sin(ang),
+                                            u * math.sin(ang) + v * math.cos(ang), 0.0]))
+
+    def go(u: float, v: float) -> None:
+        if np.linalg.norm(pt(u, v) - t.pos) > 1e-12:
+            t.emit(line, "feed", pt(u, v))
+
+    go(a, 0.0)
+    for (u0, v0), (cu, cv), (u1, v1) in (((a, b - r), (a - r, b - r), (a - r, b)),
+                                         ((-a + r, b), (-a + r, b - r), (-a, b - r)),
+                                         ((-a, -b + r), (-a + r, -b + r), (-a + r, -b)),
+                                         ((a - r, -b), (a - r, -b + r), (a, -b + r))):
+        go(u0, v0)
+        if r > 1e-12:
+            t.emit(line, kind, pt(u1, v1), centre=pt(cu, cv))
+    go(a, 0.0)
+
+
+def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
+    """262: to the set-up clearance, Q253 to the starting plane, a half circle out to the radius Q335/2 - R
+    on the +X side, the helix (Q351 >= 0 counter-clockwise; upward for a right-hand thread climb-milled or
+    a left-hand one up-cut; Q355 = 0 one pitch at the depth, 1 between the depth and the surface), a half
+    circle back to the centre, rapid out (set-up clearance, then Q204)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError("262 under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    pitch, ccw = abs(p["Q239"]), p["Q351"] >= 0
+    sgn = -1.0 if depth < 0 else 1.0
+    clear = surface - sgn * setup
+    _move_z(t, line, "rapid", clear, optional=True)
+    bottom = surface + depth
+    far = surface if p["Q355"] == 1 else bottom - sgn * pitch
+    z0, z1 = (bottom, far) if (p["Q239"] > 0) == ccw else (far, bottom)
+    _move_z(t, line, "feed", z0)
+    centre = t.prog()  # [mm], at the starting plane
+    r = p["Q335"] * t.scale / 2 - t.radius
+    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    kind = "arc_ccw" if ccw else "arc_cw"
+    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+    for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
+                      (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
+        t.emit(line, kind, t.machine(end), centre=t.machine(pole))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 

@@ -42,6 +42,25 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   position, G92 included, the given value); the tool length and the G10 R rotation leave them
   alone. G28/G30 take the named axes through the intermediate point to the reference (0 for
   these axes), without words all of them.
+- Fanuc / Haas mills (``fanuc``, ``haas`` dialects; Haas mill operator's manual "G68 Rotation", "G187
+  Smoothness Control", "G103"; Fanuc 0i-MF operator's manual "Coordinate system rotation", "AI
+  contour control"): G187, G103, G05.1, G08 and G05 P10000 move nothing (their words are theirs);
+  ``G68 X Y R`` (the plane's two axes, default the current position; R absolute [deg],
+  counter-clockwise) rotates the program coordinates of the following blocks about that centre
+  before any offset, G69 cancels. Their mill cycles (Fanuc 0i-MF "Left-handed tapping cycle",
+  "Fine boring cycle", "Back boring cycle"; Haas "G74", "G76", "G77 Back Bore"): G74 as a tap (feed
+  in, dwell, feed out to R, rapid to clear); G76 feed in, dwell, rapid shift (I J, else Q along +X),
+  rapid to clear, rapid shift back; G87 (Haas G77) from the initial level: shift, rapid down to R,
+  shift back, feed up to Z, dwell, shift, rapid to the initial level, shift back. Haas G70 (L holes
+  on a circle of radius I about X Y or the current point, from J degrees), G71 (K degrees apart), G72
+  (along a line at J degrees, I apart, the first I from the start): the active cycle at each hole.
+  ``G51.1 X..`` mirrors X about that line (G50.1 cancels; Haas G101 / G100 about 0), ``G51 X Y Z P``
+  / ``I J K`` scales about the centre (Fanuc: P I J K without a decimal point in 0.001), G50 cancels;
+  a program point goes through mirror, scaling, then rotation; an arc in a plane with one axis
+  mirrored turns the other way.
+  Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
+  pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
+  the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -426,6 +445,7 @@ def _structure(lines: list[_Line]) -> dict:
 # The machine
 
 _CYCLES = (73, 81, 82, 83, 85, 89)
+_MILL_CYCLES = (74, 76, 87)
 #: The axes beyond X, Y, Z, in the order of :attr:`Expected.extra`; U, V, W scale with G20.
 _EXTRA = "abcuvw"
 
@@ -460,7 +480,20 @@ class _Machine:
         self.retract = 98
         self.cycle_clear: float | None = None
         self.sticky: dict[str, float] = {}
+        self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]
+        self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
+        self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.out: list[Expected] = []
+
+    def _g68_turn(self, v: np.ndarray, sign: float) -> np.ndarray:
+        if self.g68 is None:
+            return v
+        (a, b), c, angle = self.g68
+        t = math.radians(sign * angle)
+        out = v.copy()
+        out[a] = c[a] + math.cos(t) * (v[a] - c[a]) - math.sin(t) * (v[b] - c[b])
+        out[b] = c[b] + math.sin(t) * (v[a] - c[a]) + math.cos(t) * (v[b] - c[b])
+        return out
 
     # coordinates ------------------------------------------------------------------------------
     def _rot(self, v: np.ndarray, sign: float) -> np.ndarray:
@@ -470,7 +503,9 @@ class _Machine:
 
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
         """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
-        m = self._rot(prog + self.g92, 1.0) + self.offsets[self.wcs]
+        p = np.where(self.mirror, 2 * self.mirror_at - prog, np.asarray(prog, float))
+        p = self.scale_centre + self.factors * (p - self.scale_centre)
+        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
         m[2] += self.tool_length
         m[:2] += self.tool_xy
         return m
@@ -479,7 +514,9 @@ class _Machine:
         v = machine - self.offsets[self.wcs]
         v[2] -= self.tool_length
         v[:2] -= self.tool_xy
-        return self._rot(v, -1.0) - self.g92
+        p = self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
+        p = self.scale_centre + (p - self.scale_centre) / self.factors
+        return np.where(self.mirror, 2 * self.mirror_at - p, p)
 
     def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
         """Program coordinates of the block's end from X/Y/Z (and polar) words."""
@@ -548,8 +585,11 @@ def _codes(words: dict, letter: str) -> list[int]:
     return [int(round(v * 10)) for v in words.get(letter, [])]
 
 
-def _modes(m: _Machine, g: list[int], words: dict) -> None:
+def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
     """Steps 12-19 of the order of execution: plane, units, compensation, tool length, system, modes."""
+    if m.ctx.dialect.name in ("fanuc", "haas"):
+        _mill_codes(m, g, words)
+        _mirror_scaling(m, g, words, text)
     for code in g:
         if code in (170, 180, 190):
             m.plane = code // 10
@@ -591,9 +631,68 @@ def _modes(m: _Machine, g: list[int], words: dict) -> None:
             m.retract = code // 10
 
 
+def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
+    """Fanuc/Haas look-ahead codes (their words taken off, the codes too) and G68/G69."""
+    if m.ctx.dialect.name == "haas" and 770 in g:  # Haas G77 is Fanuc's G87
+        g[g.index(770)] = 870
+    for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
+        if code in g:
+            g.remove(code)
+            for k in letters:
+                words.pop(k, None)
+    for code in g:
+        if code in (170, 180, 190):
+            m.plane = code // 10
+    if 690 in g:
+        m.g68 = None
+    if 680 in g:
+        axes = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+        m.g68 = None
+        centre = m.to_program(m.pos)
+        for i in axes:
+            if "xyz"[i] in words:
+                centre[i] = words.pop("xyz"[i])[-1] * m.scale
+        m.g68 = (axes, centre, words.pop("r", [0.0])[-1])
+
+
+def _mirror_scaling(m: _Machine, g: list[int], words: dict, text: str) -> None:
+    """G51.1 / G50.1 mirror and G51 / G50 scaling (their axis words taken off)."""
+    if 500 in g:
+        m.factors = np.ones(3)
+    haas = m.ctx.dialect.name == "haas" and (1010 in g or 1000 in g)  # G101 / G100: about the work zero
+    if 511 in g or 501 in g or haas:
+        for i, a in enumerate("xyz"):
+            if a in words:
+                value = words.pop(a)[-1] * m.scale
+                m.mirror[i] = 511 in g or 1010 in g
+                m.mirror_at[i] = value if 511 in g else 0.0
+    if 510 in g:
+        m.factors = np.ones(3)
+        m.scale_centre = m.to_program(m.pos)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                m.scale_centre[i] = words.pop(a)[-1] * m.scale
+
+        def factor(k: str) -> float:
+            value = words.pop(k)[-1]
+            plain = re.search(rf"{k}\s*[-+]?\d+(?![\d.])", text) is not None
+            return value / 1000.0 if m.ctx.dialect.name == "fanuc" and plain else value
+
+        if "p" in words:
+            m.factors = np.full(3, factor("p"))
+        else:
+            m.factors = np.array([factor(k) if k in words else 1.0 for k in "ijk"])
+
+
 def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
     """Step 20: G28/G30, G10, G92 family. True when the axis words were used here."""
     for code in g:
+        if code in (700, 710, 720) and m.ctx.dialect.name == "haas":
+            _pattern(m, line, code, words)
+            return True
+        if code in (120, 130) and m.ctx.dialect.name == "haas":
+            _pocket(m, line, code, words)
+            return True
         if code in (280, 300):
             home = m.ctx.home if code == 280 else m.ctx.reference2
             axes = [i for i, a in enumerate("xyz") if a in words]
@@ -633,6 +732,53 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
     return False
 
 
+def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Haas G12 / G13 circular pocket milling in G17."""
+    s = m.scale
+    centre = m.target({k: v for k, v in words.items() if k in "xy"})
+    if "x" in words or "y" in words:
+        m.move(line, "rapid", centre)
+    tool = m.ctx.tool(int(words["d"][-1])) if "d" in words else None
+    radius = tool.radius if tool is not None else 0.0
+    radii = [words["i"][-1] * s]
+    while "k" in words and radii[-1] < words["k"][-1] * s - 1e-9:
+        radii.append(min(radii[-1] + words["q"][-1] * s, words["k"][-1] * s))
+    signs = np.where(m.mirror, -1.0, 1.0) * m.factors
+    cw = (code == 120) != ((signs[0] < 0) != (signs[1] < 0))
+    z = centre[2]
+    for _ in range(int(words["l"][-1]) if "l" in words else 1):
+        z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
+        m.move(line, "feed", np.array([centre[0], centre[1], z]))
+        previous = 0.0
+        for r in (r - radius for r in radii):
+            end = m.to_machine(np.array([centre[0] + r, centre[1], z]))
+            for c in (centre[0] + (previous + r) / 2, centre[0]):
+                m.emit(line, "arc_cw" if cw else "arc_ccw", end, centre=m.to_machine(np.array([c, centre[1], z])),
+                       centre_tolerance=1e-6)
+            previous = r
+        m.move(line, "feed", np.array([centre[0], centre[1], z]))
+
+
+def _pattern(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Haas G70 / G71 / G72: the active canned cycle at each hole, given as absolute X Y."""
+    centre = m.target({k: v for k, v in words.items() if k in "xy"})[:2]
+    n, size = int(words["l"][-1]), words["i"][-1] * m.scale
+    j = words.get("j", [0.0])[-1]
+    if code == 720:
+        points = [centre + size * (k + 1) * np.array([math.cos(math.radians(j)), math.sin(math.radians(j))])
+                  for k in range(n)]
+    else:
+        step = 360.0 / n if code == 700 else words["k"][-1]
+        points = [centre + size * np.array([math.cos(math.radians(j + k * step)), math.sin(math.radians(j + k * step))])
+                  for k in range(n)]
+    for p in points:
+        if m.incremental:  # an increment from the previous hole, as the cycle reads X Y under G91
+            here = m.to_program(m.pos)[:2]
+            _cycle(m, line, {"x": [(p[0] - here[0]) / m.scale], "y": [(p[1] - here[1]) / m.scale]})
+        else:
+            _cycle(m, line, {"x": [p[0] / m.scale], "y": [p[1] / m.scale]})
+
+
 def _g10(m: _Machine, words: dict) -> None:
     """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
     kind = int(words["l"][-1])
@@ -660,14 +806,15 @@ def _g10(m: _Machine, words: dict) -> None:
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:
     """Step 21: the motion of the active mode (as modified by G53)."""
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in _CYCLES]
+    cycles = _CYCLES + (_MILL_CYCLES if m.ctx.dialect.name in ("fanuc", "haas") else ())
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
-        if code // 10 not in _CYCLES:
+        if code // 10 not in cycles:
             m.cycle_clear = None
         if code == 800:  # Fanuc: the cycles are group 09, G80 gives back the G0-G3 mode before them
             m.motion = m.linear
-        elif code // 10 not in _CYCLES:
+        elif code // 10 not in cycles:
             m.linear = code
     if 530 in g and axes:
         if m.motion not in (0, 10):
@@ -682,7 +829,7 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
     if not (axes or arc_alone) or m.motion is None:
         return
-    if m.motion // 10 in _CYCLES:
+    if m.motion // 10 in cycles:
         _cycle(m, line, words)
         return
     end = m.to_machine(m.target(words))
@@ -703,7 +850,12 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         rs, re_ = (math.hypot(p[a] - centre[a], p[b] - centre[b]) for p in (m.pos, end))
         chord = math.hypot(end[a] - m.pos[a], end[b] - m.pos[b])
         slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
-        m.emit(line, "arc_cw" if m.motion == 20 else "arc_ccw", end, centre=centre, centre_tolerance=1e-6 + slack)
+        signs = np.where(m.mirror, -1.0, 1.0) * m.factors
+        if abs(m.factors[a]) != abs(m.factors[b]):
+            raise ReferenceError("an arc under unequal scaling")
+        flip = (signs[a] < 0) != (signs[b] < 0)  # one axis of the plane mirrored: G02 runs as G03
+        m.emit(line, "arc_cw" if (m.motion == 20) != flip else "arc_ccw", end, centre=centre,
+               centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
 
@@ -746,7 +898,7 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
-    for k in "rqp":
+    for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]
     if depth in words:
@@ -760,7 +912,12 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     r = (m.cycle_clear + m.sticky["r"] * s) if m.incremental else m.sticky["r"] * s
     bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
     clear = max(m.cycle_clear, r) if m.retract == 98 else r
-    repeats = int(words["l"][-1]) if "l" in words else 1
+    # Fanuc repeats a cycle K times (0i-MF "Canned cycle": "K: number of repeats"); LinuxCNC and Haas with L
+    fanuc_k = m.ctx.dialect.name == "fanuc" and "k" in words and "l" not in words
+    repeats = int(words["k"][-1]) if fanuc_k else int(words["l"][-1]) if "l" in words else 1
+    if code == 87:
+        _back_bore(m, line, words, cur, r, bottom, prog)
+        return
     if cur[2] < r - _EPS * max(1.0, abs(r)):
         cur[2] = r
         m.move(line, "rapid", prog(cur))
@@ -788,7 +945,9 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
 
     dwell = m.sticky.get("p", 0.0)
     if code in (73, 83):
-        delta = m.sticky["q"] * m.scale
+        # Haas "G83": I the first peck, each next J less, never below K (instead of Q)
+        haas = m.ctx.dialect.name == "haas" and bool(m.sticky.get("i"))
+        delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
         while depth > bottom:  # LinuxCNC's loop; a last peck within rounding of the bottom may be left out
@@ -796,17 +955,53 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
             for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
                 m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
                 m.pos = m.out[-1].end.copy()
+            if haas:  # the next peck is J shorter
+                delta = max(delta - m.sticky.get("j", 0.0) * m.scale, m.sticky.get("k", 0.0) * m.scale)
             depth -= delta
     m.move(line, "feed", at(bottom))
-    if code in (82, 89):
+    if code in (74, 76, 82, 89):
         m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
-    if code == 85:
+    if code == 76:
+        shift = _shift(m)
+        for z in (bottom, clear):
+            m.move(line, "rapid", prog([*(xy + shift), z]))
+        m.move(line, "rapid", at(clear))
+    elif code == 74:
+        m.move(line, "feed", at(r))
+        m.move(line, "rapid", at(clear), optional=True)
+    elif code == 85:
         m.move(line, "feed", at(r))
         m.move(line, "rapid", at(clear), optional=True)
     elif code == 89:
         m.move(line, "feed", at(clear))
     else:
         m.move(line, "rapid", at(clear))
+
+
+def _shift(m: _Machine) -> np.ndarray:
+    """The G76/G87 shift in the hole plane [mm]: I J when given, else |Q| along the first axis."""
+    if m.sticky.get("i") or m.sticky.get("j"):
+        return np.array([m.sticky.get("i", 0.0), m.sticky.get("j", 0.0)]) * m.scale
+    return np.array([abs(m.sticky["q"]) * m.scale, 0.0])
+
+
+def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, top: float, prog) -> None:
+    """G87 back boring, each repeat from the initial level ``m.cycle_clear``."""
+    initial, shift = m.cycle_clear, _shift(m)
+    xy = cur[:2].copy()
+    for _ in range(int(words["l"][-1]) if "l" in words else 1):
+        if m.incremental:
+            xy = xy + np.array([words.get(a, [0.0])[-1] * m.scale for a in "xy"])
+        else:
+            xy = np.array([words[a][-1] * m.scale if a in words else xy[i] for i, a in enumerate("xy")])
+        m.move(line, "rapid", prog([*xy, initial]), optional=True)
+        for kind, at, z in (("rapid", xy + shift, initial), ("rapid", xy + shift, r), ("rapid", xy, r),
+                            ("feed", xy, top)):
+            m.move(line, kind, prog([*at, z]))
+        dwell = m.sticky.get("p", 0.0)
+        m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
+        for at, z in ((xy + shift, top), (xy + shift, initial), (xy, initial)):
+            m.move(line, "rapid", prog([*at, z]))
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
@@ -821,7 +1016,7 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
-    _modes(m, g, words)
+    _modes(m, g, words, ln.text)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
     if not used:

@@ -143,7 +143,8 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
-    ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 is not supported"),
+    ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 is not supported"),
+    ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 lacks Q218, Q219"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
     ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20", "Q343=1"),
@@ -155,3 +156,171 @@ def test_errors_name_the_cycle(body, words):
         parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", source="t.h")
     assert words in str(info.value)
     assert info.value.file == "t.h" and info.value.line >= 2
+
+
+THREAD = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 262 THREAD MILLING Q335=+12 {q} Q201=-6 "
+          "Q253=750 Q200=2 Q203=+0 Q204=20 Q207=300\nCYCL CALL")
+
+
+def test_thread_milling_262_one_helix_climbing_a_right_hand_thread():
+    # M6 x 1.5 inside, tool radius 4: helix radius 2 about (10, 20); right-hand + climb: counter-clockwise, upward
+    # from the depth -6 by one pitch; half circles in (centre (11, 20)) and out (centre (11, 20) at -4.5)
+    prog = run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0"))
+    got = [(b.kind, *np.round(b.target, 6).tolist(), round(b.feed * 60, 6)) for b in prog.blocks[2:]]
+    assert got == [("rapid", 10, 20, 2, math.inf), ("line", 10, 20, -6, 750), ("arc", 12, 20, -6, 300),
+                   ("arc", 12, 20, -4.5, 300), ("arc", 10, 20, -4.5, 300), ("rapid", 10, 20, 2, math.inf),
+                   ("rapid", 10, 20, 20, math.inf)]
+    arcs = [b.segment for b in prog.blocks if b.kind == "arc"]
+    assert all(a.ccw for a in arcs)
+    assert [a.center[:2].tolist() for a in arcs] == [[11, 20], [10, 20], [11, 20]]
+
+
+def test_thread_milling_262_continuous_and_downward_helices_stay_in_the_thread():
+    # up-cut on a right-hand thread: clockwise, downward; Q355=1: from the surface to the depth, 4 turns of 1.5
+    down = run(THREAD.format(q="Q239=+1.5 Q351=-1 Q355=1"))
+    zs = [b.target[2] for b in down.blocks[2:]]
+    assert zs == [2, 0, 0, -6, -6, 2, 20]
+    helix = down.blocks[5]
+    assert not helix.segment.ccw and np.allclose(helix.target, [12, 20, -6])
+    # a left-hand thread climb-milled runs downward too: from one pitch above the depth
+    left = run(THREAD.format(q="Q239=-1.5 Q351=+1 Q355=0"))
+    assert [b.target[2] for b in left.blocks[2:]] == [2, -4.5, -4.5, -6, -6, 2, 20]
+    for prog in (down, left, run(THREAD.format(q="Q239=+1.25 Q351=+1 Q355=1"))):
+        for b in prog.blocks[2:]:  # within the thread: radius 6 less the tool's 4, between the depth and the top
+            assert math.hypot(b.target[0] - 10, b.target[1] - 20) <= 2 + 1e-9 and -6 - 1e-9 <= b.target[2]
+    with pytest.raises(GCodeError, match="Q355=2"):
+        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=2"))
+    with pytest.raises(GCodeError, match="not narrower than the thread"):
+        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0").replace("R+4", "R+6"))
+
+
+def test_universal_pecking_205_breaks_the_chip_every_q257_within_an_infeed():
+    # infeeds of 5; within each a chip break after every 2 mm, 0.5 back at rapid; between infeeds out to the
+    # set-up clearance and back to Q258 = 0.5 above the last depth
+    prog = run("CYCL DEF 205 UNIVERSAL PECKING Q200=2 Q201=-10 Q206=100 Q202=5 Q203=+0 Q204=20 Q212=0 Q205=0 "
+               "Q258=0.5 Q259=0.5 Q257=2 Q256=0.5 Q211=0\nCYCL CALL")
+    r = math.inf
+    assert [(b.kind, b.target[2], round(b.feed * 60, 6)) for b in prog.blocks[1:]] == [
+        ("rapid", 2, r), ("line", -2, 100), ("rapid", -1.5, r), ("line", -4, 100), ("rapid", -3.5, r),
+        ("line", -5, 100), ("rapid", 2, r), ("rapid", -4.5, r), ("line", -7, 100), ("rapid", -6.5, r),
+        ("line", -9, 100), ("rapid", -8.5, r), ("line", -10, 100), ("rapid", 2, r), ("rapid", 20, r)]
+
+
+def test_universal_drilling_203_is_checked_by_the_reference():
+    # decrement Q212, smallest infeed Q205, one chip break (Q213) before each retraction at Q208 (0: Q206)
+    prog = run("CYCL DEF 203 UNIVERSAL DRILLING Q200=+2 Q201=-9 Q206=+60 Q202=+3 Q210=+0.5 Q203=+0 Q204=+2 "
+               "Q212=+1 Q213=+1 Q205=+1 Q211=+0 Q208=+0 Q256=+0.5\nL X+5 FMAX M99")
+    assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3, -2.5, -5, 2, -6, -5.5, -7, 2, -8, -7.5,
+                                                                        -9, 2]
+    assert sum(b.kind == "dwell" for b in prog.blocks) == 2  # Q210 at the top before each re-entry
+
+
+POCKET = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 252 CIRCULAR POCKET {q} Q223=20 "
+          "Q207=500 Q201=-5 Q202=2.5 Q206=150 Q200=2 Q203=+0 Q204=20 Q366=0 Q385=400\nCYCL CALL")
+
+
+def test_circular_pocket_252_roughs_in_rings_and_finishes_wall_and_floor():
+    # 20 mm pocket about (10, 20), tool radius 2, stepover Q370 x R = 2; allowances 0.5 side, 0.2 floor:
+    # roughing circles of radius 2, 4, 6 and 7.5 (10 - 0.5 - 2) at -2.5 and -4.8, then the wall at radius 8
+    # (half circle out, full circle, half circle back) and the floor at -5 with circles out to 8
+    prog = run(POCKET.format(q="Q215=0 Q368=0.5 Q369=0.2 Q338=0 Q351=+1 Q370=1"))
+    moves = [(b.kind, *np.round(b.target, 6).tolist(), round(b.feed * 60, 6)) for b in prog.blocks[2:]]
+    r = math.inf
+    level = [("line", 12, 20, -2.5, 500), ("arc", 12, 20, -2.5, 500), ("line", 14, 20, -2.5, 500),
+             ("arc", 14, 20, -2.5, 500), ("line", 16, 20, -2.5, 500), ("arc", 16, 20, -2.5, 500),
+             ("line", 17.5, 20, -2.5, 500), ("arc", 17.5, 20, -2.5, 500)]
+    assert moves[:12] == [("rapid", 10, 20, 2, r), ("line", 10, 20, -2.5, 150), *level,
+                          ("rapid", 17.5, 20, -0.5, r), ("rapid", 10, 20, -0.5, r)]
+    assert moves[12:21] == [("line", 10, 20, -4.8, 150), *[(k, x, y, -4.8, f) for k, x, y, _, f in level]]
+    assert moves[23:27] == [("line", 10, 20, -5, 150), ("arc", 18, 20, -5, 400), ("arc", 18, 20, -5, 400),
+                            ("arc", 10, 20, -5, 400)]
+    assert moves[-2:] == [("rapid", 10, 20, 2, r), ("rapid", 10, 20, 20, r)]
+    assert all(b.segment.ccw for b in prog.blocks if b.kind == "arc")  # climb milling with M3
+
+
+def test_circular_pocket_252_stays_inside_the_pocket():
+    for q in ("Q215=1 Q368=0 Q369=0 Q338=0 Q351=-1 Q370=1.4", "Q215=2 Q368=0 Q369=0 Q338=2 Q351=+1 Q370=0.5",
+              "Q215=0 Q368=0.3 Q369=0.3 Q338=1 Q351=-1 Q370=1"):
+        prog = run(POCKET.format(q=q))
+        for b in prog.blocks[2:]:
+            assert math.hypot(b.target[0] - 10, b.target[1] - 20) <= 10 - 2 + 1e-9 and b.target[2] >= -5 - 1e-9
+            if b.kind == "arc":  # the arcs' far side too: centre distance plus radius
+                c = b.segment.center
+                far = math.hypot(c[0] - 10, c[1] - 20) + math.hypot(b.target[0] - c[0], b.target[1] - c[1])
+                assert far <= 8 + 1e-9
+    with pytest.raises(GCodeError, match="Q366=1"):
+        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=1"))
+    with pytest.raises(GCodeError, match="fill the pocket"):
+        run(POCKET.format(q="Q215=0 Q368=8.5 Q369=0 Q338=0 Q351=1 Q370=1"))
+
+
+RECT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 251 RECTANGULAR POCKET {q} Q218=30 "
+        "Q219=16 Q207=500 Q201=-2 Q202=2 Q206=150 Q200=2 Q203=+0 Q204=20 Q370=1 Q366=0 Q385=400 Q367=0\nCYCL CALL")
+
+
+def test_rectangular_pocket_251_roughs_in_rectangles_and_finishes_the_wall():
+    # 30 x 16 about (10, 20), tool radius 2, side allowance 0.5: the outer rectangle has half sides 12.5 x 5.5,
+    # its corners rounded by 3 - 0.5 - 2 = 0.5; 3 rings (5.5 / 2 mm stepover), inset by 5.5 / 3 each
+    prog = run(RECT.format(q="Q215=0 Q368=0.5 Q369=0 Q338=0 Q220=3 Q224=0 Q351=+1"))
+    b = prog.blocks
+    third = 5.5 / 3
+    assert np.allclose(b[4].target, [10 + 12.5 - 2 * third, 20, -2]) and b[4].kind == "line"
+    assert np.allclose(b[5].target, [10 + 12.5 - 2 * third, 20 + 5.5 - 2 * third, -2])
+    outer = [blk for blk in b if blk.kind == "arc" and round(blk.feed * 60) == 500]
+    assert len(outer) == 4 and all(a.segment.ccw for a in outer)
+    assert np.allclose(outer[0].segment.center[:2], [22, 25]) and np.allclose(outer[0].target[:2], [22, 25.5])
+    # the wall at half sides 13 x 6, corners 1, at Q385, then back to the centre
+    wall = [blk for blk in b if blk.feed * 60 == pytest.approx(400)]
+    assert np.allclose(wall[0].target, [23, 20, -2]) and np.allclose(wall[-1].target, [10, 20, -2])
+    assert np.allclose(wall[2].segment.center[:2], [22, 25]) and np.allclose(wall[2].target[:2], [22, 26])
+
+
+def test_rectangular_pocket_251_stays_inside_the_turned_pocket():
+    for q in ("Q215=0 Q368=0.5 Q369=0.2 Q338=1 Q220=3 Q224=30 Q351=+1", "Q215=2 Q368=0 Q369=0 Q338=0 Q220=0 Q224=-90 "
+              "Q351=-1", "Q215=1 Q368=0 Q369=0 Q338=0 Q220=9 Q224=0 Q351=-1"):
+        prog = run(RECT.format(q=q))
+        a = math.radians(float(q.split("Q224=")[1].split()[0]))
+        for blk in prog.blocks[2:]:  # in the pocket's own axes, within the half sides less the tool radius
+            dx, dy = blk.target[0] - 10, blk.target[1] - 20
+            u, v = dx * math.cos(a) + dy * math.sin(a), -dx * math.sin(a) + dy * math.cos(a)
+            assert abs(u) <= 13 + 1e-9 and abs(v) <= 6 + 1e-9 and blk.target[2] >= -2 - 1e-9
+    with pytest.raises(GCodeError, match="Q367=1"):
+        run(RECT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q367=0", "Q367=1"))
+
+
+STUD = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 256 RECTANGULAR STUD {q} Q218=20 Q424=26 "
+        "Q219=10 Q425=14 Q207=500 Q201=-2 Q202=2 Q206=150 Q200=2 Q203=+0 Q204=20 Q385=400 Q367=0\nCYCL CALL")
+
+
+def test_rectangular_stud_256_steps_in_from_the_blank():
+    # TNC 640 cycle manual, cycle 256: start 2 mm right of the blank (13 + 2 + R = 17 from the centre), a half
+    # circle onto the contour, revolutions stepping in from the blank (15 x 9 with R) to the stud plus Q368
+    # and R (12.5 x 7.5) in 2 steps of 1.25 (<= Q370 x R = 2), clockwise (climb), a half circle back out;
+    # then one finishing revolution at 12 x 7 (corner Q220 + R = 3) at Q385
+    prog = run(STUD.format(q="Q215=0 Q368=0.5 Q369=0 Q338=0 Q220=1 Q224=0 Q351=+1 Q370=1"))
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[2:5]] == [[27, 20, 50], [27, 20, 2], [27, 20, -2]]
+    assert b[5].kind == "arc" and b[5].segment.ccw and np.allclose(b[5].target, [23.75, 20, -2])
+    assert np.allclose(b[6].target, [23.75, 16, -2]) and not b[7].segment.ccw  # down the right side, clockwise
+    assert np.allclose(b[7].segment.center[:2], [19, 16]) and np.allclose(b[7].target[:2], [19, 11.25])
+    sides = sorted({round(float(blk.target[0]), 6) for blk in b if blk.kind == "line" and blk.target[1] == 20})
+    assert sides == [22, 22.5, 23.75, 27]  # the revolutions close on the reference axis; the plunge at 27
+    finish = [blk for blk in b if blk.feed * 60 == pytest.approx(400)]
+    assert np.allclose(finish[0].target, [22, 20, -2]) and np.allclose(finish[-1].target, [27, 20, -2])
+    assert np.allclose(b[-2].target, [27, 20, 2]) and np.allclose(b[-1].target, [27, 20, 20])
+
+
+def test_rectangular_stud_256_never_cuts_into_the_stud():
+    for q in ("Q215=1 Q368=0 Q369=0.3 Q338=0 Q220=0 Q224=0 Q351=-1 Q370=0.6",
+              "Q215=2 Q368=0 Q369=0 Q338=1 Q220=4 Q224=0 Q351=+1 Q370=1",
+              "Q215=0 Q368=0.2 Q369=0 Q338=0 Q220=2 Q224=30 Q351=+1 Q370=1.5"):
+        prog = run(STUD.format(q=q)) if "Q224=0 " in q else parse_heidenhain(
+            HEAD + STUD.format(q=q) + "\nEND PGM T MM\n", source="t.h", context=CTX)
+        a = math.radians(float(q.split("Q224=")[1].split()[0]))
+        for blk in prog.blocks[3:]:  # the tool centre stays R outside the stud 20 x 10 (its corners rounded)
+            dx, dy = blk.target[0] - 10, blk.target[1] - 20
+            u, v = abs(dx * math.cos(a) + dy * math.sin(a)), abs(-dx * math.sin(a) + dy * math.cos(a))
+            outside = math.hypot(max(u - 10, 0.0), max(v - 5, 0.0))
+            assert outside >= 2 - 1e-9 and blk.target[2] >= -2 - 1e-9
+    with pytest.raises(GCodeError, match="Q424, Q425 at least"):
+        run(STUD.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q424=26", "Q424=18"))
