@@ -231,7 +231,7 @@ class _Tnc:
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             element = ("line", start, end.copy()) if centre is None else \
-                ("arc", centre, float(np.hypot(*(end - centre)[:2])), (0, 1), start)
+                ("arc", centre, float(np.hypot(*(end - centre)[:2])), (0, 1), start, 0.0)
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.radius, rows="last",
                                      element=element, entry=self.entry))
             self.entry = False

@@ -122,8 +122,9 @@ class Expected:
         Indices of the arc plane's axes (G17: x, y; G18: z, x; G19: y, z).
     element : tuple or None
         Under G41/G42: the programmed element, ``("line", start, end)`` or ``("arc", centre, radius,
-        plane, start)`` [mm, machine]. The compensated end must lie one tool radius from it (within
-        1 um: the offset path runs at the radius from its element, at an inside corner the
+        plane, start, slack)`` [mm, machine]. The compensated end must lie one tool radius from it (within
+        1 um, and for an arc ``slack`` more when its programmed centre is not equidistant from its
+        ends; the offset path runs at the radius from its element, at an inside corner the
         intersection of two offsets and at an outside corner the offset of the end; for an arc in
         its plane); for the entry move (``entry``) at most one radius from it. A compensated arc's
         end keeps its programmed height along the plane normal, within half the block's travel
@@ -561,7 +562,13 @@ class _Machine:
             if centre is None:
                 element = ("line", self.pos.copy(), end.copy())
             else:
-                element = ("arc", centre, float(np.hypot(*(end - centre)[list(plane)])), plane, self.pos.copy())
+                # an arc whose programmed centre is not equidistant from its ends (rounded CAM output): a
+                # reader may offset the arc about its own centre on the ends' bisector, which lies up to
+                # the centre's allowance away, and the radii differ by |rs - re|
+                rs = float(np.hypot(*(self.pos - centre)[list(plane)]))
+                re_ = float(np.hypot(*(end - centre)[list(plane)]))
+                slack = max(centre_tolerance - 1e-6, 0.0) + abs(rs - re_)
+                element = ("arc", centre, re_, plane, self.pos.copy(), slack)
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
                                      element=element, entry=self.comp_entry, extra=self.extra.copy()))
             self.comp_entry = False

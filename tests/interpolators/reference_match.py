@@ -60,7 +60,7 @@ def _element_distance(point: np.ndarray, element: tuple) -> float:
         d = b - a
         t = 0.0 if not d.any() else float(np.clip(np.dot(point - a, d) / np.dot(d, d), 0.0, 1.0))
         return float(np.linalg.norm(point - (a + t * d)))
-    _, centre, radius, (i, j), _ = element
+    _, centre, radius, (i, j), _, _ = element
     return abs(float(np.hypot(point[i] - centre[i], point[j] - centre[j])) - radius)
 
 
@@ -71,9 +71,10 @@ def _comp_ok(got: np.ndarray, e) -> bool:
         if abs(got[normal] - e.end[normal]) > 0.5 * rise + COMP_TOLERANCE:
             return False
     d = _element_distance(got, e.element)
+    allowance = COMP_TOLERANCE + (e.element[5] if e.element[0] == "arc" else 0.0)
     if e.entry:
-        return d <= e.tolerance + COMP_TOLERANCE
-    return abs(d - e.tolerance) <= COMP_TOLERANCE
+        return d <= e.tolerance + allowance
+    return abs(d - e.tolerance) <= allowance
 
 
 def _extra_ok(row: list, e) -> bool:

@@ -49,11 +49,7 @@ RADIUS_CONTEXT = MachineContext(
 #: Known disagreements of the readers with the reference (reader bugs, reported; the readers are
 #: not this module's to change): (program, context) -> what differs. Each is asserted to still
 #: differ, so that a fix makes this test ask for its entry to be removed.
-KNOWN_MISMATCHES: dict[tuple[str, str], str] = {  # (the last three, G10 L2 R, G53 alone, G40 exits, fixed)
-    # accepted since G33.1 runs (session 10); the compensation of its arc entry is not this reader's to change
-    ("0037_mmount.ngc", "radius"): "G41 D15 entered on a G03 arc (line 255): the reader ends the next G02 "
-                                   "(line 256) at X85.577 Y-227.653, off the reference's one-radius check",
-}
+KNOWN_MISMATCHES: dict[tuple[str, str], str] = {}  # (G10 L2 R, G53 alone, G40 exits, 0037 arc radii: fixed)
 
 
 def read_text(path: Path) -> str:
