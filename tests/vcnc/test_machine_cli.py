@@ -15,6 +15,7 @@ from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
 from vcnc.commands.machines import PROGRAM_TABLE_DOC
 from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
+from vcnc.errors import InputError
 from vcnc.setpoints import Setpoints
 
 PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"
@@ -60,7 +61,7 @@ def test_machines_show_prints_toml(capsys, tmp_path) -> None:
     text = builtin_machine_text("fadal-pid").strip()
     assert out.startswith(text) and out.rstrip().endswith(PROGRAM_TABLE_DOC.rstrip())
     # the documented [program] table, uncommented, is a valid machine file whose defaults change nothing
-    doc = "\n".join(ln[2:] if ln.startswith(("# [", "# G54", "# length", "# radius")) or
+    doc = "\n".join(ln[2:] if ln.startswith(("# [", "# G54", "# length", "# radius", "# offset_")) or
                     (ln.startswith("# ") and ln[2:3].islower() and " = " in ln) else ln
                     for ln in PROGRAM_TABLE_DOC.splitlines())
     uncommented = text + "\n" + doc
@@ -69,7 +70,7 @@ def test_machines_show_prints_toml(capsys, tmp_path) -> None:
     m = load_machine(f)
     assert m.context.dialect.tolerance == interpolators.DEFAULT_TOLERANCE  # the documented value is the default
     assert dataclasses.replace(m.context.dialect, tolerance=None) == DEFAULT_CONTEXT.dialect
-    assert m.context.tools[1].length == 0.0
+    assert m.context.tools[1].length == 0.0 and m.context.tools[1].offset_x == 0.0
     assert m.context.offset("G54").tolist() == [0, 0, 0] and m.context.home.tolist() == [0, 0, 0]
 
 
@@ -123,3 +124,17 @@ def test_simulate_bad_program_exit_2(tmp_path: Path, capsys) -> None:
     assert rc == 2
     assert not (tmp_path / "c.csv").exists()
     assert "bad.nc:3" in capsys.readouterr().err
+
+
+def test_machine_file_tool_offsets_apply_with_g43(tmp_path) -> None:
+    """[program.tools.N] offset_x/offset_y: G43 applies them with the length (machine = program + offsets,
+    LinuxCNC g-code.adoc "G43": all the tool's offsets)."""
+    f = tmp_path / "m.toml"
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.1]\nlength = 10.0\noffset_x = 2.5\n"
+                 "offset_y = -1.0\n")
+    m = load_machine(f)
+    prog = interpolators.parse_program("G21 G90\nG43 H1\nG0 X10 Y0 Z0\nG49\nG0 X10 Y0 Z0\n", context=m.context)
+    assert [b.target.tolist() for b in prog.blocks][-2:] == [[12.5, -1.0, 10.0], [10.0, 0.0, 0.0]]
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.1]\noffset_z = 1.0\n")
+    with pytest.raises(InputError, match="offset_z"):
+        load_machine(f)

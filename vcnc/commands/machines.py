@@ -18,7 +18,7 @@ PROGRAM_TABLE_DOC = """
 # tolerance = 0.01               # mm, path tolerance of that continuous-path mode
 # home = [0.0, 0.0, 0.0]         # mm, machine coordinates: where programs start; G28's position
 # reference2 = [0.0, 0.0, 0.0]   # mm, machine coordinates: G30's position
-# tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length)
+# tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length, X Y offsets)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]
@@ -26,6 +26,8 @@ PROGRAM_TABLE_DOC = """
 # [program.tools.1]              # per tool number: G43 H1 applies the length, G41/G42 D1 the radius
 # length = 0.0                   # mm
 # radius = 0.0                   # mm
+# offset_x = 0.0                 # mm, tool offsets along X and Y (G43 applies them with the length)
+# offset_y = 0.0                 # mm
 """
 
 

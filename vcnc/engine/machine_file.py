@@ -26,7 +26,7 @@ Layout::
     reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3
-    [program.tools.1]             # mm: length = 12.5, radius = 3.0 (per tool number)
+    [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
 
 or, for an axis simulated by an FMU: ``[axes.x] fmu = "drive.fmu"`` (with ``[axes.x.limits]``).
 Field names and units are those of the ``drives`` and ``controllers`` records.
@@ -349,12 +349,14 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         if not number.isdigit() or not isinstance(entry, dict):
             raise where.error(f"'program.tools.{number}' must be a table named by a tool number", tpath)
         for key in entry:
-            if key not in ("length", "radius", "comment"):
+            if key not in ("length", "radius", "offset_x", "offset_y", "comment"):
                 raise where.error(f"unknown key 'program.tools.{number}.{key}'; expected length [mm], radius [mm], "
-                                  "comment", tpath + (key,))
+                                  "offset_x [mm], offset_y [mm], comment", tpath + (key,))
         try:
             tools[int(number)] = Tool(number=int(number), length=float(entry.get("length", 0.0)),
-                                      radius=float(entry.get("radius", 0.0)), comment=str(entry.get("comment", "")))
+                                      radius=float(entry.get("radius", 0.0)),
+                                      offset_x=float(entry.get("offset_x", 0.0)),
+                                      offset_y=float(entry.get("offset_y", 0.0)), comment=str(entry.get("comment", "")))
         except (InputError, TypeError, ValueError) as exc:
             raise where.error(f"program.tools.{number}: {getattr(exc, 'message', exc)}", tpath) from None
     kwargs["tools"] = tools
