@@ -52,7 +52,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/251/252/256/262
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/251/252/256/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -104,6 +104,7 @@ from interpolators.heidenhain_cycles import (
     PATTERN_CYCLES,
     DrillCycle,
     PatternCycle,
+    back_boring_moves,
     drill_cycle,
     hole_moves,
     legacy_value,
@@ -934,7 +935,9 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
-    for mv in hole_moves(c, start=m.pos[axis], surface=surface):
+    moves = back_boring_moves(c, surface=surface) if c.number == 204 else hole_moves(c, start=m.pos[axis],
+                                                                                       surface=surface)
+    for mv in moves:
         if mv.kind == "dwell":
             m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
         elif mv.kind == "plane":

@@ -22,6 +22,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
                           retraction feed, Q256 chip-break retraction
 ``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
                           advanced stop distances
+``CYCL DEF 204``          back boring: Q249 Q250 Q251 Q252 Q253 Q254 Q255 Q214 (:func:`back_boring_cycle`)
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
@@ -50,14 +51,14 @@ from interpolators.heidenhain_words import read_value, read_words
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
-           "pecking_cycle", "drill_cycle", "thread_milling_cycle",
+           "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 251, 252,
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 251, 252,
                                       256, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
@@ -70,7 +71,8 @@ BORING_DISENGAGE = 0.2
 #: lists; the others have the defaults of the TNC's cycle dialog).
 _REQUIRED = {
     200: (200, 201, 206, 203, 204), 201: (200, 201, 206, 203, 204), 202: (200, 201, 206, 203, 204),
-    203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
+    203: (200, 201, 206, 203, 204), 204: (200, 249, 250, 251, 252, 253, 254, 203, 204, 214),
+    205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
@@ -80,6 +82,7 @@ _REQUIRED = {
 }
 
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
+_FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -155,6 +158,12 @@ class DrillCycle:
         Cycle 251: Q224, the pocket's rotation about its centre [deg].
     blank : tuple of float
         Cycle 256: Q424, Q425, the workpiece blank's side lengths [mm].
+    counterbore : float
+        Cycle 204: Q249, the depth of the counterbore from the workpiece's underside, its sign the
+        direction along the tool axis (+: towards the spindle) [mm].
+    edge_height : float
+        Cycle 204: Q252, the distance from the underside of the boring bar (the tool tip) up to its
+        main cutting tooth [mm].
     """
 
     number: int
@@ -190,6 +199,8 @@ class DrillCycle:
     corner: float = 0.0
     angle: float = 0.0
     blank: tuple[float, float] = (0.0, 0.0)
+    counterbore: float = 0.0
+    edge_height: float = 0.0
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -206,9 +217,14 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int)
             tok = rest[pos:].split()[0]
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
-        value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
+        fmax = _FMAX_RE.match(rest, m.end())
+        if fmax:  # a feed given as MAX (rapid), as the Fusion 360 TNC post writes Q253 of cycle 204
+            value, pos = math.inf, fmax.end()
+        else:
+            value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
         out[int(m.group(1))] = value
-        params.set(f"Q{m.group(1)}", value, where, column=column0 + m.start())
+        if not fmax:  # the parameter store holds finite values only
+            params.set(f"Q{m.group(1)}", value, where, column=column0 + m.start())
     return out
 
 
@@ -300,6 +316,12 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
+    for k, v in q.items():
+        if math.isinf(v) and (number, k) != (204, 253):
+            where.fail(f"cycle {number}: Q{k}=MAX is not a value here", column=column, text=where.text,
+                       expected=f"Q{k}=<number>")
+    if number == 204:
+        return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number in (251, 252, 256):
@@ -352,6 +374,66 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         retract_feed=retract * feed_scale if retract > 0 else None,
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
+
+
+def back_boring_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                      column: int) -> DrillCycle:
+    """Cycle 204 BACK BORING from its Q parameters (TNC 320 / iTNC 530 user's manual for cycle
+    programming, "BACK BORING (Cycle 204)"): Q200 set-up clearance, Q249 depth of the counterbore
+    from the workpiece's underside (+: bored towards the spindle), Q250 material thickness, Q251
+    off-centre distance of the boring bar, Q252 tool edge height (underside of the bar to the main
+    cutting tooth), Q253 pre-positioning feed (``MAX``: rapid), Q254 counterboring feed, Q255 dwell
+    at the top of the counterbore, Q203, Q204, Q214 disengaging direction (1/3: minus/plus the
+    reference axis, 2/4: minus/plus the minor axis, 0: the bar is not moved off centre). Q336
+    (spindle orientation) gives no motion. The moves are :func:`hole_moves`'.
+    """
+    if not q[250] > 0 or q[251] < 0 or q[252] < 0 or q[249] == 0:
+        where.fail("cycle 204: the material thickness Q250 must be > 0, Q251 and Q252 >= 0, Q249 != 0",
+                   column=column, text=where.text, expected="Q250 > 0, Q251 >= 0, Q252 >= 0, Q249 != 0 [mm]")
+    if not q[253] > 0:
+        where.fail("cycle 204: the pre-positioning feed Q253 must be > 0", column=column, text=where.text,
+                   expected="Q253 > 0 [mm/min] or MAX")
+    side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q[214]), (0.0, 0.0))
+    off = abs(q[251]) * scale
+    return _checked(DrillCycle(
+        number=204, setup=abs(q[200]) * scale, depth=-q[250] * scale, plunge=q[250] * scale,
+        feed=q[254] * feed_scale, dwell_bottom=q.get(255, 0.0), surface=q[203] * scale,
+        second_setup=q[204] * scale, disengage=(off * side[0], off * side[1]),
+        approach_feed=q[253] * feed_scale, counterbore=q[249] * scale, edge_height=q[252] * scale), where, column)
+
+
+def back_boring_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
+    """The moves of cycle 204 BACK BORING at one hole (TNC 320 / iTNC 530 user's manual for cycle
+    programming, "BACK BORING (Cycle 204)", cycle run): FMAX to the set-up clearance above the
+    surface; after the oriented spindle stop the bar moves the off-centre distance Q251 in the
+    direction Q214; in at the pre-positioning feed Q253 until the tooth is the set-up clearance
+    below the workpiece's underside (the tip a further Q252 lower); back over the centre; at the
+    counterboring feed Q254 until the tooth is Q249 above the underside; dwell Q255; out of the
+    cut at Q253 to the level below the underside (our reading of "retracted from the hole"), off
+    centre again, at Q253 to the set-up clearance, back over the centre (our reading, as cycle 202),
+    FMAX to the 2nd set-up clearance. ``surface`` [mm, machine] in the tool axis, which points
+    away from the workpiece.
+    """
+    top = surface + cycle.setup
+    underside = surface + cycle.depth  # depth = -Q250
+    below = underside - cycle.setup - cycle.edge_height
+    cut = underside + cycle.counterbore - cycle.edge_height
+    kind, feed = ("rapid", math.inf) if math.isinf(cycle.approach_feed) else ("line", cycle.approach_feed)
+    moved = cycle.disengage != (0.0, 0.0)
+    out = [AxisMove("rapid", top)]
+    out += [AxisMove("plane", top, offset=cycle.disengage)] if moved else []
+    out.append(AxisMove(kind, below, feed))
+    out += [AxisMove("plane", below)] if moved else []
+    out.append(AxisMove("line", cut, cycle.feed))
+    if cycle.dwell_bottom > 0:
+        out.append(AxisMove("dwell", cut, 0.0, cycle.dwell_bottom))
+    out.append(AxisMove(kind, below, feed))
+    out += [AxisMove("plane", below, offset=cycle.disengage)] if moved else []
+    out.append(AxisMove(kind, top, feed))
+    out += [AxisMove("plane", top)] if moved else []
+    if cycle.second_setup > cycle.setup:
+        out.append(AxisMove("rapid", surface + cycle.second_setup))
+    return out
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -457,7 +539,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                floor_allowance=cycle.floor_allowance * factor,
                                finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
                                sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
-                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor))
+                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor),
+                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

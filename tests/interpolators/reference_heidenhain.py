@@ -411,8 +411,9 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
-        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
+                  for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
         if number in (220, 221):
@@ -512,6 +513,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
+        return
+    if kind == "204":
+        _back_boring(t, line, p)
         return
     if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
         sgn = -1.0 if p[2] < 0 else 1.0
@@ -785,6 +789,37 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
         t.emit(line, kind, t.machine(end), centre=t.machine(pole))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _back_boring(t: _Tnc, line: int, p: dict) -> None:
+    """204: rapid to Q203 + Q200, Q251 off centre in the Q214 direction, in (Q253: MAX rapid) until
+    the tooth, Q252 above the tip, is Q200 below the underside Q203 - Q250; over the centre; up
+    until the tooth is Q249 above the underside; dwell Q255; back down to the level below, off
+    centre, up to Q203 + Q200, over the centre, up to Q203 + Q204."""
+    surface, setup, second = p["Q203"], p["Q200"], p.get("Q204", 0.0)
+    underside = surface - p["Q250"]
+    low, cut = underside - setup - p["Q252"], underside + p["Q249"] - p["Q252"]
+    how = "rapid" if math.isinf(p["Q253"]) else "feed"
+    side = {1: (-1, 0), 2: (0, -1), 3: (1, 0), 4: (0, 1)}.get(int(p["Q214"]), (0, 0))
+    _move_z(t, line, "rapid", surface + setup, optional=True)
+    centre = t.prog()
+
+    def sideways(off: float) -> None:
+        if side != (0, 0):
+            here = centre + np.array([side[0], side[1], 0.0]) * off * t.scale
+            here[2] = t.prog()[2]
+            t.emit(line, "rapid", t.machine(here))
+
+    sideways(p["Q251"])
+    _move_z(t, line, how, low)
+    sideways(0.0)
+    _move_z(t, line, "feed", cut)
+    _dwell(t, line, p.get("Q255", 0.0))
+    _move_z(t, line, how, low)
+    sideways(p["Q251"])
+    _move_z(t, line, how, surface + setup)
+    sideways(0.0)
+    _move_z(t, line, "rapid", surface + max(second, setup), optional=True)
 
 
 def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:

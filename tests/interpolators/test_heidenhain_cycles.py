@@ -140,7 +140,7 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
 
 
 @pytest.mark.parametrize("body, words", [
-    ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
+    ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 lacks Q249, Q250"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
     ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 is not supported"),
@@ -324,3 +324,24 @@ def test_rectangular_stud_256_never_cuts_into_the_stud():
             assert outside >= 2 - 1e-9 and blk.target[2] >= -2 - 1e-9
     with pytest.raises(GCodeError, match="Q424, Q425 at least"):
         run(STUD.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q424=26", "Q424=18"))
+
+
+def test_back_boring_204_goes_under_the_plate_off_centre_and_bores_upwards():
+    # plate 20 thick from Z0 down, underside Z-20; tooth 3 above the tip: in until the tooth is 2 below the
+    # underside (tip -25), back to the centre, up until the tooth is 5 above the underside (tip -18)
+    prog = run("CYCL DEF 204 BACK BORING Q200=2 Q249=+5 Q250=20 Q251=3.5 Q252=3 Q253=MAX Q254=200 Q255=0.5 "
+               "Q203=+0 Q204=50 Q214=1 Q336=0\nCYCL CALL")
+    assert moves(prog) == [("rapid", 0, 0, 2, math.inf), ("rapid", -3.5, 0, 2, math.inf),
+                           ("rapid", -3.5, 0, -25, math.inf), ("rapid", 0, 0, -25, math.inf),
+                           ("line", 0, 0, -18, 200), ("dwell", 0, 0, -18, 0.5), ("rapid", 0, 0, -25, math.inf),
+                           ("rapid", -3.5, 0, -25, math.inf), ("rapid", -3.5, 0, 2, math.inf),
+                           ("rapid", 0, 0, 2, math.inf), ("rapid", 0, 0, 50, math.inf)]
+
+
+def test_back_boring_204_prepositions_at_q253_and_rejects_max_elsewhere():
+    prog = run("CYCL DEF 204 Q200=2 Q249=+5 Q250=20 Q251=3.5 Q252=3 Q253=500 Q254=200 Q255=0 "
+               "Q203=+0 Q204=50 Q214=4 Q336=0\nCYCL CALL")
+    assert [mv[:4] for mv in moves(prog)][1:4] == [("rapid", 0, 3.5, 2), ("line", 0, 3.5, -25), ("rapid", 0, 0, -25)]
+    assert moves(prog)[2][4] == 500
+    with pytest.raises(GCodeError, match="Q206=MAX"):
+        run("CYCL DEF 200 Q200=2 Q201=-10 Q206=MAX Q202=5 Q210=0 Q203=+0 Q204=20 Q211=0\nCYCL CALL")
