@@ -146,10 +146,11 @@ from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
+#: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
-    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?![A-Z])",
+    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
@@ -159,7 +160,7 @@ _FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
 _M_END = (2, 30)
 _M_STOP = (0, 1)
 _DETECT_RE = re.compile(
-    r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?![A-Z])",
+    r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?:(?<=:)|(?![A-Z]))",
     re.I,
 )
 

@@ -64,6 +64,18 @@ def test_q_parameter_arithmetic_fn0_to_fn13():
     assert prog.blocks[2].target[0] == pytest.approx(72.0)  # Q6 = SQRT(-72 * -1), squared
 
 
+def test_parameters_written_without_spaces_as_hypermill_posts_write_them():
+    # hyperMILL's TNC post: "FN 0:Q2=105 ; Z FEED RATE", "CYCL DEF9 .0", and formulas "Q3=Q2+1" without blanks
+    text = (HEAD + "FN 0:Q2=105 ; Z FEED RATE\nQ3=Q2+1\nL X+0 Y+0 Z+50 R0 F MAX\nCYCL DEF9 .0 VARAKOZASI IDO\n"
+            "CYCL DEF9.1 V.IDO5\nL X+Q3 Y+0 Z+0 FQ2\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h")
+    assert [b.kind for b in prog.blocks] == ["rapid", "dwell", "line"]
+    assert prog.blocks[1].dwell == 5.0
+    assert ends(prog)[2] == [106, 0, 0] and prog.blocks[2].feed * 60 == pytest.approx(105)
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
 def test_formulas_precedence_and_functions():
     prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
                "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
