@@ -125,6 +125,9 @@ class DrillCycle:
         Advanced stop distance [mm]: how far above the last depth a re-entry at rapid stops
         (205: Q258); ``None``: the cycle's own rule (1: 0.6 mm, or depth/50 up to 7 mm, for holes
         deeper than 30 mm; 200/203: the set-up clearance).
+    advance_last : float or None
+        205: Q259, the advanced stop distance of the last re-entry [mm]; the re-entries between the
+        first (Q258) and the last change it at the same rate (``None``: all Q258).
     disengage : tuple of float
         Cycle 202: the move off the wall at the bottom, in the working plane's (reference, minor)
         axes [mm, program directions] (Q214; (0, 0): none).
@@ -201,6 +204,7 @@ class DrillCycle:
     blank: tuple[float, float] = (0.0, 0.0)
     counterbore: float = 0.0
     edge_height: float = 0.0
+    advance_last: float | None = None
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -327,6 +331,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     if number in (251, 252, 256):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
+    if q.get(379, 0.0) != 0.0:
+        where.fail(f"cycle {number}: a deepened starting point Q379 is not supported", column=column,
+                   text=where.text, expected="Q379=0 (drilling from the set-up clearance above the surface)")
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
@@ -373,6 +380,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
         retract_feed=retract * feed_scale if retract > 0 else None,
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
+        advance_last=abs(q[259]) * scale if number == 205 and 259 in q else None,
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
 
 
@@ -532,7 +540,7 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
                                chip_break=cycle.chip_break * factor, chip_depth=cycle.chip_depth * factor,
-                               advance=f(cycle.advance),
+                               advance=f(cycle.advance), advance_last=f(cycle.advance_last),
                                disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
                                bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor,
                                side_allowance=cycle.side_allowance * factor,
@@ -668,6 +676,28 @@ class AxisMove:
     offset: tuple[float, float] = (0.0, 0.0)
 
 
+def _infeeds(cycle: DrillCycle) -> int:
+    """How many infeeds drill ``cycle``'s hole (plunges shrinking by the decrement)."""
+    done, plunge, n = 0.0, cycle.plunge, 0
+    while done < abs(cycle.depth) - 1e-12:
+        done += min(plunge, abs(cycle.depth) - done)
+        n += 1
+        if cycle.decrement:
+            plunge = max(plunge - cycle.decrement, cycle.min_plunge, 1e-3)
+    return n
+
+
+def _reentry_advance(cycle: DrillCycle, first: float, k: int) -> float:
+    """The advanced stop distance of the ``k``-th re-entry [mm]: 205 goes from Q258 at the first to Q259
+    at the last at the same rate per re-entry (TNC 426/430 user's manual, "UNIVERSAL PECKING (Cycle
+    205)": "If you enter Q258 not equal to Q259, the TNC will change the advance stop distances
+    between the first and last plunging depths at the same rate"; per re-entry: our reading)."""
+    n = _infeeds(cycle) - 1  # re-entries
+    if cycle.advance_last is None or n <= 1:
+        return first
+    return first + (cycle.advance_last - first) * (k - 1) / (n - 1)
+
+
 def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisMove]:
     """The tool-axis moves of one hole, the TNC way (TNC 426/430 user's manual, "Cycles for
     drilling"; values from the cycle's definition):
@@ -679,7 +709,8 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
       dwell, then FMAX back to the starting point;
     * cycles 200/203/205: FMAX to the set-up clearance above the surface, drill to the plunging
       depth, FMAX back to the set-up clearance, dwell Q210 there, FMAX to the set-up clearance
-      (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
+      (205: Q258 at the first re-entry, Q259 at the last, :func:`_reentry_advance`) above the last
+      depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
       205 breaks the chip within an infeed after every Q257, retracting Q256 at FMAX (TNC 426/430
       user's manual, "UNIVERSAL PECKING (Cycle 205)": "Infeed depth for chip breaking Q257",
       "Retraction rate for chip breaking Q256");
@@ -708,11 +739,13 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     plunge = cycle.plunge
     breaks = 0
     at_top = True
+    reentries = 0
     while done < total - 1e-12:
         if done > 0.0 and at_top:
             if cycle.dwell_top > 0:
                 out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
-            reentry = surface + d * (done - advance)
+            reentries += 1
+            reentry = surface + d * (done - _reentry_advance(cycle, advance, reentries))
             if d * (reentry - top) > 0 and cycle.number not in (2, 17, 206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)

@@ -574,6 +574,17 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _peck_depths(total: float, peck: float, decrement: float, smallest: float) -> list[float]:
+    """The depths [mm, from the surface] reached by the pecks of 203/205."""
+    out, z = [], 0.0
+    while total - z > _EPS:
+        z = min(z + peck, total)
+        out.append(z)
+        if decrement:
+            peck = max(peck - decrement, smallest, 1e-3)
+    return out
+
+
 def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     """203/205: pecks of Q202 shrinking by Q212 to at least Q205; between pecks out to the set-up clearance
     (203: at Q208, 0: Q206; 205: rapid), dwell Q210, rapid back to the set-up clearance (205: Q258) above
@@ -588,11 +599,17 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     breaks = int(p.get("Q213", 0)) if kind == "203" else 0
     _move_z(t, line, "rapid", clear, optional=True)
     peck, z, n = abs(p["Q202"]) or abs(depth), surface, 0
+    depths = _peck_depths(abs(depth), peck, abs(p.get("Q212", 0.0)), abs(p.get("Q205", 0.0)))
+    last = abs(p["Q259"]) if kind == "205" and "Q259" in p else advance
+    entry = 0
     while (bottom - z) * sgn > _EPS:
         if n == 0 and z != surface:
             _dwell(t, line, p.get("Q210", 0.0))
-            if (z - sgn * advance - clear) * sgn > 0:
-                _move_z(t, line, "rapid", z - sgn * advance)
+            # 205: Q258 at the first re-entry to Q259 at the last, in equal steps
+            step = advance + (last - advance) * entry / (len(depths) - 2) if len(depths) > 2 else advance
+            entry += 1
+            if (z - sgn * step - clear) * sgn > 0:
+                _move_z(t, line, "rapid", z - sgn * step)
         target = bottom if (bottom - z - sgn * peck) * sgn <= _EPS else z + sgn * peck
         mark = z + sgn * every
         while every > 0 and (target - mark) * sgn > _EPS:
