@@ -362,6 +362,8 @@ class _Run:
                            "repeat?)", column=blk.column, text=blk.code,
                            expected="a program that reaches M30 or END PGM")
             self.pc += 1
+            if blk.skip:
+                self.m.note("/ skippable blocks run (block skip switched off)")
             k = _KEYWORD_RE.match(blk.code)
             if k is None:
                 _unknown_block(blk, where)

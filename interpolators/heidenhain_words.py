@@ -41,6 +41,9 @@ class SourceBlock:
         1-based column of ``code`` in the first line.
     text : str
         The stripped source line (for messages).
+    skip : bool
+        The block is marked ``/`` (before or after its number): hidden when the operator switches
+        block skip on (TNC 640 user's manual, "Hiding blocks"); it runs here, the switch off.
     """
 
     line: int
@@ -48,6 +51,7 @@ class SourceBlock:
     code: str
     column: int
     text: str
+    skip: bool = False
 
     def where(self, source: str | None) -> Where:
         """Source position of this block for error messages."""
@@ -64,7 +68,7 @@ class Word:
     text: str
 
 
-_HEAD_RE = re.compile(r"\s*(\d+)?\s*")
+_HEAD_RE = re.compile(r"\s*(?P<pre>/)?\s*(?P<num>\d+)?\s*(?P<post>/(?![/*]))?\s*")
 
 
 def _strip_comment(line: str) -> str:
@@ -111,12 +115,13 @@ def source_blocks(text: str) -> list[SourceBlock]:
         if code.endswith("*"):
             code = code[:-1].rstrip()
         m = _HEAD_RE.match(code)
-        number = int(m.group(1)[:9]) if m.group(1) else None
+        number = int(m.group("num")[:9]) if m.group("num") else None
         pos = m.end()
         rest = code[pos:]
         if not rest.strip() or rest.startswith("*"):
             continue
-        out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip()))
+        out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip(),
+                               skip=bool(m.group("pre") or m.group("post"))))
     return out
 
 

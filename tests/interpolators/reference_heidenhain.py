@@ -60,7 +60,7 @@ _EPS = 1e-9
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
     un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
-    older TNCs save them), numbers dropped."""
+    older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
@@ -72,7 +72,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
             continue
         if first is None:
             first = no
-            code = re.sub(r"^\d+\s*", "", code)
+            code = re.sub(r"^/?\s*\d+\s*(/\s*)?", "", code).lstrip("/").strip()  # "/" block skip: off, it runs
         buf.append(code)
         if not cont:
             out.append((first, " ".join(b for b in buf if b).strip()))

@@ -76,6 +76,16 @@ def test_parameters_written_without_spaces_as_hypermill_posts_write_them():
     assert match.mismatch is None, match.mismatch
 
 
+def test_skippable_blocks_run_with_block_skip_off_and_are_noted():
+    # "/" before the block number (hyperMILL: "/81 M30") or after it (the TNC's own form)
+    text = HEAD + "L X+0 Y+0 Z+50 R0 FMAX\n3 /L X+10 F100\n/4 L X+20\n5 L X+30\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h")
+    assert [e[0] for e in ends(prog)] == [0, 10, 20, 30]
+    assert any("block skip" in n for n in prog.notes)
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
 def test_formulas_precedence_and_functions():
     prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
                "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
