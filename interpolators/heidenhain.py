@@ -218,6 +218,7 @@ class _Machine:
         self.last_rapid = False
         self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
         self.spindle: float | None = None  # spindle speed of the last TOOL CALL S [rpm]
+        self.auto_feed: float | None = None  # feed of the last TOOL CALL F [program units/min]: F AUTO
         self.modal_call = False  # M89: every positioning block calls the cycle
         self.cycle_program: tuple[str, int] | None = None  # cycle 12 PGM CALL: the program and its column
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
@@ -398,7 +399,7 @@ class _Run:
         if kw == "CTP":
             where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
                        expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
-        words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+        words = _read_words(blk.code, k.end(), where, m, column0=col0)
         return _motion(kw, words, m, where, blk)
 
     def flow(self, kw: str, blk: SourceBlock, where: Where) -> None:
@@ -545,7 +546,7 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: W
     """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
-    words = read_words(blk.code, pos + (pat.end() if pat else 0), where, m.params, column0=blk.column)
+    words = _read_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
     if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
         m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
     moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
@@ -564,7 +565,7 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
-    words = read_words(blk.code, pos if kw == "STOP" else 0, where, m.params, column0=blk.column)
+    words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
     return _m_functions(words, m, where, blk, motion=False)
 
 
@@ -607,6 +608,19 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
     m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
 
 
+def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int) -> list[Word]:
+    """The words of a block, ``F AUTO`` read as the feed of the last ``TOOL CALL .. F`` (TNC 640
+    user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block")."""
+    words = read_words(code, pos, where, m.params, column0=column0)
+    for i, w in enumerate(words):
+        if w.key == "FAUTO":
+            if m.auto_feed is None:
+                where.fail("F AUTO without a feed in the TOOL CALL", column=w.column, text=w.text,
+                           expected="TOOL CALL n Z S.. F<mm/min> before F AUTO, or F <mm/min>")
+            words[i] = Word("F", m.auto_feed, w.column, w.text)
+    return words
+
+
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     rest = code[pos:]
@@ -637,6 +651,8 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
             dr = v * m.scale
         elif word == "S":
             m.spindle = v
+        elif word == "F":
+            m.auto_feed = v
     if number is not None:
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
@@ -705,7 +721,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
             where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
                        column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
-        words = read_words(rest, 0, where, m.params, column0=col)
+        words = _read_words(rest, 0, where, m, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
                 where.fail(f"word {w.text!r} in a datum shift", column=w.column, text=w.text,
@@ -1362,7 +1378,7 @@ def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) 
     rm = re.compile(r"\s*R(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, pos) if kw == "RND" else None
     j = rm.end() if rm else pos
     value, j = read_value(code, j, where, m.params, what=kw, column0=blk.column)
-    words = read_words(code, j, where, m.params, column0=blk.column)
+    words = _read_words(code, j, where, m, column0=blk.column)
     feed = None
     for w in words:
         if w.key == "F":
@@ -1666,7 +1682,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if form not in ("LT", "LN", "CT", "LCT"):
         where.fail(f"{what} is not supported", column=blk.column, text=what,
                    expected=f"{kw} LT, LN, CT or LCT (polar: APPR PLT, PLN, PCT, PLCT, DEP PLCT)")
-    words = read_words(code, fm.end(), where, m.params, column0=blk.column)
+    words = _read_words(code, fm.end(), where, m, column0=blk.column)
     keys = {"CT": ("CCA", "R"), "LCT": ("R",)}.get(form, ("LEN",))
     axes = ("PR", "PA", "Z", "IZ") if polar else ("X", "Y", "Z", "IX", "IY", "IZ")
     seen = {}

@@ -10,7 +10,7 @@ manual, "Programming fundamentals: NC blocks"). This module
   the old block end ``*`` dropped, and ``* ...`` structure blocks recognised;
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
-  ``F``/``F MAX``/``FMAX``, ``M``, ``MB MAX``, and a value that is a number, a Q parameter
+  ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``M``, ``MB MAX``, and a value that is a number, a Q parameter
   (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
 """
 
@@ -185,7 +185,7 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
     Raises
     ------
     vcnc.GCodeError
-        An unknown word, a rotary axis, ``F AUTO`` or a malformed value, naming the column.
+        An unknown word, a rotary axis or a malformed value, naming the column.
     """
     out: list[Word] = []
     n = len(code)
@@ -205,8 +205,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             out.append(Word("FMAX", None, col, tok))
         elif kind == "mbmax":
             out.append(Word("MBMAX", None, col, tok))
-        elif kind == "fauto":
-            where.fail("F AUTO is not supported", column=col, text=tok, expected="F <mm/min>, FQn or F MAX")
+        elif kind == "fauto":  # the feed of the last TOOL CALL: the reader resolves it
+            out.append(Word("FAUTO", None, col, tok))
         elif kind == "dr":
             out.append(Word("DR", tok.replace(" ", "")[-1], col, tok))
         elif kind == "rcomp":

@@ -150,7 +150,7 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX)?)")
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:
@@ -165,7 +165,7 @@ def _words(rest: str, q: dict) -> dict[str, float | str]:
         if key == "M":
             out.setdefault("M", [])
             out["M"].append(int(v))
-        elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX"):
+        elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX", "AUTO"):  # F AUTO: a feed
             out[key] = v
         else:
             out[key] = _val(v, q)

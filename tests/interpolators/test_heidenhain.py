@@ -86,6 +86,17 @@ def test_skippable_blocks_run_with_block_skip_off_and_are_noted():
     assert match.mismatch is None, match.mismatch
 
 
+def test_f_auto_is_the_feed_of_the_tool_call():
+    text = (HEAD + "TOOL CALL 1 Z S1000 F300\nL X+0 Y+0 Z+50 R0 FMAX\nL Z+2 FAUTO\nL X+10 F100\nL X+20 F AUTO\n"
+            "L X+30\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h")
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [300, 100, 300, 300]
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    with pytest.raises(GCodeError, match="F AUTO without a feed in the TOOL CALL"):
+        run("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 F AUTO")
+
+
 def test_formulas_precedence_and_functions():
     prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
                "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
