@@ -24,7 +24,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     tool axis (plane), tool length along it (table or TOOL DEF,
                                     plus DL) and radius for RL/RR (plus DR), from the next move on
     L X+10 IY-5 R0 F200 M3          line; I = incremental; F MAX / FMAX: rapid (this block only);
-                                    F [mm/min] (INCH: [0.1 in/min]) modal; FQ5 feed from Q5
+                                    F [mm/min] (INCH: [0.1 in/min]) modal; FQ5 feed from Q5;
+                                    F AUTO: the F of the last TOOL CALL
+    5 /L X+10, /5 L X+10            skippable block: runs (block skip off), noted
     L +0.009                        a number without axis letter repeats the single axis of the
                                     previous L block (the thesis' Tables 4.3/4.4 are written so)
     CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position)
