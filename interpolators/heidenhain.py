@@ -612,9 +612,19 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
 
 def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int) -> list[Word]:
     """The words of a block, ``F AUTO`` read as the feed of the last ``TOOL CALL .. F`` (TNC 640
-    user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block")."""
+    user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block") and ``FU``
+    (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
+    tooth) needs the tool's number of teeth, which vcnc's tool table does not hold: an error."""
     words = read_words(code, pos, where, m.params, column0=column0)
     for i, w in enumerate(words):
+        if w.key == "FZ":
+            where.fail("FZ (feed per tooth) needs the tool's number of teeth", column=w.column, text=w.text,
+                       expected="F <mm/min> or FU <mm/rev>")
+        if w.key == "FU":
+            if not m.spindle:
+                where.fail("FU (feed per revolution) without a spindle speed", column=w.column, text=w.text,
+                           expected="TOOL CALL .. S<rpm> before FU")
+            words[i] = Word("F", w.value * m.spindle, w.column, w.text)
         if w.key == "FAUTO":
             if m.auto_feed is None:
                 where.fail("F AUTO without a feed in the TOOL CALL", column=w.column, text=w.text,
@@ -626,8 +636,10 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+|\"[^\"]*\"|'[^']*')?", rest)
-    number = int(nm.group(1)[:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
+    number = int(nm.group(1).split(".")[0][:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    if number is not None and "." in nm.group(1):
+        m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
     named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
     if named:
         m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")

@@ -150,7 +150,8 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|FU|F|M)"
+                   r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:

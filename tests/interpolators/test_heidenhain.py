@@ -97,6 +97,19 @@ def test_f_auto_is_the_feed_of_the_tool_call():
         run("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 F AUTO")
 
 
+def test_fu_feed_per_revolution_indexed_tools_and_fz_refused():
+    # FU 0.1 mm/rev at S1000: 100 mm/min; TOOL CALL 12.1 (index 1 of tool 12) takes tool 12's data
+    ctx = MachineContext(tools={12: Tool(number=12, length=40.0, radius=0.0)})
+    text = HEAD + "TOOL CALL 12.1 Z S1000\nL X+0 Y+0 Z+50 R0 FMAX\nL X+10 FU0.1\nL X+20\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [100, 100]
+    assert ends(prog)[0] == [0, 0, 90] and any("indexed tool 12.1" in n for n in prog.notes)
+    match = match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    with pytest.raises(GCodeError, match="FZ .feed per tooth. needs the tool's number of teeth"):
+        run("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 FZ0.05")
+
+
 def test_formulas_precedence_and_functions():
     prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
                "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
