@@ -81,6 +81,9 @@ _REQUIRED = {
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
+#: (cycle, Q) whose value may be ``MAX`` (rapid): 204's pre-positioning feed, the retraction feed of
+#: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203).
+_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 _FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
 
@@ -321,7 +324,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     """
     required_q(number, q, where, column)
     for k, v in q.items():
-        if math.isinf(v) and (number, k) != (204, 253):
+        if math.isinf(v) and (number, k) not in _MAX_ALLOWED:
             where.fail(f"cycle {number}: Q{k}=MAX is not a value here", column=column, text=where.text,
                        expected=f"Q{k}=<number>")
     if number == 204:
@@ -359,6 +362,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     feed = q[206] * feed_scale
     if number in (201, 202, 206):
         back = (q.get(208, 0.0) or q[206]) * feed_scale if number != 206 else feed
+        back = None if math.isinf(back) else back  # Q208=MAX: out at rapid
         side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q.get(214, 0.0)), (0.0, 0.0))
         off = tuple(BORING_DISENGAGE * v for v in side) if number == 202 else (0.0, 0.0)
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, retract_feed=back, disengage=off, **base),
@@ -378,7 +382,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         plunge=plunge, feed=feed, dwell_top=q.get(210, 0.0), decrement=abs(q.get(212, 0.0)) * scale,
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
-        retract_feed=retract * feed_scale if retract > 0 else None,
+        retract_feed=retract * feed_scale if 0 < retract < math.inf else None,  # Q208=MAX: rapid
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
         advance_last=abs(q[259]) * scale if number == 205 and 259 in q else None,
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)

@@ -594,7 +594,7 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
     clear, bottom = surface - sgn * setup, surface + depth
-    back = "feed" if kind == "203" else "rapid"
+    back = "feed" if kind == "203" and not math.isinf(p.get("Q208", 0.0)) else "rapid"  # Q208=MAX: rapid
     advance = setup if kind == "203" else abs(p.get("Q258", 0.2))
     chip, every = abs(p.get("Q256", 0.2)), abs(p.get("Q257", 0.0)) if kind == "205" else 0.0
     breaks = int(p.get("Q213", 0)) if kind == "203" else 0
@@ -863,7 +863,7 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     side = {1: (-1, 0), 2: (0, -1), 3: (1, 0), 4: (0, 1)}.get(int(p.get("Q214", 0))) if kind == "202" else None
     if side:
         t.emit(line, "rapid", t.machine(centre + np.array([side[0], side[1], 0.0]) * 0.2))
-    _move_z(t, line, "rapid" if kind == "240" else "feed", clear)
+    _move_z(t, line, "rapid" if kind == "240" or math.isinf(p.get("Q208", 0.0)) else "feed", clear)
     if side:
         centre[2] = t.prog()[2]
         t.emit(line, "rapid", t.machine(centre))

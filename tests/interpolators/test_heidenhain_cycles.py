@@ -345,3 +345,16 @@ def test_back_boring_204_prepositions_at_q253_and_rejects_max_elsewhere():
     assert moves(prog)[2][4] == 500
     with pytest.raises(GCodeError, match="Q206=MAX"):
         run("CYCL DEF 200 Q200=2 Q201=-10 Q206=MAX Q202=5 Q210=0 Q203=+0 Q204=20 Q211=0\nCYCL CALL")
+
+
+def test_retraction_feed_q208_max_is_rapid_as_the_fusion_post_writes_it():
+    # Fusion 360's TNC post: cycle 203 with "Q208=MAX ;RETRACTION FEED RATE"; 201 the same
+    prog = run("CYCL DEF 203 UNIVERSAL DRILLING ~\n  Q200=2 ;SET-UP CLEARANCE ~\n  Q201=-6 ;DEPTH ~\n"
+               "  Q206=100 ;FEED RATE FOR PLUNGING ~\n  Q202=3 ;INFEED DEPTH ~\n  Q210=0 ;DWELL AT TOP ~\n"
+               "  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=20 ;2ND SET-UP CLEARANCE ~\n  Q212=0 ;DECREMENT ~\n"
+               "  Q213=0 ;BREAKS ~\n  Q205=0 ;MIN. PLUNGING DEPTH ~\n  Q211=0 ;DWELL TIME AT DEPTH ~\n"
+               "  Q208=MAX ;RETRACTION FEED RATE ~\n  Q256=0.2 ;DIST. FOR CHIP BRKNG\nCYCL CALL")
+    assert [(k, z) for k, _, _, z, _ in moves(prog)] == [("rapid", 2), ("line", -3), ("rapid", 2), ("rapid", -1),
+                                                          ("line", -6), ("rapid", 2), ("rapid", 20)]
+    prog = run("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100 Q211=0 Q208=MAX Q203=+0 Q204=20\nCYCL CALL")
+    assert [(k, z) for k, _, _, z, _ in moves(prog)] == [("rapid", 2), ("line", -10), ("rapid", 2), ("rapid", 20)]
