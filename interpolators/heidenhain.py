@@ -8,7 +8,7 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240 and the
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241 and the
   pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
@@ -54,7 +54,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/251/252/256/262
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251/252/256/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -699,7 +699,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 247, 251, 252, "
+                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
                             "256, 262")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None

@@ -26,6 +26,7 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 241``          single-lip deep-hole drilling in one infeed (:func:`drill_cycle`)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
                           (:func:`circular_pocket_cycle`)
@@ -58,7 +59,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 251, 252,
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
                                       256, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
@@ -74,7 +75,7 @@ _REQUIRED = {
     203: (200, 201, 206, 203, 204), 204: (200, 249, 250, 251, 252, 253, 254, 203, 204, 214),
     205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
-    209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204), 241: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
@@ -83,7 +84,7 @@ _REQUIRED = {
 
 #: (cycle, Q) whose value may be ``MAX`` (rapid): 204's pre-positioning feed, the retraction feed of
 #: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203).
-_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208)})
+_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 _FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
 
@@ -319,6 +320,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       (Q256 = 0: out to the set-up clearance) at the feed times Q403 (default 1), as it retracts at
       the bottom;
     * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back;
+    * 241 SINGLE-LIP DEEP-HOLE DRILLING (:func:`_single_lip_supported`): as 201, from the set-up
+      clearance at Q206 to the depth, dwell Q211, out at Q208 (0: Q206; MAX: rapid); the spindle
+      and coolant words Q426-Q430 move nothing;
     * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (the reader's
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
@@ -360,7 +364,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=plunge, feed=feed, retract_feed=back, chip_breaks=10 ** 9 if chip else 0,
                                    chip_break=chip, **base), where, column)
     feed = q[206] * feed_scale
-    if number in (201, 202, 206):
+    if number == 241:
+        _single_lip_supported(q, where, column)
+    if number in (201, 202, 206, 241):
         back = (q.get(208, 0.0) or q[206]) * feed_scale if number != 206 else feed
         back = None if math.isinf(back) else back  # Q208=MAX: out at rapid
         side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q.get(214, 0.0)), (0.0, 0.0))
@@ -446,6 +452,18 @@ def back_boring_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
     if cycle.second_setup > cycle.setup:
         out.append(AxisMove("rapid", surface + cycle.second_setup))
     return out
+
+
+def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> None:
+    """Cycle 241's options read here (TNC 640 user's manual for cycle programming, "SINGLE-LIP
+    DEEP-HOLE DRILLING (Cycle 241)"): drilling from the set-up clearance in one infeed. A deepened
+    starting point Q379, a dwell depth Q435 or infeeds Q202 shorter than the depth are errors."""
+    if q.get(379, 0.0) != 0.0 or q.get(435, 0.0) != 0.0:
+        where.fail("cycle 241: a deepened starting point Q379 or a dwell depth Q435 is not supported",
+                   column=column, text=where.text, expected="Q379=0 and Q435=0")
+    if 0.0 < abs(q.get(202, 0.0)) < abs(q[201]):
+        where.fail("cycle 241: infeeds Q202 shorter than the depth are not supported", column=column,
+                   text=where.text, expected="Q202=0 or at least the depth Q201")
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,

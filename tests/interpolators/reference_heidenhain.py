@@ -412,7 +412,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 256, 262) \
+            and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
@@ -841,7 +842,8 @@ def _back_boring(t: _Tnc, line: int, p: dict) -> None:
 
 
 def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
-    """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering: in to
+    """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering, 241
+    single-lip deep-hole drilling (Q379 = 0: as 201): in to
     the depth (209: in steps of Q257, backing off Q256 pitches after each, 0: out to the set-up
     clearance), dwell Q211 (not 207/209), 202: 0.2 mm off the wall in the Q214 direction; out (240:
     rapid, the others at a feed) to the set-up clearance, 202: back over the centre; up to Q204."""

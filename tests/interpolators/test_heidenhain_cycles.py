@@ -358,3 +358,19 @@ def test_retraction_feed_q208_max_is_rapid_as_the_fusion_post_writes_it():
                                                           ("line", -6), ("rapid", 2), ("rapid", 20)]
     prog = run("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100 Q211=0 Q208=MAX Q203=+0 Q204=20\nCYCL CALL")
     assert [(k, z) for k, _, _, z, _ in moves(prog)] == [("rapid", 2), ("line", -10), ("rapid", 2), ("rapid", 20)]
+
+
+GUN_DRILL = ("CYCL DEF 241 SINGLE-LIP DEEP-HOLE DRILLING ~\n Q200=3 ;SET-UP CLEARANCE ~\n Q201=-40 ;DEPTH ~\n"
+             " Q206=50 ;FEED RATE FOR PLUNGING ~\n Q211=0.5 ;DWELL TIME AT DEPTH ~\n Q203=+0 ;SURFACE COORDINATE ~\n"
+             " Q204=30 ;2ND SET-UP CLEARANCE ~\n Q379={q379} ;STARTING POINT ~\n Q253=750 ;F PRE-POSITIONING ~\n"
+             " Q208=1000 ;RETRACT FEED RATE ~\n Q426=3 ;DIR. OF SPINDLE ROT. ~\n Q427=50 ;ENTRY EXIT SPEED ~\n"
+             " Q428=1790 ;DRILLING SPEED ~\n Q429=8 ;COOLANT ON ~\n Q430=9 ;COOLANT OFF ~\n Q435=0 ;DWELL DEPTH\n"
+             "CYCL CALL")
+
+
+def test_single_lip_deep_hole_241_drills_in_one_infeed_and_retracts_at_q208():
+    prog = run(GUN_DRILL.format(q379=0))
+    assert moves(prog) == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, -40, 50), ("dwell", 0, 0, -40, 0.5),
+                           ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
+    with pytest.raises(GCodeError, match="Q379"):
+        run(GUN_DRILL.format(q379=16))
