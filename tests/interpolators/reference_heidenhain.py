@@ -876,7 +876,7 @@ def _pattern_def_call(t: _Tnc, line: int) -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
     kind, cyc = t.cycle
-    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     for w in t.pattern:
         p = {**cyc, "Q203": cyc["Q203"] + w.get("Z", 0.0)}
         clear = p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0))
@@ -910,7 +910,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
     kind, cyc = t.cycle
-    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
     for k, (x, y) in enumerate(points):
         here = t.prog()

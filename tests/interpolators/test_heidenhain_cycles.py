@@ -374,3 +374,11 @@ def test_single_lip_deep_hole_241_drills_in_one_infeed_and_retracts_at_q208():
                            ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
     with pytest.raises(GCodeError, match="Q379"):
         run(GUN_DRILL.format(q379=16))
+
+
+def test_back_boring_204_at_the_points_of_a_pattern():
+    # CYCL CALL PAT: up to the clearance (Q204 = 15 above the surface) between the holes, 204 at each
+    prog = run("CYCL DEF 204 Q200=2 Q249=+4 Q250=10 Q251=2 Q252=0 Q253=MAX Q254=100 Q255=0 Q203=+0 Q204=15 "
+               "Q214=3 Q336=0\nPATTERN DEF ~\nPOS1 (X+10 Y+0 Z+0) ~\nPOS2 (X+20 Y+0 Z+0)\nCYCL CALL PAT FMAX")
+    lows = [tuple(round(v, 6) for v in b.target) for b in prog.blocks if b.kind == "line"]
+    assert lows == [(10, 0, -6), (20, 0, -6)]  # the tooth (= tip, Q252 = 0) up to 4 above the underside Z-10
