@@ -8,7 +8,7 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-203, 205-209, 240 and the
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241 and the
   pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
@@ -24,7 +24,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     tool axis (plane), tool length along it (table or TOOL DEF,
                                     plus DL) and radius for RL/RR (plus DR), from the next move on
     L X+10 IY-5 R0 F200 M3          line; I = incremental; F MAX / FMAX: rapid (this block only);
-                                    F [mm/min] (INCH: [0.1 in/min]) modal; FQ5 feed from Q5
+                                    F [mm/min] (INCH: [0.1 in/min]) modal; FQ5 feed from Q5;
+                                    F AUTO: the F of the last TOOL CALL
+    5 /L X+10, /5 L X+10            skippable block: runs (block skip off), noted
     L +0.009                        a number without axis letter repeats the single axis of the
                                     previous L block (the thesis' Tables 4.3/4.4 are written so)
     CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position)
@@ -52,7 +54,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-203/205-209/240/251/252/256/262
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251/252/256/262
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -104,6 +106,7 @@ from interpolators.heidenhain_cycles import (
     PATTERN_CYCLES,
     DrillCycle,
     PatternCycle,
+    back_boring_moves,
     drill_cycle,
     hole_moves,
     legacy_value,
@@ -145,10 +148,11 @@ from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
+#: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
-    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?![A-Z])",
+    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
@@ -158,7 +162,7 @@ _FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
 _M_END = (2, 30)
 _M_STOP = (0, 1)
 _DETECT_RE = re.compile(
-    r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?![A-Z])",
+    r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?:(?<=:)|(?![A-Z]))",
     re.I,
 )
 
@@ -216,6 +220,7 @@ class _Machine:
         self.last_rapid = False
         self.selected: tuple[str, int] | None = None  # SEL PGM: the name and its column
         self.spindle: float | None = None  # spindle speed of the last TOOL CALL S [rpm]
+        self.auto_feed: float | None = None  # feed of the last TOOL CALL F [program units/min]: F AUTO
         self.modal_call = False  # M89: every positioning block calls the cycle
         self.cycle_program: tuple[str, int] | None = None  # cycle 12 PGM CALL: the program and its column
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
@@ -360,6 +365,8 @@ class _Run:
                            "repeat?)", column=blk.column, text=blk.code,
                            expected="a program that reaches M30 or END PGM")
             self.pc += 1
+            if blk.skip:
+                self.m.note("/ skippable blocks run (block skip switched off)")
             k = _KEYWORD_RE.match(blk.code)
             if k is None:
                 _unknown_block(blk, where)
@@ -394,7 +401,7 @@ class _Run:
         if kw == "CTP":
             where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
                        expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
-        words = read_words(blk.code, k.end(), where, m.params, column0=col0)
+        words = _read_words(blk.code, k.end(), where, m, column0=col0)
         return _motion(kw, words, m, where, blk)
 
     def flow(self, kw: str, blk: SourceBlock, where: Where) -> None:
@@ -541,7 +548,7 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: W
     """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
-    words = read_words(blk.code, pos + (pat.end() if pat else 0), where, m.params, column0=blk.column)
+    words = _read_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
     if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
         m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
     moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
@@ -560,7 +567,7 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
-    words = read_words(blk.code, pos if kw == "STOP" else 0, where, m.params, column0=blk.column)
+    words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
     return _m_functions(words, m, where, blk, motion=False)
 
 
@@ -603,11 +610,36 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
     m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
 
 
+def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int) -> list[Word]:
+    """The words of a block, ``F AUTO`` read as the feed of the last ``TOOL CALL .. F`` (TNC 640
+    user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block") and ``FU``
+    (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
+    tooth) needs the tool's number of teeth, which vcnc's tool table does not hold: an error."""
+    words = read_words(code, pos, where, m.params, column0=column0)
+    for i, w in enumerate(words):
+        if w.key == "FZ":
+            where.fail("FZ (feed per tooth) needs the tool's number of teeth", column=w.column, text=w.text,
+                       expected="F <mm/min> or FU <mm/rev>")
+        if w.key == "FU":
+            if not m.spindle:
+                where.fail("FU (feed per revolution) without a spindle speed", column=w.column, text=w.text,
+                           expected="TOOL CALL .. S<rpm> before FU")
+            words[i] = Word("F", w.value * m.spindle, w.column, w.text)
+        if w.key == "FAUTO":
+            if m.auto_feed is None:
+                where.fail("F AUTO without a feed in the TOOL CALL", column=w.column, text=w.text,
+                           expected="TOOL CALL n Z S.. F<mm/min> before F AUTO, or F <mm/min>")
+            words[i] = Word("F", m.auto_feed, w.column, w.text)
+    return words
+
+
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+|\"[^\"]*\"|'[^']*')?", rest)
-    number = int(nm.group(1)[:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
+    number = int(nm.group(1).split(".")[0][:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    if number is not None and "." in nm.group(1):
+        m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
     named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
     if named:
         m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")
@@ -633,6 +665,8 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
             dr = v * m.scale
         elif word == "S":
             m.spindle = v
+        elif word == "F":
+            m.auto_feed = v
     if number is not None:
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
@@ -665,7 +699,8 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-203, 205-209, 220, 221, 240, 247")
+                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
+                            "256, 262")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -701,7 +736,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
             where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
                        column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
-        words = read_words(rest, 0, where, m.params, column0=col)
+        words = _read_words(rest, 0, where, m, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
                 where.fail(f"word {w.text!r} in a datum shift", column=w.column, text=w.text,
@@ -934,7 +969,9 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
-    for mv in hole_moves(c, start=m.pos[axis], surface=surface):
+    moves = back_boring_moves(c, surface=surface) if c.number == 204 else hole_moves(c, start=m.pos[axis],
+                                                                                       surface=surface)
+    for mv in moves:
         if mv.kind == "dwell":
             m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
         elif mv.kind == "plane":
@@ -1356,7 +1393,7 @@ def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) 
     rm = re.compile(r"\s*R(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, pos) if kw == "RND" else None
     j = rm.end() if rm else pos
     value, j = read_value(code, j, where, m.params, what=kw, column0=blk.column)
-    words = read_words(code, j, where, m.params, column0=blk.column)
+    words = _read_words(code, j, where, m, column0=blk.column)
     feed = None
     for w in words:
         if w.key == "F":
@@ -1660,7 +1697,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if form not in ("LT", "LN", "CT", "LCT"):
         where.fail(f"{what} is not supported", column=blk.column, text=what,
                    expected=f"{kw} LT, LN, CT or LCT (polar: APPR PLT, PLN, PCT, PLCT, DEP PLCT)")
-    words = read_words(code, fm.end(), where, m.params, column0=blk.column)
+    words = _read_words(code, fm.end(), where, m, column0=blk.column)
     keys = {"CT": ("CCA", "R"), "LCT": ("R",)}.get(form, ("LEN",))
     axes = ("PR", "PA", "Z", "IZ") if polar else ("X", "Y", "Z", "IX", "IY", "IZ")
     seen = {}

@@ -22,9 +22,11 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
                           retraction feed, Q256 chip-break retraction
 ``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
                           advanced stop distances
+``CYCL DEF 204``          back boring: Q249 Q250 Q251 Q252 Q253 Q254 Q255 Q214 (:func:`back_boring_cycle`)
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
+``CYCL DEF 241``          single-lip deep-hole drilling in one infeed (:func:`drill_cycle`)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
                           (:func:`circular_pocket_cycle`)
@@ -50,14 +52,14 @@ from interpolators.heidenhain_words import read_value, read_words
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
-           "pecking_cycle", "drill_cycle", "thread_milling_cycle",
+           "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 205, 206, 207, 208, 209, 240, 251, 252,
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
                                       256, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
@@ -70,16 +72,21 @@ BORING_DISENGAGE = 0.2
 #: lists; the others have the defaults of the TNC's cycle dialog).
 _REQUIRED = {
     200: (200, 201, 206, 203, 204), 201: (200, 201, 206, 203, 204), 202: (200, 201, 206, 203, 204),
-    203: (200, 201, 206, 203, 204), 205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
+    203: (200, 201, 206, 203, 204), 204: (200, 249, 250, 251, 252, 253, 254, 203, 204, 214),
+    205: (200, 201, 206, 203, 204), 206: (200, 201, 206, 203, 204),
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
-    209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204),
+    209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204), 241: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
+#: (cycle, Q) whose value may be ``MAX`` (rapid): 204's pre-positioning feed, the retraction feed of
+#: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203).
+_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
+_FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -122,6 +129,9 @@ class DrillCycle:
         Advanced stop distance [mm]: how far above the last depth a re-entry at rapid stops
         (205: Q258); ``None``: the cycle's own rule (1: 0.6 mm, or depth/50 up to 7 mm, for holes
         deeper than 30 mm; 200/203: the set-up clearance).
+    advance_last : float or None
+        205: Q259, the advanced stop distance of the last re-entry [mm]; the re-entries between the
+        first (Q258) and the last change it at the same rate (``None``: all Q258).
     disengage : tuple of float
         Cycle 202: the move off the wall at the bottom, in the working plane's (reference, minor)
         axes [mm, program directions] (Q214; (0, 0): none).
@@ -155,6 +165,12 @@ class DrillCycle:
         Cycle 251: Q224, the pocket's rotation about its centre [deg].
     blank : tuple of float
         Cycle 256: Q424, Q425, the workpiece blank's side lengths [mm].
+    counterbore : float
+        Cycle 204: Q249, the depth of the counterbore from the workpiece's underside, its sign the
+        direction along the tool axis (+: towards the spindle) [mm].
+    edge_height : float
+        Cycle 204: Q252, the distance from the underside of the boring bar (the tool tip) up to its
+        main cutting tooth [mm].
     """
 
     number: int
@@ -190,6 +206,9 @@ class DrillCycle:
     corner: float = 0.0
     angle: float = 0.0
     blank: tuple[float, float] = (0.0, 0.0)
+    counterbore: float = 0.0
+    edge_height: float = 0.0
+    advance_last: float | None = None
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -206,9 +225,14 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int)
             tok = rest[pos:].split()[0]
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
-        value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
+        fmax = _FMAX_RE.match(rest, m.end())
+        if fmax:  # a feed given as MAX (rapid), as the Fusion 360 TNC post writes Q253 of cycle 204
+            value, pos = math.inf, fmax.end()
+        else:
+            value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
         out[int(m.group(1))] = value
-        params.set(f"Q{m.group(1)}", value, where, column=column0 + m.start())
+        if not fmax:  # the parameter store holds finite values only
+            params.set(f"Q{m.group(1)}", value, where, column=column0 + m.start())
     return out
 
 
@@ -296,15 +320,27 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       (Q256 = 0: out to the set-up clearance) at the feed times Q403 (default 1), as it retracts at
       the bottom;
     * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back;
+    * 241 SINGLE-LIP DEEP-HOLE DRILLING (:func:`_single_lip_supported`): as 201, from the set-up
+      clearance at Q206 to the depth, dwell Q211, out at Q208 (0: Q206; MAX: rapid); the spindle
+      and coolant words Q426-Q430 move nothing;
     * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (the reader's
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
+    for k, v in q.items():
+        if math.isinf(v) and (number, k) not in _MAX_ALLOWED:
+            where.fail(f"cycle {number}: Q{k}=MAX is not a value here", column=column, text=where.text,
+                       expected=f"Q{k}=<number>")
+    if number == 204:
+        return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number in (251, 252, 256):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
+    if q.get(379, 0.0) != 0.0:
+        where.fail(f"cycle {number}: a deepened starting point Q379 is not supported", column=column,
+                   text=where.text, expected="Q379=0 (drilling from the set-up clearance above the surface)")
     if q.get(395, 0.0) != 0.0:
         where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
                    column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
@@ -328,8 +364,11 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=plunge, feed=feed, retract_feed=back, chip_breaks=10 ** 9 if chip else 0,
                                    chip_break=chip, **base), where, column)
     feed = q[206] * feed_scale
-    if number in (201, 202, 206):
+    if number == 241:
+        _single_lip_supported(q, where, column)
+    if number in (201, 202, 206, 241):
         back = (q.get(208, 0.0) or q[206]) * feed_scale if number != 206 else feed
+        back = None if math.isinf(back) else back  # Q208=MAX: out at rapid
         side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q.get(214, 0.0)), (0.0, 0.0))
         off = tuple(BORING_DISENGAGE * v for v in side) if number == 202 else (0.0, 0.0)
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, retract_feed=back, disengage=off, **base),
@@ -349,9 +388,82 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         plunge=plunge, feed=feed, dwell_top=q.get(210, 0.0), decrement=abs(q.get(212, 0.0)) * scale,
         min_plunge=abs(q.get(205, 0.0)) * scale, chip_breaks=int(q.get(213, 0.0)) if number == 203 else 0,
         chip_break=abs(q.get(256, 0.2)) * scale if number in (203, 205) else 0.0,
-        retract_feed=retract * feed_scale if retract > 0 else None,
+        retract_feed=retract * feed_scale if 0 < retract < math.inf else None,  # Q208=MAX: rapid
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
+        advance_last=abs(q[259]) * scale if number == 205 and 259 in q else None,
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
+
+
+def back_boring_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                      column: int) -> DrillCycle:
+    """Cycle 204 BACK BORING from its Q parameters (TNC 320 / iTNC 530 user's manual for cycle
+    programming, "BACK BORING (Cycle 204)"): Q200 set-up clearance, Q249 depth of the counterbore
+    from the workpiece's underside (+: bored towards the spindle), Q250 material thickness, Q251
+    off-centre distance of the boring bar, Q252 tool edge height (underside of the bar to the main
+    cutting tooth), Q253 pre-positioning feed (``MAX``: rapid), Q254 counterboring feed, Q255 dwell
+    at the top of the counterbore, Q203, Q204, Q214 disengaging direction (1/3: minus/plus the
+    reference axis, 2/4: minus/plus the minor axis, 0: the bar is not moved off centre). Q336
+    (spindle orientation) gives no motion. The moves are :func:`hole_moves`'.
+    """
+    if not q[250] > 0 or q[251] < 0 or q[252] < 0 or q[249] == 0:
+        where.fail("cycle 204: the material thickness Q250 must be > 0, Q251 and Q252 >= 0, Q249 != 0",
+                   column=column, text=where.text, expected="Q250 > 0, Q251 >= 0, Q252 >= 0, Q249 != 0 [mm]")
+    if not q[253] > 0:
+        where.fail("cycle 204: the pre-positioning feed Q253 must be > 0", column=column, text=where.text,
+                   expected="Q253 > 0 [mm/min] or MAX")
+    side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q[214]), (0.0, 0.0))
+    off = abs(q[251]) * scale
+    return _checked(DrillCycle(
+        number=204, setup=abs(q[200]) * scale, depth=-q[250] * scale, plunge=q[250] * scale,
+        feed=q[254] * feed_scale, dwell_bottom=q.get(255, 0.0), surface=q[203] * scale,
+        second_setup=q[204] * scale, disengage=(off * side[0], off * side[1]),
+        approach_feed=q[253] * feed_scale, counterbore=q[249] * scale, edge_height=q[252] * scale), where, column)
+
+
+def back_boring_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
+    """The moves of cycle 204 BACK BORING at one hole (TNC 320 / iTNC 530 user's manual for cycle
+    programming, "BACK BORING (Cycle 204)", cycle run): FMAX to the set-up clearance above the
+    surface; after the oriented spindle stop the bar moves the off-centre distance Q251 in the
+    direction Q214; in at the pre-positioning feed Q253 until the tooth is the set-up clearance
+    below the workpiece's underside (the tip a further Q252 lower); back over the centre; at the
+    counterboring feed Q254 until the tooth is Q249 above the underside; dwell Q255; out of the
+    cut at Q253 to the level below the underside (our reading of "retracted from the hole"), off
+    centre again, at Q253 to the set-up clearance, back over the centre (our reading, as cycle 202),
+    FMAX to the 2nd set-up clearance. ``surface`` [mm, machine] in the tool axis, which points
+    away from the workpiece.
+    """
+    top = surface + cycle.setup
+    underside = surface + cycle.depth  # depth = -Q250
+    below = underside - cycle.setup - cycle.edge_height
+    cut = underside + cycle.counterbore - cycle.edge_height
+    kind, feed = ("rapid", math.inf) if math.isinf(cycle.approach_feed) else ("line", cycle.approach_feed)
+    moved = cycle.disengage != (0.0, 0.0)
+    out = [AxisMove("rapid", top)]
+    out += [AxisMove("plane", top, offset=cycle.disengage)] if moved else []
+    out.append(AxisMove(kind, below, feed))
+    out += [AxisMove("plane", below)] if moved else []
+    out.append(AxisMove("line", cut, cycle.feed))
+    if cycle.dwell_bottom > 0:
+        out.append(AxisMove("dwell", cut, 0.0, cycle.dwell_bottom))
+    out.append(AxisMove(kind, below, feed))
+    out += [AxisMove("plane", below, offset=cycle.disengage)] if moved else []
+    out.append(AxisMove(kind, top, feed))
+    out += [AxisMove("plane", top)] if moved else []
+    if cycle.second_setup > cycle.setup:
+        out.append(AxisMove("rapid", surface + cycle.second_setup))
+    return out
+
+
+def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> None:
+    """Cycle 241's options read here (TNC 640 user's manual for cycle programming, "SINGLE-LIP
+    DEEP-HOLE DRILLING (Cycle 241)"): drilling from the set-up clearance in one infeed. A deepened
+    starting point Q379, a dwell depth Q435 or infeeds Q202 shorter than the depth are errors."""
+    if q.get(379, 0.0) != 0.0 or q.get(435, 0.0) != 0.0:
+        where.fail("cycle 241: a deepened starting point Q379 or a dwell depth Q435 is not supported",
+                   column=column, text=where.text, expected="Q379=0 and Q435=0")
+    if 0.0 < abs(q.get(202, 0.0)) < abs(q[201]):
+        where.fail("cycle 241: infeeds Q202 shorter than the depth are not supported", column=column,
+                   text=where.text, expected="Q202=0 or at least the depth Q201")
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -450,14 +562,15 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                plunge=cycle.plunge * factor, second_setup=cycle.second_setup * factor,
                                decrement=cycle.decrement * factor, min_plunge=cycle.min_plunge * factor,
                                chip_break=cycle.chip_break * factor, chip_depth=cycle.chip_depth * factor,
-                               advance=f(cycle.advance),
+                               advance=f(cycle.advance), advance_last=f(cycle.advance_last),
                                disengage=(cycle.disengage[0] * factor, cycle.disengage[1] * factor),
                                bore_diameter=cycle.bore_diameter * factor, helix_pitch=cycle.helix_pitch * factor,
                                side_allowance=cycle.side_allowance * factor,
                                floor_allowance=cycle.floor_allowance * factor,
                                finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
                                sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
-                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor))
+                               blank=(cycle.blank[0] * factor, cycle.blank[1] * factor),
+                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -585,6 +698,28 @@ class AxisMove:
     offset: tuple[float, float] = (0.0, 0.0)
 
 
+def _infeeds(cycle: DrillCycle) -> int:
+    """How many infeeds drill ``cycle``'s hole (plunges shrinking by the decrement)."""
+    done, plunge, n = 0.0, cycle.plunge, 0
+    while done < abs(cycle.depth) - 1e-12:
+        done += min(plunge, abs(cycle.depth) - done)
+        n += 1
+        if cycle.decrement:
+            plunge = max(plunge - cycle.decrement, cycle.min_plunge, 1e-3)
+    return n
+
+
+def _reentry_advance(cycle: DrillCycle, first: float, k: int) -> float:
+    """The advanced stop distance of the ``k``-th re-entry [mm]: 205 goes from Q258 at the first to Q259
+    at the last at the same rate per re-entry (TNC 426/430 user's manual, "UNIVERSAL PECKING (Cycle
+    205)": "If you enter Q258 not equal to Q259, the TNC will change the advance stop distances
+    between the first and last plunging depths at the same rate"; per re-entry: our reading)."""
+    n = _infeeds(cycle) - 1  # re-entries
+    if cycle.advance_last is None or n <= 1:
+        return first
+    return first + (cycle.advance_last - first) * (k - 1) / (n - 1)
+
+
 def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisMove]:
     """The tool-axis moves of one hole, the TNC way (TNC 426/430 user's manual, "Cycles for
     drilling"; values from the cycle's definition):
@@ -596,7 +731,8 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
       dwell, then FMAX back to the starting point;
     * cycles 200/203/205: FMAX to the set-up clearance above the surface, drill to the plunging
       depth, FMAX back to the set-up clearance, dwell Q210 there, FMAX to the set-up clearance
-      (205: Q258) above the last depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
+      (205: Q258 at the first re-entry, Q259 at the last, :func:`_reentry_advance`) above the last
+      depth, drill on; infeeds shrink by Q212 down to Q205 (203/205);
       205 breaks the chip within an infeed after every Q257, retracting Q256 at FMAX (TNC 426/430
       user's manual, "UNIVERSAL PECKING (Cycle 205)": "Infeed depth for chip breaking Q257",
       "Retraction rate for chip breaking Q256");
@@ -625,11 +761,13 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     plunge = cycle.plunge
     breaks = 0
     at_top = True
+    reentries = 0
     while done < total - 1e-12:
         if done > 0.0 and at_top:
             if cycle.dwell_top > 0:
                 out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
-            reentry = surface + d * (done - advance)
+            reentries += 1
+            reentry = surface + d * (done - _reentry_advance(cycle, advance, reentries))
             if d * (reentry - top) > 0 and cycle.number not in (2, 17, 206, 207, 209):  # a tap follows its thread
                 out.append(AxisMove("rapid", reentry))
         step = min(plunge, total - done)

@@ -10,7 +10,8 @@ manual, "Programming fundamentals: NC blocks"). This module
   the old block end ``*`` dropped, and ``* ...`` structure blocks recognised;
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
-  ``F``/``F MAX``/``FMAX``, ``M``, ``MB MAX``, and a value that is a number, a Q parameter
+  ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``FU``/``FZ`` (per revolution / tooth),
+  ``M``, ``MB MAX``, and a value that is a number, a Q parameter
   (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
 """
 
@@ -41,6 +42,9 @@ class SourceBlock:
         1-based column of ``code`` in the first line.
     text : str
         The stripped source line (for messages).
+    skip : bool
+        The block is marked ``/`` (before or after its number): hidden when the operator switches
+        block skip on (TNC 640 user's manual, "Hiding blocks"); it runs here, the switch off.
     """
 
     line: int
@@ -48,6 +52,7 @@ class SourceBlock:
     code: str
     column: int
     text: str
+    skip: bool = False
 
     def where(self, source: str | None) -> Where:
         """Source position of this block for error messages."""
@@ -64,7 +69,7 @@ class Word:
     text: str
 
 
-_HEAD_RE = re.compile(r"\s*(\d+)?\s*")
+_HEAD_RE = re.compile(r"\s*(?P<pre>/)?\s*(?P<num>\d+)?\s*(?P<post>/(?![/*]))?\s*")
 
 
 def _strip_comment(line: str) -> str:
@@ -111,12 +116,13 @@ def source_blocks(text: str) -> list[SourceBlock]:
         if code.endswith("*"):
             code = code[:-1].rstrip()
         m = _HEAD_RE.match(code)
-        number = int(m.group(1)[:9]) if m.group(1) else None
+        number = int(m.group("num")[:9]) if m.group("num") else None
         pos = m.end()
         rest = code[pos:]
         if not rest.strip() or rest.startswith("*"):
             continue
-        out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip()))
+        out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip(),
+                               skip=bool(m.group("pre") or m.group("post"))))
     return out
 
 
@@ -165,7 +171,7 @@ _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
     r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
-    r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
+    r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<fu>F[UZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )
 
@@ -180,7 +186,7 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
     Raises
     ------
     vcnc.GCodeError
-        An unknown word, a rotary axis, ``F AUTO`` or a malformed value, naming the column.
+        An unknown word, a rotary axis or a malformed value, naming the column.
     """
     out: list[Word] = []
     n = len(code)
@@ -200,8 +206,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             out.append(Word("FMAX", None, col, tok))
         elif kind == "mbmax":
             out.append(Word("MBMAX", None, col, tok))
-        elif kind == "fauto":
-            where.fail("F AUTO is not supported", column=col, text=tok, expected="F <mm/min>, FQn or F MAX")
+        elif kind == "fauto":  # the feed of the last TOOL CALL: the reader resolves it
+            out.append(Word("FAUTO", None, col, tok))
         elif kind == "dr":
             out.append(Word("DR", tok.replace(" ", "")[-1], col, tok))
         elif kind == "rcomp":
@@ -220,8 +226,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             value, end = read_value(code, end, where, params, what="MB", column0=column0)
             out.append(Word("MB", value, col, code[pos:end]))
         else:
-            key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "rad": "R", "bare": "BARE",
-                   "len": "LEN", "cca": "CCA"}[kind]
+            key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "fu": tok.upper(), "rad": "R",
+                   "bare": "BARE", "len": "LEN", "cca": "CCA"}[kind]
             value, end = read_value(code, end, where, params, what=key, column0=column0)
             out.append(Word(key, value, col, code[pos:end].strip()))
         if end < n and code[end] not in " \t":

@@ -60,7 +60,7 @@ _EPS = 1e-9
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
     un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
-    older TNCs save them), numbers dropped."""
+    older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
@@ -72,7 +72,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
             continue
         if first is None:
             first = no
-            code = re.sub(r"^\d+\s*", "", code)
+            code = re.sub(r"^/?\s*\d+\s*(/\s*)?", "", code).lstrip("/").strip()  # "/" block skip: off, it runs
         buf.append(code)
         if not cont:
             out.append((first, " ".join(b for b in buf if b).strip()))
@@ -150,7 +150,8 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|F|M)([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX)?)")
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|FU|F|M)"
+                   r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:
@@ -165,7 +166,7 @@ def _words(rest: str, q: dict) -> dict[str, float | str]:
         if key == "M":
             out.setdefault("M", [])
             out["M"].append(int(v))
-        elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX"):
+        elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX", "AUTO"):  # F AUTO: a feed
             out[key] = v
         else:
             out[key] = _val(v, q)
@@ -411,8 +412,10 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 205, 206, 207, 208, 209, 220, 221, 240, 251, 252, 256, 262) and sub == 0:
-        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 256, 262) \
+            and sub == 0:
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
+                  for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
         if number in (220, 221):
@@ -513,6 +516,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
         return
+    if kind == "204":
+        _back_boring(t, line, p)
+        return
     if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
         sgn = -1.0 if p[2] < 0 else 1.0
         _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
@@ -570,6 +576,17 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _peck_depths(total: float, peck: float, decrement: float, smallest: float) -> list[float]:
+    """The depths [mm, from the surface] reached by the pecks of 203/205."""
+    out, z = [], 0.0
+    while total - z > _EPS:
+        z = min(z + peck, total)
+        out.append(z)
+        if decrement:
+            peck = max(peck - decrement, smallest, 1e-3)
+    return out
+
+
 def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     """203/205: pecks of Q202 shrinking by Q212 to at least Q205; between pecks out to the set-up clearance
     (203: at Q208, 0: Q206; 205: rapid), dwell Q210, rapid back to the set-up clearance (205: Q258) above
@@ -578,17 +595,23 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
     clear, bottom = surface - sgn * setup, surface + depth
-    back = "feed" if kind == "203" else "rapid"
+    back = "feed" if kind == "203" and not math.isinf(p.get("Q208", 0.0)) else "rapid"  # Q208=MAX: rapid
     advance = setup if kind == "203" else abs(p.get("Q258", 0.2))
     chip, every = abs(p.get("Q256", 0.2)), abs(p.get("Q257", 0.0)) if kind == "205" else 0.0
     breaks = int(p.get("Q213", 0)) if kind == "203" else 0
     _move_z(t, line, "rapid", clear, optional=True)
     peck, z, n = abs(p["Q202"]) or abs(depth), surface, 0
+    depths = _peck_depths(abs(depth), peck, abs(p.get("Q212", 0.0)), abs(p.get("Q205", 0.0)))
+    last = abs(p["Q259"]) if kind == "205" and "Q259" in p else advance
+    entry = 0
     while (bottom - z) * sgn > _EPS:
         if n == 0 and z != surface:
             _dwell(t, line, p.get("Q210", 0.0))
-            if (z - sgn * advance - clear) * sgn > 0:
-                _move_z(t, line, "rapid", z - sgn * advance)
+            # 205: Q258 at the first re-entry to Q259 at the last, in equal steps
+            step = advance + (last - advance) * entry / (len(depths) - 2) if len(depths) > 2 else advance
+            entry += 1
+            if (z - sgn * step - clear) * sgn > 0:
+                _move_z(t, line, "rapid", z - sgn * step)
         target = bottom if (bottom - z - sgn * peck) * sgn <= _EPS else z + sgn * peck
         mark = z + sgn * every
         while every > 0 and (target - mark) * sgn > _EPS:
@@ -787,8 +810,40 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _back_boring(t: _Tnc, line: int, p: dict) -> None:
+    """204: rapid to Q203 + Q200, Q251 off centre in the Q214 direction, in (Q253: MAX rapid) until
+    the tooth, Q252 above the tip, is Q200 below the underside Q203 - Q250; over the centre; up
+    until the tooth is Q249 above the underside; dwell Q255; back down to the level below, off
+    centre, up to Q203 + Q200, over the centre, up to Q203 + Q204."""
+    surface, setup, second = p["Q203"], p["Q200"], p.get("Q204", 0.0)
+    underside = surface - p["Q250"]
+    low, cut = underside - setup - p["Q252"], underside + p["Q249"] - p["Q252"]
+    how = "rapid" if math.isinf(p["Q253"]) else "feed"
+    side = {1: (-1, 0), 2: (0, -1), 3: (1, 0), 4: (0, 1)}.get(int(p["Q214"]), (0, 0))
+    _move_z(t, line, "rapid", surface + setup, optional=True)
+    centre = t.prog()
+
+    def sideways(off: float) -> None:
+        if side != (0, 0):
+            here = centre + np.array([side[0], side[1], 0.0]) * off * t.scale
+            here[2] = t.prog()[2]
+            t.emit(line, "rapid", t.machine(here))
+
+    sideways(p["Q251"])
+    _move_z(t, line, how, low)
+    sideways(0.0)
+    _move_z(t, line, "feed", cut)
+    _dwell(t, line, p.get("Q255", 0.0))
+    _move_z(t, line, how, low)
+    sideways(p["Q251"])
+    _move_z(t, line, how, surface + setup)
+    sideways(0.0)
+    _move_z(t, line, "rapid", surface + max(second, setup), optional=True)
+
+
 def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
-    """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering: in to
+    """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering, 241
+    single-lip deep-hole drilling (Q379 = 0: as 201): in to
     the depth (209: in steps of Q257, backing off Q256 pitches after each, 0: out to the set-up
     clearance), dwell Q211 (not 207/209), 202: 0.2 mm off the wall in the Q214 direction; out (240:
     rapid, the others at a feed) to the set-up clearance, 202: back over the centre; up to Q204."""
@@ -810,7 +865,7 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     side = {1: (-1, 0), 2: (0, -1), 3: (1, 0), 4: (0, 1)}.get(int(p.get("Q214", 0))) if kind == "202" else None
     if side:
         t.emit(line, "rapid", t.machine(centre + np.array([side[0], side[1], 0.0]) * 0.2))
-    _move_z(t, line, "rapid" if kind == "240" else "feed", clear)
+    _move_z(t, line, "rapid" if kind == "240" or math.isinf(p.get("Q208", 0.0)) else "feed", clear)
     if side:
         centre[2] = t.prog()[2]
         t.emit(line, "rapid", t.machine(centre))
@@ -821,7 +876,7 @@ def _pattern_def_call(t: _Tnc, line: int) -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
     kind, cyc = t.cycle
-    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     for w in t.pattern:
         p = {**cyc, "Q203": cyc["Q203"] + w.get("Z", 0.0)}
         clear = p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0))
@@ -855,7 +910,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
     kind, cyc = t.cycle
-    sgn = -1.0 if cyc["Q201"] < 0 else 1.0
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
     for k, (x, y) in enumerate(points):
         here = t.prog()

@@ -64,6 +64,52 @@ def test_q_parameter_arithmetic_fn0_to_fn13():
     assert prog.blocks[2].target[0] == pytest.approx(72.0)  # Q6 = SQRT(-72 * -1), squared
 
 
+def test_parameters_written_without_spaces_as_hypermill_posts_write_them():
+    # hyperMILL's TNC post: "FN 0:Q2=105 ; Z FEED RATE", "CYCL DEF9 .0", and formulas "Q3=Q2+1" without blanks
+    text = (HEAD + "FN 0:Q2=105 ; Z FEED RATE\nQ3=Q2+1\nL X+0 Y+0 Z+50 R0 F MAX\nCYCL DEF9 .0 VARAKOZASI IDO\n"
+            "CYCL DEF9.1 V.IDO5\nL X+Q3 Y+0 Z+0 FQ2\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h")
+    assert [b.kind for b in prog.blocks] == ["rapid", "dwell", "line"]
+    assert prog.blocks[1].dwell == 5.0
+    assert ends(prog)[2] == [106, 0, 0] and prog.blocks[2].feed * 60 == pytest.approx(105)
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
+def test_skippable_blocks_run_with_block_skip_off_and_are_noted():
+    # "/" before the block number (hyperMILL: "/81 M30") or after it (the TNC's own form)
+    text = HEAD + "L X+0 Y+0 Z+50 R0 FMAX\n3 /L X+10 F100\n/4 L X+20\n5 L X+30\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h")
+    assert [e[0] for e in ends(prog)] == [0, 10, 20, 30]
+    assert any("block skip" in n for n in prog.notes)
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
+def test_f_auto_is_the_feed_of_the_tool_call():
+    text = (HEAD + "TOOL CALL 1 Z S1000 F300\nL X+0 Y+0 Z+50 R0 FMAX\nL Z+2 FAUTO\nL X+10 F100\nL X+20 F AUTO\n"
+            "L X+30\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h")
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [300, 100, 300, 300]
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    with pytest.raises(GCodeError, match="F AUTO without a feed in the TOOL CALL"):
+        run("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 F AUTO")
+
+
+def test_fu_feed_per_revolution_indexed_tools_and_fz_refused():
+    # FU 0.1 mm/rev at S1000: 100 mm/min; TOOL CALL 12.1 (index 1 of tool 12) takes tool 12's data
+    ctx = MachineContext(tools={12: Tool(number=12, length=40.0, radius=0.0)})
+    text = HEAD + "TOOL CALL 12.1 Z S1000\nL X+0 Y+0 Z+50 R0 FMAX\nL X+10 FU0.1\nL X+20\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [100, 100]
+    assert ends(prog)[0] == [0, 0, 90] and any("indexed tool 12.1" in n for n in prog.notes)
+    match = match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    with pytest.raises(GCodeError, match="FZ .feed per tooth. needs the tool's number of teeth"):
+        run("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 FZ0.05")
+
+
 def test_formulas_precedence_and_functions():
     prog = run("Q1 = 2 + 3 * 4 ^ 2\nQ2 = (2 + 3) * 4\nQ3 = INT Q2 / 3\nQ4 = SQ 3 + SQRT(16) + ABS -2\n"
                "Q5 = FRAC 2.75 + SGN -4 + NEG 1 + COS(60) + ATAN(1) + LOG(100) + LN(EXP(1)) + PI\n"
@@ -332,6 +378,19 @@ def test_cycle_205_advanced_stop_and_pattern_call():
     assert axis_moves(prog, 10) == [("rapid", 1, inf), ("line", -4, 60), ("rapid", 1, inf), ("rapid", -3.5, inf),
                                    ("line", -7, 60), ("rapid", 1, inf), ("rapid", 9, inf)]
 
+
+
+def test_cycle_205_advanced_stop_goes_from_q258_to_q259_and_q379_is_refused():
+    # 4 pecks of 2 to Z-8: re-entries above -2, -4, -6 by 0.2, 0.6, 1.0 (Q258 0.2 to Q259 1.0 in equal steps)
+    text = (HEAD + "L X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 205 Q200=+2 Q201=-8 Q206=+60 Q202=+2 Q203=+0 Q204=+10 Q212=+0 "
+            "Q205=+0 Q258=+0.2 Q259=+1 Q257=+0 Q256=+0.2 Q211=+0 Q379=+0 Q253=750\nCYCL CALL\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h")
+    rapids = [round(b.target[2], 6) for b in prog.blocks[1:] if b.kind == "rapid"]
+    assert rapids == [2, 2, -1.8, 2, -3.4, 2, -5.0, 2, 10]
+    match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    with pytest.raises(GCodeError, match="Q379"):
+        run("CYCL DEF 205 Q200=+2 Q201=-8 Q206=+60 Q202=+2 Q203=+0 Q204=+10 Q379=+5 Q253=750\nCYCL CALL")
 
 
 def test_cycl_call_pos_moves_then_runs_the_cycle_with_z_as_a_datum_shift():

@@ -140,7 +140,7 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
 
 
 @pytest.mark.parametrize("body, words", [
-    ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 is not supported"),
+    ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 lacks Q249, Q250"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
     ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 is not supported"),
@@ -324,3 +324,61 @@ def test_rectangular_stud_256_never_cuts_into_the_stud():
             assert outside >= 2 - 1e-9 and blk.target[2] >= -2 - 1e-9
     with pytest.raises(GCodeError, match="Q424, Q425 at least"):
         run(STUD.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q424=26", "Q424=18"))
+
+
+def test_back_boring_204_goes_under_the_plate_off_centre_and_bores_upwards():
+    # plate 20 thick from Z0 down, underside Z-20; tooth 3 above the tip: in until the tooth is 2 below the
+    # underside (tip -25), back to the centre, up until the tooth is 5 above the underside (tip -18)
+    prog = run("CYCL DEF 204 BACK BORING Q200=2 Q249=+5 Q250=20 Q251=3.5 Q252=3 Q253=MAX Q254=200 Q255=0.5 "
+               "Q203=+0 Q204=50 Q214=1 Q336=0\nCYCL CALL")
+    assert moves(prog) == [("rapid", 0, 0, 2, math.inf), ("rapid", -3.5, 0, 2, math.inf),
+                           ("rapid", -3.5, 0, -25, math.inf), ("rapid", 0, 0, -25, math.inf),
+                           ("line", 0, 0, -18, 200), ("dwell", 0, 0, -18, 0.5), ("rapid", 0, 0, -25, math.inf),
+                           ("rapid", -3.5, 0, -25, math.inf), ("rapid", -3.5, 0, 2, math.inf),
+                           ("rapid", 0, 0, 2, math.inf), ("rapid", 0, 0, 50, math.inf)]
+
+
+def test_back_boring_204_prepositions_at_q253_and_rejects_max_elsewhere():
+    prog = run("CYCL DEF 204 Q200=2 Q249=+5 Q250=20 Q251=3.5 Q252=3 Q253=500 Q254=200 Q255=0 "
+               "Q203=+0 Q204=50 Q214=4 Q336=0\nCYCL CALL")
+    assert [mv[:4] for mv in moves(prog)][1:4] == [("rapid", 0, 3.5, 2), ("line", 0, 3.5, -25), ("rapid", 0, 0, -25)]
+    assert moves(prog)[2][4] == 500
+    with pytest.raises(GCodeError, match="Q206=MAX"):
+        run("CYCL DEF 200 Q200=2 Q201=-10 Q206=MAX Q202=5 Q210=0 Q203=+0 Q204=20 Q211=0\nCYCL CALL")
+
+
+def test_retraction_feed_q208_max_is_rapid_as_the_fusion_post_writes_it():
+    # Fusion 360's TNC post: cycle 203 with "Q208=MAX ;RETRACTION FEED RATE"; 201 the same
+    prog = run("CYCL DEF 203 UNIVERSAL DRILLING ~\n  Q200=2 ;SET-UP CLEARANCE ~\n  Q201=-6 ;DEPTH ~\n"
+               "  Q206=100 ;FEED RATE FOR PLUNGING ~\n  Q202=3 ;INFEED DEPTH ~\n  Q210=0 ;DWELL AT TOP ~\n"
+               "  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=20 ;2ND SET-UP CLEARANCE ~\n  Q212=0 ;DECREMENT ~\n"
+               "  Q213=0 ;BREAKS ~\n  Q205=0 ;MIN. PLUNGING DEPTH ~\n  Q211=0 ;DWELL TIME AT DEPTH ~\n"
+               "  Q208=MAX ;RETRACTION FEED RATE ~\n  Q256=0.2 ;DIST. FOR CHIP BRKNG\nCYCL CALL")
+    assert [(k, z) for k, _, _, z, _ in moves(prog)] == [("rapid", 2), ("line", -3), ("rapid", 2), ("rapid", -1),
+                                                          ("line", -6), ("rapid", 2), ("rapid", 20)]
+    prog = run("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100 Q211=0 Q208=MAX Q203=+0 Q204=20\nCYCL CALL")
+    assert [(k, z) for k, _, _, z, _ in moves(prog)] == [("rapid", 2), ("line", -10), ("rapid", 2), ("rapid", 20)]
+
+
+GUN_DRILL = ("CYCL DEF 241 SINGLE-LIP DEEP-HOLE DRILLING ~\n Q200=3 ;SET-UP CLEARANCE ~\n Q201=-40 ;DEPTH ~\n"
+             " Q206=50 ;FEED RATE FOR PLUNGING ~\n Q211=0.5 ;DWELL TIME AT DEPTH ~\n Q203=+0 ;SURFACE COORDINATE ~\n"
+             " Q204=30 ;2ND SET-UP CLEARANCE ~\n Q379={q379} ;STARTING POINT ~\n Q253=750 ;F PRE-POSITIONING ~\n"
+             " Q208=1000 ;RETRACT FEED RATE ~\n Q426=3 ;DIR. OF SPINDLE ROT. ~\n Q427=50 ;ENTRY EXIT SPEED ~\n"
+             " Q428=1790 ;DRILLING SPEED ~\n Q429=8 ;COOLANT ON ~\n Q430=9 ;COOLANT OFF ~\n Q435=0 ;DWELL DEPTH\n"
+             "CYCL CALL")
+
+
+def test_single_lip_deep_hole_241_drills_in_one_infeed_and_retracts_at_q208():
+    prog = run(GUN_DRILL.format(q379=0))
+    assert moves(prog) == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, -40, 50), ("dwell", 0, 0, -40, 0.5),
+                           ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
+    with pytest.raises(GCodeError, match="Q379"):
+        run(GUN_DRILL.format(q379=16))
+
+
+def test_back_boring_204_at_the_points_of_a_pattern():
+    # CYCL CALL PAT: up to the clearance (Q204 = 15 above the surface) between the holes, 204 at each
+    prog = run("CYCL DEF 204 Q200=2 Q249=+4 Q250=10 Q251=2 Q252=0 Q253=MAX Q254=100 Q255=0 Q203=+0 Q204=15 "
+               "Q214=3 Q336=0\nPATTERN DEF ~\nPOS1 (X+10 Y+0 Z+0) ~\nPOS2 (X+20 Y+0 Z+0)\nCYCL CALL PAT FMAX")
+    lows = [tuple(round(v, 6) for v in b.target) for b in prog.blocks if b.kind == "line"]
+    assert lows == [(10, 0, -6), (20, 0, -6)]  # the tooth (= tip, Q252 = 0) up to 4 above the underside Z-10
