@@ -96,16 +96,16 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
-from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
+from interpolators.iso_cycles import CycleWords, cycle_moves
 from interpolators.iso_flow import run
-from interpolators.iso_haas import PATTERN_CODES, PatternError, bolt_holes, circular_pocket
+from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
-from interpolators.iso_smoothing import SMOOTHING_CODES, SmoothingError, smoothing
+from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
-from interpolators.iso_transforms import Frame, TransformError, g68_rotation, mirror, scaling
-from interpolators.iso_words import Word
+from interpolators.iso_transforms import Frame, g68_rotation, mirror, scaling
+from interpolators.iso_words import Word, WordError
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.core.axes import AXIS_NAMES
@@ -560,8 +560,6 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     return ended
 
 
-
-
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
     as chords); under G68 alone canned cycles too."""
@@ -595,9 +593,8 @@ def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> 
             here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
     try:
         holes = bolt_holes(key, {k: v.value for k, v in seen.items()}, centre=(here[0], here[1]), scale=st.scale)
-    except PatternError as exc:
-        bad = seen.get(exc.letter, w) if exc.letter else w
-        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    except WordError as exc:
+        _fail_words(where, name, exc, seen, w)
     for x, y in holes:
         cur = st.to_program(st.pos)
         xy = (x - cur[0], y - cur[1]) if st.incremental else (x, y)
@@ -628,9 +625,8 @@ def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None
         moves = circular_pocket(key == 130, {k: v.value for k, v in seen.items()}, centre=tuple(here),
                                 scale=st.scale, incremental=st.incremental,
                                 tool_radius=0.0 if tool is None else tool.radius)
-    except PatternError as exc:
-        bad_word = seen.get(exc.letter, w) if exc.letter else w
-        where.fail(f"{name}: {exc}", column=bad_word.column, text=bad_word.text, expected=exc.expected)
+    except WordError as exc:
+        _fail_words(where, name, exc, seen, w)
     flip = st.frame is not None and st.frame.flips(2)
     used.update((0, 1, 2))
     for mv in moves:
@@ -693,9 +689,8 @@ def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> No
                             thousandths=st.context.dialect.name == "fanuc")
         else:
             frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
-    except TransformError as exc:
-        bad = seen.get(exc.letter, w) if exc.letter else w
-        where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    except WordError as exc:
+        _fail_words(where, name, exc, seen, w)
     _set_frame(st, frame)
     notes.add(name)
 
@@ -749,15 +744,19 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
 
 
+def _fail_words(where: Where, name: str, exc: WordError, seen: dict, word) -> None:
+    """Report ``exc`` of the feature ``name`` at the word it names (else at ``word``, the G code)."""
+    bad = seen.get(exc.letter, word) if exc.letter else word
+    where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+
 def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
     """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
     tolerance; returns ``seen`` without the words it reads."""
     key, w = entry
     try:
         sm = smoothing(key, {k: v.value for k, v in seen.items()})
-    except SmoothingError as exc:
-        bad = seen.get(exc.letter, w) if exc.letter else w
-        where.fail(f"{SMOOTHING_CODES[key]}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+    except WordError as exc:
+        _fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
     if sm.tolerance is not None:
         st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
     elif sm.reset:
@@ -1596,9 +1595,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
                             haas=st.context.dialect.name == "haas")
-    except CycleError as exc:
-        w = seen.get(exc.letter, mw) if exc.letter else mw
-        where.fail(f"{name}: {exc}", column=w.column, text=w.text, expected=exc.expected)
+    except WordError as exc:
+        _fail_words(where, name, exc, seen, mw)
     if st.frame is not None:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:

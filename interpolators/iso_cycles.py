@@ -52,6 +52,7 @@ import math
 import numpy as np
 
 from interpolators.iso_polar import PolarError, polar_xy
+from interpolators.iso_words import WordError
 
 __all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "CYCLE_AXES", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES"]
 
@@ -63,13 +64,8 @@ RAPID_DELTA_INCH = 0.010
 MAX_CYCLE_MOVES = 1_000_000
 
 
-class CycleError(ValueError):
+class CycleError(WordError):
     """Cycle words that describe no cycle; ``letter`` names the word at fault."""
-
-    def __init__(self, message: str, *, letter: str | None = None, expected: str = "valid cycle words") -> None:
-        super().__init__(message)
-        self.letter = letter
-        self.expected = expected
 
 
 @dataclasses.dataclass

@@ -34,21 +34,13 @@ import dataclasses
 import math
 
 from interpolators.iso_cycles import MAX_CYCLE_MOVES
+from interpolators.iso_words import WordError
 
-__all__ = ["PATTERN_CODES", "PatternError", "PocketMove", "bolt_holes", "circular_pocket"]
+__all__ = ["PATTERN_CODES", "PocketMove", "bolt_holes", "circular_pocket"]
 
 #: The pattern codes, round(10 * G) -> name.
 PATTERN_CODES: dict[int, str] = {700: "G70 bolt hole circle", 710: "G71 bolt hole arc",
                                  720: "G72 bolt holes along an angle"}
-
-
-class PatternError(ValueError):
-    """Pattern words that describe no pattern; ``letter`` names the word at fault."""
-
-    def __init__(self, message: str, *, letter: str | None, expected: str) -> None:
-        super().__init__(message)
-        self.letter = letter
-        self.expected = expected
 
 
 def bolt_holes(key: int, words: dict[str, float], *, centre: tuple[float, float],
@@ -68,22 +60,22 @@ def bolt_holes(key: int, words: dict[str, float], *, centre: tuple[float, float]
 
     Raises
     ------
-    PatternError
+    WordError
         A missing I or L, L not a whole number >= 1, a zero spacing.
     """
     needs = ("I", "J", "K", "L") if key == 710 else ("I", "L")
     for letter in needs:
         if letter not in words:
-            raise PatternError(f"no {letter} word", letter=None, expected=" ".join(f"{k}.." for k in needs))
+            raise WordError(f"no {letter} word", letter=None, expected=" ".join(f"{k}.." for k in needs))
     count = words["L"]
     if count != int(count) or count < 1:
-        raise PatternError("the number of holes L must be a whole number >= 1", letter="L", expected="L1, L2, ...")
+        raise WordError("the number of holes L must be a whole number >= 1", letter="L", expected="L1, L2, ...")
     if count > MAX_CYCLE_MOVES:
-        raise PatternError(f"{count:g} holes exceed {MAX_CYCLE_MOVES} cycle moves", letter="L",
+        raise WordError(f"{count:g} holes exceed {MAX_CYCLE_MOVES} cycle moves", letter="L",
                            expected="fewer holes L")
     radius = words["I"] * scale
     if radius == 0:
-        raise PatternError("I (radius / spacing) must not be 0", letter="I", expected="I != 0")
+        raise WordError("I (radius / spacing) must not be 0", letter="I", expected="I != 0")
     start = words.get("J", 0.0)
     x0, y0 = centre
     out = []
@@ -139,26 +131,26 @@ def circular_pocket(ccw: bool, words: dict[str, float], *, centre: tuple[float, 
 
     Raises
     ------
-    PatternError
+    WordError
         No I or Z, K without Q (or Q <= 0), I not between the tool radius and K, a bad L.
     """
     for letter in ("I", "Z"):
         if letter not in words:
-            raise PatternError(f"no {letter} word", letter=None, expected="I<radius> Z<depth> (K, Q, L, D)")
+            raise WordError(f"no {letter} word", letter=None, expected="I<radius> Z<depth> (K, Q, L, D)")
     first = words["I"] * scale
     last = words["K"] * scale if "K" in words else first
     if "K" in words and not words.get("Q", 0.0) > 0:
-        raise PatternError("K (finished radius) needs a step Q > 0", letter="Q" if "Q" in words else "K",
+        raise WordError("K (finished radius) needs a step Q > 0", letter="Q" if "Q" in words else "K",
                            expected="I<first radius> K<finished radius> Q<step>")
     if not tool_radius < first <= last:
-        raise PatternError(f"radii must satisfy tool radius {tool_radius:g} < I {first:g} <= K {last:g} mm",
+        raise WordError(f"radii must satisfy tool radius {tool_radius:g} < I {first:g} <= K {last:g} mm",
                            letter="I", expected="I greater than the tool radius, K not below I")
     count = math.ceil((last - first) / (words["Q"] * scale) - 1e-9) if last > first else 0
     loops = words.get("L", 1.0)
     if loops != int(loops) or loops < 1:
-        raise PatternError("L (passes) must be a whole number >= 1", letter="L", expected="L1, L2, ...")
+        raise WordError("L (passes) must be a whole number >= 1", letter="L", expected="L1, L2, ...")
     if loops * (count + 1) > MAX_CYCLE_MOVES:
-        raise PatternError(f"{loops:g} passes of {count + 1} circles exceed {MAX_CYCLE_MOVES} moves",
+        raise WordError(f"{loops:g} passes of {count + 1} circles exceed {MAX_CYCLE_MOVES} moves",
                            letter="L" if loops > 1 else "Q", expected="fewer passes L or a larger step Q")
     radii = [min(first + k * words["Q"] * scale, last) for k in range(count + 1)] if count else [first]
     cx, cy, z = centre

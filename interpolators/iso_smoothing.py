@@ -25,22 +25,15 @@ from __future__ import annotations
 
 import dataclasses
 
-__all__ = ["SMOOTHING_CODES", "Smoothing", "SmoothingError", "smoothing"]
+from interpolators.iso_words import WordError
+
+__all__ = ["SMOOTHING_CODES", "Smoothing", "smoothing"]
 
 #: Look-ahead codes (round(10 * G) -> name) of the Fanuc and Haas dialects.
 SMOOTHING_CODES: dict[int, str] = {
     1870: "G187 smoothness control", 1030: "G103 block look-ahead limit", 51: "G05.1 AI contour control",
     80: "G08 AI advanced preview control", 50: "G05 high-precision contour control",
 }
-
-
-class SmoothingError(ValueError):
-    """A look-ahead code with a value the control does not define; ``letter`` names the word."""
-
-    def __init__(self, message: str, *, letter: str | None, expected: str) -> None:
-        super().__init__(message)
-        self.letter = letter
-        self.expected = expected
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -68,7 +61,7 @@ class Smoothing:
 def _choice(words: dict[str, float], letter: str, allowed: tuple[float, ...], code: str) -> float:
     if letter not in words or words[letter] not in allowed:
         shown = " or ".join(f"{letter}{v:g}" for v in allowed)
-        raise SmoothingError(f"{code} needs {shown}", letter=letter if letter in words else None, expected=shown)
+        raise WordError(f"{code} needs {shown}", letter=letter if letter in words else None, expected=shown)
     return words[letter]
 
 
@@ -77,7 +70,7 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
 
     Raises
     ------
-    SmoothingError
+    WordError
         A P, Q or E value the control does not define.
     """
     name = SMOOTHING_CODES[key]
@@ -85,13 +78,13 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
         if "P" in words:
             _choice(words, "P", (1.0, 2.0, 3.0), "G187")
         if "E" in words and not words["E"] > 0:
-            raise SmoothingError("G187 E (corner rounding) must be > 0", letter="E", expected="E > 0")
+            raise WordError("G187 E (corner rounding) must be > 0", letter="E", expected="E > 0")
         return Smoothing(note=f"{name} (path tolerance from E)" if "E" in words else name,
                          consumed=("P", "E"), tolerance=words.get("E"), reset="P" not in words and "E" not in words)
     if key == 1030:
         p = words.get("P", 0.0)
         if p != int(p) or not 0 <= p <= 15:
-            raise SmoothingError("G103 P (blocks of look-ahead) must be 0-15", letter="P", expected="P0 .. P15")
+            raise WordError("G103 P (blocks of look-ahead) must be 0-15", letter="P", expected="P0 .. P15")
         return Smoothing(note=name, consumed=("P",))
     if key == 51:
         q = _choice(words, "Q", (0.0, 1.0, 2.0), "G05.1")

@@ -38,18 +38,10 @@ import math
 
 import numpy as np
 
+from interpolators.iso_words import WordError
 from toolpaths.geometry import PLANE_AXES
 
-__all__ = ["Frame", "Rotation", "TransformError", "g68_rotation", "scaling", "mirror"]
-
-
-class TransformError(ValueError):
-    """Transformation words that describe none; ``letter`` names the word at fault."""
-
-    def __init__(self, message: str, *, letter: str | None, expected: str) -> None:
-        super().__init__(message)
-        self.letter = letter
-        self.expected = expected
+__all__ = ["Frame", "Rotation", "g68_rotation", "scaling", "mirror"]
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -177,7 +169,7 @@ def _factor(words: dict[str, float], texts: dict[str, str], letter: str, *, thou
     if thousandths and "." not in texts[letter]:
         value /= 1000.0
     if value == 0:
-        raise TransformError(f"scaling factor {letter} must not be 0", letter=letter, expected=f"{letter} != 0")
+        raise WordError(f"scaling factor {letter} must not be 0", letter=letter, expected=f"{letter} != 0")
     return value
 
 
@@ -203,7 +195,7 @@ def scaling(frame: Frame, words: dict[str, float], texts: dict[str, str], *, cur
         if letter in words:
             centre[i] = words[letter] * scale
     if "P" in words and any(k in words for k in "IJK"):
-        raise TransformError("G51 with both P and I J K", letter="P", expected="P (all axes) or I J K (per axis)")
+        raise WordError("G51 with both P and I J K", letter="P", expected="P (all axes) or I J K (per axis)")
     if "P" in words:
         f = _factor(words, texts, "P", thousandths=thousandths)
         factors = (f, f, f)
@@ -219,7 +211,7 @@ def mirror(frame: Frame, words: dict[str, float], *, on: bool, scale: float) -> 
     or no longer mirrored."""
     named = [i for i, letter in enumerate("XYZ") if letter in words]
     if not named:
-        raise TransformError("no axis word", letter=None, expected="X.., Y.. or Z.. (the mirror line)")
+        raise WordError("no axis word", letter=None, expected="X.., Y.. or Z.. (the mirror line)")
     flags, at = list(frame.mirror), list(frame.mirror_at)
     for i in named:
         flags[i] = on

@@ -20,7 +20,18 @@ from collections.abc import Callable
 
 from interpolators._words import Where, read_number, token_at
 
-__all__ = ["Word", "strip_comments", "comment_spans", "block_comment", "read_words", "WORD_LETTERS"]
+__all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "WORD_LETTERS"]
+
+
+class WordError(ValueError):
+    """A block's words that describe nothing the control runs (a cycle, a pattern, a transformation,
+    a look-ahead setting); ``letter`` names the word at fault (None: the G code itself), ``expected``
+    what would be right. The reader reports it at that word's column."""
+
+    def __init__(self, message: str, *, letter: str | None = None, expected: str = "valid words") -> None:
+        super().__init__(message)
+        self.letter = letter
+        self.expected = expected
 
 #: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
 #: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
