@@ -90,15 +90,11 @@ def _forked_worker() -> None:
     _FORKED = True
 
 
-def _run_task(i: int) -> tuple[bool, Any]:
-    """Task ``i`` of the running :func:`process_map`, in a worker: ``(True, result)`` or
-    ``(False, exception)`` (raised again in the caller)."""
+def _run_task(i: int) -> Any:
+    """Task ``i`` of the running :func:`process_map`, in a worker."""
     assert _TASKS is not None
     fn, items = _TASKS
-    try:
-        return True, fn(items[i])
-    except Exception as exc:  # noqa: BLE001 - handed back to the caller, which raises it
-        return False, exc
+    return fn(items[i])
 
 
 def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
@@ -107,8 +103,8 @@ def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     For coarse tasks that hold the GIL much of the time (module docstring). ``fn`` may be a
     closure: the workers are forked after it exists and inherit it; only the task indices and
     the results (which must pickle) cross the process boundary. The tasks are handed out in the
-    order given, one at a time, to whichever worker is free. An exception of a task is raised
-    here. Where ``fork`` is not the platform's way (not Linux), with fewer than two tasks or
+    order given, to whichever worker is free. An exception of a task (pickled back) is
+    raised here. Where ``fork`` is not the platform's way (not Linux), with fewer than two tasks or
     workers, or when called from inside a worker, this is :func:`thread_map`.
     """
     global _TASKS
@@ -119,14 +115,13 @@ def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
         return thread_map(fn, items)
     _TASKS = (fn, items)
     try:
-        with multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker) as pool:
-            out = pool.map(_run_task, range(len(items)), chunksize=1)
+        # a worker that dies (killed, a crash in compiled code) raises BrokenProcessPool here, where
+        # multiprocessing.Pool would wait for it forever
+        with concurrent.futures.ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
+                                                    initializer=_forked_worker) as pool:
+            return list(pool.map(_run_task, range(len(items))))
     finally:
         _TASKS = None
-    for ok, value in out:
-        if not ok:
-            raise value
-    return [value for _, value in out]
 
 
 @contextmanager

@@ -60,3 +60,14 @@ def test_process_map_raises_a_task_s_exception(monkeypatch):
 def test_process_map_with_one_worker_stays_in_this_process(monkeypatch):
     monkeypatch.setenv("VCNC_THREADS", "1")
     assert process_map(lambda k: (k, os.getpid()), [1, 2]) == [(1, os.getpid()), (2, os.getpid())]
+
+
+@linux_only
+def test_process_map_reports_a_worker_that_dies(monkeypatch):
+    """A worker killed mid-task (os._exit stands in for a crash in compiled code) is an error, not a hang."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    monkeypatch.setenv("VCNC_THREADS", "2")
+    with pytest.raises(BrokenProcessPool):
+        process_map(lambda k: os._exit(3) if k == 2 else k, [1, 2, 3])
+    assert process_map(lambda k: k + 1, [1, 2]) == [2, 3]
