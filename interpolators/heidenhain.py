@@ -143,6 +143,7 @@ from interpolators.heidenhain_transforms import (
     transform_item,
 )
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
+from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
 from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
 
@@ -194,6 +195,7 @@ class _Machine:
         self.inch = False
         self.feed: float | None = None
         self.pole: np.ndarray | None = None
+        self.pole_plane = 2  # the plane of the circle about the pole: the working plane, or CC's two axes
         self.last_axes: list[int] = []
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
@@ -224,6 +226,8 @@ class _Machine:
         self.modal_call = False  # M89: every positioning block calls the cycle
         self.cycle_program: tuple[str, int] | None = None  # cycle 12 PGM CALL: the program and its column
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
+        self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
+        self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -278,11 +282,17 @@ class _Machine:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
         self.notes[text] = self.notes.get(text, 0) + 1
 
-    def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0) -> None:
+    def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0,
+             extra: np.ndarray | None = None) -> None:
+        """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
+        the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
+        ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
-                                 exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell))
+                                 exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))
         self.pos = np.array(target, dtype=float)
+        if extra is not None:
+            self.extra = np.array(extra, dtype=float)
         self.last_rapid = kind == "rapid"
 
 
@@ -311,6 +321,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     m = _Machine(context, source)
     name = _Run(m, source_blocks(text), source, max_executed).run()
     _check_contour_closed(m)
+    if m.extra_used:
+        m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
     axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
@@ -524,14 +536,16 @@ _KNOWN_UNSUPPORTED = {
 
 
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
-    """``BEGIN PGM name MM|INCH``: the program's unit; returns its name."""
+    """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
+    before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
+    it)."""
     parts = blk.code[k.end():].split()
-    unit = parts[1].upper() if len(parts) > 1 else "MM"
+    unit = parts[-1].upper() if len(parts) > 1 else "MM"
     if unit not in ("MM", "INCH"):
-        col = blk.code.upper().rfind(parts[1].upper()) + blk.column
-        where.fail(f"unknown program unit {parts[1]!r}", column=col, text=parts[1], expected="MM or INCH")
+        col = blk.code.upper().rfind(parts[-1].upper()) + blk.column
+        where.fail(f"unknown program unit {parts[-1]!r}", column=col, text=parts[-1], expected="MM or INCH")
     m.inch = unit == "INCH"
-    return parts[0] if parts else None
+    return " ".join(parts[:-1] if len(parts) > 1 else parts) or None
 
 
 def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
@@ -634,6 +648,12 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
 
 
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``TOOL CALL n|"name" [X|Y|Z] [S..] [F..] [DL..] [DR..]``: the tool (length and radius), the
+    working plane, the spindle speed and the feed. ``F`` is the feed of the following moves until a
+    block programs another (iTNC 530 / TNC 640 user's manuals, "Calling tool data": "Feed rate F ...
+    is effective until you program a new feed rate in a positioning block or in a TOOL CALL block";
+    shop programs write ``TOOL CALL 22 Z S6000 F2000`` and then ``L Z+Q22`` without F), and what
+    ``F AUTO`` reads."""
     code = blk.code
     rest = code[pos:]
     nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
@@ -665,8 +685,9 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
             dr = v * m.scale
         elif word == "S":
             m.spindle = v
-        elif word == "F":
+        elif word == "F" and v > 0:
             m.auto_feed = v
+            m.feed = v * m.feed_scale
     if number is not None:
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
@@ -682,6 +703,19 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
         m.tool_radius = radius + dr
     elif named:
         m.tool_length, m.tool_radius = dl, dr
+    _tool_parameters(m, where)
+
+
+def _tool_parameters(m: _Machine, where: Where) -> None:
+    """The preassigned Q parameters of the called tool (TNC 640 user's manual, "Preassigned Q
+    parameters"): Q108 the active tool radius (table or TOOL DEF, plus DR), Q109 the tool axis
+    (0 X, 1 Y, 2 Z), Q113 the unit of the program (0 mm, 1 inch), Q114 the active tool length, in
+    the program's unit. Programs read them to size their own paths (a shop face-milling program:
+    ``Q1963 = Q1812 * Q108 * 2``, the stepover from the tool diameter)."""
+    m.params.set("Q108", m.tool_radius / m.scale, where)
+    m.params.set("Q109", float(m.plane), where)
+    m.params.set("Q113", 1.0 if m.inch else 0.0, where)
+    m.params.set("Q114", m.tool_length / m.scale, where)
 
 
 # --- cycles ----------------------------------------------------------------------------------
@@ -696,6 +730,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     col = blk.column + cm.start(3)
     if number == 247:
         _preset_cycle(rest, m, where, col)
+        return
+    if number in _SETTING_CYCLES:
+        q_assignments(rest, where, m.params, column0=col)
+        m.note(f"CYCL DEF {number}: {_SETTING_CYCLES[number]}; no motion")
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
@@ -767,6 +805,14 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         elif sub == LEGACY_CYCLES[number]:
             m.cycle = tapping_cycle(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column, spindle=m.spindle)
+
+
+#: Cycles that set the machine up and move nothing: their Q parameters are assigned, the cycle noted.
+_SETTING_CYCLES = {
+    # DMG MORI's ATC (Application Tuning Cycle), a machine maker's cycle of its TNC 640 machines: Q240
+    # TUNING MODE / Q241 WEIGHT MODE select the feed-axis dynamics (hyperMILL's DMU posts write it first)
+    392: "ATC (the machine maker's dynamics tuning: vcnc's drive model is the machine's own)",
+}
 
 
 def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
@@ -1472,10 +1518,12 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     target, written = _plane_coords(seen, m, where, m9x=m9x)
     m.used.update(written)
     feed = math.inf if rapid else m.feed
-    if kw in ("L", "LP") and (written or kw == "LP"):
+    extra = _extra_axes(seen, m, where) if kw == "L" else None
+    if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
             if m.pole is None:
                 where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
+            _pole_in_working_plane(m, where, "LP")
             r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
             k, t = m.scale * m.lengths(where), m.transform
             pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
@@ -1492,7 +1540,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
-        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number)
+        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
     elif kw in ("C", "CR", "CT", "CP"):
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -1504,7 +1552,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         seg = _arc(kw, seen, target, m, where, blk)
         if m.pending is not None:
             seg = _resolve_corner(m, seg, where)
-        m.used.update(PLANE_AXES[m.plane])
+        m.used.update(PLANE_AXES[seg.plane])
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
@@ -1554,7 +1602,8 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
         if w.key == "M":
             ms.append(w)
             continue
-        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
+                "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
                 "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
         if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
             where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
@@ -1570,7 +1619,8 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
                        expected="an axis letter (X, Y or Z) before the number")
         seen["XYZ"[m.last_axes[0]]] = w
     allowed = {
-        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX"},
+        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
+              *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)},
         "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
         "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
         "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
@@ -1585,23 +1635,80 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
     return seen, ms
 
 
+def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray | None:
+    """End positions ``(a, b, c, u, v, w)`` [deg, mm] of an L block's words of the axes beyond X, Y, Z,
+    or None when it has none. ``A+90`` is the position, ``IA+90`` an increment (TNC 640 user's manual,
+    "Straight line L": the block may contain "up to 5 axes" including rotary axes); A, B, C in degrees,
+    U, V, W in the program's unit; the preset of these axes is the machine's zero (the context's
+    work offsets hold X, Y, Z only), so an absolute word is the machine position, as with M91/M92. A
+    machine (``MachineContext.extra_axes``) without the axis: an error naming it, but for a word of
+    value 0 (posts write ``L A0 C0 R0 FMAX`` on 3-axis work), which is noted and ignored."""
+    letters = [k for k in seen if len(k) <= 2 and k[-1] in EXTRA_LETTERS and k[:-1] in ("", "I")]
+    if not letters:
+        return None
+    target = m.extra.copy()
+    moved = False
+    for key in letters:
+        w = seen[key]
+        axis = key[-1]
+        if axis.lower() not in m.context.extra_axes:
+            if w.value != 0.0:
+                where.fail(f"axis {axis!r} is not an axis of this machine", column=w.column, text=w.text,
+                           expected="X, Y, Z" + "".join(f", {a.upper()}" for a in m.context.extra_axes))
+            m.note(f"{w.text}: no {axis} axis on this machine (ignored)")
+            continue
+        value = w.value if axis in ROTARY_LETTERS else w.value * m.scale
+        i = EXTRA_LETTERS.index(axis)
+        target[i] = target[i] + value if key[0] == "I" else value
+        moved = True
+    if not moved:
+        return None
+    m.extra_used = True
+    return target
+
+
 def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:
-    """``CC``: the circle centre and pole, in the working plane."""
+    """``CC``: the circle centre and pole. Its plane is the working plane, or, when CC names the
+    tool axis and one axis of the working plane (``CC X+37.6 Z+3.3`` with tool axis Z), the plane
+    of those two axes (ZX, YZ, XY with the reference axes Z, Y, X and DR+ turning from the first to
+    the second: TNC 426 manual, "Circle Center and Pole: CC", table of the reference axes): the arcs
+    ``C`` and ``CP`` about it then run in that plane. The iTNC 530 / TNC 640 run circles outside
+    the working plane so; Fusion 360's TNC post writes its vertical lead-in and lead-out arcs as
+    ``CC Y-72.5 Z-8.6`` / ``CP IPA+90 DR+`` (the third coordinate is the current one). Radius
+    compensation and the coordinate transformations act in the working plane only, so such an arc
+    under RL/RR or a transformation is an error."""
     target, written = _plane_coords(seen, m, where, m9x=m9x)
     p, q = PLANE_AXES[m.plane]
-    for i in written:
-        if i not in (p, q):
-            w = seen.get("XYZ"[i]) or seen["I" + "XYZ"[i]]
+    plane = m.plane
+    off = [i for i in written if i not in (p, q)]
+    if off:
+        w = seen.get("XYZ"[off[0]]) or seen["I" + "XYZ"[off[0]]]
+        if len(written) != 2 or m.comp != "R0" or not m.transform.identity:
             where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
-                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
+                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}, or CC with the tool axis and one other axis (a circle in "
+                                "that plane, without RL/RR and coordinate transformations)")
+        plane = 3 - sum(written)  # the axis CC does not name is the circle's normal
     m.pole = target
+    m.pole_plane = plane
     m.used.update(written)
+
+
+def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:
+    """Polar coordinates (LP, APPR P..) are in the working plane: an error after a CC in another plane."""
+    if m.pole_plane != m.plane:
+        where.fail(f"{what} about a pole outside the working plane", column=1, text=where.text,
+                   expected="a CC in the working plane before polar coordinates")
 
 
 def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
     """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
-    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way."""
-    plane = m.plane
+    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
+    CP run in the plane of the pole (:func:`_pole`)."""
+    plane = m.pole_plane if kw in ("C", "CP") else m.plane
+    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
+        where.fail(f"{kw} about a CC outside the working plane under {m.comp} or a coordinate transformation",
+                   column=blk.column, text=where.text,
+                   expected="R0 and no cycle 8/10/11/26 for a circle in another plane")
     dr = seen.get("DR")
     ccw = (dr.value == "+") if dr is not None else m.ccw
     k = m.lengths(where)
@@ -1710,6 +1817,8 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if polar and (m.pole is None or "PR" not in seen or "PA" not in seen):
         where.fail(f"{what} needs a pole CC, PR and PA", column=blk.column, text=code,
                    expected=f"CC X.. Y.. before {what} PR.. PA..")
+    if polar:
+        _pole_in_working_plane(m, where, what)
     ended = any(_one_m(w, m, where) for w in words if w.key == "M")
     for key in keys:
         w = seen.get(key)

@@ -62,9 +62,14 @@ def _blocks(text: str) -> list[tuple[int, str]]:
     un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
     older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
+    in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
-        code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|POS\d+\s*\()", raw):
+            code = ""  # a long comment wrapped over lines ending in "~": still comment
+        else:
+            in_comment = ";" in raw
+            code = raw.split(";", 1)[0].strip().rstrip("~").strip()
         if first is None and out and (
                 (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
@@ -76,7 +81,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
         buf.append(code)
         if not cont:
             out.append((first, " ".join(b for b in buf if b).strip()))
-            buf, first = [], None
+            buf, first, in_comment = [], None, False
     return [(no, b) for no, b in out if b and not b.startswith("*")]
 
 
@@ -150,7 +155,7 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|FU|F|M)"
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
                    r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
@@ -189,7 +194,8 @@ class _Tnc:
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
-        self.pole = np.zeros(2)
+        self.pole = np.zeros(3)  # program coordinates [mm]
+        self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
@@ -228,7 +234,7 @@ class _Tnc:
         """True when the plane's sense of rotation is reversed (one of X, Y mirrored)."""
         return self.mirror[0] * self.mirror[1] < 0
 
-    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None) -> None:
+    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1)) -> None:
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             element = ("line", start, end.copy()) if centre is None else \
@@ -239,11 +245,12 @@ class _Tnc:
         else:
             slack = 0.0
             if centre is not None:
-                rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end))
-                chord = float(np.hypot(*(end - start)[:2]))
+                ax = list(plane)
+                rs, re_ = (float(np.hypot(*(p - centre)[ax])) for p in (start, end))
+                chord = float(np.hypot(*(end - start)[ax]))
                 slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
             self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre,
-                                     centre_tolerance=1e-6 + slack))
+                                     centre_tolerance=1e-6 + slack, plane=plane))
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
@@ -281,8 +288,10 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
+    # the rotary / secondary axes the machine has (their positions are not compared): a block of its own
+    others = any(k[-1].lower() in t.ctx.extra_axes for k in w if re.fullmatch(r"I?[ABCUVW]", k))
     kind = "rapid" if "FMAX" in w else "feed"
-    if axes:
+    if axes or others:
         t.emit(line, kind, t.target(w))
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
@@ -299,38 +308,50 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
 
 
 def _pole(t: _Tnc, w: dict) -> None:
+    """``CC``: the pole; a coordinate not written is the current one. With Z and one other axis the
+    circle lies in ZX (reference axis Z) or YZ (reference axis Y), per the TNC's table of reference axes."""
     p = t.prog()
-    for i, a in enumerate("XY"):
+    for i, a in enumerate("XYZ"):
         if a in w:
             t.pole[i] = w[a] * t.scale
         elif "I" + a in w:
             t.pole[i] = p[i] + w["I" + a] * t.scale
         else:
             t.pole[i] = p[i]
+    named = {a for a in "XYZ" if a in w or "I" + a in w}
+    t.pole_axes = {frozenset("XZ"): (2, 0), frozenset("YZ"): (1, 2)}.get(frozenset(named), (0, 1))
 
 
 def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     """``C`` about the pole to X/Y, or ``CP`` by the angle IPA/PA; a Z word makes a helix."""
     _comp_words(t, w)
     p = t.prog()
+    i, j = t.pole_axes
+    n = 3 - i - j  # the plane normal
+    if (i, j) != (0, 1) and (t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any()):
+        raise ReferenceError("a circle outside XY under RL/RR or a transformation")
     if polar:
-        r = math.hypot(p[0] - t.pole[0], p[1] - t.pole[1])
-        a = math.degrees(math.atan2(p[1] - t.pole[1], p[0] - t.pole[0]))
+        r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
+        a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
         a = a + w["IPA"] if "IPA" in w else w["PA"]
         if "PR" in w or "IPR" in w:
             raise ReferenceError("CP with a radius word")
         end_p = p.copy()
-        end_p[:2] = t.pole + r * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
-        if "Z" in w:
-            end_p[2] = w["Z"] * t.scale
-        if "IZ" in w:
-            end_p[2] += w["IZ"] * t.scale
+        end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
+        end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
+        axis = "XYZ"[n]
+        if axis in w:
+            end_p[n] = w[axis] * t.scale
+        if "I" + axis in w:
+            end_p[n] += w["I" + axis] * t.scale
         end = t.machine(end_p)
     else:
         end = t.target(w)
-    centre = t.machine(np.array([t.pole[0], t.pole[1], t.prog()[2]]))
+    c = t.pole.copy()
+    c[n] = t.prog()[n]
+    centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
-    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
 
 
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
@@ -404,6 +425,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         t.cycle = ("12", rest.split(None, 1)[1].strip().strip('"'))
     elif number == 12:
         pass
+    elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
+        t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
@@ -956,6 +979,8 @@ def _tool(t: _Tnc, text: str) -> None:
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
     t.length = length + word("DL")
     t.radius = radius + word("DR")
+    # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
+    t.q.update(Q108=t.radius / t.scale, Q109=2.0, Q113=float(t.scale != 1.0), Q114=t.length / t.scale)
 
 
 _FN_CMP = {"EQU": lambda a, b: a == b, "NE": lambda a, b: a != b, "GT": lambda a, b: a > b,
