@@ -738,7 +738,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
                    expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
-                            "256, 262")
+                            "253, 256, 257, 262, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -1007,10 +1007,10 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 262:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (251, 252):
+    if c.number in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
-    if c.number == 256:
+    if c.number in (256, 257):
         _rectangular_stud(m, c, surface, where, blk)
         return
     centre = m.pos.copy()
@@ -1147,7 +1147,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number == 251:
+        if c.number in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
         else:
             _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
@@ -1159,7 +1159,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number == 251:
+            if c.number in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
             k = m.lengths(where)
@@ -1186,7 +1186,7 @@ def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float
     at most ``step`` [mm]; each entered from the centre side along the pocket's reference axis."""
     half = (c.sides[0] / 2.0 - allowance - m.tool_radius, c.sides[1] / 2.0 - allowance - m.tool_radius)
     if min(half) <= 1e-9:
-        where.fail(f"cycle 251: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
                    column=blk.column, text=blk.code, expected="a tool radius plus Q368 below Q218 / 2 and Q219 / 2")
     n = max(1, math.ceil(min(half) / step - 1e-9))
     inset = min(half) / n

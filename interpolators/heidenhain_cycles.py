@@ -29,7 +29,8 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 241``          single-lip deep-hole drilling in one infeed (:func:`drill_cycle`)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
-                          (:func:`circular_pocket_cycle`)
+                          (:func:`circular_pocket_cycle`); 257 circular stud, as 256 with a circle
+``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`)
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
@@ -60,7 +61,7 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
-                                      256, 262)
+                                      253, 256, 257, 262)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -79,6 +80,7 @@ _REQUIRED = {
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
+    253: (218, 219, 201, 202, 206, 207, 200, 203, 204), 257: (223, 222, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -335,7 +337,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number == 262:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number in (251, 252, 256):
+    if number in (251, 252, 253, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
     if q.get(379, 0.0) != 0.0:
@@ -504,12 +506,33 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
 
     ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
     Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are the
-    reader's ``_rectangular_stud``."""
-    if number in (251, 256):
+    reader's ``_rectangular_stud``.
+
+    ``number`` = 253: SLOT MILLING (TNC 640 manual, "SLOT MILLING (Cycle 253)"): Q218 slot length, Q219 slot
+    width, Q374 angle of rotation, Q367 slot position (0: the tool over the slot's centre; the others an
+    error), the rest as 251. The slot is the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
+    half circles joined by straight sides), and is milled as cycle 251 mills its pocket: the manual
+    leaves the roughing path to the control, and 251's rings (each an obround here) stay inside the slot.
+
+    ``number`` = 257: CIRCULAR STUD (TNC 640 manual, "CIRCULAR STUD (Cycle 257)"): Q223 finished-part
+    diameter, Q222 workpiece blank diameter, Q376 starting angle (absent or -1: 0), the rest as 256. The
+    stud is 256's rounded rectangle Q223 x Q223 with the corner radius Q223 / 2, i.e. a circle, from the
+    blank Q222 (the cycle run is 256's: from the starting position 2 mm outside the blank, half circles on
+    and off, revolutions stepping in to the finished diameter)."""
+    if number == 253:
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle 253: Q367={q[367]:g} (the slot beside the tool) is not supported", column=column,
+                       text=where.text, expected="Q367=0 (the tool over the slot's centre)")
+        q = {**q, 220: q[219] / 2.0, 224: q.get(374, 0.0)}
+    if number == 257:
+        start = q.get(376, -1.0)
+        q = {**q, 218: q[223], 219: q[223], 220: q[223] / 2.0, 424: q[222], 425: q[222],
+             224: 0.0 if start == -1.0 else start}
+    if number in (251, 253, 256, 257):
         if q.get(367, 0.0) != 0.0:
             where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
                        column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
-        if not q[218] > 0 or not q[219] > 0 or (number == 256 and (q[424] < q[218] or q[425] < q[219])):
+        if not q[218] > 0 or not q[219] > 0 or (number in (256, 257) and (q[424] < q[218] or q[425] < q[219])):
             where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
                        "Q425 >= Q219 [mm]")

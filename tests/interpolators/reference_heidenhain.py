@@ -435,7 +435,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 256, 262) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 256, 257,
+                    262) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -533,8 +534,19 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind in ("251", "252"):
         _circular_pocket(t, line, p)
         return
+    if kind == "253":  # SLOT MILLING: 251's pocket Q218 x Q219 with half circles at the ends, turned by Q374
+        if p.get("Q367", 0.0):
+            raise ReferenceError("253 with the slot beside the tool")
+        _circular_pocket(t, line, {"Q215": 0.0, **p, "Q220": p["Q219"] / 2, "Q224": p.get("Q374", 0.0)})
+        return
     if kind == "256":
         _stud(t, line, p)
+        return
+    if kind == "257":  # CIRCULAR STUD: 256's stud Q223 x Q223 rounded by Q223/2 (a circle) from the blank Q222
+        d, blank = p["Q223"], p["Q222"]
+        if p.get("Q376", -1.0) not in (-1.0, 0.0):
+            raise ReferenceError("257 with a starting angle")
+        _stud(t, line, {**p, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": blank, "Q425": blank})
         return
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
