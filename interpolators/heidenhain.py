@@ -104,6 +104,7 @@ from interpolators.heidenhain_cycles import (
     LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
+    THREAD_CYCLES,
     DrillCycle,
     PatternCycle,
     back_boring_moves,
@@ -1004,7 +1005,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
         return
-    if c.number == 262:
+    if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
     if c.number in (251, 252, 253):
@@ -1071,50 +1072,108 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
 
 
 def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 262 THREAD MILLING at the current position (TNC 426/430 user's manual, "THREAD MILLING
-    (Cycle 262)", process: FMAX to the set-up clearance, in at the pre-positioning feed Q253 to the
-    starting plane, a tangential approach to the thread diameter, the helix, a tangential departure back
-    to the centre, FMAX out to the set-up clearance and the 2nd set-up clearance).
+    """The thread-milling cycles 262-267 at the current position (TNC 426/430 user's manual, "Cycles for
+    drilling, tapping and thread milling"; TNC 320 user's manual 340 55x-03), in the manuals' order: FMAX to
+    the set-up clearance; 264: drill the hole (as cycle 205); 263: the countersinking; the countersinking at
+    the front (265 with Q360 = 1: after the thread); the thread: at the pre-positioning feed Q253 to the
+    starting plane, a tangential approach, the helix, a tangential departure back to the starting point in
+    the plane; FMAX out to the set-up clearance and the 2nd set-up clearance.
 
-    The manual leaves the starting plane and the approach to the control; our reading, kept inside the
-    thread: the helix runs on the diameter Q335 less the tool diameter at the feed Q207, counter-clockwise
-    for climb milling (Q351 = +1, M3), and upward when that follows the thread (a right-hand thread
-    climb-milled, a left-hand one up-cut), else downward. Q355 = 0 turns once, over one pitch ending
-    (upward: starting) at the thread depth; Q355 = 1 runs from the depth to the surface (downward: the
-    reverse). The approach and the departure are half circles at the helix's end levels between the
-    centre and the helix, on the reference-axis side, in the helix's sense (so they join it tangentially).
+    The manuals leave the paths' sizes to the control; our reading, kept inside the thread (267: outside the
+    stud): the helix runs on the diameter Q335 less the tool diameter (267: plus) at the feed Q207,
+    counter-clockwise for climb milling inside (Q351 = +1, M3; clockwise round a stud), and upward when that
+    follows the thread (a right-hand thread climb-milled inside, or up-cut outside), else downward. Q355 = 0
+    (and 263, 264) turns once, over one pitch ending (upward: starting) at the thread depth; Q355 = 1 runs
+    between the depth and the surface; 265 runs one helix from the surface down to the depth, clockwise for
+    a right-hand thread. Inside, the approach and the departure are half circles at the helix's end levels
+    between the centre and the helix, in the helix's sense (so they join it tangentially). 267 starts on the
+    reference axis one pitch outside the helix (the manual: "determined by the thread radius, tool radius and
+    pitch"), and the half circles run against the helix's sense between that distance and the helix.
     """
     axis = m.plane
     p, q = PLANE_AXES[axis]
     d = -1.0 if c.depth < 0 else 1.0
-    top, bottom = surface - d * c.setup, surface + c.depth
-    r = c.bore_diameter / 2.0 - m.tool_radius
+    top = surface - d * c.setup
+    r = c.bore_diameter / 2.0 + (m.tool_radius if c.outside else -m.tool_radius)
     if r <= 1e-9:
-        where.fail(f"cycle 262: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
                    f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
                    expected="a tool radius below Q335 / 2")
-    upward = c.right_hand == c.climb
-    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
-    start_level, end_level = (bottom, far) if upward else (far, bottom)
     _axis_move(m, "rapid", top, math.inf, where, blk)
-    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
     centre = m.pos.copy()
-    k = m.lengths(where)
-    start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
-    start[axis] = start_level
-    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
-    turns = abs(far - bottom) / c.helix_pitch
-    for pole, sweep, level in (((centre + start) / 2.0, 180.0, start_level), (centre, 360.0 * turns, end_level)):
-        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
-        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    back = centre.copy()
-    back[axis] = end_level
-    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, sense), plane=axis, axis_end=end_level)
-    m.emit("arc", back, seg, c.feed, where, blk.number)
+    sense = m.transform.sweep(1.0 if c.climb != c.outside else -1.0, axis)
+    if c.number == 264:
+        drill = dataclasses.replace(c, number=205, depth=c.sink_depth, feed=c.drill_feed, second_setup=0.0)
+        for mv in hole_moves(drill, start=m.pos[axis], surface=surface):
+            _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
+    if c.number == 263 and c.sink_depth:
+        level = surface + c.sink_depth
+        if not c.sink_side:
+            _axis_move(m, "line", level - d * c.setup, c.approach_feed, where, blk)
+        _axis_move(m, "line", level, c.sink_feed if not c.sink_side else c.approach_feed, where, blk)
+        _circle_out_and_back(m, centre, r, sense, c.sink_feed, where, blk)
+    if c.front_depth and not c.front_after:
+        _axis_move(m, "line", surface + c.front_depth, c.sink_feed if c.number == 265 else c.approach_feed, where,
+                   blk)
+        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
+    _thread_helix(m, c, centre, surface, r, sense, where, blk)
+    if c.front_depth and c.front_after:
+        _axis_move(m, "line", surface + c.front_depth, c.approach_feed, where, blk)
+        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
     m.used.update((p, q, axis))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
+                  where: Where, blk: SourceBlock) -> None:
+    """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
+    ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    bottom = surface + c.depth
+    upward = (c.right_hand == c.climb) != c.outside
+    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
+    start_level, end_level = (bottom, far) if upward else (far, bottom)
+    k = m.lengths(where)
+    ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
+    out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
+    if c.outside:
+        start, _ = _program_target(m, {ref: out / k}, centre)
+        start[axis] = m.pos[axis]
+        m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
+    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+    here = m.pos.copy()
+    on, _ = _program_target(m, {ref: r / k}, centre)
+    on[axis] = start_level
+    turn = -sense if c.outside else sense  # the half circles: against the helix outside
+    seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
+    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    turns = abs(far - bottom) / c.helix_pitch
+    seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense), plane=axis,
+                      axis_end=end_level)
+    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    back = _at_level(centre, axis, end_level)
+    if c.outside:  # out along the radius the helix ended on, to the starting point's distance
+        back = back + (m.pos - back) * (out / r)
+    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
+    m.emit("arc", back, seg, c.feed, where, blk.number)
+
+
+def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
+                         blk: SourceBlock) -> None:
+    """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
+    circle, a half circle back to the centre, turning by ``sense``, at ``feed`` [mm/s] (the countersinking of
+    cycles 263-265; nothing for a radius 0)."""
+    if radius <= 1e-12:
+        return
+    axis = m.plane
+    here = _at_level(centre, axis, m.pos[axis])
+    on, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: radius / m.lengths(where)}, here)
+    for pole, sweep, end in (((here + on) / 2.0, 180.0, on), (here, 360.0, on), ((on + here) / 2.0, 180.0, here)):
+        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(end), seg, feed, where, blk.number)
 
 
 def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:

@@ -32,7 +32,8 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
                           (:func:`circular_pocket_cycle`); 257 circular stud, as 256 with a circle
 ``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`)
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
-``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
+``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`);
+                          263 with countersinking, 264 drilling first, 265 helical, 267 outside
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
 
@@ -50,7 +51,8 @@ from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
-__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
+__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "THREAD_CYCLES",
+           "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
@@ -61,7 +63,9 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
-                                      253, 256, 257, 262)
+                                      253, 256, 257, 262, 263, 264, 265, 267)
+#: The thread-milling cycles (:func:`thread_milling_cycle`).
+THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -78,6 +82,9 @@ _REQUIRED = {
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204), 241: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
+    263: (335, 239, 201, 356, 253, 351, 200, 203, 204, 207),
+    264: (335, 239, 201, 356, 253, 351, 200, 203, 204, 206, 207),
+    265: (335, 239, 201, 253, 200, 203, 204, 207), 267: (335, 239, 201, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     253: (218, 219, 201, 202, 206, 207, 200, 203, 204), 257: (223, 222, 201, 202, 206, 207, 200, 203, 204),
@@ -173,6 +180,23 @@ class DrillCycle:
     edge_height : float
         Cycle 204: Q252, the distance from the underside of the boring bar (the tool tip) up to its
         main cutting tooth [mm].
+    sink_depth : float
+        Cycle 263: Q356, the countersinking depth from the surface, signed as the depth (0: none) [mm];
+        cycle 264: Q356, the total hole depth drilled before the thread [mm].
+    sink_side : bool
+        Cycle 263: Q357 != 0, a set-up clearance to the side: the tool goes to the countersinking
+        depth at Q253 in one move (else at Q253 to the set-up clearance above it, then at Q254).
+    front_depth, front_offset : float
+        Cycles 263, 264, 265: Q358, the depth of the countersinking at the front (0: none), signed as
+        the depth, and Q359, the offset of the tool centre from the hole centre for it [mm].
+    front_after : bool
+        Cycle 265: Q360 = 1, the countersinking at the front after the thread (0: before).
+    sink_feed : float
+        Cycles 263-265: Q254, the countersinking feed [mm/s].
+    drill_feed : float
+        Cycle 264: Q206, the drilling feed [mm/s].
+    outside : bool
+        Cycle 267: an outside thread (the helix on Q335 / 2 plus the tool radius, from outside).
     """
 
     number: int
@@ -211,6 +235,14 @@ class DrillCycle:
     counterbore: float = 0.0
     edge_height: float = 0.0
     advance_last: float | None = None
+    sink_depth: float = 0.0
+    sink_side: bool = False
+    front_depth: float = 0.0
+    front_offset: float = 0.0
+    front_after: bool = False
+    sink_feed: float = 0.0
+    drill_feed: float = 0.0
+    outside: bool = False
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -335,8 +367,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
                        expected=f"Q{k}=<number>")
     if number == 204:
         return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number == 262:
-        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number in THREAD_CYCLES:
+        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column, number=number)
     if number in (251, 252, 253, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
@@ -469,26 +501,61 @@ def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> Non
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                         column: int) -> DrillCycle:
-    """Cycle 262 THREAD MILLING from its Q parameters (TNC 426/430 user's manual, "THREAD MILLING
-    (Cycle 262)"): Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201 thread
-    depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the thread
-    depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351 climb
-    (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed. The moves are the reader's
-    ``_thread_milling``."""
+                         column: int, number: int = 262) -> DrillCycle:
+    """The thread-milling cycles from their Q parameters (TNC 426/430 user's manual, "Cycles for
+    drilling, tapping and thread milling", and TNC 320 user's manual 340 55x-03, the same cycles).
+    The moves are the reader's ``_thread_milling``.
+
+    * 262 THREAD MILLING: Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201
+      thread depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the
+      thread depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351
+      climb (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed;
+    * 263 THREAD MILLING/COUNTERSINKING: as 262 with one 360 degree helix, plus Q356 countersinking depth
+      ("distance between tool point and the top surface of the workpiece"), Q357 set-up clearance to the
+      side, Q358 depth and Q359 offset of the countersinking at the front, Q254 countersinking feed;
+    * 264 BORE/THREAD MILLING: drills first, Q356 total hole depth in infeeds of Q202 at Q206, with Q258
+      upper advanced stop distance, Q257 infeed for chip breaking, Q256 retraction for chip breaking (as
+      cycle 205), then Q358/Q359 at the front and the thread as 263 (Q254 absent: Q206);
+    * 265 HELICAL BORE/THREAD MILLING: Q335, Q239, Q201, Q253, Q358, Q359, Q360 countersinking at the front
+      before (0) or after (1) the thread, Q200, Q203, Q204, Q254, Q207: one continuous helix from the
+      surface down to the thread depth, turning with the thread (no Q351);
+    * 267 OUTSIDE THREAD MILLING: as 262 about a stud (Q355 0 or 1); the countersinking at the front
+      (Q358 != 0) is not supported.
+    """
+    q = {355: 0.0, 351: 1.0, 356: 0.0, 357: 0.0, 358: 0.0, 359: 0.0, 360: 0.0, **q}
     steps = int(q[355])
     if steps not in (0, 1) or q[355] != steps:
-        where.fail(f"cycle 262: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
+        where.fail(f"cycle {number}: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
                    column=column, text=where.text, expected="Q355=0 (one helix) or Q355=1 (continuous)")
     if q[239] == 0 or not q[335] > 0 or not q[253] > 0:
-        where.fail("cycle 262: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0", column=column,
-                   text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+        where.fail(f"cycle {number}: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0",
+                   column=column, text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+    if number == 267 and q[358] != 0.0:
+        where.fail("cycle 267: the countersinking at the front (Q358 != 0) of an outside thread is not supported",
+                   column=column, text=where.text, expected="Q358=0")
     depth = q[201] * scale
-    return _checked(DrillCycle(number=262, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth),
-                               feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
-                               bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
-                               climb=q[351] >= 0, right_hand=q[239] > 0, continuous=steps == 1,
-                               approach_feed=q[253] * feed_scale), where, column)
+    sign = -1.0 if depth < 0 else 1.0
+    sink_feed = (q.get(254, 0.0) or (q[206] if number == 264 else 0.0)) * feed_scale
+    if number in (263, 264, 265) and (q[356] or q[358]) and not sink_feed > 0:
+        where.fail(f"cycle {number}: the countersinking feed Q254 must be > 0", column=column, text=where.text,
+                   expected="Q254 > 0 [mm/min]")
+    extra = {}
+    if number == 264:
+        if abs(q[356]) < abs(q[201]) or not q[206] > 0:
+            where.fail("cycle 264: the total hole depth Q356 must reach the thread depth Q201, the feed Q206 > 0",
+                       column=column, text=where.text, expected="|Q356| >= |Q201|, Q206 > 0")
+        extra = dict(plunge=abs(q.get(202, 0.0)) * scale or abs(q[356]) * scale, drill_feed=q[206] * feed_scale,
+                     advance=abs(q.get(258, 0.0)) * scale, chip_depth=abs(q.get(257, 0.0)) * scale,
+                     chip_break=abs(q.get(256, 0.0)) * scale)
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, **({"plunge": abs(depth)} | extra),
+        feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
+        bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
+        climb=(q[351] >= 0) if number != 265 else q[239] < 0, right_hand=q[239] > 0,
+        continuous=steps == 1 or number == 265, approach_feed=q[253] * feed_scale,
+        sink_depth=sign * abs(q[356]) * scale if number in (263, 264) else 0.0, sink_side=q[357] != 0.0,
+        front_depth=sign * abs(q[358]) * scale, front_offset=abs(q[359]) * scale, front_after=q[360] == 1.0,
+        sink_feed=sink_feed, outside=number == 267), where, column)
 
 
 def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -593,7 +660,9 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
                                sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
                                blank=(cycle.blank[0] * factor, cycle.blank[1] * factor),
-                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor)
+                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor,
+                               sink_depth=cycle.sink_depth * factor, front_depth=cycle.front_depth * factor,
+                               front_offset=cycle.front_offset * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

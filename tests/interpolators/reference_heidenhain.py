@@ -436,7 +436,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
     elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 256, 257,
-                    262) \
+                    262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -530,6 +530,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "262":
         _thread_milling(t, line, p)
+        return
+    if kind in ("263", "264", "265", "267"):
+        _thread_family(t, line, kind, p)
         return
     if kind in ("251", "252"):
         _circular_pocket(t, line, p)
@@ -841,6 +844,72 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
     for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
                       (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
         t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """263/264/265/267, in the manuals' order: to the set-up clearance; 264: the hole drilled as cycle 205 to
+    Q356; 263 with Q356: at Q253 to Q356 less Q200 (with Q357: to Q356), at Q254 to Q356, then a half
+    circle out to the thread's radius, a full circle and a half circle back; with Q358: at Q253 (265 before
+    the thread: Q254) to Q358 and the same circles on the radius Q359 (265 with Q360 = 1: after the thread);
+    the thread as 262 (263, 264 one pitch; 265 from the surface down to the depth, clockwise for a
+    right-hand thread; 267 about a stud on Q335/2 + R, clockwise for climb, from a point one pitch outside,
+    the half circles against the helix, the departure out along the end radius); rapid out."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError(f"{kind} under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear, bottom, pitch = surface - sgn * setup, surface + depth, abs(p["Q239"])
+    outside, right = kind == "267", p["Q239"] > 0
+    climb = (p.get("Q351", 1.0) >= 0) if kind != "265" else not right
+    ccw = climb != outside
+    spin = "arc_ccw" if ccw else "arc_cw"
+    r = p["Q335"] * t.scale / 2 + (t.radius if outside else -t.radius)
+    _move_z(t, line, "rapid", clear, optional=True)
+    centre = t.prog()
+
+    def circle(radius: float) -> None:
+        if radius <= 1e-12:
+            return
+        c = np.array([centre[0], centre[1], t.prog()[2]])
+        on = c + np.array([radius, 0.0, 0.0])
+        for end, pole in ((on, c + np.array([radius / 2, 0.0, 0.0])), (on, c), (c, c + np.array([radius / 2, 0, 0]))):
+            t.emit(line, spin, t.machine(end), centre=t.machine(pole))
+
+    if kind == "264":
+        _universal_drilling(t, line, "205", {"Q203": surface, "Q200": setup, "Q201": sgn * abs(p["Q356"]),
+                                             "Q202": p.get("Q202", 0.0), "Q258": p.get("Q258", 0.0),
+                                             "Q257": p.get("Q257", 0.0), "Q256": p.get("Q256", 0.0)})
+    if kind == "263" and p.get("Q356", 0.0):
+        sink = surface + sgn * abs(p["Q356"])
+        if not p.get("Q357", 0.0):
+            _move_z(t, line, "feed", sink - sgn * setup)
+        _move_z(t, line, "feed", sink)
+        circle(r)
+    front, after = sgn * abs(p.get("Q358", 0.0)), kind == "265" and p.get("Q360", 0.0) == 1
+    if front and not after:
+        _move_z(t, line, "feed", surface + front)
+        circle(abs(p.get("Q359", 0.0)) * t.scale)
+    far = surface if p.get("Q355", 0.0) == 1 or kind == "265" else bottom - sgn * pitch
+    z0, z1 = (bottom, far) if (right == climb) != outside else (far, bottom)
+    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    half = spin if not outside else ("arc_cw" if ccw else "arc_ccw")
+    out = r + pitch * t.scale if outside else 0.0
+    if outside:
+        t.emit(line, "rapid", t.machine(centre + np.array([out, 0.0, 0.0])))
+    _move_z(t, line, "feed", z0)
+    here = t.prog()
+    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+    on = np.array([centre[0] + r, centre[1], z0 * t.scale])
+    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+    back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
+    t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
+    t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
+    t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
+    if front and after:
+        _move_z(t, line, "feed", surface + front)
+        circle(abs(p.get("Q359", 0.0)) * t.scale)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 

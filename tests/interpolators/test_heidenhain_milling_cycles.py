@@ -97,3 +97,78 @@ def test_circular_stud_257_finishes_with_an_allowance_and_checks_the_blank():
     assert all(a.segment.ccw for a in finish if np.allclose(a.segment.center[:2], [0, 0]))  # up-cut: ccw
     with pytest.raises(GCodeError, match="at least"):
         run(STUD.format(q="Q215=0 Q368=0 Q351=1").replace("Q222=30", "Q222=18"))
+
+
+THREADS = "TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nL X+10 Y+20 FMAX\n{cycle}\nCYCL CALL"
+
+
+def moves(prog):
+    """(kind, x, y, z) of the cycle's moves, and the arcs' (centre x, y, counter-clockwise)."""
+    out = []
+    for b in prog.blocks[2:]:
+        row = (b.kind, *np.round(b.target, 9).tolist())
+        if b.kind == "arc":
+            row += (*np.round(b.segment.center[:2], 9).tolist(), b.segment.ccw)
+        out.append(row)
+    return out
+
+
+def test_thread_milling_countersinking_263_countersinks_then_mills_one_pitch():
+    # M12 x 1.5 right-hand, tool radius 4: the helix radius 2 about (10, 20); countersinking depth 2: at Q253 to
+    # the set-up clearance above it (Z0), at Q254 to Z-2, a circle on the helix radius; then the thread as 262
+    prog = run(THREADS.format(cycle="CYCL DEF 263 THREAD MLLNG/CNTSNKG Q335=12 Q239=+1.5 Q201=-6 Q356=-2 Q253=750 "
+                                    "Q351=+1 Q200=2 Q357=0 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=200 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, 0), ("line", 10, 20, -2),
+        ("arc", 12, 20, -2, 11, 20, True), ("arc", 12, 20, -2, 10, 20, True), ("arc", 10, 20, -2, 11, 20, True),
+        ("line", 10, 20, -6), ("arc", 12, 20, -6, 11, 20, True), ("arc", 12, 20, -4.5, 10, 20, True),
+        ("arc", 10, 20, -4.5, 11, 20, True), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    feeds = [round(b.feed * 60, 6) for b in prog.blocks[3:6]]
+    assert feeds == [750, 200, 200]
+
+
+def test_bore_thread_milling_264_drills_countersinks_at_the_front_then_mills():
+    # drilled to Q356 = 10 in infeeds of 5 (re-entry Q258 = 0.5 above the last depth), countersunk at the front
+    # 1 deep on a circle of Q359 = 1, then a left-hand thread climb-milled: downward from one pitch above -8
+    prog = run(THREADS.format(cycle="CYCL DEF 264 BORE/THREAD MLLNG Q335=12 Q239=-1.5 Q201=-8 Q356=-10 Q253=750 "
+                                    "Q351=+1 Q202=5 Q258=0.5 Q257=0 Q256=0 Q358=-1 Q359=1 Q200=2 Q203=+0 Q204=20 "
+                                    "Q206=100 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, -5), ("rapid", 10, 20, 2), ("rapid", 10, 20, -4.5),
+        ("line", 10, 20, -10), ("rapid", 10, 20, 2), ("line", 10, 20, -1),
+        ("arc", 11, 20, -1, 10.5, 20, True), ("arc", 11, 20, -1, 10, 20, True), ("arc", 10, 20, -1, 10.5, 20, True),
+        ("line", 10, 20, -6.5), ("arc", 12, 20, -6.5, 11, 20, True), ("arc", 12, 20, -8, 10, 20, True),
+        ("arc", 10, 20, -8, 11, 20, True), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    assert round(prog.blocks[3].feed * 60, 6) == 100 and round(prog.blocks[9].feed * 60, 6) == 100  # Q254: Q206
+
+
+def test_helical_bore_thread_milling_265_runs_down_from_the_surface_and_countersinks_after():
+    # right-hand: clockwise downward, 2 turns from Z0 to Z-3; Q360 = 1: the front countersinking after the thread
+    prog = run(THREADS.format(cycle="CYCL DEF 265 HEL. BORE/THRD MLLNG Q335=12 Q239=+1.5 Q201=-3 Q253=750 Q358=-0.5 "
+                                    "Q359=0.5 Q360=1 Q200=2 Q203=+0 Q204=20 Q254=150 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, 0), ("arc", 12, 20, 0, 11, 20, False),
+        ("arc", 12, 20, -3, 10, 20, False), ("arc", 10, 20, -3, 11, 20, False), ("line", 10, 20, -0.5),
+        ("arc", 10.5, 20, -0.5, 10.25, 20, False), ("arc", 10.5, 20, -0.5, 10, 20, False),
+        ("arc", 10, 20, -0.5, 10.25, 20, False), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    helix = prog.blocks[5].segment
+    assert math.isclose(helix.length, math.hypot(2 * 2 * math.pi * 2, 3))  # two turns of radius 2, 3 down
+
+
+def test_outside_thread_milling_267_runs_round_the_stud_from_outside():
+    # M20 x 2 right-hand stud, tool radius 4: the helix on 10 + 4 = 14; start one pitch outside (16) on +X;
+    # climb milling outside runs clockwise, for a right-hand thread downward from one pitch above the depth
+    prog = run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=0 Q253=500 "
+                                    "Q351=+1 Q200=2 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=0 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("rapid", 26, 20, 2), ("line", 26, 20, -8), ("arc", 24, 20, -8, 25, 20, True),
+        ("arc", 24, 20, -10, 10, 20, False), ("arc", 26, 20, -10, 25, 20, True), ("rapid", 26, 20, 2),
+        ("rapid", 26, 20, 20)]
+    up = run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=1 Q253=500 "
+                                  "Q351=-1 Q200=2 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=0 Q207=300"))
+    for b in up.blocks[3:]:  # up-cut: counter-clockwise, upward over the whole stud; never inside 14
+        assert math.hypot(b.target[0] - 10, b.target[1] - 20) >= 14 - 1e-9 and b.target[2] >= -10 - 1e-9
+    assert [b.target[2] for b in up.blocks if b.kind == "arc"] == [-10, 0, 0] and up.blocks[6].segment.ccw
+    with pytest.raises(GCodeError, match="countersinking at the front"):
+        run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=0 Q253=500 "
+                                 "Q351=+1 Q200=2 Q358=-1 Q359=1 Q203=+0 Q204=20 Q254=100 Q207=300"))
