@@ -1161,6 +1161,52 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
     m.emit("arc", back, seg, c.feed, where, blk.number)
 
 
+def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
+            blk: SourceBlock) -> None:
+    """The roughing infeed of cycles 251-253 from over the ``centre`` down to ``level`` [mm] at the plunging
+    feed Q206, by Q366 (TNC 640 user's manual for cycle programming, cycles 251-253, Q366 "Plunging
+    strategy": 0 vertical; 1 helical; 2 reciprocating, 251/253 only). The control sets the helix and the
+    reciprocating path from the plunging angle ANGLE of its tool table, which vcnc's tool table does not
+    hold; our reading, kept inside the pocket: the helix turns once, in the milling sense, on the tool
+    radius (at most ``room`` [mm], the roughing radius left for the tool centre) about the centre, out from
+    and back to the centre along the reference axis; the reciprocating plunge runs along the pocket's
+    (turned) reference axis from the centre out to the room on that side, to the room on the other side
+    halfway down and back to the first end at the level, then to the centre. Without room: vertical."""
+    axis = m.plane
+    if c.plunge_type == 0:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        return
+    p, q = PLANE_AXES[axis]
+    here = _at_level(centre, axis, m.pos[axis])
+    k = m.lengths(where)
+    if c.plunge_type == 1:
+        reach, ways = min(m.tool_radius or room, room), ((1.0, level),)
+    else:
+        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.number in (251, 253) else room
+        ways = ((-1.0, (m.pos[axis] + level) / 2.0), (1.0, level))
+    if reach <= 1e-9:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        return
+    cos, sin = (math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))) if c.plunge_type == 2 else (1, 0)
+
+    def at(u: float, z: float) -> np.ndarray:
+        pt, _ = _program_target(m, {"I" + "XYZ"[p]: u * cos / k, "I" + "XYZ"[q]: u * sin / k}, here)
+        pt[axis] = z
+        return pt
+
+    out = at(reach, m.pos[axis])
+    m.emit("line", out, Line(m.pos, out), c.approach_feed, where, blk.number)
+    if c.plunge_type == 1:
+        seg = helical_arc(m.pos, here, math.copysign(360.0, sense), plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, c.approach_feed, where, blk.number)
+    else:
+        for side, z in ways:
+            end = at(side * reach, z)
+            m.emit("line", end, Line(m.pos, end), c.approach_feed, where, blk.number)
+    back = _at_level(centre, axis, level)
+    m.emit("line", back, Line(m.pos, back), c.approach_feed, where, blk.number)
+
+
 def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
                          blk: SourceBlock) -> None:
     """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
@@ -1212,7 +1258,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
             _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
     if c.operation in (0, 1):
         for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
-            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            _plunge(m, c, centre, level, rough, sense, where, blk)
             rings(c.side_allowance, c.feed)
             _back_to_centre(m, centre, level - d * c.setup, where, blk)
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):

@@ -197,6 +197,8 @@ class DrillCycle:
         Cycle 264: Q206, the drilling feed [mm/s].
     outside : bool
         Cycle 267: an outside thread (the helix on Q335 / 2 plus the tool radius, from outside).
+    plunge_type : int
+        Cycles 251-253: Q366, 0 vertical plunging, 1 helical, 2 reciprocating (251, 253).
     """
 
     number: int
@@ -243,6 +245,7 @@ class DrillCycle:
     sink_feed: float = 0.0
     drill_feed: float = 0.0
     outside: bool = False
+    plunge_type: int = 0
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
@@ -503,8 +506,10 @@ def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> Non
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
                          column: int, number: int = 262) -> DrillCycle:
     """The thread-milling cycles from their Q parameters (TNC 426/430 user's manual, "Cycles for
-    drilling, tapping and thread milling", and TNC 320 user's manual 340 55x-03, the same cycles).
-    The moves are the reader's ``_thread_milling``.
+    drilling, tapping and thread milling": 262's parameters p. 251, https://www.easymanua.ls/heidenhain/
+    tnc-430/manual?p=277; 264's p. 244, ?p=270; 265's p. 247, ?p=273; TNC 320 user's manual 340 55x-03 p. 246,
+    https://azmanual.top/manuals/798411/heidenhain-tnc-320-340-55x-03.html?page=246: 263's). The moves are
+    the reader's ``_thread_milling``.
 
     * 262 THREAD MILLING: Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201
       thread depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the
@@ -564,8 +569,8 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
     finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
     depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
-    Q366 plunging (0 vertical; absent: vertical; 1 helical needs the tool table's plunge angle: an
-    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
+    Q366 plunging (0 or absent vertical, 1 helical; 251 and 253 also 2 reciprocating: the reader's
+    ``_plunge``), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
     side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
@@ -604,9 +609,10 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
                        "Q425 >= Q219 [mm]")
         q = {215: 0.0, **q, 223: min(q[218], q[219])}
-    if q.get(366, 0.0) != 0.0:
-        where.fail(f"cycle {number}: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
-                   column=column, text=where.text, expected="Q366=0 (vertical plunging)")
+    plunge_types = (0.0, 1.0, 2.0) if number in (251, 253) else (0.0, 1.0) if number == 252 else (0.0,)
+    if q.get(366, 0.0) not in plunge_types:
+        where.fail(f"cycle {number}: Q366={q[366]:g} is not a plunging strategy of this cycle", column=column,
+                   text=where.text, expected="Q366=" + ", ".join(f"{v:g}" for v in plunge_types))
     operation = int(q[215])
     if operation not in (0, 1, 2) or not q[223] > 0 or not q.get(370, 1.0) > 0 or not q[206] > 0:
         where.fail(f"cycle {number}: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
@@ -619,7 +625,8 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
         finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
-        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale)), where, column)
+        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale),
+        plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253) else 0), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:

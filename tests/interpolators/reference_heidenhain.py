@@ -708,9 +708,31 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         here = t.prog()
         t.emit(line, "rapid", t.machine(np.array([centre[0], centre[1], here[2]])), rows="optional")
 
+    def plunge(z: float) -> None:
+        """Q366: 0 vertical; 1 one helix turn on R (at most the room) about the centre, out and back along +X;
+        2 (251/253) along the turned reference axis: out to the room, to the other side halfway down, back."""
+        mode, room, here = int(p.get("Q366", 0)), wall - side * t.scale, t.prog()
+        reach = (min(t.radius or room, room) if mode == 1
+                 else p.get("Q218", 0.0) * t.scale / 2 - side * t.scale - t.radius)
+        if mode == 0 or reach <= 1e-9:
+            _move_z(t, line, "feed", z)
+            return
+        a = math.radians(p.get("Q224", 0.0)) if mode == 2 else 0.0
+
+        def pt(u: float, zz: float) -> np.ndarray:
+            return t.machine(np.array([centre[0] + u * math.cos(a), centre[1] + u * math.sin(a), zz]))
+
+        t.emit(line, "feed", pt(reach, here[2]))
+        if mode == 1:
+            t.emit(line, kind, pt(reach, z * t.scale), centre=pt(0.0, z * t.scale))
+        else:
+            t.emit(line, "feed", pt(-reach, (here[2] + z * t.scale) / 2))
+            t.emit(line, "feed", pt(reach, z * t.scale))
+        t.emit(line, "feed", pt(0.0, z * t.scale))
+
     if op in (0, 1):
         for z in depths(surface + depth - sgn * floor, p["Q202"] or abs(depth)):
-            _move_z(t, line, "feed", z)
+            plunge(z)
             rings(wall - side * t.scale)
             back(z)
     if op == 2 or (op == 0 and side > 0):

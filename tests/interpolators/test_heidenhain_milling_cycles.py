@@ -51,10 +51,11 @@ def test_slot_milling_253_roughs_obrounds_and_finishes_the_wall():
     assert np.allclose(b[-1].target, [10, 20, 20])
 
 
-def test_slot_milling_253_stays_inside_the_turned_slot():
+@pytest.mark.parametrize("plunge", ["Q366=0", "Q366=1", "Q366=2"])
+def test_slot_milling_253_stays_inside_the_turned_slot(plunge):
     for q in ("Q215=0 Q368=0.5 Q369=0.2 Q338=1 Q374=30 Q351=+1 Q370=1", "Q215=2 Q368=0 Q369=0 Q338=0 Q374=-90 "
               "Q351=-1 Q370=0.5", "Q215=1 Q368=0 Q369=0 Q338=0 Q374=0 Q351=-1 Q370=1.4"):
-        prog = run(SLOT.format(q=q))
+        prog = run(SLOT.format(q=q).replace("Q366=0", plunge))
         a = math.radians(float(q.split("Q374=")[1].split()[0]))
         for blk in prog.blocks[1:]:  # the tool centre within the slot less its radius: an obround 26 x 6
             dx, dy = blk.target[0] - 10, blk.target[1] - 20
@@ -62,8 +63,8 @@ def test_slot_milling_253_stays_inside_the_turned_slot():
             assert math.hypot(max(abs(u) - 10, 0.0), v) <= 3 + 1e-9 and blk.target[2] >= -4 - 1e-9
     with pytest.raises(GCodeError, match="Q367=2"):
         run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q367=0", "Q367=2"))
-    with pytest.raises(GCodeError, match="Q366=1"):
-        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q366=0", "Q366=1"))
+    with pytest.raises(GCodeError, match="Q366=3 is not a plunging strategy"):
+        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q366=0", "Q366=3"))
 
 
 STUD = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 257 CIRCULAR STUD Q223=20 "
@@ -172,3 +173,35 @@ def test_outside_thread_milling_267_runs_round_the_stud_from_outside():
     with pytest.raises(GCodeError, match="countersinking at the front"):
         run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=0 Q253=500 "
                                  "Q351=+1 Q200=2 Q358=-1 Q359=1 Q203=+0 Q204=20 Q254=100 Q207=300"))
+
+
+POCKET = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 252 CIRCULAR POCKET Q215=1 "
+          "Q223=30 Q368=0 Q207=500 Q351=+1 Q201=-4 Q202=2 Q369=0 Q206=150 Q338=0 Q200=2 Q203=+0 Q204=20 Q370=1 "
+          "{q}\nCYCL CALL")
+
+
+def test_helical_plunging_q366_1_turns_once_on_the_tool_radius():
+    # circular pocket 30 about (10, 20), tool radius 4: the helix on R = 4 about the centre, one turn per infeed,
+    # counter-clockwise (climb), out from and back to the centre at Q206; then the rings as before
+    prog = run(POCKET.format(q="Q366=1"))
+    b = prog.blocks
+    assert [(blk.kind, *np.round(blk.target, 9).tolist()) for blk in b[1:5]] == [
+        ("rapid", 10, 20, 2), ("line", 14, 20, 2), ("arc", 14, 20, -2), ("line", 10, 20, -2)]
+    helix = b[3].segment
+    assert helix.ccw and np.allclose(helix.center[:2], [10, 20]) and round(b[3].feed * 60, 6) == 150
+    assert math.isclose(helix.length, math.hypot(2 * math.pi * 4, 4))  # from the clearance 2 down to -2
+    second = [blk for blk in b if blk.kind == "arc" and blk.target[2] == -4 and round(blk.feed * 60) == 150]
+    assert len(second) == 1 and np.allclose(second[0].target, [14, 20, -4])  # from 2 above -2, down to -4
+    for blk in b[1:]:
+        assert math.hypot(blk.target[0] - 10, blk.target[1] - 20) <= 11 + 1e-9
+    with pytest.raises(GCodeError, match="Q366=2 is not a plunging strategy"):
+        run(POCKET.format(q="Q366=2"))
+
+
+def test_reciprocating_plunging_q366_2_runs_along_the_slot():
+    # slot 30 x 10, tool radius 2, no allowance: out to 15 - 2 = 13 along the slot axis (turned 90 degrees: +Y),
+    # to the other end halfway down, back to the first end at the depth, to the centre
+    prog = run(SLOT.format(q="Q215=1 Q368=0 Q369=0 Q338=0 Q374=90 Q351=+1 Q370=1").replace("Q366=0", "Q366=2"))
+    got = [np.round(blk.target, 9).tolist() for blk in prog.blocks[2:6]]
+    assert got == [[10, 33, 2], [10, 7, 0], [10, 33, -2], [10, 20, -2]]
+    assert all(blk.kind == "line" and round(blk.feed * 60) == 150 for blk in prog.blocks[2:6])
