@@ -249,8 +249,8 @@ def test_circular_pocket_252_stays_inside_the_pocket():
                 c = b.segment.center
                 far = math.hypot(c[0] - 10, c[1] - 20) + math.hypot(b.target[0] - c[0], b.target[1] - c[1])
                 assert far <= 8 + 1e-9
-    with pytest.raises(GCodeError, match="Q366=1"):
-        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=1"))
+    with pytest.raises(GCodeError, match="Q366=2 is not a plunging strategy"):  # 252: 0 vertical, 1 helical
+        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=2"))
     with pytest.raises(GCodeError, match="fill the pocket"):
         run(POCKET.format(q="Q215=0 Q368=8.5 Q369=0 Q338=0 Q351=1 Q370=1"))
 
