@@ -154,7 +154,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
-    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?:(?<=[:=])|(?![A-Z]))",
+    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
@@ -201,6 +201,7 @@ class _Machine:
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
         self.tool_radius = 0.0
+        self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
         self.transform = Transform()
@@ -528,7 +529,6 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
 _KNOWN_UNSUPPORTED = {
     "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
     "SPL": "SPL (spline interpolation)",
-    "LN": "LN (a straight line with 3-D tool compensation)",
     "QS": "QS (string parameters)",
     "DECLARE": "DECLARE (string parameters)",
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
@@ -702,8 +702,9 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
                 length, radius = tool.length, tool.radius
         m.tool_length = length + dl
         m.tool_radius = radius + dr
+        m.tool_delta = dr
     elif named:
-        m.tool_length, m.tool_radius = dl, dr
+        m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
     _tool_parameters(m, where)
 
 
@@ -1606,6 +1607,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     if kw == "CC":
         _pole(seen, m, where, m9x)
         return ended
+    normal, kw = kw == "LN", "L" if kw == "LN" else kw  # LN: a line to a point displaced along the normal
     exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
     rapid = "FMAX" in seen
     if "F" in seen:
@@ -1621,6 +1623,8 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             w = seen.get("MBMAX") or seen["MB"]
             where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
     target, written = _plane_coords(seen, m, where, m9x=m9x)
+    if normal:
+        target = target + _normal_offset(seen, m, where, blk)
     m.used.update(written)
     feed = math.inf if rapid else m.feed
     extra = _extra_axes(seen, m, where) if kw == "L" else None
@@ -1726,6 +1730,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
     allowed = {
         "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
               *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)},
+        "LN": {"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"},
         "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
         "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
         "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
@@ -1738,6 +1743,26 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
             where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
                        expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != 'RCOMP')))
     return seen, ms
+
+
+def _normal_offset(seen: dict[str, Word], m: _Machine, where: Where, blk: SourceBlock) -> np.ndarray:
+    """``LN X.. Y.. Z.. NX.. NY.. NZ.. [TX.. TY.. TZ..]``, a straight line with 3-D tool compensation: X, Y,
+    Z are the end point the CAM system computed for the tool as defined, and "the TNC displaces the tool in
+    the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
+    without M128 / FUNCTION TCPM "the TNC ignores the direction vector T" (iTNC 530 user's manual
+    60642x-03 p. 519, "3-D compensation without tool orientation"). vcnc's tool table holds no delta
+    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine]."""
+    missing = [k for k in ("NX", "NY", "NZ") if k not in seen]
+    normal = np.array([seen[k].value for k in ("NX", "NY", "NZ") if k in seen], dtype=float)
+    if missing or not np.linalg.norm(normal) > 0:
+        where.fail("LN without a surface-normal vector", column=blk.column, text=where.text,
+                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length)")
+    if not m.transform.identity:
+        where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
+                   text=where.text, expected="LN without mirror, rotation or scaling")
+    if "TX" in seen or "TY" in seen or "TZ" in seen:
+        m.note("LN TX/TY/TZ: the tool orientation is ignored without M128 (no tilting axes move)")
+    return m.tool_delta * normal / np.linalg.norm(normal)
 
 
 def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray | None:

@@ -11,7 +11,7 @@ manual, "Programming fundamentals: NC blocks"). This module
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
   ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``FU``/``FZ`` (per revolution / tooth),
-  ``M``, ``MB MAX``, and a value that is a number, a Q parameter
+  ``M``, ``MB MAX``, LN's vector components ``NX``..``TZ``, and a value that is a number, a Q parameter
   (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
 """
 
@@ -184,7 +184,7 @@ def read_value(code: str, pos: int, where: Where, params: QParameters, *, what: 
 _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
-    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
+    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<vec>[NT][XYZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
     r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<fu>F[UZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )
@@ -240,8 +240,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             value, end = read_value(code, end, where, params, what="MB", column0=column0)
             out.append(Word("MB", value, col, code[pos:end]))
         else:
-            key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "fu": tok.upper(), "rad": "R",
-                   "bare": "BARE", "len": "LEN", "cca": "CCA"}[kind]
+            key = {"polar": tok.upper(), "axis": tok.upper(), "vec": tok.upper(), "feed": "F", "fu": tok.upper(),
+                   "rad": "R", "bare": "BARE", "len": "LEN", "cca": "CCA"}[kind]
             value, end = read_value(code, end, where, params, what=key, column0=column0)
             out.append(Word(key, value, col, code[pos:end].strip()))
         if end < n and code[end] not in " \t":

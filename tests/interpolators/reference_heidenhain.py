@@ -155,7 +155,7 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
                    r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
@@ -190,6 +190,7 @@ class _Tnc:
         self.shift = np.zeros(3)
         self.length = 0.0
         self.radius = 0.0
+        self.delta = 0.0
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
@@ -1082,6 +1083,7 @@ def _tool(t: _Tnc, text: str) -> None:
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
     t.length = length + word("DL")
     t.radius = radius + word("DR")
+    t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
     # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
     t.q.update(Q108=t.radius / t.scale, Q109=2.0, Q113=float(t.scale != 1.0), Q114=t.length / t.scale)
 
@@ -1255,6 +1257,12 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     head, _, rest = up.partition(" ")
     if head == "L":
         _line_block(t, line, _words(rest, t.q))
+    elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
+        w = _words(rest, t.q)
+        n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+        if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+            raise ReferenceError("LN under RL/RR or a transformation")
+        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n / np.linalg.norm(n))
     elif head == "CC":
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):

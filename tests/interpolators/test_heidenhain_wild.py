@@ -113,3 +113,16 @@ def test_a_circle_outside_the_working_plane_under_radius_compensation_is_an_erro
         parse_heidenhain("TOOL CALL 1 Z\nL X+0 Y+0 Z+0 RL F100\nCC X+0 Z-4\n", context=CTX)
     with pytest.raises(GCodeError, match="about a pole outside the working plane"):
         parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nCC X+0 Z-4\nLP PR+4 PA+0\n", context=CTX)
+
+
+def test_ln_lines_with_3d_compensation_move_by_the_delta_radius_along_the_normal():
+    # iTNC 530 manual: "the TNC displaces the tool in the direction of the surface-normal vectors by the sum of
+    # the delta values"; CAM posts (NX, hyperMILL, Fusion 360 with 3-D compensation) write LN blocks
+    prog = run("TOOL CALL 1 Z S1000 DR-0.5\nL X+0 Y+0 Z+10 R0 FMAX\n"
+               "LN X+10 Y+0 Z+0 NX+0 NY+0 NZ+1 F500\nLN X+20 Y+5 Z-1 NX+3 NY+0 NZ+4 TX+0 TY+0 TZ+1\n"
+               "TOOL CALL 1 Z\nLN X+30 Y+5 Z-1 NX+1 NY+1 NZ+1 FMAX")
+    assert np.allclose(ends(prog), [[0, 0, 20], [10, 0, 9.5], [20 - 0.3, 5, 9 - 0.4], [30, 5, 9]])  # tool length 10
+    assert [b.kind for b in prog.blocks] == ["rapid", "line", "line", "rapid"]
+    assert any("TX/TY/TZ" in n for n in prog.notes)
+    with pytest.raises(GCodeError, match="LN without a surface-normal vector"):
+        parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nLN X+1 Y+0 Z+0 NX+0 NY+0\n", context=CTX)
