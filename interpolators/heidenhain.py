@@ -8,8 +8,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241 and the
-  pattern cycles 220, 221;
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
+  256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
@@ -29,7 +29,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     5 /L X+10, /5 L X+10            skippable block: runs (block skip off), noted
     L +0.009                        a number without axis letter repeats the single axis of the
                                     previous L block (the thesis' Tables 4.3/4.4 are written so)
-    CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position)
+    CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position); CC X.. Z..
+                                    (the tool axis and another): C and CP about it run in that plane
+    LN X.. Y.. Z.. NX.. NY.. NZ..   a line with 3-D compensation: the point moved along N by DR
+    L A+90 C+45 FMAX                rotary / secondary axes of the machine (context.extra_axes)
     C X+45 Y+25 DR+                 arc about CC (end = start: full circle; tool-axis coordinate: helix)
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0                     arc tangent to the preceding element
@@ -54,7 +57,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251/252/256/262
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-253/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -81,7 +84,7 @@ element: the manuals give only the contour arc (TNC 640 user's manual, "Approach
 contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
 grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
 next R0 block leaves from there). Anything not listed (FK,
-other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
+other pattern forms, tilted planes, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
