@@ -754,7 +754,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         m.cycle_program = (pm.group(1), col + pm.start(1))
         return
     if number >= 200:
-        q = q_assignments(rest, where, m.params, column0=col)
+        q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
         if number in PATTERN_CYCLES:
             if q.get(365, 0.0):
                 m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")

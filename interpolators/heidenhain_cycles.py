@@ -96,6 +96,7 @@ _REQUIRED = {
 _MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 _FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
+_AUTO_RE = re.compile(r"F?AUTO(?![A-Z0-9])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -248,8 +249,12 @@ class DrillCycle:
     plunge_type: int = 0
 
 
-def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
-    """The ``Qnnn=value`` assignments of a 200-series definition (values may be Q parameters)."""
+def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
+                  auto_feed: float | None = None) -> dict[int, float]:
+    """The ``Qnnn=value`` assignments of a 200-series definition (values may be Q parameters). A feed
+    written ``AUTO`` (``Q207= AUTO``, as the iTNC 530 saves the soft key FAUTO: TNC 640 cycle manual, the
+    feed parameters "alternatively FAUTO, FU, FZ") is ``auto_feed``, the F of the last ``TOOL CALL``
+    [program units/min]; without one, an error."""
     out: dict[int, float] = {}
     pos = 0
     words = re.compile(r"\s*[A-Z][A-Z .\-/]*(?=\s+Q\d|\s*$)", re.I)
@@ -263,8 +268,14 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int)
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
         fmax = _FMAX_RE.match(rest, m.end())
+        auto = _AUTO_RE.match(rest, m.end())
         if fmax:  # a feed given as MAX (rapid), as the Fusion 360 TNC post writes Q253 of cycle 204
             value, pos = math.inf, fmax.end()
+        elif auto:
+            if auto_feed is None:
+                where.fail(f"Q{m.group(1)}=AUTO without a feed in the TOOL CALL", column=column0 + m.start(),
+                           text=rest[m.start():auto.end()].strip(), expected="TOOL CALL n Z S.. F.. before the cycle")
+            value, pos = auto_feed, auto.end()
         else:
             value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
         out[int(m.group(1))] = value

@@ -191,6 +191,7 @@ class _Tnc:
         self.length = 0.0
         self.radius = 0.0
         self.delta = 0.0
+        self.auto: float | None = None  # F of the last TOOL CALL
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
@@ -439,8 +440,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 256, 257,
                     262, 263, 264, 265, 267) \
             and sub == 0:
-        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
-                  for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
+                  else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
         if number in (220, 221):
@@ -449,6 +450,13 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params)
     else:
         raise ReferenceError(f"CYCL DEF {number}")
+
+
+def _auto(t: _Tnc) -> float:
+    """A cycle feed written AUTO: the F of the last TOOL CALL."""
+    if t.auto is None:
+        raise ReferenceError("a cycle feed AUTO without a TOOL CALL F")
+    return t.auto
 
 
 def _transform(t: _Tnc, number: int, rest: str) -> None:
@@ -1084,6 +1092,8 @@ def _tool(t: _Tnc, text: str) -> None:
     t.length = length + word("DL")
     t.radius = radius + word("DR")
     t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
+    if re.search(r"\bF\s*[-+]?\s*[\dQ.]", rest):
+        t.auto = word("F")
     # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
     t.q.update(Q108=t.radius / t.scale, Q109=2.0, Q113=float(t.scale != 1.0), Q114=t.length / t.scale)
 

@@ -205,3 +205,13 @@ def test_reciprocating_plunging_q366_2_runs_along_the_slot():
     got = [np.round(blk.target, 9).tolist() for blk in prog.blocks[2:6]]
     assert got == [[10, 33, 2], [10, 7, 0], [10, 33, -2], [10, 20, -2]]
     assert all(blk.kind == "line" and round(blk.feed * 60) == 150 for blk in prog.blocks[2:6])
+
+
+def test_cycle_feeds_written_auto_are_the_feed_of_tool_call():
+    # a shop program (iTNC 530): "TOOL CALL 7 Z S4100 F350" then "CYCL DEF 253 .. Q207= AUTO .. Q206= AUTO"
+    body = SLOT.format(q="Q215=1 Q368=0 Q369=0 Q338=0 Q374=90 Q351=+1 Q370=1").replace("Q207=500", "Q207= AUTO")
+    body = body.replace("Q206=150", "Q206= AUTO").replace("TOOL CALL 2 Z S500", "TOOL CALL 2 Z S500 F350")
+    prog = run(body)
+    assert {round(b.feed * 60, 6) for b in prog.blocks if b.kind in ("line", "arc")} == {350}
+    with pytest.raises(GCodeError, match="Q207=AUTO without a feed in the TOOL CALL"):
+        run(body.replace(" F350", ""))
