@@ -149,7 +149,8 @@ from interpolators.heidenhain_transforms import (
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
-from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
@@ -329,7 +330,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     if m.extra_used:
         m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
-    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
+    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in m.used)  # x y z, then a b c u v w (3 + i)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 
@@ -1793,6 +1794,7 @@ def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray 
         value = w.value if axis in ROTARY_LETTERS else w.value * m.scale
         i = EXTRA_LETTERS.index(axis)
         target[i] = target[i] + value if key[0] == "I" else value
+        m.used.add(3 + i)
         moved = True
     if not moved:
         return None

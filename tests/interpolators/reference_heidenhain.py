@@ -192,6 +192,7 @@ class _Tnc:
         self.radius = 0.0
         self.delta = 0.0
         self.auto: float | None = None  # F of the last TOOL CALL
+        self.extra = np.zeros(6)  # A, B, C [deg], U, V, W [mm]: machine positions (their preset is 0)
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
@@ -236,7 +237,8 @@ class _Tnc:
         """True when the plane's sense of rotation is reversed (one of X, Y mirrored)."""
         return self.mirror[0] * self.mirror[1] < 0
 
-    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1)) -> None:
+    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1),
+             extra: np.ndarray | None = None) -> None:
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             element = ("line", start, end.copy()) if centre is None else \
@@ -252,7 +254,7 @@ class _Tnc:
                 chord = float(np.hypot(*(end - start)[ax]))
                 slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
             self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre,
-                                     centre_tolerance=1e-6 + slack, plane=plane))
+                                     centre_tolerance=1e-6 + slack, plane=plane, extra=extra))
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
@@ -290,11 +292,16 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
-    # the rotary / secondary axes the machine has (their positions are not compared): a block of its own
-    others = any(k[-1].lower() in t.ctx.extra_axes for k in w if re.fullmatch(r"I?[ABCUVW]", k))
+    # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
+    # program's unit), I words incremental; others of value 0 are ignored
+    others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
+    for k in others:
+        i = "ABCUVW".index(k[-1])
+        v = w[k] * (1.0 if i < 3 else t.scale)
+        t.extra[i] = t.extra[i] + v if k[0] == "I" else v
     kind = "rapid" if "FMAX" in w else "feed"
     if axes or others:
-        t.emit(line, kind, t.target(w))
+        t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
     if "MB" in w:
