@@ -9,7 +9,7 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
 * :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
-  256, 257, 262-265, 267 and the pattern cycles 220, 221;
+  254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
@@ -57,7 +57,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-253/256/257/262-265/267/392
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -744,7 +744,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
                    expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
-                            "253, 256, 257, 262, 392")
+                            "253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -1016,6 +1016,13 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
+    if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
+        if not m.transform.identity:
+            where.fail("cycle 254 under a coordinate transformation (cycles 8, 10, 11, 26) is not supported",
+                       column=blk.column, text=blk.code, expected="CIRCULAR SLOT without mirror, rotation or scaling")
+        for k in range(c.repeats):
+            _circular_pocket(m, dataclasses.replace(c, angle=c.angle + k * c.slot[4]), surface, where, blk)
+        return
     if c.number in (256, 257):
         _rectangular_stud(m, c, surface, where, blk)
         return
@@ -1212,6 +1219,35 @@ def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: 
     m.emit("line", back, Line(m.pos, back), c.approach_feed, where, blk.number)
 
 
+def _slot_point(m: _Machine, c: DrillCycle, angle: float, radius: float) -> np.ndarray:
+    """Machine point at ``radius`` [mm] and ``angle`` [deg] about cycle 254's pitch-circle centre, at the tool's
+    tool-axis position."""
+    p, q = PLANE_AXES[m.plane]
+    a = math.radians(angle)
+    pt, _ = _program_target(m, {"XYZ"[p]: c.slot[0] + radius * math.cos(a), "XYZ"[q]: c.slot[1] + radius * math.sin(a)},
+                            m.pos)
+    pt[m.plane] = m.pos[m.plane]
+    return pt
+
+
+def _slot_ring(m: _Machine, c: DrillCycle, h: float, sense: float, feed: float, where: Where,
+               blk: SourceBlock) -> None:
+    """Once round cycle 254's slot at ``h`` [mm] from its centre line (the tool centre's path), from the outer
+    side of its first end: a line out along the radius there, then counter-clockwise (``sense`` > 0) the outer
+    arc, the half circle round the far end, the inner arc back and the half circle round the first end;
+    clockwise the same path reversed."""
+    axis, a0, rp, sweep = m.plane, c.angle, c.slot[2], c.slot[3]
+    start = _slot_point(m, c, a0, rp + h)
+    m.emit("line", start, Line(m.pos, start), feed, where, blk.number)
+    centre, first, last = (_slot_point(m, c, a0, 0.0), _slot_point(m, c, a0, rp), _slot_point(m, c, a0 + sweep, rp))
+    legs = [(centre, sweep), (last, 180.0), (centre, -sweep), (first, 180.0)]
+    if sense < 0:
+        legs = [(first, -180.0), (centre, sweep), (last, -180.0), (centre, -sweep)]
+    for pole, turn in legs:
+        seg = helical_arc(m.pos, pole, turn, plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
+
 def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
                          blk: SourceBlock) -> None:
     """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
@@ -1253,12 +1289,20 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                    expected="a tool radius plus Q368 below Q223 / 2")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
+        first = _slot_point(m, c, c.angle, c.slot[2])
+        m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
         if c.number in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
+        elif c.number == 254:
+            h = 0.0
+            while h < wall - allowance - 1e-9:
+                h = min(h + step, wall - allowance)
+                _slot_ring(m, c, h, sense, feed, where, blk)
         else:
             _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
     if c.operation in (0, 1):
@@ -1271,6 +1315,11 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
             _axis_move(m, "line", level, c.approach_feed, where, blk)
             if c.number in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
+                continue
+            if c.number == 254:
+                _slot_ring(m, c, wall, sense, c.finish_feed, where, blk)
+                back = _at_level(centre, axis, level)
+                m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
                 continue
             k = m.lengths(where)
             start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)

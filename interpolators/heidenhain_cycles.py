@@ -30,7 +30,8 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
                           (:func:`circular_pocket_cycle`); 257 circular stud, as 256 with a circle
-``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`)
+``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`);
+                          254 circular slot, rings round the slot along its arc
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`);
                           263 with countersinking, 264 drilling first, 265 helical, 267 outside
@@ -63,7 +64,7 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
-                                      253, 256, 257, 262, 263, 264, 265, 267)
+                                      253, 254, 256, 257, 262, 263, 264, 265, 267)
 #: The thread-milling cycles (:func:`thread_milling_cycle`).
 THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
@@ -88,6 +89,7 @@ _REQUIRED = {
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     253: (218, 219, 201, 202, 206, 207, 200, 203, 204), 257: (223, 222, 201, 202, 206, 207, 200, 203, 204),
+    254: (219, 375, 216, 217, 376, 248, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -199,7 +201,13 @@ class DrillCycle:
     outside : bool
         Cycle 267: an outside thread (the helix on Q335 / 2 plus the tool radius, from outside).
     plunge_type : int
-        Cycles 251-253: Q366, 0 vertical plunging, 1 helical, 2 reciprocating (251, 253).
+        Cycles 251-254: Q366, 0 vertical plunging, 1 helical, 2 reciprocating (251, 253).
+    slot : tuple of float
+        Cycle 254: the pitch circle's centre Q216, Q217 [mm, program], its radius Q375 / 2 [mm], the slot's
+        angular length Q248 and the stepping angle Q378 between repetitions [deg] (the starting angle
+        Q376 is ``angle``, the width Q219 ``bore_diameter``).
+    repeats : int
+        Cycle 254: Q377, the number of slots on the pitch circle.
     """
 
     number: int
@@ -247,6 +255,8 @@ class DrillCycle:
     drill_feed: float = 0.0
     outside: bool = False
     plunge_type: int = 0
+    slot: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+    repeats: int = 1
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
@@ -383,7 +393,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number in THREAD_CYCLES:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column, number=number)
-    if number in (251, 252, 253, 256, 257):
+    if number in (251, 252, 253, 254, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
     if q.get(379, 0.0) != 0.0:
@@ -597,6 +607,17 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     half circles joined by straight sides), and is milled as cycle 251 mills its pocket: the manual
     leaves the roughing path to the control, and 251's rings (each an obround here) stay inside the slot.
 
+    ``number`` = 254: CIRCULAR SLOT (TNC 640 manual, "CIRCULAR SLOT (Cycle 254)"): Q219 slot width, Q375 pitch
+    circle diameter, Q216/Q217 its centre, Q376 starting angle, Q248 angular length, Q378 stepping angle and Q377
+    number of slots, Q367 reference (0: the slot from Q216/Q217; the others, from the tool position, an
+    error), Q366 0 or 1, the rest as 252. Our reading where the manual leaves the path to the control, kept
+    inside the slot: the tool goes at FMAX over the slot's first end (the pitch circle at Q376) at its height,
+    down to the set-up clearance, and plunges there; the rings are the slot's outline at growing distances
+    from its centre line (Q370 x R apart, up to the width / 2 less Q368 and R), each entered along the radius
+    at the first end: the outer arc, a half
+    circle round the far end, the inner arc back, a half circle round the first end (reversed for up-cut);
+    the wall is finished the same way at the width / 2 less R; the slots one after the other.
+
     ``number`` = 257: CIRCULAR STUD (TNC 640 manual, "CIRCULAR STUD (Cycle 257)"): Q223 finished-part
     diameter, Q222 workpiece blank diameter, Q376 starting angle (absent or -1: 0), the rest as 256. The
     stud is 256's rounded rectangle Q223 x Q223 with the corner radius Q223 / 2, i.e. a circle, from the
@@ -607,6 +628,16 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
             where.fail(f"cycle 253: Q367={q[367]:g} (the slot beside the tool) is not supported", column=column,
                        text=where.text, expected="Q367=0 (the tool over the slot's centre)")
         q = {**q, 220: q[219] / 2.0, 224: q.get(374, 0.0)}
+    slot = (0.0, 0.0, 0.0, 0.0, 0.0)
+    if number == 254:
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle 254: Q367={q[367]:g} (the slot placed from the tool position) is not supported",
+                       column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
+        if not q[248] > 0 or not q[375] > q[219] > 0:
+            where.fail("cycle 254: the angular length Q248 must be > 0, the pitch circle Q375 wider than the slot "
+                       "width Q219 > 0", column=column, text=where.text, expected="Q248 > 0, Q375 > Q219 > 0")
+        slot = (q[216] * scale, q[217] * scale, q[375] / 2.0 * scale, q[248], q.get(378, 0.0))
+        q = {215: 0.0, **q, 223: q[219], 224: q[376]}
     if number == 257:
         start = q.get(376, -1.0)
         q = {**q, 218: q[223], 219: q[223], 220: q[223] / 2.0, 424: q[222], 425: q[222],
@@ -620,7 +651,7 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
                        "Q425 >= Q219 [mm]")
         q = {215: 0.0, **q, 223: min(q[218], q[219])}
-    plunge_types = (0.0, 1.0, 2.0) if number in (251, 253) else (0.0, 1.0) if number == 252 else (0.0,)
+    plunge_types = (0.0, 1.0, 2.0) if number in (251, 253) else (0.0, 1.0) if number in (252, 254) else (0.0,)
     if q.get(366, 0.0) not in plunge_types:
         where.fail(f"cycle {number}: Q366={q[366]:g} is not a plunging strategy of this cycle", column=column,
                    text=where.text, expected="Q366=" + ", ".join(f"{v:g}" for v in plunge_types))
@@ -637,7 +668,8 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
         angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale),
-        plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253) else 0), where, column)
+        plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253, 254) else 0, slot=slot,
+        repeats=max(1, int(q.get(377, 1.0)))), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:

@@ -444,8 +444,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 256, 257,
-                    262, 263, 264, 265, 267) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 254, 256,
+                    257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -457,6 +457,11 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params)
     else:
         raise ReferenceError(f"CYCL DEF {number}")
+
+
+def _unit(angle: float) -> np.ndarray:
+    """The unit vector at ``angle`` [deg] in the XY plane."""
+    return np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
 
 
 def _auto(t: _Tnc) -> float:
@@ -557,6 +562,13 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         if p.get("Q367", 0.0):
             raise ReferenceError("253 with the slot beside the tool")
         _circular_pocket(t, line, {"Q215": 0.0, **p, "Q220": p["Q219"] / 2, "Q224": p.get("Q374", 0.0)})
+        return
+    if kind == "254":  # CIRCULAR SLOT: Q377 slots Q378 apart, each as a pocket of width Q219 along the arc
+        if p.get("Q367", 0.0) or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+            raise ReferenceError("254 placed from the tool or under a transformation")
+        for k in range(max(1, int(p.get("Q377", 1)))):
+            _circular_pocket(t, line, {"Q215": 0.0, **p, "Q223": p["Q219"],
+                                       "Q376": p["Q376"] + k * p.get("Q378", 0.0)})
         return
     if kind == "256":
         _stud(t, line, p)
@@ -703,8 +715,31 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     wall = (p["Q223"] if "Q218" not in p else min(p["Q218"], p["Q219"])) * t.scale / 2 - t.radius
     step = p.get("Q370", 1.0) * t.radius or wall
     clear = surface - sgn * setup
+    slot = "Q375" in p  # 254: the pitch circle (centre, radius [mm]), the first end's angle and the arc [deg]
+    if slot:
+        pc, rp = np.array([p["Q216"], p["Q217"]]) * t.scale, p["Q375"] * t.scale / 2
+        a0, sweep = p["Q376"], p["Q248"]
+        t.emit(line, "rapid", t.machine(np.array([*(pc + rp * _unit(a0)), t.prog()[2]])), rows="optional")
     _move_z(t, line, "rapid", clear, optional=True)
     centre = t.prog()
+
+    def slot_ring(h: float, feed_kind: str = "feed") -> None:
+        """Round the slot at ``h`` from its centre line: out along the radius at the first end, then (ccw) the
+        outer arc, the far end's half circle, the inner arc back, the first end's half circle; cw reversed."""
+        z = t.prog()[2]
+
+        def at(r: float, a: float) -> np.ndarray:
+            return t.machine(np.array([*(pc + r * _unit(a)), z]))
+
+        t.emit(line, feed_kind, at(rp + h, a0))
+        e0, e1, mid = at(rp, a0), at(rp, a0 + sweep), t.machine(np.array([*pc, z]))
+        legs = [(at(rp + h, a0 + sweep), mid, "arc_ccw"), (at(rp - h, a0 + sweep), e1, "arc_ccw"),
+                (at(rp - h, a0), mid, "arc_cw"), (at(rp + h, a0), e0, "arc_ccw")]
+        if kind == "arc_cw":
+            legs = [(at(rp - h, a0), e0, "arc_cw"), (at(rp - h, a0 + sweep), mid, "arc_ccw"),
+                    (at(rp + h, a0 + sweep), e1, "arc_cw"), (at(rp + h, a0), mid, "arc_cw")]
+        for end, pole, turn in legs:
+            t.emit(line, turn, end, centre=pole)
 
     def depths(bottom: float, each: float) -> list[float]:
         return _levels(surface, bottom, sgn, each)
@@ -712,6 +747,12 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     def rings(radius: float) -> None:
         if "Q218" in p:
             return _rectangles(t, line, p, centre, kind, radius, step)
+        if slot:
+            h = 0.0
+            while h < radius - 1e-9:
+                h = min(h + step, radius)
+                slot_ring(h)
+            return
         r = 0.0
         while r < radius - 1e-9:
             r = min(r + step, radius)
@@ -755,6 +796,10 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
             _move_z(t, line, "feed", z)
             mid = t.prog()
+            if slot:
+                slot_ring(wall)
+                t.emit(line, "feed", t.machine(mid))
+                continue
             if "Q218" in p:
                 half = (p["Q218"] * t.scale / 2 - t.radius, p["Q219"] * t.scale / 2 - t.radius)
                 _rectangle(t, line, p, mid, kind, half, max(p.get("Q220", 0.0) * t.scale - t.radius, 0.0))

@@ -215,3 +215,36 @@ def test_cycle_feeds_written_auto_are_the_feed_of_tool_call():
     assert {round(b.feed * 60, 6) for b in prog.blocks if b.kind in ("line", "arc")} == {350}
     with pytest.raises(GCodeError, match="Q207=AUTO without a feed in the TOOL CALL"):
         run(body.replace(" F350", ""))
+
+
+ARC_SLOT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 254 CIRCULAR SLOT Q219=10 "
+            "Q375=60 Q367=0 Q216=+0 Q217=+0 Q376=+0 Q248=90 {q} Q207=500 Q201=-2 Q202=2 Q206=150 Q338=0 Q200=2 "
+            "Q203=+0 Q204=20 Q385=400 Q370=1\nCYCL CALL")
+
+
+def test_circular_slot_254_mills_each_slot_along_its_arc():
+    # a 10 wide slot on the pitch circle 60 about (0, 0) from 0 to 90 degrees, tool radius 2: rings 2 and 3 from
+    # the centre line; two slots 180 degrees apart (Q377 = 2, Q378 = 180)
+    prog = run(ARC_SLOT.format(q="Q215=1 Q368=0 Q369=0 Q351=+1 Q366=0 Q378=180 Q377=2"))
+    b = prog.blocks
+    assert [np.round(x.target, 9).tolist() for x in b[1:5]] == [[30, 0, 50], [30, 0, 2], [30, 0, -2], [32, 0, -2]]
+    ring = [(x.kind, *np.round(x.target[:2], 9).tolist(), *np.round(x.segment.center[:2], 9).tolist(), x.segment.ccw)
+            for x in b[5:9]]
+    assert ring == [("arc", 0, 32, 0, 0, True), ("arc", 0, 28, 0, 30, True), ("arc", 28, 0, 0, 0, False),
+                    ("arc", 32, 0, 30, 0, True)]
+    second = [x for x in b if np.allclose(x.target, [-30, 0, 2]) and x.kind == "rapid"]
+    assert second, "the second slot starts over (-30, 0)"
+    for x in b[1:]:  # inside the slots: within 3 of the centre line arc or over it
+        r, a = math.hypot(x.target[0], x.target[1]), math.degrees(math.atan2(x.target[1], x.target[0])) % 360
+        ends = min(math.hypot(x.target[0] - e[0], x.target[1] - e[1]) for e in ((30, 0), (0, 30), (-30, 0), (0, -30)))
+        on_arc = abs(r - 30) <= 3 + 1e-9 and (a <= 90 + 1e-6 or 180 - 1e-6 <= a <= 270 + 1e-6)
+        assert on_arc or ends <= 3 + 1e-9 or x.target[2] > 0
+
+
+def test_circular_slot_254_up_cut_finishing_and_helical_plunge():
+    prog = run(ARC_SLOT.format(q="Q215=0 Q368=0.5 Q369=0 Q351=-1 Q366=1 Q378=0 Q377=1"))
+    arcs = [x.segment for x in prog.blocks if x.kind == "arc"]
+    assert any(not a.ccw and np.allclose(a.center[:2], [30, 0]) for a in arcs)  # up-cut: clockwise round the end
+    assert np.allclose(prog.blocks[4].segment.center[:2], [30, 0])  # the helix about the first end, on R = 2
+    with pytest.raises(GCodeError, match="Q367=1"):
+        run(ARC_SLOT.format(q="Q215=0 Q368=0 Q369=0 Q351=1 Q366=0 Q378=0 Q377=1").replace("Q367=0", "Q367=1"))
