@@ -715,31 +715,12 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     wall = (p["Q223"] if "Q218" not in p else min(p["Q218"], p["Q219"])) * t.scale / 2 - t.radius
     step = p.get("Q370", 1.0) * t.radius or wall
     clear = surface - sgn * setup
-    slot = "Q375" in p  # 254: the pitch circle (centre, radius [mm]), the first end's angle and the arc [deg]
+    slot = "Q375" in p  # 254: over the slot's first end
     if slot:
         pc, rp = np.array([p["Q216"], p["Q217"]]) * t.scale, p["Q375"] * t.scale / 2
-        a0, sweep = p["Q376"], p["Q248"]
-        t.emit(line, "rapid", t.machine(np.array([*(pc + rp * _unit(a0)), t.prog()[2]])), rows="optional")
+        t.emit(line, "rapid", t.machine(np.array([*(pc + rp * _unit(p["Q376"])), t.prog()[2]])), rows="optional")
     _move_z(t, line, "rapid", clear, optional=True)
     centre = t.prog()
-
-    def slot_ring(h: float, feed_kind: str = "feed") -> None:
-        """Round the slot at ``h`` from its centre line: out along the radius at the first end, then (ccw) the
-        outer arc, the far end's half circle, the inner arc back, the first end's half circle; cw reversed."""
-        z = t.prog()[2]
-
-        def at(r: float, a: float) -> np.ndarray:
-            return t.machine(np.array([*(pc + r * _unit(a)), z]))
-
-        t.emit(line, feed_kind, at(rp + h, a0))
-        e0, e1, mid = at(rp, a0), at(rp, a0 + sweep), t.machine(np.array([*pc, z]))
-        legs = [(at(rp + h, a0 + sweep), mid, "arc_ccw"), (at(rp - h, a0 + sweep), e1, "arc_ccw"),
-                (at(rp - h, a0), mid, "arc_cw"), (at(rp + h, a0), e0, "arc_ccw")]
-        if kind == "arc_cw":
-            legs = [(at(rp - h, a0), e0, "arc_cw"), (at(rp - h, a0 + sweep), mid, "arc_ccw"),
-                    (at(rp + h, a0 + sweep), e1, "arc_cw"), (at(rp + h, a0), mid, "arc_cw")]
-        for end, pole, turn in legs:
-            t.emit(line, turn, end, centre=pole)
 
     def depths(bottom: float, each: float) -> list[float]:
         return _levels(surface, bottom, sgn, each)
@@ -751,7 +732,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             h = 0.0
             while h < radius - 1e-9:
                 h = min(h + step, radius)
-                slot_ring(h)
+                _slot_ring(t, line, p, kind, h)
             return
         r = 0.0
         while r < radius - 1e-9:
@@ -765,31 +746,9 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         here = t.prog()
         t.emit(line, "rapid", t.machine(np.array([centre[0], centre[1], here[2]])), rows="optional")
 
-    def plunge(z: float) -> None:
-        """Q366: 0 vertical; 1 one helix turn on R (at most the room) about the centre, out and back along +X;
-        2 (251/253) along the turned reference axis: out to the room, to the other side halfway down, back."""
-        mode, room, here = int(p.get("Q366", 0)), wall - side * t.scale, t.prog()
-        reach = (min(t.radius or room, room) if mode == 1
-                 else p.get("Q218", 0.0) * t.scale / 2 - side * t.scale - t.radius)
-        if mode == 0 or reach <= 1e-9:
-            _move_z(t, line, "feed", z)
-            return
-        a = math.radians(p.get("Q224", 0.0)) if mode == 2 else 0.0
-
-        def pt(u: float, zz: float) -> np.ndarray:
-            return t.machine(np.array([centre[0] + u * math.cos(a), centre[1] + u * math.sin(a), zz]))
-
-        t.emit(line, "feed", pt(reach, here[2]))
-        if mode == 1:
-            t.emit(line, kind, pt(reach, z * t.scale), centre=pt(0.0, z * t.scale))
-        else:
-            t.emit(line, "feed", pt(-reach, (here[2] + z * t.scale) / 2))
-            t.emit(line, "feed", pt(reach, z * t.scale))
-        t.emit(line, "feed", pt(0.0, z * t.scale))
-
     if op in (0, 1):
         for z in depths(surface + depth - sgn * floor, p["Q202"] or abs(depth)):
-            plunge(z)
+            _plunge(t, line, p, centre, z, wall - side * t.scale, kind)
             rings(wall - side * t.scale)
             back(z)
     if op == 2 or (op == 0 and side > 0):
@@ -797,7 +756,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             _move_z(t, line, "feed", z)
             mid = t.prog()
             if slot:
-                slot_ring(wall)
+                _slot_ring(t, line, p, kind, wall)
                 t.emit(line, "feed", t.machine(mid))
                 continue
             if "Q218" in p:
@@ -815,6 +774,50 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _plunge(t: _Tnc, line: int, p: dict, centre: np.ndarray, z: float, room: float, kind: str) -> None:
+    """Q366 of 251-254: 0 vertical; 1 one helix turn on R (at most ``room``) about the centre, out and back
+    along +X; 2 (251/253) along the turned reference axis: out to the room, to the other side halfway down,
+    back, then to the centre."""
+    mode, here = int(p.get("Q366", 0)), t.prog()
+    side = p.get("Q368", 0.0) * t.scale
+    reach = min(t.radius or room, room) if mode == 1 else p.get("Q218", 0.0) * t.scale / 2 - side - t.radius
+    if mode == 0 or reach <= 1e-9:
+        _move_z(t, line, "feed", z)
+        return
+    a = math.radians(p.get("Q224", 0.0)) if mode == 2 else 0.0
+
+    def pt(u: float, zz: float) -> np.ndarray:
+        return t.machine(np.array([centre[0] + u * math.cos(a), centre[1] + u * math.sin(a), zz]))
+
+    t.emit(line, "feed", pt(reach, here[2]))
+    if mode == 1:
+        t.emit(line, kind, pt(reach, z * t.scale), centre=pt(0.0, z * t.scale))
+    else:
+        t.emit(line, "feed", pt(-reach, (here[2] + z * t.scale) / 2))
+        t.emit(line, "feed", pt(reach, z * t.scale))
+    t.emit(line, "feed", pt(0.0, z * t.scale))
+
+
+def _slot_ring(t: _Tnc, line: int, p: dict, kind: str, h: float) -> None:
+    """254: round the slot at ``h`` from its centre line: out along the radius at the first end, then (ccw) the
+    outer arc, the far end's half circle, the inner arc back, the first end's half circle; cw reversed."""
+    pc, rp = np.array([p["Q216"], p["Q217"]]) * t.scale, p["Q375"] * t.scale / 2
+    a0, sweep, z = p["Q376"], p["Q248"], t.prog()[2]
+
+    def at(r: float, a: float) -> np.ndarray:
+        return t.machine(np.array([*(pc + r * _unit(a)), z]))
+
+    t.emit(line, "feed", at(rp + h, a0))
+    e0, e1, mid = at(rp, a0), at(rp, a0 + sweep), t.machine(np.array([*pc, z]))
+    legs = [(at(rp + h, a0 + sweep), mid, "arc_ccw"), (at(rp - h, a0 + sweep), e1, "arc_ccw"),
+            (at(rp - h, a0), mid, "arc_cw"), (at(rp + h, a0), e0, "arc_ccw")]
+    if kind == "arc_cw":
+        legs = [(at(rp - h, a0), e0, "arc_cw"), (at(rp - h, a0 + sweep), mid, "arc_ccw"),
+                (at(rp + h, a0 + sweep), e1, "arc_cw"), (at(rp + h, a0), mid, "arc_cw")]
+    for end, pole, turn in legs:
+        t.emit(line, turn, end, centre=pole)
 
 
 def _stud(t: _Tnc, line: int, p: dict) -> None:
