@@ -200,7 +200,7 @@ class _Machine:
         self.inch = False
         self.feed: float | None = None
         self.pole: np.ndarray | None = None
-        self.pole_plane = 2  # the plane of the circle about the pole: the working plane, or CC's two axes
+        self.pole_plane: int | None = None  # the plane of a CC naming the tool axis (None: the working plane)
         self.last_axes: list[int] = []
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
@@ -1856,11 +1856,13 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     tool axis and one axis of the working plane (``CC X+37.6 Z+3.3`` with tool axis Z), the plane
     of those two axes (ZX, YZ, XY with the reference axes Z, Y, X and DR+ turning from the first to
     the second: TNC 426 manual, "Circle Center and Pole: CC", table of the reference axes): the arcs
-    ``C`` and ``CP`` about it then run in that plane. The iTNC 530 / TNC 640 run circles outside
-    the working plane so; Fusion 360's TNC post writes its vertical lead-in and lead-out arcs as
-    ``CC Y-72.5 Z-8.6`` / ``CP IPA+90 DR+`` (the third coordinate is the current one). Radius
-    compensation and the coordinate transformations act in the working plane only, so such an arc
-    under RL/RR or a transformation is an error."""
+    ``C`` and ``CP`` about it then run in that plane. This is our reading: the TNC 426/407 manuals
+    assign a circle to the main plane of the TOOL CALL and name no other plane; Fusion 360's TNC post
+    writes its vertical lead-in and lead-out arcs as ``CC Y-31.628 Z-1.6`` / ``CP IPA+90 DR+`` /
+    ``L Y-31.48 Z-3`` (the third coordinate of CC is the current one), and only the arc in the plane
+    of CC's axes ends where the next line starts, tangentially, so that is how the controls it posts
+    for run it. Radius compensation and the coordinate transformations act in the working plane only,
+    so such an arc under RL/RR or a transformation is an error."""
     target, written = _plane_coords(seen, m, where, m9x=m9x)
     p, q = PLANE_AXES[m.plane]
     plane = m.plane
@@ -1873,13 +1875,13 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
                                 "that plane, without RL/RR and coordinate transformations)")
         plane = 3 - sum(written)  # the axis CC does not name is the circle's normal
     m.pole = target
-    m.pole_plane = plane
+    m.pole_plane = plane if off else None
     m.used.update(written)
 
 
 def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:
     """Polar coordinates (LP, APPR P..) are in the working plane: an error after a CC in another plane."""
-    if m.pole_plane != m.plane:
+    if m.pole_plane is not None and m.pole_plane != m.plane:
         where.fail(f"{what} about a pole outside the working plane", column=1, text=where.text,
                    expected="a CC in the working plane before polar coordinates")
 
@@ -1888,7 +1890,7 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
     """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
     the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
     CP run in the plane of the pole (:func:`_pole`)."""
-    plane = m.pole_plane if kw in ("C", "CP") else m.plane
+    plane = m.pole_plane if kw in ("C", "CP") and m.pole_plane is not None else m.plane
     if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
         where.fail(f"{kw} about a CC outside the working plane under {m.comp} or a coordinate transformation",
                    column=blk.column, text=where.text,
