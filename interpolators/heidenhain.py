@@ -8,8 +8,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241 and the
-  pattern cycles 220, 221;
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
+  254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
@@ -29,7 +29,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     5 /L X+10, /5 L X+10            skippable block: runs (block skip off), noted
     L +0.009                        a number without axis letter repeats the single axis of the
                                     previous L block (the thesis' Tables 4.3/4.4 are written so)
-    CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position)
+    CC X+25 Y+25                    circle centre / pole (IX/IY: from the current position); CC X.. Z..
+                                    (the tool axis and another): C and CP about it run in that plane
+    LN X.. Y.. Z.. NX.. NY.. NZ..   a line with 3-D compensation: the point moved along N by DR
+    L A+90 C+45 FMAX                rotary / secondary axes of the machine (context.extra_axes)
     C X+45 Y+25 DR+                 arc about CC (end = start: full circle; tool-axis coordinate: helix)
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0                     arc tangent to the preceding element
@@ -54,7 +57,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     simulated position (the control reads the same after a STOP
                                     without jogging)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251/252/256/262
+    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -81,7 +84,7 @@ element: the manuals give only the contour arc (TNC 640 user's manual, "Approach
 contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
 grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
 next R0 block leaves from there). Anything not listed (FK,
-other pattern forms, rotary axes, tilted planes, other cycles and FN functions) is an error
+other pattern forms, tilted planes, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
@@ -104,6 +107,7 @@ from interpolators.heidenhain_cycles import (
     LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
+    THREAD_CYCLES,
     DrillCycle,
     PatternCycle,
     back_boring_moves,
@@ -143,8 +147,10 @@ from interpolators.heidenhain_transforms import (
     transform_item,
 )
 from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
+from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
-from toolpaths.geometry import AXIS_LETTERS, PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
@@ -152,7 +158,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
-    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|L|M)(?:(?<=[:=])|(?![A-Z]))",
+    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
@@ -194,10 +200,12 @@ class _Machine:
         self.inch = False
         self.feed: float | None = None
         self.pole: np.ndarray | None = None
+        self.pole_plane: int | None = None  # the plane of a CC naming the tool axis (None: the working plane)
         self.last_axes: list[int] = []
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
         self.tool_radius = 0.0
+        self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
         self.transform = Transform()
@@ -224,6 +232,8 @@ class _Machine:
         self.modal_call = False  # M89: every positioning block calls the cycle
         self.cycle_program: tuple[str, int] | None = None  # cycle 12 PGM CALL: the program and its column
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
+        self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
+        self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -278,11 +288,17 @@ class _Machine:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
         self.notes[text] = self.notes.get(text, 0) + 1
 
-    def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0) -> None:
+    def emit(self, kind: str, target: np.ndarray, segment, feed: float, where: Where, number, *, dwell=0.0,
+             extra: np.ndarray | None = None) -> None:
+        """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
+        the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
+        ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
-                                 exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell))
+                                 exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))
         self.pos = np.array(target, dtype=float)
+        if extra is not None:
+            self.extra = np.array(extra, dtype=float)
         self.last_rapid = kind == "rapid"
 
 
@@ -311,8 +327,10 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     m = _Machine(context, source)
     name = _Run(m, source_blocks(text), source, max_executed).run()
     _check_contour_closed(m)
+    if m.extra_used:
+        m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
-    axes = tuple(a for i, a in enumerate(AXIS_LETTERS) if i in m.used)
+    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in m.used)  # x y z, then a b c u v w (3 + i)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 
@@ -515,7 +533,6 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
 _KNOWN_UNSUPPORTED = {
     "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
     "SPL": "SPL (spline interpolation)",
-    "LN": "LN (a straight line with 3-D tool compensation)",
     "QS": "QS (string parameters)",
     "DECLARE": "DECLARE (string parameters)",
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
@@ -524,14 +541,16 @@ _KNOWN_UNSUPPORTED = {
 
 
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
-    """``BEGIN PGM name MM|INCH``: the program's unit; returns its name."""
+    """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
+    before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
+    it)."""
     parts = blk.code[k.end():].split()
-    unit = parts[1].upper() if len(parts) > 1 else "MM"
+    unit = parts[-1].upper() if len(parts) > 1 else "MM"
     if unit not in ("MM", "INCH"):
-        col = blk.code.upper().rfind(parts[1].upper()) + blk.column
-        where.fail(f"unknown program unit {parts[1]!r}", column=col, text=parts[1], expected="MM or INCH")
+        col = blk.code.upper().rfind(parts[-1].upper()) + blk.column
+        where.fail(f"unknown program unit {parts[-1]!r}", column=col, text=parts[-1], expected="MM or INCH")
     m.inch = unit == "INCH"
-    return parts[0] if parts else None
+    return " ".join(parts[:-1] if len(parts) > 1 else parts) or None
 
 
 def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
@@ -634,6 +653,12 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
 
 
 def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``TOOL CALL n|"name" [X|Y|Z] [S..] [F..] [DL..] [DR..]``: the tool (length and radius), the
+    working plane, the spindle speed and the feed. ``F`` is the feed of the following moves until a
+    block programs another (iTNC 530 / TNC 640 user's manuals, "Calling tool data": "Feed rate F ...
+    is effective until you program a new feed rate in a positioning block or in a TOOL CALL block";
+    shop programs write ``TOOL CALL 22 Z S6000 F2000`` and then ``L Z+Q22`` without F), and what
+    ``F AUTO`` reads."""
     code = blk.code
     rest = code[pos:]
     nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
@@ -665,8 +690,9 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
             dr = v * m.scale
         elif word == "S":
             m.spindle = v
-        elif word == "F":
+        elif word == "F" and v > 0:
             m.auto_feed = v
+            m.feed = v * m.feed_scale
     if number is not None:
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
@@ -680,8 +706,22 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
                 length, radius = tool.length, tool.radius
         m.tool_length = length + dl
         m.tool_radius = radius + dr
+        m.tool_delta = dr
     elif named:
-        m.tool_length, m.tool_radius = dl, dr
+        m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
+    _tool_parameters(m, where)
+
+
+def _tool_parameters(m: _Machine, where: Where) -> None:
+    """The preassigned Q parameters of the called tool (TNC 640 user's manual, "Preassigned Q
+    parameters"): Q108 the active tool radius (table or TOOL DEF, plus DR), Q109 the tool axis
+    (0 X, 1 Y, 2 Z), Q113 the unit of the program (0 mm, 1 inch), Q114 the active tool length, in
+    the program's unit. Programs read them to size their own paths (a shop face-milling program:
+    ``Q1963 = Q1812 * Q108 * 2``, the stepover from the tool diameter)."""
+    m.params.set("Q108", m.tool_radius / m.scale, where)
+    m.params.set("Q109", float(m.plane), where)
+    m.params.set("Q113", 1.0 if m.inch else 0.0, where)
+    m.params.set("Q114", m.tool_length / m.scale, where)
 
 
 # --- cycles ----------------------------------------------------------------------------------
@@ -697,10 +737,14 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 247:
         _preset_cycle(rest, m, where, col)
         return
+    if number in _SETTING_CYCLES:
+        q_assignments(rest, where, m.params, column0=col)
+        m.note(f"CYCL DEF {number}: {_SETTING_CYCLES[number]}; no motion")
+        return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
                    expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
-                            "256, 262")
+                            "253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -711,7 +755,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         m.cycle_program = (pm.group(1), col + pm.start(1))
         return
     if number >= 200:
-        q = q_assignments(rest, where, m.params, column0=col)
+        q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
         if number in PATTERN_CYCLES:
             if q.get(365, 0.0):
                 m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
@@ -767,6 +811,14 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         elif sub == LEGACY_CYCLES[number]:
             m.cycle = tapping_cycle(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column, spindle=m.spindle)
+
+
+#: Cycles that set the machine up and move nothing: their Q parameters are assigned, the cycle noted.
+_SETTING_CYCLES = {
+    # DMG MORI's ATC (Application Tuning Cycle), a machine maker's cycle of its TNC 640 machines: Q240
+    # TUNING MODE / Q241 WEIGHT MODE select the feed-axis dynamics (hyperMILL's DMU posts write it first)
+    392: "ATC (the machine maker's dynamics tuning: vcnc's drive model is the machine's own)",
+}
 
 
 def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
@@ -958,13 +1010,20 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
         return
-    if c.number == 262:
+    if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (251, 252):
+    if c.number in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
-    if c.number == 256:
+    if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
+        if not m.transform.identity:
+            where.fail("cycle 254 under a coordinate transformation (cycles 8, 10, 11, 26) is not supported",
+                       column=blk.column, text=blk.code, expected="CIRCULAR SLOT without mirror, rotation or scaling")
+        for k in range(c.repeats):
+            _circular_pocket(m, dataclasses.replace(c, angle=c.angle + k * c.slot[4]), surface, where, blk)
+        return
+    if c.number in (256, 257):
         _rectangular_stud(m, c, surface, where, blk)
         return
     centre = m.pos.copy()
@@ -1025,50 +1084,183 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
 
 
 def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 262 THREAD MILLING at the current position (TNC 426/430 user's manual, "THREAD MILLING
-    (Cycle 262)", process: FMAX to the set-up clearance, in at the pre-positioning feed Q253 to the
-    starting plane, a tangential approach to the thread diameter, the helix, a tangential departure back
-    to the centre, FMAX out to the set-up clearance and the 2nd set-up clearance).
+    """The thread-milling cycles 262-267 at the current position (TNC 426/430 user's manual, "Cycles for
+    drilling, tapping and thread milling"; TNC 320 user's manual 340 55x-03), in the manuals' order: FMAX to
+    the set-up clearance; 264: drill the hole (as cycle 205); 263: the countersinking; the countersinking at
+    the front (265 with Q360 = 1: after the thread); the thread: at the pre-positioning feed Q253 to the
+    starting plane, a tangential approach, the helix, a tangential departure back to the starting point in
+    the plane; FMAX out to the set-up clearance and the 2nd set-up clearance.
 
-    The manual leaves the starting plane and the approach to the control; our reading, kept inside the
-    thread: the helix runs on the diameter Q335 less the tool diameter at the feed Q207, counter-clockwise
-    for climb milling (Q351 = +1, M3), and upward when that follows the thread (a right-hand thread
-    climb-milled, a left-hand one up-cut), else downward. Q355 = 0 turns once, over one pitch ending
-    (upward: starting) at the thread depth; Q355 = 1 runs from the depth to the surface (downward: the
-    reverse). The approach and the departure are half circles at the helix's end levels between the
-    centre and the helix, on the reference-axis side, in the helix's sense (so they join it tangentially).
+    The manuals leave the paths' sizes to the control; our reading, kept inside the thread (267: outside the
+    stud): the helix runs on the diameter Q335 less the tool diameter (267: plus) at the feed Q207,
+    counter-clockwise for climb milling inside (Q351 = +1, M3; clockwise round a stud), and upward when that
+    follows the thread (a right-hand thread climb-milled inside, or up-cut outside), else downward. Q355 = 0
+    (and 263, 264) turns once, over one pitch ending (upward: starting) at the thread depth; Q355 = 1 runs
+    between the depth and the surface; 265 runs one helix from the surface down to the depth, clockwise for
+    a right-hand thread. Inside, the approach and the departure are half circles at the helix's end levels
+    between the centre and the helix, in the helix's sense (so they join it tangentially). 267 starts on the
+    reference axis one pitch outside the helix (the manual: "determined by the thread radius, tool radius and
+    pitch"), and the half circles run against the helix's sense between that distance and the helix.
     """
     axis = m.plane
     p, q = PLANE_AXES[axis]
     d = -1.0 if c.depth < 0 else 1.0
-    top, bottom = surface - d * c.setup, surface + c.depth
-    r = c.bore_diameter / 2.0 - m.tool_radius
+    top = surface - d * c.setup
+    r = c.bore_diameter / 2.0 + (m.tool_radius if c.outside else -m.tool_radius)
     if r <= 1e-9:
-        where.fail(f"cycle 262: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
                    f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
                    expected="a tool radius below Q335 / 2")
-    upward = c.right_hand == c.climb
-    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
-    start_level, end_level = (bottom, far) if upward else (far, bottom)
     _axis_move(m, "rapid", top, math.inf, where, blk)
-    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
     centre = m.pos.copy()
-    k = m.lengths(where)
-    start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
-    start[axis] = start_level
-    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
-    turns = abs(far - bottom) / c.helix_pitch
-    for pole, sweep, level in (((centre + start) / 2.0, 180.0, start_level), (centre, 360.0 * turns, end_level)):
-        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
-        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    back = centre.copy()
-    back[axis] = end_level
-    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, sense), plane=axis, axis_end=end_level)
-    m.emit("arc", back, seg, c.feed, where, blk.number)
+    sense = m.transform.sweep(1.0 if c.climb != c.outside else -1.0, axis)
+    if c.number == 264:
+        drill = dataclasses.replace(c, number=205, depth=c.sink_depth, feed=c.drill_feed, second_setup=0.0)
+        for mv in hole_moves(drill, start=m.pos[axis], surface=surface):
+            _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
+    if c.number == 263 and c.sink_depth:
+        level = surface + c.sink_depth
+        if not c.sink_side:
+            _axis_move(m, "line", level - d * c.setup, c.approach_feed, where, blk)
+        _axis_move(m, "line", level, c.sink_feed if not c.sink_side else c.approach_feed, where, blk)
+        _circle_out_and_back(m, centre, r, sense, c.sink_feed, where, blk)
+    if c.front_depth and not c.front_after:
+        _axis_move(m, "line", surface + c.front_depth, c.sink_feed if c.number == 265 else c.approach_feed, where,
+                   blk)
+        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
+    _thread_helix(m, c, centre, surface, r, sense, where, blk)
+    if c.front_depth and c.front_after:
+        _axis_move(m, "line", surface + c.front_depth, c.approach_feed, where, blk)
+        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
     m.used.update((p, q, axis))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+
+
+def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
+                  where: Where, blk: SourceBlock) -> None:
+    """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
+    ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
+    axis = m.plane
+    d = -1.0 if c.depth < 0 else 1.0
+    bottom = surface + c.depth
+    upward = (c.right_hand == c.climb) != c.outside
+    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
+    start_level, end_level = (bottom, far) if upward else (far, bottom)
+    k = m.lengths(where)
+    ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
+    out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
+    if c.outside:
+        start, _ = _program_target(m, {ref: out / k}, centre)
+        start[axis] = m.pos[axis]
+        m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
+    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+    here = m.pos.copy()
+    on, _ = _program_target(m, {ref: r / k}, centre)
+    on[axis] = start_level
+    turn = -sense if c.outside else sense  # the half circles: against the helix outside
+    seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
+    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    turns = abs(far - bottom) / c.helix_pitch
+    seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense), plane=axis,
+                      axis_end=end_level)
+    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+    back = _at_level(centre, axis, end_level)
+    if c.outside:  # out along the radius the helix ended on, to the starting point's distance
+        back = back + (m.pos - back) * (out / r)
+    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
+    m.emit("arc", back, seg, c.feed, where, blk.number)
+
+
+def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
+            blk: SourceBlock) -> None:
+    """The roughing infeed of cycles 251-253 from over the ``centre`` down to ``level`` [mm] at the plunging
+    feed Q206, by Q366 (TNC 640 user's manual for cycle programming, cycles 251-253, Q366 "Plunging
+    strategy": 0 vertical; 1 helical; 2 reciprocating, 251/253 only). The control sets the helix and the
+    reciprocating path from the plunging angle ANGLE of its tool table, which vcnc's tool table does not
+    hold; our reading, kept inside the pocket: the helix turns once, in the milling sense, on the tool
+    radius (at most ``room`` [mm], the roughing radius left for the tool centre) about the centre, out from
+    and back to the centre along the reference axis; the reciprocating plunge runs along the pocket's
+    (turned) reference axis from the centre out to the room on that side, to the room on the other side
+    halfway down and back to the first end at the level, then to the centre. Without room: vertical."""
+    axis = m.plane
+    if c.plunge_type == 0:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        return
+    p, q = PLANE_AXES[axis]
+    here = _at_level(centre, axis, m.pos[axis])
+    k = m.lengths(where)
+    if c.plunge_type == 1:
+        reach, ways = min(m.tool_radius or room, room), ((1.0, level),)
+    else:
+        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.number in (251, 253) else room
+        ways = ((-1.0, (m.pos[axis] + level) / 2.0), (1.0, level))
+    if reach <= 1e-9:
+        _axis_move(m, "line", level, c.approach_feed, where, blk)
+        return
+    cos, sin = (math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))) if c.plunge_type == 2 else (1, 0)
+
+    def at(u: float, z: float) -> np.ndarray:
+        pt, _ = _program_target(m, {"I" + "XYZ"[p]: u * cos / k, "I" + "XYZ"[q]: u * sin / k}, here)
+        pt[axis] = z
+        return pt
+
+    out = at(reach, m.pos[axis])
+    m.emit("line", out, Line(m.pos, out), c.approach_feed, where, blk.number)
+    if c.plunge_type == 1:
+        seg = helical_arc(m.pos, here, math.copysign(360.0, sense), plane=axis, axis_end=level)
+        m.emit("arc", np.array(seg.end), seg, c.approach_feed, where, blk.number)
+    else:
+        for side, z in ways:
+            end = at(side * reach, z)
+            m.emit("line", end, Line(m.pos, end), c.approach_feed, where, blk.number)
+    back = _at_level(centre, axis, level)
+    m.emit("line", back, Line(m.pos, back), c.approach_feed, where, blk.number)
+
+
+def _slot_point(m: _Machine, c: DrillCycle, angle: float, radius: float) -> np.ndarray:
+    """Machine point at ``radius`` [mm] and ``angle`` [deg] about cycle 254's pitch-circle centre, at the tool's
+    tool-axis position."""
+    p, q = PLANE_AXES[m.plane]
+    a = math.radians(angle)
+    pt, _ = _program_target(m, {"XYZ"[p]: c.slot[0] + radius * math.cos(a), "XYZ"[q]: c.slot[1] + radius * math.sin(a)},
+                            m.pos)
+    pt[m.plane] = m.pos[m.plane]
+    return pt
+
+
+def _slot_ring(m: _Machine, c: DrillCycle, h: float, sense: float, feed: float, where: Where,
+               blk: SourceBlock) -> None:
+    """Once round cycle 254's slot at ``h`` [mm] from its centre line (the tool centre's path), from the outer
+    side of its first end: a line out along the radius there, then counter-clockwise (``sense`` > 0) the outer
+    arc, the half circle round the far end, the inner arc back and the half circle round the first end;
+    clockwise the same path reversed."""
+    axis, a0, rp, sweep = m.plane, c.angle, c.slot[2], c.slot[3]
+    start = _slot_point(m, c, a0, rp + h)
+    m.emit("line", start, Line(m.pos, start), feed, where, blk.number)
+    centre, first, last = (_slot_point(m, c, a0, 0.0), _slot_point(m, c, a0, rp), _slot_point(m, c, a0 + sweep, rp))
+    legs = [(centre, sweep), (last, 180.0), (centre, -sweep), (first, 180.0)]
+    if sense < 0:
+        legs = [(first, -180.0), (centre, sweep), (last, -180.0), (centre, -sweep)]
+    for pole, turn in legs:
+        seg = helical_arc(m.pos, pole, turn, plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
+
+def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
+                         blk: SourceBlock) -> None:
+    """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
+    circle, a half circle back to the centre, turning by ``sense``, at ``feed`` [mm/s] (the countersinking of
+    cycles 263-265; nothing for a radius 0)."""
+    if radius <= 1e-12:
+        return
+    axis = m.plane
+    here = _at_level(centre, axis, m.pos[axis])
+    on, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: radius / m.lengths(where)}, here)
+    for pole, sweep, end in (((here + on) / 2.0, 180.0, on), (here, 360.0, on), ((on + here) / 2.0, 180.0, here)):
+        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=m.pos[axis])
+        m.emit("arc", np.array(end), seg, feed, where, blk.number)
 
 
 def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
@@ -1097,24 +1289,37 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                    expected="a tool radius plus Q368 below Q223 / 2")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
+    if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
+        first = _slot_point(m, c, c.angle, c.slot[2])
+        m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number == 251:
+        if c.number in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
+        elif c.number == 254:
+            h = 0.0
+            while h < wall - allowance - 1e-9:
+                h = min(h + step, wall - allowance)
+                _slot_ring(m, c, h, sense, feed, where, blk)
         else:
             _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
     if c.operation in (0, 1):
         for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
-            _axis_move(m, "line", level, c.approach_feed, where, blk)
+            _plunge(m, c, centre, level, rough, sense, where, blk)
             rings(c.side_allowance, c.feed)
             _back_to_centre(m, centre, level - d * c.setup, where, blk)
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number == 251:
+            if c.number in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
+                continue
+            if c.number == 254:
+                _slot_ring(m, c, wall, sense, c.finish_feed, where, blk)
+                back = _at_level(centre, axis, level)
+                m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
                 continue
             k = m.lengths(where)
             start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
@@ -1140,7 +1345,7 @@ def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float
     at most ``step`` [mm]; each entered from the centre side along the pocket's reference axis."""
     half = (c.sides[0] / 2.0 - allowance - m.tool_radius, c.sides[1] / 2.0 - allowance - m.tool_radius)
     if min(half) <= 1e-9:
-        where.fail(f"cycle 251: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
                    column=blk.column, text=blk.code, expected="a tool radius plus Q368 below Q218 / 2 and Q219 / 2")
     n = max(1, math.ceil(min(half) / step - 1e-9))
     inset = min(half) / n
@@ -1455,6 +1660,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     if kw == "CC":
         _pole(seen, m, where, m9x)
         return ended
+    normal, kw = kw == "LN", "L" if kw == "LN" else kw  # LN: a line to a point displaced along the normal
     exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
     rapid = "FMAX" in seen
     if "F" in seen:
@@ -1470,12 +1676,16 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             w = seen.get("MBMAX") or seen["MB"]
             where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
     target, written = _plane_coords(seen, m, where, m9x=m9x)
+    if normal:
+        target = target + _normal_offset(seen, m, where, blk)
     m.used.update(written)
     feed = math.inf if rapid else m.feed
-    if kw in ("L", "LP") and (written or kw == "LP"):
+    extra = _extra_axes(seen, m, where) if kw == "L" else None
+    if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
             if m.pole is None:
                 where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
+            _pole_in_working_plane(m, where, "LP")
             r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
             k, t = m.scale * m.lengths(where), m.transform
             pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
@@ -1492,7 +1702,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
-        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number)
+        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
     elif kw in ("C", "CR", "CT", "CP"):
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -1504,7 +1714,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         seg = _arc(kw, seen, target, m, where, blk)
         if m.pending is not None:
             seg = _resolve_corner(m, seg, where)
-        m.used.update(PLANE_AXES[m.plane])
+        m.used.update(PLANE_AXES[seg.plane])
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
@@ -1554,7 +1764,8 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
         if w.key == "M":
             ms.append(w)
             continue
-        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
+                "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
                 "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
         if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
             where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
@@ -1570,7 +1781,9 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
                        expected="an axis letter (X, Y or Z) before the number")
         seen["XYZ"[m.last_axes[0]]] = w
     allowed = {
-        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX"},
+        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
+              *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)},
+        "LN": {"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"},
         "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
         "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
         "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
@@ -1585,23 +1798,103 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
     return seen, ms
 
 
+def _normal_offset(seen: dict[str, Word], m: _Machine, where: Where, blk: SourceBlock) -> np.ndarray:
+    """``LN X.. Y.. Z.. NX.. NY.. NZ.. [TX.. TY.. TZ..]``, a straight line with 3-D tool compensation: X, Y,
+    Z are the end point the CAM system computed for the tool as defined, and "the TNC displaces the tool in
+    the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
+    without M128 / FUNCTION TCPM "the TNC ignores the direction vector T" (iTNC 530 user's manual
+    60642x-03 p. 519, "3-D compensation without tool orientation"). vcnc's tool table holds no delta
+    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine]."""
+    missing = [k for k in ("NX", "NY", "NZ") if k not in seen]
+    normal = np.array([seen[k].value for k in ("NX", "NY", "NZ") if k in seen], dtype=float)
+    if missing or not np.linalg.norm(normal) > 0:
+        where.fail("LN without a surface-normal vector", column=blk.column, text=where.text,
+                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length)")
+    if not m.transform.identity:
+        where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
+                   text=where.text, expected="LN without mirror, rotation or scaling")
+    if "TX" in seen or "TY" in seen or "TZ" in seen:
+        m.note("LN TX/TY/TZ: the tool orientation is ignored without M128 (no tilting axes move)")
+    return m.tool_delta * normal / np.linalg.norm(normal)
+
+
+def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray | None:
+    """End positions ``(a, b, c, u, v, w)`` [deg, mm] of an L block's words of the axes beyond X, Y, Z,
+    or None when it has none. ``A+90`` is the position, ``IA+90`` an increment (TNC 640 user's manual,
+    "Straight line L": the block may contain "up to 5 axes" including rotary axes); A, B, C in degrees,
+    U, V, W in the program's unit; the preset of these axes is the machine's zero (the context's
+    work offsets hold X, Y, Z only), so an absolute word is the machine position, as with M91/M92. A
+    machine (``MachineContext.extra_axes``) without the axis: an error naming it, but for a word of
+    value 0 (posts write ``L A0 C0 R0 FMAX`` on 3-axis work), which is noted and ignored."""
+    letters = [k for k in seen if len(k) <= 2 and k[-1] in EXTRA_LETTERS and k[:-1] in ("", "I")]
+    if not letters:
+        return None
+    target = m.extra.copy()
+    moved = False
+    for key in letters:
+        w = seen[key]
+        axis = key[-1]
+        if axis.lower() not in m.context.extra_axes:
+            if w.value != 0.0:
+                where.fail(f"axis {axis!r} is not an axis of this machine", column=w.column, text=w.text,
+                           expected="X, Y, Z" + "".join(f", {a.upper()}" for a in m.context.extra_axes))
+            m.note(f"{w.text}: no {axis} axis on this machine (ignored)")
+            continue
+        value = w.value if axis in ROTARY_LETTERS else w.value * m.scale
+        i = EXTRA_LETTERS.index(axis)
+        target[i] = target[i] + value if key[0] == "I" else value
+        m.used.add(3 + i)
+        moved = True
+    if not moved:
+        return None
+    m.extra_used = True
+    return target
+
+
 def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:
-    """``CC``: the circle centre and pole, in the working plane."""
+    """``CC``: the circle centre and pole. Its plane is the working plane, or, when CC names the
+    tool axis and one axis of the working plane (``CC X+37.6 Z+3.3`` with tool axis Z), the plane
+    of those two axes (ZX, YZ, XY with the reference axes Z, Y, X and DR+ turning from the first to
+    the second: TNC 426 manual, "Circle Center and Pole: CC", table of the reference axes): the arcs
+    ``C`` and ``CP`` about it then run in that plane. This is our reading: the TNC 426/407 manuals
+    assign a circle to the main plane of the TOOL CALL and name no other plane; Fusion 360's TNC post
+    writes its vertical lead-in and lead-out arcs as ``CC Y-31.628 Z-1.6`` / ``CP IPA+90 DR+`` /
+    ``L Y-31.48 Z-3`` (the third coordinate of CC is the current one), and only the arc in the plane
+    of CC's axes ends where the next line starts, tangentially, so that is how the controls it posts
+    for run it. Radius compensation and the coordinate transformations act in the working plane only,
+    so such an arc under RL/RR or a transformation is an error."""
     target, written = _plane_coords(seen, m, where, m9x=m9x)
     p, q = PLANE_AXES[m.plane]
-    for i in written:
-        if i not in (p, q):
-            w = seen.get("XYZ"[i]) or seen["I" + "XYZ"[i]]
+    plane = m.plane
+    off = [i for i in written if i not in (p, q)]
+    if off:
+        w = seen.get("XYZ"[off[0]]) or seen["I" + "XYZ"[off[0]]]
+        if len(written) != 2 or m.comp != "R0" or not m.transform.identity:
             where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
-                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}")
+                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}, or CC with the tool axis and one other axis (a circle in "
+                                "that plane, without RL/RR and coordinate transformations)")
+        plane = 3 - sum(written)  # the axis CC does not name is the circle's normal
     m.pole = target
+    m.pole_plane = plane if off else None
     m.used.update(written)
+
+
+def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:
+    """Polar coordinates (LP, APPR P..) are in the working plane: an error after a CC in another plane."""
+    if m.pole_plane is not None and m.pole_plane != m.plane:
+        where.fail(f"{what} about a pole outside the working plane", column=1, text=where.text,
+                   expected="a CC in the working plane before polar coordinates")
 
 
 def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
     """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
-    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way."""
-    plane = m.plane
+    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
+    CP run in the plane of the pole (:func:`_pole`)."""
+    plane = m.pole_plane if kw in ("C", "CP") and m.pole_plane is not None else m.plane
+    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
+        where.fail(f"{kw} about a CC outside the working plane under {m.comp} or a coordinate transformation",
+                   column=blk.column, text=where.text,
+                   expected="R0 and no cycle 8/10/11/26 for a circle in another plane")
     dr = seen.get("DR")
     ccw = (dr.value == "+") if dr is not None else m.ccw
     k = m.lengths(where)
@@ -1710,6 +2003,8 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     if polar and (m.pole is None or "PR" not in seen or "PA" not in seen):
         where.fail(f"{what} needs a pole CC, PR and PA", column=blk.column, text=code,
                    expected=f"CC X.. Y.. before {what} PR.. PA..")
+    if polar:
+        _pole_in_working_plane(m, where, what)
     ended = any(_one_m(w, m, where) for w in words if w.key == "M")
     for key in keys:
         w = seen.get(key)

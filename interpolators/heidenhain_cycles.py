@@ -29,9 +29,12 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 241``          single-lip deep-hole drilling in one infeed (:func:`drill_cycle`)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
-                          (:func:`circular_pocket_cycle`)
+                          (:func:`circular_pocket_cycle`); 257 circular stud, as 256 with a circle
+``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`);
+                          254 circular slot, rings round the slot along its arc
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
-``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`)
+``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`);
+                          263 with countersinking, 264 drilling first, 265 helical, 267 outside
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
 ========================= ==================================================================
 
@@ -49,7 +52,8 @@ from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value, read_words
 
-__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "BORING_DISENGAGE",
+__all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "THREAD_CYCLES",
+           "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
@@ -60,7 +64,9 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
-                                      256, 262)
+                                      253, 254, 256, 257, 262, 263, 264, 265, 267)
+#: The thread-milling cycles (:func:`thread_milling_cycle`).
+THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
@@ -77,8 +83,13 @@ _REQUIRED = {
     207: (200, 201, 239, 203, 204), 208: (200, 201, 206, 334, 203, 204, 335),
     209: (200, 201, 239, 203, 204, 257), 240: (200, 201, 206, 203, 204), 241: (200, 201, 206, 203, 204),
     262: (335, 239, 201, 355, 253, 351, 200, 203, 204, 207),
+    263: (335, 239, 201, 356, 253, 351, 200, 203, 204, 207),
+    264: (335, 239, 201, 356, 253, 351, 200, 203, 204, 206, 207),
+    265: (335, 239, 201, 253, 200, 203, 204, 207), 267: (335, 239, 201, 253, 351, 200, 203, 204, 207),
     252: (215, 223, 201, 202, 206, 207, 200, 203, 204), 251: (215, 218, 219, 201, 202, 206, 207, 200, 203, 204),
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
+    253: (218, 219, 201, 202, 206, 207, 200, 203, 204), 257: (223, 222, 201, 202, 206, 207, 200, 203, 204),
+    254: (219, 375, 216, 217, 376, 248, 201, 202, 206, 207, 200, 203, 204),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -87,6 +98,7 @@ _REQUIRED = {
 _MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 _FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
+_AUTO_RE = re.compile(r"F?AUTO(?![A-Z0-9])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -171,6 +183,31 @@ class DrillCycle:
     edge_height : float
         Cycle 204: Q252, the distance from the underside of the boring bar (the tool tip) up to its
         main cutting tooth [mm].
+    sink_depth : float
+        Cycle 263: Q356, the countersinking depth from the surface, signed as the depth (0: none) [mm];
+        cycle 264: Q356, the total hole depth drilled before the thread [mm].
+    sink_side : bool
+        Cycle 263: Q357 != 0, a set-up clearance to the side: the tool goes to the countersinking
+        depth at Q253 in one move (else at Q253 to the set-up clearance above it, then at Q254).
+    front_depth, front_offset : float
+        Cycles 263, 264, 265: Q358, the depth of the countersinking at the front (0: none), signed as
+        the depth, and Q359, the offset of the tool centre from the hole centre for it [mm].
+    front_after : bool
+        Cycle 265: Q360 = 1, the countersinking at the front after the thread (0: before).
+    sink_feed : float
+        Cycles 263-265: Q254, the countersinking feed [mm/s].
+    drill_feed : float
+        Cycle 264: Q206, the drilling feed [mm/s].
+    outside : bool
+        Cycle 267: an outside thread (the helix on Q335 / 2 plus the tool radius, from outside).
+    plunge_type : int
+        Cycles 251-254: Q366, 0 vertical plunging, 1 helical, 2 reciprocating (251, 253).
+    slot : tuple of float
+        Cycle 254: the pitch circle's centre Q216, Q217 [mm, program], its radius Q375 / 2 [mm], the slot's
+        angular length Q248 and the stepping angle Q378 between repetitions [deg] (the starting angle
+        Q376 is ``angle``, the width Q219 ``bore_diameter``).
+    repeats : int
+        Cycle 254: Q377, the number of slots on the pitch circle.
     """
 
     number: int
@@ -209,10 +246,25 @@ class DrillCycle:
     counterbore: float = 0.0
     edge_height: float = 0.0
     advance_last: float | None = None
+    sink_depth: float = 0.0
+    sink_side: bool = False
+    front_depth: float = 0.0
+    front_offset: float = 0.0
+    front_after: bool = False
+    sink_feed: float = 0.0
+    drill_feed: float = 0.0
+    outside: bool = False
+    plunge_type: int = 0
+    slot: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+    repeats: int = 1
 
 
-def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int) -> dict[int, float]:
-    """The ``Qnnn=value`` assignments of a 200-series definition (values may be Q parameters)."""
+def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
+                  auto_feed: float | None = None) -> dict[int, float]:
+    """The ``Qnnn=value`` assignments of a 200-series definition (values may be Q parameters). A feed
+    written ``AUTO`` (``Q207= AUTO``, as the iTNC 530 saves the soft key FAUTO: TNC 640 cycle manual, the
+    feed parameters "alternatively FAUTO, FU, FZ") is ``auto_feed``, the F of the last ``TOOL CALL``
+    [program units/min]; without one, an error."""
     out: dict[int, float] = {}
     pos = 0
     words = re.compile(r"\s*[A-Z][A-Z .\-/]*(?=\s+Q\d|\s*$)", re.I)
@@ -226,8 +278,14 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int)
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
         fmax = _FMAX_RE.match(rest, m.end())
+        auto = _AUTO_RE.match(rest, m.end())
         if fmax:  # a feed given as MAX (rapid), as the Fusion 360 TNC post writes Q253 of cycle 204
             value, pos = math.inf, fmax.end()
+        elif auto:
+            if auto_feed is None:
+                where.fail(f"Q{m.group(1)}=AUTO without a feed in the TOOL CALL", column=column0 + m.start(),
+                           text=rest[m.start():auto.end()].strip(), expected="TOOL CALL n Z S.. F.. before the cycle")
+            value, pos = auto_feed, auto.end()
         else:
             value, pos = read_value(rest, m.end(), where, params, what=f"Q{m.group(1)}", column0=column0)
         out[int(m.group(1))] = value
@@ -333,9 +391,9 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
                        expected=f"Q{k}=<number>")
     if number == 204:
         return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number == 262:
-        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if number in (251, 252, 256):
+    if number in THREAD_CYCLES:
+        return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column, number=number)
+    if number in (251, 252, 253, 254, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
     if q.get(379, 0.0) != 0.0:
@@ -467,26 +525,63 @@ def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> Non
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                         column: int) -> DrillCycle:
-    """Cycle 262 THREAD MILLING from its Q parameters (TNC 426/430 user's manual, "THREAD MILLING
-    (Cycle 262)"): Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201 thread
-    depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the thread
-    depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351 climb
-    (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed. The moves are the reader's
-    ``_thread_milling``."""
+                         column: int, number: int = 262) -> DrillCycle:
+    """The thread-milling cycles from their Q parameters (TNC 426/430 user's manual, "Cycles for
+    drilling, tapping and thread milling": 262's parameters p. 251, https://www.easymanua.ls/heidenhain/
+    tnc-430/manual?p=277; 264's p. 244, ?p=270; 265's p. 247, ?p=273; TNC 320 user's manual 340 55x-03 p. 246,
+    https://azmanual.top/manuals/798411/heidenhain-tnc-320-340-55x-03.html?page=246: 263's). The moves are
+    the reader's ``_thread_milling``.
+
+    * 262 THREAD MILLING: Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201
+      thread depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the
+      thread depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351
+      climb (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed;
+    * 263 THREAD MILLING/COUNTERSINKING: as 262 with one 360 degree helix, plus Q356 countersinking depth
+      ("distance between tool point and the top surface of the workpiece"), Q357 set-up clearance to the
+      side, Q358 depth and Q359 offset of the countersinking at the front, Q254 countersinking feed;
+    * 264 BORE/THREAD MILLING: drills first, Q356 total hole depth in infeeds of Q202 at Q206, with Q258
+      upper advanced stop distance, Q257 infeed for chip breaking, Q256 retraction for chip breaking (as
+      cycle 205), then Q358/Q359 at the front and the thread as 263 (Q254 absent: Q206);
+    * 265 HELICAL BORE/THREAD MILLING: Q335, Q239, Q201, Q253, Q358, Q359, Q360 countersinking at the front
+      before (0) or after (1) the thread, Q200, Q203, Q204, Q254, Q207: one continuous helix from the
+      surface down to the thread depth, turning with the thread (no Q351);
+    * 267 OUTSIDE THREAD MILLING: as 262 about a stud (Q355 0 or 1); the countersinking at the front
+      (Q358 != 0) is not supported.
+    """
+    q = {355: 0.0, 351: 1.0, 356: 0.0, 357: 0.0, 358: 0.0, 359: 0.0, 360: 0.0, **q}
     steps = int(q[355])
     if steps not in (0, 1) or q[355] != steps:
-        where.fail(f"cycle 262: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
+        where.fail(f"cycle {number}: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
                    column=column, text=where.text, expected="Q355=0 (one helix) or Q355=1 (continuous)")
     if q[239] == 0 or not q[335] > 0 or not q[253] > 0:
-        where.fail("cycle 262: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0", column=column,
-                   text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+        where.fail(f"cycle {number}: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0",
+                   column=column, text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
+    if number == 267 and q[358] != 0.0:
+        where.fail("cycle 267: the countersinking at the front (Q358 != 0) of an outside thread is not supported",
+                   column=column, text=where.text, expected="Q358=0")
     depth = q[201] * scale
-    return _checked(DrillCycle(number=262, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth),
-                               feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
-                               bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
-                               climb=q[351] >= 0, right_hand=q[239] > 0, continuous=steps == 1,
-                               approach_feed=q[253] * feed_scale), where, column)
+    sign = -1.0 if depth < 0 else 1.0
+    sink_feed = (q.get(254, 0.0) or (q[206] if number == 264 else 0.0)) * feed_scale
+    if number in (263, 264, 265) and (q[356] or q[358]) and not sink_feed > 0:
+        where.fail(f"cycle {number}: the countersinking feed Q254 must be > 0", column=column, text=where.text,
+                   expected="Q254 > 0 [mm/min]")
+    extra = {}
+    if number == 264:
+        if abs(q[356]) < abs(q[201]) or not q[206] > 0:
+            where.fail("cycle 264: the total hole depth Q356 must reach the thread depth Q201, the feed Q206 > 0",
+                       column=column, text=where.text, expected="|Q356| >= |Q201|, Q206 > 0")
+        extra = dict(plunge=abs(q.get(202, 0.0)) * scale or abs(q[356]) * scale, drill_feed=q[206] * feed_scale,
+                     advance=abs(q.get(258, 0.0)) * scale, chip_depth=abs(q.get(257, 0.0)) * scale,
+                     chip_break=abs(q.get(256, 0.0)) * scale)
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, **({"plunge": abs(depth)} | extra),
+        feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
+        bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
+        climb=(q[351] >= 0) if number != 265 else q[239] < 0, right_hand=q[239] > 0,
+        continuous=steps == 1 or number == 265, approach_feed=q[253] * feed_scale,
+        sink_depth=sign * abs(q[356]) * scale if number in (263, 264) else 0.0, sink_side=q[357] != 0.0,
+        front_depth=sign * abs(q[358]) * scale, front_offset=abs(q[359]) * scale, front_after=q[360] == 1.0,
+        sink_feed=sink_feed, outside=number == 267), where, column)
 
 
 def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -495,8 +590,8 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
     finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
     depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
-    Q366 plunging (0 vertical; absent: vertical; 1 helical needs the tool table's plunge angle: an
-    error), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
+    Q366 plunging (0 or absent vertical, 1 helical; 251 and 253 also 2 reciprocating: the reader's
+    ``_plunge``), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
     side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
@@ -504,19 +599,62 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
 
     ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
     Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are the
-    reader's ``_rectangular_stud``."""
-    if number in (251, 256):
+    reader's ``_rectangular_stud``.
+
+    ``number`` = 253: SLOT MILLING (TNC 640 manual, "SLOT MILLING (Cycle 253)"): Q218 slot length, Q219 slot
+    width, Q374 angle of rotation, Q367 slot position (0: the tool over the slot's centre; the others an
+    error), the rest as 251. The slot is the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
+    half circles joined by straight sides), and is milled as cycle 251 mills its pocket: the manual
+    leaves the roughing path to the control, and 251's rings (each an obround here) stay inside the slot.
+
+    ``number`` = 254: CIRCULAR SLOT (TNC 640 manual, "CIRCULAR SLOT (Cycle 254)"): Q219 slot width, Q375 pitch
+    circle diameter, Q216/Q217 its centre, Q376 starting angle, Q248 angular length, Q378 stepping angle and Q377
+    number of slots, Q367 reference (0: the slot from Q216/Q217; the others, from the tool position, an
+    error), Q366 0 or 1, the rest as 252. Our reading where the manual leaves the path to the control, kept
+    inside the slot: the tool goes at FMAX over the slot's first end (the pitch circle at Q376) at its height,
+    down to the set-up clearance, and plunges there; the rings are the slot's outline at growing distances
+    from its centre line (Q370 x R apart, up to the width / 2 less Q368 and R), each entered along the radius
+    at the first end: the outer arc, a half
+    circle round the far end, the inner arc back, a half circle round the first end (reversed for up-cut);
+    the wall is finished the same way at the width / 2 less R; the slots one after the other.
+
+    ``number`` = 257: CIRCULAR STUD (TNC 640 manual, "CIRCULAR STUD (Cycle 257)"): Q223 finished-part
+    diameter, Q222 workpiece blank diameter, Q376 starting angle (absent or -1: 0), the rest as 256. The
+    stud is 256's rounded rectangle Q223 x Q223 with the corner radius Q223 / 2, i.e. a circle, from the
+    blank Q222 (the cycle run is 256's: from the starting position 2 mm outside the blank, half circles on
+    and off, revolutions stepping in to the finished diameter)."""
+    if number == 253:
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle 253: Q367={q[367]:g} (the slot beside the tool) is not supported", column=column,
+                       text=where.text, expected="Q367=0 (the tool over the slot's centre)")
+        q = {**q, 220: q[219] / 2.0, 224: q.get(374, 0.0)}
+    slot = (0.0, 0.0, 0.0, 0.0, 0.0)
+    if number == 254:
+        if q.get(367, 0.0) != 0.0:
+            where.fail(f"cycle 254: Q367={q[367]:g} (the slot placed from the tool position) is not supported",
+                       column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
+        if not q[248] > 0 or not q[375] > q[219] > 0:
+            where.fail("cycle 254: the angular length Q248 must be > 0, the pitch circle Q375 wider than the slot "
+                       "width Q219 > 0", column=column, text=where.text, expected="Q248 > 0, Q375 > Q219 > 0")
+        slot = (q[216] * scale, q[217] * scale, q[375] / 2.0 * scale, q[248], q.get(378, 0.0))
+        q = {215: 0.0, **q, 223: q[219], 224: q[376]}
+    if number == 257:
+        start = q.get(376, -1.0)
+        q = {**q, 218: q[223], 219: q[223], 220: q[223] / 2.0, 424: q[222], 425: q[222],
+             224: 0.0 if start == -1.0 else start}
+    if number in (251, 253, 256, 257):
         if q.get(367, 0.0) != 0.0:
             where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
                        column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
-        if not q[218] > 0 or not q[219] > 0 or (number == 256 and (q[424] < q[218] or q[425] < q[219])):
+        if not q[218] > 0 or not q[219] > 0 or (number in (256, 257) and (q[424] < q[218] or q[425] < q[219])):
             where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
                        "Q425 >= Q219 [mm]")
         q = {215: 0.0, **q, 223: min(q[218], q[219])}
-    if q.get(366, 0.0) != 0.0:
-        where.fail(f"cycle {number}: Q366={q[366]:g} (helical plunging at the tool table's ANGLE) is not supported",
-                   column=column, text=where.text, expected="Q366=0 (vertical plunging)")
+    plunge_types = (0.0, 1.0, 2.0) if number in (251, 253) else (0.0, 1.0) if number in (252, 254) else (0.0,)
+    if q.get(366, 0.0) not in plunge_types:
+        where.fail(f"cycle {number}: Q366={q[366]:g} is not a plunging strategy of this cycle", column=column,
+                   text=where.text, expected="Q366=" + ", ".join(f"{v:g}" for v in plunge_types))
     operation = int(q[215])
     if operation not in (0, 1, 2) or not q[223] > 0 or not q.get(370, 1.0) > 0 or not q[206] > 0:
         where.fail(f"cycle {number}: Q215 must be 0, 1 or 2, the diameter Q223, the overlap Q370 and the plunging feed "
@@ -529,7 +667,9 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         floor_allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), operation=operation,
         finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
-        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale)), where, column)
+        angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale),
+        plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253, 254) else 0, slot=slot,
+        repeats=max(1, int(q.get(377, 1.0)))), where, column)
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -570,7 +710,9 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                finish_infeed=cycle.finish_infeed * factor, corner=cycle.corner * factor,
                                sides=(cycle.sides[0] * factor, cycle.sides[1] * factor),
                                blank=(cycle.blank[0] * factor, cycle.blank[1] * factor),
-                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor)
+                               counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor,
+                               sink_depth=cycle.sink_depth * factor, front_depth=cycle.front_depth * factor,
+                               front_offset=cycle.front_offset * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

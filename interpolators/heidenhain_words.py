@@ -11,7 +11,7 @@ manual, "Programming fundamentals: NC blocks"). This module
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
   ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``FU``/``FZ`` (per revolution / tooth),
-  ``M``, ``MB MAX``, and a value that is a number, a Q parameter
+  ``M``, ``MB MAX``, LN's vector components ``NX``..``TZ``, and a value that is a number, a Q parameter
   (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
 """
 
@@ -93,6 +93,16 @@ def _continues(first: str, line: str) -> bool:
     return (_Q_LINE_RE if m.group(1) else _POS_LINE_RE).match(line) is not None
 
 
+def _wrapped_comment(line: str) -> bool:
+    """True when ``line``, following a line that ends in ``~`` after a ``;`` comment, goes on with
+    the comment: the TNC saves a block longer than a line over several lines, each but the last
+    ending in ``~`` (a long ``;`` comment of a shop program is saved as ``4 ;This program ... it~`` /
+    `` under the terms ...``), so the text after a wrapped ``;comment`` is comment too, unless it is
+    the next ``Qnnn=`` / ``POSn (..)`` parameter of a cycle or pattern definition (each of those
+    lines carries its own comment: ``Q200=+2 ;SET-UP CLEARANCE ~``)."""
+    return _Q_LINE_RE.match(line) is None and _POS_LINE_RE.match(line) is None
+
+
 def source_blocks(text: str) -> list[SourceBlock]:
     """The blocks of a program text (empty lines, comments and ``*`` structure blocks left out)."""
     out: list[SourceBlock] = []
@@ -101,11 +111,15 @@ def source_blocks(text: str) -> list[SourceBlock]:
     while i < len(lines):
         first = i
         parts: list[str] = []
+        comment = False
         while True:
             raw = lines[i].rstrip()
             more = raw.endswith("~") and i + 1 < len(lines)
-            part = _strip_comment(raw[:-1] if more else raw)
-            parts.append(part.strip() if parts else part.rstrip())
+            body = raw[:-1] if more else raw
+            if not (comment and _wrapped_comment(body)):
+                comment = ";" in body
+                part = _strip_comment(body)
+                parts.append(part.strip() if parts else part.rstrip())
             i += 1
             if not more:
                 break
@@ -170,7 +184,7 @@ def read_value(code: str, pos: int, where: Where, params: QParameters, *, what: 
 _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
-    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
+    r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<vec>[NT][XYZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
     r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<fu>F[UZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )
@@ -186,7 +200,7 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
     Raises
     ------
     vcnc.GCodeError
-        An unknown word, a rotary axis or a malformed value, naming the column.
+        An unknown word or a malformed value, naming the column.
     """
     out: list[Word] = []
     n = len(code)
@@ -212,9 +226,9 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             out.append(Word("DR", tok.replace(" ", "")[-1], col, tok))
         elif kind == "rcomp":
             out.append(Word(tok.upper(), None, col, tok))
-        elif kind == "rot":
-            where.fail(f"axis {tok.upper()!r} is not supported (vcnc interpolates X, Y, Z)", column=col,
-                       text=token_at(code, pos), expected="X, Y or Z")
+        elif kind == "rot":  # A, B, C [deg], U, V, W: the reader checks the machine has the axis
+            value, end = read_value(code, end, where, params, what=tok.upper(), column0=column0)
+            out.append(Word(tok.upper(), value, col, code[pos:end].strip()))
         elif kind == "m":
             mm = re.compile(r"M\s*(\d+)", re.I).match(code, pos)
             end = mm.end()
@@ -226,8 +240,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             value, end = read_value(code, end, where, params, what="MB", column0=column0)
             out.append(Word("MB", value, col, code[pos:end]))
         else:
-            key = {"polar": tok.upper(), "axis": tok.upper(), "feed": "F", "fu": tok.upper(), "rad": "R",
-                   "bare": "BARE", "len": "LEN", "cca": "CCA"}[kind]
+            key = {"polar": tok.upper(), "axis": tok.upper(), "vec": tok.upper(), "feed": "F", "fu": tok.upper(),
+                   "rad": "R", "bare": "BARE", "len": "LEN", "cca": "CCA"}[kind]
             value, end = read_value(code, end, where, params, what=key, column0=column0)
             out.append(Word(key, value, col, code[pos:end].strip()))
         if end < n and code[end] not in " \t":

@@ -62,9 +62,14 @@ def _blocks(text: str) -> list[tuple[int, str]]:
     un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
     older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
+    in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
-        code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|POS\d+\s*\()", raw):
+            code = ""  # a long comment wrapped over lines ending in "~": still comment
+        else:
+            in_comment = ";" in raw
+            code = raw.split(";", 1)[0].strip().rstrip("~").strip()
         if first is None and out and (
                 (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
@@ -76,7 +81,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
         buf.append(code)
         if not cont:
             out.append((first, " ".join(b for b in buf if b).strip()))
-            buf, first = [], None
+            buf, first, in_comment = [], None, False
     return [(no, b) for no, b in out if b and not b.startswith("*")]
 
 
@@ -150,7 +155,7 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|I?[XYZ]|R[LR0]|R|FU|F|M)"
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
                    r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
@@ -185,11 +190,15 @@ class _Tnc:
         self.shift = np.zeros(3)
         self.length = 0.0
         self.radius = 0.0
+        self.delta = 0.0
+        self.auto: float | None = None  # F of the last TOOL CALL
+        self.extra = np.zeros(6)  # A, B, C [deg], U, V, W [mm]: machine positions (their preset is 0)
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
-        self.pole = np.zeros(2)
+        self.pole = np.zeros(3)  # program coordinates [mm]
+        self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
@@ -228,7 +237,8 @@ class _Tnc:
         """True when the plane's sense of rotation is reversed (one of X, Y mirrored)."""
         return self.mirror[0] * self.mirror[1] < 0
 
-    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None) -> None:
+    def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1),
+             extra: np.ndarray | None = None) -> None:
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             element = ("line", start, end.copy()) if centre is None else \
@@ -239,11 +249,12 @@ class _Tnc:
         else:
             slack = 0.0
             if centre is not None:
-                rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end))
-                chord = float(np.hypot(*(end - start)[:2]))
+                ax = list(plane)
+                rs, re_ = (float(np.hypot(*(p - centre)[ax])) for p in (start, end))
+                chord = float(np.hypot(*(end - start)[ax]))
                 slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
             self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre,
-                                     centre_tolerance=1e-6 + slack))
+                                     centre_tolerance=1e-6 + slack, plane=plane, extra=extra))
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
@@ -281,9 +292,16 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
+    # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
+    # program's unit), I words incremental; others of value 0 are ignored
+    others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
+    for k in others:
+        i = "ABCUVW".index(k[-1])
+        v = w[k] * (1.0 if i < 3 else t.scale)
+        t.extra[i] = t.extra[i] + v if k[0] == "I" else v
     kind = "rapid" if "FMAX" in w else "feed"
-    if axes:
-        t.emit(line, kind, t.target(w))
+    if axes or others:
+        t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
     if "MB" in w:
@@ -299,38 +317,50 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
 
 
 def _pole(t: _Tnc, w: dict) -> None:
+    """``CC``: the pole; a coordinate not written is the current one. With Z and one other axis the
+    circle lies in ZX (reference axis Z) or YZ (reference axis Y), per the TNC's table of reference axes."""
     p = t.prog()
-    for i, a in enumerate("XY"):
+    for i, a in enumerate("XYZ"):
         if a in w:
             t.pole[i] = w[a] * t.scale
         elif "I" + a in w:
             t.pole[i] = p[i] + w["I" + a] * t.scale
         else:
             t.pole[i] = p[i]
+    named = {a for a in "XYZ" if a in w or "I" + a in w}
+    t.pole_axes = {frozenset("XZ"): (2, 0), frozenset("YZ"): (1, 2)}.get(frozenset(named), (0, 1))
 
 
 def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     """``C`` about the pole to X/Y, or ``CP`` by the angle IPA/PA; a Z word makes a helix."""
     _comp_words(t, w)
     p = t.prog()
+    i, j = t.pole_axes
+    n = 3 - i - j  # the plane normal
+    if (i, j) != (0, 1) and (t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any()):
+        raise ReferenceError("a circle outside XY under RL/RR or a transformation")
     if polar:
-        r = math.hypot(p[0] - t.pole[0], p[1] - t.pole[1])
-        a = math.degrees(math.atan2(p[1] - t.pole[1], p[0] - t.pole[0]))
+        r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
+        a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
         a = a + w["IPA"] if "IPA" in w else w["PA"]
         if "PR" in w or "IPR" in w:
             raise ReferenceError("CP with a radius word")
         end_p = p.copy()
-        end_p[:2] = t.pole + r * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
-        if "Z" in w:
-            end_p[2] = w["Z"] * t.scale
-        if "IZ" in w:
-            end_p[2] += w["IZ"] * t.scale
+        end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
+        end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
+        axis = "XYZ"[n]
+        if axis in w:
+            end_p[n] = w[axis] * t.scale
+        if "I" + axis in w:
+            end_p[n] += w["I" + axis] * t.scale
         end = t.machine(end_p)
     else:
         end = t.target(w)
-    centre = t.machine(np.array([t.pole[0], t.pole[1], t.prog()[2]]))
+    c = t.pole.copy()
+    c[n] = t.prog()[n]
+    centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
-    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
 
 
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
@@ -404,6 +434,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         t.cycle = ("12", rest.split(None, 1)[1].strip().strip('"'))
     elif number == 12:
         pass
+    elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
+        t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
@@ -412,10 +444,11 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 256, 262) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 254, 256,
+                    257, 262, 263, 264, 265, 267) \
             and sub == 0:
-        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
-                  for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
+                  else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         for k, v in params.items():
             t.q[k] = v
         if number in (220, 221):
@@ -424,6 +457,18 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params)
     else:
         raise ReferenceError(f"CYCL DEF {number}")
+
+
+def _unit(angle: float) -> np.ndarray:
+    """The unit vector at ``angle`` [deg] in the XY plane."""
+    return np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+
+
+def _auto(t: _Tnc) -> float:
+    """A cycle feed written AUTO: the F of the last TOOL CALL."""
+    if t.auto is None:
+        raise ReferenceError("a cycle feed AUTO without a TOOL CALL F")
+    return t.auto
 
 
 def _transform(t: _Tnc, number: int, rest: str) -> None:
@@ -507,11 +552,32 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "262":
         _thread_milling(t, line, p)
         return
+    if kind in ("263", "264", "265", "267"):
+        _thread_family(t, line, kind, p)
+        return
     if kind in ("251", "252"):
         _circular_pocket(t, line, p)
         return
+    if kind == "253":  # SLOT MILLING: 251's pocket Q218 x Q219 with half circles at the ends, turned by Q374
+        if p.get("Q367", 0.0):
+            raise ReferenceError("253 with the slot beside the tool")
+        _circular_pocket(t, line, {"Q215": 0.0, **p, "Q220": p["Q219"] / 2, "Q224": p.get("Q374", 0.0)})
+        return
+    if kind == "254":  # CIRCULAR SLOT: Q377 slots Q378 apart, each as a pocket of width Q219 along the arc
+        if p.get("Q367", 0.0) or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+            raise ReferenceError("254 placed from the tool or under a transformation")
+        for k in range(max(1, int(p.get("Q377", 1)))):
+            _circular_pocket(t, line, {"Q215": 0.0, **p, "Q223": p["Q219"],
+                                       "Q376": p["Q376"] + k * p.get("Q378", 0.0)})
+        return
     if kind == "256":
         _stud(t, line, p)
+        return
+    if kind == "257":  # CIRCULAR STUD: 256's stud Q223 x Q223 rounded by Q223/2 (a circle) from the blank Q222
+        d, blank = p["Q223"], p["Q222"]
+        if p.get("Q376", -1.0) not in (-1.0, 0.0):
+            raise ReferenceError("257 with a starting angle")
+        _stud(t, line, {**p, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": blank, "Q425": blank})
         return
     if kind in ("203", "205"):
         _universal_drilling(t, line, kind, p)
@@ -649,6 +715,10 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     wall = (p["Q223"] if "Q218" not in p else min(p["Q218"], p["Q219"])) * t.scale / 2 - t.radius
     step = p.get("Q370", 1.0) * t.radius or wall
     clear = surface - sgn * setup
+    slot = "Q375" in p  # 254: over the slot's first end
+    if slot:
+        pc, rp = np.array([p["Q216"], p["Q217"]]) * t.scale, p["Q375"] * t.scale / 2
+        t.emit(line, "rapid", t.machine(np.array([*(pc + rp * _unit(p["Q376"])), t.prog()[2]])), rows="optional")
     _move_z(t, line, "rapid", clear, optional=True)
     centre = t.prog()
 
@@ -658,6 +728,12 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     def rings(radius: float) -> None:
         if "Q218" in p:
             return _rectangles(t, line, p, centre, kind, radius, step)
+        if slot:
+            h = 0.0
+            while h < radius - 1e-9:
+                h = min(h + step, radius)
+                _slot_ring(t, line, p, kind, h)
+            return
         r = 0.0
         while r < radius - 1e-9:
             r = min(r + step, radius)
@@ -672,13 +748,17 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
 
     if op in (0, 1):
         for z in depths(surface + depth - sgn * floor, p["Q202"] or abs(depth)):
-            _move_z(t, line, "feed", z)
+            _plunge(t, line, p, centre, z, wall - side * t.scale, kind)
             rings(wall - side * t.scale)
             back(z)
     if op == 2 or (op == 0 and side > 0):
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
             _move_z(t, line, "feed", z)
             mid = t.prog()
+            if slot:
+                _slot_ring(t, line, p, kind, wall)
+                t.emit(line, "feed", t.machine(mid))
+                continue
             if "Q218" in p:
                 half = (p["Q218"] * t.scale / 2 - t.radius, p["Q219"] * t.scale / 2 - t.radius)
                 _rectangle(t, line, p, mid, kind, half, max(p.get("Q220", 0.0) * t.scale - t.radius, 0.0))
@@ -694,6 +774,50 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _plunge(t: _Tnc, line: int, p: dict, centre: np.ndarray, z: float, room: float, kind: str) -> None:
+    """Q366 of 251-254: 0 vertical; 1 one helix turn on R (at most ``room``) about the centre, out and back
+    along +X; 2 (251/253) along the turned reference axis: out to the room, to the other side halfway down,
+    back, then to the centre."""
+    mode, here = int(p.get("Q366", 0)), t.prog()
+    side = p.get("Q368", 0.0) * t.scale
+    reach = min(t.radius or room, room) if mode == 1 else p.get("Q218", 0.0) * t.scale / 2 - side - t.radius
+    if mode == 0 or reach <= 1e-9:
+        _move_z(t, line, "feed", z)
+        return
+    a = math.radians(p.get("Q224", 0.0)) if mode == 2 else 0.0
+
+    def pt(u: float, zz: float) -> np.ndarray:
+        return t.machine(np.array([centre[0] + u * math.cos(a), centre[1] + u * math.sin(a), zz]))
+
+    t.emit(line, "feed", pt(reach, here[2]))
+    if mode == 1:
+        t.emit(line, kind, pt(reach, z * t.scale), centre=pt(0.0, z * t.scale))
+    else:
+        t.emit(line, "feed", pt(-reach, (here[2] + z * t.scale) / 2))
+        t.emit(line, "feed", pt(reach, z * t.scale))
+    t.emit(line, "feed", pt(0.0, z * t.scale))
+
+
+def _slot_ring(t: _Tnc, line: int, p: dict, kind: str, h: float) -> None:
+    """254: round the slot at ``h`` from its centre line: out along the radius at the first end, then (ccw) the
+    outer arc, the far end's half circle, the inner arc back, the first end's half circle; cw reversed."""
+    pc, rp = np.array([p["Q216"], p["Q217"]]) * t.scale, p["Q375"] * t.scale / 2
+    a0, sweep, z = p["Q376"], p["Q248"], t.prog()[2]
+
+    def at(r: float, a: float) -> np.ndarray:
+        return t.machine(np.array([*(pc + r * _unit(a)), z]))
+
+    t.emit(line, "feed", at(rp + h, a0))
+    e0, e1, mid = at(rp, a0), at(rp, a0 + sweep), t.machine(np.array([*pc, z]))
+    legs = [(at(rp + h, a0 + sweep), mid, "arc_ccw"), (at(rp - h, a0 + sweep), e1, "arc_ccw"),
+            (at(rp - h, a0), mid, "arc_cw"), (at(rp + h, a0), e0, "arc_ccw")]
+    if kind == "arc_cw":
+        legs = [(at(rp - h, a0), e0, "arc_cw"), (at(rp - h, a0 + sweep), mid, "arc_ccw"),
+                (at(rp + h, a0 + sweep), e1, "arc_cw"), (at(rp + h, a0), mid, "arc_cw")]
+    for end, pole, turn in legs:
+        t.emit(line, turn, end, centre=pole)
 
 
 def _stud(t: _Tnc, line: int, p: dict) -> None:
@@ -806,6 +930,72 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
     for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
                       (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
         t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    _move_z(t, line, "rapid", clear)
+    _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """263/264/265/267, in the manuals' order: to the set-up clearance; 264: the hole drilled as cycle 205 to
+    Q356; 263 with Q356: at Q253 to Q356 less Q200 (with Q357: to Q356), at Q254 to Q356, then a half
+    circle out to the thread's radius, a full circle and a half circle back; with Q358: at Q253 (265 before
+    the thread: Q254) to Q358 and the same circles on the radius Q359 (265 with Q360 = 1: after the thread);
+    the thread as 262 (263, 264 one pitch; 265 from the surface down to the depth, clockwise for a
+    right-hand thread; 267 about a stud on Q335/2 + R, clockwise for climb, from a point one pitch outside,
+    the half circles against the helix, the departure out along the end radius); rapid out."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError(f"{kind} under a transformation")
+    surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
+    sgn = -1.0 if depth < 0 else 1.0
+    clear, bottom, pitch = surface - sgn * setup, surface + depth, abs(p["Q239"])
+    outside, right = kind == "267", p["Q239"] > 0
+    climb = (p.get("Q351", 1.0) >= 0) if kind != "265" else not right
+    ccw = climb != outside
+    spin = "arc_ccw" if ccw else "arc_cw"
+    r = p["Q335"] * t.scale / 2 + (t.radius if outside else -t.radius)
+    _move_z(t, line, "rapid", clear, optional=True)
+    centre = t.prog()
+
+    def circle(radius: float) -> None:
+        if radius <= 1e-12:
+            return
+        c = np.array([centre[0], centre[1], t.prog()[2]])
+        on = c + np.array([radius, 0.0, 0.0])
+        for end, pole in ((on, c + np.array([radius / 2, 0.0, 0.0])), (on, c), (c, c + np.array([radius / 2, 0, 0]))):
+            t.emit(line, spin, t.machine(end), centre=t.machine(pole))
+
+    if kind == "264":
+        _universal_drilling(t, line, "205", {"Q203": surface, "Q200": setup, "Q201": sgn * abs(p["Q356"]),
+                                             "Q202": p.get("Q202", 0.0), "Q258": p.get("Q258", 0.0),
+                                             "Q257": p.get("Q257", 0.0), "Q256": p.get("Q256", 0.0)})
+    if kind == "263" and p.get("Q356", 0.0):
+        sink = surface + sgn * abs(p["Q356"])
+        if not p.get("Q357", 0.0):
+            _move_z(t, line, "feed", sink - sgn * setup)
+        _move_z(t, line, "feed", sink)
+        circle(r)
+    front, after = sgn * abs(p.get("Q358", 0.0)), kind == "265" and p.get("Q360", 0.0) == 1
+    if front and not after:
+        _move_z(t, line, "feed", surface + front)
+        circle(abs(p.get("Q359", 0.0)) * t.scale)
+    far = surface if p.get("Q355", 0.0) == 1 or kind == "265" else bottom - sgn * pitch
+    z0, z1 = (bottom, far) if (right == climb) != outside else (far, bottom)
+    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    half = spin if not outside else ("arc_cw" if ccw else "arc_ccw")
+    out = r + pitch * t.scale if outside else 0.0
+    if outside:
+        t.emit(line, "rapid", t.machine(centre + np.array([out, 0.0, 0.0])))
+    _move_z(t, line, "feed", z0)
+    here = t.prog()
+    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+    on = np.array([centre[0] + r, centre[1], z0 * t.scale])
+    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+    back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
+    t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
+    t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
+    t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
+    if front and after:
+        _move_z(t, line, "feed", surface + front)
+        circle(abs(p.get("Q359", 0.0)) * t.scale)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
@@ -956,6 +1146,11 @@ def _tool(t: _Tnc, text: str) -> None:
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
     t.length = length + word("DL")
     t.radius = radius + word("DR")
+    t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
+    if re.search(r"\bF\s*[-+]?\s*[\dQ.]", rest):
+        t.auto = word("F")
+    # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
+    t.q.update(Q108=t.radius / t.scale, Q109=2.0, Q113=float(t.scale != 1.0), Q114=t.length / t.scale)
 
 
 _FN_CMP = {"EQU": lambda a, b: a == b, "NE": lambda a, b: a != b, "GT": lambda a, b: a > b,
@@ -1127,6 +1322,12 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     head, _, rest = up.partition(" ")
     if head == "L":
         _line_block(t, line, _words(rest, t.q))
+    elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
+        w = _words(rest, t.q)
+        n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+        if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+            raise ReferenceError("LN under RL/RR or a transformation")
+        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n / np.linalg.norm(n))
     elif head == "CC":
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):

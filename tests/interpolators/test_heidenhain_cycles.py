@@ -143,7 +143,9 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 lacks Q249, Q250"),
     ("L X+0 Y+0 R0 F100 M136", "M136 (feed per spindle revolution)"),
     ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE (a touch probe cycle"),
-    ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 is not supported"),
+    ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 lacks Q218, Q219"),
+    ("CYCL DEF 254 CIRCULAR SLOT Q215=0", "cycle 254 lacks Q219, Q375"),
+    ("CYCL DEF 255 UNKNOWN Q215=0", "cycle 255 is not supported"),
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 lacks Q218, Q219"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
@@ -248,8 +250,8 @@ def test_circular_pocket_252_stays_inside_the_pocket():
                 c = b.segment.center
                 far = math.hypot(c[0] - 10, c[1] - 20) + math.hypot(b.target[0] - c[0], b.target[1] - c[1])
                 assert far <= 8 + 1e-9
-    with pytest.raises(GCodeError, match="Q366=1"):
-        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=1"))
+    with pytest.raises(GCodeError, match="Q366=2 is not a plunging strategy"):  # 252: 0 vertical, 1 helical
+        run(POCKET.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q351=1 Q370=1").replace("Q366=0", "Q366=2"))
     with pytest.raises(GCodeError, match="fill the pocket"):
         run(POCKET.format(q="Q215=0 Q368=8.5 Q369=0 Q338=0 Q351=1 Q370=1"))
 

@@ -1,0 +1,250 @@
+"""Heidenhain milling cycles 253 SLOT MILLING and 257 CIRCULAR STUD (and the thread-milling family): hand-written
+programs with end points worked out by hand from the TNC 640 cycle programming manual, each also checked against
+the independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n"
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+
+
+def run(body: str, *, reference: bool = True):
+    text = HEAD + body + "\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    if reference:
+        match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+        assert match.mismatch is None, match.mismatch
+        assert match.exact == len(prog.blocks)
+    return prog
+
+
+SLOT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 253 SLOT MILLING {q} Q218=30 "
+        "Q219=10 Q207=500 Q201=-4 Q202=2 Q206=150 Q200=2 Q203=+0 Q204=20 Q366=0 Q385=400 Q367=0\nCYCL CALL")
+
+
+def test_slot_milling_253_roughs_obrounds_and_finishes_the_wall():
+    # slot 30 x 10 about (10, 20), tool radius 2, allowance 0.5: the outer path has half sides 12.5 x 2.5 with
+    # corner radius 2.5 (half circles at the ends), one ring inside it at half that inset; 2 depths of 2
+    prog = run(SLOT.format(q="Q215=0 Q368=0.5 Q369=0 Q338=0 Q374=0 Q351=+1 Q370=1"))
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[:4]] == [[10, 20, 50], [10, 20, 2], [10, 20, -2], [11.25 + 10, 20, -2]]
+    ends = [blk for blk in b if blk.kind == "arc" and round(blk.feed * 60) == 500]
+    assert all(a.segment.ccw for a in ends)  # climb milling with M3: counter-clockwise
+    # quarter circles, two at each end (counter-clockwise from the right end's middle: top right, top left, bottom
+    # left, bottom right): the inner ring's about the end centres (10 +- 10, 20), then the outer's
+    assert [a.segment.center[:2].tolist() for a in ends[:8]] == [[20, 20], [0, 20], [0, 20], [20, 20]] * 2
+    assert [round(a.segment.radius, 9) for a in ends[:8]] == [1.25] * 4 + [2.5] * 4
+    wall = [blk for blk in b if blk.feed * 60 == pytest.approx(400)]  # at half sides 13 x 3, corner 3
+    assert np.allclose(wall[0].target, [23, 20, -4]) and np.allclose(wall[-1].target, [10, 20, -4])
+    assert np.allclose(b[-1].target, [10, 20, 20])
+
+
+@pytest.mark.parametrize("plunge", ["Q366=0", "Q366=1", "Q366=2"])
+def test_slot_milling_253_stays_inside_the_turned_slot(plunge):
+    for q in ("Q215=0 Q368=0.5 Q369=0.2 Q338=1 Q374=30 Q351=+1 Q370=1", "Q215=2 Q368=0 Q369=0 Q338=0 Q374=-90 "
+              "Q351=-1 Q370=0.5", "Q215=1 Q368=0 Q369=0 Q338=0 Q374=0 Q351=-1 Q370=1.4"):
+        prog = run(SLOT.format(q=q).replace("Q366=0", plunge))
+        a = math.radians(float(q.split("Q374=")[1].split()[0]))
+        for blk in prog.blocks[1:]:  # the tool centre within the slot less its radius: an obround 26 x 6
+            dx, dy = blk.target[0] - 10, blk.target[1] - 20
+            u, v = dx * math.cos(a) + dy * math.sin(a), -dx * math.sin(a) + dy * math.cos(a)
+            assert math.hypot(max(abs(u) - 10, 0.0), v) <= 3 + 1e-9 and blk.target[2] >= -4 - 1e-9
+    with pytest.raises(GCodeError, match="Q367=2"):
+        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q367=0", "Q367=2"))
+    with pytest.raises(GCodeError, match="Q366=3 is not a plunging strategy"):
+        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q366=0", "Q366=3"))
+
+
+STUD = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 257 CIRCULAR STUD Q223=20 "
+        "Q222=30 {q} Q207=500 Q201=-5 Q202=5 Q206=150 Q200=2 Q203=+0 Q204=20 Q370=1\nCYCL CALL")
+
+
+def test_circular_stud_257_steps_in_from_the_blank():
+    # the blank 30 with R: 19; the stud 20 with R: 14; 5 mm in 2 stepovers of 2.5 (<= Q370 x R = 4) at 16.5 and
+    # 14; start 2 mm outside the blank: 15 + 2 + 4 = 21; half circles counter-clockwise onto and off the
+    # revolutions, which run clockwise (climb milling round a stud)
+    prog = run(STUD.format(q="Q215=1 Q368=0 Q351=+1"))
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[:4]] == [[0, 0, 50], [21, 0, 50], [21, 0, 2], [21, 0, -5]]
+    on = b[4]
+    assert on.kind == "arc" and on.segment.ccw and np.allclose(on.target, [16.5, 0, -5])
+    rounds = [blk for blk in b[5:-3] if blk.kind == "arc"]
+    assert len(rounds) == 8 and not any(a.segment.ccw for a in rounds)
+    assert {round(a.segment.radius, 9) for a in rounds} == {16.5, 14}
+    assert all(np.allclose(a.segment.center[:2], [0, 0]) for a in rounds)
+    off = b[-3]
+    assert off.segment.ccw and np.allclose(off.segment.center[:2], [17.5, 0]) and np.allclose(off.target, [21, 0, -5])
+    assert np.allclose([blk.target for blk in b[-2:]], [[21, 0, 2], [21, 0, 20]])
+    for blk in b[1:]:  # never inside the stud grown by the tool radius
+        assert math.hypot(blk.target[0], blk.target[1]) >= 14 - 1e-9
+
+
+def test_circular_stud_257_finishes_with_an_allowance_and_checks_the_blank():
+    prog = run(STUD.format(q="Q215=0 Q368=0.5 Q351=-1 Q338=0 Q385=300"))
+    finish = [blk for blk in prog.blocks if blk.feed * 60 == pytest.approx(300) and blk.kind == "arc"]
+    assert {round(a.segment.radius, 9) for a in finish if np.allclose(a.segment.center[:2], [0, 0])} == {14}
+    assert all(a.segment.ccw for a in finish if np.allclose(a.segment.center[:2], [0, 0]))  # up-cut: ccw
+    with pytest.raises(GCodeError, match="at least"):
+        run(STUD.format(q="Q215=0 Q368=0 Q351=1").replace("Q222=30", "Q222=18"))
+
+
+THREADS = "TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nL X+10 Y+20 FMAX\n{cycle}\nCYCL CALL"
+
+
+def moves(prog):
+    """(kind, x, y, z) of the cycle's moves, and the arcs' (centre x, y, counter-clockwise)."""
+    out = []
+    for b in prog.blocks[2:]:
+        row = (b.kind, *np.round(b.target, 9).tolist())
+        if b.kind == "arc":
+            row += (*np.round(b.segment.center[:2], 9).tolist(), b.segment.ccw)
+        out.append(row)
+    return out
+
+
+def test_thread_milling_countersinking_263_countersinks_then_mills_one_pitch():
+    # M12 x 1.5 right-hand, tool radius 4: the helix radius 2 about (10, 20); countersinking depth 2: at Q253 to
+    # the set-up clearance above it (Z0), at Q254 to Z-2, a circle on the helix radius; then the thread as 262
+    prog = run(THREADS.format(cycle="CYCL DEF 263 THREAD MLLNG/CNTSNKG Q335=12 Q239=+1.5 Q201=-6 Q356=-2 Q253=750 "
+                                    "Q351=+1 Q200=2 Q357=0 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=200 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, 0), ("line", 10, 20, -2),
+        ("arc", 12, 20, -2, 11, 20, True), ("arc", 12, 20, -2, 10, 20, True), ("arc", 10, 20, -2, 11, 20, True),
+        ("line", 10, 20, -6), ("arc", 12, 20, -6, 11, 20, True), ("arc", 12, 20, -4.5, 10, 20, True),
+        ("arc", 10, 20, -4.5, 11, 20, True), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    feeds = [round(b.feed * 60, 6) for b in prog.blocks[3:6]]
+    assert feeds == [750, 200, 200]
+
+
+def test_bore_thread_milling_264_drills_countersinks_at_the_front_then_mills():
+    # drilled to Q356 = 10 in infeeds of 5 (re-entry Q258 = 0.5 above the last depth), countersunk at the front
+    # 1 deep on a circle of Q359 = 1, then a left-hand thread climb-milled: downward from one pitch above -8
+    prog = run(THREADS.format(cycle="CYCL DEF 264 BORE/THREAD MLLNG Q335=12 Q239=-1.5 Q201=-8 Q356=-10 Q253=750 "
+                                    "Q351=+1 Q202=5 Q258=0.5 Q257=0 Q256=0 Q358=-1 Q359=1 Q200=2 Q203=+0 Q204=20 "
+                                    "Q206=100 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, -5), ("rapid", 10, 20, 2), ("rapid", 10, 20, -4.5),
+        ("line", 10, 20, -10), ("rapid", 10, 20, 2), ("line", 10, 20, -1),
+        ("arc", 11, 20, -1, 10.5, 20, True), ("arc", 11, 20, -1, 10, 20, True), ("arc", 10, 20, -1, 10.5, 20, True),
+        ("line", 10, 20, -6.5), ("arc", 12, 20, -6.5, 11, 20, True), ("arc", 12, 20, -8, 10, 20, True),
+        ("arc", 10, 20, -8, 11, 20, True), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    assert round(prog.blocks[3].feed * 60, 6) == 100 and round(prog.blocks[9].feed * 60, 6) == 100  # Q254: Q206
+
+
+def test_helical_bore_thread_milling_265_runs_down_from_the_surface_and_countersinks_after():
+    # right-hand: clockwise downward, 2 turns from Z0 to Z-3; Q360 = 1: the front countersinking after the thread
+    prog = run(THREADS.format(cycle="CYCL DEF 265 HEL. BORE/THRD MLLNG Q335=12 Q239=+1.5 Q201=-3 Q253=750 Q358=-0.5 "
+                                    "Q359=0.5 Q360=1 Q200=2 Q203=+0 Q204=20 Q254=150 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("line", 10, 20, 0), ("arc", 12, 20, 0, 11, 20, False),
+        ("arc", 12, 20, -3, 10, 20, False), ("arc", 10, 20, -3, 11, 20, False), ("line", 10, 20, -0.5),
+        ("arc", 10.5, 20, -0.5, 10.25, 20, False), ("arc", 10.5, 20, -0.5, 10, 20, False),
+        ("arc", 10, 20, -0.5, 10.25, 20, False), ("rapid", 10, 20, 2), ("rapid", 10, 20, 20)]
+    helix = prog.blocks[5].segment
+    assert math.isclose(helix.length, math.hypot(2 * 2 * math.pi * 2, 3))  # two turns of radius 2, 3 down
+
+
+def test_outside_thread_milling_267_runs_round_the_stud_from_outside():
+    # M20 x 2 right-hand stud, tool radius 4: the helix on 10 + 4 = 14; start one pitch outside (16) on +X;
+    # climb milling outside runs clockwise, for a right-hand thread downward from one pitch above the depth
+    prog = run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=0 Q253=500 "
+                                    "Q351=+1 Q200=2 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=0 Q207=300"))
+    assert moves(prog) == [
+        ("rapid", 10, 20, 2), ("rapid", 26, 20, 2), ("line", 26, 20, -8), ("arc", 24, 20, -8, 25, 20, True),
+        ("arc", 24, 20, -10, 10, 20, False), ("arc", 26, 20, -10, 25, 20, True), ("rapid", 26, 20, 2),
+        ("rapid", 26, 20, 20)]
+    up = run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=1 Q253=500 "
+                                  "Q351=-1 Q200=2 Q358=+0 Q359=+0 Q203=+0 Q204=20 Q254=0 Q207=300"))
+    for b in up.blocks[3:]:  # up-cut: counter-clockwise, upward over the whole stud; never inside 14
+        assert math.hypot(b.target[0] - 10, b.target[1] - 20) >= 14 - 1e-9 and b.target[2] >= -10 - 1e-9
+    assert [b.target[2] for b in up.blocks if b.kind == "arc"] == [-10, 0, 0] and up.blocks[6].segment.ccw
+    with pytest.raises(GCodeError, match="countersinking at the front"):
+        run(THREADS.format(cycle="CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=20 Q239=+2 Q201=-10 Q355=0 Q253=500 "
+                                 "Q351=+1 Q200=2 Q358=-1 Q359=1 Q203=+0 Q204=20 Q254=100 Q207=300"))
+
+
+POCKET = ("TOOL DEF 2 L+0 R+4\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 252 CIRCULAR POCKET Q215=1 "
+          "Q223=30 Q368=0 Q207=500 Q351=+1 Q201=-4 Q202=2 Q369=0 Q206=150 Q338=0 Q200=2 Q203=+0 Q204=20 Q370=1 "
+          "{q}\nCYCL CALL")
+
+
+def test_helical_plunging_q366_1_turns_once_on_the_tool_radius():
+    # circular pocket 30 about (10, 20), tool radius 4: the helix on R = 4 about the centre, one turn per infeed,
+    # counter-clockwise (climb), out from and back to the centre at Q206; then the rings as before
+    prog = run(POCKET.format(q="Q366=1"))
+    b = prog.blocks
+    assert [(blk.kind, *np.round(blk.target, 9).tolist()) for blk in b[1:5]] == [
+        ("rapid", 10, 20, 2), ("line", 14, 20, 2), ("arc", 14, 20, -2), ("line", 10, 20, -2)]
+    helix = b[3].segment
+    assert helix.ccw and np.allclose(helix.center[:2], [10, 20]) and round(b[3].feed * 60, 6) == 150
+    assert math.isclose(helix.length, math.hypot(2 * math.pi * 4, 4))  # from the clearance 2 down to -2
+    second = [blk for blk in b if blk.kind == "arc" and blk.target[2] == -4 and round(blk.feed * 60) == 150]
+    assert len(second) == 1 and np.allclose(second[0].target, [14, 20, -4])  # from 2 above -2, down to -4
+    for blk in b[1:]:
+        assert math.hypot(blk.target[0] - 10, blk.target[1] - 20) <= 11 + 1e-9
+    with pytest.raises(GCodeError, match="Q366=2 is not a plunging strategy"):
+        run(POCKET.format(q="Q366=2"))
+
+
+def test_reciprocating_plunging_q366_2_runs_along_the_slot():
+    # slot 30 x 10, tool radius 2, no allowance: out to 15 - 2 = 13 along the slot axis (turned 90 degrees: +Y),
+    # to the other end halfway down, back to the first end at the depth, to the centre
+    prog = run(SLOT.format(q="Q215=1 Q368=0 Q369=0 Q338=0 Q374=90 Q351=+1 Q370=1").replace("Q366=0", "Q366=2"))
+    got = [np.round(blk.target, 9).tolist() for blk in prog.blocks[2:6]]
+    assert got == [[10, 33, 2], [10, 7, 0], [10, 33, -2], [10, 20, -2]]
+    assert all(blk.kind == "line" and round(blk.feed * 60) == 150 for blk in prog.blocks[2:6])
+
+
+def test_cycle_feeds_written_auto_are_the_feed_of_tool_call():
+    # a shop program (iTNC 530): "TOOL CALL 7 Z S4100 F350" then "CYCL DEF 253 .. Q207= AUTO .. Q206= AUTO"
+    body = SLOT.format(q="Q215=1 Q368=0 Q369=0 Q338=0 Q374=90 Q351=+1 Q370=1").replace("Q207=500", "Q207= AUTO")
+    body = body.replace("Q206=150", "Q206= AUTO").replace("TOOL CALL 2 Z S500", "TOOL CALL 2 Z S500 F350")
+    prog = run(body)
+    assert {round(b.feed * 60, 6) for b in prog.blocks if b.kind in ("line", "arc")} == {350}
+    with pytest.raises(GCodeError, match="Q207=AUTO without a feed in the TOOL CALL"):
+        run(body.replace(" F350", ""))
+
+
+ARC_SLOT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 254 CIRCULAR SLOT Q219=10 "
+            "Q375=60 Q367=0 Q216=+0 Q217=+0 Q376=+0 Q248=90 {q} Q207=500 Q201=-2 Q202=2 Q206=150 Q338=0 Q200=2 "
+            "Q203=+0 Q204=20 Q385=400 Q370=1\nCYCL CALL")
+
+
+def test_circular_slot_254_mills_each_slot_along_its_arc():
+    # a 10 wide slot on the pitch circle 60 about (0, 0) from 0 to 90 degrees, tool radius 2: rings 2 and 3 from
+    # the centre line; two slots 180 degrees apart (Q377 = 2, Q378 = 180)
+    prog = run(ARC_SLOT.format(q="Q215=1 Q368=0 Q369=0 Q351=+1 Q366=0 Q378=180 Q377=2"))
+    b = prog.blocks
+    assert [np.round(x.target, 9).tolist() for x in b[1:5]] == [[30, 0, 50], [30, 0, 2], [30, 0, -2], [32, 0, -2]]
+    ring = [(x.kind, *np.round(x.target[:2], 9).tolist(), *np.round(x.segment.center[:2], 9).tolist(), x.segment.ccw)
+            for x in b[5:9]]
+    assert ring == [("arc", 0, 32, 0, 0, True), ("arc", 0, 28, 0, 30, True), ("arc", 28, 0, 0, 0, False),
+                    ("arc", 32, 0, 30, 0, True)]
+    second = [x for x in b if np.allclose(x.target, [-30, 0, 2]) and x.kind == "rapid"]
+    assert second, "the second slot starts over (-30, 0)"
+    for x in b[1:]:  # inside the slots: within 3 of the centre line arc or over it
+        r, a = math.hypot(x.target[0], x.target[1]), math.degrees(math.atan2(x.target[1], x.target[0])) % 360
+        ends = min(math.hypot(x.target[0] - e[0], x.target[1] - e[1]) for e in ((30, 0), (0, 30), (-30, 0), (0, -30)))
+        on_arc = abs(r - 30) <= 3 + 1e-9 and (a <= 90 + 1e-6 or 180 - 1e-6 <= a <= 270 + 1e-6)
+        assert on_arc or ends <= 3 + 1e-9 or x.target[2] > 0
+
+
+def test_circular_slot_254_up_cut_finishing_and_helical_plunge():
+    prog = run(ARC_SLOT.format(q="Q215=0 Q368=0.5 Q369=0 Q351=-1 Q366=1 Q378=0 Q377=1"))
+    arcs = [x.segment for x in prog.blocks if x.kind == "arc"]
+    assert any(not a.ccw and np.allclose(a.center[:2], [30, 0]) for a in arcs)  # up-cut: clockwise round the end
+    assert np.allclose(prog.blocks[4].segment.center[:2], [30, 0])  # the helix about the first end, on R = 2
+    with pytest.raises(GCodeError, match="Q367=1"):
+        run(ARC_SLOT.format(q="Q215=0 Q368=0 Q369=0 Q351=1 Q366=0 Q378=0 Q377=1").replace("Q367=0", "Q367=1"))

@@ -1,0 +1,142 @@
+"""Heidenhain programs as they are found in the wild (hyperMILL's DMU posts, Fusion 360's TNC post, shop
+programs): the forms the reader refused before, each as a hand-written program with end points worked
+out by hand and checked against the independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+ROTARY = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, extra_axes=("a", "c"))
+
+
+def rows_of(prog) -> list[list]:
+    """The ``--blocks`` rows with the a, b, c, u, v, w columns the program uses moved behind the feed as all six,
+    as ``reference_match`` compares them (the layout of test_gcode_corpus)."""
+    header, rows = blocks_table(prog)
+    at = ["abcuvw".index(a) for a in header[6:len(header) - 4]]
+    out = []
+    for r in rows:
+        six = [0.0] * 6
+        for k, i in enumerate(at):
+            six[i] = r[6 + k]
+        out.append(r[:6] + r[6 + len(at):] + six)
+    return out
+
+
+def run(body: str, context: MachineContext = CTX, *, head: str = "0 BEGIN PGM T MM\n"):
+    text = head + body + "\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=context)
+    match = match_blocks(heidenhain_reference(text, context), rows_of(prog))
+    assert match.mismatch is None, match.mismatch
+    assert match.exact == len(prog.blocks)
+    return prog
+
+
+def ends(prog):
+    return [np.round(b.target, 9).tolist() for b in prog.blocks]
+
+
+def test_a_comment_wrapped_over_lines_ending_in_tilde_stays_a_comment():
+    # as a shop's face-milling program saves a long comment; the cycle's parameter lines still continue the block
+    prog = run("1 ;This program is free software: you can redistribute it and/or modify it~\n"
+               " under the terms of the GNU General Public License, either version 3 of the~\n"
+               " License, or any later version.\n"
+               "2 Q1 = 4 ;a short one~\n still comment\n"
+               "3 CYCL DEF 200 DRILLING ~\n  Q200=+2 ;SET-UP CLEARANCE~\n  Q201=-Q1 ;DEPTH ~\n  Q206=+100 ;FEED~\n"
+               "  Q202=+4 ~\n  Q210=+0 ~\n  Q203=+0 ~\n  Q204=+5 ~\n  Q211=+0\n"
+               "4 L X+5 Y+0 Z+10 R0 FMAX M99")
+    assert ends(prog) == [[5, 0, 10], [5, 0, 2], [5, 0, -4], [5, 0, 2], [5, 0, 5]]
+
+
+def test_the_feed_of_tool_call_is_the_feed_of_the_following_moves():
+    # "TOOL CALL 22 Z S6000 F2000" and then "L Z+Q22" without F (a shop program): the feed is 2000 mm/min
+    prog = run("TOOL CALL 1 Z S6000 F2000\nL X+0 Y+0 Z+5 R0 FMAX\nL Z-3\nL X+20 F500\nTOOL CALL 1 Z F800\nL Y+10")
+    assert [b.kind for b in prog.blocks] == ["rapid", "line", "line", "line"]
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [2000, 500, 800]
+    assert ends(prog) == [[0, 0, 15], [0, 0, 7], [20, 0, 7], [20, 10, 7]]
+
+
+def test_preassigned_tool_parameters_q108_q114_after_tool_call():
+    # TNC 640 "Preassigned Q parameters": Q108 the active radius (table + DR), Q114 the active length (+ DL)
+    prog = run("TOOL CALL 1 Z S1000 DR+0.5 DL-1\nL X+Q108 Y+Q114 Z+Q109 R0 FMAX\nQ2 = Q108 * 2\nL X+Q2 FMAX")
+    assert ends(prog) == [[3.5, 9, 2 + 9], [7, 9, 11]]
+    inch = run("TOOL CALL 1 Z\nL X+Q108 Y+Q113 FMAX", head="0 BEGIN PGM T INCH\n")
+    assert ends(inch)[0][:2] == pytest.approx([3.0, 25.4])
+
+
+def test_cycle_392_atc_of_dmg_machines_moves_nothing():
+    prog = run("CYCL DEF 392 ATC~\n   Q240=0 ;TUNING MODE~\n   Q241=1 ;WEIGHT MODE\nL X+1 Y+2 Z+3 R0 FMAX\n"
+               "L X+Q241 FMAX")
+    assert ends(prog) == [[1, 2, 3], [1, 2, 3]]
+    assert any(n.startswith("CYCL DEF 392: ATC") for n in prog.notes)
+
+
+def test_rotary_axes_in_l_blocks_on_a_machine_that_has_them():
+    # hyperMILL's 3+2 posts: "L A0 R0 FMAX", "L A+Q120 C+Q122 R0 FMAX M126", "L A0 C0 R0 FMAX"
+    prog = run("L X+10 Y+0 Z+50 R0 FMAX\nL A+90 C+45 R0 FMAX\nL X+20 IC-15 F100\nL A0 C0 R0 FMAX", ROTARY)
+    assert ends(prog) == [[10, 0, 50], [10, 0, 50], [20, 0, 50], [20, 0, 50]]
+    assert [b.extra_target[[0, 2]].tolist() for b in prog.blocks] == [[0, 0], [90, 45], [90, 30], [0, 0]]
+    assert prog.blocks[2].kind == "line" and prog.blocks[1].kind == "rapid"
+
+
+def test_rotary_words_on_a_three_axis_machine():
+    prog = run("L X+1 Y+0 Z+0 R0 FMAX\nL A0 C0 R0 FMAX\nL X+2 FMAX")
+    assert ends(prog) == [[1, 0, 0], [2, 0, 0]]
+    assert any("no A axis" in n for n in prog.notes)
+    with pytest.raises(GCodeError, match="axis 'A' is not an axis of this machine"):
+        parse_heidenhain("L X+1 Y+0 Z+0 R0 FMAX\nL A+30 FMAX\n", context=CTX)
+
+
+def test_a_program_name_with_blanks():
+    prog = run("L X+1 Y+0 Z+0 R0 FMAX", head="0 BEGIN PGM CHANFRO EXT RETO MM\n")
+    assert prog.name == "CHANFRO EXT RETO"
+
+
+def test_circles_about_a_cc_that_names_the_tool_axis_run_in_that_plane():
+    # Fusion 360's ramp-in: "CC Y-31.6 Z-1.6" / "CP IPA+90 DR+": the YZ plane (reference axis Y, DR+ from Y to Z);
+    # from (0, -2, 0) about (0, 0, 0) a quarter turn down to (0, 0, -2), then on along +Y
+    prog = run("L X+0 Y-2 Z+0 R0 FMAX\nCC Y+0 Z+0\nCP IPA+90 DR+ F300\nL Y+5\n"
+               # the ZX plane (reference axis Z, DR+ from Z to X): from (0, 5, -2) about (0, 5, -4) to (2, 5, -4)
+               "CC X+0 Z-4\nCP IPA+90 DR+\n"
+               # C to an end point in ZX, clockwise: back over the top to (-2, 5, -4)
+               "C X-2 Z-4 DR-\n"
+               # a CC in the working plane again: the arc is in XY, from (-2, 5) a quarter turn to (0, 3)
+               "CC X+0 Y+5\nCP IPA+90 DR+")
+    assert ends(prog) == [[0, -2, 0], [0, 0, -2], [0, 5, -2], [2, 5, -4], [-2, 5, -4], [0, 3, -4]]
+    arcs = [b.segment for b in prog.blocks if b.kind == "arc"]
+    assert [a.plane for a in arcs] == [0, 1, 1, 2]
+    assert [a.ccw for a in arcs] == [True, True, False, True]
+    assert np.allclose(arcs[0].center, [0, 0, 0]) and np.allclose(arcs[2].center, [0, 5, -4])
+    assert math.isclose(arcs[2].length, math.pi * 2)
+    assert np.allclose(arcs[2].point_at(math.pi), [0, 5, -2])  # over the top: Z+ side of the centre
+
+
+def test_a_circle_outside_the_working_plane_under_radius_compensation_is_an_error():
+    with pytest.raises(GCodeError, match="not in the working plane"):
+        parse_heidenhain("TOOL CALL 1 Z\nL X+0 Y+0 Z+0 RL F100\nCC X+0 Z-4\n", context=CTX)
+    with pytest.raises(GCodeError, match="about a pole outside the working plane"):
+        parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nCC X+0 Z-4\nLP PR+4 PA+0\n", context=CTX)
+
+
+def test_ln_lines_with_3d_compensation_move_by_the_delta_radius_along_the_normal():
+    # iTNC 530 manual: "the TNC displaces the tool in the direction of the surface-normal vectors by the sum of
+    # the delta values"; CAM posts (NX, hyperMILL, Fusion 360 with 3-D compensation) write LN blocks
+    prog = run("TOOL CALL 1 Z S1000 DR-0.5\nL X+0 Y+0 Z+10 R0 FMAX\n"
+               "LN X+10 Y+0 Z+0 NX+0 NY+0 NZ+1 F500\nLN X+20 Y+5 Z-1 NX+3 NY+0 NZ+4 TX+0 TY+0 TZ+1\n"
+               "TOOL CALL 1 Z\nLN X+30 Y+5 Z-1 NX+1 NY+1 NZ+1 FMAX")
+    assert np.allclose(ends(prog), [[0, 0, 20], [10, 0, 9.5], [20 - 0.3, 5, 9 - 0.4], [30, 5, 9]])  # tool length 10
+    assert [b.kind for b in prog.blocks] == ["rapid", "line", "line", "rapid"]
+    assert any("TX/TY/TZ" in n for n in prog.notes)
+    with pytest.raises(GCodeError, match="LN without a surface-normal vector"):
+        parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nLN X+1 Y+0 Z+0 NX+0 NY+0\n", context=CTX)
