@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Mapping
 from types import MappingProxyType
 
@@ -26,10 +27,51 @@ from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
-           "read_tool_table"]
+           "read_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+
+#: Number of additional work offsets a table may hold: Fanuc ``G54.1 P1``-``P300`` (P1-P48 as standard, up to
+#: P300 with the 300-set option: Fanuc 0i-MD B-64304EN "Adding workpiece coordinate systems"); Haas ``G154
+#: P1``-``P99`` (Haas mill operator's manual "G154 Select Work Coordinates P1-P99") are the same table.
+EXTENDED_OFFSETS = 300
+
+_EXTENDED = re.compile(r"G0*54\.1\s*P0*(\d+)|G0*154\s*P0*(\d+)|G0*1([12]\d)")
+
+
+def extended_offset(n: int) -> str:
+    """Code of additional work offset ``n`` (1 .. :data:`EXTENDED_OFFSETS`): ``"G54.1 P<n>"``."""
+    if not 1 <= n <= EXTENDED_OFFSETS:
+        raise InputError(f"additional work offset P{n}: expected P1 .. P{EXTENDED_OFFSETS}")
+    return f"G54.1 P{n}"
+
+
+def work_offset_code(code: str) -> str:
+    """The table key of a work-offset code: one of :data:`WORK_OFFSETS`, or ``"G54.1 P<n>"`` for an
+    additional offset written ``G54.1 P<n>`` (Fanuc, n <= 300), ``G154 P<n>`` (Haas, n <= 99) or
+    ``G110``-``G129`` (Haas: G154 P1-P20; Haas "G154 Select Work Coordinates P1-P99").
+
+    Raises
+    ------
+    InputError
+        Not a work-offset code.
+    """
+    text = str(code).strip().upper()
+    if text in WORK_OFFSETS:
+        return text
+    m = _EXTENDED.fullmatch(text)
+    if m is not None:
+        if m.group(1) is not None:
+            n = int(m.group(1))
+        elif m.group(2) is not None:
+            n = int(m.group(2)) if 1 <= int(m.group(2)) <= 99 else 0
+        else:
+            n = int(m.group(3)) - 9 if 10 <= int(m.group(3)) <= 29 else 0
+        if 1 <= n <= EXTENDED_OFFSETS:
+            return extended_offset(n)
+    raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}, "
+                     f"G54.1 P1 .. G54.1 P{EXTENDED_OFFSETS} (Fanuc), G154 P1 .. G154 P99 or G110 .. G129 (Haas)")
 
 
 def _xyz(value, name: str) -> np.ndarray:
@@ -156,8 +198,10 @@ class MachineContext:
     Attributes
     ----------
     work_offsets : mapping of str to ndarray (3,)
-        Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`)
-        [mm, machine coordinates]. Missing codes are zero. G54 is active at program start.
+        Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`, and the
+        additional offsets ``"G54.1 P1"`` ... ``"G54.1 P300"``; ``"G154 P<n>"`` and ``"G110"``-``"G129"``
+        name the same entries, see :func:`work_offset_code`) [mm, machine coordinates]. Missing codes
+        are zero. G54 is active at program start.
     tools : mapping of int to Tool
         Tool table by tool number. A tool missing from it has length and radius 0 (with a note).
     home : ndarray (3,)
@@ -184,9 +228,10 @@ class MachineContext:
     def __post_init__(self) -> None:
         offsets = {}
         for code, value in dict(self.work_offsets).items():
-            if code not in WORK_OFFSETS:
-                raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
-            offsets[code] = _xyz(value, f"work offset {code}")
+            key = work_offset_code(code)
+            if key in offsets:
+                raise InputError(f"work offset {code!r} given twice (it is {key!r})")
+            offsets[key] = _xyz(value, f"work offset {code}")
         object.__setattr__(self, "work_offsets", MappingProxyType(offsets))
         tools = {}
         for number, tool in dict(self.tools).items():
@@ -201,10 +246,10 @@ class MachineContext:
             raise InputError(f"extra_axes must be among {', '.join(map(repr, EXTRA_NAMES))}, got {bad!r}")
 
     def offset(self, code: str) -> np.ndarray:
-        """Work offset of ``code`` (``"G54"`` ...) [mm]; zero when the table has none."""
-        if code not in WORK_OFFSETS:
-            raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
-        return self.work_offsets.get(code, np.zeros(3))
+        """Work offset of ``code`` (``"G54"`` ..., ``"G54.1 P7"``, see :func:`work_offset_code`) [mm]; zero
+        when the table has none."""
+        value = self.work_offsets.get(code)
+        return value if value is not None else self.work_offsets.get(work_offset_code(code), np.zeros(3))
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``, or None when the table has none."""
@@ -235,8 +280,6 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
     InputError
         Unreadable file, or a line without ``T`` or with a malformed word (file and line named).
     """
-    import re
-
     if units not in ("mm", "inch"):
         raise InputError(f"tool table units must be 'mm' or 'inch', got {units!r}")
     scale = 25.4 if units == "inch" else 1.0

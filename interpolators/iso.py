@@ -35,6 +35,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
+                          (Fanuc ``G54.1 P``, Haas ``G154 P``/``G110``-``G129``, their ``G10 L20``:
+                          :mod:`interpolators.iso_offsets`)
 ``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
                           feed per minute (which resets the feed: an F must follow); ``G95`` is an error
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
@@ -99,6 +101,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_cycles import CycleWords, cycle_moves
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, selected_offset, set_work_offset
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
@@ -166,7 +169,8 @@ _G_UNSUPPORTED: dict[int, str] = {
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
-    541: "G54.1 P additional work offsets (Fanuc)", 1540: "G154 P additional work offsets (Haas)",
+    541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    1540: "G154 P additional work offsets (Haas; --dialect haas)",
 }
 
 #: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
@@ -182,10 +186,11 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
-    "fanuc": {870: ("motion", "G87 back boring cycle")},
+    "fanuc": {870: ("motion", "G87 back boring cycle"), **EXTENDED_CODES["fanuc"]},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
-             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel")},
+             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
+             **EXTENDED_CODES["haas"]},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -251,6 +256,7 @@ class _State:
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
+    local: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc/Haas G52's part of g92
     tool_length: float = 0.0  # along Z [mm]
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
@@ -493,6 +499,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
+    if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         _dwell(gcodes, seen, st, blocks, where, number)
         if "motion" not in gcodes:
@@ -840,7 +848,17 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "length compensation" in gcodes:
         _length_compensation(gcodes["length compensation"], seen, st, where, notes)
     if "coordinate system" in gcodes:
-        st.wcs = _G[gcodes["coordinate system"][0]][1]
+        key, w = gcodes["coordinate system"]
+        if key in _G:
+            st.wcs = _G[key][1]
+        else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)
+            try:
+                p = seen["P"].value if "P" in seen else None
+                st.wcs, assumed = selected_offset(key, p, st.context.dialect.name)
+            except WordError as exc:
+                _fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
+            if assumed:
+                notes.add(f"{w.text.upper()} without P: P1")
     if "path" in gcodes:
         key, w = gcodes["path"]
         st.exact_stop = key != 640
@@ -1381,6 +1399,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         for a in axis_words:
             i = "XYZ".index(a)
             st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
+            st.local[i] = 0.0  # Fanuc: G92 cancels the local system (G52) of the axes it names
         # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
         # the offset that makes the axis' current position the programmed value
         v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
@@ -1393,7 +1412,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         return True
     if key in (921, 922):
         if key == 921:
-            st.g92_saved, st.g92_extra_saved = np.zeros(3), np.zeros(6)
+            st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
         return True
@@ -1410,12 +1429,17 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
 
 def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
-    convert_axis_offsets, G_52: axis_offset = value; Fanuc "Local coordinate system"); it is the offset
-    G92 sets too (#5211..), cleared by G92.1 and suspended by G92.2."""
+    convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
+    G92.1 and suspended by G92.2. Fanuc and Haas keep the local system apart from the G92 shift (Fanuc
+    0i-MD "Local coordinate system": G52 sets it in every workpiece system, G52 X0 cancels it, a G92
+    cancels it on the axes it names): there the value replaces the local part of the offset only."""
     if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
         where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
     for a in axis_words:
-        st.g92["XYZ".index(a)] = seen[a].value * st.scale
+        i, value = "XYZ".index(a), seen[a].value * st.scale
+        st.g92[i] = st.g92[i] - st.local[i] + value if fanuc else value
+        st.local[i] = value if fanuc else 0.0
     v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
     given = ~np.isnan(v)
     st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
@@ -1427,6 +1451,13 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
     l_word, p_word = seen.get("L"), seen.get("P")
     if l_word is not None and int(l_word.value) in (1, 10, 11):
         _g10_tool(int(l_word.value), seen, st, where, w)
+        return
+    if l_word is not None and int(l_word.value) in (2, 20) and st.context.dialect.name in ("fanuc", "haas"):
+        try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
+            set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            _fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
         return
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,

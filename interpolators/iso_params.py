@@ -132,7 +132,8 @@ class Parameters:
         """The value of ``#n``; ``None`` when it is vacant (``#0``, or unset under Fanuc semantics)."""
         if n == 0:
             return None  # Fanuc's null variable: always vacant
-        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
+        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL and not (
+                self.macro_b and self.system is not None and self.system(n)[0] is not None):  # Fanuc #7001..
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
         state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")

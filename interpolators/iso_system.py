@@ -36,6 +36,11 @@ information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3
 cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
 T (the tool in the spindle).
 
+The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
+``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
+(Haas 154) and ``#4130`` = the P number while one is selected; ``#5220`` (LinuxCNC's system number 1-9)
+is then not modelled.
+
 A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
 operator may have jogged the machine: an error naming that, not a guess.
 """
@@ -47,6 +52,7 @@ from typing import Protocol
 import numpy as np
 
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
+from interpolators.iso_offsets import extended_number, offset_parameter
 
 __all__ = ["ReaderState", "system_parameter", "POSITION_PARAMETERS"]
 
@@ -124,8 +130,15 @@ def _work_offset(n: int, st: ReaderState) -> float | None:
     code = WORK_OFFSETS[k]
     if j == 9:
         return float(st.rotations.get(code, 0.0))
+    return _offset_axis(code, j, st)
+
+
+def _offset_axis(code: str, j: int, st: ReaderState) -> float:
+    """Axis ``j`` (X Y Z A B C U V W; 0 beyond) of work offset ``code`` as the program sees it [mm, deg]."""
     off = st.offsets.get(code)
     xyz = st.context.offset(code) if off is None else off
+    if j >= 9:
+        return 0.0
     return float(xyz[j]) if j < 3 else float(st.extra_offsets.get(code, np.zeros(6))[j - 3])
 
 
@@ -149,8 +162,13 @@ def _fanuc_modal(n: int, st: ReaderState) -> float | None:
         return st.motion / 10 if st.motion in (0, 10, 20, 30) else None
     if n == 4009:
         return st.motion / 10 if st.motion is not None and st.motion >= 730 else 80.0
-    wcs = st.wcs[1:]
-    table = {4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane], 4003: 91.0 if st.incremental else 90.0,
+    extended = extended_number(st.wcs)
+    if extended:
+        wcs = "154" if st.context.dialect.name == "haas" else "54.1"
+    else:
+        wcs = st.wcs[1:]
+    table = {4130: float(extended), 4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane],
+             4003: 91.0 if st.incremental else 90.0,
              4005: 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
              4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]),
              4010: 99.0 if st.retract_r else 98.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
@@ -168,6 +186,9 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _position(n, st, fanuc)
     if 4001 <= n <= 4130:
         return (_fanuc_modal(n, st) if fanuc else None), ""
+    extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
+    if extended is not None:
+        return _offset_axis(extended[0], extended[1], st), ""
     if 5061 <= n <= 5070:
         return None, "the probe result (G38 probing is not supported)"
     if 5081 <= n <= 5089:
@@ -182,7 +203,7 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
         return _nine(st.g92_saved, st.g92_extra_saved, 1.0)[n - 5211], ""
     if n == 5220:
-        return float(WORK_OFFSETS.index(st.wcs) + 1), ""
+        return (float(WORK_OFFSETS.index(st.wcs) + 1) if st.wcs in WORK_OFFSETS else None), ""
     if 5221 <= n <= 5390:
         return _work_offset(n, st), ""
     if 5400 <= n <= 5410:

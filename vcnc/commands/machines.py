@@ -22,6 +22,8 @@ PROGRAM_TABLE_DOC = """
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]
+# "G54.1 P1" = [0.0, 0.0, 0.0]   # Fanuc additional offsets G54.1 P1 .. P300 (G10 L20 P1 sets it); the Haas
+#                                # G154 P1 .. P99 (G110 .. G129 = G154 P1 .. P20) are the same entries
 #
 # [program.tools.1]              # per tool number: G43 H1 applies the length, G41/G42 D1 the radius
 # length = 0.0                   # mm

@@ -1,0 +1,164 @@
+"""Additional work offsets of Fanuc and Haas mills, and ``G10 L2``/``L20`` as those controls set offsets.
+
+Fanuc (0i-MD B-64304EN "Adding workpiece coordinate systems (G54.1 or G54)", "Changing workpiece
+coordinate system (G10 L2, G10 L20)"; the GSK 980MDc manual, a Fanuc-compatible control, words them the same):
+
+- ``G54.1 P<n>`` selects additional workpiece coordinate system n, P1-P48 (P1-P300 with the 300-set
+  option); without P, P1 is selected. It is modal in the group of G54-G59 and stays until another of them.
+- ``G10 L20 P<n> X.. Y.. Z..`` sets its offset, as ``G10 L2 P<p>`` sets G54-G59 (P1-P6): under G90 the
+  values are the offset, under G91 they are added to it; an axis not named keeps its offset.
+- G92 and G52 act in these systems as in G54-G59: G92 shifts every workpiece coordinate system and
+  G52 sets the local system in every one (in vcnc both offsets are kept apart from the table, see
+  :mod:`interpolators.iso`).
+
+Haas (mill operator's manual "G154 Select Work Coordinates P1-P99", "G10 Set Offsets"): ``G154 P<n>``,
+n = 1-99, and ``G110``-``G129`` = ``G154 P1``-``P20``; ``G10 L20 P<n>`` sets them ("L20 auxiliary work
+coordinate origin for G110-G129", "P1-P99 G154 P1-P99"), G90 the value, G91 added ("G10 L2 P1 G91 X60.
+moves offset G54 X 60 mm").
+
+System variables (read): Fanuc ``#7001``-``#7960`` (P1-P48, 20 per system: ``#7001`` the first axis
+of P1, ``#7021`` of P2 ...) and ``#14001``-``#19988`` (P1-P300, the same layout); Haas ``#7001``-``#7386``
+(G110-G129) and ``#14001``-``#15966`` (G154 P1-P99) (Haas "Macros", "Offsets"; the variable list of
+the NGC control). vcnc reads the first three (X Y Z) and the A B C of each system; the others read 0.
+The modal ``#4014`` reads 54.1 (Fanuc) / 154 (Haas) and ``#4130`` the P number (0 under G54-G59).
+
+The table is :attr:`interpolators.context.MachineContext.work_offsets` (keys ``"G54.1 P<n>"``). LinuxCNC
+has none of these codes: under ``--dialect linuxcnc`` G54.1 and G154 stay errors naming them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Protocol
+
+import numpy as np
+
+from interpolators.context import WORK_OFFSETS, MachineContext, extended_offset
+from interpolators.iso_axes import EXTRA_LETTERS, word_values
+from interpolators.iso_words import WordError
+
+__all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset",
+           "extended_number", "offset_parameter"]
+
+#: Highest additional offset number per dialect: Fanuc P300 (the option; P48 standard), Haas P99.
+MAX_EXTENDED: Mapping[str, int] = MappingProxyType({"fanuc": 300, "haas": 99})
+
+#: The codes that select an additional offset, per dialect: round(10 * G) -> (modal group, name).
+EXTENDED_CODES: Mapping[str, Mapping[int, tuple[str, str]]] = MappingProxyType({
+    "fanuc": MappingProxyType({541: ("coordinate system", "G54.1")}),
+    "haas": MappingProxyType({1540: ("coordinate system", "G154"),
+                              **{1100 + 10 * i: ("coordinate system", f"G{110 + i}") for i in range(20)}}),
+})
+
+#: Codes whose P word is the offset number (the block's P is theirs).
+P_SELECT_CODES = frozenset({541, 1540})
+
+#: First system variable of each block of 20 (one per system) and the systems it covers, per dialect.
+_VARIABLES: Mapping[str, tuple[tuple[int, int], ...]] = MappingProxyType({
+    "fanuc": ((7001, 48), (14001, 300)),
+    "haas": ((7001, 20), (14001, 99)),
+})
+
+
+def extended_number(code: str) -> int:
+    """The P number of an additional offset's code (``"G54.1 P7"`` -> 7); 0 for G54-G59.3."""
+    return int(code.rsplit("P", 1)[1]) if code.startswith("G54.1 P") else 0
+
+
+def selected_offset(key: int, p: float | None, dialect: str) -> tuple[str, bool]:
+    """The work-offset table key a selection code picks, and whether P1 was assumed (no P word).
+
+    Parameters
+    ----------
+    key : int
+        round(10 * G): 541 (G54.1), 1540 (G154), 1100-1290 (G110-G129).
+    p : float or None
+        The block's P word (G54.1, G154 only).
+    dialect : str
+        ``"fanuc"`` or ``"haas"``.
+
+    Raises
+    ------
+    WordError
+        P not a whole number in the dialect's range (letter ``"P"``).
+    """
+    if key not in P_SELECT_CODES:
+        return extended_offset(key // 10 - 109), False
+    name = "G54.1" if key == 541 else "G154"
+    last = MAX_EXTENDED[dialect]
+    if p is None:
+        return extended_offset(1), True
+    if p != int(p) or not 1 <= p <= last:
+        raise WordError(f"P{p:g} is not an additional work offset number", letter="P",
+                        expected=f"{name} P1 .. P{last}")
+    return extended_offset(int(p)), False
+
+
+class OffsetState(Protocol):
+    """What :func:`set_work_offset` reads and writes of the ISO executor's state."""
+
+    context: MachineContext
+    offsets: dict[str, np.ndarray]  # work offsets the program set [mm]
+    extra_offsets: dict[str, np.ndarray]  # their a, b, c [deg], u, v, w [mm]
+    incremental: bool
+
+    @property
+    def scale(self) -> float: ...
+
+
+def set_work_offset(level: int, p: float | None, words: dict[str, float], st: OffsetState, dialect: str) -> str:
+    """Fanuc/Haas ``G10 L2 P<p>`` (G54-G59, P1-P6) and ``G10 L20 P<n>`` (an additional offset): the named
+    axes' offset becomes the value (G90) or moves by it (G91); returns the table key set.
+
+    Parameters
+    ----------
+    level : int
+        The L word: 2 or 20.
+    p : float or None
+        The P word.
+    words : dict of str to float
+        The block's words by letter (X Y Z [program units], A B C [deg], U V W, R).
+    st : OffsetState
+        The reader's state; ``st.offsets``/``st.extra_offsets`` are updated.
+    dialect : str
+        ``"fanuc"`` or ``"haas"``.
+
+    Raises
+    ------
+    WordError
+        P missing or out of range, or a word G10 does not take here.
+    """
+    if "R" in words:
+        raise WordError("R (a rotation of the coordinate system) is LinuxCNC's G10 L2 R, not Fanuc/Haas",
+                        letter="R", expected="G68 to rotate the program")
+    last = 6 if level == 2 else MAX_EXTENDED[dialect]
+    if p is None or p != int(p) or not 1 <= p <= last:
+        what = "G54-G59" if level == 2 else ("G54.1 P" if dialect == "fanuc" else "G154 P") + "<n>"
+        raise WordError(f"G10 L{level} needs P1 .. P{last} ({what})" + (
+            " (P0, the external/G52 offset, is not modelled)" if level == 2 and p == 0 else ""),
+            letter="P" if p is not None else None, expected=f"G10 L{level} P1 .. P{last} X.. Y.. Z..")
+    code = WORK_OFFSETS[int(p) - 1] if level == 2 else extended_offset(int(p))
+    current = st.offsets.get(code)
+    linear = (st.context.offset(code) if current is None else current).copy()
+    for i, a in enumerate("XYZ"):
+        if a in words:
+            linear[i] = (linear[i] if st.incremental else 0.0) + words[a] * st.scale
+    st.offsets[code] = linear
+    v = word_values({a: words[a] for a in EXTRA_LETTERS if a in words}, scale=st.scale)
+    given = ~np.isnan(v)
+    if np.any(given):
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[given] = (extra if st.incremental else np.zeros(6))[given] + v[given]
+        st.extra_offsets[code] = extra
+    return code
+
+
+def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:
+    """The additional offset and axis index (0 .. 19) system variable ``#n`` reads under ``dialect``, or
+    None when ``#n`` is none of them."""
+    for first, count in _VARIABLES.get(dialect, ()):
+        k, j = divmod(n - first, 20)
+        if 0 <= k < count:
+            return extended_offset(k + 1), j
+    return None

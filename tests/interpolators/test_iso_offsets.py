@@ -1,0 +1,136 @@
+"""Additional work offsets (Fanuc G54.1 P, Haas G154 P / G110-G129), Fanuc/Haas G10 L2/L20 and the Fanuc
+G52 local system, with end points worked out by hand from the controls' manuals (Fanuc 0i-MD B-64304EN
+"Adding workpiece coordinate systems", "Changing workpiece coordinate system", "Local coordinate system";
+Haas mill operator's manual "G154", "G10 Set Offsets")."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext, work_offset_code
+from vcnc.core.errors import InputError
+from vcnc.engine.machine import builtin_machine_text, load_machine
+from vcnc.errors import GCodeError, MachineError
+
+TABLE = {"G54": (100.0, 0.0, 0.0), "G55": (200.0, 0.0, 0.0), "G54.1 P2": (10.0, 20.0, -30.0),
+         "G54.1 P48": (1.0, 2.0, 3.0), "G54.1 P300": (-5.0, 0.0, 0.0)}
+FANUC = MachineContext(work_offsets=TABLE, dialect=DIALECTS["fanuc"])
+HAAS = MachineContext(work_offsets={"G110": (10.0, 20.0, -30.0), "G154 P21": (0.0, 7.0, 0.0),
+                                    "G154 P99": (0.0, 0.0, 9.0)}, dialect=DIALECTS["haas"])
+
+
+def ends(text: str, context: MachineContext) -> list[tuple[float, ...]]:
+    """End points [mm, machine] of the program's blocks, rounded to 1 nm."""
+    return [tuple(round(float(v), 6) + 0.0 for v in b.target) for b in parse_program(text, context=context).blocks]
+
+
+def test_fanuc_g54_1_selects_the_table_entry_and_stays_modal():
+    # X1 Y2 Z3 in P2 (10, 20, -30) -> (11, 22, -27); the next block stays in P2; P48 and P300 (the option)
+    text = ("G21 G90\nG54.1 P2 G0 X1 Y2 Z3\nX0\nG54.1 P48 X0 Y0 Z0\nG54.1 P300 X0\nG54 X0\n")
+    assert ends(text, FANUC) == [(11, 22, -27), (10, 22, -27), (1, 2, 3), (-5, 2, 3), (100, 2, 3)]
+
+
+def test_fanuc_g54_1_without_p_is_p1():
+    ctx = dataclasses.replace(FANUC, work_offsets={"G54.1 P1": (4.0, 0.0, 0.0)})
+    prog = parse_program("G21 G90\nG54.1\nG0 X1\n", context=ctx)
+    assert prog.blocks[0].target[0] == pytest.approx(5.0)
+    assert "G54.1 without P: P1" in prog.notes
+
+
+def test_fanuc_g10_l20_sets_an_additional_offset_absolute_and_incremental():
+    # G90 G10 L20 P3: the offset is the value; G91 G10 L20 P3 X1: added (X 5 -> 6); Y Z kept
+    text = ("G21 G90\nG10 L20 P3 X5 Y6 Z7\nG54.1 P3 G0 X0 Y0 Z0\nG91 G10 L20 P3 X1\nG90 G0 X0\n"
+            "G91 G10 L2 P1 Y-1\nG90 G54 X0 Y0 Z0\n")
+    # G54 (100, 0, 0) moved by G91 G10 L2 P1 Y-1 -> (100, -1, 0)
+    assert ends(text, FANUC) == [(5, 6, 7), (6, 6, 7), (100, -1, 0)]
+
+
+def test_fanuc_g10_l2_sets_g54_to_g59_with_g90_values():
+    assert ends("G21 G90\nG10 L2 P2 X50 Y60\nG55 G0 X1 Y1 Z0\n", FANUC) == [(51, 61, 0)]
+
+
+def test_fanuc_additional_offset_system_variables():
+    # #7001 + 20 (n - 1) + axis, n <= 48; #14001 + 20 (n - 1) + axis, n <= 300; #4014 54.1, #4130 = P
+    text = ("G21 G90\nG54.1 P2\n#1 = #7021\n#2 = #7022\n#3 = #14023\n#4 = #4130\n#5 = #4014\n#6 = #7941\n"
+            "#7 = #19981\nG53 G0 X#1 Y#2 Z#3\nG53 X#4 Y#5 Z[#6 + #7]\n")
+    assert ends(text, FANUC) == [(10, 20, -30), (2, 54.1, -4)]
+
+
+def test_haas_g154_and_g110_to_g129_name_the_same_table():
+    # G110 = G154 P1 (10, 20, -30); G154 P21 (0, 7, 0) has no G1xx alias; G129 = P20 (zero)
+    text = "G21 G90\nG110 G0 X1 Y1 Z0\nG154 P1 X2\nG154 P21 X0 Y0 Z0\nG129 X0 Y0\nG154 P99 Z0\n"
+    assert ends(text, HAAS) == [(11, 21, -30), (12, 21, -30), (0, 7, 0), (0, 0, 0), (0, 0, 9)]
+
+
+def test_haas_g10_l20_and_macro_variables():
+    # Haas "G10 L20 P2 G90 X100. Y80." sets G111 = G154 P2; #7021 (G111 X) and #14022 (G154 P2 Y)
+    text = "G21 G90\nG10 L20 P2 X100 Y80\nG111 G0 X0 Y0\n#1 = #7021\n#2 = #14022\nG53 X#1 Y#2\n"
+    assert ends(text, HAAS) == [(100, 80, 0), (100, 80, 0)]
+
+
+def test_g92_shifts_every_system_additional_ones_included():
+    # Fanuc: G92 in G54.1 P2 makes the position read the value and shifts G54-G59 and G54.1 alike.
+    # At machine (11, 22, -27) = P2 (1, 2, 3): G92 X0 Y0 -> shift (1, 2); G54 X0 Y0 -> 100 + 1, 0 + 2
+    text = "G21 G90\nG54.1 P2 G0 X1 Y2 Z3\nG92 X0 Y0\nG54 X0 Y0\nG54.1 P48 X0 Y0\n"
+    assert ends(text, FANUC)[1:] == [(101, 2, -27), (2, 4, -27)]
+
+
+def test_fanuc_g52_is_kept_apart_from_the_g92_shift():
+    # G54 (100): at X10 G92 X0 shifts by 10; G52 X5 adds a local system on top (115); G52 X0 cancels
+    # only it (111); G55 keeps the G92 shift (210). LinuxCNC's G52 replaces the same offset G92 set.
+    text = "G21 G90 G54\nG0 X10\nG92 X0\nG52 X5\nG0 X0\nG52 X0\nG0 X1\nG55 X0\n"
+    assert [p[0] for p in ends(text, FANUC)] == [110, 115, 111, 210]
+    linuxcnc = dataclasses.replace(FANUC, dialect=DIALECTS["linuxcnc"])
+    assert [p[0] for p in ends(text, linuxcnc)] == [110, 105, 101, 200]
+
+
+def test_fanuc_g92_cancels_the_local_system_of_the_axes_it_names():
+    # G52 X5 Y5, then at program X0 Y0 (machine 105, 5) G92 X0: X's local system is cancelled (the shift
+    # alone makes X read 0), Y keeps its local 5: G52 X0 Y0 then cancels Y's local only -> X0 Y0 at (105, 0)
+    text = "G21 G90 G54\nG52 X5 Y5\nG0 X0 Y0\nG92 X0\nG52 X0 Y0\nG0 X0 Y0\n"
+    assert ends(text, FANUC) == [(105, 5, 0), (105, 0, 0)]
+
+
+@pytest.mark.parametrize(("context", "text", "message"), [
+    (MachineContext(), "G54.1 P1", "G54.1 P additional work offsets"),
+    (MachineContext(), "G154 P1", "G154 P additional work offsets"),
+    (FANUC, "G54.1 P301", "P301 is not an additional work offset number"),
+    (FANUC, "G54.1 P1.5", "P1.5 is not an additional work offset number"),
+    (HAAS, "G154 P100", "P100 is not an additional work offset number"),
+    (FANUC, "G10 L20 P0 X1", "G10 L20 needs P1 .. P300"),
+    (FANUC, "G10 L2 P0 X1", "P0, the external/G52 offset, is not modelled"),
+    (FANUC, "G10 L2 P1 R45", "R .* is LinuxCNC's G10 L2 R"),
+])
+def test_bad_offset_words_are_named_errors(context, text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21\n{text}\n", context=context)
+
+
+def test_work_offset_codes_of_the_table():
+    assert [work_offset_code(c) for c in ("G54", "G59.3", "g54.1p7", "G154 P99", "G110", "G129")] == \
+        ["G54", "G59.3", "G54.1 P7", "G54.1 P99", "G54.1 P1", "G54.1 P20"]
+    for bad in ("G54.1 P301", "G154 P100", "G130", "G53"):
+        with pytest.raises(InputError, match="unknown work offset"):
+            work_offset_code(bad)
+    with pytest.raises(InputError, match="given twice"):
+        MachineContext(work_offsets={"G110": (0, 0, 0), "G154 P1": (1, 0, 0)})
+    assert np.allclose(HAAS.offset("G154 P1"), (10, 20, -30))
+
+
+def test_machine_file_reads_additional_offsets(tmp_path):
+    base = builtin_machine_text("fadal-pid")  # a built-in machine without a [program] table
+    path = tmp_path / "m.toml"
+    path.write_text(base + '\n[program]\ndialect = "haas"\n[program.work_offsets]\nG110 = [1.0, 2.0, 3.0]\n'
+                    '"G54.1 P5" = [4.0, 5.0, 6.0]\n')
+    ctx = load_machine(str(path)).context
+    assert np.allclose(ctx.offset("G154 P1"), (1, 2, 3)) and np.allclose(ctx.offset("G154 P5"), (4, 5, 6))
+    path.write_text(base + '\n[program.work_offsets]\nG110 = [1.0, 2.0, 3.0]\n"G154 P1" = [0.0, 0.0, 0.0]\n')
+    with pytest.raises(MachineError, match="same work offset"):
+        load_machine(str(path))
+    path.write_text(base + '\n[program.work_offsets]\nG130 = [1.0, 2.0, 3.0]\n')
+    with pytest.raises(MachineError, match="unknown work offset"):
+        load_machine(str(path))
