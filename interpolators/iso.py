@@ -98,7 +98,7 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
-from interpolators.iso_cycles import CycleWords, cycle_moves
+from interpolators.iso_cycles import CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, selected_offset, set_work_offset
@@ -1613,10 +1613,9 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
-    if st.motion == 740 and st.context.dialect.name == "linuxcnc" and not (st.spindle_turning and st.spindle_ccw):
-        # LinuxCNC interp_cycles.cc check_g74_g84_spindle: G74 taps left-hand, the spindle turning M4
-        where.fail(f"{name} with the spindle " + ("turning clockwise (M3)" if st.spindle_turning else "not turning"),
-                   column=mw.column, text=mw.text, expected="M4 (counter-clockwise) before G74")
+    tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
+    if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
+        where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
     # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
     pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
     try:

@@ -13,7 +13,10 @@ import math
 import numpy as np
 import pytest
 
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
+from vcnc.errors import GCodeError
 
 INF = math.inf
 D = 0.254  # G83_RAPID_DELTA 0.010 in [mm]
@@ -142,3 +145,21 @@ def test_g84_feeds_out_to_the_clear_level_or_to_r_by_dialect():
                       incremental=False, retract_r=False, feed=2.0, dwell_p_ms=False, tap_out_to_r=True)
     assert [(m.kind, *m.target.tolist(), m.feed, m.dwell) for m in out] == [
         *into, ("line", 1, 0, 2, 2.0, 0), ("rapid", 1, 0, 10, INF, 0)]
+
+
+@pytest.mark.parametrize(("spindle", "message"), [("", "G84 tapping cycle with the spindle not turning"),
+                                                  ("S100 M4\n", "turning counter-clockwise \\(M4\\)"),
+                                                  ("S100 M3\nM5\n", "with the spindle not turning")])
+def test_linuxcnc_refuses_g84_unless_the_spindle_turns_clockwise(spindle, message):
+    """interp_cycles.cc check_g74_g84_spindle: "Spindle not turning in G84", "Spindle turning
+    counterclockwise in G84" (M5 stops it); Fanuc and Haas reverse the spindle themselves and tap."""
+    program = "G21 G90 G98\nG0 X0 Y0 Z10\n{}G84 X5 Y5 Z-3 R2 F125\nG80\n"
+    text = program.format(spindle)
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=MachineContext())
+    for dialect in ("fanuc", "haas"):
+        prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+        assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3.0, 2.0]  # in, out to R
+    # M3: LinuxCNC taps (feed in to Z-3, feed out to the clear level Z10)
+    prog = parse_program(program.format("S100 M3\n"), context=MachineContext())
+    assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3.0, 10.0]
