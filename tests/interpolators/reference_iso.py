@@ -61,6 +61,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
   pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
   the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
+  Additional work offsets (Fanuc 0i-MD "Adding workpiece coordinate systems"; Haas "G154"): Fanuc
+  ``G54.1 P1``-``P300``, Haas ``G154 P1``-``P99`` and ``G110``-``G129`` (= P1-P20), P omitted = P1,
+  select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
+  the offset to the value under G90 and add it under G91. G52 is the local system on top of the G92
+  shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -472,6 +477,7 @@ class _Machine:
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
+        self.local = np.zeros(3)  # Fanuc/Haas G52 (a part of g92)
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
@@ -630,12 +636,36 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
     for code in g:
         if code in _WCS:
             m.wcs = _WCS[code]
+        elif _extended(m, code, words):
+            pass
         elif code in (900, 910):
             m.incremental = code == 910
         elif code in (901, 911):
             m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
+
+
+def _use_system(m: _Machine, code: str) -> None:
+    """Make work offset ``code`` known to the machine (from the context's table) and active."""
+    if code not in m.offsets:
+        m.offsets[code] = np.array(m.ctx.offset(code), float)
+        m.rotation[code] = 0.0
+        m.extra_offsets[code] = np.zeros(6)
+
+
+def _extended(m: _Machine, code: int, words: dict) -> bool:
+    """Fanuc G54.1 P / Haas G154 P, G110-G129: select an additional work offset (its P word taken off)."""
+    dialect = m.ctx.dialect.name
+    if dialect == "fanuc" and code == 541 or dialect == "haas" and code == 1540:
+        n = int(words.pop("p", [1])[-1])
+    elif dialect == "haas" and 1100 <= code <= 1290 and code % 10 == 0:
+        n = code // 10 - 109
+    else:
+        return False
+    m.wcs = f"G54.1 P{n}"
+    _use_system(m, m.wcs)
+    return True
 
 
 def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
@@ -719,15 +749,19 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             _g10(m, words)
             return True
         if code == 520:  # g-code.adoc "G52 Local Coordinate System Offset": the offset is the value
+            fanuc = m.ctx.dialect.name in ("fanuc", "haas")  # Fanuc: the local system, on top of the G92 shift
             for i, a in enumerate("xyz"):
                 if a in words:
-                    m.g92[i] = words[a][-1] * m.scale
+                    v = words[a][-1] * m.scale
+                    m.g92[i] = m.g92[i] - m.local[i] + v if fanuc else v
+                    m.local[i] = v if fanuc else 0.0
             return True
         if code == 920:
             prog_no_g92 = m.to_program(m.pos) + m.g92
             for i, a in enumerate("xyz"):
                 if a in words:
                     m.g92[i] = prog_no_g92[i] - words[a][-1] * m.scale
+                    m.local[i] = 0.0
             for i, v in m.extra_words(words).items():
                 m.g92_extra[i] = m.extra[i] - m.extra_offsets[m.wcs][i] - v
             return True
@@ -792,6 +826,15 @@ def _g10(m: _Machine, words: dict) -> None:
     p = int(words["p"][-1]) if "p" in words else 0
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
+    if m.ctx.dialect.name in ("fanuc", "haas"):  # Fanuc "G10 L2 / L20": the value (G90) or an increment (G91)
+        code = list(_WCS.values())[p - 1] if kind == 2 else f"G54.1 P{p}"
+        _use_system(m, code)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                m.offsets[code][i] = (m.offsets[code][i] if m.incremental else 0.0) + words[a][-1] * m.scale
+        for i, v in m.extra_words(words).items():
+            m.extra_offsets[code][i] = (m.extra_offsets[code][i] if m.incremental else 0.0) + v
+        return
     code = m.wcs if p == 0 else list(_WCS.values())[p - 1]
     # the current position in the active system, G92 included: L20 makes it the given value (LinuxCNC
     # interp_convert.cc convert_setup with interp_find.cc find_current_in_system, which takes the G92

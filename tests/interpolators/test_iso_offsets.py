@@ -12,6 +12,9 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, work_offset_code
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
 from vcnc.core.errors import InputError
 from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError, MachineError
@@ -23,9 +26,16 @@ HAAS = MachineContext(work_offsets={"G110": (10.0, 20.0, -30.0), "G154 P21": (0.
                                     "G154 P99": (0.0, 0.0, 9.0)}, dialect=DIALECTS["haas"])
 
 
-def ends(text: str, context: MachineContext) -> list[tuple[float, ...]]:
-    """End points [mm, machine] of the program's blocks, rounded to 1 nm."""
-    return [tuple(round(float(v), 6) + 0.0 for v in b.target) for b in parse_program(text, context=context).blocks]
+def ends(text: str, context: MachineContext, *, reference: bool = True) -> list[tuple[float, ...]]:
+    """End points [mm, machine] of the program's blocks, rounded to 1 nm; with ``reference`` also checked
+    against the independent reference (:mod:`tests.interpolators.reference_iso`)."""
+    prog = parse_program(text, context=context)
+    if reference:
+        _, rows = blocks_table(prog)
+        match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
+        assert match.mismatch is None, match.mismatch
+        assert match.exact + match.within == len(rows)
+    return [tuple(round(float(v), 6) + 0.0 for v in b.target) for b in prog.blocks]
 
 
 def test_fanuc_g54_1_selects_the_table_entry_and_stays_modal():
@@ -57,7 +67,8 @@ def test_fanuc_additional_offset_system_variables():
     # #7001 + 20 (n - 1) + axis, n <= 48; #14001 + 20 (n - 1) + axis, n <= 300; #4014 54.1, #4130 = P
     text = ("G21 G90\nG54.1 P2\n#1 = #7021\n#2 = #7022\n#3 = #14023\n#4 = #4130\n#5 = #4014\n#6 = #7941\n"
             "#7 = #19981\nG53 G0 X#1 Y#2 Z#3\nG53 X#4 Y#5 Z[#6 + #7]\n")
-    assert ends(text, FANUC) == [(10, 20, -30), (2, 54.1, -4)]
+    # (the reference reads no system variables)
+    assert ends(text, FANUC, reference=False) == [(10, 20, -30), (2, 54.1, -4)]
 
 
 def test_haas_g154_and_g110_to_g129_name_the_same_table():
@@ -69,7 +80,8 @@ def test_haas_g154_and_g110_to_g129_name_the_same_table():
 def test_haas_g10_l20_and_macro_variables():
     # Haas "G10 L20 P2 G90 X100. Y80." sets G111 = G154 P2; #7021 (G111 X) and #14022 (G154 P2 Y)
     text = "G21 G90\nG10 L20 P2 X100 Y80\nG111 G0 X0 Y0\n#1 = #7021\n#2 = #14022\nG53 X#1 Y#2\n"
-    assert ends(text, HAAS) == [(100, 80, 0), (100, 80, 0)]
+    assert ends(text, HAAS, reference=False) == [(100, 80, 0), (100, 80, 0)]
+    assert ends("G21 G90\nG10 L20 P2 X100 Y80\nG111 G0 X0 Y0\n", HAAS) == [(100, 80, 0)]
 
 
 def test_g92_shifts_every_system_additional_ones_included():
