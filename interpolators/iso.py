@@ -98,7 +98,7 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
-from interpolators.iso_cycles import CycleWords, cycle_moves, tap_spindle_error
+from interpolators.iso_cycles import CYCLE_AXES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, selected_offset, set_work_offset
@@ -107,7 +107,7 @@ from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import system_parameter
-from interpolators.iso_transforms import Frame, g68_rotation, mirror, scaling
+from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
 from interpolators.iso_words import Word, WordError
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -498,6 +498,12 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
+    fanuc = st.context.dialect.name == "fanuc"
+    group = mirror_forbids(st.frame, {k: v[0] for k, v in gcodes.items()}) if fanuc else None
+    if group is not None:  # Fanuc: no coordinate-system change or reference return under G51.1
+        w = gcodes[group][1]
+        where.fail(f"{w.text.upper()} in programmable mirror image mode (G51.1): Fanuc refuses it", column=w.column,
+                   text=w.text, expected="G50.1 (mirror image cancel) before it")
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
         seen = {k: v for k, v in seen.items() if k != "P"}
@@ -1604,6 +1610,24 @@ def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *
         st.extra = np.array(rot, dtype=float)
 
 
+def _framed_initial(st: _State, *, to_program: bool) -> None:
+    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
+    between blocks, so that it stays where the tool was when the series began while the transformation
+    changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
+    and back."""
+    if st.frame is None or st.cycle.initial is None:
+        return
+    axis = CYCLE_AXES[st.plane][2]
+    if to_program:
+        point = st.pos.copy()
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_program(point)[axis])
+    else:
+        point = st.to_program(st.pos)
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_machine(point)[axis])
+
+
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     name = _G[st.motion][1]
@@ -1618,6 +1642,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
     # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
     pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
+    _framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
         moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
@@ -1627,6 +1652,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             haas=st.context.dialect.name == "haas")
     except WordError as exc:
         _fail_words(where, name, exc, seen, mw)
+    _framed_initial(st, to_program=False)
     if st.frame is not None:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:

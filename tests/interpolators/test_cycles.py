@@ -163,3 +163,50 @@ def test_linuxcnc_refuses_g84_unless_the_spindle_turns_clockwise(spindle, messag
     # M3: LinuxCNC taps (feed in to Z-3, feed out to the clear level Z10)
     prog = parse_program(program.format("S100 M3\n"), context=MachineContext())
     assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3.0, 10.0]
+
+
+def _ends(text: str, context: MachineContext) -> list[tuple]:
+    prog = parse_program(text, context=context)
+    return [(b.kind, *(round(float(v), 6) + 0.0 for v in b.target)) for b in prog.blocks]
+
+
+def test_cycle_series_with_g68_rotation_changing_between_holes():
+    """Fanuc 0i "Coordinate system rotation (G68)": the hole X Y of each block turns about the G68 centre
+    by the angle in force; Z levels are along the tool and do not turn. The initial level is where the
+    tool was when the series began (machine Z -10 with G54 Z-20), whatever rotation follows: every G98
+    hole returns there. Holes: (10, 0); R90 -> (0, 10); R180 -> (-10, 0); G69 -> (20, 0), plus G54 (100, 50)."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G54": (100.0, 50.0, -20.0)})
+    text = ("G21 G90 G17 G54\nG0 X0 Y0 Z10\nG98 G81 X10 Y0 Z-5 R2 F100\nG68 X0 Y0 R90\nX10 Y0\nG68 X0 Y0 R180\n"
+            "X10 Y0\nG69\nX20 Y0\nG80\n")
+    holes = [(110, 50), (100, 60), (90, 50), (120, 50)]
+    want = [("rapid", 100, 50, -10)]
+    for x, y in holes:
+        want += [("rapid", x, y, -10), ("rapid", x, y, -18), ("line", x, y, -25), ("rapid", x, y, -10)]
+    assert _ends(text, ctx) == want
+
+
+def test_cycle_series_under_g99_and_g91_in_a_rotated_system():
+    """G68 R90 about X0 Y0 before the series: G91 X10 steps along the rotated X, i.e. +10 along machine Y
+    (under G91 R is from the initial level and Z from R: R-8 Z-7 are the same levels, program R2 Z-5);
+    G99 returns to R (machine -18); the R45 rotation that follows turns the next absolute hole (10, 0) to
+    (7.071068, 7.071068)."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G54": (100.0, 50.0, -20.0)})
+    text = ("G21 G90 G17 G54\nG0 X0 Y0 Z10\nG68 X0 Y0 R90\nG99 G81 X10 Y0 Z-5 R2 F100\nG91 X10 R-8 Z-7\n"
+            "G90 G68 X0 Y0 R45\nX10 Y0 Z-5 R2\nG80\n")
+    s = 10 * math.sqrt(0.5)
+    holes = [(100, 60), (100, 70), (100 + s, 50 + s)]
+    got = _ends(text, ctx)
+    assert got[0] == ("rapid", 100, 50, -10)
+    assert got[1:5] == [("rapid", 100, 60, -10), ("rapid", 100, 60, -18), ("line", 100, 60, -25),
+                        ("rapid", 100, 60, -18)]
+    for (x, y), i in zip(holes[1:], (5, 8), strict=True):
+        assert [k for k, *_ in got[i:i + 3]] == ["rapid", "line", "rapid"]
+        assert np.allclose([p for _, *p in got[i:i + 3]], [(x, y, -18), (x, y, -25), (x, y, -18)], atol=1e-9)
+
+
+def test_cycles_under_g51_scaling_are_refused_by_name():
+    """Fanuc "Scaling": cycle pecks Q and shifts are not scaled while the hole is; not modelled, an error."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"])
+    text = "G21 G90 G17\nG0 X0 Y0 Z10\nG98 G81 X10 Y0 Z-5 R2 F100\nG51 X0 Y0 Z0 P2000\nX10 Y0\n"
+    with pytest.raises(GCodeError, match="G81 drilling cycle in a rotated coordinate system \\(G51 scaling\\)"):
+        parse_program(text, context=ctx)

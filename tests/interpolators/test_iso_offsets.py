@@ -146,3 +146,18 @@ def test_machine_file_reads_additional_offsets(tmp_path):
     path.write_text(base + '\n[program.work_offsets]\nG130 = [1.0, 2.0, 3.0]\n')
     with pytest.raises(MachineError, match="unknown work offset"):
         load_machine(str(path))
+
+
+@pytest.mark.parametrize("code", ["G92 X0 Y0", "G52 X5", "G54", "G54.1 P2", "G28 X0", "G53 G0 X0"])
+def test_fanuc_refuses_coordinate_changes_under_a_g51_1_mirror(code):
+    """Fanuc "Programmable mirror image", limitations: G27-G30 and the coordinate-system codes (G52 to G59,
+    G92) must not be specified in mirror image mode: named errors, G50.1 first."""
+    with pytest.raises(GCodeError, match="in programmable mirror image mode \\(G51.1\\)"):
+        parse_program(f"G21 G90 G54\nG0 X10 Y10 Z0\nG51.1 X0\n{code}\n", context=FANUC)
+
+
+def test_fanuc_g92_after_the_mirror_is_cancelled():
+    # mirror about X0: X10 runs at program -10 (machine 90); G50.1 cancels it, the tool stays at machine
+    # (90, 10), program (-10, 10); G92 X0 Y0 makes that the zero (shift -10, 10): X5 Y5 -> machine (95, 15)
+    text = "G21 G90 G54\nG0 X0 Y10 Z0\nG51.1 X0\nX10\nG50.1 X0\nG92 X0 Y0\nX5 Y5\n"
+    assert ends(text, FANUC) == [(100, 10, 0), (90, 10, 0), (95, 15, 0)]
