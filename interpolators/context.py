@@ -216,6 +216,13 @@ class MachineContext:
         parallel to X, Y, Z; words of others are errors naming the axis (``A0``, ``U0`` are
         accepted with a note). A machine file sets them from its ``[axes.a]`` ... tables;
         :data:`INTERPOLATION_CONTEXT` has all six.
+    linear_units : {"mm", "inch"}
+        Length unit of the control's own configuration (LinuxCNC INI ``[TRAJ] LINEAR_UNITS``). Tables
+        and positions here are mm whatever it is; it only says in which unit a program reads the stored
+        offsets through system parameters (``#5161``.. G28/G30 positions, ``#5211``.. G92, ``#5221``..
+        work offsets, ``#5401``.. tool offsets: :mod:`interpolators.iso_system`), as LinuxCNC keeps them
+        in its INI units whatever G20/G21 says (tests/interp/unit-conversion). rs274's standalone
+        interpreter, which LinuxCNC's own tests run, is an inch machine.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -224,8 +231,11 @@ class MachineContext:
     reference2: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     dialect: Dialect = dataclasses.field(default_factory=Dialect)
     extra_axes: tuple[str, ...] = ()
+    linear_units: str = "mm"
 
     def __post_init__(self) -> None:
+        if self.linear_units not in ("mm", "inch"):
+            raise InputError(f"linear_units must be 'mm' or 'inch', got {self.linear_units!r}")
         offsets = {}
         for code, value in dict(self.work_offsets).items():
             key = work_offset_code(code)

@@ -8,21 +8,23 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
                           U V W, in program units (mm or inch; rotary axes deg)
 ``#5061``-``#5070``       probe result: an error (G38 probing is not supported)
 ``#5081``-``#5089``       tool length offset in effect (G43/G43.1; Z only, 0 under G49), program units
-``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units: mm, deg]
+``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units, deg]
 ``#5210``                 1 while a G92/G52 offset is applied; ``#5211``-``#5219`` that offset, kept
-                          while G92.2 suspends it [mm]
+                          while G92.2 suspends it [machine units]
 ``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
-``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [mm, deg], ``#5241``.. G55, every 20
+``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [machine units, deg], ``#5241``.. G55, every 20
                           up to ``#5381``-``#5390`` G59.3
 ``#5400``                 tool in the spindle (0 when none); ``#5401``-``#5409`` its stored offsets (Z:
-                          length), ``#5410`` its diameter [mm]
+                          length), ``#5410`` its diameter [machine units]
 ``#5420``-``#5428``       current position in the active coordinate system with all offsets, program
                           units (an error under cutter compensation, as LinuxCNC)
 ========================= ==========================================================================
 
-vcnc machines are metric: the stored tables (offsets, references, tools) read in mm, as a
-LinuxCNC machine configured in mm; positions follow G20/G21 (X Y Z U V W); rotary axes (deg) are
-never scaled.
+The stored tables (offsets, references, tools) read in the machine's configured length unit
+(:attr:`interpolators.context.MachineContext.linear_units`, mm unless set), whatever G20/G21 says, as
+LinuxCNC keeps them in its INI units (tests/interp/unit-conversion: "the numbered parameters that back
+the work and axis offsets stay constant because they are stored in user INI units"); positions follow
+G20/G21 (X Y Z U V W); rotary axes (deg) are never scaled.
 
 Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System variables"; Haas
 mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
@@ -108,6 +110,11 @@ def _nine(linear: np.ndarray, extra: np.ndarray, scale: float) -> list[float]:
     return [*(float(v) / scale for v in linear), *(float(v) for v in extra[:3]), *(float(v) / scale for v in extra[3:])]
 
 
+def _stored(st: ReaderState) -> float:
+    """mm per unit of the stored tables' parameters (the machine's configured length unit)."""
+    return 25.4 if st.context.linear_units == "inch" else 1.0
+
+
 def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     base = 5021 if n < 5030 and n >= 5021 else 5420 if n >= 5420 else (5001 if n < 5009 else 5041)
     if base in (5001, 5041) and not fanuc:
@@ -139,7 +146,7 @@ def _offset_axis(code: str, j: int, st: ReaderState) -> float:
     xyz = st.context.offset(code) if off is None else off
     if j >= 9:
         return 0.0
-    return float(xyz[j]) if j < 3 else float(st.extra_offsets.get(code, np.zeros(6))[j - 3])
+    return _nine(xyz, st.extra_offsets.get(code, np.zeros(6)), _stored(st))[j]
 
 
 def _tool(n: int, st: ReaderState) -> float | None:
@@ -150,9 +157,9 @@ def _tool(n: int, st: ReaderState) -> float | None:
     if n in range(5401, 5410):
         if tool is None or n not in (5401, 5402, 5403):
             return 0.0
-        return float({5401: tool.offset_x, 5402: tool.offset_y, 5403: tool.length}[n])
+        return float({5401: tool.offset_x, 5402: tool.offset_y, 5403: tool.length}[n]) / _stored(st)
     if n == 5410:
-        return 0.0 if tool is None else 2.0 * float(tool.radius)
+        return 0.0 if tool is None else 2.0 * float(tool.radius) / _stored(st)
     return None
 
 
@@ -197,11 +204,11 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         home = st.home if n < 5180 else st.reference2
         rot = st.home_extra if n < 5180 else st.reference2_extra
         linear = np.zeros(3) if home is None else home
-        return _nine(linear, rot, 1.0)[n - (5161 if n < 5180 else 5181)], ""
+        return _nine(linear, rot, _stored(st))[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:
         return (1.0 if st.g92_applied else 0.0), ""
     if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
-        return _nine(st.g92_saved, st.g92_extra_saved, 1.0)[n - 5211], ""
+        return _nine(st.g92_saved, st.g92_extra_saved, _stored(st))[n - 5211], ""
     if n == 5220:
         return (float(WORK_OFFSETS.index(st.wcs) + 1) if st.wcs in WORK_OFFSETS else None), ""
     if 5221 <= n <= 5390:

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext, work_offset_code
+from interpolators.context import DIALECTS, MachineContext, Tool, work_offset_code
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
@@ -161,3 +161,27 @@ def test_fanuc_g92_after_the_mirror_is_cancelled():
     # (90, 10), program (-10, 10); G92 X0 Y0 makes that the zero (shift -10, 10): X5 Y5 -> machine (95, 15)
     text = "G21 G90 G54\nG0 X0 Y10 Z0\nG51.1 X0\nX10\nG50.1 X0\nG92 X0 Y0\nX5 Y5\n"
     assert ends(text, FANUC) == [(100, 10, 0), (90, 10, 0), (95, 15, 0)]
+
+
+@pytest.mark.parametrize(("units", "program_units", "want"), [("mm", "G21", 25.4), ("mm", "G20", 25.4),
+                                                               ("inch", "G21", 1.0), ("inch", "G20", 1.0)])
+def test_stored_offsets_read_in_the_machine_units_whatever_g20_g21(units, program_units, want):
+    """LinuxCNC tests/interp/unit-conversion: the parameters behind the work and G92 offsets "stay constant
+    because they are stored in user INI units". G54 X = 25.4 mm (1 inch), a G92 shift of 25.4 mm and tool 1's
+    length 50.8 mm read in the machine's unit: X#5221, Y-#5211, Z#5403/2 (G53, mm: times 25.4 under G20)."""
+    ctx = MachineContext(work_offsets={"G54": (25.4, 0.0, 0.0)}, tools={1: Tool(number=1, length=50.8)},
+                         linear_units=units)
+    shift = "1" if program_units == "G20" else "25.4"
+    text = (f"{program_units} G90 G54\nG0 X0 Y0 Z0\nG92 Y-{shift}\nT1 M6\n"
+            "#1 = #5221\n#2 = #5212\n#3 = #5403\nG53 G0 X#1 Y#2 Z[#3 / 2]\n")
+    k = 25.4 if program_units == "G20" else 1.0
+    assert ends(text, ctx, reference=False)[-1] == pytest.approx((want * k, want * k, want * k))
+
+
+def test_machine_file_linear_units(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nlinear_units = "inch"\n')
+    assert load_machine(str(path)).context.linear_units == "inch"
+    path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nlinear_units = "cm"\n')
+    with pytest.raises(MachineError, match="linear_units"):
+        load_machine(str(path))
