@@ -101,7 +101,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_cycles import CYCLE_AXES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
-from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, selected_offset, set_work_offset
+from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, g54_takes_p, selected_offset, set_work_offset
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
@@ -504,6 +504,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = gcodes[group][1]
         where.fail(f"{w.text.upper()} in programmable mirror image mode (G51.1): Fanuc refuses it", column=w.column,
                    text=w.text, expected="G50.1 (mirror image cancel) before it")
+    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or st.motion is not None and st.motion >= 730
+    if g54_takes_p(gcodes, "P" in seen, st.context.dialect.name, cycle):  # Fanuc "G54 Pn" = "G54.1 Pn"
+        gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
         seen = {k: v for k, v in seen.items() if k != "P"}

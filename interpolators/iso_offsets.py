@@ -5,6 +5,8 @@ coordinate system (G10 L2, G10 L20)"; the GSK 980MDc manual, a Fanuc-compatible 
 
 - ``G54.1 P<n>`` selects additional workpiece coordinate system n, P1-P48 (P1-P300 with the 300-set
   option); without P, P1 is selected. It is modal in the group of G54-G59 and stays until another of them.
+  ``G54 P<n>`` is the same ("G54.1 Pn or G54 Pn"), unless the block's P belongs to another word
+  (G04, G10, G64, a cycle; an ``M98 P`` is the subprogram's).
 - ``G10 L20 P<n> X.. Y.. Z..`` sets its offset, as ``G10 L2 P<p>`` sets G54-G59 (P1-P6): under G90 the
   values are the offset, under G91 they are added to it; an axis not named keeps its offset.
 - G92 and G52 act in these systems as in G54-G59: G92 shifts every workpiece coordinate system and
@@ -39,7 +41,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, word_values
 from interpolators.iso_words import WordError
 
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset",
-           "extended_number", "offset_parameter"]
+           "extended_number", "offset_parameter", "g54_takes_p"]
 
 #: Highest additional offset number per dialect: Fanuc P300 (the option; P48 standard), Haas P99.
 MAX_EXTENDED: Mapping[str, int] = MappingProxyType({"fanuc": 300, "haas": 99})
@@ -59,6 +61,15 @@ _VARIABLES: Mapping[str, tuple[tuple[int, int], ...]] = MappingProxyType({
     "fanuc": ((7001, 48), (14001, 300)),
     "haas": ((7001, 20), (14001, 99)),
 })
+
+
+def g54_takes_p(groups: Mapping[str, object], has_p: bool, dialect: str, cycle: bool) -> bool:
+    """Whether a Fanuc block's ``G54 P<n>`` selects additional system n (as G54.1 P<n>): the block has G54
+    (``groups["coordinate system"][0] == 540``) and a P no other code of it reads (G04 dwell, G10,
+    G64 tolerance, a drilling cycle: ``cycle``)."""
+    code = groups.get("coordinate system")
+    return (dialect == "fanuc" and has_p and not cycle and isinstance(code, tuple) and code[0] == 540
+            and not any(g in groups for g in ("dwell", "path", "nonmodal")))
 
 
 def extended_number(code: str) -> int:

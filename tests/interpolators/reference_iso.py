@@ -634,10 +634,10 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     for code in g:
-        if code in _WCS:
-            m.wcs = _WCS[code]
-        elif _extended(m, code, words):
+        if _extended(m, code, g, words):
             pass
+        elif code in _WCS:
+            m.wcs = _WCS[code]
         elif code in (900, 910):
             m.incremental = code == 910
         elif code in (901, 911):
@@ -654,10 +654,14 @@ def _use_system(m: _Machine, code: str) -> None:
         m.extra_offsets[code] = np.zeros(6)
 
 
-def _extended(m: _Machine, code: int, words: dict) -> bool:
-    """Fanuc G54.1 P / Haas G154 P, G110-G129: select an additional work offset (its P word taken off)."""
+def _extended(m: _Machine, code: int, g: list[int], words: dict) -> bool:
+    """Fanuc G54.1 P (or G54 P when no G04, G10, G64 or cycle reads the P) / Haas G154 P, G110-G129: select
+    an additional work offset (its P word taken off)."""
     dialect = m.ctx.dialect.name
-    if dialect == "fanuc" and code == 541 or dialect == "haas" and code == 1540:
+    cycle = any(c // 10 in (*_CYCLES, *_MILL_CYCLES, 84, 86) for c in g) or (m.motion or 0) // 10 in (
+        *_CYCLES, *_MILL_CYCLES, 84, 86)
+    g54p = code == 540 and "p" in words and not cycle and not any(c in g for c in (40, 640, 100))
+    if dialect == "fanuc" and (code == 541 or g54p) or dialect == "haas" and code == 1540:
         n = int(words.pop("p", [1])[-1])
     elif dialect == "haas" and 1100 <= code <= 1290 and code % 10 == 0:
         n = code // 10 - 109

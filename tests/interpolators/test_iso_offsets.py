@@ -44,6 +44,15 @@ def test_fanuc_g54_1_selects_the_table_entry_and_stays_modal():
     assert ends(text, FANUC) == [(11, 22, -27), (10, 22, -27), (1, 2, 3), (-5, 2, 3), (100, 2, 3)]
 
 
+def test_fanuc_g54_p_is_g54_1_p_unless_the_p_is_another_word_s():
+    # Fanuc "G54.1 Pn or G54 Pn"; G54 G04 P1000 dwells 1 s in G54; G54 M98 P.. calls (the P is M98's)
+    assert ends("G21 G90\nG54 P2 G0 X1 Y2 Z3\nG54 X0\n", FANUC) == [(11, 22, -27), (100, 22, -27)]
+    prog = parse_program("G21 G90\nG54 G04 P1000\nG0 X0\n", context=FANUC)
+    assert [(b.kind, float(b.target[0]), b.dwell) for b in prog.blocks] == [("dwell", 0.0, 1.0), ("rapid", 100.0, 0.0)]
+    with pytest.raises(GCodeError, match="word P needs G04"):
+        parse_program("G21\nG54 P2\n", context=dataclasses.replace(FANUC, dialect=DIALECTS["linuxcnc"]))
+
+
 def test_fanuc_g54_1_without_p_is_p1():
     ctx = dataclasses.replace(FANUC, work_offsets={"G54.1 P1": (4.0, 0.0, 0.0)})
     prog = parse_program("G21 G90\nG54.1\nG0 X1\n", context=ctx)
