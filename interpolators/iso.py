@@ -98,7 +98,7 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
-from interpolators.iso_cycles import CYCLE_AXES, CycleWords, cycle_moves, tap_spindle_error
+from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, g54_takes_p, selected_offset, set_work_offset
@@ -579,9 +579,11 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
-    as chords); under G68 alone canned cycles too."""
+    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
+    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
     cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
-        st.frame.scaled or any(st.frame.mirror) and st.motion in (760, 870, 770))
+        st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
+        or any(st.frame.mirror) and st.motion in (760, 870, 770))
     what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
@@ -1645,6 +1647,11 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
     # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
     pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
+    factors = (1.0, 1.0, 1.0) if st.frame is None else st.frame.factors
+    if st.cycle.initial is not None and st.cycle.factors != factors:  # where is the initial level now?
+        where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
+                   "series is then undefined)", column=mw.column, text=mw.text, expected="G80 before G51 / G50")
+    st.cycle.factors = factors
     _framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87

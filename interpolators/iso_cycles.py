@@ -60,7 +60,14 @@ from interpolators.iso_polar import PolarError, polar_xy
 from interpolators.iso_words import WordError
 
 __all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "CYCLE_AXES", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES",
-           "tap_spindle_error"]
+           "tap_spindle_error", "UNSCALED_Q_CYCLES"]
+
+#: Cycles whose Q (peck depth: G73, G83; shift: G76, G87, Haas G77) and retract d a G51 scaling leaves
+#: unscaled while it scales the hole and its levels (Haas "G51 Scaling": "all X, Y, Z, I, J, K, or R
+#: values addressing machine motion are multiplied"; Fanuc 0i "Scaling": the cut-in Q and retraction d of
+#: G73/G83 and the G76/G87 shift are not scaled): the reader runs the other cycles under scaling through
+#: the transformation and refuses these.
+UNSCALED_Q_CYCLES = frozenset({73, 83, 76, 87, 77})
 
 #: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
 RAPID_DELTA_INCH = 0.010
@@ -100,6 +107,7 @@ class CycleWords:
     i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
     j: float | None = None
     k: float | None = None  # Haas G73/G83 minimum peck
+    factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # the G51 scaling the series began under
 
 
 @dataclasses.dataclass(frozen=True)

@@ -204,9 +204,31 @@ def test_cycle_series_under_g99_and_g91_in_a_rotated_system():
         assert np.allclose([p for _, *p in got[i:i + 3]], [(x, y, -18), (x, y, -25), (x, y, -18)], atol=1e-9)
 
 
-def test_cycles_under_g51_scaling_are_refused_by_name():
-    """Fanuc "Scaling": cycle pecks Q and shifts are not scaled while the hole is; not modelled, an error."""
-    ctx = MachineContext(dialect=DIALECTS["fanuc"])
-    text = "G21 G90 G17\nG0 X0 Y0 Z10\nG98 G81 X10 Y0 Z-5 R2 F100\nG51 X0 Y0 Z0 P2000\nX10 Y0\n"
-    with pytest.raises(GCodeError, match="G81 drilling cycle in a rotated coordinate system \\(G51 scaling\\)"):
-        parse_program(text, context=ctx)
+def test_cycle_series_under_g51_scaling():
+    """Haas "G51 Scaling": "all X, Y, Z, I, J, K, or R values addressing machine motion are multiplied by a
+    scaling factor" about the centre. G51 X0 Y0 Z0 P2 (Fanuc P2000: 0.001 units) with G54 (100, 50, -20):
+    hole X10 -> X20, R2 -> 4, Z-5 -> -10 (machine 120, R -16, bottom -30); X-10 Y5 -> (-20, 10), machine
+    (80, 60). The initial level is where the tool stood when the series began (program Z10 before the
+    scaling: machine -10), the G98 return. After G80 G50 a G85 runs unscaled (R -18, bottom -25)."""
+    for dialect, p in (("fanuc", "P2000"), ("haas", "P2.")):
+        ctx = MachineContext(dialect=DIALECTS[dialect], work_offsets={"G54": (100.0, 50.0, -20.0)})
+        text = (f"G21 G90 G17 G54\nG0 X0 Y0 Z10\nG51 X0 Y0 Z0 {p}\nG98 G81 X10 Y0 Z-5 R2 F100\nX-10 Y5\nG80\n"
+                "G50\nG99 G85 X20 Y0 Z-5 R2\nG80\n")
+        want = [("rapid", 100, 50, -10)]
+        for x, y in ((120, 50), (80, 60)):
+            want += [("rapid", x, y, -10), ("rapid", x, y, -16), ("line", x, y, -30), ("rapid", x, y, -10)]
+        want += [("rapid", 120, 50, -10), ("rapid", 120, 50, -18), ("line", 120, 50, -25), ("line", 120, 50, -18)]
+        assert _ends(text, ctx) == want
+
+
+@pytest.mark.parametrize(("program", "message"), [
+    ("G98 G81 X10 Y0 Z-5 R2 F100\nG51 X0 Y0 Z0 P2000\nX10 Y0\n", "the G51 scaling changed within the series"),
+    ("G51 X0 Y0 Z0 P2000\nG98 G81 X10 Y0 Z-5 R2 F100\nG50\nX10 Y0\n", "the G51 scaling changed within the series"),
+    ("G51 X0 Y0 Z0 P2000\nG98 G83 X10 Y0 Z-5 R2 Q1 F100\n", "G83 peck drilling cycle in a rotated coordinate "
+                                                              "system \\(G51 scaling\\)"),
+])
+def test_cycles_under_g51_scaling_refused_where_undefined(program, message):
+    """A scaling that changes within a series leaves the initial level undefined; G73/G83 pecks Q and
+    G76/G87 shifts are not scaled by Fanuc (0i "Scaling") while the reader would scale them: errors."""
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90 G17\nG0 X0 Y0 Z10\n{program}", context=MachineContext(dialect=DIALECTS["fanuc"]))
