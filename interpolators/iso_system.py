@@ -38,6 +38,13 @@ information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3
 cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
 T (the tool in the spindle).
 
+Under those dialects a program may also write the work offsets (Fanuc 0i-MD "System variables":
+"workpiece zero point offset value ... read/write"; Haas "Macros", "Offsets": "all tool work offsets
+can be read and set within a macro expression"): ``#5221``-``#5326`` (G54-G59: X Y Z A B C, 20 per
+system), the additional ones below; the offset changes at once, as ``G10 L2`` would
+(:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
+with G10, not the other way round).
+
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
 (Haas 154) and ``#4130`` = the P number while one is selected; ``#5220`` (LinuxCNC's system number 1-9)
@@ -56,7 +63,7 @@ import numpy as np
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_offsets import extended_number, offset_parameter
 
-__all__ = ["ReaderState", "system_parameter", "POSITION_PARAMETERS"]
+__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
 
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
@@ -216,3 +223,34 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     if 5400 <= n <= 5410:
         return _tool(n, st), ""
     return None, ""
+
+
+def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
+    """The work offset and axis index (0-5: X Y Z A B C) a Fanuc/Haas offset variable ``#n`` names."""
+    k, j = divmod(n - 5221, 20)
+    if 0 <= k < 6 and n >= 5221:
+        found: tuple[str, int] | None = (WORK_OFFSETS[k], j)
+    else:
+        found = offset_parameter(n, st.context.dialect.name)
+    return found if found is not None and found[1] < 6 else None
+
+
+def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
+    machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
+    value is 0). True when ``#n`` is such a variable (the caller reports the others)."""
+    target = _offset_variable(n, st)
+    if target is None:
+        return False
+    code, j = target
+    v = 0.0 if value is None else float(value)
+    if j < 3:
+        current = st.offsets.get(code)
+        linear = (st.context.offset(code) if current is None else current).copy()
+        linear[j] = v * _stored(st)
+        st.offsets[code] = linear
+    else:
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[j - 3] = v
+        st.extra_offsets[code] = extra
+    return True

@@ -194,3 +194,14 @@ def test_machine_file_linear_units(tmp_path):
     path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nlinear_units = "cm"\n')
     with pytest.raises(MachineError, match="linear_units"):
         load_machine(str(path))
+
+
+def test_fanuc_and_haas_programs_write_work_offsets_through_system_variables():
+    # Fanuc 0i "System variables" (workpiece zero point offsets read/write); Haas "Offsets" ("can be read and
+    # set within a macro expression"): #5221 G54 X 100 -> 110 at once; #7001/#14002 G54.1 P1 X 5, Y 6
+    text = "G21 G90 G54\n#5221 = #5221 + 10.\nG0 X0 Y0\n#7001 = 5.\n#14002 = 6.\nG54.1 P1 X0 Y0\n#1 = #5221\nX#1\n"
+    assert ends(text, FANUC, reference=False) == [(110, 0, 0), (5, 6, 0), (115, 6, 0)]
+    haas = dataclasses.replace(HAAS, work_offsets={})
+    assert ends("G21 G90\n#14021 = 7.\n#7022 = 8.\nG154 P2 G0 X0 Y0\n", haas, reference=False) == [(7, 8, 0)]
+    with pytest.raises(GCodeError, match="#5221 is read-only"):  # LinuxCNC: the offsets change with G10
+        parse_program("G21\n#5221 = 1\n", context=MachineContext())
