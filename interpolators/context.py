@@ -104,6 +104,10 @@ class Tool:
         lathe tools, or a milling head with an offset spindle): G43 applies them with the length, the
         program's X and Y point then lies this far from the machine's (LinuxCNC g-code.adoc "G43":
         "all the tool's offsets are applied").
+    length_wear, radius_wear : float
+        The wear part of ``length`` and ``radius`` [mm] (Fanuc/Haas offset tables keep geometry and wear
+        apart and apply their sum: ``G10 L11``/``L13`` set the wear, ``L10``/``L12`` the geometry =
+        ``length - length_wear``, ``radius - radius_wear``); 0 for a LinuxCNC tool table.
     """
 
     number: int
@@ -112,6 +116,8 @@ class Tool:
     comment: str = ""
     offset_x: float = 0.0
     offset_y: float = 0.0
+    length_wear: float = 0.0
+    radius_wear: float = 0.0
 
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
@@ -120,6 +126,9 @@ class Tool:
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
         if not math.isfinite(self.radius):
             raise InputError(f"tool {self.number}: radius must be finite [mm], got {self.radius!r}")
+        if not (math.isfinite(self.length_wear) and math.isfinite(self.radius_wear)):
+            raise InputError(f"tool {self.number}: wear must be finite [mm], got {self.length_wear!r}, "
+                             f"{self.radius_wear!r}")
         if not (math.isfinite(self.offset_x) and math.isfinite(self.offset_y)):
             raise InputError(f"tool {self.number}: X/Y offsets must be finite [mm], got "
                              f"{self.offset_x!r}, {self.offset_y!r}")

@@ -101,7 +101,15 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
-from interpolators.iso_offsets import EXTENDED_CODES, P_SELECT_CODES, g54_takes_p, selected_offset, set_work_offset
+from interpolators.iso_offsets import (
+    EXTENDED_CODES,
+    P_SELECT_CODES,
+    TOOL_LEVELS,
+    g54_takes_p,
+    selected_offset,
+    set_tool_offset,
+    set_work_offset,
+)
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
@@ -1461,10 +1469,18 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
 
 def _g10(seen, st: _State, where: Where, w: Word) -> None:
     l_word, p_word = seen.get("L"), seen.get("P")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
+        try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
+            set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            _fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
+        return
     if l_word is not None and int(l_word.value) in (1, 10, 11):
         _g10_tool(int(l_word.value), seen, st, where, w)
         return
-    if l_word is not None and int(l_word.value) in (2, 20) and st.context.dialect.name in ("fanuc", "haas"):
+    if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
         try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
             set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
                             {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)

@@ -1,4 +1,4 @@
-"""Additional work offsets of Fanuc and Haas mills, and ``G10 L2``/``L20`` as those controls set offsets.
+"""Additional work offsets of Fanuc and Haas mills, and ``G10`` as those controls set offsets.
 
 Fanuc (0i-MD B-64304EN "Adding workpiece coordinate systems (G54.1 or G54)", "Changing workpiece
 coordinate system (G10 L2, G10 L20)"; the GSK 980MDc manual, a Fanuc-compatible control, words them the same):
@@ -24,24 +24,38 @@ of P1, ``#7021`` of P2 ...) and ``#14001``-``#19988`` (P1-P300, the same layout)
 the NGC control). vcnc reads the first three (X Y Z) and the A B C of each system; the others read 0.
 The modal ``#4014`` reads 54.1 (Fanuc) / 154 (Haas) and ``#4130`` the P number (0 under G54-G59).
 
+Tool offsets (Fanuc 0i-MD "Changing of tool compensation value (G10)", memory C: ``G10 L10 P<n> R..`` tool
+length (H) geometry, ``L11`` its wear, ``L12`` cutter radius (D) geometry, ``L13`` its wear; memory A's
+``G10 L11``/``L1`` set the one register; Haas "G10 Set Offsets": "L10 length offset amount (for H code), L1 or L11
+tool wear offset amount (for H code), L12 diameter offset amount (for D code), L13 diameter wear offset
+amount"): P is the offset number (the tool table's entry: H/D numbers are tool numbers in vcnc), R the value,
+under G90 set, under G91 added. The control applies geometry + wear
+(:attr:`interpolators.context.Tool.length_wear`). Haas's D values are diameters (as its manual words them),
+Fanuc's radii (its default; a parameter can make them diameters, not modelled). A change applies at the next
+G43 / G41 / G42, as a table change.
+
 The table is :attr:`interpolators.context.MachineContext.work_offsets` (keys ``"G54.1 P<n>"``). LinuxCNC
 has none of these codes: under ``--dialect linuxcnc`` G54.1 and G154 stay errors naming them.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Protocol
 
 import numpy as np
 
-from interpolators.context import WORK_OFFSETS, MachineContext, extended_offset
+from interpolators.context import WORK_OFFSETS, MachineContext, Tool, extended_offset
 from interpolators.iso_axes import EXTRA_LETTERS, word_values
 from interpolators.iso_words import WordError
 
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset",
-           "extended_number", "offset_parameter", "g54_takes_p"]
+           "extended_number", "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS"]
+
+#: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
+TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
 
 #: Highest additional offset number per dialect: Fanuc P300 (the option; P48 standard), Haas P99.
 MAX_EXTENDED: Mapping[str, int] = MappingProxyType({"fanuc": 300, "haas": 99})
@@ -173,3 +187,52 @@ def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:
         if 0 <= k < count:
             return extended_offset(k + 1), j
     return None
+
+
+class ToolState(Protocol):
+    """What :func:`set_tool_offset` reads and writes of the ISO executor's state."""
+
+    tools: dict[int, Tool]  # tool table entries the program wrote
+    incremental: bool
+
+    @property
+    def scale(self) -> float: ...
+
+    def tool(self, number: int) -> Tool | None: ...
+
+
+def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: ToolState, dialect: str) -> Tool:
+    """Fanuc/Haas ``G10 L10/L11/L1/L12/L13 P<n> R<value>``: tool length geometry / wear, radius geometry /
+    wear of offset ``n`` set to R (G90) or moved by R (G91); returns the new table entry.
+
+    Raises
+    ------
+    WordError
+        P missing or not a whole number >= 0, R missing, or axis words (those are LinuxCNC's G10 L1/L10).
+    """
+    if p is None or p != int(p) or p < 0:
+        raise WordError(f"G10 L{level} needs the offset number P (a whole number >= 0)", letter="P" if p else None,
+                        expected=f"G10 L{level} P<offset> R<value>")
+    axes = [a for a in "XYZ" if a in words]
+    if axes or "R" not in words:
+        raise WordError(f"G10 L{level} sets offset P{int(p)} from R (Fanuc/Haas tool offsets)",
+                        letter=axes[0] if axes else None, expected=f"G10 L{level} P{int(p)} R<value>")
+    number = int(p)
+    tool = st.tool(number) or Tool(number=number)
+    value = words["R"] * st.scale
+    if level in (12, 13) and dialect == "haas":
+        value /= 2.0  # Haas: D offsets are diameters ("diameter offset amount")
+    if level in (12, 13):
+        geometry, wear = tool.radius - tool.radius_wear, tool.radius_wear
+    else:
+        geometry, wear = tool.length - tool.length_wear, tool.length_wear
+    if level in (10, 12):
+        geometry = (geometry if st.incremental else 0.0) + value
+    else:
+        wear = (wear if st.incremental else 0.0) + value
+    if level in (12, 13):
+        new = dataclasses.replace(tool, radius=geometry + wear, radius_wear=wear)
+    else:
+        new = dataclasses.replace(tool, length=geometry + wear, length_wear=wear)
+    st.tools[number] = new
+    return new

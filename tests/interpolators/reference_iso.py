@@ -66,6 +66,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
   the offset to the value under G90 and add it under G91. G52 is the local system on top of the G92
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
+  Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
+  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -478,6 +480,8 @@ class _Machine:
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
         self.local = np.zeros(3)  # Fanuc/Haas G52 (a part of g92)
+        self.tool_lengths: dict[int, tuple[float, float]] = {}  # Fanuc/Haas G10 L10/L11: (geometry, wear) [mm]
+        self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
@@ -491,6 +495,17 @@ class _Machine:
         self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.out: list[Expected] = []
+
+    def tool(self, number: int):
+        """The context's tool ``number``, with the lengths and radii Fanuc/Haas G10 L10-L13 set (geometry +
+        wear)."""
+        tool = self.ctx.tool(number)
+        if number not in self.tool_lengths and number not in self.tool_radii:
+            return tool
+        tool = tool or _Tool()
+        length = sum(self.tool_lengths.get(number, (tool.length, 0.0)))
+        radius = sum(self.tool_radii.get(number, (tool.radius, 0.0)))
+        return dataclasses.replace(tool, length=length, radius=radius)
 
     def _g68_turn(self, v: np.ndarray, sign: float) -> np.ndarray:
         if self.g68 is None:
@@ -613,7 +628,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.comp_radius = None
         elif code in (410, 420):
             number = int(words["d"][-1]) if "d" in words else m.loaded
-            tool = m.ctx.tool(number)
+            tool = m.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
             m.comp_entry = True
         elif code in (411, 421):
@@ -621,7 +636,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
     for code in g:
         if code == 430:
             number = int(words["h"][-1]) if "h" in words else m.loaded
-            tool = m.ctx.tool(number)
+            tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
             m.tool_xy = np.array([tool.offset_x, tool.offset_y]) if tool is not None else np.zeros(2)
@@ -783,7 +798,7 @@ def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
     centre = m.target({k: v for k, v in words.items() if k in "xy"})
     if "x" in words or "y" in words:
         m.move(line, "rapid", centre)
-    tool = m.ctx.tool(int(words["d"][-1])) if "d" in words else None
+    tool = m.tool(int(words["d"][-1])) if "d" in words else None
     radius = tool.radius if tool is not None else 0.0
     radii = [words["i"][-1] * s]
     while "k" in words and radii[-1] < words["k"][-1] * s - 1e-9:
@@ -828,6 +843,9 @@ def _g10(m: _Machine, words: dict) -> None:
     """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
     kind = int(words["l"][-1])
     p = int(words["p"][-1]) if "p" in words else 0
+    if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
+        _g10_tool(m, kind, p, words)
+        return
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
     if m.ctx.dialect.name in ("fanuc", "haas"):  # Fanuc "G10 L2 / L20": the value (G90) or an increment (G91)
@@ -856,6 +874,30 @@ def _g10(m: _Machine, words: dict) -> None:
         m.extra_offsets[code][i] = v if kind == 2 else m.extra[i] - m.g92_extra[i] - v
     if "r" in words:
         m.rotation[code] = words["r"][-1]
+
+
+@dataclasses.dataclass(frozen=True)
+class _Tool:
+    """A tool the context's table lacks, as G10 L10-L13 create it."""
+
+    length: float = 0.0
+    radius: float = 0.0
+    offset_x: float = 0.0
+    offset_y: float = 0.0
+
+
+def _g10_tool(m: _Machine, kind: int, p: int, words: dict) -> None:
+    """Fanuc/Haas G10 L10 (L11, L1: wear) length and L12 (L13: wear) radius of offset P to R, or by R under
+    G91 (Haas: L12/L13 are diameters)."""
+    v = words["r"][-1] * m.scale / (2.0 if kind in (12, 13) and m.ctx.dialect.name == "haas" else 1.0)
+    table = m.tool_radii if kind in (12, 13) else m.tool_lengths
+    base = m.ctx.tool(p)
+    geometry, wear = table.get(p, ((base.radius if kind in (12, 13) else base.length) if base else 0.0, 0.0))
+    if kind in (10, 12):
+        geometry = (geometry if m.incremental else 0.0) + v
+    else:
+        wear = (wear if m.incremental else 0.0) + v
+    table[p] = (geometry, wear)
 
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:

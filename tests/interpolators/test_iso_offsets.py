@@ -205,3 +205,18 @@ def test_fanuc_and_haas_programs_write_work_offsets_through_system_variables():
     assert ends("G21 G90\n#14021 = 7.\n#7022 = 8.\nG154 P2 G0 X0 Y0\n", haas, reference=False) == [(7, 8, 0)]
     with pytest.raises(GCodeError, match="#5221 is read-only"):  # LinuxCNC: the offsets change with G10
         parse_program("G21\n#5221 = 1\n", context=MachineContext())
+
+
+@pytest.mark.parametrize(("dialect", "d_factor"), [("fanuc", 1.0), ("haas", 0.5)])
+def test_fanuc_haas_g10_tool_offsets_geometry_and_wear(dialect, d_factor):
+    """Fanuc "Changing of tool compensation value (G10)" (memory C) and Haas "G10 Set Offsets": L10 length
+    geometry, L11 (Haas also L1) length wear, L12 radius (Haas: diameter) geometry, L13 its wear; G90 sets,
+    G91 adds; G43 H / G41 D apply geometry + wear. H2: 50 - 0.5 = 49.5; G91 L10 +10: 59.5; tool 1 (table
+    length 100) with wear 1: 101; D3: 5 - 0.1 = 4.9 (Haas: diameters, radius 2.45) to the left of +X."""
+    ctx = MachineContext(dialect=DIALECTS[dialect], tools={1: Tool(number=1, length=100.0)})
+    text = ("G21 G90\nG10 L10 P2 R50.\nG10 L11 P2 R-0.5\nG43 H2 G0 Z0\nG91 G10 L10 P2 R10.\nG90 G43 H2 Z0\n"
+            "G10 L1 P1 R1.\nG43 H1 Z0\nG10 L12 P3 R5.\nG10 L13 P3 R-0.1\nG41 D3 G1 X10 Y0 F100\nX20\nG40 X30\n")
+    r = round(4.9 * d_factor, 6)
+    assert ends(text, ctx) == [(0, 0, 49.5), (0, 0, 59.5), (0, 0, 101), (10, r, 101), (20, r, 101), (30, 0, 101)]
+    with pytest.raises(GCodeError, match="G10 L10 sets offset P1 from R"):
+        parse_program("G21\nG10 L10 P1 Z5\n", context=ctx)
