@@ -45,6 +45,11 @@ system), the additional ones below; the offset changes at once, as ``G10 L2`` wo
 (:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
 with G10, not the other way round).
 
+Haas tool offsets (Haas macro variables, "Tool Offsets": ``#2001``-``#2200`` tool length geometry,
+``#2201``-``#2400`` length wear, ``#2401``-``#2600`` diameter geometry, ``#2601``-``#2800`` diameter
+wear, read/write, tools 1-200) read and write the tool table (:class:`interpolators.context.Tool`:
+length = geometry + wear); Fanuc's tool variables depend on its offset memory type and stay errors.
+
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
 (Haas 154) and ``#4130`` = the P number while one is selected; ``#5220`` (LinuxCNC's system number 1-9)
@@ -56,6 +61,7 @@ operator may have jogged the machine: an error naming that, not a guess.
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Protocol
 
 import numpy as np
@@ -73,6 +79,7 @@ class ReaderState(Protocol):
     """What :func:`system_parameter` reads of the ISO executor's modal state."""
 
     context: MachineContext
+    tools: dict[int, Tool]  # tool table entries the program wrote
     pos: np.ndarray  # machine coordinates [mm]
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
@@ -170,6 +177,17 @@ def _tool(n: int, st: ReaderState) -> float | None:
     return None
 
 
+def _haas_tool(n: int, st: ReaderState) -> float:
+    """Haas #2001-#2800: length geometry, length wear, diameter geometry, diameter wear of tools 1-200."""
+    column, number = divmod(n - 2001, 200)
+    tool = st.tool(number + 1)
+    if tool is None:
+        return 0.0
+    value = (tool.length - tool.length_wear, tool.length_wear, 2.0 * (tool.radius - tool.radius_wear),
+             2.0 * tool.radius_wear)[column]
+    return value / _stored(st)
+
+
 def _fanuc_modal(n: int, st: ReaderState) -> float | None:
     """Fanuc/Haas modal information #4001.. (the G code of each group in effect, F and T)."""
     if n == 4001:
@@ -200,6 +218,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _position(n, st, fanuc)
     if 4001 <= n <= 4130:
         return (_fanuc_modal(n, st) if fanuc else None), ""
+    if fanuc and st.context.dialect.name == "haas" and 2001 <= n <= 2800:
+        return _haas_tool(n, st), ""
     extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
     if extended is not None:
         return _offset_axis(extended[0], extended[1], st), ""
@@ -238,7 +258,11 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
 def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
     machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
-    value is 0). True when ``#n`` is such a variable (the caller reports the others)."""
+    value is 0); Haas ``#2001``-``#2800`` set a tool's length / diameter geometry or wear. True when
+    ``#n`` is such a variable (the caller reports the others)."""
+    if st.context.dialect.name == "haas" and 2001 <= n <= 2800:
+        _set_haas_tool(n, 0.0 if value is None else float(value) * _stored(st), st)
+        return True
     target = _offset_variable(n, st)
     if target is None:
         return False
@@ -254,3 +278,21 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
         extra[j - 3] = v
         st.extra_offsets[code] = extra
     return True
+
+
+def _set_haas_tool(n: int, value: float, st: ReaderState) -> None:
+    """Haas #2001-#2800 = ``value`` [mm]: one of tool n's length / diameter geometry / wear."""
+    column, number = divmod(n - 2001, 200)
+    tool = st.tool(number + 1) or Tool(number=number + 1)
+    length_geometry, length_wear = tool.length - tool.length_wear, tool.length_wear
+    radius_geometry, radius_wear = tool.radius - tool.radius_wear, tool.radius_wear
+    if column == 0:
+        length_geometry = value
+    elif column == 1:
+        length_wear = value
+    elif column == 2:
+        radius_geometry = value / 2.0
+    else:
+        radius_wear = value / 2.0
+    st.tools[number + 1] = dataclasses.replace(tool, length=length_geometry + length_wear, length_wear=length_wear,
+                                               radius=radius_geometry + radius_wear, radius_wear=radius_wear)

@@ -220,3 +220,14 @@ def test_fanuc_haas_g10_tool_offsets_geometry_and_wear(dialect, d_factor):
     assert ends(text, ctx) == [(0, 0, 49.5), (0, 0, 59.5), (0, 0, 101), (10, r, 101), (20, r, 101), (30, 0, 101)]
     with pytest.raises(GCodeError, match="G10 L10 sets offset P1 from R"):
         parse_program("G21\nG10 L10 P1 Z5\n", context=ctx)
+
+
+def test_haas_tool_offset_variables():
+    # Haas "Tool Offsets" variables: #2001+ length geometry, #2201+ length wear, #2401+ diameter geometry,
+    # #2601+ diameter wear (tool n at + n - 1). Tool 2: length 80 + wear -0.2; D 10 + wear -0.1 (radius 4.95).
+    text = ("G21 G90\n#2002 = 80.\n#2202 = -0.2\n#2402 = 10.\n#2602 = -0.1\nG43 H2 G0 Z0\n"
+            "G41 D2 G1 X10 Y0 F100\nX20\nG40 X30\n#1 = #2002 + #2202\nG49 G53 G0 Z#1\n")
+    assert ends(text, HAAS, reference=False) == [(0, 0, 79.8), (10, 4.95, 79.8), (20, 4.95, 79.8), (30, 0, 79.8),
+                                                 (30, 0, 79.8)]
+    with pytest.raises(GCodeError, match="#2001: this Fanuc system variable"):  # Fanuc: memory type dependent
+        parse_program("G21\n#1 = #2001\n", context=FANUC)
