@@ -9,6 +9,9 @@ coordinate system (G10 L2, G10 L20)"; the GSK 980MDc manual, a Fanuc-compatible 
   (G04, G10, G64, a cycle; an ``M98 P`` is the subprogram's).
 - ``G10 L20 P<n> X.. Y.. Z..`` sets its offset, as ``G10 L2 P<p>`` sets G54-G59 (P1-P6): under G90 the
   values are the offset, under G91 they are added to it; an axis not named keeps its offset.
+  ``G10 L2 P0`` sets the external workpiece zero offset, which shifts every workpiece system (Fanuc
+  "External workpiece zero point offset", ``#5201``-``#5206``; Haas: "P0 G52 references work coordinate",
+  the G52 entry of its offset table, ``#5201``-``#5205``); X Y Z only here.
 - G92 and G52 act in these systems as in G54-G59: G92 shifts every workpiece coordinate system and
   G52 sets the local system in every one (in vcnc both offsets are kept apart from the table, see
   :mod:`interpolators.iso`).
@@ -131,6 +134,9 @@ class OffsetState(Protocol):
     @property
     def scale(self) -> float: ...
 
+    g92: np.ndarray  # the offset shared by every system [mm]: G92 shift + G52 local + external (P0)
+    external: np.ndarray  # the external workpiece zero offset (G10 L2 P0) [mm]
+
 
 def set_work_offset(level: int, p: float | None, words: dict[str, float], st: OffsetState, dialect: str) -> str:
     """Fanuc/Haas ``G10 L2 P<p>`` (G54-G59, P1-P6) and ``G10 L20 P<n>`` (an additional offset): the named
@@ -158,11 +164,13 @@ def set_work_offset(level: int, p: float | None, words: dict[str, float], st: Of
         raise WordError("R (a rotation of the coordinate system) is LinuxCNC's G10 L2 R, not Fanuc/Haas",
                         letter="R", expected="G68 to rotate the program")
     last = 6 if level == 2 else MAX_EXTENDED[dialect]
+    if level == 2 and p == 0:
+        _set_external(words, st)
+        return "external"
     if p is None or p != int(p) or not 1 <= p <= last:
         what = "G54-G59" if level == 2 else ("G54.1 P" if dialect == "fanuc" else "G154 P") + "<n>"
-        raise WordError(f"G10 L{level} needs P1 .. P{last} ({what})" + (
-            " (P0, the external/G52 offset, is not modelled)" if level == 2 and p == 0 else ""),
-            letter="P" if p is not None else None, expected=f"G10 L{level} P1 .. P{last} X.. Y.. Z..")
+        raise WordError(f"G10 L{level} needs P{0 if level == 2 else 1} .. P{last} ({what})",
+                        letter="P" if p is not None else None, expected=f"G10 L{level} P1 .. P{last} X.. Y.. Z..")
     code = WORK_OFFSETS[int(p) - 1] if level == 2 else extended_offset(int(p))
     current = st.offsets.get(code)
     linear = (st.context.offset(code) if current is None else current).copy()
@@ -177,6 +185,20 @@ def set_work_offset(level: int, p: float | None, words: dict[str, float], st: Of
         extra[given] = (extra if st.incremental else np.zeros(6))[given] + v[given]
         st.extra_offsets[code] = extra
     return code
+
+
+def _set_external(words: dict[str, float], st: OffsetState) -> None:
+    """G10 L2 P0: the external offset of the named axes becomes the value (G90) or moves by it (G91); the
+    shift every system shares moves with it."""
+    extra = [a for a in EXTRA_LETTERS if a in words]
+    if extra:
+        raise WordError("G10 L2 P0 (the external offset) with a rotary or secondary axis word: not supported",
+                        letter=extra[0], expected="G10 L2 P0 X.. Y.. Z..")
+    for i, a in enumerate("XYZ"):
+        if a in words:
+            value = (st.external[i] if st.incremental else 0.0) + words[a] * st.scale
+            st.g92[i] += value - st.external[i]
+            st.external[i] = value
 
 
 def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:

@@ -52,7 +52,8 @@ length = geometry + wear); Fanuc's tool variables depend on its offset memory ty
 
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
-(Haas 154) and ``#4130`` = the P number while one is selected; ``#5220`` (LinuxCNC's system number 1-9)
+(Haas 154) and ``#4130`` = the P number while one is selected; ``#5201``-``#5203`` the external offset
+(Fanuc; Haas: its G52 entry) G10 L2 P0 sets (``#5204``-``#5206`` 0); ``#5220`` (LinuxCNC's system number 1-9)
 is then not modelled.
 
 A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
@@ -80,6 +81,7 @@ class ReaderState(Protocol):
 
     context: MachineContext
     tools: dict[int, Tool]  # tool table entries the program wrote
+    external: np.ndarray  # Fanuc/Haas G10 L2 P0 offset [mm]
     pos: np.ndarray  # machine coordinates [mm]
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
@@ -220,6 +222,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return (_fanuc_modal(n, st) if fanuc else None), ""
     if fanuc and st.context.dialect.name == "haas" and 2001 <= n <= 2800:
         return _haas_tool(n, st), ""
+    if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z
+        return (float(st.external[n - 5201]) / _stored(st) if n <= 5203 else 0.0), ""
     extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
     if extended is not None:
         return _offset_axis(extended[0], extended[1], st), ""

@@ -64,7 +64,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Additional work offsets (Fanuc 0i-MD "Adding workpiece coordinate systems"; Haas "G154"): Fanuc
   ``G54.1 P1``-``P300``, Haas ``G154 P1``-``P99`` and ``G110``-``G129`` (= P1-P20), P omitted = P1,
   select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
-  the offset to the value under G90 and add it under G91. G52 is the local system on top of the G92
+  the offset to the value under G90 and add it under G91; ``G10 L2 P0`` the external offset, added to
+  every system. G52 is the local system on top of the G92
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
   (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
@@ -480,6 +481,7 @@ class _Machine:
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
         self.local = np.zeros(3)  # Fanuc/Haas G52 (a part of g92)
+        self.external = np.zeros(3)  # Fanuc/Haas G10 L2 P0 (a part of g92)
         self.tool_lengths: dict[int, tuple[float, float]] = {}  # Fanuc/Haas G10 L10/L11: (geometry, wear) [mm]
         self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
@@ -848,6 +850,13 @@ def _g10(m: _Machine, words: dict) -> None:
         return
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
+    if m.ctx.dialect.name in ("fanuc", "haas") and kind == 2 and p == 0:  # the external offset: every system
+        for i, a in enumerate("xyz"):
+            if a in words:
+                v = (m.external[i] if m.incremental else 0.0) + words[a][-1] * m.scale
+                m.g92[i] += v - m.external[i]
+                m.external[i] = v
+        return
     if m.ctx.dialect.name in ("fanuc", "haas"):  # Fanuc "G10 L2 / L20": the value (G90) or an increment (G91)
         code = list(_WCS.values())[p - 1] if kind == 2 else f"G54.1 P{p}"
         _use_system(m, code)

@@ -123,7 +123,9 @@ def test_fanuc_g92_cancels_the_local_system_of_the_axes_it_names():
     (FANUC, "G54.1 P1.5", "P1.5 is not an additional work offset number"),
     (HAAS, "G154 P100", "P100 is not an additional work offset number"),
     (FANUC, "G10 L20 P0 X1", "G10 L20 needs P1 .. P300"),
-    (FANUC, "G10 L2 P0 X1", "P0, the external/G52 offset, is not modelled"),
+    (dataclasses.replace(FANUC, extra_axes=("a",)), "G10 L2 P0 A1",
+     "G10 L2 P0 \\(the external offset\\) with a rotary"),
+    (FANUC, "G10 L2 P7 X1", "G10 L2 needs P0 .. P6"),
     (FANUC, "G10 L2 P1 R45", "R .* is LinuxCNC's G10 L2 R"),
 ])
 def test_bad_offset_words_are_named_errors(context, text, message):
@@ -231,3 +233,12 @@ def test_haas_tool_offset_variables():
                                                  (30, 0, 79.8)]
     with pytest.raises(GCodeError, match="#2001: this Fanuc system variable"):  # Fanuc: memory type dependent
         parse_program("G21\n#1 = #2001\n", context=FANUC)
+
+
+def test_fanuc_g10_l2_p0_external_offset_shifts_every_system():
+    # Fanuc "External workpiece zero point offset" (G10 L2 P0; Haas: the G52 entry): G54 (100) + EXT X5 -> 105,
+    # G55 (200) + 5; G91 G10 L2 P0 X1 -> EXT 6; G92 X0 at machine 206 keeps EXT in the shared shift; #5201 reads 6
+    text = ("G21 G90 G54\nG10 L2 P0 X5\nG0 X0\nG55 X0\nG91 G10 L2 P0 X1\nG90 X0\nG92 X0\nG10 L2 P0 X0\nX0\n"
+            "#1 = #5201\nG53 X#1\n")
+    assert [p[0] for p in ends(text, FANUC, reference=False)] == [105, 205, 206, 200, 0]
+    assert [p[0] for p in ends(text.replace("#1 = #5201\nG53 X#1\n", ""), FANUC)] == [105, 205, 206, 200]
