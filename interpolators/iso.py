@@ -870,6 +870,9 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         _length_compensation(gcodes["length compensation"], seen, st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
+        if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
+            where.fail(f"{w.text.upper()}: cannot change coordinate systems with cutter radius compensation on "
+                       "(LinuxCNC)", column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
         if key in _G:
             st.wcs = _G[key][1]
         else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)

@@ -242,3 +242,12 @@ def test_fanuc_g10_l2_p0_external_offset_shifts_every_system():
             "#1 = #5201\nG53 X#1\n")
     assert [p[0] for p in ends(text, FANUC, reference=False)] == [105, 205, 206, 200, 0]
     assert [p[0] for p in ends(text.replace("#1 = #5201\nG53 X#1\n", ""), FANUC)] == [105, 205, 206, 200]
+
+
+def test_linuxcnc_refuses_a_coordinate_system_change_under_cutter_compensation():
+    # interp_convert.cc convert_coordinate_system: "Cannot change coordinate systems with cutter radius
+    # compensation on" (checked before "already using this origin"); G40 in the same block runs first
+    ctx = MachineContext(tools={1: Tool(number=1, radius=1.0)})
+    with pytest.raises(GCodeError, match="G55: cannot change coordinate systems with cutter radius compensation"):
+        parse_program("G21 G0 X0 Y0\nG41 D1 G1 X10 F100\nG55 X20\nG40 X30\n", context=ctx)
+    assert ends("G21 G0 X0 Y0\nG41 D1 G1 X10 F100\nG40 G55 X20\n", ctx)[-1] == (20, 0, 0)
