@@ -508,15 +508,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
-    fanuc = st.context.dialect.name == "fanuc"
-    group = mirror_forbids(st.frame, {k: v[0] for k, v in gcodes.items()}) if fanuc else None
-    if group is not None:  # Fanuc: no coordinate-system change or reference return under G51.1
-        w = gcodes[group][1]
-        where.fail(f"{w.text.upper()} in programmable mirror image mode (G51.1): Fanuc refuses it", column=w.column,
-                   text=w.text, expected="G50.1 (mirror image cancel) before it")
-    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or st.motion is not None and st.motion >= 730
-    if g54_takes_p(gcodes, "P" in seen, st.context.dialect.name, cycle):  # Fanuc "G54 Pn" = "G54.1 Pn"
-        gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
+    _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
         seen = {k: v for k, v in seen.items() if k != "P"}
@@ -585,6 +577,22 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _fanuc_system_codes(gcodes, seen, st: _State, where: Where) -> None:
+    """Fanuc, before the modal settings: the codes a G51.1 mirror forbids are errors
+    (:func:`interpolators.iso_transforms.mirror_forbids`), and ``G54 P<n>`` is ``G54.1 P<n>``
+    (:func:`interpolators.iso_offsets.g54_takes_p`; ``gcodes`` is changed)."""
+    if st.context.dialect.name != "fanuc":
+        return
+    group = mirror_forbids(st.frame, {k: v[0] for k, v in gcodes.items()})
+    if group is not None:
+        w = gcodes[group][1]
+        where.fail(f"{w.text.upper()} in programmable mirror image mode (G51.1): Fanuc refuses it", column=w.column,
+                   text=w.text, expected="G50.1 (mirror image cancel) before it")
+    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or st.motion is not None and st.motion >= 730
+    if g54_takes_p(gcodes, "P" in seen, st.context.dialect.name, cycle):
+        gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
 
 
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
