@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Mapping
 from types import MappingProxyType
 
@@ -26,10 +27,51 @@ from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
-           "read_tool_table"]
+           "read_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+
+#: Number of additional work offsets a table may hold: Fanuc ``G54.1 P1``-``P300`` (P1-P48 as standard, up to
+#: P300 with the 300-set option: Fanuc 0i-MD B-64304EN "Adding workpiece coordinate systems"); Haas ``G154
+#: P1``-``P99`` (Haas mill operator's manual "G154 Select Work Coordinates P1-P99") are the same table.
+EXTENDED_OFFSETS = 300
+
+_EXTENDED = re.compile(r"G0*54\.1\s*P0*(\d+)|G0*154\s*P0*(\d+)|G0*1([12]\d)")
+
+
+def extended_offset(n: int) -> str:
+    """Code of additional work offset ``n`` (1 .. :data:`EXTENDED_OFFSETS`): ``"G54.1 P<n>"``."""
+    if not 1 <= n <= EXTENDED_OFFSETS:
+        raise InputError(f"additional work offset P{n}: expected P1 .. P{EXTENDED_OFFSETS}")
+    return f"G54.1 P{n}"
+
+
+def work_offset_code(code: str) -> str:
+    """The table key of a work-offset code: one of :data:`WORK_OFFSETS`, or ``"G54.1 P<n>"`` for an
+    additional offset written ``G54.1 P<n>`` (Fanuc, n <= 300), ``G154 P<n>`` (Haas, n <= 99) or
+    ``G110``-``G129`` (Haas: G154 P1-P20; Haas "G154 Select Work Coordinates P1-P99").
+
+    Raises
+    ------
+    InputError
+        Not a work-offset code.
+    """
+    text = str(code).strip().upper()
+    if text in WORK_OFFSETS:
+        return text
+    m = _EXTENDED.fullmatch(text)
+    if m is not None:
+        if m.group(1) is not None:
+            n = int(m.group(1))
+        elif m.group(2) is not None:
+            n = int(m.group(2)) if 1 <= int(m.group(2)) <= 99 else 0
+        else:
+            n = int(m.group(3)) - 9 if 10 <= int(m.group(3)) <= 29 else 0
+        if 1 <= n <= EXTENDED_OFFSETS:
+            return extended_offset(n)
+    raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}, "
+                     f"G54.1 P1 .. G54.1 P{EXTENDED_OFFSETS} (Fanuc), G154 P1 .. G154 P99 or G110 .. G129 (Haas)")
 
 
 def _xyz(value, name: str) -> np.ndarray:
@@ -62,6 +104,10 @@ class Tool:
         lathe tools, or a milling head with an offset spindle): G43 applies them with the length, the
         program's X and Y point then lies this far from the machine's (LinuxCNC g-code.adoc "G43":
         "all the tool's offsets are applied").
+    length_wear, radius_wear : float
+        The wear part of ``length`` and ``radius`` [mm] (Fanuc/Haas offset tables keep geometry and wear
+        apart and apply their sum: ``G10 L11``/``L13`` set the wear, ``L10``/``L12`` the geometry =
+        ``length - length_wear``, ``radius - radius_wear``); 0 for a LinuxCNC tool table.
     """
 
     number: int
@@ -70,6 +116,8 @@ class Tool:
     comment: str = ""
     offset_x: float = 0.0
     offset_y: float = 0.0
+    length_wear: float = 0.0
+    radius_wear: float = 0.0
 
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
@@ -78,6 +126,9 @@ class Tool:
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
         if not math.isfinite(self.radius):
             raise InputError(f"tool {self.number}: radius must be finite [mm], got {self.radius!r}")
+        if not (math.isfinite(self.length_wear) and math.isfinite(self.radius_wear)):
+            raise InputError(f"tool {self.number}: wear must be finite [mm], got {self.length_wear!r}, "
+                             f"{self.radius_wear!r}")
         if not (math.isfinite(self.offset_x) and math.isfinite(self.offset_y)):
             raise InputError(f"tool {self.number}: X/Y offsets must be finite [mm], got "
                              f"{self.offset_x!r}, {self.offset_y!r}")
@@ -156,8 +207,10 @@ class MachineContext:
     Attributes
     ----------
     work_offsets : mapping of str to ndarray (3,)
-        Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`)
-        [mm, machine coordinates]. Missing codes are zero. G54 is active at program start.
+        Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`, and the
+        additional offsets ``"G54.1 P1"`` ... ``"G54.1 P300"``; ``"G154 P<n>"`` and ``"G110"``-``"G129"``
+        name the same entries, see :func:`work_offset_code`) [mm, machine coordinates]. Missing codes
+        are zero. G54 is active at program start.
     tools : mapping of int to Tool
         Tool table by tool number. A tool missing from it has length and radius 0 (with a note).
     home : ndarray (3,)
@@ -172,6 +225,13 @@ class MachineContext:
         parallel to X, Y, Z; words of others are errors naming the axis (``A0``, ``U0`` are
         accepted with a note). A machine file sets them from its ``[axes.a]`` ... tables;
         :data:`INTERPOLATION_CONTEXT` has all six.
+    linear_units : {"mm", "inch"}
+        Length unit of the control's own configuration (LinuxCNC INI ``[TRAJ] LINEAR_UNITS``). Tables
+        and positions here are mm whatever it is; it only says in which unit a program reads the stored
+        offsets through system parameters (``#5161``.. G28/G30 positions, ``#5211``.. G92, ``#5221``..
+        work offsets, ``#5401``.. tool offsets: :mod:`interpolators.iso_system`), as LinuxCNC keeps them
+        in its INI units whatever G20/G21 says (tests/interp/unit-conversion). rs274's standalone
+        interpreter, which LinuxCNC's own tests run, is an inch machine.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -180,13 +240,17 @@ class MachineContext:
     reference2: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     dialect: Dialect = dataclasses.field(default_factory=Dialect)
     extra_axes: tuple[str, ...] = ()
+    linear_units: str = "mm"
 
     def __post_init__(self) -> None:
+        if self.linear_units not in ("mm", "inch"):
+            raise InputError(f"linear_units must be 'mm' or 'inch', got {self.linear_units!r}")
         offsets = {}
         for code, value in dict(self.work_offsets).items():
-            if code not in WORK_OFFSETS:
-                raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
-            offsets[code] = _xyz(value, f"work offset {code}")
+            key = work_offset_code(code)
+            if key in offsets:
+                raise InputError(f"work offset {code!r} given twice (it is {key!r})")
+            offsets[key] = _xyz(value, f"work offset {code}")
         object.__setattr__(self, "work_offsets", MappingProxyType(offsets))
         tools = {}
         for number, tool in dict(self.tools).items():
@@ -201,10 +265,10 @@ class MachineContext:
             raise InputError(f"extra_axes must be among {', '.join(map(repr, EXTRA_NAMES))}, got {bad!r}")
 
     def offset(self, code: str) -> np.ndarray:
-        """Work offset of ``code`` (``"G54"`` ...) [mm]; zero when the table has none."""
-        if code not in WORK_OFFSETS:
-            raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}")
-        return self.work_offsets.get(code, np.zeros(3))
+        """Work offset of ``code`` (``"G54"`` ..., ``"G54.1 P7"``, see :func:`work_offset_code`) [mm]; zero
+        when the table has none."""
+        value = self.work_offsets.get(code)
+        return value if value is not None else self.work_offsets.get(work_offset_code(code), np.zeros(3))
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``, or None when the table has none."""
@@ -235,8 +299,6 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
     InputError
         Unreadable file, or a line without ``T`` or with a malformed word (file and line named).
     """
-    import re
-
     if units not in ("mm", "inch"):
         raise InputError(f"tool table units must be 'mm' or 'inch', got {units!r}")
     scale = 25.4 if units == "inch" else 1.0

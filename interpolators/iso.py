@@ -35,6 +35,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
 ``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
+                          (Fanuc ``G54.1 P``, Haas ``G154 P``/``G110``-``G129``, their ``G10 L20``:
+                          :mod:`interpolators.iso_offsets`)
 ``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
                           feed per minute (which resets the feed: an F must follow); ``G95`` is an error
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
@@ -96,15 +98,24 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
-from interpolators.iso_cycles import CycleWords, cycle_moves
+from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_offsets import (
+    EXTENDED_CODES,
+    P_SELECT_CODES,
+    TOOL_LEVELS,
+    g54_takes_p,
+    selected_offset,
+    set_tool_offset,
+    set_work_offset,
+)
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
-from interpolators.iso_system import system_parameter
-from interpolators.iso_transforms import Frame, g68_rotation, mirror, scaling
+from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
 from interpolators.iso_words import Word, WordError
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -166,7 +177,8 @@ _G_UNSUPPORTED: dict[int, str] = {
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
-    541: "G54.1 P additional work offsets (Fanuc)", 1540: "G154 P additional work offsets (Haas)",
+    541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    1540: "G154 P additional work offsets (Haas; --dialect haas)",
 }
 
 #: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
@@ -182,10 +194,11 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
-    "fanuc": {870: ("motion", "G87 back boring cycle")},
+    "fanuc": {870: ("motion", "G87 back boring cycle"), **EXTENDED_CODES["fanuc"]},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
-             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel")},
+             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
+             **EXTENDED_CODES["haas"]},
 }
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
@@ -251,6 +264,8 @@ class _State:
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
+    local: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc/Haas G52's part of g92
+    external: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc G10 L2 P0's part of g92
     tool_length: float = 0.0  # along Z [mm]
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
@@ -353,7 +368,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     name = _program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
-    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b))
+    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
+                        set_system=(lambda n, v: set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -492,7 +508,10 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     seen = _io_words(mcodes, seen, where)
+    _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
+    if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         _dwell(gcodes, seen, st, blocks, where, number)
         if "motion" not in gcodes:
@@ -560,11 +579,29 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     return ended
 
 
+def _fanuc_system_codes(gcodes, seen, st: _State, where: Where) -> None:
+    """Fanuc, before the modal settings: the codes a G51.1 mirror forbids are errors
+    (:func:`interpolators.iso_transforms.mirror_forbids`), and ``G54 P<n>`` is ``G54.1 P<n>``
+    (:func:`interpolators.iso_offsets.g54_takes_p`; ``gcodes`` is changed)."""
+    if st.context.dialect.name != "fanuc":
+        return
+    group = mirror_forbids(st.frame, {k: v[0] for k, v in gcodes.items()})
+    if group is not None:
+        w = gcodes[group][1]
+        where.fail(f"{w.text.upper()} in programmable mirror image mode (G51.1): Fanuc refuses it", column=w.column,
+                   text=w.text, expected="G50.1 (mirror image cancel) before it")
+    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or st.motion is not None and st.motion >= 730
+    if g54_takes_p(gcodes, "P" in seen, st.context.dialect.name, cycle):
+        gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
+
+
 def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
-    as chords); under G68 alone canned cycles too."""
+    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
+    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
     cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
-        st.frame.scaled or any(st.frame.mirror) and st.motion in (760, 870, 770))
+        st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
+        or any(st.frame.mirror) and st.motion in (760, 870, 770))
     what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
@@ -840,7 +877,20 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "length compensation" in gcodes:
         _length_compensation(gcodes["length compensation"], seen, st, where, notes)
     if "coordinate system" in gcodes:
-        st.wcs = _G[gcodes["coordinate system"][0]][1]
+        key, w = gcodes["coordinate system"]
+        if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
+            where.fail(f"{w.text.upper()}: cannot change coordinate systems with cutter radius compensation on "
+                       "(LinuxCNC)", column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
+        if key in _G:
+            st.wcs = _G[key][1]
+        else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)
+            try:
+                p = seen["P"].value if "P" in seen else None
+                st.wcs, assumed = selected_offset(key, p, st.context.dialect.name)
+            except WordError as exc:
+                _fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
+            if assumed:
+                notes.add(f"{w.text.upper()} without P: P1")
     if "path" in gcodes:
         key, w = gcodes["path"]
         st.exact_stop = key != 640
@@ -1381,6 +1431,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         for a in axis_words:
             i = "XYZ".index(a)
             st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
+            st.local[i] = 0.0  # Fanuc: G92 cancels the local system (G52) of the axes it names
         # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
         # the offset that makes the axis' current position the programmed value
         v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
@@ -1393,7 +1444,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         return True
     if key in (921, 922):
         if key == 921:
-            st.g92_saved, st.g92_extra_saved = np.zeros(3), np.zeros(6)
+            st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
         return True
@@ -1410,12 +1461,17 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
 
 def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
-    convert_axis_offsets, G_52: axis_offset = value; Fanuc "Local coordinate system"); it is the offset
-    G92 sets too (#5211..), cleared by G92.1 and suspended by G92.2."""
+    convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
+    G92.1 and suspended by G92.2. Fanuc and Haas keep the local system apart from the G92 shift (Fanuc
+    0i-MD "Local coordinate system": G52 sets it in every workpiece system, G52 X0 cancels it, a G92
+    cancels it on the axes it names): there the value replaces the local part of the offset only."""
     if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
         where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
     for a in axis_words:
-        st.g92["XYZ".index(a)] = seen[a].value * st.scale
+        i, value = "XYZ".index(a), seen[a].value * st.scale
+        st.g92[i] = st.g92[i] - st.local[i] + value if fanuc else value
+        st.local[i] = value if fanuc else 0.0
     v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
     given = ~np.isnan(v)
     st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
@@ -1425,8 +1481,23 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
 
 def _g10(seen, st: _State, where: Where, w: Word) -> None:
     l_word, p_word = seen.get("L"), seen.get("P")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
+        try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
+            set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            _fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
+        return
     if l_word is not None and int(l_word.value) in (1, 10, 11):
         _g10_tool(int(l_word.value), seen, st, where, w)
+        return
+    if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
+        try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
+            set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            _fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
         return
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
@@ -1573,6 +1644,24 @@ def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *
         st.extra = np.array(rot, dtype=float)
 
 
+def _framed_initial(st: _State, *, to_program: bool) -> None:
+    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
+    between blocks, so that it stays where the tool was when the series began while the transformation
+    changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
+    and back."""
+    if st.frame is None or st.cycle.initial is None:
+        return
+    axis = CYCLE_AXES[st.plane][2]
+    if to_program:
+        point = st.pos.copy()
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_program(point)[axis])
+    else:
+        point = st.to_program(st.pos)
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_machine(point)[axis])
+
+
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     name = _G[st.motion][1]
@@ -1582,12 +1671,17 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
         where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
-    if st.motion == 740 and st.context.dialect.name == "linuxcnc" and not (st.spindle_turning and st.spindle_ccw):
-        # LinuxCNC interp_cycles.cc check_g74_g84_spindle: G74 taps left-hand, the spindle turning M4
-        where.fail(f"{name} with the spindle " + ("turning clockwise (M3)" if st.spindle_turning else "not turning"),
-                   column=mw.column, text=mw.text, expected="M4 (counter-clockwise) before G74")
+    tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
+    if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
+        where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
     # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
     pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
+    factors = (1.0, 1.0, 1.0) if st.frame is None else st.frame.factors
+    if st.cycle.initial is not None and st.cycle.factors != factors:  # where is the initial level now?
+        where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
+                   "series is then undefined)", column=mw.column, text=mw.text, expected="G80 before G51 / G50")
+    st.cycle.factors = factors
+    _framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
         moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
@@ -1597,6 +1691,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             haas=st.context.dialect.name == "haas")
     except WordError as exc:
         _fail_words(where, name, exc, seen, mw)
+    _framed_initial(st, to_program=False)
     if st.frame is not None:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:

@@ -23,6 +23,11 @@ XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: dr
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
 
+LinuxCNC taps only with the spindle turning the tap's way (interp_cycles.cc ``check_g74_g84_spindle``:
+"Spindle not turning in G84", "Spindle turning counterclockwise in G84", and for the left-hand G74
+"Spindle turning clockwise in G74"): :func:`tap_spindle_error` says which, for the ``linuxcnc``
+dialect (Fanuc and Haas reverse the spindle themselves and do not check it).
+
 Cycles of Fanuc and Haas mills (the ``fanuc`` and ``haas`` dialects; in LinuxCNC these codes are
 other things or errors):
 
@@ -54,7 +59,15 @@ import numpy as np
 from interpolators.iso_polar import PolarError, polar_xy
 from interpolators.iso_words import WordError
 
-__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "CYCLE_AXES", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES"]
+__all__ = ["CycleWords", "HoleMove", "CycleError", "cycle_moves", "CYCLE_AXES", "RAPID_DELTA_INCH", "MAX_CYCLE_MOVES",
+           "tap_spindle_error", "UNSCALED_Q_CYCLES"]
+
+#: Cycles whose Q (peck depth: G73, G83; shift: G76, G87, Haas G77) and retract d a G51 scaling leaves
+#: unscaled while it scales the hole and its levels (Haas "G51 Scaling": "all X, Y, Z, I, J, K, or R
+#: values addressing machine motion are multiplied"; Fanuc 0i "Scaling": the cut-in Q and retraction d of
+#: G73/G83 and the G76/G87 shift are not scaled): the reader runs the other cycles under scaling through
+#: the transformation and refuses these.
+UNSCALED_Q_CYCLES = frozenset({73, 83, 76, 87, 77})
 
 #: Clearance of the re-entry (G83) and chip-break retract (G73) [inch] (LinuxCNC G83_RAPID_DELTA).
 RAPID_DELTA_INCH = 0.010
@@ -67,6 +80,19 @@ MAX_CYCLE_MOVES = 1_000_000
 class CycleError(WordError):
     """Cycle words that describe no cycle; ``letter`` names the word at fault."""
 
+
+def tap_spindle_error(code: int, turning: bool, ccw: bool) -> tuple[str, str] | None:
+    """Why LinuxCNC refuses tapping cycle G``code`` (84 right-hand, 74 left-hand) with the spindle as it
+    is (``turning`` M3/M4, ``ccw`` M4), and what it expects; None when it taps (interp_cycles.cc
+    ``check_g74_g84_spindle``). Other codes: None."""
+    if code not in (74, 84):
+        return None
+    want = "M3 (clockwise) before G84" if code == 84 else "M4 (counter-clockwise) before G74"
+    if not turning:
+        return "with the spindle not turning", want
+    if ccw == (code == 84):
+        return "with the spindle turning " + ("counter-clockwise (M4)" if ccw else "clockwise (M3)"), want
+    return None
 
 @dataclasses.dataclass
 class CycleWords:
@@ -81,6 +107,7 @@ class CycleWords:
     i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
     j: float | None = None
     k: float | None = None  # Haas G73/G83 minimum peck
+    factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # the G51 scaling the series began under
 
 
 @dataclasses.dataclass(frozen=True)

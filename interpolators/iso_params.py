@@ -111,16 +111,21 @@ class Parameters:
         ``system(n)`` gives ``(value, why)`` for the system parameter ``#n`` from the machine state
         (:func:`interpolators.iso_system.system_parameter`): the value, or ``None`` with the reason
         it cannot be known (an error naming it), or ``(None, "")`` when ``#n`` is not modelled. A
-        parameter it models is read-only.
+        parameter it models is read-only, unless ``set_system`` takes it.
+    set_system : callable, optional
+        ``set_system(n, value)`` sets a system parameter the control lets a program write (Fanuc/Haas
+        work offsets: :func:`interpolators.iso_system.set_system_parameter`); True when it did.
     """
 
     def __init__(self, *, macro_b: bool = False,
-                 system: Callable[[int], tuple[float | None, str]] | None = None) -> None:
+                 system: Callable[[int], tuple[float | None, str]] | None = None,
+                 set_system: Callable[[int, float | None], bool] | None = None) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
         self.macro_b = macro_b
         self.system = system
+        self.set_system = set_system
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -132,7 +137,8 @@ class Parameters:
         """The value of ``#n``; ``None`` when it is vacant (``#0``, or unset under Fanuc semantics)."""
         if n == 0:
             return None  # Fanuc's null variable: always vacant
-        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL:
+        if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL and not (
+                self.macro_b and self.system is not None and self.system(n)[0] is not None):  # Fanuc #7001..
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
         state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
@@ -193,6 +199,8 @@ class Parameters:
                 # Fanuc/Haas: "#3000 = n (message)" stops the program with macro alarm n (Haas: "Alarms")
                 where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}: the program raises an alarm "
                            "here", column=column, text=where.text, expected="a program that does not reach its alarm")
+            if self.set_system is not None and self.set_system(key, value):
+                return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
             if state is not None or why:
                 reason = f"it reports {why}" if why else "it reports the machine state"

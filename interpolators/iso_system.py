@@ -8,21 +8,23 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
                           U V W, in program units (mm or inch; rotary axes deg)
 ``#5061``-``#5070``       probe result: an error (G38 probing is not supported)
 ``#5081``-``#5089``       tool length offset in effect (G43/G43.1; Z only, 0 under G49), program units
-``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units: mm, deg]
+``#5161``-``#5169``       G28 reference position, ``#5181``-``#5189`` G30's [machine units, deg]
 ``#5210``                 1 while a G92/G52 offset is applied; ``#5211``-``#5219`` that offset, kept
-                          while G92.2 suspends it [mm]
+                          while G92.2 suspends it [machine units]
 ``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
-``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [mm, deg], ``#5241``.. G55, every 20
+``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [machine units, deg], ``#5241``.. G55, every 20
                           up to ``#5381``-``#5390`` G59.3
 ``#5400``                 tool in the spindle (0 when none); ``#5401``-``#5409`` its stored offsets (Z:
-                          length), ``#5410`` its diameter [mm]
+                          length), ``#5410`` its diameter [machine units]
 ``#5420``-``#5428``       current position in the active coordinate system with all offsets, program
                           units (an error under cutter compensation, as LinuxCNC)
 ========================= ==========================================================================
 
-vcnc machines are metric: the stored tables (offsets, references, tools) read in mm, as a
-LinuxCNC machine configured in mm; positions follow G20/G21 (X Y Z U V W); rotary axes (deg) are
-never scaled.
+The stored tables (offsets, references, tools) read in the machine's configured length unit
+(:attr:`interpolators.context.MachineContext.linear_units`, mm unless set), whatever G20/G21 says, as
+LinuxCNC keeps them in its INI units (tests/interp/unit-conversion: "the numbered parameters that back
+the work and axis offsets stay constant because they are stored in user INI units"); positions follow
+G20/G21 (X Y Z U V W); rotary axes (deg) are never scaled.
 
 Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System variables"; Haas
 mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
@@ -36,19 +38,39 @@ information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3
 cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
 T (the tool in the spindle).
 
+Under those dialects a program may also write the work offsets (Fanuc 0i-MD "System variables":
+"workpiece zero point offset value ... read/write"; Haas "Macros", "Offsets": "all tool work offsets
+can be read and set within a macro expression"): ``#5221``-``#5326`` (G54-G59: X Y Z A B C, 20 per
+system), the additional ones below; the offset changes at once, as ``G10 L2`` would
+(:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
+with G10, not the other way round).
+
+Haas tool offsets (Haas macro variables, "Tool Offsets": ``#2001``-``#2200`` tool length geometry,
+``#2201``-``#2400`` length wear, ``#2401``-``#2600`` diameter geometry, ``#2601``-``#2800`` diameter
+wear, read/write, tools 1-200) read and write the tool table (:class:`interpolators.context.Tool`:
+length = geometry + wear); Fanuc's tool variables depend on its offset memory type and stay errors.
+
+The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
+``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
+(Haas 154) and ``#4130`` = the P number while one is selected; ``#5201``-``#5203`` the external offset
+(Fanuc; Haas: its G52 entry) G10 L2 P0 sets (``#5204``-``#5206`` 0); ``#5220`` (LinuxCNC's system number 1-9)
+is then not modelled.
+
 A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
 operator may have jogged the machine: an error naming that, not a guess.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Protocol
 
 import numpy as np
 
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
+from interpolators.iso_offsets import extended_number, offset_parameter
 
-__all__ = ["ReaderState", "system_parameter", "POSITION_PARAMETERS"]
+__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
 
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
@@ -58,6 +80,8 @@ class ReaderState(Protocol):
     """What :func:`system_parameter` reads of the ISO executor's modal state."""
 
     context: MachineContext
+    tools: dict[int, Tool]  # tool table entries the program wrote
+    external: np.ndarray  # Fanuc/Haas G10 L2 P0 offset [mm]
     pos: np.ndarray  # machine coordinates [mm]
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
@@ -102,6 +126,11 @@ def _nine(linear: np.ndarray, extra: np.ndarray, scale: float) -> list[float]:
     return [*(float(v) / scale for v in linear), *(float(v) for v in extra[:3]), *(float(v) / scale for v in extra[3:])]
 
 
+def _stored(st: ReaderState) -> float:
+    """mm per unit of the stored tables' parameters (the machine's configured length unit)."""
+    return 25.4 if st.context.linear_units == "inch" else 1.0
+
+
 def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     base = 5021 if n < 5030 and n >= 5021 else 5420 if n >= 5420 else (5001 if n < 5009 else 5041)
     if base in (5001, 5041) and not fanuc:
@@ -124,9 +153,16 @@ def _work_offset(n: int, st: ReaderState) -> float | None:
     code = WORK_OFFSETS[k]
     if j == 9:
         return float(st.rotations.get(code, 0.0))
+    return _offset_axis(code, j, st)
+
+
+def _offset_axis(code: str, j: int, st: ReaderState) -> float:
+    """Axis ``j`` (X Y Z A B C U V W; 0 beyond) of work offset ``code`` as the program sees it [mm, deg]."""
     off = st.offsets.get(code)
     xyz = st.context.offset(code) if off is None else off
-    return float(xyz[j]) if j < 3 else float(st.extra_offsets.get(code, np.zeros(6))[j - 3])
+    if j >= 9:
+        return 0.0
+    return _nine(xyz, st.extra_offsets.get(code, np.zeros(6)), _stored(st))[j]
 
 
 def _tool(n: int, st: ReaderState) -> float | None:
@@ -137,10 +173,21 @@ def _tool(n: int, st: ReaderState) -> float | None:
     if n in range(5401, 5410):
         if tool is None or n not in (5401, 5402, 5403):
             return 0.0
-        return float({5401: tool.offset_x, 5402: tool.offset_y, 5403: tool.length}[n])
+        return float({5401: tool.offset_x, 5402: tool.offset_y, 5403: tool.length}[n]) / _stored(st)
     if n == 5410:
-        return 0.0 if tool is None else 2.0 * float(tool.radius)
+        return 0.0 if tool is None else 2.0 * float(tool.radius) / _stored(st)
     return None
+
+
+def _haas_tool(n: int, st: ReaderState) -> float:
+    """Haas #2001-#2800: length geometry, length wear, diameter geometry, diameter wear of tools 1-200."""
+    column, number = divmod(n - 2001, 200)
+    tool = st.tool(number + 1)
+    if tool is None:
+        return 0.0
+    value = (tool.length - tool.length_wear, tool.length_wear, 2.0 * (tool.radius - tool.radius_wear),
+             2.0 * tool.radius_wear)[column]
+    return value / _stored(st)
 
 
 def _fanuc_modal(n: int, st: ReaderState) -> float | None:
@@ -149,8 +196,13 @@ def _fanuc_modal(n: int, st: ReaderState) -> float | None:
         return st.motion / 10 if st.motion in (0, 10, 20, 30) else None
     if n == 4009:
         return st.motion / 10 if st.motion is not None and st.motion >= 730 else 80.0
-    wcs = st.wcs[1:]
-    table = {4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane], 4003: 91.0 if st.incremental else 90.0,
+    extended = extended_number(st.wcs)
+    if extended:
+        wcs = "154" if st.context.dialect.name == "haas" else "54.1"
+    else:
+        wcs = st.wcs[1:]
+    table = {4130: float(extended), 4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane],
+             4003: 91.0 if st.incremental else 90.0,
              4005: 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
              4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]),
              4010: 99.0 if st.retract_r else 98.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
@@ -168,6 +220,13 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _position(n, st, fanuc)
     if 4001 <= n <= 4130:
         return (_fanuc_modal(n, st) if fanuc else None), ""
+    if fanuc and st.context.dialect.name == "haas" and 2001 <= n <= 2800:
+        return _haas_tool(n, st), ""
+    if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z
+        return (float(st.external[n - 5201]) / _stored(st) if n <= 5203 else 0.0), ""
+    extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
+    if extended is not None:
+        return _offset_axis(extended[0], extended[1], st), ""
     if 5061 <= n <= 5070:
         return None, "the probe result (G38 probing is not supported)"
     if 5081 <= n <= 5089:
@@ -176,15 +235,68 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         home = st.home if n < 5180 else st.reference2
         rot = st.home_extra if n < 5180 else st.reference2_extra
         linear = np.zeros(3) if home is None else home
-        return _nine(linear, rot, 1.0)[n - (5161 if n < 5180 else 5181)], ""
+        return _nine(linear, rot, _stored(st))[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:
         return (1.0 if st.g92_applied else 0.0), ""
     if 5211 <= n <= 5219:  # the stored offset, kept while G92.2 suspends it (tests/interp/g52-g92-interaction)
-        return _nine(st.g92_saved, st.g92_extra_saved, 1.0)[n - 5211], ""
+        return _nine(st.g92_saved, st.g92_extra_saved, _stored(st))[n - 5211], ""
     if n == 5220:
-        return float(WORK_OFFSETS.index(st.wcs) + 1), ""
+        return (float(WORK_OFFSETS.index(st.wcs) + 1) if st.wcs in WORK_OFFSETS else None), ""
     if 5221 <= n <= 5390:
         return _work_offset(n, st), ""
     if 5400 <= n <= 5410:
         return _tool(n, st), ""
     return None, ""
+
+
+def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
+    """The work offset and axis index (0-5: X Y Z A B C) a Fanuc/Haas offset variable ``#n`` names."""
+    k, j = divmod(n - 5221, 20)
+    if 0 <= k < 6 and n >= 5221:
+        found: tuple[str, int] | None = (WORK_OFFSETS[k], j)
+    else:
+        found = offset_parameter(n, st.context.dialect.name)
+    return found if found is not None and found[1] < 6 else None
+
+
+def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
+    machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
+    value is 0); Haas ``#2001``-``#2800`` set a tool's length / diameter geometry or wear. True when
+    ``#n`` is such a variable (the caller reports the others)."""
+    if st.context.dialect.name == "haas" and 2001 <= n <= 2800:
+        _set_haas_tool(n, 0.0 if value is None else float(value) * _stored(st), st)
+        return True
+    target = _offset_variable(n, st)
+    if target is None:
+        return False
+    code, j = target
+    v = 0.0 if value is None else float(value)
+    if j < 3:
+        current = st.offsets.get(code)
+        linear = (st.context.offset(code) if current is None else current).copy()
+        linear[j] = v * _stored(st)
+        st.offsets[code] = linear
+    else:
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[j - 3] = v
+        st.extra_offsets[code] = extra
+    return True
+
+
+def _set_haas_tool(n: int, value: float, st: ReaderState) -> None:
+    """Haas #2001-#2800 = ``value`` [mm]: one of tool n's length / diameter geometry / wear."""
+    column, number = divmod(n - 2001, 200)
+    tool = st.tool(number + 1) or Tool(number=number + 1)
+    length_geometry, length_wear = tool.length - tool.length_wear, tool.length_wear
+    radius_geometry, radius_wear = tool.radius - tool.radius_wear, tool.radius_wear
+    if column == 0:
+        length_geometry = value
+    elif column == 1:
+        length_wear = value
+    elif column == 2:
+        radius_geometry = value / 2.0
+    else:
+        radius_wear = value / 2.0
+    st.tools[number + 1] = dataclasses.replace(tool, length=length_geometry + length_wear, length_wear=length_wear,
+                                               radius=radius_geometry + radius_wear, radius_wear=radius_wear)

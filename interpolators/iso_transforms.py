@@ -26,6 +26,13 @@ named about 0, the words' values unused. With one axis of the plane mirrored "th
 circular interpolation is reversed" (G02 runs as G03) and "the offset direction of cutter
 compensation is reversed" (G41 as G42).
 
+In programmable mirror image mode Fanuc refuses the commands that change the coordinate system or return
+to a reference position (Fanuc 0i "Programmable mirror image", Limitations: "G codes related to reference
+position return (G27, G28, G29, G30, etc.) and those for changing the coordinate system (G52 to G59, G92,
+etc.) must not be specified"; the Fanuc-compatible ISO dialect of Sinumerik states the same):
+:func:`mirror_forbids` names them, for the ``fanuc`` dialect (a G92 under a mirror would otherwise have
+no documented meaning).
+
 When they are combined, Fanuc applies the mirror first, then the scaling, then the rotation: a
 program point ``p`` lies at ``rotate(scale(mirror(p)))`` in the untransformed program coordinates;
 the reader adds its offsets after that (:meth:`interpolators.iso._State.to_machine`).
@@ -41,7 +48,11 @@ import numpy as np
 from interpolators.iso_words import WordError
 from toolpaths.geometry import PLANE_AXES
 
-__all__ = ["Frame", "Rotation", "g68_rotation", "scaling", "mirror"]
+__all__ = ["Frame", "Rotation", "g68_rotation", "scaling", "mirror", "mirror_forbids"]
+
+#: round(10 * G) of the non-modal codes Fanuc refuses under G51.1: G52, G53, G92, G28, G30 (the
+#: coordinate-system selections G54-G59, G54.1 are refused as a group).
+_MIRROR_FORBIDDEN = frozenset({520, 530, 920, 280, 300})
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -217,3 +228,13 @@ def mirror(frame: Frame, words: dict[str, float], *, on: bool, scale: float) -> 
         flags[i] = on
         at[i] = words["XYZ"[i]] * scale if on else 0.0
     return dataclasses.replace(frame, mirror=tuple(flags), mirror_at=tuple(at))
+
+
+def mirror_forbids(frame: Frame | None, groups: dict[str, int]) -> str | None:
+    """The modal group of a block's code Fanuc refuses in programmable mirror image mode (G51.1 on an axis
+    of ``frame``), or None. ``groups`` maps a block's modal groups to round(10 * G) of their code."""
+    if frame is None or not any(frame.mirror):
+        return None
+    if "coordinate system" in groups:
+        return "coordinate system"
+    return "nonmodal" if groups.get("nonmodal") in _MIRROR_FORBIDDEN else None

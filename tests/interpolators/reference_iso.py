@@ -61,6 +61,14 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
   pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
   the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
+  Additional work offsets (Fanuc 0i-MD "Adding workpiece coordinate systems"; Haas "G154"): Fanuc
+  ``G54.1 P1``-``P300``, Haas ``G154 P1``-``P99`` and ``G110``-``G129`` (= P1-P20), P omitted = P1,
+  select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
+  the offset to the value under G90 and add it under G91; ``G10 L2 P0`` the external offset, added to
+  every system. G52 is the local system on top of the G92
+  shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
+  Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
+  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -472,6 +480,10 @@ class _Machine:
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
+        self.local = np.zeros(3)  # Fanuc/Haas G52 (a part of g92)
+        self.external = np.zeros(3)  # Fanuc/Haas G10 L2 P0 (a part of g92)
+        self.tool_lengths: dict[int, tuple[float, float]] = {}  # Fanuc/Haas G10 L10/L11: (geometry, wear) [mm]
+        self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
@@ -485,6 +497,17 @@ class _Machine:
         self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.out: list[Expected] = []
+
+    def tool(self, number: int):
+        """The context's tool ``number``, with the lengths and radii Fanuc/Haas G10 L10-L13 set (geometry +
+        wear)."""
+        tool = self.ctx.tool(number)
+        if number not in self.tool_lengths and number not in self.tool_radii:
+            return tool
+        tool = tool or _Tool()
+        length = sum(self.tool_lengths.get(number, (tool.length, 0.0)))
+        radius = sum(self.tool_radii.get(number, (tool.radius, 0.0)))
+        return dataclasses.replace(tool, length=length, radius=radius)
 
     def _g68_turn(self, v: np.ndarray, sign: float) -> np.ndarray:
         if self.g68 is None:
@@ -607,7 +630,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.comp_radius = None
         elif code in (410, 420):
             number = int(words["d"][-1]) if "d" in words else m.loaded
-            tool = m.ctx.tool(number)
+            tool = m.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
             m.comp_entry = True
         elif code in (411, 421):
@@ -615,7 +638,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
     for code in g:
         if code == 430:
             number = int(words["h"][-1]) if "h" in words else m.loaded
-            tool = m.ctx.tool(number)
+            tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
             m.tool_xy = np.array([tool.offset_x, tool.offset_y]) if tool is not None else np.zeros(2)
@@ -628,7 +651,9 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     for code in g:
-        if code in _WCS:
+        if _extended(m, code, g, words):
+            pass
+        elif code in _WCS:
             m.wcs = _WCS[code]
         elif code in (900, 910):
             m.incremental = code == 910
@@ -636,6 +661,32 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
+
+
+def _use_system(m: _Machine, code: str) -> None:
+    """Make work offset ``code`` known to the machine (from the context's table) and active."""
+    if code not in m.offsets:
+        m.offsets[code] = np.array(m.ctx.offset(code), float)
+        m.rotation[code] = 0.0
+        m.extra_offsets[code] = np.zeros(6)
+
+
+def _extended(m: _Machine, code: int, g: list[int], words: dict) -> bool:
+    """Fanuc G54.1 P (or G54 P when no G04, G10, G64 or cycle reads the P) / Haas G154 P, G110-G129: select
+    an additional work offset (its P word taken off)."""
+    dialect = m.ctx.dialect.name
+    cycle = any(c // 10 in (*_CYCLES, *_MILL_CYCLES, 84, 86) for c in g) or (m.motion or 0) // 10 in (
+        *_CYCLES, *_MILL_CYCLES, 84, 86)
+    g54p = code == 540 and "p" in words and not cycle and not any(c in g for c in (40, 640, 100))
+    if dialect == "fanuc" and (code == 541 or g54p) or dialect == "haas" and code == 1540:
+        n = int(words.pop("p", [1])[-1])
+    elif dialect == "haas" and 1100 <= code <= 1290 and code % 10 == 0:
+        n = code // 10 - 109
+    else:
+        return False
+    m.wcs = f"G54.1 P{n}"
+    _use_system(m, m.wcs)
+    return True
 
 
 def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
@@ -719,15 +770,19 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             _g10(m, words)
             return True
         if code == 520:  # g-code.adoc "G52 Local Coordinate System Offset": the offset is the value
+            fanuc = m.ctx.dialect.name in ("fanuc", "haas")  # Fanuc: the local system, on top of the G92 shift
             for i, a in enumerate("xyz"):
                 if a in words:
-                    m.g92[i] = words[a][-1] * m.scale
+                    v = words[a][-1] * m.scale
+                    m.g92[i] = m.g92[i] - m.local[i] + v if fanuc else v
+                    m.local[i] = v if fanuc else 0.0
             return True
         if code == 920:
             prog_no_g92 = m.to_program(m.pos) + m.g92
             for i, a in enumerate("xyz"):
                 if a in words:
                     m.g92[i] = prog_no_g92[i] - words[a][-1] * m.scale
+                    m.local[i] = 0.0
             for i, v in m.extra_words(words).items():
                 m.g92_extra[i] = m.extra[i] - m.extra_offsets[m.wcs][i] - v
             return True
@@ -745,7 +800,7 @@ def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
     centre = m.target({k: v for k, v in words.items() if k in "xy"})
     if "x" in words or "y" in words:
         m.move(line, "rapid", centre)
-    tool = m.ctx.tool(int(words["d"][-1])) if "d" in words else None
+    tool = m.tool(int(words["d"][-1])) if "d" in words else None
     radius = tool.radius if tool is not None else 0.0
     radii = [words["i"][-1] * s]
     while "k" in words and radii[-1] < words["k"][-1] * s - 1e-9:
@@ -790,8 +845,27 @@ def _g10(m: _Machine, words: dict) -> None:
     """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
     kind = int(words["l"][-1])
     p = int(words["p"][-1]) if "p" in words else 0
+    if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
+        _g10_tool(m, kind, p, words)
+        return
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
+    if m.ctx.dialect.name in ("fanuc", "haas") and kind == 2 and p == 0:  # the external offset: every system
+        for i, a in enumerate("xyz"):
+            if a in words:
+                v = (m.external[i] if m.incremental else 0.0) + words[a][-1] * m.scale
+                m.g92[i] += v - m.external[i]
+                m.external[i] = v
+        return
+    if m.ctx.dialect.name in ("fanuc", "haas"):  # Fanuc "G10 L2 / L20": the value (G90) or an increment (G91)
+        code = list(_WCS.values())[p - 1] if kind == 2 else f"G54.1 P{p}"
+        _use_system(m, code)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                m.offsets[code][i] = (m.offsets[code][i] if m.incremental else 0.0) + words[a][-1] * m.scale
+        for i, v in m.extra_words(words).items():
+            m.extra_offsets[code][i] = (m.extra_offsets[code][i] if m.incremental else 0.0) + v
+        return
     code = m.wcs if p == 0 else list(_WCS.values())[p - 1]
     # the current position in the active system, G92 included: L20 makes it the given value (LinuxCNC
     # interp_convert.cc convert_setup with interp_find.cc find_current_in_system, which takes the G92
@@ -809,6 +883,30 @@ def _g10(m: _Machine, words: dict) -> None:
         m.extra_offsets[code][i] = v if kind == 2 else m.extra[i] - m.g92_extra[i] - v
     if "r" in words:
         m.rotation[code] = words["r"][-1]
+
+
+@dataclasses.dataclass(frozen=True)
+class _Tool:
+    """A tool the context's table lacks, as G10 L10-L13 create it."""
+
+    length: float = 0.0
+    radius: float = 0.0
+    offset_x: float = 0.0
+    offset_y: float = 0.0
+
+
+def _g10_tool(m: _Machine, kind: int, p: int, words: dict) -> None:
+    """Fanuc/Haas G10 L10 (L11, L1: wear) length and L12 (L13: wear) radius of offset P to R, or by R under
+    G91 (Haas: L12/L13 are diameters)."""
+    v = words["r"][-1] * m.scale / (2.0 if kind in (12, 13) and m.ctx.dialect.name == "haas" else 1.0)
+    table = m.tool_radii if kind in (12, 13) else m.tool_lengths
+    base = m.ctx.tool(p)
+    geometry, wear = table.get(p, ((base.radius if kind in (12, 13) else base.length) if base else 0.0, 0.0))
+    if kind in (10, 12):
+        geometry = (geometry if m.incremental else 0.0) + v
+    else:
+        wear = (wear if m.incremental else 0.0) + v
+    table[p] = (geometry, wear)
 
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:

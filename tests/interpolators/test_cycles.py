@@ -13,7 +13,10 @@ import math
 import numpy as np
 import pytest
 
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
 from interpolators.iso_cycles import CycleError, CycleWords, cycle_moves
+from vcnc.errors import GCodeError
 
 INF = math.inf
 D = 0.254  # G83_RAPID_DELTA 0.010 in [mm]
@@ -142,3 +145,90 @@ def test_g84_feeds_out_to_the_clear_level_or_to_r_by_dialect():
                       incremental=False, retract_r=False, feed=2.0, dwell_p_ms=False, tap_out_to_r=True)
     assert [(m.kind, *m.target.tolist(), m.feed, m.dwell) for m in out] == [
         *into, ("line", 1, 0, 2, 2.0, 0), ("rapid", 1, 0, 10, INF, 0)]
+
+
+@pytest.mark.parametrize(("spindle", "message"), [("", "G84 tapping cycle with the spindle not turning"),
+                                                  ("S100 M4\n", "turning counter-clockwise \\(M4\\)"),
+                                                  ("S100 M3\nM5\n", "with the spindle not turning")])
+def test_linuxcnc_refuses_g84_unless_the_spindle_turns_clockwise(spindle, message):
+    """interp_cycles.cc check_g74_g84_spindle: "Spindle not turning in G84", "Spindle turning
+    counterclockwise in G84" (M5 stops it); Fanuc and Haas reverse the spindle themselves and tap."""
+    program = "G21 G90 G98\nG0 X0 Y0 Z10\n{}G84 X5 Y5 Z-3 R2 F125\nG80\n"
+    text = program.format(spindle)
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=MachineContext())
+    for dialect in ("fanuc", "haas"):
+        prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+        assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3.0, 2.0]  # in, out to R
+    # M3: LinuxCNC taps (feed in to Z-3, feed out to the clear level Z10)
+    prog = parse_program(program.format("S100 M3\n"), context=MachineContext())
+    assert [b.target[2] for b in prog.blocks if b.kind == "line"] == [-3.0, 10.0]
+
+
+def _ends(text: str, context: MachineContext) -> list[tuple]:
+    prog = parse_program(text, context=context)
+    return [(b.kind, *(round(float(v), 6) + 0.0 for v in b.target)) for b in prog.blocks]
+
+
+def test_cycle_series_with_g68_rotation_changing_between_holes():
+    """Fanuc 0i "Coordinate system rotation (G68)": the hole X Y of each block turns about the G68 centre
+    by the angle in force; Z levels are along the tool and do not turn. The initial level is where the
+    tool was when the series began (machine Z -10 with G54 Z-20), whatever rotation follows: every G98
+    hole returns there. Holes: (10, 0); R90 -> (0, 10); R180 -> (-10, 0); G69 -> (20, 0), plus G54 (100, 50)."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G54": (100.0, 50.0, -20.0)})
+    text = ("G21 G90 G17 G54\nG0 X0 Y0 Z10\nG98 G81 X10 Y0 Z-5 R2 F100\nG68 X0 Y0 R90\nX10 Y0\nG68 X0 Y0 R180\n"
+            "X10 Y0\nG69\nX20 Y0\nG80\n")
+    holes = [(110, 50), (100, 60), (90, 50), (120, 50)]
+    want = [("rapid", 100, 50, -10)]
+    for x, y in holes:
+        want += [("rapid", x, y, -10), ("rapid", x, y, -18), ("line", x, y, -25), ("rapid", x, y, -10)]
+    assert _ends(text, ctx) == want
+
+
+def test_cycle_series_under_g99_and_g91_in_a_rotated_system():
+    """G68 R90 about X0 Y0 before the series: G91 X10 steps along the rotated X, i.e. +10 along machine Y
+    (under G91 R is from the initial level and Z from R: R-8 Z-7 are the same levels, program R2 Z-5);
+    G99 returns to R (machine -18); the R45 rotation that follows turns the next absolute hole (10, 0) to
+    (7.071068, 7.071068)."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G54": (100.0, 50.0, -20.0)})
+    text = ("G21 G90 G17 G54\nG0 X0 Y0 Z10\nG68 X0 Y0 R90\nG99 G81 X10 Y0 Z-5 R2 F100\nG91 X10 R-8 Z-7\n"
+            "G90 G68 X0 Y0 R45\nX10 Y0 Z-5 R2\nG80\n")
+    s = 10 * math.sqrt(0.5)
+    holes = [(100, 60), (100, 70), (100 + s, 50 + s)]
+    got = _ends(text, ctx)
+    assert got[0] == ("rapid", 100, 50, -10)
+    assert got[1:5] == [("rapid", 100, 60, -10), ("rapid", 100, 60, -18), ("line", 100, 60, -25),
+                        ("rapid", 100, 60, -18)]
+    for (x, y), i in zip(holes[1:], (5, 8), strict=True):
+        assert [k for k, *_ in got[i:i + 3]] == ["rapid", "line", "rapid"]
+        assert np.allclose([p for _, *p in got[i:i + 3]], [(x, y, -18), (x, y, -25), (x, y, -18)], atol=1e-9)
+
+
+def test_cycle_series_under_g51_scaling():
+    """Haas "G51 Scaling": "all X, Y, Z, I, J, K, or R values addressing machine motion are multiplied by a
+    scaling factor" about the centre. G51 X0 Y0 Z0 P2 (Fanuc P2000: 0.001 units) with G54 (100, 50, -20):
+    hole X10 -> X20, R2 -> 4, Z-5 -> -10 (machine 120, R -16, bottom -30); X-10 Y5 -> (-20, 10), machine
+    (80, 60). The initial level is where the tool stood when the series began (program Z10 before the
+    scaling: machine -10), the G98 return. After G80 G50 a G85 runs unscaled (R -18, bottom -25)."""
+    for dialect, p in (("fanuc", "P2000"), ("haas", "P2.")):
+        ctx = MachineContext(dialect=DIALECTS[dialect], work_offsets={"G54": (100.0, 50.0, -20.0)})
+        text = (f"G21 G90 G17 G54\nG0 X0 Y0 Z10\nG51 X0 Y0 Z0 {p}\nG98 G81 X10 Y0 Z-5 R2 F100\nX-10 Y5\nG80\n"
+                "G50\nG99 G85 X20 Y0 Z-5 R2\nG80\n")
+        want = [("rapid", 100, 50, -10)]
+        for x, y in ((120, 50), (80, 60)):
+            want += [("rapid", x, y, -10), ("rapid", x, y, -16), ("line", x, y, -30), ("rapid", x, y, -10)]
+        want += [("rapid", 120, 50, -10), ("rapid", 120, 50, -18), ("line", 120, 50, -25), ("line", 120, 50, -18)]
+        assert _ends(text, ctx) == want
+
+
+@pytest.mark.parametrize(("program", "message"), [
+    ("G98 G81 X10 Y0 Z-5 R2 F100\nG51 X0 Y0 Z0 P2000\nX10 Y0\n", "the G51 scaling changed within the series"),
+    ("G51 X0 Y0 Z0 P2000\nG98 G81 X10 Y0 Z-5 R2 F100\nG50\nX10 Y0\n", "the G51 scaling changed within the series"),
+    ("G51 X0 Y0 Z0 P2000\nG98 G83 X10 Y0 Z-5 R2 Q1 F100\n", "G83 peck drilling cycle in a rotated coordinate "
+                                                              "system \\(G51 scaling\\)"),
+])
+def test_cycles_under_g51_scaling_refused_where_undefined(program, message):
+    """A scaling that changes within a series leaves the initial level undefined; G73/G83 pecks Q and
+    G76/G87 shifts are not scaled by Fanuc (0i "Scaling") while the reader would scale them: errors."""
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90 G17\nG0 X0 Y0 Z10\n{program}", context=MachineContext(dialect=DIALECTS["fanuc"]))

@@ -278,9 +278,8 @@ def test_haas_lathe_g70_form_is_named_as_the_lathe_cycle():
 
 
 @pytest.mark.parametrize(("code", "message"), [("G68.2 X0 Y0 Z0 I0 J45 K0", "G68.2 tilted working plane"),
-                                               ("G154 P1", "G154 P additional work offsets"),
                                                ("G43.4 H1", "G43.4 tool centre point control")])
-def test_five_axis_and_extended_offset_codes_are_named(code, message):
+def test_five_axis_codes_are_named(code, message):
     with pytest.raises(GCodeError, match=message):
         parse_program(f"G21\n{code}\n", context=HAAS)
 

@@ -295,17 +295,17 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
     assert got == EXPECTED_G10_ROTATION
 
 
-# --- LinuxCNC's tests/interp, run in place ---------------------------------------------------------------------
+# --- LinuxCNC's tests/interp and tests/ccomp, run in place ------------------------------------------------------
 #
-# Each case of LinuxCNC's interpreter tests is a program and the canonical calls rs274 prints for it. The cases are
-# read from a LinuxCNC checkout when one is present (VCNC_LINUXCNC_REPO, a git directory; never copied into this
-# repository): the program runs through vcnc with the case's tool table and SUBROUTINE_PATH, and the end points of
-# STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED, mapped to machine coordinates with the offsets the calls set
-# (SET_G5X_OFFSET, SET_G92_OFFSET, SET_XY_ROTATION, USE_TOOL_LENGTH_OFFSET) in the units they name, are compared
-# with the blocks' (zero-length moves dropped, as vcnc emits none). A case whose test.sh keeps only MESSAGE lines
-# checks that vcnc accepts the program; one whose test.sh expects rs274 to fail checks that vcnc refuses it. The
-# messages (MESSAGE calls of MSG and DEBUG comments, the lines PRINT comments print) are compared with
-# Program.messages, text and order, as the case's test.sh passes them on.
+# Each case of LinuxCNC's interpreter tests (and of its cutter compensation tests, tests/ccomp) is a program and the
+# canonical calls rs274 prints for it. The cases are read from a LinuxCNC checkout when one is present
+# (VCNC_LINUXCNC_REPO, a git directory; never copied into this repository): the program runs through vcnc with the
+# case's tool table and SUBROUTINE_PATH, and the end points of STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED, mapped to
+# machine coordinates with the offsets the calls set (SET_G5X_OFFSET, SET_G92_OFFSET, SET_XY_ROTATION,
+# USE_TOOL_LENGTH_OFFSET) in the units they name, are compared with the blocks' (zero-length moves dropped, as vcnc
+# emits none). A case whose test.sh keeps only MESSAGE lines checks that vcnc accepts the program; one whose test.sh
+# expects rs274 to fail checks that vcnc refuses it. The messages (MESSAGE calls of MSG and DEBUG comments, the lines
+# PRINT comments print) are compared with Program.messages, text and order, as the case's test.sh passes them on.
 
 _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
 
@@ -330,20 +330,30 @@ INTERP_DIFFERENT = {
     "pymove python-self value-returned": "Python subroutines and remaps (out of scope, an error naming the call)",
     "g76 g71-* g72-*": "lathe threading and lathe cycles (out of scope, an error naming them)",
 }
+#: Cases of LinuxCNC's cutter compensation tests (tests/ccomp/<case>: the same rs274 run and expected calls) whose
+#: motion vcnc reproduces: arc and line entries, Z changes under compensation, G90/G91/G92 mixed under G41.
+CCOMP_MOTION = ("mill-line-arc-entry", "mill-zchanges", "mill-g90g91g92")
+#: tests/ccomp cases that differ or are no rs274 run, and why (not run: documentation for the next step).
+CCOMP_DIFFERENT = {
+    "lathe-comp": "G18 compensation with lathe tools: the tool table's orientation Q1-Q9 (the tip's quadrant) moves "
+        "the compensated path; vcnc compensates a round (mill) tool and ends 1.27 mm (0.05 in) away on Z",
+    "early-exit": "runs linuxcnc with a GUI test script, not rs274",
+}
 #: Cases rs274 refuses, and vcnc with it.
 INTERP_REFUSED = ("iniparam-failassign", "m98m99/03-error-M98-no-P-word", "m98m99/04-M98-but-no-sub",
                   "m98m99/06-error-mixed-sub-styles", "nested-sub-error",
                   "nested-sub-in-file-error")
 
 
-def _case_dir(case: str, tmp_path: Path) -> Path:
+def _case_dir(case: str, tmp_path: Path, suite: str = "interp") -> Path:
+    """The files of LinuxCNC's ``tests/<suite>/<case>`` (``interp`` or ``ccomp``), extracted under ``tmp_path``."""
     if not (_LINUXCNC_REPO / "HEAD").is_file() and not (_LINUXCNC_REPO / ".git").exists():
         pytest.skip(f"LinuxCNC checkout absent ({_LINUXCNC_REPO}; set VCNC_LINUXCNC_REPO)")
-    archive = subprocess.run(["git", "-C", str(_LINUXCNC_REPO), "archive", "HEAD", f"tests/interp/{case}"],
+    archive = subprocess.run(["git", "-C", str(_LINUXCNC_REPO), "archive", "HEAD", f"tests/{suite}/{case}"],
                              capture_output=True, check=True).stdout
     with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
         tar.extractall(tmp_path, filter="data")
-    return tmp_path / "tests" / "interp" / case
+    return tmp_path / "tests" / suite / case
 
 
 def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
@@ -358,8 +368,9 @@ def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
         m = re.search(r"SUBROUTINE_PATH\s*=\s*(\S+)", (case_dir / args[args.index("-i") + 1]).read_text())
         path = tuple(m.group(1).split(":")) if m else ()
     programs = [case_dir / a for a in args if a.endswith(".ngc")] or sorted(case_dir.glob("*.ngc"))
-    return programs, MachineContext(tools=tools, extra_axes=EXTRA_NAMES,
-                                    dialect=Dialect(subroutine_path=path)), sh
+    # and its stored offsets (#5211.., #5221.., #5401..) read in inch whatever G20/G21 says (unit-conversion)
+    return programs, MachineContext(tools=tools, extra_axes=EXTRA_NAMES, dialect=Dialect(subroutine_path=path),
+                                    linear_units="inch"), sh
 
 
 def _canonical_moves(expected: str) -> list[tuple[str, np.ndarray]]:
@@ -415,9 +426,10 @@ def _without_repeats(moves: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.
     return out
 
 
-@pytest.mark.parametrize("case", INTERP_MOTION)
-def test_linuxcnc_interp_case_motion(case, tmp_path):
-    case_dir = _case_dir(case, tmp_path)
+@pytest.mark.parametrize(("suite", "case"),
+                         [("interp", c) for c in INTERP_MOTION] + [("ccomp", c) for c in CCOMP_MOTION])
+def test_linuxcnc_interp_case_motion(suite, case, tmp_path):
+    case_dir = _case_dir(case, tmp_path, suite)
     programs, context, _ = _rs274_run(case_dir)
     want = _without_repeats(_canonical_moves((case_dir / "expected").read_text()))
     got = _without_repeats([("arc" if b.kind.startswith("arc") else b.kind, np.asarray(b.target, dtype=float))
@@ -482,12 +494,10 @@ INTERP_MESSAGES = ("cam-nisley", "do-while-break", "g10/g10-l2-while-active", "g
                    "m98m99/08-sub-follows-main", "m98m99/10-M98-P001", "m98m99/12-M99-endless-main-program",
                    "m98m99/14-o-expression-call", "machine-coord-params", "magic_comments/param_format_printing",
                    "oword-bug315", "oword-bug315-p2", "return-value", "rotation/abs-pts", "sequence-number",
-                   "sub-call-from-sub", "subs-follow-main")
+                   "sub-call-from-sub", "subs-follow-main", "g10/g10-l11", "g10/g10-l1-l10",
+                   "g52/g52-g92-interaction", "unit-conversion")
 #: Cases with messages that differ, and why (not run).
 INTERP_MESSAGES_DIFFERENT = {
-    "g10/g10-l11 g10/g10-l1-l10 g52/g52-g92-interaction unit-conversion": "the stored offsets #5211.. (G92), "
-        "#5221.. (G54..) and tool offsets #5401.. read in mm (iso_system: a machine configured in mm); under G20 "
-        "LinuxCNC's read in inch (g10-l1-l10's values agree times 25.4)",
     "g52/g92-offset-persistence": "G92 offsets persisting in a parameter file (rs274 -v) are not modelled",
 }
 

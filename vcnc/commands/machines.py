@@ -18,10 +18,13 @@ PROGRAM_TABLE_DOC = """
 # tolerance = 0.01               # mm, path tolerance of that continuous-path mode
 # home = [0.0, 0.0, 0.0]         # mm, machine coordinates: where programs start; G28's position
 # reference2 = [0.0, 0.0, 0.0]   # mm, machine coordinates: G30's position
+# linear_units = "mm"            # mm | inch: unit of the stored offsets a program reads (#5221.., #5401..)
 # tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length, X Y offsets)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]
+# "G54.1 P1" = [0.0, 0.0, 0.0]   # Fanuc additional offsets G54.1 P1 .. P300 (G10 L20 P1 sets it); the Haas
+#                                # G154 P1 .. P99 (G110 .. G129 = G154 P1 .. P20) are the same entries
 #
 # [program.tools.1]              # per tool number: G43 H1 applies the length, G41/G42 D1 the radius
 # length = 0.0                   # mm

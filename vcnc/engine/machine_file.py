@@ -24,8 +24,10 @@ Layout::
     tolerance = 0.01              # mm, path tolerance of that mode (optional)
     home = [0.0, 0.0, 0.0]        # mm, machine coordinates: program start and G28
     reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
+    linear_units = "mm"           # mm | inch: the unit the stored offsets read in (#5221.., LinuxCNC's INI unit)
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
-    [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3
+    [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
+                                  #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
 
 or, for an axis simulated by an FMU: ``[axes.x] fmu = "drive.fmu"`` (with ``[axes.x.limits]``).
@@ -44,7 +46,7 @@ from typing import Any
 
 import controllers
 import drives
-from interpolators.context import DIALECTS, WORK_OFFSETS, MachineContext, Tool, read_tool_table
+from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table, work_offset_code
 from interpolators.limits import AxisLimits
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError, MachineError
@@ -55,7 +57,7 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools")
+                 "work_offsets", "tools", "linear_units")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -321,13 +323,23 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
     for key in ("home", "reference2"):
         if key in tab:
             kwargs[key] = _xyz_value(tab[key], path + (key,), where)
+    if tab.get("linear_units", "mm") not in ("mm", "inch"):
+        raise where.error(f"'program.linear_units' must be 'mm' or 'inch', got {tab['linear_units']!r}",
+                          path + ("linear_units",))
+    kwargs["linear_units"] = tab.get("linear_units", "mm")
     offsets = tab.get("work_offsets", {})
     if not isinstance(offsets, dict):
         raise where.error("'program.work_offsets' must be a table of G54 = [x, y, z] ...", path + ("work_offsets",))
+    keys: dict[str, str] = {}
     for code in offsets:
-        if code not in WORK_OFFSETS:
-            raise where.error(f"unknown work offset 'program.work_offsets.{code}'; expected one of: "
-                              f"{', '.join(WORK_OFFSETS)}", path + ("work_offsets", code))
+        try:
+            key = work_offset_code(code)
+        except InputError as exc:
+            raise where.error(f"'program.work_offsets.{code}': {exc}", path + ("work_offsets", code)) from None
+        if key in keys:
+            raise where.error(f"'program.work_offsets.{code}' and '{keys[key]}' are the same work offset ({key})",
+                              path + ("work_offsets", code))
+        keys[key] = code
     kwargs["work_offsets"] = {c: _xyz_value(v, path + ("work_offsets", c), where) for c, v in offsets.items()}
     tools: dict[int, Tool] = {}
     if "tool_table" in tab:
