@@ -57,6 +57,12 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
                           pocket milling (:mod:`interpolators.iso_haas`)
 ========================= =======================================================================
 
+grbl (``grbl`` dialect only): ``$`` system-command lines (reports, settings) and the ``?`` status
+query a grbl sender streams with the G-code are not run, with a note; ``$H`` homing, ``$J=`` jog,
+``$C`` check mode, ``$RST=`` are errors naming them (:mod:`interpolators.iso_grbl`). Under grbl,
+Fanuc and Haas the motion mode at power-on is G00: axis words before any motion code are a rapid
+(LinuxCNC starts in G80, where they are an error).
+
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
 file). Rotary axes A B C [deg] and secondary linear axes U V W [mm] on a machine that has them
@@ -100,6 +106,7 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext,
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
+from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_offsets import (
     EXTENDED_CODES,
@@ -180,6 +187,13 @@ _G_UNSUPPORTED: dict[int, str] = {
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
 }
+
+#: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``
+#: zeroes the parser state, and ``MOTION_MODE_SEEK`` 0 is G0), on Fanuc mills (parameter 3402#0 G01 = 0,
+#: its default: G00 at power-on and reset) and on Haas mills (G00 is group 01's default in the Haas mill
+#: operator's manual), so that axis words before any motion code are a rapid. LinuxCNC starts in G80
+#: (``rs274ngc_pre.cc`` ``init``: ``motion_mode = G_80``): there they are an error.
+_POWER_ON_MOTION = {"grbl": 0, "fanuc": 0, "haas": 0}
 
 #: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
 #: :data:`_G_UNSUPPORTED` (where LinuxCNC's meaning, or an error, stays).
@@ -360,9 +374,14 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     dialect = context.dialect
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
-                tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2))
-    st.subprogram = _ends_with_m99(text)
+                tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
+                motion=_POWER_ON_MOTION.get(dialect.name))
     notes = _Notes()
+    if dialect.name == "grbl":
+        text, blanked = system_lines(text, source)
+        for _ in range(blanked):
+            notes.add("grbl $ system commands (reports, settings) not run")
+    st.subprogram = _ends_with_m99(text)
     blocks: list[Block] = []
     used: set[int] = set()
     name = _program_name(text)

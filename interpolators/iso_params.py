@@ -174,6 +174,10 @@ class Parameters:
                        column=column, text=text, expected="a parameter the program sets")
         if key == "_line":
             return float(where.line)
+        if key == "_task":
+            # 1 when the machine runs the program (emctaskmain.cc ``int _task = 1``), 0 in a preview
+            # (gcodemodule.cc) or the standalone rs274 (sai/driver.cc without -T); vcnc runs it as the machine
+            return 1.0
         if key in _NAMED_SYSTEM and self.system is not None:
             value = self.get_numbered(_NAMED_SYSTEM[key], where, column, text)
             return 0.0 if value is None else value

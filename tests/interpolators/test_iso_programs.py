@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -589,3 +590,49 @@ def test_g52_sets_the_shared_offset_and_5210_follows_g92_family():
     text = ("G21 G90\nG0 X5 Y5\nG52 X2 Y3\nG0 X0 Y0\nG92.2\nG0 X#5210 Y#5212\nG92.3\nG0 X#5210 Y0\nG92.1\n"
             "G0 X#5211 Y#5210\n")
     assert ends(text, MachineContext()) == [[5, 5, 0], [2, 3, 0], [0, 3, 0], [3, 3, 0], [0, 0, 0]]
+
+
+def _in_dialect(name: str) -> MachineContext:
+    return dataclasses.replace(CTX, dialect=DIALECTS[name])
+
+
+def test_grbl_system_command_lines_and_status_query_are_not_g_code():
+    # a file for a grbl sender: $ reports and settings, '?' status queries (gnea/grbl protocol.c, serial.c)
+    text = ("$I  ; build info\n$$\n$G\n?  ; status\n$100=100.5 ; X steps/mm\n$N0=G20\n"
+            "G21 G90\nG0 X1 Y2 Z3?\nG1 X4 F100\n")
+    prog = parse_program(text, context=_in_dialect("grbl"))
+    # G54 is (100, 50, -20): X1 Y2 Z3 then X4, on the lines the file numbers them
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, -17], [104, 52, -17]]
+    assert [b.line for b in prog.blocks] == [8, 9]
+    assert "grbl $ system commands (reports, settings) not run x5" in prog.notes
+
+
+@pytest.mark.parametrize("line, name", [("$H", "$H homing cycle"), ("$J=G91 X10 F100", "$J= jog"),
+                                        ("$C", "$C check g-code mode"), ("$RST=#", "$RST= restore")])
+def test_grbl_system_commands_that_move_or_change_the_run_are_refused(line, name):
+    with pytest.raises(GCodeError, match=rf"2:1: grbl {re.escape(name)}: not supported"):
+        parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("grbl"))
+
+
+def test_dollar_lines_are_an_error_outside_the_grbl_dialect():
+    with pytest.raises(GCodeError, match=r"unknown word '\$I'"):
+        parse_program("$I\nG21 G0 X1\n", context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("name", ["grbl", "fanuc", "haas"])
+def test_axis_words_before_any_motion_code_are_a_rapid_where_g00_is_the_power_on_mode(name):
+    # grbl gc_init (G0), Fanuc parameter 3402#0 = 0 (G00), Haas group 01 default G00
+    pts, kinds = ends("G21 G90\nZ10\nX1 Y2\nG1 X3 F100\n", _in_dialect(name), kinds=True)
+    # from home (0, 0, 100): Z alone keeps X Y there; G54 is (100, 50, -20)
+    assert pts == [[0, 0, -10], [101, 52, -10], [103, 52, -10]]
+    assert kinds == ["rapid", "rapid", "line"]
+
+
+def test_linuxcnc_starts_in_g80_so_axis_words_need_a_motion_code():
+    with pytest.raises(GCodeError, match="2:1: axis words before any motion code"):
+        parse_program("G21 G90\nZ10\n", context=_in_dialect("linuxcnc"))
+
+
+def test_task_parameter_is_one_as_when_the_machine_runs_the_program():
+    # LinuxCNC #<_task>: 1 in milltask (emctaskmain.cc), 0 only in a preview
+    assert ends("G21 G90\no1 if [#<_task> ne 0]\nG0 X1\no1 else\nG0 X2\no1 endif\n") == [[101, 0, 100]]
