@@ -350,10 +350,12 @@ _OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif
                     r"endrepeat|break|continue)?(.*)$")
 
 
-def _lines(text: str) -> list[_Line]:
+def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(text.splitlines(), start=1):
         s = clean_line(raw)
+        if grbl:  # grbl: '$' lines are system commands (system.c), '?' a real-time status query (serial.c)
+            s = "" if s.startswith("$") else s.replace("?", "")
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)
@@ -470,8 +472,10 @@ class _Machine:
         self.pos = np.array(context.home, float)
         self.scale = 25.4 if context.dialect.default_units == "inch" else 1.0
         self.incremental = False
-        self.motion: int | None = None
-        self.linear: int | None = None
+        # G00 at power-on under grbl (gc_init zeroes the parser state: MOTION_MODE_SEEK), Fanuc (parameter
+        # 3402#0 = 0) and Haas (group 01 default); LinuxCNC starts in G80: axis words alone are an error
+        self.motion: int | None = 0 if context.dialect.name in ("grbl", "fanuc", "haas") else None
+        self.linear: int | None = self.motion
         self.plane = 17
         self.wcs = "G54"
         self.offsets = {code: np.array(context.offset(code), float) for code in _WCS.values()}
@@ -1158,7 +1162,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     ReferenceError
         The program uses a feature this reference does not model.
     """
-    lines = _lines(text.lstrip("\ufeff"))
+    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl")
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
     for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"m0*98p(\d+)", ln.text)} - own):
         other = resolve(target) if resolve is not None else None

@@ -14,6 +14,9 @@ import pytest
 from interpolators import iso_flow, parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table
 from interpolators.iso_cycles import RAPID_DELTA_INCH
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError, InputError
 
 CTX = MachineContext(
@@ -596,11 +599,21 @@ def _in_dialect(name: str) -> MachineContext:
     return dataclasses.replace(CTX, dialect=DIALECTS[name])
 
 
+def _checked(text: str, context: MachineContext):
+    """The program, its blocks checked against the independent reference (tests/interpolators/reference_iso)."""
+    prog = parse_program(text, context=context)
+    _, rows = blocks_table(prog)
+    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact + match.within == len(rows) > 0
+    return prog
+
+
 def test_grbl_system_command_lines_and_status_query_are_not_g_code():
     # a file for a grbl sender: $ reports and settings, '?' status queries (gnea/grbl protocol.c, serial.c)
     text = ("$I  ; build info\n$$\n$G\n?  ; status\n$100=100.5 ; X steps/mm\n$N0=G20\n"
             "G21 G90\nG0 X1 Y2 Z3?\nG1 X4 F100\n")
-    prog = parse_program(text, context=_in_dialect("grbl"))
+    prog = _checked(text, _in_dialect("grbl"))
     # G54 is (100, 50, -20): X1 Y2 Z3 then X4, on the lines the file numbers them
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, -17], [104, 52, -17]]
     assert [b.line for b in prog.blocks] == [8, 9]
@@ -622,7 +635,9 @@ def test_dollar_lines_are_an_error_outside_the_grbl_dialect():
 @pytest.mark.parametrize("name", ["grbl", "fanuc", "haas"])
 def test_axis_words_before_any_motion_code_are_a_rapid_where_g00_is_the_power_on_mode(name):
     # grbl gc_init (G0), Fanuc parameter 3402#0 = 0 (G00), Haas group 01 default G00
-    pts, kinds = ends("G21 G90\nZ10\nX1 Y2\nG1 X3 F100\n", _in_dialect(name), kinds=True)
+    text = "G21 G90\nZ10\nX1 Y2\nG1 X3 F100\n"
+    _checked(text, _in_dialect(name))
+    pts, kinds = ends(text, _in_dialect(name), kinds=True)
     # from home (0, 0, 100): Z alone keeps X Y there; G54 is (100, 50, -20)
     assert pts == [[0, 0, -10], [101, 52, -10], [103, 52, -10]]
     assert kinds == ["rapid", "rapid", "line"]
