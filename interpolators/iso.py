@@ -37,8 +37,11 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
                           (Fanuc ``G54.1 P``, Haas ``G154 P``/``G110``-``G129``, their ``G10 L20``:
                           :mod:`interpolators.iso_offsets`)
-``G93 G94``               inverse time (F: the block takes 1/F minutes; an F on every feed block) and
-                          feed per minute (which resets the feed: an F must follow); ``G95`` is an error
+``G93 G94 G95``           inverse time (F: the block takes 1/F minutes; an F on every feed block),
+                          feed per minute (which resets the feed: an F must follow) and feed per
+                          revolution (F [mm/rev] at the spindle speed S: F x S per minute; switching
+                          to or from it resets the feed; a feed move with the spindle stopped or S0
+                          is an error)
 ``T M6``                  tool select / change (no motion; the tool's length applies with G43)
 ``S M3 M4 M5 M7 M8 M9``   spindle and coolant (noted); ``M0 M1 M60`` program stops (noted);
                           ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
@@ -73,7 +76,7 @@ axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, spline
 cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
 the mill codes above), NURBS G5.2, polar G15/G16, scaling G51 and rotation G68 (LinuxCNC), manual-retract
-boring G88 (and Haas G87), user M codes M100-M199, G95 feed per revolution.
+boring G88 (and Haas G87), user M codes M100-M199.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
 ``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
@@ -272,6 +275,9 @@ class _State:
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
+    per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
+    feed_per_rev: float | None = None  # the F word under G95 [mm/rev] (deg/rev for a pure rotary move: F as written)
+    feed_per_rev_word: float | None = None
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
@@ -756,13 +762,12 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     if "feed mode" in gcodes:
         # LinuxCNC convert_feed_mode: G93 inverse time; G94 resets the feed rate to 0 (an F must follow)
         key, w = gcodes["feed mode"]
-        if key == 950:
-            where.fail(f"{w.text.upper()} {_G[key][1]} feed mode: not supported (feeds are per minute)",
-                       column=w.column, text=w.text, expected="G94 feed per minute or G93 inverse time")
-        if key == 940 and st.inverse_time:
-            st.feed = st.feed_rotary = None
+        if (key == 940 and st.inverse_time) or (key == 950) != st.per_rev:
+            # G95 (units per revolution) and G94 after it reset the feed as well: an F must follow
+            st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
             st.feed_reset = True
         st.inverse_time = key == 930
+        st.per_rev = key == 950
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
@@ -781,7 +786,9 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             where.fail("feed F must be > 0", column=f.column, text=f.text,
                        expected="F > 0 [1/min]" if st.inverse_time else "F > 0 [in/min]" if scale != 1.0 else
                        "F > 0 [mm/min]")
-        if not st.inverse_time:
+        if st.per_rev:
+            st.feed_per_rev, st.feed_per_rev_word = f.value * scale, f.value
+        elif not st.inverse_time:
             st.feed = f.value * scale / 60.0
             st.feed_rotary = f.value / 60.0
     if "S" in seen:
@@ -790,6 +797,12 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
             where.fail("spindle speed S must be >= 0", column=w.column, text=w.text, expected="S >= 0 [rev/min]")
         st.spindle_speed = seen["S"].value
         notes.add("S/M3-M5 spindle")
+    if st.per_rev:
+        # LinuxCNC g-code.adoc "G93, G94, G95": the controlled point moves F units per spindle revolution,
+        # so at F x S per minute (S: interp_convert.cc refuses "zero spindle speed in feed per rev mode")
+        has = st.feed_per_rev is not None and st.spindle_speed > 0
+        st.feed = st.feed_per_rev * st.spindle_speed / 60.0 if has else None
+        st.feed_rotary = st.feed_per_rev_word * st.spindle_speed / 60.0 if has else None
     if "T" in seen:
         w = seen["T"]
         if w.value != int(w.value) or w.value < 0:
@@ -1036,6 +1049,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
     if motion != 0 and not st.inverse_time and st.feed is None:
         _no_feed(st, where, code, mcol, mtok)
+    if motion != 0 and st.per_rev:
+        _per_rev_spindle(st, where, code, mcol, mtok)
     for letter in axis_words:
         used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
     common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
@@ -1172,11 +1187,22 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
     zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
     why = "no F word before it"
-    if st.subprogram:
+    if st.per_rev:
+        why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
+               "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
+    elif st.subprogram:
         why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
     elif st.feed_reset:
         why = "G94 after G93 resets the feed; no F word since"
     where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+
+
+def _per_rev_spindle(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move under G95 with the spindle stopped: it would wait for revolutions that never come
+    (LinuxCNC synchronises it to the spindle's speed feedback), so it is refused."""
+    if not st.spindle_turning:
+        where.fail(f"{code} under G95 feed per revolution with the spindle stopped", column=mcol, text=mtok,
+                   expected="M3 or M4 (and S > 0) before a feed move under G95")
 
 
 def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
@@ -1689,7 +1715,10 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
     if st.feed is None and st.motion != 0:
-        where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
+        where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
+                   column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
+    if st.per_rev and st.motion != 0:
+        _per_rev_spindle(st, where, name, mw.column, mw.text)
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
     if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])

@@ -269,7 +269,7 @@ def test_dialect_dwell_unit_and_default_path_mode():
 def test_unsupported_features_are_named():
     for text, feature in (("G38.2 Z-5 F10\n", "G38 probing"), ("G76 P1 Z-1\n", "G76 threading"),
                           ("G7\n", "lathe diameter mode"), ("G0 A10\n", "no rotary axis A"),
-                          ("M101\n", "user M code"), ("G95 F0.1\n", "feed mode")):
+                          ("M101\n", "user M code")):
         with pytest.raises(GCodeError, match=feature):
             parse_program(text)
 
@@ -651,3 +651,31 @@ def test_linuxcnc_starts_in_g80_so_axis_words_need_a_motion_code():
 def test_task_parameter_is_one_as_when_the_machine_runs_the_program():
     # LinuxCNC #<_task>: 1 in milltask (emctaskmain.cc), 0 only in a preview
     assert ends("G21 G90\no1 if [#<_task> ne 0]\nG0 X1\no1 else\nG0 X2\no1 endif\n") == [[101, 0, 100]]
+
+
+def test_g95_feed_per_revolution_is_f_times_s():
+    # LinuxCNC g-code.adoc G95: F units per spindle revolution; 0.1 mm/rev at S600 is 60 mm/min, and the
+    # same F at S1200 is 120 mm/min; G94 afterwards resets the feed (convert_feed_mode), F200 per minute
+    text = ("G21 G90 G54 S600 M3\nG0 X0 Y0 Z5\nG95 G1 Z0 F0.1\nS1200\nG1 X10\n"
+            "G20 G1 X1 F0.01\nG21 G94 G1 X0 F200\nM30\n")
+    prog = _checked(text, CTX)
+    assert [round(b.feed * 60.0, 9) for b in prog.blocks[1:]] == [60.0, 120.0, 0.254 * 1200, 200.0]
+    assert prog.blocks[3].target.tolist() == [125.4, 50, -20]
+    # a drilling cycle under G95: 0.05 mm/rev at S2000 feeds at 100 mm/min
+    drill = _checked("G21 G90 G54 G0 X0 Y0 Z10\nS2000 M3\nG95\nG98 G81 Z-5 R2 F0.05\nG80\nM30\n",
+                     _in_dialect("fanuc"))
+    assert [round(b.feed * 60.0, 9) for b in drill.blocks if b.kind == "line"] == [100.0]
+    # a G84 tap under G95 (the reference does not model G84): F is the pitch, 1 mm/rev at S300 is
+    # 300 mm/min in and out
+    tap = parse_program("G21 G90 G54 G0 X0 Y0 Z10\nS300 M3\nG95 G98 G84 Z-5 R2 F1\nG80\nM30\n",
+                        context=_in_dialect("fanuc"))
+    assert [round(b.feed * 60.0, 9) for b in tap.blocks if b.kind == "line"] == [300.0, 300.0]
+
+
+@pytest.mark.parametrize("text, why", [("G21 S600 M3\nG95\nG1 X1\n", "no F word since G95"),
+                                       ("G21 S600 M3\nF100\nG95 G1 X1\n", "no F word since G95"),
+                                       ("G21 M3\nG95 G1 X1 F0.1\n", "spindle speed S0"),
+                                       ("G21 S600\nG95 G1 X1 F0.1\n", "with the spindle stopped")])
+def test_g95_needs_f_a_spindle_speed_and_a_turning_spindle(text, why):
+    with pytest.raises(GCodeError, match=why):
+        parse_program(text, context=CTX)
