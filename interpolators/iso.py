@@ -275,6 +275,7 @@ class _State:
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
+    feed_zero: bool = False  # the last F word was F0 (a zero feed rate: no feed move until the next F)
     per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
     feed_per_rev: float | None = None  # the F word under G95 [mm/rev] (deg/rev for a pure rotary move: F as written)
     feed_per_rev_word: float | None = None
@@ -782,11 +783,16 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     if "F" in seen:
         f = seen["F"]
         scale = st.scale
-        if not f.value > 0:
+        if f.value < 0 or (st.inverse_time and f.value == 0):
             where.fail("feed F must be > 0", column=f.column, text=f.text,
                        expected="F > 0 [1/min]" if st.inverse_time else "F > 0 [in/min]" if scale != 1.0 else
                        "F > 0 [mm/min]")
-        if st.per_rev:
+        st.feed_zero = f.value == 0
+        if st.feed_zero:
+            # LinuxCNC read_f refuses only a negative F; F0 is a zero feed rate, an error at the next feed
+            # move ("Cannot do G1 with zero feed rate"), as on grbl (error 22) and Fanuc (PS0011 feed zero)
+            st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
+        elif st.per_rev:
             st.feed_per_rev, st.feed_per_rev_word = f.value * scale, f.value
         elif not st.inverse_time:
             st.feed = f.value * scale / 60.0
@@ -1187,7 +1193,9 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
     zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
     why = "no F word before it"
-    if st.per_rev:
+    if st.feed_zero:
+        why = "F0, a zero feed rate (LinuxCNC: cannot do G1 with zero feed rate)"
+    elif st.per_rev:
         why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
                "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
     elif st.subprogram:
@@ -1498,6 +1506,15 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         st.g92_applied = True
         return True
     if key == 100:
+        if "L" in seen and seen["L"].value == 0:
+            # LinuxCNC g-code.adoc "G10 L0 Reload Tool Table Data" (interp_convert.cc convert_modal_0: an
+            # error with a tool loaded). vcnc's table is the one given, and the program's G10 L1 entries
+            # are written to the table file too, so a reload changes nothing here.
+            if st.tool_current:
+                where.fail(f"G10 L0 not allowed with loaded tool T{st.tool_current}", column=w.column,
+                           text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
+            notes.add("G10 L0 tool table reload (table unchanged)")
+            return True
         _g10(seen, st, where, w)
         notes.add("G10 offsets set")
         return True

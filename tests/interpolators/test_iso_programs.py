@@ -679,3 +679,21 @@ def test_g95_feed_per_revolution_is_f_times_s():
 def test_g95_needs_f_a_spindle_speed_and_a_turning_spindle(text, why):
     with pytest.raises(GCodeError, match=why):
         parse_program(text, context=CTX)
+
+
+def test_g10_l0_reloads_the_tool_table_only_without_a_loaded_tool():
+    # LinuxCNC G10 L0: reload the tool table (an error with a tool in the spindle, convert_modal_0)
+    prog = parse_program("G21 G90 G54\nG10 L0\nG0 X1\n", context=CTX)
+    assert prog.blocks[0].target.tolist() == [101, 0, 100]
+    assert "G10 L0 tool table reload (table unchanged)" in prog.notes
+    with pytest.raises(GCodeError, match="3:1: G10 L0 not allowed with loaded tool T1"):
+        parse_program("G21\nT1 M6\nG10 L0\n", context=CTX)
+
+
+def test_f0_is_a_zero_feed_rate_refused_only_at_a_feed_move():
+    # LinuxCNC read_f refuses a negative F only; F0 on a rapid is accepted, a G1 at F0 is an error
+    prog = parse_program("G20 G90 G54\nG0 X1 F0\nG1 X2 F10\n", context=CTX)
+    assert [b.target[0] for b in prog.blocks] == pytest.approx([125.4, 150.8])
+    assert prog.blocks[1].feed * 60.0 == pytest.approx(254.0)
+    with pytest.raises(GCodeError, match="3:1: G01 feed move without a feed: F0, a zero feed rate"):
+        parse_program("G21 G1 X1 F100\nG0 X0 F0\nG1 X1\n", context=CTX)
