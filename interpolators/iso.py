@@ -277,8 +277,8 @@ class _State:
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
     feed_zero: bool = False  # the last F word was F0 (a zero feed rate: no feed move until the next F)
     per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
-    feed_per_rev: float | None = None  # the F word under G95 [mm/rev] (deg/rev for a pure rotary move: F as written)
-    feed_per_rev_word: float | None = None
+    feed_per_rev: float | None = None  # the F word under G95 [mm/rev]
+    feed_per_rev_word: float | None = None  # the same F as written [deg/rev for a pure rotary move]
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
