@@ -291,6 +291,9 @@ class _State:
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
     tool_current: int | None = None
+    length_code: float = 49.0  # the group 8 G code in effect (43, 43.1, 44, 49: Fanuc #4008)
+    length_number: int = 0  # the H number of the length offset in effect (Fanuc #4111)
+    comp_number: int = 0  # the D number of the cutter compensation in effect (Fanuc #4107)
     home: np.ndarray | None = None
     reference2: np.ndarray | None = None
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -1376,6 +1379,8 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
         where.fail(f"{w.text.upper()}: cutter radius compensation is already on", column=w.column, text=w.text,
                    expected="G40 before switching compensation")
     dynamic = key in (411, 421)
+    if "D" in seen and not dynamic:
+        st.comp_number = int(seen["D"].value)
     if "D" in seen and dynamic:
         radius = seen["D"].value * st.scale / 2.0
     else:
@@ -1420,6 +1425,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
 
 def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
     key, w = entry
+    st.length_code = key / 10
     if key == 490:
         st.tool_length = 0.0
         st.tool_xy = np.zeros(2)
@@ -1436,6 +1442,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         return
     h = seen.pop("H", None)
     number = int(h.value) if h is not None else st.tool_current
+    st.length_number = number or 0
     tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
     if tool is None and number not in (None, 0):

@@ -34,9 +34,13 @@ both in work coordinates, as ``#5420``.. (the two are the same in a reader that 
 
 Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
 information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
-17/18/19, ``#4003`` 90/91, ``#4005`` 94/93, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4009`` 80 or the
-cycle, ``#4010`` 98/99, ``#4014`` 54-59, ``#4015`` 61/64, ``#4109`` F [program units/min], ``#4120``
-T (the tool in the spindle).
+17/18/19, ``#4003`` 90/91, ``#4005`` 94/93/95, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4008``
+43/43.1/44/49, ``#4009`` 80 or the cycle, ``#4010`` 98/99, ``#4011`` 50/51 (scaling), ``#4012`` 67
+(vcnc has no G66 modal call), ``#4013`` 97 (no G96 on a mill), ``#4014`` 54-59, ``#4015`` 61/64,
+``#4016`` 68/69, ``#4022`` 50.1/51.1 (mirror); ``#4107`` the D number of the compensation in effect,
+``#4109`` F [program units/min], ``#4111`` the H number of the length offset, ``#4119`` S [rev/min],
+``#4120`` T (the tool in the spindle). The others (``#4004``, ``#4017``.., ``#4102``.., ``#4113``..)
+are not modelled: reading one is an error naming it.
 
 Under those dialects a program may also write the work offsets (Fanuc 0i-MD "System variables":
 "workpiece zero point offset value ... read/write"; Haas "Macros", "Offsets": "all tool work offsets
@@ -63,12 +67,15 @@ operator may have jogged the machine: an error naming that, not a guess.
 from __future__ import annotations
 
 import dataclasses
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_offsets import extended_number, offset_parameter
+
+if TYPE_CHECKING:
+    from interpolators.iso_transforms import Frame
 
 __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
 
@@ -109,6 +116,12 @@ class ReaderState(Protocol):
     retract_r: bool
     exact_stop: bool
     feed: float | None
+    per_rev: bool
+    frame: Frame | None
+    length_code: float
+    length_number: int
+    comp_number: int
+    spindle_speed: float
 
     @property
     def scale(self) -> float: ...
@@ -203,10 +216,15 @@ def _fanuc_modal(n: int, st: ReaderState) -> float | None:
         wcs = st.wcs[1:]
     table = {4130: float(extended), 4002: {2: 17.0, 1: 18.0, 0: 19.0}[st.plane],
              4003: 91.0 if st.incremental else 90.0,
-             4005: 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
-             4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]),
-             4010: 99.0 if st.retract_r else 98.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
-             4109: 0.0 if st.feed is None else st.feed * 60.0 / st.scale, 4120: float(st.tool_current or 0)}
+             4005: 95.0 if st.per_rev else 93.0 if st.inverse_time else 94.0, 4006: 20.0 if st.inch else 21.0,
+             4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]), 4008: st.length_code,
+             4010: 99.0 if st.retract_r else 98.0,
+             4011: 51.0 if st.frame is not None and st.frame.factors != (1.0, 1.0, 1.0) else 50.0,
+             4012: 67.0, 4013: 97.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
+             4016: 68.0 if st.frame is not None and st.frame.rotation is not None else 69.0,
+             4022: 51.1 if st.frame is not None and any(st.frame.mirror) else 50.1,
+             4107: float(st.comp_number), 4109: 0.0 if st.feed is None else st.feed * 60.0 / st.scale,
+             4111: float(st.length_number), 4119: st.spindle_speed, 4120: float(st.tool_current or 0)}
     return table.get(n)
 
 

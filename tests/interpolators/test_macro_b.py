@@ -251,6 +251,21 @@ def test_fanuc_modal_information_alarm_and_system_variables():
     assert _ends("G21 G0 X#2001\n", MachineContext()) == [[0.0, 0.0, 0.0]]
 
 
+def test_fanuc_modal_information_of_length_compensation_spindle_and_transformations():
+    """Fanuc 0i-MD "System variables", "Modal information": #4008 the group 8 code (43/44/49), #4111
+    its H number, #4107 the D number of G41/G42, #4119 S, #4005 94/95, #4016 68/69, #4011 50/51 and
+    #4022 50.1/51.1; a group vcnc does not model (#4004) is an error naming the variable."""
+    tools = MachineContext(dialect=DIALECTS["fanuc"], tools={3: Tool(number=3, length=10.0, radius=0.0)})
+    text = ("G21 G90 F600\nT3 M6\nG43 H3 Z50.\nS1200 M3\nG41 D3 G1 X10. Y0.\n#1=#4008\n#2=#4111\n#3=#4107\n"
+            "#4=#4119\n#5=#4005\nG40 G1 X#1 Y#2\nG1 X#3 Y#4\nG1 X#5 Z0\nG49 G95 G68 X0 Y0 R90.\n#6=#4008\n"
+            "#7=#4005\n#8=#4016\nG69 G94 F600\nG51 X0 Y0 P2000\n#9=#4011\nG50\nG51.1 X0\n#10=#4022\nG50.1 X0\n"
+            "G1 X#6 Y#7 Z#8\nG1 X#9 Y#10\n")
+    assert _ends(text, tools)[-5:] == [[43.0, 3.0, 60.0], [3.0, 1200.0, 60.0], [94.0, 1200.0, 10.0],
+                                        [49.0, 95.0, 68.0], [51.0, 51.1, 68.0]]
+    with pytest.raises(GCodeError, match="#4004: this Fanuc system variable"):
+        parse_program("G21 G0 X#4004\n", context=FANUC)
+
+
 def test_m99_p_returns_to_a_block_of_the_calling_program():
     """Haas "M99 Subprogram Return or Loop": M99 P30 returns to N30 of the caller, skipping N20."""
     text = "G21 F100\nM98 P100\nN20 G1 X5\nN30 G1 Y7\nM30\nO100\nG1 X1\nM99 P30\n"
