@@ -12,7 +12,7 @@ order, and the time of the diagnosis beside that of the identification of the sa
 reference measured in the same run).
 
 First, the thesis test length: a capture of about 22,000 samples (``--long-moves`` 195 random moves,
-Stribeck friction added) identified with and without the diagnosis in the same run; issue #20 asks
+Stribeck friction added) identified with and without the diagnosis in the same run (median of three); issue #20 asks
 that the diagnosis add at most 1.5 s there. Then the two real EMPS runs (``--emps`` folder), timed the
 same way.
 
@@ -25,6 +25,7 @@ import argparse
 import dataclasses
 import math
 import os
+import statistics
 import sys
 import time
 from pathlib import Path
@@ -96,9 +97,14 @@ def main() -> None:
                                base)
         cap = base.with_effect("x", "friction_stribeck", VARIANTS["friction_stribeck"][1]).simulate(spl, seed=1)
         timed_identify(cap)  # compile and warm the caches first: the figures are a user's second run
-        t_plain, t_diag, found = timed_identify(cap)
-        print(f"long capture, {cap.t.size} samples: identify {t_plain:.2f} s, with the diagnosis {t_diag:.2f} s "
-              f"(adds {t_diag - t_plain:.2f} s; goal <= 1.5 s), effects {[e.name for e in found.effects] or '-'}\n")
+        # the median of three runs, each timing both (as issue #20 measured): one run varies by 10-20 %
+        runs = [timed_identify(cap) for _ in range(3)]
+        t_plain, t_diag = (statistics.median(r[i] for r in runs) for i in (0, 1))
+        adds = statistics.median(r[1] - r[0] for r in runs)
+        found = runs[-1][2]
+        print(f"long capture, {cap.t.size} samples, median of 3: identify {t_plain:.2f} s, with the diagnosis "
+              f"{t_diag:.2f} s (adds {adds:.2f} s; goal <= 1.5 s; the three: "
+              f"{', '.join(f'{r[1] - r[0]:.2f}' for r in runs)} s), effects {[e.name for e in found.effects] or '-'}\n")
     emps_runs(args.emps)
     sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(args.moves, 10.0, 12000.0, seed=1)), base)
     print(f"{'effect':<28} {'found':<28} {'valid RMS before':>16} {'after':>8} {'parameter':>24} {'true':>10} "
