@@ -521,6 +521,17 @@ def _dwell(t: _Tnc, line: int, seconds: float) -> None:
     t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one" if seconds > 0 else "optional"))
 
 
+def _single_lip_entry(t: _Tnc, line: int, p: dict, surface: float, sgn: float) -> None:
+    """Cycle 241 before its last plunge: at Q253 (MAX: rapid) to Q200 above the deepened starting point Q379
+    (when one is given); at Q206 to the dwell depth Q435 and a dwell Q211 there."""
+    start, setup = abs(p.get("Q379", 0.0)), abs(p["Q200"])
+    if start:
+        _move_z(t, line, "rapid" if math.isinf(p["Q253"]) else "feed", surface + sgn * (start - setup))
+    if p.get("Q435", 0.0):
+        _move_z(t, line, "feed", surface + sgn * abs(p["Q435"]))
+        _dwell(t, line, p.get("Q211", 0.0))
+
+
 def _run_cycle(t: _Tnc, line: int) -> None:
     """The defined machining cycle at the current position."""
     if t.cycle is None:
@@ -1033,7 +1044,7 @@ def _back_boring(t: _Tnc, line: int, p: dict) -> None:
 
 def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering, 241
-    single-lip deep-hole drilling (Q379 = 0: as 201): in to
+    single-lip deep-hole drilling (as 201 after :func:`_single_lip_entry`): in to
     the depth (209: in steps of Q257, backing off Q256 pitches after each, 0: out to the set-up
     clearance), dwell Q211 (not 207/209), 202: 0.2 mm off the wall in the Q214 direction; out (240:
     rapid, the others at a feed) to the set-up clearance, 202: back over the centre; up to Q204."""
@@ -1042,6 +1053,8 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     clear = surface - sgn * setup
     bottom = surface + depth
     _move_z(t, line, "rapid", clear, optional=True)
+    if kind == "241":
+        _single_lip_entry(t, line, p, surface, sgn)
     if kind == "209":
         back = abs(p.get("Q256", 0.0) * p["Q239"])
         levels = _levels(surface, bottom, sgn, abs(p["Q257"]) or abs(depth))
