@@ -41,10 +41,12 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
   (revolutions from the blank in to the stud, half circles on and off).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`).
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import re
 
@@ -212,6 +214,8 @@ class _Tnc:
         self.scl = 1.0  # cycle 11
         self.factors = np.ones(3)  # cycle 26
         self.centre = np.zeros(3)  # cycle 26 [mm]
+        self.program: tuple | None = None  # the running program's (blocks, labels)
+        self.contour = ""  # cycle 14: the contour's first label
 
     def origin(self) -> np.ndarray:
         o = np.array(self.ctx.offset(self.preset), float) + self.shift
@@ -434,6 +438,14 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         t.cycle = ("12", rest.split(None, 1)[1].strip().strip('"'))
     elif number == 12:
         pass
+    elif number == 14:
+        if sub == 1:
+            t.contour = re.search(r"(\d+)", rest).group(1)
+    elif number in (20, 25):
+        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        t.q.update(params)
+        if number == 25:
+            t.cycle = ("25", params)
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
@@ -560,6 +572,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "208":
         _bore_milling(t, line, p)
         return
+    if kind == "25":
+        _contour_train(t, line, p)
+        return
     if kind == "262":
         _thread_milling(t, line, p)
         return
@@ -621,6 +636,76 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _contour_elements(t: _Tnc) -> tuple[list[tuple], float]:
+    """The programmed contour of cycle 14's label, as (line, kind, start, end, centre) [mm, machine], and its
+    side (+1 RL, -1 RR, 0 R0): its blocks run on a copy of the machine without a tool radius."""
+    blocks, labels = t.program
+    s = copy.copy(t)
+    s.out, s.pole, s.extra, s.q, s.comp, s.radius = [], t.pole.copy(), t.extra.copy(), dict(t.q), False, 0.0
+    for line, b in blocks[labels[t.contour] + 1:]:
+        up = b.upper()
+        if re.match(r"LBL\s*0\b", up):
+            break
+        if _motion(s, line, up) is None:
+            raise ReferenceError(f"contour block {b!r}")
+    ends = [(e.line, e.kind, e.end, e.centre) for e in s.out]
+    return [(ln, k, ends[i][2], end, c) for i, (ln, k, end, c) in enumerate(ends[1:])], s.side if s.comp else 0.0
+
+
+def _offset_end(el: tuple, at_end: bool, side: float, radius: float) -> np.ndarray:
+    """A contour element's end (or start) moved ``radius`` to the tool's side, square to the element."""
+    _, kind, a, b, c = el
+    x = b if at_end else a
+    if kind in ("arc_ccw", "arc_cw"):
+        r = (x - c)[:2] / np.linalg.norm((x - c)[:2])
+        tan = np.array([-r[1], r[0]]) if kind == "arc_ccw" else np.array([r[1], -r[0]])
+    else:
+        tan = (b - a)[:2] / np.linalg.norm((b - a)[:2])
+    out = x.copy()
+    out[:2] += side * radius * np.array([-tan[1], tan[0]])
+    return out
+
+
+def _contour_train(t: _Tnc, line: int, p: dict) -> None:
+    """25 CONTOUR TRAIN: per infeed (Q10 from the surface Q5 to the depth Q1): FMAX to the clearance height
+    Q7, in the plane to the contour's first point moved R + Q3 square to its first element to the side of
+    its RL/RR, Q11 down, the contour (each element's end R + Q3 from it), FMAX up to Q7. Q15 = +1 runs the
+    contour with the tool left of it (an RR contour backwards), -1 with the tool right, 0 alternately from
+    where the last pass ended (no retraction)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
+        raise ReferenceError("25 under a transformation")
+    elements, side = _contour_elements(t)
+    radius = (t.radius + p["Q3"] * t.scale) if side else 0.0
+    start, end = _offset_end(elements[0], False, side, radius), _offset_end(elements[-1], True, side, radius)
+    surface, depth, step = p["Q5"], p["Q1"], abs(p["Q10"])
+    sgn = -1.0 if depth < 0 else 1.0
+    levels = [surface + sgn * min(step * (k + 1), abs(depth)) for k in range(max(1, math.ceil(abs(depth) / step
+                                                                                              - 1e-9)))]
+    z0 = t.origin()[2]
+    for k, level in enumerate(levels):
+        back = k % 2 == 1 if p["Q15"] == 0 else side != 0 and (p["Q15"] > 0) != (side > 0)
+        first = end if back else start
+        if k == 0 or p["Q15"] != 0:
+            _move_z(t, line, "rapid", p["Q7"], optional=True)
+            t.emit(line, "rapid", np.array([first[0], first[1], t.pos[2]]), rows="optional" if np.allclose(
+                first[:2], t.pos[:2]) else "one")
+        _move_z(t, line, "feed", level)
+        zm = z0 + level * t.scale
+        run = [(ln, {"arc_ccw": "arc_cw", "arc_cw": "arc_ccw"}.get(kind, kind), b, a, c)
+               for ln, kind, a, b, c in reversed(elements)] if back else elements
+        for ln, kind, a, b, c in run:
+            a, b = np.array([a[0], a[1], zm]), np.array([b[0], b[1], zm])
+            c = None if c is None else np.array([c[0], c[1], zm])
+            if not side:
+                t.emit(ln, kind, b, centre=c)
+                continue
+            element = ("line", a, b) if c is None else ("arc", c, float(np.linalg.norm((b - c)[:2])), (0, 1), a, 0.0)
+            t.out.append(Expected(line=ln, kind=None, end=b, tolerance=radius, rows="last", element=element))
+        last = start if back else end
+        t.pos = np.array([last[0], last[1], zm])
+    _move_z(t, line, "rapid", p["Q7"])
 
 
 def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
@@ -1241,6 +1326,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     blocks = _blocks(text)
     labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
+    outer, t.program = t.program, (blocks, labels)
     counters: dict[int, int] = {}
     stack: list[int] = []
     pc, steps = 0, 0
@@ -1315,6 +1401,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             break
         pc = nxt
     t.scale = scale
+    t.program = outer
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
