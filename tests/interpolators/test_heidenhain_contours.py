@@ -93,7 +93,8 @@ def test_contour_data_20_is_read_and_moves_nothing():
 
 
 @pytest.mark.parametrize(("text", "match"), [
-    (HEAD + "5 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18=0 Q19=0 Q208=99999\n", "cycle 22 ROUGH-OUT"),
+    (HEAD + "5 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18=0 Q19=0 Q208=99999\n", "without CONTOUR DATA"),
+    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 FLOOR FINISHING"),
     (HEAD + TRAIN.format(q3="0", q15="+2") + CALL, "Q15=2 is not a milling direction"),
     ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n" + TRAIN.format(q3="0", q15="+1") + CALL, "without a contour"),
     (HEAD + TRAIN.format(q3="0", q15="+1") + CALL + "9 LBL 1\n10 L X+0 Y+0 RL\n11 L X+40 Z-5\n12 LBL 0\n",
@@ -103,3 +104,88 @@ def test_contour_data_20_is_read_and_moves_nothing():
 def test_sl_cycles_refuse_what_they_cannot_run_with_a_clear_error(text, match):
     with pytest.raises(GCodeError, match=match):
         parse_heidenhain(text + "END PGM T MM\n", source="t.h", context=CTX)
+
+
+ROUGH = ("5 CYCL DEF 20 CONTOUR DATA ~\n  Q1=-10 ;MILLING DEPTH ~\n  Q2=+1 ;TOOL PATH OVERLAP ~\n"
+         "  Q3=+0.5 ;ALLOWANCE FOR SIDE ~\n  Q4=+0.5 ;ALLOWANCE FOR FLOOR ~\n  Q5=+0 ;SURFACE COORDINATE ~\n"
+         "  Q6=+2 ;SET-UP CLEARANCE ~\n  Q7=+50 ;CLEARANCE HEIGHT ~\n  Q8=+0 ;ROUNDING RADIUS ~\n"
+         "  Q9=+1 ;ROTATIONAL DIRECTION\n"
+         "6 CYCL DEF 22 ROUGH-OUT ~\n  Q10=-5 ;PLUNGING DEPTH ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n"
+         "  Q12=350 ;FEED RATE FOR ROUGHING ~\n  Q18=0 ;COARSE ROUGHING TOOL ~\n  Q19=0 ;FEED RECIPROCATION ~\n"
+         "  Q208=MAX ;RETRACTION FEED RATE\n7 L X+0 Y+0 R0 FMAX\n8 CYCL CALL\n9 L X+0 Y+0 Z+100 R0 FMAX M30\n")
+
+#: Pockets as polygons (x, y) [mm] (the circle: 0.5 degree chords), each written as a contour subprogram.
+RECTANGLE = [(0, 0), (40, 0), (40, 30), (0, 30)]
+L_SHAPE = [(0, 0), (40, 0), (40, 10), (10, 10), (10, 30), (0, 30)]
+NECK = [(0, 0), (20, 0), (20, 10), (25, 10), (25, 0), (45, 0), (45, 30), (25, 30), (25, 19), (20, 19), (20, 30),
+        (0, 30)]
+CIRCLE = [(20 + 20 * np.cos(a), 20 + 20 * np.sin(a)) for a in np.radians(np.arange(-90.0, 270.0, 0.5))]
+
+
+def pocket_program(points, *, circle: bool = False) -> str:
+    if circle:
+        body = "11 L X+20 Y+0 RR\n12 CC X+20 Y+20\n13 C X+20 Y+0 DR+\n"
+    else:
+        body = "".join(f"{11 + i} L X{x:+g} Y{y:+g}{' RL' if i == 0 else ''}\n" for i, (x, y) in
+                       enumerate([*points, points[0]]))
+    return HEAD + ROUGH + "10 LBL 1\n" + body + "30 LBL 0\nEND PGM T MM\n"
+
+
+def _distance_to_polygon(pts: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    a, b = poly, np.roll(poly, -1, axis=0)
+    u = b - a
+    t = np.clip(np.einsum("nkd,kd->nk", pts[:, None, :] - a[None], u) / np.einsum("kd,kd->k", u, u), 0, 1)
+    return np.min(np.linalg.norm(pts[:, None, :] - (a[None] + t[..., None] * u[None]), axis=2), axis=1)
+
+
+def _inside_polygon(pts: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    inside = np.zeros(len(pts), bool)
+    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
+        crosses = (y0 > pts[:, 1]) != (y1 > pts[:, 1])
+        xs = x0 + (pts[:, 1] - y0) * (x1 - x0) / ((y1 - y0) if y1 != y0 else 1.0)
+        inside ^= crosses & (pts[:, 0] < xs)
+    return inside
+
+
+@pytest.mark.parametrize("name", ["rectangle", "l_shape", "neck", "circle"])
+def test_rough_out_22_keeps_every_move_below_the_surface_inside_the_pocket_clear_of_the_allowance(name):
+    points = {"rectangle": RECTANGLE, "l_shape": L_SHAPE, "neck": NECK, "circle": CIRCLE}[name]
+    prog = parse_heidenhain(pocket_program(points, circle=name == "circle"), source="t.h", context=CTX)
+    poly = np.array(points, float)
+    # the moves that reach below the surface (machine Z 10), but the first one, up from home
+    below = [b for b in prog.blocks[1:] if b.segment is not None and min(b.start[2], b.target[2]) < 10.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 50)))[:, :2]
+                          for b in below])
+    assert np.all(_inside_polygon(pts, poly))
+    # the tool's edge (R = 3) keeps Q3 = 0.5 from the wall; the circle's chords are 0.0004 mm inside it
+    assert _distance_to_polygon(pts, poly).min() >= 3.5 - 1e-3
+    # the depths: Q10 = 5 down to Q1 + Q4 = 9.5 (machine Z = program Z + 10), plunged at Q11 from Q6 above Q5
+    plunges = [b for b in prog.blocks if b.kind == "line" and b.start[2] != b.target[2]]
+    assert [(round(b.start[2], 9), round(b.target[2], 9), round(b.feed * 60, 9)) for b in plunges] == [
+        (12.0, 5.0, 100.0), (12.0, 0.5, 100.0)]
+
+
+def test_rough_out_22_rectangle_rings_from_the_inside_out_the_last_one_r_plus_q3_from_the_wall():
+    prog = run_rough(RECTANGLE)
+    ends = [tuple(np.round(b.target[:2], 6).tolist()) for b in prog.blocks
+            if b.kind == "line" and b.text.startswith("12 ") and b.target[2] == 5.0]
+    # Q9=+1 counter-clockwise; rings Q2 x R = 3 apart from 3.5 in: 3.5, 6.5, 9.5, 12.5 (15.5 > 15, half the
+    # width); each ring starts and ends at the middle of the first element (X+40 from X+0 Y+0: X20), so that
+    # element's two halves end at the ring's corner and back at X20
+    assert ends == [(27.5, 12.5), (20, 12.5), (30.5, 9.5), (20, 9.5), (33.5, 6.5), (20, 6.5), (36.5, 3.5), (20, 3.5)]
+    last = [b for b in prog.blocks if b.target[2] == 5.0][-1]
+    assert tuple(np.round(last.target, 6)) == (20.0, 3.5, 5.0)  # back at the middle of the first element
+
+
+def run_rough(points):
+    return parse_heidenhain(pocket_program(points), source="t.h", context=CTX)
+
+
+@pytest.mark.parametrize(("change", "match"), [
+    ("14.1 CONTOUR LABEL 1", "14.1 CONTOUR LABEL 1 /2"), ("Q18=0 ", "Q18=2 "),
+])
+def test_rough_out_22_refuses_islands_and_rest_machining(change, match):
+    text = pocket_program(RECTANGLE).replace(change, match).replace("30 LBL 0\n", "30 LBL 0\n31 LBL 2\n"
+                                                                    "32 L X+5 Y+5 RR\n33 L X+8\n34 L X+5\n35 LBL 0\n")
+    with pytest.raises(GCodeError, match="islands|rest machining"):
+        parse_heidenhain(text, source="t.h", context=CTX)
