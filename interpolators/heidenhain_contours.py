@@ -13,7 +13,10 @@ programming, the same cycles.
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
 ``CYCL DEF 25``           CONTOUR TRAIN, called: the first label of cycle 14 followed at the depths
                           (:func:`contour_train_cycle`; the moves are the reader's ``_contour_train``)
-``CYCL DEF 21 .. 24``     pilot drilling, rough-out, floor and side finishing: an error naming the cycle
+``CYCL DEF 22``           ROUGH-OUT of one pocket contour without islands, called, with cycle 20's data
+                          (:func:`rough_out_cycle`, :func:`pocket_rings`; the moves: the reader's
+                          ``_rough_out``)
+``CYCL DEF 21, 23, 24``   pilot drilling, floor and side finishing: an error naming the cycle
 ========================= ==================================================================
 """
 
@@ -36,7 +39,7 @@ __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "con
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
-#: The SL cycles that clear a pocket (offsetting with islands): refused with their names.
+#: The SL cycles that clear a pocket; all but 22 (one pocket, no islands) are refused with their names.
 ROUGHING_CYCLES = {21: "PILOT DRILLING", 22: "ROUGH-OUT", 23: "FLOOR FINISHING", 24: "SIDE FINISHING"}
 
 _LABELS_RE = re.compile(r"\s*(?:CONTOUR|KONTUR)?\s*(?:LABEL|LBL)\s*((?:\d+\s*/?\s*)+)$", re.I)
