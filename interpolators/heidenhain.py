@@ -763,7 +763,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 14, 17, 19 (reset), 20, 25, 26, 32, 200-209, 220, 221, 240, 241, "
+                   expected="CYCL DEF 1, 2, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, 241, "
                             "247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
