@@ -41,7 +41,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
   (revolutions from the blank in to the stud, half circles on and off).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
-- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`).
+- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
+  ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
 
 from __future__ import annotations
@@ -216,6 +217,7 @@ class _Tnc:
         self.centre = np.zeros(3)  # cycle 26 [mm]
         self.program: tuple | None = None  # the running program's (blocks, labels)
         self.contour = ""  # cycle 14: the contour's first label
+        self.data: dict = {}  # cycle 20's Q1 .. Q9
 
     def origin(self) -> np.ndarray:
         o = np.array(self.ctx.offset(self.preset), float) + self.shift
@@ -441,11 +443,14 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 14:
         if sub == 1:
             t.contour = re.search(r"(\d+)", rest).group(1)
-    elif number in (20, 25):
-        params = {k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+    elif number in (20, 22, 25):
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
+                  for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         t.q.update(params)
-        if number == 25:
-            t.cycle = ("25", params)
+        if number == 20:
+            t.data = params
+        else:
+            t.cycle = (str(number), params if number == 25 else {**t.data, **params})
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
@@ -574,6 +579,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "25":
         _contour_train(t, line, p)
+        return
+    if kind == "22":
+        _rough_out(t, line, p)
         return
     if kind == "262":
         _thread_milling(t, line, p)
@@ -705,6 +713,103 @@ def _contour_train(t: _Tnc, line: int, p: dict) -> None:
             t.out.append(Expected(line=ln, kind=None, end=b, tolerance=radius, rows="last", element=element))
         last = start if back else end
         t.pos = np.array([last[0], last[1], zm])
+    _move_z(t, line, "rapid", p["Q7"])
+
+
+def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndarray]] | None:
+    """The ring ``r`` [mm] inside the counter-clockwise polygon ``corners`` (2-D), from the middle of its
+    first edge: that start and, per edge (the first edge's second half first, its first half last, back at
+    the start), where its offset ends (a convex corner: where the two offsets meet; a reflex corner: the
+    offset's end, the arc about the corner belonging to the next edge). None when a point of it lies
+    outside the polygon or nearer than r to an edge (edges and arcs sampled)."""
+    n = len(corners)
+    units = [(corners[(i + 1) % n] - corners[i]) / np.linalg.norm(corners[(i + 1) % n] - corners[i])
+             for i in range(n)]
+    left = [np.array([-u[1], u[0]]) for u in units]
+    start = (corners[0] + corners[1 % n]) / 2 + r * left[0]
+    ends, dense, here = [], [start[None]], start
+    for i in range(n):
+        j = (i + 1) % n
+        corner = corners[j]
+        if units[i][0] * units[j][1] - units[i][1] * units[j][0] > 1e-12:  # convex: the offsets meet
+            a, b = corner + r * left[i], corner + r * left[j]
+            end = a + units[i] * np.linalg.solve(np.array([units[i], -units[j]]).T, b - a)[0]
+            arc = np.empty((0, 2))
+        else:
+            end = corner + r * left[i]
+            a0, a1 = (math.atan2(v[1], v[0]) for v in (left[i], left[j]))
+            sweep = (a1 - a0) % (2 * math.pi) - 2 * math.pi  # clockwise about a reflex corner
+            angles = a0 + sweep * np.linspace(0, 1, 40)
+            arc = corner + r * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        dense += [np.linspace(here, end, 40), arc]
+        ends.append(end)
+        here = arc[-1] if len(arc) else end
+    dense.append(np.linspace(here, start, 40))  # the first edge's first half, back to the start
+    ends.append(start)
+    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
+
+
+def _far_inside(pts: np.ndarray, corners: list[np.ndarray], r: float) -> bool:
+    """All ``pts`` (n, 2) inside the polygon and at least ``r`` [mm] (less 1 um) from its edges."""
+    poly = np.array(corners)
+    inside = np.zeros(len(pts), bool)
+    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
+        crosses = (y0 > pts[:, 1]) != (y1 > pts[:, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inside ^= crosses & (pts[:, 0] < x0 + (pts[:, 1] - y0) * (x1 - x0) / (y1 - y0))
+    a, u = poly, np.roll(poly, -1, axis=0) - poly
+    tt = np.clip(np.einsum("nkd,kd->nk", pts[:, None, :] - a[None], u) / np.einsum("kd,kd->k", u, u), 0, 1)
+    dist = np.min(np.linalg.norm(pts[:, None, :] - (a[None] + tt[..., None] * u[None]), axis=2), axis=1)
+    return bool(np.all(inside) and dist.min() >= r - 1e-6)
+
+
+def _pocket_rings(corners: list[np.ndarray], r0: float, step: float) -> list[tuple]:
+    """The rings of :func:`_ring` from ``r0`` in steps of ``step`` [mm] while one fits and the straight step
+    from its start out to the previous ring's start keeps the previous ring's distance."""
+    rings: list[tuple] = []
+    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step)) is not None:
+        if rings and not _far_inside(np.linspace(ring[0], rings[-1][0], 40), corners, r0 + (len(rings) - 1) * step):
+            break
+        rings.append(ring)
+    return rings
+
+
+def _rough_out(t: _Tnc, line: int, p: dict) -> None:
+    """22 ROUGH-OUT, one pocket of straight edges: rings R + Q3 + k Q2 R inside it while one fits
+    (:func:`_pocket_rings`), run from the innermost out in the sense Q9 (+1 counter-clockwise), each from
+    the middle of the first edge; per depth (Q10 down to Q1 less Q4): FMAX to Q7 (the first), over the
+    innermost start, to Q6 above Q5, Q11 down, the rings (each edge's end exact), up to Q6 above Q5; Q7."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
+        raise ReferenceError("22 under a transformation")
+    elements, _ = _contour_elements(t)
+    if any(k not in ("feed", "rapid") for _, k, _, _, _ in elements):
+        raise ReferenceError("22 with arcs")
+    corners, lines = [a[:2] for _, _, a, _, _ in elements], [ln for ln, _, _, _, _ in elements]
+    area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(corners, corners[1:] + corners[:1]))
+    ccw = p["Q9"] >= 0
+    if (area > 0) != ccw:  # the other way round: the edges from their ends
+        corners, lines = [b[:2] for _, _, _, b, _ in reversed(elements)], lines[::-1]
+    flip = np.array([1.0, 1.0 if ccw else -1.0])  # a clockwise run: the rings of the mirrored pocket
+    rings = _pocket_rings([c * flip for c in corners], t.radius + p["Q3"] * t.scale, p["Q2"] * t.radius)
+    sgn = -1.0 if p["Q1"] < 0 else 1.0
+    levels = _levels(p["Q5"], p["Q5"] + sgn * (abs(p["Q1"]) - abs(p["Q4"])), sgn, abs(p["Q10"]))
+    above = p["Q5"] - sgn * abs(p["Q6"])
+    _move_z(t, line, "rapid", p["Q7"], optional=True)
+    for level in levels:
+        zm = t.origin()[2] + level * t.scale
+        first = rings[-1][0] * flip
+        t.emit(line, "rapid", np.array([*first, t.pos[2]]), rows="optional" if np.allclose(first, t.pos[:2])
+               else "one")
+        _move_z(t, line, "rapid", above, optional=True)
+        _move_z(t, line, "feed", level)
+        for start, ends in rings[::-1]:
+            t.emit(line, "feed", np.array([*(start * flip), zm]), rows="optional" if np.allclose(
+                start * flip, t.pos[:2]) else "one")
+            for k, end in enumerate(ends):
+                t.out.append(Expected(line=lines[k % len(lines)], kind=None, end=np.array([*(end * flip), zm]),
+                                      rows="last"))
+            t.pos = np.array([*(start * flip), zm])
+        _move_z(t, line, "rapid", above)
     _move_z(t, line, "rapid", p["Q7"])
 
 

@@ -150,7 +150,9 @@ def _inside_polygon(pts: np.ndarray, poly: np.ndarray) -> np.ndarray:
 @pytest.mark.parametrize("name", ["rectangle", "l_shape", "neck", "circle"])
 def test_rough_out_22_keeps_every_move_below_the_surface_inside_the_pocket_clear_of_the_allowance(name):
     points = {"rectangle": RECTANGLE, "l_shape": L_SHAPE, "neck": NECK, "circle": CIRCLE}[name]
-    prog = parse_heidenhain(pocket_program(points, circle=name == "circle"), source="t.h", context=CTX)
+    text = pocket_program(points, circle=name == "circle")
+    # the straight-edged pockets are checked block by block against the reference too (its rings its own)
+    prog = parse_heidenhain(text, source="t.h", context=CTX) if name == "circle" else run(text)
     poly = np.array(points, float)
     # the moves that reach below the surface (machine Z 10), but the first one, up from home
     below = [b for b in prog.blocks[1:] if b.segment is not None and min(b.start[2], b.target[2]) < 10.0]
@@ -163,6 +165,15 @@ def test_rough_out_22_keeps_every_move_below_the_surface_inside_the_pocket_clear
     plunges = [b for b in prog.blocks if b.kind == "line" and b.start[2] != b.target[2]]
     assert [(round(b.start[2], 9), round(b.target[2], 9), round(b.feed * 60, 9)) for b in plunges] == [
         (12.0, 5.0, 100.0), (12.0, 0.5, 100.0)]
+
+
+@pytest.mark.parametrize("q9", ["+1", "-1"])
+def test_rough_out_22_runs_the_pocket_in_the_sense_q9_whichever_way_it_is_written(q9):
+    for points in (L_SHAPE, L_SHAPE[::-1]):
+        prog = run(pocket_program(points).replace("Q9=+1", "Q9=" + q9))
+        ring = [b.target[:2] for b in prog.blocks if b.target[2] == 5.0 and b.kind == "line"][-7:]
+        area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(ring, ring[1:] + ring[:1]))
+        assert (area > 0) == (q9 == "+1")
 
 
 def test_rough_out_22_rectangle_rings_from_the_inside_out_the_last_one_r_plus_q3_from_the_wall():
@@ -178,7 +189,7 @@ def test_rough_out_22_rectangle_rings_from_the_inside_out_the_last_one_r_plus_q3
 
 
 def run_rough(points):
-    return parse_heidenhain(pocket_program(points), source="t.h", context=CTX)
+    return run(pocket_program(points))
 
 
 @pytest.mark.parametrize(("change", "match"), [
