@@ -102,6 +102,21 @@ from interpolators._words import INCH, Where, program_text
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.heidenhain_contours import (
+    CONTOUR_CYCLES,
+    ROUGHING_CYCLES,
+    ContourTrain,
+    RoughOut,
+    closed_pocket,
+    contour_data,
+    contour_labels,
+    contour_train_cycle,
+    path_at_level,
+    pocket_rings,
+    reversed_path,
+    rough_out_cycle,
+    train_levels,
+)
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
     LEGACY_CYCLES,
@@ -216,7 +231,9 @@ class _Machine:
         self.ccw: bool | None = None
         self.exact_stop = True
         self.tolerance: float | None = None
-        self.cycle: DrillCycle | None = None
+        self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
+        self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
+        self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float] = {}
         self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
@@ -737,14 +754,17 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 247:
         _preset_cycle(rest, m, where, col)
         return
+    if number in CONTOUR_CYCLES or number in ROUGHING_CYCLES:
+        _sl_cycle_def(number, sub, rest, m, where, col)
+        return
     if number in _SETTING_CYCLES:
         q_assignments(rest, where, m.params, column0=col)
         m.note(f"CYCL DEF {number}: {_SETTING_CYCLES[number]}; no motion")
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 17, 19 (reset), 26, 32, 200-209, 220, 221, 240, 241, 247, 251, 252, "
-                            "253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, 241, "
+                            "247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -811,6 +831,28 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         elif sub == LEGACY_CYCLES[number]:
             m.cycle = tapping_cycle(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column, spindle=m.spindle)
+
+
+def _sl_cycle_def(number: int, sub: int | None, rest: str, m: _Machine, where: Where, col: int) -> None:
+    """The SL cycles (:mod:`interpolators.heidenhain_contours`): 14 CONTOUR GEOMETRY and 20 CONTOUR DATA
+    are DEF-active, 25 CONTOUR TRAIN is called; 21-24 clear pockets and are refused."""
+    if number in ROUGHING_CYCLES and number != 22:
+        where.fail(f"cycle {number} {ROUGHING_CYCLES[number]} (clearing a pocket of the cycle 14 contour and its "
+                   "islands) is not supported", column=where.text.upper().find("CYCL") + 1 or 1, text=where.text,
+                   expected="CYCL DEF 25 CONTOUR TRAIN for a contour, or the pocket cycles 251-257")
+    if number == 14:
+        if sub == 1:
+            m.contour = contour_labels(rest, where, col)
+        return
+    q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
+    if number == 20:
+        m.contour_data = contour_data(q, where, col)
+        return
+    m.cycle_program = None
+    if number == 22:
+        m.cycle = rough_out_cycle(q, m.contour_data, feed_scale=m.feed_scale, scale=m.scale, where=where, column=col)
+        return
+    m.cycle = contour_train_cycle(q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=col)
 
 
 #: Cycles that set the machine up and move nothing: their Q parameters are assigned, the cycle noted.
@@ -942,6 +984,7 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
+    _no_contour_train(m, where, blk)
     seen = {w.key: w for w in words}
     for a in "XYZ":
         if a not in seen and "I" + a not in seen:
@@ -986,6 +1029,14 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
+    if isinstance(m.cycle, (ContourTrain, RoughOut)):
+        if hole is not None or surface_shift:
+            _no_contour_train(m, where, blk)
+        if isinstance(m.cycle, RoughOut):
+            _rough_out(m, m.cycle, where, blk)
+        else:
+            _contour_train(m, m.cycle, where, blk)
+        return
     c = _active_cycle(m)
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
@@ -1002,6 +1053,172 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
         if not np.array_equal(target, m.pos):
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
     _hole(m, c, surface, where, blk)
+
+
+def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25)."""
+    if isinstance(m.cycle, (ContourTrain, RoughOut)):
+        name = "25 CONTOUR TRAIN" if isinstance(m.cycle, ContourTrain) else "22 ROUGH-OUT"
+        where.fail(f"cycle {name} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
+                   text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
+
+
+def _trace_contour(m: _Machine, label: str, radius: float, start: np.ndarray, feed: float, where: Where,
+                   blk: SourceBlock) -> tuple[list[Block], str]:
+    """The blocks of the contour subprogram ``LBL label`` run from ``start`` [mm, machine] with the tool
+    radius ``radius`` [mm] and the feed ``feed`` [mm/s] where it gives none (its RL/RR compensation
+    applied, the last element kept as a contour element),
+    taken out of the program's blocks, and the compensation it used (``RL``, ``RR`` or ``R0``). The
+    machine's position, feed and tool radius are as before."""
+    runner = m.runner
+    saved = (m.pos.copy(), m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid)
+    first = len(m.blocks)
+    m.pos, m.tool_radius, m.feed = np.array(start, dtype=float), radius, feed
+    sub = _Run(m, runner.blocks, runner.source, runner.max_executed - runner.executed, callers=runner.callers)
+    target = sub.labels.find(label, where, column=blk.column, text=blk.code)
+    sub.stack.append(Frame(return_to=len(runner.blocks), label=label, runs_left=1))
+    sub.pc = target + 1
+    sub.steps()
+    runner.executed += sub.executed
+    if sub.stack:
+        where.fail(f"cycle 25: the contour LBL {label} ends without LBL 0", column=blk.column, text=blk.code,
+                   expected=f"LBL {label} .. LBL 0 (the contour subprogram)")
+    if m.pending is not None or m.approach is not None:
+        where.fail(f"cycle 25: the contour LBL {label} ends with a RND/CHF or APPR waiting for an element",
+                   column=blk.column, text=blk.code, expected="a contour element after RND, CHF and APPR")
+    side = m.comp_side if m.comp != "R0" else "R0"
+    if m.comp != "R0":
+        _finish_compensation(m, open_end=True)
+    path = m.blocks[first:]
+    del m.blocks[first:]
+    m.pos, m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid = saved
+    for b in path:
+        if b.segment is None or b.start[m.plane] != b.target[m.plane]:
+            Where(m.source, b.line, b.text).fail(
+                f"cycle 25: the contour LBL {label} moves along the tool axis or dwells", column=1, text=b.text,
+                expected="contour elements in the working plane (cycle 25 sets the depth)")
+    if len(path) < 2:
+        where.fail(f"cycle 25: the contour LBL {label} has no element after its starting point", column=blk.column,
+                   text=blk.code, expected="a starting point and at least one contour element")
+    return path, side
+
+
+def _sl_checks(m: _Machine, number: int, where: Where, blk: SourceBlock) -> str:
+    """The contour label of an SL cycle call, after the checks all of them share."""
+    if not m.contour:
+        where.fail(f"cycle {number} without a contour (CYCL DEF 14)", column=blk.column, text=blk.code,
+                   expected="CYCL DEF 14.0 CONTOUR / 14.1 CONTOUR LABEL n before the cycle call")
+    if not m.transform.identity or m.comp != "R0":
+        where.fail(f"cycle {number} under a coordinate transformation (cycles 8, 10, 11, 26) or with RL/RR active "
+                   "is not supported", column=blk.column, text=blk.code,
+                   expected="R0 and no mirror, rotation or scaling")
+    return m.contour[0]
+
+
+def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
+    """Cycle 22 ROUGH-OUT of a pocket with no islands (TNC 426/430 user's manual, "ROUGH-OUT (Cycle 22)": "the
+    tool mills the contour from the inside outward", at each plunging depth, leaving the allowances Q3 and
+    Q4; then to the clearance height). The manual leaves the path to the control; our reading, kept inside
+    the pocket: rings parallel to the contour (:func:`interpolators.heidenhain_contours.pocket_rings`), the
+    outermost R + Q3 from it, each next one Q2 x R farther in, as long as one fits, run from the innermost
+    out in the sense Q9, joined square to the contour at the middle of its first element; per depth: at
+    FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
+    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 (rounding the path's inside
+    corners) is not applied (noted). Islands (several labels in cycle 14) are an error."""
+    label = _sl_checks(m, 22, where, blk)
+    if len(m.contour) > 1:
+        where.fail("cycle 22 with islands (several labels in cycle 14) is not supported", column=blk.column,
+                   text=blk.code, expected="CYCL DEF 14.1 CONTOUR LABEL n with one pocket contour")
+    if m.tool_radius <= 0:
+        where.fail("cycle 22 needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
+                   text=blk.code, expected="a TOOL CALL of a tool with a radius")
+    if m.contour_data and m.contour_data.get(8, 0.0):
+        m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
+    axis = m.plane
+    path, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
+    pocket = closed_pocket(path[1:], ccw=c.ccw, plane=axis)
+    if pocket is None:
+        where.fail(f"cycle 22: the contour LBL {label} is not closed or encloses no area", column=blk.column,
+                   text=blk.code, expected="a closed pocket contour (its last point its first)")
+    loop, polygon = pocket
+    first = m.tool_radius + c.side_allowance
+    span = float(np.max(np.ptp(polygon, axis=0)))
+    step = c.overlap * m.tool_radius
+    radii = [first + k * step for k in range(min(10_000, int(span / step) + 2))]
+    rings = pocket_rings(loop, polygon, radii=radii, plane=axis, ccw=c.ccw)[::-1]
+    if not rings:
+        where.fail(f"cycle 22: the tool (radius {m.tool_radius:g} mm) plus the allowance Q3 does not fit the pocket "
+                   f"LBL {label}", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
+    bottom = abs(c.depth) - c.floor_allowance
+    if bottom <= 0:
+        where.fail("cycle 22: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+                   text=blk.code, expected="|Q4| < |Q1|")
+    d = -1.0 if c.depth < 0 else 1.0
+    surface = m.origin()[axis] + c.surface
+    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    m.used.update((*PLANE_AXES[axis], axis))
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+    for level in train_levels(surface, d * bottom, c.plunge):
+        over = _at_level(rings[0][0].start, axis, m.pos[axis])
+        if not np.array_equal(over, m.pos):
+            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+        _axis_move(m, "rapid", above, math.inf, where, blk)
+        _axis_move(m, "line", level, c.plunge_feed, where, blk)
+        for ring in rings:
+            begin = _at_level(ring[0].start, axis, level)
+            if not np.array_equal(begin, m.pos):
+                m.emit("line", begin, Line(m.pos, begin), c.feed, where, blk.number)
+            for b in path_at_level(ring, axis, level):
+                m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
+                                                    start=m.pos.copy()))
+                m.pos = np.array(b.target, dtype=float)
+        _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
+                   math.inf if c.retract_feed is None else c.retract_feed, where, blk)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock) -> None:
+    """Cycle 25 CONTOUR TRAIN (:func:`interpolators.heidenhain_contours.contour_train_cycle`) along the first
+    label of cycle 14. The manual gives the parameters, not the moves; our reading: at FMAX to the clearance
+    height Q7, in the plane to the contour's compensated starting point (its first point moved the tool
+    radius plus Q3 off the first element, to the side of the RL/RR of the subprogram, as the TNC starts a
+    compensated contour), at Q11 down to the first infeed level (Q10 below the surface Q5), the contour at
+    Q12 with the tool radius plus Q3 (its last element offset as the others), at FMAX up to Q7, and so on
+    to the depth Q1; the tool ends at Q7 over the contour's end. Q15 = +1 (climb milling with M3: the tool
+    left of its path) runs an RR contour backwards, Q15 = -1 an RL contour; Q15 = 0 runs the contour as
+    programmed, then backwards at the next depth from where it ended (plunging there at Q11), and so on. An
+    R0 contour runs as programmed (the tool centre on it, Q3 not applied)."""
+    label = _sl_checks(m, 25, where, blk)
+    axis = m.plane
+    radius = m.tool_radius + c.allowance
+    if radius < 0:
+        where.fail(f"cycle 25: the allowance Q3 ({c.allowance:g} mm) is below minus the tool radius",
+                   column=blk.column, text=blk.code, expected="Q3 >= -R")
+    programmed, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
+    first, tangent = np.array(programmed[0].target), np.array(programmed[1].segment.tangent_at(0.0), dtype=float)
+    tangent[axis] = 0.0
+    lead = first - tangent / (np.linalg.norm(tangent) or 1.0) * 2.0 * (radius + 1.0)
+    traced, side = _trace_contour(m, label, radius, lead, c.feed, where, blk)
+    contour = traced[1:]
+    surface = m.origin()[axis] + c.surface
+    clear = m.origin()[axis] + c.clearance
+    p, q = PLANE_AXES[axis]
+    m.used.update((p, q, axis))
+    for k, level in enumerate(train_levels(surface, c.depth, c.plunge)):
+        backwards = k % 2 == 1 if c.climb == 0 else side != "R0" and (c.climb > 0) != (side == "RL")
+        run = path_at_level(reversed_path(contour) if backwards else contour, axis, level)
+        if k == 0 or c.climb != 0:
+            _axis_move(m, "rapid", clear, math.inf, where, blk)
+            over = _at_level(run[0].start, axis, clear)
+            if not np.array_equal(over, m.pos):
+                m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+        _axis_move(m, "line", level, c.plunge_feed, where, blk)
+        for b in run:
+            m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
+                                                start=m.pos.copy()))
+            m.pos = np.array(b.target, dtype=float)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+    m.last_rapid = True
 
 
 def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
@@ -1508,7 +1725,7 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     plane, the machining cycle from the set-up clearance; to the next positions at the set-up
     clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
     machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
-    if m.cycle is None or m.cycle.surface is None:
+    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut)) or m.cycle.surface is None:
         where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
                    text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)

@@ -26,7 +26,8 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
 ``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
-``CYCL DEF 241``          single-lip deep-hole drilling in one infeed (:func:`drill_cycle`)
+``CYCL DEF 241``          single-lip deep-hole drilling in one infeed, Q379 deepened starting point at
+                          Q253, Q435 dwell depth, Q401 feed factor (:func:`single_lip_cycle`)
 ``CYCL DEF 251``          rectangular pocket, as 252 with rounded rectangles (Q218, Q219, Q220, Q224)
 ``CYCL DEF 256``          rectangular stud, revolutions from the blank Q424 x Q425 in
                           (:func:`circular_pocket_cycle`); 257 circular stud, as 256 with a circle
@@ -57,7 +58,8 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
-           "circular_pocket_cycle", "scaled_cycle", "pattern_positions", "hole_moves"]
+           "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
+           "hole_moves"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -208,6 +210,12 @@ class DrillCycle:
         Q376 is ``angle``, the width Q219 ``bore_diameter``).
     repeats : int
         Cycle 254: Q377, the number of slots on the pitch circle.
+    start_depth : float
+        Cycle 241: Q379, the deepened starting point below the surface [mm] (0: none).
+    dwell_depth : float
+        Cycle 241: Q435, the depth below the surface where the tool dwells Q211 on its way down [mm] (0: none).
+    reduced_feed : float or None
+        Cycle 241: the feed below the dwell depth, Q206 x Q401 / 100 [mm/s] (``None``: Q206).
     """
 
     number: int
@@ -257,6 +265,9 @@ class DrillCycle:
     plunge_type: int = 0
     slot: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
     repeats: int = 1
+    start_depth: float = 0.0
+    dwell_depth: float = 0.0
+    reduced_feed: float | None = None
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
@@ -378,9 +389,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       (Q256 = 0: out to the set-up clearance) at the feed times Q403 (default 1), as it retracts at
       the bottom;
     * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back;
-    * 241 SINGLE-LIP DEEP-HOLE DRILLING (:func:`_single_lip_supported`): as 201, from the set-up
-      clearance at Q206 to the depth, dwell Q211, out at Q208 (0: Q206; MAX: rapid); the spindle
-      and coolant words Q426-Q430 move nothing;
+    * 241 SINGLE-LIP DEEP-HOLE DRILLING: :func:`single_lip_cycle`;
     * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (the reader's
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
@@ -396,6 +405,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     if number in (251, 252, 253, 254, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
+    if number == 241:
+        return single_lip_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if q.get(379, 0.0) != 0.0:
         where.fail(f"cycle {number}: a deepened starting point Q379 is not supported", column=column,
                    text=where.text, expected="Q379=0 (drilling from the set-up clearance above the surface)")
@@ -422,9 +433,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=plunge, feed=feed, retract_feed=back, chip_breaks=10 ** 9 if chip else 0,
                                    chip_break=chip, **base), where, column)
     feed = q[206] * feed_scale
-    if number == 241:
-        _single_lip_supported(q, where, column)
-    if number in (201, 202, 206, 241):
+    if number in (201, 202, 206):
         back = (q.get(208, 0.0) or q[206]) * feed_scale if number != 206 else feed
         back = None if math.isinf(back) else back  # Q208=MAX: out at rapid
         side = {1: (-1.0, 0.0), 2: (0.0, -1.0), 3: (1.0, 0.0), 4: (0.0, 1.0)}.get(int(q.get(214, 0.0)), (0.0, 0.0))
@@ -512,16 +521,71 @@ def back_boring_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
     return out
 
 
-def _single_lip_supported(q: dict[int, float], where: Where, column: int) -> None:
-    """Cycle 241's options read here (TNC 640 user's manual for cycle programming, "SINGLE-LIP
-    DEEP-HOLE DRILLING (Cycle 241)"): drilling from the set-up clearance in one infeed. A deepened
-    starting point Q379, a dwell depth Q435 or infeeds Q202 shorter than the depth are errors."""
-    if q.get(379, 0.0) != 0.0 or q.get(435, 0.0) != 0.0:
-        where.fail("cycle 241: a deepened starting point Q379 or a dwell depth Q435 is not supported",
-                   column=column, text=where.text, expected="Q379=0 and Q435=0")
+def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                     column: int) -> DrillCycle:
+    """Cycle 241 SINGLE-LIP DEEP-HOLE DRILLING from its Q parameters (iTNC 530 / TNC 640 user's manual for
+    cycle programming, "SINGLE-LIP DEEP-HOLE DRILLING (Cycle 241)"; the moves are :func:`single_lip_moves`):
+    Q200 set-up clearance, Q201 depth, Q206 plunging feed, Q211 dwell at the bottom, Q203 surface, Q204 2nd
+    set-up clearance, Q379 deepened starting point (incremental from the surface; 0: none), Q253 feed for
+    pre-positioning (``MAX``: rapid), Q208 retraction feed (0: Q206, ``MAX``: rapid), Q435 dwell depth
+    (incremental from the surface, 0: none; the tool dwells Q211 there), Q401 feed factor below the dwell
+    depth [%] (default 100). The spindle and coolant words Q426-Q430 move nothing. Infeeds Q202 shorter
+    than the depth (the newer versions' pecking with Q212/Q205) are an error, as a Q379 deeper than the
+    hole or a Q435 outside it."""
+    depth = q[201] * scale
+    start = abs(q.get(379, 0.0)) * scale
+    dwell_at = abs(q.get(435, 0.0)) * scale
     if 0.0 < abs(q.get(202, 0.0)) < abs(q[201]):
         where.fail("cycle 241: infeeds Q202 shorter than the depth are not supported", column=column,
                    text=where.text, expected="Q202=0 or at least the depth Q201")
+    if start >= abs(depth) or dwell_at >= abs(depth):
+        where.fail("cycle 241: the deepened starting point Q379 and the dwell depth Q435 must lie within the "
+                   "depth Q201", column=column, text=where.text, expected="|Q379| < |Q201| and |Q435| < |Q201|")
+    if start and not q.get(253, 0.0) > 0:
+        where.fail("cycle 241: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
+                   column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
+    factor = q.get(401, 100.0)
+    if not 0 < factor <= 100:
+        where.fail("cycle 241: the feed factor Q401 must lie in (0, 100] %", column=column, text=where.text,
+                   expected="0 < Q401 <= 100")
+    back = (q.get(208, 0.0) or q[206]) * feed_scale
+    return _checked(DrillCycle(
+        number=241, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth), feed=q[206] * feed_scale,
+        surface=q[203] * scale, second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0),
+        retract_feed=None if math.isinf(back) else back, start_depth=start,
+        approach_feed=q.get(253, 0.0) * feed_scale if start else 0.0, dwell_depth=dwell_at,
+        reduced_feed=q[206] * feed_scale * factor / 100.0 if dwell_at and factor != 100 else None), where, column)
+
+
+def single_lip_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
+    """The tool-axis moves of cycle 241 (iTNC 530 / TNC 640 user's manual for cycle programming, "SINGLE-LIP
+    DEEP-HOLE DRILLING (Cycle 241)", cycle run): FMAX to the set-up clearance above the surface; with a
+    deepened starting point Q379, at the pre-positioning feed Q253 to the set-up clearance above the
+    deepened starting point; at Q206 to the dwell depth Q435 and dwell Q211 there (when entered), on to the
+    depth (below the dwell depth at Q206 x Q401 %); dwell Q211; out at the retraction feed Q208 to the set-up
+    clearance above the surface, then FMAX to the 2nd set-up clearance when it is higher. ``surface`` is
+    the tool-axis coordinate of the surface [mm, machine]."""
+    d = -1.0 if cycle.depth < 0 else 1.0
+    top = surface - d * cycle.setup
+    out = [AxisMove("rapid", top)]
+    entry = surface + d * (cycle.start_depth - cycle.setup)
+    if cycle.start_depth:
+        out.append(AxisMove("line", entry, cycle.approach_feed) if math.isfinite(cycle.approach_feed)
+                   else AxisMove("rapid", entry))
+    bottom = surface + cycle.depth
+    feed = cycle.feed
+    if cycle.dwell_depth:
+        out.append(AxisMove("line", surface + d * cycle.dwell_depth, cycle.feed))
+        if cycle.dwell_bottom > 0:
+            out.append(AxisMove("dwell", surface + d * cycle.dwell_depth, 0.0, cycle.dwell_bottom))
+        feed = cycle.reduced_feed or cycle.feed
+    out.append(AxisMove("line", bottom, feed))
+    if cycle.dwell_bottom > 0:
+        out.append(AxisMove("dwell", bottom, 0.0, cycle.dwell_bottom))
+    out.append(AxisMove("line", top, cycle.retract_feed) if cycle.retract_feed else AxisMove("rapid", top))
+    if cycle.second_setup > cycle.setup:
+        out.append(AxisMove("rapid", surface - d * cycle.second_setup))
+    return out
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -712,7 +776,8 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                blank=(cycle.blank[0] * factor, cycle.blank[1] * factor),
                                counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor,
                                sink_depth=cycle.sink_depth * factor, front_depth=cycle.front_depth * factor,
-                               front_offset=cycle.front_offset * factor)
+                               front_offset=cycle.front_offset * factor, start_depth=cycle.start_depth * factor,
+                               dwell_depth=cycle.dwell_depth * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -888,6 +953,8 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     ``start`` and ``surface`` are tool-axis coordinates [mm, machine]; the sign of the depth is the
     working direction.
     """
+    if cycle.number == 241:
+        return single_lip_moves(cycle, surface=surface)
     d = -1.0 if cycle.depth < 0 else 1.0
     total = abs(cycle.depth)
     out: list[AxisMove] = []

@@ -41,10 +41,13 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
   (revolutions from the blank in to the stud, half circles on and off).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
+  ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import re
 
@@ -212,6 +215,9 @@ class _Tnc:
         self.scl = 1.0  # cycle 11
         self.factors = np.ones(3)  # cycle 26
         self.centre = np.zeros(3)  # cycle 26 [mm]
+        self.program: tuple | None = None  # the running program's (blocks, labels)
+        self.contour = ""  # cycle 14: the contour's first label
+        self.data: dict = {}  # cycle 20's Q1 .. Q9
 
     def origin(self) -> np.ndarray:
         o = np.array(self.ctx.offset(self.preset), float) + self.shift
@@ -434,6 +440,17 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         t.cycle = ("12", rest.split(None, 1)[1].strip().strip('"'))
     elif number == 12:
         pass
+    elif number == 14:
+        if sub == 1:
+            t.contour = re.search(r"(\d+)", rest).group(1)
+    elif number in (20, 22, 25):
+        params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
+                  for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
+        t.q.update(params)
+        if number == 20:
+            t.data = params
+        else:
+            t.cycle = (str(number), params if number == 25 else {**t.data, **params})
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
@@ -521,6 +538,17 @@ def _dwell(t: _Tnc, line: int, seconds: float) -> None:
     t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one" if seconds > 0 else "optional"))
 
 
+def _single_lip_entry(t: _Tnc, line: int, p: dict, surface: float, sgn: float) -> None:
+    """Cycle 241 before its last plunge: at Q253 (MAX: rapid) to Q200 above the deepened starting point Q379
+    (when one is given); at Q206 to the dwell depth Q435 and a dwell Q211 there."""
+    start, setup = abs(p.get("Q379", 0.0)), abs(p["Q200"])
+    if start:
+        _move_z(t, line, "rapid" if math.isinf(p["Q253"]) else "feed", surface + sgn * (start - setup))
+    if p.get("Q435", 0.0):
+        _move_z(t, line, "feed", surface + sgn * abs(p["Q435"]))
+        _dwell(t, line, p.get("Q211", 0.0))
+
+
 def _run_cycle(t: _Tnc, line: int) -> None:
     """The defined machining cycle at the current position."""
     if t.cycle is None:
@@ -548,6 +576,12 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "208":
         _bore_milling(t, line, p)
+        return
+    if kind == "25":
+        _contour_train(t, line, p)
+        return
+    if kind == "22":
+        _rough_out(t, line, p)
         return
     if kind == "262":
         _thread_milling(t, line, p)
@@ -610,6 +644,173 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _contour_elements(t: _Tnc) -> tuple[list[tuple], float]:
+    """The programmed contour of cycle 14's label, as (line, kind, start, end, centre) [mm, machine], and its
+    side (+1 RL, -1 RR, 0 R0): its blocks run on a copy of the machine without a tool radius."""
+    blocks, labels = t.program
+    s = copy.copy(t)
+    s.out, s.pole, s.extra, s.q, s.comp, s.radius = [], t.pole.copy(), t.extra.copy(), dict(t.q), False, 0.0
+    for line, b in blocks[labels[t.contour] + 1:]:
+        up = b.upper()
+        if re.match(r"LBL\s*0\b", up):
+            break
+        if _motion(s, line, up) is None:
+            raise ReferenceError(f"contour block {b!r}")
+    ends = [(e.line, e.kind, e.end, e.centre) for e in s.out]
+    return [(ln, k, ends[i][2], end, c) for i, (ln, k, end, c) in enumerate(ends[1:])], s.side if s.comp else 0.0
+
+
+def _offset_end(el: tuple, at_end: bool, side: float, radius: float) -> np.ndarray:
+    """A contour element's end (or start) moved ``radius`` to the tool's side, square to the element."""
+    _, kind, a, b, c = el
+    x = b if at_end else a
+    if kind in ("arc_ccw", "arc_cw"):
+        r = (x - c)[:2] / np.linalg.norm((x - c)[:2])
+        tan = np.array([-r[1], r[0]]) if kind == "arc_ccw" else np.array([r[1], -r[0]])
+    else:
+        tan = (b - a)[:2] / np.linalg.norm((b - a)[:2])
+    out = x.copy()
+    out[:2] += side * radius * np.array([-tan[1], tan[0]])
+    return out
+
+
+def _contour_train(t: _Tnc, line: int, p: dict) -> None:
+    """25 CONTOUR TRAIN: per infeed (Q10 from the surface Q5 to the depth Q1): FMAX to the clearance height
+    Q7, in the plane to the contour's first point moved R + Q3 square to its first element to the side of
+    its RL/RR, Q11 down, the contour (each element's end R + Q3 from it), FMAX up to Q7. Q15 = +1 runs the
+    contour with the tool left of it (an RR contour backwards), -1 with the tool right, 0 alternately from
+    where the last pass ended (no retraction)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
+        raise ReferenceError("25 under a transformation")
+    elements, side = _contour_elements(t)
+    radius = (t.radius + p["Q3"] * t.scale) if side else 0.0
+    start, end = _offset_end(elements[0], False, side, radius), _offset_end(elements[-1], True, side, radius)
+    surface, depth, step = p["Q5"], p["Q1"], abs(p["Q10"])
+    sgn = -1.0 if depth < 0 else 1.0
+    levels = [surface + sgn * min(step * (k + 1), abs(depth)) for k in range(max(1, math.ceil(abs(depth) / step
+                                                                                              - 1e-9)))]
+    z0 = t.origin()[2]
+    for k, level in enumerate(levels):
+        back = k % 2 == 1 if p["Q15"] == 0 else side != 0 and (p["Q15"] > 0) != (side > 0)
+        first = end if back else start
+        if k == 0 or p["Q15"] != 0:
+            _move_z(t, line, "rapid", p["Q7"], optional=True)
+            t.emit(line, "rapid", np.array([first[0], first[1], t.pos[2]]), rows="optional" if np.allclose(
+                first[:2], t.pos[:2]) else "one")
+        _move_z(t, line, "feed", level)
+        zm = z0 + level * t.scale
+        run = [(ln, {"arc_ccw": "arc_cw", "arc_cw": "arc_ccw"}.get(kind, kind), b, a, c)
+               for ln, kind, a, b, c in reversed(elements)] if back else elements
+        for ln, kind, a, b, c in run:
+            a, b = np.array([a[0], a[1], zm]), np.array([b[0], b[1], zm])
+            c = None if c is None else np.array([c[0], c[1], zm])
+            if not side:
+                t.emit(ln, kind, b, centre=c)
+                continue
+            element = ("line", a, b) if c is None else ("arc", c, float(np.linalg.norm((b - c)[:2])), (0, 1), a, 0.0)
+            t.out.append(Expected(line=ln, kind=None, end=b, tolerance=radius, rows="last", element=element))
+        last = start if back else end
+        t.pos = np.array([last[0], last[1], zm])
+    _move_z(t, line, "rapid", p["Q7"])
+
+
+def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndarray]] | None:
+    """The ring ``r`` [mm] inside the counter-clockwise polygon ``corners`` (2-D), from the middle of its
+    first edge: that start and, per edge (the first edge's second half first, its first half last, back at
+    the start), where its offset ends (a convex corner: where the two offsets meet; a reflex corner: the
+    offset's end, the arc about the corner belonging to the next edge). None when a point of it lies
+    outside the polygon or nearer than r to an edge (edges and arcs sampled)."""
+    n = len(corners)
+    units = [(corners[(i + 1) % n] - corners[i]) / np.linalg.norm(corners[(i + 1) % n] - corners[i])
+             for i in range(n)]
+    left = [np.array([-u[1], u[0]]) for u in units]
+    start = (corners[0] + corners[1 % n]) / 2 + r * left[0]
+    ends, dense, here = [], [start[None]], start
+    for i in range(n):
+        j = (i + 1) % n
+        corner = corners[j]
+        if units[i][0] * units[j][1] - units[i][1] * units[j][0] > 1e-12:  # convex: the offsets meet
+            a, b = corner + r * left[i], corner + r * left[j]
+            end = a + units[i] * np.linalg.solve(np.array([units[i], -units[j]]).T, b - a)[0]
+            arc = np.empty((0, 2))
+        else:
+            end = corner + r * left[i]
+            a0, a1 = (math.atan2(v[1], v[0]) for v in (left[i], left[j]))
+            sweep = (a1 - a0) % (2 * math.pi) - 2 * math.pi  # clockwise about a reflex corner
+            angles = a0 + sweep * np.linspace(0, 1, 40)
+            arc = corner + r * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        dense += [np.linspace(here, end, 40), arc]
+        ends.append(end)
+        here = arc[-1] if len(arc) else end
+    dense.append(np.linspace(here, start, 40))  # the first edge's first half, back to the start
+    ends.append(start)
+    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
+
+
+def _far_inside(pts: np.ndarray, corners: list[np.ndarray], r: float) -> bool:
+    """All ``pts`` (n, 2) inside the polygon and at least ``r`` [mm] (less 1 um) from its edges."""
+    poly = np.array(corners)
+    inside = np.zeros(len(pts), bool)
+    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
+        crosses = (y0 > pts[:, 1]) != (y1 > pts[:, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inside ^= crosses & (pts[:, 0] < x0 + (pts[:, 1] - y0) * (x1 - x0) / (y1 - y0))
+    a, u = poly, np.roll(poly, -1, axis=0) - poly
+    tt = np.clip(np.einsum("nkd,kd->nk", pts[:, None, :] - a[None], u) / np.einsum("kd,kd->k", u, u), 0, 1)
+    dist = np.min(np.linalg.norm(pts[:, None, :] - (a[None] + tt[..., None] * u[None]), axis=2), axis=1)
+    return bool(np.all(inside) and dist.min() >= r - 1e-6)
+
+
+def _pocket_rings(corners: list[np.ndarray], r0: float, step: float) -> list[tuple]:
+    """The rings of :func:`_ring` from ``r0`` in steps of ``step`` [mm] while one fits and the straight step
+    from its start out to the previous ring's start keeps the previous ring's distance."""
+    rings: list[tuple] = []
+    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step)) is not None:
+        if rings and not _far_inside(np.linspace(ring[0], rings[-1][0], 40), corners, r0 + (len(rings) - 1) * step):
+            break
+        rings.append(ring)
+    return rings
+
+
+def _rough_out(t: _Tnc, line: int, p: dict) -> None:
+    """22 ROUGH-OUT, one pocket of straight edges: rings R + Q3 + k Q2 R inside it while one fits
+    (:func:`_pocket_rings`), run from the innermost out in the sense Q9 (+1 counter-clockwise), each from
+    the middle of the first edge; per depth (Q10 down to Q1 less Q4): FMAX to Q7 (the first), over the
+    innermost start, to Q6 above Q5, Q11 down, the rings (each edge's end exact), up to Q6 above Q5; Q7."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
+        raise ReferenceError("22 under a transformation")
+    elements, _ = _contour_elements(t)
+    if any(k not in ("feed", "rapid") for _, k, _, _, _ in elements):
+        raise ReferenceError("22 with arcs")
+    corners, lines = [a[:2] for _, _, a, _, _ in elements], [ln for ln, _, _, _, _ in elements]
+    area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(corners, corners[1:] + corners[:1]))
+    ccw = p["Q9"] >= 0
+    if (area > 0) != ccw:  # the other way round: the edges from their ends
+        corners, lines = [b[:2] for _, _, _, b, _ in reversed(elements)], lines[::-1]
+    flip = np.array([1.0, 1.0 if ccw else -1.0])  # a clockwise run: the rings of the mirrored pocket
+    rings = _pocket_rings([c * flip for c in corners], t.radius + p["Q3"] * t.scale, p["Q2"] * t.radius)
+    sgn = -1.0 if p["Q1"] < 0 else 1.0
+    levels = _levels(p["Q5"], p["Q5"] + sgn * (abs(p["Q1"]) - abs(p["Q4"])), sgn, abs(p["Q10"]))
+    above = p["Q5"] - sgn * abs(p["Q6"])
+    _move_z(t, line, "rapid", p["Q7"], optional=True)
+    for level in levels:
+        zm = t.origin()[2] + level * t.scale
+        first = rings[-1][0] * flip
+        t.emit(line, "rapid", np.array([*first, t.pos[2]]), rows="optional" if np.allclose(first, t.pos[:2])
+               else "one")
+        _move_z(t, line, "rapid", above, optional=True)
+        _move_z(t, line, "feed", level)
+        for start, ends in rings[::-1]:
+            t.emit(line, "feed", np.array([*(start * flip), zm]), rows="optional" if np.allclose(
+                start * flip, t.pos[:2]) else "one")
+            for k, end in enumerate(ends):
+                t.out.append(Expected(line=lines[k % len(lines)], kind=None, end=np.array([*(end * flip), zm]),
+                                      rows="last"))
+            t.pos = np.array([*(start * flip), zm])
+        _move_z(t, line, "rapid", above)
+    _move_z(t, line, "rapid", p["Q7"])
 
 
 def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
@@ -1033,7 +1234,7 @@ def _back_boring(t: _Tnc, line: int, p: dict) -> None:
 
 def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     """201 reaming, 202 boring, 206/207 tapping, 209 tapping with chip breaking, 240 centering, 241
-    single-lip deep-hole drilling (Q379 = 0: as 201): in to
+    single-lip deep-hole drilling (as 201 after :func:`_single_lip_entry`): in to
     the depth (209: in steps of Q257, backing off Q256 pitches after each, 0: out to the set-up
     clearance), dwell Q211 (not 207/209), 202: 0.2 mm off the wall in the Q214 direction; out (240:
     rapid, the others at a feed) to the set-up clearance, 202: back over the centre; up to Q204."""
@@ -1042,6 +1243,8 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     clear = surface - sgn * setup
     bottom = surface + depth
     _move_z(t, line, "rapid", clear, optional=True)
+    if kind == "241":
+        _single_lip_entry(t, line, p, surface, sgn)
     if kind == "209":
         back = abs(p.get("Q256", 0.0) * p["Q239"])
         levels = _levels(surface, bottom, sgn, abs(p["Q257"]) or abs(depth))
@@ -1228,6 +1431,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     blocks = _blocks(text)
     labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
+    outer, t.program = t.program, (blocks, labels)
     counters: dict[int, int] = {}
     stack: list[int] = []
     pc, steps = 0, 0
@@ -1302,6 +1506,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             break
         pc = nxt
     t.scale = scale
+    t.program = outer
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:

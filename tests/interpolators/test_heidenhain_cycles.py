@@ -374,8 +374,33 @@ def test_single_lip_deep_hole_241_drills_in_one_infeed_and_retracts_at_q208():
     prog = run(GUN_DRILL.format(q379=0))
     assert moves(prog) == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, -40, 50), ("dwell", 0, 0, -40, 0.5),
                            ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
-    with pytest.raises(GCodeError, match="Q379"):
-        run(GUN_DRILL.format(q379=16))
+
+
+def test_single_lip_241_with_a_deepened_starting_point_enters_the_pilot_hole_at_q253():
+    # hyperMILL's gun drilling: Q379=16 (the pilot hole's depth), Q200=3: at Q253 = 750 mm/min down to 3 mm
+    # above the deepened starting point, Z-13; then at Q206 to Q201, dwell Q211, out at Q208 to Z+3, up to Q204
+    prog = run(GUN_DRILL.format(q379=16))
+    assert moves(prog) == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, -13, 750), ("line", 0, 0, -40, 50),
+                           ("dwell", 0, 0, -40, 0.5), ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
+    # Q379 shallower than the set-up clearance: the set-up clearance above it lies above the surface
+    assert moves(run(GUN_DRILL.format(q379=2)))[:3] == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, 1, 750),
+                                                        ("line", 0, 0, -40, 50)]
+
+
+def test_single_lip_241_dwells_at_the_dwell_depth_and_drills_on_at_the_reduced_feed_q401():
+    prog = run(GUN_DRILL.format(q379=16).replace("Q435=0", "Q435=30 ~\n Q401=50"))
+    assert moves(prog) == [("rapid", 0, 0, 3, math.inf), ("line", 0, 0, -13, 750), ("line", 0, 0, -30, 50),
+                           ("dwell", 0, 0, -30, 0.5), ("line", 0, 0, -40, 25), ("dwell", 0, 0, -40, 0.5),
+                           ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
+
+
+@pytest.mark.parametrize(("change", "match"), [("Q379=50", "Q379 and the dwell depth Q435 must lie"),
+                                                ("Q435=40", "must lie within the depth"),
+                                                ("Q379=10 ~\n Q202=5", "infeeds Q202 shorter")])
+def test_single_lip_241_refuses_what_it_cannot_run_naming_the_parameter(change, match):
+    with pytest.raises(GCodeError, match=match):
+        run(GUN_DRILL.format(q379=0).replace("Q379=0", change) if "Q379" in change
+            else GUN_DRILL.format(q379=0).replace("Q435=0", change))
 
 
 def test_back_boring_204_at_the_points_of_a_pattern():

@@ -1,0 +1,346 @@
+"""SL cycles of Heidenhain conversational programs: contours given as label subprograms.
+
+Sources: HEIDENHAIN TNC 426/430 user's manual, "SL cycles" (cycle 14 CONTOUR GEOMETRY, cycle 20
+CONTOUR DATA, cycles 21-24, cycle 25 CONTOUR TRAIN); iTNC 530 / TNC 640 user's manuals for cycle
+programming, the same cycles.
+
+========================= ==================================================================
+``CYCL DEF 14.0 CONTOUR`` 14.1 ``CONTOUR LABEL 1 /2 /3``: the labels whose subprograms are the
+                          contours (the first the pocket, the others pockets or islands by their
+                          RL/RR), DEF-active (:func:`contour_labels`)
+``CYCL DEF 20``           CONTOUR DATA Q1 depth, Q2 path overlap, Q3 side allowance, Q4 floor
+                          allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
+                          inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
+``CYCL DEF 25``           CONTOUR TRAIN, called: the first label of cycle 14 followed at the depths
+                          (:func:`contour_train_cycle`; the moves are the reader's ``_contour_train``)
+``CYCL DEF 22``           ROUGH-OUT of one pocket contour without islands, called, with cycle 20's data
+                          (:func:`rough_out_cycle`, :func:`pocket_rings`; the moves: the reader's
+                          ``_rough_out``)
+``CYCL DEF 21, 23, 24``   pilot drilling, floor and side finishing: an error naming the cycle
+========================= ==================================================================
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+
+import numpy as np
+
+from interpolators._words import Where
+from interpolators.compensation import CompensationError, compensate
+from interpolators.program import Block
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+
+__all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "contour_labels", "contour_data",
+           "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
+           "closed_pocket", "pocket_rings"]
+
+#: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
+CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
+#: The SL cycles that clear a pocket; all but 22 (one pocket, no islands) are refused with their names.
+ROUGHING_CYCLES = {21: "PILOT DRILLING", 22: "ROUGH-OUT", 23: "FLOOR FINISHING", 24: "SIDE FINISHING"}
+
+_LABELS_RE = re.compile(r"\s*(?:CONTOUR|KONTUR)?\s*(?:LABEL|LBL)\s*((?:\d+\s*/?\s*)+)$", re.I)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class ContourTrain:
+    """Cycle 25 CONTOUR TRAIN as defined, in mm, mm/s.
+
+    Attributes
+    ----------
+    depth : float
+        Q1, the milling depth from the surface [mm]; its sign is the working direction.
+    allowance : float
+        Q3, the finishing allowance for the side [mm]: the tool runs this much farther from the contour.
+    surface : float
+        Q5, the workpiece surface coordinate [mm, program] (absolute).
+    clearance : float
+        Q7, the clearance height [mm, program] (absolute): where the tool moves in the plane.
+    plunge : float
+        Q10, the plunging depth per infeed [mm] (> 0).
+    plunge_feed, feed : float
+        Q11 plunging feed and Q12 milling feed [mm/s].
+    climb : int
+        Q15: +1 climb milling, -1 up-cut milling (with M3), 0 both alternately, one per infeed.
+    """
+
+    depth: float
+    allowance: float
+    surface: float
+    clearance: float
+    plunge: float
+    plunge_feed: float
+    feed: float
+    climb: int
+
+
+def contour_labels(rest: str, where: Where, column: int) -> tuple[str, ...]:
+    """The label numbers of ``CYCL DEF 14.1 CONTOUR LABEL 1 /2`` (``rest`` after ``14.1``; the German
+    dialog writes ``KONTURLABEL1 /2``). TNC 426/430 user's manual, "CONTOUR GEOMETRY (Cycle 14)": "all
+    subprograms that are superimposed to define the contour are listed"; up to 12 labels."""
+    lm = _LABELS_RE.match(rest)
+    labels = tuple(re.findall(r"\d+", lm.group(1))) if lm else ()
+    if not labels or len(labels) > 12 or "0" in labels:
+        where.fail("malformed cycle 14.1: the contour's label numbers", column=column, text=rest.strip(),
+                   expected="CYCL DEF 14.1 CONTOUR LABEL n /m .. (1 to 12 labels, none 0)")
+    return labels
+
+
+def contour_data(q: dict[int, float], where: Where, column: int) -> dict[int, float]:
+    """Cycle 20 CONTOUR DATA (TNC 426/430 user's manual, "CONTOUR DATA (Cycle 20)"): Q1 milling depth
+    (its sign the working direction), Q2 path overlap factor, Q3 finishing allowance for the side, Q4 for
+    the floor, Q5 surface coordinate (absolute), Q6 set-up clearance, Q7 clearance height (absolute), Q8
+    inside corner radius, Q9 direction of rotation (-1 clockwise, +1 counter-clockwise for pockets). It
+    moves nothing; the pocket cycles 21-24 use it."""
+    missing = [f"Q{k}" for k in (1, 2, 3, 4, 5, 6, 7, 8, 9) if k not in q]
+    if missing:
+        where.fail(f"cycle 20 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="CONTOUR DATA Q1 .. Q9")
+    return dict(q)
+
+
+def contour_train_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                        column: int) -> ContourTrain:
+    """Cycle 25 CONTOUR TRAIN from its Q parameters (TNC 426/430 user's manual, "CONTOUR TRAIN (Cycle 25)":
+    "In conjunction with Cycle 14 CONTOUR GEOMETRY, this cycle facilitates the machining of open
+    contours"; Q1 milling depth, Q3 finishing allowance for side, Q5 workpiece surface coordinate, Q7
+    clearance height, Q10 plunging depth, Q11 feed rate for plunging, Q12 feed rate for milling, Q15 climb
+    (+1), up-cut (-1) or both alternately in several infeeds (0); cycle 20 is not needed)."""
+    missing = [f"Q{k}" for k in (1, 3, 5, 7, 10, 11, 12, 15) if k not in q]
+    if missing:
+        where.fail(f"cycle 25 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="CONTOUR TRAIN Q1 Q3 Q5 Q7 Q10 Q11 Q12 Q15")
+    if q[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0:
+        where.fail("cycle 25: the depth Q1 and the plunging depth Q10 must be != 0, the feeds Q11 and Q12 > 0",
+                   column=column, text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0")
+    if q[15] not in (-1.0, 0.0, 1.0):
+        where.fail(f"cycle 25: Q15={q[15]:g} is not a milling direction", column=column, text=where.text,
+                   expected="Q15=+1 (climb), -1 (up-cut) or 0 (alternately)")
+    if abs(q[1]) / abs(q[10]) > 10_000:
+        where.fail("cycle 25: more than 10000 infeeds", column=column, text=where.text,
+                   expected="a larger plunging depth Q10")
+    return ContourTrain(depth=q[1] * scale, allowance=q[3] * scale, surface=q[5] * scale, clearance=q[7] * scale,
+                        plunge=abs(q[10]) * scale, plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale,
+                        climb=int(q[15]))
+
+
+def train_levels(surface: float, depth: float, plunge: float) -> list[float]:
+    """The infeed levels [mm] from ``surface`` by ``plunge`` toward ``surface + depth``, the last one there."""
+    d = -1.0 if depth < 0 else 1.0
+    n = max(1, math.ceil(abs(depth) / plunge - 1e-9))
+    return [surface + d * min(plunge * (i + 1), abs(depth)) for i in range(n)]
+
+
+def _segment_at(b: Block, start: np.ndarray, end: np.ndarray, *, reverse: bool = False) -> Line | Arc:
+    seg = b.segment
+    if isinstance(seg, Arc):
+        centre = np.array(seg.center, dtype=float)
+        centre[seg.plane] = start[seg.plane]
+        turns = max(0, math.ceil(abs(seg.sweep) / (2 * math.pi) - 1e-9) - 1)
+        return Arc(start, end, centre, ccw=seg.ccw != reverse, plane=seg.plane, turns=turns)
+    return Line(start, end)
+
+
+def path_at_level(path: list[Block], axis: int, level: float) -> list[Block]:
+    """The blocks of a flat tool-centre path moved along the tool ``axis`` to ``level`` [mm, machine]."""
+    out = []
+    for b in path:
+        start, end = np.array(b.start, dtype=float), np.array(b.target, dtype=float)
+        start[axis] = end[axis] = level
+        out.append(dataclasses.replace(b, start=start, target=end, segment=_segment_at(b, start, end)))
+    return out
+
+
+def reversed_path(path: list[Block]) -> list[Block]:
+    """The path run backwards: each block from its end to its start (arcs turning the other way), each
+    keeping its line, number and text."""
+    out = []
+    for b in reversed(path):
+        start, end = np.array(b.target, dtype=float), np.array(b.start, dtype=float)
+        out.append(dataclasses.replace(b, start=start, target=end, segment=_segment_at(b, start, end, reverse=True)))
+    return out
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class RoughOut:
+    """Cycle 22 ROUGH-OUT with the CONTOUR DATA of cycle 20, in mm, mm/s.
+
+    Attributes
+    ----------
+    depth : float
+        Q1, the milling depth from the surface [mm]; its sign is the working direction.
+    overlap : float
+        Q2, the path overlap factor: the rings are Q2 x the tool radius apart [-].
+    side_allowance, floor_allowance : float
+        Q3, Q4: the finishing allowances on the wall and on the floor [mm].
+    surface : float
+        Q5, the workpiece surface coordinate [mm, program] (absolute).
+    setup : float
+        Q6, the set-up clearance above the surface [mm].
+    clearance : float
+        Q7, the clearance height [mm, program] (absolute).
+    ccw : bool
+        Q9 = +1: the rings run counter-clockwise, -1 clockwise.
+    plunge : float
+        Q10, the plunging depth per infeed [mm] (> 0).
+    plunge_feed, feed : float
+        Q11 plunging feed and Q12 roughing feed [mm/s].
+    retract_feed : float or None
+        Q208, the feed up to the set-up clearance after each infeed [mm/s]; ``None``: rapid.
+    """
+
+    depth: float
+    overlap: float
+    side_allowance: float
+    floor_allowance: float
+    surface: float
+    setup: float
+    clearance: float
+    ccw: bool
+    plunge: float
+    plunge_feed: float
+    feed: float
+    retract_feed: float | None
+
+
+def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float, scale: float,
+                    where: Where, column: int) -> RoughOut:
+    """Cycle 22 ROUGH-OUT from its Q parameters and cycle 20's (TNC 426/430 user's manual, "ROUGH-OUT (Cycle
+    22)": Q10 plunging depth, Q11 feed rate for plunging, Q12 feed rate for roughing, Q18 coarse roughing
+    tool (0: none), Q19 feed rate for reciprocation; the iTNC 530's Q208 feed rate for retraction (0: Q12,
+    MAX: rapid), Q401 feed rate factor, Q404 fine roughing strategy). A coarse roughing tool Q18 (rest
+    machining) is an error; Q19, Q401, Q404 move nothing here."""
+    if data is None:
+        where.fail("cycle 22 without CONTOUR DATA (CYCL DEF 20)", column=column, text=where.text,
+                   expected="CYCL DEF 20 CONTOUR DATA before cycle 22")
+    missing = [f"Q{k}" for k in (10, 11, 12) if k not in q]
+    if missing:
+        where.fail(f"cycle 22 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="ROUGH-OUT Q10 Q11 Q12")
+    if q.get(18, 0.0):
+        where.fail("cycle 22: rest machining after a coarse roughing tool Q18 is not supported", column=column,
+                   text=where.text, expected="Q18=0")
+    if data[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0 or not 0 < data[2] < 2:
+        where.fail("cycle 22: Q1 and Q10 must be != 0, the feeds Q11, Q12 > 0 and the overlap Q2 in (0, 2)",
+                   column=column, text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0, 0 < Q2 < 2")
+    if abs(data[1]) / abs(q[10]) > 10_000:
+        where.fail("cycle 22: more than 10000 infeeds", column=column, text=where.text,
+                   expected="a larger plunging depth Q10")
+    back = q.get(208, math.inf)
+    return RoughOut(depth=data[1] * scale, overlap=data[2], side_allowance=data[3] * scale,
+                    floor_allowance=abs(data[4]) * scale, surface=data[5] * scale, setup=abs(data[6]) * scale,
+                    clearance=data[7] * scale, ccw=data[9] >= 0, plunge=abs(q[10]) * scale,
+                    plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale,
+                    retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale)
+
+
+def _samples(path: list[Block], plane: int, per: int = 24) -> np.ndarray:
+    """Points along the path's segments in the plane, shape (n, 2) [mm]."""
+    p, q = PLANE_AXES[plane]
+    pts = [np.asarray(b.segment.point_at(np.linspace(0.0, b.segment.length, per)))[:, [p, q]] for b in path]
+    return np.concatenate(pts)
+
+
+def _signed_area(points: np.ndarray) -> float:
+    x, y = points[:, 0], points[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _inside(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
+    """Ray casting: which ``points`` lie inside the closed ``polygon`` (both (n, 2))."""
+    x, y = points[:, 0][:, None], points[:, 1][:, None]
+    ax, ay = polygon[:, 0][None, :], polygon[:, 1][None, :]
+    bx, by = np.roll(polygon[:, 0], -1)[None, :], np.roll(polygon[:, 1], -1)[None, :]
+    crosses = (ay > y) != (by > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = ax + (y - ay) * (bx - ax) / (by - ay)
+    return np.count_nonzero(crosses & (x < xs), axis=1) % 2 == 1
+
+
+def _distance(points: np.ndarray, path: list[Block], plane: int) -> np.ndarray:
+    """Smallest distance of each point (n, 2) from the path's lines and arcs in the plane [mm]."""
+    p, q = PLANE_AXES[plane]
+    best = np.full(len(points), np.inf)
+    for b in path:
+        seg = b.segment
+        if isinstance(seg, Arc):
+            c = np.array([seg.center[p], seg.center[q]])
+            v = points - c
+            ang = np.arctan2(v[:, 1], v[:, 0])
+            rel = (ang - seg.start_angle) * (1.0 if seg.sweep > 0 else -1.0) % (2 * math.pi)
+            on = rel <= abs(seg.sweep) + 1e-12
+            ends = np.array([[seg.start[p], seg.start[q]], [seg.end[p], seg.end[q]]])
+            d_end = np.min(np.linalg.norm(points[:, None, :] - ends[None, :, :], axis=2), axis=1)
+            d = np.where(on, np.abs(np.linalg.norm(v, axis=1) - seg.radius), d_end)
+        else:
+            a, e = np.array([seg.start[p], seg.start[q]]), np.array([seg.end[p], seg.end[q]])
+            u = e - a
+            t = np.clip((points - a) @ u / (u @ u), 0.0, 1.0) if u @ u > 0 else np.zeros(len(points))
+            d = np.linalg.norm(points - (a + t[:, None] * u), axis=1)
+        best = np.minimum(best, d)
+    return best
+
+
+def _split(b: Block) -> tuple[Block, Block]:
+    """A line or arc block cut at its middle into two blocks of the same kind."""
+    middle = np.asarray(b.segment.point_at(b.segment.length / 2.0), dtype=float)
+    halves = []
+    for start, end in ((np.array(b.start, dtype=float), middle), (middle, np.array(b.target, dtype=float))):
+        seg = Arc(start, end, b.segment.center, ccw=b.segment.ccw, plane=b.segment.plane) \
+            if isinstance(b.segment, Arc) else Line(start, end)
+        halves.append(dataclasses.replace(b, start=start, target=end, segment=seg))
+    return halves[0], halves[1]
+
+
+def closed_pocket(path: list[Block], *, ccw: bool, plane: int) -> tuple[list[Block], np.ndarray] | None:
+    """The closed contour ``path`` turned to run ``ccw`` (counter-clockwise seen from the plane normal) and
+    started at the middle of its first element (so that its offsets close smoothly), with a polygon of its
+    points (n, 2) [mm]; ``None`` when it is not closed or encloses no area."""
+    p, q = PLANE_AXES[plane]
+    if np.hypot(*(np.asarray(path[-1].target) - np.asarray(path[0].start))[[p, q]]) > 1e-6:
+        return None
+    polygon = _samples(path, plane)
+    area = _signed_area(polygon)
+    if abs(area) <= 1e-9:
+        return None
+    if (area > 0) != ccw:
+        path = reversed_path(path)
+    head, tail = _split(path[0])
+    return [tail, *path[1:], head], _samples(path, plane)
+
+
+def pocket_rings(loop: list[Block], polygon: np.ndarray, *, radii: list[float], plane: int,
+                 ccw: bool) -> list[list[Block]]:
+    """The tool-centre rings of the closed ``loop`` (from :func:`closed_pocket`) offset inward by each of
+    ``radii`` [mm, ascending] with :func:`interpolators.compensation.compensate` (the TNC rule: the first
+    point square to the first element), while a ring exists: its points inside the pocket and at least its
+    radius from the contour, its end at its start, and the straight step from its start out to the previous
+    ring's start inside and at least the previous radius from the contour. The first ring that fails ends
+    the list."""
+    p, q = PLANE_AXES[plane]
+    first = loop[0]
+    tangent = np.asarray(first.segment.tangent_at(0.0), dtype=float)
+    rings: list[list[Block]] = []
+    for r in radii:
+        lead_in = np.asarray(first.start, dtype=float) - tangent * 2.0 * (r + 1.0)
+        entry = dataclasses.replace(first, kind="line", start=lead_in, target=np.array(first.start, dtype=float),
+                                    segment=Line(lead_in, first.start))
+        try:
+            ring = compensate([entry, *loop], side="left" if ccw else "right", radius=r, plane=plane,
+                              entry="perpendicular", open_end=True)[1:]
+        except CompensationError:
+            break
+        if rings:  # the step out to the previous ring (the straight line between their starts) is checked too
+            step = Line(ring[0].start, rings[-1][0].start)
+            ring = [dataclasses.replace(ring[0], kind="line", start=step.start, target=step.end, segment=step),
+                    *ring]
+        pts = _samples(ring, plane)
+        closes = np.hypot(*(np.asarray(ring[-1].target) - np.asarray(ring[int(bool(rings))].start))[[p, q]]) <= 1e-6
+        reach = r - (radii[len(rings)] - radii[len(rings) - 1] if rings else 0.0)
+        if not closes or not np.all(_inside(pts, polygon)) or np.min(_distance(pts, loop, plane)) < reach - 1e-6:
+            break
+        rings.append(ring[int(bool(rings)):])
+    return rings

@@ -1,0 +1,202 @@
+"""SL cycles of Heidenhain programs: CYCL DEF 14 CONTOUR GEOMETRY, 20 CONTOUR DATA, 25 CONTOUR TRAIN.
+
+Each program is hand-written with its end points worked out by hand (tool radius 3 mm, tool length 10 mm:
+machine Z = program Z + 10), and checked against the independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+
+HEAD = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L Z+100 R0 FMAX\n3 CYCL DEF 14.0 CONTOUR\n"
+        "4 CYCL DEF 14.1 CONTOUR LABEL 1\n")
+TRAIN = ("5 CYCL DEF 25 CONTOUR TRAIN ~\n  Q1=-10 ;MILLING DEPTH ~\n  Q3=+{q3} ;ALLOWANCE FOR SIDE ~\n"
+         "  Q5=+0 ;SURFACE COORDINATE ~\n  Q7=+50 ;CLEARANCE HEIGHT ~\n  Q10=+5 ;PLUNGING DEPTH ~\n"
+         "  Q11=100 ;FEED RATE FOR PLUNGING ~\n  Q12=350 ;FEED RATE FOR MILLING ~\n  Q15={q15} ;CLIMB OR UP-CUT\n")
+CALL = "6 L X-10 Y-10 R0 FMAX\n7 CYCL CALL\n8 L X-10 Y-10 Z+100 R0 FMAX M30\n"
+LINES = "9 LBL 1\n10 L X+0 Y+0 {side}\n11 L X+40\n12 L Y+30\n13 LBL 0\n"
+
+
+def run(text: str):
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact + match.within >= len(prog.blocks)
+    return prog
+
+
+def train(*, q15: str = "+1", side: str = "RL", q3: str = "0", contour: str = LINES):
+    return run(HEAD + TRAIN.format(q3=q3, q15=q15) + CALL + contour.format(side=side) + "END PGM T MM\n")
+
+
+def moves(prog, first: int = 2, last: int = -1):
+    """(kind, x, y, z, feed [mm/min]) of the cycle's blocks."""
+    out = []
+    for b in prog.blocks[first:last]:
+        kind = b.kind if b.kind != "arc" else ("arc_ccw" if b.segment.ccw else "arc_cw")
+        out.append((kind, *np.round(b.target, 6).tolist(), round(b.feed * 60, 6) if np.isfinite(b.feed) else "max"))
+    return out
+
+
+def test_contour_train_follows_an_rl_contour_at_each_infeed_with_climb_milling():
+    # RL, Q15=+1 (climb: the tool left of its path) runs as programmed: at Q7 (Z50 + 10) over the first
+    # point moved R = 3 left of X+, i.e. (0, 3); Q11 down to Z-5; X+40 ends at the inside corner (37, 3); Y+30
+    # ends 3 left of it at (37, 30); FMAX up to Q7; again at Z-10; the tool ends at Q7 over (37, 30)
+    prog = train()
+    assert moves(prog) == [
+        ("rapid", -10, -10, 60, "max"), ("rapid", 0, 3, 60, "max"), ("line", 0, 3, 5, 100),
+        ("line", 37, 3, 5, 350), ("line", 37, 30, 5, 350), ("rapid", 37, 30, 60, "max"),
+        ("rapid", 0, 3, 60, "max"), ("line", 0, 3, 0, 100), ("line", 37, 3, 0, 350), ("line", 37, 30, 0, 350),
+        ("rapid", 37, 30, 60, "max")]
+
+
+def test_contour_train_runs_an_rl_contour_backwards_for_up_cut_milling():
+    prog = train(q15="-1")
+    assert [m[:4] for m in moves(prog)][:6] == [
+        ("rapid", -10, -10, 60), ("rapid", 37, 30, 60), ("line", 37, 30, 5), ("line", 37, 3, 5),
+        ("line", 0, 3, 5), ("rapid", 0, 3, 60)]
+
+
+def test_contour_train_alternates_direction_with_q15_0_and_keeps_the_allowance_q3():
+    # RR with Q3 = 0.5: the tool centre 3.5 right of the contour; the outside corner at (40, 0) gets an arc
+    # about it; the second infeed starts where the first ended and runs back
+    prog = train(q15="0", side="RR", q3="0.5")
+    assert [m[:4] for m in moves(prog)] == [
+        ("rapid", -10, -10, 60), ("rapid", 0, -3.5, 60), ("line", 0, -3.5, 5), ("line", 40, -3.5, 5),
+        ("arc_ccw", 43.5, 0, 5), ("line", 43.5, 30, 5), ("line", 43.5, 30, 0), ("line", 43.5, 0, 0),
+        ("arc_cw", 40, -3.5, 0), ("line", 0, -3.5, 0), ("rapid", 0, -3.5, 60)]
+
+
+def test_contour_train_with_an_arc_element_in_the_contour():
+    contour = "9 LBL 1\n10 L X+0 Y+0 {side}\n11 L X+40\n12 CC X+40 Y+20\n13 C X+60 Y+20 DR+\n14 L Y+50\n15 LBL 0\n"
+    prog = train(contour=contour)
+    # RL on a counter-clockwise arc of radius 20 about (40, 20): the tool runs inside it, on radius 17
+    arcs = [b for b in prog.blocks if b.kind == "arc"]
+    assert len(arcs) == 2 and all(abs(b.segment.radius - 17.0) < 1e-9 for b in arcs)
+    assert moves(prog)[4][:4] == ("arc_ccw", 57, 20, 5)
+
+
+def test_contour_data_20_is_read_and_moves_nothing():
+    data = ("5 CYCL DEF 20 CONTOUR DATA ~\n  Q1=-10 ~\n  Q2=+1 ~\n  Q3=+0 ~\n  Q4=+0 ~\n  Q5=+0 ~\n  Q6=+2 ~\n"
+            "  Q7=+50 ~\n  Q8=+0.2 ~\n  Q9=-1\n6 L X+1 Y+2 R0 FMAX\n")
+    prog = run(HEAD + data + "END PGM T MM\n")
+    assert [np.round(b.target, 6).tolist() for b in prog.blocks] == [[0, 0, 110], [1, 2, 110]]
+
+
+@pytest.mark.parametrize(("text", "match"), [
+    (HEAD + "5 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18=0 Q19=0 Q208=99999\n", "without CONTOUR DATA"),
+    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 FLOOR FINISHING"),
+    (HEAD + TRAIN.format(q3="0", q15="+2") + CALL, "Q15=2 is not a milling direction"),
+    ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n" + TRAIN.format(q3="0", q15="+1") + CALL, "without a contour"),
+    (HEAD + TRAIN.format(q3="0", q15="+1") + CALL + "9 LBL 1\n10 L X+0 Y+0 RL\n11 L X+40 Z-5\n12 LBL 0\n",
+     "moves along the tool axis"),
+    (HEAD + TRAIN.format(q3="0", q15="+1") + "6 L X-10 Y-10 R0 FMAX\n7 CYCL CALL POS X+0 Y+0 Z+0\n", "CONTOUR TRAIN"),
+])
+def test_sl_cycles_refuse_what_they_cannot_run_with_a_clear_error(text, match):
+    with pytest.raises(GCodeError, match=match):
+        parse_heidenhain(text + "END PGM T MM\n", source="t.h", context=CTX)
+
+
+ROUGH = ("5 CYCL DEF 20 CONTOUR DATA ~\n  Q1=-10 ;MILLING DEPTH ~\n  Q2=+1 ;TOOL PATH OVERLAP ~\n"
+         "  Q3=+0.5 ;ALLOWANCE FOR SIDE ~\n  Q4=+0.5 ;ALLOWANCE FOR FLOOR ~\n  Q5=+0 ;SURFACE COORDINATE ~\n"
+         "  Q6=+2 ;SET-UP CLEARANCE ~\n  Q7=+50 ;CLEARANCE HEIGHT ~\n  Q8=+0 ;ROUNDING RADIUS ~\n"
+         "  Q9=+1 ;ROTATIONAL DIRECTION\n"
+         "6 CYCL DEF 22 ROUGH-OUT ~\n  Q10=-5 ;PLUNGING DEPTH ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n"
+         "  Q12=350 ;FEED RATE FOR ROUGHING ~\n  Q18=0 ;COARSE ROUGHING TOOL ~\n  Q19=0 ;FEED RECIPROCATION ~\n"
+         "  Q208=MAX ;RETRACTION FEED RATE\n7 L X+0 Y+0 R0 FMAX\n8 CYCL CALL\n9 L X+0 Y+0 Z+100 R0 FMAX M30\n")
+
+#: Pockets as polygons (x, y) [mm] (the circle: 0.5 degree chords), each written as a contour subprogram.
+RECTANGLE = [(0, 0), (40, 0), (40, 30), (0, 30)]
+L_SHAPE = [(0, 0), (40, 0), (40, 10), (10, 10), (10, 30), (0, 30)]
+NECK = [(0, 0), (20, 0), (20, 10), (25, 10), (25, 0), (45, 0), (45, 30), (25, 30), (25, 19), (20, 19), (20, 30),
+        (0, 30)]
+CIRCLE = [(20 + 20 * np.cos(a), 20 + 20 * np.sin(a)) for a in np.radians(np.arange(-90.0, 270.0, 0.5))]
+
+
+def pocket_program(points, *, circle: bool = False) -> str:
+    if circle:
+        body = "11 L X+20 Y+0 RR\n12 CC X+20 Y+20\n13 C X+20 Y+0 DR+\n"
+    else:
+        body = "".join(f"{11 + i} L X{x:+g} Y{y:+g}{' RL' if i == 0 else ''}\n" for i, (x, y) in
+                       enumerate([*points, points[0]]))
+    return HEAD + ROUGH + "10 LBL 1\n" + body + "30 LBL 0\nEND PGM T MM\n"
+
+
+def _distance_to_polygon(pts: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    a, b = poly, np.roll(poly, -1, axis=0)
+    u = b - a
+    t = np.clip(np.einsum("nkd,kd->nk", pts[:, None, :] - a[None], u) / np.einsum("kd,kd->k", u, u), 0, 1)
+    return np.min(np.linalg.norm(pts[:, None, :] - (a[None] + t[..., None] * u[None]), axis=2), axis=1)
+
+
+def _inside_polygon(pts: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    inside = np.zeros(len(pts), bool)
+    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
+        crosses = (y0 > pts[:, 1]) != (y1 > pts[:, 1])
+        xs = x0 + (pts[:, 1] - y0) * (x1 - x0) / ((y1 - y0) if y1 != y0 else 1.0)
+        inside ^= crosses & (pts[:, 0] < xs)
+    return inside
+
+
+@pytest.mark.parametrize("name", ["rectangle", "l_shape", "neck", "circle"])
+def test_rough_out_22_keeps_every_move_below_the_surface_inside_the_pocket_clear_of_the_allowance(name):
+    points = {"rectangle": RECTANGLE, "l_shape": L_SHAPE, "neck": NECK, "circle": CIRCLE}[name]
+    text = pocket_program(points, circle=name == "circle")
+    # the straight-edged pockets are checked block by block against the reference too (its rings its own)
+    prog = parse_heidenhain(text, source="t.h", context=CTX) if name == "circle" else run(text)
+    poly = np.array(points, float)
+    # the moves that reach below the surface (machine Z 10), but the first one, up from home
+    below = [b for b in prog.blocks[1:] if b.segment is not None and min(b.start[2], b.target[2]) < 10.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 50)))[:, :2]
+                          for b in below])
+    assert np.all(_inside_polygon(pts, poly))
+    # the tool's edge (R = 3) keeps Q3 = 0.5 from the wall; the circle's chords are 0.0004 mm inside it
+    assert _distance_to_polygon(pts, poly).min() >= 3.5 - 1e-3
+    # the depths: Q10 = 5 down to Q1 + Q4 = 9.5 (machine Z = program Z + 10), plunged at Q11 from Q6 above Q5
+    plunges = [b for b in prog.blocks if b.kind == "line" and b.start[2] != b.target[2]]
+    assert [(round(b.start[2], 9), round(b.target[2], 9), round(b.feed * 60, 9)) for b in plunges] == [
+        (12.0, 5.0, 100.0), (12.0, 0.5, 100.0)]
+
+
+@pytest.mark.parametrize("q9", ["+1", "-1"])
+def test_rough_out_22_runs_the_pocket_in_the_sense_q9_whichever_way_it_is_written(q9):
+    for points in (L_SHAPE, L_SHAPE[::-1]):
+        prog = run(pocket_program(points).replace("Q9=+1", "Q9=" + q9))
+        ring = [b.target[:2] for b in prog.blocks if b.target[2] == 5.0 and b.kind == "line"][-7:]
+        area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(ring, ring[1:] + ring[:1]))
+        assert (area > 0) == (q9 == "+1")
+
+
+def test_rough_out_22_rectangle_rings_from_the_inside_out_the_last_one_r_plus_q3_from_the_wall():
+    prog = run_rough(RECTANGLE)
+    ends = [tuple(np.round(b.target[:2], 6).tolist()) for b in prog.blocks
+            if b.kind == "line" and b.text.startswith("12 ") and b.target[2] == 5.0]
+    # Q9=+1 counter-clockwise; rings Q2 x R = 3 apart from 3.5 in: 3.5, 6.5, 9.5, 12.5 (15.5 > 15, half the
+    # width); each ring starts and ends at the middle of the first element (X+40 from X+0 Y+0: X20), so that
+    # element's two halves end at the ring's corner and back at X20
+    assert ends == [(27.5, 12.5), (20, 12.5), (30.5, 9.5), (20, 9.5), (33.5, 6.5), (20, 6.5), (36.5, 3.5), (20, 3.5)]
+    last = [b for b in prog.blocks if b.target[2] == 5.0][-1]
+    assert tuple(np.round(last.target, 6)) == (20.0, 3.5, 5.0)  # back at the middle of the first element
+
+
+def run_rough(points):
+    return run(pocket_program(points))
+
+
+@pytest.mark.parametrize(("change", "match"), [
+    ("14.1 CONTOUR LABEL 1", "14.1 CONTOUR LABEL 1 /2"), ("Q18=0 ", "Q18=2 "),
+])
+def test_rough_out_22_refuses_islands_and_rest_machining(change, match):
+    text = pocket_program(RECTANGLE).replace(change, match).replace("30 LBL 0\n", "30 LBL 0\n31 LBL 2\n"
+                                                                    "32 L X+5 Y+5 RR\n33 L X+8\n34 L X+5\n35 LBL 0\n")
+    with pytest.raises(GCodeError, match="islands|rest machining"):
+        parse_heidenhain(text, source="t.h", context=CTX)
