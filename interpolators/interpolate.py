@@ -590,6 +590,18 @@ def _junction_speeds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray,
     return v0, v1
 
 
+def _check_samples(total_N: float, Ts: float, program: Program, max_samples: int, *, at_least: bool = False) -> None:
+    """Refuse a program of ``total_N`` sample periods (``at_least``: a lower bound) when it needs more than
+    ``max_samples`` samples."""
+    if total_N + 1 > max_samples:
+        raise GCodeError(
+            f"program needs {'at least ' if at_least else ''}{total_N + 1:.0f} samples at Ts = {Ts:g} s "
+            f"({total_N * Ts:.6g} s), more than max_samples = {max_samples}",
+            file=program.source,
+            expected="a shorter program, a larger sample time or a larger max_samples",
+        )
+
+
 def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndarray, a_max: np.ndarray,
             j_max: np.ndarray, Ts: float, jerk_limited: bool, program: Program, max_samples: int
             ) -> tuple[dict[str, np.ndarray], int]:
@@ -603,6 +615,12 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     if g.extra is not None:  # X, Y, Z still: a hold in XYZ with a profile along Block.extra_length
         motion = motion | g.extra.pure
     mi = np.flatnonzero(motion)
+    # lower bound first (each segment at its speed bound, dwells): a program far too long for max_samples is
+    # refused before its profiles are computed (ruckig raises on lengths of 1e8 mm)
+    moving = mi[v_max[mi] > 0]
+    least_T = float(np.sum(length[moving] / v_max[moving])) + float(c.dwell.sum())
+    if not least_T / Ts + 1 <= max_samples:
+        _check_samples(least_T / Ts, Ts, program, max_samples, at_least=True)
     if jerk_limited:
         dur, p0, pv, pa, pj = scurve_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
     else:
@@ -617,13 +635,7 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     chain_N = np.ceil(chain_T / Ts * (1.0 - 1e-12)).astype(np.int64)
     chain_N = np.maximum(chain_N, 1)
     total_N = int(chain_N.sum())
-    if total_N + 1 > max_samples:
-        raise GCodeError(
-            f"program needs {total_N + 1} samples at Ts = {Ts:g} s ({total_N * Ts:.6g} s), more than max_samples = "
-            f"{max_samples}",
-            file=program.source,
-            expected="a shorter program, a larger sample time or a larger max_samples",
-        )
+    _check_samples(total_N, Ts, program, max_samples)
     lam = np.where(chain_T > 0, chain_T / (chain_N * Ts), 1.0)
     chain_t0 = np.concatenate([[0], np.cumsum(chain_N)[:-1]]) * Ts if n_chains else np.zeros(0)
 

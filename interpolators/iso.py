@@ -1275,7 +1275,7 @@ def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
         return st.feed if linear else st.feed_rotary
     if not st.inverse_time:
         return st.feed
-    return seg.length * st.block_f / 60.0 if seg.length > 0 else np.inf
+    return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
 
 
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):

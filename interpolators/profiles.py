@@ -27,6 +27,10 @@ __all__ = [
 #: Names accepted by ``interpolate(profile=...)``.
 PROFILES: tuple[str, ...] = ("trapezoid", "scurve")
 
+#: Relative amount by which the velocity, acceleration and jerk limits of a segment shrink when
+#: ruckig raises on it at first (see ``_Ruckig.profile``) [-].
+RUCKIG_RETRY_SHRINK: float = 1e-9
+
 
 def trapezoid_duration(length: np.ndarray, v_max: np.ndarray, a_max: np.ndarray) -> np.ndarray:
     """Duration of rest-to-rest trapezoidal moves [s].
@@ -141,14 +145,21 @@ class _Ruckig:
         self.inp.min_velocity = [0.0]
 
     def profile(self, L: float, v0: float, v1: float, V: float, A: float, J: float):
-        inp = self.inp
-        inp.current_velocity = [v0]
-        inp.target_position = [L]
-        inp.target_velocity = [v1]
-        inp.max_velocity = [V]
-        inp.max_acceleration = [A]
-        inp.max_jerk = [J]
-        res = self.otg.calculate(inp, self.traj)
+        """Duration [s] and ruckig profile of one segment.
+
+        Ruckig 0.19 raises ``RuckigError`` ("error in step 1") on some inputs exactly at the border
+        of two profile types (found by fuzzing: ``V = 2 A^2/J`` and ``L = 2 A^3/J^2`` at once, from
+        limits scaled by a rotary axis); the segment is then planned once more with the limits
+        :data:`RUCKIG_RETRY_SHRINK` smaller, which moves it off that border and keeps every limit.
+        """
+        try:
+            res = self._calculate(L, v0, v1, V, A, J)
+        except ruckig.RuckigError:
+            k = 1.0 - RUCKIG_RETRY_SHRINK
+            try:
+                res = self._calculate(L, v0, v1, max(V * k, v0, v1), A * k, J * k)
+            except ruckig.RuckigError:
+                res = None
         if res not in (ruckig.Result.Working, ruckig.Result.Finished):
             raise VcncError(
                 f"ruckig found no S-curve profile (result {res}) for length {L!r} mm, speeds {v0!r} -> {v1!r} mm/s, "
@@ -158,6 +169,16 @@ class _Ruckig:
         if prof.brake.duration > 0 or prof.accel.duration > 0:  # pragma: no cover - states are within limits
             raise VcncError("ruckig returned a profile with a pre-phase; start state outside the limits")
         return self.traj.duration, prof
+
+    def _calculate(self, L: float, v0: float, v1: float, V: float, A: float, J: float):
+        inp = self.inp
+        inp.current_velocity = [v0]
+        inp.target_position = [L]
+        inp.target_velocity = [v1]
+        inp.max_velocity = [V]
+        inp.max_acceleration = [A]
+        inp.max_jerk = [J]
+        return self.otg.calculate(inp, self.traj)
 
 
 _RUCKIG: _Ruckig | None = None
