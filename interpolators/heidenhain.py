@@ -810,6 +810,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 32 and sub >= 2:  # 32.2 HSC-MODE / TA: the control's smoothing filter, not modelled
         m.note(f"CYCL DEF 32.{sub} {rest.strip()} ignored")
         return
+    last = LEGACY_CYCLES.get(number, 1)  # the lines a value cycle has: 9.1, 12.1, 32.1; 1.1-1.5, 2.1-2.4, 17.1-17.3
+    if number == 12 or sub > last:
+        where.fail(f"cycle {number}.{sub}: cycle {number} has no line {sub}", column=blk.column,
+                   text=blk.code.strip(), expected=f"CYCL DEF {number}.0 .. {number}.{last}")
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:

@@ -58,3 +58,18 @@ def test_inverse_time_zero_length_move_has_a_finite_feed():
     for profile in ("trapezoid", "scurve"):
         sp = interpolate(program, profile=profile, limits=DEFAULT_LIMITS)
         assert np.all(np.isfinite(sp.position)) and sp.position[-1, 0] == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("line, expected", [("12.8 Z+0", "12.0 .. 12.1"), ("9.2 X+1", "9.0 .. 9.1"),
+                                            ("1.6 X+1", "1.0 .. 1.5"), ("2.5 X+3", "2.0 .. 2.4")])
+def test_heidenhain_cycle_line_a_cycle_does_not_have(line, expected):
+    """``CYCL DEF 12.8`` (``7.3`` of a corpus program mutated to ``12.8698``) raised ``KeyError: 12``: a line
+    number beyond a cycle's last (12 PGM CALL has 12.1, 9 DWELL 9.1, 1 PECKING 1.1-1.5, 2 TAPPING 2.1-2.4) is
+    an error naming the cycle, the line and the lines it has."""
+    from interpolators.heidenhain import parse_heidenhain
+
+    number, sub = line.split()[0].split(".")
+    with pytest.raises(GCodeError, match=rf"cycle {number}\.{sub}: cycle {number} has no line {sub}.*"
+                                         rf"CYCL DEF {expected}") as info:
+        parse_heidenhain(f"0 BEGIN PGM T MM\n1 CYCL DEF {line}\n2 END PGM T MM\n", source="bad.h")
+    assert info.value.line == 2
