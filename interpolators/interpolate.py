@@ -619,8 +619,7 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     # refused before its profiles are computed (ruckig raises on lengths of 1e8 mm)
     moving = mi[v_max[mi] > 0]
     least_T = float(np.sum(length[moving] / v_max[moving])) + float(c.dwell.sum())
-    if not least_T / Ts + 1 <= max_samples:
-        _check_samples(least_T / Ts, Ts, program, max_samples, at_least=True)
+    _check_samples(least_T / Ts, Ts, program, max_samples, at_least=True)
     if jerk_limited:
         dur, p0, pv, pa, pj = scurve_phases(length[mi], v0[mi], v1[mi], v_max[mi], a_max[mi], j_max[mi])
     else:
