@@ -39,6 +39,7 @@ from threadpoolctl import threadpool_limits
 __all__ = ["workers", "thread_map", "process_map", "serial_blas"]
 
 _POOL: concurrent.futures.ThreadPoolExecutor | None = None
+_POOL_SIZE = 0
 _LOCK = threading.Lock()
 _LOCAL = threading.local()
 #: True in a worker process of :func:`process_map`: its maps run serially.
@@ -56,10 +57,16 @@ def workers() -> int:
 
 
 def _pool() -> concurrent.futures.ThreadPoolExecutor:
-    global _POOL
+    """The worker threads, as many as :func:`workers` says now (a changed ``VCNC_THREADS`` gets a
+    new pool; the old one finishes its tasks and exits)."""
+    global _POOL, _POOL_SIZE
     with _LOCK:
-        if _POOL is None:
-            _POOL = concurrent.futures.ThreadPoolExecutor(max_workers=workers(), thread_name_prefix="vcnc-sim")
+        n = workers()
+        if _POOL is None or n != _POOL_SIZE:
+            if _POOL is not None:
+                _POOL.shutdown(wait=False)
+            _POOL = concurrent.futures.ThreadPoolExecutor(max_workers=n, thread_name_prefix="vcnc-sim")
+            _POOL_SIZE = n
         return _POOL
 
 
@@ -69,11 +76,15 @@ def thread_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     Also the map-like ``workers`` argument of ``scipy.optimize.least_squares``, which then computes
     its finite-difference Jacobian columns side by side.
 
-    A call made from inside a worker runs serially, so nested maps never wait on themselves.
+    A call made from inside a worker (a nested map: the frequencies of one search while the other
+    searches run) shares its items with the pool (:func:`_shared_map`): a worker that has finished
+    its own tasks takes them up, so that one long task does not keep a core idle.
     """
     items = list(items)
-    if len(items) < 2 or workers() < 2 or _FORKED or getattr(_LOCAL, "inside", False):
+    if len(items) < 2 or workers() < 2 or _FORKED:
         return [fn(x) for x in items]
+    if getattr(_LOCAL, "inside", False):
+        return _shared_map(fn, items)
 
     def run(x):
         _LOCAL.inside = True
@@ -83,6 +94,61 @@ def thread_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
             _LOCAL.inside = False
 
     return list(_pool().map(run, items))
+
+
+def _shared_map(fn: Callable[[Any], Any], items: list[Any]) -> list[Any]:
+    """A nested :func:`thread_map` called on a worker thread: each item runs once, on whichever
+    thread claims it first, the caller or a free worker.
+
+    The caller offers every item to the pool, then runs every item nobody has claimed yet itself
+    and waits only for items another thread is running, never for a queued offer (all the
+    workers could be such callers, each waiting on the others' queue: a deadlock). Offers that
+    find their item claimed do nothing. Each result lands in its own slot and an exception is
+    raised in item order, so the outcome is that of the serial loop.
+    """
+    n = len(items)
+    claimed = [False] * n
+    done = [threading.Event() for _ in range(n)]
+    out: list[Any] = [None] * n
+    errors: list[BaseException | None] = [None] * n
+    lock = threading.Lock()
+
+    def claim(i: int) -> bool:
+        with lock:
+            if claimed[i]:
+                return False
+            claimed[i] = True
+            return True
+
+    def run(i: int) -> None:
+        try:
+            out[i] = fn(items[i])
+        except BaseException as exc:  # noqa: BLE001 - re-raised below, in item order
+            errors[i] = exc
+        finally:
+            done[i].set()
+
+    def offer(i: int) -> None:
+        if claim(i):
+            _LOCAL.inside = True
+            try:
+                run(i)
+            finally:
+                _LOCAL.inside = False
+
+    pool = _pool()
+    offers = [pool.submit(offer, i) for i in range(n)]
+    for i in range(n):
+        if claim(i):
+            run(i)
+    for i in range(n):
+        done[i].wait()
+    for f in offers:
+        f.cancel()
+    for exc in errors:
+        if exc is not None:
+            raise exc
+    return out
 
 
 def _forked_worker() -> None:

@@ -71,3 +71,39 @@ def test_process_map_reports_a_worker_that_dies(monkeypatch):
     with pytest.raises(BrokenProcessPool):
         process_map(lambda k: os._exit(3) if k == 2 else k, [1, 2, 3])
     assert process_map(lambda k: k + 1, [1, 2]) == [2, 3]
+
+
+def test_a_nested_thread_map_shares_its_items_with_a_free_worker(monkeypatch):
+    """One long task's inner map spreads over the worker that finished its own task (issue #20)."""
+    import threading
+    import time
+
+    monkeypatch.setenv("VCNC_THREADS", "2")
+
+    def inner(j):
+        time.sleep(0.05)  # long enough for the other worker to claim items
+        return j * j, threading.current_thread().name
+
+    def outer(k):
+        return thread_map(inner, range(8)) if k == 0 else [(k, threading.current_thread().name)]
+
+    out = thread_map(outer, [0, 1])
+    assert [v for v, _ in out[0]] == [j * j for j in range(8)]
+    assert out[1][0][0] == 1
+    assert len({name for _, name in out[0]}) == 2  # both workers ran inner items
+
+
+def test_nested_thread_maps_give_the_loop_and_raise_in_item_order(monkeypatch):
+    monkeypatch.setenv("VCNC_THREADS", "2")
+
+    def leaf(j):
+        if j in (5, 3):
+            raise ValueError(f"item {j}")
+        return j + 1
+
+    def mid(k):
+        return thread_map(lambda j: sum(thread_map(lambda i: i * j, range(4))), range(k))
+
+    assert thread_map(mid, range(5)) == [[sum(i * j for i in range(4)) for j in range(k)] for k in range(5)]
+    with pytest.raises(ValueError, match="item 3"):
+        thread_map(lambda k: thread_map(leaf, range(7)), [0, 1])
