@@ -920,10 +920,10 @@ def search_resonance(ctx: SearchContext) -> list[Candidate]:
         tried[f"{f:.4g}"] = sc
         if best is None or sc < best[0]:
             best = (sc, m, f)
-    for zeta in (0.04, 0.3):
-        sc_z, m_z = score(best[2], "motor", zeta)
+    f_best = best[2]
+    for sc_z, m_z in thread_map(lambda zeta: score(f_best, "motor", zeta), (0.04, 0.3)):
         if sc_z < best[0]:
-            best = (sc_z, m_z, best[2])
+            best = (sc_z, m_z, f_best)
     side_zeta = best[1].elements[-1].damping
     sc_t, m_t = score(best[2], "table", side_zeta)
     if sc_t < best[0]:
