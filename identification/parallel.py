@@ -12,9 +12,10 @@ refit of the diagnosis: scipy's trust-region iterations around the simulations) 
 threads, which contend for the GIL: two refits of the long capture of ``benchmarks/diagnosis.py``
 took 0.47 s on one thread and 0.39 s on two, while two processes each running the whole
 diagnosis on one thread took as long as one alone (2.6 s; 2026-11-23, the 2-core development
-machine). :func:`process_map` runs such tasks in forked worker processes (Linux ``fork``: the
-workers share the capture and the compiled code copy-on-write, and only the results are pickled
-back); inside a worker every map runs serially, so the results are the same, bit for bit.
+machine). :func:`process_map` runs such tasks in this process and forked worker processes (Linux
+``fork``: the workers share the capture and the compiled code copy-on-write, and only the results
+are pickled back); inside such a task every map runs serially, so the results are the same, bit
+for bit.
 
 The linear algebra of the diagnosis is on tall, narrow matrices (a record's samples by a dozen
 parameters), where a multi-threaded BLAS spends its time synchronising: an SVD of 21,648 x 11
@@ -26,11 +27,13 @@ then the simulations'.
 from __future__ import annotations
 
 import concurrent.futures
-import multiprocessing
 import os
+import pickle
+import struct
 import sys
 import threading
 from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager
 from typing import Any
 
@@ -44,8 +47,6 @@ _LOCK = threading.Lock()
 _LOCAL = threading.local()
 #: True in a worker process of :func:`process_map`: its maps run serially.
 _FORKED = False
-#: The function and items of the running :func:`process_map` (its forked workers inherit them).
-_TASKS: tuple[Callable[[Any], Any], list[Any]] | None = None
 
 
 def workers() -> int:
@@ -81,7 +82,7 @@ def thread_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     its own tasks takes them up, so that one long task does not keep a core idle.
     """
     items = list(items)
-    if len(items) < 2 or workers() < 2 or _FORKED:
+    if len(items) < 2 or workers() < 2 or _FORKED or getattr(_LOCAL, "serial", False):
         return [fn(x) for x in items]
     if getattr(_LOCAL, "inside", False):
         return _shared_map(fn, items)
@@ -151,43 +152,117 @@ def _shared_map(fn: Callable[[Any], Any], items: list[Any]) -> list[Any]:
     return out
 
 
-def _forked_worker() -> None:
-    global _FORKED
-    _FORKED = True
-
-
-def _run_task(i: int) -> Any:
-    """Task ``i`` of the running :func:`process_map`, in a worker."""
-    assert _TASKS is not None
-    fn, items = _TASKS
-    return fn(items[i])
-
-
 def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     """``[fn(x) for x in items]``, evaluated in forked worker processes (in order, same results).
 
     For coarse tasks that hold the GIL much of the time (module docstring). ``fn`` may be a
     closure: the workers are forked after it exists and inherit it; only the task indices and
-    the results (which must pickle) cross the process boundary. The tasks are handed out in the
-    order given, to whichever worker is free. An exception of a task (pickled back) is
-    raised here. Where ``fork`` is not the platform's way (not Linux), with fewer than two tasks or
-    workers, or when called from inside a worker, this is :func:`thread_map`.
+    the results (which must pickle) cross the process boundary. The calling process is one of the
+    workers: it forks ``workers() - 1`` children and every process takes the next task in the
+    order given when it is free (:func:`_fork_map`). An exception of a task (pickled back) is raised
+    here, the first in item order; a child that dies (killed, a crash in compiled code) raises
+    ``concurrent.futures.process.BrokenProcessPool``. Where ``fork`` is not the platform's way (not
+    Linux), with fewer than two tasks or workers, or when called from inside a worker, this is
+    :func:`thread_map`.
     """
-    global _TASKS
     items = list(items)
     n = min(workers(), len(items))
-    if n < 2 or _FORKED or _TASKS is not None or getattr(_LOCAL, "inside", False) \
+    if n < 2 or _FORKED or getattr(_LOCAL, "inside", False) or getattr(_LOCAL, "serial", False) \
             or not sys.platform.startswith("linux"):
         return thread_map(fn, items)
-    _TASKS = (fn, items)
+    return _fork_map(fn, items, n)
+
+
+def _fork_map(fn: Callable[[Any], Any], items: list[Any], n: int) -> list[Any]:
+    """:func:`process_map` on this process and ``n - 1`` forked children.
+
+    The task indices wait in a pipe that every process reads 4 bytes at a time (a read of a pipe is
+    atomic), so a free process takes the next task. Each child sends ``(index, ok, result or
+    exception)`` records back on its own pipe, read by a thread here while this process works on
+    its own share with serial maps (as a child does), and leaves with ``os._exit`` without waiting
+    for anything; a thread reaps it. Compared with ``concurrent.futures.ProcessPoolExecutor`` this
+    saves a fork, the executor's start-up and the wait for the children's exit (about 50 ms a call
+    on the long capture of ``benchmarks/diagnosis.py``).
+    """
+    r_claim, w_claim = os.pipe()
+    os.write(w_claim, struct.pack(f"<{len(items)}i", *range(len(items))))  # < 64 KiB: never blocks
+    os.close(w_claim)
+    results: dict[int, tuple[bool, Any]] = {}
+    readers, pids = [], []
     try:
-        # a worker that dies (killed, a crash in compiled code) raises BrokenProcessPool here, where
-        # multiprocessing.Pool would wait for it forever
-        with concurrent.futures.ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
-                                                    initializer=_forked_worker) as pool:
-            return list(pool.map(_run_task, range(len(items))))
+        for _ in range(n - 1):
+            r_res, w_res = os.pipe()
+            pid = os.fork()
+            if pid == 0:  # pragma: no cover - the child (coverage does not follow a fork)
+                os.close(r_res)
+                _child(fn, items, r_claim, w_res)
+            os.close(w_res)
+            pids.append(pid)
+            reader = threading.Thread(target=_read_records, args=(r_res, results), daemon=True)
+            reader.start()
+            readers.append(reader)
+        _LOCAL.serial = True
+        try:
+            while (i := _claim(r_claim)) is not None:
+                results[i] = _attempt(fn, items[i])
+        finally:
+            _LOCAL.serial = False
     finally:
-        _TASKS = None
+        os.close(r_claim)
+        for reader in readers:
+            reader.join()
+        for pid in pids:
+            threading.Thread(target=os.waitpid, args=(pid, 0), daemon=True).start()
+    lost = [i for i in range(len(items)) if i not in results]
+    if lost:
+        raise BrokenProcessPool(f"a worker process died before returning task(s) {lost}")
+    out = []
+    for i in range(len(items)):
+        ok, value = results[i]
+        if not ok:
+            raise value
+        out.append(value)
+    return out
+
+
+def _claim(fd: int) -> int | None:
+    """The next task index from the claim pipe, or None when none is left."""
+    b = os.read(fd, 4)
+    return struct.unpack("<i", b)[0] if len(b) == 4 else None
+
+
+def _attempt(fn: Callable[[Any], Any], item: Any) -> tuple[bool, Any]:
+    try:
+        return True, fn(item)
+    except Exception as exc:  # noqa: BLE001 - handed to the caller of process_map
+        return False, exc
+
+
+def _child(fn: Callable[[Any], Any], items: list[Any], r_claim: int, w_res: int) -> None:  # pragma: no cover
+    """A forked worker: run claimed tasks, send each result, leave without running the parent's code."""
+    global _FORKED
+    _FORKED = True
+    try:
+        with os.fdopen(w_res, "wb") as out:
+            while (i := _claim(r_claim)) is not None:
+                ok, value = _attempt(fn, items[i])
+                try:
+                    record = pickle.dumps((i, ok, value))
+                except Exception as exc:  # noqa: BLE001 - an unpicklable result or exception
+                    record = pickle.dumps((i, False, RuntimeError(f"task {i}: result does not pickle: {exc}")))
+                out.write(struct.pack("<q", len(record)) + record)
+                out.flush()
+    finally:
+        os._exit(0)
+
+
+def _read_records(fd: int, results: dict[int, tuple[bool, Any]]) -> None:
+    """Collect a child's ``(index, ok, value)`` records until it closes its pipe."""
+    with os.fdopen(fd, "rb") as f:
+        while len(head := f.read(8)) == 8:
+            body = f.read(struct.unpack("<q", head)[0])
+            i, ok, value = pickle.loads(body)
+            results[i] = (ok, value)
 
 
 @contextmanager
