@@ -805,7 +805,8 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
     best = None
     others = list(ctx.model.elements)
     cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
-    for n in range(0, Delay.MAX + 1):
+
+    def tried(n: int) -> list[tuple[float, AugmentedAxisModel]]:
         e = Delay(samples=n, sample_time=d.T)
         starts = []
         reg = _digital_regression(d, n, rows)
@@ -817,6 +818,11 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
             # assumes the sampled split form exactly and fails on loops that differ from it
             # (a one-sample delay of another simulator was missed, issue #16)
             starts.append(ctx.gn_refine(augment(ctx.model, others + [e], viscous_rate=cvis), 6))
+        return starts
+
+    # each delay is independent: side by side, judged in order
+    delays = range(0, Delay.MAX + 1)
+    for n, starts in zip(delays, thread_map(tried, delays)):
         if not starts:
             continue
         sc, s_ = min(starts, key=lambda p: p[0])
