@@ -129,9 +129,11 @@ from interpolators.heidenhain_cycles import (
     drill_cycle,
     hole_moves,
     legacy_value,
+    old_circular_pocket,
     pattern_cycle,
     pattern_positions,
     pecking_cycle,
+    pocket_item,
     q_assignments,
     scaled_cycle,
     tapping_cycle,
@@ -234,7 +236,7 @@ class _Machine:
         self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
-        self.cycle_items: dict[int, float] = {}
+        self.cycle_items: dict[int, float | dict[str, float]] = {}
         self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
         self.blocks: list[Block] = []
@@ -514,7 +516,7 @@ class _Run:
             where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
         key = label_key(cm)
         target = self.labels.find(key, where, column=col0, text=blk.code)
-        rep = int(cm.group(5)[:6]) if cm.group(5) else 0
+        rep = _repeat_count(cm.group(5), self.m, where, col0 + cm.start(5)) if cm.group(5) else 0
         index = self.pc - 1
         if cm.group(5) is not None and target < index:  # program-section repeat
             left = self.repeats.get(index, rep)
@@ -529,6 +531,17 @@ class _Run:
                        text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
         self.stack.append(Frame(return_to=self.pc, label=key, runs_left=rep + 1))
         self.pc = target + 1
+
+
+def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
+    """The count of ``REP k``: a number, or a Q parameter holding a whole number >= 0 (``REPQ13``)."""
+    if text[0].isdigit():
+        return int(text[:6])
+    value = m.params.get(text)
+    if not (value >= 0 and abs(value - round(value)) < 1e-9):
+        where.fail(f"REP {text} = {value:g} is not a count", column=column, text=text,
+                   expected="a whole number of repetitions >= 0")
+    return min(int(round(value)), 999_999)
 
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
@@ -763,8 +776,8 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, 241, "
-                            "247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, "
+                            "241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -814,6 +827,12 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 12 or sub > last:
         where.fail(f"cycle {number}.{sub}: cycle {number} has no line {sub}", column=blk.column,
                    text=blk.code.strip(), expected=f"CYCL DEF {number}.0 .. {number}.{last}")
+    if number == 5:  # CIRCULAR POCKET: 5.3 and 5.5 carry a feed (and 5.5 the direction) besides the value
+        m.cycle_items[sub] = pocket_item(sub, rest, where, m.params, column0=col)
+        if sub == last:
+            m.cycle = old_circular_pocket(m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                          column=blk.column)
+        return
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:
@@ -1234,7 +1253,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (251, 252, 253):
+    if c.number in (5, 251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
     if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
@@ -1505,9 +1524,10 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     wall = c.bore_diameter / 2.0 - m.tool_radius
     rough = wall - c.side_allowance
     if rough <= 1e-9:
-        where.fail(f"cycle 252: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket "
+        what = ("radius 5.4", "5.4 RADIUS") if c.number == 5 else ("allowance Q368", "Q223 / 2 less Q368")
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the {what[0]} fill the pocket "
                    f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
-                   expected="a tool radius plus Q368 below Q223 / 2")
+                   expected=f"a tool radius below {what[1]}")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
     if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
@@ -1906,14 +1926,14 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if kw == "LP":
             if m.pole is None:
                 where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
-            _pole_in_working_plane(m, where, "LP")
-            r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
+            plane = _polar_plane(m, where, blk)
+            r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
             k, t = m.scale * m.lengths(where), m.transform
             pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
-            pa = (t.angle(seen["PA"].value, m.plane) if "PA" in seen
-                  else a0 + (t.sweep(seen["IPA"].value, m.plane) if "IPA" in seen else 0.0))
-            target = polar_point(m.pole, pr, pa, plane=m.plane, base=target)
-            m.used.update(PLANE_AXES[m.plane])
+            pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
+                  else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
+            target = polar_point(m.pole, pr, pa, plane=plane, base=target)
+            m.used.update(PLANE_AXES[plane])
         m.last_axes = sorted(written) if kw == "L" else []
         if not rapid and m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -2098,6 +2118,21 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     m.pole = target
     m.pole_plane = plane if off else None
     m.used.update(written)
+
+
+def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
+    """The plane of an ``LP`` block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
+    axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
+    demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
+    manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
+    counted from the plane's reference axis). As for those arcs, R0 and no coordinate transformation."""
+    plane = m.pole_plane if m.pole_plane is not None else m.plane
+    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
+        what = "a coordinate transformation" if m.comp == "R0" else m.comp
+        where.fail(f"LP about a CC outside the working plane under {what}",
+                   column=blk.column, text=where.text,
+                   expected="R0 and no cycle 8/10/11/26 for a polar line in another plane")
+    return plane
 
 
 def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:

@@ -55,7 +55,8 @@ from interpolators.heidenhain_words import read_value, read_words
 
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "THREAD_CYCLES",
            "BORING_DISENGAGE",
-           "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
+           "LEGACY_CYCLES", "tapping_cycle",
+           "pocket_item", "old_circular_pocket", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
@@ -65,7 +66,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 5, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
                                       253, 254, 256, 257, 262, 263, 264, 265, 267)
 #: The thread-milling cycles (:func:`thread_milling_cycle`).
 THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
@@ -322,7 +323,7 @@ def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, 
 
 
 #: The old cycles defined item by item (``CYCL DEF n.1`` ...): number -> the item that completes the definition.
-LEGACY_CYCLES: dict[int, int] = {1: 5, 2: 4, 17: 3}
+LEGACY_CYCLES: dict[int, int] = {1: 5, 2: 4, 5: 5, 17: 3}
 
 
 def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -348,6 +349,65 @@ def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, sc
     return _checked(DrillCycle(number=number, setup=abs(items[1]) * scale, depth=depth, plunge=abs(depth), feed=feed,
                                dwell_bottom=items.get(3, 0.0) if number == 2 else 0.0, retract_feed=feed),
                     where, column)
+
+
+_POCKET_ITEM_RE = re.compile(r"\s*(?:(F)\s*(?=[+-]?\s*[\d.Q(])|(DR)\s*([+-])(?![\d.Q(])"
+                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*[\d.Q(]))", re.I)
+
+
+def pocket_item(sub: int, rest: str, where: Where, params: QParameters, *, column0: int) -> dict[str, float]:
+    """The words of line ``5.sub`` of the old cycle 5 CIRCULAR POCKET: a named value (``SET UP-2``,
+    ``TIEFE-5,9``, ``RADIUS10``: key ``"value"``), ``F`` a feed (5.3 ``PECKG -1.5 F50``, 5.5 ``F450``) and
+    ``DR+``/``DR-`` (5.5; key ``"DR"`` = +1 / -1)."""
+    out: dict[str, float] = {}
+    pos = 0
+    while rest[pos:].strip():
+        m = _POCKET_ITEM_RE.match(rest, pos)
+        if m is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"unexpected {tok!r} in cycle 5.{sub}", column=column0 + pos, text=tok,
+                       expected="5.1 SET UP d, 5.2 DEPTH d, 5.3 PECKG d F f, 5.4 RADIUS r, 5.5 F f DR+|DR-")
+        if m.group(2):
+            out["DR"], pos = (1.0 if m.group(3) == "+" else -1.0), m.end()
+            continue
+        key = "F" if m.group(1) else "value"
+        if key in out:
+            tok = rest[m.start():].split()[0]
+            where.fail(f"a second value {tok!r} in cycle 5.{sub}", column=column0 + m.start(), text=tok,
+                       expected="one value per item")
+        out[key], pos = read_value(rest, m.end(), where, params, what=f"cycle 5.{sub}", column0=column0)
+    return out
+
+
+def old_circular_pocket(items: dict[int, dict[str, float]], *, feed_scale: float, scale: float, where: Where,
+                        column: int) -> DrillCycle:
+    """Cycle 5 CIRCULAR POCKET from its lines 5.1 .. 5.5 (TNC 426/430 user's manual, "Cycles for milling
+    pockets, studs and slots", CIRCULAR POCKET (Cycle 5)): 5.1 set-up clearance (tool tip at the starting
+    position to the surface), 5.2 depth, 5.3 plunging depth and its feed F, 5.4 radius, 5.5 the milling feed F
+    and DR+ (climb milling with M3: counter-clockwise) / DR- (up-cut: clockwise). Cycle run: from the
+    starting position over the pocket centre the tool plunges to each plunging depth, then "follows a spiral
+    path at the feed rate F" out to the pocket wall, the paths the stepover factor k = K x R apart (K: the
+    machine parameter MP7430), until the depth is reached; finally it returns to the starting position.
+
+    It runs as cycle 252's roughing (Q215 = 0 without allowances, so no finishing pass): the spiral becomes
+    full circles about the centre, reached by straight steps outward (our reading of the "spiral", kept inside
+    the pocket), K = 1 (MP7430 is the machine tool builder's; 1 is our choice); the surface is the set-up
+    clearance beyond the starting point, as in cycle 1, and the tool ends back at the starting position."""
+    missing = [f"5.{k}" for k in (1, 2, 3, 4, 5) if "value" not in items.get(k, {}) and k != 5]
+    if missing or "F" not in items.get(3, {}) or "F" not in items.get(5, {}):
+        where.fail("cycle 5 CIRCULAR POCKET lacks " + (", ".join(missing) or "a feed F in 5.3 / 5.5"),
+                   column=column, text=where.text,
+                   expected="5.1 SET UP d, 5.2 DEPTH d, 5.3 PECKG d F f, 5.4 RADIUS r, 5.5 F f DR+|DR-")
+    radius = abs(items[4]["value"]) * scale
+    if not items[3]["F"] > 0:
+        where.fail("cycle 5: the plunging feed must be > 0", column=column, text=where.text,
+                   expected="5.3 PECKG d F f with f > 0 [mm/min]")
+    if not radius > 0:
+        where.fail("cycle 5: radius 0", column=column, text=where.text, expected="5.4 RADIUS r > 0 [mm]")
+    return _checked(DrillCycle(number=5, setup=abs(items[1]["value"]) * scale, depth=items[2]["value"] * scale,
+                               plunge=abs(items[3]["value"]) * scale, feed=items[5]["F"] * feed_scale,
+                               approach_feed=items[3]["F"] * feed_scale, bore_diameter=2.0 * radius,
+                               climb=items[5].get("DR", 1.0) > 0, stepover=1.0, operation=0), where, column)
 
 
 def pecking_cycle(items: dict[int, float], *, feed_scale: float, scale: float, where: Where,

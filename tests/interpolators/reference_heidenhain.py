@@ -6,7 +6,9 @@ machine context's tables. Written from the HEIDENHAIN TNC conversational user's 
 for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92):
 
 - Blocks: a leading block number, ``;`` comments, ``*`` structure blocks, ``~`` continuation
-  lines (the block is reported at its first line), ``BEGIN PGM name MM|INCH``, ``END PGM``.
+  lines (the block is reported at its first line), ``BEGIN PGM name MM|INCH``, ``END PGM``; a
+  comma between two digits is a decimal point (``X+50,022``: programs saved by TNCs set to the
+  decimal comma, as HEIDENHAIN's demonstration programs 668, 700, 7025 are).
 - Machine position = program position + preset (``context.offset("G54")``) + the datum shift of
   ``CYCL DEF 7`` + the tool length along Z (``TOOL CALL n``: the length of ``TOOL DEF n`` in the
   program, else the tool table's, plus ``DL``). The length applies from the next move (the tool
@@ -24,9 +26,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
   IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
-- Labels: ``CALL LBL n REP k``: the section from ``LBL n`` repeated k times (then the counter is
-  reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program ends at ``M2``/``M30``/
-  ``END PGM``.
+- Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
+  times (then the counter is reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
+  ends at ``M2``/``M30``/``END PGM``.
 - Cycles: ``CYCL DEF 7`` (datum shift, ``I`` values add), ``9`` (dwell, runs at once), ``32``
   (tolerance, no motion), ``1`` PECKING (from the current position: feed to each plunging depth
   below the surface (start + set-up clearance toward the depth), rapid back to the start, rapid
@@ -39,7 +41,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
   ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
-  (revolutions from the blank in to the stud, half circles on and off).
+  (revolutions from the blank in to the stud, half circles on and off); the old ``5`` CIRCULAR POCKET
+  as 252's roughing from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
@@ -73,6 +76,8 @@ def _blocks(text: str) -> list[tuple[int, str]]:
         else:
             in_comment = ";" in raw
             code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+            if '"' not in code:  # a decimal comma (quoted strings are left alone: no comma is touched)
+                code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
                 (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
@@ -369,6 +374,31 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
 
 
+def _polar_line(t: _Tnc, line: int, w: dict) -> None:
+    """``LP``: a line to the point PR from the pole at the angle PA from the reference axis of the pole's
+    plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
+    axis moves it too. Without RL/RR and transformations only."""
+    _comp_words(t, w)
+    if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+        raise ReferenceError("LP under RL/RR or a transformation")
+    p = t.prog()
+    i, j = t.pole_axes
+    n = 3 - i - j
+    r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
+    a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
+    r = w["PR"] * t.scale if "PR" in w else r + w.get("IPR", 0.0) * t.scale
+    a = w["PA"] if "PA" in w else a + w.get("IPA", 0.0)
+    end_p = p.copy()
+    end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
+    end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
+    axis = "XYZ"[n]
+    if axis in w:
+        end_p[n] = w[axis] * t.scale
+    if "I" + axis in w:
+        end_p[n] += w["I" + axis] * t.scale
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(end_p))
+
+
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
     """``APPR LT|LN|CT``: the last of its moves (a line; CT: an arc) ends at the contour's first point P_A."""
     _comp_words(t, w)
@@ -456,6 +486,18 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
+    elif number == 5:  # CIRCULAR POCKET: 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
+        if sub == 0:
+            t.cycle = ("5", {})
+            return
+        r = rest.upper().replace(" ", "")
+        f, dr = re.search(r"F([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        if f is not None:
+            t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
+        if dr is not None:
+            t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
+        if sub != 5:
+            t.cycle[1][sub] = _last_number(r[:f.start()] if f is not None else r, t.q)
     elif number in (1, 2, 17):
         if sub == 0:
             t.cycle = (str(number), {})
@@ -573,6 +615,13 @@ def _run_cycle(t: _Tnc, line: int) -> None:
             _move_z(t, line, "feed", z)
         _dwell(t, line, dwell)
         _move_z(t, line, "rapid", start)
+        return
+    if kind == "5":  # TNC 426 manual: from the starting position, the set-up clearance above the surface, plunge
+        # and mill out at each plunging depth, then back to the starting position: 252's roughing (Q370 = 1)
+        sgn = -1.0 if p[2] < 0 else 1.0
+        _circular_pocket(t, line, {"Q215": 0.0, "Q203": start + sgn * abs(p[1]), "Q200": abs(p[1]), "Q201": p[2],
+                                   "Q202": abs(p[3]), "Q223": 2 * abs(p[4]), "Q370": 1.0, "Q351": p.get("DR", 1.0),
+                                   "Q204": 0.0})
         return
     if kind == "208":
         _bore_milling(t, line, p)
@@ -1451,13 +1500,13 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError("CALL PGM without a resolver")
             _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
         elif up.startswith("CALL LBL"):
-            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(\d+))?", up)
+            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
             if m.group(2) is None:
                 stack.append(pc + 1)
                 nxt = target + 1
             else:
-                left = counters.get(pc, int(m.group(2)))
+                left = counters.get(pc, int(_val(m.group(2), t.q)))
                 if left > 0:
                     counters[pc] = left - 1
                     nxt = target + 1
@@ -1537,7 +1586,9 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):
         _arc(t, line, _words(rest, t.q), polar=head == "CP")
-    elif head in ("CR", "CT", "LP", "RND", "CHF", "APPR", "DEP"):
+    elif head == "LP":
+        _polar_line(t, line, _words(rest, t.q))
+    elif head in ("CR", "CT", "RND", "CHF", "APPR", "DEP"):
         raise ReferenceError(f"{head} block")
     else:
         return None

@@ -248,3 +248,35 @@ def test_circular_slot_254_up_cut_finishing_and_helical_plunge():
     assert np.allclose(prog.blocks[4].segment.center[:2], [30, 0])  # the helix about the first end, on R = 2
     with pytest.raises(GCodeError, match="Q367=1"):
         run(ARC_SLOT.format(q="Q215=0 Q368=0 Q369=0 Q351=1 Q366=0 Q378=0 Q377=1").replace("Q367=0", "Q367=1"))
+
+
+OLD_POCKET = ("TOOL DEF 2 L+0 R+3\nTOOL CALL 2 Z S500\nCYCL DEF 5.0 CIRCULAR POCKET\nCYCL DEF 5.1 SET UP {setup}\n"
+              "CYCL DEF 5.2 DEPTH -5\nCYCL DEF 5.3 PECKG 3 F100\nCYCL DEF 5.4 RADIUS 9\nCYCL DEF 5.5 F300 {dr}\n"
+              "L X+10 Y+20 Z+2 R0 FMAX M99")
+
+
+def test_old_circular_pocket_5_plunges_and_mills_out_from_the_starting_position():
+    # TNC 426 manual, cycle 5: the surface is SET UP below the starting point Z+2 (Z0); plunging depths 3, 2 at
+    # F100; rings 3 (K x R) apart out to 9 - 3 = 6 at F300, counter-clockwise for DR+; back to the start
+    prog = run(OLD_POCKET.format(setup=2, dr="DR+"))
+    b = prog.blocks
+    assert [x.target.tolist() for x in b[:6]] == [[10, 20, 2], [10, 20, -3], [13, 20, -3], [13, 20, -3],
+                                                 [16, 20, -3], [16, 20, -3]]
+    assert [round(x.feed * 60) for x in b[1:6]] == [100, 300, 300, 300, 300]
+    assert all(x.segment.ccw for x in b if x.kind == "arc")
+    assert [x.target.tolist() for x in b[6:9]] == [[16, 20, -1], [10, 20, -1], [10, 20, -5]]
+    assert b[-1].target.tolist() == [10, 20, 2] and b[-1].kind == "rapid"
+    up = run(OLD_POCKET.format(setup="+1,5", dr="DR-"))  # up-cut: clockwise; decimal comma
+    assert not any(x.segment.ccw for x in up.blocks if x.kind == "arc")
+    assert up.blocks[1].target.tolist() == [10, 20, -2.5]
+    for blk in prog.blocks + up.blocks:  # the tool centre never leaves the pocket less the tool radius
+        assert math.hypot(blk.target[0] - 10, blk.target[1] - 20) <= 6 + 1e-9
+
+
+def test_old_circular_pocket_5_needs_all_its_lines_and_room_for_the_tool():
+    with pytest.raises(GCodeError, match="cycle 5 CIRCULAR POCKET lacks 5.4"):
+        run(OLD_POCKET.replace("CYCL DEF 5.4 RADIUS 9\n", "").format(setup=2, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match=r"cycle 5: the tool \(radius 3 mm\) and the radius 5.4 fill the pocket"):
+        run(OLD_POCKET.replace("RADIUS 9", "RADIUS 3").format(setup=2, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match="unexpected 'X' in cycle 5.5"):
+        run(OLD_POCKET.format(setup=2, dr="DR+ X"), reference=False)
