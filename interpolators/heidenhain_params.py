@@ -31,6 +31,7 @@ from collections.abc import Callable
 import numpy as np
 
 from interpolators._words import MAX_MAGNITUDE, Where
+from interpolators.heidenhain_formulas import compile_formula
 from interpolators.heidenhain_labels import LABEL_RE, label_key
 
 __all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE", "run_function"]
@@ -41,6 +42,11 @@ Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
 _TOKEN_RE = re.compile(
     r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/^()]))", re.I
 )
+
+#: Formula text -> its tokens and compiled closure (None: not a formula), shared by all runs; at most
+#: ``_MAX_COMPILED`` entries.
+_COMPILED: dict[str, tuple[list[tuple[str, str]], Callable | None]] = {}
+_MAX_COMPILED = 4096
 
 _FUNCTIONS = {
     "SIN": lambda v: math.sin(math.radians(v)),
@@ -110,25 +116,34 @@ class QParameters:
             Malformed formula, unknown function, division by zero or a function outside its
             domain (``SQRT`` of a negative number, ...), naming the formula.
         """
-        tokens = []
-        pos = 0
-        while pos < len(text):
-            if text[pos:].strip() == "":
-                break
-            m = _TOKEN_RE.match(text, pos)
-            if m is None:
-                where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
-                           expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
-            kind = m.lastgroup
-            tokens.append((kind, m.group(kind).upper()))
-            pos = m.end()
+        cached = _COMPILED.get(text)
+        if cached is None:
+            tokens = []
+            pos = 0
+            while pos < len(text):
+                if text[pos:].strip() == "":
+                    break
+                m = _TOKEN_RE.match(text, pos)
+                if m is None:
+                    where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
+                               expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+                kind = m.lastgroup
+                tokens.append((kind, m.group(kind).upper()))
+                pos = m.end()
+            if len(_COMPILED) >= _MAX_COMPILED:  # formulas built from changing text: keep the memory bounded
+                _COMPILED.clear()
+            cached = _COMPILED[text] = (tokens, compile_formula(tokens, _FUNCTIONS))
+        tokens, compiled = cached
         parser = _Formula(tokens, self, where, text.strip(), column)
-        try:
-            value = parser.expression()
-        except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
-            parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
-        if parser.i != len(tokens):
-            parser.fail("unexpected " + repr(tokens[parser.i][1]))
+        if compiled is not None:  # the same arithmetic in the same order, without parsing again
+            value = compiled(parser)
+        else:  # not a formula: the evaluator names the error
+            try:
+                value = parser.expression()
+            except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
+                parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
+            if parser.i != len(tokens):
+                parser.fail("unexpected " + repr(tokens[parser.i][1]))
         if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
             parser.fail(f"result {value!r} out of range")
         return value
