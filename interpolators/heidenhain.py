@@ -178,6 +178,7 @@ _KEYWORD_RE = re.compile(
     r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
+_BLANKS_RE = re.compile(r"\s+")
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
 #: Blocks of FK free contour programming (FPOL pole, FL/FLT lines, FC/FCT arcs, FSELECT).
 _FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
@@ -265,8 +266,7 @@ class _Machine:
 
     def origin(self) -> np.ndarray:
         """Program zero in machine coordinates [mm]."""
-        o = self.context.offset(self.preset) + self.shift
-        o = np.array(o, dtype=float)
+        o = np.add(self.context.offset(self.preset), self.shift, dtype=float)  # a new array
         o[self.plane] += self.tool_length
         return o
 
@@ -381,6 +381,7 @@ class _Run:
         self.pc = 0
         self.executed = 0
         self.name: str | None = None
+        self.keywords: dict[int, tuple[re.Match, str]] = {}  # block index -> its keyword, read once (loops)
 
     def run(self) -> str | None:
         """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
@@ -404,10 +405,13 @@ class _Run:
             self.pc += 1
             if blk.skip:
                 self.m.note("/ skippable blocks run (block skip switched off)")
-            k = _KEYWORD_RE.match(blk.code)
-            if k is None:
-                _unknown_block(blk, where)
-            kw = re.sub(r"\s+", " ", k.group(1).upper())
+            known = self.keywords.get(self.pc - 1)
+            if known is None:
+                k = _KEYWORD_RE.match(blk.code)
+                if k is None:
+                    _unknown_block(blk, where)
+                known = self.keywords[self.pc - 1] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
+            k, kw = known
             if self.block(kw, k, blk, where):
                 if self.callers and kw != "END PGM":
                     where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
