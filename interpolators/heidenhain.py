@@ -223,6 +223,7 @@ class _Machine:
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
         self.tool_radius = 0.0
+        self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
@@ -302,6 +303,14 @@ class _Machine:
         if self.transform.identity:
             return self.origin()
         return self.pos - self.to_program(self.pos)
+
+    def tool_data(self, number: int) -> tuple[float, float] | None:
+        """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` would take them (the program's ``TOOL
+        DEF``, else the machine context's tool table); None when neither has the tool."""
+        if number in self.tool_defs:
+            return self.tool_defs[number]
+        tool = self.context.tool(number)
+        return None if tool is None else (tool.length, tool.radius)
 
     def note(self, text: str) -> None:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
@@ -450,7 +459,7 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note)
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data))
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -541,11 +550,17 @@ def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
     """The count of ``REP k``: a number, or a Q parameter holding a whole number >= 0 (``REPQ13``)."""
     if text[0].isdigit():
         return int(text[:6])
-    value = m.params.get(text)
+    return min(_whole_number(text, m, where, column, what="REP"), 999_999)
+
+
+def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: str) -> int:
+    """The value of the Q parameter ``name`` as a whole number >= 0 (a count, a tool number); an error
+    naming ``what`` otherwise (how the TNC rounds a fraction there the manuals do not say)."""
+    value = m.params.get(name)
     if not (value >= 0 and abs(value - round(value)) < 1e-9):
-        where.fail(f"REP {text} = {value:g} is not a count", column=column, text=text,
-                   expected="a whole number of repetitions >= 0")
-    return min(int(round(value)), 999_999)
+        where.fail(f"{what} {name.upper()} = {value:g} is not a whole number >= 0", column=column, text=name,
+                   expected=f"a whole number >= 0 for the {what}")
+    return int(round(min(value, 1e9)))
 
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
@@ -695,8 +710,10 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     ``F AUTO`` reads."""
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
+    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*'|Q[LR]?\d+(?![\d.]))?", rest)  # 12.1: index 1 of tool 12
     number = int(nm.group(1).split(".")[0][:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    if nm.group(1) and nm.group(1)[0] in "qQ":  # TOOL CALL Q11 Z ..: the tool number in a Q parameter
+        number = _whole_number(nm.group(1), m, where, blk.column + pos + nm.start(1), what="tool number")
     if number is not None and "." in nm.group(1):
         m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
     named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
@@ -741,8 +758,10 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
         m.tool_length = length + dl
         m.tool_radius = radius + dr
         m.tool_delta = dr
+        m.tool_number = number
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
+        m.tool_number = 0
     _tool_parameters(m, where)
 
 

@@ -241,7 +241,8 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 
 
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
-                 origin: np.ndarray, scale: float, note: Callable[[str], None]) -> str | None:
+                 origin: np.ndarray, scale: float, note: Callable[[str], None],
+                 tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None)) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 
     Parameters
@@ -252,6 +253,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         mm per program unit (25.4 in INCH programs).
     note : callable
         Receives what was ignored or read in a particular way.
+    tool : (int, callable)
+        For ``FN 18 SYSREAD ID20`` / ``ID50``: the active tool's number (0: none) and the length and radius
+        [mm] of a tool number (None: not in the program's TOOL DEFs nor the tool table).
 
     Returns
     -------
@@ -307,17 +311,50 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
                    expected="a program run without FN 14")
     if n == 18:
-        sm = re.match(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)\s+IDX\s*(\d+)\s*$", rest, re.I)
-        if sm is None or int(sm.group(2)) not in (240, 270) or sm.group(3) != "1" or not 1 <= int(sm.group(4)) <= 3:
-            where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
-                       expected="SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position)")
-        axis = int(sm.group(4)) - 1
-        value = position[axis] if sm.group(2) == "240" else position[axis] - origin[axis]
-        params.set(sm.group(1), value / scale, where, column=col)
-        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool)
         return None
     where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
-               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270")
+               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID20/ID50/ID240/ID270")
+
+
+_SYSREAD_RE = re.compile(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*$",
+                         re.I)
+_SYSREAD_EXPECTED = ("SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position), ID20 NR1 (active tool) "
+                     "or ID50 NR1/NR2 IDXt (length / radius of tool t)")
+
+
+def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
+             scale: float, note: Callable[[str], None],
+             tool: tuple[int, Callable[[int], tuple[float, float] | None]]) -> None:
+    """``FN 18: SYSREAD Qn = IDi NRj [IDXk]`` (TNC 640 user's manual, "FN 18: SYSREAD", the table of system
+    data): ID240 NR1 / ID270 NR1 IDX1..3 the nominal position in machine / active coordinates (as simulated);
+    ID20 NR1 the number of the active tool; ID50 NR1 / NR2 IDXt the length / radius L, R of tool t in the tool
+    table (the program's TOOL DEF stands in for the table's row, as it does at TOOL CALL). The index may be a
+    Q parameter (``IDXQ11``)."""
+    sm = _SYSREAD_RE.match(rest)
+    ident, nr = (int(sm.group(2)[:6]), int(sm.group(3)[:6])) if sm else (0, 0)
+    idx = None
+    if sm is not None and sm.group(4) is not None:
+        idx = sm.group(4)
+        idx = params.get(idx) if idx[0] in "qQ" else float(idx[:9])
+    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2)}
+    if sm is None or (ident, nr) not in known or (idx is None) != (ident == 20) \
+            or (ident in (240, 270) and idx not in (1.0, 2.0, 3.0)):
+        where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
+                   expected=_SYSREAD_EXPECTED)
+    if ident == 20:
+        value = float(tool[0])
+    elif ident == 50:
+        data = tool[1](int(idx)) if idx >= 0 and idx == int(idx) else None
+        if data is None:
+            where.fail(f"FN 18 SYSREAD ID50 of tool {idx:g}: the tool is in neither a TOOL DEF nor the tool table",
+                       column=col, text=rest.strip(), expected="a tool of the program or the machine context")
+        value = data[nr - 1]
+    else:
+        axis = int(idx) - 1
+        value = position[axis] if ident == 240 else position[axis] - origin[axis]
+        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+    params.set(sm.group(1), value / scale if ident != 20 else value, where, column=col)
 
 
 def _two_operands(body: str, op: str, params: QParameters, where: Where, column: int) -> tuple[float, float]:

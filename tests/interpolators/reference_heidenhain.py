@@ -205,6 +205,7 @@ class _Tnc:
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
+        self.tool = 0  # the active tool number (FN 18 ID20 NR1)
         self.pole = np.zeros(3)  # program coordinates [mm]
         self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
@@ -1376,10 +1377,10 @@ def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[fl
 
 def _tool(t: _Tnc, text: str) -> None:
     """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+)\s*(.*)$", text)
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+)\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q parameter
     if m is None:
         raise ReferenceError(f"tool block {text!r}")
-    number, rest = int(m.group(2)), m.group(3).upper()
+    number, rest = int(_val(m.group(2), t.q)), m.group(3).upper()
 
     def word(name: str) -> float:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
@@ -1396,6 +1397,7 @@ def _tool(t: _Tnc, text: str) -> None:
     else:
         tool = t.ctx.tool(number)
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
+    t.tool = number
     t.length = length + word("DL")
     t.radius = radius + word("DR")
     t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
@@ -1430,12 +1432,22 @@ def _fn(t: _Tnc, text: str) -> str | None:
     elif n == 15:
         pass
     elif n == 18:
-        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*IDX\s*(\d+)", rest)
+        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
         q, ident, nr, idx = m2.groups()
-        if nr != "1" or ident not in ("240", "270"):
+        if ident == "20" and nr == "1":  # the active tool's number
+            t.q[q] = float(t.tool)
+        elif ident == "50" and nr in ("1", "2"):  # L / R of tool IDX: the program's TOOL DEF, else the table
+            n = int(_val(idx, t.q))
+            tool = t.ctx.tool(n)
+            data = t.tool_defs.get(n, (tool.length, tool.radius) if tool is not None else None)
+            if data is None:
+                raise ReferenceError(f"FN 18 ID50 of an unknown tool {n}")
+            t.q[q] = data[int(nr) - 1] / t.scale
+        elif nr != "1" or ident not in ("240", "270"):
             raise ReferenceError(f"FN 18 ID{ident} NR{nr}")
-        pos = t.pos if ident == "240" else t.prog()
-        t.q[q] = float(pos[int(idx) - 1]) / t.scale
+        else:
+            pos = t.pos if ident == "240" else t.prog()
+            t.q[q] = float(pos[int(idx) - 1]) / t.scale
     else:
         raise ReferenceError(f"FN {n}")
     return None

@@ -173,5 +173,20 @@ def test_a_section_repeat_counted_by_a_q_parameter():
     """``CALL LBL 1 REPQ13`` (HEIDENHAIN's demonstration program 7025): the count is the Q parameter's value."""
     prog = run("1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 Q5 = 2\n4 LBL 1\n5 L IX+1\n6 CALL LBL 1 REPQ5\n")
     assert ends(prog) == [[0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [2.0, 0.0, 10.0], [3.0, 0.0, 10.0]]
-    with pytest.raises(GCodeError, match="REP Q5 = 1.5 is not a count"):
+    with pytest.raises(GCodeError, match="REP Q5 = 1.5 is not a whole number"):
         run("1 Q5 = 1.5\n2 LBL 1\n3 CALL LBL 1 REP Q5\n")
+
+
+def test_tool_call_by_a_q_parameter_and_sysread_of_the_tool_data():
+    """``TOOL CALL Q11 Z`` and ``FN 18: SYSREAD Q10 = ID50 NR2 IDXQ11`` (the German shop program "Gleichlaufnut"),
+    ``ID20 NR1`` (the tool-check macros of a DMU 60 eVo): the tool number, the table's L and R (TOOL DEF first)."""
+    prog = run("1 Q11 = 1\n2 TOOL DEF 2 L+20 R+4\n3 TOOL CALL Q11 Z S5000 F500\n"
+               "4 FN 18: SYSREAD Q10 = ID50 NR2 IDXQ11\n5 FN 18: SYSREAD Q12 = ID50 NR1 IDX2\n"
+               "6 FN 18: SYSREAD Q13 = ID20 NR1\n7 L X+Q10 Y+Q12 Z+Q13\n")
+    assert ends(prog) == [[3.0, 20.0, 11.0]]  # R of tool 1 = 3, L of tool 2 = 20, tool 1 active (length 10)
+    with pytest.raises(GCodeError, match="tool number Q11 = 2.5 is not a whole number"):
+        run("1 Q11 = 2.5\n2 TOOL CALL Q11 Z\n")
+    with pytest.raises(GCodeError, match="SYSREAD ID50 of tool 7: the tool is in neither"):
+        run("1 FN 18: SYSREAD Q10 = ID50 NR1 IDX7\n")
+    with pytest.raises(GCodeError, match="FN 18 SYSREAD 'SYSREAD Q1 = ID50 NR36 IDX1' is not supported"):
+        run("1 FN 18: SYSREAD Q1 = ID50 NR36 IDX1\n")
