@@ -5,10 +5,11 @@ are executed, not merely parsed) and records the motion as :class:`~interpolator
 s in machine coordinates. One module per concern:
 
 * :mod:`interpolators.heidenhain_words`: blocks, comments, ``~`` continuations, words and values;
-* :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
+* :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``, ``FN 18``;
+* :mod:`interpolators.heidenhain_formulas`: formulas compiled once into closures (loops run them again);
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
@@ -17,10 +18,11 @@ s in machine coordinates. One module per concern:
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
 
     0 BEGIN PGM NAME MM             name and unit (MM or INCH); END PGM ends the run
+    L X+50,022                      a decimal comma (programs saved by TNCs set to it) is a point
     * - Drill1                      structure block (skipped); ;comment anywhere
     BLK FORM 0.1 Z X.. Y.. Z..      workpiece blank (skipped)
     TOOL DEF 5 L+10 R+3             tool data in the program (replace the tool table's entry)
-    TOOL CALL 5 Z S3000 DL+0.1 DR-0.2
+    TOOL CALL 5 Z S3000 DL+0.1 DR-0.2  (TOOL CALL Q11 Z: the tool number Q11 holds)
                                     tool axis (plane), tool length along it (table or TOOL DEF,
                                     plus DL) and radius for RL/RR (plus DR), from the next move on
     L X+10 IY-5 R0 F200 M3          line; I = incremental; F MAX / FMAX: rapid (this block only);
@@ -37,7 +39,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0                     arc tangent to the preceding element
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
-                                    polar line / arc about CC (helix with a tool-axis word)
+                                    polar line / arc about CC (helix with a tool-axis word); about a
+                                    CC naming the tool axis (CC Z.. X..) in that plane
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
                                     straight approach / departure tangential to the contour; LN
@@ -51,13 +54,14 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
-    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn
+    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1/NR2 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
                                     simulated position (the control reads the same after a STOP
-                                    without jogging)
-    LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-254/256/257/262-265/267/392
+                                    without jogging); ID20 NR1: the active tool's number; ID50
+                                    NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table)
+    LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
+    CYCL DEF 7/9/32/1/2/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
