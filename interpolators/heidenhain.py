@@ -309,8 +309,8 @@ class _Machine:
         return self.pos - self.to_program(self.pos)
 
     def tool_data(self, number: int) -> tuple[float, float] | None:
-        """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` would take them (the program's ``TOOL
-        DEF``, else the machine context's tool table); None when neither has the tool."""
+        """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` takes them (the program's ``TOOL DEF``,
+        else the machine context's tool table); None when neither has the tool (TOOL CALL then takes 0, 0)."""
         if number in self.tool_defs:
             return self.tool_defs[number]
         tool = self.context.tool(number)

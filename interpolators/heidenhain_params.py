@@ -345,10 +345,13 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     if ident == 20:
         value = float(tool[0])
     elif ident == 50:
-        data = tool[1](int(idx)) if idx >= 0 and idx == int(idx) else None
-        if data is None:
-            where.fail(f"FN 18 SYSREAD ID50 of tool {idx:g}: the tool is in neither a TOOL DEF nor the tool table",
-                       column=col, text=rest.strip(), expected="a tool of the program or the machine context")
+        if not (idx >= 0 and idx == int(idx)):
+            where.fail(f"FN 18 SYSREAD ID50 of tool {idx:g}: not a tool number", column=col, text=rest.strip(),
+                       expected="IDX a whole number >= 0 (the tool)")
+        data = tool[1](int(idx))
+        if data is None:  # as TOOL CALL of a tool the table lacks: length and radius 0
+            note(f"FN 18 SYSREAD ID50: tool {int(idx)} is not in the tool table: length and radius 0")
+            data = (0.0, 0.0)
         value = data[nr - 1]
     else:
         axis = int(idx) - 1

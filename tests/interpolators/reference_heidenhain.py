@@ -1439,10 +1439,8 @@ def _fn(t: _Tnc, text: str) -> str | None:
         elif ident == "50" and nr in ("1", "2"):  # L / R of tool IDX: the program's TOOL DEF, else the table
             n = int(_val(idx, t.q))
             tool = t.ctx.tool(n)
-            data = t.tool_defs.get(n, (tool.length, tool.radius) if tool is not None else None)
-            if data is None:
-                raise ReferenceError(f"FN 18 ID50 of an unknown tool {n}")
-            t.q[q] = data[int(nr) - 1] / t.scale
+            data = t.tool_defs.get(n, (tool.length, tool.radius) if tool is not None else (0.0, 0.0))
+            t.q[q] = data[int(nr) - 1] / t.scale  # a tool not in the table: 0, 0 (as TOOL CALL takes it)
         elif nr != "1" or ident not in ("240", "270"):
             raise ReferenceError(f"FN 18 ID{ident} NR{nr}")
         else:
