@@ -9,7 +9,7 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_formulas`: formulas compiled once into closures (loops run them again);
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
@@ -61,7 +61,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     without jogging); ID20 NR1: the active tool's number; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table)
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
-    CYCL DEF 7/9/32/1/2/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
+    CYCL DEF 7/9/32/1/2/4/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -133,7 +133,7 @@ from interpolators.heidenhain_cycles import (
     drill_cycle,
     hole_moves,
     legacy_value,
-    old_circular_pocket,
+    old_pocket,
     pattern_cycle,
     pattern_positions,
     pecking_cycle,
@@ -803,8 +803,8 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, "
-                            "241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 4, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, "
+                            "240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -854,11 +854,11 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 12 or sub > last:
         where.fail(f"cycle {number}.{sub}: cycle {number} has no line {sub}", column=blk.column,
                    text=blk.code.strip(), expected=f"CYCL DEF {number}.0 .. {number}.{last}")
-    if number == 5:  # CIRCULAR POCKET: 5.3 and 5.5 carry a feed (and 5.5 the direction) besides the value
-        m.cycle_items[sub] = pocket_item(sub, rest, where, m.params, column0=col)
+    if number in (4, 5):  # POCKET MILLING, CIRCULAR POCKET: lines with a feed and a direction besides the value
+        m.cycle_items[sub] = pocket_item(number, sub, rest, where, m.params, column0=col)
         if sub == last:
-            m.cycle = old_circular_pocket(m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
-                                          column=blk.column)
+            m.cycle = old_pocket(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                 column=blk.column)
         return
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
@@ -1280,7 +1280,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (5, 251, 252, 253):
+    if c.number in (4, 5, 251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
     if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
@@ -1551,7 +1551,8 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     wall = c.bore_diameter / 2.0 - m.tool_radius
     rough = wall - c.side_allowance
     if rough <= 1e-9:
-        what = ("radius 5.4", "5.4 RADIUS") if c.number == 5 else ("allowance Q368", "Q223 / 2 less Q368")
+        what = {5: ("radius 5.4", "5.4 RADIUS"), 4: ("sides 4.4, 4.5", "half the shorter side")}.get(
+            c.number, ("allowance Q368", "Q223 / 2 less Q368"))
         where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the {what[0]} fill the pocket "
                    f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
                    expected=f"a tool radius below {what[1]}")
@@ -1564,7 +1565,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number in (251, 253):
+        if c.number in (4, 251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
         elif c.number == 254:
             h = 0.0
@@ -1581,7 +1582,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number in (251, 253):
+            if c.number in (4, 251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
             if c.number == 254:

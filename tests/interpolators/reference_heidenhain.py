@@ -42,7 +42,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
   (revolutions from the blank in to the stud, half circles on and off); the old ``5`` CIRCULAR POCKET
-  as 252's roughing from the starting position (surface: the set-up clearance beyond it; K = 1).
+  as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
+  from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
@@ -487,9 +488,10 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
-    elif number == 5:  # CIRCULAR POCKET: 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
+    elif number in (4, 5):  # POCKET MILLING 4.1 SET UP, 4.2 DEPTH, 4.3 PECKG .. F, 4.4 X, 4.5 Y, 4.6 F DR RADIUS;
+        # CIRCULAR POCKET 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
         if sub == 0:
-            t.cycle = ("5", {})
+            t.cycle = (str(number), {})
             return
         r = rest.upper().replace(" ", "")
         f, dr = re.search(r"F([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
@@ -497,7 +499,10 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
         if dr is not None:
             t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
-        if sub != 5:
+        rad = re.search(r"RADIUS([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r)
+        if number == 4 and sub == 6:
+            t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else 0.0
+        elif sub != 5 or number == 4:
             t.cycle[1][sub] = _last_number(r[:f.start()] if f is not None else r, t.q)
     elif number in (1, 2, 17):
         if sub == 0:
@@ -622,6 +627,14 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         sgn = -1.0 if p[2] < 0 else 1.0
         _circular_pocket(t, line, {"Q215": 0.0, "Q203": start + sgn * abs(p[1]), "Q200": abs(p[1]), "Q201": p[2],
                                    "Q202": abs(p[3]), "Q223": 2 * abs(p[4]), "Q370": 1.0, "Q351": p.get("DR", 1.0),
+                                   "Q204": 0.0})
+        return
+    if kind == "4":  # TNC 426 manual: first along the longer side (+Y when square): 251's roughing, turned 90 deg
+        sgn = -1.0 if p[2] < 0 else 1.0  # when the second side is the longer
+        a, b = abs(p[4]), abs(p[5])
+        _circular_pocket(t, line, {"Q215": 0.0, "Q203": start + sgn * abs(p[1]), "Q200": abs(p[1]), "Q201": p[2],
+                                   "Q202": abs(p[3]), "Q218": max(a, b), "Q219": min(a, b), "Q220": p.get(6, 0.0),
+                                   "Q224": 90.0 if b >= a else 0.0, "Q370": 1.0, "Q351": p.get("DR", 1.0),
                                    "Q204": 0.0})
         return
     if kind == "208":

@@ -280,3 +280,33 @@ def test_old_circular_pocket_5_needs_all_its_lines_and_room_for_the_tool():
         run(OLD_POCKET.replace("RADIUS 9", "RADIUS 3").format(setup=2, dr="DR+"), reference=False)
     with pytest.raises(GCodeError, match="unexpected 'X' in cycle 5.5"):
         run(OLD_POCKET.format(setup=2, dr="DR+ X"), reference=False)
+
+
+OLD_RECT = ("TOOL DEF 2 L+0 R+3\nTOOL CALL 2 Z S500\nCYCL DEF 4.0 POCKET MILLING\nCYCL DEF 4.1 SET UP 2\n"
+            "CYCL DEF 4.2 DEPTH -5\nCYCL DEF 4.3 PECKG 5 F100\nCYCL DEF 4.4 X{x}\nCYCL DEF 4.5 Y{y}\n"
+            "CYCL DEF 4.6 F300 {dr} RADIUS 4\nL X+10 Y+20 Z+2 R0 FMAX\nCYCL CALL")
+
+
+@pytest.mark.parametrize(("x", "y", "first"), [(20, 30, [10, 20 + 12 - 2 * 7 / 3, -5]), (30, 20, [22 - 14 / 3, 20, -5]),
+                                               (20, 20, [10, 27 - 14 / 3, -5])])
+def test_old_pocket_milling_4_starts_along_the_longer_side_and_stays_inside(x, y, first):
+    # TNC 426 manual, cycle 4: "first in the positive direction of the longer side (in square pockets, in the
+    # positive Y direction)", then from the inside out: rings 7 / 3 apart (half the shorter side less R = 7, in
+    # steps of at most R) out to the pocket less R, corners rounded by 4 - R = 1; one depth of 5 below the surface
+    # Z0 (SET UP 2 below the start), then back up to the start
+    for dr in ("DR+", "DR-"):
+        prog = run(OLD_RECT.format(x=x, y=y, dr=dr))
+        b = prog.blocks
+        assert b[1].target.tolist() == [10, 20, -5] and round(b[1].feed * 60) == 100
+        assert b[2].target == pytest.approx(first)
+        assert all(a.segment.ccw == (dr == "DR+") for a in b if a.kind == "arc")
+        for blk in b:
+            assert abs(blk.target[0] - 10) <= x / 2 - 3 + 1e-9 and abs(blk.target[1] - 20) <= y / 2 - 3 + 1e-9
+        assert b[-1].target.tolist() == [10, 20, 2]
+
+
+def test_old_pocket_milling_4_needs_its_sides():
+    with pytest.raises(GCodeError, match="cycle 4 POCKET MILLING lacks 4.5"):
+        run(OLD_RECT.replace("CYCL DEF 4.5 Y{y}\n", "").format(x=20, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match="cycle 4: the tool .* and the sides 4.4, 4.5 fill the pocket"):
+        run(OLD_RECT.format(x=6, y=30, dr="DR+"), reference=False)
