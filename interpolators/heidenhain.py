@@ -2024,6 +2024,25 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, wh
         _cycle_call(m, where, blk)
 
 
+#: A word's key -> the axis or setting it gives (one per block): IX and X both give X, RL and R0 the compensation.
+_BASE_KEY = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
+             "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+             "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}
+#: The words each motion block allows (by key; RCOMP stands for R0/RL/RR).
+_ALLOWED_WORDS = {
+    "L": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
+                    *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)}),
+    "LN": frozenset({"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"}),
+    "LP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL",
+                     "RR"}),
+    "C": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CR": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
+}
+
+
 def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
     seen: dict[str, Word] = {}
@@ -2033,9 +2052,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
         if w.key == "M":
             ms.append(w)
             continue
-        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
-                "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
-                "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
+        base = _BASE_KEY.get(w.key, w.key)
         if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
             where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
                        expected="each word at most once per block")
@@ -2049,17 +2066,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
             where.fail("coordinate without an axis letter", column=w.column, text=w.text,
                        expected="an axis letter (X, Y or Z) before the number")
         seen["XYZ"[m.last_axes[0]]] = w
-    allowed = {
-        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
-              *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)},
-        "LN": {"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"},
-        "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
-        "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
-        "CT": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"},
-        "CP": {"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CC": {"X", "Y", "Z", "IX", "IY", "IZ"},
-    }[kw]
+    allowed = _ALLOWED_WORDS[kw]
     for key, w in seen.items():
         if key not in allowed:
             where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
