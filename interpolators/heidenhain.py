@@ -5,10 +5,11 @@ are executed, not merely parsed) and records the motion as :class:`~interpolator
 s in machine coordinates. One module per concern:
 
 * :mod:`interpolators.heidenhain_words`: blocks, comments, ``~`` continuations, words and values;
-* :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``;
+* :mod:`interpolators.heidenhain_params`: Q parameters, formulas, ``FN 0`` .. ``FN 13``, ``FN 18``;
+* :mod:`interpolators.heidenhain_formulas`: formulas compiled once into closures (loops run them again);
 * :mod:`interpolators.heidenhain_labels`: ``LBL``, ``CALL LBL [REP]``, ``FN 9`` .. ``FN 12`` jumps;
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
-* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
+* :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
   (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
@@ -17,10 +18,11 @@ s in machine coordinates. One module per concern:
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
 
     0 BEGIN PGM NAME MM             name and unit (MM or INCH); END PGM ends the run
+    L X+50,022                      a decimal comma (programs saved by TNCs set to it) is a point
     * - Drill1                      structure block (skipped); ;comment anywhere
     BLK FORM 0.1 Z X.. Y.. Z..      workpiece blank (skipped)
     TOOL DEF 5 L+10 R+3             tool data in the program (replace the tool table's entry)
-    TOOL CALL 5 Z S3000 DL+0.1 DR-0.2
+    TOOL CALL 5 Z S3000 DL+0.1 DR-0.2  (TOOL CALL Q11 Z: the tool number Q11 holds)
                                     tool axis (plane), tool length along it (table or TOOL DEF,
                                     plus DL) and radius for RL/RR (plus DR), from the next move on
     L X+10 IY-5 R0 F200 M3          line; I = incremental; F MAX / FMAX: rapid (this block only);
@@ -37,7 +39,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0                     arc tangent to the preceding element
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
-                                    polar line / arc about CC (helix with a tool-axis word)
+                                    polar line / arc about CC (helix with a tool-axis word); about a
+                                    CC naming the tool axis (CC Z.. X..) in that plane
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
                                     straight approach / departure tangential to the contour; LN
@@ -51,13 +54,14 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
-    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn
+    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1/NR2 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
                                     simulated position (the control reads the same after a STOP
-                                    without jogging)
-    LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats
-    CYCL DEF 7/9/32/1/2/17/12/200-209/240/241/251-254/256/257/262-265/267/392
+                                    without jogging); ID20 NR1: the active tool's number; ID50
+                                    NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table)
+    LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
+    CYCL DEF 7/9/32/1/2/4/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
@@ -129,9 +133,11 @@ from interpolators.heidenhain_cycles import (
     drill_cycle,
     hole_moves,
     legacy_value,
+    old_pocket,
     pattern_cycle,
     pattern_positions,
     pecking_cycle,
+    pocket_item,
     q_assignments,
     scaled_cycle,
     tapping_cycle,
@@ -176,6 +182,7 @@ _KEYWORD_RE = re.compile(
     r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
+_BLANKS_RE = re.compile(r"\s+")
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
 #: Blocks of FK free contour programming (FPOL pole, FL/FLT lines, FC/FCT arcs, FSELECT).
 _FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
@@ -220,6 +227,7 @@ class _Machine:
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool_length = 0.0
         self.tool_radius = 0.0
+        self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
@@ -234,7 +242,7 @@ class _Machine:
         self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
-        self.cycle_items: dict[int, float] = {}
+        self.cycle_items: dict[int, float | dict[str, float]] = {}
         self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
         self.blocks: list[Block] = []
@@ -263,8 +271,7 @@ class _Machine:
 
     def origin(self) -> np.ndarray:
         """Program zero in machine coordinates [mm]."""
-        o = self.context.offset(self.preset) + self.shift
-        o = np.array(o, dtype=float)
+        o = np.add(self.context.offset(self.preset), self.shift, dtype=float)  # a new array
         o[self.plane] += self.tool_length
         return o
 
@@ -300,6 +307,14 @@ class _Machine:
         if self.transform.identity:
             return self.origin()
         return self.pos - self.to_program(self.pos)
+
+    def tool_data(self, number: int) -> tuple[float, float] | None:
+        """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` takes them (the program's ``TOOL DEF``,
+        else the machine context's tool table); None when neither has the tool (TOOL CALL then takes 0, 0)."""
+        if number in self.tool_defs:
+            return self.tool_defs[number]
+        tool = self.context.tool(number)
+        return None if tool is None else (tool.length, tool.radius)
 
     def note(self, text: str) -> None:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
@@ -379,6 +394,7 @@ class _Run:
         self.pc = 0
         self.executed = 0
         self.name: str | None = None
+        self.keywords: dict[int, tuple[re.Match, str]] = {}  # block index -> its keyword, read once (loops)
 
     def run(self) -> str | None:
         """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
@@ -402,10 +418,13 @@ class _Run:
             self.pc += 1
             if blk.skip:
                 self.m.note("/ skippable blocks run (block skip switched off)")
-            k = _KEYWORD_RE.match(blk.code)
-            if k is None:
-                _unknown_block(blk, where)
-            kw = re.sub(r"\s+", " ", k.group(1).upper())
+            known = self.keywords.get(self.pc - 1)
+            if known is None:
+                k = _KEYWORD_RE.match(blk.code)
+                if k is None:
+                    _unknown_block(blk, where)
+                known = self.keywords[self.pc - 1] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
+            k, kw = known
             if self.block(kw, k, blk, where):
                 if self.callers and kw != "END PGM":
                     where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
@@ -444,7 +463,7 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note)
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data))
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -514,7 +533,7 @@ class _Run:
             where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
         key = label_key(cm)
         target = self.labels.find(key, where, column=col0, text=blk.code)
-        rep = int(cm.group(5)[:6]) if cm.group(5) else 0
+        rep = _repeat_count(cm.group(5), self.m, where, col0 + cm.start(5)) if cm.group(5) else 0
         index = self.pc - 1
         if cm.group(5) is not None and target < index:  # program-section repeat
             left = self.repeats.get(index, rep)
@@ -529,6 +548,23 @@ class _Run:
                        text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
         self.stack.append(Frame(return_to=self.pc, label=key, runs_left=rep + 1))
         self.pc = target + 1
+
+
+def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
+    """The count of ``REP k``: a number, or a Q parameter holding a whole number >= 0 (``REPQ13``)."""
+    if text[0].isdigit():
+        return int(text[:6])
+    return min(_whole_number(text, m, where, column, what="REP"), 999_999)
+
+
+def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: str) -> int:
+    """The value of the Q parameter ``name`` as a whole number >= 0 (a count, a tool number); an error
+    naming ``what`` otherwise (how the TNC rounds a fraction there the manuals do not say)."""
+    value = m.params.get(name)
+    if not (value >= 0 and abs(value - round(value)) < 1e-9):
+        where.fail(f"{what} {name.upper()} = {value:g} is not a whole number >= 0", column=column, text=name,
+                   expected=f"a whole number >= 0 for the {what}")
+    return int(round(min(value, 1e9)))
 
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
@@ -678,8 +714,10 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     ``F AUTO`` reads."""
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*')?", rest)  # 12.1: index 1 of tool 12
+    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*'|Q[LR]?\d+(?![\d.]))?", rest)  # 12.1: index 1 of tool 12
     number = int(nm.group(1).split(".")[0][:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
+    if nm.group(1) and nm.group(1)[0] in "qQ":  # TOOL CALL Q11 Z ..: the tool number in a Q parameter
+        number = _whole_number(nm.group(1), m, where, blk.column + pos + nm.start(1), what="tool number")
     if number is not None and "." in nm.group(1):
         m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
     named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
@@ -724,8 +762,10 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
         m.tool_length = length + dl
         m.tool_radius = radius + dr
         m.tool_delta = dr
+        m.tool_number = number
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
+        m.tool_number = 0
     _tool_parameters(m, where)
 
 
@@ -763,8 +803,8 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, 240, 241, "
-                            "247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 4, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, "
+                            "240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -814,6 +854,12 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number == 12 or sub > last:
         where.fail(f"cycle {number}.{sub}: cycle {number} has no line {sub}", column=blk.column,
                    text=blk.code.strip(), expected=f"CYCL DEF {number}.0 .. {number}.{last}")
+    if number in (4, 5):  # POCKET MILLING, CIRCULAR POCKET: lines with a feed and a direction besides the value
+        m.cycle_items[sub] = pocket_item(number, sub, rest, where, m.params, column0=col)
+        if sub == last:
+            m.cycle = old_pocket(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                 column=blk.column)
+        return
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:
@@ -1234,7 +1280,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (251, 252, 253):
+    if c.number in (4, 5, 251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
     if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
@@ -1505,9 +1551,11 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     wall = c.bore_diameter / 2.0 - m.tool_radius
     rough = wall - c.side_allowance
     if rough <= 1e-9:
-        where.fail(f"cycle 252: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket "
+        what = {5: ("radius 5.4", "5.4 RADIUS"), 4: ("sides 4.4, 4.5", "half the shorter side")}.get(
+            c.number, ("allowance Q368", "Q223 / 2 less Q368"))
+        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the {what[0]} fill the pocket "
                    f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
-                   expected="a tool radius plus Q368 below Q223 / 2")
+                   expected=f"a tool radius below {what[1]}")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
     if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
@@ -1517,7 +1565,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number in (251, 253):
+        if c.number in (4, 251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
         elif c.number == 254:
             h = 0.0
@@ -1534,7 +1582,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number in (251, 253):
+            if c.number in (4, 251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
             if c.number == 254:
@@ -1906,14 +1954,14 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if kw == "LP":
             if m.pole is None:
                 where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
-            _pole_in_working_plane(m, where, "LP")
-            r0, a0 = polar_angle(m.pos, m.pole, plane=m.plane)
+            plane = _polar_plane(m, where, blk)
+            r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
             k, t = m.scale * m.lengths(where), m.transform
             pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
-            pa = (t.angle(seen["PA"].value, m.plane) if "PA" in seen
-                  else a0 + (t.sweep(seen["IPA"].value, m.plane) if "IPA" in seen else 0.0))
-            target = polar_point(m.pole, pr, pa, plane=m.plane, base=target)
-            m.used.update(PLANE_AXES[m.plane])
+            pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
+                  else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
+            target = polar_point(m.pole, pr, pa, plane=plane, base=target)
+            m.used.update(PLANE_AXES[plane])
         m.last_axes = sorted(written) if kw == "L" else []
         if not rapid and m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -1976,6 +2024,25 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, wh
         _cycle_call(m, where, blk)
 
 
+#: A word's key -> the axis or setting it gives (one per block): IX and X both give X, RL and R0 the compensation.
+_BASE_KEY = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
+             "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
+             "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}
+#: The words each motion block allows (by key; RCOMP stands for R0/RL/RR).
+_ALLOWED_WORDS = {
+    "L": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
+                    *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)}),
+    "LN": frozenset({"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"}),
+    "LP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL",
+                     "RR"}),
+    "C": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CR": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
+}
+
+
 def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
     seen: dict[str, Word] = {}
@@ -1985,9 +2052,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
         if w.key == "M":
             ms.append(w)
             continue
-        base = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
-                "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
-                "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}.get(w.key, w.key)
+        base = _BASE_KEY.get(w.key, w.key)
         if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
             where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
                        expected="each word at most once per block")
@@ -2001,17 +2066,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
             where.fail("coordinate without an axis letter", column=w.column, text=w.text,
                        expected="an axis letter (X, Y or Z) before the number")
         seen["XYZ"[m.last_axes[0]]] = w
-    allowed = {
-        "L": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
-              *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)},
-        "LN": {"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"},
-        "LP": {"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL", "RR"},
-        "C": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CR": {"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"},
-        "CT": {"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"},
-        "CP": {"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"},
-        "CC": {"X", "Y", "Z", "IX", "IY", "IZ"},
-    }[kw]
+    allowed = _ALLOWED_WORDS[kw]
     for key, w in seen.items():
         if key not in allowed:
             where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
@@ -2098,6 +2153,21 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     m.pole = target
     m.pole_plane = plane if off else None
     m.used.update(written)
+
+
+def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
+    """The plane of an ``LP`` block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
+    axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
+    demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
+    manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
+    counted from the plane's reference axis). As for those arcs, R0 and no coordinate transformation."""
+    plane = m.pole_plane if m.pole_plane is not None else m.plane
+    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
+        what = "a coordinate transformation" if m.comp == "R0" else m.comp
+        where.fail(f"LP about a CC outside the working plane under {what}",
+                   column=blk.column, text=where.text,
+                   expected="R0 and no cycle 8/10/11/26 for a polar line in another plane")
+    return plane
 
 
 def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:

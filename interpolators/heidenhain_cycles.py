@@ -14,6 +14,9 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 1.0 PECKING``  1.1 SET UP (or DIST) clearance, 1.2 DEPTH, 1.3 PECKG (or PLNGNG)
                           plunge depth, 1.4 DWELL [s], 1.5 F [mm/min]; drills from the
                           current position (set-up clearance above the surface)
+``CYCL DEF 4.0 POCKET ..`` 4.1 SET UP, 4.2 DEPTH, 4.3 PECKG .. F, 4.4 X side, 4.5 Y side, 4.6 F DR+/- RADIUS
+                          (:func:`old_rectangular_pocket`); ``CYCL DEF 5.0 CIRCULAR POCKET`` 5.1 SET UP,
+                          5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F DR+/- (:func:`old_circular_pocket`)
 ``CYCL DEF 7.0 DATUM ..`` 7.1 X, 7.2 Y, 7.3 Z: datum shift (``IX``: added to the last shift)
 ``CYCL DEF 9.0 DWELL ..`` 9.1 DWELL (or TIME) t [s]: a dwell right away
 ``CYCL DEF 32.0 TOL..``   32.1 T [mm] (empty: the machine's default); 32.2 ignored
@@ -55,7 +58,8 @@ from interpolators.heidenhain_words import read_value, read_words
 
 __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CYCLES", "THREAD_CYCLES",
            "BORING_DISENGAGE",
-           "LEGACY_CYCLES", "tapping_cycle", "q_assignments", "legacy_value", "required_q", "PatternCycle",
+           "LEGACY_CYCLES", "tapping_cycle",
+           "pocket_item", "old_pocket", "q_assignments", "legacy_value", "required_q", "PatternCycle",
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
@@ -65,8 +69,8 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241, 251, 252,
-                                      253, 254, 256, 257, 262, 263, 264, 265, 267)
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 4, 5, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241,
+                                      251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267)
 #: The thread-milling cycles (:func:`thread_milling_cycle`).
 THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
@@ -322,7 +326,7 @@ def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, 
 
 
 #: The old cycles defined item by item (``CYCL DEF n.1`` ...): number -> the item that completes the definition.
-LEGACY_CYCLES: dict[int, int] = {1: 5, 2: 4, 17: 3}
+LEGACY_CYCLES: dict[int, int] = {1: 5, 2: 4, 4: 6, 5: 5, 17: 3}
 
 
 def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -348,6 +352,105 @@ def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, sc
     return _checked(DrillCycle(number=number, setup=abs(items[1]) * scale, depth=depth, plunge=abs(depth), feed=feed,
                                dwell_bottom=items.get(3, 0.0) if number == 2 else 0.0, retract_feed=feed),
                     where, column)
+
+
+_POCKET_ITEM_RE = re.compile(r"\s*(?:(F)\s*(?=[+-]?\s*[\d.Q(])|(DR)\s*([+-])(?![\d.Q(])"
+                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*[\d.Q(]))", re.I)
+
+
+_POCKET_LINES = {4: "4.1 SET UP d, 4.2 DEPTH d, 4.3 PECKG d F f, 4.4 X l1, 4.5 Y l2, 4.6 F f DR+|DR- RADIUS r",
+                 5: "5.1 SET UP d, 5.2 DEPTH d, 5.3 PECKG d F f, 5.4 RADIUS r, 5.5 F f DR+|DR-"}
+
+
+def pocket_item(number: int, sub: int, rest: str, where: Where, params: QParameters, *,
+                column0: int) -> dict[str, float]:
+    """The words of line ``number.sub`` of the old cycles 4 POCKET MILLING and 5 CIRCULAR POCKET: a named value
+    (``SET UP-2``, ``TIEFE-5,9``, ``X+60``, ``RADIUS10``: key ``"value"``), ``F`` a feed (``PECKG -1.5 F50``,
+    ``F450``) and ``DR+``/``DR-`` (key ``"DR"`` = +1 / -1)."""
+    out: dict[str, float] = {}
+    pos = 0
+    while rest[pos:].strip():
+        m = _POCKET_ITEM_RE.match(rest, pos)
+        if m is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"unexpected {tok!r} in cycle {number}.{sub}", column=column0 + pos, text=tok,
+                       expected=_POCKET_LINES[number])
+        if m.group(2):
+            out["DR"], pos = (1.0 if m.group(3) == "+" else -1.0), m.end()
+            continue
+        key = "F" if m.group(1) else "value"
+        if key in out:
+            tok = rest[m.start():].split()[0]
+            where.fail(f"a second value {tok!r} in cycle {number}.{sub}", column=column0 + m.start(), text=tok,
+                       expected="one value per item")
+        out[key], pos = read_value(rest, m.end(), where, params, what=f"cycle {number}.{sub}", column0=column0)
+    return out
+
+
+def old_pocket(number: int, items: dict[int, dict[str, float]], *, feed_scale: float, scale: float,
+               where: Where, column: int) -> DrillCycle:
+    """Cycle 4 POCKET MILLING or 5 CIRCULAR POCKET from its lines (:func:`old_circular_pocket`,
+    :func:`old_rectangular_pocket`)."""
+    last = 6 if number == 4 else 5
+    values = (1, 2, 3, 4, 5) if number == 4 else (1, 2, 3, 4)
+    missing = [f"{number}.{k}" for k in values if "value" not in items.get(k, {})]
+    if missing or "F" not in items.get(3, {}) or "F" not in items.get(last, {}):
+        where.fail(f"cycle {number} {'POCKET MILLING' if number == 4 else 'CIRCULAR POCKET'} lacks "
+                   + (", ".join(missing) or f"a feed F in {number}.3 / {number}.{last}"),
+                   column=column, text=where.text, expected=_POCKET_LINES[number])
+    if not items[3]["F"] > 0:
+        where.fail(f"cycle {number}: the plunging feed must be > 0", column=column, text=where.text,
+                   expected=f"{number}.3 PECKG d F f with f > 0 [mm/min]")
+    common = dict(setup=abs(items[1]["value"]) * scale, depth=items[2]["value"] * scale,
+                  plunge=abs(items[3]["value"]) * scale, feed=items[last]["F"] * feed_scale,
+                  approach_feed=items[3]["F"] * feed_scale, climb=items[last].get("DR", 1.0) > 0, stepover=1.0,
+                  operation=0)
+    if number == 5:
+        return old_circular_pocket(items, common, scale=scale, where=where, column=column)
+    return old_rectangular_pocket(items, common, scale=scale, where=where, column=column)
+
+
+def old_circular_pocket(items: dict[int, dict[str, float]], common: dict, *, scale: float, where: Where,
+                        column: int) -> DrillCycle:
+    """Cycle 5 CIRCULAR POCKET from its lines 5.1 .. 5.5 (TNC 426/430 user's manual, "Cycles for milling
+    pockets, studs and slots", CIRCULAR POCKET (Cycle 5)): 5.1 set-up clearance (tool tip at the starting
+    position to the surface), 5.2 depth, 5.3 plunging depth and its feed F, 5.4 radius, 5.5 the milling feed F
+    and DR+ (climb milling with M3: counter-clockwise) / DR- (up-cut: clockwise). Cycle run: from the
+    starting position over the pocket centre the tool plunges to each plunging depth, then "follows a spiral
+    path at the feed rate F" out to the pocket wall, the paths the stepover factor k = K x R apart (K: the
+    machine parameter MP7430), until the depth is reached; finally it returns to the starting position.
+
+    It runs as cycle 252's roughing (Q215 = 0 without allowances, so no finishing pass): the spiral becomes
+    full circles about the centre, reached by straight steps outward (our reading of the "spiral", kept inside
+    the pocket), K = 1 (MP7430 is the machine tool builder's; 1 is our choice); the surface is the set-up
+    clearance beyond the starting point, as in cycle 1, and the tool ends back at the starting position."""
+    radius = abs(items[4]["value"]) * scale
+    if not radius > 0:
+        where.fail("cycle 5: radius 0", column=column, text=where.text, expected="5.4 RADIUS r > 0 [mm]")
+    return _checked(DrillCycle(number=5, bore_diameter=2.0 * radius, **common), where, column)
+
+
+def old_rectangular_pocket(items: dict[int, dict[str, float]], common: dict, *, scale: float, where: Where,
+                           column: int) -> DrillCycle:
+    """Cycle 4 POCKET MILLING from its lines 4.1 .. 4.6 (TNC 426/430 user's manual, "POCKET MILLING (Cycle
+    4)"): 4.1 set-up clearance, 4.2 depth, 4.3 plunging depth and its feed F, 4.4 the first side length (along
+    the reference axis), 4.5 the second side length, 4.6 the milling feed F, DR+ (climb milling with M3) /
+    DR- and the corner radius RADIUS. Cycle run: from the starting position over the pocket centre the tool
+    plunges to each plunging depth, "then moves first in the positive direction of the longer side (in square
+    pockets, in the positive Y direction) and then roughs out the pocket from the inside out", paths K x R apart
+    (MP7430), until the depth is reached; at the end it returns to the starting position.
+
+    It runs as cycle 251's roughing (Q215 = 0 without allowances): rounded rectangles about the centre from the
+    inside out, each entered from the centre along the pocket's first axis, which is the longer side (turned by
+    90 degrees, i.e. +Y, when the second side is the longer or the pocket square); K = 1 and the surface as for
+    cycle 5 (:func:`old_circular_pocket`)."""
+    first, second = abs(items[4]["value"]) * scale, abs(items[5]["value"]) * scale
+    if not (first > 0 and second > 0):
+        where.fail("cycle 4: a side length 0", column=column, text=where.text, expected="4.4 X l1 > 0, 4.5 Y l2 > 0")
+    turned = second >= first
+    sides = (second, first) if turned else (first, second)
+    return _checked(DrillCycle(number=4, bore_diameter=min(sides), sides=sides, angle=90.0 if turned else 0.0,
+                               corner=abs(items[6].get("value", 0.0)) * scale, **common), where, column)
 
 
 def pecking_cycle(items: dict[int, float], *, feed_scale: float, scale: float, where: Where,

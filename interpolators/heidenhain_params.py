@@ -31,6 +31,7 @@ from collections.abc import Callable
 import numpy as np
 
 from interpolators._words import MAX_MAGNITUDE, Where
+from interpolators.heidenhain_formulas import compile_formula
 from interpolators.heidenhain_labels import LABEL_RE, label_key
 
 __all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE", "run_function"]
@@ -41,6 +42,11 @@ Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
 _TOKEN_RE = re.compile(
     r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/^()]))", re.I
 )
+
+#: Formula text -> its tokens and compiled closure (None: not a formula), shared by all runs; at most
+#: ``_MAX_COMPILED`` entries.
+_COMPILED: dict[str, tuple[list[tuple[str, str]], Callable | None]] = {}
+_MAX_COMPILED = 4096
 
 _FUNCTIONS = {
     "SIN": lambda v: math.sin(math.radians(v)),
@@ -110,25 +116,34 @@ class QParameters:
             Malformed formula, unknown function, division by zero or a function outside its
             domain (``SQRT`` of a negative number, ...), naming the formula.
         """
-        tokens = []
-        pos = 0
-        while pos < len(text):
-            if text[pos:].strip() == "":
-                break
-            m = _TOKEN_RE.match(text, pos)
-            if m is None:
-                where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
-                           expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
-            kind = m.lastgroup
-            tokens.append((kind, m.group(kind).upper()))
-            pos = m.end()
+        cached = _COMPILED.get(text)
+        if cached is None:
+            tokens = []
+            pos = 0
+            while pos < len(text):
+                if text[pos:].strip() == "":
+                    break
+                m = _TOKEN_RE.match(text, pos)
+                if m is None:
+                    where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
+                               expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+                kind = m.lastgroup
+                tokens.append((kind, m.group(kind).upper()))
+                pos = m.end()
+            if len(_COMPILED) >= _MAX_COMPILED:  # formulas built from changing text: keep the memory bounded
+                _COMPILED.clear()
+            cached = _COMPILED[text] = (tokens, compile_formula(tokens, _FUNCTIONS))
+        tokens, compiled = cached
         parser = _Formula(tokens, self, where, text.strip(), column)
-        try:
-            value = parser.expression()
-        except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
-            parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
-        if parser.i != len(tokens):
-            parser.fail("unexpected " + repr(tokens[parser.i][1]))
+        if compiled is not None:  # the same arithmetic in the same order, without parsing again
+            value = compiled(parser)
+        else:  # not a formula: the evaluator names the error
+            try:
+                value = parser.expression()
+            except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
+                parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
+            if parser.i != len(tokens):
+                parser.fail("unexpected " + repr(tokens[parser.i][1]))
         if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
             parser.fail(f"result {value!r} out of range")
         return value
@@ -226,7 +241,8 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 
 
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
-                 origin: np.ndarray, scale: float, note: Callable[[str], None]) -> str | None:
+                 origin: np.ndarray, scale: float, note: Callable[[str], None],
+                 tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None)) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 
     Parameters
@@ -237,6 +253,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         mm per program unit (25.4 in INCH programs).
     note : callable
         Receives what was ignored or read in a particular way.
+    tool : (int, callable)
+        For ``FN 18 SYSREAD ID20`` / ``ID50``: the active tool's number (0: none) and the length and radius
+        [mm] of a tool number (None: not in the program's TOOL DEFs nor the tool table).
 
     Returns
     -------
@@ -292,17 +311,53 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
                    expected="a program run without FN 14")
     if n == 18:
-        sm = re.match(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)\s+IDX\s*(\d+)\s*$", rest, re.I)
-        if sm is None or int(sm.group(2)) not in (240, 270) or sm.group(3) != "1" or not 1 <= int(sm.group(4)) <= 3:
-            where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
-                       expected="SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position)")
-        axis = int(sm.group(4)) - 1
-        value = position[axis] if sm.group(2) == "240" else position[axis] - origin[axis]
-        params.set(sm.group(1), value / scale, where, column=col)
-        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool)
         return None
     where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
-               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270")
+               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID20/ID50/ID240/ID270")
+
+
+_SYSREAD_RE = re.compile(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*$",
+                         re.I)
+_SYSREAD_EXPECTED = ("SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position), ID20 NR1 (active tool) "
+                     "or ID50 NR1/NR2 IDXt (length / radius of tool t)")
+
+
+def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
+             scale: float, note: Callable[[str], None],
+             tool: tuple[int, Callable[[int], tuple[float, float] | None]]) -> None:
+    """``FN 18: SYSREAD Qn = IDi NRj [IDXk]`` (TNC 640 user's manual, "FN 18: SYSREAD", the table of system
+    data): ID240 NR1 / ID270 NR1 IDX1..3 the nominal position in machine / active coordinates (as simulated);
+    ID20 NR1 the number of the active tool; ID50 NR1 / NR2 IDXt the length / radius L, R of tool t in the tool
+    table (the program's TOOL DEF stands in for the table's row, as it does at TOOL CALL). The index may be a
+    Q parameter (``IDXQ11``)."""
+    sm = _SYSREAD_RE.match(rest)
+    ident, nr = (int(sm.group(2)[:6]), int(sm.group(3)[:6])) if sm else (0, 0)
+    idx = None
+    if sm is not None and sm.group(4) is not None:
+        idx = sm.group(4)
+        idx = params.get(idx) if idx[0] in "qQ" else float(idx[:9])
+    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2)}
+    if sm is None or (ident, nr) not in known or (idx is None) != (ident == 20) \
+            or (ident in (240, 270) and idx not in (1.0, 2.0, 3.0)):
+        where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
+                   expected=_SYSREAD_EXPECTED)
+    if ident == 20:
+        value = float(tool[0])
+    elif ident == 50:
+        if not (idx >= 0 and idx == int(idx)):
+            where.fail(f"FN 18 SYSREAD ID50 of tool {idx:g}: not a tool number", column=col, text=rest.strip(),
+                       expected="IDX a whole number >= 0 (the tool)")
+        data = tool[1](int(idx))
+        if data is None:  # as TOOL CALL of a tool the table lacks: length and radius 0
+            note(f"FN 18 SYSREAD ID50: tool {int(idx)} is not in the tool table: length and radius 0")
+            data = (0.0, 0.0)
+        value = data[nr - 1]
+    else:
+        axis = int(idx) - 1
+        value = position[axis] if ident == 240 else position[axis] - origin[axis]
+        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+    params.set(sm.group(1), value / scale if ident != 20 else value, where, column=col)
 
 
 def _two_operands(body: str, op: str, params: QParameters, where: Where, column: int) -> tuple[float, float]:

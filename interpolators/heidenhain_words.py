@@ -7,7 +7,8 @@ manual, "Programming fundamentals: NC blocks"). This module
   joined with the next (a cycle definition written one Q parameter per line, as the TNC saves it;
   the older TNCs' ``Qnnn=`` / ``POSn (..)`` lines without ``~`` and block number after a
   ``CYCL DEF 2xx`` / ``PATTERN DEF`` too),
-  the old block end ``*`` dropped, and ``* ...`` structure blocks recognised;
+  the old block end ``*`` dropped, ``* ...`` structure blocks recognised, and the decimal comma
+  of programs saved by TNCs set to it (``X+50,022``, ``CYCL DEF 32.1 T0,01``) read as a point;
 * reads the words of a block (:func:`read_words`): axis words ``X+10`` / ``IX-5`` (``I`` for
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
   ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``FU``/``FZ`` (per revolution / tooth),
@@ -23,7 +24,7 @@ import re
 from interpolators._words import NUMBER_RE, Where, lines_of, token_at
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters
 
-__all__ = ["SourceBlock", "Word", "source_blocks", "read_words", "read_value"]
+__all__ = ["SourceBlock", "Word", "decimal_points", "source_blocks", "read_words", "read_value"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,6 +104,23 @@ def _wrapped_comment(line: str) -> bool:
     return _Q_LINE_RE.match(line) is None and _POS_LINE_RE.match(line) is None
 
 
+_DECIMAL_COMMA_RE = re.compile(r'"[^"]*"|(?<=\d),(?=\d)')
+
+
+def decimal_points(code: str) -> str:
+    """``code`` with each decimal comma (a comma between two digits, outside ``"..."`` strings) made
+    a point, character for character (columns stay).
+
+    Programs saved by TNCs whose decimal character is the comma write ``L X+50,022``, ``TOOL CALL 3 Z
+    S 5000,000`` and ``Q2 = COS (1,57 - Q4)``: HEIDENHAIN's own demonstration programs 668, 700 and
+    7025 and shop programs of the iTNC 530 are saved so. The manuals print the point; a comma has no
+    other use between two digits of a conversational block (our reading of those programs).
+    """
+    if "," not in code:
+        return code
+    return _DECIMAL_COMMA_RE.sub(lambda m: m.group(0) if m.group(0).startswith('"') else ".", code)
+
+
 def source_blocks(text: str) -> list[SourceBlock]:
     """The blocks of a program text (empty lines, comments and ``*`` structure blocks left out)."""
     out: list[SourceBlock] = []
@@ -126,7 +144,7 @@ def source_blocks(text: str) -> list[SourceBlock]:
         while i < len(lines) and _continues(parts[0], lines[i]):
             parts.append(_strip_comment(lines[i]).strip().rstrip("~").strip())
             i += 1
-        code = " ".join(p for p in parts if p)
+        code = decimal_points(" ".join(p for p in parts if p))
         if code.endswith("*"):
             code = code[:-1].rstrip()
         m = _HEAD_RE.match(code)

@@ -6,7 +6,9 @@ machine context's tables. Written from the HEIDENHAIN TNC conversational user's 
 for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92):
 
 - Blocks: a leading block number, ``;`` comments, ``*`` structure blocks, ``~`` continuation
-  lines (the block is reported at its first line), ``BEGIN PGM name MM|INCH``, ``END PGM``.
+  lines (the block is reported at its first line), ``BEGIN PGM name MM|INCH``, ``END PGM``; a
+  comma between two digits is a decimal point (``X+50,022``: programs saved by TNCs set to the
+  decimal comma, as HEIDENHAIN's demonstration programs 668, 700, 7025 are).
 - Machine position = program position + preset (``context.offset("G54")``) + the datum shift of
   ``CYCL DEF 7`` + the tool length along Z (``TOOL CALL n``: the length of ``TOOL DEF n`` in the
   program, else the tool table's, plus ``DL``). The length applies from the next move (the tool
@@ -24,9 +26,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
   IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
-- Labels: ``CALL LBL n REP k``: the section from ``LBL n`` repeated k times (then the counter is
-  reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program ends at ``M2``/``M30``/
-  ``END PGM``.
+- Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
+  times (then the counter is reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
+  ends at ``M2``/``M30``/``END PGM``.
 - Cycles: ``CYCL DEF 7`` (datum shift, ``I`` values add), ``9`` (dwell, runs at once), ``32``
   (tolerance, no motion), ``1`` PECKING (from the current position: feed to each plunging depth
   below the surface (start + set-up clearance toward the depth), rapid back to the start, rapid
@@ -39,7 +41,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   depth), ``262`` THREAD MILLING (half circle in from the centre on +X, the helix, half circle back) and
   ``252`` CIRCULAR POCKET (circles Q370 x R apart at each depth, wall and floor finishing), ``251``
   RECTANGULAR POCKET (the same with rounded rectangles turned by Q224) and ``256`` RECTANGULAR STUD
-  (revolutions from the blank in to the stud, half circles on and off).
+  (revolutions from the blank in to the stud, half circles on and off); the old ``5`` CIRCULAR POCKET
+  as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
+  from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
@@ -73,6 +77,8 @@ def _blocks(text: str) -> list[tuple[int, str]]:
         else:
             in_comment = ";" in raw
             code = raw.split(";", 1)[0].strip().rstrip("~").strip()
+            if '"' not in code:  # a decimal comma (quoted strings are left alone: no comma is touched)
+                code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
                 (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
@@ -200,6 +206,7 @@ class _Tnc:
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
+        self.tool = 0  # the active tool number (FN 18 ID20 NR1)
         self.pole = np.zeros(3)  # program coordinates [mm]
         self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
@@ -369,6 +376,31 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
 
 
+def _polar_line(t: _Tnc, line: int, w: dict) -> None:
+    """``LP``: a line to the point PR from the pole at the angle PA from the reference axis of the pole's
+    plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
+    axis moves it too. Without RL/RR and transformations only."""
+    _comp_words(t, w)
+    if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+        raise ReferenceError("LP under RL/RR or a transformation")
+    p = t.prog()
+    i, j = t.pole_axes
+    n = 3 - i - j
+    r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
+    a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
+    r = w["PR"] * t.scale if "PR" in w else r + w.get("IPR", 0.0) * t.scale
+    a = w["PA"] if "PA" in w else a + w.get("IPA", 0.0)
+    end_p = p.copy()
+    end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
+    end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
+    axis = "XYZ"[n]
+    if axis in w:
+        end_p[n] = w[axis] * t.scale
+    if "I" + axis in w:
+        end_p[n] += w["I" + axis] * t.scale
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(end_p))
+
+
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
     """``APPR LT|LN|CT``: the last of its moves (a line; CT: an arc) ends at the contour's first point P_A."""
     _comp_words(t, w)
@@ -456,6 +488,22 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
         if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
             raise ReferenceError("CYCL DEF 19 with a tilt")
+    elif number in (4, 5):  # POCKET MILLING 4.1 SET UP, 4.2 DEPTH, 4.3 PECKG .. F, 4.4 X, 4.5 Y, 4.6 F DR RADIUS;
+        # CIRCULAR POCKET 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
+        if sub == 0:
+            t.cycle = (str(number), {})
+            return
+        r = rest.upper().replace(" ", "")
+        f, dr = re.search(r"F([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        if f is not None:
+            t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
+        if dr is not None:
+            t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
+        rad = re.search(r"RADIUS([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r)
+        if number == 4 and sub == 6:
+            t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else 0.0
+        elif sub != 5 or number == 4:
+            t.cycle[1][sub] = _last_number(r[:f.start()] if f is not None else r, t.q)
     elif number in (1, 2, 17):
         if sub == 0:
             t.cycle = (str(number), {})
@@ -573,6 +621,21 @@ def _run_cycle(t: _Tnc, line: int) -> None:
             _move_z(t, line, "feed", z)
         _dwell(t, line, dwell)
         _move_z(t, line, "rapid", start)
+        return
+    if kind == "5":  # TNC 426 manual: from the starting position, the set-up clearance above the surface, plunge
+        # and mill out at each plunging depth, then back to the starting position: 252's roughing (Q370 = 1)
+        sgn = -1.0 if p[2] < 0 else 1.0
+        _circular_pocket(t, line, {"Q215": 0.0, "Q203": start + sgn * abs(p[1]), "Q200": abs(p[1]), "Q201": p[2],
+                                   "Q202": abs(p[3]), "Q223": 2 * abs(p[4]), "Q370": 1.0, "Q351": p.get("DR", 1.0),
+                                   "Q204": 0.0})
+        return
+    if kind == "4":  # TNC 426 manual: first along the longer side (+Y when square): 251's roughing, turned 90 deg
+        sgn = -1.0 if p[2] < 0 else 1.0  # when the second side is the longer
+        a, b = abs(p[4]), abs(p[5])
+        _circular_pocket(t, line, {"Q215": 0.0, "Q203": start + sgn * abs(p[1]), "Q200": abs(p[1]), "Q201": p[2],
+                                   "Q202": abs(p[3]), "Q218": max(a, b), "Q219": min(a, b), "Q220": p.get(6, 0.0),
+                                   "Q224": 90.0 if b >= a else 0.0, "Q370": 1.0, "Q351": p.get("DR", 1.0),
+                                   "Q204": 0.0})
         return
     if kind == "208":
         _bore_milling(t, line, p)
@@ -1327,10 +1390,10 @@ def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[fl
 
 def _tool(t: _Tnc, text: str) -> None:
     """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+)\s*(.*)$", text)
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+)\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q parameter
     if m is None:
         raise ReferenceError(f"tool block {text!r}")
-    number, rest = int(m.group(2)), m.group(3).upper()
+    number, rest = int(_val(m.group(2), t.q)), m.group(3).upper()
 
     def word(name: str) -> float:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
@@ -1347,6 +1410,7 @@ def _tool(t: _Tnc, text: str) -> None:
     else:
         tool = t.ctx.tool(number)
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
+    t.tool = number
     t.length = length + word("DL")
     t.radius = radius + word("DR")
     t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
@@ -1381,12 +1445,20 @@ def _fn(t: _Tnc, text: str) -> str | None:
     elif n == 15:
         pass
     elif n == 18:
-        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*IDX\s*(\d+)", rest)
+        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
         q, ident, nr, idx = m2.groups()
-        if nr != "1" or ident not in ("240", "270"):
+        if ident == "20" and nr == "1":  # the active tool's number
+            t.q[q] = float(t.tool)
+        elif ident == "50" and nr in ("1", "2"):  # L / R of tool IDX: the program's TOOL DEF, else the table
+            n = int(_val(idx, t.q))
+            tool = t.ctx.tool(n)
+            data = t.tool_defs.get(n, (tool.length, tool.radius) if tool is not None else (0.0, 0.0))
+            t.q[q] = data[int(nr) - 1] / t.scale  # a tool not in the table: 0, 0 (as TOOL CALL takes it)
+        elif nr != "1" or ident not in ("240", "270"):
             raise ReferenceError(f"FN 18 ID{ident} NR{nr}")
-        pos = t.pos if ident == "240" else t.prog()
-        t.q[q] = float(pos[int(idx) - 1]) / t.scale
+        else:
+            pos = t.pos if ident == "240" else t.prog()
+            t.q[q] = float(pos[int(idx) - 1]) / t.scale
     else:
         raise ReferenceError(f"FN {n}")
     return None
@@ -1451,13 +1523,13 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError("CALL PGM without a resolver")
             _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
         elif up.startswith("CALL LBL"):
-            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(\d+))?", up)
+            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
             if m.group(2) is None:
                 stack.append(pc + 1)
                 nxt = target + 1
             else:
-                left = counters.get(pc, int(m.group(2)))
+                left = counters.get(pc, int(_val(m.group(2), t.q)))
                 if left > 0:
                     counters[pc] = left - 1
                     nxt = target + 1
@@ -1537,7 +1609,9 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):
         _arc(t, line, _words(rest, t.q), polar=head == "CP")
-    elif head in ("CR", "CT", "LP", "RND", "CHF", "APPR", "DEP"):
+    elif head == "LP":
+        _polar_line(t, line, _words(rest, t.q))
+    elif head in ("CR", "CT", "RND", "CHF", "APPR", "DEP"):
         raise ReferenceError(f"{head} block")
     else:
         return None

@@ -119,6 +119,21 @@ def test_formulas_precedence_and_functions():
     assert b[1].target.tolist() == pytest.approx([15.0, 0.75 - 1 - 1 + 0.5 + 45 + 2 + 1 + math.pi, 30.0])
 
 
+def test_a_formula_run_in_a_loop_reads_the_parameters_each_time_and_fails_as_written():
+    """A formula is parsed once and then only computed (the loop of the Czech shop program Krivka): each pass
+    reads the current Q values; a division by zero on a later pass and a malformed formula fail as before."""
+    prog = run("Q1 = 0\nLBL 1\nQ1 = Q1 + 1\nQ2 = Q1 * Q1 - 2 ^ Q1 / (Q1 + 1)\nL X+Q2 Y+Q1 Z+0 F100\n"
+               "FN 12: IF +Q1 LT +4 GOTO LBL 1")
+    assert [b.target[0] for b in prog.blocks] == pytest.approx([q * q - 2 ** q / (q + 1) for q in (1, 2, 3, 4)])
+    with pytest.raises(GCodeError, match=r"bad formula '10 / \(Q1 - 2\)': division by zero"):
+        run("Q1 = 0\nLBL 1\nQ1 = Q1 + 1\nQ2 = 10 / (Q1 - 2)\nFN 12: IF +Q1 LT +4 GOTO LBL 1")
+    for _ in range(2):  # the second time from the cache of formulas: the same message
+        with pytest.raises(GCodeError, match=r"bad formula '\(Q1 \+ 2': missing '\)'"):
+            run("Q2 = (Q1 + 2")
+        with pytest.raises(GCodeError, match=r"unknown function 'FOO'"):
+            run("Q2 = FOO 3")
+
+
 def test_q_parameters_in_feeds_and_inch_programs():
     prog = run("FN 0: Q58 = +1200\nL X+1 FQ58\nL X-Q58 F(Q58/2)")
     assert [b.feed for b in prog.blocks] == [20.0, 10.0] and prog.blocks[1].target[0] == -1200

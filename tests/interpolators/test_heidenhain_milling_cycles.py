@@ -248,3 +248,65 @@ def test_circular_slot_254_up_cut_finishing_and_helical_plunge():
     assert np.allclose(prog.blocks[4].segment.center[:2], [30, 0])  # the helix about the first end, on R = 2
     with pytest.raises(GCodeError, match="Q367=1"):
         run(ARC_SLOT.format(q="Q215=0 Q368=0 Q369=0 Q351=1 Q366=0 Q378=0 Q377=1").replace("Q367=0", "Q367=1"))
+
+
+OLD_POCKET = ("TOOL DEF 2 L+0 R+3\nTOOL CALL 2 Z S500\nCYCL DEF 5.0 CIRCULAR POCKET\nCYCL DEF 5.1 SET UP {setup}\n"
+              "CYCL DEF 5.2 DEPTH -5\nCYCL DEF 5.3 PECKG 3 F100\nCYCL DEF 5.4 RADIUS 9\nCYCL DEF 5.5 F300 {dr}\n"
+              "L X+10 Y+20 Z+2 R0 FMAX M99")
+
+
+def test_old_circular_pocket_5_plunges_and_mills_out_from_the_starting_position():
+    # TNC 426 manual, cycle 5: the surface is SET UP below the starting point Z+2 (Z0); plunging depths 3, 2 at
+    # F100; rings 3 (K x R) apart out to 9 - 3 = 6 at F300, counter-clockwise for DR+; back to the start
+    prog = run(OLD_POCKET.format(setup=2, dr="DR+"))
+    b = prog.blocks
+    assert [x.target.tolist() for x in b[:6]] == [[10, 20, 2], [10, 20, -3], [13, 20, -3], [13, 20, -3],
+                                                 [16, 20, -3], [16, 20, -3]]
+    assert [round(x.feed * 60) for x in b[1:6]] == [100, 300, 300, 300, 300]
+    assert all(x.segment.ccw for x in b if x.kind == "arc")
+    assert [x.target.tolist() for x in b[6:9]] == [[16, 20, -1], [10, 20, -1], [10, 20, -5]]
+    assert b[-1].target.tolist() == [10, 20, 2] and b[-1].kind == "rapid"
+    up = run(OLD_POCKET.format(setup="+1,5", dr="DR-"))  # up-cut: clockwise; decimal comma
+    assert not any(x.segment.ccw for x in up.blocks if x.kind == "arc")
+    assert up.blocks[1].target.tolist() == [10, 20, -2.5]
+    for blk in prog.blocks + up.blocks:  # the tool centre never leaves the pocket less the tool radius
+        assert math.hypot(blk.target[0] - 10, blk.target[1] - 20) <= 6 + 1e-9
+
+
+def test_old_circular_pocket_5_needs_all_its_lines_and_room_for_the_tool():
+    with pytest.raises(GCodeError, match="cycle 5 CIRCULAR POCKET lacks 5.4"):
+        run(OLD_POCKET.replace("CYCL DEF 5.4 RADIUS 9\n", "").format(setup=2, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match=r"cycle 5: the tool \(radius 3 mm\) and the radius 5.4 fill the pocket"):
+        run(OLD_POCKET.replace("RADIUS 9", "RADIUS 3").format(setup=2, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match="unexpected 'X' in cycle 5.5"):
+        run(OLD_POCKET.format(setup=2, dr="DR+ X"), reference=False)
+
+
+OLD_RECT = ("TOOL DEF 2 L+0 R+3\nTOOL CALL 2 Z S500\nCYCL DEF 4.0 POCKET MILLING\nCYCL DEF 4.1 SET UP 2\n"
+            "CYCL DEF 4.2 DEPTH -5\nCYCL DEF 4.3 PECKG 5 F100\nCYCL DEF 4.4 X{x}\nCYCL DEF 4.5 Y{y}\n"
+            "CYCL DEF 4.6 F300 {dr} RADIUS 4\nL X+10 Y+20 Z+2 R0 FMAX\nCYCL CALL")
+
+
+@pytest.mark.parametrize(("x", "y", "first"), [(20, 30, [10, 20 + 12 - 2 * 7 / 3, -5]), (30, 20, [22 - 14 / 3, 20, -5]),
+                                               (20, 20, [10, 27 - 14 / 3, -5])])
+def test_old_pocket_milling_4_starts_along_the_longer_side_and_stays_inside(x, y, first):
+    # TNC 426 manual, cycle 4: "first in the positive direction of the longer side (in square pockets, in the
+    # positive Y direction)", then from the inside out: rings 7 / 3 apart (half the shorter side less R = 7, in
+    # steps of at most R) out to the pocket less R, corners rounded by 4 - R = 1; one depth of 5 below the surface
+    # Z0 (SET UP 2 below the start), then back up to the start
+    for dr in ("DR+", "DR-"):
+        prog = run(OLD_RECT.format(x=x, y=y, dr=dr))
+        b = prog.blocks
+        assert b[1].target.tolist() == [10, 20, -5] and round(b[1].feed * 60) == 100
+        assert b[2].target == pytest.approx(first)
+        assert all(a.segment.ccw == (dr == "DR+") for a in b if a.kind == "arc")
+        for blk in b:
+            assert abs(blk.target[0] - 10) <= x / 2 - 3 + 1e-9 and abs(blk.target[1] - 20) <= y / 2 - 3 + 1e-9
+        assert b[-1].target.tolist() == [10, 20, 2]
+
+
+def test_old_pocket_milling_4_needs_its_sides():
+    with pytest.raises(GCodeError, match="cycle 4 POCKET MILLING lacks 4.5"):
+        run(OLD_RECT.replace("CYCL DEF 4.5 Y{y}\n", "").format(x=20, dr="DR+"), reference=False)
+    with pytest.raises(GCodeError, match="cycle 4: the tool .* and the sides 4.4, 4.5 fill the pocket"):
+        run(OLD_RECT.format(x=6, y=30, dr="DR+"), reference=False)

@@ -125,8 +125,6 @@ def test_circles_about_a_cc_that_names_the_tool_axis_run_in_that_plane():
 def test_a_circle_outside_the_working_plane_under_radius_compensation_is_an_error():
     with pytest.raises(GCodeError, match="not in the working plane"):
         parse_heidenhain("TOOL CALL 1 Z\nL X+0 Y+0 Z+0 RL F100\nCC X+0 Z-4\n", context=CTX)
-    with pytest.raises(GCodeError, match="about a pole outside the working plane"):
-        parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nCC X+0 Z-4\nLP PR+4 PA+0\n", context=CTX)
 
 
 def test_ln_lines_with_3d_compensation_move_by_the_delta_radius_along_the_normal():
@@ -140,3 +138,55 @@ def test_ln_lines_with_3d_compensation_move_by_the_delta_radius_along_the_normal
     assert any("TX/TY/TZ" in n for n in prog.notes)
     with pytest.raises(GCodeError, match="LN without a surface-normal vector"):
         parse_heidenhain("L X+0 Y+0 Z+0 R0 F100\nLN X+1 Y+0 Z+0 NX+0 NY+0\n", context=CTX)
+
+
+def test_decimal_commas_as_tncs_set_to_the_comma_save_programs():
+    """``X+50,022``, ``T0,01`` and ``Q2 = 1,5 * 2`` (HEIDENHAIN's demonstration programs 668/700/7025, the
+    Czech shop program Krivka): the comma between two digits is the decimal point."""
+    prog = run("1 TOOL CALL 1 Z S900\n2 CYCL DEF 32.0 TOLERANCE\n3 CYCL DEF 32.1 T0,01\n"
+               "4 L X+50,022 Y-1,5 Z+5 R0 FMAX\n5 Q2 = 1,5 * 2\n6 L IX+Q2 Z-0,25 F300\n"
+               "7 FN 1: Q3 = +0,5 + +Q2\n8 L Y+Q3 F1000,000\n")
+    assert ends(prog) == [[50.022, -1.5, 15.0], [53.022, -1.5, 9.75], [53.022, 3.5, 9.75]]
+    assert prog.blocks[1].feed == pytest.approx(300 / 60)
+    assert prog.blocks[2].feed == pytest.approx(1000 / 60)
+
+
+def test_a_polar_line_about_a_pole_that_names_the_tool_axis_runs_in_that_plane():
+    """HEIDENHAIN's demonstration program 7025: ``CC Z.. X..`` then ``LP PR.. PA-90`` and ``CP IPA..``: the
+    polar line and arc run in ZX, the angle counted from +Z toward +X."""
+    prog = run("1 TOOL CALL 1 Z S900\n2 L X+75 Y+50 Z+20 R0 FMAX\n3 CC Z+0 X+75\n4 LP PR+20 PA-90 R0 F300\n"
+               "5 CP IPA+90 DR+\n6 LP IPR-10 IPA+45\n7 CC X+0 Y+0\n8 LP PR+10 PA+90 Z+5 FMAX\n")
+    s = 10 * math.sqrt(0.5)
+    assert ends(prog)[:3] == [[75.0, 50.0, 30.0], [55.0, 50.0, 10.0], [75.0, 50.0, 30.0]]
+    assert ends(prog)[3] == pytest.approx([75.0 + s, 50.0, 10.0 + s])
+    assert ends(prog)[4] == pytest.approx([0.0, 10.0, 15.0])
+
+
+def test_a_polar_line_in_another_plane_under_a_rotation_is_an_error():
+    with pytest.raises(GCodeError, match="LP about a CC outside the working plane under a coordinate transf"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 CC Z+0 X+0\n"
+                         "4 CYCL DEF 10.0 ROTATION\n5 CYCL DEF 10.1 ROT+30\n6 LP PR+5 PA+0\n7 END PGM T MM\n",
+                         source="t.h", context=CTX)
+
+
+def test_a_section_repeat_counted_by_a_q_parameter():
+    """``CALL LBL 1 REPQ13`` (HEIDENHAIN's demonstration program 7025): the count is the Q parameter's value."""
+    prog = run("1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 Q5 = 2\n4 LBL 1\n5 L IX+1\n6 CALL LBL 1 REPQ5\n")
+    assert ends(prog) == [[0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [2.0, 0.0, 10.0], [3.0, 0.0, 10.0]]
+    with pytest.raises(GCodeError, match="REP Q5 = 1.5 is not a whole number"):
+        run("1 Q5 = 1.5\n2 LBL 1\n3 CALL LBL 1 REP Q5\n")
+
+
+def test_tool_call_by_a_q_parameter_and_sysread_of_the_tool_data():
+    """``TOOL CALL Q11 Z`` and ``FN 18: SYSREAD Q10 = ID50 NR2 IDXQ11`` (the German shop program "Gleichlaufnut"),
+    ``ID20 NR1`` (the tool-check macros of a DMU 60 eVo): the tool number, the table's L and R (TOOL DEF first)."""
+    prog = run("1 Q11 = 1\n2 TOOL DEF 2 L+20 R+4\n3 TOOL CALL Q11 Z S5000 F500\n"
+               "4 FN 18: SYSREAD Q10 = ID50 NR2 IDXQ11\n5 FN 18: SYSREAD Q12 = ID50 NR1 IDX2\n"
+               "6 FN 18: SYSREAD Q13 = ID20 NR1\n7 L X+Q10 Y+Q12 Z+Q13\n")
+    assert ends(prog) == [[3.0, 20.0, 11.0]]  # R of tool 1 = 3, L of tool 2 = 20, tool 1 active (length 10)
+    with pytest.raises(GCodeError, match="tool number Q11 = 2.5 is not a whole number"):
+        run("1 Q11 = 2.5\n2 TOOL CALL Q11 Z\n")
+    unknown = run("1 FN 18: SYSREAD Q10 = ID50 NR1 IDX7\n2 L X+0 Y+0 Z+Q10 FMAX\n")  # as TOOL CALL: 0, noted
+    assert ends(unknown) == [[0.0, 0.0, 0.0]] and any("tool 7 is not in the tool table" in n for n in unknown.notes)
+    with pytest.raises(GCodeError, match="FN 18 SYSREAD 'SYSREAD Q1 = ID50 NR36 IDX1' is not supported"):
+        run("1 FN 18: SYSREAD Q1 = ID50 NR36 IDX1\n")
