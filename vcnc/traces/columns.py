@@ -149,12 +149,11 @@ def check_timing(t: np.ndarray, src: str, row_lines: Sequence[int] | None = None
         gaps = np.flatnonzero((ratio > 1.5) & (np.abs(ratio - np.round(ratio)) < 0.01))
         if gaps.size:
             k = int(gaps[0])
-            where = f" (line {row_lines[k + 1]})" if row_lines is not None else ""
             lost = int(np.sum(np.round(ratio[gaps]) - 1))
             raise CaptureError(f"{lost} sample(s) missing in {gaps.size} gap(s), the first {float(dt[k]):.9g} s "
-                               f"long after t = {float(t[k]):.9g} s{where}; the sample time is {ts:.9g} s. "
+                               f"long after t = {float(t[k]):.9g} s; the sample time is {ts:.9g} s. "
                                "vcnc needs uniform sampling: trace without drop-outs, or cut the capture",
-                               file=src) from None
+                               file=src, line=row_lines[k + 1] if row_lines is not None else None) from None
         jitter = float(np.max(np.abs(dt - ts)))
         raise CaptureError(f"{exc.message}; the time stamps jitter by up to {jitter:.3g} s ({jitter / ts:.1%} of the "
                            "step): vcnc needs the control's own sampled time, not a logging PC's clock",

@@ -97,9 +97,7 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
     first, width = -1, 0
     for i in range(len(lines) - 1, -1, -1):
         s = lines[i].strip()
-        if not s:
-            if first >= 0:
-                break
+        if not s:  # blank lines between the rows of numbers are skipped, as in _table
             continue
         if s.upper() == "EOF" and first < 0:
             continue
@@ -128,7 +126,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, np.ndarray, list[int]
             cells = [c.strip() for c in _split(lines[j], delimiter)]
             numeric = sum(_numbers([c], comma) is not None for c in cells if c)
             if len(cells) == width and numeric * 2 > len(cells):  # a data row with a bad cell, not a header
-                bad = next(c for c in cells if _numbers([c], comma) is None)
+                bad = next((c for c in cells if _numbers([c], comma) is None), "")
                 raise CaptureError(f"not a number (the rows below are {width} numbers)", file=src, line=j + 1,
                                    column=cells.index(bad) + 1, text=bad)
             header = cells if len(cells) == width else None

@@ -224,15 +224,17 @@ def _time_scale(times: dict[int, np.ndarray], rows: list[list[str]], time_unit: 
         raise CaptureError("a channel used has no time stamps", file=src)
     if max(float(np.max(np.abs(f))) for f in finite) <= 1e15:
         return TIME_UNITS[time_unit or "ms"], 0
-    firsts = []
-    for j, t in times.items():
-        k = int(np.flatnonzero(np.isfinite(t))[0])
-        try:
-            firsts.append(int(rows[k][j].strip()))
-        except ValueError:
-            raise CaptureError("FILETIME stamp is not a whole number", file=src, line=row_lines[k],
-                               column=j + 1) from None
+    firsts = [_tick(rows, int(np.flatnonzero(np.isfinite(t))[0]), j, src, row_lines) for j, t in times.items()]
     return _FILETIME_TICK_S, min(firsts)
+
+
+def _tick(rows: list[list[str]], k: int, j: int, src: str, row_lines: list[int]) -> int:
+    """The FILETIME stamp in row ``k``, column ``j`` [100 ns ticks], exact."""
+    cell = rows[k][j].strip()
+    if not cell.isdigit():
+        raise CaptureError("expected a FILETIME stamp (a whole number of 100 ns ticks) like the others of the "
+                           "export", file=src, line=row_lines[k], column=j + 1, text=cell)
+    return int(cell)
 
 
 def _series(c: _Channel, t_raw: np.ndarray, rows: list[list[str]], row_lines: list[int], per_s: float, base: int,
@@ -241,7 +243,7 @@ def _series(c: _Channel, t_raw: np.ndarray, rows: list[list[str]], row_lines: li
     v = _values(rows, c.column, comma, src, row_lines)
     keep = np.flatnonzero(np.isfinite(v) & np.isfinite(t_raw))
     if base:
-        t = np.array([(int(rows[k][c.time_column].strip()) - base) * per_s for k in keep])
+        t = np.array([(_tick(rows, k, c.time_column, src, row_lines) - base) * per_s for k in keep])
     else:
         t = t_raw[keep] * per_s
     t = np.round(t, 9)
