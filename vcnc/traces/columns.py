@@ -157,4 +157,4 @@ def check_timing(t: np.ndarray, src: str, row_lines: Sequence[int] | None = None
         jitter = float(np.max(np.abs(dt - ts)))
         raise CaptureError(f"{exc.message}; the time stamps jitter by up to {jitter:.3g} s ({jitter / ts:.1%} of the "
                            "step): vcnc needs the control's own sampled time, not a logging PC's clock",
-                           file=src, line=exc.line) from None
+                           file=src, line=exc.line, column=exc.column) from None

@@ -1,0 +1,137 @@
+"""Variants of the trace formats met outside the issue's description, each in a fixture written
+here: halscope logs of LinuxCNC 2.9 and later, SINUMERIK traces whose signals are named in the
+setup, TNCscope exports in UTF-16 or with a decimal comma, and the timing checks."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vcnc.capture import read_capture
+from vcnc.cli import main
+from vcnc.errors import CaptureError
+from vcnc.traces import trace_format
+
+N = 150
+REF = np.round(5 * np.sin(np.arange(N) * 0.05), 6)
+ACT = np.round(REF - 0.01 * np.cos(np.arange(N) * 0.05), 6)
+
+
+# ------------------------------------------------------------------------------------ halscope
+def _halscope29(path, *, labels=("joint.0.motor-pos-cmd", "joint.0.motor-pos-fb"), comments=True):
+    """``write_log_file`` of LinuxCNC 2.9+: '# Sampling period', names, '# Position'/'# Scale', rows."""
+    head = ["# Sampling period is 1000000 ns", ";".join(labels)]
+    if comments:
+        head += ["# Position: " + ";".join("0.000000" for _ in labels), "# Scale: " + ";".join("5" for _ in labels)]
+    extra = [f"{0.5:.14f}"] * (len(labels) - 2)
+    rows = [";".join([f"{r:.14f}", f"{a:.14f}", *extra]) for r, a in zip(REF, ACT)]
+    path.write_text("\n".join(head + rows) + "\n")
+
+
+@pytest.mark.parametrize("comments", [True, False])
+def test_halscope_log_of_linuxcnc_29(tmp_path, comments):
+    f = tmp_path / "scope.log"
+    _halscope29(f, labels=("joint.0.motor-pos-cmd", "joint.0.motor-pos-fb", "spindle.0.speed-out"), comments=comments)
+    assert trace_format(f) == "halscope"
+    cap = read_capture(f)
+    assert cap.axes == ("x",) and cap.sample_time == 0.001
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+
+
+def test_halscope_signal_names_pair_by_axis_letter(tmp_path):
+    f = tmp_path / "scope.log"
+    _halscope29(f, labels=("z-pos-cmd", "z-pos-fb"))
+    cap = read_capture(f)
+    assert cap.axes == ("z",) and cap.meta["commanded"] == "z:z-pos-cmd"
+
+
+def test_halscope_joint_pins_prefer_motor_positions(tmp_path):
+    f = tmp_path / "scope.log"
+    _halscope29(f, labels=("joint.1.pos-cmd", "joint.1.pos-fb", "joint.1.motor-pos-cmd", "joint.1.motor-pos-fb"))
+    cap = read_capture(f, axes=("y",))
+    assert cap.axes == ("y",) and cap.meta["measured"] == "y:joint.1.motor-pos-fb"
+
+
+def test_halscope_29_bad_rows(tmp_path):
+    f = tmp_path / "scope.log"
+    _halscope29(f)
+    lines = f.read_text().splitlines()
+    f.write_text("\n".join(lines[:10] + ["0.1;0.2;0.3"] + lines[10:]) + "\n")
+    with pytest.raises(CaptureError, match=r"scope.log:11: 3 values, expected 2"):
+        read_capture(f)
+    f.write_text("\n".join(lines[:10] + ["0.1;nan"] + lines[10:]) + "\n")
+    with pytest.raises(CaptureError, match=r"scope.log:11: a value is not a number"):
+        read_capture(f)
+    f.write_text("\n".join(lines + ["0.123"]) + "\n")  # a log cut short in its last line
+    assert len(read_capture(f)) == N
+
+
+# ----------------------------------------------------------------------------------- SINUMERIK
+def test_sinumerik_signals_named_in_the_setup(tmp_path):
+    """A ``<dataSignal>`` with only id, key and interval takes its name from the setup's
+    ``<signal key=...>``; the root may be ``<traceDataRoot>``."""
+    f = tmp_path / "trace.xml"
+    setup = ('<traceDisplaySetup_V20><signals>'
+             '<signal key="s14" name="/Nck/!SD/nckServoDataCmdPos2ndEnc64 [u1, 3]" description="Position setpoint"/>'
+             '<signal key="s5" name="/Nck/!SD/nckServoDataFlwErr64 [u1, 3]" description="Following Error (64 bit)"/>'
+             '</signals></traceDisplaySetup_V20>')
+    recs = "".join(f'<rec time="{k * 0.002:.6f}" f1="{r:.6f}" f2="{r - a:.6f}"/>\n'
+                   for k, (r, a) in enumerate(zip(REF, ACT)))
+    f.write_text('<?xml version="1.0" encoding="utf-8"?>\n<traceDataRoot>' + setup +
+                 '<traceData><dataFrame><frameHeader dropOuts="0"/>'
+                 '<dataSignal id="f1" key="s14" interval="0.002000"/><dataSignal id="f2" key="s5" interval="0.002000"/>'
+                 + recs + "</dataFrame></traceData></traceDataRoot>\n")
+    assert trace_format(f) == "sinumerik"
+    cap = read_capture(f, axes=("z",))
+    assert cap.meta["axis_numbers"] == "z:3" and "following error" in cap.meta["signals"]
+    np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)
+
+
+def test_xml_that_is_not_a_trace_names_its_root(tmp_path, capsys):
+    f = tmp_path / "freq.xml"
+    f.write_text('<?xml version="1.0" encoding="ISO-8859-1"?>\n<!-- 4.7 -->\n<ResponseTestCustom ver="4"/>\n')
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out)]) == 2
+    assert "root <ResponseTestCustom>, not a SINUMERIK trace" in capsys.readouterr().err and not out.exists()
+
+
+# ------------------------------------------------------------------------------------ TNCscope
+def _tnc(ctypes=("s soll", "s ist"), comma=False, skip=None):
+    lines = ["%TNCscopeNT data file", "%[GLOBAL]", "%CONTROL=TNC640", "%SAMPLING=3000"]
+    for n, ctype in enumerate(ctypes, start=1):
+        lines += [f"%[CURVE{n}]", f"%NAME={ctype}/X", f"%CHANNELTYPE={ctype}", "%AXISTYPE=X", "%DIMENSION=mm",
+                  f"%COLUMN={n}"]
+    lines.append("%[DATA]")
+    for k, (r, a) in enumerate(zip(REF, ACT)):
+        if k != skip:
+            row = f"{k * 3000};{r:.6f};{a:.6f};"
+            lines.append(row.replace(".", ",") if comma else row)
+    return "\r\n".join(lines) + "\r\n"
+
+
+@pytest.mark.parametrize(("encoding", "comma", "ctypes"), [("utf-16", False, ("s soll", "s ist")),
+                                                           ("utf-8-sig", True, ("s noml", "s actl")),
+                                                           ("latin-1", True, ("s nom", "s act"))])
+def test_tncscope_encodings_decimal_comma_and_english_names(tmp_path, encoding, comma, ctypes):
+    f = tmp_path / "x.sco"
+    f.write_bytes(_tnc(ctypes, comma).encode(encoding))
+    assert trace_format(f) == "tncscope"
+    cap = read_capture(f)
+    assert cap.axes == ("x",) and cap.sample_time == 0.003
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+
+
+# -------------------------------------------------------------------------------------- timing
+def test_dropped_samples_and_jitter_are_named(tmp_path):
+    f = tmp_path / "x.sco"
+    f.write_bytes(_tnc(skip=40).encode("latin-1"))
+    with pytest.raises(CaptureError, match=r"x.sco:\d+: 1 sample\(s\) missing in 1 gap\(s\), the first 0.006 s long "
+                                           r"after t = 0.117 s"):
+        read_capture(f)
+    g = tmp_path / "log.csv"
+    t = np.arange(N) * 0.001 + np.where(np.arange(N) % 3 == 0, 0.0002, 0.0)
+    g.write_text("t,cmd,act\n" + "\n".join(f"{tk:.4f},{r},{a}" for tk, r, a in zip(t, REF, ACT)) + "\n")
+    with pytest.raises(CaptureError, match=r"log.csv:3:1: sampling is not uniform.*jitter by up to 0.0002 s"):
+        read_capture(g, columns={"t": "t", "x_ref": "cmd", "x": "act"})
