@@ -79,7 +79,7 @@ def _xml_root(path: Path) -> str:
 
 def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                time_unit: str | None = None, unit: str | None = None,
-               axes: Sequence[str] | None = None) -> Capture:
+               axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
     """Read any supported trace (module docstring) into a capture.
 
     Parameters
@@ -93,6 +93,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         Units of time (s, ms, us) and positions (mm, um, m, in, deg) in delimited text.
     axes : sequence of str, optional
         Names of the axes of a SINUMERIK trace (in axis-number order) or a halscope log (joint order).
+    resample : bool
+        TNCscope, TwinCAT and delimited text: interpolate time stamps that are not uniform
+        (jitter, dropped samples) linearly onto the median step; without it they are an error.
 
     Raises
     ------
@@ -115,9 +118,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt == "emps-mat":
         return read_emps_mat(p)
     if fmt == "tncscope":
-        return read_tncscope(p)
+        return read_tncscope(p, resample=resample)
     if fmt == "sinumerik":
         return read_sinumerik(p, axes=tuple(axes) if axes else None)
     if fmt == "capture-csv" and not delimited_options:
         return read_capture_csv(p)
-    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes)
+    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)

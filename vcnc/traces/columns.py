@@ -7,6 +7,8 @@
   values that overflow a float are refused, naming the line and the column.
 - **Timing.** A capture's time must increase with a uniform step: :func:`check_timing` tells
   dropped samples (a step that is a multiple of the usual one) from jitter and names the line.
+  On request (``resample``, ``--resample``) :func:`on_uniform_grid` interpolates linearly onto
+  the median step instead, and says so in the capture's ``meta``.
 """
 
 from __future__ import annotations
@@ -23,12 +25,15 @@ from vcnc.core.capture import check_sampling
 from vcnc.core.errors import CaptureError
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
-           "mapped_axes", "position_scale", "mapping_meta", "check_timing"]
+           "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
 #: Millimetres (or degrees, for "deg") per position unit.
 LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "m": 1000.0, "in": 25.4, "deg": 1.0}
+
+#: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
+MAX_SAMPLES = 100_000_000
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _BOMS = ((b"\xef\xbb\xbf", "utf-8-sig"), (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
@@ -152,9 +157,40 @@ def check_timing(t: np.ndarray, src: str, row_lines: Sequence[int] | None = None
             lost = int(np.sum(np.round(ratio[gaps]) - 1))
             raise CaptureError(f"{lost} sample(s) missing in {gaps.size} gap(s), the first {float(dt[k]):.9g} s "
                                f"long after t = {float(t[k]):.9g} s; the sample time is {ts:.9g} s. "
-                               "vcnc needs uniform sampling: trace without drop-outs, or cut the capture",
+                               "vcnc needs uniform sampling: trace without drop-outs, cut the capture, or give "
+                               "--resample (resample=True) to interpolate across the gaps",
                                file=src, line=row_lines[k + 1] if row_lines is not None else None) from None
         jitter = float(np.max(np.abs(dt - ts)))
         raise CaptureError(f"{exc.message}; the time stamps jitter by up to {jitter:.3g} s ({jitter / ts:.1%} of the "
-                           "step): vcnc needs the control's own sampled time, not a logging PC's clock",
+                           "step): vcnc needs the control's own sampled time, not a logging PC's clock; --resample "
+                           "(resample=True) interpolates onto the median step",
                            file=src, line=exc.line, column=exc.column) from None
+
+
+def on_uniform_grid(t: np.ndarray, values: Sequence[np.ndarray], src: str, row_lines: Sequence[int] | None = None,
+                    *, resample: bool = False) -> tuple[np.ndarray, list[np.ndarray], dict[str, str]]:
+    """Time [s] from 0 and ``values`` (arrays of N rows) on a uniform grid, and what was done.
+
+    Uniform time stamps are kept as they are. Otherwise :func:`check_timing` raises, or with
+    ``resample`` every array is interpolated linearly onto the median step from 0 to the last
+    time stamp (``meta["resampled"]`` records it): for loggers whose PC clock jitters, or a
+    trace with a few dropped samples.
+    """
+    t = t - t[0]
+    try:
+        check_timing(t, src, row_lines)
+        return t, list(values), {}
+    except CaptureError:
+        if not resample or np.any(np.diff(t) <= 0):
+            raise
+    dt = np.diff(t)
+    ts = float(f"{float(np.median(dt)):.6g}")
+    n = int(np.floor(t[-1] / ts + 1e-9)) + 1
+    if n > MAX_SAMPLES:
+        raise CaptureError(f"resampling {t[-1]:.6g} s at {ts:.6g} s would make more than {MAX_SAMPLES} samples",
+                           file=src)
+    grid = np.round(np.arange(n) * ts, 12)
+    out = [np.column_stack([np.interp(grid, t, v[:, j]) for j in range(v.shape[1])]) for v in values]
+    how = (f"linear, onto a {ts:.6g} s step from {t.size} samples with steps of {float(dt.min()):.6g} to "
+           f"{float(dt.max()):.6g} s")
+    return grid, out, {"resampled": how}

@@ -24,10 +24,10 @@ from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
     LENGTH_UNITS,
     TIME_UNITS,
-    check_timing,
     check_units,
     mapped_axes,
     mapping_meta,
+    on_uniform_grid,
     parse_columns,
     parse_number,
     position_scale,
@@ -44,7 +44,7 @@ _DELIMITERS = ("\t", ";", ",")
 
 def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                    time_unit: str | None = None, unit: str | None = None,
-                   axes: Sequence[str] | None = None) -> Capture:
+                   axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
     """Read a delimited text trace (module docstring) into a capture.
 
     Parameters
@@ -61,6 +61,8 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         Unit of the positions (default mm; "deg" only for rotary axes).
     axes : sequence of str, optional
         Names for the joints of a halscope log (joint order) or the pairs of a TwinCAT export.
+    resample : bool
+        Interpolate time stamps that are not uniform onto the median step (else an error).
 
     Raises
     ------
@@ -74,8 +76,9 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if looks_like_halscope(text[:2000]):
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if looks_like_twincat(text[:20000]):
-        return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes)
-    return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit or "s", unit=unit)
+        return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
+    return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit or "s", unit=unit,
+                    resample=resample)
 
 
 def _split(line: str, delimiter: str) -> list[str]:
@@ -151,7 +154,7 @@ def _column(name: str, header: list[str] | None, width: int, src: str, line: int
 
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str,
-             unit: str | None) -> Capture:
+             unit: str | None, resample: bool) -> Capture:
     header, data, row_lines, delimiter = _table(text, src)
     hline = row_lines[0] - 1
     if not columns:
@@ -170,13 +173,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     t = d[:, idx["t"]] * TIME_UNITS[time_unit]
     _increasing(t, src, lines_kept)
-    check_timing(t - t[0], src, lines_kept)
     s = position_scale(axes, unit, src)
+    t, (ref, meas), how = on_uniform_grid(t, [d[:, [idx[f"{a}_ref"] for a in axes]] * s,
+                                             d[:, [idx[a] for a in axes]] * s], src, lines_kept, resample=resample)
     names = {",": "comma", ";": "semicolon", "\t": "tab"}
     meta = {"format": f"delimited text ({names[delimiter]})", "time_unit": time_unit, "unit": unit or "mm",
-            **mapping_meta(axes, columns)}
-    return Capture(t=t - t[0], axes=tuple(axes), reference=d[:, [idx[f"{a}_ref"] for a in axes]] * s,
-                   measured=d[:, [idx[a] for a in axes]] * s, meta=meta, source=src)
+            **mapping_meta(axes, columns), **how}
+    return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
 def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:

@@ -17,14 +17,14 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
-from vcnc.traces.columns import check_timing, parse_number, read_text
+from vcnc.traces.columns import on_uniform_grid, parse_number, read_text
 
 MAGIC = "%TNCscopeNT"
 COMMANDED = ("s soll", "s nom", "s noml", "s nominal")
 MEASURED = ("s ist", "s act", "s actl", "s actual")
 
 
-def read_tncscope(path: str | os.PathLike[str]) -> Capture:
+def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Capture:
     """Read a TNCscope text export into a capture.
 
     Parameters
@@ -80,11 +80,11 @@ def read_tncscope(path: str | os.PathLike[str]) -> Capture:
         k = int(bad_t[0]) + 1
         raise CaptureError(f"time does not increase ({a[k, 0]:.9g} us after {a[k - 1, 0]:.9g} us)", file=src,
                            line=row_lines[k])
-    check_timing(t - t[0], src, row_lines)
+    t, (r, m), how = on_uniform_grid(t, [a[:, [ref[x] for x in axes]], a[:, [meas[x] for x in axes]]], src,
+                                     row_lines, resample=resample)
     meta = {"format": "TNCscope", "commanded": ",".join(f"{x}:col{ref[x]}" for x in axes),
-            "measured": ",".join(f"{x}:col{meas[x]}" for x in axes)}
-    return Capture(t=t - t[0], axes=axes, reference=a[:, [ref[x] for x in axes]],
-                   measured=a[:, [meas[x] for x in axes]], meta=meta, source=src)
+            "measured": ",".join(f"{x}:col{meas[x]}" for x in axes), **how}
+    return Capture(t=t, axes=axes, reference=r, measured=m, meta=meta, source=src)
 
 
 def _curves(lines: list[str], src: str) -> tuple[list[dict[str, str]], int]:

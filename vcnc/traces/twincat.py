@@ -39,10 +39,10 @@ from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
     TIME_UNITS,
-    check_timing,
     check_units,
     mapped_axes,
     mapping_meta,
+    on_uniform_grid,
     parse_number,
     position_scale,
     read_text,
@@ -77,7 +77,7 @@ def looks_like_twincat(text: str) -> bool:
 
 def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                  time_unit: str | None = None, unit: str | None = None,
-                 axes: Sequence[str] | None = None) -> Capture:
+                 axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
     """Read a TwinCAT Scope CSV export (module docstring) into a capture.
 
     Parameters
@@ -93,6 +93,8 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
         Unit of the positions (default mm).
     axes : sequence of str, optional
         Names of the axes of the ``SetPos`` / ``ActPos`` pairs, in the order of the channels.
+    resample : bool
+        Interpolate time stamps that are not uniform onto the median step (else an error).
 
     Raises
     ------
@@ -125,19 +127,20 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
         common = np.intersect1d(common, tk)
     if common.size < 2:
         raise CaptureError(f"channels {list(mapping.values())} share fewer than two time stamps", file=src)
-    check_timing(common, src, [first[2][k] for k in np.searchsorted(first[0], common)])
 
     def on(key: str) -> np.ndarray:
         tk, v, _ = series[key]
         return v[np.searchsorted(tk, common)]
 
     s = position_scale(ax, unit, src)
+    t, (ref, meas), how = on_uniform_grid(np.round(common - common[0], 9),
+                                          [np.column_stack([on(f"{a}_ref") for a in ax]) * s,
+                                           np.column_stack([on(a) for a in ax]) * s], src,
+                                          [first[2][k] for k in np.searchsorted(first[0], common)], resample=resample)
     meta = {"format": "TwinCAT Scope CSV", "separator": _NAMES[d],
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
-            "unit": unit or "mm", **mapping_meta(ax, mapping)}
-    return Capture(t=np.round(common - common[0], 9), axes=tuple(ax),
-                   reference=np.column_stack([on(f"{a}_ref") for a in ax]) * s,
-                   measured=np.column_stack([on(a) for a in ax]) * s, meta=meta, source=src)
+            "unit": unit or "mm", **mapping_meta(ax, mapping), **how}
+    return Capture(t=t, axes=tuple(ax), reference=ref, measured=meas, meta=meta, source=src)
 
 
 def _cells(line: str, d: str) -> list[str]:
