@@ -135,3 +135,23 @@ def test_dropped_samples_and_jitter_are_named(tmp_path):
     g.write_text("t,cmd,act\n" + "\n".join(f"{tk:.4f},{r},{a}" for tk, r, a in zip(t, REF, ACT)) + "\n")
     with pytest.raises(CaptureError, match=r"log.csv:3:1: sampling is not uniform.*jitter by up to 0.0002 s"):
         read_capture(g, columns={"t": "t", "x_ref": "cmd", "x": "act"})
+
+
+def test_resample_interpolates_jitter_and_gaps_onto_the_median_step(tmp_path, capsys):
+    """A logging PC's time stamps (steps of 9 to 11 ms, one sample dropped) with --resample: the
+    capture is on the 10 ms grid, linear between the samples, and says so."""
+    k = np.arange(N)
+    t = k * 10.0 + np.where(k % 4 == 1, 1.0, 0.0) - np.where(k % 4 == 3, 1.0, 0.0)  # ms
+    keep = k != 60
+    ref, act = 2.0 * t * 1e-3, 2.0 * t * 1e-3 - 0.01  # ramps: linear interpolation is exact on them
+    f = tmp_path / "log.txt"
+    f.write_text("\n".join(f"{a:.0f}\t{b:.6f}\t{c:.6f}" for a, b, c in zip(t[keep], ref[keep], act[keep])) + "\n")
+    out = tmp_path / "cap.csv"
+    argv = ["convert", str(f), "-o", str(out), "--columns", "t=1,x_ref=2,x=3", "--time-unit", "ms"]
+    assert main(argv) == 2 and "--resample" in capsys.readouterr().err and not out.exists()
+    assert main([*argv, "--resample"]) == 0
+    cap = read_capture(out)
+    assert cap.sample_time == 0.01 and "linear, onto a 0.01 s step" in cap.meta["resampled"]
+    np.testing.assert_allclose(cap.t, np.arange(len(cap)) * 0.01, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 0], 2.0 * cap.t, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 0], 2.0 * cap.t - 0.01, rtol=0, atol=1e-9)
