@@ -78,3 +78,10 @@ def test_logger_with_blank_lines_and_a_nan_cell(tmp_path):
     f.write_text("t,cmd,act\n" + "\n".join(rows[:5] + ["0.005,nan,5"] + rows[6:]) + "\n")
     with pytest.raises(CaptureError, match=r"log.csv:7:2: not a number .*'nan'"):
         read_capture(f, columns={"t": "t", "x_ref": "cmd", "x": "act"})
+
+
+def test_sinumerik_with_an_unknown_encoding(tmp_path):
+    f = tmp_path / "trace.xml"
+    f.write_text('<?xml version="1.0" encoding="utf1e400"?>\n' + _sinumerik())
+    with pytest.raises(CaptureError, match=r"trace.xml:1: cannot decode the XML \(unknown encoding"):
+        read_capture(f)

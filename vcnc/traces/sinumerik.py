@@ -213,6 +213,8 @@ def _parse(src: str) -> tuple[dict[str, _Signal], float]:
     except ET.ParseError as exc:
         line, col = exc.position
         raise CaptureError(f"not well-formed XML ({exc.msg})", file=src, line=line, column=col + 1) from None
+    except (LookupError, ValueError) as exc:  # an unknown encoding in the XML declaration, bytes not in it
+        raise CaptureError(f"cannot decode the XML ({exc})", file=src, line=1) from None
     if not signals:
         raise CaptureError(f"no <dataSignal> elements; expected a SINUMERIK trace (root {MAGIC[1:]})", file=src)
     return signals, last_time
