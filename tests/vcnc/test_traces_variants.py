@@ -155,3 +155,25 @@ def test_resample_interpolates_jitter_and_gaps_onto_the_median_step(tmp_path, ca
     np.testing.assert_allclose(cap.t, np.arange(len(cap)) * 0.01, rtol=0, atol=1e-12)
     np.testing.assert_allclose(cap.reference[:, 0], 2.0 * cap.t, rtol=0, atol=1e-9)
     np.testing.assert_allclose(cap.measured[:, 0], 2.0 * cap.t - 0.01, rtol=0, atol=1e-9)
+
+
+def test_units_from_the_header_and_the_twincat_unit_row(tmp_path):
+    """``Zeit [ms]`` and ``Soll (µm)`` give the units when --time-unit/--unit are not given; a
+    TwinCAT channel's ``Unit`` row too. Given units win."""
+    t_ms = np.arange(N) * 2.0
+    f = tmp_path / "log.csv"
+    f.write_text("Zeit [ms];Soll (µm);Ist (µm)\n" + "\n".join(
+        f"{t:.0f};{r * 1e3:.3f};{a * 1e3:.3f}".replace(".", ",") for t, r, a in zip(t_ms, REF, ACT)) + "\n",
+        encoding="utf-8")
+    cols = {"t": "Zeit [ms]", "x_ref": "Soll (µm)", "x": "Ist (µm)"}
+    cap = read_capture(f, columns=cols)
+    assert cap.sample_time == 0.002 and cap.meta["unit"] == "um"
+    np.testing.assert_allclose(cap.reference[:, 0], REF, rtol=0, atol=1e-12)
+    assert read_capture(f, columns=cols, time_unit="s", unit="mm").sample_time == 2.0
+    g = tmp_path / "scope.csv"
+    rows = [f"{t:g}\t{r * 1e3:.3f}\t{a * 1e3:.3f}" for t, r, a in zip(t_ms, REF, ACT)]
+    g.write_text("\n".join(["Name\tscope", "File\tx.csv", "", "Name\tcmd\tact", "Unit\tµm (Length)\tµm (Length)"]
+                           + rows) + "\n", encoding="utf-8")
+    cap = read_capture(g, columns={"x_ref": "cmd", "x": "act"})
+    assert cap.meta["unit"] == "um"
+    np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)

@@ -25,7 +25,8 @@ from vcnc.core.capture import check_sampling
 from vcnc.core.errors import CaptureError
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
-           "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES"]
+           "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
+           "unit_in_name", "unit_named"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -35,6 +36,11 @@ LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "m": 1000.0, "in": 25.4
 #: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
 MAX_SAMPLES = 100_000_000
 
+#: Unit names as headers and channel rows write them, to vcnc's unit names.
+_TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
+_LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "m": "m", "in": "in", "inch": "in", "deg": "deg",
+                 "°": "deg"}
+_UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _BOMS = ((b"\xef\xbb\xbf", "utf-8-sig"), (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
 
@@ -79,6 +85,20 @@ def parse_number(cell: str, decimal_comma: bool = False) -> float:
     if not math.isfinite(v):
         raise ValueError(s)
     return v
+
+
+def unit_in_name(name: str, kind: str) -> str | None:
+    """The unit a column name ends with, ``[ms]`` or ``(µm)``: a key of :data:`TIME_UNITS`
+    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    m = _UNIT.search(name)
+    return unit_named(m.group(1), kind) if m else None
+
+
+def unit_named(text: str, kind: str) -> str | None:
+    """A unit symbol (``ms``, ``µm``, ``°``...) as a key of :data:`TIME_UNITS` (``kind="time"``)
+    or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    names = _TIME_NAMES if kind == "time" else _LENGTH_NAMES
+    return names.get(text.strip().lower().replace("μ", "µ"))
 
 
 def parse_columns(text: str) -> dict[str, str]:

@@ -5,7 +5,8 @@
 from the data; lines before the header (the line of column names just above the numeric rows)
 are skipped. Which column is what is given by a mapping such as ``t=Time,x_ref=PosCmd,x=PosAct``
 (header names, or 1-based column numbers for a file without a header); time in s, ms or us and
-positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s and mm / deg.
+positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s and mm / deg;
+without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
 Rows with an empty cell in a used column are skipped (loggers that write change-only rows). The
 time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing` names dropped
 samples and jitter).
@@ -32,6 +33,7 @@ from vcnc.traces.columns import (
     parse_number,
     position_scale,
     read_text,
+    unit_in_name,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
@@ -77,7 +79,7 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if looks_like_twincat(text[:20000]):
         return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
-    return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit or "s", unit=unit,
+    return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample)
 
 
@@ -153,7 +155,7 @@ def _column(name: str, header: list[str] | None, width: int, src: str, line: int
     raise CaptureError(f"column {name!r} not found; columns found: {found}", file=src, line=line)
 
 
-def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str,
+def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool) -> Capture:
     header, data, row_lines, delimiter = _table(text, src)
     hline = row_lines[0] - 1
@@ -171,15 +173,35 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         raise CaptureError(f"fewer than two rows with all of {list(columns.values())}", file=src)
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
-    t = d[:, idx["t"]] * TIME_UNITS[time_unit]
+    units = _header_units(header, idx, time_unit, unit)
+    t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
     _increasing(t, src, lines_kept)
-    s = position_scale(axes, unit, src)
-    t, (ref, meas), how = on_uniform_grid(t, [d[:, [idx[f"{a}_ref"] for a in axes]] * s,
-                                             d[:, [idx[a] for a in axes]] * s], src, lines_kept, resample=resample)
+
+    def scaled(k: str) -> np.ndarray:
+        return d[:, idx[k]] * position_scale([k.removesuffix("_ref")], units[k], src)
+
+    t, (ref, meas), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
+                                             np.column_stack([scaled(a) for a in axes])], src, lines_kept,
+                                          resample=resample)
     names = {",": "comma", ";": "semicolon", "\t": "tab"}
-    meta = {"format": f"delimited text ({names[delimiter]})", "time_unit": time_unit, "unit": unit or "mm",
+    shown = sorted({units[k] or "mm" for k in idx if k != "t"})
+    meta = {"format": f"delimited text ({names[delimiter]})", "time_unit": units["t"], "unit": ",".join(shown),
             **mapping_meta(axes, columns), **how}
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
+
+
+def _header_units(header: list[str] | None, idx: Mapping[str, int], time_unit: str | None,
+                  unit: str | None) -> dict[str, str | None]:
+    """The unit of each mapped column: as given, else as its header name ends (``Time [ms]``,
+    ``PosAct (µm)``), else s for time and mm (None) for positions."""
+    def named(k: str, kind: str) -> str | None:
+        return unit_in_name(header[idx[k]], kind) if header is not None else None
+
+    out: dict[str, str | None] = {"t": time_unit or named("t", "time") or "s"}
+    for k in idx:
+        if k != "t":
+            out[k] = unit or named(k, "length")
+    return out
 
 
 def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:

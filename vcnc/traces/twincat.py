@@ -15,6 +15,8 @@ or not, double time stamps excluded or not):
 - **Data rows**: each group's time [ms from the start, or 100 ns FILETIME ticks with "full time
   stamp"] and its channels. A group with fewer samples leaves its cells blank (a space) or the row
   ends early. An optional last line ``EOF``.
+- **Units**: a channel's ``Unit`` row (``mm``, ``µm``, ``°``...; ``(None)``) scales its
+  positions unless ``--unit`` is given.
 - **Separator** tab (default), ``;``, ``,``, ``:`` or space, the character after the first
   ``Name``; **decimal mark** ``.`` or ``,`` (with any separator but ``,``).
 
@@ -46,6 +48,7 @@ from vcnc.traces.columns import (
     parse_number,
     position_scale,
     read_text,
+    unit_named,
 )
 
 __all__ = ["read_twincat", "looks_like_twincat"]
@@ -63,6 +66,7 @@ class _Channel:
     symbol: str
     column: int
     time_column: int
+    unit: str | None  # the unit of the channel's "Unit" row as a LENGTH_UNITS key, if it is a length
 
 
 def looks_like_twincat(text: str) -> bool:
@@ -132,14 +136,18 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
         tk, v, _ = series[key]
         return v[np.searchsorted(tk, common)]
 
-    s = position_scale(ax, unit, src)
+    units = {key: unit or c.unit for key, c in used.items()}
+
+    def scaled(key: str) -> np.ndarray:
+        return on(key) * position_scale([key.removesuffix("_ref")], units[key], src)
+
     t, (ref, meas), how = on_uniform_grid(np.round(common - common[0], 9),
-                                          [np.column_stack([on(f"{a}_ref") for a in ax]) * s,
-                                           np.column_stack([on(a) for a in ax]) * s], src,
+                                          [np.column_stack([scaled(f"{a}_ref") for a in ax]),
+                                           np.column_stack([scaled(a) for a in ax])], src,
                                           [first[2][k] for k in np.searchsorted(first[0], common)], resample=resample)
     meta = {"format": "TwinCAT Scope CSV", "separator": _NAMES[d],
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
-            "unit": unit or "mm", **mapping_meta(ax, mapping), **how}
+            "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **how}
     return Capture(t=t, axes=tuple(ax), reference=ref, measured=meas, meta=meta, source=src)
 
 
@@ -176,14 +184,16 @@ def _channel_rows(lines: list[str], d: str, src: str) -> tuple[list[_Channel], i
         rows.setdefault(cells[0], cells)
     if data_start is None:
         raise CaptureError("no rows of numbers after the channel rows", file=src, line=len(lines))
-    names, symbols = rows["Name"], rows.get("SymbolName")
+    names, symbols, units = rows["Name"], rows.get("SymbolName"), rows.get("Unit")
     channels, time_column = [], 0
     for j, name in enumerate(names):
         if name == "Name":
             time_column = j
         elif name:
             symbol = symbols[j] if symbols and j < len(symbols) else name
-            channels.append(_Channel(name=name, symbol=symbol, column=j, time_column=time_column))
+            unit = units[j].split()[0] if units and j < len(units) and units[j].split() else ""
+            channels.append(_Channel(name=name, symbol=symbol, column=j, time_column=time_column,
+                                     unit=unit_named(unit, "length")))
     if not channels:
         raise CaptureError("the channel 'Name' row names no channel", file=src, line=start + 1)
     return channels, data_start, start + 1
