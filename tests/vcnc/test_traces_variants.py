@@ -177,3 +177,24 @@ def test_units_from_the_header_and_the_twincat_unit_row(tmp_path):
     cap = read_capture(g, columns={"x_ref": "cmd", "x": "act"})
     assert cap.meta["unit"] == "um"
     np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("stamp", ["%Y-%m-%d %H:%M:%S.{ms}", "%Y-%m-%dT%H:%M:%S.{ms}Z", "%d.%m.%Y %H:%M:%S,{ms}",
+                                   "%H:%M:%S.{ms}"])
+def test_time_stamps_in_the_time_column(tmp_path, stamp):
+    """A logger's wall-clock time stamps are read as seconds from the first (across midnight
+    with a date), whatever --time-unit says."""
+    import datetime
+
+    t0 = datetime.datetime(2024, 5, 2, 23, 59, 59, 500_000)
+    times = [t0 + datetime.timedelta(milliseconds=2 * k) for k in range(N)]
+    if "%d" not in stamp:
+        times = [t - datetime.timedelta(hours=1) for t in times]  # time of day alone cannot cross midnight
+    cells = [t.strftime(stamp.format(ms=f"{t.microsecond // 1000:03d}")) for t in times]
+    f = tmp_path / "log.csv"
+    d = ";" if "," in stamp else ","
+    f.write_text(f"Stamp{d}Soll{d}Ist\n" + "\n".join(f"{c}{d}{r:.6f}{d}{a:.6f}" for c, r, a in zip(cells, REF, ACT)))
+    cap = read_capture(f, columns={"t": "Stamp", "x_ref": "Soll", "x": "Ist"}, time_unit="ms")
+    assert cap.meta["time_unit"] == "time stamps" and cap.sample_time == 0.002
+    np.testing.assert_array_equal(cap.t, np.round(np.arange(N) * 0.002, 6))
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)

@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import datetime
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -26,7 +27,7 @@ from vcnc.core.errors import CaptureError
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
-           "unit_in_name", "unit_named"]
+           "unit_in_name", "unit_named", "parse_time_stamp"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -99,6 +100,40 @@ def unit_named(text: str, kind: str) -> str | None:
     or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
     names = _TIME_NAMES if kind == "time" else _LENGTH_NAMES
     return names.get(text.strip().lower().replace("μ", "µ"))
+
+
+_DATE_TIME = re.compile(r"(\d{4})[-/.](\d{1,2})[-/.](\d{1,2})[ T](\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?Z?")
+_DE_DATE_TIME = re.compile(r"(\d{1,2})\.(\d{1,2})\.(\d{4}) (\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?")
+_TIME_OF_DAY = re.compile(r"(\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?")
+
+
+def parse_time_stamp(cell: str) -> float:
+    """A logger's time stamp as seconds: ``2024-05-02 15:56:24.376`` (``T``, ``/`` and a trailing
+    ``Z`` accepted) or ``02.05.2024 15:56:24,376`` as seconds since 1970 (time zone ignored: only
+    differences are used), ``15:56:24.376`` as seconds since midnight. ValueError otherwise."""
+    s = cell.strip()
+    m = _DATE_TIME.fullmatch(s)
+    if m:
+        y, mo, d, h, mi, sec, frac = m.groups()
+    else:
+        m = _DE_DATE_TIME.fullmatch(s)
+        if m:
+            d, mo, y, h, mi, sec, frac = m.groups()
+        else:
+            m = _TIME_OF_DAY.fullmatch(s)
+            if not m:
+                raise ValueError(s)
+            h, mi, sec, frac = m.groups()
+            y = mo = d = None
+    day = 0.0
+    if y is not None:
+        try:
+            day = (datetime.date(int(y), int(mo), int(d)) - datetime.date(1970, 1, 1)).days * 86400.0
+        except ValueError:
+            raise ValueError(s) from None
+    if int(h) > 23 or int(mi) > 59 or int(sec) > 60:
+        raise ValueError(s)
+    return day + int(h) * 3600 + int(mi) * 60 + int(sec) + (float("0." + frac) if frac else 0.0)
 
 
 def parse_columns(text: str) -> dict[str, str]:

@@ -7,6 +7,8 @@ are skipped. Which column is what is given by a mapping such as ``t=Time,x_ref=P
 (header names, or 1-based column numbers for a file without a header); time in s, ms or us and
 positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s and mm / deg;
 without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
+A time column of time stamps (``2024-05-02 15:56:24.376``, ``02.05.2024 15:56:24,376``,
+``15:56:24.376``) is read as seconds.
 Rows with an empty cell in a used column are skipped (loggers that write change-only rows). The
 time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing` names dropped
 samples and jitter).
@@ -31,6 +33,7 @@ from vcnc.traces.columns import (
     on_uniform_grid,
     parse_columns,
     parse_number,
+    parse_time_stamp,
     position_scale,
     read_text,
     unit_in_name,
@@ -87,10 +90,20 @@ def _split(line: str, delimiter: str) -> list[str]:
     return line.rstrip("\r\n").split(delimiter)
 
 
+def _value(cell: str, comma: bool) -> float:
+    """A cell as a number, or a time stamp as seconds (:func:`parse_time_stamp`); ValueError."""
+    try:
+        return parse_number(cell, comma)
+    except ValueError:
+        if ":" not in cell:
+            raise
+        return parse_time_stamp(cell)
+
+
 def _numbers(cells: list[str], comma: bool) -> list[float] | None:
     """The cells as numbers (NaN for empty ones), or None when one is not a number."""
     try:
-        return [parse_number(c, comma) for c in cells]
+        return [_value(c, comma) for c in cells]
     except ValueError:
         return None
 
@@ -140,7 +153,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, np.ndarray, list[int]
     for i in range(first, len(lines)):
         if not lines[i].strip() or lines[i].strip().upper() == "EOF":
             continue
-        rows.append([parse_number(c, comma) for c in _split(lines[i], delimiter)])
+        rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
         row_lines.append(i + 1)
     return header, np.array(rows, dtype=float), row_lines, delimiter
 
@@ -174,7 +187,12 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, idx, time_unit, unit)
+    stamped = ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
+    if stamped:
+        units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
     t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
+    if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
+        t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
 
     def scaled(k: str) -> np.ndarray:
@@ -185,7 +203,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                                           resample=resample)
     names = {",": "comma", ";": "semicolon", "\t": "tab"}
     shown = sorted({units[k] or "mm" for k in idx if k != "t"})
-    meta = {"format": f"delimited text ({names[delimiter]})", "time_unit": units["t"], "unit": ",".join(shown),
+    meta = {"format": f"delimited text ({names[delimiter]})",
+            "time_unit": "time stamps" if stamped else units["t"], "unit": ",".join(shown),
             **mapping_meta(axes, columns), **how}
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
