@@ -111,3 +111,14 @@ def test_channel_lookup_by_symbol_name_and_errors(tmp_path):
         read_capture(f, columns={"x_ref": "pos", "x": "pos"})
     with pytest.raises(CaptureError, match=r"give --columns x_ref=NAME,x=NAME; channels found: \['pos', 'pos'\]"):
         read_capture(f)
+
+
+@pytest.mark.parametrize("keys", [("Name",), ("Name", "SampleTime[ms]")])
+def test_export_without_its_header_block(tmp_path, keys):
+    """With the exporter's header setting off, the channel ``Name`` row comes first."""
+    f = tmp_path / "scope.csv"
+    _export(f, d="\t", keys=keys)
+    f.write_bytes(b"\r\n".join(f.read_bytes().split(b"\r\n")[5:]))
+    assert trace_format(f) == "twincat"
+    cap = read_capture(f)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)

@@ -6,7 +6,8 @@ reader ``CagtayFabry/pytcs``: default, decimal comma, EOF line, five separators,
 or not, double time stamps excluded or not):
 
 - **Header block**: ``Name<d>scope``, ``File<d>path``, ``Starttime of export<d>ticks<d>date<d>time``,
-  ``Endtime of export...``, blank lines.
+  ``Endtime of export...``, blank lines; absent when the exporter's header setting leaves it out
+  (then the channel ``Name`` row comes first).
 - **Channel rows**, one per property (``Name``, ``SymbolComment``, ``Data-Type``,
   ``SampleTime[ms]``, ..., ``SymbolName``, ``Unit``, ``ScaleFactor``...; some exports write only
   ``Name``). Each row repeats its key at the start of every *acquisition group*: the key's column is
@@ -73,10 +74,12 @@ def looks_like_twincat(text: str) -> bool:
     """True for a TwinCAT Scope CSV export: ``Name<separator>`` first, then ``File`` or
     ``Starttime of export``, or a ``SampleTime[ms]`` row."""
     lines = text.lstrip("\ufeff").splitlines()[:6]
-    if not lines or not _FIRST.match(lines[0]):
+    m = _FIRST.match(lines[0]) if lines else None
+    if m is None:
         return False
     keys = [ln.strip().lstrip('"') for ln in lines[1:5]]
-    return any(k.startswith(("File", "Starttime of export")) for k in keys) or "SampleTime[ms]" in text[:20000]
+    return (any(k.startswith(("File", "Starttime of export")) for k in keys) or "SampleTime[ms]" in text[:20000]
+            or _cells(lines[0], m.group(1)).count("Name") >= 2)
 
 
 def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
@@ -169,7 +172,10 @@ def _is_data(line: str, d: str) -> bool:
 def _channel_rows(lines: list[str], d: str, src: str) -> tuple[list[_Channel], int, int]:
     """The channels of the ``Name`` row (and ``SymbolName`` row), the index of the first data row
     and the file line of the ``Name`` row."""
-    start = next((i for i in range(1, len(lines)) if _cells(lines[i], d)[0] == "Name"), None)
+    first = 1 if len(lines) > 1 and _cells(lines[1], d)[0] in ("File", "Starttime of export") else 0
+    if first == 0 and len(_cells(lines[0], d)) <= 2 and not (len(lines) > 1 and _is_data(lines[1], d)):
+        first = 1  # "Name<d>scope name": the export header, not a channel row
+    start = next((i for i in range(first, len(lines)) if _cells(lines[i], d)[0] == "Name"), None)
     if start is None:
         raise CaptureError("no channel 'Name' row after the export header (TwinCAT Scope CSV export)", file=src)
     rows: dict[str, list[str]] = {}
