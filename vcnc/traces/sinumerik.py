@@ -20,6 +20,8 @@ Layout (issue #17, checked against the open-source reader ``eliasrhoden/Trace-To
   at e.g. 2 ms, IPO-rate signals (``measPos1`` / ``measPos2``, "Actual position value for
   measuring system 1/2") at e.g. 4 ms.
 - ``[u1, N]`` in a signal's name is the machine axis number N.
+- ``<frameHeader dropOuts="N">`` counts records the control lost; a trace with N > 0 is refused
+  (a lost record cannot be told from an unchanged value).
 
 The capture's grid is the coarser interval of the two signals that form it, so every value on it
 was recorded at that instant (no interpolation). The measured position is the setpoint minus the
@@ -206,6 +208,8 @@ def _parse(src: str) -> tuple[dict[str, _Signal], float]:
             elif tag == "dataSignal":
                 s = _signal(el, described.get(el.get("key", "")), src)
                 signals[s.id] = s
+            elif tag == "frameHeader":
+                _drop_outs(el, src)
             elif tag == "rec":
                 rows += 1
                 last_time = _record(el, signals, last_time, rows, src)
@@ -213,11 +217,23 @@ def _parse(src: str) -> tuple[dict[str, _Signal], float]:
     except ET.ParseError as exc:
         line, col = exc.position
         raise CaptureError(f"not well-formed XML ({exc.msg})", file=src, line=line, column=col + 1) from None
+    except CaptureError:
+        raise
     except (LookupError, ValueError) as exc:  # an unknown encoding in the XML declaration, bytes not in it
         raise CaptureError(f"cannot decode the XML ({exc})", file=src, line=1) from None
     if not signals:
         raise CaptureError(f"no <dataSignal> elements; expected a SINUMERIK trace (root {MAGIC[1:]})", file=src)
     return signals, last_time
+
+
+def _drop_outs(el: ET.Element, src: str) -> None:
+    """CaptureError when the ``<frameHeader>`` counts records the control lost (``dropOuts``):
+    with change-only rows a lost record cannot be told from an unchanged value."""
+    text = el.get("dropOuts", "0").strip()
+    if text not in ("", "0"):
+        raise CaptureError(f"the trace lost records (<frameHeader dropOuts={text!r}>): with change-only rows the "
+                           "values across them are unknown; trace again with fewer signals or a shorter time",
+                           file=src)
 
 
 def _signal(el: ET.Element, setup: ET.Element | None, src: str) -> _Signal:
