@@ -198,3 +198,12 @@ def test_time_stamps_in_the_time_column(tmp_path, stamp):
     assert cap.meta["time_unit"] == "time stamps" and cap.sample_time == 0.002
     np.testing.assert_array_equal(cap.t, np.round(np.arange(N) * 0.002, 6))
     np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+
+
+def test_quoted_cells_and_quoted_decimal_commas(tmp_path):
+    f = tmp_path / "log.csv"
+    rows = [f'"{k * 0.002:.3f}","{r:.6f}","{a:.6f}"'.replace(".", ",") for k, (r, a) in enumerate(zip(REF, ACT))]
+    f.write_text('"Time [s]","Soll","Ist"\n' + "\n".join(rows) + "\n")
+    cap = read_capture(f, columns={"t": "Time [s]", "x_ref": "Soll", "x": "Ist"})
+    assert cap.sample_time == 0.002
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)

@@ -9,13 +9,15 @@ positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s 
 without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
 A time column of time stamps (``2024-05-02 15:56:24.376``, ``02.05.2024 15:56:24,376``,
 ``15:56:24.376``) is read as seconds.
-Rows with an empty cell in a used column are skipped (loggers that write change-only rows). The
+Cells may be in double quotes (``"0,5"``, ``"Soll"``). Rows with an empty cell in a used column
+are skipped (loggers that write change-only rows). The
 time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing` names dropped
 samples and jitter).
 """
 
 from __future__ import annotations
 
+import csv
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -87,13 +89,20 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
 
 
 def _split(line: str, delimiter: str) -> list[str]:
-    return line.rstrip("\r\n").split(delimiter)
+    """The cells of a line; a cell in double quotes may hold the delimiter (``"1,5"``)."""
+    line = line.rstrip("\r\n")
+    if '"' not in line:
+        return line.split(delimiter)
+    try:
+        return next(csv.reader([line], delimiter=delimiter, quotechar='"', strict=True))
+    except (csv.Error, StopIteration):
+        return line.split(delimiter)
 
 
 def _value(cell: str, comma: bool) -> float:
     """A cell as a number, or a time stamp as seconds (:func:`parse_time_stamp`); ValueError."""
     try:
-        return parse_number(cell, comma)
+        return parse_number(cell, comma or "," in cell)  # a comma inside a quoted cell is a decimal comma
     except ValueError:
         if ":" not in cell:
             raise
