@@ -207,3 +207,12 @@ def test_quoted_cells_and_quoted_decimal_commas(tmp_path):
     cap = read_capture(f, columns={"t": "Time [s]", "x_ref": "Soll", "x": "Ist"})
     assert cap.sample_time == 0.002
     np.testing.assert_array_equal(cap.reference[:, 0], REF)
+
+
+def test_a_row_of_units_under_the_names(tmp_path):
+    f = tmp_path / "log.csv"
+    rows = [f"{k * 2};{r * 1e3:.3f};{a * 1e3:.3f}".replace(".", ",") for k, (r, a) in enumerate(zip(REF, ACT))]
+    f.write_text("DAQ export\nZeit;Soll;Ist\n[ms];[µm];[µm]\n" + "\n".join(rows) + "\n", encoding="utf-8")
+    cap = read_capture(f, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"})
+    assert cap.sample_time == 0.002 and cap.meta["unit"] == "um"
+    np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)

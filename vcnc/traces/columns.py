@@ -27,7 +27,7 @@ from vcnc.core.errors import CaptureError
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
-           "unit_in_name", "unit_named", "parse_time_stamp"]
+           "unit_in_name", "unit_named", "parse_time_stamp", "is_unit_row"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -134,6 +134,17 @@ def parse_time_stamp(cell: str) -> float:
     if int(h) > 23 or int(mi) > 59 or int(sec) > 60:
         raise ValueError(s)
     return day + int(h) * 3600 + int(mi) * 60 + int(sec) + (float("0." + frac) if frac else 0.0)
+
+
+#: Further unit symbols a units row holds (velocities, currents, ...), lower case.
+_OTHER_UNITS = {"v", "a", "ma", "nm", "n", "rpm", "1/min", "mm/min", "m/min", "mm/s", "m/s", "mm/s^2", "m/s^2",
+                "deg/s", "\u00b0/s", "rad", "rad/s", "inc", "%", "-", "hz", "bar", "\u00b0c"}
+
+
+def is_unit_row(cells: Sequence[str]) -> bool:
+    """True for a row of unit symbols (``s;mm;mm``, ``[ms],[\u00b5m]``) under a header of names."""
+    tokens = [c.strip().strip("[]()").strip().lower().replace("\u03bc", "\u00b5") for c in cells if c.strip()]
+    return bool(tokens) and all(t in _TIME_NAMES or t in _LENGTH_NAMES or t in _OTHER_UNITS for t in tokens)
 
 
 def parse_columns(text: str) -> dict[str, str]:

@@ -9,7 +9,8 @@ positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s 
 without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
 A time column of time stamps (``2024-05-02 15:56:24.376``, ``02.05.2024 15:56:24,376``,
 ``15:56:24.376``) is read as seconds.
-Cells may be in double quotes (``"0,5"``, ``"Soll"``). Rows with an empty cell in a used column
+A row of units under the names (``Zeit;Soll;Ist`` then ``ms;µm;µm``) gives the units the
+same way. Cells may be in double quotes (``"0,5"``, ``"Soll"``). Rows with an empty cell in a used column
 are skipped (loggers that write change-only rows). The
 time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing` names dropped
 samples and jitter).
@@ -30,6 +31,7 @@ from vcnc.traces.columns import (
     LENGTH_UNITS,
     TIME_UNITS,
     check_units,
+    is_unit_row,
     mapped_axes,
     mapping_meta,
     on_uniform_grid,
@@ -39,6 +41,7 @@ from vcnc.traces.columns import (
     position_scale,
     read_text,
     unit_in_name,
+    unit_named,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
@@ -138,16 +141,16 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
     return first, width, comma
 
 
-def _table(text: str, src: str) -> tuple[list[str] | None, np.ndarray, list[int], str]:
-    """``(header names or None, data (rows x columns, NaN for empty), file line of each row,
-    delimiter)`` of a delimited file."""
+def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str]:
+    """``(header names or None, the row of units under them or None, data (rows x columns, NaN
+    for empty), file line of each row, delimiter)`` of a delimited file."""
     lines = text.splitlines()
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
     # the delimiter that makes the longest block of numeric rows (then the widest)
     delimiter, first, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[2] >= 2, -b[1], b[2]))
     if first < 0 or width < 2:
         raise CaptureError("no rows of numbers separated by tab, ';' or ','", file=src)
-    header = None
+    header = units_row = None
     for j in range(first - 1, -1, -1):
         if lines[j].strip():
             cells = [c.strip() for c in _split(lines[j], delimiter)]
@@ -157,6 +160,11 @@ def _table(text: str, src: str) -> tuple[list[str] | None, np.ndarray, list[int]
                 raise CaptureError(f"not a number (the rows below are {width} numbers)", file=src, line=j + 1,
                                    column=cells.index(bad) + 1, text=bad)
             header = cells if len(cells) == width else None
+            if header is not None and is_unit_row(header):  # names above a row of units
+                units_row = header
+                above = next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None)
+                names = [c.strip() for c in _split(lines[above], delimiter)] if above is not None else []
+                header = names if len(names) == width else None
             break
     rows, row_lines = [], []
     for i in range(first, len(lines)):
@@ -164,7 +172,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, np.ndarray, list[int]
             continue
         rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
         row_lines.append(i + 1)
-    return header, np.array(rows, dtype=float), row_lines, delimiter
+    return header, units_row, np.array(rows, dtype=float), row_lines, delimiter
 
 
 def _column(name: str, header: list[str] | None, width: int, src: str, line: int) -> int:
@@ -179,7 +187,7 @@ def _column(name: str, header: list[str] | None, width: int, src: str, line: int
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool) -> Capture:
-    header, data, row_lines, delimiter = _table(text, src)
+    header, units_row, data, row_lines, delimiter = _table(text, src)
     hline = row_lines[0] - 1
     if not columns:
         raise CaptureError("which columns are time, commanded and measured position? give --columns "
@@ -195,7 +203,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         raise CaptureError(f"fewer than two rows with all of {list(columns.values())}", file=src)
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
-    units = _header_units(header, idx, time_unit, unit)
+    units = _header_units(header, units_row, idx, time_unit, unit)
     stamped = ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
     if stamped:
         units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
@@ -218,12 +226,14 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
-def _header_units(header: list[str] | None, idx: Mapping[str, int], time_unit: str | None,
-                  unit: str | None) -> dict[str, str | None]:
+def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
+                  time_unit: str | None, unit: str | None) -> dict[str, str | None]:
     """The unit of each mapped column: as given, else as its header name ends (``Time [ms]``,
-    ``PosAct (µm)``), else s for time and mm (None) for positions."""
+    ``PosAct (µm)``) or the row of units under the names says, else s for time and mm (None)
+    for positions."""
     def named(k: str, kind: str) -> str | None:
-        return unit_in_name(header[idx[k]], kind) if header is not None else None
+        by_name = unit_in_name(header[idx[k]], kind) if header is not None else None
+        return by_name or (unit_named(units_row[idx[k]].strip("[]() "), kind) if units_row is not None else None)
 
     out: dict[str, str | None] = {"t": time_unit or named("t", "time") or "s"}
     for k in idx:
