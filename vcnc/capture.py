@@ -18,7 +18,7 @@ __all__ = ["Capture", "read_capture", "check_sampling", "OPTIONAL_SUFFIXES"]
 
 def read_capture(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                  time_unit: str | None = None, unit: str | None = None,
-                 axes: Sequence[str] | None = None) -> Capture:
+                 axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
     """Read a capture: the CSV of ARCHITECTURE.md, a control's trace export or an EMPS ``.mat``
     file, detected by content (:func:`vcnc.traces.read_trace`, which documents the options).
 
@@ -27,4 +27,4 @@ def read_capture(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
     CaptureError
         Naming the file, line (or element) and column at fault, and the channels found.
     """
-    return read_trace(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes)
+    return read_trace(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)

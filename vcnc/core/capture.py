@@ -186,7 +186,7 @@ def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
     p = Path(path)
     src = str(p)
     try:
-        lines = p.read_text().splitlines()
+        lines = p.read_text(encoding="utf-8-sig").splitlines()
     except UnicodeDecodeError as exc:
         raise CaptureError("capture file is not text (expected CSV)", file=src) from exc
     meta, header_idx = _comment_lines(lines, src)

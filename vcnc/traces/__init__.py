@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -30,16 +31,23 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
-    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"capture-csv"`` or ``"delimited"``."""
-    with Path(path).open("rb") as f:
-        head = f.read(20000)
+    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"capture-csv"``, ``"delimited"``, or
+    ``"xml"`` for other XML (which no reader takes)."""
+    src = str(path)
+    try:
+        with Path(path).open("rb") as f:
+            head = f.read(20000)
+    except OSError as exc:
+        raise CaptureError(f"cannot read the file ({exc.strerror})", file=src) from None
     if head.startswith(emps.MAGIC):
         return "emps-mat"
-    if head.startswith(tncscope.MAGIC.encode()):
+    text = _head_text(head)
+    if text.startswith(tncscope.MAGIC):
         return "tncscope"
-    if sinumerik.MAGIC.encode() in head[:4096]:
+    if any(m in text[:4096] for m in sinumerik.MAGICS):
         return "sinumerik"
-    text = head.decode("latin-1")
+    if text.startswith("<"):
+        return "xml"
     if looks_like_halscope(text):
         return "halscope"
     if looks_like_twincat(text):
@@ -51,9 +59,27 @@ def trace_format(path: str | os.PathLike[str]) -> str:
     return "delimited"
 
 
+def _head_text(head: bytes) -> str:
+    """The first bytes of a file as text for telling the format: UTF-16 after its byte-order
+    mark, else Latin-1 (every byte a character); without a leading BOM or blanks."""
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")):
+        text = head[: len(head) // 2 * 2].decode("utf-16", errors="replace")
+    else:
+        text = head.decode("latin-1").replace("\xef\xbb\xbf", "", 1)
+    return text.lstrip("\ufeff \t\r\n")
+
+
+def _xml_root(path: Path) -> str:
+    """The name of the first element of an XML file ('?' when none is found in its first 20 kB)."""
+    with path.open("rb") as f:
+        head = _head_text(f.read(20000))
+    m = re.search(r"<([A-Za-z_][\w.:-]*)", re.sub(r"<\?.*?\?>|<!--.*?-->|<!DOCTYPE[^>]*>", "", head, flags=re.S))
+    return m.group(1) if m else "?"
+
+
 def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                time_unit: str | None = None, unit: str | None = None,
-               axes: Sequence[str] | None = None) -> Capture:
+               axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
     """Read any supported trace (module docstring) into a capture.
 
     Parameters
@@ -67,6 +93,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         Units of time (s, ms, us) and positions (mm, um, m, in, deg) in delimited text.
     axes : sequence of str, optional
         Names of the axes of a SINUMERIK trace (in axis-number order) or a halscope log (joint order).
+    resample : bool
+        TNCscope, TwinCAT and delimited text: interpolate time stamps that are not uniform
+        (jitter, dropped samples) linearly onto the median step; without it they are an error.
 
     Raises
     ------
@@ -82,12 +111,16 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
         raise CaptureError(f"--columns/--time-unit/--unit apply to delimited text, not to a {fmt} file",
                            file=str(p))
+    if fmt == "xml":
+        raise CaptureError(f"an XML file with root <{_xml_root(p)}>, not a SINUMERIK trace (<traceSession> or "
+                           "<traceDataRoot>); export the trace from SINUMERIK Operate's trace, or give a text export",
+                           file=str(p))
     if fmt == "emps-mat":
         return read_emps_mat(p)
     if fmt == "tncscope":
-        return read_tncscope(p)
+        return read_tncscope(p, resample=resample)
     if fmt == "sinumerik":
         return read_sinumerik(p, axes=tuple(axes) if axes else None)
     if fmt == "capture-csv" and not delimited_options:
         return read_capture_csv(p)
-    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes)
+    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)

@@ -20,6 +20,8 @@ Layout (issue #17, checked against the open-source reader ``eliasrhoden/Trace-To
   at e.g. 2 ms, IPO-rate signals (``measPos1`` / ``measPos2``, "Actual position value for
   measuring system 1/2") at e.g. 4 ms.
 - ``[u1, N]`` in a signal's name is the machine axis number N.
+- ``<frameHeader dropOuts="N">`` counts records the control lost; a trace with N > 0 is refused
+  (a lost record cannot be told from an unchanged value).
 
 The capture's grid is the coarser interval of the two signals that form it, so every value on it
 was recorded at that instant (no interpolation). The measured position is the setpoint minus the
@@ -41,13 +43,19 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 
-__all__ = ["read_sinumerik", "MAGIC"]
+__all__ = ["read_sinumerik", "MAGIC", "MAGICS"]
 
 #: Root element that identifies the format (read by content).
 MAGIC = "<traceSession"
+#: The root elements of SINUMERIK trace files (``<traceDataRoot>`` in older versions, as the
+#: open-source viewer ``hailongchenn/sinumerik-trace-viewer`` reads them).
+MAGICS = (MAGIC, "<traceDataRoot")
 
 #: Values above this are the control's "no value" marker (about 2**63, as Trace-Tools reads them).
 NO_VALUE = 9.2e18
+
+#: Most samples a capture is built with (a bad time stamp must not allocate without bound).
+MAX_SAMPLES = 1e8
 
 _AXIS_NUMBER = re.compile(r"\[\s*u\d+\s*,\s*(\d+)\s*\]")
 
@@ -142,7 +150,11 @@ def read_sinumerik(path: str | os.PathLike[str], *, axes: tuple[str, ...] | None
     # on the coarse signal's own sampling instants, from the first time every signal has a value
     late = max(s.times[0] for s in used) - coarse.times[0]
     start = coarse.times[0] + interval * np.ceil(late / interval - 1e-6)
-    n = int(np.floor((end - start) / interval + 1e-6)) + 1
+    span = (end - start) / interval
+    if not span < MAX_SAMPLES:
+        raise CaptureError(f"the rows span {end - start:.6g} s at {interval:.6g} s: more than "
+                           f"{MAX_SAMPLES:.0e} samples", file=src)
+    n = int(np.floor(span + 1e-6)) + 1
     if n < 2:
         raise CaptureError(f"fewer than two common samples of the signals used; signals found: {found}", file=src)
     grid = start + interval * np.arange(n)
@@ -185,14 +197,19 @@ def _pair(roles: dict[str, _Signal]) -> tuple[str, _Signal, _Signal] | None:
 def _parse(src: str) -> tuple[dict[str, _Signal], float]:
     """The signals of the file with their change-only samples, and the time of the last row [s]."""
     signals: dict[str, _Signal] = {}
+    described: dict[str, ET.Element] = {}  # the setup's <signal key=...>, naming a bare <dataSignal>
     last_time = -np.inf
     rows = 0
     try:
         for _, el in ET.iterparse(src, events=("end",)):
             tag = el.tag.rpartition("}")[2]
-            if tag == "dataSignal":
-                s = _signal(el, src)
+            if tag == "signal" and el.get("key"):
+                described.setdefault(el.get("key"), el)
+            elif tag == "dataSignal":
+                s = _signal(el, described.get(el.get("key", "")), src)
                 signals[s.id] = s
+            elif tag == "frameHeader":
+                _drop_outs(el, src)
             elif tag == "rec":
                 rows += 1
                 last_time = _record(el, signals, last_time, rows, src)
@@ -200,22 +217,40 @@ def _parse(src: str) -> tuple[dict[str, _Signal], float]:
     except ET.ParseError as exc:
         line, col = exc.position
         raise CaptureError(f"not well-formed XML ({exc.msg})", file=src, line=line, column=col + 1) from None
+    except CaptureError:
+        raise
+    except (LookupError, ValueError) as exc:  # an unknown encoding in the XML declaration, bytes not in it
+        raise CaptureError(f"cannot decode the XML ({exc})", file=src, line=1) from None
     if not signals:
         raise CaptureError(f"no <dataSignal> elements; expected a SINUMERIK trace (root {MAGIC[1:]})", file=src)
     return signals, last_time
 
 
-def _signal(el: ET.Element, src: str) -> _Signal:
-    sid, name = el.get("id"), el.get("name", "")
+def _drop_outs(el: ET.Element, src: str) -> None:
+    """CaptureError when the ``<frameHeader>`` counts records the control lost (``dropOuts``):
+    with change-only rows a lost record cannot be told from an unchanged value."""
+    text = el.get("dropOuts", "0").strip()
+    if text not in ("", "0"):
+        raise CaptureError(f"the trace lost records (<frameHeader dropOuts={text!r}>): with change-only rows the "
+                           "values across them are unknown; trace again with fewer signals or a shorter time",
+                           file=src)
+
+
+def _signal(el: ET.Element, setup: ET.Element | None, src: str) -> _Signal:
+    """A ``<dataSignal>``; its name and description from the setup's ``<signal>`` of the same key
+    when it has none itself."""
+    sid = el.get("id")
+    name = el.get("name") or (setup.get("name", "") if setup is not None else "")
+    description = el.get("description") or (setup.get("description", "") if setup is not None else "")
     try:
         interval = float(el.get("interval", "nan"))
     except ValueError:
         interval = float("nan")
-    if not sid or not interval > 0:
+    if not sid or not 0 < interval < np.inf:
         raise CaptureError(f"<dataSignal name={name!r}> needs an id and an interval > 0 [s] "
                            f"(got id={sid!r}, interval={el.get('interval')!r})", file=src)
     m = _AXIS_NUMBER.search(name)
-    return _Signal(id=sid, name=name, description=el.get("description", ""), interval=interval,
+    return _Signal(id=sid, name=name, description=description, interval=interval,
                    axis_number=int(m.group(1)) if m else None)
 
 

@@ -3,7 +3,8 @@
 Format as described in issue #17: CRLF, Latin-1; ``%[GLOBAL]`` with ``%SAMPLING`` [us];
 one ``%[CURVEn]`` block per channel (``%CHANNELTYPE`` ``s soll``/``s nom`` commanded position [mm],
 ``s ist``/``s act`` actual position [mm], ``%AXISTYPE``, ``%COLUMN``); then ``%[DATA]`` and
-``;``-separated rows whose column 0 is time [us].
+``;``-separated rows whose column 0 is time [us]. Also read: a UTF-8 or UTF-16 export (with its
+byte-order mark), a decimal comma, and Heidenhain's English abbreviations ``s noml`` / ``s actl``.
 """
 
 from __future__ import annotations
@@ -13,15 +14,17 @@ from pathlib import Path
 
 import numpy as np
 
+from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
+from vcnc.traces.columns import on_uniform_grid, parse_number, read_text
 
 MAGIC = "%TNCscopeNT"
-COMMANDED = ("s soll", "s nom")
-MEASURED = ("s ist", "s act")
+COMMANDED = ("s soll", "s nom", "s noml", "s nominal")
+MEASURED = ("s ist", "s act", "s actl", "s actual")
 
 
-def read_tncscope(path: str | os.PathLike[str]) -> Capture:
+def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Capture:
     """Read a TNCscope text export into a capture.
 
     Parameters
@@ -39,61 +42,86 @@ def read_tncscope(path: str | os.PathLike[str]) -> Capture:
     CaptureError
         Not a TNCscope file, no commanded/measured pair, or rows of the wrong length.
     """
-    p = Path(path)
-    src = str(p)
-    lines = p.read_bytes().decode("latin-1").splitlines()
+    src = str(Path(path))
+    lines = read_text(path, src).lstrip("\ufeff").splitlines()
     if not lines or not lines[0].startswith(MAGIC):
         raise CaptureError(f"first line must start with {MAGIC!r}", file=src, line=1)
+    curves, data_line = _curves(lines, src)
+    found = [c.get("NAME", "?") for c in curves]
+    ref: dict[str, int] = {}
+    meas: dict[str, int] = {}
+    for c in curves:
+        ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
+        name = c.get("NAME", "")
+        axis = (c.get("AXISTYPE") or name.rpartition("/")[2]).lower()
+        col = c.get("COLUMN", "")
+        if not col.isdigit() or int(col) < 1:
+            raise CaptureError(f"curve {name!r}: %COLUMN={col!r} is not a column number >= 1", file=src,
+                               line=int(c["_line"]))
+        if ctype in COMMANDED:
+            ref.setdefault(axis, int(col))
+        elif ctype in MEASURED:
+            meas.setdefault(axis, int(col))
+    axes = tuple(a for a in ref if a in meas)
+    if not axes:
+        raise CaptureError(f"no commanded/measured position pair; channels found: {found}", file=src, line=data_line)
+    bad = [a for a in axes if a not in AXIS_NAMES]
+    if bad:
+        raise CaptureError(f"axis {bad[0]!r} (from %AXISTYPE or the curve name): expected one of "
+                           f"{' '.join(AXIS_NAMES)}", file=src, line=data_line)
+    a, row_lines = _rows(lines, data_line, found, src)
+    need = max(max(ref[x], meas[x]) for x in axes)
+    if a.shape[1] <= need:
+        raise CaptureError(f"rows have {a.shape[1]} values; %COLUMN={need} needs {need + 1}; channels: {found}",
+                           file=src, line=row_lines[0])
+    t = a[:, 0] * 1e-6
+    bad_t = np.flatnonzero(np.diff(t) <= 0)
+    if bad_t.size:
+        k = int(bad_t[0]) + 1
+        raise CaptureError(f"time does not increase ({a[k, 0]:.9g} us after {a[k - 1, 0]:.9g} us)", file=src,
+                           line=row_lines[k])
+    t, (r, m), how = on_uniform_grid(t, [a[:, [ref[x] for x in axes]], a[:, [meas[x] for x in axes]]], src,
+                                     row_lines, resample=resample)
+    meta = {"format": "TNCscope", "commanded": ",".join(f"{x}:col{ref[x]}" for x in axes),
+            "measured": ",".join(f"{x}:col{meas[x]}" for x in axes), **how}
+    return Capture(t=t, axes=axes, reference=r, measured=m, meta=meta, source=src)
+
+
+def _curves(lines: list[str], src: str) -> tuple[list[dict[str, str]], int]:
+    """The ``%[CURVEn]`` blocks as ``{KEY: value}`` (with ``_line``), and the ``%[DATA]`` line."""
     curves: list[dict[str, str]] = []
-    data_line = None
     for i, line in enumerate(lines[1:], start=2):
         s = line.strip()
         if s.upper() == "%[DATA]":
-            data_line = i
-            break
+            return curves, i
         if s.upper().startswith("%[CURVE"):
             curves.append({"_line": str(i)})
         elif s.startswith("%") and "=" in s and curves:
             key, value = s[1:].split("=", 1)
             curves[-1][key.strip().upper()] = value.strip()
-    if data_line is None:
-        raise CaptureError("no %[DATA] line", file=src, line=len(lines))
-    found = [c.get("NAME", "?") for c in curves]
-    ref: dict[str, int] = {}
-    meas: dict[str, int] = {}
-    for c in curves:
-        ctype = c.get("CHANNELTYPE", "").lower()
-        name = c.get("NAME", "")
-        axis = (c.get("AXISTYPE") or name.rpartition("/")[2]).lower()
-        col = int(c.get("COLUMN", "0"))
-        if ctype in COMMANDED:
-            ref[axis] = col
-        elif ctype in MEASURED:
-            meas[axis] = col
-    axes = tuple(a for a in ref if a in meas)
-    if not axes:
-        raise CaptureError(f"no commanded/measured position pair; channels found: {found}", file=src, line=data_line)
+    raise CaptureError("no %[DATA] line", file=src, line=len(lines))
+
+
+def _rows(lines: list[str], data_line: int, found: list[str], src: str) -> tuple[np.ndarray, list[int]]:
+    """The ``;`` rows after ``%[DATA]`` (a decimal comma accepted) and the file line of each."""
     rows: list[list[float]] = []
-    width = None
+    row_lines: list[int] = []
     for i, line in enumerate(lines[data_line:], start=data_line + 1):
         s = line.strip().rstrip(";")
         if not s:
             continue
         try:
-            vals = [float(v) for v in s.split(";")]
+            vals = [parse_number(v, decimal_comma=True) for v in s.split(";")]
         except ValueError:
             raise CaptureError(f"non-numeric value in row {s!r}; channels: {found}", file=src, line=i) from None
-        if width is None:
-            width = len(vals)
-        elif len(vals) != width:
-            raise CaptureError(f"row has {len(vals)} values, expected {width}; channels: {found}", file=src, line=i)
+        if any(v != v for v in vals):
+            raise CaptureError(f"an empty value in row {s!r}; channels: {found}", file=src, line=i)
+        if rows and len(vals) != len(rows[0]):
+            raise CaptureError(f"row has {len(vals)} values, expected {len(rows[0])}; channels: {found}", file=src,
+                               line=i)
         rows.append(vals)
-    a = np.asarray(rows, dtype=float)
-    t = a[:, 0] * 1e-6
-    if np.any(np.diff(t) <= 0):
-        k = int(np.argmax(np.diff(t) <= 0)) + 1
-        raise CaptureError("time does not increase", file=src, line=data_line + 1 + k)
-    meta = {"format": "TNCscope", "commanded": ",".join(f"{x}:col{ref[x]}" for x in axes),
-            "measured": ",".join(f"{x}:col{meas[x]}" for x in axes)}
-    return Capture(t=t, axes=axes, reference=a[:, [ref[x] for x in axes]],
-                   measured=a[:, [meas[x] for x in axes]], meta=meta, source=src)
+        row_lines.append(i)
+    if len(rows) < 2:
+        raise CaptureError(f"{len(rows)} data row(s) after %[DATA]; a capture needs at least 2", file=src,
+                           line=data_line)
+    return np.asarray(rows, dtype=float), row_lines

@@ -1,0 +1,262 @@
+"""What the text trace readers share: decoding, numbers, the column mapping, units and timing.
+
+- **Text.** A BOM picks UTF-8 or UTF-16 (Windows tools write both); without one the text is
+  UTF-8, else Windows-1252 / Latin-1 (TNCscope and TwinCAT on a German Windows). A file with NUL
+  bytes and no UTF-16 BOM is binary and refused.
+- **Numbers.** Decimal numbers only (``1``, ``-2.5``, ``1e-3``): ``nan``, ``inf``, ``1_000`` and
+  values that overflow a float are refused, naming the line and the column.
+- **Timing.** A capture's time must increase with a uniform step: :func:`check_timing` tells
+  dropped samples (a step that is a multiple of the usual one) from jitter and names the line.
+  On request (``resample``, ``--resample``) :func:`on_uniform_grid` interpolates linearly onto
+  the median step instead, and says so in the capture's ``meta``.
+"""
+
+from __future__ import annotations
+
+import datetime
+import math
+import re
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
+from vcnc.core.capture import check_sampling
+from vcnc.core.errors import CaptureError
+
+__all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
+           "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
+           "unit_in_name", "unit_named", "parse_time_stamp", "is_unit_row"]
+
+#: Seconds per time unit.
+TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
+#: Millimetres (or degrees, for "deg") per position unit.
+LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "m": 1000.0, "in": 25.4, "deg": 1.0}
+
+#: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
+MAX_SAMPLES = 100_000_000
+
+#: Unit names as headers and channel rows write them, to vcnc's unit names.
+_TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
+_LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "m": "m", "in": "in", "inch": "in", "deg": "deg",
+                 "°": "deg"}
+_UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+_BOMS = ((b"\xef\xbb\xbf", "utf-8-sig"), (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
+
+
+def read_text(path: str | Path, src: str) -> str:
+    """The text of a trace file (module docstring); CaptureError for a binary file."""
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise CaptureError(f"cannot read the file ({exc.strerror})", file=src) from None
+    return decode(raw, src)
+
+
+def decode(raw: bytes, src: str) -> str:
+    """``raw`` as text (module docstring); CaptureError for binary data."""
+    for bom, codec in _BOMS:
+        if raw.startswith(bom):
+            try:
+                return raw.decode(codec)
+            except UnicodeDecodeError as exc:
+                raise CaptureError(f"not valid {codec} text after its byte-order mark (byte {exc.start})",
+                                   file=src) from None
+    if b"\x00" in raw:
+        raise CaptureError("binary file (NUL bytes and no UTF-16 byte-order mark); expected a text trace export",
+                           file=src)
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("cp1252", errors="replace")
+
+
+def parse_number(cell: str, decimal_comma: bool = False) -> float:
+    """A cell as a finite number; NaN when empty; ValueError when not a decimal number."""
+    s = cell.strip()
+    if not s:
+        return math.nan
+    if decimal_comma:
+        s = s.replace(",", ".")
+    if not _NUMBER.fullmatch(s):
+        raise ValueError(s)
+    v = float(s)
+    if not math.isfinite(v):
+        raise ValueError(s)
+    return v
+
+
+def unit_in_name(name: str, kind: str) -> str | None:
+    """The unit a column name ends with, ``[ms]`` or ``(µm)``: a key of :data:`TIME_UNITS`
+    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    m = _UNIT.search(name)
+    return unit_named(m.group(1), kind) if m else None
+
+
+def unit_named(text: str, kind: str) -> str | None:
+    """A unit symbol (``ms``, ``µm``, ``°``...) as a key of :data:`TIME_UNITS` (``kind="time"``)
+    or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    names = _TIME_NAMES if kind == "time" else _LENGTH_NAMES
+    return names.get(text.strip().lower().replace("μ", "µ"))
+
+
+_DATE_TIME = re.compile(r"(\d{4})[-/.](\d{1,2})[-/.](\d{1,2})[ T](\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?Z?")
+_DE_DATE_TIME = re.compile(r"(\d{1,2})\.(\d{1,2})\.(\d{4}) (\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?")
+_TIME_OF_DAY = re.compile(r"(\d{1,2}):(\d{2}):(\d{2})(?:[.,](\d{1,9}))?")
+
+
+def parse_time_stamp(cell: str) -> float:
+    """A logger's time stamp as seconds: ``2024-05-02 15:56:24.376`` (``T``, ``/`` and a trailing
+    ``Z`` accepted) or ``02.05.2024 15:56:24,376`` as seconds since 1970 (time zone ignored: only
+    differences are used), ``15:56:24.376`` as seconds since midnight. ValueError otherwise."""
+    s = cell.strip()
+    m = _DATE_TIME.fullmatch(s)
+    if m:
+        y, mo, d, h, mi, sec, frac = m.groups()
+    else:
+        m = _DE_DATE_TIME.fullmatch(s)
+        if m:
+            d, mo, y, h, mi, sec, frac = m.groups()
+        else:
+            m = _TIME_OF_DAY.fullmatch(s)
+            if not m:
+                raise ValueError(s)
+            h, mi, sec, frac = m.groups()
+            y = mo = d = None
+    day = 0.0
+    if y is not None:
+        try:
+            day = (datetime.date(int(y), int(mo), int(d)) - datetime.date(1970, 1, 1)).days * 86400.0
+        except ValueError:
+            raise ValueError(s) from None
+    if int(h) > 23 or int(mi) > 59 or int(sec) > 60:
+        raise ValueError(s)
+    return day + int(h) * 3600 + int(mi) * 60 + int(sec) + (float("0." + frac) if frac else 0.0)
+
+
+#: Further unit symbols a units row holds (velocities, currents, ...), lower case.
+_OTHER_UNITS = {"v", "a", "ma", "nm", "n", "rpm", "1/min", "mm/min", "m/min", "mm/s", "m/s", "mm/s^2", "m/s^2",
+                "deg/s", "\u00b0/s", "rad", "rad/s", "inc", "%", "-", "hz", "bar", "\u00b0c"}
+
+
+def is_unit_row(cells: Sequence[str]) -> bool:
+    """True for a row of unit symbols (``s;mm;mm``, ``[ms],[\u00b5m]``) under a header of names."""
+    tokens = [c.strip().strip("[]()").strip().lower().replace("\u03bc", "\u00b5") for c in cells if c.strip()]
+    return bool(tokens) and all(t in _TIME_NAMES or t in _LENGTH_NAMES or t in _OTHER_UNITS for t in tokens)
+
+
+def parse_columns(text: str) -> dict[str, str]:
+    """``"t=Time,x_ref=PosCmd,x=PosAct"`` as a mapping capture column -> source column.
+
+    Raises
+    ------
+    CaptureError
+        A part without ``=``, or a capture column that is not ``t``, ``<axis>_ref`` or ``<axis>``.
+    """
+    out: dict[str, str] = {}
+    for part in filter(None, (p.strip() for p in text.split(","))):
+        key, eq, value = part.partition("=")
+        key, value = key.strip(), value.strip()
+        base = key[:-4] if key.endswith("_ref") else key
+        if not eq or not value or not (key == "t" or base in AXIS_NAMES):
+            raise CaptureError(f"--columns part {part!r}: expected 't=NAME', '<axis>_ref=NAME' or '<axis>=NAME' "
+                               f"(axes {' '.join(AXIS_NAMES)})")
+        out[key] = value
+    return out
+
+
+def check_units(time_unit: str | None, unit: str | None, src: str) -> None:
+    """CaptureError unless the units are ones of :data:`TIME_UNITS` and :data:`LENGTH_UNITS`."""
+    if time_unit is not None and time_unit not in TIME_UNITS:
+        raise CaptureError(f"time unit {time_unit!r}: expected one of {', '.join(TIME_UNITS)}", file=src)
+    if unit is not None and unit not in LENGTH_UNITS:
+        raise CaptureError(f"position unit {unit!r}: expected one of {', '.join(LENGTH_UNITS)}", file=src)
+
+
+def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
+    """The axes of a column mapping, each with its ``<axis>_ref`` and ``<axis>``."""
+    axes = [k for k in columns if k in AXIS_NAMES]
+    missing = [a for a in axes if f"{a}_ref" not in columns] + [k[:-4] for k in columns
+                                                                if k.endswith("_ref") and k[:-4] not in columns]
+    if not axes or missing:
+        raise CaptureError(f"--columns needs '<axis>_ref=...' and '<axis>=...' for each axis (incomplete: "
+                           f"{sorted(set(missing)) or 'no axis given'})", file=src)
+    return axes
+
+
+def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
+    """Millimetres (degrees) per unit of the positions of ``axes``; ``deg`` only for rotary axes."""
+    u = unit or "mm"
+    linear = [a for a in axes if a not in ROTARY_AXES]
+    if u == "deg" and linear:
+        raise CaptureError(f"unit 'deg' is for rotary axes (a, b, c); axes {linear} are linear", file=src)
+    if u != "deg" and len(linear) < len(axes) and unit is not None:
+        raise CaptureError(f"unit {u!r} given for rotary axes {[a for a in axes if a in ROTARY_AXES]}; "
+                           "rotary positions are in deg", file=src)
+    return LENGTH_UNITS[u]
+
+
+def mapping_meta(axes: Sequence[str], columns: Mapping[str, str]) -> dict[str, str]:
+    """``commanded`` and ``measured`` entries of a capture's ``meta``: which channel is which."""
+    return {"commanded": ",".join(f"{a}:{columns[a + '_ref']}" for a in axes),
+            "measured": ",".join(f"{a}:{columns[a]}" for a in axes)}
+
+
+def check_timing(t: np.ndarray, src: str, row_lines: Sequence[int] | None = None) -> None:
+    """CaptureError unless ``t`` [s] increases with a uniform step, saying whether samples were
+    dropped (a step that is a whole multiple of the usual one) or the time stamps jitter."""
+    if t.size < 2:
+        raise CaptureError(f"only {t.size} sample(s); a capture needs at least 2", file=src)
+    try:
+        check_sampling(t, src, list(row_lines) if row_lines is not None else None)
+    except CaptureError as exc:
+        dt = np.diff(t)
+        ts = float(np.median(dt))
+        if not ts > 0:
+            raise
+        ratio = dt / ts
+        gaps = np.flatnonzero((ratio > 1.5) & (np.abs(ratio - np.round(ratio)) < 0.01))
+        if gaps.size:
+            k = int(gaps[0])
+            lost = int(np.sum(np.round(ratio[gaps]) - 1))
+            raise CaptureError(f"{lost} sample(s) missing in {gaps.size} gap(s), the first {float(dt[k]):.9g} s "
+                               f"long after t = {float(t[k]):.9g} s; the sample time is {ts:.9g} s. "
+                               "vcnc needs uniform sampling: trace without drop-outs, cut the capture, or give "
+                               "--resample (resample=True) to interpolate across the gaps",
+                               file=src, line=row_lines[k + 1] if row_lines is not None else None) from None
+        jitter = float(np.max(np.abs(dt - ts)))
+        raise CaptureError(f"{exc.message}; the time stamps jitter by up to {jitter:.3g} s ({jitter / ts:.1%} of the "
+                           "step): vcnc needs the control's own sampled time, not a logging PC's clock; --resample "
+                           "(resample=True) interpolates onto the median step",
+                           file=src, line=exc.line, column=exc.column) from None
+
+
+def on_uniform_grid(t: np.ndarray, values: Sequence[np.ndarray], src: str, row_lines: Sequence[int] | None = None,
+                    *, resample: bool = False) -> tuple[np.ndarray, list[np.ndarray], dict[str, str]]:
+    """Time [s] from 0 and ``values`` (arrays of N rows) on a uniform grid, and what was done.
+
+    Uniform time stamps are kept as they are. Otherwise :func:`check_timing` raises, or with
+    ``resample`` every array is interpolated linearly onto the median step from 0 to the last
+    time stamp (``meta["resampled"]`` records it): for loggers whose PC clock jitters, or a
+    trace with a few dropped samples.
+    """
+    t = t - t[0]
+    try:
+        check_timing(t, src, row_lines)
+        return t, list(values), {}
+    except CaptureError:
+        if not resample or np.any(np.diff(t) <= 0):
+            raise
+    dt = np.diff(t)
+    ts = float(f"{float(np.median(dt)):.6g}")
+    n = int(np.floor(t[-1] / ts + 1e-9)) + 1
+    if n > MAX_SAMPLES:
+        raise CaptureError(f"resampling {t[-1]:.6g} s at {ts:.6g} s would make more than {MAX_SAMPLES} samples",
+                           file=src)
+    grid = np.round(np.arange(n) * ts, 12)
+    out = [np.column_stack([np.interp(grid, t, v[:, j]) for j in range(v.shape[1])]) for v in values]
+    how = (f"linear, onto a {ts:.6g} s step from {t.size} samples with steps of {float(dt.min()):.6g} to "
+           f"{float(dt.max()):.6g} s")
+    return grid, out, {"resampled": how}

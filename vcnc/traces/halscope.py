@@ -1,0 +1,170 @@
+"""LinuxCNC halscope logs ("Save log"), in the two layouts ``write_log_file`` has written
+(LinuxCNC ``src/hal/utils/scope_files.c``):
+
+- **LinuxCNC 2.9 and later** (commit ff911089a7, 2022, "Change logfile to csv format"):
+  ``# Sampling period is <n> ns``, a line of channel names separated by ``;``, optional ``#``
+  lines (``# Position: ...``, ``# Scale: ...`` since 2026), then one line per sample of values
+  separated by ``;`` (``%.14f``, C locale).
+- **LinuxCNC 2.8 and earlier**: ``Sampling period is <n> ns`` (``nSec`` in 2006), then one line
+  per sample of ``<label> <value>`` pairs (``%+.14f``); the last line may be a partial sample.
+
+Without a mapping, the position pins of each joint pair up: ``joint.N.motor-pos-cmd`` /
+``joint.N.motor-pos-fb`` (before ``joint.N.pos-cmd`` / ``pos-fb``; ``axis.N`` in LinuxCNC 2.7),
+or signals named ``<axis>-pos-cmd`` / ``<axis>-pos-fb`` or ``<axis>pos-cmd`` / ``<axis>pos-fb``
+(the names stepconf and pncconf give them). Joints are named x, y, z... in order (``axes``
+overrides), signals by their axis letter.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from vcnc.core.axes import AXIS_NAMES
+from vcnc.core.capture import Capture
+from vcnc.core.errors import CaptureError
+from vcnc.traces.columns import mapped_axes, mapping_meta, parse_number, position_scale, read_text
+
+__all__ = ["read_halscope", "looks_like_halscope"]
+
+_PERIOD = re.compile(r"^\s*(#)?\s*Sampling period is\s+(\d+)\s*n(?:s|sec)\b", re.I)
+_PIN = re.compile(r"^(?P<joint>(?:joint|axis)\.(?P<n>\d+)\.)(?P<motor>motor-)?pos-(?P<role>cmd|fb)$")
+_SIGNAL = re.compile(r"^(?P<axis>[xyzabcuvw])-?pos-(?P<role>cmd|fb)$", re.I)
+
+
+def looks_like_halscope(text: str) -> bool:
+    """True when the first line that is not blank is halscope's ``Sampling period is ... ns``."""
+    first = next((ln for ln in text.lstrip("\ufeff").splitlines() if ln.strip()), "")
+    return bool(_PERIOD.match(first))
+
+
+def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
+                  unit: str | None = None, axes: Sequence[str] | None = None) -> Capture:
+    """Read a halscope log (module docstring) into a capture.
+
+    Parameters
+    ----------
+    path : path-like
+        The log.
+    columns : mapping, optional
+        ``{"x_ref": LABEL, "x": LABEL, ...}``; default the joint position pins, paired.
+    unit : {"mm", "um", "m", "in", "deg"}, optional
+        Unit of the positions (default mm: the machine units of a metric configuration).
+    axes : sequence of str, optional
+        Names of the joints, in joint order.
+
+    Raises
+    ------
+    CaptureError
+        Naming the file and line: no samples, a value that is not a number, a row of the wrong
+        length, labels that change, a channel not found (listing the channels).
+    """
+    src = str(Path(path))
+    lines = read_text(path, src).lstrip("\ufeff").splitlines()
+    first = next((i for i, ln in enumerate(lines) if ln.strip()), None)
+    m = _PERIOD.match(lines[first]) if first is not None else None
+    if m is None:
+        raise CaptureError("expected 'Sampling period is <n> ns' on the first line (halscope log)", file=src, line=1)
+    period = int(m.group(2)) * 1e-9
+    if period <= 0:
+        raise CaptureError("the sampling period must be > 0 ns", file=src, line=first + 1)
+    body = list(enumerate(lines[first + 1:], start=first + 2))
+    labels, rows, row_lines = (_table if m.group(1) else _pairs)(body, src)
+    if len(rows) < 2:
+        raise CaptureError(f"fewer than two samples after 'Sampling period is ... ns'; channels: {labels}", file=src)
+    mapping = {k: v for k, v in columns.items() if k != "t"} if columns else _joint_pairs(labels, axes, src)
+    ax = mapped_axes(mapping, src)
+    missing = [v for v in mapping.values() if v not in labels]
+    if missing:
+        raise CaptureError(f"channel(s) {missing} not found; channels found: {labels}", file=src, line=row_lines[0])
+    data = np.array(rows)
+    s = position_scale(ax, unit, src)
+    meta = {"format": "halscope log", "sample_time_s": f"{period:.9g}", "unit": unit or "mm",
+            **mapping_meta(ax, mapping)}
+    return Capture(t=np.round(np.arange(len(rows)) * period, 12), axes=tuple(ax),
+                   reference=data[:, [labels.index(mapping[f"{a}_ref"]) for a in ax]] * s,
+                   measured=data[:, [labels.index(mapping[a]) for a in ax]] * s, meta=meta, source=src)
+
+
+def _table(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[float]], list[int]]:
+    """LinuxCNC 2.9+: a ``;`` line of names, then ``;`` rows of values (``#`` lines skipped)."""
+    content = [(i, ln) for i, ln in body if ln.strip() and not ln.lstrip().startswith("#")]
+    if not content:
+        raise CaptureError("no channel names after 'Sampling period is ... ns'", file=src)
+    labels = [c.strip() for c in content[0][1].split(";")]
+    rows, row_lines = [], []
+    for k, (i, line) in enumerate(content[1:], start=1):
+        cells = line.split(";")
+        if len(cells) != len(labels):
+            if k == len(content) - 1 and len(cells) < len(labels):  # a log cut short in its last line
+                break
+            raise CaptureError(f"{len(cells)} values, expected {len(labels)} (channels {labels})", file=src, line=i)
+        try:
+            rows.append([parse_number(c) for c in cells])
+        except ValueError:
+            raise CaptureError(f"a value is not a number; channels: {labels}", file=src, line=i,
+                               text=line.strip()) from None
+        if any(v != v for v in rows[-1]):
+            raise CaptureError(f"an empty value; channels: {labels}", file=src, line=i)
+        row_lines.append(i)
+    return labels, rows, row_lines
+
+
+def _pairs(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[float]], list[int]]:
+    """LinuxCNC 2.8 and earlier: ``<label> <value>`` pairs, one sample per line."""
+    content = [(i, ln.split()) for i, ln in body if ln.strip()]
+    labels: list[str] = []
+    rows, row_lines = [], []
+    for k, (i, parts) in enumerate(content):
+        last = k == len(content) - 1
+        names, values = parts[::2], parts[1::2]
+        if len(parts) % 2 or (labels and names != labels):
+            if last and labels and names == labels[: len(names)]:  # halscope may end on a partial sample
+                break
+            if len(parts) % 2:
+                raise CaptureError("expected '<label> <value>' pairs", file=src, line=i, text=" ".join(parts))
+            raise CaptureError(f"labels {names} differ from the first sample's {labels}", file=src, line=i)
+        labels = labels or names
+        try:
+            rows.append([parse_number(v) for v in values])
+        except ValueError:
+            raise CaptureError(f"a value is not a number; channels: {labels}", file=src, line=i) from None
+        row_lines.append(i)
+    return labels, rows, row_lines
+
+
+def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dict[str, str]:
+    """Commanded/feedback pins of each joint (module docstring), named ``axes`` in joint order."""
+    pins: dict[tuple[int, str], dict[str, str]] = {}
+    letters: dict[str, dict[str, str]] = {}
+    for name in labels:
+        m = _PIN.match(name)
+        if m:
+            rank = 0 if m.group("motor") else 1
+            pins.setdefault((int(m.group("n")), m.group("role")), {}).setdefault(str(rank), name)
+        s = _SIGNAL.match(name)
+        if s:
+            letters.setdefault(s.group("axis").lower(), {}).setdefault(s.group("role").lower(), name)
+    joints = sorted({n for n, _ in pins if (n, "cmd") in pins and (n, "fb") in pins})
+    out: dict[str, str] = {}
+    if joints:
+        names = list(axes) if axes else list(AXIS_NAMES[: len(joints)])
+        if len(names) != len(joints):
+            raise CaptureError(f"{len(names)} axis name(s) for joints {joints}", file=src)
+        for a, j in zip(names, joints):
+            cmd, fb = pins[(j, "cmd")], pins[(j, "fb")]
+            rank = "0" if "0" in cmd and "0" in fb else "1"
+            out[f"{a}_ref"] = cmd.get(rank) or next(iter(cmd.values()))
+            out[a] = fb.get(rank) or next(iter(fb.values()))
+        return out
+    for a in AXIS_NAMES:
+        if {"cmd", "fb"} <= letters.get(a, {}).keys():
+            out[f"{a}_ref"], out[a] = letters[a]["cmd"], letters[a]["fb"]
+    if not out:
+        raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
+                           f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels}", file=src)
+    return out
