@@ -281,14 +281,10 @@ class _Chains:
 def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
                  jerk_limited: bool) -> AxisLimitArrays:
     """The limits of the axes the chains move (finite jerks for the S-curve)."""
-    moving: set[int] = set()
-    for ch in chains:
-        for seg in ch.segments:
-            if isinstance(seg, (Line, Arc)):
-                d = np.abs(seg.end - seg.start)
-                moving.update(int(i) for i in np.flatnonzero(d > 0))
-                if isinstance(seg, Arc):
-                    moving.update(seg.plane_axes)
+    segs = [seg for ch in chains for seg in ch.segments if isinstance(seg, (Line, Arc))]
+    ends = np.array([(seg.start, seg.end) for seg in segs]).reshape(-1, 2, 3)
+    moving = {int(i) for i in np.flatnonzero(np.any(ends[:, 1] != ends[:, 0], axis=0))}
+    moving.update(i for seg in segs if isinstance(seg, Arc) for i in seg.plane_axes)
     lim = AxisLimitArrays(_resolve_limits(limits), moving)
     if jerk_limited:
         bad = [AXIS_LETTERS[i] for i in sorted(moving) if not math.isfinite(lim.jerk[i])]
@@ -746,9 +742,8 @@ def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
         s_k = np.linspace(0.0, s_.length, n + 1)
         pts = s_.point_at(s_k)
         mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))
-        for k in range(n):
-            segs.append(Line(pts[k], pts[k + 1]))
-            blocks.append(int(mid_blocks[k]))
+        segs.extend(Line.from_arrays(pts[:-1], pts[1:]))
+        blocks.extend(mid_blocks.tolist())
     return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
 
 

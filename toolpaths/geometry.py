@@ -626,6 +626,8 @@ class SplineCurve:
         curve interpolates, so that ``point_at(0)`` / ``point_at(length)`` are bit-exact.
     subdivisions : int
         Table nodes per knot interval for the arc length (default 8).
+    derivatives : tuple of three scipy.interpolate.BSpline, optional
+        ``spline.derivative(1)``, ``(2)`` and ``(3)`` when already at hand (the pieces of one curve share them).
 
     Attributes
     ----------
@@ -650,13 +652,14 @@ class SplineCurve:
     kind = "spline"
 
     def __init__(self, spline, u0: float, u1: float, *, start: Sequence[float] | np.ndarray | None = None,
-                 end: Sequence[float] | np.ndarray | None = None, subdivisions: int = 8) -> None:
+                 end: Sequence[float] | np.ndarray | None = None, subdivisions: int = 8,
+                 derivatives: tuple | None = None) -> None:
         from scipy.interpolate import CubicHermiteSpline
 
         if not (math.isfinite(u0) and math.isfinite(u1) and u0 < u1):
             raise InputError(f"SplineCurve needs u0 < u1, got {u0!r}, {u1!r}")
         self.spline, self.u0, self.u1 = spline, float(u0), float(u1)
-        self._d = (spline.derivative(1), spline.derivative(2), spline.derivative(3))
+        self._d = derivatives or (spline.derivative(1), spline.derivative(2), spline.derivative(3))
         t = np.asarray(spline.t, dtype=float)
         brk = np.unique(np.concatenate([[u0, u1], t[(t > u0) & (t < u1)]]))
         f = np.linspace(0.0, 1.0, subdivisions + 1)[:-1]

@@ -14,6 +14,8 @@ __all__ = ["PackedSegments", "LINE", "ARC", "HOLD", "CLOTHOID"]
 #: Segment kinds in :attr:`PackedSegments.kind`.
 LINE, ARC, HOLD, CLOTHOID = 0, 1, 2, 3
 
+_KIND = {Line: LINE, Arc: ARC, ClothoidPair: CLOTHOID}
+
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class PackedSegments:
@@ -60,7 +62,7 @@ class PackedSegments:
     def from_segments(cls, segments: Sequence[Line | Arc | ClothoidPair | np.ndarray]) -> PackedSegments:
         """Pack lines, arcs, clothoid blends and hold points (a length-3 array [mm] stands for a hold)."""
         n = len(segments)
-        kind = np.zeros(n, dtype=np.int64)
+        kind = np.array([_KIND.get(type(seg), HOLD) for seg in segments], dtype=np.int64).reshape(n)
         length = np.zeros(n)
         start = np.zeros((n, 3))
         end = np.zeros((n, 3))
@@ -73,35 +75,36 @@ class PackedSegments:
         sweep = np.zeros(n)
         helix = np.zeros(n)
         frame = sharpness = None
-        for i, seg in enumerate(segments):
-            if isinstance(seg, Line):
-                kind[i] = LINE
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-            elif isinstance(seg, Arc):
-                kind[i] = ARC
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-                center[i] = seg.center
-                p, q = seg.plane_axes
-                e_p[i, p] = 1.0
-                e_q[i, q] = 1.0
-                e_n[i, seg.plane] = 1.0
-                radius[i] = seg.radius
-                start_angle[i] = seg.start_angle
-                sweep[i] = seg.sweep
-                helix[i] = seg.helix
-            elif isinstance(seg, ClothoidPair):
-                if frame is None:
-                    frame, sharpness = np.zeros((n, 4, 3)), np.zeros(n)
-                kind[i] = CLOTHOID
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-                frame[i] = (seg.u_in, seg.w_in, seg.u_out, seg.w_out)
-                sharpness[i] = seg.sharpness
-            else:
-                kind[i] = HOLD
-                start[i] = end[i] = np.asarray(seg, dtype=float)
+        moving = np.flatnonzero(kind != HOLD)
+        if len(moving):
+            segs = [segments[i] for i in moving.tolist()]
+            length[moving] = [seg.length for seg in segs]
+            start[moving] = [seg.start for seg in segs]
+            end[moving] = [seg.end for seg in segs]
+        hold = np.flatnonzero(kind == HOLD)
+        if len(hold):
+            start[hold] = end[hold] = [np.asarray(segments[i], dtype=float) for i in hold.tolist()]
+        ia = np.flatnonzero(kind == ARC)
+        if len(ia):
+            arcs = [segments[i] for i in ia.tolist()]
+            center[ia] = [a.center for a in arcs]
+            r = np.arange(len(ia))
+            pq = np.array([a.plane_axes for a in arcs]).reshape(-1, 2)
+            plane = np.array([a.plane for a in arcs])
+            for field, col in ((e_p, pq[:, 0]), (e_q, pq[:, 1]), (e_n, plane)):
+                unit = np.zeros((len(ia), 3))
+                unit[r, col] = 1.0
+                field[ia] = unit
+            radius[ia] = [a.radius for a in arcs]
+            start_angle[ia] = [a.start_angle for a in arcs]
+            sweep[ia] = [a.sweep for a in arcs]
+            helix[ia] = [a.helix for a in arcs]
+        ic = np.flatnonzero(kind == CLOTHOID)
+        if len(ic):
+            blends = [segments[i] for i in ic.tolist()]
+            frame, sharpness = np.zeros((n, 4, 3)), np.zeros(n)
+            frame[ic] = [(b.u_in, b.w_in, b.u_out, b.w_out) for b in blends]
+            sharpness[ic] = [b.sharpness for b in blends]
         return cls(kind=kind, length=length, start=start, end=end, center=center, e_p=e_p, e_q=e_q, e_n=e_n,
                    radius=radius, start_angle=start_angle, sweep=sweep, helix=helix, frame=frame,
                    sharpness=sharpness)
