@@ -296,8 +296,9 @@ class Arc:
         sweep = np.where(ccw, sweep, -sweep)
         helix = end[r, plane] - start[r, plane]
         length = np.hypot(rs * np.abs(sweep), helix)
-        unit = np.eye(3)
-        unit.setflags(write=False)
+        eye = np.eye(3)
+        eye.setflags(write=False)
+        unit = list(eye)
         out: list[Arc | None] = []
         for row in zip(ok.tolist(), start, end, c, plane.tolist(), p.tolist(), q.tolist(), ccw.tolist(), rs.tolist(),
                        a0.tolist(), sweep.tolist(), helix.tolist(), length.tolist()):
@@ -648,14 +649,12 @@ class SplineCurve:
     ``dk/ds`` follows from the third derivative (:meth:`bounds`).
     """
 
-    __slots__ = ("spline", "u0", "u1", "start", "end", "length", "_d", "_u_of", "_nodes")
+    __slots__ = ("spline", "u0", "u1", "start", "end", "length", "_d", "_s_nodes", "_u_poly", "_nodes", "_bounds")
     kind = "spline"
 
     def __init__(self, spline, u0: float, u1: float, *, start: Sequence[float] | np.ndarray | None = None,
                  end: Sequence[float] | np.ndarray | None = None, subdivisions: int = 8,
                  derivatives: tuple | None = None) -> None:
-        from scipy.interpolate import CubicHermiteSpline
-
         if not (math.isfinite(u0) and math.isfinite(u1) and u0 < u1):
             raise InputError(f"SplineCurve needs u0 < u1, got {u0!r}, {u1!r}")
         self.spline, self.u0, self.u1 = spline, float(u0), float(u1)
@@ -670,15 +669,25 @@ class SplineCurve:
         s_nodes = np.concatenate([[0.0], np.cumsum(h * (speed @ _GL_W))])
         sigma = np.linalg.norm(self._d[0](nodes), axis=1)
         self._nodes = nodes
-        self._u_of = CubicHermiteSpline(s_nodes, nodes, 1.0 / sigma)
+        # u(s): cubic Hermite on each table interval, as power-form coefficients (highest first) in s - s_j
+        du = 1.0 / sigma
+        h = np.diff(s_nodes)
+        slope = np.diff(nodes) / h
+        t = (du[:-1] + du[1:] - 2.0 * slope) / h
+        self._s_nodes = s_nodes
+        self._u_poly = np.stack([t / h, (slope - du[:-1]) / h - t, du[:-1], nodes[:-1]])
         self.length = float(s_nodes[-1])
         self.start = _point(spline(u0) if start is None else start, "SplineCurve start")
         self.end = _point(spline(u1) if end is None else end, "SplineCurve end")
+        self._bounds: tuple[float, float, np.ndarray] | None = None
 
     def parameter_at(self, s: np.ndarray | float) -> np.ndarray:
         """Spline parameter ``u`` at arc length ``s`` [mm] (clipped to the piece)."""
         s = np.clip(np.asarray(s, dtype=float), 0.0, self.length)
-        return np.clip(self._u_of(s), self.u0, self.u1)
+        j = np.clip(np.searchsorted(self._s_nodes, s, side="right") - 1, 0, len(self._s_nodes) - 2)
+        x = s - self._s_nodes[j]
+        c = self._u_poly[:, j]
+        return np.clip(((c[0] * x + c[1]) * x + c[2]) * x + c[3], self.u0, self.u1)
 
     def frame(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangent and curvature vector [1/mm] at the spline parameters ``u``."""
@@ -709,7 +718,14 @@ class SplineCurve:
 
         ``dk/ds = k_u / |C'|`` with ``k = N / |C'|^4``, ``N = C'' |C'|^2 - (C'.C'') C'`` and
         ``N_u = C''' |C'|^2 + (C'.C'') C'' - (C'.C''' + C''.C'') C'``.
+        Computed once, then kept (the piece does not change).
         """
+        if self._bounds is None:
+            self._bounds = self._table_bounds()
+        kappa, dkappa, t_abs = self._bounds
+        return kappa, dkappa, t_abs.copy()
+
+    def _table_bounds(self) -> tuple[float, float, np.ndarray]:
         eps = 1e-9 * (self.u1 - self.u0)
         u = np.concatenate([self._nodes[:-1] + eps, self._nodes[1:] - eps])
         d1, d2, d3 = self._d[0](u), self._d[1](u), self._d[2](u)
