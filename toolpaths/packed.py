@@ -153,8 +153,9 @@ class PackedSegments:
         il = np.flatnonzero(kind == LINE)
         if len(il):
             sl = seg[il]
-            d = self.end[sl] - self.start[sl]
-            pos[il] = self.start[sl] + d * f[il, None]
+            st = self.start[sl]
+            d = self.end[sl] - st
+            pos[il] = st + d * f[il, None]
             if tan is not None:
                 tan[il] = d / safe_L[il, None]
         ih = np.flatnonzero(kind == HOLD)
