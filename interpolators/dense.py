@@ -101,7 +101,7 @@ class MergedRun:
     def block_at(self, u: np.ndarray) -> np.ndarray:
         """Block of the chord whose parameter range holds each curve parameter ``u``."""
         j = np.searchsorted(self.vertex_u, np.asarray(u, dtype=float), side="right") - 1
-        return self.blocks[np.clip(j, 0, len(self.blocks) - 1)]
+        return self.blocks[np.minimum(np.maximum(j, 0), len(self.blocks) - 1)]
 
 
 def _chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:

@@ -406,7 +406,7 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
     for i, rows in _run_rows(g, seg):
         curve = g.segments[i]
-        s_i = np.clip(s[rows], 0.0, curve.length)
+        s_i = np.minimum(np.maximum(s[rows], 0.0), curve.length)
         tan, curv = curve.frame(curve.parameter_at(s_i))
         pos[rows] = curve.point_at(s_i)
         vel[rows] = tan * v[rows, None]
@@ -786,12 +786,13 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
                              if jerk_limited else [trapezoid_reach(0.0, h, a_) for h, a_ in zip(half, A_i.tolist())])
             V = np.minimum(V, np.minimum(reach, v_i))
             A, J = np.minimum(A, A_i), np.minimum(J, J_i)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            def change(dv: np.ndarray) -> np.ndarray:
-                if not jerk_limited:
-                    return dv / A
-                return np.where(dv >= A * A / J, dv / A + A / J, 2.0 * np.sqrt(dv / J))
 
+        def change(dv: np.ndarray) -> np.ndarray:
+            if not jerk_limited:
+                return dv / A
+            return np.where(dv >= A * A / J, dv / A + A / J, 2.0 * np.sqrt(dv / J))
+
+        with np.errstate(divide="ignore", invalid="ignore"):  # v_b >= V: no speed change, passes anyway
             t_stop, t_pass = 2.0 * change(V), 2.0 * change(V - v_b) + blends.length / v_b
             d_stop, d_pass = V * change(V), (V + v_b) * change(V - v_b) + blends.length
             passes = t_pass + np.maximum(d_stop - d_pass, 0.0) / V <= t_stop + np.maximum(d_pass - d_stop, 0.0) / V

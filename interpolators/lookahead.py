@@ -112,7 +112,8 @@ def _arc_blends(corner: np.ndarray, ua: np.ndarray, ub: np.ndarray, cos_t: np.nd
     fits = ~((radius < 1e-6) | (d < 1e-9))
     p1 = corner - d[:, None] * ua
     p2 = corner + d[:, None] * ub
-    _, inward = _unit(ub - cos_t[:, None] * ua)
+    inward = ub - cos_t[:, None] * ua
+    inward = inward / np.sqrt(np.einsum("ij,ij->i", inward, inward))[:, None]
     rows = np.flatnonzero(fits)
     arcs: list[Arc | None] = [None] * len(corner)
     built = Arc.from_arrays(p1[rows], p2[rows], p1[rows] + radius[rows, None] * inward[rows],
@@ -138,11 +139,6 @@ def _clothoid_blends(corner: np.ndarray, ua: np.ndarray, ub: np.ndarray, cos_t: 
     for i, blend in zip(rows.tolist(), built):
         blends[i] = blend
     return blends
-
-
-def _unit(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    norm = np.sqrt(np.einsum("ij,ij->i", d, d))
-    return norm, d / norm[:, None]
 
 
 def _corner_blends(incoming: list[Line], outgoing: list[Line], tolerance: np.ndarray, *,
