@@ -80,6 +80,18 @@ def test_packed_matches_primitives():
         assert np.allclose(acc, seg.tangent_at(s) * a[:, None] + seg.curvature_at(s) * (v * v)[:, None], atol=1e-12)
     pos, _, _ = packed.evaluate(np.array([3]), np.array([0.0]))
     assert np.array_equal(pos[0], segs[3])
+    # mixed kinds in any order, without acceleration; arc lengths beyond the ends are clipped to them
+    seg = rng.integers(0, 4, 40)
+    s = rng.uniform(-1.0, 12.0, 40)
+    pos, vel, acc = packed.evaluate(seg, s, np.ones(40))
+    assert acc is None
+    for i, (k, s_k) in enumerate(zip(seg, s)):
+        if k == 3:
+            assert np.array_equal(pos[i], segs[3]) and not vel[i].any()
+            continue
+        s_k = min(max(s_k, 0.0), segs[k].length)
+        assert np.allclose(pos[i], segs[k].point_at(s_k), atol=1e-12)
+        assert np.allclose(vel[i], segs[k].tangent_at(s_k), atol=1e-12)
 
 
 def test_path_records_blocks():
