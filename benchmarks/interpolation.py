@@ -7,22 +7,33 @@ second, and a reference measured in the same run: a naive per-sample Python eval
 loop per sample calling ruckig's ``Trajectory.at_time`` for the S-curve, the trapezoid formulas
 for the trapezoid, then mapping to x/y position, velocity, acceleration) on a subset of the
 blocks. Note the program's blocks move diagonally in XY, so path speed is capped by the axes.
+
+Then the largest program of the G-code corpus (``VCNC_GCODE_CORPUS``, default ``../shared/data/gcode-corpus``
+beside the repository; skipped with a message when absent; ``--corpus-program`` names another file), a long
+CAM program with G64 dense code: reading and interpolation timed apart, setpoints/s for each profile,
+against a reference measured in the same run: allocating and filling setpoint arrays of the same shape
+(t, position, velocity, acceleration) with ``np.linspace``, the least any interpolator must spend.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import numpy as np  # noqa: E402
 import ruckig  # noqa: E402
 
 import toolpaths  # noqa: E402
-from interpolators import DEFAULT_LIMITS, interpolate, parse_program  # noqa: E402
+from interpolators import DEFAULT_LIMITS, interpolate, load_program, parse_program  # noqa: E402
+
+CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().parents[2] / "shared" / "data"
+                             / "gcode-corpus"))
 
 
 def _naive_trapezoid(blocks, V, A, Ts):
@@ -70,12 +81,54 @@ def _naive_scurve(blocks, V, A, J, Ts):
     return len(rows)
 
 
+def _fill_reference(n: int, n_axes: int) -> float:
+    """Time [s] to allocate and fill setpoint arrays of ``n`` samples on ``n_axes`` axes (t, block, position,
+    velocity, acceleration) with ``np.linspace``."""
+    t0 = time.perf_counter()
+    t = np.linspace(0.0, 1.0, n)
+    block = np.zeros(n, dtype=np.int64)
+    cols = [np.linspace(0.0, 1.0 + k, n) for k in range(3 * n_axes)]
+    arrays = [np.stack(cols[k * n_axes:(k + 1) * n_axes], axis=1) for k in range(3)]
+    elapsed = time.perf_counter() - t0
+    del t, block, cols, arrays
+    return elapsed
+
+
+def _corpus_program(path: Path | None) -> int:
+    """Read and interpolate one corpus program with both profiles; print setpoints/s against the fill reference."""
+    if path is None:
+        files = [f for f in CORPUS.glob("*") if f.is_file() and f.suffix not in (".md", ".tsv")]
+        if not files:
+            print(f"corpus program: skipped, no G-code corpus at {CORPUS} (set VCNC_GCODE_CORPUS)")
+            return 0
+        path = max(files, key=lambda f: f.stat().st_size)
+    t0 = time.perf_counter()
+    prog = load_program(path)
+    t_read = time.perf_counter() - t0
+    print(f"corpus program {path.name}: {len(prog.blocks):,} blocks, read in {t_read:.2f} s")
+    for profile in ("trapezoid", "scurve"):
+        t0 = time.perf_counter()
+        sp = interpolate(prog, profile=profile, max_samples=20_000_000)
+        elapsed = time.perf_counter() - t0
+        ref = _fill_reference(len(sp), len(sp.axes))
+        print(f"{profile:9s}: {len(sp):,} setpoints ({sp.duration:.1f} s of motion) in {elapsed:.2f} s = "
+              f"{len(sp) / elapsed / 1e6:.3f} M setpoints/s; reference (np.linspace fill of the same arrays) "
+              f"{len(sp) / ref / 1e6:.1f} M/s; interpolation takes {elapsed / ref:.0f}x the fill")
+        del sp
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--blocks", type=int, default=10_000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--subset", type=int, default=300, help="blocks evaluated by the naive reference")
+    ap.add_argument("--corpus-program", type=Path, default=None,
+                    help="G-code file for the long-program part (default: the largest file of the corpus)")
+    ap.add_argument("--skip-random", action="store_true", help="only the corpus program")
     args = ap.parse_args()
+    if args.skip_random:
+        return _corpus_program(args.corpus_program)
     text = toolpaths.random_moves(args.blocks, 10.0, 12000.0, seed=1, axes=("x", "y"))
     t0 = time.perf_counter()
     prog = parse_program(text)
@@ -102,7 +155,7 @@ def main() -> int:
               f"{'(ruckig at_time)' if profile == 'scurve' else '(formulas)'}: {ref_rate / 1e6:.3f} M/s; "
               f"ratio {rate / ref_rate:.1f}x")
         del sp
-    return 0
+    return _corpus_program(args.corpus_program)
 
 
 if __name__ == "__main__":

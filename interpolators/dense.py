@@ -42,11 +42,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 
 import numpy as np
-import scipy.sparse
-import scipy.sparse.linalg
+import scipy.linalg
 from scipy.interpolate import BSpline
 
 from toolpaths.geometry import Arc, Line, SplineCurve
@@ -103,7 +101,7 @@ class MergedRun:
     def block_at(self, u: np.ndarray) -> np.ndarray:
         """Block of the chord whose parameter range holds each curve parameter ``u``."""
         j = np.searchsorted(self.vertex_u, np.asarray(u, dtype=float), side="right") - 1
-        return self.blocks[np.clip(j, 0, len(self.blocks) - 1)]
+        return self.blocks[np.minimum(np.maximum(j, 0), len(self.blocks) - 1)]
 
 
 def _chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:
@@ -120,51 +118,87 @@ def _chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval
     return float(best.max())
 
 
+def _gram_banded(first: np.ndarray, values: np.ndarray, m: int) -> np.ndarray:
+    """``B^T B`` of a cubic B-spline design matrix ``B`` (row ``r``: ``values[r]`` in the columns
+    ``first[r] .. first[r] + 3``) in the upper banded form of :func:`scipy.linalg.solveh_banded`:
+    ``ab[3 + i - j, j] = (B^T B)[i, j]`` for ``j - 3 <= i <= j``."""
+    ab = np.zeros((4, m))
+    for a in range(4):
+        for b in range(a, 4):
+            ab[3 - (b - a)] += np.bincount(first + b, weights=values[:, a] * values[:, b], minlength=m)
+    return ab
+
+
 def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple) -> np.ndarray | None:
     """Coefficients of the clamped cubic spline through the first and last point, least squares to
-    the others; an end tangent fixes the second (second-last) coefficient's direction."""
-    B = BSpline.design_matrix(u, knots, 3).tocsc()
+    the others; an end tangent fixes the second (second-last) coefficient's direction.
+
+    The normal equations of the free coefficients are three copies (x, y, z) of one banded matrix
+    ``G = B_f^T B_f`` bordered by one column per imposed tangent (its length ``alpha``, shared by the three
+    coordinates): ``G`` is factored once (banded Cholesky) for all right-hand sides and the tangent
+    lengths follow from the Schur complement."""
+    B = BSpline.design_matrix(u, knots, 3)
     m = B.shape[1]
+    values = B.data.reshape(-1, 4)
+    first = B.indices[::4].astype(np.int64)
     c = np.zeros((m, 3))
     c[0], c[-1] = points[0], points[-1]
-    fixed = [0, m - 1]
-    cols = []  # (column of the unknown, direction or None)
+    dirs = []  # (column, direction): c[column] = its end point + alpha * direction
     t0, t1 = tangents
     if t0 is not None:
-        cols.append((1, t0))
-        fixed.append(1)
+        dirs.append((1, np.asarray(t0, dtype=float)))
+        c[1] = points[0]
     if t1 is not None and m - 2 > 1:
-        cols.append((m - 2, -t1))
-        fixed.append(m - 2)
-    free = np.setdiff1d(np.arange(m), fixed)
+        dirs.append((m - 2, -np.asarray(t1, dtype=float)))
+        c[m - 2] = points[-1]
+    lo = 2 if t0 is not None else 1
+    hi = m - 2 if dirs and dirs[-1][0] == m - 2 else m - 1
+    # residual of the fixed part (end points; tangent columns at alpha = 0), then B^T of it per column
+    cols = first[:, None] + np.arange(4)
+    rhs = points - np.einsum("rk,rkd->rd", values, c[cols])
+    bt_rhs = np.stack([np.bincount(cols.ravel(), weights=(values * rhs[:, d, None]).ravel(), minlength=m)
+                       for d in range(3)], axis=1)
+    ab = _gram_banded(first, values, m)
 
-    def column(j: int) -> np.ndarray:
-        return B[:, [j]].toarray()
+    def gram_col(j: int) -> np.ndarray:
+        col = np.zeros(m)
+        for off in range(4):
+            if j - off >= 0:
+                col[j - off] = ab[3 - off, j]
+            if j + off < m:
+                col[j + off] = ab[3 - off, j + off]
+        return col
 
-    rhs = points - column(0) * points[0] - column(m - 1) * points[-1]
-    for col, _ in cols:  # c[col] = end point + alpha * direction
-        rhs = rhs - column(col) * points[0 if col == 1 else -1]
-    # unknowns: the free coefficients (coordinate-wise) and one alpha per imposed tangent
-    nf = len(free)
-    blocks = [scipy.sparse.kron(scipy.sparse.eye(3), B[:, free], format="csc")]
-    for col, d in cols:
-        blocks.append(scipy.sparse.csc_matrix(np.concatenate([column(col) * d[i] for i in range(3)])))
-    A = scipy.sparse.hstack(blocks, format="csc")
-    b = np.asarray(rhs).T.reshape(-1)
-    with warnings.catch_warnings():  # a singular system (too few points per knot) is a failed fit
-        warnings.simplefilter("ignore", scipy.sparse.linalg.MatrixRankWarning)
+    g_cols = [gram_col(j)[lo:hi] for j, _ in dirs]
+    y = np.zeros((max(hi - lo, 0), 3 + len(dirs)))
+    if hi > lo:
         try:
-            x = np.asarray(scipy.sparse.linalg.spsolve((A.T @ A).tocsc(), A.T @ b)).reshape(-1)
-        except RuntimeError:
+            y = scipy.linalg.solveh_banded(ab[:, lo:hi], np.column_stack([bt_rhs[lo:hi], *g_cols]), lower=False)
+        except np.linalg.LinAlgError:  # a singular system (too few points per knot) is a failed fit
             return None
-    if not np.all(np.isfinite(x)):
+    y_rhs, y_g = y[:, :3], y[:, 3:]
+    if dirs:
+        p = len(dirs)
+        schur = np.zeros((p, p))
+        r_alpha = np.zeros(p)
+        for a, (ja, da) in enumerate(dirs):
+            r_alpha[a] = da @ bt_rhs[ja] - g_cols[a] @ (y_rhs @ da)
+            for b, (jb, db) in enumerate(dirs):
+                schur[a, b] = (da @ db) * (gram_col(jb)[ja] - g_cols[a] @ y_g[:, b])
+        try:
+            alpha = np.linalg.solve(schur, r_alpha)
+        except np.linalg.LinAlgError:
+            return None
+        y_rhs = y_rhs - sum(alpha[a] * np.outer(y_g[:, a], da) for a, (_, da) in enumerate(dirs))
+    else:
+        alpha = np.zeros(0)
+    if not (np.all(np.isfinite(y_rhs)) and np.all(np.isfinite(alpha))):
         return None
-    c[free] = x[:3 * nf].reshape(3, nf).T
-    for i, (col, d) in enumerate(cols):
-        alpha = x[3 * nf + i]
-        if alpha <= 0:
+    c[lo:hi] = y_rhs
+    for a, (j, d) in enumerate(dirs):
+        if alpha[a] <= 0:
             return None  # the tangent would point backwards
-        c[col] = points[0 if col == 1 else -1] + alpha * d
+        c[j] = c[j] + alpha[a] * d
     return c
 
 
@@ -224,8 +258,10 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCur
     cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
     brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
     # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
+    derivatives = (spl.derivative(1), spl.derivative(2), spl.derivative(3))
     return tuple(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
-                             end=end if i == len(brk) - 2 else None) for i in range(len(brk) - 1))
+                             end=end if i == len(brk) - 2 else None, derivatives=derivatives)
+                 for i in range(len(brk) - 1))
 
 
 def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,

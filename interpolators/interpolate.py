@@ -19,13 +19,14 @@ from interpolators.kinematics import (
     extra_junction_speed_limit,
     extra_path_bounds,
     junction_speed_limit,
+    line_limits,
     path_limits,
 )
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
-from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, blend_corners, junction_speeds
+from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
 from interpolators.program import Program
-from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path, SplineCurve
+from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import GCodeError, InputError
@@ -280,14 +281,10 @@ class _Chains:
 def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
                  jerk_limited: bool) -> AxisLimitArrays:
     """The limits of the axes the chains move (finite jerks for the S-curve)."""
-    moving: set[int] = set()
-    for ch in chains:
-        for seg in ch.segments:
-            if isinstance(seg, (Line, Arc)):
-                d = np.abs(seg.end - seg.start)
-                moving.update(int(i) for i in np.flatnonzero(d > 0))
-                if isinstance(seg, Arc):
-                    moving.update(seg.plane_axes)
+    segs = [seg for ch in chains for seg in ch.segments if isinstance(seg, (Line, Arc))]
+    ends = np.array([(seg.start, seg.end) for seg in segs]).reshape(-1, 2, 3)
+    moving = {int(i) for i in np.flatnonzero(np.any(ends[:, 1] != ends[:, 0], axis=0))}
+    moving.update(i for seg in segs if isinstance(seg, Arc) for i in seg.plane_axes)
     lim = AxisLimitArrays(_resolve_limits(limits), moving)
     if jerk_limited:
         bad = [AXIS_LETTERS[i] for i in sorted(moving) if not math.isfinite(lim.jerk[i])]
@@ -404,19 +401,28 @@ def _merged(ch: _Chain) -> tuple[_Chain, dict[int, MergedRun]]:
 
 def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Position, velocity and acceleration on the segments ``seg`` at arc lengths ``s``
+    """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    if g.runs:
-        for i in np.unique(seg[np.isin(seg, list(g.runs))]):
-            rows = np.flatnonzero(seg == i)
-            curve = g.segments[i]
-            s_i = np.clip(s[rows], 0.0, curve.length)
-            tan, curv = curve.frame(curve.parameter_at(s_i))
-            pos[rows] = curve.point_at(s_i)
-            vel[rows] = tan * v[rows, None]
-            acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
+    for i, rows in _run_rows(g, seg):
+        curve = g.segments[i]
+        s_i = np.minimum(np.maximum(s[rows], 0.0), curve.length)
+        tan, curv = curve.frame(curve.parameter_at(s_i))
+        pos[rows] = curve.point_at(s_i)
+        vel[rows] = tan * v[rows, None]
+        acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
     return pos, vel, acc
+
+
+def _run_rows(g: _Geom, seg: np.ndarray) -> list[tuple[int, slice]]:
+    """The smooth curve pieces among the segments ``seg`` (nondecreasing: samples in time order, junctions in
+    chain order) and the rows on each, as slices found by bisection rather than one scan of ``seg`` per piece."""
+    if not g.runs:
+        return []
+    pieces = np.array(sorted(g.runs), dtype=np.int64)
+    lo = np.searchsorted(seg, pieces, side="left")
+    hi = np.searchsorted(seg, pieces, side="right")
+    return [(int(i), slice(int(a), int(b))) for i, a, b in zip(pieces, lo, hi) if b > a]
 
 
 def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
@@ -710,9 +716,8 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     vel = vel[:, ax_idx]
     acc = acc[:, ax_idx]
     block = seg_block_a[seg]
-    for i, run in g.runs.items():
-        rows = np.flatnonzero(seg == i)
-        block[rows] = run.block_at(all_segs[i].parameter_at(s[rows]))
+    for i, rows in _run_rows(g, seg):
+        block[rows] = g.runs[i].block_at(all_segs[i].parameter_at(s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -737,9 +742,8 @@ def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
         s_k = np.linspace(0.0, s_.length, n + 1)
         pts = s_.point_at(s_k)
         mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))
-        for k in range(n):
-            segs.append(Line(pts[k], pts[k + 1]))
-            blocks.append(int(mid_blocks[k]))
+        segs.extend(Line.from_arrays(pts[:-1], pts[1:]))
+        blocks.extend(mid_blocks.tolist())
     return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
 
 
@@ -755,7 +759,7 @@ def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.
 
 
 def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
-    """Predicate: is passing the corner through the blend faster than stopping at it?
+    """Predicate: is passing each corner through its blend faster than stopping at it?
 
     Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can
     reach over half their length): stopping takes two speed changes ``V -> 0 -> V``; blending
@@ -763,47 +767,38 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
     Both are compared over the same distance (the shorter one completed at ``V``). A speed change
     ``dv`` with zero end accelerations takes ``dv/A + A/J`` or ``2 sqrt(dv/J)`` (``dv/A``
     without jerk limit). This keeps G64 from crawling through sharp corners a stop passes faster.
+    The predicate judges all the corners of the chain at once (:class:`interpolators.lookahead.CornerBlends`).
     """
     share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
 
-    def worth(k: int, blend: Arc | ClothoidPair) -> bool:
-        if isinstance(blend, Arc):
-            axes = list(blend.plane_axes)
-            kappa, dkappa = 1.0 / blend.radius, 0.0
-        else:
-            axes = [i for i in range(3) if abs(blend.normal[i]) < 1.0 - 1e-12]  # axes in the corner plane
-            kappa, dkappa = blend.peak_curvature, blend.sharpness
-        v_b = float(curved_speed_bound(kappa, dkappa, share * float(np.min(lim.acceleration[axes])),
-                                       share * float(np.min(lim.jerk[axes])), jerk_limited=jerk_limited))
-        V, A, J = math.inf, math.inf, math.inf
+    def worth(blends: CornerBlends) -> np.ndarray:
+        k = blends.corner
+        A_b = share * np.where(blends.plane, lim.acceleration, np.inf).min(axis=1)
+        J_b = share * np.where(blends.plane, lim.jerk, np.inf).min(axis=1)
+        v_b = curved_speed_bound(blends.curvature, blends.curvature_rate, A_b, J_b, jerk_limited=jerk_limited)
+        V, A, J = np.full(len(k), np.inf), np.full(len(k), np.inf), np.full(len(k), np.inf)
         for i in (k, k + 1):
-            u = ch.segments[i].direction
-            A_i, J_i = _line_bound(lim.acceleration, u), _line_bound(lim.jerk, u)
-            half = 0.5 * ch.segments[i].length
-            reach = scurve_reach(0.0, half, A_i, J_i) if jerk_limited else trapezoid_reach(0.0, half, A_i)
-            V = min(V, reach, _line_bound(lim.rapid if ch.rapid[i] else lim.velocity, u,
-                                          math.inf if ch.rapid[i] else ch.feeds[i]))
-            A, J = min(A, A_i), min(J, J_i)
-        if v_b >= V:
-            return True
+            lines = [ch.segments[j] for j in i.tolist()]
+            v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3),
+                                        np.asarray(ch.feeds)[i], np.asarray(ch.rapid)[i], lim)
+            half = [0.5 * ln.length for ln in lines]
+            reach = np.array([scurve_reach(0.0, h, a_, j_) for h, a_, j_ in zip(half, A_i.tolist(), J_i.tolist())]
+                             if jerk_limited else [trapezoid_reach(0.0, h, a_) for h, a_ in zip(half, A_i.tolist())])
+            V = np.minimum(V, np.minimum(reach, v_i))
+            A, J = np.minimum(A, A_i), np.minimum(J, J_i)
 
-        def change(dv: float) -> float:
+        def change(dv: np.ndarray) -> np.ndarray:
             if not jerk_limited:
                 return dv / A
-            return dv / A + A / J if dv >= A * A / J else 2.0 * math.sqrt(dv / J)
+            return np.where(dv >= A * A / J, dv / A + A / J, 2.0 * np.sqrt(dv / J))
 
-        t_stop, t_pass = 2.0 * change(V), 2.0 * change(V - v_b) + blend.length / v_b
-        d_stop, d_pass = V * change(V), (V + v_b) * change(V - v_b) + blend.length
-        return t_pass + max(d_stop - d_pass, 0.0) / V <= t_stop + max(d_pass - d_stop, 0.0) / V
+        with np.errstate(divide="ignore", invalid="ignore"):  # v_b >= V: no speed change, passes anyway
+            t_stop, t_pass = 2.0 * change(V), 2.0 * change(V - v_b) + blends.length / v_b
+            d_stop, d_pass = V * change(V), (V + v_b) * change(V - v_b) + blends.length
+            passes = t_pass + np.maximum(d_stop - d_pass, 0.0) / V <= t_stop + np.maximum(d_pass - d_stop, 0.0) / V
+        return (v_b >= V) | passes
 
     return worth
-
-
-def _line_bound(limit: np.ndarray, direction: np.ndarray, cap: float = math.inf) -> float:
-    """Largest path value along ``direction`` keeping every axis within ``limit``, at most ``cap``."""
-    u = np.abs(direction)
-    with np.errstate(divide="ignore"):
-        return min(cap, float(np.min(np.where(u > 1e-15, limit / u, np.inf))))
 
 
 def _meta(program: Program, profile: str, Ts: float, duration: float) -> dict:

@@ -50,6 +50,7 @@ __all__ = [
     "path_limits",
     "extra_path_bounds",
     "junction_speed_limit",
+    "line_limits",
     "curvature_step_speed_limit",
     "extra_junction_speed_limit",
     "curved_speed_bound",
@@ -154,10 +155,8 @@ def path_limits(
 
     il = np.flatnonzero(kind == LINE)
     if len(il):
-        u = np.abs(packed.end[il] - packed.start[il]) / packed.length[il, None]
-        v_max[il] = np.minimum(v_max[il], _min_ratio_rows(vel_lim[il], u))
-        a_max[il] = _min_ratio(limits.acceleration, u)
-        j_max[il] = _min_ratio(limits.jerk, u)
+        u = (packed.end[il] - packed.start[il]) / packed.length[il, None]
+        v_max[il], a_max[il], j_max[il] = line_limits(u, feed[il], rapid[il], limits)
 
     ia = np.flatnonzero(kind == ARC)
     if len(ia):
@@ -204,6 +203,33 @@ def path_limits(
     if not np.all(np.isfinite(a_max)):
         raise InputError("the path acceleration is unbounded: give finite axis acceleration limits")
     return v_max, a_max, j_max
+
+
+def line_limits(direction: np.ndarray, feed: np.ndarray, rapid: np.ndarray, limits: AxisLimitArrays
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bounds of path speed, acceleration and jerk on straight lines: each axis ``i`` moves at ``|u_i|`` times
+    the path's rate, so the path bound is the smallest ``limit_i / |u_i|`` (axes with ``|u_i| <= 1e-15`` do not
+    count), the speed also at most the feed (rapids: the rapid rates instead of feed and velocity limits).
+
+    Parameters
+    ----------
+    direction : ndarray, shape (n, 3)
+        Unit directions of the lines.
+    feed : ndarray, shape (n,)
+        Programmed feed [mm/s] (ignored for rapids).
+    rapid : ndarray of bool, shape (n,)
+    limits : AxisLimitArrays
+
+    Returns
+    -------
+    v_max, a_max, j_max : ndarray, shape (n,)
+        [mm/s], [mm/s^2], [mm/s^3] (inf where the limits are).
+    """
+    u = np.abs(direction)
+    rapid = np.asarray(rapid, dtype=bool)
+    vel_lim = np.where(rapid[:, None], limits.rapid[None, :], limits.velocity[None, :])
+    v_max = np.minimum(np.where(rapid, np.inf, feed).astype(float), _min_ratio_rows(vel_lim, u))
+    return v_max, _min_ratio(limits.acceleration, u), _min_ratio(limits.jerk, u)
 
 
 def curve_limits(

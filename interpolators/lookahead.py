@@ -29,6 +29,7 @@ within its length (exactly for the trapezoid, with zero end accelerations for th
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 
@@ -36,9 +37,8 @@ import numpy as np
 
 from interpolators.profiles import scurve_reach, trapezoid_reach
 from toolpaths.geometry import Arc, ClothoidPair, Line
-from vcnc.core.errors import InputError
 
-__all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "blend_corners", "junction_speeds"]
+__all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "CornerBlends", "blend_corners", "junction_speeds"]
 
 #: Path tolerance of G64 without ``P`` [mm].
 DEFAULT_TOLERANCE: float = 0.01
@@ -54,43 +54,126 @@ _MAX_BLEND_ANGLE = math.pi - 1e-3
 Blend = Arc | ClothoidPair
 
 
-def _blend(a: Line, b: Line, tolerance: float, *, curvature_continuous: bool
-           ) -> tuple[np.ndarray, Blend, np.ndarray] | None:
-    """Blend replacing the corner a.end == b.start, or None when not blendable."""
-    ua, ub = a.direction, b.direction
-    cos_t = float(np.clip(ua @ ub, -1.0, 1.0))
-    theta = math.acos(cos_t)
-    if not (_MIN_BLEND_ANGLE < theta < _MAX_BLEND_ANGLE):
-        return None
-    n = np.cross(ua, ub)
-    plane = int(np.argmax(np.abs(n)))
-    nn = abs(n[plane])
-    principal = not (np.max(np.abs(np.delete(n, plane))) > 1e-12 * nn or abs(ua[plane]) > 1e-12
-                     or abs(ub[plane]) > 1e-12)
-    d_max = 0.5 * min(a.length, b.length)
-    if curvature_continuous or not principal:
-        clo = ClothoidPair.for_corner(a.end, ua, ub, tolerance=tolerance, max_leg=d_max)
-        return None if clo is None else (clo.start, clo, clo.end)
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+class CornerBlends:
+    """The blends possible at the line/line corners of a chain, for a ``worth`` predicate to judge at once.
+
+    Attributes
+    ----------
+    corner : ndarray of int, shape (m,)
+        Junction index ``k`` of each blend (between segment ``k`` and ``k + 1``).
+    blends : list of Arc or ClothoidPair
+        The blends.
+    curvature, curvature_rate : ndarray, shape (m,)
+        Largest curvature [1/mm] and ``|dk/ds|`` [1/mm^2] on each blend (``1 / radius`` and 0 on an arc).
+    plane : ndarray of bool, shape (m, 3)
+        The axes in each blend's plane (the moving axes).
+    length : ndarray, shape (m,)
+        Arc length of each blend [mm].
+    """
+
+    corner: np.ndarray
+    blends: list[Blend]
+    curvature: np.ndarray
+    curvature_rate: np.ndarray
+    plane: np.ndarray
+    length: np.ndarray
+
+    @classmethod
+    def of(cls, corner: np.ndarray, blends: list[Blend]) -> CornerBlends:
+        """Collect the arrays of the ``blends`` at the junctions ``corner``."""
+        m = len(blends)
+        kappa, dkappa, length = np.zeros(m), np.zeros(m), np.zeros(m)
+        plane = np.zeros((m, 3), dtype=bool)
+        for i, b in enumerate(blends):
+            length[i] = b.length
+            if isinstance(b, Arc):
+                kappa[i] = 1.0 / b.radius
+                plane[i, list(b.plane_axes)] = True
+            else:
+                kappa[i], dkappa[i] = b.peak_curvature, b.sharpness
+                plane[i] = np.abs(b.normal) < 1.0 - 1e-12  # the axes in the corner plane
+        return cls(corner=np.asarray(corner, dtype=np.int64), blends=blends, curvature=kappa, curvature_rate=dkappa,
+                   plane=plane, length=length)
+
+
+def _arc_blends(corner: np.ndarray, ua: np.ndarray, ub: np.ndarray, cos_t: np.ndarray, theta: np.ndarray,
+                n: np.ndarray, plane: np.ndarray, tolerance: np.ndarray, d_max: np.ndarray) -> list[Arc | None]:
+    """Tangent arcs within ``tolerance`` [mm] of the corners, legs at most ``d_max`` [mm] (all arrays per
+    corner): the arc of each corner, None where none fits."""
     half = 0.5 * theta
-    sec_m1 = 1.0 / math.cos(half) - 1.0
-    radius = tolerance / sec_m1 if sec_m1 > 0 else math.inf
-    d = radius * math.tan(half)
-    if d > d_max:
-        d = d_max
-        radius = d / math.tan(half)
-    if radius < 1e-6 or d < 1e-9:
-        return None
-    corner = a.end
-    p1 = corner - d * ua
-    p2 = corner + d * ub
-    inward = ub - cos_t * ua
-    inward = inward / np.linalg.norm(inward)
-    center = p1 + radius * inward
-    try:
-        arc = Arc(p1, p2, center, ccw=bool(n[plane] > 0), plane=plane)
-    except InputError:
-        return None
-    return p1, arc, p2
+    sec_m1 = 1.0 / np.cos(half) - 1.0
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        radius = np.where(sec_m1 > 0, tolerance / sec_m1, np.inf)
+        d = radius * np.tan(half)
+        short = d > d_max
+        d = np.where(short, d_max, d)
+        radius = np.where(short, d / np.tan(half), radius)
+    fits = ~((radius < 1e-6) | (d < 1e-9))
+    p1 = corner - d[:, None] * ua
+    p2 = corner + d[:, None] * ub
+    inward = ub - cos_t[:, None] * ua
+    inward = inward / np.sqrt(np.einsum("ij,ij->i", inward, inward))[:, None]
+    rows = np.flatnonzero(fits)
+    arcs: list[Arc | None] = [None] * len(corner)
+    built = Arc.from_arrays(p1[rows], p2[rows], p1[rows] + radius[rows, None] * inward[rows],
+                            ccw=n[rows, plane[rows]] > 0, plane=plane[rows])
+    for i, arc in zip(rows.tolist(), built):
+        arcs[i] = arc
+    return arcs
+
+
+def _clothoid_blends(corner: np.ndarray, ua: np.ndarray, ub: np.ndarray, cos_t: np.ndarray, n: np.ndarray,
+                     tolerance: np.ndarray, d_max: np.ndarray) -> list[ClothoidPair | None]:
+    """Clothoid pairs within ``tolerance`` [mm] of the corners, legs at most ``d_max`` [mm] (the array form of
+    :meth:`toolpaths.geometry.ClothoidPair.for_corner`): the blend of each corner, None where none fits."""
+    theta = np.arctan2(np.sqrt(np.einsum("ij,ij->i", n, n)), cos_t)
+    ok = (theta > 0.0) & (theta < math.pi) & (tolerance > 0) & (d_max > 0)
+    leg_f, dev_f = ClothoidPair.shape_factors(np.where(ok, theta, 1.0))
+    d = np.minimum(tolerance / dev_f, d_max / leg_f) * leg_f
+    ok &= d > 1e-9
+    rows = np.flatnonzero(ok)
+    blends: list[ClothoidPair | None] = [None] * len(corner)
+    c = corner[rows]
+    built = ClothoidPair.from_arrays(c - d[rows, None] * ua[rows], c, c + d[rows, None] * ub[rows])
+    for i, blend in zip(rows.tolist(), built):
+        blends[i] = blend
+    return blends
+
+
+def _corner_blends(incoming: list[Line], outgoing: list[Line], tolerance: np.ndarray, *,
+                   curvature_continuous: bool) -> list[Blend | None]:
+    """The blend of each corner ``incoming[i].end == outgoing[i].start`` within ``tolerance[i]`` [mm], None where
+    the corner is not blended (direction change outside ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)``, or no blend
+    fits). A blend takes at most half of either line."""
+    ua = np.array([ln.direction for ln in incoming]).reshape(-1, 3)
+    ub = np.array([ln.direction for ln in outgoing]).reshape(-1, 3)
+    corner = np.array([ln.end for ln in incoming]).reshape(-1, 3)
+    d_max = 0.5 * np.minimum([ln.length for ln in incoming], [ln.length for ln in outgoing])
+    m = len(corner)
+    cos_t = np.clip(np.einsum("ij,ij->i", ua, ub), -1.0, 1.0)
+    theta = np.arccos(cos_t)
+    angle_ok = (_MIN_BLEND_ANGLE < theta) & (theta < _MAX_BLEND_ANGLE)
+    n = np.cross(ua, ub)
+    abs_n = np.abs(n)
+    plane = np.argmax(abs_n, axis=1)
+    r = np.arange(m)
+    nn = abs_n[r, plane]
+    others = np.where(np.arange(3)[None, :] == plane[:, None], 0.0, abs_n).max(axis=1, initial=0.0)
+    principal = ~((others > 1e-12 * nn) | (np.abs(ua[r, plane]) > 1e-12) | (np.abs(ub[r, plane]) > 1e-12))
+    clothoid = angle_ok & (curvature_continuous | ~principal)
+    blends: list[Blend | None] = [None] * m
+    k = np.flatnonzero(angle_ok & ~clothoid)
+    if len(k):
+        for i, b in zip(k.tolist(), _arc_blends(corner[k], ua[k], ub[k], cos_t[k], theta[k], n[k], plane[k],
+                                                 tolerance[k], d_max[k])):
+            blends[i] = b
+    k = np.flatnonzero(clothoid)
+    if len(k):
+        for i, b in zip(k.tolist(), _clothoid_blends(corner[k], ua[k], ub[k], cos_t[k], n[k], tolerance[k],
+                                                      d_max[k])):
+            blends[i] = b
+    return blends
 
 
 def blend_corners(
@@ -98,7 +181,7 @@ def blend_corners(
     blocks: list[int],
     tolerances: list[float],
     *,
-    worth: Callable[[int, Blend], bool] | None = None,
+    worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
 ) -> tuple[list[Line | Arc | ClothoidPair], list[int]]:
     """Blend line/line corners of a continuous chain.
@@ -112,9 +195,9 @@ def blend_corners(
     tolerances : list of float
         Path tolerance [mm] of each junction ``k`` (between segment ``k`` and ``k+1``).
     worth : callable, optional
-        ``worth(k, blend)`` decides whether blending junction ``k`` with ``blend`` pays off (e.g.
-        the blend's speed bound is a fair share of the lines' feeds); a rejected corner stays
-        sharp.
+        ``worth(blends)`` decides, for all the possible blends of the chain at once (a
+        :class:`CornerBlends`), whether blending each corner pays off (a boolean array); a rejected
+        corner stays sharp.
     curvature_continuous : bool
         Blend every corner with a clothoid pair (G2); otherwise with a circular arc where the
         corner lies in a principal plane and with a clothoid pair elsewhere.
@@ -124,34 +207,49 @@ def blend_corners(
     segments, blocks : list
         The chain with blend arcs inserted (a blend belongs to the block of the incoming line)
         and the lines shortened accordingly; zero-length leftovers are dropped.
+
+    Notes
+    -----
+    Each corner is blended on its own: its blend takes at most half of either programmed line, so the
+    blends of consecutive corners never overlap, and all of a chain's corners are computed at once.
     """
+    is_line = np.array([isinstance(sg, Line) and sg.length > 0 for sg in segments], dtype=bool)
+    cand = np.flatnonzero(is_line[:-1] & is_line[1:]).tolist()
+    blend_at: dict[int, Blend] = {}
+    if cand:
+        made = _corner_blends([segments[k] for k in cand], [segments[k + 1] for k in cand],
+                              np.asarray(tolerances, dtype=float)[cand], curvature_continuous=curvature_continuous)
+        corners = [k for k, b in zip(cand, made) if b is not None]
+        blends = [b for b in made if b is not None]
+        if blends:
+            accepted = [True] * len(blends) if worth is None else np.asarray(
+                worth(CornerBlends.of(np.array(corners), blends)), dtype=bool).tolist()
+            blend_at = {k: b for k, b, ok in zip(corners, blends, accepted) if ok}
+    return _assemble(segments, blocks, blend_at)
+
+
+def _assemble(segments: list, blocks: list[int], blend_at: dict[int, Blend]
+              ) -> tuple[list[Line | Arc | ClothoidPair], list[int]]:
+    """The chain with the blends ``blend_at`` (junction -> blend) inserted and the lines shortened to
+    them (a line shorter than 1e-12 mm between two blends, or before the last one, is dropped)."""
+    n = len(segments)
+    cut = sorted({k for k in blend_at} | {k + 1 for k in blend_at})
+    starts = np.array([blend_at[k - 1].end if k - 1 in blend_at else segments[k].start for k in cut]).reshape(-1, 3)
+    ends = np.array([blend_at[k].start if k in blend_at else segments[k].end for k in cut]).reshape(-1, 3)
+    shortened = dict(zip(cut, Line.from_arrays(starts, ends)))
     out: list[Line | Arc | ClothoidPair] = []
     out_blocks: list[int] = []
-    cur = segments[0]
-    for k in range(len(segments) - 1):
-        nxt = segments[k + 1]
-        res = None
-        if isinstance(cur, Line) and isinstance(nxt, Line) and cur.length > 0 and nxt.length > 0:
-            # the original lengths bound the blends: each end may take at most half a line
-            res = _blend(segments[k], nxt, tolerances[k], curvature_continuous=curvature_continuous)
-            if res is not None and worth is not None and not worth(k, res[1]):
-                res = None
-        if res is None:
-            out.append(cur)
+    for k in range(n):
+        seg = shortened.get(k, segments[k])
+        if k in blend_at:
+            if seg.length > 1e-12:
+                out.append(seg)
+                out_blocks.append(blocks[k])
+            out.append(blend_at[k])
             out_blocks.append(blocks[k])
-            cur = nxt
-            continue
-        p1, arc, p2 = res
-        head = Line(cur.start, p1)
-        if head.length > 1e-12:
-            out.append(head)
+        elif k < n - 1 or seg.length > 1e-12 or not out:
+            out.append(seg)
             out_blocks.append(blocks[k])
-        out.append(arc)
-        out_blocks.append(blocks[k])
-        cur = Line(p2, nxt.end)
-    if cur.length > 1e-12 or not out:
-        out.append(cur)
-        out_blocks.append(blocks[-1])
     return out, out_blocks
 
 

@@ -57,6 +57,24 @@ def _point(value: Sequence[float] | np.ndarray, name: str) -> np.ndarray:
     return arr
 
 
+def _rows(value: np.ndarray, name: str) -> np.ndarray:
+    """Rows of 3 finite coordinates [mm], as a read-only copy (the batch form of :func:`_point`)."""
+    arr = np.array(value, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] != 3 or not np.all(np.isfinite(arr)):
+        raise InputError(f"{name} must be rows of 3 finite coordinates [mm], got an array of shape {arr.shape}")
+    arr.setflags(write=False)
+    return arr
+
+
+def _unit_rows(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Row norms of ``d`` and the unit rows (zero rows where the norm is 0), read-only."""
+    norm = np.sqrt(np.einsum("ij,ij->i", d, d))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(norm[:, None] > 0, d / norm[:, None], 0.0)
+    u.setflags(write=False)
+    return norm, u
+
+
 class Line:
     """Straight segment from ``start`` to ``end``.
 
@@ -86,6 +104,29 @@ class Line:
         u = d / self.length if self.length > 0 else np.zeros(3)
         u.setflags(write=False)
         self.direction = u
+
+    @classmethod
+    def from_arrays(cls, start: np.ndarray, end: np.ndarray) -> list[Line]:
+        """Lines from rows of end points, built at once: the same as ``Line(start[i], end[i])`` per row
+        (to rounding: the lengths are computed by one vectorised expression).
+
+        Parameters
+        ----------
+        start, end : ndarray, shape (n, 3)
+            End points [mm].
+
+        Returns
+        -------
+        list of Line
+        """
+        start, end = _rows(start, "Line start"), _rows(end, "Line end")
+        length, direction = _unit_rows(end - start)
+        out = []
+        for a, b, n, u in zip(start, end, length.tolist(), direction):
+            line = object.__new__(cls)
+            line.start, line.end, line.length, line.direction = a, b, n, u
+            out.append(line)
+        return out
 
     def point_at(self, s: np.ndarray | float) -> np.ndarray:
         """Points at arc length ``s`` [mm]; shape ``s.shape + (3,)``."""
@@ -211,6 +252,66 @@ class Arc:
         en = np.zeros(3)
         en[plane] = 1.0
         self._ep, self._eq, self._en = ep, eq, en
+
+    @classmethod
+    def from_arrays(cls, start: np.ndarray, end: np.ndarray, center: np.ndarray, *, ccw: np.ndarray,
+                    plane: np.ndarray) -> list[Arc | None]:
+        """Arcs (without extra turns) from rows, built at once: the same as ``Arc(start[i], end[i], center[i],
+        ccw=ccw[i], plane=plane[i])`` per row (to rounding), None where that raises :class:`vcnc.InputError`
+        (radius 0, end not on the circle).
+
+        Parameters
+        ----------
+        start, end, center : ndarray, shape (n, 3)
+            [mm]
+        ccw : ndarray of bool, shape (n,)
+        plane : ndarray of int, shape (n,)
+            Normal-axis index of each arc (0, 1 or 2).
+
+        Returns
+        -------
+        list of Arc or None
+        """
+        start, end = _rows(start, "Arc start"), _rows(end, "Arc end")
+        c = np.array(_rows(center, "Arc center"))
+        ccw = np.asarray(ccw, dtype=bool)
+        plane = np.asarray(plane, dtype=np.int64)
+        if not np.all(np.isin(plane, list(PLANE_AXES))):
+            raise InputError("Arc plane must be the normal axis index 0, 1 or 2")
+        r = np.arange(len(start))
+        p = np.array([PLANE_AXES[k][0] for k in range(3)])[plane]
+        q = np.array([PLANE_AXES[k][1] for k in range(3)])[plane]
+        c[r, plane] = start[r, plane]
+        c.setflags(write=False)
+        rs = np.hypot(start[r, p] - c[r, p], start[r, q] - c[r, q])
+        re = np.hypot(end[r, p] - c[r, p], end[r, q] - c[r, q])
+        ok = (rs > 0) & ~(np.abs(rs - re) > 1e-9 * np.maximum(rs, 1.0))
+        a0 = np.arctan2(start[r, q] - c[r, q], start[r, p] - c[r, p])
+        a1 = np.arctan2(end[r, q] - c[r, q], end[r, p] - c[r, p])
+        chord = np.hypot(end[r, p] - start[r, p], end[r, q] - start[r, q])
+        two_pi = 2.0 * math.pi
+        sweep = np.where(ccw, (a1 - a0) % two_pi, (a0 - a1) % two_pi)
+        sweep = np.where(sweep == 0.0, 1e-300, sweep)  # as in __init__: the shortest representable arc
+        sweep = np.where(chord <= 1e-12 * np.maximum(rs, 1.0), two_pi, sweep)
+        sweep = np.where(ccw, sweep, -sweep)
+        helix = end[r, plane] - start[r, plane]
+        length = np.hypot(rs * np.abs(sweep), helix)
+        eye = np.eye(3)
+        eye.setflags(write=False)
+        unit = list(eye)
+        out: list[Arc | None] = []
+        for row in zip(ok.tolist(), start, end, c, plane.tolist(), p.tolist(), q.tolist(), ccw.tolist(), rs.tolist(),
+                       a0.tolist(), sweep.tolist(), helix.tolist(), length.tolist()):
+            if not row[0]:
+                out.append(None)
+                continue
+            arc = object.__new__(cls)
+            (_, arc.start, arc.end, arc.center, arc.plane, pi, qi, arc.ccw, arc.radius, arc.start_angle, arc.sweep,
+             arc.helix, arc.length) = row
+            arc.plane_axes = (pi, qi)
+            arc._ep, arc._eq, arc._en = unit[pi], unit[qi], unit[arc.plane]
+            out.append(arc)
+        return out
 
     def angle_at(self, s: np.ndarray | float) -> np.ndarray:
         """In-plane angle about the centre at arc length ``s`` [rad]."""
@@ -370,12 +471,58 @@ class ClothoidPair:
         self.peak_curvature = theta / lam
         self.deviation = lam * ym / math.cos(half)
 
+    @classmethod
+    def from_arrays(cls, start: np.ndarray, corner: np.ndarray, end: np.ndarray) -> list[ClothoidPair | None]:
+        """Blends from rows, built at once: the same as ``ClothoidPair(start[i], corner[i], end[i])`` per row
+        (to rounding), None where that raises :class:`vcnc.InputError` (legs zero or unequal, deflection not
+        in (0, pi)).
+
+        Parameters
+        ----------
+        start, corner, end : ndarray, shape (n, 3)
+            [mm]
+
+        Returns
+        -------
+        list of ClothoidPair or None
+        """
+        start, corner, end = (_rows(v, f"ClothoidPair {k}") for v, k in ((start, "start"), (corner, "corner"),
+                                                                         (end, "end")))
+        da, ua = _unit_rows(corner - start)
+        db, ub = _unit_rows(end - corner)
+        cos_t = np.clip(np.einsum("ij,ij->i", ua, ub), -1.0, 1.0)
+        nn, normal = _unit_rows(np.cross(ua, ub))
+        theta = np.arctan2(nn, cos_t)
+        ok = (da > 0) & (db > 0) & ~(np.abs(da - db) > 1e-9 * np.maximum(da, db))
+        ok &= (nn > 0) & (theta > 0.0) & (theta < math.pi)
+        _, w_in = _unit_rows(ub - cos_t[:, None] * ua)
+        _, w_out = _unit_rows(cos_t[:, None] * ub - ua)
+        half = 0.5 * theta
+        xm, ym = euler_spiral(half)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lam = 0.5 * (da + db) / (xm + ym * np.tan(half))
+            sharpness, peak = theta / (lam * lam), theta / lam
+        deviation = lam * ym / np.cos(half)
+        out: list[ClothoidPair | None] = []
+        for row in zip(ok.tolist(), start, corner, end, lam.tolist(), theta.tolist(), sharpness.tolist(),
+                       peak.tolist(), deviation.tolist(), ua, ub, w_in, w_out, normal):
+            if not row[0]:
+                out.append(None)
+                continue
+            blend = object.__new__(cls)
+            (_, blend.start, blend.corner, blend.end, blend.half_length, blend.deflection, blend.sharpness,
+             blend.peak_curvature, blend.deviation, blend.u_in, blend.u_out, blend.w_in, blend.w_out,
+             blend.normal) = row
+            blend.length = 2.0 * blend.half_length
+            out.append(blend)
+        return out
+
     @staticmethod
-    def shape_factors(deflection: float) -> tuple[float, float]:
-        """Tangent length and deviation per unit half length [-] for a ``deflection`` [rad]."""
-        half = 0.5 * deflection
-        xm, ym = (float(v) for v in euler_spiral(half))
-        return xm + ym * math.tan(half), ym / math.cos(half)
+    def shape_factors(deflection: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Tangent length and deviation per unit half length [-] for a ``deflection`` [rad] (array or scalar)."""
+        half = 0.5 * np.asarray(deflection, dtype=float)
+        xm, ym = euler_spiral(half)
+        return xm + ym * np.tan(half), ym / np.cos(half)
 
     @classmethod
     def for_corner(cls, corner: np.ndarray, u_in: np.ndarray, u_out: np.ndarray, *, tolerance: float,
@@ -389,7 +536,7 @@ class ClothoidPair:
         theta = math.atan2(float(np.linalg.norm(np.cross(u_in, u_out))), cos_t)
         if not (0.0 < theta < math.pi) or not (tolerance > 0 and max_leg > 0):
             return None
-        leg_f, dev_f = cls.shape_factors(theta)
+        leg_f, dev_f = (float(f) for f in cls.shape_factors(theta))
         lam = min(tolerance / dev_f, max_leg / leg_f)
         d = lam * leg_f
         if not (d > 1e-9):
@@ -480,6 +627,8 @@ class SplineCurve:
         curve interpolates, so that ``point_at(0)`` / ``point_at(length)`` are bit-exact.
     subdivisions : int
         Table nodes per knot interval for the arc length (default 8).
+    derivatives : tuple of three scipy.interpolate.BSpline, optional
+        ``spline.derivative(1)``, ``(2)`` and ``(3)`` when already at hand (the pieces of one curve share them).
 
     Attributes
     ----------
@@ -500,17 +649,16 @@ class SplineCurve:
     ``dk/ds`` follows from the third derivative (:meth:`bounds`).
     """
 
-    __slots__ = ("spline", "u0", "u1", "start", "end", "length", "_d", "_u_of", "_nodes")
+    __slots__ = ("spline", "u0", "u1", "start", "end", "length", "_d", "_s_nodes", "_u_poly", "_nodes", "_bounds")
     kind = "spline"
 
     def __init__(self, spline, u0: float, u1: float, *, start: Sequence[float] | np.ndarray | None = None,
-                 end: Sequence[float] | np.ndarray | None = None, subdivisions: int = 8) -> None:
-        from scipy.interpolate import CubicHermiteSpline
-
+                 end: Sequence[float] | np.ndarray | None = None, subdivisions: int = 8,
+                 derivatives: tuple | None = None) -> None:
         if not (math.isfinite(u0) and math.isfinite(u1) and u0 < u1):
             raise InputError(f"SplineCurve needs u0 < u1, got {u0!r}, {u1!r}")
         self.spline, self.u0, self.u1 = spline, float(u0), float(u1)
-        self._d = (spline.derivative(1), spline.derivative(2), spline.derivative(3))
+        self._d = derivatives or (spline.derivative(1), spline.derivative(2), spline.derivative(3))
         t = np.asarray(spline.t, dtype=float)
         brk = np.unique(np.concatenate([[u0, u1], t[(t > u0) & (t < u1)]]))
         f = np.linspace(0.0, 1.0, subdivisions + 1)[:-1]
@@ -521,15 +669,26 @@ class SplineCurve:
         s_nodes = np.concatenate([[0.0], np.cumsum(h * (speed @ _GL_W))])
         sigma = np.linalg.norm(self._d[0](nodes), axis=1)
         self._nodes = nodes
-        self._u_of = CubicHermiteSpline(s_nodes, nodes, 1.0 / sigma)
+        # u(s): cubic Hermite on each table interval, as power-form coefficients (highest first) in s - s_j
+        du = 1.0 / sigma
+        h = np.diff(s_nodes)
+        slope = np.diff(nodes) / h
+        t = (du[:-1] + du[1:] - 2.0 * slope) / h
+        self._s_nodes = s_nodes
+        self._u_poly = np.stack([t / h, (slope - du[:-1]) / h - t, du[:-1], nodes[:-1]])
         self.length = float(s_nodes[-1])
         self.start = _point(spline(u0) if start is None else start, "SplineCurve start")
         self.end = _point(spline(u1) if end is None else end, "SplineCurve end")
+        self._bounds: tuple[float, float, np.ndarray] | None = None
 
     def parameter_at(self, s: np.ndarray | float) -> np.ndarray:
         """Spline parameter ``u`` at arc length ``s`` [mm] (clipped to the piece)."""
-        s = np.clip(np.asarray(s, dtype=float), 0.0, self.length)
-        return np.clip(self._u_of(s), self.u0, self.u1)
+        # np.minimum/np.maximum: np.clip's own overhead dominates on the few samples of a piece
+        s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), self.length)
+        j = np.minimum(np.maximum(np.searchsorted(self._s_nodes, s, side="right") - 1, 0), len(self._s_nodes) - 2)
+        x = s - self._s_nodes[j]
+        c = self._u_poly[:, j]
+        return np.minimum(np.maximum(((c[0] * x + c[1]) * x + c[2]) * x + c[3], self.u0), self.u1)
 
     def frame(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangent and curvature vector [1/mm] at the spline parameters ``u``."""
@@ -560,7 +719,14 @@ class SplineCurve:
 
         ``dk/ds = k_u / |C'|`` with ``k = N / |C'|^4``, ``N = C'' |C'|^2 - (C'.C'') C'`` and
         ``N_u = C''' |C'|^2 + (C'.C'') C'' - (C'.C''' + C''.C'') C'``.
+        Computed once, then kept (the piece does not change).
         """
+        if self._bounds is None:
+            self._bounds = self._table_bounds()
+        kappa, dkappa, t_abs = self._bounds
+        return kappa, dkappa, t_abs.copy()
+
+    def _table_bounds(self) -> tuple[float, float, np.ndarray]:
         eps = 1e-9 * (self.u1 - self.u0)
         u = np.concatenate([self._nodes[:-1] + eps, self._nodes[1:] - eps])
         d1, d2, d3 = self._d[0](u), self._d[1](u), self._d[2](u)

@@ -3,16 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Sequence
 
+import numba
 import numpy as np
 
-from toolpaths.geometry import Arc, ClothoidPair, Line, euler_spiral
+from toolpaths.geometry import Arc, ClothoidPair, Line
 
 __all__ = ["PackedSegments", "LINE", "ARC", "HOLD", "CLOTHOID"]
 
 #: Segment kinds in :attr:`PackedSegments.kind`.
 LINE, ARC, HOLD, CLOTHOID = 0, 1, 2, 3
+
+_KIND = {Line: LINE, Arc: ARC, ClothoidPair: CLOTHOID}
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -60,7 +64,7 @@ class PackedSegments:
     def from_segments(cls, segments: Sequence[Line | Arc | ClothoidPair | np.ndarray]) -> PackedSegments:
         """Pack lines, arcs, clothoid blends and hold points (a length-3 array [mm] stands for a hold)."""
         n = len(segments)
-        kind = np.zeros(n, dtype=np.int64)
+        kind = np.array([_KIND.get(type(seg), HOLD) for seg in segments], dtype=np.int64).reshape(n)
         length = np.zeros(n)
         start = np.zeros((n, 3))
         end = np.zeros((n, 3))
@@ -73,35 +77,36 @@ class PackedSegments:
         sweep = np.zeros(n)
         helix = np.zeros(n)
         frame = sharpness = None
-        for i, seg in enumerate(segments):
-            if isinstance(seg, Line):
-                kind[i] = LINE
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-            elif isinstance(seg, Arc):
-                kind[i] = ARC
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-                center[i] = seg.center
-                p, q = seg.plane_axes
-                e_p[i, p] = 1.0
-                e_q[i, q] = 1.0
-                e_n[i, seg.plane] = 1.0
-                radius[i] = seg.radius
-                start_angle[i] = seg.start_angle
-                sweep[i] = seg.sweep
-                helix[i] = seg.helix
-            elif isinstance(seg, ClothoidPair):
-                if frame is None:
-                    frame, sharpness = np.zeros((n, 4, 3)), np.zeros(n)
-                kind[i] = CLOTHOID
-                length[i] = seg.length
-                start[i], end[i] = seg.start, seg.end
-                frame[i] = (seg.u_in, seg.w_in, seg.u_out, seg.w_out)
-                sharpness[i] = seg.sharpness
-            else:
-                kind[i] = HOLD
-                start[i] = end[i] = np.asarray(seg, dtype=float)
+        moving = np.flatnonzero(kind != HOLD)
+        if len(moving):
+            segs = [segments[i] for i in moving.tolist()]
+            length[moving] = [seg.length for seg in segs]
+            start[moving] = [seg.start for seg in segs]
+            end[moving] = [seg.end for seg in segs]
+        hold = np.flatnonzero(kind == HOLD)
+        if len(hold):
+            start[hold] = end[hold] = [np.asarray(segments[i], dtype=float) for i in hold.tolist()]
+        ia = np.flatnonzero(kind == ARC)
+        if len(ia):
+            arcs = [segments[i] for i in ia.tolist()]
+            center[ia] = [a.center for a in arcs]
+            r = np.arange(len(ia))
+            pq = np.array([a.plane_axes for a in arcs]).reshape(-1, 2)
+            plane = np.array([a.plane for a in arcs])
+            for field, col in ((e_p, pq[:, 0]), (e_q, pq[:, 1]), (e_n, plane)):
+                unit = np.zeros((len(ia), 3))
+                unit[r, col] = 1.0
+                field[ia] = unit
+            radius[ia] = [a.radius for a in arcs]
+            start_angle[ia] = [a.start_angle for a in arcs]
+            sweep[ia] = [a.sweep for a in arcs]
+            helix[ia] = [a.helix for a in arcs]
+        ic = np.flatnonzero(kind == CLOTHOID)
+        if len(ic):
+            blends = [segments[i] for i in ic.tolist()]
+            frame, sharpness = np.zeros((n, 4, 3)), np.zeros(n)
+            frame[ic] = [(b.u_in, b.w_in, b.u_out, b.w_out) for b in blends]
+            sharpness[ic] = [b.sharpness for b in blends]
         return cls(kind=kind, length=length, start=start, end=end, center=center, e_p=e_p, e_q=e_q, e_n=e_n,
                    radius=radius, start_angle=start_angle, sweep=sweep, helix=helix, frame=frame,
                    sharpness=sharpness)
@@ -137,70 +142,104 @@ class PackedSegments:
             ``v`` / ``a`` are not given; the acceleration needs ``v``).
         """
         seg = np.asarray(seg, dtype=np.int64)
-        L = self.length[seg]
-        s = np.clip(np.asarray(s, dtype=float), 0.0, L)
+        s = np.asarray(s, dtype=float)
         m = len(seg)
         pos = np.empty((m, 3))
-        tan = np.zeros((m, 3)) if v is not None else None
-        curv = np.zeros((m, 3)) if a is not None else None
-        kind = self.kind[seg]
-        safe_L = np.where(L > 0, L, 1.0)
-        f = s / safe_L
-
-        il = np.flatnonzero(kind == LINE)
-        if len(il):
-            sl = seg[il]
-            d = self.end[sl] - self.start[sl]
-            pos[il] = self.start[sl] + d * f[il, None]
-            if tan is not None:
-                tan[il] = d / safe_L[il, None]
-        ih = np.flatnonzero(kind == HOLD)
-        if len(ih):
-            pos[ih] = self.start[seg[ih]]
-        ia = np.flatnonzero(kind == ARC)
-        if len(ia):
-            sa = seg[ia]
-            fa = f[ia]
-            sw = self.sweep[sa]
-            phi = self.start_angle[sa] + sw * fa
-            c, sn = np.cos(phi)[:, None], np.sin(phi)[:, None]
-            ep, eq, en = self.e_p[sa], self.e_q[sa], self.e_n[sa]
-            r = self.radius[sa][:, None]
-            hel = self.helix[sa][:, None]
-            radial = c * ep + sn * eq
-            pos[ia] = self.center[sa] + r * radial + (hel * fa[:, None]) * en
-            La = safe_L[ia][:, None]
-            if tan is not None:
-                tan[ia] = (r * sw[:, None] / La) * (c * eq - sn * ep) + (hel / La) * en
-            if curv is not None:
-                curv[ia] = -(r * (sw[:, None] / La) ** 2) * radial
-        ic = np.flatnonzero(kind == CLOTHOID)
-        if len(ic):
-            sc = seg[ic]
-            Lc, s_c = L[ic], s[ic]
-            first = (s_c <= 0.5 * Lc)[:, None]
-            r = np.where(first[:, 0], s_c, Lc - s_c)
-            phi = 0.5 * self.sharpness[sc] * r * r
-            fr = self.frame[sc]
-            u = np.where(first, fr[:, 0], fr[:, 2])
-            w = np.where(first, fr[:, 1], fr[:, 3])
-            sgn = np.where(first[:, 0], 1.0, -1.0)  # the second half runs backwards from the end
-            x, y = euler_spiral(phi)
-            pos[ic] = np.where(first, self.start[sc], self.end[sc]) + (sgn * r * x)[:, None] * u + (r * y)[:, None] * w
-            if tan is not None or curv is not None:
-                c, sn = np.cos(phi)[:, None], np.sin(phi)[:, None]
-                if tan is not None:
-                    tan[ic] = c * u + (sgn[:, None] * sn) * w
-                if curv is not None:
-                    curv[ic] = (self.sharpness[sc] * r)[:, None] * (c * w - (sgn[:, None] * sn) * u)
-        at_end = (s >= L) & (kind != HOLD)
-        pos[at_end] = self.end[seg[at_end]]
-        at_start = (s <= 0) & (kind != HOLD)
-        pos[at_start] = self.start[seg[at_start]]
-        vel = acc = None
-        if v is not None:
-            v = np.asarray(v, dtype=float)
-            vel = tan * v[:, None]
-            if a is not None:
-                acc = tan * np.asarray(a, dtype=float)[:, None] + curv * (v * v)[:, None]
+        vel = np.empty((m, 3)) if v is not None else None
+        acc = np.empty((m, 3)) if v is not None and a is not None else None
+        none = np.zeros(0)
+        frame = self.frame if self.frame is not None else np.zeros((0, 4, 3))
+        sharpness = self.sharpness if self.sharpness is not None else none
+        _evaluate(seg, s, none if v is None else np.asarray(v, dtype=float),
+                  none if a is None else np.asarray(a, dtype=float), self.kind, self.length, self.start, self.end,
+                  self.center, self.e_p, self.e_q, self.e_n, self.radius, self.start_angle, self.sweep, self.helix,
+                  frame, sharpness, pos, none.reshape(0, 3) if vel is None else vel,
+                  none.reshape(0, 3) if acc is None else acc)
         return pos, vel, acc
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _euler(phi):  # pragma: no cover - compiled
+    """:func:`toolpaths.geometry.euler_spiral` of one phase, the same series in the same order."""
+    x = 0.0
+    y = 0.0
+    term = 1.0
+    for k in range(28):
+        sign = 1.0 if k % 4 < 2 else -1.0
+        if k % 2 == 0:
+            x = x + sign * term / (2 * k + 1)
+        else:
+            y = y + sign * term / (2 * k + 1)
+        term = term * phi / (k + 1)
+    return x, y
+
+
+@numba.njit(cache=True, nogil=True)
+def _evaluate(seg, s_in, v, a, kind, length, start, end, center, e_p, e_q, e_n, radius, start_angle, sweep, helix,
+              frame, sharpness, pos, vel, acc):  # pragma: no cover - compiled
+    """:meth:`PackedSegments.evaluate` as one loop over the points (no temporaries per kind): fills ``pos`` and,
+    when ``v`` (and ``a``) are not empty, ``vel`` (and ``acc``); the formulas of the lines, arcs (Arc.point_at,
+    tangent_at, curvature_at) and clothoid pairs (ClothoidPair, both halves) in the same order."""
+    tan = np.zeros(3)
+    curv = np.zeros(3)
+    for i in range(seg.shape[0]):
+        m = seg[i]
+        L = length[m]
+        s = min(max(s_in[i], 0.0), L)
+        safe_L = L if L > 0 else 1.0
+        f = s / safe_L
+        k = kind[m]
+        for j in range(3):
+            tan[j] = 0.0
+            curv[j] = 0.0
+        if k == LINE:
+            for j in range(3):
+                d = end[m, j] - start[m, j]
+                pos[i, j] = start[m, j] + d * f
+                tan[j] = d / safe_L
+        elif k == HOLD:
+            for j in range(3):
+                pos[i, j] = start[m, j]
+        elif k == ARC:
+            sw = sweep[m]
+            phi = start_angle[m] + sw * f
+            c = math.cos(phi)
+            sn = math.sin(phi)
+            r = radius[m]
+            hel = helix[m]
+            w = r * sw / safe_L
+            kk = r * (sw / safe_L) ** 2
+            for j in range(3):
+                radial = c * e_p[m, j] + sn * e_q[m, j]
+                pos[i, j] = center[m, j] + r * radial + (hel * f) * e_n[m, j]
+                tan[j] = w * (c * e_q[m, j] - sn * e_p[m, j]) + (hel / safe_L) * e_n[m, j]
+                curv[j] = -kk * radial
+        else:  # CLOTHOID: the first half from the start, the second backwards from the end
+            first = s <= 0.5 * L
+            r = s if first else L - s
+            phi = 0.5 * sharpness[m] * r * r
+            x, y = _euler(phi)
+            c = math.cos(phi)
+            sn = math.sin(phi)
+            sgn = 1.0 if first else -1.0
+            ku = 0 if first else 2
+            for j in range(3):
+                u = frame[m, ku, j]
+                w = frame[m, ku + 1, j]
+                base = start[m, j] if first else end[m, j]
+                pos[i, j] = base + (sgn * r * x) * u + (r * y) * w
+                tan[j] = c * u + (sgn * sn) * w
+                curv[j] = (sharpness[m] * r) * (c * w - (sgn * sn) * u)
+        if k != HOLD:
+            if s <= 0:
+                for j in range(3):
+                    pos[i, j] = start[m, j]
+            elif s >= L:
+                for j in range(3):
+                    pos[i, j] = end[m, j]
+        if v.shape[0]:
+            for j in range(3):
+                vel[i, j] = tan[j] * v[i]
+            if a.shape[0]:
+                for j in range(3):
+                    acc[i, j] = tan[j] * a[i] + curv[j] * (v[i] * v[i])

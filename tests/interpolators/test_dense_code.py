@@ -14,7 +14,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program
-from interpolators.dense import DENSE_MAX_LENGTH, merge_dense_runs
+from interpolators.dense import DENSE_MAX_LENGTH, fit_run, merge_dense_runs
 from interpolators.interpolate import CURVE_PATH_ERROR
 from toolpaths.geometry import Line
 from vcnc.contour import contour_error
@@ -190,3 +190,46 @@ def test_dense_arc_between_tangent_lines_runs_like_the_arc(profile):
     assert sp.duration <= 1.02 * sp_arc.duration  # measured 1.006 (trapezoid), 1.008 (S-curve)
     assert _distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
+
+
+@pytest.mark.parametrize("tangents", [(False, False), (True, False), (True, True)])
+def test_fit_matches_dense_constrained_least_squares(tangents):
+    """fit_run's banded normal equations give the coefficients of an independent dense least-squares solve
+    (np.linalg.lstsq on the full design matrix): end points fixed, end tangents imposed as a length along the
+    given direction, the other coefficients free."""
+    from scipy.interpolate import BSpline
+
+    a = np.linspace(0.0, 1.2, 301)
+    pts = np.round(np.c_[30.0 * np.cos(a), 30.0 * np.sin(a), 0.5 * a], 4)
+    t0 = np.array([0.0, 1.0, 0.5 / 30.0]) / math.hypot(1.0, 0.5 / 30.0) if tangents[0] else None
+    t1 = (np.array([-math.sin(1.2), math.cos(1.2), 0.5 / 30.0]) / math.hypot(1.0, 0.5 / 30.0)
+          if tangents[1] else None)
+    spl = fit_run(pts, TOL, tangents=(t0, t1))
+    assert spl is not None
+    u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    B = BSpline.design_matrix(u, spl.t, 3).toarray()
+    m = B.shape[1]
+    fixed = {0: pts[0], m - 1: pts[-1]}
+    dirs = []
+    if t0 is not None:
+        fixed[1] = pts[0]
+        dirs.append((1, t0))
+    if t1 is not None:
+        fixed[m - 2] = pts[-1]
+        dirs.append((m - 2, -t1))
+    free = [j for j in range(m) if j not in fixed]
+    rhs = pts - sum(np.outer(B[:, j], p) for j, p in fixed.items())
+    # unknowns: x, y, z of the free coefficients, then one length per tangent
+    A = np.zeros((3 * len(pts), 3 * len(free) + len(dirs)))
+    for d in range(3):
+        A[d * len(pts):(d + 1) * len(pts), d * len(free):(d + 1) * len(free)] = B[:, free]
+        for i, (j, direction) in enumerate(dirs):
+            A[d * len(pts):(d + 1) * len(pts), 3 * len(free) + i] = B[:, j] * direction[d]
+    x = np.linalg.lstsq(A, rhs.T.reshape(-1), rcond=None)[0]
+    c = np.zeros((m, 3))
+    for j, p in fixed.items():
+        c[j] = p
+    c[free] = x[:3 * len(free)].reshape(3, len(free)).T
+    for i, (j, direction) in enumerate(dirs):
+        c[j] = c[j] + x[3 * len(free) + i] * direction
+    np.testing.assert_allclose(spl.c, c, rtol=0, atol=1e-9)

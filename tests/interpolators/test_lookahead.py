@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from interpolators import interpolate, parse_program
+from interpolators.lookahead import blend_corners
 from tests.interpolators.setpoint_checks import check_limits
 from tests.interpolators.test_interpolate import LIMITS
 from toolpaths.geometry import ClothoidPair, Line
@@ -168,3 +169,49 @@ def test_short_arcs_of_small_radius_at_high_feed(profile):
     stop = interpolate(parse_program(text.replace("G64 P0.01", "G61")), limits=LIMITS, profile=profile)
     assert sp.duration <= stop.duration + sp.sample_time
     assert np.array_equal(sp.position[-1], prog.end_position)
+
+
+def test_blend_corners_match_closed_form_and_for_corner():
+    """All the corners of a chain blended at once: XY corners get the tangent arc of the closed form
+    (radius ``e / (sec(theta/2) - 1)``, legs ``r tan(theta/2)``, at most half the shorter line), a corner
+    outside the principal planes and, curvature continuous, every corner the pair of ClothoidPair.for_corner;
+    the lines between are shortened to the blends' ends (the 0.2 mm line, half taken by each blend, vanishes)."""
+    pts = np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [12.0, 3.0, 0.0], [12.0, 3.2, 0.0], [20.0, 3.2, 0.0],
+                    [25.0, 6.0, 4.0]])
+    lines = [Line(a, b) for a, b in zip(pts[:-1], pts[1:])]
+    tol = [0.05, 0.02, 0.05, 0.03]
+    segs, blocks = blend_corners(lines, [0, 1, 2, 3, 4], tol)
+    assert [type(s).__name__ for s in segs] == ["Line", "Arc", "Line", "Arc", "Arc", "Line", "ClothoidPair", "Line"]
+    assert blocks == [0, 0, 1, 1, 2, 3, 3, 4]
+    for k, blend in zip(range(3), (segs[1], segs[3], segs[4])):
+        u_in, u_out = lines[k].direction, lines[k + 1].direction
+        theta = math.acos(float(u_in @ u_out))
+        radius = tol[k] / (1.0 / math.cos(theta / 2) - 1.0)
+        leg = radius * math.tan(theta / 2)
+        half = 0.5 * min(lines[k].length, lines[k + 1].length)
+        if leg > half:
+            leg, radius = half, half / math.tan(theta / 2)
+        assert blend.radius == pytest.approx(radius, rel=1e-12)
+        np.testing.assert_allclose(blend.start, pts[k + 1] - leg * u_in, atol=1e-12)
+        np.testing.assert_allclose(blend.end, pts[k + 1] + leg * u_out, atol=1e-12)
+    assert np.linalg.norm(segs[3].start - pts[2]) == pytest.approx(0.1, rel=1e-12)  # half the 0.2 mm line
+    ref = ClothoidPair.for_corner(pts[4], lines[3].direction, lines[4].direction, tolerance=tol[3],
+                                  max_leg=0.5 * min(lines[3].length, lines[4].length))
+    for name in ("start", "end", "sharpness", "deviation"):
+        np.testing.assert_allclose(getattr(segs[6], name), getattr(ref, name), rtol=1e-12, atol=1e-12)
+    for a, b in zip(segs[:-1], segs[1:]):
+        np.testing.assert_allclose(a.end, b.start, atol=1e-12)
+    np.testing.assert_array_equal(segs[0].start, pts[0])
+    np.testing.assert_array_equal(segs[-1].end, pts[-1])
+    smooth, _ = blend_corners(lines, [0, 1, 2, 3, 4], tol, curvature_continuous=True)
+    blends = [s for s in smooth if isinstance(s, ClothoidPair)]
+    assert len(blends) == 4
+    for k, blend in enumerate(blends):
+        ref = ClothoidPair.for_corner(pts[k + 1], lines[k].direction, lines[k + 1].direction, tolerance=tol[k],
+                                      max_leg=0.5 * min(lines[k].length, lines[k + 1].length))
+        np.testing.assert_allclose(blend.start, ref.start, atol=1e-12)
+        assert blend.peak_curvature == pytest.approx(ref.peak_curvature, rel=1e-12)
+    # a predicate rejecting a corner leaves it sharp
+    kept, _ = blend_corners(lines, [0, 1, 2, 3, 4], tol, worth=lambda b: b.corner != 1)
+    assert [type(s).__name__ for s in kept].count("Arc") == 2
+    np.testing.assert_array_equal(kept[2].end, pts[2])

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from toolpaths import Arc, Line, PackedSegments, Path
+from toolpaths.geometry import PLANE_AXES, ClothoidPair
 from vcnc.errors import InputError
 
 
@@ -79,6 +80,18 @@ def test_packed_matches_primitives():
         assert np.allclose(acc, seg.tangent_at(s) * a[:, None] + seg.curvature_at(s) * (v * v)[:, None], atol=1e-12)
     pos, _, _ = packed.evaluate(np.array([3]), np.array([0.0]))
     assert np.array_equal(pos[0], segs[3])
+    # mixed kinds in any order, without acceleration; arc lengths beyond the ends are clipped to them
+    seg = rng.integers(0, 4, 40)
+    s = rng.uniform(-1.0, 12.0, 40)
+    pos, vel, acc = packed.evaluate(seg, s, np.ones(40))
+    assert acc is None
+    for i, (k, s_k) in enumerate(zip(seg, s)):
+        if k == 3:
+            assert np.array_equal(pos[i], segs[3]) and not vel[i].any()
+            continue
+        s_k = min(max(s_k, 0.0), segs[k].length)
+        assert np.allclose(pos[i], segs[k].point_at(s_k), atol=1e-12)
+        assert np.allclose(vel[i], segs[k].tangent_at(s_k), atol=1e-12)
 
 
 def test_path_records_blocks():
@@ -87,3 +100,55 @@ def test_path_records_blocks():
     assert len(path) == 2 and path.length == pytest.approx(2.0)
     with pytest.raises(InputError):
         Path(segments=segs, blocks=(0,))
+
+
+def _same_attributes(built, reference, names) -> None:
+    for name in names:
+        np.testing.assert_allclose(getattr(built, name), getattr(reference, name), rtol=1e-13, atol=1e-13,
+                                   err_msg=name)
+
+
+def test_bulk_constructors_match_the_constructors_row_by_row():
+    """Line/Arc/ClothoidPair.from_arrays build what the constructors build per row, None where they raise."""
+    rng = np.random.default_rng(3)
+    start, end = rng.normal(size=(20, 3)) * 50, rng.normal(size=(20, 3)) * 50
+    for built, a, b in zip(Line.from_arrays(start, end), start, end):
+        _same_attributes(built, Line(a, b), ("start", "end", "length", "direction"))
+    # arcs in the three planes, both senses, one with its end off the circle (the constructor raises)
+    center = rng.normal(size=(6, 3)) * 10
+    plane = np.array([0, 1, 2, 0, 1, 2])
+    ccw = np.array([True, False, True, False, True, False])
+    ang0, ang1 = rng.uniform(0, 2 * np.pi, 6), rng.uniform(0, 2 * np.pi, 6)
+    a_start, a_end = center.copy(), center.copy()
+    for i, k in enumerate(plane):
+        p, q = PLANE_AXES[int(k)]
+        a_start[i, [p, q]] += 7.0 * np.array([np.cos(ang0[i]), np.sin(ang0[i])])
+        a_end[i, [p, q]] += 7.0 * np.array([np.cos(ang1[i]), np.sin(ang1[i])])
+        a_end[i, k] += 3.0  # a helix
+    a_end[4] += 0.5 * (a_end[4] - center[4])  # off the circle
+    built = Arc.from_arrays(a_start, a_end, center, ccw=ccw, plane=plane)
+    for i, arc in enumerate(built):
+        if i == 4:
+            assert arc is None
+            with pytest.raises(InputError):
+                Arc(a_start[i], a_end[i], center[i], ccw=bool(ccw[i]), plane=int(plane[i]))
+            continue
+        ref = Arc(a_start[i], a_end[i], center[i], ccw=bool(ccw[i]), plane=int(plane[i]))
+        _same_attributes(arc, ref, ("start", "end", "center", "radius", "start_angle", "sweep", "helix", "length"))
+        assert (arc.plane, arc.plane_axes, arc.ccw) == (ref.plane, ref.plane_axes, ref.ccw)
+        s = np.linspace(0.0, ref.length, 9)
+        np.testing.assert_allclose(arc.point_at(s), ref.point_at(s), atol=1e-12)
+    # clothoid pairs: random corners, one with unequal legs (the constructor raises)
+    corner = rng.normal(size=(5, 3))
+    u_in, u_out = rng.normal(size=(5, 3)), rng.normal(size=(5, 3))
+    u_in /= np.linalg.norm(u_in, axis=1)[:, None]
+    u_out /= np.linalg.norm(u_out, axis=1)[:, None]
+    c_start, c_end = corner - 0.3 * u_in, corner + 0.3 * u_out
+    c_end[2] = corner[2] + 0.5 * u_out[2]
+    for i, blend in enumerate(ClothoidPair.from_arrays(c_start, corner, c_end)):
+        if i == 2:
+            assert blend is None
+            continue
+        ref = ClothoidPair(c_start[i], corner[i], c_end[i])
+        _same_attributes(blend, ref, ("start", "corner", "end", "length", "half_length", "deflection", "sharpness",
+                                      "peak_curvature", "deviation", "u_in", "u_out", "w_in", "w_out", "normal"))
