@@ -96,7 +96,7 @@ from pathlib import Path
 
 import numpy as np
 
-from interpolators._words import INCH, Where
+from interpolators._words import INCH, Where, lines_of
 from interpolators.arcs import (
     ArcWordError,
     arc_from_center,
@@ -387,10 +387,17 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name))
     notes = _Notes()
+    homing: list[int] = []
+    raw_lines = lines_of(text)
     if dialect.name == "grbl":
-        text, blanked = system_lines(text, source)
-        for _ in range(blanked):
+        grbl = system_lines(text, source)
+        text, homing = grbl.text, list(grbl.homing)
+        for _ in range(grbl.blanked):
             notes.add("grbl $ system commands (reports, settings) not run")
+        for _ in range(grbl.closed):
+            notes.add("unclosed ( comments read to the end of the line (grbl)")
+    if _OUTPUT_COMMAND.search(text):
+        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
     blocks: list[Block] = []
     used: set[int] = set()
@@ -408,6 +415,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         if fl.file != source and fl.file not in external:
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
+        while homing and fl.file == source and homing[0] < fl.line:
+            _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
@@ -418,6 +427,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             _finish_compensation(st, blocks, source)
         if ended:
             break
+    else:
+        for line in homing:  # $H lines after the last block
+            _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
@@ -438,6 +450,10 @@ def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], 
         notes.add("(LOG...) comments: no log file written")
     elif keyword.startswith("py"):
         notes.add(f"({keyword.upper()},...) Python comment not run")
+
+
+#: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
+_OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
 
 
 def _ends_with_m99(text: str) -> bool:
@@ -896,6 +912,12 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:
         w = seen["E"]
+        before = where.text[:w.column - 1]
+        if before[-1:].isdigit() or before[-1:] == ".":
+            # "J -8.775e-05": G-code numbers have no exponent (overview.adoc "Numbers"; grbl read_float)
+            number = re.search(r"[-+]?[\d.]+$", before).group(0) + w.text
+            where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
+                       column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
@@ -1698,6 +1720,18 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
     else:
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+
+
+def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:
+    """grbl ``$H`` (:mod:`interpolators.iso_grbl`): Z to the machine's home, then X and Y, as rapids
+    [mm, machine]; offsets and modes stay."""
+    home = np.array(st.context.home, dtype=float)
+    up = st.pos.copy()
+    up[2] = home[2]
+    _rapid(up, st, blocks, used, where, None, ["Z"])
+    _rapid(home, st, blocks, used, where, None, ["X", "Y"])
+    st.stopped = False
+    notes.add("grbl $H homing run as rapids to home (Z, then X Y)")
 
 
 def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:

@@ -14,43 +14,68 @@ G-code: ``$`` system commands (``$$`` settings report, ``$G`` parser state, ``$I
   run instead of the G-code parser. Reports (``$``, ``$$``, ``$#``, ``$G``, ``$I``, ``$N``), the
   alarm unlock ``$X``, stored build info ``$I=..`` and startup lines ``$Nx=..`` (run at the next reset,
   not now) and settings ``$x=value`` (steps, rates, accelerations of the machine, which vcnc takes
-  from its own limits) do not move the tool: they become blank lines, with a note. Homing ``$H``,
-  jogging ``$J=``, check mode ``$C`` (the G-code after it is checked, not run), ``$RST=`` (restores
-  settings and work offsets) and sleep ``$SLP`` change what the program does and are errors naming
-  the command.
+  from its own limits) do not move the tool: they become blank lines, with a note. Jogging ``$J=``,
+  check mode ``$C`` (the G-code after it is checked, not run), ``$RST=`` (restores settings and work
+  offsets) and sleep ``$SLP`` change what the program does and are errors naming the command.
+* ``$H`` runs the homing cycle (``doc/markdown/commands.md``: "the only way to perform the homing
+  cycle in Grbl"; ``grbl/limits.c`` ``limits_go_home``): with the default ``config.h`` the cycles are
+  ``HOMING_CYCLE_0`` = Z ("First move Z to clear workspace") then ``HOMING_CYCLE_1`` = X and Y
+  together. The machine ends at its home, the work offsets and G92 kept. :func:`system_lines` blanks
+  the line and lists it in :attr:`GrblLines.homing`; the reader runs it as a rapid of Z to the home
+  position of the machine context, then of X and Y (the homing switches' seek and locate feeds are
+  not modelled).
+* A ``(`` comment that does not close runs to the end of the line (``protocol.c``: "Enable comments
+  flag and ignore all characters until ')' or EOL"); LinuxCNC and Fanuc refuse it.
 """
 
 from __future__ import annotations
 
 import re
+from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_words import comment_spans
 
-__all__ = ["system_lines"]
+__all__ = ["GrblLines", "system_lines"]
 
 #: ``$`` commands that neither move the tool nor change the program's geometry (grbl ``system.c``).
 _PASSIVE = re.compile(r"\$(?:|\$|#|G|I(?:=.*)?|N(?:\d+=.*)?|X|\d+=[-+]?[\d.]+)")
 #: ``$`` commands that do, by their name in grbl's documentation.
-_ACTIVE = {"H": "$H homing cycle", "J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
+_ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
            "S": "$SLP sleep"}
 
 
-def system_lines(text: str, source: str | None) -> tuple[str, int]:
-    """The program text with grbl's system-command lines blanked and ``?`` dropped (line numbers
-    kept), and the number of system-command lines blanked.
+class GrblLines(NamedTuple):
+    """A grbl file read for its system commands: ``text`` with the system-command lines blanked, ``?``
+    dropped and unclosed ``(`` comments closed at the end of their line (line numbers kept);
+    ``blanked`` the number of report and setting lines blanked, ``homing`` the (1-based) lines of
+    ``$H`` homing cycles, also blanked, and ``closed`` the number of comments closed."""
+
+    text: str
+    blanked: int
+    homing: tuple[int, ...]
+    closed: int
+
+
+def system_lines(text: str, source: str | None) -> GrblLines:
+    """The program text with grbl's system-command lines blanked, ``?`` dropped and unclosed comments
+    closed, as :class:`GrblLines`.
 
     Raises
     ------
     vcnc.GCodeError
-        A ``$`` command that moves the machine or changes the program's run (``$H``, ``$J=``, ``$C``,
-        ``$RST=``, ``$SLP``), or one grbl does not know.
+        A ``$`` command that changes the program's run (``$J=``, ``$C``, ``$RST=``, ``$SLP``), or one
+        grbl does not know.
     """
     out = []
-    blanked = 0
+    blanked = closed = 0
+    homing: list[int] = []
     for number, raw in enumerate(lines_of(text), start=1):
         where = Where(source, number, raw)
-        spans, semicolon = comment_spans(raw, where)
+        spans, semicolon = comment_spans(raw, where, unclosed_to_end=True)
+        if spans and spans[-1][1] == len(raw) and not raw.endswith(")"):
+            raw += ")"
+            closed += 1
         code = list(raw[:semicolon])
         for start, end in spans:
             code[start:end] = " " * (end - start)
@@ -61,15 +86,20 @@ def system_lines(text: str, source: str | None) -> tuple[str, int]:
                 out.append("")
                 blanked += 1
                 continue
+            if command.replace("?", "") == "$H":
+                out.append("")
+                homing.append(number)
+                continue
             name = _ACTIVE.get(command[1:2])
             if name is not None:
-                where.fail(f"grbl {name}: not supported (it moves the machine or changes how the program runs)",
+                where.fail(f"grbl {name}: not supported (it changes how the program runs)",
                            column=column, text=command,
-                           expected="G-code, or grbl reports and settings ($$, $G, $I, $#, $N, $X, $x=value)")
+                           expected="G-code, $H homing, or grbl reports and settings ($$, $G, $I, $#, $N, $X, "
+                                    "$x=value)")
             where.fail("unknown grbl system command", column=column, text=command,
-                       expected="$$, $#, $G, $I, $N, $X, $x=value (reports and settings), or G-code")
+                       expected="$H, $$, $#, $G, $I, $N, $X, $x=value (homing, reports and settings), or G-code")
         out.append(_without_status_queries(raw, spans, semicolon))
-    return "\n".join(out), blanked
+    return GrblLines("\n".join(out), blanked, tuple(homing), closed)
 
 
 def _without_status_queries(raw: str, spans: list[tuple[int, int]], semicolon: int) -> str:

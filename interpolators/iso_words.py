@@ -48,10 +48,11 @@ class Word:
     text: str
 
 
-def comment_spans(raw: str, where: Where) -> tuple[list[tuple[int, int]], int]:
+def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> tuple[list[tuple[int, int]], int]:
     """The ``( ... )`` comments of a line as ``(start, end)`` slices, the parentheses included (nested
     parentheses allowed), and where a ``;`` comment starts (``len(raw)`` without one). An unclosed
-    ``(`` is an error."""
+    ``(`` is an error, or with ``unclosed_to_end`` (grbl, :mod:`interpolators.iso_grbl`) a comment to the
+    end of the line."""
     spans: list[tuple[int, int]] = []
     i, n = 0, len(raw)
     while i < n:
@@ -66,6 +67,9 @@ def comment_spans(raw: str, where: Where) -> tuple[list[tuple[int, int]], int]:
             if depth:
                 # not nested after all: as Fanuc and LinuxCNC read it, the comment ends at the first ')'
                 j = raw.find(")", i) + 1
+                if j == 0 and unclosed_to_end:
+                    spans.append((i, n))
+                    return spans, n
                 if j == 0:
                     where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
             spans.append((i, j))

@@ -69,6 +69,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
   (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
+  The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
+- grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
+  and move nothing, but ``$H``, the homing cycle: Z to the home position, then X and Y
+  (``HOMING_CYCLE_0``, ``HOMING_CYCLE_1``), as rapids; a ``(`` without ``)`` comments out the rest
+  of the line (``protocol.c``).
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -354,8 +359,9 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(text.splitlines(), start=1):
         s = clean_line(raw)
-        if grbl:  # grbl: '$' lines are system commands (system.c), '?' a real-time status query (serial.c)
-            s = "" if s.startswith("$") else s.replace("?", "")
+        if grbl:  # grbl: '$' lines are system commands (system.c), '?' a real-time status query (serial.c);
+            # '$H' the homing cycle (commands.md), run below
+            s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "")
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)
@@ -366,7 +372,8 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
         if m:
             out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3), seq=seq))
         elif mac:
-            kind = next(k for k in ("if", "goto", "while", "do", "end") if s.startswith(k))
+            kind = next(k for k in ("if", "goto", "while", "do", "end", "dprnt", "bprnt", "popen", "pclos")
+                        if s.startswith(k))
             out.append(_Line(no, s, seq=seq, macro=(kind, s[len(kind):])))
         else:
             out.append(_Line(no, s, seq=seq))
@@ -374,7 +381,9 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
 
 
 #: Fanuc custom macro B statements (Fanuc 0i-MD B-64304EN "Branch and repetition"), on a cleaned line.
-_MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$)")
+#: Also the external output commands, which send text and move nothing (B-64304EN "External output
+#: commands"; Haas "Formatted Output": DPRNT must be the only command in the block).
+_MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$|[db]prnt\[.*\]$|popen$|pclos$)")
 
 
 def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
@@ -1196,6 +1205,13 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if not ln.text:
             pc += 1
             continue
+        if ln.text == "$h":  # grbl limits.c limits_go_home, config.h HOMING_CYCLE_0 (Z) then _1 (X Y)
+            for axes in ((2,), (0, 1)):
+                end = m.pos.copy()
+                end[list(axes)] = np.asarray(context.home, float)[list(axes)]
+                m.emit(ln.number, "rapid", end, rows="optional" if np.allclose(end, m.pos) else "one")
+            pc += 1
+            continue
         res = _block(m, params, ln)
         if res == "end":
             break
@@ -1228,7 +1244,7 @@ def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
     after this one in the same program, else the first from the program's start; IF [c] GOTO n /
     THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE)."""
     kind, rest = ln.macro
-    if kind == "do":
+    if kind in ("do", "dprnt", "bprnt", "popen", "pclos"):
         return pc + 1
     if kind == "end":
         return st["ends"][pc]

@@ -620,11 +620,65 @@ def test_grbl_system_command_lines_and_status_query_are_not_g_code():
     assert "grbl $ system commands (reports, settings) not run x5" in prog.notes
 
 
-@pytest.mark.parametrize("line, name", [("$H", "$H homing cycle"), ("$J=G91 X10 F100", "$J= jog"),
+@pytest.mark.parametrize("line, name", [("$J=G91 X10 F100", "$J= jog"),
                                         ("$C", "$C check g-code mode"), ("$RST=#", "$RST= restore")])
 def test_grbl_system_commands_that_move_or_change_the_run_are_refused(line, name):
     with pytest.raises(GCodeError, match=rf"2:1: grbl {re.escape(name)}: not supported"):
         parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("grbl"))
+
+
+def test_grbl_homing_cycle_moves_z_home_then_x_y_and_keeps_the_offsets():
+    """grbl ``$H`` (doc/markdown/commands.md; config.h HOMING_CYCLE_0 = Z, HOMING_CYCLE_1 = X Y): with
+    home at machine (0, 0, 100) and G54 at (100, 50, -20), from program (1, 2, 3) = machine
+    (101, 52, -17) Z goes up to 100, then X Y to 0 0; G54 still holds, so X5 is machine 105 and Y
+    stays at machine 0. A ``$H`` after the last block runs too."""
+    text = "G21 G90\nG0 X1 Y2 Z3\n$H\nG0 X5\n$H\n"
+    prog = _checked(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [
+        [101, 52, -17], [101, 52, 100], [0, 0, 100], [105, 0, 100], [105, 0, 100], [0, 0, 100]]
+    assert [(b.line, b.kind) for b in prog.blocks][1:3] == [(3, "rapid"), (3, "rapid")]
+    assert prog.blocks[1].text == "$H"
+    assert "grbl $H homing run as rapids to home (Z, then X Y) x2" in prog.notes
+
+
+def test_grbl_reads_an_unclosed_comment_to_the_end_of_the_line():
+    # grbl protocol.c: "ignore all characters until ')' or EOL"; LinuxCNC: "Unclosed comment found"
+    text = "G21 G90\nG0 X1 (to the left; Y9\nG0 Y2\n"
+    prog = _checked(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
+    assert "unclosed ( comments read to the end of the line (grbl)" in prog.notes
+    with pytest.raises(GCodeError, match="2:7: unclosed comment"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("name", ["haas", "fanuc"])
+def test_external_output_commands_move_nothing(name):
+    """Haas "Formatted Output" (DPRNT[<text> <#nnnn[wf]>...], the only command of its block) and
+    Fanuc "External output commands" (POPEN, DPRNT, BPRNT, PCLOS): the tool goes from program
+    (1, 2) to (3, 2) in G54 (100, 50, -20), Z staying at home (100), whatever is printed between."""
+    text = ("%\nO0001\nPOPEN\nDPRNT[DATE*(AAMMDD):*#3011]\nG21 G90 G0 X1 Y2\nN10 DPRNT[X#5041[44]*Y#5042[44]]\n"
+            "BPRNT[A#1[3]]\nPCLOS\nX3\nM30\n%\n")
+    prog = _checked(text, _in_dialect(name))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100], [103, 52, 100]]
+    assert "POPEN/DPRNT/BPRNT/PCLOS external output not sent" in prog.notes
+
+
+@pytest.mark.parametrize("line, message", [
+    ("DPRNT[X#5041[44]] G0 X1", r"2:1: DPRNT external output: must be the only command of its block"),
+    ("DPRNT[X#5041[44]", r"2:1: DPRNT\[ external output without its closing '\]'"),
+    ("POPEN X1", r"2:1: POPEN external output: must be the only command of its block")])
+def test_external_output_commands_stand_alone(line, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("haas"))
+
+
+def test_a_number_in_exponent_notation_is_named_as_such():
+    # CAM scripts printing floats write "J -8.775e-05"; G-code numbers have no exponent (LinuxCNC
+    # overview.adoc "Numbers"), so the control reads an E word and refuses it
+    with pytest.raises(GCodeError, match=r"2:23: number '-8.775e-05' in exponent notation"):
+        parse_program("G21 G90 F100\nG2 X1 Y0 I0.5 J -8.775e-05\n", context=CTX)
+    with pytest.raises(GCodeError, match=r"word 'E5' outside M66-M68"):
+        parse_program("G21 G90 F100\nG1 X1 E5\n", context=CTX)
 
 
 def test_dollar_lines_are_an_error_outside_the_grbl_dialect():
