@@ -396,6 +396,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("grbl $ system commands (reports, settings) not run")
         for _ in range(grbl.closed):
             notes.add("unclosed ( comments read to the end of the line (grbl)")
+        for _ in range(grbl.resumes):
+            notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
@@ -912,10 +914,10 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:
         w = seen["E"]
-        before = where.text[:w.column - 1]
-        if before[-1:].isdigit() or before[-1:] == ".":
-            # "J -8.775e-05": G-code numbers have no exponent (overview.adoc "Numbers"; grbl read_float)
-            number = re.search(r"[-+]?[\d.]+$", before).group(0) + w.text
+        lead = re.search(r"[-+]?[\d.]+$", where.text[:w.column - 1])
+        if lead and ("." in lead.group(0) or re.fullmatch(r"[eE][-+]\d+", w.text)):
+            # "J -8.775e-05", printed by a script: G-code numbers have no exponent (overview.adoc "Numbers")
+            number = lead.group(0) + w.text
             where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
                        column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,

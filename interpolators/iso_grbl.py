@@ -8,8 +8,10 @@ G-code: ``$`` system commands (``$$`` settings report, ``$G`` parser state, ``$I
 
 * The serial receive interrupt picks the real-time characters ``?`` (status report), ``~`` (cycle
   start), ``!`` (feed hold) and Ctrl-X (soft reset) out of the stream wherever they are: they never
-  reach a line. A ``?`` is dropped here (a report does not move the tool); ``!``, ``~`` and Ctrl-X
-  stop or resume the machine as the operator would, and stay errors naming them.
+  reach a line. A ``?`` is dropped here (a report does not move the tool), and so is ``~``
+  (``doc/markdown/commands.md``: "Resumes a feed hold, ... and the M0 program pause states. Command
+  is otherwise ignored."; the program runs on anyway here); ``!`` and Ctrl-X stop the machine as the
+  operator would, and are errors naming them.
 * A line whose first character (after grbl strips spaces and comments) is ``$`` is a system command,
   run instead of the G-code parser. Reports (``$``, ``$$``, ``$#``, ``$G``, ``$I``, ``$N``), the
   alarm unlock ``$X``, stored build info ``$I=..`` and startup lines ``$Nx=..`` (run at the next reset,
@@ -49,12 +51,14 @@ class GrblLines(NamedTuple):
     """A grbl file read for its system commands: ``text`` with the system-command lines blanked, ``?``
     dropped and unclosed ``(`` comments closed at the end of their line (line numbers kept);
     ``blanked`` the number of report and setting lines blanked, ``homing`` the (1-based) lines of
-    ``$H`` homing cycles, also blanked, and ``closed`` the number of comments closed."""
+    ``$H`` homing cycles, also blanked, ``closed`` the number of comments closed and ``resumes`` the
+    number of ``~`` cycle starts dropped."""
 
     text: str
     blanked: int
     homing: tuple[int, ...]
     closed: int
+    resumes: int
 
 
 def system_lines(text: str, source: str | None) -> GrblLines:
@@ -68,7 +72,7 @@ def system_lines(text: str, source: str | None) -> GrblLines:
         grbl does not know.
     """
     out = []
-    blanked = closed = 0
+    blanked = closed = resumes = 0
     homing: list[int] = []
     for number, raw in enumerate(lines_of(text), start=1):
         where = Where(source, number, raw)
@@ -98,17 +102,34 @@ def system_lines(text: str, source: str | None) -> GrblLines:
                                     "$x=value)")
             where.fail("unknown grbl system command", column=column, text=command,
                        expected="$H, $$, $#, $G, $I, $N, $X, $x=value (homing, reports and settings), or G-code")
-        out.append(_without_status_queries(raw, spans, semicolon))
-    return GrblLines("\n".join(out), blanked, tuple(homing), closed)
+        line, dropped = _without_realtime(raw, spans, semicolon, where)
+        out.append(line)
+        resumes += dropped
+    return GrblLines("\n".join(out), blanked, tuple(homing), closed, resumes)
 
 
-def _without_status_queries(raw: str, spans: list[tuple[int, int]], semicolon: int) -> str:
-    """``raw`` with each ``?`` outside its comments replaced by a space (grbl's receive interrupt takes
-    it out of the stream as the status-report query)."""
-    if "?" not in raw:
-        return raw
+#: Real-time characters that stop the machine, by their name in grbl's documentation.
+_HALTS = {"!": "! feed hold", "\x18": "Ctrl-X soft reset"}
+
+
+def _without_realtime(raw: str, spans: list[tuple[int, int]], semicolon: int, where: Where) -> tuple[str, int]:
+    """``raw`` with each ``?`` and ``~`` outside its comments replaced by a space (grbl's receive
+    interrupt takes them out of the stream: status query, cycle start), and the number of ``~``.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        A ``!`` feed hold or Ctrl-X soft reset.
+    """
+    if not any(c in raw for c in "?~!\x18"):
+        return raw, 0
     chars = list(raw)
+    resumes = 0
     for i in range(semicolon):
-        if chars[i] == "?" and not any(a <= i < b for a, b in spans):
+        if chars[i] in "?~!\x18" and not any(a <= i < b for a, b in spans):
+            if chars[i] in _HALTS:
+                where.fail(f"grbl {_HALTS[chars[i]]}: not supported (it stops the machine until the operator acts)",
+                           column=i + 1, text=chars[i], expected="G-code, '?' or '~'")
+            resumes += chars[i] == "~"
             chars[i] = " "
-    return "".join(chars)
+    return "".join(chars), resumes

@@ -359,9 +359,10 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(text.splitlines(), start=1):
         s = clean_line(raw)
-        if grbl:  # grbl: '$' lines are system commands (system.c), '?' a real-time status query (serial.c);
+        if grbl:  # grbl: '$' lines are system commands (system.c), '?' '~' real-time status query and cycle
+            # start (serial.c);
             # '$H' the homing cycle (commands.md), run below
-            s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "")
+            s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "").replace("~", "")
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)

@@ -627,6 +627,15 @@ def test_grbl_system_commands_that_move_or_change_the_run_are_refused(line, name
         parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("grbl"))
 
 
+def test_grbl_cycle_start_is_dropped_and_feed_hold_refused():
+    # grbl commands.md: "~ Cycle Start / Resume ... Command is otherwise ignored"; "!" holds the feed
+    prog = _checked("G21 G90\nG0 X1\nM5\n~\nG0 Y2~\n", _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
+    assert "grbl ~ cycle start (resumes a hold or M0 pause) dropped x2" in prog.notes
+    with pytest.raises(GCodeError, match=r"3:6: grbl ! feed hold: not supported"):
+        parse_program("G21\nG0 X1\nG0 X2!\n", context=_in_dialect("grbl"))
+
+
 def test_grbl_homing_cycle_moves_z_home_then_x_y_and_keeps_the_offsets():
     """grbl ``$H`` (doc/markdown/commands.md; config.h HOMING_CYCLE_0 = Z, HOMING_CYCLE_1 = X Y): with
     home at machine (0, 0, 100) and G54 at (100, 50, -20), from program (1, 2, 3) = machine
