@@ -162,7 +162,9 @@ class _Program:
                 self.code.append(None)
                 continue
             if s.startswith("%"):
-                where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=s, expected="'%' alone")
+                mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
+                where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
+                           expected="'%' alone")
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):

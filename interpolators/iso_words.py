@@ -133,6 +133,12 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
+            if set(tok) == {"."}:
+                where.fail(f"{tok!r} where a word should start (an ellipsis: the program left incomplete here?)",
+                           column=i + 1, text=tok, expected="a word such as X12.5")
+            if ch.isdigit() or ch in ".+-":
+                where.fail(f"number {tok!r} without its letter", column=i + 1, text=tok,
+                           expected="a word: a letter and its number, such as G21 or X12.5")
             where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
         if value is None:

@@ -760,3 +760,13 @@ def test_f0_is_a_zero_feed_rate_refused_only_at_a_feed_move():
     assert prog.blocks[1].feed * 60.0 == pytest.approx(254.0)
     with pytest.raises(GCodeError, match="3:1: G01 feed move without a feed: F0, a zero feed rate"):
         parse_program("G21 G1 X1 F100\nG0 X0 F0\nG1 X1\n", context=CTX)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G21\nN10 21 G40 G90\n", r"2:5: number '21' without its letter"),
+    ("G21\n...\nG0 X1\n", r"2:1: '\.\.\.' where a word should start \(an ellipsis"),
+    ("% \rO1000\nG21\n", r"1:1: '%' must stand alone on its line \(the line holds bare CRs"),
+])
+def test_a_line_that_is_not_g_code_is_named_for_what_it_is(text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=_in_dialect("fanuc"))
