@@ -370,7 +370,9 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
         seq = int(n.group(1)) if n else None
         m = _OWORD.match(s)
         mac = _MACRO.match(s)
-        if m:
+        if m is None and re.fullmatch(r"o[a-z]\w*", s):
+            out.append(_Line(no, "", seq=seq))  # "OWASHER", "OPIS": a program's name, not a block
+        elif m:
             out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3), seq=seq))
         elif mac:
             kind = next(k for k in ("if", "goto", "while", "do", "end", "dprnt", "bprnt", "popen", "pclos")

@@ -770,3 +770,9 @@ def test_f0_is_a_zero_feed_rate_refused_only_at_a_feed_move():
 def test_a_line_that_is_not_g_code_is_named_for_what_it_is(text, message):
     with pytest.raises(GCodeError, match=message):
         parse_program(text, context=_in_dialect("fanuc"))
+
+
+def test_a_named_program_line_before_the_percent_is_its_name():
+    # "OPIS" (a shop file's title) alone on the first line: a program name, not a block; G54 (100, 50, -20)
+    prog = _checked("OPIS\n%\nN10 G54\nN20 G21 G90 G0 X1 Y2\n%\n", _in_dialect("fanuc"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100]]
