@@ -70,6 +70,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
   (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
   The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
+  Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
+  program to its ``M99`` k times.
 - grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
   and move nothing, but ``$H``, the homing cycle: Z to the home position, then X and Y
   (``HOMING_CYCLE_0``, ``HOMING_CYCLE_1``), as rapids; a ``(`` without ``)`` comments out the rest
@@ -1126,7 +1128,7 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
-    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m98"``/``"m99"`` or None."""
+    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"`` or None."""
     words, sets = _words(ln.text, params)
     for key, value in sets:
         params.set(key, value)
@@ -1146,6 +1148,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         return "end"
     if 980 in mc:
         return "m98"
+    if 970 in mc:
+        return "m97"
     if 990 in mc:
         return "m99"
     return None
@@ -1226,6 +1230,13 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             count = int(words["l"][-1]) if "l" in words else 1
             frames.append({"kind": "m98", "ret": pc + 1, "start": st["fanuc"][target] + 1, "left": count - 1})
             pc = st["fanuc"][target] + 1
+            continue
+        if res == "m97":  # Haas "M97 Local Sub-Program Call": N<P> of this program, L times, to its M99
+            words, _ = _words(ln.text, params)
+            target = _goto(words["p"][-1], pc, st)
+            count = int(words["l"][-1]) if "l" in words else 1
+            frames.append({"kind": "m98", "ret": pc + 1, "start": target, "left": count - 1})
+            pc = target
             continue
         if res == "m99":
             if not frames or frames[-1]["kind"] != "m98":

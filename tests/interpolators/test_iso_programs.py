@@ -776,3 +776,23 @@ def test_a_named_program_line_before_the_percent_is_its_name():
     # "OPIS" (a shop file's title) alone on the first line: a program name, not a block; G54 (100, 50, -20)
     prog = _checked("OPIS\n%\nN10 G54\nN20 G21 G90 G0 X1 Y2\n%\n", _in_dialect("fanuc"))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100]]
+
+
+def test_haas_m97_runs_the_local_subprogram_at_its_n_number_l_times():
+    """Haas mill operator's manual "M97 Local Sub-Program Call" (its example, in mm): the blocks from
+    N1000 to M99 run twice, then the block after the call. G54 (100, 50, -20), tool 1 12.5 long:
+    Z1 is machine -6.5, Z0 -7.5; each pass steps Z down 0.1 twice, out to X2 (machine 102) and back."""
+    text = ("%\nO00011 (M97 CALL)\nG21 G90 G54\nT1 M06\nG00 X0 Y0\nG43 H01 Z1.\nG01 Z0 F20.\nM97 P1000 L2\n"
+            "G00 G90 Z1.\nM30\nN1000 (N line that runs after M97 P1000)\nG01 G91 Z-0.1\nG90 X2.\nG91 Z-0.1\n"
+            "G90 X0\nM99\n%\n")
+    prog = _checked(text, _in_dialect("haas"))
+    pts = [b.target.tolist() for b in prog.blocks]
+    expected = [[100, 50, 100], [100, 50, -6.5], [100, 50, -7.5]]
+    z = -7.5
+    for _ in range(2):
+        expected += [[100, 50, z - 0.1], [102, 50, z - 0.1], [102, 50, z - 0.2], [100, 50, z - 0.2]]
+        z -= 0.2
+    expected.append([100, 50, -6.5])
+    assert np.allclose(pts, expected, atol=1e-9)
+    with pytest.raises(GCodeError, match=r"3:1: M97 local subprogram call: no block N2000 in this program"):
+        parse_program("G21\nG0 X1\nM97 P2000\nM30\n", context=_in_dialect("haas"))
