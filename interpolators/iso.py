@@ -189,6 +189,14 @@ _G_UNSUPPORTED: dict[int, str] = {
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
+    # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
+    310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
+    283: "G28.3 set machine position (TinyG/g2core)",
+    412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
+    470: "G47 text engraving (Haas)", 1070: "G107 cylindrical mapping (Haas)",
+    1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
+    1500: "G150 general purpose pocket milling (Haas)",
+    1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
 }
 
 #: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``

@@ -796,3 +796,12 @@ def test_haas_m97_runs_the_local_subprogram_at_its_n_number_l_times():
     assert np.allclose(pts, expected, atol=1e-9)
     with pytest.raises(GCodeError, match=r"3:1: M97 local subprogram call: no block N2000 in this program"):
         parse_program("G21\nG0 X1\nM97 P2000\nM30\n", context=_in_dialect("haas"))
+
+
+@pytest.mark.parametrize("code, name", [("G47 P0 (ABC) X0 Y0 I0 J.1 R.05 Z-.005 F15.", "G47 text engraving (Haas)"),
+                                        ("G150 P1000 X0 Y0 Z-1 Q.1 R.1 F10.", "G150 general purpose pocket milling"),
+                                        ("G31 Z-1 F100", "G31 skip function (probing)"),
+                                        ("G28.2 Z0", "G28.2 homing cycle (TinyG/g2core)")])
+def test_unsupported_control_specific_g_codes_are_named(code, name):
+    with pytest.raises(GCodeError, match=rf"2:1: {re.escape(name)}.*: not supported"):
+        parse_program(f"G21 G90\n{code}\n", context=_in_dialect("haas"))
