@@ -75,7 +75,8 @@ Out of scope, each an error naming the feature: an axis the machine lacks (a wor
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
-the mill codes above), NURBS G5.2, polar G15/G16, scaling G51 and rotation G68 (LinuxCNC), manual-retract
+the mill codes above), NURBS G5.2, polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
+``@ ^``), scaling G51 and rotation G68 (LinuxCNC), manual-retract
 boring G88 (and Haas G87), user M codes M100-M199.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
@@ -219,7 +220,8 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
-    "fanuc": {870: ("motion", "G87 back boring cycle"), **EXTENDED_CODES["fanuc"]},
+    "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
+              **EXTENDED_CODES["fanuc"]},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
@@ -264,6 +266,7 @@ class _State:
     pos: np.ndarray
     motion: int | None = None  # round(10 * G) of the modal motion
     plane: int = 2
+    fanuc_polar: bool = False  # Fanuc G16: X Y of motion blocks are radius and angle
     inch: bool = False
     units_stated: bool = False
     incremental: bool = False
@@ -558,6 +561,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
+    if "polar" in gcodes or st.fanuc_polar:
+        seen = _fanuc_polar(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
@@ -938,7 +943,7 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
-        if grp in gcodes and gcodes[grp][0] not in (680, 510):
+        if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         _set_frame(st, dataclasses.replace(st.frame, rotation=None))
@@ -1054,6 +1059,35 @@ def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
                         angle_deg=seen["^"].value if "^" in seen else None)
         target[0], target[1] = x + off[0], y + off[1]
     return target
+
+
+def _fanuc_polar(seen: dict, gcodes, st: _State, where: Where, notes: _Notes) -> dict:
+    """Fanuc G16 / G15 (``fanuc`` dialect): under G16 the X and Y words of a motion block are the radius
+    and the angle [deg, counter-clockwise from +X] about the work (or G52 local) zero, read as
+    LinuxCNC's ``@ ^`` under G90 (Fanuc Series 16/18-MC operator's manual, 9.2 "Polar coordinate
+    command (G15, G16)": "G90 specifies the zero point of the work coordinate system as the origin of
+    the polar coordinate system"; a radius left out is the current distance, an angle left out the
+    current angle). G91 ("the current position as the origin") and the G18/G19 planes are refused,
+    naming them; G10, G52, G92, G53, G68 and G51 blocks take X Y as coordinates."""
+    code = gcodes.get("polar", (None,))[0]
+    if code is not None:
+        st.fanuc_polar = code == 160
+        if st.fanuc_polar:
+            notes.add("G16 polar coordinates (X radius, Y angle)")
+    if not st.fanuc_polar or not ("X" in seen or "Y" in seen):
+        return seen
+    if any(g in gcodes for g in ("nonmodal", "rotation", "scaling", "mirror")):
+        return seen
+    w = seen["X"] if "X" in seen else seen["Y"]
+    if st.plane != 2:
+        where.fail("G16 polar coordinates outside the XY plane (G18/G19): not supported", column=w.column,
+                   text=w.text, expected="G17 with G16")
+    if st.incremental:
+        where.fail("G16 polar coordinates under G91 (the current position as the pole): not supported",
+                   column=w.column, text=w.text, expected="G90 with G16")
+    renamed = {"X": "@", "Y": "^"}
+    return {renamed.get(k, k): dataclasses.replace(v, letter=renamed[k]) if k in renamed else v
+            for k, v in seen.items()}
 
 
 def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:

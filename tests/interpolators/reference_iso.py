@@ -70,6 +70,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
   (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
   The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
+  Fanuc ``G16`` (Series 16/18-MC operator's manual 9.2 "Polar coordinate command"): under G90 and
+  G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
+  cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times.
 - grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
@@ -514,6 +517,7 @@ class _Machine:
         self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]
         self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
+        self.polar16 = False  # Fanuc G16 polar coordinate command
         self.out: list[Expected] = []
 
     def tool(self, number: int):
@@ -1140,6 +1144,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
     _modes(m, g, words, ln.text)
+    if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
+        _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
     if not used:
@@ -1153,6 +1159,20 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+def _fanuc_polar(m: _Machine, g: list[int], words: dict) -> None:
+    """Fanuc G16 (Series 16/18-MC operator's manual 9.2): X Y of a motion block are the radius and the
+    angle about the work zero, as ``@ ^`` under G90; G15 cancels."""
+    if 150 in g or 160 in g:
+        m.polar16 = 160 in g
+    if not m.polar16 or any(c in g for c in (100, 280, 300, 520, 530, 920, 680, 510)):
+        return
+    if m.plane != 17 or m.incremental:
+        raise ReferenceError("G16 outside G17 / under G91")
+    for a, b in (("x", "@"), ("y", "^")):
+        if a in words:
+            words[b] = words.pop(a)
 
 
 def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:

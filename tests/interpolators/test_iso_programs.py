@@ -805,3 +805,22 @@ def test_haas_m97_runs_the_local_subprogram_at_its_n_number_l_times():
 def test_unsupported_control_specific_g_codes_are_named(code, name):
     with pytest.raises(GCodeError, match=rf"2:1: {re.escape(name)}.*: not supported"):
         parse_program(f"G21 G90\n{code}\n", context=_in_dialect("haas"))
+
+
+def test_fanuc_g16_polar_coordinates_place_holes_on_a_circle():
+    """Fanuc Series 16/18-MC operator's manual 9.2 "Polar coordinate command (G15, G16)": under G90 the
+    X word is the radius and Y the angle about the work zero (G54 at machine (100, 50, -20)); a block
+    with Y alone keeps the radius. Drilling at radius 50 at 0, 90 and 180 degrees: machine (150, 50),
+    (100, 100), (50, 50); then radius 20 at 45 degrees; G15 returns to X Y."""
+    text = ("%\nO1\nG21 G90 G17 G54\nG0 X0 Y0 Z5\nG16\nG81 X50. Y0 Z-10. R2. F100.\nY90.\nY180.\nG80\n"
+            "G0 X20. Y45.\nG15\nG0 X1 Y1\nM30\n%\n")
+    prog = _checked(text, _in_dialect("fanuc"))
+    bottoms = [b.target.tolist() for b in prog.blocks if b.kind == "line"]
+    assert np.allclose(bottoms, [[150, 50, -30], [100, 100, -30], [50, 50, -30]], atol=1e-9)
+    r = 20 / math.sqrt(2)
+    assert np.allclose(prog.blocks[-2].target, [100 + r, 50 + r, -15], atol=1e-9)
+    assert np.allclose(prog.blocks[-1].target, [101, 51, -15], atol=1e-9)
+    with pytest.raises(GCodeError, match=r"G16 polar coordinates under G91"):
+        parse_program("G21 G90 G16\nG91 G0 X10 Y45\n", context=_in_dialect("fanuc"))
+    with pytest.raises(GCodeError, match=r"G16 polar coordinates: not supported"):
+        parse_program("G21 G90 G16\nG0 X10 Y45\n", context=_in_dialect("haas"))
