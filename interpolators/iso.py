@@ -1005,10 +1005,18 @@ def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
         return
+    arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
+    if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
+                                                                               or _off_plane(st)):
+        return _check_q_l(seen, gcodes, cycle, where)  # G2/G3 P: the number of turns (_arc_turns)
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
-        where.fail("word P needs G04 (dwell), G64 (path tolerance), G10 or a drilling cycle", column=w.column,
-                   text=w.text, expected="G04 P<time> or G64 P<tolerance>")
+        where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
+                   column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
+    _check_q_l(seen, gcodes, cycle, where)
+
+
+def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
     for letter in ("Q", "L"):
         if letter in seen and not cycle and not ("path" in gcodes and letter == "Q") \
                 and not ("nonmodal" in gcodes and letter == "L"):
@@ -1153,6 +1161,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
+        if "P" in seen:
+            seg = _arc_turns(seg, seen["P"], st, where, code)
         if st.comp_start is not None and st.arc_center is not None:
             st.comp_centers[len(blocks)] = st.arc_center
         p, q = PLANE_AXES[st.plane]
@@ -1342,6 +1352,23 @@ def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     if not st.inverse_time:
         return st.feed
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
+
+
+def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
+    """LinuxCNC ``G2``/``G3`` ``P``: the number of turns (g-code.adoc "G2, G3 Arc Move": "For each P
+    increment above 1 an extra full circle is added to the programmed arc"; interp_check.cc: "P value
+    not an integer with M19 G2 or G3", "P value should be 1 or greater with G2 or G3"). Refused under
+    cutter compensation, whose offset paths are built for one turn."""
+    turns = round(p.value)
+    if abs(turns - p.value) > 0.001 or turns < 1:
+        where.fail(f"{code} P (number of turns) must be a whole number >= 1", column=p.column, text=p.text,
+                   expected=f"{code} ... P1, P2, ...")
+    if turns == 1:
+        return arc
+    if st.comp_start is not None:
+        where.fail(f"{code} P{turns} (several turns) under cutter compensation: not supported", column=p.column,
+                   text=p.text, expected="G40 before a multi-turn arc")
+    return Arc(arc.start, arc.end, arc.center, ccw=arc.ccw, plane=arc.plane, turns=turns - 1)
 
 
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):

@@ -824,3 +824,22 @@ def test_fanuc_g16_polar_coordinates_place_holes_on_a_circle():
         parse_program("G21 G90 G16\nG91 G0 X10 Y45\n", context=_in_dialect("fanuc"))
     with pytest.raises(GCodeError, match=r"G16 polar coordinates: not supported"):
         parse_program("G21 G90 G16\nG0 X10 Y45\n", context=_in_dialect("haas"))
+
+
+def test_linuxcnc_arc_p_adds_full_turns():
+    """LinuxCNC g-code.adoc "G2, G3 Arc Move": "if a 180 degree arc is programmed with a P2, the
+    resulting motion will be 1 1/2 rotations". A half circle of radius 5 with P3 sweeps 5 pi clockwise;
+    as a helix down 4 mm its length is the hypotenuse of 25 pi and 4; the end point is the programmed one."""
+    prog = _checked("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 Z-4 P3 F600\nG3 X0 Y0 R5 P1\n",
+                    _in_dialect("linuxcnc"))
+    helix, back = prog.blocks[1], prog.blocks[2]
+    assert helix.segment.sweep == pytest.approx(-5 * math.pi)
+    assert helix.segment.length == pytest.approx(math.hypot(25 * math.pi, 4))
+    assert helix.target.tolist() == [110, 50, -24]
+    assert back.segment.sweep == pytest.approx(math.pi)
+    for bad, message in [("P1.5", "P \\(number of turns\\) must be a whole number >= 1"),
+                         ("P0", "P \\(number of turns\\) must be a whole number >= 1")]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(f"G21 G90 G0 X0 Y0\nG2 X10 Y0 I5 J0 {bad} F600\n", context=_in_dialect("linuxcnc"))
+    with pytest.raises(GCodeError, match="word P needs G04"):
+        parse_program("G21 G90 G0 X0 Y0\nG2 X10 Y0 I5 J0 P2 F600\n", context=_in_dialect("fanuc"))
