@@ -133,6 +133,10 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
+            if re.match(r",[RCrc]", tok):
+                what = "corner rounding" if tok[1] in "Rr" else "chamfering"
+                where.fail(f"{tok!r} {what} between two moves (Fanuc/Haas ',R' / ',C'): not supported",
+                           column=i + 1, text=tok, expected="the rounding arc or chamfer written as its own move")
             if set(tok) == {"."}:
                 where.fail(f"{tok!r} where a word should start (an ellipsis: the program left incomplete here?)",
                            column=i + 1, text=tok, expected="a word such as X12.5")
