@@ -75,7 +75,8 @@ Out of scope, each an error naming the feature: an axis the machine lacks (a wor
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
-the mill codes above), NURBS G5.2, polar G15/G16, scaling G51 and rotation G68 (LinuxCNC), manual-retract
+the mill codes above), NURBS G5.2, polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
+``@ ^``), scaling G51 and rotation G68 (LinuxCNC), manual-retract
 boring G88 (and Haas G87), user M codes M100-M199.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
@@ -96,7 +97,7 @@ from pathlib import Path
 
 import numpy as np
 
-from interpolators._words import INCH, Where
+from interpolators._words import INCH, Where, lines_of
 from interpolators.arcs import (
     ArcWordError,
     arc_from_center,
@@ -189,6 +190,14 @@ _G_UNSUPPORTED: dict[int, str] = {
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
+    # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
+    310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
+    283: "G28.3 set machine position (TinyG/g2core)",
+    412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
+    470: "G47 text engraving (Haas)", 1070: "G107 cylindrical mapping (Haas)",
+    1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
+    1500: "G150 general purpose pocket milling (Haas)",
+    1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
 }
 
 #: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``
@@ -211,7 +220,8 @@ _MILL_G: dict[int, tuple[str, str]] = {
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
-    "fanuc": {870: ("motion", "G87 back boring cycle"), **EXTENDED_CODES["fanuc"]},
+    "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
+              **EXTENDED_CODES["fanuc"]},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
@@ -256,6 +266,7 @@ class _State:
     pos: np.ndarray
     motion: int | None = None  # round(10 * G) of the modal motion
     plane: int = 2
+    fanuc_polar: bool = False  # Fanuc G16: X Y of motion blocks are radius and angle
     inch: bool = False
     units_stated: bool = False
     incremental: bool = False
@@ -387,10 +398,19 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name))
     notes = _Notes()
+    homing: list[int] = []
+    raw_lines = lines_of(text)
     if dialect.name == "grbl":
-        text, blanked = system_lines(text, source)
-        for _ in range(blanked):
+        grbl = system_lines(text, source)
+        text, homing = grbl.text, list(grbl.homing)
+        for _ in range(grbl.blanked):
             notes.add("grbl $ system commands (reports, settings) not run")
+        for _ in range(grbl.closed):
+            notes.add("unclosed ( comments read to the end of the line (grbl)")
+        for _ in range(grbl.resumes):
+            notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    if _OUTPUT_COMMAND.search(text):
+        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
     blocks: list[Block] = []
     used: set[int] = set()
@@ -408,6 +428,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         if fl.file != source and fl.file not in external:
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
+        while homing and fl.file == source and homing[0] < fl.line:
+            _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
@@ -418,6 +440,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             _finish_compensation(st, blocks, source)
         if ended:
             break
+    else:
+        for line in homing:  # $H lines after the last block
+            _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
@@ -438,6 +463,10 @@ def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], 
         notes.add("(LOG...) comments: no log file written")
     elif keyword.startswith("py"):
         notes.add(f"({keyword.upper()},...) Python comment not run")
+
+
+#: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
+_OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
 
 
 def _ends_with_m99(text: str) -> bool:
@@ -532,6 +561,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
+    if "polar" in gcodes or st.fanuc_polar:
+        seen = _fanuc_polar(seen, gcodes, st, where, notes)
     ended = _m_codes(mcodes, seen, st, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
@@ -896,6 +927,12 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         seen = {k: v for k, v in seen.items() if k != "Q"}
     if "E" in seen:
         w = seen["E"]
+        lead = re.search(r"[-+]?[\d.]+$", where.text[:w.column - 1])
+        if lead and ("." in lead.group(0) or re.fullmatch(r"[eE][-+]\d+", w.text)):
+            # "J -8.775e-05", printed by a script: G-code numbers have no exponent (overview.adoc "Numbers")
+            number = lead.group(0) + w.text
+            where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
+                       column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
@@ -906,7 +943,7 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
-        if grp in gcodes and gcodes[grp][0] not in (680, 510):
+        if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
             notes.add(f"{gcodes[grp][1].text.upper()} cancel")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         _set_frame(st, dataclasses.replace(st.frame, rotation=None))
@@ -968,10 +1005,18 @@ def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
         return
+    arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
+    if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
+                                                                               or _off_plane(st)):
+        return _check_q_l(seen, gcodes, cycle, where)  # G2/G3 P: the number of turns (_arc_turns)
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
-        where.fail("word P needs G04 (dwell), G64 (path tolerance), G10 or a drilling cycle", column=w.column,
-                   text=w.text, expected="G04 P<time> or G64 P<tolerance>")
+        where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
+                   column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
+    _check_q_l(seen, gcodes, cycle, where)
+
+
+def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
     for letter in ("Q", "L"):
         if letter in seen and not cycle and not ("path" in gcodes and letter == "Q") \
                 and not ("nonmodal" in gcodes and letter == "L"):
@@ -1022,6 +1067,35 @@ def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
                         angle_deg=seen["^"].value if "^" in seen else None)
         target[0], target[1] = x + off[0], y + off[1]
     return target
+
+
+def _fanuc_polar(seen: dict, gcodes, st: _State, where: Where, notes: _Notes) -> dict:
+    """Fanuc G16 / G15 (``fanuc`` dialect): under G16 the X and Y words of a motion block are the radius
+    and the angle [deg, counter-clockwise from +X] about the work (or G52 local) zero, read as
+    LinuxCNC's ``@ ^`` under G90 (Fanuc Series 16/18-MC operator's manual, 9.2 "Polar coordinate
+    command (G15, G16)": "G90 specifies the zero point of the work coordinate system as the origin of
+    the polar coordinate system"; a radius left out is the current distance, an angle left out the
+    current angle). G91 ("the current position as the origin") and the G18/G19 planes are refused,
+    naming them; G10, G52, G92, G53, G68 and G51 blocks take X Y as coordinates."""
+    code = gcodes.get("polar", (None,))[0]
+    if code is not None:
+        st.fanuc_polar = code == 160
+        if st.fanuc_polar:
+            notes.add("G16 polar coordinates (X radius, Y angle)")
+    if not st.fanuc_polar or not ("X" in seen or "Y" in seen):
+        return seen
+    if any(g in gcodes for g in ("nonmodal", "rotation", "scaling", "mirror")):
+        return seen
+    w = seen["X"] if "X" in seen else seen["Y"]
+    if st.plane != 2:
+        where.fail("G16 polar coordinates outside the XY plane (G18/G19): not supported", column=w.column,
+                   text=w.text, expected="G17 with G16")
+    if st.incremental:
+        where.fail("G16 polar coordinates under G91 (the current position as the pole): not supported",
+                   column=w.column, text=w.text, expected="G90 with G16")
+    renamed = {"X": "@", "Y": "^"}
+    return {renamed.get(k, k): dataclasses.replace(v, letter=renamed[k]) if k in renamed else v
+            for k, v in seen.items()}
 
 
 def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:
@@ -1087,6 +1161,8 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
             _rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
             return
         seg = _arc(seen, arc_words, target, st, where, code, mcol, mtok)
+        if "P" in seen:
+            seg = _arc_turns(seg, seen["P"], st, where, code)
         if st.comp_start is not None and st.arc_center is not None:
             st.comp_centers[len(blocks)] = st.arc_center
         p, q = PLANE_AXES[st.plane]
@@ -1276,6 +1352,23 @@ def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     if not st.inverse_time:
         return st.feed
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
+
+
+def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
+    """LinuxCNC ``G2``/``G3`` ``P``: the number of turns (g-code.adoc "G2, G3 Arc Move": "For each P
+    increment above 1 an extra full circle is added to the programmed arc"; interp_check.cc: "P value
+    not an integer with M19 G2 or G3", "P value should be 1 or greater with G2 or G3"). Refused under
+    cutter compensation, whose offset paths are built for one turn."""
+    turns = round(p.value)
+    if abs(turns - p.value) > 0.001 or turns < 1:
+        where.fail(f"{code} P (number of turns) must be a whole number >= 1", column=p.column, text=p.text,
+                   expected=f"{code} ... P1, P2, ...")
+    if turns == 1:
+        return arc
+    if st.comp_start is not None:
+        where.fail(f"{code} P{turns} (several turns) under cutter compensation: not supported", column=p.column,
+                   text=p.text, expected="G40 before a multi-turn arc")
+    return Arc(arc.start, arc.end, arc.center, ccw=arc.ccw, plane=arc.plane, turns=turns - 1)
 
 
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
@@ -1698,6 +1791,18 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
     else:
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+
+
+def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:
+    """grbl ``$H`` (:mod:`interpolators.iso_grbl`): Z to the machine's home, then X and Y, as rapids
+    [mm, machine]; offsets and modes stay."""
+    home = np.array(st.context.home, dtype=float)
+    up = st.pos.copy()
+    up[2] = home[2]
+    _rapid(up, st, blocks, used, where, None, ["Z"])
+    _rapid(home, st, blocks, used, where, None, ["X", "Y"])
+    st.stopped = False
+    notes.add("grbl $H homing run as rapids to home (Z, then X Y)")
 
 
 def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:

@@ -1,4 +1,4 @@
-"""Program flow of ISO G-code: O-word subroutines and control flow, Fanuc M98/M99 subprograms.
+"""Program flow of ISO G-code: O-word subroutines and control flow, Fanuc M98/M99 (Haas M97) subprograms.
 
 LinuxCNC "O Codes" (https://linuxcnc.org/docs/html/gcode/o-code.html):
 
@@ -16,7 +16,9 @@ Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M
 runs the program ``O1000`` three times, from the same file or else from the program file of its
 folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, ``M99 P<n>``
 to the block ``N<n>`` of the calling program, and in the main program ``M99`` ends it (the control
-would rewind; vcnc runs the program once).
+would rewind; vcnc runs the program once). Haas ``M97 P1000 L2`` ("M97 Local Sub-Program Call")
+runs the blocks from ``N1000`` of the same program to its ``M99`` twice, then the block after the
+call (the main program ends with M30 before such local subprograms).
 
 Fanuc/Haas custom macro B simple call ``G65 P9001 L2 A1. C2.5 V10100.`` (Fanuc Series 16i/18i
 operator's manual B-63684EN, 16 "Custom macro", "Simple call (G65)"; Haas mill operator's manual,
@@ -162,7 +164,9 @@ class _Program:
                 self.code.append(None)
                 continue
             if s.startswith("%"):
-                where.fail("'%' must stand alone on its line", column=code.index("%") + 1, text=s, expected="'%' alone")
+                mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
+                where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
+                           expected="'%' alone")
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
@@ -411,14 +415,15 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames)
             continue
-        m98 = next((w for w in words if w.letter == "M" and w.value == 98), None)
+        m98 = next((w for w in words if w.letter == "M" and w.value in (97, 98)), None)
         m99 = next((w for w in words if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
             yield FlowLine(where.line, where.text, words, where.file)
             pc += 1
             continue
         if m98 is not None:
-            start = _called_program(prog, words, m98, where, "M98 subprogram call")
+            start = _local_subprogram(prog, pc, words, m98, where) if m98.value == 97 else \
+                _called_program(prog, words, m98, where, "M98 subprogram call")
             count = next((int(w.value) for w in words if w.letter in "LK"), 1)
             rest = [w for w in words if w is not m98 and w.letter not in "PLK"]
             if rest:
@@ -458,6 +463,20 @@ def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
     if target is None:
         where.fail(f"M99 P{p.value:g}: no block N{p.value:g} in the calling program", column=p.column, text=p.text,
                    expected="M99 P<n> with a block N<n> in the program that called this one")
+    return target
+
+
+def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, where: Where) -> int:
+    """The line ``N<P>`` of this program that a Haas ``M97 P<n> L<count>`` calls (Haas mill operator's
+    manual 96-8000, "M97 Local Sub-Program Call": "used to call a subroutine referenced by a line
+    number (N) within the same program ... The subroutine must end with an M99. An Lnn code in the
+    M97 block will repeat the subroutine call that nn times"); found as a macro B GOTO finds it."""
+    p = next((w for w in words if w.letter == "P"), None)
+    target = None if p is None or p.value != round(p.value) else prog.macro.find(round(p.value), pc)
+    if target is None:
+        missing = "no P word" if p is None else f"no block N{p.value:g} in this program"
+        where.fail(f"M97 local subprogram call: {missing}", column=call.column, text=call.text,
+                   expected="M97 P<n> with a block N<n> in the same program, ending with M99")
     return target
 
 

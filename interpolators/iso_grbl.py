@@ -8,49 +8,78 @@ G-code: ``$`` system commands (``$$`` settings report, ``$G`` parser state, ``$I
 
 * The serial receive interrupt picks the real-time characters ``?`` (status report), ``~`` (cycle
   start), ``!`` (feed hold) and Ctrl-X (soft reset) out of the stream wherever they are: they never
-  reach a line. A ``?`` is dropped here (a report does not move the tool); ``!``, ``~`` and Ctrl-X
-  stop or resume the machine as the operator would, and stay errors naming them.
+  reach a line. A ``?`` is dropped here (a report does not move the tool), and so is ``~``
+  (``doc/markdown/commands.md``: "Resumes a feed hold, ... and the M0 program pause states. Command
+  is otherwise ignored."; the program runs on anyway here); ``!`` and Ctrl-X stop the machine as the
+  operator would, and are errors naming them.
 * A line whose first character (after grbl strips spaces and comments) is ``$`` is a system command,
   run instead of the G-code parser. Reports (``$``, ``$$``, ``$#``, ``$G``, ``$I``, ``$N``), the
   alarm unlock ``$X``, stored build info ``$I=..`` and startup lines ``$Nx=..`` (run at the next reset,
   not now) and settings ``$x=value`` (steps, rates, accelerations of the machine, which vcnc takes
-  from its own limits) do not move the tool: they become blank lines, with a note. Homing ``$H``,
-  jogging ``$J=``, check mode ``$C`` (the G-code after it is checked, not run), ``$RST=`` (restores
-  settings and work offsets) and sleep ``$SLP`` change what the program does and are errors naming
-  the command.
+  from its own limits) do not move the tool: they become blank lines, with a note. Jogging ``$J=``,
+  check mode ``$C`` (the G-code after it is checked, not run), ``$RST=`` (restores settings and work
+  offsets) and sleep ``$SLP`` change what the program does and are errors naming the command.
+* ``$H`` runs the homing cycle (``doc/markdown/commands.md``: "the only way to perform the homing
+  cycle in Grbl"; ``grbl/limits.c`` ``limits_go_home``): with the default ``config.h`` the cycles are
+  ``HOMING_CYCLE_0`` = Z ("First move Z to clear workspace") then ``HOMING_CYCLE_1`` = X and Y
+  together. The machine ends at its home, the work offsets and G92 kept. :func:`system_lines` blanks
+  the line and lists it in :attr:`GrblLines.homing`; the reader runs it as a rapid of Z to the home
+  position of the machine context, then of X and Y (the homing switches' seek and locate feeds are
+  not modelled).
+* A ``(`` comment that does not close runs to the end of the line (``protocol.c``: "Enable comments
+  flag and ignore all characters until ')' or EOL"); LinuxCNC and Fanuc refuse it.
 """
 
 from __future__ import annotations
 
 import re
+from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_words import comment_spans
 
-__all__ = ["system_lines"]
+__all__ = ["GrblLines", "system_lines"]
 
 #: ``$`` commands that neither move the tool nor change the program's geometry (grbl ``system.c``).
 _PASSIVE = re.compile(r"\$(?:|\$|#|G|I(?:=.*)?|N(?:\d+=.*)?|X|\d+=[-+]?[\d.]+)")
 #: ``$`` commands that do, by their name in grbl's documentation.
-_ACTIVE = {"H": "$H homing cycle", "J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
+_ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
            "S": "$SLP sleep"}
 
 
-def system_lines(text: str, source: str | None) -> tuple[str, int]:
-    """The program text with grbl's system-command lines blanked and ``?`` dropped (line numbers
-    kept), and the number of system-command lines blanked.
+class GrblLines(NamedTuple):
+    """A grbl file read for its system commands: ``text`` with the system-command lines blanked, ``?``
+    dropped and unclosed ``(`` comments closed at the end of their line (line numbers kept);
+    ``blanked`` the number of report and setting lines blanked, ``homing`` the (1-based) lines of
+    ``$H`` homing cycles, also blanked, ``closed`` the number of comments closed and ``resumes`` the
+    number of ``~`` cycle starts dropped."""
+
+    text: str
+    blanked: int
+    homing: tuple[int, ...]
+    closed: int
+    resumes: int
+
+
+def system_lines(text: str, source: str | None) -> GrblLines:
+    """The program text with grbl's system-command lines blanked, ``?`` dropped and unclosed comments
+    closed, as :class:`GrblLines`.
 
     Raises
     ------
     vcnc.GCodeError
-        A ``$`` command that moves the machine or changes the program's run (``$H``, ``$J=``, ``$C``,
-        ``$RST=``, ``$SLP``), or one grbl does not know.
+        A ``$`` command that changes the program's run (``$J=``, ``$C``, ``$RST=``, ``$SLP``), or one
+        grbl does not know.
     """
     out = []
-    blanked = 0
+    blanked = closed = resumes = 0
+    homing: list[int] = []
     for number, raw in enumerate(lines_of(text), start=1):
         where = Where(source, number, raw)
-        spans, semicolon = comment_spans(raw, where)
+        spans, semicolon = comment_spans(raw, where, unclosed_to_end=True)
+        if spans and spans[-1][1] == len(raw) and not raw.endswith(")"):
+            raw += ")"
+            closed += 1
         code = list(raw[:semicolon])
         for start, end in spans:
             code[start:end] = " " * (end - start)
@@ -61,24 +90,46 @@ def system_lines(text: str, source: str | None) -> tuple[str, int]:
                 out.append("")
                 blanked += 1
                 continue
+            if command.replace("?", "") == "$H":
+                out.append("")
+                homing.append(number)
+                continue
             name = _ACTIVE.get(command[1:2])
             if name is not None:
-                where.fail(f"grbl {name}: not supported (it moves the machine or changes how the program runs)",
+                where.fail(f"grbl {name}: not supported (it changes how the program runs)",
                            column=column, text=command,
-                           expected="G-code, or grbl reports and settings ($$, $G, $I, $#, $N, $X, $x=value)")
+                           expected="G-code, $H homing, or grbl reports and settings ($$, $G, $I, $#, $N, $X, "
+                                    "$x=value)")
             where.fail("unknown grbl system command", column=column, text=command,
-                       expected="$$, $#, $G, $I, $N, $X, $x=value (reports and settings), or G-code")
-        out.append(_without_status_queries(raw, spans, semicolon))
-    return "\n".join(out), blanked
+                       expected="$H, $$, $#, $G, $I, $N, $X, $x=value (homing, reports and settings), or G-code")
+        line, dropped = _without_realtime(raw, spans, semicolon, where)
+        out.append(line)
+        resumes += dropped
+    return GrblLines("\n".join(out), blanked, tuple(homing), closed, resumes)
 
 
-def _without_status_queries(raw: str, spans: list[tuple[int, int]], semicolon: int) -> str:
-    """``raw`` with each ``?`` outside its comments replaced by a space (grbl's receive interrupt takes
-    it out of the stream as the status-report query)."""
-    if "?" not in raw:
-        return raw
+#: Real-time characters that stop the machine, by their name in grbl's documentation.
+_HALTS = {"!": "! feed hold", "\x18": "Ctrl-X soft reset"}
+
+
+def _without_realtime(raw: str, spans: list[tuple[int, int]], semicolon: int, where: Where) -> tuple[str, int]:
+    """``raw`` with each ``?`` and ``~`` outside its comments replaced by a space (grbl's receive
+    interrupt takes them out of the stream: status query, cycle start), and the number of ``~``.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        A ``!`` feed hold or Ctrl-X soft reset.
+    """
+    if not any(c in raw for c in "?~!\x18"):
+        return raw, 0
     chars = list(raw)
+    resumes = 0
     for i in range(semicolon):
-        if chars[i] == "?" and not any(a <= i < b for a, b in spans):
+        if chars[i] in "?~!\x18" and not any(a <= i < b for a, b in spans):
+            if chars[i] in _HALTS:
+                where.fail(f"grbl {_HALTS[chars[i]]}: not supported (it stops the machine until the operator acts)",
+                           column=i + 1, text=chars[i], expected="G-code, '?' or '~'")
+            resumes += chars[i] == "~"
             chars[i] = " "
-    return "".join(chars)
+    return "".join(chars), resumes

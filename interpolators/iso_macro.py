@@ -18,6 +18,11 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
   closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
   after another.
+* The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]`` and ``PCLOS`` send text and
+  variables to the serial port (Fanuc B-64304EN "External output commands"; Haas mill operator's
+  manual, "Formatted Output": "DPRNT[<text> <#nnnn[wf]>...]", "DPRNT must be the only command in the
+  block"). Nothing is sent, and the tool does not move: they run as empty statements. A ``DPRNT``
+  without its closing bracket, or with words after it, is an error.
 * Comparisons ``EQ NE GT GE LT LE``, ``AND OR XOR`` and the functions are those of
   :mod:`interpolators.iso_params`, which also holds the vacant-variable semantics (``#0``).
 
@@ -50,13 +55,14 @@ _WHILE_START = re.compile(_PREFIX + r"(WHILE)\b", re.I)
 _DO = re.compile(_PREFIX + r"(DO)\s*(\d+)\s*$", re.I)
 _END = re.compile(_PREFIX + r"(END)\s*(\d+)\s*$", re.I)
 _GOTO = re.compile(_PREFIX + r"(GOTO)\s*(?=[\d#\[+])", re.I)
+_OUTPUT = re.compile(_PREFIX + r"(POPEN|PCLOS|[DB]PRNT\s*\[)", re.I)
 _SEQUENCE = re.compile(r"^\s*N\s*(\d+)", re.I)
 _BRANCH = re.compile(r"\s*(GOTO|THEN)", re.I)
 
 
 @dataclasses.dataclass(frozen=True)
 class Statement:
-    """A macro B statement: ``kind`` (if, goto, while, do, end), the comment-free ``code`` of its
+    """A macro B statement: ``kind`` (if, goto, while, do, end, output), the comment-free ``code`` of its
     line, ``start`` (0-based column of the keyword) and ``loop`` (``m`` of ``DO m`` / ``END m``)."""
 
     kind: str
@@ -91,6 +97,27 @@ def read_statement(code: str, where: Where) -> Statement | None:
     m = _GOTO.match(code)
     if m:
         return Statement("goto", code, m.start(1))
+    m = _OUTPUT.match(code)
+    if m:
+        keyword = m.group(1).rstrip("[ \t").upper()
+        rest = code[m.end():]
+        if m.group(1).endswith("["):
+            depth, close = 1, -1
+            for j, ch in enumerate(rest):
+                depth += {"[": 1, "]": -1}.get(ch, 0)
+                if depth == 0:
+                    close = j
+                    break
+            if close < 0:
+                where.fail(f"{keyword}[ external output without its closing ']'", column=m.start(1) + 1,
+                           text=code.strip(), expected=f"{keyword}[text #variable[wf] ...]")
+            rest = rest[close + 1:]
+        if rest.strip():
+            where.fail(f"{keyword} external output: must be the only command of its block",
+                       column=m.start(1) + 1, text=code.strip(),
+                       expected=f"{keyword}[text #variable[wf] ...] alone" if keyword.endswith("PRNT") else
+                       f"{keyword} alone")
+        return Statement("output", code, m.start(1))
     return None
 
 
@@ -165,7 +192,7 @@ class MacroFlow:
         """Run the statement of line ``pc``; returns the next line to run."""
         stmt = self.statements[pc]
         code = stmt.code
-        if stmt.kind == "do":
+        if stmt.kind in ("do", "output"):
             return pc + 1
         if stmt.kind == "while":
             holds, _ = evaluate_condition(code, code.index("[", stmt.start), where, params)

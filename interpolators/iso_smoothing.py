@@ -58,10 +58,10 @@ class Smoothing:
     reset: bool = False
 
 
-def _choice(words: dict[str, float], letter: str, allowed: tuple[float, ...], code: str) -> float:
+def _choice(words: dict[str, float], letter: str, allowed: tuple[float, ...], code: str, hint: str = "") -> float:
     if letter not in words or words[letter] not in allowed:
         shown = " or ".join(f"{letter}{v:g}" for v in allowed)
-        raise WordError(f"{code} needs {shown}", letter=letter if letter in words else None, expected=shown)
+        raise WordError(f"{code} needs {shown}{hint}", letter=letter if letter in words else None, expected=shown)
     return words[letter]
 
 
@@ -93,5 +93,6 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
     if key == 80:
         _choice(words, "P", (0.0, 1.0), "G08")
         return Smoothing(note=name, consumed=("P",))
-    _choice(words, "P", (0.0, 10000.0), "G05 (only high-precision contour control P10000 / P0)")
+    _choice(words, "P", (0.0, 10000.0), "G05",
+            " (P10000 on, P0 off; the control's other G05 functions are not supported)")
     return Smoothing(note=name, consumed=("P",))

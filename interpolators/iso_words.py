@@ -48,10 +48,11 @@ class Word:
     text: str
 
 
-def comment_spans(raw: str, where: Where) -> tuple[list[tuple[int, int]], int]:
+def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> tuple[list[tuple[int, int]], int]:
     """The ``( ... )`` comments of a line as ``(start, end)`` slices, the parentheses included (nested
     parentheses allowed), and where a ``;`` comment starts (``len(raw)`` without one). An unclosed
-    ``(`` is an error."""
+    ``(`` is an error, or with ``unclosed_to_end`` (grbl, :mod:`interpolators.iso_grbl`) a comment to the
+    end of the line."""
     spans: list[tuple[int, int]] = []
     i, n = 0, len(raw)
     while i < n:
@@ -66,6 +67,9 @@ def comment_spans(raw: str, where: Where) -> tuple[list[tuple[int, int]], int]:
             if depth:
                 # not nested after all: as Fanuc and LinuxCNC read it, the comment ends at the first ')'
                 j = raw.find(")", i) + 1
+                if j == 0 and unclosed_to_end:
+                    spans.append((i, n))
+                    return spans, n
                 if j == 0:
                     where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
             spans.append((i, j))
@@ -129,6 +133,16 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if up not in WORD_LETTERS:
             tok = token_at(code, i)
+            if re.match(r",[RCrc]", tok):
+                what = "corner rounding" if tok[1] in "Rr" else "chamfering"
+                where.fail(f"{tok!r} {what} between two moves (Fanuc/Haas ',R' / ',C'): not supported",
+                           column=i + 1, text=tok, expected="the rounding arc or chamfer written as its own move")
+            if set(tok) == {"."}:
+                where.fail(f"{tok!r} where a word should start (an ellipsis: the program left incomplete here?)",
+                           column=i + 1, text=tok, expected="a word such as X12.5")
+            if ch.isdigit() or ch in ".+-":
+                where.fail(f"number {tok!r} without its letter", column=i + 1, text=tok,
+                           expected="a word: a letter and its number, such as G21 or X12.5")
             where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
         if value is None:

@@ -69,6 +69,16 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
   (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
+  The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
+  Fanuc ``G16`` (Series 16/18-MC operator's manual 9.2 "Polar coordinate command"): under G90 and
+  G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
+  cancels.
+  Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
+  program to its ``M99`` k times.
+- grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
+  and move nothing, but ``$H``, the homing cycle: Z to the home position, then X and Y
+  (``HOMING_CYCLE_0``, ``HOMING_CYCLE_1``), as rapids; a ``(`` without ``)`` comments out the rest
+  of the line (``protocol.c``).
 
 What the reference predicts for each motion block is an :class:`Expected`; the test aligns them
 with the reader's ``--blocks`` rows.
@@ -354,8 +364,10 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(text.splitlines(), start=1):
         s = clean_line(raw)
-        if grbl:  # grbl: '$' lines are system commands (system.c), '?' a real-time status query (serial.c)
-            s = "" if s.startswith("$") else s.replace("?", "")
+        if grbl:  # grbl: '$' lines are system commands (system.c), '?' '~' real-time status query and cycle
+            # start (serial.c);
+            # '$H' the homing cycle (commands.md), run below
+            s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "").replace("~", "")
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)
@@ -363,10 +375,13 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
         seq = int(n.group(1)) if n else None
         m = _OWORD.match(s)
         mac = _MACRO.match(s)
-        if m:
+        if m is None and re.fullmatch(r"o[a-z]\w*", s):
+            out.append(_Line(no, "", seq=seq))  # "OWASHER", "OPIS": a program's name, not a block
+        elif m:
             out.append(_Line(no, s, m.group(1).strip("<>"), m.group(2), m.group(3), seq=seq))
         elif mac:
-            kind = next(k for k in ("if", "goto", "while", "do", "end") if s.startswith(k))
+            kind = next(k for k in ("if", "goto", "while", "do", "end", "dprnt", "bprnt", "popen", "pclos")
+                        if s.startswith(k))
             out.append(_Line(no, s, seq=seq, macro=(kind, s[len(kind):])))
         else:
             out.append(_Line(no, s, seq=seq))
@@ -374,7 +389,9 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
 
 
 #: Fanuc custom macro B statements (Fanuc 0i-MD B-64304EN "Branch and repetition"), on a cleaned line.
-_MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$)")
+#: Also the external output commands, which send text and move nothing (B-64304EN "External output
+#: commands"; Haas "Formatted Output": DPRNT must be the only command in the block).
+_MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$|[db]prnt\[.*\]$|popen$|pclos$)")
 
 
 def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
@@ -500,6 +517,7 @@ class _Machine:
         self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]
         self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
+        self.polar16 = False  # Fanuc G16 polar coordinate command
         self.out: list[Expected] = []
 
     def tool(self, number: int):
@@ -1114,7 +1132,7 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
-    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m98"``/``"m99"`` or None."""
+    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"`` or None."""
     words, sets = _words(ln.text, params)
     for key, value in sets:
         params.set(key, value)
@@ -1126,6 +1144,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
     _modes(m, g, words, ln.text)
+    if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
+        _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
     if not used:
@@ -1134,9 +1154,25 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         return "end"
     if 980 in mc:
         return "m98"
+    if 970 in mc:
+        return "m97"
     if 990 in mc:
         return "m99"
     return None
+
+
+def _fanuc_polar(m: _Machine, g: list[int], words: dict) -> None:
+    """Fanuc G16 (Series 16/18-MC operator's manual 9.2): X Y of a motion block are the radius and the
+    angle about the work zero, as ``@ ^`` under G90; G15 cancels."""
+    if 150 in g or 160 in g:
+        m.polar16 = 160 in g
+    if not m.polar16 or any(c in g for c in (100, 280, 300, 520, 530, 920, 680, 510)):
+        return
+    if m.plane != 17 or m.incremental:
+        raise ReferenceError("G16 outside G17 / under G91")
+    for a, b in (("x", "@"), ("y", "^")):
+        if a in words:
+            words[b] = words.pop(a)
 
 
 def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
@@ -1196,6 +1232,13 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if not ln.text:
             pc += 1
             continue
+        if ln.text == "$h":  # grbl limits.c limits_go_home, config.h HOMING_CYCLE_0 (Z) then _1 (X Y)
+            for axes in ((2,), (0, 1)):
+                end = m.pos.copy()
+                end[list(axes)] = np.asarray(context.home, float)[list(axes)]
+                m.emit(ln.number, "rapid", end, rows="optional" if np.allclose(end, m.pos) else "one")
+            pc += 1
+            continue
         res = _block(m, params, ln)
         if res == "end":
             break
@@ -1207,6 +1250,13 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             count = int(words["l"][-1]) if "l" in words else 1
             frames.append({"kind": "m98", "ret": pc + 1, "start": st["fanuc"][target] + 1, "left": count - 1})
             pc = st["fanuc"][target] + 1
+            continue
+        if res == "m97":  # Haas "M97 Local Sub-Program Call": N<P> of this program, L times, to its M99
+            words, _ = _words(ln.text, params)
+            target = _goto(words["p"][-1], pc, st)
+            count = int(words["l"][-1]) if "l" in words else 1
+            frames.append({"kind": "m98", "ret": pc + 1, "start": target, "left": count - 1})
+            pc = target
             continue
         if res == "m99":
             if not frames or frames[-1]["kind"] != "m98":
@@ -1228,7 +1278,7 @@ def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
     after this one in the same program, else the first from the program's start; IF [c] GOTO n /
     THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE)."""
     kind, rest = ln.macro
-    if kind == "do":
+    if kind in ("do", "dprnt", "bprnt", "popen", "pclos"):
         return pc + 1
     if kind == "end":
         return st["ends"][pc]

@@ -620,11 +620,74 @@ def test_grbl_system_command_lines_and_status_query_are_not_g_code():
     assert "grbl $ system commands (reports, settings) not run x5" in prog.notes
 
 
-@pytest.mark.parametrize("line, name", [("$H", "$H homing cycle"), ("$J=G91 X10 F100", "$J= jog"),
+@pytest.mark.parametrize("line, name", [("$J=G91 X10 F100", "$J= jog"),
                                         ("$C", "$C check g-code mode"), ("$RST=#", "$RST= restore")])
 def test_grbl_system_commands_that_move_or_change_the_run_are_refused(line, name):
     with pytest.raises(GCodeError, match=rf"2:1: grbl {re.escape(name)}: not supported"):
         parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("grbl"))
+
+
+def test_grbl_cycle_start_is_dropped_and_feed_hold_refused():
+    # grbl commands.md: "~ Cycle Start / Resume ... Command is otherwise ignored"; "!" holds the feed
+    prog = _checked("G21 G90\nG0 X1\nM5\n~\nG0 Y2~\n", _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
+    assert "grbl ~ cycle start (resumes a hold or M0 pause) dropped x2" in prog.notes
+    with pytest.raises(GCodeError, match=r"3:6: grbl ! feed hold: not supported"):
+        parse_program("G21\nG0 X1\nG0 X2!\n", context=_in_dialect("grbl"))
+
+
+def test_grbl_homing_cycle_moves_z_home_then_x_y_and_keeps_the_offsets():
+    """grbl ``$H`` (doc/markdown/commands.md; config.h HOMING_CYCLE_0 = Z, HOMING_CYCLE_1 = X Y): with
+    home at machine (0, 0, 100) and G54 at (100, 50, -20), from program (1, 2, 3) = machine
+    (101, 52, -17) Z goes up to 100, then X Y to 0 0; G54 still holds, so X5 is machine 105 and Y
+    stays at machine 0. A ``$H`` after the last block runs too."""
+    text = "G21 G90\nG0 X1 Y2 Z3\n$H\nG0 X5\n$H\n"
+    prog = _checked(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [
+        [101, 52, -17], [101, 52, 100], [0, 0, 100], [105, 0, 100], [105, 0, 100], [0, 0, 100]]
+    assert [(b.line, b.kind) for b in prog.blocks][1:3] == [(3, "rapid"), (3, "rapid")]
+    assert prog.blocks[1].text == "$H"
+    assert "grbl $H homing run as rapids to home (Z, then X Y) x2" in prog.notes
+
+
+def test_grbl_reads_an_unclosed_comment_to_the_end_of_the_line():
+    # grbl protocol.c: "ignore all characters until ')' or EOL"; LinuxCNC: "Unclosed comment found"
+    text = "G21 G90\nG0 X1 (to the left; Y9\nG0 Y2\n"
+    prog = _checked(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
+    assert "unclosed ( comments read to the end of the line (grbl)" in prog.notes
+    with pytest.raises(GCodeError, match="2:7: unclosed comment"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("name", ["haas", "fanuc"])
+def test_external_output_commands_move_nothing(name):
+    """Haas "Formatted Output" (DPRNT[<text> <#nnnn[wf]>...], the only command of its block) and
+    Fanuc "External output commands" (POPEN, DPRNT, BPRNT, PCLOS): the tool goes from program
+    (1, 2) to (3, 2) in G54 (100, 50, -20), Z staying at home (100), whatever is printed between."""
+    text = ("%\nO0001\nPOPEN\nDPRNT[DATE*(AAMMDD):*#3011]\nG21 G90 G0 X1 Y2\nN10 DPRNT[X#5041[44]*Y#5042[44]]\n"
+            "BPRNT[A#1[3]]\nPCLOS\nX3\nM30\n%\n")
+    prog = _checked(text, _in_dialect(name))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100], [103, 52, 100]]
+    assert "POPEN/DPRNT/BPRNT/PCLOS external output not sent" in prog.notes
+
+
+@pytest.mark.parametrize("line, message", [
+    ("DPRNT[X#5041[44]] G0 X1", r"2:1: DPRNT external output: must be the only command of its block"),
+    ("DPRNT[X#5041[44]", r"2:1: DPRNT\[ external output without its closing '\]'"),
+    ("POPEN X1", r"2:1: POPEN external output: must be the only command of its block")])
+def test_external_output_commands_stand_alone(line, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21\n{line}\nG0 X1\n", context=_in_dialect("haas"))
+
+
+def test_a_number_in_exponent_notation_is_named_as_such():
+    # CAM scripts printing floats write "J -8.775e-05"; G-code numbers have no exponent (LinuxCNC
+    # overview.adoc "Numbers"), so the control reads an E word and refuses it
+    with pytest.raises(GCodeError, match=r"2:23: number '-8.775e-05' in exponent notation"):
+        parse_program("G21 G90 F100\nG2 X1 Y0 I0.5 J -8.775e-05\n", context=CTX)
+    with pytest.raises(GCodeError, match=r"word 'E5' outside M66-M68"):
+        parse_program("G21 G90 F100\nG1 X1 E5\n", context=CTX)
 
 
 def test_dollar_lines_are_an_error_outside_the_grbl_dialect():
@@ -697,3 +760,92 @@ def test_f0_is_a_zero_feed_rate_refused_only_at_a_feed_move():
     assert prog.blocks[1].feed * 60.0 == pytest.approx(254.0)
     with pytest.raises(GCodeError, match="3:1: G01 feed move without a feed: F0, a zero feed rate"):
         parse_program("G21 G1 X1 F100\nG0 X0 F0\nG1 X1\n", context=CTX)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G21\nN10 21 G40 G90\n", r"2:5: number '21' without its letter"),
+    ("G21\n...\nG0 X1\n", r"2:1: '\.\.\.' where a word should start \(an ellipsis"),
+    ("% \rO1000\nG21\n", r"1:1: '%' must stand alone on its line \(the line holds bare CRs"),
+])
+def test_a_line_that_is_not_g_code_is_named_for_what_it_is(text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=_in_dialect("fanuc"))
+
+
+def test_a_named_program_line_before_the_percent_is_its_name():
+    # "OPIS" (a shop file's title) alone on the first line: a program name, not a block; G54 (100, 50, -20)
+    prog = _checked("OPIS\n%\nN10 G54\nN20 G21 G90 G0 X1 Y2\n%\n", _in_dialect("fanuc"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100]]
+
+
+def test_haas_m97_runs_the_local_subprogram_at_its_n_number_l_times():
+    """Haas mill operator's manual "M97 Local Sub-Program Call" (its example, in mm): the blocks from
+    N1000 to M99 run twice, then the block after the call. G54 (100, 50, -20), tool 1 12.5 long:
+    Z1 is machine -6.5, Z0 -7.5; each pass steps Z down 0.1 twice, out to X2 (machine 102) and back."""
+    text = ("%\nO00011 (M97 CALL)\nG21 G90 G54\nT1 M06\nG00 X0 Y0\nG43 H01 Z1.\nG01 Z0 F20.\nM97 P1000 L2\n"
+            "G00 G90 Z1.\nM30\nN1000 (N line that runs after M97 P1000)\nG01 G91 Z-0.1\nG90 X2.\nG91 Z-0.1\n"
+            "G90 X0\nM99\n%\n")
+    prog = _checked(text, _in_dialect("haas"))
+    pts = [b.target.tolist() for b in prog.blocks]
+    expected = [[100, 50, 100], [100, 50, -6.5], [100, 50, -7.5]]
+    z = -7.5
+    for _ in range(2):
+        expected += [[100, 50, z - 0.1], [102, 50, z - 0.1], [102, 50, z - 0.2], [100, 50, z - 0.2]]
+        z -= 0.2
+    expected.append([100, 50, -6.5])
+    assert np.allclose(pts, expected, atol=1e-9)
+    with pytest.raises(GCodeError, match=r"3:1: M97 local subprogram call: no block N2000 in this program"):
+        parse_program("G21\nG0 X1\nM97 P2000\nM30\n", context=_in_dialect("haas"))
+
+
+@pytest.mark.parametrize("code, name", [("G47 P0 (ABC) X0 Y0 I0 J.1 R.05 Z-.005 F15.", "G47 text engraving (Haas)"),
+                                        ("G150 P1000 X0 Y0 Z-1 Q.1 R.1 F10.", "G150 general purpose pocket milling"),
+                                        ("G31 Z-1 F100", "G31 skip function (probing)"),
+                                        ("G28.2 Z0", "G28.2 homing cycle (TinyG/g2core)")])
+def test_unsupported_control_specific_g_codes_are_named(code, name):
+    with pytest.raises(GCodeError, match=rf"2:1: {re.escape(name)}.*: not supported"):
+        parse_program(f"G21 G90\n{code}\n", context=_in_dialect("haas"))
+
+
+def test_fanuc_g16_polar_coordinates_place_holes_on_a_circle():
+    """Fanuc Series 16/18-MC operator's manual 9.2 "Polar coordinate command (G15, G16)": under G90 the
+    X word is the radius and Y the angle about the work zero (G54 at machine (100, 50, -20)); a block
+    with Y alone keeps the radius. Drilling at radius 50 at 0, 90 and 180 degrees: machine (150, 50),
+    (100, 100), (50, 50); then radius 20 at 45 degrees; G15 returns to X Y."""
+    text = ("%\nO1\nG21 G90 G17 G54\nG0 X0 Y0 Z5\nG16\nG81 X50. Y0 Z-10. R2. F100.\nY90.\nY180.\nG80\n"
+            "G0 X20. Y45.\nG15\nG0 X1 Y1\nM30\n%\n")
+    prog = _checked(text, _in_dialect("fanuc"))
+    bottoms = [b.target.tolist() for b in prog.blocks if b.kind == "line"]
+    assert np.allclose(bottoms, [[150, 50, -30], [100, 100, -30], [50, 50, -30]], atol=1e-9)
+    r = 20 / math.sqrt(2)
+    assert np.allclose(prog.blocks[-2].target, [100 + r, 50 + r, -15], atol=1e-9)
+    assert np.allclose(prog.blocks[-1].target, [101, 51, -15], atol=1e-9)
+    with pytest.raises(GCodeError, match=r"G16 polar coordinates under G91"):
+        parse_program("G21 G90 G16\nG91 G0 X10 Y45\n", context=_in_dialect("fanuc"))
+    with pytest.raises(GCodeError, match=r"G16 polar coordinates: not supported"):
+        parse_program("G21 G90 G16\nG0 X10 Y45\n", context=_in_dialect("haas"))
+
+
+def test_linuxcnc_arc_p_adds_full_turns():
+    """LinuxCNC g-code.adoc "G2, G3 Arc Move": "if a 180 degree arc is programmed with a P2, the
+    resulting motion will be 1 1/2 rotations". A half circle of radius 5 with P3 sweeps 5 pi clockwise;
+    as a helix down 4 mm its length is the hypotenuse of 25 pi and 4; the end point is the programmed one."""
+    prog = _checked("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 Z-4 P3 F600\nG3 X0 Y0 R5 P1\n",
+                    _in_dialect("linuxcnc"))
+    helix, back = prog.blocks[1], prog.blocks[2]
+    assert helix.segment.sweep == pytest.approx(-5 * math.pi)
+    assert helix.segment.length == pytest.approx(math.hypot(25 * math.pi, 4))
+    assert helix.target.tolist() == [110, 50, -24]
+    assert back.segment.sweep == pytest.approx(math.pi)
+    for bad, message in [("P1.5", "P \\(number of turns\\) must be a whole number >= 1"),
+                         ("P0", "P \\(number of turns\\) must be a whole number >= 1")]:
+        with pytest.raises(GCodeError, match=message):
+            parse_program(f"G21 G90 G0 X0 Y0\nG2 X10 Y0 I5 J0 {bad} F600\n", context=_in_dialect("linuxcnc"))
+    with pytest.raises(GCodeError, match="word P needs G04"):
+        parse_program("G21 G90 G0 X0 Y0\nG2 X10 Y0 I5 J0 P2 F600\n", context=_in_dialect("fanuc"))
+
+
+def test_fanuc_haas_corner_rounding_and_chamfer_words_are_named():
+    for word, what in [(",R5.", "corner rounding"), (",C2.", "chamfering")]:
+        with pytest.raises(GCodeError, match=rf"2:9: '{word}' {what} between two moves"):
+            parse_program(f"G21 G90\nG1 X50. {word} F100.\nY50.\n", context=_in_dialect("haas"))
