@@ -1,12 +1,13 @@
-"""The compiled moments of the period searches (identification.kernels.sinusoid_moments) against
-the same sums written out with numpy's sin and cos."""
+"""The compiled moments of the period searches (identification.kernels.sinusoid_moments,
+windowed_fourier_moments) against the same sums written out with numpy's sin and cos or a stored basis."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from identification.kernels import SINCOS_MAX_PHASE, sinusoid_moments
+from identification.effects import TimePeriodic
+from identification.kernels import SINCOS_MAX_PHASE, fourier_gram, sinusoid_moments, windowed_fourier_moments
 
 
 def _direct(scaled, periods, r, q_t):
@@ -43,3 +44,21 @@ def test_sinusoid_moments_at_quadrant_boundaries():
         m, _, _ = sinusoid_moments(one, np.array([1.0]), r[:1], q_t[:, :1])
         assert m[0, 3] == pytest.approx(np.sin(one[0]), abs=2.3e-16)
         assert m[0, 4] == pytest.approx(np.cos(one[0]), abs=2.3e-16)
+
+
+@pytest.mark.parametrize("harmonics", [1, 5, 64])
+def test_windowed_fourier_moments_match_stored_basis(harmonics):
+    # the Gram matrix from trigonometric sums, and the products with r and q, against the stored columns
+    rng = np.random.default_rng(7)
+    n = 4000
+    t = np.sort(rng.uniform(0.0, 300.0, n))
+    phase = 2.0 * np.pi * t
+    g = np.where(rng.uniform(size=n) < 0.7, rng.uniform(0.2, 1.0, n), 0.0)
+    r = rng.standard_normal(n)
+    q_t = np.ascontiguousarray(rng.standard_normal((4, n)))
+    C = TimePeriodic.basis(t, 1.0, harmonics) * g[:, None]
+    cs, ss, cr, qc = windowed_fourier_moments(np.sin(phase), np.cos(phase), g, r, q_t, harmonics)
+    scale = float(np.sum(g * g))
+    np.testing.assert_allclose(fourier_gram(cs, ss, harmonics), C.T @ C, rtol=0, atol=1e-11 * scale)
+    np.testing.assert_allclose(cr, C.T @ r, rtol=0, atol=1e-11 * np.sqrt(scale) * np.linalg.norm(r))
+    np.testing.assert_allclose(qc, q_t @ C, rtol=0, atol=1e-11 * np.sqrt(scale) * np.max(np.linalg.norm(q_t, axis=1)))
