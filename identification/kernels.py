@@ -18,7 +18,7 @@ import numba
 import numpy as np
 
 __all__ = ["w_terms", "run_exact", "run_split", "sinusoid_moments", "fourier_series", "windowed_fourier_moments",
-           "fourier_gram", "NO_STRIBECK", "NO_FOURIER",
+           "fourier_gram", "run_exact_tangent", "NO_STRIBECK", "NO_FOURIER",
            "SINCOS_MAX_PHASE"]
 
 
@@ -483,3 +483,54 @@ def fourier_gram(cs, ss, harmonics):  # pragma: no cover - compiled
             G[2 * h - 2, 2 * m - 1] = 0.5 * (ss[h + m] + sg * ss[d])
             G[2 * h - 1, 2 * m - 2] = 0.5 * (ss[h + m] - sg * ss[d])
     return G
+
+
+@numba.njit(cache=True, nogil=True, inline='always')
+def _w_slopes(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
+    """(dw/dv [1/s], dw/dx [1/s^2]) of :func:`w_terms` at (v, x); the Coulomb levels' jump at v = 0
+    has no slope."""
+    dv = 0.0
+    dx = 0.0
+    if st[0] > 0.0 and v != 0.0:
+        r = v / st[0]
+        q = r * r
+        if q < 746.0:
+            dv += (st[1] if v > 0.0 else st[2]) * math.exp(-q) * (-2.0 * r / st[0])
+    if asym != 0.0:
+        dv += asym if v > 0.0 else (-asym if v < 0.0 else 0.0)
+    if pp_period > 0.0:
+        k = 2.0 * math.pi / pp_period
+        th = k * x
+        for h in range(pp_coef.shape[0]):
+            a = (h + 1) * th
+            dx += (h + 1) * k * (pp_coef[h, 0] * math.cos(a) - pp_coef[h, 1] * math.sin(a))
+    return dv, dx
+
+
+@numba.njit(cache=True, nogil=True)
+def run_exact_tangent(phi, gamma, c, cv, pos, vel, st, asym, pp_period, pp_coef, u):  # pragma: no cover
+    """Sensitivities of :func:`run_exact`'s position to the disturbance inputs ``u`` added to
+    ``wext``, along its trajectory ``pos``, ``vel`` (the tangent-linear loop: the state is linear in
+    w, and w depends on the state through :func:`w_terms`, whose slopes :func:`_w_slopes` are taken
+    at the trajectory; the Coulomb levels switch where the trajectory's velocity changes sign).
+    ``u`` is (n, m), one input per column; returns (n, m): d pos[k] / d (scale of u[:, j]). All m
+    inputs go through the loop together, the inner loop over them contiguous."""
+    n = u.shape[0]
+    m = u.shape[1]
+    out = np.empty((n, m))
+    s0 = np.zeros(m)
+    s1 = np.zeros(m)
+    s2 = np.zeros(m)
+    for k in range(n):
+        dv, dx = _w_slopes(vel[k], pos[k], st, asym, pp_period, pp_coef)
+        for j in range(m):
+            x0 = s0[j]
+            x1 = s1[j]
+            x2 = s2[j]
+            p = (c[0] * x0 + c[1] * x1) + c[2] * x2
+            out[k, j] = p
+            w = u[k, j] + dv * ((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dx * p
+            s0[j] = ((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 1] * w
+            s1[j] = ((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 1] * w
+            s2[j] = ((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 1] * w
+    return out
