@@ -17,7 +17,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["w_terms", "run_exact", "run_split", "sinusoid_moments", "fourier_series", "NO_STRIBECK", "NO_FOURIER",
+__all__ = ["w_terms", "run_exact", "run_split", "sinusoid_moments", "fourier_series", "windowed_fourier_moments",
+           "fourier_gram", "run_exact_tangent", "NO_STRIBECK", "NO_FOURIER",
            "SINCOS_MAX_PHASE"]
 
 
@@ -418,4 +419,118 @@ def fourier_series(s1, c1, coef):  # pragma: no cover - compiled
                 ck = c[k]
                 s[k] = sk * c1[k] + ck * s1[k]
                 c[k] = ck * c1[k] - sk * s1[k]
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def windowed_fourier_moments(s1, c1, g, r, q_t, harmonics):  # pragma: no cover - compiled
+    """Moments of the windowed Fourier columns ``g sin(h p)``, ``g cos(h p)``, h = 1..``harmonics``,
+    without storing them (``s1 = sin p``, ``c1 = cos p``, ``g`` the window weight of each row).
+
+    Returns ``(cs, ss, cr, qc)``: the trigonometric sums ``cs[k] = sum g^2 cos(k p)`` and
+    ``ss[k] = sum g^2 sin(k p)`` for k = 0..2 ``harmonics`` (the Gram matrix of the columns follows
+    from them by the product-to-sum identities: :func:`fourier_gram`), ``cr[j] = col_j . r`` and
+    ``qc[:, j] = q_t col_j`` for the columns j in the order of
+    :func:`identification.effects._fourier.fourier_basis` (sin, cos interleaved). The harmonics
+    come from its angle-addition recurrence, started at h = 0 (so h = 1.. ``harmonics`` are the same
+    values, bit for bit); O(n H) work instead of the O(n H^2) of the Gram of a stored basis.
+    """
+    n = s1.shape[0]
+    k = q_t.shape[0]
+    H = harmonics
+    cs = np.zeros(2 * H + 1)
+    ss = np.zeros(2 * H + 1)
+    cr = np.zeros(2 * H)
+    qc = np.zeros((k, 2 * H))
+    s = np.zeros(n)
+    c = np.ones(n)
+    g2 = g * g
+    gs = np.empty(n)
+    gc = np.empty(n)
+    for h in range(2 * H + 1):
+        cs[h] = np.dot(g2, c)
+        ss[h] = np.dot(g2, s)
+        if 1 <= h <= H:
+            for i in range(n):
+                gs[i] = g[i] * s[i]
+                gc[i] = g[i] * c[i]
+            cr[2 * h - 2] = np.dot(gs, r)
+            cr[2 * h - 1] = np.dot(gc, r)
+            qc[:, 2 * h - 2] = np.dot(q_t, gs)
+            qc[:, 2 * h - 1] = np.dot(q_t, gc)
+        if h < 2 * H:
+            for i in range(n):
+                si = s[i]
+                ci = c[i]
+                s[i] = si * c1[i] + ci * s1[i]
+                c[i] = ci * c1[i] - si * s1[i]
+    return cs, ss, cr, qc
+
+
+@numba.njit(cache=True, nogil=True)
+def fourier_gram(cs, ss, harmonics):  # pragma: no cover - compiled
+    """Gram matrix of the columns of :func:`windowed_fourier_moments` from its sums ``cs``, ``ss``:
+    ``sin(a) sin(b) = (cos(a - b) - cos(a + b)) / 2``, ``cos(a) cos(b) = (cos(a - b) + cos(a + b)) / 2``,
+    ``sin(a) cos(b) = (sin(a + b) + sin(a - b)) / 2``."""
+    H = harmonics
+    G = np.empty((2 * H, 2 * H))
+    for h in range(1, H + 1):
+        for m in range(1, H + 1):
+            d = abs(h - m)
+            sg = 1.0 if h >= m else -1.0
+            G[2 * h - 2, 2 * m - 2] = 0.5 * (cs[d] - cs[h + m])
+            G[2 * h - 1, 2 * m - 1] = 0.5 * (cs[d] + cs[h + m])
+            G[2 * h - 2, 2 * m - 1] = 0.5 * (ss[h + m] + sg * ss[d])
+            G[2 * h - 1, 2 * m - 2] = 0.5 * (ss[h + m] - sg * ss[d])
+    return G
+
+
+@numba.njit(cache=True, nogil=True, inline='always')
+def _w_slopes(v, x, st, asym, pp_period, pp_coef):  # pragma: no cover - compiled
+    """(dw/dv [1/s], dw/dx [1/s^2]) of :func:`w_terms` at (v, x); the Coulomb levels' jump at v = 0
+    has no slope."""
+    dv = 0.0
+    dx = 0.0
+    if st[0] > 0.0 and v != 0.0:
+        r = v / st[0]
+        q = r * r
+        if q < 746.0:
+            dv += (st[1] if v > 0.0 else st[2]) * math.exp(-q) * (-2.0 * r / st[0])
+    if asym != 0.0:
+        dv += asym if v > 0.0 else (-asym if v < 0.0 else 0.0)
+    if pp_period > 0.0:
+        k = 2.0 * math.pi / pp_period
+        th = k * x
+        for h in range(pp_coef.shape[0]):
+            a = (h + 1) * th
+            dx += (h + 1) * k * (pp_coef[h, 0] * math.cos(a) - pp_coef[h, 1] * math.sin(a))
+    return dv, dx
+
+
+@numba.njit(cache=True, nogil=True)
+def run_exact_tangent(phi, gamma, c, cv, pos, vel, st, asym, pp_period, pp_coef, u):  # pragma: no cover
+    """Sensitivities of :func:`run_exact`'s position to the disturbance inputs ``u`` added to
+    ``wext``, along its trajectory ``pos``, ``vel`` (the tangent-linear loop: the state is linear in
+    w, and w depends on the state through :func:`w_terms`, whose slopes :func:`_w_slopes` are taken
+    at the trajectory; the Coulomb levels switch where the trajectory's velocity changes sign).
+    ``u`` is (n, m), one input per column; returns (n, m): d pos[k] / d (scale of u[:, j]). All m
+    inputs go through the loop together, the inner loop over them contiguous."""
+    n = u.shape[0]
+    m = u.shape[1]
+    out = np.empty((n, m))
+    s0 = np.zeros(m)
+    s1 = np.zeros(m)
+    s2 = np.zeros(m)
+    for k in range(n):
+        dv, dx = _w_slopes(vel[k], pos[k], st, asym, pp_period, pp_coef)
+        for j in range(m):
+            x0 = s0[j]
+            x1 = s1[j]
+            x2 = s2[j]
+            p = (c[0] * x0 + c[1] * x1) + c[2] * x2
+            out[k, j] = p
+            w = u[k, j] + dv * ((cv[0] * x0 + cv[1] * x1) + cv[2] * x2) + dx * p
+            s0[j] = ((phi[0, 0] * x0 + phi[0, 1] * x1) + phi[0, 2] * x2) + gamma[0, 1] * w
+            s1[j] = ((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 1] * w
+            s2[j] = ((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 1] * w
     return out

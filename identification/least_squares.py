@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-__all__ = ["solve_qr", "solve_scaled", "truncated_step"]
+__all__ = ["solve_qr", "solve_scaled", "solve_gram", "truncated_step"]
 
 #: Largest condition number of the scaled Gram matrix solved through it (cond(A)^2 <= 1e10).
 MAX_GRAM_CONDITION = 1e10
@@ -59,6 +59,20 @@ def solve_scaled(A: np.ndarray, y: np.ndarray) -> np.ndarray:
     else:
         x = np.linalg.lstsq(As, y, rcond=None)[0]
     return x / sc
+
+
+def solve_gram(G: np.ndarray, b: np.ndarray) -> np.ndarray | None:
+    """The least-squares solution ``x`` of ``A x = y`` from the Gram matrix ``G = A'A`` and ``b = A'y``
+    alone, as :func:`solve_scaled` computes it (columns scaled to unit norm, ``sqrt(diag G)``);
+    None when the scaled Gram matrix is too ill-conditioned (the caller then solves with ``A``)."""
+    sc = np.sqrt(np.maximum(np.diag(G), 0.0))
+    sc[sc == 0] = 1.0
+    if G.shape[0] == 0:
+        return np.zeros(0)
+    w, V = np.linalg.eigh(G / np.outer(sc, sc))
+    if not (np.all(np.isfinite(w)) and w[0] > w[-1] / MAX_GRAM_CONDITION):
+        return None
+    return (V @ ((V.T @ (b / sc)) / w)) / sc
 
 
 def truncated_step(A: np.ndarray, y: np.ndarray, relative: float = 1e-3) -> np.ndarray:

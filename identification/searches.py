@@ -42,8 +42,8 @@ from identification.effects import (
     Saturation,
     TimePeriodic,
 )
-from identification.kernels import sinusoid_moments
-from identification.least_squares import solve_qr, solve_scaled
+from identification.kernels import fourier_gram, sinusoid_moments, windowed_fourier_moments
+from identification.least_squares import solve_gram, solve_qr, solve_scaled
 from identification.parallel import thread_map
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
@@ -197,6 +197,28 @@ class SearchContext:
             sol = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(g, rc)])
         return float(r @ r) - np.einsum("pk,pk->p", rc, sol)
 
+    def ee_partial_fourier(self, t: np.ndarray, period: float, harmonics: int, weight: np.ndarray) -> float:
+        """Training RSS of :meth:`ee_partial` with the windowed Fourier columns ``weight sin(h phase)``,
+        ``weight cos(h phase)`` (phase ``2 pi t / period``, h = 1..``harmonics``: the columns of
+        :meth:`TimePeriodic.window_basis` without a ramp) added, ``t`` [s] on the training rows.
+
+        As :meth:`ee_partial_sinusoids`, from moments (``r.r - b' G^-1 b``): the Gram matrix of the
+        columns from the trigonometric sums of :func:`identification.kernels.windowed_fourier_moments`
+        (O(n H), never storing the n x 2H basis), solved as :func:`solve_scaled` would; the stored
+        columns only when that Gram matrix is too ill-conditioned. Measured 2026-11-23 on the 2-core
+        development machine (one BLAS thread), EMPS DATA_EMPS_PULSES, 18,702 rows x 128 columns:
+        ``ee_partial`` of the stored 64-harmonic basis 55-74 ms per call, this 6.4-6.9 ms, the RSS
+        within 1e-15 of it (``python /tmp/pulses/chk.py``); ``search_time_periodic`` on that capture
+        2.63 s -> 0.51 s CPU (``python /tmp/pulses/tp_cmp.py``), the same candidate.
+        """
+        ph = 2.0 * np.pi * np.asarray(t, float) / period
+        g = np.ascontiguousarray(weight, float)
+        cs, ss, cr, qc = windowed_fourier_moments(np.sin(ph), np.cos(ph), g, self._ee_r, self._q_t, int(harmonics))
+        beta = solve_gram(fourier_gram(cs, ss, int(harmonics)) - qc.T @ qc, cr)
+        if beta is None or not np.all(np.isfinite(beta)):
+            return self.ee_partial(-TimePeriodic.basis(t, period, int(harmonics)) * g[:, None])[0]
+        return float(self._ee_r @ self._ee_r) - float(cr @ beta)
+
     def ee_rows(self):
         """(v, x, t) of the training regressor rows."""
         d = self.data
@@ -230,6 +252,67 @@ class SearchContext:
                 off -= w_of(e, vv, xx, tt) / a2
         res = d.y[va] - off - np.hstack([d.phi[va], cols_va]) @ theta
         return float(res @ res)
+
+    def ee_validation_fourier(self, period: float, ladder: list[int], window: tuple | None) -> list[float]:
+        """:meth:`ee_validation_rss` of the time-periodic columns (``TimePeriodic.window_basis``, no
+        ramp) of ``period`` [s] and ``window``, for every harmonic count of ``ladder``.
+
+        From moments, as :meth:`ee_partial_fourier`: with ``theta0`` the base's training solution
+        and ``K = R^-1 Q' C`` the base's part of the columns C, the validation residual is
+        ``a - D beta`` with ``a = y - Phi theta0`` and ``D = C_va - Phi_va K``, so its RSS needs the
+        Gram matrix of ``C_va`` (trigonometric sums), ``Phi_va' C_va`` and ``C_va' a``: one compiled
+        pass over the training rows and one over the validation rows for the largest count, the
+        smaller counts being leading blocks. A count whose Gram matrix is too ill-conditioned, or a
+        singular base, takes :meth:`ee_validation_rss` with the stored columns. Measured 2026-11-23 on
+        the 2-core development machine (one BLAS thread), EMPS DATA_EMPS_PULSES, the ladder 1..64:
+        0.22-0.40 s with stored columns, 0.012-0.014 s from moments, the RSS within 6e-13 of them.
+        """
+        d = self.data
+        top = max(ladder)
+        e = TimePeriodic(period=period, window=window)
+        t_tr, t_va = d.t[d.rows[d.tr_rows]], d.t[d.rows[d.va_rows]]
+
+        def stored(h):
+            eh = TimePeriodic(period=period, coefficients=((0.0, 0.0),) * h, window=window)
+            return self.ee_validation_rss(-eh.window_basis(t_tr), -eh.window_basis(t_va))
+
+        try:
+            theta0 = scipy.linalg.solve_triangular(self._base_r, self._q_t @ self._ee_y)
+        except (np.linalg.LinAlgError, ValueError):
+            return [stored(h) for h in ladder]
+        ph = 2.0 * np.pi * t_tr / period
+        cs, ss, cr, qc = windowed_fourier_moments(np.sin(ph), np.cos(ph), e.envelope_weights(t_tr)[0],
+                                                  self._ee_r, self._q_t, top)
+        va = d.va_rows
+        a2 = self.model.parameters["a2"]
+        vv, xx = d.v[va], d.y[va]
+        off = np.zeros(int(va.sum()))
+        for el in self.model.elements:
+            if el.KIND == "disturbance":
+                off -= w_of(el, vv, xx, t_va) / a2
+        phi_va = d.phi[va] / self._base_sc
+        a = d.y[va] - off - phi_va @ theta0
+        ph = 2.0 * np.pi * t_va / period
+        cs_v, ss_v, cr_v, pc_v = windowed_fourier_moments(np.sin(ph), np.cos(ph), e.envelope_weights(t_va)[0],
+                                                          a, np.ascontiguousarray(phi_va.T), top)
+        pp, pa, aa = phi_va.T @ phi_va, phi_va.T @ a, float(a @ a)
+        out = []
+        for h in ladder:
+            m = 2 * h
+            beta = solve_gram(fourier_gram(cs, ss, h) - qc[:, :m].T @ qc[:, :m], cr[:m])
+            try:
+                K = scipy.linalg.solve_triangular(self._base_r, qc[:, :m])
+            except (np.linalg.LinAlgError, ValueError):
+                beta = None
+            if beta is None or not (np.all(np.isfinite(beta)) and np.all(np.isfinite(K))):
+                out.append(stored(h))
+                continue
+            P = pc_v[:, :m]
+            KP = K.T @ P
+            dd = fourier_gram(cs_v, ss_v, h) - KP - KP.T + K.T @ pp @ K
+            da = cr_v[:m] - K.T @ pa
+            out.append(aa - 2.0 * float(beta @ da) + float(beta @ dd @ beta))
+        return out
 
     def ee_constrained_start(self, effect: Effect, extra_cols_tr: np.ndarray,
                              setter: Callable[[np.ndarray], Effect]) -> AugmentedAxisModel | None:
@@ -483,11 +566,14 @@ def _golden(f, a: float, b: float, iters: int = 30) -> float:
 def _choose_harmonics(ctx: SearchContext, make_cols, ladder) -> int:
     """Harmonic count with the least validation equation error (coefficients fitted on training rows)."""
     d = ctx.data
+    return _least_validation(ladder, [ctx.ee_validation_rss(-make_cols(d.tr_rows, h), -make_cols(d.va_rows, h))
+                                      for h in ladder])
+
+
+def _least_validation(ladder: list[int], rss: list[float]) -> int:
+    """The first harmonic count of ``ladder`` after which none lowers the validation RSS by 0.1 %."""
     best_h, best = ladder[0], math.inf
-    for h in ladder:
-        tr = make_cols(d.tr_rows, h)
-        va = make_cols(d.va_rows, h)
-        r = ctx.ee_validation_rss(-tr, -va)
+    for h, r in zip(ladder, rss):
         if r < best * (1 - 1e-3):
             best_h, best = h, r
     return best_h
@@ -640,15 +726,11 @@ def search_time_periodic(ctx: SearchContext) -> list[Candidate]:
     hmax = max(1, int(0.1 / d.T / f1))
     ladder = [h for h in (1, 2, 3, 5, 8, 12, 16, 24, 32, 48, 64) if h <= hmax]
 
-    def cols(mask, h):
-        return TimePeriodic(period=P, coefficients=((0.0, 0.0),) * h, window=window).window_basis(
-            d.t[d.rows[mask]])
-
-    H = _choose_harmonics(ctx, cols, ladder)
+    H = _least_validation(ladder, ctx.ee_validation_fourier(P, ladder, window))
     # period refined with all chosen harmonics (their phase drift over the record pins it down)
     span = (window[1] - window[0]) if window is not None else dur
-    P = 1.0 / _golden(lambda ff: ctx.ee_partial(-TimePeriodic(period=1.0 / ff, coefficients=((0.0, 0.0),) * H,
-                                                               window=window).window_basis(t))[0],
+    weight = TimePeriodic(period=P, window=window).envelope_weights(t)[0]
+    P = 1.0 / _golden(lambda ff: ctx.ee_partial_fourier(t, 1.0 / ff, H, weight),
                       f1 * (1 - 0.3 / (span * f1)), f1 * (1 + 0.3 / (span * f1)), 30)
     locked = reference_repeats(d.xr, P, d.T)
     if locked is not None:

@@ -18,16 +18,19 @@ def fourier_basis(phase: np.ndarray, harmonics: int) -> np.ndarray:
     grows like h * 1e-16 (below 1e-14 at the 64 harmonics a search may choose).
     """
     phase = np.asarray(phase, float)
-    out = np.empty((phase.size, 2 * harmonics))
     if harmonics < 1:
-        return out
+        return np.empty((phase.size, 0))
+    # built one contiguous row per column, then transposed: writing the columns of a C-ordered
+    # n x 2H array strides 2H values per sample (EMPS PULSES, 24,841 x 128: 26-31 ms -> 16-24 ms,
+    # the same values; 2026-11-23, the 2-core development machine)
+    out = np.empty((2 * harmonics, phase.size))
     s1, c1 = np.sin(phase), np.cos(phase)
-    out[:, 0], out[:, 1] = s1, c1
+    out[0], out[1] = s1, c1
     for h in range(1, harmonics):
-        s, c = out[:, 2 * h - 2], out[:, 2 * h - 1]
-        out[:, 2 * h] = s * c1 + c * s1
-        out[:, 2 * h + 1] = c * c1 - s * s1
-    return out
+        s, c = out[2 * h - 2], out[2 * h - 1]
+        np.add(s * c1, c * s1, out=out[2 * h])
+        np.subtract(c * c1, s * s1, out=out[2 * h + 1])
+    return np.ascontiguousarray(out.T)
 
 
 def fourier_eval(phase: np.ndarray, coef: np.ndarray) -> np.ndarray:
