@@ -50,6 +50,7 @@ import dataclasses
 import logging
 import math
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -296,6 +297,48 @@ def _load_sensitivities(params: dict, spec: SimSpec, data: Data, cols: np.ndarra
                              np.ascontiguousarray(cols))
 
 
+def _linear_jacobian(lay: _Layout, data: Data, z: np.ndarray, idx: np.ndarray, r0: np.ndarray, sel: np.ndarray,
+                     fun: Callable[[np.ndarray], np.ndarray], residual: Callable[[np.ndarray], np.ndarray]
+                     ) -> np.ndarray:
+    """Sensitivities of the refit residual ``r0 = fun(z)`` to the linear coefficients ``z[idx]``
+    (forward differences, one simulation each).
+
+    A time-periodic coefficient's perturbed simulation takes the load of ``z`` plus the step
+    times its column (:meth:`_Layout.load_columns`) instead of re-evaluating the whole Fourier
+    series: on EMPS DATA_EMPS_PULSES (64 harmonics, 24,841 samples) the series took 1.6 ms of
+    each 2.3 ms simulation (cProfile, 2026-11-23, the 2-core development machine). For a model
+    without elements the time-periodic columns come from one tangent-linear pass instead
+    (:func:`_load_sensitivities`). With these and the time-periodic search's moments, the
+    diagnosis of EMPS DATA_EMPS_PULSES took 11.7 s CPU instead of 20.7 s (``VCNC_THREADS=1``,
+    ``time.process_time``, the same effects found; 2026-11-23, the 2-core development machine).
+    ``residual`` maps a simulated output to the residual on the refit's samples ``sel``.
+    """
+    params, spec0 = lay.spec(z)
+    keys, cols = lay.load_columns(z)
+    where = {int(k): j for j, k in enumerate(keys)}
+    tangent = _load_sensitivities(params, spec0, data, cols)
+    rest = [i for i in idx if i not in where] if tangent is not None else list(idx)
+
+    def column(i):
+        step = 1e-3 * max(abs(z[i]), 1.0)
+        if i in where:
+            y = simulate_augmented(params, data.xr,
+                                   dataclasses.replace(spec0, wext=spec0.wext + step * cols[:, where[i]]))
+            return (residual(y) - r0) / step
+        zz = z.copy()
+        zz[i] += step
+        return (fun(zz) - r0) / step
+
+    if tangent is None:
+        return np.column_stack(thread_map(column, idx))
+    where_j = {i: j for j, i in enumerate(idx)}
+    J = np.empty((r0.size, idx.size))
+    J[:, [where_j[int(k)] for k in keys]] = tangent[sel]
+    for i, c in zip(rest, thread_map(column, rest)):
+        J[:, where_j[i]] = c
+    return J
+
+
 def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, max_nfev: int = 40
           ) -> AugmentedAxisModel:
     """Joint output-error refit of every continuous parameter on ``samples``.
@@ -353,46 +396,11 @@ def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, m
         return z
 
     def linear_step(z):
-        """Gauss-Newton step of the linear coefficients (forward-difference sensitivities, one
-        simulation each), halved until it lowers the error.
-
-        A time-periodic coefficient's perturbed simulation takes the load of ``z`` plus the step
-        times its column (:meth:`_Layout.load_columns`) instead of re-evaluating the whole Fourier
-        series: on EMPS DATA_EMPS_PULSES (64 harmonics, 24,841 samples) the series took 1.6 ms of
-        each 2.3 ms simulation (cProfile, 2026-11-23, the 2-core development machine). For a model
-        without elements the time-periodic columns come from one tangent-linear pass instead
-        (:func:`_load_sensitivities`). With these and the time-periodic search's moments, the
-        diagnosis of EMPS DATA_EMPS_PULSES took 11.7 s CPU instead of 20.7 s (``VCNC_THREADS=1``,
-        ``time.process_time``, the same effects found; 2026-11-23, the 2-core development machine)."""
+        """Gauss-Newton step of the linear coefficients (:func:`_linear_jacobian`), halved until it
+        lowers the error."""
         idx = np.flatnonzero(lin)
         r0 = fun(z)
-        params, spec0 = lay.spec(z)
-        keys, cols = lay.load_columns(z)
-        where = {int(k): j for j, k in enumerate(keys)}
-        tangent = _load_sensitivities(params, spec0, data, cols)
-        if tangent is not None:
-            where_j = {i: j for j, i in enumerate(idx)}
-            rest = [i for i in idx if i not in where]
-        else:
-            rest = list(idx)
-
-        def column(i):
-            step = 1e-3 * max(abs(z[i]), 1.0)
-            if i in where:
-                y = simulate_augmented(params, data.xr,
-                                       dataclasses.replace(spec0, wext=spec0.wext + step * cols[:, where[i]]))
-                return (residual(y) - r0) / step
-            zz = z.copy()
-            zz[i] += step
-            return (fun(zz) - r0) / step
-
-        if tangent is None:
-            J = np.column_stack(thread_map(column, idx))
-        else:
-            J = np.empty((r0.size, idx.size))
-            J[:, [where_j[int(k)] for k in keys]] = tangent[sel]
-            for i, c in zip(rest, thread_map(column, rest)):
-                J[:, where_j[i]] = c
+        J = _linear_jacobian(lay, data, z, idx, r0, sel, fun, residual)
         delta = -solve_scaled(J, r0)
         c0 = float(r0 @ r0)
         for alpha in (1.0, 0.5, 0.25):

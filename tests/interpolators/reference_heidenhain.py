@@ -597,15 +597,8 @@ def _single_lip_entry(t: _Tnc, line: int, p: dict, surface: float, sgn: float) -
         _dwell(t, line, p.get("Q211", 0.0))
 
 
-def _run_cycle(t: _Tnc, line: int) -> None:
-    """The defined machining cycle at the current position."""
-    if t.cycle is None:
-        raise ReferenceError("cycle call without a machining cycle")
-    kind, p = t.cycle
-    if kind == "12":
-        _execute(t, t.resolve(p), t.resolve, called=True)
-        return
-    start = t.prog()[2] / t.scale
+def _old_cycle(t: _Tnc, line: int, kind: str, p: dict, start: float) -> None:
+    """The old cycles 1 PECKING, 2 and 17 TAPPING, 4 POCKET MILLING and 5 CIRCULAR POCKET from ``start``."""
     if kind == "1":
         setup, depth, plunge, dwell = abs(p[1]), p[2], abs(p[3]), p[4]
         sgn = -1.0 if depth < 0 else 1.0
@@ -636,6 +629,26 @@ def _run_cycle(t: _Tnc, line: int) -> None:
                                    "Q202": abs(p[3]), "Q218": max(a, b), "Q219": min(a, b), "Q220": p.get(6, 0.0),
                                    "Q224": 90.0 if b >= a else 0.0, "Q370": 1.0, "Q351": p.get("DR", 1.0),
                                    "Q204": 0.0})
+        return
+    if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
+        sgn = -1.0 if p[2] < 0 else 1.0
+        _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
+        if kind == "2":
+            _dwell(t, line, p.get(3, 0.0))
+        _move_z(t, line, "feed", start)
+
+
+def _run_cycle(t: _Tnc, line: int) -> None:
+    """The defined machining cycle at the current position."""
+    if t.cycle is None:
+        raise ReferenceError("cycle call without a machining cycle")
+    kind, p = t.cycle
+    if kind == "12":
+        _execute(t, t.resolve(p), t.resolve, called=True)
+        return
+    start = t.prog()[2] / t.scale
+    if kind in ("1", "2", "4", "5", "17"):
+        _old_cycle(t, line, kind, p, start)
         return
     if kind == "208":
         _bore_milling(t, line, p)
@@ -681,13 +694,6 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "204":
         _back_boring(t, line, p)
-        return
-    if kind in ("2", "17"):  # old tapping: in to the depth below start + set-up clearance, (2: dwell), back out
-        sgn = -1.0 if p[2] < 0 else 1.0
-        _move_z(t, line, "feed", start + sgn * abs(p[1]) + p[2])
-        if kind == "2":
-            _dwell(t, line, p.get(3, 0.0))
-        _move_z(t, line, "feed", start)
         return
     if kind != "200":
         _one_pass_cycle(t, line, kind, p)
