@@ -11,7 +11,7 @@ import numpy as np
 
 from toolpaths.geometry import Arc, ClothoidPair, Line
 
-__all__ = ["PackedSegments", "LINE", "ARC", "HOLD", "CLOTHOID"]
+__all__ = ["PackedSegments", "LINE", "ARC", "HOLD", "CLOTHOID", "euler_spiral_point"]
 
 #: Segment kinds in :attr:`PackedSegments.kind`.
 LINE, ARC, HOLD, CLOTHOID = 0, 1, 2, 3
@@ -159,8 +159,9 @@ class PackedSegments:
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def _euler(phi):  # pragma: no cover - compiled
-    """:func:`toolpaths.geometry.euler_spiral` of one phase, the same series in the same order."""
+def euler_spiral_point(phi):  # pragma: no cover - compiled
+    """:func:`toolpaths.geometry.euler_spiral` of one phase, the same series in the same order (compiled, for
+    the sampling loop here and the contour kernel of :mod:`vcnc.contour_kernel`)."""
     x = 0.0
     y = 0.0
     term = 1.0
@@ -218,7 +219,7 @@ def _evaluate(seg, s_in, v, a, kind, length, start, end, center, e_p, e_q, e_n, 
             first = s <= 0.5 * L
             r = s if first else L - s
             phi = 0.5 * sharpness[m] * r * r
-            x, y = _euler(phi)
+            x, y = euler_spiral_point(phi)
             c = math.cos(phi)
             sn = math.sin(phi)
             sgn = 1.0 if first else -1.0

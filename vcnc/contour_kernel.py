@@ -20,7 +20,7 @@ import math
 import numba
 import numpy as np
 
-from toolpaths.packed import ARC, CLOTHOID, LINE
+from toolpaths.packed import ARC, CLOTHOID, LINE, euler_spiral_point
 
 __all__ = ["LINE", "ARC", "CLOTHOID", "locate", "nearest", "TIE_MM"]
 
@@ -147,29 +147,13 @@ def _project(px, py, pz, m, kind, start, end, direc, length, center, ep, eq, en,
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _euler(phi):  # pragma: no cover - compiled
-    """X(phi) = int_0^1 cos(phi u^2) du and Y (sin), power series as toolpaths.euler_spiral."""
-    x = 0.0
-    y = 0.0
-    term = 1.0
-    for k in range(28):
-        sign = 1.0 if k % 4 < 2 else -1.0
-        if k % 2 == 0:
-            x += sign * term / (2 * k + 1)
-        else:
-            y += sign * term / (2 * k + 1)
-        term = term * phi / (k + 1)
-    return x, y
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _clothoid_point(m, s, start, end, length, frame, sharp):  # pragma: no cover - compiled
     """Point, unit tangent and curvature vector of clothoid pair ``m`` at arc length ``s``."""
     L = length[m]
     first = s <= 0.5 * L
     r = s if first else L - s
     phi = 0.5 * sharp[m] * r * r
-    X, Y = _euler(phi)
+    X, Y = euler_spiral_point(phi)
     c, sn = math.cos(phi), math.sin(phi)
     k = sharp[m] * r
     pt = np.empty(3)
