@@ -358,15 +358,7 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
         a = a + w["IPA"] if "IPA" in w else w["PA"]
         if "PR" in w or "IPR" in w:
             raise ReferenceError("CP with a radius word")
-        end_p = p.copy()
-        end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
-        end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
-        axis = "XYZ"[n]
-        if axis in w:
-            end_p[n] = w[axis] * t.scale
-        if "I" + axis in w:
-            end_p[n] += w["I" + axis] * t.scale
-        end = t.machine(end_p)
+        end = t.machine(_polar_point(t, p, r, a, w))
     else:
         end = t.target(w)
     c = t.pole.copy()
@@ -374,6 +366,22 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
     t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
+
+
+def _polar_point(t: _Tnc, p: np.ndarray, r: float, a: float, w: dict) -> np.ndarray:
+    """The programmed point at radius ``r`` and angle ``a`` [deg] about the pole from ``p``, in the pole's
+    plane; a word of the plane's normal axis (absolute or incremental) moves it along that axis."""
+    i, j = t.pole_axes
+    n = 3 - i - j
+    end_p = p.copy()
+    end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
+    end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
+    axis = "XYZ"[n]
+    if axis in w:
+        end_p[n] = w[axis] * t.scale
+    if "I" + axis in w:
+        end_p[n] += w["I" + axis] * t.scale
+    return end_p
 
 
 def _polar_line(t: _Tnc, line: int, w: dict) -> None:
@@ -385,20 +393,11 @@ def _polar_line(t: _Tnc, line: int, w: dict) -> None:
         raise ReferenceError("LP under RL/RR or a transformation")
     p = t.prog()
     i, j = t.pole_axes
-    n = 3 - i - j
     r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
     a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
     r = w["PR"] * t.scale if "PR" in w else r + w.get("IPR", 0.0) * t.scale
     a = w["PA"] if "PA" in w else a + w.get("IPA", 0.0)
-    end_p = p.copy()
-    end_p[i] = t.pole[i] + r * math.cos(math.radians(a))
-    end_p[j] = t.pole[j] + r * math.sin(math.radians(a))
-    axis = "XYZ"[n]
-    if axis in w:
-        end_p[n] = w[axis] * t.scale
-    if "I" + axis in w:
-        end_p[n] += w["I" + axis] * t.scale
-    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(end_p))
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(_polar_point(t, p, r, a, w)))
 
 
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
