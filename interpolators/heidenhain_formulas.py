@@ -1,16 +1,16 @@
-"""Heidenhain Q-parameter formulas compiled once into closures (the speed layer of the formula evaluator).
+"""Heidenhain Q-parameter formulas compiled once into closures (the formula evaluator of
+:meth:`interpolators.heidenhain_params.QParameters.evaluate`).
 
 A program that loops (``LBL 2`` ... ``FN 12: IF +Q4 LT +18,85 GOTO LBL 2``) evaluates the same formula
 text tens of thousands of times. :func:`compile_formula` turns the token list of a formula into a tree
-of closures once; each evaluation then only reads the Q parameters and computes, in the same order
-and with the same arithmetic as the recursive-descent evaluator of
-:mod:`interpolators.heidenhain_params` (whose grammar this mirrors: ``+ -`` over ``* /`` over ``^``,
-right-associative, over unary signs and functions, over numbers, parameters and parentheses).
+of closures once by recursive descent (``+ -`` over ``* /`` over ``^``, right-associative, over unary
+signs and functions, over numbers, parameters and parentheses); each evaluation then only reads the Q
+parameters and computes, left to right within a level.
 
 Errors that depend on the values (division by zero, a function or power outside its domain) are
-raised during the evaluation through the context's ``fail``, as the evaluator raises them. A formula
-that does not parse is not compiled (``None``): the caller then runs the evaluator, which raises the
-syntax error exactly where it always did.
+raised during the evaluation through the context's ``fail``. A formula that does not parse raises
+:class:`FormulaSyntaxError` naming what is wrong (a missing operand or ``)``, an unknown function, an
+unexpected token), once, when it is compiled.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import math
 from collections.abc import Callable
 from typing import Protocol
 
-__all__ = ["FormulaContext", "Compiled", "compile_formula"]
+__all__ = ["FormulaContext", "Compiled", "FormulaSyntaxError", "compile_formula"]
 
 
 class FormulaContext(Protocol):
@@ -28,15 +28,15 @@ class FormulaContext(Protocol):
     params: object
 
     def fail(self, why: str) -> None:
-        """Raise the evaluator's error for ``why`` (never returns)."""
+        """Raise the reader's error for ``why``, naming the formula (never returns)."""
 
 
 #: A compiled formula: its value in a context.
 Compiled = Callable[[FormulaContext], float]
 
 
-class _Unparsable(Exception):
-    """The token list is not a formula (the evaluator reports why)."""
+class FormulaSyntaxError(Exception):
+    """The token list is not a formula; the message says why (``missing operand``, ...)."""
 
 
 class _Compiler:
@@ -102,7 +102,7 @@ class _Compiler:
     def unary(self) -> Compiled:
         t = self.peek()
         if t is None:
-            raise _Unparsable
+            raise FormulaSyntaxError("missing operand")
         if t[0] == "op" and t[1] in "+-":
             self.i += 1
             inner = self.unary()
@@ -113,7 +113,7 @@ class _Compiler:
                 return lambda ctx: math.pi
             fn = self.functions.get(t[1])
             if fn is None:
-                raise _Unparsable
+                raise FormulaSyntaxError(f"unknown function {t[1]!r}")
             arg, name = self.unary(), t[1]
 
             def run(ctx: FormulaContext) -> float:
@@ -128,7 +128,7 @@ class _Compiler:
     def primary(self) -> Compiled:
         t = self.peek()
         if t is None:
-            raise _Unparsable
+            raise FormulaSyntaxError("missing operand")
         self.i += 1
         if t[0] == "num":
             value = float(t[1])
@@ -139,19 +139,27 @@ class _Compiler:
         if t == ("op", "("):
             inner = self.expression()
             if self.peek() != ("op", ")"):
-                raise _Unparsable
+                raise FormulaSyntaxError("missing ')'")
             self.i += 1
             return inner
-        raise _Unparsable
+        raise FormulaSyntaxError(f"unexpected {t[1]!r}")
 
 
 def compile_formula(tokens: list[tuple[str, str]],
-                    functions: dict[str, Callable[[float], float]]) -> Compiled | None:
+                    functions: dict[str, Callable[[float], float]]) -> Compiled:
     """The closure computing the formula of ``tokens`` (``(kind, TEXT)`` pairs: ``num``, ``q``, ``name``,
-    ``op``), with ``functions`` the named functions; ``None`` when the tokens are no formula."""
+    ``op``), with ``functions`` the named functions.
+
+    Raises
+    ------
+    FormulaSyntaxError
+        The tokens are no formula, or nest deeper than Python's recursion follows.
+    """
     compiler = _Compiler(tokens, functions)
     try:
         run = compiler.expression()
-    except (_Unparsable, RecursionError):
-        return None
-    return run if compiler.i == len(tokens) else None
+    except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
+        raise FormulaSyntaxError(f"nested deeper than this reader follows ({len(tokens)} tokens)") from None
+    if compiler.i != len(tokens):
+        raise FormulaSyntaxError("unexpected " + repr(tokens[compiler.i][1]))
+    return run

@@ -31,7 +31,7 @@ from collections.abc import Callable
 import numpy as np
 
 from interpolators._words import MAX_MAGNITUDE, Where
-from interpolators.heidenhain_formulas import compile_formula
+from interpolators.heidenhain_formulas import Compiled, FormulaSyntaxError, compile_formula
 from interpolators.heidenhain_labels import LABEL_RE, label_key
 
 __all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE", "run_function"]
@@ -43,9 +43,9 @@ _TOKEN_RE = re.compile(
     r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/^()]))", re.I
 )
 
-#: Formula text -> its tokens and compiled closure (None: not a formula), shared by all runs; at most
+#: Formula text -> its compiled closure (:mod:`interpolators.heidenhain_formulas`), shared by all runs; at most
 #: ``_MAX_COMPILED`` entries.
-_COMPILED: dict[str, tuple[list[tuple[str, str]], Callable | None]] = {}
+_COMPILED: dict[str, Compiled] = {}
 _MAX_COMPILED = 4096
 
 _FUNCTIONS = {
@@ -132,109 +132,26 @@ class QParameters:
                 pos = m.end()
             if len(_COMPILED) >= _MAX_COMPILED:  # formulas built from changing text: keep the memory bounded
                 _COMPILED.clear()
-            cached = _COMPILED[text] = (tokens, compile_formula(tokens, _FUNCTIONS))
-        tokens, compiled = cached
-        parser = _Formula(tokens, self, where, text.strip(), column)
-        if compiled is not None:  # the same arithmetic in the same order, without parsing again
-            value = compiled(parser)
-        else:  # not a formula: the evaluator names the error
             try:
-                value = parser.expression()
-            except RecursionError:  # thousands of nested parentheses, functions or signs: no TNC formula nests so
-                parser.fail(f"nested deeper than this reader follows ({len(tokens)} tokens)")
-            if parser.i != len(tokens):
-                parser.fail("unexpected " + repr(tokens[parser.i][1]))
+                cached = _COMPILED[text] = compile_formula(tokens, _FUNCTIONS)
+            except FormulaSyntaxError as exc:
+                _Formula(self, where, text.strip(), column).fail(str(exc))
+        ctx = _Formula(self, where, text.strip(), column)
+        value = cached(ctx)
         if not (math.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
-            parser.fail(f"result {value!r} out of range")
+            ctx.fail(f"result {value!r} out of range")
         return value
 
 
 class _Formula:
-    """Recursive-descent evaluation of a token list."""
+    """What a compiled formula reads (the Q parameters) and reports its errors through (naming the formula)."""
 
-    def __init__(self, tokens, params: QParameters, where: Where, text: str, column: int) -> None:
-        self.tokens, self.params, self.where, self.text, self.column = tokens, params, where, text, column
-        self.i = 0
+    def __init__(self, params: QParameters, where: Where, text: str, column: int) -> None:
+        self.params, self.where, self.text, self.column = params, where, text, column
 
     def fail(self, why: str):
         self.where.fail(f"bad formula {self.text!r}: {why}", column=self.column, text=self.text,
                         expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
-
-    def peek(self) -> tuple[str, str] | None:
-        return self.tokens[self.i] if self.i < len(self.tokens) else None
-
-    def expression(self) -> float:
-        value = self.term()
-        while (t := self.peek()) is not None and t[1] in "+-" and t[0] == "op":
-            self.i += 1
-            rhs = self.term()
-            value = value + rhs if t[1] == "+" else value - rhs
-        return value
-
-    def term(self) -> float:
-        value = self.power()
-        while (t := self.peek()) is not None and t[0] == "op" and t[1] in "*/":
-            self.i += 1
-            rhs = self.power()
-            if t[1] == "/":
-                if rhs == 0:
-                    self.fail("division by zero")
-                value = value / rhs
-            else:
-                value = value * rhs
-        return value
-
-    def power(self) -> float:
-        base = self.unary()
-        t = self.peek()
-        if t is not None and t == ("op", "^"):
-            self.i += 1
-            exponent = self.power()
-            try:
-                result = math.pow(base, exponent)
-            except (ValueError, OverflowError):
-                self.fail(f"{base!r} ^ {exponent!r} is undefined")
-            return result
-        return base
-
-    def unary(self) -> float:
-        t = self.peek()
-        if t is None:
-            self.fail("missing operand")
-        if t[0] == "op" and t[1] in "+-":
-            self.i += 1
-            v = self.unary()
-            return -v if t[1] == "-" else v
-        if t[0] == "name":
-            self.i += 1
-            if t[1] == "PI":
-                return math.pi
-            fn = _FUNCTIONS.get(t[1])
-            if fn is None:
-                self.fail(f"unknown function {t[1]!r}")
-            arg = self.unary()
-            try:
-                return float(fn(arg))
-            except (ValueError, OverflowError):
-                self.fail(f"{t[1]} of {arg!r} is undefined")
-        return self.primary()
-
-    def primary(self) -> float:
-        t = self.peek()
-        if t is None:
-            self.fail("missing operand")
-        self.i += 1
-        if t[0] == "num":
-            return float(t[1])
-        if t[0] == "q":
-            return self.params.get(t[1])
-        if t == ("op", "("):
-            v = self.expression()
-            if self.peek() != ("op", ")"):
-                self.fail("missing ')'")
-            self.i += 1
-            return v
-        self.fail(f"unexpected {t[1]!r}")
 
 
 _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
