@@ -45,6 +45,9 @@ _POOL: concurrent.futures.ThreadPoolExecutor | None = None
 _POOL_SIZE = 0
 _LOCK = threading.Lock()
 _LOCAL = threading.local()
+#: Most tasks :func:`process_map` forks for: their indices (4 bytes each) must fit a pipe's 64 KiB buffer,
+#: written before anyone reads it (more coarse tasks than this run on threads).
+_MAX_FORK_TASKS = 16_000
 #: True in a worker process of :func:`process_map`: its maps run serially.
 _FORKED = False
 
@@ -162,13 +165,13 @@ def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:
     order given when it is free (:func:`_fork_map`). An exception of a task (pickled back) is raised
     here, the first in item order; a child that dies (killed, a crash in compiled code) raises
     ``concurrent.futures.process.BrokenProcessPool``. Where ``fork`` is not the platform's way (not
-    Linux), with fewer than two tasks or workers, or when called from inside a worker, this is
-    :func:`thread_map`.
+    Linux), with fewer than two tasks or workers, more than :data:`_MAX_FORK_TASKS` tasks, or when
+    called from inside a worker, this is :func:`thread_map`.
     """
     items = list(items)
     n = min(workers(), len(items))
     if n < 2 or _FORKED or getattr(_LOCAL, "inside", False) or getattr(_LOCAL, "serial", False) \
-            or not sys.platform.startswith("linux"):
+            or not sys.platform.startswith("linux") or len(items) > _MAX_FORK_TASKS:
         return thread_map(fn, items)
     return _fork_map(fn, items, n)
 
@@ -185,7 +188,7 @@ def _fork_map(fn: Callable[[Any], Any], items: list[Any], n: int) -> list[Any]:
     on the long capture of ``benchmarks/diagnosis.py``).
     """
     r_claim, w_claim = os.pipe()
-    os.write(w_claim, struct.pack(f"<{len(items)}i", *range(len(items))))  # < 64 KiB: never blocks
+    os.write(w_claim, struct.pack(f"<{len(items)}i", *range(len(items))))  # fits the pipe: never blocks
     os.close(w_claim)
     results: dict[int, tuple[bool, Any]] = {}
     readers, pids = [], []
