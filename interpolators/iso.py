@@ -108,6 +108,7 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
+from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
@@ -326,6 +327,9 @@ class _State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
+    corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
+    corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
+    corner_fresh: bool = False  # the corner was set by the block just run
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -432,17 +436,23 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
+        if st.corner is not None or st.corner_word is not None:
+            _corner_after_block(st, fl.words, count, blocks, Where(fl.file, fl.line, fl.raw))
         if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
             st.stopped = True  # the operator may jog: positions are unknown until the next move
         elif len(blocks) > count:
             st.stopped = False
         if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
+            if st.corner is not None:
+                corner_not_followed(st.corner, Where(fl.file, fl.line, fl.raw), "cutter compensation ends (G40)")
             _finish_compensation(st, blocks, source)
         if ended:
             break
     else:
         for line in homing:  # $H lines after the last block
             _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
+    if st.corner is not None:
+        corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
@@ -558,6 +568,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
              notes: _Notes) -> bool:
     """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
@@ -1170,10 +1181,54 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         target = np.array(seg.end)
         common["target"] = target
         blk = Block(kind="arc", feed=_feed(st, seg, turn), segment=seg, **common)
+    blk = _corner(st, blocks, blk, motion, where)
     blocks.append(blk)
     st.pos = target
     if rot is not None:
         st.extra = rot
+
+
+def _corner(st: _State, blocks: list[Block], blk: Block, motion: int, where: Where) -> Block:
+    """Fanuc/Haas ``,R`` / ``,C`` (:mod:`interpolators.iso_corners`): the corner a previous block asked
+    for goes in before ``blk`` (trimmed and returned); a word on this block waits for the next move."""
+    if st.corner is not None:
+        n = len(blocks)
+        blk = finish_corner(st.corner, blocks, blk, dialect=st.context.dialect.name, plane=st.plane, where=where)
+        if n in st.comp_centers:  # the programmed centre of this arc: it now comes after the corner block
+            st.comp_centers[n + 1] = st.comp_centers.pop(n)
+        st.corner = None
+    if st.corner_word is not None:
+        w, st.corner_word = st.corner_word, None
+        factor = st.frame.length_factor(st.plane) if st.frame is not None and not _off_plane(st) else 1.0
+        if factor is None:
+            where.fail(f"{w.text!r} under G51 scaling with different factors in the plane: not supported",
+                       column=w.column, text=w.text, expected="equal scaling factors in the plane")
+        st.corner = start_corner(w, blk, index=len(blocks), dialect=st.context.dialect.name, motion=motion,
+                                 plane=st.plane, size=w.value * st.scale * factor, inverse_time=st.inverse_time,
+                                 where=where)
+        st.corner_fresh = True
+    return blk
+
+
+def _corner_after_block(st: _State, words: list[Word], count: int, blocks: list[Block], where: Where) -> None:
+    """After each block: a ``,R`` / ``,C`` its block did not take (not a move of G01-G03) or a pending
+    corner the block did not take (no move, or other blocks made) is an error."""
+    if st.corner_word is not None:
+        w, st.corner_word = st.corner_word, None
+        where.fail(f"{w.text!r} {'corner rounding' if w.letter == ',R' else 'chamfering'} on a block without a "
+                   "G01/G02/G03 move", column=w.column, text=w.text, expected="the word on a move block")
+    if st.corner is None:
+        return
+    if st.corner_fresh:
+        st.corner_fresh = False
+        if len(blocks) == st.corner.index + 1:
+            return
+        corner_not_followed(st.corner, where, "its own block made more than one move")
+    if len(blocks) > count:
+        corner_not_followed(st.corner, where, f"this block makes a {blocks[-1].kind} that is not a G01/G02/G03 "
+                            "move")
+    if any(w.letter != "N" for w in words):
+        corner_not_followed(st.corner, where, "this block has no move")
 
 
 def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:

@@ -40,7 +40,8 @@ WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 
 @dataclasses.dataclass(frozen=True)
 class Word:
-    """One word: ``letter`` (upper case), ``value``, 1-based ``column``, source ``text``."""
+    """One word: ``letter`` (upper case; ``",R"``, ``",C"`` for Fanuc/Haas corner words), ``value``,
+    1-based ``column``, source ``text``."""
 
     letter: str
     value: float
@@ -121,6 +122,9 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             i = assignment(i)
             continue
         up = ch.upper()
+        if ch == "," and code[i + 1:i + 2].upper() in ("R", "C"):  # Fanuc/Haas ,R ,C (interpolators.iso_corners)
+            up = "," + code[i + 1].upper()
+            i += 1
         if ch == "/" and words:
             tok = re.match(r"/[0-9.]*", code[i:]).group(0)
             where.fail(f"'{tok}' after the word {words[-1].text!r}: arithmetic on a word's value needs brackets "
@@ -131,12 +135,8 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             tok = code[i:close + 1] if close > i else token_at(code, i)
             where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder?)",
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
-        if up not in WORD_LETTERS:
+        if up not in WORD_LETTERS and up not in (",R", ",C"):
             tok = token_at(code, i)
-            if re.match(r",[RCrc]", tok):
-                what = "corner rounding" if tok[1] in "Rr" else "chamfering"
-                where.fail(f"{tok!r} {what} between two moves (Fanuc/Haas ',R' / ',C'): not supported",
-                           column=i + 1, text=tok, expected="the rounding arc or chamfer written as its own move")
             if set(tok) == {"."}:
                 where.fail(f"{tok!r} where a word should start (an ellipsis: the program left incomplete here?)",
                            column=i + 1, text=tok, expected="a word such as X12.5")
@@ -150,6 +150,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
         else:
             v, end = value(i + 1, up)
         if v is not None:
-            words.append(Word(up, v, i + 1, code[i:end].strip()))
+            start = i - 1 if up[0] == "," else i
+            words.append(Word(up, v, start + 1, code[start:end].strip()))
         i = end
     return words

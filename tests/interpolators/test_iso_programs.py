@@ -845,7 +845,8 @@ def test_linuxcnc_arc_p_adds_full_turns():
         parse_program("G21 G90 G0 X0 Y0\nG2 X10 Y0 I5 J0 P2 F600\n", context=_in_dialect("fanuc"))
 
 
-def test_fanuc_haas_corner_rounding_and_chamfer_words_are_named():
+def test_fanuc_haas_corner_rounding_and_chamfer_words_are_named_outside_their_dialects():
+    # run under fanuc/haas: tests/interpolators/test_iso_corners.py
     for word, what in [(",R5.", "corner rounding"), (",C2.", "chamfering")]:
-        with pytest.raises(GCodeError, match=rf"2:9: '{word}' {what} between two moves"):
-            parse_program(f"G21 G90\nG1 X50. {word} F100.\nY50.\n", context=_in_dialect("haas"))
+        with pytest.raises(GCodeError, match=rf"2:9: '{word}' {what} between two moves .*not in the linuxcnc"):
+            parse_program(f"G21 G90\nG1 X50. {word} F100.\nY50.\n", context=_in_dialect("linuxcnc"))
