@@ -252,7 +252,7 @@ def _chord_point(element: Line | Arc, corner: np.ndarray, length: float, *, befo
             raise PathGeometryError(f"chamfer {length:g} mm is longer than a line of the corner "
                                     f"({element.length:.6g} mm)", f"a {word} shorter than both elements")
         return np.asarray(corner, float) + (-1.0 if before else 1.0) * u * (length / element.length)
-    if element.turns or abs(element.helix) > 1e-9:
+    if abs(element.sweep) > 2.0 * math.pi + 1e-12 or abs(element.helix) > 1e-9:
         raise PathGeometryError(f"{word} next to a helix or a multi-turn arc",
                                 f"{word} between elements in the working plane")
     half = length / (2.0 * element.radius)

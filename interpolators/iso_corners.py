@@ -39,6 +39,7 @@ error and ``C`` is the rotary axis.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
@@ -146,7 +147,7 @@ def _in_plane(seg: Line | Arc, plane: int) -> bool:
     p, q = PLANE_AXES[plane]
     d = np.asarray(seg.end, float) - np.asarray(seg.start, float)
     if isinstance(seg, Arc):
-        return abs(seg.helix) <= 1e-9 and seg.turns == 0
+        return abs(seg.helix) <= 1e-9 and abs(seg.sweep) <= 2.0 * math.pi + 1e-12
     return abs(d[plane]) <= 1e-9 and float(np.hypot(d[p], d[q])) > 1e-9
 
 

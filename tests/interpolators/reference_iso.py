@@ -75,6 +75,12 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times.
+- Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
+  chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
+  between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
+  from the corner (``t`` the turn angle), its centre ``r / cos(t/2)`` from the corner on the bisector;
+  a chamfer from ``c`` before the corner to ``c`` after it; a row of the first block's line between
+  the two moves, which end / start there.
 - grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
   and move nothing, but ``$H``, the homing cycle: Z to the home position, then X and Y
   (``HOMING_CYCLE_0``, ``HOMING_CYCLE_1``), as rapids; a ``(`` without ``)`` comments out the rest
@@ -412,6 +418,9 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
                 words.setdefault(c, []).append(value)
         elif c == "%":
             ev.i += 1
+        elif c == "," and ev.peek(2)[1:] in ("r", "c"):  # Fanuc/Haas corner words: see _corner
+            ev.i += 2
+            words.setdefault("," + ev.s[ev.i - 1], []).append(ev.real())
         else:
             raise ReferenceError(f"unexpected {ev.s[ev.i:ev.i + 20]!r}")
     return words, sets
@@ -518,6 +527,7 @@ class _Machine:
         self.mirror, self.mirror_at = np.zeros(3, bool), np.zeros(3)  # G51.1
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.polar16 = False  # Fanuc G16 polar coordinate command
+        self.corner: tuple[str, float, np.ndarray] | None = None  # a ,R / ,C: word, size [mm], its block's start
         self.out: list[Expected] = []
 
     def tool(self, number: int):
@@ -1148,8 +1158,14 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
     used = _non_modal(m, ln.number, g, words)
+    count, start = len(m.out), m.pos.copy()
     if not used:
         _motion(m, ln.number, g, words, axes)
+    if m.corner is not None and len(m.out) > count:
+        _corner(m, count)
+    for key in (",r", ",c"):
+        if key in words:
+            m.corner = (key, words[key][-1] * m.scale * float(np.mean(np.abs(m.factors))), start)
     if any(c in (20, 300) for c in mc):
         return "end"
     if 980 in mc:
@@ -1159,6 +1175,48 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+def _corner(m: _Machine, n: int) -> None:
+    """Fanuc/Haas ``,R r`` / ``,C c`` (Fanuc 0i-MF operator's manual "Optional chamfering and corner R";
+    Haas mill operator's manual "G01 Corner Rounding and Chamfering") between two straight feed moves
+    in the plane, the rows ``n - 1`` (the block with the word, from its start ``a`` to the corner) and
+    ``n``: the first ends where the corner begins, and a row of the first's line is put in between.
+    With the turn angle ``t`` between the unit directions ``u1``, ``u2``: a rounding touches each line
+    ``r tan(t/2)`` from the corner and its centre lies ``r / cos(t/2)`` from the corner along the
+    bisector ``u2 - u1``; a chamfer runs from ``c`` before the corner to ``c`` after it."""
+    (key, size, a), m.corner = m.corner, None
+    first, second = m.out[n - 1], m.out[n]
+    for row in (first, second):
+        if (row.kind if row.element is None else row.element[0]) not in ("feed", "line"):
+            raise ReferenceError("a ,R / ,C next to an arc or a rapid")
+    corner, b = first.end, second.end  # the programmed points (under G41/G42 too)
+    i, j = first.plane
+    u1 = np.array([corner[i] - a[i], corner[j] - a[j]])
+    u2 = np.array([b[i] - corner[i], b[j] - corner[j]])
+    u1, u2 = u1 / np.linalg.norm(u1), u2 / np.linalg.norm(u2)
+    turn = math.acos(max(-1.0, min(1.0, float(u1 @ u2))))
+    along = size * math.tan(turn / 2) if key == ",r" else size
+    t1, t2 = corner.copy(), corner.copy()
+    t1[[i, j]] = corner[[i, j]] - along * u1
+    t2[[i, j]] = corner[[i, j]] + along * u2
+    if key == ",r":
+        bisector = (u2 - u1) / np.linalg.norm(u2 - u1)
+        centre = corner.copy()
+        centre[[i, j]] = corner[[i, j]] + size / math.cos(turn / 2) * bisector
+        kind = "arc_ccw" if u1[0] * u2[1] - u1[1] * u2[0] > 0 else "arc_cw"
+    else:
+        centre, kind = None, "feed"
+    inserted = dataclasses.replace(first, kind=kind if first.element is None else None, end=t2, centre=centre,
+                                   centre_tolerance=1e-6 if centre is not None else 0.0, entry=False)
+    first = dataclasses.replace(first, end=t1)
+    if first.element is not None:  # G41/G42: the rows' ends lie one radius from the programmed elements
+        first = dataclasses.replace(first, element=("line", first.element[1], t1))
+        inserted = dataclasses.replace(inserted, element=("arc", centre, size, first.plane, t1, 0.0)
+                                       if centre is not None else ("line", t1, t2))
+        m.out[n] = dataclasses.replace(second, element=("line", t2, second.element[2]))
+    m.out[n - 1] = first
+    m.out.insert(n, inserted)
 
 
 def _fanuc_polar(m: _Machine, g: list[int], words: dict) -> None:
