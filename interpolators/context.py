@@ -232,6 +232,12 @@ class MachineContext:
         work offsets, ``#5401``.. tool offsets: :mod:`interpolators.iso_system`), as LinuxCNC keeps them
         in its INI units whatever G20/G21 says (tests/interp/unit-conversion). rs274's standalone
         interpreter, which LinuxCNC's own tests run, is an inch machine.
+    decimal_point_input : {"calculator", "increment"}
+        How a Fanuc control reads a distance, angle or time written without a decimal point (parameter
+        DPI, No. 3401#0; :mod:`interpolators.iso_decimal`): ``"calculator"`` (DPI = 1, the default here:
+        ``X10`` is 10 mm, as Haas, LinuxCNC and grbl read it; a Fanuc program with such words gets a
+        note) or ``"increment"`` (DPI = 0, Fanuc's own default: in least input increments of IS-B,
+        ``X10`` is 0.010 mm or 0.0010 in). Only the ``fanuc`` dialect reads it.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -241,10 +247,14 @@ class MachineContext:
     dialect: Dialect = dataclasses.field(default_factory=Dialect)
     extra_axes: tuple[str, ...] = ()
     linear_units: str = "mm"
+    decimal_point_input: str = "calculator"
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):
             raise InputError(f"linear_units must be 'mm' or 'inch', got {self.linear_units!r}")
+        if self.decimal_point_input not in ("calculator", "increment"):
+            raise InputError(f"decimal_point_input must be 'calculator' or 'increment' (Fanuc DPI = 1 or 0), got "
+                             f"{self.decimal_point_input!r}")
         offsets = {}
         for code, value in dict(self.work_offsets).items():
             key = work_offset_code(code)

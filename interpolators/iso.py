@@ -110,6 +110,7 @@ from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext,
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
+from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
@@ -330,6 +331,7 @@ class _State:
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     corner_fresh: bool = False  # the corner was set by the block just run
+    decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -567,6 +569,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
 def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,
              notes: _Notes) -> bool:
     """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
+    if st.context.dialect.name == "fanuc":
+        words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
     seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
@@ -648,6 +652,20 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _decimal_point(words: list[Word], st: _State, notes: _Notes) -> list[Word]:
+    """Fanuc decimal-point input (:mod:`interpolators.iso_decimal`): under ``increment`` (DPI = 0) the
+    distances, angles and times written without a decimal point in least input increments; under
+    ``calculator`` (DPI = 1) unchanged, with a note the first time."""
+    codes = {round(w.value, 1) for w in words if w.letter == "G"}
+    inch = 20 in codes or st.inch and 21 not in codes
+    mode = st.context.decimal_point_input
+    out, first = decimal_point_words(words, mode=mode, inch=inch, cycle=st.motion is not None and st.motion >= 730)
+    if first is not None and mode == "calculator" and not st.decimal_noted:
+        st.decimal_noted = True
+        notes.add(decimal_point_note(first, inch=inch))
+    return out
 
 
 def _fanuc_system_codes(gcodes, seen, st: _State, where: Where) -> None:

@@ -25,6 +25,7 @@ Layout::
     home = [0.0, 0.0, 0.0]        # mm, machine coordinates: program start and G28
     reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
     linear_units = "mm"           # mm | inch: the unit the stored offsets read in (#5221.., LinuxCNC's INI unit)
+    decimal_point_input = "calculator"  # calculator | increment: Fanuc DPI (No. 3401#0) = 1 | 0, X10 = 10 | 0.010 mm
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
@@ -57,7 +58,7 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools", "linear_units")
+                 "work_offsets", "tools", "linear_units", "decimal_point_input")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -327,6 +328,11 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         raise where.error(f"'program.linear_units' must be 'mm' or 'inch', got {tab['linear_units']!r}",
                           path + ("linear_units",))
     kwargs["linear_units"] = tab.get("linear_units", "mm")
+    if tab.get("decimal_point_input", "calculator") not in ("calculator", "increment"):
+        raise where.error("'program.decimal_point_input' must be 'calculator' (Fanuc DPI=1: X10 is 10 mm) or "
+                          f"'increment' (DPI=0: X10 is 0.010 mm), got {tab['decimal_point_input']!r}",
+                          path + ("decimal_point_input",))
+    kwargs["decimal_point_input"] = tab.get("decimal_point_input", "calculator")
     offsets = tab.get("work_offsets", {})
     if not isinstance(offsets, dict):
         raise where.error("'program.work_offsets' must be a table of G54 = [x, y, z] ...", path + ("work_offsets",))
