@@ -1151,6 +1151,10 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         _synchronised(seen, target, st, blocks, used, where, number, mcol, mtok)
         return
     rot = _extra_words(seen, motion, st, where, used, machine=machine)
+    if motion == 10 and "R" in seen and not arc_words and st.context.dialect.name in ("fanuc", "haas"):
+        w = seen["R"]  # Fanuc T series "Chamfering and corner R" (lathe): G01 X.. R..; a mill writes ",R"
+        where.fail("word R on G01: the lathe form of corner rounding ('G01 X.. R..'); a mill takes ',R'",
+                   column=w.column, text=w.text, expected=f",{w.text.strip()} (Fanuc/Haas corner rounding)")
     if motion in (0, 10) and (arc_words or "R" in seen):
         # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
         w = seen[(arc_words or ["R"])[0]]

@@ -214,6 +214,29 @@ def test_linuxcnc_and_grbl_refuse_the_words():
             parse_program(SQUARE.format(word=",R5."), context=ctx)
 
 
-def test_bare_r_on_a_mill_g01_stays_an_error():
+def test_bare_r_on_a_mill_g01_stays_an_error_naming_the_lathe_form():
+    for context in (FANUC, HAAS):
+        with pytest.raises(GCodeError, match=r"word R on G01: the lathe form of corner rounding .*expected ,R5\."):
+            parse_program(SQUARE.format(word="R5."), context=context)
     with pytest.raises(GCodeError, match="word R is only allowed on arcs"):
-        parse_program(SQUARE.format(word="R5."), context=FANUC)
+        parse_program(SQUARE.format(word="R5."), context=dataclasses.replace(BASE, dialect=DIALECTS["linuxcnc"]))
+
+
+def test_fanuc_rounds_between_two_arcs():
+    # G3 about (10, 0) from (0, 0) runs below the axis and reaches (20, 0) heading +Y; G3 about (20, 10)
+    # leaves (20, 0) heading +X: a right turn of 90 degrees, the corner's inside to the right of both
+    # arcs, which turn left: the rounding circle lies outside both circles
+    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG3 X20. Y0 I10. J0 ,R2. F600.\nG3 X30. Y10. I0 J10.\nM30\n",
+             reference=False)
+    arc = r[2]
+    assert arc["kind"] == "arc_cw" and arc["line"] == 3
+    # the rounding circle (radius 2) touches both circles of radius 10 from outside: 12 from each centre,
+    # on the side of the corner (20, 0)
+    c = arc["centre"][:2]
+    assert float(np.hypot(*(c - [10, 0]))) == pytest.approx(12.0, abs=1e-9)
+    assert float(np.hypot(*(c - [20, 10]))) == pytest.approx(12.0, abs=1e-9)
+    assert float(np.hypot(*(c - [20, 0]))) < 3.0
+    # the tangent points on the lines of the centres
+    assert r[1]["end"][:2] == pytest.approx(np.array([10.0, 0]) + 10 * (c - [10, 0]) / 12, abs=1e-9)
+    assert arc["end"][:2] == pytest.approx(np.array([20.0, 10]) + 10 * (c - [20, 10]) / 12, abs=1e-9)
+    assert r[3]["end"] == pytest.approx([30, 10, 0], abs=1e-9)
