@@ -29,11 +29,16 @@ Sources:
   from the intersection at which the chamfer starts and ends, ``,R`` the radius of the arc tangent to
   both lines. Under the ``haas`` dialect both moves must be G01.
 
-LinuxCNC and grbl know no such words (a ``,`` is an error there). The corner takes the feed of the
-block with the word (Fanuc: the corner block is executed as part of that block); under G93 inverse
-time, where that block's feed is its time, the words are refused. Bare ``R``/``C`` on a G01 (the
-lathe form of Fanuc "Chamfering and corner R", T series) are not read on a mill: ``R`` on G01 stays an
-error and ``C`` is the rotary axis.
+Secondary descriptions that agree: https://cnclearning.com/?p=1015, "Automatic chamfering" (Fanuc,
+Haas, Mitsubishi: ",C Value: The linear distance from the corner to the start of the chamfer"; ",R":
+the radius of the arc "tangent to both intersecting lines"), and the Fanuc 0i alarm list for
+PS0050-PS0055.
+
+LinuxCNC and grbl know no such words (a ``,`` is an error there). The corner runs at the feed of the
+block with the word, the move after it at its own (vcnc's reading: none of the sources gives the
+corner another feed); under G93 inverse time, where that block's feed is its time, the words are
+refused. Bare ``R``/``C`` on a G01 (the lathe form of Fanuc "Chamfering and corner R", T series) are
+not read on a mill: ``R`` on G01 stays an error and ``C`` is the rotary axis.
 """
 
 from __future__ import annotations
