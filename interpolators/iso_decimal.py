@@ -13,7 +13,8 @@ decimal point (Mitsubishi M700V programming manual 5.3 "Decimal Point Input", wh
 same two types: "Command X1 in the 1 um system is equivalent to command X0.001"; values of variables
 are read "the same way in either" type). The scaling factors of ``G51 I J K`` / ``P`` have their own
 rule (:func:`interpolators.iso_transforms.scaling`), and so do the arguments of ``G65``
-(:mod:`interpolators.iso_flow`).
+(:mod:`interpolators.iso_flow`: an error without a decimal point, whose meaning the manual leaves to
+the machine's configuration); the switches of ``G05.1 Q1`` and ``G08 P1`` are no distances.
 
 Haas, LinuxCNC and grbl read whole units: the setting (``MachineContext.decimal_point_input``)
 only applies under the ``fanuc`` dialect. The default, ``"calculator"``, changes nothing; under
@@ -38,6 +39,9 @@ DECIMAL_LETTERS = frozenset("XYZUVWABCIJKQR")
 #: Least input increment of IS-B [program unit]: mm, inch, and deg (rotary axes, angles).
 _INCREMENT = {"mm": 0.001, "inch": 0.0001, "deg": 0.001}
 _CYCLE_CODES = {73, 74, 76, 77, 81, 82, 83, 84, 85, 86, 87, 88, 89}
+#: Blocks whose words are no distances: G65 macro arguments and G51 scaling factors (their own rules),
+#: the look-ahead switches G05 P10000, G05.1 Q1, G08 P1 (:mod:`interpolators.iso_smoothing`).
+_OWN_RULES = {65, 51, 5, 5.1, 8}
 
 
 def integer_literal(word: Word) -> bool:
@@ -48,7 +52,7 @@ def integer_literal(word: Word) -> bool:
 def _scaled(words: list[Word], *, cycle: bool) -> list[Word]:
     """The words of a block a least input increment applies to (see the module docstring)."""
     codes = {round(w.value, 1) for w in words if w.letter == "G"}
-    if 65 in codes or 51 in codes:  # macro arguments and scaling factors: their own rules
+    if codes & _OWN_RULES:
         return []
     cycle = cycle or bool(codes & _CYCLE_CODES)
     return [w for w in words if w.letter in DECIMAL_LETTERS and integer_literal(w) and not (w.letter == "K" and cycle)]

@@ -54,6 +54,11 @@ def test_a_canned_cycle_repeat_count_k_is_not_a_distance():
     assert len(holes) == 3
 
 
+def test_look_ahead_switches_are_not_distances():
+    prog = parse_program("G21 G90\nG05.1 Q1\nG0 X10 Y0 Z0\nG05.1 Q0\nM30\n", context=INCREMENT)
+    assert prog.blocks[0].target.tolist() == [0.01, 0.0, 0.0]
+
+
 def test_dwell_x_without_a_decimal_point_counts_milliseconds_under_increment_input():
     text = "G21 G90\nG0 X0 Y0 Z0\nG4 X1500\nG4 P1500\nG4 X1.5\nM30\n"
     dwells = [b.dwell for b in parse_program(text, context=INCREMENT).blocks if b.kind == "dwell"]
