@@ -80,7 +80,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
   from the corner (``t`` the turn angle), its centre ``r / cos(t/2)`` from the corner on the bisector;
   a chamfer from ``c`` before the corner to ``c`` after it; a row of the first block's line between
-  the two moves, which end / start there.
+  the two moves, which end / start there. Next to an arc (Fanuc) the rounding's centre is searched
+  among the points ``r`` from both elements, and a chamfer's ends are at the chord ``c`` from the corner.
 - grbl (gnea/grbl ``doc/markdown/commands.md``, ``grbl/config.h``): ``$`` lines are system commands
   and move nothing, but ``$H``, the homing cycle: Z to the home position, then X and Y
   (``HOMING_CYCLE_0``, ``HOMING_CYCLE_1``), as rapids; a ``(`` without ``)`` comments out the rest
@@ -1180,16 +1181,20 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
 def _corner(m: _Machine, n: int) -> None:
     """Fanuc/Haas ``,R r`` / ``,C c`` (Fanuc 0i-MF operator's manual "Optional chamfering and corner R";
     Haas mill operator's manual "G01 Corner Rounding and Chamfering") between two straight feed moves
-    in the plane, the rows ``n - 1`` (the block with the word, from its start ``a`` to the corner) and
-    ``n``: the first ends where the corner begins, and a row of the first's line is put in between.
+    in the plane (next to an arc: :func:`_arc_corner`), the rows ``n - 1`` (the block with the word, from
+    its start ``a`` to the corner) and ``n``: the first ends where the corner begins, and a row of the
+    first's line is put in between.
     With the turn angle ``t`` between the unit directions ``u1``, ``u2``: a rounding touches each line
     ``r tan(t/2)`` from the corner and its centre lies ``r / cos(t/2)`` from the corner along the
     bisector ``u2 - u1``; a chamfer runs from ``c`` before the corner to ``c`` after it."""
     (key, size, a), m.corner = m.corner, None
     first, second = m.out[n - 1], m.out[n]
+    if {"arc_cw", "arc_ccw"} & {first.kind, second.kind} and first.element is None and second.element is None:
+        _arc_corner(m, n, key, size, a)
+        return
     for row in (first, second):
         if (row.kind if row.element is None else row.element[0]) not in ("feed", "line"):
-            raise ReferenceError("a ,R / ,C next to an arc or a rapid")
+            raise ReferenceError("a ,R / ,C next to a rapid, or next to an arc under G41/G42")
     corner, b = first.end, second.end  # the programmed points (under G41/G42 too)
     i, j = first.plane
     u1 = np.array([corner[i] - a[i], corner[j] - a[j]])
@@ -1217,6 +1222,141 @@ def _corner(m: _Machine, n: int) -> None:
         m.out[n] = dataclasses.replace(second, element=("line", t2, second.element[2]))
     m.out[n - 1] = first
     m.out.insert(n, inserted)
+
+
+def _arc_corner(m: _Machine, n: int, key: str, size: float, a: np.ndarray) -> None:
+    """``,R`` / ``,C`` next to an arc (Fanuc): found by search, not construction. The rounding's centre is
+    any point ``size`` from both elements (on a line's two parallels, on an arc's circles of radius
+    ``R + size`` and ``R - size``) whose feet lie on the elements, where the rounding runs on in both
+    elements' directions; of those the nearest the corner. A chamfer's ends are the points of the
+    elements at the chord ``size`` from the corner (NCT 2000M manual 16.1: on an arc ",C is the length
+    of the chord drawn from intersection")."""
+    first, second = m.out[n - 1], m.out[n]
+    if "rapid" in (first.kind, second.kind):
+        raise ReferenceError("a ,R / ,C next to a rapid")
+    i, j = first.plane
+    corner = first.end[[i, j]]
+    els = [_element(first, a[[i, j]], corner, (i, j)), _element(second, corner, second.end[[i, j]], (i, j))]
+    if key == ",c":
+        ends = [_chord_point(el, corner, size) for el in els]
+        inserted = dataclasses.replace(first, kind="feed", end=_lift(first.end, ends[1], (i, j)), centre=None,
+                                       centre_tolerance=0.0)
+        m.out[n - 1] = dataclasses.replace(first, end=_lift(first.end, ends[0], (i, j)))
+        m.out.insert(n, inserted)
+        return
+    best = None
+    for c in _offset_meets(els[0], els[1], size):
+        feet = [_foot(el, c) for el in els]
+        if not all(_on(el, f) for el, f in zip(els, feet)):
+            continue
+        d1, d2 = _heading(els[0], feet[0]), _heading(els[1], feet[1])
+        ccw = d1[0] * d2[1] - d1[1] * d2[0] > 0
+        runs = [np.array([-(f - c)[1], (f - c)[0]]) / size * (1 if ccw else -1) for f in feet]
+        if runs[0] @ d1 > 1 - 1e-9 and runs[1] @ d2 > 1 - 1e-9 and (
+                best is None or np.linalg.norm(c - corner) < np.linalg.norm(best[0] - corner)):
+            best = (c, feet, ccw)
+    if best is None:
+        raise ReferenceError("no rounding of that radius fits")
+    c, feet, ccw = best
+    inserted = dataclasses.replace(first, kind="arc_ccw" if ccw else "arc_cw", end=_lift(first.end, feet[1], (i, j)),
+                                   centre=_lift(first.end, c, (i, j)), centre_tolerance=1e-6)
+    m.out[n - 1] = dataclasses.replace(first, end=_lift(first.end, feet[0], (i, j)))
+    m.out.insert(n, inserted)
+
+
+def _lift(like: np.ndarray, p: np.ndarray, plane: tuple[int, int]) -> np.ndarray:
+    out = like.copy()
+    out[list(plane)] = p
+    return out
+
+
+def _element(row: Expected, start: np.ndarray, end: np.ndarray, plane: tuple[int, int]) -> tuple:
+    """A row in the plane: ``("line", start, end)`` or ``("arc", centre, radius, ccw, start, end)``."""
+    if row.kind == "feed":
+        return ("line", start, end)
+    o = row.centre[list(plane)]
+    return ("arc", o, float(np.linalg.norm(start - o)), row.kind == "arc_ccw", start, end)
+
+
+def _heading(el: tuple, p: np.ndarray) -> np.ndarray:
+    if el[0] == "line":
+        return (el[2] - el[1]) / np.linalg.norm(el[2] - el[1])
+    r = p - el[1]
+    return np.array([-r[1], r[0]]) / np.linalg.norm(r) * (1 if el[3] else -1)
+
+
+def _angle_along(el: tuple, p: np.ndarray) -> float:
+    """Angle [rad] from an arc's start to ``p`` in its direction of travel, in [0, 2 pi)."""
+    v0, v = el[4] - el[1], p - el[1]
+    ang = math.atan2(v0[0] * v[1] - v0[1] * v[0], v0 @ v) * (1 if el[3] else -1)
+    return ang % (2 * math.pi)
+
+
+def _on(el: tuple, p: np.ndarray) -> bool:
+    if el[0] == "line":
+        t = (p - el[1]) @ (el[2] - el[1]) / ((el[2] - el[1]) @ (el[2] - el[1]))
+        return -1e-9 <= t <= 1 + 1e-9
+    sweep = _angle_along(el, el[5]) or 2 * math.pi
+    return _angle_along(el, p) <= sweep + 1e-9 or _angle_along(el, p) > 2 * math.pi - 1e-9
+
+
+def _foot(el: tuple, c: np.ndarray) -> np.ndarray:
+    if el[0] == "line":
+        u = (el[2] - el[1]) / np.linalg.norm(el[2] - el[1])
+        return el[1] + u * ((c - el[1]) @ u)
+    return el[1] + (c - el[1]) * el[2] / np.linalg.norm(c - el[1])
+
+
+def _offset_meets(e1: tuple, e2: tuple, r: float) -> list[np.ndarray]:
+    """Points at distance ``r`` from both elements (their offsets on either side, intersected)."""
+    def offsets(el):
+        if el[0] == "line":
+            u = (el[2] - el[1]) / np.linalg.norm(el[2] - el[1])
+            nrm = np.array([-u[1], u[0]])
+            return [("l", el[1] + s * r * nrm, u) for s in (1, -1)]
+        return [("c", el[1], el[2] + s * r) for s in (1, -1) if el[2] + s * r > 0]
+    out = []
+    for o1 in offsets(e1):
+        for o2 in offsets(e2):
+            out += _meet(o1, o2)
+    return out
+
+
+def _meet(o1: tuple, o2: tuple) -> list[np.ndarray]:
+    if o1[0] == "c" and o2[0] == "l":
+        o1, o2 = o2, o1
+    if o1[0] == "l" and o2[0] == "l":
+        (p, u), (q, v) = o1[1:], o2[1:]
+        den = u[0] * v[1] - u[1] * v[0]
+        if abs(den) < 1e-12:
+            return []
+        t = ((q - p)[0] * v[1] - (q - p)[1] * v[0]) / den
+        return [p + t * u]
+    if o1[0] == "l":
+        (p, u), (o, rad) = o1[1:], o2[1:]
+        w = p - o
+        b, cc = w @ u, w @ w - rad * rad
+        disc = b * b - cc
+        return [] if disc < 0 else [p + (-b + s * math.sqrt(disc)) * u for s in (1, -1)]
+    (o, r1), (q, r2) = o1[1:], o2[1:]
+    d = float(np.linalg.norm(q - o))
+    if d < 1e-12 or d > r1 + r2 or d < abs(r1 - r2):
+        return []
+    x = (d * d + r1 * r1 - r2 * r2) / (2 * d)
+    h = math.sqrt(max(r1 * r1 - x * x, 0.0))
+    e = (q - o) / d
+    return [o + x * e + s * h * np.array([-e[1], e[0]]) for s in (1, -1)]
+
+
+def _chord_point(el: tuple, corner: np.ndarray, c: float) -> np.ndarray:
+    """The point of the element ``c`` (a chord) from the corner, on the element."""
+    if el[0] == "line":
+        u = (el[2] - el[1]) / np.linalg.norm(el[2] - el[1])
+        return corner - c * u if np.allclose(el[2], corner) else corner + c * u
+    for p in _meet(("c", corner, c), ("c", el[1], el[2])):
+        if _on(el, p):
+            return p
+    raise ReferenceError("no chamfer of that length fits")
 
 
 def _fanuc_polar(m: _Machine, g: list[int], words: dict) -> None:

@@ -132,7 +132,7 @@ def test_consecutive_corners_each_trim_the_move_between_them():
 def test_fanuc_rounds_between_a_line_and_an_arc():
     # a line along +X to (50, 0), then a clockwise arc of radius 20 about (70, 0) to (70, 20): it leaves
     # (50, 0) heading +Y, a 90 degree left turn onto the circle
-    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG1 X50. ,R5. F600.\nG2 X70. Y20. I20. J0\nM30\n", reference=False)
+    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG1 X50. ,R5. F600.\nG2 X70. Y20. I20. J0\nM30\n")
     arc = r[2]
     # the rounding circle (radius 5) touches the line y = 0 from above: centre y = 5; it touches the
     # circle of radius 20 about (70, 0) from outside: distance 25 from (70, 0): x = 70 - sqrt(25^2 - 5^2)
@@ -148,7 +148,7 @@ def test_fanuc_rounds_between_a_line_and_an_arc():
 
 
 def test_fanuc_chamfer_on_an_arc_is_the_chord_from_the_corner():
-    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG1 X50. ,C4. F600.\nG2 X70. Y20. I20. J0\nM30\n", reference=False)
+    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG1 X50. ,C4. F600.\nG2 X70. Y20. I20. J0\nM30\n")
     assert r[1]["end"] == pytest.approx([46, 0, 0], abs=1e-9)
     assert float(np.linalg.norm(r[2]["end"][:2] - [50, 0])) == pytest.approx(4.0)
     assert float(np.linalg.norm(r[2]["end"][:2] - [70, 0])) == pytest.approx(20.0)
@@ -226,8 +226,7 @@ def test_fanuc_rounds_between_two_arcs():
     # G3 about (10, 0) from (0, 0) runs below the axis and reaches (20, 0) heading +Y; G3 about (20, 10)
     # leaves (20, 0) heading +X: a right turn of 90 degrees, the corner's inside to the right of both
     # arcs, which turn left: the rounding circle lies outside both circles
-    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG3 X20. Y0 I10. J0 ,R2. F600.\nG3 X30. Y10. I0 J10.\nM30\n",
-             reference=False)
+    r = rows("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG3 X20. Y0 I10. J0 ,R2. F600.\nG3 X30. Y10. I0 J10.\nM30\n")
     arc = r[2]
     assert arc["kind"] == "arc_cw" and arc["line"] == 3
     # the rounding circle (radius 2) touches both circles of radius 10 from outside: 12 from each centre,
