@@ -111,6 +111,7 @@ from interpolators.heidenhain_contours import (
     ROUGHING_CYCLES,
     ContourTrain,
     RoughOut,
+    clearing_rings,
     closed_pocket,
     contour_data,
     contour_labels,
@@ -119,6 +120,7 @@ from interpolators.heidenhain_contours import (
     pocket_rings,
     reversed_path,
     rough_out_cycle,
+    superimposed_region,
     train_levels,
 )
 from interpolators.heidenhain_cycles import (
@@ -1176,12 +1178,12 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 (rounding the path's inside
     corners) is not applied (noted). Islands (several labels in cycle 14) are an error."""
     label = _sl_checks(m, 22, where, blk)
-    if len(m.contour) > 1:
-        where.fail("cycle 22 with islands (several labels in cycle 14) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL DEF 14.1 CONTOUR LABEL n with one pocket contour")
     if m.tool_radius <= 0:
         where.fail("cycle 22 needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
+    if len(m.contour) > 1:
+        _rough_out_region(m, c, where, blk)
+        return
     if m.contour_data and m.contour_data.get(8, 0.0):
         m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
     axis = m.plane
@@ -1222,6 +1224,63 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
                 m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
                                                     start=m.pos.copy()))
                 m.pos = np.array(b.target, dtype=float)
+        _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
+                   math.inf if c.retract_feed is None else c.retract_feed, where, blk)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
+    """Cycle 22 ROUGH-OUT of the superimposed contours of cycle 14 (pockets less islands,
+    :func:`interpolators.heidenhain_contours.superimposed_region`; TNC 426/430 user's manual, "ROUGH-OUT (Cycle
+    22)": the tool mills the contour from the inside outward, the islands cleared with an approach toward the
+    pocket contour, leaving Q3 and Q4). Our reading of the path the manual leaves to the control: the offsets of
+    the whole boundary (pocket walls and islands alike) R + Q3, R + Q3 + Q2 R, .. (each ring within
+    :data:`toolpaths.pockets.TOLERANCE` = 1 um, never nearer the contours than its offset), run from the
+    innermost level outward in the sense Q9, joined by straight feed moves where they keep R + Q3 from every
+    contour, else by a retraction to Q7 and a new plunge (separate regions). Per depth as for one pocket."""
+    axis = m.plane
+    contours = [_trace_contour(m, label, 0.0, m.pos, c.feed, where, blk) for label in m.contour]
+    area = superimposed_region([(path[1:], side) for path, side in contours], plane=axis, where=where,
+                               column=blk.column)
+    first, step = m.tool_radius + c.side_allowance, c.overlap * m.tool_radius
+    p, q = PLANE_AXES[axis]
+    here = np.array([m.pos[p], m.pos[q]])
+    try:
+        rings = clearing_rings(area, first=first, step=step, ccw=c.ccw, start=here)
+    except ValueError as exc:
+        where.fail(f"cycle 22: {exc}", column=blk.column, text=blk.code, expected="contours the offsets can follow")
+    if not rings:
+        where.fail(f"cycle 22: the tool (radius {m.tool_radius:g} mm) plus the allowance Q3 fits nowhere in the "
+                   "contours of cycle 14", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
+    bottom = abs(c.depth) - c.floor_allowance
+    if bottom <= 0:
+        where.fail("cycle 22: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+                   text=blk.code, expected="|Q4| < |Q1|")
+    d = -1.0 if c.depth < 0 else 1.0
+    surface = m.origin()[axis] + c.surface
+    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    m.used.update((p, q, axis))
+
+    def point(xy: np.ndarray, level: float) -> np.ndarray:
+        out = m.pos.copy()
+        out[p], out[q], out[axis] = xy[0], xy[1], level
+        return out
+
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+    for level in train_levels(surface, d * bottom, c.plunge):
+        for k, (ring, linked) in enumerate(rings):
+            if k == 0 or not linked:
+                if k:
+                    _axis_move(m, "rapid", clear, math.inf, where, blk)
+                over = point(ring[0], m.pos[axis])
+                if not np.array_equal(over, m.pos):
+                    m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+                _axis_move(m, "rapid", above, math.inf, where, blk)
+                _axis_move(m, "line", level, c.plunge_feed, where, blk)
+            for xy in ring[0 if linked else 1:]:
+                target = point(xy, level)
+                if not np.array_equal(target, m.pos):
+                    m.emit("line", target, Line(m.pos, target), c.feed, where, blk.number)
         _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
                    math.inf if c.retract_feed is None else c.retract_feed, where, blk)
     _axis_move(m, "rapid", clear, math.inf, where, blk)

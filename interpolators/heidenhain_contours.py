@@ -32,10 +32,11 @@ from interpolators._words import Where
 from interpolators.compensation import CompensationError, compensate
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, segment_clear
 
 __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
-           "closed_pocket", "pocket_rings"]
+           "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
@@ -344,3 +345,73 @@ def pocket_rings(loop: list[Block], polygon: np.ndarray, *, radii: list[float], 
             break
         rings.append(ring[int(bool(rings)):])
     return rings
+
+
+def contour_edges(path: list[Block], plane: int) -> list[Edge]:
+    """The lines and arcs of a contour's blocks as :class:`toolpaths.pockets.Edge` in the ``plane`` [mm]."""
+    p, q = PLANE_AXES[plane]
+    edges = []
+    for b in path:
+        seg = b.segment
+        start, end = np.array([seg.start[p], seg.start[q]]), np.array([seg.end[p], seg.end[q]])
+        if isinstance(seg, Arc):
+            edges.append(Edge(start=start, end=end, centre=np.array([seg.center[p], seg.center[q]]),
+                              radius=float(seg.radius), a0=float(seg.start_angle), sweep=float(seg.sweep)))
+        elif np.linalg.norm(end - start) > 0:
+            edges.append(Edge(start=start, end=end))
+    return edges
+
+
+def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, where: Where,
+                        column: int) -> Region:
+    """The region cycle 14's contours enclose: each closed contour (its blocks after the starting point, and its
+    ``RL``/``RR``/``R0``) is a pocket or an island by the TNC's rule (TNC 426/430 user's manual, "SL Cycles":
+    the TNC recognizes a pocket when the tool path lies inside the contour, e.g. clockwise with RR, and an island
+    when it lies outside, e.g. clockwise with RL); the first contour written with R0 is a pocket. Overlapping
+    pockets and islands combine: the union of the pockets less the union of the islands ("Overlapping
+    contours")."""
+    pockets, islands = [], []
+    for k, (path, side) in enumerate(contours):
+        polygon = _samples(path, plane)
+        closed = np.hypot(*(polygon[-1] - polygon[0])) <= 1e-6
+        area = _signed_area(polygon)
+        if not closed or abs(area) <= 1e-9:
+            where.fail(f"SL cycle: contour {k + 1} of cycle 14 is not closed or encloses no area", column=column,
+                       text=where.text, expected="closed contours (each its last point its first)")
+        if side == "R0" and k > 0:
+            where.fail(f"SL cycle: contour {k + 1} of cycle 14 has no RL/RR to tell a pocket from an island",
+                       column=column, text=where.text, expected="RL or RR in each contour after the first")
+        pocket = side == "R0" or (side == "RL") == (area > 0)
+        (pockets if pocket else islands).append(contour_edges(path, plane))
+    if not pockets:
+        where.fail("SL cycle: cycle 14's contours are all islands", column=column, text=where.text,
+                   expected="at least one pocket (a contour the tool runs inside of with its RL/RR)")
+    return region(pockets, islands)
+
+
+def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start: np.ndarray,
+                   tolerance: float = TOLERANCE) -> list[tuple[np.ndarray, bool]]:
+    """The rings that clear ``area`` [mm]: its offsets ``first``, ``first + step``, .. from the boundary
+    (:func:`toolpaths.pockets.offset_rings`, within ``tolerance``), run from the innermost level outward, at each
+    level the nearest ring next, each closed (n, 2) from its vertex nearest to where the tool is (``start``
+    first), with ``True`` when the straight move to it from the previous ring's end keeps ``first`` from the
+    boundary (else the tool leaves the material to reach it). ``ccw``: the material on the tool's right (Q9 =
+    +1, climb milling with M3: counter-clockwise in a pocket, clockwise round an island)."""
+    lo, hi = area.bounds()
+    levels = [first + k * step for k in range(min(100_000, int(float(np.min(hi - lo)) / 2 / step) + 2))]
+    levels = [lv for lv in levels if lv <= float(np.min(hi - lo)) / 2 + step]
+    grid = max(min(step, first) / 3, tolerance * 10)
+    per_level = offset_rings(area, levels, step=grid, tolerance=tolerance, left_higher=ccw)
+    out: list[tuple[np.ndarray, bool]] = []
+    here = np.asarray(start, dtype=float)
+    for rings in reversed(per_level):
+        todo = list(rings)
+        while todo:
+            k = int(np.argmin([np.min(np.linalg.norm(r - here, axis=1)) for r in todo]))
+            ring = todo.pop(k)
+            i = int(np.argmin(np.linalg.norm(ring - here, axis=1)))
+            ring = np.concatenate([ring[i:], ring[:i + 1]])
+            linked = bool(out) and segment_clear(area, here, ring[0], first, tolerance=tolerance)
+            out.append((ring, linked))
+            here = ring[-1]
+    return out

@@ -192,11 +192,73 @@ def run_rough(points):
     return run(pocket_program(points))
 
 
-@pytest.mark.parametrize(("change", "match"), [
-    ("14.1 CONTOUR LABEL 1", "14.1 CONTOUR LABEL 1 /2"), ("Q18=0 ", "Q18=2 "),
-])
-def test_rough_out_22_refuses_islands_and_rest_machining(change, match):
-    text = pocket_program(RECTANGLE).replace(change, match).replace("30 LBL 0\n", "30 LBL 0\n31 LBL 2\n"
-                                                                    "32 L X+5 Y+5 RR\n33 L X+8\n34 L X+5\n35 LBL 0\n")
-    with pytest.raises(GCodeError, match="islands|rest machining"):
+def test_rough_out_22_refuses_rest_machining():
+    text = pocket_program(RECTANGLE).replace("Q18=0 ", "Q18=2 ")
+    with pytest.raises(GCodeError, match="rest machining"):
         parse_heidenhain(text, source="t.h", context=CTX)
+
+
+#: A 50 x 50 pocket (LBL 1, clockwise with RR: the tool inside) with two islands: a 10 x 10 square (LBL 2,
+#: clockwise with RL: the tool outside) and a circle of radius 8 about (35, 35) (LBL 3, counter-clockwise with
+#: RR: outside), as kt_SLII001 (drunsinn/language-klartext) writes them.
+ISLANDS = ("4 CYCL DEF 14.1 CONTOUR LABEL 1 /2 /3\n" + ROUGH +
+           "10 LBL 1\n11 L X+0 Y+25 RR\n12 L X+0 Y+50\n13 L X+50 Y+50\n14 L X+50 Y+0\n15 L X+0 Y+0\n"
+           "16 L X+0 Y+25\n17 LBL 0\n18 LBL 2\n19 L X+5 Y+8 RL\n20 L X+5 Y+15\n21 L X+15 Y+15\n22 L X+15 Y+5\n"
+           "23 L X+5 Y+5\n24 L X+5 Y+8\n25 LBL 0\n26 LBL 3\n27 CC X+35 Y+35\n28 L X+35 Y+43 RR\n"
+           "29 C X+35 Y+43 DR+\n30 LBL 0\nEND PGM T MM\n")
+
+
+def _island_distance(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The exact distance of points to the three contours of ISLANDS and whether they lie in the region."""
+    square, pocket = np.array(RECTANGLE_10, float), np.array([(0, 0), (50, 0), (50, 50), (0, 50)], float)
+    circle = np.abs(np.linalg.norm(pts - [35.0, 35.0], axis=1) - 8.0)
+    d = np.minimum(np.minimum(_distance_to_polygon(pts, pocket), _distance_to_polygon(pts, square)), circle)
+    inside = (_inside_polygon(pts, pocket) & ~_inside_polygon(pts, square)
+              & (np.linalg.norm(pts - [35.0, 35.0], axis=1) > 8.0))
+    return d, inside
+
+
+RECTANGLE_10 = [(5, 5), (15, 5), (15, 15), (5, 15)]
+
+
+def _islands_run(q9: str = "+1"):
+    text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLANDS.replace("Q9=+1", "Q9=" + q9)
+    return parse_heidenhain(text, source="t.h", context=CTX)
+
+
+@pytest.mark.slow
+def test_rough_out_22_with_two_islands_stays_r_plus_q3_from_every_contour_and_clears_the_rest():
+    prog = _islands_run()
+    below = [b for b in prog.blocks[1:] if b.segment is not None and min(b.start[2], b.target[2]) < 10.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                          for b in below])
+    d, inside = _island_distance(pts)
+    assert np.all(inside)
+    assert d.min() >= 3.5 - 1e-9  # R + Q3, the rings within TOLERANCE outward of it
+    # coverage at the last depth: every point of the region 3.5 or more from the contours lies within Q2 x R
+    # = 3 mm of the path (the rings are 3 mm apart)
+    last = [b for b in below if b.start[2] == b.target[2] == 0.5]
+    path = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 40)))[:, :2]
+                           for b in last])
+    gx, gy = np.meshgrid(np.arange(0.25, 50, 0.5), np.arange(0.25, 50, 0.5))
+    grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    dg, ing = _island_distance(grid)
+    grid = grid[ing & (dg >= 3.5)]
+    far = np.array([np.min(np.linalg.norm(path - g, axis=1)) for g in grid])
+    assert far.max() <= 3.0 * 1.05
+    # the depths: Q10 = 5, then Q1 + Q4 = 9.5 (machine Z = program Z + 10), each plunged at Q11 from Q6 above Q5
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9)) for b in prog.blocks
+               if b.kind == "line" and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 5.0), (12.0, 0.5)}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("q9", ["+1", "-1"])
+def test_rough_out_22_runs_round_an_island_clockwise_for_climb_milling_q9_plus_1(q9):
+    prog = _islands_run(q9)
+    # the moves round the circular island (their ends 3.5 from it, the first ring): their turning about its centre
+    moves = [b for b in prog.blocks if b.kind == "line" and b.start[2] == b.target[2] == 0.5
+             and abs(np.linalg.norm(b.target[:2] - [35, 35]) - 11.5) < 1e-2
+             and abs(np.linalg.norm(b.start[:2] - [35, 35]) - 11.5) < 1e-2]
+    turn = sum((b.start[0] - 35) * (b.target[1] - 35) - (b.start[1] - 35) * (b.target[0] - 35) for b in moves)
+    assert moves and (turn < 0) == (q9 == "+1")  # climb milling with M3: the material on the tool's right
