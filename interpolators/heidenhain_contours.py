@@ -34,13 +34,14 @@ from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, segment_clear
 
-__all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "contour_labels", "contour_data",
+__all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "SideFinish", "PilotDrill",
+           "floor_finishing_cycle", "side_finishing_cycle", "pilot_drilling_cycle", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
            "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
-#: The SL cycles that clear a pocket; all but 22 (one pocket, no islands) are refused with their names.
+#: The SL cycles that machine the region of cycle 14's contours (with cycle 20's data), called.
 ROUGHING_CYCLES = {21: "PILOT DRILLING", 22: "ROUGH-OUT", 23: "FLOOR FINISHING", 24: "SIDE FINISHING"}
 
 _LABELS_RE = re.compile(r"\s*(?:CONTOUR|KONTUR)?\s*(?:LABEL|LBL)\s*((?:\d+\s*/?\s*)+)$", re.I)
@@ -205,6 +206,120 @@ class RoughOut:
     plunge_feed: float
     feed: float
     retract_feed: float | None
+    number: int = 22
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class SideFinish:
+    """Cycle 24 SIDE FINISHING with the CONTOUR DATA of cycle 20, in mm, mm/s.
+
+    Attributes
+    ----------
+    depth : float
+        Q1 of cycle 20, the depth from the surface [mm]; its sign is the working direction.
+    surface, clearance : float
+        Q5 and Q7 of cycle 20 [mm, program] (absolute).
+    setup : float
+        Q6 of cycle 20 [mm].
+    ccw : bool
+        Q9 of cycle 24 = +1: climb milling (the material on the tool's right), -1 up-cut.
+    plunge : float
+        Q10, the plunging depth per infeed [mm] (> 0).
+    plunge_feed, feed : float
+        Q11 plunging feed and Q12 milling feed [mm/s].
+    allowance : float
+        Q14, the allowance left on the walls after finishing [mm].
+    """
+
+    depth: float
+    surface: float
+    clearance: float
+    setup: float
+    ccw: bool
+    plunge: float
+    plunge_feed: float
+    feed: float
+    allowance: float
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class PilotDrill:
+    """Cycle 21 PILOT DRILLING with the CONTOUR DATA of cycle 20, in mm, mm/s.
+
+    Attributes
+    ----------
+    rough_out : RoughOut
+        Cycle 22 as the rough-out tool Q13 will run it (its Q10..Q12 those of cycle 21): where it plunges is
+        where cycle 21 drills.
+    tool : int
+        Q13, the number of the rough-out tool (its radius from TOOL DEF or the tool table).
+    plunge, feed : float
+        Q10 plunging depth [mm] (> 0) and Q11 feed rate for plunging [mm/s].
+    """
+
+    rough_out: RoughOut
+    tool: int
+    plunge: float
+    feed: float
+
+
+def _with_data(number: int, data: dict[int, float] | None, where: Where, column: int) -> dict[int, float]:
+    if data is None:
+        where.fail(f"cycle {number} without CONTOUR DATA (CYCL DEF 20)", column=column, text=where.text,
+                   expected=f"CYCL DEF 20 CONTOUR DATA before cycle {number}")
+    return data
+
+
+def floor_finishing_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                          scale: float, where: Where, column: int) -> RoughOut:
+    """Cycle 23 FLOOR FINISHING (TNC 426/430 user's manual, "FLOOR FINISHING (Cycle 23)": the tool clears the
+    floor allowance Q4 left by cycle 22 at the depth Q1, parallel to the contour as 22 roughs; Q11 feed rate for
+    plunging, Q12 feed rate for roughing) as a cycle 22 in one infeed to Q1 with no floor allowance."""
+    data = _with_data(23, data, where, column)
+    if not q.get(11, 0) > 0 or not q.get(12, 0) > 0:
+        where.fail("cycle 23: the feeds Q11 and Q12 must be given and > 0", column=column, text=where.text,
+                   expected="FLOOR FINISHING Q11 > 0, Q12 > 0")
+    rough = rough_out_cycle({10: data[1], 11: q[11], 12: q[12]}, data, feed_scale=feed_scale, scale=scale,
+                            where=where, column=column)
+    return dataclasses.replace(rough, floor_allowance=0.0, plunge=abs(rough.depth), number=23)
+
+
+def side_finishing_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                         scale: float, where: Where, column: int) -> SideFinish:
+    """Cycle 24 SIDE FINISHING (TNC 426/430 user's manual, "SIDE FINISHING (Cycle 24)": Q9 direction of rotation
+    (+1 climb, -1 up-cut milling for pocket and island), Q10 plunging depth, Q11 feed rate for plunging, Q12
+    feed rate for milling, Q14 finishing allowance for side, what stays on the walls after it) to the depth Q1
+    of cycle 20."""
+    data = _with_data(24, data, where, column)
+    missing = [f"Q{k}" for k in (9, 10, 11, 12, 14) if k not in q]
+    if missing:
+        where.fail(f"cycle 24 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="SIDE FINISHING Q9 Q10 Q11 Q12 Q14")
+    if data[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0:
+        where.fail("cycle 24: Q1 (cycle 20) and Q10 must be != 0, the feeds Q11, Q12 > 0", column=column,
+                   text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0")
+    if abs(data[1]) / abs(q[10]) > 10_000:
+        where.fail("cycle 24: more than 10000 infeeds", column=column, text=where.text,
+                   expected="a larger plunging depth Q10")
+    return SideFinish(depth=data[1] * scale, surface=data[5] * scale, clearance=data[7] * scale,
+                      setup=abs(data[6]) * scale, ccw=q[9] >= 0, plunge=abs(q[10]) * scale,
+                      plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale, allowance=q[14] * scale)
+
+
+def pilot_drilling_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                         scale: float, where: Where, column: int) -> PilotDrill:
+    """Cycle 21 PILOT DRILLING (TNC 426/430 user's manual, "PILOT DRILLING (Cycle 21)": the TNC drills where the
+    rough-out tool Q13 will plunge, pecking as cycle 1 does; Q10 plunging depth, Q11 feed rate for plunging,
+    Q13 rough-out tool number; the depth from cycle 20's Q1 less the floor allowance Q4)."""
+    data = _with_data(21, data, where, column)
+    missing = [f"Q{k}" for k in (10, 11, 13) if k not in q]
+    if missing:
+        where.fail(f"cycle 21 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="PILOT DRILLING Q10 Q11 Q13")
+    rough = rough_out_cycle({10: q[10], 11: q[11], 12: q[11]}, data, feed_scale=feed_scale, scale=scale,
+                            where=where, column=column)
+    return PilotDrill(rough_out=dataclasses.replace(rough, number=21), tool=int(q[13]),
+                      plunge=abs(q[10]) * scale, feed=q[11] * feed_scale)
 
 
 def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float, scale: float,
@@ -381,7 +496,7 @@ def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, 
         if side == "R0" and k > 0:
             where.fail(f"SL cycle: contour {k + 1} of cycle 14 has no RL/RR to tell a pocket from an island",
                        column=column, text=where.text, expected="RL or RR in each contour after the first")
-        pocket = side == "R0" or (side == "RL") == (area > 0)
+        pocket = len(contours) == 1 or side == "R0" or (side == "RL") == (area > 0)
         (pockets if pocket else islands).append(contour_edges(path, plane))
     if not pockets:
         where.fail("SL cycle: cycle 14's contours are all islands", column=column, text=where.text,
@@ -391,15 +506,17 @@ def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, 
 
 def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start: np.ndarray,
                    tolerance: float = TOLERANCE) -> list[tuple[np.ndarray, bool]]:
-    """The rings that clear ``area`` [mm]: its offsets ``first``, ``first + step``, .. from the boundary
+    """The rings that clear ``area`` [mm]: its offsets ``first``, ``first + step``, .. (``step`` infinite: the
+    offset ``first`` alone) from the boundary
     (:func:`toolpaths.pockets.offset_rings`, within ``tolerance``), run from the innermost level outward, at each
     level the nearest ring next, each closed (n, 2) from its vertex nearest to where the tool is (``start``
     first), with ``True`` when the straight move to it from the previous ring's end keeps ``first`` from the
     boundary (else the tool leaves the material to reach it). ``ccw``: the material on the tool's right (Q9 =
     +1, climb milling with M3: counter-clockwise in a pocket, clockwise round an island)."""
     lo, hi = area.bounds()
-    levels = [first + k * step for k in range(min(100_000, int(float(np.min(hi - lo)) / 2 / step) + 2))]
-    levels = [lv for lv in levels if lv <= float(np.min(hi - lo)) / 2 + step]
+    half = float(np.min(hi - lo)) / 2
+    levels = [first + k * step for k in range(min(100_000, int(half / step) + 2))] if math.isfinite(step) else [first]
+    levels = [lv for lv in levels if lv <= half + step]
     grid = max(min(step, first) / 3, tolerance * 10)
     per_level = offset_rings(area, levels, step=grid, tolerance=tolerance, left_higher=ccw)
     out: list[tuple[np.ndarray, bool]] = []

@@ -239,6 +239,8 @@ def region(pockets: list[list[Edge]], islands: list[list[Edge]]) -> Region:
 def _project(region_: Region, v: np.ndarray, target: float) -> np.ndarray:
     for _ in range(6):
         d, g = region_.distance(v)
+        if np.all(np.abs(d - target) < 1e-12):
+            break
         v = v - (d - target)[:, None] * g
     return v
 
@@ -286,6 +288,8 @@ def _project_across(region_: Region, a: np.ndarray, b: np.ndarray, target: float
     reach = np.linalg.norm(u, axis=1)
     for _ in range(12):
         d, g = region_.distance(m + t[:, None] * n)
+        if np.all(np.abs(d - target) < 1e-12):
+            break
         slope = np.sum(g * n, axis=1)
         step = np.divide(d - target, slope, out=np.zeros_like(d), where=np.abs(slope) > 1e-3)
         t = np.clip(t - step, -reach, reach)
@@ -318,12 +322,15 @@ def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> n
             break
         v = v[~drop]
     fractions = _FRACTIONS
+    todo = np.ones(len(v), dtype=bool)
     for _ in range(60):  # split: each chord off the band gets its projected middle
         b = np.roll(v, -1, axis=0)
-        pts = v[:, None, :] + fractions[None, :, None] * (b - v)[:, None, :]
-        d = region_.distance(pts.reshape(-1, 2))[0].reshape(len(v), len(fractions))
-        near, far = d.min(axis=1) < level - 1e-9, d.max(axis=1) > level + tolerance
-        bad = (near | far) & (np.linalg.norm(b - v, axis=1) > tolerance / 4)  # a shorter chord is within it
+        bad = np.zeros(len(v), dtype=bool)
+        pts = v[todo, None, :] + fractions[None, :, None] * (b[todo] - v[todo])[:, None, :]
+        d = region_.distance(pts.reshape(-1, 2))[0].reshape(len(pts), len(fractions))
+        # a chord shorter than tolerance / 4 is within it anyway
+        bad[todo] = (d.min(axis=1) < level - 1e-9) | (d.max(axis=1) > level + tolerance)
+        bad &= np.linalg.norm(b - v, axis=1) > tolerance / 4
         if len(v) > 200_000:
             break
         if not np.any(bad):
@@ -334,6 +341,8 @@ def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> n
         out[idx] = v
         out[idx[bad] + 1] = mids
         v = out
+        todo = np.zeros(len(v), dtype=bool)  # only the chords of the new points are checked again
+        todo[idx[bad]] = todo[idx[bad] + 1] = True
     b = np.roll(v, -1, axis=0)
     pts = v[:, None, :] + fractions[None, :, None] * (b - v)[:, None, :]
     if region_.distance(pts.reshape(-1, 2))[0].min() < level - 1e-9:
