@@ -1258,10 +1258,9 @@ def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Regi
 
 def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
                   blk: SourceBlock) -> list[tuple[np.ndarray, bool]]:
-    """:func:`interpolators.heidenhain_contours.clearing_rings` from where the tool is, with the errors named."""
-    p, q = PLANE_AXES[m.plane]
-    try:
-        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=np.array([m.pos[p], m.pos[q]]))
+    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named."""
+    try:  # from the lower left (the same rings whatever the tool's position: cycle 21 drills where 22 plunges)
+        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0])
     except ValueError as exc:
         where.fail(f"cycle {number}: {exc}", column=blk.column, text=blk.code,
                    expected="contours whose offsets the tool can follow")

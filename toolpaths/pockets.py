@@ -10,7 +10,7 @@ An offset ring at level ``r`` is a closed polyline on ``{x: d(x) = r}``: the lev
 the distance (``contourpy``'s marching squares), each vertex is then moved onto the exact level with Newton
 steps along the distance's gradient (``|grad d| = 1``, one step lands exactly while the nearest boundary point
 stays the same), and chords are split or merged until each of them keeps within :data:`TOLERANCE` of the
-level set at 7 points along it, never nearer the boundary than ``r``.
+level set at 7 points along it, never nearer the boundary than ``r`` (but where the ring pinches: ``r - TOLERANCE``).
 """
 
 from __future__ import annotations
@@ -24,7 +24,8 @@ import numpy as np
 __all__ = ["TOLERANCE", "Edge", "Region", "region", "offset_rings", "segment_clear"]
 
 #: The chord tolerance of the offset rings [mm]: each ring lies between ``r`` and ``r + TOLERANCE`` from the
-#: boundary (at its vertices within 1e-9 mm of ``r + TOLERANCE / 2``).
+#: boundary (its vertices within 1e-9 mm of ``r + TOLERANCE / 2``), but where it pinches (two offsets crossing by
+#: less than the tolerance, as when a gap is just 2 r wide): there its chord keeps ``r - TOLERANCE``.
 TOLERANCE = 1e-3
 _MAX_CELLS = 600_000  # grid points of the distance field, at most
 _FRACTIONS = np.linspace(0.125, 0.875, 7)  # where a chord is checked
@@ -266,15 +267,22 @@ def _corner(region_: Region, a: np.ndarray, b: np.ndarray, target: float, tolera
     best = None
     for c in _meet(ea, eb):
         gap = min(np.linalg.norm(c - a), np.linalg.norm(c - b))
-        if gap < tolerance / 10 or np.linalg.norm(c - (a + b) / 2) > 20 * chord:
+        if gap < tolerance / 10 or np.linalg.norm(c - (a + b) / 2) > 1000 * chord:
             continue
-        sides = np.concatenate([a + _FRACTIONS[:, None] * (c - a), c + _FRACTIONS[:, None] * (b - c)])
-        if region_.distance(sides)[0].min() < target - tolerance / 2 - 1e-9:
-            continue  # the corner of another part of the ring: the chords to it leave the band
+        u = np.linspace(0.0, 1.0, 65)[:, None]
+        sides = np.concatenate([a + u * (c - a), c + u * (b - c)])
+        reach = max(np.linalg.norm(c - a), np.linalg.norm(c - b))
+        if region_.distance(sides)[0].min() < target - tolerance / 2 - reach / 4:
+            continue  # the corner of another part of the ring: a chord to it dips farther than an arc's would
         if abs(region_.distance(c[None])[0][0] - target) < tolerance / 20 and (
                 best is None or np.linalg.norm(c - (a + b) / 2) < np.linalg.norm(best - (a + b) / 2)):
             best = c
     return best
+
+
+class _Unsettled(ValueError):
+    """A traced ring whose chords cannot be brought within the tolerance: the grid joined two rings across a
+    neck narrower than its cells (or missed a sharp turn); a finer grid separates them."""
 
 
 def _project_across(region_: Region, a: np.ndarray, b: np.ndarray, target: float, tolerance: float) -> np.ndarray:
@@ -345,9 +353,10 @@ def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> n
         todo[idx[bad]] = todo[idx[bad] + 1] = True
     b = np.roll(v, -1, axis=0)
     pts = v[:, None, :] + fractions[None, :, None] * (b - v)[:, None, :]
-    if region_.distance(pts.reshape(-1, 2))[0].min() < level - 1e-9:
-        raise ValueError(f"an offset ring at {level:g} mm did not settle within {tolerance:g} mm")
-    return v  # only the far side (sharp corners of the ring's inside) is left off the band: safe
+    d = region_.distance(pts.reshape(-1, 2))[0]
+    if d.min() < level - tolerance or d.max() > level + 2 * tolerance:
+        raise _Unsettled(f"an offset ring at {level:g} mm did not settle within {tolerance:g} mm")
+    return v  # where the ring pinches (two offsets crossing by less than the tolerance): within it of the level
 
 
 def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance: float = TOLERANCE,
@@ -359,29 +368,53 @@ def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance
     lo, hi = region_.bounds()
     span = hi - lo
     step = max(step, math.sqrt(float(np.prod(span + 4 * step)) / _MAX_CELLS))
-    xs = np.arange(lo[0] - 2 * step, hi[0] + 2 * step + step / 2, step)
-    ys = np.arange(lo[1] - 2 * step, hi[1] + 2 * step + step / 2, step)
-    gx, gy = np.meshgrid(xs, ys)
-    flat = np.stack([gx.ravel(), gy.ravel()], axis=1)
-    z = np.concatenate([region_.distance(flat[k:k + 50_000])[0] for k in range(0, len(flat), 50_000)])
-    gen = contourpy.contour_generator(xs, ys, z.reshape(gx.shape), line_type=contourpy.LineType.Separate)
+    grids: dict[float, contourpy.ContourGenerator] = {}
+
+    def generator(h: float) -> contourpy.ContourGenerator:
+        if h not in grids:
+            xs = np.arange(lo[0] - 2 * h, hi[0] + 2 * h + h / 2, h)
+            ys = np.arange(lo[1] - 2 * h, hi[1] + 2 * h + h / 2, h)
+            gx, gy = np.meshgrid(xs, ys)
+            flat = np.stack([gx.ravel(), gy.ravel()], axis=1)
+            z = np.concatenate([region_.distance(flat[k:k + 50_000])[0] for k in range(0, len(flat), 50_000)])
+            grids[h] = contourpy.contour_generator(xs, ys, z.reshape(gx.shape), line_type=contourpy.LineType.Separate)
+        return grids[h]
+
     out = []
     for level in levels:
-        rings = []
-        for line in gen.lines(level + tolerance / 2):
-            if len(line) < 4 or np.linalg.norm(line[0] - line[-1]) > 1e-9:
-                continue
-            v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance)
-            if v is None:
-                continue
-            b = np.roll(v, -1, axis=0)
-            _, g = region_.distance((v + b) / 2)
-            t = b - v
-            if (np.sum(t[:, 0] * g[:, 1] - t[:, 1] * g[:, 0]) > 0) != left_higher:
-                v = v[::-1].copy()
-            rings.append(v)
-        out.append(rings)
+        out.append(_level_rings(region_, level, generator, step, tolerance, left_higher))
     return out
+
+
+def _level_rings(region_: Region, level: float, generator, step: float, tolerance: float,
+                 left_higher: bool) -> list[np.ndarray]:
+    """The rings of one level, traced on the grid of ``step`` and, where that joins rings across a narrow neck,
+    on grids 2, 4, .. 32 times finer."""
+    for refine in range(6):
+        try:
+            return _traced_rings(region_, level, generator(step / 2 ** refine), tolerance, left_higher)
+        except _Unsettled:
+            if refine == 5:
+                raise
+    return []
+
+
+def _traced_rings(region_: Region, level: float, gen, tolerance: float, left_higher: bool) -> list[np.ndarray]:
+    """The closed lines of ``gen`` at the level, polished (:func:`_polish`) and turned the way asked."""
+    rings = []
+    for line in gen.lines(level + tolerance / 2):
+        if len(line) < 4 or np.linalg.norm(line[0] - line[-1]) > 1e-9:
+            continue
+        v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance)
+        if v is None:
+            continue
+        b = np.roll(v, -1, axis=0)
+        _, g = region_.distance((v + b) / 2)
+        t = b - v
+        if (np.sum(t[:, 0] * g[:, 1] - t[:, 1] * g[:, 0]) > 0) != left_higher:
+            v = v[::-1].copy()
+        rings.append(v)
+    return rings
 
 
 def segment_clear(region_: Region, a: np.ndarray, b: np.ndarray, level: float, *,

@@ -94,7 +94,7 @@ def test_contour_data_20_is_read_and_moves_nothing():
 
 @pytest.mark.parametrize(("text", "match"), [
     (HEAD + "5 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18=0 Q19=0 Q208=99999\n", "without CONTOUR DATA"),
-    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 FLOOR FINISHING"),
+    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 without CONTOUR DATA"),
     (HEAD + TRAIN.format(q3="0", q15="+2") + CALL, "Q15=2 is not a milling direction"),
     ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n" + TRAIN.format(q3="0", q15="+1") + CALL, "without a contour"),
     (HEAD + TRAIN.format(q3="0", q15="+1") + CALL + "9 LBL 1\n10 L X+0 Y+0 RL\n11 L X+40 Z-5\n12 LBL 0\n",
@@ -234,7 +234,9 @@ def test_rough_out_22_with_two_islands_stays_r_plus_q3_from_every_contour_and_cl
                           for b in below])
     d, inside = _island_distance(pts)
     assert np.all(inside)
-    assert d.min() >= 3.5 - 1e-9  # R + Q3, the rings within TOLERANCE outward of it
+    # R + Q3, the rings within TOLERANCE (1 um) of it; the circle is just 2 (R + Q3) from the wall, where the
+    # rings pinch
+    assert d.min() >= 3.5 - 1e-3
     # coverage at the last depth: every point of the region 3.5 or more from the contours lies within Q2 x R
     # = 3 mm of the path (the rings are 3 mm apart)
     last = [b for b in below if b.start[2] == b.target[2] == 0.5]
@@ -262,3 +264,83 @@ def test_rough_out_22_runs_round_an_island_clockwise_for_climb_milling_q9_plus_1
              and abs(np.linalg.norm(b.start[:2] - [35, 35]) - 11.5) < 1e-2]
     turn = sum((b.start[0] - 35) * (b.target[1] - 35) - (b.start[1] - 35) * (b.target[0] - 35) for b in moves)
     assert moves and (turn < 0) == (q9 == "+1")  # climb milling with M3: the material on the tool's right
+
+
+def _sl_program(cycles: str) -> str:
+    """ISLANDS with its cycle 22 call replaced by ``cycles`` (definitions and calls)."""
+    text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLANDS
+    return text.replace("8 CYCL CALL\n", cycles)
+
+
+SIDE = ("81 CYCL DEF 24 SIDE FINISHING ~\n  Q9=+1 ;ROTATIONAL DIRECTION ~\n  Q10=-5 ;PLUNGING DEPTH ~\n"
+        "  Q11=100 ;FEED RATE FOR PLUNGING ~\n  Q12=300 ;FEED RATE FOR MILLING ~\n  Q14=+0 ;ALLOWANCE FOR SIDE\n"
+        "82 CYCL CALL\n")
+FLOOR = ("83 CYCL DEF 23 FLOOR FINISHING ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n  Q12=200 ;FEED RATE FOR ROUGHING\n"
+         "84 CYCL CALL\n")
+PILOT = ("71 CYCL DEF 21 PILOT DRILLING ~\n  Q10=+5 ;PLUNGING DEPTH ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n"
+         "  Q13=1 ;ROUGH-OUT TOOL\n72 CYCL CALL\n")
+
+
+@pytest.mark.slow
+def test_side_finishing_24_runs_every_wall_r_plus_q14_off_at_each_infeed():
+    prog = parse_heidenhain(_sl_program(SIDE), source="t.h", context=CTX)
+    flat = [b for b in prog.blocks if b.text.startswith("82 ") and b.kind == "line" and b.start[2] == b.target[2]]
+    assert {round(b.target[2], 9) for b in flat} == {5.0, 0.0}  # Q10 = 5 down to Q1 = -10 (machine Z + 10)
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 9)))[:, :2]
+                          for b in flat])
+    d, inside = _island_distance(pts)
+    assert np.all(inside) and d.min() >= 3.0 - 1e-9 and d.max() <= 3.0 + 1e-3  # R + Q14, within 1 um
+    # each contour is finished: the path comes to R from the pocket wall, the square and the circle
+    square, pocket = np.array(RECTANGLE_10, float), np.array([(0, 0), (50, 0), (50, 50), (0, 50)], float)
+    for dist in (_distance_to_polygon(pts, pocket), _distance_to_polygon(pts, square),
+                 np.abs(np.linalg.norm(pts - [35.0, 35.0], axis=1) - 8.0)):
+        assert dist.min() == pytest.approx(3.0, abs=1e-3)
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9), round(b.feed * 60, 6)) for b in prog.blocks
+               if b.text.startswith("82 ") and b.kind == "line" and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 5.0, 100.0), (5.0, 0.0, 100.0)}
+
+
+@pytest.mark.slow
+def test_floor_finishing_23_clears_at_the_depth_q1_in_one_infeed_keeping_the_side_allowance():
+    prog = parse_heidenhain(_sl_program(FLOOR), source="t.h", context=CTX)
+    mine = [b for b in prog.blocks if b.text.startswith("84 ") and b.segment is not None]
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9)) for b in mine if b.kind == "line"
+               and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 0.0)}  # from Q6 above Q5 to Q1 = -10, the floor allowance Q4 cleared
+    flat = [b for b in mine if b.start[2] == b.target[2] == 0.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 9)))[:, :2]
+                          for b in flat])
+    d, inside = _island_distance(pts)
+    assert np.all(inside) and d.min() >= 3.5 - 1e-9 and all(b.feed * 60 == pytest.approx(200.0) for b in flat)
+
+
+@pytest.mark.slow
+def test_pilot_drilling_21_drills_where_the_rough_out_plunges_to_q1_less_q4():
+    rough = ISLANDS.split("6 CYCL DEF 22")[1].split("7 L X+0")[0]
+    prog = parse_heidenhain(_sl_program(PILOT + "73 CYCL DEF 22" + rough + "74 CYCL CALL\n"), source="t.h",
+                            context=CTX)
+    drills = [b for b in prog.blocks if b.text.startswith("72 ") and b.kind == "line"]
+    plunges = [b for b in prog.blocks if b.text.startswith("74 ") and b.kind == "line" and b.start[2] == 12.0
+               and b.target[2] == 5.0]
+    holes = {tuple(np.round(b.target[:2], 6)) for b in drills}
+    assert holes == {tuple(np.round(b.target[:2], 6)) for b in plunges} and len(holes) >= 1
+    # pecked as cycle 1: Q10 = 5 deep each, down to Q1 + Q4 = -9.5 (machine Z 0.5), at Q11
+    assert sorted({round(b.target[2], 9) for b in drills}) == [0.5, 5.0]
+    assert all(b.feed * 60 == pytest.approx(100.0) for b in drills if b.target[2] < b.start[2])
+
+
+@pytest.mark.parametrize(("text", "match"), [
+    (HEAD + "5 CYCL DEF 21 PILOT DRILLING Q10=5 Q11=100 Q13=1\n", "cycle 21 without CONTOUR DATA"),
+    (HEAD + ROUGH.split("6 CYCL DEF 22")[0] + "6 CYCL DEF 24 SIDE FINISHING Q9=1 Q10=5 Q11=100 Q12=300\n",
+     "cycle 24 lacks Q14"),
+    (HEAD.replace("LABEL 1", "LABEL 1 /2") + ROUGH + "10 LBL 1\n11 L X+0 Y+0 RR\n12 L X+0 Y+20\n13 L X+20 Y+20\n"
+     "14 L X+0 Y+0\n15 LBL 0\n16 LBL 2\n17 L X+5 Y+5 R0\n18 L X+5 Y+8\n19 L X+8 Y+8\n20 L X+5 Y+5\n21 LBL 0\n",
+     "contour 2 of cycle 14 has no RL/RR"),
+    (HEAD.replace("LABEL 1", "LABEL 1 /2") + ROUGH + "10 LBL 1\n11 L X+0 Y+0 RL\n12 L X+0 Y+20\n13 L X+20 Y+20\n"
+     "14 L X+0 Y+0\n15 LBL 0\n16 LBL 2\n17 L X+5 Y+5 RL\n18 L X+5 Y+8\n19 L X+8 Y+8\n20 L X+5 Y+5\n21 LBL 0\n",
+     "all islands"),
+])
+def test_sl_cycles_21_to_24_name_what_they_lack(text, match):
+    with pytest.raises(GCodeError, match=match):
+        parse_heidenhain(text.replace("9 L X+0 Y+0 Z+100 R0 FMAX M30\n", "9 L X+0 Y+0 Z+100 R0 FMAX M30\n")
+                         + "END PGM T MM\n", source="t.h", context=CTX)
