@@ -223,7 +223,7 @@ RECTANGLE_10 = [(5, 5), (15, 5), (15, 15), (5, 15)]
 
 def _islands_run(q9: str = "+1"):
     text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLANDS.replace("Q9=+1", "Q9=" + q9)
-    return parse_heidenhain(text, source="t.h", context=CTX)
+    return run(text)  # the reference checks the rise to Q7 and the end at Q7 over the pocket
 
 
 @pytest.mark.slow
@@ -283,7 +283,7 @@ PILOT = ("71 CYCL DEF 21 PILOT DRILLING ~\n  Q10=+5 ;PLUNGING DEPTH ~\n  Q11=100
 
 @pytest.mark.slow
 def test_side_finishing_24_runs_every_wall_r_plus_q14_off_at_each_infeed():
-    prog = parse_heidenhain(_sl_program(SIDE), source="t.h", context=CTX)
+    prog = run(_sl_program(SIDE))
     flat = [b for b in prog.blocks if b.text.startswith("82 ") and b.kind == "line" and b.start[2] == b.target[2]]
     assert {round(b.target[2], 9) for b in flat} == {5.0, 0.0}  # Q10 = 5 down to Q1 = -10 (machine Z + 10)
     pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 9)))[:, :2]
@@ -302,7 +302,7 @@ def test_side_finishing_24_runs_every_wall_r_plus_q14_off_at_each_infeed():
 
 @pytest.mark.slow
 def test_floor_finishing_23_clears_at_the_depth_q1_in_one_infeed_keeping_the_side_allowance():
-    prog = parse_heidenhain(_sl_program(FLOOR), source="t.h", context=CTX)
+    prog = run(_sl_program(FLOOR))
     mine = [b for b in prog.blocks if b.text.startswith("84 ") and b.segment is not None]
     plunges = {(round(b.start[2], 9), round(b.target[2], 9)) for b in mine if b.kind == "line"
                and b.start[2] != b.target[2]}
@@ -317,8 +317,7 @@ def test_floor_finishing_23_clears_at_the_depth_q1_in_one_infeed_keeping_the_sid
 @pytest.mark.slow
 def test_pilot_drilling_21_drills_where_the_rough_out_plunges_to_q1_less_q4():
     rough = ISLANDS.split("6 CYCL DEF 22")[1].split("7 L X+0")[0]
-    prog = parse_heidenhain(_sl_program(PILOT + "73 CYCL DEF 22" + rough + "74 CYCL CALL\n"), source="t.h",
-                            context=CTX)
+    prog = run(_sl_program(PILOT + "73 CYCL DEF 22" + rough + "74 CYCL CALL\n"))
     drills = [b for b in prog.blocks if b.text.startswith("72 ") and b.kind == "line"]
     plunges = [b for b in prog.blocks if b.text.startswith("74 ") and b.kind == "line" and b.start[2] == 12.0
                and b.target[2] == 5.0]
