@@ -6,17 +6,22 @@ programming, the same cycles.
 
 ========================= ==================================================================
 ``CYCL DEF 14.0 CONTOUR`` 14.1 ``CONTOUR LABEL 1 /2 /3``: the labels whose subprograms are the
-                          contours (the first the pocket, the others pockets or islands by their
-                          RL/RR), DEF-active (:func:`contour_labels`)
+                          contours (one label: the pocket; several: each a pocket or an island
+                          by its direction and RL/RR, superimposed), DEF-active
+                          (:func:`contour_labels`, :func:`superimposed_region`)
 ``CYCL DEF 20``           CONTOUR DATA Q1 depth, Q2 path overlap, Q3 side allowance, Q4 floor
                           allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
 ``CYCL DEF 25``           CONTOUR TRAIN, called: the first label of cycle 14 followed at the depths
                           (:func:`contour_train_cycle`; the moves are the reader's ``_contour_train``)
-``CYCL DEF 22``           ROUGH-OUT of one pocket contour without islands, called, with cycle 20's data
-                          (:func:`rough_out_cycle`, :func:`pocket_rings`; the moves: the reader's
-                          ``_rough_out``)
-``CYCL DEF 21, 23, 24``   pilot drilling, floor and side finishing: an error naming the cycle
+``CYCL DEF 22``           ROUGH-OUT, called, with cycle 20's data: one pocket by the rings of
+                          :func:`pocket_rings`; pockets with islands by the offset rings of the
+                          region (:func:`clearing_rings`, :mod:`toolpaths.pockets`: within 1 um);
+                          Q18 rest machining refused (:func:`rough_out_cycle`)
+``CYCL DEF 21, 23, 24``   PILOT DRILLING where 22 will plunge, FLOOR FINISHING (22 in one infeed
+                          to Q1), SIDE FINISHING (the rings R + Q14 at each infeed)
+                          (:func:`pilot_drilling_cycle`, :func:`floor_finishing_cycle`,
+                          :func:`side_finishing_cycle`)
 ========================= ==================================================================
 """
 
