@@ -123,6 +123,7 @@ from interpolators.heidenhain_contours import (
     path_at_level,
     pilot_drilling_cycle,
     pocket_rings,
+    rest_pieces,
     reversed_path,
     rough_out_cycle,
     side_finishing_cycle,
@@ -1195,7 +1196,7 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
     if m.contour_data and m.contour_data.get(8, 0.0):
         m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
-    if len(m.contour) > 1:
+    if len(m.contour) > 1 or c.coarse_tool:
         _rough_out_region(m, c, where, blk)
         return
     axis = m.plane
@@ -1362,6 +1363,16 @@ def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) 
     area = _sl_region(m, c.feed, where, blk)
     rings = _region_rings(m, area, first=m.tool_radius + c.side_allowance, step=c.overlap * m.tool_radius,
                           ccw=c.ccw, number=c.number, where=where, blk=blk)
+    if c.coarse_tool:
+        coarse = m.tool_data(c.coarse_tool)
+        if coarse is None or not coarse[1] > m.tool_radius:
+            where.fail(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} has no radius larger than this "
+                       f"tool's ({m.tool_radius:g} mm)", column=blk.column, text=blk.code,
+                       expected="Q18 a tool of TOOL DEF or the tool table, larger than the rest-machining tool")
+        rings = rest_pieces(area, rings, coarse=coarse[1], radius=m.tool_radius, allowance=c.side_allowance)
+        if not rings:
+            m.note(f"cycle 22: the coarse tool {c.coarse_tool} left nothing this tool reaches")
+            return
     bottom = abs(c.depth) - c.floor_allowance
     if bottom <= 0:
         where.fail(f"cycle {c.number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,

@@ -17,7 +17,7 @@ programming, the same cycles.
 ``CYCL DEF 22``           ROUGH-OUT, called, with cycle 20's data: one pocket by the rings of
                           :func:`pocket_rings`; pockets with islands by the offset rings of the
                           region (:func:`clearing_rings`, :mod:`toolpaths.pockets`: within 1 um);
-                          Q18 rest machining refused (:func:`rough_out_cycle`)
+                          Q18 rest machining after a coarse tool (:func:`rest_pieces`)
 ``CYCL DEF 21, 23, 24``   PILOT DRILLING where 22 will plunge, FLOOR FINISHING (22 in one infeed
                           to Q1), SIDE FINISHING (the rings R + Q14 at each infeed)
                           (:func:`pilot_drilling_cycle`, :func:`floor_finishing_cycle`,
@@ -42,7 +42,8 @@ from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, seg
 __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "SideFinish", "PilotDrill",
            "floor_finishing_cycle", "side_finishing_cycle", "pilot_drilling_cycle", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
-           "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings"]
+           "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings",
+           "rest_pieces"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
@@ -197,6 +198,10 @@ class RoughOut:
         Q11 plunging feed and Q12 roughing feed [mm/s].
     retract_feed : float or None
         Q208, the feed up to the set-up clearance after each infeed [mm/s]; ``None``: rapid.
+    number : int
+        The cycle this roughing runs for: 22, or 23 (floor finishing), 21 (pilot drilling's plunge points).
+    coarse_tool : int
+        Q18, the coarse roughing tool before this one (rest machining); 0: none.
     """
 
     depth: float
@@ -212,6 +217,7 @@ class RoughOut:
     feed: float
     retract_feed: float | None
     number: int = 22
+    coarse_tool: int = 0
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -332,8 +338,8 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
     """Cycle 22 ROUGH-OUT from its Q parameters and cycle 20's (TNC 426/430 user's manual, "ROUGH-OUT (Cycle
     22)": Q10 plunging depth, Q11 feed rate for plunging, Q12 feed rate for roughing, Q18 coarse roughing
     tool (0: none), Q19 feed rate for reciprocation; the iTNC 530's Q208 feed rate for retraction (0: Q12,
-    MAX: rapid), Q401 feed rate factor, Q404 fine roughing strategy). A coarse roughing tool Q18 (rest
-    machining) is an error; Q19, Q401, Q404 move nothing here."""
+    MAX: rapid), Q401 feed rate factor, Q404 fine roughing strategy). Q18 != 0: rest machining after that
+    coarse roughing tool (:func:`rest_pieces`); Q19, Q401, Q404 move nothing here."""
     if data is None:
         where.fail("cycle 22 without CONTOUR DATA (CYCL DEF 20)", column=column, text=where.text,
                    expected="CYCL DEF 20 CONTOUR DATA before cycle 22")
@@ -341,9 +347,6 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
     if missing:
         where.fail(f"cycle 22 lacks {', '.join(missing)}", column=column, text=where.text,
                    expected="ROUGH-OUT Q10 Q11 Q12")
-    if q.get(18, 0.0):
-        where.fail("cycle 22: rest machining after a coarse roughing tool Q18 is not supported", column=column,
-                   text=where.text, expected="Q18=0")
     if data[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0 or not 0 < data[2] < 2:
         where.fail("cycle 22: Q1 and Q10 must be != 0, the feeds Q11, Q12 > 0 and the overlap Q2 in (0, 2)",
                    column=column, text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0, 0 < Q2 < 2")
@@ -355,7 +358,8 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
                     floor_allowance=abs(data[4]) * scale, surface=data[5] * scale, setup=abs(data[6]) * scale,
                     clearance=data[7] * scale, ccw=data[9] >= 0, plunge=abs(q[10]) * scale,
                     plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale,
-                    retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale)
+                    retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale,
+                    coarse_tool=int(q.get(18, 0.0)))
 
 
 def _samples(path: list[Block], plane: int, per: int = 24) -> np.ndarray:
@@ -536,4 +540,69 @@ def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start:
             linked = bool(out) and segment_clear(area, here, ring[0], first, tolerance=tolerance)
             out.append((ring, linked))
             here = ring[-1]
+    return out
+
+
+def _to_polylines(point: np.ndarray, lines: list[np.ndarray]) -> np.ndarray:
+    """The distance of each point (n, 2) to the closed polylines ``lines`` [mm]."""
+    best = np.full(len(point), np.inf)
+    for ring in lines:
+        a, b = ring, np.roll(ring, -1, axis=0)
+        u = b - a
+        uu = np.maximum(np.einsum("kd,kd->k", u, u), 1e-300)
+        for k in range(0, len(point), 2000):
+            x = point[k:k + 2000]
+            t = np.clip(np.einsum("nkd,kd->nk", x[:, None, :] - a[None], u) / uu, 0.0, 1.0)
+            d = np.linalg.norm(x[:, None, :] - (a[None] + t[..., None] * u[None]), axis=2).min(axis=1)
+            best[k:k + 2000] = np.minimum(best[k:k + 2000], d)
+    return best
+
+
+def _resampled(line: np.ndarray, spacing: float) -> np.ndarray:
+    """The polyline (n, 2) with points added along its chords, at most ``spacing`` [mm] apart."""
+    out = [line[:1]]
+    for a, b in zip(line[:-1], line[1:]):
+        n = max(1, math.ceil(float(np.linalg.norm(b - a)) / spacing))
+        out.append(a + np.linspace(0.0, 1.0, n + 1)[1:, None] * (b - a))
+    return np.concatenate(out)
+
+
+def rest_pieces(area: Region, rings: list[tuple[np.ndarray, bool]], *, coarse: float, radius: float,
+                allowance: float) -> list[tuple[np.ndarray, bool]]:
+    """Rest machining (cycle 22 with Q18): the parts of the fine tool's ``rings`` (of :func:`clearing_rings`, tool
+    ``radius`` [mm]) that can reach material the coarse tool (radius ``coarse`` [mm]) left. The coarse tool's
+    centre reached ``C = {d >= coarse + allowance}`` and cut what lies within ``coarse`` of it; a point of a
+    fine ring is kept when its distance to ``C`` exceeds ``coarse - radius`` (a bound: the fine tool's edge can
+    then lie farther than ``coarse`` from ``C``; the rings resampled R/2 apart), with one point more at each end of
+    a kept run. Each piece is
+    returned open, with ``True`` when the straight move to it from the previous piece's end keeps ``radius +
+    allowance`` from the contours. The manual (TNC 426/430, cycle 22 Q18: "the TNC machines only the areas the
+    coarse roughing tool could not") leaves the path to the control; this is our reading."""
+    (border,) = offset_rings(area, [coarse + allowance], step=max(coarse / 3, TOLERANCE * 10))
+    first = radius + allowance
+    out: list[tuple[np.ndarray, bool]] = []
+    here = None
+    for closed, _ in rings:
+        ring = _resampled(closed, radius / 2)
+        dist = _to_polylines(ring, border)
+        inside_c = area.distance(ring)[0] >= coarse + allowance
+        useful = (np.where(inside_c, 0.0, dist) > coarse - radius + TOLERANCE)
+        if not np.any(useful):
+            continue
+        keep = useful | np.roll(useful, 1) | np.roll(useful, -1)
+        keep[0] = keep[-1] = keep[0] or keep[-1]  # the ring is closed: its first vertex is its last
+        if np.all(keep):
+            pieces = [ring]
+        else:
+            shift = int(np.argmin(keep[:-1]))  # start at a dropped vertex so that runs do not wrap
+            k = np.concatenate([keep[shift:-1], keep[:shift + 1]])
+            v = np.concatenate([ring[shift:-1], ring[:shift + 1]])
+            edges = np.flatnonzero(np.diff(k.astype(int)))
+            pieces = [v[s + 1:e + 1] for s, e in zip(edges[::2], edges[1::2])]
+        for piece in pieces:
+            if len(piece) < 2:
+                continue
+            linked = here is not None and segment_clear(area, here, piece[0], first)
+            out.append((piece, linked))
+            here = piece[-1]
     return out

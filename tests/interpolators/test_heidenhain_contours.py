@@ -192,9 +192,9 @@ def run_rough(points):
     return run(pocket_program(points))
 
 
-def test_rough_out_22_refuses_rest_machining():
+def test_rough_out_22_rest_machining_needs_a_larger_coarse_tool():
     text = pocket_program(RECTANGLE).replace("Q18=0 ", "Q18=2 ")
-    with pytest.raises(GCodeError, match="rest machining"):
+    with pytest.raises(GCodeError, match="coarse roughing tool Q18 = 2 has no radius larger"):
         parse_heidenhain(text, source="t.h", context=CTX)
 
 
@@ -343,3 +343,36 @@ def test_sl_cycles_21_to_24_name_what_they_lack(text, match):
     with pytest.raises(GCodeError, match=match):
         parse_heidenhain(text.replace("9 L X+0 Y+0 Z+100 R0 FMAX M30\n", "9 L X+0 Y+0 Z+100 R0 FMAX M30\n")
                          + "END PGM T MM\n", source="t.h", context=CTX)
+
+
+@pytest.mark.slow
+def test_rest_machining_22_q18_cuts_only_near_what_the_coarse_tool_left_and_together_they_clear_the_region():
+    rough = ISLANDS.split("6 CYCL DEF 22")[1].split("7 L X+0")[0]
+    rest = ("73 TOOL CALL 2 Z S3000\n74 CYCL DEF 22" + rough.replace("Q18=0", "Q18=1") + "75 CYCL CALL\n")
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)},
+                         tools={1: Tool(number=1, length=10.0, radius=3.0), 2: Tool(number=2, length=10.0, radius=1.0)})
+    text = _sl_program("8 CYCL CALL\n" + rest)
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    match = match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+    def flat(line_text: str, z: float) -> np.ndarray:
+        moves = [b for b in prog.blocks if b.text.startswith(line_text) and b.segment is not None
+                 and b.start[2] == b.target[2] == z]
+        return np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                               for b in moves])
+
+    coarse, fine = flat("8 ", 0.5), flat("75 ", 0.5)
+    d, inside = _island_distance(fine)
+    assert np.all(inside) and d.min() >= 1.5 - 1e-3  # the small tool: R 1 + Q3 0.5 from every contour
+    # the rest is a fraction of a full roughing with the small tool (its rings 1 mm apart would run ~4x as long)
+    assert len(fine) < len(coarse)
+    # together: every point 1.5 or more from the contours lies within 3 (x 1.05) of the coarse tool's path or
+    # within 1 (x 1.05) of the small tool's
+    gx, gy = np.meshgrid(np.arange(0.25, 50, 0.5), np.arange(0.25, 50, 0.5))
+    grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    dg, ing = _island_distance(grid)
+    grid = grid[ing & (dg >= 1.5)]
+    near_coarse = np.array([np.min(np.linalg.norm(coarse - g, axis=1)) for g in grid]) <= 3.0 * 1.05
+    near_fine = np.array([np.min(np.linalg.norm(fine - g, axis=1)) for g in grid]) <= 1.0 * 1.05
+    assert np.all(near_coarse | near_fine)
