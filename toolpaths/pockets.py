@@ -312,23 +312,34 @@ def _project_across(region_: Region, a: np.ndarray, b: np.ndarray, target: float
     return p
 
 
+def _merged(v: np.ndarray, deviation: float) -> np.ndarray | None:
+    """The closed polyline with every other vertex dropped, pass after pass, that lies within ``deviation`` [mm] of
+    its neighbours' chord, down to a triangle; ``None`` when fewer than 3 vertices are left."""
+    for _ in range(60):
+        if len(v) < 4:
+            return v if len(v) == 3 else None
+        a, b = np.roll(v, 1, axis=0), np.roll(v, -1, axis=0)
+        u = b - a
+        ln = np.linalg.norm(u, axis=1)
+        dev = np.abs(u[:, 0] * (v - a)[:, 1] - u[:, 1] * (v - a)[:, 0]) / np.where(ln > 0, ln, 1.0)
+        drop = (dev < deviation) & (np.arange(len(v)) % 2 == 1)
+        if not np.any(drop):
+            drop = (dev < deviation) & (np.arange(len(v)) % 2 == 0) & (np.arange(len(v)) < len(v) - 1)
+            if not np.any(drop):
+                break
+        v = v[~drop]
+    return v
+
+
 def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> np.ndarray | None:
     """The closed polyline ``v`` (n, 2) moved onto the level set ``level + tolerance / 2`` and its chords split
     or merged to keep each within ``[level, level + tolerance]`` (at 7 points); ``None`` when it vanishes."""
     target = level + tolerance / 2
     v = _project(region_, v, target)
     v = v[np.abs(region_.distance(v)[0] - target) < tolerance / 20]
-    for _ in range(60):  # merge: drop every other vertex that lies within tolerance/4 of its neighbours' chord
-        if len(v) < 4:
-            return None
-        a, b = np.roll(v, 1, axis=0), np.roll(v, -1, axis=0)
-        u = b - a
-        ln = np.linalg.norm(u, axis=1)
-        dev = np.abs(u[:, 0] * (v - a)[:, 1] - u[:, 1] * (v - a)[:, 0]) / np.where(ln > 0, ln, 1.0)
-        drop = (dev < tolerance / 4) & (np.arange(len(v)) % 2 == 1)
-        if not np.any(drop):
-            break
-        v = v[~drop]
+    v = _merged(v, tolerance / 4)
+    if v is None:
+        return None
     fractions = _FRACTIONS
     todo = np.ones(len(v), dtype=bool)
     for _ in range(60):  # split: each chord off the band gets its projected middle
@@ -342,7 +353,7 @@ def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> n
         if len(v) > 200_000:
             break
         if not np.any(bad):
-            return v
+            return _merged(v, 1e-9)  # the points the splitting left on straight stretches
         mids = _project_across(region_, v[bad], b[bad], target, tolerance)
         out = np.empty((len(v) + len(mids), 2))
         idx = np.arange(len(v)) + np.concatenate([[0], np.cumsum(bad)[:-1]])

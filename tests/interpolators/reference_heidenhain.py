@@ -661,7 +661,12 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "25":
         _contour_train(t, line, p)
         return
-    if kind in ("21", "23", "24") or kind == "22" and len(t.contours) > 1:
+    if kind in ("22", "23") and len(t.contours) == 1 and not p.get("Q18", 0) and t.loose:
+        raise ReferenceError("one pocket's 22/23 after an SL cycle that left the tool's plane position unknown")
+    if kind == "23" and len(t.contours) == 1:  # FLOOR FINISHING of one pocket: 22 in one infeed to Q1
+        _rough_out(t, line, {**p, "Q4": 0.0, "Q10": abs(p["Q1"])})
+        return
+    if kind in ("21", "23", "24") or kind == "22" and (len(t.contours) > 1 or p.get("Q18", 0)):
         _sl_region_cycle(t, line, p)
         return
     if kind == "22":

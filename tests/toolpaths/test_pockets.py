@@ -71,3 +71,12 @@ def test_segment_clear_proves_a_link_or_refuses_one_that_crosses_an_island():
     assert segment_clear(area, np.array([10.0, 10.0]), np.array([90.0, 10.0]), 5.0)
     assert not segment_clear(area, np.array([10.0, 50.0]), np.array([90.0, 50.0]), 5.0)
     assert not segment_clear(area, np.array([10.0, 10.0]), np.array([90.0, 90.0]), 5.0)
+
+
+def test_a_triangular_pocket_has_a_triangular_ring_with_its_corners_exact():
+    pts = [np.array(p, float) for p in ((0, 0), (40, 0), (0, 30))]
+    area = region([[Edge(start=a, end=b) for a, b in zip(pts, pts[1:] + pts[:1])]], [])
+    (rings,) = offset_rings(area, [2.0], step=0.5)
+    assert len(rings) == 1 and len(rings[0]) == 3
+    # the inner corner at the right angle: (2, 2) plus half the tolerance each way
+    assert np.min(np.linalg.norm(rings[0] - (2.0 + TOLERANCE / 2), axis=1)) < 1e-9
