@@ -96,6 +96,7 @@ SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 from pathlib import Path
@@ -110,15 +111,23 @@ from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
     ROUGHING_CYCLES,
     ContourTrain,
+    PilotDrill,
     RoughOut,
+    SideFinish,
+    clearing_rings,
     closed_pocket,
     contour_data,
     contour_labels,
     contour_train_cycle,
+    floor_finishing_cycle,
     path_at_level,
+    pilot_drilling_cycle,
     pocket_rings,
+    rest_pieces,
     reversed_path,
     rough_out_cycle,
+    side_finishing_cycle,
+    superimposed_region,
     train_levels,
 )
 from interpolators.heidenhain_cycles import (
@@ -171,6 +180,7 @@ from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_w
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.pockets import Region
 from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
@@ -885,11 +895,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
 
 def _sl_cycle_def(number: int, sub: int | None, rest: str, m: _Machine, where: Where, col: int) -> None:
     """The SL cycles (:mod:`interpolators.heidenhain_contours`): 14 CONTOUR GEOMETRY and 20 CONTOUR DATA
-    are DEF-active, 25 CONTOUR TRAIN is called; 21-24 clear pockets and are refused."""
-    if number in ROUGHING_CYCLES and number != 22:
-        where.fail(f"cycle {number} {ROUGHING_CYCLES[number]} (clearing a pocket of the cycle 14 contour and its "
-                   "islands) is not supported", column=where.text.upper().find("CYCL") + 1 or 1, text=where.text,
-                   expected="CYCL DEF 25 CONTOUR TRAIN for a contour, or the pocket cycles 251-257")
+    are DEF-active, 21-24 (pilot drilling, rough-out, floor and side finishing) and 25 CONTOUR TRAIN called."""
     if number == 14:
         if sub == 1:
             m.contour = contour_labels(rest, where, col)
@@ -899,8 +905,10 @@ def _sl_cycle_def(number: int, sub: int | None, rest: str, m: _Machine, where: W
         m.contour_data = contour_data(q, where, col)
         return
     m.cycle_program = None
-    if number == 22:
-        m.cycle = rough_out_cycle(q, m.contour_data, feed_scale=m.feed_scale, scale=m.scale, where=where, column=col)
+    if number in ROUGHING_CYCLES:
+        make = {21: pilot_drilling_cycle, 22: rough_out_cycle, 23: floor_finishing_cycle,
+                24: side_finishing_cycle}[number]
+        m.cycle = make(q, m.contour_data, feed_scale=m.feed_scale, scale=m.scale, where=where, column=col)
         return
     m.cycle = contour_train_cycle(q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=col)
 
@@ -1079,11 +1087,15 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    if isinstance(m.cycle, (ContourTrain, RoughOut)):
+    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
         if hole is not None or surface_shift:
             _no_contour_train(m, where, blk)
         if isinstance(m.cycle, RoughOut):
             _rough_out(m, m.cycle, where, blk)
+        elif isinstance(m.cycle, SideFinish):
+            _side_finish(m, m.cycle, where, blk)
+        elif isinstance(m.cycle, PilotDrill):
+            _pilot_drill(m, m.cycle, where, blk)
         else:
             _contour_train(m, m.cycle, where, blk)
         return
@@ -1107,8 +1119,9 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25)."""
-    if isinstance(m.cycle, (ContourTrain, RoughOut)):
-        name = "25 CONTOUR TRAIN" if isinstance(m.cycle, ContourTrain) else "22 ROUGH-OUT"
+    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
+        number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
+        name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
         where.fail(f"cycle {name} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
                    text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
 
@@ -1174,34 +1187,23 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     out in the sense Q9, joined square to the contour at the middle of its first element; per depth: at
     FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
     at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 (rounding the path's inside
-    corners) is not applied (noted). Islands (several labels in cycle 14) are an error."""
-    label = _sl_checks(m, 22, where, blk)
-    if len(m.contour) > 1:
-        where.fail("cycle 22 with islands (several labels in cycle 14) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL DEF 14.1 CONTOUR LABEL n with one pocket contour")
+    corners) is not applied (noted). Several labels in cycle 14 (pockets and islands): :func:`_rough_out_region`.
+    Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
+    floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
+    _sl_checks(m, c.number, where, blk)
     if m.tool_radius <= 0:
-        where.fail("cycle 22 needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
+        where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
     if m.contour_data and m.contour_data.get(8, 0.0):
         m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
+    if len(m.contour) > 1 or c.coarse_tool:
+        _rough_out_region(m, c, where, blk)
+        return
     axis = m.plane
-    path, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
-    pocket = closed_pocket(path[1:], ccw=c.ccw, plane=axis)
-    if pocket is None:
-        where.fail(f"cycle 22: the contour LBL {label} is not closed or encloses no area", column=blk.column,
-                   text=blk.code, expected="a closed pocket contour (its last point its first)")
-    loop, polygon = pocket
-    first = m.tool_radius + c.side_allowance
-    span = float(np.max(np.ptp(polygon, axis=0)))
-    step = c.overlap * m.tool_radius
-    radii = [first + k * step for k in range(min(10_000, int(span / step) + 2))]
-    rings = pocket_rings(loop, polygon, radii=radii, plane=axis, ccw=c.ccw)[::-1]
-    if not rings:
-        where.fail(f"cycle 22: the tool (radius {m.tool_radius:g} mm) plus the allowance Q3 does not fit the pocket "
-                   f"LBL {label}", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
+    rings = _pocket_rings_of(m, c, m.tool_radius, where, blk)
     bottom = abs(c.depth) - c.floor_allowance
     if bottom <= 0:
-        where.fail("cycle 22: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+        where.fail(f"cycle {c.number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
                    text=blk.code, expected="|Q4| < |Q1|")
     d = -1.0 if c.depth < 0 else 1.0
     surface = m.origin()[axis] + c.surface
@@ -1222,6 +1224,179 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
                 m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
                                                     start=m.pos.copy()))
                 m.pos = np.array(b.target, dtype=float)
+        _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
+                   math.inf if c.retract_feed is None else c.retract_feed, where, blk)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _pocket_rings_of(m: _Machine, c: RoughOut, radius: float, where: Where, blk: SourceBlock) -> list[list[Block]]:
+    """The rings of cycle 22 in the one pocket of cycle 14 for a tool of ``radius`` [mm], the innermost first
+    (:func:`interpolators.heidenhain_contours.pocket_rings`)."""
+    label = m.contour[0]
+    path, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
+    pocket = closed_pocket(path[1:], ccw=c.ccw, plane=m.plane)
+    if pocket is None:
+        where.fail(f"cycle {c.number}: the contour LBL {label} is not closed or encloses no area",
+                   column=blk.column, text=blk.code, expected="a closed pocket contour (its last point its first)")
+    loop, polygon = pocket
+    first = radius + c.side_allowance
+    span = float(np.max(np.ptp(polygon, axis=0)))
+    step = c.overlap * radius
+    radii = [first + k * step for k in range(min(10_000, int(span / step) + 2))]
+    rings = pocket_rings(loop, polygon, radii=radii, plane=m.plane, ccw=c.ccw)[::-1]
+    if not rings:
+        where.fail(f"cycle {c.number}: the tool (radius {radius:g} mm) plus the allowance Q3 does not fit the "
+                   f"pocket LBL {label}", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
+    return rings
+
+
+def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Region:
+    """The region of cycle 14's contours (:func:`interpolators.heidenhain_contours.superimposed_region`)."""
+    contours = [_trace_contour(m, label, 0.0, m.pos, feed, where, blk) for label in m.contour]
+    return superimposed_region([(path[1:], side) for path, side in contours], plane=m.plane, where=where,
+                               column=blk.column)
+
+
+def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
+                  blk: SourceBlock) -> list[tuple[np.ndarray, bool]]:
+    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named."""
+    try:  # from the lower left (the same rings whatever the tool's position: cycle 21 drills where 22 plunges)
+        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0])
+    except ValueError as exc:
+        where.fail(f"cycle {number}: {exc}", column=blk.column, text=blk.code,
+                   expected="contours whose offsets the tool can follow")
+    if not rings:
+        where.fail(f"cycle {number}: the tool (radius {m.tool_radius:g} mm) plus the allowance fits nowhere in the "
+                   "contours of cycle 14", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
+    return rings
+
+
+def _plane_point(m: _Machine, xy: np.ndarray, level: float) -> np.ndarray:
+    """The machine point (plane coordinates ``xy``, tool axis at ``level``), the other axes where they are."""
+    p, q = PLANE_AXES[m.plane]
+    out = m.pos.copy()
+    out[p], out[q], out[m.plane] = xy[0], xy[1], level
+    return out
+
+
+def _side_finish(m: _Machine, c: SideFinish, where: Where, blk: SourceBlock) -> None:
+    """Cycle 24 SIDE FINISHING (:func:`interpolators.heidenhain_contours.side_finishing_cycle`) of every wall of
+    the region of cycle 14 (pocket walls and islands): the manual has the tool approach each partial contour on a
+    tangential arc and finish it at each infeed; our reading: each ring R + Q14 from the contours (the whole
+    boundary's offset, within 1 um), the nearest next, from Q7 at FMAX over its start, to Q6 above Q5, then per
+    infeed Q10 to the depth Q1: down at Q11, the ring at Q12 in the sense Q9; up to Q7 between rings."""
+    _sl_checks(m, 24, where, blk)
+    radius = m.tool_radius + c.allowance
+    if not radius > 0:
+        where.fail("cycle 24: the tool radius plus Q14 is not > 0", column=blk.column, text=blk.code,
+                   expected="a tool with a radius")
+    area = _sl_region(m, c.feed, where, blk)
+    rings = _region_rings(m, area, first=radius, step=math.inf, ccw=c.ccw, number=24, where=where, blk=blk)
+    axis, d = m.plane, -1.0 if c.depth < 0 else 1.0
+    surface = m.origin()[axis] + c.surface
+    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    m.used.update((*PLANE_AXES[axis], axis))
+    for ring, _ in rings:
+        _axis_move(m, "rapid", clear, math.inf, where, blk)
+        over = _plane_point(m, ring[0], clear)
+        if not np.array_equal(over, m.pos):
+            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+        _axis_move(m, "rapid", above, math.inf, where, blk)
+        for level in train_levels(surface, c.depth, c.plunge):
+            _axis_move(m, "line", level, c.plunge_feed, where, blk)
+            for xy in ring[1:]:
+                target = _plane_point(m, xy, level)
+                m.emit("line", target, Line(m.pos, target), c.feed, where, blk.number)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _pilot_drill(m: _Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> None:
+    """Cycle 21 PILOT DRILLING (:func:`interpolators.heidenhain_contours.pilot_drilling_cycle`): a hole, pecked as
+    cycle 1 PECKING does (Q10 infeeds at Q11, out to the set-up clearance Q6 between them), at each point where
+    cycle 22 plunges with the rough-out tool Q13 (its radius from TOOL DEF or the tool table; the same rings as
+    22 computes), down to Q1 less the floor allowance Q4; from Q7 at FMAX over each point; Q7 at the end."""
+    _sl_checks(m, 21, where, blk)
+    data = m.tool_data(c.tool)
+    if data is None or not data[1] > 0:
+        where.fail(f"cycle 21: the rough-out tool Q13 = {c.tool} has no radius", column=blk.column, text=blk.code,
+                   expected="Q13 a tool of TOOL DEF or the tool table with a radius > 0")
+    r, rough = data[1], c.rough_out
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    if len(m.contour) == 1:
+        points = [np.array(_pocket_rings_of(m, rough, r, where, blk)[0][0].start, dtype=float)[[p, q]]]
+    else:
+        area = _sl_region(m, c.feed, where, blk)
+        rings = _region_rings(m, area, first=r + rough.side_allowance, step=rough.overlap * r, ccw=rough.ccw,
+                              number=21, where=where, blk=blk)
+        points = [ring[0] for k, (ring, linked) in enumerate(rings) if k == 0 or not linked]
+    d = -1.0 if rough.depth < 0 else 1.0
+    bottom = abs(rough.depth) - rough.floor_allowance
+    if bottom <= 0:
+        where.fail("cycle 21: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+                   text=blk.code, expected="|Q4| < |Q1|")
+    surface = m.origin()[axis] + rough.surface
+    clear, above = m.origin()[axis] + rough.clearance, surface - d * rough.setup
+    drill = pecking_cycle({1: rough.setup, 2: d * bottom, 3: c.plunge, 4: 0.0, 5: c.feed}, feed_scale=1.0,
+                          scale=1.0, where=where, column=blk.column)
+    m.used.update((p, q, axis))
+    for point in points:
+        _axis_move(m, "rapid", clear, math.inf, where, blk)
+        over = _plane_point(m, point, clear)
+        if not np.array_equal(over, m.pos):
+            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+        _axis_move(m, "rapid", above, math.inf, where, blk)
+        _hole(m, drill, surface, where, blk)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
+    """Cycle 22 ROUGH-OUT of the superimposed contours of cycle 14 (pockets less islands,
+    :func:`interpolators.heidenhain_contours.superimposed_region`; TNC 426/430 user's manual, "ROUGH-OUT (Cycle
+    22)": the tool mills the contour from the inside outward, the islands cleared with an approach toward the
+    pocket contour, leaving Q3 and Q4). Our reading of the path the manual leaves to the control: the offsets of
+    the whole boundary (pocket walls and islands alike) R + Q3, R + Q3 + Q2 R, .. (each ring within
+    :data:`toolpaths.pockets.TOLERANCE` = 1 um, never nearer the contours than its offset), run from the
+    innermost level outward in the sense Q9, joined by straight feed moves where they keep R + Q3 from every
+    contour, else by a retraction to Q7 and a new plunge (separate regions). Per depth as for one pocket."""
+    axis = m.plane
+    area = _sl_region(m, c.feed, where, blk)
+    rings = _region_rings(m, area, first=m.tool_radius + c.side_allowance, step=c.overlap * m.tool_radius,
+                          ccw=c.ccw, number=c.number, where=where, blk=blk)
+    if c.coarse_tool:
+        coarse = m.tool_data(c.coarse_tool)
+        if coarse is None or not coarse[1] > m.tool_radius:
+            where.fail(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} has no radius larger than this "
+                       f"tool's ({m.tool_radius:g} mm)", column=blk.column, text=blk.code,
+                       expected="Q18 a tool of TOOL DEF or the tool table, larger than the rest-machining tool")
+        rings = rest_pieces(area, rings, coarse=coarse[1], radius=m.tool_radius, allowance=c.side_allowance)
+        if not rings:
+            m.note(f"cycle 22: the coarse tool {c.coarse_tool} left nothing this tool reaches")
+            return
+    bottom = abs(c.depth) - c.floor_allowance
+    if bottom <= 0:
+        where.fail(f"cycle {c.number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+                   text=blk.code, expected="|Q4| < |Q1|")
+    d = -1.0 if c.depth < 0 else 1.0
+    surface = m.origin()[axis] + c.surface
+    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    m.used.update((*PLANE_AXES[axis], axis))
+    point = functools.partial(_plane_point, m)
+    _axis_move(m, "rapid", clear, math.inf, where, blk)
+    for level in train_levels(surface, d * bottom, c.plunge):
+        for k, (ring, linked) in enumerate(rings):
+            if k == 0 or not linked:
+                if k:
+                    _axis_move(m, "rapid", clear, math.inf, where, blk)
+                over = point(ring[0], m.pos[axis])
+                if not np.array_equal(over, m.pos):
+                    m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
+                _axis_move(m, "rapid", above, math.inf, where, blk)
+                _axis_move(m, "line", level, c.plunge_feed, where, blk)
+            for xy in ring[0 if linked else 1:]:
+                target = point(xy, level)
+                if not np.array_equal(target, m.pos):
+                    m.emit("line", target, Line(m.pos, target), c.feed, where, blk.number)
         _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
                    math.inf if c.retract_feed is None else c.retract_feed, where, blk)
     _axis_move(m, "rapid", clear, math.inf, where, blk)

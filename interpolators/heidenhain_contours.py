@@ -6,17 +6,22 @@ programming, the same cycles.
 
 ========================= ==================================================================
 ``CYCL DEF 14.0 CONTOUR`` 14.1 ``CONTOUR LABEL 1 /2 /3``: the labels whose subprograms are the
-                          contours (the first the pocket, the others pockets or islands by their
-                          RL/RR), DEF-active (:func:`contour_labels`)
+                          contours (one label: the pocket; several: each a pocket or an island
+                          by its direction and RL/RR, superimposed), DEF-active
+                          (:func:`contour_labels`, :func:`superimposed_region`)
 ``CYCL DEF 20``           CONTOUR DATA Q1 depth, Q2 path overlap, Q3 side allowance, Q4 floor
                           allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
 ``CYCL DEF 25``           CONTOUR TRAIN, called: the first label of cycle 14 followed at the depths
                           (:func:`contour_train_cycle`; the moves are the reader's ``_contour_train``)
-``CYCL DEF 22``           ROUGH-OUT of one pocket contour without islands, called, with cycle 20's data
-                          (:func:`rough_out_cycle`, :func:`pocket_rings`; the moves: the reader's
-                          ``_rough_out``)
-``CYCL DEF 21, 23, 24``   pilot drilling, floor and side finishing: an error naming the cycle
+``CYCL DEF 22``           ROUGH-OUT, called, with cycle 20's data: one pocket by the rings of
+                          :func:`pocket_rings`; pockets with islands by the offset rings of the
+                          region (:func:`clearing_rings`, :mod:`toolpaths.pockets`: within 1 um);
+                          Q18 rest machining after a coarse tool (:func:`rest_pieces`)
+``CYCL DEF 21, 23, 24``   PILOT DRILLING where 22 will plunge, FLOOR FINISHING (22 in one infeed
+                          to Q1), SIDE FINISHING (the rings R + Q14 at each infeed)
+                          (:func:`pilot_drilling_cycle`, :func:`floor_finishing_cycle`,
+                          :func:`side_finishing_cycle`)
 ========================= ==================================================================
 """
 
@@ -32,14 +37,17 @@ from interpolators._words import Where
 from interpolators.compensation import CompensationError, compensate
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, segment_clear
 
-__all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "contour_labels", "contour_data",
+__all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "SideFinish", "PilotDrill",
+           "floor_finishing_cycle", "side_finishing_cycle", "pilot_drilling_cycle", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
-           "closed_pocket", "pocket_rings"]
+           "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings",
+           "rest_pieces"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
-#: The SL cycles that clear a pocket; all but 22 (one pocket, no islands) are refused with their names.
+#: The SL cycles that machine the region of cycle 14's contours (with cycle 20's data), called.
 ROUGHING_CYCLES = {21: "PILOT DRILLING", 22: "ROUGH-OUT", 23: "FLOOR FINISHING", 24: "SIDE FINISHING"}
 
 _LABELS_RE = re.compile(r"\s*(?:CONTOUR|KONTUR)?\s*(?:LABEL|LBL)\s*((?:\d+\s*/?\s*)+)$", re.I)
@@ -190,6 +198,10 @@ class RoughOut:
         Q11 plunging feed and Q12 roughing feed [mm/s].
     retract_feed : float or None
         Q208, the feed up to the set-up clearance after each infeed [mm/s]; ``None``: rapid.
+    number : int
+        The cycle this roughing runs for: 22, or 23 (floor finishing), 21 (pilot drilling's plunge points).
+    coarse_tool : int
+        Q18, the coarse roughing tool before this one (rest machining); 0: none.
     """
 
     depth: float
@@ -204,6 +216,121 @@ class RoughOut:
     plunge_feed: float
     feed: float
     retract_feed: float | None
+    number: int = 22
+    coarse_tool: int = 0
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class SideFinish:
+    """Cycle 24 SIDE FINISHING with the CONTOUR DATA of cycle 20, in mm, mm/s.
+
+    Attributes
+    ----------
+    depth : float
+        Q1 of cycle 20, the depth from the surface [mm]; its sign is the working direction.
+    surface, clearance : float
+        Q5 and Q7 of cycle 20 [mm, program] (absolute).
+    setup : float
+        Q6 of cycle 20 [mm].
+    ccw : bool
+        Q9 of cycle 24 = +1: climb milling (the material on the tool's right), -1 up-cut.
+    plunge : float
+        Q10, the plunging depth per infeed [mm] (> 0).
+    plunge_feed, feed : float
+        Q11 plunging feed and Q12 milling feed [mm/s].
+    allowance : float
+        Q14, the allowance left on the walls after finishing [mm].
+    """
+
+    depth: float
+    surface: float
+    clearance: float
+    setup: float
+    ccw: bool
+    plunge: float
+    plunge_feed: float
+    feed: float
+    allowance: float
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class PilotDrill:
+    """Cycle 21 PILOT DRILLING with the CONTOUR DATA of cycle 20, in mm, mm/s.
+
+    Attributes
+    ----------
+    rough_out : RoughOut
+        Cycle 22 as the rough-out tool Q13 will run it (its Q10..Q12 those of cycle 21): where it plunges is
+        where cycle 21 drills.
+    tool : int
+        Q13, the number of the rough-out tool (its radius from TOOL DEF or the tool table).
+    plunge, feed : float
+        Q10 plunging depth [mm] (> 0) and Q11 feed rate for plunging [mm/s].
+    """
+
+    rough_out: RoughOut
+    tool: int
+    plunge: float
+    feed: float
+
+
+def _with_data(number: int, data: dict[int, float] | None, where: Where, column: int) -> dict[int, float]:
+    if data is None:
+        where.fail(f"cycle {number} without CONTOUR DATA (CYCL DEF 20)", column=column, text=where.text,
+                   expected=f"CYCL DEF 20 CONTOUR DATA before cycle {number}")
+    return data
+
+
+def floor_finishing_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                          scale: float, where: Where, column: int) -> RoughOut:
+    """Cycle 23 FLOOR FINISHING (TNC 426/430 user's manual, "FLOOR FINISHING (Cycle 23)": the tool clears the
+    floor allowance Q4 left by cycle 22 at the depth Q1, parallel to the contour as 22 roughs; Q11 feed rate for
+    plunging, Q12 feed rate for roughing) as a cycle 22 in one infeed to Q1 with no floor allowance."""
+    data = _with_data(23, data, where, column)
+    if not q.get(11, 0) > 0 or not q.get(12, 0) > 0:
+        where.fail("cycle 23: the feeds Q11 and Q12 must be given and > 0", column=column, text=where.text,
+                   expected="FLOOR FINISHING Q11 > 0, Q12 > 0")
+    rough = rough_out_cycle({10: data[1], 11: q[11], 12: q[12]}, data, feed_scale=feed_scale, scale=scale,
+                            where=where, column=column)
+    return dataclasses.replace(rough, floor_allowance=0.0, plunge=abs(rough.depth), number=23)
+
+
+def side_finishing_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                         scale: float, where: Where, column: int) -> SideFinish:
+    """Cycle 24 SIDE FINISHING (TNC 426/430 user's manual, "SIDE FINISHING (Cycle 24)": Q9 direction of rotation
+    (+1 climb, -1 up-cut milling for pocket and island), Q10 plunging depth, Q11 feed rate for plunging, Q12
+    feed rate for milling, Q14 finishing allowance for side, what stays on the walls after it) to the depth Q1
+    of cycle 20."""
+    data = _with_data(24, data, where, column)
+    missing = [f"Q{k}" for k in (9, 10, 11, 12, 14) if k not in q]
+    if missing:
+        where.fail(f"cycle 24 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="SIDE FINISHING Q9 Q10 Q11 Q12 Q14")
+    if data[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0:
+        where.fail("cycle 24: Q1 (cycle 20) and Q10 must be != 0, the feeds Q11, Q12 > 0", column=column,
+                   text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0")
+    if abs(data[1]) / abs(q[10]) > 10_000:
+        where.fail("cycle 24: more than 10000 infeeds", column=column, text=where.text,
+                   expected="a larger plunging depth Q10")
+    return SideFinish(depth=data[1] * scale, surface=data[5] * scale, clearance=data[7] * scale,
+                      setup=abs(data[6]) * scale, ccw=q[9] >= 0, plunge=abs(q[10]) * scale,
+                      plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale, allowance=q[14] * scale)
+
+
+def pilot_drilling_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float,
+                         scale: float, where: Where, column: int) -> PilotDrill:
+    """Cycle 21 PILOT DRILLING (TNC 426/430 user's manual, "PILOT DRILLING (Cycle 21)": the TNC drills where the
+    rough-out tool Q13 will plunge, pecking as cycle 1 does; Q10 plunging depth, Q11 feed rate for plunging,
+    Q13 rough-out tool number; the depth from cycle 20's Q1 less the floor allowance Q4)."""
+    data = _with_data(21, data, where, column)
+    missing = [f"Q{k}" for k in (10, 11, 13) if k not in q]
+    if missing:
+        where.fail(f"cycle 21 lacks {', '.join(missing)}", column=column, text=where.text,
+                   expected="PILOT DRILLING Q10 Q11 Q13")
+    rough = rough_out_cycle({10: q[10], 11: q[11], 12: q[11]}, data, feed_scale=feed_scale, scale=scale,
+                            where=where, column=column)
+    return PilotDrill(rough_out=dataclasses.replace(rough, number=21), tool=int(q[13]),
+                      plunge=abs(q[10]) * scale, feed=q[11] * feed_scale)
 
 
 def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_scale: float, scale: float,
@@ -211,8 +338,8 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
     """Cycle 22 ROUGH-OUT from its Q parameters and cycle 20's (TNC 426/430 user's manual, "ROUGH-OUT (Cycle
     22)": Q10 plunging depth, Q11 feed rate for plunging, Q12 feed rate for roughing, Q18 coarse roughing
     tool (0: none), Q19 feed rate for reciprocation; the iTNC 530's Q208 feed rate for retraction (0: Q12,
-    MAX: rapid), Q401 feed rate factor, Q404 fine roughing strategy). A coarse roughing tool Q18 (rest
-    machining) is an error; Q19, Q401, Q404 move nothing here."""
+    MAX: rapid), Q401 feed rate factor, Q404 fine roughing strategy). Q18 != 0: rest machining after that
+    coarse roughing tool (:func:`rest_pieces`); Q19, Q401, Q404 move nothing here."""
     if data is None:
         where.fail("cycle 22 without CONTOUR DATA (CYCL DEF 20)", column=column, text=where.text,
                    expected="CYCL DEF 20 CONTOUR DATA before cycle 22")
@@ -220,9 +347,6 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
     if missing:
         where.fail(f"cycle 22 lacks {', '.join(missing)}", column=column, text=where.text,
                    expected="ROUGH-OUT Q10 Q11 Q12")
-    if q.get(18, 0.0):
-        where.fail("cycle 22: rest machining after a coarse roughing tool Q18 is not supported", column=column,
-                   text=where.text, expected="Q18=0")
     if data[1] == 0 or q[10] == 0 or not q[11] > 0 or not q[12] > 0 or not 0 < data[2] < 2:
         where.fail("cycle 22: Q1 and Q10 must be != 0, the feeds Q11, Q12 > 0 and the overlap Q2 in (0, 2)",
                    column=column, text=where.text, expected="Q1 != 0, Q10 != 0, Q11 > 0, Q12 > 0, 0 < Q2 < 2")
@@ -234,7 +358,8 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
                     floor_allowance=abs(data[4]) * scale, surface=data[5] * scale, setup=abs(data[6]) * scale,
                     clearance=data[7] * scale, ccw=data[9] >= 0, plunge=abs(q[10]) * scale,
                     plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale,
-                    retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale)
+                    retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale,
+                    coarse_tool=int(q.get(18, 0.0)))
 
 
 def _samples(path: list[Block], plane: int, per: int = 24) -> np.ndarray:
@@ -344,3 +469,140 @@ def pocket_rings(loop: list[Block], polygon: np.ndarray, *, radii: list[float], 
             break
         rings.append(ring[int(bool(rings)):])
     return rings
+
+
+def contour_edges(path: list[Block], plane: int) -> list[Edge]:
+    """The lines and arcs of a contour's blocks as :class:`toolpaths.pockets.Edge` in the ``plane`` [mm]."""
+    p, q = PLANE_AXES[plane]
+    edges = []
+    for b in path:
+        seg = b.segment
+        start, end = np.array([seg.start[p], seg.start[q]]), np.array([seg.end[p], seg.end[q]])
+        if isinstance(seg, Arc):
+            edges.append(Edge(start=start, end=end, centre=np.array([seg.center[p], seg.center[q]]),
+                              radius=float(seg.radius), a0=float(seg.start_angle), sweep=float(seg.sweep)))
+        elif np.linalg.norm(end - start) > 0:
+            edges.append(Edge(start=start, end=end))
+    return edges
+
+
+def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, where: Where,
+                        column: int) -> Region:
+    """The region cycle 14's contours enclose: each closed contour (its blocks after the starting point, and its
+    ``RL``/``RR``/``R0``) is a pocket or an island by the TNC's rule (TNC 426/430 user's manual, "SL Cycles":
+    the TNC recognizes a pocket when the tool path lies inside the contour, e.g. clockwise with RR, and an island
+    when it lies outside, e.g. clockwise with RL); the first contour written with R0 is a pocket. Overlapping
+    pockets and islands combine: the union of the pockets less the union of the islands ("Overlapping
+    contours")."""
+    pockets, islands = [], []
+    for k, (path, side) in enumerate(contours):
+        polygon = _samples(path, plane)
+        closed = np.hypot(*(polygon[-1] - polygon[0])) <= 1e-6
+        area = _signed_area(polygon)
+        if not closed or abs(area) <= 1e-9:
+            where.fail(f"SL cycle: contour {k + 1} of cycle 14 is not closed or encloses no area", column=column,
+                       text=where.text, expected="closed contours (each its last point its first)")
+        if side == "R0" and k > 0:
+            where.fail(f"SL cycle: contour {k + 1} of cycle 14 has no RL/RR to tell a pocket from an island",
+                       column=column, text=where.text, expected="RL or RR in each contour after the first")
+        pocket = len(contours) == 1 or side == "R0" or (side == "RL") == (area > 0)
+        (pockets if pocket else islands).append(contour_edges(path, plane))
+    if not pockets:
+        where.fail("SL cycle: cycle 14's contours are all islands", column=column, text=where.text,
+                   expected="at least one pocket (a contour the tool runs inside of with its RL/RR)")
+    return region(pockets, islands)
+
+
+def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start: np.ndarray,
+                   tolerance: float = TOLERANCE) -> list[tuple[np.ndarray, bool]]:
+    """The rings that clear ``area`` [mm]: its offsets ``first``, ``first + step``, .. (``step`` infinite: the
+    offset ``first`` alone) from the boundary
+    (:func:`toolpaths.pockets.offset_rings`, within ``tolerance``), run from the innermost level outward, at each
+    level the nearest ring next, each closed (n, 2) from its vertex nearest to where the tool is (``start``
+    first), with ``True`` when the straight move to it from the previous ring's end keeps ``first`` from the
+    boundary (else the tool leaves the material to reach it). ``ccw``: the material on the tool's right (Q9 =
+    +1, climb milling with M3: counter-clockwise in a pocket, clockwise round an island)."""
+    lo, hi = area.bounds()
+    half = float(np.min(hi - lo)) / 2
+    levels = [first + k * step for k in range(min(100_000, int(half / step) + 2))] if math.isfinite(step) else [first]
+    levels = [lv for lv in levels if lv <= half + step]
+    grid = max(min(step, first) / 3, tolerance * 10)
+    per_level = offset_rings(area, levels, step=grid, tolerance=tolerance, left_higher=ccw)
+    out: list[tuple[np.ndarray, bool]] = []
+    here = np.asarray(start, dtype=float)
+    for rings in reversed(per_level):
+        todo = list(rings)
+        while todo:
+            k = int(np.argmin([np.min(np.linalg.norm(r - here, axis=1)) for r in todo]))
+            ring = todo.pop(k)
+            i = int(np.argmin(np.linalg.norm(ring - here, axis=1)))
+            ring = np.concatenate([ring[i:], ring[:i + 1]])
+            linked = bool(out) and segment_clear(area, here, ring[0], first, tolerance=tolerance)
+            out.append((ring, linked))
+            here = ring[-1]
+    return out
+
+
+def _to_polylines(point: np.ndarray, lines: list[np.ndarray]) -> np.ndarray:
+    """The distance of each point (n, 2) to the closed polylines ``lines`` [mm]."""
+    best = np.full(len(point), np.inf)
+    for ring in lines:
+        a, b = ring, np.roll(ring, -1, axis=0)
+        u = b - a
+        uu = np.maximum(np.einsum("kd,kd->k", u, u), 1e-300)
+        for k in range(0, len(point), 2000):
+            x = point[k:k + 2000]
+            t = np.clip(np.einsum("nkd,kd->nk", x[:, None, :] - a[None], u) / uu, 0.0, 1.0)
+            d = np.linalg.norm(x[:, None, :] - (a[None] + t[..., None] * u[None]), axis=2).min(axis=1)
+            best[k:k + 2000] = np.minimum(best[k:k + 2000], d)
+    return best
+
+
+def _resampled(line: np.ndarray, spacing: float) -> np.ndarray:
+    """The polyline (n, 2) with points added along its chords, at most ``spacing`` [mm] apart."""
+    out = [line[:1]]
+    for a, b in zip(line[:-1], line[1:]):
+        n = max(1, math.ceil(float(np.linalg.norm(b - a)) / spacing))
+        out.append(a + np.linspace(0.0, 1.0, n + 1)[1:, None] * (b - a))
+    return np.concatenate(out)
+
+
+def rest_pieces(area: Region, rings: list[tuple[np.ndarray, bool]], *, coarse: float, radius: float,
+                allowance: float) -> list[tuple[np.ndarray, bool]]:
+    """Rest machining (cycle 22 with Q18): the parts of the fine tool's ``rings`` (of :func:`clearing_rings`, tool
+    ``radius`` [mm]) that can reach material the coarse tool (radius ``coarse`` [mm]) left. The coarse tool's
+    centre reached ``C = {d >= coarse + allowance}`` and cut what lies within ``coarse`` of it; a point of a
+    fine ring is kept when its distance to ``C`` exceeds ``coarse - radius`` (a bound: the fine tool's edge can
+    then lie farther than ``coarse`` from ``C``; the rings resampled R/2 apart), with one point more at each end of
+    a kept run. Each piece is
+    returned open, with ``True`` when the straight move to it from the previous piece's end keeps ``radius +
+    allowance`` from the contours. The manual (TNC 426/430, cycle 22 Q18: "the TNC machines only the areas the
+    coarse roughing tool could not") leaves the path to the control; this is our reading."""
+    (border,) = offset_rings(area, [coarse + allowance], step=max(coarse / 3, TOLERANCE * 10))
+    first = radius + allowance
+    out: list[tuple[np.ndarray, bool]] = []
+    here = None
+    for closed, _ in rings:
+        ring = _resampled(closed, radius / 2)
+        dist = _to_polylines(ring, border)
+        inside_c = area.distance(ring)[0] >= coarse + allowance
+        useful = (np.where(inside_c, 0.0, dist) > coarse - radius + TOLERANCE)
+        if not np.any(useful):
+            continue
+        keep = useful | np.roll(useful, 1) | np.roll(useful, -1)
+        keep[0] = keep[-1] = keep[0] or keep[-1]  # the ring is closed: its first vertex is its last
+        if np.all(keep):
+            pieces = [ring]
+        else:
+            shift = int(np.argmin(keep[:-1]))  # start at a dropped vertex so that runs do not wrap
+            k = np.concatenate([keep[shift:-1], keep[:shift + 1]])
+            v = np.concatenate([ring[shift:-1], ring[:shift + 1]])
+            edges = np.flatnonzero(np.diff(k.astype(int)))
+            pieces = [v[s + 1:e + 1] for s, e in zip(edges[::2], edges[1::2])]
+        for piece in pieces:
+            if len(piece) < 2:
+                continue
+            linked = here is not None and segment_clear(area, here, piece[0], first)
+            out.append((piece, linked))
+            here = piece[-1]
+    return out

@@ -224,6 +224,8 @@ class _Tnc:
         self.centre = np.zeros(3)  # cycle 26 [mm]
         self.program: tuple | None = None  # the running program's (blocks, labels)
         self.contour = ""  # cycle 14: the contour's first label
+        self.contours: tuple[str, ...] = ()  # cycle 14: all its labels
+        self.loose = 0.0  # after an SL region cycle: how far the tool's plane position may be from self.pos [mm]
         self.data: dict = {}  # cycle 20's Q1 .. Q9
 
     def origin(self) -> np.ndarray:
@@ -260,13 +262,16 @@ class _Tnc:
                                      element=element, entry=self.entry))
             self.entry = False
         else:
-            slack = 0.0
+            slack, loose = 0.0, 0.0
+            if self.loose and np.any(end[:2] == start[:2]):  # X or Y kept from the SL cycle's unknown end
+                loose = self.loose
+            self.loose = 0.0 if not loose else self.loose
             if centre is not None:
                 ax = list(plane)
                 rs, re_ = (float(np.hypot(*(p - centre)[ax])) for p in (start, end))
                 chord = float(np.hypot(*(end - start)[ax]))
                 slack = 2 * abs(rs - re_) * max(rs, re_) / chord if chord > 0 else 0.0
-            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre,
+            self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre, tolerance=loose,
                                      centre_tolerance=1e-6 + slack, plane=plane, extra=extra))
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
@@ -473,8 +478,9 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         pass
     elif number == 14:
         if sub == 1:
-            t.contour = re.search(r"(\d+)", rest).group(1)
-    elif number in (20, 22, 25):
+            t.contours = tuple(re.findall(r"\d+", rest))
+            t.contour = t.contours[0]
+    elif number in (20, 21, 22, 23, 24, 25):
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
         t.q.update(params)
@@ -655,6 +661,14 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind == "25":
         _contour_train(t, line, p)
         return
+    if kind in ("22", "23") and len(t.contours) == 1 and not p.get("Q18", 0) and t.loose:
+        raise ReferenceError("one pocket's 22/23 after an SL cycle that left the tool's plane position unknown")
+    if kind == "23" and len(t.contours) == 1:  # FLOOR FINISHING of one pocket: 22 in one infeed to Q1
+        _rough_out(t, line, {**p, "Q4": 0.0, "Q10": abs(p["Q1"])})
+        return
+    if kind in ("21", "23", "24") or kind == "22" and (len(t.contours) > 1 or p.get("Q18", 0)):
+        _sl_region_cycle(t, line, p)
+        return
     if kind == "22":
         _rough_out(t, line, p)
         return
@@ -742,6 +756,33 @@ def _offset_end(el: tuple, at_end: bool, side: float, radius: float) -> np.ndarr
     out = x.copy()
     out[:2] += side * radius * np.array([-tan[1], tan[0]])
     return out
+
+
+def _sl_region_cycle(t: _Tnc, line: int, p: dict) -> None:
+    """21 PILOT DRILLING, 22 ROUGH-OUT of several contours (pockets and islands), 23 FLOOR FINISHING, 24 SIDE
+    FINISHING: their paths (offset rings of the region) would repeat the reader's algorithm, so only their frame
+    is checked: the rise to the clearance height Q7 first (FMAX), and the last row at Q7 within the pockets'
+    bounding box (the end is checked to within the box's half diagonal); the tool's plane position after it is
+    known only so far (the next moves that keep X or Y are checked within it)."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
+        raise ReferenceError("SL cycle under a transformation")
+    first, pts = t.contour, []
+    for label in t.contours:
+        t.contour = label
+        elements, _ = _contour_elements(t)
+        for _, kind, a, b, c in elements:
+            pts += [a[:2], b[:2]]
+            if kind in ("arc_ccw", "arc_cw"):
+                r = float(np.hypot(*(a - c)[:2]))
+                pts += [c[:2] + [r, r], c[:2] - [r, r]]
+    t.contour = first
+    lo, hi = np.min(pts, axis=0), np.max(pts, axis=0)
+    _move_z(t, line, "rapid", p["Q7"], optional=True)
+    end = t.pos.copy()
+    end[:2] = (lo + hi) / 2
+    half = float(np.hypot(*(hi - lo))) / 2
+    t.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=half, rows="last"))
+    t.pos, t.loose = end, half
 
 
 def _contour_train(t: _Tnc, line: int, p: dict) -> None:

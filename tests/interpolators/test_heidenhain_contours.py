@@ -94,7 +94,7 @@ def test_contour_data_20_is_read_and_moves_nothing():
 
 @pytest.mark.parametrize(("text", "match"), [
     (HEAD + "5 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18=0 Q19=0 Q208=99999\n", "without CONTOUR DATA"),
-    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 FLOOR FINISHING"),
+    (HEAD + "5 CYCL DEF 23 FLOOR FINISHING Q11=100 Q12=350 Q208=99999\n", "cycle 23 without CONTOUR DATA"),
     (HEAD + TRAIN.format(q3="0", q15="+2") + CALL, "Q15=2 is not a milling direction"),
     ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n" + TRAIN.format(q3="0", q15="+1") + CALL, "without a contour"),
     (HEAD + TRAIN.format(q3="0", q15="+1") + CALL + "9 LBL 1\n10 L X+0 Y+0 RL\n11 L X+40 Z-5\n12 LBL 0\n",
@@ -192,11 +192,187 @@ def run_rough(points):
     return run(pocket_program(points))
 
 
-@pytest.mark.parametrize(("change", "match"), [
-    ("14.1 CONTOUR LABEL 1", "14.1 CONTOUR LABEL 1 /2"), ("Q18=0 ", "Q18=2 "),
-])
-def test_rough_out_22_refuses_islands_and_rest_machining(change, match):
-    text = pocket_program(RECTANGLE).replace(change, match).replace("30 LBL 0\n", "30 LBL 0\n31 LBL 2\n"
-                                                                    "32 L X+5 Y+5 RR\n33 L X+8\n34 L X+5\n35 LBL 0\n")
-    with pytest.raises(GCodeError, match="islands|rest machining"):
+def test_rough_out_22_rest_machining_needs_a_larger_coarse_tool():
+    text = pocket_program(RECTANGLE).replace("Q18=0 ", "Q18=2 ")
+    with pytest.raises(GCodeError, match="coarse roughing tool Q18 = 2 has no radius larger"):
         parse_heidenhain(text, source="t.h", context=CTX)
+
+
+#: A 50 x 50 pocket (LBL 1, clockwise with RR: the tool inside) with two islands: a 10 x 10 square (LBL 2,
+#: clockwise with RL: the tool outside) and a circle of radius 8 about (35, 35) (LBL 3, counter-clockwise with
+#: RR: outside), as kt_SLII001 (drunsinn/language-klartext) writes them.
+ISLANDS = ("4 CYCL DEF 14.1 CONTOUR LABEL 1 /2 /3\n" + ROUGH +
+           "10 LBL 1\n11 L X+0 Y+25 RR\n12 L X+0 Y+50\n13 L X+50 Y+50\n14 L X+50 Y+0\n15 L X+0 Y+0\n"
+           "16 L X+0 Y+25\n17 LBL 0\n18 LBL 2\n19 L X+5 Y+8 RL\n20 L X+5 Y+15\n21 L X+15 Y+15\n22 L X+15 Y+5\n"
+           "23 L X+5 Y+5\n24 L X+5 Y+8\n25 LBL 0\n26 LBL 3\n27 CC X+35 Y+35\n28 L X+35 Y+43 RR\n"
+           "29 C X+35 Y+43 DR+\n30 LBL 0\nEND PGM T MM\n")
+
+
+def _island_distance(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The exact distance of points to the three contours of ISLANDS and whether they lie in the region."""
+    square, pocket = np.array(RECTANGLE_10, float), np.array([(0, 0), (50, 0), (50, 50), (0, 50)], float)
+    circle = np.abs(np.linalg.norm(pts - [35.0, 35.0], axis=1) - 8.0)
+    d = np.minimum(np.minimum(_distance_to_polygon(pts, pocket), _distance_to_polygon(pts, square)), circle)
+    inside = (_inside_polygon(pts, pocket) & ~_inside_polygon(pts, square)
+              & (np.linalg.norm(pts - [35.0, 35.0], axis=1) > 8.0))
+    return d, inside
+
+
+RECTANGLE_10 = [(5, 5), (15, 5), (15, 15), (5, 15)]
+
+
+def _islands_run(q9: str = "+1"):
+    text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLANDS.replace("Q9=+1", "Q9=" + q9)
+    return run(text)  # the reference checks the rise to Q7 and the end at Q7 over the pocket
+
+
+@pytest.mark.slow
+def test_rough_out_22_with_two_islands_stays_r_plus_q3_from_every_contour_and_clears_the_rest():
+    prog = _islands_run()
+    below = [b for b in prog.blocks[1:] if b.segment is not None and min(b.start[2], b.target[2]) < 10.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                          for b in below])
+    d, inside = _island_distance(pts)
+    assert np.all(inside)
+    # R + Q3, the rings within TOLERANCE (1 um) of it; the circle is just 2 (R + Q3) from the wall, where the
+    # rings pinch
+    assert d.min() >= 3.5 - 1e-3
+    # coverage at the last depth: every point of the region 3.5 or more from the contours lies within Q2 x R
+    # = 3 mm of the path (the rings are 3 mm apart)
+    last = [b for b in below if b.start[2] == b.target[2] == 0.5]
+    path = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 40)))[:, :2]
+                           for b in last])
+    gx, gy = np.meshgrid(np.arange(0.25, 50, 0.5), np.arange(0.25, 50, 0.5))
+    grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    dg, ing = _island_distance(grid)
+    grid = grid[ing & (dg >= 3.5)]
+    far = np.array([np.min(np.linalg.norm(path - g, axis=1)) for g in grid])
+    assert far.max() <= 3.0 * 1.05
+    # the depths: Q10 = 5, then Q1 + Q4 = 9.5 (machine Z = program Z + 10), each plunged at Q11 from Q6 above Q5
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9)) for b in prog.blocks
+               if b.kind == "line" and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 5.0), (12.0, 0.5)}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("q9", ["+1", "-1"])
+def test_rough_out_22_runs_round_an_island_clockwise_for_climb_milling_q9_plus_1(q9):
+    prog = _islands_run(q9)
+    # the moves round the circular island (their ends 3.5 from it, the first ring): their turning about its centre
+    moves = [b for b in prog.blocks if b.kind == "line" and b.start[2] == b.target[2] == 0.5
+             and abs(np.linalg.norm(b.target[:2] - [35, 35]) - 11.5) < 1e-2
+             and abs(np.linalg.norm(b.start[:2] - [35, 35]) - 11.5) < 1e-2]
+    turn = sum((b.start[0] - 35) * (b.target[1] - 35) - (b.start[1] - 35) * (b.target[0] - 35) for b in moves)
+    assert moves and (turn < 0) == (q9 == "+1")  # climb milling with M3: the material on the tool's right
+
+
+def _sl_program(cycles: str) -> str:
+    """ISLANDS with its cycle 22 call replaced by ``cycles`` (definitions and calls)."""
+    text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLANDS
+    return text.replace("8 CYCL CALL\n", cycles)
+
+
+SIDE = ("81 CYCL DEF 24 SIDE FINISHING ~\n  Q9=+1 ;ROTATIONAL DIRECTION ~\n  Q10=-5 ;PLUNGING DEPTH ~\n"
+        "  Q11=100 ;FEED RATE FOR PLUNGING ~\n  Q12=300 ;FEED RATE FOR MILLING ~\n  Q14=+0 ;ALLOWANCE FOR SIDE\n"
+        "82 CYCL CALL\n")
+FLOOR = ("83 CYCL DEF 23 FLOOR FINISHING ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n  Q12=200 ;FEED RATE FOR ROUGHING\n"
+         "84 CYCL CALL\n")
+PILOT = ("71 CYCL DEF 21 PILOT DRILLING ~\n  Q10=+5 ;PLUNGING DEPTH ~\n  Q11=100 ;FEED RATE FOR PLUNGING ~\n"
+         "  Q13=1 ;ROUGH-OUT TOOL\n72 CYCL CALL\n")
+
+
+@pytest.mark.slow
+def test_side_finishing_24_runs_every_wall_r_plus_q14_off_at_each_infeed():
+    prog = run(_sl_program(SIDE))
+    flat = [b for b in prog.blocks if b.text.startswith("82 ") and b.kind == "line" and b.start[2] == b.target[2]]
+    assert {round(b.target[2], 9) for b in flat} == {5.0, 0.0}  # Q10 = 5 down to Q1 = -10 (machine Z + 10)
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 9)))[:, :2]
+                          for b in flat])
+    d, inside = _island_distance(pts)
+    assert np.all(inside) and d.min() >= 3.0 - 1e-9 and d.max() <= 3.0 + 1e-3  # R + Q14, within 1 um
+    # each contour is finished: the path comes to R from the pocket wall, the square and the circle
+    square, pocket = np.array(RECTANGLE_10, float), np.array([(0, 0), (50, 0), (50, 50), (0, 50)], float)
+    for dist in (_distance_to_polygon(pts, pocket), _distance_to_polygon(pts, square),
+                 np.abs(np.linalg.norm(pts - [35.0, 35.0], axis=1) - 8.0)):
+        assert dist.min() == pytest.approx(3.0, abs=1e-3)
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9), round(b.feed * 60, 6)) for b in prog.blocks
+               if b.text.startswith("82 ") and b.kind == "line" and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 5.0, 100.0), (5.0, 0.0, 100.0)}
+
+
+@pytest.mark.slow
+def test_floor_finishing_23_clears_at_the_depth_q1_in_one_infeed_keeping_the_side_allowance():
+    prog = run(_sl_program(FLOOR))
+    mine = [b for b in prog.blocks if b.text.startswith("84 ") and b.segment is not None]
+    plunges = {(round(b.start[2], 9), round(b.target[2], 9)) for b in mine if b.kind == "line"
+               and b.start[2] != b.target[2]}
+    assert plunges == {(12.0, 0.0)}  # from Q6 above Q5 to Q1 = -10, the floor allowance Q4 cleared
+    flat = [b for b in mine if b.start[2] == b.target[2] == 0.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 9)))[:, :2]
+                          for b in flat])
+    d, inside = _island_distance(pts)
+    assert np.all(inside) and d.min() >= 3.5 - 1e-9 and all(b.feed * 60 == pytest.approx(200.0) for b in flat)
+
+
+@pytest.mark.slow
+def test_pilot_drilling_21_drills_where_the_rough_out_plunges_to_q1_less_q4():
+    rough = ISLANDS.split("6 CYCL DEF 22")[1].split("7 L X+0")[0]
+    prog = run(_sl_program(PILOT + "73 CYCL DEF 22" + rough + "74 CYCL CALL\n"))
+    drills = [b for b in prog.blocks if b.text.startswith("72 ") and b.kind == "line"]
+    plunges = [b for b in prog.blocks if b.text.startswith("74 ") and b.kind == "line" and b.start[2] == 12.0
+               and b.target[2] == 5.0]
+    holes = {tuple(np.round(b.target[:2], 6)) for b in drills}
+    assert holes == {tuple(np.round(b.target[:2], 6)) for b in plunges} and len(holes) >= 1
+    # pecked as cycle 1: Q10 = 5 deep each, down to Q1 + Q4 = -9.5 (machine Z 0.5), at Q11
+    assert sorted({round(b.target[2], 9) for b in drills}) == [0.5, 5.0]
+    assert all(b.feed * 60 == pytest.approx(100.0) for b in drills if b.target[2] < b.start[2])
+
+
+@pytest.mark.parametrize(("text", "match"), [
+    (HEAD + "5 CYCL DEF 21 PILOT DRILLING Q10=5 Q11=100 Q13=1\n", "cycle 21 without CONTOUR DATA"),
+    (HEAD + ROUGH.split("6 CYCL DEF 22")[0] + "6 CYCL DEF 24 SIDE FINISHING Q9=1 Q10=5 Q11=100 Q12=300\n",
+     "cycle 24 lacks Q14"),
+    (HEAD.replace("LABEL 1", "LABEL 1 /2") + ROUGH + "10 LBL 1\n11 L X+0 Y+0 RR\n12 L X+0 Y+20\n13 L X+20 Y+20\n"
+     "14 L X+0 Y+0\n15 LBL 0\n16 LBL 2\n17 L X+5 Y+5 R0\n18 L X+5 Y+8\n19 L X+8 Y+8\n20 L X+5 Y+5\n21 LBL 0\n",
+     "contour 2 of cycle 14 has no RL/RR"),
+    (HEAD.replace("LABEL 1", "LABEL 1 /2") + ROUGH + "10 LBL 1\n11 L X+0 Y+0 RL\n12 L X+0 Y+20\n13 L X+20 Y+20\n"
+     "14 L X+0 Y+0\n15 LBL 0\n16 LBL 2\n17 L X+5 Y+5 RL\n18 L X+5 Y+8\n19 L X+8 Y+8\n20 L X+5 Y+5\n21 LBL 0\n",
+     "all islands"),
+])
+def test_sl_cycles_21_to_24_name_what_they_lack(text, match):
+    with pytest.raises(GCodeError, match=match):
+        parse_heidenhain(text.replace("9 L X+0 Y+0 Z+100 R0 FMAX M30\n", "9 L X+0 Y+0 Z+100 R0 FMAX M30\n")
+                         + "END PGM T MM\n", source="t.h", context=CTX)
+
+
+@pytest.mark.slow
+def test_rest_machining_22_q18_cuts_only_near_what_the_coarse_tool_left_and_together_they_clear_the_region():
+    rough = ISLANDS.split("6 CYCL DEF 22")[1].split("7 L X+0")[0]
+    rest = ("73 TOOL CALL 2 Z S3000\n74 CYCL DEF 22" + rough.replace("Q18=0", "Q18=1") + "75 CYCL CALL\n")
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)},
+                         tools={1: Tool(number=1, length=10.0, radius=3.0), 2: Tool(number=2, length=10.0, radius=1.0)})
+    text = _sl_program("8 CYCL CALL\n" + rest)
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    match = match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+    def flat(line_text: str, z: float) -> np.ndarray:
+        moves = [b for b in prog.blocks if b.text.startswith(line_text) and b.segment is not None
+                 and b.start[2] == b.target[2] == z]
+        return np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                               for b in moves])
+
+    coarse, fine = flat("8 ", 0.5), flat("75 ", 0.5)
+    d, inside = _island_distance(fine)
+    assert np.all(inside) and d.min() >= 1.5 - 1e-3  # the small tool: R 1 + Q3 0.5 from every contour
+    # the rest is a fraction of a full roughing with the small tool (its rings 1 mm apart would run ~4x as long)
+    assert len(fine) < len(coarse)
+    # together: every point 1.5 or more from the contours lies within 3 (x 1.05) of the coarse tool's path or
+    # within 1 (x 1.05) of the small tool's
+    gx, gy = np.meshgrid(np.arange(0.25, 50, 0.5), np.arange(0.25, 50, 0.5))
+    grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    dg, ing = _island_distance(grid)
+    grid = grid[ing & (dg >= 1.5)]
+    near_coarse = np.array([np.min(np.linalg.norm(coarse - g, axis=1)) for g in grid]) <= 3.0 * 1.05
+    near_fine = np.array([np.min(np.linalg.norm(fine - g, axis=1)) for g in grid]) <= 1.0 * 1.05
+    assert np.all(near_coarse | near_fine)

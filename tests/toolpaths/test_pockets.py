@@ -1,0 +1,82 @@
+"""Regions of pockets less islands: the exact distance to their boundary and the offset rings within TOLERANCE.
+
+Expectations are worked out by hand from the geometry (squares and circles)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from toolpaths.pockets import TOLERANCE, Edge, offset_rings, region, segment_clear
+
+
+def square(x0: float, y0: float, x1: float, y1: float) -> list[Edge]:
+    pts = [np.array(p, float) for p in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+    return [Edge(start=a, end=b) for a, b in zip(pts, pts[1:] + pts[:1])]
+
+
+def circle(cx: float, cy: float, r: float) -> list[Edge]:
+    c = np.array([cx, cy])
+    return [Edge(start=c + [r, 0.0], end=c + [r, 0.0], centre=c, radius=r, a0=0.0, sweep=2 * math.pi)]
+
+
+def test_distance_is_signed_to_the_walls_and_the_islands():
+    area = region([square(0, 0, 100, 100)], [square(40, 40, 60, 60), circle(80, 20, 5)])
+    d, grad = area.distance(np.array([[20.0, 50.0], [50.0, 50.0], [80.0, 20.0], [80.0, 30.0], [-3.0, 50.0]]))
+    # 20 from the left wall and from the square island; -10 inside the island (its centre); -5 at the circle's
+    # centre; 5 above the circle; -3 outside the pocket
+    assert d == pytest.approx([20.0, -10.0, -5.0, 5.0, -3.0])
+    assert grad[3] == pytest.approx([0.0, 1.0])  # away from the circle, into the region
+
+
+def test_overlapping_pockets_combine_and_their_inner_edges_are_no_walls():
+    area = region([square(0, 0, 10, 10), square(5, 5, 15, 15)], [])
+    # inside both: the nearest wall is a corner of the union, (10, 5) or (5, 10), not the edge x = 10 (2.5 away,
+    # inside the other pocket)
+    d, _ = area.distance(np.array([[7.5, 7.5], [12.0, 2.0]]))
+    assert d[0] == pytest.approx(math.hypot(2.5, 2.5))
+    assert d[1] == pytest.approx(-2.0)  # outside both: 2 from the first square's right edge
+    assert len(area.boundary) == 8  # two L-shaped halves: 4 + 4 pieces
+
+
+def test_offset_ring_of_a_circle_lies_within_the_tolerance_and_turns_as_asked():
+    area = region([circle(0, 0, 20)], [])
+    for left in (True, False):
+        (rings,) = offset_rings(area, [5.0], step=1.0, left_higher=left)
+        assert len(rings) == 1
+        ring = rings[0]
+        nxt = np.roll(ring, -1, axis=0)
+        pts = (ring[:, None, :] + np.linspace(0, 1, 21)[None, :, None] * (nxt - ring)[:, None, :]).reshape(-1, 2)
+        radius = np.linalg.norm(pts, axis=1)
+        assert radius.max() <= 15.0 + 1e-9 and radius.min() >= 15.0 - TOLERANCE  # 5 to 5 + 1 um from the wall
+        area2 = 0.5 * np.sum(ring[:, 0] * nxt[:, 1] - nxt[:, 0] * ring[:, 1])
+        assert (area2 > 0) == left  # inside on the left: counter-clockwise in a pocket
+
+
+def test_rings_of_a_pocket_round_an_island_keep_apart_until_they_meet():
+    area = region([square(0, 0, 100, 100)], [square(40, 40, 60, 60)])
+    small, wide = offset_rings(area, [5.0, 25.0], step=1.0)
+    # at 5 mm: the wall's ring and the island's (clockwise round it); at 25: none (the gap is 40 wide)
+    assert len(small) == 2 and wide == []
+    island = min(small, key=lambda r: np.ptp(r[:, 0]))
+    assert np.ptp(island[:, 0]) == pytest.approx(30.0 + TOLERANCE, abs=2e-3)  # 20 + 2 x 5, rounded corners
+    nxt = np.roll(island, -1, axis=0)
+    assert 0.5 * np.sum(island[:, 0] * nxt[:, 1] - nxt[:, 0] * island[:, 1]) < 0
+
+
+def test_segment_clear_proves_a_link_or_refuses_one_that_crosses_an_island():
+    area = region([square(0, 0, 100, 100)], [square(40, 40, 60, 60)])
+    assert segment_clear(area, np.array([10.0, 10.0]), np.array([90.0, 10.0]), 5.0)
+    assert not segment_clear(area, np.array([10.0, 50.0]), np.array([90.0, 50.0]), 5.0)
+    assert not segment_clear(area, np.array([10.0, 10.0]), np.array([90.0, 90.0]), 5.0)
+
+
+def test_a_triangular_pocket_has_a_triangular_ring_with_its_corners_exact():
+    pts = [np.array(p, float) for p in ((0, 0), (40, 0), (0, 30))]
+    area = region([[Edge(start=a, end=b) for a, b in zip(pts, pts[1:] + pts[:1])]], [])
+    (rings,) = offset_rings(area, [2.0], step=0.5)
+    assert len(rings) == 1 and len(rings[0]) == 3
+    # the inner corner at the right angle: (2, 2) plus half the tolerance each way
+    assert np.min(np.linalg.norm(rings[0] - (2.0 + TOLERANCE / 2), axis=1)) < 1e-9
