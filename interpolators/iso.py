@@ -170,6 +170,11 @@ _G: dict[int, tuple[str, str]] = {
     **{round(float(c[1:]) * 10): ("coordinate system", c) for c in WORK_OFFSETS},
 }
 
+#: Modal groups of which Fanuc takes the last G code when a block has two (the motion group, whose
+#: cycle codes interact with G80, and the one-shot codes stay one per block).
+_LAST_ONE_VALID = frozenset({"plane", "units", "distance", "arc distance", "feed mode", "cutter compensation",
+                             "length compensation", "return mode", "path", "spindle mode", "coordinate system"})
+
 #: G codes named in an error (round(10 * code) -> feature).
 _G_UNSUPPORTED: dict[int, str] = {
     **{k: "G38 probing" for k in (382, 383, 384, 385)},
@@ -519,6 +524,11 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                 # "G80 G00": Fanuc posts cancel the cycle and set the motion in one block
                 if key == 800:
                     continue
+            elif grp in gcodes and dialect == "fanuc" and grp in _LAST_ONE_VALID:
+                # Fanuc 0i-MD operator's manual (B-64304EN) II-3 "Preparatory function": "If two or more
+                # G codes that belong to the same group are specified, only the last G code specified
+                # is valid" ("G91 G28 X0 Y0 Z100. G90" runs the G28 under G90)
+                notes.add(f"two G codes of the {grp} group in one block: the last one is valid (Fanuc)")
             elif grp in gcodes:
                 where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
                            column=w.column, text=w.text, expected=f"one {grp} code per block")

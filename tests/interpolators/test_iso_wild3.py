@@ -1,0 +1,69 @@
+"""ISO programs of the third wild set (issue 18): what their own controls run, with end points derived by hand."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext, Tool
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks
+from toolpaths.geometry import PLANE_AXES
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(
+    work_offsets={"G54": (100.0, 50.0, -20.0), "G55": (200.0, 0.0, 0.0)},
+    tools={1: Tool(number=1, length=12.5, radius=0.0)},
+    home=(0.0, 0.0, 100.0), reference2=(10.0, 20.0, 90.0),
+)
+
+
+def _in_dialect(name: str) -> MachineContext:
+    return dataclasses.replace(CTX, dialect=DIALECTS[name])
+
+
+def _checked(text: str, context: MachineContext):
+    """The program, its blocks checked against the independent reference (tests/interpolators/reference_iso)."""
+    prog = parse_program(text, context=context)
+    _, rows = blocks_table(prog)
+    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact + match.within == len(rows) > 0
+    return prog
+
+
+def test_fanuc_takes_the_last_of_two_distance_codes_in_a_block():
+    # efgarro/20-IDEAR (Fusion 360 for a Fanuc-type mill): "G91 G28 X0 Y0 Z100. G90" -- Fanuc: the
+    # last G code of a group is valid, so the G28 runs under G90: through the intermediate point
+    # X0 Y0 Z5 of G54 (100, 50, -15) to home (0, 0, 100); then X1 is absolute: 101.
+    text = "G21 G90 G54\nG0 X1 Y1 Z1\nG91 G28 X0 Y0 Z5. G90\nG0 X1\n"
+    prog = _checked(text, _in_dialect("fanuc"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 51, -19], [100, 50, -15], [0, 0, 100],
+                                                         [101, 0, 100]]
+    assert "two G codes of the distance group in one block: the last one is valid (Fanuc)" in prog.notes
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "haas", "grbl"])
+def test_other_controls_refuse_two_distance_codes_in_a_block(name):
+    # LinuxCNC interp_check.cc: NCE_TWO_G_CODES_USED_FROM_SAME_MODAL_GROUP; grbl error 21 (modal group violation)
+    with pytest.raises(GCodeError, match=r"two G codes of the distance group in one block \(G91 and G90\)"):
+        parse_program("G21 G90 G54\nG91 G28 X0 Y0 Z5. G90\n", context=_in_dialect(name))
+
+
+def test_fanuc_last_plane_and_units_code_is_valid():
+    # "G17 G18": the ZX plane; "G20 G21": millimetres (G54 at 100, 50, -20): the G02 half circle in ZX
+    # from X0 Z0 to X10 Z0 about I5 ends at X10 Z0 = (110, 50, -20), at F100 mm/min = 100/60 mm/s
+    prog = _checked("G20 G21 G90 G54\nG0 X0 Y0 Z0\nG17 G18 G02 X10 Z0 I5 K0 F100\n", _in_dialect("fanuc"))
+    arc = prog.blocks[-1]
+    assert arc.target.tolist() == [110, 50, -20]
+    assert arc.segment.center.tolist() == [105, 50, -20]
+    assert PLANE_AXES[arc.segment.plane] == (2, 0)  # ZX
+    assert arc.feed == pytest.approx(100 / 60)
+
+
+def test_fanuc_two_motion_codes_in_a_block_stay_refused():
+    with pytest.raises(GCodeError, match="two G codes of the motion group"):
+        parse_program("G21 G90\nG0 G1 X1 F100\n", context=_in_dialect("fanuc"))
