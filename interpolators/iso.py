@@ -199,7 +199,11 @@ _G_UNSUPPORTED: dict[int, str] = {
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
     283: "G28.3 set machine position (TinyG/g2core)",
     412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
-    470: "G47 text engraving (Haas)", 1070: "G107 cylindrical mapping (Haas)",
+    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc)",
+    # Fanuc 0i-MD operator's manual (B-64304EN) II-14.2 "Tool position offset (G45 to G48)": one-shot
+    # moves lengthened or shortened by an offset value, from old manual programs
+    450: "G45 tool position offset increase (Fanuc)", 460: "G46 tool position offset decrease (Fanuc)",
+    480: "G48 tool position offset double decrease (Fanuc)", 1070: "G107 cylindrical mapping (Haas)",
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
@@ -517,7 +521,7 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in _G:
                 where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
-                           expected="a G code of LinuxCNC's milling set")
+                           expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = _G[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
                     "motion", (0,))[0] == 800:

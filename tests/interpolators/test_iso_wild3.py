@@ -67,3 +67,14 @@ def test_fanuc_last_plane_and_units_code_is_valid():
 def test_fanuc_two_motion_codes_in_a_block_stay_refused():
     with pytest.raises(GCodeError, match="two G codes of the motion group"):
         parse_program("G21 G90\nG0 G1 X1 F100\n", context=_in_dialect("fanuc"))
+
+
+def test_fanuc_tool_position_offset_is_named_at_its_line():
+    # obirimelvin/machinist 2003.nc "G00 G45 H03 Z2.0": Fanuc's one-shot tool position offset (G45-G48)
+    with pytest.raises(GCodeError, match=r":3:5: G45 tool position offset increase \(Fanuc\): not supported"):
+        parse_program("G20 G90 G54\nG00 X0 Y0\nG00 G45 H03 Z2.0\n", context=_in_dialect("fanuc"))
+
+
+def test_unknown_g_code_names_the_dialect():
+    with pytest.raises(GCodeError, match="expected a G code of the fanuc milling set vcnc reads"):
+        parse_program("G21\nG06 X1\n", context=_in_dialect("fanuc"))
