@@ -78,3 +78,20 @@ def test_fanuc_tool_position_offset_is_named_at_its_line():
 def test_unknown_g_code_names_the_dialect():
     with pytest.raises(GCodeError, match="expected a G code of the fanuc milling set vcnc reads"):
         parse_program("G21\nG06 X1\n", context=_in_dialect("fanuc"))
+
+
+@pytest.mark.parametrize("name, dwell, out", [
+    # Fanuc / Haas: feed out to R (-18), then rapid to the initial level (-10) under G98
+    ("fanuc", "P100", [("line", -18), ("rapid", -10)]),
+    # LinuxCNC g-code.adoc "G84": "Move the Z-axis at the current feed rate to clear Z"
+    ("linuxcnc", "P0.1", [("line", -10)]),
+])
+def test_g84_tapping_ends_against_the_reference(name, dwell, out):
+    # G54 = (100, 50, -20); from Z10 (machine -10): XY at the initial level, R2 (-18), bottom Z-5 (-25),
+    # the dwell P (0.1 s) at the bottom, then out as the control retracts a tap
+    text = f"G21 G90 G54\nG0 X0 Y0 Z10\nS500 M3\nG98 G84 X10 Y5 Z-5 R2 {dwell} F500\nG80\n"
+    prog = _checked(text, _in_dialect(name))
+    tap = [(b.kind, b.target.tolist()) for b in prog.blocks if b.line == 4]
+    assert tap == [("rapid", [110, 55, -10]), ("rapid", [110, 55, -18]), ("line", [110, 55, -25]),
+                   ("dwell", [110, 55, -25]), *((k, [110, 55, z]) for k, z in out)]
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(0.1)]
