@@ -6,7 +6,7 @@ import dataclasses
 
 import pytest
 
-from interpolators import parse_program
+from interpolators import load_program, parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks
@@ -95,3 +95,18 @@ def test_g84_tapping_ends_against_the_reference(name, dwell, out):
     assert tap == [("rapid", [110, 55, -10]), ("rapid", [110, 55, -18]), ("line", [110, 55, -25]),
                    ("dwell", [110, 55, -25]), *((k, [110, 55, z]) for k, z in out)]
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(0.1)]
+
+
+def test_m98_names_a_file_of_the_number_that_does_not_number_its_program(tmp_path):
+    # ailtonbsj/free-cnc-simulator-wine: M98_P_inch.nc calls P6001, and 6001.nc starts "(W)" with no
+    # O6001 line (the simulator finds programs by file name; Fanuc and Haas by their O number)
+    main = tmp_path / "main.nc"
+    main.write_text("G20 G90 G54\nG0 X0 Y0 Z0.1 F10\nM98 P6001\nM30\n")
+    (tmp_path / "6001.nc").write_text("(W)\nG91 G01 X0.5\nM99\n")
+    with pytest.raises(GCodeError, match=r"main.nc:3:1: M98 subprogram call: program O6001 is neither in this "
+                                         r"file nor in a program file of its folder \(6001.nc there holds no "
+                                         r"O6001 line\)"):
+        load_program(main, context=_in_dialect("fanuc"))
+    # numbered, it runs: X0 then 0.5 in = 12.7 mm further (G54 X100)
+    (tmp_path / "6001.nc").write_text("O6001 (W)\nG91 G01 X0.5\nM99\n")
+    assert load_program(main, context=_in_dialect("fanuc")).blocks[-1].target.tolist() == [112.7, 50, -17.46]
