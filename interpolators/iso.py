@@ -633,7 +633,12 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = gcodes["motion"][1]
         where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
-    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
+    # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
+    # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
+    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix)
+    modal_circle = st.context.dialect.name == "fanuc" and "R" not in seen
+    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words
+                                                 and ("motion" in gcodes or modal_circle)):
         for letter in ("I", "J", "K", "R"):
             if letter in seen:
                 w = seen[letter]

@@ -960,6 +960,10 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
+    # Fanuc 0i "Circular interpolation": X, Y, Z all omitted with I J K -> a 360 deg circle, in the modal
+    # G02/G03 too (a block of I J alone)
+    arc_alone = arc_alone or (m.ctx.dialect.name == "fanuc" and m.motion in (20, 30) and "r" not in words
+                              and any(k in words for k in "ijk"))
     if not (axes or arc_alone) or m.motion is None:
         return
     if m.motion // 10 in cycles:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 
@@ -110,3 +111,23 @@ def test_m98_names_a_file_of_the_number_that_does_not_number_its_program(tmp_pat
     # numbered, it runs: X0 then 0.5 in = 12.7 mm further (G54 X100)
     (tmp_path / "6001.nc").write_text("O6001 (W)\nG91 G01 X0.5\nM99\n")
     assert load_program(main, context=_in_dialect("fanuc")).blocks[-1].target.tolist() == [112.7, 50, -17.46]
+
+
+def test_fanuc_i_j_alone_in_the_modal_g02_is_a_full_circle():
+    # MaestroFusion360/easy_gcode_plot VINT_360arc.NC: a helix of "X15.Y0Z-1.I-15.J0" blocks, then
+    # "I-15.J0": Fanuc 0i "Circular interpolation": X, Y, Z omitted with I J K is a 360 deg circle.
+    # G54 = (100, 50, -20): the helix turn ends at X10 Y0 Z-1 (110, 50, -21); the circle about X0 Y0
+    # (100, 50, -21) comes back there, clockwise, one whole turn
+    text = "G21 G90 G54\nG0 X10 Y0 Z0\nG02 X10 Y0 Z-1 I-10 J0 F100\nI-10 J0\n"
+    prog = _checked(text, _in_dialect("fanuc"))
+    circle = prog.blocks[-1]
+    assert (circle.kind, circle.line, circle.target.tolist()) == ("arc", 4, [110, 50, -21])
+    assert circle.segment.center.tolist() == [100, 50, -21]
+    assert circle.segment.sweep == pytest.approx(-2 * math.pi)
+
+
+@pytest.mark.parametrize("name, line", [("linuxcnc", "I-10 J0"), ("haas", "I-10 J0"), ("fanuc", "R5")])
+def test_arc_words_alone_in_the_modal_g02_are_refused_elsewhere(name, line):
+    # LinuxCNC: "I word with no G2 or G3 or G87 to use it" (no axis word: no motion); an R alone is no circle
+    with pytest.raises(GCodeError, match=f"word {line[0]} without an arc motion"):
+        parse_program(f"G21 G90 G54\nG0 X10 Y0 Z0\nG02 X10 Y0 Z-1 I-10 J0 F100\n{line}\n", context=_in_dialect(name))
