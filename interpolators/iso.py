@@ -1572,7 +1572,10 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     if key == 530:  # G53: this block's motion in machine coordinates
         motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
         if motion not in (0, 10):
-            where.fail("G53 needs G0 or G1", column=w.column, text=w.text, expected="G53 G0/G1 with axis words")
+            mode = ("no motion mode is set yet" if motion is None
+                    else f"the motion mode is {_G.get(motion, (None, f'G{motion / 10:g}'))[1]}")
+            where.fail(f"G53 needs G0 or G1 ({mode})", column=w.column, text=w.text,
+                       expected="G53 G0/G1 with axis words")
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):

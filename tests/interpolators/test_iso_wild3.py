@@ -131,3 +131,10 @@ def test_arc_words_alone_in_the_modal_g02_are_refused_elsewhere(name, line):
     # LinuxCNC: "I word with no G2 or G3 or G87 to use it" (no axis word: no motion); an R alone is no circle
     with pytest.raises(GCodeError, match=f"word {line[0]} without an arc motion"):
         parse_program(f"G21 G90 G54\nG0 X10 Y0 Z0\nG02 X10 Y0 Z-1 I-10 J0 F100\n{line}\n", context=_in_dialect(name))
+
+
+def test_g53_without_a_motion_mode_says_so():
+    # Michael-F-Bryan/gcode-rs _mach3.gcode: "G53 G90 G40" first (Mach3 ignores it; LinuxCNC: "Must use G0
+    # or G1 with G53")
+    with pytest.raises(GCodeError, match=r":2:1: G53 needs G0 or G1 \(no motion mode is set yet\)"):
+        parse_program("G20\nG53 G90 G40\nG0 X1\n", context=_in_dialect("linuxcnc"))
