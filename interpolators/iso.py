@@ -172,6 +172,11 @@ _G: dict[int, tuple[str, str]] = {
     **{round(float(c[1:]) * 10): ("coordinate system", c) for c in WORK_OFFSETS},
 }
 
+#: Modal groups of which Fanuc takes the last G code when a block has two (the motion group, whose
+#: cycle codes interact with G80, and the one-shot codes stay one per block).
+_LAST_ONE_VALID = frozenset({"plane", "units", "distance", "arc distance", "feed mode", "cutter compensation",
+                             "length compensation", "return mode", "path", "spindle mode", "coordinate system"})
+
 #: G codes named in an error (round(10 * code) -> feature).
 _G_UNSUPPORTED: dict[int, str] = {
     **{k: "G38 probing" for k in (382, 383, 384, 385)},
@@ -196,7 +201,11 @@ _G_UNSUPPORTED: dict[int, str] = {
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
     283: "G28.3 set machine position (TinyG/g2core)",
     412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
-    470: "G47 text engraving (Haas)", 1070: "G107 cylindrical mapping (Haas)",
+    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc)",
+    # Fanuc 0i-MD operator's manual (B-64304EN) II-14.2 "Tool position offset (G45 to G48)": one-shot
+    # moves lengthened or shortened by an offset value, from old manual programs
+    450: "G45 tool position offset increase (Fanuc)", 460: "G46 tool position offset decrease (Fanuc)",
+    480: "G48 tool position offset double decrease (Fanuc)", 1070: "G107 cylindrical mapping (Haas)",
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
@@ -524,13 +533,18 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in _G:
                 where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
-                           expected="a G code of LinuxCNC's milling set")
+                           expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = _G[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
                     "motion", (0,))[0] == 800:
                 # "G80 G00": Fanuc posts cancel the cycle and set the motion in one block
                 if key == 800:
                     continue
+            elif grp in gcodes and dialect == "fanuc" and grp in _LAST_ONE_VALID:
+                # Fanuc 0i-MD operator's manual (B-64304EN) II-3 "Preparatory function": "If two or more
+                # G codes that belong to the same group are specified, only the last G code specified
+                # is valid" ("G91 G28 X0 Y0 Z100. G90" runs the G28 under G90)
+                notes.add(f"two G codes of the {grp} group in one block: the last one is valid (Fanuc)")
             elif grp in gcodes:
                 where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
                            column=w.column, text=w.text, expected=f"one {grp} code per block")
@@ -634,7 +648,12 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = gcodes["motion"][1]
         where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
-    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words and "motion" in gcodes):
+    # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
+    # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
+    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix)
+    modal_circle = st.context.dialect.name == "fanuc" and "R" not in seen
+    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words
+                                                 and ("motion" in gcodes or modal_circle)):
         for letter in ("I", "J", "K", "R"):
             if letter in seen:
                 w = seen[letter]
@@ -1630,7 +1649,10 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     if key == 530:  # G53: this block's motion in machine coordinates
         motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
         if motion not in (0, 10):
-            where.fail("G53 needs G0 or G1", column=w.column, text=w.text, expected="G53 G0/G1 with axis words")
+            mode = ("no motion mode is set yet" if motion is None
+                    else f"the motion mode is {_G.get(motion, (None, f'G{motion / 10:g}'))[1]}")
+            where.fail(f"G53 needs G0 or G1 ({mode})", column=w.column, text=w.text,
+                       expected="G53 G0/G1 with axis words")
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):

@@ -278,6 +278,18 @@ class _Program:
                     return self.fanuc.get(number)
         return None
 
+    def unnumbered(self, number: float) -> str:
+        """``" (1002.nc there holds no O1002 line)"`` when a file of the main program's folder is named
+        after the number but does not number its program (a simulator's file-per-program convention;
+        Fanuc and Haas find a called program by its O number), else ``""``."""
+        if self.source is None or number != int(number):
+            return ""
+        folder = Path(self.source).parent
+        pattern = re.compile(rf"[oO]?0*{int(number)}")
+        names = [c.name for c in sorted(folder.iterdir()) if c.is_file() and c.suffix.lower() in _PROGRAM_SUFFIXES
+                 and pattern.fullmatch(c.stem)] if folder.is_dir() else []
+        return f" ({names[0]} there holds no O{int(number)} line)" if names else ""
+
     def external_sub(self, label: str) -> int | None:
         """Start of subroutine ``o<label>`` after including ``<label>.ngc`` from the main
         program's directory or a folder of :attr:`subroutine_path` (LinuxCNC searches its INI's
@@ -485,7 +497,7 @@ def _called_program(prog: _Program, words: list[Word], call: Word, where: Where,
     p = next((w for w in words if w.letter == "P"), None)
     if p is None or p.value != int(p.value) or prog.external_fanuc(int(p.value)) is None:
         target = "no P word" if p is None else (f"program O{p.value:g} is neither in this file nor in a "
-                                                "program file of its folder")
+                                                "program file of its folder" + prog.unnumbered(p.value))
         where.fail(f"{what}: {target}", column=call.column, text=call.text,
                    expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder")
     return prog.fanuc[int(p.value)] + 1

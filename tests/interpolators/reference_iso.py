@@ -482,8 +482,11 @@ def _structure(lines: list[_Line]) -> dict:
 # ----------------------------------------------------------------------------------------------
 # The machine
 
-_CYCLES = (73, 81, 82, 83, 85, 89)
-_MILL_CYCLES = (74, 76, 87)
+# G74 / G84 / G86 (g-code.adoc "G74 Left-hand Tapping Cycle with Dwell", "G84 Right-hand Tapping Cycle,
+# Dwell", "G86 Boring Cycle, Spindle Stop, Rapid Move Out"; Fanuc 0i-MF and Haas "G84 Tapping Canned
+# Cycle": out at feed to R, then rapid to the clear level)
+_CYCLES = (73, 74, 81, 82, 83, 84, 85, 86, 89)
+_MILL_CYCLES = (76, 87)
 #: The axes beyond X, Y, Z, in the order of :attr:`Expected.extra`; U, V, W scale with G20.
 _EXTRA = "abcuvw"
 
@@ -945,6 +948,9 @@ def _g10_tool(m: _Machine, kind: int, p: int, words: dict) -> None:
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:
     """Step 21: the motion of the active mode (as modified by G53)."""
     cycles = _CYCLES + (_MILL_CYCLES if m.ctx.dialect.name in ("fanuc", "haas") else ())
+    unmodelled = [c for c in g if c % 10 == 0 and 73 <= c // 10 <= 89 and c // 10 not in (*cycles, 80)]
+    if unmodelled:  # G88 boring with manual retract, G76/G87 outside Fanuc/Haas: not modelled here
+        raise ReferenceError(f"G{unmodelled[0] // 10} cycle")
     explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
@@ -965,6 +971,10 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
+    # Fanuc 0i "Circular interpolation": X, Y, Z all omitted with I J K -> a 360 deg circle, in the modal
+    # G02/G03 too (a block of I J alone)
+    arc_alone = arc_alone or (m.ctx.dialect.name == "fanuc" and m.motion in (20, 30) and "r" not in words
+                              and any(k in words for k in "ijk"))
     if not (axes or arc_alone) or m.motion is None:
         return
     if m.motion // 10 in cycles:
@@ -1097,16 +1107,18 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
                 delta = max(delta - m.sticky.get("j", 0.0) * m.scale, m.sticky.get("k", 0.0) * m.scale)
             depth -= delta
     m.move(line, "feed", at(bottom))
-    if code in (74, 76, 82, 89):
+    if code in (74, 76, 82, 84, 86, 89):
         m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
     if code == 76:
         shift = _shift(m)
         for z in (bottom, clear):
             m.move(line, "rapid", prog([*(xy + shift), z]))
         m.move(line, "rapid", at(clear))
-    elif code == 74:
+    elif code in (74, 84) and m.ctx.dialect.tap_out_to_r:
         m.move(line, "feed", at(r))
         m.move(line, "rapid", at(clear), optional=True)
+    elif code in (74, 84):  # LinuxCNC: "Move the Z-axis at the current feed rate to clear Z"
+        m.move(line, "feed", at(clear))
     elif code == 85:
         m.move(line, "feed", at(r))
         m.move(line, "rapid", at(clear), optional=True)
