@@ -16,9 +16,11 @@ level set at 7 points along it, never nearer the boundary than ``r`` (but where 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import contourpy
+import numba
 import numpy as np
 
 __all__ = ["TOLERANCE", "Edge", "Region", "region", "offset_rings", "segment_clear"]
@@ -116,32 +118,64 @@ def _inside_loop(points: np.ndarray, monotone: list[Edge]) -> np.ndarray:
     return inside
 
 
-def _nearest(points: np.ndarray, edges: tuple[Edge, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The distance of each point (n, 2) to the nearest edge [mm], that nearest point (n, 2) and the edge's index."""
+def _packed(edges: tuple[Edge, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """The edges as arrays for :func:`_nearest_kernel`: ``(is_arc (m,), values (m, 9))``, the values being
+    start x, y, end x, y, centre x, y, radius, a0, sweep (centre, radius, a0, sweep 0 for a line)."""
+    is_arc = np.array([e.centre is not None for e in edges], dtype=np.bool_)
+    values = np.array([[*e.start, *e.end, *(e.centre if e.centre is not None else (0.0, 0.0)), e.radius, e.a0,
+                        e.sweep] for e in edges], dtype=float).reshape(len(edges), 9)
+    return is_arc, values
+
+
+@numba.njit(cache=True, nogil=True)
+def _nearest_kernel(points, is_arc, values, best, near, which):  # pragma: no cover - compiled
+    """:func:`_nearest` as one loop over the points and edges (the same formulas as the edges' geometry): the
+    distance of each point to the nearest edge into ``best``, that point into ``near``, the edge into ``which``;
+    an arc's nearest point is its radial projection while that lies on the arc, else its nearer end."""
+    two_pi = 2.0 * math.pi
+    for i in range(points.shape[0]):
+        x, y = points[i, 0], points[i, 1]
+        b, bx, by, bk = math.inf, 0.0, 0.0, 0
+        for k in range(is_arc.shape[0]):
+            sx, sy, ex, ey = values[k, 0], values[k, 1], values[k, 2], values[k, 3]
+            if not is_arc[k]:
+                ux, uy = ex - sx, ey - sy
+                uu = ux * ux + uy * uy
+                t = 0.0
+                if uu > 0:
+                    t = min(max(((x - sx) * ux + (y - sy) * uy) / uu, 0.0), 1.0)
+                qx, qy = sx + t * ux, sy + t * uy
+            else:
+                cx, cy, radius, a0, sweep = values[k, 4], values[k, 5], values[k, 6], values[k, 7], values[k, 8]
+                vx, vy = x - cx, y - cy
+                rel = ((math.atan2(vy, vx) - a0) * (1.0 if sweep > 0 else -1.0)) % two_pi
+                if rel <= abs(sweep):
+                    norm = math.sqrt(vx * vx + vy * vy)
+                    if norm > 0:
+                        qx, qy = cx + radius * (vx / norm), cy + radius * (vy / norm)
+                    else:
+                        qx, qy = cx + radius, cy
+                elif math.sqrt((x - sx) ** 2 + (y - sy) ** 2) <= math.sqrt((x - ex) ** 2 + (y - ey) ** 2):
+                    qx, qy = sx, sy
+                else:
+                    qx, qy = ex, ey
+            d = math.sqrt((x - qx) ** 2 + (y - qy) ** 2)
+            if d < b:
+                b, bx, by, bk = d, qx, qy, k
+        best[i] = b
+        near[i, 0] = bx
+        near[i, 1] = by
+        which[i] = bk
+
+
+def _nearest(points: np.ndarray, packed: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distance of each point (n, 2) to the nearest edge of ``packed`` (:func:`_packed`) [mm], that nearest
+    point (n, 2) and the edge's index."""
+    points = np.ascontiguousarray(points, dtype=float)
     best = np.full(len(points), np.inf)
     near = np.zeros_like(points)
-    which = np.zeros(len(points), dtype=int)
-    for k, e in enumerate(edges):
-        if e.centre is None:
-            u = e.end - e.start
-            t = np.clip((points - e.start) @ u / (u @ u), 0.0, 1.0) if u @ u > 0 else np.zeros(len(points))
-            p = e.start + t[:, None] * u
-        else:
-            v = points - e.centre
-            ang = np.arctan2(v[:, 1], v[:, 0])
-            rel = (ang - e.a0) * (1.0 if e.sweep > 0 else -1.0) % (2 * math.pi)
-            on = rel <= abs(e.sweep)
-            norm = np.linalg.norm(v, axis=1)
-            radial = e.centre + e.radius * np.divide(v, norm[:, None], out=np.tile([1.0, 0.0], (len(v), 1)),
-                                                     where=norm[:, None] > 0)
-            ends = np.where((np.linalg.norm(points - e.start, axis=1) <= np.linalg.norm(points - e.end, axis=1))
-                            [:, None], e.start, e.end)
-            p = np.where(on[:, None], radial, ends)
-        d = np.linalg.norm(points - p, axis=1)
-        closer = d < best
-        best = np.where(closer, d, best)
-        near[closer] = p[closer]
-        which[closer] = k
+    which = np.zeros(len(points), dtype=np.int64)
+    _nearest_kernel(points, packed[0], packed[1], best, near, which)
     return best, near, which
 
 
@@ -182,6 +216,11 @@ class Region:
     boundary: tuple[Edge, ...]
     monotone: tuple[tuple[tuple[Edge, ...], ...], tuple[tuple[Edge, ...], ...]]
 
+    @functools.cached_property
+    def packed_boundary(self) -> tuple[np.ndarray, np.ndarray]:
+        """The boundary's edges as arrays for the compiled distance (:func:`_packed`)."""
+        return _packed(self.boundary)
+
     def contains(self, points: np.ndarray) -> np.ndarray:
         """Which of the points (n, 2) lie inside the region (exactly, up to rounding)."""
         points = np.atleast_2d(np.asarray(points, dtype=float))
@@ -195,7 +234,7 @@ class Region:
     def distance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The signed distance of the points (n, 2) to the boundary [mm] (> 0 inside) and its gradient (n, 2)."""
         points = np.atleast_2d(np.asarray(points, dtype=float))
-        d, near, _ = _nearest(points, self.boundary)
+        d, near, _ = _nearest(points, self.packed_boundary)
         sign = np.where(self.contains(points), 1.0, -1.0)
         diff = points - near
         grad = sign[:, None] * np.divide(diff, d[:, None], out=np.zeros_like(diff), where=d[:, None] > 0)
@@ -250,7 +289,7 @@ def _offset_curve(region_: Region, x: np.ndarray) -> Edge:
     """The offset curve through ``x`` of the boundary piece nearest to it: a line parallel to a line piece, or a
     circle about an arc's centre or about the piece's end nearest to ``x`` (as an edge; only its line or circle
     is used)."""
-    _, near, which = _nearest(x[None], region_.boundary)
+    _, near, which = _nearest(x[None], region_.packed_boundary)
     e, p = region_.boundary[int(which[0])], near[0]
     at_end = min(np.linalg.norm(p - e.start), np.linalg.norm(p - e.end)) < 1e-12
     if e.centre is None and not at_end:
