@@ -43,10 +43,9 @@ WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 _DEPTH = {"(": 1, ")": -1}
 
 #: A word of a letter and a plain decimal number (the number as :func:`interpolators._words.read_number`
-#: reads it: spaces or tabs after the letter), with the white space before it.
+#: reads it: spaces or tabs after the letter), with the white space before it. A line of such words only is
+#: most of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
 _PLAIN_WORD = re.compile(r"([ \t\r\f\v]*)([A-Za-z])([ \t]*)(" + NUMBER_RE.pattern + ")")
-#: A line of such words only: most lines of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
-_PLAIN_LINE = re.compile(r"(?:[ \t\r\f\v]*[A-Za-z][ \t]*" + NUMBER_RE.pattern + r")*[ \t\r\f\v]*")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -178,15 +177,14 @@ def plain_words(code: str) -> list[Word] | None:
     """The words of a comment-free line of letters and plain numbers only, as :func:`read_words` reads
     them; ``None`` for any other line (and for a number out of range), which :func:`read_words` then
     reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
-    if _PLAIN_LINE.fullmatch(code) is None:
-        return None
     words = []
     end = 0
     for space, letter, gap, number in _PLAIN_WORD.findall(code):
-        start = end + len(space)  # the letter's index
+        start = end + len(space)  # the letter's index, if the words follow each other without anything between
         end = start + 1 + len(gap) + len(number)
         v = float(number)
         if abs(v) > MAX_MAGNITUDE:
             return None
         words.append(Word(letter.upper(), v, start + 1, code[start:end]))
-    return words
+    # the words and white space after them make up the whole line (findall skips what is not a word)
+    return words if end == len(code.rstrip(" \t\r\f\v")) else None
