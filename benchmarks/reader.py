@@ -12,7 +12,9 @@ execution into blocks), best of ``R`` runs.
 
 The reference, measured in the same run on the same file: reading the text and splitting every line into
 its space-separated tokens with ``str.split`` (no numbers converted, no state): the least a reader that
-looks at every word must spend. The ratio says how many times that the reader takes.
+looks at every word must spend. The ratio says how many times that the reader takes (for the loop, whose
+7 lines run 60,000 times, it says what a loop costs against its text). Times are CPU times of this process
+(``time.process_time``: the machine may be shared).
 """
 
 from __future__ import annotations
