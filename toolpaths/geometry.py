@@ -50,8 +50,11 @@ PLANE_AXES: dict[int, tuple[int, int]] = {2: (0, 1), 1: (2, 0), 0: (1, 2)}
 
 
 def _point(value: Sequence[float] | np.ndarray, name: str) -> np.ndarray:
-    arr = np.array(value, dtype=float).reshape(-1)
-    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+    arr = np.array(value, dtype=float)
+    if arr.ndim != 1:
+        arr = arr.reshape(-1)
+    # math.isfinite on the three floats: the same test as np.isfinite, without numpy's per-call cost
+    if arr.shape != (3,) or not all(map(math.isfinite, arr.tolist())):
         raise InputError(f"{name} must be 3 finite coordinates [mm], got {value!r}")
     arr.setflags(write=False)
     return arr
@@ -100,7 +103,7 @@ class Line:
         self.start = _point(start, "Line start")
         self.end = _point(end, "Line end")
         d = self.end - self.start
-        self.length = float(np.sqrt(d @ d))
+        self.length = math.sqrt(d.dot(d))  # the same ddot and correctly rounded root as float(np.sqrt(d @ d))
         u = d / self.length if self.length > 0 else np.zeros(3)
         u.setflags(write=False)
         self.direction = u

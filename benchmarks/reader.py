@@ -1,0 +1,129 @@
+"""Reading throughput of the ISO reader: lines and blocks per second of ``load_program``.
+
+Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--largest K] [--repeat R]``
+
+Programs: the ``K`` largest ISO programs of the G-code corpus (``VCNC_GCODE_CORPUS``, default
+``../shared/data/gcode-corpus`` beside the repository; skipped with a message when absent), read with the
+context of ``vcnc interpolate`` (``INTERPOLATION_CONTEXT``); a generated CAM program of ``N`` lines (default
+1,000,000: ``N`` numbers, ``G1 X Y Z F`` moves, ``G2``/``G3`` arcs with ``I J``, comments); and two programs of
+the general machinery: a LinuxCNC O-word ``while`` loop with ``#`` parameters and ``[expressions]``, and the
+same moves written with ``#`` parameters on every line. Each is timed as ``load_program`` (file read, lexing,
+execution into blocks), best of ``R`` runs.
+
+The reference, measured in the same run on the same file: reading the text and splitting every line into
+its space-separated tokens with ``str.split`` (no numbers converted, no state): the least a reader that
+looks at every word must spend. The ratio says how many times that the reader takes (for the loop, whose
+7 lines run 60,000 times, it says what a loop costs against its text). Times are CPU times of this process
+(``time.process_time``: the machine may be shared).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from interpolators import detect_dialect, load_program  # noqa: E402
+from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
+
+CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().parents[2] / "shared" / "data"
+                             / "gcode-corpus"))
+
+
+def cam_program(lines: int) -> str:
+    """A CAM-like program of about ``lines`` lines: a spiral of short feed moves, an arc every 50 lines, a
+    comment every 500, block numbers on every line, 3-decimal mm coordinates."""
+    out = ["(generated CAM program: benchmarks/reader.py)", "G21 G17 G90 G94", "G0 X0 Y0 Z5", "G1 Z-1 F300"]
+    x = y = 0.0
+    n = 10
+    for i in range(lines - len(out)):
+        if i % 500 == 0:
+            out.append(f"(pass {i // 500})")
+            continue
+        a = 0.01 * i
+        r = 20.0 + 0.0005 * i
+        if i % 50 == 25:  # a half circle over to the opposite point and back on the next arc
+            out.append(f"N{n} G2 X{-x:.3f} Y{-y:.3f} I{-x:.3f} J{-y:.3f}")
+            x, y = -x, -y
+        else:
+            x, y = r * math.cos(a), r * math.sin(a)
+            out.append(f"N{n} G1 X{x:.3f} Y{y:.3f} Z{-1 - 0.00001 * i:.4f} F{1200 + i % 7 * 100}")
+        n += 10
+    out.append("M30")
+    return "\n".join(out) + "\n"
+
+
+def param_loop_program(passes: int) -> str:
+    """A LinuxCNC O-word ``while`` loop of ``passes`` passes: ``#`` parameters, expressions, a feed move each."""
+    return (f"G21 G90 G94 F1000\n#1 = 0\no100 while [#1 LT {passes}]\n"
+            "  G1 X[20 * COS[#1 * 0.5]] Y[20 * SIN[#1 * 0.5]] Z[-0.001 * #1]\n"
+            "  #1 = [#1 + 1]\no100 endwhile\nM2\n")
+
+
+def param_lines_program(lines: int) -> str:
+    """``lines`` feed moves, each setting a parameter and reading it back in an expression."""
+    out = ["G21 G90 G94 F1000"]
+    for i in range(lines):
+        out.append(f"#<x> = {20 * math.cos(0.01 * i):.4f}")
+        out.append(f"G1 X#<x> Y[{20 * math.sin(0.01 * i):.4f} + 1] Z-1")
+    out.append("M2")
+    return "\n".join(out) + "\n"
+
+
+def reference(path: Path) -> float:
+    """Seconds to read the file's text and split every line into tokens (best of 3)."""
+    best = math.inf
+    for _ in range(3):
+        t0 = time.process_time()
+        text = path.read_text(encoding="latin-1")
+        n = sum(len(ln.split()) for ln in text.split("\n"))
+        best = min(best, time.process_time() - t0)
+    assert n >= 0
+    return best
+
+
+def measure(label: str, path: Path, repeat: int) -> None:
+    """Print lines/s, blocks/s of ``load_program`` and the ratio to :func:`reference`."""
+    lines = path.read_bytes().count(b"\n")
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.process_time()
+        program = load_program(path, context=INTERPOLATION_CONTEXT)
+        best = min(best, time.process_time() - t0)
+    ref = reference(path)
+    print(f"{label:44s} {lines:>9,d} lines {len(program.blocks):>9,d} blocks  {best:7.2f} s  "
+          f"{lines / best:>10,.0f} lines/s {len(program.blocks) / best:>10,.0f} blocks/s  "
+          f"x{best / ref:6.0f} the str.split reference ({ref * 1e3:.1f} ms)")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--lines", type=int, default=1_000_000, help="lines of the generated CAM program")
+    ap.add_argument("--largest", type=int, default=3, help="how many of the corpus' largest ISO programs")
+    ap.add_argument("--repeat", type=int, default=1, help="runs per program (the best is shown)")
+    args = ap.parse_args()
+    if CORPUS.is_dir():
+        iso = [p for p in sorted(CORPUS.iterdir(), key=lambda p: -p.stat().st_size)
+               if p.suffix.lower() not in (".h", ".tsv", ".md")
+               and detect_dialect(p.read_bytes().decode("latin-1")) == "iso"]
+        for p in iso[:args.largest]:
+            measure(f"corpus {p.name[:37]}", p, args.repeat)
+    else:
+        print(f"G-code corpus not found at {CORPUS} (set VCNC_GCODE_CORPUS): corpus programs skipped")
+    with tempfile.TemporaryDirectory() as tmp:
+        for label, text in ((f"generated CAM, {args.lines:,d} lines", cam_program(args.lines)),
+                            ("O-word while loop, 20,000 passes", param_loop_program(20_000)),
+                            ("# parameters on every line, 2 x 50,000", param_lines_program(50_000))):
+            path = Path(tmp) / "program.ngc"
+            path.write_text(text)
+            measure(label, path, args.repeat)
+
+
+if __name__ == "__main__":
+    main()
