@@ -45,7 +45,8 @@ _DEPTH = {"(": 1, ")": -1}
 #: A word of a letter and a plain decimal number (the number as :func:`interpolators._words.read_number`
 #: reads it: spaces or tabs after the letter), with the white space before it. A line of such words only is
 #: most of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
-_PLAIN_WORD = re.compile(r"([ \t\r\f\v]*)([A-Za-z])([ \t]*)(" + NUMBER_RE.pattern + ")")
+_PLAIN_WORD = re.compile(r"([A-Za-z])[ \t]*(" + NUMBER_RE.pattern + ")")
+_BLANKS = " \t\r\f\v"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -180,12 +181,14 @@ def plain_words(code: str) -> list[Word] | None:
     reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
     words = []
     end = 0
-    for space, letter, gap, number in _PLAIN_WORD.findall(code):
-        start = end + len(space)  # the letter's index, if the words follow each other without anything between
-        end = start + 1 + len(gap) + len(number)
-        v = float(number)
+    for m in _PLAIN_WORD.finditer(code):
+        start = m.start()
+        if code[end:start].strip(_BLANKS):  # something other than blanks before the word
+            return None
+        end = m.end()
+        v = float(m.group(2))
         if abs(v) > MAX_MAGNITUDE:
             return None
-        words.append(Word(letter.upper(), v, start + 1, code[start:end]))
-    # the words and white space after them make up the whole line (findall skips what is not a word)
-    return words if end == len(code.rstrip(" \t\r\f\v")) else None
+        words.append(Word(m.group(1).upper(), v, start + 1, code[start:end]))
+    # nothing but blanks after the last word (a pattern that starts at the letter scans a long blank run once)
+    return None if code[end:].strip(_BLANKS) else words

@@ -63,6 +63,16 @@ def test_other_lines_are_left_to_the_general_reader(code):
         assert read_words(code, WHERE) == expected
 
 
+def test_long_blank_runs_are_read_in_one_pass():
+    """A comment blanked out leaves a long run of blanks (a fuzzed program's 55,000-character comment once made
+    the shortcut's pattern retry the run at each of its blanks: minutes on one line)."""
+    blanks = " " * 300_000
+    assert plain_words("N0" + blanks) == general_words("N0" + blanks)
+    assert plain_words("N0" + blanks + "X1") == general_words("N0" + blanks + "X1")
+    assert plain_words("N0" + blanks + ";") is None
+    assert plain_words(blanks + "5") is None
+
+
 def test_a_program_of_plain_lines_gives_the_blocks_of_its_general_reading():
     """The same moves with a ``#`` parameter on each line (read by the parameter reader, not the shortcut)."""
     plain = ("G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X10.5 Y-2.25\nG2 X0 Y0 I-5.25 J1.125\n"
