@@ -6,6 +6,7 @@ import dataclasses
 import re
 
 from vcnc.core.errors import GCodeError
+from vcnc.core.text import decode_text
 
 #: A decimal number as written in part programs: optional sign, digits with an optional point
 #: (``12``, ``-0.79``, ``+.5``, ``5.``); no exponent.
@@ -82,14 +83,13 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
 
 
 def program_text(path: str) -> str:
-    """A program file's text: UTF-8, or Latin-1 when it is not valid UTF-8; without a BOM.
+    """A program file's text (:func:`vcnc.core.text.decode_text`: UTF-8 or UTF-16 by its byte-order mark,
+    else UTF-8, else Windows-1252), without a BOM.
 
-    Raises ``OSError`` when the file cannot be read (the callers name the file and the line).
+    Raises ``OSError`` when the file cannot be read and ``vcnc.core.text.BinaryDataError`` when it holds no
+    text (the callers name the file).
     """
     with open(path, "rb") as fh:
         raw = fh.read()
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        text = raw.decode("latin-1")
+    text = decode_text(raw)
     return text[1:] if text.startswith("\ufeff") else text

@@ -182,6 +182,7 @@ from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from toolpaths.pockets import Region
 from vcnc.core.axes import AXIS_NAMES
+from vcnc.core.text import BinaryDataError
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 
@@ -524,8 +525,9 @@ class _Run:
                        expected=f"at most {MAX_NESTING} nested CALL PGM")
         try:
             text = program_text(str(path))
-        except OSError as exc:
-            where.fail(f"CALL PGM {name}: cannot read {str(path)!r}: {exc.strerror or exc}", column=col, text=name,
+        except (OSError, BinaryDataError) as exc:
+            why = getattr(exc, "strerror", None) or exc
+            where.fail(f"CALL PGM {name}: cannot read {str(path)!r}: {why}", column=col, text=name,
                        expected="a readable program file")
         callers = (*self.callers, str(Path(self.source).resolve()))
         inch, source = m.inch, m.source

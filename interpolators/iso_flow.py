@@ -56,6 +56,8 @@ from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import Word, block_comment, read_words, strip_comments
+from vcnc.core.errors import GCodeError
+from vcnc.core.text import BinaryDataError
 
 __all__ = ["FlowLine", "run", "one_line_end", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
 
@@ -253,7 +255,12 @@ class _Program:
         if key in self.files:
             return
         self.files.add(key)
-        self._index(program_text(key), key)
+        try:
+            text = program_text(key)
+        except (OSError, BinaryDataError) as exc:
+            raise GCodeError(f"cannot read the subprogram file: {getattr(exc, 'strerror', None) or exc}",
+                             file=key) from None
+        self._index(text, key)
         self._check_structure()
 
     def external_fanuc(self, number: int) -> int | None:
@@ -271,7 +278,7 @@ class _Program:
             if cand.is_file() and cand.suffix.lower() in _PROGRAM_SUFFIXES and pattern.search(cand.stem):
                 try:
                     text = program_text(str(cand))
-                except OSError:
+                except (OSError, BinaryDataError):
                     continue
                 if re.search(rf"^\s*[oO:]0*{number}\b", text, re.M):
                     self.include(cand)

@@ -11,6 +11,7 @@ from interpolators.iso import parse_iso
 from interpolators.iso_flow import one_line_end
 from interpolators.program import Program
 from vcnc.core.errors import GCodeError
+from vcnc.core.text import BinaryDataError
 
 __all__ = ["parse_program", "load_program", "detect_dialect"]
 
@@ -52,7 +53,7 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
 
 
 def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFAULT_CONTEXT) -> Program:
-    """Read and parse a program file (UTF-8, or Latin-1 if it is not valid UTF-8).
+    """Read and parse a program file (:func:`vcnc.core.text.decode_text`: UTF-8 or UTF-16, else Windows-1252).
 
     Raises
     ------
@@ -64,4 +65,7 @@ def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFA
         text = program_text(name)
     except OSError as exc:
         raise GCodeError(f"cannot read program: {exc.strerror or exc}", file=name) from None
+    except BinaryDataError as exc:
+        raise GCodeError(f"{exc}", file=name, line=exc.line, column=exc.column,
+                         expected="a text part program (ISO G-code or Heidenhain conversational)") from None
     return parse_program(text, source=name, context=context)

@@ -1,8 +1,8 @@
 """What the text trace readers share: decoding, numbers, the column mapping, units and timing.
 
-- **Text.** A BOM picks UTF-8 or UTF-16 (Windows tools write both); without one the text is
-  UTF-8, else Windows-1252 / Latin-1 (TNCscope and TwinCAT on a German Windows). A file with NUL
-  bytes and no UTF-16 BOM is binary and refused.
+- **Text.** :func:`vcnc.core.text.decode_text`: a BOM picks UTF-8 or UTF-16 (Windows tools write
+  both); without one the text is UTF-8, else Windows-1252 (TNCscope and TwinCAT on a German
+  Windows). A file with NUL bytes and neither a UTF-16 BOM nor UTF-16's pattern is binary and refused.
 - **Numbers.** Decimal numbers only (``1``, ``-2.5``, ``1e-3``): ``nan``, ``inf``, ``1_000`` and
   values that overflow a float are refused, naming the line and the column.
 - **Timing.** A capture's time must increase with a uniform step: :func:`check_timing` tells
@@ -24,6 +24,7 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import check_sampling
 from vcnc.core.errors import CaptureError
+from vcnc.core.text import BinaryDataError, decode_text
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
@@ -43,7 +44,6 @@ _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "m": "m", "in": "in", "inc
                  "°": "deg"}
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-_BOMS = ((b"\xef\xbb\xbf", "utf-8-sig"), (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
 
 
 def read_text(path: str | Path, src: str) -> str:
@@ -56,21 +56,12 @@ def read_text(path: str | Path, src: str) -> str:
 
 
 def decode(raw: bytes, src: str) -> str:
-    """``raw`` as text (module docstring); CaptureError for binary data."""
-    for bom, codec in _BOMS:
-        if raw.startswith(bom):
-            try:
-                return raw.decode(codec)
-            except UnicodeDecodeError as exc:
-                raise CaptureError(f"not valid {codec} text after its byte-order mark (byte {exc.start})",
-                                   file=src) from None
-    if b"\x00" in raw:
-        raise CaptureError("binary file (NUL bytes and no UTF-16 byte-order mark); expected a text trace export",
-                           file=src)
+    """``raw`` as text (:func:`vcnc.core.text.decode_text`); CaptureError for binary data."""
     try:
-        return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        return raw.decode("cp1252", errors="replace")
+        return decode_text(raw)
+    except BinaryDataError as exc:
+        raise CaptureError(str(exc), file=src, line=exc.line, column=exc.column,
+                           expected="a text trace export") from None
 
 
 def parse_number(cell: str, decimal_comma: bool = False) -> float:
