@@ -30,6 +30,7 @@ __all__ = ["TOLERANCE", "Edge", "Region", "region", "offset_rings", "segment_cle
 #: less than the tolerance, as when a gap is just 2 r wide): there its chord keeps ``r - TOLERANCE``.
 TOLERANCE = 1e-3
 _MAX_CELLS = 600_000  # grid points of the distance field, at most
+_MAX_REFINED_CELLS = 128 * _MAX_CELLS  # grid points of a refined grid, at most (8 bytes each, built row by row)
 _FRACTIONS = np.linspace(0.125, 0.875, 7)  # where a chord is checked
 
 
@@ -424,10 +425,15 @@ def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance
         if h not in grids:
             xs = np.arange(lo[0] - 2 * h, hi[0] + 2 * h + h / 2, h)
             ys = np.arange(lo[1] - 2 * h, hi[1] + 2 * h + h / 2, h)
-            gx, gy = np.meshgrid(xs, ys)
-            flat = np.stack([gx.ravel(), gy.ravel()], axis=1)
-            z = np.concatenate([region_.distance(flat[k:k + 50_000])[0] for k in range(0, len(flat), 50_000)])
-            grids[h] = contourpy.contour_generator(xs, ys, z.reshape(gx.shape), line_type=contourpy.LineType.Separate)
+            if len(xs) * len(ys) > _MAX_REFINED_CELLS:
+                raise _Unsettled(f"the offset rings need a grid finer than {h:.3g} mm over the whole pocket "
+                                 f"({len(xs) * len(ys):,} points, more than {_MAX_REFINED_CELLS:,})")
+            z = np.empty((len(ys), len(xs)))
+            rows = max(1, 50_000 // len(xs))
+            for k in range(0, len(ys), rows):  # a few rows at a time: no coordinate arrays of the whole grid
+                gx, gy = np.meshgrid(xs, ys[k:k + rows])
+                z[k:k + rows] = region_.distance(np.stack([gx.ravel(), gy.ravel()], axis=1))[0].reshape(gx.shape)
+            grids[h] = contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
         return grids[h]
 
     out = []

@@ -376,3 +376,42 @@ def test_rest_machining_22_q18_cuts_only_near_what_the_coarse_tool_left_and_toge
     near_coarse = np.array([np.min(np.linalg.norm(coarse - g, axis=1)) for g in grid]) <= 3.0 * 1.05
     near_fine = np.array([np.min(np.linalg.norm(fine - g, axis=1)) for g in grid]) <= 1.0 * 1.05
     assert np.all(near_coarse | near_fine)
+
+
+@pytest.mark.slow
+def test_rough_out_22_refuses_a_channel_narrower_than_its_grids_can_separate_before_exhausting_memory():
+    """A 770 x 685 mm pocket whose island leaves a channel 12.016 mm wide for a ring 2 x 6.002 mm across (12 um
+    to spare): the rings are traced on grids refined by halving; one fine enough for the channel would hold
+    hundreds of millions of points over the whole pocket, so the cycle stops with a named error instead."""
+    text = """BEGIN PGM T MM
+TOOL DEF 1 L+0 R+5.502
+TOOL CALL 1 Z S1000
+L Z+100 R0 FMAX
+CYCL DEF 14.0 CONTOUR
+CYCL DEF 14.1 CONTOUR LABEL 1 /2
+CYCL DEF 20 CONTOUR DATA Q1=-6 Q2=+0.659 Q3=+0.5 Q4=+0 Q5=+0 Q6=+2 Q7=+50 Q8=+0 Q9=+1
+CYCL DEF 22 ROUGH-OUT Q10=-3 Q11=100 Q12=350 Q18=0 Q19=0 Q208=MAX
+L X+0 Y+0 R0 FMAX
+CYCL CALL
+L Z+100 R0 FMAX M30
+LBL 1
+L X+0 Y+342.73 RR
+L X+0 Y+685.46
+L X+770.56 Y+685.46
+L X+770.56 Y+0
+L X+0 Y+0
+L X+0 Y+342.73
+LBL 0
+LBL 2
+L X+747.181 Y+55.855 RL
+L X+747.181 Y+61.900
+L X+758.544 Y+61.900
+L X+758.544 Y+49.810
+L X+747.181 Y+49.810
+L X+747.181 Y+55.855
+LBL 0
+END PGM T MM
+"""
+    with pytest.raises(GCodeError, match=r"sl\.h:10:.*cycle 22: the offset rings need a grid finer than .* over the "
+                                         r"whole pocket \([\d,]+ points, more than 76,800,000\)"):
+        parse_heidenhain(text, source="sl.h")
