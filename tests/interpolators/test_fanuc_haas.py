@@ -13,9 +13,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
-from tests.interpolators.reference_iso import iso_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 BASE = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -27,12 +25,7 @@ S = math.sqrt(0.5)
 
 def run(text: str, context: MachineContext = HAAS):
     """The program's blocks, after checking them against the reference."""
-    prog = parse_program(text, context=context)
-    _, rows = blocks_table(prog)
-    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
-    assert match.mismatch is None, match.mismatch
-    assert match.exact + match.within == len(rows)
-    return prog
+    return checked_iso(text, context)
 
 
 def ends(text: str, context: MachineContext = HAAS) -> list[list[float]]:

@@ -14,9 +14,7 @@ import pytest
 from interpolators import iso_flow, parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table
 from interpolators.iso_cycles import RAPID_DELTA_INCH
-from tests.interpolators.reference_iso import iso_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError, InputError
 
 CTX = MachineContext(
@@ -599,21 +597,11 @@ def _in_dialect(name: str) -> MachineContext:
     return dataclasses.replace(CTX, dialect=DIALECTS[name])
 
 
-def _checked(text: str, context: MachineContext):
-    """The program, its blocks checked against the independent reference (tests/interpolators/reference_iso)."""
-    prog = parse_program(text, context=context)
-    _, rows = blocks_table(prog)
-    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
-    assert match.mismatch is None, match.mismatch
-    assert match.exact + match.within == len(rows) > 0
-    return prog
-
-
 def test_grbl_system_command_lines_and_status_query_are_not_g_code():
     # a file for a grbl sender: $ reports and settings, '?' status queries (gnea/grbl protocol.c, serial.c)
     text = ("$I  ; build info\n$$\n$G\n?  ; status\n$100=100.5 ; X steps/mm\n$N0=G20\n"
             "G21 G90\nG0 X1 Y2 Z3?\nG1 X4 F100\n")
-    prog = _checked(text, _in_dialect("grbl"))
+    prog = checked_iso(text, _in_dialect("grbl"))
     # G54 is (100, 50, -20): X1 Y2 Z3 then X4, on the lines the file numbers them
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, -17], [104, 52, -17]]
     assert [b.line for b in prog.blocks] == [8, 9]
@@ -629,7 +617,7 @@ def test_grbl_system_commands_that_move_or_change_the_run_are_refused(line, name
 
 def test_grbl_cycle_start_is_dropped_and_feed_hold_refused():
     # grbl commands.md: "~ Cycle Start / Resume ... Command is otherwise ignored"; "!" holds the feed
-    prog = _checked("G21 G90\nG0 X1\nM5\n~\nG0 Y2~\n", _in_dialect("grbl"))
+    prog = checked_iso("G21 G90\nG0 X1\nM5\n~\nG0 Y2~\n", _in_dialect("grbl"))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
     assert "grbl ~ cycle start (resumes a hold or M0 pause) dropped x2" in prog.notes
     with pytest.raises(GCodeError, match=r"3:6: grbl ! feed hold: not supported"):
@@ -642,7 +630,7 @@ def test_grbl_homing_cycle_moves_z_home_then_x_y_and_keeps_the_offsets():
     (101, 52, -17) Z goes up to 100, then X Y to 0 0; G54 still holds, so X5 is machine 105 and Y
     stays at machine 0. A ``$H`` after the last block runs too."""
     text = "G21 G90\nG0 X1 Y2 Z3\n$H\nG0 X5\n$H\n"
-    prog = _checked(text, _in_dialect("grbl"))
+    prog = checked_iso(text, _in_dialect("grbl"))
     assert [b.target.tolist() for b in prog.blocks] == [
         [101, 52, -17], [101, 52, 100], [0, 0, 100], [105, 0, 100], [105, 0, 100], [0, 0, 100]]
     assert [(b.line, b.kind) for b in prog.blocks][1:3] == [(3, "rapid"), (3, "rapid")]
@@ -653,7 +641,7 @@ def test_grbl_homing_cycle_moves_z_home_then_x_y_and_keeps_the_offsets():
 def test_grbl_reads_an_unclosed_comment_to_the_end_of_the_line():
     # grbl protocol.c: "ignore all characters until ')' or EOL"; LinuxCNC: "Unclosed comment found"
     text = "G21 G90\nG0 X1 (to the left; Y9\nG0 Y2\n"
-    prog = _checked(text, _in_dialect("grbl"))
+    prog = checked_iso(text, _in_dialect("grbl"))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [101, 52, 100]]
     assert "unclosed ( comments read to the end of the line (grbl)" in prog.notes
     with pytest.raises(GCodeError, match="2:7: unclosed comment"):
@@ -667,7 +655,7 @@ def test_external_output_commands_move_nothing(name):
     (1, 2) to (3, 2) in G54 (100, 50, -20), Z staying at home (100), whatever is printed between."""
     text = ("%\nO0001\nPOPEN\nDPRNT[DATE*(AAMMDD):*#3011]\nG21 G90 G0 X1 Y2\nN10 DPRNT[X#5041[44]*Y#5042[44]]\n"
             "BPRNT[A#1[3]]\nPCLOS\nX3\nM30\n%\n")
-    prog = _checked(text, _in_dialect(name))
+    prog = checked_iso(text, _in_dialect(name))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100], [103, 52, 100]]
     assert "POPEN/DPRNT/BPRNT/PCLOS external output not sent" in prog.notes
 
@@ -699,7 +687,7 @@ def test_dollar_lines_are_an_error_outside_the_grbl_dialect():
 def test_axis_words_before_any_motion_code_are_a_rapid_where_g00_is_the_power_on_mode(name):
     # grbl gc_init (G0), Fanuc parameter 3402#0 = 0 (G00), Haas group 01 default G00
     text = "G21 G90\nZ10\nX1 Y2\nG1 X3 F100\n"
-    _checked(text, _in_dialect(name))
+    checked_iso(text, _in_dialect(name))
     pts, kinds = ends(text, _in_dialect(name), kinds=True)
     # from home (0, 0, 100): Z alone keeps X Y there; G54 is (100, 50, -20)
     assert pts == [[0, 0, -10], [101, 52, -10], [103, 52, -10]]
@@ -721,11 +709,11 @@ def test_g95_feed_per_revolution_is_f_times_s():
     # same F at S1200 is 120 mm/min; G94 afterwards resets the feed (convert_feed_mode), F200 per minute
     text = ("G21 G90 G54 S600 M3\nG0 X0 Y0 Z5\nG95 G1 Z0 F0.1\nS1200\nG1 X10\n"
             "G20 G1 X1 F0.01\nG21 G94 G1 X0 F200\nM30\n")
-    prog = _checked(text, CTX)
+    prog = checked_iso(text, CTX)
     assert [round(b.feed * 60.0, 9) for b in prog.blocks[1:]] == [60.0, 120.0, 0.254 * 1200, 200.0]
     assert prog.blocks[3].target.tolist() == [125.4, 50, -20]
     # a drilling cycle under G95: 0.05 mm/rev at S2000 feeds at 100 mm/min
-    drill = _checked("G21 G90 G54 G0 X0 Y0 Z10\nS2000 M3\nG95\nG98 G81 Z-5 R2 F0.05\nG80\nM30\n",
+    drill = checked_iso("G21 G90 G54 G0 X0 Y0 Z10\nS2000 M3\nG95\nG98 G81 Z-5 R2 F0.05\nG80\nM30\n",
                      _in_dialect("fanuc"))
     assert [round(b.feed * 60.0, 9) for b in drill.blocks if b.kind == "line"] == [100.0]
     # a G84 tap under G95 (the reference does not model G84): F is the pitch, 1 mm/rev at S300 is
@@ -774,7 +762,7 @@ def test_a_line_that_is_not_g_code_is_named_for_what_it_is(text, message):
 
 def test_a_named_program_line_before_the_percent_is_its_name():
     # "OPIS" (a shop file's title) alone on the first line: a program name, not a block; G54 (100, 50, -20)
-    prog = _checked("OPIS\n%\nN10 G54\nN20 G21 G90 G0 X1 Y2\n%\n", _in_dialect("fanuc"))
+    prog = checked_iso("OPIS\n%\nN10 G54\nN20 G21 G90 G0 X1 Y2\n%\n", _in_dialect("fanuc"))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100]]
 
 
@@ -785,7 +773,7 @@ def test_haas_m97_runs_the_local_subprogram_at_its_n_number_l_times():
     text = ("%\nO00011 (M97 CALL)\nG21 G90 G54\nT1 M06\nG00 X0 Y0\nG43 H01 Z1.\nG01 Z0 F20.\nM97 P1000 L2\n"
             "G00 G90 Z1.\nM30\nN1000 (N line that runs after M97 P1000)\nG01 G91 Z-0.1\nG90 X2.\nG91 Z-0.1\n"
             "G90 X0\nM99\n%\n")
-    prog = _checked(text, _in_dialect("haas"))
+    prog = checked_iso(text, _in_dialect("haas"))
     pts = [b.target.tolist() for b in prog.blocks]
     expected = [[100, 50, 100], [100, 50, -6.5], [100, 50, -7.5]]
     z = -7.5
@@ -814,7 +802,7 @@ def test_fanuc_g16_polar_coordinates_place_holes_on_a_circle():
     (100, 100), (50, 50); then radius 20 at 45 degrees; G15 returns to X Y."""
     text = ("%\nO1\nG21 G90 G17 G54\nG0 X0 Y0 Z5\nG16\nG81 X50. Y0 Z-10. R2. F100.\nY90.\nY180.\nG80\n"
             "G0 X20. Y45.\nG15\nG0 X1 Y1\nM30\n%\n")
-    prog = _checked(text, _in_dialect("fanuc"))
+    prog = checked_iso(text, _in_dialect("fanuc"))
     bottoms = [b.target.tolist() for b in prog.blocks if b.kind == "line"]
     assert np.allclose(bottoms, [[150, 50, -30], [100, 100, -30], [50, 50, -30]], atol=1e-9)
     r = 20 / math.sqrt(2)
@@ -830,7 +818,7 @@ def test_linuxcnc_arc_p_adds_full_turns():
     """LinuxCNC g-code.adoc "G2, G3 Arc Move": "if a 180 degree arc is programmed with a P2, the
     resulting motion will be 1 1/2 rotations". A half circle of radius 5 with P3 sweeps 5 pi clockwise;
     as a helix down 4 mm its length is the hypotenuse of 25 pi and 4; the end point is the programmed one."""
-    prog = _checked("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 Z-4 P3 F600\nG3 X0 Y0 R5 P1\n",
+    prog = checked_iso("G21 G90 G17 G54\nG0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 Z-4 P3 F600\nG3 X0 Y0 R5 P1\n",
                     _in_dialect("linuxcnc"))
     helix, back = prog.blocks[1], prog.blocks[2]
     assert helix.segment.sweep == pytest.approx(-5 * math.pi)

@@ -9,10 +9,8 @@ import pytest
 
 from interpolators import load_program, parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
-from tests.interpolators.reference_iso import iso_reference
-from tests.interpolators.reference_match import match_blocks
+from tests.interpolators.iso_checks import checked_iso
 from toolpaths.geometry import PLANE_AXES
-from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(
@@ -26,22 +24,12 @@ def _in_dialect(name: str) -> MachineContext:
     return dataclasses.replace(CTX, dialect=DIALECTS[name])
 
 
-def _checked(text: str, context: MachineContext):
-    """The program, its blocks checked against the independent reference (tests/interpolators/reference_iso)."""
-    prog = parse_program(text, context=context)
-    _, rows = blocks_table(prog)
-    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in rows])
-    assert match.mismatch is None, match.mismatch
-    assert match.exact + match.within == len(rows) > 0
-    return prog
-
-
 def test_fanuc_takes_the_last_of_two_distance_codes_in_a_block():
     # efgarro/20-IDEAR (Fusion 360 for a Fanuc-type mill): "G91 G28 X0 Y0 Z100. G90" -- Fanuc: the
     # last G code of a group is valid, so the G28 runs under G90: through the intermediate point
     # X0 Y0 Z5 of G54 (100, 50, -15) to home (0, 0, 100); then X1 is absolute: 101.
     text = "G21 G90 G54\nG0 X1 Y1 Z1\nG91 G28 X0 Y0 Z5. G90\nG0 X1\n"
-    prog = _checked(text, _in_dialect("fanuc"))
+    prog = checked_iso(text, _in_dialect("fanuc"))
     assert [b.target.tolist() for b in prog.blocks] == [[101, 51, -19], [100, 50, -15], [0, 0, 100],
                                                          [101, 0, 100]]
     assert "two G codes of the distance group in one block: the last one is valid (Fanuc)" in prog.notes
@@ -57,7 +45,7 @@ def test_other_controls_refuse_two_distance_codes_in_a_block(name):
 def test_fanuc_last_plane_and_units_code_is_valid():
     # "G17 G18": the ZX plane; "G20 G21": millimetres (G54 at 100, 50, -20): the G02 half circle in ZX
     # from X0 Z0 to X10 Z0 about I5 ends at X10 Z0 = (110, 50, -20), at F100 mm/min = 100/60 mm/s
-    prog = _checked("G20 G21 G90 G54\nG0 X0 Y0 Z0\nG17 G18 G02 X10 Z0 I5 K0 F100\n", _in_dialect("fanuc"))
+    prog = checked_iso("G20 G21 G90 G54\nG0 X0 Y0 Z0\nG17 G18 G02 X10 Z0 I5 K0 F100\n", _in_dialect("fanuc"))
     arc = prog.blocks[-1]
     assert arc.target.tolist() == [110, 50, -20]
     assert arc.segment.center.tolist() == [105, 50, -20]
@@ -91,7 +79,7 @@ def test_g84_tapping_ends_against_the_reference(name, dwell, out):
     # G54 = (100, 50, -20); from Z10 (machine -10): XY at the initial level, R2 (-18), bottom Z-5 (-25),
     # the dwell P (0.1 s) at the bottom, then out as the control retracts a tap
     text = f"G21 G90 G54\nG0 X0 Y0 Z10\nS500 M3\nG98 G84 X10 Y5 Z-5 R2 {dwell} F500\nG80\n"
-    prog = _checked(text, _in_dialect(name))
+    prog = checked_iso(text, _in_dialect(name))
     tap = [(b.kind, b.target.tolist()) for b in prog.blocks if b.line == 4]
     assert tap == [("rapid", [110, 55, -10]), ("rapid", [110, 55, -18]), ("line", [110, 55, -25]),
                    ("dwell", [110, 55, -25]), *((k, [110, 55, z]) for k, z in out)]
@@ -119,7 +107,7 @@ def test_fanuc_i_j_alone_in_the_modal_g02_is_a_full_circle():
     # G54 = (100, 50, -20): the helix turn ends at X10 Y0 Z-1 (110, 50, -21); the circle about X0 Y0
     # (100, 50, -21) comes back there, clockwise, one whole turn
     text = "G21 G90 G54\nG0 X10 Y0 Z0\nG02 X10 Y0 Z-1 I-10 J0 F100\nI-10 J0\n"
-    prog = _checked(text, _in_dialect("fanuc"))
+    prog = checked_iso(text, _in_dialect("fanuc"))
     circle = prog.blocks[-1]
     assert (circle.kind, circle.line, circle.target.tolist()) == ("arc", 4, [110, 50, -21])
     assert circle.segment.center.tolist() == [100, 50, -21]
