@@ -28,6 +28,7 @@ from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_iso import ReferenceError, clean_line, iso_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
+from vcnc.core.text import decode_text
 from vcnc.errors import GCodeError
 
 CORPUS = corpus_dir()
@@ -53,12 +54,8 @@ KNOWN_MISMATCHES: dict[tuple[str, str], str] = {}  # (G10 L2 R, G53 alone, G40 e
 
 
 def read_text(path: Path) -> str:
-    """A program's text: UTF-8, else Latin-1."""
-    raw = path.read_bytes()
-    try:
-        return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        return raw.decode("latin-1")
+    """A program's text, decoded as the readers decode it (the reference checks G-code, not encodings)."""
+    return decode_text(path.read_bytes())
 
 
 @functools.cache

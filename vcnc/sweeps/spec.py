@@ -65,6 +65,7 @@ import numpy as np
 
 from drives.effects import EFFECTS as EFFECT_REGISTRY
 from vcnc.core.errors import InputError
+from vcnc.core.text import BinaryDataError, decode_text
 
 __all__ = [
     "SweepSpec",
@@ -299,9 +300,9 @@ class _FileCache:
                     f"({getattr(exc, 'strerror', None) or exc})",
                 ) from None
             try:
-                text = raw.decode("utf-8")
-            except UnicodeDecodeError:
-                text = raw.decode("latin-1")  # as interpolators.load_program does
+                text = decode_text(raw)  # as interpolators.load_program decodes a program
+            except BinaryDataError as exc:
+                raise self._fail("toolpath", f"{name!r} is no program file: {exc}") from None
             self._programs[name] = (str(p.resolve()), text)
         return self._programs[name]
 
