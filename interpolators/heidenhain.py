@@ -1203,13 +1203,7 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
         return
     axis = m.plane
     rings = _pocket_rings_of(m, c, m.tool_radius, where, blk)
-    bottom = abs(c.depth) - c.floor_allowance
-    if bottom <= 0:
-        where.fail(f"cycle {c.number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
-                   text=blk.code, expected="|Q4| < |Q1|")
-    d = -1.0 if c.depth < 0 else 1.0
-    surface = m.origin()[axis] + c.surface
-    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
     m.used.update((*PLANE_AXES[axis], axis))
     _axis_move(m, "rapid", clear, math.inf, where, blk)
     for level in train_levels(surface, d * bottom, c.plunge):
@@ -1229,6 +1223,20 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
         _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
                    math.inf if c.retract_feed is None else c.retract_feed, where, blk)
     _axis_move(m, "rapid", clear, math.inf, where, blk)
+
+
+def _rough_out_heights(m: _Machine, c: RoughOut, number: int, where: Where,
+                       blk: SourceBlock) -> tuple[float, float, float, float, float]:
+    """The tool-axis frame of cycle ``number`` from cycle 20's data: the working direction (+-1, the sign of Q1),
+    the depth less the floor allowance Q4 (> 0, else an error), the surface Q5, the clearance height Q7 and the
+    set-up height Q6 above Q5 [mm, machine]."""
+    bottom = abs(c.depth) - c.floor_allowance
+    if bottom <= 0:
+        where.fail(f"cycle {number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
+                   text=blk.code, expected="|Q4| < |Q1|")
+    d = -1.0 if c.depth < 0 else 1.0
+    surface = m.origin()[m.plane] + c.surface
+    return d, bottom, surface, m.origin()[m.plane] + c.clearance, surface - d * c.setup
 
 
 def _pocket_rings_of(m: _Machine, c: RoughOut, radius: float, where: Where, blk: SourceBlock) -> list[list[Block]]:
@@ -1332,13 +1340,7 @@ def _pilot_drill(m: _Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> 
         rings = _region_rings(m, area, first=r + rough.side_allowance, step=rough.overlap * r, ccw=rough.ccw,
                               number=21, where=where, blk=blk)
         points = [ring[0] for k, (ring, linked) in enumerate(rings) if k == 0 or not linked]
-    d = -1.0 if rough.depth < 0 else 1.0
-    bottom = abs(rough.depth) - rough.floor_allowance
-    if bottom <= 0:
-        where.fail("cycle 21: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
-                   text=blk.code, expected="|Q4| < |Q1|")
-    surface = m.origin()[axis] + rough.surface
-    clear, above = m.origin()[axis] + rough.clearance, surface - d * rough.setup
+    d, bottom, surface, clear, above = _rough_out_heights(m, rough, 21, where, blk)
     drill = pecking_cycle({1: rough.setup, 2: d * bottom, 3: c.plunge, 4: 0.0, 5: c.feed}, feed_scale=1.0,
                           scale=1.0, where=where, column=blk.column)
     m.used.update((p, q, axis))
@@ -1375,13 +1377,7 @@ def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) 
         if not rings:
             m.note(f"cycle 22: the coarse tool {c.coarse_tool} left nothing this tool reaches")
             return
-    bottom = abs(c.depth) - c.floor_allowance
-    if bottom <= 0:
-        where.fail(f"cycle {c.number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
-                   text=blk.code, expected="|Q4| < |Q1|")
-    d = -1.0 if c.depth < 0 else 1.0
-    surface = m.origin()[axis] + c.surface
-    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
+    d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
     m.used.update((*PLANE_AXES[axis], axis))
     point = functools.partial(_plane_point, m)
     _axis_move(m, "rapid", clear, math.inf, where, blk)
