@@ -157,6 +157,7 @@ from interpolators.heidenhain_paths import (
     PathGeometryError,
     approach_lct,
     approach_start,
+    arc_end_tolerance,
     chamfer_corner,
     departure_element,
     departure_lct,
@@ -176,7 +177,7 @@ from interpolators.heidenhain_transforms import (
     trans_block,
     transform_item,
 )
-from interpolators.heidenhain_words import SourceBlock, Word, read_value, read_words, source_blocks
+from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -204,13 +205,24 @@ _DETECT_RE = re.compile(
     r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?:(?<=:)|(?![A-Z]))",
     re.I,
 )
+#: A conversational first block without a block number: a multi-word keyword, or a path keyword
+#: followed by a blank and a conversational word (an axis with its sign or ``I``, ``PA``/``PR``,
+#: ``R0/RL/RR``, ``DR``, ``F``/``FMAX``, ``M``) - never a valid ISO line.
+_BARE_DETECT_RE = re.compile(
+    r"(TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|CYCL\s+CALL|CALL\s+LBL|LBL\s*\d|FN\s*\d+\s*:"
+    r"|(?:L|LP|CC|CR|CT|CP|C)\s+(?:I?[XYZ]\s*[+-]?\s*[\d.Q]|I?P[AR]|R[0LR]\b|DR\s*[+-]|F\s*MAX|FMAX|M\d))",
+    re.I,
+)
 
 
 def looks_like_heidenhain(text: str) -> bool:
     """True if the text reads as Heidenhain conversational rather than ISO G-code.
 
     A ``BEGIN PGM`` line anywhere, or a first meaningful line made of a block number followed by
-    a conversational keyword (``L``, ``C``, ``CC``, ``CR``, ``TOOL CALL``, ``CYCL DEF``, ...).
+    a conversational keyword (``L``, ``C``, ``CC``, ``CR``, ``TOOL CALL``, ``CYCL DEF``, ...), or
+    of such a keyword without a block number where no ISO block can read it (:data:`_BARE_DETECT_RE`:
+    ``L X1.376 Y1.202 FMAX`` or ``CC X2.5 Y1.75``, as an engraving generator writes TNC text without
+    header and numbers; in ISO ``L``, ``C`` take a number, and ``CC``, ``TOOL CALL`` are no words).
     """
     if re.search(r"^\s*\d*\s*BEGIN\s+PGM\b", text, re.I | re.M):
         return True
@@ -218,7 +230,7 @@ def looks_like_heidenhain(text: str) -> bool:
         s = raw.split(";", 1)[0].strip()
         if not s or s.startswith(("(", "%", "*")):
             continue
-        return _DETECT_RE.match(s) is not None
+        return _DETECT_RE.match(s) is not None or _BARE_DETECT_RE.match(s) is not None
     return False
 
 
@@ -545,9 +557,11 @@ class _Run:
             where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
         key = label_key(cm)
         target = self.labels.find(key, where, column=col0, text=blk.code)
-        rep = _repeat_count(cm.group(5), self.m, where, col0 + cm.start(5)) if cm.group(5) else 0
+        if cm.group(5) is not None and cm.group(6) is None:
+            self.m.note(EMPTY_REP_NOTE)
+        rep = _repeat_count(cm.group(6), self.m, where, col0 + cm.start(6)) if cm.group(6) else 0
         index = self.pc - 1
-        if cm.group(5) is not None and target < index:  # program-section repeat
+        if cm.group(6) is not None and target < index:  # program-section repeat
             left = self.repeats.get(index, rep)
             if left > 0:
                 self.repeats[index] = left - 1
@@ -560,6 +574,13 @@ class _Run:
                        text=blk.code, expected=f"at most {MAX_NESTING} nested CALL LBL")
         self.stack.append(Frame(return_to=self.pc, label=key, runs_left=rep + 1))
         self.pc = target + 1
+
+
+#: ``CALL LBL 1 REP`` with the count left empty (a program of an older TNC, drunsinn/language-klartext's
+#: 700.klartext, mirrors the section between LBL 1 and LBL 0 and calls it so): a field left empty
+#: programs nothing (:data:`interpolators.heidenhain_words.EMPTY_FIELD_NOTE`), so the block is a
+#: plain ``CALL LBL 1`` (a subprogram call, the section once more).
+EMPTY_REP_NOTE = "CALL LBL n REP without a count read as CALL LBL n (the REP field left empty)"
 
 
 def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
@@ -700,6 +721,9 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
     (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
     tooth) needs the tool's number of teeth, which vcnc's tool table does not hold: an error."""
     words = read_words(code, pos, where, m.params, column0=column0)
+    if any(w.key == "EMPTY" for w in words):
+        m.note(EMPTY_FIELD_NOTE)
+        words = [w for w in words if w.key != "EMPTY"]
     for i, w in enumerate(words):
         if w.key == "FZ":
             where.fail("FZ (feed per tooth) needs the tool's number of teeth", column=w.column, text=w.text,
@@ -2400,7 +2424,8 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
             if m.pole is None:
                 where.fail("C arc without a circle centre", column=blk.column, text=where.text,
                            expected="a CC block before C")
-            return arc_from_center(m.pos, target, m.pole, ccw=ccw != flips, plane=plane)
+            return arc_from_center(m.pos, target, m.pole, ccw=ccw != flips, plane=plane,
+                                   tolerance=arc_end_tolerance(m.inch))
         if "R" not in seen:
             where.fail("CR arc without radius", column=blk.column, text=where.text, expected="R+ or R- [mm]")
         return arc_from_radius(m.pos, target, seen["R"].value * m.scale * k, ccw=ccw != flips, plane=plane)

@@ -38,7 +38,7 @@ LABEL_RE = re.compile(r"LBL\s*(?:\"([^\"]+)\"|'([^']+)'|(\d+)|([A-Z_]\w*))\s*$",
 #: ``CALL LBL 1``, ``CALL LBL 1 REP 25/25``, ``CALL LBL "NAME" REP 2``, ``CALL LBL 1 REPQ13`` (the count in a Q
 #: parameter, as HEIDENHAIN's demonstration program 7025 writes it).
 CALL_RE = re.compile(r"CALL\s+LBL\s*(?:\"([^\"]+)\"|'([^']+)'|(\d+)|([A-Z_]\w*))"
-                     r"(?:\s+REP\s*(\d+|Q[LR]?\d+)(?:\s*/\s*\d+)?)?\s*$", re.I)
+                     r"(?:\s+(REP)(?:\s*(\d+|Q[LR]?\d+)(?:\s*/\s*\d+)?)?)?\s*$", re.I)
 
 #: Deepest nesting of subprogram calls (TNC 640 user's manual: 19 levels).
 MAX_NESTING: int = 19

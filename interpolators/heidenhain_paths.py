@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from interpolators.arcs import ARC_TOLERANCE
 from interpolators.corners import (  # noqa: F401  (re-exported: the corner geometry lives there)
     PathGeometryError,
     chamfer_corner,
@@ -31,9 +32,34 @@ from interpolators.corners import (  # noqa: F401  (re-exported: the corner geom
 )
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
-__all__ = ["PathGeometryError", "polar_point", "polar_angle", "helical_arc", "end_tangent",
+__all__ = ["PathGeometryError", "arc_end_tolerance", "polar_point", "polar_angle", "helical_arc", "end_tangent",
            "tangential_arc", "round_corner", "round_elements", "chamfer_corner", "approach_start",
            "departure_element", "approach_lct", "departure_lct"]
+
+
+#: Places after the decimal point of a TNC coordinate: the input format "-99 999.9999 to
+#: +99 999.9999 (5, 4)" of positions, coordinates and circle radii (TNC 640 user's manual DIN/ISO
+#: 34059x-05, 1/2015, "Technical information", p. 631); the same digits in inch programs.
+COORDINATE_DECIMALS: int = 4
+
+
+def arc_end_tolerance(inch: bool) -> float:
+    """Largest accepted difference [mm] between the start and end radius of a ``C`` arc about ``CC``.
+
+    :data:`interpolators.arcs.ARC_TOLERANCE` (0.002 mm), widened to what the program's own digits
+    can carry: the start (the previous end point), the end point and the centre are each rounded
+    to the 4 places of the input format (:data:`COORDINATE_DECIMALS`), each off by up to
+    ``sqrt(2) / 2 * 1e-4`` program units in the plane, so the two radii differ by up to
+    ``(1 + 1 + 2) * sqrt(2) / 2 * 1e-4 = 2 * sqrt(2) * 1e-4`` units (the form of LinuxCNC's
+    ``CENTER_ARC_RADIUS_TOLERANCE_INCH = 2 * 0.001 * M_SQRT2``, interp_internal.hh, for 3 places).
+    In a millimetre program that is 0.00028 mm (below 0.002 mm: no change); in an inch program
+    0.0001 in is 0.00254 mm, and a CAM system's inch arcs written to 4 places miss the circle by up
+    to 0.0072 mm. The TNC's own end-point tolerance is a machine parameter set by the machine
+    builder; its value is not in the user's manuals found, which is why the rounding of the input
+    format is the bound taken here.
+    """
+    digits = 2.0 * math.sqrt(2.0) * 10.0 ** -COORDINATE_DECIMALS * (25.4 if inch else 1.0)
+    return max(ARC_TOLERANCE, digits)
 
 
 def polar_point(pole: np.ndarray, radius: float, angle_deg: float, *, plane: int, base: np.ndarray) -> np.ndarray:

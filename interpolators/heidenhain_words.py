@@ -13,7 +13,10 @@ manual, "Programming fundamentals: NC blocks"). This module
   incremental), polar ``PR``/``PA`` (``IPR``/``IPA``), ``R``, ``DR+``/``DR-``, ``R0``/``RL``/``RR``,
   ``F``/``F MAX``/``FMAX``/``F AUTO`` (key ``FAUTO``), ``FU``/``FZ`` (per revolution / tooth),
   ``M``, ``MB MAX``, LN's vector components ``NX``..``TZ``, and a value that is a number, a Q parameter
-  (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``).
+  (``X+Q1``, ``IX-Q3``, ``FQ58``) or a parenthesised formula (``X+(Q1+2)``);
+* reads ``R``, ``F`` and ``M`` without a value (``L X+32,000 Y+0,000 R F5000 M13``, ``L X+12,500
+  R F M``, ``CYCL CALL M``, as programs of the older TNCs were saved) as key ``EMPTY``: the
+  dialog's field left empty, the same as not writing the word (:data:`EMPTY_FIELD_NOTE`).
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ import re
 from interpolators._words import NUMBER_RE, Where, lines_of, token_at
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters
 
-__all__ = ["SourceBlock", "Word", "decimal_points", "source_blocks", "read_words", "read_value"]
+__all__ = ["EMPTY_FIELD_NOTE", "SourceBlock", "Word", "decimal_points", "source_blocks", "read_words", "read_value"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,6 +71,16 @@ class Word:
     value: object
     column: int
     text: str
+
+
+#: How a word letter without a value is read. Programs saved by older TNCs (TNC 155/355 era: the
+#: 668.klartext and 700.klartext samples of drunsinn/language-klartext) show each field of the L
+#: dialog (radius compensation, feed, M function) as its letter, with nothing after it when the
+#: field was not filled in. No manual describing this saved form was found; a field left empty
+#: programs nothing, so ``R`` leaves the radius compensation as it is, ``F`` the modal feed, and
+#: ``M`` adds no M function, and the run notes the reading.
+EMPTY_FIELD_NOTE = ("R, F or M without a value read as a dialog field left empty (as older TNCs save "
+                    "'R F M'): radius compensation, feed and M functions unchanged")
 
 
 _HEAD_RE = re.compile(r"\s*(?P<pre>/)?\s*(?P<num>\d+)?\s*(?P<post>/(?![/*]))?\s*")
@@ -203,6 +216,7 @@ _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
     r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<vec>[NT][XYZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
+    r"|(?P<empty>[RFM])(?=\s*(?:$|[A-PR-Z]))"
     r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<fu>F[UZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )
@@ -244,6 +258,8 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             out.append(Word("DR", tok.replace(" ", "")[-1], col, tok))
         elif kind == "rcomp":
             out.append(Word(tok.upper(), None, col, tok))
+        elif kind == "empty":  # a dialog field left empty (EMPTY_FIELD_NOTE): the reader drops it
+            out.append(Word("EMPTY", tok.upper(), col, tok))
         elif kind == "rot":  # A, B, C [deg], U, V, W: the reader checks the machine has the axis
             value, end = read_value(code, end, where, params, what=tok.upper(), column0=column0)
             out.append(Word(tok.upper(), value, col, code[pos:end].strip()))

@@ -169,7 +169,8 @@ _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCU
 
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:
-    s = re.sub(r"\s+", "", rest.upper())
+    # R, F, M standing alone: a field the older TNCs saved empty ("L X+1 R F M"): nothing programmed
+    s = re.sub(r"\s+", "", re.sub(r"(?<!\S)[RFM](?=\s|$)", " ", rest.upper()))
     out: dict[str, float | str] = {}
     pos = 0
     for m in _WORD.finditer(s):

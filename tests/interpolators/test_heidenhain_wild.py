@@ -190,3 +190,52 @@ def test_tool_call_by_a_q_parameter_and_sysread_of_the_tool_data():
     assert ends(unknown) == [[0.0, 0.0, 0.0]] and any("tool 7 is not in the tool table" in n for n in unknown.notes)
     with pytest.raises(GCodeError, match="FN 18 SYSREAD 'SYSREAD Q1 = ID50 NR36 IDX1' is not supported"):
         run("1 FN 18: SYSREAD Q1 = ID50 NR36 IDX1\n")
+
+
+def test_inch_arcs_whose_four_decimal_end_points_miss_the_circle_by_their_rounding():
+    """A CAM post's inch program (dominiczino/Heidenhain-Program-Manager, FrameOp1.H): start, end and centre each
+    rounded to the 4 places of the TNC's input format miss the circle by up to 2 * sqrt(2) * 0.0001 in = 0.0072 mm."""
+    inch = "0 BEGIN PGM T INCH\n"
+    # from (1, 0) about (0, 0): start radius 1 in, end radius 1.0002 in (0.00508 mm off): runs, ends where written
+    prog = run("1 L X+1 Y+0 Z+0 R0 F10\n2 CC X+0 Y+0\n3 C X+0 Y+1.0002 DR+", head=inch)
+    assert np.allclose(prog.blocks[-1].target, [0.0, 1.0002 * 25.4, 0.0])
+    assert prog.blocks[-1].kind == "arc"
+    with pytest.raises(GCodeError, match="not on the circle"):  # 0.0003 in = 0.00762 mm > 0.00718 mm
+        parse_heidenhain(inch + "1 L X+1 Y+0 Z+0 R0 F10\n2 CC X+0 Y+0\n3 C X+0 Y+1.0003 DR+\n", context=CTX)
+    with pytest.raises(GCodeError, match="not on the circle"):  # the same 0.00508 mm in a mm program: 0.002 mm
+        parse_heidenhain("1 L X+25.4 Y+0 Z+0 R0 F100\n2 CC X+0 Y+0\n3 C X+0 Y+25.40508 DR+\n", context=CTX)
+
+
+def test_r_f_and_m_without_a_value_are_fields_left_empty():
+    """As HEIDENHAIN's demonstration programs 668 and 700 (older TNCs) were saved: ``L X+32,000 Y+0,000 R F5000 M13``,
+    ``L X+12,500 R F M``, ``CYCL CALL M``: no compensation change, the modal feed, no M function."""
+    prog = run("1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+2 R0 FMAX\n3 L X+32,000 Y+0,000 Z+2,000 R F500 M13\n"
+               "4 L X+12,500 R F M\n5 L Y+6,5 R F M\n6 L Z+50 R F3000 M")
+    assert ends(prog) == [[0, 0, 12], [32, 0, 12], [12.5, 0, 12], [12.5, 6.5, 12], [12.5, 6.5, 60]]
+    assert [round(b.feed * 60, 9) for b in prog.blocks[1:]] == [500, 500, 500, 3000]
+    assert any(n.startswith("R, F or M without a value") for n in prog.notes)
+
+
+def test_a_label_call_with_the_rep_count_left_empty_calls_the_section_once():
+    """700.klartext: ``LBL 1 .. LBL 0``, a mirror image, then ``CALL LBL 1 REP``: the section once more."""
+    prog = run("1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 LBL 1\n4 L IX+1\n5 LBL 0\n6 CALL LBL 1 REP\n7 L IY+1\n")
+    assert ends(prog) == [[0, 0, 10], [1, 0, 10], [2, 0, 10], [2, 1, 10]]
+    assert any(n.startswith("CALL LBL n REP without a count") for n in prog.notes)
+
+
+def test_tnc_text_without_begin_pgm_and_block_numbers_is_read_as_conversational():
+    """An engraving generator's output (viktor-olah/CNC-Engraving-Heidenhain-.NETCORE): only L, CC and C blocks."""
+    from interpolators import detect_dialect, parse_program
+
+    text = "TOOL CALL 1 Z S1000 F600\nL X1.376 Y1.202 FMAX\nL Z-0.2 FAUTO\nCC X2.5 Y1.202\nC X3.624 DR+\n"
+    assert detect_dialect(text) == "heidenhain"
+    assert detect_dialect("L X1.376 Y1.202 FMAX\nL Z-0.2 FAUTO\n") == "heidenhain"
+    assert detect_dialect("CC X2.5 Y1.75\nC X3.624 DR+\n") == "heidenhain"
+    for iso in ("G1 X1 Y2\nL2\n", "C5 X1\n", "M3 S1000\nG0 X0\n", "(CC X2)\nG0 X1\n"):
+        assert detect_dialect(iso) == "iso"
+    prog = parse_program(text, context=CTX)
+    # from (1.376, 1.202) about (2.5, 1.202): a half circle counter-clockwise to (3.624, 1.202), at Z -0.2 + 10
+    assert ends(prog)[-1] == [3.624, 1.202, 9.8]
+    assert round(prog.blocks[-1].feed * 60, 9) == 600
+    match = match_blocks(heidenhain_reference(text, CTX), rows_of(prog))
+    assert match.mismatch is None and match.exact == len(prog.blocks)
