@@ -253,7 +253,8 @@ class _Machine:
         self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
-        self.preset = "G54"  # the work offset of the context that is the active preset (cycle 247)
+        # the work offset of the context that is the active preset (cycle 247); None: a preset beyond them (zero)
+        self.preset: str | None = "G54"
         self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
@@ -294,7 +295,8 @@ class _Machine:
 
     def origin(self) -> np.ndarray:
         """Program zero in machine coordinates [mm]."""
-        o = np.add(self.context.offset(self.preset), self.shift, dtype=float)  # a new array
+        preset = self.context.offset(self.preset) if self.preset is not None else np.zeros(3)
+        o = np.add(preset, self.shift, dtype=float)  # a new array
         o[self.plane] += self.tool_length
         return o
 
@@ -952,23 +954,29 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     manual, "DATUM SETTING (Cycle 247)"). The machine context's work offsets stand in for that
     table in the order of :data:`interpolators.context.WORK_OFFSETS`, as the CAM posts number them
     (G54 = preset 1, G55 = 2, ... G59.3 = 9); row 0, the preset set by hand, is G54, the context's
-    preset at the program start. "When activating a preset from the preset table, the control resets
+    preset at the program start. A row beyond them (``Q339=+15``, a shop's fixture program) is a zero
+    offset with a note, as the ISO reader takes a work offset the context's table has no entry for
+    (:meth:`interpolators.context.MachineContext.offset`: zero). "When activating a preset from the preset table, the control resets
     the datum shift, mirroring, rotation, scaling factor and axis-specific scaling factor" (TNC
     640 cycle manual, cycle 247, notes)."""
     q = q_assignments(rest, where, m.params, column0=col)
     if 339 not in q:
         where.fail("cycle 247 lacks Q339", column=col, text=rest.strip(), expected="Q339 = the preset number")
     n = int(q[339])
-    if n != q[339] or not 0 <= n <= len(WORK_OFFSETS):
-        where.fail(f"cycle 247: preset {q[339]:g} is not in the machine context's table", column=col,
-                   text=rest.strip(), expected=f"Q339 = 0 .. {len(WORK_OFFSETS)} (G54 .. G59.3)")
+    if n != q[339] or n < 0:
+        where.fail(f"cycle 247: preset {q[339]:g} is not a row of the preset table", column=col,
+                   text=rest.strip(), expected="Q339 = a whole number >= 0 (1 .. 9: G54 .. G59.3)")
     if m.comp != "R0":
         where.fail(f"cycle 247 while radius compensation {m.comp} is active", column=col, text=rest.strip(),
                    expected="R0 before a new preset")
-    m.preset = WORK_OFFSETS[max(n - 1, 0)]
+    m.preset = WORK_OFFSETS[max(n - 1, 0)] if n <= len(WORK_OFFSETS) else None
     m.shift = np.zeros(3)
     m.transform = Transform()
-    m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
+    if m.preset is None:
+        m.note(f"CYCL DEF 247 Q339={n}: preset {n} is beyond the context's work offsets (G54 .. G59.3): "
+               "zero offset, as a work offset without a table entry")
+    else:
+        m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
 
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:

@@ -216,7 +216,7 @@ _WORD_RE = re.compile(
     r"(?P<fmax>F\s*MAX)(?![A-Z])|(?P<fauto>F\s*AUTO)(?![A-Z])|(?P<mbmax>MB\s*MAX)(?![A-Z])"
     r"|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
     r"|(?P<len>LEN)(?=\s*[+-]?\s*[\d.Q(])|(?P<cca>CCA)(?=\s*[+-]?\s*[\d.Q(])|(?P<polar>I?P[AR])|(?P<vec>[NT][XYZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<axis>I?[XYZ])|(?P<rot>I?[ABCUVW])(?=\s*[+-]?\s*[\d.Q(])"
-    r"|(?P<empty>[RFM])(?=\s*(?:$|[A-PR-Z]))"
+    r"|(?P<empty>[RFM])(?=\s*$|\s+[A-PR-Z])"
     r"|(?P<m>M)(?=\s*\d)|(?P<mb>MB)|(?P<fu>F[UZ])(?=\s*[+-]?\s*[\d.Q(])|(?P<feed>F)|(?P<rad>R)(?=\s*[+-]?\s*[\d.Q(])|(?P<bare>(?=[+-]\s*[\d.Q(]))",
     re.I,
 )

@@ -170,7 +170,7 @@ _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCU
 
 def _words(rest: str, q: dict) -> dict[str, float | str]:
     # R, F, M standing alone: a field the older TNCs saved empty ("L X+1 R F M"): nothing programmed
-    s = re.sub(r"\s+", "", re.sub(r"(?<!\S)[RFM](?=\s|$)", " ", rest.upper()))
+    s = re.sub(r"\s+", "", re.sub(r"(?<!\S)[RFM](?=\s*$|\s+(?!MAX|AUTO)[A-PR-Z])", " ", rest.upper()))
     out: dict[str, float | str] = {}
     pos = 0
     for m in _WORD.finditer(s):
@@ -215,7 +215,7 @@ class _Tnc:
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
         self.modal = False  # M89 active
-        self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54)
+        self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54; > 9: None, zero)
         self.pattern: list[dict] = []  # PATTERN DEF positions
         self.resolve = None  # name -> text of a called program
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
@@ -230,7 +230,7 @@ class _Tnc:
         self.data: dict = {}  # cycle 20's Q1 .. Q9
 
     def origin(self) -> np.ndarray:
-        o = np.array(self.ctx.offset(self.preset), float) + self.shift
+        o = (np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)) + self.shift
         o[2] += self.length
         return o
 
@@ -469,7 +469,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         _transform(t, number, rest)
     elif number == 247:
         n = int(_val(re.search(r"Q339\s*=\s*([-+]?\s*[\w.]+)", rest).group(1).replace(" ", ""), t.q))
-        t.preset = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")[max(n - 1, 0)]
+        presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+        t.preset = presets[max(n - 1, 0)] if n <= len(presets) else None  # beyond the table: zero offset
         t.shift, t.mirror, t.rot, t.scl, t.factors = np.zeros(3), np.ones(3), 0.0, 1.0, np.ones(3)  # all reset
     elif number == 12 and sub == 1:  # PGM CALL: the program is the cycle
         if t.resolve is None:

@@ -98,9 +98,12 @@ def test_cycle_247_selects_a_work_offset_of_the_context_as_the_preset():
     ctx = MachineContext(work_offsets={"G54": (100.0, 0.0, 0.0), "G55": (0.0, 200.0, 0.0), "G59.1": (0.0, 0.0, -5.0)})
     prog = run("L X+1 Y+1 Z+1 R0 FMAX\nCYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+50\nCYCL DEF 10.0 ROTATION\n"
                "CYCL DEF 10.1 ROT+90\nCYCL DEF 247 DATUM SETTING ~\n  Q339=+2 ;DATUM NUMBER\nL X+1 Y+1 Z+1 FMAX\n"
-               "CYCL DEF 247 DATUM SETTING\n  Q339=+7\nL X+1 Y+1 Z+1 FMAX\nCYCL DEF 247 Q339=+0\nL X+1 Y+1 Z+1 FMAX",
+               "CYCL DEF 247 DATUM SETTING\n  Q339=+7\nL X+1 Y+1 Z+1 FMAX\nCYCL DEF 247 Q339=+0\nL X+1 Y+1 Z+1 FMAX\n"
+               # a row beyond the context's nine work offsets (a shop's "Q339=+15"): zero, as G54 without an entry
+               "CYCL DEF 247 Q339=+15\nL X+1 Y+1 Z+1 FMAX",
                context=ctx)
-    assert ends(prog, origin=(0, 0, 0)) == [[101, 1, 1], [1, 201, 1], [1, 1, -4], [101, 1, 1]]
+    assert ends(prog, origin=(0, 0, 0)) == [[101, 1, 1], [1, 201, 1], [1, 1, -4], [101, 1, 1], [1, 1, 1]]
+    assert any(n.startswith("CYCL DEF 247 Q339=15: preset 15 is beyond") for n in prog.notes)
 
 
 def test_cycle_19_reset_is_no_motion_and_tilts_are_errors():
@@ -147,7 +150,7 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
     ("CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 B+45", "cycle 19 WORKING PLANE"),
     ("CYCL DEF 13.0 ORIENTATION", "cycle 13 is not supported"),
     ("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 #5", "datum table row (#n)"),
-    ("CYCL DEF 247 DATUM SETTING Q339=+12", "cycle 247: preset 12 is not in the machine context's table"),
+    ("CYCL DEF 247 DATUM SETTING Q339=+1.5", "cycle 247: preset 1.5 is not a row of the preset table"),
 ])
 def test_errors_name_the_cycle(body, words):
     with pytest.raises(GCodeError) as info:
