@@ -956,9 +956,9 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     (G54 = preset 1, G55 = 2, ... G59.3 = 9); row 0, the preset set by hand, is G54, the context's
     preset at the program start. A row beyond them (``Q339=+15``, a shop's fixture program) is a zero
     offset with a note, as the ISO reader takes a work offset the context's table has no entry for
-    (:meth:`interpolators.context.MachineContext.offset`: zero). "When activating a preset from the preset table, the control resets
-    the datum shift, mirroring, rotation, scaling factor and axis-specific scaling factor" (TNC
-    640 cycle manual, cycle 247, notes)."""
+    (:meth:`interpolators.context.MachineContext.offset`: zero). "When activating a preset from the
+    preset table, the control resets the datum shift, mirroring, rotation, scaling factor and
+    axis-specific scaling factor" (TNC 640 cycle manual, cycle 247, notes)."""
     q = q_assignments(rest, where, m.params, column0=col)
     if 339 not in q:
         where.fail("cycle 247 lacks Q339", column=col, text=rest.strip(), expected="Q339 = the preset number")
