@@ -54,12 +54,13 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
-    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1/NR2 IDXt
+    FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1..NR5 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
                                     simulated position (the control reads the same after a STOP
                                     without jogging); ID20 NR1: the active tool's number; ID50
-                                    NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table)
+                                    NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
+                                    NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
     CYCL DEF 7/9/32/1/2/4/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or

@@ -1502,6 +1502,8 @@ def _fn(t: _Tnc, text: str) -> str | None:
             tool = t.ctx.tool(n)
             data = t.tool_defs.get(n, (tool.length, tool.radius) if tool is not None else (0.0, 0.0))
             t.q[q] = data[int(nr) - 1] / t.scale  # a tool not in the table: 0, 0 (as TOOL CALL takes it)
+        elif ident == "50" and nr in ("3", "4", "5"):  # R2, DL, DR: no such columns in the context's table
+            t.q[q] = 0.0
         elif nr != "1" or ident not in ("240", "270"):
             raise ReferenceError(f"FN 18 ID{ident} NR{nr}")
         else:

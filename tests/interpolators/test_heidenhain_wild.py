@@ -239,3 +239,13 @@ def test_tnc_text_without_begin_pgm_and_block_numbers_is_read_as_conversational(
     assert round(prog.blocks[-1].feed * 60, 9) == 600
     match = match_blocks(heidenhain_reference(text, CTX), rows_of(prog))
     assert match.mismatch is None and match.exact == len(prog.blocks)
+
+
+def test_sysread_of_r2_dl_dr_of_a_tool_reads_zero_with_a_note():
+    """``FN 18: SYSREAD Q1603 = ID50 NR3 IDXQ1 ; R2`` .. ``NR5 ; DR`` (a shop's tool-copy macro, Stugo/Heidenhain):
+    the machine context's tool table holds no R2, DL, DR: 0, noted; NR1 (L) still the table's length."""
+    prog = run("1 Q1 = 1\n2 FN 18: SYSREAD Q3 = ID50 NR3 IDXQ1\n3 FN 18: SYSREAD Q4 = ID50 NR4 IDX1\n"
+               "4 FN 18: SYSREAD Q5 = ID50 NR5 IDX1\n5 FN 18: SYSREAD Q6 = ID50 NR1 IDX1\n"
+               "6 L X+Q3 Y+Q4 Z+Q5 R0 FMAX\n7 L X+Q6 FMAX\n")
+    assert ends(prog) == [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]
+    assert sum(n.startswith("FN 18 SYSREAD ID50 NR") for n in prog.notes) == 3
