@@ -23,6 +23,7 @@ from types import MappingProxyType
 import numpy as np
 
 from interpolators.arcs import ARC_RULES
+from interpolators.tilted import Kinematics
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
@@ -238,6 +239,9 @@ class MachineContext:
         ``X10`` is 10 mm, as Haas, LinuxCNC and grbl read it; a Fanuc program with such words gets a
         note) or ``"increment"`` (DPI = 0, Fanuc's own default: in least input increments of IS-B,
         ``X10`` is 0.010 mm or 0.0010 in). Only the ``fanuc`` dialect reads it.
+    kinematics : Kinematics or None
+        The rotary axes that tilt the part for a tilted working plane (Heidenhain ``PLANE``, cycle 19;
+        :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -248,6 +252,7 @@ class MachineContext:
     extra_axes: tuple[str, ...] = ()
     linear_units: str = "mm"
     decimal_point_input: str = "calculator"
+    kinematics: Kinematics | None = None
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):
@@ -273,6 +278,8 @@ class MachineContext:
         bad = [a for a in self.extra_axes if a not in EXTRA_NAMES]
         if bad:
             raise InputError(f"extra_axes must be among {', '.join(map(repr, EXTRA_NAMES))}, got {bad!r}")
+        if self.kinematics is not None and not isinstance(self.kinematics, Kinematics):
+            raise InputError(f"kinematics must be an interpolators.tilted.Kinematics, got {self.kinematics!r}")
 
     def offset(self, code: str) -> np.ndarray:
         """Work offset of ``code`` (``"G54"`` ..., ``"G54.1 P7"``, see :func:`work_offset_code`) [mm]; zero

@@ -32,6 +32,19 @@ PROGRAM_TABLE_DOC = """
 # radius = 0.0                   # mm
 # offset_x = 0.0                 # mm, tool offsets along X and Y (G43 applies them with the length)
 # offset_y = 0.0                 # mm
+#
+# Tilted working plane (Heidenhain PLANE / cycle 19, 3+2 machining) on a machine with rotary axes, e.g. [axes.b]
+# and [axes.c]: the rotary axes that tilt the part (a head that tilts is an error for a tilted plane):
+#   [program.kinematics]
+#   kind = "table"               # table (trunnion: the part tilts) | head
+#   [[program.kinematics.axes]]  # the outer (tilting) axis first: it carries the second, which carries the part
+#   name = "b"                   # a | b | c, an axis of this machine
+#   direction = "Y"              # X | Y | Z | -X | -Y | -Z: the machine axis it turns about (default a X, b Y, c Z)
+#   pivot = [0.0, 0.0, -50.0]    # mm, a point of its axis of rotation (machine coordinates, rotary axes at 0)
+#   limits = [-5.0, 110.0]       # deg
+#   [[program.kinematics.axes]]
+#   name = "c"
+#   pivot = [0.0, 0.0, 0.0]
 """
 
 

@@ -30,6 +30,13 @@ Layout::
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
+    [program.kinematics]          # optional: the rotary axes that tilt the part (tilted working plane)
+    kind = "table"                # table (trunnion) | head (a tilted plane is then an error)
+    [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's)
+    name = "b"                    # a | b | c: one of this file's [axes.a] .. [axes.c]
+    direction = "Y"               # X | Y | Z | -X | -Y | -Z: the machine axis it turns about
+    pivot = [0.0, 0.0, -50.0]     # mm, a point of its axis of rotation (machine, every rotary axis at 0)
+    limits = [-5.0, 110.0]        # deg, lowest and highest angle
 
 or, for an axis simulated by an FMU: ``[axes.x] fmu = "drive.fmu"`` (with ``[axes.x.limits]``).
 Field names and units are those of the ``drives`` and ``controllers`` records.
@@ -49,6 +56,7 @@ import controllers
 import drives
 from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table, work_offset_code
 from interpolators.limits import AxisLimits
+from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError, MachineError
 from vcnc.core.setpoints import AXIS_NAMES
@@ -58,7 +66,7 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools", "linear_units", "decimal_point_input")
+                 "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -279,6 +287,11 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
     context = _build_context(data.get("program", {}), where, file)
     # the program may move the axes beyond X, Y, Z the machine has (a, b, c in degrees, u, v, w in mm), no others
     context = dataclasses.replace(context, extra_axes=tuple(a for a in EXTRA_NAMES if a in axes))
+    if context.kinematics is not None:
+        for ax in context.kinematics.axes:
+            if ax.name not in axes:
+                raise where.error(f"'program.kinematics.axes' names axis {ax.name!r}, which has no [axes.{ax.name}] "
+                                  "table", ("program", "kinematics", "axes"))
     return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits,
                        context=context)
 
@@ -378,8 +391,51 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         except (InputError, TypeError, ValueError) as exc:
             raise where.error(f"program.tools.{number}: {getattr(exc, 'message', exc)}", tpath) from None
     kwargs["tools"] = tools
+    if "kinematics" in tab:
+        kwargs["kinematics"] = _build_kinematics(tab["kinematics"], path + ("kinematics",), where)
     try:
         return MachineContext(**kwargs)
+    except InputError as exc:
+        raise where.error(exc.message, path) from None
+
+
+_KINEMATICS_AXIS_KEYS = {"name": "", "direction": "", "pivot": "mm", "limits": "deg"}
+
+
+def _build_kinematics(tab: Any, path: tuple[str, ...], where: _Where) -> Kinematics:
+    """``[program.kinematics]``: ``kind`` and the two ``[[program.kinematics.axes]]`` (outer first)."""
+    if not isinstance(tab, dict):
+        raise where.error("'program.kinematics' must be a table", path)
+    for key in tab:
+        if key not in ("kind", "axes"):
+            raise where.error(f"unknown key 'program.kinematics.{key}'; expected kind, axes", path + (key,))
+    entries = tab.get("axes")
+    if not isinstance(entries, list) or len(entries) != 2 or not all(isinstance(e, dict) for e in entries):
+        raise where.error("'program.kinematics' needs two [[program.kinematics.axes]] tables (the outer, tilting "
+                          "axis first, then the one it carries)", path)
+    axes = []
+    for entry in entries:
+        for key in entry:
+            if key not in _KINEMATICS_AXIS_KEYS:
+                raise where.error(f"unknown key 'program.kinematics.axes.{key}'; expected one of: "
+                                  + ", ".join(f"{k} [{u}]" if u else k for k, u in _KINEMATICS_AXIS_KEYS.items()),
+                                  path + ("axes",))
+        kwargs: dict[str, Any] = {"name": entry.get("name"), "direction": entry.get("direction", "")}
+        if "pivot" in entry:
+            kwargs["pivot"] = tuple(_xyz_value(entry["pivot"], path + ("axes", "pivot"), where))
+        if "limits" in entry:
+            lim = entry["limits"]
+            if (not isinstance(lim, list) or len(lim) != 2
+                    or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in lim)):
+                raise where.error(f"'program.kinematics.axes.limits' [deg] must be two numbers [low, high], "
+                                  f"got {lim!r}", path + ("axes",))
+            kwargs["limits"] = (float(lim[0]), float(lim[1]))
+        try:
+            axes.append(RotaryAxis(**kwargs))
+        except InputError as exc:
+            raise where.error(exc.message, path + ("axes",)) from None
+    try:
+        return Kinematics(kind=tab.get("kind", "table"), axes=(axes[0], axes[1]))
     except InputError as exc:
         raise where.error(exc.message, path) from None
 
