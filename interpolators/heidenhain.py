@@ -171,9 +171,14 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
 from interpolators.heidenhain_transforms import (
+    KINEMATICS_HINT,
     TRANSFORM_CYCLES,
+    PlaneBlock,
+    TiltedPlane,
     Transform,
     TransformError,
+    plane_rotation,
+    read_plane,
     tilt_block,
     trans_block,
     transform_item,
@@ -181,6 +186,7 @@ from interpolators.heidenhain_transforms import (
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.program import Block, Program
+from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from toolpaths.pockets import Region
 from vcnc.core.axes import AXIS_NAMES
@@ -284,6 +290,7 @@ class _Machine:
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
         self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
         self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
+        self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -295,9 +302,13 @@ class _Machine:
         return (INCH / 10.0 if self.inch else 1.0) / 60.0
 
     def origin(self) -> np.ndarray:
-        """Program zero in machine coordinates [mm]."""
-        preset = self.context.offset(self.preset) if self.preset is not None else np.zeros(3)
-        o = np.add(preset, self.shift, dtype=float)  # a new array
+        """Program zero in machine coordinates [mm]; in a tilted plane its zero on the tilted table plus
+        cycle 7's shift in the plane."""
+        if self.tilt is not None:
+            o = self.tilt.datum + self.transform.turn(self.shift, self.plane)
+        else:
+            preset = self.context.offset(self.preset) if self.preset is not None else np.zeros(3)
+            o = np.add(preset, self.shift, dtype=float)  # a new array
         o[self.plane] += self.tool_length
         return o
 
@@ -351,6 +362,14 @@ class _Machine:
         """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
         the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
         ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
+        if self.tilt is not None and not self.tilt.holds(self.extra if extra is None else extra):
+            if np.any(np.abs(np.asarray(target, dtype=float) - self.pos) > 1e-9):
+                names = " ".join(f"{EXTRA_LETTERS[i]}{a:+.4f}" for i, a in self.tilt.angles.items())
+                where.fail(f"a move in the tilted plane of {self.tilt.what} while the rotary axes are not at its "
+                           f"positions {names}", column=1, text=where.text,
+                           expected="the rotary axes positioned first (STAY, cycle 19: L " + " ".join(
+                               f"{EXTRA_LETTERS[i]}+Q{120 + 'ABC'.index(EXTRA_LETTERS[i])}"
+                               for i in self.tilt.angles) + " R0 FMAX), or PLANE .. TURN / MOVE")
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))
@@ -970,6 +989,9 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     if m.comp != "R0":
         where.fail(f"cycle 247 while radius compensation {m.comp} is active", column=col, text=rest.strip(),
                    expected="R0 before a new preset")
+    if m.tilt is not None:
+        where.fail(f"cycle 247 in the tilted working plane of {m.tilt.what}", column=col, text=rest.strip(),
+                   expected="PLANE RESET (or CYCL DEF 19.1 without angles) before a new preset")
     m.preset = WORK_OFFSETS[max(n - 1, 0)] if n <= len(WORK_OFFSETS) else None
     m.shift = np.zeros(3)
     m.transform = Transform()
@@ -988,11 +1010,15 @@ def _datum_shift(values: dict[str, float], m: _Machine) -> None:
 
 
 def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
-    """``PLANE``, ``FUNCTION``: no motion when nothing tilts, else an error naming the function;
-    ``FUNCTION DWELL TIME t`` / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640
-    user's manual, "Defining a dwell time: FUNCTION DWELL")."""
+    """``PLANE``: the tilted working plane on a machine with kinematics (:func:`_plane`), else no motion
+    when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
+    / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
+    dwell time: FUNCTION DWELL"), ``FUNCTION TCPM`` an error."""
     dm = re.match(r"\s*DWELL\s+(TIME|REV)\s*", blk.code[pos:], re.I) if kw == "FUNCTION" else None
     if dm is None:
+        if kw == "PLANE" and m.context.kinematics is not None:
+            _plane(blk.code[pos:], m, where, blk, blk.column + pos)
+            return
         m.note(tilt_block(kw, blk.code[pos:], where, m.params, column0=blk.column + pos))
         return
     col = blk.column + pos
@@ -1005,6 +1031,123 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
                        expected="TOOL CALL .. S<rpm> before it")
         value = value * 60.0 / m.spindle
     m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+
+
+def _rotary_now(m: _Machine) -> Solution:
+    """Positions of the kinematics' rotary axes (outer, inner) [deg]."""
+    outer, inner = (EXTRA_LETTERS.index(a.upper()) for a in m.context.kinematics.names)
+    return Solution(outer=float(m.extra[outer]), inner=float(m.extra[inner]))
+
+
+def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+    """``PLANE <form> .. MOVE|TURN|STAY``, ``PLANE RESET``: tilt the working plane on the machine's tilting
+    table (:mod:`interpolators.tilted`, :func:`interpolators.heidenhain_transforms.read_plane`).
+
+    TNC 640 / iTNC 530 user's manuals, "The PLANE function: Tilting the working plane", "Specifying the
+    positioning behavior of the PLANE function": the control computes the rotary axes' positions (and
+    stores them in Q120 A, Q121 B, Q122 C: iTNC 530 DIN/ISO manual, "Preassigned Q parameters", "Tilting
+    the working plane with mathematical angles: rotary axis coordinates calculated by the TNC"); MOVE
+    turns them and moves the linear axes so that the tool tip (the point DIST above it) keeps its place
+    on the part, TURN turns them alone, STAY moves nothing (the program positions them, e.g. ``L
+    A+Q120 C+Q122 R0 FMAX``; the plane holds once they are there: a move in it before is an error here);
+    MB retracts along the tool axis first (MB MAX to ``context.home``'s level, as M140). ``PLANE RESET``
+    cancels the tilt; its MOVE/TURN turn the axes back to 0.
+    """
+    kin = m.context.kinematics
+    pb = read_plane(text, where, m.params, column0=col)
+    what = f"PLANE {pb.form} (line {where.line})"
+    if pb.positioning is None:
+        m.note(f"PLANE {pb.form} without MOVE/TURN/STAY: STAY (the rotary axes are not positioned)")
+    try:
+        kin.require_table()
+        current = _rotary_now(m)
+        active = m.tilt.rotation if m.tilt is not None else np.eye(3)
+        rotation = plane_rotation(pb, active=active, kinematics=kin, current=current)
+        angles = None if rotation is None else kin.choose(rotation, current, sequence=pb.sequence,
+                                                          table_rot=pb.table_rot)
+    except TiltError as exc:
+        where.fail(f"PLANE {pb.form}: {exc.message}", column=col, text=text.strip(), expected=exc.expected)
+    _retract(pb, m, where, blk)
+    if rotation is None:
+        _untilt(m)
+        angles = Solution(0.0, 0.0)
+    else:
+        _tilt_to(rotation, angles, what, m, where, col)
+    if pb.positioning in ("MOVE", "TURN"):
+        _position_rotary(pb, current, angles, m, where, blk)
+
+
+def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> None:
+    """PLANE .. MB: the retraction along the tool axis before the rotary axes turn (TNC 640 user's manual,
+    PLANE positioning behaviour "MB": MB MAX to the machine's limit, here ``context.home``'s level)."""
+    if pb.retract is None or pb.positioning not in ("MOVE", "TURN"):
+        return
+    target = m.pos.copy()
+    if math.isinf(pb.retract):
+        target[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
+    else:
+        target[m.plane] += pb.retract * m.scale
+    if target[m.plane] != m.pos[m.plane]:
+        m.used.add(m.plane)
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+
+
+def _untilt(m: _Machine) -> None:
+    """Cancel the tilted plane: the datum shift of before it is back (TNC cycle manual, cycle 19: reset
+    the tilt, then the datum shift, the reverse of activating them)."""
+    if m.tilt is not None:
+        m.shift = m.tilt.base_shift.copy()
+    m.tilt = None
+    m.transform = dataclasses.replace(m.transform, tilt=0.0)
+
+
+def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, where: Where, col: int) -> None:
+    """Make the plane ``rotation`` at the rotary positions ``angles`` [deg] the active one. The datum
+    shift active before the first tilt moves the plane's zero (in the untilted coordinates); cycle 7 in
+    the tilted plane shifts in it, from its zero (TNC cycle manual, cycle 19 WORKING PLANE, "Combining
+    coordinate transformation cycles": datum shift before the tilt, other transformations after it)."""
+    kin = m.context.kinematics
+    if m.plane != 2:
+        where.fail(f"{what}: a tilted working plane with tool axis {'XYZ'[m.plane]}", column=col, text=where.text,
+                   expected="TOOL CALL .. Z (the tilting table brings the plane under a Z spindle)")
+    if m.comp != "R0":
+        where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=where.text,
+                   expected="R0 before tilting the working plane")
+    base_shift = m.tilt.base_shift if m.tilt is not None else m.shift.copy()
+    preset = m.context.offset(m.preset) if m.preset is not None else np.zeros(3)
+    try:
+        theta, datum = tilted_frame(kin, rotation, angles, np.add(preset, base_shift))
+    except TiltError as exc:
+        where.fail(exc.message, column=col, text=where.text, expected=exc.expected)
+    columns = [EXTRA_LETTERS.index(a.upper()) for a in kin.names]
+    m.tilt = TiltedPlane(rotation=rotation, angles={columns[0]: angles.outer, columns[1]: angles.inner},
+                         datum=datum, base_shift=base_shift, what=what)
+    m.shift = np.zeros(3)
+    m.transform = dataclasses.replace(m.transform, tilt=theta)
+    for name, value in zip(kin.names, (angles.outer, angles.inner), strict=True):
+        m.params.set(f"Q{120 + 'abc'.index(name)}", value, where)
+
+
+def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, where: Where,
+                     blk: SourceBlock) -> None:
+    """PLANE .. TURN: the rotary axes to ``new`` [deg], the linear axes stay; MOVE: with the linear axes,
+    so that the point ``DIST`` above the tool tip keeps its place on the part (one block here)."""
+    kin = m.context.kinematics
+    extra = m.extra.copy()
+    for name, value in zip(kin.names, (new.outer, new.inner), strict=True):
+        extra[EXTRA_LETTERS.index(name.upper())] = value
+        m.used.add(3 + EXTRA_LETTERS.index(name.upper()))
+    m.extra_used = True
+    target = m.pos.copy()
+    if pb.positioning == "MOVE":
+        lift = np.zeros(3)
+        lift[m.plane] = pb.dist * m.scale - m.tool_length  # from the spindle's point to the centre of rotation
+        target = kin.place(kin.unplace(m.pos + lift, old), new) - lift
+    if pb.feed is None:
+        m.note(f"PLANE {pb.form} {pb.positioning} without F: at FMAX")
+    feed = math.inf if pb.feed is None or math.isinf(pb.feed) else pb.feed * m.feed_scale
+    m.emit("rapid" if math.isinf(feed) else "line", target, Line(m.pos, target), feed, where, blk.number,
+           extra=extra)
 
 
 def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
@@ -1036,15 +1179,34 @@ def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int,
 
 
 def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
-    """``CYCL DEF 19.1 A+0 B+0 C+0`` (or no angle) cancels a tilted working plane, which is no motion
-    here; any other angle tilts the plane, which vcnc does not model (TNC 640 manual, cycle 19
-    WORKING PLANE)."""
-    for am in re.finditer(r"([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
-        value, _ = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)
-        if value != 0.0:
-            where.fail("cycle 19 WORKING PLANE (a tilted working plane) is not supported", column=col + am.start(),
-                       text=rest.strip(), expected="3-axis machining (19.1 with all angles 0 cancels the tilt)")
-    m.note("CYCL DEF 19 with angles 0: no tilted working plane (no motion)")
+    """``CYCL DEF 19.1 A.. B.. C.. [F..] [DIST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
+    manual, "WORKING PLANE (Cycle 19, software option)"). Without angles, or with all 0, it cancels the
+    tilt (no motion). Other angles need the machine's kinematics; they are spatial angles (as PLANE
+    SPATIAL: "the function corresponds to Cycle 19, if the entries in Cycle 19 are set to space angles",
+    iTNC 530 user's manual, PLANE SPATIAL), and the program positions the rotary axes itself (the manual's
+    "manual positioning": ``L B+Q121 C+Q122 R0 F..`` before or after the cycle): as PLANE .. STAY."""
+    angles: dict[str, float] = {}
+    for am in re.finditer(r"(?<![A-Z])([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
+        angles[am.group(1).upper()] = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)[0]
+    tilted = any(v != 0.0 for v in angles.values())
+    kin = m.context.kinematics
+    if kin is None:
+        if tilted:
+            where.fail("cycle 19 WORKING PLANE (a tilted working plane) is not supported without the machine's "
+                       "kinematics", column=col, text=rest.strip(), expected=KINEMATICS_HINT)
+        m.note("CYCL DEF 19 with angles 0: no tilted working plane (no motion)")
+        return
+    if not tilted:
+        _untilt(m)
+        m.note("CYCL DEF 19 without angles: the tilted working plane is cancelled (no motion)")
+        return
+    try:
+        kin.require_table()
+        rotation = spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0))
+        solution = kin.choose(rotation, _rotary_now(m))
+    except TiltError as exc:
+        where.fail(f"cycle 19: {exc.message}", column=col, text=rest.strip(), expected=exc.expected)
+    _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
 
 
 def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:

@@ -38,9 +38,11 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value
+from interpolators.tilted import Kinematics, Solution, TiltError, euler, points, projected, relative, spatial, vector
 from toolpaths.geometry import PLANE_AXES
 
-__all__ = ["Transform", "TransformError", "TRANSFORM_CYCLES", "transform_item", "tilt_block", "trans_block"]
+__all__ = ["Transform", "TransformError", "TRANSFORM_CYCLES", "transform_item", "tilt_block", "trans_block",
+           "PlaneBlock", "PLANE_FORMS", "read_plane", "KINEMATICS_HINT", "plane_rotation", "TiltedPlane"]
 
 
 class TransformError(ValueError):
@@ -68,6 +70,10 @@ class Transform:
         Factors of cycle 26 per axis (x, y, z) [-] (> 0), about ``centre``.
     centre : tuple of float
         Centre of the cycle 26 scaling [mm, program coordinates].
+    tilt : float
+        Turn of the tilted working plane's X about the machine's tool axis [deg] (``theta`` of
+        :func:`interpolators.tilted.tilted_frame`), applied last: the tilted plane of a tilting table
+        runs in the machine's plane, turned by it. 0 without a tilted plane.
     """
 
     mirror: tuple[bool, bool, bool] = (False, False, False)
@@ -75,12 +81,24 @@ class Transform:
     scale: float = 1.0
     axis_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     centre: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    tilt: float = 0.0
 
     @property
     def identity(self) -> bool:
         """True when no transformation is active."""
         return (not any(self.mirror) and self.rotation == 0.0 and self.scale == 1.0
-                and self.axis_scale == (1.0, 1.0, 1.0))
+                and self.axis_scale == (1.0, 1.0, 1.0) and self.tilt == 0.0)
+
+    def turn(self, offset: np.ndarray, plane: int, *, inverse: bool = False) -> np.ndarray:
+        """``offset`` [mm] turned by :attr:`tilt` in the working plane (back with ``inverse``)."""
+        v = np.array(offset, dtype=float)
+        if self.tilt == 0.0:
+            return v
+        p, q = PLANE_AXES[plane]
+        a = math.radians(-self.tilt if inverse else self.tilt)
+        cos, sin = math.cos(a), math.sin(a)
+        v[p], v[q] = cos * v[p] - sin * v[q], sin * v[p] + cos * v[q]
+        return v
 
     def _factors(self) -> np.ndarray:
         return self.scale * np.asarray(self.axis_scale, dtype=float)
@@ -93,10 +111,11 @@ class Transform:
         a = math.radians(self.rotation)
         cos, sin = math.cos(a), math.sin(a)
         v[p], v[q] = cos * v[p] - sin * v[q], sin * v[p] + cos * v[q]
-        return np.where(self.mirror, -v, v)
+        return self.turn(np.where(self.mirror, -v, v), plane)
 
     def invert(self, offset: np.ndarray, plane: int) -> np.ndarray:
         """The program point [mm, from the datum] at the machine-axis offset ``offset`` [mm]."""
+        offset = self.turn(offset, plane, inverse=True)
         v = np.where(self.mirror, -np.asarray(offset, dtype=float), np.asarray(offset, dtype=float))
         p, q = PLANE_AXES[plane]
         a = math.radians(self.rotation)
@@ -119,7 +138,7 @@ class Transform:
             a = 180.0 - a
         if self.mirror[q]:
             a = -a
-        return a
+        return a + self.tilt
 
     def sweep(self, sweep_deg: float, plane: int) -> float:
         """Machine sweep [deg] of a program sweep (sign reversed when :meth:`flips`)."""
@@ -221,16 +240,21 @@ def _positive(value: float, what: str, where: Where, column0: int, text: str) ->
 
 _TILT_ANGLE_RE = re.compile(r"(SP[ABC]|PROPR|PROMIN|EULPR|EULNU|EULROT|ROT|[ABC])(?=\s*[+-]?\s*[\d.Q(])", re.I)
 
+#: How to give vcnc a machine whose table tilts (the error of a tilt without kinematics says it).
+KINEMATICS_HINT = ("a machine with [program.kinematics] (vcnc machines --show: the rotary axes that tilt the "
+                   "part), or 3-axis machining: PLANE RESET, PLANE .. with all angles 0")
+
 
 def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0: int) -> str:
-    """``PLANE ...``, ``FUNCTION ...``: the note of a block that tilts nothing, else an error naming it.
+    """``PLANE ...``, ``FUNCTION ...`` on a machine without kinematics: the note of a block that tilts
+    nothing, else an error naming it.
 
     TNC 640 user's manual, "Tilting the working plane (software option 1)": ``PLANE RESET`` cancels
     a tilt; ``PLANE SPATIAL/PROJECTED/EULER/RELATIVE/AXIAL`` with all angles 0 keeps the tool axis
-    (no tilt; vcnc moves no rotary axis for it); any other angle, ``PLANE VECTOR``/``POINTS``, and
-    ``FUNCTION TCPM`` (tool centre point management, as ``M128``) need the machine's kinematics,
-    which vcnc does not model: an error naming the function. ``FUNCTION RESET TCPM`` and
-    ``FUNCTION MODE MILL`` change nothing on a milling machine.
+    (no tilt; vcnc moves no rotary axis for it); any other angle and ``PLANE VECTOR``/``POINTS`` need
+    the machine's kinematics (``MachineContext.kinematics``: :func:`read_plane` then reads them);
+    ``FUNCTION TCPM`` (tool centre point management, as ``M128``) is not supported. ``FUNCTION
+    RESET TCPM`` and ``FUNCTION MODE MILL`` change nothing on a milling machine.
     """
     words = rest.split()
     form = words[0].upper() if words else ""
@@ -240,17 +264,182 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
         if (form, second) in (("RESET", "TCPM"), ("MODE", "MILL")):
             return f"{kw} {form} {second}: no motion"
         where.fail(f"{what} is not supported", column=column0, text=what,
-                   expected="3-axis machining (FUNCTION TCPM needs the machine's kinematics)")
+                   expected="3-axis machining or 3+2 (FUNCTION TCPM, simultaneous 5-axis motion, is not modelled)")
     if form == "RESET":
         return "PLANE RESET: no tilted working plane (no motion)"
-    if form in ("SPATIAL", "PROJECTED", "EULER", "RELATIVE", "AXIAL"):
+    if form in ("SPATIAL", "PROJECTED", "EULER", "RELATIVE", "RELATIV", "AXIAL"):
         nonzero = [am.group(1).upper() for am in _TILT_ANGLE_RE.finditer(rest)
                    if read_value(rest, am.end(), where, params, what=am.group(1), column0=column0)[0] != 0.0]
         if not nonzero:
             return f"{what} with angles 0: no tilt (no motion)"
-    where.fail(f"{what} (a tilted working plane) is not supported", column=column0, text=what,
-               expected="3-axis machining: PLANE RESET, or PLANE .. with all angles 0")
+    where.fail(f"{what} (a tilted working plane) is not supported without the machine's kinematics", column=column0,
+               text=what, expected=KINEMATICS_HINT)
     raise AssertionError("unreachable")  # pragma: no cover
+
+
+#: The value words of each PLANE form (TNC 640 / iTNC 530 user's manuals, "The PLANE function").
+PLANE_FORMS: dict[str, tuple[str, ...]] = {
+    "SPATIAL": ("SPA", "SPB", "SPC"),
+    "PROJECTED": ("PROPR", "PROMIN", "ROT"),
+    "EULER": ("EULPR", "EULNU", "EULROT"),
+    "VECTOR": ("BX", "BY", "BZ", "NX", "NY", "NZ"),
+    "POINTS": tuple(f"P{i}{a}" for i in "123" for a in "XYZ"),
+    "RELATIVE": ("SPA", "SPB", "SPC"),
+    "AXIAL": ("A", "B", "C"),
+    "RESET": (),
+}
+_PLANE_FORM_RE = re.compile(r"\s*(SPATIAL|PROJECTED|EULER|VECTOR|POINTS|RELATIVE?|AXIAL|RESET)\b", re.I)
+_PLANE_WORD_RE = re.compile(
+    r"\s*(MOVE|TURN|STAY|COORD\s+ROT|TABLE\s+ROT|MB\s*MAX|F\s*MAX|FMAX|F\s*AUTO|SEQ\s*[+-]|SYM\s*[+-]"
+    r"|DIST|ABST|MB|F|SPA|SPB|SPC|PROPR|PROMIN|EULPR|EULNU|EULROT|ROT|BX|BY|BZ|NX|NY|NZ|P[123][XYZ]|[ABC])"
+    r"(?![A-Z])", re.I)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class PlaneBlock:
+    """A ``PLANE`` block as written.
+
+    Attributes
+    ----------
+    form : str
+        ``SPATIAL``, ``PROJECTED``, ``EULER``, ``VECTOR``, ``POINTS``, ``RELATIVE``, ``AXIAL`` or ``RESET``.
+    values : dict of str to float
+        The form's values (``SPA`` .. [deg], ``P1X`` .. [program units], vector components [-]).
+    positioning : str or None
+        ``MOVE``, ``TURN``, ``STAY``, or None when the block has none.
+    dist : float
+        ``DIST``: distance of the centre of rotation from the tool tip for MOVE [program units].
+    feed : float or None
+        ``F`` [program units/min], ``inf`` for ``FMAX``, None when not written.
+    retract : float or None
+        ``MB``: retraction along the tool axis before positioning [program units], ``inf`` for ``MB MAX``.
+    sequence : int
+        ``SEQ+``/``SYM+``: +1, ``SEQ-``/``SYM-``: -1, else 0.
+    table_rot : bool
+        ``TABLE ROT`` (the rotary table turns for a turn about the tool axis) rather than ``COORD ROT``.
+    """
+
+    form: str
+    values: dict[str, float]
+    positioning: str | None = None
+    dist: float = 0.0
+    feed: float | None = None
+    retract: float | None = None
+    sequence: int = 0
+    table_rot: bool = False
+
+
+def read_plane(rest: str, where: Where, params: QParameters, *, column0: int) -> PlaneBlock:
+    """Read ``PLANE <form> <values> [MOVE|TURN|STAY] [DIST..] [MB..] [F..|FMAX] [SEQ±|SYM±] [COORD|TABLE ROT]``.
+
+    TNC 640 / iTNC 530 user's manuals, "The PLANE function: Tilting the working plane": the forms and
+    their values (:data:`PLANE_FORMS`), then the positioning behaviour ("Specifying the positioning
+    behavior of the PLANE function"), the choice of solution (SEQ; TNC 640: SYM) and the type of
+    transformation (COORD ROT, TABLE ROT). A word of another form, or an unknown word, is an error.
+    """
+    fm = _PLANE_FORM_RE.match(rest)
+    if fm is None:
+        tok = (rest.split() or ["PLANE"])[0]
+        where.fail(f"PLANE {tok} is not a PLANE function", column=column0, text=tok,
+                   expected="PLANE SPATIAL, PROJECTED, EULER, VECTOR, POINTS, RELATIV, AXIAL or RESET")
+    form = fm.group(1).upper()
+    form = "RELATIVE" if form.startswith("RELATIV") else form
+    out: dict = {"form": form, "values": {}}
+    pos = fm.end()
+    while rest[pos:].strip():
+        wm = _PLANE_WORD_RE.match(rest, pos)
+        if wm is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"unexpected {tok!r} in PLANE {form}", column=column0 + pos, text=tok,
+                       expected=f"PLANE {form} {' '.join(PLANE_FORMS[form])} MOVE|TURN|STAY [DIST] [MB] [F|FMAX] "
+                                "[SEQ+|SEQ-] [COORD ROT|TABLE ROT]")
+        word = re.sub(r"\s+", "", wm.group(1).upper())
+        pos = wm.end()
+        if word in ("MOVE", "TURN", "STAY"):
+            out["positioning"] = word
+        elif word in ("COORDROT", "TABLEROT"):
+            out["table_rot"] = word == "TABLEROT"
+        elif word in ("MBMAX", "FMAX"):
+            out["retract" if word == "MBMAX" else "feed"] = math.inf
+        elif word == "FAUTO":
+            where.fail("F AUTO in a PLANE block is not supported", column=column0 + wm.start(1), text=word,
+                       expected="F<feed> or FMAX")
+        elif word[:3] in ("SEQ", "SYM"):
+            out["sequence"] = 1 if word[3] == "+" else -1
+        else:
+            value, pos = read_value(rest, pos, where, params, what=word, column0=column0)
+            key = {"ABST": "dist", "DIST": "dist", "MB": "retract", "F": "feed"}.get(word)
+            if key is not None:
+                out[key] = abs(value) if key == "retract" else value
+            elif word in PLANE_FORMS[form]:
+                out["values"][word] = value
+            else:
+                where.fail(f"{word} is not a value of PLANE {form}", column=column0 + wm.start(1), text=word,
+                           expected=f"PLANE {form} {' '.join(PLANE_FORMS[form])}")
+    return PlaneBlock(**out)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class TiltedPlane:
+    """The active tilted working plane of a tilting table (:mod:`interpolators.tilted`).
+
+    Attributes
+    ----------
+    rotation : ndarray (3, 3)
+        Working-plane rotation (columns: tilted X, Y, Z in the untilted workpiece coordinates).
+    angles : dict of int to float
+        The rotary axes' positions the plane needs, by column of ``Block.extra_target`` [deg].
+    datum : ndarray (3,)
+        Machine position of the tilted plane's zero at those positions, without tool length [mm].
+    base_shift : ndarray (3,)
+        The datum shift (cycle 7) active when the plane was tilted, in the untilted coordinates [mm]:
+        back in force at ``PLANE RESET``.
+    what : str
+        The block that tilted it (``PLANE SPATIAL``, ``CYCL DEF 19``) and its line, for messages.
+    """
+
+    rotation: np.ndarray
+    angles: dict[int, float]
+    datum: np.ndarray
+    base_shift: np.ndarray
+    what: str
+
+    def holds(self, extra: np.ndarray) -> bool:
+        """True when the rotary axes at ``extra`` [deg, by column] are at the plane's positions."""
+        return all(abs(float(extra[i]) - a) <= 1e-6 for i, a in self.angles.items())
+
+
+def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinematics,
+                   current: Solution) -> np.ndarray | None:
+    """The working-plane rotation (columns: tilted X, Y, Z in the untilted workpiece coordinates) of a
+    ``PLANE`` block, None for ``PLANE RESET``; ``active``: the rotation of the active tilt (identity
+    without one), which ``PLANE RELATIV`` turns further; ``current``: the rotary axes' positions [deg],
+    which ``PLANE AXIAL`` keeps for an axis it does not name (:mod:`interpolators.tilted`)."""
+    v = block.values
+    if block.form == "RESET":
+        return None
+    if block.form == "SPATIAL":
+        return spatial(v.get("SPA", 0.0), v.get("SPB", 0.0), v.get("SPC", 0.0))
+    if block.form == "PROJECTED":
+        return projected(v.get("PROPR", 0.0), v.get("PROMIN", 0.0), v.get("ROT", 0.0))
+    if block.form == "EULER":
+        return euler(v.get("EULPR", 0.0), v.get("EULNU", 0.0), v.get("EULROT", 0.0))
+    if block.form == "VECTOR":
+        return vector([v.get(k, 0.0) for k in ("BX", "BY", "BZ")], [v.get(k, 0.0) for k in ("NX", "NY", "NZ")])
+    if block.form == "POINTS":
+        return points(*([v.get(f"P{i}{a}", 0.0) for a in "XYZ"] for i in "123"))
+    if block.form == "RELATIVE":
+        if len(v) != 1:
+            raise TiltError(f"PLANE RELATIV with {len(v)} angles", "one incremental angle: SPA, SPB or SPC")
+        (key, angle), = v.items()
+        return relative(active, "XYZ"["ABC".index(key[-1])], angle)
+    outer, inner = kinematics.names
+    for key in v:
+        if key.lower() not in (outer, inner):
+            raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key} in the machine's kinematics",
+                            f"PLANE AXIAL {outer.upper()}.. {inner.upper()}..")
+    return kinematics.axial(Solution(outer=v.get(outer.upper(), current.outer),
+                                     inner=v.get(inner.upper(), current.inner)))
 
 
 def trans_block(rest: str, transform: Transform, where: Where, params: QParameters, *, column0: int,

@@ -289,6 +289,14 @@ class Kinematics:
         q = pi + inner.turn_part(angles.inner) @ (np.asarray(point, dtype=float) - pi)
         return po + outer.turn_part(angles.outer) @ (q - po)
 
+    def unplace(self, position: Sequence[float], angles: Solution) -> np.ndarray:
+        """The inverse of :meth:`place`: where the part point at machine ``position`` [mm] at ``angles`` [deg]
+        is with every rotary axis at 0 [mm]."""
+        outer, inner = self.axes
+        po, pi = np.asarray(outer.pivot), np.asarray(inner.pivot)
+        q = po + outer.turn_part(angles.outer).T @ (np.asarray(position, dtype=float) - po)
+        return pi + inner.turn_part(angles.inner).T @ (q - pi)
+
     def axial(self, angles: Solution) -> np.ndarray:
         """Working-plane rotation of ``PLANE AXIAL`` (the axes' angles given): the plane whose tool axis
         the axes at ``angles`` make the spindle axis, its X turned with it (``M^T``)."""
@@ -322,10 +330,14 @@ class Kinematics:
             out.append(Solution(outer=_wrap(to), inner=_wrap(ti)))
         return out
 
-    def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0) -> Solution:
+    def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0, table_rot: bool = False) -> Solution:
         """The solution the control takes: within the limits, the outer (master) axis' angle of the sign
         ``sequence`` (+1 SEQ+/SYM+, -1 SEQ-/SYM-), else (0) the one nearest ``current`` [deg] (the sum of
-        both axes' travel; a tie goes to the positive master angle).
+        both axes' travel; a tie goes to the positive master angle). When the tilted tool axis is the
+        inner axis' own, the inner axis stays (COORD ROT) or, with ``table_rot``, turns so that the tilted X
+        runs along the machine's X (iTNC 530 user's manual, "Selecting the type of transformation": "TABLE
+        ROT specifies that the PLANE function should position the rotary table to the defined tilting
+        angle").
 
         iTNC 530 user's manual (DIN/ISO, 2010), "Selection of alternate tilting possibilities": SEQ+
         positions the master axis so that it assumes a positive angle, SEQ- a negative one; without SEQ
@@ -342,7 +354,8 @@ class Kinematics:
         outer, inner = self.axes
         found = []
         for s in self.solutions(plane):
-            o, i = outer.within(s.outer), inner.within(current.inner if math.isnan(s.inner) else s.inner)
+            free = self._square_inner(plane, s.outer) if table_rot else current.inner
+            o, i = outer.within(s.outer), inner.within(free if math.isnan(s.inner) else s.inner)
             if o is not None and i is not None:
                 found.append(Solution(outer=o, inner=i))
         if sequence:
@@ -359,6 +372,15 @@ class Kinematics:
             return abs(s.outer - current.outer) + abs(s.inner - current.inner), -s.outer
 
         return min(found, key=travel)
+
+    def _square_inner(self, plane: np.ndarray, outer: float) -> float:
+        """The inner angle [deg] that turns the tilted X onto the machine's X, the tool axis being the inner's."""
+        def theta(inner: float) -> float:
+            turn = self.rotation(Solution(outer=outer, inner=inner)) @ plane
+            return math.degrees(math.atan2(turn[1, 0], turn[0, 0]))
+
+        t0 = theta(0.0)
+        return min((t0, -t0), key=lambda a: abs(math.remainder(theta(a), 360.0)))
 
 
 def _wrap(angle: float) -> float:

@@ -228,9 +228,17 @@ class _Tnc:
         self.contours: tuple[str, ...] = ()  # cycle 14: all its labels
         self.loose = 0.0  # after an SL region cycle: how far the tool's plane position may be from self.pos [mm]
         self.data: dict = {}  # cycle 20's Q1 .. Q9
+        self.tilt: np.ndarray | None = None  # PLANE / cycle 19: the working plane's rotation (columns X, Y, Z)
+        self.tilt_angles: dict[str, float] = {}  # the rotary positions the plane needs [deg]
+        self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
+
+    def preset_point(self) -> np.ndarray:
+        return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
 
     def origin(self) -> np.ndarray:
-        o = (np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)) + self.shift
+        if self.tilt is not None:  # the tilted zero on the tilted table (cycle 7 shifts within the plane)
+            return self.machine(np.zeros(3))
+        o = self.preset_point() + self.shift
         o[2] += self.length
         return o
 
@@ -243,10 +251,17 @@ class _Tnc:
 
     def machine(self, p: np.ndarray) -> np.ndarray:
         a, b = self.affine()
+        if self.tilt is not None:  # the part point, then where the tilted table carries it
+            part = self.preset_point() + self.base + self.tilt @ (self.shift + a @ p + b)
+            return _carry(self, part, self.tilt_angles) + np.array([0.0, 0.0, self.length])
         return self.origin() + a @ p + b
 
     def prog(self) -> np.ndarray:
         a, b = self.affine()
+        if self.tilt is not None:
+            part = _carry(self, self.pos - np.array([0.0, 0.0, self.length]), self.tilt_angles, back=True)
+            q = self.tilt.T @ (part - self.preset_point() - self.base) - self.shift
+            return np.linalg.solve(a, q - b)
         return np.linalg.solve(a, self.pos - self.origin() - b)
 
     def turns_over(self) -> bool:
@@ -492,9 +507,13 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params if number == 25 else {**t.data, **params})
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
-    elif number == 19:  # a tilted working plane: only its cancellation (all angles 0) is modelled
-        if any(_val(v, t.q) != 0 for v in re.findall(r"[ABC]\s*([-+]?\s*[\d.]+)", rest)):
-            raise ReferenceError("CYCL DEF 19 with a tilt")
+    elif number == 19:  # a tilted working plane (spatial angles; the program positions the rotary axes)
+        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q\d+)", rest)}
+        if any(v != 0 for v in angles.values()):
+            _tilt_plane(t, line, _spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0)),
+                        positioning="STAY")
+        elif t.ctx.kinematics is not None and sub == 1:
+            _tilt_plane(t, line, None, positioning="STAY")
     elif number in (4, 5):  # POCKET MILLING 4.1 SET UP, 4.2 DEPTH, 4.3 PECKG .. F, 4.4 X, 4.5 Y, 4.6 F DR RADIUS;
         # CIRCULAR POCKET 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
         if sub == 0:
@@ -1518,6 +1537,126 @@ def _label_of(text: str) -> str:
     return re.match(r"LBL\s*(\S+)", text).group(1).strip('"')
 
 
+# --- tilted working plane (PLANE SPATIAL / RESET, cycle 19) on a tilting table ---------------------------
+# Written from the iTNC 530 user's manual ("The PLANE function", PLANE SPATIAL: rotations about the
+# fixed machine axes, first A, then B, then C; "Specifying the positioning behavior": MOVE keeps the tool
+# tip on the part, TURN turns the rotary axes only, STAY moves nothing and the program positions them with
+# the values of Q120 A, Q121 B, Q122 C; SEQ+/- the sign of the master (tilting) axis, else the solution
+# nearest the current position) and ISO 841 (a rotary angle turns the tool relative to the part
+# right-handedly; a table turns the part the other way). Own geometry: explicit rotation matrices,
+# homogeneous 4x4 transforms of the table and the closed-form angles of a table whose inner axis is C.
+
+
+def _turn(axis: str, deg: float) -> np.ndarray:
+    c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+    return {"X": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]), "Y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+            "Z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
+
+
+def _homogeneous(rot: np.ndarray, pivot) -> np.ndarray:
+    """4x4 of a rotation about the point ``pivot``."""
+    h = np.eye(4)
+    h[:3, :3] = rot
+    h[:3, 3] = np.asarray(pivot, float) - rot @ np.asarray(pivot, float)
+    return h
+
+
+def _carry(t: _Tnc, point: np.ndarray, angles: dict[str, float], *, back: bool = False) -> np.ndarray:
+    """Where the table at ``angles`` carries the part point that is at ``point`` with the rotary axes at 0
+    (``back``: the reverse)."""
+    h = np.eye(4)
+    for ax in t.ctx.kinematics.axes:  # outer first: H = H_outer @ H_inner
+        sign = -1.0 if ax.direction.startswith("-") else 1.0
+        h = h @ _homogeneous(_turn(ax.direction[-1], -sign * angles[ax.name]), ax.pivot)
+    if back:
+        h = np.linalg.inv(h)
+    return (h @ np.append(np.asarray(point, float), 1.0))[:3]
+
+
+def _spatial(a: float, b: float, c: float) -> np.ndarray:
+    return _turn("Z", c) @ _turn("Y", b) @ _turn("X", a)
+
+
+def _in_limits(ax, deg: float) -> float | None:
+    d = (deg + 180.0) % 360.0 - 180.0
+    d = 180.0 if abs(d + 180.0) < 1e-9 else d
+    for v in (d, d + 360.0, d - 360.0):
+        if ax.limits[0] - 1e-6 <= v <= ax.limits[1] + 1e-6:
+            return v
+    return None
+
+
+def _solve(t: _Tnc, plane: np.ndarray, seq: int) -> dict[str, float]:
+    """The rotary positions for ``plane`` of an A/C or B/C table (closed form): the tool's direction in the
+    part, Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A) or Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
+    cos B), equal to the plane's Z."""
+    outer, inner = t.ctx.kinematics.axes
+    if (outer.direction, inner.direction) not in (("X", "Z"), ("Y", "Z")) or t.ctx.kinematics.kind != "table":
+        raise ReferenceError("kinematics other than an A/C or B/C table")
+    n = plane[:, 2]
+    now = (t.extra["ABC".index(outer.name.upper())], t.extra["ABC".index(inner.name.upper())])
+    found = []
+    b = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
+    for tilt in {b, -b}:
+        st = math.sin(math.radians(tilt))
+        if abs(st) < 1e-9:
+            rot = now[1]
+        elif outer.direction == "X":
+            rot = math.degrees(math.atan2(n[0] / st, -n[1] / st))
+        else:
+            rot = math.degrees(math.atan2(n[1] / st, n[0] / st))
+        o, i = _in_limits(outer, tilt), _in_limits(inner, rot)
+        if o is not None and i is not None and (seq == 0 or o * seq >= -1e-9):
+            found.append((abs(o - now[0]) + abs(i - now[1]), -o, o, i))
+    if not found:
+        raise ReferenceError("no rotary positions within the limits")
+    _, _, o, i = min(found)
+    return {outer.name: o, inner.name: i}
+
+
+def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: str, seq: int = 0,
+                feed: str = "rapid", dist: float = 0.0) -> None:
+    """Activate ``plane`` (None: cancel it), then position the rotary axes as ``positioning`` says."""
+    if t.ctx.kinematics is None:
+        raise ReferenceError("a tilt without kinematics")
+    names = [ax.name for ax in t.ctx.kinematics.axes]
+    old = {a: t.extra["ABC".index(a.upper())] for a in names}
+    if plane is None:
+        if t.tilt is not None:
+            t.shift = t.base.copy()
+        t.tilt, new = None, dict.fromkeys(names, 0.0)
+    else:
+        new = _solve(t, plane, seq)
+        if t.tilt is None:
+            t.base = t.shift.copy()
+        t.tilt, t.tilt_angles, t.shift = plane, new, np.zeros(3)
+        for a in names:
+            t.q[f"Q{120 + 'abc'.index(a)}"] = new[a]
+    if positioning in ("MOVE", "TURN"):
+        end = t.pos.copy()
+        if positioning == "MOVE":  # the point DIST above the tip keeps its place on the part
+            up = np.array([0.0, 0.0, dist * t.scale])
+            tip = t.pos - np.array([0.0, 0.0, t.length]) + up
+            end = _carry(t, _carry(t, tip, old, back=True), new) - up + np.array([0.0, 0.0, t.length])
+        for a in names:
+            t.extra["ABC".index(a.upper())] = new[a]
+        t.emit(line, feed, end, extra=t.extra.copy())
+
+
+def _plane(t: _Tnc, line: int, up: str) -> None:
+    """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE RESET ..``."""
+    w = {k: _val(v, t.q) for k, v in re.findall(r"(SP[ABC]|DIST|F)\s*([-+]?\s*[\d.]+|Q\d+)", up)}
+    pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
+    seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
+    kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
+    plane = None if up.startswith("PLANE RESET") else _spatial(w.get("SPA", 0.0), w.get("SPB", 0.0),
+                                                                  w.get("SPC", 0.0))
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL")) or "MB" in up.replace("MB MAX", "MB"):
+        raise ReferenceError(up)
+    _tilt_plane(t, line, plane, positioning=pos.group(1) if pos else "STAY",
+                seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0))
+
+
 def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
     """The expected ``--blocks`` rows of a Heidenhain conversational program run against ``context``.
 
@@ -1599,6 +1738,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _tool(t, up)
         elif up.startswith("TRANS"):
             _trans(t, up)
+        elif up.startswith("PLANE") and t.ctx.kinematics is not None:
+            _plane(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
             if not (up.startswith(("PLANE RESET", "FUNCTION RESET TCPM", "FUNCTION MODE MILL"))
                     or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
