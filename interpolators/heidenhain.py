@@ -11,8 +11,9 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_paths`: polar ``LP``/``CP`` (helix ``CP IPA``), ``CT``, ``RND``, ``CHF``;
 * :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
-* :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and what tilts
-  (``PLANE``, cycle 19, ``FUNCTION TCPM``, ``M128``: errors unless nothing tilts);
+* :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and the ``PLANE`` blocks
+  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``,
+  ``M128``: errors);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -69,7 +70,13 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
     CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
                                     follow a mirror); CYCL DEF 19 / PLANE with angles 0, PLANE RESET:
-                                    no motion
+                                    no motion (without context.kinematics)
+    PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN FMAX SEQ+, PLANE .. MOVE DIST50 F1000, PLANE .. STAY
+                                    tilted working plane on a tilting table (context.kinematics): the
+                                    rotary axes turn (TURN), with the linear axes keeping the tool tip on
+                                    the part (MOVE), or not (STAY: the program positions them, L A+Q120
+                                    C+Q122 FMAX); also PROJECTED, EULER, VECTOR, POINTS, RELATIV, AXIAL,
+                                    RESET, and CYCL DEF 19.1 A.. B.. C.. (as STAY)
     CALL PGM name, SEL PGM name, CALL SELECTED PGM
                                     another program file (from the caller's directory), run on the
                                     same machine state in its own unit
@@ -79,7 +86,8 @@ Path mode: blocks end at rest (``Block.exact_stop``), as the thesis' identificat
 the path is continuous with that tolerance (``32.1`` without T: ``context.dialect.tolerance``).
 
 Unit conversion: positions mm, feeds mm/s. Machine coordinates = the program coordinates
-mirrored, rotated and scaled (cycles 8, 10, 11, 26) + the preset (``context.offset("G54")``; cycle 247
+mirrored, rotated and scaled (cycles 8, 10, 11, 26) (in a tilted plane: turned by its ``Transform.tilt``
+about the tool axis, from its zero on the tilted table) + the preset (``context.offset("G54")``; cycle 247
 selects another work offset of the context) + the
 datum shift of cycle 7 + the tool length along the tool axis. ``RL``/``RR`` offset the contour by
 the tool radius (table or TOOL DEF, plus DR) from the RL/RR block (the entry move, ending
@@ -89,7 +97,7 @@ element: the manuals give only the contour arc (TNC 640 user's manual, "Approach
 contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
 grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
 next R0 block leaves from there). Anything not listed (FK,
-other pattern forms, tilted planes, other cycles and FN functions) is an error
+other pattern forms, tilted planes without kinematics, other cycles and FN functions) is an error
 naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
