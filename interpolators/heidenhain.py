@@ -1012,6 +1012,8 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:
     """Cycle 7 / TRANS DATUM: ``X`` shifts from the preset, ``IX`` from the last shift [program units]."""
+    if m.tilt is not None:  # a shift in the tilted plane: the one in force after PLANE RESET (:func:`_untilt`)
+        m.tilt = dataclasses.replace(m.tilt, shifted=True)
     for key, value in values.items():
         i = "XYZ".index(key[-1])
         m.shift[i] = (m.shift[i] if key.startswith("I") else 0.0) + value * m.scale
@@ -1101,9 +1103,11 @@ def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> Non
 
 
 def _untilt(m: _Machine) -> None:
-    """Cancel the tilted plane: the datum shift of before it is back (TNC cycle manual, cycle 19: reset
-    the tilt, then the datum shift, the reverse of activating them)."""
-    if m.tilt is not None:
+    """Cancel the tilted plane. The datum shift of before it is back (TNC cycle manual, cycle 19: reset the
+    tilt, then the datum shift, the reverse of activating them), unless one was programmed in the plane: the
+    TNC keeps one datum shift, and CAM posts (hyperMILL, PowerMILL) reset it with ``CYCL DEF 7.1 X0 ..`` just
+    before ``PLANE RESET``; its last values then stand, in the untilted coordinates (our reading)."""
+    if m.tilt is not None and not m.tilt.shifted:
         m.shift = m.tilt.base_shift.copy()
     m.tilt = None
     m.transform = dataclasses.replace(m.transform, tilt=0.0)

@@ -393,9 +393,11 @@ class TiltedPlane:
         Machine position of the tilted plane's zero at those positions, without tool length [mm].
     base_shift : ndarray (3,)
         The datum shift (cycle 7) active when the plane was tilted, in the untilted coordinates [mm]:
-        back in force at ``PLANE RESET``.
+        back in force at ``PLANE RESET`` unless a datum shift was programmed in the tilted plane.
     what : str
         The block that tilted it (``PLANE SPATIAL``, ``CYCL DEF 19``) and its line, for messages.
+    shifted : bool
+        A datum shift (cycle 7, ``TRANS DATUM``) was programmed in the tilted plane.
     """
 
     rotation: np.ndarray
@@ -403,6 +405,7 @@ class TiltedPlane:
     datum: np.ndarray
     base_shift: np.ndarray
     what: str
+    shifted: bool = False
 
     def holds(self, extra: np.ndarray) -> bool:
         """True when the rotary axes at ``extra`` [deg, by column] are at the plane's positions."""

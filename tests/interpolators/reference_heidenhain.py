@@ -231,6 +231,7 @@ class _Tnc:
         self.tilt: np.ndarray | None = None  # PLANE / cycle 19: the working plane's rotation (columns X, Y, Z)
         self.tilt_angles: dict[str, float] = {}  # the rotary positions the plane needs [deg]
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
+        self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
 
     def preset_point(self) -> np.ndarray:
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
@@ -471,6 +472,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     number, sub, rest = int(m.group(1)), int(m.group(2) or 0), m.group(3)
     if number == 7 and sub > 0:
         w = _words(rest, t.q)
+        t.shifted = t.tilt is not None
         for i, a in enumerate("XYZ"):
             if a in w:
                 t.shift[i] = w[a] * t.scale
@@ -1622,14 +1624,14 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
     names = [ax.name for ax in t.ctx.kinematics.axes]
     old = {a: t.extra["ABC".index(a.upper())] for a in names}
     if plane is None:
-        if t.tilt is not None:
+        if t.tilt is not None and not t.shifted:
             t.shift = t.base.copy()
         t.tilt, new = None, dict.fromkeys(names, 0.0)
     else:
         new = _solve(t, plane, seq)
         if t.tilt is None:
             t.base = t.shift.copy()
-        t.tilt, t.tilt_angles, t.shift = plane, new, np.zeros(3)
+        t.tilt, t.tilt_angles, t.shift, t.shifted = plane, new, np.zeros(3), False
         for a in names:
             t.q[f"Q{120 + 'abc'.index(a)}"] = new[a]
     if positioning in ("MOVE", "TURN"):

@@ -104,17 +104,30 @@ def test_move_keeps_the_tool_tip_on_the_part_and_reset_turns_back():
 
 def test_cycle_19_with_datum_shifts_before_and_after_the_tilt():
     """TNC cycle manual, cycle 19: a datum shift before the tilt shifts the untilted part, one after it
-    shifts in the tilted plane; resetting the tilt brings the first back. The shift X+10 before the tilt
-    puts the tilted zero on the part at (20, 0, 0): (20, 0, 50) from the pivot, turned: x = 20 cos45 - 50 sin45,
-    z = 20 sin45 + 50 cos45 - 50; X+5 after it moves it 5 along the tilted X, which runs along the machine's X."""
-    prog = run("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+10\nL B+45 C+0 FMAX\nCYCL DEF 19.0 WORKING PLANE\n"
-               "CYCL DEF 19.1 A+0 B+45 C+0\nL X+0 Y+0 Z+0 FMAX\nCYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+5\n"
-               "L X+0 Y+0 Z+0 FMAX\nL Z+100 FMAX\nCYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1\nL B+0 C+0 FMAX\n"
-               "L X+0 Y+0 Z+0 FMAX")
+    shifts in the tilted plane. The shift X+10 before the tilt puts the tilted zero on the part at (20, 0, 0):
+    (20, 0, 50) from the pivot, turned: x = 20 cos45 - 50 sin45, z = 20 sin45 + 50 cos45 - 50; X+5 after it
+    moves it 5 along the tilted X, which runs along the machine's X. Resetting the tilt brings the shift of
+    before it back, unless one was programmed in the plane: then that one (X+5) stands, untilted."""
+    tilt = ("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+10\nL B+45 C+0 FMAX\nCYCL DEF 19.0 WORKING PLANE\n"
+            "CYCL DEF 19.1 A+0 B+45 C+0\nL X+0 Y+0 Z+0 FMAX\n")
+    reset = "L Z+100 FMAX\nCYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1\nL B+0 C+0 FMAX\nL X+0 Y+0 Z+0 FMAX"
     zero = np.array([20 * R - 50 * R, 0.0, 20 * R + 50 * R - 50.0 + 20.0])
+    e = ends(run(tilt + reset))
+    assert e[2] == pytest.approx(zero) and e[-1] == pytest.approx([20.0, 0.0, 20.0])
+    e = ends(run(tilt + "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+5\nL X+0 Y+0 Z+0 FMAX\n" + reset))
+    assert e[3] == pytest.approx(zero + [5.0, 0.0, 0.0]) and e[-1] == pytest.approx([15.0, 0.0, 20.0])
+
+
+def test_a_datum_shift_reset_in_the_tilted_plane_stands_after_plane_reset():
+    """hyperMILL's TNC post: CYCL DEF 7 X185 .., PLANE SPATIAL .. STAY, L B+Q121 C+Q122, machining, then its
+    LBL "RESET WORKING PLANE": CYCL DEF 7 X0 Y0 Z0 and PLANE RESET STAY. The zero shift programmed in the plane
+    stands after the reset (the TNC keeps one datum shift): the untilted zero is the preset again."""
+    prog = run("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+18\nCYCL DEF 7.2 Y-2\nPLANE SPATIAL SPA+0 SPB+45 SPC+0 STAY\n"
+               "L B+Q121 C+Q122 R0 FMAX\nL X+0 Y+0 Z+0 FMAX\nCYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+0\n"
+               "CYCL DEF 7.2 Y+0\nCYCL DEF 7.3 Z+0\nPLANE RESET STAY\nL B+0 C+0 FMAX\nL X+0 Y+0 Z+0 FMAX")
     e = ends(prog)
-    assert e[2] == pytest.approx(zero) and e[3] == pytest.approx(zero + [5.0, 0.0, 0.0])
-    assert e[-1] == pytest.approx([20.0, 0.0, 20.0])
+    assert e[2] == pytest.approx([28 * R - 50 * R, -2.0, 28 * R + 50 * R - 50.0 + 20.0])
+    assert e[-1] == pytest.approx([10.0, 0.0, 20.0])
 
 
 def test_seq_and_the_limits_choose_the_solution():
