@@ -408,8 +408,9 @@ class TiltedPlane:
     shifted: bool = False
 
     def holds(self, extra: np.ndarray) -> bool:
-        """True when the rotary axes at ``extra`` [deg, by column] are at the plane's positions."""
-        return all(abs(float(extra[i]) - a) <= 1e-6 for i, a in self.angles.items())
+        """True when the rotary axes at ``extra`` [deg, by column] are at the plane's positions (a whole turn
+        apart is the same position of the table: C+270 holds for C-90)."""
+        return all(abs(math.remainder(float(extra[i]) - a, 360.0)) <= 1e-6 for i, a in self.angles.items())
 
 
 def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinematics,

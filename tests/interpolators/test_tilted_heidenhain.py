@@ -82,6 +82,8 @@ def test_stay_then_the_program_positions_the_axes_from_q120_q122():
     assert len(prog.blocks) == 3
     assert prog.blocks[1].extra_target[:3] == pytest.approx([0.0, 45.0, 0.0])
     assert ends(prog)[2] == pytest.approx(ZERO45 + [0.0, 0.0, 5.0])
+    turned = run("PLANE SPATIAL SPA+0 SPB+45 SPC+0 STAY\nL B+45 C+360 R0 FMAX\nL X+0 Y+0 Z+5 FMAX", reference=False)
+    assert ends(turned)[2] == pytest.approx(ZERO45 + [0.0, 0.0, 5.0])  # C+360 is the table's C+0
 
 
 def test_a_move_in_the_plane_before_the_axes_are_there_is_an_error():
