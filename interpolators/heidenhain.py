@@ -1044,9 +1044,9 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
 
 
 def _rotary_now(m: _Machine) -> Solution:
-    """Positions of the kinematics' rotary axes (outer, inner) [deg]."""
-    outer, inner = (EXTRA_LETTERS.index(a.upper()) for a in m.context.kinematics.names)
-    return Solution(outer=float(m.extra[outer]), inner=float(m.extra[inner]))
+    """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]."""
+    at = [float(m.extra[EXTRA_LETTERS.index(a.upper())]) for a in m.context.kinematics.names]
+    return Solution(outer=at[0], inner=at[-1] if len(at) == 2 else 0.0)
 
 
 def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
@@ -1131,12 +1131,12 @@ def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, whe
         theta, datum = tilted_frame(kin, rotation, angles, np.add(preset, base_shift))
     except TiltError as exc:
         where.fail(exc.message, column=col, text=where.text, expected=exc.expected)
-    columns = [EXTRA_LETTERS.index(a.upper()) for a in kin.names]
-    m.tilt = TiltedPlane(rotation=rotation, angles={columns[0]: angles.outer, columns[1]: angles.inner},
+    positions = kin.positions(angles)
+    m.tilt = TiltedPlane(rotation=rotation, angles={EXTRA_LETTERS.index(a.upper()): v for a, v in positions.items()},
                          datum=datum, base_shift=base_shift, what=what)
     m.shift = np.zeros(3)
     m.transform = dataclasses.replace(m.transform, tilt=theta)
-    for name, value in zip(kin.names, (angles.outer, angles.inner), strict=True):
+    for name, value in positions.items():
         m.params.set(f"Q{120 + 'abc'.index(name)}", value, where)
 
 
@@ -1146,7 +1146,7 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, 
     so that the point ``DIST`` above the tool tip keeps its place on the part (one block here)."""
     kin = m.context.kinematics
     extra = m.extra.copy()
-    for name, value in zip(kin.names, (new.outer, new.inner), strict=True):
+    for name, value in kin.positions(new).items():
         extra[EXTRA_LETTERS.index(name.upper())] = value
         m.used.add(3 + EXTRA_LETTERS.index(name.upper()))
     m.extra_used = True

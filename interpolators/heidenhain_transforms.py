@@ -437,13 +437,13 @@ def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinemat
             raise TiltError(f"PLANE RELATIV with {len(v)} angles", "one incremental angle: SPA, SPB or SPC")
         (key, angle), = v.items()
         return relative(active, "XYZ"["ABC".index(key[-1])], angle)
-    outer, inner = kinematics.names
+    names = kinematics.names
     for key in v:
-        if key.lower() not in (outer, inner):
+        if key.lower() not in names:
             raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key} in the machine's kinematics",
-                            f"PLANE AXIAL {outer.upper()}.. {inner.upper()}..")
-    return kinematics.axial(Solution(outer=v.get(outer.upper(), current.outer),
-                                     inner=v.get(inner.upper(), current.inner)))
+                            "PLANE AXIAL " + " ".join(f"{n.upper()}.." for n in names))
+    return kinematics.axial(Solution(outer=v.get(names[0].upper(), current.outer),
+                                     inner=v.get(names[-1].upper(), current.inner) if len(names) == 2 else 0.0))
 
 
 def trans_block(rest: str, transform: Transform, where: Where, params: QParameters, *, column0: int,

@@ -243,31 +243,40 @@ class Kinematics:
         (not supported for a tilted plane: :meth:`require_table`).
     axes : tuple of RotaryAxis
         The two rotary axes: the outer one (nearer the machine's base) first, then the one it carries,
-        which carries the part.
+        which carries the part; or one, tilting, axis (a 4-axis machine: its inner angle is always 0).
     """
 
     kind: str = "table"
-    axes: tuple[RotaryAxis, RotaryAxis]
+    axes: tuple[RotaryAxis, ...]
 
     def __post_init__(self) -> None:
         if self.kind not in ("table", "head"):
             raise InputError(f"kinematics: kind must be 'table' or 'head', got {self.kind!r}")
-        if len(self.axes) != 2 or not all(isinstance(a, RotaryAxis) for a in self.axes):
-            raise InputError("kinematics: axes must be two rotary axes (the outer one first)")
-        outer, inner = self.axes
+        if len(self.axes) not in (1, 2) or not all(isinstance(a, RotaryAxis) for a in self.axes):
+            raise InputError("kinematics: axes must be two rotary axes (the outer one first) or one")
+        outer, inner = self.axes[0], self.axes[-1]
+        if abs(float(outer.unit[2])) > _PARALLEL:
+            raise InputError(f"kinematics: the outer axis {outer.name} turns about the spindle axis Z; it cannot "
+                             "tilt the part (the outer axis must turn about X or Y)")
+        if len(self.axes) == 1:
+            return
         if outer.name == inner.name:
             raise InputError(f"kinematics: the two rotary axes are both {outer.name!r}")
         if abs(float(outer.unit @ inner.unit)) > _PARALLEL:
             raise InputError(f"kinematics: axes {outer.name} ({outer.direction}) and {inner.name} "
                              f"({inner.direction}) must turn about perpendicular machine axes")
-        if abs(float(outer.unit[2])) > _PARALLEL:
-            raise InputError(f"kinematics: the outer axis {outer.name} turns about the spindle axis Z; it cannot "
-                             "tilt the part (the outer axis must turn about X or Y)")
 
     @property
-    def names(self) -> tuple[str, str]:
+    def names(self) -> tuple[str, ...]:
         """The axis names, outer first."""
-        return self.axes[0].name, self.axes[1].name
+        return tuple(a.name for a in self.axes)
+
+    def positions(self, angles: Solution) -> dict[str, float]:
+        """The axes' positions [deg] by name (the inner angle only when there is an inner axis)."""
+        return dict(zip(self.names, (angles.outer, angles.inner)[:len(self.axes)], strict=True))
+
+    def _turns(self, angles: Solution):
+        return zip(self.axes, (angles.outer, angles.inner)[:len(self.axes)], strict=True)
 
     def require_table(self) -> None:
         """Raise :class:`TiltError` unless both rotary axes turn the part."""
@@ -278,24 +287,26 @@ class Kinematics:
 
     def rotation(self, angles: Solution) -> np.ndarray:
         """Rotation of the part into the machine at ``angles`` [deg]: ``M`` of the module's notes."""
-        outer, inner = self.axes
-        return outer.turn_part(angles.outer) @ inner.turn_part(angles.inner)
+        m = np.eye(3)
+        for axis, angle in self._turns(angles):
+            m = m @ axis.turn_part(angle)
+        return m
 
     def place(self, point: Sequence[float], angles: Solution) -> np.ndarray:
         """Machine position [mm] at ``angles`` of the part point that is at ``point`` [mm, machine] with
         every rotary axis at 0: turned about the inner axis' pivot, then about the outer's."""
-        outer, inner = self.axes
-        po, pi = np.asarray(outer.pivot), np.asarray(inner.pivot)
-        q = pi + inner.turn_part(angles.inner) @ (np.asarray(point, dtype=float) - pi)
-        return po + outer.turn_part(angles.outer) @ (q - po)
+        q = np.asarray(point, dtype=float)
+        for axis, angle in reversed(list(self._turns(angles))):
+            q = np.asarray(axis.pivot) + axis.turn_part(angle) @ (q - np.asarray(axis.pivot))
+        return q
 
     def unplace(self, position: Sequence[float], angles: Solution) -> np.ndarray:
         """The inverse of :meth:`place`: where the part point at machine ``position`` [mm] at ``angles`` [deg]
         is with every rotary axis at 0 [mm]."""
-        outer, inner = self.axes
-        po, pi = np.asarray(outer.pivot), np.asarray(inner.pivot)
-        q = po + outer.turn_part(angles.outer).T @ (np.asarray(position, dtype=float) - po)
-        return pi + inner.turn_part(angles.inner).T @ (q - pi)
+        q = np.asarray(position, dtype=float)
+        for axis, angle in self._turns(angles):
+            q = np.asarray(axis.pivot) + axis.turn_part(angle).T @ (q - np.asarray(axis.pivot))
+        return q
 
     def axial(self, angles: Solution) -> np.ndarray:
         """Working-plane rotation of ``PLANE AXIAL`` (the axes' angles given): the plane whose tool axis
@@ -309,12 +320,17 @@ class Kinematics:
         one when the tilted tool axis lies in the plane of both axes, none when the axes cannot reach it;
         angles in (-180, 180]. When the tilted tool axis is the inner axis' own, any inner angle does:
         the inner angle is NaN (:meth:`choose` keeps the axis where it is; the plane's turn about the tool
-        axis is then a turn of the coordinates, iTNC 530's COORD ROT). Limits are not applied here.
+        axis is then a turn of the coordinates, iTNC 530's COORD ROT). Limits are not applied here. A single
+        axis reaches only the tool axes square to it: one solution (inner angle 0), or none.
         """
-        outer, inner = self.axes
+        outer, inner = self.axes[0], self.axes[-1]
         uo, ui = outer.unit, inner.unit
         n = np.asarray(plane, dtype=float)[:, 2]
         ez = np.array(_UNIT["Z"])
+        if len(self.axes) == 1:
+            if abs(float(uo @ n) - float(uo @ ez)) > 1e-9:
+                return []
+            return [Solution(outer=_wrap(_angle_between(ez, n, uo)), inner=0.0)]
         # v = the tool axis after the outer turn: uo.v = uo.ez, ui.v = ui.n (Paden-Kahan subproblem 2)
         alpha, beta = float(uo @ ez), float(ui @ n)
         rest = 1.0 - alpha * alpha - beta * beta
@@ -351,9 +367,13 @@ class Kinematics:
         TiltError
             No solution within the limits (with the sign asked for).
         """
-        outer, inner = self.axes
+        outer, inner = self.axes[0], self.axes[-1]
         found = []
         for s in self.solutions(plane):
+            if len(self.axes) == 1:
+                o = outer.within(s.outer)
+                found += [] if o is None else [Solution(outer=o, inner=0.0)]
+                continue
             free = self._square_inner(plane, s.outer) if table_rot else current.inner
             o, i = outer.within(s.outer), inner.within(free if math.isnan(s.inner) else s.inner)
             if o is not None and i is not None:
@@ -362,10 +382,9 @@ class Kinematics:
             found = [s for s in found if s.outer * sequence >= -ANGLE_TOLERANCE]
         if not found:
             sign = {1: " with a positive", -1: " with a negative"}.get(sequence, "")
-            raise TiltError(f"the rotary axes {outer.name.upper()}, {inner.name.upper()} cannot tilt the part to this "
-                            f"plane{sign} {outer.name.upper()} within their limits "
-                            f"{outer.name.upper()} {outer.limits[0]:g}..{outer.limits[1]:g}, "
-                            f"{inner.name.upper()} {inner.limits[0]:g}..{inner.limits[1]:g} deg",
+            limits = ", ".join(f"{a.name.upper()} {a.limits[0]:g}..{a.limits[1]:g}" for a in self.axes)
+            raise TiltError(f"the rotary axes {', '.join(n.upper() for n in self.names)} cannot tilt the part to "
+                            f"this plane{sign} {outer.name.upper()} within their limits {limits} deg",
                             "a working plane the machine's rotary axes reach")
 
         def travel(s: Solution) -> tuple[float, float]:

@@ -1592,10 +1592,18 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int) -> dict[str, float]:
     """The rotary positions for ``plane`` of an A/C or B/C table (closed form): the tool's direction in the
     part, Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A) or Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
     cos B), equal to the plane's Z."""
+    n = plane[:, 2]
+    if len(t.ctx.kinematics.axes) == 1:  # one axis: Rx(A) e_z = (0, -sin A, cos A), Ry(B) e_z = (sin B, 0, cos B)
+        ax = t.ctx.kinematics.axes[0]
+        if ax.direction not in ("X", "Y") or abs(n["XY".index(ax.direction)]) > 1e-9:
+            raise ReferenceError("a plane one axis does not reach")
+        v = _in_limits(ax, math.degrees(math.atan2(-n[1], n[2]) if ax.direction == "X" else math.atan2(n[0], n[2])))
+        if v is None:
+            raise ReferenceError("no rotary position within the limits")
+        return {ax.name: v}
     outer, inner = t.ctx.kinematics.axes
     if (outer.direction, inner.direction) not in (("X", "Z"), ("Y", "Z")) or t.ctx.kinematics.kind != "table":
         raise ReferenceError("kinematics other than an A/C or B/C table")
-    n = plane[:, 2]
     now = (t.extra["ABC".index(outer.name.upper())], t.extra["ABC".index(inner.name.upper())])
     found = []
     b = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))

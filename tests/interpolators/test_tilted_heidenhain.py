@@ -162,6 +162,21 @@ def test_plane_relative_turns_the_active_plane():
     assert np.allclose(got, want)
 
 
+def test_cycle_19_on_a_four_axis_machine_with_one_tilting_axis():
+    """A horizontal 4-axis machine's A table (as nx_training_deckel.h: L A-90 FMAX, then CYCL DEF 19.1 A-90):
+    the tilted Z is Rx(-90) e_z = +Y of the part, its X the part's X, its Y the part's -Z. L X+5 Y+3 Z+2 is the
+    part point (10, 0, 0) + (5, 0, 0) + 3 (0, 0, -1) + 2 (0, 1, 0) = (15, 2, -3); the table turns the part +90
+    deg about X: (15, 3, 2), plus the tool length."""
+    four = MachineContext(work_offsets={"G54": (10.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=20.0)},
+                          home=(0.0, 0.0, 300.0), extra_axes=("a",),
+                          kinematics=Kinematics(axes=(RotaryAxis(name="a", limits=(-120.0, 120.0)),)))
+    prog = run("L A-90 FMAX\nCYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 A-90\nL X+5 Y+3 Z+2 FMAX\n"
+               "CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 A+0\nL A+0 FMAX", four)
+    assert ends(prog)[2] == pytest.approx([15.0, 3.0, 22.0])
+    with pytest.raises(GCodeError, match="cannot tilt the part"):  # a tilt about Y: out of this machine's reach
+        run("PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX", four, reference=False)
+
+
 @pytest.mark.parametrize(("context", "body", "message"), [
     (MachineContext(), "PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN FMAX", r"\[program.kinematics\]"),
     (MachineContext(), "CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 B+45", r"\[program.kinematics\]"),

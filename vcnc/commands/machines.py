@@ -38,6 +38,7 @@ PROGRAM_TABLE_DOC = """
 #   [program.kinematics]
 #   kind = "table"               # table (trunnion: the part tilts) | head
 #   [[program.kinematics.axes]]  # the outer (tilting) axis first: it carries the second, which carries the part
+#                                # (a 4-axis machine: this table alone)
 #   name = "b"                   # a | b | c, an axis of this machine
 #   direction = "Y"              # X | Y | Z | -X | -Y | -Z: the machine axis it turns about (default a X, b Y, c Z)
 #   pivot = [0.0, 0.0, -50.0]    # mm, a point of its axis of rotation (machine coordinates, rotary axes at 0)

@@ -32,7 +32,7 @@ Layout::
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
     [program.kinematics]          # optional: the rotary axes that tilt the part (tilted working plane)
     kind = "table"                # table (trunnion) | head (a tilted plane is then an error)
-    [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's)
+    [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's), or one
     name = "b"                    # a | b | c: one of this file's [axes.a] .. [axes.c]
     direction = "Y"               # X | Y | Z | -X | -Y | -Z: the machine axis it turns about
     pivot = [0.0, 0.0, -50.0]     # mm, a point of its axis of rotation (machine, every rotary axis at 0)
@@ -410,9 +410,9 @@ def _build_kinematics(tab: Any, path: tuple[str, ...], where: _Where) -> Kinemat
         if key not in ("kind", "axes"):
             raise where.error(f"unknown key 'program.kinematics.{key}'; expected kind, axes", path + (key,))
     entries = tab.get("axes")
-    if not isinstance(entries, list) or len(entries) != 2 or not all(isinstance(e, dict) for e in entries):
+    if not isinstance(entries, list) or len(entries) not in (1, 2) or not all(isinstance(e, dict) for e in entries):
         raise where.error("'program.kinematics' needs two [[program.kinematics.axes]] tables (the outer, tilting "
-                          "axis first, then the one it carries)", path)
+                          "axis first, then the one it carries), or one (a 4-axis machine)", path)
     axes = []
     for entry in entries:
         for key in entry:
@@ -435,7 +435,7 @@ def _build_kinematics(tab: Any, path: tuple[str, ...], where: _Where) -> Kinemat
         except InputError as exc:
             raise where.error(exc.message, path + ("axes",)) from None
     try:
-        return Kinematics(kind=tab.get("kind", "table"), axes=(axes[0], axes[1]))
+        return Kinematics(kind=tab.get("kind", "table"), axes=tuple(axes))
     except InputError as exc:
         raise where.error(exc.message, path) from None
 
