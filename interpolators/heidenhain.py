@@ -361,6 +361,19 @@ class _Machine:
         tool = self.context.tool(number)
         return None if tool is None else (tool.length, tool.radius)
 
+    def check_tilt(self, target: np.ndarray, extra: np.ndarray, where: Where) -> None:
+        """A block ending at ``target`` [mm] with the rotary axes at ``extra`` [deg]: an error when it moves
+        the linear axes while the tilted plane does not hold (its rotary axes elsewhere, as after PLANE ..
+        STAY before the program positions them)."""
+        if self.tilt.holds(extra) or not np.any(np.abs(np.asarray(target, dtype=float) - self.pos) > 1e-9):
+            return
+        at = " ".join(f"{EXTRA_LETTERS[i]}{a:+.4f}" for i, a in self.tilt.angles.items())
+        words = " ".join(f"{EXTRA_LETTERS[i]}+Q{120 + 'ABC'.index(EXTRA_LETTERS[i])}" for i in self.tilt.angles)
+        where.fail(f"a move in the tilted plane of {self.tilt.what} while the rotary axes are not at its positions "
+                   f"{at}", column=1, text=where.text,
+                   expected=f"the rotary axes positioned first (STAY, cycle 19: L {words} R0 FMAX), or PLANE .. "
+                            "TURN / MOVE")
+
     def note(self, text: str) -> None:
         """Record what the run ignored or read in a particular way (``Program.notes``, counted)."""
         self.notes[text] = self.notes.get(text, 0) + 1
@@ -370,14 +383,8 @@ class _Machine:
         """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
         the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
         ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
-        if self.tilt is not None and not self.tilt.holds(self.extra if extra is None else extra):
-            if np.any(np.abs(np.asarray(target, dtype=float) - self.pos) > 1e-9):
-                names = " ".join(f"{EXTRA_LETTERS[i]}{a:+.4f}" for i, a in self.tilt.angles.items())
-                where.fail(f"a move in the tilted plane of {self.tilt.what} while the rotary axes are not at its "
-                           f"positions {names}", column=1, text=where.text,
-                           expected="the rotary axes positioned first (STAY, cycle 19: L " + " ".join(
-                               f"{EXTRA_LETTERS[i]}+Q{120 + 'ABC'.index(EXTRA_LETTERS[i])}"
-                               for i in self.tilt.angles) + " R0 FMAX), or PLANE .. TURN / MOVE")
+        if self.tilt is not None:
+            self.check_tilt(target, self.extra if extra is None else extra, where)
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))

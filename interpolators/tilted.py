@@ -6,11 +6,12 @@ part with the machine's rotary axes so that the tilted plane's tool axis becomes
 needs for it:
 
 * :class:`RotaryAxis`, :class:`Kinematics`: the machine (two rotary axes among a, b, c, which one
-  carries the other, their pivots and limits), part of :class:`interpolators.context.MachineContext`;
+  carries the other, their pivots and limits; or one tilting axis), part of
+  :class:`interpolators.context.MachineContext`;
 * the working-plane rotation ``R`` (columns: the tilted X, Y, Z axes in the untilted workpiece
-  coordinates) of each definition: :func:`spatial` (PLANE SPATIAL, cycle 19, G68.2's frame after
-  conversion), :func:`projected`, :func:`euler` (also Fanuc G68.2 I J K, ZXZ), :func:`vector`,
-  :func:`points`, :func:`relative`, and :meth:`Kinematics.axial` (PLANE AXIAL);
+  coordinates) of each definition: :func:`spatial` (PLANE SPATIAL, cycle 19), :func:`projected`,
+  :func:`euler` (the Z-X'-Z'' angles Fanuc's G68.2 I J K use too), :func:`vector`, :func:`points`,
+  :func:`relative`, and :meth:`Kinematics.axial` (PLANE AXIAL);
 * :meth:`Kinematics.solutions` / :meth:`Kinematics.choose`: the rotary-axis angles that make the
   tilted tool axis the spindle axis (both solutions, SEQ/SYM, the limits);
 * :meth:`Kinematics.place` and :func:`tilted_frame`: machine coordinates of the part, and the map
@@ -234,7 +235,7 @@ class Solution:
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Kinematics:
-    """The rotary axes of a 5-axis machine, for the tilted working plane.
+    """The rotary axes of a 5-axis (or 4-axis) machine, for the tilted working plane.
 
     Attributes
     ----------
