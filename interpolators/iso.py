@@ -54,6 +54,8 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
 ``G05 P10000``            (:mod:`interpolators.iso_smoothing`)
 ``G68 G69``               coordinate rotation; ``G51 G50`` scaling; ``G51.1 G50.1`` mirror image,
                           Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
+``G68.2 G53.1``           tilted working plane X Y Z I J K (Euler) and the rotary axes turned to it, on a
+                          machine with a tilting table (``MachineContext.kinematics``; :mod:`interpolators.iso_tilt`)
 ``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``); Haas G73/G83
                           pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
@@ -128,6 +130,7 @@ from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
 from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
 from interpolators.iso_words import Word, WordError
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program
@@ -223,6 +226,7 @@ _POWER_ON_MOTION = {"grbl": 0, "fanuc": 0, "haas": 0}
 _MILL_G: dict[int, tuple[str, str]] = {
     **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
     680: ("rotation", "G68 coordinate rotation"),
+    682: ("tilted plane", "G68.2 tilted working plane"), 531: ("tool axis", "G53.1 tool axis direction control"),
     740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
     510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
@@ -612,6 +616,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if gcodes.get("rotation", (0,))[0] == 680:
         _g68(seen, st, where, gcodes["rotation"][1], notes)
         return ended
+    if "tilted plane" in gcodes or "tool axis" in gcodes:  # G68.2, G53.1 (interpolators.iso_tilt)
+        _g68_2_g53_1(gcodes, seen, st, blocks, used, where, number, notes)
+        return ended
     if gcodes.get("scaling", (0,))[0] == 510 or "mirror" in gcodes:
         _scaling_mirror(gcodes, seen, st, where, notes)
         return ended
@@ -806,6 +813,42 @@ def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
                             scale=st.scale)
     _set_frame(st, dataclasses.replace(base, rotation=rotation))
     notes.add("G68 coordinate rotation")
+
+
+def _g68_2_g53_1(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where, number,
+                 notes: _Notes) -> None:
+    """G68.2 X Y Z I J K: the tilted working plane on the machine's tilting table; G53.1: the rotary axes
+    turned to it at rapid, the linear axes staying (:mod:`interpolators.iso_tilt`)."""
+    if "tilted plane" in gcodes:
+        w = gcodes["tilted plane"][1]
+        other = [k for k in seen if k not in ("X", "Y", "Z", "I", "J", "K", "N")]
+        if other or st.comp_side is not None or st.frame is not None or st.rotation:
+            bad = seen[other[0]] if other else w
+            where.fail("G68.2 tilted working plane: only X Y Z (its zero) and I J K (Euler angles), without cutter "
+                       "compensation, G68/G51/G51.1 or a G10 R rotation", column=bad.column, text=bad.text,
+                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
+        zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
+        try:
+            rot = g68_2_rotation({k: v.value for k, v in seen.items()}, context=st.context, work_zero=zero,
+                                 extra=st.extra, scale=st.scale)
+        except TiltError as exc:
+            where.fail(exc.message, column=w.column, text=w.text, expected=exc.expected)
+        _set_frame(st, Frame(rotation=rot))
+        notes.add("G68.2 tilted working plane")
+    if "tool axis" in gcodes:
+        w = gcodes["tool axis"][1]
+        rot = st.frame.rotation if st.frame is not None else None
+        if not isinstance(rot, TiltedRotation):
+            where.fail("G53.1 without a G68.2 tilted working plane", column=w.column, text=w.text,
+                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. before G53.1")
+        turned = st.extra.copy()
+        for name, angle in rot.positions.items():
+            turned[EXTRA_LETTERS.index(name.upper())] = angle
+            used.add(3 + EXTRA_LETTERS.index(name.upper()))
+        blocks.append(Block(kind="rapid", feed=np.inf, segment=Line(st.pos, st.pos), line=where.line, number=number,
+                            text=where.text, start=st.pos.copy(), target=st.pos.copy(), exact_stop=st.exact_stop,
+                            tolerance=st.tolerance, extra_start=st.extra.copy(), extra_target=turned))
+        st.extra, st.extra_used = turned, True
 
 
 def _set_frame(st: _State, frame: Frame) -> None:
