@@ -1,17 +1,23 @@
 """Fanuc G68.2 tilted working plane and G53.1 tool axis direction control on a tilting table.
 
-Fanuc 30i/31i-B operator's manual (B-64484EN), "Tilted working plane indexing (G68.2)": ``G68.2 X Y
-Z I J K`` defines a feature coordinate system whose origin is X Y Z (in the workpiece coordinate
-system) and whose axes are turned by the Euler angles I (about Z), J (about the turned X) and K (about
-the new Z) [deg]; ``G53.1`` then turns the rotary axes so that the tool is square to that plane (the
-linear axes stay), and ``G69`` cancels it. A program may instead position the rotary axes itself
-(``G0 B.. C..``); vcnc runs the plane's coordinates at the positions G53.1 would take (not checked).
-The plane lives in the rotation of :class:`interpolators.iso_transforms.Frame`, so that G69 cancels it
-as it cancels G68. The geometry is :mod:`interpolators.tilted`'s, as the Heidenhain reader's PLANE.
+``G68.2 X Y Z I J K`` defines a feature coordinate system whose origin is X Y Z (in the workpiece
+coordinate system) and whose axes are turned by the Euler angles I (about Z), J (about the turned X)
+and K (about the new Z) [deg]; ``G53.1`` then turns the rotary axes so that the tool is square to that
+plane (the linear axes stay), and ``G69`` cancels it. Sources: FANUC Series 30i/31i additional manual
+B-79976E, "Specifying tilted working plane based on the tool axis direction" (G68.3, cncmanuals.com):
+"When G68.3 is specified in a block, the coordinate system for programming is changed to a feature
+coordinate system. All commands after the block are regarded as commands in the feature coordinate
+system until G69 is specified"; cnc.wiki, "G68.2 Tilted Working Plane": "Rotary axes must be manually
+aligned via G53.1 or automatic cycles; all tool and cutter radius compensations must be strictly
+canceled before activation". The Euler order Z-X'-Z'' of I J K is not in a manual found here (it is
+the one the CAM posts write). A program may position the rotary axes itself (``G0 B.. C..``) instead
+of G53.1; vcnc runs the plane's coordinates at the positions G53.1 would take (not checked). The plane
+lives in the rotation of :class:`interpolators.iso_transforms.Frame`, so that G69 cancels it as it
+cancels G68. The geometry is :mod:`interpolators.tilted`'s, as the Heidenhain reader's PLANE.
 
 Not read here: the other definitions of G68.2 (``P1`` .. ``P4``: roll-pitch-yaw, three points, two
-vectors, projection angles), G68.3/G68.4, and a work offset or G92 changed under G68.2 (the plane keeps
-the zero it was defined on).
+vectors, projection angles), G68.3/G68.4, and a work offset or G92 changed under G68.2 (not modelled:
+the plane's zero then moves by the change, along the machine's axes).
 """
 
 from __future__ import annotations
