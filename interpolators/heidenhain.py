@@ -1162,6 +1162,8 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, 
         lift = np.zeros(3)
         lift[m.plane] = pb.dist * m.scale - m.tool_length  # from the spindle's point to the centre of rotation
         target = kin.place(kin.unplace(m.pos + lift, old), new) - lift
+    if np.array_equal(extra, m.extra) and np.allclose(target, m.pos, rtol=0.0, atol=1e-12):
+        return  # already there: nothing moves
     if pb.feed is None:
         m.note(f"PLANE {pb.form} {pb.positioning} without F: at FMAX")
     feed = math.inf if pb.feed is None or math.isinf(pb.feed) else pb.feed * m.feed_scale

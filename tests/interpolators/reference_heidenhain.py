@@ -1648,9 +1648,10 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
             up = np.array([0.0, 0.0, dist * t.scale])
             tip = t.pos - np.array([0.0, 0.0, t.length]) + up
             end = _carry(t, _carry(t, tip, old, back=True), new) - up + np.array([0.0, 0.0, t.length])
+        still = all(abs(t.extra["ABC".index(a.upper())] - new[a]) < 1e-12 for a in names)
         for a in names:
             t.extra["ABC".index(a.upper())] = new[a]
-        t.emit(line, feed, end, extra=t.extra.copy())
+        t.emit(line, feed, end, extra=t.extra.copy(), rows="optional" if still else "one")
 
 
 def _plane(t: _Tnc, line: int, up: str) -> None:

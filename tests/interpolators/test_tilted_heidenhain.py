@@ -67,7 +67,7 @@ def test_the_same_holes_drilled_on_the_untilted_and_the_tilted_plane():
     flat = run("L X+0 Y+0 Z+100 FMAX\n" + holes, MachineContext(work_offsets={"G54": (10.0, 0.0, 0.0)},
                                                          tools={1: Tool(number=1, length=20.0)}, home=(0, 0, 300)))
     zero = run("PLANE SPATIAL SPA+0 SPB+0 SPC+0 TURN FMAX\nL X+0 Y+0 Z+100 FMAX\n" + holes)
-    assert np.allclose(ends(zero)[2:], ends(flat)[1:], rtol=0.0, atol=1e-12)
+    assert np.allclose(ends(zero), ends(flat), rtol=0.0, atol=1e-12)  # B+0 C+0 already: TURN moves nothing
     tilted = run("PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN FMAX\nL X+0 Y+0 Z+100 FMAX\n" + holes)
     ry = np.array([[R, 0.0, R], [0.0, 1.0, 0.0], [-R, 0.0, R]])
     pivot, preset, tool = np.array(PIVOT_B), np.array([10.0, 0.0, 0.0]), np.array([0.0, 0.0, 20.0])
@@ -102,6 +102,7 @@ def test_move_keeps_the_tool_tip_on_the_part_and_reset_turns_back():
     assert prog.blocks[1].kind == "line" and prog.blocks[1].feed == pytest.approx(2000 / 60)
     assert e[2] == pytest.approx(e[1]) and prog.blocks[2].extra_target[:3] == pytest.approx([0, 0, 0])
     assert e[3] == pytest.approx([10.0, 0.0, 20.0])
+    assert len(run("PLANE RESET TURN FMAX\nL X+0 Y+0 Z+0 FMAX").blocks) == 2  # at B+0 C+0 already: no move
 
 
 def test_cycle_19_with_datum_shifts_before_and_after_the_tilt():
