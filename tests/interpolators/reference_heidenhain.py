@@ -1655,14 +1655,26 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
 
 
 def _plane(t: _Tnc, line: int, up: str) -> None:
-    """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE RESET ..``."""
-    w = {k: _val(v, t.q) for k, v in re.findall(r"(SP[ABC]|DIST|F)\s*([-+]?\s*[\d.]+|Q\d+)", up)}
+    """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
+    (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
+    ``PLANE RESET ..``."""
+    w = {k: _val(v, t.q) for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q\d+)",
+                                                up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
     kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
     plane = None if up.startswith("PLANE RESET") else _spatial(w.get("SPA", 0.0), w.get("SPB", 0.0),
                                                                   w.get("SPC", 0.0))
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL")) or "MB" in up.replace("MB MAX", "MB"):
+    if up.startswith("PLANE EULER"):
+        plane = _turn("Z", w.get("EULPR", 0.0)) @ _turn("X", w.get("EULNU", 0.0)) @ _turn("Z", w.get("EULROT", 0.0))
+    elif up.startswith("PLANE VECTOR"):
+        n = np.array([w.get("NX", 0.0), w.get("NY", 0.0), w.get("NZ", 0.0)])
+        n = n / np.linalg.norm(n)
+        b = np.array([w.get("BX", 0.0), w.get("BY", 0.0), w.get("BZ", 0.0)])
+        x = (b - (b @ n) * n) / np.linalg.norm(b - (b @ n) * n)
+        plane = np.column_stack([x, np.cross(n, x), n])
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")) or "MB" in up.replace(
+            "MB MAX", "MB"):
         raise ReferenceError(up)
     _tilt_plane(t, line, plane, positioning=pos.group(1) if pos else "STAY",
                 seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0))
