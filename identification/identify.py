@@ -24,11 +24,14 @@ import numpy as np
 
 from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
 from identification.capture_checks import check_capture
-from identification.dead_time import delay_reference, estimate_delay, loop_capture
+from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
+from identification.dead_time import delay_reference, estimate_delay
 from identification.ga import GAOptions
+from identification.loop_frame import loop_frame
 from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
+from identification.segments import settled_start
 from identification.solve import METHODS, SolveResult, solve_statistics
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
@@ -93,11 +96,18 @@ def fit_reduced_model(
     if refine not in REFINEMENTS:
         raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
     opt = regressor_options or RegressorOptions()
+    original = capture
     xr, x, T = check_capture(capture, axis, options=opt)
     b = as_bounds(bounds, T)
-    delay_s, delay_fit = _dead_time(delay, xr, x, T, opt, b)
-    if delay_s:
-        capture = loop_capture(capture, axis, delay_s / T)
+    first = _datum_offset(xr, x, T, opt, b)  # before the dead time: an offset hides it
+    delay_s, delay_fit = _dead_time(delay, xr, x - first.offset_mm, T, opt, b)
+    capture, start = loop_frame(capture, axis, offset_mm=first.offset_mm, delay_samples=delay_s / T)
+    # again in the loop's frame: a small offset is judged only once the dead time is undone
+    second = _datum_offset(*check_capture(capture, axis, options=opt), opt, b)
+    offset = _combined(first, second)
+    if offset.offset_mm != first.offset_mm:
+        capture, start = loop_frame(original, axis, offset_mm=offset.offset_mm, delay_samples=delay_s / T)
+    if capture is not original:
         xr, x, T = check_capture(capture, axis, options=opt)
     stats = SufficientStatistics(8)
     for phi, y in iter_regressor(xr, x, T, options=opt):
@@ -113,10 +123,23 @@ def fit_reduced_model(
         "samples": int(x.size),
         "regressor": dataclasses.asdict(opt),
         "delay": delay_fit,
+        "offset": offset.to_dict(),
     }
+    if start:
+        fit["record_start"] = {"dropped_samples": start, "dropped_s": start * T}
     if widened is not None:
         fit["bounds_widened"] = widened
-    params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit)
+    params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit,
+                                        offset=offset.applied)
+    if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
+        i = original.axis_index(axis)
+        recorded = (original.reference[:, i], original.measured[:, i] - fit["offset"]["offset_mm"])
+        refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=offset.applied)
+        if refined is not None:
+            params, poles, err, d, c = refined
+            fit["delay"].update(equation_error_s=delay_s, delay_s=d * T, samples=d, refined="output-error")
+            fit["offset"]["offset_mm"] += c
+            delay_s = d * T
     fit.update(error_metrics(err))
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
@@ -133,19 +156,61 @@ def fit_reduced_model(
 
 
 def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, *, method: str, refine: str,
-            fit: dict) -> tuple[dict, dict, str, np.ndarray]:
+            fit: dict, offset: bool = False) -> tuple[dict, dict, str, np.ndarray]:
     """``(parameters, poles, method label, prediction error [mm])`` after the output-error
-    refinement (kept only when it predicts no worse; recorded in ``fit["output_error"]``)."""
+    refinement (kept only when it predicts no worse; recorded in ``fit["output_error"]``).
+    With ``offset`` (a datum offset was removed) the refinement also fits what remains of it,
+    added to ``fit["offset"]["offset_mm"]``."""
     params, poles = dict(sol.parameters), dict(sol.poles)
     err = x - simulate(params, xr, T)
     if refine != "output-error":
         return params, poles, method, err
-    oe = refine_output_error(params, poles, xr, x, T, bounds=b)
-    oe_err = x - simulate(oe["parameters"], xr, T)
+    oe = refine_output_error(params, poles, xr, x, T, bounds=b, offset=offset)
+    oe_err = x - oe["offset_mm"] - simulate(oe["parameters"], xr, T)
     if not np.sqrt(np.mean(oe_err * oe_err)) <= np.sqrt(np.mean(err * err)):  # pragma: no cover - descent only
         return params, poles, method, err
     fit["output_error"] = {"nfev": oe["nfev"], "message": oe["message"], "cost_mm2": oe["cost"]}
+    if offset:
+        fit["offset"]["offset_mm"] += oe["offset_mm"]
+    elif abs(np.mean(oe_err)) > 0.25 * np.sqrt(np.mean(oe_err * oe_err)):  # a small offset the fit bends to
+        oe2 = refine_output_error(oe["parameters"], oe["poles"], xr, x, T, bounds=b, offset=True)
+        err2 = x - oe2["offset_mm"] - simulate(oe2["parameters"], xr, T)
+        rms1, rms2 = (float(np.sqrt(np.mean(e * e))) for e in (oe_err, err2))
+        if rms2 * MIN_GAIN <= rms1:
+            fit["offset"].update(offset_mm=oe2["offset_mm"], applied=True, rms_without_um=rms1 * 1e3,
+                                 rms_with_um=rms2 * 1e3)
+            fit["output_error"].update(nfev=oe["nfev"] + oe2["nfev"], cost_mm2=oe2["cost"])
+            return oe2["parameters"], oe2["poles"], f"{method}+oe", err2
     return oe["parameters"], oe["poles"], f"{method}+oe", oe_err
+
+
+def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, samples: float,
+                  *, offset: bool):
+    """The estimated dead time refined with the model by output error, on the recorded reference.
+
+    The estimate of :func:`identification.dead_time.estimate_delay` is the equation error's, which
+    trades a loop's own lag for a shift (fadal-ppi: 13.7 samples) and is biased by the noise of
+    the differentiated measurement at fast sampling (0.125 ms: 54 samples); the simulated position
+    is not. The shift is searched within 25 % (at least 5 samples) of the estimate, jointly with the
+    model; returns ``(parameters, poles, error [mm], samples, offset [mm])``, or None when it
+    predicts no better on the same samples.
+    """
+    w = max(5.0, 0.25 * abs(samples))
+    d_lo, d_hi = samples - w, samples + w
+    n = x.size
+    lo, hi = int(math.ceil(max(d_hi, 0.0))), n - int(math.ceil(max(-d_lo, 0.0)))
+    lo += settled_start(delay_reference(xr, samples)[lo:hi], x[lo:hi])  # simulated from rest
+    keep = slice(lo, hi)
+    if keep.stop - keep.start < n // 2:
+        return None
+    before = x[keep] - simulate(params, delay_reference(xr, samples)[keep], T)
+    oe = refine_output_error(params, poles, xr, x, T, bounds=b, offset=offset, delay=(samples, d_lo, d_hi), keep=keep)
+    d = oe["delay_samples"]
+    err = x[keep] - oe["offset_mm"] - simulate(oe["parameters"], delay_reference(xr, d)[keep], T)
+    if not np.sqrt(np.mean(err * err)) < np.sqrt(np.mean((before - np.median(before) * offset) ** 2)):
+        return None
+    log.info("reference dead time refined by output error: %.4g -> %.4g samples", samples, d)
+    return oe["parameters"], oe["poles"], err, d, oe["offset_mm"]
 
 
 def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, xr: np.ndarray, x: np.ndarray,
@@ -207,14 +272,39 @@ def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt:
     return d, {"estimated": False, "delay_s": d}
 
 
+def _datum_offset(xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds) -> OffsetEstimate:
+    """The datum offset (:mod:`identification.datum_offset`), removed before the fit when it is a
+    large one (over :data:`identification.datum_offset.COARSE_SHARE` of the RMS tracking error:
+    the regression's own bias is a few um, fadal-pid 2.0, fadal-ppi 1.5) and removing it lets the
+    exact-solver model predict at least :data:`identification.datum_offset.MIN_GAIN` times better.
+    Smaller offsets are left to the output-error refinement (:func:`_refine`)."""
+    c = estimate_offset(xr, x, T, options=opt)
+    if not (math.isfinite(c) and abs(c) > COARSE_SHARE * float(np.sqrt(np.mean((x - xr) ** 2)))):
+        return OffsetEstimate(0.0, c if math.isfinite(c) else 0.0, False)
+    rms0, rms1 = (_prediction_rms(xr, x - d, T, 0.0, opt, b, margin=0) for d in (0.0, c))
+    applied = rms1 * MIN_GAIN <= rms0
+    return OffsetEstimate(c if applied else 0.0, c, applied, rms0 * 1e3, rms1 * 1e3)
+
+
+def _combined(first: OffsetEstimate, second: OffsetEstimate) -> OffsetEstimate:
+    """The offset removed in two passes (before and after the dead time) as one record."""
+    if not second.applied:
+        return first if first.applied else second
+    total = first.offset_mm + second.offset_mm
+    return OffsetEstimate(total, first.offset_mm + second.estimated_mm, True,
+                          first.rms_without_um if first.applied else second.rms_without_um, second.rms_with_um)
+
+
 def _prediction_rms(xr: np.ndarray, x: np.ndarray, T: float, samples: float, opt: RegressorOptions, b: PoleBounds,
                     *, margin: int) -> float:
     """RMS [mm] of the exact-solver model fitted on the reference delayed by ``samples``, on x[margin:-margin]."""
-    keep = slice(margin, x.size - margin)
-    ref = delay_reference(xr, samples)[keep]
+    ref = delay_reference(xr, samples)[margin:x.size - margin]
+    meas = x[margin:x.size - margin]
+    start = settled_start(ref, meas)  # simulated from rest: start where the axis rests
+    ref, meas = ref[start:], meas[start:]
     st = SufficientStatistics(8)
-    for phi, y in iter_regressor(ref, x[keep], T, options=opt):
+    for phi, y in iter_regressor(ref, meas, T, options=opt):
         st.update(phi, y)
     sol = solve_statistics(st, bounds=b, method="exact")
-    err = x[keep] - simulate(sol.parameters, ref, T)
+    err = meas - simulate(sol.parameters, ref, T)
     return float(np.sqrt(np.mean(err * err)))
