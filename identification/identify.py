@@ -27,7 +27,7 @@ from identification.capture_checks import check_capture
 from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
 from identification.dead_time import delay_reference, estimate_delay
 from identification.ga import GAOptions
-from identification.loop_frame import loop_frame
+from identification.loop_frame import loop_frame, starts_at_rest
 from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
@@ -198,8 +198,12 @@ def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: f
     w = max(5.0, 0.25 * abs(samples))
     d_lo, d_hi = samples - w, samples + w
     n = x.size
-    lo, hi = int(math.ceil(max(d_hi, 0.0))), n - int(math.ceil(max(-d_lo, 0.0)))
-    lo += settled_start(delay_reference(xr, samples)[lo:hi], x[lo:hi])  # simulated from rest
+    hi = n - int(math.ceil(max(-d_lo, 0.0)))
+    delayed = delay_reference(xr, samples)
+    lo = 0  # simulated from rest (identification.loop_frame)
+    if not starts_at_rest(xr[:hi], delayed[:hi], x[:hi]):
+        lo = int(math.ceil(max(d_hi, 0.0)))
+        lo += settled_start(delayed[lo:hi], x[lo:hi]) or 0
     keep = slice(lo, hi)
     if keep.stop - keep.start < n // 2:
         return None
@@ -300,7 +304,7 @@ def _prediction_rms(xr: np.ndarray, x: np.ndarray, T: float, samples: float, opt
     """RMS [mm] of the exact-solver model fitted on the reference delayed by ``samples``, on x[margin:-margin]."""
     ref = delay_reference(xr, samples)[margin:x.size - margin]
     meas = x[margin:x.size - margin]
-    start = settled_start(ref, meas)  # simulated from rest: start where the axis rests
+    start = settled_start(ref, meas) or 0  # simulated from rest: start where the axis rests
     ref, meas = ref[start:], meas[start:]
     st = SufficientStatistics(8)
     for phi, y in iter_regressor(ref, meas, T, options=opt):

@@ -7,7 +7,8 @@ each found by its own module and recorded in the model's ``fit``:
 1. a constant datum offset between the two channels (:mod:`identification.datum_offset`,
    ``fit.offset``): removed from the measured position;
 2. the reference dead time (:mod:`identification.dead_time`, ``delay_s``): the reference
-   delayed, the samples the shift leaves unknown dropped;
+   delayed; the samples the shift leaves unknown are dropped, unless the record starts with the
+   axis at rest (then the loop's reference before the record is the first value, held);
 3. a record that starts with the axis moving (:func:`identification.segments.settled_start`,
    ``fit.record_start``): the samples before the axis first rests dropped, so that the model's
    simulation from rest starts where the axis is at rest.
@@ -22,11 +23,16 @@ import dataclasses
 
 import numpy as np
 
-from identification.dead_time import loop_capture
+from identification.dead_time import delay_reference, loop_capture
 from identification.segments import settled_start
 from vcnc.core.capture import Capture
 
-__all__ = ["without_offset", "loop_frame", "offset_of"]
+__all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest", "START_SHARE"]
+
+#: Largest first step of the recorded reference, as a share of its largest step, for a record
+#: that starts at rest [-]: a trapezoidal move that starts with the record has made a step or
+#: two of ``a T^2`` (1.5 % of the largest on the synthetic random moves at 1 ms).
+START_SHARE = 0.05
 
 
 def without_offset(capture: Capture, axis: str, offset_mm: float) -> Capture:
@@ -37,6 +43,20 @@ def without_offset(capture: Capture, axis: str, offset_mm: float) -> Capture:
     measured = np.array(capture.measured, dtype=float)
     measured[:, i] -= offset_mm
     return dataclasses.replace(capture, measured=measured)
+
+
+def starts_at_rest(recorded: np.ndarray, delayed: np.ndarray, measured: np.ndarray) -> bool:
+    """Whether the loop's reference before a record may be taken as its first value held.
+
+    True when the axis rests at the first sample (:func:`identification.segments.settled_start`
+    of the delayed reference and the measured position is 0) and the recorded reference does not
+    move there either: a reference that leads by ``delay_s`` and already moves at the first sample
+    moved before the record, and the loop received that motion within the first ``delay_s``.
+    """
+    steps = np.abs(np.diff(np.asarray(recorded, float)))
+    if steps.size == 0 or not steps.max() > 0:
+        return False
+    return bool(steps[0] <= START_SHARE * steps.max() and settled_start(delayed, measured) == 0)
 
 
 def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_samples: float = 0.0
@@ -53,9 +73,17 @@ def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_sam
     delay_samples : float
         Reference dead time [samples] (> 0: the recorded reference leads).
     """
-    shifted = loop_capture(without_offset(capture, axis, offset_mm), axis, delay_samples)
-    i = shifted.axis_index(axis)
-    start = settled_start(shifted.reference[:, i], shifted.measured[:, i])
+    base = without_offset(capture, axis, offset_mm)
+    i = base.axis_index(axis)
+    if delay_samples > 0:
+        # a record that starts at rest: the loop's reference before the first recorded sample is
+        # the first value held (delay_reference), so nothing needs cutting
+        whole = dataclasses.replace(base, reference=base.reference.copy())
+        whole.reference[:, i] = delay_reference(base.reference[:, i], delay_samples)
+        if starts_at_rest(base.reference[:, i], whole.reference[:, i], whole.measured[:, i]):
+            return whole, 0
+    shifted = loop_capture(base, axis, delay_samples)
+    start = settled_start(shifted.reference[:, i], shifted.measured[:, i]) or 0
     if start == 0:
         return shifted, 0
     return shifted.slice(start, len(shifted)), start

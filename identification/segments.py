@@ -85,7 +85,7 @@ SETTLED_SHARE = 0.01
 MAX_DROPPED_SHARE = 0.5
 
 
-def settled_start(reference: np.ndarray, measured: np.ndarray) -> int:
+def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     """The first sample at which the axis is at rest, so that a simulation may start there.
 
     The reduced model is simulated from rest at its first reference sample (the simulation
@@ -102,23 +102,23 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int:
 
     Returns
     -------
-    int
+    int or None
         0 when the record starts at rest (the usual case; nothing is cut), else the first sample
         where the reference and the axis both stand still (steps below :data:`SETTLED_SHARE` of
         the largest reference step) and the tracking error is at its value at rest (within 10
         robust deviations of the still samples, or :data:`SETTLED_SHARE` of its largest
-        excursion). 0 too when the axis does not rest in the first :data:`MAX_DROPPED_SHARE` of
+        excursion). None when the axis does not rest in the first :data:`MAX_DROPPED_SHARE` of
         the record: then the start transient stays.
     """
     xr = np.asarray(reference, float)
     x = np.asarray(measured, float)
     if xr.size < 2:
-        return 0
+        return None
     dxr = np.abs(np.diff(xr))
     dx = np.abs(np.diff(x))
     big = float(dxr.max())
     if big == 0.0:
-        return 0
+        return None
     e = (x - xr)[:-1]
     still_ref = dxr <= _STILL_SHARE * big
     rest = e[still_ref] if still_ref.any() else e
@@ -127,7 +127,7 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int:
     tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
     ok = (dxr <= SETTLED_SHARE * big) & (dx <= SETTLED_SHARE * big) & (np.abs(e - med) <= tol)
     hits = np.flatnonzero(ok)
-    return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else 0
+    return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else None
 
 
 def motion_segments(mask: np.ndarray) -> list[tuple[int, int]]:
