@@ -134,7 +134,8 @@ def fit_reduced_model(
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
         i = original.axis_index(axis)
         recorded = (original.reference[:, i], original.measured[:, i] - fit["offset"]["offset_mm"])
-        refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=offset.applied)
+        refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=offset.applied,
+                                rms_now=float(np.sqrt(np.mean(err * err))))
         if refined is not None:
             params, poles, err, d, c = refined
             fit["delay"].update(equation_error_s=delay_s, delay_s=d * T, samples=d, refined="output-error")
@@ -185,7 +186,7 @@ def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBo
 
 
 def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, samples: float,
-                  *, offset: bool):
+                  *, offset: bool, rms_now: float):
     """The estimated dead time refined with the model by output error, on the recorded reference.
 
     The estimate of :func:`identification.dead_time.estimate_delay` is the equation error's, which
@@ -193,7 +194,8 @@ def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: f
     the differentiated measurement at fast sampling (0.125 ms: 54 samples); the simulated position
     is not. The shift is searched within 25 % (at least 5 samples) of the estimate, jointly with the
     model; returns ``(parameters, poles, error [mm], samples, offset [mm])``, or None when it
-    predicts no better on the same samples.
+    predicts no better on the same samples, or worse than the model it starts from did in the
+    loop's frame (``rms_now`` [mm]).
     """
     w = max(5.0, 0.25 * abs(samples))
     d_lo, d_hi = samples - w, samples + w
@@ -211,7 +213,8 @@ def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: f
     oe = refine_output_error(params, poles, xr, x, T, bounds=b, offset=offset, delay=(samples, d_lo, d_hi), keep=keep)
     d = oe["delay_samples"]
     err = x[keep] - oe["offset_mm"] - simulate(oe["parameters"], delay_reference(xr, d)[keep], T)
-    if not np.sqrt(np.mean(err * err)) < np.sqrt(np.mean((before - np.median(before) * offset) ** 2)):
+    rms = float(np.sqrt(np.mean(err * err)))
+    if not (rms < np.sqrt(np.mean((before - np.median(before) * offset) ** 2)) and rms <= rms_now):
         return None
     log.info("reference dead time refined by output error: %.4g -> %.4g samples", samples, d)
     return oe["parameters"], oe["poles"], err, d, oe["offset_mm"]
