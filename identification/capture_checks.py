@@ -61,11 +61,11 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     span = float(np.ptp(xr))
     if span == 0.0 and float(np.ptp(x)) == 0.0:
         raise IdentificationError(
-            f"no motion on axis {axis!r}: reference and measurement stay at {xr[0]!r} mm", file=src
+            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} mm", file=src
         )
     if span == 0.0:
         raise IdentificationError(
-            f"no commanded motion on axis {axis!r}: the reference stays at {xr[0]!r} mm", file=src
+            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} mm", file=src
         )
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:
