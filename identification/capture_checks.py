@@ -37,7 +37,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
         Unknown axis, NaN/inf, time not increasing or not uniform.
     IdentificationError
         Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
-        measurement identical to the reference, positions that look like metres.
+        measurement identical to the reference, positions that look like metres, a measured
+        channel in another unit or with a flipped sign (:func:`check_channels`).
     """
     src = capture.source
     i = capture.axis_index(axis)

@@ -1,10 +1,15 @@
 """The fit: a capture in, a :class:`ReducedAxisModel` out (no diagnosis).
 
-Steps: check the capture axis (:func:`identification.capture_checks.check_capture`), estimate the
-reference dead time (:mod:`identification.dead_time`), stream the regression of Eq. (3.11) into
+Steps: check the capture axis (:func:`identification.capture_checks.check_capture`: the measured
+channel must follow the commanded one in unit and sign), remove a large datum offset
+(:mod:`identification.datum_offset`), estimate the reference dead time
+(:mod:`identification.dead_time`), take the capture into the loop's frame
+(:mod:`identification.loop_frame`: offset off, reference delayed, a start in motion dropped), stream
+the regression of Eq. (3.11) into
 sufficient statistics, solve the constrained problem (:func:`identification.solve`), widen the
 pole box when the data put p on its bound, refine by output error
-(:mod:`identification.output_error`), and measure the fit by simulating the model on the
+(:mod:`identification.output_error`; with a small datum offset when that halves the error, and
+with the estimated dead time, refined jointly), and measure the fit by simulating the model on the
 capture's reference. :func:`identification.identify` (:mod:`identification.pipeline`) runs this
 fit and then the residual diagnosis.
 
@@ -99,14 +104,7 @@ def fit_reduced_model(
     original = capture
     xr, x, T = check_capture(capture, axis, options=opt)
     b = as_bounds(bounds, T)
-    first = _datum_offset(xr, x, T, opt, b)  # before the dead time: an offset hides it
-    delay_s, delay_fit = _dead_time(delay, xr, x - first.offset_mm, T, opt, b)
-    capture, start = loop_frame(capture, axis, offset_mm=first.offset_mm, delay_samples=delay_s / T)
-    # again in the loop's frame: a small offset is judged only once the dead time is undone
-    second = _datum_offset(*check_capture(capture, axis, options=opt), opt, b)
-    offset = _combined(first, second)
-    if offset.offset_mm != first.offset_mm:
-        capture, start = loop_frame(original, axis, offset_mm=offset.offset_mm, delay_samples=delay_s / T)
+    capture, start, offset, delay_s, delay_fit = _in_loop_frame(capture, axis, delay, xr, x, T, opt, b)
     if capture is not original:
         xr, x, T = check_capture(capture, axis, options=opt)
     stats = SufficientStatistics(8)
@@ -132,15 +130,7 @@ def fit_reduced_model(
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit,
                                         offset=offset.applied)
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
-        i = original.axis_index(axis)
-        recorded = (original.reference[:, i], original.measured[:, i] - fit["offset"]["offset_mm"])
-        refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=offset.applied,
-                                rms_now=float(np.sqrt(np.mean(err * err))))
-        if refined is not None:
-            params, poles, err, d, c = refined
-            fit["delay"].update(equation_error_s=delay_s, delay_s=d * T, samples=d, refined="output-error")
-            fit["offset"]["offset_mm"] += c
-            delay_s = d * T
+        params, poles, err, delay_s = _with_refined_delay(original, axis, params, poles, err, T, b, delay_s, fit)
     fit.update(error_metrics(err))
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
@@ -154,6 +144,21 @@ def fit_reduced_model(
         fit=fit,
         delay_s=delay_s,
     )
+
+
+def _in_loop_frame(capture: Capture, axis: str, delay: str | float, xr: np.ndarray, x: np.ndarray, T: float,
+                   opt: RegressorOptions, b: PoleBounds):
+    """``(capture in the loop's frame, samples dropped at its start, OffsetEstimate, delay_s [s],
+    fit["delay"] record)``: a large datum offset is removed before the dead time is estimated (an
+    offset hides it), and judged again in the loop's frame, where a smaller one shows."""
+    first = _datum_offset(xr, x, T, opt, b)
+    delay_s, delay_fit = _dead_time(delay, xr, x - first.offset_mm, T, opt, b)
+    framed, start = loop_frame(capture, axis, offset_mm=first.offset_mm, delay_samples=delay_s / T)
+    second = _datum_offset(*check_capture(framed, axis, options=opt), opt, b)
+    offset = _combined(first, second)
+    if offset.offset_mm != first.offset_mm:
+        framed, start = loop_frame(capture, axis, offset_mm=offset.offset_mm, delay_samples=delay_s / T)
+    return framed, start, offset, delay_s, delay_fit
 
 
 def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, *, method: str, refine: str,
@@ -183,6 +188,22 @@ def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBo
             fit["output_error"].update(nfev=oe["nfev"] + oe2["nfev"], cost_mm2=oe2["cost"])
             return oe2["parameters"], oe2["poles"], f"{method}+oe", err2
     return oe["parameters"], oe["poles"], f"{method}+oe", oe_err
+
+
+def _with_refined_delay(capture: Capture, axis: str, params: dict, poles: dict, err: np.ndarray, T: float,
+                        b: PoleBounds, delay_s: float, fit: dict):
+    """``(parameters, poles, error [mm], delay_s [s])`` after :func:`_refine_delay` on the recorded
+    capture (the datum offset of ``fit`` removed), ``fit`` updated; unchanged when not kept."""
+    i = capture.axis_index(axis)
+    recorded = (capture.reference[:, i], capture.measured[:, i] - fit["offset"]["offset_mm"])
+    refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=bool(fit["offset"]["applied"]),
+                            rms_now=float(np.sqrt(np.mean(err * err))))
+    if refined is None:
+        return params, poles, err, delay_s
+    params, poles, err, d, c = refined
+    fit["delay"].update(equation_error_s=delay_s, delay_s=d * T, samples=d, refined="output-error")
+    fit["offset"]["offset_mm"] += c
+    return params, poles, err, d * T
 
 
 def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, samples: float,
