@@ -114,3 +114,19 @@ def test_channels_in_different_units_are_named(capture, factor, hint):
     cap = _one_axis(capture.reference[:, 0], capture.measured[:, 0] * factor, capture.sample_time)
     with pytest.raises(IdentificationError, match=f"ratio .*{hint}.*same unit"):
         identify(cap, axis="x", diagnose=False)
+
+
+@pytest.mark.slow
+def test_a_fast_trace_is_scanned_at_about_1_ms():
+    """A reference leading by 0.1 s at 0.125 ms (8 kHz servo traces): the equation error's scan at
+    the full rate put the shift at 854.5 samples for 800 and the poles 41x off (omega_n 1382 Hz,
+    8.85 um RMS, before this fix); scanned on the record decimated to 1 ms, then refined."""
+    T = 0.000125
+    ref = random_moves_reference(moves=100, sample_time=T, seed=3)
+    cap = synthetic_capture(FADAL_PID_X, ref, sample_time=T, noise=0.5e-3, seed=2)
+    cap = _one_axis(delay_reference(cap.reference[:, 0], -0.1 / T), cap.measured[:, 0], T)
+    model = identify(cap, axis="x", diagnose=False)
+    assert abs(model.delay_s - 0.1) <= 0.002  # 1.3 ms: what remains of the decimated scan's bias
+    exact = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
+    assert _pole_error(model.poles, exact) < 0.1
+    assert model.fit["rms_um"] <= 1.5 * 0.5
