@@ -1,10 +1,15 @@
 """The fit: a capture in, a :class:`ReducedAxisModel` out (no diagnosis).
 
-Steps: check the capture axis (:func:`identification.capture_checks.check_capture`), estimate the
-reference dead time (:mod:`identification.dead_time`), stream the regression of Eq. (3.11) into
+Steps: check the capture axis (:func:`identification.capture_checks.check_capture`: the measured
+channel must follow the commanded one in unit and sign), remove a large datum offset
+(:mod:`identification.datum_offset`), estimate the reference dead time
+(:mod:`identification.dead_time`), take the capture into the loop's frame
+(:mod:`identification.loop_frame`: offset off, reference delayed, a start in motion dropped), stream
+the regression of Eq. (3.11) into
 sufficient statistics, solve the constrained problem (:func:`identification.solve`), widen the
 pole box when the data put p on its bound, refine by output error
-(:mod:`identification.output_error`), and measure the fit by simulating the model on the
+(:mod:`identification.output_error`; with a small datum offset when that halves the error, and
+with the estimated dead time, refined jointly), and measure the fit by simulating the model on the
 capture's reference. :func:`identification.identify` (:mod:`identification.pipeline`) runs this
 fit and then the residual diagnosis.
 
@@ -24,11 +29,14 @@ import numpy as np
 
 from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
 from identification.capture_checks import check_capture
-from identification.dead_time import delay_reference, estimate_delay, loop_capture
+from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
+from identification.dead_time import delay_reference, estimate_delay
 from identification.ga import GAOptions
+from identification.loop_frame import loop_frame, starts_at_rest, without_offset
 from identification.output_error import refine_output_error
 from identification.reduced_model import ReducedAxisModel, simulate
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
+from identification.segments import settled_start
 from identification.solve import METHODS, SolveResult, solve_statistics
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
@@ -93,11 +101,11 @@ def fit_reduced_model(
     if refine not in REFINEMENTS:
         raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
     opt = regressor_options or RegressorOptions()
+    original = capture
     xr, x, T = check_capture(capture, axis, options=opt)
     b = as_bounds(bounds, T)
-    delay_s, delay_fit = _dead_time(delay, xr, x, T, opt, b)
-    if delay_s:
-        capture = loop_capture(capture, axis, delay_s / T)
+    capture, start, offset, delay_s, delay_fit = _in_loop_frame(capture, axis, delay, xr, x, T, opt, b)
+    if capture is not original:
         xr, x, T = check_capture(capture, axis, options=opt)
     stats = SufficientStatistics(8)
     for phi, y in iter_regressor(xr, x, T, options=opt):
@@ -105,7 +113,7 @@ def fit_reduced_model(
     sol: SolveResult = solve_statistics(stats, bounds=b, method=method, seed=seed, ga_options=ga_options,
                                         identifiability=True)
     widened = None
-    if bounds is None:
+    if bounds is None and not offset.applied:  # after a removed offset, what is left of it puts p on the bound
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
     fit = {
         "equation_error": {**error_metrics(x - simulate(sol.parameters, xr, T)), "objective_mm2": sol.objective},
@@ -113,13 +121,32 @@ def fit_reduced_model(
         "samples": int(x.size),
         "regressor": dataclasses.asdict(opt),
         "delay": delay_fit,
+        "offset": offset.to_dict(),
     }
+    if start:
+        fit["record_start"] = {"dropped_samples": start, "dropped_s": start * T}
     if widened is not None:
         fit["bounds_widened"] = widened
-    params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit)
+    params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit,
+                                        offset=offset.applied)
+    if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
+        params, poles, err, delay_s = _with_refined_delay(original, axis, params, poles, err, T, b, delay_s, fit)
     fit.update(error_metrics(err))
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
+    moved = fit["offset"]["offset_mm"] - offset.offset_mm
+    if fit["offset"]["applied"] and abs(moved) > 1e-4 * fit["rms_um"] and "offset_refit" not in original.meta:
+        # the output error's offset is exact where the regression's was a few um off: fit again
+        # without it, so that the slow pole is not left where the residual offset had put it
+        again = dataclasses.replace(without_offset(original, axis, fit["offset"]["offset_mm"]),
+                                    meta={**original.meta, "offset_refit": True})
+        model = fit_reduced_model(again, axis=axis, method=method, bounds=bounds, refine=refine,
+                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
+        rec = model.fit["offset"]
+        rec.update(offset_mm=rec["offset_mm"] + fit["offset"]["offset_mm"], applied=True,
+                   estimated_mm=fit["offset"]["estimated_mm"], rms_without_um=fit["offset"]["rms_without_um"],
+                   rms_with_um=model.fit["rms_um"])
+        return model
     return ReducedAxisModel(
         parameters=params,
         sample_time=T,
@@ -132,20 +159,99 @@ def fit_reduced_model(
     )
 
 
+def _in_loop_frame(capture: Capture, axis: str, delay: str | float, xr: np.ndarray, x: np.ndarray, T: float,
+                   opt: RegressorOptions, b: PoleBounds):
+    """``(capture in the loop's frame, samples dropped at its start, OffsetEstimate, delay_s [s],
+    fit["delay"] record)``: a large datum offset is removed before the dead time is estimated (an
+    offset hides it), and judged again in the loop's frame, where a smaller one shows."""
+    first = _datum_offset(xr, x, T, opt, b)
+    delay_s, delay_fit = _dead_time(delay, xr, x - first.offset_mm, T, opt, b, free_offset=first.applied)
+    framed, start = loop_frame(capture, axis, offset_mm=first.offset_mm, delay_samples=delay_s / T)
+    second = _datum_offset(*check_capture(framed, axis, options=opt), opt, b)
+    offset = _combined(first, second)
+    if offset.offset_mm != first.offset_mm:
+        framed, start = loop_frame(capture, axis, offset_mm=offset.offset_mm, delay_samples=delay_s / T)
+    return framed, start, offset, delay_s, delay_fit
+
+
 def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, *, method: str, refine: str,
-            fit: dict) -> tuple[dict, dict, str, np.ndarray]:
+            fit: dict, offset: bool = False) -> tuple[dict, dict, str, np.ndarray]:
     """``(parameters, poles, method label, prediction error [mm])`` after the output-error
-    refinement (kept only when it predicts no worse; recorded in ``fit["output_error"]``)."""
+    refinement (kept only when it predicts no worse; recorded in ``fit["output_error"]``).
+    With ``offset`` (a datum offset was removed) the refinement also fits what remains of it,
+    added to ``fit["offset"]["offset_mm"]``."""
     params, poles = dict(sol.parameters), dict(sol.poles)
     err = x - simulate(params, xr, T)
     if refine != "output-error":
         return params, poles, method, err
-    oe = refine_output_error(params, poles, xr, x, T, bounds=b)
-    oe_err = x - simulate(oe["parameters"], xr, T)
+    oe = refine_output_error(params, poles, xr, x, T, bounds=b, offset=offset)
+    oe_err = x - oe["offset_mm"] - simulate(oe["parameters"], xr, T)
     if not np.sqrt(np.mean(oe_err * oe_err)) <= np.sqrt(np.mean(err * err)):  # pragma: no cover - descent only
         return params, poles, method, err
     fit["output_error"] = {"nfev": oe["nfev"], "message": oe["message"], "cost_mm2": oe["cost"]}
+    if offset:
+        fit["offset"]["offset_mm"] += oe["offset_mm"]
+    elif abs(np.mean(oe_err)) > 0.25 * np.sqrt(np.mean(oe_err * oe_err)):  # a small offset the fit bends to
+        oe2 = refine_output_error(oe["parameters"], oe["poles"], xr, x, T, bounds=b, offset=True)
+        err2 = x - oe2["offset_mm"] - simulate(oe2["parameters"], xr, T)
+        rms1, rms2 = (float(np.sqrt(np.mean(e * e))) for e in (oe_err, err2))
+        if rms2 * MIN_GAIN <= rms1:
+            fit["offset"].update(offset_mm=oe2["offset_mm"], applied=True, rms_without_um=rms1 * 1e3,
+                                 rms_with_um=rms2 * 1e3)
+            fit["output_error"].update(nfev=oe["nfev"] + oe2["nfev"], cost_mm2=oe2["cost"])
+            return oe2["parameters"], oe2["poles"], f"{method}+oe", err2
     return oe["parameters"], oe["poles"], f"{method}+oe", oe_err
+
+
+def _with_refined_delay(capture: Capture, axis: str, params: dict, poles: dict, err: np.ndarray, T: float,
+                        b: PoleBounds, delay_s: float, fit: dict):
+    """``(parameters, poles, error [mm], delay_s [s])`` after :func:`_refine_delay` on the recorded
+    capture (the datum offset of ``fit`` removed), ``fit`` updated; unchanged when not kept."""
+    i = capture.axis_index(axis)
+    recorded = (capture.reference[:, i], capture.measured[:, i] - fit["offset"]["offset_mm"])
+    refined = _refine_delay(params, poles, *recorded, T, b, delay_s / T, offset=bool(fit["offset"]["applied"]),
+                            rms_now=float(np.sqrt(np.mean(err * err))))
+    if refined is None:
+        return params, poles, err, delay_s
+    params, poles, err, d, c = refined
+    fit["delay"].update(equation_error_s=delay_s, delay_s=d * T, samples=d, refined="output-error")
+    fit["offset"]["offset_mm"] += c
+    return params, poles, err, d * T
+
+
+def _refine_delay(params: dict, poles: dict, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, samples: float,
+                  *, offset: bool, rms_now: float):
+    """The estimated dead time refined with the model by output error, on the recorded reference.
+
+    The estimate of :func:`identification.dead_time.estimate_delay` is the equation error's, which
+    trades a loop's own lag for a shift (fadal-ppi: 13.7 samples) and is biased by the noise of
+    the differentiated measurement at fast sampling (0.125 ms: 54 samples); the simulated position
+    is not. The shift is searched within 25 % (at least 5 samples) of the estimate, jointly with the
+    model; returns ``(parameters, poles, error [mm], samples, offset [mm])``, or None when it
+    predicts no better on the same samples, or worse than the model it starts from did in the
+    loop's frame (``rms_now`` [mm]).
+    """
+    w = max(5.0, 0.25 * abs(samples))
+    d_lo, d_hi = samples - w, samples + w
+    n = x.size
+    hi = n - int(math.ceil(max(-d_lo, 0.0)))
+    delayed = delay_reference(xr, samples)
+    lo = 0  # simulated from rest (identification.loop_frame)
+    if not starts_at_rest(xr[:hi], delayed[:hi], x[:hi]):
+        lo = int(math.ceil(max(d_hi, 0.0)))
+        lo += settled_start(delayed[lo:hi], x[lo:hi]) or 0
+    keep = slice(lo, hi)
+    if keep.stop - keep.start < n // 2:
+        return None
+    before = x[keep] - simulate(params, delay_reference(xr, samples)[keep], T)
+    oe = refine_output_error(params, poles, xr, x, T, bounds=b, offset=offset, delay=(samples, d_lo, d_hi), keep=keep)
+    d = oe["delay_samples"]
+    err = x[keep] - oe["offset_mm"] - simulate(oe["parameters"], delay_reference(xr, d)[keep], T)
+    rms = float(np.sqrt(np.mean(err * err)))
+    if not (rms < np.sqrt(np.mean((before - np.median(before) * offset) ** 2)) and rms <= rms_now):
+        return None
+    log.info("reference dead time refined by output error: %.4g -> %.4g samples", samples, d)
+    return oe["parameters"], oe["poles"], err, d, oe["offset_mm"]
 
 
 def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, xr: np.ndarray, x: np.ndarray,
@@ -177,7 +283,8 @@ def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, x
                         "rms_after_um": rms[1] * 1e3}
 
 
-def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds):
+def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds,
+               *, free_offset: bool = False):
     """``(delay_s, record)``: the estimated or given dead time [s] and what to report of it.
 
     An estimated shift is kept only when the constrained model fitted on the shifted reference
@@ -191,7 +298,8 @@ def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt:
         est = estimate_delay(xr, x, T, options=opt)
         record = {"estimated": True, **est.to_dict()}
         if est.delay_s:
-            rms0, rms1 = (_prediction_rms(xr, x, T, d, opt, b, margin=int(math.ceil(abs(est.samples))))
+            rms0, rms1 = (_prediction_rms(xr, x, T, d, opt, b, margin=int(math.ceil(abs(est.samples))),
+                                          free_offset=free_offset)
                           for d in (0.0, est.samples))
             record.update(rms_without_um=rms0 * 1e3, rms_with_um=rms1 * 1e3)
             if not rms1 <= 0.5 * rms0:
@@ -207,14 +315,42 @@ def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt:
     return d, {"estimated": False, "delay_s": d}
 
 
+def _datum_offset(xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds) -> OffsetEstimate:
+    """The datum offset (:mod:`identification.datum_offset`), removed before the fit when it is a
+    large one (over :data:`identification.datum_offset.COARSE_SHARE` of the RMS tracking error:
+    the regression's own bias is a few um, fadal-pid 2.0, fadal-ppi 1.5) and removing it lets the
+    exact-solver model predict at least :data:`identification.datum_offset.MIN_GAIN` times better.
+    Smaller offsets are left to the output-error refinement (:func:`_refine`)."""
+    c = estimate_offset(xr, x, T, options=opt)
+    if not (math.isfinite(c) and abs(c) > COARSE_SHARE * float(np.sqrt(np.mean((x - xr) ** 2)))):
+        return OffsetEstimate(0.0, c if math.isfinite(c) else 0.0, False)
+    rms0, rms1 = (_prediction_rms(xr, x - d, T, 0.0, opt, b, margin=0) for d in (0.0, c))
+    applied = rms1 * MIN_GAIN <= rms0
+    return OffsetEstimate(c if applied else 0.0, c, applied, rms0 * 1e3, rms1 * 1e3)
+
+
+def _combined(first: OffsetEstimate, second: OffsetEstimate) -> OffsetEstimate:
+    """The offset removed in two passes (before and after the dead time) as one record."""
+    if not second.applied:
+        return first if first.applied else second
+    total = first.offset_mm + second.offset_mm
+    return OffsetEstimate(total, first.offset_mm + second.estimated_mm, True,
+                          first.rms_without_um if first.applied else second.rms_without_um, second.rms_with_um)
+
+
 def _prediction_rms(xr: np.ndarray, x: np.ndarray, T: float, samples: float, opt: RegressorOptions, b: PoleBounds,
-                    *, margin: int) -> float:
-    """RMS [mm] of the exact-solver model fitted on the reference delayed by ``samples``, on x[margin:-margin]."""
-    keep = slice(margin, x.size - margin)
-    ref = delay_reference(xr, samples)[keep]
+                    *, margin: int, free_offset: bool = False) -> float:
+    """RMS [mm] of the exact-solver model fitted on the reference delayed by ``samples``, on x[margin:-margin];
+    with ``free_offset`` (a datum offset was removed, its estimate a few um off) less its median error."""
+    ref = delay_reference(xr, samples)[margin:x.size - margin]
+    meas = x[margin:x.size - margin]
+    start = settled_start(ref, meas) or 0  # simulated from rest: start where the axis rests
+    ref, meas = ref[start:], meas[start:]
     st = SufficientStatistics(8)
-    for phi, y in iter_regressor(ref, x[keep], T, options=opt):
+    for phi, y in iter_regressor(ref, meas, T, options=opt):
         st.update(phi, y)
     sol = solve_statistics(st, bounds=b, method="exact")
-    err = x[keep] - simulate(sol.parameters, ref, T)
+    err = meas - simulate(sol.parameters, ref, T)
+    if free_offset:
+        err = err - np.median(err)
     return float(np.sqrt(np.mean(err * err)))

@@ -21,6 +21,7 @@ import numpy as np
 import scipy.optimize
 
 from identification.bounds import PoleBounds
+from identification.dead_time import delay_reference
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI, canonical
 from identification.reduced_model import simulate
@@ -37,6 +38,9 @@ def refine_output_error(
     *,
     bounds: PoleBounds,
     max_nfev: int = 400,
+    offset: bool = False,
+    delay: tuple[float, float, float] | None = None,
+    keep: slice | None = None,
 ) -> dict:
     """Refine a reduced model by output error (module docstring).
 
@@ -52,11 +56,23 @@ def refine_output_error(
         Pole box kept during the refinement.
     max_nfev : int
         Residual evaluations (simulations) allowed, Jacobian included.
+    offset : bool
+        Also fit a constant added to the prediction (a datum offset between the channels,
+        :mod:`identification.datum_offset`), starting from 0.
 
     Returns
     -------
     dict
-        ``parameters``, ``poles``, ``cost`` [mm^2], ``start_cost`` [mm^2], ``nfev``, ``message``.
+        ``parameters``, ``poles``, ``cost`` [mm^2], ``start_cost`` [mm^2], ``nfev``, ``message``,
+        and ``offset_mm`` [mm] (0 unless ``offset``), ``delay_samples`` (the start unless ``delay``).
+    delay : (start, low, high), optional
+        Also fit the reference dead time [samples] within [low, high] (``reference`` is then the
+        recorded one, delayed by :func:`identification.dead_time.delay_reference` at each step):
+        the equation error's estimate trades the loop's own lag for a shift (fadal-ppi: 13.7
+        samples), the simulated position does not.
+    keep : slice, optional
+        The samples the residual is taken on (all by default): the simulation starts at
+        ``keep.start`` from rest.
     """
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
@@ -70,9 +86,23 @@ def refine_output_error(
     # typical sizes, so that finite-difference steps are meaningful for every variable
     typ = np.maximum(np.abs(x0), 1e-3 * np.max(np.abs(x0[3:6])) + 1e-12)
     typ[:3] = 1.0
+    nv = x0.size
+    if offset:  # the constant [mm], scaled by the record's span
+        x0 = np.append(x0, 0.0)
+        typ = np.append(typ, 1e-3 * max(float(np.ptp(xr)), 1e-6))
+        lo, hi = np.append(lo, -np.inf), np.append(hi, np.inf)
+    i_delay = x0.size
+    if delay is not None:
+        x0 = np.append(x0, float(np.clip(delay[0], delay[1], delay[2])))
+        typ = np.append(typ, 1.0)
+        lo, hi = np.append(lo, delay[1]), np.append(hi, delay[2])
+    cut = keep if keep is not None else slice(None)
+    xm_kept = xm[cut]
 
     def fun(x):
-        return simulate(from_search(x), xr, sample_time) - xm
+        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
+        r = simulate(from_search(x[:nv]), ref[cut], sample_time) - xm_kept
+        return r + x[nv] if offset else r
 
     r0 = fun(x0)
     start_cost = 0.5 * float(r0 @ r0)
@@ -81,7 +111,7 @@ def refine_output_error(
         ftol=1e-12,
     )
     x = res.x if res.cost <= start_cost else x0
-    params = from_search(x)
+    params = from_search(x[:nv])
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
     return {
         "parameters": params,
@@ -90,4 +120,6 @@ def refine_output_error(
         "start_cost": start_cost,
         "nfev": int(res.nfev),
         "message": str(res.message),
+        "offset_mm": float(x[nv]) if offset else 0.0,
+        "delay_samples": float(x[i_delay]) if delay is not None else 0.0,
     }

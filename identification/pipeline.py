@@ -2,8 +2,9 @@
 
 The fit (:func:`identification.identify.fit_reduced_model`) and the diagnosis
 (:func:`identification.diagnosis.diagnose`) do not import each other; this module runs one after
-the other. A model with a reference dead time is diagnosed in the loop's time frame (the capture
-with its reference delayed by ``delay_s``) and keeps its ``delay_s``.
+the other. The diagnosis runs in the loop's frame (:mod:`identification.loop_frame`: datum offset
+removed, reference delayed by ``delay_s``, a start in motion dropped), as the fit did; a model
+with a reference dead time keeps its ``delay_s``.
 """
 
 from __future__ import annotations
@@ -12,10 +13,10 @@ import dataclasses
 from collections.abc import Mapping
 
 from identification.bounds import PoleBounds
-from identification.dead_time import loop_capture
 from identification.diagnosis import diagnose as diagnose_residual
 from identification.ga import GAOptions
 from identification.identify import fit_reduced_model
+from identification.loop_frame import loop_frame, offset_of
 from identification.parallel import serial_blas
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions
@@ -58,9 +59,10 @@ def identify(
                                   regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
     if not diagnose:
         return model
+    in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
+                            delay_samples=model.delay_s / model.sample_time)
     if not model.delay_s:
-        return diagnose_residual(capture, model, axis=axis)
-    in_loop = loop_capture(capture, axis, model.delay_s / model.sample_time)
+        return diagnose_residual(in_loop, model, axis=axis)
     diagnosed = diagnose_residual(in_loop, dataclasses.replace(model, delay_s=0.0), axis=axis)
     return dataclasses.replace(diagnosed, delay_s=model.delay_s)
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from vcnc.core.errors import IdentificationError
 
-__all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds"]
+__all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "SETTLED_SHARE"]
 
 #: a reference step smaller than this share of the reference's largest step counts as standing still [-]
 _STILL_SHARE = 1e-6
@@ -74,6 +74,60 @@ def active_mask(reference: np.ndarray, measured: np.ndarray, sample_time: float,
     if k > 0 and move.any():
         move = np.convolve(move.astype(float), np.ones(2 * k + 1), mode="same") > 0.5
     return move
+
+
+#: Share of the largest reference step (and of the largest tracking error) below which a sample
+#: counts as the axis at rest for :func:`settled_start` [-].
+SETTLED_SHARE = 0.01
+#: Largest share of a record :func:`settled_start` may drop [-]: a test of exact stops without
+#: dwells rests only at its ends, and then the whole record (start transient and all) is better
+#: than its tail.
+MAX_DROPPED_SHARE = 0.5
+
+
+def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
+    """The first sample at which the axis is at rest, so that a simulation may start there.
+
+    The reduced model is simulated from rest at its first reference sample (the simulation
+    contract of :mod:`identification.reduced_model`). A trace triggered during a move, or the
+    loop's frame of a trace whose reference leads (the first ``delay_s`` cut off), starts with
+    the axis moving: simulated from rest, the model answers with a start transient of hundreds of
+    um that decays with the slowest pole, and the output-error fit bends the poles to imitate it
+    (the virtual fadal-pid started 1.2 s into its test: p 7 % off, prediction 4x its noise floor).
+
+    Parameters
+    ----------
+    reference, measured : ndarray, shape (N,)
+        Commanded and measured position [mm].
+
+    Returns
+    -------
+    int or None
+        0 when the record starts at rest (the usual case; nothing is cut), else the first sample
+        where the reference and the axis both stand still (steps below :data:`SETTLED_SHARE` of
+        the largest reference step) and the tracking error is at its value at rest (within 10
+        robust deviations of the still samples, or :data:`SETTLED_SHARE` of its largest
+        excursion). None when the axis does not rest in the first :data:`MAX_DROPPED_SHARE` of
+        the record: then the start transient stays.
+    """
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    if xr.size < 2:
+        return None
+    dxr = np.abs(np.diff(xr))
+    dx = np.abs(np.diff(x))
+    big = float(dxr.max())
+    if big == 0.0:
+        return None
+    e = (x - xr)[:-1]
+    still_ref = dxr <= _STILL_SHARE * big
+    rest = e[still_ref] if still_ref.any() else e
+    med = float(np.median(rest))
+    mad = 1.4826 * float(np.median(np.abs(rest - med)))
+    tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
+    ok = (dxr <= SETTLED_SHARE * big) & (dx <= SETTLED_SHARE * big) & (np.abs(e - med) <= tol)
+    hits = np.flatnonzero(ok)
+    return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else None
 
 
 def motion_segments(mask: np.ndarray) -> list[tuple[int, int]]:

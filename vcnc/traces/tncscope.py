@@ -5,6 +5,12 @@ one ``%[CURVEn]`` block per channel (``%CHANNELTYPE`` ``s soll``/``s nom`` comma
 ``s ist``/``s act`` actual position [mm], ``%AXISTYPE``, ``%COLUMN``); then ``%[DATA]`` and
 ``;``-separated rows whose column 0 is time [us]. Also read: a UTF-8 or UTF-16 export (with its
 byte-order mark), a decimal comma, and Heidenhain's English abbreviations ``s noml`` / ``s actl``.
+
+Each position curve is converted from its own ``%DIMENSION`` (``mm``, ``µm``, ``inch`` on a
+control running in inches, ``°`` on a rotary axis; none: mm) to mm or deg: a control in inches,
+or a channel exported in um beside one in mm, would otherwise be read 25.4 or 1000 times off
+without a word (found by the traceid truth harness). A dimension that is no position unit is an
+error naming the curve.
 """
 
 from __future__ import annotations
@@ -14,10 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
-from vcnc.core.axes import AXIS_NAMES
+from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
-from vcnc.traces.columns import on_uniform_grid, parse_number, read_text
+from vcnc.traces.columns import LENGTH_UNITS, on_uniform_grid, parse_number, read_text, unit_named
 
 MAGIC = "%TNCscopeNT"
 COMMANDED = ("s soll", "s nom", "s noml", "s nominal")
@@ -50,6 +56,7 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     found = [c.get("NAME", "?") for c in curves]
     ref: dict[str, int] = {}
     meas: dict[str, int] = {}
+    scale: dict[int, float] = {}
     for c in curves:
         ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
         name = c.get("NAME", "")
@@ -58,6 +65,8 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
         if not col.isdigit() or int(col) < 1:
             raise CaptureError(f"curve {name!r}: %COLUMN={col!r} is not a column number >= 1", file=src,
                                line=int(c["_line"]))
+        if ctype in COMMANDED + MEASURED:
+            scale[int(col)] = _position_scale(c, axis, src)
         if ctype in COMMANDED:
             ref.setdefault(axis, int(col))
         elif ctype in MEASURED:
@@ -80,11 +89,31 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
         k = int(bad_t[0]) + 1
         raise CaptureError(f"time does not increase ({a[k, 0]:.9g} us after {a[k - 1, 0]:.9g} us)", file=src,
                            line=row_lines[k])
-    t, (r, m), how = on_uniform_grid(t, [a[:, [ref[x] for x in axes]], a[:, [meas[x] for x in axes]]], src,
-                                     row_lines, resample=resample)
+    r_cols, m_cols = [ref[x] for x in axes], [meas[x] for x in axes]
+    t, (r, m), how = on_uniform_grid(t, [a[:, r_cols] * [scale[k] for k in r_cols],
+                                         a[:, m_cols] * [scale[k] for k in m_cols]], src, row_lines, resample=resample)
     meta = {"format": "TNCscope", "commanded": ",".join(f"{x}:col{ref[x]}" for x in axes),
             "measured": ",".join(f"{x}:col{meas[x]}" for x in axes), **how}
+    converted = {k: v for k, v in scale.items() if v != 1.0 and k in r_cols + m_cols}
+    if converted:
+        meta["converted"] = ",".join(f"col{k}x{v:g}" for k, v in sorted(converted.items()))
     return Capture(t=t, axes=axes, reference=r, measured=m, meta=meta, source=src)
+
+
+def _position_scale(curve: dict[str, str], axis: str, src: str) -> float:
+    """mm (deg on a rotary axis) per unit of a position curve's ``%DIMENSION`` (none: mm)."""
+    dim = curve.get("DIMENSION", "").strip()
+    if not dim:
+        return 1.0
+    unit = unit_named(dim.strip("[]()"), "length")
+    rotary = axis in ROTARY_AXES
+    name = curve.get("NAME", "?")
+    expected = "°" if rotary else "mm, µm or inch"
+    if unit is None or unit == "m" or (unit == "deg") != rotary:
+        raise CaptureError(f"curve {name!r}: %DIMENSION={dim!r} is not a position unit of a "
+                           f"{'rotary' if rotary else 'linear'} axis (expected {expected})", file=src,
+                           line=int(curve["_line"]))
+    return LENGTH_UNITS[unit]
 
 
 def _curves(lines: list[str], src: str) -> tuple[list[dict[str, str]], int]:

@@ -1,0 +1,96 @@
+"""A recorded capture as the position loop saw it.
+
+A trace records the commanded and the measured position where the control taps them, not where
+the loop runs. Three differences are undone before the reduced model is fitted or diagnosed,
+each found by its own module and recorded in the model's ``fit``:
+
+1. a constant datum offset between the two channels (:mod:`identification.datum_offset`,
+   ``fit.offset``): removed from the measured position;
+2. the reference dead time (:mod:`identification.dead_time`, ``delay_s``): the reference
+   delayed; the samples the shift leaves unknown are dropped, unless the record starts with the
+   axis at rest (then the loop's reference before the record is the first value, held);
+3. a record that starts with the axis moving (:func:`identification.segments.settled_start`,
+   ``fit.record_start``): the samples before the axis first rests dropped, so that the model's
+   simulation from rest starts where the axis is at rest.
+
+The model itself describes the loop (it is simulated on the reference delayed by ``delay_s``);
+the offset and the dropped samples describe the recording and stay in ``fit``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from identification.dead_time import delay_reference, loop_capture
+from identification.segments import settled_start
+from vcnc.core.capture import Capture
+
+__all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest", "START_SHARE"]
+
+#: Largest first step of the recorded reference, as a share of its largest step, for a record
+#: that starts at rest [-]. Held, the first value stands for the loop's reference before the record;
+#: a move already under way has moved it (fadal-pid's reference advanced by 20 ms: a 25 um step at
+#: 5 % of the largest, 5.5 um RMS instead of 1.0), so only a reference at rest qualifies.
+START_SHARE = 0.01
+
+
+def without_offset(capture: Capture, axis: str, offset_mm: float) -> Capture:
+    """``capture`` with ``offset_mm`` [mm] taken off ``axis``' measured position."""
+    if offset_mm == 0.0:
+        return capture
+    i = capture.axis_index(axis)
+    measured = np.array(capture.measured, dtype=float)
+    measured[:, i] -= offset_mm
+    return dataclasses.replace(capture, measured=measured)
+
+
+def starts_at_rest(recorded: np.ndarray, delayed: np.ndarray, measured: np.ndarray) -> bool:
+    """Whether the loop's reference before a record may be taken as its first value held.
+
+    True when the axis rests at the first sample (:func:`identification.segments.settled_start`
+    of the delayed reference and the measured position is 0) and the recorded reference does not
+    move there either: a reference that leads by ``delay_s`` and already moves at the first sample
+    moved before the record, and the loop received that motion within the first ``delay_s``.
+    """
+    steps = np.abs(np.diff(np.asarray(recorded, float)))
+    if steps.size == 0 or not steps.max() > 0:
+        return False
+    return bool(steps[0] <= START_SHARE * steps.max() and settled_start(delayed, measured) == 0)
+
+
+def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_samples: float = 0.0
+               ) -> tuple[Capture, int]:
+    """The capture in the loop's frame (module docstring) and the samples dropped at its start
+    after the shift (0 when the record, shifted, starts at rest).
+
+    Parameters
+    ----------
+    capture : Capture
+    axis : str
+    offset_mm : float
+        Datum offset to remove [mm].
+    delay_samples : float
+        Reference dead time [samples] (> 0: the recorded reference leads).
+    """
+    base = without_offset(capture, axis, offset_mm)
+    i = base.axis_index(axis)
+    if delay_samples > 0:
+        # a record that starts at rest: the loop's reference before the first recorded sample is
+        # the first value held (delay_reference), so nothing needs cutting
+        whole = dataclasses.replace(base, reference=base.reference.copy())
+        whole.reference[:, i] = delay_reference(base.reference[:, i], delay_samples)
+        if starts_at_rest(base.reference[:, i], whole.reference[:, i], whole.measured[:, i]):
+            return whole, 0
+    shifted = loop_capture(base, axis, delay_samples)
+    start = settled_start(shifted.reference[:, i], shifted.measured[:, i]) or 0
+    if start == 0:
+        return shifted, 0
+    return shifted.slice(start, len(shifted)), start
+
+
+def offset_of(fit: dict) -> float:
+    """The datum offset [mm] a model's ``fit`` record says was removed (0 for none)."""
+    rec = fit.get("offset") or {}
+    return float(rec.get("offset_mm", 0.0)) if rec.get("applied") else 0.0
