@@ -367,9 +367,17 @@ _OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif
                     r"endrepeat|break|continue)?(.*)$")
 
 
+def _split(text: str) -> list[str]:
+    """The lines as an editor numbers them: CR LF and LF end a line; a bare CR does so only in a text
+    without LF (in a LF text a stray CR stays inside its line)."""
+    if "\n" not in text:
+        return text.split("\r")
+    return [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
+
+
 def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
-    for no, raw in enumerate(text.splitlines(), start=1):
+    for no, raw in enumerate(_split(text), start=1):
         s = clean_line(raw)
         if grbl:  # grbl: '$' lines are system commands (system.c), '?' '~' real-time status query and cycle
             # start (serial.c);
@@ -463,6 +471,8 @@ def _structure(lines: list[_Line]) -> dict:
         elif k in ("endsub", "endif", "endwhile", "endrepeat"):
             while stack and stack[-1][0] != name:
                 stack.pop()
+            if not stack:  # its block was closed already ("endsub" inside an "if" ends the sub there)
+                continue
             _, opener, j = stack.pop()
             ends[j] = i
             if opener == "sub":
