@@ -556,9 +556,12 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if 100 <= m <= 199:
                 where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
-            if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI)
-                where.fail(f"remapped or user M code {w.text!r} (above M199: defined by a machine configuration): "
-                           "not supported", column=w.column, text=w.text, expected="M codes below 100")
+            if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
+                # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
+                what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
+                        else "machine- or firmware-specific M code")
+                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration): not supported",
+                           column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
             lacks = w.letter in EXTRA_LETTERS and w.letter.lower() not in st.context.extra_axes

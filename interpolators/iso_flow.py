@@ -45,7 +45,8 @@ grbl ignores it). Under Fanuc (``tape_leader``) the text after the first ``%`` o
 of its line is skipped (Fanuc Series 16i/18i-TB operator's manual B-63524EN/01, 8 "Data input/output",
 "File format": "A file starts with % or LF, followed by the actual data. [...] In a read operation,
 data between the first % and the next LF is skipped"): ``%1`` or ``%2000`` opening a file is its
-label, not a block. A later ``%`` line with text stays an error.
+label, not a block. A later ``%`` line with text stays an error, and so does a first one that holds
+bare CRs (a file of mixed line ends, whose blocks the skip would swallow unseen).
 
 :func:`run` yields the lines to execute in order, with their words read (parameters and
 expressions evaluated by :mod:`interpolators.iso_params`).
@@ -179,7 +180,7 @@ class _Program:
             self.raw.append(raw)
             self.sources.append(source)
             where = self.where(i)
-            if leader and raw.lstrip().startswith("%"):
+            if leader and raw.lstrip().startswith("%") and "\r" not in raw:  # a bare CR: see the error below
                 leader = False
                 self.macro.add_line(i, None, self.span, where)
                 self.code.append(None)

@@ -57,3 +57,12 @@ def test_linuxcnc_o_word_keywords_may_be_spelt_with_blanks():
 def test_an_unknown_o_word_keyword_is_still_named():
     with pytest.raises(GCodeError, match=r"O-word 'end': unknown O-word keyword"):
         parse_program("G21\no100 sub\nG0 X1\no100 end\n", context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize(("name", "what"), [("linuxcnc", "remapped or user M code"),
+                                            ("grbl", "machine- or firmware-specific M code"),
+                                            ("fanuc", "machine- or firmware-specific M code")])
+def test_m_codes_above_m199_are_named_as_their_control_knows_them(name, what):
+    # armindevelopertec-max (Inkscape unicorn plotter output, "M300 S30" pen servo): grbl has no remaps
+    with pytest.raises(GCodeError, match=f"{what} 'M300' \\(above M199"):
+        parse_program("M300 S30\nG21 G90 G0 X1\n", context=_in_dialect(name))
