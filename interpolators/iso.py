@@ -1680,7 +1680,9 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if key == 920:
         if not axis_words and not rot_words:
-            where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
+            lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
+            where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
+                       expected="G92 X.. Y.. Z..")
         # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
         current = st.to_program(st.pos)
         for a in axis_words:

@@ -98,6 +98,22 @@ _SPACED_KEYWORD = re.compile("(" + "|".join("[ \t]*".join(k) for k in sorted(_KE
                              + ")(?![a-zA-Z])", re.IGNORECASE)
 
 
+#: File headers of controls whose native language is not ISO G-code: Siemens SINUMERIK 840D ("%_N_NAME_MPF"),
+#: SINUMERIK 8xx ("%MPF 90", "%SPF 12": main and subprogram numbers), Philips / Heidenhain MillPlus ("%PM").
+_FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program header"),
+                    (re.compile(r"%\s*[MS]PF\b", re.I), "Siemens SINUMERIK main/subprogram header"),
+                    (re.compile(r"%\s*PM\b", re.I), "Philips/MillPlus program header"))
+
+
+def _refuse_foreign_header(line: str, where: Where) -> None:
+    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code."""
+    for pattern, what in _FOREIGN_HEADERS:
+        if pattern.match(line):
+            where.fail(f"{what} {line!r}: that control's native language is not ISO G-code (vcnc reads ISO "
+                       "G-code and Heidenhain conversational)", column=1, text=line,
+                       expected="an ISO G-code program (Fanuc, Haas, LinuxCNC, grbl)")
+
+
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
     """The keyword of the O-word line ``code`` (``m`` its :data:`_O_LINE` match, None if it is none), the
     text after it and that text's 1-based column; a keyword spelt with blanks ("end sub") is joined."""
@@ -181,6 +197,7 @@ class _Program:
             self.sources.append(source)
             where = self.where(i)
             if leader and raw.lstrip().startswith("%") and "\r" not in raw:  # a bare CR: see the error below
+                _refuse_foreign_header(raw.strip(), where)
                 leader = False
                 self.macro.add_line(i, None, self.span, where)
                 self.code.append(None)
@@ -198,6 +215,7 @@ class _Program:
                 self.code.append(None)
                 continue
             if s.startswith("%"):
+                _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
                 where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
                            expected="'%' alone")

@@ -66,3 +66,19 @@ def test_m_codes_above_m199_are_named_as_their_control_knows_them(name, what):
     # armindevelopertec-max (Inkscape unicorn plotter output, "M300 S30" pen servo): grbl has no remaps
     with pytest.raises(GCodeError, match=f"{what} 'M300' \\(above M199"):
         parse_program("M300 S30\nG21 G90 G0 X1\n", context=_in_dialect(name))
+
+
+@pytest.mark.parametrize("name", ["fanuc", "linuxcnc"])
+@pytest.mark.parametrize(("header", "what"), [("%_N_PART_MPF", "Siemens SINUMERIK 840D program header"),
+                                              ("%MPF  90", "Siemens SINUMERIK main/subprogram header"),
+                                              ("%PM", "Philips/MillPlus program header")])
+def test_a_foreign_control_s_file_header_is_named(name, header, what):
+    # GCodeProjects/GCodeWorkShop EXAMPLES: SINUMERIK 840D/850 and Philips files are no ISO programs; the
+    # Fanuc label skip must not run into their native syntax
+    with pytest.raises(GCodeError, match=f":1:1: {what} '{header}': that control's native language is not ISO"):
+        parse_program(f"{header}\nR11=384.553\nG0 X1\n", context=_in_dialect(name))
+
+
+def test_g92_with_s_alone_is_named_a_lathe_spindle_limit():
+    with pytest.raises(GCodeError, match=r"2:1: G92 needs at least one axis word \(G92 S alone is the Fanuc lathe"):
+        parse_program("G21\nG92 S500\n", context=_in_dialect("fanuc"))
