@@ -314,16 +314,18 @@ def _reduce(vals: list[float], ops: list) -> None:
 class _Params:
     """Numbered parameters (global), named ``#<_global>`` and ``#<local>`` (per call level)."""
 
-    def __init__(self):
+    def __init__(self, *, vacant: bool = False):
         self.numbered: dict[int, float] = {}
         self.globals: dict[str, float] = {}
         self.frames: list[dict] = [{}]
+        # Fanuc/Haas macro B: a variable never set is vacant ("null"), as #0; LinuxCNC reads it as 0
+        self.unset = math.nan if vacant else 0.0
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int):
-            return self.numbered.get(key, 0.0)
+            return self.numbered.get(key, self.unset)
         if key.startswith("_"):
             if key not in self.globals:
                 raise ReferenceError(f"global #<{key}> read before it is set")
@@ -1176,6 +1178,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
+        if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);
+            words.pop("x", None)  # with a motion code ("G4 P.001 G0 X1") X is that motion's
     _modes(m, g, words, ln.text)
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
@@ -1425,7 +1429,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if other is not None:  # a numbered subprogram from its own file (Fanuc: in the control's memory)
             lines += _lines(other.lstrip("\ufeff"))
     st = _structure(lines)
-    m, params = _Machine(context), _Params()
+    m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
     frames: list[dict] = []
     counters: dict[int, int] = {}
     percent = 0

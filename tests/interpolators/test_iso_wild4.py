@@ -82,3 +82,14 @@ def test_a_foreign_control_s_file_header_is_named(name, header, what):
 def test_g92_with_s_alone_is_named_a_lathe_spindle_limit():
     with pytest.raises(GCodeError, match=r"2:1: G92 needs at least one axis word \(G92 S alone is the Fanuc lathe"):
         parse_program("G21\nG92 S500\n", context=_in_dialect("fanuc"))
+
+
+def test_fanuc_vacant_words_and_g04_x_leave_the_tool_where_it_is():
+    # mojimould Renishaw macros O9701 ("G01X#31Y#32F#119" with #31 #32 #119 never set) and O9890
+    # ("G04X1.0"): a word whose variable is vacant is left out (Fanuc custom macro "Undefined variable"),
+    # so the block moves nothing; G04 X is a dwell of 1 s, not a move to X1. In G54 (100, 50, -20):
+    # the rapid to (105, 55, -20), the dwell there, the feed to X6 -> (106, 55, -20).
+    text = "G21 G90 G54 F100\nG0 X5 Y5 Z0\nG01 X#31 Y#32 F#119\nG04 X1.0\nG1 X6\nM30\n"
+    prog = checked_iso(text, _in_dialect("fanuc"))
+    assert [b.target.tolist() for b in prog.blocks] == [[105, 55, -20], [105, 55, -20], [106, 55, -20]]
+    assert prog.blocks[1].dwell == pytest.approx(1.0)
