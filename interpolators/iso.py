@@ -441,7 +441,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
-                  on_comment=on_comment):
+                  tape_leader=dialect.name == "fanuc", on_comment=on_comment):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -560,9 +560,12 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if 100 <= m <= 199:
                 where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
-            if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI)
-                where.fail(f"remapped or user M code {w.text!r} (above M199: defined by a machine configuration): "
-                           "not supported", column=w.column, text=w.text, expected="M codes below 100")
+            if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
+                # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
+                what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
+                        else "machine- or firmware-specific M code")
+                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration): not supported",
+                           column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
             lacks = w.letter in EXTRA_LETTERS and w.letter.lower() not in st.context.extra_axes
@@ -1720,7 +1723,9 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if key == 920:
         if not axis_words and not rot_words:
-            where.fail("G92 needs at least one axis word", column=w.column, text=w.text, expected="G92 X.. Y.. Z..")
+            lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
+            where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
+                       expected="G92 X.. Y.. Z..")
         # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
         current = st.to_program(st.pos)
         for a in axis_words:

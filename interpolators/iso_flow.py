@@ -40,6 +40,14 @@ the parameters the line sets (LinuxCNC sets them before it executes the block).
 
 A ``:`` starting a line is the ISO-code program-number address (``O`` of EIA code, e.g. ``:1234``).
 
+A ``%`` stands alone on its line (LinuxCNC: the percent line of a program delimited by percents;
+grbl ignores it). Under Fanuc (``tape_leader``) the text after the first ``%`` of a file up to the end
+of its line is skipped (Fanuc Series 16i/18i-TB operator's manual B-63524EN/01, 8 "Data input/output",
+"File format": "A file starts with % or LF, followed by the actual data. [...] In a read operation,
+data between the first % and the next LF is skipped"): ``%1`` or ``%2000`` opening a file is its
+label, not a block. A later ``%`` line with text stays an error, and so does a first one that holds
+bare CRs (a file of mixed line ends, whose blocks the skip would swallow unseen).
+
 :func:`run` yields the lines to execute in order, with their words read (parameters and
 expressions evaluated by :mod:`interpolators.iso_params`).
 """
@@ -84,6 +92,39 @@ _G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8
                   **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
+#: An O-word keyword written with blanks between its letters ("end sub", "else if"): LinuxCNC drops blanks and
+#: tabs outside comments before it reads a line (interp_internal.cc close_and_downcase), so they are one word.
+_SPACED_KEYWORD = re.compile("(" + "|".join("[ \t]*".join(k) for k in sorted(_KEYWORDS, key=len, reverse=True))
+                             + ")(?![a-zA-Z])", re.IGNORECASE)
+
+
+#: File headers of controls whose native language is not ISO G-code: Siemens SINUMERIK 840D ("%_N_NAME_MPF"),
+#: SINUMERIK 8xx ("%MPF 90", "%SPF 12": main and subprogram numbers), Philips / Heidenhain MillPlus ("%PM").
+_FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program header"),
+                    (re.compile(r"%\s*[MS]PF\b", re.I), "Siemens SINUMERIK main/subprogram header"),
+                    (re.compile(r"%\s*PM\b", re.I), "Philips/MillPlus program header"))
+
+
+def _refuse_foreign_header(line: str, where: Where) -> None:
+    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code."""
+    for pattern, what in _FOREIGN_HEADERS:
+        if pattern.match(line):
+            where.fail(f"{what} {line!r}: that control's native language is not ISO G-code (vcnc reads ISO "
+                       "G-code and Heidenhain conversational)", column=1, text=line,
+                       expected="an ISO G-code program (Fanuc, Haas, LinuxCNC, grbl)")
+
+
+def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
+    """The keyword of the O-word line ``code`` (``m`` its :data:`_O_LINE` match, None if it is none), the
+    text after it and that text's 1-based column; a keyword spelt with blanks ("end sub") is joined."""
+    if m is None or not m.group(2):
+        return None, "", 0
+    keyword = m.group(2).lower()
+    if keyword not in _KEYWORDS:
+        spaced = _SPACED_KEYWORD.match(code, m.start(2))
+        if spaced:
+            return re.sub(r"[ \t]", "", spaced.group(1)).lower(), code[spaced.end():], spaced.end() + 1
+    return keyword, m.group(3), m.start(3) + 1
 
 
 
@@ -126,9 +167,10 @@ class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
-                 subroutine_path: tuple[str, ...] = ()) -> None:
+                 subroutine_path: tuple[str, ...] = (), tape_leader: bool = False) -> None:
         self.source = source
         self.subroutine_path = subroutine_path
+        self.tape_leader = tape_leader
         self.raw: list[str] = []
         self.sources: list[str | None] = []
         self.code: list[str | None] = []
@@ -148,11 +190,18 @@ class _Program:
         text = one_line_end(text)
         self.first_line.setdefault(source, len(self.code))
         self.span += 1  # each file, and each O program in it, is a program of its own (macro B GOTO)
+        leader = self.tape_leader  # Fanuc: the rest of the file's first '%' line is skipped
         for raw in lines_of(text):
             i = len(self.code)
             self.raw.append(raw)
             self.sources.append(source)
             where = self.where(i)
+            if leader and raw.lstrip().startswith("%") and "\r" not in raw:  # a bare CR: see the error below
+                _refuse_foreign_header(raw.strip(), where)
+                leader = False
+                self.macro.add_line(i, None, self.span, where)
+                self.code.append(None)
+                continue
             code = strip_comments(raw, where)
             comment = block_comment(raw, where)
             active = None if comment is None else active_comment(comment)
@@ -166,6 +215,7 @@ class _Program:
                 self.code.append(None)
                 continue
             if s.startswith("%"):
+                _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
                 where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
                            expected="'%' alone")
@@ -179,21 +229,21 @@ class _Program:
                 self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
                 continue
             m = _O_LINE.match(code)
-            if _NAMED_PROGRAM.match(code) and not (m and m.group(2) and m.group(2).lower() in _KEYWORDS):
+            keyword, rest, rest_at = _keyword(code, m)
+            if _NAMED_PROGRAM.match(code) and keyword not in _KEYWORDS:
                 self.code.append(None)  # "O7997A", "OWASHER": the program's name
                 continue
-            if m and m.group(2) and m.group(2).lower() in _KEYWORDS:
-                keyword = m.group(2).lower()
+            if keyword in _KEYWORDS:
                 label = m.group(1).lower().replace(" ", "")
                 if label[0] in "#[":  # LinuxCNC read_o reads the number as any integer value
                     if keyword != "call":
                         where.fail(f"O-word o{m.group(1)} {keyword}: only a call may compute its O number",
                                    column=m.start(1) + 1, text=s, expected=f"o<number> {keyword}")
-                    self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1, computed=m.start(1) + 1)
+                    self.oword[i] = _OWord(label, keyword, rest, rest_at, computed=m.start(1) + 1)
                     self.code.append(None)
                     continue
                 label = str(int(label)) if label.isdigit() else label  # o0100 is o100 (read as an integer)
-                self.oword[i] = _OWord(label, keyword, m.group(3), m.start(3) + 1)
+                self.oword[i] = _OWord(label, keyword, rest, rest_at)
                 self.by_label.setdefault(label, []).append(i)
                 self.code.append(None)
                 continue
@@ -377,13 +427,14 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
-        subroutine_path: tuple[str, ...] = (),
+        subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
         on_comment: Callable[[str, str, Where], None] | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
     backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
     ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
+    ``tape_leader``: the text after the first ``%`` of each file, to its line end, is skipped (Fanuc).
     ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
     (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
     comments.
@@ -396,7 +447,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path)
+    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
+                    tape_leader=tape_leader)
     params = Parameters() if params is None else params
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}

@@ -314,16 +314,18 @@ def _reduce(vals: list[float], ops: list) -> None:
 class _Params:
     """Numbered parameters (global), named ``#<_global>`` and ``#<local>`` (per call level)."""
 
-    def __init__(self):
+    def __init__(self, *, vacant: bool = False):
         self.numbered: dict[int, float] = {}
         self.globals: dict[str, float] = {}
         self.frames: list[dict] = [{}]
+        # Fanuc/Haas macro B: a variable never set is vacant ("null"), as #0; LinuxCNC reads it as 0
+        self.unset = math.nan if vacant else 0.0
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int):
-            return self.numbered.get(key, 0.0)
+            return self.numbered.get(key, self.unset)
         if key.startswith("_"):
             if key not in self.globals:
                 raise ReferenceError(f"global #<{key}> read before it is set")
@@ -367,9 +369,17 @@ _OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif
                     r"endrepeat|break|continue)?(.*)$")
 
 
+def _split(text: str) -> list[str]:
+    """The lines as an editor numbers them: CR LF and LF end a line; a bare CR does so only in a text
+    without LF (in a LF text a stray CR stays inside its line)."""
+    if "\n" not in text:
+        return text.split("\r")
+    return [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
+
+
 def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
     out = []
-    for no, raw in enumerate(text.splitlines(), start=1):
+    for no, raw in enumerate(_split(text), start=1):
         s = clean_line(raw)
         if grbl:  # grbl: '$' lines are system commands (system.c), '?' '~' real-time status query and cycle
             # start (serial.c);
@@ -463,6 +473,8 @@ def _structure(lines: list[_Line]) -> dict:
         elif k in ("endsub", "endif", "endwhile", "endrepeat"):
             while stack and stack[-1][0] != name:
                 stack.pop()
+            if not stack:  # its block was closed already ("endsub" inside an "if" ends the sub there)
+                continue
             _, opener, j = stack.pop()
             ends[j] = i
             if opener == "sub":
@@ -1166,6 +1178,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
+        if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);
+            words.pop("x", None)  # with a motion code ("G4 P.001 G0 X1") X is that motion's
     _modes(m, g, words, ln.text)
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
@@ -1415,7 +1429,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if other is not None:  # a numbered subprogram from its own file (Fanuc: in the control's memory)
             lines += _lines(other.lstrip("\ufeff"))
     st = _structure(lines)
-    m, params = _Machine(context), _Params()
+    m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
     frames: list[dict] = []
     counters: dict[int, int] = {}
     percent = 0
