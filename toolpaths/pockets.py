@@ -443,11 +443,12 @@ def _raw_offset(region_: Region, target: float) -> list[Edge]:
     line parallel to each line piece, an arc about each arc's centre (none where the arc's radius is smaller on
     the region's side), and an arc about each corner the region wraps round (turning right), from one
     neighbour's offset to the other's. The level set ``{d = target}`` is made of parts of these curves."""
-    pieces = []
-    for e in region_.boundary:  # each with the region on its left
+    left = []
+    for e in region_.boundary:
         mid, tangent = e.at(np.array([0.5]))[0], _tangent(e, 0.5)
-        normal = np.array([-tangent[1], tangent[0]]) * 1e-7 * max(1.0, float(np.max(np.abs(mid))))
-        pieces.append(e if region_.contains(mid + normal)[0] else _reversed(e))
+        left.append(mid + np.array([-tangent[1], tangent[0]]) * 1e-7 * max(1.0, float(np.max(np.abs(mid)))))
+    inside = region_.contains(np.array(left).reshape(-1, 2))
+    pieces = [e if keep else _reversed(e) for e, keep in zip(region_.boundary, inside)]  # the region on the left
     curves = []
     for e in pieces:
         if e.centre is None:
@@ -461,7 +462,7 @@ def _raw_offset(region_: Region, target: float) -> list[Edge]:
     starts = np.array([e.start for e in pieces])
     for a in pieces:  # the corner at its end, with the piece that leaves it
         gap = np.linalg.norm(starts - a.end, axis=1)
-        near = np.flatnonzero(gap <= 1e-9 * max(1.0, float(np.max(np.abs(a.end)))))
+        near = np.flatnonzero(gap <= 1e-7 * max(1.0, float(np.max(np.abs(a.end)))))
         t_in = _tangent(a, 1.0)
         for b in (pieces[k] for k in near):
             t_out = _tangent(b, 0.0)
@@ -476,10 +477,15 @@ def _cut_points(curves: list[Edge]) -> list[list[float]]:
     box = np.array([[*np.minimum(c.start, c.end), *np.maximum(c.start, c.end)] if c.centre is None else
                     [*(c.centre - c.radius), *(c.centre + c.radius)] for c in curves]).reshape(len(curves), 4)
     margin = 1e-9 * max(1.0, float(np.max(np.abs(box)))) if len(curves) else 0.0
-    overlap = ((box[:, None, 0] <= box[None, :, 2] + margin) & (box[None, :, 0] <= box[:, None, 2] + margin)
-               & (box[:, None, 1] <= box[None, :, 3] + margin) & (box[None, :, 1] <= box[:, None, 3] + margin))
+    pairs = []
+    for k in range(0, len(curves), 500):  # the boxes that overlap, 500 rows at a time
+        b = box[k:k + 500, None, :]
+        overlap = ((b[..., 0] <= box[None, :, 2] + margin) & (box[None, :, 0] <= b[..., 2] + margin)
+                   & (b[..., 1] <= box[None, :, 3] + margin) & (box[None, :, 1] <= b[..., 3] + margin))
+        i, j = np.nonzero(overlap)
+        pairs += [(a + k, c) for a, c in zip(i.tolist(), j.tolist()) if c > a + k]
     cuts: list[list[float]] = [[0.0, 1.0] for _ in curves]
-    for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
+    for i, j in pairs:
         for p in _meet(curves[i], curves[j]):
             ui, uj = curves[i].fraction(p), curves[j].fraction(p)
             if -1e-9 <= ui <= 1 + 1e-9 and -1e-9 <= uj <= 1 + 1e-9:
