@@ -496,7 +496,8 @@ def _cut_points(curves: list[Edge]) -> list[list[float]]:
 
 def _level_pieces(region_: Region, target: float, tolerance: float) -> list[np.ndarray]:
     """The parts of the boundary's offset curves (:func:`_raw_offset`) that lie on the level set ``target``,
-    each as points (n, 2) from its start to its end, its chords within ``tolerance / 8`` of it."""
+    each as points (n, 2) from its start to its end, its chords within ``0.4 tolerance`` of it (``target`` being
+    the band's middle, they keep within the band whichever side of them the region lies)."""
     curves = _raw_offset(region_, target)
     parts = []
     for c, us in zip(curves, _cut_points(curves)):
@@ -511,7 +512,7 @@ def _level_pieces(region_: Region, target: float, tolerance: float) -> list[np.n
         if p.centre is None:
             out.append(np.array([p.start, p.end]))
             continue
-        chord = 2 * math.acos(max(1.0 - tolerance / 8 / p.radius, -1.0))
+        chord = 2 * math.acos(max(1.0 - 0.4 * tolerance / p.radius, -1.0))
         out.append(p.at(np.linspace(0.0, 1.0, max(1, math.ceil(abs(p.sweep) / chord)) + 1)))
     return out
 
