@@ -102,7 +102,11 @@ def _y_monotone(edges: list[Edge]) -> list[Edge]:
             if 1e-12 < u < 1 - 1e-12:
                 cuts.append(u)
         cuts.sort()
-        out += [e.piece(a, b) for a, b in zip(cuts, cuts[1:])]
+        pieces = [e.piece(a, b) for a, b in zip(cuts, cuts[1:])]
+        # the edge's own ends, not their recomputed angles (sin(-2 pi) != 0): a vertex on a ray counts once
+        pieces[0] = dataclasses.replace(pieces[0], start=e.start)
+        pieces[-1] = dataclasses.replace(pieces[-1], end=e.end)
+        out += pieces
     return out
 
 

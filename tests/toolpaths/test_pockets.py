@@ -146,3 +146,20 @@ def test_a_channel_narrower_than_the_ring_splits_it_and_one_just_wider_keeps_it_
         assert spans[0][1] < 40.0 and spans[1][0] > 60.0
     else:
         assert spans[0][0] < 40.0 < 60.0 < spans[0][1] and spans[1][0] < 40.0 < 60.0 < spans[1][1]
+
+
+def test_a_point_level_with_where_a_circle_island_starts_is_counted_once():
+    """The ray from a point level with the circle's start crosses the circle there once, though sin(-2 pi) puts
+    the circle's recomputed end 3e-15 above its start: the pocket keeps its left wall (at y = 20, the circle's
+    start's level) and the ring round the island passes 3 from the walls above and below it."""
+    c, r = np.array([50.0, 20.0]), 14.0
+    island = [Edge(start=c + [r, 0.0], end=c + [r, 0.0], centre=c, radius=r, a0=0.0, sweep=-2 * math.pi)]
+    area = region([square(0, 0, 100, 40)], [island])
+    assert list(area.contains(np.array([[1e-6, 20.0], [-1e-6, 20.0]]))) == [True, False]
+    assert len(area.boundary) == 5
+    (rings,) = offset_rings(area, [3.0], step=1.0)
+    assert len(rings) == 2  # the gaps above and below the island (6) narrower than the rings need (6.001)
+    for ring in rings:
+        p = _chord_points(ring)
+        d = np.minimum(-_box_distance(p, 0, 0, 100, 40), np.linalg.norm(p - c, axis=1) - r)
+        assert d.min() >= 3.0 - TOLERANCE and d.max() <= 3.0 + TOLERANCE + 1e-9
