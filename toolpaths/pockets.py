@@ -6,17 +6,16 @@ their contours so: TNC 426/430 user's manual, "SL Cycles", "Overlapping contours
 exactly: every edge is cut where it meets another one, and a piece is kept when the region lies on one side of
 it only. The distance of a point to that boundary is exact (lines and arcs), signed: > 0 inside the region.
 
-An offset ring at level ``r`` is a closed polyline on ``{x: d(x) = r}``: the level set is traced on a grid of
-the distance (``contourpy``'s marching squares), each vertex is then moved onto the exact level with Newton
-steps along the distance's gradient (``|grad d| = 1``, one step lands exactly while the nearest boundary point
-stays the same), and chords are split or merged until each of them keeps within :data:`TOLERANCE` of the
-level set at 7 points along it, never nearer the boundary than ``r`` (but where the ring pinches: ``r - TOLERANCE``).
-Where the level set has a neck or a finger narrower than the grid's cells (a channel a few um wider than the ring,
-a ring a few um thin round the deepest points), the grid's lines cannot be made so; that level is then traced
-exactly: the boundary's offset curves (lines, arcs about the arcs' centres and about the corners the region wraps
-round) are cut where they meet, and the parts at the distance ``r`` are joined end to start (a point at the
-distance ``r`` lies on the offset of the boundary piece nearest to it). Memory stays that of one grid of at most
-``_MAX_CELLS`` points.
+An offset ring at level ``r`` is a closed polyline on ``{x: d(x) = r}``, traced exactly: a point at the distance
+``r`` lies on the offset of the boundary piece nearest to it, so the boundary's offset curves (lines parallel to
+the lines, arcs about the arcs' centres, arcs about the corners the region wraps round) are cut where they meet,
+the parts at the distance ``r`` kept and joined end to start; narrow necks, fingers and thin rings of the level set
+come out as they are. Should those parts not join up (rounding at a degenerate meeting), the level is traced on a
+grid of the distance (``contourpy``'s marching squares, at most ``_MAX_CELLS`` points) instead. Each vertex is
+then moved onto the exact level with Newton steps along the distance's gradient (``|grad d| = 1``, one step lands
+exactly while the nearest boundary point stays the same), and chords are split or merged until each of them keeps
+within :data:`TOLERANCE` of the level set at 7 points along it, never nearer the boundary than ``r`` (but where
+the ring pinches: ``r - TOLERANCE``).
 """
 
 from __future__ import annotations
@@ -553,28 +552,33 @@ def _exact_lines(region_: Region, target: float, tolerance: float) -> list[np.nd
 def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance: float = TOLERANCE,
                  left_higher: bool = True) -> list[list[np.ndarray]]:
     """The closed offset rings (each (n, 2), first point not repeated) at each of ``levels`` [mm] from the
-    region's boundary, traced on a grid of about ``step`` [mm], then made exact within ``tolerance`` [mm]; a level
-    whose grid lines cannot be made so (a neck or a finger of the level set narrower than the grid's cells) is
-    traced from the boundary's offset curves instead (:func:`_exact_lines`). Each ring runs with the region's
-    inside (the higher distance) on its left when ``left_higher`` (counter-clockwise round a pocket, clockwise
-    round an island), else the other way."""
-    lo, hi = region_.bounds()
-    span = hi - lo
-    step = max(step, math.sqrt(float(np.prod(span + 4 * step)) / _MAX_CELLS))
-    xs = np.arange(lo[0] - 2 * step, hi[0] + 2 * step + step / 2, step)
-    ys = np.arange(lo[1] - 2 * step, hi[1] + 2 * step + step / 2, step)
-    gx, gy = np.meshgrid(xs, ys)
-    z = region_.distance(np.stack([gx.ravel(), gy.ravel()], axis=1))[0].reshape(gx.shape)
-    gen = contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
+    region's boundary, traced from the boundary's offset curves (:func:`_exact_lines`) or, should those not join
+    up, on a grid of about ``step`` [mm], then made exact within ``tolerance`` [mm]. Each ring runs with the
+    region's inside (the higher distance) on its left when ``left_higher`` (counter-clockwise round a pocket,
+    clockwise round an island), else the other way."""
+    grid: list[contourpy.ContourGenerator] = []
     out = []
     for level in levels:
         target = level + tolerance / 2
         try:
-            rings = _traced_rings(region_, level, gen.lines(target), tolerance, left_higher)
-        except _Unsettled:
             rings = _traced_rings(region_, level, _exact_lines(region_, target, tolerance), tolerance, left_higher)
+        except _Unsettled:
+            grid = grid or [_grid(region_, step)]
+            rings = _traced_rings(region_, level, grid[0].lines(target), tolerance, left_higher)
         out.append(rings)
     return out
+
+
+def _grid(region_: Region, step: float) -> contourpy.ContourGenerator:
+    """The marching squares of the region's distance on a grid of about ``step`` [mm] (at most ``_MAX_CELLS``
+    points) round the pockets."""
+    lo, hi = region_.bounds()
+    step = max(step, math.sqrt(float(np.prod(hi - lo + 4 * step)) / _MAX_CELLS))
+    xs = np.arange(lo[0] - 2 * step, hi[0] + 2 * step + step / 2, step)
+    ys = np.arange(lo[1] - 2 * step, hi[1] + 2 * step + step / 2, step)
+    gx, gy = np.meshgrid(xs, ys)
+    z = region_.distance(np.stack([gx.ravel(), gy.ravel()], axis=1))[0].reshape(gx.shape)
+    return contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
 
 
 def _traced_rings(region_: Region, level: float, lines, tolerance: float, left_higher: bool) -> list[np.ndarray]:
