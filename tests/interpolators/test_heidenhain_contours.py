@@ -416,3 +416,23 @@ def test_rough_out_22_follows_a_channel_only_12_um_wider_than_the_rings_into_its
     x1, y1 = islands[0][2], islands[0][3]
     end = (pts[:, 0] > x1 + 6.0) & (pts[:, 1] > y1)  # the channel's end, 6.0025 below the top wall
     assert pts[end, 1].max() == pytest.approx(pocket[1] - 6.0025, abs=1e-6)
+
+
+def test_rough_out_22_finds_the_small_rings_either_side_of_a_circle_island_that_a_grid_missed():
+    """A 20.055 x 23.089 pocket, an island strip along its top and a circle of radius 3.968 about (12.837, 10.58):
+    the rings 4.601 from the contours (R 4.601, Q3 0) lie only left of the circle, one below it and one above it,
+    each about 2 x 12 mm (slfuzz seed 6: a grid of 1.5 mm missed them and the cycle stopped, "fits nowhere")."""
+    text = _channel_program((20.055, 23.089), [(-0.019, 21.056, 16.969, 26.227)]).replace("R+5.502", "R+4.601")
+    text = text.replace("Q2=+0.659 Q3=+0.5", "Q2=+0.991 Q3=+0").replace("LABEL 1 /2", "LABEL 1 /2 /3").replace(
+        "END PGM", "LBL 3\nCC X+12.837 Y+10.580\nL X+12.837 Y+14.548 RR\nC X+12.837 Y+14.548 DR+\nLBL 0\nEND PGM")
+    prog = parse_heidenhain(text, source="sl.h")
+    below = [b for b in prog.blocks if b.segment is not None and max(b.start[2], b.target[2]) < 0.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                          for b in below])
+    walls = np.array([(0, 0), (20.055, 0), (20.055, 23.089), (0, 23.089)], float)
+    strip = np.array([(-0.019, 21.056), (16.969, 21.056), (16.969, 26.227), (-0.019, 26.227)])
+    circle = np.linalg.norm(pts - [12.837, 10.58], axis=1) - 3.968
+    assert np.all(_inside_polygon(pts, walls)) and not np.any(_inside_polygon(pts, strip)) and circle.min() > 0
+    d = np.min([_distance_to_polygon(pts, walls), _distance_to_polygon(pts, strip), circle], axis=0)
+    assert d.min() >= 4.601 - 1e-9
+    assert pts[:, 1].min() < 10.58 - 4.0 and pts[:, 1].max() > 10.58 + 4.0 and pts[:, 0].max() < 8.0
