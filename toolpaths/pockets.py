@@ -379,13 +379,14 @@ def _merged(v: np.ndarray, deviation: float) -> np.ndarray | None:
     return v
 
 
-def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> np.ndarray | None:
+def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float, *, merge: bool) -> np.ndarray | None:
     """The closed polyline ``v`` (n, 2) moved onto the level set ``level + tolerance / 2`` and its chords split
-    or merged to keep each within ``[level, level + tolerance]`` (at 7 points); ``None`` when it vanishes."""
+    (and first merged, when ``merge``: a grid's dense points) to keep each within ``[level, level + tolerance]``
+    (at 7 points); ``None`` when it vanishes."""
     target = level + tolerance / 2
     v = _project(region_, v, target)
     v = v[np.abs(region_.distance(v)[0] - target) < tolerance / 20]
-    v = _merged(v, tolerance / 4)
+    v = _merged(v, tolerance / 4) if merge else (v if len(v) >= 3 else None)
     if v is None:
         return None
     fractions = _FRACTIONS
@@ -475,10 +476,19 @@ def _raw_offset(region_: Region, target: float) -> list[Edge]:
     return curves
 
 
+def _box(e: Edge) -> list[float]:
+    """The edge's bounding box: lower x, y, upper x, y [mm] (an arc's ends and the quarter points it passes)."""
+    pts = [e.start, e.end]
+    if e.centre is not None:
+        for k in range(4):
+            if (k * math.pi / 2 - e.a0) * math.copysign(1.0, e.sweep) % (2 * math.pi) <= abs(e.sweep):
+                pts.append(e.centre + e.radius * np.array([math.cos(k * math.pi / 2), math.sin(k * math.pi / 2)]))
+    return [*np.min(pts, axis=0), *np.max(pts, axis=0)]
+
+
 def _cut_points(curves: list[Edge]) -> list[list[float]]:
     """The fractions of each curve where it meets another (its ends included)."""
-    box = np.array([[*np.minimum(c.start, c.end), *np.maximum(c.start, c.end)] if c.centre is None else
-                    [*(c.centre - c.radius), *(c.centre + c.radius)] for c in curves]).reshape(len(curves), 4)
+    box = np.array([_box(c) for c in curves]).reshape(len(curves), 4)
     margin = 1e-9 * max(1.0, float(np.max(np.abs(box)))) if len(curves) else 0.0
     pairs = []
     for k in range(0, len(curves), 500):  # the boxes that overlap, 500 rows at a time
@@ -560,11 +570,12 @@ def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance
     out = []
     for level in levels:
         target = level + tolerance / 2
-        try:
-            rings = _traced_rings(region_, level, _exact_lines(region_, target, tolerance), tolerance, left_higher)
+        try:  # the exact lines are sparse already, their chords within the band: not merged
+            rings = _traced_rings(region_, level, _exact_lines(region_, target, tolerance), tolerance, left_higher,
+                                  merge=False)
         except _Unsettled:
             grid = grid or [_grid(region_, step)]
-            rings = _traced_rings(region_, level, grid[0].lines(target), tolerance, left_higher)
+            rings = _traced_rings(region_, level, grid[0].lines(target), tolerance, left_higher, merge=True)
         out.append(rings)
     return out
 
@@ -581,14 +592,15 @@ def _grid(region_: Region, step: float) -> contourpy.ContourGenerator:
     return contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
 
 
-def _traced_rings(region_: Region, level: float, lines, tolerance: float, left_higher: bool) -> list[np.ndarray]:
+def _traced_rings(region_: Region, level: float, lines, tolerance: float, left_higher: bool, *,
+                  merge: bool) -> list[np.ndarray]:
     """The closed ``lines`` (each (n, 2), its last point its first) of the level, polished (:func:`_polish`) and
     turned the way asked."""
     rings = []
     for line in lines:
         if len(line) < 4 or np.linalg.norm(line[0] - line[-1]) > 1e-9:
             continue
-        v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance)
+        v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance, merge=merge)
         if v is None:
             continue
         b = np.roll(v, -1, axis=0)

@@ -163,3 +163,50 @@ def test_a_point_level_with_where_a_circle_island_starts_is_counted_once():
         p = _chord_points(ring)
         d = np.minimum(-_box_distance(p, 0, 0, 100, 40), np.linalg.norm(p - c, axis=1) - r)
         assert d.min() >= 3.0 - TOLERANCE and d.max() <= 3.0 + TOLERANCE + 1e-9
+
+
+def rounded_box(x0: float, y0: float, x1: float, y1: float, r: float, *, ccw: bool = True) -> list[Edge]:
+    """A rectangle with corners rounded to ``r``, counter-clockwise from (x1 - r, y0) (or clockwise)."""
+    centres = [(x1 - r, y0 + r), (x1 - r, y1 - r), (x0 + r, y1 - r), (x0 + r, y0 + r)]
+    edges = []
+    for k, (cx, cy) in enumerate(centres):
+        a = -math.pi / 2 + k * math.pi / 2
+        c = np.array([cx, cy])
+        arc = Edge(start=c + r * np.array([math.cos(a), math.sin(a)]),
+                   end=c + r * np.array([math.cos(a + math.pi / 2), math.sin(a + math.pi / 2)]), centre=c, radius=r,
+                   a0=a, sweep=math.pi / 2)
+        nxt = np.array(centres[(k + 1) % 4]) + r * np.array([math.cos(a + math.pi / 2), math.sin(a + math.pi / 2)])
+        edges += [arc, Edge(start=arc.end, end=nxt)]
+    if ccw:
+        return edges
+    return [Edge(start=e.end, end=e.start) if e.centre is None else
+            Edge(start=e.end, end=e.start, centre=e.centre, radius=e.radius, a0=e.a0 + e.sweep, sweep=-e.sweep)
+            for e in edges[::-1]]
+
+
+def test_a_ring_past_a_circle_island_cut_by_the_wall_keeps_within_the_band_at_every_chord():
+    """regfuzz seed 5 (issue 19): a rounded pocket, a circle island across its top wall and a slot island across
+    it; merging the exact ring's points as a grid's would (a point dropped where a wall's offset meets an arc)
+    left a chord 1.0055 um above the band and the ring did not settle."""
+    w, h, r = 90.96367450835884, 31.922044492951276, 9.458225732947032
+    c, rc = np.array([18.694751197918567, 29.05828926525136]), 3.035189865765036
+    start = c + rc * np.array([math.cos(-1.506983679984217), math.sin(-1.506983679984217)])
+    circle_island = [Edge(start=start, end=start, centre=c, radius=rc, a0=-1.506983679984217, sweep=-2 * math.pi)]
+    slot = rounded_box(38.31446728425997, 3.82676989718427, 45.24633488067771, 32.632868974905485,
+                       0.22953240777983228, ccw=False)
+    area = region([rounded_box(0.0, 0.0, w, h, r)], [circle_island, slot])
+    level = 7.123381523086605
+    (rings,) = offset_rings(area, [level], step=level / 3)
+    assert len(rings) == 2  # left and right of the slot (7.1 from the top wall, 7.1 from the slot's foot)
+    for ring in rings:
+        p = _chord_points(ring)
+        d = np.min([np.abs(np.linalg.norm(p - c, axis=1) - rc), _rounded_box_distance(p, 0.0, 0.0, w, h, r),
+                    _rounded_box_distance(p, 38.31446728425997, 3.82676989718427, 45.24633488067771,
+                                          32.632868974905485, 0.22953240777983228)], axis=0)
+        assert d.min() >= level - 1e-9 and d.max() <= level + TOLERANCE + 1e-9
+
+
+def _rounded_box_distance(pts: np.ndarray, x0: float, y0: float, x1: float, y1: float, r: float) -> np.ndarray:
+    """The unsigned distance of points to a rectangle with corners rounded to ``r``, by hand."""
+    q = np.abs(pts - [(x0 + x1) / 2, (y0 + y1) / 2]) - [(x1 - x0) / 2 - r, (y1 - y0) / 2 - r]
+    return np.abs(np.linalg.norm(np.maximum(q, 0.0), axis=1) + np.minimum(np.maximum(q[:, 0], q[:, 1]), 0.0) - r)
