@@ -6,11 +6,16 @@ their contours so: TNC 426/430 user's manual, "SL Cycles", "Overlapping contours
 exactly: every edge is cut where it meets another one, and a piece is kept when the region lies on one side of
 it only. The distance of a point to that boundary is exact (lines and arcs), signed: > 0 inside the region.
 
-An offset ring at level ``r`` is a closed polyline on ``{x: d(x) = r}``: the level set is traced on a grid of
-the distance (``contourpy``'s marching squares), each vertex is then moved onto the exact level with Newton
-steps along the distance's gradient (``|grad d| = 1``, one step lands exactly while the nearest boundary point
-stays the same), and chords are split or merged until each of them keeps within :data:`TOLERANCE` of the
-level set at 7 points along it, never nearer the boundary than ``r`` (but where the ring pinches: ``r - TOLERANCE``).
+An offset ring at level ``r`` is a closed polyline on ``{x: d(x) = r}``, traced exactly: a point at the distance
+``r`` lies on the offset of the boundary piece nearest to it, so the boundary's offset curves (lines parallel to
+the lines, arcs about the arcs' centres, arcs about the corners the region wraps round) are cut where they meet,
+the parts at the distance ``r`` kept and joined end to start; narrow necks, fingers and thin rings of the level set
+come out as they are. Should those parts not join up (rounding at a degenerate meeting), the level is traced on a
+grid of the distance (``contourpy``'s marching squares, at most ``_MAX_CELLS`` points) instead. Each vertex is
+then moved onto the exact level with Newton steps along the distance's gradient (``|grad d| = 1``, one step lands
+exactly while the nearest boundary point stays the same), and chords are split or merged until each of them keeps
+within :data:`TOLERANCE` of the level set at 7 points along it, never nearer the boundary than ``r`` (but where
+the ring pinches: ``r - TOLERANCE``).
 """
 
 from __future__ import annotations
@@ -30,7 +35,6 @@ __all__ = ["TOLERANCE", "Edge", "Region", "region", "offset_rings", "segment_cle
 #: less than the tolerance, as when a gap is just 2 r wide): there its chord keeps ``r - TOLERANCE``.
 TOLERANCE = 1e-3
 _MAX_CELLS = 600_000  # grid points of the distance field, at most
-_MAX_REFINED_CELLS = 128 * _MAX_CELLS  # grid points of a refined grid, at most (8 bytes each, built row by row)
 _FRACTIONS = np.linspace(0.125, 0.875, 7)  # where a chord is checked
 
 
@@ -97,7 +101,11 @@ def _y_monotone(edges: list[Edge]) -> list[Edge]:
             if 1e-12 < u < 1 - 1e-12:
                 cuts.append(u)
         cuts.sort()
-        out += [e.piece(a, b) for a, b in zip(cuts, cuts[1:])]
+        pieces = [e.piece(a, b) for a, b in zip(cuts, cuts[1:])]
+        # the edge's own ends, not their recomputed angles (sin(-2 pi) != 0): a vertex on a ray counts once
+        pieces[0] = dataclasses.replace(pieces[0], start=e.start)
+        pieces[-1] = dataclasses.replace(pieces[-1], end=e.end)
+        out += pieces
     return out
 
 
@@ -371,13 +379,14 @@ def _merged(v: np.ndarray, deviation: float) -> np.ndarray | None:
     return v
 
 
-def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> np.ndarray | None:
+def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float, *, merge: bool) -> np.ndarray | None:
     """The closed polyline ``v`` (n, 2) moved onto the level set ``level + tolerance / 2`` and its chords split
-    or merged to keep each within ``[level, level + tolerance]`` (at 7 points); ``None`` when it vanishes."""
+    (and first merged, when ``merge``: a grid's dense points) to keep each within ``[level, level + tolerance]``
+    (at 7 points); ``None`` when it vanishes."""
     target = level + tolerance / 2
     v = _project(region_, v, target)
     v = v[np.abs(region_.distance(v)[0] - target) < tolerance / 20]
-    v = _merged(v, tolerance / 4)
+    v = _merged(v, tolerance / 4) if merge else (v if len(v) >= 3 else None)
     if v is None:
         return None
     fractions = _FRACTIONS
@@ -410,58 +419,188 @@ def _polish(region_: Region, v: np.ndarray, level: float, tolerance: float) -> n
     return v  # where the ring pinches (two offsets crossing by less than the tolerance): within it of the level
 
 
-def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance: float = TOLERANCE,
-                 left_higher: bool = True) -> list[list[np.ndarray]]:
-    """The closed offset rings (each (n, 2), first point not repeated) at each of ``levels`` [mm] from the
-    region's boundary, traced on a grid of about ``step`` [mm] (the finest detail it sees), then made exact
-    within ``tolerance`` [mm]. Each ring runs with the region's inside (the higher distance) on its left when
-    ``left_higher`` (counter-clockwise round a pocket, clockwise round an island), else the other way."""
-    lo, hi = region_.bounds()
-    span = hi - lo
-    step = max(step, math.sqrt(float(np.prod(span + 4 * step)) / _MAX_CELLS))
-    grids: dict[float, contourpy.ContourGenerator] = {}
+def _reversed(e: Edge) -> Edge:
+    """The edge run the other way."""
+    if e.centre is None:
+        return Edge(start=e.end, end=e.start)
+    return Edge(start=e.end, end=e.start, centre=e.centre, radius=e.radius, a0=e.a0 + e.sweep, sweep=-e.sweep)
 
-    def generator(h: float) -> contourpy.ContourGenerator:
-        if h not in grids:
-            xs = np.arange(lo[0] - 2 * h, hi[0] + 2 * h + h / 2, h)
-            ys = np.arange(lo[1] - 2 * h, hi[1] + 2 * h + h / 2, h)
-            if len(xs) * len(ys) > _MAX_REFINED_CELLS:
-                raise _Unsettled(f"the offset rings need a grid finer than {h:.3g} mm over the whole pocket "
-                                 f"({len(xs) * len(ys):,} points, more than {_MAX_REFINED_CELLS:,})")
-            z = np.empty((len(ys), len(xs)))
-            rows = max(1, 50_000 // len(xs))
-            for k in range(0, len(ys), rows):  # a few rows at a time: no coordinate arrays of the whole grid
-                gx, gy = np.meshgrid(xs, ys[k:k + rows])
-                z[k:k + rows] = region_.distance(np.stack([gx.ravel(), gy.ravel()], axis=1))[0].reshape(gx.shape)
-            grids[h] = contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
-        return grids[h]
 
+def _tangent(e: Edge, u: float) -> np.ndarray:
+    """The unit direction of the edge at the fraction ``u``."""
+    if e.centre is None:
+        return (e.end - e.start) / np.linalg.norm(e.end - e.start)
+    a = e.a0 + u * e.sweep
+    return math.copysign(1.0, e.sweep) * np.array([-math.sin(a), math.cos(a)])
+
+
+def _arc(centre: np.ndarray, radius: float, a0: float, sweep: float) -> Edge:
+    """The arc about ``centre`` from the angle ``a0`` through ``sweep`` [rad]."""
+    a1 = a0 + sweep
+    return Edge(start=centre + radius * np.array([math.cos(a0), math.sin(a0)]),
+                end=centre + radius * np.array([math.cos(a1), math.sin(a1)]), centre=centre, radius=radius, a0=a0,
+                sweep=sweep)
+
+
+def _raw_offset(region_: Region, target: float) -> list[Edge]:
+    """The boundary's offset curves at ``target`` [mm] into the region, each run with the region on its left: a
+    line parallel to each line piece, an arc about each arc's centre (none where the arc's radius is smaller on
+    the region's side), and an arc about each corner the region wraps round (turning right), from one
+    neighbour's offset to the other's. The level set ``{d = target}`` is made of parts of these curves."""
+    left = []
+    for e in region_.boundary:
+        mid, tangent = e.at(np.array([0.5]))[0], _tangent(e, 0.5)
+        left.append(mid + np.array([-tangent[1], tangent[0]]) * 1e-7 * max(1.0, float(np.max(np.abs(mid)))))
+    inside = region_.contains(np.array(left).reshape(-1, 2))
+    pieces = [e if keep else _reversed(e) for e, keep in zip(region_.boundary, inside)]  # the region on the left
+    curves = []
+    for e in pieces:
+        if e.centre is None:
+            t = _tangent(e, 0.0)
+            n = target * np.array([-t[1], t[0]])
+            curves.append(Edge(start=e.start + n, end=e.end + n))
+        else:
+            rho = e.radius - target if e.sweep > 0 else e.radius + target  # ccw: the region towards the centre
+            if rho > 1e-12:
+                curves.append(_arc(e.centre, rho, e.a0, e.sweep))
+    starts = np.array([e.start for e in pieces])
+    for a in pieces:  # the corner at its end, with the piece that leaves it
+        gap = np.linalg.norm(starts - a.end, axis=1)
+        near = np.flatnonzero(gap <= 1e-7 * max(1.0, float(np.max(np.abs(a.end)))))
+        t_in = _tangent(a, 1.0)
+        for b in (pieces[k] for k in near):
+            t_out = _tangent(b, 0.0)
+            turn = math.atan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], t_in @ t_out)
+            if turn < -1e-9:  # a right turn: the region wraps round the corner
+                curves.append(_arc(a.end, target, math.atan2(t_in[0], -t_in[1]), turn))
+    return curves
+
+
+def _box(e: Edge) -> list[float]:
+    """The edge's bounding box: lower x, y, upper x, y [mm] (an arc's ends and the quarter points it passes)."""
+    pts = [e.start, e.end]
+    if e.centre is not None:
+        for k in range(4):
+            if (k * math.pi / 2 - e.a0) * math.copysign(1.0, e.sweep) % (2 * math.pi) <= abs(e.sweep):
+                pts.append(e.centre + e.radius * np.array([math.cos(k * math.pi / 2), math.sin(k * math.pi / 2)]))
+    return [*np.min(pts, axis=0), *np.max(pts, axis=0)]
+
+
+def _cut_points(curves: list[Edge]) -> list[list[float]]:
+    """The fractions of each curve where it meets another (its ends included)."""
+    box = np.array([_box(c) for c in curves]).reshape(len(curves), 4)
+    margin = 1e-9 * max(1.0, float(np.max(np.abs(box)))) if len(curves) else 0.0
+    pairs = []
+    for k in range(0, len(curves), 500):  # the boxes that overlap, 500 rows at a time
+        b = box[k:k + 500, None, :]
+        overlap = ((b[..., 0] <= box[None, :, 2] + margin) & (box[None, :, 0] <= b[..., 2] + margin)
+                   & (b[..., 1] <= box[None, :, 3] + margin) & (box[None, :, 1] <= b[..., 3] + margin))
+        i, j = np.nonzero(overlap)
+        pairs += [(a + k, c) for a, c in zip(i.tolist(), j.tolist()) if c > a + k]
+    cuts: list[list[float]] = [[0.0, 1.0] for _ in curves]
+    for i, j in pairs:
+        for p in _meet(curves[i], curves[j]):
+            ui, uj = curves[i].fraction(p), curves[j].fraction(p)
+            if -1e-9 <= ui <= 1 + 1e-9 and -1e-9 <= uj <= 1 + 1e-9:
+                cuts[i].append(min(max(ui, 0.0), 1.0))
+                cuts[j].append(min(max(uj, 0.0), 1.0))
+    return cuts
+
+
+def _level_pieces(region_: Region, target: float, tolerance: float) -> list[np.ndarray]:
+    """The parts of the boundary's offset curves (:func:`_raw_offset`) that lie on the level set ``target``,
+    each as points (n, 2) from its start to its end, its chords within ``0.4 tolerance`` of it (``target`` being
+    the band's middle, they keep within the band whichever side of them the region lies)."""
+    curves = _raw_offset(region_, target)
+    parts = []
+    for c, us in zip(curves, _cut_points(curves)):
+        us = sorted(set(us))
+        parts += [c.piece(u0, u1) for u0, u1 in zip(us, us[1:]) if u1 - u0 > 1e-12]
+    if not parts:
+        return []
+    mids = np.array([p.at(np.array([0.5]))[0] for p in parts])
+    on = region_.distance(mids)[0] >= target - 1e-9 * max(1.0, float(np.max(np.abs(mids))))
     out = []
-    for level in levels:
-        out.append(_level_rings(region_, level, generator, step, tolerance, left_higher))
+    for p in (p for p, keep in zip(parts, on) if keep):
+        if p.centre is None:
+            out.append(np.array([p.start, p.end]))
+            continue
+        chord = 2 * math.acos(max(1.0 - 0.4 * tolerance / p.radius, -1.0))
+        out.append(p.at(np.linspace(0.0, 1.0, max(1, math.ceil(abs(p.sweep) / chord)) + 1)))
     return out
 
 
-def _level_rings(region_: Region, level: float, generator, step: float, tolerance: float,
-                 left_higher: bool) -> list[np.ndarray]:
-    """The rings of one level, traced on the grid of ``step`` and, where that joins rings across a narrow neck,
-    on grids 2, 4, .. 32 times finer."""
-    for refine in range(6):
-        try:
-            return _traced_rings(region_, level, generator(step / 2 ** refine), tolerance, left_higher)
+def _exact_lines(region_: Region, target: float, tolerance: float) -> list[np.ndarray]:
+    """The closed lines (each (n, 2), its last point its first) of the level set ``target`` [mm], made of the
+    parts of the boundary's offset curves on it (:func:`_level_pieces`) joined end to start, each to the nearest
+    start (within ``tolerance``: a join across a finger of the level set that narrow keeps its chord in the band).
+    """
+    pieces = _level_pieces(region_, target, tolerance)
+    starts = np.array([p[0] for p in pieces]).reshape(-1, 2)
+    free = np.ones(len(pieces), dtype=bool)
+    lines = []
+    while np.any(free):
+        first = int(np.argmax(free))
+        free[first] = False
+        loop, k = [pieces[first]], first
+        while True:
+            gap = np.linalg.norm(starts - pieces[k][-1], axis=1)
+            gap[~free] = np.inf
+            gap[first] = np.linalg.norm(starts[first] - pieces[k][-1])
+            k = int(np.argmin(gap))
+            if gap[k] > tolerance:
+                raise _Unsettled(f"the offset at {target:g} mm does not close (a gap of {gap[k]:.3g} mm)")
+            if k == first:
+                break
+            free[k] = False
+            loop.append(pieces[k])
+        line = np.concatenate([p[:-1] for p in loop])
+        lines.append(np.concatenate([line, line[:1]]))
+    return lines
+
+
+def offset_rings(region_: Region, levels: list[float], *, step: float, tolerance: float = TOLERANCE,
+                 left_higher: bool = True) -> list[list[np.ndarray]]:
+    """The closed offset rings (each (n, 2), first point not repeated) at each of ``levels`` [mm] from the
+    region's boundary, traced from the boundary's offset curves (:func:`_exact_lines`) or, should those not join
+    up, on a grid of about ``step`` [mm], then made exact within ``tolerance`` [mm]. Each ring runs with the
+    region's inside (the higher distance) on its left when ``left_higher`` (counter-clockwise round a pocket,
+    clockwise round an island), else the other way."""
+    grid: list[contourpy.ContourGenerator] = []
+    out = []
+    for level in levels:
+        target = level + tolerance / 2
+        try:  # the exact lines are sparse already, their chords within the band: not merged
+            rings = _traced_rings(region_, level, _exact_lines(region_, target, tolerance), tolerance, left_higher,
+                                  merge=False)
         except _Unsettled:
-            if refine == 5:
-                raise
-    return []
+            grid = grid or [_grid(region_, step)]
+            rings = _traced_rings(region_, level, grid[0].lines(target), tolerance, left_higher, merge=True)
+        out.append(rings)
+    return out
 
 
-def _traced_rings(region_: Region, level: float, gen, tolerance: float, left_higher: bool) -> list[np.ndarray]:
-    """The closed lines of ``gen`` at the level, polished (:func:`_polish`) and turned the way asked."""
+def _grid(region_: Region, step: float) -> contourpy.ContourGenerator:
+    """The marching squares of the region's distance on a grid of about ``step`` [mm] (at most ``_MAX_CELLS``
+    points) round the pockets."""
+    lo, hi = region_.bounds()
+    step = max(step, math.sqrt(float(np.prod(hi - lo + 4 * step)) / _MAX_CELLS))
+    xs = np.arange(lo[0] - 2 * step, hi[0] + 2 * step + step / 2, step)
+    ys = np.arange(lo[1] - 2 * step, hi[1] + 2 * step + step / 2, step)
+    gx, gy = np.meshgrid(xs, ys)
+    z = region_.distance(np.stack([gx.ravel(), gy.ravel()], axis=1))[0].reshape(gx.shape)
+    return contourpy.contour_generator(xs, ys, z, line_type=contourpy.LineType.Separate)
+
+
+def _traced_rings(region_: Region, level: float, lines, tolerance: float, left_higher: bool, *,
+                  merge: bool) -> list[np.ndarray]:
+    """The closed ``lines`` (each (n, 2), its last point its first) of the level, polished (:func:`_polish`) and
+    turned the way asked."""
     rings = []
-    for line in gen.lines(level + tolerance / 2):
+    for line in lines:
         if len(line) < 4 or np.linalg.norm(line[0] - line[-1]) > 1e-9:
             continue
-        v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance)
+        v = _polish(region_, np.asarray(line[:-1], dtype=float), level, tolerance, merge=merge)
         if v is None:
             continue
         b = np.roll(v, -1, axis=0)

@@ -378,40 +378,61 @@ def test_rest_machining_22_q18_cuts_only_near_what_the_coarse_tool_left_and_toge
     assert np.all(near_coarse | near_fine)
 
 
+def _channel_program(pocket: tuple[float, float], islands: list[tuple[float, float, float, float]]) -> str:
+    """Cycle 22 with a 5.502 mm tool and Q3 = 0.5 (the rings 6.002 from the contours) in a ``pocket`` (width,
+    height from the origin) with rectangle ``islands`` (x0, y0, x1, y1), as slfuzz writes them (issue 19)."""
+    w, h = pocket
+    labels = [f"LBL 1\nL X+0 Y+{h / 2:g} RR\nL X+0 Y+{h:g}\nL X+{w:g} Y+{h:g}\nL X+{w:g} Y+0\nL X+0 Y+0\n"
+              f"L X+0 Y+{h / 2:g}\nLBL 0\n"]
+    for k, (x0, y0, x1, y1) in enumerate(islands):
+        ym = round((y0 + y1) / 2, 4)
+        labels.append(f"LBL {k + 2}\nL X{x0:+g} Y{ym:+g} RL\nL X{x0:+g} Y{y1:+g}\nL X{x1:+g} Y{y1:+g}\n"
+                      f"L X{x1:+g} Y{y0:+g}\nL X{x0:+g} Y{y0:+g}\nL X{x0:+g} Y{ym:+g}\nLBL 0\n")
+    return ("BEGIN PGM T MM\nTOOL DEF 1 L+0 R+5.502\nTOOL CALL 1 Z S1000\nL Z+100 R0 FMAX\nCYCL DEF 14.0 CONTOUR\n"
+            f"CYCL DEF 14.1 CONTOUR LABEL {' /'.join(str(k + 1) for k in range(len(labels)))}\n"
+            "CYCL DEF 20 CONTOUR DATA Q1=-6 Q2=+0.659 Q3=+0.5 Q4=+0 Q5=+0 Q6=+2 Q7=+50 Q8=+0 Q9=+1\n"
+            "CYCL DEF 22 ROUGH-OUT Q10=-3 Q11=100 Q12=350 Q18=0 Q19=0 Q208=MAX\nL X+0 Y+0 R0 FMAX\nCYCL CALL\n"
+            "L Z+100 R0 FMAX M30\n" + "".join(labels) + "END PGM T MM\n")
+
+
 @pytest.mark.slow
-def test_rough_out_22_refuses_a_channel_narrower_than_its_grids_can_separate_before_exhausting_memory():
-    """A 770 x 685 mm pocket whose island leaves a channel 12.016 mm wide for a ring 2 x 6.002 mm across (12 um
-    to spare): the rings are traced on grids refined by halving; one fine enough for the channel would hold
-    hundreds of millions of points over the whole pocket, so the cycle stops with a named error instead."""
-    text = """BEGIN PGM T MM
-TOOL DEF 1 L+0 R+5.502
-TOOL CALL 1 Z S1000
-L Z+100 R0 FMAX
-CYCL DEF 14.0 CONTOUR
-CYCL DEF 14.1 CONTOUR LABEL 1 /2
-CYCL DEF 20 CONTOUR DATA Q1=-6 Q2=+0.659 Q3=+0.5 Q4=+0 Q5=+0 Q6=+2 Q7=+50 Q8=+0 Q9=+1
-CYCL DEF 22 ROUGH-OUT Q10=-3 Q11=100 Q12=350 Q18=0 Q19=0 Q208=MAX
-L X+0 Y+0 R0 FMAX
-CYCL CALL
-L Z+100 R0 FMAX M30
-LBL 1
-L X+0 Y+342.73 RR
-L X+0 Y+685.46
-L X+770.56 Y+685.46
-L X+770.56 Y+0
-L X+0 Y+0
-L X+0 Y+342.73
-LBL 0
-LBL 2
-L X+747.181 Y+55.855 RL
-L X+747.181 Y+61.900
-L X+758.544 Y+61.900
-L X+758.544 Y+49.810
-L X+747.181 Y+49.810
-L X+747.181 Y+55.855
-LBL 0
-END PGM T MM
-"""
-    with pytest.raises(GCodeError, match=r"sl\.h:10:.*cycle 22: the offset rings need a grid finer than .* over the "
-                                         r"whole pocket \([\d,]+ points, more than 76,800,000\)"):
-        parse_heidenhain(text, source="sl.h")
+@pytest.mark.parametrize(("pocket", "islands"), [
+    ((77.056, 68.546), [(53.677, 49.81, 65.04, 61.9), (19.338, 59.631, 22.003, 65.941)]),
+    ((770.56, 685.46), [(747.181, 49.81, 758.544, 61.9)])])
+def test_rough_out_22_follows_a_channel_only_12_um_wider_than_the_rings_into_its_closed_end(pocket, islands):
+    """The island leaves a channel 12.016 mm wide to the right wall (the ring needs 2 x 6.002) whose far end is
+    closed (the island 6.646 below the top wall): the ring at 6.002 runs up it and back 11 um apart, which no grid
+    over the pocket separated (the small pocket stopped with "did not settle", the large one at the grid cap);
+    each move keeps 6.002 from the contours and the ring reaches the channel's end."""
+    prog = parse_heidenhain(_channel_program(pocket, islands), source="sl.h")
+    below = [b for b in prog.blocks if b.segment is not None and max(b.start[2], b.target[2]) < 0.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                          for b in below])
+    walls = np.array([(0, 0), (pocket[0], 0), pocket, (0, pocket[1])], float)
+    boxes = [np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)]) for x0, y0, x1, y1 in islands]
+    assert np.all(_inside_polygon(pts, walls)) and not any(np.any(_inside_polygon(pts, b)) for b in boxes)
+    d = np.min([_distance_to_polygon(pts, walls), *(_distance_to_polygon(pts, b) for b in boxes)], axis=0)
+    assert d.min() >= 6.002 - 1e-9
+    x1, y1 = islands[0][2], islands[0][3]
+    end = (pts[:, 0] > x1 + 6.0) & (pts[:, 1] > y1)  # the channel's end, 6.0025 below the top wall
+    assert pts[end, 1].max() == pytest.approx(pocket[1] - 6.0025, abs=1e-6)
+
+
+def test_rough_out_22_finds_the_small_rings_either_side_of_a_circle_island_that_a_grid_missed():
+    """A 20.055 x 23.089 pocket, an island strip along its top and a circle of radius 3.968 about (12.837, 10.58):
+    the rings 4.601 from the contours (R 4.601, Q3 0) lie only left of the circle, one below it and one above it,
+    each about 2 x 12 mm (slfuzz seed 6: a grid of 1.5 mm missed them and the cycle stopped, "fits nowhere")."""
+    text = _channel_program((20.055, 23.089), [(-0.019, 21.056, 16.969, 26.227)]).replace("R+5.502", "R+4.601")
+    text = text.replace("Q2=+0.659 Q3=+0.5", "Q2=+0.991 Q3=+0").replace("LABEL 1 /2", "LABEL 1 /2 /3").replace(
+        "END PGM", "LBL 3\nCC X+12.837 Y+10.580\nL X+12.837 Y+14.548 RR\nC X+12.837 Y+14.548 DR+\nLBL 0\nEND PGM")
+    prog = parse_heidenhain(text, source="sl.h")
+    below = [b for b in prog.blocks if b.segment is not None and max(b.start[2], b.target[2]) < 0.0]
+    pts = np.concatenate([np.asarray(b.segment.point_at(np.linspace(0, b.segment.length, 20)))[:, :2]
+                          for b in below])
+    walls = np.array([(0, 0), (20.055, 0), (20.055, 23.089), (0, 23.089)], float)
+    strip = np.array([(-0.019, 21.056), (16.969, 21.056), (16.969, 26.227), (-0.019, 26.227)])
+    circle = np.linalg.norm(pts - [12.837, 10.58], axis=1) - 3.968
+    assert np.all(_inside_polygon(pts, walls)) and not np.any(_inside_polygon(pts, strip)) and circle.min() > 0
+    d = np.min([_distance_to_polygon(pts, walls), _distance_to_polygon(pts, strip), circle], axis=0)
+    assert d.min() >= 4.601 - 1e-9
+    assert pts[:, 1].min() < 10.58 - 4.0 and pts[:, 1].max() > 10.58 + 4.0 and pts[:, 0].max() < 8.0
