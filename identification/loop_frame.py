@@ -24,16 +24,10 @@ import dataclasses
 import numpy as np
 
 from identification.dead_time import delay_reference, loop_capture
-from identification.segments import settled_start
+from identification.segments import settled_start, starts_from_standstill
 from vcnc.core.capture import Capture
 
-__all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest", "START_SHARE"]
-
-#: Largest first step of the recorded reference, as a share of its largest step, for a record
-#: that starts at rest [-]. Held, the first value stands for the loop's reference before the record;
-#: a move already under way has moved it (fadal-pid's reference advanced by 20 ms: a 25 um step at
-#: 5 % of the largest, 5.5 um RMS instead of 1.0), so only a reference at rest qualifies.
-START_SHARE = 0.01
+__all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest"]
 
 
 def without_offset(capture: Capture, axis: str, offset_mm: float) -> Capture:
@@ -50,14 +44,13 @@ def starts_at_rest(recorded: np.ndarray, delayed: np.ndarray, measured: np.ndarr
     """Whether the loop's reference before a record may be taken as its first value held.
 
     True when the axis rests at the first sample (:func:`identification.segments.settled_start`
-    of the delayed reference and the measured position is 0) and the recorded reference does not
-    move there either: a reference that leads by ``delay_s`` and already moves at the first sample
-    moved before the record, and the loop received that motion within the first ``delay_s``.
+    of the delayed reference and the measured position is 0) and the recorded reference stands still
+    there too, or sets off from standstill (:func:`identification.segments.starts_from_standstill`):
+    a reference that leads by ``delay_s`` and is already under way at the first sample moved before
+    the record (fadal-pid's reference advanced by 20 ms: a 25 um first step, as large as the next),
+    and the loop received that motion within the first ``delay_s``.
     """
-    steps = np.abs(np.diff(np.asarray(recorded, float)))
-    if steps.size == 0 or not steps.max() > 0:
-        return False
-    return bool(steps[0] <= START_SHARE * steps.max() and settled_start(delayed, measured) == 0)
+    return starts_from_standstill(recorded) and settled_start(delayed, measured) == 0
 
 
 def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_samples: float = 0.0

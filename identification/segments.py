@@ -22,7 +22,8 @@ import numpy as np
 
 from vcnc.core.errors import IdentificationError
 
-__all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "SETTLED_SHARE"]
+__all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "starts_from_standstill",
+           "SETTLED_SHARE", "RAMP_SHARE"]
 
 #: a reference step smaller than this share of the reference's largest step counts as standing still [-]
 _STILL_SHARE = 1e-6
@@ -83,6 +84,26 @@ SETTLED_SHARE = 0.01
 #: dwells rests only at its ends, and then the whole record (start transient and all) is better
 #: than its tail.
 MAX_DROPPED_SHARE = 0.5
+#: Largest ratio of a reference's first step to its second for a move that sets off from
+#: standstill at the first sample [-]: from rest under a constant acceleration the steps grow as
+#: 1, 3, 5 (ratio 1/3), under a jerk limit faster still; a move already under way steps about
+#: alike (ratio near 1) or shrinks (braking).
+RAMP_SHARE = 0.5
+
+
+def starts_from_standstill(reference: np.ndarray) -> bool:
+    """Whether the reference stands still at its first sample: its first step is below
+    :data:`SETTLED_SHARE` of its largest, or it is a move setting off from standstill there (the
+    first step at most :data:`RAMP_SHARE` of the second), as a record started with the program is.
+    A simulated capture's reference leaves its start position at the first sample: its first step
+    of a 2000 mm/s^2 ramp (1 um at 1 ms) is 1 % of a 100 mm/s move's steps, and of a 20,000
+    mm/s^2 one 10 %, so the share alone cannot tell it from a record triggered mid-move."""
+    steps = np.abs(np.diff(np.asarray(reference, float)))
+    if steps.size == 0 or not steps.max() > 0:
+        return False
+    if steps[0] <= SETTLED_SHARE * steps.max():
+        return True
+    return steps.size > 1 and steps[0] <= RAMP_SHARE * steps[1]
 
 
 def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
@@ -105,7 +126,8 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     int or None
         0 when the record starts at rest (the usual case; nothing is cut), else the first sample
         where the reference and the axis both stand still (steps below :data:`SETTLED_SHARE` of
-        the largest reference step) and the tracking error is at its value at rest (within 10
+        the largest reference step; at the first sample also a move setting off from standstill,
+        :func:`starts_from_standstill`) and the tracking error is 0 or at its value at rest (within 10
         robust deviations of the still samples, or :data:`SETTLED_SHARE` of its largest
         excursion). None when the axis does not rest in the first :data:`MAX_DROPPED_SHARE` of
         the record: then the start transient stays.
@@ -125,7 +147,12 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     med = float(np.median(rest))
     mad = 1.4826 * float(np.median(np.abs(rest - med)))
     tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
-    ok = (dxr <= SETTLED_SHARE * big) & (dx <= SETTLED_SHARE * big) & (np.abs(e - med) <= tol)
+    still = dxr <= SETTLED_SHARE * big
+    still[0] |= starts_from_standstill(xr)  # a move setting off at the first sample started at rest
+    # at rest: the tracking error at the record's rest value, or none at all (a loop that rests 1 um
+    # off at the end of its record, by friction, started where it was commanded)
+    at_rest = (np.abs(e - med) <= tol) | (np.abs(e) <= tol)
+    ok = still & (dx <= SETTLED_SHARE * big) & at_rest
     hits = np.flatnonzero(ok)
     return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else None
 

@@ -130,3 +130,20 @@ def test_a_fast_trace_is_scanned_at_about_1_ms():
     exact = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
     assert _pole_error(model.poles, exact) < 0.1
     assert model.fit["rms_um"] <= 1.5 * 0.5
+
+
+def test_a_record_started_with_its_program_keeps_every_sample():
+    """A capture simulated from the start of a short program (fadal-pid, F6000 triangle: 670
+    samples) starts at rest although its reference leaves the start at the first sample (a 1 um
+    step of the 2000 mm/s^2 ramp, 1 % of the 0.1 mm steps at speed) and its axis comes to rest
+    1 um off at the end (friction): nothing may be cut as a start in motion (406 samples were
+    left, below identification's 500, before the first-sample standstill rule)."""
+    machine = vcnc.machine("fadal-pid")
+    program = vcnc.parse_program("G00 X0 Y0\nG01 X20 Y0 F6000\nG01 X20 Y10\nG01 X0 Y0\nM30\n")
+    cap = machine.simulate(vcnc.interpolate(program, machine), seed=1).select_axes(("x",))
+    steps = np.abs(np.diff(cap.reference[:, 0]))
+    assert 0 < steps[0] <= 0.5 * steps[1] and steps[0] > 0.005 * steps.max()  # sets off at sample 0
+    model = identify(cap, axis="x", diagnose=False)
+    assert "record_start" not in model.fit
+    assert model.fit["samples"] == len(cap)
+    assert model.fit["rms_um"] < 2.0
