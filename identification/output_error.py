@@ -22,6 +22,7 @@ import scipy.optimize
 
 from identification.bounds import PoleBounds
 from identification.dead_time import delay_reference
+from identification.initial_state import fit_initial_state
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI, canonical
 from identification.reduced_model import simulate
@@ -41,6 +42,7 @@ def refine_output_error(
     offset: bool = False,
     delay: tuple[float, float, float] | None = None,
     keep: slice | None = None,
+    initial_state: bool = False,
 ) -> dict:
     """Refine a reduced model by output error (module docstring).
 
@@ -73,6 +75,14 @@ def refine_output_error(
     keep : slice, optional
         The samples the residual is taken on (all by default): the simulation starts at
         ``keep.start`` from rest.
+    initial_state : bool
+        Also fit the model's state at the first kept sample (a record that starts in motion,
+        :mod:`identification.initial_state`), eliminated by linear least squares in each residual.
+
+    Notes
+    -----
+    With ``initial_state`` the result also has ``initial_state`` (the causal state [mm]) and
+    ``start_response`` [mm] (its free response on the kept samples, to add to the simulation).
     """
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
@@ -101,8 +111,13 @@ def refine_output_error(
 
     def fun(x):
         ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
-        r = simulate(from_search(x[:nv]), ref[cut], sample_time) - xm_kept
-        return r + x[nv] if offset else r
+        params = from_search(x[:nv])
+        r = simulate(params, ref[cut], sample_time) - xm_kept
+        if offset:
+            r = r + x[nv]
+        if initial_state and np.all(np.isfinite(r)):
+            r = r + fit_initial_state(params, sample_time, r)[1]
+        return r
 
     r0 = fun(x0)
     start_cost = 0.5 * float(r0 @ r0)
@@ -112,6 +127,12 @@ def refine_output_error(
     )
     x = res.x if res.cost <= start_cost else x0
     params = from_search(x[:nv])
+    start = {}
+    if initial_state:
+        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
+        r = simulate(params, ref[cut], sample_time) - xm_kept + (x[nv] if offset else 0.0)
+        state, response = fit_initial_state(params, sample_time, r)
+        start = {"initial_state": state, "start_response": response}
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
     return {
         "parameters": params,
@@ -122,4 +143,5 @@ def refine_output_error(
         "message": str(res.message),
         "offset_mm": float(x[nv]) if offset else 0.0,
         "delay_samples": float(x[i_delay]) if delay is not None else 0.0,
+        **start,
     }
