@@ -51,6 +51,9 @@ log = logging.getLogger(__name__)
 
 #: Refinements of the equation-error solution.
 REFINEMENTS: tuple[str, ...] = ("output-error", "none")
+#: Least ratio of prediction RMS (slow pole near 0 Hz / datum offset) for a widened box's slow pole to be
+#: replaced by a datum offset [-] (:func:`_offset_for_slow_pole`; fadal-pid with 10 um left at 3 ms: 1.57).
+OFFSET_OVER_SLOW_POLE = 1.25
 
 
 
@@ -117,6 +120,7 @@ def fit_reduced_model(
                                         identifiability=True)
     widened = None
     if bounds is None and not offset.applied:  # after a removed offset, what is left of it puts p on the bound
+        narrow = sol
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
     fit = {
         "equation_error": {**error_metrics(x - simulate(sol.parameters, xr, T)), "objective_mm2": sol.objective},
@@ -132,6 +136,8 @@ def fit_reduced_model(
         fit["bounds_widened"] = widened
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit,
                                         offset=offset.applied)
+    if widened is not None and label.endswith("+oe") and not fit["offset"]["applied"] and "initial_state" not in fit:
+        params, poles, err = _offset_for_slow_pole(narrow, xr, x, T, b, params, poles, err, fit)
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
         params, poles, err, delay_s = _with_refined_delay(original, axis, params, poles, err, T, b, delay_s, fit)
     fit.update(error_metrics(err))
@@ -209,6 +215,30 @@ def _refine(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBo
             return oe2["parameters"], oe2["poles"], f"{method}+oe", err2
     _record_initial_state(fit, oe, fit.get("record_start", {}).get("dropped_samples", 0))
     return oe["parameters"], oe["poles"], f"{method}+oe", oe_err
+
+
+def _offset_for_slow_pole(narrow: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, params: dict,
+                          poles: dict, err: np.ndarray, fit: dict) -> tuple[dict, dict, np.ndarray]:
+    """``(parameters, poles, error [mm])``: a datum offset instead of a slow pole near 0 Hz.
+
+    A small datum offset left in the record (below what :func:`_datum_offset` removes: 10 um on
+    fadal-pid at 3 ms, or what remains of a removed one) puts p on the thesis' 0.2 Hz bound; the
+    box is widened (:func:`_widen_for_p`) and the refinement, started there, imitates the offset
+    with p on 0.001 Hz (1.75 um RMS), a local minimum: started from the thesis box's solution with
+    the offset free it finds the offset to 0.02 um and p 1.42 Hz (1.12 um). Kept (``fit.offset``
+    updated) when it predicts :data:`OFFSET_OVER_SLOW_POLE` times better (RMS); a loop without
+    integral action (EMPS) keeps its slow pole.
+    """
+    oe = refine_output_error(narrow.parameters, narrow.poles, xr, x, T, bounds=b, offset=True)
+    e = x - oe["offset_mm"] - simulate(oe["parameters"], xr, T)
+    rms0, rms1 = (float(np.sqrt(np.mean(v * v))) for v in (err, e))
+    if not rms1 * OFFSET_OVER_SLOW_POLE <= rms0:
+        return params, poles, err
+    log.info("a datum offset of %.4g mm instead of a slow pole of %.3g Hz: %.4g -> %.4g um RMS", oe["offset_mm"],
+             poles["p_hz"], rms0 * 1e3, rms1 * 1e3)
+    fit["offset"].update(offset_mm=oe["offset_mm"], applied=True, rms_without_um=rms0 * 1e3, rms_with_um=rms1 * 1e3)
+    fit["output_error"].update(nfev=fit["output_error"]["nfev"] + oe["nfev"], cost_mm2=oe["cost"])
+    return oe["parameters"], oe["poles"], e
 
 
 def _refined(run, moving: bool) -> dict:
