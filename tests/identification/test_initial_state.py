@@ -1,20 +1,29 @@
 """A record that starts with the axis in motion: the model's state at its first sample is fitted.
 
-Truth: the thesis' PID x axis as the exact reduced model (``FADAL_PID_X``, Table 3.4), so the
-poles are known exactly and the prediction floor is the added noise (0.5 um).
-"""
+Truth: the thesis' PID x axis as the exact reduced model (``FADAL_PID_X``, Table 3.4) for the free
+response, and for a short record of the virtual fadal-pid the fit of its whole capture at the same
+sample time (its poles and its prediction error)"""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+import toolpaths
+import vcnc
 from identification import identify
 from identification.dead_time import delay_reference
 from identification.initial_state import fit_initial_state, starts_in_motion
 from identification.poles import poles_from_denominator
 from identification.reduced_model import simulate
-from identification.synthetic import FADAL_PID_X, synthetic_capture
+from identification.synthetic import FADAL_PID_X
 from vcnc.capture import Capture
+
+
+def _one_axis(reference: np.ndarray, measured: np.ndarray, sample_time: float) -> Capture:
+    return Capture(t=np.arange(reference.size) * sample_time, axes=("x",), reference=reference[:, None],
+                   measured=measured[:, None], meta={"source": "initial-state test"})
+
 
 EXACT = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
 
@@ -40,20 +49,21 @@ def test_the_free_response_continues_a_linear_simulation_exactly():
     assert not starts_in_motion(ref, whole)  # sets off from rest
 
 
-def test_a_record_in_motion_with_a_leading_reference_keeps_the_poles():
-    """A 3 ms record cut 2 s into a motion that never rests, its reference leading by 0.1 s: the
-    loop's frame starts in motion. Simulated from rest (before this fix) the fit bent the poles to
-    the start transient: 57.9 % off (p 1.85 Hz for 1.18) and 4.55 um RMS for 0.5 um of noise."""
-    T = 0.003
-    cap = synthetic_capture(FADAL_PID_X, _never_resting(T, 6.0), sample_time=T, noise=0.5e-3, seed=2)
-    start = int(2.0 / T)
-    ref = delay_reference(cap.reference[:, 0], -0.1 / T)[start:]
-    meas = cap.measured[start:, 0]
-    rec = Capture(t=np.arange(ref.size) * T, axes=("x",), reference=ref[:, None], measured=meas[:, None],
-                  meta={"source": "initial-state test"})
-    model = identify(rec, axis="x", diagnose=False)
+@pytest.mark.slow
+def test_a_short_record_in_motion_with_a_leading_reference():
+    """fadal-pid's x axis (200 random moves within +/-10 mm at F12000, the traceid harness' capture),
+    2 s of it cut during a move, sampled at 3 ms, its reference leading by 0.1 s: the loop's frame
+    starts in motion and never rests in its first half. Simulated from rest (before this fix) the
+    fit bent the poles to the start transient: p 0.40 Hz for the 3 ms capture's 1.45, 10.3 um RMS."""
+    machine = vcnc.machine("fadal-pid")
+    program = vcnc.parse_program(toolpaths.random_moves(200, 10.0, 12000.0, seed=1))
+    whole = machine.simulate(vcnc.interpolate(program, machine), seed=1).select_axes(("x",))
+    T = 3 * whole.sample_time
+    ref, meas = whole.reference[::3, 0], whole.measured[::3, 0]
+    truth = identify(_one_axis(ref, meas, T), axis="x", diagnose=False, delay=0.0)
+    ref_cut, meas_cut = whole.reference[2000:4000:3, 0], whole.measured[2000:4000:3, 0]
+    model = identify(_one_axis(delay_reference(ref_cut, -0.1 / T), meas_cut, T), axis="x", diagnose=False)
     assert abs(model.delay_s - 0.1) <= 2 * T
-    assert max(abs(model.poles[k] - EXACT[k]) / EXACT[k] for k in EXACT) < 0.1
-    assert model.fit["rms_um"] <= 2 * 0.5
-    state = model.fit["initial_state"]
-    assert state["first_sample"] > 0 and state["start_response_max_um"] > 10.0
+    assert max(abs(model.poles[k] - truth.poles[k]) / truth.poles[k] for k in EXACT) < 0.25
+    assert model.fit["rms_um"] <= 1.5 * truth.fit["rms_um"]
+    assert model.fit["initial_state"]["start_response_max_um"] > 10.0
