@@ -273,6 +273,10 @@ class _Notes:
         return tuple(f"{k} x{v}" if v > 1 else k for k, v in self.counts.items())
 
 
+#: The plane-selecting code of each plane (by its normal-axis index).
+_PLANE_CODES = {2: "G17", 1: "G18", 0: "G19"}
+
+
 @dataclasses.dataclass
 class _State:
     """Modal state of the interpreter (positions are machine coordinates [mm])."""
@@ -280,6 +284,7 @@ class _State:
     context: MachineContext
     pos: np.ndarray
     motion: int | None = None  # round(10 * G) of the modal motion
+    after_g80: bool = False  # G80 the last motion code (LinuxCNC has no motion mode then)
     plane: int = 2
     fanuc_polar: bool = False  # Fanuc G16: X Y of motion blocks are radius and angle
     inch: bool = False
@@ -639,6 +644,18 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
+    if st.after_g80 and "motion" not in gcodes and (axis_words or rot_words or polar) \
+            and st.context.dialect.name == "linuxcnc" and st.motion is not None:
+        # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
+        # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
+        # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
+        notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
+                  "(LinuxCNC refuses them: G80 leaves no motion mode)")
+    normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
+    if normal in seen and seen[normal].value == 0.0 and st.context.dialect.name == "linuxcnc" \
+            and (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30):
+        # LinuxCNC refuses it (interp_convert.cc convert_arc: "K word given for arc in xy plane", and I, J alike)
+        notes.add(f"{normal}0 on {_PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
@@ -1081,6 +1098,7 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
     """The modal motion; a drilling cycle remembers the motion before its series (G80 restores it)."""
     if "motion" in gcodes:
         key = gcodes["motion"][0]
+        st.after_g80 = key == 800
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion

@@ -1,0 +1,45 @@
+"""vcnc's ``linuxcnc`` dialect against LinuxCNC's own interpreter: programs where ``benchmarks/linuxcnc_diff.py``
+found vcnc and ``rs274`` (LinuxCNC 2.9.0~pre1, the Debian package linuxcnc-uspace, ``rs274 -g prog.ngc``) apart.
+The expected end points are rs274 2.9.0~pre1 output written out (STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED
+end points, G21: mm), so that the tests need no rs274. Where vcnc is more lenient than rs274 it says so in
+``Program.notes``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+
+LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"], linear_units="inch", extra_axes=("a", "b", "c"))
+
+#: A drilling cycle, G80, then a motion code again.
+PROGRAM_G80_THEN_G1 = "G21 G17 G1 X0 Y0 Z5 F100\nG81 X1 Y1 Z-1 R1\nG80\nG1 Z3\nM2\n"
+#: rs274 2.9.0~pre1 output for it, consecutive repeats dropped: (kind, X, Y, Z) [mm].
+EXPECTED_G80_THEN_G1 = [("line", 0.0, 0.0, 5.0), ("rapid", 1.0, 1.0, 5.0), ("rapid", 1.0, 1.0, 1.0),
+                        ("line", 1.0, 1.0, -1.0), ("rapid", 1.0, 1.0, 1.0), ("line", 1.0, 1.0, 3.0)]
+
+
+def _ends(prog) -> list[tuple]:
+    return [(b.kind, *(round(float(v), 4) + 0.0 for v in b.target)) for b in prog.blocks]
+
+
+def test_axis_words_after_g80_are_a_noted_leniency():
+    """rs274 refuses ``Z3`` after G80 ("Cannot use axis values without a g code that uses them": G80 leaves no
+    motion mode, interp_convert.cc convert_motion); vcnc runs it in the motion before the cycle (as Fanuc does,
+    and Fusion 360 posts write it) and says so."""
+    prog = parse_program(PROGRAM_G80_THEN_G1.replace("G1 Z3", "Z3"), context=LINUXCNC)
+    assert _ends(prog)[-1] == EXPECTED_G80_THEN_G1[-1]
+    assert any("after G80" in n and "LinuxCNC refuses" in n for n in prog.notes)
+    assert not any("after G80" in n for n in parse_program(PROGRAM_G80_THEN_G1, context=LINUXCNC).notes)
+
+
+def test_k0_on_a_g17_arc_is_a_noted_leniency():
+    """rs274 refuses ``G2 X2 Y0 I1 J0 K0`` ("K word given for arc in xy plane"); vcnc ignores the K0 with a note
+    and runs the arc rs274 2.9.0~pre1 runs without it: ARC_FEED(2.0000, 0.0000, 1.0000, 0.0000, -1, 0.0000, ...),
+    end (2, 0), centre (1, 0), clockwise, one turn."""
+    prog = parse_program("G21 G17\nG1 X0 Y0 F100\nG2 X2 Y0 I1 J0 K0\nM2\n", context=LINUXCNC)
+    arc = prog.blocks[-1]
+    assert arc.kind.startswith("arc") and np.allclose(arc.target, [2.0, 0.0, 0.0])
+    assert np.allclose(arc.segment.center[:2], [1.0, 0.0]) and not arc.segment.ccw
+    assert any(n.startswith("K0 on G17 arcs ignored") for n in prog.notes)
