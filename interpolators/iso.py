@@ -328,7 +328,8 @@ class _State:
     home: np.ndarray | None = None
     reference2: np.ndarray | None = None
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
-    retract_r: bool = False  # G99
+    # G99; LinuxCNC starts in G99 (interp_setup.cc: retract_mode(RETRACT_MODE::R_PLANE)), Fanuc/Haas in G98
+    retract_r: bool = False
     cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
@@ -420,7 +421,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
-                motion=_POWER_ON_MOTION.get(dialect.name))
+                motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc")
     notes = _Notes()
     homing: list[int] = []
     raw_lines = lines_of(text)

@@ -24,12 +24,16 @@ def _ends(prog) -> list[tuple]:
     return [(b.kind, *(round(float(v), 4) + 0.0 for v in b.target)) for b in prog.blocks]
 
 
+def test_g80_then_a_motion_code_matches_rs274():
+    assert _ends(parse_program(PROGRAM_G80_THEN_G1, context=LINUXCNC)) == EXPECTED_G80_THEN_G1
+
+
 def test_axis_words_after_g80_are_a_noted_leniency():
     """rs274 refuses ``Z3`` after G80 ("Cannot use axis values without a g code that uses them": G80 leaves no
     motion mode, interp_convert.cc convert_motion); vcnc runs it in the motion before the cycle (as Fanuc does,
     and Fusion 360 posts write it) and says so."""
     prog = parse_program(PROGRAM_G80_THEN_G1.replace("G1 Z3", "Z3"), context=LINUXCNC)
-    assert _ends(prog)[-1] == EXPECTED_G80_THEN_G1[-1]
+    assert _ends(prog) == EXPECTED_G80_THEN_G1
     assert any("after G80" in n and "LinuxCNC refuses" in n for n in prog.notes)
     assert not any("after G80" in n for n in parse_program(PROGRAM_G80_THEN_G1, context=LINUXCNC).notes)
 
