@@ -558,6 +558,13 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             elif grp in gcodes:
                 where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
                            column=w.column, text=w.text, expected=f"one {grp} code per block")
+            elif dialect == "linuxcnc" and grp in ("dwell", "nonmodal") and ("dwell" if grp == "nonmodal"
+                                                                               else "nonmodal") in gcodes:
+                # LinuxCNC's modal group 0 holds both (interp_array.cc gees[]: G4 G10 G28 G30 G52 G53 G92..);
+                # rs274 refuses "G4 P25 G30" ("Two g codes used from same modal group")
+                other = gcodes["dwell" if grp == "nonmodal" else "nonmodal"][1]
+                where.fail(f"two G codes of LinuxCNC's non-modal group 0 in one block ({other.text} and {w.text})",
+                           column=w.column, text=w.text, expected="one of G4, G10, G28, G30, G52, G53, G92 per block")
             gcodes[grp] = (key, w)
         elif w.letter == "M":
             m = int(round(w.value))

@@ -7,9 +7,11 @@ end points, G21: mm), so that the tests need no rs274. Where vcnc is more lenien
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"], linear_units="inch", extra_axes=("a", "b", "c"))
 
@@ -47,3 +49,10 @@ def test_k0_on_a_g17_arc_is_a_noted_leniency():
     assert arc.kind.startswith("arc") and np.allclose(arc.target, [2.0, 0.0, 0.0])
     assert np.allclose(arc.segment.center[:2], [1.0, 0.0]) and not arc.segment.ccw
     assert any(n.startswith("K0 on G17 arcs ignored") for n in prog.notes)
+
+
+def test_a_dwell_with_another_group_0_code_is_refused():
+    """rs274 2.9.0~pre1 refuses ``G4 P0.5 G28`` ("Two g codes used from same modal group": both are in LinuxCNC's
+    non-modal group 0, interp_array.cc gees[]); vcnc's linuxcnc dialect too, naming both."""
+    with pytest.raises(GCodeError, match=r"2:9: two G codes of LinuxCNC's non-modal group 0 in one block \(G4 and G28"):
+        parse_program("G21\nG4 P0.5 G28\nM2\n", context=LINUXCNC)
