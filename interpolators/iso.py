@@ -472,6 +472,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     else:
         for line in homing:  # $H lines after the last block
             _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
+        if dialect.name == "linuxcnc" and not _percent_wrapped(text):
+            # rs274 refuses it at the end: "File ended with no percent sign or program end" (interp_read.cc)
+            notes.add("no M2/M30 (nor % at the start and end): read to the end of the file (LinuxCNC refuses it)")
     if st.corner is not None:
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
@@ -483,6 +486,12 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+def _percent_wrapped(text: str) -> bool:
+    """Whether the program's first and a later non-blank line are ``%`` (LinuxCNC ends such a file at the second)."""
+    lines = [s for s in (raw.strip() for raw in text.splitlines()) if s]
+    return bool(lines) and lines[0] == "%" and "%" in lines[1:]
 
 
 def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:

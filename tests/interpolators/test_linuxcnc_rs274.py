@@ -56,3 +56,14 @@ def test_a_dwell_with_another_group_0_code_is_refused():
     non-modal group 0, interp_array.cc gees[]); vcnc's linuxcnc dialect too, naming both."""
     with pytest.raises(GCodeError, match=r"2:9: two G codes of LinuxCNC's non-modal group 0 in one block \(G4 and G28"):
         parse_program("G21\nG4 P0.5 G28\nM2\n", context=LINUXCNC)
+
+
+def test_a_file_without_a_program_end_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 runs ``G21 / G0 X1`` (STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, ...)) and then refuses the
+    file: "File ended with no percent sign or program end" (interp_read.cc); vcnc reads it to its end and says so.
+    With M2, or between two ``%`` lines, both accept it without a word."""
+    prog = parse_program("G21\nG0 X1\n", context=LINUXCNC)
+    assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
+    assert any(n.startswith("no M2/M30") for n in prog.notes)
+    for text in ("G21\nG0 X1\nM2\n", "%\nG21\nG0 X1\n%\n"):
+        assert not any(n.startswith("no M2/M30") for n in parse_program(text, context=LINUXCNC).notes)
