@@ -479,6 +479,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
+    if dialect.name == "linuxcnc" and _NESTED_COMMENT.search(text):
+        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
@@ -486,6 +488,11 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+#: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
+#: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
+_NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 
 
 def _percent_wrapped(text: str) -> bool:

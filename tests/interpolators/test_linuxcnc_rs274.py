@@ -67,3 +67,12 @@ def test_a_file_without_a_program_end_is_a_noted_leniency():
     assert any(n.startswith("no M2/M30") for n in prog.notes)
     for text in ("G21\nG0 X1\nM2\n", "%\nG21\nG0 X1\n%\n"):
         assert not any(n.startswith("no M2/M30") for n in parse_program(text, context=LINUXCNC).notes)
+
+
+def test_a_nested_comment_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 refuses ``G0 X1 (a (b) c)`` ("Nested comment found", interp_internal.cc
+    close_and_downcase); vcnc reads the comment as nested, runs the move and says so."""
+    prog = parse_program("G21\nG0 X1 (a (b) c)\nM2\n", context=LINUXCNC)
+    assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
+    assert any("nested" in n and "LinuxCNC refuses" in n for n in prog.notes)
+    assert not any("nested" in n for n in parse_program("G21\nG0 X1 (a b) ; (c\nM2\n", context=LINUXCNC).notes)
