@@ -16,8 +16,8 @@ decimals in the units of the call).
 
 Prints one row per program (``--list``: all, else the differing ones) and a table of counts:
 both accept and match / both accept and differ (the first differing move) / rs274 accepts and vcnc refuses
-(vcnc's message) / vcnc accepts and rs274 refuses (rs274's message; the motion before rs274's error is compared
-too) / both refuse.
+(vcnc's message) / vcnc accepts and rs274 refuses, with a note of vcnc that says so ("LinuxCNC refuses": a
+documented leniency) or without (rs274's message; the motion before rs274's error is compared too) / both refuse.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively). Runs only when ``rs274`` is on PATH (LinuxCNC's
@@ -207,16 +207,16 @@ def _alarm(signum, frame):
     raise _Timeout()
 
 
-def vcnc_moves(program: Path, context: MachineContext, timeout: int) -> tuple[list[Move], str]:
-    """vcnc's moves of a program in machine coordinates, and its error message ("" if it accepts)."""
+def vcnc_moves(program: Path, context: MachineContext, timeout: int) -> tuple[list[Move], str, tuple[str, ...]]:
+    """vcnc's moves of a program in machine coordinates, its error message ("" if it accepts) and its notes."""
     signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(timeout)
     try:
         prog = load_program(program, context=context)
     except GCodeError as exc:
-        return [], str(exc).replace("\n", " ")
+        return [], str(exc).replace("\n", " "), ()
     except _Timeout:
-        return [], f"no end within {timeout} s"
+        return [], f"no end within {timeout} s", ()
     finally:
         signal.alarm(0)
     moves: list[Move] = []
@@ -243,7 +243,7 @@ def vcnc_moves(program: Path, context: MachineContext, timeout: int) -> tuple[li
             rotation = math.ceil(abs(seg.sweep) / (2 * math.pi) - 1e-9) * (1 if seg.ccw else -1)
         moves.append(Move(kind="arc" if b.kind.startswith("arc") else b.kind, xyz=np.asarray(b.target, dtype=float),
                           abc=abc, center=center, normal=normal, rotation=rotation, line=b.line))
-    return moves, ""
+    return moves, "", prog.notes
 
 
 def without_repeats(moves: list[Move], *, printed: bool = True) -> list[Move]:
@@ -341,12 +341,12 @@ def default_tool_table(path: Path) -> Path:
 
 def compare(program: Path, *, context: MachineContext, tool_table: Path, subroutine_path: tuple[str, ...],
             workdir: Path, timeout: float) -> dict:
-    """One program through both: its outcome (``match``, ``differ``, ``rs274 only``, ``vcnc only``, ``both
-    refuse``) and the detail (the first difference or the refusing side's message)."""
+    """One program through both: its outcome (``match``, ``differ``, ``rs274 only``, ``vcnc noted``, ``vcnc only``,
+    ``both refuse``) and the detail (the first difference or the refusing side's message)."""
     ctx = dataclasses.replace(context, dialect=dataclasses.replace(context.dialect, subroutine_path=subroutine_path))
     rs = run_rs274(program, tool_table=tool_table, subroutine_path=subroutine_path, workdir=workdir,
                    timeout=timeout)
-    got, verror = vcnc_moves(program, ctx, int(timeout) + 1)
+    got, verror, notes = vcnc_moves(program, ctx, int(timeout) + 1)
     want, got = without_repeats(rs.moves), without_repeats(got, printed=False)
     if rs.error and verror:
         return {"outcome": "both refuse", "detail": f"rs274: {rs.error} || vcnc: {verror}"}
@@ -355,6 +355,9 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
     diff = first_difference(want, got, prefix=bool(rs.error))
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
+        noted = [n for n in notes if "LinuxCNC refuses" in n]
+        if noted:
+            return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}
         return {"outcome": "vcnc only", "detail": f"{rs.error}{before}"}
     return {"outcome": "differ" if diff else "match", "detail": diff or f"{len(want)} moves"}
 
@@ -405,7 +408,7 @@ def main() -> int:
             if args.list or res["outcome"] != "match":
                 print(f"{res['outcome']}\t{p}\t{res['detail']}", flush=True)
     print(f"\n{len(programs)} programs")
-    for outcome in ("match", "differ", "rs274 only", "vcnc only", "both refuse"):
+    for outcome in ("match", "differ", "rs274 only", "vcnc noted", "vcnc only", "both refuse"):
         print(f"{outcome:12s} {counts[outcome]:5d}")
     return 0
 
