@@ -273,6 +273,10 @@ class _Notes:
         return tuple(f"{k} x{v}" if v > 1 else k for k, v in self.counts.items())
 
 
+#: The M codes below 100 LinuxCNC knows (interp_array.cc ems[], and M98/M99 subprograms); it refuses others.
+_LINUXCNC_M = frozenset({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 19, 30, 48, 49, 50, 51, 52, 53, 60, 61, 62, 63, 64, 65, 66,
+                         67, 68, 70, 71, 72, 73, 98, 99})
+
 #: The plane-selecting code of each plane (by its normal-axis index).
 _PLANE_CODES = {2: "G17", 1: "G18", 0: "G19"}
 
@@ -1025,6 +1029,8 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
             notes.add(_M_NOTES[m])
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
+        elif st.context.dialect.name == "linuxcnc" and m not in _LINUXCNC_M:
+            notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
         else:
             notes.add(f"M{m} (no motion)")
     return ended
@@ -1076,7 +1082,9 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
         if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
-            notes.add(f"{gcodes[grp][1].text.upper()} cancel")
+            # G69, G50, G15 are no LinuxCNC codes (interp_array.cc gees[]: -1)
+            refused = "; LinuxCNC refuses it: \"Unknown g code used\"" if st.context.dialect.name == "linuxcnc" else ""
+            notes.add(f"{gcodes[grp][1].text.upper()} cancel{refused}")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         _set_frame(st, dataclasses.replace(st.frame, rotation=None))
     if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:

@@ -76,3 +76,13 @@ def test_a_nested_comment_is_a_noted_leniency():
     assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
     assert any("nested" in n and "LinuxCNC refuses" in n for n in prog.notes)
     assert not any("nested" in n for n in parse_program("G21\nG0 X1 (a b) ; (c\nM2\n", context=LINUXCNC).notes)
+
+
+def test_codes_linuxcnc_does_not_know_are_noted_as_its_refusals():
+    """rs274 2.9.0~pre1 refuses ``M45`` ("Unknown m code used: M45") and ``G50`` ("Unknown g code used"): neither is
+    in its tables (interp_array.cc ems[], gees[]); vcnc runs them without motion and says that LinuxCNC refuses
+    them. M8 (coolant) is LinuxCNC's and noted as before."""
+    notes = parse_program("G21 G50\nM45\nM8\nG0 X1\nM2\n", context=LINUXCNC).notes
+    assert 'M45 (no motion; LinuxCNC refuses it: "Unknown m code used")' in notes
+    assert 'G50 cancel; LinuxCNC refuses it: "Unknown g code used"' in notes
+    assert not any("M7-M9" in n and "LinuxCNC" in n for n in notes)
