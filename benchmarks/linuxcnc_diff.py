@@ -87,6 +87,8 @@ class Move:
         Program line (vcnc's moves; 0 for rs274's).
     unit : float
         Length of one printed unit [mm] (rs274's moves: 1 or 25.4; vcnc's: 1).
+    rounded : int
+        How many printed (rounded) numbers are summed in each coordinate: the end point and the offsets in force.
     """
 
     kind: str
@@ -97,6 +99,7 @@ class Move:
     rotation: int = 0
     line: int = 0
     unit: float = 1.0
+    rounded: int = 1
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -170,8 +173,9 @@ def canonical_moves(output: str) -> list[Move]:
             end, abc = np.array(nums[:3]), np.array(nums[3:6]) if name != "RIGID_TAP" else np.zeros(3)
         kind = {"STRAIGHT_TRAVERSE": "rapid", "ARC_FEED": "arc"}.get(name, "line")
         start = moves[-1] if moves else None
+        rounded = 1 + sum(bool(np.any(state[k])) for k in ("g5x", "g92", "tool"))
         moves.append(Move(kind=kind, xyz=_to_machine(end, state), abc=abc + abc_offset, center=center,
-                          normal=normal, rotation=rotation, unit=state["unit"]))
+                          normal=normal, rotation=rotation, unit=state["unit"], rounded=rounded))
         if name == "RIGID_TAP":  # taps to x, y, z and returns to its start (emccanon.cc)
             moves.append(dataclasses.replace(start, kind="line") if start else Move(
                 kind="line", xyz=np.zeros(3), abc=np.zeros(3)))
@@ -291,7 +295,7 @@ def _same_centre(w: Move, g: Move, before: Move | None) -> bool:
 
 def _move_difference(w: Move, g: Move, before: Move | None) -> str:
     """How vcnc's move ``g`` differs from rs274's ``w`` ("" if it does not)."""
-    tol = 1.6e-4 * w.unit + 1e-6  # 4 printed decimals (0.5e-4), rounded in up to three summed terms
+    tol = (0.5e-4 * w.rounded + 1e-5) * w.unit  # 4 printed decimals: 0.5e-4 for each rounded term
     if w.kind != g.kind:
         return f"kind {g.kind}, rs274 {w.kind} at {np.round(w.xyz, 4).tolist()}"
     if w.kind == "spline":  # rs274 prints no end point: the moves after it tell
@@ -320,11 +324,15 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False)
     i = k = 0
     while i < len(want) and k < len(got):
         diff = _move_difference(want[i], got[k], want[i - 1] if i else None)
+        skip_got, skip_want = _tiny(got, k, want[i].unit), _tiny(want, i, want[i].unit)
         if not diff:
             i, k = i + 1, k + 1
-        elif _tiny(got, k, want[i].unit):
+        elif skip_got and skip_want:  # both: the one after which the next moves agree
+            nxt = k + 1 < len(got) and not _move_difference(want[i], got[k + 1], want[i - 1] if i else None)
+            i, k = (i, k + 1) if nxt else (i + 1, k)
+        elif skip_got:
             k += 1
-        elif _tiny(want, i, want[i].unit):
+        elif skip_want:
             i += 1
         else:
             return f"move {i + 1} (vcnc line {got[k].line}): {diff}"
