@@ -438,6 +438,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    if dialect.name == "linuxcnc":
+        text = _until_closing_percent(text, notes)
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
@@ -497,6 +499,22 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
 #: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
 #: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
 _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
+
+
+def _until_closing_percent(text: str, notes: _Notes) -> str:
+    """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
+    that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
+    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it)."""
+    lines = text.split("\n")
+    filled = [i for i, raw in enumerate(lines) if raw.strip()]
+    if not filled or lines[filled[0]].strip() != "%":
+        return text
+    for i in filled[1:]:
+        if lines[i].strip() == "%":
+            if any(raw.strip() for raw in lines[i + 1:]):
+                notes.add("lines after the closing % not run (LinuxCNC ends the program there)")
+            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1))
+    return text
 
 
 def _percent_wrapped(text: str) -> bool:

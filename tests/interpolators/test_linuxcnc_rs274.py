@@ -86,3 +86,12 @@ def test_codes_linuxcnc_does_not_know_are_noted_as_its_refusals():
     assert 'M45 (no motion; LinuxCNC refuses it: "Unknown m code used")' in notes
     assert 'G50 cancel; LinuxCNC refuses it: "Unknown g code used"' in notes
     assert not any("M7-M9" in n and "LinuxCNC" in n for n in notes)
+
+
+def test_the_closing_percent_ends_the_program():
+    """``%`` / ``G21`` / ``G0 X1`` / ``%`` / ``G0 X5``: rs274 2.9.0~pre1 prints STRAIGHT_TRAVERSE(1.0000, 0.0000,
+    0.0000, ...) and nothing after the closing ``%`` (interp_read.cc read_text: INTERP_ENDFILE); vcnc ends there
+    too under linuxcnc, with a note."""
+    prog = parse_program("%\nG21\nG0 X1\n%\nG0 X5\n", context=LINUXCNC)
+    assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
+    assert any(n.startswith("lines after the closing %") for n in prog.notes)
