@@ -507,7 +507,12 @@ def _until_closing_percent(text: str, notes: _Notes) -> str:
     line once the file began with one; rs274 2.9.0~pre1 runs nothing after it)."""
     lines = text.split("\n")
     filled = [i for i, raw in enumerate(lines) if raw.strip()]
-    if not filled or lines[filled[0]].strip() != "%":
+    opened = bool(filled) and lines[filled[0]].strip() == "%"
+    stray = [i for i in filled[1 if opened else 0:] if lines[i].strip().startswith("%") and lines[i].strip() != "%"
+             or lines[i].strip() == "%" and not opened]
+    if stray:  # "% ; start flag", or a % after comment lines: rs274 stops there ("Bad character '%' used")
+        notes.add("'%' lines LinuxCNC refuses (not the file's first line, or with a comment) skipped")
+    if not opened:
         return text
     for i in filled[1:]:
         if lines[i].strip() == "%":

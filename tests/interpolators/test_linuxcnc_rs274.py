@@ -95,3 +95,13 @@ def test_the_closing_percent_ends_the_program():
     prog = parse_program("%\nG21\nG0 X1\n%\nG0 X5\n", context=LINUXCNC)
     assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
     assert any(n.startswith("lines after the closing %") for n in prog.notes)
+
+
+def test_a_percent_line_rs274_refuses_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 refuses ``% ; flag`` as the first line and a ``%`` after a comment line ("Bad character '%'
+    used"); vcnc skips such lines, runs ``G0 X1`` and says so."""
+    for text in ("% ; flag\nG21\nG0 X1\nM2\n", "(c)\n%\nG21\nG0 X1\n%\n"):
+        prog = parse_program(text, context=LINUXCNC)
+        assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
+        assert any(n.startswith("'%' lines LinuxCNC refuses") for n in prog.notes)
+    assert not any("%" in n for n in parse_program("%\nG21\nG0 X1\n%\n", context=LINUXCNC).notes)
