@@ -695,18 +695,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
-    if st.after_g80 and "motion" not in gcodes and (axis_words or rot_words or polar) \
-            and st.context.dialect.name == "linuxcnc" and st.motion is not None:
-        # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
-        # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
-        # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
-        notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
-                  "(LinuxCNC refuses them: G80 leaves no motion mode)")
-    normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
-    if normal in seen and seen[normal].value == 0.0 and st.context.dialect.name == "linuxcnc" \
-            and (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30):
-        # LinuxCNC refuses it (interp_convert.cc convert_arc: "K word given for arc in xy plane", and I, J alike)
-        notes.add(f"{normal}0 on {_PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
+    if st.context.dialect.name == "linuxcnc":
+        _linuxcnc_leniencies(seen, gcodes, st, bool(axis_words or rot_words or polar), notes)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
@@ -1147,6 +1137,22 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
             notes.add("G64 Q naive-CAM tolerance (segments are blended, not merged)")
     if "return mode" in gcodes:
         st.retract_r = gcodes["return mode"][0] == 990
+
+
+def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect runs although LinuxCNC refuses it (``moves``: the block has axis
+    words)."""
+    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None:
+        # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
+        # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
+        # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
+        notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
+                  "(LinuxCNC refuses them: G80 leaves no motion mode)")
+    normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
+    if normal in seen and seen[normal].value == 0.0 and (gcodes["motion"][0] if "motion" in gcodes
+                                                         else st.motion) in (20, 30):
+        # LinuxCNC refuses it (interp_convert.cc convert_arc: "K word given for arc in xy plane", and I, J alike)
+        notes.add(f"{normal}0 on {_PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
 
 
 def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
