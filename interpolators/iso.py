@@ -686,6 +686,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
         notes.add("G12/G13 circular pocket milling")
         return ended
+    if st.context.dialect.name == "linuxcnc":
+        _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
+                             notes)
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -695,8 +698,6 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
-    if st.context.dialect.name == "linuxcnc":
-        _linuxcnc_leniencies(seen, gcodes, st, bool(axis_words or rot_words or polar), notes)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
@@ -1148,6 +1149,10 @@ def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -
         # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
         notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
                   "(LinuxCNC refuses them: G80 leaves no motion mode)")
+    if "nonmodal" in gcodes and gcodes["nonmodal"][0] in (100, 280, 300, 520, 920) and "motion" in gcodes \
+            and gcodes["motion"][0] != 800:  # interp_internal.cc check_g_codes: mode_zero_covets_axes
+        notes.add(f"{gcodes['motion'][1].text.upper()} with {gcodes['nonmodal'][1].text.upper()} in one block "
+                  "(LinuxCNC refuses them: \"Cannot use two g codes that both use axis values\")")
     normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
     if normal in seen and seen[normal].value == 0.0 and (gcodes["motion"][0] if "motion" in gcodes
                                                          else st.motion) in (20, 30):

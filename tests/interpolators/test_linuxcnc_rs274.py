@@ -105,3 +105,14 @@ def test_a_percent_line_rs274_refuses_is_a_noted_leniency():
         assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
         assert any(n.startswith("'%' lines LinuxCNC refuses") for n in prog.notes)
     assert not any("%" in n for n in parse_program("%\nG21\nG0 X1\n%\n", context=LINUXCNC).notes)
+
+
+def test_a_motion_code_with_g28_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 refuses ``G00G28`` ("Cannot use two g codes that both use axis values": G28 covets the
+    axis words, interp_internal.cc); vcnc runs the G28 (home: the origin here) and says so; ``G91 G28 Z0`` is
+    LinuxCNC's and needs no note."""
+    prog = parse_program("G21\nG0 X5 Y5\nG00G28\nM2\n", context=LINUXCNC)
+    assert _ends(prog)[-1] == ("rapid", 0.0, 0.0, 0.0)
+    assert "G00 with G28 in one block (LinuxCNC refuses them: \"Cannot use two g codes that both use axis " \
+           "values\")" in prog.notes
+    assert not any("in one block" in n for n in parse_program("G21\nG91 G28 Z0\nM2\n", context=LINUXCNC).notes)
