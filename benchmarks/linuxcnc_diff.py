@@ -16,8 +16,8 @@ decimals in the units of the call).
 
 Prints one row per program (``--list``: all, else the differing ones) and a table of counts:
 both accept and match / both accept and differ (the first differing move) / rs274 accepts and vcnc refuses
-(vcnc's message) / vcnc accepts and rs274 refuses, with a note of vcnc that says so ("LinuxCNC refuses": a
-documented leniency) or without (rs274's message; the motion before rs274's error is compared too) / both refuse.
+(vcnc's message) / vcnc accepts and rs274 refuses, with a note of vcnc that says so (``NOTED``: a documented
+leniency) or without (rs274's message; the motion before rs274's error is compared too) / both refuse.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively). Runs only when ``rs274`` is on PATH (LinuxCNC's
@@ -55,6 +55,11 @@ PROGRAM_SUFFIXES = (".ngc", ".nc", ".gcode", ".tap")
 CANONICAL = re.compile(r"^\s*\d+\s+N[.\d]+\s+([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 #: rs274's error at a file without ``%`` or ``M2``/``M30`` at its end (vcnc reads such a file to its end).
+#: rs274's refusals vcnc runs with a note, and a part of that note's text (``Program.notes``).
+NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc": "K0 on", "I word given for arc":
+         "I0 on", "J word given for arc": "J0 on", "Cannot use axis values without a g code": "after G80",
+         "Nested comment found": "nested", "Bad character '%'": "'%' lines", "Unknown m code": "Unknown m code",
+         "Unknown g code": "Unknown g code", "Cannot use two g codes that both use axis values": "in one block"}
 #: A G5/G5.1 spline block (vcnc reads it as chords) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[12])?(?![\d.])", re.I)
 MOTION = re.compile(r"G0*[0-3](?![\d.])|G0*80|G0*8[1-9]|G0*7[36]|G0*33", re.I)
@@ -363,7 +368,8 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
     diff = first_difference(want, got, prefix=bool(rs.error))
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
-        noted = [n for n in notes if "LinuxCNC refuses" in n]
+        key = next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
+        noted = [n for n in notes if "LinuxCNC refuses" in n and key is not None and key in n]
         if noted:
             return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}
         return {"outcome": "vcnc only", "detail": f"{rs.error}{before}"}
