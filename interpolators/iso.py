@@ -1153,6 +1153,9 @@ def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -
             and gcodes["motion"][0] != 800:  # interp_internal.cc check_g_codes: mode_zero_covets_axes
         notes.add(f"{gcodes['motion'][1].text.upper()} with {gcodes['nonmodal'][1].text.upper()} in one block "
                   "(LinuxCNC refuses them: \"Cannot use two g codes that both use axis values\")")
+    if gcodes.get("motion", (0,))[0] == 10 and not moves and "F" not in seen and st.feed is None:
+        # interp_convert.cc convert_straight checks the feed before it looks for axis words
+        notes.add("G1 alone before any F (LinuxCNC refuses it: \"Cannot do g1 with zero feed rate\")")
     normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
     if normal in seen and seen[normal].value == 0.0 and (gcodes["motion"][0] if "motion" in gcodes
                                                          else st.motion) in (20, 30):

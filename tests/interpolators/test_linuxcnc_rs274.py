@@ -116,3 +116,13 @@ def test_a_motion_code_with_g28_is_a_noted_leniency():
     assert "G00 with G28 in one block (LinuxCNC refuses them: \"Cannot use two g codes that both use axis " \
            "values\")" in prog.notes
     assert not any("in one block" in n for n in parse_program("G21\nG91 G28 Z0\nM2\n", context=LINUXCNC).notes)
+
+
+def test_g1_alone_before_any_feed_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 refuses ``G1 (c)`` before any F ("Cannot do g1 with zero feed rate": convert_straight checks
+    the feed first); vcnc takes it as setting the mode, says so, and runs the later ``G1 X1 F100`` as rs274 does
+    once an F is set: STRAIGHT_FEED(1.0000, 0.0000, 0.0000, ...)."""
+    prog = parse_program("G21\nG1 (c)\nG1 X1 F100\nM2\n", context=LINUXCNC)
+    assert _ends(prog) == [("line", 1.0, 0.0, 0.0)]
+    assert any(n.startswith("G1 alone before any F") for n in prog.notes)
+    assert not any("G1 alone" in n for n in parse_program("G21 F100\nG1 (c)\nG1 X1\nM2\n", context=LINUXCNC).notes)
