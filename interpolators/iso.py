@@ -602,7 +602,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                 where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
                            column=w.column, text=w.text, expected=f"one {grp} code per block")
             elif dialect == "linuxcnc" and grp in ("dwell", "nonmodal") and ("dwell" if grp == "nonmodal"
-                                                                               else "nonmodal") in gcodes:
+                                                                               else "nonmodal") in gcodes \
+                    and not {key, gcodes.get("nonmodal", (0,))[0]} & {921, 922, 923}:  # G92.1-.3: its group 16
                 # LinuxCNC's modal group 0 holds both (interp_array.cc gees[]: G4 G10 G28 G30 G52 G53 G92..);
                 # rs274 refuses "G4 P25 G30" ("Two g codes used from same modal group")
                 other = gcodes["dwell" if grp == "nonmodal" else "nonmodal"][1]
