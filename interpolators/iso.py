@@ -273,6 +273,14 @@ class _Notes:
         return tuple(f"{k} x{v}" if v > 1 else k for k, v in self.counts.items())
 
 
+#: The M codes below 100 LinuxCNC knows (interp_array.cc ems[], and M98/M99 subprograms); it refuses others.
+_LINUXCNC_M = frozenset({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 19, 30, 48, 49, 50, 51, 52, 53, 60, 61, 62, 63, 64, 65, 66,
+                         67, 68, 70, 71, 72, 73, 98, 99})
+
+#: The plane-selecting code of each plane (by its normal-axis index).
+_PLANE_CODES = {2: "G17", 1: "G18", 0: "G19"}
+
+
 @dataclasses.dataclass
 class _State:
     """Modal state of the interpreter (positions are machine coordinates [mm])."""
@@ -280,6 +288,7 @@ class _State:
     context: MachineContext
     pos: np.ndarray
     motion: int | None = None  # round(10 * G) of the modal motion
+    after_g80: bool = False  # G80 the last motion code (LinuxCNC has no motion mode then)
     plane: int = 2
     fanuc_polar: bool = False  # Fanuc G16: X Y of motion blocks are radius and angle
     inch: bool = False
@@ -323,7 +332,8 @@ class _State:
     home: np.ndarray | None = None
     reference2: np.ndarray | None = None
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
-    retract_r: bool = False  # G99
+    # G99; LinuxCNC starts in G99 (interp_setup.cc: retract_mode(RETRACT_MODE::R_PLANE)), Fanuc/Haas in G98
+    retract_r: bool = False
     cycle: CycleWords = dataclasses.field(default_factory=CycleWords)
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
@@ -415,7 +425,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
-                motion=_POWER_ON_MOTION.get(dialect.name))
+                motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc")
     notes = _Notes()
     homing: list[int] = []
     raw_lines = lines_of(text)
@@ -428,6 +438,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    if dialect.name == "linuxcnc":
+        text = _until_closing_percent(text, notes)
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
@@ -466,10 +478,15 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     else:
         for line in homing:  # $H lines after the last block
             _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
+        if dialect.name == "linuxcnc" and not _percent_wrapped(text):
+            # rs274 refuses it at the end: "File ended with no percent sign or program end" (interp_read.cc)
+            notes.add("no M2/M30 (nor % at the start and end): read to the end of the file (LinuxCNC refuses it)")
     if st.corner is not None:
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
+    if dialect.name == "linuxcnc" and _NESTED_COMMENT.search(text):
+        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
@@ -477,6 +494,38 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+#: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
+#: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
+_NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
+
+
+def _until_closing_percent(text: str, notes: _Notes) -> str:
+    """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
+    that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
+    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it)."""
+    lines = text.split("\n")
+    filled = [i for i, raw in enumerate(lines) if raw.strip()]
+    opened = bool(filled) and lines[filled[0]].strip() == "%"
+    stray = [i for i in filled[1 if opened else 0:] if lines[i].strip().startswith("%") and lines[i].strip() != "%"
+             or lines[i].strip() == "%" and not opened]
+    if stray:  # "% ; start flag", or a % after comment lines: rs274 stops there ("Bad character '%' used")
+        notes.add("'%' lines LinuxCNC refuses (not the file's first line, or with a comment) skipped")
+    if not opened:
+        return text
+    for i in filled[1:]:
+        if lines[i].strip() == "%":
+            if any(raw.strip() for raw in lines[i + 1:]):
+                notes.add("lines after the closing % not run (LinuxCNC ends the program there)")
+            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1))
+    return text
+
+
+def _percent_wrapped(text: str) -> bool:
+    """Whether the program's first and a later non-blank line are ``%`` (LinuxCNC ends such a file at the second)."""
+    lines = [s for s in (raw.strip() for raw in text.splitlines()) if s]
+    return bool(lines) and lines[0] == "%" and "%" in lines[1:]
 
 
 def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:
@@ -552,6 +601,14 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             elif grp in gcodes:
                 where.fail(f"two G codes of the {grp} group in one block ({gcodes[grp][1].text} and {w.text})",
                            column=w.column, text=w.text, expected=f"one {grp} code per block")
+            elif dialect == "linuxcnc" and grp in ("dwell", "nonmodal") and ("dwell" if grp == "nonmodal"
+                                                                               else "nonmodal") in gcodes \
+                    and not {key, gcodes.get("nonmodal", (0,))[0]} & {921, 922, 923}:  # G92.1-.3: its group 16
+                # LinuxCNC's modal group 0 holds both (interp_array.cc gees[]: G4 G10 G28 G30 G52 G53 G92..);
+                # rs274 refuses "G4 P25 G30" ("Two g codes used from same modal group")
+                other = gcodes["dwell" if grp == "nonmodal" else "nonmodal"][1]
+                where.fail(f"two G codes of LinuxCNC's non-modal group 0 in one block ({other.text} and {w.text})",
+                           column=w.column, text=w.text, expected="one of G4, G10, G28, G30, G52, G53, G92 per block")
             gcodes[grp] = (key, w)
         elif w.letter == "M":
             m = int(round(w.value))
@@ -633,6 +690,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
         notes.add("G12/G13 circular pocket milling")
         return ended
+    if st.context.dialect.name == "linuxcnc":
+        _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
+                             notes)
     if "nonmodal" in gcodes:
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
@@ -987,6 +1047,8 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
             notes.add(_M_NOTES[m])
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
+        elif st.context.dialect.name == "linuxcnc" and m not in _LINUXCNC_M:
+            notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
         else:
             notes.add(f"M{m} (no motion)")
     return ended
@@ -1038,7 +1100,9 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):
         if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
-            notes.add(f"{gcodes[grp][1].text.upper()} cancel")
+            # G69, G50, G15 are no LinuxCNC codes (interp_array.cc gees[]: -1)
+            refused = "; LinuxCNC refuses it: \"Unknown g code used\"" if st.context.dialect.name == "linuxcnc" else ""
+            notes.add(f"{gcodes[grp][1].text.upper()} cancel{refused}")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         _set_frame(st, dataclasses.replace(st.frame, rotation=None))
     if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:
@@ -1080,10 +1144,34 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         st.retract_r = gcodes["return mode"][0] == 990
 
 
+def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect runs although LinuxCNC refuses it (``moves``: the block has axis
+    words)."""
+    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None:
+        # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
+        # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
+        # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
+        notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
+                  "(LinuxCNC refuses them: G80 leaves no motion mode)")
+    if "nonmodal" in gcodes and gcodes["nonmodal"][0] in (100, 280, 300, 520, 920) and "motion" in gcodes \
+            and gcodes["motion"][0] != 800:  # interp_internal.cc check_g_codes: mode_zero_covets_axes
+        notes.add(f"{gcodes['motion'][1].text.upper()} with {gcodes['nonmodal'][1].text.upper()} in one block "
+                  "(LinuxCNC refuses them: \"Cannot use two g codes that both use axis values\")")
+    if gcodes.get("motion", (0,))[0] == 10 and not moves and "F" not in seen and st.feed is None:
+        # interp_convert.cc convert_straight checks the feed before it looks for axis words
+        notes.add("G1 alone before any F (LinuxCNC refuses it: \"Cannot do g1 with zero feed rate\")")
+    normal = "IJK"[st.plane]  # a centre word along the plane normal: 0 is accepted (FreeCAD writes K0 on G17 arcs)
+    if normal in seen and seen[normal].value == 0.0 and (gcodes["motion"][0] if "motion" in gcodes
+                                                         else st.motion) in (20, 30):
+        # LinuxCNC refuses it (interp_convert.cc convert_arc: "K word given for arc in xy plane", and I, J alike)
+        notes.add(f"{normal}0 on {_PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
+
+
 def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
     """The modal motion; a drilling cycle remembers the motion before its series (G80 restores it)."""
     if "motion" in gcodes:
         key = gcodes["motion"][0]
+        st.after_g80 = key == 800
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion

@@ -536,7 +536,7 @@ class _Machine:
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.arc_absolute = False
-        self.retract = 98
+        self.retract = 99 if context.dialect.name == "linuxcnc" else 98  # LinuxCNC interp_setup.cc: R_PLANE
         self.cycle_clear: float | None = None
         self.sticky: dict[str, float] = {}
         self.g68: tuple[tuple[int, int], np.ndarray, float] | None = None  # plane axes, centre, angle [deg]

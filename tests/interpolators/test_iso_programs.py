@@ -148,7 +148,7 @@ def test_g81_returns_to_initial_level_under_g98_and_to_r_under_g99():
 
 def test_g83_pecks_retract_to_r_and_g73_breaks_chips():
     d = RAPID_DELTA_INCH * 25.4
-    g83 = ends("G21 G90 G0 X0 Y0 Z5\nG83 X0 Y0 Z-2.5 R1 Q1 F60\n", MachineContext())
+    g83 = ends("G21 G90 G0 X0 Y0 Z5\nG98 G83 X0 Y0 Z-2.5 R1 Q1 F60\n", MachineContext())
     zs = [p[2] for p in g83[1:]]
     assert zs == pytest.approx([1, 0, 1, d, -1, 1, -1 + d, -2, 1, -2 + d, -2.5, 5])
     g73 = ends("G21 G90 G0 X0 Y0 Z5\nG99 G73 X0 Y0 Z-2.5 R1 Q1 F60\n", MachineContext())
@@ -180,7 +180,8 @@ def test_cycle_errors_name_the_cycle():
 
 
 def test_fanuc_g80_restores_the_motion_mode():
-    assert ends("G21 G90 G1 F100 X0 Y0 Z5\nG81 X1 R1 Z-1\nG80\nX3\n", MachineContext())[-1] == [3, 0, 5]
+    assert ends("G21 G90 G1 F100 X0 Y0 Z5\nG81 X1 R1 Z-1\nG80\nX3\n",
+                MachineContext(dialect=DIALECTS["fanuc"]))[-1] == [3, 0, 5]  # G98 at power-on (LinuxCNC: G99)
 
 
 def test_parameters_and_expressions():
