@@ -127,7 +127,7 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
         0 when the record starts at rest (the usual case; nothing is cut), else the first sample
         where the reference and the axis both stand still (steps below :data:`SETTLED_SHARE` of
         the largest reference step; at the first sample also a move setting off from standstill,
-        :func:`starts_from_standstill`) and the tracking error is 0 or at its value at rest (within 10
+        :func:`starts_from_standstill`) and the tracking error is at its value at rest (there also 0; within 10
         robust deviations of the still samples, or :data:`SETTLED_SHARE` of its largest
         excursion). None when the axis does not rest in the first :data:`MAX_DROPPED_SHARE` of
         the record: then the start transient stays.
@@ -149,9 +149,11 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
     still = dxr <= SETTLED_SHARE * big
     still[0] |= starts_from_standstill(xr)  # a move setting off at the first sample started at rest
-    # at rest: the tracking error at the record's rest value, or none at all (a loop that rests 1 um
-    # off at the end of its record, by friction, started where it was commanded)
-    at_rest = (np.abs(e - med) <= tol) | (np.abs(e) <= tol)
+    # at rest: the tracking error at the record's rest value; at the first sample also none at all
+    # (a loop that rests 1 um off at the end of its record, by friction, started where it was commanded;
+    # later, an error crossing 0 at a reversal is no rest)
+    at_rest = np.abs(e - med) <= tol
+    at_rest[0] |= abs(e[0]) <= tol
     ok = still & (dx <= SETTLED_SHARE * big) & at_rest
     hits = np.flatnonzero(ok)
     return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else None
