@@ -145,17 +145,8 @@ def fit_reduced_model(
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
     moved = fit["offset"]["offset_mm"] - offset.offset_mm
     if fit["offset"]["applied"] and abs(moved) > 1e-4 * fit["rms_um"] and "offset_refit" not in original.meta:
-        # the output error's offset is exact where the regression's was a few um off: fit again
-        # without it, so that the slow pole is not left where the residual offset had put it
-        again = dataclasses.replace(without_offset(original, axis, fit["offset"]["offset_mm"]),
-                                    meta={**original.meta, "offset_refit": True})
-        model = fit_reduced_model(again, axis=axis, method=method, bounds=bounds, refine=refine,
-                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
-        rec = model.fit["offset"]
-        rec.update(offset_mm=rec["offset_mm"] + fit["offset"]["offset_mm"], applied=True,
-                   estimated_mm=fit["offset"]["estimated_mm"], rms_without_um=fit["offset"]["rms_without_um"],
-                   rms_with_um=model.fit["rms_um"])
-        return model
+        return _refit_without_offset(original, axis, fit, method=method, bounds=bounds, refine=refine,
+                                     regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
     return ReducedAxisModel(
         parameters=params,
         sample_time=T,
@@ -166,6 +157,20 @@ def fit_reduced_model(
         fit=fit,
         delay_s=delay_s,
     )
+
+
+def _refit_without_offset(original: Capture, axis: str, fit: dict, **options) -> ReducedAxisModel:
+    """The model fitted again on ``original`` less the output error's datum offset of ``fit``
+    (:func:`fit_reduced_model` with ``options``): that offset is exact where the regression's was a
+    few um off, and the slow pole is not left where the residual offset had put it."""
+    again = dataclasses.replace(without_offset(original, axis, fit["offset"]["offset_mm"]),
+                                meta={**original.meta, "offset_refit": True})
+    model = fit_reduced_model(again, axis=axis, **options)
+    rec = model.fit["offset"]
+    rec.update(offset_mm=rec["offset_mm"] + fit["offset"]["offset_mm"], applied=True,
+               estimated_mm=fit["offset"]["estimated_mm"], rms_without_um=fit["offset"]["rms_without_um"],
+               rms_with_um=model.fit["rms_um"])
+    return model
 
 
 def _in_loop_frame(capture: Capture, axis: str, delay: str | float, xr: np.ndarray, x: np.ndarray, T: float,

@@ -61,12 +61,6 @@ def refine_output_error(
     offset : bool
         Also fit a constant added to the prediction (a datum offset between the channels,
         :mod:`identification.datum_offset`), starting from 0.
-
-    Returns
-    -------
-    dict
-        ``parameters``, ``poles``, ``cost`` [mm^2], ``start_cost`` [mm^2], ``nfev``, ``message``,
-        and ``offset_mm`` [mm] (0 unless ``offset``), ``delay_samples`` (the start unless ``delay``).
     delay : (start, low, high), optional
         Also fit the reference dead time [samples] within [low, high] (``reference`` is then the
         recorded one, delayed by :func:`identification.dead_time.delay_reference` at each step):
@@ -79,6 +73,12 @@ def refine_output_error(
         Also fit the model's state at the first kept sample (a record that starts in motion,
         :mod:`identification.initial_state`), eliminated by linear least squares in each residual.
 
+    Returns
+    -------
+    dict
+        ``parameters``, ``poles``, ``cost`` [mm^2], ``start_cost`` [mm^2], ``nfev``, ``message``,
+        and ``offset_mm`` [mm] (0 unless ``offset``), ``delay_samples`` (the start unless ``delay``).
+
     Notes
     -----
     With ``initial_state`` the result also has ``initial_state`` (the causal state [mm]) and
@@ -86,26 +86,9 @@ def refine_output_error(
     """
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
-    # start from the canonical labelling: with p the slowest of three real poles, the fast pair can
-    # turn complex through zeta = 1; labelled otherwise, a fast real pole shares nothing with the
-    # pair, and the search stalls where the two fast poles meet (31 % off on fadal-ppi's GA start)
-    p0, w0, z0 = canonical(poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"], bounds)
-    x0 = to_search(parameters, p0, w0, z0)
-    lo, hi = search_box(bounds)
-    x0 = np.clip(x0, lo, hi)
-    # typical sizes, so that finite-difference steps are meaningful for every variable
-    typ = np.maximum(np.abs(x0), 1e-3 * np.max(np.abs(x0[3:6])) + 1e-12)
-    typ[:3] = 1.0
-    nv = x0.size
-    if offset:  # the constant [mm], scaled by the record's span
-        x0 = np.append(x0, 0.0)
-        typ = np.append(typ, 1e-3 * max(float(np.ptp(xr)), 1e-6))
-        lo, hi = np.append(lo, -np.inf), np.append(hi, np.inf)
-    i_delay = x0.size
-    if delay is not None:
-        x0 = np.append(x0, float(np.clip(delay[0], delay[1], delay[2])))
-        typ = np.append(typ, 1.0)
-        lo, hi = np.append(lo, delay[1]), np.append(hi, delay[2])
+    x0, typ, lo, hi = _search_start(parameters, poles, bounds, span=float(np.ptp(xr)), offset=offset, delay=delay)
+    nv = x0.size - (1 if offset else 0) - (1 if delay is not None else 0)
+    i_delay = x0.size - 1
     cut = keep if keep is not None else slice(None)
     xm_kept = xm[cut]
 
@@ -145,3 +128,29 @@ def refine_output_error(
         "delay_samples": float(x[i_delay]) if delay is not None else 0.0,
         **start,
     }
+
+
+def _search_start(parameters: dict[str, float], poles: dict[str, float], bounds: PoleBounds, *, span: float,
+                  offset: bool, delay: tuple[float, float, float] | None):
+    """``(x0, typical sizes, lower, upper)`` of :func:`refine_output_error`'s search: the model's variables
+    (:func:`identification.parameters.to_search`), then the offset [mm] with ``offset``, then the dead time
+    [samples] with ``delay``."""
+    # start from the canonical labelling: with p the slowest of three real poles, the fast pair can
+    # turn complex through zeta = 1; labelled otherwise, a fast real pole shares nothing with the
+    # pair, and the search stalls where the two fast poles meet (31 % off on fadal-ppi's GA start)
+    p0, w0, z0 = canonical(poles["p_hz"] * TWO_PI, poles["omega_n_hz"] * TWO_PI, poles["zeta"], bounds)
+    x0 = to_search(parameters, p0, w0, z0)
+    lo, hi = search_box(bounds)
+    x0 = np.clip(x0, lo, hi)
+    # typical sizes, so that finite-difference steps are meaningful for every variable
+    typ = np.maximum(np.abs(x0), 1e-3 * np.max(np.abs(x0[3:6])) + 1e-12)
+    typ[:3] = 1.0
+    if offset:  # the constant [mm], scaled by the record's span
+        x0 = np.append(x0, 0.0)
+        typ = np.append(typ, 1e-3 * max(span, 1e-6))
+        lo, hi = np.append(lo, -np.inf), np.append(hi, np.inf)
+    if delay is not None:
+        x0 = np.append(x0, float(np.clip(delay[0], delay[1], delay[2])))
+        typ = np.append(typ, 1.0)
+        lo, hi = np.append(lo, delay[1]), np.append(hi, delay[2])
+    return x0, typ, lo, hi
