@@ -1052,8 +1052,7 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
 
 def _rotary_now(m: _Machine) -> Solution:
     """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]."""
-    at = [float(m.extra[EXTRA_LETTERS.index(a.upper())]) for a in m.context.kinematics.names]
-    return Solution(outer=at[0], inner=at[-1] if len(at) == 2 else 0.0)
+    return m.context.kinematics.solution_at(m.extra)
 
 
 def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:

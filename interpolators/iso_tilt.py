@@ -29,7 +29,7 @@ import numpy as np
 
 from interpolators.context import MachineContext
 from interpolators.iso_transforms import Rotation
-from interpolators.tilted import Solution, TiltError, euler, tilted_frame
+from interpolators.tilted import TiltError, euler, tilted_frame
 
 __all__ = ["TiltedRotation", "TiltError", "g68_2_rotation"]
 
@@ -88,9 +88,7 @@ def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zer
                         "part)")
     kin.require_table()
     plane = euler(words.get("I", 0.0), words.get("J", 0.0), words.get("K", 0.0))
-    at = {name: float(extra["abc".index(name)]) for name in kin.names}
-    current = Solution(outer=at[kin.names[0]], inner=at[kin.names[-1]] if len(kin.names) == 2 else 0.0)
-    angles = kin.choose(plane, current)
+    angles = kin.choose(plane, kin.solution_at(extra))
     origin = np.array([words.get(a, 0.0) * scale for a in "XYZ"])
     theta, datum = tilted_frame(kin, plane, angles, np.asarray(work_zero, dtype=float) + origin)
     shift = datum - np.asarray(work_zero, dtype=float)

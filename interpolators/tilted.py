@@ -276,6 +276,12 @@ class Kinematics:
         """The axes' positions [deg] by name (the inner angle only when there is an inner axis)."""
         return dict(zip(self.names, (angles.outer, angles.inner)[:len(self.axes)], strict=True))
 
+    def solution_at(self, extra: Sequence[float]) -> Solution:
+        """The axes' present positions as a :class:`Solution` (inner 0 without an inner axis), read from
+        ``extra``: the positions of a, b, c [deg] first (the extra-axis columns of a block)."""
+        at = [float(extra["abc".index(name)]) for name in self.names]
+        return Solution(outer=at[0], inner=at[-1] if len(at) == 2 else 0.0)
+
     def _turns(self, angles: Solution):
         return zip(self.axes, (angles.outer, angles.inner)[:len(self.axes)], strict=True)
 
