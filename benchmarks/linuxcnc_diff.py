@@ -52,7 +52,7 @@ INCH = 25.4  # [mm/inch]
 #: File name endings of programs looked for in a directory.
 PROGRAM_SUFFIXES = (".ngc", ".nc", ".gcode", ".tap")
 #: One canonical call of rs274's output: ``   12 N..... NAME(args)``.
-CANONICAL = re.compile(r"^\s*\d+\s+N[.\d]+\s+([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
+CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s+([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 #: rs274's error at a file without ``%`` or ``M2``/``M30`` at its end (vcnc reads such a file to its end).
 #: rs274's refusals vcnc runs with a note, and a part of that note's text (``Program.notes``).

@@ -5,7 +5,6 @@ the end points are the STRAIGHT_TRAVERSE/STRAIGHT_FEED X, Y, Z of the ``expected
 from __future__ import annotations
 
 import io
-import math
 import os
 import re
 import subprocess
@@ -15,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from benchmarks.linuxcnc_diff import canonical_moves
 from interpolators import load_program, parse_program
 from interpolators.context import Dialect, MachineContext, read_tool_table
 from vcnc.core.axes import EXTRA_NAMES
@@ -374,43 +374,10 @@ def _rs274_run(case_dir: Path) -> tuple[list[Path], MachineContext, str]:
 
 
 def _canonical_moves(expected: str) -> list[tuple[str, np.ndarray]]:
-    """(kind, end point [mm, machine]) of the STRAIGHT_TRAVERSE/STRAIGHT_FEED/ARC_FEED calls of an expected file.
-
-    Canonical calls carry program coordinates in the current units (emccanon.cc rotate_and_offset_pos adds the
-    offsets); ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end, ...) names the end in the
-    plane's axes: XY (x, y; z), YZ (y, z; x), XZ (z, x; y).
-    """
-    unit, g5x, g92, rotation, tool, plane = 1.0, np.zeros(3), np.zeros(3), 0.0, np.zeros(3), "XY"
-    moves = []
-    for name, args in re.findall(r"\b([A-Z][A-Z0-9_]*)\((.*)\)", expected):
-        nums = [float(v) for v in re.findall(r"[-+]?\d+(?:\.\d+)?", args)]
-        if name == "USE_LENGTH_UNITS":
-            unit = INCH if "INCHES" in args else 10.0 if "CM" in args else 1.0
-        elif name == "SET_G5X_OFFSET":
-            g5x = np.array(nums[1:4])
-        elif name == "SET_G92_OFFSET":
-            g92 = np.array(nums[:3])
-        elif name == "SET_XY_ROTATION":
-            rotation = math.radians(nums[0])
-        elif name == "USE_TOOL_LENGTH_OFFSET":
-            tool = np.array(nums[:3])
-        elif name == "SELECT_PLANE":
-            plane = args.rsplit("_", 1)[-1].strip()
-        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "RIGID_TAP"):
-            if name == "ARC_FEED":
-                e1, e2, _, _, _, e3 = nums[:6]
-                p = np.array({"XY": (e1, e2, e3), "YZ": (e3, e1, e2), "XZ": (e2, e3, e1)}[plane])
-            else:
-                p = np.array(nums[:3])
-            x, y = p[0] + g92[0], p[1] + g92[1]
-            c, s = math.cos(rotation), math.sin(rotation)
-            machine = np.array([c * x - s * y, s * x + c * y, p[2] + g92[2]]) + g5x + tool
-            kind = {"STRAIGHT_TRAVERSE": "rapid", "STRAIGHT_FEED": "line", "ARC_FEED": "arc", "RIGID_TAP": "line"}[name]
-            start = moves[-1][1] if moves else np.zeros(3)
-            moves.append((kind, machine * unit))
-            if name == "RIGID_TAP":  # RIGID_TAP(x, y, z, ..) taps to x, y, z and returns to its start (emccanon.cc)
-                moves.append(("line", start))
-    return moves
+    """(kind, end point [mm, machine]) of the STRAIGHT_TRAVERSE/STRAIGHT_FEED/ARC_FEED/RIGID_TAP calls of an
+    expected file (:func:`benchmarks.linuxcnc_diff.canonical_moves`: the canon's offsets, rotation, tool length
+    and plane followed as emccanon.cc does)."""
+    return [(m.kind, m.xyz) for m in canonical_moves(expected)]
 
 
 #: How far two end points may differ and be the same point: rs274 prints 4 decimals, 0.0001 inch = 0.00254 mm [mm].
