@@ -438,8 +438,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    wrapped = False  # the file begins with % and ends at a second one (linuxcnc)
     if dialect.name == "linuxcnc":
-        text = _until_closing_percent(text, notes)
+        text, wrapped = _until_closing_percent(text, notes)
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     st.subprogram = _ends_with_m99(text)
@@ -478,7 +479,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     else:
         for line in homing:  # $H lines after the last block
             _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
-        if dialect.name == "linuxcnc" and not _percent_wrapped(text):
+        if dialect.name == "linuxcnc" and not wrapped:
             # rs274 refuses it at the end: "File ended with no percent sign or program end" (interp_read.cc)
             notes.add("no M2/M30 (nor % at the start and end): read to the end of the file (LinuxCNC refuses it)")
     if st.corner is not None:
@@ -501,10 +502,10 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
 _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 
 
-def _until_closing_percent(text: str, notes: _Notes) -> str:
+def _until_closing_percent(text: str, notes: _Notes) -> tuple[str, bool]:
     """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
     that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
-    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it)."""
+    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it); and whether it had both."""
     lines = text.split("\n")
     filled = [i for i, raw in enumerate(lines) if raw.strip()]
     opened = bool(filled) and lines[filled[0]].strip() == "%"
@@ -513,19 +514,13 @@ def _until_closing_percent(text: str, notes: _Notes) -> str:
     if stray:  # "% ; start flag", or a % after comment lines: rs274 stops there ("Bad character '%' used")
         notes.add("'%' lines LinuxCNC refuses (not the file's first line, or with a comment) skipped")
     if not opened:
-        return text
+        return text, False
     for i in filled[1:]:
         if lines[i].strip() == "%":
             if any(raw.strip() for raw in lines[i + 1:]):
                 notes.add("lines after the closing % not run (LinuxCNC ends the program there)")
-            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1))
-    return text
-
-
-def _percent_wrapped(text: str) -> bool:
-    """Whether the program's first and a later non-blank line are ``%`` (LinuxCNC ends such a file at the second)."""
-    lines = [s for s in (raw.strip() for raw in text.splitlines()) if s]
-    return bool(lines) and lines[0] == "%" and "%" in lines[1:]
+            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1)), True
+    return text, False
 
 
 def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:
