@@ -7,6 +7,7 @@ from __future__ import annotations
 import io
 import os
 import re
+import shutil
 import subprocess
 import tarfile
 from pathlib import Path
@@ -17,6 +18,7 @@ import pytest
 from benchmarks.linuxcnc_diff import canonical_moves
 from interpolators import load_program, parse_program
 from interpolators.context import Dialect, MachineContext, read_tool_table
+from tests.interpolators.linuxcnc_ported_cases import PORTED_CASES
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.errors import GCodeError
 
@@ -298,8 +300,11 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
 # --- LinuxCNC's tests/interp and tests/ccomp, run in place ------------------------------------------------------
 #
 # Each case of LinuxCNC's interpreter tests (and of its cutter compensation tests, tests/ccomp) is a program and the
-# canonical calls rs274 prints for it. The cases are read from a LinuxCNC checkout when one is present
-# (VCNC_LINUXCNC_REPO, a git directory; never copied into this repository): the program runs through vcnc with the
+# canonical calls rs274 prints for it. The cases are read from the tests of Debian's linuxcnc source package, which
+# `make test` downloads from Debian's archive, checks against the archive's SHA-256 and unpacks under .cache
+# (VCNC_LINUXCNC_TESTS, holding interp/ and ccomp/; never copied into this repository), or from a LinuxCNC git checkout
+# (VCNC_LINUXCNC_REPO); the six cases LinuxCNC added after Debian's snapshot are written out in
+# linuxcnc_ported_cases.py. The program runs through vcnc with the
 # case's tool table and SUBROUTINE_PATH, and the end points of STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED, mapped to
 # machine coordinates with the offsets the calls set (SET_G5X_OFFSET, SET_G92_OFFSET, SET_XY_ROTATION,
 # USE_TOOL_LENGTH_OFFSET) in the units they name, are compared with the blocks' (zero-length moves dropped, as vcnc
@@ -307,6 +312,8 @@ def test_g10_l2_rotation_while_active_matches_linuxcnc():
 # expects rs274 to fail checks that vcnc refuses it. The messages (MESSAGE calls of MSG and DEBUG comments, the lines
 # PRINT comments print) are compared with Program.messages, text and order, as the case's test.sh passes them on.
 
+_LINUXCNC_TESTS = Path(os.environ.get("VCNC_LINUXCNC_TESTS",
+                                      Path(__file__).resolve().parents[2] / ".cache" / "linuxcnc-tests"))
 _LINUXCNC_REPO = Path(os.environ.get("VCNC_LINUXCNC_REPO", "/work/.mirror/LinuxCNC+linuxcnc/repo"))
 
 #: Cases whose motion vcnc reproduces (tests/interp/<case>).
@@ -346,9 +353,20 @@ INTERP_REFUSED = ("iniparam-failassign", "m98m99/03-error-M98-no-P-word", "m98m9
 
 
 def _case_dir(case: str, tmp_path: Path, suite: str = "interp") -> Path:
-    """The files of LinuxCNC's ``tests/<suite>/<case>`` (``interp`` or ``ccomp``), extracted under ``tmp_path``."""
+    """The files of LinuxCNC's ``tests/<suite>/<case>`` (``interp`` or ``ccomp``), copied or extracted under
+    ``tmp_path``."""
+    dest = tmp_path / "tests" / suite / case
+    if suite == "interp" and case in PORTED_CASES:  # newer than Debian's source: written out
+        for name, text in PORTED_CASES[case].items():
+            (dest / name).parent.mkdir(parents=True, exist_ok=True)
+            (dest / name).write_text(text)
+        return dest
+    if (_LINUXCNC_TESTS / suite).is_dir():
+        shutil.copytree(_LINUXCNC_TESTS / suite / case, dest)
+        return dest
     if not (_LINUXCNC_REPO / "HEAD").is_file() and not (_LINUXCNC_REPO / ".git").exists():
-        pytest.skip(f"LinuxCNC checkout absent ({_LINUXCNC_REPO}; set VCNC_LINUXCNC_REPO)")
+        pytest.skip(f"LinuxCNC's interpreter tests absent ({_LINUXCNC_TESTS}: `make test` downloads them from "
+                    f"Debian's archive; or a checkout in VCNC_LINUXCNC_REPO)")
     archive = subprocess.run(["git", "-C", str(_LINUXCNC_REPO), "archive", "HEAD", f"tests/{suite}/{case}"],
                              capture_output=True, check=True).stdout
     with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
