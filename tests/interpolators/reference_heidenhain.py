@@ -537,8 +537,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 254, 256,
-                    257, 262, 263, 264, 265, 267) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 230, 232, 240, 241, 251, 252, 253,
+                    254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -680,6 +680,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "208":
         _bore_milling(t, line, p)
+        return
+    if kind in ("230", "232"):
+        _face_milling(t, line, p)
         return
     if kind == "25":
         _contour_train(t, line, p)
@@ -1446,6 +1449,66 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
         _run_cycle(t, line)
     t.cycle = (kind, cyc)
+
+
+def _face_milling(t: _Tnc, line: int, p: dict) -> None:
+    """Cycles 232 FACE MILLING and 230 MULTIPASS MILLING (TNC 640 cycle manual 34059x-01 p. 235-236, TNC 320
+    manual 340 551-02 p. 298; TNC 426/430 manual, cycle 230), all in program coordinates: the starting point off
+    the near edge by R + Q357 (230: R), lines along X in Q218's direction at Q226 .. Q226 + Q219 (equal steps,
+    at most Q370 x R; 230: Q240 lines); 0: meander out to R + Q357 beyond the far edge, stepover at Q253; 1:
+    meander from R inside the near edge to R inside the far edge, stepover at Q207; 2: every line from the near
+    side, up Q200 above the level at FMAX, back at Q253, down at Q253. Levels: equal infeeds <= Q202 to Q386 +
+    Q369, then Q386 at Q385; each level's lines in the reverse order of the last (0, 1); 2nd set-up clearance
+    Q204 above Q227 at the end (230: Q200), and first when the tool is below it (232). Where the moves end only:
+    the feeds are the tests' own."""
+    k, r = t.scale, t.radius / t.scale  # the tool radius in program units
+    x0, y0, top, length, width = p["Q225"], p["Q226"], p["Q227"], p["Q218"], p["Q219"]
+    sx = math.copysign(1.0, length)
+    if "Q240" in p:  # 230
+        strategy, side, clear, n = 0, 0.0, top + p["Q200"], int(p["Q240"]) - 1
+        levels = [top]
+    else:
+        strategy, side, clear = int(p["Q389"]), p.get("Q357", p["Q200"]), top + p["Q204"]
+        n = math.ceil(abs(width) / (p.get("Q370", 1.0) * r) - 1e-9)
+        rough = top - p["Q386"] - p.get("Q369", 0.0)
+        m = math.ceil(rough / p["Q202"] - 1e-9) if rough > 0 else 0
+        levels = [top - rough * (i + 1) / m for i in range(m)] + ([p["Q386"]] if p.get("Q369", 0.0) else [])
+    rows = [y0 + width * j / n for j in range(n + 1)] if n > 0 else [y0]
+    start = x0 - sx * (r + side)
+    ends = (x0 + sx * r, x0 + length - sx * r) if strategy == 1 else (start, x0 + length + sx * (r + side))
+
+    def go(kind: str, x=None, y=None, z=None) -> None:
+        here = t.prog() / k
+        pt = np.array([here[0] if x is None else x, here[1] if y is None else y, here[2] if z is None else z])
+        end = t.machine(pt * k)
+        if np.linalg.norm(end - t.pos) > 1e-9:
+            t.emit(line, kind, end)
+
+    if "Q240" not in p and t.prog()[2] / k <= clear:
+        go("rapid", z=clear)
+    go("rapid", start, rows[0])
+    go("rapid", z=top + p["Q200"])
+    order = rows
+    pre = "rapid" if math.isinf(p.get("Q253", 0.0)) else "feed"  # Q253=MAX
+    for i, z in enumerate(levels):
+        go(pre, z=z)
+        for j, y in enumerate(order):
+            if strategy == 2:
+                if j:
+                    go("rapid", z=z + p["Q200"])
+                    go(pre, start, y)
+                    go(pre, z=z)
+                go("feed", ends[1], y)
+                continue
+            go(pre if strategy == 0 else "feed", y=y)
+            x = t.prog()[0] / k
+            go("feed", ends[1] if abs(x - ends[1]) > 1e-9 else ends[0])
+        if strategy == 2 and i < len(levels) - 1:
+            go("rapid", z=z + p["Q200"])
+            go(pre, start, rows[0])
+        elif strategy != 2:
+            order = order[::-1]
+    go("rapid", z=clear)
 
 
 def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[float]:
