@@ -1693,7 +1693,8 @@ def _surface(m: _Machine, c: SurfaceCycle, where: Where, blk: SourceBlock) -> No
 
 
 def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """The moves of cycle ``c`` at the current position in the plane, ``surface`` [mm, machine]."""
+    """The moves of cycle ``c`` at the current position in the plane (212-215: about their centre Q216, Q217,
+    reached at the clearance height first), ``surface`` [mm, machine]."""
     axis = m.plane
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
@@ -1701,18 +1702,22 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (4, 5, 251, 252, 253):
+    if c.place is not None:
+        _to_centre(m, c, surface, where, blk)
+    if c.shape in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
-    if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
+    if c.shape == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
         if not m.transform.identity:
             where.fail("cycle 254 under a coordinate transformation (cycles 8, 10, 11, 26) is not supported",
                        column=blk.column, text=blk.code, expected="CIRCULAR SLOT without mirror, rotation or scaling")
         for k in range(c.repeats):
             _circular_pocket(m, dataclasses.replace(c, angle=c.angle + k * c.slot[4]), surface, where, blk)
         return
-    if c.number in (256, 257):
+    if c.shape in (256, 257):
         _rectangular_stud(m, c, surface, where, blk)
+        if c.place is not None:  # 213, 215: the end position is over the centre
+            _to_centre(m, c, surface, where, blk)
         return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
@@ -1728,6 +1733,19 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         else:
             _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
     m.used.add(axis)
+
+
+def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycles 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
+    over the centre Q216, Q217 (TNC 370 user's manual p. 8-20, cycle 213: "The TNC moves the tool in the Z axis
+    to the setup clearance, or - if this has been specified - to the 2nd setup clearance and subsequently to the
+    center")."""
+    p, q = PLANE_AXES[m.plane]
+    d = -1.0 if c.depth < 0 else 1.0
+    _axis_move(m, "rapid", surface - d * max(c.setup, c.second_setup), math.inf, where, blk)
+    target, _ = _program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
+    if not np.array_equal(target, m.pos):
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
 def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
@@ -1882,7 +1900,7 @@ def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: 
     if c.plunge_type == 1:
         reach, ways = min(m.tool_radius or room, room), ((1.0, level),)
     else:
-        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.number in (251, 253) else room
+        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.shape in (251, 253) else room
         ways = ((-1.0, (m.pos[axis] + level) / 2.0), (1.0, level))
     if reach <= 1e-9:
         _axis_move(m, "line", level, c.approach_feed, where, blk)
@@ -1964,7 +1982,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     along the reference axis, at the milling feed Q207, counter-clockwise for climb milling (Q351 = +1).
     The wall is finished at Q385 by a half circle out from the centre, a full circle and a half circle back
     (as cycle 262); the floor by the roughing's circles at the depth out to the wall. Q215 = 0 finishes
-    only what has an allowance; Q215 = 2 finishes wall and floor.
+    only what has an allowance; Q215 = 2 finishes wall and floor (the old 212/214: the wall only).
     """
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
@@ -1986,7 +2004,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number in (4, 251, 253):
+        if c.shape in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
         elif c.number == 254:
             h = 0.0
@@ -2003,7 +2021,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number in (4, 251, 253):
+            if c.shape in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
             if c.number == 254:
@@ -2018,7 +2036,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                 pole = (m.pos + here) / 2.0 if pole is None else pole
                 seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
                 m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
-    if c.operation == 2 or (c.operation == 0 and c.floor_allowance > 0):
+    if (c.operation == 2 and not c.wall_only) or (c.operation == 0 and c.floor_allowance > 0):
         _axis_move(m, "line", bottom, c.approach_feed, where, blk)
         rings(0.0, c.finish_feed)
         _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
@@ -2105,7 +2123,8 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
     by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
     the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
-    each depth of Q338, as roughing. The tool ends over the starting position.
+    each depth of Q338, as roughing. The tool ends over the starting position. The starting position lies the
+    cycle's ``lead`` beyond the blank (256/257: the manual's 2 mm; 213/215: :func:`finishing_cycle`).
     """
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
@@ -2126,7 +2145,7 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
         pt[axis] = m.pos[axis]
         return pt
 
-    start_u = c.blank[0] / 2.0 + 2.0 + m.tool_radius
+    start_u = c.blank[0] / 2.0 + c.lead + m.tool_radius
     first = at(start_u)
     m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)

@@ -537,8 +537,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 230, 232, 240, 241, 251, 252, 253,
-                    254, 256, 257, 262, 263, 264, 265, 267) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 212, 213, 214, 215, 220, 221, 230, 232, 240,
+                    241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -683,6 +683,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind in ("230", "232"):
         _face_milling(t, line, p)
+        return
+    if kind in ("212", "213", "214", "215"):
+        _finishing(t, line, kind, p)
         return
     if kind == "25":
         _contour_train(t, line, p)
@@ -1104,12 +1107,38 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             for end, pole in ((out, mid + np.array([wall / 2, 0.0, 0.0])), (out, mid),
                               (mid, mid + np.array([wall / 2, 0.0, 0.0]))):
                 t.emit(line, kind, t.machine(end), centre=t.machine(pole))
-    if op == 2 or (op == 0 and floor > 0):
+    if (op == 2 and not p.get("wall only")) or (op == 0 and floor > 0):
         _move_z(t, line, "feed", surface + depth, optional=True)
         rings(wall)
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """The old finishing cycles (TNC 426/430 manual, cycles 212-215; TNC 370 manual p. 8-20): at FMAX along Z
+    to Q203 + max(Q200, Q204), over the centre Q216, Q217; 212/214: 251's/252's wall finishing (no floor) at each
+    plunging depth Q202, climbing; 213/215: 256's/257's one revolution at the finished size at each Q202, the
+    start Q221 (213) or (Q222 - Q223) / 2 (215) beyond the stud plus R, and at the end back over the centre."""
+    sgn = -1.0 if p["Q201"] < 0 else 1.0
+    _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q200"], p["Q204"]), optional=True)
+
+    def over_centre() -> None:
+        t.emit(line, "rapid", t.machine(np.array([p["Q216"] * t.scale, p["Q217"] * t.scale, t.prog()[2]])),
+               rows="optional")
+
+    over_centre()
+    base = {**p, "Q338": p["Q202"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0}
+    if kind in ("212", "214"):
+        _circular_pocket(t, line, {**base, "Q215": 2, "wall only": True})
+        return
+    if kind == "213":
+        _stud(t, line, {**base, "Q215": 1, "Q424": p["Q218"], "Q425": p["Q219"], "lead": p.get("Q221", 0.0)})
+    else:
+        d = p["Q223"]
+        _stud(t, line, {**base, "Q215": 1, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": d, "Q425": d,
+                        "lead": (p["Q222"] - d) / 2})
+    over_centre()
 
 
 def _plunge(t: _Tnc, line: int, p: dict, centre: np.ndarray, z: float, room: float, kind: str) -> None:
@@ -1174,7 +1203,8 @@ def _stud(t: _Tnc, line: int, p: dict) -> None:
     span = max(p["Q424"] * t.scale / 2 + R - a0, p["Q425"] * t.scale / 2 + R - b0, 0.0)
     n = max(1, math.ceil(span / (p.get("Q370", 1.0) * R or span or 1.0) - 1e-9))
     centre = t.prog()
-    start = centre + np.array([p["Q424"] * t.scale / 2 + 2 + R, 0.0, 0.0])
+    lead = p["lead"] * t.scale if "lead" in p else 2.0  # 256: 2 mm beyond the blank
+    start = centre + np.array([p["Q424"] * t.scale / 2 + lead + R, 0.0, 0.0])
     t.emit(line, "rapid", t.machine(start), rows="optional")
     _move_z(t, line, "rapid", surface - sgn * setup, optional=True)
     jobs = [(z, [j * span / n for j in range(n - 1, -1, -1)])
