@@ -880,10 +880,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         m.cycle, m.cycle_program = surface_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                                  column=blk.column), None
         return
-    if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
+    if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 4, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, "
-                            "230, 232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 212-215, 220, "
+                            "221, 230, 232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -944,6 +944,9 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         if value is None or value < 0:
             where.fail("dwell time must be >= 0 [s]", column=col, text=rest.strip(), expected="CYCL DEF 9.1 DWELL t")
         m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+    elif number == 13:  # 13.1 ANGLE a: TNC 426/430 manual, "ORIENTATION (Cycle 13)": the spindle stops at a
+        # (M19 or M20 when called); no motion
+        m.note("CYCL DEF 13 ORIENTATION: an oriented spindle stop; no motion")
     elif number == 32:
         if sub == 1:
             if value is not None and not value > 0:

@@ -480,7 +480,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
                 t.shift[i] += w["I" + a] * t.scale
     elif number == 9 and sub == 1:
         t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy()))
-    elif number == 32 or (number in (7, 8, 9, 10, 11, 26) and sub == 0):
+    elif number in (13, 32) or (number in (7, 8, 9, 10, 11, 26) and sub == 0):  # 13 ORIENTATION: no motion
         pass
     elif number in (8, 10, 11, 26) and sub == 1:
         _transform(t, number, rest)
