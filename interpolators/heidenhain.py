@@ -135,6 +135,7 @@ from interpolators.heidenhain_contours import (
     rest_pieces,
     reversed_path,
     rough_out_cycle,
+    rounded_ring,
     side_finishing_cycle,
     superimposed_region,
     train_levels,
@@ -1418,21 +1419,25 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     outermost R + Q3 from it, each next one Q2 x R farther in, as long as one fits, run from the innermost
     out in the sense Q9, joined square to the contour at the middle of its first element; per depth: at
     FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
-    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 (rounding the path's inside
-    corners) is not applied (noted). Several labels in cycle 14 (pockets and islands): :func:`_rough_out_region`.
+    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 rounds the rings' inside corners
+    (:func:`interpolators.heidenhain_contours.rounded_ring`). Several labels in cycle 14 (pockets and islands):
+    :func:`_rough_out_region` (Q8 not applied there, noted).
     Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
     floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
     _sl_checks(m, c.number, where, blk)
     if m.tool_radius <= 0:
         where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
-    if m.contour_data and m.contour_data.get(8, 0.0):
-        m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
     if len(m.contour) > 1 or c.coarse_tool:
+        if c.rounding:
+            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to pockets with islands "
+                   "or rest machining: the corners are sharp")
         _rough_out_region(m, c, where, blk)
         return
     axis = m.plane
     rings = _pocket_rings_of(m, c, m.tool_radius, where, blk)
+    if c.rounding:
+        rings = [rounded_ring(ring, c.rounding, plane=axis, ccw=c.ccw) for ring in rings]
     d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
     m.used.update((*PLANE_AXES[axis], axis))
     _axis_move(m, "rapid", clear, math.inf, where, blk)

@@ -887,6 +887,29 @@ def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndar
     return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
 
 
+def _rounded(start: np.ndarray, ends: list[np.ndarray], r: float) -> list[np.ndarray]:
+    """Cycle 20's Q8 on a counter-clockwise ring of straight edges (all its corners convex): each corner's end
+    moved along the next edge to where the rounding arc of ``r`` [mm] ends, ``r tan(turn / 2)`` from the corner
+    (the arc belongs to the edge before). A reflex corner, or a rounding longer than its edges, is refused."""
+    pts = [start, *ends]
+    trims = []
+    for k in range(len(ends) - 1):
+        u, v = (b - a for a, b in ((pts[k], pts[k + 1]), (pts[k + 1], pts[k + 2])))
+        u, v = u / np.linalg.norm(u), v / np.linalg.norm(v)
+        if u[0] * v[1] - u[1] * v[0] <= 1e-9:
+            raise ReferenceError("Q8 on a ring with a reflex or straight corner")
+        trims.append(r * math.tan(math.acos(float(np.clip(u @ v, -1.0, 1.0))) / 2))
+    lengths = [float(np.linalg.norm(b - a)) for a, b in zip(pts, pts[1:])]
+    if any(d > lengths[k + 1] - (trims[k + 1] if k + 1 < len(trims) else 0.0) + 1e-9 or d > lengths[k] - (
+            trims[k - 1] if k else 0.0) + 1e-9 for k, d in enumerate(trims)):
+        raise ReferenceError("Q8 longer than the ring's edges")
+    out = list(ends)
+    for k, d in enumerate(trims):
+        v = pts[k + 2] - pts[k + 1]
+        out[k] = pts[k + 1] + v / np.linalg.norm(v) * d
+    return out
+
+
 def _far_inside(pts: np.ndarray, corners: list[np.ndarray], r: float) -> bool:
     """All ``pts`` (n, 2) inside the polygon and at least ``r`` [mm] (less 1 um) from its edges."""
     poly = np.array(corners)
@@ -929,6 +952,8 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
         corners, lines = [b[:2] for _, _, _, b, _ in reversed(elements)], lines[::-1]
     flip = np.array([1.0, 1.0 if ccw else -1.0])  # a clockwise run: the rings of the mirrored pocket
     rings = _pocket_rings([c * flip for c in corners], t.radius + p["Q3"] * t.scale, p["Q2"] * t.radius)
+    if p.get("Q8", 0.0):
+        rings = [(start, _rounded(start, ends, abs(p["Q8"]) * t.scale)) for start, ends in rings]
     sgn = -1.0 if p["Q1"] < 0 else 1.0
     levels = _levels(p["Q5"], p["Q5"] + sgn * (abs(p["Q1"]) - abs(p["Q4"])), sgn, abs(p["Q10"]))
     above = p["Q5"] - sgn * abs(p["Q6"])
