@@ -2005,7 +2005,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                    expected=f"a tool radius below {what[1]}")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
-    if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
+    if c.shape == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
         first = _slot_point(m, c, c.angle, c.slot[2])
         m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)
@@ -2014,7 +2014,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     def rings(allowance: float, feed: float) -> None:
         if c.shape in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
-        elif c.number == 254:
+        elif c.shape == 254:
             h = 0.0
             while h < wall - allowance - 1e-9:
                 h = min(h + step, wall - allowance)
@@ -2026,13 +2026,13 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
             _plunge(m, c, centre, level, rough, sense, where, blk)
             rings(c.side_allowance, c.feed)
             _back_to_centre(m, centre, level - d * c.setup, where, blk)
-    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+    if c.operation == 2 or (c.operation == 0 and (c.side_allowance > 0 or c.wall_only)):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
             if c.shape in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
-            if c.number == 254:
+            if c.shape == 254:
                 _slot_ring(m, c, wall, sense, c.finish_feed, where, blk)
                 back = _at_level(centre, axis, level)
                 m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)

@@ -537,8 +537,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 212, 213, 214, 215, 220, 221, 230, 232, 240,
-                    241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 220, 221, 230,
+                    232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -686,6 +686,14 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind in ("212", "213", "214", "215"):
         _finishing(t, line, kind, p)
+        return
+    if kind in ("210", "211"):  # the old slots as 253 (reciprocating plunge, Q366 = 2) over Q216/Q217 and 254
+        base = {**p, "Q206": p["Q207"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0, "wall only": True}
+        if kind == "210":
+            _over_centre(t, line, p)
+            _circular_pocket(t, line, {**base, "Q220": p["Q219"] / 2, "Q366": 2.0})
+        else:
+            _circular_pocket(t, line, {**base, "Q375": p["Q244"], "Q376": p["Q245"], "Q223": p["Q219"]})
         return
     if kind == "25":
         _contour_train(t, line, p)
@@ -1115,7 +1123,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             _plunge(t, line, p, centre, z, wall - side * t.scale, kind)
             rings(wall - side * t.scale)
             back(z)
-    if op == 2 or (op == 0 and side > 0):
+    if op == 2 or (op == 0 and (side > 0 or p.get("wall only"))):
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
             _move_z(t, line, "feed", z)
             mid = t.prog()
@@ -1140,19 +1148,20 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
-def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
-    """The old finishing cycles (TNC 426/430 manual, cycles 212-215; TNC 370 manual p. 8-20): at FMAX along Z
-    to Q203 + max(Q200, Q204), over the centre Q216, Q217; 212/214: 251's/252's wall finishing (no floor) at each
-    plunging depth Q202, climbing; 213/215: 256's/257's one revolution at the finished size at each Q202, the
-    start Q221 (213) or (Q222 - Q223) / 2 (215) beyond the stud plus R, and at the end back over the centre."""
+def _over_centre(t: _Tnc, line: int, p: dict) -> None:
+    """212-215, 210: at FMAX along Z to Q203 + max(Q200, Q204), then over the centre Q216, Q217."""
     sgn = -1.0 if p["Q201"] < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q200"], p["Q204"]), optional=True)
+    t.emit(line, "rapid", t.machine(np.array([p["Q216"] * t.scale, p["Q217"] * t.scale, t.prog()[2]])),
+           rows="optional")
 
-    def over_centre() -> None:
-        t.emit(line, "rapid", t.machine(np.array([p["Q216"] * t.scale, p["Q217"] * t.scale, t.prog()[2]])),
-               rows="optional")
 
-    over_centre()
+def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """The old finishing cycles (TNC 426/430 manual, cycles 212-215; TNC 370 manual p. 8-20): over the centre
+    (:func:`_over_centre`); 212/214: 251's/252's wall finishing (no floor) at each plunging depth Q202, climbing;
+    213/215: 256's/257's one revolution at the finished size at each Q202, the start Q221 (213) or (Q222 - Q223)
+    / 2 (215) beyond the stud plus R, and at the end back over the centre."""
+    _over_centre(t, line, p)
     base = {**p, "Q338": p["Q202"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0}
     if kind in ("212", "214"):
         _circular_pocket(t, line, {**base, "Q215": 2, "wall only": True})
@@ -1163,7 +1172,7 @@ def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
         d = p["Q223"]
         _stud(t, line, {**base, "Q215": 1, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": d, "Q425": d,
                         "lead": (p["Q222"] - d) / 2})
-    over_centre()
+    _over_centre(t, line, p)
 
 
 def _plunge(t: _Tnc, line: int, p: dict, centre: np.ndarray, z: float, room: float, kind: str) -> None:

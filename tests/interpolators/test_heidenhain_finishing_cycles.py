@@ -1,7 +1,8 @@
 """The old Heidenhain finishing cycles 212 POCKET FINISHING, 213 STUD FINISHING, 214 CIRCULAR POCKET FINISHING and
-215 CIRCULAR STUD FINISHING: hand-written programs with end points worked out by hand from the cycles' runs (TNC
-426/430 user's manual, "Cycles for milling pockets, studs and slots"; TNC 370 user's manual p. 8-20), each also
-checked against the independent reference (``reference_heidenhain``)."""
+215 CIRCULAR STUD FINISHING, and the old slots 210 SLOT RECIP. PLNG and 211 CIRCULAR SLOT: hand-written programs
+with end points worked out by hand from the cycles' runs (TNC 426/430 user's manual, "Cycles for milling pockets,
+studs and slots"; TNC 370 user's manual p. 8-20), each also checked against the independent reference
+(``reference_heidenhain``)."""
 
 from __future__ import annotations
 
@@ -86,3 +87,41 @@ def test_finishing_cycles_bad_definitions_are_errors():
             "Q219=60", reference=False)
     with pytest.raises(GCodeError, match="blank Q222 must be at least"):
         run(f"215 C. STUD FINISHING {COMMON} Q222=70 Q223=80", reference=False)
+
+
+SLOT = "Q200=2 Q201=-6 Q207=500 Q202=3 Q215={op} Q203=+0 Q204=20 Q216=+50 Q217=+40"
+
+
+def test_slot_210_reciprocates_down_along_the_slot_and_finishes_its_wall():
+    # the slot 60 x 12 about (50, 40): the end circles' centres (the tool radius inside the ends) at X 25 and 75;
+    # each stroke out to one end, back to the other 1.5 down, out again 3 down (Q202 per reciprocation), at Q207
+    prog = run(f"210 SLOT RECIP. PLNG {SLOT.format(op=0)} Q218=60 Q219=12 Q224=+0 Q338=0")
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[1:4]] == [[0, 0, 20], [50, 40, 20], [50, 40, 2]]
+    assert [blk.target.tolist() for blk in b[4:7]] == [[75, 40, 2], [25, 40, -0.5], [75, 40, -3]]
+    assert all(blk.feed * 60 == pytest.approx(500) for blk in b if blk.kind != "rapid")
+    # the wall: the obround of half width 6 - 5 = 1 round the end centres, climbing (counter-clockwise)
+    ends = [blk for blk in b if blk.kind == "arc"]
+    assert ends and all(blk.segment.ccw and abs(blk.segment.radius - 1) < 1e-9 for blk in ends)
+    assert min(blk.target[2] for blk in b) == -6 and b[-1].target.tolist() == [50, 40, 20]
+
+
+def test_circular_slot_211_runs_254s_slot_on_the_pitch_circle():
+    # the pitch circle of diameter 80 about (50, 40) from 0 over 90 degrees: the first end at (90, 40); the slot
+    # width 12 with R 5: the tool centre 1 off the pitch circle, inside and out
+    prog = run(f"211 CIRCULAR SLOT {SLOT.format(op=0)} Q244=80 Q219=12 Q245=+0 Q248=90 Q338=0")
+    b = prog.blocks
+    assert b[1].target.tolist() == [90, 40, 100] and b[2].target.tolist() == [90, 40, 2]
+    for blk in b[3:]:
+        r = math.hypot(*(blk.target[:2] - [50, 40]))
+        a = math.degrees(math.atan2(blk.target[1] - 40, blk.target[0] - 50))
+        assert 39 - 1e-9 <= r <= 41 + 1e-9 or math.hypot(*(blk.target[:2] - [90, 40])) <= 1 + 1e-9
+        assert -1e-9 <= a <= 90 + 1e-9 or r < 1e-9
+    assert [blk.target[2] for blk in b if blk.kind == "line" and blk.start[2] != blk.target[2]][:2] == [-3, -6]
+
+
+def test_old_slots_bad_definitions_are_errors():
+    with pytest.raises(GCodeError, match="slot length Q218 must exceed its width"):
+        run(f"210 SLOT RECIP. PLNG {SLOT.format(op=0)} Q218=10 Q219=12 Q224=+0", reference=False)
+    with pytest.raises(GCodeError, match="Q215 must be 0, 1 or 2"):
+        run(f"211 CIRCULAR SLOT {SLOT.format(op=3)} Q244=80 Q219=12 Q245=+0 Q248=90", reference=False)
