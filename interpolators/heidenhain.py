@@ -179,7 +179,14 @@ from interpolators.heidenhain_paths import (
     tangential_arc,
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
-from interpolators.heidenhain_surfaces import SURFACE_CYCLES, SurfaceCycle, surface_cycle, surface_moves
+from interpolators.heidenhain_surfaces import (
+    SURFACE_CYCLES,
+    RuledSurface,
+    SurfaceCycle,
+    ruled_surface_moves,
+    surface_cycle,
+    surface_moves,
+)
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -883,8 +890,8 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 212-215, 220, "
-                            "221, 230, 232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-215, 220, 221, "
+                            "230-232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -1314,10 +1321,10 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle)):
+    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle, RuledSurface)):
         if hole is not None or surface_shift:
             _no_contour_train(m, where, blk)
-        if isinstance(m.cycle, SurfaceCycle):
+        if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
             _surface(m, m.cycle, where, blk)
         elif isinstance(m.cycle, RoughOut):
             _rough_out(m, m.cycle, where, blk)
@@ -1349,7 +1356,7 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
     multipass-milling cycle (230, 232: placed by its own starting point)."""
-    if isinstance(m.cycle, SurfaceCycle):
+    if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
         where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
                    text=blk.code, expected="CYCL CALL or M99 (the cycle's starting point Q225, Q226, Q227 places it)")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
@@ -1679,16 +1686,18 @@ def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock)
     m.last_rapid = True
 
 
-def _surface(m: _Machine, c: SurfaceCycle, where: Where, blk: SourceBlock) -> None:
-    """Cycle 230 or 232 (:func:`interpolators.heidenhain_surfaces.surface_moves`): its moves, given in program
-    coordinates of the working plane's axes and the tool axis, through the active transformations."""
+def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
+    """Cycle 230, 231 or 232 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
+    its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
+    transformations."""
     axis = m.plane
     p, q = PLANE_AXES[axis]
     if c.number == 232 and not m.tool_radius > 0:
         where.fail("cycle 232 FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
                    column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
     try:
-        moves = surface_moves(c, radius=m.tool_radius, level=float(m.to_program(m.pos)[axis]))
+        moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
+            surface_moves(c, radius=m.tool_radius, level=float(m.to_program(m.pos)[axis]))
     except ValueError as exc:
         where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
     for mv in moves:
@@ -2225,8 +2234,8 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     plane, the machining cycle from the set-up clearance; to the next positions at the set-up
     clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
     machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
-    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle)) \
-            or m.cycle.surface is None:
+    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
+                                               RuledSurface)) or m.cycle.surface is None:
         where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
                    text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)

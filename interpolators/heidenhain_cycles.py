@@ -73,7 +73,7 @@ CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I
 
 #: Cycles run by M99 / CYCL CALL.
 MACHINING_CYCLES: tuple[int, ...] = (1, 2, 4, 5, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211,
-                                      212, 213, 214, 215, 230, 232, 240, 241,
+                                      212, 213, 214, 215, 230, 231, 232, 240, 241,
                                       251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267)
 #: The thread-milling cycles (:func:`thread_milling_cycle`).
 THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)

@@ -7,6 +7,7 @@ carries them through the active transformations (:func:`surface_moves`).
 ========================= ==================================================================
 ``CYCL DEF 232``          FACE MILLING, strategies Q389 = 0, 1, 2 (:func:`face_milling_cycle`)
 ``CYCL DEF 230``          MULTIPASS MILLING, Q240 lines meandering at one height (:func:`multipass_cycle`)
+``CYCL DEF 231``          RULED SURFACE between four points, Q240 lines (:func:`ruled_surface_cycle`)
 ``CYCL DEF 233``          FACE MILLING of the TNC 640 (side walls, Q350 direction, limits Q347-Q349): an error
 ========================= ==================================================================
 """
@@ -18,11 +19,11 @@ import math
 
 from interpolators._words import Where
 
-__all__ = ["MAX_LINES", "SURFACE_CYCLES", "SurfaceCycle", "SurfaceMove", "face_milling_cycle", "multipass_cycle",
-           "surface_cycle", "surface_moves"]
+__all__ = ["MAX_LINES", "SURFACE_CYCLES", "SurfaceCycle", "RuledSurface", "SurfaceMove", "face_milling_cycle",
+           "multipass_cycle", "ruled_surface_cycle", "ruled_surface_moves", "surface_cycle", "surface_moves"]
 
 #: The multipass-milling cycles this module runs (233 is refused by :func:`surface_cycle`).
-SURFACE_CYCLES: tuple[int, ...] = (230, 232, 233)
+SURFACE_CYCLES: tuple[int, ...] = (230, 231, 232, 233)
 
 #: Most lines of one level of cycle 232 (a guard against a tiny tool radius or stepover factor).
 MAX_LINES = 100_000
@@ -30,6 +31,7 @@ MAX_LINES = 100_000
 _REQUIRED = {
     232: (389, 225, 226, 227, 386, 218, 219, 202, 207, 200, 204),
     230: (225, 226, 227, 218, 219, 240, 206, 207, 209, 200),
+    231: (225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 240, 207),
 }
 
 
@@ -111,9 +113,77 @@ def _required(number: int, q: dict[int, float], where: Where, column: int) -> No
                    expected="the cycle's Q parameters: " + " ".join(f"Q{k}" for k in _REQUIRED[number]))
 
 
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class RuledSurface:
+    """Cycle 231 RULED SURFACE as defined, in mm, mm/s [program coordinates].
+
+    Attributes
+    ----------
+    number : int
+        231.
+    corners : tuple of tuple of float
+        Points 1 (Q225-Q227), 2 (Q228-Q230), 3 (Q231-Q233) and 4 (Q234-Q236) in the reference, minor and tool
+        axes [mm]: the lines run from the edge 1-4 to the edge 2-3.
+    lines : int
+        Q240, the number of cuts.
+    feed : float
+        Q207, the milling feed [mm/s] (the first line at half of it).
+    """
+
+    number: int = 231
+    corners: tuple[tuple[float, float, float], ...]
+    lines: int
+    feed: float
+
+
+def ruled_surface_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                        column: int) -> RuledSurface:
+    """Cycle 231 RULED SURFACE from its Q parameters (TNC 410/426/430 ISO programming user's manual, "Cycles for
+    multipass milling", RULED SURFACE, p. 292, https://azmanual.top/manuals/798543/heidenhain-tnc-410-iso-
+    programming.html?page=318): Q225-Q227 the starting point 1, Q228-Q230 the 2nd point, Q231-Q233 the 3rd,
+    Q234-Q236 the 4th, each absolute; Q240 "Number of passes to be made between points 1 and 4, 2 and 3"; Q207
+    the milling feed ("The TNC performs the first step at half the programmed feed rate"). The moves are
+    :func:`ruled_surface_moves`."""
+    _required(231, q, where, column)
+    lines = int(q[240])
+    if lines < 1 or lines != q[240] or lines > MAX_LINES or not q[207] > 0:
+        where.fail(f"cycle 231: Q240={q[240]:g} cuts, Q207={q[207]:g}", column=column, text=where.text,
+                   expected=f"a whole number of cuts Q240 1 .. {MAX_LINES}, a feed Q207 > 0")
+    corners = tuple(tuple(q[k] * scale for k in (first, first + 1, first + 2)) for first in (225, 228, 231, 234))
+    return RuledSurface(corners=corners, lines=lines, feed=q[207] * feed_scale)
+
+
+def ruled_surface_moves(c: RuledSurface, *, radius: float) -> list[SurfaceMove]:
+    """The moves of cycle 231 for a tool of ``radius`` [mm] (the cycle run of the TNC 426/430 user's manual,
+    "RULED SURFACE (Cycle 231)", whose pages were not among the texts found: our reading of it): at FMAX in a
+    3-D line to point 1; the lines from the edge 1-4 to the edge 2-3, the j-th from 1 + j (4 - 1) / (Q240 - 1) to
+    2 + j (3 - 2) / (Q240 - 1) (one line, 1 to 2, with Q240 = 1), the first at Q207 / 2, the others at Q207;
+    after each line at FMAX up by the tool diameter, back over the line's start, down to it, at Q207 in all three
+    axes to the next line's start; at the end at FMAX to the tool diameter above the highest of the four points."""
+    p1, p2, p3, p4 = (tuple(map(float, pt)) for pt in c.corners)
+    n = c.lines - 1
+
+    def along(a: tuple, b: tuple, j: int) -> tuple[float, float, float]:
+        f = j / n if n else 0.0
+        return tuple(a[i] + (b[i] - a[i]) * f for i in range(3))
+
+    lift = 2.0 * radius
+    out = [SurfaceMove("rapid", p1)]
+    for j in range(c.lines):
+        start, end = along(p1, p4, j), along(p2, p3, j)
+        if j:
+            out.append(SurfaceMove("line", start, c.feed))
+        out.append(SurfaceMove("line", end, c.feed / 2.0 if j == 0 else c.feed))
+        if j < n:
+            out += [SurfaceMove("rapid", (None, None, end[2] + lift)), SurfaceMove("rapid", (*start[:2], None)),
+                    SurfaceMove("rapid", (None, None, start[2]))]
+    out.append(SurfaceMove("rapid", (None, None, max(pt[2] for pt in c.corners) + lift)))
+    return out
+
+
 def surface_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                  column: int) -> SurfaceCycle:
-    """Cycle 230 or 232 from its Q parameters; 233 is an error (TNC 640 user's manual for cycle programming
+                  column: int) -> SurfaceCycle | RuledSurface:
+    """Cycle 230, 231 or 232 from its Q parameters; 233 is an error (TNC 640 user's manual for cycle programming
     9/2015, "FACE MILLING (Cycle 233)", p. 175: its side walls Q347-Q349, the milling direction Q350 and the
     helical strategy Q389 = 4 are not modelled)."""
     if number == 233:
@@ -126,6 +196,8 @@ def surface_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale:
                        expected=f"Q{k}=<number>")
     if number == 230:
         return multipass_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number == 231:
+        return ruled_surface_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     return face_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
 
 
@@ -168,9 +240,10 @@ def face_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, 
 def multipass_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
                     column: int) -> SurfaceCycle:
     """Cycle 230 MULTIPASS MILLING from its Q parameters (TNC 426/430 user's manual, "Cycles for multipass
-    milling", MULTIPASS MILLING (Cycle 230); TNC 410 ISO programming manual p. 290-291): Q225/Q226/Q227 the
-    starting point, Q218/Q219 the side lengths, Q240 the number of cuts, Q206 the feed for plunging, Q207
-    milling, Q209 the stepover feed, Q200 the set-up clearance. The moves are :func:`surface_moves`."""
+    milling", MULTIPASS MILLING (Cycle 230); its pages were not among the texts found, so the parameters and the
+    cycle run here are our reading of that manual's cycle as its dialog names them): Q225/Q226/Q227 the starting
+    point, Q218/Q219 the side lengths, Q240 the number of cuts, Q206 the feed for plunging, Q207 milling, Q209
+    the stepover feed, Q200 the set-up clearance. The moves are :func:`surface_moves`."""
     _required(230, q, where, column)
     lines = int(q[240])
     if lines < 1 or lines != q[240] or lines > 10_000:
@@ -223,8 +296,8 @@ def _ends(c: SurfaceCycle, radius: float) -> tuple[float, float, float]:
 def surface_moves(c: SurfaceCycle, *, radius: float, level: float) -> list[SurfaceMove]:
     """The moves of cycle 232 FACE MILLING or 230 MULTIPASS MILLING for a tool of ``radius`` [mm] whose tool-axis
     coordinate is ``level`` [mm, program] (TNC 640 user's manual for cycle programming 34059x-01, p. 235-236,
-    cycle 232's "Cycle run"; TNC 320 user's manual 340 551-02 p. 298 for the parameters; cycle 230: TNC 426/430
-    user's manual, "MULTIPASS MILLING (Cycle 230)"):
+    cycle 232's "Cycle run"; TNC 320 user's manual 340 551-02 p. 298 for the parameters; cycle 230: our reading
+    of the TNC 426/430 user's manual's "MULTIPASS MILLING (Cycle 230)", :func:`multipass_cycle`):
 
     * positioning logic: above the 2nd set-up clearance (Q227 + Q204) the tool goes at FMAX first in the plane
       to the starting point, then down to the set-up clearance Q227 + Q200; below it first up to the 2nd

@@ -538,7 +538,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
     elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 220, 221, 230,
-                    232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
+                    231, 232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -683,6 +683,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind in ("230", "232"):
         _face_milling(t, line, p)
+        return
+    if kind == "231":
+        _ruled_surface(t, line, p)
         return
     if kind in ("212", "213", "214", "215"):
         _finishing(t, line, kind, p)
@@ -1573,6 +1576,28 @@ def _face_milling(t: _Tnc, line: int, p: dict) -> None:
         elif strategy != 2:
             order = order[::-1]
     go("rapid", z=clear)
+
+
+def _ruled_surface(t: _Tnc, line: int, p: dict) -> None:
+    """231 RULED SURFACE (TNC 410 ISO manual p. 292 for the parameters; the cycle run as read for vcnc): FMAX to
+    point 1; Q240 lines from the edge 1-4 to the edge 2-3 in equal steps; after each but the last FMAX up by the
+    tool diameter, over the line's start, down to it, then fed to the next line's start; at the end FMAX to the
+    tool diameter above the highest point. Where the moves end only."""
+    pts = [np.array([p[f"Q{k}"], p[f"Q{k + 1}"], p[f"Q{k + 2}"]]) * t.scale for k in (225, 228, 231, 234)]
+    n, lift = int(p["Q240"]) - 1, 2 * t.radius
+    t.emit(line, "rapid", t.machine(pts[0]))
+    for j in range(n + 1):
+        f = j / n if n else 0.0
+        a, b = pts[0] + (pts[3] - pts[0]) * f, pts[1] + (pts[2] - pts[1]) * f
+        if j:
+            t.emit(line, "feed", t.machine(a))
+        t.emit(line, "feed", t.machine(b))
+        if j < n:
+            for q in (b + [0, 0, lift], np.array([a[0], a[1], b[2] + lift]), a):
+                t.emit(line, "rapid", t.machine(q), rows="optional" if np.allclose(t.machine(q), t.pos) else "one")
+    top = max(pt[2] for pt in pts) + lift
+    end = t.prog()
+    t.emit(line, "rapid", t.machine(np.array([end[0], end[1], top])), rows="optional")
 
 
 def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[float]:

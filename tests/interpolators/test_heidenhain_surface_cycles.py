@@ -1,7 +1,8 @@
-"""Heidenhain multipass-milling cycles 232 FACE MILLING and 230 MULTIPASS MILLING: hand-written programs whose
-moves are worked out by hand from the cycles' runs (TNC 640 user's manual for cycle programming 34059x-01,
-p. 235-236; TNC 320 user's manual 340 551-02 p. 298; TNC 426/430 user's manual, cycle 230), each also checked
-against the independent reference (``reference_heidenhain``)."""
+"""Heidenhain multipass-milling cycles 232 FACE MILLING, 230 MULTIPASS MILLING and 231 RULED SURFACE: hand-written
+programs whose moves are worked out by hand from the cycles' runs (TNC 640 user's manual for cycle programming
+34059x-01, p. 235-236; TNC 320 user's manual 340 551-02 p. 298; TNC 410 ISO manual p. 292 for 231's parameters;
+230's and 231's runs as vcnc reads them, see ``interpolators.heidenhain_surfaces``), each also checked against the
+independent reference (``reference_heidenhain``)."""
 
 from __future__ import annotations
 
@@ -132,3 +133,19 @@ def test_multipass_milling_230_meanders_q240_lines_at_one_height():
     assert all(mm_min(blk) == 600 for blk in cuts)
     assert all(mm_min(blk) == 300 for blk in b if blk.kind == "line" and blk.target[1] != blk.start[1])
     assert b[-1].target.tolist() == [105, 40, 0]
+
+
+def test_ruled_surface_231_lines_between_two_edges():
+    # points 1 (0, 5, -2), 2 (100, 5, -2), 3 (100, 45, 3), 4 (0, 45, 8): Q240 = 3 lines, from the edge 1-4 to the
+    # edge 2-3, at Y 5, 25, 45, the tool axis as the edges (Z -2 / -2, 3 / 0.5, 8 / 3); the first at Q207 / 2;
+    # between lines up by the tool diameter (2 x 4), back over the start, down, fed across
+    prog = run("TOOL DEF 1 L+0 R+4\nTOOL CALL 1 Z S2000\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 231 RULED SURFACE "
+               "Q225=+0 Q226=+5 Q227=-2 Q228=+100 Q229=+5 Q230=-2 Q231=+100 Q232=+45 Q233=+3 Q234=+0 Q235=+45 "
+               "Q236=+8 Q240=3 Q207=500\nCYCL CALL")
+    b = prog.blocks
+    assert b[1].kind == "rapid" and b[1].target.tolist() == [0, 5, -2]
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] == 100]
+    assert [blk.target.tolist() for blk in cuts] == [[100, 5, -2], [100, 25, 0.5], [100, 45, 3]]
+    assert [mm_min(blk) for blk in cuts] == [250, 500, 500]
+    assert b[3].kind == "rapid" and b[3].target.tolist() == [100, 5, 6]
+    assert b[-1].target.tolist() == [100, 45, 16]  # the highest point Z+8 plus the diameter
