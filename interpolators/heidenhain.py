@@ -947,6 +947,12 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
             m.cycle = old_pocket(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                  column=blk.column)
         return
+    _value_line(number, sub, rest, m, where, blk, col)
+
+def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+    """Line ``number.sub`` of an old cycle whose lines each hold one value: 9.1 dwell (runs at once), 13.1
+    orientation angle, 32.1 tolerance, and the items of 1 PECKING, 2 TAPPING, 17 RIGID TAPPING (the cycle is
+    defined by its last line)."""
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:

@@ -690,13 +690,8 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind in ("212", "213", "214", "215"):
         _finishing(t, line, kind, p)
         return
-    if kind in ("210", "211"):  # the old slots as 253 (reciprocating plunge, Q366 = 2) over Q216/Q217 and 254
-        base = {**p, "Q206": p["Q207"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0, "wall only": True}
-        if kind == "210":
-            _over_centre(t, line, p)
-            _circular_pocket(t, line, {**base, "Q220": p["Q219"] / 2, "Q366": 2.0})
-        else:
-            _circular_pocket(t, line, {**base, "Q375": p["Q244"], "Q376": p["Q245"], "Q223": p["Q219"]})
+    if kind in ("210", "211"):
+        _old_slot(t, line, kind, p)
         return
     if kind == "25":
         _contour_train(t, line, p)
@@ -1157,6 +1152,18 @@ def _over_centre(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q200"], p["Q204"]), optional=True)
     t.emit(line, "rapid", t.machine(np.array([p["Q216"] * t.scale, p["Q217"] * t.scale, t.prog()[2]])),
            rows="optional")
+
+
+def _old_slot(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """The old slots (TNC 426/430 manual, cycles 210, 211) as read for vcnc: 210 as 253 over the centre Q216/Q217
+    with the reciprocating plunge (Q366 = 2), 211 as 254 on the pitch circle Q244; climbing, the wall finished
+    without a floor pass, Q207 also the plunging feed."""
+    base = {**p, "Q206": p["Q207"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0, "wall only": True}
+    if kind == "210":
+        _over_centre(t, line, p)
+        _circular_pocket(t, line, {**base, "Q220": p["Q219"] / 2, "Q366": 2.0})
+    else:
+        _circular_pocket(t, line, {**base, "Q375": p["Q244"], "Q376": p["Q245"], "Q223": p["Q219"]})
 
 
 def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
