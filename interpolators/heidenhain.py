@@ -949,6 +949,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         return
     _value_line(number, sub, rest, m, where, blk, col)
 
+
 def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """Line ``number.sub`` of an old cycle whose lines each hold one value: 9.1 dwell (runs at once), 13.1
     orientation angle, 32.1 tolerance, and the items of 1 PECKING, 2 TAPPING, 17 RIGID TAPPING (the cycle is
@@ -1361,10 +1362,10 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
-    multipass-milling cycle (230, 232: placed by its own starting point)."""
+    multipass-milling cycle (230-232: placed by its own points)."""
     if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
         where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 (the cycle's starting point Q225, Q226, Q227 places it)")
+                   text=blk.code, expected="CYCL CALL or M99 (the cycle's own points Q225.. place it)")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
         number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
         name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
@@ -1716,7 +1717,7 @@ def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: Sou
 
 
 def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """The moves of cycle ``c`` at the current position in the plane (212-215: about their centre Q216, Q217,
+    """The moves of cycle ``c`` at the current position in the plane (210, 212-215: about their centre Q216, Q217,
     reached at the clearance height first), ``surface`` [mm, machine]."""
     axis = m.plane
     if c.number == 208:
@@ -1759,7 +1760,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
 
 
 def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycles 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
+    """Cycles 210, 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
     over the centre Q216, Q217 (TNC 370 user's manual p. 8-20, cycle 213: "The TNC moves the tool in the Z axis
     to the setup clearance, or - if this has been specified - to the 2nd setup clearance and subsequently to the
     center")."""

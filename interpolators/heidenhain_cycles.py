@@ -236,7 +236,7 @@ class DrillCycle:
     reduced_feed : float or None
         Cycle 241: the feed below the dwell depth, Q206 x Q401 / 100 [mm/s] (``None``: Q206).
     place : tuple of float or None
-        Cycles 212-215: the centre Q216, Q217 [mm, program] the tool goes to at the clearance height first
+        Cycles 210, 212-215: the centre Q216, Q217 [mm, program] the tool goes to at the clearance height first
         (``None``: the cycle runs where the tool is).
     wall_only : bool
         Cycles 210, 211, 212, 214: the finishing runs round the wall only (no floor finishing, as 251/252's Q215 = 2

@@ -29,7 +29,7 @@ SURFACE_CYCLES: tuple[int, ...] = (230, 231, 232, 233)
 MAX_LINES = 100_000
 
 _REQUIRED = {
-    232: (389, 225, 226, 227, 386, 218, 219, 202, 207, 200, 204),
+    232: (389, 225, 226, 227, 386, 218, 219, 202, 207, 200, 357, 204),
     230: (225, 226, 227, 218, 219, 240, 206, 207, 209, 200),
     231: (225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 240, 207),
 }
@@ -208,8 +208,8 @@ def face_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, 
     p. 298): Q389 strategy (0, 1, 2), Q225/Q226/Q227 the starting point, Q386 the end point in the tool axis,
     Q218/Q219 the side lengths (signed), Q202 the largest plunging depth, Q369 the floor allowance (the last
     infeed), Q370 the largest stepover factor (default 1), Q207 milling, Q385 finishing (default Q207), Q253
-    pre-positioning feed (default Q207, ``MAX``: rapid), Q200 set-up clearance, Q357 clearance to the side
-    (default Q200), Q204 2nd set-up clearance. The moves are :func:`surface_moves`. A starting point below
+    pre-positioning feed (default Q207, ``MAX``: rapid), Q200 set-up clearance, Q357 clearance to the side, Q204
+    2nd set-up clearance. The moves are :func:`surface_moves`. A starting point below
     the end point in the tool axis is an error (our reading: the TNC faces downward only)."""
     _required(232, q, where, column)
     strategy = int(q[389])
@@ -234,7 +234,7 @@ def face_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, 
         allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), feed=feed,
         finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale, approach_feed=approach,
         step_feed=feed if strategy == 1 else approach, setup=abs(q[200]) * scale,
-        side_clearance=abs(q.get(357, q[200])) * scale, second_setup=abs(q[204]) * scale)
+        side_clearance=abs(q[357]) * scale, second_setup=abs(q[204]) * scale)
 
 
 def multipass_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
