@@ -135,6 +135,7 @@ from interpolators.heidenhain_contours import (
     rest_pieces,
     reversed_path,
     rough_out_cycle,
+    rounded_ring,
     side_finishing_cycle,
     superimposed_region,
     train_levels,
@@ -178,6 +179,14 @@ from interpolators.heidenhain_paths import (
     tangential_arc,
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
+from interpolators.heidenhain_surfaces import (
+    SURFACE_CYCLES,
+    RuledSurface,
+    SurfaceCycle,
+    ruled_surface_moves,
+    surface_cycle,
+    surface_moves,
+)
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -874,10 +883,15 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         q_assignments(rest, where, m.params, column0=col)
         m.note(f"CYCL DEF {number}: {_SETTING_CYCLES[number]}; no motion")
         return
-    if number not in (7, 9, 12, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
+    if number in SURFACE_CYCLES:
+        q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
+        m.cycle, m.cycle_program = surface_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where,
+                                                 column=blk.column), None
+        return
+    if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 4, 5, 7-12, 14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-209, 220, 221, "
-                            "240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-215, 220, 221, "
+                            "230-232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -933,11 +947,21 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
             m.cycle = old_pocket(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                  column=blk.column)
         return
+    _value_line(number, sub, rest, m, where, blk, col)
+
+
+def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+    """Line ``number.sub`` of an old cycle whose lines each hold one value: 9.1 dwell (runs at once), 13.1
+    orientation angle, 32.1 tolerance, and the items of 1 PECKING, 2 TAPPING, 17 RIGID TAPPING (the cycle is
+    defined by its last line)."""
     value = legacy_value(rest, where, m.params, column0=col, what=f"cycle {number}.{sub}")
     if number == 9:
         if value is None or value < 0:
             where.fail("dwell time must be >= 0 [s]", column=col, text=rest.strip(), expected="CYCL DEF 9.1 DWELL t")
         m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+    elif number == 13:  # 13.1 ANGLE a: TNC 426/430 manual, "ORIENTATION (Cycle 13)": the spindle stops at a
+        # (M19 or M20 when called); no motion
+        m.note("CYCL DEF 13 ORIENTATION: an oriented spindle stop; no motion")
     elif number == 32:
         if sub == 1:
             if value is not None and not value > 0:
@@ -1304,10 +1328,12 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
+    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle, RuledSurface)):
         if hole is not None or surface_shift:
             _no_contour_train(m, where, blk)
-        if isinstance(m.cycle, RoughOut):
+        if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
+            _surface(m, m.cycle, where, blk)
+        elif isinstance(m.cycle, RoughOut):
             _rough_out(m, m.cycle, where, blk)
         elif isinstance(m.cycle, SideFinish):
             _side_finish(m, m.cycle, where, blk)
@@ -1335,7 +1361,11 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 
 
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25)."""
+    """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
+    multipass-milling cycle (230-232: placed by its own points)."""
+    if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
+        where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
+                   text=blk.code, expected="CYCL CALL or M99 (the cycle's own points Q225.. place it)")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
         number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
         name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
@@ -1403,21 +1433,25 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     outermost R + Q3 from it, each next one Q2 x R farther in, as long as one fits, run from the innermost
     out in the sense Q9, joined square to the contour at the middle of its first element; per depth: at
     FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
-    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 (rounding the path's inside
-    corners) is not applied (noted). Several labels in cycle 14 (pockets and islands): :func:`_rough_out_region`.
+    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 rounds the rings' inside corners
+    (:func:`interpolators.heidenhain_contours.rounded_ring`). Several labels in cycle 14 (pockets and islands):
+    :func:`_rough_out_region` (Q8 not applied there, noted).
     Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
     floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
     _sl_checks(m, c.number, where, blk)
     if m.tool_radius <= 0:
         where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
-    if m.contour_data and m.contour_data.get(8, 0.0):
-        m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied: the corners are sharp")
     if len(m.contour) > 1 or c.coarse_tool:
+        if c.rounding:
+            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to pockets with islands "
+                   "or rest machining: the corners are sharp")
         _rough_out_region(m, c, where, blk)
         return
     axis = m.plane
     rings = _pocket_rings_of(m, c, m.tool_radius, where, blk)
+    if c.rounding:
+        rings = [rounded_ring(ring, c.rounding, plane=axis, ccw=c.ccw) for ring in rings]
     d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
     m.used.update((*PLANE_AXES[axis], axis))
     _axis_move(m, "rapid", clear, math.inf, where, blk)
@@ -1659,8 +1693,32 @@ def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock)
     m.last_rapid = True
 
 
+def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
+    """Cycle 230, 231 or 232 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
+    its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
+    transformations."""
+    axis = m.plane
+    p, q = PLANE_AXES[axis]
+    if c.number == 232 and not m.tool_radius > 0:
+        where.fail("cycle 232 FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
+                   column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
+    try:
+        moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
+            surface_moves(c, radius=m.tool_radius, level=float(m.to_program(m.pos)[axis]))
+    except ValueError as exc:
+        where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
+    for mv in moves:
+        target, _ = _program_target(m, {"XYZ"[i]: v for i, v in zip((p, q, axis), mv.point) if v is not None}, m.pos)
+        if np.allclose(target, m.pos, rtol=0.0, atol=1e-12):
+            continue
+        kind = "rapid" if math.isinf(mv.feed) else "line"
+        m.emit(kind, target, Line(m.pos, target), mv.feed, where, blk.number)
+    m.used.update(range(3))
+
+
 def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """The moves of cycle ``c`` at the current position in the plane, ``surface`` [mm, machine]."""
+    """The moves of cycle ``c`` at the current position in the plane (210, 212-215: about their centre Q216, Q217,
+    reached at the clearance height first), ``surface`` [mm, machine]."""
     axis = m.plane
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
@@ -1668,18 +1726,22 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     if c.number in THREAD_CYCLES:
         _thread_milling(m, c, surface, where, blk)
         return
-    if c.number in (4, 5, 251, 252, 253):
+    if c.place is not None:
+        _to_centre(m, c, surface, where, blk)
+    if c.shape in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
-    if c.number == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
+    if c.shape == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
         if not m.transform.identity:
             where.fail("cycle 254 under a coordinate transformation (cycles 8, 10, 11, 26) is not supported",
                        column=blk.column, text=blk.code, expected="CIRCULAR SLOT without mirror, rotation or scaling")
         for k in range(c.repeats):
             _circular_pocket(m, dataclasses.replace(c, angle=c.angle + k * c.slot[4]), surface, where, blk)
         return
-    if c.number in (256, 257):
+    if c.shape in (256, 257):
         _rectangular_stud(m, c, surface, where, blk)
+        if c.place is not None:  # 213, 215: the end position is over the centre
+            _to_centre(m, c, surface, where, blk)
         return
     centre = m.pos.copy()
     p, q = PLANE_AXES[axis]
@@ -1695,6 +1757,19 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         else:
             _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
     m.used.add(axis)
+
+
+def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycles 210, 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
+    over the centre Q216, Q217 (TNC 370 user's manual p. 8-20, cycle 213: "The TNC moves the tool in the Z axis
+    to the setup clearance, or - if this has been specified - to the 2nd setup clearance and subsequently to the
+    center")."""
+    p, q = PLANE_AXES[m.plane]
+    d = -1.0 if c.depth < 0 else 1.0
+    _axis_move(m, "rapid", surface - d * max(c.setup, c.second_setup), math.inf, where, blk)
+    target, _ = _program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
+    if not np.array_equal(target, m.pos):
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
 def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
@@ -1849,7 +1924,7 @@ def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: 
     if c.plunge_type == 1:
         reach, ways = min(m.tool_radius or room, room), ((1.0, level),)
     else:
-        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.number in (251, 253) else room
+        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.shape in (251, 253) else room
         ways = ((-1.0, (m.pos[axis] + level) / 2.0), (1.0, level))
     if reach <= 1e-9:
         _axis_move(m, "line", level, c.approach_feed, where, blk)
@@ -1931,7 +2006,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
     along the reference axis, at the milling feed Q207, counter-clockwise for climb milling (Q351 = +1).
     The wall is finished at Q385 by a half circle out from the centre, a full circle and a half circle back
     (as cycle 262); the floor by the roughing's circles at the depth out to the wall. Q215 = 0 finishes
-    only what has an allowance; Q215 = 2 finishes wall and floor.
+    only what has an allowance; Q215 = 2 finishes wall and floor (the old 212/214: the wall only).
     """
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
@@ -1946,16 +2021,16 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                    expected=f"a tool radius below {what[1]}")
     step = c.stepover * m.tool_radius or wall
     sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
-    if c.number == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
+    if c.shape == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
         first = _slot_point(m, c, c.angle, c.slot[2])
         m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)
     centre = m.pos.copy()
 
     def rings(allowance: float, feed: float) -> None:
-        if c.number in (4, 251, 253):
+        if c.shape in (251, 253):
             _rect_rings(m, c, centre, allowance, step, feed, where, blk)
-        elif c.number == 254:
+        elif c.shape == 254:
             h = 0.0
             while h < wall - allowance - 1e-9:
                 h = min(h + step, wall - allowance)
@@ -1967,13 +2042,13 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
             _plunge(m, c, centre, level, rough, sense, where, blk)
             rings(c.side_allowance, c.feed)
             _back_to_centre(m, centre, level - d * c.setup, where, blk)
-    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
+    if c.operation == 2 or (c.operation == 0 and (c.side_allowance > 0 or c.wall_only)):
         for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
             _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.number in (4, 251, 253):
+            if c.shape in (251, 253):
                 _rect_wall(m, c, centre, sense, where, blk)
                 continue
-            if c.number == 254:
+            if c.shape == 254:
                 _slot_ring(m, c, wall, sense, c.finish_feed, where, blk)
                 back = _at_level(centre, axis, level)
                 m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
@@ -1985,7 +2060,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                 pole = (m.pos + here) / 2.0 if pole is None else pole
                 seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
                 m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
-    if c.operation == 2 or (c.operation == 0 and c.floor_allowance > 0):
+    if (c.operation == 2 and not c.wall_only) or (c.operation == 0 and c.floor_allowance > 0):
         _axis_move(m, "line", bottom, c.approach_feed, where, blk)
         rings(0.0, c.finish_feed)
         _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
@@ -2072,7 +2147,8 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
     by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
     the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
-    each depth of Q338, as roughing. The tool ends over the starting position.
+    each depth of Q338, as roughing. The tool ends over the starting position. The starting position lies the
+    cycle's ``lead`` beyond the blank (256/257: the manual's 2 mm; 213/215: :func:`finishing_cycle`).
     """
     axis = m.plane
     d = -1.0 if c.depth < 0 else 1.0
@@ -2093,7 +2169,7 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
         pt[axis] = m.pos[axis]
         return pt
 
-    start_u = c.blank[0] / 2.0 + 2.0 + m.tool_radius
+    start_u = c.blank[0] / 2.0 + c.lead + m.tool_radius
     first = at(start_u)
     m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
     _axis_move(m, "rapid", top, math.inf, where, blk)
@@ -2165,7 +2241,8 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     plane, the machining cycle from the set-up clearance; to the next positions at the set-up
     clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
     machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
-    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut)) or m.cycle.surface is None:
+    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
+                                               RuledSurface)) or m.cycle.surface is None:
         where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
                    text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)

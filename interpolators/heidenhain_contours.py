@@ -35,6 +35,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.compensation import CompensationError, compensate
+from interpolators.corners import PathGeometryError, end_tangent, round_elements
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, segment_clear
@@ -43,7 +44,7 @@ __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "Sid
            "floor_finishing_cycle", "side_finishing_cycle", "pilot_drilling_cycle", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
            "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings",
-           "rest_pieces"]
+           "rest_pieces", "rounded_ring"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
@@ -202,6 +203,8 @@ class RoughOut:
         The cycle this roughing runs for: 22, or 23 (floor finishing), 21 (pilot drilling's plunge points).
     coarse_tool : int
         Q18, the coarse roughing tool before this one (rest machining); 0: none.
+    rounding : float
+        Q8, the rounding radius of the tool-centre path's inside corners [mm] (0: sharp; :func:`rounded_ring`).
     """
 
     depth: float
@@ -218,6 +221,7 @@ class RoughOut:
     retract_feed: float | None
     number: int = 22
     coarse_tool: int = 0
+    rounding: float = 0.0
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -359,7 +363,7 @@ def rough_out_cycle(q: dict[int, float], data: dict[int, float] | None, *, feed_
                     clearance=data[7] * scale, ccw=data[9] >= 0, plunge=abs(q[10]) * scale,
                     plunge_feed=q[11] * feed_scale, feed=q[12] * feed_scale,
                     retract_feed=None if math.isinf(back) else (back or q[12]) * feed_scale,
-                    coarse_tool=int(q.get(18, 0.0)))
+                    coarse_tool=int(q.get(18, 0.0)), rounding=abs(data[8]) * scale)
 
 
 def _samples(path: list[Block], plane: int, per: int = 24) -> np.ndarray:
@@ -469,6 +473,42 @@ def pocket_rings(loop: list[Block], polygon: np.ndarray, *, radii: list[float], 
             break
         rings.append(ring[int(bool(rings)):])
     return rings
+
+
+def rounded_ring(ring: list[Block], radius: float, *, plane: int, ccw: bool) -> list[Block]:
+    """The closed tool-centre ``ring`` with its inside corners rounded by ``radius`` [mm]: cycle 20's Q8 (TNC
+    426/430 user's manual, "CONTOUR DATA (Cycle 20)": "Inside corner radius Q8: inside "corner" rounding radius;
+    entered value is referenced to the tool midpoint path"; iTNC 530 cycle manual: "used to calculate smoother
+    traverse motions between the contour elements. Q8 is not a radius that is inserted as a separate contour
+    element between programmed elements").
+
+    Inside corners are where the ring turns in its own sense (left for ``ccw``): the corners of the pocket that
+    the tool cannot reach (its other corners are already arcs of the offset). Each is rounded as ``RND`` rounds
+    (:func:`interpolators.corners.round_elements`), the arc on the block before the corner; our reading where
+    the manual is silent: a corner the radius does not fit stays sharp, and the ring's start (within its first
+    element, square to the contour) is no corner."""
+    out = [ring[0]]
+    for b in ring[1:]:
+        prev = out[-1]
+        t1 = end_tangent(prev.segment, plane)
+        p, q = PLANE_AXES[plane]
+        t2 = np.asarray(b.segment.tangent_at(0.0), dtype=float).reshape(3)[[p, q]]
+        cross = float(t1[0] * t2[1] - t1[1] * t2[0])
+        if abs(cross) <= 1e-9 * float(np.hypot(*t2)) or (cross > 0) != ccw:
+            out.append(b)
+            continue
+        try:
+            head, arc, tail = round_elements(prev.segment, b.segment, radius, plane=plane, word="Q8")
+        except PathGeometryError:
+            out.append(b)
+            continue
+        out[-1] = dataclasses.replace(prev, start=np.array(head.start, dtype=float),
+                                      target=np.array(head.end, dtype=float), segment=head)
+        out += [dataclasses.replace(prev, kind="arc", start=np.array(arc.start, dtype=float),
+                                    target=np.array(arc.end, dtype=float), segment=arc),
+                dataclasses.replace(b, start=np.array(tail.start, dtype=float), target=np.array(tail.end, dtype=float),
+                                    segment=tail)]
+    return out
 
 
 def contour_edges(path: list[Block], plane: int) -> list[Edge]:

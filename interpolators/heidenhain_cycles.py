@@ -37,6 +37,9 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 253``          slot milling, as 251 with the slot's obround (:func:`circular_pocket_cycle`);
                           254 circular slot, rings round the slot along its arc
 ``CYCL DEF 252``          circular pocket, vertical plunge, rings and finishing (:func:`circular_pocket_cycle`)
+``CYCL DEF 212 .. 215``   pocket, stud, circular pocket, circular stud finishing about Q216, Q217, as 251, 256,
+                          252, 257 finish (:func:`finishing_cycle`)
+``CYCL DEF 210 / 211``    slot and circular slot with reciprocating plunge, as 253 / 254 (:func:`old_slot_cycle`)
 ``CYCL DEF 262``          thread milling, one helix or a continuous one (:func:`thread_milling_cycle`);
                           263 with countersinking, 264 drilling first, 265 helical, 267 outside
 ``CYCL DEF 220 / 221``    polar / Cartesian pattern, DEF-active (:func:`pattern_cycle`)
@@ -63,18 +66,24 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
-           "hole_moves"]
+           "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
 
 #: Cycles run by M99 / CYCL CALL.
-MACHINING_CYCLES: tuple[int, ...] = (1, 2, 4, 5, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 240, 241,
+MACHINING_CYCLES: tuple[int, ...] = (1, 2, 4, 5, 17, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211,
+                                      212, 213, 214, 215, 230, 231, 232, 240, 241,
                                       251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267)
 #: The thread-milling cycles (:func:`thread_milling_cycle`).
 THREAD_CYCLES: tuple[int, ...] = (262, 263, 264, 265, 267)
 #: Pattern cycles: DEF-active, they run the last machining cycle at each position.
 PATTERN_CYCLES: tuple[int, ...] = (220, 221)
+#: Cycles that run the moves of a newer one: 4 POCKET MILLING and 5 CIRCULAR POCKET as 251's / 252's roughing,
+#: 212 POCKET FINISHING and 214 CIRCULAR POCKET FINISHING as 251's / 252's wall finishing, 213 STUD FINISHING
+#: and 215 CIRCULAR STUD FINISHING as 256's / 257's revolutions (:func:`finishing_cycle`), 210 SLOT RECIP. PLNG
+#: and 211 CIRCULAR SLOT as 253's and 254's slots (:func:`old_slot_cycle`).
+SAME_MOVES: dict[int, int] = {4: 251, 5: 252, 212: 251, 214: 252, 213: 256, 215: 257, 210: 253, 211: 254}
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
 MAX_INFEEDS: int = 100_000
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
@@ -96,6 +105,12 @@ _REQUIRED = {
     256: (218, 424, 219, 425, 201, 202, 206, 207, 200, 203, 204),
     253: (218, 219, 201, 202, 206, 207, 200, 203, 204), 257: (223, 222, 201, 202, 206, 207, 200, 203, 204),
     254: (219, 375, 216, 217, 376, 248, 201, 202, 206, 207, 200, 203, 204),
+    210: (200, 201, 207, 202, 215, 203, 204, 216, 217, 218, 219, 224),
+    211: (200, 201, 207, 202, 215, 203, 204, 216, 217, 244, 219, 245, 248),
+    212: (200, 201, 206, 202, 207, 203, 204, 216, 217, 218, 219),
+    213: (200, 201, 206, 202, 207, 203, 204, 216, 217, 218, 219),
+    214: (200, 201, 206, 202, 207, 203, 204, 216, 217, 222, 223),
+    215: (200, 201, 206, 202, 207, 203, 204, 216, 217, 222, 223),
     220: (216, 217, 244, 245, 246, 247, 241, 200, 203, 204), 221: (225, 226, 237, 238, 242, 243, 200, 203, 204),
 }
 
@@ -220,6 +235,15 @@ class DrillCycle:
         Cycle 241: Q435, the depth below the surface where the tool dwells Q211 on its way down [mm] (0: none).
     reduced_feed : float or None
         Cycle 241: the feed below the dwell depth, Q206 x Q401 / 100 [mm/s] (``None``: Q206).
+    place : tuple of float or None
+        Cycles 210, 212-215: the centre Q216, Q217 [mm, program] the tool goes to at the clearance height first
+        (``None``: the cycle runs where the tool is).
+    wall_only : bool
+        Cycles 210, 211, 212, 214: the finishing runs round the wall only (no floor finishing, as 251/252's Q215 = 2
+        has), with Q215 = 0 also without a side allowance.
+    lead : float
+        Cycles 256, 257: how far beyond the blank the starting position lies [mm] (2 mm, the manual's); 213: Q221;
+        215: from the finished diameter out to the blank's Q222.
     """
 
     number: int
@@ -272,6 +296,14 @@ class DrillCycle:
     start_depth: float = 0.0
     dwell_depth: float = 0.0
     reduced_feed: float | None = None
+    place: tuple[float, float] | None = None
+    wall_only: bool = False
+    lead: float = 2.0
+
+    @property
+    def shape(self) -> int:
+        """The newer cycle whose moves this one runs (:data:`SAME_MOVES`; itself for the others)."""
+        return SAME_MOVES.get(self.number, self.number)
 
 
 def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
@@ -505,6 +537,10 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return back_boring_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number in THREAD_CYCLES:
         return thread_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column, number=number)
+    if number in (210, 211):
+        return old_slot_cycle(number, q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number in (212, 213, 214, 215):
+        return finishing_cycle(number, q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number in (251, 252, 253, 254, 256, 257):
         return circular_pocket_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column,
                                      number=number)
@@ -562,6 +598,95 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
         advance_last=abs(q[259]) * scale if number == 205 and 259 in q else None,
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
+
+
+def finishing_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                    column: int) -> DrillCycle:
+    """The old finishing cycles from their Q parameters (TNC 426/430 user's manual, "Cycles for milling pockets,
+    studs and slots": POCKET FINISHING (Cycle 212), STUD FINISHING (Cycle 213), CIRCULAR POCKET FINISHING (Cycle
+    214), CIRCULAR STUD FINISHING (Cycle 215); TNC 370 user's manual p. 8-20, cycle 213's process,
+    https://www.easymanua.ls/heidenhain/tnc-370/manual?p=209): Q200 set-up clearance, Q201 depth, Q206 feed for
+    plunging, Q202 plunging depth, Q207 milling feed, Q203 surface, Q204 2nd set-up clearance, Q216/Q217 the
+    centre; 212/213: Q218, Q219 side lengths, Q220 corner radius, Q221 allowance for pre-positioning; 214/215:
+    Q222 blank diameter, Q223 finished diameter.
+
+    Cycle run: at the set-up clearance (or the 2nd one when higher) over the centre, from there in the plane to
+    the starting point, at Q206 to each plunging depth, "tangentially to the contour of the finished part and,
+    using climb milling, machines one revolution", tangentially off back to the starting point, until the depth;
+    at FMAX to the clearance and over the centre. They run the moves of the newer cycles (:data:`SAME_MOVES`):
+    212 and 214 as 251's and 252's wall finishing at each plunging depth from the centre (our reading: the
+    manual's starting point "for which the TNC takes the allowance and the tool radius into account" is reached
+    from the centre as those cycles reach their wall, which leaves Q221 and Q222 without motion), 213 and 215 as
+    256's and 257's one revolution at the finished size at each depth, the starting point Q221 (213) or the blank
+    Q222 (215) outside the stud (plus the tool radius; our reading of "takes into account the finishing allowance
+    and the tool radius")."""
+    required_q(number, q, where, column)
+    depth = q[201] * scale
+    if number in (212, 213):
+        sides = (abs(q[218]) * scale, abs(q[219]) * scale)
+        shape = dict(sides=sides, corner=abs(q.get(220, 0.0)) * scale, bore_diameter=min(sides))
+        if number == 213:
+            shape |= dict(blank=sides, lead=abs(q.get(221, 0.0)) * scale)
+    else:
+        d = abs(q[223]) * scale
+        shape = dict(sides=(d, d), corner=d / 2.0, bore_diameter=d)
+        if number == 215:
+            if abs(q[222]) < abs(q[223]):
+                where.fail("cycle 215: the blank Q222 must be at least the finished diameter Q223", column=column,
+                           text=where.text, expected="Q222 >= Q223 [mm]")
+            shape |= dict(blank=(d, d), lead=(abs(q[222]) - abs(q[223])) / 2.0 * scale)
+    if not min(shape["sides"]) > 0 or not q[206] > 0:
+        where.fail(f"cycle {number}: the pocket's or stud's size and the plunging feed Q206 must be > 0", column=column,
+                   text=where.text, expected="Q218, Q219 (Q223) > 0, Q206 > 0")
+    plunge = abs(q[202]) * scale or abs(depth)
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=plunge, feed=q[207] * feed_scale,
+        surface=q[203] * scale, second_setup=q[204] * scale, approach_feed=q[206] * feed_scale,
+        operation=1 if number in (213, 215) else 2, finish_infeed=plunge, finish_feed=q[207] * feed_scale,
+        wall_only=number in (212, 214), place=(q[216] * scale, q[217] * scale), **shape), where, column)
+
+
+def old_slot_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                   column: int) -> DrillCycle:
+    """210 SLOT RECIP. PLNG and 211 CIRCULAR SLOT from their Q parameters (TNC 426/430 user's manual, "Cycles for
+    milling pockets, studs and slots", SLOT (oblong hole) with reciprocating plunge-cut (Cycle 210), CIRCULAR SLOT
+    (oblong hole) with reciprocating plunge-cut (Cycle 211)): Q200, Q201, Q207 milling feed (also the plunging
+    one), Q202 plunging depth (the infeed of one reciprocation), Q215 0 roughing and finishing, 1 roughing, 2
+    finishing, Q203, Q204, Q338 infeed for finishing (0: one); 210: Q216/Q217 the slot's centre, Q218 its length,
+    Q219 its width, Q224 its rotation; 211: Q216/Q217 the pitch circle's centre, Q244 its diameter, Q219 the width,
+    Q245 the starting angle, Q248 the angular length.
+
+    Cycle run: over the slot's first end circle at the 2nd set-up clearance, down to the set-up clearance; roughing
+    reciprocates, plunging obliquely from one end to the other by Q202 per stroke, to the depth; finishing from the
+    slot's centre tangentially onto its contour, climb milling round it, tangentially back. They run the moves of
+    253 and 254 (:data:`SAME_MOVES`), our reading: 210 as 253 over the centre Q216/Q217 with Q366 = 2 (253's
+    reciprocating plunge along the slot to each infeed) and 253's rings out to the wall (the manual's roughing
+    stays on the centre line, leaving the wall to the finishing pass), 211 as 254 plunging vertically at the slot's
+    first end (254 does not reciprocate along its arc) and its rings; the wall finished as 253's / 254's, climbing,
+    no floor pass."""
+    required_q(number, q, where, column)
+    operation = int(q[215])
+    if operation not in (0, 1, 2) or not q[207] > 0 or not q[219] > 0:
+        where.fail(f"cycle {number}: Q215 must be 0, 1 or 2, the feed Q207 and the width Q219 > 0", column=column,
+                   text=where.text, expected="Q215 in 0..2, Q207 > 0, Q219 > 0")
+    depth, feed = q[201] * scale, q[207] * feed_scale
+    width = q[219] * scale
+    if number == 210:
+        if not abs(q[218]) > abs(q[219]):
+            where.fail("cycle 210: the slot length Q218 must exceed its width Q219", column=column, text=where.text,
+                       expected="|Q218| > Q219 [mm]")
+        shape = dict(sides=(abs(q[218]) * scale, width), corner=width / 2.0, angle=q[224], plunge_type=2,
+                     place=(q[216] * scale, q[217] * scale))
+    else:
+        if not q[248] > 0 or not q[244] > q[219]:
+            where.fail("cycle 211: the angular length Q248 must be > 0, the pitch circle Q244 wider than the slot "
+                       "width Q219", column=column, text=where.text, expected="Q248 > 0, Q244 > Q219 > 0")
+        shape = dict(slot=(q[216] * scale, q[217] * scale, q[244] / 2.0 * scale, q[248], 0.0), angle=q[245])
+    return _checked(DrillCycle(
+        number=number, setup=abs(q[200]) * scale, depth=depth, plunge=abs(q[202]) * scale or abs(depth), feed=feed,
+        surface=q[203] * scale, second_setup=q[204] * scale, bore_diameter=width, approach_feed=feed,
+        operation=operation, finish_infeed=abs(q.get(338, 0.0)) * scale, finish_feed=feed, wall_only=True,
+        **shape), where, column)
 
 
 def back_boring_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -880,7 +1005,7 @@ def scaled_cycle(cycle: DrillCycle, factor: float) -> DrillCycle:
                                counterbore=cycle.counterbore * factor, edge_height=cycle.edge_height * factor,
                                sink_depth=cycle.sink_depth * factor, front_depth=cycle.front_depth * factor,
                                front_offset=cycle.front_offset * factor, start_depth=cycle.start_depth * factor,
-                               dwell_depth=cycle.dwell_depth * factor)
+                               dwell_depth=cycle.dwell_depth * factor, lead=cycle.lead * factor)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -480,7 +480,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
                 t.shift[i] += w["I" + a] * t.scale
     elif number == 9 and sub == 1:
         t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy()))
-    elif number == 32 or (number in (7, 8, 9, 10, 11, 26) and sub == 0):
+    elif number in (13, 32) or (number in (7, 8, 9, 10, 11, 26) and sub == 0):  # 13 ORIENTATION: no motion
         pass
     elif number in (8, 10, 11, 26) and sub == 1:
         _transform(t, number, rest)
@@ -537,8 +537,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
-    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 220, 221, 240, 241, 251, 252, 253, 254, 256,
-                    257, 262, 263, 264, 265, 267) \
+    elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 220, 221, 230,
+                    231, 232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -680,6 +680,18 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "208":
         _bore_milling(t, line, p)
+        return
+    if kind in ("230", "232"):
+        _face_milling(t, line, p)
+        return
+    if kind == "231":
+        _ruled_surface(t, line, p)
+        return
+    if kind in ("212", "213", "214", "215"):
+        _finishing(t, line, kind, p)
+        return
+    if kind in ("210", "211"):
+        _old_slot(t, line, kind, p)
         return
     if kind == "25":
         _contour_train(t, line, p)
@@ -881,6 +893,29 @@ def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndar
     return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
 
 
+def _rounded(start: np.ndarray, ends: list[np.ndarray], r: float) -> list[np.ndarray]:
+    """Cycle 20's Q8 on a counter-clockwise ring of straight edges (all its corners convex): each corner's end
+    moved along the next edge to where the rounding arc of ``r`` [mm] ends, ``r tan(turn / 2)`` from the corner
+    (the arc belongs to the edge before). A reflex corner, or a rounding longer than its edges, is refused."""
+    pts = [start, *ends]
+    trims = []
+    for k in range(len(ends) - 1):
+        u, v = (b - a for a, b in ((pts[k], pts[k + 1]), (pts[k + 1], pts[k + 2])))
+        u, v = u / np.linalg.norm(u), v / np.linalg.norm(v)
+        if u[0] * v[1] - u[1] * v[0] <= 1e-9:
+            raise ReferenceError("Q8 on a ring with a reflex or straight corner")
+        trims.append(r * math.tan(math.acos(float(np.clip(u @ v, -1.0, 1.0))) / 2))
+    lengths = [float(np.linalg.norm(b - a)) for a, b in zip(pts, pts[1:])]
+    if any(d > lengths[k + 1] - (trims[k + 1] if k + 1 < len(trims) else 0.0) + 1e-9 or d > lengths[k] - (
+            trims[k - 1] if k else 0.0) + 1e-9 for k, d in enumerate(trims)):
+        raise ReferenceError("Q8 longer than the ring's edges")
+    out = list(ends)
+    for k, d in enumerate(trims):
+        v = pts[k + 2] - pts[k + 1]
+        out[k] = pts[k + 1] + v / np.linalg.norm(v) * d
+    return out
+
+
 def _far_inside(pts: np.ndarray, corners: list[np.ndarray], r: float) -> bool:
     """All ``pts`` (n, 2) inside the polygon and at least ``r`` [mm] (less 1 um) from its edges."""
     poly = np.array(corners)
@@ -923,6 +958,8 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
         corners, lines = [b[:2] for _, _, _, b, _ in reversed(elements)], lines[::-1]
     flip = np.array([1.0, 1.0 if ccw else -1.0])  # a clockwise run: the rings of the mirrored pocket
     rings = _pocket_rings([c * flip for c in corners], t.radius + p["Q3"] * t.scale, p["Q2"] * t.radius)
+    if p.get("Q8", 0.0):
+        rings = [(start, _rounded(start, ends, abs(p["Q8"]) * t.scale)) for start, ends in rings]
     sgn = -1.0 if p["Q1"] < 0 else 1.0
     levels = _levels(p["Q5"], p["Q5"] + sgn * (abs(p["Q1"]) - abs(p["Q4"])), sgn, abs(p["Q10"]))
     above = p["Q5"] - sgn * abs(p["Q6"])
@@ -1084,7 +1121,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             _plunge(t, line, p, centre, z, wall - side * t.scale, kind)
             rings(wall - side * t.scale)
             back(z)
-    if op == 2 or (op == 0 and side > 0):
+    if op == 2 or (op == 0 and (side > 0 or p.get("wall only"))):
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
             _move_z(t, line, "feed", z)
             mid = t.prog()
@@ -1101,12 +1138,51 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             for end, pole in ((out, mid + np.array([wall / 2, 0.0, 0.0])), (out, mid),
                               (mid, mid + np.array([wall / 2, 0.0, 0.0]))):
                 t.emit(line, kind, t.machine(end), centre=t.machine(pole))
-    if op == 2 or (op == 0 and floor > 0):
+    if (op == 2 and not p.get("wall only")) or (op == 0 and floor > 0):
         _move_z(t, line, "feed", surface + depth, optional=True)
         rings(wall)
         back(surface + depth)
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _over_centre(t: _Tnc, line: int, p: dict) -> None:
+    """212-215, 210: at FMAX along Z to Q203 + max(Q200, Q204), then over the centre Q216, Q217."""
+    sgn = -1.0 if p["Q201"] < 0 else 1.0
+    _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q200"], p["Q204"]), optional=True)
+    t.emit(line, "rapid", t.machine(np.array([p["Q216"] * t.scale, p["Q217"] * t.scale, t.prog()[2]])),
+           rows="optional")
+
+
+def _old_slot(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """The old slots (TNC 426/430 manual, cycles 210, 211) as read for vcnc: 210 as 253 over the centre Q216/Q217
+    with the reciprocating plunge (Q366 = 2), 211 as 254 on the pitch circle Q244; climbing, the wall finished
+    without a floor pass, Q207 also the plunging feed."""
+    base = {**p, "Q206": p["Q207"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0, "wall only": True}
+    if kind == "210":
+        _over_centre(t, line, p)
+        _circular_pocket(t, line, {**base, "Q220": p["Q219"] / 2, "Q366": 2.0})
+    else:
+        _circular_pocket(t, line, {**base, "Q375": p["Q244"], "Q376": p["Q245"], "Q223": p["Q219"]})
+
+
+def _finishing(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """The old finishing cycles (TNC 426/430 manual, cycles 212-215; TNC 370 manual p. 8-20): over the centre
+    (:func:`_over_centre`); 212/214: 251's/252's wall finishing (no floor) at each plunging depth Q202, climbing;
+    213/215: 256's/257's one revolution at the finished size at each Q202, the start Q221 (213) or (Q222 - Q223)
+    / 2 (215) beyond the stud plus R, and at the end back over the centre."""
+    _over_centre(t, line, p)
+    base = {**p, "Q338": p["Q202"], "Q351": 1.0, "Q368": 0.0, "Q369": 0.0, "Q370": 1.0}
+    if kind in ("212", "214"):
+        _circular_pocket(t, line, {**base, "Q215": 2, "wall only": True})
+        return
+    if kind == "213":
+        _stud(t, line, {**base, "Q215": 1, "Q424": p["Q218"], "Q425": p["Q219"], "lead": p.get("Q221", 0.0)})
+    else:
+        d = p["Q223"]
+        _stud(t, line, {**base, "Q215": 1, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": d, "Q425": d,
+                        "lead": (p["Q222"] - d) / 2})
+    _over_centre(t, line, p)
 
 
 def _plunge(t: _Tnc, line: int, p: dict, centre: np.ndarray, z: float, room: float, kind: str) -> None:
@@ -1171,7 +1247,8 @@ def _stud(t: _Tnc, line: int, p: dict) -> None:
     span = max(p["Q424"] * t.scale / 2 + R - a0, p["Q425"] * t.scale / 2 + R - b0, 0.0)
     n = max(1, math.ceil(span / (p.get("Q370", 1.0) * R or span or 1.0) - 1e-9))
     centre = t.prog()
-    start = centre + np.array([p["Q424"] * t.scale / 2 + 2 + R, 0.0, 0.0])
+    lead = p["lead"] * t.scale if "lead" in p else 2.0  # 256: 2 mm beyond the blank
+    start = centre + np.array([p["Q424"] * t.scale / 2 + lead + R, 0.0, 0.0])
     t.emit(line, "rapid", t.machine(start), rows="optional")
     _move_z(t, line, "rapid", surface - sgn * setup, optional=True)
     jobs = [(z, [j * span / n for j in range(n - 1, -1, -1)])
@@ -1446,6 +1523,88 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
         _run_cycle(t, line)
     t.cycle = (kind, cyc)
+
+
+def _face_milling(t: _Tnc, line: int, p: dict) -> None:
+    """Cycles 232 FACE MILLING and 230 MULTIPASS MILLING (TNC 640 cycle manual 34059x-01 p. 235-236, TNC 320
+    manual 340 551-02 p. 298; TNC 426/430 manual, cycle 230), all in program coordinates: the starting point off
+    the near edge by R + Q357 (230: R), lines along X in Q218's direction at Q226 .. Q226 + Q219 (equal steps,
+    at most Q370 x R; 230: Q240 lines); 0: meander out to R + Q357 beyond the far edge, stepover at Q253; 1:
+    meander from R inside the near edge to R inside the far edge, stepover at Q207; 2: every line from the near
+    side, up Q200 above the level at FMAX, back at Q253, down at Q253. Levels: equal infeeds <= Q202 to Q386 +
+    Q369, then Q386 at Q385; each level's lines in the reverse order of the last (0, 1); 2nd set-up clearance
+    Q204 above Q227 at the end (230: Q200), and first when the tool is below it (232). Where the moves end only:
+    the feeds are the tests' own."""
+    k, r = t.scale, t.radius / t.scale  # the tool radius in program units
+    x0, y0, top, length, width = p["Q225"], p["Q226"], p["Q227"], p["Q218"], p["Q219"]
+    sx = math.copysign(1.0, length)
+    if "Q240" in p:  # 230
+        strategy, side, clear, n = 0, 0.0, top + p["Q200"], int(p["Q240"]) - 1
+        levels = [top]
+    else:
+        strategy, side, clear = int(p["Q389"]), p.get("Q357", p["Q200"]), top + p["Q204"]
+        n = math.ceil(abs(width) / (p.get("Q370", 1.0) * r) - 1e-9)
+        rough = top - p["Q386"] - p.get("Q369", 0.0)
+        m = math.ceil(rough / p["Q202"] - 1e-9) if rough > 0 else 0
+        levels = [top - rough * (i + 1) / m for i in range(m)] + ([p["Q386"]] if p.get("Q369", 0.0) else [])
+    rows = [y0 + width * j / n for j in range(n + 1)] if n > 0 else [y0]
+    start = x0 - sx * (r + side)
+    ends = (x0 + sx * r, x0 + length - sx * r) if strategy == 1 else (start, x0 + length + sx * (r + side))
+
+    def go(kind: str, x=None, y=None, z=None) -> None:
+        here = t.prog() / k
+        pt = np.array([here[0] if x is None else x, here[1] if y is None else y, here[2] if z is None else z])
+        end = t.machine(pt * k)
+        if np.linalg.norm(end - t.pos) > 1e-9:
+            t.emit(line, kind, end)
+
+    if "Q240" not in p and t.prog()[2] / k <= clear:
+        go("rapid", z=clear)
+    go("rapid", start, rows[0])
+    go("rapid", z=top + p["Q200"])
+    order = rows
+    pre = "rapid" if math.isinf(p.get("Q253", 0.0)) else "feed"  # Q253=MAX
+    for i, z in enumerate(levels):
+        go(pre, z=z)
+        for j, y in enumerate(order):
+            if strategy == 2:
+                if j:
+                    go("rapid", z=z + p["Q200"])
+                    go(pre, start, y)
+                    go(pre, z=z)
+                go("feed", ends[1], y)
+                continue
+            go(pre if strategy == 0 else "feed", y=y)
+            x = t.prog()[0] / k
+            go("feed", ends[1] if abs(x - ends[1]) > 1e-9 else ends[0])
+        if strategy == 2 and i < len(levels) - 1:
+            go("rapid", z=z + p["Q200"])
+            go(pre, start, rows[0])
+        elif strategy != 2:
+            order = order[::-1]
+    go("rapid", z=clear)
+
+
+def _ruled_surface(t: _Tnc, line: int, p: dict) -> None:
+    """231 RULED SURFACE (TNC 410 ISO manual p. 292 for the parameters; the cycle run as read for vcnc): FMAX to
+    point 1; Q240 lines from the edge 1-4 to the edge 2-3 in equal steps; after each but the last FMAX up by the
+    tool diameter, over the line's start, down to it, then fed to the next line's start; at the end FMAX to the
+    tool diameter above the highest point. Where the moves end only."""
+    pts = [np.array([p[f"Q{k}"], p[f"Q{k + 1}"], p[f"Q{k + 2}"]]) * t.scale for k in (225, 228, 231, 234)]
+    n, lift = int(p["Q240"]) - 1, 2 * t.radius
+    t.emit(line, "rapid", t.machine(pts[0]))
+    for j in range(n + 1):
+        f = j / n if n else 0.0
+        a, b = pts[0] + (pts[3] - pts[0]) * f, pts[1] + (pts[2] - pts[1]) * f
+        if j:
+            t.emit(line, "feed", t.machine(a))
+        t.emit(line, "feed", t.machine(b))
+        if j < n:
+            for q in (b + [0, 0, lift], np.array([a[0], a[1], b[2] + lift]), a):
+                t.emit(line, "rapid", t.machine(q), rows="optional" if np.allclose(t.machine(q), t.pos) else "one")
+    top = max(pt[2] for pt in pts) + lift
+    end = t.prog()
+    t.emit(line, "rapid", t.machine(np.array([end[0], end[1], top])), rows="optional")
 
 
 def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[float]:

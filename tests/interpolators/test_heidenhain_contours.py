@@ -5,6 +5,8 @@ machine Z = program Z + 10), and checked against the independent reference (``re
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -436,3 +438,23 @@ def test_rough_out_22_finds_the_small_rings_either_side_of_a_circle_island_that_
     d = np.min([_distance_to_polygon(pts, walls), _distance_to_polygon(pts, strip), circle], axis=0)
     assert d.min() >= 4.601 - 1e-9
     assert pts[:, 1].min() < 10.58 - 4.0 and pts[:, 1].max() > 10.58 + 4.0 and pts[:, 0].max() < 8.0
+
+
+def test_rough_out_22_rounds_the_rings_inside_corners_by_q8():
+    # cycle 20 Q8 = 2 (the rounding radius of the tool-centre path's inside corners): each ring's four corners
+    # become quarter circles of radius 2 tangent to its sides; the sides stay where the sharp rings have them
+    sharp = run(pocket_program(RECTANGLE))
+    prog = run(pocket_program(RECTANGLE).replace("Q8=+0 ", "Q8=+2 "))
+    arcs = [b for b in prog.blocks if b.kind == "arc"]
+    corners = [b for b in sharp.blocks if b.kind == "line" and b.start[2] == b.target[2] < 10.0]
+    assert not any(b.kind == "arc" for b in sharp.blocks)
+    # each ring ends back at its start, the middle of its first side (X 20): one such block per ring and infeed
+    rings = sum(1 for b in sharp.blocks if b.kind == "line" and b.start[2] == b.target[2] < 10.0
+                and b.target[0] == 20.0 and b.start[0] != 20.0)
+    assert rings == 8 and len(arcs) == 4 * rings  # 4 rings x 2 infeeds, 4 corners each
+    assert all(abs(a.segment.radius - 2.0) < 1e-9 and abs(abs(a.segment.sweep) - math.pi / 2) < 1e-9 for a in arcs)
+    # the outermost ring lies R + Q3 = 3.5 inside the walls: its corner arcs are about (5.5, 5.5) .. (34.5, 24.5)
+    centres = {tuple(np.round(a.segment.center[:2], 9)) for a in arcs}
+    assert {(5.5, 5.5), (34.5, 5.5), (34.5, 24.5), (5.5, 24.5)} <= centres
+    assert {round(b.target[0], 9) for b in corners} >= {3.5, 36.5}  # the sides: as the sharp rings'
+    assert not any("Q8" in n for n in prog.notes)

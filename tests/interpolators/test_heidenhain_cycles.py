@@ -409,3 +409,12 @@ def test_back_boring_204_at_the_points_of_a_pattern():
                "Q214=3 Q336=0\nPATTERN DEF ~\nPOS1 (X+10 Y+0 Z+0) ~\nPOS2 (X+20 Y+0 Z+0)\nCYCL CALL PAT FMAX")
     lows = [tuple(round(v, 6) for v in b.target) for b in prog.blocks if b.kind == "line"]
     assert lows == [(10, 0, -6), (20, 0, -6)]  # the tooth (= tip, Q252 = 0) up to 4 above the underside Z-10
+
+
+def test_orientation_13_moves_nothing():
+    # TNC 426/430 manual, "ORIENTATION (Cycle 13)": 13.1 ANGLE sets the oriented spindle stop; no axis moves
+    prog = run("CYCL DEF 13.0 ORIENTATION\nCYCL DEF 13.1 ANGLE 180\nL X+5 FMAX")
+    assert moves(prog) == [("rapid", 5, 0, 50, math.inf)]
+    assert any(n.startswith("CYCL DEF 13 ORIENTATION") for n in prog.notes)
+    with pytest.raises(GCodeError, match="cycle 13 has no line 2"):
+        run("CYCL DEF 13.0 ORIENTATION\nCYCL DEF 13.2 ANGLE 180")

@@ -1,0 +1,151 @@
+"""Heidenhain multipass-milling cycles 232 FACE MILLING, 230 MULTIPASS MILLING and 231 RULED SURFACE: hand-written
+programs whose moves are worked out by hand from the cycles' runs (TNC 640 user's manual for cycle programming
+34059x-01, p. 235-236; TNC 320 user's manual 340 551-02 p. 298; TNC 410 ISO manual p. 292 for 231's parameters;
+230's and 231's runs as vcnc reads them, see ``interpolators.heidenhain_surfaces``), each also checked against the
+independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n"
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+
+
+def run(body: str, *, reference: bool = True):
+    text = HEAD + body + "\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    if reference:
+        match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+        assert match.mismatch is None, match.mismatch
+        assert match.exact == len(prog.blocks)
+    return prog
+
+
+# a face 60 x 30 from (0, 0), milled from Z+2.5 down to Z+0 with a tool of radius 10: 2 mm in infeeds of at most
+# 1.5 (two of 1.0), then the allowance 0.5 at the finishing feed
+FACE = ("TOOL DEF 5 L+0 R+10\nTOOL CALL 5 Z S1000\nL X+0 Y+0 Z+{z} R0 FMAX\nCYCL DEF 232 FACE MILLING ~\n"
+        "Q389={s} ;STRATEGY ~\nQ225=+0 ;STARTING PNT 1ST AXIS ~\nQ226=+0 ;STARTING PNT 2ND AXIS ~\n"
+        "Q227=+2.5 ;STARTING PNT 3RD AXIS ~\nQ386=+0 ;END POINT 3RD AXIS ~\nQ218={l} ;FIRST SIDE LENGTH ~\n"
+        "Q219={w} ;2ND SIDE LENGTH ~\nQ202=+1.5 ;MAX. PLUNGING DEPTH ~\nQ369=+0.5 ;ALLOWANCE FOR FLOOR ~\n"
+        "Q370=+1 ;MAX. OVERLAP ~\nQ207=+500 ;FEED RATE FOR MILLING ~\nQ385=+800 ;FINISHING FEED RATE ~\n"
+        "Q253={pre} ;F PRE-POSITIONING ~\nQ200=+2 ;SET-UP CLEARANCE ~\nQ357=+2 ;CLEARANCE TO SIDE ~\n"
+        "Q204=+50 ;2ND SET-UP CLEARANCE\nCYCL CALL")
+
+
+def face(*, s: int = 0, z: float = 100, length: str = "+60", width: str = "+30", pre: str = "+2000") -> str:
+    return FACE.format(s=s, z=z, l=length, w=width, pre=pre)
+
+
+def mm_min(blk) -> float:
+    return round(blk.feed * 60.0, 6)
+
+
+def test_face_milling_232_meander_outside_the_surface():
+    # Q389=0: the start R + Q357 = 12 before the near edge, the lines out to 12 beyond the far edge (60 + 12);
+    # the width 30 in stepovers of at most Q370 x R = 10: lines at Y 0, 10, 20, 30; levels 1.5, 0.5 (equal
+    # infeeds of 1 <= Q202) and 0 (the allowance, at Q385); each level back over the lines in reverse order
+    prog = run(face())
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[:4]] == [[0, 0, 100], [-12, 0, 100], [-12, 0, 4.5], [-12, 0, 1.5]]
+    assert mm_min(b[3]) == 2000  # down to the first infeed at the pre-positioning feed Q253
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] != blk.start[0]]
+    assert [(blk.target[0], blk.target[1], blk.target[2]) for blk in cuts[:5]] == [
+        (72, 0, 1.5), (-12, 10, 1.5), (72, 20, 1.5), (-12, 30, 1.5), (72, 30, 0.5)]
+    assert {blk.target[2]: mm_min(blk) for blk in cuts} == {1.5: 500, 0.5: 500, 0.0: 800}
+    steps = [blk for blk in b if blk.kind == "line" and blk.target[1] != blk.start[1]]
+    assert all(mm_min(blk) == 2000 and abs(blk.target[0]) in (12, 72) for blk in steps)  # stepovers outside
+    assert len(cuts) == 12 and b[-1].kind == "rapid" and b[-1].target.tolist() == [-12, 30, 52.5]  # Q227 + Q204
+
+
+def test_face_milling_232_meander_within_the_surface():
+    # Q389=1: the lines end R inside the edges (X 10 and 50), the first starting from the approach point; the
+    # stepovers run at the milling feed Q207 (TNC 320 manual p. 298, Q253: "transversely to the material")
+    b = run(face(s=1)).blocks
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] != blk.start[0]]
+    assert cuts[0].start[0] == -12 and cuts[0].target[0] == 50
+    assert {round(blk.target[0], 9) for blk in cuts[1:]} == {10, 50}
+    steps = [blk for blk in b if blk.kind == "line" and blk.target[1] != blk.start[1]]
+    assert steps and all(mm_min(blk) == 500 for blk in steps)
+
+
+def test_face_milling_232_line_by_line_returns_over_the_surface():
+    # Q389=2: every line from X-12 to X+72 (climbing the same way), up to Q200 above the level at FMAX, back
+    # at Q253 to the next line's start, down at Q253
+    b = run(face(s=2)).blocks
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] != blk.start[0] and blk.target[2] <= 1.5]
+    assert len(cuts) == 12 and all(blk.start[0] == -12 and blk.target[0] == 72 for blk in cuts)
+    ups = [blk for blk in b[3:-1] if blk.kind == "rapid"]
+    assert all(blk.target[0] == 72 and blk.target[2] - blk.start[2] == pytest.approx(2) for blk in ups)
+    backs = [blk for blk in b if blk.kind == "line" and blk.target[0] == -12 and blk.start[0] == 72]
+    assert backs and all(mm_min(blk) == 2000 and blk.target[2] > 1.5 for blk in backs)
+
+
+def test_face_milling_232_directions_by_the_signs_and_positioning_from_below():
+    # negative side lengths mill toward -X and step toward -Y; the tool starting below the 2nd set-up clearance
+    # (Z+20 < 2.5 + 50) goes up to it first, then over the starting point; Q253=MAX pre-positions at rapid
+    b = run(face(z=20, length="-60", width="-15", pre="MAX")).blocks
+    assert [blk.target.tolist() for blk in b[1:4]] == [[0, 0, 52.5], [12, 0, 52.5], [12, 0, 4.5]]
+    assert b[4].kind == "rapid" and b[4].target.tolist() == [12, 0, 1.5]
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] != blk.start[0]]
+    assert cuts[0].target.tolist() == [-72, 0, 1.5]
+    assert sorted({blk.target[1] for blk in cuts}) == [-15, -7.5, 0]  # 15 in two stepovers of 7.5 <= 10
+
+
+def test_face_milling_232_under_a_datum_shift_and_a_rotation():
+    prog = run("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+100\nCYCL DEF 7.2 Y+50\nCYCL DEF 10.0 ROTATION\n"
+               "CYCL DEF 10.1 ROT+90\n" + face(s=1))
+    cut = next(blk for blk in prog.blocks if blk.kind == "line" and blk.target[2] == 1.5 and blk.start[2] == 1.5)
+    assert np.allclose(cut.target, [100, 50 + 50, 1.5])  # X+50 of the program: Y+50 turned by 90 degrees
+
+
+def test_face_milling_232_bad_definitions_are_errors():
+    with pytest.raises(GCodeError, match="Q389=3 is not a strategy"):
+        run(face(s=3), reference=False)
+    with pytest.raises(GCodeError, match="Q227 must lie above the end point Q386"):
+        run(face().replace("Q386=+0", "Q386=+3"), reference=False)
+    with pytest.raises(GCodeError, match="without a tool radius"):
+        run(face().replace("R+10", "R+0"), reference=False)
+    with pytest.raises(GCodeError, match="at positions"):
+        run(face().replace("CYCL CALL", "CYCL CALL POS X+0 Y+0 Z+0 FMAX"), reference=False)
+    with pytest.raises(GCodeError, match="cycle 233 FACE MILLING .* is not supported"):
+        run("CYCL DEF 233 FACE MILLING Q215=0 Q389=0 Q350=1 Q218=60 Q219=30", reference=False)
+
+
+def test_multipass_milling_230_meanders_q240_lines_at_one_height():
+    # lines from R before Q225 to R beyond Q225 + Q218 (X-5 .. X+105), 5 lines 10 apart over Q219 = 40, at Z-2;
+    # down at Q206, along at Q207, the stepovers at Q209; at the end up to the set-up clearance
+    prog = run("TOOL DEF 1 L+0 R+5\nTOOL CALL 1 Z S2000\nL X+50 Y+50 Z+20 R0 FMAX\nCYCL DEF 230 MULTIPASS MILLING "
+               "Q225=+0 Q226=+0 Q227=-2 Q218=+100 Q219=+40 Q240=5 Q206=150 Q207=600 Q209=300 Q200=2\nCYCL CALL")
+    b = prog.blocks
+    assert [blk.target.tolist() for blk in b[:4]] == [[50, 50, 20], [-5, 0, 20], [-5, 0, 0], [-5, 0, -2]]
+    assert mm_min(b[3]) == 150
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] != blk.start[0]]
+    assert [(blk.target[0], blk.target[1]) for blk in cuts] == [(105, 0), (-5, 10), (105, 20), (-5, 30), (105, 40)]
+    assert all(mm_min(blk) == 600 for blk in cuts)
+    assert all(mm_min(blk) == 300 for blk in b if blk.kind == "line" and blk.target[1] != blk.start[1])
+    assert b[-1].target.tolist() == [105, 40, 0]
+
+
+def test_ruled_surface_231_lines_between_two_edges():
+    # points 1 (0, 5, -2), 2 (100, 5, -2), 3 (100, 45, 3), 4 (0, 45, 8): Q240 = 3 lines, from the edge 1-4 to the
+    # edge 2-3, at Y 5, 25, 45, the tool axis as the edges (Z -2 / -2, 3 / 0.5, 8 / 3); the first at Q207 / 2;
+    # between lines up by the tool diameter (2 x 4), back over the start, down, fed across
+    prog = run("TOOL DEF 1 L+0 R+4\nTOOL CALL 1 Z S2000\nL X+0 Y+0 Z+50 R0 FMAX\nCYCL DEF 231 RULED SURFACE "
+               "Q225=+0 Q226=+5 Q227=-2 Q228=+100 Q229=+5 Q230=-2 Q231=+100 Q232=+45 Q233=+3 Q234=+0 Q235=+45 "
+               "Q236=+8 Q240=3 Q207=500\nCYCL CALL")
+    b = prog.blocks
+    assert b[1].kind == "rapid" and b[1].target.tolist() == [0, 5, -2]
+    cuts = [blk for blk in b if blk.kind == "line" and blk.target[0] == 100]
+    assert [blk.target.tolist() for blk in cuts] == [[100, 5, -2], [100, 25, 0.5], [100, 45, 3]]
+    assert [mm_min(blk) for blk in cuts] == [250, 500, 500]
+    assert b[3].kind == "rapid" and b[3].target.tolist() == [100, 5, 6]
+    assert b[-1].target.tolist() == [100, 45, 16]  # the highest point Z+8 plus the diameter
