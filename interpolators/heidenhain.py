@@ -2147,7 +2147,8 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
     by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
     the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
-    each depth of Q338, as roughing. The tool ends over the starting position. The starting position lies the
+    each depth of Q338, as roughing; Q215 = 2 runs that finishing alone (Q215: 0 roughing and finishing,
+    1 roughing only, 2 finishing only). The tool ends over the starting position. The starting position lies the
     cycle's ``lead`` beyond the blank (256/257: the manual's 2 mm; 213/215: :func:`finishing_cycle`).
     """
     axis = m.plane
@@ -2175,7 +2176,8 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     _axis_move(m, "rapid", top, math.inf, where, blk)
     half = m.transform.sweep(180.0 if cw else -180.0, axis)  # the half circles: against the revolutions
     passes = [(j * span / n, c.feed) for j in range(n - 1, -1, -1)]
-    levels = [(z, passes) for z in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d)]
+    levels = [(z, passes) for z in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d)
+              if c.operation in (0, 1)]  # Q215 = 2: finishing only
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
                                                                                 c.finish_infeed or abs(c.depth), d)]

@@ -1233,7 +1233,8 @@ def _stud(t: _Tnc, line: int, p: dict) -> None:
     """256: rapid to 2 mm + R right of the blank Q424/2, FMAX to Q200, at each depth of Q202 (to the depth
     less Q369): a half circle (counter-clockwise for climb) onto the first revolution, revolutions from the
     blank (Q424 x Q425 + 2R) to the stud grown by Q368 + R in equal steps of at most Q370 x R, clockwise
-    for climb, a half circle back to the start; finishing (Q215 = 2, or 0 with Q368 > 0): the same with one
+    for climb, a half circle back to the start (not for Q215 = 2, finishing only); finishing (Q215 = 2, or 0
+    with Q368 > 0): the same with one
     revolution round the stud grown by R at each depth of Q338; FMAX out (set-up clearance, Q204)."""
     if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot or p.get("Q224", 0.0):
         raise ReferenceError("256 under a transformation or turned")
@@ -1252,7 +1253,8 @@ def _stud(t: _Tnc, line: int, p: dict) -> None:
     t.emit(line, "rapid", t.machine(start), rows="optional")
     _move_z(t, line, "rapid", surface - sgn * setup, optional=True)
     jobs = [(z, [j * span / n for j in range(n - 1, -1, -1)])
-            for z in _levels(surface, surface + depth - sgn * p.get("Q369", 0.0), sgn, p["Q202"] or abs(depth))]
+            for z in _levels(surface, surface + depth - sgn * p.get("Q369", 0.0), sgn, p["Q202"] or abs(depth))
+            if op != 2]  # Q215 = 2: finishing only
     if op == 2 or (op == 0 and side > 0):
         jobs += [(z, [-side]) for z in _levels(surface, surface + depth, sgn, p.get("Q338", 0.0) or abs(depth))]
     for z, offs in jobs:

@@ -310,3 +310,13 @@ def test_old_pocket_milling_4_needs_its_sides():
         run(OLD_RECT.replace("CYCL DEF 4.5 Y{y}\n", "").format(x=20, dr="DR+"), reference=False)
     with pytest.raises(GCodeError, match="cycle 4: the tool .* and the sides 4.4, 4.5 fill the pocket"):
         run(OLD_RECT.format(x=6, y=30, dr="DR+"), reference=False)
+
+
+def test_circular_stud_257_finishing_only_q215_2_runs_no_roughing_revolution():
+    # Q215 = 2 (TNC 640 cycle programming manual, cycles 256/257, Q215 "machining operation": 0 roughing and
+    # finishing, 1 roughing only, 2 finishing only): only the revolution at the finished size (stud 20 + R 4:
+    # radius 14) at Q385, none of the roughing stepovers at 16.5 from the blank
+    prog = run(STUD.format(q="Q215=2 Q368=0.5 Q351=+1 Q338=0 Q385=300"))
+    rounds = [blk for blk in prog.blocks if blk.kind == "arc" and np.allclose(blk.segment.center[:2], [0, 0])]
+    assert rounds and {round(a.segment.radius, 9) for a in rounds} == {14}
+    assert all(a.feed * 60 == pytest.approx(300) for a in rounds)
