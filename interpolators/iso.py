@@ -66,7 +66,8 @@ grbl (``grbl`` dialect only): ``$`` system-command lines (reports, settings) and
 query a grbl sender streams with the G-code are not run, with a note; ``$H`` homing, ``$J=`` jog,
 ``$C`` check mode, ``$RST=`` are errors naming them (:mod:`interpolators.iso_grbl`). Under grbl,
 Fanuc and Haas the motion mode at power-on is G00: axis words before any motion code are a rapid
-(LinuxCNC starts in G80, where they are an error).
+(LinuxCNC starts in G80, where they are an error). The directive lines of the CNCSimulator Pro school
+simulator (``$AddRegPart ..``, ``$Inches``, ``#region``) are not run, with a note (:mod:`interpolators.iso_simulator`).
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
@@ -127,6 +128,7 @@ from interpolators.iso_offsets import (
 )
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import set_system_parameter, system_parameter
@@ -438,6 +440,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    text, directives = simulator_lines(text, dollar=dialect.name != "grbl")
+    for _ in range(directives):
+        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
     wrapped = False  # the file begins with % and ends at a second one (linuxcnc)
     if dialect.name == "linuxcnc":
         text, wrapped = _until_closing_percent(text, notes)
