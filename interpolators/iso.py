@@ -340,6 +340,7 @@ class _State:
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
     comp_run_side: str = "left"  # side of the run being compensated (kept after G40 clears comp_side)
+    comp_plane: int = 2  # plane of that run (kept after G40: the plane may change before the exit move)
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
@@ -475,7 +476,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             st.stopped = True  # the operator may jog: positions are unknown until the next move
         elif len(blocks) > count:
             st.stopped = False
-        if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
+        if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended
+                                             or _rereads_position(fl.words, st)):
             if st.corner is not None:
                 corner_not_followed(st.corner, Where(fl.file, fl.line, fl.raw), "cutter compensation ends (G40)")
             _finish_compensation(st, blocks, source)
@@ -1721,9 +1723,19 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
         notes.add("G41/G42 with tool radius 0 (path unchanged)")
         return
     st.comp_radius = radius
-    st.comp_run_side = st.comp_side
+    st.comp_run_side, st.comp_plane = st.comp_side, st.plane
     st.comp_start = len(blocks)
     notes.add("G41/G42 cutter radius compensation")
+
+
+def _rereads_position(words: list[Word], st: _State) -> bool:
+    """Whether LinuxCNC takes the current position from the motion queue after this block: M6 and M61 set
+    ``toolchange_flag`` (interp_convert.cc ``convert_tool_change``, ``convert_m``), and the next read
+    (rs274ngc_pre.cc ``read_inputs``) calls ``refresh_actual_position``. After a G40 with no exit move yet,
+    the queue ends at the last compensated point (``convert_cutter_compensation_off`` only flushes it), so
+    that point becomes the current position and the compensated run ends there (rs274 2.9.0~pre1: a
+    Z-only move after ``G40`` and ``T2 M6`` stays at the compensated X Y)."""
+    return st.context.dialect.name == "linuxcnc" and any(w.letter == "M" and w.value in (6.0, 61.0) for w in words)
 
 
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
@@ -1735,7 +1747,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     if not run:
         return
     try:
-        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed,
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
                          centers=centers, inch=st.inch, open_end=not closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
