@@ -11,11 +11,13 @@ the simulator's editor can fold it. Programs written in that simulator for a Fan
 those lines. They place the workpiece in the simulator only: the tool does not move, so they are not
 run here, with a note naming them, as a real control's operator would delete them before loading.
 
-Only lines that *start* with ``$`` and a letter, or that are ``#region`` / ``#endregion`` (a region
-name may follow after a space), are such lines: none of them is G-code in LinuxCNC (``$`` is its
-spindle-number word and takes a number), Fanuc or Haas (``#`` followed by a letter is no parameter;
-``#1``, ``#<name>`` and ``#[..]`` stay parameters). Under the ``grbl`` dialect a ``$`` line is a grbl
-system command (:mod:`interpolators.iso_grbl`) and keeps grbl's meaning.
+Only lines that *start* with ``$`` and a command word of four letters or more (the shortest in the
+guide's examples is ``$Mill``), or that are ``#region`` / ``#endregion`` (a region name may follow after
+a space), are such lines: none of them is G-code in LinuxCNC (``$`` is its spindle-number word and takes a
+number), Fanuc or Haas (``#`` followed by a letter is no parameter; ``#1``, ``#<name>`` and ``#[..]`` stay
+parameters). grbl's system commands are shorter (``$H``, ``$G``, ``$I``, ``$X``, ``$SLP``, ``$RST=..``):
+outside the ``grbl`` dialect they stay errors (a grbl file read as another control's), and under it every
+``$`` line keeps grbl's meaning (:mod:`interpolators.iso_grbl`).
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ __all__ = ["simulator_lines"]
 
 #: A CNCSimulator Pro directive line: ``$`` and a command word, or a region mark (our reading of the
 #: user guide: the command word follows the ``$`` directly, the region line may name the region).
-_DIRECTIVE = re.compile(r"[ \t]*(?:\$[A-Za-z]|#(?:end)?region(?:[ \t]|$))", re.IGNORECASE)
+_DIRECTIVE = re.compile(r"[ \t]*(?:\$[A-Za-z]{4,}(?![A-Za-z=])|#(?:end)?region(?:[ \t]|$))", re.IGNORECASE)
 #: The region marks alone (the lines kept from grbl's ``$`` reading).
 _REGION = re.compile(r"[ \t]*#(?:end)?region(?:[ \t]|$)", re.IGNORECASE)
 

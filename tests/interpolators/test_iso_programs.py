@@ -516,6 +516,8 @@ def test_cncsimulator_directive_lines_are_skipped_with_a_note():
     with pytest.raises(GCodeError, match="unknown grbl system command"):
         parse_program(text, context=grbl)
     assert ends("#1 = 2\nG21 G0 X#1\n", MachineContext()) == [[2, 0, 0]]
+    with pytest.raises(GCodeError, match=r"unknown word '\$SLP'"):  # grbl's sleep, not a simulator command
+        parse_program("$SLP\nG21 G0 X1\n", context=MachineContext(dialect=DIALECTS["haas"]))
 
 
 def test_a_subprogram_that_runs_off_the_end_of_the_file_is_named():
