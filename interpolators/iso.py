@@ -66,7 +66,8 @@ grbl (``grbl`` dialect only): ``$`` system-command lines (reports, settings) and
 query a grbl sender streams with the G-code are not run, with a note; ``$H`` homing, ``$J=`` jog,
 ``$C`` check mode, ``$RST=`` are errors naming them (:mod:`interpolators.iso_grbl`). Under grbl,
 Fanuc and Haas the motion mode at power-on is G00: axis words before any motion code are a rapid
-(LinuxCNC starts in G80, where they are an error).
+(LinuxCNC starts in G80, where they are an error). The directive lines of the CNCSimulator Pro school
+simulator (``$AddRegPart ..``, ``$Inches``, ``#region``) are not run, with a note (:mod:`interpolators.iso_simulator`).
 
 Parameters, expressions and O-word control flow: :mod:`interpolators.iso_params` and
 :mod:`interpolators.iso_flow` (LinuxCNC semantics; Fanuc ``M98``/``M99`` subprograms in the same
@@ -127,6 +128,7 @@ from interpolators.iso_offsets import (
 )
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
 from interpolators.iso_system import set_system_parameter, system_parameter
@@ -338,6 +340,7 @@ class _State:
     comp_side: str | None = None  # "left" (G41) / "right" (G42) while compensation is on
     comp_radius: float = 0.0
     comp_run_side: str = "left"  # side of the run being compensated (kept after G40 clears comp_side)
+    comp_plane: int = 2  # plane of that run (kept after G40: the plane may change before the exit move)
     comp_code: str = ""
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
@@ -438,6 +441,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    text, directives = simulator_lines(text, dollar=dialect.name != "grbl")
+    for _ in range(directives):
+        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
     wrapped = False  # the file begins with % and ends at a second one (linuxcnc)
     if dialect.name == "linuxcnc":
         text, wrapped = _until_closing_percent(text, notes)
@@ -470,7 +476,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             st.stopped = True  # the operator may jog: positions are unknown until the next move
         elif len(blocks) > count:
             st.stopped = False
-        if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended):
+        if st.comp_close_at is not None and (len(blocks) > st.comp_close_at or ended
+                                             or _rereads_position(fl.words, st)):
             if st.corner is not None:
                 corner_not_followed(st.corner, Where(fl.file, fl.line, fl.raw), "cutter compensation ends (G40)")
             _finish_compensation(st, blocks, source)
@@ -1716,9 +1723,19 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
         notes.add("G41/G42 with tool radius 0 (path unchanged)")
         return
     st.comp_radius = radius
-    st.comp_run_side = st.comp_side
+    st.comp_run_side, st.comp_plane = st.comp_side, st.plane
     st.comp_start = len(blocks)
     notes.add("G41/G42 cutter radius compensation")
+
+
+def _rereads_position(words: list[Word], st: _State) -> bool:
+    """Whether LinuxCNC takes the current position from the motion queue after this block: M6 and M61 set
+    ``toolchange_flag`` (interp_convert.cc ``convert_tool_change``, ``convert_m``), and the next read
+    (rs274ngc_pre.cc ``read_inputs``) calls ``refresh_actual_position``. After a G40 with no exit move yet,
+    the queue ends at the last compensated point (``convert_cutter_compensation_off`` only flushes it), so
+    that point becomes the current position and the compensated run ends there (rs274 2.9.0~pre1: a
+    Z-only move after ``G40`` and ``T2 M6`` stays at the compensated X Y)."""
+    return st.context.dialect.name == "linuxcnc" and any(w.letter == "M" and w.value in (6.0, 61.0) for w in words)
 
 
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
@@ -1730,7 +1747,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     if not run:
         return
     try:
-        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.plane, closed=closed,
+        new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
                          centers=centers, inch=st.inch, open_end=not closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]

@@ -524,6 +524,18 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             if frame.kind == "g65":
                 params.pop()
             pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
+    _no_return(prog, frames)
+
+
+def _no_return(prog: _Program, frames: list[_Frame]) -> None:
+    """Fail when the run left the text inside a called program: it reached the end of the file without
+    the ``M99`` that returns (Haas mill operator's manual, "M98 Subprogram Call": a subprogram ends with
+    M99; the call would otherwise end the whole program silently). Named at the innermost call."""
+    if frames:
+        call = "G65 macro call" if frames[-1].kind == "g65" else "M98/M97 subprogram call"
+        prog.fail(frames[-1].return_pc - 1, f"{call}: the called blocks run to the end of the file without the M99 "
+                  "that returns", "M99 at the end of the called program (M17 ends a subprogram on Siemens "
+                  "and CNCSimulator Pro, not on Fanuc/Haas)")
 
 
 def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:

@@ -280,8 +280,8 @@ class _Reader:
             return m.group(1), m.end()
         if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
             name = re.match(r"[^\W\d]\w*", self.code[p:]).group(0)  # any letter, as str.isalpha (e.g. 'À')
-            self.fail(f"'#{name}' is not a parameter (#region and $ lines of G-code simulators are not G-code)",
-                      pos, "#<number>, #<name> or #[expression]")
+            self.fail(f"'#{name}' is not a parameter (CNCSimulator Pro's #region and $ lines are skipped only "
+                      "alone on their line)", pos, "#<number>, #<name> or #[expression]")
         value, end = self.real(p)
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")

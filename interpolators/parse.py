@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 from interpolators._words import program_text
@@ -68,4 +69,19 @@ def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFA
     except BinaryDataError as exc:
         raise GCodeError(f"{exc}", file=name, line=exc.line, column=exc.column,
                          expected="a text part program (ISO G-code or Heidenhain conversational)") from None
-    return parse_program(text, source=name, context=context)
+    prog = parse_program(text, source=name, context=context)
+    if prog.dialect == "iso" and context.dialect.name == "linuxcnc" and _utf8_bom(name):
+        prog = dataclasses.replace(prog, notes=(*prog.notes, _BOM_NOTE))
+    return prog
+
+
+#: rs274 2.9.0~pre1 refuses a file that begins with a UTF-8 byte-order mark: the bytes EF BB BF are no G-code
+#: characters (interp_read.cc ``read_one_item``: "Bad character '\357' used", line 1). vcnc reads the text
+#: without it (:func:`vcnc.core.text.decode_text`) and, under the ``linuxcnc`` dialect, says so.
+_BOM_NOTE = ("UTF-8 byte-order mark at the start of the file skipped (LinuxCNC refuses it: "
+             "\"Bad character '\\357' used\")")
+
+
+def _utf8_bom(path: str) -> bool:
+    with open(path, "rb") as fh:
+        return fh.read(3) == b"\xef\xbb\xbf"

@@ -34,7 +34,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - G33 (g-code.adoc "G33 Spindle Synchronized Motion"): a feed move to the end point; G33.1 ("G33.1
   Rigid Tapping"): a feed move to the end point and one back to where it started.
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
-- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`.
+- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. After G40 with
+  no exit move, LinuxCNC's M6/M61 makes the last offset point the current one (``read_inputs``:
+  ``refresh_actual_position``): the next move is checked within the radius.
 - The axes beyond X, Y, Z (g-code.adoc "G0", overview.adoc "Feed Rate", coordinates.adoc): A, B, C
   [deg] and U, V, W [mm, inches under G20] go to their word's value plus the work and G92 offsets
   of that axis (G91: plus the word; G53: the word), others stay. G92, G10 L2/L20 set those
@@ -535,6 +537,8 @@ class _Machine:
         self.selected = self.loaded = 0
         self.comp_radius: float | None = None
         self.comp_entry = False
+        self.comp_closed = 0.0  # the radius of a run G40 closed, until the next move (its exit move)
+        self.reread = 0.0  # LinuxCNC M6/M61 after such a G40: the next move starts at the offset point
         self.arc_absolute = False
         self.retract = 99 if context.dialect.name == "linuxcnc" else 98  # LinuxCNC interp_setup.cc: R_PLANE
         self.cycle_clear: float | None = None
@@ -644,9 +648,13 @@ class _Machine:
                                      element=element, entry=self.comp_entry, extra=self.extra.copy()))
             self.comp_entry = False
         else:
+            # after G40 and an M6/M61 (LinuxCNC), a move that names no X Y stays at the run's last offset
+            # point, one radius from the programmed one (rs274ngc_pre.cc read_inputs: refresh_actual_position)
             self.out.append(Expected(line=line, kind=kind, end=end.copy(), rows=rows, centre=centre, plane=plane,
-                                     centre_tolerance=centre_tolerance, extra=self.extra.copy()))
+                                     centre_tolerance=centre_tolerance, extra=self.extra.copy(),
+                                     tolerance=self.reread))
         self.pos = end.copy()
+        self.comp_closed = self.reread = 0.0
 
     def move(self, line: int, kind: str, prog: np.ndarray, *, optional: bool = False, extra=None) -> None:
         """A move to the program point ``prog`` (and the extra axes to ``extra``, machine positions)."""
@@ -675,7 +683,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.scale = 25.4 if code == 200 else 1.0
     for code in g:
         if code == 400:
-            m.comp_radius = None
+            m.comp_closed, m.comp_radius = m.comp_radius or 0.0, None
         elif code in (410, 420):
             number = int(words["d"][-1]) if "d" in words else m.loaded
             tool = m.tool(number)
@@ -1176,6 +1184,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.selected = int(words["t"][-1])
     if 60 in mc:
         m.loaded = m.selected
+    if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
+        m.reread = m.comp_closed
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
         if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);

@@ -491,12 +491,41 @@ def test_fanuc_macro_text_that_is_not_run_is_named():
         ("G21\nWHILE [#1 LT 3] DO1\nEND2\n", "END 2 closes no open DO 2"),
         ("G21\n:(comment)\nG0 X1\n", "':' .* without a program number"),
         ("G21 G0 X#1/2\n", "'/2' after the word 'X#1': arithmetic on a word's value needs brackets"),
-        ("#region\nG21 G0 X1\n", "'#region' is not a parameter"),
+        ("G21 #region\nG0 X1\n", "'#region' is not a parameter"),
+        ("#regionx\nG21 G0 X1\n", "'#regionx' is not a parameter"),
         ("O[your six digit birthdate]\nG21\n", "'your' is neither a number"),
         ("G21 G1 [your xy start position] F12\n", "'\\[your xy start position\\]' in brackets where a word"),
     ]:
         with pytest.raises(GCodeError, match=message):
             parse_program(text, context=MachineContext())
+
+
+def test_cncsimulator_directive_lines_are_skipped_with_a_note():
+    """CNCSimulator Pro's $-commands and #region/#endregion lines (its user guide, 6.3 "$-commands and
+    regions": simulation commands that "have nothing to do with CNC codes") are not run, with a note;
+    under grbl a $ line stays a grbl system command, and a # followed by a letter inside a line is no
+    parameter."""
+    text = "#region Setup\n$Inches (alarm if not inch)\n$AddRegPart 1 X2.9 Y2.0\n#endregion\nG21 G0 X1 Y2\nM30\n"
+    for name in ("linuxcnc", "fanuc", "haas"):
+        prog = parse_program(text, context=MachineContext(dialect=DIALECTS[name]))
+        assert [b.target.tolist() for b in prog.blocks] == [[1, 2, 0]]
+        assert "CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code) x4" \
+            in prog.notes
+    grbl = MachineContext(dialect=DIALECTS["grbl"])
+    assert ends("#region\n#endregion\nG21 G0 X1\n", grbl) == [[1, 0, 0]]
+    with pytest.raises(GCodeError, match="unknown grbl system command"):
+        parse_program(text, context=grbl)
+    assert ends("#1 = 2\nG21 G0 X#1\n", MachineContext()) == [[2, 0, 0]]
+    with pytest.raises(GCodeError, match=r"unknown word '\$SLP'"):  # grbl's sleep, not a simulator command
+        parse_program("$SLP\nG21 G0 X1\n", context=MachineContext(dialect=DIALECTS["haas"]))
+
+
+def test_a_subprogram_that_runs_off_the_end_of_the_file_is_named():
+    """An M98 or G65 call whose program has no M99 (here an M17, the subprogram end of Siemens and
+    CNCSimulator Pro) would end the whole program silently at the end of the file: an error at the call."""
+    for text in ("G21\nM98 P1001\nG0 X5\nM30\nO1001\nG0 X1\nM17\n", "G21\nG65 P1001\nM30\nO1001\nG0 X1\n"):
+        with pytest.raises(GCodeError, match=r":2:1: .* call: the called blocks run to the end of the file without"):
+            parse_program(text, context=MachineContext(dialect=DIALECTS["haas"]))
 
 
 def test_rejections_name_the_controls_rule():

@@ -6,11 +6,13 @@ end points, G21: mm), so that the tests need no rs274. Where vcnc is more lenien
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
-from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators import load_program, parse_program
+from interpolators.context import DIALECTS, MachineContext, Tool
 from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"], linear_units="inch", extra_axes=("a", "b", "c"))
@@ -126,3 +128,55 @@ def test_g1_alone_before_any_feed_is_a_noted_leniency():
     assert _ends(prog) == [("line", 1.0, 0.0, 0.0)]
     assert any(n.startswith("G1 alone before any F") for n in prog.notes)
     assert not any("G1 alone" in n for n in parse_program("G21 F100\nG1 (c)\nG1 X1\nM2\n", context=LINUXCNC).notes)
+
+
+#: rs274's standalone machine with the tool table ``T1 P1 D0.2 Z0.5`` / ``T2 P2 D0.1 Z0.25`` (inch): radii 2.54 and
+#: 1.27 mm.
+LINUXCNC_TOOLS = dataclasses.replace(LINUXCNC, tools={1: Tool(number=1, length=12.7, radius=2.54),
+                                                      2: Tool(number=2, length=6.35, radius=1.27)})
+#: A G41 run closed by G40 with no exit move; ``{between}`` stands before the Z-only move that follows.
+PROGRAM_G40_THEN = ("G21 G17 G90 G64\nT1 M6\nF100\nG0 X0 Y0 Z5\nG41 G0 X10 Y0\nG1 X20 Y0\nG0 Z5\nG40\n{between}"
+                    "G0 Z10\nM2\n")
+
+
+def test_a_tool_change_after_g40_keeps_the_offset_point_as_rs274_does():
+    """After G40 with no exit move LinuxCNC's queue ends at the run's last offset point; M6 makes the interpreter
+    read its position from there (interp_convert.cc convert_tool_change sets toolchange_flag, rs274ngc_pre.cc
+    read_inputs: refresh_actual_position). rs274 2.9.0~pre1: without M6 the Z-only move ends at the programmed
+    X Y, STRAIGHT_TRAVERSE(20.0000, 0.0000, 10.0000, ...); after ``T2 M6`` it stays at the offset point,
+    STRAIGHT_TRAVERSE(20.0000, 2.5400, 10.0000, ...)."""
+    run = [("rapid", 0.0, 0.0, 5.0), ("rapid", 10.0, 2.54, 5.0), ("line", 20.0, 2.54, 5.0), ("rapid", 20.0, 2.54, 5.0)]
+    assert _ends(parse_program(PROGRAM_G40_THEN.format(between=""), context=LINUXCNC_TOOLS)) == \
+        [*run, ("rapid", 20.0, 0.0, 10.0)]
+    assert _ends(parse_program(PROGRAM_G40_THEN.format(between="M5\nT2 M6\n"), context=LINUXCNC_TOOLS)) == \
+        [*run, ("rapid", 20.0, 2.54, 10.0)]
+
+
+def test_a_plane_change_between_g40_and_the_exit_move_leaves_the_run_in_its_plane():
+    """G40, then G18 before the exit move: the G17 run is offset in XY (it was offset in the new plane and refused
+    as gouging). rs274 2.9.0~pre1 prints STRAIGHT_FEED(-1.7961, -1.7961, 0), ARC_FEED(-2.5400, 0.0000, 0, 0, -1),
+    STRAIGHT_FEED(-2.5400, 25.0000, 0), ARC_FEED(-6.0000, 28.4600, -6.0000, 25.0000, 1), STRAIGHT_FEED(-12.0000,
+    28.4600, 0), then the exit move STRAIGHT_TRAVERSE(5.0000, 0.0000, -5.0000)."""
+    prog = parse_program("G21 G17 G90\nT1 M6\nF100\nG0 X5 Y-5 Z0\nG41 D1\nG1 X0 Y0\nG1 Y25\nG3 R6 X-6 Y31\nG1 X-12\n"
+                         "G40\nG18\nG0 X5 Z-5 Y0\nM2\n", context=LINUXCNC_TOOLS)
+    assert _ends(prog) == [
+        ("rapid", 5.0, -5.0, 0.0), ("line", -1.7961, -1.7961, 0.0), ("arc", -2.54, 0.0, 0.0),
+        ("line", -2.54, 25.0, 0.0), ("arc", -6.0, 28.46, 0.0), ("line", -12.0, 28.46, 0.0),
+        ("rapid", 5.0, 0.0, -5.0)]
+    corner, arc = prog.blocks[2].segment, prog.blocks[4].segment
+    assert not corner.ccw and np.allclose(corner.center[:2], [0.0, 0.0])
+    assert arc.ccw and np.allclose(arc.center[:2], [-6.0, 25.0])
+
+
+def test_a_utf8_byte_order_mark_is_a_noted_leniency(tmp_path):
+    """rs274 2.9.0~pre1 refuses a file that starts with a UTF-8 byte-order mark ("Bad character '\\357' used",
+    interp_read.cc read_one_item); vcnc reads the program without it and says so under the linuxcnc dialect."""
+    path = tmp_path / "bom.ngc"
+    path.write_bytes(b"\xef\xbb\xbfG21\nG0 X1\nM2\n")
+    prog = load_program(path, context=LINUXCNC)
+    assert _ends(prog) == [("rapid", 1.0, 0.0, 0.0)]
+    assert any(n.startswith("UTF-8 byte-order mark") and "LinuxCNC refuses" in n for n in prog.notes)
+    haas = load_program(path, context=MachineContext(dialect=DIALECTS["haas"]))
+    assert not any("byte-order" in n for n in haas.notes)
+    path.write_bytes(b"G21\nG0 X1\nM2\n")
+    assert not any("byte-order" in n for n in load_program(path, context=LINUXCNC).notes)
