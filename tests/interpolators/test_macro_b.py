@@ -182,11 +182,17 @@ def test_system_parameters_read_the_machine_state():
     assert pts[5][:2] == [pytest.approx(3.0), pytest.approx(-10.0)]
 
 
-def test_positions_after_a_program_stop_and_the_probe_are_errors():
-    """0335_7997A.NC reads #5021 after M0 (the operator jogs to each point): unknowable from the file."""
-    with pytest.raises(GCodeError, match="#5021: the position after a program stop"):
-        parse_program("G21 G0 X1\nM0\n#1 = #5021\n", context=FANUC)
+def test_positions_after_a_program_stop_are_noted_and_the_probe_is_an_error():
+    """A program that reads #5021 after M0 (the operator jogs to a point, as in a sheet-measuring program)
+    reads where the program stopped (start pressed without a jog), with a note naming the stop's line."""
+    prog = parse_program("G21 G0 X1\nG0 Y3\nM0\n#1 = #5021\n#2 = #5022\nG0 X[#1 + 1] Y#2\n", context=FANUC)
+    assert [round(float(v), 9) for v in prog.blocks[-1].target] == [2, 3, 0]
+    assert [n for n in prog.notes if "read after" in n] == [
+        "position read after a program stop (line 3): the position where the program stopped; a jog by the "
+        "operator is not modelled"]
     assert _ends("G21 G0 X1\nM0\nG0 X2\n#1 = #5021\nG0 Y#1\n")[-1] == [2, 2, 0]
+    assert not [n for n in parse_program("G21 G0 X1\nM0\nG0 X2\n#1 = #5021\n", context=FANUC).notes
+                if "read after" in n]  # a move since the stop: the position is known
     with pytest.raises(GCodeError, match="#5061: the probe result"):
         parse_program("G21 G0 X#5061\n")
     with pytest.raises(GCodeError, match="#5420: the current position cannot be read with cutter radius"):
