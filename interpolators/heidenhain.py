@@ -58,8 +58,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1..NR5 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
-                                    simulated position (the control reads the same after a STOP
-                                    without jogging); ID20 NR1: the active tool's number; ID50
+                                    simulated position; read after a STOP, M0 or M1 with no move
+                                    since, where the operator may have jogged, it is an error
+                                    (as the ISO reader's #5021 after M0); ID20 NR1: the active
+                                    tool's number; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
                                     NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
@@ -298,6 +300,10 @@ class _Machine:
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
         self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
         self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
+        # the line of a program stop (STOP, M0, M1) with no move since: the operator may have jogged the
+        # machine there, so FN 18 SYSREAD of the position is unknown (None: no such stop)
+        self.stopped_at: int | None = None
+        self.stop_in_block = False  # the running block stops the program (STOP, M0, M1)
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
 
     # --- coordinates -------------------------------------------------------------------------
@@ -485,7 +491,13 @@ class _Run:
                     _unknown_block(blk, where)
                 known = self.keywords[self.pc - 1] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
             k, kw = known
-            if self.block(kw, k, blk, where):
+            count, self.m.stop_in_block = len(self.m.blocks), False
+            ended = self.block(kw, k, blk, where)
+            if self.m.stop_in_block:
+                self.m.stopped_at = blk.line
+            elif len(self.m.blocks) > count:
+                self.m.stopped_at = None
+            if ended:
                 if self.callers and kw != "END PGM":
                     where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
                                expected="END PGM (TNC manual: the called program must not contain M2 or M30)")
@@ -523,7 +535,7 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data))
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -709,6 +721,7 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
+        m.stop_in_block = True
     words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
     return _m_functions(words, m, where, blk, motion=False)
 
@@ -2243,6 +2256,7 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
         return True
     if w.value in _M_STOP:
         m.note(f"M{w.value}: program stop (no motion)")
+        m.stop_in_block = True
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False
