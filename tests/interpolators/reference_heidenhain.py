@@ -27,7 +27,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
   IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
-  times (then the counter is reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
+  times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
+  reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
   ends at ``M2``/``M30``/``END PGM``.
 - Cycles: ``CYCL DEF 7`` (datum shift, ``I`` values add), ``9`` (dwell, runs at once), ``32``
   (tolerance, no motion), ``1`` PECKING (from the current position: feed to each plunging depth
@@ -757,7 +758,7 @@ def _contour_elements(t: _Tnc) -> tuple[list[tuple], float]:
     blocks, labels = t.program
     s = copy.copy(t)
     s.out, s.pole, s.extra, s.q, s.comp, s.radius = [], t.pole.copy(), t.extra.copy(), dict(t.q), False, 0.0
-    for line, b in blocks[labels[t.contour] + 1:]:
+    for line, b in blocks[labels[t.contour.upper()] + 1:]:
         up = b.upper()
         if re.match(r"LBL\s*0\b", up):
             break
@@ -1458,11 +1459,21 @@ def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[fl
 
 
 def _tool(t: _Tnc, text: str) -> None:
-    """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+)\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q parameter
-    if m is None:
+    """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``; ``TOOL CALL "NAME"``
+    (a tool by name: vcnc's table is by number, so length and radius are the DL, DR deltas) and
+    ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
-    number, rest = int(_val(m.group(2), t.q)), m.group(3).upper()
+    rest = m.group(3).upper()
+    if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
+        if re.match(r"\s*[XY]\b", rest):
+            raise ReferenceError(f"tool axis in {text!r}")
+        f = re.search(r"\bF\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        if f:
+            t.auto = _val(f.group(1).replace(" ", ""), t.q)
+        return
+    number = 0 if m.group(2).startswith('"') else int(_val(m.group(2), t.q))
 
     def word(name: str) -> float:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
@@ -1474,7 +1485,9 @@ def _tool(t: _Tnc, text: str) -> None:
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
         raise ReferenceError(f"tool axis {axis.group(1)}")
-    if number in t.tool_defs:
+    if m.group(2).startswith('"'):
+        length = radius = 0.0
+    elif number in t.tool_defs:
         length, radius = t.tool_defs[number]
     else:
         tool = t.ctx.tool(number)
@@ -1500,7 +1513,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
     if n in (0, 1, 2, 3, 4):
         q, expr = rest.split("=", 1)
         if n:
-            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*[-+*/]\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
+            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV)\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
             value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb}[n]
         else:
@@ -1713,11 +1726,12 @@ def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
 def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     """Run one program's blocks on the machine state ``t`` (a called one: to its END PGM)."""
     blocks = _blocks(text)
-    labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
+    # label names compared without case (the blocks are read upper-cased)
+    labels = {_label_of(b).upper(): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
     outer, t.program = t.program, (blocks, labels)
     counters: dict[int, int] = {}
-    stack: list[int] = []
+    stack: list[tuple[int, int, int]] = []  # (return to, label, runs left)
     pc, steps = 0, 0
     while pc < len(blocks):
         steps += 1
@@ -1737,8 +1751,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CALL LBL"):
             m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
-            if m.group(2) is None:
-                stack.append(pc + 1)
+            if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
+                stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
                 nxt = target + 1
             else:
                 left = counters.get(pc, int(_val(m.group(2), t.q)))
@@ -1749,11 +1763,16 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                     counters.pop(pc, None)
         elif up.startswith("LBL"):
             if _label_of(up) == "0" and stack:
-                nxt = stack.pop()
+                back, target, runs = stack.pop()
+                if runs > 1:
+                    stack.append((back, target, runs - 1))
+                    nxt = target + 1
+                else:
+                    nxt = back
         elif up.startswith("FN"):
             label = _fn(t, b)
             if label is not None:
-                nxt = labels[label] + 1
+                nxt = labels[label.upper()] + 1
         elif re.match(r"Q\d+\s*=", up):
             q, expr = up.split("=", 1)
             t.q[q.strip()] = _Formula(expr, t.q).value()
