@@ -292,9 +292,9 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
             value = data[nr - 1]
     else:
         if stopped_at is not None:
-            where.fail(f"FN 18 SYSREAD ID{ident} reads the position after the program stop at line {stopped_at}, "
-                       "where the operator jogs the machine, which a program file does not say", column=col,
-                       text=rest.strip(), expected="a position read before any STOP/M0/M1, or after the next move")
+            where.fail(f"FN 18 SYSREAD ID{ident} after a program stop reads where the operator jogged the machine, "
+                       "which a program file does not say", column=col, text=rest.strip(),
+                       expected=f"a position read before the STOP/M0/M1 (line {stopped_at}) or after the next move")
         axis = int(idx) - 1
         value = position[axis] if ident == 240 else position[axis] - origin[axis]
         note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")

@@ -26,9 +26,9 @@ def test_a_position_read_before_any_stop_is_the_simulated_one():
 def test_a_position_read_after_a_program_stop_names_the_operators_jog(stop):
     # as the corpus' XDIAL.h: STOP, the operator jogs to a feature, SYSREAD reads where the machine stands
     text = f"0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+20 R0 FMAX\n2 {stop}\n3 FN 18: SYSREAD Q1 = ID270 NR1 IDX1\nEND PGM T MM\n"
-    with pytest.raises(GCodeError, match=r"t\.h:4:.*after the program stop at line 3, where the operator jogs") as err:
+    with pytest.raises(GCodeError, match=r"t\.h:4:.*ID270 after a program stop reads where the operator jogged") as err:
         parse_heidenhain(text, source="t.h", context=ZERO)
-    assert "before any STOP/M0/M1" in err.value.expected
+    assert "before the STOP/M0/M1 (line 3)" in err.value.expected
 
 
 def test_a_move_after_the_stop_makes_the_position_known_again():
