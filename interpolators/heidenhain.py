@@ -1259,6 +1259,13 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
         _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale)
 
 
+def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
+    """Cycle 12 PGM CALL called at a pattern's points or by CYCL CALL POS: an error (no manual found says
+    where the called program starts from there)."""
+    where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
+               text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
+
+
 def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> None:
     """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
 
@@ -1269,6 +1276,8 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     when the tool is above the surface (Q203), else first in the tool axis to the clearance
     height, then in the plane, then in the tool axis.
     """
+    if m.cycle_program is not None:
+        _program_cycle_elsewhere(where, blk)
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
@@ -1310,8 +1319,7 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     like a cycle"), run as ``CALL PGM``, where the tool is."""
     if m.cycle_program is not None:
         if hole is not None or surface_shift:
-            where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
-                       text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
+            _program_cycle_elsewhere(where, blk)
         m.runner.run_program(*m.cycle_program, where)
         return
     if m.cycle is None:

@@ -35,3 +35,21 @@ def test_a_move_after_the_stop_makes_the_position_known_again():
     prog = run("1 L X+0 Y+0 Z+20 R0 FMAX\n2 STOP\n3 L X+7 R0 FMAX\n4 FN 18: SYSREAD Q1 = ID240 NR1 IDX1\n"
                "5 L Y+Q1 R0 FMAX", ZERO)
     assert ends(prog)[-1] == [7.0, 7.0, 20.0]
+
+
+def test_cycle_12_called_by_cycl_call_pos_is_named(tmp_path):
+    # before: "cycle call without a machining cycle", though cycle 12 was defined
+    (tmp_path / "SUB.h").write_text("0 BEGIN PGM SUB MM\n1 L IZ-5 F100\n2 END PGM SUB MM\n")
+    main = tmp_path / "MAIN.h"
+    main.write_text("0 BEGIN PGM MAIN MM\n1 L X+0 Y+0 Z+10 R0 FMAX\n2 CYCL DEF 12.0 PGM CALL\n"
+                    "3 CYCL DEF 12.1 PGM SUB.h\n4 CYCL CALL POS X+10 Y+10 Z+2 FMAX\n5 END PGM MAIN MM\n")
+    with pytest.raises(GCodeError, match=r"MAIN\.h:5:.*cycle 12 PGM CALL by a pattern or CYCL CALL POS"):
+        parse_heidenhain(main.read_text(), source=str(main), context=ZERO)
+
+
+def test_a_spindle_speed_on_a_positioning_block_is_named():
+    # an NX post writes "L Z-45. F1000. S6000": the TNC programs S in TOOL CALL (before: "unknown word 'S6000'")
+    text = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S4500\n2 L X+0 Y+0 Z+5 R0 FMAX\n3 L Z-4.5 F1000 S6000\nEND PGM T MM\n"
+    with pytest.raises(GCodeError, match=r"t\.h:4:.*spindle speed 'S6000' in a positioning block") as err:
+        parse_heidenhain(text, source="t.h", context=ZERO)
+    assert "TOOL CALL" in err.value.expected
