@@ -12,8 +12,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and the ``PLANE`` blocks
-  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``,
-  ``M128``: errors);
+  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
+* :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -52,6 +52,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L X+0 M92                       M92: relative to the machine-defined position context.home
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
                                     (the machine's limit stands in for the software limit switch)
+    L M128 ... M129                 TCPM on rotary axes positioned before it (3+2, tilting table):
+                                    lines of the tool tip on the turned part (heidenhain_tcpm)
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
@@ -180,6 +182,7 @@ from interpolators.heidenhain_paths import (
     tangential_arc,
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -305,6 +308,8 @@ class _Machine:
         self.stopped_at: int | None = None
         self.stop_in_block = False  # the running block stops the program (STOP, M0, M1)
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
+        self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
+        self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -389,6 +394,9 @@ class _Machine:
         """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
         the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
         ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
+        if self.tcpm and not self.tcpm_move:
+            where.fail("a move under M128 other than a straight line L (an arc, a cycle, an approach) is not "
+                       "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
         if self.tilt is not None:
             self.check_tilt(target, self.extra if extra is None else extra, where)
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
@@ -2258,8 +2266,13 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
         where.fail("M136 (feed per spindle revolution) is not supported", column=w.column, text=w.text,
                    expected="feeds in mm/min (M137 or no M136)")
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        where.fail("M128 (TCPM, tool centre point management) is not supported", column=w.column, text=w.text,
-                   expected="3-axis machining (M128 needs the machine's kinematics)")
+        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
+                      column=w.column, text=w.text)
+        m.tcpm = True
+        m.note("M128: TCPM on positioned rotary axes (lines of the tool tip on the turned part)")
+        return False
+    if w.value == 129:
+        m.tcpm = False
     if w.value in _M_END:
         return True
     if w.value in _M_STOP:
@@ -2360,6 +2373,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     m.used.update(written)
     feed = math.inf if rapid else m.feed
     extra = _extra_axes(seen, m, where) if kw == "L" else None
+    if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
+        target = _tcpm_target(kw, seen, extra, normal or m.pending is not None or m.approach is not None
+                              or m.comp != "R0", m, where)
     if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
             if m.pole is None:
@@ -2381,7 +2397,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
+        m.tcpm_move = True
         m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
+        m.tcpm_move = False
     elif kw in ("C", "CR", "CT", "CP"):
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -2424,7 +2442,9 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, wh
             m.note("M140 without MB: no retraction")
         if retract is not None and retract[m.plane] != m.pos[m.plane]:
             m.used.add(m.plane)
+            m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
             m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+            m.tcpm_move = False
     if 89 in mvals:
         m.modal_call = True
     if 99 in mvals:
@@ -2535,6 +2555,23 @@ def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray 
         return None
     m.extra_used = True
     return target
+
+
+def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: _Machine,
+                 where: Where) -> np.ndarray:
+    """The machine end point [mm] of a line under M128 (:mod:`interpolators.heidenhain_tcpm`): the program
+    point on the part with every rotary axis at 0, carried where the table holds it. ``other``: the block is
+    an LN, or a corner, approach or radius compensation waits for it (errors)."""
+    if kw != "L" or other:
+        where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
+                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    if extra is not None and np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9):
+        where.fail("a rotary axis moving under M128 (simultaneous 5-axis: the tool tip's path) is not supported",
+                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    kin = m.context.kinematics
+    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
+    part, _ = _program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
+    return machine_point(kin, m.extra, part, m.tool_length)
 
 
 def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:

@@ -233,6 +233,7 @@ class _Tnc:
         self.tilt_angles: dict[str, float] = {}  # the rotary positions the plane needs [deg]
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
         self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
+        self.tcpm = False  # M128: program points are the tool tip on the part, carried where the table holds it
 
     def preset_point(self) -> np.ndarray:
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
@@ -251,8 +252,15 @@ class _Tnc:
         outer = np.diag(self.mirror) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
         return outer @ np.diag(self.scl * self.factors), outer @ (self.scl * (1.0 - self.factors) * self.centre)
 
+    def table_angles(self) -> dict[str, float]:
+        """The rotary axes' present positions [deg], by name."""
+        return {ax.name: self.extra["ABC".index(ax.name.upper())] for ax in self.ctx.kinematics.axes}
+
     def machine(self, p: np.ndarray) -> np.ndarray:
         a, b = self.affine()
+        if self.tcpm:  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
+            length = np.array([0.0, 0.0, self.length])
+            return _carry(self, self.origin() + a @ p + b - length, self.table_angles()) + length
         if self.tilt is not None:  # the part point, then where the tilted table carries it
             part = self.preset_point() + self.base + self.tilt @ (self.shift + a @ p + b)
             return _carry(self, part, self.tilt_angles) + np.array([0.0, 0.0, self.length])
@@ -260,6 +268,10 @@ class _Tnc:
 
     def prog(self) -> np.ndarray:
         a, b = self.affine()
+        if self.tcpm:
+            length = np.array([0.0, 0.0, self.length])
+            part = _carry(self, self.pos - length, self.table_angles(), back=True) + length
+            return np.linalg.solve(a, part - self.origin() - b)
         if self.tilt is not None:
             part = _carry(self, self.pos - np.array([0.0, 0.0, self.length]), self.tilt_angles, back=True)
             q = self.tilt.T @ (part - self.preset_point() - self.base) - self.shift
@@ -327,6 +339,7 @@ def _comp_words(t: _Tnc, w: dict) -> None:
 def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
+    _tcpm_switch(t, w.get("M", []))
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
@@ -350,6 +363,17 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+
+
+def _tcpm_switch(t: _Tnc, ms: list) -> None:
+    """M128 (TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes (TCPM)")
+    on a table machine, M129 off; modelled with the rotary axes standing still."""
+    if 128 in ms:
+        if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
+            raise ReferenceError("M128 without a tilting table")
+        t.tcpm = True
+    if 129 in ms:
+        t.tcpm = False
 
 
 def _pole(t: _Tnc, w: dict) -> None:
@@ -1800,6 +1824,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _run_cycle(t, line)
         elif re.fullmatch(r"(M\d+\s*)+", up):
             ms = [int(v) for v in re.findall(r"M(\d+)", up)]
+            _tcpm_switch(t, ms)
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)

@@ -8,6 +8,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.test_heidenhain_wild import ends, run
 from vcnc.errors import GCodeError
 
@@ -53,3 +54,44 @@ def test_a_spindle_speed_on_a_positioning_block_is_named():
     with pytest.raises(GCodeError, match=r"t\.h:4:.*spindle speed 'S6000' in a positioning block") as err:
         parse_heidenhain(text, source="t.h", context=ZERO)
     assert "TOOL CALL" in err.value.expected
+
+
+#: A B/C trunnion table (B tilts about Y, C turns about Z), pivots at the machine zero.
+BC_TABLE = MachineContext(extra_axes=("b", "c"), kinematics=Kinematics(axes=(
+    RotaryAxis(name="b", direction="Y", limits=(-120.0, 120.0)), RotaryAxis(name="c", direction="Z"))))
+
+
+def test_lines_under_m128_on_positioned_rotary_axes_are_the_tool_tip_on_the_turned_part():
+    # the NX post's 3+2 form: rotary axes positioned, M128, straight lines, M129. A table at B+90 turns the part
+    # the other way (ISO 841): its point (10, 0, 0) lies at machine (0, 0, 10), (10, 0, 5) at (-5, 0, 10).
+    prog = run("1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+90 C+0 FMAX\n3 L M128 F3000\n4 L X+10 Y+0 Z+0 FMAX\n5 L Z+5\n"
+               "6 L IY+2\n7 M129\n8 L X+1 FMAX", BC_TABLE)
+    assert ends(prog)[2:] == [[0.0, 0.0, 10.0], [-5.0, 0.0, 10.0], [-5.0, 2.0, 10.0], [1.0, 2.0, 10.0]]
+    assert any(n.startswith("M128: TCPM on positioned rotary axes") for n in prog.notes)
+
+
+def test_a_turned_c_axis_carries_the_part_point_round():
+    # C+90: the table turns the part by -90 degrees about Z, so its point (10, 0) is at machine (0, -10)
+    prog = run("1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+0 C+90 FMAX\n3 M128\n4 L X+10 Y+0 F500", BC_TABLE)
+    assert ends(prog)[-1] == pytest.approx([0.0, -10.0, 50.0])
+
+
+@pytest.mark.parametrize(("body", "message"), [
+    ("3 L X+5 B+10 F500", "a rotary axis moving under M128"),
+    ("3 CC X+0 Y+0\n4 C X+0 Y+10 DR+ F500", "C under M128 is not supported"),
+    ("3 CYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-5 ~\n Q206=100 ~\n Q202=5 ~\n Q210=0 ~\n Q203=0 ~\n Q204=5 ~\n"
+     " Q211=0\n4 L X+5 Y+5 FMAX M99", "a move under M128 other than a straight line"),
+])
+def test_what_m128_does_not_read_is_named(body, message):
+    text = f"0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+30 C+0 FMAX\n2 M128\n{body}\nEND PGM T MM\n"
+    with pytest.raises(GCodeError, match=message):
+        parse_heidenhain(text, source="t.h", context=BC_TABLE)
+
+
+def test_m128_without_a_tilting_table_is_named():
+    for context, message in ((ZERO, "needs the machine's kinematics"),
+                             (MachineContext(extra_axes=("b", "c"), kinematics=Kinematics(kind="head",
+                                                                                         axes=BC_TABLE.kinematics.axes)),
+                              "head-tilting machine")):
+        with pytest.raises(GCodeError, match=message):
+            parse_heidenhain("0 BEGIN PGM T MM\n1 L M128\nEND PGM T MM\n", source="t.h", context=context)
