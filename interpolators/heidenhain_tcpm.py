@@ -1,9 +1,11 @@
 """``M128`` (TCPM, tool centre point management) of Heidenhain conversational programs, on positioned rotary axes.
 
-HEIDENHAIN TNC 640 user's manual, "Retaining the position of the tool tip when positioning tilting axes
-(TCPM): M128": with M128 the programmed X, Y, Z are the tool tip in the workpiece coordinate system; when a
-controlled tilting axis turns, "the control compensates the tool position with the linear axes" so that the
-tip stays on the workpiece; M129 cancels it. On a machine whose rotary axes turn the part (a trunnion table,
+HEIDENHAIN TNC7 user's manual (German, 81762x-17, content.heidenhain.de/doku/tnc_guide/pdf_files/TNC7/81762x-17),
+M128: "Wenn sich im NC-Programm die Position einer gesteuerten Drehachse ändert, kompensiert die Steuerung mit
+M128 während des Schwenkvorgangs automatisch die Werkzeuganstellung mithilfe einer Ausgleichsbewegung der
+Linearachsen. Somit bleibt die Position der Werkzeugspitze gegenüber dem Werkstück unverändert (TCPM)." (the
+TNC 640 manual's "Retaining the position of the tool tip when positioning tilting axes (TCPM): M128"); the
+programmed X, Y, Z are the tool tip on the workpiece; M129 cancels it. On a machine whose rotary axes turn the part (a trunnion table,
 :class:`interpolators.tilted.Kinematics` ``kind = "table"``) the spindle stays along Z, so the tip of a
 workpiece point ``p`` (where it is with every rotary axis at 0, tool length included along Z) is where the
 table carries it: ``machine = place(p - L, angles) + L``.
