@@ -5,10 +5,10 @@ M128: "Wenn sich im NC-Programm die Position einer gesteuerten Drehachse ändert
 M128 während des Schwenkvorgangs automatisch die Werkzeuganstellung mithilfe einer Ausgleichsbewegung der
 Linearachsen. Somit bleibt die Position der Werkzeugspitze gegenüber dem Werkstück unverändert (TCPM)." (the
 TNC 640 manual's "Retaining the position of the tool tip when positioning tilting axes (TCPM): M128"); the
-programmed X, Y, Z are the tool tip on the workpiece; M129 cancels it. On a machine whose rotary axes turn the part (a trunnion table,
-:class:`interpolators.tilted.Kinematics` ``kind = "table"``) the spindle stays along Z, so the tip of a
-workpiece point ``p`` (where it is with every rotary axis at 0, tool length included along Z) is where the
-table carries it: ``machine = place(p - L, angles) + L``.
+programmed X, Y, Z are the tool tip on the workpiece; M129 cancels it. On a machine whose rotary axes turn
+the part (a trunnion table, :class:`interpolators.tilted.Kinematics` ``kind = "table"``) the spindle stays
+along Z, so the tip of a workpiece point ``p`` (where it is with every rotary axis at 0, tool length included
+along Z) is where the table carries it: ``machine = place(p - L, angles) + L``.
 
 What vcnc reads (the "3+2" use of M128 that CAM posts write, NX: ``L B76.323 C-150.677 FMAX``, ``L M128
 F3000.``, then straight lines): the rotary axes stay where they are while M128 is on, and the blocks are
