@@ -136,7 +136,7 @@ def test_share_of_programs_that_run(outcomes):
     # G33/G33.1 (session 10): 0037_mmount, 0049_threading, 0102_rigidtap_test gained: 300 read, 91.5 %.
     # Session 15: the 22 Heidenhain setup programs (heidenhain-solidworks-apt: 0TREF, XDIAL, PROFILE, ...) that read
     # the position the operator jogged to at STOP are refused, as the ISO reader refuses #5021 after M0, and count
-    # as out of scope with G38 probing: 282 read, 282 of 305 milling programs (92.5 %).
+    # as out of scope with G38 probing: 282 read, 282 of 306 milling programs (92.2 %).
     assert ok >= 282
     assert ok / len(milling) >= 0.90
 
