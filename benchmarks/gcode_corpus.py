@@ -32,10 +32,8 @@ from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
 
 #: Features whose programs are not milling programs (out of scope by the issue): matched against
-#: the rejection message. A program that reads the position the operator jogged to at a program stop
-#: (ISO #5021 after M0, TNC FN 18 SYSREAD after STOP) is a measuring/setup procedure whose path a file
-#: cannot say, as a G38 probing program's, and is counted with them.
-OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G38 probing|user M code|operator jogged", re.I)
+#: the rejection message.
+OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G38 probing|user M code", re.I)
 
 
 def corpus_dir() -> Path | None:

@@ -60,10 +60,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1..NR5 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
-                                    simulated position; read after a STOP, M0 or M1 with no move
-                                    since, where the operator may have jogged, it is an error
-                                    (as the ISO reader's #5021 after M0); ID20 NR1: the active
-                                    tool's number; ID50
+                                    simulated position (after a STOP, M0 or M1 with no move
+                                    since: where the program stopped, noted; an operator's jog
+                                    is not modelled); ID20 NR1: the active tool's number; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
                                     NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
@@ -304,7 +303,7 @@ class _Machine:
         self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
         self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
         # the line of a program stop (STOP, M0, M1) with no move since: the operator may have jogged the
-        # machine there, so FN 18 SYSREAD of the position is unknown (None: no such stop)
+        # machine there; FN 18 SYSREAD of the position notes it (None: no such stop)
         self.stopped_at: int | None = None
         self.stop_in_block = False  # the running block stops the program (STOP, M0, M1)
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table

@@ -175,8 +175,8 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         For ``FN 18 SYSREAD ID20`` / ``ID50``: the active tool's number (0: none) and the length and radius
         [mm] of a tool number (None: not in the program's TOOL DEFs nor the tool table).
     stopped_at : int or None
-        The line of a program stop (``STOP``, ``M0``, ``M1``) with no move since, None if none: the
-        position ``FN 18 SYSREAD`` would read there is where the operator jogged the machine.
+        The line of a program stop (``STOP``, ``M0``, ``M1``) with no move since, None if none: a
+        position ``FN 18 SYSREAD`` reads there is the one where the program stopped, noted.
 
     Returns
     -------
@@ -259,10 +259,12 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     corpora), 0 with a note: vcnc's tool table (:class:`interpolators.context.Tool`) has no such columns.
     The index may be a Q parameter (``IDXQ11``).
 
-    A position read after a program stop with no move since (``stopped_at``) is an error: a measuring
-    program stops there (``STOP``, ``M0``, ``M1``; TNC 640 user's manual, "Program stop") so that the
-    operator can jog the machine to a feature and reads the jogged position, which a program file does
-    not say (the ISO reader refuses ``#5021`` after ``M0`` alike, :mod:`interpolators.iso_system`)."""
+    A position read after a program stop with no move since (``stopped_at``): a measuring program stops
+    there (``STOP``, ``M0``, ``M1``) so that the operator can jog the machine to a feature, and reads the
+    jogged position, which a program file does not say. It reads the position where the program stopped
+    (the operator pressing start without a jog, as on a dry run), with a note naming the stop's line; what
+    the program computes from it (a division by zero of two equal readings) is then what the control does
+    without a jog."""
     sm = _SYSREAD_RE.match(rest)
     ident, nr = (int(sm.group(2)[:6]), int(sm.group(3)[:6])) if sm else (0, 0)
     idx = None
@@ -291,13 +293,13 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
                 data = (0.0, 0.0)
             value = data[nr - 1]
     else:
-        if stopped_at is not None:
-            where.fail(f"FN 18 SYSREAD ID{ident} after a program stop reads where the operator jogged the machine, "
-                       "which a program file does not say", column=col, text=rest.strip(),
-                       expected=f"a position read before the STOP/M0/M1 (line {stopped_at}) or after the next move")
         axis = int(idx) - 1
         value = position[axis] if ident == 240 else position[axis] - origin[axis]
-        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        if stopped_at is not None:
+            note(f"FN 18 ID{ident} after STOP (line {stopped_at}): the position where the program stopped; "
+                 "a jog by the operator is not modelled")
+        else:
+            note("FN 18 SYSREAD: positions read as simulated")
     params.set(sm.group(1), value / scale if ident != 20 else value, where, column=col)
 
 
