@@ -12,8 +12,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and the ``PLANE`` blocks
-  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``,
-  ``M128``: errors);
+  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
+* :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -52,14 +52,17 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L X+0 M92                       M92: relative to the machine-defined position context.home
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
                                     (the machine's limit stands in for the software limit switch)
+    L M128 ... M129                 TCPM on rotary axes positioned before it (3+2, tilting table):
+                                    lines of the tool tip on the turned part (heidenhain_tcpm)
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
     FN 15/16 PRINT, FN 18 SYSREAD ID240/ID270 NR1 IDXn, ID20 NR1, ID50 NR1..NR5 IDXt
                                     prints are noted; SYSREAD of the nominal position (ID240:
                                     machine coordinates; ID270: active coordinates) reads the
-                                    simulated position (the control reads the same after a STOP
-                                    without jogging); ID20 NR1: the active tool's number; ID50
+                                    simulated position (after a STOP, M0 or M1 with no move
+                                    since: where the program stopped, noted; an operator's jog
+                                    is not modelled); ID20 NR1: the active tool's number; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
                                     NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
@@ -187,6 +190,7 @@ from interpolators.heidenhain_surfaces import (
     surface_cycle,
     surface_moves,
 )
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -307,7 +311,13 @@ class _Machine:
         self.runner = None  # the running program flow (a _Run), which runs cycle 12's program
         self.extra = np.zeros(len(EXTRA_LETTERS))  # rotary A B C [deg], secondary U V W [mm] (machine)
         self.extra_used = False  # a block moved (or set) one of them: every block carries their positions
+        # the line of a program stop (STOP, M0, M1) with no move since: the operator may have jogged the
+        # machine there; FN 18 SYSREAD of the position notes it (None: no such stop)
+        self.stopped_at: int | None = None
+        self.stop_in_block = False  # the running block stops the program (STOP, M0, M1)
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
+        self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
+        self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -392,6 +402,9 @@ class _Machine:
         """Append a block from the current position to ``target`` [mm] (``extra``: the end positions of
         the axes beyond X, Y, Z [deg, mm], moved in proportion)."""
         ends = {} if extra is None else {"extra_start": self.extra.copy(), "extra_target": np.array(extra, dtype=float)}
+        if self.tcpm and not self.tcpm_move:
+            where.fail("a move under M128 other than a straight line L (an arc, a cycle, an approach) is not "
+                       "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
         if self.tilt is not None:
             self.check_tilt(target, self.extra if extra is None else extra, where)
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
@@ -494,7 +507,13 @@ class _Run:
                     _unknown_block(blk, where)
                 known = self.keywords[self.pc - 1] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
             k, kw = known
-            if self.block(kw, k, blk, where):
+            count, self.m.stop_in_block = len(self.m.blocks), False
+            ended = self.block(kw, k, blk, where)
+            if self.m.stop_in_block:
+                self.m.stopped_at = blk.line
+            elif len(self.m.blocks) > count:
+                self.m.stopped_at = None
+            if ended:
                 if self.callers and kw != "END PGM":
                     where.fail("M2/M30 in a called program", column=blk.column, text=blk.code,
                                expected="END PGM (TNC manual: the called program must not contain M2 or M30)")
@@ -532,7 +551,7 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data))
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -718,6 +737,7 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
+        m.stop_in_block = True
     words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
     return _m_functions(words, m, where, blk, motion=False)
 
@@ -1270,6 +1290,13 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
         _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale)
 
 
+def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
+    """Cycle 12 PGM CALL called at a pattern's points or by CYCL CALL POS: an error (no manual found says
+    where the called program starts from there)."""
+    where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
+               text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
+
+
 def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> None:
     """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
 
@@ -1280,6 +1307,8 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     when the tool is above the surface (Q203), else first in the tool axis to the clearance
     height, then in the plane, then in the tool axis.
     """
+    if m.cycle_program is not None:
+        _program_cycle_elsewhere(where, blk)
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
@@ -1321,8 +1350,7 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     like a cycle"), run as ``CALL PGM``, where the tool is."""
     if m.cycle_program is not None:
         if hole is not None or surface_shift:
-            where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
-                       text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
+            _program_cycle_elsewhere(where, blk)
         m.runner.run_program(*m.cycle_program, where)
         return
     if m.cycle is None:
@@ -2316,12 +2344,18 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
         where.fail("M136 (feed per spindle revolution) is not supported", column=w.column, text=w.text,
                    expected="feeds in mm/min (M137 or no M136)")
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        where.fail("M128 (TCPM, tool centre point management) is not supported", column=w.column, text=w.text,
-                   expected="3-axis machining (M128 needs the machine's kinematics)")
+        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
+                      column=w.column, text=w.text)
+        m.tcpm = True
+        m.note("M128: TCPM on positioned rotary axes (lines of the tool tip on the turned part)")
+        return False
+    if w.value == 129:
+        m.tcpm = False
     if w.value in _M_END:
         return True
     if w.value in _M_STOP:
         m.note(f"M{w.value}: program stop (no motion)")
+        m.stop_in_block = True
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False
@@ -2417,6 +2451,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     m.used.update(written)
     feed = math.inf if rapid else m.feed
     extra = _extra_axes(seen, m, where) if kw == "L" else None
+    if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
+        target = _tcpm_target(kw, seen, extra, normal or m.pending is not None or m.approach is not None
+                              or m.comp != "R0", m, where)
     if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
             if m.pole is None:
@@ -2438,7 +2475,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
+        m.tcpm_move = True
         m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
+        m.tcpm_move = False
     elif kw in ("C", "CR", "CT", "CP"):
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -2481,7 +2520,9 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, wh
             m.note("M140 without MB: no retraction")
         if retract is not None and retract[m.plane] != m.pos[m.plane]:
             m.used.add(m.plane)
+            m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
             m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+            m.tcpm_move = False
     if 89 in mvals:
         m.modal_call = True
     if 99 in mvals:
@@ -2592,6 +2633,23 @@ def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray 
         return None
     m.extra_used = True
     return target
+
+
+def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: _Machine,
+                 where: Where) -> np.ndarray:
+    """The machine end point [mm] of a line under M128 (:mod:`interpolators.heidenhain_tcpm`): the program
+    point on the part with every rotary axis at 0, carried where the table holds it. ``other``: the block is
+    an LN, or a corner, approach or radius compensation waits for it (errors)."""
+    if kw != "L" or other:
+        where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
+                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    if extra is not None and np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9):
+        where.fail("a rotary axis moving under M128 (simultaneous 5-axis: the tool tip's path) is not supported",
+                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    kin = m.context.kinematics
+    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
+    part, _ = _program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
+    return machine_point(kin, m.extra, part, m.tool_length)
 
 
 def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:

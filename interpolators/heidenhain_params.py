@@ -159,7 +159,8 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
                  origin: np.ndarray, scale: float, note: Callable[[str], None],
-                 tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None)) -> str | None:
+                 tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None),
+                 stopped_at: int | None = None) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 
     Parameters
@@ -173,6 +174,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
     tool : (int, callable)
         For ``FN 18 SYSREAD ID20`` / ``ID50``: the active tool's number (0: none) and the length and radius
         [mm] of a tool number (None: not in the program's TOOL DEFs nor the tool table).
+    stopped_at : int or None
+        The line of a program stop (``STOP``, ``M0``, ``M1``) with no move since, None if none: a
+        position ``FN 18 SYSREAD`` reads there is the one where the program stopped, noted.
 
     Returns
     -------
@@ -228,7 +232,8 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
                    expected="a program run without FN 14")
     if n == 18:
-        _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool)
+        _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool,
+                 stopped_at=stopped_at)
         return None
     where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
                expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID20/ID50/ID240/ID270")
@@ -244,7 +249,7 @@ _ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR"}
 
 def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
              scale: float, note: Callable[[str], None],
-             tool: tuple[int, Callable[[int], tuple[float, float] | None]]) -> None:
+             tool: tuple[int, Callable[[int], tuple[float, float] | None]], stopped_at: int | None) -> None:
     """``FN 18: SYSREAD Qn = IDi NRj [IDXk]`` (TNC 640 user's manual, "FN 18: SYSREAD", the table of system
     data): ID240 NR1 / ID270 NR1 IDX1..3 the nominal position in machine / active coordinates (as simulated);
     ID20 NR1 the number of the active tool; ID50 NR1 / NR2 IDXt the length / radius L, R of tool t in the tool
@@ -252,7 +257,14 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     NR5 its R2, DL, DR (the numbering as a shop's tool-copy macro comments it, Stugo/Heidenhain
     Tool-copy.h: "ID50 NR3 ; R2", "NR4 ; DL", "NR5 ; DR"; the manual's table was not found in the
     corpora), 0 with a note: vcnc's tool table (:class:`interpolators.context.Tool`) has no such columns.
-    The index may be a Q parameter (``IDXQ11``)."""
+    The index may be a Q parameter (``IDXQ11``).
+
+    A position read after a program stop with no move since (``stopped_at``): a measuring program stops
+    there (``STOP``, ``M0``, ``M1``) so that the operator can jog the machine to a feature, and reads the
+    jogged position, which a program file does not say. It reads the position where the program stopped
+    (the operator pressing start without a jog, as on a dry run), with a note naming the stop's line; what
+    the program computes from it (a division by zero of two equal readings) is then what the control does
+    without a jog."""
     sm = _SYSREAD_RE.match(rest)
     ident, nr = (int(sm.group(2)[:6]), int(sm.group(3)[:6])) if sm else (0, 0)
     idx = None
@@ -283,7 +295,11 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     else:
         axis = int(idx) - 1
         value = position[axis] if ident == 240 else position[axis] - origin[axis]
-        note("FN 18 SYSREAD: positions read as simulated (no jogging at STOP)")
+        if stopped_at is not None:
+            note(f"FN 18 ID{ident} after STOP (line {stopped_at}): the position where the program stopped; "
+                 "a jog by the operator is not modelled")
+        else:
+            note("FN 18 SYSREAD: positions read as simulated")
     params.set(sm.group(1), value / scale if ident != 20 else value, where, column=col)
 
 

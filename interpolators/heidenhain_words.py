@@ -226,6 +226,12 @@ WORDS_EXPECTED = ("X/Y/Z (I for incremental), PR/PA, R, DR+/DR-, R0/RL/RR, F, F 
                   "values may be numbers, Q parameters or (formulas)")
 
 
+#: Where a TNC program sets the spindle speed. Our reading of the TNC 640 / iTNC 530 user's manuals, which
+#: program S only in ``TOOL CALL`` ("Calling tool data"; the system data of the TNC 426 list the speed among
+#: the "values programmed in TOOL CALL", ID60 NR3): an NX post's ``L Z-45. F1000. S6000`` is refused.
+SPEED_EXPECTED = "S in a TOOL CALL block (TOOL CALL [n] Z S.., a speed change without a tool change)"
+
+
 def read_words(code: str, pos: int, where: Where, params: QParameters, *, column0: int) -> list[Word]:
     """The words of a block from ``pos`` on (see the module text), with values evaluated.
 
@@ -244,6 +250,9 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
         m = _WORD_RE.match(code, pos)
         if m is None:
             tok = token_at(code, pos)
+            if re.fullmatch(r"S\s*[+-]?[\d.]+", tok, re.I):  # an ISO post's spindle speed on a positioning block
+                where.fail(f"spindle speed {tok!r} in a positioning block", column=col, text=tok,
+                           expected=SPEED_EXPECTED)
             where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
         kind = m.lastgroup
         tok = m.group(0)

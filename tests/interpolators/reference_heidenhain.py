@@ -27,7 +27,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
   IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
-  times (then the counter is reset); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
+  times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
+  reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
   ends at ``M2``/``M30``/``END PGM``.
 - Cycles: ``CYCL DEF 7`` (datum shift, ``I`` values add), ``9`` (dwell, runs at once), ``32``
   (tolerance, no motion), ``1`` PECKING (from the current position: feed to each plunging depth
@@ -232,6 +233,7 @@ class _Tnc:
         self.tilt_angles: dict[str, float] = {}  # the rotary positions the plane needs [deg]
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
         self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
+        self.tcpm = False  # M128: program points are the tool tip on the part, carried where the table holds it
 
     def preset_point(self) -> np.ndarray:
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
@@ -250,8 +252,15 @@ class _Tnc:
         outer = np.diag(self.mirror) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
         return outer @ np.diag(self.scl * self.factors), outer @ (self.scl * (1.0 - self.factors) * self.centre)
 
+    def table_angles(self) -> dict[str, float]:
+        """The rotary axes' present positions [deg], by name."""
+        return {ax.name: self.extra["ABC".index(ax.name.upper())] for ax in self.ctx.kinematics.axes}
+
     def machine(self, p: np.ndarray) -> np.ndarray:
         a, b = self.affine()
+        if self.tcpm:  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
+            length = np.array([0.0, 0.0, self.length])
+            return _carry(self, self.origin() + a @ p + b - length, self.table_angles()) + length
         if self.tilt is not None:  # the part point, then where the tilted table carries it
             part = self.preset_point() + self.base + self.tilt @ (self.shift + a @ p + b)
             return _carry(self, part, self.tilt_angles) + np.array([0.0, 0.0, self.length])
@@ -259,6 +268,10 @@ class _Tnc:
 
     def prog(self) -> np.ndarray:
         a, b = self.affine()
+        if self.tcpm:
+            length = np.array([0.0, 0.0, self.length])
+            part = _carry(self, self.pos - length, self.table_angles(), back=True) + length
+            return np.linalg.solve(a, part - self.origin() - b)
         if self.tilt is not None:
             part = _carry(self, self.pos - np.array([0.0, 0.0, self.length]), self.tilt_angles, back=True)
             q = self.tilt.T @ (part - self.preset_point() - self.base) - self.shift
@@ -326,6 +339,7 @@ def _comp_words(t: _Tnc, w: dict) -> None:
 def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
+    _tcpm_switch(t, w.get("M", []))
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
@@ -349,6 +363,17 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+
+
+def _tcpm_switch(t: _Tnc, ms: list) -> None:
+    """M128 (TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes (TCPM)")
+    on a table machine, M129 off; modelled with the rotary axes standing still."""
+    if 128 in ms:
+        if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
+            raise ReferenceError("M128 without a tilting table")
+        t.tcpm = True
+    if 129 in ms:
+        t.tcpm = False
 
 
 def _pole(t: _Tnc, w: dict) -> None:
@@ -769,7 +794,7 @@ def _contour_elements(t: _Tnc) -> tuple[list[tuple], float]:
     blocks, labels = t.program
     s = copy.copy(t)
     s.out, s.pole, s.extra, s.q, s.comp, s.radius = [], t.pole.copy(), t.extra.copy(), dict(t.q), False, 0.0
-    for line, b in blocks[labels[t.contour] + 1:]:
+    for line, b in blocks[labels[t.contour.upper()] + 1:]:
         up = b.upper()
         if re.match(r"LBL\s*0\b", up):
             break
@@ -1619,11 +1644,21 @@ def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[fl
 
 
 def _tool(t: _Tnc, text: str) -> None:
-    """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+)\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q parameter
-    if m is None:
+    """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``; ``TOOL CALL "NAME"``
+    (a tool by name: vcnc's table is by number, so length and radius are the DL, DR deltas) and
+    ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
-    number, rest = int(_val(m.group(2), t.q)), m.group(3).upper()
+    rest = m.group(3).upper()
+    if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
+        if re.match(r"\s*[XY]\b", rest):
+            raise ReferenceError(f"tool axis in {text!r}")
+        f = re.search(r"\bF\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        if f:
+            t.auto = _val(f.group(1).replace(" ", ""), t.q)
+        return
+    number = 0 if m.group(2).startswith('"') else int(_val(m.group(2), t.q))
 
     def word(name: str) -> float:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
@@ -1635,7 +1670,9 @@ def _tool(t: _Tnc, text: str) -> None:
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
         raise ReferenceError(f"tool axis {axis.group(1)}")
-    if number in t.tool_defs:
+    if m.group(2).startswith('"'):
+        length = radius = 0.0
+    elif number in t.tool_defs:
         length, radius = t.tool_defs[number]
     else:
         tool = t.ctx.tool(number)
@@ -1661,7 +1698,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
     if n in (0, 1, 2, 3, 4):
         q, expr = rest.split("=", 1)
         if n:
-            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*[-+*/]\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
+            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV)\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
             value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb}[n]
         else:
@@ -1874,11 +1911,12 @@ def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
 def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     """Run one program's blocks on the machine state ``t`` (a called one: to its END PGM)."""
     blocks = _blocks(text)
-    labels = {_label_of(b): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
+    # label names compared without case (the blocks are read upper-cased)
+    labels = {_label_of(b).upper(): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
     outer, t.program = t.program, (blocks, labels)
     counters: dict[int, int] = {}
-    stack: list[int] = []
+    stack: list[tuple[int, int, int]] = []  # (return to, label, runs left)
     pc, steps = 0, 0
     while pc < len(blocks):
         steps += 1
@@ -1898,8 +1936,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CALL LBL"):
             m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
-            if m.group(2) is None:
-                stack.append(pc + 1)
+            if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
+                stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
                 nxt = target + 1
             else:
                 left = counters.get(pc, int(_val(m.group(2), t.q)))
@@ -1910,11 +1948,16 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                     counters.pop(pc, None)
         elif up.startswith("LBL"):
             if _label_of(up) == "0" and stack:
-                nxt = stack.pop()
+                back, target, runs = stack.pop()
+                if runs > 1:
+                    stack.append((back, target, runs - 1))
+                    nxt = target + 1
+                else:
+                    nxt = back
         elif up.startswith("FN"):
             label = _fn(t, b)
             if label is not None:
-                nxt = labels[label] + 1
+                nxt = labels[label.upper()] + 1
         elif re.match(r"Q\d+\s*=", up):
             q, expr = up.split("=", 1)
             t.q[q.strip()] = _Formula(expr, t.q).value()
@@ -1942,6 +1985,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _run_cycle(t, line)
         elif re.fullmatch(r"(M\d+\s*)+", up):
             ms = [int(v) for v in re.findall(r"M(\d+)", up)]
+            _tcpm_switch(t, ms)
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)
