@@ -443,6 +443,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add("unclosed ( comments read to the end of the line (grbl)")
         for _ in range(grbl.resumes):
             notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+        for _ in range(grbl.sender):
+            notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
     text, directives = simulator_lines(text, dollar=dialect.name != "grbl")
     for _ in range(directives):
         notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")

@@ -28,6 +28,13 @@ G-code: ``$`` system commands (``$$`` settings report, ``$G`` parser state, ``$I
   not modelled).
 * A ``(`` comment that does not close runs to the end of the line (``protocol.c``: "Enable comments
   flag and ignore all characters until ')' or EOL"); LinuxCNC and Fanuc refuse it.
+* A line that begins with ``%`` and goes on (``%wait``, ``%x0=posx``) is a macro line of the CNCjs
+  sender, which evaluates it and never streams it to grbl (CNCjs User Guide, "Macro": "Lines
+  beginning with % are used to create variables for later use",
+  https://github.com/cncjs/cncjs/wiki/User-Guide; v1.9.4 release notes: "%wait ; Wait for the
+  planner queue to empty"). Such lines move nothing: they become blank lines, with a note (a line
+  CNCjs cannot evaluate, such as a ``% vfd enable`` remark, is logged by it and skipped alike). A
+  ``%`` alone stays the tape marker it is.
 """
 
 from __future__ import annotations
@@ -51,19 +58,20 @@ class GrblLines(NamedTuple):
     """A grbl file read for its system commands: ``text`` with the system-command lines blanked, ``?``
     dropped and unclosed ``(`` comments closed at the end of their line (line numbers kept);
     ``blanked`` the number of report and setting lines blanked, ``homing`` the (1-based) lines of
-    ``$H`` homing cycles, also blanked, ``closed`` the number of comments closed and ``resumes`` the
-    number of ``~`` cycle starts dropped."""
+    ``$H`` homing cycles, also blanked, ``closed`` the number of comments closed, ``resumes`` the
+    number of ``~`` cycle starts dropped and ``sender`` the number of CNCjs ``%`` macro lines blanked."""
 
     text: str
     blanked: int
     homing: tuple[int, ...]
     closed: int
     resumes: int
+    sender: int
 
 
 def system_lines(text: str, source: str | None) -> GrblLines:
-    """The program text with grbl's system-command lines blanked, ``?`` dropped and unclosed comments
-    closed, as :class:`GrblLines`.
+    """The program text with grbl's system-command lines and the sender's ``%`` macro lines blanked,
+    ``?`` dropped and unclosed comments closed, as :class:`GrblLines`.
 
     Raises
     ------
@@ -72,7 +80,7 @@ def system_lines(text: str, source: str | None) -> GrblLines:
         grbl does not know.
     """
     out = []
-    blanked = closed = resumes = 0
+    blanked = closed = resumes = sender = 0
     homing: list[int] = []
     for number, raw in enumerate(lines_of(text), start=1):
         where = Where(source, number, raw)
@@ -102,10 +110,14 @@ def system_lines(text: str, source: str | None) -> GrblLines:
                                     "$x=value)")
             where.fail("unknown grbl system command", column=column, text=command,
                        expected="$H, $$, $#, $G, $I, $N, $X, $x=value (homing, reports and settings), or G-code")
+        if command.startswith("%") and command != "%":
+            out.append("")
+            sender += 1
+            continue
         line, dropped = _without_realtime(raw, spans, semicolon, where)
         out.append(line)
         resumes += dropped
-    return GrblLines("\n".join(out), blanked, tuple(homing), closed, resumes)
+    return GrblLines("\n".join(out), blanked, tuple(homing), closed, resumes, sender)
 
 
 #: Real-time characters that stop the machine, by their name in grbl's documentation.

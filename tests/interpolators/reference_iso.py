@@ -387,6 +387,7 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
             # start (serial.c);
             # '$H' the homing cycle (commands.md), run below
             s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "").replace("~", "")
+            s = "" if s.startswith("%") and s != "%" else s  # CNCjs macro lines (%wait): the sender's
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)

@@ -678,6 +678,21 @@ def test_grbl_reads_an_unclosed_comment_to_the_end_of_the_line():
         parse_program(text, context=_in_dialect("linuxcnc"))
 
 
+def test_cncjs_macro_lines_are_the_sender_s_and_move_nothing():
+    """CNCjs evaluates a line beginning with '%' itself (User Guide "Macro": "Lines beginning with % are
+    used to create variables"; v1.9.4: "%wait ; Wait for the planner queue to empty") and never streams
+    it to grbl: from program (1, 2) the tool goes to (4, 2) in G54 (100, 50, -20), Z at home (100),
+    whatever the % lines say; a '%' alone is still the tape marker."""
+    text = "%\nG21 G90\nG0 X1 Y2\n%wait\n%x0=posx,y0=posy\n% vfd enable (remark)\nG0 X4\n%\n"
+    prog = checked_iso(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100], [104, 52, 100]]
+    assert [b.line for b in prog.blocks] == [3, 7]
+    assert "CNCjs % macro lines (%wait, variables) not run (the sender evaluates them) x3" in prog.notes
+    # LinuxCNC has no sender of its own: a '%' with text after it is no line it reads
+    with pytest.raises(GCodeError, match=r":4:1: '%' must stand alone on its line \(got '%wait'\)"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+
+
 @pytest.mark.parametrize("name", ["haas", "fanuc"])
 def test_external_output_commands_move_nothing(name):
     """Haas "Formatted Output" (DPRNT[<text> <#nnnn[wf]>...], the only command of its block) and
