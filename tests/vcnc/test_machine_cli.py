@@ -15,7 +15,7 @@ from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
 from vcnc.commands.machines import PROGRAM_TABLE_DOC
 from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
-from vcnc.errors import InputError
+from vcnc.errors import GCodeError, InputError
 from vcnc.setpoints import Setpoints
 
 PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"
@@ -137,4 +137,27 @@ def test_machine_file_tool_offsets_apply_with_g43(tmp_path) -> None:
     assert [b.target.tolist() for b in prog.blocks][-2:] == [[12.5, -1.0, 10.0], [10.0, 0.0, 0.0]]
     f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.1]\noffset_z = 1.0\n")
     with pytest.raises(InputError, match="offset_z"):
+        load_machine(f)
+
+
+def test_machine_file_subroutine_path_finds_a_library_subroutine(tmp_path) -> None:
+    """[program] subroutine_path (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH): a program in parts/ calls
+    o<peck> from the shop's library lib/, named relative to the machine file. The subroutine feeds Z to
+    its first argument and rapids back to 2: from (0, 0, 5) over X3 Y4 to Z-1 and back."""
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "lib" / "peck.ngc").write_text("o<peck> sub\nG1 Z#1 F100\nG0 Z2\no<peck> endsub\nM2\n")
+    part = tmp_path / "parts" / "part.ngc"
+    part.write_text("G21 G90\nG0 X0 Y0 Z5\nG0 X3 Y4\no<peck> call [-1]\nM2\n")
+    f = tmp_path / "m.toml"
+    f.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nsubroutine_path = ["lib"]\n')
+    m = load_machine(f)
+    assert m.context.dialect.subroutine_path == (str(tmp_path / "lib"),)
+    # parse_program: this module's fixture stands in for load_program
+    prog = interpolators.parse_program(part.read_text(), source=str(part), context=m.context)
+    assert [b.target.tolist() for b in prog.blocks] == [[0, 0, 5], [3, 4, 5], [3, 4, -1], [3, 4, 2]]
+    with pytest.raises(GCodeError, match="neither in this file nor in peck.ngc"):
+        interpolators.parse_program(part.read_text(), source=str(part))  # without the machine's path
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program]\nsubroutine_path = 3\n")
+    with pytest.raises(InputError, match="'program.subroutine_path' must be a folder path string"):
         load_machine(f)

@@ -21,6 +21,7 @@ PROGRAM_TABLE_DOC = """
 # linear_units = "mm"            # mm | inch: unit of the stored offsets a program reads (#5221.., #5401..)
 # decimal_point_input = "calculator"  # fanuc: X10 without a decimal point is 10 mm (DPI=1); "increment": 0.010 mm
 # tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length, X Y offsets)
+# subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]
