@@ -709,7 +709,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
             return ended
-    _check_p_q(seen, gcodes, st, where)
+    _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
@@ -1195,7 +1195,10 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
 
 
-def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
+def _check_p_q(seen, gcodes, st: _State, where: Where, mcodes: list) -> None:
+    """P, Q and L only where a code reads them. ``M3 P100`` is named: the Snapmaker 2.0 firmware (Marlin-based)
+    reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
+    https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
         return
@@ -1205,6 +1208,10 @@ def _check_p_q(seen, gcodes, st: _State, where: Where) -> None:
         return _check_q_l(seen, gcodes, cycle, where)  # G2/G3 P: the number of turns (_arc_turns)
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
+        spindle = next((m for m, _ in mcodes if m in (3, 4)), None)
+        if spindle is not None:
+            where.fail(f"M{spindle} P: spindle power in percent (Snapmaker 2.0 firmware): not a word of the linuxcnc, "
+                       "grbl, fanuc or haas dialect", column=w.column, text=w.text, expected=f"M{spindle} S<rpm>")
         where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
                    column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
     _check_q_l(seen, gcodes, cycle, where)
