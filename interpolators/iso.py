@@ -1660,26 +1660,48 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
                                    tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                   inch=st.inch, rule=rule))
         if in_plane:
-            if st.arc_incremental:
-                center = st.pos.copy()
-                for letter in in_plane:
-                    center["IJK".index(letter)] += seen[letter].value * st.scale
-            else:  # G90.1: absolute centre in program coordinates
-                center = st.pos.copy()
-                off = st.offset()
-                for letter in in_plane:
-                    i = "IJK".index(letter)
-                    center[i] = seen[letter].value * st.scale + off[i]
+            center = _centre(st, seen, in_plane, incremental=st.arc_incremental)
             st.arc_center = center
-            return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
-                                   tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
-                                                                  inch=st.inch, rule=rule))
+            try:
+                return arc_from_center(st.pos, target, center, ccw=ccw, plane=st.plane,
+                                       tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
+                                                                      inch=st.inch, rule=rule))
+            except ArcWordError as exc:
+                raise ArcWordError(exc.message + _other_centre_mode(st, seen, in_plane, target), exc.expected) from None
         where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
     except ArcWordError as exc:
         w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)
         col, tok = (w.column, w.text) if w is not None else (mcol, mtok)
         where.fail(exc.message, column=col, text=tok, expected=exc.expected)
     raise AssertionError("unreachable")
+
+
+def _centre(st: _State, seen, in_plane: list[str], *, incremental: bool) -> np.ndarray:
+    """An arc's centre [mm, machine] from its I/J/K: offsets from the start (G91.1) or program coordinates
+    (G90.1)."""
+    center = st.pos.copy()
+    off = st.offset()
+    for letter in in_plane:
+        i = "IJK".index(letter)
+        center[i] = (st.pos[i] if incremental else off[i]) + seen[letter].value * st.scale
+    return center
+
+
+def _other_centre_mode(st: _State, seen, in_plane: list[str], target: np.ndarray) -> str:
+    """A hint for an arc whose end is off its circle: whether its I/J/K read in the other arc-centre mode put
+    both ends on one circle, as in programs for a control that reads arc centres as absolute coordinates
+    (LinuxCNC g-code.adoc "G90.1, G91.1": "G90.1 - absolute distance mode for I, J & K offsets"; G91.1, the
+    power-on mode, incremental; Fanuc reads I J K incremental always), or the other way round. "" if not."""
+    center = _centre(st, seen, in_plane, incremental=not st.arc_incremental)
+    try:
+        arc_from_center(st.pos, target, center, ccw=True, plane=st.plane,
+                        tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch,
+                                                       rule=st.context.dialect.arc_rule))
+    except ArcWordError:
+        return ""
+    if st.arc_incremental:
+        return "; I/J/K as absolute centre coordinates (LinuxCNC G90.1) would fit"
+    return "; I/J/K as offsets from the start (G91.1) would fit"
 
 
 def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:

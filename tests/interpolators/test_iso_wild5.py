@@ -30,3 +30,25 @@ def test_snapmaker_spindle_power_word_is_named(name, m):
 def test_a_p_word_without_a_spindle_code_keeps_its_message():
     with pytest.raises(GCodeError, match=r"word P needs G04 \(dwell\)"):
         parse_program("G21 G90\nG0 X1 P100\n", context=_in_dialect("linuxcnc"))
+
+
+def test_an_arc_off_its_circle_says_when_absolute_centres_fit():
+    # a proLIGHT 1000 post writes I J as the centre's coordinates; read as offsets (G91.1, LinuxCNC's power-on
+    # mode) the end is off the circle. From (10, 0) to (0, 10): I1 J1 as offsets is the centre (11, 1), radii
+    # 1.41 and 14.2 mm; as coordinates (G90.1) the centre (1, 1), radius 9.06 mm at both ends
+    with pytest.raises(GCodeError, match=r":3:11: arc end point is not on the circle: start radius 1.41421 mm, end "
+                                         r"radius 14.2127 mm .*; I/J/K as absolute centre coordinates \(LinuxCNC "
+                                         r"G90.1\) would fit \(got 'I1'\)"):
+        parse_program("G21 G90 F100\nG0 X10 Y0\nG2 X0 Y10 I1 J1\n", context=_in_dialect("linuxcnc"))
+    prog = parse_program("G21 G90 G90.1 F100\nG0 X10 Y0\nG2 X0 Y10 I1 J1\n", context=_in_dialect("linuxcnc"))
+    assert prog.blocks[-1].target.tolist() == [100, 60, 100]  # G54 (100, 50, -20), Z still at home (100)
+    # the other way round: G90.1 in force, I-9 J1 fits as offsets from the start
+    with pytest.raises(GCodeError, match=r"; I/J/K as offsets from the start \(G91.1\) would fit \(got 'I-9'\)"):
+        parse_program("G21 G90 G90.1 F100\nG0 X10 Y0\nG2 X0 Y10 I-9 J1\n", context=_in_dialect("linuxcnc"))
+
+
+def test_an_arc_off_its_circle_either_way_gets_no_hint():
+    # the Shapeoko calibration file's arc from (20, -21) to (21, -20) with I20 J21: off the circle both ways
+    with pytest.raises(GCodeError, match=r"end radius 27.5862 mm \(difference 1.41 mm > tolerance 0.029 mm\) "
+                                         r"\(got 'I20'\)"):
+        parse_program("G21 G90 F100\nG0 X20 Y-21\nG3 X21 Y-20 I20 J21\n", context=_in_dialect("grbl"))
