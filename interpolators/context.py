@@ -165,6 +165,11 @@ class Dialect:
     subroutine_path : tuple of str
         Folders searched for ``<name>.ngc`` of an ``o<name> call`` after the program's own folder
         (LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``); a relative folder starts at the program's.
+    user_m_path : tuple of str
+        Folders searched for the executable file ``M100`` ... ``M199`` of a user M code (LinuxCNC INI
+        ``[RS274NGC] USER_M_PATH`` and ``[DISPLAY] PROGRAM_PREFIX``): a code whose file is there runs as
+        an external program the control waits for, moving nothing of the path (noted); without it the
+        code is an error. A relative folder starts at the program's.
     """
 
     name: str = "linuxcnc"
@@ -175,6 +180,7 @@ class Dialect:
     arc_rule: str = "linuxcnc"
     tap_out_to_r: bool = False
     subroutine_path: tuple[str, ...] = ()
+    user_m_path: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.arc_rule not in ARC_RULES:

@@ -80,7 +80,7 @@ cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
 the mill codes above), NURBS G5.2, polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
 ``@ ^``), scaling G51 and rotation G68 (LinuxCNC), manual-retract
-boring G88 (and Haas G87), user M codes M100-M199.
+boring G88 (and Haas G87), user M codes M100-M199 whose file is not in the dialect's ``user_m_path``.
 
 LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(LOG, ..)`` become
 ``Program.messages`` under the ``linuxcnc`` dialect (:mod:`interpolators.iso_messages`).
@@ -627,8 +627,7 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
             if 100 <= m <= 199:
-                where.fail(f"user M code {w.text!r} (M100-M199 runs a user program): not supported",
-                           column=w.column, text=w.text, expected="M codes below 100")
+                _user_m_file(w, m, st, where)
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
@@ -1040,6 +1039,23 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
     return {k: v for k, v in seen.items() if k not in sm.consumed}
 
 
+def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
+    """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
+    Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
+    (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
+    USER_M_PATH, and a missing one is an error). The program runs outside the interpreter: nothing of the
+    path moves. Its file is looked for in the dialect's ``user_m_path``; an error names the code if none
+    holds it."""
+    name = f"M{m}"
+    base = Path(where.file).parent if where.file else Path.cwd()
+    if any((base / folder / name).is_file() for folder in st.context.dialect.user_m_path):
+        return
+    looked = ", ".join(st.context.dialect.user_m_path) or "none given"
+    where.fail(f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
+               f"USER_M_PATH): {name} not found (folders: {looked})", column=w.column, text=w.text,
+               expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path")
+
+
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
     """M codes: tool change and notes; True at program end (M2/M30)."""
     ended = False
@@ -1059,6 +1075,8 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
             notes.add(_M_NOTES[m])
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
+        elif 100 <= m <= 199:
+            notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
         elif st.context.dialect.name == "linuxcnc" and m not in _LINUXCNC_M:
             notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
         else:
@@ -1093,6 +1111,8 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         seen = {k: v for k, v in seen.items() if k not in "RQP"}
     if any(m == 61 for m, _ in mcodes):  # M61 Q<tool>: the Q is the tool number, read by _m_codes
         seen = {k: v for k, v in seen.items() if k != "Q"}
+    if any(100 <= m <= 199 for m, _ in mcodes):  # user M codes: P and Q are the external program's arguments
+        seen = {k: v for k, v in seen.items() if k not in "PQ"}
     if "E" in seen:
         w = seen["E"]
         lead = re.search(r"[-+]?[\d.]+$", where.text[:w.column - 1])

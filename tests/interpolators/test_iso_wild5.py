@@ -52,3 +52,22 @@ def test_an_arc_off_its_circle_either_way_gets_no_hint():
     with pytest.raises(GCodeError, match=r"end radius 27.5862 mm \(difference 1.41 mm > tolerance 0.029 mm\) "
                                          r"\(got 'I20'\)"):
         parse_program("G21 G90 F100\nG0 X20 Y-21\nG3 X21 Y-20 I20 J21\n", context=_in_dialect("grbl"))
+
+
+def test_a_user_m_code_runs_when_its_program_is_in_the_user_m_path(tmp_path):
+    """LinuxCNC m-code.adoc "M100 to M199": the executable M101 of the user M path runs with P and Q as its
+    arguments and the program waits for it; it moves nothing of the path. A shop's M101 ("enable Z-axis",
+    a halcmd script) in mfiles/ beside the program: from X1 on to X2 in G54 (100, 50, -20), Z at home."""
+    (tmp_path / "mfiles").mkdir()
+    (tmp_path / "mfiles" / "M101").write_text("#!/bin/sh\nexit 0\n")
+    text = "G21 G90\nG0 X1\nM101 P2 Q3\nG0 X2\nM2\n"
+    ctx = dataclasses.replace(CTX, dialect=dataclasses.replace(DIALECTS["linuxcnc"], user_m_path=("mfiles",)))
+    prog = parse_program(text, source=str(tmp_path / "part.ngc"), context=ctx)
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [102, 0, 100]]
+    assert "user M code M101 (an external program of the user M path: no motion)" in prog.notes
+    # no such file there (M102), or no user M path at all: the code is refused, naming the file
+    with pytest.raises(GCodeError, match=r":3:1: user M code 'M102' .*: M102 not found \(folders: mfiles\)"):
+        parse_program(text.replace("M101", "M102"), source=str(tmp_path / "part.ngc"), context=ctx)
+    with pytest.raises(GCodeError, match=r"M101 not found \(folders: none given\).*expected M codes below 100, or "
+                                         r"the file M101 in a folder of the machine's \[program\] user_m_path"):
+        parse_program(text, source=str(tmp_path / "part.ngc"), context=_in_dialect("linuxcnc"))

@@ -150,9 +150,10 @@ def test_machine_file_subroutine_path_finds_a_library_subroutine(tmp_path) -> No
     part = tmp_path / "parts" / "part.ngc"
     part.write_text("G21 G90\nG0 X0 Y0 Z5\nG0 X3 Y4\no<peck> call [-1]\nM2\n")
     f = tmp_path / "m.toml"
-    f.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nsubroutine_path = ["lib"]\n')
+    f.write_text(builtin_machine_text("fadal-pid") + '\n[program]\nsubroutine_path = ["lib"]\nuser_m_path = "/m"\n')
     m = load_machine(f)
     assert m.context.dialect.subroutine_path == (str(tmp_path / "lib"),)
+    assert m.context.dialect.user_m_path == ("/m",)  # USER_M_PATH: an absolute folder stays as it is
     # parse_program: this module's fixture stands in for load_program
     prog = interpolators.parse_program(part.read_text(), source=str(part), context=m.context)
     assert [b.target.tolist() for b in prog.blocks] == [[0, 0, 5], [3, 4, 5], [3, 4, -1], [3, 4, 2]]
@@ -160,4 +161,7 @@ def test_machine_file_subroutine_path_finds_a_library_subroutine(tmp_path) -> No
         interpolators.parse_program(part.read_text(), source=str(part))  # without the machine's path
     f.write_text(builtin_machine_text("fadal-pid") + "\n[program]\nsubroutine_path = 3\n")
     with pytest.raises(InputError, match="'program.subroutine_path' must be a folder path string"):
+        load_machine(f)
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program]\nuser_m_path = [\"\"]\n")
+    with pytest.raises(InputError, match="'program.user_m_path' must be a folder path string"):
         load_machine(f)

@@ -22,6 +22,7 @@ PROGRAM_TABLE_DOC = """
 # decimal_point_input = "calculator"  # fanuc: X10 without a decimal point is 10 mm (DPI=1); "increment": 0.010 mm
 # tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length, X Y offsets)
 # subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)
+# user_m_path = []               # folders holding the M100-M199 user programs, e.g. ["mfiles"] (USER_M_PATH)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]

@@ -28,6 +28,7 @@ Layout::
     decimal_point_input = "calculator"  # calculator | increment: Fanuc DPI (No. 3401#0) = 1 | 0, X10 = 10 | 0.010 mm
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
+    user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
@@ -67,7 +68,8 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics", "subroutine_path")
+                 "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics", "subroutine_path",
+                 "user_m_path")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -333,8 +335,9 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not (math.isfinite(tol) and tol > 0):
             raise where.error(f"'program.tolerance' [mm] must be a number > 0, got {tol!r}", path + ("tolerance",))
         changes["tolerance"] = float(tol)
-    if "subroutine_path" in tab:
-        changes["subroutine_path"] = _subroutine_path(tab["subroutine_path"], path + ("subroutine_path",), where, file)
+    for key in ("subroutine_path", "user_m_path"):
+        if key in tab:
+            changes[key] = _search_path(tab[key], path + (key,), where, file)
     dialect = dataclasses.replace(DIALECTS[name], **changes)
     kwargs: dict[str, Any] = {"dialect": dialect}
     for key in ("home", "reference2"):
@@ -405,15 +408,16 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
 _KINEMATICS_AXIS_KEYS = {"name": "", "direction": "", "pivot": "mm", "limits": "deg"}
 
 
-def _subroutine_path(value: Any, path: tuple[str, ...], where: _Where, file: str) -> tuple[str, ...]:
-    """``program.subroutine_path``: the folders searched for the file ``<name>.ngc`` of an ``o<name> call``
-    after the program's own folder, in order (LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``,
-    https://linuxcnc.org/docs/html/config/ini-config.html); a relative folder starts at this machine file's
+def _search_path(value: Any, path: tuple[str, ...], where: _Where, file: str) -> tuple[str, ...]:
+    """``program.subroutine_path`` (the folders searched for the file ``<name>.ngc`` of an ``o<name> call``
+    after the program's own folder, LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``) or ``program.user_m_path``
+    (those holding the executables ``M100`` .. ``M199`` of user M codes, ``[RS274NGC] USER_M_PATH``;
+    https://linuxcnc.org/docs/html/config/ini-config.html): a relative folder starts at this machine file's
     folder, as ``tool_table`` does and as the INI's relative entries start at the configuration's (LinuxCNC
     ngcgui documentation: ``SUBROUTINE_PATH = ../../../nc_files/ngcgui_lib``). A single string is one folder."""
     folders = [value] if isinstance(value, str) else value
     if not isinstance(folders, list) or not all(isinstance(f, str) and f for f in folders):
-        raise where.error("'program.subroutine_path' must be a folder path string or a list of them", path)
+        raise where.error(f"'{'.'.join(path)}' must be a folder path string or a list of them", path)
     base = Path(file).parent if file and not file.startswith("<") else None
     return tuple(str(base / f) if base is not None and not Path(f).is_absolute() else f for f in folders)
 
