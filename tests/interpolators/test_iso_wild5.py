@@ -71,3 +71,12 @@ def test_a_user_m_code_runs_when_its_program_is_in_the_user_m_path(tmp_path):
     with pytest.raises(GCodeError, match=r"M101 not found \(folders: none given\).*expected M codes below 100, or "
                                          r"the file M101 in a folder of the machine's \[program\] user_m_path"):
         parse_program(text, source=str(tmp_path / "part.ngc"), context=_in_dialect("linuxcnc"))
+
+
+def test_no_centre_mode_hint_for_a_zero_radius_or_a_lone_centre_word():
+    # the Stepcraft post's "too small" hole: I0 on a full circle is a zero radius, not an off-circle end; and
+    # I alone cannot be an absolute centre (G90.1 needs both I and J)
+    with pytest.raises(GCodeError, match=r"arc radius is zero: the centre is the start point \(got 'I0'\)"):
+        parse_program("G21 G90 F100\nG0 X10 Y5\nG3 X10 Y5 I0\n", context=_in_dialect("linuxcnc"))
+    with pytest.raises(GCodeError, match=r"tolerance 0.0282843 mm\) \(got 'I-3'\)"):
+        parse_program("G21 G90 F100\nG0 X10 Y0\nG3 X0 Y10 I-3\n", context=_in_dialect("linuxcnc"))
