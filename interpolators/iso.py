@@ -729,6 +729,16 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = gcodes["motion"][1]
         where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
+    if st.context.dialect.name == "linuxcnc" and gcodes.get("motion", (0,))[0] in (20, 30) and not arc_words \
+            and "R" not in seen and not axis_words and not rot_words:
+        # LinuxCNC interp_arc.cc convert_arc: "The block has neither an r value nor any i,j,k values:
+        # NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", also for a block without axis words: rs274 refuses "G3 F360"
+        # (an arc with axis words and no centre is refused by _arc)
+        w = gcodes["motion"][1]
+        code = w.text.upper()
+        where.fail(f"{code} arc without R, I, J or K (LinuxCNC: 'R i j k words all missing for arc', also on a block "
+                   "without axis words)", column=w.column, text=w.text,
+                   expected=f"{code} with I/J/K or R, in the block that moves")
     # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
     # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
     # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix)

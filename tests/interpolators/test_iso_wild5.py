@@ -80,3 +80,20 @@ def test_no_centre_mode_hint_for_a_zero_radius_or_a_lone_centre_word():
         parse_program("G21 G90 F100\nG0 X10 Y5\nG3 X10 Y5 I0\n", context=_in_dialect("linuxcnc"))
     with pytest.raises(GCodeError, match=r"tolerance 0.0282843 mm\) \(got 'I-3'\)"):
         parse_program("G21 G90 F100\nG0 X10 Y0\nG3 X0 Y10 I-3\n", context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("line", ["G03 F360", "G3", "G2"])
+def test_linuxcnc_refuses_an_arc_code_without_its_centre_words(line):
+    # a Stepcraft post writes "G03 F360" and the end point with I on the next line; LinuxCNC's convert_arc
+    # refuses the first ("R i j k words all missing for arc", rs274 2.9: also without axis words)
+    code = line.split()[0]
+    with pytest.raises(GCodeError, match=rf":3:1: {code} arc without R, I, J or K \(LinuxCNC: 'R i j k words all "
+                                         rf"missing for arc'.*; expected {code} with I/J/K or R"):
+        parse_program(f"G21 G90 F100\nG0 X0 Y0\n{line}\nX1 Y0 I0.5\n", context=_in_dialect("linuxcnc"))
+
+
+def test_grbl_takes_the_arc_mode_from_a_block_without_words():
+    # grbl 1.1 gcode.c: a G2/G3 block without axis words sets the modal motion only (no "no axis words" error);
+    # the next block's X Y I move on it: from (0, 0) in G54 (100, 50, -20) to (1, 0), Z at home (100)
+    prog = parse_program("G21 G90 F100\nG0 X0 Y0\nG03 F360\nX1 Y0 I0.5\n", context=_in_dialect("grbl"))
+    assert prog.blocks[-1].kind == "arc" and prog.blocks[-1].target.tolist() == [101, 50, 100]
