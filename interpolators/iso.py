@@ -503,8 +503,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
-    if dialect.name == "linuxcnc" and _NESTED_COMMENT.search(text):
-        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
+    if dialect.name == "linuxcnc":
+        _linuxcnc_refusals(text, params, notes)
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
@@ -1047,6 +1047,16 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: comments with a '(' inside, and
+    parameter assignments with an operation outside [ ] (:func:`interpolators.iso_params.read_line`)."""
+    if _NESTED_COMMENT.search(text):
+        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
+    for _ in range(params.unbracketed):
+        notes.add("parameter assignment with an operation outside [ ], read as Fanuc macro B does (LinuxCNC "
+                  "refuses it: \"Bad character used\")")
 
 
 def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:

@@ -129,6 +129,7 @@ class Parameters:
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
         self.macro_b = macro_b
+        self.unbracketed = 0  # assignments "#1 = #1 + 2" read without macro_b (LinuxCNC wants [#1 + 2])
         self.system = system
         self.set_system = set_system
 
@@ -533,7 +534,17 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         eq = r.skip(end)
         if code[eq:eq + 1] != "=":
             r.fail("a parameter outside a word must be assigned", i, "#n = value")
-        value, end = r.expression(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
+        if params.macro_b:
+            value, end = r.expression(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
+        else:
+            # LinuxCNC overview.adoc "Parameter Setting": "# , a real value ..., an equal sign = , and a real
+            # value"; a real value is "a number, an expression, a parameter value, or a unary function value",
+            # and an expression is enclosed in [ ]: rs274 refuses "#<a> = #<a> + 2" ("Bad character '+' used").
+            # Read as macro B does, and counted for a note.
+            value, end = r.operand(eq + 1)
+            if _operator_at(r.up, r.skip(end)) is not None:
+                params.unbracketed += 1
+                value, end = r.expression(eq + 1)
         assignments.append((key, value, i + 1, code[i:end].strip()))
         return end
 

@@ -97,3 +97,17 @@ def test_grbl_takes_the_arc_mode_from_a_block_without_words():
     # the next block's X Y I move on it: from (0, 0) in G54 (100, 50, -20) to (1, 0), Z at home (100)
     prog = parse_program("G21 G90 F100\nG0 X0 Y0\nG03 F360\nX1 Y0 I0.5\n", context=_in_dialect("grbl"))
     assert prog.blocks[-1].kind == "arc" and prog.blocks[-1].target.tolist() == [101, 50, 100]
+
+
+def test_an_unbracketed_assignment_is_read_as_macro_b_with_a_note_under_linuxcnc():
+    # an Inkscape gcodetools file with "#<test> = #<test> + 2": rs274 says "Bad character '+' used", as LinuxCNC
+    # reads a parameter setting's value as one real value (overview.adoc "Parameter Setting"); Fanuc macro B
+    # takes "#1=#1+2" (B-64304EN "Arithmetic and logic operation"). vcnc reads it so under every dialect, and
+    # the linuxcnc one says LinuxCNC refuses it: X is 3 + 2 = 5 in G54 (100, 50, -20), Y and Z at home (0, 100)
+    text = "G21 G90\n#1 = 3\n#1 = #1 + 2 G0 X1\nG0 X#1\nM2\n"
+    for name in ("linuxcnc", "fanuc"):
+        assert parse_program(text, context=_in_dialect(name)).blocks[-1].target.tolist() == [105, 0, 100]
+    note = ("parameter assignment with an operation outside [ ], read as Fanuc macro B does (LinuxCNC refuses it: "
+            "\"Bad character used\")")
+    assert note in parse_program(text, context=_in_dialect("linuxcnc")).notes
+    assert not parse_program(text.replace("#1 + 2", "[#1 + 2]"), context=_in_dialect("linuxcnc")).notes
