@@ -677,7 +677,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
         seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
-        _dwell(gcodes, seen, st, blocks, where, number)
+        _dwell(gcodes, seen, st, blocks, where, number, notes)
         if "motion" not in gcodes:
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
@@ -1750,7 +1750,7 @@ def _other_centre_mode(st: _State, seen, in_plane: list[str], target: np.ndarray
     return "; I/J/K as offsets from the start (G91.1) would fit"
 
 
-def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
+def _dwell(gcodes, seen, st: _State, blocks, where: Where, number, notes: _Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
         w = gcodes["motion"][1]
@@ -1769,6 +1769,8 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number) -> bool:
                    expected=f"G04 P<{unit}> or G04 X<s>")
     w = seen["P"] if "P" in seen else seen["X"]
     seconds = w.value / 1000.0 if ("P" in seen and unit == "ms") else w.value
+    if "X" in seen and st.context.dialect.name == "linuxcnc":  # g-code.adoc "G4 Dwell": "G4 P-"; rs274 refuses X
+        notes.add("G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")")
     if seconds < 0:
         where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
     blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),

@@ -111,3 +111,13 @@ def test_an_unbracketed_assignment_is_read_as_macro_b_with_a_note_under_linuxcnc
             "\"Bad character used\")")
     assert note in parse_program(text, context=_in_dialect("linuxcnc")).notes
     assert not parse_program(text.replace("#1 + 2", "[#1 + 2]"), context=_in_dialect("linuxcnc")).notes
+
+
+def test_a_g04_x_dwell_is_noted_under_linuxcnc():
+    # a hand-written "G04 X3." (Fanuc: X is the time in s); LinuxCNC's G4 takes P only (g-code.adoc "G4 Dwell"),
+    # rs274 says "Dwell time missing with g4": read as 3 s, with a note under the linuxcnc dialect only
+    text = "G21 G90\nG0 X1\nG04 X3.\nG0 X2\nM2\n"
+    note = "G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")"
+    prog = parse_program(text, context=_in_dialect("linuxcnc"))
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [3.0] and note in prog.notes
+    assert note not in parse_program(text, context=_in_dialect("fanuc")).notes
