@@ -1229,7 +1229,11 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
         else:
             if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
-                st.cycle = CycleWords(motion_before=st.motion)
+                # LinuxCNC keeps the last dwell P across series (settings->cycle_p; interp_cycles.cc
+                # convert_cycle_xy: G74/G84 without P take it, rs274 dwells after "G82 .. P1.5 G80 G84 .."); Fanuc
+                # clears the hole machining data at G80 (B-64304EN "Canned cycle for drilling")
+                carried = st.cycle.p if st.context.dialect.name == "linuxcnc" else None
+                st.cycle = CycleWords(motion_before=st.motion, p=carried)
             st.motion = key
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion

@@ -1067,6 +1067,8 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
+    if m.cycle_clear is None and m.ctx.dialect.name != "linuxcnc":
+        m.sticky = {}  # Fanuc/Haas: G80 clears the hole data; LinuxCNC keeps its cycle_p, cycle_q, cycle_cc
     for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]

@@ -8,6 +8,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -121,3 +122,13 @@ def test_a_g04_x_dwell_is_noted_under_linuxcnc():
     prog = parse_program(text, context=_in_dialect("linuxcnc"))
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [3.0] and note in prog.notes
     assert note not in parse_program(text, context=_in_dialect("fanuc")).notes
+
+
+@pytest.mark.parametrize(("name", "tap_dwell"), [("linuxcnc", [1.5]), ("fanuc", [])])
+def test_a_tapping_cycle_without_p_takes_linuxcnc_s_last_dwell_but_not_fanuc_s(name, tap_dwell):
+    """rs274 runs "G82 .. P1.5 / G80 / G84 .. (no P)" with DWELL(1.5) at the tap's bottom too: LinuxCNC keeps the
+    dwell P across series (interp_cycles.cc: G74/G84 read settings->cycle_p); Fanuc clears the hole machining
+    data at G80 (B-64304EN "Canned cycle for drilling"), so a CNCagent program's G84 there does not dwell."""
+    text = "G21 G90 G0 X0 Y0 Z10\nS300 M3\nG82 X5 Y5 Z-1 R2 P1.5 F50\nG80\nG84 X10 Y10 Z-4 R2 F450\nG80\nM30\n"
+    prog = checked_iso(text, _in_dialect(name))
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell" and b.line == 5] == tap_dwell
