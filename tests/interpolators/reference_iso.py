@@ -387,7 +387,9 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
             # start (serial.c);
             # '$H' the homing cycle (commands.md), run below
             s = s if s == "$h" else "" if s.startswith("$") else s.replace("?", "").replace("~", "")
-            s = "" if s.startswith("%") and s != "%" else s  # CNCjs macro lines (%wait): the sender's
+            # '%' lines: the sender's (CNCjs macro lines such as %wait, and tape markers, which end nothing: grbl
+            # reads no '%' and the sender streams the whole file)
+            s = "" if s.startswith("%") else s
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)

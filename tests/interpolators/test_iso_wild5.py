@@ -132,3 +132,11 @@ def test_a_tapping_cycle_without_p_takes_linuxcnc_s_last_dwell_but_not_fanuc_s(n
     text = "G21 G90 G0 X0 Y0 Z10\nS300 M3\nG82 X5 Y5 Z-1 R2 P1.5 F50\nG80\nG84 X10 Y10 Z-4 R2 F450\nG80\nM30\n"
     prog = checked_iso(text, _in_dialect(name))
     assert [b.dwell for b in prog.blocks if b.kind == "dwell" and b.line == 5] == tap_dwell
+
+
+def test_a_grbl_file_runs_on_past_a_second_percent_line():
+    # a Fusion 360 MPCNC post wraps its custom start code in "%( *** START end ***)": grbl reads no '%' and
+    # CNCjs, which evaluates '%' lines itself, streams the rest of the file: X1 then X2 in G54 (100, 50, -20)
+    text = "%\nG21 G90\nG0 X1\n%( *** START end ***)\nG0 X2\n%\n"
+    prog = checked_iso(text, _in_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [102, 0, 100]]
