@@ -435,16 +435,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     homing: list[int] = []
     raw_lines = lines_of(text)
     if dialect.name == "grbl":
-        grbl = system_lines(text, source)
-        text, homing = grbl.text, list(grbl.homing)
-        for _ in range(grbl.blanked):
-            notes.add("grbl $ system commands (reports, settings) not run")
-        for _ in range(grbl.closed):
-            notes.add("unclosed ( comments read to the end of the line (grbl)")
-        for _ in range(grbl.resumes):
-            notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
-        for _ in range(grbl.sender):
-            notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
+        text, homing = _grbl_lines(text, source, notes)
     text, directives = simulator_lines(text, dollar=dialect.name != "grbl")
     for _ in range(directives):
         notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
@@ -729,16 +720,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         w = gcodes["motion"][1]
         where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
-    if st.context.dialect.name == "linuxcnc" and gcodes.get("motion", (0,))[0] in (20, 30) and not arc_words \
-            and "R" not in seen and not axis_words and not rot_words:
-        # LinuxCNC interp_arc.cc convert_arc: "The block has neither an r value nor any i,j,k values:
-        # NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", also for a block without axis words: rs274 refuses "G3 F360"
-        # (an arc with axis words and no centre is refused by _arc)
-        w = gcodes["motion"][1]
-        code = w.text.upper()
-        where.fail(f"{code} arc without R, I, J or K (LinuxCNC: 'R i j k words all missing for arc', also on a block "
-                   "without axis words)", column=w.column, text=w.text,
-                   expected=f"{code} with I/J/K or R, in the block that moves")
+    if not axis_words and not rot_words and not arc_words and "R" not in seen:
+        _arc_code_alone(gcodes, st, where)
     # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
     # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
     # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix)
@@ -762,6 +745,21 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _arc_code_alone(gcodes, st: _State, where: Where) -> None:
+    """A G2/G3 block with no axis, centre or radius word: LinuxCNC refuses it (interp_arc.cc convert_arc: "The
+    block has neither an r value nor any i,j,k values: NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", checked also on a
+    block without axis words: rs274 refuses "G3 F360"); the other dialects take the motion mode from it (grbl
+    gcode.c sets the modal motion of a block without axis words). An arc with axis words and no centre is
+    refused by :func:`_arc`."""
+    if st.context.dialect.name != "linuxcnc" or gcodes.get("motion", (0,))[0] not in (20, 30):
+        return
+    w = gcodes["motion"][1]
+    code = w.text.upper()
+    where.fail(f"{code} arc without R, I, J or K (LinuxCNC: 'R i j k words all missing for arc', also on a block "
+               "without axis words)", column=w.column, text=w.text, expected=f"{code} with I/J/K or R, in the block "
+               "that moves")
 
 
 def _decimal_point(words: list[Word], st: _State, notes: _Notes) -> list[Word]:
@@ -1047,6 +1045,21 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list[int]]:
+    """The text with grbl's system-command lines and the sender's lines blanked
+    (:func:`interpolators.iso_grbl.system_lines`), each kind noted, and the lines of its ``$H`` homing cycles."""
+    grbl = system_lines(text, source)
+    for _ in range(grbl.blanked):
+        notes.add("grbl $ system commands (reports, settings) not run")
+    for _ in range(grbl.closed):
+        notes.add("unclosed ( comments read to the end of the line (grbl)")
+    for _ in range(grbl.resumes):
+        notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    for _ in range(grbl.sender):
+        notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
+    return grbl.text, list(grbl.homing)
 
 
 def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
