@@ -21,11 +21,10 @@ import numpy as np
 import scipy.optimize
 
 from identification.bounds import PoleBounds
-from identification.dead_time import delay_reference
 from identification.initial_state import fit_initial_state
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI, canonical
-from identification.reduced_model import simulate
+from identification.substeps import substep_reference
 
 __all__ = ["refine_output_error"]
 
@@ -91,11 +90,12 @@ def refine_output_error(
     i_delay = x0.size - 1
     cut = keep if keep is not None else slice(None)
     xm_kept = xm[cut]
+    held = substep_reference(xr, sample_time)  # a slow record: predicted between its samples
 
     def fun(x):
-        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
+        ref = held.delayed(x[i_delay]) if delay is not None else held
         params = from_search(x[:nv])
-        r = simulate(params, ref[cut], sample_time) - xm_kept
+        r = ref.simulate(params, cut) - xm_kept
         if offset:
             r = r + x[nv]
         if initial_state and np.all(np.isfinite(r)):
@@ -112,8 +112,8 @@ def refine_output_error(
     params = from_search(x[:nv])
     start = {}
     if initial_state:
-        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
-        r = simulate(params, ref[cut], sample_time) - xm_kept + (x[nv] if offset else 0.0)
+        ref = held.delayed(x[i_delay]) if delay is not None else held
+        r = ref.simulate(params, cut) - xm_kept + (x[nv] if offset else 0.0)
         state, response = fit_initial_state(params, sample_time, r)
         start = {"initial_state": state, "start_response": response}
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
