@@ -10,7 +10,8 @@ switching on *measured* velocity bias it. The refinement starts from that soluti
 with the poles kept in the same bounds: variables (log p, log omega_n, zeta) in the box and
 (beta_0, beta_1, beta_2, delta+, delta-) free, as in Eq. (3.10). Solved by a bounded trust-region
 least squares (``scipy.optimize.least_squares``, ``trf``) with finite-difference Jacobians; each
-residual is one compiled simulation of the capture.
+residual is one compiled simulation of the capture (for a record logged slower than 1 ms, at sub-steps
+between its samples: :mod:`identification.substeps`).
 """
 
 from __future__ import annotations
@@ -62,7 +63,7 @@ def refine_output_error(
         :mod:`identification.datum_offset`), starting from 0.
     delay : (start, low, high), optional
         Also fit the reference dead time [samples] within [low, high] (``reference`` is then the
-        recorded one, delayed by :func:`identification.dead_time.delay_reference` at each step):
+        recorded one, delayed at each step on the sub-step grid of :mod:`identification.substeps`):
         the equation error's estimate trades the loop's own lag for a shift (fadal-ppi: 13.7
         samples), the simulated position does not.
     keep : slice, optional
