@@ -112,13 +112,13 @@ def fit_reduced_model(
         raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
     opt = regressor_options or RegressorOptions()
     original = capture
+    options = {"method": method, "bounds": bounds, "refine": refine, "regressor_options": regressor_options,
+               "seed": seed, "ga_options": ga_options}
     xr, x, T = check_capture(capture, axis, options=opt)
     b = as_bounds(bounds, T)
     capture, start, offset, delay_s, delay_fit = _in_loop_frame(capture, axis, delay, xr, x, T, opt, b)
     if delay_s and delay_fit["estimated"] and refine == "output-error" and "delay_candidate" not in original.meta:
-        delay_s = _delay_by_candidates(original, axis, delay_s, delay_fit, method=method, bounds=bounds,
-                                       refine=refine, regressor_options=regressor_options, seed=seed,
-                                       ga_options=ga_options)
+        delay_s = _delay_by_candidates(original, axis, delay_s, delay_fit, **options)
         capture, start, offset, _, _ = _in_loop_frame(original, axis, delay_s, xr, x, T, opt, b)
     if capture is not original:
         xr, x, T = check_capture(capture, axis, options=opt)
@@ -154,18 +154,9 @@ def fit_reduced_model(
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
     moved = fit["offset"]["offset_mm"] - offset.offset_mm
     if fit["offset"]["applied"] and abs(moved) > 1e-4 * fit["rms_um"] and "offset_refit" not in original.meta:
-        return _refit_without_offset(original, axis, fit, method=method, bounds=bounds, refine=refine,
-                                     regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
-    return ReducedAxisModel(
-        parameters=params,
-        sample_time=T,
-        axis=axis,
-        method=label,
-        poles=poles,
-        bounds=b.as_dict(),
-        fit=fit,
-        delay_s=delay_s,
-    )
+        return _refit_without_offset(original, axis, fit, delay=delay, **options)
+    return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
+                            fit=fit, delay_s=delay_s)
 
 
 def _equation_error(xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds, *, method: str,
