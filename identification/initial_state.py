@@ -27,9 +27,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from identification.reduced_model import discretize
+from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.segments import SETTLED_SHARE, settled_start
 
-__all__ = ["starts_in_motion", "free_response_basis", "fit_initial_state"]
+__all__ = ["starts_in_motion", "free_response_basis", "fit_initial_state", "centred_statistics"]
 
 #: Rows computed by matrix powers before the rest is built block by block [samples].
 _BLOCK = 128
@@ -121,3 +122,28 @@ def fit_initial_state(parameters: Mapping[str, float], sample_time: float, resid
     coef = np.linalg.lstsq(basis / scale, -r, rcond=1e-10)[0]
     state = coef / scale
     return state, basis @ state
+
+
+def centred_statistics(reference: np.ndarray, measured: np.ndarray, sample_time: float, *,
+                       options: RegressorOptions | None = None) -> SufficientStatistics:
+    """The regression of Eq. (3.11) with the controller integrator's value at the first sample free.
+
+    The column ``e_i`` integrates the tracking error from the first sample (0 there); a record
+    that starts in motion starts with the integrator at an unknown ``e_i,0``, which adds the
+    constant ``alpha_i e_i,0`` to every row. The rows and ``Y`` centred on their means eliminate
+    that constant exactly (least squares with an intercept). When the axis never rests the
+    friction columns sum to one on every row and the constant is not identifiable:
+    :func:`identification.solve.solve_statistics` then names the column.
+
+    Parameters
+    ----------
+    reference, measured : ndarray, shape (N,)
+        Commanded and measured position [mm] in the loop's frame.
+    sample_time : float
+        T [s].
+    options : RegressorOptions, optional
+    """
+    phi, y = regressor(reference, measured, sample_time, options=options)
+    stats = SufficientStatistics(8)
+    stats.update(phi - phi.mean(axis=0), y - y.mean())
+    return stats

@@ -10,7 +10,8 @@ switching on *measured* velocity bias it. The refinement starts from that soluti
 with the poles kept in the same bounds: variables (log p, log omega_n, zeta) in the box and
 (beta_0, beta_1, beta_2, delta+, delta-) free, as in Eq. (3.10). Solved by a bounded trust-region
 least squares (``scipy.optimize.least_squares``, ``trf``) with finite-difference Jacobians; each
-residual is one compiled simulation of the capture.
+residual is one compiled simulation of the capture (for a record logged slower than 1 ms, at sub-steps
+between its samples: :mod:`identification.substeps`).
 """
 
 from __future__ import annotations
@@ -21,11 +22,10 @@ import numpy as np
 import scipy.optimize
 
 from identification.bounds import PoleBounds
-from identification.dead_time import delay_reference
 from identification.initial_state import fit_initial_state
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI, canonical
-from identification.reduced_model import simulate
+from identification.substeps import substep_reference
 
 __all__ = ["refine_output_error"]
 
@@ -63,7 +63,7 @@ def refine_output_error(
         :mod:`identification.datum_offset`), starting from 0.
     delay : (start, low, high), optional
         Also fit the reference dead time [samples] within [low, high] (``reference`` is then the
-        recorded one, delayed by :func:`identification.dead_time.delay_reference` at each step):
+        recorded one, delayed at each step on the sub-step grid of :mod:`identification.substeps`):
         the equation error's estimate trades the loop's own lag for a shift (fadal-ppi: 13.7
         samples), the simulated position does not.
     keep : slice, optional
@@ -91,11 +91,12 @@ def refine_output_error(
     i_delay = x0.size - 1
     cut = keep if keep is not None else slice(None)
     xm_kept = xm[cut]
+    held = substep_reference(xr, sample_time)  # a slow record: predicted between its samples
 
     def fun(x):
-        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
+        ref = held.delayed(x[i_delay]) if delay is not None else held
         params = from_search(x[:nv])
-        r = simulate(params, ref[cut], sample_time) - xm_kept
+        r = ref.simulate(params, cut) - xm_kept
         if offset:
             r = r + x[nv]
         if initial_state and np.all(np.isfinite(r)):
@@ -112,8 +113,8 @@ def refine_output_error(
     params = from_search(x[:nv])
     start = {}
     if initial_state:
-        ref = delay_reference(xr, x[i_delay]) if delay is not None else xr
-        r = simulate(params, ref[cut], sample_time) - xm_kept + (x[nv] if offset else 0.0)
+        ref = held.delayed(x[i_delay]) if delay is not None else held
+        r = ref.simulate(params, cut) - xm_kept + (x[nv] if offset else 0.0)
         state, response = fit_initial_state(params, sample_time, r)
         start = {"initial_state": state, "start_response": response}
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)

@@ -1,0 +1,276 @@
+"""Identification from traces as controls record them: a truth harness over vcnc's own machines.
+
+Run: ``.venv/bin/python benchmarks/recorded_traces.py [--machine NAME ...] [--case NAME ...]``.
+
+Each case takes a capture simulated by vcnc and records it as a real control's trace differs
+from it, then runs :func:`identification.identify` (no diagnosis) on the recording and compares:
+
+- **captures**: each machine of ``vcnc machines`` (fadal-pid, fadal-ppi, fadal-smc, ballscrew-ppc,
+  chevalier-pdf, emps) running 60 random moves within +/-10 mm at F12000
+  (``toolpaths.random_moves(60, 10, 12000, seed=1)``, about 7 s; ``long``: 480 moves, about 55 s),
+  x axis; and ``exact``, the thesis' PID x axis as the exact reduced model (``FADAL_PID_X``,
+  Table 3.4, :func:`identification.synthetic.synthetic_capture` on 100 random moves).
+- **truth**: for a machine, the fit of the unaltered capture (``identify(..., delay=0)``: its poles
+  and its prediction RMS, the floor a recording cannot beat); for ``exact``, the model's own poles
+  and an RMS floor of 0. A case whose loop receives another reference than the machine's (the
+  jerk filter) has the fit of the capture with that reference as its truth.
+- **recording** (case names): ``lead<ms>`` the reference recorded that much ahead of the loop
+  (``lag<ms>`` behind), ``dec<q>`` every q-th sample kept (a control logging slower than its loop
+  runs), ``quant`` both channels rounded to 1 um, ``noise`` 0.5 um white noise on the measured
+  position, ``offset`` a 0.5 mm datum offset on the measured channel, ``motion`` the record
+  triggered mid-motion (first 1.234 s dropped), ``short`` the first 2 s only, ``scurve`` a
+  jerk-limited interpolation (the loop receives the recorded reference), ``jerkf`` the loop
+  receives the recorded reference through a 16 ms moving-average jerk filter (Heidenhain's
+  smoothing filters sit after the interpolator; our reading, no manual found that fixes where the
+  trace taps), ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
+  (3 ms, reference 0.1 s ahead, 0.1 um digits), a LinuxCNC 2.9 halscope log and a logger CSV in
+  ms and um with a decimal comma (:func:`vcnc.capture.read_capture`, formats of :mod:`vcnc.traces`).
+- **tolerances**: pass when every pole (omega_n, zeta, p) is within :data:`POLE_TOL` of the truth
+  (relative, with p's error taken against at least :data:`P_FLOOR_HZ`: EMPS' slow pole sits on the
+  0.001 Hz bound) and the prediction RMS of the recording is at most :data:`RMS_FACTOR` times the
+  truth's floor plus the noise the recording added (quantisation step / sqrt(12), noise sigma) plus
+  :data:`RMS_SLACK_UM` (a decimated record's floor: at least the truth's own prediction of it,
+  which the sub-step interpolation of :mod:`identification.substeps` leaves: 0.16 um at 3 ms for
+  the exact model).
+
+Prints one line per case: pole errors [%], delay found and expected [ms], prediction RMS and its
+limit [um], PASS/FAIL; then the totals. A benchmark, not a test: nothing is timed or asserted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+# this script sits in benchmarks/: keep its own folder off the import path
+sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+
+import numpy as np  # noqa: E402
+
+import toolpaths  # noqa: E402
+import vcnc  # noqa: E402
+from identification import identify  # noqa: E402
+from identification.dead_time import delay_reference  # noqa: E402
+from identification.poles import poles_from_denominator  # noqa: E402
+from identification.substeps import simulate_record  # noqa: E402
+from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture  # noqa: E402
+from vcnc.capture import Capture, read_capture  # noqa: E402
+
+#: Largest relative pole error that passes [-].
+POLE_TOL = 0.05
+#: p's error is relative to at least this [Hz] (a slow pole on the 0.001 Hz bound).
+P_FLOOR_HZ = 0.1
+#: Prediction RMS allowed, as a multiple of the truth's floor [-] (a record cut in motion keeps a
+#: start transient: fadal-pid 1.24-1.36 um for 0.37).
+RMS_FACTOR = 4.0
+#: Added to the allowed RMS [um].
+RMS_SLACK_UM = 0.1
+MACHINES = ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-ppc", "chevalier-pdf", "emps", "exact")
+#: (name, recording): the recording's settings, read by :func:`record`.
+CASES: dict[str, dict] = {
+    "plain": {},
+    "lead50": {"lead_s": 0.05},
+    "lead100": {"lead_s": 0.1},
+    "lead300": {"lead_s": 0.3},
+    "lag20": {"lead_s": -0.02},
+    "dec3": {"decimate_s": 0.003},
+    "dec6": {"decimate_s": 0.006},
+    "dec3lead100": {"decimate_s": 0.003, "lead_s": 0.1},
+    "quant": {"resolution": 1e-3},
+    "noise": {"noise": 0.5e-3},
+    "offset": {"offset": 0.5},
+    "motion": {"start_s": 1.234},
+    "short": {"stop_s": 2.0},
+    "long": {"moves": 480},
+    "scurve": {"profile": "scurve"},
+    "jerkf": {"jerk_filter_s": 0.016},
+    "tnc": {"lead_s": 0.1, "decimate_s": 0.003, "file": "tnc"},
+    "hal": {"file": "hal"},
+    "csv": {"lead_s": 0.05, "file": "csv"},
+}
+#: Cases too slow for every machine (seconds of simulation and fit), run on these only.
+ONLY = {"long": ("fadal-pid", "exact")}
+
+
+@dataclasses.dataclass
+class Truth:
+    poles: dict
+    rms_um: float
+    parameters: dict
+
+
+def simulated(machine: str, *, moves: int = 60, profile: str = "trapezoid", jerk_filter_s: float = 0.0
+              ) -> tuple[Capture, Capture]:
+    """``(recorded, loop)``: the machine's x axis on the random-moves test (module docstring). With
+    ``jerk_filter_s`` the loop receives the reference through a moving average that long and
+    ``recorded`` holds the unfiltered one; otherwise the two are the same capture."""
+    if machine == "exact":
+        T = 1e-3
+        cap = synthetic_capture(FADAL_PID_X, random_moves_reference(moves=100 if moves == 60 else moves,
+                                                                    sample_time=T, seed=3), sample_time=T)
+        return cap, cap
+    m = vcnc.machine(machine)
+    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(moves, 10.0, 12000.0, seed=1)), m,
+                          profile=profile)
+    if jerk_filter_s:
+        n = max(1, int(round(jerk_filter_s / sp.sample_time)))
+        pad = np.vstack([np.repeat(sp.position[:1], n - 1, axis=0), sp.position])
+        kernel = np.ones(n) / n
+        pos = np.column_stack([np.convolve(pad[:, j], kernel, mode="valid") for j in range(pad.shape[1])])
+        vel = np.gradient(pos, sp.sample_time, axis=0)
+        filtered = dataclasses.replace(sp, position=pos, velocity=vel,
+                                       acceleration=np.gradient(vel, sp.sample_time, axis=0))
+        loop = m.simulate(filtered, seed=1).select_axes(("x",))
+        return dataclasses.replace(loop, reference=sp.position[:, [sp.axes.index("x")]].copy()), loop
+    cap = m.simulate(sp, seed=1).select_axes(("x",))
+    return cap, cap
+
+
+def truth_of(machine: str, capture: Capture) -> Truth:
+    if machine == "exact":
+        p = FADAL_PID_X
+        return Truth(poles_from_denominator(p["a1"], p["a2"], p["a3"]), 0.0, dict(p))
+    model = identify(capture, axis="x", diagnose=False, delay=0.0)
+    return Truth(dict(model.poles), float(model.fit["rms_um"]), dict(model.parameters))
+
+
+def _one_axis(t: np.ndarray, reference: np.ndarray, measured: np.ndarray) -> Capture:
+    return Capture(t=t - t[0], axes=("x",), reference=reference[:, None], measured=measured[:, None],
+                   meta={"source": "benchmarks/recorded_traces.py"})
+
+
+def record(capture: Capture, rec: dict, folder: Path, seed: int = 7) -> Capture:
+    """``capture`` recorded as the case ``rec`` says (module docstring), in this order: lead,
+    cut, decimation, offset, noise, quantisation, file."""
+    T = capture.sample_time
+    xr, x = capture.reference[:, 0].copy(), capture.measured[:, 0].copy()
+    if rec.get("lead_s"):
+        xr = delay_reference(xr, -rec["lead_s"] / T)
+    t = capture.t.copy()
+    lo = int(round(rec.get("start_s", 0.0) / T))
+    hi = int(round(rec["stop_s"] / T)) if "stop_s" in rec else t.size
+    q = max(1, int(round(rec.get("decimate_s", T) / T)))
+    t, xr, x = t[lo:hi:q], xr[lo:hi:q], x[lo:hi:q]
+    x = x + rec.get("offset", 0.0)
+    if rec.get("noise"):
+        x = x + np.random.default_rng(seed).normal(0.0, rec["noise"], x.size)
+    if rec.get("resolution"):
+        xr, x = (np.round(v / rec["resolution"]) * rec["resolution"] for v in (xr, x))
+    cap = _one_axis(t, xr, x)
+    writer = rec.get("file")
+    return _read(_WRITERS[writer](folder, cap)) if writer else cap
+
+
+def _tncscope(folder: Path, cap: Capture) -> Path:
+    head = ["%TNCscopeNT data file", "%[GLOBAL]", f"%SAMPLING={cap.sample_time * 1e6:.0f}"]
+    for k, (kind, name) in enumerate((("s nom", "s noml/X"), ("s act", "s actl/X")), start=1):
+        head += [f"%[CURVE{k}]", f"%NAME={name}", f"%CHANNELTYPE={kind}", "%AXISTYPE=X", "%DIMENSION=mm",
+                 f"%COLUMN={k}"]
+    rows = [f"{t * 1e6:.0f};{r:.4f};{a:.4f};" for t, r, a in zip(cap.t, cap.reference[:, 0], cap.measured[:, 0])]
+    path = folder / "trace.sco"
+    path.write_bytes("\r\n".join(head + ["%[DATA]"] + rows).encode("latin-1") + b"\r\n")
+    return path
+
+
+def _halscope(folder: Path, cap: Capture) -> Path:
+    lines = [f"# Sampling period is {cap.sample_time * 1e9:.0f} ns", "joint.0.motor-pos-cmd;joint.0.motor-pos-fb"]
+    lines += [f"{r:.14f};{a:.14f}" for r, a in zip(cap.reference[:, 0], cap.measured[:, 0])]
+    path = folder / "scope.log"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _csv(folder: Path, cap: Capture) -> Path:
+    lines = ["Zeit;Soll;Ist", "ms;µm;µm"]
+    lines += [f"{t * 1e3:.3f};{r * 1e3:.3f};{a * 1e3:.3f}".replace(".", ",")
+              for t, r, a in zip(cap.t, cap.reference[:, 0], cap.measured[:, 0])]
+    path = folder / "log.csv"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+_WRITERS = {"tnc": _tncscope, "hal": _halscope, "csv": _csv}
+
+
+def _read(path: Path) -> Capture:
+    return read_capture(path, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"}) if path.suffix == ".csv" \
+        else read_capture(path)
+
+
+def pole_error(poles: dict, truth: dict) -> dict[str, float]:
+    """Relative error of each pole (module docstring; p against at least :data:`P_FLOOR_HZ`)."""
+    out = {k: abs(poles[k] - truth[k]) / abs(truth[k]) for k in ("omega_n_hz", "zeta")}
+    out["p_hz"] = abs(poles["p_hz"] - truth["p_hz"]) / max(abs(truth["p_hz"]), P_FLOOR_HZ)
+    return out
+
+
+def rms_limit(truth: Truth, rec: dict, capture: Capture) -> float:
+    """Allowed prediction RMS [um] (module docstring); for a decimated record the floor is at least
+    the truth's own prediction of it (:func:`identification.substeps.simulate_record`)."""
+    added = math.hypot(rec.get("resolution", 0.0) / math.sqrt(12.0), rec.get("noise", 0.0)) * 1e3
+    floor = truth.rms_um
+    q = max(1, int(round(rec.get("decimate_s", 0.0) / capture.sample_time)))
+    if q > 1:
+        xr, x = capture.reference[::q, 0], capture.measured[::q, 0]
+        e = x - simulate_record(truth.parameters, xr, capture.sample_time * q)
+        floor = max(floor, float(np.sqrt(np.mean(e * e))) * 1e3)
+    return RMS_FACTOR * math.hypot(floor, added) + RMS_SLACK_UM
+
+
+def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
+    rec = CASES[case]
+    key = (machine, rec.get("moves", 60), rec.get("profile", "trapezoid"), rec.get("jerk_filter_s", 0.0))
+    if key not in cache:
+        cap, loop = simulated(machine, moves=key[1], profile=key[2], jerk_filter_s=key[3])
+        cache[key] = (cap, truth_of(machine, loop))
+    cap, truth = cache[key]
+    recorded = record(cap, rec, folder)
+    t0 = time.perf_counter()
+    model = identify(recorded, axis="x", diagnose=False)
+    seconds = time.perf_counter() - t0
+    err = pole_error(model.poles, truth.poles)
+    limit = rms_limit(truth, rec, cap)
+    ok = max(err.values()) <= POLE_TOL and model.fit["rms_um"] <= limit
+    return {"machine": machine, "case": case, "err": err, "delay_ms": model.delay_s * 1e3,
+            "lead_ms": rec.get("lead_s", 0.0) * 1e3, "rms_um": float(model.fit["rms_um"]), "limit_um": limit,
+            "T_ms": recorded.sample_time * 1e3, "seconds": seconds, "ok": ok}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--machine", action="append", choices=MACHINES, help="run these machines only (repeatable)")
+    ap.add_argument("--case", action="append", choices=tuple(CASES), help="run these cases only (repeatable)")
+    args = ap.parse_args(argv)
+    machines = args.machine or MACHINES
+    cases = args.case or tuple(CASES)
+    print(f"{'machine':14s} {'case':12s} {'T ms':>5s} {'wn %':>7s} {'zeta %':>7s} {'p %':>7s} {'delay ms':>9s} "
+          f"{'lead ms':>8s} {'rms um':>8s} {'limit':>7s} {'fit s':>6s}  result")
+    cache: dict = {}
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for machine in machines:
+            for case in cases:
+                if machine not in ONLY.get(case, machines):
+                    continue
+                try:
+                    r = run_case(machine, case, cache, Path(tmp))
+                except Exception as exc:  # a case that raises is a failure, reported, not fatal
+                    print(f"{machine:14s} {case:12s} ERROR {type(exc).__name__}: {exc}")
+                    results.append(False)
+                    continue
+                e = r["err"]
+                print(f"{machine:14s} {case:12s} {r['T_ms']:5.3g} {100 * e['omega_n_hz']:7.2f} {100 * e['zeta']:7.2f} "
+                      f"{100 * e['p_hz']:7.2f} {r['delay_ms']:9.2f} {r['lead_ms']:8.1f} {r['rms_um']:8.3f} "
+                      f"{r['limit_um']:7.3f} {r['seconds']:6.1f}  {'PASS' if r['ok'] else 'FAIL'}", flush=True)
+                results.append(r["ok"])
+    print(f"passed {sum(results)} of {len(results)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
