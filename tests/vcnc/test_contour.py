@@ -154,6 +154,19 @@ def test_helix_distance_is_exact():
     np.testing.assert_allclose(ce.error, 0.03, rtol=1e-7)
 
 
+def test_steep_helix_point_outside_the_sweep_angle_finds_the_foot_along_the_axis():
+    # a quarter turn of radius 1 mm rising 50 mm (a G18/G19 helix of a tool-path program is as steep):
+    # the points' in-plane angle lies before the sweep's start, yet the nearest point is mid-helix
+    helix = Arc([1, 0, 0], [0, 1, 50], [0, 0, 0], ccw=True)
+    path = Path(segments=(helix,), blocks=(0,), axes=("x", "y", "z"))
+    pts = np.array([[math.cos(-0.05), math.sin(-0.05), z] for z in (10.0, 25.0, 40.0)])
+    dense = helix.point_at(np.linspace(0.0, helix.length, 200_001))
+    brute = np.min(np.linalg.norm(dense[None, :, :] - pts[:, None, :], axis=2), axis=1)
+    ce = contour_error(path, pts, ("x", "y", "z"))
+    np.testing.assert_allclose(ce.error, brute, atol=1e-6)
+    assert np.all(ce.error < 1.5)  # the start point, 10-40 mm away, was taken before
+
+
 def test_matches_brute_force_on_perturbed_programs():
     rng = np.random.default_rng(5)
     # open variants (the brute force would rightly see the start of a closed path near its end)
