@@ -65,6 +65,8 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
 
     rep = Report(f"vcnc simulate: {capture.meta.get('program', '')} on {capture.meta.get('machine', '')}")
     rep.summary = summary
+    if capture.meta.get("truncated"):
+        rep.text(f"{capture.meta.get('program', 'the program')}: {capture.meta['truncated']}")
     rep.table(
         ["axis", "max tracking error", "rms tracking error", "unit"],
         [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],

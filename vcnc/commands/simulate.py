@@ -23,23 +23,34 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--report", metavar="DIR", help="write plots: tracking error and control per axis, path")
     parser.add_argument("--profile", choices=("trapezoid", "scurve"), default="trapezoid", help="feed profile")
     parser.add_argument("--seed", type=int, default=0, help="seed of the measurement noise (default 0)")
+    parser.add_argument("--max-seconds", type=float, metavar="S",
+                        help="simulate only the blocks that run within the first S seconds (a note says where the "
+                             "program was cut; default: the whole program)")
     add_context_arguments(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     import interpolators
+    from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
+    from vcnc.facade import interpolate, truncation_note
     from vcnc.simulation_report import build_report, summarize
 
     machine = load_machine(args.machine)
     program = interpolators.load_program(args.program, context=program_context(args, machine))
     print_program_notes(program, args.program)
-    setpoints = interpolators.interpolate(
-        program, limits=machine.limits, sample_time=machine.sample_time, profile=args.profile
-    )
+    setpoints = interpolate(program, machine, profile=args.profile, max_duration=args.max_seconds)
+    if len(setpoints) < 2:  # a capture holds at least two samples
+        raise GCodeError("the program neither moves an axis nor dwells: nothing to simulate", file=args.program,
+                         expected="a program with a move or a dwell")
+    note = truncation_note(setpoints)
+    if note:
+        print(f"{args.program}: {note}")
     capture = machine.simulate(setpoints, seed=args.seed)
     capture.meta.update({"program": Path(args.program).name, "profile": args.profile})
+    if note:
+        capture.meta["truncated"] = note
     summary = summarize(capture)
     report = build_report(capture, summary) if args.report else None
     with contextlib.ExitStack() as stack:

@@ -12,6 +12,7 @@ __all__ = [
     "VcncError",
     "InputError",
     "GCodeError",
+    "ProgramTooLongError",
     "CaptureError",
     "MachineError",
     "ModelFileError",
@@ -104,6 +105,10 @@ class InputError(VcncError, ValueError):
 
 class GCodeError(InputError):
     """A part program that cannot be parsed or interpolated."""
+
+
+class ProgramTooLongError(GCodeError):
+    """A part program that needs more samples than the interpolation may hold (``max_samples``)."""
 
 
 class CaptureError(InputError):
