@@ -224,6 +224,21 @@ def test_features_and_metrics_of_the_diamond():
     assert len(feats["quadrants"]) == 0
 
 
+def test_feature_windows_of_a_zigzag_match_the_definition():
+    # 59 corners: each corner's max is the largest error of the samples within FEATURE_WINDOW_MM of it
+    from vcnc.contour import FEATURE_WINDOW_MM
+
+    text = "G90 G00 X0 Y0\n" + "".join(f"G01 X{20 * (i % 2)} Y{2 * i} F6000\n" for i in range(1, 61)) + "M30\n"
+    sp = _setpoints(text)
+    ce = contour_error(sp.path, _first_order(sp.position), sp.axes, reference=sp.position)
+    m = ce.metrics()
+    corners = path_features(sp.path)["corners"]
+    expected = [np.max(np.abs(ce.error[np.abs(ce.arc_length - s0) <= FEATURE_WINDOW_MM])) * 1e3 for s0 in corners]
+    assert len(m["corners"]) == len(corners) == 59
+    np.testing.assert_allclose([c["max_um"] for c in m["corners"]], expected, rtol=1e-12)
+    np.testing.assert_allclose(m["corners"][5]["position_mm"][:2], [0.0, 12.0], atol=1e-9)  # end of move 6
+
+
 def test_clothoid_blend_distance():
     from toolpaths.geometry import ClothoidPair
 
