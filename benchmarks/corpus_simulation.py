@@ -1,25 +1,25 @@
 """The corpus' programs through the whole chain: interpolate, simulate, contour error, summary, report.
 
-Takes every program the corpus runner (``benchmarks/gcode_corpus.py``: ``run_corpus`` without
-interpolation, ``reason``) accepts and runs it as ``vcnc simulate`` does (``vcnc.facade.interpolate``
-with the machine, ``Machine.simulate``, ``vcnc.simulation_report.summarize``), on the first
-``--seconds`` of each program (``max_duration``: a longer program is cut after the last block that
-ends within it, and counted as cut).
+Every program the corpus runner (``benchmarks/gcode_corpus.py``) accepts is read by it
+(``run_corpus`` without interpolation: ``load_program`` with ``INTERPOLATION_CONTEXT``, axes A B C
+U V W allowed) and handed to this script, which runs it as ``vcnc simulate`` does:
+``vcnc.facade.interpolate`` with the machine (its axis check, then the first ``--seconds`` of the
+program: a longer one is cut and counted as cut), ``Machine.simulate``,
+``vcnc.simulation_report.summarize``.
 
 Machines: ``fadal-pid`` (x, y: the default) for a program that moves X and Y only. No built-in
 machine has a Z or a rotary axis; a program that moves Z is first refused by ``fadal-pid`` (the
 message is counted), then run on ``fadal-pid+z``, a benchmark-only machine whose Z axis is a copy of
 the X axis (drive, controller, limits): our assumption to exercise the chain, not a real machine. A
-program with rotary or U V W axes is refused by the reader under fadal-pid's context (counted by
-reason).
+program that moves a rotary or a U V W axis is refused (counted by reason).
 
 Prints the counts (simulated, cut by the budget, refused by reason, crashed with the exception),
 non-finite captures, the worst tracking and contour errors with their programs, the peak memory,
 and the setpoints/s of the simulation against the interpolation of the same programs in the same
-run (the reference). ``--report DIR`` also writes the ``vcnc simulate --report`` folders of the
-first ``--report-count`` simulated programs.
+run (the reference; it includes the search for the cut). ``--report DIR`` also writes the
+``vcnc simulate --report`` folders of the first ``--report-count`` simulated programs with a contour.
 
-Usage: ``python benchmarks/corpus_simulation.py [--seconds 20] [--limit N] [--list] [--report DIR]``
+Usage: ``python benchmarks/corpus_simulation.py [--seconds 20] [--list] [--report DIR]``
 """
 
 from __future__ import annotations
@@ -38,10 +38,10 @@ from gcode_corpus import ROOT, corpus_dir, reason, run_corpus
 
 sys.path.insert(0, str(ROOT))
 
-from interpolators import load_program  # noqa: E402
+from interpolators import Program  # noqa: E402
 from vcnc.core.errors import VcncError  # noqa: E402
 from vcnc.engine.machine import Machine, load_machine  # noqa: E402
-from vcnc.facade import check_program_axes, interpolate  # noqa: E402
+from vcnc.facade import check_program_axes, interpolate, program_meta  # noqa: E402
 from vcnc.simulation_report import build_report, summarize  # noqa: E402
 
 
@@ -51,22 +51,23 @@ def machines() -> tuple[Machine, Machine]:
     return xy, xy.with_axis("z", xy.axis("x"), suffix="+z")
 
 
-def simulate_one(path: Path, xy: Machine, xyz: Machine, seconds: float) -> dict:
-    """One program through the chain; a record of what happened and the time of each stage."""
-    rec: dict = {"file": path.name, "status": "", "reason": "", "machine": xy.name, "samples": 0}
+def simulate_one(path: Path, program: Program, xy: Machine, xyz: Machine, seconds: float) -> dict:
+    """One program (read by the corpus runner) through the chain: what happened, the time of each stage."""
+    rec: dict = {"status": "", "reason": "", "machine": xy.name, "samples": 0}
     try:
-        program = load_program(path, context=xy.context)
         machine = xy
         try:
             check_program_axes(program, xy)
         except VcncError as exc:
             rec["xy_refusal"] = reason(str(exc))
             machine = xyz
+            check_program_axes(program, xyz)
         rec["machine"] = machine.name
         t0 = time.perf_counter()
         sp = interpolate(program, machine, max_duration=seconds)
         t1 = time.perf_counter()
         capture = machine.simulate(sp, seed=0)
+        capture.meta.update(program_meta(sp, path.name, profile="trapezoid"))
         t2 = time.perf_counter()
         summary = summarize(capture)
         t3 = time.perf_counter()
@@ -80,7 +81,7 @@ def simulate_one(path: Path, xy: Machine, xyz: Machine, seconds: float) -> dict:
     arrays = [capture.reference, capture.measured] + ([capture.control] if capture.control is not None else [])
     finite = all(bool(np.isfinite(a).all()) for a in arrays)
     rec.update(status="simulated" if finite else "non-finite", samples=len(capture), summary=summary,
-               cut="truncated" in sp.meta, t_interp=t1 - t0, t_sim=t2 - t1, t_contour=t3 - t2,
+               cut="truncated" in sp.meta, at_least=sp.meta.get("truncated", {}).get("program_at_least", sp.duration), t_interp=t1 - t0, t_sim=t2 - t1, t_contour=t3 - t2,
                capture=capture if finite else None)
     return rec
 
@@ -98,6 +99,9 @@ def print_results(recs: list[dict], wall: float, seconds: float) -> None:
     print(f"  simulated   {by['simulated']:>4}  (fadal-pid {sum(r['machine'] == 'fadal-pid' for r in sim)}, "
           f"fadal-pid+z {sum(r['machine'] == 'fadal-pid+z' for r in sim)}; cut by the budget "
           f"{sum(r['cut'] for r in sim)})")
+    longest = sorted(((r["at_least"], r["file"]) for r in sim), reverse=True)[:3]
+    print("  longest (a lower bound of the whole program's run): "
+          + ", ".join(f"{f} >= {t / 60:.0f} min" for t, f in longest))
     print(f"  refused     {by['refused']:>4}")
     print(f"  crashed     {by['crashed']:>4}")
     print(f"  non-finite  {by['non-finite']:>4}  (NaN or inf in the capture)")
@@ -143,7 +147,6 @@ def write_reports(recs: list[dict], folder: str) -> None:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seconds", type=float, default=20.0, help="budget per program [s] (default 20)")
-    ap.add_argument("--limit", type=int, help="only the first N accepted programs")
     ap.add_argument("--list", action="store_true", help="list every refused program with its message")
     ap.add_argument("--report", metavar="DIR", help="write simulate reports of a few programs under DIR")
     ap.add_argument("--report-count", type=int, default=3, help="how many reports (default 3)")
@@ -152,20 +155,20 @@ def main() -> int:
     if d is None:
         print("gcode corpus not found (../shared/data/gcode-corpus): nothing to run")
         return 0
-    t0 = time.perf_counter()
-    accepted = [p["file"] for p in run_corpus(d, interpolate_too=False)["programs"] if p["ok"]]
-    print(f"corpus runner (parse only): {len(accepted)} programs accepted ({time.perf_counter() - t0:.1f} s)")
-    accepted = accepted[: args.limit] if args.limit else accepted
     xy, xyz = machines()
-    t0 = time.perf_counter()
-    recs = []
     kept = 0
-    for f in accepted:
-        rec = simulate_one(d / f, xy, xyz, args.seconds)
+
+    def visit(path: Path, program: Program) -> dict:
+        nonlocal kept
+        rec = simulate_one(path, program, xy, xyz, args.seconds)
         capture = rec.pop("capture", None)  # dropped to keep memory flat, but for the reports' few
         if args.report and capture is not None and kept < args.report_count and "contour" in rec["summary"]:
             rec["capture"], kept = capture, kept + 1
-        recs.append(rec)
+        return {"chain": rec}
+
+    t0 = time.perf_counter()
+    res = run_corpus(d, interpolate_too=False, visit=visit)
+    recs = [{**p["chain"], "file": p["file"]} for p in res["programs"] if p["ok"]]
     print_results(recs, time.perf_counter() - t0, args.seconds)
     if args.list:
         print("\nrefused programs:")

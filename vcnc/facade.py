@@ -16,7 +16,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from interpolators import Program
     from vcnc.engine.machine import Machine
 
-__all__ = ["interpolate", "check_program_axes", "truncation_note"]
+__all__ = ["interpolate", "check_program_axes", "truncation_note", "program_meta"]
 
 
 def interpolate(
@@ -103,7 +103,7 @@ def check_program_axes(program: Program, machine: Machine) -> None:
         if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
             moved += ["xyz"[i] for i in b.segment.plane_axes]
         moved += [a for a, d in zip(EXTRA_NAMES, b.extra_delta) if d != 0]
-        missing = [a for a in moved if a not in machine.axes]
+        missing = [a for a in dict.fromkeys(moved) if a not in machine.axes]
         if missing:
             names = ", ".join(a.upper() for a in missing)
             raise GCodeError(
@@ -128,6 +128,13 @@ def truncation_note(setpoints: Setpoints) -> str | None:
                                                   ", and the blocks before the cut may slow down where the "
                                                   "whole program passes at speed")
     )
+
+
+def program_meta(setpoints: Setpoints, program_name: str, *, profile: str) -> dict[str, str]:
+    """What a capture simulated from a program records besides the machine's entries: ``program``
+    (file name), ``profile`` and, when :func:`interpolate` cut it, ``truncated`` (the note)."""
+    note = truncation_note(setpoints)
+    return {"program": program_name, "profile": profile, **({"truncated": note} if note else {})}
 
 
 def _least_times(program: Program, limits) -> np.ndarray:

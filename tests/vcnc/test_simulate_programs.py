@@ -32,6 +32,7 @@ def write(tmp_path: Path, text: str, name: str = "part.nc") -> Path:
         ("G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10 Y5 F600\nM30\n", 2),  # Z moves from the origin at line 2
         ("G21 G90\nG0 X0 Y0 Z0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n", 4),
         ("G21 G90 G18\nG0 X0 Y0 Z0\nG2 X0 Z0 I5 K0 F600\nM30\n", 3),  # a full circle in ZX ends where it starts
+        ("G21 G90 G18\nG0 X0 Y0 Z0\nG2 X10 Z0 I5 K0 F600\nM30\n", 3),  # a half circle: Z named once
     ],
 )
 def test_program_moving_z_on_an_xy_machine_names_line_axis_machine(tmp_path, capsys, text, line):

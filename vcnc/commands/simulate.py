@@ -34,7 +34,7 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
-    from vcnc.facade import interpolate, truncation_note
+    from vcnc.facade import interpolate, program_meta
     from vcnc.simulation_report import build_report, summarize
 
     machine = load_machine(args.machine)
@@ -44,13 +44,11 @@ def run(args: argparse.Namespace) -> int:
     if len(setpoints) < 2:  # a capture holds at least two samples
         raise GCodeError("the program neither moves an axis nor dwells: nothing to simulate", file=args.program,
                          expected="a program with a move or a dwell")
-    note = truncation_note(setpoints)
-    if note:
-        print(f"{args.program}: {note}")
+    meta = program_meta(setpoints, Path(args.program).name, profile=args.profile)
+    if "truncated" in meta:
+        print(f"{args.program}: {meta['truncated']}")
     capture = machine.simulate(setpoints, seed=args.seed)
-    capture.meta.update({"program": Path(args.program).name, "profile": args.profile})
-    if note:
-        capture.meta["truncated"] = note
+    capture.meta.update(meta)
     summary = summarize(capture)
     report = build_report(capture, summary) if args.report else None
     with contextlib.ExitStack() as stack:
