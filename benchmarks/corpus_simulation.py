@@ -81,7 +81,8 @@ def simulate_one(path: Path, program: Program, xy: Machine, xyz: Machine, second
     arrays = [capture.reference, capture.measured] + ([capture.control] if capture.control is not None else [])
     finite = all(bool(np.isfinite(a).all()) for a in arrays)
     rec.update(status="simulated" if finite else "non-finite", samples=len(capture), summary=summary,
-               cut="truncated" in sp.meta, at_least=sp.meta.get("truncated", {}).get("program_at_least", sp.duration), t_interp=t1 - t0, t_sim=t2 - t1, t_contour=t3 - t2,
+               cut="truncated" in sp.meta, at_least=sp.meta.get("truncated", {}).get("program_at_least", sp.duration),
+               t_interp=t1 - t0, t_sim=t2 - t1, t_contour=t3 - t2,
                capture=capture if finite else None)
     return rec
 
