@@ -26,6 +26,7 @@ def interpolate(
     profile: str = "trapezoid",
     sample_time: float | None = None,
     max_duration: float | None = None,
+    max_samples: int | None = None,
 ) -> Setpoints:
     """Interpolate a part program with a machine's axis limits and sample time.
 
@@ -45,6 +46,9 @@ def interpolate(
     max_duration : float, optional
         Budget [s]: a program that runs longer is cut after the last block that ends within it
         (see Notes); ``meta["truncated"]`` then says where. Without it the whole program runs.
+    max_samples : int, optional
+        Without ``max_duration``: refuse (:class:`vcnc.ProgramTooLongError`) a program that needs
+        more samples (default: the interpolator's guard, ``interpolators.interpolate``).
 
     Notes
     -----
@@ -69,7 +73,8 @@ def interpolate(
         ts = machine.sample_time if ts is None else ts
     ts = 1e-3 if ts is None else ts
     if max_duration is None:
-        sp = interpolators.interpolate(program, limits=limits, sample_time=ts, profile=profile)
+        guard = {} if max_samples is None else {"max_samples": max_samples}
+        sp = interpolators.interpolate(program, limits=limits, sample_time=ts, profile=profile, **guard)
     elif isinstance(max_duration, (int, float)) and math.isfinite(max_duration) and max_duration > 0:
         sp = _first_seconds(program, limits=limits, sample_time=ts, profile=profile, max_duration=float(max_duration))
     else:

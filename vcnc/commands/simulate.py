@@ -14,6 +14,11 @@ HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON,
 
 log = logging.getLogger(__name__)
 
+#: Samples ``vcnc simulate`` runs without ``--max-seconds`` (2.8 h at Ts = 1 ms; about 4 GB for three
+#: axes between setpoints, capture and summary): a longer program is refused, naming the option, rather
+#: than running the machine out of memory (a 5 h program took more than 9 GB and failed).
+MAX_SAMPLES = 10_000_000
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("program", help="part program (ISO G-code or Heidenhain conversational)")
@@ -31,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import interpolators
-    from vcnc.core.errors import GCodeError
+    from vcnc.core.errors import GCodeError, ProgramTooLongError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
     from vcnc.facade import interpolate, program_meta
@@ -40,7 +45,16 @@ def run(args: argparse.Namespace) -> int:
     machine = load_machine(args.machine)
     program = interpolators.load_program(args.program, context=program_context(args, machine))
     print_program_notes(program, args.program)
-    setpoints = interpolate(program, machine, profile=args.profile, max_duration=args.max_seconds)
+    try:
+        setpoints = interpolate(program, machine, profile=args.profile, max_duration=args.max_seconds,
+                                max_samples=None if args.max_seconds else MAX_SAMPLES)
+    except ProgramTooLongError as exc:
+        raise GCodeError(
+            f"the program needs {'at least ' if exc.at_least else ''}{exc.samples} samples "
+            f"({exc.samples * exc.sample_time / 3600:.3g} h at Ts = {exc.sample_time:g} s), more than the "
+            f"{MAX_SAMPLES} vcnc simulate holds in memory",
+            file=args.program, expected="--max-seconds S to simulate its first S seconds",
+        ) from None
     if len(setpoints) < 2:  # a capture holds at least two samples
         raise GCodeError("the program neither moves an axis nor dwells: nothing to simulate", file=args.program,
                          expected="a program with a move or a dwell")

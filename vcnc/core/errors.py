@@ -108,7 +108,13 @@ class GCodeError(InputError):
 
 
 class ProgramTooLongError(GCodeError):
-    """A part program that needs more samples than the interpolation may hold (``max_samples``)."""
+    """A part program that needs more samples than the interpolation may hold (``max_samples``).
+
+    ``samples`` is the number it needs (a lower bound when ``at_least``), ``sample_time`` [s] theirs."""
+
+    samples: int = 0
+    at_least: bool = False
+    sample_time: float = 0.0
 
 
 class CaptureError(InputError):
