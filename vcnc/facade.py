@@ -170,28 +170,33 @@ def _first_seconds(program: Program, *, limits, sample_time: float, profile: str
     import interpolators
 
     budget = int(math.floor(max_duration / sample_time + 1e-9)) + 1
-    margin = 1.0 + 0.1 * max_duration  # [s] after the cut, where the prefix's own stop may begin
-    cap = 10 * (budget + int(margin / sample_time))
+    margin = min(1.0 + 0.1 * max_duration, 60.0)  # [s] after the cut, where the prefix's own stop may begin
+    cap = budget + int(2 * margin / sample_time)  # the samples one try may hold (memory)
 
-    def run(k: int, max_samples: int) -> Setpoints | None:
+    def run(k: int) -> Setpoints | int:
+        """The setpoints of the first ``k`` blocks, or the samples they need beyond ``cap``."""
         part = program if k == len(program.blocks) else dataclasses.replace(program, blocks=program.blocks[:k])
         try:
             return interpolators.interpolate(part, limits=limits, sample_time=sample_time, profile=profile,
-                                             max_samples=max_samples)
-        except ProgramTooLongError:
-            return None
+                                             max_samples=cap)
+        except ProgramTooLongError as exc:
+            return exc.samples
 
     least = _least_times(program, limits)
     k = min(int(np.searchsorted(least, max_duration + margin, side="right")) + 1, len(program.blocks))
-    sp = run(k, cap)
-    if sp is not None and k == len(program.blocks) and len(sp) <= budget:
-        return sp
-    if sp is None:  # far slower than the bound: the longest prefix within budget and margin, by bisection
-        lo, hi = 0, k
+    got = run(k)
+    if isinstance(got, Setpoints):
+        sp = got
+        if k == len(program.blocks) and len(sp) <= budget:
+            return sp
+    else:  # slower than the bound: the longest prefix within cap, from a proportional guess, then bisection
+        lo, hi, sp = 0, k, None
+        guess = max(1, int(k * cap / got * 0.9))
         while hi - lo > 1:
-            mid = (lo + hi) // 2
-            got = run(mid, budget + int(margin / sample_time))
-            lo, hi, sp = (mid, hi, got) if got is not None else (lo, mid, sp)
+            mid = guess if lo < guess < hi else (lo + hi) // 2
+            guess = 0
+            got = run(mid)
+            lo, hi, sp = (mid, hi, got) if isinstance(got, Setpoints) else (lo, mid, sp)
         if sp is None:
             raise GCodeError(f"the first block alone runs longer than the budget of {max_duration:g} s "
                              "and its margin", file=program.source, line=program.blocks[0].line,

@@ -137,15 +137,15 @@ def test_programs_with_little_or_no_feed_motion_simulate_to_finite_captures(tmp_
 
 
 def test_simulate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(tmp_path, capsys):
-    # 3000 m at 50 mm/s: 60000 s, 60 million samples at 1 ms, beyond vcnc simulate's guard
+    # 1200 moves of 100 mm at 10 mm/s: 12000 s, 12 million samples at 1 ms, beyond vcnc simulate's guard
     from vcnc.commands.simulate import MAX_SAMPLES
 
-    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\n" + "G1 X1000 F3000\nG1 X0\n" * 1500 + "M30\n")
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\n" + "G1 X100 F600\nG1 X0\n" * 600 + "M30\n")
     out = tmp_path / "c.csv"
     assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"error: {prog}: the program needs at least ")
     assert f"more than the {MAX_SAMPLES} vcnc simulate holds in memory; expected --max-seconds S" in err
     assert not out.exists()
-    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--max-seconds", "2"]) == 0
-    assert len(vcnc.read_capture(out)) == 2001
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--max-seconds", "30"]) == 0
+    assert len(vcnc.read_capture(out)) == 30001
