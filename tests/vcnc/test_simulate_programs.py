@@ -137,7 +137,7 @@ def test_programs_with_little_or_no_feed_motion_simulate_to_finite_captures(tmp_
 
 
 def test_simulate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(tmp_path, capsys):
-    # 1200 moves of 100 mm at 10 mm/s: 12000 s, 12 million samples at 1 ms, beyond vcnc simulate's guard
+    # 1200 moves of 100 mm at 10 mm/s: 12000 s, 12 million samples at 1 ms, beyond vcnc simulate's guard (5 million)
     from vcnc.commands.simulate import MAX_SAMPLES
 
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0\n" + "G1 X100 F600\nG1 X0\n" * 600 + "M30\n")

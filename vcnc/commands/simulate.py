@@ -14,10 +14,11 @@ HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON,
 
 log = logging.getLogger(__name__)
 
-#: Samples ``vcnc simulate`` runs without ``--max-seconds`` (2.8 h at Ts = 1 ms; about 4 GB for three
-#: axes between setpoints, capture and summary): a longer program is refused, naming the option, rather
-#: than running the machine out of memory (a 5 h program took more than 9 GB and failed).
-MAX_SAMPLES = 10_000_000
+#: Samples ``vcnc simulate`` runs without ``--max-seconds`` (83 min at Ts = 1 ms): a longer program is
+#: refused, naming the option, rather than running the machine out of memory (measured peak: 7.8 GB
+#: for 9 million samples of three axes between interpolation, simulation, contour and CSV; a 5 h
+#: program failed with MemoryError after 9 GB).
+MAX_SAMPLES = 5_000_000
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
