@@ -45,6 +45,12 @@ def test_program_moving_z_on_an_xy_machine_names_line_axis_machine(tmp_path, cap
     assert "[axes.z]" in err and not out.exists()
 
 
+def test_interpolate_with_an_xy_machine_names_the_line_moving_z(tmp_path, capsys):
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n")
+    assert main(["interpolate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "s.csv")]) == 2
+    assert capsys.readouterr().err.startswith(f"error: {prog}:4: the program moves axis Z, which machine 'fadal-pid'")
+
+
 def test_program_naming_z_without_moving_it_runs_on_an_xy_machine(tmp_path):
     # Z0 written at Z0 (a habit of CAM post-processors): the machine runs X and Y; no Z column
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0 Z0\nG1 X10 Y5 Z0 F600\nG3 X10 Y5 I-5 J0\nM30\n")
