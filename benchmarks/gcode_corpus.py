@@ -22,12 +22,13 @@ import os
 import re
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from interpolators import detect_dialect, interpolate, load_program  # noqa: E402
+from interpolators import Program, detect_dialect, interpolate, load_program  # noqa: E402
 from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
 
@@ -56,8 +57,10 @@ def reason(message: str) -> str:
     return text[:90]
 
 
-def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_000_000) -> dict:
-    """Run the corpus; returns the per-program outcomes and the totals."""
+def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_000_000,
+               visit: Callable[[Path, Program], dict] | None = None) -> dict:
+    """Run the corpus; returns the per-program outcomes and the totals. ``visit(path, program)``,
+    when given, is called with each program read, and what it returns is added to its record."""
     rows = manifest(d)
     out = []
     samples = 0
@@ -68,6 +71,8 @@ def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_00
         try:
             prog = load_program(path, context=INTERPOLATION_CONTEXT)
             rec["dialect"] = prog.dialect
+            if visit is not None:
+                rec.update(visit(path, prog))
             if interpolate_too and prog.blocks:
                 t0 = time.perf_counter()
                 sp = interpolate(prog, max_samples=max_samples)

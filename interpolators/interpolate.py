@@ -29,7 +29,7 @@ from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
-from vcnc.core.errors import GCodeError, InputError
+from vcnc.core.errors import InputError, ProgramTooLongError
 from vcnc.core.setpoints import Setpoints
 
 __all__ = ["interpolate", "MAX_SAMPLES"]
@@ -211,7 +211,7 @@ def interpolate(
     ------
     vcnc.InputError
         Bad limits, sample time or profile name, or missing limits for a moving axis.
-    vcnc.GCodeError
+    vcnc.ProgramTooLongError
         A program that would need more than ``max_samples`` samples.
     """
     if profile not in PROFILES:
@@ -600,12 +600,14 @@ def _check_samples(total_N: float, Ts: float, program: Program, max_samples: int
     """Refuse a program of ``total_N`` sample periods (``at_least``: a lower bound) when it needs more than
     ``max_samples`` samples."""
     if total_N + 1 > max_samples:
-        raise GCodeError(
+        exc = ProgramTooLongError(
             f"program needs {'at least ' if at_least else ''}{total_N + 1:.0f} samples at Ts = {Ts:g} s "
             f"({total_N * Ts:.6g} s), more than max_samples = {max_samples}",
             file=program.source,
             expected="a shorter program, a larger sample time or a larger max_samples",
         )
+        exc.samples, exc.at_least, exc.sample_time = int(total_N + 1), at_least, Ts
+        raise exc
 
 
 def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndarray, a_max: np.ndarray,

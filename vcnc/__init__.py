@@ -26,6 +26,7 @@ from vcnc.errors import (
     InputError,
     MachineError,
     ModelFileError,
+    ProgramTooLongError,
     SimulationError,
     VcncError,
 )
@@ -58,6 +59,7 @@ __all__ = [
     "VcncError",
     "InputError",
     "GCodeError",
+    "ProgramTooLongError",
     "CaptureError",
     "MachineError",
     "ModelFileError",

@@ -314,18 +314,24 @@ class ContourError:
             out["max_outside_um"] = float(max(0.0, e.max()) * 1e3) if e.size else float("nan")
             out["max_inside_um"] = float(max(0.0, -e.min()) * 1e3) if e.size else float("nan")
         feats = path_features(self.path)
-        s = self.arc_length[cov]
+        # samples sorted by arc length: each feature's window is one slice (a long program has tens
+        # of thousands of corners and millions of samples)
+        order = np.argsort(self.arc_length[cov], kind="stable")
+        s, abs_e = self.arc_length[cov][order], np.abs(e[order])
+        cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in self.path.segments])])
         for key, name in (("corners", "corner_max_um"), ("quadrants", "quadrant_max_um")):
             items = []
-            for s0 in feats[key]:
-                sel = np.abs(s - s0) <= window_mm
-                if not np.any(sel):
+            s0s = np.asarray(feats[key], dtype=float)
+            lo = np.searchsorted(s, s0s - window_mm, side="left")
+            hi = np.searchsorted(s, s0s + window_mm, side="right")
+            for s0, i, j in zip(s0s, lo, hi):
+                if j <= i:
                     continue
-                pos = _point_at(self.path, float(s0))
+                pos = _point_at(self.path, float(s0), cum)
                 items.append({
                     "arc_length_mm": float(s0),
                     "position_mm": [float(v) for v in pos],
-                    "max_um": float(np.max(np.abs(e[sel])) * 1e3),
+                    "max_um": float(np.max(abs_e[i:j]) * 1e3),
                 })
             out[key] = items
             out[name] = max((it["max_um"] for it in items), default=float("nan"))
@@ -426,8 +432,8 @@ def plot_plane(ce: ContourError) -> tuple[int, int]:
     return (idx + [1, 0])[:2] if len(idx) < 2 else (idx[0], idx[1])
 
 
-def _point_at(path: Path, s: float) -> np.ndarray:
-    cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in path.segments])])
+def _point_at(path: Path, s: float, cum: np.ndarray) -> np.ndarray:
+    """The point at arc length ``s`` [mm]; ``cum``: the segments' cumulative lengths from 0."""
     i = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(path) - 1))
     return path.segments[i].point_at(s - cum[i])
 
@@ -621,5 +627,5 @@ def contour_metrics(capture: Any, *, include_segments: np.ndarray | None = None)
         return None
     ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference,
                        t=capture.t, include_segments=include_segments)
-    m = ce.metrics()
+    m = error_metrics(ce.error[ce._covered()])  # the corners and quadrants of ce.metrics() are not asked for
     return {"max_um": m["max_um"], "rms_um": m["rms_um"]}

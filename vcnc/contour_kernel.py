@@ -92,11 +92,16 @@ def _project(px, py, pz, m, kind, start, end, direc, length, center, ep, eq, en,
             d1 = math.sqrt((a - R * c1) ** 2 + (b - R * s1) ** 2 + n * n)
             best_phi = 0.0 if d0 <= d1 else S
     else:
-        # candidates: every turn where the in-plane angle matches, and both end points
-        for j in range(-1, n_turns + 1):
-            phi = base + _TWO_PI * j
-            if phi < -eps or phi > S + eps:
-                continue
+        # Newton starts: every turn where the in-plane angle matches, and the foot along the axis
+        # (n / k, for a steep helix whose nearest point the in-plane angle alone does not find, as
+        # when P's angle lies outside a sweep of less than a turn); then both end points
+        for j in range(-1, n_turns + 2):
+            if j <= n_turns:
+                phi = base + _TWO_PI * j
+                if phi < -eps or phi > S + eps:
+                    continue
+            else:
+                phi = n / k
             phi = min(max(phi, 0.0), S)
             # 1-D Newton on d^2(phi)/2 = -R rho cos(psi - theta) + (n - k phi)^2 / 2 (+ const)
             for _ in range(30):

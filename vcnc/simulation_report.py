@@ -65,6 +65,8 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
 
     rep = Report(f"vcnc simulate: {capture.meta.get('program', '')} on {capture.meta.get('machine', '')}")
     rep.summary = summary
+    if capture.meta.get("truncated"):
+        rep.text(f"{capture.meta.get('program', 'the program')}: {capture.meta['truncated']}")
     rep.table(
         ["axis", "max tracking error", "rms tracking error", "unit"],
         [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],
@@ -92,22 +94,44 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     rep.figure("tracking", fig, caption="tracking error and control signal per axis")
     mov = [a for a in moving_axes(capture) if a not in ROTARY_AXES]  # the path of the linear axes
     if len(mov) >= 2:
-        i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
-        r = capture.reference[:, [i, j]]
+        fig, gain, what = _path_figure(capture, summary, mov)
+        rep.figure("path", fig, caption=f"path of axes {mov[0]}, {mov[1]} with the {what} magnified {gain:g} times")
+    return rep
+
+
+def _path_figure(capture: Capture, summary: dict[str, Any], mov: list[str]) -> tuple[Any, float, str]:
+    """The commanded path in the first two moving linear axes and the measured one with its contour
+    error magnified (:meth:`vcnc.contour.ContourError.magnified`: the deviation from the path, as the
+    thesis' contouring figures draw it), or, without a programmed path, its tracking error; returns
+    the figure, the magnification and what was magnified."""
+    import matplotlib.pyplot as plt
+
+    from vcnc.contour import auto_magnification, contour_error
+
+    i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
+    r = capture.reference[:, [i, j]]
+    c = summary.get("contour")
+    if c is not None:
+        ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference, t=capture.t)
+        gain = auto_magnification(capture.path, float(np.max(np.abs(ce.error))) if len(ce.error) else 0.0)
+        shown = ce.magnified(gain)[:, ["xyz".index(mov[0]), "xyz".index(mov[1])]]
+        what = "contour error"
+    else:
         err = capture.measured[:, [i, j]] - r
         extent = float(np.max(np.ptp(r, axis=0)))
         emax = float(np.max(np.abs(err))) or 1.0
         gain = max(1.0, float(10 ** np.floor(np.log10(max(0.05 * extent / emax, 1e-12)))))
-        fig, ax = plt.subplots(figsize=(6, 6))
-        ax.plot(r[:, 0], r[:, 1], lw=0.8, label="commanded")
-        ax.plot(r[:, 0] + gain * err[:, 0], r[:, 1] + gain * err[:, 1], lw=0.8, label=f"measured, error x{gain:g}")
-        ax.set_xlabel(f"{mov[0]} [mm]")
-        ax.set_ylabel(f"{mov[1]} [mm]")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
-        c = summary.get("contour")
-        ax.set_title("path" + (f" (contour error max {c['max_um']:.2f} um)" if c else ""), fontsize=9)
-        fig.tight_layout()
-        rep.figure("path", fig, caption=f"path of axes {mov[0]}, {mov[1]} with the error magnified {gain:g} times")
-    return rep
+        shown, what = r + gain * err, "tracking error"
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ax.plot(r[:, 0], r[:, 1], lw=0.8, label="commanded")
+    ax.plot(shown[:, 0], shown[:, 1], lw=0.8, label=f"measured, {what} x{gain:g}")
+    ax.set_xlabel(f"{mov[0]} [mm]")
+    ax.set_ylabel(f"{mov[1]} [mm]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    # the contour error is measured in every moving linear axis; the picture shows the first two
+    ax.set_title(f"path in {mov[0]}, {mov[1]}" + (f" (contour error in {', '.join(mov)}: max {c['max_um']:.2f} um)"
+                                                  if c else ""), fontsize=9)
+    fig.tight_layout()
+    return fig, gain, what

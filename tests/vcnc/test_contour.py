@@ -154,6 +154,19 @@ def test_helix_distance_is_exact():
     np.testing.assert_allclose(ce.error, 0.03, rtol=1e-7)
 
 
+def test_steep_helix_point_outside_the_sweep_angle_finds_the_foot_along_the_axis():
+    # a quarter turn of radius 1 mm rising 50 mm (a G18/G19 helix of a tool-path program is as steep):
+    # the points' in-plane angle lies before the sweep's start, yet the nearest point is mid-helix
+    helix = Arc([1, 0, 0], [0, 1, 50], [0, 0, 0], ccw=True)
+    path = Path(segments=(helix,), blocks=(0,), axes=("x", "y", "z"))
+    pts = np.array([[math.cos(-0.05), math.sin(-0.05), z] for z in (10.0, 25.0, 40.0)])
+    dense = helix.point_at(np.linspace(0.0, helix.length, 200_001))
+    brute = np.min(np.linalg.norm(dense[None, :, :] - pts[:, None, :], axis=2), axis=1)
+    ce = contour_error(path, pts, ("x", "y", "z"))
+    np.testing.assert_allclose(ce.error, brute, atol=1e-6)
+    assert np.all(ce.error < 1.5)  # the start point, 10-40 mm away, was taken before
+
+
 def test_matches_brute_force_on_perturbed_programs():
     rng = np.random.default_rng(5)
     # open variants (the brute force would rightly see the start of a closed path near its end)
@@ -209,6 +222,21 @@ def test_features_and_metrics_of_the_diamond():
     feats = path_features(path)
     np.testing.assert_allclose(feats["corners"], [9.0 + blend.length / 2])
     assert len(feats["quadrants"]) == 0
+
+
+def test_feature_windows_of_a_zigzag_match_the_definition():
+    # 59 corners: each corner's max is the largest error of the samples within FEATURE_WINDOW_MM of it
+    from vcnc.contour import FEATURE_WINDOW_MM
+
+    text = "G90 G00 X0 Y0\n" + "".join(f"G01 X{20 * (i % 2)} Y{2 * i} F6000\n" for i in range(1, 61)) + "M30\n"
+    sp = _setpoints(text)
+    ce = contour_error(sp.path, _first_order(sp.position), sp.axes, reference=sp.position)
+    m = ce.metrics()
+    corners = path_features(sp.path)["corners"]
+    expected = [np.max(np.abs(ce.error[np.abs(ce.arc_length - s0) <= FEATURE_WINDOW_MM])) * 1e3 for s0 in corners]
+    assert len(m["corners"]) == len(corners) == 59
+    np.testing.assert_allclose([c["max_um"] for c in m["corners"]], expected, rtol=1e-12)
+    np.testing.assert_allclose(m["corners"][5]["position_mm"][:2], [0.0, 12.0], atol=1e-9)  # end of move 6
 
 
 def test_clothoid_blend_distance():

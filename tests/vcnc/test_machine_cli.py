@@ -14,6 +14,7 @@ import vcnc
 from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
 from vcnc.commands.machines import PROGRAM_TABLE_DOC
+from vcnc.commands.simulate import MAX_SAMPLES
 from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
 from vcnc.errors import GCodeError, InputError
 from vcnc.setpoints import Setpoints
@@ -38,8 +39,9 @@ def _fake_interpolator(monkeypatch):
             raise vcnc.GCodeError("unknown word Q", file=str(path), line=3, column=1)
         return interpolators.Program(blocks=(), source=str(path))
 
-    def interpolate(program, *, limits, sample_time, profile):
+    def interpolate(program, *, limits, sample_time, profile, max_samples):
         assert profile in ("trapezoid", "scurve") and set(limits) >= {"x", "y"}
+        assert max_samples == MAX_SAMPLES  # vcnc simulate's memory guard is passed on
         t = np.arange(0, 1.0, sample_time)
         pos = np.c_[5 * np.sin(np.pi * t) ** 2, 5 * np.sin(2 * np.pi * t) ** 2]
         return Setpoints.from_positions(pos, sample_time=sample_time, axes=("x", "y"))

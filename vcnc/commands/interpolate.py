@@ -181,6 +181,10 @@ def run(args: argparse.Namespace) -> int:
         ts = float(getattr(machine, "sample_time", ts) or ts)
     program = load_program(args.program, context=program_context(args, machine))
     print_program_notes(program, args.program)
+    if machine is not None:
+        from vcnc.facade import check_program_axes
+
+        check_program_axes(program, machine)
     if args.ts is not None:
         ts = args.ts
     sp = interpolate(program, limits=limits, sample_time=ts, profile=args.profile)

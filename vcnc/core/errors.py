@@ -12,6 +12,7 @@ __all__ = [
     "VcncError",
     "InputError",
     "GCodeError",
+    "ProgramTooLongError",
     "CaptureError",
     "MachineError",
     "ModelFileError",
@@ -104,6 +105,16 @@ class InputError(VcncError, ValueError):
 
 class GCodeError(InputError):
     """A part program that cannot be parsed or interpolated."""
+
+
+class ProgramTooLongError(GCodeError):
+    """A part program that needs more samples than the interpolation may hold (``max_samples``).
+
+    ``samples`` is the number it needs (a lower bound when ``at_least``), ``sample_time`` [s] theirs."""
+
+    samples: int = 0
+    at_least: bool = False
+    sample_time: float = 0.0
 
 
 class CaptureError(InputError):

@@ -359,10 +359,8 @@ class Machine:
         """
         seed_v = self._check_run(setpoints, seed)
         n = len(setpoints)
-        out = np.empty((n, len(setpoints.axes), N_OUT))
         jobs, external = self._axis_jobs(setpoints, seed_v)
-        self._run_jobs(jobs, n, out)
-        measured, table, velocity, control, friction, position = (out[:, :, c].copy() for c in range(6))
+        measured, table, velocity, control, friction, position = self._run_jobs(jobs, n, len(setpoints.axes))
         for i, y in external.items():
             measured[:, i] = y
         all_compiled = not external
@@ -432,9 +430,11 @@ class Machine:
             jobs.append((i, a, args))
         return jobs, external
 
-    def _run_jobs(self, jobs: list, n: int, out: np.ndarray) -> None:
+    def _run_jobs(self, jobs: list, n: int, n_axes: int) -> list[np.ndarray]:
         """Run the kernel calls (one thread per axis for long multi-axis runs: the kernel releases the
-        GIL) and copy their outputs into place."""
+        GIL); the six outputs (measured, table, velocity, control, friction, position), each
+        ``(n, n_axes)``, filled column by column, each axis' kernel output released once copied (a
+        long run holds twice its outputs at most, not three times)."""
         from vcnc.engine.kernel import simulate_axis
 
         if n:
@@ -449,8 +449,13 @@ class Machine:
                         f"machine {self.name!r}, axis {a}: the simulation diverged at "
                         f"t = {st * self.sample_time:.6g} s (unstable loop?)"
                     )
-        for i, _a, args in jobs:
-            out[:, i, :] = args[-1]
+        outs = [np.empty((n, n_axes)) for _ in range(6)]
+        while jobs:
+            i, _a, args = jobs.pop(0)
+            for c in range(6):
+                outs[c][:, i] = args[-1][:, c]
+            del args
+        return outs
 
 
 def _load_fmu_axis(path: str, *, file: str, line: int | None) -> ExternalAxis:

@@ -1,0 +1,157 @@
+"""``vcnc simulate`` / ``vcnc.interpolate(program, machine)`` on the programs users bring: axes the
+machine lacks, a time budget, programs without motion. Hand-written programs, real interpolation."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import interpolators
+import vcnc
+from vcnc.cli import main
+from vcnc.engine.machine import load_machine
+from vcnc.facade import interpolate, truncation_note
+
+#: A zigzag of 40 feed moves at 3000 mm/min (50 mm/s): about 40 s on fadal-pid, under G64 so the
+#: moves are passed at speed (a cut then lands inside a chain).
+ZIGZAG = "G21 G90 G64 P0.01\nG0 X0 Y0\n" + "".join(f"G1 X{50 * (i % 2)} Y{i} F3000\n" for i in range(1, 41)) + "M30\n"
+
+
+def write(tmp_path: Path, text: str, name: str = "part.nc") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+@pytest.mark.parametrize(
+    ("text", "line"),
+    [
+        ("G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10 Y5 F600\nM30\n", 2),  # Z moves from the origin at line 2
+        ("G21 G90\nG0 X0 Y0 Z0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n", 4),
+        ("G21 G90 G18\nG0 X0 Y0 Z0\nG2 X0 Z0 I5 K0 F600\nM30\n", 3),  # a full circle in ZX ends where it starts
+        ("G21 G90 G18\nG0 X0 Y0 Z0\nG2 X10 Z0 I5 K0 F600\nM30\n", 3),  # a half circle: Z named once
+    ],
+)
+def test_program_moving_z_on_an_xy_machine_names_line_axis_machine(tmp_path, capsys, text, line):
+    prog = write(tmp_path, text)
+    out = tmp_path / "c.csv"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}:{line}: the program moves axis Z, which machine 'fadal-pid' does not have "
+                          "(its axes: X, Y)")
+    assert "[axes.z]" in err and not out.exists()
+
+
+def test_interpolate_with_an_xy_machine_names_the_line_moving_z(tmp_path, capsys):
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n")
+    assert main(["interpolate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "s.csv")]) == 2
+    assert capsys.readouterr().err.startswith(f"error: {prog}:4: the program moves axis Z, which machine 'fadal-pid'")
+
+
+def test_program_naming_z_without_moving_it_runs_on_an_xy_machine(tmp_path):
+    # Z0 written at Z0 (a habit of CAM post-processors): the machine runs X and Y; no Z column
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0 Z0\nG1 X10 Y5 Z0 F600\nG3 X10 Y5 I-5 J0\nM30\n")
+    js = tmp_path / "s.json"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv"),
+                 "--json", str(js)]) == 0
+    s = json.loads(js.read_text())
+    assert s["axes"] == ["x", "y"] and s["contour"]["max_um"] > 0
+    cap = vcnc.read_capture(tmp_path / "c.csv")
+    assert cap.axes == ("x", "y") and np.isfinite(cap.measured).all()
+
+
+def test_max_duration_cuts_at_the_budget_with_the_whole_programs_samples():
+    machine = load_machine("fadal-pid")
+    program = interpolators.parse_program(ZIGZAG, source="zigzag.nc")
+    whole = interpolate(program, machine)
+    assert whole.duration > 30.0
+    cut = interpolate(program, machine, max_duration=5.0)
+    assert len(cut) == 5001 and cut.duration == pytest.approx(5.0)
+    # the samples are the whole program's: the prefix interpolated runs past the cut by the margin
+    np.testing.assert_array_equal(cut.position, whole.position[: len(cut)])
+    info = cut.meta["truncated"]
+    assert info["of"] == 40 + 1 and info["exact"]
+    assert info["blocks"] == int(cut.block[-1])  # the blocks before the one the cut falls in are complete
+    assert info["line"] == program.blocks[info["blocks"]].line
+    assert info["program_at_least"] >= 40 * 50 / 50.0  # 40 moves of >= 50 mm at 50 mm/s
+    note = truncation_note(cut)
+    assert note.startswith("only the first 5 s of at least ") and f"line {info['line']}" in note
+
+
+def test_max_duration_longer_than_the_program_changes_nothing():
+    machine = load_machine("fadal-pid")
+    program = interpolators.parse_program("G21\nG0 X0 Y0\nG1 X20 Y10 F1200\nM30\n")
+    whole = interpolate(program, machine)
+    sp = interpolate(program, machine, max_duration=60.0)
+    assert "truncated" not in sp.meta and truncation_note(sp) is None
+    np.testing.assert_array_equal(sp.position, whole.position)
+
+
+def test_max_duration_a_first_block_longer_than_the_budget_is_refused():
+    program = interpolators.parse_program("G21\nG1 X500 F60\nM30\n", source="slow.nc")  # 500 s
+    with pytest.raises(vcnc.GCodeError, match=r"slow\.nc:2: the first block alone runs longer than the budget of 1 s"):
+        interpolate(program, load_machine("fadal-pid"), max_duration=1.0)
+    with pytest.raises(vcnc.InputError, match="max_duration must be a finite value > 0 s"):
+        interpolate(program, load_machine("fadal-pid"), max_duration=0.0)
+
+
+def test_simulate_max_seconds_says_where_it_cut_in_the_output_and_the_capture(tmp_path, capsys):
+    prog = write(tmp_path, ZIGZAG)
+    out, js, rep = tmp_path / "c.csv", tmp_path / "s.json", tmp_path / "rep"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--json", str(js),
+                 "--max-seconds", "3", "--report", str(rep)]) == 0
+    said = capsys.readouterr().out
+    assert f"{prog}: only the first 3 s of at least" in said and "the rest is not run" in said
+    cap = vcnc.read_capture(out)
+    assert len(cap) == 3001 and cap.meta["truncated"].startswith("only the first 3 s")
+    assert json.loads(js.read_text())["samples"] == 3001
+    assert "part.nc: only the first 3 s of at least" in (rep / "index.html").read_text()
+
+
+@pytest.mark.parametrize("text", ["G21\nM30\n", "G21\nG0 X0 Y0\nM30\n"])  # no block; a move to where it is
+def test_program_without_motion_or_dwell_is_refused_nothing_written(tmp_path, capsys, text):
+    prog = write(tmp_path, text)
+    out = tmp_path / "c.csv"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out)]) == 2
+    assert capsys.readouterr().err == (f"error: {prog}: the program neither moves an axis nor dwells: nothing to "
+                                       "simulate; expected a program with a move or a dwell\n")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "G21\nG4 P1\nM30\n",  # a dwell only
+        "G21\nG0 X10 Y10\nM30\n",  # a single point
+        "G21 G90\nG0 X10 Y10\nG0 X20\nG0 Y0\nM30\n",  # rapids only
+        "G20 G90\nG0 X0 Y0\nG1 X1 Y1 F20\nM30\n",  # inch on a metric machine: converted to mm
+    ],
+)
+def test_programs_with_little_or_no_feed_motion_simulate_to_finite_captures(tmp_path, text):
+    prog = write(tmp_path, text)
+    out, js = tmp_path / "c.csv", tmp_path / "s.json"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--json", str(js)]) == 0
+    cap = vcnc.read_capture(out)
+    assert len(cap) >= 1 and np.isfinite(cap.reference).all() and np.isfinite(cap.measured).all()
+    s = json.loads(js.read_text())
+    assert all(np.isfinite(v["max_um"]) and np.isfinite(v["rms_um"]) for v in s["tracking"].values())
+    if "G20" in text:
+        assert cap.reference[:, 0].max() == pytest.approx(25.4)  # 1 inch, in mm
+
+
+def test_simulate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(tmp_path, capsys):
+    # 1200 moves of 100 mm at 10 mm/s: 12000 s, 12 million samples at 1 ms, beyond vcnc simulate's guard (5 million)
+    from vcnc.commands.simulate import MAX_SAMPLES
+
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\n" + "G1 X100 F600\nG1 X0\n" * 600 + "M30\n")
+    out = tmp_path / "c.csv"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}: the program needs at least ")
+    assert f"more than the {MAX_SAMPLES} vcnc simulate holds in memory; expected --max-seconds S" in err
+    assert not out.exists()
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--max-seconds", "30"]) == 0
+    assert len(vcnc.read_capture(out)) == 30001
