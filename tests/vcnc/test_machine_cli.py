@@ -14,10 +14,8 @@ import vcnc
 from interpolators.context import DEFAULT_CONTEXT
 from vcnc.cli import main
 from vcnc.commands.machines import PROGRAM_TABLE_DOC
-from vcnc.commands.simulate import MAX_SAMPLES
 from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
 from vcnc.errors import GCodeError, InputError
-from vcnc.setpoints import Setpoints
 
 PROGRAM = "G90 G21\nG00 X0 Y0\nG01 X5 F3000\nG01 X5 Y5\nG01 X0 Y0\nM30\n"
 
@@ -27,27 +25,6 @@ def program(tmp_path: Path) -> Path:
     p = tmp_path / "part.nc"
     p.write_text(PROGRAM)
     return p
-
-
-@pytest.fixture(autouse=True)
-def _fake_interpolator(monkeypatch):
-    """The CLI contract is tested independently of the interpolator: a fixed two-axis motion."""
-
-    def load_program(path, *, context):
-        assert context is not None  # the machine's program context is passed on
-        if "bad" in str(path):
-            raise vcnc.GCodeError("unknown word Q", file=str(path), line=3, column=1)
-        return interpolators.Program(blocks=(), source=str(path))
-
-    def interpolate(program, *, limits, sample_time, profile, max_samples):
-        assert profile in ("trapezoid", "scurve") and set(limits) >= {"x", "y"}
-        assert max_samples == MAX_SAMPLES  # vcnc simulate's memory guard is passed on
-        t = np.arange(0, 1.0, sample_time)
-        pos = np.c_[5 * np.sin(np.pi * t) ** 2, 5 * np.sin(2 * np.pi * t) ** 2]
-        return Setpoints.from_positions(pos, sample_time=sample_time, axes=("x", "y"))
-
-    monkeypatch.setattr(interpolators, "load_program", load_program, raising=False)
-    monkeypatch.setattr(interpolators, "interpolate", interpolate, raising=False)
 
 
 def test_machines_lists_all(capsys) -> None:
@@ -121,7 +98,7 @@ def test_simulate_bad_machine_file_exit_2_nothing_written(tmp_path: Path, progra
 
 def test_simulate_bad_program_exit_2(tmp_path: Path, capsys) -> None:
     prog = tmp_path / "bad.nc"
-    prog.write_text("G01 Q5\n")
+    prog.write_text("G90 G21\nG00 X0 Y0\nG01 X5 Q5 F3000\n")  # Q outside a canned cycle, on line 3
     rc = main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")])
     assert rc == 2
     assert not (tmp_path / "c.csv").exists()
