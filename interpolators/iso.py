@@ -637,7 +637,7 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             if lacks:
                 axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.extra_axes)])
                 where.fail(f"axis word {w.letter!r} is not supported: this machine has no {kind} "
-                           f"{w.letter} (its axes: {axes})", column=w.column, text=w.text,
+                           f"{w.letter} (axis words it takes: {axes})", column=w.column, text=w.text,
                            expected=f"axis words {axes}")
             if w.letter in seen:
                 where.fail(f"word {w.letter} appears twice in one block", column=w.column, text=w.text,

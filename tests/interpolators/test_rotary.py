@@ -141,7 +141,7 @@ def test_non_rotary_program_has_no_rotary_positions():
 def test_machine_without_the_axis_is_a_clear_error():
     with pytest.raises(GCodeError, match="this machine has no rotary axis B"):
         parse_program("G21 G0 X1 B10\n", context=DEFAULT_CONTEXT)
-    with pytest.raises(GCodeError, match="no rotary axis C .*its axes: X, Y, Z, A"):
+    with pytest.raises(GCodeError, match="no rotary axis C .*axis words it takes: X, Y, Z, A"):
         parse_program("G21 G0 C10\n", context=MachineContext(extra_axes=("a",)))
     with pytest.raises(InputError, match="no limits for rotary axis 'a'"):
         interpolate(parse_program("G21 G1 A10 F100\n", context=CTX),

@@ -134,9 +134,9 @@ def test_limits_held_on_a_mixed_program_both_profiles():
 
 def test_machine_without_the_axis_is_a_clear_error():
     with pytest.raises(GCodeError, match=r":1:\d+: axis word 'U' is not supported: this machine has no secondary "
-                                         r"linear axis U \(its axes: X, Y, Z\)"):
+                                         r"linear axis U \(axis words it takes: X, Y, Z\)"):
         parse_program("G21 G0 X1 U10\n", context=DEFAULT_CONTEXT)
-    with pytest.raises(GCodeError, match="no secondary linear axis W .*its axes: X, Y, Z, A, U"):
+    with pytest.raises(GCodeError, match="no secondary linear axis W .*axis words it takes: X, Y, Z, A, U"):
         parse_program("G21 G0 W10\n", context=MachineContext(extra_axes=("a", "u")))
     prog = parse_program("G21 G0 X1 U0\n", context=DEFAULT_CONTEXT)  # a U0 that moves nothing: a note
     assert prog.axes == ("x",) and any("U0" in n for n in prog.notes)
