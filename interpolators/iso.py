@@ -1086,7 +1086,8 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
     looked = ", ".join(st.context.dialect.user_m_path) or "none given"
     where.fail(f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
                f"USER_M_PATH): {name} not found (folders: {looked})", column=w.column, text=w.text,
-               expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path")
+               expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
+                        "or of --user-m-path")
 
 
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:

@@ -635,7 +635,8 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
         start = prog.external_sub(label)
         if start is None:
             prog.fail(pc, f"O-word o{label} call: the subroutine is neither in this file nor in "
-                          f"{label.strip('<>')}.ngc beside it", f"o{label} sub ... endsub")
+                          f"{label.strip('<>')}.ngc beside it or in a folder of the subroutine path (the machine's "
+                          f"[program] subroutine_path, --subroutine-path)", f"o{label} sub ... endsub")
         if not label.startswith("<") and prog.sources[start] != prog.source:
             # LinuxCNC interp_o_word.cc: LinuxCNC reads a subroutine file from its o<name> sub on, so a
             # numbered subroutine there is neither in its offset table nor a file of its own

@@ -49,3 +49,26 @@ def test_missing_program_exit_2(tmp_path, capsys):
 def test_bad_toolpath_option_exit_2(tmp_path, capsys):
     assert main(["toolpath", "circle", "--radius", "-1", "-o", str(tmp_path / "c.nc")]) == 2
     assert not (tmp_path / "c.nc").exists()
+
+
+def test_subroutine_and_user_m_paths_on_the_command_line(tmp_path, capsys, monkeypatch):
+    """--subroutine-path / --user-m-path (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH, USER_M_PATH), relative to the
+    working folder, searched before the machine's; they survive --dialect."""
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "lib" / "square.ngc").write_text("o<square> sub\nG1 X#1 F600\nG1 Y#1\no<square> endsub\nM2\n")
+    (tmp_path / "mfiles").mkdir()
+    m101 = tmp_path / "mfiles" / "M101"
+    m101.write_text("#!/bin/sh\nexit 0\n")
+    m101.chmod(0o755)
+    part = tmp_path / "part" / "part.ngc"
+    part.parent.mkdir()
+    part.write_text("G21 G90\nG0 X0 Y0\nM101\no<square> call [7]\nM2\n")
+    blocks = tmp_path / "b.csv"
+    out = tmp_path / "sp.csv"
+    assert main(["interpolate", str(part), "-o", str(out)]) == 2
+    assert "M101" in capsys.readouterr().err and not out.exists()
+    monkeypatch.chdir(tmp_path)
+    assert main(["interpolate", str(part), "-o", str(out), "--blocks", str(blocks), "--subroutine-path", "lib",
+                 "--user-m-path", "mfiles", "--dialect", "linuxcnc"]) == 0
+    rows = [r.split(",") for r in blocks.read_text().splitlines()[1:]]
+    assert [(float(r[3]), float(r[4])) for r in rows][-2:] == [(7.0, 0.0), (7.0, 7.0)]

@@ -33,19 +33,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def add_context_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--dialect`` and ``--tool-table``, shared by the commands that read part programs."""
+    """``--dialect``, ``--tool-table``, ``--subroutine-path`` and ``--user-m-path``, shared by the commands
+    that read part programs."""
     parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl"),
                         help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas) "
                              "(default: the machine's, else linuxcnc)")
     parser.add_argument("--tool-table", metavar="FILE",
                         help="LinuxCNC tool table (T1 P1 D6.0 Z+12.5 ;comment) for G43 H and G41/G42 D")
+    parser.add_argument("--subroutine-path", metavar="DIR[:DIR]",
+                        help="folders searched for the file <name>.ngc of an o<name> call after the program's own "
+                             "folder (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH; before the machine's)")
+    parser.add_argument("--user-m-path", metavar="DIR[:DIR]",
+                        help="folders holding the M100-M199 user programs (LinuxCNC INI [RS274NGC] USER_M_PATH; "
+                             "before the machine's)")
 
 
 def program_context(args: argparse.Namespace, machine=None):
     """The MachineContext for reading a program: the machine's (without one:
-    ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect/--tool-table
-    applied."""
+    ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect, --tool-table,
+    --subroutine-path and --user-m-path applied (the paths searched before the machine's)."""
     import dataclasses
+    import os
 
     from interpolators.context import DIALECTS, INTERPOLATION_CONTEXT, read_tool_table
 
@@ -54,9 +62,16 @@ def program_context(args: argparse.Namespace, machine=None):
     if getattr(args, "dialect", None):
         old = context.dialect
         changes["dialect"] = dataclasses.replace(DIALECTS[args.dialect], default_units=old.default_units,
-                                                 continuous_path=old.continuous_path, tolerance=old.tolerance)
+                                                 continuous_path=old.continuous_path, tolerance=old.tolerance,
+                                                 subroutine_path=old.subroutine_path, user_m_path=old.user_m_path)
     if getattr(args, "tool_table", None):
         changes["tools"] = {**context.tools, **read_tool_table(args.tool_table)}
+    paths = {key: tuple(os.path.abspath(p) for p in getattr(args, key).split(":") if p)  # relative: to the cwd
+             for key in ("subroutine_path", "user_m_path")
+             if getattr(args, key, None)}
+    if paths:
+        dialect = changes.get("dialect", context.dialect)
+        changes["dialect"] = dataclasses.replace(dialect, **{k: v + getattr(dialect, k) for k, v in paths.items()})
     return dataclasses.replace(context, **changes) if changes else context
 
 
