@@ -59,6 +59,7 @@ import re
 import numpy as np
 
 from tests.interpolators.reference_iso import Expected, ReferenceError
+from tests.interpolators.reference_match import match_blocks
 
 __all__ = ["heidenhain_reference"]
 
@@ -2035,3 +2036,16 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     else:
         return None
     return True
+
+
+def checked_program(text: str, context):
+    """The Heidenhain reader's program of ``text``, its blocks checked against this reference: every row of
+    ``--blocks`` agrees exactly."""
+    from interpolators.heidenhain import parse_heidenhain
+    from vcnc.commands.interpolate import blocks_table
+
+    prog = parse_heidenhain(text, source="t.h", context=context)
+    match = match_blocks(heidenhain_reference(text, context), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    assert match.exact == len(prog.blocks)
+    return prog

@@ -13,9 +13,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 HEAD = "0 BEGIN PGM T MM\nTOOL DEF 1 L+0 R+5\nTOOL CALL 1 Z S1000\nL X+0 Y+0 Z+100 R0 FMAX\n"
@@ -26,12 +24,7 @@ COMMON = "Q200=2 Q201=-10 Q206=150 Q202=5 Q207=500 Q203=+0 Q204=30 Q216=+50 Q217
 
 def run(definition: str, *, reference: bool = True):
     text = HEAD + f"CYCL DEF {definition}\nCYCL CALL\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=CTX)
-    if reference:
-        match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
-        assert match.mismatch is None, match.mismatch
-        assert match.exact == len(prog.blocks)
-    return prog
+    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
 
 
 def start_and_levels(prog) -> tuple[list, list]:

@@ -11,9 +11,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 HEAD = "0 BEGIN PGM T MM\n"
@@ -22,12 +20,7 @@ CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
 
 def run(body: str, *, reference: bool = True):
     text = HEAD + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=CTX)
-    if reference:
-        match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
-        assert match.mismatch is None, match.mismatch
-        assert match.exact == len(prog.blocks)
-    return prog
+    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
 
 
 SLOT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 253 SLOT MILLING {q} Q218=30 "

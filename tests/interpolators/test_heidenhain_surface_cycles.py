@@ -11,9 +11,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 HEAD = "0 BEGIN PGM T MM\n"
@@ -22,12 +20,7 @@ CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
 
 def run(body: str, *, reference: bool = True):
     text = HEAD + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=CTX)
-    if reference:
-        match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
-        assert match.mismatch is None, match.mismatch
-        assert match.exact == len(prog.blocks)
-    return prog
+    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
 
 
 # a face 60 x 30 from (0, 0), milled from Z+2.5 down to Z+0 with a tool of radius 10: 2 mm in infeeds of at most
