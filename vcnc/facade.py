@@ -53,7 +53,9 @@ def interpolate(
     Notes
     -----
     The cut keeps the first ``k`` blocks, ``k`` the largest whose run fits in ``max_duration``
-    (the prefix is found by doubling then bisection, each try bounded by the budget's samples).
+    (a first guess from a lower bound of the block times, then, when that prefix is too long, a
+    guess in proportion to the samples it needs and bisection; each try bounded by the budget's
+    samples).
     Its samples equal the whole program's up to the last exact stop before the cut; after it, the
     last block ends at rest where the whole program may pass at speed (G64), which the note says.
     """
@@ -85,13 +87,8 @@ def interpolate(
 def _machine_axes(setpoints: Setpoints, axes: tuple[str, ...]) -> Setpoints:
     """``setpoints`` without the columns of axes not in ``axes``: those the program names but never
     moves (:func:`check_program_axes` refused the others), constant, so the machine can run it."""
-    keep = [i for i, a in enumerate(setpoints.axes) if a in axes]
-    if len(keep) == len(setpoints.axes):
-        return setpoints
-    return dataclasses.replace(
-        setpoints, axes=tuple(setpoints.axes[i] for i in keep), position=setpoints.position[:, keep],
-        velocity=setpoints.velocity[:, keep], acceleration=setpoints.acceleration[:, keep],
-    )
+    keep = tuple(a for a in setpoints.axes if a in axes)
+    return setpoints if len(keep) == len(setpoints.axes) else setpoints.select_axes(keep)
 
 
 def check_program_axes(program: Program, machine: Machine) -> None:
@@ -157,14 +154,6 @@ def _least_times(program: Program, limits) -> np.ndarray:
     return np.cumsum(t)
 
 
-def _cut(setpoints: Setpoints, n: int) -> Setpoints:
-    """The first ``n`` samples."""
-    return dataclasses.replace(
-        setpoints, t=setpoints.t[:n], position=setpoints.position[:n], velocity=setpoints.velocity[:n],
-        acceleration=setpoints.acceleration[:n], block=setpoints.block[:n], meta=dict(setpoints.meta),
-    )
-
-
 def _first_seconds(program: Program, *, limits, sample_time: float, profile: str, max_duration: float) -> Setpoints:
     """The first ``max_duration`` [s] of ``program``'s setpoints (see :func:`interpolate`)."""
     import interpolators
@@ -203,7 +192,7 @@ def _first_seconds(program: Program, *, limits, sample_time: float, profile: str
                              expected="a larger budget")
         k = lo
     exact = sp.duration >= max_duration + margin or k == len(program.blocks)
-    out = _cut(sp, budget)
+    out = sp.slice(0, budget)
     # the blocks before the one the cut falls in are complete (all of the prefix when nothing was cut)
     done = k if len(out) == len(sp) else int(out.block[-1])
     out.meta["truncated"] = {

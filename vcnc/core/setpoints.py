@@ -105,6 +105,20 @@ class Setpoints:
         except ValueError:
             raise InputError(f"axis {axis!r} not in setpoints (axes: {', '.join(self.axes)})") from None
 
+    def select_axes(self, axes: tuple[str, ...]) -> Setpoints:
+        """The setpoints of ``axes`` only, in that order (InputError naming the axes present), as
+        :meth:`vcnc.core.capture.Capture.select_axes`."""
+        cols = [self.axis_index(a) for a in axes]
+        return dataclasses.replace(self, axes=tuple(axes), position=self.position[:, cols],
+                                   velocity=self.velocity[:, cols], acceleration=self.acceleration[:, cols])
+
+    def slice(self, start: int, stop: int) -> Setpoints:
+        """Samples ``start:stop`` (time kept; ``meta`` copied), as :meth:`vcnc.core.capture.Capture.slice`."""
+        return dataclasses.replace(
+            self, t=self.t[start:stop], position=self.position[start:stop], velocity=self.velocity[start:stop],
+            acceleration=self.acceleration[start:stop], block=self.block[start:stop], meta=dict(self.meta),
+        )
+
     def to_csv(self, path: str) -> None:
         """Write ``t, <a>_ref, <a>_vel, <a>_acc`` per axis, and ``block`` (atomic)."""
         cols = [self.t[:, None]]

@@ -449,10 +449,10 @@ class Machine:
                         f"machine {self.name!r}, axis {a}: the simulation diverged at "
                         f"t = {st * self.sample_time:.6g} s (unstable loop?)"
                     )
-        outs = [np.empty((n, n_axes)) for _ in range(6)]
+        outs = [np.empty((n, n_axes)) for _ in range(N_OUT)]
         while jobs:
             i, _a, args = jobs.pop(0)
-            for c in range(6):
+            for c in range(N_OUT):
                 outs[c][:, i] = args[-1][:, c]
             del args
         return outs
