@@ -351,7 +351,7 @@ class _State:
     frame: Frame | None = None  # Fanuc/Haas G51.1 mirror, G51 scaling, G68 rotation of the program coordinates
     stopped: bool = False  # a program stop (M0/M1/M60) and no move since: the position may have been jogged
     stop_line: int = 0  # the line of that stop
-    read_after_stop: bool = False  # a position parameter was read while stopped (the reader notes the stop)
+    stops_read: set[int] = dataclasses.field(default_factory=set)  # lines of the stops a position was read after
     tools: dict[int, Tool] = dataclasses.field(default_factory=dict)  # tool table entries G10 L1/L10/L11 wrote
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
@@ -454,7 +454,6 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                         set_system=(lambda n, v: set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
-    stops_read: set[int] = set()  # the program stops after which a position was read (noted once each)
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                   tape_leader=dialect.name == "fanuc", on_comment=on_comment):
         if fl.raw.lstrip().startswith("/"):
@@ -468,11 +467,6 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if st.corner is not None or st.corner_word is not None:
             _corner_after_block(st, fl.words, count, blocks, Where(fl.file, fl.line, fl.raw))
-        if st.read_after_stop and st.stop_line not in stops_read:
-            stops_read.add(st.stop_line)
-            notes.add(f"position read after a program stop (line {st.stop_line}): the position where the program "
-                      "stopped; a jog by the operator is not modelled")
-        st.read_after_stop = False
         if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
             st.stopped, st.stop_line = True, fl.line  # the operator may jog before the next move
         elif len(blocks) > count:
@@ -496,6 +490,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         _finish_compensation(st, blocks, source)
     if dialect.name == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+    for line in sorted(st.stops_read):
+        notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
+                  "jog by the operator is not modelled")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)

@@ -63,7 +63,7 @@ is then not modelled.
 A position read after a program stop (``M0``, ``M1``, ``M60``) before the next move is where the
 operator may have jogged the machine, which a program file does not say: it reads the position where
 the program stopped (the operator pressing start without a jog, as on a dry run) and the reader notes
-the stop's line (``read_after_stop``), as the Heidenhain reader does for ``FN 18 SYSREAD`` after STOP.
+the stop's line (``stops_read``), as the Heidenhain reader does for ``FN 18 SYSREAD`` after STOP.
 """
 
 from __future__ import annotations
@@ -108,7 +108,8 @@ class ReaderState(Protocol):
     offsets: dict[str, np.ndarray]
     rotations: dict[str, float]
     comp_side: str | None
-    read_after_stop: bool
+    stop_line: int  # the line of the last program stop
+    stops_read: set[int]  # the stops a position was read after
     comp_code: str
     stopped: bool
     motion: int | None
@@ -152,7 +153,7 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     if base in (5001, 5041) and not fanuc:
         return None, ""  # LinuxCNC: user parameters
     if st.stopped:
-        st.read_after_stop = True  # noted by the reader: a jog at the stop is not modelled
+        st.stops_read.add(st.stop_line)  # noted by the reader: a jog at the stop is not modelled
     if base == 5021:
         return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
     if st.comp_side is not None:
