@@ -64,22 +64,19 @@ def program_context(args: argparse.Namespace, machine=None):
     import dataclasses
     import os
 
-    from interpolators.context import DIALECTS, INTERPOLATION_CONTEXT, read_tool_table
+    from interpolators.context import INTERPOLATION_CONTEXT, read_tool_table
 
     context = machine.context if machine is not None else INTERPOLATION_CONTEXT
-    changes = {}
     if getattr(args, "dialect", None):
-        old = context.dialect
-        changes["dialect"] = dataclasses.replace(DIALECTS[args.dialect], default_units=old.default_units,
-                                                 continuous_path=old.continuous_path, tolerance=old.tolerance,
-                                                 subroutine_path=old.subroutine_path, user_m_path=old.user_m_path)
+        context = context.with_dialect(args.dialect)
+    changes = {}
     if getattr(args, "tool_table", None):
         changes["tools"] = {**context.tools, **read_tool_table(args.tool_table)}
     paths = {key: tuple(os.path.abspath(p) for p in getattr(args, key).split(":") if p)  # relative: to the cwd
              for key in ("subroutine_path", "user_m_path")
              if getattr(args, key, None)}
     if paths:
-        dialect = changes.get("dialect", context.dialect)
+        dialect = context.dialect
         changes["dialect"] = dataclasses.replace(dialect, **{k: v + getattr(dialect, k) for k, v in paths.items()})
     return dataclasses.replace(context, **changes) if changes else context
 
