@@ -61,10 +61,45 @@ def test_halscope_29_bad_rows(tmp_path):
     with pytest.raises(CaptureError, match=r"scope.log:11: 3 values, expected 2"):
         read_capture(f)
     f.write_text("\n".join(lines[:10] + ["0.1;nan"] + lines[10:]) + "\n")
-    with pytest.raises(CaptureError, match=r"scope.log:11: a value is not a number"):
+    with pytest.raises(CaptureError, match=r"scope.log:11: channel 'joint.0.motor-pos-fb': 'nan' is not a number"):
         read_capture(f)
     f.write_text("\n".join(lines + ["0.123"]) + "\n")  # a log cut short in its last line
     assert len(read_capture(f)) == N
+
+
+def _halscope28(path, *, comma=False):
+    """A log as LinuxCNC 2.8 wrote it on a real machine: ``nSec``, an encoder as feedback, a channel
+    not enabled labelled ``(null)``, numbers in the user's locale, ``-nan`` in an unused channel,
+    and one row past the record (LinuxCNC ``scope_files.c`` before commit 8eae446b80)."""
+    def num(v):
+        return f"{v:+.14f}".replace(".", "," if comma else ".")
+
+    rows = [(num(r), num(a), "-nan" if k == 7 else num(0)) for k, (r, a) in enumerate(zip(REF, ACT))]
+    rows.append((num(0), num(0), num(0)))
+    lines = ["Sampling period is 1000000 nSec ", ""]
+    lines += [f"joint.0.motor-pos-cmd {r} hm2_7i76e.0.encoder.02.position {a} acc.out {o} (null) {num(0)} "
+              for r, a, o in rows]
+    path.write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("comma", [False, True])
+def test_halscope_log_of_linuxcnc_28_as_written(tmp_path, capsys, comma):
+    f = tmp_path / "halscope.log"
+    _halscope28(f, comma=comma)
+    with pytest.raises(CaptureError, match=r"no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair"):
+        read_capture(f)
+    columns = {"x_ref": "joint.0.motor-pos-cmd", "x": "hm2_7i76e.0.encoder.02.position"}
+    cap = read_capture(f, columns=columns)
+    assert len(cap) == N and cap.sample_time == 0.001
+    assert cap.meta["dropped"] == f"line {N + 3}: one sample past the record (LinuxCNC <= 2.8)"
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    with pytest.raises(CaptureError, match=r"halscope.log:10: channel 'acc.out': '-nan' is not a number"):
+        read_capture(f, columns={"x_ref": "joint.0.motor-pos-cmd", "x": "acc.out"})
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out), "--columns",
+                 "x_ref=joint.0.motor-pos-cmd,x=hm2_7i76e.0.encoder.02.position"]) == 0
+    assert f"{N} samples, sample time 1 ms" in capsys.readouterr().out
 
 
 # ----------------------------------------------------------------------------------- SINUMERIK
