@@ -158,6 +158,27 @@ def test_tncscope_encodings_decimal_comma_and_english_names(tmp_path, encoding, 
     np.testing.assert_array_equal(cap.measured[:, 0], ACT)
 
 
+def test_tncscope_curves_without_column_and_name(tmp_path):
+    """The ``.sco`` layout the MATLAB reader ``read_tncscope_file.m`` reads: blocks closed by a
+    ``%`` line, ``%COUNT``/``%CYCLETIME`` per curve, no ``%COLUMN``/``%NAME`` (curves in column order)."""
+    lines = ["%TNCscopeNT data file", "%[GLOBAL]", "%SAMPLING=3000", "%"]
+    for ctype in ("v act.", "s noml", "s actl"):
+        lines += ["%[CURVE]", f"%CHANNELTYPE={ctype}", "%AXISTYPE=X", "%DIMENSION=mm", f"%COUNT={N}",
+                  "%CYCLETIME=3000", "%"]
+    lines.append("%[DATA]")
+    lines += [f"{k * 3000};{0.5:.6f};{r:.6f};{a:.6f};" for k, (r, a) in enumerate(zip(REF, ACT))]
+    f = tmp_path / "x.sco"
+    f.write_bytes(("\r\n".join(lines) + "\r\n").encode("latin-1"))
+    cap = read_capture(f)
+    assert cap.meta["commanded"] == "x:col2" and cap.meta["measured"] == "x:col3"
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    f.write_bytes(("\r\n".join(lines).replace("%CHANNELTYPE=s noml", "%CHANNELTYPE=s noml\r\n%COLUMN=2") + "\r\n")
+                  .encode("latin-1"))
+    with pytest.raises(CaptureError, match=r"x.sco:5: curve 'v act. X' has no %COLUMN while 1 other curve"):
+        read_capture(f)
+
+
 # -------------------------------------------------------------------------------------- timing
 def test_dropped_samples_and_jitter_are_named(tmp_path):
     f = tmp_path / "x.sco"
