@@ -272,3 +272,49 @@ def test_a_row_of_units_under_the_names(tmp_path):
     cap = read_capture(f, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"})
     assert cap.sample_time == 0.002 and cap.meta["unit"] == "um"
     np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)
+
+
+# ---------------------------------------------------------------------------------- halsampler
+def _halsampler(path, *, tags=False, lost=None):
+    """LinuxCNC ``halsampler`` output (man halsampler(1), ``sampler_usr.c``): per sample a line of
+    ``%f `` values (here commanded, feedback, a bit), the sample number first with ``-t``; samples
+    ``lost`` from the FIFO replaced by an ``overrun`` line."""
+    lines = []
+    for k, (r, a) in enumerate(zip(REF, ACT)):
+        if lost and k in lost:
+            if k == lost[0]:
+                lines.append("overrun")
+            continue
+        lines.append((f"{k} " if tags else "") + f"{r:f} {a:f} 1 ")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_halsampler_output_with_the_servo_period(tmp_path, capsys):
+    f = tmp_path / "samples.txt"
+    _halsampler(f)
+    with pytest.raises(CaptureError, match=r"--columns needs t=NAME \(the time column\), or --sample-time S"):
+        read_capture(f, columns={"x_ref": "1", "x": "2"})
+    cap = read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001)
+    assert cap.meta["format"] == "delimited text (spaces)" and cap.meta["time_unit"] == "rows every 0.001 s"
+    assert cap.sample_time == 0.001 and len(cap) == N
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out), "--columns", "x_ref=1,x=2", "--sample-time", "0.001"]) == 0
+    assert f"{N} samples, sample time 1 ms" in capsys.readouterr().out
+
+
+def test_halsampler_overrun_is_a_gap(tmp_path):
+    f = tmp_path / "samples.txt"
+    _halsampler(f, lost=[40, 41, 42])
+    with pytest.raises(CaptureError, match=r"samples.txt:41: 'overrun': halsampler lost samples here"):
+        read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001)
+    _halsampler(f, tags=True, lost=[40, 41, 42])
+    tagged = {"t": "1", "x_ref": "2", "x": "3"}
+    with pytest.raises(CaptureError, match=r"samples.txt:42: 3 sample\(s\) missing in 1 gap\(s\)"):
+        read_capture(f, columns=tagged, sample_time=0.001)
+    cap = read_capture(f, columns=tagged, sample_time=0.001, resample=True)
+    assert len(cap) == N and cap.meta["time_unit"] == "sample numbers x 0.001 s"
+    np.testing.assert_allclose(cap.reference[:39, 0], REF[:39], rtol=0, atol=0)
+    with pytest.raises(CaptureError, match=r"--time-unit and --sample-time"):
+        read_capture(f, columns=tagged, sample_time=0.001, time_unit="ms")
