@@ -294,6 +294,8 @@ def test_halsampler_output_with_the_servo_period(tmp_path, capsys):
     _halsampler(f)
     with pytest.raises(CaptureError, match=r"--columns needs t=NAME \(the time column\), or --sample-time S"):
         read_capture(f, columns={"x_ref": "1", "x": "2"})
+    with pytest.raises(CaptureError, match=r"samples.txt:2: time does not increase: 1 s after 1 s$"):
+        read_capture(f, columns={"t": "3", "x_ref": "1", "x": "2"})  # the bit column taken for time
     cap = read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001)
     assert cap.meta["format"] == "delimited text (spaces)" and cap.meta["time_unit"] == "rows every 0.001 s"
     assert cap.sample_time == 0.001 and len(cap) == N

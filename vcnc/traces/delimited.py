@@ -288,4 +288,4 @@ def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:
     bad = np.flatnonzero(np.diff(t) <= 0)
     if bad.size:
         k = int(bad[0]) + 1
-        raise CaptureError(f"time does not increase: {t[k]!r} s after {t[k - 1]!r} s", file=src, line=row_lines[k])
+        raise CaptureError(f"time does not increase: {t[k]:.9g} s after {t[k - 1]:.9g} s", file=src, line=row_lines[k])

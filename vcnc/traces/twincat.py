@@ -304,7 +304,7 @@ def _series(c: _Channel, t_raw: np.ndarray, rows: list[list[str]], row_lines: li
     back = np.flatnonzero(np.diff(t) < 0)
     if back.size:
         k = int(back[0]) + 1
-        raise CaptureError(f"time of channel {c.name!r} goes backwards ({t[k]!r} s after {t[k - 1]!r} s)",
+        raise CaptureError(f"time of channel {c.name!r} goes backwards ({t[k]:.9g} s after {t[k - 1]:.9g} s)",
                            file=src, line=int(lines[k]), column=c.time_column + 1)
     if t.size < 2:
         raise CaptureError(f"channel {c.name!r} has fewer than two samples", file=src)
