@@ -86,7 +86,9 @@ def _halscope28(path, *, comma=False):
 def test_halscope_log_of_linuxcnc_28_as_written(tmp_path, capsys, comma):
     f = tmp_path / "halscope.log"
     _halscope28(f, comma=comma)
-    with pytest.raises(CaptureError, match=r"no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair"):
+    with pytest.raises(CaptureError, match=r"joint.0.motor-pos-cmd has no -fb pin: give --columns "
+                                           r"x_ref=joint.0.motor-pos-cmd,x=FEEDBACK; .*other position channels: "
+                                           r"\['hm2_7i76e.0.encoder.02.position'\]$"):
         read_capture(f)
     columns = {"x_ref": "joint.0.motor-pos-cmd", "x": "hm2_7i76e.0.encoder.02.position"}
     cap = read_capture(f, columns=columns)

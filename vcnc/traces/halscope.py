@@ -190,6 +190,11 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dic
         if {"cmd", "fb"} <= letters.get(a, {}).keys():
             out[f"{a}_ref"], out[a] = letters[a]["cmd"], letters[a]["fb"]
     if not out:
+        alone = sorted(name for (_, role), names in pins.items() if role == "cmd" for name in names.values())
+        if alone:  # a real log (tracewild): the feedback traced was an encoder's position, not the joint's pin
+            others = [n for n in labels if "pos" in n.lower() and n not in alone]
+            raise CaptureError(f"{alone[0]} has no -fb pin: give --columns x_ref={alone[0]},x=FEEDBACK; channels "
+                               f"found: {labels}; other position channels: {others}", file=src)
         raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
                            f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels}", file=src)
     return out
