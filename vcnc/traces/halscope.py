@@ -22,7 +22,8 @@ Without a mapping, the position pins of each joint pair up: ``joint.N.motor-pos-
 ``joint.N.motor-pos-fb`` (before ``joint.N.pos-cmd`` / ``pos-fb``; ``axis.N`` in LinuxCNC 2.7),
 or signals named ``<axis>-pos-cmd`` / ``<axis>-pos-fb`` or ``<axis>pos-cmd`` / ``<axis>pos-fb``
 (the names stepconf and pncconf give them). Joints are named x, y, z... in order (``axes``
-overrides), signals by their axis letter.
+overrides), signals by their axis letter. A commanded pin without its ``-fb`` pin (a real log
+traced the encoder's position instead) is an error naming the pin and the other position channels.
 """
 
 from __future__ import annotations
