@@ -16,7 +16,8 @@ time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing`
 samples and jitter).
 
 **Columns separated by spaces** (tracewild, session 16), as LinuxCNC's ``halsampler`` writes them
-(man page halsampler(1); ``src/hal/components/sampler_usr.c``: one line per sample, each value
+(man page halsampler(1), http://linuxcnc.org/docs/2.9/html/man/man1/halsampler.1.html;
+``src/hal/components/sampler_usr.c``: one line per sample, each value
 ``%f`` followed by a space, no header and no time column; with ``-t`` the sample number first;
 a line ``overrun`` where the FIFO was full and samples were lost), and as other loggers and
 MATLAB's ``save -ascii`` do. A file without a time column is read with ``sample_time`` [s]
