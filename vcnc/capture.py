@@ -18,7 +18,8 @@ __all__ = ["Capture", "read_capture", "check_sampling", "OPTIONAL_SUFFIXES"]
 
 def read_capture(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                  time_unit: str | None = None, unit: str | None = None,
-                 axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
+                 axes: Sequence[str] | None = None, resample: bool = False,
+                 sample_time: float | None = None) -> Capture:
     """Read a capture: the CSV of ARCHITECTURE.md, a control's trace export or an EMPS ``.mat``
     file, detected by content (:func:`vcnc.traces.read_trace`, which documents the options).
 
@@ -27,4 +28,5 @@ def read_capture(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
     CaptureError
         Naming the file, line (or element) and column at fault, and the channels found.
     """
-    return read_trace(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
+    return read_trace(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample,
+                      sample_time=sample_time)

@@ -167,8 +167,10 @@ def test_twincat_scope_csv_reads_back(capture, tmp_path, capsys):
 
 # ------------------------------------------------------------------------------------ halscope
 def _halscope(path, ref, meas, period_ns=1_000_000):
+    """LinuxCNC <= 2.8 ``write_log_file``: pairs, and one row past the record (``n <= samples``)."""
     lines = [f"Sampling period is {period_ns} ns ", ""]
     lines += [f"joint.0.motor-pos-cmd {r:+.14f} joint.0.motor-pos-fb {m:+.14f} " for r, m in zip(ref, meas)]
+    lines += [f"joint.0.motor-pos-cmd {0:+.14f} joint.0.motor-pos-fb {0:+.14f} "]
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -178,7 +180,8 @@ def test_halscope_log_pairs_the_joint_pins(capture, tmp_path):
     _halscope(f, ref, meas)
     assert trace_format(f) == "halscope"
     cap = read_capture(f)
-    assert cap.axes == ("x",) and cap.sample_time == 0.001
+    assert cap.axes == ("x",) and cap.sample_time == 0.001 and len(cap) == len(ref)
+    assert cap.meta["dropped"].startswith(f"line {len(ref) + 3}: one sample past the record")
     np.testing.assert_array_equal(cap.reference[:, 0], [float(f"{v:+.14f}") for v in ref])
     np.testing.assert_array_equal(cap.measured[:, 0], [float(f"{v:+.14f}") for v in meas])
     with pytest.raises(CaptureError, match="channel\\(s\\) \\['nope'\\] not found; channels found"):

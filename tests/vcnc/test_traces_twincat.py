@@ -122,3 +122,23 @@ def test_export_without_its_header_block(tmp_path, keys):
     assert trace_format(f) == "twincat"
     cap = read_capture(f)
     np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+
+
+def test_channel_scaling_is_named_not_applied(tmp_path):
+    """Scope applies a channel's ScaleFactor / Offset and Unit ScaleFactor / Unit Offset only with
+    "Scale values before export" (Beckhoff infosys TE13xx, "Export to csv"); the pytcs exports hold
+    the same recording unscaled (default) and scaled (simple export), so the values are read as
+    they stand and the scaling is named."""
+    f = tmp_path / "scope.csv"
+    _export(f, fast=False, eof=False)
+    lines = f.read_bytes().decode("utf-8").split("\r\n")
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("SampleTime[ms]"))
+    lines[k + 1:k + 1] = ["ScaleFactor;0,001;1", "Offset;0;0", "Unit;mm;mm", "Unit ScaleFactor;1;1",
+                          "Unit Offset;0;0"]
+    f.write_bytes("\r\n".join(lines).encode("utf-8"))
+    cap = read_capture(f)
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    assert cap.meta["scaling"].startswith("MAIN.Axis1.NcToPlc.SetPos (ScaleFactor 0,001): applied by Scope only")
+    assert "ActPos" not in cap.meta["scaling"]
+    f.write_bytes("\r\n".join(lines).replace("ScaleFactor;0,001;1", "ScaleFactor;1;1").encode("utf-8"))
+    assert "scaling" not in read_capture(f).meta

@@ -61,10 +61,47 @@ def test_halscope_29_bad_rows(tmp_path):
     with pytest.raises(CaptureError, match=r"scope.log:11: 3 values, expected 2"):
         read_capture(f)
     f.write_text("\n".join(lines[:10] + ["0.1;nan"] + lines[10:]) + "\n")
-    with pytest.raises(CaptureError, match=r"scope.log:11: a value is not a number"):
+    with pytest.raises(CaptureError, match=r"scope.log:11: channel 'joint.0.motor-pos-fb': 'nan' is not a number"):
         read_capture(f)
     f.write_text("\n".join(lines + ["0.123"]) + "\n")  # a log cut short in its last line
     assert len(read_capture(f)) == N
+
+
+def _halscope28(path, *, comma=False):
+    """A log as LinuxCNC 2.8 wrote it on a real machine: ``nSec``, an encoder as feedback, a channel
+    not enabled labelled ``(null)``, numbers in the user's locale, ``-nan`` in an unused channel,
+    and one row past the record (LinuxCNC ``scope_files.c`` before commit 8eae446b80)."""
+    def num(v):
+        return f"{v:+.14f}".replace(".", "," if comma else ".")
+
+    rows = [(num(r), num(a), "-nan" if k == 7 else num(0)) for k, (r, a) in enumerate(zip(REF, ACT))]
+    rows.append((num(0), num(0), num(0)))
+    lines = ["Sampling period is 1000000 nSec ", ""]
+    lines += [f"joint.0.motor-pos-cmd {r} hm2_7i76e.0.encoder.02.position {a} acc.out {o} (null) {num(0)} "
+              for r, a, o in rows]
+    path.write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("comma", [False, True])
+def test_halscope_log_of_linuxcnc_28_as_written(tmp_path, capsys, comma):
+    f = tmp_path / "halscope.log"
+    _halscope28(f, comma=comma)
+    with pytest.raises(CaptureError, match=r"joint.0.motor-pos-cmd has no -fb pin: give --columns "
+                                           r"x_ref=joint.0.motor-pos-cmd,x=FEEDBACK; .*other position channels: "
+                                           r"\['hm2_7i76e.0.encoder.02.position'\]$"):
+        read_capture(f)
+    columns = {"x_ref": "joint.0.motor-pos-cmd", "x": "hm2_7i76e.0.encoder.02.position"}
+    cap = read_capture(f, columns=columns)
+    assert len(cap) == N and cap.sample_time == 0.001
+    assert cap.meta["dropped"] == f"line {N + 3}: one sample past the record (LinuxCNC <= 2.8)"
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    with pytest.raises(CaptureError, match=r"halscope.log:10: channel 'acc.out': '-nan' is not a number"):
+        read_capture(f, columns={"x_ref": "joint.0.motor-pos-cmd", "x": "acc.out"})
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out), "--columns",
+                 "x_ref=joint.0.motor-pos-cmd,x=hm2_7i76e.0.encoder.02.position"]) == 0
+    assert f"{N} samples, sample time 1 ms" in capsys.readouterr().out
 
 
 # ----------------------------------------------------------------------------------- SINUMERIK
@@ -121,6 +158,27 @@ def test_tncscope_encodings_decimal_comma_and_english_names(tmp_path, encoding, 
     assert cap.axes == ("x",) and cap.sample_time == 0.003
     np.testing.assert_array_equal(cap.reference[:, 0], REF)
     np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+
+
+def test_tncscope_curves_without_column_and_name(tmp_path):
+    """The ``.sco`` layout the MATLAB reader ``read_tncscope_file.m`` reads: blocks closed by a
+    ``%`` line, ``%COUNT``/``%CYCLETIME`` per curve, no ``%COLUMN``/``%NAME`` (curves in column order)."""
+    lines = ["%TNCscopeNT data file", "%[GLOBAL]", "%SAMPLING=3000", "%"]
+    for ctype in ("v act.", "s noml", "s actl"):
+        lines += ["%[CURVE]", f"%CHANNELTYPE={ctype}", "%AXISTYPE=X", "%DIMENSION=mm", f"%COUNT={N}",
+                  "%CYCLETIME=3000", "%"]
+    lines.append("%[DATA]")
+    lines += [f"{k * 3000};{0.5:.6f};{r:.6f};{a:.6f};" for k, (r, a) in enumerate(zip(REF, ACT))]
+    f = tmp_path / "x.sco"
+    f.write_bytes(("\r\n".join(lines) + "\r\n").encode("latin-1"))
+    cap = read_capture(f)
+    assert cap.meta["commanded"] == "x:col2" and cap.meta["measured"] == "x:col3"
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    f.write_bytes(("\r\n".join(lines).replace("%CHANNELTYPE=s noml", "%CHANNELTYPE=s noml\r\n%COLUMN=2") + "\r\n")
+                  .encode("latin-1"))
+    with pytest.raises(CaptureError, match=r"x.sco:5: curve 'v act. X' has no %COLUMN while 1 other curve"):
+        read_capture(f)
 
 
 # -------------------------------------------------------------------------------------- timing
@@ -216,3 +274,51 @@ def test_a_row_of_units_under_the_names(tmp_path):
     cap = read_capture(f, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"})
     assert cap.sample_time == 0.002 and cap.meta["unit"] == "um"
     np.testing.assert_allclose(cap.measured[:, 0], ACT, rtol=0, atol=1e-12)
+
+
+# ---------------------------------------------------------------------------------- halsampler
+def _halsampler(path, *, tags=False, lost=None):
+    """LinuxCNC ``halsampler`` output (man halsampler(1), ``sampler_usr.c``): per sample a line of
+    ``%f `` values (here commanded, feedback, a bit), the sample number first with ``-t``; samples
+    ``lost`` from the FIFO replaced by an ``overrun`` line."""
+    lines = []
+    for k, (r, a) in enumerate(zip(REF, ACT)):
+        if lost and k in lost:
+            if k == lost[0]:
+                lines.append("overrun")
+            continue
+        lines.append((f"{k} " if tags else "") + f"{r:f} {a:f} 1 ")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_halsampler_output_with_the_servo_period(tmp_path, capsys):
+    f = tmp_path / "samples.txt"
+    _halsampler(f)
+    with pytest.raises(CaptureError, match=r"--columns needs t=NAME \(the time column\), or --sample-time S"):
+        read_capture(f, columns={"x_ref": "1", "x": "2"})
+    with pytest.raises(CaptureError, match=r"samples.txt:2: time does not increase: 1 s after 1 s$"):
+        read_capture(f, columns={"t": "3", "x_ref": "1", "x": "2"})  # the bit column taken for time
+    cap = read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001)
+    assert cap.meta["format"] == "delimited text (spaces)" and cap.meta["time_unit"] == "rows every 0.001 s"
+    assert cap.sample_time == 0.001 and len(cap) == N
+    np.testing.assert_array_equal(cap.reference[:, 0], REF)
+    np.testing.assert_array_equal(cap.measured[:, 0], ACT)
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out), "--columns", "x_ref=1,x=2", "--sample-time", "0.001"]) == 0
+    assert f"{N} samples, sample time 1 ms" in capsys.readouterr().out
+
+
+def test_halsampler_overrun_is_a_gap(tmp_path):
+    f = tmp_path / "samples.txt"
+    _halsampler(f, lost=[40, 41, 42])
+    with pytest.raises(CaptureError, match=r"samples.txt:41: 'overrun': halsampler lost samples here"):
+        read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001)
+    _halsampler(f, tags=True, lost=[40, 41, 42])
+    tagged = {"t": "1", "x_ref": "2", "x": "3"}
+    with pytest.raises(CaptureError, match=r"samples.txt:42: 3 sample\(s\) missing in 1 gap\(s\)"):
+        read_capture(f, columns=tagged, sample_time=0.001)
+    cap = read_capture(f, columns=tagged, sample_time=0.001, resample=True)
+    assert len(cap) == N and cap.meta["time_unit"] == "sample numbers x 0.001 s"
+    np.testing.assert_allclose(cap.reference[:39, 0], REF[:39], rtol=0, atol=0)
+    with pytest.raises(CaptureError, match=r"--time-unit and --sample-time"):
+        read_capture(f, columns=tagged, sample_time=0.001, time_unit="ms")

@@ -19,6 +19,9 @@ def add_trace_arguments(parser: argparse.ArgumentParser, *, axes: bool = True) -
                        help="delimited text: unit of the time column (default s; TwinCAT ms)")
     group.add_argument("--unit", choices=("mm", "um", "m", "in", "deg"), default=None,
                        help="delimited text: unit of the positions (default mm; deg for rotary axes a b c)")
+    group.add_argument("--sample-time", type=float, default=None, metavar="S",
+                       help="delimited text without a time column (LinuxCNC halsampler): the sampling period in s "
+                            "(the servo period); with it a t= column counts samples (halsampler -t)")
     group.add_argument("--resample", action="store_true",
                        help="TNCscope, TwinCAT, delimited text: interpolate time stamps that are not uniform (a "
                             "logging PC's jitter, dropped samples) linearly onto the median step instead of refusing "
@@ -37,4 +40,4 @@ def read_trace_argument(path: str, args: argparse.Namespace) -> Capture:
     return read_trace(path, columns=parse_columns(args.columns) if args.columns else None,
                       time_unit=args.time_unit, unit=args.unit,
                       axes=tuple(a.strip().lower() for a in names.split(",")) if names else None,
-                      resample=getattr(args, "resample", False))
+                      resample=getattr(args, "resample", False), sample_time=getattr(args, "sample_time", None))

@@ -5,8 +5,8 @@
 - the capture CSV of ARCHITECTURE.md (header ``t,<axis>_ref,<axis>,...``);
 - Heidenhain TNCscope text export (:mod:`vcnc.traces.tncscope`);
 - Siemens SINUMERIK trace XML (:mod:`vcnc.traces.sinumerik`);
-- LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text, with a
-  column mapping (:mod:`vcnc.traces.delimited`);
+- LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
+  halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
 - the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`).
 """
 
@@ -79,7 +79,8 @@ def _xml_root(path: Path) -> str:
 
 def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                time_unit: str | None = None, unit: str | None = None,
-               axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
+               axes: Sequence[str] | None = None, resample: bool = False,
+               sample_time: float | None = None) -> Capture:
     """Read any supported trace (module docstring) into a capture.
 
     Parameters
@@ -96,6 +97,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     resample : bool
         TNCscope, TwinCAT and delimited text: interpolate time stamps that are not uniform
         (jitter, dropped samples) linearly onto the median step; without it they are an error.
+    sample_time : float, optional
+        Delimited text: the sampling period [s] of a file without a time column, or whose ``t``
+        column counts samples (LinuxCNC ``halsampler``, :mod:`vcnc.traces.delimited`).
 
     Raises
     ------
@@ -107,9 +111,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if not p.is_file():
         raise CaptureError("no such capture file", file=str(p))
     fmt = trace_format(p)
-    delimited_options = columns is not None or time_unit is not None or unit is not None
+    delimited_options = columns is not None or time_unit is not None or unit is not None or sample_time is not None
     if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
-        raise CaptureError(f"--columns/--time-unit/--unit apply to delimited text, not to a {fmt} file",
+        raise CaptureError(f"--columns/--time-unit/--unit/--sample-time apply to delimited text, not to a {fmt} file",
                            file=str(p))
     if fmt == "xml":
         raise CaptureError(f"an XML file with root <{_xml_root(p)}>, not a SINUMERIK trace (<traceSession> or "
@@ -123,4 +127,5 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         return read_sinumerik(p, axes=tuple(axes) if axes else None)
     if fmt == "capture-csv" and not delimited_options:
         return read_capture_csv(p)
-    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
+    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample,
+                          sample_time=sample_time)

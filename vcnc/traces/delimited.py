@@ -14,6 +14,16 @@ same way. Cells may be in double quotes (``"0,5"``, ``"Soll"``). Rows with an em
 are skipped (loggers that write change-only rows). The
 time must increase with a uniform step (:func:`vcnc.traces.columns.check_timing` names dropped
 samples and jitter).
+
+**Columns separated by spaces** (tracewild, session 16), as LinuxCNC's ``halsampler`` writes them
+(man page halsampler(1), http://linuxcnc.org/docs/2.9/html/man/man1/halsampler.1.html;
+``src/hal/components/sampler_usr.c``: one line per sample, each value
+``%f`` followed by a space, no header and no time column; with ``-t`` the sample number first;
+a line ``overrun`` where the FIFO was full and samples were lost), and as other loggers and
+MATLAB's ``save -ascii`` do. A file without a time column is read with ``sample_time`` [s]
+(``--sample-time``); with it, a mapped ``t`` column counts samples (``halsampler -t``), so that the
+timing check names the samples an ``overrun`` lost. Without a sample-number column an ``overrun``
+line is an error naming it: how many samples were lost is not known.
 """
 
 from __future__ import annotations
@@ -49,12 +59,15 @@ from vcnc.traces.twincat import looks_like_twincat, read_twincat
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "TIME_UNITS",
            "LENGTH_UNITS"]
 
-_DELIMITERS = ("\t", ";", ",")
+_DELIMITERS = ("\t", ";", ",", " ")  # " ": runs of spaces (halsampler), tried last
+_NAMES = {",": "comma", ";": "semicolon", "\t": "tab", " ": "spaces"}
+_OVERRUN = "overrun"  # halsampler's line where its FIFO was full and samples were lost
 
 
 def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                    time_unit: str | None = None, unit: str | None = None,
-                   axes: Sequence[str] | None = None, resample: bool = False) -> Capture:
+                   axes: Sequence[str] | None = None, resample: bool = False,
+                   sample_time: float | None = None) -> Capture:
     """Read a delimited text trace (module docstring) into a capture.
 
     Parameters
@@ -73,27 +86,36 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         Names for the joints of a halscope log (joint order) or the pairs of a TwinCAT export.
     resample : bool
         Interpolate time stamps that are not uniform onto the median step (else an error).
+    sample_time : float, optional
+        Generic delimited text: the sampling period [s] of a file without a time column, or whose
+        ``t`` column counts samples (``halsampler -t``).
 
     Raises
     ------
     CaptureError
         Naming the file, the line and the columns found: no numeric rows, an unknown column in
-        ``columns``, no commanded/measured pair, time going backwards or not uniform.
+        ``columns``, no commanded/measured pair, time going backwards or not uniform, a halsampler
+        ``overrun`` without sample numbers.
     """
     src = str(Path(path))
     check_units(time_unit, unit, src)
     text = read_text(path, src)
+    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])):
+        raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log or "
+                           "a TwinCAT export (they record their own)", file=src)
     if looks_like_halscope(text[:2000]):
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if looks_like_twincat(text[:20000]):
         return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
     return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit, unit=unit,
-                    resample=resample)
+                    resample=resample, sample_time=sample_time)
 
 
 def _split(line: str, delimiter: str) -> list[str]:
     """The cells of a line; a cell in double quotes may hold the delimiter (``"1,5"``)."""
     line = line.rstrip("\r\n")
+    if delimiter == " ":
+        return line.split()
     if '"' not in line:
         return line.split(delimiter)
     try:
@@ -129,7 +151,7 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
         s = lines[i].strip()
         if not s:  # blank lines between the rows of numbers are skipped, as in _table
             continue
-        if s.upper() == "EOF" and first < 0:
+        if (s.upper() == "EOF" and first < 0) or s.lower() == _OVERRUN:
             continue
         cells = _split(lines[i], delimiter)
         if len(cells) < 2 or (width and len(cells) != width):
@@ -141,15 +163,15 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
     return first, width, comma
 
 
-def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str]:
+def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str, list[int]]:
     """``(header names or None, the row of units under them or None, data (rows x columns, NaN
-    for empty), file line of each row, delimiter)`` of a delimited file."""
+    for empty), file line of each row, delimiter, file lines of halsampler's overrun marks)``."""
     lines = text.splitlines()
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
     # the delimiter that makes the longest block of numeric rows (then the widest)
     delimiter, first, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[2] >= 2, -b[1], b[2]))
     if first < 0 or width < 2:
-        raise CaptureError("no rows of numbers separated by tab, ';' or ','", file=src)
+        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src)
     header = units_row = None
     for j in range(first - 1, -1, -1):
         if lines[j].strip():
@@ -166,13 +188,15 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
                 names = [c.strip() for c in _split(lines[above], delimiter)] if above is not None else []
                 header = names if len(names) == width else None
             break
-    rows, row_lines = [], []
+    rows, row_lines, overruns = [], [], []
     for i in range(first, len(lines)):
-        if not lines[i].strip() or lines[i].strip().upper() == "EOF":
+        if lines[i].strip().lower() == _OVERRUN:
+            overruns.append(i + 1)
+        if not lines[i].strip() or lines[i].strip().upper() in ("EOF", _OVERRUN.upper()):
             continue
         rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
         row_lines.append(i + 1)
-    return header, units_row, np.array(rows, dtype=float), row_lines, delimiter
+    return header, units_row, np.array(rows, dtype=float), row_lines, delimiter, overruns
 
 
 def _column(name: str, header: list[str] | None, width: int, src: str, line: int) -> int:
@@ -186,15 +210,14 @@ def _column(name: str, header: list[str] | None, width: int, src: str, line: int
 
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
-             unit: str | None, resample: bool) -> Capture:
-    header, units_row, data, row_lines, delimiter = _table(text, src)
+             unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    header, units_row, data, row_lines, delimiter, overruns = _table(text, src)
     hline = row_lines[0] - 1
     if not columns:
         raise CaptureError("which columns are time, commanded and measured position? give --columns "
                            f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'}",
                            file=src, line=hline)
-    if "t" not in columns:
-        raise CaptureError("--columns needs t=NAME (the time column)", file=src)
+    _check_time_options(columns, time_unit, sample_time, overruns, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
     used = data[:, list(idx.values())]
@@ -204,10 +227,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
-    stamped = ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
+    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
     if stamped:
         units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
-    t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
+    if sample_time is None:
+        t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
+    else:  # a column of sample numbers, or none: the row's place
+        t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
@@ -218,12 +244,29 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     t, (ref, meas), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
                                              np.column_stack([scaled(a) for a in axes])], src, lines_kept,
                                           resample=resample)
-    names = {",": "comma", ";": "semicolon", "\t": "tab"}
     shown = sorted({units[k] or "mm" for k in idx if k != "t"})
-    meta = {"format": f"delimited text ({names[delimiter]})",
-            "time_unit": "time stamps" if stamped else units["t"], "unit": ",".join(shown),
-            **mapping_meta(axes, columns), **how}
+    time_meta = ("time stamps" if stamped else units["t"] if sample_time is None else
+                 f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
+    meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
+            "unit": ",".join(shown), **mapping_meta(axes, columns), **how}
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
+
+
+def _check_time_options(columns: Mapping[str, str], time_unit: str | None, sample_time: float | None,
+                        overruns: list[int], src: str) -> None:
+    """A time column or a sampling period, not a time unit with a period; an ``overrun`` only with
+    sample numbers (module docstring)."""
+    if sample_time is not None and not sample_time > 0:
+        raise CaptureError(f"--sample-time must be > 0 s, not {sample_time!r}", file=src)
+    if "t" not in columns and sample_time is None:
+        raise CaptureError("--columns needs t=NAME (the time column), or --sample-time S for a file without one "
+                           "(halsampler)", file=src)
+    if sample_time is not None and time_unit is not None:
+        raise CaptureError("--time-unit and --sample-time: with --sample-time the t column counts samples; give one",
+                           file=src)
+    if overruns and "t" not in columns:
+        raise CaptureError("'overrun': halsampler lost samples here (its FIFO was full) and, without a column of "
+                           "sample numbers (halsampler -t), how many is not known", file=src, line=overruns[0])
 
 
 def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
@@ -235,7 +278,7 @@ def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Ma
         by_name = unit_in_name(header[idx[k]], kind) if header is not None else None
         return by_name or (unit_named(units_row[idx[k]].strip("[]() "), kind) if units_row is not None else None)
 
-    out: dict[str, str | None] = {"t": time_unit or named("t", "time") or "s"}
+    out: dict[str, str | None] = {"t": time_unit or (named("t", "time") if "t" in idx else None) or "s"}
     for k in idx:
         if k != "t":
             out[k] = unit or named(k, "length")
@@ -246,4 +289,4 @@ def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:
     bad = np.flatnonzero(np.diff(t) <= 0)
     if bad.size:
         k = int(bad[0]) + 1
-        raise CaptureError(f"time does not increase: {t[k]!r} s after {t[k - 1]!r} s", file=src, line=row_lines[k])
+        raise CaptureError(f"time does not increase: {t[k]:.9g} s after {t[k - 1]:.9g} s", file=src, line=row_lines[k])

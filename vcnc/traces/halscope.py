@@ -7,12 +7,23 @@
   separated by ``;`` (``%.14f``, C locale).
 - **LinuxCNC 2.8 and earlier**: ``Sampling period is <n> ns`` (``nSec`` in 2006), then one line
   per sample of ``<label> <value>`` pairs (``%+.14f``); the last line may be a partial sample.
+  Read as real logs of this layout were found written (tracewild, session 16), following the
+  source of those versions: the numbers are printed in the user's locale (LinuxCNC pull request
+  #1500 set ``LC_NUMERIC`` to ``C`` only for 2.9), so a decimal comma (``+5,00000000000000``) is
+  read; the loop ran ``while (n <= samples)`` (fixed in commit 8eae446b80, "Fixes some minor bugs
+  regarding logging"), so the last line is one sample past the record, read from beyond the
+  captured data (zeros in the logs found), and is dropped (``meta["dropped"]``); channels not
+  enabled are labelled ``(null)``.
+
+Only the channels that become positions must hold numbers: a ``nan`` or ``-nan`` that halscope
+printed in another channel (an unused acceleration, found in a real log) is not an error.
 
 Without a mapping, the position pins of each joint pair up: ``joint.N.motor-pos-cmd`` /
 ``joint.N.motor-pos-fb`` (before ``joint.N.pos-cmd`` / ``pos-fb``; ``axis.N`` in LinuxCNC 2.7),
 or signals named ``<axis>-pos-cmd`` / ``<axis>-pos-fb`` or ``<axis>pos-cmd`` / ``<axis>pos-fb``
 (the names stepconf and pncconf give them). Joints are named x, y, z... in order (``axes``
-overrides), signals by their axis letter.
+overrides), signals by their axis letter. A commanded pin without its ``-fb`` pin (a real log
+traced the encoder's position instead) is an error naming the pin and the other position channels.
 """
 
 from __future__ import annotations
@@ -73,7 +84,12 @@ def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | 
     if period <= 0:
         raise CaptureError("the sampling period must be > 0 ns", file=src, line=first + 1)
     body = list(enumerate(lines[first + 1:], start=first + 2))
-    labels, rows, row_lines = (_table if m.group(1) else _pairs)(body, src)
+    table = m.group(1) is not None
+    labels, rows, row_lines = (_table if table else _pairs)(body, src)
+    meta = {"format": "halscope log", "sample_time_s": f"{period:.9g}", "unit": unit or "mm"}
+    if not table and rows:
+        meta["dropped"] = f"line {row_lines[-1]}: one sample past the record (LinuxCNC <= 2.8)"
+        rows, row_lines = rows[:-1], row_lines[:-1]
     if len(rows) < 2:
         raise CaptureError(f"fewer than two samples after 'Sampling period is ... ns'; channels: {labels}", file=src)
     mapping = {k: v for k, v in columns.items() if k != "t"} if columns else _joint_pairs(labels, axes, src)
@@ -81,16 +97,32 @@ def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | 
     missing = [v for v in mapping.values() if v not in labels]
     if missing:
         raise CaptureError(f"channel(s) {missing} not found; channels found: {labels}", file=src, line=row_lines[0])
-    data = np.array(rows)
     s = position_scale(ax, unit, src)
-    meta = {"format": "halscope log", "sample_time_s": f"{period:.9g}", "unit": unit or "mm",
-            **mapping_meta(ax, mapping)}
+    used = [labels.index(mapping[f"{a}_ref"]) for a in ax] + [labels.index(mapping[a]) for a in ax]
+    data = _numbers(rows, row_lines, used, labels, src, decimal_comma=not table) * s
     return Capture(t=np.round(np.arange(len(rows)) * period, 12), axes=tuple(ax),
-                   reference=data[:, [labels.index(mapping[f"{a}_ref"]) for a in ax]] * s,
-                   measured=data[:, [labels.index(mapping[a]) for a in ax]] * s, meta=meta, source=src)
+                   reference=data[:, : len(ax)], measured=data[:, len(ax):],
+                   meta={**meta, **mapping_meta(ax, mapping)}, source=src)
 
 
-def _table(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[float]], list[int]]:
+def _numbers(rows: list[list[str]], row_lines: list[int], used: list[int], labels: list[str], src: str, *,
+             decimal_comma: bool) -> np.ndarray:
+    """The values of the channels ``used`` (indices into ``labels``) as numbers, rows by samples;
+    a cell that is empty or not a number is an error naming the line and the channel."""
+    out = np.empty((len(rows), len(used)))
+    for k, (cells, i) in enumerate(zip(rows, row_lines)):
+        for j, c in enumerate(used):
+            try:
+                out[k, j] = parse_number(cells[c], decimal_comma=decimal_comma)
+            except ValueError:
+                raise CaptureError(f"channel {labels[c]!r}: {cells[c].strip()!r} is not a number", file=src,
+                                   line=i) from None
+            if out[k, j] != out[k, j]:
+                raise CaptureError(f"channel {labels[c]!r}: an empty value", file=src, line=i)
+    return out
+
+
+def _table(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[str]], list[int]]:
     """LinuxCNC 2.9+: a ``;`` line of names, then ``;`` rows of values (``#`` lines skipped)."""
     content = [(i, ln) for i, ln in body if ln.strip() and not ln.lstrip().startswith("#")]
     if not content:
@@ -103,19 +135,14 @@ def _table(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[
             if k == len(content) - 1 and len(cells) < len(labels):  # a log cut short in its last line
                 break
             raise CaptureError(f"{len(cells)} values, expected {len(labels)} (channels {labels})", file=src, line=i)
-        try:
-            rows.append([parse_number(c) for c in cells])
-        except ValueError:
-            raise CaptureError(f"a value is not a number; channels: {labels}", file=src, line=i,
-                               text=line.strip()) from None
-        if any(v != v for v in rows[-1]):
-            raise CaptureError(f"an empty value; channels: {labels}", file=src, line=i)
+        rows.append(cells)
         row_lines.append(i)
     return labels, rows, row_lines
 
 
-def _pairs(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[float]], list[int]]:
-    """LinuxCNC 2.8 and earlier: ``<label> <value>`` pairs, one sample per line."""
+def _pairs(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[str]], list[int]]:
+    """LinuxCNC 2.8 and earlier: ``<label> <value>`` pairs, one sample per line; the last line,
+    complete or partial, is the one written past the record (module docstring)."""
     content = [(i, ln.split()) for i, ln in body if ln.strip()]
     labels: list[str] = []
     rows, row_lines = [], []
@@ -124,15 +151,14 @@ def _pairs(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[
         names, values = parts[::2], parts[1::2]
         if len(parts) % 2 or (labels and names != labels):
             if last and labels and names == labels[: len(names)]:  # halscope may end on a partial sample
+                rows.append(values)
+                row_lines.append(i)
                 break
             if len(parts) % 2:
                 raise CaptureError("expected '<label> <value>' pairs", file=src, line=i, text=" ".join(parts))
             raise CaptureError(f"labels {names} differ from the first sample's {labels}", file=src, line=i)
         labels = labels or names
-        try:
-            rows.append([parse_number(v) for v in values])
-        except ValueError:
-            raise CaptureError(f"a value is not a number; channels: {labels}", file=src, line=i) from None
+        rows.append(values)
         row_lines.append(i)
     return labels, rows, row_lines
 
@@ -165,6 +191,11 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dic
         if {"cmd", "fb"} <= letters.get(a, {}).keys():
             out[f"{a}_ref"], out[a] = letters[a]["cmd"], letters[a]["fb"]
     if not out:
+        alone = sorted(name for (_, role), names in pins.items() if role == "cmd" for name in names.values())
+        if alone:  # a real log (tracewild): the feedback traced was an encoder's position, not the joint's pin
+            others = [n for n in labels if "pos" in n.lower() and n not in alone]
+            raise CaptureError(f"{alone[0]} has no -fb pin: give --columns x_ref={alone[0]},x=FEEDBACK; channels "
+                               f"found: {labels}; other position channels: {others}", file=src)
         raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
                            f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels}", file=src)
     return out

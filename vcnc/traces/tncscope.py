@@ -6,6 +6,13 @@ one ``%[CURVEn]`` block per channel (``%CHANNELTYPE`` ``s soll``/``s nom`` comma
 ``;``-separated rows whose column 0 is time [us]. Also read: a UTF-8 or UTF-16 export (with its
 byte-order mark), a decimal comma, and Heidenhain's English abbreviations ``s noml`` / ``s actl``.
 
+A curve without ``%COLUMN`` is read from the column of its place among the curves (the first
+curve column 1, as the MATLAB reader ``read_tncscope_file.m`` published with real ``.sco`` files
+reads every curve; no Heidenhain document of the layout was found, so this is our reading), and
+a curve without ``%NAME`` is named by its ``%CHANNELTYPE`` and ``%AXISTYPE`` in messages; ``%``
+lines closing a block (as in those files) are skipped. A file that gives ``%COLUMN`` for some
+curves and not for others is an error naming the curve.
+
 Each position curve is converted from its own ``%DIMENSION`` (``mm``, ``µm``, ``inch`` on a
 control running in inches, ``°`` on a rotary axis; none: mm) to mm or deg: a control in inches,
 or a channel exported in um beside one in mm, would otherwise be read 25.4 or 1000 times off
@@ -16,6 +23,7 @@ error naming the curve.
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -53,15 +61,18 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     if not lines or not lines[0].startswith(MAGIC):
         raise CaptureError(f"first line must start with {MAGIC!r}", file=src, line=1)
     curves, data_line = _curves(lines, src)
-    found = [c.get("NAME", "?") for c in curves]
+    found = [c.get("NAME") or f"{c.get('CHANNELTYPE', '?')} {c.get('AXISTYPE', '')}".strip() for c in curves]
+    numbered = sum("COLUMN" in c for c in curves)
     ref: dict[str, int] = {}
     meas: dict[str, int] = {}
     scale: dict[int, float] = {}
-    for c in curves:
+    for k, (c, name) in enumerate(zip(curves, found), start=1):
         ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
-        name = c.get("NAME", "")
-        axis = (c.get("AXISTYPE") or name.rpartition("/")[2]).lower()
-        col = c.get("COLUMN", "")
+        axis = (c.get("AXISTYPE") or re.split(r"[/\s]", name)[-1]).lower()
+        if 0 < numbered < len(curves) and "COLUMN" not in c:
+            raise CaptureError(f"curve {name!r} has no %COLUMN while {numbered} other curve(s) have one", file=src,
+                               line=int(c["_line"]))
+        col = c.get("COLUMN", str(k))
         if not col.isdigit() or int(col) < 1:
             raise CaptureError(f"curve {name!r}: %COLUMN={col!r} is not a column number >= 1", file=src,
                                line=int(c["_line"]))

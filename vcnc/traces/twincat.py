@@ -18,6 +18,12 @@ or not, double time stamps excluded or not):
   ends early. An optional last line ``EOF``.
 - **Units**: a channel's ``Unit`` row (``mm``, ``µm``, ``°``...; ``(None)``) scales its
   positions unless ``--unit`` is given.
+- **Scaling**: the ``ScaleFactor`` / ``Offset`` and ``Unit ScaleFactor`` / ``Unit Offset`` rows
+  record the channel's scaling, which Scope applies to the exported values only when "Scale values
+  before export" is set (Beckhoff infosys, TE13xx "Export to csv"); the file does not say which, and
+  the pytcs test exports hold both (the default export unscaled, its simple export scaled). The
+  values are read as they stand, and a used channel whose scaling is not 1 and 0 is named in
+  ``meta["scaling"]`` (found by tracewild, session 16).
 - **Separator** tab (default), ``;``, ``,``, ``:`` or space, the character after the first
   ``Name``; **decimal mark** ``.`` or ``,`` (with any separator but ``,``).
 
@@ -68,6 +74,7 @@ class _Channel:
     column: int
     time_column: int
     unit: str | None  # the unit of the channel's "Unit" row as a LENGTH_UNITS key, if it is a length
+    scaling: str = ""  # its scale rows that are not the identity ("ScaleFactor -1, Offset 1"), if any
 
 
 def looks_like_twincat(text: str) -> bool:
@@ -151,6 +158,10 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
     meta = {"format": "TwinCAT Scope CSV", "separator": _NAMES[d],
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
             "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **how}
+    scaling = [f"{c.name} ({c.scaling})" for c in used.values() if c.scaling]
+    if scaling:
+        meta["scaling"] = (f"{'; '.join(scaling)}: applied by Scope only with 'Scale values before export', "
+                           "read as exported")
     return Capture(t=t, axes=tuple(ax), reference=ref, measured=meas, meta=meta, source=src)
 
 
@@ -199,10 +210,28 @@ def _channel_rows(lines: list[str], d: str, src: str) -> tuple[list[_Channel], i
             symbol = symbols[j] if symbols and j < len(symbols) else name
             unit = units[j].split()[0] if units and j < len(units) and units[j].split() else ""
             channels.append(_Channel(name=name, symbol=symbol, column=j, time_column=time_column,
-                                     unit=unit_named(unit, "length")))
+                                     unit=unit_named(unit, "length"), scaling=_scaling(rows, j, d != ",")))
     if not channels:
         raise CaptureError("the channel 'Name' row names no channel", file=src, line=start + 1)
     return channels, data_start, start + 1
+
+
+_SCALE_ROWS = {"ScaleFactor": 1.0, "Offset": 0.0, "Unit ScaleFactor": 1.0, "Unit Offset": 0.0}
+
+
+def _scaling(rows: dict[str, list[str]], j: int, comma: bool) -> str:
+    """The scale rows of column ``j`` whose value is not the identity, as ``"ScaleFactor -1, Offset 1"``."""
+    out = []
+    for key, identity in _SCALE_ROWS.items():
+        cells = rows.get(key, [])
+        cell = cells[j] if j < len(cells) else ""
+        try:
+            value = parse_number(cell, comma)
+        except ValueError:
+            continue
+        if value == value and value != identity:
+            out.append(f"{key} {cell}")
+    return ", ".join(out)
 
 
 def _rows(lines: list[str], start: int, d: str, width: int, src: str) -> tuple[list[list[str]], list[int]]:
@@ -275,7 +304,7 @@ def _series(c: _Channel, t_raw: np.ndarray, rows: list[list[str]], row_lines: li
     back = np.flatnonzero(np.diff(t) < 0)
     if back.size:
         k = int(back[0]) + 1
-        raise CaptureError(f"time of channel {c.name!r} goes backwards ({t[k]!r} s after {t[k - 1]!r} s)",
+        raise CaptureError(f"time of channel {c.name!r} goes backwards ({t[k]:.9g} s after {t[k - 1]:.9g} s)",
                            file=src, line=int(lines[k]), column=c.time_column + 1)
     if t.size < 2:
         raise CaptureError(f"channel {c.name!r} has fewer than two samples", file=src)
