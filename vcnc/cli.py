@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import logging
+import os
 import sys
 from collections.abc import Sequence
 
@@ -83,6 +84,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
+        return 1
+    except BrokenPipeError:
+        # the reader of stdout went away (``vcnc toolpath circle | head``): quiet, as a command in a pipe is,
+        # and stdout pointed at /dev/null so that the interpreter's final flush does not complain (Python's
+        # signal module documentation, "Note on SIGPIPE")
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
     except Exception as exc:  # noqa: BLE001 - last resort: no traceback for users
         if args.debug:

@@ -256,7 +256,8 @@ def _header_axes(names: list[str], src: str, hline: int) -> list[str]:
                 file=src,
                 line=hline,
                 column=j,
-                expected="'<axis>_ref', '<axis>', or '<axis>_u|_table|_vel|_friction' for axes x y z a b c",
+                expected="'<axis>_ref', '<axis>', '<axis>_u|_table|_vel|_friction' (vcnc's capture CSV); another "
+                "logger's file needs a column mapping (--columns t=NAME,x_ref=NAME,x=NAME)",
             )
         if base not in axes:
             axes.append(base)

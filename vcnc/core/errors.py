@@ -23,8 +23,12 @@ __all__ = [
 
 
 #: Longest offending text an error message quotes [characters]; a longer one (a 40 kB line) is cut, with its
-#: length, and a message longer than twice this keeps its start and end, so that the error stays one readable line.
+#: length, and an ``expected`` longer than twice this keeps its start and end, so that the error stays one line.
 MAX_SHOWN_TEXT: int = 120
+#: Longest message kept whole [characters]: a list a user must read in full (the channels of a recorder's file,
+#: 16 of a halscope log: about 500 characters) stays whole; a message quoting a whole long line (a 40 kB
+#: program line) loses its middle. With the cut ``expected`` and the location, an error stays under 1000.
+MAX_MESSAGE: int = 560
 
 
 class VcncError(Exception):
@@ -78,8 +82,8 @@ class InputError(VcncError, ValueError):
 
     def __str__(self) -> str:
         msg = self.message
-        if len(msg) > 2 * MAX_SHOWN_TEXT:  # a message quoting a whole long line: its middle goes
-            msg = msg[:MAX_SHOWN_TEXT] + " ... " + msg[-MAX_SHOWN_TEXT:]
+        if len(msg) > MAX_MESSAGE:  # a message quoting a whole long line: its middle goes
+            msg = msg[:MAX_MESSAGE // 2] + " ... " + msg[-MAX_MESSAGE // 2:]
         if self.text is not None and repr(self.text) not in msg:
             if len(self.text) <= MAX_SHOWN_TEXT:
                 msg += f" (got {self.text!r})"
