@@ -911,7 +911,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
         where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
                    expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-215, 220, 221, "
-                            "230-232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+                            "230-233, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -1390,10 +1390,12 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
-    multipass-milling cycle (230-232: placed by its own points)."""
+    multipass-milling cycle (230-232: placed by their own points; 233: the tool-axis coordinate of a position
+    would shift Q227, which no manual found describes)."""
     if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
         where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 (the cycle's own points Q225.. place it)")
+                   text=blk.code, expected="CYCL CALL or M99 (233: at the surface's corner; the others: their own "
+                                           "points Q225.. place them)")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
         number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
         name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
@@ -1722,17 +1724,17 @@ def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock)
 
 
 def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
-    """Cycle 230, 231 or 232 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
+    """Cycle 230, 231, 232 or 233 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
     its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
     transformations."""
     axis = m.plane
     p, q = PLANE_AXES[axis]
-    if c.number == 232 and not m.tool_radius > 0:
-        where.fail("cycle 232 FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
+    if c.number in (232, 233) and not m.tool_radius > 0:
+        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
                    column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
     try:
         moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
-            surface_moves(c, radius=m.tool_radius, level=float(m.to_program(m.pos)[axis]))
+            surface_moves(c, radius=m.tool_radius, position=tuple(float(m.to_program(m.pos)[i]) for i in (p, q, axis)))
     except ValueError as exc:
         where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
     for mv in moves:

@@ -564,7 +564,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
     elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 220, 221, 230,
-                    231, 232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
+                    231, 232, 233, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -712,6 +712,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "231":
         _ruled_surface(t, line, p)
+        return
+    if kind == "233":
+        _face_milling_233(t, line, p)
         return
     if kind in ("212", "213", "214", "215"):
         _finishing(t, line, kind, p)
@@ -1610,6 +1613,78 @@ def _face_milling(t: _Tnc, line: int, p: dict) -> None:
             go(pre, start, rows[0])
         elif strategy != 2:
             order = order[::-1]
+    go("rapid", z=clear)
+
+
+def _face_milling_233(t: _Tnc, line: int, p: dict) -> None:
+    """233 FACE MILLING (TNC7 basic manual 81762x-19, "Cycle 233 FACE MILLING"), without limits, in program
+    coordinates: the surface's corner where the tool stands; Q350 = 1 the lines along X (Q218 long, Q219 across),
+    2 along Y (Q219 long, Q218 across), across in equal steps of at most Q370 x R from the corner's line to the
+    far side. Start R + Q357 before the corner; a line's far end R + Q357 (Q389 0, 2) or Q357 (1, 3) beyond the
+    far edge, the meander's (0, 1) way back as far before the near edge; 2, 3: each line from the start, up Q200
+    above the level at FMAX, FMAX over, down to the level. Levels: equal infeeds <= Q202 to Q386 + Q369 (Q215 0,
+    1), then Q386 (Q215 0 with Q369 > 0, or 2 alone); down to a level at the milling feed. FMAX to Q227 + Q204
+    first when below it, and at the end. Where the moves end only."""
+    k, r = t.scale, t.radius / t.scale
+    corner = t.prog() / k
+    along_axis = 0 if p["Q350"] == 1 else 1
+    across_axis = 1 - along_axis
+    length = p["Q218"] if along_axis == 0 else p["Q219"]
+    width = p["Q219"] if along_axis == 0 else p["Q218"]
+    top, bottom, allowance = p["Q227"], p["Q386"], p.get("Q369", 0.0)
+    strategy, side, setup = int(p["Q389"]), p.get("Q357", 0.0), p["Q200"]
+    sa, sw = math.copysign(1.0, length), math.copysign(1.0, width)
+    start = corner[along_axis] - sa * (r + side)
+    over = r + side if strategy in (0, 2) else side
+    far, back = corner[along_axis] + length + sa * over, corner[along_axis] - sa * over
+    steps = math.ceil(abs(width) / (p.get("Q370", 1.0) * r) - 1e-9)
+    across = [corner[across_axis] + sw * abs(width) * j / steps for j in range(steps + 1)] if steps else \
+        [corner[across_axis]]
+    op = int(p.get("Q215", 0))
+    rough = top - bottom - allowance
+    count = math.ceil(rough / p["Q202"] - 1e-9) if rough > 0 else 0
+    levels = [] if op == 2 else [top - rough * (i + 1) / count for i in range(count)]
+    if op == 2 or (op == 0 and allowance > 0):
+        levels.append(bottom)
+
+    def go(kind: str, a=None, b=None, z=None) -> None:
+        here = t.prog() / k
+        pt = here.copy()
+        if a is not None:
+            pt[along_axis] = a
+        if b is not None:
+            pt[across_axis] = b
+        if z is not None:
+            pt[2] = z
+        end = t.machine(pt * k)
+        if np.linalg.norm(end - t.pos) > 1e-9:
+            t.emit(line, kind, end)
+
+    clear = top + p["Q204"]
+    if corner[2] <= clear:
+        go("rapid", z=clear)
+    go("rapid", start, across[0])
+    go("rapid", z=top + setup)
+    order = list(across)
+    for z in levels:
+        go("feed", z=z)
+        for j, b in enumerate(order):
+            if strategy >= 2:
+                if j:
+                    go("rapid", z=z + setup)
+                    go("rapid", start, b)
+                    go("feed", z=z)
+                go("feed", far, b)
+            else:
+                go("feed", b=b)
+                here = t.prog()[along_axis] / k
+                go("feed", back if abs(here - far) < 1e-9 else far)
+        if strategy >= 2:
+            if z != levels[-1]:
+                go("rapid", z=z + setup)
+                go("rapid", start, across[0])
+        else:
+            order.reverse()
     go("rapid", z=clear)
 
 
