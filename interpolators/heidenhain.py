@@ -380,6 +380,12 @@ class _Machine:
         tool = self.context.tool(number)
         return None if tool is None else (tool.length, tool.radius)
 
+    def write_tool(self, number: int, column: int, value: float) -> None:
+        """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
+        now on, kept as the program's ``TOOL DEF`` is (the other of the two as it was, 0 for a tool unknown)."""
+        length, radius = self.tool_data(number) or (0.0, 0.0)
+        self.tool_defs[number] = (value, radius) if column == 1 else (length, value)
+
     def check_tilt(self, target: np.ndarray, extra: np.ndarray, where: Where) -> None:
         """A block ending at ``target`` [mm] with the rotary axes at ``extra`` [deg]: an error when it moves
         the linear axes while the tilted plane does not hold (its rotary axes elsewhere, as after PLANE ..
@@ -551,7 +557,8 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at)
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at,
+                                tool_write=m.write_tool)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":

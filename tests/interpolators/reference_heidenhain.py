@@ -25,7 +25,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
 - Q parameters: ``FN 0``-``FN 4``, formulas with ``+ - * / ^``, parentheses and the functions
   ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
-  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
+  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect; ``FN 17 SYSWRITE ID50 NR1/NR2
+  IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -1787,6 +1788,17 @@ def _fn(t: _Tnc, text: str) -> str | None:
             return label.strip('"')
     elif n == 15:
         pass
+    elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
+        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?\s*=\s*(.*)$",
+                                        rest).groups()
+        if ident == "50" and nr in ("1", "2"):
+            k = int(_val(idx, t.q))
+            tool = t.ctx.tool(k)
+            data = list(t.tool_defs.get(k, (tool.length, tool.radius) if tool is not None else (0.0, 0.0)))
+            data[int(nr) - 1] = _Formula(expr, t.q).value()
+            t.tool_defs[k] = (data[0], data[1])
+        elif (ident, nr) == ("20", "1") or (ident == "50" and nr in ("4", "5") and _Formula(expr, t.q).value()):
+            raise ReferenceError(f"FN 17 ID{ident} NR{nr}")  # the active tool, DL / DR: data vcnc reads back
     elif n == 18:
         m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
         q, ident, nr, idx = m2.groups()
