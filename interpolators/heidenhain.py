@@ -148,6 +148,7 @@ from interpolators.heidenhain_cycles import (
     LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
+    REFUSED_CYCLES,
     THREAD_CYCLES,
     DrillCycle,
     PatternCycle,
@@ -916,8 +917,9 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                                                  column=blk.column), None
         return
     if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
-        where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-215, 220, 221, "
+        why = f" {REFUSED_CYCLES[number]}" if number in REFUSED_CYCLES else ""
+        where.fail(f"cycle {number}{why} is not supported", column=blk.column, text=blk.code.strip(),
+                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20-26, 32, 200-215, 220, 221, "
                             "230-233, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
