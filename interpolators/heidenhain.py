@@ -1474,7 +1474,8 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
     at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 rounds the rings' inside corners
     (:func:`interpolators.heidenhain_contours.rounded_ring`). Several labels in cycle 14 (pockets and islands):
-    :func:`_rough_out_region` (Q8 not applied there, noted).
+    :func:`_rough_out_region` (Q8 there by :func:`interpolators.heidenhain_contours.rounded_region_ring`; not
+    applied to rest machining, noted).
     Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
     floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
     _sl_checks(m, c.number, where, blk)
@@ -1482,9 +1483,9 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
         where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
     if len(m.contour) > 1 or c.coarse_tool:
-        if c.rounding:
-            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to pockets with islands "
-                   "or rest machining: the corners are sharp")
+        if c.rounding and c.coarse_tool:
+            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to rest machining (Q18): "
+                   "the corners are sharp")
         _rough_out_region(m, c, where, blk)
         return
     axis = m.plane
@@ -1556,10 +1557,11 @@ def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Regi
 
 
 def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
-                  blk: SourceBlock) -> list[tuple[np.ndarray, bool]]:
-    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named."""
+                  blk: SourceBlock, rounding: float = 0.0) -> list[tuple[np.ndarray, bool]]:
+    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named (``rounding``: cycle 20's
+    Q8, 22's rings only)."""
     try:  # from the lower left (the same rings whatever the tool's position: cycle 21 drills where 22 plunges)
-        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0])
+        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0], rounding=rounding)
     except ValueError as exc:
         where.fail(f"cycle {number}: {exc}", column=blk.column, text=blk.code,
                    expected="contours whose offsets the tool can follow")
@@ -1650,11 +1652,14 @@ def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) 
     the whole boundary (pocket walls and islands alike) R + Q3, R + Q3 + Q2 R, .. (each ring within
     :data:`toolpaths.pockets.TOLERANCE` = 1 um, never nearer the contours than its offset), run from the
     innermost level outward in the sense Q9, joined by straight feed moves where they keep R + Q3 from every
-    contour, else by a retraction to Q7 and a new plunge (separate regions). Per depth as for one pocket."""
+    contour, else by a retraction to Q7 and a new plunge (separate regions); cycle 20's Q8 rounds the rings'
+    inside corners (:func:`interpolators.heidenhain_contours.rounded_region_ring`; not after a coarse tool Q18).
+    Per depth as for one pocket."""
     axis = m.plane
     area = _sl_region(m, c.feed, where, blk)
     rings = _region_rings(m, area, first=m.tool_radius + c.side_allowance, step=c.overlap * m.tool_radius,
-                          ccw=c.ccw, number=c.number, where=where, blk=blk)
+                          ccw=c.ccw, number=c.number, where=where, blk=blk,
+                          rounding=0.0 if c.coarse_tool else c.rounding)
     if c.coarse_tool:
         coarse = m.tool_data(c.coarse_tool)
         if coarse is None or not coarse[1] > m.tool_radius:
