@@ -271,8 +271,8 @@ def face_milling_233(q: dict[int, float], *, feed_scale: float, scale: float, wh
     clearance; the limits Q347, Q348, Q349 (side walls) must be 0, the side-wall parameters Q220, Q368 and Q338
     then have nothing to act on. The starting point in the plane is the tool's position when the cycle is
     called (our reading: the cycle has no Q225/Q226, and the manual measures the side lengths "from the
-    starting point"); Q367 (the surface's position relative to the tool, in later manuals) is an error, its
-    values not being described in the manual found. The moves are :func:`surface_moves`."""
+    starting point"); a Q367 (a surface position relative to the tool) is an error: the manual found describes
+    no such parameter for this cycle. The moves are :func:`surface_moves`."""
     _required(233, q, where, column)
     limits = [f"Q{k}={q[k]:g}" for k in (347, 348, 349) if q.get(k, 0.0)]
     if limits:
