@@ -568,10 +568,10 @@ def rounded_region_ring(ring: np.ndarray, area: Region, radius: float, *,
     pts = np.asarray(ring, dtype=float)
     out: list[np.ndarray] = []
     cur, last = 0, (0, pts[0])  # the next vertex to copy; the segment and point the last arc ended at
-    for i in range(1, len(pts) - 1):
+    for i, corner in sorted(_corners(pts, area).items()):
         if i < cur:
             continue
-        fillet = _fillet(pts, i, area, radius, tolerance, last)
+        fillet = _fillet(pts, i, corner, area, radius, tolerance, last)
         if fillet is None:
             continue
         ka, arc, kb = fillet
@@ -584,9 +584,8 @@ def rounded_region_ring(ring: np.ndarray, area: Region, radius: float, *,
 
 def _off_corner(ring: np.ndarray, area: Region) -> np.ndarray:
     """The ring (n, 2), its last vertex joined to its first, closed and started at the middle of the chord
-    farthest along it from its corners (:func:`_corner_turn`), where no rounding reaches."""
-    n = len(ring)
-    corners = [i for i in range(n) if _corner_turn(ring[i - 1], ring[i], ring[(i + 1) % n], area) is not None]
+    farthest along it from its corners (:func:`_corners`), where no rounding reaches."""
+    corners = [i - 1 for i in _corners(np.concatenate([ring[-1:], ring, ring[:1]]), area)]
     closed = np.concatenate([ring, ring[:1]])
     if not corners:
         return closed
@@ -599,22 +598,24 @@ def _off_corner(ring: np.ndarray, area: Region) -> np.ndarray:
     return np.concatenate([[mid], closed[k + 1:-1], closed[:k + 1], [mid]])
 
 
-def _corner_turn(a: np.ndarray, v: np.ndarray, b: np.ndarray, area: Region) -> tuple[np.ndarray, np.ndarray] | None:
-    """At the vertex ``v`` of a ring between ``a`` and ``b``: two points of the ring just before and after it
-    (2, 2) and the distance's gradients there (2, 2) when it is an inside corner (the gradient turning by more
-    than 0.01 rad, the ring toward the larger distances), else None."""
-    lin, lout = float(np.hypot(*(v - a))), float(np.hypot(*(b - v)))
-    if lin <= 0 or lout <= 0:
-        return None
-    din, dout = (v - a) / lin, (b - v) / lout
-    delta = min(1e-5, lin / 4, lout / 4)
-    probes = np.array([v - delta * din, v + delta * dout])
-    g = area.distance(probes)[1]
-    phi = math.atan2(float(g[0][0] * g[1][1] - g[0][1] * g[1][0]), float(g[0] @ g[1]))
-    turn = float(din[0] * dout[1] - din[1] * dout[0])
-    if abs(phi) <= 1e-2 or turn * float(din[0] * g[0][1] - din[1] * g[0][0]) <= 0:
-        return None
-    return probes, g
+def _corners(pts: np.ndarray, area: Region) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """The inside corners among the inner vertices of the polyline ``pts`` (n, 2), by index: two points of it just
+    before and after the vertex (2, 2) and the distance's gradients there (2, 2). A corner: the gradient turns
+    there by more than 0.01 rad, the polyline toward the larger distances."""
+    a, v, b = pts[:-2], pts[1:-1], pts[2:]
+    lin, lout = np.hypot(*(v - a).T), np.hypot(*(b - v).T)
+    ok = (lin > 0) & (lout > 0)
+    din = (v - a) / np.where(ok, lin, 1.0)[:, None]
+    dout = (b - v) / np.where(ok, lout, 1.0)[:, None]
+    delta = np.minimum(1e-5, np.minimum(lin, lout) / 4)[:, None]
+    probes = np.stack([v - delta * din, v + delta * dout], axis=1)
+    g = area.distance(probes.reshape(-1, 2))[1].reshape(-1, 2, 2)
+    g1, g2 = g[:, 0], g[:, 1]
+    phi = np.arctan2(g1[:, 0] * g2[:, 1] - g1[:, 1] * g2[:, 0], np.einsum("ij,ij->i", g1, g2))
+    turn = din[:, 0] * dout[:, 1] - din[:, 1] * dout[:, 0]
+    toward = din[:, 0] * g1[:, 1] - din[:, 1] * g1[:, 0]
+    found = np.flatnonzero(ok & (np.abs(phi) > 1e-2) & (turn * toward > 0))
+    return {int(k) + 1: (probes[k], g[k]) for k in found}
 
 
 def _on_ring(pts: np.ndarray, point: np.ndarray, i: int, step: int, stop: int, reach: float,
@@ -636,15 +637,13 @@ def _on_ring(pts: np.ndarray, point: np.ndarray, i: int, step: int, stop: int, r
     return best[1] if best[0] <= tolerance else None
 
 
-def _fillet(pts: np.ndarray, i: int, area: Region, radius: float, tolerance: float,
-            last: tuple[int, np.ndarray]) -> tuple[int, list[np.ndarray], int] | None:
-    """The rounding of vertex ``i`` of the ring ``pts`` (:func:`rounded_region_ring`): the segment the arc
-    starts on, the arc's points (its ends included) and the segment it ends on; None when ``i`` is no corner or
-    stays sharp (its arc would start before ``last``, the segment and point where the ring goes on)."""
+def _fillet(pts: np.ndarray, i: int, corner: tuple[np.ndarray, np.ndarray], area: Region, radius: float,
+            tolerance: float, last: tuple[int, np.ndarray]) -> tuple[int, list[np.ndarray], int] | None:
+    """The rounding of the corner ``i`` of the ring ``pts`` (:func:`rounded_region_ring`; ``corner`` as
+    :func:`_corners` gives it): the segment the arc starts on, the arc's points (its ends included) and the
+    segment it ends on; None when it stays sharp (its arc would start before ``last``, the segment and point
+    where the ring goes on)."""
     v = pts[i]
-    corner = _corner_turn(pts[i - 1], v, pts[i + 1], area)
-    if corner is None:
-        return None
     probes, (g1, g2) = corner
     phi = math.atan2(float(g1[0] * g2[1] - g1[1] * g2[0]), float(g1 @ g2))
     f1, f2 = _feature(area, probes[0]), _feature(area, probes[1])
