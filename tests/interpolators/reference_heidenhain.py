@@ -1741,8 +1741,8 @@ def _tool(t: _Tnc, text: str) -> None:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
         return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
 
-    if m.group(1) == "DEF":
-        t.tool_defs[number] = (word("L"), word("R"))
+    if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
+        t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)
         return
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
@@ -1755,9 +1755,9 @@ def _tool(t: _Tnc, text: str) -> None:
         tool = t.ctx.tool(number)
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
     t.tool = number
-    t.length = length + word("DL")
-    t.radius = radius + word("DR")
-    t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
+    t.length = length + word("DL") * t.scale
+    t.radius = radius + word("DR") * t.scale
+    t.delta = word("DR") * t.scale  # LN displaces the end point along the surface normal by the delta values
     if re.search(r"\bF\s*[-+]?\s*[\dQ.]", rest):
         t.auto = word("F")
     # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
@@ -1795,7 +1795,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
             k = int(_val(idx, t.q))
             tool = t.ctx.tool(k)
             data = list(t.tool_defs.get(k, (tool.length, tool.radius) if tool is not None else (0.0, 0.0)))
-            data[int(nr) - 1] = _Formula(expr, t.q).value()
+            data[int(nr) - 1] = _Formula(expr, t.q).value() * t.scale
             t.tool_defs[k] = (data[0], data[1])
         elif (ident, nr) == ("20", "1") or (ident == "50" and nr in ("4", "5") and _Formula(expr, t.q).value()):
             raise ReferenceError(f"FN 17 ID{ident} NR{nr}")  # the active tool, DL / DR: data vcnc reads back
