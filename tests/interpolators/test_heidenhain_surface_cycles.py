@@ -179,6 +179,23 @@ def test_face_milling_233_along_the_minor_axis_and_the_operations():
     assert len(finish) == 4 and {(blk.target[2], mm_min(blk)) for blk in finish} == {(0, 800)}
 
 
+def test_face_milling_233_in_an_inch_program():
+    # every length in inches (the tool radius of TOOL DEF too), the feeds in 0.1 inch/min (the TNC's feed unit in
+    # INCH programs, as F): from X+1 Y+0.5, the start
+    # R + Q357 = 0.5 before it (X+0.5), the lines out to 0.5 beyond X+3 (X+3.5), at Y 0.5, 0.9, 1.3 (0.8 in
+    # stepovers of at most R = 0.4); levels 0.05 and 0 (Q202 = 0.05), milled at Q207 = 200: 20 inch/min
+    text = ("0 BEGIN PGM T INCH\nTOOL DEF 5 L+0 R+0.4\nTOOL CALL 5 Z S1000\nL X+1 Y+0.5 Z+4 R0 FMAX\n"
+            "CYCL DEF 233 FACE MILLING Q215=0 Q389=0 Q350=1 Q218=+2 Q219=+0.8 Q227=+0.1 Q386=+0 Q369=+0 Q202=+0.05 "
+            "Q370=+1 Q207=+200 Q253=+400 Q357=+0.1 Q200=+0.1 Q204=+1\nCYCL CALL\nEND PGM T INCH\n")
+    b = checked_program(text, CTX).blocks
+    cuts = [blk for blk in b if blk.kind == "line" and blk.start[2] == blk.target[2] and blk.start[1] == blk.target[1]]
+    assert len(cuts) == 6 and {round(blk.target[0] / 25.4, 9) for blk in cuts} == {0.5, 3.5}
+    assert sorted({round(blk.target[1] / 25.4, 9) for blk in cuts}) == [0.5, 0.9, 1.3]
+    assert sorted({round(blk.target[2] / 25.4, 9) for blk in cuts}) == [0.0, 0.05]
+    assert all(blk.feed == pytest.approx(20 * 25.4 / 60) for blk in cuts)
+    assert b[-1].target[2] == pytest.approx(1.1 * 25.4)  # Q227 + Q204
+
+
 def test_face_milling_233_bad_definitions_name_the_q_parameter():
     with pytest.raises(GCodeError, match="Q389=4 is not a strategy"):
         run(face233(s=4), reference=False)
