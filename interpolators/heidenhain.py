@@ -148,6 +148,7 @@ from interpolators.heidenhain_cycles import (
     LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
+    REFUSED_CYCLES,
     THREAD_CYCLES,
     DrillCycle,
     PatternCycle,
@@ -380,6 +381,12 @@ class _Machine:
         tool = self.context.tool(number)
         return None if tool is None else (tool.length, tool.radius)
 
+    def write_tool(self, number: int, column: int, value: float) -> None:
+        """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
+        now on, kept as the program's ``TOOL DEF`` is (the other of the two as it was, 0 for a tool unknown)."""
+        length, radius = self.tool_data(number) or (0.0, 0.0)
+        self.tool_defs[number] = (value, radius) if column == 1 else (length, value)
+
     def check_tilt(self, target: np.ndarray, extra: np.ndarray, where: Where) -> None:
         """A block ending at ``target`` [mm] with the rotary axes at ``extra`` [deg]: an error when it moves
         the linear axes while the tilted plane does not hold (its rotary axes elsewhere, as after PLANE ..
@@ -551,7 +558,8 @@ class _Run:
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
-                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at)
+                                scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at,
+                                tool_write=m.write_tool)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -909,9 +917,10 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
                                                  column=blk.column), None
         return
     if number not in (7, 9, 12, 13, 19, 32, *TRANSFORM_CYCLES, *MACHINING_CYCLES, *PATTERN_CYCLES):
-        where.fail(f"cycle {number} is not supported", column=blk.column, text=blk.code.strip(),
-                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20, 22, 25, 26, 32, 200-215, 220, 221, "
-                            "230-232, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
+        why = f" {REFUSED_CYCLES[number]}" if number in REFUSED_CYCLES else ""
+        where.fail(f"cycle {number}{why} is not supported", column=blk.column, text=blk.code.strip(),
+                   expected="CYCL DEF 1, 2, 4, 5, 7-14, 17, 19 (reset), 20-26, 32, 200-215, 220, 221, "
+                            "230-233, 240, 241, 247, 251, 252, 253, 254, 256, 257, 262-265, 267, 392")
     if number in MACHINING_CYCLES and (number not in LEGACY_CYCLES or sub in (None, 0)):
         m.cycle_program = None
     if number == 12 and sub == 1:
@@ -1390,10 +1399,12 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
 
 def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
-    multipass-milling cycle (230-232: placed by its own points)."""
+    multipass-milling cycle (230-232: placed by their own points; 233: the tool-axis coordinate of a position
+    would shift Q227, which no manual found describes)."""
     if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
         where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 (the cycle's own points Q225.. place it)")
+                   text=blk.code, expected="CYCL CALL or M99 (233: at the surface's corner; the others: their own "
+                                           "points Q225.. place them)")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
         number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
         name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
@@ -1463,7 +1474,8 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
     at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 rounds the rings' inside corners
     (:func:`interpolators.heidenhain_contours.rounded_ring`). Several labels in cycle 14 (pockets and islands):
-    :func:`_rough_out_region` (Q8 not applied there, noted).
+    :func:`_rough_out_region` (Q8 there by :func:`interpolators.heidenhain_contours.rounded_region_ring`; not
+    applied to rest machining, noted).
     Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
     floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
     _sl_checks(m, c.number, where, blk)
@@ -1471,9 +1483,9 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
         where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
                    text=blk.code, expected="a TOOL CALL of a tool with a radius")
     if len(m.contour) > 1 or c.coarse_tool:
-        if c.rounding:
-            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to pockets with islands "
-                   "or rest machining: the corners are sharp")
+        if c.rounding and c.coarse_tool:
+            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to rest machining (Q18): "
+                   "the corners are sharp")
         _rough_out_region(m, c, where, blk)
         return
     axis = m.plane
@@ -1545,10 +1557,11 @@ def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Regi
 
 
 def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
-                  blk: SourceBlock) -> list[tuple[np.ndarray, bool]]:
-    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named."""
+                  blk: SourceBlock, rounding: float = 0.0) -> list[tuple[np.ndarray, bool]]:
+    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named (``rounding``: cycle 20's
+    Q8, 22's rings only)."""
     try:  # from the lower left (the same rings whatever the tool's position: cycle 21 drills where 22 plunges)
-        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0])
+        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0], rounding=rounding)
     except ValueError as exc:
         where.fail(f"cycle {number}: {exc}", column=blk.column, text=blk.code,
                    expected="contours whose offsets the tool can follow")
@@ -1639,11 +1652,14 @@ def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) 
     the whole boundary (pocket walls and islands alike) R + Q3, R + Q3 + Q2 R, .. (each ring within
     :data:`toolpaths.pockets.TOLERANCE` = 1 um, never nearer the contours than its offset), run from the
     innermost level outward in the sense Q9, joined by straight feed moves where they keep R + Q3 from every
-    contour, else by a retraction to Q7 and a new plunge (separate regions). Per depth as for one pocket."""
+    contour, else by a retraction to Q7 and a new plunge (separate regions); cycle 20's Q8 rounds the rings'
+    inside corners (:func:`interpolators.heidenhain_contours.rounded_region_ring`; not after a coarse tool Q18).
+    Per depth as for one pocket."""
     axis = m.plane
     area = _sl_region(m, c.feed, where, blk)
     rings = _region_rings(m, area, first=m.tool_radius + c.side_allowance, step=c.overlap * m.tool_radius,
-                          ccw=c.ccw, number=c.number, where=where, blk=blk)
+                          ccw=c.ccw, number=c.number, where=where, blk=blk,
+                          rounding=0.0 if c.coarse_tool else c.rounding)
     if c.coarse_tool:
         coarse = m.tool_data(c.coarse_tool)
         if coarse is None or not coarse[1] > m.tool_radius:
@@ -1722,17 +1738,17 @@ def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock)
 
 
 def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
-    """Cycle 230, 231 or 232 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
+    """Cycle 230, 231, 232 or 233 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
     its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
     transformations."""
     axis = m.plane
     p, q = PLANE_AXES[axis]
-    if c.number == 232 and not m.tool_radius > 0:
-        where.fail("cycle 232 FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
+    if c.number in (232, 233) and not m.tool_radius > 0:
+        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
                    column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
     try:
         moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
-            surface_moves(c, radius=m.tool_radius, level=float(m.to_program(m.pos)[axis]))
+            surface_moves(c, radius=m.tool_radius, position=tuple(float(m.to_program(m.pos)[i]) for i in (p, q, axis)))
     except ValueError as exc:
         where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
     for mv in moves:

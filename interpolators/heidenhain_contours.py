@@ -17,7 +17,9 @@ programming, the same cycles.
 ``CYCL DEF 22``           ROUGH-OUT, called, with cycle 20's data: one pocket by the rings of
                           :func:`pocket_rings`; pockets with islands by the offset rings of the
                           region (:func:`clearing_rings`, :mod:`toolpaths.pockets`: within 1 um);
-                          Q18 rest machining after a coarse tool (:func:`rest_pieces`)
+                          Q8 rounds the inside corners of both (:func:`rounded_ring`,
+                          :func:`rounded_region_ring`); Q18 rest machining after a coarse tool
+                          (:func:`rest_pieces`, Q8 not applied)
 ``CYCL DEF 21, 23, 24``   PILOT DRILLING where 22 will plunge, FLOOR FINISHING (22 in one infeed
                           to Q1), SIDE FINISHING (the rings R + Q14 at each infeed)
                           (:func:`pilot_drilling_cycle`, :func:`floor_finishing_cycle`,
@@ -44,7 +46,7 @@ __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "Sid
            "floor_finishing_cycle", "side_finishing_cycle", "pilot_drilling_cycle", "contour_labels", "contour_data",
            "contour_train_cycle", "rough_out_cycle", "train_levels", "reversed_path", "path_at_level",
            "closed_pocket", "pocket_rings", "contour_edges", "superimposed_region", "clearing_rings",
-           "rest_pieces", "rounded_ring"]
+           "rest_pieces", "rounded_ring", "rounded_region_ring"]
 
 #: The SL cycles read here: 14 and 20 are DEF-active, 25 is called.
 CONTOUR_CYCLES: tuple[int, ...] = (14, 20, 25)
@@ -511,6 +513,169 @@ def rounded_ring(ring: list[Block], radius: float, *, plane: int, ccw: bool) -> 
     return out
 
 
+def _feature(area: Region, p: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """The part of ``area``'s boundary nearest to the point ``p`` as a circle: its centre, radius and sign (the
+    distance to it ``sign * (|x - centre| - radius)``), a line as ``radius`` inf with ``centre`` its point nearest
+    ``p`` and ``sign`` 0 (its distance then ``(x - centre) . n``, ``n`` the unit normal toward ``p``); an edge's
+    end the region wraps round is a circle of radius 0."""
+    best: tuple[float, tuple[np.ndarray, float, float]] | None = None
+    for e in area.boundary:
+        u = e.fraction(p)
+        if e.centre is None:
+            w = e.end - e.start
+            u = min(max(float((p - e.start) @ w / (w @ w)), 0.0), 1.0)
+            near = e.start + u * w
+            cand = (near, math.inf, 0.0) if 0.0 < u < 1.0 else (near, 0.0, 1.0)
+        elif 0.0 < u < 1.0:
+            r = float(np.hypot(*(p - e.centre)))
+            cand = (e.centre, e.radius, 1.0 if r >= e.radius else -1.0)
+        else:
+            cand = (min((e.start, e.end), key=lambda q: float(np.hypot(*(p - q)))), 0.0, 1.0)
+        dist = _feature_distance(cand, p)[0]
+        if best is None or abs(dist) < best[0]:
+            best = (abs(dist), cand)
+    return best[1]
+
+
+def _feature_distance(f: tuple[np.ndarray, float, float], x: np.ndarray, normal: np.ndarray | None = None
+                      ) -> tuple[float, np.ndarray]:
+    """The distance of ``x`` to the feature ``f`` of :func:`_feature` and its gradient (a line: along
+    ``normal``, else toward ``x`` from the line's point)."""
+    centre, radius, sign = f
+    if math.isinf(radius):
+        n = normal if normal is not None else (x - centre) / (float(np.hypot(*(x - centre))) or 1.0)
+        return float((x - centre) @ n), n
+    v = x - centre
+    r = float(np.hypot(*v)) or 1e-300
+    return sign * (r - radius), sign * v / r
+
+
+def rounded_region_ring(ring: np.ndarray, area: Region, radius: float, *,
+                        tolerance: float = TOLERANCE) -> np.ndarray:
+    """The closed ring (n, 2) of :func:`clearing_rings` with its inside corners rounded by ``radius`` [mm]: cycle
+    20's Q8 for pockets with islands, as :func:`rounded_ring` rounds one pocket's ring.
+
+    The ring lies on a level ``r`` of the distance to the region's boundary; its corners are where the offsets of
+    two boundary parts meet, found where the distance's gradient turns by more than 0.01 rad across a vertex (a
+    ring bends smoothly elsewhere); they turn toward the larger distances. The rounding arc is the circle of
+    ``radius`` tangent to both offsets: its centre lies at ``r + radius`` from both parts (a line, an arc or an
+    edge's end the region wraps round; solved by Newton steps from the bisector), the arc from its point nearest
+    the one part's offset to the other's, sampled in chords of at most ``tolerance`` sagitta (inside the circle:
+    never nearer the boundary than ``r``), joined to the ring where the ring passes within ``tolerance`` of those
+    points. Our reading where the manual is silent, as for one pocket: a corner stays sharp where the circle
+    would come nearer than ``r + radius`` to another part of the boundary, where its arc would reach past the
+    next corner, and at the ring's start (no corner)."""
+    pts = np.asarray(ring, dtype=float)
+    out: list[np.ndarray] = []
+    cur, last = 0, (0, pts[0])  # the next vertex to copy; the segment and point the last arc ended at
+    for i, corner in sorted(_corners(pts, area).items()):
+        if i < cur:
+            continue
+        fillet = _fillet(pts, i, corner, area, radius, tolerance, last)
+        if fillet is None:
+            continue
+        ka, arc, kb = fillet
+        out += [*pts[cur:ka + 1], *arc]
+        cur, last = kb + 1, (kb, arc[-1])
+    out += list(pts[cur:])
+    keep = [0] + [k for k in range(1, len(out)) if np.hypot(*(out[k] - out[k - 1])) > 1e-12]
+    return np.array([out[k] for k in keep])
+
+
+def _off_corner(ring: np.ndarray, area: Region) -> np.ndarray:
+    """The ring (n, 2), its last vertex joined to its first, closed and started at the middle of the chord
+    farthest along it from its corners (:func:`_corners`), where no rounding reaches."""
+    corners = [i - 1 for i in _corners(np.concatenate([ring[-1:], ring, ring[:1]]), area)]
+    closed = np.concatenate([ring, ring[:1]])
+    if not corners:
+        return closed
+    along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    total, at = along[-1], along[corners]
+    mids = (along[:-1] + along[1:]) / 2.0
+    gap = np.abs(mids[:, None] - at[None, :]) % total
+    k = int(np.argmax(np.min(np.minimum(gap, total - gap), axis=1)))
+    mid = (closed[k] + closed[k + 1]) / 2.0
+    return np.concatenate([[mid], closed[k + 1:-1], closed[:k + 1], [mid]])
+
+
+def _corners(pts: np.ndarray, area: Region) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """The inside corners among the inner vertices of the polyline ``pts`` (n, 2), by index: two points of it just
+    before and after the vertex (2, 2) and the distance's gradients there (2, 2). A corner: the gradient turns
+    there by more than 0.01 rad, the polyline toward the larger distances."""
+    a, v, b = pts[:-2], pts[1:-1], pts[2:]
+    lin, lout = np.hypot(*(v - a).T), np.hypot(*(b - v).T)
+    ok = (lin > 0) & (lout > 0)
+    din = (v - a) / np.where(ok, lin, 1.0)[:, None]
+    dout = (b - v) / np.where(ok, lout, 1.0)[:, None]
+    delta = np.minimum(1e-5, np.minimum(lin, lout) / 4)[:, None]
+    probes = np.stack([v - delta * din, v + delta * dout], axis=1)
+    g = area.distance(probes.reshape(-1, 2))[1].reshape(-1, 2, 2)
+    g1, g2 = g[:, 0], g[:, 1]
+    phi = np.arctan2(g1[:, 0] * g2[:, 1] - g1[:, 1] * g2[:, 0], np.einsum("ij,ij->i", g1, g2))
+    turn = din[:, 0] * dout[:, 1] - din[:, 1] * dout[:, 0]
+    toward = din[:, 0] * g1[:, 1] - din[:, 1] * g1[:, 0]
+    found = np.flatnonzero(ok & (np.abs(phi) > 1e-2) & (turn * toward > 0))
+    return {int(k) + 1: (probes[k], g[k]) for k in found}
+
+
+def _on_ring(pts: np.ndarray, point: np.ndarray, i: int, step: int, stop: int, reach: float,
+             tolerance: float) -> int | None:
+    """The segment ``k`` (``pts[k]`` to ``pts[k + 1]``) nearest ``point`` among those from vertex ``i`` toward
+    ``stop`` within the length ``reach`` along the ring; None when it is farther than ``tolerance``."""
+    best, k, walked = (math.inf, None), (i - 1 if step < 0 else i), 0.0
+    while (k >= stop) if step < 0 else (k < stop):
+        a, b = pts[k], pts[k + 1]
+        w = b - a
+        u = min(max(float((point - a) @ w / (w @ w)), 0.0), 1.0) if w @ w > 0 else 0.0
+        dist = float(np.hypot(*(a + u * w - point)))
+        if dist < best[0]:
+            best = (dist, k)
+        walked += float(np.hypot(*w))
+        if walked > reach:
+            break
+        k += step
+    return best[1] if best[0] <= tolerance else None
+
+
+def _fillet(pts: np.ndarray, i: int, corner: tuple[np.ndarray, np.ndarray], area: Region, radius: float,
+            tolerance: float, last: tuple[int, np.ndarray]) -> tuple[int, list[np.ndarray], int] | None:
+    """The rounding of the corner ``i`` of the ring ``pts`` (:func:`rounded_region_ring`; ``corner`` as
+    :func:`_corners` gives it): the segment the arc starts on, the arc's points (its ends included) and the
+    segment it ends on; None when it stays sharp (its arc would start before ``last``, the segment and point
+    where the ring goes on)."""
+    v = pts[i]
+    probes, (g1, g2) = corner
+    phi = math.atan2(float(g1[0] * g2[1] - g1[1] * g2[0]), float(g1 @ g2))
+    f1, f2 = _feature(area, probes[0]), _feature(area, probes[1])
+    target = float(area.distance(v[None, :])[0][0]) + radius
+    centre = v + (g1 + g2) / float(np.hypot(*(g1 + g2))) * radius / math.cos(abs(phi) / 2.0)
+    for _ in range(30):  # Newton: at target from both parts
+        (d1, n1), (d2, n2) = _feature_distance(f1, centre, g1), _feature_distance(f2, centre, g2)
+        jac = np.array([n1, n2])
+        if abs(np.linalg.det(jac)) < 1e-12:
+            return None
+        centre = centre - np.linalg.solve(jac, np.array([d1 - target, d2 - target]))
+        if max(abs(d1 - target), abs(d2 - target)) < 1e-12:
+            break
+    (_, n1), (_, n2) = _feature_distance(f1, centre, g1), _feature_distance(f2, centre, g2)
+    pa, pb = centre - radius * n1, centre - radius * n2
+    if float(area.distance(centre[None, :])[0][0]) < target - tolerance:
+        return None
+    reach = 3.0 * max(float(np.hypot(*(pa - v))), float(np.hypot(*(pb - v)))) + tolerance
+    ka = _on_ring(pts, pa, i, -1, last[0], reach, 2.0 * tolerance)
+    kb = _on_ring(pts, pb, i, 1, len(pts) - 1, reach, 2.0 * tolerance)
+    w = pts[last[0] + 1] - pts[last[0]]
+    if ka is None or kb is None or (ka == last[0] and float((pa - last[1]) @ w) < 0):
+        return None
+    a0 = math.atan2(pa[1] - centre[1], pa[0] - centre[0])
+    sweep = math.atan2(float(n1[0] * n2[1] - n1[1] * n2[0]), float(n1 @ n2))
+    step = 2.0 * math.acos(1.0 - tolerance / radius) if tolerance < radius else math.pi
+    k = max(1, math.ceil(abs(sweep) / step))
+    arc = [pa] + [centre + radius * np.array([math.cos(a0 + sweep * j / k), math.sin(a0 + sweep * j / k)])
+                  for j in range(1, k)] + [pb]
+    return ka, arc, kb
+
+
 def contour_edges(path: list[Block], plane: int) -> list[Edge]:
     """The lines and arcs of a contour's blocks as :class:`toolpaths.pockets.Edge` in the ``plane`` [mm]."""
     p, q = PLANE_AXES[plane]
@@ -554,14 +719,16 @@ def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, 
 
 
 def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start: np.ndarray,
-                   tolerance: float = TOLERANCE) -> list[tuple[np.ndarray, bool]]:
+                   tolerance: float = TOLERANCE, rounding: float = 0.0) -> list[tuple[np.ndarray, bool]]:
     """The rings that clear ``area`` [mm]: its offsets ``first``, ``first + step``, .. (``step`` infinite: the
     offset ``first`` alone) from the boundary
     (:func:`toolpaths.pockets.offset_rings`, within ``tolerance``), run from the innermost level outward, at each
     level the nearest ring next, each closed (n, 2) from its vertex nearest to where the tool is (``start``
     first), with ``True`` when the straight move to it from the previous ring's end keeps ``first`` from the
     boundary (else the tool leaves the material to reach it). ``ccw``: the material on the tool's right (Q9 =
-    +1, climb milling with M3: counter-clockwise in a pocket, clockwise round an island)."""
+    +1, climb milling with M3: counter-clockwise in a pocket, clockwise round an island). ``rounding`` > 0: each
+    ring's inside corners rounded by it (cycle 20's Q8, :func:`rounded_region_ring`), before its start is
+    chosen."""
     lo, hi = area.bounds()
     half = float(np.min(hi - lo)) / 2
     levels = [first + k * step for k in range(min(100_000, int(half / step) + 2))] if math.isfinite(step) else [first]
@@ -576,6 +743,9 @@ def clearing_rings(area: Region, *, first: float, step: float, ccw: bool, start:
             k = int(np.argmin([np.min(np.linalg.norm(r - here, axis=1)) for r in todo]))
             ring = todo.pop(k)
             i = int(np.argmin(np.linalg.norm(ring - here, axis=1)))
+            if rounding > 0:
+                ring = rounded_region_ring(_off_corner(ring, area), area, rounding, tolerance=tolerance)[:-1]
+                i = int(np.argmin(np.linalg.norm(ring - here, axis=1)))
             ring = np.concatenate([ring[i:], ring[:i + 1]])
             linked = bool(out) and segment_clear(area, here, ring[0], first, tolerance=tolerance)
             out.append((ring, linked))

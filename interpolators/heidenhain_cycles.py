@@ -66,7 +66,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
-           "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle"]
+           "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -84,6 +84,31 @@ PATTERN_CYCLES: tuple[int, ...] = (220, 221)
 #: and 215 CIRCULAR STUD FINISHING as 256's / 257's revolutions (:func:`finishing_cycle`), 210 SLOT RECIP. PLNG
 #: and 211 CIRCULAR SLOT as 253's and 254's slots (:func:`old_slot_cycle`).
 SAME_MOVES: dict[int, int] = {4: 251, 5: 252, 212: 251, 214: 252, 213: 256, 215: 257, 210: 253, 211: 254}
+#: Milling cycles of the TNC 640 / TNC 620 / iTNC 530 cycle manuals (and the old TNC 355/426 ones) vcnc refuses, with
+#: why: the manuals found in the corpora give no cycle run for them, or their motion needs what vcnc does not model.
+REFUSED_CYCLES: dict[int, str] = {
+    3: "SLOT MILLING (the old cycle: no manual page of its run was found; CYCL DEF 253 SLOT MILLING runs)",
+    6: "ROUGH-OUT (the old SL I cycle: no manual page found; the SL II cycles 20-24 run)",
+    15: "PILOT DRILLING (the old SL I cycle: no manual page found; cycle 21 runs)",
+    16: "CONTOUR MILLING (the old SL I cycle: no manual page found; cycles 24, 25 run)",
+    18: "THREAD CUTTING (spindle-synchronised single-point threading: no manual page of its run was found)",
+    27: "CYLINDER SURFACE (a contour unrolled onto a rotary axis)",
+    28: "CYLINDER SURFACE SLOT (a contour unrolled onto a rotary axis)",
+    29: "CYLINDER SURFACE RIDGE (a contour unrolled onto a rotary axis)",
+    39: "CYLINDER SURFACE CONTOUR (a contour unrolled onto a rotary axis)",
+    224: "DATAMATRIX CODE PATTERN (the code's dot pattern is not modelled)",
+    225: "ENGRAVING (the control's font is not modelled)",
+    258: "POLYGON STUD (the manual found, TNC7 basic 81762x-19, gives its sequence but neither the spiral path nor "
+         "the parameter list)",
+    270: "CONTOUR TRAIN DATA (cycle 25's approach and departure by it are not modelled)",
+    271: "OCM CONTOUR DATA (optimized contour milling: trochoidal paths not modelled)",
+    272: "OCM ROUGHING (optimized contour milling: trochoidal paths not modelled)",
+    273: "OCM FINISHING FLOOR (optimized contour milling is not modelled)",
+    274: "OCM FINISHING SIDE (optimized contour milling is not modelled)",
+    275: "TROCHOIDAL SLOT (trochoidal paths are not modelled)",
+    276: "THREE-D CONTOUR TRAIN (3-D contour trains are not modelled)",
+    277: "OCM CHAMFERING (optimized contour milling is not modelled)",
+}
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
 MAX_INFEEDS: int = 100_000
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).

@@ -18,6 +18,9 @@ Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q para
   ``ID270 NR1 IDXi`` (position in the active coordinate system) read the simulated position:
   a simulation has no operator jogging the axes at a ``STOP``, so programs that measure
   positions set by hand read the position where the program left the tool.
+* ``FN 17: SYSWRITE IDi NRj [IDXk] = value`` writes system data: the tool table's length and radius
+  (ID50 NR1, NR2) as a ``TOOL DEF`` does; other data vcnc does not hold are noted and not written
+  (:func:`run_function`).
 
 A parameter used before it is set reads 0, as on the TNC after a reset of the Q parameters.
 """
@@ -160,7 +163,8 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
                  origin: np.ndarray, scale: float, note: Callable[[str], None],
                  tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None),
-                 stopped_at: int | None = None) -> str | None:
+                 stopped_at: int | None = None,
+                 tool_write: Callable[[int, int, float], None] | None = None) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 
     Parameters
@@ -177,6 +181,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
     stopped_at : int or None
         The line of a program stop (``STOP``, ``M0``, ``M1``) with no move since, None if none: a
         position ``FN 18 SYSREAD`` reads there is the one where the program stopped, noted.
+    tool_write : callable or None
+        For ``FN 17 SYSWRITE ID50 NR1`` / ``NR2``: receives the tool number, 1 (length) or 2 (radius) and
+        the value [mm]; None: such a write is an error.
 
     Returns
     -------
@@ -235,8 +242,56 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool,
                  stopped_at=stopped_at)
         return None
+    if n == 17:
+        _syswrite(rest, params, where, col, scale=scale, note=note, tool_write=tool_write)
+        return None
     where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
-               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 18 SYSREAD ID20/ID50/ID240/ID270")
+               expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 17 SYSWRITE, "
+                        "FN 18 SYSREAD ID20/ID50/ID240/ID270")
+
+
+_SYSWRITE_RE = re.compile(r"\s*SYSWRITE\s+ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*=\s*(.*?)\s*$",
+                          re.I)
+#: What ``FN 17 SYSWRITE`` may not write: data vcnc reads back or positions by (ID, NR) -> what they are.
+_SYSWRITE_REFUSED = {(20, 1): "the active tool (set by TOOL CALL)", (50, 4): "the tool's length oversize DL",
+                     (50, 5): "the tool's radius oversize DR"}
+
+
+def _syswrite(rest: str, params: QParameters, where: Where, col: int, *, scale: float, note: Callable[[str], None],
+              tool_write: Callable[[int, int, float], None] | None) -> None:
+    """``FN 17: SYSWRITE IDi NRj [IDXk] = value`` (TNC 426/430 technical manual 12/2001, 7.3.3 "Data Transfer NC
+    Program -> NC (SYSWRITE)": "FN17: SYSWRITE IDxxxx NRxxxx IDXxxxx = Qxxx or numerical value", to "overwrite
+    certain NC data"; its table: ID50 "Data from the tool table", NR1 tool length L, NR2 tool radius R, NR3 R2,
+    NR4 DL, NR5 DR, ..., the index the tool number). ID50 NR1 / NR2 write the length / radius of tool IDX into
+    the tool data ``TOOL CALL`` and ``FN 18 SYSREAD ID50`` take from then on (as a ``TOOL DEF`` of the program:
+    the active tool's compensation changes at its next ``TOOL CALL``, our reading). DL and DR (NR4, NR5), which
+    vcnc's tool table does not hold (``FN 18`` reads them as 0), may be written 0 only, and ID20 NR1 (the active
+    tool) not at all: an error naming them. Anything else (R2, tool life, PLC data, pocket and datum tables, a
+    text value such as a tool name ``= ""``) is data vcnc does not model: noted, not written."""
+    sm = _SYSWRITE_RE.match(rest)
+    if sm is None or not sm.group(4):
+        where.fail(f"malformed FN 17 SYSWRITE {rest.strip()!r}", column=col, text=rest.strip(),
+                   expected="SYSWRITE IDi NRj [IDXk] = value")
+    ident, nr = int(sm.group(1)[:6]), int(sm.group(2)[:6])
+    idx = sm.group(3)
+    index = None if idx is None else params.get(idx) if idx[0] in "qQ" else float(idx[:9])
+    what = f"FN 17 SYSWRITE ID{ident} NR{nr}" + ("" if index is None else f" IDX{index:g}")
+    text = sm.group(4)
+    if text[0] in "\"'":  # a text (a tool name): vcnc's tool table has no names
+        note(f"{what} = {text}: a text value, not written (vcnc keeps no such data)")
+        return
+    value = params.evaluate(text, where, column=col + sm.start(4))
+    if (ident, nr) in _SYSWRITE_REFUSED and not (ident == 50 and value == 0):
+        where.fail(f"{what} = {value:g}: writing {_SYSWRITE_REFUSED[ident, nr]} is not supported", column=col,
+                   text=rest.strip(), expected="FN 17 SYSWRITE ID50 NR1/NR2 IDXt (tool length / radius), DL/DR 0")
+    if ident == 50 and nr in (1, 2):
+        if index is None or not (index >= 0 and index == int(index)) or tool_write is None:
+            where.fail(f"{what}: no tool number", column=col, text=rest.strip(),
+                       expected="IDX a whole number >= 0 (the tool)")
+        tool_write(int(index), nr, value * scale)
+        return
+    if (ident, nr) not in _SYSWRITE_REFUSED:
+        note(f"{what}: system data vcnc does not model, not written")
 
 
 _SYSREAD_RE = re.compile(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*$",

@@ -8,7 +8,9 @@ carries them through the active transformations (:func:`surface_moves`).
 ``CYCL DEF 232``          FACE MILLING, strategies Q389 = 0, 1, 2 (:func:`face_milling_cycle`)
 ``CYCL DEF 230``          MULTIPASS MILLING, Q240 lines meandering at one height (:func:`multipass_cycle`)
 ``CYCL DEF 231``          RULED SURFACE between four points, Q240 lines (:func:`ruled_surface_cycle`)
-``CYCL DEF 233``          FACE MILLING of the TNC 640 (side walls, Q350 direction, limits Q347-Q349): an error
+``CYCL DEF 233``          FACE MILLING of the TNC 640: the surface from the tool's position, Q350 direction,
+                          Q389 = 0 .. 3, Q215 roughing / finishing (:func:`face_milling_233`); its side walls
+                          (limits Q347-Q349) and the helical strategy Q389 = 4 are errors
 ========================= ==================================================================
 """
 
@@ -20,9 +22,10 @@ import math
 from interpolators._words import Where
 
 __all__ = ["MAX_LINES", "SURFACE_CYCLES", "SurfaceCycle", "RuledSurface", "SurfaceMove", "face_milling_cycle",
-           "multipass_cycle", "ruled_surface_cycle", "ruled_surface_moves", "surface_cycle", "surface_moves"]
+           "face_milling_233", "multipass_cycle", "ruled_surface_cycle", "ruled_surface_moves", "surface_cycle",
+           "surface_moves"]
 
-#: The multipass-milling cycles this module runs (233 is refused by :func:`surface_cycle`).
+#: The multipass-milling cycles this module runs.
 SURFACE_CYCLES: tuple[int, ...] = (230, 231, 232, 233)
 
 #: Most lines of one level of cycle 232 (a guard against a tiny tool radius or stepover factor).
@@ -32,6 +35,7 @@ _REQUIRED = {
     232: (389, 225, 226, 227, 386, 218, 219, 202, 207, 200, 357, 204),
     230: (225, 226, 227, 218, 219, 240, 206, 207, 209, 200),
     231: (225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 240, 207),
+    233: (389, 350, 218, 219, 227, 386, 202, 207, 200, 204),
 }
 
 
@@ -42,15 +46,22 @@ class SurfaceCycle:
     Attributes
     ----------
     number : int
-        232 FACE MILLING or 230 MULTIPASS MILLING.
+        232 or 233 FACE MILLING, or 230 MULTIPASS MILLING.
     strategy : int
         232: Q389, 0 meander with the stepover outside the surface, 1 meander with the stepover within it,
-        2 line by line, back over the surface at the set-up clearance (230: 0, a meander).
+        2 line by line, back over the surface at the set-up clearance (230: 0, a meander); 233: Q389, 0 and 1
+        meander, 2 and 3 line by line, the lines' end points beyond the far edge by the tool radius plus Q357
+        (0, 2) or by Q357 (1, 3).
     start : tuple of float
-        Q225, Q226, Q227: the starting point in the reference, minor and tool axes [mm].
+        Q225, Q226, Q227: the starting point in the reference, minor and tool axes [mm] (233: the tool's position
+        in the plane when the cycle is called, and Q227).
     sides : tuple of float
         Q218, Q219: the surface's side lengths along the reference and minor axes, their signs the direction
         of the first milling path and of the first stepover [mm].
+    direction : int
+        233: Q350, the axis the lines run along, 1 the reference axis, 2 the minor axis (others: 1).
+    operation : int
+        233: Q215, 0 roughing and finishing, 1 roughing only, 2 finishing only (others: 0).
     end_level : float
         232: Q386, the tool-axis coordinate the surface is milled down to [mm] (230: Q227, one height).
     plunge : float
@@ -61,9 +72,11 @@ class SurfaceCycle:
         232: Q370, the largest stepover as a factor of the tool radius [-].
     lines : int
         230: Q240, the number of lines (0: from ``stepover``).
-    feed, finish_feed, approach_feed, step_feed : float
-        Q207 milling, Q385 finishing (232), Q253 pre-positioning (232) or Q206 plunging (230), and the stepover
-        feed (232: Q253, with Q389 = 1 Q207; 230: Q209) [mm/s].
+    feed, finish_feed, approach_feed, step_feed, return_feed : float
+        Q207 milling, Q385 finishing (232, 233), the infeed to each level (232: Q253 pre-positioning, 233: Q207,
+        230: Q206 plunging), the stepover feed (232: Q253, with Q389 = 1 Q207; 233: Q253; 230: Q209) and the
+        move back to the next line's start of the line-by-line strategies (232: Q253; 233: ``inf``, rapid)
+        [mm/s].
     setup, side_clearance, second_setup : float
         Q200 set-up clearance above ``start``'s tool-axis coordinate, Q357 clearance to the side (232), Q204
         2nd set-up clearance above it (230: Q200) [mm].
@@ -82,9 +95,12 @@ class SurfaceCycle:
     finish_feed: float
     approach_feed: float
     step_feed: float
+    return_feed: float = 0.0
     setup: float
     side_clearance: float = 0.0
     second_setup: float
+    direction: int = 1
+    operation: int = 0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -183,21 +199,17 @@ def ruled_surface_moves(c: RuledSurface, *, radius: float) -> list[SurfaceMove]:
 
 def surface_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
                   column: int) -> SurfaceCycle | RuledSurface:
-    """Cycle 230, 231 or 232 from its Q parameters; 233 is an error (TNC 640 user's manual for cycle programming
-    9/2015, "FACE MILLING (Cycle 233)", p. 175: its side walls Q347-Q349, the milling direction Q350 and the
-    helical strategy Q389 = 4 are not modelled)."""
-    if number == 233:
-        where.fail("cycle 233 FACE MILLING (the TNC 640's, with limits Q347-Q349 and direction Q350) is not "
-                   "supported", column=column, text=where.text,
-                   expected="CYCL DEF 232 FACE MILLING (Q389 0, 1, 2) or the surface programmed with L blocks")
+    """Cycle 230, 231, 232 or 233 from its Q parameters."""
     for k, v in q.items():
-        if math.isinf(v) and not (number == 232 and k == 253):
+        if math.isinf(v) and not (number in (232, 233) and k == 253):
             where.fail(f"cycle {number}: Q{k}=MAX is not a value here", column=column, text=where.text,
                        expected=f"Q{k}=<number>")
     if number == 230:
         return multipass_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     if number == 231:
         return ruled_surface_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if number == 233:
+        return face_milling_233(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
     return face_milling_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
 
 
@@ -216,16 +228,7 @@ def face_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, 
     if strategy not in (0, 1, 2) or q[389] != strategy:
         where.fail(f"cycle 232: Q389={q[389]:g} is not a strategy", column=column, text=where.text,
                    expected="Q389=0, 1 or 2")
-    depth = q[227] - q[386] - abs(q.get(369, 0.0))
-    if q[227] <= q[386] or depth < 0:
-        where.fail("cycle 232: the starting point Q227 must lie above the end point Q386 by at least the allowance "
-                   "Q369", column=column, text=where.text, expected="Q227 > Q386 + Q369")
-    if not q[207] > 0 or not q.get(370, 1.0) > 0 or (depth > 0 and not q[202] > 0):
-        where.fail("cycle 232: the milling feed Q207, the stepover factor Q370 and the plunging depth Q202 must be "
-                   "> 0", column=column, text=where.text, expected="Q207 > 0, Q370 > 0, Q202 > 0")
-    if depth / max(abs(q[202]), 1e-12) > 10_000:
-        where.fail(f"cycle 232: {depth:g} in plunges of {q[202]:g} are more than 10000 infeeds", column=column,
-                   text=where.text, expected="a larger plunging depth Q202")
+    _levels_checked(232, q, where, column)
     feed = q[207] * feed_scale
     approach = (q.get(253, 0.0) or q[207]) * feed_scale
     return SurfaceCycle(
@@ -233,8 +236,70 @@ def face_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, 
         sides=(q[218] * scale, q[219] * scale), end_level=q[386] * scale, plunge=abs(q[202]) * scale,
         allowance=abs(q.get(369, 0.0)) * scale, stepover=q.get(370, 1.0), feed=feed,
         finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale, approach_feed=approach,
-        step_feed=feed if strategy == 1 else approach, setup=abs(q[200]) * scale,
+        step_feed=feed if strategy == 1 else approach, return_feed=approach, setup=abs(q[200]) * scale,
         side_clearance=abs(q[357]) * scale, second_setup=abs(q[204]) * scale)
+
+
+def _levels_checked(number: int, q: dict[int, float], where: Where, column: int) -> None:
+    """The checks of the tool-axis values 232 and 233 share: Q227 above Q386 by at least the allowance Q369, the
+    milling feed Q207, the stepover factor Q370 and (with infeeds to make) the plunging depth Q202 > 0, at most
+    10000 infeeds."""
+    depth = q[227] - q[386] - abs(q.get(369, 0.0))
+    if q[227] <= q[386] or depth < 0:
+        where.fail(f"cycle {number}: the starting point Q227 must lie above the end point Q386 by at least the "
+                   "allowance Q369", column=column, text=where.text, expected="Q227 > Q386 + Q369")
+    if not q[207] > 0 or not q.get(370, 1.0) > 0 or (depth > 0 and not q[202] > 0):
+        where.fail(f"cycle {number}: the milling feed Q207, the stepover factor Q370 and the plunging depth Q202 "
+                   "must be > 0", column=column, text=where.text, expected="Q207 > 0, Q370 > 0, Q202 > 0")
+    if depth / max(abs(q[202]), 1e-12) > 10_000:
+        where.fail(f"cycle {number}: {depth:g} in plunges of {q[202]:g} are more than 10000 infeeds", column=column,
+                   text=where.text, expected="a larger plunging depth Q202")
+
+
+def face_milling_233(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                     column: int) -> SurfaceCycle:
+    """Cycle 233 FACE MILLING from its Q parameters (TNC7 basic user's manual 81762x-19, "Cycle 233 FACE
+    MILLING", https://content.heidenhain.de/doku/tnc_guide/pdf_files/TNC7_basic/81762x-19/html5/
+    TNC7basic_EN_81762x-19.tncdoc; the same cycle as the TNC 640's): Q215 machining operation (0 roughing and
+    finishing, 1 only roughing, 2 only finishing), Q389 strategy (0 meander, stepover outside the surface; 1
+    meander, stepover at its edge; 2 line by line with overtravel, 3 without, the stepover when retracting at
+    rapid traverse; 4 helical, an error here), Q350 milling direction (1 the lines along the reference axis, 2
+    along the minor axis), Q218/Q219 the side lengths along the reference and minor axes from the starting
+    point (signed), Q227 the starting point and Q386 the end point in the tool axis, Q369 the floor allowance,
+    Q202 the largest plunging depth, Q370 the largest stepover factor, Q207 milling, Q385 finishing, Q253
+    pre-positioning feed (``MAX``: rapid), Q357 clearance to the side, Q200 set-up clearance, Q204 2nd set-up
+    clearance; the limits Q347, Q348, Q349 (side walls) must be 0, the side-wall parameters Q220, Q368 and Q338
+    then have nothing to act on. The starting point in the plane is the tool's position when the cycle is
+    called (our reading: the cycle has no Q225/Q226, and the manual measures the side lengths "from the
+    starting point"); a Q367 (a surface position relative to the tool) is an error: the manual found describes
+    no such parameter for this cycle. The moves are :func:`surface_moves`."""
+    _required(233, q, where, column)
+    limits = [f"Q{k}={q[k]:g}" for k in (347, 348, 349) if q.get(k, 0.0)]
+    if limits:
+        where.fail(f"cycle 233: the side walls {', '.join(limits)} are not supported", column=column,
+                   text=where.text, expected="Q347=0 Q348=0 Q349=0 (no limits)")
+    if 367 in q:
+        where.fail(f"cycle 233: the surface position Q367={q[367]:g} is not supported", column=column,
+                   text=where.text, expected="no Q367 (the surface's corner at the tool's position)")
+    strategy, direction, operation = int(q[389]), int(q[350]), int(q.get(215, 0.0))
+    if strategy not in (0, 1, 2, 3) or q[389] != strategy:
+        where.fail(f"cycle 233: Q389={q[389]:g} is not a strategy vcnc runs", column=column, text=where.text,
+                   expected="Q389=0, 1, 2 or 3 (4, helical, is not supported)")
+    if direction not in (1, 2) or q[350] != direction:
+        where.fail(f"cycle 233: Q350={q[350]:g} is not a milling direction", column=column, text=where.text,
+                   expected="Q350=1 (the reference axis) or 2 (the minor axis)")
+    if operation not in (0, 1, 2) or q.get(215, 0.0) != operation:
+        where.fail(f"cycle 233: Q215={q[215]:g} is not a machining operation", column=column, text=where.text,
+                   expected="Q215=0 (roughing and finishing), 1 (roughing) or 2 (finishing)")
+    _levels_checked(233, q, where, column)
+    feed = q[207] * feed_scale
+    return SurfaceCycle(
+        number=233, strategy=strategy, start=(0.0, 0.0, q[227] * scale), sides=(q[218] * scale, q[219] * scale),
+        end_level=q[386] * scale, plunge=abs(q[202]) * scale, allowance=abs(q.get(369, 0.0)) * scale,
+        stepover=q.get(370, 1.0), feed=feed, finish_feed=(q.get(385, 0.0) or q[207]) * feed_scale,
+        approach_feed=feed, step_feed=(q.get(253, 0.0) or q[207]) * feed_scale, return_feed=math.inf,
+        setup=abs(q[200]) * scale, side_clearance=abs(q.get(357, 0.0)) * scale, second_setup=abs(q[204]) * scale,
+        direction=direction, operation=operation)
 
 
 def multipass_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -260,54 +325,62 @@ def multipass_cycle(q: dict[int, float], *, feed_scale: float, scale: float, whe
 
 
 def _levels(c: SurfaceCycle) -> list[tuple[float, bool]]:
-    """232's infeed levels [mm, tool axis] from Q227 to Q386, each with whether it is the finishing one: equal
-    infeeds of at most Q202 down to Q386 + Q369, then Q386 when Q369 > 0."""
+    """232's and 233's infeed levels [mm, tool axis] from Q227 to Q386, each with whether it is the finishing one:
+    equal infeeds of at most Q202 down to Q386 + Q369, then Q386 when Q369 > 0 (233: Q215 = 1 without that last
+    level, Q215 = 2 that level alone, at the finishing feed also when Q369 = 0)."""
     top, rough = c.start[2], c.end_level + c.allowance
     if c.number == 230:
         return [(top, False)]
+    if c.operation == 2:
+        return [(c.end_level, True)]
     n = max(1, math.ceil((top - rough) / c.plunge - 1e-9)) if top > rough else 0
     out = [(top - (top - rough) * (i + 1) / n, False) for i in range(n)]
-    return out + [(c.end_level, True)] if c.allowance > 0 else out
+    return out + [(c.end_level, True)] if c.allowance > 0 and c.operation == 0 else out
 
 
-def _rows(c: SurfaceCycle, radius: float) -> list[float]:
-    """The lines' minor-axis coordinates [mm]: from Q226 to Q226 + Q219 in equal stepovers (232: of at most
-    Q370 x the tool radius; 230: Q240 lines)."""
-    v0, width = c.start[1], c.sides[1]
+def _rows(c: SurfaceCycle, v0: float, width: float, radius: float) -> list[float]:
+    """The lines' coordinates across them [mm]: from ``v0`` to ``v0 + width`` in equal stepovers (232, 233: of at
+    most Q370 x the tool radius; 230: Q240 lines)."""
     n = c.lines - 1 if c.number == 230 else math.ceil(abs(width) / (c.stepover * radius) - 1e-9) if radius else 0
     if n <= 0:
         return [v0]
     return [v0 + width * j / n for j in range(n + 1)]
 
 
-def _ends(c: SurfaceCycle, radius: float) -> tuple[float, float, float]:
-    """The reference-axis coordinates [mm] of the approach point, of the lines' near ends and of their far ends."""
-    u0, length = c.start[0], c.sides[0]
+def _ends(c: SurfaceCycle, u0: float, length: float, radius: float) -> tuple[float, float, float]:
+    """The coordinates along the lines [mm] of the approach point, of the lines' near ends and of their far ends,
+    for the surface from ``u0`` to ``u0 + length``."""
     s = -1.0 if length < 0 else 1.0
     if c.number == 230:
         return u0 - s * radius, u0 - s * radius, u0 + length + s * radius
     outside = radius + c.side_clearance
     approach = u0 - s * outside
+    if c.number == 233:
+        beyond = outside if c.strategy in (0, 2) else c.side_clearance
+        return approach, (u0 - s * beyond if c.strategy in (0, 1) else approach), u0 + length + s * beyond
     if c.strategy == 1:
         return approach, u0 + s * radius, u0 + length - s * radius
     return approach, approach, u0 + length + s * outside
 
 
-def surface_moves(c: SurfaceCycle, *, radius: float, level: float) -> list[SurfaceMove]:
-    """The moves of cycle 232 FACE MILLING or 230 MULTIPASS MILLING for a tool of ``radius`` [mm] whose tool-axis
-    coordinate is ``level`` [mm, program] (TNC 640 user's manual for cycle programming 34059x-01, p. 235-236,
-    cycle 232's "Cycle run"; TNC 320 user's manual 340 551-02 p. 298 for the parameters; cycle 230: our reading
-    of the TNC 426/430 user's manual's "MULTIPASS MILLING (Cycle 230)", :func:`multipass_cycle`):
+def surface_moves(c: SurfaceCycle, *, radius: float, position: tuple[float, float, float]) -> list[SurfaceMove]:
+    """The moves of cycle 232 or 233 FACE MILLING or 230 MULTIPASS MILLING for a tool of ``radius`` [mm] at
+    ``position`` [mm, program: reference, minor and tool axes] (TNC 640 user's manual for cycle programming
+    34059x-01, p. 235-236, cycle 232's "Cycle run"; TNC 320 user's manual 340 551-02 p. 298 for the parameters;
+    cycle 233: TNC7 basic user's manual 81762x-19, "Cycle 233 FACE MILLING", :func:`face_milling_233`; cycle 230:
+    our reading of the TNC 426/430 user's manual's "MULTIPASS MILLING (Cycle 230)", :func:`multipass_cycle`):
 
     * positioning logic: above the 2nd set-up clearance (Q227 + Q204) the tool goes at FMAX first in the plane
       to the starting point, then down to the set-up clearance Q227 + Q200; below it first up to the 2nd
-      set-up clearance; then at Q253 (230: Q206) to the first infeed level;
+      set-up clearance; then at Q253 (233: at the milling feed Q207, "the tool then moves in the spindle axis at
+      the feed rate for milling Q207 to the first plunging depth"; 230: Q206) to the first infeed level;
     * the starting point lies off the surface's edge by the tool radius plus Q357 (230: the tool radius);
-      the lines run along the reference axis in the direction of Q218's sign, at Q226 and then in equal
+      the lines run along the reference axis (233 with Q350 = 2: along the minor axis, Q219 their length and
+      Q218 the width across them) in the direction of Q218's sign, at Q226 and then in equal
       stepovers of at most Q370 x the tool radius to Q226 + Q219 (our reading: the first and the last line's
       tool centre on the surface's edges, which the manual's "calculated from the programmed width, the tool
       radius and the maximum path overlap factor" leaves open; an R2 of the tool table is not held by vcnc's
-      tool table); 230: Q240 lines from Q226 to Q226 + Q219;
+      tool table); 230: Q240 lines from Q226 to Q226 + Q219; 233: from the tool's position;
     * Q389 = 0: meander, each line out to the tool radius plus Q357 beyond the far edge, the stepover there
       at Q253; Q389 = 1: meander within the surface, the lines from the tool radius inside the near edge to
       the tool radius inside the far edge ("the end point lies within the surface"; the first line starts at
@@ -318,37 +391,51 @@ def surface_moves(c: SurfaceCycle, *, radius: float, level: float) -> list[Surfa
       FMAX (our reading) up to the set-up clearance above the level, at Q253 to the start of the next line,
       down to the level at Q253 (our reading); after the last line up and at Q253 back over the starting
       point, down to the next level;
-    * equal infeeds of at most Q202 from Q227 to Q386 + Q369, then the last one, Q369, at Q385;
+    * 233: Q389 = 0 meanders out to the tool radius plus Q357 beyond the far edge, Q389 = 1 to Q357 beyond it
+      ("If Q389=0, the end point lies outside of the surface, with Q389=1, it lies at the edge of the surface.
+      The control calculates end point 2 from the side length and the set-up clearance to the side"; our
+      reading: the lines back end as far beyond the near edge), the stepovers at Q253 ("shifts the tool
+      laterally to the starting point of the next line at the pre-positioning feed rate"); Q389 = 2 and 3 the
+      same ends line by line, "stepover when retracting at rapid traverse": up to the set-up clearance above the
+      level, over to the next line's start at FMAX and down at Q207 (our reading);
+    * equal infeeds of at most Q202 from Q227 to Q386 + Q369, then the last one, Q369, at Q385 (233: Q215 = 1
+      without it, Q215 = 2 only it);
     * finally at FMAX to the 2nd set-up clearance (230: to the set-up clearance);
     * 230 (TNC 426/430 manual's cycle run): at FMAX in the plane to the starting point, which is the tool radius
       before Q225 (our reading of "offsets the tool by the tool radius"), at FMAX to the set-up clearance above
       Q227, at Q206 down to Q227, the lines (at Q207) meandering out to the tool radius beyond the far edge,
       the stepovers at Q209 (our reading: Q219 / (Q240 - 1) apart, the first and the last line on the edges).
 
-    A ``ValueError`` when cycle 232's lines would be more than :data:`MAX_LINES`.
+    A ``ValueError`` when cycle 232's or 233's lines would be more than :data:`MAX_LINES`.
     """
+    u0, v0 = (position[0], position[1]) if c.number == 233 else c.start[:2]
+    length, width = c.sides
+    swap = c.direction == 2
+    if swap:
+        u0, v0, length, width = v0, u0, width, length
     top = c.start[2]
     clear = top + c.second_setup
-    approach, near, far = _ends(c, radius)
-    rows = _rows(c, radius)
-    if c.number == 232 and len(rows) > MAX_LINES:
+    approach, near, far = _ends(c, u0, length, radius)
+    rows = _rows(c, v0, width, radius)
+    if c.number != 230 and len(rows) > MAX_LINES:
         raise ValueError(f"{len(rows)} lines of stepovers of {c.stepover * radius:g} mm are more than {MAX_LINES}")
     out: list[SurfaceMove] = []
-    if level <= clear and c.number == 232:
+    if position[2] <= clear and c.number != 230:
         out.append(SurfaceMove("rapid", (None, None, clear)))
     out += [SurfaceMove("rapid", (approach, rows[0], None)), SurfaceMove("rapid", (None, None, top + c.setup))]
     at = (approach, rows[0])
     forward = True  # the lines in the order of Q219's sign
     levels = _levels(c)
+    line_by_line = c.strategy >= 2
     for k, (z, finishing) in enumerate(levels):
         feed = c.finish_feed if finishing else c.feed
         out.append(SurfaceMove("line", (*at, z), c.approach_feed))
         order = rows if forward else rows[::-1]
         for j, v in enumerate(order):
-            if c.strategy == 2:
+            if line_by_line:
                 if j:
                     out += [SurfaceMove("rapid", (None, None, z + c.setup)),
-                            SurfaceMove("line", (approach, v, z + c.setup), c.approach_feed),
+                            SurfaceMove("line", (approach, v, z + c.setup), c.return_feed),
                             SurfaceMove("line", (approach, v, z), c.approach_feed)]
                 out.append(SurfaceMove("line", (far, v, z), feed))
                 continue
@@ -357,11 +444,13 @@ def surface_moves(c: SurfaceCycle, *, radius: float, level: float) -> list[Surfa
             target = far if at[0] != far else near
             out.append(SurfaceMove("line", (target, v, z), feed))
             at = (target, v)
-        if c.strategy == 2 and k < len(levels) - 1:
+        if line_by_line and k < len(levels) - 1:
             out += [SurfaceMove("rapid", (None, None, z + c.setup)),
-                    SurfaceMove("line", (approach, rows[0], z + c.setup), c.approach_feed)]
+                    SurfaceMove("line", (approach, rows[0], z + c.setup), c.return_feed)]
             at = (approach, rows[0])
-        elif c.strategy != 2:
+        elif not line_by_line:
             forward = not forward
     out.append(SurfaceMove("rapid", (None, None, clear)))
+    if swap:
+        return [SurfaceMove(mv.kind, (mv.point[1], mv.point[0], mv.point[2]), mv.feed) for mv in out]
     return out

@@ -25,7 +25,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
 - Q parameters: ``FN 0``-``FN 4``, formulas with ``+ - * / ^``, parentheses and the functions
   ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
   LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
-  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect.
+  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect; ``FN 17 SYSWRITE ID50 NR1/NR2
+  IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -564,7 +565,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         elif sub in (1, 2, 3, 4, 5):
             t.cycle[1][sub] = _last_number(rest, t.q)
     elif number in (200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 220, 221, 230,
-                    231, 232, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
+                    231, 232, 233, 240, 241, 251, 252, 253, 254, 256, 257, 262, 263, 264, 265, 267) \
             and sub == 0:
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _auto(t) if v.upper() in ("AUTO", "FAUTO")
                   else _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -712,6 +713,9 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "231":
         _ruled_surface(t, line, p)
+        return
+    if kind == "233":
+        _face_milling_233(t, line, p)
         return
     if kind in ("212", "213", "214", "215"):
         _finishing(t, line, kind, p)
@@ -1613,6 +1617,78 @@ def _face_milling(t: _Tnc, line: int, p: dict) -> None:
     go("rapid", z=clear)
 
 
+def _face_milling_233(t: _Tnc, line: int, p: dict) -> None:
+    """233 FACE MILLING (TNC7 basic manual 81762x-19, "Cycle 233 FACE MILLING"), without limits, in program
+    coordinates: the surface's corner where the tool stands; Q350 = 1 the lines along X (Q218 long, Q219 across),
+    2 along Y (Q219 long, Q218 across), across in equal steps of at most Q370 x R from the corner's line to the
+    far side. Start R + Q357 before the corner; a line's far end R + Q357 (Q389 0, 2) or Q357 (1, 3) beyond the
+    far edge, the meander's (0, 1) way back as far before the near edge; 2, 3: each line from the start, up Q200
+    above the level at FMAX, FMAX over, down to the level. Levels: equal infeeds <= Q202 to Q386 + Q369 (Q215 0,
+    1), then Q386 (Q215 0 with Q369 > 0, or 2 alone); down to a level at the milling feed. FMAX to Q227 + Q204
+    first when below it, and at the end. Where the moves end only."""
+    k, r = t.scale, t.radius / t.scale
+    corner = t.prog() / k
+    along_axis = 0 if p["Q350"] == 1 else 1
+    across_axis = 1 - along_axis
+    length = p["Q218"] if along_axis == 0 else p["Q219"]
+    width = p["Q219"] if along_axis == 0 else p["Q218"]
+    top, bottom, allowance = p["Q227"], p["Q386"], p.get("Q369", 0.0)
+    strategy, side, setup = int(p["Q389"]), p.get("Q357", 0.0), p["Q200"]
+    sa, sw = math.copysign(1.0, length), math.copysign(1.0, width)
+    start = corner[along_axis] - sa * (r + side)
+    over = r + side if strategy in (0, 2) else side
+    far, back = corner[along_axis] + length + sa * over, corner[along_axis] - sa * over
+    steps = math.ceil(abs(width) / (p.get("Q370", 1.0) * r) - 1e-9)
+    across = [corner[across_axis] + sw * abs(width) * j / steps for j in range(steps + 1)] if steps else \
+        [corner[across_axis]]
+    op = int(p.get("Q215", 0))
+    rough = top - bottom - allowance
+    count = math.ceil(rough / p["Q202"] - 1e-9) if rough > 0 else 0
+    levels = [] if op == 2 else [top - rough * (i + 1) / count for i in range(count)]
+    if op == 2 or (op == 0 and allowance > 0):
+        levels.append(bottom)
+
+    def go(kind: str, a=None, b=None, z=None) -> None:
+        here = t.prog() / k
+        pt = here.copy()
+        if a is not None:
+            pt[along_axis] = a
+        if b is not None:
+            pt[across_axis] = b
+        if z is not None:
+            pt[2] = z
+        end = t.machine(pt * k)
+        if np.linalg.norm(end - t.pos) > 1e-9:
+            t.emit(line, kind, end)
+
+    clear = top + p["Q204"]
+    if corner[2] <= clear:
+        go("rapid", z=clear)
+    go("rapid", start, across[0])
+    go("rapid", z=top + setup)
+    order = list(across)
+    for z in levels:
+        go("feed", z=z)
+        for j, b in enumerate(order):
+            if strategy >= 2:
+                if j:
+                    go("rapid", z=z + setup)
+                    go("rapid", start, b)
+                    go("feed", z=z)
+                go("feed", far, b)
+            else:
+                go("feed", b=b)
+                here = t.prog()[along_axis] / k
+                go("feed", back if abs(here - far) < 1e-9 else far)
+        if strategy >= 2:
+            if z != levels[-1]:
+                go("rapid", z=z + setup)
+                go("rapid", start, across[0])
+        else:
+            order.reverse()
+    go("rapid", z=clear)
+
+
 def _ruled_surface(t: _Tnc, line: int, p: dict) -> None:
     """231 RULED SURFACE (TNC 410 ISO manual p. 292 for the parameters; the cycle run as read for vcnc): FMAX to
     point 1; Q240 lines from the edge 1-4 to the edge 2-3 in equal steps; after each but the last FMAX up by the
@@ -1665,8 +1741,8 @@ def _tool(t: _Tnc, text: str) -> None:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
         return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
 
-    if m.group(1) == "DEF":
-        t.tool_defs[number] = (word("L"), word("R"))
+    if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
+        t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)
         return
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
@@ -1679,9 +1755,9 @@ def _tool(t: _Tnc, text: str) -> None:
         tool = t.ctx.tool(number)
         length, radius = (tool.length, tool.radius) if tool is not None else (0.0, 0.0)
     t.tool = number
-    t.length = length + word("DL")
-    t.radius = radius + word("DR")
-    t.delta = word("DR")  # LN displaces the end point along the surface normal by the delta values
+    t.length = length + word("DL") * t.scale
+    t.radius = radius + word("DR") * t.scale
+    t.delta = word("DR") * t.scale  # LN displaces the end point along the surface normal by the delta values
     if re.search(r"\bF\s*[-+]?\s*[\dQ.]", rest):
         t.auto = word("F")
     # the preassigned parameters of the tool (TNC 640 manual): Q108 radius, Q109 tool axis, Q113 unit, Q114 length
@@ -1712,6 +1788,17 @@ def _fn(t: _Tnc, text: str) -> str | None:
             return label.strip('"')
     elif n == 15:
         pass
+    elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
+        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?\s*=\s*(.*)$",
+                                        rest).groups()
+        if ident == "50" and nr in ("1", "2"):
+            k = int(_val(idx, t.q))
+            tool = t.ctx.tool(k)
+            data = list(t.tool_defs.get(k, (tool.length, tool.radius) if tool is not None else (0.0, 0.0)))
+            data[int(nr) - 1] = _Formula(expr, t.q).value() * t.scale
+            t.tool_defs[k] = (data[0], data[1])
+        elif (ident, nr) == ("20", "1") or (ident == "50" and nr in ("4", "5") and _Formula(expr, t.q).value()):
+            raise ReferenceError(f"FN 17 ID{ident} NR{nr}")  # the active tool, DL / DR: data vcnc reads back
     elif n == 18:
         m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
         q, ident, nr, idx = m2.groups()

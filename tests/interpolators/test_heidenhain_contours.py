@@ -458,3 +458,51 @@ def test_rough_out_22_rounds_the_rings_inside_corners_by_q8():
     assert {(5.5, 5.5), (34.5, 5.5), (34.5, 24.5), (5.5, 24.5)} <= centres
     assert {round(b.target[0], 9) for b in corners} >= {3.5, 36.5}  # the sides: as the sharp rings'
     assert not any("Q8" in n for n in prog.notes)
+
+
+# a pocket 60 x 40 with a circular island of radius 5 about (30, 20); tool radius 3 (CTX), Q3 = 0, Q2 = 1.9: rings
+# 3 and 3 + 1.9 x 3 = 8.7 from the contours (at 14.4 the island's offset, radius 19.4, covers what the walls'
+# offsets leave)
+ISLAND_Q8 = ("4 CYCL DEF 14.1 CONTOUR LABEL 1 /2\n"
+             "5 CYCL DEF 20 CONTOUR DATA Q1=-4 Q2=+1.9 Q3=+0 Q4=+0 Q5=+0 Q6=+2 Q7=+50 Q8=+{q8} Q9=+1\n"
+             "6 CYCL DEF 22 ROUGH-OUT Q10=+4 Q11=100 Q12=350 Q18=0 Q19=0 Q208=MAX\n7 L X+30 Y+20 R0 FMAX\n"
+             "8 CYCL CALL\n9 L Z+100 R0 FMAX M30\n10 LBL 1\n11 L X+0 Y+0 RL\n12 L X+60\n13 L Y+40\n14 L X+0\n"
+             "15 L Y+0\n16 LBL 0\n17 LBL 2\n18 L X+25 Y+20 RL\n19 CC X+30 Y+20\n20 C X+25 Y+20 DR-\n21 LBL 0\n"
+             "END PGM T MM\n")
+
+
+def _cut_points(prog) -> np.ndarray:
+    """The plane points of the moves at the depth (machine Z 10 - 4)."""
+    return np.array([b.target[:2] for b in prog.blocks if b.kind == "line" and b.start[2] == b.target[2] == 6.0])
+
+
+def test_rough_out_22_with_an_island_rounds_the_rings_inside_corners_by_q8():
+    # Q8 = 2 rounds the tool-centre path's inside corners (TNC 426/430 manual, cycle 20: "referenced to the tool
+    # midpoint path"): the circle of radius 2 tangent to both offsets meeting there, its centre 2 farther from both
+    # contours than the ring; the rings lie 0.5 um beyond their level (toolpaths.pockets.TOLERANCE / 2)
+    text = HEAD.replace("4 CYCL DEF 14.1 CONTOUR LABEL 1\n", "") + ISLAND_Q8
+    sharp, prog = _cut_points(run(text.format(q8="0"))), _cut_points(run(text.format(q8="2")))
+
+    def passes(pts, xy) -> bool:
+        return bool(np.min(np.hypot(*(pts - np.asarray(xy)).T)) < 2e-3)
+
+    # ring 3, the walls' corners: (3, 3) sharp; rounded about (5, 5), tangent at (5, 3) and (3, 5)
+    assert passes(sharp, (3, 3)) and not passes(prog, (3, 3))
+    for xy in [(5, 3), (3, 5), (55, 3), (57, 5), (57, 35), (55, 37), (3, 35), (5, 37)]:
+        assert passes(prog, xy), xy
+    assert np.min(np.hypot(*prog.T)) == pytest.approx(5 * math.sqrt(2) - 2, abs=3e-3)  # from the corner (0, 0)
+    # ring 8.7: the line Y 8.7 meets the island's offset (radius 13.7) at X 30 -+ sqrt(13.7^2 - 11.3^2); the
+    # rounding circle's centre lies at Y 10.7 and 15.7 from (30, 20), at X 30 -+ sqrt(15.7^2 - 9.3^2), touching the
+    # line below it and the offset circle 13.7 / 15.7 of the way from (30, 20) to it; the walls' corner (8.7, 8.7)
+    # rounded about (10.7, 10.7)
+    dx = math.sqrt(15.7**2 - 9.3**2)
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            assert passes(sharp, (30 + sx * math.sqrt(13.7**2 - 11.3**2), 20 + sy * 11.3))
+            assert passes(prog, (30 + sx * dx, 20 + sy * 11.3))
+            assert passes(prog, (30 + sx * dx * 13.7 / 15.7, 20 + sy * 9.3 * 13.7 / 15.7))
+            assert passes(prog, (30 + sx * 19.3, 20 + sy * 11.3)) and passes(prog, (30 + sx * 21.3, 20 + sy * 9.3))
+    # nowhere nearer the contours than the outer ring: 3 from the walls, 3 from the island
+    walls = np.minimum.reduce([prog[:, 0], 60 - prog[:, 0], prog[:, 1], 40 - prog[:, 1]])
+    assert walls.min() >= 3.0 and np.min(np.hypot(prog[:, 0] - 30, prog[:, 1] - 20) - 5) >= 3.0 - 1e-9
+    assert not any("Q8" in n for n in run(text.format(q8="2")).notes)

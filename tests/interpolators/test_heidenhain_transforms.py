@@ -148,7 +148,9 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
     ("CYCL DEF 26.0 AXIS\nCYCL DEF 26.1 X2\nL X+0 Y+0 R0 F100\nCC X+5 Y+0\nC X+10 Y+0 DR+", "distorts arcs"),
     ("L X+0 Y+0 RL F100\nCYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 ROT+5", "while radius compensation RL"),
     ("CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 B+45", "cycle 19 WORKING PLANE"),
-    ("CYCL DEF 18.0 THREAD CUTTING", "cycle 18 is not supported"),
+    ("CYCL DEF 18.0 THREAD CUTTING", "cycle 18 THREAD CUTTING (spindle-synchronised"),
+    ("CYCL DEF 3.0 SLOT MILLING\nCYCL DEF 3.1 SET UP 2", "cycle 3 SLOT MILLING (the old cycle: no manual page"),
+    ("CYCL DEF 258 POLYGON STUD Q573=+0 Q571=+50", "cycle 258 POLYGON STUD (the manual found"),
     ("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 #5", "datum table row (#n)"),
     ("CYCL DEF 247 DATUM SETTING Q339=+1.5", "cycle 247: preset 1.5 is not a row of the preset table"),
 ])

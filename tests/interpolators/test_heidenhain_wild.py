@@ -249,3 +249,25 @@ def test_sysread_of_r2_dl_dr_of_a_tool_reads_zero_with_a_note():
                "6 L X+Q3 Y+Q4 Z+Q5 R0 FMAX\n7 L X+Q6 FMAX\n")
     assert ends(prog) == [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]
     assert sum(n.startswith("FN 18 SYSREAD ID50 NR") for n in prog.notes) == 3
+
+
+def test_syswrite_of_a_tools_length_and_radius_and_of_data_vcnc_does_not_hold():
+    """``FN 17: SYSWRITE ID50 NR1 IDXQ8 = +0 ; L`` .. (a shop's tool-table reset macro; TNC 426/430 technical
+    manual 7.3.3: ID50 NR1 length L, NR2 radius R of the tool IDX): the data TOOL CALL and FN 18 take from then on;
+    DL/DR written 0 agree with vcnc's table; a name (text), PLC or datum-table data: noted, not written."""
+    prog = run("1 Q8 = 1\n2 FN 17: SYSWRITE ID50 NR1 IDXQ8 = +25.5\n3 FN 17: SYSWRITE ID50 NR2 IDX1 = +Q8 + 1\n"
+               "4 FN 17: SYSWRITE ID50 NR4 IDXQ8 = +0\n5 FN 17: SYSWRITE ID50 NR0 IDXQ8 = \"\"\n"
+               "6 FN 17: SYSWRITE ID503 NR99 IDX1 = +0\n7 FN 18: SYSREAD Q2 = ID50 NR2 IDX1\n"
+               "8 TOOL CALL 1 Z S1000\n9 L X+Q2 Y+0 Z+0 R0 FMAX\n10 FN 17: SYSWRITE ID50 NR1 IDX1 = +5\n"
+               "11 L Z+1 FMAX\n12 TOOL CALL 1 Z\n13 L Z+1 FMAX\n")
+    # table length 10 became 25.5, radius 3 became 2; the active tool's length changes at its next TOOL CALL
+    assert ends(prog) == [[2.0, 0.0, 25.5], [2.0, 0.0, 26.5], [2.0, 0.0, 6.0]]
+    assert sum(n.startswith("FN 17 SYSWRITE") for n in prog.notes) == 2
+    with pytest.raises(GCodeError, match="FN 17 SYSWRITE ID50 NR4 IDX1 = 0.1: writing the tool's length oversize DL"):
+        run("1 FN 17: SYSWRITE ID50 NR4 IDX1 = +0.1\n")
+    with pytest.raises(GCodeError, match="writing the active tool .* is not supported"):
+        run("1 FN 17: SYSWRITE ID20 NR1 = +3\n")
+    with pytest.raises(GCodeError, match="FN 17 SYSWRITE ID50 NR1: no tool number"):
+        run("1 FN 17: SYSWRITE ID50 NR1 = +3\n")
+    with pytest.raises(GCodeError, match="malformed FN 17 SYSWRITE"):
+        run("1 FN 17: SYSWRITE ID50 NR1 IDX1\n")

@@ -181,7 +181,7 @@ BAD = [
     ("1 L X+10\n", 1, 3, "without a feed"),
     ("1 L X+1 F100\n2 C X+2 Y+0 DR+\n", 2, 3, "without a circle centre"),
     ("1 L X+1 F100\n2 CC X+0 Y+0\n3 C X+0 Y+3 DR+\n", 3, 3, "not on the circle"),
-    ("0 BEGIN PGM X MM\n1 CYCL DEF 18.0 THREAD CUTTING\n", 2, 3, "cycle 18 is not supported"),
+    ("0 BEGIN PGM X MM\n1 CYCL DEF 18.0 THREAD CUTTING\n", 2, 3, "cycle 18 THREAD CUTTING (spindle-synchronised"),
     ("0 BEGIN PGM X MM\n1 CYCL DEF 200 DRILLING Q200=+2\n", 2, 3, "cycle 200 lacks Q201"),
     ("0 BEGIN PGM X MM\n1 DEP PLT LEN5\n", 2, 3, "DEP PLT is not supported"),
     ("1 L X+1 Y+1 F100\n2 L +3\n", 2, 5, "without an axis letter"),
