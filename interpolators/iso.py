@@ -1675,7 +1675,21 @@ def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
     return Arc(arc.start, arc.end, arc.center, ccw=arc.ccw, plane=arc.plane, turns=turns - 1)
 
 
+def _grbl_arc_end(seen, st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """grbl refuses an arc without an end-point word in its plane, the full circle of ``G2 I5`` that LinuxCNC
+    and Fanuc run (gnea/grbl ``grbl/gcode.c``, the arc checks: "[No axis words]" STATUS_GCODE_NO_AXIS_WORDS,
+    error 26; "[No axis words in plane]" STATUS_GCODE_NO_AXIS_WORDS_IN_PLANE, error 32)."""
+    axes = ["XYZ"[i] for i in PLANE_AXES[st.plane]]
+    if not any(a in seen for a in axes):
+        plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
+        where.fail(f"{code} arc without an end point in its plane: grbl refuses it (error 26/32, no axis words "
+                   "in plane; a full circle needs its end point written)", column=mcol, text=mtok,
+                   expected=f"{axes[0]} and/or {axes[1]} with {code} in {plane_g}")
+
+
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
+    if st.context.dialect.arc_rule == "grbl":
+        _grbl_arc_end(seen, st, where, code, mcol, mtok)
     p, q = PLANE_AXES[st.plane]
     ccw = st.motion == 30
     has_r = "R" in seen
