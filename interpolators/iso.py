@@ -1978,8 +1978,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
                            text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
-        _g10(seen, st, where, w)
-        notes.add("G10 offsets set")
+        notes.add(_g10(seen, st, where, w))
         return True
     return False
 
@@ -2004,26 +2003,34 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     st.g92_applied = True
 
 
-def _g10(seen, st: _State, where: Where, w: Word) -> None:
+def _g10(seen, st: _State, where: Where, w: Word) -> str:
+    """G10: set a work or tool offset; returns the note of the run. A Fanuc/Haas tool offset P0 is left
+    alone with a note: "the offset amount corresponding to H00 always means 0, and it is not possible to set
+    the offset amount corresponding to H00" (Fanuc 0i-MD B-64304EN "Tool length compensation (G43, G44,
+    G49)", offset number; the same wording in its copies), as a ``P#4120`` (the tool in the spindle) writes
+    it before any T of the run."""
     l_word, p_word = seen.get("L"), seen.get("P")
     fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
+            and p_word.value == 0 and "R" in seen:
+        return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"
     if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
         try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
             set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
                             {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
         except WordError as exc:
             _fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
-        return
+        return "G10 offsets set"
     if l_word is not None and int(l_word.value) in (1, 10, 11):
         _g10_tool(int(l_word.value), seen, st, where, w)
-        return
+        return "G10 offsets set"
     if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
         try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
             set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
                             {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
         except WordError as exc:
             _fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
-        return
+        return "G10 offsets set"
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
                    text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
@@ -2051,6 +2058,7 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
         st.extra_offsets[code] = extra
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
+    return "G10 offsets set"
 
 
 def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:

@@ -555,7 +555,11 @@ class _Machine:
 
     def tool(self, number: int):
         """The context's tool ``number``, with the lengths and radii Fanuc/Haas G10 L10-L13 set (geometry +
-        wear)."""
+        wear); none for number 0, whose offset is always 0 (Fanuc: "the offset amount corresponding to H00
+        always means 0"; LinuxCNC G43: "It is OK for the H number to be zero; an offset value of zero will
+        be used")."""
+        if number == 0:
+            return None
         tool = self.ctx.tool(number)
         if number not in self.tool_lengths and number not in self.tool_radii:
             return tool

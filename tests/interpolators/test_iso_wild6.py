@@ -7,7 +7,7 @@ import dataclasses
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -39,3 +39,17 @@ def test_grbl_refuses_an_arc_without_an_end_point_in_its_plane():
         assert arcs[0].target.tolist() == arcs[0].start.tolist()  # a full turn back to its start
     with pytest.raises(GCodeError, match=r":3:1: G02 arc without an end point in its plane"):
         parse_program(text.replace("G2 J-1.1", "G2 Z-1 J-1.1"), context=_in_dialect("grbl"))
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas"])
+def test_a_tool_offset_zero_is_not_set(name):
+    # a Robodrill post writes "G10 L11 P#4120 R-1.0" (the wear of the tool in the spindle) before its first T:
+    # #4120 is 0 then, and offset 0 (H00) "always means 0" and cannot be set (Fanuc B-64304EN "Tool length
+    # compensation"): the G10 changes nothing and says so; offset 2 is set as before (tool length 12.5 - 1)
+    tools = {2: Tool(number=2, length=12.5)}
+    ctx = dataclasses.replace(_in_dialect(name), tools=tools)
+    prog = parse_program("G90 G0\nG10 L11 P#4120 R-1.0\nX0 Y0\nG43 Z50.\nM30\n", context=ctx)
+    assert prog.blocks[-1].target.tolist() == [100.0, 50.0, 30.0]  # G54 (100, 50, -20), no tool length
+    assert "G10 L11 P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored" in prog.notes
+    prog = parse_program("G90 G0\nG10 L11 P2 R-1.0\nX0 Y0\nG43 H2 Z50.\nM30\n", context=ctx)
+    assert prog.blocks[-1].target.tolist() == [100.0, 50.0, 41.5]
