@@ -2,7 +2,7 @@
 
 Every program the corpus runner (``benchmarks/gcode_corpus.py``) accepts is read by it
 (``run_corpus`` without interpolation: ``load_program`` with ``INTERPOLATION_CONTEXT``, axes A B C
-U V W allowed) and handed to this script, which runs it as ``vcnc simulate`` does:
+U V W allowed, in the dialect its origin tag names) and handed to this script, which runs it as ``vcnc simulate`` does:
 ``vcnc.facade.interpolate`` with the machine (its axis check, then the first ``--seconds`` of the
 program: a longer one is cut and counted as cut), ``Machine.simulate``,
 ``vcnc.simulation_report.summarize``.

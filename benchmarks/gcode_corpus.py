@@ -3,7 +3,8 @@
 Reads ``../shared/data/gcode-corpus`` (``MANIFEST.tsv``: file, source repository, path, size,
 origin tag; or the folder in ``VCNC_GCODE_CORPUS``). For each program: ``load_program`` (ISO or
 Heidenhain, by content; the context of ``vcnc interpolate`` without a machine,
-``INTERPOLATION_CONTEXT``: axes A B C U V W), then ``interpolate`` with the default limits
+``INTERPOLATION_CONTEXT``: axes A B C U V W, read in the dialect of the control the origin tag names,
+as its user would with ``--dialect``: :func:`origin_context`), then ``interpolate`` with the default limits
 (S-curve off) up to ``--max-samples`` samples. Prints accepted/rejected counts overall, by origin
 and by dialect, the
 rejections grouped by the feature their message names, the share of milling programs that run
@@ -29,12 +30,20 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from interpolators import Program, detect_dialect, interpolate, load_program  # noqa: E402
-from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
+from interpolators.context import INTERPOLATION_CONTEXT, MachineContext  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
 
 #: Features whose programs are not milling programs (out of scope by the issue): matched against
 #: the rejection message.
 OUT_OF_SCOPE = re.compile(r"lathe|G7 |G8 |G38 probing|user M code", re.I)
+
+
+def origin_context(origin: str, base: MachineContext = INTERPOLATION_CONTEXT) -> MachineContext:
+    """The context a program of the manifest's ``origin`` tag is read in: ``base`` with the dialect of the
+    control the tag names (``haas-*``: hand-written and student programs for Haas mills and lathes,
+    ``--dialect haas``: G04 P in ms, G00 the power-on motion mode, G84 out to R); other tags name a CAM
+    system or a collection, not a control, and keep ``base``'s dialect (linuxcnc by default)."""
+    return base.with_dialect("haas") if origin.startswith("haas-") else base
 
 
 def corpus_dir() -> Path | None:
@@ -69,7 +78,7 @@ def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_00
         path = d / r["file"]
         rec = {"file": r["file"], "origin": r["origin"], "ok": False, "reason": "", "dialect": ""}
         try:
-            prog = load_program(path, context=INTERPOLATION_CONTEXT)
+            prog = load_program(path, context=origin_context(r["origin"]))
             rec["dialect"] = prog.dialect
             if visit is not None:
                 rec.update(visit(path, prog))

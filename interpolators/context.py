@@ -297,6 +297,17 @@ class MachineContext:
         """The tool table's entry for ``number``, or None when the table has none."""
         return self.tools.get(int(number))
 
+    def with_dialect(self, name: str) -> MachineContext:
+        """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
+        rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
+        user M paths: a machine file's ``[program]``)."""
+        if name not in DIALECTS:
+            raise InputError(f"unknown dialect {name!r}: expected one of {', '.join(DIALECTS)}")
+        old = self.dialect
+        return dataclasses.replace(self, dialect=dataclasses.replace(
+            DIALECTS[name], default_units=old.default_units, continuous_path=old.continuous_path,
+            tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path))
+
 
 #: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).
 DEFAULT_CONTEXT = MachineContext()

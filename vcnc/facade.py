@@ -118,13 +118,14 @@ def check_program_axes(program: Program, machine: Machine) -> None:
             )
 
 
-def truncation_note(setpoints: Setpoints) -> str | None:
-    """One line saying where :func:`interpolate` cut the program under ``max_duration``, or None."""
+def truncation_note(setpoints: Setpoints, *, done: str = "simulated") -> str | None:
+    """One line saying where :func:`interpolate` cut the program under ``max_duration``, or None;
+    ``done`` says what happened to the first seconds (``"simulated"``, ``"interpolated"``)."""
     cut = setpoints.meta.get("truncated")
     if not cut:
         return None
     return (
-        f"only the first {cut['duration']:.6g} s of at least {cut['program_at_least']:.6g} s simulated (budget "
+        f"only the first {cut['duration']:.6g} s of at least {cut['program_at_least']:.6g} s {done} (budget "
         f"{cut['budget']:g} s): {cut['blocks']} of {cut['of']} blocks complete, cut in the block at line "
         f"{cut['line']}; the rest is not run" + ("" if cut["exact"] else
                                                   ", and the blocks before the cut may slow down where the "

@@ -390,6 +390,10 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
             # '%' lines: the sender's (CNCjs macro lines such as %wait, and tape markers, which end nothing: grbl
             # reads no '%' and the sender streams the whole file)
             s = "" if s.startswith("%") else s
+        elif re.match(r"\$[a-z]{4}|#(end)?region", s):
+            # CNCSimulator Pro's simulation commands ($AddRegPart, $Inches, ...) and #region marks (its user
+            # guide, 6.3 "$-commands and regions"): no G-code of any control; the simulator alone reads them
+            s = ""
         if s.startswith("/"):
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from vcnc.cli import main
 
@@ -72,3 +73,26 @@ def test_subroutine_and_user_m_paths_on_the_command_line(tmp_path, capsys, monke
                  "--user-m-path", "mfiles", "--dialect", "linuxcnc"]) == 0
     rows = [r.split(",") for r in blocks.read_text().splitlines()[1:]]
     assert [(float(r[3]), float(r[4])) for r in rows][-2:] == [(7.0, 0.0), (7.0, 7.0)]
+
+
+def test_interpolate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(tmp_path, capsys):
+    # 1200 moves of 100 mm at 5 mm/s: 24000 s, 24 million samples at 1 ms, beyond vcnc interpolate's guard (20
+    # million); refused before any sample is computed, and nothing is written
+    from vcnc.commands.interpolate import MAX_SAMPLES
+
+    prog = tmp_path / "long.nc"
+    prog.write_text("G21 G90\nG0 X0 Y0\n" + "G1 X100 F300\nG1 X0\n" * 600 + "M30\n")
+    out = tmp_path / "sp.csv"
+    assert main(["interpolate", str(prog), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}: the program needs at least ")
+    assert f"more than the {MAX_SAMPLES} vcnc interpolate holds in memory; expected --max-seconds S" in err
+    assert not out.exists()
+    # its first 30 s: the blocks that fit (the first 100 mm move, 20 s; the second would end at 40 s), and a
+    # note saying so, with the duration the file holds
+    assert main(["interpolate", str(prog), "-o", str(out), "--max-seconds", "30"]) == 0
+    said = capsys.readouterr().out
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert 20.0 <= data[-1, 0] <= 30.0 and np.all(np.isfinite(data))
+    assert f"{prog}: only the first {data[-1, 0]:.6g} s of at least 24000 s interpolated (budget 30 s)" in said
+    assert data[-1, 1] == pytest.approx(100.0)

@@ -8,7 +8,7 @@ import json
 import logging
 from pathlib import Path
 
-from vcnc.commands.interpolate import add_context_arguments, print_program_notes, program_context
+from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, program_context
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
@@ -37,31 +37,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import interpolators
-    from vcnc.core.errors import GCodeError, ProgramTooLongError
+    from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
-    from vcnc.facade import interpolate, program_meta
+    from vcnc.facade import program_meta
     from vcnc.simulation_report import build_report, summarize
 
     machine = load_machine(args.machine)
     program = interpolators.load_program(args.program, context=program_context(args, machine))
     print_program_notes(program, args.program)
-    try:
-        setpoints = interpolate(program, machine, profile=args.profile, max_duration=args.max_seconds,
-                                max_samples=None if args.max_seconds else MAX_SAMPLES)
-    except ProgramTooLongError as exc:
-        raise GCodeError(
-            f"the program needs {'at least ' if exc.at_least else ''}{exc.samples} samples "
-            f"({exc.samples * exc.sample_time / 3600:.3g} h at Ts = {exc.sample_time:g} s), more than the "
-            f"{MAX_SAMPLES} vcnc simulate holds in memory",
-            file=args.program, expected="--max-seconds S to simulate its first S seconds",
-        ) from None
+    setpoints = interpolate_within(program, machine, args, command="simulate", max_samples=MAX_SAMPLES)
     if len(setpoints) < 2:  # a capture holds at least two samples
         raise GCodeError("the program neither moves an axis nor dwells: nothing to simulate", file=args.program,
                          expected="a program with a move or a dwell")
     meta = program_meta(setpoints, Path(args.program).name, profile=args.profile)
-    if "truncated" in meta:
-        print(f"{args.program}: {meta['truncated']}")
     capture = machine.simulate(setpoints, seed=args.seed)
     capture.meta.update(meta)
     summary = summarize(capture)
