@@ -76,7 +76,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
-  program to its ``M99`` k times.
+  program to its ``M99`` k times. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program
+  (Haas "M99 Subprogram Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
@@ -326,6 +327,8 @@ class _Params:
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
+        if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 6000:
+            raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
         if isinstance(key, int):
             return self.numbered.get(key, self.unset)
         if key.startswith("_"):
@@ -1514,7 +1517,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                 pc = f["start"]
             else:
                 frames.pop()
-                pc = f["ret"]
+                words, _ = _words(ln.text, params)  # M99 P<n>: back to the block N<n> of the caller (Haas, Fanuc)
+                pc = _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
             continue
         pc += 1
     return m.out
