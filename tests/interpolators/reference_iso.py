@@ -402,6 +402,8 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
         seq = int(n.group(1)) if n else None
+        if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
+            s = "o" + s[1:]
         m = _OWORD.match(s)
         mac = _MACRO.match(s)
         if m is None and re.fullmatch(r"o[a-z]\w*", s):
