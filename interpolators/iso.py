@@ -655,6 +655,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     _modes(seen, gcodes, st, where, notes)
     if "polar" in gcodes or st.fanuc_polar:
         seen = _fanuc_polar(seen, gcodes, st, where, notes)
+    _tool_change_under_compensation(mcodes, st, where)
     ended = _m_codes(mcodes, seen, st, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
@@ -1085,6 +1086,18 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
                f"USER_M_PATH): {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
                         "or of --user-m-path")
+
+
+def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
+    """LinuxCNC refuses a tool change (M6) while G41/G42 is on (interp_convert.cc ``convert_tool_change``:
+    "Cannot change tools with cutter radius compensation on")."""
+    if st.comp_side is None or st.context.dialect.name != "linuxcnc":
+        return
+    for m, w in mcodes:
+        if m == 6:
+            where.fail(f"M6 tool change with cutter radius compensation on ({st.comp_code}): LinuxCNC refuses it "
+                       "('Cannot change tools with cutter radius compensation on')", column=w.column, text=w.text,
+                       expected="G40 before the tool change")
 
 
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:

@@ -53,3 +53,15 @@ def test_a_tool_offset_zero_is_not_set(name):
     assert "G10 L11 P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored" in prog.notes
     prog = parse_program("G90 G0\nG10 L11 P2 R-1.0\nX0 Y0\nG43 H2 Z50.\nM30\n", context=ctx)
     assert prog.blocks[-1].target.tolist() == [100.0, 50.0, 41.5]
+
+
+def test_linuxcnc_refuses_a_tool_change_under_cutter_compensation():
+    # a hand-written student program turns G42 on, then changes tools: rs274 stops at the M06 ("Cannot change
+    # tools with cutter radius compensation on", interp_convert.cc convert_tool_change); vcnc said so only at
+    # a later block
+    text = "G20 G90 F10\nG42\nM06 T1\nG0 X1\nG40\nM2\n"
+    with pytest.raises(GCodeError, match=r":3:1: M6 tool change with cutter radius compensation on \(G42\): "
+                                         r"LinuxCNC refuses it .*expected G40 before the tool change"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+    prog = parse_program(text.replace("G42\nM06 T1", "G42\nG40\nM06 T1"), context=_in_dialect("linuxcnc"))
+    assert prog.blocks[-1].target.tolist() == [125.4, 0.0, 100.0]  # G54 X100 + 1 in, Y and Z not moved
