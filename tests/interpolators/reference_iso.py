@@ -327,7 +327,7 @@ class _Params:
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
-        if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 6000:
+        if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
         if isinstance(key, int):
             return self.numbered.get(key, self.unset)
