@@ -76,8 +76,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
-  program to its ``M99`` k times. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program
-  (Haas "M99 Subprogram Return or Loop"), found as a GOTO finds it from the call.
+  program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
+  ``N<n>``. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
+  Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
@@ -1500,8 +1501,12 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             if target not in st["fanuc"]:
                 raise ReferenceError(f"M98 P{target}: no O{target} in the file")
             count = int(words["l"][-1]) if "l" in words else 1
-            frames.append({"kind": "m98", "ret": pc + 1, "start": st["fanuc"][target] + 1, "left": count - 1})
-            pc = st["fanuc"][target] + 1
+            start = st["fanuc"][target] + 1
+            if "q" in words:  # M98 P Q (Mitsubishi, Mach4): the program from its block N<Q>
+                start = next(i for i in range(start, len(st["lines"])) if st["lines"][i].seq == int(words["q"][-1])
+                             and st["program_of"].get(i) == st["program_of"].get(start))
+            frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
+            pc = start
             continue
         if res == "m97":  # Haas "M97 Local Sub-Program Call": N<P> of this program, L times, to its M99
             words, _ = _words(ln.text, params)

@@ -65,3 +65,14 @@ def test_linuxcnc_refuses_a_tool_change_under_cutter_compensation():
         parse_program(text, context=_in_dialect("linuxcnc"))
     prog = parse_program(text.replace("G42\nM06 T1", "G42\nG40\nM06 T1"), context=_in_dialect("linuxcnc"))
     assert prog.blocks[-1].target.tolist() == [125.4, 0.0, 100.0]  # G54 X100 + 1 in, Y and Z not moved
+
+
+def test_m98_q_starts_the_subprogram_at_its_block_n():
+    # Mach4's examples write "M98 P9010 Q1" (Mitsubishi M70 "M98 P__ Q__ L__": Q the sequence number the
+    # subprogram is called at); each repetition starts there too, and the run says it read the form
+    text = "O1\nG90 G0 X0 Y0\nM98 P100 Q20 L2\nM30\nO100\nN10 G91 G0 X5\nN20 G91 G0 Y5\nM99\n"
+    prog = parse_program(text, context=_in_dialect("fanuc"))
+    assert [b.target.tolist()[:2] for b in prog.blocks] == [[100.0, 50.0], [100.0, 55.0], [100.0, 60.0]]
+    assert any(n.startswith("M98 P Q: the subprogram starts at its block N<Q>") for n in prog.notes)
+    with pytest.raises(GCodeError, match=r":3:\d+: M98 Q30: no block N30 in the called program"):
+        parse_program(text.replace("Q20", "Q30"), context=_in_dialect("fanuc"))
