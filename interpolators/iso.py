@@ -455,7 +455,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
-                  tape_leader=dialect.name == "fanuc", on_comment=on_comment):
+                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -655,6 +655,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     _modes(seen, gcodes, st, where, notes)
     if "polar" in gcodes or st.fanuc_polar:
         seen = _fanuc_polar(seen, gcodes, st, where, notes)
+    _tool_change_under_compensation(mcodes, st, where)
     ended = _m_codes(mcodes, seen, st, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
@@ -1085,6 +1086,18 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
                f"USER_M_PATH): {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
                         "or of --user-m-path")
+
+
+def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
+    """LinuxCNC refuses a tool change (M6) while G41/G42 is on (interp_convert.cc ``convert_tool_change``:
+    "Cannot change tools with cutter radius compensation on")."""
+    if st.comp_side is None or st.context.dialect.name != "linuxcnc":
+        return
+    for m, w in mcodes:
+        if m == 6:
+            where.fail(f"M6 tool change with cutter radius compensation on ({st.comp_code}): LinuxCNC refuses it "
+                       "('Cannot change tools with cutter radius compensation on')", column=w.column, text=w.text,
+                       expected="G40 before the tool change")
 
 
 def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
@@ -1675,7 +1688,21 @@ def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
     return Arc(arc.start, arc.end, arc.center, ccw=arc.ccw, plane=arc.plane, turns=turns - 1)
 
 
+def _grbl_arc_end(seen, st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """grbl refuses an arc without an end-point word in its plane, the full circle of ``G2 I5`` that LinuxCNC
+    and Fanuc run (gnea/grbl ``grbl/gcode.c``, the arc checks: "[No axis words]" STATUS_GCODE_NO_AXIS_WORDS,
+    error 26; "[No axis words in plane]" STATUS_GCODE_NO_AXIS_WORDS_IN_PLANE, error 32)."""
+    axes = ["XYZ"[i] for i in PLANE_AXES[st.plane]]
+    if not any(a in seen for a in axes):
+        plane_g = {2: "G17", 1: "G18", 0: "G19"}[st.plane]
+        where.fail(f"{code} arc without an end point in its plane: grbl refuses it (error 26/32, no axis words "
+                   "in plane; a full circle needs its end point written)", column=mcol, text=mtok,
+                   expected=f"{axes[0]} and/or {axes[1]} with {code} in {plane_g}")
+
+
 def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
+    if st.context.dialect.arc_rule == "grbl":
+        _grbl_arc_end(seen, st, where, code, mcol, mtok)
     p, q = PLANE_AXES[st.plane]
     ccw = st.motion == 30
     has_r = "R" in seen
@@ -1964,8 +1991,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
                            text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
-        _g10(seen, st, where, w)
-        notes.add("G10 offsets set")
+        notes.add(_g10(seen, st, where, w))
         return True
     return False
 
@@ -1990,26 +2016,34 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     st.g92_applied = True
 
 
-def _g10(seen, st: _State, where: Where, w: Word) -> None:
+def _g10(seen, st: _State, where: Where, w: Word) -> str:
+    """G10: set a work or tool offset; returns the note of the run. A Fanuc/Haas tool offset P0 is left
+    alone with a note: "the offset amount corresponding to H00 always means 0, and it is not possible to set
+    the offset amount corresponding to H00" (Fanuc 0i-MD B-64304EN "Tool length compensation (G43, G44,
+    G49)", offset number; the same wording in its copies), as a ``P#4120`` (the tool in the spindle) writes
+    it before any T of the run."""
     l_word, p_word = seen.get("L"), seen.get("P")
     fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
+            and p_word.value == 0 and "R" in seen:
+        return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"
     if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
         try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
             set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
                             {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
         except WordError as exc:
             _fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
-        return
+        return "G10 offsets set"
     if l_word is not None and int(l_word.value) in (1, 10, 11):
         _g10_tool(int(l_word.value), seen, st, where, w)
-        return
+        return "G10 offsets set"
     if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
         try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
             set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
                             {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
         except WordError as exc:
             _fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
-        return
+        return "G10 offsets set"
     if l_word is None or int(l_word.value) not in (2, 20):
         where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
                    text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
@@ -2037,6 +2071,7 @@ def _g10(seen, st: _State, where: Where, w: Word) -> None:
         st.extra_offsets[code] = extra
     if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
         st.rotations[code] = r_word.value
+    return "G10 offsets set"
 
 
 def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:

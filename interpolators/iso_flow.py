@@ -16,7 +16,8 @@ Fanuc/Haas subprograms (Haas mill operator's manual, "M98 Subprogram Call"): ``M
 runs the program ``O1000`` three times, from the same file or else from the program file of its
 folder that holds ``O1000`` (the control keeps programs by number); ``M99`` returns, ``M99 P<n>``
 to the block ``N<n>`` of the calling program, and in the main program ``M99`` ends it (the control
-would rewind; vcnc runs the program once). Haas ``M97 P1000 L2`` ("M97 Local Sub-Program Call")
+would rewind; vcnc runs the program once). ``M98 P1000 Q20`` starts ``O1000`` at its block ``N20``
+(Mitsubishi's and Mach4's form, :func:`_start_block`). Haas ``M97 P1000 L2`` ("M97 Local Sub-Program Call")
 runs the blocks from ``N1000`` of the same program to its ``M99`` twice, then the block after the
 call (the main program ends with M30 before such local subprograms).
 
@@ -428,7 +429,8 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-        on_comment: Callable[[str, str, Where], None] | None = None) -> Iterator[FlowLine]:
+        on_comment: Callable[[str, str, Where], None] | None = None,
+        on_note: Callable[[str], None] | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
@@ -437,7 +439,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     ``tape_leader``: the text after the first ``%`` of each file, to its line end, is skipped (Fanuc).
     ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
     (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
-    comments.
+    comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -494,10 +496,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc += 1
             continue
         if m98 is not None:
-            start = _local_subprogram(prog, pc, words, m98, where) if m98.value == 97 else \
-                _called_program(prog, words, m98, where, "M98 subprogram call")
+            start, q = _subprogram_start(prog, pc, words, m98, where, on_note)
             count = next((int(w.value) for w in words if w.letter in "LK"), 1)
-            rest = [w for w in words if w is not m98 and w.letter not in "PLK"]
+            rest = [w for w in words if w is not m98 and w is not q and w.letter not in "PLK"]
             if rest:
                 yield FlowLine(where.line, where.text, rest, where.file)
             if count > 0:
@@ -561,6 +562,33 @@ def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, wh
         missing = "no P word" if p is None else f"no block N{p.value:g} in this program"
         where.fail(f"M97 local subprogram call: {missing}", column=call.column, text=call.text,
                    expected="M97 P<n> with a block N<n> in the same program, ending with M99")
+    return target
+
+
+def _subprogram_start(prog: _Program, pc: int, words: list[Word], call: Word, where: Where,
+                      on_note: Callable[[str], None] | None) -> tuple[int, Word | None]:
+    """The first line an ``M97``/``M98`` block runs, and the ``Q`` word of an ``M98 P Q`` (else None)."""
+    if call.value == 97:
+        return _local_subprogram(prog, pc, words, call, where), None
+    start = _called_program(prog, words, call, where, "M98 subprogram call")
+    q = next((w for w in words if w.letter == "Q"), None)
+    if q is None:
+        return start, None
+    if on_note is not None:
+        on_note("M98 P Q: the subprogram starts at its block N<Q> (Mitsubishi/Mach4 form, not Fanuc's)")
+    return _start_block(prog, start, q, where), q
+
+
+def _start_block(prog: _Program, start: int, q: Word, where: Where) -> int:
+    """``M98 P<program> Q<n>``: the called program runs from its block ``N<n>`` (Mitsubishi M70 programming
+    manual, "Subprogram call: M98, M99": "M98 P__ Q__ L__ ... Q = sequence number in subprogram to be
+    called", http://cncprograming.blogspot.com/2011/07/subprogram-call-m98-m99.html; Mach4 writes the same
+    form; Fanuc's manuals give M98 P and L only); repetitions start there too."""
+    n = round(q.value)
+    target = prog.macro.find(n, start - 1) if q.value == n else None
+    if target is None or prog.macro.span_of[target] != prog.macro.span_of[start]:
+        where.fail(f"M98 Q{q.value:g}: no block N{q.value:g} in the called program", column=q.column, text=q.text,
+                   expected="M98 P<program> Q<n> with a block N<n> in that program (the block it starts at)")
     return target
 
 

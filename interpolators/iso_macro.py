@@ -17,7 +17,9 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
   (tested at ``WHILE`` on each pass); ``DO m`` without ``WHILE`` repeats without end (left only
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
   closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
-  after another.
+  after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` (``WH [..] DO1``) is an error
+  naming it: the manuals cited write the statement ``WHILE`` in full, and we found no manual that runs
+  an abbreviated one from a program (our reading).
 * The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]`` and ``PCLOS`` send text and
   variables to the serial port (Fanuc B-64304EN "External output commands"; Haas mill operator's
   manual, "Formatted Output": "DPRNT[<text> <#nnnn[wf]>...]", "DPRNT must be the only command in the
@@ -52,6 +54,7 @@ _PREFIX = r"^\s*(?:N\s*\d+\s*)?"
 _IF = re.compile(_PREFIX + r"(IF)\s*\[", re.I)
 _WHILE = re.compile(_PREFIX + r"(WHILE)\s*\[.*\]\s*DO\s*(\d+)\s*$", re.I)
 _WHILE_START = re.compile(_PREFIX + r"(WHILE)\b", re.I)
+_LOOP_HEAD = re.compile(_PREFIX + r"([A-Z]{2,})\s*\[.*\]\s*DO\s*\d+\s*$", re.I)
 _DO = re.compile(_PREFIX + r"(DO)\s*(\d+)\s*$", re.I)
 _END = re.compile(_PREFIX + r"(END)\s*(\d+)\s*$", re.I)
 _GOTO = re.compile(_PREFIX + r"(GOTO)\s*(?=[\d#\[+])", re.I)
@@ -94,6 +97,10 @@ def read_statement(code: str, where: Where) -> Statement | None:
     if m:
         where.fail("WHILE without DO m at the end of its block", column=m.start(1) + 1, text=code.strip(),
                    expected="WHILE [condition] DO m (m = 1, 2 or 3)")
+    m = _LOOP_HEAD.match(code)
+    if m:
+        where.fail(f"loop head {m.group(1)!r} [..] DO m: the keyword of a loop is WHILE", column=m.start(1) + 1,
+                   text=code.strip(), expected="WHILE [condition] DO m (m = 1, 2 or 3)")
     m = _GOTO.match(code)
     if m:
         return Statement("goto", code, m.start(1))

@@ -76,7 +76,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
-  program to its ``M99`` k times.
+  program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
+  ``N<n>``. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
+  Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
@@ -326,6 +328,8 @@ class _Params:
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
+        if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
+            raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
         if isinstance(key, int):
             return self.numbered.get(key, self.unset)
         if key.startswith("_"):
@@ -399,6 +403,8 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
         seq = int(n.group(1)) if n else None
+        if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
+            s = "o" + s[1:]
         m = _OWORD.match(s)
         mac = _MACRO.match(s)
         if m is None and re.fullmatch(r"o[a-z]\w*", s):
@@ -559,7 +565,11 @@ class _Machine:
 
     def tool(self, number: int):
         """The context's tool ``number``, with the lengths and radii Fanuc/Haas G10 L10-L13 set (geometry +
-        wear)."""
+        wear); none for number 0, whose offset is always 0 (Fanuc: "the offset amount corresponding to H00
+        always means 0"; LinuxCNC G43: "It is OK for the H number to be zero; an offset value of zero will
+        be used")."""
+        if number == 0:
+            return None
         tool = self.ctx.tool(number)
         if number not in self.tool_lengths and number not in self.tool_radii:
             return tool
@@ -1491,8 +1501,12 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             if target not in st["fanuc"]:
                 raise ReferenceError(f"M98 P{target}: no O{target} in the file")
             count = int(words["l"][-1]) if "l" in words else 1
-            frames.append({"kind": "m98", "ret": pc + 1, "start": st["fanuc"][target] + 1, "left": count - 1})
-            pc = st["fanuc"][target] + 1
+            start = st["fanuc"][target] + 1
+            if "q" in words:  # M98 P Q (Mitsubishi, Mach4): the program from its block N<Q>
+                start = next(i for i in range(start, len(st["lines"])) if st["lines"][i].seq == int(words["q"][-1])
+                             and st["program_of"].get(i) == st["program_of"].get(start))
+            frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
+            pc = start
             continue
         if res == "m97":  # Haas "M97 Local Sub-Program Call": N<P> of this program, L times, to its M99
             words, _ = _words(ln.text, params)
@@ -1510,7 +1524,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                 pc = f["start"]
             else:
                 frames.pop()
-                pc = f["ret"]
+                words, _ = _words(ln.text, params)  # M99 P<n>: back to the block N<n> of the caller (Haas, Fanuc)
+                pc = _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
             continue
         pc += 1
     return m.out
