@@ -80,6 +80,17 @@ def test_logger_with_blank_lines_and_a_nan_cell(tmp_path):
         read_capture(f, columns={"t": "t", "x_ref": "cmd", "x": "act"})
 
 
+def test_column_numbers_given_as_ints_in_python(tmp_path):
+    # read_capture(f, columns={"t": 1, ...}) from Python: the numbers as the command line's "t=1" (it raised
+    # AttributeError: 'int' object has no attribute 'isdigit')
+    f = tmp_path / "log.txt"
+    f.write_text("".join(f"{k}\t0\t{k * 0.01:.2f}\t{k * 0.01 - 0.001:.3f}\n" for k in range(10)))
+    cap = read_capture(f, columns={"t": 1, "x_ref": 3, "x": 4}, time_unit="ms")
+    assert len(cap) == 10 and cap.reference[3, 0] == pytest.approx(0.03) and cap.measured[3, 0] == pytest.approx(0.029)
+    with pytest.raises(CaptureError, match="column '7' not found"):
+        read_capture(f, columns={"t": 1, "x_ref": 7, "x": 4}, time_unit="ms")
+
+
 def test_sinumerik_with_an_unknown_encoding(tmp_path):
     f = tmp_path / "trace.xml"
     f.write_text('<?xml version="1.0" encoding="utf1e400"?>\n' + _sinumerik())

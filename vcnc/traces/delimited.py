@@ -199,8 +199,9 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
     return header, units_row, np.array(rows, dtype=float), row_lines, delimiter, overruns
 
 
-def _column(name: str, header: list[str] | None, width: int, src: str, line: int) -> int:
-    """Index of a source column named ``name`` (a header name, or a 1-based number)."""
+def _column(name: str | int, header: list[str] | None, width: int, src: str, line: int) -> int:
+    """Index of a source column named ``name`` (a header name, or a 1-based number, also as an int)."""
+    name = str(name)
     if header is not None and name in header:
         return header.index(name)
     if name.isdigit() and 1 <= int(name) <= width:
