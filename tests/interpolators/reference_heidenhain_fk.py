@@ -25,7 +25,7 @@ from tests.interpolators.reference_iso import ReferenceError
 
 __all__ = ["FkReference"]
 
-_TOKEN = re.compile(r"\s*([A-Z]+(?:[123][XY])?)\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)|[-+])?")
+_TOKEN = re.compile(r"\s*(R[LR0](?![\d.])|[A-Z]+(?:[123][XY])?)\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)|[-+])?")
 _REFS = re.compile(r"R(CC)?(X|Y|PR|PA)|RAN|PAR")
 
 
@@ -105,9 +105,7 @@ class FkReference:
             r = v["PR"] if "PR" in v else math.hypot(*(base - self.pole)) + v["IPR"]
             res.append(math.hypot(*(e - self.pole)) - r)
         if "PA" in v or "IPA" in v:
-            base = self._ref_end(el, "RPA", s)
-            a = v["PA"] if "PA" in v else _angle(base - self.pole) + v["IPA"]
-            res.append(_cross(_unit(a), e - self.pole))
+            res.append(_cross(_unit(self._polar_angle(el, s, "")), e - self.pole))
         if el.closing:
             res += [e[0] - self.closed[0], e[1] - self.closed[1]]
         res += self._arc_equations(el, s, t, z) if el.arc else self._line_equations(el, s, t, e)
@@ -117,9 +115,7 @@ class FkReference:
         v, res = el.v, []
         if "LEN" in v:
             res.append(math.hypot(*(e - s)) - abs(v["LEN"]))
-        lines = self._line_directions(el, s, t)
-        if lines:  # one equation: the others say the same of the same line (checked as admissible)
-            res.append(_cross(lines[0][0], e - s))
+        res += [_cross(d, e - s) for d, _ in self._line_directions(el, s, t)]
         return res
 
     def _line_directions(self, el: _Element, s, t) -> list[tuple[np.ndarray, bool]]:
@@ -157,9 +153,7 @@ class FkReference:
             res.append(math.hypot(*(c - self.pole)) - (v["CCPR"] if "CCPR" in v else
                                                        math.hypot(*(base - self.pole)) + v["ICCPR"]))
         if "CCPA" in v or "ICCPA" in v:
-            base = self._ref_end(el, "RCCPA", s)
-            res.append(_cross(_unit(v["CCPA"] if "CCPA" in v else _angle(base - self.pole) + v["ICCPA"]),
-                              c - self.pole))
+            res.append(_cross(_unit(self._polar_angle(el, s, "CC")), c - self.pole))
         entry = self._entry(el, t)
         if entry is not None:
             res.append(float(np.dot(c - s, entry)))
@@ -173,6 +167,13 @@ class FkReference:
             if p + "X" in v:
                 res.append(math.hypot(*(np.array([v[p + "X"], v[p + "Y"]]) - c)) - r)
         return res
+
+    def _polar_angle(self, el: _Element, s, cc: str) -> float:
+        """PA (``cc`` "") or CCPA (``cc`` "CC") [deg] about FPOL; the I form from the start or block n's end."""
+        key = cc + "PA"
+        if key in el.v:
+            return el.v[key]
+        return _angle(self._ref_end(el, "R" + key, s) - self.pole) + el.v["I" + key]
 
     def _entry(self, el: _Element, t):
         if "AN" in el.v:
@@ -199,7 +200,7 @@ class FkReference:
     def admissible(self, el: _Element, s, t, z, tol: float) -> bool:
         """The inequalities the equations leave: directions ahead, the centre on the DR side, rays from FPOL."""
         v, e = el.v, z[-2:]
-        if "PA" in v and np.dot(e - self.pole, _unit(v["PA"])) < -tol:
+        if ("PA" in v or "IPA" in v) and np.dot(e - self.pole, _unit(self._polar_angle(el, s, ""))) < -tol:
             return False
         if not el.arc:
             if math.hypot(*(e - s)) <= tol:
@@ -210,7 +211,7 @@ class FkReference:
         c = z[:2]
         if math.hypot(*(s - c)) <= tol:
             return False
-        if "CCPA" in v and np.dot(c - self.pole, _unit(v["CCPA"])) < -tol:
+        if ("CCPA" in v or "ICCPA" in v) and np.dot(c - self.pole, _unit(self._polar_angle(el, s, "CC"))) < -tol:
             return False
         entry = self._entry(el, t)
         return entry is None or not el.dr or (_cross(entry, c - s) > 0) == (el.dr == "+")
@@ -258,9 +259,19 @@ class FkReference:
             out.append(recs)
         return out
 
-    def count(self, el: _Element, s, t) -> int:
-        """How many equations the element's data give."""
-        return len(self.equations(el, s, t if t is not None else np.array([1.0, 0.0]), np.tile(s, el.n // 2)))
+    def determined(self, el: _Element, s, t) -> bool:
+        """The element's data fix its unknowns: the Jacobian of its equations (central differences at a seeded
+        random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
+        t = t if t is not None else np.array([1.0, 0.0])
+        z0 = np.tile(s, el.n // 2) + np.random.default_rng(3).normal(scale=10.0, size=el.n)
+        cols = []
+        for k in range(el.n):
+            dz = np.zeros(el.n)
+            dz[k] = 1e-6
+            cols.append((np.array(self.equations(el, s, t, z0 + dz)) - np.array(self.equations(el, s, t, z0 - dz)))
+                        / 2e-6)
+        jac = np.array(cols).T
+        return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= el.n
 
     @staticmethod
     def length(rec) -> float:
@@ -293,7 +304,7 @@ class FkReference:
             rec = next(iter(firsts.values()))
             out.append(self._done(prev, rec))
             s, t = rec[1], self._direction(rec)
-        if self.count(el, s, t) < el.n:
+        if not self.determined(el, s, t):
             self.waiting = (el, s, t, None)
             return out
         sols = self.order([r[0] for r in self.solve([el], s, t, tol)])

@@ -1,0 +1,161 @@
+"""Heidenhain FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``): hand-written
+programs with the end points worked out by hand (the working in each test, from the data as the iTNC 530 user's
+manual, section 6.6 "Path Contours - FK Free Contour Programming", defines them), each also checked against the
+independent reference (``reference_heidenhain``, which solves the FK data numerically)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n1 L X+0 Y+0 Z-5 R0 F500\n"
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+S3 = math.sqrt(3.0)
+
+
+def run(body: str, *, reference: bool = True):
+    text = HEAD + body + "\n99 END PGM T MM\n"
+    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+
+
+def ends(prog) -> list[list[float]]:
+    """The XY end points of the blocks after the first (the move to the start at X+0 Y+0)."""
+    return [np.round(b.target[:2], 6).tolist() for b in prog.blocks[1:]]
+
+
+def centre(block) -> list[float]:
+    return np.round(block.segment.center[:2], 6).tolist()
+
+
+def test_end_points_and_tangency():
+    # FL to (20, 0); FLT keeps +X up to X 30; FCT to (40, 10) leaves (30, 0) along +X, so its centre is on
+    # X 30 and as far from both ends: (30, 10), radius 10, counter-clockwise; FLT LEN 10 then goes on along +Y
+    prog = run("2 FL X+20 Y+0\n3 FLT X+30\n4 FCT X+40 Y+10\n5 FLT LEN 10")
+    assert ends(prog) == [[20, 0], [30, 0], [40, 10], [40, 20]]
+    arc = prog.blocks[3]
+    assert arc.kind == "arc" and centre(arc) == [30, 10] and arc.segment.ccw
+
+
+def test_length_and_angle():
+    # LEN 10 at AN+30: (10 cos 30, 10 sin 30); IAN+60 turns from 30 to 90 degrees: 5 up
+    prog = run("2 FL LEN 10 AN+30\n3 FL LEN 5 IAN+60")
+    assert ends(prog) == [[round(5 * S3, 6), 5], [round(5 * S3, 6), 10]]
+
+
+def test_centre_and_radius():
+    # centre (10, 0), R10 through the start (0, 0); DR- (clockwise) from 180 to 90 degrees ends at (10, 10); then
+    # about CCPR 10 / CCPA 0 from FPOL (10, 10), i.e. (20, 10), radius 10 from (10, 10), DR+ through CCA 90:
+    # from 180 to 270 degrees, ending at (20, 0)
+    prog = run("2 FC CCX+10 CCY+0 R10 DR- X+10 Y+10\n3 FPOL X+10 Y+10\n4 FC CCPR+10 CCPA+0 DR+ CCA+90")
+    assert ends(prog) == [[10, 10], [20, 0]]
+    assert centre(prog.blocks[1]) == [10, 0] and not prog.blocks[1].segment.ccw
+    assert centre(prog.blocks[2]) == [20, 10] and prog.blocks[2].segment.ccw
+
+
+def test_polar_end_points_about_fpol():
+    # FPOL (10, 10): PR 10 at PA 90 is (10, 20); from there IPR+5 IPA-90 is radius 15 at 0 degrees: (25, 10)
+    prog = run("2 FPOL X+10 Y+10\n3 FL PR+10 PA+90\n4 FL IPR+5 IPA-90")
+    assert ends(prog) == [[10, 20], [25, 10]]
+
+
+def test_relative_data():
+    # 5 ends at (10, 5), 6 at (20, 5); 7 is IX+5 IY+10 from block 5's end: (15, 15); 8 turns IAN+90 from block 6's
+    # direction (+X): +Y, LEN 10: (15, 25); 9 is IPR+10 from block 5's polar radius about FPOL (0, 0),
+    # |(10, 5)| = sqrt(125), at PA 0: (sqrt(125) + 10, 0)
+    prog = run("2 FPOL X+0 Y+0\n5 FL X+10 Y+5\n6 FL X+20 Y+5\n7 FL IX+5 IY+10 RX 5 RY 5\n8 FL LEN 10 IAN+90 RAN 6\n"
+               "9 FL IPR+10 PA+0 RPR 5")
+    assert ends(prog) == [[10, 5], [20, 5], [15, 15], [15, 25], [round(math.sqrt(125) + 10, 6), 0]]
+
+
+def test_fselect_picks_among_the_solutions():
+    # a line of LEN 5 parallel to block 2 (+X) runs either way: +X (first, 0 degrees) or -X (second)
+    first = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 1")
+    back = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 2")
+    assert ends(first)[-1] == [15, 5] and ends(back)[-1] == [5, 5]
+    # from (0, 0) to (10, 0) with R10 DR+: centres (5, +-5 sqrt 3); about (5, 5 sqrt 3) the arc turns 60 degrees
+    # (the shorter, first solution), about (5, -5 sqrt 3) 300 degrees (the second)
+    short = run("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 1")
+    long = run("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 2")
+    assert centre(short.blocks[1]) == [5, round(5 * S3, 6)] and centre(long.blocks[1]) == [5, -round(5 * S3, 6)]
+    assert short.blocks[1].segment.length == pytest.approx(10 * math.pi / 3)
+
+
+def test_closed_contour():
+    # CLSD+ marks (0, 0), the start of the first element; CLSD- ends the last one there
+    prog = run("2 FL X+20 Y+0 CLSD+\n3 FL AN+90 LEN 10\n4 FL AN+180 LEN 20\n5 FL CLSD-")
+    assert ends(prog) == [[20, 0], [20, 10], [0, 10], [0, 0]]
+
+
+def test_open_line_resolved_by_the_next_element():
+    # FL AN+0 has no length; the next line through (30, 10) at 45 degrees meets Y 0 at X 20
+    prog = run("2 FL AN+0\n3 FL X+30 Y+10 AN+45")
+    assert ends(prog) == [[20, 0], [30, 10]]
+    # the next FCT R5 DR+ turns CCA 90 from the line: its centre 5 above the line's end (t, 0), its end (t + 5, 5);
+    # X+30 puts t at 25
+    prog = run("2 FL AN+0\n3 FCT X+30 DR+ R5 CCA+90")
+    assert ends(prog) == [[25, 0], [30, 5]] and centre(prog.blocks[2]) == [25, 5]
+
+
+def test_open_arc_resolved_by_the_next_element():
+    # the circle about (10, 0) through (0, 0), clockwise; the tangents from (10, 20) touch it 60 degrees either side
+    # of +Y (cos = 10 / 20): at 30 and 150 degrees; clockwise from 180 degrees the arc reaches 150 first, where it
+    # runs toward (10, 20): (10 - 5 sqrt 3, 5)
+    prog = run("2 FC CCX+10 CCY+0 DR-\n3 FLT X+10 Y+20")
+    assert ends(prog) == [[round(10 - 5 * S3, 6), 5], [10, 20]]
+    # a tangent along +X touches the clockwise circle at its top (10, 10); LEN 5 on from there
+    prog = run("2 FC CCX+10 CCY+0 DR-\n3 FLT AN+0 LEN 5")
+    assert ends(prog) == [[10, 10], [15, 10]]
+
+
+def test_radius_compensation_and_feed():
+    # the contour of test_end_points_and_tangency under RL with a tool of radius 2: the tool runs 2 to the left,
+    # (20, 2), (30, 2), inside the counter-clockwise arc about (30, 10) on radius 8 to (38, 10), up to (38, 20);
+    # the R0 block leaves to its end point (60, 20). The feed is the FK block's
+    text = HEAD + ("TOOL DEF 1 L+0 R+2\nTOOL CALL 1 Z S1000\n2 FL X+20 Y+0 RL F300\n3 FLT X+30\n4 FCT X+40 Y+10\n"
+                   "5 FLT LEN 10\n6 FL X+60 Y+20 R0\n99 END PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    assert ends(prog) == [[20, 2], [30, 2], [38, 10], [38, 20], [60, 20]]
+    assert prog.blocks[1].feed * 60 == pytest.approx(300) and prog.blocks[3].segment.radius == pytest.approx(8)
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])  # compensated ends: to R
+    assert match.mismatch is None, match.mismatch
+
+
+@pytest.mark.parametrize(("body", "message"), [
+    ("2 FL AN+30\n3 L X+5", "FL: its length is not determined"),
+    ("2 FL AN+30", "FL: its length is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 L X+5", "FC: where it ends on its circle is not determined"),
+    ("2 FL X+10 Y+0\n3 FSELECT 2", "FSELECT without an FK element of several solutions"),
+    ("2 FC X+10 Y+0 R10 DR+\n3 FL X+0", "FC has 2 solutions and no FSELECT picks one"),
+    ("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 3", "FSELECT 3: the FK element of line 3 has 2 solutions"),
+    ("2 FC X+10 Y+10 DR+", "FC: the circle is not determined"),
+    ("2 FL X+10", "FL: the end point is not determined"),
+    ("2 FL PR+10 PA+0", "PR+10 without an FK pole"),
+    ("2 FL IX+5 RX 7", "RX 7: block 7 is not an FK element run before"),
+    ("2 FL X+10 Y+0 AN+90", "FL: no element fits its data"),
+    ("2 FL AN+10 PDX+5 PDY+5 D2", "auxiliary point at a distance (PDX/PDY/D) is not supported"),
+    ("2 FL CLSD-", "CLSD- without a CLSD+"),
+    ("2 FC CCX+10 CCY+0 X+20 Y+0", "FC without a direction of rotation"),
+    ("2 FL AN+0\n3 FL X+30 Y+10", "the corner between them is not determined"),
+    ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
+    ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
+    ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
+    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "FK free contour programming is read in the XY plane only"),
+])
+def test_errors_name_the_element_and_the_data_needed(body, message):
+    with pytest.raises(GCodeError) as exc:
+        run(body, reference=False)
+    assert message in str(exc.value)
+
+
+def test_flt_needs_a_preceding_element():
+    with pytest.raises(GCodeError, match="FLT without a preceding contour element"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 FLT X+5 Y+0 F100\n2 END PGM T MM\n", source="t.h", context=CTX)
