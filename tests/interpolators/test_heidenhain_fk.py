@@ -159,3 +159,15 @@ def test_errors_name_the_element_and_the_data_needed(body, message):
 def test_flt_needs_a_preceding_element():
     with pytest.raises(GCodeError, match="FLT without a preceding contour element"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 FLT X+5 Y+0 F100\n2 END PGM T MM\n", source="t.h", context=CTX)
+
+
+@pytest.mark.parametrize(("cycle", "turn"), [
+    ("CYCL DEF 10.0 ROTATION\n3 CYCL DEF 10.1 ROT+90", lambda x, y: [-y, x]),
+    ("CYCL DEF 8.0 MIRROR IMAGE\n3 CYCL DEF 8.1 Y", lambda x, y: [x, -y]),
+])
+def test_fk_contour_under_a_rotation_or_mirror(cycle, turn):
+    # the contour of test_end_points_and_tangency resolved in program coordinates, then turned 90 degrees about
+    # the datum (machine = (-y, x)) or mirrored in Y (the arc then turns clockwise); FLT takes the program-frame
+    # tangent of the element before it
+    prog = run(f"2 {cycle}\n4 FL X+20 Y+0\n5 FLT X+30\n6 FCT X+40 Y+10\n7 FLT LEN 10")
+    assert ends(prog) == [turn(20, 0), turn(30, 0), turn(40, 10), turn(40, 20)]
