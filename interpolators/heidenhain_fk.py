@@ -302,6 +302,7 @@ class FreeContour:
         self.history: dict[int, FkElement] = {}
         self.closed_start: np.ndarray | None = None
         self.waiting: _Waiting | None = None
+        self.corner: _Waiting | None = None  # an FCT of radius and sense only, after an open line (a rounding)
 
     # --- blocks ---------------------------------------------------------------------------------------
     def set_pole(self, data: FkWords, start: np.ndarray, where: Where) -> None:
@@ -347,6 +348,11 @@ class FreeContour:
         if new.closing and self.closed_start is None:
             where.fail("CLSD- without a CLSD+ before it", column=data.words["CLSD"].column,
                        text=data.words["CLSD"].text, expected="CLSD+ on the first element of the closed contour")
+        if w is not None and self.corner is not None:
+            return self._round_corner(new, tol)
+        if w is not None and w.open.centre is None and _rounding(new):
+            self.corner = new
+            return []
         if w is not None:
             self.waiting = None
             first, second = _join(w, new, self, tol)
@@ -362,6 +368,11 @@ class FreeContour:
         w = self.waiting
         if w is None:
             return
+        if self.corner is not None:
+            c = self.corner
+            c.where.fail(f"{w.kw} of line {w.where.line} (its length open) and this {c.kw} of radius and sense only: "
+                         "where they end is not determined", column=1, text=c.where.text,
+                         expected="a next FLT with its end point and AN (the direction after the arc)")
         if w.open is None:
             w.where.fail(f"{w.kw} has {len(w.solutions)} solutions and no FSELECT picks one", column=1,
                          text=w.where.text, expected=f"FSELECT 1 .. {len(w.solutions)} after the {w.kw} block")
@@ -372,6 +383,34 @@ class FreeContour:
                                                   "of known direction") + ", or a next FK element that fixes it")
 
     # --- resolution -----------------------------------------------------------------------------------
+    def _round_corner(self, new: _Waiting, tol: float) -> list[Emitted]:
+        """An open line, an FCT of radius R and sense DR only, and ``new``, an FLT of known end point E and
+        direction AN (tangent to the arc: without it the arc's sweep stays open): the arc turns the line's
+        direction d1 into d3 = AN, so its shape is fixed and only where the first line ends (t along d1) is
+        open; the third line through E along d3 fixes t (linear)."""
+        w, corner = self.waiting, self.corner
+        self.waiting = self.corner = None
+        s, d1 = w.open.start, w.open.direction()
+        ccw = corner.data.words["DR"].value == "+"
+        r = abs(corner.data.values["R"])
+        sign = 1.0 if ccw else -1.0
+        if "AN" in new.data.values and new.kw == "FLT":
+            d3 = _unit(new.data.values["AN"])
+            n1, n3 = _perp(d1) * sign, -_perp(d3) * sign  # from the line to the centre, from the centre to the end
+            den = float(d1[0] * d3[1] - d1[1] * d3[0])
+            ends = _end_curves(new, np.full(2, np.nan), self, chord=False)  # absolute end data only
+            for e in (_solve(ends, tol) if len(ends) >= 2 and abs(den) > 1e-12 else []):
+                q = e - s - r * (n1 + n3)
+                t = float(q[0] * d3[1] - q[1] * d3[0]) / den
+                centre = s + t * d1 + r * n1
+                if t > tol and float((e - (centre + r * n3)) @ d3) > tol:
+                    line = FkElement(s, s + t * d1)
+                    arc = FkElement(line.end, centre + r * n3, centre, ccw)
+                    return [self._done(w, line), self._done(corner, arc)] + self._resolve(new, arc.end, d3, tol)
+        new.where.fail(f"{w.kw} of line {w.where.line} (its length open), the {corner.kw} of line {corner.where.line} "
+                       "(radius and sense only) and this block: where they meet is not determined", column=1,
+                       text=new.where.text, expected="FLT with AN and its end point (X/Y or PR/PA) after them")
+
     def _resolve(self, new: _Waiting, start: np.ndarray, tangent: np.ndarray | None, tol: float) -> list[Emitted]:
         if new.kw in ("FL", "FLT"):
             solutions, opened = _line_solutions(new, start, tangent, self, tol)
@@ -416,6 +455,13 @@ class FreeContour:
             w.where.fail(f"{word.text} without an FK pole", column=word.column, text=word.text,
                          expected="an FPOL block before FK polar coordinates (a CC is not the FK pole)")
         return self.pole
+
+
+def _rounding(w: _Waiting) -> bool:
+    """An FCT with radius and sense and nothing else of its circle or end (after an open line: a rounding)."""
+    keys = set(w.data.values) | set(w.data.refs)
+    return w.kw == "FCT" and "DR" in w.data.words and "R" in keys and not w.closing and \
+        not keys - {"R", "F"}
 
 
 def _end_curves(w: _Waiting, start: np.ndarray, fk: FreeContour, *, chord: bool) -> list[_Curve]:

@@ -217,9 +217,9 @@ class FkReference:
         return entry is None or not el.dr or (_cross(entry, c - s) > 0) == (el.dr == "+")
 
     # --- solving ------------------------------------------------------------------------------------
-    def solve(self, chain: list[_Element], s0, t0, tol: float) -> list[list[tuple]]:
-        """The solutions of the elements ``chain`` (joined: each starts where the one before ends), each a
-        list of (start, end, centre, ccw) per element."""
+    def _system(self, chain: list[_Element], s0, t0):
+        """(walk, fun, n): the elements of ``chain`` joined (each starts where the one before ends, tangent to it
+        for FLT/FCT/IAN): ``walk(z)`` their (element, start, tangent, unknowns), ``fun(z)`` all residuals."""
         n = sum(el.n for el in chain)
 
         def walk(z):
@@ -239,6 +239,11 @@ class FkReference:
         def fun(z):
             return np.array([r for el, s, t, zz in walk(z) for r in self.equations(el, s, t, zz)], float)
 
+        return walk, fun, n
+
+    def solve(self, chain: list[_Element], s0, t0, tol: float) -> list[list[tuple]]:
+        """The solutions of the elements ``chain`` (joined), each a list of (start, end, centre, ccw) per element."""
+        walk, fun, n = self._system(chain, s0, t0)
         size = 1.0 + max([abs(x) for el in chain for x in el.v.values() if isinstance(x, float)] + [*np.abs(s0)])
         rng = np.random.default_rng(7)
         roots: list[np.ndarray] = []
@@ -259,19 +264,18 @@ class FkReference:
             out.append(recs)
         return out
 
-    def determined(self, el: _Element, s, t) -> bool:
-        """The element's data fix its unknowns: the Jacobian of its equations (central differences at a seeded
-        random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
-        t = t if t is not None else np.array([1.0, 0.0])
-        z0 = np.tile(s, el.n // 2) + np.random.default_rng(3).normal(scale=10.0, size=el.n)
+    def determined(self, chain: list[_Element], s, t) -> bool:
+        """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences at a
+        seeded random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
+        _, fun, n = self._system(chain, s, t if t is not None else np.array([1.0, 0.0]))
+        z0 = np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
         cols = []
-        for k in range(el.n):
-            dz = np.zeros(el.n)
+        for k in range(n):
+            dz = np.zeros(n)
             dz[k] = 1e-6
-            cols.append((np.array(self.equations(el, s, t, z0 + dz)) - np.array(self.equations(el, s, t, z0 - dz)))
-                        / 2e-6)
+            cols.append((fun(z0 + dz) - fun(z0 - dz)) / 2e-6)
         jac = np.array(cols).T
-        return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= el.n
+        return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= n
 
     @staticmethod
     def length(rec) -> float:
@@ -291,34 +295,37 @@ class FkReference:
         """An FL/FLT/FC/FCT block: the (line, number, record) elements to emit now."""
         closing = words.get("CLSD") == "-" or (words.get("CLSD") == "" and self.closed is not None)
         el = _Element(kw, words, refs, line, number, closing)
-        out = []
+        out, chain = [], [el]
         if self.waiting is not None:
-            prev, ps, pt, sols = self.waiting
+            before, s, t, sols = self.waiting
             if sols is not None:
                 raise ReferenceError("an FK element with several solutions and no FSELECT")
+            chain = before + [el]
             self.waiting = None
-            firsts = {tuple(np.round(np.concatenate([r[0][1], r[0][2] if r[0][2] is not None else []]), 6)): r[0]
-                      for r in self.solve([prev, el], ps, pt, tol)}
-            if len(firsts) != 1:
-                raise ReferenceError(f"open FK element of line {prev.line}: {len(firsts)} ways to join")
-            rec = next(iter(firsts.values()))
-            out.append(self._done(prev, rec))
-            s, t = rec[1], self._direction(rec)
-        if not self.determined(el, s, t):
-            self.waiting = (el, s, t, None)
+        if not self.determined(chain, s, t):
+            self.waiting = (chain, s, t, None)
             return out
+        if len(chain) > 1:  # the open elements before: one way to join, the last element then as any other
+            heads = {tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
+                                                    for r in recs[:-1]]), 6)): recs[:-1]
+                     for recs in self.solve(chain, s, t, tol)}
+            if len(heads) != 1:
+                raise ReferenceError(f"open FK elements from line {chain[0].line}: {len(heads)} ways to join")
+            for e, rec in zip(chain[:-1], next(iter(heads.values()))):
+                out.append(self._done(e, rec))
+            s, t = out[-1][1][1], self._direction(out[-1][1])
         sols = self.order([r[0] for r in self.solve([el], s, t, tol)])
         if not sols:
             raise ReferenceError(f"FK element of line {line}: no solution")
         if len(sols) > 1:
-            self.waiting = (el, s, t, sols)
+            self.waiting = ([el], s, t, sols)
             return out
         return out + [self._done(el, sols[0])]
 
     def select(self, n: int) -> list:
-        el, s, t, sols = self.waiting
+        chain, s, t, sols = self.waiting
         self.waiting = None
-        return [self._done(el, sols[n - 1])]
+        return [self._done(chain[0], sols[n - 1])]
 
     def _done(self, el: _Element, rec) -> tuple:
         if el.number is not None:

@@ -105,6 +105,21 @@ def test_open_line_resolved_by_the_next_element():
     assert ends(prog) == [[25, 0], [30, 5]] and centre(prog.blocks[2]) == [25, 5]
 
 
+def test_open_line_rounded_by_an_fct_and_ended_by_the_next_line():
+    # FL AN+0 (no length), FCT R5 DR+ (radius and sense only), FLT to (30, 20) at AN+90: the arc turns +X into +Y,
+    # a quarter circle; the last line is X 30, so the arc ends at (30, 5), its centre (25, 5), the first line at
+    # (25, 0)
+    prog = run("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20 AN+90")
+    assert ends(prog) == [[25, 0], [30, 5], [30, 20]] and centre(prog.blocks[2]) == [25, 5]
+    # clockwise from AN+0 to AN-45 with R10: the centre (t, -10) 10 below the line's end (t, 0), the arc's end the
+    # centre + 10 (sin 45, cos 45); the line from there at -45 degrees reaches (40, -20) after u along each axis:
+    # t + 5 sqrt 2 + u = 40 and -10 + 5 sqrt 2 - u = -20, so u = 10 + 5 sqrt 2 and t = 30 - 10 sqrt 2
+    prog = run("2 FL AN+0\n3 FCT DR- R10\n4 FLT X+40 Y-20 AN-45")
+    t = 30 - 10 * math.sqrt(2)
+    assert ends(prog) == [[round(t, 6), 0], [round(t + 5 * math.sqrt(2), 6), round(-10 + 5 * math.sqrt(2), 6)],
+                          [40, -20]]
+
+
 def test_open_arc_resolved_by_the_next_element():
     # the circle about (10, 0) through (0, 0), clockwise; the tangents from (10, 20) touch it 60 degrees either side
     # of +Y (cos = 10 / 20): at 30 and 150 degrees; clockwise from 180 degrees the arc reaches 150 first, where it
@@ -145,6 +160,9 @@ def test_radius_compensation_and_feed():
     ("2 FL CLSD-", "CLSD- without a CLSD+"),
     ("2 FC CCX+10 CCY+0 X+20 Y+0", "FC without a direction of rotation"),
     ("2 FL AN+0\n3 FL X+30 Y+10", "the corner between them is not determined"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "where they meet is not determined"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "where they meet is not determined"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "of radius and sense only: where they end is not determined"),
     ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
     ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
     ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
