@@ -189,3 +189,12 @@ def test_fk_contour_under_a_rotation_or_mirror(cycle, turn):
     # tangent of the element before it
     prog = run(f"2 {cycle}\n4 FL X+20 Y+0\n5 FLT X+30\n6 FCT X+40 Y+10\n7 FLT LEN 10")
     assert ends(prog) == [turn(20, 0), turn(30, 0), turn(40, 10), turn(40, 20)]
+
+
+def test_inch_program_and_q_parameters():
+    # in an INCH program the FK data are inches: FL to X 1 (25.4 mm), FLT LEN Q1 = 1 on along +X (50.8 mm); the
+    # arc FCT R Q2 = 0.5 DR+ through CCA 90 ends 0.5 in on and 0.5 in up: (63.5, 12.7) mm
+    text = ("0 BEGIN PGM T INCH\n1 L X+0 Y+0 Z+0 R0 F20\n2 Q1 = 1\n3 Q2 = 0.5\n4 FL X+1 Y+0\n5 FLT LEN Q1\n"
+            "6 FCT R+Q2 DR+ CCA+90\n7 END PGM T INCH\n")
+    prog = checked_program(text, CTX)
+    assert ends(prog) == [[25.4, 0], [50.8, 0], [63.5, 12.7]]
