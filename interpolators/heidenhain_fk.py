@@ -37,13 +37,15 @@ direction without length, as ``FL AN+45`` or ``FLT``; an arc of known circle wit
 R15``), from the next FK element: a line ending where the next line of known direction and end
 point, or the next tangent arc of known radius (``FCT .. R.. DR..``, with its end point or ``CCA`` and
 one coordinate), meets it; an arc ending where the next ``FLT`` to a known end point, or the next ``FLT``
-/ ``FL`` of known direction tangent to it, leaves it. Where the data allow several solutions the TNC
-shows them and the programmer picks one, saved as ``FSELECT n`` after the element: here the solutions
-are numbered from the shortest element on, of equal lengths (to 1e-6 program units) by the direction
-they leave the start in, counter-clockwise from +X (the manuals show the choice in the graphic but define
-no order: our reading), and ``FSELECT n`` picks the n-th. Anything else that leaves the element
-open (the TNC's "not yet resolved" elements waiting for more data further on, auxiliary points at a
-distance ``PDX PDY D``) is an error naming the element and the data that would determine it.
+of known direction tangent to it, leaves it; an open line, an ``FCT`` of radius and sense only and an
+``FLT`` of known end point and direction together (the FK form of a rounded corner). Where the data
+allow several solutions the TNC shows them and the programmer picks one, saved as ``FSELECT n`` after
+the element: here the solutions are numbered from the shortest element on, of equal lengths (to 1e-6
+program units) by the direction they leave the start in, counter-clockwise from +X (the manuals show
+the choice in the graphic but define no order: our reading), and ``FSELECT n`` picks the n-th.
+Anything else that leaves the element open (the TNC's "not yet resolved" elements waiting for more
+data further on, auxiliary points at a distance ``PDX PDY D``) is an error naming the element and the
+data that would determine it.
 
 The resolved element is a line ``L`` or an arc ``CC`` + ``C`` to the reader (the FK centre is then the
 pole: the manuals say a CC programmed before is no longer valid after an FK contour), so radius

@@ -47,6 +47,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
   from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
+  6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
