@@ -89,6 +89,9 @@ _ARC_KEYS = frozenset({"X", "Y", "IX", "IY", "PR", "PA", "IPR", "IPA", "LEN", "A
 _UNDETERMINED_LINE = "X/Y, LEN, PR/PA with a direction (AN, IAN, FLT, PAR), or both coordinates of the end point"
 _UNDETERMINED_ARC = ("the circle (two of: CCX/CCY, CCPR/CCPA, R, FCT or AN tangency, the end point) and its end "
                      "(X/Y, PR/PA, LEN, CCA)")
+#: The start of the element after an open one, for its data: unknown, so data relative to it (IX, IY, IPR, IPA,
+#: ICCX, ...) give no curve (NaN fits nothing) and the join fails naming the data that would fix it.
+_UNKNOWN = np.full(2, np.nan)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -292,7 +295,7 @@ class _Waiting:
 
 
 #: What the reader hands back: elements to run as L / CC + C blocks, with the block they come from.
-Emitted = tuple[FkElement, FkWords, Where, "int | None"]
+Emitted = tuple[FkElement, FkWords, Where, int | None]
 
 
 class FreeContour:
@@ -400,7 +403,7 @@ class FreeContour:
             d3 = _unit(new.data.values["AN"])
             n1, n3 = _perp(d1) * sign, -_perp(d3) * sign  # from the line to the centre, from the centre to the end
             den = float(d1[0] * d3[1] - d1[1] * d3[0])
-            ends = _end_curves(new, np.full(2, np.nan), self, chord=False)  # absolute end data only
+            ends = _end_curves(new, _UNKNOWN, self, chord=False)
             for e in (_solve(ends, tol) if len(ends) >= 2 and abs(den) > 1e-12 else []):
                 q = e - s - r * (n1 + n3)
                 t = float(q[0] * d3[1] - q[1] * d3[0]) / den
@@ -657,6 +660,7 @@ def _arc_ends(w: _Waiting, start: np.ndarray, c: np.ndarray, r: float, ccw: bool
 
 # --- an open element and the next one ---------------------------------------------------------------------
 
+
 def _join(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple[FkElement, FkElement | None]:
     """The open element ``w`` resolved by the next one ``new``: (w's element, new's element or None when new
     is to be resolved from w's end on)."""
@@ -672,8 +676,8 @@ def _join_line(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple
     s, d = w.open.start, w.open.direction()
     v = new.data.values
     if new.kw in ("FL", "FLT"):
-        ends = _end_curves(new, s, fk, chord=False)
-        dirs = _line_directions(new, s, d, fk, tol) if new.kw != "FLT" else None
+        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
+        dirs = _line_directions(new, _UNKNOWN, d, fk, tol) if new.kw != "FLT" else None
         if len(ends) >= 2 and dirs is not None and len(dirs) == 1:
             for e in _solve(ends, tol):
                 for p in _intersect(_Curve(s, d, ray=True, strict=True), _Curve(e, dirs[0]), tol):
@@ -683,8 +687,8 @@ def _join_line(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple
         r = abs(v["R"])
         side = _perp(d) * (1 if ccw else -1)
         rail = _Curve(s + r * side, d, ray=True, strict=True)
-        conditions = _given_centre(new, s, fk)
-        ends = _end_curves(new, s, fk, chord=False)
+        conditions = _given_centre(new, _UNKNOWN, fk)
+        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
         if len(ends) >= 2:
             conditions += [_Curve(e, r=r) for e in _solve(ends, tol)][:1]
         elif ends and "CCA" in v:
@@ -708,7 +712,7 @@ def _join_arc(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> FkElem
     r = float(np.hypot(*(s - c)))
     out: list[np.ndarray] = []
     if new.kw == "FLT":
-        ends = _end_curves(new, s, fk, chord=False)
+        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
         v = new.data.values
         if len(ends) >= 2:
             for e in _solve(ends, tol):

@@ -160,6 +160,7 @@ def test_radius_compensation_and_feed():
     ("2 FL CLSD-", "CLSD- without a CLSD+"),
     ("2 FC CCX+10 CCY+0 X+20 Y+0", "FC without a direction of rotation"),
     ("2 FL AN+0\n3 FL X+30 Y+10", "the corner between them is not determined"),
+    ("2 FL AN+0\n3 FL IX+10 Y+5 AN+45", "the corner between them is not determined"),  # IX: from an unknown start
     ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "where they meet is not determined"),
     ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "where they meet is not determined"),
     ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "of radius and sense only: where they end is not determined"),
