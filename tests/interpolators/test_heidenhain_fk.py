@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from interpolators.context import MachineContext
+from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks
@@ -199,3 +199,18 @@ def test_inch_program_and_q_parameters():
             "6 FCT R+Q2 DR+ CCA+90\n7 END PGM T INCH\n")
     prog = checked_program(text, CTX)
     assert ends(prog) == [[25.4, 0], [50.8, 0], [63.5, 12.7]]
+
+
+def test_fk_contour_in_an_sl_contour_train():
+    # cycle 25 CONTOUR TRAIN on the contour LBL 1 written in FK: (0, 0) along +X, an FCT R10 DR+ rounding into +Y, up
+    # to (50, 30): the contour (40, 0), arc about (40, 10) to (50, 10), (50, 30); RL with the tool radius 3 runs it
+    # 3 inside: (40, 3), the arc on radius 7 to (47, 10), (47, 30), at Z-5 then Z-10 (tool length 10: machine Z 5
+    # and 0). Reader only: the reference's SL cycles read their contour labels as L/C blocks.
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L Z+100 R0 FMAX\n3 CYCL DEF 14.0 CONTOUR\n"
+            "4 CYCL DEF 14.1 CONTOUR LABEL 1\n5 CYCL DEF 25 CONTOUR TRAIN Q1=-10 Q3=+0 Q5=+0 Q7=+50 Q10=+5 Q11=100 "
+            "Q12=350 Q15=+1\n6 L X-10 Y-10 R0 FMAX\n7 CYCL CALL\n8 L X-10 Y-10 Z+100 R0 FMAX M30\n9 LBL 1\n"
+            "10 L X+0 Y+0 RL\n11 FL AN+0\n12 FCT DR+ R10\n13 FLT X+50 Y+30 AN+90\n14 LBL 0\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    cut = [np.round(b.target, 6).tolist() for b in prog.blocks if b.kind != "rapid" and b.feed * 60 > 300]
+    assert cut == [[x, y, z] for z in (5, 0) for x, y in ((40, 3), (47, 10), (47, 30))]
