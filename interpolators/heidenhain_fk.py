@@ -38,7 +38,9 @@ R15``), from the next FK element: a line ending where the next line of known dir
 point, or the next tangent arc of known radius (``FCT .. R.. DR..``, with its end point or ``CCA`` and
 one coordinate), meets it; an arc ending where the next ``FLT`` to a known end point, or the next ``FLT``
 of known direction tangent to it, leaves it; an open line, an ``FCT`` of radius and sense only and an
-``FLT`` of known end point and direction together (the FK form of a rounded corner). Where the data
+``FLT`` of known end point and direction together (the FK form of a rounded corner); an open arc, an
+``FLT`` without data and an ``FCT`` of known centre, radius and sense together (the tangent between two
+circles, as the manuals' FK programming examples run their contours). Where the data
 allow several solutions the TNC shows them and the programmer picks one, saved as ``FSELECT n`` after
 the element: here the solutions are numbered from the shortest element on, of equal lengths (to 1e-6
 program units) by the direction they leave the start in, counter-clockwise from +X (the manuals show
@@ -307,7 +309,9 @@ class FreeContour:
         self.history: dict[int, FkElement] = {}
         self.closed_start: np.ndarray | None = None
         self.waiting: _Waiting | None = None
-        self.corner: _Waiting | None = None  # an FCT of radius and sense only, after an open line (a rounding)
+        # the element between an open one and the one that fixes both: an FCT of radius and sense only after an
+        # open line (a rounding), an FLT without data after an open arc (a tangent to the next circle)
+        self.middle: _Waiting | None = None
 
     # --- blocks ---------------------------------------------------------------------------------------
     def set_pole(self, data: FkWords, start: np.ndarray, where: Where) -> None:
@@ -353,10 +357,10 @@ class FreeContour:
         if new.closing and self.closed_start is None:
             where.fail("CLSD- without a CLSD+ before it", column=data.words["CLSD"].column,
                        text=data.words["CLSD"].text, expected="CLSD+ on the first element of the closed contour")
-        if w is not None and self.corner is not None:
-            return self._round_corner(new, tol)
-        if w is not None and w.open.centre is None and _rounding(new):
-            self.corner = new
+        if w is not None and self.middle is not None:
+            return self._round_corner(new, tol) if w.open.centre is None else self._bridge(new, tol)
+        if w is not None and (_rounding(new) if w.open.centre is None else _bare_tangent(new)):
+            self.middle = new
             return []
         if w is not None:
             self.waiting = None
@@ -373,11 +377,16 @@ class FreeContour:
         w = self.waiting
         if w is None:
             return
-        if self.corner is not None:
-            c = self.corner
-            c.where.fail(f"{w.kw} of line {w.where.line} (its length open) and this {c.kw} of radius and sense only: "
-                         "where they end is not determined", column=1, text=c.where.text,
-                         expected="a next FLT with its end point and AN (the direction after the arc)")
+        if self.middle is not None:
+            c = self.middle
+            if w.open.centre is None:
+                c.where.fail(f"{w.kw} of line {w.where.line} (its length open) and this {c.kw} of radius and sense "
+                             "only: where they end is not determined", column=1, text=c.where.text,
+                             expected="a next FLT with its end point and AN (the direction after the arc)")
+            c.where.fail(f"{w.kw} of line {w.where.line} (its end open) and this {c.kw} without data: where they end "
+                         "is not determined", column=1, text=c.where.text,
+                         expected="a next FCT with its centre CCX/CCY (or CCPR/CCPA), R and DR (the circle the line "
+                                  "is tangent to)")
         if w.open is None:
             w.where.fail(f"{w.kw} has {len(w.solutions)} solutions and no FSELECT picks one", column=1,
                          text=w.where.text, expected=f"FSELECT 1 .. {len(w.solutions)} after the {w.kw} block")
@@ -388,13 +397,48 @@ class FreeContour:
                                                   "of known direction") + ", or a next FK element that fixes it")
 
     # --- resolution -----------------------------------------------------------------------------------
+    def _bridge(self, new: _Waiting, tol: float) -> list[Emitted]:
+        """An open arc (circle c1, r1, its sense), an FLT without data, and ``new``, an FCT of known circle (centre
+        CCX/CCY or CCPR/CCPA, R) and sense DR: the line is the tangent leaving the first circle and reaching the
+        second in their senses. With n the unit normal from a circle's centre to the point where its tangent
+        runs along u (n = -perp(u), times -1 for a clockwise circle: k = -1), T = c + k r n on each circle, and
+        T2 - T1 along u: (c2 - c1) . n = k1 r1 - k2 r2, two normals of which one has T2 ahead of T1."""
+        w, bare = self.waiting, self.middle
+        self.waiting = self.middle = None
+        c1, ccw1 = w.open.centre, w.open.ccw
+        r1 = float(np.hypot(*(w.open.start - c1)))
+        v = new.data.values
+        curves = _given_centre(new, _UNKNOWN, self)
+        if new.kw == "FCT" and "R" in v and "DR" in new.data.words and len(curves) >= 2:
+            k1, k2 = (1.0 if ccw1 else -1.0), (1.0 if new.data.words["DR"].value == "+" else -1.0)
+            r2 = abs(v["R"])
+            for c2 in _solve(curves, tol):
+                d = c2 - c1
+                dist = float(np.hypot(*d))
+                q = k1 * r1 - k2 * r2
+                if dist <= tol or abs(q) > dist:
+                    continue
+                base, spread = math.atan2(d[1], d[0]), math.acos(q / dist)
+                for phi in (base - spread, base + spread):
+                    n = np.array([math.cos(phi), math.sin(phi)])
+                    u = _perp(n)
+                    t1, t2 = c1 + k1 * r1 * n, c2 + k2 * r2 * n
+                    if float((t2 - t1) @ u) > tol:
+                        arc = FkElement(w.open.start, t1, c1, ccw1)
+                        line = FkElement(t1, t2)
+                        return [self._done(w, arc), self._done(bare, line)] + self._resolve(new, t2, u, tol)
+        new.where.fail(f"{w.kw} of line {w.where.line} (its end open), the {bare.kw} of line {bare.where.line} (no "
+                       "data) and this block: the tangent between them is not determined", column=1,
+                       text=new.where.text, expected="FCT with its centre CCX/CCY (or CCPR/CCPA), R and DR, a circle "
+                                                     "apart from the first")
+
     def _round_corner(self, new: _Waiting, tol: float) -> list[Emitted]:
         """An open line, an FCT of radius R and sense DR only, and ``new``, an FLT of known end point E and
         direction AN (tangent to the arc: without it the arc's sweep stays open): the arc turns the line's
         direction d1 into d3 = AN, so its shape is fixed and only where the first line ends (t along d1) is
         open; the third line through E along d3 fixes t (linear)."""
-        w, corner = self.waiting, self.corner
-        self.waiting = self.corner = None
+        w, corner = self.waiting, self.middle
+        self.waiting = self.middle = None
         s, d1 = w.open.start, w.open.direction()
         ccw = corner.data.words["DR"].value == "+"
         r = abs(corner.data.values["R"])
@@ -460,6 +504,11 @@ class FreeContour:
             w.where.fail(f"{word.text} without an FK pole", column=word.column, text=word.text,
                          expected="an FPOL block before FK polar coordinates (a CC is not the FK pole)")
         return self.pole
+
+
+def _bare_tangent(w: _Waiting) -> bool:
+    """An FLT with no data of its own (after an open arc: the tangent to the next element's circle)."""
+    return w.kw == "FLT" and not w.closing and not (set(w.data.values) | set(w.data.refs)) - {"F"}
 
 
 def _rounding(w: _Waiting) -> bool:

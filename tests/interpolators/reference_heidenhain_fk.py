@@ -41,6 +41,16 @@ def _angle(v) -> float:
     return math.degrees(math.atan2(v[1], v[0]))
 
 
+def _jacobian(fun, z) -> np.ndarray:
+    """Central differences of ``fun`` at ``z`` (rows: residuals, columns: unknowns)."""
+    cols = []
+    for k in range(len(z)):
+        dz = np.zeros(len(z))
+        dz[k] = 1e-6
+        cols.append((fun(z + dz) - fun(z - dz)) / 2e-6)
+    return np.array(cols).T
+
+
 class _Element:
     """An FK block's data: ``kw``, values ``v`` [mm, deg], block references ``refs``, ``dr`` (None, '+', '-')."""
 
@@ -247,15 +257,19 @@ class FkReference:
         size = 1.0 + max([abs(x) for el in chain for x in el.v.values() if isinstance(x, float)] + [*np.abs(s0)])
         rng = np.random.default_rng(7)
         roots: list[np.ndarray] = []
-        for _ in range(80):
+        last_new = 0
+        for i in range(80):
+            if roots and i - last_new > 20:  # twenty starts without a new solution: enough
+                break
             x0 = np.tile(s0, n // 2) + rng.normal(scale=size, size=n)
             sol = least_squares(fun, x0, method="lm" if len(fun(x0)) >= n else "trf", xtol=1e-15, ftol=1e-15,
-                                gtol=1e-15, max_nfev=4000)
+                                gtol=1e-15, max_nfev=1000)
             if np.max(np.abs(sol.fun)) > 1e-8 * size:
                 continue
             if all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(sol.x)) and \
                     not any(np.max(np.abs(sol.x - r)) < 1e-6 * size for r in roots):
                 roots.append(sol.x)
+                last_new = i
         out = []
         for z in roots:
             recs = []
@@ -268,14 +282,45 @@ class FkReference:
         """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences at a
         seeded random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
         _, fun, n = self._system(chain, s, t if t is not None else np.array([1.0, 0.0]))
-        z0 = np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
-        cols = []
-        for k in range(n):
-            dz = np.zeros(n)
-            dz[k] = 1e-6
-            cols.append((fun(z0 + dz) - fun(z0 - dz)) / 2e-6)
-        jac = np.array(cols).T
+        jac = _jacobian(fun, np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n))
         return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= n
+
+    @staticmethod
+    def _fixed_count(chain: list[_Element], fun, z) -> int:
+        """How many leading elements of ``chain`` (not its last) the equations fix at ``z``: their unknowns take
+        no part in the null space of the Jacobian there."""
+        jac = _jacobian(fun, z)
+        n = len(z)
+        _, sv, vt = np.linalg.svd(jac) if jac.size else (None, np.zeros(0), np.eye(n))
+        free = np.vstack([vt[len(sv):], vt[:len(sv)][sv < 1e-7 * max(1.0, sv.max(initial=0.0))]])
+        fixed = np.all(np.abs(free) < 1e-6, axis=0) if len(free) else np.ones(n, bool)
+        k, at = 0, 0
+        for el in chain[:-1]:
+            if not fixed[at:at + el.n].all():
+                break
+            at += el.n
+            k += 1
+        return k
+
+    def fixed_prefix(self, chain: list[_Element], s, t, tol: float) -> list[tuple]:
+        """The records of the leading elements of ``chain`` (not its last) whose unknowns the joined data fix:
+        at a solution, the unknowns the null space of the Jacobian leaves untouched; the same in every solution
+        found, else an error."""
+        _, fun, n = self._system(chain, s, t)
+        if self._fixed_count(chain, fun, np.tile(s, n // 2) + np.random.default_rng(5).normal(scale=10.0, size=n)) == 0:
+            return []  # nothing fixed near a generic point: no need to solve (an open chain can be slow to)
+        roots = self.solve(chain, s, t, tol)
+        if not roots:
+            return []
+        k = self._fixed_count(chain, fun, np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None
+                                                          else r[1] for r in roots[0]]))
+        if k == 0:
+            return []
+        heads = {tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
+                                                for r in recs[:k]]), 6)) for recs in roots}
+        if len(heads) != 1:
+            raise ReferenceError(f"open FK elements from line {chain[0].line}: {len(heads)} ways to join")
+        return roots[0][:k]
 
     @staticmethod
     def length(rec) -> float:
@@ -302,18 +347,15 @@ class FkReference:
                 raise ReferenceError("an FK element with several solutions and no FSELECT")
             chain = before + [el]
             self.waiting = None
-        if not self.determined(chain, s, t):
+        if len(chain) > 1:  # open elements before: those the data now fix, then the rest as before
+            for e, rec in zip(chain, self.fixed_prefix(chain, s, t, tol)):
+                out.append(self._done(e, rec))
+            if out:
+                chain = chain[len(out):]
+                s, t = out[-1][1][1], self._direction(out[-1][1])
+        if len(chain) > 1 or not self.determined(chain, s, t):
             self.waiting = (chain, s, t, None)
             return out
-        if len(chain) > 1:  # the open elements before: one way to join, the last element then as any other
-            heads = {tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
-                                                    for r in recs[:-1]]), 6)): recs[:-1]
-                     for recs in self.solve(chain, s, t, tol)}
-            if len(heads) != 1:
-                raise ReferenceError(f"open FK elements from line {chain[0].line}: {len(heads)} ways to join")
-            for e, rec in zip(chain[:-1], next(iter(heads.values()))):
-                out.append(self._done(e, rec))
-            s, t = out[-1][1][1], self._direction(out[-1][1])
         sols = self.order([r[0] for r in self.solve([el], s, t, tol)])
         if not sols:
             raise ReferenceError(f"FK element of line {line}: no solution")

@@ -120,6 +120,23 @@ def test_open_line_rounded_by_an_fct_and_ended_by_the_next_line():
                           [40, -20]]
 
 
+def test_tangents_between_known_circles_close_the_contour():
+    # the FK form of a contour around two circles (as the manuals' FK examples run one): circles of R10 about
+    # (0, 0) and (40, 0), both clockwise, from (-10, 0) (CLSD+); each FLT without data is the tangent leaving one
+    # circle and reaching the next in their senses: over the top (0, 10) to (40, 10), round B to its bottom
+    # (40, -10), back to (0, -10), and round A to the start (CLSD-)
+    prog = run("2 L X-10 Y+0\n3 FC DR- R10 CLSD+ CCX+0 CCY+0\n4 FLT\n5 FCT DR- R10 CCX+40 CCY+0\n6 FLT\n"
+               "7 FCT DR- R10 CLSD- CCX+0 CCY+0")
+    assert ends(prog)[1:] == [[0, 10], [40, 10], [40, -10], [0, -10], [-10, 0]]
+    assert [centre(b) for b in prog.blocks[2::2]] == [[0, 0], [40, 0], [0, 0]]
+    # clockwise R10 about (0, 0), then counter-clockwise R5 about (40, 0): the crossing tangent; its normal n
+    # from each centre makes (c2 - c1) . n = k1 r1 - k2 r2 = -10 - 5 (k = -1 clockwise), so n = (-15/40,
+    # -sqrt(1 - (15/40)^2)) (the other root has the line running backwards); T1 = c1 - 10 n, T2 = c2 + 5 n
+    prog = run("2 L X+0 Y+10\n3 FC DR- R10 CCX+0 CCY+0\n4 FLT\n5 FCT DR+ R5 CCX+40 CCY+0 X+45 Y+0")
+    n = np.array([-15 / 40, -math.sqrt(1 - (15 / 40) ** 2)])
+    assert ends(prog)[1:] == [np.round(-10 * n, 6).tolist(), np.round([40, 0] + 5 * n, 6).tolist(), [45, 0]]
+
+
 def test_open_arc_resolved_by_the_next_element():
     # the circle about (10, 0) through (0, 0), clockwise; the tangents from (10, 20) touch it 60 degrees either side
     # of +Y (cos = 10 / 20): at 30 and 150 degrees; clockwise from 180 degrees the arc reaches 150 first, where it
@@ -164,6 +181,8 @@ def test_radius_compensation_and_feed():
     ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "where they meet is not determined"),
     ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "where they meet is not determined"),
     ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "of radius and sense only: where they end is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 L X+5", "without data: where they end is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 FCT DR+ R5 CCX+10 CCY+0", "the tangent between them is not determined"),
     ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
     ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
     ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
