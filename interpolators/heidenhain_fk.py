@@ -756,7 +756,7 @@ def _join_line(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple
 
 def _join_arc(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> FkElement:
     """An arc of known circle whose end the next element fixes: the next FLT to a known end point (the tangent
-    from it that continues the arc's sense), or an FLT / FL with AN or IAN tangent to it."""
+    from it that continues the arc's sense), or an FLT with AN (where the arc runs that way)."""
     s, c, ccw = w.open.start, w.open.centre, w.open.ccw
     r = float(np.hypot(*(s - c)))
     out: list[np.ndarray] = []
