@@ -137,6 +137,21 @@ def test_tangents_between_known_circles_close_the_contour():
     assert ends(prog)[1:] == [np.round(-10 * n, 6).tolist(), np.round([40, 0] + 5 * n, 6).tolist(), [45, 0]]
 
 
+def test_tangents_between_circles_with_approach_and_rl():
+    # the closed contour of the test above run with APPR CT and RL by a tool of radius 2: left of the clockwise
+    # circles is outside, so the tool runs them on radius 12: from (-12, 0) over (0, 12) to (40, 12), round to
+    # (40, -12), back to (0, -12) and round to (-12, 0); the R0 line leaves to (-30, 0)
+    text = ("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+2\n2 TOOL CALL 1 Z S1000\n3 L X-30 Y+0 Z-5 R0 F500\n"
+            "4 APPR CT X-10 Y+0 CCA90 R+5 RL F250\n5 FC DR- R10 CLSD+ CCX+0 CCY+0\n6 FLT\n7 FCT DR- R10 CCX+40 CCY+0\n"
+            "8 FLT\n9 FCT DR- R10 CLSD- CCX+0 CCY+0\n10 L X-30 Y+0 R0 F1000\n11 END PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    assert [np.round(b.target[:2], 6).tolist() for b in prog.blocks[3:]] == [
+        [0, 12], [40, 12], [40, -12], [0, -12], [-12, 0], [-30, 0]]
+    assert [round(b.segment.radius, 9) for b in prog.blocks[3:8:2]] == [12, 12, 12]
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
 def test_open_arc_resolved_by_the_next_element():
     # the circle about (10, 0) through (0, 0), clockwise; the tangents from (10, 20) touch it 60 degrees either side
     # of +Y (cos = 10 / 20): at 30 and 150 degrees; clockwise from 180 degrees the arc reaches 150 first, where it
