@@ -14,7 +14,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and the ``PLANE`` blocks
   (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
 * :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
-* :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``.
+* :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
+* :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
 
@@ -43,6 +44,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     polar line / arc about CC (helix with a tool-axis word); about a
                                     CC naming the tool axis (CC Z.. X..) in that plane
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
+    FPOL X+20 Y+30, FL IX+10 Y+20 RR F100, FLT AN+45, FCT DR- R15 CCA+90 RX 13, FC CCX+20 CCY+15 DR+
+    R15, FSELECT 2                  FK free contour programming in XY (heidenhain_fk): each element
+                                    resolved from its data, its start and tangent, or the next FK
+                                    element; several solutions need FSELECT
     APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
                                     straight approach / departure tangential to the contour; LN
                                     perpendicular, CT on an arc (CCA, R), LCT line and arc (R);
@@ -99,9 +104,8 @@ perpendicular to the first contour element as on the TNC) to the R0 block (the e
 element: the manuals give only the contour arc (TNC 640 user's manual, "Approaching and departing a
 contour"), so the tool centre runs it as any compensated arc, about the same centre with the radius
 grown or shrunk by the tool radius, and stops beside PN, offset square to the arc (our reading; the
-next R0 block leaves from there). Anything not listed (FK,
-other pattern forms, tilted planes without kinematics, other cycles and FN functions) is an error
-naming the function, line and column. ``CYCLE DEF``, which the
+next R0 block leaves from there). Anything not listed (other pattern forms, tilted planes without
+kinematics, other cycles and FN functions) is an error naming the function, line and column. ``CYCLE DEF``, which the
 SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 """
 
@@ -165,6 +169,7 @@ from interpolators.heidenhain_cycles import (
     scaled_cycle,
     tapping_cycle,
 )
+from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour, read_fk_words
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
 from interpolators.heidenhain_paths import (
@@ -220,13 +225,11 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
-    r"|LBL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
+    r"|LBL|FPOL|FSELECT|FCT|FLT|FC|FL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _BLANKS_RE = re.compile(r"\s+")
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
-#: Blocks of FK free contour programming (FPOL pole, FL/FLT lines, FC/FCT arcs, FSELECT).
-_FK_WORDS = frozenset({"FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"})
 #: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
 _M_END = (2, 30)
 _M_STOP = (0, 1)
@@ -319,6 +322,7 @@ class _Machine:
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
+        self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -456,7 +460,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
 
 
 def _check_contour_closed(m: _Machine) -> None:
-    """Nothing left waiting at the end: RND/CHF, APPR LT, a radius-compensated run."""
+    """Nothing left waiting at the end: an FK element, RND/CHF, APPR LT, a radius-compensated run."""
+    m.fk.unresolved()
     if m.pending is not None:
         kind, _, _, pw = m.pending
         pw.fail(f"{kind} at the end of the contour", column=1, text=pw.text, expected=f"a line after {kind}")
@@ -529,6 +534,8 @@ class _Run:
     def block(self, kw: str, k: re.Match, blk: SourceBlock, where: Where) -> bool:
         """Carry out one block; True when the program ends here."""
         m, col0 = self.m, blk.column
+        if m.fk.waiting is not None and kw not in FK_KEYWORDS and not (kw.startswith("FN") or kw.endswith("=")):
+            m.fk.unresolved()  # an FK element waiting for FSELECT or the next FK element
         if kw == "BEGIN PGM":
             self.name = _begin_pgm(blk, k, m, where)
             return False
@@ -675,9 +682,6 @@ def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: st
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
     tok = blk.code.split()[0]
-    if tok.upper() in _FK_WORDS:  # TNC 640 user's manual, "FK free contour programming"
-        where.fail(f"FK free contour programming ({tok}) is not supported", column=blk.column, text=tok,
-                   expected="the contour as L, C, CR, CT, CP, RND, CHF (the TNC's FK graphics resolve it)")
     head = re.match(r"[A-Z]*", tok.upper()).group(0)  # QS1 = ...: QS
     known = _KNOWN_UNSUPPORTED.get(head)
     if known is not None:
@@ -2801,6 +2805,57 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
     return second
 
 
+# --- FK free contour programming ------------------------------------------------------------------
+
+def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+    """``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT`` (:mod:`interpolators.heidenhain_fk`): the
+    elements resolved run as ``L`` and ``CC`` + ``C`` blocks in program coordinates of the XY plane."""
+    if m.plane != 2:
+        where.fail(f"{kw} with tool axis {'XYZ'[m.plane]}: FK free contour programming is read in the XY plane only",
+                   column=blk.column, text=kw, expected="TOOL CALL .. Z before FK blocks")
+    start = m.to_program(m.pos)[:2] / m.scale
+    if kw == "FSELECT":
+        value, _ = read_value(blk.code, pos, where, m.params, what=kw, column0=blk.column)
+        done = m.fk.select(value, where, blk.column, blk.code)
+    else:
+        data = read_fk_words(blk.code, pos, where, m.params, column0=blk.column)
+        if kw == "FPOL":
+            m.fk.set_pole(data, start, where)
+            return False
+        if m.feed is None and "F" not in data.words:
+            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
+                       expected="F > 0 [mm/min] in this or an earlier block")
+        done = m.fk.element(kw, data, start, _fk_tangent(m), where, blk.number,
+                            arc_end_tolerance(m.inch) / m.scale)
+    ended = False
+    for element, data, ew, number in done:
+        words = [Word("X", float(element.end[0]), 1, "X"), Word("Y", float(element.end[1]), 1, "Y")]
+        words += [data.words[k] for k in ("RCOMP", "F") if k in data.words] + list(data.ms)
+        source = SourceBlock(line=ew.line, number=number, code=ew.text, column=1, text=ew.text)
+        if element.centre is None:
+            ended = _motion("L", words, m, ew, source) or ended
+            continue
+        _pole({"X": Word("CCX", float(element.centre[0]), 1, "CCX"),
+               "Y": Word("CCY", float(element.centre[1]), 1, "CCY")}, m, ew, None)
+        words.append(Word("DR", "+" if element.ccw else "-", 1, "DR"))
+        ended = _motion("C", words, m, ew, source) or ended
+    return ended
+
+
+def _fk_tangent(m: _Machine) -> np.ndarray | None:
+    """Unit direction [program XY] at the end of the preceding element (FLT, FCT, IAN); None without one."""
+    if not m.blocks or m.blocks[-1].segment is None:
+        return None
+    try:
+        t = end_tangent(m.blocks[-1].segment, m.plane)
+    except PathGeometryError:
+        return None
+    step = np.zeros(3)
+    step[list(PLANE_AXES[m.plane])] = t
+    d = (m.to_program(m.pos + step) - m.to_program(m.pos))[:2]
+    return d / np.hypot(*d)
+
+
 # --- approach and departure ----------------------------------------------------------------------
 
 def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
@@ -3015,4 +3070,5 @@ _HANDLERS = {
     "PLANE": _tilt,
     "FUNCTION": _tilt,
     "TRANS": _trans,
+    **{kw: _free_contour for kw in FK_KEYWORDS},
 }

@@ -47,6 +47,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
   from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
+  6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
@@ -59,6 +61,7 @@ import re
 
 import numpy as np
 
+from tests.interpolators.reference_heidenhain_fk import FkReference
 from tests.interpolators.reference_iso import Expected, ReferenceError
 from tests.interpolators.reference_match import match_blocks
 
@@ -236,6 +239,9 @@ class _Tnc:
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
         self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
         self.tcpm = False  # M128: program points are the tool tip on the part, carried where the table holds it
+        self.fk = FkReference()  # FK free contour programming (reference_heidenhain_fk)
+        self.fk_end = -1  # len(self.out) after the last FK element: the last motion was FK while it is so
+        self.raw: list[str] = []  # the running program's lines (FK relative data name block numbers)
 
     def preset_point(self) -> np.ndarray:
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
@@ -1993,6 +1999,8 @@ def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
     t = _Tnc(context)
     t.resolve = resolve
     _execute(t, text, resolve, called=False)
+    if t.fk.waiting is not None:
+        raise ReferenceError("an FK element left open or without FSELECT at the end")
     return t.out
 
 
@@ -2003,6 +2011,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     labels = {_label_of(b).upper(): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
     outer, t.program = t.program, (blocks, labels)
+    outer_raw, t.raw = t.raw, text.lstrip("\ufeff").split("\n")
     counters: dict[int, int] = {}
     stack: list[tuple[int, int, int]] = []  # (return to, label, runs left)
     pc, steps = 0, 0
@@ -2086,6 +2095,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         pc = nxt
     t.scale = scale
     t.program = outer
+    t.raw = outer_raw
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
@@ -2104,6 +2114,11 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
             _depart(t, line, _words(up[6:], t.q), form)
             return True
     head, _, rest = up.partition(" ")
+    if head in ("FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"):
+        _free_contour(t, line, head, rest)
+        return True
+    if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "RND", "CHF"):
+        raise ReferenceError("a block after an FK element left open or without FSELECT")
     if head == "L":
         _line_block(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
@@ -2136,3 +2151,37 @@ def checked_program(text: str, context):
     assert match.mismatch is None, match.mismatch
     assert match.exact == len(prog.blocks)
     return prog
+
+
+def _free_contour(t: _Tnc, line: int, head: str, rest: str) -> None:
+    """FK blocks (:mod:`reference_heidenhain_fk`), in the XY plane: lines, and arcs about their centre (which
+    becomes the pole, as the reader takes it); the tangent of a preceding non-FK element from its direction."""
+    fk, p = t.fk, t.prog()
+    if head == "FSELECT":
+        done = fk.select(int(_val(rest.strip(), t.q)))
+    else:
+        words, refs = fk.parse(head, rest, t.q, t.scale, _val)
+        if head == "FPOL":
+            fk.pole = np.array([words.get("X", p[0]), words.get("Y", p[1])], float)
+            return
+        tangent = None
+        if t.fk_end == len(t.out) and fk.last_direction is not None:
+            tangent = fk.last_direction
+        elif t.last_dir is not None:
+            a, _ = t.affine()
+            d = np.linalg.solve(a, t.last_dir)[:2]
+            tangent = d / np.linalg.norm(d)
+        number = re.match(r"\s*/?\s*(\d+)?", t.raw[line - 1]).group(1)
+        done = fk.element(head, words, refs, line, int(number) if number else None, p[:2], tangent, 1e-6)
+    for el, (_, end, centre, ccw) in done:
+        _comp_words(t, el.v)
+        q = p.copy()
+        q[:2] = end
+        if centre is None:
+            t.emit(el.line, "feed", t.machine(q))
+        else:
+            t.pole = p.copy()
+            t.pole[:2] = centre
+            t.pole_axes = (0, 1)
+            t.emit(el.line, "arc_ccw" if ccw != t.turns_over() else "arc_cw", t.machine(q), centre=t.machine(t.pole))
+        t.fk_end = len(t.out)

@@ -439,7 +439,8 @@ BAD = [
     ("PATTERN DEF ROW1 (X+0 Y+0 D+5 NUM4)", "pattern 'ROW1' is not supported"),
     ("L X+nan F100", "not a number"),
     ("L X+1.2.3 F100", "malformed number"),
-    ("L X+0 Y+0 FMAX\nFL X+10 Y+0", "FK free contour programming (FL) is not supported"),
+    ("L X+0 Y+0 FMAX\nFL X+10 Y+0", "FL feed move without a feed"),
+    ("L X+0 Y+0 F100\nFL AN+30", "FL: its length is not determined"),
     ("CYCL DEF 200 DRILLING Q200=+2 Q201=-5 Q206=+100 Q202=+5 Q203=+0 Q204=+20\nCYCL CALL POS X+1 Y+1 FMAX",
      "CYCL CALL POS without Z"),
 ]

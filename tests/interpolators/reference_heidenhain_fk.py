@@ -1,0 +1,380 @@
+"""FK free contour programming for the independent Heidenhain reference (:mod:`reference_heidenhain`).
+
+Test code only, imports nothing of the readers. Written from the iTNC 530 user's manual, section 6.6
+"Path Contours - FK Free Contour Programming" (the data of FL/FLT/FC/FCT, FPOL, relative data ``RX n``
+etc., ``CLSD+``/``CLSD-``, ``PAR n``, ``FSELECT n``) as a different formulation from the reader's: every
+datum of an element is an equation in the element's unknowns (the end point E of a line; the centre C
+and end point E of an arc), solved numerically (``scipy.optimize.least_squares`` from many seeded
+starting points) instead of intersecting lines and circles in closed form. An element with fewer
+equations than unknowns (a line without its length, an arc without its end) is solved together with
+the next FK element, the unknowns of both in one system. Conventions shared with the reader (its
+docstring): the solutions are numbered by length, equal lengths by the direction they leave the start
+in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its
+start; ``LEN`` of an arc its chord; ``CCA`` its centre angle.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from tests.interpolators.reference_iso import ReferenceError
+
+__all__ = ["FkReference"]
+
+_TOKEN = re.compile(r"\s*(R[LR0](?![\d.])|[A-Z]+(?:[123][XY])?)\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)|[-+])?")
+_REFS = re.compile(r"R(CC)?(X|Y|PR|PA)|RAN|PAR")
+
+
+def _unit(deg: float) -> np.ndarray:
+    return np.array([math.cos(math.radians(deg)), math.sin(math.radians(deg))])
+
+
+def _cross(a, b) -> float:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _angle(v) -> float:
+    return math.degrees(math.atan2(v[1], v[0]))
+
+
+def _jacobian(fun, z) -> np.ndarray:
+    """Central differences of ``fun`` at ``z`` (rows: residuals, columns: unknowns)."""
+    cols = []
+    for k in range(len(z)):
+        dz = np.zeros(len(z))
+        dz[k] = 1e-6
+        cols.append((fun(z + dz) - fun(z - dz)) / 2e-6)
+    return np.array(cols).T
+
+
+class _Element:
+    """An FK block's data: ``kw``, values ``v`` [mm, deg], block references ``refs``, ``dr`` (None, '+', '-')."""
+
+    def __init__(self, kw: str, words: dict, refs: dict, line: int, number: int | None, closing: bool):
+        self.kw, self.v, self.refs, self.line, self.number = kw, words, refs, line, number
+        self.dr = words.get("DR")
+        self.closing = closing
+        self.arc = kw in ("FC", "FCT")
+        self.n = 4 if self.arc else 2  # unknowns: (C, E) of an arc, E of a line
+
+
+class FkReference:
+    """The FK state of the reference's run (all in program coordinates of XY [mm])."""
+
+    def __init__(self) -> None:
+        self.pole: np.ndarray | None = None
+        self.ends: dict[int, tuple] = {}  # block number -> (start, end, centre or None, ccw)
+        self.closed: np.ndarray | None = None
+        self.waiting: tuple | None = None  # (element, S, T, solutions or None: open)
+        self.last_direction: np.ndarray | None = None  # at the end of the last element emitted
+
+    def parse(self, kw: str, rest: str, q: dict, scale: float, val) -> tuple[dict, dict]:
+        words, refs, pos = {}, {}, 0
+        rest = rest.strip()
+        while pos < len(rest):
+            m = _TOKEN.match(rest, pos)
+            if m is None or m.end() == pos:
+                raise ReferenceError(f"FK word at {rest[pos:]!r}")
+            pos = m.end()
+            key, value = m.group(1), (m.group(2) or "").replace(" ", "")
+            if key in ("DR", "CLSD"):
+                words[key] = value
+            elif key in ("RL", "RR", "R0"):
+                words[key] = ""
+            elif key == "M":
+                words.setdefault("M", []).append(int(value))
+            elif _REFS.fullmatch(key):
+                refs[key] = int(val(value, q))
+            elif key in ("F",):
+                words[key] = val(value, q)
+            else:
+                words[key] = val(value, q) * (1.0 if key in ("AN", "IAN", "PA", "IPA", "CCPA", "ICCPA", "CCA")
+                                              else scale)
+        return words, refs
+
+    # --- equations ----------------------------------------------------------------------------------
+    def _ref_end(self, el: _Element, key: str, start):
+        return np.array(self.ends[el.refs[key]][1]) if key in el.refs else start
+
+    def equations(self, el: _Element, s, t, z) -> list:
+        """The residuals of ``el``'s data with unknowns ``z`` (E, or C then E), start ``s``, tangent ``t``."""
+        v = el.v
+        e = z[-2:]
+        res = []
+        for i, ax in enumerate("XY"):
+            if ax in v:
+                res.append(e[i] - v[ax])
+            if "I" + ax in v:
+                res.append(e[i] - self._ref_end(el, "R" + ax, s)[i] - v["I" + ax])
+        if "PR" in v or "IPR" in v:
+            base = self._ref_end(el, "RPR", s)
+            r = v["PR"] if "PR" in v else math.hypot(*(base - self.pole)) + v["IPR"]
+            res.append(math.hypot(*(e - self.pole)) - r)
+        if "PA" in v or "IPA" in v:
+            res.append(_cross(_unit(self._polar_angle(el, s, "")), e - self.pole))
+        if el.closing:
+            res += [e[0] - self.closed[0], e[1] - self.closed[1]]
+        res += self._arc_equations(el, s, t, z) if el.arc else self._line_equations(el, s, t, e)
+        return res
+
+    def _line_equations(self, el: _Element, s, t, e) -> list:
+        v, res = el.v, []
+        if "LEN" in v:
+            res.append(math.hypot(*(e - s)) - abs(v["LEN"]))
+        res += [_cross(d, e - s) for d, _ in self._line_directions(el, s, t)]
+        return res
+
+    def _line_directions(self, el: _Element, s, t) -> list[tuple[np.ndarray, bool]]:
+        """(direction, the end must lie ahead along it) of each datum naming the line's direction."""
+        v, out = el.v, []
+        if el.kw == "FLT":
+            out.append((t, True))
+        if "AN" in v:
+            out.append((_unit(v["AN"]), True))
+        if "IAN" in v:
+            base = t if "RAN" not in el.refs else self._direction(self.ends[el.refs["RAN"]])
+            out.append((_unit(_angle(base) + v["IAN"]), True))
+        if "PAR" in el.refs:
+            out.append((self._direction(self.ends[el.refs["PAR"]]), False))
+        for p in ("P1", "P2"):
+            if p + "X" in v:
+                d = np.array([v[p + "X"], v[p + "Y"]]) - s
+                out.append((d / math.hypot(*d), False))
+        return out
+
+    def _arc_equations(self, el: _Element, s, t, z) -> list:
+        v, c, e = el.v, z[:2], z[2:]
+        r = math.hypot(*(s - c))
+        res = [math.hypot(*(e - c)) - r]
+        if "R" in v:
+            res.append(r - abs(v["R"]))
+        for i, ax in enumerate("XY"):
+            key = "CC" + ax
+            if key in v:
+                res.append(c[i] - v[key])
+            if "I" + key in v:
+                res.append(c[i] - self._ref_end(el, "R" + key, s)[i] - v["I" + key])
+        if "CCPR" in v or "ICCPR" in v:
+            base = self._ref_end(el, "RCCPR", s)
+            res.append(math.hypot(*(c - self.pole)) - (v["CCPR"] if "CCPR" in v else
+                                                       math.hypot(*(base - self.pole)) + v["ICCPR"]))
+        if "CCPA" in v or "ICCPA" in v:
+            res.append(_cross(_unit(self._polar_angle(el, s, "CC")), c - self.pole))
+        entry = self._entry(el, t)
+        if entry is not None:
+            res.append(float(np.dot(c - s, entry)))
+        if "LEN" in v:
+            res.append(math.hypot(*(e - s)) - abs(v["LEN"]))
+        if "CCA" in v:
+            a = math.radians(abs(v["CCA"])) * (1 if self._ccw(el, s, t, c) else -1)
+            rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+            res += list(e - c - rot @ (s - c))
+        for p in ("P1", "P2", "P3"):
+            if p + "X" in v:
+                res.append(math.hypot(*(np.array([v[p + "X"], v[p + "Y"]]) - c)) - r)
+        return res
+
+    def _polar_angle(self, el: _Element, s, cc: str) -> float:
+        """PA (``cc`` "") or CCPA (``cc`` "CC") [deg] about FPOL; the I form from the start or block n's end."""
+        key = cc + "PA"
+        if key in el.v:
+            return el.v[key]
+        return _angle(self._ref_end(el, "R" + key, s) - self.pole) + el.v["I" + key]
+
+    def _entry(self, el: _Element, t):
+        if "AN" in el.v:
+            return _unit(el.v["AN"])
+        return t if el.kw == "FCT" else None
+
+    def _ccw(self, el: _Element, s, t, c) -> bool:
+        if el.dr:
+            return el.dr == "+"
+        entry = self._entry(el, t)
+        if entry is None:
+            raise ReferenceError("FC without DR")
+        return _cross(entry, c - s) > 0
+
+    @staticmethod
+    def _direction(rec, *, at_end: bool = True) -> np.ndarray:
+        s, e, c, ccw = rec
+        if c is None:
+            return (e - s) / math.hypot(*(e - s))
+        r = (e if at_end else s) - c
+        d = np.array([-r[1], r[0]]) if ccw else np.array([r[1], -r[0]])
+        return d / math.hypot(*d)
+
+    def admissible(self, el: _Element, s, t, z, tol: float) -> bool:
+        """The inequalities the equations leave: directions ahead, the centre on the DR side, rays from FPOL."""
+        v, e = el.v, z[-2:]
+        if ("PA" in v or "IPA" in v) and np.dot(e - self.pole, _unit(self._polar_angle(el, s, ""))) < -tol:
+            return False
+        if not el.arc:
+            if math.hypot(*(e - s)) <= tol:
+                return False
+            u = (e - s) / math.hypot(*(e - s))
+            return all(abs(_cross(d, u)) < 1e-7 and (not ahead or np.dot(u, d) > 0)
+                       for d, ahead in self._line_directions(el, s, t))
+        c = z[:2]
+        if math.hypot(*(s - c)) <= tol:
+            return False
+        if ("CCPA" in v or "ICCPA" in v) and np.dot(c - self.pole, _unit(self._polar_angle(el, s, "CC"))) < -tol:
+            return False
+        entry = self._entry(el, t)
+        return entry is None or not el.dr or (_cross(entry, c - s) > 0) == (el.dr == "+")
+
+    # --- solving ------------------------------------------------------------------------------------
+    def _system(self, chain: list[_Element], s0, t0):
+        """(walk, fun, n): the elements of ``chain`` joined (each starts where the one before ends, tangent to it
+        for FLT/FCT/IAN): ``walk(z)`` their (element, start, tangent, unknowns), ``fun(z)`` all residuals."""
+        n = sum(el.n for el in chain)
+
+        def walk(z):
+            s, t, out, k = s0, t0, [], 0
+            for el in chain:
+                zz = z[k:k + el.n]
+                k += el.n
+                out.append((el, s, t, zz))
+                if el.arc:
+                    rec = (s, zz[2:], zz[:2], self._ccw(el, s, t, zz[:2]))
+                else:
+                    rec = (s, zz, None, True)
+                s = zz[-2:]
+                t = self._direction(rec) if math.hypot(*(rec[1] - rec[0])) > 1e-12 or rec[2] is not None else t
+            return out
+
+        def fun(z):
+            return np.array([r for el, s, t, zz in walk(z) for r in self.equations(el, s, t, zz)], float)
+
+        return walk, fun, n
+
+    def solve(self, chain: list[_Element], s0, t0, tol: float) -> list[list[tuple]]:
+        """The solutions of the elements ``chain`` (joined), each a list of (start, end, centre, ccw) per element."""
+        walk, fun, n = self._system(chain, s0, t0)
+        size = 1.0 + max([abs(x) for el in chain for x in el.v.values() if isinstance(x, float)] + [*np.abs(s0)])
+        rng = np.random.default_rng(7)
+        roots: list[np.ndarray] = []
+        last_new = 0
+        for i in range(80):
+            if roots and i - last_new > 20:  # twenty starts without a new solution: enough
+                break
+            x0 = np.tile(s0, n // 2) + rng.normal(scale=size, size=n)
+            sol = least_squares(fun, x0, method="lm" if len(fun(x0)) >= n else "trf", xtol=1e-15, ftol=1e-15,
+                                gtol=1e-15, max_nfev=1000)
+            if np.max(np.abs(sol.fun)) > 1e-8 * size:
+                continue
+            if all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(sol.x)) and \
+                    not any(np.max(np.abs(sol.x - r)) < 1e-6 * size for r in roots):
+                roots.append(sol.x)
+                last_new = i
+        out = []
+        for z in roots:
+            recs = []
+            for el, s, t, zz in walk(z):
+                recs.append((s, zz[2:], zz[:2], self._ccw(el, s, t, zz[:2])) if el.arc else (s, zz, None, True))
+            out.append(recs)
+        return out
+
+    def determined(self, chain: list[_Element], s, t) -> bool:
+        """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences at a
+        seeded random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
+        _, fun, n = self._system(chain, s, t if t is not None else np.array([1.0, 0.0]))
+        jac = _jacobian(fun, np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n))
+        return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= n
+
+    @staticmethod
+    def _fixed_count(chain: list[_Element], fun, z) -> int:
+        """How many leading elements of ``chain`` (not its last) the equations fix at ``z``: their unknowns take
+        no part in the null space of the Jacobian there."""
+        jac = _jacobian(fun, z)
+        n = len(z)
+        _, sv, vt = np.linalg.svd(jac) if jac.size else (None, np.zeros(0), np.eye(n))
+        free = np.vstack([vt[len(sv):], vt[:len(sv)][sv < 1e-7 * max(1.0, sv.max(initial=0.0))]])
+        fixed = np.all(np.abs(free) < 1e-6, axis=0) if len(free) else np.ones(n, bool)
+        k, at = 0, 0
+        for el in chain[:-1]:
+            if not fixed[at:at + el.n].all():
+                break
+            at += el.n
+            k += 1
+        return k
+
+    def fixed_prefix(self, chain: list[_Element], s, t, tol: float) -> list[tuple]:
+        """The records of the leading elements of ``chain`` (not its last) whose unknowns the joined data fix:
+        at a solution, the unknowns the null space of the Jacobian leaves untouched; the same in every solution
+        found, else an error."""
+        _, fun, n = self._system(chain, s, t)
+        if self._fixed_count(chain, fun, np.tile(s, n // 2) + np.random.default_rng(5).normal(scale=10.0, size=n)) == 0:
+            return []  # nothing fixed near a generic point: no need to solve (an open chain can be slow to)
+        roots = self.solve(chain, s, t, tol)
+        if not roots:
+            return []
+        k = self._fixed_count(chain, fun, np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None
+                                                          else r[1] for r in roots[0]]))
+        if k == 0:
+            return []
+        heads = {tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
+                                                for r in recs[:k]]), 6)) for recs in roots}
+        if len(heads) != 1:
+            raise ReferenceError(f"open FK elements from line {chain[0].line}: {len(heads)} ways to join")
+        return roots[0][:k]
+
+    @staticmethod
+    def length(rec) -> float:
+        s, e, c, ccw = rec
+        if c is None:
+            return math.hypot(*(e - s))
+        a0, a1 = _angle(s - c), _angle(e - c)
+        sweep = ((a1 - a0) if ccw else (a0 - a1)) % 360.0
+        return math.hypot(*(s - c)) * math.radians(sweep if sweep > 1e-9 else 360.0)
+
+    def order(self, solutions: list[tuple]) -> list[tuple]:
+        """Shortest first; equal lengths by the direction they leave the start in, counter-clockwise from +X."""
+        return sorted(solutions, key=lambda rec: (round(self.length(rec), 6),
+                                                  _angle(self._direction(rec, at_end=False)) % 360.0))
+
+    def element(self, kw: str, words: dict, refs: dict, line: int, number, s, t, tol: float) -> list:
+        """An FL/FLT/FC/FCT block: the (line, number, record) elements to emit now."""
+        closing = words.get("CLSD") == "-" or (words.get("CLSD") == "" and self.closed is not None)
+        el = _Element(kw, words, refs, line, number, closing)
+        out, chain = [], [el]
+        if self.waiting is not None:
+            before, s, t, sols = self.waiting
+            if sols is not None:
+                raise ReferenceError("an FK element with several solutions and no FSELECT")
+            chain = before + [el]
+            self.waiting = None
+        if len(chain) > 1:  # open elements before: those the data now fix, then the rest as before
+            for e, rec in zip(chain, self.fixed_prefix(chain, s, t, tol)):
+                out.append(self._done(e, rec))
+            if out:
+                chain = chain[len(out):]
+                s, t = out[-1][1][1], self._direction(out[-1][1])
+        if len(chain) > 1 or not self.determined(chain, s, t):
+            self.waiting = (chain, s, t, None)
+            return out
+        sols = self.order([r[0] for r in self.solve([el], s, t, tol)])
+        if not sols:
+            raise ReferenceError(f"FK element of line {line}: no solution")
+        if len(sols) > 1:
+            self.waiting = ([el], s, t, sols)
+            return out
+        return out + [self._done(el, sols[0])]
+
+    def select(self, n: int) -> list:
+        chain, s, t, sols = self.waiting
+        self.waiting = None
+        return [self._done(chain[0], sols[n - 1])]
+
+    def _done(self, el: _Element, rec) -> tuple:
+        if el.number is not None:
+            self.ends[el.number] = rec
+        self.last_direction = self._direction(rec)
+        if el.closing:
+            self.closed = None
+        elif "CLSD" in el.v:
+            self.closed = np.array(rec[0], float)
+        return el, rec

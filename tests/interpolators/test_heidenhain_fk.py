@@ -1,0 +1,250 @@
+"""Heidenhain FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``): hand-written
+programs with the end points worked out by hand (the working in each test, from the data as the iTNC 530 user's
+manual, section 6.6 "Path Contours - FK Free Contour Programming", defines them), each also checked against the
+independent reference (``reference_heidenhain``, which solves the FK data numerically)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n1 L X+0 Y+0 Z-5 R0 F500\n"
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+S3 = math.sqrt(3.0)
+
+
+def run(body: str, *, reference: bool = True):
+    text = HEAD + body + "\n99 END PGM T MM\n"
+    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+
+
+def ends(prog) -> list[list[float]]:
+    """The XY end points of the blocks after the first (the move to the start at X+0 Y+0)."""
+    return [np.round(b.target[:2], 6).tolist() for b in prog.blocks[1:]]
+
+
+def centre(block) -> list[float]:
+    return np.round(block.segment.center[:2], 6).tolist()
+
+
+def test_end_points_and_tangency():
+    # FL to (20, 0); FLT keeps +X up to X 30; FCT to (40, 10) leaves (30, 0) along +X, so its centre is on
+    # X 30 and as far from both ends: (30, 10), radius 10, counter-clockwise; FLT LEN 10 then goes on along +Y
+    prog = run("2 FL X+20 Y+0\n3 FLT X+30\n4 FCT X+40 Y+10\n5 FLT LEN 10")
+    assert ends(prog) == [[20, 0], [30, 0], [40, 10], [40, 20]]
+    arc = prog.blocks[3]
+    assert arc.kind == "arc" and centre(arc) == [30, 10] and arc.segment.ccw
+
+
+def test_length_and_angle():
+    # LEN 10 at AN+30: (10 cos 30, 10 sin 30); IAN+60 turns from 30 to 90 degrees: 5 up
+    prog = run("2 FL LEN 10 AN+30\n3 FL LEN 5 IAN+60")
+    assert ends(prog) == [[round(5 * S3, 6), 5], [round(5 * S3, 6), 10]]
+
+
+def test_centre_and_radius():
+    # centre (10, 0), R10 through the start (0, 0); DR- (clockwise) from 180 to 90 degrees ends at (10, 10); then
+    # about CCPR 10 / CCPA 0 from FPOL (10, 10), i.e. (20, 10), radius 10 from (10, 10), DR+ through CCA 90:
+    # from 180 to 270 degrees, ending at (20, 0)
+    prog = run("2 FC CCX+10 CCY+0 R10 DR- X+10 Y+10\n3 FPOL X+10 Y+10\n4 FC CCPR+10 CCPA+0 DR+ CCA+90")
+    assert ends(prog) == [[10, 10], [20, 0]]
+    assert centre(prog.blocks[1]) == [10, 0] and not prog.blocks[1].segment.ccw
+    assert centre(prog.blocks[2]) == [20, 10] and prog.blocks[2].segment.ccw
+
+
+def test_polar_end_points_about_fpol():
+    # FPOL (10, 10): PR 10 at PA 90 is (10, 20); from there IPR+5 IPA-90 is radius 15 at 0 degrees: (25, 10)
+    prog = run("2 FPOL X+10 Y+10\n3 FL PR+10 PA+90\n4 FL IPR+5 IPA-90")
+    assert ends(prog) == [[10, 20], [25, 10]]
+
+
+def test_relative_data():
+    # 5 ends at (10, 5), 6 at (20, 5); 7 is IX+5 IY+10 from block 5's end: (15, 15); 8 turns IAN+90 from block 6's
+    # direction (+X): +Y, LEN 10: (15, 25); 9 is IPR+10 from block 5's polar radius about FPOL (0, 0),
+    # |(10, 5)| = sqrt(125), at PA 0: (sqrt(125) + 10, 0)
+    prog = run("2 FPOL X+0 Y+0\n5 FL X+10 Y+5\n6 FL X+20 Y+5\n7 FL IX+5 IY+10 RX 5 RY 5\n8 FL LEN 10 IAN+90 RAN 6\n"
+               "9 FL IPR+10 PA+0 RPR 5")
+    assert ends(prog) == [[10, 5], [20, 5], [15, 15], [15, 25], [round(math.sqrt(125) + 10, 6), 0]]
+
+
+def test_fselect_picks_among_the_solutions():
+    # a line of LEN 5 parallel to block 2 (+X) runs either way: +X (first, 0 degrees) or -X (second)
+    first = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 1")
+    back = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 2")
+    assert ends(first)[-1] == [15, 5] and ends(back)[-1] == [5, 5]
+    # from (0, 0) to (10, 0) with R10 DR+: centres (5, +-5 sqrt 3); about (5, 5 sqrt 3) the arc turns 60 degrees
+    # (the shorter, first solution), about (5, -5 sqrt 3) 300 degrees (the second)
+    short = run("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 1")
+    long = run("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 2")
+    assert centre(short.blocks[1]) == [5, round(5 * S3, 6)] and centre(long.blocks[1]) == [5, -round(5 * S3, 6)]
+    assert short.blocks[1].segment.length == pytest.approx(10 * math.pi / 3)
+
+
+def test_closed_contour():
+    # CLSD+ marks (0, 0), the start of the first element; CLSD- ends the last one there
+    prog = run("2 FL X+20 Y+0 CLSD+\n3 FL AN+90 LEN 10\n4 FL AN+180 LEN 20\n5 FL CLSD-")
+    assert ends(prog) == [[20, 0], [20, 10], [0, 10], [0, 0]]
+
+
+def test_open_line_resolved_by_the_next_element():
+    # FL AN+0 has no length; the next line through (30, 10) at 45 degrees meets Y 0 at X 20
+    prog = run("2 FL AN+0\n3 FL X+30 Y+10 AN+45")
+    assert ends(prog) == [[20, 0], [30, 10]]
+    # the next FCT R5 DR+ turns CCA 90 from the line: its centre 5 above the line's end (t, 0), its end (t + 5, 5);
+    # X+30 puts t at 25
+    prog = run("2 FL AN+0\n3 FCT X+30 DR+ R5 CCA+90")
+    assert ends(prog) == [[25, 0], [30, 5]] and centre(prog.blocks[2]) == [25, 5]
+
+
+def test_open_line_rounded_by_an_fct_and_ended_by_the_next_line():
+    # FL AN+0 (no length), FCT R5 DR+ (radius and sense only), FLT to (30, 20) at AN+90: the arc turns +X into +Y,
+    # a quarter circle; the last line is X 30, so the arc ends at (30, 5), its centre (25, 5), the first line at
+    # (25, 0)
+    prog = run("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20 AN+90")
+    assert ends(prog) == [[25, 0], [30, 5], [30, 20]] and centre(prog.blocks[2]) == [25, 5]
+    # clockwise from AN+0 to AN-45 with R10: the centre (t, -10) 10 below the line's end (t, 0), the arc's end the
+    # centre + 10 (sin 45, cos 45); the line from there at -45 degrees reaches (40, -20) after u along each axis:
+    # t + 5 sqrt 2 + u = 40 and -10 + 5 sqrt 2 - u = -20, so u = 10 + 5 sqrt 2 and t = 30 - 10 sqrt 2
+    prog = run("2 FL AN+0\n3 FCT DR- R10\n4 FLT X+40 Y-20 AN-45")
+    t = 30 - 10 * math.sqrt(2)
+    assert ends(prog) == [[round(t, 6), 0], [round(t + 5 * math.sqrt(2), 6), round(-10 + 5 * math.sqrt(2), 6)],
+                          [40, -20]]
+
+
+def test_tangents_between_known_circles_close_the_contour():
+    # the FK form of a contour around two circles (as the manuals' FK examples run one): circles of R10 about
+    # (0, 0) and (40, 0), both clockwise, from (-10, 0) (CLSD+); each FLT without data is the tangent leaving one
+    # circle and reaching the next in their senses: over the top (0, 10) to (40, 10), round B to its bottom
+    # (40, -10), back to (0, -10), and round A to the start (CLSD-)
+    prog = run("2 L X-10 Y+0\n3 FC DR- R10 CLSD+ CCX+0 CCY+0\n4 FLT\n5 FCT DR- R10 CCX+40 CCY+0\n6 FLT\n"
+               "7 FCT DR- R10 CLSD- CCX+0 CCY+0")
+    assert ends(prog)[1:] == [[0, 10], [40, 10], [40, -10], [0, -10], [-10, 0]]
+    assert [centre(b) for b in prog.blocks[2::2]] == [[0, 0], [40, 0], [0, 0]]
+    # clockwise R10 about (0, 0), then counter-clockwise R5 about (40, 0): the crossing tangent; its normal n
+    # from each centre makes (c2 - c1) . n = k1 r1 - k2 r2 = -10 - 5 (k = -1 clockwise), so n = (-15/40,
+    # -sqrt(1 - (15/40)^2)) (the other root has the line running backwards); T1 = c1 - 10 n, T2 = c2 + 5 n
+    prog = run("2 L X+0 Y+10\n3 FC DR- R10 CCX+0 CCY+0\n4 FLT\n5 FCT DR+ R5 CCX+40 CCY+0 X+45 Y+0")
+    n = np.array([-15 / 40, -math.sqrt(1 - (15 / 40) ** 2)])
+    assert ends(prog)[1:] == [np.round(-10 * n, 6).tolist(), np.round([40, 0] + 5 * n, 6).tolist(), [45, 0]]
+
+
+def test_tangents_between_circles_with_approach_and_rl():
+    # the closed contour of the test above run with APPR CT and RL by a tool of radius 2: left of the clockwise
+    # circles is outside, so the tool runs them on radius 12: from (-12, 0) over (0, 12) to (40, 12), round to
+    # (40, -12), back to (0, -12) and round to (-12, 0); the R0 line leaves to (-30, 0)
+    text = ("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+2\n2 TOOL CALL 1 Z S1000\n3 L X-30 Y+0 Z-5 R0 F500\n"
+            "4 APPR CT X-10 Y+0 CCA90 R+5 RL F250\n5 FC DR- R10 CLSD+ CCX+0 CCY+0\n6 FLT\n7 FCT DR- R10 CCX+40 CCY+0\n"
+            "8 FLT\n9 FCT DR- R10 CLSD- CCX+0 CCY+0\n10 L X-30 Y+0 R0 F1000\n11 END PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    assert [np.round(b.target[:2], 6).tolist() for b in prog.blocks[3:]] == [
+        [0, 12], [40, 12], [40, -12], [0, -12], [-12, 0], [-30, 0]]
+    assert [round(b.segment.radius, 9) for b in prog.blocks[3:8:2]] == [12, 12, 12]
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+
+
+def test_open_arc_resolved_by_the_next_element():
+    # the circle about (10, 0) through (0, 0), clockwise; the tangents from (10, 20) touch it 60 degrees either side
+    # of +Y (cos = 10 / 20): at 30 and 150 degrees; clockwise from 180 degrees the arc reaches 150 first, where it
+    # runs toward (10, 20): (10 - 5 sqrt 3, 5)
+    prog = run("2 FC CCX+10 CCY+0 DR-\n3 FLT X+10 Y+20")
+    assert ends(prog) == [[round(10 - 5 * S3, 6), 5], [10, 20]]
+    # a tangent along +X touches the clockwise circle at its top (10, 10); LEN 5 on from there
+    prog = run("2 FC CCX+10 CCY+0 DR-\n3 FLT AN+0 LEN 5")
+    assert ends(prog) == [[10, 10], [15, 10]]
+
+
+def test_radius_compensation_and_feed():
+    # the contour of test_end_points_and_tangency under RL with a tool of radius 2: the tool runs 2 to the left,
+    # (20, 2), (30, 2), inside the counter-clockwise arc about (30, 10) on radius 8 to (38, 10), up to (38, 20);
+    # the R0 block leaves to its end point (60, 20). The feed is the FK block's
+    text = HEAD + ("TOOL DEF 1 L+0 R+2\nTOOL CALL 1 Z S1000\n2 FL X+20 Y+0 RL F300\n3 FLT X+30\n4 FCT X+40 Y+10\n"
+                   "5 FLT LEN 10\n6 FL X+60 Y+20 R0\n99 END PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    assert ends(prog) == [[20, 2], [30, 2], [38, 10], [38, 20], [60, 20]]
+    assert prog.blocks[1].feed * 60 == pytest.approx(300) and prog.blocks[3].segment.radius == pytest.approx(8)
+    match = match_blocks(heidenhain_reference(text, CTX), blocks_table(prog)[1])  # compensated ends: to R
+    assert match.mismatch is None, match.mismatch
+
+
+@pytest.mark.parametrize(("body", "message"), [
+    ("2 FL AN+30\n3 L X+5", "FL: its length is not determined"),
+    ("2 FL AN+30", "FL: its length is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 L X+5", "FC: where it ends on its circle is not determined"),
+    ("2 FL X+10 Y+0\n3 FSELECT 2", "FSELECT without an FK element of several solutions"),
+    ("2 FC X+10 Y+0 R10 DR+\n3 FL X+0", "FC has 2 solutions and no FSELECT picks one"),
+    ("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 3", "FSELECT 3: the FK element of line 3 has 2 solutions"),
+    ("2 FC X+10 Y+10 DR+", "FC: the circle is not determined"),
+    ("2 FL X+10", "FL: the end point is not determined"),
+    ("2 FL PR+10 PA+0", "PR+10 without an FK pole"),
+    ("2 FL IX+5 RX 7", "RX 7: block 7 is not an FK element run before"),
+    ("2 FL X+10 Y+0 AN+90", "FL: no element fits its data"),
+    ("2 FL AN+10 PDX+5 PDY+5 D2", "auxiliary point at a distance (PDX/PDY/D) is not supported"),
+    ("2 FL CLSD-", "CLSD- without a CLSD+"),
+    ("2 FC CCX+10 CCY+0 X+20 Y+0", "FC without a direction of rotation"),
+    ("2 FL AN+0\n3 FL X+30 Y+10", "the corner between them is not determined"),
+    ("2 FL AN+0\n3 FL IX+10 Y+5 AN+45", "the corner between them is not determined"),  # IX: from an unknown start
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "where they meet is not determined"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "where they meet is not determined"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "of radius and sense only: where they end is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 L X+5", "without data: where they end is not determined"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 FCT DR+ R5 CCX+10 CCY+0", "the tangent between them is not determined"),
+    ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
+    ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
+    ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
+    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "FK free contour programming is read in the XY plane only"),
+])
+def test_errors_name_the_element_and_the_data_needed(body, message):
+    with pytest.raises(GCodeError) as exc:
+        run(body, reference=False)
+    assert message in str(exc.value)
+
+
+def test_flt_needs_a_preceding_element():
+    with pytest.raises(GCodeError, match="FLT without a preceding contour element"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 FLT X+5 Y+0 F100\n2 END PGM T MM\n", source="t.h", context=CTX)
+
+
+@pytest.mark.parametrize(("cycle", "turn"), [
+    ("CYCL DEF 10.0 ROTATION\n3 CYCL DEF 10.1 ROT+90", lambda x, y: [-y, x]),
+    ("CYCL DEF 8.0 MIRROR IMAGE\n3 CYCL DEF 8.1 Y", lambda x, y: [x, -y]),
+])
+def test_fk_contour_under_a_rotation_or_mirror(cycle, turn):
+    # the contour of test_end_points_and_tangency resolved in program coordinates, then turned 90 degrees about
+    # the datum (machine = (-y, x)) or mirrored in Y (the arc then turns clockwise); FLT takes the program-frame
+    # tangent of the element before it
+    prog = run(f"2 {cycle}\n4 FL X+20 Y+0\n5 FLT X+30\n6 FCT X+40 Y+10\n7 FLT LEN 10")
+    assert ends(prog) == [turn(20, 0), turn(30, 0), turn(40, 10), turn(40, 20)]
+
+
+def test_inch_program_and_q_parameters():
+    # in an INCH program the FK data are inches: FL to X 1 (25.4 mm), FLT LEN Q1 = 1 on along +X (50.8 mm); the
+    # arc FCT R Q2 = 0.5 DR+ through CCA 90 ends 0.5 in on and 0.5 in up: (63.5, 12.7) mm
+    text = ("0 BEGIN PGM T INCH\n1 L X+0 Y+0 Z+0 R0 F20\n2 Q1 = 1\n3 Q2 = 0.5\n4 FL X+1 Y+0\n5 FLT LEN Q1\n"
+            "6 FCT R+Q2 DR+ CCA+90\n7 END PGM T INCH\n")
+    prog = checked_program(text, CTX)
+    assert ends(prog) == [[25.4, 0], [50.8, 0], [63.5, 12.7]]
+
+
+def test_fk_contour_in_an_sl_contour_train():
+    # cycle 25 CONTOUR TRAIN on the contour LBL 1 written in FK: (0, 0) along +X, an FCT R10 DR+ rounding into +Y, up
+    # to (50, 30): the contour (40, 0), arc about (40, 10) to (50, 10), (50, 30); RL with the tool radius 3 runs it
+    # 3 inside: (40, 3), the arc on radius 7 to (47, 10), (47, 30), at Z-5 then Z-10 (tool length 10: machine Z 5
+    # and 0). Reader only: the reference's SL cycles read their contour labels as L/C blocks.
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L Z+100 R0 FMAX\n3 CYCL DEF 14.0 CONTOUR\n"
+            "4 CYCL DEF 14.1 CONTOUR LABEL 1\n5 CYCL DEF 25 CONTOUR TRAIN Q1=-10 Q3=+0 Q5=+0 Q7=+50 Q10=+5 Q11=100 "
+            "Q12=350 Q15=+1\n6 L X-10 Y-10 R0 FMAX\n7 CYCL CALL\n8 L X-10 Y-10 Z+100 R0 FMAX M30\n9 LBL 1\n"
+            "10 L X+0 Y+0 RL\n11 FL AN+0\n12 FCT DR+ R10\n13 FLT X+50 Y+30 AN+90\n14 LBL 0\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=ctx)
+    cut = [np.round(b.target, 6).tolist() for b in prog.blocks if b.kind != "rapid" and b.feed * 60 > 300]
+    assert cut == [[x, y, z] for z in (5, 0) for x, y in ((40, 3), (47, 10), (47, 30))]
