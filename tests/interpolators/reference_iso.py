@@ -1497,14 +1497,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             break
         if res == "m98":
             words, _ = _words(ln.text, params)
-            target = str(int(words["p"][-1]))
-            if target not in st["fanuc"]:
-                raise ReferenceError(f"M98 P{target}: no O{target} in the file")
             count = int(words["l"][-1]) if "l" in words else 1
-            start = st["fanuc"][target] + 1
-            if "q" in words:  # M98 P Q (Mitsubishi, Mach4): the program from its block N<Q>
-                start = next(i for i in range(start, len(st["lines"])) if st["lines"][i].seq == int(words["q"][-1])
-                             and st["program_of"].get(i) == st["program_of"].get(start))
+            start = _m98_start(words, st)
             frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
             pc = start
             continue
@@ -1529,6 +1523,19 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+def _m98_start(words: dict, st: dict) -> int:
+    """The line index an ``M98 P<program> [Q<n>]`` call starts at: the block after ``O<program>``, or with Q
+    (Mitsubishi, Mach4) that program's block N<n>."""
+    target = str(int(words["p"][-1]))
+    if target not in st["fanuc"]:
+        raise ReferenceError(f"M98 P{target}: no O{target} in the file")
+    start = st["fanuc"][target] + 1
+    if "q" in words:
+        start = next(i for i in range(start, len(st["lines"])) if st["lines"][i].seq == int(words["q"][-1])
+                     and st["program_of"].get(i) == st["program_of"].get(start))
+    return start
 
 
 def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
