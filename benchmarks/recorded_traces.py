@@ -44,7 +44,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   the exact model).
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
-time [ms] (0: the delay-free truth), prediction RMS and its limit [um], PASS/FAIL; then the totals. A benchmark, not a test: nothing is timed or asserted.
+time [ms] (0: the delay-free truth), prediction RMS and its limit [um], PASS/FAIL; then the totals.
+A benchmark, not a test: nothing is timed or asserted.
 """
 
 from __future__ import annotations
@@ -281,8 +282,9 @@ def main(argv: list[str] | None = None) -> int:
                     continue
                 e = r["err"]
                 print(f"{machine:14s} {case:12s} {r['T_ms']:5.3g} {100 * e['omega_n_hz']:7.2f} {100 * e['zeta']:7.2f} "
-                      f"{100 * e['p_hz']:7.2f} {r['delay_ms']:9.2f} {r['lead_ms']:8.1f} {r['rms_um']:8.3f} "
-                      f"{r['limit_um']:7.3f} {r['seconds']:6.1f}  {'PASS' if r['ok'] else 'FAIL'}", flush=True)
+                      f"{100 * e['p_hz']:7.2f} {r['delay_ms']:9.2f} {r['lead_ms']:8.1f} {r['in_loop_ms']:8.2f} "
+                      f"{r['rms_um']:8.3f} {r['limit_um']:7.3f} {r['seconds']:6.1f}  {'PASS' if r['ok'] else 'FAIL'}",
+                      flush=True)
                 results.append(r["ok"])
     print(f"passed {sum(results)} of {len(results)}")
     return 0
