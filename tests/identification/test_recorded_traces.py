@@ -74,13 +74,16 @@ def test_no_offset_is_claimed_on_the_plain_capture(truth):
 
 
 def test_a_record_that_starts_in_motion(capture, truth):
-    """A trace triggered during a move: the samples before the axis first rests are dropped."""
+    """A trace triggered during a move. The x axis of this test never stands still (its slowest
+    step is 0.5 % of the largest): the fit was simulated from rest at that slowdown (156 samples
+    dropped, 37.7 um tracking error there: 1.36 um RMS, 3.7x the floor) before the state at the
+    first sample was fitted instead (segments.REST_STEP_SHARE)."""
     cap = capture.slice(1234, len(capture))
     assert abs(cap.reference[1, 0] - cap.reference[0, 0]) > 0.02  # under way at the first sample
     model = identify(cap, axis="x", diagnose=False)
-    assert model.fit["record_start"]["dropped_samples"] > 0
+    assert "record_start" not in model.fit and model.fit["initial_state"]["first_sample"] == 0
     assert _pole_error(model.poles, truth.poles) < 0.02
-    assert model.fit["rms_um"] <= 4 * truth.fit["rms_um"]  # 2.46 um (6.6x) before
+    assert model.fit["rms_um"] <= 1.5 * truth.fit["rms_um"]  # 2.46 um (6.6x) before the traceid audit
 
 
 @pytest.mark.parametrize("lead_s", [0.1, 0.3])
