@@ -26,6 +26,7 @@ from identification.dead_time import delay_reference
 from identification.initial_state import centred_statistics, starts_in_motion
 from identification.poles import poles_from_denominator
 from identification.reduced_model import simulate
+from identification.segments import SETTLED_SHARE, settled_start
 from identification.solve import solve_statistics
 from identification.substeps import simulate_record, substep_count
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
@@ -73,22 +74,27 @@ def test_no_offset_is_claimed_on_the_plain_capture(truth):
 
 
 def test_a_record_that_starts_in_motion(capture, truth):
-    """A trace triggered during a move: the samples before the axis first rests are dropped."""
+    """A trace triggered during a move. The x axis of this test never stands still (its slowest
+    step is 0.5 % of the largest): the fit was simulated from rest at that slowdown (156 samples
+    dropped, 37.7 um tracking error there: 1.36 um RMS, 3.7x the floor) before the state at the
+    first sample was fitted instead (segments.REST_STEP_SHARE)."""
     cap = capture.slice(1234, len(capture))
     assert abs(cap.reference[1, 0] - cap.reference[0, 0]) > 0.02  # under way at the first sample
     model = identify(cap, axis="x", diagnose=False)
-    assert model.fit["record_start"]["dropped_samples"] > 0
+    assert "record_start" not in model.fit and model.fit["initial_state"]["first_sample"] == 0
     assert _pole_error(model.poles, truth.poles) < 0.02
-    assert model.fit["rms_um"] <= 4 * truth.fit["rms_um"]  # 2.46 um (6.6x) before
+    assert model.fit["rms_um"] <= 1.5 * truth.fit["rms_um"]  # 2.46 um (6.6x) before the traceid audit
 
 
 @pytest.mark.parametrize("lead_s", [0.1, 0.3])
 def test_a_leading_reference_keeps_the_poles(capture, truth, lead_s):
-    """A reference recorded ahead of the loop, the record cut where the loop frame is in motion."""
+    """A reference recorded ahead of the loop, the record cut where the loop frame is in motion. The
+    truth is fitted with no dead time, so the one to find is the lead itself (0.1 s: 100.33 ms before
+    the joint refinement's restarts, 99.88 ms and a lower RMS after)."""
     T = capture.sample_time
     cap = _one_axis(delay_reference(capture.reference[:, 0], -lead_s / T), capture.measured[:, 0], T)
     model = identify(cap, axis="x", diagnose=False)
-    assert lead_s <= model.delay_s <= lead_s + 2 * T
+    assert abs(model.delay_s - lead_s) <= 2 * T
     assert _pole_error(model.poles, truth.poles) < 0.03
     assert model.fit["rms_um"] <= 4 * truth.fit["rms_um"]  # what remains: the loop frame starts in motion
 
@@ -234,3 +240,69 @@ def test_a_lead_on_a_cascade_loop_is_not_a_local_minimum(ppi_capture, lead_s):
     assert abs(model.delay_s - lead_s) < 0.005
     assert _pole_error(model.poles, truth.poles) < 0.03
     assert model.fit["rms_um"] <= 2 * truth.fit["rms_um"]
+
+
+# ------------------------------------------------------------------------ traceid3 (session 16)
+@pytest.mark.parametrize("lead_samples", [50, -20])
+def test_a_whole_sample_lead_on_the_exact_model_is_found_exactly(exact_capture, lead_samples):
+    """The exact model with its reference recorded 50 samples ahead (or 20 late): the joint
+    refinement of the dead time stopped 0.44 samples off (50.44 ms, 0.133 um RMS for 0: the friction
+    switched on the predicted velocity puts a step into the cost at each reversal) before its
+    restarts half a sample either side."""
+    T = exact_capture.sample_time
+    cap = _one_axis(delay_reference(exact_capture.reference[:, 0], -lead_samples), exact_capture.measured[:, 0], T)
+    model = identify(cap, axis="x", diagnose=False)
+    assert abs(model.delay_s / T - lead_samples) < 0.01
+    exact = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
+    assert _pole_error(model.poles, exact) < 1e-3
+    assert model.fit["rms_um"] < 0.01
+
+
+def test_a_noisy_measured_channel_starts_the_refinement_from_a_smoothed_regression(ppi_capture):
+    """fadal-ppi with 0.5 um white noise on its measured position: the central-difference regression
+    started the output-error refinement in another basin (the pair 52 % off, 0.575 um RMS for the
+    truth's 0.523); the second start, the regression with Savitzky-Golay derivatives, ends in the
+    truth's (1.5 % off)."""
+    T = ppi_capture.sample_time
+    truth = identify(ppi_capture, axis="x", diagnose=False, delay=0.0)
+    noisy = ppi_capture.measured[:, 0] + np.random.default_rng(7).normal(0.0, 0.5e-3, len(ppi_capture))
+    model = identify(_one_axis(ppi_capture.reference[:, 0], noisy, T), axis="x", diagnose=False, delay=0.0)
+    assert model.fit["output_error"]["start"] == "smoothed"
+    assert _pole_error(model.poles, truth.poles) < 0.03
+    assert model.fit["rms_um"] <= 1.05 * np.hypot(truth.fit["rms_um"], 0.5)
+
+
+def test_an_axis_that_only_slows_down_is_not_at_rest():
+    """A reference that slows to 0.3 % of its top speed and speeds up again, never stopping (as
+    chevalier-pdf's x axis in its test, triggered 1.234 s in): its slowest step is below
+    SETTLED_SHARE of the largest and the lagging axis' tracking error is small there, which was
+    taken for a rest (the fit then simulated from rest at a moving axis: the pair 1063 % off; now
+    exact, with the state at the first sample fitted); a standstill of the reference is one."""
+    T = 0.00025
+    t = np.arange(8000) * T
+    speed = 200.0 * (1.0 - 0.997 * np.exp(-(((t - 1.0) / 0.05) ** 2)))  # mm/s, slowest 0.6 mm/s at 1 s
+    speed[t < 0.2] *= t[t < 0.2] / 0.2  # sets off from standstill
+    xr = np.cumsum(speed) * T
+    x = xr - 5e-6 * np.gradient(speed, T)  # a tracking error with the acceleration, none at constant speed
+    dxr = np.abs(np.diff(xr))
+    slow = int(np.argmin(dxr[1000:])) + 1000
+    assert dxr[slow] <= SETTLED_SHARE * dxr.max()  # the old criterion's still reference
+    assert settled_start(xr[500:], x[500:]) is None
+    assert settled_start(np.r_[np.full(100, xr[500]), xr[500:]], np.r_[np.full(100, xr[500]), xr[500:]]) == 0
+
+
+@pytest.mark.slow
+def test_a_late_reference_on_an_axis_that_never_rests():
+    """chevalier-pdf (0.25 ms) with its reference recorded 20 ms late: the scan found -80 samples
+    exactly, but the gate compared the fits on the record less 80 samples at its start, cut to a
+    false rest, and rejected it (118 um for 121): the pair at 1720 Hz for 172, 45 um RMS."""
+    machine = vcnc.machine("chevalier-pdf")
+    program = vcnc.parse_program(toolpaths.random_moves(60, 10.0, 12000.0, seed=1))
+    cap = machine.simulate(vcnc.interpolate(program, machine), seed=1).select_axes(("x",))
+    T = cap.sample_time
+    truth = identify(cap, axis="x", diagnose=False, delay=0.0)
+    late = _one_axis(delay_reference(cap.reference[:, 0], 0.02 / T), cap.measured[:, 0], T)
+    model = identify(late, axis="x", diagnose=False)
+    assert abs(model.delay_s + 0.02) < T
+    assert _pole_error(model.poles, truth.poles) < 0.01
+    assert model.fit["rms_um"] < 0.01
