@@ -69,6 +69,7 @@ from identification.reduced_model import ReducedAxisModel, discretize
 from identification.residual import motion_coherence
 from identification.searches import SEARCHES, Candidate, Data, SearchContext
 from identification.segments import FoldPlan, active_mask, folds, motion_segments
+from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
 from vcnc.core.jsonsafe import plain
@@ -920,14 +921,15 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
 
 
 def format_before_after(model: ReducedAxisModel) -> str:
-    """Text table of :func:`before_after_rows` for the command line (errors in um)."""
+    """Text table of :func:`before_after_rows` for the command line (errors in um, mdeg on a rotary axis)."""
     rows = before_after_rows(model)
+    u = axis_unit(model.axis, small=True)
 
     def f(x):
         return "      -" if x is None or not math.isfinite(float(x)) else f"{float(x):9.3f}"
 
     width = max(len(r["label"]) for r in rows)
-    head = (f"{'model':<{width}}  {'ident RMS':>9}  {'ident max':>9}  {'valid RMS':>9}  {'valid max':>9}   [um]")
+    head = (f"{'model':<{width}}  {'ident RMS':>9}  {'ident max':>9}  {'valid RMS':>9}  {'valid max':>9}   [{u}]")
     lines = [head, "-" * len(head)]
     for r in rows:
         lines.append(f"{r['label']:<{width}}  {f(r['identification_rms_um'])}  {f(r['identification_max_um'])}  "
@@ -940,7 +942,7 @@ def format_before_after(model: ReducedAxisModel) -> str:
     for fo in v.get("folds") or []:
         w = fo.get("window_s") or [math.nan, math.nan]
         lines.append(f"  fold {w[0]:8.3f}..{w[1]:8.3f} s ({fo.get('active_samples')} active samples): held-out RMS "
-                     f"{f(fo.get('rms_before_um'))} -> {f(fo.get('rms_after_um'))} um")
+                     f"{f(fo.get('rms_before_um'))} -> {f(fo.get('rms_after_um'))} {u}")
     if v.get("warning"):
         lines.append(f"warning: {v['warning']}")
     for w in v.get("warnings") or []:

@@ -190,7 +190,10 @@ def test_model_contract_table_and_simulation(machine, setpoints):
     assert [r["label"].split(" ")[0] for r in rows] == ["reduced", "+", "final"]
     assert rows[-1]["validation_rms_um"] == model.validation["rms_after_um"]
     text = format_before_after(model)
-    assert "time_periodic" in text and "valid RMS" in text
+    assert "time_periodic" in text and "valid RMS" in text and text.splitlines()[0].endswith("[um]")
+    # the same errors of a rotary axis are in mdeg (vcnc.core.axes.axis_unit), not um
+    rotary = dataclasses.replace(model, axis="c")
+    assert format_before_after(rotary).splitlines()[0].endswith("[mdeg]")
     # the augmented model simulates like a reduced one, and survives the model file
     from identification.augmented import from_model
 
