@@ -142,3 +142,26 @@ def test_emps_real_data():
     e = val.measured[:, 0] - m.simulate(val.reference[:, 0], sample_time=val.sample_time)
     assert np.sqrt(np.mean(e**2)) * 1e3 < 0.2 * track
     json.dumps(m.to_dict())
+
+
+def test_cli_says_when_a_pole_sits_on_the_box_the_nyquist_frequency_of_a_slow_record(tmp_path, capsys):
+    """chevalier-pdf's x axis (a pair near 172 Hz, simulated at 0.25 ms) logged every 3 ms, as a control logging
+    slower than its loop: the box of thesis Sec. 4.3 ends at the record's Nyquist frequency, 166.7 Hz, and the
+    fit sits on it; the command line says that the loop may be faster than the record resolves."""
+    import toolpaths
+    import vcnc
+
+    m = vcnc.machine("chevalier-pdf")
+    cap = m.simulate(vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(60, 10, 12000, seed=1)), m))
+    q = round(0.003 / cap.sample_time)
+    slow = Capture(t=cap.t[::q] - cap.t[0], axes=("x",), reference=cap.reference[::q, :1],
+                   measured=cap.measured[::q, :1], meta={"source": "logged every 3 ms"})
+    slow.to_csv(tmp_path / "slow.csv")
+    assert main(["identify", str(tmp_path / "slow.csv"), "--no-diagnose"]) == 0
+    out = capsys.readouterr().out
+    assert ("warning: omega_n 166.7 Hz sits on the upper bound of its box, the record's Nyquist frequency "
+            "(166.7 Hz at Ts = 0.003 s): the loop may be faster than this record resolves") in out
+    # the same axis logged every 0.25 ms is resolved: no pole on a bound, no warning
+    cap.select_axes(("x",)).to_csv(tmp_path / "fast.csv")
+    assert main(["identify", str(tmp_path / "fast.csv"), "--no-diagnose"]) == 0
+    assert "warning:" not in capsys.readouterr().out
