@@ -43,8 +43,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   which the sub-step interpolation of :mod:`identification.substeps` leaves: 0.16 um at 3 ms for
   the exact model). A truth whose omega_n or p lies beyond the recording's Nyquist frequency
   (chevalier-pdf's 172 Hz pair logged every 3 or 6 ms) cannot be reached by any fit, whose box ends
-  there (thesis Sec. 4.3): such a case passes when ``vcnc identify`` says so
-  (:func:`vcnc.commands.identify.bound_lines`: the pole on the Nyquist bound), and the totals count them.
+  there (thesis Sec. 4.3): such a case passes when the fit says so (``model.poles_on_bounds()``: the pole on
+  the Nyquist bound, which ``vcnc identify`` prints), and the totals count them.
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
 time [ms] (0: the delay-free truth), prediction RMS and its limit [um], PASS/FAIL; then the totals.
@@ -74,7 +74,6 @@ from identification.poles import poles_from_denominator  # noqa: E402
 from identification.substeps import simulate_record  # noqa: E402
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture  # noqa: E402
 from vcnc.capture import Capture, read_capture  # noqa: E402
-from vcnc.commands.identify import bound_lines  # noqa: E402
 
 #: Largest relative pole error that passes [-].
 POLE_TOL = 0.05
@@ -260,7 +259,7 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     nyquist = 0.5 / recorded.sample_time
     beyond = max(truth.poles["omega_n_hz"], truth.poles["p_hz"]) > nyquist
     if beyond:  # no fit can reach the truth: the case passes when vcnc identify says so
-        ok = any("Nyquist frequency" in line for line in bound_lines(model))
+        ok = any(at_nyquist for _, _, at_nyquist in model.poles_on_bounds())
     return {"beyond": beyond,
             "machine": machine, "case": case, "err": err, "in_loop_ms": in_loop * 1e3, "delay_ms": model.delay_s * 1e3,
             "lead_ms": rec.get("lead_s", 0.0) * 1e3, "rms_um": float(model.fit["rms_um"]), "limit_um": limit,

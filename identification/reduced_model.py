@@ -439,6 +439,23 @@ class ReducedAxisModel:
         """True when all three poles are in the open left half plane."""
         return all(r["real"] < 0.0 for r in self.pole_table())
 
+    def poles_on_bounds(self, *, tolerance: float = 1e-3) -> list[tuple[str, int, bool]]:
+        """The pole variables the fit left on a bound of its box (``bounds``): ``(key, side, at_nyquist)`` with
+        ``side`` 0 (lower) or 1 (upper) and ``at_nyquist`` when that bound is the record's Nyquist frequency
+        (the box of thesis Sec. 4.3 ends there: the loop may be faster than the record resolves). On a bound:
+        within ``tolerance`` of it, relative."""
+        nyquist = 0.5 / self.sample_time
+        out = []
+        for key in ("omega_n_hz", "zeta", "p_hz"):
+            value, box = self.poles.get(key), (self.bounds or {}).get(key)
+            if value is None or box is None:
+                continue
+            for side, bound in enumerate(box):
+                if abs(value - bound) <= tolerance * max(abs(bound), 1e-12):
+                    at_nyquist = side == 1 and key != "zeta" and abs(bound - nyquist) <= tolerance * nyquist
+                    out.append((key, side, at_nyquist))
+        return out
+
     # ------------------------------------------------------------------- plots
     def plot(self, ax=None, *, truth: Mapping[str, float] | ReducedAxisModel | None = None, f_max_hz=None):
         """Bode plots of G_track and G_dist, like Fig. 3.5 of the thesis.

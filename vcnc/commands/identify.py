@@ -78,37 +78,29 @@ def delay_lines(model) -> list[str]:
     return [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
 
 
-#: How close a pole variable must come to a bound of its box to sit on it [relative].
-ON_BOUND = 1e-3
 #: The option that moves each bound of the pole box, for the message.
 _BOUND_OPTIONS = {("omega_n_hz", 0): "--omega-min-hz", ("p_hz", 0): "--p-min-hz", ("zeta", 0): "--zeta MIN MAX",
                   ("zeta", 1): "--zeta MIN MAX"}
 
 
 def bound_lines(model) -> list[str]:
-    """What to say of a pole variable the fit left on a bound of its box (``model.bounds``): the data did not
-    place it there, the box did. An upper frequency bound at the record's Nyquist frequency means the loop may be
-    faster than the record resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency)."""
+    """What to say of a pole variable the fit left on a bound of its box (``model.poles_on_bounds()``): the data
+    did not place it there, the box did; at the record's Nyquist frequency the loop may be faster than the record
+    resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency)."""
     out = []
-    nyquist = 0.5 / model.sample_time
     names = {"omega_n_hz": ("omega_n", "Hz"), "p_hz": ("p", "Hz"), "zeta": ("zeta", "")}
-    for key, (name, unit) in names.items():
-        value, box = model.poles.get(key), (model.bounds or {}).get(key)
-        if value is None or box is None:
-            continue
-        for side, bound in enumerate(box):
-            if abs(value - bound) > ON_BOUND * max(abs(bound), 1e-12):
-                continue
-            shown = f"{value:.4g} {unit}".rstrip()
-            what = f"{name} {shown} sits on the {('lower', 'upper')[side]} bound of its box"
-            if side == 1 and unit == "Hz" and abs(bound - nyquist) <= ON_BOUND * nyquist:
-                out.append(f"warning: {what}, the record's Nyquist frequency ({nyquist:.4g} Hz at Ts = "
-                           f"{model.sample_time:g} s): the loop may be faster than this record resolves; record it "
-                           "at a shorter sample time")
-            else:
-                option = _BOUND_OPTIONS.get((key, side))
-                out.append(f"warning: {what}: the box, not the data, placed it there"
-                           + (f" (move the bound with {option})" if option else ""))
+    for key, side, at_nyquist in model.poles_on_bounds():
+        name, unit = names[key]
+        shown = f"{model.poles[key]:.4g} {unit}".rstrip()
+        what = f"{name} {shown} sits on the {('lower', 'upper')[side]} bound of its box"
+        if at_nyquist:
+            out.append(f"warning: {what}, the record's Nyquist frequency ({0.5 / model.sample_time:.4g} Hz at Ts = "
+                       f"{model.sample_time:g} s): the loop may be faster than this record resolves; record it "
+                       "at a shorter sample time")
+        else:
+            option = _BOUND_OPTIONS.get((key, side))
+            out.append(f"warning: {what}: the box, not the data, placed it there"
+                       + (f" (move the bound with {option})" if option else ""))
     return out
 
 
