@@ -2140,13 +2140,16 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     return True
 
 
-def checked_program(text: str, context):
+def checked_program(text: str, context, *, check: bool = True):
     """The Heidenhain reader's program of ``text``, its blocks checked against this reference: every row of
-    ``--blocks`` agrees exactly."""
+    ``--blocks`` agrees exactly. ``check=False``: the reader's program alone (one the reference does not model,
+    or one the reader must refuse)."""
     from interpolators.heidenhain import parse_heidenhain
     from vcnc.commands.interpolate import blocks_table
 
     prog = parse_heidenhain(text, source="t.h", context=context)
+    if not check:
+        return prog
     match = match_blocks(heidenhain_reference(text, context), blocks_table(prog)[1])
     assert match.mismatch is None, match.mismatch
     assert match.exact == len(prog.blocks)

@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 
 from interpolators.context import MachineContext
-from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
@@ -24,7 +23,7 @@ COMMON = "Q200=2 Q201=-10 Q206=150 Q202=5 Q207=500 Q203=+0 Q204=30 Q216=+50 Q217
 
 def run(definition: str, *, reference: bool = True):
     text = HEAD + f"CYCL DEF {definition}\nCYCL CALL\nEND PGM T MM\n"
-    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+    return checked_program(text, CTX, check=reference)
 
 
 def start_and_levels(prog) -> tuple[list, list]:

@@ -24,7 +24,7 @@ S3 = math.sqrt(3.0)
 
 def run(body: str, *, reference: bool = True):
     text = HEAD + body + "\n99 END PGM T MM\n"
-    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+    return checked_program(text, CTX, check=reference)
 
 
 def ends(prog) -> list[list[float]]:

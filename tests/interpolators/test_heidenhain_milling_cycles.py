@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 from interpolators.context import MachineContext
-from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
@@ -20,7 +19,7 @@ CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
 
 def run(body: str, *, reference: bool = True):
     text = HEAD + body + "\nEND PGM T MM\n"
-    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+    return checked_program(text, CTX, check=reference)
 
 
 SLOT = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\nCYCL DEF 253 SLOT MILLING {q} Q218=30 "

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from interpolators.context import MachineContext
-from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
@@ -21,7 +20,7 @@ CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
 
 def run(body: str, *, reference: bool = True):
     text = HEAD + body + "\nEND PGM T MM\n"
-    return checked_program(text, CTX) if reference else parse_heidenhain(text, source="t.h", context=CTX)
+    return checked_program(text, CTX, check=reference)
 
 
 # a face 60 x 30 from (0, 0), milled from Z+2.5 down to Z+0 with a tool of radius 10: 2 mm in infeeds of at most
