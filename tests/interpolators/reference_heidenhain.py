@@ -711,26 +711,18 @@ def _run_cycle(t: _Tnc, line: int) -> None:
     if kind in ("1", "2", "4", "5", "17"):
         _old_cycle(t, line, kind, p, start)
         return
-    if kind == "208":
-        _bore_milling(t, line, p)
+    # the cycles one function runs: of (t, line, p), or of (t, line, kind, p)
+    runs = {"208": _bore_milling, "230": _face_milling, "232": _face_milling, "231": _ruled_surface,
+            "233": _face_milling_233, "25": _contour_train, "262": _thread_milling, "251": _circular_pocket,
+            "252": _circular_pocket, "256": _stud, "204": _back_boring}
+    kind_runs = {"212": _finishing, "213": _finishing, "214": _finishing, "215": _finishing, "210": _old_slot,
+                 "211": _old_slot, "263": _thread_family, "264": _thread_family, "265": _thread_family,
+                 "267": _thread_family, "203": _universal_drilling, "205": _universal_drilling}
+    if kind in runs:
+        runs[kind](t, line, p)
         return
-    if kind in ("230", "232"):
-        _face_milling(t, line, p)
-        return
-    if kind == "231":
-        _ruled_surface(t, line, p)
-        return
-    if kind == "233":
-        _face_milling_233(t, line, p)
-        return
-    if kind in ("212", "213", "214", "215"):
-        _finishing(t, line, kind, p)
-        return
-    if kind in ("210", "211"):
-        _old_slot(t, line, kind, p)
-        return
-    if kind == "25":
-        _contour_train(t, line, p)
+    if kind in kind_runs:
+        kind_runs[kind](t, line, kind, p)
         return
     if kind in ("22", "23") and len(t.contours) == 1 and not p.get("Q18", 0) and t.loose:
         raise ReferenceError("one pocket's 22/23 after an SL cycle that left the tool's plane position unknown")
@@ -742,15 +734,6 @@ def _run_cycle(t: _Tnc, line: int) -> None:
         return
     if kind == "22":
         _rough_out(t, line, p)
-        return
-    if kind == "262":
-        _thread_milling(t, line, p)
-        return
-    if kind in ("263", "264", "265", "267"):
-        _thread_family(t, line, kind, p)
-        return
-    if kind in ("251", "252"):
-        _circular_pocket(t, line, p)
         return
     if kind == "253":  # SLOT MILLING: 251's pocket Q218 x Q219 with half circles at the ends, turned by Q374
         if p.get("Q367", 0.0):
@@ -764,20 +747,11 @@ def _run_cycle(t: _Tnc, line: int) -> None:
             _circular_pocket(t, line, {"Q215": 0.0, **p, "Q223": p["Q219"],
                                        "Q376": p["Q376"] + k * p.get("Q378", 0.0)})
         return
-    if kind == "256":
-        _stud(t, line, p)
-        return
     if kind == "257":  # CIRCULAR STUD: 256's stud Q223 x Q223 rounded by Q223/2 (a circle) from the blank Q222
         d, blank = p["Q223"], p["Q222"]
         if p.get("Q376", -1.0) not in (-1.0, 0.0):
             raise ReferenceError("257 with a starting angle")
         _stud(t, line, {**p, "Q218": d, "Q219": d, "Q220": d / 2, "Q424": blank, "Q425": blank})
-        return
-    if kind in ("203", "205"):
-        _universal_drilling(t, line, kind, p)
-        return
-    if kind == "204":
-        _back_boring(t, line, p)
         return
     if kind != "200":
         _one_pass_cycle(t, line, kind, p)
