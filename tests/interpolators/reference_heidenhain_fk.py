@@ -102,23 +102,30 @@ class FkReference:
 
     def equations(self, el: _Element, s, t, z) -> list:
         """The residuals of ``el``'s data with unknowns ``z`` (E, or C then E), start ``s``, tangent ``t``."""
-        v = el.v
         e = z[-2:]
-        res = []
-        for i, ax in enumerate("XY"):
-            if ax in v:
-                res.append(e[i] - v[ax])
-            if "I" + ax in v:
-                res.append(e[i] - self._ref_end(el, "R" + ax, s)[i] - v["I" + ax])
-        if "PR" in v or "IPR" in v:
-            base = self._ref_end(el, "RPR", s)
-            r = v["PR"] if "PR" in v else math.hypot(*(base - self.pole)) + v["IPR"]
-            res.append(math.hypot(*(e - self.pole)) - r)
-        if "PA" in v or "IPA" in v:
-            res.append(_cross(_unit(self._polar_angle(el, s, "")), e - self.pole))
+        res = self._point_equations(el, s, e, "")
         if el.closing:
             res += [e[0] - self.closed[0], e[1] - self.closed[1]]
         res += self._arc_equations(el, s, t, z) if el.arc else self._line_equations(el, s, t, e)
+        return res
+
+    def _point_equations(self, el: _Element, s, point, prefix: str) -> list:
+        """The residuals of the data fixing one point of ``el`` (``prefix`` "": its end X Y IX IY PR PA IPR IPA;
+        "CC": its centre CCX .. ICCPA), start ``s``, incremental data from the block ``R..`` names (else ``s``)."""
+        v, res = el.v, []
+        for i, ax in enumerate("XY"):
+            key = prefix + ax
+            if key in v:
+                res.append(point[i] - v[key])
+            if "I" + key in v:
+                res.append(point[i] - self._ref_end(el, "R" + key, s)[i] - v["I" + key])
+        pr, pa = prefix + "PR", prefix + "PA"
+        if pr in v or "I" + pr in v:
+            base = self._ref_end(el, "R" + pr, s)
+            r = v[pr] if pr in v else math.hypot(*(base - self.pole)) + v["I" + pr]
+            res.append(math.hypot(*(point - self.pole)) - r)
+        if pa in v or "I" + pa in v:
+            res.append(_cross(_unit(self._polar_angle(el, s, prefix)), point - self.pole))
         return res
 
     def _line_equations(self, el: _Element, s, t, e) -> list:
@@ -152,18 +159,7 @@ class FkReference:
         res = [math.hypot(*(e - c)) - r]
         if "R" in v:
             res.append(r - abs(v["R"]))
-        for i, ax in enumerate("XY"):
-            key = "CC" + ax
-            if key in v:
-                res.append(c[i] - v[key])
-            if "I" + key in v:
-                res.append(c[i] - self._ref_end(el, "R" + key, s)[i] - v["I" + key])
-        if "CCPR" in v or "ICCPR" in v:
-            base = self._ref_end(el, "RCCPR", s)
-            res.append(math.hypot(*(c - self.pole)) - (v["CCPR"] if "CCPR" in v else
-                                                       math.hypot(*(base - self.pole)) + v["ICCPR"]))
-        if "CCPA" in v or "ICCPA" in v:
-            res.append(_cross(_unit(self._polar_angle(el, s, "CC")), c - self.pole))
+        res += self._point_equations(el, s, c, "CC")
         entry = self._entry(el, t)
         if entry is not None:
             res.append(float(np.dot(c - s, entry)))
