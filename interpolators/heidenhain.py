@@ -534,7 +534,7 @@ class _Run:
     def block(self, kw: str, k: re.Match, blk: SourceBlock, where: Where) -> bool:
         """Carry out one block; True when the program ends here."""
         m, col0 = self.m, blk.column
-        if m.fk.waiting is not None and kw not in FK_KEYWORDS and not (kw.startswith("FN") or kw.endswith("=")):
+        if m.fk.waiting and kw not in FK_KEYWORDS and not (kw.startswith("FN") or kw.endswith("=")):
             m.fk.unresolved()  # an FK element waiting for FSELECT or the next FK element
         if kw == "BEGIN PGM":
             self.name = _begin_pgm(blk, k, m, where)

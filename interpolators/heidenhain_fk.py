@@ -58,6 +58,7 @@ transformations act on it as on those blocks.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 import re
 
@@ -91,9 +92,6 @@ _ARC_KEYS = frozenset({"X", "Y", "IX", "IY", "PR", "PA", "IPR", "IPA", "LEN", "A
 _UNDETERMINED_LINE = "X/Y, LEN, PR/PA with a direction (AN, IAN, FLT, PAR), or both coordinates of the end point"
 _UNDETERMINED_ARC = ("the circle (two of: CCX/CCY, CCPR/CCPA, R, FCT or AN tangency, the end point) and its end "
                      "(X/Y, PR/PA, LEN, CCA)")
-#: The start of the element after an open one, for its data: unknown, so data relative to it (IX, IY, IPR, IPA,
-#: ICCX, ...) give no curve (NaN fits nothing) and the join fails naming the data that would fix it.
-_UNKNOWN = np.full(2, np.nan)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -284,15 +282,12 @@ def _perp(u: np.ndarray) -> np.ndarray:
 
 @dataclasses.dataclass
 class _Waiting:
-    """An FK element that is not emitted yet: several ``solutions`` (waiting for FSELECT), or an open end
-    (``open``: a line of known direction, an arc of known circle) waiting for the next element."""
+    """An FK block not emitted yet: its keyword, data and source line."""
 
     kw: str
     data: FkWords
     where: Where
     number: int | None
-    solutions: list[FkElement]
-    open: FkElement | None = None
     closing: bool = False  # CLSD- (or the second bare CLSD): the element ends where the closed contour began
 
 
@@ -302,16 +297,23 @@ Emitted = tuple[FkElement, FkWords, Where, int | None]
 
 class FreeContour:
     """The FK state of a program run: the pole ``FPOL``, the elements resolved so far (by block number, for
-    relative data), the start of a closed contour, and an element waiting for ``FSELECT`` or for the next."""
+    relative data), the start of a closed contour, the open stretch (elements their data leave open, from
+    ``start`` in the direction ``tangent``), and resolved elements with several solutions waiting for FSELECT."""
 
     def __init__(self) -> None:
         self.pole: np.ndarray | None = None
         self.history: dict[int, FkElement] = {}
         self.closed_start: np.ndarray | None = None
-        self.waiting: _Waiting | None = None
-        # the element between an open one and the one that fixes both: an FCT of radius and sense only after an
-        # open line (a rounding), an FLT without data after an open arc (a tangent to the next circle)
-        self.middle: _Waiting | None = None
+        self.stretch: list[_Waiting] = []
+        self.start: np.ndarray | None = None
+        self.tangent: np.ndarray | None = None
+        self.choices: tuple[list[_Waiting], list[list[FkElement]]] | None = None
+        self.tol = 1e-6  # [program unit] the run's arc end tolerance, for the closed-form solutions
+
+    @property
+    def waiting(self) -> bool:
+        """An element is open or waits for FSELECT."""
+        return bool(self.stretch) or self.choices is not None
 
     # --- blocks ---------------------------------------------------------------------------------------
     def set_pole(self, data: FkWords, start: np.ndarray, where: Where) -> None:
@@ -326,158 +328,102 @@ class FreeContour:
         self.pole = pole
 
     def select(self, choice: float, where: Where, column: int, text: str) -> list[Emitted]:
-        """``FSELECT n``: the n-th solution of the element before it."""
-        w = self.waiting
-        if w is None or w.open is not None or len(w.solutions) < 2:
+        """``FSELECT n``: the n-th solution of the elements resolved before it; then what the open rest's data
+        resolve from its end."""
+        if self.choices is None:
             where.fail("FSELECT without an FK element of several solutions before it", column=column, text=text,
                        expected="FSELECT n right after the FK element whose solutions it picks from")
-        if not (choice == int(choice) and 1 <= choice <= len(w.solutions)):
-            where.fail(f"FSELECT {choice:g}: the FK element of line {w.where.line} has {len(w.solutions)} solutions",
-                       column=column, text=text, expected=f"FSELECT 1 .. {len(w.solutions)}")
-        self.waiting = None
-        return [self._done(w, w.solutions[int(choice) - 1])]
+        elements, solutions = self.choices
+        last = elements[-1]
+        if not (choice == int(choice) and 1 <= choice <= len(solutions)):
+            where.fail(f"FSELECT {choice:g}: the FK element of line {last.where.line} has {len(solutions)} solutions",
+                       column=column, text=text, expected=f"FSELECT 1 .. {len(solutions)}")
+        self.choices = None
+        chain = solutions[int(choice) - 1]
+        out = [self._done(w, e) for w, e in zip(elements, chain)]
+        if self.stretch:
+            self.start, self.tangent = chain[-1].end, chain[-1].direction()
+            out += self._advance()
+        return out
 
     def element(self, kw: str, data: FkWords, start: np.ndarray, tangent: np.ndarray | None, where: Where,
                 number: int | None, tol: float) -> list[Emitted]:
         """An FL, FLT, FC or FCT block starting at ``start`` (the preceding element's end, ``tangent`` its unit
-        direction there, None when there is none): the elements it and a waiting one resolve to, in order."""
-        w = self.waiting
-        if w is not None and w.open is None:
+        direction there, None when there is none), or after the open stretch: the elements it resolves, in order."""
+        if self.choices is not None:
             self.unresolved()
         allowed = _LINE_KEYS if kw in ("FL", "FLT") else _ARC_KEYS
         for key, word in data.words.items():
             if key not in allowed:
                 where.fail(f"word {word.text!r} not allowed in {kw}", column=word.column, text=word.text,
                            expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != "RCOMP")))
-        if kw in ("FLT", "FCT") and tangent is None and w is None:
+        if kw in ("FLT", "FCT") and tangent is None and not self.stretch:
             where.fail(f"{kw} without a preceding contour element", column=1, text=where.text,
                        expected=f"a line or arc before {kw} (its tangent)")
-        new = _Waiting(kw, data, where, number, [], closing=data.clsd == "-" or (data.clsd == "" and
-                                                                              self.closed_start is not None))
-        if new.closing and self.closed_start is None:
+        if kw == "FC" and "DR" not in data.words and "AN" not in data.values:
+            where.fail(f"{kw} without a direction of rotation", column=1, text=where.text, expected="DR+ or DR-")
+        distance = {"PDX", "PDY", "D"} & set(data.values)
+        if distance and len(distance) < 3:
+            word = data.words[sorted(distance)[0]]
+            where.fail(f"{word.text}: an auxiliary point at a distance needs PDX, PDY and D", column=word.column,
+                       text=word.text, expected="PDX.. PDY.. D.. (the point and its distance from the element)")
+        new = _Waiting(kw, data, where, number, closing=data.clsd == "-" or (data.clsd == "" and
+                                                                             self.closed_start is not None))
+        if new.closing and self.closed_start is None and not any(w.data.clsd is not None for w in self.stretch):
             where.fail("CLSD- without a CLSD+ before it", column=data.words["CLSD"].column,
                        text=data.words["CLSD"].text, expected="CLSD+ on the first element of the closed contour")
-        if w is not None and self.middle is not None:
-            return self._round_corner(new, tol) if w.open.centre is None else self._bridge(new, tol)
-        if w is not None and (_rounding(new) if w.open.centre is None else _bare_tangent(new)):
-            self.middle = new
-            return []
-        if w is not None:
-            self.waiting = None
-            first, second = _join(w, new, self, tol)
-            out = [self._done(w, first)]
-            start, tangent = first.end, first.direction()
-            if second is not None:
-                return out + [self._done(new, second)]
-            return out + self._resolve(new, start, tangent, tol)
-        return self._resolve(new, start, tangent, tol)
+        self.tol = tol
+        if not self.stretch:
+            self.start, self.tangent = start, tangent
+            if _closed_form(new) and _fixed_prefix(self, [new]) == 1:
+                return self._alternatives([new], _single(new, start, tangent, self, tol), new)
+        self.stretch.append(new)
+        return self._advance()
 
     def unresolved(self) -> None:
         """A block other than the next FK element (or the program's end) while one waits: an error naming it."""
-        w = self.waiting
-        if w is None:
-            return
-        if self.middle is not None:
-            c = self.middle
-            if w.open.centre is None:
-                c.where.fail(f"{w.kw} of line {w.where.line} (its length open) and this {c.kw} of radius and sense "
-                             "only: where they end is not determined", column=1, text=c.where.text,
-                             expected="a next FLT with its end point and AN (the direction after the arc)")
-            c.where.fail(f"{w.kw} of line {w.where.line} (its end open) and this {c.kw} without data: where they end "
-                         "is not determined", column=1, text=c.where.text,
-                         expected="a next FCT with its centre CCX/CCY (or CCPR/CCPA), R and DR (the circle the line "
-                                  "is tangent to)")
-        if w.open is None:
-            w.where.fail(f"{w.kw} has {len(w.solutions)} solutions and no FSELECT picks one", column=1,
-                         text=w.where.text, expected=f"FSELECT 1 .. {len(w.solutions)} after the {w.kw} block")
-        what = "its length" if w.open.centre is None else "where it ends on its circle"
-        w.where.fail(f"{w.kw}: {what} is not determined (the TNC's 'not yet resolved' element)", column=1,
-                     text=w.where.text, expected=(_UNDETERMINED_LINE if w.open.centre is None else
-                                                  "X/Y, PR/PA, LEN or CCA, or a next FLT to a known end point or "
-                                                  "of known direction") + ", or a next FK element that fixes it")
+        if self.choices is not None:
+            elements, solutions = self.choices
+            w = elements[-1]
+            w.where.fail(f"{w.kw} has {len(solutions)} solutions and no FSELECT picks one", column=1,
+                         text=w.where.text, expected=f"FSELECT 1 .. {len(solutions)} after the {w.kw} block")
+        if self.stretch:
+            w, rest = self.stretch[0], self.stretch[1:]
+            after = f", not even with the FK blocks of lines {rest[0].where.line}-{rest[-1].where.line} after it" \
+                if rest else ""
+            what, data = _open_what(w)
+            w.where.fail(f"{w.kw}: {what} is not determined{after} (the TNC's 'not yet resolved' element)",
+                         column=1, text=w.where.text, expected=f"{data}, or a next FK element whose data fix it")
 
     # --- resolution -----------------------------------------------------------------------------------
-    def _bridge(self, new: _Waiting, tol: float) -> list[Emitted]:
-        """An open arc (circle c1, r1, its sense), an FLT without data, and ``new``, an FCT of known circle (centre
-        CCX/CCY or CCPR/CCPA, R) and sense DR: the line is the tangent leaving the first circle and reaching the
-        second in their senses. With n the unit normal from a circle's centre to the point where its tangent
-        runs along u (n = -perp(u), times -1 for a clockwise circle: k = -1), T = c + k r n on each circle, and
-        T2 - T1 along u: (c2 - c1) . n = k1 r1 - k2 r2, two normals of which one has T2 ahead of T1."""
-        w, bare = self.waiting, self.middle
-        self.waiting = self.middle = None
-        c1, ccw1 = w.open.centre, w.open.ccw
-        r1 = float(np.hypot(*(w.open.start - c1)))
-        v = new.data.values
-        curves = _given_centre(new, _UNKNOWN, self)
-        if new.kw == "FCT" and "R" in v and "DR" in new.data.words and len(curves) >= 2:
-            k1, k2 = (1.0 if ccw1 else -1.0), (1.0 if new.data.words["DR"].value == "+" else -1.0)
-            r2 = abs(v["R"])
-            for c2 in _solve(curves, tol):
-                d = c2 - c1
-                dist = float(np.hypot(*d))
-                q = k1 * r1 - k2 * r2
-                if dist <= tol or abs(q) > dist:
-                    continue
-                base, spread = math.atan2(d[1], d[0]), math.acos(q / dist)
-                for phi in (base - spread, base + spread):
-                    n = np.array([math.cos(phi), math.sin(phi)])
-                    u = _perp(n)
-                    t1, t2 = c1 + k1 * r1 * n, c2 + k2 * r2 * n
-                    if float((t2 - t1) @ u) > tol:
-                        arc = FkElement(w.open.start, t1, c1, ccw1)
-                        line = FkElement(t1, t2)
-                        return [self._done(w, arc), self._done(bare, line)] + self._resolve(new, t2, u, tol)
-        new.where.fail(f"{w.kw} of line {w.where.line} (its end open), the {bare.kw} of line {bare.where.line} (no "
-                       "data) and this block: the tangent between them is not determined", column=1,
-                       text=new.where.text, expected="FCT with its centre CCX/CCY (or CCPR/CCPA), R and DR, a circle "
-                                                     "apart from the first")
+    def _advance(self) -> list[Emitted]:
+        """Resolve the leading elements of the open stretch as long as the data so far fix them."""
+        out: list[Emitted] = []
+        while self.stretch:
+            count = _fixed_prefix(self, self.stretch)
+            if count == 0:
+                return out
+            elements, solutions, newest = self.stretch[:count], _solve_stretch(self, count), self.stretch[-1]
+            self.stretch = self.stretch[count:]
+            out += self._alternatives(elements, solutions, newest)
+            if self.choices is not None:
+                return out
+            self.start, self.tangent = solutions[0][-1].end, solutions[0][-1].direction()
+        return out
 
-    def _round_corner(self, new: _Waiting, tol: float) -> list[Emitted]:
-        """An open line, an FCT of radius R and sense DR only, and ``new``, an FLT of known end point E and
-        direction AN (tangent to the arc: without it the arc's sweep stays open): the arc turns the line's
-        direction d1 into d3 = AN, so its shape is fixed and only where the first line ends (t along d1) is
-        open; the third line through E along d3 fixes t (linear)."""
-        w, corner = self.waiting, self.middle
-        self.waiting = self.middle = None
-        s, d1 = w.open.start, w.open.direction()
-        ccw = corner.data.words["DR"].value == "+"
-        r = abs(corner.data.values["R"])
-        sign = 1.0 if ccw else -1.0
-        if "AN" in new.data.values and new.kw == "FLT":
-            d3 = _unit(new.data.values["AN"])
-            n1, n3 = _perp(d1) * sign, -_perp(d3) * sign  # from the line to the centre, from the centre to the end
-            den = float(d1[0] * d3[1] - d1[1] * d3[0])
-            ends = _end_curves(new, _UNKNOWN, self, chord=False)
-            for e in (_solve(ends, tol) if len(ends) >= 2 and abs(den) > 1e-12 else []):
-                q = e - s - r * (n1 + n3)
-                t = float(q[0] * d3[1] - q[1] * d3[0]) / den
-                centre = s + t * d1 + r * n1
-                if t > tol and float((e - (centre + r * n3)) @ d3) > tol:
-                    line = FkElement(s, s + t * d1)
-                    arc = FkElement(line.end, centre + r * n3, centre, ccw)
-                    return [self._done(w, line), self._done(corner, arc)] + self._resolve(new, arc.end, d3, tol)
-        new.where.fail(f"{w.kw} of line {w.where.line} (its length open), the {corner.kw} of line {corner.where.line} "
-                       "(radius and sense only) and this block: where they meet is not determined", column=1,
-                       text=new.where.text, expected="FLT with AN and its end point (X/Y or PR/PA) after them")
-
-    def _resolve(self, new: _Waiting, start: np.ndarray, tangent: np.ndarray | None, tol: float) -> list[Emitted]:
-        if new.kw in ("FL", "FLT"):
-            solutions, opened = _line_solutions(new, start, tangent, self, tol)
-        else:
-            solutions, opened = _arc_solutions(new, start, tangent, self, tol)
-        if opened is not None:
-            new.open = opened
-            self.waiting = new
-            return []
+    def _alternatives(self, elements: list[_Waiting], solutions: list[list[FkElement]],
+                      newest: _Waiting) -> list[Emitted]:
+        """The solutions of ``elements`` (resolved when ``newest`` came): one is emitted, several wait for FSELECT,
+        none is an error."""
         if not solutions:
-            new.where.fail(f"{new.kw}: no element fits its data (they contradict each other or the contour so far)",
-                           column=1, text=new.where.text, expected="FK data describing one element")
-        solutions.sort(key=lambda e: (round(e.length, 6), math.atan2(*e.direction(at_end=False)[::-1]) % (2 * math.pi)))
+            what = "its data" if elements == [newest] else f"the data of the open FK elements from line " \
+                                                           f"{elements[0].where.line} on"
+            newest.where.fail(f"{newest.kw}: no element fits {what} (they contradict each other or the contour so "
+                              "far)", column=1, text=newest.where.text, expected="FK data describing one element")
         if len(solutions) > 1:
-            new.solutions = solutions
-            self.waiting = new
+            self.choices = (elements, solutions)
             return []
-        return [self._done(new, solutions[0])]
+        return [self._done(w, e) for w, e in zip(elements, solutions[0])]
 
     def _done(self, w: _Waiting, element: FkElement) -> Emitted:
         if w.number is not None:
@@ -488,9 +434,12 @@ class FreeContour:
             self.closed_start = element.start.copy()
         return element, w.data, w.where, w.number
 
-    def reference(self, w: _Waiting, key: str) -> FkElement:
-        """The element of the block ``w.data.refs[key]`` names (relative data)."""
+    def reference(self, w: _Waiting, key: str, walked: dict[int, FkElement] | None = None) -> FkElement:
+        """The element of the block ``w.data.refs[key]`` names (relative data): resolved before, or one of the
+        open stretch as ``walked`` has it."""
         n = w.data.refs[key]
+        if walked is not None and n in walked:
+            return walked[n]
         if n not in self.history:
             word = w.data.words[key]
             w.where.fail(f"{word.text}: block {n} is not an FK element run before", column=word.column, text=word.text,
@@ -504,18 +453,6 @@ class FreeContour:
             w.where.fail(f"{word.text} without an FK pole", column=word.column, text=word.text,
                          expected="an FPOL block before FK polar coordinates (a CC is not the FK pole)")
         return self.pole
-
-
-def _bare_tangent(w: _Waiting) -> bool:
-    """An FLT with no data of its own (after an open arc: the tangent to the next element's circle)."""
-    return w.kw == "FLT" and not w.closing and not (set(w.data.values) | set(w.data.refs)) - {"F"}
-
-
-def _rounding(w: _Waiting) -> bool:
-    """An FCT with radius and sense and nothing else of its circle or end (after an open line: a rounding)."""
-    keys = set(w.data.values) | set(w.data.refs)
-    return w.kw == "FCT" and "DR" in w.data.words and "R" in keys and not w.closing and \
-        not keys - {"R", "F"}
 
 
 def _end_curves(w: _Waiting, start: np.ndarray, fk: FreeContour, *, chord: bool) -> list[_Curve]:
@@ -586,10 +523,8 @@ def _line_directions(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None,
 
 
 def _line_solutions(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, fk: FreeContour,
-                    tol: float) -> tuple[list[FkElement], FkElement | None]:
-    """The lines the data allow, or (no solutions, an open line of known direction)."""
-    if "PDX" in w.data.values or "PDY" in w.data.values or "D" in w.data.values:
-        _refuse_distance_point(w)
+                    tol: float) -> list[FkElement]:
+    """The lines the data allow (the data fix the line: :func:`_fixed_prefix`)."""
     ends = _end_curves(w, start, fk, chord=False)
     if "LEN" in w.data.values:
         ends.append(_Curve(start, r=abs(w.data.values["LEN"])))
@@ -598,19 +533,10 @@ def _line_solutions(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, 
     for d in (dirs if dirs is not None else [None]):
         curves = ends + ([_Curve(start, d, ray=True, strict=True)] if d is not None else [])
         if len(curves) < 2:
-            if d is not None and len(dirs) == 1:
-                return [], FkElement(start, start + d)
             w.where.fail(f"{w.kw}: the end point is not determined", column=1, text=w.where.text,
                          expected=_UNDETERMINED_LINE)
         out += [FkElement(start, e) for e in _solve(curves, tol) if np.hypot(*(e - start)) > tol]
-    return out, None
-
-
-def _refuse_distance_point(w: _Waiting) -> None:
-    key = next(k for k in ("PDX", "PDY", "D") if k in w.data.words)
-    word = w.data.words[key]
-    w.where.fail(f"{w.kw}: an auxiliary point at a distance (PDX/PDY/D) is not supported", column=word.column,
-                 text=word.text, expected="the element's end point, direction, or points P1X/P1Y on it")
+    return out
 
 
 def _given_centre(w: _Waiting, start: np.ndarray, fk: FreeContour) -> list[_Curve]:
@@ -655,10 +581,8 @@ def _centre_curves(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, c
 
 
 def _arc_solutions(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, fk: FreeContour,
-                   tol: float) -> tuple[list[FkElement], FkElement | None]:
-    """The arcs the data allow, or (no solutions, an open arc of known circle)."""
-    if "PDX" in w.data.values or "PDY" in w.data.values or "D" in w.data.values:
-        _refuse_distance_point(w)
+                   tol: float) -> list[FkElement]:
+    """The arcs the data allow (the data fix the arc: :func:`_fixed_prefix`)."""
     dr = w.data.words.get("DR")
     ccw = None if dr is None else dr.value == "+"
     ends = _end_curves(w, start, fk, chord=True)
@@ -688,9 +612,10 @@ def _arc_solutions(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, f
                 continue
             found = _arc_ends(w, start, c, r, sense, ends, tol)
             if found is None:
-                return [], FkElement(start, start, c, sense)
+                w.where.fail(f"{w.kw}: where it ends on its circle is not determined", column=1, text=w.where.text,
+                             expected=_UNDETERMINED_ARC)
             out += found
-    return out, None
+    return out
 
 
 def _arc_ends(w: _Waiting, start: np.ndarray, c: np.ndarray, r: float, ccw: bool, ends: list[_Curve],
@@ -707,77 +632,374 @@ def _arc_ends(w: _Waiting, start: np.ndarray, c: np.ndarray, r: float, ccw: bool
     return [FkElement(start, e, c, ccw) for e in _solve([_Curve(c, r=r)] + ends, tol)]
 
 
-# --- an open element and the next one ---------------------------------------------------------------------
+
+# --- open stretches: elements their own data leave open, solved with the data of the ones after them ---------
+#
+# Each element of a stretch is written by its start direction theta, its size (a line's length, an arc's signed
+# radius: > 0 counter-clockwise) and an arc's sweep, walked from the stretch's start: a line ends at S + len u(theta),
+# an arc turns about C = S + rho n(theta) (n the left normal) through k sweep (k the sign of rho). Data that name one
+# of these (FLT/FCT: theta the preceding end direction; AN, IAN; LEN of a line; R with DR; CCA) set it; the
+# unknowns left are solved by Newton's method from the data that remain, each an equation (a residual) of the
+# walked geometry. A leading run of elements is resolved once the equations not touching the unknowns after it
+# have full rank in its own unknowns (at a generic point).
+
+_TWO_PI = 2 * math.pi
 
 
-def _join(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple[FkElement, FkElement | None]:
-    """The open element ``w`` resolved by the next one ``new``: (w's element, new's element or None when new
-    is to be resolved from w's end on)."""
-    if w.open.centre is None:
-        return _join_line(w, new, fk, tol)
-    return _join_arc(w, new, fk, tol), None
+@dataclasses.dataclass(frozen=True)
+class _Walked:
+    """An element of a stretch as walked from given unknowns: its geometry and the values it was walked with."""
+
+    element: FkElement
+    theta: float  # start direction [rad]
+    end_theta: float
+    size: float  # length, or signed radius
+    sweep: float  # [rad], 0 for a line
 
 
-def _join_line(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> tuple[FkElement, FkElement | None]:
-    """A line of known direction whose end the next element fixes: the next line's end point and direction
-    known (their intersection), or the next FCT's radius and sense known (its centre on the parallel at
-    that distance; the end point, CCA and one end coordinate, or a centre coordinate fix it)."""
-    s, d = w.open.start, w.open.direction()
-    v = new.data.values
-    if new.kw in ("FL", "FLT"):
-        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
-        dirs = _line_directions(new, _UNKNOWN, d, fk, tol) if new.kw != "FLT" else None
-        if len(ends) >= 2 and dirs is not None and len(dirs) == 1:
-            for e in _solve(ends, tol):
-                for p in _intersect(_Curve(s, d, ray=True, strict=True), _Curve(e, dirs[0]), tol):
-                    return FkElement(s, p), FkElement(p, e)
-    elif new.kw == "FCT" and "R" in v and "DR" in new.data.words:
-        ccw = new.data.words["DR"].value == "+"
-        r = abs(v["R"])
-        side = _perp(d) * (1 if ccw else -1)
-        rail = _Curve(s + r * side, d, ray=True, strict=True)
-        conditions = _given_centre(new, _UNKNOWN, fk)
-        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
-        if len(ends) >= 2:
-            conditions += [_Curve(e, r=r) for e in _solve(ends, tol)][:1]
-        elif ends and "CCA" in v:
-            a = math.radians(abs(v["CCA"])) * (1 if ccw else -1)
-            rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-            offset = rot @ (-r * side)  # from the centre to the end
-            conditions += [dataclasses.replace(ends[0], p=ends[0].p - offset)]
-        for c in (_solve([rail, conditions[0]], tol) if conditions else []):
-            p = c - r * side
-            return FkElement(s, p), None
-    new.where.fail(f"{w.kw} of line {w.where.line} (its length open) and this {new.kw}: the corner between them is "
-                   "not determined", column=1, text=new.where.text,
-                   expected=f"{_UNDETERMINED_LINE} in line {w.where.line}, or here an FL/FLT with its end point and "
-                            "direction, or an FCT with R, DR and its end point (or CCA and one coordinate)")
+def _theta_source(w: _Waiting) -> str | None:
+    """Which datum sets the element's start direction (None: an unknown)."""
+    if w.kw in ("FLT", "FCT"):
+        return "tangent"
+    if "AN" in w.data.values:
+        return "AN"
+    if "IAN" in w.data.values and w.kw in ("FL", "FLT"):
+        return "IAN"
+    return None
 
 
-def _join_arc(w: _Waiting, new: _Waiting, fk: FreeContour, tol: float) -> FkElement:
-    """An arc of known circle whose end the next element fixes: the next FLT to a known end point (the tangent
-    from it that continues the arc's sense), or an FLT with AN (where the arc runs that way)."""
-    s, c, ccw = w.open.start, w.open.centre, w.open.ccw
-    r = float(np.hypot(*(s - c)))
-    out: list[np.ndarray] = []
-    if new.kw == "FLT":
-        ends = _end_curves(new, _UNKNOWN, fk, chord=False)
-        v = new.data.values
-        if len(ends) >= 2:
-            for e in _solve(ends, tol):
-                dist = float(np.hypot(*(e - c)))
-                if dist > r:
-                    for t in _circle_circle(_Curve(c, r=r), _Curve((c + e) / 2, r=dist / 2)):
-                        tangent = FkElement(s, t, c, ccw).direction()
-                        if float((e - t) @ tangent) > 0:
-                            out.append(t)
-        elif "AN" in v:
-            n = -_perp(_unit(v["AN"])) * (1 if ccw else -1)  # from the centre to the point of that tangent
-            out.append(c + r * n)
-    if not out:
-        new.where.fail(f"{w.kw} of line {w.where.line} (its end open) and this {new.kw}: where the arc ends is not "
-                       "determined", column=1, text=new.where.text,
-                       expected=f"the arc's end (X/Y, PR/PA, LEN, CCA) in line {w.where.line}, or here an FLT to a "
-                                "known end point or with AN")
-    return FkElement(s, out[0], c, ccw)
+def _layout(w: _Waiting) -> tuple[bool, bool, bool]:
+    """Which of (theta, size, sweep) are unknowns of the element."""
+    v, arc = w.data.values, w.kw in ("FC", "FCT")
+    size_known = ("LEN" in v) if not arc else ("R" in v and "DR" in w.data.words)
+    return _theta_source(w) is None, not size_known, arc and "CCA" not in v
 
+
+def _walk(fk: FreeContour, stretch: list[_Waiting], z: np.ndarray) -> tuple[list[_Walked], np.ndarray]:
+    """The stretch walked with the unknowns ``z`` from fk.start, and the residuals of all its data."""
+    s, t = fk.start, fk.tangent
+    tau = None if t is None else math.atan2(t[1], t[0])
+    walked: dict[int, FkElement] = {}
+    closed = fk.closed_start
+    out, res, k = [], [], 0
+    for w in stretch:
+        v, arc = w.data.values, w.kw in ("FC", "FCT")
+        free = _layout(w)
+        vals = []
+        for unknown in free:
+            vals.append(z[k] if unknown else None)
+            k += unknown
+        src = _theta_source(w)
+        if src == "tangent":
+            theta = tau
+        elif src == "AN":
+            theta = math.radians(v["AN"])
+        elif src == "IAN":
+            theta = _base_direction(fk, w, tau, walked) + math.radians(v["IAN"])
+        else:
+            theta = vals[0]
+        if arc:
+            size = vals[1] if free[1] else abs(v["R"]) * (1 if w.data.words["DR"].value == "+" else -1)
+            sweep = vals[2] if free[2] else math.radians(abs(v["CCA"]))
+            n = np.array([-math.sin(theta), math.cos(theta)])
+            c = s + size * n
+            turn = sweep if size > 0 else -sweep
+            rot = np.array([[math.cos(turn), -math.sin(turn)], [math.sin(turn), math.cos(turn)]])
+            element = FkElement(s, c + rot @ (s - c), c, size > 0)
+            end_theta = theta + turn
+        else:
+            size = vals[1] if free[1] else abs(v["LEN"])
+            sweep = 0.0
+            element = FkElement(s, s + size * np.array([math.cos(theta), math.sin(theta)]))
+            end_theta = theta
+        if w.data.clsd is not None and not w.closing:
+            closed = s
+        res += _equations(fk, w, element, theta, tau, walked, closed)
+        out.append(_Walked(element, theta, end_theta, size, sweep))
+        if w.number is not None:
+            walked[w.number] = element
+        s, tau = element.end, end_theta
+    return out, np.array(res, float)
+
+
+def _base_direction(fk: FreeContour, w: _Waiting, tau: float | None, walked: dict[int, FkElement]) -> float:
+    """The direction IAN turns from [rad]: block RAN n's end direction, or the preceding element's."""
+    if "RAN" in w.data.refs:
+        d = fk.reference(w, "RAN", walked).direction()
+        return math.atan2(d[1], d[0])
+    if tau is None:
+        word = w.data.words["IAN"]
+        w.where.fail("IAN without a preceding element", column=word.column, text=word.text,
+                     expected="AN, or IAN after a contour element")
+    return tau
+
+
+def _point_rows(fk: FreeContour, w: _Waiting, point: np.ndarray, start: np.ndarray, walked: dict[int, FkElement],
+                prefix: str) -> list[float]:
+    """Residuals of the data placing one point of the element (``prefix`` "": its end; "CC": its centre)."""
+    v, rows = w.data.values, []
+    for i, axis in enumerate("XY"):
+        key = prefix + axis
+        if key in v:
+            rows.append(point[i] - v[key])
+        if "I" + key in v:
+            base = fk.reference(w, "R" + key, walked).end if "R" + key in w.data.refs else start
+            rows.append(point[i] - base[i] - v["I" + key])
+    pr, pa = prefix + "PR", prefix + "PA"
+    if pr in v or "I" + pr in v or pa in v or "I" + pa in v:
+        pole = fk.polar(w, next(k for k in (pr, "I" + pr, pa, "I" + pa) if k in v))
+        if pr in v or "I" + pr in v:
+            base = fk.reference(w, "R" + pr, walked).end if "R" + pr in w.data.refs else start
+            radius = v[pr] if pr in v else float(np.hypot(*(base - pole))) + v["I" + pr]
+            rows.append(float(np.hypot(*(point - pole))) - radius)
+        if pa in v or "I" + pa in v:
+            base = fk.reference(w, "R" + pa, walked).end if "R" + pa in w.data.refs else start
+            a = math.radians(v[pa]) if pa in v else math.atan2(*(base - pole)[::-1]) + math.radians(v["I" + pa])
+            d = point - pole
+            rows.append(math.cos(a) * d[1] - math.sin(a) * d[0])
+    return rows
+
+
+def _equations(fk: FreeContour, w: _Waiting, e: FkElement, theta: float, tau: float | None,
+               walked: dict[int, FkElement], closed: np.ndarray | None) -> list[float]:
+    """The residuals of the element's data its parametrisation does not set."""
+    v, s, src = w.data.values, e.start, _theta_source(w)
+    rows = _point_rows(fk, w, e.end, s, walked, "")
+    if w.closing:
+        rows += list(e.end - closed)
+    if "AN" in v and src != "AN":
+        rows.append(math.sin(theta - math.radians(v["AN"])))
+    if "IAN" in v and src != "IAN" and w.kw in ("FL", "FLT"):
+        rows.append(math.sin(theta - _base_direction(fk, w, tau, walked) - math.radians(v["IAN"])))
+    u = np.array([math.cos(theta), math.sin(theta)])
+    if e.centre is None:
+        if "PAR" in w.data.refs:
+            ref = fk.reference(w, "PAR", walked)
+            d = ref.direction()
+            rows.append(float(u[0] * d[1] - u[1] * d[0]))
+            if "DP" in v:
+                rows.append(abs(float((s - ref.start) @ _perp(d))) - abs(v["DP"]))
+        for key in ("P1", "P2"):
+            if key + "X" in v and key + "Y" in v:
+                q = np.array([v[key + "X"], v[key + "Y"]]) - s
+                rows.append(float(u[0] * q[1] - u[1] * q[0]))
+        if "D" in v:
+            q = np.array([v.get("PDX", 0.0), v.get("PDY", 0.0)]) - s
+            rows.append(float(u[0] * q[1] - u[1] * q[0]) ** 2 - v["D"] ** 2)
+        return rows
+    r = float(np.hypot(*(s - e.centre)))
+    if "R" in v and "DR" not in w.data.words:
+        rows.append(r - abs(v["R"]))
+    rows += _point_rows(fk, w, e.centre, s, walked, "CC")
+    if "LEN" in v:
+        rows.append(float(np.hypot(*(e.end - s))) - abs(v["LEN"]))
+    for key in ("P1", "P2", "P3"):
+        if key + "X" in v and key + "Y" in v:
+            rows.append(float(np.hypot(*(np.array([v[key + "X"], v[key + "Y"]]) - e.centre))) - r)
+    if "D" in v:
+        q = np.array([v.get("PDX", 0.0), v.get("PDY", 0.0)])
+        rows.append((float(np.hypot(*(q - e.centre))) - r) ** 2 - v["D"] ** 2)
+    return rows
+
+
+def _admissible(fk: FreeContour, w: _Waiting, walked: _Walked, tol: float) -> bool:
+    """The inequalities the equations leave: a line ahead of its start along AN/IAN, an arc of the DR sense
+    with a sweep, rays PA/CCPA from FPOL."""
+    v, e = w.data.values, walked.element
+    if abs(walked.size) <= tol or (e.centre is None and walked.size < 0):
+        return False
+    if e.centre is not None and "DR" in w.data.words and (walked.size > 0) != (w.data.words["DR"].value == "+"):
+        return False
+    if "AN" in v and math.cos(walked.theta - math.radians(v["AN"])) <= 0:
+        return False
+    for key, point in (("PA", e.end), ("CCPA", e.centre)):
+        if key in v and float((point - fk.pole) @ _unit(v[key])) < -tol:
+            return False
+    return e.centre is None or walked.sweep > 1e-9
+
+
+def _unknown_columns(stretch: list[_Waiting]) -> list[tuple[int, int]]:
+    """For each element, the range of its unknowns in the stretch's vector."""
+    out, k = [], 0
+    for w in stretch:
+        n = sum(_layout(w))
+        out.append((k, k + n))
+        k += n
+    return out
+
+
+def _scale(fk: FreeContour, stretch: list[_Waiting]) -> float:
+    """A length of the size of the stretch's data [program unit], for starting points and generic points."""
+    sizes = [abs(x) for w in stretch for key, x in w.data.values.items() if key not in ("AN", "IAN", "PA", "IPA",
+                                                                                       "CCPA", "ICCPA", "CCA", "F")]
+    return 1.0 + max(sizes + [float(np.max(np.abs(fk.start)))])
+
+
+def _generic(stretch: list[_Waiting], scale: float, rng: np.random.Generator) -> np.ndarray:
+    """A point of no special position in the stretch's unknowns (a line's length positive, a radius of the DR
+    sign)."""
+    out = []
+    for w in stretch:
+        theta, size, sweep = _layout(w)
+        if theta:
+            out.append(rng.uniform(0, _TWO_PI))
+        if size:
+            sign = 1.0 if w.kw in ("FL", "FLT") or "DR" not in w.data.words else \
+                (1.0 if w.data.words["DR"].value == "+" else -1.0)
+            out.append(sign * rng.uniform(0.3, 1.0) * scale)
+        if sweep:
+            out.append(rng.uniform(0.5, 5.5))
+    return np.array(out, float)
+
+
+def _jacobian(f, z: np.ndarray) -> np.ndarray:
+    """Central differences of the residuals ``f`` at ``z`` (rows: residuals, columns: unknowns)."""
+    cols = []
+    for i in range(len(z)):
+        h = 1e-7 * (1.0 + abs(z[i]))
+        dz = np.zeros(len(z))
+        dz[i] = h
+        cols.append((f(z + dz) - f(z - dz)) / (2 * h))
+    return np.array(cols).T if cols else np.zeros((len(f(z)), 0))
+
+
+def _fixed_prefix(fk: FreeContour, stretch: list[_Waiting]) -> int:
+    """How many leading elements of ``stretch`` its data fix: the most for which the residuals that do not depend
+    on the unknowns after them have full rank in theirs (at a generic point; 0: none yet)."""
+    cols = _unknown_columns(stretch)
+    z = _generic(stretch, _scale(fk, stretch), np.random.default_rng(11))
+    jac = _jacobian(lambda x: _walk(fk, stretch, x)[1], z)
+    if not np.all(np.isfinite(jac)):
+        return 0
+    size = max(1.0, float(np.abs(jac).max(initial=0.0)))
+    for count in range(len(stretch), 0, -1):
+        mine, later = cols[count - 1][1], cols[-1][1]
+        rows = np.all(np.abs(jac[:, mine:later]) <= 1e-7 * size, axis=1)
+        block = jac[rows][:, :mine]
+        if mine == 0 or (block.size and np.linalg.matrix_rank(block, tol=1e-6 * size) == mine):
+            return count
+    return 0
+
+
+def _starts(stretch: list[_Waiting], count: int, scale: float) -> list[np.ndarray]:
+    """Starting points for Newton's method in the unknowns of the first ``count`` elements: each angle around the
+    circle, each size small and large (either sign where DR is not given), each sweep around the circle; at most
+    256 of their combinations (a seeded choice)."""
+    axes: list[list[float]] = []
+    for w in stretch[:count]:
+        theta, size, sweep = _layout(w)
+        if theta:
+            axes.append([math.pi / 8 + i * math.pi / 4 for i in range(8)])
+        if size:
+            signs = [1.0] if w.kw in ("FL", "FLT") else [1.0 if w.data.words["DR"].value == "+" else -1.0] \
+                if "DR" in w.data.words else [1.0, -1.0]
+            axes.append([s * f * scale for s in signs for f in (0.4, 1.5)])
+        if sweep:
+            axes.append([0.7, 2.0, 3.3, 4.6, 5.9])
+    grid = [np.array(p, float) for p in itertools.product(*axes)]
+    if len(grid) > 256:
+        pick = np.random.default_rng(5).choice(len(grid), 256, replace=False)
+        grid = [grid[i] for i in sorted(pick)]
+    return grid
+
+
+def _newton(f, z: np.ndarray, scale: float) -> np.ndarray | None:
+    """A root of the residuals ``f`` (as many or more than unknowns) near ``z``: Gauss-Newton steps, halved while
+    they do not reduce the residuals; None when it does not converge to 1e-9 program units."""
+    r = f(z)
+    for _ in range(60):
+        if not np.all(np.isfinite(r)):
+            return None
+        norm = float(np.linalg.norm(r))
+        if norm <= 1e-13 * scale:
+            break
+        step = np.linalg.lstsq(_jacobian(f, z), -r, rcond=None)[0]
+        for _ in range(12):
+            trial = f(z + step)
+            if np.all(np.isfinite(trial)) and np.linalg.norm(trial) < norm:
+                break
+            step = step / 2
+        else:
+            break
+        z, r = z + step, trial
+    return z if np.all(np.isfinite(r)) and float(np.abs(r).max(initial=0.0)) <= 1e-9 * scale else None
+
+
+def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
+    """The solutions of the first ``count`` elements of the open stretch (the data fixing them: the residuals not
+    depending on the unknowns after them), ordered for FSELECT."""
+    stretch, scale = fk.stretch, _scale(fk, fk.stretch)
+    mine = _unknown_columns(stretch)[count - 1][1]
+    base = _generic(stretch, scale, np.random.default_rng(11))
+    jac = _jacobian(lambda x: _walk(fk, stretch, x)[1], base)
+    size = max(1.0, float(np.abs(jac).max(initial=0.0)))
+    rows = np.all(np.abs(jac[:, mine:]) <= 1e-7 * size, axis=1)
+
+    def residuals(x: np.ndarray) -> np.ndarray:
+        return _walk(fk, stretch, np.concatenate([x, base[mine:]]))[1][rows]
+
+    found: list[list[FkElement]] = []
+    for start in _starts(stretch, count, scale):
+        x = _newton(residuals, start, scale)
+        if x is None:
+            continue
+        walked = _walk(fk, stretch, np.concatenate([_normalised(stretch[:count], x), base[mine:]]))[0][:count]
+        if not all(_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)):
+            continue
+        chain = [c.element for c in walked]
+        if not any(_same_chain(chain, other) for other in found):
+            found.append(chain)
+    return _ordered(found)
+
+
+def _normalised(stretch: list[_Waiting], x: np.ndarray) -> np.ndarray:
+    """The unknowns in their ranges: a line's length positive (its direction turned over when that is an unknown),
+    an arc's sweep in (0, 2 pi]."""
+    x, k = x.copy(), 0
+    for w in stretch:
+        theta, size, sweep = _layout(w)
+        if w.kw in ("FL", "FLT") and theta and size and x[k + 1] < 0:
+            x[k], x[k + 1] = x[k] + math.pi, -x[k + 1]
+        if sweep:
+            at = k + theta + size
+            x[at] = x[at] % _TWO_PI or _TWO_PI
+        k += theta + size + sweep
+    return x
+
+
+def _same_chain(a: list[FkElement], b: list[FkElement]) -> bool:
+    return all(np.hypot(*(x.end - y.end)) <= 1e-6 and (x.centre is None or np.hypot(*(x.centre - y.centre)) <= 1e-6)
+               for x, y in zip(a, b))
+
+
+def _ordered(solutions: list[list[FkElement]]) -> list[list[FkElement]]:
+    """FSELECT's numbering: by the lengths of the elements in turn, shortest first; equal lengths (to 1e-6) by the
+    direction they leave their start in, counter-clockwise from +X (our reading)."""
+    return sorted(solutions, key=lambda chain: [(round(e.length, 6), math.atan2(*e.direction(at_end=False)[::-1])
+                                                 % _TWO_PI) for e in chain])
+
+
+def _closed_form(w: _Waiting) -> bool:
+    """The element's data are of the kinds the closed-form solution of one element reads (not PDX/PDY/D)."""
+    return not {"PDX", "PDY", "D"} & set(w.data.values)
+
+
+def _single(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, fk: FreeContour,
+            tol: float) -> list[list[FkElement]]:
+    """The solutions of one element its own data fix, in closed form, ordered for FSELECT."""
+    found = (_line_solutions if w.kw in ("FL", "FLT") else _arc_solutions)(w, start, tangent, fk, tol)
+    return _ordered([[e] for e in found])
+
+
+def _open_what(w: _Waiting) -> tuple[str, str]:
+    """What of the element its data leave open, and the data that would fix it."""
+    theta, size, sweep = _layout(w)
+    if w.kw in ("FL", "FLT"):
+        if not theta:
+            return "its length", "LEN, or a coordinate of its end point (X, Y, PR, PA)"
+        if not size:
+            return "its direction", "AN, IAN, PAR, P1X/P1Y, or a coordinate of its end point (X, Y, PR, PA)"
+        return "its end point", _UNDETERMINED_LINE
+    if not theta and not size:
+        return "where it ends on its circle", "CCA, LEN, or a coordinate of its end point (X, Y, PR, PA)"
+    return "its circle or its end", _UNDETERMINED_ARC

@@ -133,6 +133,9 @@ class FkReference:
         if "LEN" in v:
             res.append(math.hypot(*(e - s)) - abs(v["LEN"]))
         res += [_cross(d, e - s) for d, _ in self._line_directions(el, s, t)]
+        if "D" in v:  # the auxiliary point PDX PDY at the distance D from the line (its extension)
+            p = np.array([v["PDX"], v["PDY"]])
+            res.append(_cross(e - s, p - s) ** 2 - (v["D"] * math.hypot(*(e - s))) ** 2)
         return res
 
     def _line_directions(self, el: _Element, s, t) -> list[tuple[np.ndarray, bool]]:
@@ -172,6 +175,8 @@ class FkReference:
         for p in ("P1", "P2", "P3"):
             if p + "X" in v:
                 res.append(math.hypot(*(np.array([v[p + "X"], v[p + "Y"]]) - c)) - r)
+        if "D" in v:  # the auxiliary point PDX PDY at the distance D from the circle
+            res.append((math.hypot(*(np.array([v["PDX"], v["PDY"]]) - c)) - r) ** 2 - v["D"] ** 2)
         return res
 
     def _polar_angle(self, el: _Element, s, cc: str) -> float:
@@ -298,10 +303,10 @@ class FkReference:
             k += 1
         return k
 
-    def fixed_prefix(self, chain: list[_Element], s, t, tol: float) -> list[tuple]:
-        """The records of the leading elements of ``chain`` (not its last) whose unknowns the joined data fix:
-        at a solution, the unknowns the null space of the Jacobian leaves untouched; the same in every solution
-        found, else an error."""
+    def fixed_prefix(self, chain: list[_Element], s, t, tol: float) -> list[list[tuple]]:
+        """The solutions (records per element, ordered for FSELECT) of the leading elements of ``chain`` (not its
+        last) whose unknowns the joined data fix: at a solution, the unknowns the null space of the Jacobian leaves
+        untouched; one list per distinct way they are fixed ([] when none is fixed)."""
         _, fun, n = self._system(chain, s, t)
         if self._fixed_count(chain, fun, np.tile(s, n // 2) + np.random.default_rng(5).normal(scale=10.0, size=n)) == 0:
             return []  # nothing fixed near a generic point: no need to solve (an open chain can be slow to)
@@ -310,13 +315,12 @@ class FkReference:
             return []
         k = self._fixed_count(chain, fun, np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None
                                                           else r[1] for r in roots[0]]))
-        if k == 0:
-            return []
-        heads = {tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
-                                                for r in recs[:k]]), 6)) for recs in roots}
-        if len(heads) != 1:
-            raise ReferenceError(f"open FK elements from line {chain[0].line}: {len(heads)} ways to join")
-        return roots[0][:k]
+        heads: dict[tuple, list[tuple]] = {}
+        for recs in roots:
+            key = tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
+                                                 for r in recs[:k]]), 6))
+            heads.setdefault(key, recs[:k])
+        return self.order_chains(list(heads.values())) if k else []
 
     @staticmethod
     def length(rec) -> float:
@@ -327,43 +331,53 @@ class FkReference:
         sweep = ((a1 - a0) if ccw else (a0 - a1)) % 360.0
         return math.hypot(*(s - c)) * math.radians(sweep if sweep > 1e-9 else 360.0)
 
-    def order(self, solutions: list[tuple]) -> list[tuple]:
-        """Shortest first; equal lengths by the direction they leave the start in, counter-clockwise from +X."""
-        return sorted(solutions, key=lambda rec: (round(self.length(rec), 6),
-                                                  _angle(self._direction(rec, at_end=False)) % 360.0))
+    def order_chains(self, solutions: list[list[tuple]]) -> list[list[tuple]]:
+        """By the elements in turn: shortest first; equal lengths by the direction they leave the start in,
+        counter-clockwise from +X."""
+        return sorted(solutions, key=lambda recs: [(round(self.length(rec), 6),
+                                                    _angle(self._direction(rec, at_end=False)) % 360.0)
+                                                   for rec in recs])
 
     def element(self, kw: str, words: dict, refs: dict, line: int, number, s, t, tol: float) -> list:
         """An FL/FLT/FC/FCT block: the (line, number, record) elements to emit now."""
         closing = words.get("CLSD") == "-" or (words.get("CLSD") == "" and self.closed is not None)
         el = _Element(kw, words, refs, line, number, closing)
-        out, chain = [], [el]
+        chain = [el]
         if self.waiting is not None:
             before, s, t, sols = self.waiting
             if sols is not None:
                 raise ReferenceError("an FK element with several solutions and no FSELECT")
             chain = before + [el]
             self.waiting = None
-        if len(chain) > 1:  # open elements before: those the data now fix, then the rest as before
-            for e, rec in zip(chain, self.fixed_prefix(chain, s, t, tol)):
-                out.append(self._done(e, rec))
-            if out:
-                chain = chain[len(out):]
-                s, t = out[-1][1][1], self._direction(out[-1][1])
-        if len(chain) > 1 or not self.determined(chain, s, t):
-            self.waiting = (chain, s, t, None)
-            return out
-        sols = self.order([r[0] for r in self.solve([el], s, t, tol)])
-        if not sols:
-            raise ReferenceError(f"FK element of line {line}: no solution")
-        if len(sols) > 1:
-            self.waiting = ([el], s, t, sols)
-            return out
-        return out + [self._done(el, sols[0])]
+        return self._advance(chain, s, t, tol)
+
+    def _advance(self, chain: list[_Element], s, t, tol: float) -> list:
+        """Emit the leading elements of the open ``chain`` the data fix; several solutions wait for FSELECT (the
+        rest of the chain after them), an undetermined rest waits for the next FK element."""
+        out = []
+        while chain:
+            sols = self.fixed_prefix(chain, s, t, tol) if len(chain) > 1 else []
+            if not sols and len(chain) == 1 and self.determined(chain, s, t):
+                sols = self.order_chains(self.solve(chain, s, t, tol))
+                if not sols:
+                    raise ReferenceError(f"FK element of line {chain[0].line}: no solution")
+            if not sols:
+                self.waiting = (chain, s, t, None)
+                return out
+            if len(sols) > 1:
+                self.waiting = (chain, s, t, sols)
+                return out
+            out += [self._done(e, rec) for e, rec in zip(chain, sols[0])]
+            chain = chain[len(sols[0]):]
+            s, t = out[-1][1][1], self._direction(out[-1][1])
+        return out
 
     def select(self, n: int) -> list:
-        chain, s, t, sols = self.waiting
+        chain, _, _, sols = self.waiting
         self.waiting = None
-        return [self._done(chain[0], sols[n - 1])]
+        recs = sols[n - 1]
+        out = [self._done(e, rec) for e, rec in zip(chain, recs)]
+        return out + self._advance(chain[len(recs):], recs[-1][1], self._direction(recs[-1]), 1e-6)
 
     def _done(self, el: _Element, rec) -> tuple:
         if el.number is not None:

@@ -177,27 +177,34 @@ def test_radius_compensation_and_feed():
 
 
 @pytest.mark.parametrize(("body", "message"), [
-    ("2 FL AN+30\n3 L X+5", "FL: its length is not determined"),
-    ("2 FL AN+30", "FL: its length is not determined"),
-    ("2 FC CCX+10 CCY+0 DR-\n3 L X+5", "FC: where it ends on its circle is not determined"),
+    ("2 FL AN+30\n3 L X+5", "FL: its length is not determined (the TNC's 'not yet resolved' element)"),
+    ("2 FL AN+30", "expected LEN, or a coordinate of its end point"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 L X+5", "FC: its circle or its end is not determined"),
     ("2 FL X+10 Y+0\n3 FSELECT 2", "FSELECT without an FK element of several solutions"),
     ("2 FC X+10 Y+0 R10 DR+\n3 FL X+0", "FC has 2 solutions and no FSELECT picks one"),
+    ("2 FC X+10 Y+10 DR+", "FC: its circle or its end is not determined"),
     ("2 FC X+10 Y+0 R10 DR+\n3 FSELECT 3", "FSELECT 3: the FK element of line 3 has 2 solutions"),
-    ("2 FC X+10 Y+10 DR+", "FC: the circle is not determined"),
-    ("2 FL X+10", "FL: the end point is not determined"),
+    ("2 FL X+10", "FL: its end point is not determined"),
+    ("2 FL LEN 10", "FL: its direction is not determined"),
     ("2 FL PR+10 PA+0", "PR+10 without an FK pole"),
     ("2 FL IX+5 RX 7", "RX 7: block 7 is not an FK element run before"),
     ("2 FL X+10 Y+0 AN+90", "FL: no element fits its data"),
-    ("2 FL AN+10 PDX+5 PDY+5 D2", "auxiliary point at a distance (PDX/PDY/D) is not supported"),
+    ("2 FL AN+10 PDX+5 D2", "D2: an auxiliary point at a distance needs PDX, PDY and D"),
+    ("2 FL LEN 10 PDX+0 PDY+3 D5", "FL: no element fits its data"),  # no line through (0, 0) is 5 from (0, 3)
     ("2 FL CLSD-", "CLSD- without a CLSD+"),
     ("2 FC CCX+10 CCY+0 X+20 Y+0", "FC without a direction of rotation"),
-    ("2 FL AN+0\n3 FL X+30 Y+10", "the corner between them is not determined"),
-    ("2 FL AN+0\n3 FL IX+10 Y+5 AN+45", "the corner between them is not determined"),  # IX: from an unknown start
-    ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "where they meet is not determined"),
-    ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "where they meet is not determined"),
-    ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "of radius and sense only: where they end is not determined"),
-    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 L X+5", "without data: where they end is not determined"),
-    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 FCT DR+ R5 CCX+10 CCY+0", "the tangent between them is not determined"),
+    # not enough data: the first open element named, with the blocks after it that did not fix it
+    ("2 FL AN+0\n3 FL X+30 Y+10", "FL: its length is not determined, not even with the FK blocks of lines 4-4"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FLT X+30 Y+20", "not even with the FK blocks of lines 4-5 after it"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 L X+5", "FL: its length is not determined, not even with the FK blocks"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 L X+5", "FC: its circle or its end is not determined, not even with"),
+    # contradictory data: the block whose data made the open elements determined, and where they began
+    ("2 FL AN+0\n3 FL X+30 Y-10 AN+45", "FL: no element fits the data of the open FK elements from line 3 on"),
+    # IX from the open line's unknown end and AN leave where it ends open (and contradict Y); an FL (not FLT) after
+    # the arc leaves its sweep open
+    ("2 FL AN+0\n3 FL IX+10 Y+5 AN+45", "FL: its length is not determined, not even with the FK blocks"),
+    ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "not even with the FK blocks of lines 4-5 after it"),
+    ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 FCT DR+ R5 CCX+10 CCY+0", "FCT: no element fits the data of the open FK"),
     ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
     ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
     ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
