@@ -863,30 +863,37 @@ def _jacobian(f, z: np.ndarray) -> np.ndarray:
     return np.array(cols).T if cols else np.zeros((len(f(z)), 0))
 
 
-def _fixed_prefix(fk: FreeContour, stretch: list[_Waiting]) -> int:
-    """How many leading elements of ``stretch`` its data fix: the most for which the residuals that do not depend
-    on the unknowns after them have full rank in theirs (at a generic point; 0: none yet)."""
-    cols = _unknown_columns(stretch)
+def _determined(fk: FreeContour, stretch: list[_Waiting]) -> np.ndarray:
+    """Which unknowns of ``stretch`` its data fix: those no direction of the null space of the residuals' Jacobian
+    (at a generic point) moves."""
     z = _generic(stretch, _scale(fk, stretch), np.random.default_rng(11))
     jac = _jacobian(lambda x: _walk(fk, stretch, x)[1], z)
-    if not np.all(np.isfinite(jac)):
-        return 0
-    size = max(1.0, float(np.abs(jac).max(initial=0.0)))
-    for count in range(len(stretch), 0, -1):
-        mine, later = cols[count - 1][1], cols[-1][1]
-        rows = np.all(np.abs(jac[:, mine:later]) <= 1e-7 * size, axis=1)
-        block = jac[rows][:, :mine]
-        if mine == 0 or (block.size and np.linalg.matrix_rank(block, tol=1e-6 * size) == mine):
-            return count
-    return 0
+    if not len(z):
+        return np.zeros(0, bool)
+    if not jac.size or not np.all(np.isfinite(jac)):
+        return np.zeros(len(z), bool)
+    _, sv, vt = np.linalg.svd(jac)
+    rank = int(np.sum(sv > 1e-7 * max(1.0, float(sv.max(initial=0.0)))))
+    return np.all(np.abs(vt[rank:]) < 1e-6, axis=0)
 
 
-def _starts(stretch: list[_Waiting], count: int, scale: float) -> list[np.ndarray]:
-    """Starting points for Newton's method in the unknowns of the first ``count`` elements: each angle around the
-    circle, each size small and large (either sign where DR is not given), each sweep around the circle; at most
-    256 of their combinations (a seeded choice)."""
+def _fixed_prefix(fk: FreeContour, stretch: list[_Waiting]) -> int:
+    """How many leading elements of ``stretch`` its data fix (0: none yet)."""
+    fixed = _determined(fk, stretch)
+    count = 0
+    for start, end in _unknown_columns(stretch):
+        if not fixed[start:end].all():
+            break
+        count += 1
+    return count
+
+
+def _starts(stretch: list[_Waiting], fixed: np.ndarray, base: np.ndarray, scale: float) -> list[np.ndarray]:
+    """Starting points for Newton's method: each fixed angle around the circle, each fixed size small and large
+    (either sign where DR is not given), each fixed sweep around the circle, the unknowns the data leave free at
+    ``base``; at most 256 of their combinations (a seeded choice)."""
     axes: list[list[float]] = []
-    for w in stretch[:count]:
+    for w in stretch:
         theta, size, sweep = _layout(w)
         if theta:
             axes.append([math.pi / 8 + i * math.pi / 4 for i in range(8)])
@@ -896,6 +903,7 @@ def _starts(stretch: list[_Waiting], count: int, scale: float) -> list[np.ndarra
             axes.append([s * f * scale for s in signs for f in (0.4, 1.5)])
         if sweep:
             axes.append([0.7, 2.0, 3.3, 4.6, 5.9])
+    axes = [values if fixed[i] else [base[i]] for i, values in enumerate(axes)]
     grid = [np.array(p, float) for p in itertools.product(*axes)]
     if len(grid) > 256:
         pick = np.random.default_rng(5).choice(len(grid), 256, replace=False)
@@ -926,24 +934,17 @@ def _newton(f, z: np.ndarray, scale: float) -> np.ndarray | None:
 
 
 def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
-    """The solutions of the first ``count`` elements of the open stretch (the data fixing them: the residuals not
-    depending on the unknowns after them), ordered for FSELECT."""
+    """The solutions of the first ``count`` elements of the open stretch, which its data fix: Newton's method on
+    all its residuals and unknowns from starts spread over the fixed ones (a solution moves the free ones only as
+    far as the residuals need), ordered for FSELECT."""
     stretch, scale = fk.stretch, _scale(fk, fk.stretch)
-    mine = _unknown_columns(stretch)[count - 1][1]
     base = _generic(stretch, scale, np.random.default_rng(11))
-    jac = _jacobian(lambda x: _walk(fk, stretch, x)[1], base)
-    size = max(1.0, float(np.abs(jac).max(initial=0.0)))
-    rows = np.all(np.abs(jac[:, mine:]) <= 1e-7 * size, axis=1)
-
-    def residuals(x: np.ndarray) -> np.ndarray:
-        return _walk(fk, stretch, np.concatenate([x, base[mine:]]))[1][rows]
-
     found: list[list[FkElement]] = []
-    for start in _starts(stretch, count, scale):
-        x = _newton(residuals, start, scale)
-        if x is None:
+    for start in _starts(stretch, _determined(fk, stretch), base, scale):
+        z = _newton(lambda x: _walk(fk, stretch, x)[1], start, scale)
+        if z is None:
             continue
-        walked = _walk(fk, stretch, np.concatenate([_normalised(stretch[:count], x), base[mine:]]))[0][:count]
+        walked = _walk(fk, stretch, _normalised(stretch, z))[0][:count]
         if not all(_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)):
             continue
         chain = [c.element for c in walked]
