@@ -135,7 +135,7 @@ class FkReference:
         res += [_cross(d, e - s) for d, _ in self._line_directions(el, s, t)]
         if "D" in v:  # the auxiliary point PDX PDY at the distance D from the line (its extension)
             p = np.array([v["PDX"], v["PDY"]])
-            res.append(_cross(e - s, p - s) ** 2 - (v["D"] * math.hypot(*(e - s))) ** 2)
+            res.append((_cross(e - s, p - s) / math.hypot(*(e - s))) ** 2 - v["D"] ** 2)
         return res
 
     def _line_directions(self, el: _Element, s, t) -> list[tuple[np.ndarray, bool]]:
@@ -252,9 +252,11 @@ class FkReference:
 
         return walk, fun, n
 
-    def solve(self, chain: list[_Element], s0, t0, tol: float) -> list[list[tuple]]:
-        """The solutions of the elements ``chain`` (joined), each a list of (start, end, centre, ccw) per element."""
+    def solve(self, chain: list[_Element], s0, t0, tol: float, *, first: int = 0, head: int = 0) -> list[list[tuple]]:
+        """The solutions of the elements ``chain`` (joined), each a list of (start, end, centre, ccw) per element;
+        ``first``: only that many; ``head``: those differing in the first ``head`` elements (the rest left open)."""
         walk, fun, n = self._system(chain, s0, t0)
+        cut = sum(el.n for el in chain[:head]) if head else n
         size = 1.0 + max([abs(x) for el in chain for x in el.v.values() if isinstance(x, float)] + [*np.abs(s0)])
         rng = np.random.default_rng(7)
         roots: list[np.ndarray] = []
@@ -268,9 +270,11 @@ class FkReference:
             if np.max(np.abs(sol.fun)) > 1e-8 * size:
                 continue
             if all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(sol.x)) and \
-                    not any(np.max(np.abs(sol.x - r)) < 1e-6 * size for r in roots):
+                    not any(np.max(np.abs(sol.x[:cut] - r[:cut])) < 1e-6 * size for r in roots):
                 roots.append(sol.x)
                 last_new = i
+                if len(roots) == first:
+                    break
         out = []
         for z in roots:
             recs = []
@@ -279,11 +283,17 @@ class FkReference:
             out.append(recs)
         return out
 
-    def determined(self, chain: list[_Element], s, t) -> bool:
-        """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences at a
-        seeded random point) has full rank (two data naming the same direction, as FLT with AN, count once)."""
-        _, fun, n = self._system(chain, s, t if t is not None else np.array([1.0, 0.0]))
-        jac = _jacobian(fun, np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n))
+    def determined(self, chain: list[_Element], s, t, tol: float) -> bool:
+        """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences) has full
+        rank at a solution, or at a seeded random point when there is none (two data naming the same direction, as
+        FLT with AN, count once; a point at a distance D from a line of known direction fixes nothing of it, which
+        only a solution shows)."""
+        t = t if t is not None else np.array([1.0, 0.0])
+        _, fun, n = self._system(chain, s, t)
+        one = self.solve(chain, s, t, tol, first=1)
+        z = np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None else r[1] for r in one[0]]) if one \
+            else np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
+        jac = _jacobian(fun, z)
         return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= n
 
     @staticmethod
@@ -308,19 +318,19 @@ class FkReference:
         last) whose unknowns the joined data fix: at a solution, the unknowns the null space of the Jacobian leaves
         untouched; one list per distinct way they are fixed ([] when none is fixed)."""
         _, fun, n = self._system(chain, s, t)
-        if self._fixed_count(chain, fun, np.tile(s, n // 2) + np.random.default_rng(5).normal(scale=10.0, size=n)) == 0:
-            return []  # nothing fixed near a generic point: no need to solve (an open chain can be slow to)
-        roots = self.solve(chain, s, t, tol)
-        if not roots:
+        one = self.solve(chain, s, t, tol, first=1)
+        if not one:
             return []
         k = self._fixed_count(chain, fun, np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None
-                                                          else r[1] for r in roots[0]]))
+                                                          else r[1] for r in one[0]]))
+        if k == 0:
+            return []
         heads: dict[tuple, list[tuple]] = {}
-        for recs in roots:
+        for recs in self.solve(chain, s, t, tol, head=k):
             key = tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
                                                  for r in recs[:k]]), 6))
             heads.setdefault(key, recs[:k])
-        return self.order_chains(list(heads.values())) if k else []
+        return self.order_chains(list(heads.values()))
 
     @staticmethod
     def length(rec) -> float:
@@ -357,7 +367,7 @@ class FkReference:
         out = []
         while chain:
             sols = self.fixed_prefix(chain, s, t, tol) if len(chain) > 1 else []
-            if not sols and len(chain) == 1 and self.determined(chain, s, t):
+            if not sols and len(chain) == 1 and self.determined(chain, s, t, tol):
                 sols = self.order_chains(self.solve(chain, s, t, tol))
                 if not sols:
                     raise ReferenceError(f"FK element of line {chain[0].line}: no solution")

@@ -176,6 +176,93 @@ def test_radius_compensation_and_feed():
     assert match.mismatch is None, match.mismatch
 
 
+def test_open_line_ended_by_a_coordinate_and_the_next_line():
+    # FL X+10 leaves the line's direction and length open (its end somewhere on X 10); the next line through (20, 10)
+    # at 45 degrees meets X 10 at (10, 0), so both are fixed together
+    prog = run("2 FL X+10\n3 FL X+20 Y+10 AN+45")
+    assert ends(prog) == [[10, 0], [20, 10]]
+
+
+@pytest.mark.parametrize(("choice", "angle"), [(1, 60), (2, 120), (3, 240), (4, 300)])
+def test_auxiliary_point_at_a_distance_from_a_line(choice, angle):
+    # a line of LEN 10 from (0, 0) whose extension passes 5 from the point (0, 10): |u x (0, 10)| = 10 |cos a| = 5,
+    # a = 60, 120, 240 or 300 degrees; of equal lengths they are numbered by direction
+    prog = run(f"2 FL LEN 10 PDX+0 PDY+10 D5\n3 FSELECT {choice}")
+    assert ends(prog) == [np.round(10 * np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))]),
+                                   6).tolist()]
+
+
+@pytest.mark.parametrize("choice", [1, 2])
+def test_auxiliary_point_at_a_distance_from_an_arc(choice):
+    # a counter-clockwise R10 arc through CCA 90 from (0, 0) whose circle passes 5 from (0, 20): its centre
+    # C = 10 (-sin a, cos a) for the entry direction a, |P - C|^2 = 500 - 400 cos a is 15^2 (5^2 has no angle), so
+    # cos a = 0.6875; the two arcs are of equal length, numbered by entry direction (+a first); the end is C plus
+    # (S - C) turned 90 degrees
+    a = math.acos(0.6875) * (1 if choice == 1 else -1)
+    c = 10 * np.array([-math.sin(a), math.cos(a)])
+    end = c + np.array([c[1], -c[0]])  # -C turned +90 degrees: (x, y) -> (-y, x) of (-cx, -cy)
+    prog = run(f"2 FC DR+ R10 CCA+90 PDX+0 PDY+20 D5\n3 FSELECT {choice}")
+    assert ends(prog) == [np.round(end, 6).tolist()] and centre(prog.blocks[1]) == np.round(c, 6).tolist()
+
+
+def test_arc_fixed_by_the_auxiliary_point_of_the_next_line():
+    # the manual's form (FC DR- R10 P1X.. P1Y.. then FLT AN.. PDX.. PDY.. D..): the clockwise R10 arc from (0, 0)
+    # through P1 (10, -10) has its centre at (10, 0) or (0, -10) (10 from both points); the FLT leaves it along +X
+    # (AN+0), at its top C + (0, 10), 5 from (30, 15) only for C = (10, 0): the arc ends at (10, 10), the line 20
+    # on at (30, 10)
+    prog = run("2 FC DR- R10 P1X+10 P1Y-10\n3 FLT AN+0 PDX+30 PDY+15 D5 LEN 20")
+    assert ends(prog) == [[10, 10], [30, 10]] and centre(prog.blocks[1]) == [10, 0]
+
+
+@pytest.mark.parametrize("choice", [1, 2])
+def test_chain_of_tangential_arcs_fixed_together(choice):
+    # an arc about (0, 0) (R10, DR+, from (10, 0)), a tangent arc of R10 DR- only, and a tangent arc DR+ R10 about
+    # (30, 0) to (40, 0): arcs of opposite senses touch from outside, so the middle centre is 20 from both known
+    # ones, (15, +-5 sqrt 7), and each touching point the midpoint of two centres. The first arc reaches the upper
+    # touching point after 41.4 degrees, the lower after 318.6: FSELECT 1 is the upper chain
+    sign = 1 if choice == 1 else -1
+    prog = run(f"2 L X+10 Y+0\n3 FC DR+ R10 CCX+0 CCY+0\n4 FCT DR- R10\n5 FCT DR+ R10 CCX+30 CCY+0 X+40 Y+0\n"
+               f"6 FSELECT {choice}")
+    h = 2.5 * math.sqrt(7) * sign
+    assert ends(prog)[1:] == [[7.5, round(h, 6)], [22.5, round(h, 6)], [40, 0]]
+    assert [centre(b) for b in prog.blocks[2:]] == [[0, 0], [15, round(2 * h, 6)], [30, 0]]
+
+
+def test_manual_fk_example_with_auxiliary_points():
+    # the TNC 370 user's manual's "Example 2 for exercise in FK free contour programming" (section 5.6, p. 5-49):
+    # a lever of a circle R30 about FPOL (30, 30) and a circle R20 55 from it at 60 degrees (CCPR/CCPA), joined by
+    # the two lines at AN+60 / AN-120 passing 10 from (30, 30) (PDX PDY D). Its FSELECT numbers are the TNC's (not
+    # documented); here the ones that draw the lever in our numbering. With u along 60 degrees and n its left normal,
+    # the lines are (30, 30) +- 10 n + s u: the left one meets the big circle at s = sqrt(30^2 - 10^2) and the small
+    # one (about c2) at s = -sqrt(20^2 - 10^2) from c2 + 10 n; the right one leaves the small circle at c2 - 10 n +
+    # sqrt(300) u and meets the big circle at (30, 30) - 10 n + sqrt(800) u; the last arc closes at (0, 30)
+    prog = run("2 L X+0 Y+30\n3 FPOL X+30 Y+30\n4 FC DR- R30 CCX+30 CCY+30\n5 FL AN+60 PDX+30 PDY+30 D10\n"
+               "6 FSELECT 1\n7 FC DR- R20 CCPR+55 CCPA+60\n8 FSELECT 1\n9 FL AN-120 PDX+30 PDY+30 D10\n"
+               "10 FSELECT 2\n11 FC X+0 Y+30 DR- CCX+30 CCY+30\n12 FSELECT 1")
+    c1, u = np.array([30.0, 30.0]), np.array([0.5, math.sqrt(3) / 2])
+    n, c2 = np.array([-u[1], u[0]]), c1 + 55 * u
+    points = [c1 + 10 * n + math.sqrt(800) * u, c2 + 10 * n - math.sqrt(300) * u, c2 - 10 * n + math.sqrt(300) * u,
+              c1 - 10 * n + math.sqrt(800) * u, [0, 30]]
+    assert ends(prog)[1:] == [np.round(p, 6).tolist() for p in points]
+    assert [centre(b) for b in prog.blocks[2::2]] == [[30, 30], np.round(c2, 6).tolist(), [30, 30]]
+
+
+def test_manual_fk_example_of_lines():
+    # the TNC 370 user's manual's "Example 1 for exercise in FK free contour programming" (section 5.6, p. 5-48), its
+    # FSELECT numbers the manual's: LEN 64.5 through P1 (15, 35) from (0, 0), up (FSELECT 1); then PR 67 about FPOL
+    # (50, 20) at AN+21 (the line's parameter t from |E - FPOL| = 67, the root ahead); IX+15; LEN 40 parallel to the
+    # first line, back down (FSELECT 2); to (75, 20); CLSD- back to (0, 0)
+    prog = run("2 FPOL X+50 Y+20\n3 FL LEN 64.5 CLSD+ P1X+15 P1Y+35\n4 FSELECT 1\n5 FL PR+67 AN+21\n"
+               "6 FL IX+15 IY+0\n7 FL LEN 40 PAR 3\n8 FSELECT 2\n9 FL X+75 Y+20\n10 FL CLSD-")
+    u1 = np.array([15.0, 35.0]) / math.hypot(15, 35)
+    e1, d = 64.5 * u1, np.array([math.cos(math.radians(21)), math.sin(math.radians(21))])
+    q = e1 - [50, 20]
+    t = -q @ d + math.sqrt((q @ d) ** 2 - q @ q + 67 ** 2)
+    e2 = e1 + t * d
+    e3 = e2 + [15, 0]
+    assert ends(prog) == [np.round(p, 6).tolist() for p in (e1, e2, e3, e3 - 40 * u1, [75, 20], [0, 0])]
+
+
 @pytest.mark.parametrize(("body", "message"), [
     ("2 FL AN+30\n3 L X+5", "FL: its length is not determined (the TNC's 'not yet resolved' element)"),
     ("2 FL AN+30", "expected LEN, or a coordinate of its end point"),
