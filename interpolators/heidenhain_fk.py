@@ -644,6 +644,10 @@ def _arc_ends(w: _Waiting, start: np.ndarray, c: np.ndarray, r: float, ccw: bool
 # have full rank in its own unknowns (at a generic point).
 
 _TWO_PI = 2 * math.pi
+#: The data naming an arc's end point or sweep (without them a stretch's arc is no full circle).
+_END_KEYS = frozenset({"X", "Y", "IX", "IY", "PR", "PA", "IPR", "IPA", "CCA"})
+#: Starts converging to solutions found before after which no other is looked for.
+_ENOUGH = 32
 
 
 @dataclasses.dataclass(frozen=True)
@@ -815,6 +819,8 @@ def _admissible(fk: FreeContour, w: _Waiting, walked: _Walked, tol: float) -> bo
     for key, point in (("PA", e.end), ("CCPA", e.centre)):
         if key in v and float((point - fk.pole) @ _unit(v[key])) < -tol:
             return False
+    if e.centre is not None and walked.sweep > _TWO_PI - 1e-9 and not (_END_KEYS & set(v) or w.closing):
+        return False  # a full circle only where the data name its end (its start), as the closed form reads it
     return e.centre is None or walked.sweep > 1e-9
 
 
@@ -891,7 +897,7 @@ def _fixed_prefix(fk: FreeContour, stretch: list[_Waiting]) -> int:
 def _starts(stretch: list[_Waiting], fixed: np.ndarray, base: np.ndarray, scale: float) -> list[np.ndarray]:
     """Starting points for Newton's method: each fixed angle around the circle, each fixed size small and large
     (either sign where DR is not given), each fixed sweep around the circle, the unknowns the data leave free at
-    ``base``; at most 256 of their combinations (a seeded choice)."""
+    ``base``; at most 256 of their combinations, in a seeded shuffled order."""
     axes: list[list[float]] = []
     for w in stretch:
         theta, size, sweep = _layout(w)
@@ -905,10 +911,8 @@ def _starts(stretch: list[_Waiting], fixed: np.ndarray, base: np.ndarray, scale:
             axes.append([0.7, 2.0, 3.3, 4.6, 5.9])
     axes = [values if fixed[i] else [base[i]] for i, values in enumerate(axes)]
     grid = [np.array(p, float) for p in itertools.product(*axes)]
-    if len(grid) > 256:
-        pick = np.random.default_rng(5).choice(len(grid), 256, replace=False)
-        grid = [grid[i] for i in sorted(pick)]
-    return grid
+    order = np.random.default_rng(5).permutation(len(grid))[:256]
+    return [grid[i] for i in order]
 
 
 def _newton(f, z: np.ndarray, scale: float) -> np.ndarray | None:
@@ -936,20 +940,26 @@ def _newton(f, z: np.ndarray, scale: float) -> np.ndarray | None:
 def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
     """The solutions of the first ``count`` elements of the open stretch, which its data fix: Newton's method on
     all its residuals and unknowns from starts spread over the fixed ones (a solution moves the free ones only as
-    far as the residuals need), ordered for FSELECT."""
+    far as the residuals need), until :data:`_ENOUGH` converged starts in a row find no new one; ordered for
+    FSELECT."""
     stretch, scale = fk.stretch, _scale(fk, fk.stretch)
     base = _generic(stretch, scale, np.random.default_rng(11))
     found: list[list[FkElement]] = []
+    since = 0  # converged starts since the last new solution
     for start in _starts(stretch, _determined(fk, stretch), base, scale):
+        if found and since >= _ENOUGH:
+            break
         z = _newton(lambda x: _walk(fk, stretch, x)[1], start, scale)
         if z is None:
             continue
+        since += 1
         walked = _walk(fk, stretch, _normalised(stretch, z))[0][:count]
         if not all(_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)):
             continue
         chain = [c.element for c in walked]
         if not any(_same_chain(chain, other) for other in found):
             found.append(chain)
+            since = 0
     return _ordered(found)
 
 

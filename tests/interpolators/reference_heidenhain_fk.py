@@ -224,6 +224,9 @@ class FkReference:
             return False
         if ("CCPA" in v or "ICCPA" in v) and np.dot(c - self.pole, _unit(self._polar_angle(el, s, "CC"))) < -tol:
             return False
+        if math.hypot(*(e - s)) <= tol and not (el.closing or {"X", "Y", "IX", "IY", "PR", "PA", "IPR", "IPA", "CCA"}
+                                                 & set(v)):
+            return False  # a full circle only where the data name its end
         entry = self._entry(el, t)
         return entry is None or not el.dr or (_cross(entry, c - s) > 0) == (el.dr == "+")
 
