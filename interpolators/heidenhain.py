@@ -45,9 +45,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     CC naming the tool axis (CC Z.. X..) in that plane
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     FPOL X+20 Y+30, FL IX+10 Y+20 RR F100, FLT AN+45, FCT DR- R15 CCA+90 RX 13, FC CCX+20 CCY+15 DR+
-    R15, FSELECT 2                  FK free contour programming in XY (heidenhain_fk): each element
-                                    resolved from its data, its start and tangent, or the next FK
-                                    element; several solutions need FSELECT
+    R15, FSELECT 2                  FK free contour programming in the working plane (heidenhain_fk):
+                                    each element resolved from its data, its start and tangent, or
+                                    the data of the FK elements after it; several solutions need FSELECT
     APPR LT X.. Y.. LEN10 RR F300, DEP LT LEN10 R0
                                     straight approach / departure tangential to the contour; LN
                                     perpendicular, CT on an arc (CCA, R), LCT line and arc (R);
@@ -2809,16 +2809,14 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
 
 def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
     """``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT`` (:mod:`interpolators.heidenhain_fk`): the
-    elements resolved run as ``L`` and ``CC`` + ``C`` blocks in program coordinates of the XY plane."""
-    if m.plane != 2:
-        where.fail(f"{kw} with tool axis {'XYZ'[m.plane]}: FK free contour programming is read in the XY plane only",
-                   column=blk.column, text=kw, expected="TOOL CALL .. Z before FK blocks")
-    start = m.to_program(m.pos)[:2] / m.scale
+    elements resolved run as ``L`` and ``CC`` + ``C`` blocks in program coordinates of the working plane."""
+    axes = "".join("XYZ"[i] for i in PLANE_AXES[m.plane])  # the working plane's first and second axis
+    start = m.to_program(m.pos)[list(PLANE_AXES[m.plane])] / m.scale
     if kw == "FSELECT":
         value, _ = read_value(blk.code, pos, where, m.params, what=kw, column0=blk.column)
         done = m.fk.select(value, where, blk.column, blk.code)
     else:
-        data = read_fk_words(blk.code, pos, where, m.params, column0=blk.column)
+        data = read_fk_words(blk.code, pos, where, m.params, column0=blk.column, axes=axes)
         if kw == "FPOL":
             m.fk.set_pole(data, start, where)
             return False
@@ -2829,14 +2827,13 @@ def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
                             arc_end_tolerance(m.inch) / m.scale)
     ended = False
     for element, data, ew, number in done:
-        words = [Word("X", float(element.end[0]), 1, "X"), Word("Y", float(element.end[1]), 1, "Y")]
+        words = [Word(a, float(v), 1, a) for a, v in zip(axes, element.end)]
         words += [data.words[k] for k in ("RCOMP", "F") if k in data.words] + list(data.ms)
         source = SourceBlock(line=ew.line, number=number, code=ew.text, column=1, text=ew.text)
         if element.centre is None:
             ended = _motion("L", words, m, ew, source) or ended
             continue
-        _pole({"X": Word("CCX", float(element.centre[0]), 1, "CCX"),
-               "Y": Word("CCY", float(element.centre[1]), 1, "CCY")}, m, ew, None)
+        _pole({a: Word("CC" + a, float(v), 1, "CC" + a) for a, v in zip(axes, element.centre)}, m, ew, None)
         words.append(Word("DR", "+" if element.ccw else "-", 1, "DR"))
         ended = _motion("C", words, m, ew, source) or ended
     return ended
@@ -2852,7 +2849,7 @@ def _fk_tangent(m: _Machine) -> np.ndarray | None:
         return None
     step = np.zeros(3)
     step[list(PLANE_AXES[m.plane])] = t
-    d = (m.to_program(m.pos + step) - m.to_program(m.pos))[:2]
+    d = (m.to_program(m.pos + step) - m.to_program(m.pos))[list(PLANE_AXES[m.plane])]
     return d / np.hypot(*d)
 
 

@@ -75,8 +75,8 @@ FK_KEYWORDS = ("FPOL", "FSELECT", "FCT", "FLT", "FC", "FL")
 
 _FK_WORD_RE = re.compile(
     r"(?P<clsd>CLSD\s*[+-]?)(?![\d.A-Z])|(?P<dr>DR\s*[+-])(?![\d.Q(])|(?P<rcomp>R[LR0])(?![\d.A-Z])"
-    r"|(?P<ref>R(?:CC)?(?:X|Y|PR|PA)|RAN|PAR)(?=\s*\d)|(?P<m>M)(?=\s*\d)"
-    r"|(?P<value>I?CC(?:X|Y|PR|PA)|CCA|P[123][XY]|PD[XY]|LEN|DP|D|I?AN|I?P[RA]|I?[XY]|R|F)(?=\s*[+-]?\s*[\d.Q(])",
+    r"|(?P<ref>R(?:CC)?(?:[XYZ]|PR|PA)|RAN|PAR)(?=\s*\d)|(?P<m>M)(?=\s*\d)"
+    r"|(?P<value>I?CC(?:[XYZ]|PR|PA)|CCA|P[123][XYZ]|PD[XYZ]|LEN|DP|D|I?AN|I?P[RA]|I?[XYZ]|R|F)(?=\s*[+-]?\s*[\d.Q(])",
     re.I,
 )
 _FK_EXPECTED = ("FK data: X/Y (IX/IY), PR/PA (IPR/IPA), LEN, AN/IAN, DR+/DR-, R, CCX/CCY, CCPR/CCPA, CCA, "
@@ -106,8 +106,11 @@ class FkWords:
     clsd: str | None  # "+", "-", "" (bare CLSD) or None
 
 
-def read_fk_words(code: str, pos: int, where: Where, params: QParameters, *, column0: int) -> FkWords:
-    """The words of an FK block from ``pos`` on; each at most once."""
+def read_fk_words(code: str, pos: int, where: Where, params: QParameters, *, column0: int,
+                  axes: str = "XY") -> FkWords:
+    """The words of an FK block from ``pos`` on; each at most once. ``axes``: the letters of the working plane's
+    first and second axis (XY, ZX, YZ); the words naming them (X, IX, CCX, P1X, PDX, RX, ...) are kept under X
+    for the first and Y for the second, a word naming the tool axis is an error."""
     values: dict[str, float] = {}
     refs: dict[str, int] = {}
     words: dict[str, Word] = {}
@@ -124,7 +127,13 @@ def read_fk_words(code: str, pos: int, where: Where, params: QParameters, *, col
             tok = token_at(code, pos)
             where.fail(f"unknown word {tok!r} in an FK block", column=col, text=tok, expected=_FK_EXPECTED)
         kind, tok, end = m.lastgroup, m.group(0), m.end()
-        key = tok.upper().replace(" ", "")
+        key = name = tok.upper().replace(" ", "")
+        if kind in ("ref", "value") and key[-1] in "XYZ":
+            if key[-1] not in axes:
+                where.fail(f"word {token_at(code, pos)!r} names the tool axis, not an axis of the working plane",
+                           column=col, text=token_at(code, pos),
+                           expected=f"FK data in the working plane {axes} of the TOOL CALL axis")
+            key = key[:-1] + "XY"[axes.index(key[-1])]
         if kind == "clsd":
             key, clsd = "CLSD", key[4:]
             word = Word("CLSD", clsd, col, tok)
@@ -138,7 +147,7 @@ def read_fk_words(code: str, pos: int, where: Where, params: QParameters, *, col
             ms.append(Word("M", int(mm.group(1)[:9]), col, mm.group(0)))
             key, word = "", None
         else:
-            value, end = read_value(code, end, where, params, what=key, column0=column0)
+            value, end = read_value(code, end, where, params, what=name, column0=column0)
             word = Word(key, value, col, code[pos:end].strip())
             if kind == "ref":
                 if not (value >= 1 and value == int(value)):

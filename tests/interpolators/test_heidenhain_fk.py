@@ -292,15 +292,33 @@ def test_manual_fk_example_of_lines():
     ("2 FL AN+0\n3 FL IX+10 Y+5 AN+45", "FL: its length is not determined, not even with the FK blocks"),
     ("2 FL AN+0\n3 FCT DR+ R5\n4 FL X+30 Y+20 AN+90", "not even with the FK blocks of lines 4-5 after it"),
     ("2 FC CCX+10 CCY+0 DR-\n3 FLT\n4 FCT DR+ R5 CCX+10 CCY+0", "FCT: no element fits the data of the open FK"),
-    ("2 FL X+5 Z+3", "unknown word 'Z+3' in an FK block"),
+    ("2 FL X+5 Z+3", "word 'Z+3' names the tool axis, not an axis of the working plane"),
+    ("2 FL X+5 W+3", "unknown word 'W+3' in an FK block"),
     ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
     ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
-    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "FK free contour programming is read in the XY plane only"),
+    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "word 'X+5' names the tool axis, not an axis of the working plane; expected FK data in the working plane YZ"),
 ])
 def test_errors_name_the_element_and_the_data_needed(body, message):
     with pytest.raises(GCodeError) as exc:
         run(body, reference=False)
     assert message in str(exc.value)
+
+
+@pytest.mark.parametrize(("axis", "first", "second"), [("Y", 2, 0), ("X", 1, 2)])
+def test_fk_in_the_working_plane_of_another_tool_axis(axis, first, second):
+    # FK data name the axes of the working plane of the TOOL CALL axis (our reading): ZX with tool axis Y (first
+    # axis Z, as X in XY), YZ with tool axis X (first Y). The contour of test_end_points_and_tangency written in
+    # those letters resolves to its points (20, 0), (30, 0), the arc about (30, 10) to (40, 10), (40, 20) in (first,
+    # second); the tool axis stays at 0. Reader only: the reference runs tool axis Z; in XY it checks the same data.
+    a, b = "XYZ"[first], "XYZ"[second]
+    text = (f"0 BEGIN PGM T MM\n1 TOOL CALL 1 {axis} S1000\n2 L X+0 Y+0 Z+0 R0 F500\n3 FL {a}+20 {b}+0\n"
+            f"4 FLT {a}+30\n5 FCT {a}+40 {b}+10\n6 FLT LEN 10\n7 END PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
+    assert [np.round(blk.target[[first, second]], 6).tolist() for blk in prog.blocks[1:]] == [
+        [20, 0], [30, 0], [40, 10], [40, 20]]
+    assert all(blk.target["XYZ".index(axis)] == 0 for blk in prog.blocks)
+    arc = prog.blocks[3]
+    assert arc.kind == "arc" and np.round(arc.segment.center[[first, second]], 6).tolist() == [30, 10]
 
 
 def test_flt_needs_a_preceding_element():
