@@ -296,7 +296,8 @@ def test_manual_fk_example_of_lines():
     ("2 FL X+5 W+3", "unknown word 'W+3' in an FK block"),
     ("2 FPOL X+1 PA+3", "word 'PA+3' not allowed in FPOL"),
     ("2 FL X+5 Y+5 DR+", "word 'DR+' not allowed in FL"),
-    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "word 'X+5' names the tool axis, not an axis of the working plane; expected FK data in the working plane YZ"),
+    ("TOOL CALL 1 X\n2 FL X+5 Y+5", "word 'X+5' names the tool axis"),
+    ("TOOL CALL 1 X\n2 FL Y+5 Z+5 X+1", "expected FK data in the working plane YZ of the TOOL CALL axis"),
 ])
 def test_errors_name_the_element_and_the_data_needed(body, message):
     with pytest.raises(GCodeError) as exc:
