@@ -5,49 +5,68 @@ Followed: iTNC 530 user's manual (conversational, 340 49x-03 / 60642x-03), secti
 Contours - FK Free Contour Programming" (pp. 255-272 of 340 49x-03: "Free programming of straight
 lines", "Free programming of circular arcs", "Input possibilities": end point coordinates, direction
 and length of contour elements, circle centre CC / radius / direction of rotation in the FC/FCT block,
-closed contours, auxiliary points, relative data); TNC 425/415 B/407 user's manual section 5.6,
-"FK functions" table (p. 5-44); TNC 370 user's manual section 5.6 (pp. 5-39 .. 5-47). The example
-blocks of these sections (``FPOL X+20 Y+30``, ``FL IX+10 Y+20 RR F100``, ``FCT PR+15 IPA+30 DR+ R15``,
-``FC CCX+20 CCY+15 DR+ R15``, ``FC DR+ R15 CCPR+35 CCPA+40``, ``FC DR- R15 CLSD+ CCX+20 CCY+35``,
-``FCT IX+20 DR- R20 CCA+90 RX 13``, ``FL IPR+35 PA+0 RPR 13``, ``FL LEN 12.5 PAR 17 DP 12.5`` /
-``FSELECT 2``, ``FL IAN+220 RAN 18``, ``FC DR- R10 P1X+42.929 P1Y+60.071``) show how they are written.
+closed contours, "Auxiliary points" on and near a contour (p. 248 of the easymanua.ls copy: ``13 FC DR-
+R10 P1X+42.929 P1Y+60.071`` / ``14 FLT AN-70 PDX+50 PDY+53 D10``), relative data); TNC 425/415 B/407
+user's manual section 5.6, "FK functions" table (p. 5-44: "Cartesian coordinates of an auxiliary point at
+distance D from a contour element"); TNC 370 user's manual section 5.6 (pp. 5-39 .. 5-49: the dialogs "DIST
+AUXIL POINT PD X-COORDINATE ?" and "DISTANCE FROM AUXILIARY POINT ?", p. 5-42, and the complete "Example 1"
+and "Example 2 for exercise in FK free contour programming", pp. 5-48 and 5-49, which run here end to end:
+tests/interpolators/test_heidenhain_fk.py). The example blocks of these sections (``FPOL X+20 Y+30``, ``FL
+IX+10 Y+20 RR F100``, ``FCT PR+15 IPA+30 DR+ R15``, ``FC CCX+20 CCY+15 DR+ R15``, ``FC DR+ R15 CCPR+35
+CCPA+40``, ``FC DR- R15 CLSD+ CCX+20 CCY+35``, ``FCT IX+20 DR- R20 CCA+90 RX 13``, ``FL IPR+35 PA+0 RPR 13``,
+``FL LEN 12.5 PAR 17 DP 12.5`` / ``FSELECT 2``, ``FL IAN+220 RAN 18``, ``FL AN+60 PDX+30 PDY+30 D+10`` /
+``FSELECT 3``) show how they are written. The iTNC 530 manual's own "FK programming 3" example (a chain of
+tangential arcs) was not found in the stored pages; its form (arcs ``FCT DR.. R..`` open until an arc of known
+centre fixes the chain, FSELECT after it) is tested with a hand-made chain.
 
-Data of an element (all in the working plane XY, program coordinates, the program's unit):
+Data of an element (program coordinates of the working plane, the program's unit). The manuals allow FK
+"only in the working plane"; the words name its axes: X and Y with tool axis Z, and, our reading (no manual
+page writes FK in another plane), Z and X (ZX, ``TOOL CALL .. Y``) or Y and Z (YZ, ``TOOL CALL .. X``), the
+plane's first axis taking the place of X (``FL Z+20 X+0``, ``CCZ``, ``P1Z``, ``RZ 12``; angles from the first
+axis toward the second, DR+ turning that way, as for ``CC``/``C`` in that plane); a word naming the tool axis
+is an error. Below, X and Y stand for the plane's first and second axis:
 
 * end point: ``X``/``Y`` (``IX``/``IY`` from the element's start), polar ``PR``/``PA`` about the FK
   pole ``FPOL`` (``IPR``/``IPA`` from the start's polar radius / angle);
 * straight line: ``LEN`` its length, ``AN`` its direction angle, ``IAN`` the angle to the preceding
   element's direction; ``FLT``: tangent to the preceding element; ``PAR n``: parallel to the line of
-  block n (either way; ``DP``, the distance between them, is checked); ``P1X P1Y`` (``P2X P2Y``): points
-  on the line or its extension;
+  block n (either way; ``DP``, the distance between them); ``P1X P1Y`` (``P2X P2Y``): points on the line or
+  its extension; ``PDX PDY D``: an auxiliary point at the distance D from the line's extension (either side);
 * arc: ``DR+``/``DR-`` (counter-clockwise / clockwise), ``R`` radius, centre ``CCX``/``CCY`` (``ICCX``/
   ``ICCY`` from the start) or ``CCPR``/``CCPA`` (``ICCPR``/``ICCPA``) about FPOL, ``CCA`` its centre angle,
   ``LEN`` its chord, ``AN`` the direction of its entry tangent (at the start); ``FCT``: tangent to the
-  preceding element; ``P1X P1Y`` .. ``P3X P3Y``: points on the circle;
+  preceding element; ``P1X P1Y`` .. ``P3X P3Y``: points on the circle; ``PDX PDY D``: an auxiliary point at
+  the distance D from the circle (inside or outside);
 * relative data: ``RX n``, ``RY n``, ``RPR n``, ``RPA n`` (the ``I`` value from the end point of block n
   instead of this element's start), ``RAN n`` (``IAN`` from the direction of block n), ``RCCX n``,
   ``RCCY n``, ``RCCPR n``, ``RCCPA n`` (the centre's ``I`` values from block n's end point); block n is an
-  FK element run before;
+  FK element run before or one of the open stretch;
 * ``CLSD+`` marks the start of a closed contour, ``CLSD-`` its end (the end point is the start of the
   ``CLSD+`` element; a bare ``CLSD`` is the one of the two not yet given).
 
-Each element is resolved from its own data, the end point and direction of the preceding element
-(its start, and for FLT/FCT its tangent) and, when its end point is left open (a line of known
-direction without length, as ``FL AN+45`` or ``FLT``; an arc of known circle without end, as ``FCT DR-
-R15``), from the next FK element: a line ending where the next line of known direction and end
-point, or the next tangent arc of known radius (``FCT .. R.. DR..``, with its end point or ``CCA`` and
-one coordinate), meets it; an arc ending where the next ``FLT`` to a known end point, or the next ``FLT``
-of known direction tangent to it, leaves it; an open line, an ``FCT`` of radius and sense only and an
-``FLT`` of known end point and direction together (the FK form of a rounded corner); an open arc, an
-``FLT`` without data and an ``FCT`` of known centre, radius and sense together (the tangent between two
-circles, as the manuals' FK programming examples run their contours). Where the data
-allow several solutions the TNC shows them and the programmer picks one, saved as ``FSELECT n`` after
-the element: here the solutions are numbered from the shortest element on, of equal lengths (to 1e-6
-program units) by the direction they leave the start in, counter-clockwise from +X (the manuals show
-the choice in the graphic but define no order: our reading), and ``FSELECT n`` picks the n-th.
-Anything else that leaves the element open (the TNC's "not yet resolved" elements waiting for more
-data further on, auxiliary points at a distance ``PDX PDY D``) is an error naming the element and the
-data that would determine it.
+An element whose own data, its start and the preceding element's direction fix it is resolved in closed form
+(lines and circles intersected). An element they leave open (the TNC's "not yet resolved" element: a line of
+known direction without length, ``FL AN+45``; an arc without its end, ``FCT DR- R15``; ``FL X+10``; ...) opens
+a stretch, and each FK element after it joins the stretch until the data fix its leading elements: the manuals
+say the TNC resolves the contour as soon as the data entered suffice (and shows the solutions when there are
+several). In the stretch each element is written by its start direction, its size (a line's length, an arc's
+signed radius) and an arc's sweep, walked from the stretch's start; data naming one of these set it (FLT/FCT:
+the preceding end direction; AN, IAN, LEN, R with DR, CCA), every other datum is a residual of the walked
+geometry. The unknowns the data fix are those no direction of the null space of the residuals' Jacobian (at a
+generic point) moves; the leading elements whose unknowns are all fixed are solved by Newton's method (to 1e-9
+program units) from starts spread over those unknowns and emitted, the rest waits. So an open line is ended by
+the next line of known direction and end point, a rounding FCT of radius and sense only with the FLT after it,
+two circles joined by a bare FLT, a chain of tangential arcs by the arc of known centre at its end, an arc by
+the next line's auxiliary point at a distance. Where the data allow several solutions the TNC shows them and
+the programmer picks one, saved as ``FSELECT n`` after the block that made them determined: here the solutions
+(of the one element, or of the stretch's elements resolved together) are numbered by the lengths of their
+elements in turn, shortest first, equal lengths (to 1e-6 program units) by the direction they leave their start
+in, counter-clockwise from +X (the manuals show the choice in the graphic but define no order: our reading; the
+TNC 370 manual's Example 2 picks FSELECT 3, 2, 3, 2 of 4, 2, 3, 2 solutions found here, where this numbering
+needs 1, 1, 2, 1 for the lever its dimensions describe, so the TNC numbers them otherwise), and ``FSELECT n``
+picks the n-th. An arc of a stretch is no full circle unless its data name its end. A stretch still open at a block that is not FK (or at the program's end) is an
+error naming its first element, what of it is open and the data that would fix it; data that fix a stretch but
+fit no contour are an error naming the block that brought them and where the stretch began.
 
 The resolved element is a line ``L`` or an arc ``CC`` + ``C`` to the reader (the FK centre is then the
 pole: the manuals say a CC programmed before is no longer valid after an FK contour), so radius

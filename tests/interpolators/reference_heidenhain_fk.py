@@ -2,15 +2,21 @@
 
 Test code only, imports nothing of the readers. Written from the iTNC 530 user's manual, section 6.6
 "Path Contours - FK Free Contour Programming" (the data of FL/FLT/FC/FCT, FPOL, relative data ``RX n``
-etc., ``CLSD+``/``CLSD-``, ``PAR n``, ``FSELECT n``) as a different formulation from the reader's: every
-datum of an element is an equation in the element's unknowns (the end point E of a line; the centre C
-and end point E of an arc), solved numerically (``scipy.optimize.least_squares`` from many seeded
-starting points) instead of intersecting lines and circles in closed form. An element with fewer
+etc., ``CLSD+``/``CLSD-``, ``PAR n``, auxiliary points ``P1X..`` and ``PDX PDY D``, ``FSELECT n``) and the
+TNC 370 user's manual, section 5.6, as a different formulation from the reader's: every datum of an element
+is an equation in the element's Cartesian unknowns (the end point E of a line; the centre C and end point E
+of an arc), solved numerically (``scipy.optimize.least_squares`` from many seeded random starting points)
+instead of intersecting lines and circles in closed form (the reader's single elements) or walking start
+directions, sizes and sweeps with Newton's method (the reader's open stretches). An element with fewer
 equations than unknowns (a line without its length, an arc without its end) is solved together with
-the next FK element, the unknowns of both in one system. Conventions shared with the reader (its
-docstring): the solutions are numbered by length, equal lengths by the direction they leave the start
-in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its
-start; ``LEN`` of an arc its chord; ``CCA`` its centre angle.
+the FK elements after it, the unknowns of all in one system; the leading elements whose unknowns the null
+space of the Jacobian at a solution leaves untouched are fixed, with one solution per distinct way (several:
+FSELECT picks among them, the rest of the chain waits). Conventions shared with the reader (its docstring):
+the solutions are numbered by the lengths of their elements in turn, equal lengths by the direction they leave
+the start in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its
+start; ``LEN`` of an arc its chord; ``CCA`` its centre angle; ``D`` the distance from the line's extension or
+from the circle; an arc of a joined chain is no full circle unless its data name its end. The working plane is
+XY (the reference runs tool axis Z only).
 """
 
 from __future__ import annotations
