@@ -668,8 +668,9 @@ def _arc_ends(w: _Waiting, start: np.ndarray, c: np.ndarray, r: float, ccw: bool
 # an arc turns about C = S + rho n(theta) (n the left normal) through k sweep (k the sign of rho). Data that name one
 # of these (FLT/FCT: theta the preceding end direction; AN, IAN; LEN of a line; R with DR; CCA) set it; the
 # unknowns left are solved by Newton's method from the data that remain, each an equation (a residual) of the
-# walked geometry. A leading run of elements is resolved once the equations not touching the unknowns after it
-# have full rank in its own unknowns (at a generic point).
+# walked geometry. A leading run of elements is resolved once no direction of the null space of the residuals'
+# Jacobian (at a generic point) moves its unknowns: then Newton's method from starts spread over the fixed
+# unknowns finds its solutions.
 
 _TWO_PI = 2 * math.pi
 #: The data naming an arc's end point or sweep (without them a stretch's arc is no full circle).
