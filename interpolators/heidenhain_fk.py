@@ -395,9 +395,9 @@ class FreeContour:
             word = data.words[sorted(distance)[0]]
             where.fail(f"{word.text}: an auxiliary point at a distance needs PDX, PDY and D", column=word.column,
                        text=word.text, expected="PDX.. PDY.. D.. (the point and its distance from the element)")
-        new = _Waiting(kw, data, where, number, closing=data.clsd == "-" or (data.clsd == "" and
-                                                                             self.closed_start is not None))
-        if new.closing and self.closed_start is None and not any(w.data.clsd is not None for w in self.stretch):
+        opened = self.closed_start is not None or any(w.data.clsd is not None and not w.closing for w in self.stretch)
+        new = _Waiting(kw, data, where, number, closing=data.clsd == "-" or (data.clsd == "" and opened))
+        if new.closing and not opened:
             where.fail("CLSD- without a CLSD+ before it", column=data.words["CLSD"].column,
                        text=data.words["CLSD"].text, expected="CLSD+ on the first element of the closed contour")
         self.tol = tol

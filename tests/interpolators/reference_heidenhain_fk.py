@@ -64,6 +64,7 @@ class _Element:
         self.kw, self.v, self.refs, self.line, self.number = kw, words, refs, line, number
         self.dr = words.get("DR")
         self.closing = closing
+        self.closed_at = None  # where a closing element ends, set by the walk of its chain
         self.arc = kw in ("FC", "FCT")
         self.n = 4 if self.arc else 2  # unknowns: (C, E) of an arc, E of a line
 
@@ -111,7 +112,7 @@ class FkReference:
         e = z[-2:]
         res = self._point_equations(el, s, e, "")
         if el.closing:
-            res += [e[0] - self.closed[0], e[1] - self.closed[1]]
+            res += [e[0] - el.closed_at[0], e[1] - el.closed_at[1]]
         res += self._arc_equations(el, s, t, z) if el.arc else self._line_equations(el, s, t, e)
         return res
 
@@ -243,11 +244,15 @@ class FkReference:
         n = sum(el.n for el in chain)
 
         def walk(z):
-            s, t, out, k = s0, t0, [], 0
+            s, t, out, k, closed = s0, t0, [], 0, self.closed
             for el in chain:
                 zz = z[k:k + el.n]
                 k += el.n
                 out.append((el, s, t, zz))
+                if el.closing:
+                    el.closed_at = closed  # the start of the CLSD+ element, resolved or in the chain
+                elif "CLSD" in el.v:
+                    closed = s
                 if el.arc:
                     rec = (s, zz[2:], zz[:2], self._ccw(el, s, t, zz[:2]))
                 else:
@@ -359,7 +364,9 @@ class FkReference:
 
     def element(self, kw: str, words: dict, refs: dict, line: int, number, s, t, tol: float) -> list:
         """An FL/FLT/FC/FCT block: the (line, number, record) elements to emit now."""
-        closing = words.get("CLSD") == "-" or (words.get("CLSD") == "" and self.closed is not None)
+        opened = self.closed is not None or any("CLSD" in e.v and not e.closing for e in
+                                                (self.waiting[0] if self.waiting is not None else []))
+        closing = words.get("CLSD") == "-" or (words.get("CLSD") == "" and opened)
         el = _Element(kw, words, refs, line, number, closing)
         chain = [el]
         if self.waiting is not None:

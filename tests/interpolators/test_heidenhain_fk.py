@@ -95,6 +95,13 @@ def test_closed_contour():
     assert ends(prog) == [[20, 0], [20, 10], [0, 10], [0, 0]]
 
 
+def test_closed_contour_starting_with_an_open_element():
+    # the first element (bare CLSD: the start of the closed contour, (0, 0)) has no length until the next line
+    # through (20, 10) along +Y meets it at (20, 0); the second bare CLSD ends the contour back at (0, 0)
+    prog = run("2 FL AN+0 CLSD\n3 FL X+20 Y+10 AN+90\n4 FL X+0 Y+10\n5 FL CLSD")
+    assert ends(prog) == [[20, 0], [20, 10], [0, 10], [0, 0]]
+
+
 def test_open_line_resolved_by_the_next_element():
     # FL AN+0 has no length; the next line through (30, 10) at 45 degrees meets Y 0 at X 20
     prog = run("2 FL AN+0\n3 FL X+30 Y+10 AN+45")
