@@ -49,24 +49,25 @@ and circles intersected). An element they leave open (the TNC's "not yet resolve
 direction without length, ``FL AN+45``; an arc without its end, ``FCT DR- R15``; ``FL X+10``; ...) opens a stretch,
 and each FK element after it joins the stretch until the data fix its leading elements: as the manuals' FK graphics
 draw an element once the data entered determine it and show its solutions when there are several (iTNC 530 manual,
-6.6 "Graphics during FK programming"). In the stretch each element is written by its start direction, its size (a
-line's length, an arc's signed radius) and an arc's sweep, walked from the stretch's start; data naming one of
-these set it (FLT/FCT: the preceding end direction; AN, IAN, LEN, R with DR, CCA), every other datum is a residual
-of the walked geometry. The unknowns the data fix are those no direction of the null space of the residuals'
-Jacobian (at a generic point) moves; the leading elements whose unknowns are all fixed are solved by Newton's
-method (to 1e-9 program units) from starts spread over those unknowns and emitted, the rest waits. So an open line
-is ended by the next line of known direction and end point, a rounding FCT of radius and sense only with the FLT
-after it, two circles joined by a bare FLT, a chain of tangential arcs by the arc of known centre at its end, an
-arc by the next line's auxiliary point at a distance. Where the data allow several solutions the TNC shows them and
-the programmer picks one, saved as ``FSELECT n`` after the block that made them determined: here the solutions (of
-the one element, or of the stretch's elements resolved together) are numbered by the lengths of their elements in
-turn, shortest first, equal lengths (to 1e-6 program units) by the direction they leave their start in, counter-
-clockwise from +X (the manuals show the choice in the graphic but define no order: our reading; the TNC 370
-manual's Example 2 picks FSELECT 3, 2, 3, 2 of 4, 2, 3, 2 solutions found here, where this numbering needs 1, 1, 2,
-1 for the lever its dimensions describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. An
-arc of a stretch is no full circle unless its data name its end. A stretch still open at a block that is not FK (or
-at the program's end) is an error naming its first element, what of it is open and the data that would fix it; data
-that fix a stretch but fit no contour are an error naming the block that brought them and where the stretch began.
+section 6.6, on the FK graphics; the stored pages hold that section's example blocks, not its text on the graphics:
+our reading). In the stretch each element is written by its start direction, its size (a line's length, an arc's
+signed radius) and an arc's sweep, walked from the stretch's start; data naming one of these set it (FLT/FCT: the
+preceding end direction; AN, IAN, LEN, R with DR, CCA), every other datum is a residual of the walked geometry. The
+unknowns the data fix are those no direction of the null space of the residuals' Jacobian (at a generic point)
+moves; the leading elements whose unknowns are all fixed are solved by Newton's method (to 1e-9 program units) from
+starts spread over those unknowns and emitted, the rest waits. So an open line is ended by the next line of known
+direction and end point, a rounding FCT of radius and sense only with the FLT after it, two circles joined by a
+bare FLT, a chain of tangential arcs by the arc of known centre at its end, an arc by the next line's auxiliary
+point at a distance. Where the data allow several solutions the TNC shows them and the programmer picks one, saved
+as ``FSELECT n`` after the block that made them determined: here the solutions (of the one element, or of the
+stretch's elements resolved together) are numbered by the lengths of their elements in turn, shortest first, equal
+lengths (to 1e-6 program units) by the direction they leave their start in, counter- clockwise from +X (the manuals
+show the choice in the graphic but define no order: our reading; the TNC 370 manual's Example 2 picks FSELECT 3, 2,
+3, 2 of 4, 2, 3, 2 solutions found here, where this numbering needs 1, 1, 2, 1 for the lever its dimensions
+describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. An arc of a stretch is no full
+circle unless its data name its end. A stretch still open at a block that is not FK (or at the program's end) is an
+error naming its first element, what of it is open and the data that would fix it; data that fix a stretch but fit
+no contour are an error naming the block that brought them and where the stretch began.
 
 The resolved element is a line ``L`` or an arc ``CC`` + ``C`` to the reader (the FK centre is then the
 pole: the manuals say a CC programmed before is no longer valid after an FK contour), so radius
