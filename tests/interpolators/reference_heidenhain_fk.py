@@ -65,6 +65,7 @@ class _Element:
         self.dr = words.get("DR")
         self.closing = closing
         self.closed_at = None  # where a closing element ends, set by the walk of its chain
+        self.known: dict = {}  # the elements its relative data may name: resolved, or before it in its chain
         self.arc = kw in ("FC", "FCT")
         self.n = 4 if self.arc else 2  # unknowns: (C, E) of an arc, E of a line
 
@@ -105,7 +106,7 @@ class FkReference:
 
     # --- equations ----------------------------------------------------------------------------------
     def _ref_end(self, el: _Element, key: str, start):
-        return np.array(self.ends[el.refs[key]][1]) if key in el.refs else start
+        return np.array(el.known[el.refs[key]][1]) if key in el.refs else start
 
     def equations(self, el: _Element, s, t, z) -> list:
         """The residuals of ``el``'s data with unknowns ``z`` (E, or C then E), start ``s``, tangent ``t``."""
@@ -153,10 +154,10 @@ class FkReference:
         if "AN" in v:
             out.append((_unit(v["AN"]), True))
         if "IAN" in v:
-            base = t if "RAN" not in el.refs else self._direction(self.ends[el.refs["RAN"]])
+            base = t if "RAN" not in el.refs else self._direction(el.known[el.refs["RAN"]])
             out.append((_unit(_angle(base) + v["IAN"]), True))
         if "PAR" in el.refs:
-            out.append((self._direction(self.ends[el.refs["PAR"]]), False))
+            out.append((self._direction(el.known[el.refs["PAR"]]), False))
         for p in ("P1", "P2"):
             if p + "X" in v:
                 d = np.array([v[p + "X"], v[p + "Y"]]) - s
@@ -245,10 +246,12 @@ class FkReference:
 
         def walk(z):
             s, t, out, k, closed = s0, t0, [], 0, self.closed
+            known = dict(self.ends)
             for el in chain:
                 zz = z[k:k + el.n]
                 k += el.n
                 out.append((el, s, t, zz))
+                el.known = dict(known)
                 if el.closing:
                     el.closed_at = closed  # the start of the CLSD+ element, resolved or in the chain
                 elif "CLSD" in el.v:
@@ -257,6 +260,8 @@ class FkReference:
                     rec = (s, zz[2:], zz[:2], self._ccw(el, s, t, zz[:2]))
                 else:
                     rec = (s, zz, None, True)
+                if el.number is not None:
+                    known[el.number] = rec
                 s = zz[-2:]
                 t = self._direction(rec) if math.hypot(*(rec[1] - rec[0])) > 1e-12 or rec[2] is not None else t
             return out

@@ -95,6 +95,13 @@ def test_closed_contour():
     assert ends(prog) == [[20, 0], [20, 10], [0, 10], [0, 0]]
 
 
+def test_relative_data_naming_an_element_of_the_open_stretch():
+    # block 2 (along +X) stays open through 3 (10 up) and 4, whose X is 20 on from block 2's open end (RX 2), until
+    # the line down to (50, 0) fixes them all: block 2 ends at X 50 - 20 = 30
+    prog = run("2 FL AN+0\n3 FL LEN 10 AN+90\n4 FL IX+20 RX 2 Y+10\n5 FL X+50 Y+0 AN-90")
+    assert ends(prog) == [[30, 0], [30, 10], [50, 10], [50, 0]]
+
+
 def test_closed_contour_starting_with_an_open_element():
     # the first element (bare CLSD: the start of the closed contour, (0, 0)) has no length until the next line
     # through (20, 10) along +Y meets it at (20, 0); the second bare CLSD ends the contour back at (0, 0)
