@@ -336,7 +336,8 @@ class FreeContour:
         self.stretch: list[_Waiting] = []
         self.start: np.ndarray | None = None
         self.tangent: np.ndarray | None = None
-        self.choices: tuple[list[_Waiting], list[list[FkElement]]] | None = None
+        # elements resolved with several solutions, and the block whose data resolved them (FSELECT follows it)
+        self.choices: tuple[list[_Waiting], list[list[FkElement]], _Waiting] | None = None
         self.tol = 1e-6  # [program unit] the run's arc end tolerance, for the closed-form solutions
 
     @property
@@ -362,11 +363,10 @@ class FreeContour:
         if self.choices is None:
             where.fail("FSELECT without an FK element of several solutions before it", column=column, text=text,
                        expected="FSELECT n right after the FK element whose solutions it picks from")
-        elements, solutions = self.choices
-        last = elements[-1]
+        elements, solutions, _ = self.choices
         if not (choice == int(choice) and 1 <= choice <= len(solutions)):
-            where.fail(f"FSELECT {choice:g}: the FK element of line {last.where.line} has {len(solutions)} solutions",
-                       column=column, text=text, expected=f"FSELECT 1 .. {len(solutions)}")
+            where.fail(f"FSELECT {choice:g}: {_which(elements)} {len(solutions)} solutions", column=column, text=text,
+                       expected=f"FSELECT 1 .. {len(solutions)}")
         self.choices = None
         chain = solutions[int(choice) - 1]
         out = [self._done(w, e) for w, e in zip(elements, chain)]
@@ -412,10 +412,12 @@ class FreeContour:
     def unresolved(self) -> None:
         """A block other than the next FK element (or the program's end) while one waits: an error naming it."""
         if self.choices is not None:
-            elements, solutions = self.choices
+            elements, solutions, newest = self.choices
             w = elements[-1]
-            w.where.fail(f"{w.kw} has {len(solutions)} solutions and no FSELECT picks one", column=1,
-                         text=w.where.text, expected=f"FSELECT 1 .. {len(solutions)} after the {w.kw} block")
+            by = f" (fixed by the {newest.kw} of line {newest.where.line})" if newest is not w else ""
+            w.where.fail(f"{w.kw}: {_which(elements)} {len(solutions)} solutions{by} and no FSELECT picks one",
+                         column=1, text=w.where.text,
+                         expected=f"FSELECT 1 .. {len(solutions)} after the {newest.kw} block of line {newest.where.line}")
         if self.stretch:
             w, rest = self.stretch[0], self.stretch[1:]
             after = f", not even with the FK blocks of lines {rest[0].where.line}-{rest[-1].where.line} after it" \
@@ -450,7 +452,7 @@ class FreeContour:
             newest.where.fail(f"{newest.kw}: no element fits {what} (they contradict each other or the contour so "
                               "far)", column=1, text=newest.where.text, expected="FK data describing one element")
         if len(solutions) > 1:
-            self.choices = (elements, solutions)
+            self.choices = (elements, solutions, newest)
             return []
         return [self._done(w, e) for w, e in zip(elements, solutions[0])]
 
@@ -1030,6 +1032,13 @@ def _single(w: _Waiting, start: np.ndarray, tangent: np.ndarray | None, fk: Free
     """The solutions of one element its own data fix, in closed form, ordered for FSELECT."""
     found = (_line_solutions if w.kw in ("FL", "FLT") else _arc_solutions)(w, start, tangent, fk, tol)
     return _ordered([[e] for e in found])
+
+
+def _which(elements: list[_Waiting]) -> str:
+    """The elements resolved together, for a message: '... has' / '... have'."""
+    if len(elements) == 1:
+        return f"the FK element of line {elements[0].where.line} has"
+    return f"the FK elements of lines {elements[0].where.line}-{elements[-1].where.line} (resolved together) have"
 
 
 def _open_what(w: _Waiting) -> tuple[str, str]:
