@@ -417,7 +417,7 @@ class FreeContour:
             by = f" (fixed by the {newest.kw} of line {newest.where.line})" if newest is not w else ""
             w.where.fail(f"{w.kw}: {_which(elements)} {len(solutions)} solutions{by} and no FSELECT picks one",
                          column=1, text=w.where.text,
-                         expected=f"FSELECT 1 .. {len(solutions)} after the {newest.kw} block of line {newest.where.line}")
+                         expected=f"FSELECT 1 .. {len(solutions)} after the {newest.kw} of line {newest.where.line}")
         if self.stretch:
             w, rest = self.stretch[0], self.stretch[1:]
             after = f", not even with the FK blocks of lines {rest[0].where.line}-{rest[-1].where.line} after it" \
