@@ -68,69 +68,10 @@ def _project(px, py, pz, m, kind, start, end, direc, length, center, ep, eq, en,
     rho = math.hypot(a, b)
     theta = math.atan2(b, a)
     base = (sig * (theta - phi0[m])) % _TWO_PI
-    eps = 1e-12 * (1.0 + S)
-    best_d = np.inf
-    best_phi = 0.0
-    best_gap = np.inf
-    n_turns = int(S / _TWO_PI) + 2
     if h == 0.0:
-        # planar: every in-range turn of the in-plane angle is at the same distance; the hint
-        # (the command's arc length) picks the turn; no trigonometry until the foot is known
-        d_on = math.sqrt((rho - R) ** 2 + n * n)
-        for j in range(-1, n_turns + 1):
-            phi = base + _TWO_PI * j
-            if phi < -eps or phi > S + eps:
-                continue
-            phi = min(max(phi, 0.0), S)
-            gap = abs(phi * scale - hint_u)
-            if gap < best_gap:
-                best_d, best_phi, best_gap = d_on, phi, gap
-        if best_d == np.inf:  # outside the swept angle: the nearer end point
-            c0, s0 = math.cos(phi0[m]), math.sin(phi0[m])
-            c1, s1 = math.cos(phi0[m] + sw), math.sin(phi0[m] + sw)
-            d0 = math.sqrt((a - R * c0) ** 2 + (b - R * s0) ** 2 + n * n)
-            d1 = math.sqrt((a - R * c1) ** 2 + (b - R * s1) ** 2 + n * n)
-            best_phi = 0.0 if d0 <= d1 else S
+        phi = _planar_angle(a, b, R, phi0[m], sw, base, scale, hint_u)
     else:
-        # Newton starts: every turn where the in-plane angle matches, and the foot along the axis
-        # (n / k, for a steep helix whose nearest point the in-plane angle alone does not find, as
-        # when P's angle lies outside a sweep of less than a turn); then both end points
-        for j in range(-1, n_turns + 2):
-            if j <= n_turns:
-                phi = base + _TWO_PI * j
-                if phi < -eps or phi > S + eps:
-                    continue
-            else:
-                phi = n / k
-            phi = min(max(phi, 0.0), S)
-            # 1-D Newton on d^2(phi)/2 = -R rho cos(psi - theta) + (n - k phi)^2 / 2 (+ const)
-            for _ in range(30):
-                c = math.cos(phi0[m] + sig * phi - theta)
-                s = math.sin(phi0[m] + sig * phi - theta)
-                g = R * rho * sig * s - k * (n - k * phi)
-                gp = R * rho * c + k * k
-                if gp <= 0.0:
-                    break
-                step = g / gp
-                new = min(max(phi - step, 0.0), S)
-                if abs(new - phi) < 1e-15 * (1.0 + S):
-                    phi = new
-                    break
-                phi = new
-            psi = phi0[m] + sig * phi
-            qa, qb, qn = R * math.cos(psi), R * math.sin(psi), k * phi
-            d = math.sqrt((a - qa) ** 2 + (b - qb) ** 2 + (n - qn) ** 2)
-            gap = abs(phi * scale - hint_u)
-            if d < best_d - 1e-9 or (d <= best_d + 1e-9 and gap < best_gap):
-                best_d, best_phi, best_gap = d, phi, gap
-        for phi in (0.0, S):
-            psi = phi0[m] + sig * phi
-            qa, qb, qn = R * math.cos(psi), R * math.sin(psi), k * phi
-            d = math.sqrt((a - qa) ** 2 + (b - qb) ** 2 + (n - qn) ** 2)
-            gap = abs(phi * scale - hint_u)
-            if d < best_d - 1e-9 or (d <= best_d + 1e-9 and gap < best_gap):
-                best_d, best_phi, best_gap = d, phi, gap
-    phi = best_phi
+        phi = _helix_angle(a, b, n, R, rho, theta, phi0[m], sig, S, k, base, scale, hint_u)
     psi = phi0[m] + sig * phi
     cps, sps = math.cos(psi), math.sin(psi)
     qn = k * phi
@@ -149,6 +90,85 @@ def _project(px, py, pz, m, kind, start, end, direc, length, center, ep, eq, en,
     tz = w * (-sps * ep[m, 2] + cps * eq[m, 2]) + hz * en[m, 2]
     d = math.sqrt((px - fx) ** 2 + (py - fy) ** 2 + (pz - fz) ** 2)
     return d, phi * scale, fx, fy, fz, tx, ty, tz
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _planar_angle(a, b, R, phi0, sw, base, scale, hint_u):  # pragma: no cover - compiled
+    """Travel angle of the nearest point of a planar arc (P at in-plane angle ``base`` from the start).
+
+    Every in-range turn of the in-plane angle is at the same distance; the hint (the command's arc
+    length) picks the turn; no trigonometry until the foot is known. Outside the swept angle: the
+    nearer end point.
+    """
+    S = abs(sw)
+    eps = 1e-12 * (1.0 + S)
+    best_phi = -1.0
+    best_gap = np.inf
+    n_turns = int(S / _TWO_PI) + 2
+    for j in range(-1, n_turns + 1):
+        phi = base + _TWO_PI * j
+        if phi < -eps or phi > S + eps:
+            continue
+        phi = min(max(phi, 0.0), S)
+        gap = abs(phi * scale - hint_u)
+        if gap < best_gap:
+            best_phi, best_gap = phi, gap
+    if best_phi >= 0.0:
+        return best_phi
+    c0, s0 = math.cos(phi0), math.sin(phi0)
+    c1, s1 = math.cos(phi0 + sw), math.sin(phi0 + sw)
+    d0 = (a - R * c0) ** 2 + (b - R * s0) ** 2
+    d1 = (a - R * c1) ** 2 + (b - R * s1) ** 2
+    return 0.0 if d0 <= d1 else S
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _helix_newton(phi, n, R, rho, theta, phi0, sig, S, k):  # pragma: no cover - compiled
+    """1-D Newton on d^2(phi)/2 = -R rho cos(psi - theta) + (n - k phi)^2 / 2 (+ const), in [0, S]."""
+    for _ in range(30):
+        c = math.cos(phi0 + sig * phi - theta)
+        s = math.sin(phi0 + sig * phi - theta)
+        g = R * rho * sig * s - k * (n - k * phi)
+        gp = R * rho * c + k * k
+        if gp <= 0.0:
+            break
+        new = min(max(phi - g / gp, 0.0), S)
+        if abs(new - phi) < 1e-15 * (1.0 + S):
+            return new
+        phi = new
+    return phi
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _helix_angle(a, b, n, R, rho, theta, phi0, sig, S, k, base, scale, hint_u):  # pragma: no cover - compiled
+    """Travel angle of the nearest point of a helix rising ``k`` mm per radian.
+
+    Newton starts: every turn where the in-plane angle matches, and the foot along the axis (n / k,
+    for a steep helix whose nearest point the in-plane angle alone does not find, as when P's angle
+    lies outside a sweep of less than a turn); then both end points as they are.
+    """
+    eps = 1e-12 * (1.0 + S)
+    best_d = np.inf
+    best_phi = 0.0
+    best_gap = np.inf
+    n_turns = int(S / _TWO_PI) + 2
+    for j in range(-1, n_turns + 4):
+        if j <= n_turns:
+            phi = base + _TWO_PI * j
+            if phi < -eps or phi > S + eps:
+                continue
+            phi = _helix_newton(min(max(phi, 0.0), S), n, R, rho, theta, phi0, sig, S, k)
+        elif j == n_turns + 1:
+            phi = _helix_newton(min(max(n / k, 0.0), S), n, R, rho, theta, phi0, sig, S, k)
+        else:
+            phi = 0.0 if j == n_turns + 2 else S
+        psi = phi0 + sig * phi
+        qa, qb, qn = R * math.cos(psi), R * math.sin(psi), k * phi
+        d = math.sqrt((a - qa) ** 2 + (b - qb) ** 2 + (n - qn) ** 2)
+        gap = abs(phi * scale - hint_u)
+        if d < best_d - 1e-9 or (d <= best_d + 1e-9 and gap < best_gap):
+            best_d, best_phi, best_gap = d, phi, gap
+    return best_phi
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
