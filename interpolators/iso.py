@@ -711,6 +711,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                        text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
         if axis_words or polar:
+            if st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
+                notes.add(f"{_G[st.motion][1]} without R in the first block of the series: the R plane is the "
+                          "initial level (Fanuc/Haas reading; LinuxCNC refuses it)")
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
@@ -2249,7 +2252,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
-                            haas=st.context.dialect.name == "haas")
+                            haas=st.context.dialect.name == "haas",
+                            r_at_initial=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         _fail_words(where, name, exc, seen, mw)
     _framed_initial(st, to_program=False)

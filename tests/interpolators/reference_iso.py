@@ -1094,6 +1094,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     if m.cycle_clear is None:
         m.cycle_clear = cur[2]
     s = m.scale
+    if "r" not in m.sticky and m.ctx.dialect.name in ("fanuc", "haas"):
+        # no R in the first block: the R plane is the initial level (Haas NGC mill manual 2017, G81: "*R ...
+        # * indicates optional"; Fanuc "Canned cycle cancel (G80)": "R = 0 ... in incremental command")
+        m.sticky["r"] = 0.0 if m.incremental else m.cycle_clear / s
     # G91: R from the series' initial level, which LinuxCNC keeps from the series' first block
     # (interp_cycles.cc convert_cycle_xy: r = r_number + cycle_il)
     r = (m.cycle_clear + m.sticky["r"] * s) if m.incremental else m.sticky["r"] * s

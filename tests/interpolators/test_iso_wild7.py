@@ -1,0 +1,59 @@
+"""ISO programs of the seventh wild set (issue 18): what their own controls run, and how the others are refused."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
+
+
+def _in_dialect(name: str) -> MachineContext:
+    return dataclasses.replace(CTX, dialect=DIALECTS[name])
+
+
+def _z_path(prog) -> list[tuple[str, float]]:
+    return [(b.kind, round(float(b.target[2]), 6)) for b in prog.blocks if b.kind in ("rapid", "line")]
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas"])
+@pytest.mark.parametrize("retract", ["G98", "G99"])
+def test_a_cycle_without_r_drills_from_the_initial_level(name, retract):
+    # Haas student programs write "G43 H07 Z0.1" then "G81 G98 Z-0.45 F85.95" with no R: the Haas mill manual
+    # lists R among the optional words of G81 ("*R ... * indicates optional"), and Fanuc's G80 clears R to no
+    # distance from the initial level: the R plane is the initial level (Z5 here, G54 Z -20 -> machine -15)
+    text = f"G21 G90 G54 G0 X0 Y0 Z5.\n{retract} G81 X10. Y0 Z-3. F100.\nX20.\nG80\nM30\n"
+    prog = parse_program(text, context=_in_dialect(name))
+    hole = [("rapid", -15.0), ("line", -23.0), ("rapid", -15.0)]  # over at R = the initial level, drill, out
+    assert _z_path(prog)[1:] == hole * 2
+    assert [b.target[0] for b in prog.blocks if b.kind == "line"] == [110.0, 120.0]
+    assert any("without R in the first block of the series: the R plane is the initial level" in n
+               for n in prog.notes)
+
+
+def test_an_incremental_cycle_without_r_drills_from_the_initial_level():
+    # G91: R is an increment from the initial level (0 when left out), Z an increment from R
+    text = "G21 G90 G54 G0 X0 Y0 Z5.\nG91 G98 G81 X10. Z-8. F100.\nG90 G80\nM30\n"
+    prog = parse_program(text, context=_in_dialect("fanuc"))
+    assert _z_path(prog)[1:] == [("rapid", -15.0), ("line", -23.0), ("rapid", -15.0)]
+
+
+def test_an_r_once_given_stays_for_the_series():
+    # the R of the first block is sticky; a later block without R keeps it (and the initial level stays)
+    text = "G21 G90 G54 G0 X0 Y0 Z20.\nG99 G81 X10. Z-3. R2. F100.\nX20.\nM30\n"
+    prog = parse_program(text, context=_in_dialect("haas"))
+    hole = [("rapid", -18.0), ("line", -23.0), ("rapid", -18.0)]
+    assert _z_path(prog)[1:] == [("rapid", 0.0), *hole, *hole]  # over at the initial level, down to R2
+    assert not any("without R" in n for n in prog.notes)
+
+
+def test_linuxcnc_still_refuses_a_cycle_without_r():
+    # rs274 (interp_cycles.cc convert_cycle): "R clearance plane unspecified in cycle"
+    with pytest.raises(GCodeError, match=r":2:1: G81 drilling cycle: no R \(retract plane\) word in the first block "
+                                         r".*expected R<retract level>"):
+        parse_program("G21 G90 G54 G0 X0 Y0 Z5.\nG81 X10. Z-3. F100.\nM2\n", context=_in_dialect("linuxcnc"))
