@@ -57,3 +57,16 @@ def test_linuxcnc_still_refuses_a_cycle_without_r():
     with pytest.raises(GCodeError, match=r":2:1: G81 drilling cycle: no R \(retract plane\) word in the first block "
                                          r".*expected R<retract level>"):
         parse_program("G21 G90 G54 G0 X0 Y0 Z5.\nG81 X10. Z-3. F100.\nM2\n", context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("name", ["fanuc", "linuxcnc"])
+def test_an_okuma_osp_file_is_named(name):
+    # an editor's Okuma OSP5020M example starts "$OKUMA.SSB%" and calls "CALL OCHCK": the '$' line is the OSP
+    # file header (not a CNCSimulator Pro directive to skip), and the message names the control
+    text = "$DEMO.MIN%\n(OSP MILL)\nCALL OSUB1\nG0 G90 X0 Y0\nM02\n"
+    with pytest.raises(GCodeError, match=r":1:1: Okuma OSP program file header '\$DEMO\.MIN%': that control's "
+                                         r"native language is not ISO G-code"):
+        parse_program(text, context=_in_dialect(name))
+    # a CNCSimulator Pro directive is still skipped
+    prog = parse_program("$Millimeters\nG21 G90 G0 X1 Y2 Z3\nM30\n", context=_in_dialect(name))
+    assert prog.blocks[-1].target.tolist() == [101.0, 52.0, -17.0]  # G54 (100, 50, -20)
