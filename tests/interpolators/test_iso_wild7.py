@@ -70,3 +70,15 @@ def test_an_okuma_osp_file_is_named(name):
     # a CNCSimulator Pro directive is still skipped
     prog = parse_program("$Millimeters\nG21 G90 G0 X1 Y2 Z3\nM30\n", context=_in_dialect(name))
     assert prog.blocks[-1].target.tolist() == [101.0, 52.0, -17.0]  # G54 (100, 50, -20)
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas"])
+def test_a_feed_from_a_vacant_variable_is_named(name):
+    # a Fanuc warm-up program feeds "G90 G53 G01 Z0 F#650" with #650 set by another program of its machine: run
+    # alone, #650 is vacant, the F word is left out (Fanuc "Undefined variable") and no feed is set: the message
+    # says why the F written there does not count
+    with pytest.raises(GCodeError, match=r":2:\d+: G01 feed move without a feed: F#650 is vacant \(never set\), "
+                                         r"which leaves the F word out"):
+        parse_program("G21 G90\nG53 G01 Z0 F#650 (feed)\nM30\n", context=_in_dialect(name))
+    prog = parse_program("G21 G90\n#650=500\nG53 G01 Z0 F#650\nM30\n", context=_in_dialect(name))
+    assert prog.blocks[-1].feed == pytest.approx(500.0 / 60.0)
