@@ -8,6 +8,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -28,7 +29,7 @@ def test_a_cycle_without_r_drills_from_the_initial_level(name, retract):
     # lists R among the optional words of G81 ("*R ... * indicates optional"), and Fanuc's G80 clears R to no
     # distance from the initial level: the R plane is the initial level (Z5 here, G54 Z -20 -> machine -15)
     text = f"G21 G90 G54 G0 X0 Y0 Z5.\n{retract} G81 X10. Y0 Z-3. F100.\nX20.\nG80\nM30\n"
-    prog = parse_program(text, context=_in_dialect(name))
+    prog = checked_iso(text, _in_dialect(name))  # and the independent reference drills the same
     hole = [("rapid", -15.0), ("line", -23.0), ("rapid", -15.0)]  # over at R = the initial level, drill, out
     assert _z_path(prog)[1:] == hole * 2
     assert [b.target[0] for b in prog.blocks if b.kind == "line"] == [110.0, 120.0]
@@ -39,7 +40,7 @@ def test_a_cycle_without_r_drills_from_the_initial_level(name, retract):
 def test_an_incremental_cycle_without_r_drills_from_the_initial_level():
     # G91: R is an increment from the initial level (0 when left out), Z an increment from R
     text = "G21 G90 G54 G0 X0 Y0 Z5.\nG91 G98 G81 X10. Z-8. F100.\nG90 G80\nM30\n"
-    prog = parse_program(text, context=_in_dialect("fanuc"))
+    prog = checked_iso(text, _in_dialect("fanuc"))
     assert _z_path(prog)[1:] == [("rapid", -15.0), ("line", -23.0), ("rapid", -15.0)]
 
 
@@ -82,3 +83,13 @@ def test_a_feed_from_a_vacant_variable_is_named(name):
         parse_program("G21 G90\nG53 G01 Z0 F#650 (feed)\nM30\n", context=_in_dialect(name))
     prog = parse_program("G21 G90\n#650=500\nG53 G01 Z0 F#650\nM30\n", context=_in_dialect(name))
     assert prog.blocks[-1].feed == pytest.approx(500.0 / 60.0)
+
+
+def test_g28_goes_to_the_position_g28_1_stored():
+    # a controller test program (NIST rs274 style) stores the current position with G28.1, then "g28" rapids
+    # there (LinuxCNC g-code.adoc "G28, G28.1"); the reference models it too
+    text = ("G21 G90 G10 L2 P6 X25 Y25 Z-40\nG59\nG0 X2 Y4 Z8\nG28.1\nG0 X90 Y80 Z0\nG28\n"
+            "G0 X50 Y50 Z0\nG28 X75 Y75 Z-50\nM2\n")
+    prog = checked_iso(text, _in_dialect("linuxcnc"))
+    assert prog.blocks[5].target.tolist() == [27.0, 29.0, -32.0]  # the stored machine position
+    assert [b.target.tolist() for b in prog.blocks[-2:]] == [[100.0, 100.0, -90.0], [27.0, 29.0, -32.0]]
