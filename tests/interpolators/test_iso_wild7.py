@@ -93,3 +93,12 @@ def test_g28_goes_to_the_position_g28_1_stored():
     prog = checked_iso(text, _in_dialect("linuxcnc"))
     assert prog.blocks[5].target.tolist() == [27.0, 29.0, -32.0]  # the stored machine position
     assert [b.target.tolist() for b in prog.blocks[-2:]] == [[100.0, 100.0, -90.0], [27.0, 29.0, -32.0]]
+
+
+def test_a_letter_o_for_a_zero_is_hinted():
+    # a student program writes "GOO Z.500": the letter O where G00 was meant; a Haas stops on it too
+    with pytest.raises(GCodeError, match=r":2:1: malformed number for word G \(the letter O where the digit 0 was "
+                                         r"meant\?\) \(got 'GOO'\)"):
+        parse_program("G20 G90\nGOO Z.500\nM30\n", context=_in_dialect("haas"))
+    with pytest.raises(GCodeError, match=r"malformed number for word X \(got 'Xyz'\)"):  # no hint for other junk
+        parse_program("G20 G90\nG0 Xyz\nM30\n", context=_in_dialect("haas"))
