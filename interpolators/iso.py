@@ -1399,9 +1399,12 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         where.fail("word R on G01: the lathe form of corner rounding ('G01 X.. R..'); a mill takes ',R'",
                    column=w.column, text=w.text, expected=f",{w.text.strip()} (Fanuc/Haas corner rounding)")
     if motion in (0, 10) and (arc_words or "R" in seen):
-        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
+        # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
+        # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
         w = seen[(arc_words or ["R"])[0]]
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it)",
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
+                   "the Haas manual lists no I J K R for it; a G02/G03 meant?)",
                    column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,

@@ -102,3 +102,13 @@ def test_a_letter_o_for_a_zero_is_hinted():
         parse_program("G20 G90\nGOO Z.500\nM30\n", context=_in_dialect("haas"))
     with pytest.raises(GCodeError, match=r"malformed number for word X \(got 'Xyz'\)"):  # no hint for other junk
         parse_program("G20 G90\nG0 Xyz\nM30\n", context=_in_dialect("haas"))
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas", "linuxcnc"])
+def test_arc_words_on_a_rapid_stay_refused(name):
+    # a parser fixture writes "G0 X0.5 Y0. I0. J-0.5" after an arc (meant G02): no Fanuc or Haas manual found
+    # lets the control ignore I J on G00 (the Haas mill manual lists X Y Z A B C for G00): refused everywhere
+    with pytest.raises(GCodeError, match=r":3:\d+: word I is only allowed on arcs \(G02/G03\), not on G00 .*"
+                                         r"a G02/G03 meant\?"):
+        parse_program("G20 G90 G0 X-0.5 Y0 Z0\nG2 X0 Y0.5 I0.5 J0 F2.5\nG0 X0.5 Y0 I0 J-0.5\nM30\n",
+                      context=_in_dialect(name))
