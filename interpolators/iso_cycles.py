@@ -318,7 +318,11 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
         rl = "L" if "L" in words else "K"
         raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
     if g in (73, 83) and not (cycle.q is not None and cycle.q > 0) and not (haas and cycle.i and cycle.i > 0):
-        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
+        # Haas mill manual (NGC 2017) "G73": "three methods to program a G73: using the I, J, K addresses, using
+        # the K and Q addresses, and using only a Q address"; Fanuc reads Q (0i "High-speed peck drilling
+        # cycle (G73)"): neither documents a peck drilling block without them
+        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None,
+                         expected="Q > 0 (Haas: or I J K)" if haas else "Q > 0")
     dwell = 0.0
     if g in (76, 87) and not cycle.q and not (cycle.i or cycle.j):
         raise CycleError("no shift: Q (along +X) or I J", letter=None, expected="Q<shift> or I.. J..")

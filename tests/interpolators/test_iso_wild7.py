@@ -112,3 +112,15 @@ def test_arc_words_on_a_rapid_stay_refused(name):
                                          r"a G02/G03 meant\?"):
         parse_program("G20 G90 G0 X-0.5 Y0 Z0\nG2 X0 Y0.5 I0.5 J0 F2.5\nG0 X0.5 Y0 I0 J-0.5\nM30\n",
                       context=_in_dialect(name))
+
+
+@pytest.mark.parametrize(("name", "expected"), [("haas", r"Q > 0 \(Haas: or I J K\)"), ("fanuc", r"Q > 0$")])
+def test_a_peck_cycle_without_a_peck_stays_refused(name, expected):
+    # a hand-written Haas program drills "G73 X.. Y.. Z-1.25 R.1 P1. F12." with neither Q nor I: the Haas manual
+    # names three ways to give the pecks (I J K, K and Q, Q alone) and none without: refused, naming them
+    with pytest.raises(GCodeError, match=r":2:1: G73 peck drilling cycle: peck depth Q must be > 0 .*expected "
+                                         + expected):
+        parse_program("G20 G90 G0 X0 Y0 Z1.\nG73 X1. Y1. Z-1.25 R.1 P1. F12.\nG80\nM30\n", context=_in_dialect(name))
+    prog = parse_program("G20 G90 G0 X0 Y0 Z1.\nG73 X1. Y1. Z-1.25 R.1 I.5 J.1 K.2 F12.\nG80\nM30\n",
+                         context=_in_dialect("haas"))
+    assert min(b.target[2] for b in prog.blocks) == pytest.approx(-20.0 - 1.25 * 25.4)
