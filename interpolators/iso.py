@@ -2259,7 +2259,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
                             haas=st.context.dialect.name == "haas",
-                            r_at_initial=st.context.dialect.name in ("fanuc", "haas"))
+                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         _fail_words(where, name, exc, seen, mw)
     _framed_initial(st, to_program=False)

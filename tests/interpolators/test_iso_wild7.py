@@ -124,3 +124,14 @@ def test_a_peck_cycle_without_a_peck_stays_refused(name, expected):
     prog = parse_program("G20 G90 G0 X0 Y0 Z1.\nG73 X1. Y1. Z-1.25 R.1 I.5 J.1 K.2 F12.\nG80\nM30\n",
                          context=_in_dialect("haas"))
     assert min(b.target[2] for b in prog.blocks) == pytest.approx(-20.0 - 1.25 * 25.4)
+
+
+def test_zero_repeats_drill_no_hole_on_fanuc_and_are_refused_by_linuxcnc():
+    # a Mach4 (Fanuc-style) program writes "G82 Z-5. R2. P0.250 F100. L0" to store the cycle for a subprogram's
+    # holes: Haas/Fanuc drill nothing there; rs274 stops: "Cannot do zero repeats of cycle"
+    text = "G21 G90 G54 G0 X0 Y0 Z25.\nG99 G82 Z-5. R2. P250 F100. L0\nX10.\nG80\nM30\n"
+    prog = parse_program(text, context=_in_dialect("haas"))
+    assert [round(b.target[0], 6) for b in prog.blocks if b.kind == "line"] == [110.0]  # one hole, at X10
+    with pytest.raises(GCodeError, match=r":2:\d+: G82 drilling cycle with dwell: zero repeats: LinuxCNC cannot do "
+                                         r"zero repeats of a cycle .*expected L1 or more"):
+        parse_program(text.replace("P250", "P0.25"), context=_in_dialect("linuxcnc"))
