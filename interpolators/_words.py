@@ -64,8 +64,9 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
         j += 1
     m = NUMBER_RE.match(line, j)
     if m is None:
+        zero = j < n and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:])  # "GOO", "X1O": O for 0?
         where.fail(
-            f"malformed number for {what}",
+            f"malformed number for {what}" + (" (the letter O where the digit 0 was meant?)" if zero else ""),
             column=w0 + 1,
             text=token_at(line, w0),
             expected="a decimal number such as 12, -0.79 or +.5",

@@ -711,6 +711,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                        text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
         if axis_words or polar:
+            if st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
+                notes.add(f"{_G[st.motion][1]} without R in the first block of the series: the R plane is the "
+                          "initial level (Fanuc/Haas reading; LinuxCNC refuses it)")
             _canned_cycle(seen, gcodes, st, blocks, used, where, number)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
@@ -1396,9 +1399,12 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         where.fail("word R on G01: the lathe form of corner rounding ('G01 X.. R..'); a mill takes ',R'",
                    column=w.column, text=w.text, expected=f",{w.text.strip()} (Fanuc/Haas corner rounding)")
     if motion in (0, 10) and (arc_words or "R" in seen):
-        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words"
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
+        # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
+        # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
         w = seen[(arc_words or ["R"])[0]]
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it)",
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
+                   "the Haas manual lists no I J K R for it; a G02/G03 meant?)",
                    column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
@@ -1598,6 +1604,9 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
         why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
     elif st.feed_reset:
         why = "G94 after G93 resets the feed; no F word since"
+    vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
+    if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
+        why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
     where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
 
 
@@ -2249,7 +2258,8 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) 
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
-                            haas=st.context.dialect.name == "haas")
+                            haas=st.context.dialect.name == "haas",
+                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         _fail_words(where, name, exc, seen, mw)
     _framed_initial(st, to_program=False)

@@ -47,6 +47,17 @@ other things or errors):
   first peck depth, J amount to reduce each peck, K minimum peck depth"): the pecks are I, I - J,
   I - 2 J, ... but never less than K (used instead of Q when I is given); under the ``haas`` dialect
   K is never a repeat count (Haas repeats with L), as it is on Fanuc.
+* **No R in the first block of a series** (``fanuc_rules``, the ``fanuc`` and ``haas`` dialects): the R
+  plane is the initial level. Haas Mill Operator's Manual (NGC, 2017), "G81 Drill Canned Cycle (Group
+  09)" (and G73, G74, G84 ...): "*R - Position of the R plane", "* indicates optional"; Fanuc Series
+  0i/16i operator's manuals, "Canned cycle cancel (G80)": "point R and point Z are cleared. This means
+  that R = 0 and Z = 0 in incremental command", the cleared R being no distance from the initial level.
+  Neither manual states the absolute case in words: taking the initial level there too is our reading.
+  LinuxCNC refuses the block ("R clearance plane unspecified in cycle").
+* **Zero repeats** (``L0``; Fanuc ``K0``): Fanuc and Haas store the cycle data and drill no hole at the block
+  (Fanuc 0i "Canned cycle for drilling", repetition K: with K0 the data is stored, no hole drilled, our
+  paraphrase; Haas NGC mill manual, bolt-circle example: "L0 on the G81 line will not drill a hole");
+  LinuxCNC refuses it (interp_cycles.cc convert_cycle, rs274: "Cannot do zero repeats of cycle").
 """
 
 from __future__ import annotations
@@ -128,7 +139,8 @@ CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-                tap_out_to_r: bool = False, plane: int = 2, haas: bool = False) -> list[HoleMove]:
+                tap_out_to_r: bool = False, plane: int = 2, haas: bool = False,
+                fanuc_rules: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
     (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
     "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
@@ -162,6 +174,9 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         2 (G17, drilling along Z), 1 (G18, along Y) or 0 (G19, along X).
     haas : bool
         Haas words: G73/G83 pecks from I J K, and K is not a repeat count.
+    fanuc_rules : bool
+        Fanuc/Haas rather than LinuxCNC: a series whose first block has no R drills from the initial level,
+        and zero repeats (L0, K0) drill no hole, where LinuxCNC refuses both.
 
     Raises
     ------
@@ -172,7 +187,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
                          retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r,
-                         haas=haas)
+                         haas=haas, fanuc_rules=fanuc_rules)
     if "@" in words or "^" in words:
         raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
                          letter="@" if "@" in words else "^", expected="G17 for polar words")
@@ -182,7 +197,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     try:
         moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
-                          tap_out_to_r=tap_out_to_r, haas=haas)
+                          tap_out_to_r=tap_out_to_r, haas=haas, fanuc_rules=fanuc_rules)
     except CycleError as exc:
         exc.letter = letters.get(exc.letter, exc.letter)
         raise
@@ -192,12 +207,17 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
 
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-              tap_out_to_r: bool, haas: bool) -> list[HoleMove]:
+              tap_out_to_r: bool, haas: bool, fanuc_rules: bool) -> list[HoleMove]:
     """:func:`cycle_moves` in the XY plane (drilling along Z)."""
-    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms, haas=haas)
-    z0 = float(pos[2])
     if cycle.initial is None:
-        cycle.initial = z0
+        cycle.initial = float(pos[2])
+    if cycle.r is None and "R" not in words and fanuc_rules:  # R = the initial level (module docstring)
+        cycle.r = 0.0 if incremental else (cycle.initial - offset[2]) / scale
+    repeats, dwell = _sticky_words(g, words, cycle, dwell_p_ms=dwell_p_ms, haas=haas)
+    if repeats == 0 and not fanuc_rules:
+        rl = "L" if "L" in words else "K"
+        raise CycleError("zero repeats: LinuxCNC cannot do zero repeats of a cycle (Fanuc and Haas store the "
+                         "cycle and drill no hole there)", letter=rl, expected=f"{rl}1 or more")
     if incremental:  # LinuxCNC convert_cycle_xy: r = R + the initial level (cycle_il), not the current Z
         r = cycle.initial + cycle.r * scale
         bottom = r + cycle.z * scale
@@ -298,7 +318,7 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
         # first block after another motion mode has no R; the R level has no default
         raise CycleError("no R (retract plane) word in the first block of the series (R has no default; "
                          "LinuxCNC: 'R clearance plane unspecified in cycle')", letter=None,
-                         expected="R<retract level>")
+                         expected="R<retract level> (the fanuc and haas dialects drill from the initial level)")
     if cycle.z is None:
         raise CycleError("no Z (hole bottom) word", letter=None, expected="Z<bottom>")
     repeats = words.get("L", 1.0 if haas else words.get("K", 1.0))
@@ -306,7 +326,11 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
         rl = "L" if "L" in words else "K"
         raise CycleError("repeat count must be a whole number >= 0", letter=rl, expected=f"{rl}1, {rl}2, ...")
     if g in (73, 83) and not (cycle.q is not None and cycle.q > 0) and not (haas and cycle.i and cycle.i > 0):
-        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None, expected="Q > 0")
+        # Haas mill manual (NGC 2017) "G73": "three methods to program a G73: using the I, J, K addresses, using
+        # the K and Q addresses, and using only a Q address"; Fanuc reads Q (0i "High-speed peck drilling
+        # cycle (G73)"): neither documents a peck drilling block without them
+        raise CycleError("peck depth Q must be > 0", letter="Q" if "Q" in words else None,
+                         expected="Q > 0 (Haas: or I J K)" if haas else "Q > 0")
     dwell = 0.0
     if g in (76, 87) and not cycle.q and not (cycle.i or cycle.j):
         raise CycleError("no shift: Q (along +X) or I J", letter=None, expected="Q<shift> or I.. J..")

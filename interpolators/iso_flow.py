@@ -100,10 +100,14 @@ _SPACED_KEYWORD = re.compile("(" + "|".join("[ \t]*".join(k) for k in sorted(_KE
 
 
 #: File headers of controls whose native language is not ISO G-code: Siemens SINUMERIK 840D ("%_N_NAME_MPF"),
-#: SINUMERIK 8xx ("%MPF 90", "%SPF 12": main and subprogram numbers), Philips / Heidenhain MillPlus ("%PM").
+#: SINUMERIK 8xx ("%MPF 90", "%SPF 12": main and subprogram numbers), Philips / Heidenhain MillPlus ("%PM"),
+#: Okuma OSP ("$NAME.MIN%": a file sent to the control starts with its name, .MIN a main program, .SUB/.SSB/.SDF
+#: subprograms, .LIB a library; our reading of the OSP examples "$OKUMA.SSB%", "$BR0137.MIN%" that GCodeWorkShop
+#: ships, whose programs go on in OSP's own language: CALL O.., VC variables, N-label GOTO).
 _FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program header"),
                     (re.compile(r"%\s*[MS]PF\b", re.I), "Siemens SINUMERIK main/subprogram header"),
-                    (re.compile(r"%\s*PM\b", re.I), "Philips/MillPlus program header"))
+                    (re.compile(r"%\s*PM\b", re.I), "Philips/MillPlus program header"),
+                    (re.compile(r"\$[^\s%]+\.(?:MIN|SUB|SSB|SDF|MSB|LIB)%", re.I), "Okuma OSP program file header"))
 
 
 def _refuse_foreign_header(line: str, where: Where) -> None:
@@ -215,6 +219,8 @@ class _Program:
             if not s or s == "%":
                 self.code.append(None)
                 continue
+            if s.startswith("$"):  # an Okuma OSP file header; other '$' words are read (and refused) as words
+                _refuse_foreign_header(s, where)
             if s.startswith("%"):
                 _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""

@@ -27,8 +27,9 @@ import re
 __all__ = ["simulator_lines"]
 
 #: A CNCSimulator Pro directive line: ``$`` and a command word, or a region mark (our reading of the
-#: user guide: the command word follows the ``$`` directly, the region line may name the region).
-_DIRECTIVE = re.compile(r"[ \t]*(?:\$[A-Za-z]{4,}(?![A-Za-z=])|#(?:end)?region(?:[ \t]|$))", re.IGNORECASE)
+#: user guide: the command word follows the ``$`` directly, the region line may name the region). A ``$`` and
+#: a file name (``$OKUMA.SSB%``, an Okuma OSP file header) is no directive: the reader names that control.
+_DIRECTIVE = re.compile(r"[ \t]*(?:\$[A-Za-z]{4,}(?![A-Za-z=.])|#(?:end)?region(?:[ \t]|$))", re.IGNORECASE)
 #: The region marks alone (the lines kept from grbl's ``$`` reading).
 _REGION = re.compile(r"[ \t]*#(?:end)?region(?:[ \t]|$)", re.IGNORECASE)
 

@@ -17,7 +17,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   XY rotation of ``G10 L2 R`` about the coordinate system origin).
 - G28/G30: with axis words a rapid to that point (program coordinates, with offsets), then a rapid
   of the named axes to the home / second reference position; without axis words, every axis to it
-  (g-code.adoc "G28, G28.1"). G53: the named axes go to machine coordinates.
+  (g-code.adoc "G28, G28.1"); G28.1 / G30.1 make the current position that reference. G53: the named
+  axes go to machine coordinates.
 - Canned cycles G73, G81-G89 (g-code.adoc "G80-G89 Canned Cycles", "G73", "G83", "G98, G99"):
   preliminary rapid to R when below it (once), per repeat a rapid in XY, a rapid to R, the feed
   to the bottom (pecks of Q for G73/G83 with the 0.254 mm / 0.010 in clearance, G83 back to R
@@ -538,6 +539,9 @@ class _Machine:
         self.offsets = {code: np.array(context.offset(code), float) for code in _WCS.values()}
         self.rotation = dict.fromkeys(_WCS.values(), 0.0)
         self.g92 = np.zeros(3)
+        # G28 / G30 reference positions [machine mm]; G28.1 / G30.1 store the current position (g-code.adoc
+        # "G28, G28.1": "G28.1 - stores the current absolute position into parameters 5161-5166")
+        self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
@@ -825,7 +829,7 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             _pocket(m, line, code, words)
             return True
         if code in (280, 300):
-            home = m.ctx.home if code == 280 else m.ctx.reference2
+            home = m.home[code]
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
             if axes or extra:
@@ -837,7 +841,10 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
                 m.extra[i] = 0.0  # the reference position of a, b, c, u, v, w: 0
             m.emit(line, "rapid", end)
             return True
-        if code in (281, 301, 531):
+        if code in (281, 301):
+            m.home[code - 1] = m.pos.copy()
+            return True
+        if code == 531:
             raise ReferenceError(f"G{code / 10:g}")
         if code == 100:
             _g10(m, words)
@@ -1094,6 +1101,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     if m.cycle_clear is None:
         m.cycle_clear = cur[2]
     s = m.scale
+    if "r" not in m.sticky and m.ctx.dialect.name in ("fanuc", "haas"):
+        # no R in the first block: the R plane is the initial level (Haas NGC mill manual 2017, G81: "*R ...
+        # * indicates optional"; Fanuc "Canned cycle cancel (G80)": "R = 0 ... in incremental command")
+        m.sticky["r"] = 0.0 if m.incremental else m.cycle_clear / s
     # G91: R from the series' initial level, which LinuxCNC keeps from the series' first block
     # (interp_cycles.cc convert_cycle_xy: r = r_number + cycle_il)
     r = (m.cycle_clear + m.sticky["r"] * s) if m.incremental else m.sticky["r"] * s
