@@ -461,34 +461,47 @@ def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
     t.emit(line, "feed" if form in ("LT", "LN") else None, t.target(w), rows="last")
 
 
+def _keeps_comp(w: dict) -> bool:
+    """A DEP block ends RL/RR unless it writes RL or RR again (TNC 410 user's manual, "Contour approach and
+    departure": "The TNC automatically cancels the radius compensation in a DEP block")."""
+    return "RL" in w or "RR" in w
+
+
 def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
     """``DEP LT LEN``: straight on along the last element's direction by LEN; ``DEP LN LEN``: LEN to the
-    tool's side (RL: left), square to it; ``DEP CT CCA R``: on the arc tangent to it, turning
-    counter-clockwise for RL with R > 0 or RR with R < 0, through CCA."""
+    tool's side (RL: left), square to it; ``DEP CT CCA R``: the tool centre leaves on a circle of radius R
+    tangent to the last element, turning counter-clockwise for RL with R > 0 or RR with R < 0, through
+    CCA (R is the radius of the tool's path: iTNC 530 manual, APPR LCT, "the radius then suffices to
+    completely define the tool path")."""
     if t.last_dir is None or t.scl != 1 or not np.all(t.factors == 1):
         raise ReferenceError("DEP without a preceding line (or under scaling)")
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes
     left = np.array([-t.last_dir[1], t.last_dir[0], 0.0])
+    comp = t.comp and t.radius > 0
     if form == "LT":
         end = t.pos + t.last_dir * w["LEN"] * t.scale
     elif form == "LN":  # PN is LEN plus the tool radius off the last contour point
         end = t.pos + side * left * (w["LEN"] * t.scale + (t.radius if t.comp else 0.0))
-    else:
+    else:  # the circle of the tool centre, from the tool beside the last contour point
         turn = 1.0 if (side > 0) == (w["R"] > 0) else -1.0
-        centre = t.pos + turn * abs(w["R"]) * t.scale * left
+        tool = t.pos + (side * t.radius * left if comp else 0.0)
+        centre = tool + turn * abs(w["R"]) * t.scale * left
         a = math.radians(turn * w["CCA"])
-        v = t.pos - centre
-        end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a), 0])
-    if "R0" in w and form != "CT":
+        v = tool - centre
+        tool_end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a),
+                                      0])
+        # the contour point whose offset is the tool's end: the tool inside the arc when it turns to its side
+        out = 1.0 if (side > 0) == (turn > 0) else -1.0
+        end = centre + (tool_end - centre) * (1.0 + out * t.radius / (abs(w["R"]) * t.scale)) if comp else tool_end
+    if not _keeps_comp(w) and form != "CT":
         t.comp = False
     if form != "CT":
         t.emit(line, "feed", end, rows="last")
     else:  # the tool runs the arc compensated: its centre path is the circle about the arc's centre
         t.emit(line, None, end, rows="last", centre=centre)
-    if form == "CT" and t.comp and t.radius > 0:  # the tool stops beside PN: inside the arc on its turning side
-        t.pos = end - (1.0 if (side > 0) == (turn > 0) else -1.0) * t.radius * (end - centre) / np.hypot(
-            *(end - centre)[:2])
-    if "R0" in w:
+    if form == "CT" and comp:
+        t.pos = tool_end
+    if not _keeps_comp(w):
         t.comp = False
 
 
@@ -2080,7 +2093,7 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
             return True
     if up.startswith("DEP LCT"):  # the arc leaving the contour, then the line to the programmed PN
         w = _words(up[7:], t.q)
-        t.comp = t.comp and "R0" not in w
+        t.comp = t.comp and _keeps_comp(w)
         t.emit(line, "feed", t.target(w), rows="last")
         return True
     for form in ("LT", "LN", "CT"):

@@ -1,0 +1,63 @@
+"""Heidenhain programs of a fifth wild set (the worked examples of the TNC 426/430 user's manual, Fusion 360,
+hyperMILL and shop programs): what the reader refused though the control runs it, each as a hand-written
+program with end points worked out by hand and checked against the independent reference."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+ZERO = MachineContext()
+
+
+def checked(body: str):
+    """The program read, and its blocks matched against the reference (compensated rows within the radius)."""
+    text = "0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=ZERO)
+    match = match_blocks(heidenhain_reference(text, ZERO), blocks_table(prog)[1])
+    assert match.mismatch is None, match.mismatch
+    return prog
+
+
+def test_an_appr_lct_arc_smaller_than_the_tool_is_the_tool_path():
+    # the manual's own examples approach with R5 and a tool of R10 ("the radius then suffices to completely
+    # define the tool path"). Tool R4, first element from PA (10, 0) along +Y, RL: the tool centre reaches
+    # (6, 0) on a counter-clockwise arc of radius 2 about (4, 0); the line from PS (4, -20) touches that circle
+    # at the angle -acos(2/20) + 90 deg = -5.739 deg: PH = (4 + 2 cos, 2 sin)
+    prog = checked("1 TOOL DEF 1 L+0 R+4\n2 TOOL CALL 1 Z S1000\n3 L X+4 Y-20 Z-2 R0 F500\n"
+                   "4 APPR LCT X+10 Y+0 R2 RL F200\n5 L X+10 Y+30\n6 L X+40 R0")
+    phi = math.radians(-90.0) + math.acos(2.0 / 20.0)
+    line, arc, first = prog.blocks[1:4]
+    assert np.allclose(line.target[:2], [4 + 2 * math.cos(phi), 2 * math.sin(phi)])
+    assert arc.kind == "arc" and arc.segment.ccw and np.allclose(arc.segment.center[:2], [4, 0])
+    assert np.allclose(arc.target[:2], [6, 0]) and np.allclose(first.target[:2], [6, 30])
+    # the same arc opened by the tool's radius: before, an error ("tool radius 4 mm not less than arc radius 2")
+
+
+def test_a_dep_block_without_r0_cancels_the_compensation():
+    # TNC 410 manual: "The TNC automatically cancels the radius compensation in a DEP block": DEP LCT to
+    # PN (40, 40) without R0 ends on PN itself, as DEP LCT .. R0 does, and the next block leaves from there
+    body = ("1 TOOL DEF 1 L+0 R+4\n2 TOOL CALL 1 Z S1000\n3 L X+4 Y-20 Z-2 R0 F500\n"
+            "4 APPR LCT X+10 Y+0 R2 RL F200\n5 L X+10 Y+30\n6 DEP LCT X+40 Y+40 R3{r0}\n7 L Z+50 FMAX")
+    without, with_r0 = checked(body.format(r0="")), checked(body.format(r0=" R0"))
+    assert [b.target.tolist() for b in without.blocks] == [b.target.tolist() for b in with_r0.blocks]
+    assert np.allclose(without.blocks[-2].target, [40, 40, -2]) and np.allclose(without.blocks[-1].target,
+                                                                                [40, 40, 50])
+
+
+def test_an_arc_turning_away_from_the_tool_needs_a_radius_beyond_it():
+    # APPR CT with RL and R- turns clockwise, away from the tool: its tool path of radius 3 lies outside a
+    # contour arc of radius 3 - 4 < 0, which no contour arc has (our reading: no manual page for this case)
+    with pytest.raises(GCodeError, match=r"APPR CT R-3 turns away from the tool's side and is not larger than "
+                                         r"the tool radius 4 mm"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+4\n2 TOOL CALL 1 Z S1000\n3 L X+4 Y-20 Z-2 R0 F500\n"
+                         "4 APPR CT X+10 Y+0 CCA90 R-3 RL F200\n5 L X+10 Y+30\nEND PGM T MM\n", context=ZERO)
