@@ -22,11 +22,12 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   helix), ``CP IPA`` (polar arc from the current angle about the pole, radius = distance to the
   pole), ``APPR LT``/``DEP LT`` (straight approach tangential to the first element, ``LEN`` before
   it; straight departure ``LEN`` along the last element).
-- Q parameters: ``FN 0``-``FN 4``, formulas with ``+ - * / ^``, parentheses and the functions
-  ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
-  LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
-  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect; ``FN 17 SYSWRITE ID50 NR1/NR2
-  IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system data: no effect).
+- Q parameters: ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``, ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
+  with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
+  LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
+  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` has no
+  effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system
+  data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -103,7 +104,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
 class _Formula:
     """Recursive-descent Heidenhain formula: + - * / ^, parentheses, unary functions, Q values."""
 
-    _FUNCS = {"SQRT": math.sqrt, "SIN": lambda v: math.sin(math.radians(v)),
+    _FUNCS = {"SQRT": math.sqrt, "SQ": lambda v: v * v, "SIN": lambda v: math.sin(math.radians(v)),
               "COS": lambda v: math.cos(math.radians(v)), "TAN": lambda v: math.tan(math.radians(v)),
               "ASIN": lambda v: math.degrees(math.asin(v)), "ACOS": lambda v: math.degrees(math.acos(v)),
               "ATAN": lambda v: math.degrees(math.atan(v)), "ABS": abs, "INT": lambda v: float(math.trunc(v)),
@@ -1765,12 +1766,18 @@ def _fn(t: _Tnc, text: str) -> str | None:
     """``FN n: ...``; returns the label of a jump taken, else None."""
     m = re.match(r"FN\s*(\d+)\s*:?\s*(.*)$", text)
     n, rest = int(m.group(1)), m.group(2)
-    if n in (0, 1, 2, 3, 4):
+    if n in (0, 1, 2, 3, 4, 5, 6, 7, 8, 13):
         q, expr = rest.split("=", 1)
-        if n:
-            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV)\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
+        if n in (5, 6, 7):  # SQRT, SIN, COS of one value (TNC 426/430 manual, "Trigonometric functions")
+            v = _val(re.sub(r"^\s*(SQRT|SIN|COS)", "", expr.upper()).replace(" ", ""), t.q)
+            value = {5: math.sqrt(v), 6: math.sin(math.radians(v)), 7: math.cos(math.radians(v))}[n]
+        elif n:
+            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV|LEN|ANG)\s*([-+]?\s*[\w.]+)\s*$",
+                            expr.upper()).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
-            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb}[n]
+            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees
+            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb, 8: math.sqrt(va * va + vb * vb),
+                     13: math.degrees(math.atan2(vb, va))}[n]
         else:
             value = _Formula(expr, t.q).value()
         t.q[q.strip().upper()] = value

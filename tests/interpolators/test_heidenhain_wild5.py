@@ -61,3 +61,12 @@ def test_an_arc_turning_away_from_the_tool_needs_a_radius_beyond_it():
                                          r"the tool radius 4 mm"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+4\n2 TOOL CALL 1 Z S1000\n3 L X+4 Y-20 Z-2 R0 F500\n"
                          "4 APPR CT X+10 Y+0 CCA90 R-3 RL F200\n5 L X+10 Y+30\nEND PGM T MM\n", context=ZERO)
+
+
+def test_the_manuals_formula_functions_agree_with_the_reference():
+    # TNC 426/430 manual 10.9 "Q1 = 5 * 3 + 2 * 10" = 35, "SQ 10 - 3^3" = 73; FN 5 SQRT, FN 8 LEN (3, 4) = 5,
+    # FN 13 ANG (1, 1) = 45: both readers put them in the same X/Y words
+    prog = checked("1 Q1 = 5 * 3 + 2 * 10\n2 Q2 = SQ 10 - 3^3\n3 FN 5: Q3 = SQRT +16\n4 FN 8: Q4 = +3 LEN +4\n"
+                   "5 FN 13: Q5 = +1 ANG +1\n6 FN 6: Q6 = SIN +30\n7 FN 7: Q7 = COS +60\n"
+                   "8 L X+Q1 Y+Q2 Z+Q3 R0 FMAX\n9 L X+Q4 Y+Q5 R0 FMAX\n10 L X+Q6 Y+Q7 R0 FMAX")
+    assert np.allclose([b.target for b in prog.blocks], [[35, 73, 4], [5, 45, 4], [0.5, 0.5, 4]])
