@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from interpolators.context import MachineContext
+from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_match import match_blocks
@@ -70,3 +70,26 @@ def test_the_manuals_formula_functions_agree_with_the_reference():
                    "5 FN 13: Q5 = +1 ANG +1\n6 FN 6: Q6 = SIN +30\n7 FN 7: Q7 = COS +60\n"
                    "8 L X+Q1 Y+Q2 Z+Q3 R0 FMAX\n9 L X+Q4 Y+Q5 R0 FMAX\n10 L X+Q6 Y+Q7 R0 FMAX")
     assert np.allclose([b.target for b in prog.blocks], [[35, 73, 4], [5, 45, 4], [0.5, 0.5, 4]])
+
+
+def test_rnd_chf_cr_and_ct_agree_with_the_reference():
+    # as the manual's "circular movements" example: RND R5 at the left turn (20, 0): 5 tan 45 = 5 from the corner
+    # on each line, centre (15, 5); CHF 4 at (20, 20): 4 back on each line; CR R+10 DR+ from (0, 20) to
+    # (-10, 10): the quarter about (0, 10); CT on to (0, 0): the same circle, since it leaves along -Y
+    prog = checked("1 L X+0 Y+0 Z-1 R0 F100\n2 L X+20 Y+0\n3 RND R5\n4 L X+20 Y+20\n5 CHF 4\n6 L X+0 Y+20\n"
+                   "7 CR X-10 Y+10 R+10 DR+\n8 CT X+0 Y+0")
+    assert np.allclose([b.target[:2] for b in prog.blocks], [[0, 0], [15, 0], [20, 5], [20, 16], [16, 20], [0, 20],
+                                                             [-10, 10], [0, 0]], atol=1e-12)
+    rnd, cr, ct = prog.blocks[2], prog.blocks[6], prog.blocks[7]
+    assert rnd.segment.ccw and np.allclose(rnd.segment.center[:2], [15, 5])
+    assert cr.segment.ccw and np.allclose(cr.segment.center[:2], [0, 10])
+    assert ct.segment.ccw and np.allclose(ct.segment.center[:2], [0, 10])
+
+
+def test_a_tool_def_without_length_or_radius_keeps_the_table_tool():
+    # a Fusion-style "TOOL DEF 1 ; pre-load": tool pre-selection, the table's length stays (here 20)
+    ctx = MachineContext(tools={1: Tool(number=1, length=20.0)})
+    text = "0 BEGIN PGM T MM\n1 TOOL DEF 1 ; pre-load\n2 TOOL CALL 1 Z S1000\n3 L X+0 Y+0 Z+5 R0 FMAX\nEND PGM T MM\n"
+    prog = parse_heidenhain(text, context=ctx)
+    assert prog.blocks[-1].target.tolist() == [0.0, 0.0, 25.0]
+    assert match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1]).mismatch is None
