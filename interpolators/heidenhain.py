@@ -635,7 +635,8 @@ class _Run:
         col0 = blk.column
         cm = CALL_RE.match(blk.code)
         if cm is None:
-            where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
+            where.fail("malformed label call", column=col0, text=blk.code,
+                       expected="CALL LBL n [REP k] (k a number or Qn; the count display '/k' only after a number)")
         key = label_key(cm)
         target = self.labels.find(key, where, column=col0, text=blk.code)
         if cm.group(5) is not None and cm.group(6) is None:

@@ -93,3 +93,13 @@ def test_a_tool_def_without_length_or_radius_keeps_the_table_tool():
     prog = parse_heidenhain(text, context=ctx)
     assert prog.blocks[-1].target.tolist() == [0.0, 0.0, 25.0]
     assert match_blocks(heidenhain_reference(text, ctx), blocks_table(prog)[1]).mismatch is None
+
+
+def test_a_repeat_count_display_after_a_q_parameter_is_refused_naming_the_form():
+    # an APT post wrote "CALL LBL 1 REP Q3/Q3" and its author changed it to "REP 10/10" the same day: the
+    # "/k" display of the repeats left follows a number; "REP Q3" alone runs
+    body = "1 Q3 = 2\n2 L X+0 Y+0 Z+0 R0 F100\n3 LBL 1\n4 L IX+1\n5 CALL LBL 1 REP {rep}"
+    assert checked(body.format(rep="Q3")).blocks[-1].target.tolist() == [3.0, 0.0, 0.0]
+    assert checked(body.format(rep="2/2")).blocks[-1].target.tolist() == [3.0, 0.0, 0.0]
+    with pytest.raises(GCodeError, match=r"t\.h:6:.*malformed label call.*count display '/k' only after a number"):
+        checked(body.format(rep="Q3/Q3"))
