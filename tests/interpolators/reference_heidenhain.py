@@ -1877,7 +1877,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
             # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees
             value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb, 8: math.sqrt(va * va + vb * vb),
-                     13: math.degrees(math.atan2(vb, va))}[n]
+                     13: math.degrees(math.atan2(vb, va)) % 360.0}[n]  # TNC 370 manual: 0 < angle < 360
         else:
             value = _Formula(expr, t.q).value()
         t.q[q.strip().upper()] = value

@@ -103,3 +103,9 @@ def test_a_repeat_count_display_after_a_q_parameter_is_refused_naming_the_form()
     assert checked(body.format(rep="2/2")).blocks[-1].target.tolist() == [3.0, 0.0, 0.0]
     with pytest.raises(GCodeError, match=r"t\.h:6:.*malformed label call.*count display '/k' only after a number"):
         checked(body.format(rep="Q3/Q3"))
+
+
+def test_fn13_angle_lies_between_0_and_360_degrees():
+    # TNC 370 user's manual 7.3: FN13 ANGLE "(0 < angle < 360)": the vector (0, -1) is at 270 degrees, not -90
+    prog = checked("1 FN 13: Q1 = +0 ANG -1\n2 FN 13: Q2 = -1 ANG -1\n3 L X+Q1 Y+Q2 Z+0 R0 FMAX")
+    assert np.allclose(prog.blocks[-1].target, [270.0, 225.0, 0.0])
