@@ -178,6 +178,7 @@ from interpolators.heidenhain_paths import (
     approach_start,
     arc_end_tolerance,
     chamfer_corner,
+    contour_arc_radius,
     departure_element,
     departure_lct,
     end_tangent,
@@ -634,7 +635,8 @@ class _Run:
         col0 = blk.column
         cm = CALL_RE.match(blk.code)
         if cm is None:
-            where.fail("malformed label call", column=col0, text=blk.code, expected="CALL LBL n [REP k]")
+            where.fail("malformed label call", column=col0, text=blk.code,
+                       expected="CALL LBL n [REP k] (k a number or Qn; the count display '/k' only after a number)")
         key = label_key(cm)
         target = self.labels.find(key, where, column=col0, text=blk.code)
         if cm.group(5) is not None and cm.group(6) is None:
@@ -2863,9 +2865,12 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     through the centre angle ``CCA`` that ends tangentially at PA) and the departure from the last
     contour point (LT: ``LEN`` on along the last element; LN: ``LEN`` off it, perpendicular; CT: the
     arc leaving it tangentially). PS to PH runs at the last programmed feed (rapid if the last move
-    was rapid); a tool-axis coordinate is reached after PH (APPR) or after PN (DEP). LN and CT need
-    RL or RR (the tool's side; R's sign and the side give the arc's sense). LCT and the polar forms
-    are errors."""
+    was rapid); a tool-axis coordinate is reached after PH (APPR) or after PN (DEP). LN, CT and LCT
+    need RL or RR (the tool's side; R's sign and the side give the arc's sense); the R of a CT/LCT arc
+    is the radius of the tool's path (:func:`interpolators.heidenhain_paths.contour_arc_radius`). A DEP
+    without R0/RL/RR cancels the compensation (TNC 410 user's manual: "The TNC automatically cancels
+    the radius compensation in a DEP block"). The polar forms APPR PLT/PLN/PCT/PLCT and DEP PLCT take
+    PA from PR and PA about the pole CC."""
     code = blk.code
     fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
     form = fm.group(1).upper() if fm else ""
@@ -2905,6 +2910,10 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     for comp in ("R0", "RL", "RR"):
         if comp in seen:
             exit_run = _set_compensation(seen[comp], m, where)
+    if kw == "DEP" and was != "R0" and not any(c in seen for c in ("R0", "RL", "RR")):
+        # TNC 410 user's manual, "Contour approach and departure": "The TNC automatically cancels the
+        # radius compensation in a DEP block" (RL/RR written again keep it)
+        m.comp, exit_run = "R0", True
     active = m.comp if kw == "APPR" else was
     if form != "LT" and active == "R0":
         where.fail(f"{what} without radius compensation", column=blk.column, text=code,
@@ -2948,8 +2957,11 @@ def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine,
                    expected=f"a contour element before DEP {form}")
     try:
         t = end_tangent(m.blocks[-1].segment, m.plane)
+        if form in ("CT", "LCT"):  # R is the tool path's radius: the contour arc's is R +- the tool radius
+            sizes = {**sizes, "radius": contour_arc_radius(f"DEP {form}", sizes["radius"], m.comp_radius)}
         if form == "LCT":
-            segs = departure_lct(m.pos, target, t, radius=sizes["radius"], side=sizes["side"], plane=m.plane)
+            segs = departure_lct(m.pos, target, t, radius=sizes["radius"], side=sizes["side"], plane=m.plane,
+                                 tool_radius=m.comp_radius)
         else:
             segs = (departure_element(form, m.pos, t, plane=m.plane, **sizes),)
     except PathGeometryError as exc:
@@ -2978,8 +2990,11 @@ def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
         if a["form"] == "LN":  # "PH is separated from PA by the distance LEN plus the tool radius"
             a["length"] += m.comp_radius
         try:
+            if a["form"] in ("CT", "LCT"):  # R is the tool path's radius (heidenhain_paths.contour_arc_radius)
+                a["radius"] = contour_arc_radius(f"APPR {a['form']}", a["radius"], m.comp_radius)
             if a["form"] == "LCT":
-                ph, arc = approach_lct(a["ps"], pa, direction / n, radius=a["radius"], side=a["side"], plane=m.plane)
+                ph, arc = approach_lct(a["ps"], pa, direction / n, radius=a["radius"], side=a["side"], plane=m.plane,
+                                       tool_radius=m.comp_radius)
             else:
                 ph, arc = approach_start(a["form"], pa, direction / n, length=a["length"], radius=a["radius"],
                                          angle=a["angle"], side=a["side"], plane=m.plane)

@@ -11,7 +11,8 @@ Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q para
   before addition and subtraction"; ``^`` binds tighter than both.
 * ``FN 0: Q5 = +60`` assign, ``FN 1`` add, ``FN 2`` subtract, ``FN 3`` multiply, ``FN 4: Q = a DIV b``
   divide (division by 0 is an error), ``FN 5: SQRT``, ``FN 6: SIN``, ``FN 7: COS``,
-  ``FN 8: a LEN b`` (root sum of squares), ``FN 13: a ANG b`` (angle of the vector (a, b) in degrees).
+  ``FN 8: a LEN b`` (root sum of squares), ``FN 13: a ANG b`` (angle of the vector (a, b) in degrees,
+  0 to 360).
 * ``FN 9/10/11/12: IF a EQU/NE/GT/LT b GOTO LBL n`` conditions (the jump itself is the reader's).
 * ``FN 14: ERROR`` stops the run with an error; ``FN 15/16`` prints are noted and skipped;
   ``FN 18: SYSREAD Qn = ID240 NR1 IDXi`` (nominal position, machine coordinates) and
@@ -81,7 +82,9 @@ FN_ARITHMETIC = {
     6: ("SIN", _FUNCTIONS["SIN"]),
     7: ("COS", _FUNCTIONS["COS"]),
     8: ("LEN", lambda a, b: math.hypot(a, b)),
-    13: ("ANG", lambda a, b: math.degrees(math.atan2(b, a))),
+    # TNC 370 user's manual 7.3 "Trigonometric functions": FN13 ANGLE "from the arc tangent of two sides or from
+    # the sine and cosine of the angle (0 < angle < 360 deg)": the angle of the vector (a, b) taken into [0, 360)
+    13: ("ANG", lambda a, b: math.degrees(math.atan2(b, a)) % 360.0),
 }
 
 #: ``FN 9`` .. ``FN 12`` jump conditions: number -> (comparison word, test).

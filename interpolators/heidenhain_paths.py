@@ -34,7 +34,7 @@ from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 __all__ = ["PathGeometryError", "arc_end_tolerance", "polar_point", "polar_angle", "helical_arc", "end_tangent",
            "tangential_arc", "round_corner", "round_elements", "chamfer_corner", "approach_start",
-           "departure_element", "approach_lct", "departure_lct"]
+           "departure_element", "approach_lct", "departure_lct", "contour_arc_radius"]
 
 
 #: Places after the decimal point of a TNC coordinate: the input format "-99 999.9999 to
@@ -145,6 +145,29 @@ def _arc_side(form: str, side: float, radius: float, angle: float) -> bool:
     return (side > 0) == (radius > 0)
 
 
+def contour_arc_radius(form: str, radius: float, tool_radius: float) -> float:
+    """The radius of the contour arc whose offset by ``tool_radius`` [mm] is the tool path of radius
+    ``radius`` [mm] of an ``APPR/DEP CT`` (signed: R > 0 turns towards the tool's side) or ``LCT`` arc.
+
+    The R of these arcs is the radius of the tool's path, not of a contour element offset by the tool
+    radius: iTNC 530 conversational user's manual (2/2011), 6.3 "Contour approach and departure",
+    APPR LCT: "Once these lines are known, the radius then suffices to completely define the tool path";
+    TNC7 manual "APPR LCT", "The circular path is uniquely defined by the radius R". HEIDENHAIN's own
+    examples approach with an arc smaller than the tool (TNC 426/430 user's manual 280 476, chapter 6
+    "Example: circular movements, Cartesian": TOOL DEF 1 L+0 R+10 and APPR LCT .. R5 RL; "Example: full
+    circle": R+12.5 and APPR LCT .. R5; "Example: helix": R+5 and APPR PCT .. CCA180 R+2 RL). An arc
+    turning towards the tool's side (LCT always) has the tool inside it, so its contour radius is the
+    tool path's plus the tool radius; one turning away, minus it (an error when nothing is left: our
+    reading, no manual page found for that case)."""
+    toward = form.endswith("LCT") or radius > 0
+    rc = abs(radius) + tool_radius if toward else abs(radius) - tool_radius
+    if rc <= 0:
+        raise PathGeometryError(f"{form} R{radius:+g} turns away from the tool's side and is not larger than the "
+                                f"tool radius {tool_radius:g} mm",
+                                f"|R| > {tool_radius:g} (or R > 0: towards the tool)")
+    return math.copysign(rc, radius)
+
+
 def approach_start(form: str, pa: np.ndarray, tangent: np.ndarray, *, length: float, radius: float,
                    angle: float, side: float, plane: int) -> tuple[np.ndarray, Arc | None]:
     """The auxiliary point PH of ``APPR LT|LN|CT`` before the first contour point PA, and for CT the arc
@@ -227,32 +250,46 @@ def _lct_centre(point: np.ndarray, tangent: np.ndarray, radius: float, side: flo
     return centre
 
 
+def _on_contour(point: np.ndarray, centre: np.ndarray, factor: float, plane: int) -> np.ndarray:
+    """``point`` moved radially from ``centre`` by ``factor`` in the plane (tool path -> contour arc)."""
+    p, q = PLANE_AXES[plane]
+    out = np.array(point, dtype=float)
+    out[p], out[q] = centre[p] + factor * (point[p] - centre[p]), centre[q] + factor * (point[q] - centre[q])
+    return out
+
+
 def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
-                 plane: int) -> tuple[np.ndarray, Arc]:
+                 plane: int, tool_radius: float = 0.0) -> tuple[np.ndarray, Arc]:
     """``APPR LCT`` (TNC7 user's manual, "APPR LCT"): the line from PS touches at PH the arc of
     ``radius`` [mm] that ends at PA tangentially to the first contour element (``tangent``); the arc
-    turns towards the tool's ``side`` (RL: counter-clockwise). Returns PH (PA's tool-axis
-    coordinate) and the arc PH -> PA."""
-    if not radius > 0:
+    turns towards the tool's ``side`` (RL: counter-clockwise). ``radius`` is the contour arc's
+    (:func:`contour_arc_radius`): the line touches the tool's path, ``tool_radius`` [mm] inside it.
+    Returns PH (PA's tool-axis coordinate) and the arc PH -> PA."""
+    if not radius > tool_radius:
         raise PathGeometryError("APPR LCT needs R > 0", "R+.. [mm]")
     ccw = side > 0
     centre = _lct_centre(pa, tangent, radius, side, plane)
     start = np.array(ps, dtype=float)
     start[plane] = pa[plane]
-    ph = _tangent_point(centre, radius, start, ccw=ccw, leaving=False, plane=plane)
+    path = radius - tool_radius
+    ph = _on_contour(_tangent_point(centre, path, start, ccw=ccw, leaving=False, plane=plane), centre,
+                     radius / path, plane)
     return ph, Arc(ph, np.array(pa, dtype=float), centre, ccw=ccw, plane=plane)
 
 
 def departure_lct(pe: np.ndarray, pn: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
-                  plane: int) -> tuple[Arc, Line]:
+                  plane: int, tool_radius: float = 0.0) -> tuple[Arc, Line]:
     """``DEP LCT`` (TNC7 user's manual, "DEP LCT"): the arc of ``radius`` [mm] leaving PE tangentially to
     the last contour element (``tangent``), turning towards the tool's ``side``, to PH, where the line
-    to PN (in the plane of PE) touches it."""
-    if not radius > 0:
+    to PN (in the plane of PE) touches the tool's path (``tool_radius`` [mm] inside the arc, as in
+    :func:`approach_lct`)."""
+    if not radius > tool_radius:
         raise PathGeometryError("DEP LCT needs R > 0", "R+.. [mm]")
     ccw = side > 0
     centre = _lct_centre(pe, tangent, radius, side, plane)
     end = np.array(pn, dtype=float)
     end[plane] = pe[plane]
-    ph = _tangent_point(centre, radius, end, ccw=ccw, leaving=True, plane=plane)
+    path = radius - tool_radius
+    ph = _on_contour(_tangent_point(centre, path, end, ccw=ccw, leaving=True, plane=plane), centre,
+                     radius / path, plane)
     return Arc(np.array(pe, dtype=float), ph, centre, ccw=ccw, plane=plane), Line(ph, end)

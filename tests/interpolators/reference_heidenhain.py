@@ -21,12 +21,16 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``I`` coordinate from the current position), ``C`` about CC (``DR+`` counter-clockwise; a Z word:
   helix), ``CP IPA`` (polar arc from the current angle about the pole, radius = distance to the
   pole), ``APPR LT``/``DEP LT`` (straight approach tangential to the first element, ``LEN`` before
-  it; straight departure ``LEN`` along the last element).
-- Q parameters: ``FN 0``-``FN 4``, formulas with ``+ - * / ^``, parentheses and the functions
-  ``SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT
-  LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position in the active system) and ``ID240 NR1
-  IDXn`` (position in the machine system); ``FN 15 PRINT`` has no effect; ``FN 17 SYSWRITE ID50 NR1/NR2
-  IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system data: no effect).
+  it; straight departure ``LEN`` along the last element; the polar ``APPR P..``/``DEP PLCT``: the point by PR,
+  PA; a DEP ends RL/RR unless it writes them), ``CR`` (radius arc: R > 0 under 180 degrees), ``CT`` (the arc
+  leaving along the last element's direction), ``RND R`` (the arc tangent to the two lines, r tan(theta/2)
+  from the corner) and ``CHF`` (the chamfer side length on each line); ``TOOL DEF n`` alone pre-selects.
+- Q parameters: ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``, ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
+  with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
+  LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
+  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` has no
+  effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system
+  data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -56,6 +60,7 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import re
 
@@ -103,7 +108,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
 class _Formula:
     """Recursive-descent Heidenhain formula: + - * / ^, parentheses, unary functions, Q values."""
 
-    _FUNCS = {"SQRT": math.sqrt, "SIN": lambda v: math.sin(math.radians(v)),
+    _FUNCS = {"SQRT": math.sqrt, "SQ": lambda v: v * v, "SIN": lambda v: math.sin(math.radians(v)),
               "COS": lambda v: math.cos(math.radians(v)), "TAN": lambda v: math.tan(math.radians(v)),
               "ASIN": lambda v: math.degrees(math.asin(v)), "ACOS": lambda v: math.degrees(math.acos(v)),
               "ATAN": lambda v: math.degrees(math.atan(v)), "ABS": abs, "INT": lambda v: float(math.trunc(v)),
@@ -220,6 +225,7 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
         self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54; > 9: None, zero)
         self.pattern: list[dict] = []  # PATTERN DEF positions
@@ -292,6 +298,8 @@ class _Tnc:
 
     def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1),
              extra: np.ndarray | None = None) -> None:
+        if self.rounding is not None and kind != "dwell":
+            _corner(self, end, centre)
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             element = ("line", start, end.copy()) if centre is None else \
@@ -421,6 +429,98 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
     t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
+    _arc_tangent(t, end, centre, ccw, (i, j))
+
+
+def _arc_tangent(t: _Tnc, end: np.ndarray, centre: np.ndarray, ccw: bool, plane: tuple) -> None:
+    """The direction an XY arc leaves its end point in (machine axes), for CT, RND, CHF and DEP after it."""
+    v = (end - centre)[:2]
+    if plane != (0, 1) or not np.hypot(*v) > 0:
+        return
+    d = np.array([-v[1], v[0], 0.0]) if ccw else np.array([v[1], -v[0], 0.0])
+    t.last_dir = d / np.linalg.norm(d)
+
+
+def _radius_arc(t: _Tnc, line: int, w: dict) -> None:
+    """``CR X.. Y.. R.. DR..``: the arc of radius |R| to the end point; R > 0 the one under 180 degrees, R < 0
+    the one over (TNC 426/430 manual, "Circular path CR with defined radius"); DR+ counter-clockwise."""
+    _comp_words(t, w)
+    if t.scl != 1 or (t.factors != 1).any():
+        raise ReferenceError("CR under scaling")
+    start, end = t.pos.copy(), t.target(w)
+    r = abs(w["R"]) * t.scale
+    ccw = (w.get("DR", "+") == "+") != t.turns_over()
+    chord = (end - start)[:2]
+    c = float(np.hypot(*chord))
+    if not 0 < c <= 2 * r + 1e-9:
+        raise ReferenceError("CR chord longer than the diameter")
+    h = math.sqrt(max(r * r - c * c / 4, 0.0))
+    left = np.array([-chord[1], chord[0]]) / c
+    # the centre left of the chord for a counter-clockwise arc under 180 degrees, right for one over
+    sgn = (1.0 if ccw else -1.0) * (1.0 if w["R"] > 0 else -1.0)
+    centre = start.copy()
+    centre[:2] = (start[:2] + end[:2]) / 2 + sgn * h * left
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
+    _arc_tangent(t, end, centre, ccw, (0, 1))
+
+
+def _tangent_arc(t: _Tnc, line: int, w: dict) -> None:
+    """``CT X.. Y..``: the arc leaving the current point along the last element's direction to the end point
+    (TNC 426/430 manual, "Circular path CT with tangential connection")."""
+    _comp_words(t, w)
+    if t.last_dir is None:
+        raise ReferenceError("CT without a preceding element's direction")
+    start, end = t.pos.copy(), t.target(w)
+    chord = (end - start)[:2]
+    n = np.array([-t.last_dir[1], t.last_dir[0]])  # left of the direction
+    across = float(n @ chord)
+    if abs(across) < 1e-12:
+        raise ReferenceError("CT along its tangent (a straight line)")
+    rho = float(chord @ chord) / (2 * across)  # signed: > 0 the centre on the left, counter-clockwise
+    centre = start.copy()
+    centre[:2] = start[:2] + rho * n
+    ccw = rho > 0
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre)
+    _arc_tangent(t, end, centre, ccw, (0, 1))
+
+
+def _start_corner(t: _Tnc, line: int, kind: str, w: dict) -> None:
+    """``RND R..`` / ``CHF ..``: the corner at the current point, made when the next element is known."""
+    if t.last_dir is None or not t.out or t.rounding is not None:
+        raise ReferenceError(f"{kind} without a preceding line")
+    size = w["R"] if kind == "RND" else w["LEN"]
+    t.rounding = (kind, abs(size) * t.scale, line, len(t.out) - 1)
+
+
+def _corner(t: _Tnc, end: np.ndarray, centre) -> None:
+    """Cut the waiting corner between the last line (direction a) and the next element from the corner P
+    to ``end`` (a line, direction b): RND the arc of radius r tangent to both, r tan(theta/2) from P on
+    each; CHF the line between the points ``size`` from P on each (TNC 426/430 manual, "Rounding corners
+    RND", "Chamfer CHF": the chamfer side length)."""
+    kind, size, line, row = t.rounding
+    t.rounding = None
+    prev = t.out[row]
+    p = t.pos.copy()
+    d = (end - p)[:2]
+    if centre is not None or not np.hypot(*d) > 0 or not np.allclose(prev.end, p) or prev.centre is not None \
+            or (prev.element is not None and prev.element[0] != "line"):
+        raise ReferenceError(f"{kind} next to an arc or a move out of the plane")
+    a, b = t.last_dir[:2], d / np.hypot(*d)
+    turn = float(a[0] * b[1] - a[1] * b[0])
+    theta = math.acos(max(-1.0, min(1.0, float(a @ b))))
+    dist = size * math.tan(theta / 2) if kind == "RND" else size
+    t1, t2 = p.copy(), p.copy()
+    t1[:2], t2[:2] = p[:2] - a * dist, p[:2] + b * dist
+    t.out[row] = dataclasses.replace(prev, end=t1, element=None if prev.element is None else
+                                     ("line", prev.element[1], t1.copy()))
+    t.pos = t1
+    if kind == "CHF":
+        t.emit(line, "feed", t2)
+        return
+    ccw = turn > 0
+    c = t1.copy()
+    c[:2] = t1[:2] + size * (np.array([-a[1], a[0]]) if ccw else np.array([a[1], -a[0]]))
+    t.emit(line, "arc_ccw" if ccw else "arc_cw", t2, centre=c)
 
 
 def _polar_point(t: _Tnc, p: np.ndarray, r: float, a: float, w: dict) -> np.ndarray:
@@ -442,10 +542,10 @@ def _polar_point(t: _Tnc, p: np.ndarray, r: float, a: float, w: dict) -> np.ndar
 def _polar_line(t: _Tnc, line: int, w: dict) -> None:
     """``LP``: a line to the point PR from the pole at the angle PA from the reference axis of the pole's
     plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
-    axis moves it too. Without RL/RR and transformations only."""
+    axis moves it too (under RL/RR: the contour's point). Without transformations only."""
     _comp_words(t, w)
-    if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
-        raise ReferenceError("LP under RL/RR or a transformation")
+    if t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+        raise ReferenceError("LP under a transformation")
     p = t.prog()
     i, j = t.pole_axes
     r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
@@ -461,34 +561,47 @@ def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
     t.emit(line, "feed" if form in ("LT", "LN") else None, t.target(w), rows="last")
 
 
+def _keeps_comp(w: dict) -> bool:
+    """A DEP block ends RL/RR unless it writes RL or RR again (TNC 410 user's manual, "Contour approach and
+    departure": "The TNC automatically cancels the radius compensation in a DEP block")."""
+    return "RL" in w or "RR" in w
+
+
 def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
     """``DEP LT LEN``: straight on along the last element's direction by LEN; ``DEP LN LEN``: LEN to the
-    tool's side (RL: left), square to it; ``DEP CT CCA R``: on the arc tangent to it, turning
-    counter-clockwise for RL with R > 0 or RR with R < 0, through CCA."""
+    tool's side (RL: left), square to it; ``DEP CT CCA R``: the tool centre leaves on a circle of radius R
+    tangent to the last element, turning counter-clockwise for RL with R > 0 or RR with R < 0, through
+    CCA (R is the radius of the tool's path: iTNC 530 manual, APPR LCT, "the radius then suffices to
+    completely define the tool path")."""
     if t.last_dir is None or t.scl != 1 or not np.all(t.factors == 1):
         raise ReferenceError("DEP without a preceding line (or under scaling)")
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes
     left = np.array([-t.last_dir[1], t.last_dir[0], 0.0])
+    comp = t.comp and t.radius > 0
     if form == "LT":
         end = t.pos + t.last_dir * w["LEN"] * t.scale
     elif form == "LN":  # PN is LEN plus the tool radius off the last contour point
         end = t.pos + side * left * (w["LEN"] * t.scale + (t.radius if t.comp else 0.0))
-    else:
+    else:  # the circle of the tool centre, from the tool beside the last contour point
         turn = 1.0 if (side > 0) == (w["R"] > 0) else -1.0
-        centre = t.pos + turn * abs(w["R"]) * t.scale * left
+        tool = t.pos + (side * t.radius * left if comp else 0.0)
+        centre = tool + turn * abs(w["R"]) * t.scale * left
         a = math.radians(turn * w["CCA"])
-        v = t.pos - centre
-        end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a), 0])
-    if "R0" in w and form != "CT":
+        v = tool - centre
+        tool_end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a),
+                                      0])
+        # the contour point whose offset is the tool's end: the tool inside the arc when it turns to its side
+        out = 1.0 if (side > 0) == (turn > 0) else -1.0
+        end = centre + (tool_end - centre) * (1.0 + out * t.radius / (abs(w["R"]) * t.scale)) if comp else tool_end
+    if not _keeps_comp(w) and form != "CT":
         t.comp = False
     if form != "CT":
         t.emit(line, "feed", end, rows="last")
     else:  # the tool runs the arc compensated: its centre path is the circle about the arc's centre
         t.emit(line, None, end, rows="last", centre=centre)
-    if form == "CT" and t.comp and t.radius > 0:  # the tool stops beside PN: inside the arc on its turning side
-        t.pos = end - (1.0 if (side > 0) == (turn > 0) else -1.0) * t.radius * (end - centre) / np.hypot(
-            *(end - centre)[:2])
-    if "R0" in w:
+    if form == "CT" and comp:
+        t.pos = tool_end
+    if not _keeps_comp(w):
         t.comp = False
 
 
@@ -1722,7 +1835,8 @@ def _tool(t: _Tnc, text: str) -> None:
         return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
 
     if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
-        t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)
+        if re.search(r"\b[LR]\s*[-+]?\s*[\dQ.]", rest):  # TOOL DEF n alone pre-selects the next tool (TNC 640
+            t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)  # manual): the table's L and R stay
         return
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
@@ -1752,12 +1866,18 @@ def _fn(t: _Tnc, text: str) -> str | None:
     """``FN n: ...``; returns the label of a jump taken, else None."""
     m = re.match(r"FN\s*(\d+)\s*:?\s*(.*)$", text)
     n, rest = int(m.group(1)), m.group(2)
-    if n in (0, 1, 2, 3, 4):
+    if n in (0, 1, 2, 3, 4, 5, 6, 7, 8, 13):
         q, expr = rest.split("=", 1)
-        if n:
-            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV)\s*([-+]?\s*[\w.]+)\s*$", expr).groups()
+        if n in (5, 6, 7):  # SQRT, SIN, COS of one value (TNC 426/430 manual, "Trigonometric functions")
+            v = _val(re.sub(r"^\s*(SQRT|SIN|COS)", "", expr.upper()).replace(" ", ""), t.q)
+            value = {5: math.sqrt(v), 6: math.sin(math.radians(v)), 7: math.cos(math.radians(v))}[n]
+        elif n:
+            a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV|LEN|ANG)\s*([-+]?\s*[\w.]+)\s*$",
+                            expr.upper()).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
-            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb}[n]
+            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees
+            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb, 8: math.sqrt(va * va + vb * vb),
+                     13: math.degrees(math.atan2(vb, va)) % 360.0}[n]  # TNC 370 manual: 0 < angle < 360
         else:
             value = _Formula(expr, t.q).value()
         t.q[q.strip().upper()] = value
@@ -2074,13 +2194,23 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     """A path block; None when ``up`` is none."""
+    polar = re.match(r"(APPR|DEP) P(LT|LN|CT|LCT)\b", up)
+    if polar:  # the first / last point by PR, PA about the pole CC (TNC 426/430 manual, APPR PLT .. DEP PLCT)
+        w = _words(up[polar.end():], t.q)
+        _comp_words(t, w)
+        if polar.group(1) == "DEP" and not _keeps_comp(w):
+            t.comp = False
+        end = t.machine(_polar_point(t, t.prog(), w["PR"] * t.scale, w["PA"], w))
+        t.emit(line, "feed" if polar.group(2) in ("LT", "LN") or polar.group(1) == "DEP" else None, end,
+               rows="last")
+        return True
     for key in ("APPR LCT", "APPR LT", "APPR LN", "APPR CT"):
         if up.startswith(key):
             _approach(t, line, _words(up[len(key):], t.q), key.split()[1])
             return True
     if up.startswith("DEP LCT"):  # the arc leaving the contour, then the line to the programmed PN
         w = _words(up[7:], t.q)
-        t.comp = t.comp and "R0" not in w
+        t.comp = t.comp and _keeps_comp(w)
         t.emit(line, "feed", t.target(w), rows="last")
         return True
     for form in ("LT", "LN", "CT"):
@@ -2107,7 +2237,13 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _arc(t, line, _words(rest, t.q), polar=head == "CP")
     elif head == "LP":
         _polar_line(t, line, _words(rest, t.q))
-    elif head in ("CR", "CT", "RND", "CHF", "APPR", "DEP"):
+    elif head == "CR":
+        _radius_arc(t, line, _words(rest, t.q))
+    elif head == "CT":
+        _tangent_arc(t, line, _words(rest, t.q))
+    elif head in ("RND", "CHF"):
+        _start_corner(t, line, head, _words(rest if head == "RND" else "LEN" + rest.strip(), t.q))
+    elif head in ("APPR", "DEP"):
         raise ReferenceError(f"{head} block")
     else:
         return None

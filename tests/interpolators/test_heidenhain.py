@@ -273,20 +273,23 @@ def test_appr_ln_ct_and_dep_ln_ct():
 
 
 def test_dep_ct_under_radius_compensation_runs_the_offset_arc():
-    # DEP CT .. R0 with RR and a tool of radius 1: the contour arc (centre (10, 2), radius 2, counter-clockwise
-    # from (10, 0) to (10, 4)) has the tool outside it (right of the travel), so the tool centre runs radius 3
-    # about the same centre from (10, -1) to (10, 5); the next R0 block leaves from there
+    # DEP CT .. R0 with RR and a tool of radius 1: R is the radius of the tool's path (iTNC 530 manual, APPR
+    # LCT: "the radius then suffices to completely define the tool path"); R-2 turns counter-clockwise, away
+    # from the tool (right of the travel +X): the tool centre leaves (10, -1) on radius 2 about (10, 1) to
+    # (10, 3) (the contour arc: radius 3 about the same centre); the next R0 block leaves from there
     body = ("TOOL DEF 1 L+0 R+1\nTOOL CALL 1 Z\nL X-20 Y-20 Z+5 R0 F300\nAPPR LN X+0 Y+0 Z-1 LEN10 RR F100\n"
             "L X+10 Y+0\nDEP CT CCA180 R-2 R0\nL Z+50 FMAX")
     prog = run(body)
     arc = prog.blocks[-2]
-    assert arc.kind == "arc" and arc.segment.ccw and np.allclose(arc.segment.center[:2], [10, 2])
-    assert np.allclose(arc.start[:2], [10, -1]) and np.allclose(arc.target, [10, 5, -1])
-    assert np.allclose(prog.blocks[-1].target, [10, 5, 50])
-    # RL with R+ on the same contour: the arc turns left with the tool inside it, radius 1
+    assert arc.kind == "arc" and arc.segment.ccw and np.allclose(arc.segment.center[:2], [10, 1])
+    assert np.allclose(arc.start[:2], [10, -1]) and np.allclose(arc.target, [10, 3, -1])
+    assert np.allclose(prog.blocks[-1].target, [10, 3, 50])
+    # RL with R+2 on the same contour: the arc turns left, to the tool's side: from (10, 1) on radius 2
+    # about (10, 3) to (10, 5)
     left = run(body.replace("RR", "RL").replace("R-2", "R+2"))
     arc = left.blocks[-2]
-    assert arc.segment.ccw and np.allclose(arc.start[:2], [10, 1]) and np.allclose(arc.target[:2], [10, 3])
+    assert arc.segment.ccw and np.allclose(arc.start[:2], [10, 1]) and np.allclose(arc.target[:2], [10, 5])
+    assert np.allclose(arc.segment.center[:2], [10, 3])
     for text in (body, body.replace("RR", "RL").replace("R-2", "R+2")):
         text = HEAD + text + "\nEND PGM T MM\n"
         match = match_blocks(heidenhain_reference(text, MachineContext()), blocks_table(parse_heidenhain(text))[1])
