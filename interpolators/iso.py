@@ -711,10 +711,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
             where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                        text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
         if axis_words or polar:
-            if st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
-                notes.add(f"{_G[st.motion][1]} without R in the first block of the series: the R plane is the "
-                          "initial level (Fanuc/Haas reading; LinuxCNC refuses it)")
-            _canned_cycle(seen, gcodes, st, blocks, used, where, number)
+            _canned_cycle(seen, gcodes, st, blocks, used, where, number, notes)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
     if not axis_words and not rot_words and st.motion in (330, 331) and "motion" in gcodes:
@@ -2229,9 +2226,12 @@ def _framed_initial(st: _State, *, to_program: bool) -> None:
         st.cycle.initial = float(st.to_machine(point)[axis])
 
 
-def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number) -> None:
+def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     name = _G[st.motion][1]
+    if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
+        notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "
+                  "(Fanuc/Haas reading; LinuxCNC refuses it)")
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
