@@ -81,6 +81,23 @@ def test_max_duration_cuts_at_the_budget_with_the_whole_programs_samples():
     assert note.startswith("only the first 5 s of at least ") and f"line {info['line']}" in note
 
 
+def test_max_duration_of_short_moves_slower_than_their_feed_cuts_the_whole_programs_samples():
+    # 300 moves of 0.5 mm at exact stop (G61): each is limited by the acceleration, not by F6000, so
+    # the lower bound of the block times is about 4 times too short (the case that made the cut search
+    # bisect over the blocks); the cut must still hold the whole program's samples up to the budget
+    machine = load_machine("fadal-pid")
+    text = "G21 G90 G61\nG0 X0 Y0\n" + "".join(f"G1 X{0.5 * (i % 2)} Y{0.01 * i:.2f} F6000\n"
+                                                   for i in range(1, 301)) + "M30\n"
+    program = interpolators.parse_program(text, source="short.nc")
+    whole = interpolate(program, machine)
+    cut = interpolate(program, machine, max_duration=4.0)
+    assert whole.duration > 8.0 and len(cut) == 4001
+    np.testing.assert_array_equal(cut.position, whole.position[: len(cut)])
+    info = cut.meta["truncated"]
+    assert info["exact"] and info["blocks"] == int(cut.block[-1]) and info["of"] == 301
+    assert info["program_at_least"] == pytest.approx(whole.duration)  # the whole program fitted one try
+
+
 def test_max_duration_longer_than_the_program_changes_nothing():
     machine = load_machine("fadal-pid")
     program = interpolators.parse_program("G21\nG0 X0 Y0\nG1 X20 Y10 F1200\nM30\n")
@@ -90,10 +107,19 @@ def test_max_duration_longer_than_the_program_changes_nothing():
     np.testing.assert_array_equal(sp.position, whole.position)
 
 
-def test_max_duration_a_first_block_longer_than_the_budget_is_refused():
+def test_max_duration_cuts_a_long_first_block_and_refuses_one_beyond_a_tries_memory():
+    from vcnc.facade import TRY_SAMPLES
+
+    machine = load_machine("fadal-pid")
     program = interpolators.parse_program("G21\nG1 X500 F60\nM30\n", source="slow.nc")  # 500 s
-    with pytest.raises(vcnc.GCodeError, match=r"slow\.nc:2: the first block alone runs longer than the budget of 1 s"):
-        interpolate(program, load_machine("fadal-pid"), max_duration=1.0)
+    cut = interpolate(program, machine, max_duration=1.0)
+    assert len(cut) == 1001 and cut.meta["truncated"]["blocks"] == 0 and cut.meta["truncated"]["line"] == 2
+    np.testing.assert_allclose(cut.position[-1, 0], 1.0, atol=0.01)  # 1 mm/s, after the start ramp
+    assert TRY_SAMPLES < 20_000_000
+    program = interpolators.parse_program("G21\nG1 X20000 F60\nM30\n", source="slow.nc")  # 20000 s
+    with pytest.raises(vcnc.GCodeError, match=r"slow\.nc:2: the first block alone runs longer than one try of the 1 s "
+                       r"cut holds \(1000000 samples, 1000 s\); expected a first block within 1000 s"):
+        interpolate(program, machine, max_duration=1.0)
     with pytest.raises(vcnc.InputError, match="max_duration must be a finite value > 0 s"):
         interpolate(program, load_machine("fadal-pid"), max_duration=0.0)
 
