@@ -98,14 +98,14 @@ def check_program_axes(program: Program, machine: Machine) -> None:
     An axis the program only names without moving it (``G0 Z0`` from Z0) is no obstacle: the
     interpolator needs limits only for the axes that move."""
     from toolpaths.geometry import Arc
-    from vcnc.core.axes import EXTRA_NAMES
+    from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 
     for b in program.blocks:
         moved = [a for a, s, e in zip("xyz", b.start, b.target) if s != e]
         if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
             moved += ["xyz"[i] for i in b.segment.plane_axes]
         moved += [a for a, d in zip(EXTRA_NAMES, b.extra_delta) if d != 0]
-        missing = [a for a in dict.fromkeys(moved) if a not in machine.axes]
+        missing = [a for a in AXIS_NAMES if a in moved and a not in machine.axes]  # in the machine's order
         if missing:
             names = ", ".join(a.upper() for a in missing)
             raise GCodeError(
@@ -196,10 +196,11 @@ def _first_seconds(program: Program, *, limits, sample_time: float, profile: str
             lo, hi, sp = (mid, hi, got) if isinstance(got, Setpoints) else (lo, mid, sp)
             if sp is not None and len(sp) >= enough:  # long enough: a longer prefix would change nothing
                 break
-        if sp is None:
-            raise GCodeError(f"the first block alone runs longer than one try of the {max_duration:g} s cut holds "
-                             f"({cap} samples, {cap * sample_time:g} s)", file=program.source,
-                             line=program.blocks[0].line, expected=f"a first block within {cap * sample_time:g} s")
+        if sp is None or sp.duration == 0.0:  # nothing before the block that does not fit moves or dwells
+            raise GCodeError(f"this block alone runs longer than one try of the {max_duration:g} s cut holds "
+                             f"({cap} samples, {cap * sample_time:g} s), and no block before it moves or dwells",
+                             file=program.source, line=program.blocks[lo].line,
+                             expected=f"a block within {cap * sample_time:g} s (its length at its feed)")
         k = lo
     exact = sp.duration >= max_duration + margin or k == len(program.blocks)
     out = sp.slice(0, budget)

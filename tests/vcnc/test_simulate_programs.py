@@ -45,6 +45,14 @@ def test_program_moving_z_on_an_xy_machine_names_line_axis_machine(tmp_path, cap
     assert "[axes.z]" in err and not out.exists()
 
 
+def test_a_helix_on_a_one_axis_machine_names_the_missing_axes_in_axis_order(tmp_path, capsys):
+    prog = write(tmp_path, "G21 G90 G17\nG0 X10 Y0 Z0\nG2 X10 Y0 Z-5 I-10 J0 F600\nM30\n")  # a full turn down 5 mm
+    assert main(["simulate", str(prog), "--machine", "emps", "-o", str(tmp_path / "c.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}:3: the program moves axis Y, Z, which machine 'emps' does not have "
+                          "(its axes: X); expected a machine with axis Y, Z")
+
+
 def test_interpolate_with_an_xy_machine_names_the_line_moving_z(tmp_path, capsys):
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n")
     assert main(["interpolate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "s.csv")]) == 2
@@ -116,10 +124,13 @@ def test_max_duration_cuts_a_long_first_block_and_refuses_one_beyond_a_tries_mem
     assert len(cut) == 1001 and cut.meta["truncated"]["blocks"] == 0 and cut.meta["truncated"]["line"] == 2
     np.testing.assert_allclose(cut.position[-1, 0], 1.0, atol=0.01)  # 1 mm/s, after the start ramp
     assert TRY_SAMPLES < 20_000_000
-    program = interpolators.parse_program("G21\nG1 X20000 F60\nM30\n", source="slow.nc")  # 20000 s
-    with pytest.raises(vcnc.GCodeError, match=r"slow\.nc:2: the first block alone runs longer than one try of the 1 s "
-                       r"cut holds \(1000000 samples, 1000 s\); expected a first block within 1000 s"):
-        interpolate(program, machine, max_duration=1.0)
+    for text, line in (("G21\nG1 X20000 F60\nM30\n", 2),  # 20000 s
+                       ("G21 G90\nG0 X0 Y0\nG1 X100 Y50 F0.001\nM30\n", 3)):  # a rapid that stays, then 6.7e6 s
+        program = interpolators.parse_program(text, source="slow.nc")
+        with pytest.raises(vcnc.GCodeError, match=rf"slow\.nc:{line}: this block alone runs longer than one try of the "
+                           r"1 s cut holds \(1000000 samples, 1000 s\), and no block before it moves or dwells; "
+                           r"expected a block within 1000 s"):
+            interpolate(program, machine, max_duration=1.0)
     with pytest.raises(vcnc.InputError, match="max_duration must be a finite value > 0 s"):
         interpolate(program, load_machine("fadal-pid"), max_duration=0.0)
 
