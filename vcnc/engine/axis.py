@@ -131,6 +131,11 @@ class AxisDefinition:
             return math.inf
         return self.saturation.control_limit(getattr(self.drive, "amplifier_gain", 1.0))
 
+    def actuator_limit(self) -> float:
+        """Largest control signal the actuator passes [V]: the amplifier limit or the DAC range,
+        whichever is lower (inf with neither)."""
+        return min(self.control_limit(), self.dac.range if self.dac is not None else math.inf)
+
     def disturbance_levels(self) -> tuple[float, float]:
         """(d+, d-) of Eq. (3.2) [V]: Coulomb friction plus the constant load, as control signal."""
         fp = fn = 0.0
