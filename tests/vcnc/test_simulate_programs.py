@@ -192,3 +192,19 @@ def test_simulate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(t
     assert not out.exists()
     assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--max-seconds", "30"]) == 0
     assert len(vcnc.read_capture(out)) == 30001
+
+
+def test_simulate_on_a_pid_machine_does_not_load_python_control(tmp_path):
+    # python-control (with scipy.signal and matplotlib) takes about half of a short `vcnc simulate` run to
+    # import; the compiled loop of the PID, P-PI, sliding-mode and PDF laws needs none of it (the
+    # pole-placement design does: ballscrew-ppc, ballscrew-zpetc)
+    import subprocess
+    import sys
+
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nM30\n")
+    argv = ["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")]
+    code = (f"import sys\nfrom vcnc.cli import main\nassert main({argv!r}) == 0\n"
+            "print(sorted(m for m in ('control', 'scipy.signal', 'matplotlib.pyplot') if m in sys.modules))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         cwd=Path(__file__).resolve().parents[2]).stdout
+    assert out.strip().splitlines()[-1] == "[]"

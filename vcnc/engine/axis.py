@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import control
 import numpy as np
 
 import drives
@@ -14,6 +13,9 @@ from controllers._base import Controller, discrete_closed_loop
 from interpolators.limits import AxisLimits
 from vcnc.core.errors import MachineError
 from vcnc.engine import layout as L
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["AxisDefinition", "NONIDEALITY_FIELDS"]
 
