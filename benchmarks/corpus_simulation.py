@@ -11,15 +11,19 @@ Machines: ``fadal-pid`` (x, y: the default) for a program that moves X and Y onl
 machine has a Z or a rotary axis; a program that moves Z is first refused by ``fadal-pid`` (the
 message is counted), then run on ``fadal-pid+z``, a benchmark-only machine whose Z axis is a copy of
 the X axis (drive, controller, limits): our assumption to exercise the chain, not a real machine. A
-program that moves a rotary or a U V W axis is refused (counted by reason).
+program that moves a rotary or a U V W axis is refused (counted by reason). ``--machines all`` runs
+every program on every built-in machine in turn (the controller library: PID, P-PI, sliding mode, pole
+placement + Kalman filter with and without ZPETC, integer PDF, the EMPS cascade), each completed the
+same way where it lacks Y or Z (``NAME+xyz``: copies of its X axis), and prints a line per machine.
 
 Prints the counts (simulated, cut by the budget, refused by reason, crashed with the exception),
-non-finite captures, the worst tracking and contour errors with their programs, the peak memory,
-and the setpoints/s of the simulation against the interpolation of the same programs in the same
-run (the reference; it includes the search for the cut). ``--report DIR`` also writes the
-``vcnc simulate --report`` folders of the first ``--report-count`` simulated programs with a contour.
+non-finite captures, runs whose actuator saturated (the summary's ``saturated`` entry), the worst
+tracking and contour errors with their programs, the peak memory, and the setpoints/s of the
+simulation against the interpolation of the same programs in the same run (the reference; it
+includes the search for the cut). ``--report DIR`` also writes the ``vcnc simulate --report``
+folders of the first ``--report-count`` simulated programs with a contour.
 
-Usage: ``python benchmarks/corpus_simulation.py [--seconds 20] [--list] [--report DIR]``
+Usage: ``python benchmarks/corpus_simulation.py [--seconds 20] [--machines fadal-pid|all] [--list] [--report DIR]``
 """
 
 from __future__ import annotations
@@ -40,15 +44,20 @@ sys.path.insert(0, str(ROOT))
 
 from interpolators import Program  # noqa: E402
 from vcnc.core.errors import VcncError  # noqa: E402
-from vcnc.engine.machine import Machine, load_machine  # noqa: E402
+from vcnc.engine.machine import Machine, builtin_machines, load_machine  # noqa: E402
 from vcnc.facade import check_program_axes, interpolate, program_meta  # noqa: E402
 from vcnc.simulation_report import build_report, summarize  # noqa: E402
 
 
-def machines() -> tuple[Machine, Machine]:
-    """``fadal-pid`` and the benchmark's ``fadal-pid+z`` (Z = a copy of the X axis)."""
-    xy = load_machine("fadal-pid")
-    return xy, xy.with_axis("z", xy.axis("x"), suffix="+z")
+def machines(name: str = "fadal-pid") -> tuple[Machine, Machine]:
+    """Built-in machine ``name`` and the benchmark's copy with X, Y and Z (the missing ones copies of its
+    X axis): ``fadal-pid+z``, ``emps+xyz``."""
+    m = load_machine(name)
+    missing = [a for a in ("y", "z") if a not in m.axes]
+    full = m
+    for a in missing:
+        full = full.with_axis(a, m.axis("x"), suffix="" if a != missing[-1] else "+z" if "y" in m.axes else "+xyz")
+    return m, full
 
 
 def simulate_one(path: Path, program: Program, xy: Machine, xyz: Machine, seconds: float) -> dict:
@@ -106,6 +115,7 @@ def print_results(recs: list[dict], wall: float, seconds: float) -> None:
     print(f"  refused     {by['refused']:>4}")
     print(f"  crashed     {by['crashed']:>4}")
     print(f"  non-finite  {by['non-finite']:>4}  (NaN or inf in the capture)")
+    print(f"  saturated   {sum('saturated' in r['summary'] for r in sim):>4}  (an actuator at its limit: a warning)")
     xy_refusals = collections.Counter(r["xy_refusal"] for r in recs if r.get("xy_refusal"))
     if xy_refusals:
         print("\nrefused by fadal-pid (x, y), then run on fadal-pid+z:")
@@ -134,6 +144,26 @@ def print_results(recs: list[dict], wall: float, seconds: float) -> None:
     print(f"peak memory (max RSS) {peak:.0f} MB")
 
 
+def print_machines(runs: dict[str, list[dict]]) -> None:
+    """One line per machine of ``--machines all``: what happened to the programs, the worst errors, the speed."""
+    print(f"\n{'machine':<18}{'simulated':>10}{'refused':>8}{'crashed':>8}{'non-finite':>11}{'saturated':>10}"
+          f"{'diverged':>9}{'worst contour':>20}{'worst tracking':>20}{'sim setpoints/s':>16}")
+    for name, recs in runs.items():
+        by = collections.Counter(r["status"] for r in recs)
+        sim = [r for r in recs if r["status"] == "simulated"]
+        sat = [r["summary"]["saturated"] for r in sim if "saturated" in r["summary"]]
+        diverged = sum(any(v["error_beyond_travel"] for v in s.values()) for s in sat)
+        c_max, _ = worst(sim, lambda r: r["summary"].get("contour", {}).get("max_um"))
+        t_max, _ = worst(sim, lambda r: max(s["max_um"] for s in r["summary"]["tracking"].values()))
+        n, ts_ = sum(r["samples"] for r in sim), sum(r["t_sim"] for r in sim)
+        print(f"{name:<18}{by['simulated']:>10}{by['refused']:>8}{by['crashed']:>8}{by['non-finite']:>11}{len(sat):>10}"
+              f"{diverged:>9}{c_max:>17.1f} um{t_max:>17.1f} um{n / ts_ if ts_ > 0 else math.nan:>16.3g}")
+    for name, recs in runs.items():
+        for r in recs:
+            if r["status"] in ("crashed", "non-finite"):
+                print(f"\n{name}: {r['status']}: {r['file']}: {r['reason']}\n{r.get('message', '')}")
+
+
 def write_reports(recs: list[dict], folder: str) -> None:
     """The ``vcnc simulate --report`` folder of the programs whose capture was kept."""
     import matplotlib.pyplot as plt
@@ -151,26 +181,36 @@ def main() -> int:
     ap.add_argument("--list", action="store_true", help="list every refused program with its message")
     ap.add_argument("--report", metavar="DIR", help="write simulate reports of a few programs under DIR")
     ap.add_argument("--report-count", type=int, default=3, help="how many reports (default 3)")
+    ap.add_argument("--machines", choices=("fadal-pid", "all"), default="fadal-pid",
+                    help="fadal-pid (default), or every built-in machine in turn (a line each)")
     args = ap.parse_args()
     d = corpus_dir()
     if d is None:
         print("gcode corpus not found (../shared/data/gcode-corpus): nothing to run")
         return 0
-    xy, xyz = machines()
+    pairs = [machines(n) for n in (builtin_machines() if args.machines == "all" else ["fadal-pid"])]
+    pairs.sort(key=lambda p: p[0].name != "fadal-pid")  # fadal-pid first: the detailed results are its
     kept = 0
 
     def visit(path: Path, program: Program) -> dict:
         nonlocal kept
-        rec = simulate_one(path, program, xy, xyz, args.seconds)
-        capture = rec.pop("capture", None)  # dropped to keep memory flat, but for the reports' few
-        if args.report and capture is not None and kept < args.report_count and "contour" in rec["summary"]:
-            rec["capture"], kept = capture, kept + 1
-        return {"chain": rec}
+        runs = []
+        for xy, xyz in pairs:
+            rec = simulate_one(path, program, xy, xyz, args.seconds)
+            capture = rec.pop("capture", None)  # dropped to keep memory flat, but for the reports' few
+            if args.report and capture is not None and kept < args.report_count and "contour" in rec["summary"] \
+                    and not runs:
+                rec["capture"], kept = capture, kept + 1
+            runs.append(rec)
+        return {"chain": runs[0], "runs": runs}
 
     t0 = time.perf_counter()
     res = run_corpus(d, interpolate_too=False, visit=visit)
     recs = [{**p["chain"], "file": p["file"]} for p in res["programs"] if p["ok"]]
     print_results(recs, time.perf_counter() - t0, args.seconds)
+    if args.machines == "all":
+        print_machines({xy.name: [{**p["runs"][i], "file": p["file"]} for p in res["programs"] if p["ok"]]
+                        for i, (xy, _) in enumerate(pairs)})
     if args.list:
         print("\nrefused programs:")
         for r in recs:

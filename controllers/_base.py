@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import math
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import control
 import numpy as np
 
 from drives._record import Record
 from vcnc.core.errors import MachineError
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["Controller", "DiscreteLaw", "VELOCITY_FILTERS", "velocity_estimator", "plant_zoh", "N_PARAMS"]
 
@@ -23,6 +25,7 @@ VELOCITY_FILTERS = ("difference", "fir2")
 
 def velocity_estimator(kind: str, sample_time: float) -> control.TransferFunction:
     """Discrete velocity estimator V(z) [1/s] of a velocity filter name."""
+    import control
     ts = sample_time
     if kind == "fir2":
         return control.tf([1.0, 0.0, -1.0], [2.0 * ts, 0.0, 0.0], ts)
@@ -31,6 +34,7 @@ def velocity_estimator(kind: str, sample_time: float) -> control.TransferFunctio
 
 def plant_zoh(drive: Any, sample_time: float) -> control.TransferFunction:
     """The drive's rigid plant x/u [mm/V] seen through a zero-order hold at ``sample_time``."""
+    import control
     tf = drive.transfer_function()
     if tf.isdtime():
         if not math.isclose(tf.dt, sample_time, rel_tol=1e-9):
@@ -50,6 +54,7 @@ class DiscreteLaw:
     """
 
     def __init__(self, c_r: Any, c_v: Any, c_a: Any, c_y: Any, sample_time: float) -> None:
+        import control
         ts = sample_time
 
         def as_tf(c: Any) -> control.TransferFunction:
@@ -126,6 +131,7 @@ def continuous_closed_loop(p: dict[str, float], gain: float) -> tuple[control.Tr
     and ``G_dist = (K/J) s/(s^3 + a1 s^2 + a2 s + a3)``; without integral action (a3 = 0) the
     common factor s is cancelled.
     """
+    import control
     a1, a2, a3, b0, b1, b2 = (p[k] for k in ("a1", "a2", "a3", "b0", "b1", "b2"))
     if a3 == 0.0:
         return control.tf([b0, b1, b2], [1.0, a1, a2]), control.tf([gain], [1.0, a1, a2])
@@ -142,6 +148,7 @@ def discrete_closed_loop(
     stays causal) and x/d [mm/V] with d an input disturbance [V]. With ``velocity_input`` the
     feedforward paths are ignored (they need v_r, a_r, not r).
     """
+    import control
     law = controller.discrete_law(drive, sample_time)
     p = plant_zoh(drive, sample_time)
     if delay:

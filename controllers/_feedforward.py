@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import control
 import numpy as np
 
 from controllers._base import N_PARAMS, VELOCITY_FILTERS, velocity_estimator
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["common_checks", "integrator", "coulomb_after_feedforward", "filter_code", "FF_UNITS"]
 
@@ -30,6 +32,7 @@ def filter_code(name: str) -> float:
 
 def integrator(sample_time: float) -> control.TransferFunction:
     """Rectangular (backward Euler) integrator Ts z/(z - 1) used by every integral action."""
+    import control
     return control.tf([sample_time, 0.0], [1.0, -1.0], sample_time)
 
 

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import control
 import numpy as np
 
 from controllers._base import N_PARAMS, Controller, DiscreteLaw
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    pass
 
 __all__ = ["PDF"]
 
@@ -68,6 +70,7 @@ class PDF(Controller):
         return p
 
     def discrete_law(self, drive: Any, sample_time: float) -> DiscreteLaw:
+        import control
         c1, c2 = self.gains(sample_time)
         ci = control.tf([c1, 0.0], [1.0, -1.0], sample_time)
         return DiscreteLaw(ci, 0.0, 0.0, ci + c2, sample_time)

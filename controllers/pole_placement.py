@@ -8,15 +8,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import control
 import numpy as np
-import scipy.linalg
 
 from controllers._base import N_PARAMS, Controller, DiscreteLaw
 from controllers.zpetc import ZPETC, design_zpetc
 from vcnc.core.errors import MachineError
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["PolePlacement", "design_pole_placement", "PolePlacementDesign"]
 
@@ -75,6 +76,8 @@ def design_pole_placement(
     velocity_std, disturbance_std : float
         Process noise per sample on velocity [mm/s] and on the disturbance [V].
     """
+    import control
+    import scipy.linalg
     ts = sample_time
     # canonical physical coordinates: exact ZOH of [x, v]
     a = np.array([[0.0, 1.0], [0.0, -viscous_rate]])
@@ -198,6 +201,7 @@ class PolePlacement(Controller):
 
     def nominal_loop(self, drive: Any, sample_time: float) -> control.TransferFunction:
         """G(z) = x/r* of the design model with the estimator cancelled: L_x B(z)/A(z) (Eq. 3.23)."""
+        import control
         d = self.design(drive, sample_time)
         phi2 = d.phi[:2, :2]
         g2 = d.gamma[:2, None]
@@ -218,6 +222,7 @@ class PolePlacement(Controller):
 
     def prefilter_tf(self, drive: Any, sample_time: float) -> control.TransferFunction | None:
         """The ZPETC as a causal discrete TF (delayed by the preview), or the identity."""
+        import control
         if not self.zpetc:
             return control.tf([1.0], [1.0], sample_time)
         return self.zpetc_filter(drive, sample_time).causal_tf(sample_time)
@@ -233,6 +238,7 @@ class PolePlacement(Controller):
         return p
 
     def discrete_law(self, drive: Any, sample_time: float) -> DiscreteLaw:
+        import control
         d = self.design(drive, sample_time)
         h = np.array([[1.0, 0.0, 0.0]])
         imh = np.eye(3) - np.outer(d.observer_gain, h)

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
-import control
 import numpy as np
-import scipy.signal
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["ZPETC", "design_zpetc"]
 
@@ -37,6 +39,7 @@ class ZPETC:
     def apply(self, reference: np.ndarray) -> np.ndarray:
         """r* for a whole reference [mm]; before the start and beyond the end the first and last
         values are held (the axis is at rest there)."""
+        import scipy.signal
         r = np.asarray(reference, dtype=float)
         x = np.concatenate([r[self.preview :], np.full(min(self.preview, len(r)), r[-1])])[: len(r)]
         nb, na = len(self.fir), len(self.bplus)
@@ -49,6 +52,7 @@ class ZPETC:
 
     def causal_tf(self, sample_time: float) -> control.TransferFunction:
         """The filter delayed by ``preview`` samples, r*(k - preview) from r(k): causal [mm/mm]."""
+        import control
         n = max(len(self.fir), len(self.bplus))
         num = np.concatenate([self.fir, np.zeros(n - len(self.fir))])
         den = np.concatenate([self.bplus, np.zeros(n - len(self.bplus))])

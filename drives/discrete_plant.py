@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
-import control
 import numpy as np
 
 from drives._record import Record
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["DiscretePlantDrive"]
 
@@ -74,6 +76,7 @@ class DiscretePlantDrive(Record):
 
     def transfer_function(self) -> control.TransferFunction:
         """P(z) from u [V] to the table position [mm], discrete with dt = ``sample_time``."""
+        import control
         n = self.order
         num = np.zeros(n + 1)
         num[1 : 1 + len(self.numerator)] = np.asarray(self.numerator) * self.output_unit

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import dataclasses
-from typing import ClassVar
-
-import control
+from typing import TYPE_CHECKING, ClassVar
 
 from drives._record import Record
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["LinearMotorDrive"]
 
@@ -74,4 +75,5 @@ class LinearMotorDrive(Record):
 
     def transfer_function(self) -> control.TransferFunction:
         """Open-loop plant x(s)/u(s) = (K/J) / (s (s + B/J)) [mm/V]."""
+        import control
         return control.tf([self.gain], [1.0, self.viscous_rate, 0.0])

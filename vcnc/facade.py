@@ -98,14 +98,14 @@ def check_program_axes(program: Program, machine: Machine) -> None:
     An axis the program only names without moving it (``G0 Z0`` from Z0) is no obstacle: the
     interpolator needs limits only for the axes that move."""
     from toolpaths.geometry import Arc
-    from vcnc.core.axes import EXTRA_NAMES
+    from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 
     for b in program.blocks:
         moved = [a for a, s, e in zip("xyz", b.start, b.target) if s != e]
         if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
             moved += ["xyz"[i] for i in b.segment.plane_axes]
         moved += [a for a, d in zip(EXTRA_NAMES, b.extra_delta) if d != 0]
-        missing = [a for a in dict.fromkeys(moved) if a not in machine.axes]
+        missing = [a for a in AXIS_NAMES if a in moved and a not in machine.axes]  # in the machine's order
         if missing:
             names = ", ".join(a.upper() for a in missing)
             raise GCodeError(
@@ -140,6 +140,12 @@ def program_meta(setpoints: Setpoints, program_name: str, *, profile: str) -> di
     return {"program": program_name, "profile": profile, **({"truncated": note} if note else {})}
 
 
+#: Samples one try of :func:`interpolate`'s cut may hold (at least; more when the budget needs them): a
+#: prefix of the program up to this length is interpolated whole and cut, one try instead of a
+#: bisection over its blocks (about 200 MB for 9 axes' position, velocity and acceleration).
+TRY_SAMPLES = 1_000_000
+
+
 def _least_times(program: Program, limits) -> np.ndarray:
     """A lower bound of each block's end time [s]: XYZ lengths at the programmed feed capped by the
     norm of the axes' velocity limits (rapids at the norm of the rapid rates), plus the dwells."""
@@ -161,7 +167,8 @@ def _first_seconds(program: Program, *, limits, sample_time: float, profile: str
 
     budget = int(math.floor(max_duration / sample_time + 1e-9)) + 1
     margin = min(1.0 + 0.1 * max_duration, 60.0)  # [s] after the cut, where the prefix's own stop may begin
-    cap = budget + int(2 * margin / sample_time)  # the samples one try may hold (memory)
+    enough = budget + int(math.ceil(margin / sample_time))  # a prefix this long gives the whole program's samples
+    cap = max(budget + int(2 * margin / sample_time), TRY_SAMPLES)  # the samples one try may hold (memory)
 
     def run(k: int) -> Setpoints | int:
         """The setpoints of the first ``k`` blocks, or the samples they need beyond ``cap``."""
@@ -187,10 +194,13 @@ def _first_seconds(program: Program, *, limits, sample_time: float, profile: str
             guess = 0
             got = run(mid)
             lo, hi, sp = (mid, hi, got) if isinstance(got, Setpoints) else (lo, mid, sp)
-        if sp is None:
-            raise GCodeError(f"the first block alone runs longer than the budget of {max_duration:g} s "
-                             "and its margin", file=program.source, line=program.blocks[0].line,
-                             expected="a larger budget")
+            if sp is not None and len(sp) >= enough:  # long enough: a longer prefix would change nothing
+                break
+        if sp is None or sp.duration == 0.0:  # nothing before the block that does not fit moves or dwells
+            raise GCodeError(f"this block alone runs longer than one try of the {max_duration:g} s cut holds "
+                             f"({cap} samples, {cap * sample_time:g} s), and no block before it moves or dwells",
+                             file=program.source, line=program.blocks[lo].line,
+                             expected=f"a block within {cap * sample_time:g} s (its length at its feed)")
         k = lo
     exact = sp.duration >= max_duration + margin or k == len(program.blocks)
     out = sp.slice(0, budget)

@@ -14,7 +14,7 @@ from vcnc.core.metrics import error_metrics
 if TYPE_CHECKING:
     from vcnc.report import Report
 
-__all__ = ["summarize", "build_report", "moving_axes"]
+__all__ = ["summarize", "build_report", "moving_axes", "saturation_note"]
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +41,9 @@ def summarize(capture: Capture) -> dict[str, Any]:
             a: error_metrics(e[:, i]) for i, a in enumerate(capture.axes)
         },
     }
+    saturated = _saturation(capture)
+    if saturated:
+        out["saturated"] = saturated
     if len(moving_axes(capture)) >= 2:
         from vcnc.contour import contour_metrics
 
@@ -50,6 +53,43 @@ def summarize(capture: Capture) -> dict[str, Any]:
         else:
             out["contour"] = {"max_um": float(c["max_um"]), "rms_um": float(c["rms_um"])}
     return out
+
+
+def _saturation(capture: Capture) -> dict[str, dict[str, float]]:
+    """``{axis: {"share", "longest_s", "error_beyond_travel"}}`` of the axes whose actuator clipped the
+    control signal (``Capture.aux["saturated"]`` of a simulation): the share of the samples, the longest
+    run [s], and whether the tracking error grew beyond the axis' commanded travel (the loop diverged)."""
+    sat = capture.aux.get("saturated")
+    out = {}
+    for i, a in enumerate(capture.axes if sat is not None else ()):
+        col = np.asarray(sat[:, i], dtype=bool)
+        if col.any():
+            edges = np.flatnonzero(np.diff(np.concatenate(([0], col.view(np.int8), [0]))))
+            out[a] = {"share": float(col.mean()), "longest_s": float(np.diff(edges)[::2].max() * capture.sample_time),
+                      "error_beyond_travel": bool(np.abs(capture.reference[:, i] - capture.measured[:, i]).max()
+                                                  > np.ptp(capture.reference[:, i]))}
+    return out
+
+
+def saturation_note(summary: dict[str, Any]) -> str | None:
+    """A warning in words when an actuator saturated during the run (``summary["saturated"]``), else None.
+
+    A loop at its actuator limit no longer follows the linear closed loop the machine's controller was
+    tuned for: the tracking error grows beyond it and the integrators, which the controllers do not
+    clamp (no anti-windup, as the thesis' laws), wind up; an adaptive or model-based law may then leave
+    its stable region altogether. The usual cause is an axis ``acceleration`` limit that the drive
+    cannot deliver at its current or voltage limit."""
+    sat = summary.get("saturated")
+    if not sat:
+        return None
+    parts = ", ".join(f"{a} {100 * v['share']:.3g} % of the samples (longest {1e3 * v['longest_s']:.4g} ms)"
+                      for a, v in sat.items())
+    lost = [a for a, v in sat.items() if v["error_beyond_travel"]]
+    diverged = (f"; on axis {', '.join(lost)} the tracking error grew beyond the commanded travel: the loop left its "
+                "stable region and the numbers describe that, not the machining" if lost else "")
+    return (f"warning: the actuator was at its limit on axis {parts}: the loop ran saturated there (integrators "
+            f"not clamped), so its errors are not those of the tuned closed loop{diverged}; check that the axis "
+            "limits (acceleration) fit what the drive delivers")
 
 
 def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
@@ -67,6 +107,9 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     rep.summary = summary
     if capture.meta.get("truncated"):
         rep.text(f"{capture.meta.get('program', 'the program')}: {capture.meta['truncated']}")
+    note = saturation_note(summary)
+    if note:
+        rep.text(note)
     rep.table(
         ["axis", "max tracking error", "rms tracking error", "unit"],
         [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],

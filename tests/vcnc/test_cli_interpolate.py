@@ -88,11 +88,11 @@ def test_interpolate_refuses_a_program_beyond_its_memory_guard_naming_max_second
     assert err.startswith(f"error: {prog}: the program needs at least ")
     assert f"more than the {MAX_SAMPLES} vcnc interpolate holds in memory; expected --max-seconds S" in err
     assert not out.exists()
-    # its first 30 s: the blocks that fit (the first 100 mm move, 20 s; the second would end at 40 s), and a
-    # note saying so, with the duration the file holds
+    # its first 30 s (the first 100 mm move, 20 s, then 10 s of the way back: a prefix of the program fits one
+    # try of the cut, vcnc.facade.TRY_SAMPLES), and a note saying so
     assert main(["interpolate", str(prog), "-o", str(out), "--max-seconds", "30"]) == 0
     said = capsys.readouterr().out
     data = np.loadtxt(out, delimiter=",", skiprows=1)
-    assert 20.0 <= data[-1, 0] <= 30.0 and np.all(np.isfinite(data))
-    assert f"{prog}: only the first {data[-1, 0]:.6g} s of at least 24000 s interpolated (budget 30 s)" in said
-    assert data[-1, 1] == pytest.approx(100.0)
+    assert data[-1, 0] == pytest.approx(30.0) and np.all(np.isfinite(data))
+    assert f"{prog}: only the first 30 s of at least 24000 s interpolated (budget 30 s)" in said
+    assert data[-1, 1] == pytest.approx(50.0, abs=0.05)  # 5 mm/s back from 100 mm for 10 s, less the reversal

@@ -45,6 +45,14 @@ def test_program_moving_z_on_an_xy_machine_names_line_axis_machine(tmp_path, cap
     assert "[axes.z]" in err and not out.exists()
 
 
+def test_a_helix_on_a_one_axis_machine_names_the_missing_axes_in_axis_order(tmp_path, capsys):
+    prog = write(tmp_path, "G21 G90 G17\nG0 X10 Y0 Z0\nG2 X10 Y0 Z-5 I-10 J0 F600\nM30\n")  # a full turn down 5 mm
+    assert main(["simulate", str(prog), "--machine", "emps", "-o", str(tmp_path / "c.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}:3: the program moves axis Y, Z, which machine 'emps' does not have "
+                          "(its axes: X); expected a machine with axis Y, Z")
+
+
 def test_interpolate_with_an_xy_machine_names_the_line_moving_z(tmp_path, capsys):
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 Z-1\nM30\n")
     assert main(["interpolate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "s.csv")]) == 2
@@ -81,6 +89,23 @@ def test_max_duration_cuts_at_the_budget_with_the_whole_programs_samples():
     assert note.startswith("only the first 5 s of at least ") and f"line {info['line']}" in note
 
 
+def test_max_duration_of_short_moves_slower_than_their_feed_cuts_the_whole_programs_samples():
+    # 300 moves of 0.5 mm at exact stop (G61): each is limited by the acceleration, not by F6000, so
+    # the lower bound of the block times is about 4 times too short (the case that made the cut search
+    # bisect over the blocks); the cut must still hold the whole program's samples up to the budget
+    machine = load_machine("fadal-pid")
+    text = "G21 G90 G61\nG0 X0 Y0\n" + "".join(f"G1 X{0.5 * (i % 2)} Y{0.01 * i:.2f} F6000\n"
+                                                   for i in range(1, 301)) + "M30\n"
+    program = interpolators.parse_program(text, source="short.nc")
+    whole = interpolate(program, machine)
+    cut = interpolate(program, machine, max_duration=4.0)
+    assert whole.duration > 8.0 and len(cut) == 4001
+    np.testing.assert_array_equal(cut.position, whole.position[: len(cut)])
+    info = cut.meta["truncated"]
+    assert info["exact"] and info["blocks"] == int(cut.block[-1]) and info["of"] == 301
+    assert info["program_at_least"] == pytest.approx(whole.duration)  # the whole program fitted one try
+
+
 def test_max_duration_longer_than_the_program_changes_nothing():
     machine = load_machine("fadal-pid")
     program = interpolators.parse_program("G21\nG0 X0 Y0\nG1 X20 Y10 F1200\nM30\n")
@@ -90,10 +115,22 @@ def test_max_duration_longer_than_the_program_changes_nothing():
     np.testing.assert_array_equal(sp.position, whole.position)
 
 
-def test_max_duration_a_first_block_longer_than_the_budget_is_refused():
+def test_max_duration_cuts_a_long_first_block_and_refuses_one_beyond_a_tries_memory():
+    from vcnc.facade import TRY_SAMPLES
+
+    machine = load_machine("fadal-pid")
     program = interpolators.parse_program("G21\nG1 X500 F60\nM30\n", source="slow.nc")  # 500 s
-    with pytest.raises(vcnc.GCodeError, match=r"slow\.nc:2: the first block alone runs longer than the budget of 1 s"):
-        interpolate(program, load_machine("fadal-pid"), max_duration=1.0)
+    cut = interpolate(program, machine, max_duration=1.0)
+    assert len(cut) == 1001 and cut.meta["truncated"]["blocks"] == 0 and cut.meta["truncated"]["line"] == 2
+    np.testing.assert_allclose(cut.position[-1, 0], 1.0, atol=0.01)  # 1 mm/s, after the start ramp
+    assert TRY_SAMPLES < 20_000_000
+    for text, line in (("G21\nG1 X20000 F60\nM30\n", 2),  # 20000 s
+                       ("G21 G90\nG0 X0 Y0\nG1 X100 Y50 F0.001\nM30\n", 3)):  # a rapid that stays, then 6.7e6 s
+        program = interpolators.parse_program(text, source="slow.nc")
+        with pytest.raises(vcnc.GCodeError, match=rf"slow\.nc:{line}: this block alone runs longer than one try of the "
+                           r"1 s cut holds \(1000000 samples, 1000 s\), and no block before it moves or dwells; "
+                           r"expected a block within 1000 s"):
+            interpolate(program, machine, max_duration=1.0)
     with pytest.raises(vcnc.InputError, match="max_duration must be a finite value > 0 s"):
         interpolate(program, load_machine("fadal-pid"), max_duration=0.0)
 
@@ -155,3 +192,19 @@ def test_simulate_refuses_a_program_beyond_its_memory_guard_naming_max_seconds(t
     assert not out.exists()
     assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(out), "--max-seconds", "30"]) == 0
     assert len(vcnc.read_capture(out)) == 30001
+
+
+def test_simulate_on_a_pid_machine_does_not_load_python_control(tmp_path):
+    # python-control (with scipy.signal and matplotlib) takes about half of a short `vcnc simulate` run to
+    # import; the compiled loop of the PID, P-PI, sliding-mode and PDF laws needs none of it (the
+    # pole-placement design does: ballscrew-ppc, ballscrew-zpetc)
+    import subprocess
+    import sys
+
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nM30\n")
+    argv = ["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")]
+    code = (f"import sys\nfrom vcnc.cli import main\nassert main({argv!r}) == 0\n"
+            "print(sorted(m for m in ('control', 'scipy.signal', 'matplotlib.pyplot') if m in sys.modules))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         cwd=Path(__file__).resolve().parents[2]).stdout
+    assert out.strip().splitlines()[-1] == "[]"

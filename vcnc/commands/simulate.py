@@ -41,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
     from vcnc.facade import program_meta
-    from vcnc.simulation_report import build_report, summarize
+    from vcnc.simulation_report import build_report, saturation_note, summarize
 
     machine = load_machine(args.machine)
     program = interpolators.load_program(args.program, context=program_context(args, machine))
@@ -54,6 +54,9 @@ def run(args: argparse.Namespace) -> int:
     capture = machine.simulate(setpoints, seed=args.seed)
     capture.meta.update(meta)
     summary = summarize(capture)
+    note = saturation_note(summary)
+    if note:
+        print(f"{args.program}: {note}")
     report = build_report(capture, summary) if args.report else None
     with contextlib.ExitStack() as stack:
         # everything goes to temporary names, renamed into place only when all parts succeeded

@@ -55,7 +55,9 @@ class Capture:
     aux : dict of str to ndarray
         Further signals of the source that are not part of the model (e.g. EMPS ``pulses_N``; a
         simulation's ``measured_true``, the true position of the measured point without sensor
-        noise, quantisation and drift, shape (N, n_axes)); identification never reads them.
+        noise, quantisation and drift, shape (N, n_axes), and ``saturated``, where the actuator
+        clipped the control signal, bool (N, n_axes)); identification never reads them. A 2-D
+        entry holds one column per axis, in ``axes`` order, and follows :meth:`select_axes`.
     meta : dict
         ``# key: value`` lines of the file, provenance.
     source : str, optional
@@ -130,6 +132,7 @@ class Capture:
             table=col(self.table),
             velocity=col(self.velocity),
             friction=col(self.friction),
+            aux={k: col(v) if np.ndim(v) == 2 else v for k, v in self.aux.items()},
         )
 
     def slice(self, start: int, stop: int) -> Capture:

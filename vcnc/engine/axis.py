@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import control
 import numpy as np
 
 import drives
@@ -14,6 +13,9 @@ from controllers._base import Controller, discrete_closed_loop
 from interpolators.limits import AxisLimits
 from vcnc.core.errors import MachineError
 from vcnc.engine import layout as L
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["AxisDefinition", "NONIDEALITY_FIELDS"]
 
@@ -130,6 +132,11 @@ class AxisDefinition:
         if self.saturation is None:
             return math.inf
         return self.saturation.control_limit(getattr(self.drive, "amplifier_gain", 1.0))
+
+    def actuator_limit(self) -> float:
+        """Largest control signal the actuator passes [V]: the amplifier limit or the DAC range,
+        whichever is lower (inf with neither)."""
+        return min(self.control_limit(), self.dac.range if self.dac is not None else math.inf)
 
     def disturbance_levels(self) -> tuple[float, float]:
         """(d+, d-) of Eq. (3.2) [V]: Coulomb friction plus the constant load, as control signal."""

@@ -353,7 +353,9 @@ class Machine:
             ``measurement = "table"``), and when every axis is compiled also ``table`` (true
             table position [mm]), ``velocity`` [mm/s], ``control`` [V], ``friction`` (dry friction
             as control signal [V]) and ``aux["measured_true"]``: the true position of the measured
-            point [mm], i.e. ``measured`` without sensor noise, encoder quantisation and drift.
+            point [mm], i.e. ``measured`` without sensor noise, encoder quantisation and drift, and
+            ``aux["saturated"]``: where the actuator clipped the control signal to its limit (bool, shape
+            (N, n_axes); :meth:`AxisDefinition.actuator_limit`).
             ``path`` is the setpoints' path; ``meta`` records the machine name, seed and sample time.
             Each axis starts at rest at its first commanded position.
         """
@@ -374,10 +376,16 @@ class Machine:
             table=table if all_compiled else None,
             velocity=velocity if all_compiled else None,
             friction=friction if all_compiled else None,
-            aux={"measured_true": position} if all_compiled else {},
+            aux={"measured_true": position, "saturated": self._saturated(setpoints.axes, control)}
+            if all_compiled else {},
             meta=meta,
             path=setpoints.path,
         )
+
+    def _saturated(self, axes: tuple[str, ...], control: np.ndarray) -> np.ndarray:
+        """Where the applied control signal [V] sits at its axis' actuator limit (the kernel clips it there)."""
+        limits = np.array([self._axes[a].actuator_limit() for a in axes])
+        return np.abs(control) >= limits
 
     def _check_run(self, setpoints: Setpoints, seed: int | None) -> int:
         """InputError unless ``setpoints`` fit this machine; the noise seed to use."""
