@@ -28,7 +28,7 @@ from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
-           "read_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code"]
+           "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
@@ -99,7 +99,9 @@ class Tool:
         difference between the actual and a nominal diameter) makes G41 offset as G42 by its
         magnitude and G42 as G41 (LinuxCNC ``interp_convert.cc`` convert_cutter_compensation_on).
     comment : str
-        Free text (LinuxCNC tool tables carry one).
+        Free text (LinuxCNC tool tables carry one; a Heidenhain TOOL.T its DOC column).
+    name : str
+        The tool's name (a Heidenhain tool table's NAME column, ``TOOL CALL "NAME"``); empty if none.
     offset_x, offset_y : float
         Tool offsets along X and Y [mm] (LinuxCNC tool-table columns X and Y, ``G10 L1 X.. Y..``;
         lathe tools, or a milling head with an offset spindle): G43 applies them with the length, the
@@ -119,6 +121,7 @@ class Tool:
     offset_y: float = 0.0
     length_wear: float = 0.0
     radius_wear: float = 0.0
+    name: str = ""
 
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
@@ -297,6 +300,12 @@ class MachineContext:
         """The tool table's entry for ``number``, or None when the table has none."""
         return self.tools.get(int(number))
 
+    def tool_named(self, name: str) -> Tool | None:
+        """The tool table's entry named ``name`` (Heidenhain ``TOOL CALL "NAME"``), the lowest number first
+        when several share it, or None."""
+        hits = [t for t in self.tools.values() if t.name and t.name == name.strip()]
+        return min(hits, key=lambda t: t.number) if hits else None
+
     def with_dialect(self, name: str) -> MachineContext:
         """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
         rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
@@ -320,7 +329,8 @@ INTERPOLATION_CONTEXT = MachineContext(extra_axes=EXTRA_NAMES)
 
 
 def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
-    """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line).
+    """Read a LinuxCNC tool table (``T1 P1 D6.0 Z+12.5 ;comment`` per line), or a Heidenhain TOOL.T
+    (a first line ``BEGIN TOOL .T MM|INCH``: :func:`read_tnc_tool_table`).
 
     Following LinuxCNC's tool-table format (https://linuxcnc.org/docs/html/config/tool-table.html):
     ``T`` tool number, ``P`` pocket (ignored), ``D`` diameter, ``Z`` tool length offset and ``X``
@@ -341,6 +351,8 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
             lines = fh.read().splitlines()
     except OSError as exc:
         raise InputError(f"{path}: cannot read tool table: {exc.strerror or exc}") from None
+    if lines and _TNC_TABLE_BEGIN.match(lines[0]):
+        return read_tnc_tool_table(path, lines)
     tools: dict[int, Tool] = {}
     word = re.compile(r"([A-Za-z])\s*([+-]?(?:\d+\.?\d*|\.\d+))")
     for lineno, raw in enumerate(lines, start=1):
@@ -363,4 +375,62 @@ def read_tool_table(path: str, *, units: str = "mm") -> dict[int, Tool]:
         tools[number] = Tool(number=number, length=words.get("Z", 0.0) * scale,
                              radius=words.get("D", 0.0) * scale / 2.0, comment=comment.strip(),
                              offset_x=words.get("X", 0.0) * scale, offset_y=words.get("Y", 0.0) * scale)
+    return tools
+
+
+_TNC_TABLE_BEGIN = re.compile(r"\s*BEGIN\s+\S*\s*\.T\s+(MM|INCH)\b", re.I)
+_TNC_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)$")
+
+
+def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
+    """Read a Heidenhain tool table TOOL.T (iTNC 530, TNC 320/620/640, TNC7).
+
+    The file is text with fixed column widths: ``BEGIN TOOL .T MM`` (or ``INCH``), a header line whose
+    column names start where their columns start (``T NAME L R R2 DL DR ... DOC``), one line per tool,
+    and ``[END]``. Following the TNC7 user's manual "Tool table tool.t" (HEIDENHAIN 81762x-17): ``T`` the
+    tool number (an index after the period: ``5.1`` is index 1 of tool 5), ``NAME`` the tool name (up
+    to 32 characters, may hold spaces), ``L`` the length and ``R`` the radius, ``DL`` and ``DR`` their
+    oversizes ("is added to the parameter L"), ``DOC`` a comment. The other columns (R2, tool life,
+    kinematics, ...) are read past. Indexed rows are left out: vcnc's tool table has no indices, and
+    ``TOOL CALL 5.1`` takes tool 5's data with a note.
+
+    Raises
+    ------
+    InputError
+        No header line with T, L and R columns, or a malformed number (file and line named).
+    """
+    scale = 25.4 if _TNC_TABLE_BEGIN.match(lines[0]).group(1).upper() == "INCH" else 1.0
+    if len(lines) < 2 or not re.match(r"\s*T\s", lines[1]):
+        raise InputError(f"{path}:2: Heidenhain tool table without its header line; expected the column names "
+                         "T NAME L R ... after the BEGIN line")
+    header = lines[1].rstrip()
+    starts = [m.start() for m in re.finditer(r"\S+", header)]
+    names = header.split()
+    missing = [c for c in ("T", "L", "R") if c not in names]
+    if missing:
+        raise InputError(f"{path}:2: Heidenhain tool table header without column {missing[0]}; expected "
+                         "T NAME L R ... (the TNC's TOOL.T)")
+    tools: dict[int, Tool] = {}
+    for lineno, raw in enumerate(lines[2:], start=3):
+        if not raw.strip() or raw.strip().upper() == "[END]":
+            continue
+        fields = {name: raw[a:b].strip() for name, a, b in zip(names, starts, starts[1:] + [len(raw)])}
+
+        def number(col: str, *, lineno: int = lineno, fields: dict = fields) -> float:
+            text = fields.get(col, "")
+            if not text:
+                return 0.0
+            if not _TNC_NUMBER.match(text):
+                raise InputError(f"{path}:{lineno}: column {col} holds {text!r}, not a number; expected the "
+                                 "TOOL.T columns under the header's names (fixed widths)")
+            return float(text)
+
+        t = fields["T"]
+        if not re.fullmatch(r"\d+(\.\d+)?", t):
+            raise InputError(f"{path}:{lineno}: tool number {t!r} is not a number; expected T as 0..32767[.index]")
+        if "." in t and int(t.split(".")[1]) != 0:
+            continue
+        n = int(t.split(".")[0])
+        tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
+                        length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale)
     return tools

@@ -836,9 +836,13 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
         number = _whole_number(nm.group(1), m, where, blk.column + pos + nm.start(1), what="tool number")
     if number is not None and "." in nm.group(1):
         m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
-    named = bool(nm.group(1)) and number is None  # a tool called by name: vcnc's tool table is by number
+    named = bool(nm.group(1)) and number is None  # a tool called by name: the table's NAME column
     if named:
-        m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")
+        by_name = m.context.tool_named(nm.group(1)[1:-1])
+        if by_name is not None:
+            number, named = by_name.number, False
+        else:
+            m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")
     j = pos + nm.end()
     dl = dr = 0.0
     while j < len(code):

@@ -1815,7 +1815,8 @@ def _levels(surface: float, bottom: float, sgn: float, plunge: float) -> list[fl
 
 def _tool(t: _Tnc, text: str) -> None:
     """``TOOL DEF n L.. R..`` (the program's table) and ``TOOL CALL n Z S.. DL.. DR..``; ``TOOL CALL "NAME"``
-    (a tool by name: vcnc's table is by number, so length and radius are the DL, DR deltas) and
+    (the table's tool of that NAME, the lowest number of several; none: length and radius are the DL, DR
+    deltas) and
     ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
     m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
@@ -1828,7 +1829,11 @@ def _tool(t: _Tnc, text: str) -> None:
         if f:
             t.auto = _val(f.group(1).replace(" ", ""), t.q)
         return
-    number = 0 if m.group(2).startswith('"') else int(_val(m.group(2), t.q))
+    if m.group(2).startswith('"'):
+        numbers = sorted(n for n, tool in t.ctx.tools.items() if tool.name == m.group(2).strip('"').strip())
+        number = numbers[0] if numbers else 0
+    else:
+        number = int(_val(m.group(2), t.q))
 
     def word(name: str) -> float:
         w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
@@ -1841,7 +1846,7 @@ def _tool(t: _Tnc, text: str) -> None:
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
         raise ReferenceError(f"tool axis {axis.group(1)}")
-    if m.group(2).startswith('"'):
+    if m.group(2).startswith('"') and number == 0:
         length = radius = 0.0
     elif number in t.tool_defs:
         length, radius = t.tool_defs[number]

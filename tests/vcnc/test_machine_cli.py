@@ -119,6 +119,16 @@ def test_machine_file_tool_offsets_apply_with_g43(tmp_path) -> None:
         load_machine(f)
 
 
+def test_machine_file_tools_may_carry_a_name(tmp_path) -> None:
+    """[program.tools.N] name: the tool a Heidenhain ``TOOL CALL "NAME"`` calls (TNC tool names are upper
+    case, and the call names one exactly)."""
+    f = tmp_path / "m.toml"
+    f.write_text(builtin_machine_text("fadal-pid") + '\n[program.tools.4]\nlength = 50.0\nname = "ENGRAVER"\n')
+    ctx = load_machine(f).context
+    assert ctx.tool_named("ENGRAVER").number == 4 and ctx.tool_named("ENGRAVER").length == 50.0
+    assert ctx.tool_named("engraver") is None
+
+
 def test_machine_file_subroutine_path_finds_a_library_subroutine(tmp_path) -> None:
     """[program] subroutine_path (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH): a program in parts/ calls
     o<peck> from the shop's library lib/, named relative to the machine file. The subroutine feeds Z to

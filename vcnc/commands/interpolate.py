@@ -48,7 +48,9 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
                         help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas) "
                              "(default: the machine's, else linuxcnc)")
     parser.add_argument("--tool-table", metavar="FILE",
-                        help="LinuxCNC tool table (T1 P1 D6.0 Z+12.5 ;comment) for G43 H and G41/G42 D")
+                        help="tool table for G43 H, G41/G42 D and TOOL CALL n|\"NAME\": LinuxCNC's "
+                             "(T1 P1 D6.0 Z+12.5 ;comment) or a Heidenhain TOOL.T (BEGIN TOOL .T MM, columns "
+                             "T NAME L R DL DR)")
     parser.add_argument("--subroutine-path", metavar="DIR[:DIR]",
                         help="folders searched for the file <name>.ngc of an o<name> call after the program's own "
                              "folder (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH; before the machine's)")

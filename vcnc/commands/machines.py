@@ -20,7 +20,8 @@ PROGRAM_TABLE_DOC = """
 # reference2 = [0.0, 0.0, 0.0]   # mm, machine coordinates: G30's position
 # linear_units = "mm"            # mm | inch: unit of the stored offsets a program reads (#5221.., #5401..)
 # decimal_point_input = "calculator"  # fanuc: X10 without a decimal point is 10 mm (DPI=1); "increment": 0.010 mm
-# tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length, X Y offsets)
+# tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length,
+#                                # X Y offsets), or a Heidenhain TOOL.T (BEGIN TOOL .T MM; T NAME L R DL DR columns)
 # subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)
 # user_m_path = []               # folders holding the M100-M199 user programs, e.g. ["mfiles"] (USER_M_PATH)
 #
@@ -34,6 +35,7 @@ PROGRAM_TABLE_DOC = """
 # radius = 0.0                   # mm
 # offset_x = 0.0                 # mm, tool offsets along X and Y (G43 applies them with the length)
 # offset_y = 0.0                 # mm
+# name = ""                      # the tool's name: Heidenhain TOOL CALL "NAME" calls it
 #
 # Tilted working plane (Heidenhain PLANE / cycle 19, 3+2 machining) on a machine with rotary axes, e.g. [axes.b]
 # and [axes.c]: the rotary axes that tilt the part (a head that tilts is an error for a tilted plane):

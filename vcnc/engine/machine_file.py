@@ -26,12 +26,13 @@ Layout::
     reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
     linear_units = "mm"           # mm | inch: the unit the stored offsets read in (#5221.., LinuxCNC's INI unit)
     decimal_point_input = "calculator"  # calculator | increment: Fanuc DPI (No. 3401#0) = 1 | 0, X10 = 10 | 0.010 mm
-    tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5)
+    tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5) or Heidenhain TOOL.T
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
-    [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number)
+    [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
+                                  #   name = "MILL_D6" (Heidenhain TOOL CALL "MILL_D6")
     [program.kinematics]          # optional: the rotary axes that tilt the part (tilted working plane)
     kind = "table"                # table (trunnion) | head (a tilted plane is then an error)
     [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's), or one
@@ -386,14 +387,15 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         if not number.isdigit() or not isinstance(entry, dict):
             raise where.error(f"'program.tools.{number}' must be a table named by a tool number", tpath)
         for key in entry:
-            if key not in ("length", "radius", "offset_x", "offset_y", "comment"):
+            if key not in ("length", "radius", "offset_x", "offset_y", "comment", "name"):
                 raise where.error(f"unknown key 'program.tools.{number}.{key}'; expected length [mm], radius [mm], "
-                                  "offset_x [mm], offset_y [mm], comment", tpath + (key,))
+                                  "offset_x [mm], offset_y [mm], comment, name", tpath + (key,))
         try:
             tools[int(number)] = Tool(number=int(number), length=float(entry.get("length", 0.0)),
                                       radius=float(entry.get("radius", 0.0)),
                                       offset_x=float(entry.get("offset_x", 0.0)),
-                                      offset_y=float(entry.get("offset_y", 0.0)), comment=str(entry.get("comment", "")))
+                                      offset_y=float(entry.get("offset_y", 0.0)), comment=str(entry.get("comment", "")),
+                                      name=str(entry.get("name", "")))
         except (InputError, TypeError, ValueError) as exc:
             raise where.error(f"program.tools.{number}: {getattr(exc, 'message', exc)}", tpath) from None
     kwargs["tools"] = tools
