@@ -32,7 +32,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   jerk-limited interpolation (the loop receives the recorded reference), ``jerkf`` the loop
   receives the recorded reference through a 16 ms moving-average jerk filter (Heidenhain's
   smoothing filters sit after the interpolator; our reading, no manual found that fixes where the
-  trace taps), ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
+  trace taps; 16 samples at 1 ms, also on ``exact``), which the fit models by its setpoint filter
+  (:mod:`identification.setpoint_filter`, column ``filt ms``: the length found, 0 for none), ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
   (3 ms, reference 0.1 s ahead, 0.1 um digits), a LinuxCNC 2.9 halscope log and a logger CSV in
   ms and um with a decimal comma (:func:`vcnc.capture.read_capture`, formats of :mod:`vcnc.traces`).
 - **tolerances**: pass when every pole (omega_n, zeta, p) is within :data:`POLE_TOL` of the truth
@@ -47,7 +48,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   the Nyquist bound, which ``vcnc identify`` prints), and the totals count them.
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
-time [ms] (0: the delay-free truth), prediction RMS and its limit [um], PASS/FAIL; then the totals.
+time [ms] (0: the delay-free truth), the setpoint filter found [ms], prediction RMS and its limit
+[um], PASS/FAIL; then the totals. The truths are fitted without the setpoint filter's search.
 A benchmark, not a test: nothing is timed or asserted.
 """
 
@@ -125,17 +127,15 @@ def simulated(machine: str, *, moves: int = 60, profile: str = "trapezoid", jerk
     ``recorded`` holds the unfiltered one; otherwise the two are the same capture."""
     if machine == "exact":
         T = 1e-3
-        cap = synthetic_capture(FADAL_PID_X, random_moves_reference(moves=100 if moves == 60 else moves,
-                                                                    sample_time=T, seed=3), sample_time=T)
-        return cap, cap
+        xr = random_moves_reference(moves=100 if moves == 60 else moves, sample_time=T, seed=3)
+        loop = synthetic_capture(FADAL_PID_X, _jerk_filtered(xr[:, None], jerk_filter_s, T)[:, 0] if jerk_filter_s
+                                 else xr, sample_time=T)
+        return dataclasses.replace(loop, reference=xr[:, None].copy()), loop
     m = vcnc.machine(machine)
     sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(moves, 10.0, 12000.0, seed=1)), m,
                           profile=profile)
     if jerk_filter_s:
-        n = max(1, int(round(jerk_filter_s / sp.sample_time)))
-        pad = np.vstack([np.repeat(sp.position[:1], n - 1, axis=0), sp.position])
-        kernel = np.ones(n) / n
-        pos = np.column_stack([np.convolve(pad[:, j], kernel, mode="valid") for j in range(pad.shape[1])])
+        pos = _jerk_filtered(sp.position, jerk_filter_s, sp.sample_time)
         vel = np.gradient(pos, sp.sample_time, axis=0)
         filtered = dataclasses.replace(sp, position=pos, velocity=vel,
                                        acceleration=np.gradient(vel, sp.sample_time, axis=0))
@@ -145,11 +145,20 @@ def simulated(machine: str, *, moves: int = 60, profile: str = "trapezoid", jerk
     return cap, cap
 
 
+def _jerk_filtered(position: np.ndarray, jerk_filter_s: float, T: float) -> np.ndarray:
+    """``position`` (samples x axes) through a moving average of ``jerk_filter_s`` / ``T`` samples, the
+    first sample held before it: the jerk filter as a control runs it in its interpolation cycle."""
+    n = max(1, int(round(jerk_filter_s / T)))
+    pad = np.vstack([np.repeat(position[:1], n - 1, axis=0), position])
+    kernel = np.ones(n) / n
+    return np.column_stack([np.convolve(pad[:, j], kernel, mode="valid") for j in range(pad.shape[1])])
+
+
 def truth_of(machine: str, capture: Capture) -> Truth:
     if machine == "exact":
         p = FADAL_PID_X
         return Truth(poles_from_denominator(p["a1"], p["a2"], p["a3"]), 0.0, dict(p))
-    model = identify(capture, axis="x", diagnose=False, delay=0.0)
+    model = identify(capture, axis="x", diagnose=False, delay=0.0, setpoint_filter=False)
     return Truth(dict(model.poles), float(model.fit["rms_um"]), dict(model.parameters))
 
 
@@ -250,7 +259,8 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     err = pole_error(model.poles, truth.poles)
     in_loop = model.delay_s - rec.get("lead_s", 0.0)
     if machine != "exact" and model.delay_s and 0.0 < abs(in_loop) < MIN_DELAY_SAMPLES * cap.sample_time:
-        lagged = pole_error(model.poles, identify(loop, axis="x", diagnose=False, delay=in_loop).poles)
+        lagged = pole_error(model.poles, identify(loop, axis="x", diagnose=False, delay=in_loop,
+                                                  setpoint_filter=False).poles)
         in_loop, err = (in_loop, lagged) if max(lagged.values()) < max(err.values()) else (0.0, err)
     else:
         in_loop = 0.0

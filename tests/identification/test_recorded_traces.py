@@ -27,6 +27,7 @@ from identification.initial_state import centred_statistics, starts_in_motion
 from identification.poles import poles_from_denominator
 from identification.reduced_model import simulate
 from identification.segments import SETTLED_SHARE, settled_start
+from identification.setpoint_filter import filter_reference
 from identification.solve import solve_statistics
 from identification.substeps import simulate_record, substep_count
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
@@ -306,3 +307,33 @@ def test_a_late_reference_on_an_axis_that_never_rests():
     assert abs(model.delay_s + 0.02) < T
     assert _pole_error(model.poles, truth.poles) < 0.01
     assert model.fit["rms_um"] < 0.01
+
+
+# ------------------------------------------------------------------------ traceid4 (session 17)
+def test_a_setpoint_filter_before_the_loop_is_found_with_the_exact_poles(exact_capture):
+    """The exact model fed through a 12 ms moving average of its recorded reference (a control's
+    jerk filter after the point its trace taps the setpoint): without the filter term the fit bends
+    the poles to imitate it; with it the filter's length and the exact poles come back."""
+    T = exact_capture.sample_time
+    xr = exact_capture.reference[:, 0]
+    loop = synthetic_capture(FADAL_PID_X, filter_reference(xr, 12.0), sample_time=T)
+    cap = _one_axis(xr, loop.measured[:, 0], T)
+    exact = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
+    without = identify(cap, axis="x", diagnose=False, setpoint_filter=False)
+    assert without.setpoint_filter_s == 0.0 and _pole_error(without.poles, exact) > 0.05
+    model = identify(cap, axis="x", diagnose=False)
+    assert model.setpoint_filter_s == pytest.approx(0.012, abs=2e-4)
+    assert model.delay_s == 0.0
+    assert _pole_error(model.poles, exact) < 0.01
+    assert model.fit["setpoint_filter"]["filter_s"] == model.setpoint_filter_s
+    assert model.fit["rms_um"] < 0.1 * without.fit["rms_um"]
+    # the model simulates its filter: it predicts the loop's response from the recorded reference
+    assert np.sqrt(np.mean((model.simulate(xr, sample_time=T) - loop.measured[:, 0]) ** 2)) < 0.1e-3
+
+
+def test_no_setpoint_filter_is_claimed_without_one(exact_capture, truth):
+    """The search runs on every fit; a record whose loop receives the recorded reference keeps none
+    (the exact model, fadal-pid)."""
+    exact = identify(exact_capture, axis="x", diagnose=False)
+    assert exact.setpoint_filter_s == 0.0 and exact.fit["setpoint_filter"]["filter_s"] == 0.0
+    assert truth.setpoint_filter_s == 0.0
