@@ -33,7 +33,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   receives the recorded reference through a 16 ms moving-average jerk filter (Heidenhain's
   smoothing filters sit after the interpolator; our reading, no manual found that fixes where the
   trace taps; 16 samples at 1 ms, also on ``exact``), which the fit models by its setpoint filter
-  (:mod:`identification.setpoint_filter`, column ``filt ms``: the length found, 0 for none), ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
+  (:mod:`identification.setpoint_filter`, column ``filt ms``: the length found, 0 for none),
+  ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
   (3 ms, reference 0.1 s ahead, 0.1 um digits), a LinuxCNC 2.9 halscope log and a logger CSV in
   ms and um with a decimal comma (:func:`vcnc.capture.read_capture`, formats of :mod:`vcnc.traces`).
 - **tolerances**: pass when every pole (omega_n, zeta, p) is within :data:`POLE_TOL` of the truth
@@ -46,6 +47,16 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   (chevalier-pdf's 172 Hz pair logged every 3 or 6 ms) cannot be reached by any fit, whose box ends
   there (thesis Sec. 4.3): such a case passes when the fit says so (``model.poles_on_bounds()``: the pole on
   the Nyquist bound, which ``vcnc identify`` prints), and the totals count them.
+- **poles the record does not determine**: a case whose poles miss the truth but whose RMS passes
+  is fitted again with the poles held at the truth's (:func:`prediction_at_truth`); when that
+  predicts the record at most :data:`SAME_PREDICTION` times worse than the fit, the record cannot
+  tell the two apart and the case passes on the poles (the ratio is printed, the totals count
+  them). This is fadal-smc's: its sliding-mode law with exact feedforward gives G_track = 1
+  (:class:`controllers.SlidingMode`, Table 3.5), the poles cancel from the reference's response and
+  show only in the response to the friction at reversals, which a short, decimated or cut record
+  or a fitted dead time leaves too little of: held at the truth's poles, ``short`` (p 24 % off) is
+  predicted 1.010 times worse, ``dec6`` and ``motion`` (p 7 % off) 1.001 times. A fit in a local
+  minimum is not excused: the truth's poles then predict the record better (ratio < 1).
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
 time [ms] (0: the delay-free truth), the setpoint filter found [ms], prediction RMS and its limit
@@ -86,6 +97,9 @@ P_FLOOR_HZ = 0.1
 RMS_FACTOR = 4.0
 #: Added to the allowed RMS [um].
 RMS_SLACK_UM = 0.1
+#: Poles off the truth pass when the record fitted with them held at the truth's is predicted at
+#: most this many times worse (RMS) than by the fit [-]: the record does not tell the two apart.
+SAME_PREDICTION = 1.02
 MACHINES = ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-ppc", "chevalier-pdf", "emps", "exact")
 #: (name, recording): the recording's settings, read by :func:`record`.
 CASES: dict[str, dict] = {
@@ -245,6 +259,16 @@ def rms_limit(truth: Truth, rec: dict, capture: Capture) -> float:
     return RMS_FACTOR * math.hypot(floor, added) + RMS_SLACK_UM
 
 
+def prediction_at_truth(recorded: Capture, model, truth: Truth) -> float:
+    """The prediction RMS of ``recorded`` by the fit with its poles held at the truth's (a box 1e-6
+    wide around them, its dead time estimated, its setpoint filter searched when ``model`` has one), over
+    ``model``'s own [-] (module docstring, :data:`SAME_PREDICTION`)."""
+    box = {k: (truth.poles[k] * (1 - 1e-6), truth.poles[k] * (1 + 1e-6)) for k in ("p_hz", "omega_n_hz", "zeta")}
+    held = identify(recorded, axis="x", diagnose=False, bounds=box,
+                    setpoint_filter=bool(model.setpoint_filter_s))
+    return float(held.fit["rms_um"]) / float(model.fit["rms_um"])
+
+
 def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     rec = CASES[case]
     key = (machine, rec.get("moves", 60), rec.get("profile", "trapezoid"), rec.get("jerk_filter_s", 0.0))
@@ -268,9 +292,13 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     ok = max(err.values()) <= POLE_TOL and model.fit["rms_um"] <= limit
     nyquist = 0.5 / recorded.sample_time
     beyond = max(truth.poles["omega_n_hz"], truth.poles["p_hz"]) > nyquist
+    same = None
     if beyond:  # no fit can reach the truth: the case passes when vcnc identify says so
         ok = any(at_nyquist for _, _, at_nyquist in model.poles_on_bounds())
-    return {"beyond": beyond,
+    elif not ok and model.fit["rms_um"] <= limit:  # poles off: does the record tell them from the truth's?
+        same = prediction_at_truth(recorded, model, truth)
+        ok = same <= SAME_PREDICTION
+    return {"beyond": beyond, "same": same,
             "machine": machine, "case": case, "err": err, "in_loop_ms": in_loop * 1e3, "delay_ms": model.delay_s * 1e3,
             "lead_ms": rec.get("lead_s", 0.0) * 1e3, "filter_ms": model.setpoint_filter_s * 1e3,
             "rms_um": float(model.fit["rms_um"]), "limit_um": limit,
@@ -288,7 +316,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{'lead ms':>8s} {'in-loop':>8s} {'filt ms':>8s} {'rms um':>8s} {'limit':>7s} {'fit s':>6s}  result")
     cache: dict = {}
     results = []
-    said = 0
+    said = alike = 0
     with tempfile.TemporaryDirectory() as tmp:
         for machine in machines:
             for case in cases:
@@ -305,11 +333,14 @@ def main(argv: list[str] | None = None) -> int:
                       f"{100 * e['p_hz']:7.2f} {r['delay_ms']:9.2f} {r['lead_ms']:8.1f} {r['in_loop_ms']:8.2f} "
                       f"{r['filter_ms']:8.2f} {r['rms_um']:8.3f} {r['limit_um']:7.3f} {r['seconds']:6.1f}  "
                       f"{'PASS' if r['ok'] else 'FAIL'}"
-                      + (" (truth beyond the record's Nyquist frequency)" if r["beyond"] else ""), flush=True)
+                      + (" (truth beyond the record's Nyquist frequency)" if r["beyond"] else "")
+                      + (f" (at the truth's poles x{r['same']:.3f})" if r["same"] is not None else ""), flush=True)
                 results.append(r["ok"])
                 said += r["beyond"] and r["ok"]
+                alike += r["same"] is not None and r["ok"]
     print(f"passed {sum(results)} of {len(results)}"
-          + (f" ({said} of them by saying that the truth lies beyond the record's Nyquist frequency)" if said else ""))
+          + (f" ({said} of them by saying that the truth lies beyond the record's Nyquist frequency)" if said else "")
+          + (f" ({alike} of them as predicted as well at the truth's poles)" if alike else ""))
     return 0
 
 
