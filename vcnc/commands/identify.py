@@ -44,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default auto, kept only when it halves the prediction error)")
     parser.add_argument("--no-setpoint-filter", action="store_true",
                         help="do not search a moving-average setpoint filter between the recorded reference and "
-                             "the loop (by default one is kept when it predicts 1.5x better)")
+                             "the loop (by default one is kept when it predicts 1.6x better)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
     add_trace_arguments(parser)
