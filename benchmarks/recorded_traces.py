@@ -49,7 +49,7 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   the Nyquist bound, which ``vcnc identify`` prints), and the totals count them.
 - **poles the record does not determine**: a case whose poles miss the truth but whose RMS passes
   is fitted again with the poles held at the truth's (:func:`prediction_at_truth`); when that
-  predicts the record at most :data:`SAME_PREDICTION` times worse than the fit, the record cannot
+  predicts the record within :data:`SAME_PREDICTION` times of the fit (worse or better), the record cannot
   tell the two apart and the case passes on the poles (the ratio is printed, the totals count
   them). This is fadal-smc's: its sliding-mode law with exact feedforward gives G_track = 1
   (:class:`controllers.SlidingMode`, Table 3.5), the poles cancel from the reference's response and
@@ -102,7 +102,8 @@ RMS_FACTOR = 4.0
 #: Added to the allowed RMS [um].
 RMS_SLACK_UM = 0.1
 #: Poles off the truth pass when the record fitted with them held at the truth's is predicted at
-#: most this many times worse (RMS) than by the fit [-]: the record does not tell the two apart.
+#: most this many times worse or better (RMS) than by the fit [-]: the record does not tell the two
+#: apart (better by more: the fit stopped in a local minimum, a failure).
 SAME_PREDICTION = 1.02
 MACHINES = ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-ppc", "chevalier-pdf", "emps", "exact")
 #: (name, recording): the recording's settings, read by :func:`record`.
@@ -301,7 +302,7 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
         ok = any(at_nyquist for _, _, at_nyquist in model.poles_on_bounds())
     elif not ok and model.fit["rms_um"] <= limit:  # poles off: does the record tell them from the truth's?
         same = prediction_at_truth(recorded, model, truth)
-        ok = same <= SAME_PREDICTION
+        ok = 1.0 / SAME_PREDICTION <= same <= SAME_PREDICTION  # much better at the truth's: a local minimum
     return {"beyond": beyond, "same": same,
             "machine": machine, "case": case, "err": err, "in_loop_ms": in_loop * 1e3, "delay_ms": model.delay_s * 1e3,
             "lead_ms": rec.get("lead_s", 0.0) * 1e3, "filter_ms": model.setpoint_filter_s * 1e3,
