@@ -498,8 +498,9 @@ def _with_setpoint_filter(capture: Capture, axis: str, params: dict, poles: dict
     pair at 30.8 Hz / 0.64 for 52.3 Hz / 0.93 and 0.74 um RMS for 0.18; with it, 15.7 ms, 0.3 %
     off and 0.18 um. The refinement started from the model without the filter instead stopped on
     the way back from the poles it had bent (chevalier-pdf's 172 Hz pair 47 % off at 0.002 um
-    RMS; from the filtered regression 0.6 % off), and, on a record without a filter, far from none
-    (the Table 3.2 test: 16 ms at 2.0 um RMS for 0.35 without, after 5.5 s).
+    RMS), and, on a record without a filter, far from none (the Table 3.2 test: 16 ms at 2.0 um
+    RMS for 0.35 without, after 5.5 s). Open: from this screen's start chevalier-pdf's pair still
+    ends 10x off (16.0 ms found; from the central-difference regression it was 0.6 % off).
     """
     i = capture.axis_index(axis)
     xr, x = capture.reference[:, i], capture.measured[:, i] - fit["offset"]["offset_mm"]
