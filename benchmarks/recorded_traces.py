@@ -32,7 +32,9 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   jerk-limited interpolation (the loop receives the recorded reference), ``jerkf`` the loop
   receives the recorded reference through a 16 ms moving-average jerk filter (Heidenhain's
   smoothing filters sit after the interpolator; our reading, no manual found that fixes where the
-  trace taps), ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
+  trace taps; 16 samples at 1 ms, also on ``exact``), which the fit models by its setpoint filter
+  (:mod:`identification.setpoint_filter`, column ``filt ms``: the length found, 0 for none),
+  ``tnc``/``hal``/``csv`` the recording written and read back as a TNCscope export
   (3 ms, reference 0.1 s ahead, 0.1 um digits), a LinuxCNC 2.9 halscope log and a logger CSV in
   ms and um with a decimal comma (:func:`vcnc.capture.read_capture`, formats of :mod:`vcnc.traces`).
 - **tolerances**: pass when every pole (omega_n, zeta, p) is within :data:`POLE_TOL` of the truth
@@ -45,9 +47,24 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   (chevalier-pdf's 172 Hz pair logged every 3 or 6 ms) cannot be reached by any fit, whose box ends
   there (thesis Sec. 4.3): such a case passes when the fit says so (``model.poles_on_bounds()``: the pole on
   the Nyquist bound, which ``vcnc identify`` prints), and the totals count them.
+- **poles the record does not determine**: a case whose poles miss the truth but whose RMS passes
+  is fitted again with the poles held at the truth's (:func:`prediction_at_truth`); when that
+  predicts the record within :data:`SAME_PREDICTION` times of the fit (worse or better), the record cannot
+  tell the two apart and the case passes on the poles (the ratio is printed, the totals count
+  them). This is fadal-smc's: its sliding-mode law with exact feedforward gives G_track = 1
+  (:class:`controllers.SlidingMode`, Table 3.5), the poles cancel from the reference's response and
+  show only in the response to the friction at reversals, which a short, decimated or cut record
+  or a fitted dead time leaves too little of: held at the truth's poles, ``short`` (p 24 % off) is
+  predicted 1.010 times worse, ``dec6`` and ``motion`` (p 7 % off) 1.001 times (b2 = a2 and b1
+  within 3 % of a1 in its fit: ``tests/identification/test_recorded_traces.py``). fadal-ppi's
+  ``motion`` passes so too (its pair 15 % off, 0.386 um RMS; at the truth's poles 0.390: the RMS
+  over the 0.171 floor is the start in motion's, which the truth's poles do not remove either). A
+  fit in a local minimum is not excused: the truth's poles then predict the record better (ratio
+  < 1).
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
-time [ms] (0: the delay-free truth), prediction RMS and its limit [um], PASS/FAIL; then the totals.
+time [ms] (0: the delay-free truth), the setpoint filter found [ms], prediction RMS and its limit
+[um], PASS/FAIL; then the totals. The truths are fitted without the setpoint filter's search.
 A benchmark, not a test: nothing is timed or asserted.
 """
 
@@ -84,6 +101,10 @@ P_FLOOR_HZ = 0.1
 RMS_FACTOR = 4.0
 #: Added to the allowed RMS [um].
 RMS_SLACK_UM = 0.1
+#: Poles off the truth pass when the record fitted with them held at the truth's is predicted at
+#: most this many times worse or better (RMS) than by the fit [-]: the record does not tell the two
+#: apart (better by more: the fit stopped in a local minimum, a failure).
+SAME_PREDICTION = 1.02
 MACHINES = ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-ppc", "chevalier-pdf", "emps", "exact")
 #: (name, recording): the recording's settings, read by :func:`record`.
 CASES: dict[str, dict] = {
@@ -125,17 +146,15 @@ def simulated(machine: str, *, moves: int = 60, profile: str = "trapezoid", jerk
     ``recorded`` holds the unfiltered one; otherwise the two are the same capture."""
     if machine == "exact":
         T = 1e-3
-        cap = synthetic_capture(FADAL_PID_X, random_moves_reference(moves=100 if moves == 60 else moves,
-                                                                    sample_time=T, seed=3), sample_time=T)
-        return cap, cap
+        xr = random_moves_reference(moves=100 if moves == 60 else moves, sample_time=T, seed=3)
+        loop = synthetic_capture(FADAL_PID_X, _jerk_filtered(xr[:, None], jerk_filter_s, T)[:, 0] if jerk_filter_s
+                                 else xr, sample_time=T)
+        return dataclasses.replace(loop, reference=xr[:, None].copy()), loop
     m = vcnc.machine(machine)
     sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(moves, 10.0, 12000.0, seed=1)), m,
                           profile=profile)
     if jerk_filter_s:
-        n = max(1, int(round(jerk_filter_s / sp.sample_time)))
-        pad = np.vstack([np.repeat(sp.position[:1], n - 1, axis=0), sp.position])
-        kernel = np.ones(n) / n
-        pos = np.column_stack([np.convolve(pad[:, j], kernel, mode="valid") for j in range(pad.shape[1])])
+        pos = _jerk_filtered(sp.position, jerk_filter_s, sp.sample_time)
         vel = np.gradient(pos, sp.sample_time, axis=0)
         filtered = dataclasses.replace(sp, position=pos, velocity=vel,
                                        acceleration=np.gradient(vel, sp.sample_time, axis=0))
@@ -145,11 +164,20 @@ def simulated(machine: str, *, moves: int = 60, profile: str = "trapezoid", jerk
     return cap, cap
 
 
+def _jerk_filtered(position: np.ndarray, jerk_filter_s: float, T: float) -> np.ndarray:
+    """``position`` (samples x axes) through a moving average of ``jerk_filter_s`` / ``T`` samples, the
+    first sample held before it: the jerk filter as a control runs it in its interpolation cycle."""
+    n = max(1, int(round(jerk_filter_s / T)))
+    pad = np.vstack([np.repeat(position[:1], n - 1, axis=0), position])
+    kernel = np.ones(n) / n
+    return np.column_stack([np.convolve(pad[:, j], kernel, mode="valid") for j in range(pad.shape[1])])
+
+
 def truth_of(machine: str, capture: Capture) -> Truth:
     if machine == "exact":
         p = FADAL_PID_X
         return Truth(poles_from_denominator(p["a1"], p["a2"], p["a3"]), 0.0, dict(p))
-    model = identify(capture, axis="x", diagnose=False, delay=0.0)
+    model = identify(capture, axis="x", diagnose=False, delay=0.0, setpoint_filter=False)
     return Truth(dict(model.poles), float(model.fit["rms_um"]), dict(model.parameters))
 
 
@@ -236,6 +264,16 @@ def rms_limit(truth: Truth, rec: dict, capture: Capture) -> float:
     return RMS_FACTOR * math.hypot(floor, added) + RMS_SLACK_UM
 
 
+def prediction_at_truth(recorded: Capture, model, truth: Truth) -> float:
+    """The prediction RMS of ``recorded`` by the fit with its poles held at the truth's (a box 1e-6
+    wide around them, its dead time estimated, its setpoint filter searched when ``model`` has one), over
+    ``model``'s own [-] (module docstring, :data:`SAME_PREDICTION`)."""
+    box = {k: (truth.poles[k] * (1 - 1e-6), truth.poles[k] * (1 + 1e-6)) for k in ("p_hz", "omega_n_hz", "zeta")}
+    held = identify(recorded, axis="x", diagnose=False, bounds=box,
+                    setpoint_filter=bool(model.setpoint_filter_s))
+    return float(held.fit["rms_um"]) / float(model.fit["rms_um"])
+
+
 def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     rec = CASES[case]
     key = (machine, rec.get("moves", 60), rec.get("profile", "trapezoid"), rec.get("jerk_filter_s", 0.0))
@@ -250,7 +288,8 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     err = pole_error(model.poles, truth.poles)
     in_loop = model.delay_s - rec.get("lead_s", 0.0)
     if machine != "exact" and model.delay_s and 0.0 < abs(in_loop) < MIN_DELAY_SAMPLES * cap.sample_time:
-        lagged = pole_error(model.poles, identify(loop, axis="x", diagnose=False, delay=in_loop).poles)
+        lagged = pole_error(model.poles, identify(loop, axis="x", diagnose=False, delay=in_loop,
+                                                  setpoint_filter=False).poles)
         in_loop, err = (in_loop, lagged) if max(lagged.values()) < max(err.values()) else (0.0, err)
     else:
         in_loop = 0.0
@@ -258,11 +297,16 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     ok = max(err.values()) <= POLE_TOL and model.fit["rms_um"] <= limit
     nyquist = 0.5 / recorded.sample_time
     beyond = max(truth.poles["omega_n_hz"], truth.poles["p_hz"]) > nyquist
+    same = None
     if beyond:  # no fit can reach the truth: the case passes when vcnc identify says so
         ok = any(at_nyquist for _, _, at_nyquist in model.poles_on_bounds())
-    return {"beyond": beyond,
+    elif not ok and model.fit["rms_um"] <= limit:  # poles off: does the record tell them from the truth's?
+        same = prediction_at_truth(recorded, model, truth)
+        ok = 1.0 / SAME_PREDICTION <= same <= SAME_PREDICTION  # much better at the truth's: a local minimum
+    return {"beyond": beyond, "same": same,
             "machine": machine, "case": case, "err": err, "in_loop_ms": in_loop * 1e3, "delay_ms": model.delay_s * 1e3,
-            "lead_ms": rec.get("lead_s", 0.0) * 1e3, "rms_um": float(model.fit["rms_um"]), "limit_um": limit,
+            "lead_ms": rec.get("lead_s", 0.0) * 1e3, "filter_ms": model.setpoint_filter_s * 1e3,
+            "rms_um": float(model.fit["rms_um"]), "limit_um": limit,
             "T_ms": recorded.sample_time * 1e3, "seconds": seconds, "ok": ok}
 
 
@@ -274,10 +318,10 @@ def main(argv: list[str] | None = None) -> int:
     machines = args.machine or MACHINES
     cases = args.case or tuple(CASES)
     print(f"{'machine':14s} {'case':12s} {'T ms':>5s} {'wn %':>7s} {'zeta %':>7s} {'p %':>7s} {'delay ms':>9s} "
-          f"{'lead ms':>8s} {'in-loop':>8s} {'rms um':>8s} {'limit':>7s} {'fit s':>6s}  result")
+          f"{'lead ms':>8s} {'in-loop':>8s} {'filt ms':>8s} {'rms um':>8s} {'limit':>7s} {'fit s':>6s}  result")
     cache: dict = {}
     results = []
-    said = 0
+    said = alike = 0
     with tempfile.TemporaryDirectory() as tmp:
         for machine in machines:
             for case in cases:
@@ -292,12 +336,16 @@ def main(argv: list[str] | None = None) -> int:
                 e = r["err"]
                 print(f"{machine:14s} {case:12s} {r['T_ms']:5.3g} {100 * e['omega_n_hz']:7.2f} {100 * e['zeta']:7.2f} "
                       f"{100 * e['p_hz']:7.2f} {r['delay_ms']:9.2f} {r['lead_ms']:8.1f} {r['in_loop_ms']:8.2f} "
-                      f"{r['rms_um']:8.3f} {r['limit_um']:7.3f} {r['seconds']:6.1f}  {'PASS' if r['ok'] else 'FAIL'}"
-                      + (" (truth beyond the record's Nyquist frequency)" if r["beyond"] else ""), flush=True)
+                      f"{r['filter_ms']:8.2f} {r['rms_um']:8.3f} {r['limit_um']:7.3f} {r['seconds']:6.1f}  "
+                      f"{'PASS' if r['ok'] else 'FAIL'}"
+                      + (" (truth beyond the record's Nyquist frequency)" if r["beyond"] else "")
+                      + (f" (at the truth's poles x{r['same']:.3f})" if r["same"] is not None else ""), flush=True)
                 results.append(r["ok"])
                 said += r["beyond"] and r["ok"]
+                alike += r["same"] is not None and r["ok"]
     print(f"passed {sum(results)} of {len(results)}"
-          + (f" ({said} of them by saying that the truth lies beyond the record's Nyquist frequency)" if said else ""))
+          + (f" ({said} of them by saying that the truth lies beyond the record's Nyquist frequency)" if said else "")
+          + (f" ({alike} of them as predicted as well at the truth's poles)" if alike else ""))
     return 0
 
 

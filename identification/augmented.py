@@ -303,6 +303,7 @@ class AugmentedAxisModel(ReducedAxisModel):
         return ReducedAxisModel(
             parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis, method=self.method,
             poles=dict(self.poles), bounds=dict(self.bounds), fit=dict(self.fit), delay_s=self.delay_s,
+            setpoint_filter_s=self.setpoint_filter_s,
         )
 
 

@@ -534,3 +534,27 @@ def run_exact_tangent(phi, gamma, c, cv, pos, vel, st, asym, pp_period, pp_coef,
             s1[j] = ((phi[1, 0] * x0 + phi[1, 1] * x1) + phi[1, 2] * x2) + gamma[1, 1] * w
             s2[j] = ((phi[2, 0] * x0 + phi[2, 1] * x1) + phi[2, 2] * x2) + gamma[2, 1] * w
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def moving_average(xr, samples, out):  # pragma: no cover - compiled
+    """The mean of ``xr`` (linear between samples, its first value held before it) over the
+    ``samples`` (> 0, whole and fractional) before each sample, into ``out``, taken on the
+    deviations from ``xr[0]`` (a reference at rest stays exactly there)
+    (:mod:`identification.setpoint_filter`, whose order of operations the FMU repeats)."""
+    n = int(math.floor(samples))
+    f = samples - n
+    x0 = xr[0]
+    for k in range(xr.shape[0]):
+        s = 0.0
+        for i in range(k - n, k):
+            lo = xr[i] - x0 if i > 0 else 0.0
+            hi = xr[i + 1] - x0 if i + 1 > 0 else 0.0
+            s += (lo + hi) * 0.5
+        if f > 0.0:
+            j = k - n - 1
+            lo = xr[j] - x0 if j > 0 else 0.0
+            hi = xr[j + 1] - x0 if j + 1 > 0 else 0.0
+            mid = (hi - lo) * (1.0 - f) + lo
+            s += f * (hi + mid) * 0.5
+        out[k] = s / samples + x0

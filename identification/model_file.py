@@ -1,4 +1,4 @@
-"""Reading the model file (``vcnc.axis-model/1`` and ``/2``, :mod:`identification.model_format`):
+"""Reading the model file (``vcnc.axis-model/1``, ``/2`` and ``/3``, :mod:`identification.model_format`):
 validation with errors naming the key at fault, and the rebuilt model — an
 :class:`identification.augmented.AugmentedAxisModel` when the file lists effects, so that the loaded
 model simulates them. Extra keys are kept on reading.
@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from identification.augmented import from_model
-from identification.model_format import FORMAT, FORMAT_DELAY, FORMATS
+from identification.model_format import FORMAT_DELAY, FORMAT_FILTER, FORMATS
 from identification.parameters import PARAMETER_NAMES
 from identification.reduced_model import ReducedAxisModel
 from vcnc.core.axes import AXIS_NAMES
@@ -32,13 +32,18 @@ def _number(d: dict, key: str, where: str, src: str | None) -> float:
 
 
 def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
-    """Build a model from a ``vcnc.axis-model/1`` dictionary; ModelFileError naming the key at fault."""
+    """Build a model from a ``vcnc.axis-model/1``, ``/2`` or ``/3`` dictionary; ModelFileError naming the key
+    at fault."""
     if not isinstance(d, dict):
         raise ModelFileError("a model file must hold a JSON object", file=source)
     fmt = d.get("format")
     if fmt not in FORMATS:
-        raise ModelFileError(f"key 'format' must be {FORMAT!r} or {FORMAT_DELAY!r}", file=source, text=repr(fmt))
-    delay_s = _number(d, "delay_s", "", source) if fmt == FORMAT_DELAY else 0.0
+        raise ModelFileError(f"key 'format' must be one of {', '.join(map(repr, FORMATS))}", file=source,
+                             text=repr(fmt))
+    delay_s = _number(d, "delay_s", "", source) if fmt in (FORMAT_DELAY, FORMAT_FILTER) else 0.0
+    filter_s = _number(d, "setpoint_filter_s", "", source) if fmt == FORMAT_FILTER else 0.0
+    if filter_s < 0.0:
+        raise ModelFileError("key 'setpoint_filter_s' [s] must be >= 0", file=source, text=repr(filter_s))
     axis = d.get("axis", "x")
     if axis not in AXIS_NAMES:
         raise ModelFileError(f"key 'axis' must be one of {', '.join(AXIS_NAMES)}", file=source, text=repr(axis))
@@ -80,6 +85,7 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
             effects=list(d.get("effects") or []),
             validation=dict(d.get("validation") or {}),
             delay_s=delay_s,
+            setpoint_filter_s=filter_s,
         )
     except InputError as exc:
         raise ModelFileError(exc.message, file=source) from exc
@@ -94,7 +100,7 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
 
 
 def load_model(path: str | os.PathLike[str]) -> ReducedAxisModel:
-    """Read a ``vcnc.axis-model/1`` JSON file.
+    """Read a ``vcnc.axis-model/1``, ``/2`` or ``/3`` JSON file.
 
     Raises
     ------

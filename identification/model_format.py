@@ -15,7 +15,11 @@ Layout (ARCHITECTURE.md, "Model file")::
 Eq. (3.8) the solver used (the thesis' defaults, Sec. 4.3: 0.2 Hz to the Nyquist frequency for
 p and omega_n, 0.2 to 2.0 for zeta). ``units`` is written for readers. A model with a reference
 dead time is written as ``vcnc.axis-model/2`` with the extra key ``delay_s`` [s]
-(:mod:`identification.dead_time`). Reading and validation: :mod:`identification.model_file`.
+(:mod:`identification.dead_time`); a model with a setpoint filter as ``vcnc.axis-model/3`` with
+the extra keys ``delay_s`` [s] (0 for none) and ``setpoint_filter_s`` [s] (> 0, the moving
+average of :mod:`identification.setpoint_filter`). Each is written only when the model needs it,
+so that an older reader refuses a model it would predict wrongly, and reads every other one.
+Reading and validation: :mod:`identification.model_file`.
 """
 
 from __future__ import annotations
@@ -31,22 +35,31 @@ from vcnc.core.jsonsafe import plain
 if TYPE_CHECKING:
     from identification.reduced_model import ReducedAxisModel
 
-__all__ = ["FORMAT", "FORMAT_DELAY", "FORMATS", "model_to_dict", "write_model"]
+__all__ = ["FORMAT", "FORMAT_DELAY", "FORMAT_FILTER", "FORMATS", "model_to_dict", "write_model"]
 
 FORMAT = "vcnc.axis-model/1"
 #: Format of a model with a reference dead time (``delay_s`` != 0); a ``/1`` reader refuses it
 #: rather than predict without the delay.
 FORMAT_DELAY = "vcnc.axis-model/2"
-FORMATS = (FORMAT, FORMAT_DELAY)
+#: Format of a model with a setpoint filter (``setpoint_filter_s`` != 0); ``/1`` and ``/2`` readers refuse it.
+FORMAT_FILTER = "vcnc.axis-model/3"
+FORMATS = (FORMAT, FORMAT_DELAY, FORMAT_FILTER)
 
 
 def model_to_dict(model: ReducedAxisModel) -> dict[str, Any]:
-    """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one)."""
-    delay = {"delay_s": model.delay_s} if model.delay_s else {}
+    """The model as a plain ``vcnc.axis-model/1`` dictionary (``/2`` with ``delay_s`` when it has one,
+    ``/3`` with ``delay_s`` and ``setpoint_filter_s`` when it has a setpoint filter)."""
+    filter_s = getattr(model, "setpoint_filter_s", 0.0)
+    if filter_s:
+        fmt, extra = FORMAT_FILTER, {"delay_s": model.delay_s, "setpoint_filter_s": filter_s}
+    elif model.delay_s:
+        fmt, extra = FORMAT_DELAY, {"delay_s": model.delay_s}
+    else:
+        fmt, extra = FORMAT, {}
     return plain(
         {
-            "format": FORMAT_DELAY if model.delay_s else FORMAT,
-            **delay,
+            "format": fmt,
+            **extra,
             "axis": model.axis,
             "sample_time": model.sample_time,
             "method": model.method,

@@ -40,9 +40,10 @@ def refine_output_error(
     bounds: PoleBounds,
     max_nfev: int = 400,
     offset: bool = False,
-    delay: tuple[float, float, float] | None = None,
+    delay: tuple[float, float, float] | float | None = None,
     keep: slice | None = None,
     initial_state: bool = False,
+    setpoint_filter: tuple[float, float, float] | None = None,
 ) -> dict:
     """Refine a reduced model by output error (module docstring).
 
@@ -61,23 +62,28 @@ def refine_output_error(
     offset : bool
         Also fit a constant added to the prediction (a datum offset between the channels,
         :mod:`identification.datum_offset`), starting from 0.
-    delay : (start, low, high), optional
+    delay : (start, low, high) or float, optional
         Also fit the reference dead time [samples] within [low, high] (``reference`` is then the
         recorded one, delayed at each step on the sub-step grid of :mod:`identification.substeps`):
         the equation error's estimate trades the loop's own lag for a shift (fadal-ppi: 13.7
-        samples), the simulated position does not.
+        samples), the simulated position does not. A number: the recorded reference delayed by
+        that many samples, fixed.
     keep : slice, optional
         The samples the residual is taken on (all by default): the simulation starts at
         ``keep.start`` from rest.
     initial_state : bool
         Also fit the model's state at the first kept sample (a record that starts in motion,
         :mod:`identification.initial_state`), eliminated by linear least squares in each residual.
+    setpoint_filter : (start, low, high), optional
+        Also fit the length of a moving average on the (delayed) reference [samples] within
+        [low, high] (:mod:`identification.setpoint_filter`).
 
     Returns
     -------
     dict
         ``parameters``, ``poles``, ``cost`` [mm^2], ``start_cost`` [mm^2], ``nfev``, ``message``,
-        and ``offset_mm`` [mm] (0 unless ``offset``), ``delay_samples`` (the start unless ``delay``).
+        and ``offset_mm`` [mm] (0 unless ``offset``), ``delay_samples`` (the start unless ``delay``),
+        ``filter_samples`` (0 unless ``setpoint_filter``).
 
     Notes
     -----
@@ -86,15 +92,23 @@ def refine_output_error(
     """
     xr = np.ascontiguousarray(reference, float)
     xm = np.ascontiguousarray(measured, float)
-    x0, typ, lo, hi = _search_start(parameters, poles, bounds, span=float(np.ptp(xr)), offset=offset, delay=delay)
-    nv = x0.size - (1 if offset else 0) - (1 if delay is not None else 0)
-    i_delay = x0.size - 1
+    held = substep_reference(xr, sample_time)  # a slow record: predicted between its samples
+    if delay is not None and not isinstance(delay, tuple):
+        held, delay = held.delayed(float(delay)), None
+    x0, typ, lo, hi = _search_start(parameters, poles, bounds, span=float(np.ptp(xr)), offset=offset, delay=delay,
+                                    setpoint_filter=setpoint_filter)
+    nv = x0.size - (1 if offset else 0) - (1 if delay is not None else 0) - (1 if setpoint_filter is not None else 0)
+    i_delay = nv + (1 if offset else 0)
+    i_filter = x0.size - 1
     cut = keep if keep is not None else slice(None)
     xm_kept = xm[cut]
-    held = substep_reference(xr, sample_time)  # a slow record: predicted between its samples
+
+    def loop_reference(x):
+        ref = held.delayed(x[i_delay]) if delay is not None else held
+        return ref.filtered(max(x[i_filter], 0.0)) if setpoint_filter is not None else ref
 
     def fun(x):
-        ref = held.delayed(x[i_delay]) if delay is not None else held
+        ref = loop_reference(x)
         params = from_search(x[:nv])
         r = ref.simulate(params, cut) - xm_kept
         if offset:
@@ -113,7 +127,7 @@ def refine_output_error(
     params = from_search(x[:nv])
     start = {}
     if initial_state:
-        ref = held.delayed(x[i_delay]) if delay is not None else held
+        ref = loop_reference(x)
         r = ref.simulate(params, cut) - xm_kept + (x[nv] if offset else 0.0)
         state, response = fit_initial_state(params, sample_time, r)
         start = {"initial_state": state, "start_response": response}
@@ -127,15 +141,17 @@ def refine_output_error(
         "message": str(res.message),
         "offset_mm": float(x[nv]) if offset else 0.0,
         "delay_samples": float(x[i_delay]) if delay is not None else 0.0,
+        "filter_samples": float(x[i_filter]) if setpoint_filter is not None else 0.0,
         **start,
     }
 
 
 def _search_start(parameters: dict[str, float], poles: dict[str, float], bounds: PoleBounds, *, span: float,
-                  offset: bool, delay: tuple[float, float, float] | None):
+                  offset: bool, delay: tuple[float, float, float] | None,
+                  setpoint_filter: tuple[float, float, float] | None = None):
     """``(x0, typical sizes, lower, upper)`` of :func:`refine_output_error`'s search: the model's variables
     (:func:`identification.parameters.to_search`), then the offset [mm] with ``offset``, then the dead time
-    [samples] with ``delay``."""
+    [samples] with ``delay``, then the setpoint filter's length [samples] with ``setpoint_filter``."""
     # start from the canonical labelling: with p the slowest of three real poles, the fast pair can
     # turn complex through zeta = 1; labelled otherwise, a fast real pole shares nothing with the
     # pair, and the search stalls where the two fast poles meet (31 % off on fadal-ppi's GA start)
@@ -154,4 +170,8 @@ def _search_start(parameters: dict[str, float], poles: dict[str, float], bounds:
         x0 = np.append(x0, float(np.clip(delay[0], delay[1], delay[2])))
         typ = np.append(typ, 1.0)
         lo, hi = np.append(lo, delay[1]), np.append(hi, delay[2])
+    if setpoint_filter is not None:
+        x0 = np.append(x0, float(np.clip(setpoint_filter[0], setpoint_filter[1], setpoint_filter[2])))
+        typ = np.append(typ, 1.0)
+        lo, hi = np.append(lo, setpoint_filter[1]), np.append(hi, setpoint_filter[2])
     return x0, typ, lo, hi

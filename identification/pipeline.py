@@ -3,14 +3,17 @@
 The fit (:func:`identification.identify.fit_reduced_model`) and the diagnosis
 (:func:`identification.diagnosis.diagnose`) do not import each other; this module runs one after
 the other. The diagnosis runs in the loop's frame (:mod:`identification.loop_frame`: datum offset
-removed, reference delayed by ``delay_s``, a start in motion dropped), as the fit did; a model
-with a reference dead time keeps its ``delay_s``.
+removed, reference delayed by ``delay_s`` and through the setpoint filter of
+``setpoint_filter_s``, a start in motion dropped), as the fit did; a model with a reference dead
+time or a setpoint filter keeps them.
 """
 
 from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+
+import numpy as np
 
 from identification.bounds import PoleBounds
 from identification.diagnosis import diagnose as diagnose_residual
@@ -20,6 +23,7 @@ from identification.loop_frame import loop_frame, offset_of
 from identification.parallel import serial_blas
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions
+from identification.setpoint_filter import filter_reference
 from vcnc.core.capture import Capture
 
 __all__ = ["identify", "Identifier"]
@@ -37,13 +41,14 @@ def identify(
     seed: int = 0,
     ga_options: GAOptions | None = None,
     delay: str | float = "auto",
+    setpoint_filter: bool = True,
 ) -> ReducedAxisModel:
     """Identify the model of one axis from a capture: the reduced model (thesis Ch. 3-4) and, by
     default, the physical effects its residual shows.
 
     Parameters
     ----------
-    capture, axis, method, bounds, refine, regressor_options, seed, ga_options, delay
+    capture, axis, method, bounds, refine, regressor_options, seed, ga_options, delay, setpoint_filter
         As for :func:`identification.identify.fit_reduced_model`.
     diagnose : bool
         Run the residual diagnosis (default). False returns the fitted reduced model.
@@ -56,15 +61,21 @@ def identify(
     """
     with serial_blas():  # tall, narrow least squares: one BLAS thread is faster (identification.parallel)
         model = fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
-                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay)
+                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay,
+                                  setpoint_filter=setpoint_filter)
     if not diagnose:
         return model
     in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
                             delay_samples=model.delay_s / model.sample_time)
-    if not model.delay_s:
+    if not (model.delay_s or model.setpoint_filter_s):
         return diagnose_residual(in_loop, model, axis=axis)
-    diagnosed = diagnose_residual(in_loop, dataclasses.replace(model, delay_s=0.0), axis=axis)
-    return dataclasses.replace(diagnosed, delay_s=model.delay_s)
+    if model.setpoint_filter_s:
+        i = in_loop.axis_index(axis)
+        reference = np.array(in_loop.reference, dtype=float)
+        reference[:, i] = filter_reference(reference[:, i], model.setpoint_filter_s / model.sample_time)
+        in_loop = dataclasses.replace(in_loop, reference=reference)
+    diagnosed = diagnose_residual(in_loop, dataclasses.replace(model, delay_s=0.0, setpoint_filter_s=0.0), axis=axis)
+    return dataclasses.replace(diagnosed, delay_s=model.delay_s, setpoint_filter_s=model.setpoint_filter_s)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -82,6 +93,7 @@ class Identifier:
     seed: int = 0
     ga_options: GAOptions | None = None
     delay: str | float = "auto"
+    setpoint_filter: bool = True
 
     def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
         """The fitted model of ``axis``."""
@@ -96,4 +108,5 @@ class Identifier:
             seed=self.seed,
             ga_options=self.ga_options,
             delay=self.delay,
+            setpoint_filter=self.setpoint_filter,
         )

@@ -95,6 +95,7 @@ from identification.kernels import NO_FOURIER, NO_STRIBECK, run_exact
 from identification.model_format import model_to_dict, write_model
 from identification.parameters import PARAMETER_NAMES, PARAMETER_UNITS
 from identification.poles import pole_splits, pole_table, zero_table
+from identification.setpoint_filter import filter_reference
 from vcnc.core.errors import InputError
 
 __all__ = [
@@ -345,6 +346,10 @@ class ReducedAxisModel:
         Dead time between the recorded reference and the loop [s] (:mod:`identification.dead_time`):
         every simulation delays the reference it is given by this much first (> 0: the recorded
         reference leads).
+    setpoint_filter_s : float
+        Length of a moving-average setpoint filter between the (delayed) reference and the loop
+        [s] (:mod:`identification.setpoint_filter`; 0: none): every simulation filters the
+        delayed reference by it.
     """
 
     parameters: dict
@@ -357,12 +362,15 @@ class ReducedAxisModel:
     effects: list[EffectRecord] = dataclasses.field(default_factory=list)
     validation: dict = dataclasses.field(default_factory=dict)
     delay_s: float = 0.0
+    setpoint_filter_s: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "parameters", _params(self.parameters))
         object.__setattr__(self, "effects", [EffectRecord(e) for e in self.effects])
         if not math.isfinite(self.delay_s):
             raise InputError(f"delay_s [s] must be finite (got {self.delay_s!r})")
+        if not (math.isfinite(self.setpoint_filter_s) and self.setpoint_filter_s >= 0.0):
+            raise InputError(f"setpoint_filter_s [s] must be finite and >= 0 (got {self.setpoint_filter_s!r})")
         if not (math.isfinite(self.sample_time) and self.sample_time > 0):
             raise InputError(f"sample_time [s] must be positive (got {self.sample_time!r})")
         if not self.poles:
@@ -388,12 +396,15 @@ class ReducedAxisModel:
         return simulate(self.parameters, self.loop_reference(reference, T), T, disturbance=disturbance)
 
     def loop_reference(self, reference: np.ndarray, sample_time: float | None = None) -> np.ndarray:
-        """The reference the loop receives: ``reference`` [mm] delayed by :attr:`delay_s`."""
+        """The reference the loop receives: ``reference`` [mm] delayed by :attr:`delay_s`, then
+        through the setpoint filter of :attr:`setpoint_filter_s`."""
         xr = np.asarray(reference, dtype=float)
-        if self.delay_s == 0.0:
-            return xr
         T = self.sample_time if sample_time is None else sample_time
-        return delay_reference(xr, self.delay_s / T)
+        if self.delay_s != 0.0:
+            xr = delay_reference(xr, self.delay_s / T)
+        if self.setpoint_filter_s != 0.0:
+            xr = filter_reference(xr, self.setpoint_filter_s / T)
+        return xr
 
     def simulate_reference(self, reference: np.ndarray, sample_time: float) -> np.ndarray:
         """Machine-axis protocol: predicted position [mm] for a sampled reference [mm]."""

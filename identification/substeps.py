@@ -36,6 +36,7 @@ import scipy.interpolate
 
 from identification.dead_time import delay_reference
 from identification.reduced_model import simulate
+from identification.setpoint_filter import filter_reference
 
 __all__ = ["FINE_STEP_S", "SubstepReference", "substep_count", "substep_reference", "simulate_record"]
 
@@ -73,6 +74,13 @@ class SubstepReference:
             return self
         return dataclasses.replace(self, fine=delay_reference(self.fine, samples * self.substeps))
 
+    def filtered(self, samples: float) -> SubstepReference:
+        """The reference through the setpoint filter over ``samples`` of the record (on the
+        sub-step grid, :func:`identification.setpoint_filter.filter_reference`)."""
+        if samples == 0.0:
+            return self
+        return dataclasses.replace(self, fine=filter_reference(self.fine, samples * self.substeps))
+
     def simulate(self, parameters: Mapping[str, float], keep: slice | None = None) -> np.ndarray:
         """Predicted position [mm] at the recorded samples of ``keep`` (all by default), simulated
         from rest at ``keep.start``."""
@@ -98,7 +106,9 @@ def substep_reference(reference: np.ndarray, sample_time: float) -> SubstepRefer
 
 
 def simulate_record(parameters: Mapping[str, float], reference: np.ndarray, sample_time: float, *,
-                    delay_samples: float = 0.0) -> np.ndarray:
+                    delay_samples: float = 0.0, filter_samples: float = 0.0) -> np.ndarray:
     """Predicted position [mm] at the samples of a record (module docstring), the reference
-    delayed by ``delay_samples`` of the record first."""
-    return substep_reference(reference, sample_time).delayed(delay_samples).simulate(parameters)
+    delayed by ``delay_samples`` of the record first, then through the setpoint filter over
+    ``filter_samples`` (:mod:`identification.setpoint_filter`)."""
+    ref = substep_reference(reference, sample_time).delayed(delay_samples).filtered(filter_samples)
+    return ref.simulate(parameters)

@@ -42,6 +42,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--delay", type=_delay, default="auto", metavar="auto|SECONDS",
                         help="dead time of the recorded reference [s] (> 0: it leads the loop); 'auto' estimates it "
                              "(default auto, kept only when it halves the prediction error)")
+    parser.add_argument("--no-setpoint-filter", action="store_true",
+                        help="do not search a moving-average setpoint filter between the recorded reference and "
+                             "the loop (by default one is kept when it predicts 1.6x better)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
     add_trace_arguments(parser)
@@ -76,6 +79,20 @@ def delay_lines(model) -> list[str]:
     else:
         how = "none"
     return [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
+
+
+def setpoint_filter_lines(model) -> list[str]:
+    """What to say of the setpoint filter ``model.setpoint_filter_s`` and its ``fit['setpoint_filter']`` record."""
+    rec = model.fit.get("setpoint_filter")
+    if not rec:
+        return []
+    u = axis_unit(model.axis, small=True)
+    L = float(getattr(model, "setpoint_filter_s", 0.0))
+    if not L:
+        return [f"setpoint filter: none (the best, {rec['searched_s']:.4g} s, predicts {rec['rms_without_um']:.4g} -> "
+                f"{rec['rms_with_um']:.4g} {u})"]
+    return [f"setpoint filter: moving average of {L:.6g} s ({L / model.sample_time:.4g} samples; prediction "
+            f"{rec['rms_without_um']:.4g} -> {rec['rms_with_um']:.4g} {u} with it)"]
 
 
 #: The option that moves each bound of the pole box, for the message.
@@ -144,7 +161,7 @@ def _report(capture, model, axis: str):
         caption="Poles and zeros as in Tables 3.3-3.5",
     )
     rep.heading("Fit")
-    for line in delay_lines(model) + bound_lines(model):
+    for line in delay_lines(model) + setpoint_filter_lines(model) + bound_lines(model):
         rep.text(line)
     rep.table(
         ["prediction of the capture", f"RMS [{u}]", f"max [{u}]"],
@@ -217,6 +234,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed,
         diagnose=not args.no_diagnose,
         delay=args.delay,
+        setpoint_filter=not args.no_setpoint_filter,
     )
     rep = _report(capture, model, axis) if args.report else None
     if args.json:
@@ -232,7 +250,7 @@ def run(args: argparse.Namespace) -> int:
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
     u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
     out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} {u}, max {fit['max_um']:.4g} {u}\n")
-    for line in delay_lines(model) + bound_lines(model):
+    for line in delay_lines(model) + setpoint_filter_lines(model) + bound_lines(model):
         out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:

@@ -45,6 +45,10 @@ class ExportSpec:
     delay_s : float
         Reference dead time [s] (>= 0, the model's ``delay_s``): the loop runs on ``x_ref`` delayed
         by it; the FMU's parameter ``reference_delay_s`` (present only when it is not zero).
+    setpoint_filter_s : float
+        Setpoint filter [s] (>= 0, the model's ``setpoint_filter_s``): the loop runs on the moving
+        average of the delayed ``x_ref`` over it; the FMU's parameter ``setpoint_filter_s`` (present
+        only when it is not zero).
     """
 
     axis: str
@@ -53,6 +57,7 @@ class ExportSpec:
     elements: tuple = ()
     viscous_rate: float = 0.0
     delay_s: float = 0.0
+    setpoint_filter_s: float = 0.0
 
     @property
     def model_identifier(self) -> str:
@@ -81,7 +86,8 @@ class ExportSpec:
     @property
     def variables(self) -> tuple[Variable, ...]:
         """The FMU's variables."""
-        return variables(self.harmonics, structured=self.structured, reference_delay=self.delay_s != 0.0)
+        return variables(self.harmonics, structured=self.structured, reference_delay=self.delay_s != 0.0,
+                         setpoint_filter=self.setpoint_filter_s != 0.0)
 
     def model(self) -> Any:
         """The Python model the FMU reproduces (its ``simulate`` is the export check's oracle)."""
@@ -89,7 +95,7 @@ class ExportSpec:
         from identification.augmented import augment
 
         base = ReducedAxisModel(parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis,
-                                delay_s=self.delay_s)
+                                delay_s=self.delay_s, setpoint_filter_s=self.setpoint_filter_s)
         if not self.elements:
             return base
         return augment(base, list(self.elements), viscous_rate=self.viscous_rate)
@@ -132,6 +138,8 @@ class ExportSpec:
             out["plant_viscous_rate"] = float(self.viscous_rate)
         if self.delay_s != 0.0:
             out["reference_delay_s"] = float(self.delay_s)
+        if self.setpoint_filter_s != 0.0:
+            out["setpoint_filter_s"] = float(self.setpoint_filter_s)
         return out
 
 
@@ -187,7 +195,8 @@ def export_spec(model: Any) -> ExportSpec:
         A model file that breaks the ``vcnc.axis-model/1`` contract (also a malformed effect).
     ExportError
         Effects the FMU cannot represent exactly (named in the message, with the representable ones);
-        a negative (non-causal) or too long reference dead time ``delay_s``.
+        a negative (non-causal) or too long reference dead time ``delay_s``, or too long a setpoint
+        filter ``setpoint_filter_s``.
     """
     from identification.augmented import AugmentedAxisModel, from_model
     from identification.effects import EFFECTS
@@ -226,6 +235,10 @@ def export_spec(model: Any) -> ExportSpec:
     if delay_s / float(m.sample_time) > MAX_REF_DELAY:
         raise ExportError(f"the reference dead time delay_s = {delay_s!r} s{where} is longer than an FMU holds "
                           f"({MAX_REF_DELAY} samples of {float(m.sample_time)!r} s)")
+    filter_s = float(getattr(m, "setpoint_filter_s", 0.0) or 0.0)
+    if not (math.isfinite(filter_s) and 0.0 <= filter_s / float(m.sample_time) <= MAX_REF_DELAY):
+        raise ExportError(f"the setpoint filter setpoint_filter_s = {filter_s!r} s{where} must be in [0, "
+                          f"{MAX_REF_DELAY} samples of {float(m.sample_time)!r} s]")
     assert set(EFFECT_VARIABLES) == set(REPRESENTABLE_EFFECTS)
     return ExportSpec(
         axis=str(getattr(m, "axis", "x")),
@@ -234,4 +247,5 @@ def export_spec(model: Any) -> ExportSpec:
         elements=elements,
         viscous_rate=float(getattr(m, "viscous_rate", 0.0)),
         delay_s=delay_s,
+        setpoint_filter_s=filter_s,
     )

@@ -168,7 +168,8 @@ EFFECT_VARIABLES: dict[str, tuple[Variable, ...]] = {
 PLANT_VISCOUS_RATE = Variable(name="plant_viscous_rate", vr=30, causality="parameter", unit="1/s",
                               description="split form: plant viscous rate c (controller derivative gain a1 - c)")
 
-#: longest reference dead time [samples]; VCNC_MAX_REF_DELAY in c/vcnc_model.h (a test checks they agree)
+#: longest reference dead time and setpoint filter [samples]; VCNC_MAX_REF_DELAY in c/vcnc_model.h (a test
+#: checks they agree)
 MAX_REF_DELAY = 4096
 
 #: the reference dead time of the model (``delay_s``), present when it is not zero
@@ -176,9 +177,15 @@ REFERENCE_DELAY = Variable(name="reference_delay_s", vr=40, causality="parameter
                            description="dead time of the reference: the loop runs on x_ref delayed by it, "
                                        "linearly interpolated between samples (identification.dead_time)")
 
+#: the setpoint filter of the model (``setpoint_filter_s``), present when it is not zero
+SETPOINT_FILTER = Variable(name="setpoint_filter_s", vr=41, causality="parameter", unit="s", minimum=0.0,
+                           description="setpoint filter: the loop runs on the moving average of the delayed x_ref "
+                                       "over this long, linear between samples (identification.setpoint_filter)")
+
 #: every scalar variable any FMU may have (the C configuration defines all their macros)
 ALL_SCALARS: tuple[Variable, ...] = (
-    *BASE_VARIABLES, *(v for vs in EFFECT_VARIABLES.values() for v in vs), PLANT_VISCOUS_RATE, REFERENCE_DELAY
+    *BASE_VARIABLES, *(v for vs in EFFECT_VARIABLES.values() for v in vs), PLANT_VISCOUS_RATE, REFERENCE_DELAY,
+    SETPOINT_FILTER,
 )
 
 
@@ -196,10 +203,11 @@ def coefficient_variables(effect: str, harmonics: int) -> tuple[Variable, ...]:
 
 
 def variables(effects: dict[str, int] | None = None, *, structured: bool = False,
-              reference_delay: bool = False) -> tuple[Variable, ...]:
+              reference_delay: bool = False, setpoint_filter: bool = False) -> tuple[Variable, ...]:
     """The variables of an FMU with ``effects`` (effect name -> harmonics, 0 for non-periodic ones).
 
-    ``reference_delay`` adds the ``reference_delay_s`` parameter (a model with ``delay_s`` != 0).
+    ``reference_delay`` adds the ``reference_delay_s`` parameter (a model with ``delay_s`` != 0),
+    ``setpoint_filter`` the ``setpoint_filter_s`` one (a model with ``setpoint_filter_s`` != 0).
     """
     out = list(BASE_VARIABLES)
     for name, harmonics in (effects or {}).items():
@@ -210,6 +218,8 @@ def variables(effects: dict[str, int] | None = None, *, structured: bool = False
         out.append(PLANT_VISCOUS_RATE)
     if reference_delay:
         out.append(REFERENCE_DELAY)
+    if setpoint_filter:
+        out.append(SETPOINT_FILTER)
     return tuple(sorted(out, key=lambda v: v.vr))
 
 

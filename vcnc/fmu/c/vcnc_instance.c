@@ -57,6 +57,7 @@ static void set_defaults(vcnc_instance *inst)
     for (i = 0; i < 2 * VCNC_TP_HARMONICS; i++) p->tp_coef[i] = tp_coef[i];
     p->drift = VCNC_START_DRIFT_RATE;
     p->ref_delay_s = VCNC_START_REFERENCE_DELAY_S;
+    p->filter_s = VCNC_START_SETPOINT_FILTER_S;
     p->structured = VCNC_STRUCTURED;
     p->viscous_rate = VCNC_START_PLANT_VISCOUS_RATE;
     p->delay = VCNC_START_DELAY_SAMPLES;
@@ -187,6 +188,7 @@ static double *parameter_slot(vcnc_instance *inst, unsigned int vr)
     SLOT(TIME_MEAN, &p->tp_mean);
     SLOT(DRIFT_RATE, &p->drift);
     SLOT(REFERENCE_DELAY_S, &p->ref_delay_s);
+    SLOT(SETPOINT_FILTER_S, &p->filter_s);
     SLOT(PLANT_VISCOUS_RATE, &p->viscous_rate);
     SLOT(SATURATION_LIMIT, &p->saturation);
     SLOT(BACKLASH_WIDTH, &p->backlash);

@@ -120,6 +120,11 @@ static int check_parameters(const vcnc_parameters *p, char *msg, size_t msg_size
                  VCNC_MAX_REF_DELAY, p->ref_delay_s);
         return fail(msg, msg_size, text);
     }
+    if (!(p->filter_s >= 0.0 && p->filter_s / p->sample_time <= VCNC_MAX_REF_DELAY)) {
+        snprintf(text, sizeof(text), "parameter setpoint_filter_s must be in [0, %d sample times], got %.17g s",
+                 VCNC_MAX_REF_DELAY, p->filter_s);
+        return fail(msg, msg_size, text);
+    }
     if (!(p->a3 > 0.0)) return fail(msg, msg_size, "parameter a3 [1/s^3] must be > 0 (a stable closed loop)");
     if (p->tp_on && !(p->tp_period > 0.0)) return fail(msg, msg_size, "parameter time_period [s] must be > 0");
     if (p->structured) {
@@ -227,6 +232,41 @@ static double loop_ref(const vcnc_model *m)
     return (hi - lo) * (xq - (double)j) + lo;
 }
 
+/* The delayed reference at sample i <= k (loop_ref) less the first one, x0: the current one at k, past ones
+ * from the ring buffer lbuf, 0 at and before the first (identification.kernels.moving_average). */
+static double delayed_at(const vcnc_model *m, long long i, double now, double x0)
+{
+    if (i <= 0) return 0.0;
+    if (i == m->k) return now - x0;
+    return m->lbuf[i % (VCNC_MAX_REF_DELAY + 2)] - x0;
+}
+
+/* identification.setpoint_filter.filter_reference: the loop's reference at sample k, the moving average of
+ * the delayed reference over filter samples, in identification.kernels.moving_average's order of operations. */
+static double input_ref(const vcnc_model *m)
+{
+    const double now = loop_ref(m), L = m->par.filter;
+    const double x0 = m->k == 0 ? now : m->lfirst;
+    long long n, i, j;
+    double f, s = 0.0, lo, hi, mid;
+    if (L == 0.0) return now;
+    n = (long long)floor(L);
+    f = L - (double)n;
+    for (i = m->k - n; i < m->k; i++) {
+        lo = delayed_at(m, i, now, x0);
+        hi = delayed_at(m, i + 1, now, x0);
+        s += (lo + hi) * 0.5;
+    }
+    if (f > 0.0) {
+        j = m->k - n - 1;
+        lo = delayed_at(m, j, now, x0);
+        hi = delayed_at(m, j + 1, now, x0);
+        mid = (hi - lo) * (1.0 - f) + lo;
+        s += f * (hi + mid) * 0.5;
+    }
+    return s / L + x0;
+}
+
 /* Position for the absolute reference u [mm]; the state lives in deviations from r0. */
 static double linear_position(const vcnc_model *m, double u)
 {
@@ -238,13 +278,13 @@ static void exact_step(vcnc_model *m)
 {
     const vcnc_discrete *dm = &m->dm;
     const double *phi = dm->phi, *g = dm->gamma, *xi = m->xi;
-    double r = loop_ref(m) - m->r0;
+    double r = input_ref(m) - m->r0;
     double v = (((dm->cv[0] * xi[0] + dm->cv[1] * xi[1]) + dm->cv[2] * xi[2]) + dm->dv * r) + dm->dvs * (r - m->prev);
     double f = v > 0.0 ? m->par.d0 : (v < 0.0 ? m->par.d1 : 0.0);
     double w = f + wext(m);
     double n0, n1, n2;
 
-    w += w_terms(&m->par, v, linear_position(m, loop_ref(m)));
+    w += w_terms(&m->par, v, linear_position(m, input_ref(m)));
     n0 = (((phi[0] * xi[0] + phi[1] * xi[1]) + phi[2] * xi[2]) + g[0] * r) + g[1] * w;
     n1 = (((phi[3] * xi[0] + phi[4] * xi[1]) + phi[5] * xi[2]) + g[2] * r) + g[3] * w;
     n2 = (((phi[6] * xi[0] + phi[7] * xi[1]) + phi[8] * xi[2]) + g[4] * r) + g[5] * w;
@@ -434,7 +474,7 @@ static void split_step(vcnc_model *m)
     const double T = p->sample_time, a1 = p->a1, a2 = p->a2, a3 = p->a3, cvis = p->viscous_rate;
     const int steps = p->substeps, two_mass = p->res[0] > 0.0, meas_table = p->res[3] > 0.5;
     const double h = T / steps, kd = a1 - cvis, ff = p->b2 - a2, rr = p->res[2], bl = p->backlash;
-    const double xr = loop_ref(m);
+    const double xr = input_ref(m);
     double kspr = 0.0, cdmp = 0.0, y, e, vr, ar, u, lo, hi, we, s4[4] = {0.0, 0.0, 0.0, 0.0};
     const double vguard = p->stribeck[0] > 0.0 ? 3.0 * p->stribeck[0] : 0.0;
     int i, n_steps;
@@ -520,6 +560,7 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
     m->k = 0;
     m->r0 = u;
     p->ref_delay = p->ref_delay_s / p->sample_time;
+    p->filter = p->filter_s / p->sample_time;
     if (p->structured) {
         /* augmented.simulate_augmented: steps only for the play operator and the two-mass plant */
         p->substeps = (p->res[0] <= 0.0 && p->backlash <= 0.0) ? 1 : VCNC_SUBSTEPS;
@@ -561,7 +602,7 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
 
 void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_error)
 {
-    double pos = m->par.structured ? split_measurement(m) : linear_position(m, loop_ref(m));
+    double pos = m->par.structured ? split_measurement(m) : linear_position(m, input_ref(m));
     if (m->par.drift != 0.0) pos = pos + drift(m);
     *position = pos;
     *tracking_error = m->x_ref - pos;
@@ -569,13 +610,18 @@ void vcnc_model_outputs(const vcnc_model *m, double *position, double *tracking_
 
 void vcnc_model_step(vcnc_model *m)
 {
+    const double delayed = loop_ref(m); /* before the step: the delayed reference of sample k */
     if (m->par.structured) {
         split_step(m);
     } else {
         exact_step(m);
     }
-    if (m->k == 0) m->rfirst = m->x_ref;
+    if (m->k == 0) {
+        m->rfirst = m->x_ref;
+        m->lfirst = delayed;
+    }
     m->rbuf[m->k % (VCNC_MAX_REF_DELAY + 2)] = m->x_ref;
+    m->lbuf[m->k % (VCNC_MAX_REF_DELAY + 2)] = delayed;
     m->k++;
 }
 

@@ -59,6 +59,9 @@ typedef struct {
     double drift;            /* output drift rate [mm/s] */
     double ref_delay_s;      /* reference dead time [s] (>= 0): the loop runs on x_ref delayed by it */
     double ref_delay;        /* the same in samples (computed at initialisation) */
+    double filter_s;         /* setpoint filter [s] (>= 0, 0: none): the loop runs on the moving average of the
+                                delayed x_ref over it (identification.setpoint_filter) */
+    double filter;           /* the same in samples (computed at initialisation) */
     /* split form (structural: structured) */
     int structured;
     double viscous_rate;     /* plant viscous rate c [1/s] */
@@ -103,6 +106,8 @@ typedef struct {
     double x_ref;            /* commanded position [mm] */
     double rbuf[VCNC_MAX_REF_DELAY + 2]; /* past x_ref, for the reference dead time */
     double rfirst;           /* x_ref of sample 0 [mm] */
+    double lbuf[VCNC_MAX_REF_DELAY + 2]; /* past delayed x_ref, for the setpoint filter */
+    double lfirst;           /* delayed x_ref of sample 0 [mm] */
     double r0;               /* x_ref at initialisation [mm]: the exact form runs on x_ref - r0 */
     double w_ext;            /* external disturbance [mm/s^2] */
 } vcnc_model;
