@@ -154,22 +154,8 @@ def fit_reduced_model(
     if bounds is None and not offset.applied:  # after a removed offset, what is left of it puts p on the bound
         narrow = sol
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
-    fit = {
-        "equation_error": {**error_metrics(x - simulate_record(sol.parameters, xr, T)), "objective_mm2": sol.objective},
-        "solver": sol.to_dict(),
-        "samples": int(x.size),
-        "regressor": dataclasses.asdict(opt),
-        "delay": delay_fit,
-        "offset": offset.to_dict(),
-    }
-    if centred:
-        fit["equation_error"]["integrator_start_free"] = True
-    if substep_count(T) > 1:
-        fit["substeps"] = substep_count(T)
-    if start:
-        fit["record_start"] = {"dropped_samples": start, "dropped_s": start * T}
-    if widened is not None:
-        fit["bounds_widened"] = widened
+    fit = _equation_error_fit(sol, xr, x, T, opt, delay_fit=delay_fit, offset=offset, centred=centred, start=start,
+                              widened=widened)
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit, opt=opt,
                                         offset=offset.applied)
     if widened is not None and label.endswith("+oe") and not fit["offset"]["applied"] and "initial_state" not in fit:
@@ -190,6 +176,30 @@ def fit_reduced_model(
         fit.update(error_metrics(err))
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
                             fit=fit, delay_s=delay_s, setpoint_filter_s=filter_s)
+
+
+def _equation_error_fit(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, *,
+                        delay_fit: dict, offset: OffsetEstimate, centred: bool, start: int,
+                        widened: dict | None) -> dict:
+    """The model's ``fit`` record after the equation-error solution: its prediction, the solver's report,
+    the regressor options, the dead time and offset found, and what the record's framing changed."""
+    fit = {
+        "equation_error": {**error_metrics(x - simulate_record(sol.parameters, xr, T)), "objective_mm2": sol.objective},
+        "solver": sol.to_dict(),
+        "samples": int(x.size),
+        "regressor": dataclasses.asdict(opt),
+        "delay": delay_fit,
+        "offset": offset.to_dict(),
+    }
+    if centred:
+        fit["equation_error"]["integrator_start_free"] = True
+    if substep_count(T) > 1:
+        fit["substeps"] = substep_count(T)
+    if start:
+        fit["record_start"] = {"dropped_samples": start, "dropped_s": start * T}
+    if widened is not None:
+        fit["bounds_widened"] = widened
+    return fit
 
 
 def _equation_error(xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds, *, method: str,

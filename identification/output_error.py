@@ -100,23 +100,9 @@ def refine_output_error(
     nv = x0.size - (1 if offset else 0) - (1 if delay is not None else 0) - (1 if setpoint_filter is not None else 0)
     i_delay = nv + (1 if offset else 0)
     i_filter = x0.size - 1
-    cut = keep if keep is not None else slice(None)
-    xm_kept = xm[cut]
-
-    def loop_reference(x):
-        ref = held.delayed(x[i_delay]) if delay is not None else held
-        return ref.filtered(max(x[i_filter], 0.0)) if setpoint_filter is not None else ref
-
-    def fun(x):
-        ref = loop_reference(x)
-        params = from_search(x[:nv])
-        r = ref.simulate(params, cut) - xm_kept
-        if offset:
-            r = r + x[nv]
-        if initial_state and np.all(np.isfinite(r)):
-            r = r + fit_initial_state(params, sample_time, r)[1]
-        return r
-
+    fun = _Residual(held, xm, keep, sample_time, nv=nv, offset=offset, initial_state=initial_state,
+                    i_delay=i_delay if delay is not None else None,
+                    i_filter=i_filter if setpoint_filter is not None else None)
     r0 = fun(x0)
     start_cost = 0.5 * float(r0 @ r0)
     res = scipy.optimize.least_squares(
@@ -127,8 +113,7 @@ def refine_output_error(
     params = from_search(x[:nv])
     start = {}
     if initial_state:
-        ref = loop_reference(x)
-        r = ref.simulate(params, cut) - xm_kept + (x[nv] if offset else 0.0)
+        r = fun.reference(x).simulate(params, fun.cut) - fun.measured + (x[nv] if offset else 0.0)
         state, response = fit_initial_state(params, sample_time, r)
         start = {"initial_state": state, "start_response": response}
     p, wn, z = canonical(math.exp(x[0]), math.exp(x[1]), float(x[2]), bounds)
@@ -145,6 +130,33 @@ def refine_output_error(
         **start,
     }
 
+
+
+class _Residual:
+    """The output-error residual of a search vector: the model's simulation on the (delayed, filtered)
+    reference minus the measured position on the kept samples, plus the offset and the free response
+    of the fitted initial state when those are searched."""
+
+    def __init__(self, held, measured: np.ndarray, keep: slice | None, sample_time: float, *, nv: int,
+                 offset: bool, initial_state: bool, i_delay: int | None, i_filter: int | None) -> None:
+        self.held, self.sample_time, self.nv = held, sample_time, nv
+        self.offset, self.initial_state, self.i_delay, self.i_filter = offset, initial_state, i_delay, i_filter
+        self.cut = keep if keep is not None else slice(None)
+        self.measured = measured[self.cut]
+
+    def reference(self, x: np.ndarray):
+        """The reference the loop receives at ``x``: delayed by its dead time, then filtered."""
+        ref = self.held.delayed(x[self.i_delay]) if self.i_delay is not None else self.held
+        return ref.filtered(max(x[self.i_filter], 0.0)) if self.i_filter is not None else ref
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        params = from_search(x[:self.nv])
+        r = self.reference(x).simulate(params, self.cut) - self.measured
+        if self.offset:
+            r = r + x[self.nv]
+        if self.initial_state and np.all(np.isfinite(r)):
+            r = r + fit_initial_state(params, self.sample_time, r)[1]
+        return r
 
 def _search_start(parameters: dict[str, float], poles: dict[str, float], bounds: PoleBounds, *, span: float,
                   offset: bool, delay: tuple[float, float, float] | None,
