@@ -463,6 +463,9 @@ def _describe(model: Any) -> str:
     delay_s = float(getattr(model, "delay_s", 0.0) or 0.0)
     if delay_s:
         parts.append(f"reference dead time {delay_s:.4g} s (simulated on the delayed reference)")
+    filter_s = float(getattr(model, "setpoint_filter_s", 0.0) or 0.0)
+    if filter_s:
+        parts.append(f"setpoint filter {filter_s * 1e3:.4g} ms (a moving average between the reference and the loop)")
     effects = getattr(model, "effects", None)
     if effects:
         parts.append("effects: " + ", ".join(str(e.get("name", "?")) if isinstance(e, dict) else str(e)

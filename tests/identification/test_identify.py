@@ -165,3 +165,23 @@ def test_cli_says_when_a_pole_sits_on_the_box_the_nyquist_frequency_of_a_slow_re
     cap.select_axes(("x",)).to_csv(tmp_path / "fast.csv")
     assert main(["identify", str(tmp_path / "fast.csv"), "--no-diagnose"]) == 0
     assert "warning:" not in capsys.readouterr().out
+
+
+def test_the_weak_poles_line_says_when_the_refinement_left_the_equation_errors_range():
+    """The valley is the equation error's, around its own solution: when the output-error refinement moves
+    the poles outside it (simwild saw omega_n 36 Hz printed beside a range of 95-112 Hz), the line names the
+    equation error's solution and says so; inside it, the line does not."""
+    from types import SimpleNamespace
+
+    from vcnc.commands.identify import weak_poles_line
+
+    valley = {"tolerance": 0.01, "identifiable": False, "omega_n_hz": [94.6, 112.0], "zeta": [0.3, 0.5],
+              "p_hz": [0.5, 1.5]}
+    ee = {"omega_n_hz": 100.0, "zeta": 0.4, "p_hz": 1.0}
+    moved = SimpleNamespace(fit={"solver": {"identifiability": valley, "poles": ee}}, method="exact+oe",
+                            poles={"omega_n_hz": 36.0, "zeta": 0.4, "p_hz": 1.0})
+    line = weak_poles_line(moved)
+    assert "omega_n 94.6-112 Hz" in line and "around its solution (omega_n 100 Hz" in line
+    assert "moved the poles above outside that range" in line
+    inside = SimpleNamespace(fit=moved.fit, method="exact+oe", poles={"omega_n_hz": 101.0, "zeta": 0.4, "p_hz": 1.0})
+    assert "outside that range" not in weak_poles_line(inside) and "too little excitation" in weak_poles_line(inside)

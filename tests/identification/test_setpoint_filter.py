@@ -70,3 +70,13 @@ def test_a_format_3_file_without_its_filter_is_named(tmp_path):
     path.write_text(json.dumps(data))
     with pytest.raises(ModelFileError, match="setpoint_filter_s"):
         load_model(path)
+
+
+def test_a_contour_comparison_names_the_models_filter():
+    """vcnc compare describes each model; a filtered one says its filter (it is simulated with it)."""
+    from vcnc.contour_compare import compare
+
+    model = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=0.001, axis="x", setpoint_filter_s=0.016)
+    report = compare("fadal-pid", {"x": model, "y": model}, "circle", truth_runs=1).to_dict()
+    described = json.dumps(report["models"])
+    assert "setpoint filter 16 ms" in described

@@ -81,6 +81,29 @@ def delay_lines(model) -> list[str]:
     return [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
 
 
+def weak_poles_line(model) -> str:
+    """What to say when the equation error barely depends on the poles (``fit['solver']['identifiability']``).
+
+    The range is that of the equation-error problem around its own solution; the output-error refinement
+    may then have moved the poles outside it (a fadal-pid record: the range 95-112 Hz around the
+    equation error's solution, the refined omega_n 36 Hz), so the line names both. A flat valley comes
+    from a loop whose tracking barely depends on its poles, as when feedforward cancels the closed loop
+    (thesis Tables 3.5 and 4.2), or from a record that excites them too little."""
+    fit = model.fit
+    valley = fit["solver"]["identifiability"]
+    ee = fit["solver"].get("poles", {})
+    line = (f"poles weakly identifiable: the equation error stays within {valley['tolerance']:.0%} of its minimum "
+            f"for omega_n {valley['omega_n_hz'][0]:.3g}-{valley['omega_n_hz'][1]:.3g} Hz, zeta "
+            f"{valley['zeta'][0]:.2f}-{valley['zeta'][1]:.2f}, p {valley['p_hz'][0]:.3g}-{valley['p_hz'][1]:.3g} Hz")
+    outside = [k for k in ("omega_n_hz", "zeta", "p_hz")
+               if not valley[k][0] * (1 - 1e-9) <= model.poles[k] <= valley[k][1] * (1 + 1e-9)]
+    if ee and outside:
+        line += (f" around its solution (omega_n {ee['omega_n_hz']:.3g} Hz, zeta {ee['zeta']:.2f}, "
+                 f"p {ee['p_hz']:.3g} Hz); the output-error refinement moved the poles above outside that range")
+    return line + ("; the record hardly shows them (feedforward cancelling the closed loop, as in thesis Tables 3.5 "
+                   "and 4.2, or too little excitation); the model still predicts the capture as reported above")
+
+
 def setpoint_filter_lines(model) -> list[str]:
     """What to say of the setpoint filter ``model.setpoint_filter_s`` and its ``fit['setpoint_filter']`` record."""
     rec = model.fit.get("setpoint_filter")
@@ -152,7 +175,9 @@ def _report(capture, model, axis: str):
              ["zeta [-]", f"{valley['zeta'][0]:.3g} - {valley['zeta'][1]:.3g}"],
              ["p [Hz]", f"{valley['p_hz'][0]:.4g} - {valley['p_hz'][1]:.4g}"]],
             caption="identifiable" if valley["identifiable"] else
-            "weakly identifiable poles: feedforward cancels the closed loop (cf. thesis Tables 3.5, 4.2)",
+            "weakly identifiable poles, ranges of the equation error around its own solution (before the "
+            "output-error refinement): feedforward cancelling the closed loop (cf. thesis Tables 3.5, 4.2) or too "
+            "little excitation",
         )
     rep.table(
         ["", "frequency [Hz]", "damping [-]"],
@@ -254,13 +279,7 @@ def run(args: argparse.Namespace) -> int:
         out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
-        out.write(
-            f"poles weakly identifiable: the equation error stays within {valley['tolerance']:.0%} of its minimum "
-            f"for omega_n {valley['omega_n_hz'][0]:.3g}-{valley['omega_n_hz'][1]:.3g} Hz, zeta "
-            f"{valley['zeta'][0]:.2f}-{valley['zeta'][1]:.2f}, p {valley['p_hz'][0]:.3g}-{valley['p_hz'][1]:.3g} Hz "
-            "(feedforward cancelling the closed loop, cf. thesis Tables 3.5 and 4.2); the model still predicts "
-            "the capture as reported above\n"
-        )
+        out.write(weak_poles_line(model) + "\n")
     if model.validation:
         from identification.diagnosis import format_before_after
 
