@@ -2521,8 +2521,8 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
             t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
             _resolve_approach(m, np.array([t[p], t[q]]), where)
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
-    if exit_run:
-        _finish_compensation(m)
+    if exit_run:  # the R0 block ends the run at its programmed point, also with only the tool axis in it
+        _finish_compensation(m, closed=True)
     _retract_and_call(seen, mvals, m, where, blk, positioned=kw in ("L", "LP") and bool(written))
     return ended
 
@@ -3045,9 +3045,14 @@ def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
     return False
 
 
-def _finish_compensation(m: _Machine, *, open_end: bool = False) -> None:
+def _finish_compensation(m: _Machine, *, open_end: bool = False, closed: bool = False) -> None:
     """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
-    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move."""
+    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move.
+    ``closed``: the run's last block is the R0 block, which positions the tool at its programmed point
+    even when it names only the tool axis (iTNC 530 / TNC 620 ISO user's manuals, "Tool radius
+    compensation": "In the first block in which radius compensation is ... canceled with G40 the TNC
+    always positions the tool perpendicular to the programmed starting or end position"; R0: "The tool
+    center moves ... to the programmed coordinates"), as :func:`compensate`'s ``closed``."""
     start, m.comp_start = m.comp_start, None
     side = "left" if m.comp_side == "RL" else "right"
     m.comp = "R0"
@@ -3056,7 +3061,7 @@ def _finish_compensation(m: _Machine, *, open_end: bool = False) -> None:
         return
     try:
         new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
-                         open_end=open_end)
+                         open_end=open_end, closed=closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}", column=1,

@@ -109,3 +109,16 @@ def test_fn13_angle_lies_between_0_and_360_degrees():
     # TNC 370 user's manual 7.3: FN13 ANGLE "(0 < angle < 360)": the vector (0, -1) is at 270 degrees, not -90
     prog = checked("1 FN 13: Q1 = +0 ANG -1\n2 FN 13: Q2 = -1 ANG -1\n3 L X+Q1 Y+Q2 Z+0 R0 FMAX")
     assert np.allclose(prog.blocks[-1].target, [270.0, 225.0, 0.0])
+
+
+@pytest.mark.parametrize("between", ["", "7 TOOL CALL 1 Z DL+0\n"])
+def test_an_r0_block_with_only_the_tool_axis_ends_at_the_programmed_point(between):
+    # TNC manuals: the block that cancels compensation "positions the tool perpendicular to the programmed
+    # ... end position", R0 "moves to the programmed coordinates": after an RL contour ending at (20, 20),
+    # tool R5, L Z+50 R0 retracts to (20, 20, 50), not straight up from the offset point (15, 20); a TOOL CALL
+    # between does not cancel compensation (only R0, DEP and PGM MGT do, TNC 620 manual)
+    prog = checked("1 TOOL DEF 1 L+0 R+5\n2 TOOL CALL 1 Z S1000\n3 L X+0 Y+0 Z+10 R0 FMAX\n"
+                   "4 L X+20 Y+0 RL F500\n5 L X+20 Y+20\n" + between + "8 L Z+50 R0 FMAX\n9 L X+40")
+    contour_end, retract, after = prog.blocks[-3:]
+    assert np.allclose(contour_end.target, [15, 20, 10])
+    assert np.allclose(retract.target, [20, 20, 50]) and np.allclose(after.target, [40, 20, 50])
