@@ -21,6 +21,7 @@ import dataclasses
 import numpy as np
 
 from vcnc.core.errors import IdentificationError
+from vcnc.core.metrics import true_runs
 
 __all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "starts_from_standstill",
            "SETTLED_SHARE", "RAMP_SHARE"]
@@ -165,10 +166,8 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
 
 
 def motion_segments(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Contiguous stretches ``[start, stop)`` of samples where ``mask`` is True."""
-    m = np.asarray(mask, bool).astype(np.int8)
-    edges = np.diff(np.concatenate([[0], m, [0]]))
-    return [(int(a), int(b)) for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1))]
+    """Contiguous stretches ``[start, stop)`` of samples where ``mask`` (the active samples) is True."""
+    return true_runs(mask)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)

@@ -9,7 +9,7 @@ import numpy as np
 
 from vcnc.core.axes import ROTARY_AXES, axis_unit
 from vcnc.core.capture import Capture
-from vcnc.core.metrics import error_metrics
+from vcnc.core.metrics import error_metrics, true_runs
 
 if TYPE_CHECKING:
     from vcnc.report import Report
@@ -64,8 +64,8 @@ def _saturation(capture: Capture) -> dict[str, dict[str, float]]:
     for i, a in enumerate(capture.axes if sat is not None else ()):
         col = np.asarray(sat[:, i], dtype=bool)
         if col.any():
-            edges = np.flatnonzero(np.diff(np.concatenate(([0], col.view(np.int8), [0]))))
-            out[a] = {"share": float(col.mean()), "longest_s": float(np.diff(edges)[::2].max() * capture.sample_time),
+            longest = max(stop - start for start, stop in true_runs(col))
+            out[a] = {"share": float(col.mean()), "longest_s": float(longest * capture.sample_time),
                       "error_beyond_travel": bool(np.abs(capture.reference[:, i] - capture.measured[:, i]).max()
                                                   > np.ptp(capture.reference[:, i]))}
     return out
