@@ -278,13 +278,14 @@ static void exact_step(vcnc_model *m)
 {
     const vcnc_discrete *dm = &m->dm;
     const double *phi = dm->phi, *g = dm->gamma, *xi = m->xi;
-    double r = input_ref(m) - m->r0;
+    const double ref = input_ref(m); /* the moving average costs a pass over its samples: taken once */
+    double r = ref - m->r0;
     double v = (((dm->cv[0] * xi[0] + dm->cv[1] * xi[1]) + dm->cv[2] * xi[2]) + dm->dv * r) + dm->dvs * (r - m->prev);
     double f = v > 0.0 ? m->par.d0 : (v < 0.0 ? m->par.d1 : 0.0);
     double w = f + wext(m);
     double n0, n1, n2;
 
-    w += w_terms(&m->par, v, linear_position(m, input_ref(m)));
+    w += w_terms(&m->par, v, linear_position(m, ref));
     n0 = (((phi[0] * xi[0] + phi[1] * xi[1]) + phi[2] * xi[2]) + g[0] * r) + g[1] * w;
     n1 = (((phi[3] * xi[0] + phi[4] * xi[1]) + phi[5] * xi[2]) + g[2] * r) + g[3] * w;
     n2 = (((phi[6] * xi[0] + phi[7] * xi[1]) + phi[8] * xi[2]) + g[4] * r) + g[5] * w;
