@@ -96,3 +96,26 @@ def test_interpolate_refuses_a_program_beyond_its_memory_guard_naming_max_second
     assert data[-1, 0] == pytest.approx(30.0) and np.all(np.isfinite(data))
     assert f"{prog}: only the first 30 s of at least 24000 s interpolated (budget 30 s)" in said
     assert data[-1, 1] == pytest.approx(50.0, abs=0.05)  # 5 mm/s back from 100 mm for 10 s, less the reversal
+
+
+def test_default_dialect_error_names_the_dialect_that_reads_the_program(tmp_path, capsys):
+    """A Haas program (Haas NGC mill manual: G00 is the power-on motion mode, "G81 ... R optional") that
+    the default LinuxCNC reading refuses: the error stays (exit 2, no output) and says that --dialect
+    fanuc or haas reads it; a program no dialect reads gets no such hint, nor does an explicit --dialect."""
+    prog = tmp_path / "o1001.nc"
+    prog.write_text("%\nO1001\nG20 G90 G54\nX1. Y1.\nG43 H1 Z0.1\nG81 G98 Z-0.2 F10.\nG80\nM30\n%\n")
+    out = tmp_path / "sp.csv"
+    assert main(["interpolate", str(prog), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert f"{prog}:4:1: axis words before any motion code" in err
+    assert "--dialect fanuc or haas: the program reads as that control's G-code" in err
+    assert not out.exists()
+    assert main(["interpolate", str(prog), "-o", str(out), "--dialect", "haas"]) == 0
+    assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv")]) == 2
+    assert "--dialect fanuc or haas" in capsys.readouterr().err
+    assert main(["interpolate", str(prog), "-o", str(out), "--dialect", "linuxcnc"]) == 2
+    assert "--dialect fanuc" not in capsys.readouterr().err
+    bad = tmp_path / "bad.nc"
+    bad.write_text("G01 X10 F100\nG01 X5 Q3\n")
+    assert main(["interpolate", str(bad), "-o", str(out)]) == 2
+    assert "--dialect" not in capsys.readouterr().err

@@ -83,6 +83,48 @@ def program_context(args: argparse.Namespace, machine=None):
     return dataclasses.replace(context, **changes) if changes else context
 
 
+#: Largest program [bytes] that a failed read is read again under the other dialects for
+#: :func:`read_program`'s hint (the reader takes about 50 us a line: some 5 s per dialect at this size).
+HINT_MAX_BYTES = 4_000_000
+
+
+def read_program(args: argparse.Namespace, machine=None):
+    """The part program ``args.program`` read in :func:`program_context`.
+
+    A program that the default dialect (LinuxCNC's, neither ``--dialect`` nor a machine's ``[program]
+    dialect`` chosen) refuses is read again as Fanuc, Haas and grbl G-code; when one of them reads it,
+    the error says so ("...; expected ..., or --dialect haas: the program reads as that control's
+    G-code"), since the same text means different things to those controls (a Haas program starts in G00
+    and drills without an R word; LinuxCNC refuses both) and vcnc must not guess which one was meant.
+    The error stays an error: a program is read as its control reads it or not at all."""
+    from pathlib import Path
+
+    from interpolators import load_program
+    from vcnc.core.errors import GCodeError
+
+    context = program_context(args, machine)
+    try:
+        return load_program(args.program, context=context)
+    except GCodeError as exc:
+        path = Path(args.program)
+        if getattr(args, "dialect", None) or context.dialect.name != "linuxcnc" or not path.is_file() \
+                or path.stat().st_size > HINT_MAX_BYTES:
+            raise
+        readers = []
+        for name in ("fanuc", "haas", "grbl"):
+            try:
+                load_program(path, context=context.with_dialect(name))
+            except GCodeError:
+                continue
+            readers.append(name)
+        if readers:
+            hint = (f"--dialect {' or '.join(readers)}: the program reads as that control's G-code (vcnc reads "
+                    "LinuxCNC's unless told)")
+            exc.expected = f"{exc.expected}, or {hint}" if exc.expected else hint
+            exc.args = (str(exc),)
+        raise
+
+
 def interpolate_within(program, machine, args: argparse.Namespace, *, command: str, max_samples: int,
                        sample_time: float | None = None):
     """The setpoints of ``program`` on ``machine`` (None: the interpolator's default limits) for a command
@@ -217,7 +259,6 @@ def plot_setpoints(setpoints, *, title: str | None = None):
 
 
 def run(args: argparse.Namespace) -> int:
-    from interpolators import load_program
     from vcnc.core.io import atomic_path
 
     ts = 1e-3
@@ -225,7 +266,7 @@ def run(args: argparse.Namespace) -> int:
     if args.machine:
         machine = _machine(args.machine)
         ts = float(getattr(machine, "sample_time", ts) or ts)
-    program = load_program(args.program, context=program_context(args, machine))
+    program = read_program(args, machine)
     print_program_notes(program, args.program)
     if args.ts is not None:
         ts = args.ts

@@ -8,7 +8,7 @@ import json
 import logging
 from pathlib import Path
 
-from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, program_context
+from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, read_program
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
@@ -36,7 +36,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    import interpolators
     from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
@@ -44,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.simulation_report import build_report, saturation_note, summarize
 
     machine = load_machine(args.machine)
-    program = interpolators.load_program(args.program, context=program_context(args, machine))
+    program = read_program(args, machine)
     print_program_notes(program, args.program)
     setpoints = interpolate_within(program, machine, args, command="simulate", max_samples=MAX_SAMPLES)
     if len(setpoints) < 2:  # a capture holds at least two samples
