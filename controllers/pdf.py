@@ -49,9 +49,11 @@ class PDF(Controller):
     KIND: ClassVar[int] = 4
     CONTINUOUS: ClassVar[bool] = False
     TABLE: ClassVar[str] = "pdf"
-    UNITS: ClassVar[dict[str, str]] = {"p1": "-", "p2": "-", "k1": "-", "k2": "-", "position_unit": "mm"}
+    UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS, "p1": "-", "p2": "-", "k1": "-", "k2": "-", "position_unit": "mm"}
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._integer("p1", 0, 2**31 - 1)
         self._integer("p2", 0, 2**31 - 1)
         self._positive("k1", "position_unit")

@@ -62,6 +62,7 @@ class PID(Controller):
     KIND: ClassVar[int] = 0
     TABLE: ClassVar[str] = "pid"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "kp": "V/mm",
         "ki": "V/(mm s)",
         "kd": "V s/mm",
@@ -71,6 +72,7 @@ class PID(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._nonnegative("kp", "ki", "kd")
         self._finite("kv", "ka")
         common_checks(self)

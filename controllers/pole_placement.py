@@ -153,6 +153,7 @@ class PolePlacement(Controller):
     CONTINUOUS: ClassVar[bool] = False
     TABLE: ClassVar[str] = "ppc"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "frequency_hz": "Hz",
         "damping": "-",
         "measurement_std": "mm",
@@ -165,12 +166,11 @@ class PolePlacement(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("frequency_hz", "measurement_std")
         self._in_range("damping", 0.05, 1.0)
         self._nonnegative("velocity_std", "disturbance_std")
-        for f in ("cancel_disturbance", "zpetc"):
-            if not isinstance(getattr(self, f), bool):
-                raise self._fail(f, "must be true or false")
+        self._boolean("cancel_disturbance", "zpetc")
         if self.model_gain is not None:
             self._positive("model_gain")
         if self.model_viscous_rate is not None:

@@ -54,6 +54,7 @@ class PPI(Controller):
     KIND: ClassVar[int] = 1
     TABLE: ClassVar[str] = "ppi"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "kp": "1/s",
         "kd": "V s/mm",
         "ki": "V/mm",
@@ -63,6 +64,7 @@ class PPI(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("kp", "kd")
         self._nonnegative("ki")
         self._finite("kv", "ka")

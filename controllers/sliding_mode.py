@@ -61,6 +61,7 @@ class SlidingMode(Controller):
     KIND: ClassVar[int] = 2
     TABLE: ClassVar[str] = "smc"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "lam": "1/s",
         "ks": "V s/mm",
         "rho": "V/mm",
@@ -70,6 +71,7 @@ class SlidingMode(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("lam", "ks")
         self._nonnegative("rho")
         if self.mass_estimate is not None:
