@@ -25,7 +25,7 @@ def fast_smc(tmp_path, *, anti_windup: bool = True):
     text = builtin_machine_text("fadal-smc")
     x, rest = text.split("[axes.y]", 1)
     x = x.replace("acceleration = 2000.0", "acceleration = 20000.0").replace("jerk = 40000.0", "jerk = 400000.0")
-    x = x.replace("[axes.x.controller]\n", f"[axes.x.controller]\nanti_windup = {str(anti_windup).lower()}\n")
+    x = x.replace("anti_windup = true", f"anti_windup = {str(anti_windup).lower()}")
     path = tmp_path / "fast-smc.toml"
     path.write_text(x + "[axes.y]" + rest)
     return path
