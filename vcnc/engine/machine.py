@@ -519,7 +519,8 @@ def realistic_effect(
       velocity and acceleration limits, thesis Table 3.2 style). The drive then saturates briefly
       in the hardest accelerations (reversals after short moves), at 0.7-0.95 of the peak demand
       depending on the law. Fadal X axes: pid 3.34 V (peak 4.10 V), ppi 2.53 V, smc 2.78 V; on a
-      Table 3.2 test at 2000 mm/s^2 (seed 1) 3.9 %, 4.4 % and 4.5 % of the samples saturate. At
+      Table 3.2 test at 2000 mm/s^2 (seed 1) 3.6 %, 3.7 % and 4.3 % of the samples are at the limit
+      (``Capture.aux["saturated"]``; 3.9 %, 4.4 % and 4.5 % with the bare laws, ``anti_windup = false``). At
       2 % the effect is at the edge of what the residual diagnosis detects on fadal-pid.
       ``voltage_limit_v`` sets the limit [V] directly instead.
     - drift: ``rate_mm_s`` 2e-4, ``time_constant_s`` 0 (linear); ``measurement`` "table"
