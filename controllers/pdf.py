@@ -37,7 +37,10 @@ class PDF(Controller):
 
     Feedback enters with a minus sign: with the sign of Eq. (9) as printed the loop on the printed
     plant P*(z) is unstable (poles at 1.23 and 1.005); with negative feedback its poles are at
-    0.994 and 0.983 (168 Hz, zeta 0.065) for T = 250 us.
+    0.994 and 0.983 (168 Hz, zeta 0.065) for T = 250 us. At the actuator limit u1 stops
+    accumulating (``anti_windup``, ours: seed 004 does not treat the limit; see
+    :class:`controllers.Controller`). The printed plant P*(z) has a pole at z = 1.040, outside the
+    unit circle: a limit below what a move demands loses the table with or without anti-windup.
     """
 
     p1: int

@@ -136,7 +136,9 @@ class PolePlacement(Controller):
     u_k = L_x (r*_k - x_hat_1) - L_v x_hat_2 + x_hat_3. The tracking transfer function is
     G(z) = L_x B(z)/A(z) (Eq. 3.23), the estimator poles cancelling; the ZPETC of Eq. (3.24) makes the
     overall x/x_r = B^-(z) B^-(z^-1)/B^-(1)^2 (Eq. 3.25), zero phase, with a preview of
-    (relative degree + number of cancelled-out zeros) samples.
+    (relative degree + number of cancelled-out zeros) samples. With ``anti_windup`` the estimator is
+    fed u_k clipped to the actuator limit, the control the drive receives (see
+    :class:`controllers.Controller`).
     """
 
     frequency_hz: float = 30.0

@@ -46,7 +46,8 @@ class SlidingMode(Controller):
     a1 = lambda + K K_s/J + (B - B_hat)/J, a2 = K (K_s lambda + rho)/J, a3 = K rho lambda/J,
     b0 = J_hat/J, b1 = lambda J_hat/J + K K_s/J, b2 = a2, d0 = (K/J) d+, d1 = (K/J) d-:
     G_track = 1 with exact estimates (Table 3.5). Adapting m_hat and c_hat as well (the full law
-    of the paper) is not implemented.
+    of the paper) is not implemented. At the actuator limit the adaptation of d_hat stops (``anti_windup``,
+    ours: the paper does not treat the limit; see :class:`controllers.Controller`).
     """
 
     lam: float
