@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -66,20 +67,66 @@ class DiscreteLaw:
         self.sample_time = ts
 
 
+@dataclasses.dataclass(frozen=True, kw_only=True)
 class Controller(Record):
-    """Protocol of the servo laws (a mixin of frozen keyword-only dataclasses).
+    """Protocol of the servo laws (the base of frozen keyword-only dataclasses).
 
     A controller only holds parameters. It tells the compiled kernel its law through ``KIND`` and
     :meth:`pack`, filters the reference where it has a feedforward filter (:meth:`prefilter`),
     gives its sampled linear law (:meth:`discrete_law`) and, for the continuous laws, the reduced
     parameters of Eq. (3.3) of the thesis (:meth:`reduced_parameters`) and the closed loop of
     Eq. (3.1) (:meth:`closed_loop`).
+
+    Parameters
+    ----------
+    anti_windup : bool
+        The law knows its actuator's limit (the amplifier limit or the DAC range, whichever is
+        lower: ``AxisDefinition.actuator_limit``) and keeps its states from winding up while its
+        demand is beyond it, as real servo controls do (default). ``False`` runs the bare law of
+        the thesis and the papers, whose states integrate on whatever the actuator did, for a study
+        of windup. A loop that never demands more than the limit runs identically either way.
+
+    Notes
+    -----
+    Anti-windup, per law (compiled in :mod:`vcnc.engine.kernel`; the law's own output is limited,
+    so the computational delay and the DAC quantisation after it do not enter):
+
+    - PID integral, P-PI velocity-loop integral, PDF sum u1 and the sliding-mode law's adapted
+      disturbance d_hat: conditional integration. The state does not take the step of a sample
+      whose demand u (with the step, feedforward and friction compensation included) lies beyond
+      the limit when the step pushes u further out; it integrates again as soon as the demand is
+      back within the limit or the step points back. Source: K. J. Astrom, L. Rundqwist,
+      "Integrator windup and how to avoid it", ACC 1989, pp. 1693-1698 (conditional integration
+      and tracking; https://cse.lab.imtlucca.it/~bemporad/teaching/controllodigitale/pdf/Astrom-ACC89.pdf),
+      K. J. Astrom, R. M. Murray, "Feedback Systems", Sec. 10.4 (1st ed.) "Integrator windup".
+      Ours: the choice of conditional integration over back-calculation (no tracking time constant
+      to choose, and no change while the demand is within the limit); its use on the sliding-mode
+      adaptation (freezing an adaptive law while the input saturates is the usual remedy; the
+      paper of Altintas, Erkorkmaz and Zhu (2000) does not treat the limit) and on the integer
+      PDF's sum (seed 004 does not treat the limit either).
+    - Pole placement + Kalman filter: the current estimator is fed the control the actuator
+      passes, clip(u, -limit, limit), instead of the demand (Astrom, Rundqwist 1989: an observer
+      driven by the actual actuator output gives a state-feedback law its anti-windup).
+      Ours: the estimator model keeps the design's zero delay (the same sample's u, as the
+      design of :func:`controllers.pole_placement.design_pole_placement` assumes) and the DAC
+      quantisation is not fed back; both change nothing while the demand is within the limit.
+
+    The thesis (Assumption 2 of Sec. 3.2) avoids saturation altogether: none of the seeds says
+    how its laws behave at the limit. The papers' and book's texts were not in the searchable corpus:
+    they are cited from memory of the published works (our reading).
     """
+
+    anti_windup: bool = True
+
+    UNITS: ClassVar[dict[str, str]] = {"anti_windup": ""}
 
     #: law code in the compiled kernel
     KIND: ClassVar[int] = -1
     #: True when the law is designed in continuous time (Eq. 3.3 applies exactly)
     CONTINUOUS: ClassVar[bool] = True
+
+    def __post_init__(self) -> None:
+        self._boolean("anti_windup")
 
     def pack(self, drive: Any, sample_time: float) -> np.ndarray:  # pragma: no cover - abstract
         """Parameter vector (length ``N_PARAMS``) of the compiled law."""

@@ -37,7 +37,10 @@ class PDF(Controller):
 
     Feedback enters with a minus sign: with the sign of Eq. (9) as printed the loop on the printed
     plant P*(z) is unstable (poles at 1.23 and 1.005); with negative feedback its poles are at
-    0.994 and 0.983 (168 Hz, zeta 0.065) for T = 250 us.
+    0.994 and 0.983 (168 Hz, zeta 0.065) for T = 250 us. At the actuator limit u1 stops
+    accumulating (``anti_windup``, ours: seed 004 does not treat the limit; see
+    :class:`controllers.Controller`). The printed plant P*(z) has a pole at z = 1.040, outside the
+    unit circle: a limit below what a move demands loses the table with or without anti-windup.
     """
 
     p1: int
@@ -49,9 +52,11 @@ class PDF(Controller):
     KIND: ClassVar[int] = 4
     CONTINUOUS: ClassVar[bool] = False
     TABLE: ClassVar[str] = "pdf"
-    UNITS: ClassVar[dict[str, str]] = {"p1": "-", "p2": "-", "k1": "-", "k2": "-", "position_unit": "mm"}
+    UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS, "p1": "-", "p2": "-", "k1": "-", "k2": "-", "position_unit": "mm"}
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._integer("p1", 0, 2**31 - 1)
         self._integer("p2", 0, 2**31 - 1)
         self._positive("k1", "position_unit")

@@ -48,6 +48,8 @@ class PID(Controller):
     On the rigid drive ``x'' = (K/J)(u - d) - (B/J) x'`` this gives Eq. (3.5) of the thesis:
     a1 = (B + K K_d)/J, a2 = K K_p/J, a3 = K K_i/J, b0 = K K_a/J, b1 = K (K_d + K_v)/J, b2 = a2,
     d0 = (K/J) d+, d1 = (K/J) d-. Sampled: rectangular integral, backward-difference derivative.
+    At the actuator limit the integral stops (conditional integration, ``anti_windup``: see
+    :class:`controllers.Controller`).
     """
 
     kp: float
@@ -62,6 +64,7 @@ class PID(Controller):
     KIND: ClassVar[int] = 0
     TABLE: ClassVar[str] = "pid"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "kp": "V/mm",
         "ki": "V/(mm s)",
         "kd": "V s/mm",
@@ -71,6 +74,7 @@ class PID(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._nonnegative("kp", "ki", "kd")
         self._finite("kv", "ka")
         common_checks(self)

@@ -136,7 +136,9 @@ class PolePlacement(Controller):
     u_k = L_x (r*_k - x_hat_1) - L_v x_hat_2 + x_hat_3. The tracking transfer function is
     G(z) = L_x B(z)/A(z) (Eq. 3.23), the estimator poles cancelling; the ZPETC of Eq. (3.24) makes the
     overall x/x_r = B^-(z) B^-(z^-1)/B^-(1)^2 (Eq. 3.25), zero phase, with a preview of
-    (relative degree + number of cancelled-out zeros) samples.
+    (relative degree + number of cancelled-out zeros) samples. With ``anti_windup`` the estimator is
+    fed u_k clipped to the actuator limit, the control the drive receives (see
+    :class:`controllers.Controller`).
     """
 
     frequency_hz: float = 30.0
@@ -153,6 +155,7 @@ class PolePlacement(Controller):
     CONTINUOUS: ClassVar[bool] = False
     TABLE: ClassVar[str] = "ppc"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "frequency_hz": "Hz",
         "damping": "-",
         "measurement_std": "mm",
@@ -165,12 +168,11 @@ class PolePlacement(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("frequency_hz", "measurement_std")
         self._in_range("damping", 0.05, 1.0)
         self._nonnegative("velocity_std", "disturbance_std")
-        for f in ("cancel_disturbance", "zpetc"):
-            if not isinstance(getattr(self, f), bool):
-                raise self._fail(f, "must be true or false")
+        self._boolean("cancel_disturbance", "zpetc")
         if self.model_gain is not None:
             self._positive("model_gain")
         if self.model_viscous_rate is not None:

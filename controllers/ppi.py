@@ -40,6 +40,8 @@ class PPI(Controller):
     gives Eq. (3.4): a1 = (B + K K_d)/J, a2 = K (K_d K_p + K_i)/J, a3 = K K_p K_i/J,
     b0 = K K_p K_d K_a/J, b1 = K K_p (K_d K_v + K_a K_i)/J, b2 = K K_p (K_d + K_v K_i)/J,
     d0 = (K/J) d+, d1 = (K/J) d-. The EMPS law ``v = k_v (k_p (q_r - q) - q')`` is the case K_i = 0.
+    At the actuator limit the velocity loop's integral stops (conditional integration,
+    ``anti_windup``: see :class:`controllers.Controller`); with K_i = 0 nothing winds up.
     """
 
     kp: float
@@ -54,6 +56,7 @@ class PPI(Controller):
     KIND: ClassVar[int] = 1
     TABLE: ClassVar[str] = "ppi"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "kp": "1/s",
         "kd": "V s/mm",
         "ki": "V/mm",
@@ -63,6 +66,7 @@ class PPI(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("kp", "kd")
         self._nonnegative("ki")
         self._finite("kv", "ka")

@@ -46,7 +46,8 @@ class SlidingMode(Controller):
     a1 = lambda + K K_s/J + (B - B_hat)/J, a2 = K (K_s lambda + rho)/J, a3 = K rho lambda/J,
     b0 = J_hat/J, b1 = lambda J_hat/J + K K_s/J, b2 = a2, d0 = (K/J) d+, d1 = (K/J) d-:
     G_track = 1 with exact estimates (Table 3.5). Adapting m_hat and c_hat as well (the full law
-    of the paper) is not implemented.
+    of the paper) is not implemented. At the actuator limit the adaptation of d_hat stops (``anti_windup``,
+    ours: the paper does not treat the limit; see :class:`controllers.Controller`).
     """
 
     lam: float
@@ -61,6 +62,7 @@ class SlidingMode(Controller):
     KIND: ClassVar[int] = 2
     TABLE: ClassVar[str] = "smc"
     UNITS: ClassVar[dict[str, str]] = {
+        **Controller.UNITS,
         "lam": "1/s",
         "ks": "V s/mm",
         "rho": "V/mm",
@@ -70,6 +72,7 @@ class SlidingMode(Controller):
     }
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         self._positive("lam", "ks")
         self._nonnegative("rho")
         if self.mass_estimate is not None:

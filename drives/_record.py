@@ -76,6 +76,11 @@ class Record:
         if not lo <= v <= hi:
             raise self._fail(field, f"must lie in [{lo}, {hi}]")
 
+    def _boolean(self, *fields: str) -> None:
+        for f in fields:
+            if not isinstance(getattr(self, f), bool):
+                raise self._fail(f, "must be true or false")
+
     def _choice(self, field: str, choices: tuple[str, ...]) -> None:
         v = getattr(self, field)
         if v not in choices:

@@ -56,8 +56,8 @@ def summarize(capture: Capture) -> dict[str, Any]:
 
 
 def _saturation(capture: Capture) -> dict[str, dict[str, float]]:
-    """``{axis: {"share", "longest_s", "error_beyond_travel"}}`` of the axes whose actuator clipped the
-    control signal (``Capture.aux["saturated"]`` of a simulation): the share of the samples, the longest
+    """``{axis: {"share", "longest_s", "error_beyond_travel"}}`` of the axes whose control signal was at its
+    limit (``Capture.aux["saturated"]`` of a simulation): the share of the samples, the longest
     run [s], and whether the tracking error grew beyond the axis' commanded travel (the loop diverged)."""
     sat = capture.aux.get("saturated")
     out = {}
@@ -75,10 +75,11 @@ def saturation_note(summary: dict[str, Any]) -> str | None:
     """A warning in words when an actuator saturated during the run (``summary["saturated"]``), else None.
 
     A loop at its actuator limit no longer follows the linear closed loop the machine's controller was
-    tuned for: the tracking error grows beyond it and the integrators, which the controllers do not
-    clamp (no anti-windup, as the thesis' laws), wind up; an adaptive or model-based law may then leave
-    its stable region altogether. The usual cause is an axis ``acceleration`` limit that the drive
-    cannot deliver at its current or voltage limit."""
+    tuned for: the tracking error grows beyond it. With the laws' anti-windup (``anti_windup = true``,
+    the default: :class:`controllers.Controller`) the loop recovers once the demand is back within the
+    limit; the bare laws of the thesis (``anti_windup = false``) wind their integrators up, and an
+    adaptive or model-based law may then leave its stable region altogether. The usual cause is an
+    axis ``acceleration`` limit that the drive cannot deliver at its current or voltage limit."""
     sat = summary.get("saturated")
     if not sat:
         return None
@@ -87,9 +88,9 @@ def saturation_note(summary: dict[str, Any]) -> str | None:
     lost = [a for a, v in sat.items() if v["error_beyond_travel"]]
     diverged = (f"; on axis {', '.join(lost)} the tracking error grew beyond the commanded travel: the loop left its "
                 "stable region and the numbers describe that, not the machining" if lost else "")
-    return (f"warning: the actuator was at its limit on axis {parts}: the loop ran saturated there (integrators "
-            f"not clamped), so its errors are not those of the tuned closed loop{diverged}; check that the axis "
-            "limits (acceleration) fit what the drive delivers")
+    return (f"warning: the actuator was at its limit on axis {parts}: the loop ran saturated there, so its "
+            f"errors are not those of the tuned closed loop{diverged}; check that the axis limits (acceleration) "
+            "fit what the drive delivers")
 
 
 def build_report(capture: Capture, summary: dict[str, Any]) -> Report:

@@ -187,6 +187,7 @@ class AxisDefinition:
         p[L.CTRL_KIND] = self.controller.KIND
         p[L.SUBSTEPS] = self.substeps
         p[L.SAT] = self.control_limit()
+        p[L.LAW_LIMIT] = self.actuator_limit() if self.controller.anti_windup else math.inf
         if self.discrete_plant:
             dp = self.drive
             if not math.isclose(dp.sample_time, sample_time, rel_tol=1e-9):

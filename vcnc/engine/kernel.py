@@ -42,6 +42,7 @@ from vcnc.engine.layout import (
     FS_NEG,
     FS_POS,
     GAIN,
+    LAW_LIMIT,
     LOAD_AMP,
     LOAD_CONST,
     LOAD_PERIOD,
@@ -194,7 +195,8 @@ def simulate_axis(
     velocity [mm/s] and acceleration [mm/s^2]. ``P``: plant/option vector, ``C``: law vector.
     ``x0``: initial position [mm] (at rest). Output columns: measured, table [mm], velocity [mm/s],
     applied control [V], dry friction [V], true position of the measured point [mm] (the measured
-    signal without sensor noise, encoder quantisation and drift).
+    signal without sensor noise, encoder quantisation and drift), and 1.0 where the control was at
+    its limit (the actuator passed its limit value, or the law's anti-windup held a step back), else 0.
     """
     rng = np.empty(1, dtype=np.uint64)
     rng[0] = np.uint64(seed) * _GOLDEN
@@ -230,6 +232,9 @@ def simulate_axis(
     inv_lsb = 1.0 / lsb if lsb > 0.0 else 0.0
     dac_range = P[DAC_RANGE]
     sat = P[SAT]
+    # the actuator's limit (amplifier or DAC range), and the one the law's anti-windup knows
+    act_limit = min(sat, dac_range) if dac_range > 0.0 else sat
+    law_limit = P[LAW_LIMIT]
     delay = int(P[DELAY])
     pp_f = P[PP_FORCE]
     pp_x = P[PP_POS]
@@ -272,7 +277,6 @@ def simulate_axis(
     e1 = 0.0
     e2 = 0.0
     integ = 0.0
-    dhat = 0.0
     xh0 = x0
     xh1 = 0.0
     xh2 = 0.0
@@ -340,22 +344,29 @@ def simulate_axis(
         else:
             vhat = (y - y1) / ts
         u = 0.0
+        # the law's accumulator (integral, adapted disturbance, PDF sum) moves by step this sample;
+        # its share of u is step_gain * step
+        step = 0.0
+        step_gain = 0.0
         if kind == 0:  # PID
             if vfilt > 0.5:
                 de = (e - e2) / (2.0 * ts)
             else:
                 de = (e - e1) / ts
-            integ += ts * e
-            u = C[0] * e + C[1] * integ + C[2] * de + C[3] * vr + C[4] * ar
+            step = ts * e
+            step_gain = C[1]
+            u = C[0] * e + C[1] * (integ + step) + C[2] * de + C[3] * vr + C[4] * ar
         elif kind == 1:  # P-PI
             ev = C[0] * (e + C[3] * vr + C[4] * ar) - vhat
-            integ += ts * ev
-            u = C[2] * ev + C[1] * integ
-        elif kind == 2:  # adaptive sliding mode
+            step = ts * ev
+            step_gain = C[1]
+            u = C[2] * ev + C[1] * (integ + step)
+        elif kind == 2:  # adaptive sliding mode (integ is the adapted disturbance d_hat)
             edot = vr - vhat
             s = C[0] * e + edot
-            dhat += C[2] * ts * s
-            u = C[3] * (ar + C[0] * edot) + C[4] * vhat + C[1] * s + dhat
+            step = C[2] * ts * s
+            step_gain = 1.0
+            u = C[3] * (ar + C[0] * edot) + C[4] * vhat + C[1] * s + (integ + step)
         elif kind == 3:  # pole placement + Kalman filter
             b0 = C[3] * xh0 + C[4] * xh1 + C[5] * xh2 + C[12] * uprev
             b1 = C[6] * xh0 + C[7] * xh1 + C[8] * xh2 + C[13] * uprev
@@ -365,15 +376,26 @@ def simulate_axis(
             xh1 = b1 + C[16] * innov
             xh2 = b2 + C[17] * innov
             u = C[0] * (r - xh0) - C[1] * xh1 - C[2] * xh2
-            uprev = u
+            # the observer is fed the control the actuator will pass (anti-windup: the law's
+            # limit, inf without), not the demand beyond it
+            uprev = min(max(u, -law_limit), law_limit)
         elif kind == 4:  # PDF
-            integ += C[0] * e
-            u = integ - C[1] * y
+            step = C[0] * e
+            step_gain = 1.0
+            u = (integ + step) - C[1] * y
         if kind <= 2:
             if vr > 0.0:
                 u += C[5]
             elif vr < 0.0:
                 u -= C[6]
+        # conditional integration (anti-windup): no step that drives a demand beyond the law's limit
+        # further out; inf (no anti-windup) never holds a step back
+        limited = 0.0
+        if (u > law_limit or u < -law_limit) and step * u > 0.0:
+            u -= step_gain * step
+            limited = 1.0
+        else:
+            integ += step
         y2 = y1
         y1 = y
         e2 = e1
@@ -393,6 +415,8 @@ def simulate_axis(
             u = sat
         elif u < -sat:
             u = -sat
+        if u >= act_limit or u <= -act_limit:
+            limited = 1.0
         out[k, 0] = ym
         out[k, 1] = table
         out[k, 2] = vel_table
@@ -468,6 +492,7 @@ def simulate_axis(
             vm = (xnew - xm) / ts
             xm = xnew
         out[k, 4] = fric_out
+        out[k, 6] = limited
         if not (abs(xm) < 1e9 and abs(vm) < 1e12):
             return k
     return -1

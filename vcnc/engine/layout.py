@@ -44,6 +44,7 @@ DPLANT_SCALE = 32  # mm per output unit
 SAMPLE_TIME = 33  # [s]
 CTRL_KIND = 34
 MEASURE_TABLE = 35  # 1: the capture records an independent linear scale on the table, 0: the feedback
+LAW_LIMIT = 36  # the actuator limit the law's anti-windup knows [V], inf: no anti-windup (the bare law)
 N_PLANT = 40
 
 #: discrete plant coefficients b1..bn, a1..an follow the plant block (max order 8)
@@ -58,4 +59,5 @@ OUT_VELOCITY = 2
 OUT_CONTROL = 3
 OUT_FRICTION = 4
 OUT_POSITION = 5  # true position of the measured point [mm]: no sensor noise, quantisation, drift
-N_OUT = 6
+OUT_LIMITED = 6  # 1.0 where the control was at its limit (actuator at its limit value, or anti-windup holding)
+N_OUT = 7

@@ -12,7 +12,8 @@ Layout::
     substeps = 1
     [axes.x.limits]               # velocity mm/s, acceleration mm/s^2, jerk mm/s^3, rapid mm/s
     [axes.x.drive]                # type = "ballscrew" | "linear" | "discrete", then its fields
-    [axes.x.controller]           # type = "pid" | "ppi" | "smc" | "ppc" | "pdf", then its fields
+    [axes.x.controller]           # type = "pid" | "ppi" | "smc" | "ppc" | "pdf", then its fields, and
+                                  #   anti_windup = true (default) | false: the bare law, which winds up
     [axes.x.friction]             # optional non-idealities, one table each:
     [axes.x.backlash]             #   friction backlash encoder dac saturation noise delay
     ...                           #   resonance position_periodic load drift
