@@ -22,8 +22,10 @@ import sys
 import time
 from pathlib import Path
 
-# benchmarks/identification.py would shadow the identification package when run as a script
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+# this checkout's packages first (not an installed copy's); benchmarks/identification.py would shadow the
+# identification package when run as a script
+sys.path[:] = [str(Path(__file__).resolve().parents[1])] + [
+    p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 
 import numpy as np  # noqa: E402
 import scipy.signal  # noqa: E402

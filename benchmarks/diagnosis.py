@@ -30,8 +30,10 @@ import sys
 import time
 from pathlib import Path
 
-# benchmarks/identification.py is named like the package: keep this folder off the import path
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+# this checkout first (not the installed copy); benchmarks/identification.py is named like the package: keep this
+# folder off the import path
+sys.path[:] = [str(Path(__file__).resolve().parents[1])] + [
+    p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 
 import toolpaths  # noqa: E402
 import vcnc  # noqa: E402

@@ -11,8 +11,10 @@ import sys
 import time
 from pathlib import Path
 
-# this script is named like the package: keep its own folder off the import path
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+# this checkout first (not the installed copy); this script is named like the package: keep its own folder off
+# the import path
+sys.path[:] = [str(Path(__file__).resolve().parents[1])] + [
+    p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 
 import numpy as np  # noqa: E402
 

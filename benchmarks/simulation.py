@@ -12,13 +12,17 @@ one axis, in the same run. With ``--hour`` also a one-hour three-axis program (x
 from __future__ import annotations
 
 import argparse
+import sys
 import time
+from pathlib import Path
 
-import control
-import numpy as np
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # this checkout, not an installed copy
 
-from vcnc.engine.machine import Machine, load_machine
-from vcnc.setpoints import Setpoints
+import control  # noqa: E402
+import numpy as np  # noqa: E402
+
+from vcnc.engine.machine import Machine, load_machine  # noqa: E402
+from vcnc.setpoints import Setpoints  # noqa: E402
 
 
 def motion(seconds: float, ts: float, axes: tuple[str, ...]) -> Setpoints:

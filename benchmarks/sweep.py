@@ -60,9 +60,10 @@ def run(workers: int, tmp: Path, tag: str) -> tuple[float, float, float, float, 
 
 
 def main() -> None:
-    # the workers inherit sys.path: this folder's identification.py must not shadow the package
+    # the workers inherit sys.path: this checkout first (not the installed copy), and this folder's
+    # identification.py must not shadow the package
     here = Path(__file__).resolve().parent
-    sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != here]
+    sys.path[:] = [str(here.parent)] + [p for p in sys.path if Path(p or ".").resolve() != here]
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", default="1,2", help="comma-separated worker counts (default 1,2)")
     ap.add_argument("--repeat", type=int, default=1, help="runs per worker count; the best is kept")
