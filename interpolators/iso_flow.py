@@ -110,8 +110,27 @@ _FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program 
                     (re.compile(r"\$[^\s%]+\.(?:MIN|SUB|SSB|SDF|MSB|LIB)%", re.I), "Okuma OSP program file header"))
 
 
+#: The first block of a Heidenhain TNC program in DIN/ISO: '%', the program name and the unit, G71 (mm) or G70
+#: (inch), ended by '*' ("%NAME G71 *"; the last block repeats it after N99999999). HEIDENHAIN TNC 320 ISO
+#: Programming User's Manual 10/2017, 3.2 "Structure of an NC program in ISO format": "The first block of a
+#: program is identified by %, the program name and the active unit of measure"; TNC 426/430 ISO manual, 4.6.
+_HEIDENHAIN_ISO_HEADER = re.compile(r"%[ \t]*[A-Za-z0-9_.\-]+[ \t]+G7[01][ \t]*\*?[ \t]*$", re.I)
+
+
+def refuse_heidenhain_iso(line: str, where: Where) -> None:
+    """Refuse ``line`` if it is the first block of a Heidenhain TNC program in DIN/ISO
+    (:data:`_HEIDENHAIN_ISO_HEADER`), naming it: vcnc reads the TNC's conversational language, not its ISO mode."""
+    if _HEIDENHAIN_ISO_HEADER.match(line):
+        where.fail(f"Heidenhain DIN/ISO program header {line!r} (a TNC program in ISO mode: '%NAME G71 *' ... "
+                   "'N99999999 %NAME G71 *'): not supported; vcnc reads Heidenhain conversational and ISO "
+                   "G-code of Fanuc/Haas/LinuxCNC/grbl", column=1, text=line,
+                   expected="a Heidenhain conversational program (BEGIN PGM ... END PGM) or an ISO G-code program")
+
+
 def _refuse_foreign_header(line: str, where: Where) -> None:
-    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code."""
+    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code, or a
+    Heidenhain TNC program in DIN/ISO (:func:`refuse_heidenhain_iso`)."""
+    refuse_heidenhain_iso(line, where)
     for pattern, what in _FOREIGN_HEADERS:
         if pattern.match(line):
             where.fail(f"{what} {line!r}: that control's native language is not ISO G-code (vcnc reads ISO "
