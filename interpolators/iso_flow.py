@@ -138,6 +138,15 @@ def _refuse_foreign_header(line: str, where: Where) -> None:
                        expected="an ISO G-code program (Fanuc, Haas, LinuxCNC, grbl)")
 
 
+def _refuse_folder_line(line: str, where: Where) -> None:
+    """Refuse a Fanuc folder line ``&F=/USER/PATH1/``: the Series 30i/0i-F controls punch all the programs of
+    their memory into one file, each folder opened by such a line (``&F=//CNC_MEM/``, ``&F=/USER/LIBRARY/``);
+    the file is a backup of many programs, not one to run (our reading of such backups: no manual at hand)."""
+    where.fail(f"Fanuc folder line {line!r}: this file is a backup of the control's program folders (an all-"
+               "program punch of a Series 30i/0i-F memory), not one program", column=1, text=line,
+               expected="one program (O<number> ... M30), e.g. the one to run cut out of the backup")
+
+
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
     """The keyword of the O-word line ``code`` (``m`` its :data:`_O_LINE` match, None if it is none), the
     text after it and that text's 1-based column; a keyword spelt with blanks ("end sub") is joined."""
@@ -240,6 +249,8 @@ class _Program:
                 continue
             if s.startswith("$"):  # an Okuma OSP file header; other '$' words are read (and refused) as words
                 _refuse_foreign_header(s, where)
+            if s.upper().startswith("&F="):
+                _refuse_folder_line(s, where)
             if s.startswith("%"):
                 _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""

@@ -37,3 +37,13 @@ def test_a_percent_line_that_is_no_tnc_header_keeps_its_meaning(name):
     # comment-like text after '%' is no TNC program name and unit
     prog = parse_program("% wait\nG21 G90 G54 G0 X1 Y2 Z3\nM30\n", context=_in_dialect(name))
     assert prog.blocks[-1].target.tolist() == [101.0, 52.0, -17.0]
+
+
+@pytest.mark.parametrize("name", ["fanuc", "linuxcnc"])
+def test_a_fanuc_all_folder_backup_is_named(name):
+    # a Robodrill memory punched out whole: '&F=<folder>' lines head each folder of programs (Renishaw probe
+    # macros O9810 ... among them); the file stores many programs and is no program to run
+    text = "%\n&F=//CNC_MEM/\n&F=/USER/PATH1/\nO0001(PART)\nG90 G0 X0 Y0\nM30\n%\n"
+    with pytest.raises(GCodeError, match=r":2:1: Fanuc folder line '&F=//CNC_MEM/': this file is a backup of the "
+                                         r"control's program folders"):
+        parse_program(text, context=_in_dialect(name))
