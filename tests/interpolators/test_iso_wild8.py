@@ -47,3 +47,12 @@ def test_a_fanuc_all_folder_backup_is_named(name):
     with pytest.raises(GCodeError, match=r":2:1: Fanuc folder line '&F=//CNC_MEM/': this file is a backup of the "
                                          r"control's program folders"):
         parse_program(text, context=_in_dialect(name))
+
+
+@pytest.mark.parametrize(("name", "noted"), [("linuxcnc", True), ("fanuc", False), ("grbl", False)])
+def test_bare_cr_line_ends_are_read_as_lines_and_noted_for_linuxcnc(name, noted):
+    # a Fusion program saved with classic Mac line ends (CR alone, no LF): vcnc reads each CR as a line end;
+    # rs274 reads lines up to LF only and refuses the file as one overlong line ("Command too long")
+    prog = parse_program("G21 G90 G54\rG0 X1 Y2\rG1 Z-1 F100\rM2\r", context=_in_dialect(name))
+    assert [b.target.tolist() for b in prog.blocks] == [[101.0, 52.0, 100.0], [101.0, 52.0, -21.0]]
+    assert any("bare CR" in n and "Command too long" in n for n in prog.notes) == noted
