@@ -51,8 +51,9 @@ from vcnc.errors import GCodeError  # noqa: E402
 INCH = 25.4  # [mm/inch]
 #: File name endings of programs looked for in a directory.
 PROGRAM_SUFFIXES = (".ngc", ".nc", ".gcode", ".tap")
-#: One canonical call of rs274's output: ``   12 N..... NAME(args)``.
-CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s+([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
+#: One canonical call of rs274's output: ``   12 N..... NAME(args)``; a block number of six digits or more runs
+#: into the name (``N002922SET_SPINDLE_MODE(0 0.0000)``: rs274 prints it in a five-character field).
+CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s*([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 #: rs274's error at a file without ``%`` or ``M2``/``M30`` at its end (vcnc reads such a file to its end).
 #: rs274's refusals vcnc runs with a note, and a part of that note's text (``Program.notes``).
