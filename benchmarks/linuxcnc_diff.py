@@ -51,8 +51,9 @@ from vcnc.errors import GCodeError  # noqa: E402
 INCH = 25.4  # [mm/inch]
 #: File name endings of programs looked for in a directory.
 PROGRAM_SUFFIXES = (".ngc", ".nc", ".gcode", ".tap")
-#: One canonical call of rs274's output: ``   12 N..... NAME(args)``.
-CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s+([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
+#: One canonical call of rs274's output: ``   12 N..... NAME(args)``; a block number of six digits or more runs
+#: into the name (``N002922SET_SPINDLE_MODE(0 0.0000)``: rs274 prints it in a five-character field).
+CANONICAL = re.compile(r"^\s*(?:\d+\s+)?N[.\d]+\s*([A-Z_][A-Z0-9_]*)\((.*)\)\s*$")
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 #: rs274's error at a file without ``%`` or ``M2``/``M30`` at its end (vcnc reads such a file to its end).
 #: rs274's refusals vcnc runs with a note, and a part of that note's text (``Program.notes``).
@@ -63,7 +64,7 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Cannot do g1 with zero feed rate": "G1 alone", "Bad character '\\357'": "byte-order mark",
          "Bad character '+' used": "outside [ ]", "Bad character '-' used": "outside [ ]",
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
-         "Dwell time missing with g4": "G04 X"}
+         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR"}
 #: A G5/G5.1 spline block (vcnc reads it as chords) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[12])?(?![\d.])", re.I)
 MOTION = re.compile(r"G0*[0-3](?![\d.])|G0*80|G0*8[1-9]|G0*7[36]|G0*33", re.I)

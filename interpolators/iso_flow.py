@@ -110,13 +110,41 @@ _FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program 
                     (re.compile(r"\$[^\s%]+\.(?:MIN|SUB|SSB|SDF|MSB|LIB)%", re.I), "Okuma OSP program file header"))
 
 
+#: The first block of a Heidenhain TNC program in DIN/ISO: '%', the program name and the unit, G71 (mm) or G70
+#: (inch), ended by '*' ("%NAME G71 *"; the last block repeats it after N99999999). HEIDENHAIN TNC 320 ISO
+#: Programming User's Manual 10/2017, 3.2 "Structure of an NC program in ISO format": "The first block of a
+#: program is identified by %, the program name and the active unit of measure"; TNC 426/430 ISO manual, 4.6.
+_HEIDENHAIN_ISO_HEADER = re.compile(r"%[ \t]*[A-Za-z0-9_.\-]+[ \t]+G7[01][ \t]*\*?[ \t]*$", re.I)
+
+
+def refuse_heidenhain_iso(line: str, where: Where) -> None:
+    """Refuse ``line`` if it is the first block of a Heidenhain TNC program in DIN/ISO
+    (:data:`_HEIDENHAIN_ISO_HEADER`), naming it: vcnc reads the TNC's conversational language, not its ISO mode."""
+    if _HEIDENHAIN_ISO_HEADER.match(line):
+        where.fail(f"Heidenhain DIN/ISO program header {line!r} (a TNC program in ISO mode: '%NAME G71 *' ... "
+                   "'N99999999 %NAME G71 *'): not supported; vcnc reads Heidenhain conversational and ISO "
+                   "G-code of Fanuc/Haas/LinuxCNC/grbl", column=1, text=line,
+                   expected="a Heidenhain conversational program (BEGIN PGM ... END PGM) or an ISO G-code program")
+
+
 def _refuse_foreign_header(line: str, where: Where) -> None:
-    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code."""
+    """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code, or a
+    Heidenhain TNC program in DIN/ISO (:func:`refuse_heidenhain_iso`)."""
+    refuse_heidenhain_iso(line, where)
     for pattern, what in _FOREIGN_HEADERS:
         if pattern.match(line):
             where.fail(f"{what} {line!r}: that control's native language is not ISO G-code (vcnc reads ISO "
                        "G-code and Heidenhain conversational)", column=1, text=line,
                        expected="an ISO G-code program (Fanuc, Haas, LinuxCNC, grbl)")
+
+
+def _refuse_folder_line(line: str, where: Where) -> None:
+    """Refuse a Fanuc folder line ``&F=/USER/PATH1/``: the Series 30i/0i-F controls punch all the programs of
+    their memory into one file, each folder opened by such a line (``&F=//CNC_MEM/``, ``&F=/USER/LIBRARY/``);
+    the file is a backup of many programs, not one to run (our reading of such backups: no manual at hand)."""
+    where.fail(f"Fanuc folder line {line!r}: this file is a backup of the control's program folders (an all-"
+               "program punch of a Series 30i/0i-F memory), not one program", column=1, text=line,
+               expected="one program (O<number> ... M30), e.g. the one to run cut out of the backup")
 
 
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
@@ -221,6 +249,8 @@ class _Program:
                 continue
             if s.startswith("$"):  # an Okuma OSP file header; other '$' words are read (and refused) as words
                 _refuse_foreign_header(s, where)
+            if s.upper().startswith("&F="):
+                _refuse_folder_line(s, where)
             if s.startswith("%"):
                 _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""

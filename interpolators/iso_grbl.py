@@ -43,6 +43,7 @@ import re
 from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
+from interpolators.iso_flow import refuse_heidenhain_iso
 from interpolators.iso_words import comment_spans
 
 __all__ = ["GrblLines", "system_lines"]
@@ -77,7 +78,7 @@ def system_lines(text: str, source: str | None) -> GrblLines:
     ------
     vcnc.GCodeError
         A ``$`` command that changes the program's run (``$J=``, ``$C``, ``$RST=``, ``$SLP``), or one
-        grbl does not know.
+        grbl does not know; a Heidenhain DIN/ISO program's ``%NAME G71 *`` first block.
     """
     out = []
     blanked = closed = resumes = sender = 0
@@ -111,6 +112,7 @@ def system_lines(text: str, source: str | None) -> GrblLines:
             where.fail("unknown grbl system command", column=column, text=command,
                        expected="$H, $$, $#, $G, $I, $N, $X, $x=value (homing, reports and settings), or G-code")
         if command.startswith("%") and command != "%":
+            refuse_heidenhain_iso(raw.strip(), where)  # '%NAME G71 *': a TNC program, no sender macro
             out.append("")
             sender += 1
             continue

@@ -47,10 +47,14 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
     """
     if not isinstance(text, str):
         raise GCodeError(f"program text must be a str, got {type(text).__name__}", file=source)
+    bare_cr = "\r" in text and "\n" not in text
     text = one_line_end(text)  # CR, LF and CR LF alike, for both readers
     if detect_dialect(text) == "heidenhain":
         return parse_heidenhain(text, source=source, context=context)
-    return parse_iso(text, source=source, context=context)
+    prog = parse_iso(text, source=source, context=context)
+    if bare_cr and context.dialect.name == "linuxcnc":
+        prog = dataclasses.replace(prog, notes=(*prog.notes, _BARE_CR_NOTE))
+    return prog
 
 
 def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFAULT_CONTEXT) -> Program:
@@ -74,6 +78,13 @@ def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFA
         prog = dataclasses.replace(prog, notes=(*prog.notes, _BOM_NOTE))
     return prog
 
+
+#: rs274 reads a line up to LF only (interp_read.cc ``read_text``: ``fgets``), so a file whose lines end in a
+#: bare CR (classic Mac OS editors) is one line to it, refused beyond its line length ("Command too long"). vcnc
+#: ends lines at a bare CR in a file without LF (:func:`interpolators.iso_flow.one_line_end`) and, under the
+#: ``linuxcnc`` dialect, says so.
+_BARE_CR_NOTE = ("lines ended by a bare CR (a file without LF) read as lines (LinuxCNC refuses it: it reads the "
+                 "file as one line, \"Command too long\")")
 
 #: rs274 2.9.0~pre1 refuses a file that begins with a UTF-8 byte-order mark: the bytes EF BB BF are no G-code
 #: characters (interp_read.cc ``read_one_item``: "Bad character '\357' used", line 1). vcnc reads the text
