@@ -684,6 +684,10 @@ def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: st
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
     tok = blk.code.split()[0]
+    for pattern, what, expected in _FOREIGN_LINES:
+        if pattern.match(blk.code):
+            where.fail(f"{what.format(tok=repr(tok))}: not a TNC block", column=blk.column, text=tok,
+                       expected=expected)
     head = re.match(r"[A-Z]*", tok.upper()).group(0)  # QS1 = ...: QS
     known = _KNOWN_UNSUPPORTED.get(head)
     if known is not None:
@@ -693,6 +697,20 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
                expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, CALL PGM, FN, "
                         "Qn =, TRANS, M")
 
+
+#: Lines of other languages found in files that otherwise hold a TNC program, named for what they are (a
+#: TNC refuses them: its blocks are a block number and a conversational keyword, its comments start
+#: with ``;``, TNC 640 user's manual, "Programming fundamentals: NC blocks", "Inserting comments"):
+#: ``($Message("..."))``, the message command of the CNC Simulator program that its "Heidenhain" examples
+#: start with; a parenthesised ISO comment (the setup-sheet header ``( Einrichtblatt`` of a DNC export);
+#: an ISO block number ``N10`` before the block.
+_FOREIGN_LINES = (
+    (re.compile(r"\(\s*\$MESSAGE\b", re.I), "'($Message(...))' is a command of the CNC Simulator program",
+     "TNC conversational blocks (a message: FN 16 F-PRINT or a ';' comment)"),
+    (re.compile(r"\("), "a '(...)' comment is ISO (DIN 66025) syntax", "a comment after ';'"),
+    (re.compile(r"N\d+\s", re.I), "the block number {tok} is ISO (DIN 66025) syntax",
+     "a TNC block number without N ('12 L X+10')"),
+)
 
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {
