@@ -2317,8 +2317,13 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
     if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
                                                RuledSurface)) or m.cycle.surface is None:
-        where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
-                   text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
+        # which of the other cycles a pattern runs, and from where, no manual page found says (the
+        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
+        number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
+        what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
+                else "with an SL cycle")
+        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here",
+                   column=blk.column, text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
     scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))
     axis, p, q = m.plane, *PLANE_AXES[m.plane]
