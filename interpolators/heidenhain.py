@@ -684,6 +684,10 @@ def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: st
 
 def _unknown_block(blk: SourceBlock, where: Where) -> None:
     tok = blk.code.split()[0]
+    for pattern, what, expected in _FOREIGN_LINES:
+        if pattern.match(blk.code):
+            where.fail(f"{what.format(tok=repr(tok))}: not a TNC block", column=blk.column, text=tok,
+                       expected=expected)
     head = re.match(r"[A-Z]*", tok.upper()).group(0)  # QS1 = ...: QS
     known = _KNOWN_UNSUPPORTED.get(head)
     if known is not None:
@@ -693,6 +697,20 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
                expected="L, LP, C, CC, CR, CT, CP, RND, CHF, TOOL CALL, CYCL DEF, LBL, CALL LBL, CALL PGM, FN, "
                         "Qn =, TRANS, M")
 
+
+#: Lines of other languages found in files that otherwise hold a TNC program, named for what they are (a
+#: TNC refuses them: its blocks are a block number and a conversational keyword, its comments start
+#: with ``;``, TNC 640 user's manual, "Programming fundamentals: NC blocks", "Inserting comments"):
+#: ``($Message("..."))``, the message command of the CNC Simulator program that its "Heidenhain" examples
+#: start with; a parenthesised ISO comment (the setup-sheet header ``( Einrichtblatt`` of a DNC export);
+#: an ISO block number ``N10`` before the block.
+_FOREIGN_LINES = (
+    (re.compile(r"\(\s*\$MESSAGE\b", re.I), "'($Message(...))' is a command of the CNC Simulator program",
+     "TNC conversational blocks (a message: FN 16 F-PRINT or a ';' comment)"),
+    (re.compile(r"\("), "a '(...)' comment is ISO (DIN 66025) syntax", "a comment after ';'"),
+    (re.compile(r"N\d+\s", re.I), "the block number {tok} is ISO (DIN 66025) syntax",
+     "a TNC block number without N ('12 L X+10')"),
+)
 
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {
@@ -2299,8 +2317,13 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
     if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
                                                RuledSurface)) or m.cycle.surface is None:
-        where.fail(f"cycle {pat.number} without a machining cycle of the 200 series", column=blk.column,
-                   text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
+        # which of the other cycles a pattern runs, and from where, no manual page found says (the
+        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
+        number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
+        what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
+                else "with an SL cycle")
+        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here",
+                   column=blk.column, text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
     scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))
     axis, p, q = m.plane, *PLANE_AXES[m.plane]

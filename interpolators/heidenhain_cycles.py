@@ -143,6 +143,12 @@ _REQUIRED = {
 #: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203).
 _MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
+
+#: The cycle's name after its number, as the TNC saves it in the language of its dialogs: ``DRILLING``,
+#: ``BOHREN``, ``TAPPING W/ CHIP BRKG``, ``SINGLE-LIP D.H.DRLNG``, ``VRTÁNÍ`` (TNC 640 cycle programming
+#: manual, examples "11 CYCL DEF 200 DRILLING"; the German manual "CYCL DEF 200 BOHREN"): any text up to
+#: the first ``Qnnn=`` that is not itself an assignment (no ``=``). The name has no meaning for the run.
+_CYCLE_NAME_RE = re.compile(r"\s*(?!Q\d)[^\s=][^=]*?(?=\s+Q\d+\s*=|\s*$)", re.I)
 _FMAX_RE = re.compile(r"F?MAX(?![A-Z0-9])", re.I)
 _AUTO_RE = re.compile(r"F?AUTO(?![A-Z0-9])", re.I)
 
@@ -339,8 +345,7 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
     [program units/min]; without one, an error."""
     out: dict[int, float] = {}
     pos = 0
-    words = re.compile(r"\s*[A-Z][A-Z .\-/]*(?=\s+Q\d|\s*$)", re.I)
-    m = words.match(rest, pos)  # the cycle's name: DRILLING, UNIVERSAL PECKING, ...
+    m = _CYCLE_NAME_RE.match(rest, pos)
     if m:
         pos = m.end()
     while pos < len(rest) and rest[pos:].strip():

@@ -117,6 +117,18 @@ def _wrapped_comment(line: str) -> bool:
     return _Q_LINE_RE.match(line) is None and _POS_LINE_RE.match(line) is None
 
 
+def _tilde_before_comment(raw: str) -> str | None:
+    """The block text of ``raw`` when its ``~`` stands before a ``;`` comment (``CYCL DEF 200 BOHREN ~
+    ;anbohren``), else None. The TNC saves the ``~`` at the very end of a continued line, after the
+    line's comment (``Q200=2 ;SET-UP CLEARANCE ~``, TNC 640 user's manual, cycle examples); a program
+    edited outside the control may put it before a comment it adds. The ``~`` still says that the
+    block goes on (our reading: nothing else is meant by a ``~`` there)."""
+    if raw.endswith("~") or ";" not in raw:
+        return None
+    code = _strip_comment(raw).rstrip()
+    return code[:-1] if code.endswith("~") else None
+
+
 _DECIMAL_COMMA_RE = re.compile(r'"[^"]*"|(?<=\d),(?=\d)')
 
 
@@ -145,8 +157,9 @@ def source_blocks(text: str) -> list[SourceBlock]:
         comment = False
         while True:
             raw = lines[i].rstrip()
-            more = raw.endswith("~") and i + 1 < len(lines)
-            body = raw[:-1] if more else raw
+            before = _tilde_before_comment(raw)
+            more = (raw.endswith("~") or before is not None) and i + 1 < len(lines)
+            body = raw if not more else raw[:-1] if before is None else before
             if not (comment and _wrapped_comment(body)):
                 comment = ";" in body
                 part = _strip_comment(body)
