@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from identification.dead_time import FOLLOW_CORRELATION, LAG_STEP_S, follow_lag
 from identification.regressor import RegressorOptions
 from vcnc.core.capture import Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
-__all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MAX_LAG_S"]
+__all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
+           "MAX_SPEED_RATIO"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms).
 MIN_SAMPLES = 500
@@ -21,9 +23,18 @@ MIN_SAMPLES = 500
 #: loop at 5 Hz, damping 0.33, on short moves: 1.6; a sluggish one on a short record: 0.2); a ratio
 #: near one of :data:`_UNIT_RATIOS` (10 %) or beyond this is a channel in another unit.
 MAX_SPAN_RATIO = 50.0
-#: Lags scanned when telling a flipped measured channel [s]: the reference dead time's scan
-#: (:data:`identification.dead_time.MAX_DELAY_S`) and the loop's own lag.
-MAX_LAG_S = 0.4
+#: Least correlation of the measured with the commanded velocity, at the best lag, of a channel taken
+#: for the axis' measured position [-] (:func:`identification.dead_time.follow_lag`): a position loop's
+#: follows at 0.95 or more (chevalier-pdf's sluggish loop 0.948, EMPS 0.9999); mapped as the measured
+#: position on fadal-pid, its velocity follows at 0.60, the y axis' position at 0.34, the control
+#: signal at 0.10, the following error at 0.13, the position negated at 0.46.
+MIN_FOLLOW_CORRELATION = 0.75
+#: Largest ratio of the measured to the commanded velocity's RMS (on the record decimated to
+#: :data:`identification.dead_time.LAG_STEP_S`) [-]: a loop's measured velocity is its reference's
+#: filtered, 0.62-1.05 times it on the records of ``benchmarks/recorded_traces.py`` (chevalier-pdf
+#: lowest, fadal-pid with overshoot highest); a rotary encoder in deg beside a linear reference in
+#: mm moves 360 / lead [mm] times faster (18 for a 20 mm lead), which the span ratio lets pass.
+MAX_SPEED_RATIO = 3.0
 
 #: Unit ratios a span ratio is compared with, for the message.
 _UNIT_RATIOS = {1000.0: "um beside mm", 25.4: "mm beside inch", 25400.0: "um beside inch", 10.0: "0.1 mm or 1/10 "
@@ -41,7 +52,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     IdentificationError
         Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
         measurement identical to the reference, positions that look like metres, a measured
-        channel in another unit or with a flipped sign (:func:`check_channels`).
+        channel that does not follow the commanded one (another axis', a velocity, the following
+        error, a flipped sign) or in another unit (:func:`check_channels`).
     """
     src = capture.source
     i = capture.axis_index(axis)
@@ -84,7 +96,6 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"error to identify from (was '{axis}_ref' copied into '{axis}'?)",
             file=src,
         )
-    check_channels(xr, x, T, axis, src)
     opt = options or RegressorOptions()
     v = np.diff(x) / T
     db = opt.velocity_deadband
@@ -98,6 +109,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"in the {which} direction",
             file=src,
         )
+    others = {a: np.asarray(capture.measured[:, j], float) for j, a in enumerate(capture.axes) if a != axis}
+    check_channels(xr, x, T, axis, src, others=others)
     return xr, x, T
 
 
@@ -112,14 +125,16 @@ def _unit_hint(ratio: float) -> str:
 
 
 def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: float, axis: str,
-                   src: str | None = None) -> None:
-    """IdentificationError unless the measured channel follows the commanded one in scale and sign.
+                   src: str | None = None, *, others: dict | None = None) -> None:
+    """IdentificationError unless the measured channel follows the commanded one in time, sign and scale.
 
-    A position loop's measured position spans what its reference spans (within the tracking error)
-    and moves the same way. Two channels in different units (mm and um, mm and inch, increments)
-    or a measured channel whose sign is flipped (an encoder counting the other way, a trace
-    channel negated) would otherwise be fitted silently: the flipped one to a model with
-    negative gain, the rescaled one to nonsense poles.
+    A position loop's measured position follows its reference (at a lag: its own response plus the
+    recording's lead) and spans what the reference spans (within the tracking error). A channel
+    that does not follow (another axis' position, a velocity, a current, the following error, the
+    position negated) or one in another unit (mm and um, mm and inch, increments, deg of a rotary
+    encoder) would otherwise be fitted silently: the flipped one to a model with negative gain, the
+    rescaled one to nonsense poles, the others to a model of nothing (fadal-pid with its y axis'
+    position as the measured x: 5221 um RMS, p on its 0.001 Hz bound).
 
     Parameters
     ----------
@@ -131,44 +146,74 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
         For the message.
     src : str, optional
         The capture's file, for the message.
+    others : dict of str to ndarray, optional
+        The measured positions of the capture's other axes: one that follows this axis' reference is
+        named in the message (columns mapped to the wrong axes).
 
     Notes
     -----
-    The sign is the sign of the strongest correlation between the two positions (less their means:
-    a datum offset changes nothing) over lags of +-:data:`MAX_LAG_S`: a reference recorded ahead of
-    the loop (issue #16) moves the peak away from lag 0 but keeps its sign. Positions, not
-    velocities: the velocity of a lightly damped loop (5 Hz, damping 0.22) correlates at -0.88 with
-    its reference's half a period later. The span is the 0.1-99.9 % range, so a
-    spike or a settling overshoot does not set it.
+    Following is judged on velocities (:func:`identification.dead_time.follow_lag`): their best
+    correlation over lags up to a third of the record must reach :data:`MIN_FOLLOW_CORRELATION`. When
+    it does not, the message names what does follow (:func:`_not_following`): the channel negated,
+    the commanded position less or plus it (a following error), its integral (a velocity), another
+    axis' measured position. The span is the 0.1-99.9 % range, so a spike or a settling overshoot
+    does not set it; a span ratio within reach of a loop's overshoot may still hide a channel in
+    another unit, which moves faster than the loop could (:data:`MAX_SPEED_RATIO`).
     """
     xr = np.asarray(reference, float)
     x = np.asarray(measured, float)
+    corr = follow_lag(xr, x, sample_time)[1]
+    if corr < MIN_FOLLOW_CORRELATION:
+        raise IdentificationError(_not_following(xr, x, sample_time, axis, corr, others or {}), file=src)
     span_r = float(np.subtract(*np.percentile(xr, [99.9, 0.1])))
     span_x = float(np.subtract(*np.percentile(x, [99.9, 0.1])))
+    q = max(1, int(round(LAG_STEP_S / sample_time)))
+    dr, dx = np.diff(xr[::q]), np.diff(x[::q])
+    speed = float(np.sqrt(np.dot(dx, dx) / np.dot(dr, dr))) if np.any(dr) else 1.0
     if span_r > 0 and span_x > 0:
         ratio = span_x / span_r
-        if not 1.0 / MAX_SPAN_RATIO <= ratio <= MAX_SPAN_RATIO or _unit_hint(ratio):
+        if not 1.0 / MAX_SPAN_RATIO <= ratio <= MAX_SPAN_RATIO or _unit_hint(ratio) or speed > MAX_SPEED_RATIO:
             raise IdentificationError(
                 f"axis {axis!r}: the measured position spans {span_x:.6g} and the commanded {span_r:.6g} (ratio "
-                f"{ratio:.6g}){_unit_hint(ratio)}; a position loop follows its reference, so the two channels must be "
-                "in the same unit: give each channel's unit (a trace's unit row or header, --unit) or rescale one",
+                f"{ratio:.6g}; its velocity's RMS {speed:.4g} times the commanded one's)"
+                f"{_unit_hint(ratio) or _rotary_hint(ratio)}; a position loop follows its reference, so "
+                "the two channels must be in the same unit: give each channel's unit (a trace's unit row or header, "
+                "--unit) or rescale one",
                 file=src,
             )
-    vr, v = xr - xr.mean(), x - x.mean()
-    norm = float(np.sqrt(np.dot(vr, vr) * np.dot(v, v)))
-    if not norm > 0:
-        return
-    n = vr.size
-    lag = min(int(round(MAX_LAG_S / sample_time)), n - 1)
-    size = 1 << int(np.ceil(np.log2(2 * n)))
-    cc = np.fft.irfft(np.fft.rfft(v, size) * np.conj(np.fft.rfft(vr, size)), size)
-    window = np.concatenate([cc[:lag + 1], cc[size - lag:]]) / norm
-    k = int(np.argmax(np.abs(window)))
-    peak = float(window[k])
-    if peak < 0 and abs(peak) > 0.5:
-        raise IdentificationError(
-            f"axis {axis!r}: the measured position moves against the commanded one (correlation "
-            f"{peak:.3f}): the measured channel's sign is flipped (an encoder or trace channel counting the other "
-            "way); negate it before identification",
-            file=src,
-        )
+
+
+def _rotary_hint(ratio: float) -> str:
+    """For a span ratio no unit explains: what a rotary encoder logged in deg beside a linear reference gives."""
+    if ratio <= 1.0:
+        return ""
+    return (f" (a rotary encoder in deg beside a linear reference in mm gives 360 / lead [mm/rev]: "
+            f"{ratio:.4g} for a {360.0 / ratio:.4g} mm lead?)")
+
+
+def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: float, others: dict) -> str:
+    """The message for a measured channel that does not follow the commanded one: what it looks like instead,
+    tried in turn (each must follow at :data:`identification.dead_time.FOLLOW_CORRELATION`), and the remedy."""
+    head = (f"axis {axis!r}: the measured channel does not follow the commanded position (its velocity "
+            f"correlates at most {corr:.2f} with the commanded one at any lag up to a third of the record; a "
+            f"position loop's above {MIN_FOLLOW_CORRELATION:g})")
+    tries = (
+        (-x, "the measured channel's sign is flipped (an encoder, a motor mounted the other way or a trace "
+             "channel counting the other way): negate it before identification"),
+        (xr - x, "it looks like the following error, commanded minus actual (commanded minus it follows the "
+                 "commanded position at {c:.3f}): map the actual position as the measured channel (--columns), "
+                 "or record it"),
+        (xr + x, "it looks like the following error, actual minus commanded (commanded plus it follows the "
+                 "commanded position at {c:.3f}): map the actual position as the measured channel (--columns), "
+                 "or record it"),
+        (np.cumsum(x) * T, "it looks like a velocity (integrated, it follows the commanded position at {c:.3f}): "
+                           "map the position channel, not the velocity (--columns)"),
+        *((v, f"the measured channel of axis {a!r} follows it (correlation {{c:.3f}}): the channels are mapped to "
+              "the wrong axes (--columns, --axis-names) or --axis names the wrong one") for a, v in others.items()),
+    )
+    for signal, text in tries:
+        c = follow_lag(xr, signal, T)[1]
+        if c >= FOLLOW_CORRELATION:
+            return f"{head}: {text.format(c=c)}"
+    return (f"{head}: it is not this axis' measured position (another axis', a velocity, a current or a control "
+            "signal?); check which column is mapped to it (--columns) and --axis")
