@@ -6,7 +6,10 @@ augmentation), so that neither imports the other.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from scipy.ndimage import median_filter
 
 from identification.dead_time import FOLLOW_CORRELATION, LAG_STEP_S, follow_lag
 from identification.regressor import RegressorOptions
@@ -14,7 +17,8 @@ from vcnc.core.capture import Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
 __all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
-           "MAX_SPEED_RATIO"]
+           "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
+           "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms).
 MIN_SAMPLES = 500
@@ -35,6 +39,20 @@ MIN_FOLLOW_CORRELATION = 0.75
 #: lowest, fadal-pid with overshoot highest); a rotary encoder in deg beside a linear reference in
 #: mm moves 360 / lead [mm] times faster (18 for a 20 mm lead), which the span ratio lets pass.
 MAX_SPEED_RATIO = 3.0
+#: Largest deviation from 1 of the fitted loop's gain over the record's length (:func:`check_scale`) [-]:
+#: 0.998-1.0016 on the machines of ``benchmarks/recorded_traces.py`` (plain, decimated to 6 ms, the
+#: first 2 s) and on EMPS; their measured channel scaled by 1.2 gives 1.16-1.20.
+MAX_SCALE_ERROR = 0.05
+
+#: A measured position jumps where its velocity steps, against its neighbours', by more than this many
+#: times the reference's largest acceleration step (or ten times its white noise, from the robust
+#: deviation of its third difference, or three times its resolution) [-] (:func:`check_jumps`): at most 1.5 on the records of
+#: ``benchmarks/recorded_traces.py`` and EMPS (a record logged every 10 ms: 1.44); fadal-pid's measured
+#: channel with a 20 um jump in it: 9, one of 1 mm: 499.
+JUMP_FACTOR = 5.0
+#: A commanded position jumps where its velocity steps by more than this many times its largest
+#: step elsewhere (more than 5 samples away) [-]: an interpolator's steps repeat at every move.
+REFERENCE_JUMP_FACTOR = 20.0
 
 #: Unit ratios a span ratio is compared with, for the message.
 _UNIT_RATIOS = {1000.0: "um beside mm", 25.4: "mm beside inch", 25400.0: "um beside inch", 10.0: "0.1 mm or 1/10 "
@@ -111,6 +129,7 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
         )
     others = {a: np.asarray(capture.measured[:, j], float) for j, a in enumerate(capture.axes) if a != axis}
     check_channels(xr, x, T, axis, src, others=others)
+    check_jumps(xr, x, T, axis, src)
     return xr, x, T
 
 
@@ -217,3 +236,87 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
             return f"{head}: {text.format(c=c)}"
     return (f"{head}: it is not this axis' measured position (another axis', a velocity, a current or a control "
             "signal?); check which column is mapped to it (--columns) and --axis")
+
+
+def check_scale(parameters: dict, duration_s: float, axis: str, src: str | None = None) -> float:
+    """The fitted loop's gain at the record's own frequency, 1 / ``duration_s``; IdentificationError when
+    it differs from 1 by more than :data:`MAX_SCALE_ERROR`.
+
+    A position loop takes its axis where it is sent: over the length of a record its measured position
+    moves as far as the commanded one, and the fitted model of Eq. (3.3) then has a gain of 1 at
+    that frequency (with integral action a3 > 0 exactly 1 at standstill). A measured channel scaled
+    against the commanded one (an encoder's resolution, a gear ratio or a screw's lead set wrong, a
+    unit the span check does not recognise) cannot be fitted with that gain: the fit drops the
+    integral action (p on its lower bound) and takes the scale into b2 / a2 (fadal-pid with the
+    measured channel x2: p 0.001 Hz for 1.14, 12 um RMS for 0.75, gain 2.000).
+
+    Parameters
+    ----------
+    parameters : dict
+        a1..d1 of Eq. (3.3).
+    duration_s : float
+        The record's length [s].
+    """
+    s = 2j * math.pi / max(duration_s, 1e-9)
+    p = parameters
+    gain = abs((p["b0"] * s ** 3 + p["b1"] * s ** 2 + p["b2"] * s + p["a3"])
+               / (s ** 3 + p["a1"] * s ** 2 + p["a2"] * s + p["a3"]))
+    if abs(gain - 1.0) > MAX_SCALE_ERROR:
+        raise IdentificationError(
+            f"axis {axis!r}: the measured position moves {gain:.4g} times as far as the commanded one (the fitted "
+            f"loop's gain at {1.0 / duration_s:.3g} Hz, the record's length; a position loop's is 1): the channels "
+            f"are scaled against each other (an encoder's resolution, a gear ratio or a screw's lead set wrong, or "
+            f"another unit); rescale the measured channel by {1.0 / gain:.4g} or correct the trace's scaling",
+            file=src,
+        )
+    return gain
+
+
+def _velocity_steps(y: np.ndarray) -> np.ndarray:
+    """Per sample step: how far the step ``y[k+1] - y[k]`` departs from the median of its 5 neighbours [mm]
+    (signed)."""
+    dy = np.diff(y)
+    return dy - median_filter(dy, size=5, mode="nearest")
+
+
+def check_jumps(reference: np.ndarray, measured: np.ndarray, sample_time: float, axis: str,
+                src: str | None = None) -> None:
+    """IdentificationError when either position jumps within the record.
+
+    A homing, an encoder's reference mark, a datum or offset change, or a glitch of the trace moves a
+    channel by a step in one sample, which no loop model explains: fitted, a 1 mm jump of fadal-pid's
+    measured position gave omega_n 0.2 Hz and 267 um RMS (0.75 before), a 0.3 mm change of its datum
+    offset 70 Hz / p 0.03 Hz and 72 um, a 5 mm jump of both channels 12 Hz for 37 and 22 um. A
+    physical axis cannot do so: its velocity changes by at most its acceleration times the sample
+    time per sample, about what its reference's does (:data:`JUMP_FACTOR`); an interpolator's
+    reference changes its velocity by the same steps at every move (:data:`REFERENCE_JUMP_FACTOR`).
+    """
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    if xr.size < 8:
+        return
+    jr = _velocity_steps(xr)
+    sr = np.abs(jr)
+    k = int(np.argmax(sr))
+    rest = sr.copy()
+    rest[max(0, k - 5):k + 6] = 0.0
+    if sr[k] > REFERENCE_JUMP_FACTOR * float(np.max(rest)) and sr[k] > 0:
+        raise IdentificationError(_jump_message(axis, "commanded", float(jr[k]), k, sample_time), file=src)
+    jx = _velocity_steps(x)
+    sx = np.abs(jx)
+    dx = np.abs(np.diff(x))
+    resolution = float(np.min(dx[dx > 0])) if np.any(dx > 0) else 0.0
+    noise = 1.4826 * float(np.median(np.abs(np.diff(x, 3)))) / math.sqrt(20.0)  # white noise's third difference
+    scale = max(float(np.max(np.abs(np.diff(xr, 2)))), 10.0 * noise, 3.0 * resolution)
+    k = int(np.argmax(sx))
+    if scale > 0 and sx[k] > JUMP_FACTOR * scale:
+        raise IdentificationError(_jump_message(axis, "measured", float(jx[k]), k, sample_time) + (
+            f" (its velocity steps {sx[k] / scale:.3g} times as far in one sample as the commanded one's "
+            "ever does)"), file=src)
+
+
+def _jump_message(axis: str, which: str, step: float, k: int, T: float) -> str:
+    return (f"axis {axis!r}: the {which} position jumps by {step:.4g} mm at sample {k + 1} (t = {(k + 1) * T:.6g} s "
+            "from the record's start): a homing, an encoder's reference mark, a datum or offset change or a glitch "
+            "of the trace within the record, which no loop model explains; identify the parts before and after it "
+            "separately (cut the record there)")
