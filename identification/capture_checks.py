@@ -46,9 +46,9 @@ MAX_SCALE_ERROR = 0.05
 
 #: A measured position jumps where its velocity steps, against its neighbours', by more than this many
 #: times the reference's largest acceleration step (or ten times its white noise, from the robust
-#: deviation of its third difference, or three times its resolution) [-] (:func:`check_jumps`): at most 1.5 on the records of
-#: ``benchmarks/recorded_traces.py`` and EMPS (a record logged every 10 ms: 1.44); fadal-pid's measured
-#: channel with a 20 um jump in it: 9, one of 1 mm: 499.
+#: deviation of its third difference, or three times its resolution) [-] (:func:`check_jumps`): at
+#: most 1.5 on the records of ``benchmarks/recorded_traces.py`` and EMPS (a record logged every
+#: 10 ms: 1.44); fadal-pid's measured channel with a 20 um jump in it: 9, one of 1 mm: 499.
 JUMP_FACTOR = 5.0
 #: A commanded position jumps where its velocity steps by more than this many times its largest
 #: step elsewhere (more than 5 samples away) [-]: an interpolator's steps repeat at every move.
@@ -174,7 +174,7 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
     Following is judged on velocities (:func:`identification.dead_time.follow_lag`): their best
     correlation over lags up to a third of the record must reach :data:`MIN_FOLLOW_CORRELATION`. When
     it does not, the message names what does follow (:func:`_not_following`): the channel negated,
-    the commanded position less or plus it (a following error), its integral (a velocity), another
+    the commanded position less it (a following error of either sign), its integral (a velocity), another
     axis' measured position. The span is the 0.1-99.9 % range, so a spike or a settling overshoot
     does not set it; a span ratio within reach of a loop's overshoot may still hide a channel in
     another unit, which moves faster than the loop could (:data:`MAX_SPEED_RATIO`).
@@ -207,7 +207,7 @@ def _rotary_hint(ratio: float) -> str:
     if ratio <= 1.0:
         return ""
     return (f" (a rotary encoder in deg beside a linear reference in mm gives 360 / lead [mm/rev]: "
-            f"{ratio:.4g} for a {360.0 / ratio:.4g} mm lead?)")
+            f"{ratio:.4g} for a {360.0 / ratio:.3g} mm lead?)")
 
 
 def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: float, others: dict) -> str:
@@ -219,12 +219,9 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
     tries = (
         (-x, "the measured channel's sign is flipped (an encoder, a motor mounted the other way or a trace "
              "channel counting the other way): negate it before identification"),
-        (xr - x, "it looks like the following error, commanded minus actual (commanded minus it follows the "
-                 "commanded position at {c:.3f}): map the actual position as the measured channel (--columns), "
-                 "or record it"),
-        (xr + x, "it looks like the following error, actual minus commanded (commanded plus it follows the "
-                 "commanded position at {c:.3f}): map the actual position as the measured channel (--columns), "
-                 "or record it"),
+        (xr - x, "it looks like the following error (the commanded position less it follows the commanded at "
+                 "{c:.3f}): map the actual position as the measured channel (--columns), or compute it as commanded "
+                 "minus following error (mind your control's sign convention)"),
         (np.cumsum(x) * T, "it looks like a velocity (integrated, it follows the commanded position at {c:.3f}): "
                            "map the position channel, not the velocity (--columns)"),
         *((v, f"the measured channel of axis {a!r} follows it (correlation {{c:.3f}}): the channels are mapped to "
@@ -235,7 +232,8 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
         if c >= FOLLOW_CORRELATION:
             return f"{head}: {text.format(c=c)}"
     return (f"{head}: it is not this axis' measured position (another axis', a velocity, a current or a control "
-            "signal?); check which column is mapped to it (--columns) and --axis")
+            f"signal?), or the two channels were recorded more than {xr.size * T / 3.0:.3g} s apart; check which "
+            "column is mapped to it (--columns) and --axis")
 
 
 def check_scale(parameters: dict, duration_s: float, axis: str, src: str | None = None) -> float:
