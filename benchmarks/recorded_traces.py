@@ -25,7 +25,8 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   weakly determined there); its records with a lead are fitted at lead + 0.64 ms, p 122 % off the
   delay-free truth and within 1 % of this one.
 - **recording** (case names): ``lead<ms>`` the reference recorded that much ahead of the loop
-  (``lag<ms>`` behind), ``dec<q>`` every q-th sample kept (a control logging slower than its loop
+  (``lag<ms>`` behind; ``lead1000`` beyond the dead time's +-0.3 s scan, found by centring it on
+  the lag at which the measured velocity follows, :func:`identification.dead_time.follow_lag`), ``dec<q>`` every q-th sample kept (a control logging slower than its loop
   runs), ``quant`` both channels rounded to 1 um, ``noise`` 0.5 um white noise on the measured
   position, ``offset`` a 0.5 mm datum offset on the measured channel, ``motion`` the record
   triggered mid-motion (first 1.234 s dropped), ``short`` the first 2 s only, ``scurve`` a
@@ -112,9 +113,11 @@ CASES: dict[str, dict] = {
     "lead50": {"lead_s": 0.05},
     "lead100": {"lead_s": 0.1},
     "lead300": {"lead_s": 0.3},
+    "lead1000": {"lead_s": 1.0},
     "lag20": {"lead_s": -0.02},
     "dec3": {"decimate_s": 0.003},
     "dec6": {"decimate_s": 0.006},
+    "dec10": {"decimate_s": 0.010},
     "dec3lead100": {"decimate_s": 0.003, "lead_s": 0.1},
     "quant": {"resolution": 1e-3},
     "noise": {"noise": 0.5e-3},
