@@ -19,10 +19,14 @@ import dataclasses
 import numpy as np
 import pytest
 
+import toolpaths
+import vcnc
 from identification import identify
 from identification.capture_checks import check_capture
 from identification.dead_time import delay_reference, follow_lag
+from identification.loop_frame import starts_at_rest
 from identification.poles import poles_from_denominator
+from identification.segments import settled_start, starts_from_standstill
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
 from vcnc.capture import Capture
 from vcnc.cli import main
@@ -139,3 +143,21 @@ def test_vcnc_identify_help_names_every_model_format(capsys):
         main(["identify", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert "vcnc.axis-model/1; /2 with a reference dead time, /3 with a setpoint filter" in out
+
+
+def test_a_long_lead_that_starts_on_a_stop_is_not_taken_for_a_record_at_rest():
+    # fadal-pid's x axis on the harness' test (benchmarks/recorded_traces.py) with its reference recorded 1 s
+    # ahead: the first recorded sample falls on a stop between two moves, and the loop ran the first second's
+    # moves while the delayed reference held that stop, so the record does not start at rest
+    machine = vcnc.machine("fadal-pid")
+    program = vcnc.parse_program(toolpaths.random_moves(60, 10.0, 12000.0, seed=1))
+    cap = machine.simulate(vcnc.interpolate(program, machine), seed=1).select_axes(("x",))
+    xr, x = _xr_x(cap)
+    recorded = delay_reference(xr, -1000.0)
+    delayed = delay_reference(recorded, 1000.0)
+    assert starts_from_standstill(recorded) and settled_start(delayed, x) == 0  # what misled the frame
+    assert not starts_at_rest(recorded, delayed, x)
+    # triggered 0.5 s before the program starts, 0.1 s ahead: the axis rests while the reference is held
+    xr, x = np.r_[np.full(500, xr[0]), xr], np.r_[np.full(500, x[0]), x]
+    recorded = delay_reference(xr, -100.0)
+    assert starts_at_rest(recorded, delay_reference(recorded, 100.0), x)
