@@ -122,6 +122,15 @@ def test_a_jump_within_the_record_is_named_with_its_sample(capture, channel, ste
     assert found == pytest.approx(step, rel=0.1)  # less the motion going on across the jump
 
 
+def test_a_rotary_position_wrapping_at_360_deg_is_named(capture):
+    # a modulo rotary axis (deg): both channels wrap when the axis passes 360; here the commanded one first
+    xr, x = _xr_x(capture)
+    xr, x = xr * 10.0 + 300.0, x * 10.0 + 300.0  # +-100 deg about 300 deg
+    wrapped = np.where(xr >= 360.0, xr - 360.0, xr)
+    with pytest.raises(IdentificationError, match="commanded position jumps by -?360 deg .* wrapped; unwrap it"):
+        check_capture(_cap(wrapped, np.where(x >= 360.0, x - 360.0, x), axes=("c",)), "c")
+
+
 def test_noise_and_quantisation_are_no_jump(capture):
     xr, x = _xr_x(capture)
     rng = np.random.default_rng(3)
