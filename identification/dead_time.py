@@ -13,7 +13,9 @@ The shift is whole and fractional samples; between samples the reference is inte
 linearly (:func:`delay_reference`, also the rule of the FMU's delay line). Before the record, the
 delayed reference holds its first value; past it, its last.
 
-:func:`estimate_delay` scans the shift over +-``max_delay_s`` (0.3 s by default) on the
+:func:`estimate_delay` scans the shift over +-``max_delay_s`` (0.3 s by default; around the lag
+at which the measured velocity follows the commanded one, :func:`follow_lag`, when that lies
+beyond: a longer lead) on the
 residual of the regression of Eq. (3.11), coarse to fine, and refines the best whole-sample shift
 to a hundredth of a sample. Every
 candidate is judged on the same samples (the first and last ``max_delay_s`` are left out), so
@@ -35,8 +37,8 @@ import numpy as np
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 from vcnc.core.capture import Capture
 
-__all__ = ["delay_reference", "estimate_delay", "loop_capture", "DelayEstimate", "MAX_DELAY_S", "MIN_DELAY_SAMPLES",
-           "FINEST_STEP_S"]
+__all__ = ["delay_reference", "estimate_delay", "loop_capture", "follow_lag", "DelayEstimate", "MAX_DELAY_S",
+           "MIN_DELAY_SAMPLES", "FINEST_STEP_S", "LAG_STEP_S", "MAX_LEAD_SHARE"]
 
 #: Default half-width of the scan [s].
 MAX_DELAY_S = 0.3
@@ -56,6 +58,57 @@ FRACTION_TOLERANCE = 0.01
 #: explains most of the residual (measured on fadal-pid: 0.10 for 10 samples, 5e-5 for 100); on
 #: EMPS, with no offset, the best shift of 5.4 samples lowers it by 0.2 % only.
 MAX_OBJECTIVE_RATIO = 0.5
+
+
+#: Sample step of :func:`follow_lag` [s]: a record is decimated to about this first.
+LAG_STEP_S = 0.004
+#: Longest lead :func:`follow_lag` looks for, as a share of the record [-]: the rest overlaps.
+MAX_LEAD_SHARE = 1.0 / 3.0
+#: Correlations within this of the best are ties, the shortest lag wins [-]: EMPS' test repeats its
+#: motion, and its velocities correlate at 0.99995 both at 8 ms and at -6.23 s.
+LAG_TIE = 0.002
+#: Least correlation of :func:`follow_lag` for its lag to move the dead time's scan [-] (a position
+#: loop's measured velocity follows at 0.95 or more: chevalier-pdf's sluggish PDF loop 0.948, the
+#: others of ``benchmarks/recorded_traces.py`` 0.98 and EMPS 0.9999).
+FOLLOW_CORRELATION = 0.9
+
+
+def follow_lag(reference: np.ndarray, measured: np.ndarray, sample_time: float, *,
+               max_lag_s: float | None = None) -> tuple[float, float]:
+    """``(lag [s], correlation [-])``: the shift at which the measured velocity best follows the commanded
+    one, and their correlation there (> 0 when the measured lags the recorded reference).
+
+    Both velocities are taken as differences on the record decimated to about :data:`LAG_STEP_S`
+    and correlated over lags up to ``max_lag_s`` (default: :data:`MAX_LEAD_SHARE` of the record),
+    each lag normalised by the energies of the samples it overlaps, so that a long lead is not
+    penalised for its shorter overlap; of lags that correlate within :data:`LAG_TIE` of the best,
+    the shortest. A position loop's measured velocity follows its reference's
+    at a lag of its own response (a few ms) plus the recording's lead, with a correlation near 1;
+    another signal mapped as the measured position (another axis, a velocity, a control signal)
+    does not. Velocities, not positions: positions of a back-and-forth test correlate broadly over
+    lags of a move's length, which would blur the peak of a long lead.
+    """
+    q = max(1, int(round(LAG_STEP_S / sample_time)))
+    dr = np.diff(np.asarray(reference, float)[::q])
+    dm = np.diff(np.asarray(measured, float)[::q])
+    n = dr.size
+    if n < 3:
+        return 0.0, 0.0
+    lag = int(n * MAX_LEAD_SHARE) if max_lag_s is None else int(round(max_lag_s / (q * sample_time)))
+    lag = max(0, min(lag, n - 2))
+    size = 1 << int(np.ceil(np.log2(2 * n)))
+    cc = np.fft.irfft(np.fft.rfft(dm, size) * np.conj(np.fft.rfft(dr, size)), size)
+    k = np.arange(-lag, lag + 1)
+    raw = np.concatenate([cc[size - lag:], cc[:lag + 1]]) if lag else cc[:1]
+    em, er = np.concatenate([[0.0], np.cumsum(dm * dm)]), np.concatenate([[0.0], np.cumsum(dr * dr)])
+    # lag k >= 0 pairs dm[k:] with dr[:n-k]; k < 0 pairs dm[:n+k] with dr[-k:]
+    energy_m = np.where(k >= 0, em[n] - em[np.clip(k, 0, n)], em[np.clip(n + k, 0, n)])
+    energy_r = np.where(k >= 0, er[np.clip(n - k, 0, n)], er[n] - er[np.clip(-k, 0, n)])
+    norm = np.sqrt(energy_m * energy_r)
+    corr = np.divide(raw, norm, out=np.zeros_like(raw), where=norm > 0)
+    near = np.flatnonzero(corr >= corr.max() - LAG_TIE)  # a repeated test correlates as well a period away
+    best = int(near[np.argmin(np.abs(k[near]))])
+    return float(k[best] * q * sample_time), float(corr[best])
 
 
 def delay_reference(reference: np.ndarray, samples: float) -> np.ndarray:
@@ -175,18 +228,20 @@ def estimate_delay(reference: np.ndarray, measured: np.ndarray, sample_time: flo
     dmax = int(min(round(max_delay_s / sample_time), n // 6))
     if dmax < 2:
         return DelayEstimate(0.0, 0.0, 1.0, (0.0, 0.0))
-    margin = dmax + 1
+    lag_s, corr = follow_lag(xr, x, sample_time)
+    c = int(round(lag_s / sample_time)) if abs(lag_s) > max_delay_s and corr >= FOLLOW_CORRELATION else 0
+    margin = abs(c) + dmax + 1
     q = max(1, int(round(0.004 / sample_time)))
-    xr_q, x_q, dq = xr[::q], x[::q], dmax // q
+    xr_q, x_q, dq, cq = xr[::q], x[::q], dmax // q, c // q
     coarse: dict[int, float] = {}
     if dq >= 2:
         step = max(1, dq // 15)
-        for d in sorted({*range(-dq, dq + 1, step), 0}):
-            coarse[d] = _rss(xr_q, x_q, sample_time * q, float(d), dq + 1, opt)
+        for d in sorted({*range(cq - dq, cq + dq + 1, step), 0}):
+            coarse[d] = _rss(xr_q, x_q, sample_time * q, float(d), abs(cq) + dq + 1, opt)
         best_q = min(coarse, key=coarse.get)
-        lo, hi = max(-dmax, (best_q - step) * q - q), min(dmax, (best_q + step) * q + q)
+        lo, hi = max(c - dmax, (best_q - step) * q - q), min(c + dmax, (best_q + step) * q + q)
     else:
-        lo, hi = -dmax, dmax
+        lo, hi = c - dmax, c + dmax
     cache: dict[float, float] = {}
 
     def f(d: float) -> float:
@@ -195,18 +250,17 @@ def estimate_delay(reference: np.ndarray, measured: np.ndarray, sample_time: flo
         return cache[d]
 
     best = _golden_integer(f, lo, hi)
-    a, b = max(best - 1.0, -dmax), min(best + 1.0, float(dmax))
+    a, b = max(best - 1.0, float(c - dmax)), min(best + 1.0, float(c + dmax))
     g = (math.sqrt(5.0) - 1.0) / 2.0
     while b - a > FRACTION_TOLERANCE:  # golden section on the fraction
-        c, d = b - g * (b - a), a + g * (b - a)
-        if f(c) <= f(d):
-            b = d
+        u, v = b - g * (b - a), a + g * (b - a)
+        if f(u) <= f(v):
+            b = v
         else:
-            a = c
-    samples = min((best, 0.5 * (a + b)), key=lambda v: f(float(v)))
-    samples = float(samples)
+            a = u
+    samples = float(min((best, 0.5 * (a + b)), key=lambda s: f(float(s))))
     base = f(0.0)
     ratio = f(samples) / base if base > 0 and math.isfinite(base) else 1.0
     significant = abs(samples) >= MIN_DELAY_SAMPLES and ratio <= MAX_OBJECTIVE_RATIO
     delay = samples * sample_time if significant else 0.0
-    return DelayEstimate(delay, samples, ratio, (-dmax * sample_time, dmax * sample_time))
+    return DelayEstimate(delay, samples, ratio, ((c - dmax) * sample_time, (c + dmax) * sample_time))

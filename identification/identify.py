@@ -30,7 +30,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
-from identification.capture_checks import check_capture
+from identification.capture_checks import check_capture, check_scale
 from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
 from identification.dead_time import FINEST_STEP_S, delay_reference, estimate_delay
 from identification.ga import GAOptions
@@ -174,6 +174,7 @@ def fit_reduced_model(
         params, poles, err, delay_s, filter_s = _with_setpoint_filter(original, axis, params, poles, err, T, b,
                                                                       delay_s, fit, free_delay=free)
         fit.update(error_metrics(err))
+    check_scale(params, x.size * T, axis, original.source)
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
                             fit=fit, delay_s=delay_s, setpoint_filter_s=filter_s)
 

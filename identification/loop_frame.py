@@ -24,7 +24,7 @@ import dataclasses
 import numpy as np
 
 from identification.dead_time import delay_reference, loop_capture
-from identification.segments import settled_start, starts_from_standstill
+from identification.segments import SETTLED_SHARE, settled_start, starts_from_standstill
 from vcnc.core.capture import Capture
 
 __all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest"]
@@ -48,9 +48,17 @@ def starts_at_rest(recorded: np.ndarray, delayed: np.ndarray, measured: np.ndarr
     there too, or sets off from standstill (:func:`identification.segments.starts_from_standstill`):
     a reference that leads by ``delay_s`` and is already under way at the first sample moved before
     the record (fadal-pid's reference advanced by 20 ms: a 25 um first step, as large as the next),
-    and the loop received that motion within the first ``delay_s``.
+    and the loop received that motion within the first ``delay_s``. The axis must also stand still
+    while the delayed reference holds its first value (vcnc addition, tracerobust): a reference
+    leading by 1 s whose first sample fell on a stop between two moves passed the other tests while
+    the axis ran the first second's moves, and the frame kept them against a held reference
+    (fadal-pid: the 1 s shift predicted 2913 um for 5016 without and was rejected).
     """
-    return starts_from_standstill(recorded) and settled_start(delayed, measured) == 0
+    if not (starts_from_standstill(recorded) and settled_start(delayed, measured) == 0):
+        return False
+    held = int(np.argmax(delayed != delayed[0])) if np.any(delayed != delayed[0]) else delayed.size
+    steps = np.abs(np.diff(np.asarray(recorded, float)))
+    return not np.any(np.abs(np.diff(np.asarray(measured, float)[:held + 1])) > SETTLED_SHARE * steps.max())
 
 
 def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_samples: float = 0.0

@@ -32,7 +32,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="refine the equation-error solution by output error (default)",
     )
     parser.add_argument("--seed", type=int, default=0, help="random seed (ga)")
-    parser.add_argument("--json", metavar="MODEL.json", help="write the model file (vcnc.axis-model/1)")
+    parser.add_argument("--json", metavar="MODEL.json",
+                        help="write the model file (vcnc.axis-model/1; /2 with a reference dead time, /3 with a "
+                             "setpoint filter)")
     parser.add_argument("--report", metavar="DIR", help="write an HTML report with figures into DIR")
     parser.add_argument("--no-diagnose", action="store_true", help="skip the residual diagnosis")
     parser.add_argument("--p-min-hz", type=float, default=None,
@@ -78,7 +80,16 @@ def delay_lines(model) -> list[str]:
         how = "given"
     else:
         how = "none"
-    return [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
+    lines = [f"reference dead time: {d:.6g} s ({d / T:.4g} samples; {how})"]
+    if rec.get("estimated") and rec.get("scanned_s"):
+        lo, hi = rec["scanned_s"]
+        found = rec.get("equation_error_s", rec.get("samples", 0.0) * T)
+        if hi > lo and min(found - lo, hi - found) <= 2.0 * T:
+            which = "leads" if found > 0.5 * (lo + hi) else "lags"
+            lines.append(f"warning: the best shift of the reference, {found:.4g} s, sits at the edge of the scanned "
+                         f"{lo:.4g}..{hi:.4g} s: the recorded reference probably {which} the loop by more; give the "
+                         "dead time with --delay SECONDS, or record a trace whose channels are sampled together")
+    return lines
 
 
 def weak_poles_line(model) -> str:
