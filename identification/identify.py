@@ -80,6 +80,8 @@ FILTER_SCREEN_RATIO = 0.9
 FILTER_MAX_S = 0.1
 MIN_FILTER_SAMPLES = 2.0
 FILTER_GAIN = 1.6
+#: Fits again on the record less the datum offset found (:func:`_refit_without_offset`), at most [-].
+OFFSET_REFITS = 2
 
 
 
@@ -166,7 +168,8 @@ def fit_reduced_model(
     if not math.isfinite(fit["rms_um"]):
         raise IdentificationError("the identified model diverges on its own data (non-finite prediction)")
     moved = fit["offset"]["offset_mm"] - offset.offset_mm
-    if fit["offset"]["applied"] and abs(moved) > 1e-4 * fit["rms_um"] and "offset_refit" not in original.meta:
+    refits = original.meta.get("offset_refit", 0)
+    if fit["offset"]["applied"] and abs(moved) > 1e-4 * fit["rms_um"] and refits < OFFSET_REFITS:
         return _refit_without_offset(original, axis, fit, delay=delay, **options)
     filter_s = 0.0
     if setpoint_filter and label.endswith("+oe") and "delay_candidate" not in original.meta:
@@ -292,7 +295,7 @@ def _refit_without_offset(original: Capture, axis: str, fit: dict, **options) ->
     (:func:`fit_reduced_model` with ``options``): that offset is exact where the regression's was a
     few um off, and the slow pole is not left where the residual offset had put it."""
     again = dataclasses.replace(without_offset(original, axis, fit["offset"]["offset_mm"]),
-                                meta={**original.meta, "offset_refit": True})
+                                meta={**original.meta, "offset_refit": original.meta.get("offset_refit", 0) + 1})
     model = fit_reduced_model(again, axis=axis, **options)
     rec = model.fit["offset"]
     rec.update(offset_mm=rec["offset_mm"] + fit["offset"]["offset_mm"], applied=True,
@@ -528,9 +531,13 @@ def _with_setpoint_filter(capture: Capture, axis: str, params: dict, poles: dict
         before = before - fit_initial_state(params, T, -before)[1]
     rms_before = min(float(np.sqrt(np.mean((before - np.median(before) * offset) ** 2))),
                      float(np.sqrt(np.mean(err * err))))
-    oe = _refined(lambda state: refine_output_error(sol.parameters, sol.poles, xr, x, T, bounds=b, offset=offset,
-                                                    delay=d, keep=keep, initial_state=state,
-                                                    setpoint_filter=(start, 0.0, longest)), moving)
+    starts = [s for s in (sol, _screen_solution(held.delayed(d), x, keep, start, T, b, RegressorOptions()))
+              if s is not None]
+    runs = [_refined(lambda state, s=s: refine_output_error(s.parameters, s.poles, xr, x, T, bounds=b, offset=offset,
+                                                           delay=d, keep=keep, initial_state=state,
+                                                           setpoint_filter=(start, 0.0, longest)), moving)
+            for s in starts]
+    oe = {**min(runs, key=lambda r: r["cost"]), "nfev": sum(r["nfev"] for r in runs)}
     n = oe["filter_samples"]
     e = x[keep] - oe["offset_mm"] - held.delayed(d).filtered(n).simulate(oe["parameters"], keep)
     e = e - oe.get("start_response", 0.0)
@@ -564,13 +571,8 @@ def _filter_screen(held, x: np.ndarray, keep: slice, delays: tuple, T: float, b:
     for c in delays:
         base = held.delayed(c)
         for length in (0.0, *FILTER_SCREEN_S):
-            ref = base.filtered(length / T).fine[::base.substeps][keep]
-            stats = SufficientStatistics(8)
-            try:
-                for phi, y in iter_regressor(ref, x[keep], T, options=opt):
-                    stats.update(phi, y)
-                sol = solve_statistics(stats, bounds=b, method="exact", identifiability=True)
-            except IdentificationError:
+            sol = _screen_solution(base, x, keep, length / T, T, b, opt)
+            if sol is None:
                 continue
             if length == 0.0:
                 without[c] = sol.objective
@@ -579,6 +581,20 @@ def _filter_screen(held, x: np.ndarray, keep: slice, delays: tuple, T: float, b:
     if best is None or best[0] not in without or not best[2].objective <= FILTER_SCREEN_RATIO * without[best[0]]:
         return None
     return (*best, best[2].objective / without[best[0]])
+
+
+def _screen_solution(base, x: np.ndarray, keep: slice, samples: float, T: float, b: PoleBounds,
+                     opt: RegressorOptions) -> SolveResult | None:
+    """The exact-solver regression of Eq. (3.11) on ``x[keep]`` with the (delayed) sub-step reference
+    ``base`` through a moving average of ``samples``, its derivatives as ``opt`` says; None when it fails."""
+    ref = base.filtered(samples).fine[::base.substeps][keep]
+    stats = SufficientStatistics(8)
+    try:
+        for phi, y in iter_regressor(ref, x[keep], T, options=opt):
+            stats.update(phi, y)
+        return solve_statistics(stats, bounds=b, method="exact", identifiability=True)
+    except IdentificationError:
+        return None
 
 
 def _kept_samples(xr: np.ndarray, x: np.ndarray, samples: float, d_lo: float, d_hi: float) -> tuple[slice, bool]:
