@@ -33,6 +33,7 @@ from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
 from identification.capture_checks import check_capture
 from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
 from identification.dead_time import FINEST_STEP_S, delay_reference, estimate_delay
+from identification.filter_signature import shows_filter, signature
 from identification.ga import GAOptions
 from identification.initial_state import centred_statistics, fit_initial_state, starts_in_motion
 from identification.loop_frame import loop_frame, starts_at_rest, without_offset
@@ -74,7 +75,8 @@ DELAY_RESTART_GAIN = 0.01
 #: be kept [-]: a 150 Hz mode in the loop, recorded at 2 ms, is imitated by a 9.7 ms filter for
 #: 1.56x (``tests/identification/test_diagnosis_folds.py``, which the diagnosis must name), the least
 #: a jerk filter gained on vcnc's machines is 1.66x (ballscrew-ppc, ``benchmarks/recorded_traces.py``
-#: case ``jerkf``; the others 2.6-32x): a thin margin.
+#: case ``jerkf``; the others 2.6-32x): a thin margin, so the record must also show the moving
+#: average's gain (:func:`identification.filter_signature.shows_filter`).
 FILTER_SCREEN_S = (0.004, 0.008, 0.016, 0.032, 0.064)
 FILTER_SCREEN_RATIO = 0.9
 FILTER_MAX_S = 0.1
@@ -508,9 +510,12 @@ def _with_setpoint_filter(capture: Capture, axis: str, params: dict, poles: dict
     objective below :data:`FILTER_SCREEN_RATIO` times that without a filter, the filter's length is
     refined by output error jointly with the model (up to :data:`FILTER_MAX_S`) from that solution
     and from the central-difference regression at the same filter, the lower cost kept, and kept
-    when it is at least :data:`MIN_FILTER_SAMPLES` long and predicts the same samples
+    when it is at least :data:`MIN_FILTER_SAMPLES` long, predicts the same samples
     :data:`FILTER_GAIN` times better (RMS) than the model without it did, on them or in the loop's
-    frame (``err`` [mm]). ``fit["setpoint_filter"]`` records a search that ran.
+    frame (``err`` [mm]), and the record shows the moving average's gain, 2/pi at 1/(2L) and its
+    zero at 1/L (:func:`identification.filter_signature.shows_filter`; the gain alone: a 150 Hz
+    mode logged at 2 ms imitated by a 9.7 ms filter for 1.57x). ``fit["setpoint_filter"]``
+    records a search that ran.
 
     Measured on vcnc's machines with the reference through a 16 ms moving average before the loop
     (``benchmarks/recorded_traces.py``, case ``jerkf``): fitted without the filter, fadal-ppi's
@@ -550,10 +555,12 @@ def _with_setpoint_filter(capture: Capture, axis: str, params: dict, poles: dict
     e = x[keep] - oe["offset_mm"] - held.delayed(d).filtered(n).simulate(oe["parameters"], keep)
     e = e - oe.get("start_response", 0.0)
     rms = float(np.sqrt(np.mean(e * e)))
+    shown = signature(held.delayed(d).fine[::held.substeps][keep], x[keep], T, n * T, oe["parameters"]) \
+        if n >= MIN_FILTER_SAMPLES else None
     record = {"filter_s": 0.0, "searched_s": n * T, "screen_ratio": ratio, "rms_without_um": rms_before * 1e3,
-              "rms_with_um": rms * 1e3}
+              "rms_with_um": rms * 1e3, "signature": shown}
     fit["setpoint_filter"] = record
-    if not (n >= MIN_FILTER_SAMPLES and rms * FILTER_GAIN <= rms_before):
+    if not (n >= MIN_FILTER_SAMPLES and rms * FILTER_GAIN <= rms_before and shows_filter(shown)):
         return params, poles, err, delay_s, 0.0
     log.info("setpoint filter: a moving average of %.4g ms, prediction %.4g -> %.4g um", n * T * 1e3,
              rms_before * 1e3, rms * 1e3)
