@@ -62,7 +62,18 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   ``motion`` passes so too (its pair 15 % off, 0.386 um RMS; at the truth's poles 0.390: the RMS
   over the 0.171 floor is the start in motion's, which the truth's poles do not remove either). A
   fit in a local minimum is not excused: the truth's poles then predict the record better (ratio
-  < 1).
+  < 1). A ratio above :data:`SAME_PREDICTION` fails too: the record tells the fit's poles from the
+  truth's, and prefers the fit's. fadal-smc's ``jerkf``, ``dec3lead100`` and ``tnc`` do so (x1.38,
+  x1.43, x1.41; the traceid5 audit): its p moves with the loop's own lag, which the delay-free truth
+  lacks (the capture fitted with a dead time of 0, 0.3, 0.64, 1.06 ms: p 38.4, 45.4, 84.7, 261 Hz;
+  with the jerk filter: 110, 57, 75, 152 Hz at 0, 0.3, 0.64, 1.0 ms, 0.84 um RMS at 0 and 0.28 at
+  1 ms), and a record at 3 ms places that lag otherwise than the capture at 1 ms (``dec3``, no
+  lead, fitted at 1.06 ms: 40.4 Hz / 0.99, p 18.9 Hz, where the 1 ms capture gives 19.2 Hz / 0.72, p
+  261 Hz). ``dec3lead100`` is not at its best either: held at the poles of that 3 ms fit its dead
+  time refines to 100.71 ms and it is predicted with 0.737 um for the fit's 0.810 (at 101.06 ms);
+  the joint dead-time refinement (:func:`identification.identify._refine_delay`), started at 101.06
+  ms, reached 100.28 ms (p 57 Hz) but was refused, judged on samples whose start in motion (from sample 43, simulated
+  from rest) the loop frame of the model it started from did not have (1.12 um there for 0.81).
 
 Prints one line per case: pole errors [%], delay found and expected [ms], the in-loop truth's dead
 time [ms] (0: the delay-free truth), the setpoint filter found [ms], prediction RMS and its limit
