@@ -11,7 +11,7 @@ import pytest
 
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
-from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
@@ -21,11 +21,7 @@ ZERO = MachineContext()
 
 def checked(body: str):
     """The program read, and its blocks matched against the reference (compensated rows within the radius)."""
-    text = "0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=ZERO)
-    match = match_blocks(heidenhain_reference(text, ZERO), blocks_table(prog)[1])
-    assert match.mismatch is None, match.mismatch
-    return prog
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", ZERO, exact=False)
 
 
 def test_an_appr_lct_arc_smaller_than_the_tool_is_the_tool_path():

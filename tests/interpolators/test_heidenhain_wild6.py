@@ -9,9 +9,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 ZERO = MachineContext()
@@ -19,11 +17,7 @@ ZERO = MachineContext()
 
 def checked(body: str):
     """The program read, and its blocks matched against the reference."""
-    text = "0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=ZERO)
-    match = match_blocks(heidenhain_reference(text, ZERO), blocks_table(prog)[1])
-    assert match.mismatch is None, match.mismatch
-    return prog
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", ZERO)
 
 
 DRILL = ("1 TOOL DEF 1 L+0 R+2\n2 TOOL CALL 1 Z S1000\n3 L X+10 Y+20 Z+50 R0 FMAX\n"
