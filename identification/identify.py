@@ -545,19 +545,19 @@ def _with_setpoint_filter(capture: Capture, axis: str, params: dict, poles: dict
         before = before - fit_initial_state(params, T, -before)[1]
     rms_before = min(float(np.sqrt(np.mean((before - np.median(before) * offset) ** 2))),
                      float(np.sqrt(np.mean(err * err))))
-    starts = [s for s in (sol, _screen_solution(held.delayed(d), x, keep, start, T, b, RegressorOptions()))
-              if s is not None]
+    shifted = held.delayed(d)
+    starts = [s for s in (sol, _screen_solution(shifted, x, keep, start, T, b, RegressorOptions())) if s is not None]
     runs = [_refined(lambda state, s=s: refine_output_error(s.parameters, s.poles, xr, x, T, bounds=b, offset=offset,
                                                            delay=d, keep=keep, initial_state=state,
                                                            setpoint_filter=(start, 0.0, longest)), moving)
             for s in starts]
     oe = {**min(runs, key=lambda r: r["cost"]), "nfev": sum(r["nfev"] for r in runs)}
     n = oe["filter_samples"]
-    e = x[keep] - oe["offset_mm"] - held.delayed(d).filtered(n).simulate(oe["parameters"], keep)
+    e = x[keep] - oe["offset_mm"] - shifted.filtered(n).simulate(oe["parameters"], keep)
     e = e - oe.get("start_response", 0.0)
     rms = float(np.sqrt(np.mean(e * e)))
-    shown = signature(held.delayed(d).fine[::held.substeps][keep], x[keep], T, n * T, oe["parameters"]) \
-        if n >= MIN_FILTER_SAMPLES else None
+    shown = (signature(shifted.at_samples(keep), x[keep], T, n * T, oe["parameters"])
+             if n >= MIN_FILTER_SAMPLES else None)
     record = {"filter_s": 0.0, "searched_s": n * T, "screen_ratio": ratio, "rms_without_um": rms_before * 1e3,
               "rms_with_um": rms * 1e3, "signature": shown}
     fit["setpoint_filter"] = record
@@ -603,7 +603,7 @@ def _screen_solution(base, x: np.ndarray, keep: slice, samples: float, T: float,
                      opt: RegressorOptions) -> SolveResult | None:
     """The exact-solver regression of Eq. (3.11) on ``x[keep]`` with the (delayed) sub-step reference
     ``base`` through a moving average of ``samples``, its derivatives as ``opt`` says; None when it fails."""
-    ref = base.filtered(samples).fine[::base.substeps][keep]
+    ref = base.filtered(samples).at_samples(keep)
     stats = SufficientStatistics(8)
     try:
         for phi, y in iter_regressor(ref, x[keep], T, options=opt):

@@ -81,6 +81,10 @@ class SubstepReference:
             return self
         return dataclasses.replace(self, fine=filter_reference(self.fine, samples * self.substeps))
 
+    def at_samples(self, keep: slice | None = None) -> np.ndarray:
+        """The reference at the recorded samples of ``keep`` (all by default) [mm]."""
+        return self.fine[::self.substeps][keep or slice(None)]
+
     def simulate(self, parameters: Mapping[str, float], keep: slice | None = None) -> np.ndarray:
         """Predicted position [mm] at the recorded samples of ``keep`` (all by default), simulated
         from rest at ``keep.start``."""
