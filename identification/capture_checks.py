@@ -249,21 +249,19 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
     """The message for a measured channel that does not follow the commanded one: what it looks like instead,
     tried in turn (each must follow at :data:`EXPLAINED_CORRELATION`), and the remedy;
     "" when none does."""
+    small = np.ptp(x) < FOLLOWING_ERROR_SPAN * np.ptp(xr)  # a following error is a small part of the motion
     tries = (
         (-x, "the measured channel's sign is flipped (an encoder, a motor mounted the other way or a trace "
              "channel counting the other way): negate it before identification"),
-        (xr - x, "it looks like the following error (the commanded position less it follows the commanded at "
-                 "{c:.3f}): map the actual position as the measured channel (--columns), or compute it as commanded "
-                 "minus following error (mind your control's sign convention)"),
+        *(((xr - x, "it looks like the following error (the commanded position less it follows the commanded at "
+                    "{c:.3f}): map the actual position as the measured channel (--columns), or compute it as "
+                    "commanded minus following error (mind your control's sign convention)"),) if small else ()),
         (np.cumsum(x) * T, "it looks like a velocity (integrated, it follows the commanded position at {c:.3f}): "
                            "map the position channel, not the velocity (--columns)"),
         *((v, f"the measured channel of axis {a!r} follows it (correlation {{c:.3f}}): the channels are mapped to "
               "the wrong axes (--columns, --axis-names) or --axis names the wrong one") for a, v in others.items()),
     )
-    small = np.ptp(x) < FOLLOWING_ERROR_SPAN * np.ptp(xr)  # a following error is a small part of the motion
     for signal, text in tries:
-        if signal is tries[1][0] and not small:
-            continue
         c = follow_lag(xr, signal, T)[1]
         if c >= EXPLAINED_CORRELATION:
             return f"{_head(axis, corr)}: {text.format(c=c)}"
