@@ -587,27 +587,41 @@ def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
     return target
 
 
-def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, where: Where) -> int:
+def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, where: Where, letter: str = "P") -> int:
     """The line ``N<P>`` of this program that a Haas ``M97 P<n> L<count>`` calls (Haas mill operator's
     manual 96-8000, "M97 Local Sub-Program Call": "used to call a subroutine referenced by a line
     number (N) within the same program ... The subroutine must end with an M99. An Lnn code in the
-    M97 block will repeat the subroutine call that nn times"); found as a macro B GOTO finds it."""
-    p = next((w for w in words if w.letter == "P"), None)
+    M97 block will repeat the subroutine call that nn times"); found as a macro B GOTO finds it.
+    ``letter`` "Q": the block ``N<Q>`` of an ``M98 Q<n>`` without P (:func:`_subprogram_start`)."""
+    p = next((w for w in words if w.letter == letter), None)
     target = None if p is None or p.value != round(p.value) else prog.macro.find(round(p.value), pc)
     if target is None:
-        missing = "no P word" if p is None else f"no block N{p.value:g} in this program"
-        where.fail(f"M97 local subprogram call: {missing}", column=call.column, text=call.text,
-                   expected="M97 P<n> with a block N<n> in the same program, ending with M99")
+        missing = f"no {letter} word" if p is None else f"no block N{p.value:g} in this program"
+        what = "M97 local subprogram call" if letter == "P" else "M98 Q subprogram call (no P: this program)"
+        where.fail(f"{what}: {missing}", column=call.column, text=call.text,
+                   expected=f"{call.text.upper()} {letter}<n> with a block N<n> in the same program, ending with M99")
     return target
 
 
 def _subprogram_start(prog: _Program, pc: int, words: list[Word], call: Word, where: Where,
                       on_note: Callable[[str], None] | None) -> tuple[int, Word | None]:
-    """The first line an ``M97``/``M98`` block runs, and the ``Q`` word of an ``M98 P Q`` (else None)."""
+    """The first line an ``M97``/``M98`` block runs, and the ``Q`` word of an ``M98 P Q`` (else None).
+
+    ``M98 Q<n>`` without P calls the block ``N<n>`` of the program being run, to its M99, as Haas M97
+    does (Mitsubishi M70/Meldas programming manual, "Subprogram call: M98, M99": P is the "program No.
+    of the subprogram to be called (own program if omitted)", Q/H the sequence number to start at; as
+    summarised in https://industrialmonitordirect.com/blogs/knowledgebase/mitsubishi-meldas-m98-subprogram-call-h-address-syntax).
+    Fanuc 0i-MD shop programs (Doosan DNM) write ``M98 Q3021`` with ``N3021 ... M99`` after M30; no Fanuc
+    manual at hand states it, so it is noted."""
     if call.value == 97:
         return _local_subprogram(prog, pc, words, call, where), None
-    start = _called_program(prog, words, call, where, "M98 subprogram call")
     q = next((w for w in words if w.letter == "Q"), None)
+    if q is not None and not any(w.letter == "P" for w in words):
+        if on_note is not None:
+            on_note("M98 Q without P: the block N<Q> of this program is called, to its M99 (Mitsubishi form; "
+                    "read as on Fanuc 0i-MD shop programs)")
+        return _local_subprogram(prog, pc, words, call, where, "Q"), q
+    start = _called_program(prog, words, call, where, "M98 subprogram call")
     if q is None:
         return start, None
     if on_note is not None:

@@ -78,7 +78,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
-  ``N<n>``. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
+  ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
+  to its M99, as M97 does. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
   Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
@@ -1509,7 +1510,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m98":
             words, _ = _words(ln.text, params)
             count = int(words["l"][-1]) if "l" in words else 1
-            start = _m98_start(words, st)
+            start = _m98_start(words, st) if "p" in words else _goto(words["q"][-1], pc, st)
             frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
             pc = start
             continue
