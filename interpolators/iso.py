@@ -201,6 +201,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
     # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
@@ -234,11 +235,18 @@ _MILL_G: dict[int, tuple[str, str]] = {
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
 }
 
+#: Fanuc normal direction control (Fanuc Series 0i-MB operator's manual B-63844EN/02, II-14.9 "Normal
+#: direction control (G40.1, G41.1, G42.1 or G150, G151, G152)"; Mitsubishi M700V programming manual 13.14
+#: "Normal line control; G40.1/G41.1/G42.1"): the rotary C axis is turned to stay normal to the XY path.
+#: In LinuxCNC G41.1/G42.1 are dynamic cutter compensation (:data:`_G`); G40.1 is no LinuxCNC code.
+_NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 normal direction control left",
+                     421: "G42.1 normal direction control right"}
+
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
-              **EXTENDED_CODES["fanuc"]},
+              **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"]},
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
@@ -660,6 +668,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
+    if "normal direction" in gcodes:
+        _normal_direction(gcodes["normal direction"], st, where, notes)
     seen = _io_words(mcodes, seen, where)
     _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
@@ -1043,6 +1053,19 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _normal_direction(entry, st: _State, where: Where, notes: _Notes) -> None:
+    """Fanuc G40.1/G41.1/G42.1 (:data:`_NORMAL_DIRECTION`): the control turns the C axis normal to the XY
+    path and leaves the path itself as programmed. A machine without a C axis has nothing to turn: the
+    codes are a note (CAM safety lines write ``G40.1`` among G40 G49 G80). With a C axis the turning
+    would be motion vcnc does not make: refused."""
+    key, w = entry
+    if key != 401 and "c" in st.context.extra_axes:
+        where.fail(f"{_NORMAL_DIRECTION[key]} (turning the C axis normal to the path): not supported",
+                   column=w.column, text=w.text, expected="G40.1, or C moves programmed in the blocks")
+    notes.add(_NORMAL_DIRECTION[key] if key == 401 else "G41.1/G42.1 normal direction control: this machine has "
+              "no C axis to turn, the path is as programmed")
 
 
 def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list[int]]:

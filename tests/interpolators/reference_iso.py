@@ -768,9 +768,14 @@ def _extended(m: _Machine, code: int, g: list[int], words: dict) -> bool:
 
 
 def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
-    """Fanuc/Haas look-ahead codes (their words taken off, the codes too) and G68/G69."""
+    """Fanuc/Haas look-ahead codes (their words taken off, the codes too), Fanuc G40.1-G42.1 and G68/G69."""
     if m.ctx.dialect.name == "haas" and 770 in g:  # Haas G77 is Fanuc's G87
         g[g.index(770)] = 870
+    for code in (401, 411, 421):  # Fanuc normal direction control (B-63844EN II-14.9): turns a C axis only
+        if code in g and m.ctx.dialect.name == "fanuc":
+            if code != 401 and "c" in m.ctx.extra_axes:
+                raise ReferenceError("G41.1/G42.1 normal direction control with a C axis")
+            g.remove(code)
     for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
         if code in g:
             g.remove(code)

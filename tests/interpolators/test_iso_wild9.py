@@ -37,3 +37,27 @@ def test_m98_q_without_p_names_a_missing_block():
     with pytest.raises(GCodeError, match=r":2:1: M98 Q subprogram call \(no P: this program\): no block N77 in "
                                          r"this program.*expected M98 Q<n> with a block N<n> in the same program"):
         parse_program("G21 G90 G0 X0 Y0\nM98 Q77\nM30\n", context=_in_dialect("fanuc"))
+
+
+def test_fanuc_normal_direction_control_without_a_c_axis_leaves_the_path():
+    # Fanuc 0i-MB B-63844EN II-14.9: G41.1/G42.1 turn the C axis normal to the XY path, G40.1 cancels; a
+    # machine without C (this context: X Y Z only) has nothing to turn, the safety line's G40.1 is a note
+    text = "G00 G49 G40.1 G17 G80 G50 G90\nG21\nG00 Z2\nG01 Z-0.2 F150\nG41.1 X16.82\nY16.82\nG40.1 X0\nM30\n"
+    prog = parse_program(text, context=_in_dialect("fanuc"))
+    assert _xy(prog)[-3:] == [[116.82, 0.0], [116.82, 66.82], [100.0, 66.82]]  # Y at home until Y16.82
+    assert "G40.1 normal direction control cancel x2" in prog.notes
+    assert any("no C axis to turn" in n for n in prog.notes)
+
+
+def test_fanuc_normal_direction_control_with_a_c_axis_is_refused():
+    ctx = dataclasses.replace(_in_dialect("fanuc"), extra_axes=("c",))
+    with pytest.raises(GCodeError, match=r":2:1: G42.1 normal direction control right \(turning the C axis normal "
+                                         r"to the path\): not supported"):
+        parse_program("G21 G90 G0 X0 Y0 Z5\nG42.1 G1 X10 F100\nM30\n", context=ctx)
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "haas", "grbl"])
+def test_g40_1_is_named_as_fanuc_elsewhere(name):
+    # LinuxCNC has no G40.1 (rs274: unknown G code); the message names the Fanuc feature and its dialect
+    with pytest.raises(GCodeError, match=r":1:9: G40.1 normal direction control cancel \(Fanuc; --dialect fanuc\)"):
+        parse_program("G00 G49 G40.1 G17 G90\nG0 X1\nM2\n", context=_in_dialect(name))
