@@ -61,3 +61,12 @@ def test_g40_1_is_named_as_fanuc_elsewhere(name):
     # LinuxCNC has no G40.1 (rs274: unknown G code); the message names the Fanuc feature and its dialect
     with pytest.raises(GCodeError, match=r":1:9: G40.1 normal direction control cancel \(Fanuc; --dialect fanuc\)"):
         parse_program("G00 G49 G40.1 G17 G90\nG0 X1\nM2\n", context=_in_dialect(name))
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc", "haas", "grbl"])
+def test_a_double_slash_comment_line_is_named(name):
+    # a MillMaster Pro file (the same style as Syntec/DDCS macro programs): '//' opens a comment there; an ISO
+    # control reads the first '/' as block delete and then meets a second one
+    with pytest.raises(GCodeError, match=r":2:2: '//' comment line \(Syntec/DDCS macro and MillMaster Pro style\): "
+                                         r"not a comment in ISO G-code.*expected a \( \) or ; comment"):
+        parse_program("%\n//NC FILE - PART.NC\nG21 G90 G0 X1\nM2\n%\n", context=_in_dialect(name))
