@@ -1027,7 +1027,10 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     if "T" in seen:
         w = seen["T"]
         if w.value != int(w.value) or w.value < 0:
-            where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
+            # "T1.1": Fagor 8025/8030 tool.offset (Fagor 8055 programming manual 5.6 writes "T5 D18")
+            fagor = " (T<tool>.<offset> is Fagor's older form: not supported)" if re.fullmatch(
+                r"T\s*\d+\.\d+", w.text, re.I) else ""
+            where.fail(f"tool number T must be a whole number >= 0{fagor}", column=w.column, text=w.text,
                        expected="T0, T1, ...")
         st.tool_selected = int(w.value)
         if st.tool(st.tool_selected) is None and st.tool_selected != 0:
@@ -1188,7 +1191,10 @@ def _io_words(mcodes, seen, where: Where) -> dict:
             number = lead.group(0) + w.text
             where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
                        column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,
+        # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
+        fadal = " (E1-E48 select a Fadal fixture offset: not supported)" if 0 <= w.value <= 48 and \
+            w.value == int(w.value) else ""
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
 
@@ -1313,7 +1319,11 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
         if letter in seen and not cycle and not ("path" in gcodes and letter == "Q") \
                 and not ("nonmodal" in gcodes and letter == "L"):
             w = seen[letter]
-            where.fail(f"unknown word {w.text!r} outside a drilling cycle", column=w.column, text=w.text,
+            # Fadal User Manual section 1: "L Subroutine definition or call" (L<nn>00 opens subroutine nn,
+            # M17 ends it; L<nn><count> calls it)
+            fadal = " (a Fadal subroutine definition or call: not supported)" if letter == "L" and \
+                w.value >= 100 and w.value == int(w.value) else ""
+            where.fail(f"unknown word {w.text!r} outside a drilling cycle{fadal}", column=w.column, text=w.text,
                        expected=f"{letter} only in drilling cycles (G73, G83)" if letter == "Q" else
                        f"{letter} only in drilling cycles or G10")
 

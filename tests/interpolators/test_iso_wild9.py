@@ -70,3 +70,20 @@ def test_a_double_slash_comment_line_is_named(name):
     with pytest.raises(GCodeError, match=r":2:2: '//' comment line \(Syntec/DDCS macro and MillMaster Pro style\): "
                                          r"not a comment in ISO G-code.*expected a \( \) or ; comment"):
         parse_program("%\n//NC FILE - PART.NC\nG21 G90 G0 X1\nM2\n%\n", context=_in_dialect(name))
+
+
+def test_a_fagor_tool_and_offset_word_is_named():
+    # Fagor 8025/8030 'T1.1' (tool 1, offset 1; the 8055 writes 'T1 D1'): no whole tool number
+    with pytest.raises(GCodeError, match=r":2:4: tool number T must be a whole number >= 0 \(T<tool>.<offset> is "
+                                         r"Fagor's older form: not supported\)"):
+        parse_program("%00214\nN0 T1.1\nN10 M6\nN20 G0 G90 G43 Z100\nN30 M30\n", context=_in_dialect("fanuc"))
+
+
+def test_fadal_fixture_offsets_and_subroutines_are_named():
+    # Fadal User Manual section 1: E selects a fixture offset, L<nn>00 opens subroutine nn (M17 ends it)
+    with pytest.raises(GCodeError, match=r":2:14: word 'E1' outside M66-M68 \(digital/analog I/O\) \(E1-E48 select "
+                                         r"a Fadal fixture offset: not supported\)"):
+        parse_program("G21\nG90 G0 X0 Y0 E1\nM2\n", context=_in_dialect("fanuc"))
+    with pytest.raises(GCodeError, match=r":1:4: unknown word 'L100' outside a drilling cycle \(a Fadal subroutine "
+                                         r"definition or call: not supported\)"):
+        parse_program("N7 L100\nX0 Y0\nM17\nM30\n", context=_in_dialect("fanuc"))
