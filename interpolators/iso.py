@@ -246,7 +246,8 @@ _NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 n
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
-              **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"]},
+              **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
+              700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
@@ -987,7 +988,10 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
-        st.inch = gcodes["units"][0] == 200
+        key, w = gcodes["units"]
+        if key in (700, 710):
+            _g70_g71_units(key, w, seen, where, notes)
+        st.inch = key in (200, 700)
         st.units_stated = True
     if "plane" in gcodes:
         st.plane = _PLANE_OF[_G[gcodes["plane"][0]][1]]
@@ -1056,6 +1060,23 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None:
+    """G70 / G71 in a Fanuc mill program (``--dialect fanuc``; Haas reads bolt-hole patterns): inch / metric
+    input, as Siemens (SINUMERIK programming manual, "Inch or metric dimensions: G70/G700, G71/G710"), Fagor
+    8055 ("G70/G71 programming units") and Heidenhain ISO (TNC ISO programming manual: "G70 inch, G71 mm")
+    mills read them; on Fanuc mills they are no mill code (Fanuc's lathe finishing/roughing cycles, which a
+    mill refuses). Our reading: a post written for one of those controls (Chinese shop posts: "G40 G17 G90
+    G71"), noted. With a lathe cycle's words (P Q U W R) or a Haas bolt-hole pattern's (I J K L) it is no
+    unit: refused."""
+    cycle = [c for c in "PQUWRIJKL" if c in seen]
+    if cycle:
+        name = "G70 lathe finishing cycle" if key == 700 else "G71 lathe roughing cycle"
+        where.fail(f"{name}: not supported (its {cycle[0]} word)", column=w.column, text=w.text,
+                   expected="milling G codes (see vcnc's ISO reader)")
+    notes.add(f"G{key // 10} read as {'inch' if key == 700 else 'metric'} input (Siemens, Fagor, Heidenhain ISO; "
+              "not a Fanuc mill code)")
 
 
 def _normal_direction(entry, st: _State, where: Where, notes: _Notes) -> None:

@@ -703,6 +703,8 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.plane = code // 10
         elif code in (200, 210):
             m.scale = 25.4 if code == 200 else 1.0
+        elif code in (700, 710) and m.ctx.dialect.name == "fanuc":  # Siemens/Fagor units in a mill post
+            m.scale = 25.4 if code == 700 else 1.0
     for code in g:
         if code == 400:
             m.comp_closed, m.comp_radius = m.comp_radius or 0.0, None

@@ -87,3 +87,17 @@ def test_fadal_fixture_offsets_and_subroutines_are_named():
     with pytest.raises(GCodeError, match=r":1:4: unknown word 'L100' outside a drilling cycle \(a Fadal subroutine "
                                          r"definition or call: not supported\)"):
         parse_program("N7 L100\nX0 Y0\nM17\nM30\n", context=_in_dialect("fanuc"))
+
+
+@pytest.mark.parametrize(("code", "x"), [("G70", 125.4), ("G71", 101.0)])
+def test_g70_g71_in_a_mill_post_are_inch_and_metric_input(code, x):
+    # a Chinese shop's post ("G40 G17 G90 G71", as Siemens, Fagor and Heidenhain ISO mills write the units): no
+    # lathe cycle in a mill program, read as the units with a note
+    prog = parse_program(f"%\nN10 G40 G17 G90 {code}\nN20 G54 G0 X1 Y0\nN30 M30\n%\n", context=_in_dialect("fanuc"))
+    assert prog.blocks[-1].target[0] == pytest.approx(x)
+    assert any(f"{code} read as" in n for n in prog.notes)
+
+
+def test_g71_with_a_lathe_cycles_words_stays_a_refused_cycle():
+    with pytest.raises(GCodeError, match=r":2:1: G71 lathe roughing cycle: not supported \(its P word\)"):
+        parse_program("G21 G0 X5 Z2\nG71 P100 Q200 R1\nM30\n", context=_in_dialect("fanuc"))
