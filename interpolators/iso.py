@@ -337,6 +337,7 @@ class _State:
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
     tool_current: int | None = None
+    tool_offsets: dict[int, int] = dataclasses.field(default_factory=dict)  # Fagor T<tool>.<offset>: its offset
     length_code: float = 49.0  # the group 8 G code in effect (43, 43.1, 44, 49: Fanuc #4008)
     length_number: int = 0  # the H number of the length offset in effect (Fanuc #4111)
     comp_number: int = 0  # the D number of the cutter compensation in effect (Fanuc #4107)
@@ -1030,11 +1031,11 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         st.feed_rotary = st.feed_per_rev_word * st.spindle_speed / 60.0 if has else None
     if "T" in seen:
         w = seen["T"]
+        fagor = re.fullmatch(r"T\s*(\d+)\.(\d+)", w.text, re.I) if st.context.dialect.name == "fanuc" else None
+        if fagor is not None:
+            w = _fagor_tool(w, fagor, st, notes)
         if w.value != int(w.value) or w.value < 0:
-            # "T1.1": Fagor 8025/8030 tool.offset (Fagor 8055 programming manual 5.6 writes "T5 D18")
-            fagor = " (T<tool>.<offset> is Fagor's older form: not supported)" if re.fullmatch(
-                r"T\s*\d+\.\d+", w.text, re.I) else ""
-            where.fail(f"tool number T must be a whole number >= 0{fagor}", column=w.column, text=w.text,
+            where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
                        expected="T0, T1, ...")
         st.tool_selected = int(w.value)
         if st.tool(st.tool_selected) is None and st.tool_selected != 0:
@@ -1060,6 +1061,42 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _fagor_tool(w: Word, m: re.Match, st: _State, notes: _Notes) -> Word:
+    """``T<tool>.<offset>`` under ``--dialect fanuc``: Fagor's 8025/8030 form of the 8055's ``T<tool> D<offset>``
+    (Fagor 8055 programming manual, 5.6 "Tool number (T) and tool offset (D)": "T5 D18 selects tool 5 and
+    assumes the dimensions of tool offset 18"; the dotted form is our reading of the older controls' programs,
+    no 8025 manual at hand). The offset is the tool-table entry G43 without H and G41/G42 without D take
+    while that tool is in the spindle (8055 manual 8.2: G43 "compensates the length in accordance with the
+    value of the tool offset selected with code D"). Returns the T word of the tool alone."""
+    tool, offset = int(m.group(1)), int(m.group(2))
+    st.tool_offsets[tool] = offset
+    notes.add("T<tool>.<offset> read as Fagor's tool and offset (T D of the Fagor 8055)")
+    return Word("T", float(tool), w.column, w.text)
+
+
+def _fagor_drilling(seen, st: _State, where: Where, notes: _Notes) -> dict:
+    """A G81 series whose first block has I and no R under ``--dialect fanuc``: the Fagor 8055 form
+    (programming manual 9.7 "G81. Drilling canned cycle": "G81 G98/G99 X Y Z I K" -- "Z Reference plane ...
+    I Drilling depth ... K Dwell, in hundredths of a second"), which Fanuc's G81 (R plane, Z bottom, K
+    repeats) cannot mean (no I). Each block of the series is read as Fanuc's ``R<Z> Z<I>``: both keep their
+    absolute and incremental references (Fagor: Z "referred to the initial plane", I "referred to the
+    reference plane"; Fanuc G91: R from the initial level, Z from R); a later block's Z alone is a new
+    reference plane, drilled to the same depth."""
+    st.cycle.fagor = True
+    w = seen.get("I") or seen.get("Z") or next(iter(seen.values()))
+    if st.plane != 2 or seen.get("K") is not None and seen["K"].value != 0:
+        what = "a dwell K" if st.plane == 2 else "a plane other than G17"
+        where.fail(f"G81 Z I (Fagor drilling form) with {what}: not supported", column=w.column, text=w.text,
+                   expected="G17 and G81 Z<reference plane> I<depth> without K")
+    notes.add("G81 Z I read as Fagor's drilling cycle (Z the reference plane, I the depth)")
+    out = {k: v for k, v in seen.items() if k not in "ZIK"}
+    if "Z" in seen:
+        out["R"] = Word("R", seen["Z"].value, seen["Z"].column, seen["Z"].text)
+    if "I" in seen:
+        out["Z"] = Word("Z", seen["I"].value, seen["I"].column, seen["I"].text)
+    return out
 
 
 def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None:
@@ -1899,7 +1936,7 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
         radius = seen["D"].value * st.scale / 2.0
     else:
         tool = st.tool(int(seen["D"].value)) if "D" in seen else (
-            st.tool(st.tool_current) if st.tool_current is not None else None)
+            st.tool(st.tool_offsets.get(st.tool_current, st.tool_current)) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
     st.comp_side = "left" if key in (410, 411) else "right"
     if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
@@ -1965,7 +2002,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
-    number = int(h.value) if h is not None else st.tool_current
+    number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
     st.length_number = number or 0
     tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
@@ -2282,6 +2319,9 @@ def _framed_initial(st: _State, *, to_program: bool) -> None:
 
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
+    if st.motion == 810 and st.context.dialect.name == "fanuc" and notes is not None and (
+            st.cycle.fagor or st.cycle.r is None and "I" in seen and "R" not in seen):
+        seen = _fagor_drilling(seen, st, where, notes)
     name = _G[st.motion][1]
     if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
         notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "

@@ -553,6 +553,7 @@ class _Machine:
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
+        self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_closed = 0.0  # the radius of a run G40 closed, until the next move (its exit move)
@@ -709,7 +710,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         if code == 400:
             m.comp_closed, m.comp_radius = m.comp_radius or 0.0, None
         elif code in (410, 420):
-            number = int(words["d"][-1]) if "d" in words else m.loaded
+            number = int(words["d"][-1]) if "d" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
             m.comp_entry = True
@@ -717,7 +718,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
         if code == 430:
-            number = int(words["h"][-1]) if "h" in words else m.loaded
+            number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
@@ -1100,6 +1101,18 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     code = m.motion // 10
     if m.cycle_clear is None and m.ctx.dialect.name != "linuxcnc":
         m.sticky = {}  # Fanuc/Haas: G80 clears the hole data; LinuxCNC keeps its cycle_p, cycle_q, cycle_cc
+    if code == 81 and m.ctx.dialect.name == "fanuc" and (m.sticky.get("fagor") or m.cycle_clear is None
+                                                         and "i" in words and "r" not in words):
+        # Fagor 8055 programming manual 9.7: "G81 G98/G99 X Y Z I K", Z the reference plane, I the depth, in
+        # every block of the series
+        if m.plane != 17 or words.get("k", [0.0])[-1] != 0:
+            raise ReferenceError("Fagor G81 with a dwell K or outside G17")
+        m.sticky["fagor"] = True
+        if "z" in words:
+            words["r"] = words.pop("z")
+        if "i" in words:
+            words["z"] = words.pop("i")
+        words.pop("k", None)
     for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]
@@ -1220,6 +1233,9 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     g, mc = _codes(words, "g"), _codes(words, "m")
     if "t" in words:
         m.selected = int(words["t"][-1])
+        dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
+        if dotted:  # Fagor T<tool>.<offset> (the 8055's T D): G43 / G41 without H / D take that offset
+            m.offsets_of[int(dotted.group(1))] = int(dotted.group(2))
     if 60 in mc:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":

@@ -7,7 +7,7 @@ import dataclasses
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -72,11 +72,24 @@ def test_a_double_slash_comment_line_is_named(name):
         parse_program("%\n//NC FILE - PART.NC\nG21 G90 G0 X1\nM2\n%\n", context=_in_dialect(name))
 
 
-def test_a_fagor_tool_and_offset_word_is_named():
-    # Fagor 8025/8030 'T1.1' (tool 1, offset 1; the 8055 writes 'T1 D1'): no whole tool number
-    with pytest.raises(GCodeError, match=r":2:4: tool number T must be a whole number >= 0 \(T<tool>.<offset> is "
-                                         r"Fagor's older form: not supported\)"):
-        parse_program("%00214\nN0 T1.1\nN10 M6\nN20 G0 G90 G43 Z100\nN30 M30\n", context=_in_dialect("fanuc"))
+def test_a_fagor_tool_and_offset_word_selects_both():
+    # Fagor 8025/8030 'T2.5' (the 8055's 'T2 D5', programming manual 5.6): tool 2 with offset 5, whose length G43
+    # without H applies (8055 manual 8.2)
+    tools = {2: Tool(number=2, length=30.0), 5: Tool(number=5, length=12.5)}
+    ctx = dataclasses.replace(_in_dialect("fanuc"), tools=tools)
+    prog = parse_program("%00214\nN0 T2.5\nN10 M6\nN20 G0 G90 G43 Z100.\nN30 M30\n", context=ctx)
+    assert prog.blocks[-1].target[2] == pytest.approx(-20.0 + 100.0 + 12.5)
+    assert any("Fagor's tool and offset" in n for n in prog.notes)
+
+
+def test_a_fagor_drilling_cycle_reads_z_as_the_reference_plane_and_i_as_the_depth():
+    # Fagor 8055 programming manual 9.7: "G81 G98/G99 X Y Z I K", Z the reference plane, I the drilling depth; a
+    # later block's Z alone is a new reference plane drilled to the same depth (no G80 before it)
+    text = ("G0 G90 X0 Y0 Z20.\nG81 G99 X10. Y0 Z2. I-5. F100\nX20.\nZ10.\nG80\nM30\n")
+    prog = parse_program(text, context=_in_dialect("fanuc"))
+    z = [round(b.target[2] + 20.0, 6) for b in prog.blocks]
+    assert z == [20.0, 20.0, 2.0, -5.0, 2.0, 2.0, -5.0, 2.0, 10.0, -5.0, 10.0]
+    assert any("Fagor's drilling cycle" in n for n in prog.notes)
 
 
 def test_fadal_fixture_offsets_and_subroutines_are_named():
