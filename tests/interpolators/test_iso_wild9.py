@@ -114,3 +114,12 @@ def test_g70_g71_in_a_mill_post_are_inch_and_metric_input(code, x):
 def test_g71_with_a_lathe_cycles_words_stays_a_refused_cycle():
     with pytest.raises(GCodeError, match=r":2:1: G71 lathe roughing cycle: not supported \(its P word\)"):
         parse_program("G21 G0 X5 Z2\nG71 P100 Q200 R1\nM30\n", context=_in_dialect("fanuc"))
+
+
+def test_haas_3026_is_the_tool_in_the_spindle():
+    # a Haas shop macro: "#4= #[2400 + #3026]" reads the diameter geometry of the tool in the spindle (Haas mill
+    # operator's manual, "Macros": #3026 tool in spindle, #2401-#2600 diameter geometry)
+    tools = {4: Tool(number=4, radius=40.0)}
+    ctx = dataclasses.replace(_in_dialect("haas"), tools=tools)
+    prog = parse_program("G21 G90 G54\nT4 M6\n#4= #[2400. + #3026]\nG0 X#4 Y#3026\nM30\n", context=ctx)
+    assert _xy(prog)[-1] == [180.0, 54.0]
