@@ -546,6 +546,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         back_to = next((w for w in words if w.letter == "P"), None) if frames else None
         rest = [w for w in words if w is not m99 and w is not back_to]
         if not frames:
+            if on_note is not None:
+                on_note(_main_m99_note(prog, pc))
             yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
             return
         if rest:
@@ -562,6 +564,16 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
                 params.pop()
             pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
     _no_return(prog, frames)
+
+
+def _main_m99_note(prog: _Program, pc: int) -> str:
+    """The note of an ``M99`` the main program reaches: Fanuc and Haas return to its start and run it again
+    (Haas mill operator's manual, "M99 Subprogram Return or Loop": in a main program M99 "loops back to the
+    start"), vcnc runs it once; programs the file holds after it (a subprogram stored before its main
+    program, ``O1000 ... M99 % O0001 (MAIN) ... M98 P1000``) are not run."""
+    later = sorted((i, n) for n, i in prog.fanuc.items() if i > pc)
+    after = f"; the file's later programs ({', '.join(f'O{n:04d}' for _, n in later)}) are not run" if later else ""
+    return f"M99 ends the main program (Fanuc/Haas would run it again from its start){after}"
 
 
 def _no_return(prog: _Program, frames: list[_Frame]) -> None:

@@ -123,3 +123,12 @@ def test_haas_3026_is_the_tool_in_the_spindle():
     ctx = dataclasses.replace(_in_dialect("haas"), tools=tools)
     prog = parse_program("G21 G90 G54\nT4 M6\n#4= #[2400. + #3026]\nG0 X#4 Y#3026\nM30\n", context=ctx)
     assert _xy(prog)[-1] == [180.0, 54.0]
+
+
+def test_a_main_level_m99_and_the_programs_after_it_are_noted():
+    # a simulator lesson's file: the subprogram O1000 (ending with M99) stored before its main program O0001; vcnc
+    # runs the file's first program, whose M99 ends the run (a Fanuc would run it again), and says what it left
+    text = "%\nO1000\nG21 G90 G0 X1 Y1 Z5\nM99\n%\n%\nO0001 (MAIN)\nT1 M06\nM98 P1000 L1\nM30\n%\n"
+    prog = parse_program(text, context=_in_dialect("fanuc"))
+    assert _xy(prog) == [[101.0, 51.0]]
+    assert any("M99 ends the main program" in n and "later programs (O0001) are not run" in n for n in prog.notes)
