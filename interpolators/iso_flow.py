@@ -566,6 +566,10 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     _no_return(prog, frames)
 
 
+#: An M99 word in a line of code.
+_M99 = re.compile(r"M\s*0*99(?![0-9.])", re.I)
+
+
 def _main_m99_note(prog: _Program, pc: int) -> str:
     """The note of an ``M99`` the main program reaches: Fanuc and Haas return to its start and run it again
     (Haas mill operator's manual, "M99 Subprogram Return or Loop": in a main program M99 "loops back to the
@@ -607,11 +611,15 @@ def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, wh
     ``letter`` "Q": the block ``N<Q>`` of an ``M98 Q<n>`` without P (:func:`_subprogram_start`)."""
     p = next((w for w in words if w.letter == letter), None)
     target = None if p is None or p.value != round(p.value) else prog.macro.find(round(p.value), pc)
+    what = "M97 local subprogram call" if letter == "P" else "M98 Q subprogram call (no P: this program)"
+    expected = f"{call.text.upper()} {letter}<n> with a block N<n> in the same program, ending with M99"
     if target is None:
         missing = f"no {letter} word" if p is None else f"no block N{p.value:g} in this program"
-        what = "M97 local subprogram call" if letter == "P" else "M98 Q subprogram call (no P: this program)"
-        where.fail(f"{what}: {missing}", column=call.column, text=call.text,
-                   expected=f"{call.text.upper()} {letter}<n> with a block N<n> in the same program, ending with M99")
+        where.fail(f"{what}: {missing}", column=call.column, text=call.text, expected=expected)
+    if target <= pc and not any(c is not None and _M99.search(c) for c in prog.code[target:pc]):
+        # the called blocks run into this call again before any M99: it would call itself without end
+        where.fail(f"{what}: block N{p.value:g} comes before the call and reaches it again without an M99",
+                   column=call.column, text=call.text, expected=expected)
     return target
 
 

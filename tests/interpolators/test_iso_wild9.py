@@ -132,3 +132,11 @@ def test_a_main_level_m99_and_the_programs_after_it_are_noted():
     prog = parse_program(text, context=_in_dialect("fanuc"))
     assert _xy(prog) == [[101.0, 51.0]]
     assert any("M99 ends the main program" in n and "later programs (O0001) are not run" in n for n in prog.notes)
+
+
+def test_m98_q_without_p_that_would_call_itself_is_refused():
+    # a Mach4 test file: 'M98 Q1 (Subroutines\9010.tap)' names its file in a comment; read as a call of this
+    # program's N1, which lies before the call and runs into it again without an M99
+    with pytest.raises(GCodeError, match=r":3:1: M98 Q subprogram call \(no P: this program\): block N1 comes before "
+                                         r"the call and reaches it again without an M99"):
+        parse_program("G21 G90\nN1 (SPOT DRILL)\nM98 Q1 (SUB.TAP)\nM30\n", context=_in_dialect("fanuc"))
