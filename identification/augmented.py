@@ -109,6 +109,10 @@ class SimSpec:
         Samples (>= 0).
     saturation : float
         u_max [mm/s^2] (inf: none).
+    anti_windup : bool
+        The law's accumulator stops at the limit (conditional integration).
+    integral_lead : float
+        tau [s]: the accumulator integrates e + tau de/dt (with anti_windup).
     backlash : float
         b [mm] (0: none).
     resonance : ndarray (4,)
@@ -127,6 +131,8 @@ class SimSpec:
     viscous_rate: float = 0.0
     delay: int = 0
     saturation: float = math.inf
+    anti_windup: bool = False
+    integral_lead: float = 0.0
     backlash: float = 0.0
     resonance: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(4))
 
@@ -214,7 +220,9 @@ def simulate_augmented(
         tm = two_mass_matrices(res, float(spec.viscous_rate), T, m)
         run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),
                   p["d0"], p["d1"], wext, st, float(spec.asym), float(spec.pp_period), pp_coef,
-                  int(spec.delay), float(spec.saturation), float(spec.backlash), res, tm, pos, vel)
+                  int(spec.delay), float(spec.saturation), bool(spec.anti_windup),
+                  float(spec.integral_lead), float(spec.backlash), res, tm,
+                  pos, vel)
     else:
         dm = discretize(p, T)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,

@@ -67,6 +67,8 @@ typedef struct {
     double viscous_rate;     /* plant viscous rate c [1/s] */
     int delay;               /* control delay [samples] */
     double saturation;       /* u_max [mm/s^2] (inf: none) */
+    int anti_windup;         /* structural: the accumulator stops at u_max (conditional integration) */
+    double integral_lead;    /* structural: tau [s], the accumulator integrates e + tau de/dt */
     double backlash;         /* play width [mm] (<= 0: none) */
     double res[4];           /* f [Hz] (<= 0: rigid), zeta, table share r, measured at table (1/0) */
     int substeps;            /* plant steps per sample (computed at initialisation) */
@@ -101,6 +103,7 @@ typedef struct {
     /* split-form state */
     double xm, vm, xt, vt, xb;       /* driven (motor) mass, table, load side of the play [mm, mm/s] */
     double integ, yprev, rprev, vrprev;
+    double held, eprev;              /* accumulator steps held back by the anti-windup; e of the last sample */
     double ubuf[VCNC_MAX_DELAY + 1]; /* delay line of u */
     /* inputs */
     double x_ref;            /* commanded position [mm] */
