@@ -39,8 +39,10 @@ d0 (+ s+), and breaks away against them (Karnopp). Switching w on a sampled sign
 lets a stopped mass chatter and biases every element that acts near reversals (a 60 Hz mode on
 the PID machine came out at 63 Hz with a third of its damping). The other terms of w
 (w_ext, position_periodic) are loads, evaluated every step. The elements are then the physical
-ones: ``delay`` holds u back whole samples, ``saturation`` clips
-u at +/-u_max [mm/s^2 of acceleration demand], ``backlash`` puts a play operator of width b between
+ones: ``delay`` holds u back whole samples, ``saturation`` clips u at +/-u_max [mm/s^2 of
+acceleration demand] (with ``anti_windup`` the law's accumulator ``a3 int(e + tau de/dt) dt +
+(b2 - a2) x_r`` skips the step of a sample whose demand is beyond u_max when the step pushes it
+further out, as the machines' servo laws do), ``backlash`` puts a play operator of width b between
 the driven mass and the measured position (a loop closed on a linear scale), ``resonance`` splits
 the mass in two (motor share 1 - r, table share r) joined by a spring and damper of free-free
 frequency f and damping zeta, measured at the motor or at the table.
