@@ -28,7 +28,8 @@
  *
  * SPLIT FORM (an in-loop element: delay, saturation, backlash, resonance): the sampled
  * controller + plant loop of identification.augmented._run_split, in absolute coordinates, with
- * the same disturbance terms (evaluated at the driven mass) and drift.
+ * the same disturbance terms (evaluated at the driven mass) and drift, and the saturation's
+ * anti-windup (conditional integration of the law's accumulator, identification.kernels.run_split).
  */
 #ifndef VCNC_MODEL_H
 #define VCNC_MODEL_H
