@@ -28,7 +28,7 @@ class Saturation(Effect):
         laws do by default: :class:`controllers.Controller`; K. J. Astrom, L. Rundqwist, "Integrator
         windup and how to avoid it", ACC 1989; K. J. Astrom, R. M. Murray, "Feedback Systems",
         Sec. 10.4). False: nothing is held back, as in the thesis' bare PID. A model file without
-        the key reads as False (the element before session 19).
+        the key reads as False (as the element read before the key existed).
     integral_lead : float
         tau [s] (>= 0, with ``anti_windup``): the accumulator is ``a3 int(e + tau de/dt) dt +
         (b2 - a2) x_r`` of the split controller (module :mod:`identification.augmented`). Which
