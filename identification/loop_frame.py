@@ -87,14 +87,16 @@ def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_sam
     base = without_offset(capture, axis, offset_mm)
     i = base.axis_index(axis)
     xr = base.reference[:, i]
-    delayed = substep_reference(xr, base.sample_time).delayed(delay_samples).at_samples()
-    if delay_samples > 0 and starts_at_rest(xr, delayed, base.measured[:, i]):
-        # a record that starts at rest: the loop's reference before the first recorded sample is
-        # the first value held, so nothing needs cutting
-        return _with_reference(base, i, delayed), 0
-    n, cut = len(base), int(math.ceil(abs(delay_samples)))
-    lo, hi = (cut, n) if delay_samples > 0 else (0, n - cut)
-    shifted = _with_reference(base, i, delayed).slice(lo, hi)
+    shifted = base
+    if delay_samples != 0.0:
+        delayed = substep_reference(xr, base.sample_time).delayed(delay_samples).at_samples()
+        if delay_samples > 0 and starts_at_rest(xr, delayed, base.measured[:, i]):
+            # a record that starts at rest: the loop's reference before the first recorded sample is
+            # the first value held, so nothing needs cutting
+            return _with_reference(base, i, delayed), 0
+        n, cut = len(base), int(math.ceil(abs(delay_samples)))
+        lo, hi = (cut, n) if delay_samples > 0 else (0, n - cut)
+        shifted = _with_reference(base, i, delayed).slice(lo, hi)
     start = settled_start(shifted.reference[:, i], shifted.measured[:, i]) or 0
     if start == 0:
         return shifted, 0
