@@ -8,7 +8,15 @@ each found by its own module and recorded in the model's ``fit``:
    ``fit.offset``): removed from the measured position;
 2. the reference dead time (:mod:`identification.dead_time`, ``delay_s``): the reference
    delayed; the samples the shift leaves unknown are dropped, unless the record starts with the
-   axis at rest (then the loop's reference before the record is the first value, held);
+   axis at rest (then the loop's reference before the record is the first value, held). The
+   delay is taken on the sub-step grid the record is predicted on (:mod:`identification.substeps`:
+   the cubic spline through the samples, 1 ms or finer), as the joint dead-time refinement and
+   the setpoint filter's search take it, not linearly between the recorded samples: on a record
+   at 3 ms the chord misses an accelerating reference by a T^2 f (1 - f) / 2 at a fractional shift
+   f (2.2 um at 2000 mm/s^2 and f = 0.4), and the model fitted on it imitated that error with its
+   poles (fadal-smc recorded 0.1 s ahead at 3 ms: p 16.4 Hz at 0.81 um RMS; on the sub-step
+   delay, p on the record's 167 Hz Nyquist bound at 0.75 um, as the 1 ms capture fitted at that
+   dead time puts it beyond, 270 Hz; the smclag helper, ``benchmarks/recorded_traces.py``);
 3. a record that starts with the axis moving (:func:`identification.segments.settled_start`,
    ``fit.record_start``): the samples before the axis first rests dropped, so that the model's
    simulation from rest starts where the axis is at rest.
@@ -20,11 +28,12 @@ the offset and the dropped samples describe the recording and stay in ``fit``.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
-from identification.dead_time import delay_reference, loop_capture
 from identification.segments import SETTLED_SHARE, settled_start, starts_from_standstill
+from identification.substeps import substep_reference
 from vcnc.core.capture import Capture
 
 __all__ = ["without_offset", "loop_frame", "offset_of", "starts_at_rest"]
@@ -77,18 +86,28 @@ def loop_frame(capture: Capture, axis: str, *, offset_mm: float = 0.0, delay_sam
     """
     base = without_offset(capture, axis, offset_mm)
     i = base.axis_index(axis)
-    if delay_samples > 0:
-        # a record that starts at rest: the loop's reference before the first recorded sample is
-        # the first value held (delay_reference), so nothing needs cutting
-        whole = dataclasses.replace(base, reference=base.reference.copy())
-        whole.reference[:, i] = delay_reference(base.reference[:, i], delay_samples)
-        if starts_at_rest(base.reference[:, i], whole.reference[:, i], whole.measured[:, i]):
-            return whole, 0
-    shifted = loop_capture(base, axis, delay_samples)
+    xr = base.reference[:, i]
+    shifted = base
+    if delay_samples != 0.0:
+        delayed = substep_reference(xr, base.sample_time).delayed(delay_samples).at_samples()
+        if delay_samples > 0 and starts_at_rest(xr, delayed, base.measured[:, i]):
+            # a record that starts at rest: the loop's reference before the first recorded sample is
+            # the first value held, so nothing needs cutting
+            return _with_reference(base, i, delayed), 0
+        n, cut = len(base), int(math.ceil(abs(delay_samples)))
+        lo, hi = (cut, n) if delay_samples > 0 else (0, n - cut)
+        shifted = _with_reference(base, i, delayed).slice(lo, hi)
     start = settled_start(shifted.reference[:, i], shifted.measured[:, i]) or 0
     if start == 0:
         return shifted, 0
     return shifted.slice(start, len(shifted)), start
+
+
+def _with_reference(capture: Capture, i: int, reference: np.ndarray) -> Capture:
+    """``capture`` with axis ``i``'s reference replaced by ``reference``."""
+    whole = np.array(capture.reference, dtype=float)
+    whole[:, i] = reference
+    return dataclasses.replace(capture, reference=whole)
 
 
 def offset_of(fit: dict) -> float:
