@@ -853,6 +853,13 @@ _MIN_MODE_COHERENCE = 0.5
 _STRUCTURE_SHARE = {"position": 0.2, "velocity": 0.2, "direction": 0.2, "acceleration": 0.2, "time": 0.35}
 
 
+#: What a residual explained by time says (a drift the ``drift`` effect did not take: the reduced model's slow
+#: pole p imitates a drift of the measured channel, fadal-pid with 100 um/min: p 0.02 Hz for 1.14, and the
+#: effect then lowers the held-out error too little to be kept)
+_DRIFT_ADVICE = ("; a trend in time is a drift of the measured channel against the commanded one (thermal growth) "
+                 "that the fit's slow pole imitates: vcnc identify --remove-drift takes it out before the fit")
+
+
 def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: bool) -> dict[str, Any]:
     """Evidence on the final residual (:func:`identification.residual.residual_evidence`) and a statement."""
     from identification.residual import residual_evidence
@@ -866,7 +873,8 @@ def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: b
         what = ", ".join(f"{k} ({100 * ev['explained_share'][k]:.0f} % of its variance)" for k in hits)
         head = ("no effect of the vocabulary explains the remaining residual" if stopped
                 else "the remaining residual (effects stopped at max_effects)")
-        ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}"
+        ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}" + (
+            _DRIFT_ADVICE if "time" in hits else "")
     else:
         ev["statement"] = (f"the remaining residual (RMS {ev['rms_um']:.3g} um) shows no dependence on position, "
                            f"velocity, direction, acceleration or time; spectral peaks {peaks}")
