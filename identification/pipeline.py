@@ -76,7 +76,7 @@ def identify(
     if remove_drift:
         capture = without_drift(capture, axis, drift)
         model = fit(capture)
-    model.fit["drift"] = drift_record(capture, drift, float(model.fit["rms_um"]), removed=remove_drift)
+    model.fit["drift"] = drift_record(capture, axis, drift, float(model.fit["rms_um"]), removed=remove_drift)
     if not diagnose:
         return model
     in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
