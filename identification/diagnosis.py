@@ -808,9 +808,13 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     # action, p -> 0, below the thesis' 0.2 Hz bound): effects found then may compensate for it
     on_bounds = _poles_on_bounds(model, data)
     if on_bounds:
+        drift = (model.fit or {}).get("drift") or {}
+        advice = (f"a drift of the measured channel against the commanded one ({drift.get('rate_um_min', 0.0):.4g} "
+                  "um/min, fit.drift) holds them there: remove it (identify(..., remove_drift=True), vcnc identify "
+                  "--remove-drift)" if drift.get("named") and not drift.get("removed") else
+                  "widen the bounds if the loop has no integral action (p -> 0)")
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
-                                 "structure or the bounds do not fit these data; widen the bounds if the loop "
-                                 "has no integral action (p -> 0)")
+                                 "structure or the bounds do not fit these data; " + advice)
         log.warning("diagnosis: %s", validation["warning"])
     if len(stages) == 1:
         return dataclasses.replace(model, validation=validation, effects=[])
