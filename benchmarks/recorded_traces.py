@@ -40,8 +40,9 @@ from it, then runs :func:`identification.identify` (no diagnosis) on the recordi
   0.1 s ahead, 0.1 um digits), a LinuxCNC 2.9 halscope log and a logger CSV in ms and um with a
   decimal comma (:func:`vcnc.capture.read_capture`, formats of :mod:`vcnc.traces`), ``drift<um/min>``
   thermal growth of the measured channel (a ramp, 1, 10, 100 um/min) and ``settle10`` an offset creeping
-  to 10 um (time constant :data:`SETTLE_S`), each fitted with the drift removed (``identify(...,
-  remove_drift=True)``, :mod:`identification.measured_drift`), ``swap``/``swapnoise`` the commanded and
+  to 10 um (time constant :data:`SETTLE_S`), fitted as identify does by default (``drift="auto"``,
+  :mod:`identification.measured_drift`: a drift large against the prediction error removed, a small one
+  left in), ``swap``/``swapnoise`` the commanded and
   measured channels swapped (without and with 0.5 um noise on the measured one), which pass when
   identify refuses them naming the swap (:func:`identification.capture_checks.check_swapped`).
 - **tolerances**: pass when every pole (omega_n, zeta, p) is within :data:`POLE_TOL` of the truth
@@ -152,10 +153,10 @@ CASES: dict[str, dict] = {
     "tnc": {"lead_s": 0.1, "decimate_s": 0.003, "file": "tnc"},
     "hal": {"file": "hal"},
     "csv": {"lead_s": 0.05, "file": "csv"},
-    "drift1": {"drift_um_min": 1.0, "remove_drift": True},
-    "drift10": {"drift_um_min": 10.0, "remove_drift": True},
-    "drift100": {"drift_um_min": 100.0, "remove_drift": True},
-    "settle10": {"settle_um": 10.0, "remove_drift": True},
+    "drift1": {"drift_um_min": 1.0},
+    "drift10": {"drift_um_min": 10.0},
+    "drift100": {"drift_um_min": 100.0},
+    "settle10": {"settle_um": 10.0},
     "swap": {"swap": True},
     "swapnoise": {"swap": True, "noise": 0.5e-3},
 }
@@ -337,7 +338,7 @@ def run_case(machine: str, case: str, cache: dict, folder: Path) -> dict:
     t0 = time.perf_counter()
     if rec.get("swap"):
         return swap_named(recorded, machine, case, t0)
-    model = identify(recorded, axis="x", diagnose=False, remove_drift=rec.get("remove_drift", False))
+    model = identify(recorded, axis="x", diagnose=False)
     seconds = time.perf_counter() - t0
     err = pole_error(model.poles, truth.poles)
     in_loop = model.delay_s - rec.get("lead_s", 0.0)

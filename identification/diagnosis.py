@@ -810,8 +810,8 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     if on_bounds:
         drift = (model.fit or {}).get("drift") or {}
         advice = (f"a drift of the measured channel against the commanded one ({drift.get('rate_um_min', 0.0):.4g} "
-                  "um/min, fit.drift) holds them there: remove it (identify(..., remove_drift=True), vcnc identify "
-                  "--remove-drift)" if drift.get("named") and not drift.get("removed") else
+                  "um/min, fit.drift) holds them there: remove it (identify(..., drift='remove'), vcnc identify "
+                  "--drift remove)" if drift.get("named") and not drift.get("removed") else
                   "widen the bounds if the loop has no integral action (p -> 0)")
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
                                  "structure or the bounds do not fit these data; " + advice)
@@ -861,7 +861,7 @@ _STRUCTURE_SHARE = {"position": 0.2, "velocity": 0.2, "direction": 0.2, "acceler
 #: pole p imitates a drift of the measured channel, fadal-pid with 100 um/min: p 0.02 Hz for 1.14, and the
 #: effect then lowers the held-out error too little to be kept)
 _DRIFT_ADVICE = ("; a trend in time is a drift of the measured channel against the commanded one (thermal growth) "
-                 "that the fit's slow pole imitates: vcnc identify --remove-drift takes it out before the fit")
+                 "that the fit's slow pole imitates: vcnc identify --drift remove takes it out before the fit")
 
 
 def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: bool) -> dict[str, Any]:

@@ -13,8 +13,9 @@ to be kept ("no effect lowers the held-out error significantly" at 120 um/min).
 :func:`identification.datum_offset.estimate_offset` takes an offset; :func:`measured_drift` runs it in a
 fitted model's loop frame (its dead time and datum offset; a recorded lead misfits the regression and
 bends the polynomial by hundreds of um); :func:`identification.pipeline.identify` records it in
-``fit.drift`` (:func:`drift_record`) and, with ``remove_drift``, takes it off the measured channel and
-fits again.
+``fit.drift`` (:func:`drift_record`) and, by default when the drift is large against the prediction error
+and its removal predicts twice better, takes it off the measured channel and fits again
+(:func:`fit_with_drift`).
 """
 
 from __future__ import annotations
@@ -27,8 +28,8 @@ from identification.loop_frame import loop_frame, offset_of
 from identification.regressor import RegressorOptions, regressor
 from vcnc.core.capture import Capture
 
-__all__ = ["estimate_drift", "measured_drift", "drift_curve", "without_drift", "drift_record", "DRIFT_DEGREE",
-           "DRIFT_RATIO", "DRIFT_TRACKING_SHARE"]
+__all__ = ["estimate_drift", "measured_drift", "drift_curve", "without_drift", "drift_record", "fit_with_drift",
+           "DRIFT_MODES", "DRIFT_DEGREE", "DRIFT_RATIO", "DRIFT_TRACKING_SHARE", "DRIFT_GAIN"]
 
 #: Degree of the polynomial in time a drift is estimated as (:func:`estimate_drift`): a ramp and its bend,
 #: enough for thermal growth over a record of seconds to minutes, linear or settling.
@@ -44,6 +45,13 @@ DRIFT_RATIO = 3.0
 #: ``tests/identification/test_trace_pathologies.py``: 2e-7 um RMS), where the drift's estimate, 0.026 um, is
 #: 6e-4 of the 46 um tracking error; fadal-pid's 100 um/min drift is 13.1 um of its 36 um.
 DRIFT_TRACKING_SHARE = 0.005
+#: Least ratio of prediction RMS (the drift kept / removed) for ``drift="auto"`` to remove a named drift [-], as
+#: for a datum offset (:data:`identification.datum_offset.MIN_GAIN`): fadal-pid with 100 um/min 2.12 -> 0.754 um,
+#: with an offset settling by 10 um 1.95 -> 0.776 um.
+DRIFT_GAIN = 2.0
+#: What :func:`fit_with_drift` does with the drift: remove it when it is named and its removal predicts
+#: :data:`DRIFT_GAIN` times better, always, or never (only record it).
+DRIFT_MODES = ("auto", "remove", "keep")
 
 
 def estimate_drift(reference: np.ndarray, measured: np.ndarray, sample_time: float, *,
@@ -115,13 +123,12 @@ def without_drift(capture: Capture, axis: str, drift: np.polynomial.Polynomial |
     return dataclasses.replace(capture, measured=measured)
 
 
-def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, rms_um: float, *,
-                 removed: bool) -> dict:
+def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, rms_um: float) -> dict:
     """``fit.drift``: ``polynomial_mm`` (the coefficients of :func:`measured_drift`, mm, mm/s, mm/s^2 from the
     capture's first sample), ``span_um`` (at the record's end), ``rate_um_min`` (its mean rate), ``max_um``
     (largest distance from the start), ``ratio`` (``max_um`` over the prediction RMS ``rms_um``), ``removed``
-    (taken off before the fit) and ``named`` (removed, or a ratio of at least :data:`DRIFT_RATIO` and a drift
-    of at least :data:`DRIFT_TRACKING_SHARE` of the tracking error)."""
+    (taken off before the fit: :func:`fit_with_drift` sets it) and ``named`` (a ratio of at least
+    :data:`DRIFT_RATIO` and a drift of at least :data:`DRIFT_TRACKING_SHARE` of the tracking error)."""
     d = drift_curve(capture, drift)
     i = capture.axis_index(axis)
     tracking = float(np.sqrt(np.mean((capture.reference[:, i] - capture.measured[:, i]) ** 2)))
@@ -130,5 +137,27 @@ def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, r
     ratio = max_um / rms_um if rms_um > 0 else float("inf")
     return {"polynomial_mm": [float(c) for c in drift.coef], "span_um": span_um,
             "rate_um_min": span_um * 60.0 / duration_s if duration_s > 0 else 0.0, "max_um": max_um,
-            "ratio": ratio, "removed": removed,
-            "named": removed or (ratio >= DRIFT_RATIO and max_um >= DRIFT_TRACKING_SHARE * tracking * 1e3)}
+            "ratio": ratio, "removed": False,
+            "named": bool(ratio >= DRIFT_RATIO and max_um >= DRIFT_TRACKING_SHARE * tracking * 1e3)}
+
+
+def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
+    """``(capture, model)``: ``fit(capture)``, and with the measured channel's drift (:func:`measured_drift`, in
+    that fit's loop frame) taken off and fitted again as ``mode`` says (:data:`DRIFT_MODES`); the model's
+    ``fit.drift`` records it (:func:`drift_record`; with ``rms_kept_um`` and ``rms_removed_um`` when the refit
+    was made). The capture returned is the one the model was fitted to."""
+    if mode not in DRIFT_MODES:
+        raise ValueError(f"drift must be one of {DRIFT_MODES}, got {mode!r}")
+    model = fit(capture)
+    drift = measured_drift(capture, model, axis)
+    record = drift_record(capture, axis, drift, float(model.fit["rms_um"]))
+    if mode == "remove" or (mode == "auto" and record["named"]):
+        corrected = without_drift(capture, axis, drift)
+        refit = fit(corrected)
+        kept, removed = float(model.fit["rms_um"]), float(refit.fit["rms_um"])
+        record.update(rms_kept_um=kept, rms_removed_um=removed)
+        if mode == "remove" or kept >= DRIFT_GAIN * removed:
+            capture, model = corrected, refit
+            record["removed"] = True
+    model.fit["drift"] = record
+    return capture, model

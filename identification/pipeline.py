@@ -20,7 +20,7 @@ from identification.diagnosis import diagnose as diagnose_residual
 from identification.ga import GAOptions
 from identification.identify import fit_reduced_model
 from identification.loop_frame import loop_frame, offset_of
-from identification.measured_drift import drift_record, measured_drift, without_drift
+from identification.measured_drift import fit_with_drift
 from identification.parallel import serial_blas
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions
@@ -43,7 +43,7 @@ def identify(
     ga_options: GAOptions | None = None,
     delay: str | float = "auto",
     setpoint_filter: bool = True,
-    remove_drift: bool = False,
+    drift: str = "auto",
 ) -> ReducedAxisModel:
     """Identify the model of one axis from a capture: the reduced model (thesis Ch. 3-4) and, by
     default, the physical effects its residual shows.
@@ -54,10 +54,11 @@ def identify(
         As for :func:`identification.identify.fit_reduced_model`.
     diagnose : bool
         Run the residual diagnosis (default). False returns the fitted reduced model.
-    remove_drift : bool
-        Take the measured channel's drift against the commanded one (:mod:`identification.measured_drift`),
-        estimated after a first fit, off the measured channel and fit again. Either way ``fit.drift``
-        records the drift (``named`` when it is large against the prediction error).
+    drift : str
+        The measured channel's drift against the commanded one (:mod:`identification.measured_drift`),
+        estimated after a first fit: ``"auto"`` (default) takes it off and fits again when it is large against
+        the prediction error and its removal predicts twice better, ``"remove"`` always, ``"keep"`` never;
+        ``fit.drift`` records it either way (:func:`identification.measured_drift.fit_with_drift`).
 
     Returns
     -------
@@ -71,12 +72,7 @@ def identify(
                                      regressor_options=regressor_options, seed=seed, ga_options=ga_options,
                                      delay=delay, setpoint_filter=setpoint_filter)
 
-    model = fit(capture)
-    drift = measured_drift(capture, model, axis)
-    if remove_drift:
-        capture = without_drift(capture, axis, drift)
-        model = fit(capture)
-    model.fit["drift"] = drift_record(capture, axis, drift, float(model.fit["rms_um"]), removed=remove_drift)
+    capture, model = fit_with_drift(capture, axis, fit, drift)
     if not diagnose:
         return model
     in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
@@ -108,7 +104,7 @@ class Identifier:
     ga_options: GAOptions | None = None
     delay: str | float = "auto"
     setpoint_filter: bool = True
-    remove_drift: bool = False
+    drift: str = "auto"
 
     def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
         """The fitted model of ``axis``."""
@@ -124,5 +120,5 @@ class Identifier:
             ga_options=self.ga_options,
             delay=self.delay,
             setpoint_filter=self.setpoint_filter,
-            remove_drift=self.remove_drift,
+            drift=self.drift,
         )

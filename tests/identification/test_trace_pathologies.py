@@ -250,21 +250,25 @@ def test_identify_names_a_drift_and_fits_the_loop_with_it_removed(capture):
     t = np.arange(x.size) * T
     drifting = _cap(xr, x + 0.1 / 60.0 * t)  # 100 um/min
     truth = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
-    kept = identify(drifting, diagnose=False)
-    assert kept.fit["drift"]["named"] and kept.fit["drift"]["ratio"] >= DRIFT_RATIO
+    kept = identify(drifting, diagnose=False, drift="keep")
+    assert kept.fit["drift"]["named"] and kept.fit["drift"]["ratio"] >= DRIFT_RATIO and not kept.fit["drift"]["removed"]
     assert kept.fit["drift"]["rate_um_min"] == pytest.approx(100.0, rel=0.1)
-    removed = identify(drifting, diagnose=False, remove_drift=True)
-    assert removed.fit["drift"]["removed"]
+    removed = identify(drifting, diagnose=False)  # drift="auto": named, and removing it predicts twice better
+    assert removed.fit["drift"]["removed"] and removed.fit["drift"]["rms_kept_um"] == pytest.approx(kept.fit["rms_um"])
     assert max(abs(removed.poles[k] / truth[k] - 1.0) for k in truth) < 0.05
     assert removed.fit["rms_um"] < 0.5 * kept.fit["rms_um"]
-    assert not identify(capture, diagnose=False).fit["drift"]["named"]
+    clean = identify(capture, diagnose=False).fit["drift"]
+    assert not (clean["named"] or clean["removed"])
 
 
 def test_vcnc_identify_names_a_drift_instead_of_advising_the_p_bound(capture, tmp_path, capsys):
     xr, x = _xr_x(capture)
     path = tmp_path / "trace.csv"
     _cap(xr, x + 0.02 * np.arange(x.size) * T).to_csv(path)  # 20 um/s: p on its bound without the drift's removal
-    assert main(["identify", str(path), "--no-diagnose"]) == 0
+    assert main(["identify", str(path), "--no-diagnose", "--drift", "keep"]) == 0
     out = capsys.readouterr().out
-    assert "the measured channel drifts against the commanded one by" in out and "--remove-drift" in out
+    assert "the measured channel drifts against the commanded one by" in out and "--drift remove" in out
     assert "--p-min-hz" not in out
+    assert main(["identify", str(path), "--no-diagnose"]) == 0  # by default taken out
+    out = capsys.readouterr().out
+    assert "taken out before the fit (prediction" in out and "lower bound" not in out

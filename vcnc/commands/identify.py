@@ -47,10 +47,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-setpoint-filter", action="store_true",
                         help="do not search a moving-average setpoint filter between the recorded reference and "
                              "the loop (by default one is kept when it predicts 1.6x better)")
-    parser.add_argument("--remove-drift", action="store_true",
-                        help="take a slow drift of the measured channel against the commanded one (thermal growth of "
-                             "a scale or laser logged beside the loop's encoder) out of the record and fit again; "
-                             "without it a drift is only named")
+    parser.add_argument("--drift", choices=("auto", "remove", "keep"), default="auto",
+                        help="a slow drift of the measured channel against the commanded one (thermal growth of a "
+                             "scale or laser logged beside the loop's encoder): 'auto' takes it out and fits again "
+                             "when it is large against the prediction error and that predicts twice better (default), "
+                             "'remove' always, 'keep' never (it is still named)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
     add_trace_arguments(parser)
@@ -147,10 +148,12 @@ def drift_lines(model) -> list[str]:
     what = (f"the measured channel drifts against the commanded one by {rec['span_um']:.4g} {u} over the record "
             f"({rec['rate_um_min']:.4g} {u}/min on average, at most {rec['max_um']:.4g} {u} from where it started)")
     if rec["removed"]:
-        return [f"drift: {what}; taken out before the fit (--remove-drift)"]
+        how = (f" (prediction {rec['rms_kept_um']:.4g} -> {rec['rms_removed_um']:.4g} {u})" if "rms_removed_um" in rec
+               else "")
+        return [f"drift: {what}; taken out before the fit{how}"]
     return [f"warning: {what}, {rec['ratio']:.3g} times the prediction error: thermal growth of a scale or laser "
             "logged beside the loop's own encoder, or an offset that creeps; the reduced model has no term for it and "
-            "bends its slow pole p to imitate it; fit again with --remove-drift"]
+            "bends its slow pole p to imitate it; fit again with --drift remove"]
 
 
 def bound_lines(model) -> list[str]:
@@ -172,7 +175,7 @@ def bound_lines(model) -> list[str]:
                        "at a shorter sample time")
         elif drifting and key == "p_hz":
             out.append(f"warning: {what}: the measured channel's drift (above) holds it there; fit again with "
-                       "--remove-drift")
+                       "--drift remove")
         else:
             option = _BOUND_OPTIONS.get((key, side))
             out.append(f"warning: {what}: the box, not the data, placed it there"
@@ -296,9 +299,9 @@ def run(args: argparse.Namespace) -> int:
         diagnose=not args.no_diagnose,
         delay=args.delay,
         setpoint_filter=not args.no_setpoint_filter,
-        remove_drift=args.remove_drift,
+        drift=args.drift,
     )
-    if args.remove_drift:
+    if model.fit["drift"]["removed"]:
         from identification.measured_drift import without_drift
 
         capture = without_drift(capture, axis, model.fit["drift"]["polynomial_mm"])
