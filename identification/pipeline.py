@@ -67,12 +67,12 @@ def identify(
         when effects were added, with ``effects`` and ``validation`` filled in.
     """
     def fit(capture: Capture) -> ReducedAxisModel:
-        with serial_blas():  # tall, narrow least squares: one BLAS thread is faster (identification.parallel)
-            return fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
-                                     regressor_options=regressor_options, seed=seed, ga_options=ga_options,
-                                     delay=delay, setpoint_filter=setpoint_filter)
+        return fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
+                                 regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay,
+                                 setpoint_filter=setpoint_filter)
 
-    capture, model = fit_with_drift(capture, axis, fit, drift)
+    with serial_blas():  # tall, narrow least squares: one BLAS thread is faster (identification.parallel)
+        capture, model = fit_with_drift(capture, axis, fit, drift)
     if not diagnose:
         return model
     in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
