@@ -147,10 +147,13 @@ def drift_lines(model) -> list[str]:
     u = axis_unit(model.axis, small=True)
     what = (f"the measured channel drifts against the commanded one by {rec['span_um']:.4g} {u} over the record "
             f"({rec['rate_um_min']:.4g} {u}/min on average, at most {rec['max_um']:.4g} {u} from where it started)")
+    tried = "rms_removed_um" in rec
+    how = f"prediction {rec.get('rms_kept_um', 0.0):.4g} -> {rec.get('rms_removed_um', 0.0):.4g} {u}"
     if rec["removed"]:
-        how = (f" (prediction {rec['rms_kept_um']:.4g} -> {rec['rms_removed_um']:.4g} {u})" if "rms_removed_um" in rec
-               else "")
-        return [f"drift: {what}; taken out before the fit{how}"]
+        return [f"drift: {what}; taken out before the fit" + (f" ({how})" if tried else "")]
+    if tried:
+        return [f"drift: {what}; left in: taking it out predicts {how}, less than twice better (--drift remove takes "
+                "it out)"]
     return [f"warning: {what}, {rec['ratio']:.3g} times the prediction error: thermal growth of a scale or laser "
             "logged beside the loop's own encoder, or an offset that creeps; the reduced model has no term for it and "
             "bends its slow pole p to imitate it; fit again with --drift remove"]
