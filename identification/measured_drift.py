@@ -24,6 +24,7 @@ import dataclasses
 
 import numpy as np
 
+from identification.capture_checks import NO_INTEGRAL_P_HZ
 from identification.loop_frame import loop_frame, offset_of
 from identification.regressor import RegressorOptions, regressor
 from vcnc.core.capture import Capture
@@ -124,12 +125,19 @@ def without_drift(capture: Capture, axis: str, drift: np.polynomial.Polynomial |
     return dataclasses.replace(capture, measured=measured)
 
 
-def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, rms_um: float) -> dict:
+def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, rms_um: float, p_hz: float) -> dict:
     """``fit.drift``: ``polynomial_mm`` (the coefficients of :func:`measured_drift`, mm, mm/s, mm/s^2 from the
     capture's first sample), ``span_um`` (at the record's end), ``rate_um_min`` (its mean rate), ``max_um``
     (largest distance from the start), ``ratio`` (``max_um`` over the prediction RMS ``rms_um``), ``removed``
     (taken off before the fit: :func:`fit_with_drift` sets it) and ``named`` (a ratio of at least
-    :data:`DRIFT_RATIO` and a drift of at least :data:`DRIFT_TRACKING_SHARE` of the tracking error)."""
+    :data:`DRIFT_RATIO` and a drift of at least :data:`DRIFT_TRACKING_SHARE` of the tracking error, by a fit
+    with integral action).
+
+    A loop without integral action (the fit's slow pole ``p_hz`` at most
+    :data:`identification.capture_checks.NO_INTEGRAL_P_HZ`) rests off its reference by its load over its
+    gain, which friction and the direction of travel change over the record: a slow offset the regression
+    cannot tell from a drift (EMPS, p on its 0.001 Hz bound: 4.5 um over DATA_EMPS.mat's 25 s, 136 um over
+    DATA_EMPS_PULSES.mat, twice the prediction error each), so such a fit's drift is not named."""
     d = drift_curve(capture, drift)
     i = capture.axis_index(axis)
     tracking = float(np.sqrt(np.mean((capture.reference[:, i] - capture.measured[:, i]) ** 2)))
@@ -139,7 +147,8 @@ def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, r
     return {"polynomial_mm": [float(c) for c in drift.coef], "span_um": span_um,
             "rate_um_min": span_um * 60.0 / duration_s if duration_s > 0 else 0.0, "max_um": max_um,
             "ratio": ratio, "removed": False,
-            "named": bool(ratio >= DRIFT_RATIO and max_um >= DRIFT_TRACKING_SHARE * tracking * 1e3)}
+            "named": bool(ratio >= DRIFT_RATIO and max_um >= DRIFT_TRACKING_SHARE * tracking * 1e3
+                          and p_hz > NO_INTEGRAL_P_HZ)}
 
 
 def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
@@ -151,7 +160,7 @@ def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
         raise ValueError(f"drift must be one of {DRIFT_MODES}, got {mode!r}")
     model = fit(capture)
     drift = measured_drift(capture, model, axis)
-    record = drift_record(capture, axis, drift, float(model.fit["rms_um"]))
+    record = drift_record(capture, axis, drift, float(model.fit["rms_um"]), float(model.poles["p_hz"]))
     if mode == "remove" or (mode == "auto" and record["named"]):
         corrected = without_drift(capture, axis, drift)
         refit = fit(corrected)
