@@ -30,7 +30,7 @@ from identification.regressor import RegressorOptions, regressor
 from vcnc.core.capture import Capture
 
 __all__ = ["estimate_drift", "measured_drift", "drift_curve", "without_drift", "drift_record", "fit_with_drift",
-           "DRIFT_MODES", "DRIFT_DEGREE", "DRIFT_RATIO", "DRIFT_TRACKING_SHARE", "DRIFT_GAIN"]
+           "DRIFT_MODES", "DRIFT_DEGREE", "DRIFT_RATIO", "MIN_DRIFT_UM", "DRIFT_GAIN"]
 
 #: Degree of the polynomial in time a drift is estimated as (:func:`estimate_drift`): a ramp and its bend,
 #: enough for thermal growth over a record of seconds to minutes, linear or settling.
@@ -42,11 +42,12 @@ DRIFT_DEGREE = 2
 #: with 10 um/min (its pair 7 % off): 1.7; the records of ``benchmarks/recorded_traces.py`` without a
 #: drift at most 0.4.
 DRIFT_RATIO = 1.5
-#: ... and when it is at least this share of the RMS tracking error (commanded less measured position) [-]: a
-#: record without noise is predicted to within numerical error (the exact model of
-#: ``tests/identification/test_trace_pathologies.py``: 2e-7 um RMS), where the drift's estimate, 0.026 um, is
-#: 6e-4 of the 46 um tracking error; fadal-pid's 100 um/min drift is 13.1 um of its 36 um.
-DRIFT_TRACKING_SHARE = 0.005
+#: ... and when it moves it by at least this much [um] (mdeg on a rotary axis): a record without noise is
+#: predicted to within numerical error (the exact model of ``tests/identification/test_trace_pathologies.py``:
+#: 2e-7 um RMS) and a smaller estimate (0.03 um there, at most 0.31 um on the records of
+#: ``benchmarks/recorded_traces.py`` without a drift) is then many times its RMS; a drift this small does not
+#: bend the fit of a record with noise (fadal-pid with 1 um/min, 0.13 um: its poles as without).
+MIN_DRIFT_UM = 0.5
 #: Least ratio of prediction RMS (the drift kept / removed) for ``drift="auto"`` to remove a named drift [-], as
 #: for a datum offset (:data:`identification.datum_offset.MIN_GAIN`): fadal-pid with 100 um/min 2.12 -> 0.754 um,
 #: with an offset settling by 10 um 1.95 -> 0.776 um.
@@ -125,13 +126,12 @@ def without_drift(capture: Capture, axis: str, drift: np.polynomial.Polynomial |
     return dataclasses.replace(capture, measured=measured)
 
 
-def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, rms_um: float, p_hz: float) -> dict:
+def drift_record(capture: Capture, drift: np.polynomial.Polynomial, rms_um: float, p_hz: float) -> dict:
     """``fit.drift``: ``polynomial_mm`` (the coefficients of :func:`measured_drift`, mm, mm/s, mm/s^2 from the
     capture's first sample), ``span_um`` (at the record's end), ``rate_um_min`` (its mean rate), ``max_um``
     (largest distance from the start), ``ratio`` (``max_um`` over the prediction RMS ``rms_um``), ``removed``
     (taken off before the fit: :func:`fit_with_drift` sets it) and ``named`` (a ratio of at least
-    :data:`DRIFT_RATIO` and a drift of at least :data:`DRIFT_TRACKING_SHARE` of the tracking error, by a fit
-    with integral action).
+    :data:`DRIFT_RATIO` and a drift of at least :data:`MIN_DRIFT_UM`, by a fit with integral action).
 
     A loop without integral action (the fit's slow pole ``p_hz`` at most
     :data:`identification.capture_checks.NO_INTEGRAL_P_HZ`) rests off its reference by its load over its
@@ -139,16 +139,13 @@ def drift_record(capture: Capture, axis: str, drift: np.polynomial.Polynomial, r
     cannot tell from a drift (EMPS, p on its 0.001 Hz bound: 4.5 um over DATA_EMPS.mat's 25 s, 136 um over
     DATA_EMPS_PULSES.mat, twice the prediction error each), so such a fit's drift is not named."""
     d = drift_curve(capture, drift)
-    i = capture.axis_index(axis)
-    tracking = float(np.sqrt(np.mean((capture.reference[:, i] - capture.measured[:, i]) ** 2)))
     duration_s = float(capture.t[-1] - capture.t[0])
     span_um, max_um = float(d[-1]) * 1e3, float(np.max(np.abs(d))) * 1e3
     ratio = max_um / rms_um if rms_um > 0 else float("inf")
     return {"polynomial_mm": [float(c) for c in drift.coef], "span_um": span_um,
             "rate_um_min": span_um * 60.0 / duration_s if duration_s > 0 else 0.0, "max_um": max_um,
             "ratio": ratio, "removed": False,
-            "named": bool(ratio >= DRIFT_RATIO and max_um >= DRIFT_TRACKING_SHARE * tracking * 1e3
-                          and p_hz > NO_INTEGRAL_P_HZ)}
+            "named": bool(ratio >= DRIFT_RATIO and max_um >= MIN_DRIFT_UM and p_hz > NO_INTEGRAL_P_HZ)}
 
 
 def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
@@ -160,7 +157,7 @@ def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
         raise ValueError(f"drift must be one of {DRIFT_MODES}, got {mode!r}")
     model = fit(capture)
     drift = measured_drift(capture, model, axis)
-    record = drift_record(capture, axis, drift, float(model.fit["rms_um"]), float(model.poles["p_hz"]))
+    record = drift_record(capture, drift, float(model.fit["rms_um"]), float(model.poles["p_hz"]))
     if mode == "remove" or (mode == "auto" and record["named"]):
         corrected = without_drift(capture, axis, drift)
         refit = fit(corrected)
