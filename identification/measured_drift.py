@@ -1,4 +1,4 @@
-"""A drift of the measured channel against the commanded one: estimated, named, removed on request.
+"""A drift of the measured channel against the commanded one: estimated, named, and removed when it matters.
 
 Thermal growth moves a position measured beside the loop's own encoder (a linear scale, a laser, a
 probe on the table while the drive closes on its motor's encoder) by some um per minute, and an offset
