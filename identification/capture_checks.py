@@ -20,7 +20,8 @@ from vcnc.core.errors import CaptureError, IdentificationError
 
 __all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
            "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
-           "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR", "JUMP_SHARE", "JUMP_WINDOW"]
+           "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR", "JUMP_SHARE", "JUMP_WINDOW",
+           "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms).
 MIN_SAMPLES = 500
@@ -82,6 +83,20 @@ JUMP_SHARE = 0.8
 JUMP_WINDOW = 50
 #: A jump within this of 360 [deg] is a rotary position shown modulo 360 that wrapped.
 WRAP_TOLERANCE_DEG = 1.0
+
+#: A channel moves like an interpolator's output when its jerk (third difference; fourth for an S-curve's
+#: piecewise-constant jerk) is zero, to within 1e-3 of its largest, on at least this share of the samples
+#: where both channels move (:func:`polynomial_share`) [-]: the commanded positions of
+#: ``benchmarks/recorded_traces.py`` 0.60-0.99 when logged unrounded (0.60 at 10 ms), EMPS' 0.99; the
+#: measured positions there at most 0.35 (a loop's response, encoder steps and noise), EMPS' 0.19.
+INTERPOLATED_SHARE = 0.6
+#: ... and the commanded channel is taken for a measured position when its share is at most this [-]
+#: (a commanded position rounded to 1 um or 0.1 um digits: 0.25-0.40, so a trace rounded so is left alone).
+RESPONSE_SHARE = 0.4
+#: Relative size below which a jerk counts as zero [-].
+_ZERO_JERK = 1e-3
+#: A sample counts as moving when both channels move by more than this share of their largest step [-].
+_MOVING = 0.01
 
 #: The fit has dropped integral action when its p is at most this [Hz] (1.5 times the widened box's
 #: bound, :data:`identification.bounds.WIDE_P_MIN_HZ`).
@@ -162,6 +177,7 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
         )
     others = {a: np.asarray(capture.measured[:, j], float) for j, a in enumerate(capture.axes) if a != axis}
     check_channels(xr, x, T, axis, src, others=others)
+    check_swapped(xr, x, axis, src)
     check_jumps(xr, x, T, axis, src)
     return xr, x, T
 
@@ -235,6 +251,51 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
                 "--unit) or rescale one",
                 file=src,
             )
+
+
+def polynomial_share(reference: np.ndarray, measured: np.ndarray) -> tuple[float, float]:
+    """``(commanded, measured)``: the share of the samples where both channels move on which each one's
+    jerk is zero (:data:`INTERPOLATED_SHARE`): its third difference or, for an S-curve's piecewise-constant
+    jerk, its fourth, whichever is more often zero (within 1e-3 of its largest)."""
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    dr, dx = np.abs(np.diff(xr)), np.abs(np.diff(x))
+    if xr.size < 8 or not (np.any(dr) and np.any(dx)):
+        return 0.0, 0.0
+    moving = (dr > _MOVING * dr.max()) & (dx > _MOVING * dx.max())
+
+    def share(y: np.ndarray) -> float:
+        best = 0.0
+        for order in (3, 4):
+            d = np.abs(np.diff(y, order))[moving[:y.size - order]]
+            if d.size and d.max() > 0:
+                best = max(best, float(np.mean(d <= _ZERO_JERK * d.max())))
+        return best
+
+    return share(xr), share(x)
+
+
+def check_swapped(reference: np.ndarray, measured: np.ndarray, axis: str, src: str | None = None) -> None:
+    """IdentificationError when the commanded and measured channels look swapped (``--columns`` the wrong way).
+
+    An interpolator's output moves piecewise-polynomially: a trapezoidal velocity profile's position is a
+    quadratic between its breakpoints, an S-curve's a cubic, so its third (or fourth) difference is zero
+    except at isolated samples; a measured position is a loop's response to it, with encoder steps and
+    noise on top, whose jerk is seldom zero (:func:`polynomial_share`, :data:`INTERPOLATED_SHARE`,
+    :data:`RESPONSE_SHARE`). A time shift cannot tell a swap from a reference recorded late, and fitting
+    both ways round preferred the wrong one on fadal-ppi and chevalier-pdf (session 18); this signature
+    does not depend on the timing. Swapped, fadal-pid's capture was fitted at 184 Hz, zeta 1.96 and
+    3.97 um RMS (36.6 Hz / 0.425 / 1.14 Hz and 0.75 um the right way round). A commanded position logged
+    rounded (to 1 um, or to 0.1 um at 3 ms) hides the signature, and such a swap is not named.
+    """
+    ref_share, meas_share = polynomial_share(reference, measured)
+    if meas_share >= INTERPOLATED_SHARE and ref_share <= RESPONSE_SHARE:
+        raise IdentificationError(
+            f"axis {axis!r}: the commanded and measured channels look swapped: the measured one moves like an "
+            f"interpolator's output (its jerk is zero, below a thousandth of its largest, on {meas_share:.0%} of the "
+            f"samples in motion: piecewise-polynomial motion) and the commanded one like a measured position (on "
+            f"{ref_share:.0%}: a loop's response, encoder steps, noise); map them the other way round (--columns "
+            f"t=NAME,{axis}_ref=NAME,{axis}=NAME with the commanded position's column as {axis}_ref)", file=src)
 
 
 def _rotary_hint(ratio: float) -> str:

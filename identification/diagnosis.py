@@ -828,9 +828,13 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     # action, p -> 0, below the thesis' 0.2 Hz bound): effects found then may compensate for it
     on_bounds = _poles_on_bounds(model, data)
     if on_bounds:
+        drift = (model.fit or {}).get("drift") or {}
+        advice = (f"a drift of the measured channel against the commanded one ({drift.get('rate_um_min', 0.0):.4g} "
+                  "um/min, fit.drift) holds them there: remove it (identify(..., drift='remove'), vcnc identify "
+                  "--drift remove)" if drift.get("named") and not drift.get("removed") else
+                  "widen the bounds if the loop has no integral action (p -> 0)")
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
-                                 "structure or the bounds do not fit these data; widen the bounds if the loop "
-                                 "has no integral action (p -> 0)")
+                                 "structure or the bounds do not fit these data; " + advice)
         log.warning("diagnosis: %s", validation["warning"])
     if len(stages) == 1:
         return dataclasses.replace(model, validation=validation, effects=[])
@@ -873,6 +877,13 @@ _MIN_MODE_COHERENCE = 0.5
 _STRUCTURE_SHARE = {"position": 0.2, "velocity": 0.2, "direction": 0.2, "acceleration": 0.2, "time": 0.35}
 
 
+#: What a residual explained by time says (a drift the ``drift`` effect did not take: the reduced model's slow
+#: pole p imitates a drift of the measured channel, fadal-pid with 100 um/min: p 0.02 Hz for 1.14, and the
+#: effect then lowers the held-out error too little to be kept)
+_DRIFT_ADVICE = ("; a trend in time is a drift of the measured channel against the commanded one (thermal growth) "
+                 "that the fit's slow pole imitates: vcnc identify --drift remove takes it out before the fit")
+
+
 def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: bool) -> dict[str, Any]:
     """Evidence on the final residual (:func:`identification.residual.residual_evidence`) and a statement."""
     from identification.residual import residual_evidence
@@ -886,7 +897,8 @@ def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: b
         what = ", ".join(f"{k} ({100 * ev['explained_share'][k]:.0f} % of its variance)" for k in hits)
         head = ("no effect of the vocabulary explains the remaining residual" if stopped
                 else "the remaining residual (effects stopped at max_effects)")
-        ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}"
+        ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}" + (
+            _DRIFT_ADVICE if "time" in hits else "")
     else:
         ev["statement"] = (f"the remaining residual (RMS {ev['rms_um']:.3g} um) shows no dependence on position, "
                            f"velocity, direction, acceleration or time; spectral peaks {peaks}")

@@ -20,6 +20,7 @@ from identification.diagnosis import diagnose as diagnose_residual
 from identification.ga import GAOptions
 from identification.identify import fit_reduced_model
 from identification.loop_frame import loop_frame, offset_of
+from identification.measured_drift import fit_with_drift
 from identification.parallel import serial_blas
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions
@@ -42,6 +43,7 @@ def identify(
     ga_options: GAOptions | None = None,
     delay: str | float = "auto",
     setpoint_filter: bool = True,
+    drift: str = "auto",
 ) -> ReducedAxisModel:
     """Identify the model of one axis from a capture: the reduced model (thesis Ch. 3-4) and, by
     default, the physical effects its residual shows.
@@ -52,6 +54,11 @@ def identify(
         As for :func:`identification.identify.fit_reduced_model`.
     diagnose : bool
         Run the residual diagnosis (default). False returns the fitted reduced model.
+    drift : str
+        The measured channel's drift against the commanded one (:mod:`identification.measured_drift`),
+        estimated after a first fit: ``"auto"`` (default) takes it off and fits again when it is large against
+        the prediction error and its removal predicts twice better, ``"remove"`` always, ``"keep"`` never;
+        ``fit.drift`` records it either way (:func:`identification.measured_drift.fit_with_drift`).
 
     Returns
     -------
@@ -59,10 +66,13 @@ def identify(
         The fitted model; after the diagnosis an :class:`identification.augmented.AugmentedAxisModel`
         when effects were added, with ``effects`` and ``validation`` filled in.
     """
+    def fit(capture: Capture) -> ReducedAxisModel:
+        return fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
+                                 regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay,
+                                 setpoint_filter=setpoint_filter)
+
     with serial_blas():  # tall, narrow least squares: one BLAS thread is faster (identification.parallel)
-        model = fit_reduced_model(capture, axis=axis, method=method, bounds=bounds, refine=refine,
-                                  regressor_options=regressor_options, seed=seed, ga_options=ga_options, delay=delay,
-                                  setpoint_filter=setpoint_filter)
+        capture, model = fit_with_drift(capture, axis, fit, drift)
     if not diagnose:
         return model
     in_loop, _ = loop_frame(capture, axis, offset_mm=offset_of(model.fit),
@@ -94,6 +104,7 @@ class Identifier:
     ga_options: GAOptions | None = None
     delay: str | float = "auto"
     setpoint_filter: bool = True
+    drift: str = "auto"
 
     def fit(self, capture: Capture, axis: str = "x") -> ReducedAxisModel:
         """The fitted model of ``axis``."""
@@ -109,4 +120,5 @@ class Identifier:
             ga_options=self.ga_options,
             delay=self.delay,
             setpoint_filter=self.setpoint_filter,
+            drift=self.drift,
         )

@@ -10,6 +10,8 @@ fadal-pid capture before these checks (session 18, tracerobust): a reference lea
 fitted with no dead time at 4.6 mm RMS; a velocity or control signal as the measured position was
 called "sign flipped"; the y axis' position as x's was fitted at 5.2 mm RMS; the measured channel x2
 at 12 um RMS with p 0.001 Hz (0.75 um, 1.14 Hz); a 1 mm jump at 267 um RMS with omega_n 0.2 Hz.
+Session 19 (swapdrift): the channels swapped were fitted at 184 Hz, zeta 1.96, 3.97 um RMS; a drift of
+100 um/min on the measured channel at p 0.02 Hz (2.12 um RMS), one of 20 um/s with p on its bound.
 """
 
 from __future__ import annotations
@@ -22,9 +24,10 @@ import pytest
 import toolpaths
 import vcnc
 from identification import identify
-from identification.capture_checks import check_capture
+from identification.capture_checks import INTERPOLATED_SHARE, RESPONSE_SHARE, check_capture, polynomial_share
 from identification.dead_time import delay_reference, follow_lag
 from identification.loop_frame import starts_at_rest
+from identification.measured_drift import DRIFT_RATIO, estimate_drift
 from identification.poles import poles_from_denominator
 from identification.segments import settled_start, starts_from_standstill
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
@@ -184,3 +187,88 @@ def test_a_long_lead_that_starts_on_a_stop_is_not_taken_for_a_record_at_rest():
     xr, x = np.r_[np.full(500, xr[0]), xr], np.r_[np.full(500, x[0]), x]
     recorded = delay_reference(xr, -100.0)
     assert starts_at_rest(recorded, delay_reference(recorded, 100.0), x)
+
+
+def _recorded(xr, x, how):
+    """The two channels as a control logs them: plain, noisy and quantised, or every 6th sample."""
+    if how == "noisy":
+        noise = np.random.default_rng(4).normal(0.0, 0.5e-3, x.size)
+        return xr, np.round((x + noise) / 1e-3) * 1e-3
+    if how == "dec6":
+        return xr[::6], x[::6]
+    return xr, x
+
+
+def _cap_T(xr, x, sample_time) -> Capture:
+    return Capture(t=np.arange(xr.size) * sample_time, axes=("x",), reference=xr[:, None], measured=x[:, None],
+                   source="trace.csv")
+
+
+@pytest.mark.parametrize("how", ["plain", "noisy", "dec6"])
+def test_swapped_channels_are_named_and_the_right_way_round_passes(capture, how):
+    # an interpolator's reference moves piecewise-polynomially (jerk zero between breakpoints), a measured
+    # position is a loop's response with encoder steps and noise: that tells a swap from a late reference
+    xr, x = _recorded(*_xr_x(capture), how)
+    T_rec = T * (6 if how == "dec6" else 1)
+    ref_share, meas_share = polynomial_share(xr, x)
+    assert ref_share >= INTERPOLATED_SHARE and meas_share <= RESPONSE_SHARE
+    check_capture(_cap_T(xr, x, T_rec), "x")
+    with pytest.raises(IdentificationError, match=r"look swapped: the measured one moves like an interpolator's "
+                                                  r"output .* map them the other way round \(--columns"):
+        check_capture(_cap_T(x, xr, T_rec), "x")
+
+
+@pytest.mark.parametrize(("digits_mm", "every"), [(1e-3, 1), (1e-4, 3)], ids=["1um", "0.1um-3ms"])
+def test_a_reference_logged_rounded_is_not_taken_for_a_swap(capture, digits_mm, every):
+    # a commanded position rounded (1 um; TNCscope's 0.1 um digits at 3 ms) beside a noisy, quantised measured one
+    xr, x = _recorded(*_xr_x(capture), "noisy")
+    xr, x = np.round(xr[::every] / digits_mm) * digits_mm, x[::every]
+    check_capture(_cap_T(xr, x, T * every), "x")
+
+
+def test_vcnc_identify_names_swapped_columns_and_exits_2(capture, tmp_path, capsys):
+    xr, x = _xr_x(capture)
+    path = tmp_path / "trace.csv"
+    _cap(x, xr).to_csv(path)
+    assert main(["identify", str(path), "--no-diagnose"]) == 2
+    err = capsys.readouterr().err
+    assert str(path) in err and "look swapped" in err and "--columns t=NAME,x_ref=NAME,x=NAME" in err
+
+
+@pytest.mark.parametrize(("shape", "truth_um"), [("ramp", 13.23), ("settling", 9.29), ("none", 0.0)])
+def test_a_drift_of_the_measured_channel_is_estimated(capture, shape, truth_um):
+    # thermal growth: 100 um/min, or an offset creeping to 10 um with a 3 s time constant (7.9 s record)
+    xr, x = _xr_x(capture)
+    t = np.arange(x.size) * T
+    drift = {"ramp": 0.1 / 60.0 * t, "settling": 0.01 * (1.0 - np.exp(-t / 3.0)), "none": 0.0 * t}[shape]
+    found = estimate_drift(xr, x + drift, T)(t[-1]) * 1e3
+    assert found == pytest.approx(drift[-1] * 1e3, abs=max(0.15 * truth_um, 0.3))
+
+
+def test_identify_names_a_drift_and_fits_the_loop_with_it_removed(capture):
+    xr, x = _xr_x(capture)
+    t = np.arange(x.size) * T
+    drifting = _cap(xr, x + 0.1 / 60.0 * t)  # 100 um/min
+    truth = poles_from_denominator(FADAL_PID_X["a1"], FADAL_PID_X["a2"], FADAL_PID_X["a3"])
+    kept = identify(drifting, diagnose=False, drift="keep")
+    assert kept.fit["drift"]["named"] and kept.fit["drift"]["ratio"] >= DRIFT_RATIO and not kept.fit["drift"]["removed"]
+    assert kept.fit["drift"]["rate_um_min"] == pytest.approx(100.0, rel=0.1)
+    removed = identify(drifting, diagnose=False)  # drift="auto": named, and removing it predicts twice better
+    assert removed.fit["drift"]["removed"] and removed.fit["drift"]["rms_kept_um"] == pytest.approx(kept.fit["rms_um"])
+    assert max(abs(removed.poles[k] / truth[k] - 1.0) for k in truth) < 0.05
+    assert removed.fit["rms_um"] < 0.5 * kept.fit["rms_um"]
+    clean = identify(capture, diagnose=False).fit["drift"]
+    assert not (clean["named"] or clean["removed"])
+
+
+def test_vcnc_identify_names_a_drift_instead_of_advising_the_p_bound(capture, tmp_path, capsys):
+    xr, x = _xr_x(capture)
+    path = tmp_path / "trace.csv"
+    _cap(xr, x + 0.02 * np.arange(x.size) * T).to_csv(path)  # 20 um/s: p on its bound without the drift's removal
+    assert main(["identify", str(path), "--no-diagnose", "--drift", "keep"]) == 0
+    out = capsys.readouterr().out
+    assert "the measured channel drifts against the commanded one by" in out and "--drift remove" in out
+    assert "--p-min-hz" not in out
+    assert main(["identify", str(path), "--no-diagnose"]) == 0  # by default taken out
+    out = capsys.readouterr().out
+    assert "taken out before the fit (prediction" in out and "lower bound" not in out

@@ -47,6 +47,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-setpoint-filter", action="store_true",
                         help="do not search a moving-average setpoint filter between the recorded reference and "
                              "the loop (by default one is kept when it predicts 1.6x better)")
+    parser.add_argument("--drift", choices=("auto", "remove", "keep"), default="auto",
+                        help="a slow drift of the measured channel against the commanded one (thermal growth of a "
+                             "scale or laser logged beside the loop's encoder): 'auto' takes it out and fits again "
+                             "when it is large against the prediction error and that predicts twice better (default), "
+                             "'remove' always, 'keep' never (it is still named)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
     add_trace_arguments(parser)
@@ -134,10 +139,33 @@ _BOUND_OPTIONS = {("omega_n_hz", 0): "--omega-min-hz", ("p_hz", 0): "--p-min-hz"
                   ("zeta", 1): "--zeta MIN MAX"}
 
 
+def drift_lines(model) -> list[str]:
+    """What to say of the measured channel's drift (``fit['drift']``, :func:`drift_record`)."""
+    rec = model.fit.get("drift")
+    if not rec or not rec["named"]:
+        return []
+    u = axis_unit(model.axis, small=True)
+    what = (f"the measured channel drifts against the commanded one by {rec['span_um']:.4g} {u} over the record "
+            f"({rec['rate_um_min']:.4g} {u}/min on average, at most {rec['max_um']:.4g} {u} from where it started)")
+    tried = "rms_removed_um" in rec
+    how = f"prediction {rec.get('rms_kept_um', 0.0):.4g} -> {rec.get('rms_removed_um', 0.0):.4g} {u}"
+    if rec["removed"]:
+        return [f"drift: {what}; taken out before the fit" + (f" ({how})" if tried else "")]
+    if tried:
+        return [f"drift: {what}; left in: taking it out predicts {how}, less than twice better (--drift remove takes "
+                "it out)"]
+    return [f"warning: {what}, {rec['ratio']:.3g} times the prediction error: thermal growth of a scale or laser "
+            "logged beside the loop's own encoder, or an offset that creeps; the reduced model has no term for it and "
+            "bends its slow pole p to imitate it; fit again with --drift remove"]
+
+
 def bound_lines(model) -> list[str]:
     """What to say of a pole variable the fit left on a bound of its box (``model.poles_on_bounds()``): the data
     did not place it there, the box did; at the record's Nyquist frequency the loop may be faster than the record
-    resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency)."""
+    resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency). A slow pole on its lower bound beside a
+    drift the fit did not remove (:func:`drift_lines`) is the drift's doing: the line says so instead of advising
+    ``--p-min-hz``."""
+    drifting = (model.fit.get("drift") or {}).get("named") and not model.fit["drift"]["removed"]
     out = []
     names = {"omega_n_hz": ("omega_n", "Hz"), "p_hz": ("p", "Hz"), "zeta": ("zeta", "")}
     for key, side, at_nyquist in model.poles_on_bounds():
@@ -148,6 +176,9 @@ def bound_lines(model) -> list[str]:
             out.append(f"warning: {what}, the record's Nyquist frequency ({0.5 / model.sample_time:.4g} Hz at Ts = "
                        f"{model.sample_time:g} s): the loop may be faster than this record resolves; record it "
                        "at a shorter sample time")
+        elif drifting and key == "p_hz":
+            out.append(f"warning: {what}: the measured channel's drift (above) holds it there; fit again with "
+                       "--drift remove")
         else:
             option = _BOUND_OPTIONS.get((key, side))
             out.append(f"warning: {what}: the box, not the data, placed it there"
@@ -197,7 +228,7 @@ def _report(capture, model, axis: str):
         caption="Poles and zeros as in Tables 3.3-3.5",
     )
     rep.heading("Fit")
-    for line in delay_lines(model) + setpoint_filter_lines(model) + bound_lines(model):
+    for line in delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model):
         rep.text(line)
     rep.table(
         ["prediction of the capture", f"RMS [{u}]", f"max [{u}]"],
@@ -271,7 +302,12 @@ def run(args: argparse.Namespace) -> int:
         diagnose=not args.no_diagnose,
         delay=args.delay,
         setpoint_filter=not args.no_setpoint_filter,
+        drift=args.drift,
     )
+    if model.fit["drift"]["removed"]:
+        from identification.measured_drift import without_drift
+
+        capture = without_drift(capture, axis, model.fit["drift"]["polynomial_mm"])
     rep = _report(capture, model, axis) if args.report else None
     if args.json:
         model.to_json(args.json)
@@ -286,7 +322,7 @@ def run(args: argparse.Namespace) -> int:
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
     u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
     out.write(f"prediction of the capture: rms {fit['rms_um']:.4g} {u}, max {fit['max_um']:.4g} {u}\n")
-    for line in delay_lines(model) + setpoint_filter_lines(model) + bound_lines(model):
+    for line in delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model):
         out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
