@@ -35,9 +35,8 @@ import math
 import numpy as np
 
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
-from vcnc.core.capture import Capture
 
-__all__ = ["delay_reference", "estimate_delay", "loop_capture", "follow_lag", "DelayEstimate", "MAX_DELAY_S",
+__all__ = ["delay_reference", "estimate_delay", "follow_lag", "DelayEstimate", "MAX_DELAY_S",
            "MIN_DELAY_SAMPLES", "FINEST_STEP_S", "LAG_STEP_S", "MAX_LEAD_SHARE"]
 
 #: Default half-width of the scan [s].
@@ -122,28 +121,6 @@ def delay_reference(reference: np.ndarray, samples: float) -> np.ndarray:
         return xr.copy()
     k = np.arange(xr.size, dtype=float) - float(samples)
     return np.interp(k, np.arange(xr.size, dtype=float), xr)
-
-
-def loop_capture(capture: Capture, axis: str, samples: float) -> Capture:
-    """``capture`` with ``axis``' reference delayed by ``samples``, without the samples the shift
-    leaves unknown (the first ``ceil(samples)`` for a delay, the last for an advance)."""
-    if samples == 0.0:
-        return capture
-    n = capture.t.size
-    cut = int(math.ceil(abs(samples)))
-    keep = slice(cut, n) if samples > 0 else slice(0, n - cut)
-    i = capture.axis_index(axis)
-    reference = np.array(capture.reference, dtype=float)
-    reference[:, i] = delay_reference(reference[:, i], samples)
-
-    def part(a):
-        return a[keep] if isinstance(a, np.ndarray) and a.ndim >= 1 and a.shape[0] == n else a
-
-    changes = {f.name: part(getattr(capture, f.name)) for f in dataclasses.fields(capture)
-               if isinstance(getattr(capture, f.name), np.ndarray)}
-    changes["reference"] = reference[keep]
-    changes["aux"] = {k: part(v) for k, v in capture.aux.items()}
-    return dataclasses.replace(capture, **changes)
 
 
 @dataclasses.dataclass(frozen=True)
