@@ -114,6 +114,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
+from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
@@ -454,6 +455,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                         set_system=(lambda n, v: set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
+    plain = PlainMoves(st, blocks, used)
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                   tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add):
         if fl.raw.lstrip().startswith("/"):
@@ -462,7 +464,12 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
         while homing and fl.file == source and homing[0] < fl.line:
+            plain.reset()
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
+        if plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
+            st.stopped = False
+            continue
+        plain.reset()
         count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if st.corner is not None or st.corner_word is not None:
