@@ -42,11 +42,13 @@ WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 #: Change of the comment nesting depth at a character.
 _DEPTH = {"(": 1, ")": -1}
 
-#: A word of a letter and a plain decimal number (the number as :func:`interpolators._words.read_number`
-#: reads it: spaces or tabs after the letter), with the white space before it. A line of such words only is
-#: most of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
-_PLAIN_WORD = re.compile(r"([A-Za-z])[ \t]*(" + NUMBER_RE.pattern + ")")
-_BLANKS = " \t\r\f\v"
+#: A line of words of a letter and a plain decimal number (the number as
+#: :func:`interpolators._words.read_number` reads it: spaces or tabs after the letter) and blanks only: most
+#: of CAM output (``N120 G1 X-21.131 Y34.719 F400.``). It matches one way only (a number never ends where
+#: a letter or a blank could start), the way the character-by-character reader reads it.
+_PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + NUMBER_RE.pattern + r"[ \t\r\f\v]*)*")
+#: A word of such a line with the blanks before it: (blanks, text, letter, number).
+_PLAIN_TOKEN = re.compile(r"([ \t\r\f\v]*)(([A-Za-z])[ \t]*(" + NUMBER_RE.pattern + "))")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -179,16 +181,19 @@ def plain_words(code: str) -> list[Word] | None:
     """The words of a comment-free line of letters and plain numbers only, as :func:`read_words` reads
     them; ``None`` for any other line (and for a number out of range), which :func:`read_words` then
     reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
+    if _PLAIN_LINE.fullmatch(code) is None:
+        return None
     words = []
-    end = 0
-    for m in _PLAIN_WORD.finditer(code):
-        start = m.start()
-        if code[end:start].strip(_BLANKS):  # something other than blanks before the word
+    new = object.__new__
+    column = 1
+    for blanks, text, letter, number in _PLAIN_TOKEN.findall(code):
+        v = float(number)
+        if not -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE:
             return None
-        end = m.end()
-        v = float(m.group(2))
-        if abs(v) > MAX_MAGNITUDE:
-            return None
-        words.append(Word(m.group(1).upper(), v, start + 1, code[start:end]))
-    # nothing but blanks after the last word (a pattern that starts at the letter scans a long blank run once)
-    return None if code[end:].strip(_BLANKS) else words
+        column += len(blanks)
+        w = new(Word)  # a Word without the frozen dataclass's per-field object.__setattr__: one per word read
+        d = w.__dict__
+        d["letter"], d["value"], d["column"], d["text"] = letter.upper(), v, column, text
+        column += len(text)
+        words.append(w)
+    return words
