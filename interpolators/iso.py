@@ -409,7 +409,8 @@ class _State:
         return base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
 
 
-def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
+def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
+              shortcuts: bool = True) -> Program:
     """Parse ISO / Fanuc / LinuxCNC G-code text into a :class:`Program`.
 
     Parameters
@@ -420,6 +421,10 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         File name used in error messages and recorded in ``Program.source``.
     context : MachineContext
         Work offsets, tool table, home and reference positions and the dialect of the machine.
+    shortcuts : bool
+        Plain G0-G3 moves in a plain modal state are run by :mod:`interpolators.iso_fast`, which makes the
+        blocks the general executor makes; False runs every block the general way (the two readings are
+        compared in ``tests/interpolators/test_reader_fast.py``).
 
     Raises
     ------
@@ -466,7 +471,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         while homing and fl.file == source and homing[0] < fl.line:
             plain.reset()
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
-        if plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
+        if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
             st.stopped = False
             continue
         plain.reset()
