@@ -422,9 +422,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     context : MachineContext
         Work offsets, tool table, home and reference positions and the dialect of the machine.
     shortcuts : bool
-        Plain G0-G3 moves in a plain modal state are run by :mod:`interpolators.iso_fast`, which makes the
-        blocks the general executor makes; False runs every block the general way (the two readings are
-        compared in ``tests/interpolators/test_reader_fast.py``).
+        Plain G0-G3 moves in a plain modal state run by :mod:`interpolators.iso_fast`, which makes the general
+        executor's blocks; False: every block the general way (``tests/interpolators/test_reader_fast.py``).
 
     Raises
     ------
@@ -456,11 +455,11 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     name = _program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
+    plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        set_system=(lambda n, v: set_system_parameter(n, v, st)) if macro_b else None)
+                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
-    plain = PlainMoves(st, blocks, used)
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                   tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add):
         if fl.raw.lstrip().startswith("/"):
@@ -469,10 +468,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             external.add(fl.file)
             notes.add(f"subprogram from {Path(fl.file).name}")
         while homing and fl.file == source and homing[0] < fl.line:
-            plain.reset()
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
-            st.stopped = False
             continue
         plain.reset()
         count = len(blocks)

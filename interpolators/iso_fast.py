@@ -18,8 +18,10 @@ G51 scaling and G51.1 mirroring, cutter compensation (on, or its exit move pendi
 corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets, the tool length
 and the G61/G64 path mode are modelled as the general path has set them.
 
-The state is looked at once after each block the general path ran (:meth:`PlainMoves.reset`): plain moves
-change none of what the checks read, nor the offsets, which are cached until then.
+The state is looked at once after each block the general path ran, and after each write of a work offset or
+tool entry by a Fanuc/Haas system variable (``#5221 = ..``, which may share its line with a move)
+(:meth:`PlainMoves.reset`): plain moves change none of what the checks read, nor the offsets, which are
+cached until then.
 """
 
 from __future__ import annotations
@@ -166,6 +168,7 @@ class PlainMoves:
                                        target=target, feed=path_feed, segment=seg, exact_stop=st.exact_stop,
                                        tolerance=st.tolerance))
         st.pos = target
+        st.stopped = False  # a move since a program stop: positions read are the program's again
         return True
 
     def _arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,

@@ -102,6 +102,7 @@ ODD_LINES = [
     "G21 G90\nG1 X5. F100. S500\nG1 X6. M8\n",  # S and M words
     "G21 G90\n/G1 X5. F100.\n; a comment\nG1 X6. (nested (comment)) Y1.\n",  # block delete, comments
     "G21 G90\nG1 X5. F100.\nM2\nG1 X7.\n",  # lines after the end
+    "G21 G54 G90\nG1 X1. F100.\n#5221=10. G1 X2.\nG1 X3.\n",  # Fanuc/Haas: G54's X offset set on a move's line
     "G21 G90 F100.\nG1 X1e5\n",  # an exponent
     "G21 G90\nG1 X1000000000.5 F100.\n",  # a number out of range
 ]
