@@ -74,6 +74,7 @@ DECLINED = {
     "feed per revolution G95": "G21 G90 S1000 M3 G95\nG1 X5. Y5. F0.1\n",
     "cutter compensation G41": "G21 G90\nG0 X-5. Y-5.\nG41 D1 G1 X0. Y0. F100.\n",
     "cutter compensation G42": "G21 G90\nG0 X-5. Y-5.\nG42 D1 G1 X0. Y0. F100.\n",
+    "compensation exit pending": "G21 G90\nG0 X-5. Y-5.\nG41 D1 G1 X0. Y0. F100.\nG1 X10.\nG40\n",
     "rotated work offset G10 L2 R": "G21 G90\nG10 L2 P1 X0 Y0 Z0 R30.\nG54\n",
     "rotation G68": "G21 G90 G17\nG68 X0. Y0. R30.\n",
     "scaling G51": "G21 G90\nG51 X0. Y0. Z0. P2.\n",
