@@ -218,6 +218,7 @@ class _Program:
         self.macro = MacroFlow(max_passes=max_loop_passes)
         self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
         self.span = 0
+        self.plain: set[int] = set()  # lines of plain words only (iso_words.plain_words reads them)
         self._index(text, source)
         self.main_end = len(self.code)
 
@@ -234,6 +235,7 @@ class _Program:
             if _PLAIN_BLOCK.fullmatch(raw):  # most of a CAM program: nothing to index but its N number
                 self.macro.add_block(i, raw, self.span)
                 self.code.append(raw if raw.strip(" \t") else None)
+                self.plain.add(i)
                 continue
             where = self.where(i)
             if leader and raw.lstrip().startswith("%") and "\r" not in raw:  # a bare CR: see the error below
@@ -474,6 +476,12 @@ def _calls(words: list[Word]) -> list[Word]:
     return [w for w in words if w.letter == "G" and w.value == 65 or w.letter == "M" and w.value in (97, 98, 99)]
 
 
+def _may_call(code: str, words: list[Word]) -> bool:
+    """Whether the block of plain words ``words`` (its text ``code``) calls or returns: only with an M word
+    or a "65" in its text is there one to look for."""
+    return ("M" in code or "m" in code or "65" in code) and bool(_calls(words))
+
+
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
@@ -518,8 +526,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
         code = prog.code[pc]
-        words = None if code is None or pc in prog.active else plain_words(code)
-        if words is not None and not _calls(words):  # a line of plain words (most CAM output)
+        words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
+        if words is not None and not _may_call(code, words):  # a line of plain words (most CAM output)
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
             line.__dict__.update(line=pc - prog.first_line[prog.sources[pc]] + 1, raw=prog.raw[pc].strip(), words=words,
                                  file=prog.sources[pc])

@@ -177,11 +177,13 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
     return words
 
 
-def plain_words(code: str) -> list[Word] | None:
+def plain_words(code: str, *, checked: bool = False) -> list[Word] | None:
     """The words of a comment-free line of letters and plain numbers only, as :func:`read_words` reads
     them; ``None`` for any other line (and for a number out of range), which :func:`read_words` then
-    reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
-    if _PLAIN_LINE.fullmatch(code) is None:
+    reads, or rejects, character by character. A shortcut for the bulk of CAM output. ``checked``: the
+    caller has matched the line against a pattern of such lines (:mod:`interpolators.iso_flow` indexes
+    them), which is not matched again."""
+    if not checked and _PLAIN_LINE.fullmatch(code) is None:
         return None
     words = []
     new = object.__new__
