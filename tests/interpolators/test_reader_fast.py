@@ -80,8 +80,8 @@ DECLINED = {
     "scaling G51": "G21 G90\nG51 X0. Y0. Z0. P2.\n",
     "mirror G51.1": "G21 G90\nG51.1 X0.\n",
     "polar G16": "G21 G90 G17\nG16\n",
-    "a canned cycle modal": "G21 G90 G98\nG81 X5. Y5. Z-2. R1. F100.\n",
-    "axis words after G80": "G21 G90\nG1 X1. F100.\nG81 X5. Y5. Z-2. R1.\nG80\n",
+    "a canned cycle modal": "G21 G90 G98\nG81 X5. Y5. Z-2. R1. F100.\nX7. Y7.\n",
+    "axis words after G80": "G21 G90\nG1 X1. F100.\nG81 X5. Y5. Z-2. R1.\nG80\nX7. Y7.\n",
     "corner rounding": "G21 G90\nG1 X0. Y0. F100.\nG1 X10. ,R2.\n",
     "no motion mode": "G21 G90\n",
 }
