@@ -9,12 +9,15 @@ shortcut models (units, G90/G91, G90.1/G91.1, the planes, offsets, tool length, 
 canned cycles, corner rounding, axis words after G80, Fanuc numbers without a decimal point, arcs it would
 refuse): a shortcut that took a block it does not model would give a different block or no error. For the
 declined states the test also checks that the state changes what the plain lines after it mean (so that the
-identity says something). The corpus, when present, is read both ways too (slow).
+identity says something). Generated programs (fixed seeds: 320 of 10-50 lines) mix plain moves -- I J K arcs
+in the three planes, helices, F changes, N numbers, odd spacing and case -- with these changes, comments,
+block deletes and errors, under each dialect. The corpus, when present, is read both ways too (slow).
 """
 
 from __future__ import annotations
 
 import math
+import random
 
 import numpy as np
 import pytest
@@ -215,3 +218,95 @@ def test_corpus_reads_alike():
         assert fast == reading(text, context, shortcuts=False), row["file"]
         checked += len(fast)
     assert checked > 300_000
+
+
+def _number(rng, v: float) -> str:
+    """A coordinate as a CAM post writes it (4 decimals), now and then without a decimal point."""
+    if rng.random() < 0.05:
+        return str(round(v))
+    return f"{v:.4f}".rstrip("0") if rng.random() < 0.3 else f"{v:.4f}"
+
+
+def _random_move(rng, st: dict) -> str:
+    """A plain move from the generator's position ``st["pos"]`` (program coordinates, G90 or G91)."""
+    code = rng.choice(["G0", "G1", "G1", "G2", "G3", "G01", ""])
+    words = [code] if code else []
+    motion = code.lstrip("G0") or "0" if code else st["motion"]
+    st["motion"] = motion
+    pos = st["pos"]
+    if motion in ("2", "3") and rng.random() < 0.995:
+        p, q = {17: (0, 1), 18: (2, 0), 19: (1, 2)}[st["plane"]]
+        r, a0, sweep = rng.uniform(0.5, 5.0), rng.uniform(0, 2 * math.pi), rng.uniform(0.1, 6.0)
+        centre = list(pos)
+        centre[p], centre[q] = pos[p] + r * math.cos(a0), pos[q] + r * math.sin(a0)
+        end = list(pos)
+        end[p], end[q] = centre[p] + r * math.cos(a0 + math.pi + sweep), centre[q] + r * math.sin(a0 + math.pi + sweep)
+        if rng.random() < 0.3:
+            end[3 - p - q] += rng.uniform(-1, 1)  # a helix
+        if rng.random() < 0.01:
+            end[p] += 0.5  # off the circle: an error
+        for i in sorted({p, q, 3 - p - q} if end[3 - p - q] != pos[3 - p - q] else {p, q}):
+            words.append("XYZ"[i] + _number(rng, end[i] - pos[i] if st["inc"] else end[i]))
+        for i in sorted((p, q)):
+            words.append("IJK"[i] + _number(rng, centre[i] if st["absarc"] else centre[i] - pos[i]))
+        st["pos"] = end
+    else:
+        new = list(pos)
+        for i in rng.sample(range(3), rng.randint(0 if rng.random() < 0.05 else 1, 3)):
+            new[i] = pos[i] + rng.uniform(-20, 20)
+            words.append("XYZ"[i] + _number(rng, new[i] - pos[i] if st["inc"] else new[i]))
+        st["pos"] = new
+    if rng.random() < 0.3:
+        words.append(rng.choice(["F100.", "F250.5", "F1200", "F.5", "F300", "F50."]))
+    if rng.random() < 0.3:
+        words.insert(0, f"N{rng.randint(1, 9999)}")
+    rng.shuffle(words) if rng.random() < 0.05 else None
+    line = rng.choice([" ", "", "  "]).join(words)
+    return line.lower() if rng.random() < 0.05 else line
+
+
+#: Modal changes every dialect runs, and those that are refused or end the run under some (drawn less often).
+_MODAL = ["G20", "G21", "G90", "G91", "G90.1", "G91.1", "G17", "G18", "G19", "G54", "G55", "G92 X0 Y0 Z0", "G92.1",
+          "G52 X5. Y-5.", "T1 M6\nG43 H1", "G49", "G94", "G64 P0.01", "G61", "M0", "(a comment)", "; a comment",
+          "G1 X1. (nested (c)) Y2.", "/G1 X1. Y1. F100.", "G0 X1. Y1. A5.", "G90 G0 X0. Y0. Z0.\nG2 X1. Y1. R5. F100.",
+          "G4 P1", "G28", "M5", "G81 X1. Y1. Z-1. R1. F100.\nX2.\nG80", "G41 D1", "G40"]
+_RISKY = ["G68 X0. Y0. R30.", "G69", "G51 X0. Y0. Z0. P2.", "G50", "G51.1 X0.", "G50.1 X0.", "G16", "G15", "G42 D1",
+          "G93", "S1000 M3 G95", "G81 X1. Y1. Z-1. R1. F100.", "G80", "#5221=1.", "#5221=2. G1 X1.",
+          "G10 L2 P1 R15.", "G10 L2 P1 R0", "G1 X1. ,R1.", "G1 X2. ,C.5", "G1 X1. F0"]
+
+
+def random_program(rng) -> str:
+    """A program of plain moves among the modal changes the shortcut declines or models."""
+    st = {"pos": [0.0, 0.0, 0.0], "inc": False, "absarc": False, "plane": 17, "motion": "0"}
+    lines = [rng.choice(["G21", "G20", ""]) + " G17 G90", "G0 X0. Y0. Z0.", "G1 F500."]
+    for _ in range(rng.randint(10, 50)):
+        if rng.random() < 0.7:
+            lines.append(_random_move(rng, st))
+            continue
+        change = rng.choice(_RISKY if rng.random() < 0.05 else _MODAL)
+        lines.append(change)
+        if change in ("G90", "G91"):
+            st["inc"] = change == "G91"
+        elif change in ("G90.1", "G91.1"):
+            st["absarc"] = change == "G90.1"
+        elif change in ("G17", "G18", "G19"):
+            st["plane"] = int(change[1:])
+        if not change.startswith(("(", ";")):  # where the change leaves the position in program coordinates
+            lines.append("G90 G0 X0. Y0. Z0." + ("\nG91" if st["inc"] else ""))
+            st.update(pos=[0.0, 0.0, 0.0], motion="0")
+    lines.append(rng.choice(["M30", "M2", ""]))
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_random_programs_read_alike(seed):
+    """Generated programs (fixed seeds): plain moves with I J K arcs, helices, F changes, N numbers, odd
+    formatting, among modal changes, comments, block deletes and errors: the same reading both ways under each
+    dialect; and enough of them run for the comparison to say something."""
+    rng = random.Random(seed)
+    accepted = 0
+    for _ in range(40):
+        text = random_program(rng)
+        for dialect in DIALECTS:
+            accepted += not assert_same(text, dialect)[0].startswith("error")
+    assert accepted >= 20
