@@ -60,11 +60,11 @@ import re
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
-from interpolators._words import NUMBER_RE, Where, lines_of, program_text
+from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
-from interpolators.iso_words import Word, block_comment, plain_words, read_words, strip_comments
+from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_words, read_words, strip_comments
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
@@ -84,7 +84,7 @@ _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s
                      r"\s*([a-zA-Z]+)?(.*)$")
 #: A line of words of a letter (not O) and a plain number, and blanks: an ordinary block (no O-word, program
 #: number, comment, macro statement, ``%``, ``/`` or header can be one), of which only the N number is indexed.
-_PLAIN_BLOCK = re.compile(r"[ \t]*(?:[A-NP-Za-np-z][ \t]*" + NUMBER_RE.pattern + r"[ \t]*)*")
+_PLAIN_BLOCK = re.compile(r"[ \t]*(?:[A-NP-Za-np-z][ \t]*" + PLAIN_NUMBER + r"[ \t]*)*")
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
 #: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).

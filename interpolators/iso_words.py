@@ -18,7 +18,7 @@ import dataclasses
 import re
 from collections.abc import Callable
 
-from interpolators._words import MAX_MAGNITUDE, NUMBER_RE, Where, read_number, token_at
+from interpolators._words import MAX_MAGNITUDE, Where, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
            "WORD_LETTERS"]
@@ -42,13 +42,17 @@ WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 #: Change of the comment nesting depth at a character.
 _DEPTH = {"(": 1, ")": -1}
 
+#: The numbers of :data:`interpolators._words.NUMBER_RE` (the same strings, the same longest match), written so
+#: that a line that fails to match backtracks in linear time: ``\d+\.?\d*`` may split a run of digits
+#: between its two parts in as many ways as it has digits (a 16,000-digit run took 30 s to refuse).
+PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)"
 #: A line of words of a letter and a plain decimal number (the number as
 #: :func:`interpolators._words.read_number` reads it: spaces or tabs after the letter) and blanks only: most
 #: of CAM output (``N120 G1 X-21.131 Y34.719 F400.``). It matches one way only (a number never ends where
 #: a letter or a blank could start), the way the character-by-character reader reads it.
-_PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + NUMBER_RE.pattern + r"[ \t\r\f\v]*)*")
+_PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + PLAIN_NUMBER + r"[ \t\r\f\v]*)*")
 #: A word of such a line with the blanks before it: (blanks, text, letter, number).
-_PLAIN_TOKEN = re.compile(r"([ \t\r\f\v]*)(([A-Za-z])[ \t]*(" + NUMBER_RE.pattern + "))")
+_PLAIN_TOKEN = re.compile(r"([ \t\r\f\v]*)(([A-Za-z])[ \t]*(" + PLAIN_NUMBER + "))")
 
 
 @dataclasses.dataclass(frozen=True)

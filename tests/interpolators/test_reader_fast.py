@@ -27,6 +27,7 @@ from interpolators import detect_dialect
 from interpolators._words import program_text
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
+from interpolators.iso_words import plain_words
 from vcnc.errors import GCodeError
 
 DIALECTS = ("linuxcnc", "fanuc", "haas", "grbl")
@@ -310,3 +311,11 @@ def test_random_programs_read_alike(seed):
         for dialect in DIALECTS:
             accepted += not assert_same(text, dialect)[0].startswith("error")
     assert accepted >= 20
+
+
+def test_long_runs_of_digits_are_refused_in_one_pass():
+    """A fuzzed line of a letter and 300,000 digits before a ';': the plain-line pattern refuses it (the general
+    reader then reads it) without trying each way of splitting the digits (``\\d+\\.?\\d*`` did: minutes)."""
+    assert plain_words("X" + "1" * 300_000 + ";") is None
+    assert plain_words("X1." + "1" * 300_000 + "y") is None
+    assert plain_words("X" + "0" * 300_000 + "1.5")[0].value == 1.5
