@@ -9,12 +9,13 @@ program: a longer one is cut and counted as cut), ``Machine.simulate``,
 
 Machines: ``fadal-pid`` (x, y: the default) for a program that moves X and Y only. No built-in
 machine has a Z or a rotary axis; a program that moves Z is first refused by ``fadal-pid`` (the
-message is counted), then run on ``fadal-pid+z``, a benchmark-only machine whose Z axis is a copy of
-the X axis (drive, controller, limits): our assumption to exercise the chain, not a real machine. A
+message is counted), then run on ``fadal-pid+z``, the machine whose Z axis is a copy of its X axis (drive,
+controller, limits; ``vcnc simulate --machine fadal-pid+z``): our assumption to exercise the chain, not a real
+machine. A
 program that moves a rotary or a U V W axis is refused (counted by reason). ``--machines all`` runs
 every program on every built-in machine in turn (the controller library: PID, P-PI, sliding mode, pole
 placement + Kalman filter with and without ZPETC, integer PDF, the EMPS cascade), each completed the
-same way where it lacks Y or Z (``NAME+xyz``: copies of its X axis), and prints a line per machine.
+same way where it lacks Y or Z (``NAME+yz``: copies of its X axis), and prints a line per machine.
 
 Prints the counts (simulated, cut by the budget, refused by reason, crashed with the exception),
 non-finite captures, runs whose actuator saturated (the summary's ``saturated`` entry), the worst
@@ -44,20 +45,16 @@ sys.path.insert(0, str(ROOT))
 
 from interpolators import Program  # noqa: E402
 from vcnc.core.errors import VcncError  # noqa: E402
-from vcnc.engine.machine import Machine, builtin_machines, load_machine  # noqa: E402
+from vcnc.engine.machine import ADDABLE_AXES, Machine, builtin_machines, load_machine  # noqa: E402
 from vcnc.facade import check_program_axes, interpolate, program_meta  # noqa: E402
 from vcnc.simulation_report import build_report, summarize  # noqa: E402
 
 
 def machines(name: str = "fadal-pid") -> tuple[Machine, Machine]:
-    """Built-in machine ``name`` and the benchmark's copy with X, Y and Z (the missing ones copies of its
-    X axis): ``fadal-pid+z``, ``emps+xyz``."""
+    """Built-in machine ``name`` and the same with X, Y and Z, the missing ones copies of its X axis
+    (``fadal-pid+z``, ``emps+yz``: :func:`vcnc.engine.machine.builtin_machine_text`)."""
     m = load_machine(name)
-    missing = [a for a in ("y", "z") if a not in m.axes]
-    full = m
-    for a in missing:
-        full = full.with_axis(a, m.axis("x"), suffix="" if a != missing[-1] else "+z" if "y" in m.axes else "+xyz")
-    return m, full
+    return m, load_machine(name + "+" + "".join(a for a in ADDABLE_AXES if a not in m.axes))
 
 
 def simulate_one(path: Path, program: Program, xy: Machine, xyz: Machine, seconds: float) -> dict:

@@ -86,7 +86,8 @@ EFFECTS: Mapping[str, EffectInfo] = types.MappingProxyType(dict([
     _entry("saturation", "the amplifier's voltage limit",
            {"saturated_fraction": "share of the reference test's samples above the limit (0.03)",
             "voltage_limit_v": "the limit itself [V], instead"}, "voltage_limit_v", False,
-           "acceleration demand clipped in the split loop: saturation_limit, plant_viscous_rate"),
+           "acceleration demand clipped in the split loop: saturation_limit, plant_viscous_rate "
+           "(its anti-windup and integral lead fixed at export)"),
     _entry("drift", "a slow offset of the measurement (thermal growth)",
            {"rate_mm_s": "rate (2e-4 mm/s)", "time_constant_s": "first-order time constant (0: linear)",
             "measurement": "'table' (default) or 'feedback'"}, "rate_mm_s", False,

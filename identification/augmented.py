@@ -39,8 +39,10 @@ d0 (+ s+), and breaks away against them (Karnopp). Switching w on a sampled sign
 lets a stopped mass chatter and biases every element that acts near reversals (a 60 Hz mode on
 the PID machine came out at 63 Hz with a third of its damping). The other terms of w
 (w_ext, position_periodic) are loads, evaluated every step. The elements are then the physical
-ones: ``delay`` holds u back whole samples, ``saturation`` clips
-u at +/-u_max [mm/s^2 of acceleration demand], ``backlash`` puts a play operator of width b between
+ones: ``delay`` holds u back whole samples, ``saturation`` clips u at +/-u_max [mm/s^2 of
+acceleration demand] (with ``anti_windup`` the law's accumulator ``a3 int(e + tau de/dt) dt +
+(b2 - a2) x_r`` skips the step of a sample whose demand is beyond u_max when the step pushes it
+further out, as the machines' servo laws do), ``backlash`` puts a play operator of width b between
 the driven mass and the measured position (a loop closed on a linear scale), ``resonance`` splits
 the mass in two (motor share 1 - r, table share r) joined by a spring and damper of free-free
 frequency f and damping zeta, measured at the motor or at the table.
@@ -109,6 +111,10 @@ class SimSpec:
         Samples (>= 0).
     saturation : float
         u_max [mm/s^2] (inf: none).
+    anti_windup : bool
+        The law's accumulator stops at the limit (conditional integration).
+    integral_lead : float
+        tau [s]: the accumulator integrates e + tau de/dt (with anti_windup).
     backlash : float
         b [mm] (0: none).
     resonance : ndarray (4,)
@@ -127,6 +133,8 @@ class SimSpec:
     viscous_rate: float = 0.0
     delay: int = 0
     saturation: float = math.inf
+    anti_windup: bool = False
+    integral_lead: float = 0.0
     backlash: float = 0.0
     resonance: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(4))
 
@@ -214,7 +222,9 @@ def simulate_augmented(
         tm = two_mass_matrices(res, float(spec.viscous_rate), T, m)
         run_split(xr, T, m, p["a1"], p["a2"], p["a3"], p["b0"], p["b1"], p["b2"], float(spec.viscous_rate),
                   p["d0"], p["d1"], wext, st, float(spec.asym), float(spec.pp_period), pp_coef,
-                  int(spec.delay), float(spec.saturation), float(spec.backlash), res, tm, pos, vel)
+                  int(spec.delay), float(spec.saturation), bool(spec.anti_windup),
+                  float(spec.integral_lead), float(spec.backlash), res, tm,
+                  pos, vel)
     else:
         dm = discretize(p, T)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,

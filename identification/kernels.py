@@ -211,8 +211,16 @@ def _play(mech, xb, half):  # pragma: no cover - compiled
 
 @numba.njit(cache=True, nogil=True)
 def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
-              delay, umax, bl, res, tm, pos, vel):  # pragma: no cover - compiled
+              delay, umax, aw, lead, bl, res, tm, pos, vel):  # pragma: no cover - compiled
     """The sampled split form of the module docstring; the plant takes m steps per sample.
+
+    ``aw`` (anti-windup of the saturation element, :class:`identification.effects.Saturation`):
+    the law's accumulator ``a3 int(e) + a3 lead e + (b2 - a2) x_r`` does not take the step of a
+    sample whose demand lies beyond ``umax`` when the step pushes it further out (conditional
+    integration, as the machines' laws do: :class:`controllers.Controller`); the steps held back
+    are summed in ``held`` and taken off the demand, so that a loop that never holds one back is
+    the unclamped loop bit for bit. The demand is the law's own output, before the delay line, as
+    in ``vcnc.engine.kernel``.
 
     The two-mass plant (``res[0] > 0``) steps exactly with the matrices ``tm`` of
     :func:`identification.augmented.two_mass_matrices` (a substep, the whole sample, the stuck
@@ -252,6 +260,8 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     xb = xr[0]
     integ = -ff * xr[0] / a3
     ubuf = np.zeros(delay + 1)
+    held = 0.0
+    eprev = 0.0
     yprev = xr[0]
     rprev = xr[0]
     vrprev = 0.0
@@ -274,7 +284,13 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
         integ += T * e
         vr = (xr[k] - rprev) / T
         ar = (vr - vrprev) / T if k > 1 else 0.0
-        u = b1 * vr - kd * (y - yprev) / T + a2 * e + a3 * integ + ff * xr[k] + b0 * ar
+        u = b1 * vr - kd * (y - yprev) / T + a2 * e + a3 * integ + ff * xr[k] + b0 * ar - held
+        if aw:
+            step = a3 * (T * e + lead * (e - eprev)) + ff * (xr[k] - rprev)
+            if (u > umax or u < -umax) and step * u > 0.0:
+                held += step
+                u -= step
+            eprev = e
         yprev = y
         rprev = xr[k]
         vrprev = vr

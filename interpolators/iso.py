@@ -202,6 +202,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
     2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
     # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
@@ -235,11 +236,19 @@ _MILL_G: dict[int, tuple[str, str]] = {
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
 }
 
+#: Fanuc normal direction control (Fanuc Series 0i-MB operator's manual B-63844EN/02, II-14.9 "Normal
+#: direction control (G40.1, G41.1, G42.1 or G150, G151, G152)"; Mitsubishi M700V programming manual 13.14
+#: "Normal line control; G40.1/G41.1/G42.1"): the rotary C axis is turned to stay normal to the XY path.
+#: In LinuxCNC G41.1/G42.1 are dynamic cutter compensation (:data:`_G`); G40.1 is no LinuxCNC code.
+_NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 normal direction control left",
+                     421: "G42.1 normal direction control right"}
+
 #: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
 #: bores with a manual retract).
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
-              **EXTENDED_CODES["fanuc"]},
+              **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
+              700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
@@ -329,6 +338,7 @@ class _State:
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
     tool_current: int | None = None
+    tool_offsets: dict[int, int] = dataclasses.field(default_factory=dict)  # Fagor T<tool>.<offset>: its offset
     length_code: float = 49.0  # the group 8 G code in effect (43, 43.1, 44, 49: Fanuc #4008)
     length_number: int = 0  # the H number of the length offset in effect (Fanuc #4111)
     comp_number: int = 0  # the D number of the cutter compensation in effect (Fanuc #4107)
@@ -669,6 +679,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
+    if "normal direction" in gcodes:
+        _normal_direction(gcodes["normal direction"], st, where, notes)
     seen = _io_words(mcodes, seen, where)
     _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
@@ -986,7 +998,10 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
     st.block_f = seen["F"].value if "F" in seen else None
     # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
-        st.inch = gcodes["units"][0] == 200
+        key, w = gcodes["units"]
+        if key in (700, 710):
+            _g70_g71_units(key, w, seen, where, notes)
+        st.inch = key in (200, 700)
         st.units_stated = True
     if "plane" in gcodes:
         st.plane = _PLANE_OF[_G[gcodes["plane"][0]][1]]
@@ -1025,6 +1040,9 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         st.feed_rotary = st.feed_per_rev_word * st.spindle_speed / 60.0 if has else None
     if "T" in seen:
         w = seen["T"]
+        fagor = re.fullmatch(r"T\s*(\d+)\.(\d+)", w.text, re.I) if st.context.dialect.name == "fanuc" else None
+        if fagor is not None:
+            w = _fagor_tool(w, fagor, st, notes)
         if w.value != int(w.value) or w.value < 0:
             where.fail("tool number T must be a whole number >= 0", column=w.column, text=w.text,
                        expected="T0, T1, ...")
@@ -1052,6 +1070,72 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
     return {k: v for k, v in seen.items() if k not in sm.consumed}
+
+
+def _fagor_tool(w: Word, m: re.Match, st: _State, notes: _Notes) -> Word:
+    """``T<tool>.<offset>`` under ``--dialect fanuc``: Fagor's 8025/8030 form of the 8055's ``T<tool> D<offset>``
+    (Fagor 8055 programming manual, 5.6 "Tool number (T) and tool offset (D)": "T5 D18 selects tool 5 and
+    assumes the dimensions of tool offset 18"; the dotted form is our reading of the older controls' programs,
+    no 8025 manual at hand). The offset is the tool-table entry G43 without H and G41/G42 without D take
+    while that tool is in the spindle (8055 manual 8.2: G43 "compensates the length in accordance with the
+    value of the tool offset selected with code D"). Returns the T word of the tool alone."""
+    tool, offset = int(m.group(1)), int(m.group(2))
+    st.tool_offsets[tool] = offset
+    notes.add("T<tool>.<offset> read as Fagor's tool and offset (T D of the Fagor 8055)")
+    return Word("T", float(tool), w.column, w.text)
+
+
+def _fagor_drilling(seen, st: _State, where: Where, notes: _Notes) -> dict:
+    """A G81 series whose first block has I and no R under ``--dialect fanuc``: the Fagor 8055 form
+    (programming manual 9.7 "G81. Drilling canned cycle": "G81 G98/G99 X Y Z I K" -- "Z Reference plane ...
+    I Drilling depth ... K Dwell, in hundredths of a second"), which Fanuc's G81 (R plane, Z bottom, K
+    repeats) cannot mean (no I). Each block of the series is read as Fanuc's ``R<Z> Z<I>``: both keep their
+    absolute and incremental references (Fagor: Z "referred to the initial plane", I "referred to the
+    reference plane"; Fanuc G91: R from the initial level, Z from R); a later block's Z alone is a new
+    reference plane, drilled to the same depth."""
+    st.cycle.fagor = True
+    w = seen.get("I") or seen.get("Z") or next(iter(seen.values()))
+    if st.plane != 2 or seen.get("K") is not None and seen["K"].value != 0:
+        what = "a dwell K" if st.plane == 2 else "a plane other than G17"
+        where.fail(f"G81 Z I (Fagor drilling form) with {what}: not supported", column=w.column, text=w.text,
+                   expected="G17 and G81 Z<reference plane> I<depth> without K")
+    notes.add("G81 Z I read as Fagor's drilling cycle (Z the reference plane, I the depth)")
+    out = {k: v for k, v in seen.items() if k not in "ZIK"}
+    if "Z" in seen:
+        out["R"] = Word("R", seen["Z"].value, seen["Z"].column, seen["Z"].text)
+    if "I" in seen:
+        out["Z"] = Word("Z", seen["I"].value, seen["I"].column, seen["I"].text)
+    return out
+
+
+def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None:
+    """G70 / G71 in a Fanuc mill program (``--dialect fanuc``; Haas reads bolt-hole patterns): inch / metric
+    input, as Siemens (SINUMERIK programming manual, "Inch or metric dimensions: G70/G700, G71/G710"), Fagor
+    8055 ("G70/G71 programming units") and Heidenhain ISO (TNC ISO programming manual: "G70 inch, G71 mm")
+    mills read them; on Fanuc mills they are no mill code (Fanuc's lathe finishing/roughing cycles, which a
+    mill refuses). Our reading: a post written for one of those controls (Chinese shop posts: "G40 G17 G90
+    G71"), noted. With a lathe cycle's words (P Q U W R) or a Haas bolt-hole pattern's (I J K L) it is no
+    unit: refused."""
+    cycle = [c for c in "PQUWRIJKL" if c in seen]
+    if cycle:
+        name = "G70 lathe finishing cycle" if key == 700 else "G71 lathe roughing cycle"
+        where.fail(f"{name}: not supported (its {cycle[0]} word)", column=w.column, text=w.text,
+                   expected="milling G codes (see vcnc's ISO reader)")
+    notes.add(f"G{key // 10} read as {'inch' if key == 700 else 'metric'} input (Siemens, Fagor, Heidenhain ISO; "
+              "not a Fanuc mill code)")
+
+
+def _normal_direction(entry, st: _State, where: Where, notes: _Notes) -> None:
+    """Fanuc G40.1/G41.1/G42.1 (:data:`_NORMAL_DIRECTION`): the control turns the C axis normal to the XY
+    path and leaves the path itself as programmed. A machine without a C axis has nothing to turn: the
+    codes are a note (CAM safety lines write ``G40.1`` among G40 G49 G80). With a C axis the turning
+    would be motion vcnc does not make: refused."""
+    key, w = entry
+    if key != 401 and "c" in st.context.extra_axes:
+        where.fail(f"{_NORMAL_DIRECTION[key]} (turning the C axis normal to the path): not supported",
+                   column=w.column, text=w.text, expected="G40.1, or C moves programmed in the blocks")
+    notes.add(_NORMAL_DIRECTION[key] if key == 401 else "G41.1/G42.1 normal direction control: this machine has "
+              "no C axis to turn, the path is as programmed")
 
 
 def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list[int]]:
@@ -1174,7 +1258,10 @@ def _io_words(mcodes, seen, where: Where) -> dict:
             number = lead.group(0) + w.text
             where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
                        column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O)", column=w.column, text=w.text,
+        # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
+        fadal = " (E1-E48 select a Fadal fixture offset: not supported)" if 0 <= w.value <= 48 and \
+            w.value == int(w.value) else ""
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
 
@@ -1299,7 +1386,11 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
         if letter in seen and not cycle and not ("path" in gcodes and letter == "Q") \
                 and not ("nonmodal" in gcodes and letter == "L"):
             w = seen[letter]
-            where.fail(f"unknown word {w.text!r} outside a drilling cycle", column=w.column, text=w.text,
+            # Fadal User Manual section 1: "L Subroutine definition or call" (L<nn>00 opens subroutine nn,
+            # M17 ends it; L<nn><count> calls it)
+            fadal = " (a Fadal subroutine definition or call: not supported)" if letter == "L" and \
+                w.value >= 100 and w.value == int(w.value) else ""
+            where.fail(f"unknown word {w.text!r} outside a drilling cycle{fadal}", column=w.column, text=w.text,
                        expected=f"{letter} only in drilling cycles (G73, G83)" if letter == "Q" else
                        f"{letter} only in drilling cycles or G10")
 
@@ -1854,7 +1945,7 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
         radius = seen["D"].value * st.scale / 2.0
     else:
         tool = st.tool(int(seen["D"].value)) if "D" in seen else (
-            st.tool(st.tool_current) if st.tool_current is not None else None)
+            st.tool(st.tool_offsets.get(st.tool_current, st.tool_current)) if st.tool_current is not None else None)
         radius = 0.0 if tool is None else tool.radius
     st.comp_side = "left" if key in (410, 411) else "right"
     if radius < 0.0:  # LinuxCNC convert_cutter_compensation_on: a negative radius switches the side
@@ -1920,7 +2011,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
-    number = int(h.value) if h is not None else st.tool_current
+    number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
     st.length_number = number or 0
     tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
@@ -2237,6 +2328,9 @@ def _framed_initial(st: _State, *, to_program: bool) -> None:
 
 def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
+    if st.motion == 810 and st.context.dialect.name == "fanuc" and notes is not None and (
+            st.cycle.fagor or st.cycle.r is None and "I" in seen and "R" not in seen):
+        seen = _fagor_drilling(seen, st, where, notes)
     name = _G[st.motion][1]
     if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
         notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "

@@ -119,6 +119,7 @@ class CycleWords:
     j: float | None = None
     k: float | None = None  # Haas G73/G83 minimum peck
     factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # the G51 scaling the series began under
+    fagor: bool = False  # a Fagor G81 Z I series: Z is the reference plane, I the depth (interpolators.iso)
 
 
 @dataclasses.dataclass(frozen=True)

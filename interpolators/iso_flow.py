@@ -574,6 +574,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         back_to = next((w for w in words if w.letter == "P"), None) if frames else None
         rest = [w for w in words if w is not m99 and w is not back_to]
         if not frames:
+            if on_note is not None:
+                on_note(_main_m99_note(prog, pc))
             yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
             return
         if rest:
@@ -590,6 +592,20 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
                 params.pop()
             pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
     _no_return(prog, frames)
+
+
+#: An M99 word in a line of code.
+_M99 = re.compile(r"M\s*0*99(?![0-9.])", re.I)
+
+
+def _main_m99_note(prog: _Program, pc: int) -> str:
+    """The note of an ``M99`` the main program reaches: Fanuc and Haas return to its start and run it again
+    (Haas mill operator's manual, "M99 Subprogram Return or Loop": in a main program M99 "loops back to the
+    start"), vcnc runs it once; programs the file holds after it (a subprogram stored before its main
+    program, ``O1000 ... M99 % O0001 (MAIN) ... M98 P1000``) are not run."""
+    later = sorted((i, n) for n, i in prog.fanuc.items() if i > pc)
+    after = f"; the file's later programs ({', '.join(f'O{n:04d}' for _, n in later)}) are not run" if later else ""
+    return f"M99 ends the main program (Fanuc/Haas would run it again from its start){after}"
 
 
 def _no_return(prog: _Program, frames: list[_Frame]) -> None:
@@ -615,27 +631,45 @@ def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
     return target
 
 
-def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, where: Where) -> int:
+def _local_subprogram(prog: _Program, pc: int, words: list[Word], call: Word, where: Where, letter: str = "P") -> int:
     """The line ``N<P>`` of this program that a Haas ``M97 P<n> L<count>`` calls (Haas mill operator's
     manual 96-8000, "M97 Local Sub-Program Call": "used to call a subroutine referenced by a line
     number (N) within the same program ... The subroutine must end with an M99. An Lnn code in the
-    M97 block will repeat the subroutine call that nn times"); found as a macro B GOTO finds it."""
-    p = next((w for w in words if w.letter == "P"), None)
+    M97 block will repeat the subroutine call that nn times"); found as a macro B GOTO finds it.
+    ``letter`` "Q": the block ``N<Q>`` of an ``M98 Q<n>`` without P (:func:`_subprogram_start`)."""
+    p = next((w for w in words if w.letter == letter), None)
     target = None if p is None or p.value != round(p.value) else prog.macro.find(round(p.value), pc)
+    what = "M97 local subprogram call" if letter == "P" else "M98 Q subprogram call (no P: this program)"
+    expected = f"{call.text.upper()} {letter}<n> with a block N<n> in the same program, ending with M99"
     if target is None:
-        missing = "no P word" if p is None else f"no block N{p.value:g} in this program"
-        where.fail(f"M97 local subprogram call: {missing}", column=call.column, text=call.text,
-                   expected="M97 P<n> with a block N<n> in the same program, ending with M99")
+        missing = f"no {letter} word" if p is None else f"no block N{p.value:g} in this program"
+        where.fail(f"{what}: {missing}", column=call.column, text=call.text, expected=expected)
+    if target <= pc and not any(c is not None and _M99.search(c) for c in prog.code[target:pc]):
+        # the called blocks run into this call again before any M99: it would call itself without end
+        where.fail(f"{what}: block N{p.value:g} comes before the call and reaches it again without an M99",
+                   column=call.column, text=call.text, expected=expected)
     return target
 
 
 def _subprogram_start(prog: _Program, pc: int, words: list[Word], call: Word, where: Where,
                       on_note: Callable[[str], None] | None) -> tuple[int, Word | None]:
-    """The first line an ``M97``/``M98`` block runs, and the ``Q`` word of an ``M98 P Q`` (else None)."""
+    """The first line an ``M97``/``M98`` block runs, and the ``Q`` word of an ``M98 P Q`` (else None).
+
+    ``M98 Q<n>`` without P calls the block ``N<n>`` of the program being run, to its M99, as Haas M97
+    does (Mitsubishi M70/Meldas programming manual, "Subprogram call: M98, M99": P is the "program No.
+    of the subprogram to be called (own program if omitted)", Q/H the sequence number to start at; as
+    summarised in https://industrialmonitordirect.com/blogs/knowledgebase/mitsubishi-meldas-m98-subprogram-call-h-address-syntax).
+    Fanuc 0i-MD shop programs (Doosan DNM) write ``M98 Q3021`` with ``N3021 ... M99`` after M30; no Fanuc
+    manual at hand states it, so it is noted."""
     if call.value == 97:
         return _local_subprogram(prog, pc, words, call, where), None
-    start = _called_program(prog, words, call, where, "M98 subprogram call")
     q = next((w for w in words if w.letter == "Q"), None)
+    if q is not None and not any(w.letter == "P" for w in words):
+        if on_note is not None:
+            on_note("M98 Q without P: the block N<Q> of this program is called, to its M99 (Mitsubishi form; "
+                    "read as on Fanuc 0i-MD shop programs)")
+        return _local_subprogram(prog, pc, words, call, where, "Q"), q
+    start = _called_program(prog, words, call, where, "M98 subprogram call")
     if q is None:
         return start, None
     if on_note is not None:

@@ -53,6 +53,7 @@ Haas tool offsets (Haas macro variables, "Tool Offsets": ``#2001``-``#2200`` too
 ``#2201``-``#2400`` length wear, ``#2401``-``#2600`` diameter geometry, ``#2601``-``#2800`` diameter
 wear, read/write, tools 1-200) read and write the tool table (:class:`interpolators.context.Tool`:
 length = geometry + wear); Fanuc's tool variables depend on its offset memory type and stay errors.
+Haas ``#3026`` ("Tool in spindle", read only) is the tool in the spindle, as ``#4120``.
 
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
@@ -243,6 +244,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return (_fanuc_modal(n, st) if fanuc else None), ""
     if fanuc and st.context.dialect.name == "haas" and 2001 <= n <= 2800:
         return _haas_tool(n, st), ""
+    if fanuc and st.context.dialect.name == "haas" and n == 3026:  # Haas "Macros": #3026 tool in spindle
+        return float(st.tool_current or 0), ""
     if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z
         return (float(st.external[n - 5201]) / _stored(st) if n <= 5203 else 0.0), ""
     extended = offset_parameter(n, st.context.dialect.name) if fanuc else None

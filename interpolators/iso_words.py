@@ -160,6 +160,13 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             tok = code[i:close + 1] if close > i else token_at(code, i)
             where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder?)",
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
+        if ch == "/" and not words:
+            # '//' opens a line comment in Syntec/DDCS macro programs and the MillMaster Pro control's files
+            # ("//NC FILE - ..."); no ISO control reads it: Fanuc, Haas, LinuxCNC and grbl take the first '/'
+            # as block delete (Fanuc '/1'-'/9' a skip level) and then meet a second one
+            where.fail("'//' comment line (Syntec/DDCS macro and MillMaster Pro style): not a comment in ISO "
+                       "G-code, where '/' at a line's start is block delete", column=i + 1,
+                       text=token_at(code, i), expected="a ( ) or ; comment")
         if up not in WORD_LETTERS and up not in (",R", ",C"):
             tok = token_at(code, i)
             if set(tok) == {"."}:

@@ -100,22 +100,41 @@ def check_program_axes(program: Program, machine: Machine) -> None:
     from toolpaths.geometry import Arc
     from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 
+    first, lacking = None, set()
     for b in program.blocks:
         moved = [a for a, s, e in zip("xyz", b.start, b.target) if s != e]
         if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
             moved += ["xyz"[i] for i in b.segment.plane_axes]
         moved += [a for a, d in zip(EXTRA_NAMES, b.extra_delta) if d != 0]
-        missing = [a for a in AXIS_NAMES if a in moved and a not in machine.axes]  # in the machine's order
-        if missing:
-            names = ", ".join(a.upper() for a in missing)
-            raise GCodeError(
-                f"the program moves axis {names}, which machine {machine.name!r} does not have (its axes: "
-                f"{', '.join(a.upper() for a in machine.axes)})",
-                file=program.source,
-                line=b.line,
-                expected=f"a machine with axis {names}: write `vcnc machines --show {machine.name}` to a TOML "
-                f"file and add an [axes.{missing[0]}] section",
-            )
+        missing = {a for a in moved if a not in machine.axes}
+        if missing and first is None:
+            first = (b, missing)
+        lacking |= missing
+    if first is not None:
+        b, missing = first
+        missing = [a for a in AXIS_NAMES if a in missing]  # in the machine's order
+        names = ", ".join(a.upper() for a in missing)
+        raise GCodeError(
+            f"the program moves axis {names}, which machine {machine.name!r} does not have (its axes: "
+            f"{', '.join(a.upper() for a in machine.axes)})",
+            file=program.source,
+            line=b.line,
+            expected=f"a machine with axis {names}: {_add_axis_hint(machine, lacking)}write `vcnc machines "
+            f"--show {machine.name}` to a TOML file and add an [axes.{missing[0]}] section",
+        )
+
+
+def _add_axis_hint(machine: Machine, lacking: set[str]) -> str:
+    """``--machine NAME+z runs ... or `` when a built-in machine's name can add the axes the program moves and it
+    ``lacking``, else ''."""
+    from vcnc.engine.machine import ADDABLE_AXES
+
+    if not (machine.source or "").startswith("<built-in ") or not lacking <= set(ADDABLE_AXES):
+        return ""
+    added = machine.name.partition("+")[2] + "".join(lacking)
+    name = machine.name.partition("+")[0] + "+" + "".join(a for a in ADDABLE_AXES if a in added)
+    axes = " and ".join(a.upper() for a in ADDABLE_AXES if a in lacking)
+    return f"`--machine {name}` runs {axes} on a copy of its X drive (an assumption), or "
 
 
 def truncation_note(setpoints: Setpoints, *, done: str = "simulated") -> str | None:

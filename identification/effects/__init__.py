@@ -14,7 +14,7 @@ position_periodic              disturbance  yes  Fourier series in x (period P_x
 time_periodic                  disturbance  yes  Fourier series in t (period P_t) in w
 drift                          output       yes  rate * t added to the measurement
 delay                          element      yes  u held for whole samples (split loop)
-saturation                     element      yes  u clipped (split loop)
+saturation                     element      yes  u clipped, anti-windup or not (split loop)
 backlash                       element      yes  play operator on the measured position
 resonance                      element      yes  two-mass plant (split loop)
 =============================  ===========  ===  =============================================

@@ -28,12 +28,9 @@ K_J = 1008.0  # K/J of the fadal-pid x axis [mm/(V s^2)]: amplifier 2 A/V, 0.95 
 
 @pytest.fixture(scope="module")
 def machine():
-    # the thesis' bare PID (anti_windup = false): the diagnosis' saturation element models a law whose
-    # integrator is not clamped (identification/effects/saturation.py); the captures that never reach
-    # the current limit are the same either way
-    m = vcnc.machine("fadal-pid")
-    bare = dataclasses.replace(m.axis("x").controller, anti_windup=False)
-    return m.with_axis_options("x", backlash=None, controller=bare)
+    # the machine as it is: its PID has anti-windup (conditional integration at the 15 A limit), which the
+    # saturation element models too (identification/effects/saturation.py)
+    return vcnc.machine("fadal-pid").with_axis_options("x", backlash=None)
 
 
 @pytest.fixture(scope="module")
@@ -94,7 +91,9 @@ EXPECTED = {
     "position_periodic": ("period_mm", 10.0, 0.05),
     "time_periodic": ("period_s", 0.5, 0.05),
     "resonance": ("antiresonance_hz", 60.0 * math.sqrt(0.5), 0.05),
-    "saturation": ("limit_mm_s2", 3.5 * K_J, 0.10),
+    # the element with the PID's anti-windup: 3532 mm/s^2 on seed 1 (0.12 %); 3636 (3 %) when only the
+    # unclamped element existed
+    "saturation": ("limit_mm_s2", 3.5 * K_J, 0.01),
     "drift": ("rate_mm_s", -2e-4, 0.10),  # the table lags the drifting encoder
     "friction_stribeck": ("stribeck_velocity_mm_s", 5.0, 0.30),
 }
@@ -115,11 +114,16 @@ def test_undeclared_effect_is_named_first_and_cuts_the_held_out_error(machine, s
     for k in ("rms_before_um", "rms_after_um", "validation_rms_before_um", "validation_rms_after_um"):
         assert math.isfinite(rec[k])
     if effect == "delay":
-        assert _param(rep, "delay")["samples"] == 2
+        # one effect only: the loop rings into the PID's current limit (0.6 % of the samples), which the
+        # anti-windup holds back, and without the limit in the model 3 samples explain that lag best; with
+        # the limit (the default options, below) the delay is 2 samples as set
+        assert _param(rep, "delay")["samples"] in (2, 3)
     elif effect in EXPECTED:
         key, true, tol = EXPECTED[effect]
         got = _param(rep, effect)[key]
         assert abs(got - true) <= tol * abs(true), (key, got, true)
+    if effect == "saturation":  # the machine's PID has anti-windup, and so has the element found
+        assert _param(rep, "saturation")["anti_windup"] is True
     if effect == "resonance":  # the free-free frequency too (it trades off with the mass split), within 5 %
         res = _param(rep, "resonance")
         assert abs(res["frequency_hz"] - 60.0) <= 0.05 * 60.0, res
@@ -131,7 +135,8 @@ def test_undeclared_effect_is_named_first_and_cuts_the_held_out_error(machine, s
     ("time_periodic", ["time_periodic"]),
     ("resonance", ["resonance"]),
     # the 2-sample delay makes the loop ring into the drive's real 15 A current limit (7.5 V,
-    # vcnc/machines/fadal-pid.toml): saturation is there and is named second
+    # vcnc/machines/fadal-pid.toml): saturation is there and is named second, with the PID's anti-windup
+    # (the unclamped element alone took 3 samples of delay and no limit: 4.30 um held out, now 0.20 um)
     ("delay", ["delay", "saturation"]),
 ])
 def test_default_max_effects_adds_only_what_is_there(machine, setpoints, effect, expected):
@@ -149,8 +154,27 @@ def test_default_max_effects_adds_only_what_is_there(machine, setpoints, effect,
     for rec in rep.model.effects:
         assert rec["validation_rms_after_um"] <= 0.75 * rec["validation_rms_before_um"], rec
     if "saturation" in expected:
-        assert abs(_param(rep, "saturation")["limit_mm_s2"] - 7.5 * K_J) <= 0.02 * 7.5 * K_J
+        assert abs(_param(rep, "saturation")["limit_mm_s2"] - 7.5 * K_J) <= 0.01 * 7.5 * K_J
+        assert _param(rep, "saturation")["anti_windup"] is True
+    if effect == "delay":
+        assert _param(rep, "delay")["samples"] == 2
     assert rep.model.validation["unexplained"]["rms_um"] < 0.5, rep.model.validation["unexplained"]
+
+
+def test_saturation_of_the_bare_pid_is_found_unclamped(machine, setpoints):
+    """The thesis' bare PID (``anti_windup = false``) winds its integral up at the limit: the element
+    found is the unclamped one, its limit 3520 mm/s^2 on seed 1 (0.2 % off)."""
+    law = dataclasses.replace(machine.axis("x").controller, anti_windup=False)
+    bare = machine.with_axis_options("x", controller=law).with_effect("x", "saturation", VARIANTS["saturation"][1])
+    cap = bare.simulate(setpoints, seed=1)
+    rep = diagnose_report(cap, identify(cap, axis="x", diagnose=False), axis="x",
+                          options=DiagnosisOptions(max_effects=1))
+    assert rep.effects == ["saturation"], rep.rounds
+    got = _param(rep, "saturation")
+    assert got["anti_windup"] is False and "integral_lead_s" not in got
+    assert abs(got["limit_mm_s2"] - 3.5 * K_J) <= 0.01 * 3.5 * K_J
+    v = rep.model.validation
+    assert v["rms_after_um"] <= 0.2 * v["rms_before_um"], v
 
 
 @pytest.mark.parametrize("seed", [1, 2])

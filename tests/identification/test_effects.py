@@ -38,6 +38,7 @@ EXAMPLES = [
     Resonance(frequency=60.0, damping=0.05, table_fraction=0.5, measured_at="motor"),
     Delay(samples=2, sample_time=TS),
     Saturation(limit=3500.0),
+    Saturation(limit=3500.0, anti_windup=True, integral_lead=0.02),
     Drift(rate=2e-4),
 ]
 
@@ -53,7 +54,7 @@ def test_vocabulary_is_the_architecture_one():
     assert {type(e).NAME for e in EXAMPLES} == set(EFFECTS)
 
 
-@pytest.mark.parametrize("effect", EXAMPLES, ids=lambda e: e.NAME)
+@pytest.mark.parametrize("effect", EXAMPLES, ids=lambda e: e.summary())
 def test_record_round_trip_and_units(effect):
     rec = effect.record()
     assert rec["name"] == effect.NAME and isinstance(rec["fmu"], bool)
@@ -67,6 +68,54 @@ def test_unknown_effect_record_is_refused():
         effect_from_record({"name": "gremlins", "parameters": {}})
     with pytest.raises(InputError, match="period_s"):
         effect_from_record({"name": "time_periodic", "parameters": {"period_s": "soon"}})
+
+
+def test_saturation_records_without_anti_windup_read_as_the_unclamped_element():
+    """A model file of before session 19 (no ``anti_windup``) means the element it was fitted with."""
+    old = effect_from_record({"name": "saturation", "parameters": {"limit_mm_s2": 3500.0}})
+    assert old == Saturation(limit=3500.0) and old.anti_windup is False and old.integral_lead == 0.0
+    assert old.record()["parameters"] == {"limit_mm_s2": 3500.0, "anti_windup": False}
+    aw = effect_from_record({"name": "saturation", "parameters": {"limit_mm_s2": 3500.0, "anti_windup": True,
+                                                                  "integral_lead_s": 0.02}})
+    assert aw == Saturation(limit=3500.0, anti_windup=True, integral_lead=0.02)
+    assert "anti-windup" in aw.summary() and "anti-windup" not in old.summary()
+    with pytest.raises(InputError, match="anti_windup.*true or false"):
+        effect_from_record({"name": "saturation", "parameters": {"limit_mm_s2": 3500.0, "anti_windup": 1}})
+    with pytest.raises(InputError, match="integral_lead_s.*>= 0"):
+        effect_from_record({"name": "saturation", "parameters": {"limit_mm_s2": 3500.0, "anti_windup": True,
+                                                                 "integral_lead_s": -0.01}})
+
+
+@pytest.mark.parametrize(("name", "lead_s", "limit_v"), [
+    # a PID's integral is that of e alone (Eq. 3.5): no lead
+    ("fadal-pid", 0.0, 3.5),
+    # a P-PI's velocity-loop integrator integrates K_p e - v: lead 1/K_p (K_p = 30 1/s, vcnc/machines/fadal-ppi.toml)
+    ("fadal-ppi", 1.0 / 30.0, 2.0),
+])
+def test_saturation_forms_are_the_machines_laws_at_their_limit(name, lead_s, limit_v):
+    """The machine (noise, encoder, DAC, friction and nut play removed; its amplifier limited to
+    ``limit_v``) running into its limit on reversals after short moves, against the split form with
+    the machine's own reduced parameters: the element with anti-windup and the law's integral lead
+    reproduces the machine with anti-windup (conditional integration, Controller.anti_windup) to
+    1e-12 mm, the unclamped element the bare law; each is >= 0.1 um off the other law."""
+    import dataclasses
+
+    out = {}
+    for machine_aw in (True, False):
+        m0 = vcnc.machine(name)
+        law = dataclasses.replace(m0.axis("x").controller, anti_windup=machine_aw)
+        m = m0.with_axis_options("x", backlash=None, noise=None, encoder=None, dac=None, friction=None,
+                                 controller=law).with_effect("x", "saturation", {"voltage_limit_v": limit_v})
+        cap = m.simulate(vcnc.interpolate(vcnc.parse_program("G00 X0 F12000\nG01 X5\nX-3\nX2.5\nX2.4\nX0\nM30\n"), m))
+        assert cap.aux["saturated"].mean() > 0.005
+        ax = m.axis("x")
+        base = ReducedAxisModel(parameters=ax.reduced_parameters(), sample_time=TS)
+        for aw in (True, False):
+            e = Saturation(limit=limit_v * ax.drive.gain, anti_windup=aw, integral_lead=lead_s if aw else 0.0)
+            y = augment(base, [e], viscous_rate=ax.drive.viscous_rate).simulate(cap.reference[:, 0])
+            out[machine_aw, aw] = np.max(np.abs(y - cap.measured[:, 0]))
+    assert out[True, True] < 1e-12 and out[False, False] < 1e-12, out  # mm
+    assert out[True, False] > 1e-4 and out[False, True] > 1e-4, out
 
 
 def test_no_effect_is_the_reduced_model_bit_for_bit(reference):
@@ -124,13 +173,20 @@ def test_elements_change_the_response_as_physics_says(reference):
     m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=TS)
     null = augment(m, [Delay(samples=0, sample_time=TS)], viscous_rate=2.55).simulate(reference)
     # a limit far above every demand, a play of zero width: the null form
-    assert np.allclose(augment(m, [Saturation(limit=1e9)], viscous_rate=2.55).simulate(reference), null, atol=1e-12)
+    far = augment(m, [Saturation(limit=1e9)], viscous_rate=2.55).simulate(reference)
+    assert np.allclose(far, null, atol=1e-12)
+    # ... in both forms: an anti-windup that never holds a step back leaves the loop bit for bit
+    aw = augment(m, [Saturation(limit=1e9, anti_windup=True, integral_lead=0.03)], viscous_rate=2.55)
+    assert np.array_equal(aw.simulate(reference), far)
     # backlash: lost motion at reversals of about its width, tracking otherwise
     bl = augment(m, [Backlash(width=0.02)], viscous_rate=2.55).simulate(reference)
     assert 0.002 < np.max(np.abs(bl - null)) < 0.05
-    # a limit below the demand slows the moves down
+    # a limit below the demand slows the moves down; the loop whose integral is held back at the limit
+    # tracks closer than the unclamped one, which winds up
     sat = augment(m, [Saturation(limit=1000.0)], viscous_rate=2.55).simulate(reference)
     assert np.sqrt(np.mean((sat - reference) ** 2)) > np.sqrt(np.mean((null - reference) ** 2))
+    held = augment(m, [Saturation(limit=1000.0, anti_windup=True)], viscous_rate=2.55).simulate(reference)
+    assert np.sqrt(np.mean((held - reference) ** 2)) < np.sqrt(np.mean((sat - reference) ** 2))
     # drift is an output offset growing linearly
     dr = augment(m, [Drift(rate=1e-3)]).simulate(reference)
     t = np.arange(reference.size) * TS

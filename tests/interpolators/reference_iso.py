@@ -78,7 +78,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   cancels.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
-  ``N<n>``. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
+  ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
+  to its M99, as M97 does. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
   Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
@@ -552,6 +553,7 @@ class _Machine:
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.selected = self.loaded = 0
+        self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_closed = 0.0  # the radius of a run G40 closed, until the next move (its exit move)
@@ -702,11 +704,13 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.plane = code // 10
         elif code in (200, 210):
             m.scale = 25.4 if code == 200 else 1.0
+        elif code in (700, 710) and m.ctx.dialect.name == "fanuc":  # Siemens/Fagor units in a mill post
+            m.scale = 25.4 if code == 700 else 1.0
     for code in g:
         if code == 400:
             m.comp_closed, m.comp_radius = m.comp_radius or 0.0, None
         elif code in (410, 420):
-            number = int(words["d"][-1]) if "d" in words else m.loaded
+            number = int(words["d"][-1]) if "d" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
             m.comp_entry = True
@@ -714,7 +718,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
         if code == 430:
-            number = int(words["h"][-1]) if "h" in words else m.loaded
+            number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
@@ -767,9 +771,14 @@ def _extended(m: _Machine, code: int, g: list[int], words: dict) -> bool:
 
 
 def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
-    """Fanuc/Haas look-ahead codes (their words taken off, the codes too) and G68/G69."""
+    """Fanuc/Haas look-ahead codes (their words taken off, the codes too), Fanuc G40.1-G42.1 and G68/G69."""
     if m.ctx.dialect.name == "haas" and 770 in g:  # Haas G77 is Fanuc's G87
         g[g.index(770)] = 870
+    for code in (401, 411, 421):  # Fanuc normal direction control (B-63844EN II-14.9): turns a C axis only
+        if code in g and m.ctx.dialect.name == "fanuc":
+            if code != 401 and "c" in m.ctx.extra_axes:
+                raise ReferenceError("G41.1/G42.1 normal direction control with a C axis")
+            g.remove(code)
     for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
         if code in g:
             g.remove(code)
@@ -1092,6 +1101,18 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     code = m.motion // 10
     if m.cycle_clear is None and m.ctx.dialect.name != "linuxcnc":
         m.sticky = {}  # Fanuc/Haas: G80 clears the hole data; LinuxCNC keeps its cycle_p, cycle_q, cycle_cc
+    if code == 81 and m.ctx.dialect.name == "fanuc" and (m.sticky.get("fagor") or m.cycle_clear is None
+                                                         and "i" in words and "r" not in words):
+        # Fagor 8055 programming manual 9.7: "G81 G98/G99 X Y Z I K", Z the reference plane, I the depth, in
+        # every block of the series
+        if m.plane != 17 or words.get("k", [0.0])[-1] != 0:
+            raise ReferenceError("Fagor G81 with a dwell K or outside G17")
+        m.sticky["fagor"] = True
+        if "z" in words:
+            words["r"] = words.pop("z")
+        if "i" in words:
+            words["z"] = words.pop("i")
+        words.pop("k", None)
     for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]
@@ -1212,6 +1233,9 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     g, mc = _codes(words, "g"), _codes(words, "m")
     if "t" in words:
         m.selected = int(words["t"][-1])
+        dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
+        if dotted:  # Fagor T<tool>.<offset> (the 8055's T D): G43 / G41 without H / D take that offset
+            m.offsets_of[int(dotted.group(1))] = int(dotted.group(2))
     if 60 in mc:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
@@ -1509,7 +1533,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m98":
             words, _ = _words(ln.text, params)
             count = int(words["l"][-1]) if "l" in words else 1
-            start = _m98_start(words, st)
+            start = _m98_start(words, st) if "p" in words else _goto(words["q"][-1], pc, st)
             frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
             pc = start
             continue

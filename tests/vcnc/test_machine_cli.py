@@ -53,6 +53,38 @@ def test_machines_show_prints_toml(capsys, tmp_path) -> None:
     assert m.context.offset("G54").tolist() == [0, 0, 0] and m.context.home.tolist() == [0, 0, 0]
 
 
+@pytest.mark.parametrize("name", builtin_machines())
+def test_a_built_in_machine_plus_z_has_a_z_axis_that_is_a_copy_of_its_x_axis(name, capsys, tmp_path) -> None:
+    base = load_machine(name)
+    added = "".join(a for a in "yz" if a not in base.axes)
+    m = load_machine(f"{name}+{added}")
+    assert m.name == f"{name}+{added}" and m.axes == (*base.axes, *added)
+    assert "Z a copy of the X axis" in m.description or "Y and Z copies of the X axis" in m.description
+    for a in added:
+        assert m.axis(a) == dataclasses.replace(base.axis("x"), name=a) and m.limits[a] == base.limits["x"]
+    for a in base.axes:
+        assert m.axis(a) == base.axis(a)
+    # --show prints a file that loads as the same machine, for a user to edit
+    assert main(["machines", "--show", m.name]) == 0
+    f = tmp_path / "m.toml"
+    f.write_text(capsys.readouterr().out)
+    from_file = load_machine(f)
+    assert from_file.name == m.name and from_file.axes == m.axes
+    assert all(from_file.axis(a) == m.axis(a) for a in m.axes)
+
+
+@pytest.mark.parametrize(("name", "words"), [
+    ("fadal-pid+y", ["fadal-pid has the axes x, y", "e.g. fadal-pid+z"]),  # Y is there already
+    ("fadal-pid+w", ["the linear axes to add", "(y, z, the ones it lacks)"]),
+    ("emps+", ["e.g. emps+yz"]),
+    ("emps+zz", ["e.g. emps+yz"]),
+])
+def test_a_built_in_name_with_axes_it_cannot_add_is_an_error(name, words, capsys) -> None:
+    assert main(["machines", "--show", name]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: machine {name!r}:") and all(w in err for w in words)
+
+
 def test_machines_show_unknown_exit_2(capsys) -> None:
     assert main(["machines", "--show", "nope"]) == 2
     err = capsys.readouterr().err

@@ -12,7 +12,7 @@ import pytest
 import interpolators
 import vcnc
 from vcnc.cli import main
-from vcnc.engine.machine import load_machine
+from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.facade import interpolate, truncation_note
 
 #: A zigzag of 40 feed moves at 3000 mm/min (50 mm/s): about 40 s on fadal-pid, under G64 so the
@@ -51,6 +51,33 @@ def test_a_helix_on_a_one_axis_machine_names_the_missing_axes_in_axis_order(tmp_
     err = capsys.readouterr().err
     assert err.startswith(f"error: {prog}:3: the program moves axis Y, Z, which machine 'emps' does not have "
                           "(its axes: X); expected a machine with axis Y, Z")
+
+
+def test_the_refusal_names_the_built_in_machine_with_the_axes_it_lacks(tmp_path, capsys):
+    # the hint names every axis the program moves and the machine lacks, not only the first block's
+    prog = write(tmp_path, "G21 G90\nG0 X0 Z5\nG1 Z-1 F100\nG1 X10 Y5 F600\nM30\n")
+    assert main(["simulate", str(prog), "--machine", "emps", "-o", str(tmp_path / "c.csv")]) == 2
+    err = capsys.readouterr().err
+    assert f"{prog}:2: the program moves axis Z, which machine 'emps'" in err
+    assert "`--machine emps+yz` runs Y and Z on a copy of its X drive (an assumption)" in err
+    # a machine file is not offered a built-in name
+    f = tmp_path / "m.toml"
+    f.write_text(builtin_machine_text("emps"))
+    assert main(["simulate", str(prog), "--machine", str(f), "-o", str(tmp_path / "c.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "--machine" not in err and "[axes.z]" in err
+
+
+def test_a_3_axis_program_runs_on_the_built_in_machine_with_z_copied_from_x(tmp_path):
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X10 Y5 F600\nG0 Z5\nM30\n")
+    js, cap = tmp_path / "s.json", tmp_path / "c.csv"
+    assert main(["simulate", str(prog), "--machine", "fadal-pid+z", "-o", str(cap), "--json", str(js)]) == 0
+    s = json.loads(js.read_text())
+    assert s["axes"] == ["x", "y", "z"]
+    c = vcnc.read_capture(cap)
+    assert c.meta["machine"] == "fadal-pid+z"
+    z = c.measured[:, c.axis_index("z")]
+    assert np.max(z) == pytest.approx(5.0, abs=0.05) and np.min(z) == pytest.approx(-1.0, abs=0.05)
 
 
 def test_interpolate_with_an_xy_machine_names_the_line_moving_z(tmp_path, capsys):

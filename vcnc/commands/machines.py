@@ -58,11 +58,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from vcnc.engine.machine import builtin_machine_text, builtin_machines, load_machine
+    from vcnc.engine.machine import builtin_machine_text, builtin_machines, is_builtin_name, load_machine
 
     if args.show:
         name = args.show
-        if name in builtin_machines():
+        if is_builtin_name(name):
             text = builtin_machine_text(name)
         else:
             machine = load_machine(name)  # checks the file (MachineError -> exit 2)
@@ -77,4 +77,6 @@ def run(args: argparse.Namespace) -> int:
     for n in names:
         m = load_machine(n)
         print(f"{n:<{width}}  {', '.join(m.axes)}  Ts={m.sample_time * 1e3:g} ms  {m.description}")
+    print("\nNAME+z (NAME+yz): the machine with a Z (Y and Z) axis added as a copy of its X axis, an assumption for "
+          "programs that move it (e.g. fadal-pid+z; --show prints it)")
     return 0

@@ -47,6 +47,7 @@ __all__ = [
     "load_machine",
     "builtin_machines",
     "builtin_machine_text",
+    "is_builtin_name",
     "EFFECTS",
     "realistic_effect",
     "reference_control",
@@ -66,21 +67,72 @@ class ExternalAxis(Protocol):
         ...
 
 
+#: The linear axes a built-in machine's name can add after a ``+`` (``fadal-pid+z``, ``emps+yz``), each a
+#: copy of the machine's X axis.
+ADDABLE_AXES = "yz"
+
+
 def builtin_machines() -> list[str]:
     """Names of the built-in machines (sorted)."""
     root = importlib.resources.files(_BUILTIN_PACKAGE)
     return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
 
 
+def is_builtin_name(name: str) -> bool:
+    """Whether ``name`` is a built-in machine, with or without added axes (``fadal-pid+z``)."""
+    return name.partition("+")[0] in builtin_machines()
+
+
 def builtin_machine_text(name: str) -> str:
-    """TOML text of a built-in machine; MachineError listing the names if unknown."""
-    if name not in builtin_machines():
+    """TOML text of a built-in machine; MachineError listing the names if unknown.
+
+    ``NAME+z`` (``+y``, ``+yz``) is built-in machine NAME with those linear axes, which it lacks, added as copies
+    of its X axis: every ``[axes.x...]`` table repeated as ``[axes.z...]`` (drive, controller, limits, effects).
+    The thesis, seed 004 and EMPS describe the X (and Y) drives only; a part program moves Z too. The copy is
+    vcnc's assumption for running such programs, not a measured drive (no gravity, no heavier head), and the
+    text's first lines, its ``name`` and ``description`` say so."""
+    base, plus, added = name.partition("+")
+    if base not in builtin_machines():
         raise MachineError(f"unknown machine {name!r}; built-in machines: {', '.join(builtin_machines())}")
-    return (importlib.resources.files(_BUILTIN_PACKAGE) / f"{name}.toml").read_text()
+    text = (importlib.resources.files(_BUILTIN_PACKAGE) / f"{base}.toml").read_text()
+    return _with_x_copies(text, base, added, spec=name) if plus else text
+
+
+def _with_x_copies(text: str, base: str, added: str, *, spec: str) -> str:
+    """The TOML ``text`` of built-in ``base`` with the axes ``added`` (letters of :data:`ADDABLE_AXES`) as copies
+    of its ``[axes.x...]`` tables, renamed ``spec``."""
+    lines = text.splitlines()
+    headers = [i for i, ln in enumerate(lines) if ln.startswith("[")]
+    present = {ln[len("[axes."):].split(".")[0].rstrip("]") for ln in lines if ln.startswith("[axes.")}
+    if (not added or any(a not in ADDABLE_AXES for a in added) or len(set(added)) != len(added)
+            or any(a in present for a in added)):
+        raise MachineError(
+            f"machine {spec!r}: {base} has the axes {', '.join(sorted(present))}; after '+' name the linear axes "
+            f"to add, each a copy of its X axis ({', '.join(ADDABLE_AXES)}, the ones it lacks), e.g. "
+            f"{base}+{''.join(a for a in ADDABLE_AXES if a not in present)}")
+    x_tables = [
+        "\n".join(lines[i:next((j for j in headers if j > i), len(lines))]).rstrip()
+        for i in headers if lines[i] == "[axes.x]" or lines[i].startswith("[axes.x.")]
+    names = " and ".join(a.upper() for a in ADDABLE_AXES if a in added)
+    note = (f"{names} {'a copy' if len(added) == 1 else 'copies'} of the X axis (vcnc's assumption for programs "
+            f"that move {names}; {base}'s source describes no such drive)")
+    out = [f"# {spec}: {base} with {note}."]
+    for ln in lines:
+        if ln.startswith("name = "):
+            ln = f'name = "{spec}"'
+        elif ln.startswith("description = "):
+            ln = ln.rstrip()[:-1] + f'; {note}"'
+        out.append(ln)
+    for a in (a for a in ADDABLE_AXES if a in added):
+        out += ["", f"# Axis {a.upper()}: a copy of [axes.x] (assumed)."]
+        for t in x_tables:
+            out += [t.replace("[axes.x", f"[axes.{a}", 1), ""]
+    return "\n".join(out).rstrip() + "\n"
 
 
 def load_machine(name_or_path: str | Path) -> Machine:
-    """A built-in machine by name, or a machine TOML file.
+    """A built-in machine by name (``NAME+z``: with a Z axis copied from X, see :func:`builtin_machine_text`), or
+    a machine TOML file.
 
     Raises
     ------
@@ -89,7 +141,7 @@ def load_machine(name_or_path: str | Path) -> Machine:
         the schema (naming the key, its unit, the file and the line).
     """
     s = str(name_or_path)
-    if s in builtin_machines():
+    if is_builtin_name(s):
         text = builtin_machine_text(s)
         return Machine._from_text(text, file=f"<built-in {s}>", default_name=s)
     p = Path(s)

@@ -62,6 +62,8 @@ static void set_defaults(vcnc_instance *inst)
     p->viscous_rate = VCNC_START_PLANT_VISCOUS_RATE;
     p->delay = VCNC_START_DELAY_SAMPLES;
     p->saturation = VCNC_START_SATURATION_LIMIT;
+    p->anti_windup = VCNC_SAT_ANTI_WINDUP;
+    p->integral_lead = VCNC_SAT_INTEGRAL_LEAD;
     p->backlash = VCNC_START_BACKLASH_WIDTH;
     p->res[0] = VCNC_START_RESONANCE_FREQUENCY;
     p->res[1] = VCNC_START_RESONANCE_DAMPING;

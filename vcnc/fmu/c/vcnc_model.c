@@ -490,7 +490,17 @@ static void split_step(vcnc_model *m)
     m->integ += T * e;
     vr = (xr - m->rprev) / T;
     ar = m->k > 1 ? (vr - m->vrprev) / T : 0.0;
-    u = p->b1 * vr - kd * (y - m->yprev) / T + a2 * e + a3 * m->integ + ff * xr + p->b0 * ar;
+    u = p->b1 * vr - kd * (y - m->yprev) / T + a2 * e + a3 * m->integ + ff * xr + p->b0 * ar - m->held;
+    /* conditional integration of the saturation element's anti-windup (identification.kernels.run_split):
+     * no accumulator step that drives a demand beyond the limit further out */
+    if (p->anti_windup) {
+        double step = a3 * (T * e + p->integral_lead * (e - m->eprev)) + ff * (xr - m->rprev);
+        if ((u > p->saturation || u < -p->saturation) && step * u > 0.0) {
+            m->held += step;
+            u -= step;
+        }
+        m->eprev = e;
+    }
     m->yprev = y;
     m->rprev = xr;
     m->vrprev = vr;
@@ -580,6 +590,8 @@ int vcnc_model_initialize(vcnc_model *m, char *msg, size_t msg_size)
         m->vt = 0.0;
         m->xb = u;
         m->integ = -(p->b2 - p->a2) * u / p->a3;
+        m->held = 0.0;
+        m->eprev = 0.0;
         for (i = 0; i <= VCNC_MAX_DELAY; i++) m->ubuf[i] = 0.0;
         m->yprev = u;
         m->rprev = u;

@@ -28,7 +28,8 @@
  *
  * SPLIT FORM (an in-loop element: delay, saturation, backlash, resonance): the sampled
  * controller + plant loop of identification.augmented._run_split, in absolute coordinates, with
- * the same disturbance terms (evaluated at the driven mass) and drift.
+ * the same disturbance terms (evaluated at the driven mass) and drift, and the saturation's
+ * anti-windup (conditional integration of the law's accumulator, identification.kernels.run_split).
  */
 #ifndef VCNC_MODEL_H
 #define VCNC_MODEL_H
@@ -67,6 +68,8 @@ typedef struct {
     double viscous_rate;     /* plant viscous rate c [1/s] */
     int delay;               /* control delay [samples] */
     double saturation;       /* u_max [mm/s^2] (inf: none) */
+    int anti_windup;         /* structural: the accumulator stops at u_max (conditional integration) */
+    double integral_lead;    /* structural: tau [s], the accumulator integrates e + tau de/dt */
     double backlash;         /* play width [mm] (<= 0: none) */
     double res[4];           /* f [Hz] (<= 0: rigid), zeta, table share r, measured at table (1/0) */
     int substeps;            /* plant steps per sample (computed at initialisation) */
@@ -101,6 +104,7 @@ typedef struct {
     /* split-form state */
     double xm, vm, xt, vt, xb;       /* driven (motor) mass, table, load side of the play [mm, mm/s] */
     double integ, yprev, rprev, vrprev;
+    double held, eprev;              /* accumulator steps held back by the anti-windup; e of the last sample */
     double ubuf[VCNC_MAX_DELAY + 1]; /* delay line of u */
     /* inputs */
     double x_ref;            /* commanded position [mm] */
