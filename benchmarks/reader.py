@@ -10,11 +10,16 @@ the general machinery: a LinuxCNC O-word ``while`` loop with ``#`` parameters an
 same moves written with ``#`` parameters on every line. Each is timed as ``load_program`` (file read, lexing,
 execution into blocks), best of ``R`` runs.
 
-The reference, measured in the same run on the same file: reading the text and splitting every line into
+The references, measured in the same run on the same file: reading the text and splitting every line into
 its space-separated tokens with ``str.split`` (no numbers converted, no state): the least a reader that
 looks at every word must spend. The ratio says how many times that the reader takes (for the loop, whose
-7 lines run 60,000 times, it says what a loop costs against its text). Times are CPU times of this process
-(``time.process_time``: the machine may be shared).
+7 lines run 60,000 times, it says what a loop costs against its text). And where LinuxCNC's standalone
+interpreter is installed (``rs274``, Debian's ``linuxcnc-uspace``): ``rs274 -g`` on the same file, its
+canonical calls written to /dev/null, with its own ``HOME`` in a temporary folder (as
+``benchmarks/linuxcnc_diff.py`` runs it); the ratio says how many times rs274's time vcnc takes, and
+"refused" marks a program rs274 stops at with an error (its time then covers the lines up to it). Times are
+CPU times (``time.process_time`` of this process, ``resource.getrusage`` of the rs274 child: the machine may
+be shared).
 """
 
 from __future__ import annotations
@@ -22,6 +27,9 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import resource
+import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -88,8 +96,26 @@ def reference(path: Path) -> float:
     return best
 
 
+def rs274_reference(path: Path) -> tuple[float, bool] | None:
+    """CPU seconds of ``rs274 -g`` on the file (best of 3) and whether it refused the program; None without
+    rs274."""
+    if shutil.which("rs274") is None:
+        return None
+    best, refused = math.inf, False
+    with tempfile.TemporaryDirectory(prefix="reader-rs274-") as home:
+        for _ in range(3):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            run = subprocess.run(["rs274", "-g", str(path.resolve())], cwd=home, env=dict(os.environ, HOME=home),
+                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            best = min(best, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+            refused = run.returncode != 0
+    return best, refused
+
+
 def measure(label: str, path: Path, repeat: int) -> None:
-    """Print lines/s, blocks/s of ``load_program`` and the ratio to :func:`reference`."""
+    """Print lines/s, blocks/s of ``load_program`` and the ratios to :func:`reference` and
+    :func:`rs274_reference`."""
     lines = path.read_bytes().count(b"\n")
     best = math.inf
     for _ in range(repeat):
@@ -97,9 +123,12 @@ def measure(label: str, path: Path, repeat: int) -> None:
         program = load_program(path, context=INTERPOLATION_CONTEXT)
         best = min(best, time.process_time() - t0)
     ref = reference(path)
+    rs274 = rs274_reference(path)
+    other = "" if rs274 is None else (f"  x{best / rs274[0]:5.1f} rs274 ({rs274[0]:.2f} s, {lines / rs274[0]:,.0f} "
+                                      f"lines/s{', refused' if rs274[1] else ''})")
     print(f"{label:44s} {lines:>9,d} lines {len(program.blocks):>9,d} blocks  {best:7.2f} s  "
           f"{lines / best:>10,.0f} lines/s {len(program.blocks) / best:>10,.0f} blocks/s  "
-          f"x{best / ref:6.0f} the str.split reference ({ref * 1e3:.1f} ms)")
+          f"x{best / ref:6.0f} the str.split reference ({ref * 1e3:.1f} ms){other}")
 
 
 def main() -> None:

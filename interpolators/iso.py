@@ -114,6 +114,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
+from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
@@ -418,7 +419,8 @@ class _State:
         return base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
 
 
-def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT) -> Program:
+def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
+              shortcuts: bool = True) -> Program:
     """Parse ISO / Fanuc / LinuxCNC G-code text into a :class:`Program`.
 
     Parameters
@@ -429,6 +431,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         File name used in error messages and recorded in ``Program.source``.
     context : MachineContext
         Work offsets, tool table, home and reference positions and the dialect of the machine.
+    shortcuts : bool
+        Plain G0-G3 moves in a plain modal state run by :mod:`interpolators.iso_fast`, which makes the general
+        executor's blocks; False: every block the general way (``tests/interpolators/test_reader_fast.py``).
 
     Raises
     ------
@@ -460,8 +465,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     name = _program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
+    plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        set_system=(lambda n, v: set_system_parameter(n, v, st)) if macro_b else None)
+                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -473,6 +479,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
             notes.add(f"subprogram from {Path(fl.file).name}")
         while homing and fl.file == source and homing[0] < fl.line:
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
+        if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
+            continue
+        plain.reset()
         count = len(blocks)
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if st.corner is not None or st.corner_word is not None:

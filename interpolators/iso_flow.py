@@ -64,7 +64,7 @@ from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
-from interpolators.iso_words import Word, block_comment, read_words, strip_comments
+from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_words, read_words, strip_comments
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
@@ -82,6 +82,9 @@ MAX_CALL_LEVELS = 10
 #: An O-word line: label (``<name>``, a number, or a computed number ``#1``, ``#<n>``, ``[expr]``), keyword, rest.
 _O_LINE = re.compile(r"^\s*(?:[nN]\s*\d+\s*)?[oO]\s*(<[^>]*>|\d+|#\s*<[^>]*>|#\s*\d+|\[(?:[^\[\]]|\[[^\[\]]*\])*\])"
                      r"\s*([a-zA-Z]+)?(.*)$")
+#: A line of words of a letter (not O) and a plain number, and blanks: an ordinary block (no O-word, program
+#: number, comment, macro statement, ``%``, ``/`` or header can be one), of which only the N number is indexed.
+_PLAIN_BLOCK = re.compile(r"[ \t]*(?:[A-NP-Za-np-z][ \t]*" + PLAIN_NUMBER + r"[ \t]*)*")
 _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: A program name that is not a Fanuc number ("O7997A", "OWASHER": shop programs name variants so),
 #: alone on its line: the name of the program; M98 cannot call it (Fanuc O numbers are digits).
@@ -215,6 +218,7 @@ class _Program:
         self.macro = MacroFlow(max_passes=max_loop_passes)
         self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
         self.span = 0
+        self.plain: set[int] = set()  # lines of plain words only (iso_words.plain_words reads them)
         self._index(text, source)
         self.main_end = len(self.code)
 
@@ -228,6 +232,11 @@ class _Program:
             i = len(self.code)
             self.raw.append(raw)
             self.sources.append(source)
+            if _PLAIN_BLOCK.fullmatch(raw):  # most of a CAM program: nothing to index but its N number
+                self.macro.add_block(i, raw, self.span)
+                self.code.append(raw if raw.strip(" \t") else None)
+                self.plain.add(i)
+                continue
             where = self.where(i)
             if leader and raw.lstrip().startswith("%") and "\r" not in raw:  # a bare CR: see the error below
                 _refuse_foreign_header(raw.strip(), where)
@@ -462,6 +471,17 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
     return values[0] != 0.0
 
 
+def _calls(words: list[Word]) -> list[Word]:
+    """The block's words that call or return: G65, M97, M98, M99."""
+    return [w for w in words if w.letter == "G" and w.value == 65 or w.letter == "M" and w.value in (97, 98, 99)]
+
+
+def _may_call(code: str, words: list[Word]) -> bool:
+    """Whether the block of plain words ``words`` (its text ``code``) calls or returns: only with an M word
+    or a "65" in its text is there one to look for."""
+    return ("M" in code or "m" in code or "65" in code) and bool(_calls(words))
+
+
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
@@ -506,6 +526,14 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
         code = prog.code[pc]
+        words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
+        if words is not None and not _may_call(code, words):  # a line of plain words (most CAM output)
+            line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
+            line.__dict__.update(line=pc - prog.first_line[prog.sources[pc]] + 1, raw=prog.raw[pc].strip(), words=words,
+                                 file=prog.sources[pc])
+            yield line
+            pc += 1
+            continue
         where = prog.where(pc)
         words = [] if code is None else read_line(code, where, params) if has_parameters(code) else \
             read_words(code, where)
@@ -520,7 +548,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if code is None:
             pc += 1
             continue
-        calls = [w for w in words if w.letter == "G" and w.value == 65 or w.letter == "M" and w.value in (97, 98, 99)]
+        calls = _calls(words)
         g65 = next((w for w in calls if w.letter == "G"), None)
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames)

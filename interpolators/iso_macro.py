@@ -158,6 +158,16 @@ class MacroFlow:
             self.statements[i] = stmt
         return stmt
 
+    def add_block(self, i: int, code: str, span: int) -> None:
+        """Index line ``i`` of program ``span``, an ordinary block of plain words (no statement can be one):
+        :meth:`add_line` without the statement patterns."""
+        while len(self.span_of) <= i:
+            self.span_of.append(span)
+        self.span_of[i] = span
+        n = sequence_number(code)
+        if n is not None:
+            self.numbers.setdefault(span, {}).setdefault(n, []).append(i)
+
     def match_loops(self, where_of) -> None:
         """Pair each ``DO m`` with its ``END m`` within its program; crossing, unclosed and too
         deep loops are errors (``where_of(i)`` gives the :class:`Where` of line ``i``)."""

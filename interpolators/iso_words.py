@@ -18,7 +18,7 @@ import dataclasses
 import re
 from collections.abc import Callable
 
-from interpolators._words import MAX_MAGNITUDE, NUMBER_RE, Where, read_number, token_at
+from interpolators._words import MAX_MAGNITUDE, Where, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
            "WORD_LETTERS"]
@@ -42,11 +42,17 @@ WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
 #: Change of the comment nesting depth at a character.
 _DEPTH = {"(": 1, ")": -1}
 
-#: A word of a letter and a plain decimal number (the number as :func:`interpolators._words.read_number`
-#: reads it: spaces or tabs after the letter), with the white space before it. A line of such words only is
-#: most of CAM output (``N120 G1 X-21.131 Y34.719 F400.``).
-_PLAIN_WORD = re.compile(r"([A-Za-z])[ \t]*(" + NUMBER_RE.pattern + ")")
-_BLANKS = " \t\r\f\v"
+#: The numbers of :data:`interpolators._words.NUMBER_RE` (the same strings, the same longest match), written so
+#: that a line that fails to match backtracks in linear time: ``\d+\.?\d*`` may split a run of digits
+#: between its two parts in as many ways as it has digits (a 16,000-digit run took 30 s to refuse).
+PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)"
+#: A line of words of a letter and a plain decimal number (the number as
+#: :func:`interpolators._words.read_number` reads it: spaces or tabs after the letter) and blanks only: most
+#: of CAM output (``N120 G1 X-21.131 Y34.719 F400.``). It matches one way only (a number never ends where
+#: a letter or a blank could start), the way the character-by-character reader reads it.
+_PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + PLAIN_NUMBER + r"[ \t\r\f\v]*)*")
+#: A word of such a line with the blanks before it: (blanks, text, letter, number).
+_PLAIN_TOKEN = re.compile(r"([ \t\r\f\v]*)(([A-Za-z])[ \t]*(" + PLAIN_NUMBER + "))")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -182,20 +188,25 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
     return words
 
 
-def plain_words(code: str) -> list[Word] | None:
+def plain_words(code: str, *, checked: bool = False) -> list[Word] | None:
     """The words of a comment-free line of letters and plain numbers only, as :func:`read_words` reads
     them; ``None`` for any other line (and for a number out of range), which :func:`read_words` then
-    reads, or rejects, character by character. A shortcut for the bulk of CAM output."""
+    reads, or rejects, character by character. A shortcut for the bulk of CAM output. ``checked``: the
+    caller has matched the line against a pattern of such lines (:mod:`interpolators.iso_flow` indexes
+    them), which is not matched again."""
+    if not checked and _PLAIN_LINE.fullmatch(code) is None:
+        return None
     words = []
-    end = 0
-    for m in _PLAIN_WORD.finditer(code):
-        start = m.start()
-        if code[end:start].strip(_BLANKS):  # something other than blanks before the word
+    new = object.__new__
+    column = 1
+    for blanks, text, letter, number in _PLAIN_TOKEN.findall(code):
+        v = float(number)
+        if not -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE:
             return None
-        end = m.end()
-        v = float(m.group(2))
-        if abs(v) > MAX_MAGNITUDE:
-            return None
-        words.append(Word(m.group(1).upper(), v, start + 1, code[start:end]))
-    # nothing but blanks after the last word (a pattern that starts at the letter scans a long blank run once)
-    return None if code[end:].strip(_BLANKS) else words
+        column += len(blanks)
+        w = new(Word)  # a Word without the frozen dataclass's per-field object.__setattr__: one per word read
+        d = w.__dict__
+        d["letter"], d["value"], d["column"], d["text"] = letter.upper(), v, column, text
+        column += len(text)
+        words.append(w)
+    return words

@@ -99,6 +99,18 @@ class Block:
     extra_start: np.ndarray | None = None
     extra_target: np.ndarray | None = None
 
+    @classmethod
+    def plain(cls, *, line: int, number: int | None, text: str, kind: str, start: np.ndarray, target: np.ndarray,
+              feed: float, segment: Line | Arc, exact_stop: bool, tolerance: float | None) -> Block:
+        """A motion block without the axes beyond X, Y, Z: the same as ``Block(...)`` with these fields, made
+        without the frozen dataclass's per-field ``object.__setattr__`` (the ISO reader makes one per line,
+        :mod:`interpolators.iso_fast`)."""
+        blk = object.__new__(cls)
+        blk.__dict__.update(line=line, number=number, text=text, kind=kind, start=start, target=target, feed=feed,
+                            segment=segment, dwell=0.0, exact_stop=exact_stop, tolerance=tolerance,
+                            extra_start=None, extra_target=None)
+        return blk
+
     @property
     def length(self) -> float:
         """Path length of the block [mm] (0 for a dwell)."""

@@ -109,6 +109,22 @@ class Line:
         self.direction = u
 
     @classmethod
+    def from_points(cls, start: np.ndarray, end: np.ndarray) -> Line:
+        """``Line(start, end)`` for two float arrays of shape (3,) that are known to be finite (a reader's
+        positions): the same line, made without the checks (the points are copied)."""
+        line = object.__new__(cls)
+        line.start = a = start.copy()
+        line.end = b = end.copy()
+        a.setflags(write=False)
+        b.setflags(write=False)
+        d = b - a
+        line.length = n = math.sqrt(d.dot(d))
+        u = d / n if n > 0 else np.zeros(3)
+        u.setflags(write=False)
+        line.direction = u
+        return line
+
+    @classmethod
     def from_arrays(cls, start: np.ndarray, end: np.ndarray) -> list[Line]:
         """Lines from rows of end points, built at once: the same as ``Line(start[i], end[i])`` per row
         (to rounding: the lengths are computed by one vectorised expression).

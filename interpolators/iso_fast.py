@@ -1,0 +1,196 @@
+"""The ISO reader's shortcut for plain moves: the bulk of a CAM program, run without the general machinery.
+
+Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [I.. J.. K..] [F..]``: a move in the modal
+state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a block itself and
+appends the same :class:`interpolators.program.Block` the general executor (:mod:`interpolators.iso`,
+``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and text, bit for bit, and
+the same modal state after it -- and declines everything else, which then goes the general way.
+
+It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, an
+axis beyond X Y Z, a Fanuc ``,R``/``,C`` ...), a repeated letter, a G code other than G0-G3 (by its exact
+value), a centre word on a G0/G1 or on the plane normal of an arc, an F <= 0, no X/Y/Z word, a feed move
+without a feed, an arc whose centre is not on the circle (the general path then words the error), under grbl
+an arc without an end-point word in its plane, and under Fanuc an X Y Z I J K written without a decimal point
+(:mod:`interpolators.iso_decimal`); and every block in a modal state it does not model: no motion mode, a
+motion other than G0-G3 (a canned cycle, G5, G33), axis words after G80 with no motion code (a note),
+G93 inverse time, G95 feed per revolution, Fanuc G16 polar coordinates, a rotated system (G10 L2 R, G68),
+G51 scaling and G51.1 mirroring, cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
+corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets, the tool length
+and the G61/G64 path mode are modelled as the general path has set them.
+
+The state is looked at once after each block the general path ran, and after each write of a work offset or
+tool entry by a Fanuc/Haas system variable (``#5221 = ..``, which may share its line with a move)
+(:meth:`PlainMoves.reset`): plain moves change none of what the checks read, nor the offsets, which are
+cached until then.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from interpolators._words import INCH
+from interpolators.arcs import ArcWordError, arc_from_center, center_arc_tolerance
+from interpolators.program import Block
+from toolpaths.geometry import PLANE_AXES, Line
+
+__all__ = ["PlainMoves"]
+
+#: G value -> round(10 * G) of the motion codes run here (exact values only: G1.0000001 goes the general way).
+_MOTION = {0.0: 0, 1.0: 10, 2.0: 20, 3.0: 30}
+_AXIS = {"X": 0, "Y": 1, "Z": 2}
+_CENTRE = {"I": 0, "J": 1, "K": 2}
+_INF = math.inf
+
+
+class PlainMoves:
+    """Runs plain G0-G3 moves on the reader's modal state ``st`` (the general executor's), appending to
+    ``blocks`` and marking the axes moved in ``used``.
+
+    Parameters
+    ----------
+    st
+        The ISO reader's modal state.
+    blocks : list of Block
+        The program's blocks so far.
+    used : set of int
+        Indices of the axes the program uses.
+    """
+
+    def __init__(self, st, blocks: list[Block], used: set[int]) -> None:
+        self.st = st
+        self.blocks = blocks
+        self.used = used
+        self.ready: bool | None = None  # None: to be judged at the next block
+        self.offset: list[float] = []
+        self.fanuc = st.context.dialect.name == "fanuc"
+        self.grbl = st.context.dialect.arc_rule == "grbl"
+
+    def reset(self) -> None:
+        """The general path ran a block: judge the state again before the next plain move."""
+        self.ready = None
+
+    def _judge(self) -> bool:
+        st = self.st
+        self.ready = (not st.inverse_time and not st.per_rev and not st.fanuc_polar and st.frame is None
+                      and not st.rotation and st.comp_side is None and st.comp_start is None
+                      and st.comp_close_at is None and st.corner is None and st.corner_word is None)
+        if self.ready:
+            self.offset = st.offset().tolist()
+        return self.ready
+
+    def move(self, words: list, line: int, text: str) -> bool:  # noqa: C901 - one pass over the words
+        """Run the block of ``words`` (line ``line``, source ``text``) if it is a plain move; False (nothing
+        changed) if it is not."""
+        if not (self.ready or self.ready is None and self._judge()):
+            return False
+        motion = number = feed = None
+        axes: dict[int, float] = {}
+        centre: dict[int, float] = {}
+        fanuc = self.fanuc
+        for w in words:
+            letter = w.letter
+            if letter in _AXIS:
+                i = _AXIS[letter]
+                if i in axes or fanuc and "." not in w.text:
+                    return False
+                axes[i] = w.value
+            elif letter in _CENTRE:
+                i = _CENTRE[letter]
+                if i in centre or fanuc and "." not in w.text:
+                    return False
+                centre[i] = w.value
+            elif letter == "G":
+                if motion is not None or w.value not in _MOTION:
+                    return False
+                motion = _MOTION[w.value]
+            elif letter == "N":
+                if number is not None:
+                    return False
+                number = w
+            elif letter == "F":
+                if feed is not None or not w.value > 0:
+                    return False
+                feed = w.value
+            else:
+                return False
+        st = self.st
+        if not axes:
+            return False
+        if st.motion not in (None, 0, 10, 20, 30):
+            return False
+        if motion is None:
+            if st.after_g80 or st.motion is None:
+                return False
+            motion = st.motion
+        scale = INCH if st.inch else 1.0
+        pos = st.pos
+        target = pos.copy()
+        if st.incremental:
+            for i, v in axes.items():
+                target[i] = pos[i] + v * scale
+        else:
+            off = self.offset
+            for i, v in axes.items():
+                target[i] = v * scale + off[i]
+        new_feed = None if feed is None else feed * scale / 60.0
+        path_feed = st.feed if feed is None else new_feed
+        if motion == 0:
+            if centre:
+                return False
+            seg, path_feed = Line.from_points(pos, target), _INF
+        elif path_feed is None:
+            return False
+        elif motion == 10:
+            if centre:
+                return False
+            seg = Line.from_points(pos, target)
+        else:
+            seg = self._arc(motion, axes, centre, target, scale)
+            if seg is None:
+                return False
+            target = np.array(seg.end)
+        # committed: the modal state as the general path leaves it
+        if feed is not None:
+            st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
+        st.block_f = feed
+        st.motion = motion
+        st.after_g80 = False
+        st.spline_pq = None
+        self.used.update(axes)
+        if motion >= 20:
+            st.arc_center = self.centre
+            self.used.update(PLANE_AXES[st.plane])
+        if number is not None:
+            number = int(number.value) if number.value == int(number.value) else None
+        self.blocks.append(Block.plain(line=line, number=number, text=text, kind=_KIND[motion], start=pos.copy(),
+                                       target=target, feed=path_feed, segment=seg, exact_stop=st.exact_stop,
+                                       tolerance=st.tolerance))
+        st.pos = target
+        st.stopped = False  # a move since a program stop: positions read are the program's again
+        return True
+
+    def _arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,
+             scale: float):
+        """The arc as the general path makes it, or None where that path would note or refuse something."""
+        st = self.st
+        p, q = PLANE_AXES[st.plane]
+        if st.plane in centre or not centre or self.grbl and p not in axes and q not in axes:
+            return None
+        pos = st.pos
+        center = pos.copy()
+        base = pos if st.arc_incremental else self.offset
+        for i, v in centre.items():
+            center[i] = base[i] + v * scale
+        try:
+            arc = arc_from_center(pos, target, center, ccw=motion == 30, plane=st.plane,
+                                  tolerance=center_arc_tolerance(pos, target, center, plane=st.plane, inch=st.inch,
+                                                                 rule=st.context.dialect.arc_rule))
+        except ArcWordError:
+            return None
+        self.centre = center
+        return arc
+
+
+_KIND = {0: "rapid", 10: "line", 20: "arc", 30: "arc"}
