@@ -703,13 +703,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if gcodes.get("scaling", (0,))[0] == 510 or "mirror" in gcodes:
         _scaling_mirror(gcodes, seen, st, where, notes)
         return ended
-    if "pattern" in gcodes:
-        _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
-        notes.add(PATTERN_CODES[gcodes["pattern"][0]])
-        return ended
-    if "pocket" in gcodes:
-        _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
-        notes.add("G12/G13 circular pocket milling")
+    if "pattern" in gcodes or "pocket" in gcodes:
+        _pattern_or_pocket(gcodes, seen, st, blocks, used, where, number, notes)
         return ended
     if st.context.dialect.name == "linuxcnc":
         _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
@@ -764,6 +759,17 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _pattern_or_pocket(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where,
+                       number: int | None, notes: _Notes) -> None:
+    """A block of the Haas bolt-hole patterns (G70-G72) or the G12/G13 circular pocket: its moves, noted."""
+    if "pattern" in gcodes:
+        _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
+        notes.add(PATTERN_CODES[gcodes["pattern"][0]])
+    else:
+        _pocket(gcodes["pocket"], seen, st, blocks, used, where, number)
+        notes.add("G12/G13 circular pocket milling")
 
 
 def _arc_code_alone(gcodes, st: _State, where: Where) -> None:

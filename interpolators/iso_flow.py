@@ -57,7 +57,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator, Iterator
 from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
@@ -559,39 +559,46 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             yield FlowLine(where.line, where.text, words, where.file)
             pc += 1
             continue
-        if m98 is not None:
-            start, q = _subprogram_start(prog, pc, words, m98, where, on_note)
-            count = next((int(w.value) for w in words if w.letter in "LK"), 1)
-            rest = [w for w in words if w is not m98 and w is not q and w.letter not in "PLK"]
-            if rest:
-                yield FlowLine(where.line, where.text, rest, where.file)
-            if count > 0:
-                _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
-                pc = start
-            else:
-                pc += 1
-            continue
-        back_to = next((w for w in words if w.letter == "P"), None) if frames else None
-        rest = [w for w in words if w is not m99 and w is not back_to]
-        if not frames:
-            if on_note is not None:
-                on_note(_main_m99_note(prog, pc))
-            yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
+        pc = yield from _call_or_return(prog, pc, words, m98, m99, where, params, frames, on_note)
+        if pc < 0:  # M99 in the main program: the run ends there
             return
+    _no_return(prog, frames)
+
+
+def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None, m99: Word | None, where: Where,
+                    params: Parameters, frames: list[_Frame], on_note: Callable[[str], None] | None
+                    ) -> Generator[FlowLine, None, int]:
+    """The line at ``pc`` with its M97/M98 call ``m98`` or its M99 return ``m99`` (:func:`run`): yields its other
+    words, pushes or pops the frame; returns the next line's index, -1 when an M99 ends the main program."""
+    if m98 is not None:
+        start, q = _subprogram_start(prog, pc, words, m98, where, on_note)
+        count = next((int(w.value) for w in words if w.letter in "LK"), 1)
+        rest = [w for w in words if w is not m98 and w is not q and w.letter not in "PLK"]
         if rest:
             yield FlowLine(where.line, where.text, rest, where.file)
-        frame = frames[-1]
-        if frame.kind == "oword":
-            prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
-        if frame.repeats > 0:  # a G65 repetition keeps the locals as the last one left them (Haas manual)
-            frame.repeats -= 1
-            pc = frame.start_pc
-        else:
-            frames.pop()
-            if frame.kind == "g65":
-                params.pop()
-            pc = frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
-    _no_return(prog, frames)
+        if count <= 0:
+            return pc + 1
+        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
+        return start
+    back_to = next((w for w in words if w.letter == "P"), None) if frames else None
+    rest = [w for w in words if w is not m99 and w is not back_to]
+    if not frames:
+        if on_note is not None:
+            on_note(_main_m99_note(prog, pc))
+        yield FlowLine(where.line, where.text, rest + [Word("M", 30.0, m99.column, m99.text)], where.file)
+        return -1
+    if rest:
+        yield FlowLine(where.line, where.text, rest, where.file)
+    frame = frames[-1]
+    if frame.kind == "oword":
+        prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
+    if frame.repeats > 0:  # a G65 repetition keeps the locals as the last one left them (Haas manual)
+        frame.repeats -= 1
+        return frame.start_pc
+    frames.pop()
+    if frame.kind == "g65":
+        params.pop()
+    return frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
 
 
 #: An M99 word in a line of code.
