@@ -16,6 +16,7 @@ block deletes and errors, under each dialect. The corpus, when present, is read 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import random
 
@@ -28,6 +29,7 @@ from interpolators._words import program_text
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
 from interpolators.iso_words import plain_words
+from interpolators.program import Block
 from vcnc.errors import GCodeError
 
 DIALECTS = ("linuxcnc", "fanuc", "haas", "grbl")
@@ -122,9 +124,9 @@ def reading(text: str, context: MachineContext, *, shortcuts: bool) -> list[str]
     out = [repr((prog.axes, prog.notes, prog.messages, prog.name))]
     for b in prog.blocks:
         fields = []
-        for name in ("line", "number", "text", "kind", "start", "target", "feed", "dwell", "exact_stop", "tolerance",
-                     "extra_start", "extra_target"):
-            fields.append(_exact(getattr(b, name)))
+        for f in dataclasses.fields(Block):  # every field, also one added later (Block.plain must set it)
+            if f.name != "segment":
+                fields.append(_exact(getattr(b, f.name)))
         seg = b.segment
         if seg is not None:
             fields.append(type(seg).__name__)
