@@ -51,8 +51,8 @@ PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)"
 #: of CAM output (``N120 G1 X-21.131 Y34.719 F400.``). It matches one way only (a number never ends where
 #: a letter or a blank could start), the way the character-by-character reader reads it.
 _PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + PLAIN_NUMBER + r"[ \t\r\f\v]*)*")
-#: A word of such a line with the blanks before it: (blanks, text, letter, number).
-_PLAIN_TOKEN = re.compile(r"([ \t\r\f\v]*)(([A-Za-z])[ \t]*(" + PLAIN_NUMBER + "))")
+#: A word of such a line: (letter, number); the text is the whole match.
+_PLAIN_TOKEN = re.compile(r"([A-Za-z])[ \t]*(" + PLAIN_NUMBER + ")")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -198,15 +198,15 @@ def plain_words(code: str, *, checked: bool = False) -> list[Word] | None:
         return None
     words = []
     new = object.__new__
-    column = 1
-    for blanks, text, letter, number in _PLAIN_TOKEN.findall(code):
+    # matched from each letter, not from the blanks before it: a run of blanks is then passed in one step, where
+    # a pattern starting with the blanks retries the run from each of them (quadratic: minutes on a line)
+    for m in _PLAIN_TOKEN.finditer(code):
+        letter, number = m.groups()
         v = float(number)
         if not -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE:
             return None
-        column += len(blanks)
         w = new(Word)  # a Word without the frozen dataclass's per-field object.__setattr__: one per word read
         d = w.__dict__
-        d["letter"], d["value"], d["column"], d["text"] = letter.upper(), v, column, text
-        column += len(text)
+        d["letter"], d["value"], d["column"], d["text"] = letter.upper(), v, m.start() + 1, m.group()
         words.append(w)
     return words
