@@ -62,6 +62,7 @@ from identification.capture_checks import check_capture
 from identification.effects import EFFECTS, TimePeriodic
 from identification.kernels import run_exact_tangent
 from identification.least_squares import solve_scaled, truncated_step
+from identification.measured_drift import drift_left_in
 from identification.parallel import process_map, serial_blas, thread_map
 from identification.parameters import from_search, search_box, to_search
 from identification.poles import TWO_PI
@@ -828,11 +829,10 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     # action, p -> 0, below the thesis' 0.2 Hz bound): effects found then may compensate for it
     on_bounds = _poles_on_bounds(model, data)
     if on_bounds:
-        drift = (model.fit or {}).get("drift") or {}
-        advice = (f"a drift of the measured channel against the commanded one ({drift.get('rate_um_min', 0.0):.4g} "
+        drift = drift_left_in(model.fit)
+        advice = (f"a drift of the measured channel against the commanded one ({drift['rate_um_min']:.4g} "
                   "um/min, fit.drift) holds them there: remove it (identify(..., drift='remove'), vcnc identify "
-                  "--drift remove)" if drift.get("named") and not drift.get("removed") else
-                  "widen the bounds if the loop has no integral action (p -> 0)")
+                  "--drift remove)" if drift else "widen the bounds if the loop has no integral action (p -> 0)")
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
                                  "structure or the bounds do not fit these data; " + advice)
         log.warning("diagnosis: %s", validation["warning"])

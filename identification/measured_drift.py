@@ -30,6 +30,7 @@ from identification.regressor import RegressorOptions, regressor
 from vcnc.core.capture import Capture
 
 __all__ = ["estimate_drift", "measured_drift", "drift_curve", "without_drift", "drift_record", "fit_with_drift",
+           "drift_left_in",
            "DRIFT_MODES", "DRIFT_DEGREE", "DRIFT_RATIO", "MIN_DRIFT_UM", "DRIFT_GAIN"]
 
 #: Degree of the polynomial in time a drift is estimated as (:func:`estimate_drift`): a ramp and its bend,
@@ -168,3 +169,10 @@ def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
             record["removed"] = True
     model.fit["drift"] = record
     return capture, model
+
+
+def drift_left_in(fit: dict | None) -> dict | None:
+    """``fit.drift`` (:func:`drift_record`) when the drift was named and not taken out, which then holds the slow
+    pole p where the reduced model imitates it; else None."""
+    rec = (fit or {}).get("drift") or {}
+    return rec if rec.get("named") and not rec.get("removed") else None

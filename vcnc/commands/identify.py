@@ -165,7 +165,9 @@ def bound_lines(model) -> list[str]:
     resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency). A slow pole on its lower bound beside a
     drift the fit did not remove (:func:`drift_lines`) is the drift's doing: the line says so instead of advising
     ``--p-min-hz``."""
-    drifting = (model.fit.get("drift") or {}).get("named") and not model.fit["drift"]["removed"]
+    from identification.measured_drift import drift_left_in
+
+    drifting = drift_left_in(model.fit) is not None
     out = []
     names = {"omega_n_hz": ("omega_n", "Hz"), "p_hz": ("p", "Hz"), "zeta": ("zeta", "")}
     for key, side, at_nyquist in model.poles_on_bounds():
