@@ -22,6 +22,7 @@ import importlib.resources
 import logging
 import math
 import os
+import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -103,7 +104,7 @@ def _with_x_copies(text: str, base: str, added: str, *, spec: str) -> str:
     of its ``[axes.x...]`` tables, renamed ``spec``."""
     lines = text.splitlines()
     headers = [i for i, ln in enumerate(lines) if ln.startswith("[")]
-    present = {ln[len("[axes."):].split(".")[0].rstrip("]") for ln in lines if ln.startswith("[axes.")}
+    present = set(tomllib.loads(text).get("axes", {}))
     if (not added or any(a not in ADDABLE_AXES for a in added) or len(set(added)) != len(added)
             or any(a in present for a in added)):
         raise MachineError(
