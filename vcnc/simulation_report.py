@@ -14,7 +14,7 @@ from vcnc.core.metrics import error_metrics, true_runs
 if TYPE_CHECKING:
     from vcnc.report import Report
 
-__all__ = ["summarize", "build_report", "moving_axes", "saturation_note"]
+__all__ = ["summarize", "build_report", "moving_axes", "saturation_note", "result_line"]
 
 log = logging.getLogger(__name__)
 
@@ -91,6 +91,22 @@ def saturation_note(summary: dict[str, Any]) -> str | None:
     return (f"warning: the actuator was at its limit on axis {parts}: the loop ran saturated there, so its "
             f"errors are not those of the tuned closed loop{diverged}; check that the axis limits (acceleration) "
             "fit what the drive delivers")
+
+
+def result_line(summary: dict[str, Any]) -> str:
+    """The run in one line, as ``vcnc simulate`` prints it: its length, the contour error (two or more moving
+    axes) and the largest tracking error with its axis, in the summary's units (um; mdeg on a rotary axis)."""
+    ts = summary["sample_time"]
+    n = summary["samples"]
+    parts = [f"simulated {(n - 1) * ts:.6g} s ({n} samples at Ts = {ts:g} s)"]
+    contour = summary.get("contour")
+    if contour:
+        parts.append(f"contour error max {contour['max_um']:.3g} um, rms {contour['rms_um']:.3g} um")
+    worst = max(summary["tracking"], key=lambda a: summary["tracking"][a]["max_um"])
+    s = summary["tracking"][worst]
+    u = axis_unit(worst, small=True)
+    parts.append(f"tracking error max {s['max_um']:.3g} {u} (axis {worst}, rms {s['rms_um']:.3g} {u})")
+    return "; ".join(parts)
 
 
 def build_report(capture: Capture, summary: dict[str, Any]) -> Report:

@@ -68,12 +68,19 @@ def test_the_refusal_names_the_built_in_machine_with_the_axes_it_lacks(tmp_path,
     assert "--machine" not in err and "[axes.z]" in err
 
 
-def test_a_3_axis_program_runs_on_the_built_in_machine_with_z_copied_from_x(tmp_path):
+def test_a_3_axis_program_runs_on_the_built_in_machine_with_z_copied_from_x(tmp_path, capsys):
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X10 Y5 F600\nG0 Z5\nM30\n")
     js, cap = tmp_path / "s.json", tmp_path / "c.csv"
     assert main(["simulate", str(prog), "--machine", "fadal-pid+z", "-o", str(cap), "--json", str(js)]) == 0
     s = json.loads(js.read_text())
     assert s["axes"] == ["x", "y", "z"]
+    # the run in one line on stdout: its length and the errors of the summary, the worst axis named
+    worst = max(s["tracking"], key=lambda a: s["tracking"][a]["max_um"])
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        f"{prog}: simulated {(s['samples'] - 1) * 0.001:.6g} s ({s['samples']} samples at Ts = 0.001 s); "
+        f"contour error max {s['contour']['max_um']:.3g} um, rms {s['contour']['rms_um']:.3g} um; "
+        f"tracking error max {s['tracking'][worst]['max_um']:.3g} um (axis {worst}, "
+        f"rms {s['tracking'][worst]['rms_um']:.3g} um); capture {cap}")
     c = vcnc.read_capture(cap)
     assert c.meta["machine"] == "fadal-pid+z"
     z = c.measured[:, c.axis_index("z")]

@@ -5,14 +5,11 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
-import logging
 from pathlib import Path
 
 from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, read_program
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
-
-log = logging.getLogger(__name__)
 
 #: Samples ``vcnc simulate`` runs without ``--max-seconds`` (83 min at Ts = 1 ms): a longer program is
 #: refused, naming the option, rather than running the machine out of memory (measured peak: 7.8 GB
@@ -40,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
     from vcnc.facade import program_meta
-    from vcnc.simulation_report import build_report, saturation_note, summarize
+    from vcnc.simulation_report import build_report, result_line, saturation_note, summarize
 
     machine = load_machine(args.machine)
     program = read_program(args, machine)
@@ -66,6 +63,5 @@ def run(args: argparse.Namespace) -> int:
         if json_tmp is not None:
             json_tmp.write_text(json.dumps(summary, indent=2) + "\n")
         capture.to_csv(cap_tmp)
-    for a, s in summary["tracking"].items():
-        log.info("axis %s: tracking error max %.3f um, rms %.3f um", a, s["max_um"], s["rms_um"])
+    print(f"{args.program}: {result_line(summary)}; capture {args.output}")
     return 0
