@@ -75,3 +75,30 @@ def test_written_files_get_the_usual_mode(tmp_path):
     mask = os.umask(0)
     os.umask(mask)
     assert p.stat().st_mode & 0o777 == 0o666 & ~mask
+
+
+def test_csv_rows_are_the_text_np_savetxt_writes(tmp_path):
+    # write_rows formats chunks of rows at once: the same bytes as np.savetxt's row by row, for values at the
+    # edges of %g (signed zero, subnormal, huge, integral floats, 12-digit rounding ties, inf/nan) and a
+    # length that leaves a partial chunk
+    import io
+
+    from vcnc.core.io import ROWS_PER_CHUNK, write_rows
+
+    rng = np.random.default_rng(3)
+    n = 2 * ROWS_PER_CHUNK + 7
+    data = rng.standard_normal((n, 4)) * 10.0 ** rng.integers(-8, 9, size=(n, 4))
+    data[:10, 0] = [-0.0, 0.0, 5e-324, 1.7976931348623157e308, 3.0, -2.5, 0.1234567890125, 1e16, np.inf, np.nan]
+    data[:, 3] = np.floor(data[:, 3])
+    fmt = ["%.9g", "%.12g", "%.12g", "%d"]
+    data[8:10, 3] = 0.0  # %d of inf/nan is an error in both
+    want, got = io.StringIO(), io.StringIO()
+    np.savetxt(want, data, fmt=fmt, delimiter=",")
+    write_rows(got, data, fmt)
+    assert got.getvalue() == want.getvalue()
+    # and a written capture is read back to the last of its 12 digits
+    t = np.arange(n) * 0.001
+    cap = Capture(t=t, axes=("x",), reference=data[:, 1:2].clip(-1e6, 1e6), measured=data[:, 2:3].clip(-1e6, 1e6))
+    cap.to_csv(tmp_path / "c.csv")
+    back = read_capture(tmp_path / "c.csv")
+    assert np.allclose(back.reference, cap.reference, rtol=1e-11, atol=0)

@@ -12,7 +12,6 @@ Other formats (control trace exports, the EMPS ``.mat`` files) are read by ``vcn
 from __future__ import annotations
 
 import dataclasses
-import io
 import math
 import os
 from pathlib import Path
@@ -21,7 +20,7 @@ import numpy as np
 
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.errors import CaptureError
-from vcnc.core.io import atomic_path
+from vcnc.core.io import atomic_path, write_rows
 
 __all__ = ["Capture", "read_capture_csv", "check_sampling", "OPTIONAL_SUFFIXES"]
 
@@ -167,14 +166,12 @@ class Capture:
                     header.append(f"{a}_{suffix}")
                     cols.append(arr[:, i : i + 1])
         data = np.hstack(cols)
-        buf = io.StringIO()
-        for key, value in self.meta.items():
-            if isinstance(value, (str, int, float)) and "\n" not in str(value):
-                buf.write(f"# {key}: {value}\n")
-        buf.write(",".join(header) + "\n")
-        np.savetxt(buf, data, delimiter=",", fmt="%.12g")
-        with atomic_path(path) as tmp:
-            tmp.write_text(buf.getvalue())
+        with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8", newline="\n") as out:
+            for key, value in self.meta.items():
+                if isinstance(value, (str, int, float)) and "\n" not in str(value):
+                    out.write(f"# {key}: {value}\n")
+            out.write(",".join(header) + "\n")
+            write_rows(out, data, ["%.12g"] * data.shape[1])
 
 
 def read_capture_csv(path: str | os.PathLike[str]) -> Capture:

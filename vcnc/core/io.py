@@ -1,4 +1,4 @@
-"""Atomic file output: nothing half-written is left behind on failure."""
+"""File output: atomic (nothing half-written is left behind on failure), and numeric tables as text."""
 
 from __future__ import annotations
 
@@ -6,10 +6,17 @@ import contextlib
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import TextIO
 
-__all__ = ["atomic_path", "atomic_dir"]
+import numpy as np
+
+__all__ = ["atomic_path", "atomic_dir", "write_rows"]
+
+#: Rows formatted per call of :func:`write_rows`: large enough that the per-call cost vanishes, small enough
+#: that the text of one chunk stays a few MB.
+ROWS_PER_CHUNK = 2000
 
 
 @contextlib.contextmanager
@@ -59,3 +66,19 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def write_rows(out: TextIO, data: np.ndarray, fmt: Sequence[str], *, delimiter: str = ",") -> None:
+    """Write the rows of the 2-D ``data`` to ``out``, one ``%``-format per column, joined by ``delimiter``.
+
+    The same text as ``np.savetxt(out, data, fmt=fmt, delimiter=delimiter)`` (which formats every row with
+    ``%`` in turn), byte for byte, about 1.75x faster: a chunk of rows is formatted by one ``%`` on the row
+    format repeated, so the per-row Python work is gone and what remains is the formatting of the numbers
+    (``benchmarks/interpolation.py`` measures both)."""
+    if data.ndim != 2 or data.shape[1] != len(fmt):
+        raise ValueError(f"data of shape {data.shape} for {len(fmt)} column formats")
+    row = delimiter.join(fmt) + "\n"
+    for start in range(0, len(data), ROWS_PER_CHUNK):
+        chunk = data[start : start + ROWS_PER_CHUNK]
+        out.write((row * len(chunk)) % tuple(chunk.ravel().tolist()))
+

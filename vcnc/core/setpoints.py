@@ -10,7 +10,7 @@ import numpy as np
 
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.errors import InputError
-from vcnc.core.io import atomic_path
+from vcnc.core.io import atomic_path, write_rows
 
 __all__ = ["Setpoints", "AXIS_NAMES"]
 
@@ -119,8 +119,9 @@ class Setpoints:
             acceleration=self.acceleration[start:stop], block=self.block[start:stop], meta=dict(self.meta),
         )
 
-    def to_csv(self, path: str) -> None:
-        """Write ``t, <a>_ref, <a>_vel, <a>_acc`` per axis, and ``block`` (atomic)."""
+    def table(self) -> tuple[list[str], np.ndarray, list[str]]:
+        """The CSV's columns ``t, <a>_ref, <a>_vel, <a>_acc`` per axis and ``block``: (header, data, one
+        ``%``-format per column)."""
         cols = [self.t[:, None]]
         header = ["t"]
         for i, a in enumerate(self.axes):
@@ -129,6 +130,11 @@ class Setpoints:
         header.append("block")
         cols.append(self.block[:, None].astype(float))
         data = np.hstack(cols)
-        fmt = ["%.9g"] + ["%.12g"] * (data.shape[1] - 2) + ["%d"]
-        with atomic_path(path) as tmp:
-            np.savetxt(tmp, data, delimiter=",", header=",".join(header), comments="", fmt=fmt)
+        return header, data, ["%.9g"] + ["%.12g"] * (data.shape[1] - 2) + ["%d"]
+
+    def to_csv(self, path: str) -> None:
+        """Write :meth:`table` as CSV (atomic)."""
+        header, data, fmt = self.table()
+        with atomic_path(path) as tmp, open(tmp, "w", encoding="ascii", newline="\n") as out:
+            out.write(",".join(header) + "\n")
+            write_rows(out, data, fmt)
