@@ -21,6 +21,7 @@ from identification import ReducedAxisModel, identify, load_model
 from identification.dead_time import MIN_DELAY_SAMPLES, delay_reference
 from vcnc.capture import Capture
 from vcnc.cli import main
+from vcnc.commands.identify import delay_lines
 from vcnc.errors import ModelFileError
 
 
@@ -72,6 +73,22 @@ def test_no_shift_estimates_zero(capture):
     model = identify(_capture(capture, 0.0, 3), axis="x", diagnose=False)
     assert model.delay_s == 0.0
     assert abs(model.fit["delay"]["samples"]) < MIN_DELAY_SAMPLES
+
+
+def test_cli_says_why_the_best_shift_was_not_used(capture, tmp_path, capsys):
+    path = tmp_path / "cap.csv"
+    _capture(capture, 0.0, 3).to_csv(path)
+    assert main(["identify", str(path), "--no-diagnose"]) == 0
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("reference dead time"))
+    assert line.startswith("reference dead time: 0 s (0 samples; estimated ")
+    assert line.endswith("; not used: shorter than 5 samples, which the loop model's own lag cannot be told from)")
+    # a shift long enough that lowers the equation error too little (dead_time.MAX_OBJECTIVE_RATIO) is named so
+    weak = dataclasses.replace(ReducedAxisModel(parameters=dict.fromkeys(("a1", "a2", "a3", "b0", "b1", "b2", "d0",
+                                                                          "d1"), 1.0), sample_time=0.001, axis="x"),
+                               fit={"delay": {"estimated": True, "samples": 11.6, "objective_ratio": 0.803}})
+    assert delay_lines(weak) == ["reference dead time: 0 s (0 samples; estimated 11.6 samples (objective ratio 0.803)"
+                                 "; not used: it lowers the equation error to 80.3 % only, where a reference recorded "
+                                 "ahead of the loop lowers it below 50 %)"]
 
 
 def test_in_loop_delay_is_not_taken_for_a_reference_shift(machine, setpoints):

@@ -81,6 +81,8 @@ def delay_lines(model) -> list[str]:
         if "rms_with_um" in rec:
             how += (f", prediction {rec['rms_without_um']:.4g} -> {rec['rms_with_um']:.4g} "
                     f"{axis_unit(model.axis, small=True)} with the shift")
+        if d == 0.0 and rec.get("samples"):
+            how += f"; not used: {_unused_shift(rec)}"
     elif rec:
         how = "given"
     else:
@@ -95,6 +97,20 @@ def delay_lines(model) -> list[str]:
                          f"{lo:.4g}..{hi:.4g} s: the recorded reference probably {which} the loop by more; give the "
                          "dead time with --delay SECONDS, or record a trace whose channels are sampled together")
     return lines
+
+
+def _unused_shift(rec: dict) -> str:
+    """Why the scan's best shift of the reference (``fit['delay']``) was not taken as the dead time
+    (:func:`identification.dead_time.estimate_delay`'s rule)."""
+    from identification.dead_time import MAX_OBJECTIVE_RATIO, MIN_DELAY_SAMPLES
+
+    if abs(rec["samples"]) < MIN_DELAY_SAMPLES:
+        return (f"shorter than {MIN_DELAY_SAMPLES:g} samples, which the loop model's own lag cannot be told from")
+    ratio = rec.get("objective_ratio", float("nan"))
+    if not ratio <= MAX_OBJECTIVE_RATIO:
+        return (f"it lowers the equation error to {100 * ratio:.3g} % only, where a reference recorded ahead of the "
+                f"loop lowers it below {100 * MAX_OBJECTIVE_RATIO:g} %")
+    return "not kept by the fit"
 
 
 def weak_poles_line(model) -> str:
