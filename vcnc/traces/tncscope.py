@@ -92,7 +92,8 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     ref: dict[str, int] = {}
     meas: dict[str, int] = {}
     lag: dict[str, int] = {}
-    lag_lines: dict[str, int] = {}  # the file line of each axis' s diff curve
+    lag_lines: dict[str, int] = {}  # the file line and name of each axis' s diff curve
+    lag_names: dict[str, str] = {}
     scale: dict[int, float] = {}
     for k, (c, name) in enumerate(zip(curves, found), start=1):
         ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
@@ -111,6 +112,7 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
                 table.setdefault(axis, int(col))
         if ctype in LAG:
             lag_lines.setdefault(axis, int(c["_line"]))
+            lag_names.setdefault(axis, name)
     axes = tuple(a for a in ref if a in meas or a in lag)
     if not axes:
         raise CaptureError(f"no commanded position with an actual position or following error (s diff); channels "
@@ -134,8 +136,8 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     r_cols, m_cols = [ref[x] for x in axes], [second[x] for x in axes]
     t, (r, m), how = on_uniform_grid(t, [a[:, r_cols] * [scale[k] for k in r_cols],
                                          a[:, m_cols] * [scale[k] for k in m_cols]], src, row_lines, resample=resample)
-    mapping = {**{f"{x}_ref": f"col{ref[x]}" for x in axes},
-               **{(x if x in meas else x + LAG_SUFFIX): f"col{second[x]}" for x in axes}}
+    mapping = {**{f"{x}_ref": f"col{ref[x]}" for x in axes}, **{x: f"col{meas[x]}" for x in axes if x in meas},
+               **{x + LAG_SUFFIX: f"col{lag[x]} ({lag_names[x]})" for x in axes if x not in meas}}
     m, lag_meta = with_following_errors(axes, mapping, r, m, float(t[1] - t[0]), src, line=lag_lines,
                                         expected=LAG_CONVENTION)
     meta = {"format": "TNCscope", **mapping_meta(axes, mapping), **lag_meta, **how}
