@@ -4,7 +4,8 @@
 **Generic delimited text.** The delimiter (tab, ``;`` or ``,``) and a decimal comma are detected
 from the data; lines before the header (the line of column names just above the numeric rows)
 are skipped. Which column is what is given by a mapping such as ``t=Time,x_ref=PosCmd,x=PosAct``
-(header names, or 1-based column numbers for a file without a header); time in s, ms or us and
+(header names, or 1-based column numbers for a file without a header; ``x_lag=Lag`` in the place of
+``x=`` for a following error, commanded - actual, :mod:`vcnc.traces.lag`); time in s, ms or us and
 positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s and mm / deg;
 without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
 A time column of time stamps (``2024-05-02 15:56:24.376``, ``02.05.2024 15:56:24,376``,
