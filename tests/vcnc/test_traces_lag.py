@@ -18,6 +18,7 @@ import toolpaths
 from vcnc.capture import read_capture
 from vcnc.cli import main
 from vcnc.errors import CaptureError
+from vcnc.traces.lag import check_lag_sign
 
 #: Digits after the decimal point the traces print (1 nm in mm).
 DIGITS = 6
@@ -273,3 +274,30 @@ def test_halscope_old_layout_motor_pins_and_a_pid_error_mapped_as_lag(simulated,
     cap = read_capture(f, columns={"x_ref": "joint.0.motor-pos-cmd", "x_lag": "pid.x.error"})
     assert "dropped_first" not in cap.meta and len(cap) == len(act)
     np.testing.assert_allclose(cap.measured[:, 0], act, rtol=0, atol=PRINTED)
+
+
+def test_tncscope_s_diff_in_um_is_converted_from_its_dimension(simulated, tmp_path):
+    t, ref, act, fe = _channels(simulated)
+    f = tmp_path / "um.sco"
+    _tncscope(f, t, ref, [("s diff", np.round(fe * 1000, 3))])
+    f.write_bytes(f.read_bytes().replace(b"%NAME=s diff/X\r\n%CHANNELTYPE=s diff\r\n%AXISTYPE=X\r\n%DIMENSION=mm",
+                                         "%NAME=s diff/X\r\n%CHANNELTYPE=s diff\r\n%AXISTYPE=X\r\n%DIMENSION=µm"
+                                         .encode("latin-1")))
+    cap = read_capture(f)
+    assert cap.meta["converted"] == "col2x0.001"
+    np.testing.assert_allclose(cap.measured[:, 0], act, rtol=0, atol=PRINTED)
+
+
+def test_sign_check_on_a_lag_proportional_to_the_velocity():
+    """A ramp up, a run at speed and a ramp down, sampled at 1 ms: a following error of tau times
+    the velocity is a lag of tau; a lead within a sample is accepted and recorded, beyond it refused;
+    a command at rest is not judged."""
+    ts = 0.001
+    v = np.r_[np.linspace(0, 100, 200), np.full(600, 100.0), np.linspace(100, 0, 200)]
+    ref = np.cumsum(v) * ts
+    assert check_lag_sign(ref, 0.02 * v, ts, channel="lag", src="f") == "lags 20 ms at speed"
+    assert check_lag_sign(ref, -0.0004 * v, ts, channel="lag", src="f").startswith("leads 0.4 ms at speed: within")
+    with pytest.raises(CaptureError, match=r"^f:7: following error channel 'lag': the commanded position less it "
+                                           r"leads the command by 20 ms at speed"):
+        check_lag_sign(ref, -0.02 * v, ts, channel="lag", src="f", line=7)
+    assert check_lag_sign(np.zeros(50), np.full(50, 1e-3), ts, channel="lag", src="f").startswith("sign not judged")
