@@ -55,8 +55,15 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
-from vcnc.traces.columns import LAG_SUFFIX, mapped_axes, mapping_meta, parse_number, position_scale, read_text
-from vcnc.traces.lag import subtract_following_error
+from vcnc.traces.columns import (
+    LAG_SUFFIX,
+    mapped_axes,
+    mapping_meta,
+    parse_number,
+    position_scale,
+    read_text,
+    with_following_errors,
+)
 
 __all__ = ["read_halscope", "looks_like_halscope"]
 
@@ -134,29 +141,12 @@ def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | 
         prev, ref, meas = ref[:-1], ref[1:], meas[1:]
         meta["dropped_first"] = (f"line {row_lines[0]}: motion's f-error is against the previous sample's pos-cmd "
                                  "(control.c), so the first sample has no measured position")
-    lag_meta = _from_following_errors(ax, mapping, prev, ref, meas, period, src, row_lines[0])
+    # motion's f-error pins against the previous sample's command, another channel (pid.N.error) the same sample's
+    against = np.column_stack([(prev if _FERROR.match(name) else ref)[:, j] for j, name in enumerate(second)])
+    meas, lag_meta = with_following_errors(ax, mapping, against, meas, period, src, expected=LAG_CONVENTION,
+                                           line=row_lines[0])
     return Capture(t=np.round(np.arange(ref.shape[0]) * period, 12), axes=tuple(ax), reference=ref, measured=meas,
                    meta={**meta, **mapping_meta(ax, mapping), **lag_meta}, source=src)
-
-
-def _from_following_errors(ax: list[str], mapping: Mapping[str, str], prev: np.ndarray, ref: np.ndarray,
-                           meas: np.ndarray, period: float, src: str, line: int) -> dict[str, str]:
-    """Turn the following errors among the columns of ``meas`` into measured positions, in place:
-    motion's ``f-error`` pins subtracted from ``prev`` (the commanded position of the sample
-    before), other channels (``pid.N.error``) from ``ref`` of the same sample; the meta entry."""
-    found = []
-    for j, a in enumerate(ax):
-        name = mapping.get(a + LAG_SUFFIX)
-        if name is None:
-            continue
-        motion = bool(_FERROR.match(name))
-        meas[:, j], how = subtract_following_error((prev if motion else ref)[:, j], meas[:, j], period, channel=name,
-                                                   src=src, line=line, expected=LAG_CONVENTION)
-        found.append(f"{a}:{name} ({how}{', against the previous sample' if motion else ''})")
-    if not found:
-        return {}
-    return {"following_error": f"{'; '.join(found)}; measured = commanded - following error, the following error "
-                               f"read as {LAG_CONVENTION}"}
 
 
 def _numbers(rows: list[list[str]], row_lines: list[int], used: list[int], labels: list[str], src: str, *,
