@@ -19,17 +19,17 @@ error as the commanded less the actual position, so the actual position is the c
 
 A sign read wrong gives a "measured" position that leads the command by the lag (twice it from the
 true position), which identification would fit as nonsense. So every following error used is also
-checked on the data (:func:`check_lag_sign`): where the command moves fast (at least half its
-largest speed), the following error regressed on the commanded velocity gives the time by which the
-measured position lags, ``tau = sum(e v) / sum(v^2)``; a measured position leading by more than one
-sample (``tau < -sample_time``) is an error naming the channel. The records of vcnc's virtual
-machines (random moves, x axis) lag by tau = 18.4 ms (fadal-ppi), 13.2 (chevalier-pdf), 8.0
-(ballscrew-ppc) and 7.1 ms (emps); a real LinuxCNC 2.8 log by 7.2 ms (tracewild's
-``halscope_skyfire_svm2.log``). A loop with velocity feedforward or zero-phase tracking has a lag
-near zero, 0.16 ms (fadal-pid), 0.06 (ballscrew-zpetc), 0.007 ms (fadal-smc), and its error is then
-mostly the acceleration's, of either sign (fadal-smc's opposite to fadal-pid's): no check on the
-data can tell its sign, and a following error with a lead within a sample is accepted, recorded as
-``"leads ... ms at speed"`` in ``Capture.meta`` for the user to judge.
+checked on the data (:func:`check_lag_sign`): where the command moves fast (at least half its top
+speed, its 99th percentile), the following error regressed on the commanded velocity gives the time
+by which the measured position lags, ``tau = sum(e v) / sum(v^2)``; a measured position leading by
+more than one sample (``tau < -sample_time``) is an error naming the channel. The records of vcnc's virtual
+machines (6 random moves, x axis, :func:`check_lag_sign` on commanded - actual) lag by 18.1 ms
+(fadal-ppi), 13.3 (chevalier-pdf), 7.9 (ballscrew-ppc) and 7.1 ms (emps); a real LinuxCNC 2.8 log by
+7.2 ms (tracewild's ``halscope_skyfire_svm2.log``). A loop with velocity feedforward or zero-phase
+tracking has a lag near zero: 0.16 ms (fadal-pid), 0.015 ms (ballscrew-zpetc), and fadal-smc's
+leads by 0.012 ms; its error is mostly the acceleration's, whose sign the loop sets: no check on the
+data can tell such a channel's sign, and a following error with a lead within a sample is accepted,
+recorded as ``"leads ... ms at speed"`` in ``Capture.meta`` for the user to judge.
 """
 
 from __future__ import annotations
@@ -38,10 +38,14 @@ import numpy as np
 
 from vcnc.core.errors import CaptureError
 
-__all__ = ["subtract_following_error", "check_lag_sign", "FAST_SHARE", "MIN_FAST_SAMPLES", "MAX_LEAD_SAMPLES"]
+__all__ = ["subtract_following_error", "check_lag_sign", "FAST_SHARE", "TOP_PERCENTILE", "MIN_FAST_SAMPLES",
+           "MAX_LEAD_SAMPLES"]
 
-#: Samples count as fast where the commanded speed is at least this share of its largest [-].
+#: Samples count as fast where the commanded speed is at least this share of its top speed [-].
 FAST_SHARE = 0.5
+#: The top speed is this percentile of the commanded speed [%]: a glitch of one sample in a command
+#: rounded to its digits does not set it.
+TOP_PERCENTILE = 99.0
 #: Fewest fast samples the sign is judged on; with fewer it is taken as documented [-].
 MIN_FAST_SAMPLES = 10
 #: Largest lead of the measured position over the commanded one accepted, in samples [-]: the
@@ -67,7 +71,7 @@ def check_lag_sign(commanded: np.ndarray, following_error: np.ndarray, sample_ti
     """
     v = np.gradient(np.asarray(commanded, dtype=float), sample_time)
     e = np.asarray(following_error, dtype=float)
-    top = float(np.max(np.abs(v))) if v.size else 0.0
+    top = float(np.percentile(np.abs(v), TOP_PERCENTILE)) if v.size else 0.0
     fast = np.abs(v) >= FAST_SHARE * top if top > 0 else np.zeros(v.shape, dtype=bool)
     if int(np.count_nonzero(fast)) < MIN_FAST_SAMPLES:
         return "sign not judged (the command hardly moves)"
