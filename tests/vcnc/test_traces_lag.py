@@ -217,7 +217,7 @@ def test_mapping_with_both_the_position_and_the_lag_of_an_axis_is_an_error(simul
 
 
 # ------------------------------------------------------------------------------- command line
-@pytest.mark.parametrize("fmt", ["tncscope", "delimited"])
+@pytest.mark.parametrize("fmt", FORMATS)
 def test_convert_reads_a_lag_trace_and_refuses_a_reversed_one(simulated, tmp_path, capsys, fmt):
     f = tmp_path / f"lag.{SUFFIX[fmt]}"
     options = _write(fmt, f, simulated, lag=True)
@@ -225,7 +225,9 @@ def test_convert_reads_a_lag_trace_and_refuses_a_reversed_one(simulated, tmp_pat
     out = tmp_path / "c.csv"
     assert main(["convert", str(f), "-o", str(out), *columns]) == 0
     assert "following_error: x:" in capsys.readouterr().out
-    np.testing.assert_allclose(read_capture(out).measured[:, 0], _printed(simulated.measured[:, 0]), atol=PRINTED)
+    first = 1 if fmt == "halscope" else 0  # halscope: the first sample dropped
+    np.testing.assert_allclose(read_capture(out).measured[:, 0], _printed(simulated.measured[first:, 0]), rtol=0,
+                               atol=PRINTED)
     _write(fmt, f, simulated, lag=True, sign=-1.0)
     assert main(["convert", str(f), "-o", str(tmp_path / "r.csv"), *columns]) == 2
     assert f"{f}:" in capsys.readouterr().err
