@@ -107,7 +107,8 @@ def test_tncscope_bad_input_names_line_and_channels(tmp_path):
     _write(f, np.arange(5) * 3000.0, np.zeros(5), np.zeros(5))
     text = f.read_bytes().decode("latin-1")
     f.write_bytes(text.replace("%CHANNELTYPE=s ist", "%CHANNELTYPE=v ist").encode("latin-1"))
-    with pytest.raises(CaptureError, match="no commanded/measured position pair.*s soll/Y"):
+    with pytest.raises(CaptureError,
+                       match="no commanded position with an actual position or following error.*s soll/Y"):
         read_tncscope(f)
     f.write_bytes((text + "15000;1.0;\r\n").encode("latin-1"))
     with pytest.raises(CaptureError, match="row has 2 values, expected 3") as exc:

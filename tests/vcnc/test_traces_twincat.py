@@ -109,7 +109,8 @@ def test_channel_lookup_by_symbol_name_and_errors(tmp_path):
     _export(f, names=("pos", "pos"), fast=False)
     with pytest.raises(CaptureError, match="2 channels are named 'pos'"):
         read_capture(f, columns={"x_ref": "pos", "x": "pos"})
-    with pytest.raises(CaptureError, match=r"give --columns x_ref=NAME,x=NAME; channels found: \['pos', 'pos'\]"):
+    with pytest.raises(CaptureError, match=r"give --columns x_ref=NAME,x=NAME \(or x_lag=NAME for a following "
+                                           r"error\); channels found: \['pos', 'pos'\]"):
         read_capture(f)
 
 

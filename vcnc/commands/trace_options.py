@@ -14,7 +14,8 @@ def add_trace_arguments(parser: argparse.ArgumentParser, *, axes: bool = True) -
     group = parser.add_argument_group("trace formats (detected by content; see README, 'Bring your own machine')")
     group.add_argument("--columns", metavar="t=NAME,x_ref=NAME,x=NAME",
                        help="delimited text: which column is time, commanded and measured position per axis "
-                            "(header names, or 1-based column numbers)")
+                            "(header names, or 1-based column numbers); x_lag=NAME instead of x=NAME takes a "
+                            "following error (commanded - actual), the measured position being x_ref - x_lag")
     group.add_argument("--time-unit", choices=("s", "ms", "us"), default=None,
                        help="delimited text: unit of the time column (default s; TwinCAT ms)")
     group.add_argument("--unit", choices=("mm", "um", "m", "in", "deg"), default=None,

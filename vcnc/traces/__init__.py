@@ -89,7 +89,8 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         The trace file.
     columns : mapping, optional
         Capture column -> source column for delimited text (``{"t": "Time", "x_ref": "PosCmd",
-        "x": "PosAct"}``); given, the file is read as delimited text.
+        "x": "PosAct"}``; ``"x_lag": "Lag"`` for a following error instead of ``"x"``); given, the
+        file is read as delimited text.
     time_unit, unit : str, optional
         Units of time (s, ms, us) and positions (mm, um, m, in, deg) in delimited text.
     axes : sequence of str, optional

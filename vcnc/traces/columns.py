@@ -25,10 +25,12 @@ from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import check_sampling
 from vcnc.core.errors import CaptureError
 from vcnc.core.text import BinaryDataError, decode_text
+from vcnc.traces.lag import subtract_following_error
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
-           "unit_in_name", "unit_named", "parse_time_stamp", "is_unit_row"]
+           "unit_in_name", "unit_named", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
+           "with_following_errors"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -44,6 +46,10 @@ _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "m": "m", "in": "in", "inc
                  "°": "deg"}
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+#: Suffix of a mapping's following-error column (``x_lag``): commanded - actual position, the
+#: measured position being formed as ``x_ref - x_lag`` (:mod:`vcnc.traces.lag`).
+LAG_SUFFIX = "_lag"
 
 
 def read_text(path: str | Path, src: str) -> str:
@@ -139,23 +145,32 @@ def is_unit_row(cells: Sequence[str]) -> bool:
 
 
 def parse_columns(text: str) -> dict[str, str]:
-    """``"t=Time,x_ref=PosCmd,x=PosAct"`` as a mapping capture column -> source column.
+    """``"t=Time,x_ref=PosCmd,x=PosAct"`` as a mapping capture column -> source column
+    (``x_lag=Lag``: a following error in the place of ``x``, :func:`mapped_axes`).
 
     Raises
     ------
     CaptureError
-        A part without ``=``, or a capture column that is not ``t``, ``<axis>_ref`` or ``<axis>``.
+        A part without ``=``, or a capture column that is not ``t``, ``<axis>_ref``, ``<axis>``
+        or ``<axis>_lag``.
     """
     out: dict[str, str] = {}
     for part in filter(None, (p.strip() for p in text.split(","))):
         key, eq, value = part.partition("=")
         key, value = key.strip(), value.strip()
-        base = key[:-4] if key.endswith("_ref") else key
-        if not eq or not value or not (key == "t" or base in AXIS_NAMES):
-            raise CaptureError(f"--columns part {part!r}: expected 't=NAME', '<axis>_ref=NAME' or '<axis>=NAME' "
-                               f"(axes {' '.join(AXIS_NAMES)})")
+        if not eq or not value or not (key == "t" or axis_of(key) in AXIS_NAMES):
+            raise CaptureError(f"--columns part {part!r}: expected 't=NAME', '<axis>_ref=NAME', '<axis>=NAME' or "
+                               f"'<axis>{LAG_SUFFIX}=NAME' (a following error) (axes {' '.join(AXIS_NAMES)})")
         out[key] = value
     return out
+
+
+def axis_of(key: str) -> str:
+    """The axis of a capture column: ``x`` of ``x_ref``, ``x_lag`` and ``x``."""
+    for suffix in ("_ref", LAG_SUFFIX):
+        if key.endswith(suffix):
+            return key[: -len(suffix)]
+    return key
 
 
 def check_units(time_unit: str | None, unit: str | None, src: str) -> None:
@@ -167,13 +182,20 @@ def check_units(time_unit: str | None, unit: str | None, src: str) -> None:
 
 
 def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
-    """The axes of a column mapping, each with its ``<axis>_ref`` and ``<axis>``."""
-    axes = [k for k in columns if k in AXIS_NAMES]
+    """The axes of a column mapping, each with its ``<axis>_ref`` and either ``<axis>`` (the
+    measured position) or ``<axis>_lag`` (the following error, commanded - actual), in the order
+    the mapping names those."""
+    axes = list(dict.fromkeys(axis_of(k) for k in columns if not k.endswith("_ref") and axis_of(k) in AXIS_NAMES))
+    both = [a for a in axes if a in columns and a + LAG_SUFFIX in columns]
+    if both:
+        raise CaptureError(f"--columns gives both {both[0]}= (the measured position) and {both[0]}{LAG_SUFFIX}= (the "
+                           "following error) for one axis: give one", file=src)
     missing = [a for a in axes if f"{a}_ref" not in columns] + [k[:-4] for k in columns
-                                                                if k.endswith("_ref") and k[:-4] not in columns]
+                                                                if k.endswith("_ref") and k[:-4] not in axes]
     if not axes or missing:
-        raise CaptureError(f"--columns needs '<axis>_ref=...' and '<axis>=...' for each axis (incomplete: "
-                           f"{sorted(set(missing)) or 'no axis given'})", file=src)
+        raise CaptureError(f"--columns needs '<axis>_ref=...' and '<axis>=...' (or '<axis>{LAG_SUFFIX}=...', the "
+                           f"following error) for each axis (incomplete: {sorted(set(missing)) or 'no axis given'})",
+                           file=src)
     return axes
 
 
@@ -190,9 +212,37 @@ def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
 
 
 def mapping_meta(axes: Sequence[str], columns: Mapping[str, str]) -> dict[str, str]:
-    """``commanded`` and ``measured`` entries of a capture's ``meta``: which channel is which."""
+    """``commanded`` and ``measured`` entries of a capture's ``meta``: which channel is which (a
+    measured position formed from a following error as ``x:COMMANDED - LAG``)."""
+    def measured(a: str) -> str:
+        return columns[a] if a in columns else f"{columns[a + '_ref']} - {columns[a + LAG_SUFFIX]}"
+
     return {"commanded": ",".join(f"{a}:{columns[a + '_ref']}" for a in axes),
-            "measured": ",".join(f"{a}:{columns[a]}" for a in axes)}
+            "measured": ",".join(f"{a}:{measured(a)}" for a in axes)}
+
+
+def with_following_errors(axes: Sequence[str], columns: Mapping[str, str], reference: np.ndarray,
+                          second: np.ndarray, sample_time: float, src: str, *, expected: str,
+                          line: int | Mapping[str, int] | None = None) -> tuple[np.ndarray, dict[str, str]]:
+    """The measured positions (samples x axes) of a mapping whose ``second`` column of each axis is
+    its measured position (``<axis>``) or its following error (``<axis>_lag``): the latter
+    subtracted from the commanded position after its sign is checked (:mod:`vcnc.traces.lag`,
+    ``expected`` the convention and its source, ``line`` the file line its messages name, or one per
+    axis); and the ``meta["following_error"]`` entry, if any."""
+    measured = np.array(second, dtype=float, copy=True)
+    found = []
+    for j, a in enumerate(axes):
+        if a in columns:
+            continue
+        channel = columns[a + LAG_SUFFIX]
+        at = line.get(a) if isinstance(line, Mapping) else line
+        measured[:, j], how = subtract_following_error(reference[:, j], second[:, j], sample_time, channel=channel,
+                                                       src=src, line=at, expected=expected)
+        found.append(f"{a}:{channel} ({how})")
+    if not found:
+        return measured, {}
+    return measured, {"following_error": f"{'; '.join(found)}; measured = commanded - following error, "
+                                         f"the following error read as {expected}"}
 
 
 def check_timing(t: np.ndarray, src: str, row_lines: Sequence[int] | None = None) -> None:

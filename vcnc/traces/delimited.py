@@ -4,7 +4,8 @@
 **Generic delimited text.** The delimiter (tab, ``;`` or ``,``) and a decimal comma are detected
 from the data; lines before the header (the line of column names just above the numeric rows)
 are skipped. Which column is what is given by a mapping such as ``t=Time,x_ref=PosCmd,x=PosAct``
-(header names, or 1-based column numbers for a file without a header); time in s, ms or us and
+(header names, or 1-based column numbers for a file without a header; ``x_lag=Lag`` in the place of
+``x=`` for a following error, commanded - actual, :mod:`vcnc.traces.lag`); time in s, ms or us and
 positions in mm, um, m, in or deg (rotary axes a, b, c only) are converted to s and mm / deg;
 without ``time_unit`` / ``unit`` a unit the header names (``Zeit [ms]``, ``Ist (µm)``) is used.
 A time column of time stamps (``2024-05-02 15:56:24.376``, ``02.05.2024 15:56:24,376``,
@@ -38,8 +39,10 @@ import numpy as np
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
+    LAG_SUFFIX,
     LENGTH_UNITS,
     TIME_UNITS,
+    axis_of,
     check_units,
     is_unit_row,
     mapped_axes,
@@ -52,6 +55,7 @@ from vcnc.traces.columns import (
     read_text,
     unit_in_name,
     unit_named,
+    with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
@@ -240,16 +244,18 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     _increasing(t, src, lines_kept)
 
     def scaled(k: str) -> np.ndarray:
-        return d[:, idx[k]] * position_scale([k.removesuffix("_ref")], units[k], src)
+        return d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
 
-    t, (ref, meas), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
-                                             np.column_stack([scaled(a) for a in axes])], src, lines_kept,
-                                          resample=resample)
+    t, (ref, second), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
+                                               np.column_stack([scaled(a if a in idx else a + LAG_SUFFIX)
+                                                                for a in axes])], src, lines_kept, resample=resample)
+    meas, lag = with_following_errors(axes, columns, ref, second, float(t[1] - t[0]), src, line=hline,
+                                      expected="commanded - actual (vcnc's contract for a <axis>_lag column)")
     shown = sorted({units[k] or "mm" for k in idx if k != "t"})
     time_meta = ("time stamps" if stamped else units["t"] if sample_time is None else
                  f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
-            "unit": ",".join(shown), **mapping_meta(axes, columns), **how}
+            "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how}
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 

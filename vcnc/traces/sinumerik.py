@@ -26,7 +26,10 @@ Layout (issue #17, checked against the open-source reader ``eliasrhoden/Trace-To
 The capture's grid is the coarser interval of the two signals that form it, so every value on it
 was recorded at that instant (no interpolation). The measured position is the setpoint minus the
 following error when the trace has both at the same rate (the control's own measured value at
-servo rate), otherwise the measuring system's actual value (system 1 before system 2).
+servo rate), otherwise the measuring system's actual value (system 1 before system 2). The
+following error is read as setpoint - actual position, and its sign is checked on the data
+(:func:`vcnc.traces.lag.check_lag_sign`: a measured position that would lead the setpoint is an
+error naming the signal).
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
+from vcnc.traces.lag import subtract_following_error
 
 __all__ = ["read_sinumerik", "MAGIC", "MAGICS"]
 
@@ -56,6 +60,9 @@ NO_VALUE = 9.2e18
 
 #: Most samples a capture is built with (a bad time stamp must not allocate without bound).
 MAX_SAMPLES = 1e8
+
+#: How the following error is signed (module docstring).
+LAG_CONVENTION = "setpoint - actual position (the reader's reading since issue #17)"
 
 _AXIS_NUMBER = re.compile(r"\[\s*u\d+\s*,\s*(\d+)\s*\]")
 
@@ -162,15 +169,19 @@ def read_sinumerik(path: str | os.PathLike[str], *, axes: tuple[str, ...] | None
     for number in numbers:
         kind, setpoint, other = pairs[number]
         r = setpoint.on_grid(grid, src)
+        found = ""
         if kind == "setpoint - following error":
+            m, lags = subtract_following_error(r, other.on_grid(grid, src), interval, channel=other.label, src=src,
+                                               expected=LAG_CONVENTION)
             # the difference of two decimals is a decimal of as many digits: printed as it is exactly
             digits = max(setpoint.decimals, other.decimals)
-            m = np.array([float(f"{v:.{digits}f}") for v in r - other.on_grid(grid, src)])
+            m = np.array([float(f"{v:.{digits}f}") for v in m])
+            found = f", {lags}"
         else:
             m = other.on_grid(grid, src)
         ref.append(r)
         meas.append(m)
-        how.append(f"axis {number}: commanded {setpoint.name}, measured {kind} ({other.name})")
+        how.append(f"axis {number}: commanded {setpoint.name}, measured {kind} ({other.name}{found})")
     meta = {"format": "SINUMERIK trace XML", "sample_time_s": f"{interval:.9g}",
             "axis_numbers": ",".join(f"{a}:{'?' if n is None else n}" for a, n in zip(names, numbers)),
             "signals": "; ".join(how)}

@@ -18,6 +18,17 @@ control running in inches, ``°`` on a rotary axis; none: mm) to mm or deg: a co
 or a channel exported in um beside one in mm, would otherwise be read 25.4 or 1000 times off
 without a word (found by the traceid truth harness). A dimension that is no position unit is an
 error naming the curve.
+
+**Following error.** An axis traced with its commanded position and ``s diff`` (the following error,
+servo lag) but no actual position is read with the actual position = commanded - ``s diff``.
+Heidenhain's user's manuals define the servo lag (position display ``LAG``) as "the difference
+between nominal and actual positions" (TNC 426/TNC 425/TNC 415 B/TNC 407 user's manual, MOD
+functions, "Position Display Types"); no TNCscope document of the channel's sign was found, so
+reading ``s diff`` as nominal - actual is our reading, and the sign is checked on the data
+(:mod:`vcnc.traces.lag`: an ``s diff`` by which the result would lead the command is an error naming
+the curve's column). With both ``s actl`` and ``s diff`` the actual position is used: it is the
+measurement, and needs no convention. (The iTNC 530 service manual's "Pos.Diff." between the motor
+encoder and the scale is another signal; it is no following error.)
 """
 
 from __future__ import annotations
@@ -31,11 +42,26 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
-from vcnc.traces.columns import LENGTH_UNITS, on_uniform_grid, parse_number, read_text, unit_named
+from vcnc.traces.columns import (
+    LAG_SUFFIX,
+    LENGTH_UNITS,
+    mapping_meta,
+    on_uniform_grid,
+    parse_number,
+    read_text,
+    unit_named,
+    with_following_errors,
+)
 
 MAGIC = "%TNCscopeNT"
 COMMANDED = ("s soll", "s nom", "s noml", "s nominal")
 MEASURED = ("s ist", "s act", "s actl", "s actual")
+#: Channel types of the following error (servo lag).
+LAG = ("s diff",)
+#: How the servo lag is signed, and where Heidenhain says so (module docstring).
+LAG_CONVENTION = ("nominal - actual position (Heidenhain TNC 426/425/415 B/407 user's manual, MOD functions, "
+                  "'Position Display Types': servo lag, the difference between nominal and actual positions; "
+                  "our reading for TNCscope's s diff)")
 
 
 def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Capture:
@@ -65,6 +91,9 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     numbered = sum("COLUMN" in c for c in curves)
     ref: dict[str, int] = {}
     meas: dict[str, int] = {}
+    lag: dict[str, int] = {}
+    lag_lines: dict[str, int] = {}  # the file line and name of each axis' s diff curve
+    lag_names: dict[str, str] = {}
     scale: dict[int, float] = {}
     for k, (c, name) in enumerate(zip(curves, found), start=1):
         ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
@@ -76,21 +105,25 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
         if not col.isdigit() or int(col) < 1:
             raise CaptureError(f"curve {name!r}: %COLUMN={col!r} is not a column number >= 1", file=src,
                                line=int(c["_line"]))
-        if ctype in COMMANDED + MEASURED:
+        if ctype in COMMANDED + MEASURED + LAG:
             scale[int(col)] = _position_scale(c, axis, src)
-        if ctype in COMMANDED:
-            ref.setdefault(axis, int(col))
-        elif ctype in MEASURED:
-            meas.setdefault(axis, int(col))
-    axes = tuple(a for a in ref if a in meas)
+        for kind, table in ((COMMANDED, ref), (MEASURED, meas), (LAG, lag)):
+            if ctype in kind:
+                table.setdefault(axis, int(col))
+        if ctype in LAG:
+            lag_lines.setdefault(axis, int(c["_line"]))
+            lag_names.setdefault(axis, name)
+    axes = tuple(a for a in ref if a in meas or a in lag)
     if not axes:
-        raise CaptureError(f"no commanded/measured position pair; channels found: {found}", file=src, line=data_line)
+        raise CaptureError(f"no commanded position with an actual position or following error (s diff); channels "
+                           f"found: {found}", file=src, line=data_line)
+    second = {x: meas.get(x, lag.get(x)) for x in axes}
     bad = [a for a in axes if a not in AXIS_NAMES]
     if bad:
         raise CaptureError(f"axis {bad[0]!r} (from %AXISTYPE or the curve name): expected one of "
                            f"{' '.join(AXIS_NAMES)}", file=src, line=data_line)
     a, row_lines = _rows(lines, data_line, found, src)
-    need = max(max(ref[x], meas[x]) for x in axes)
+    need = max(max(ref[x], second[x]) for x in axes)
     if a.shape[1] <= need:
         raise CaptureError(f"rows have {a.shape[1]} values; %COLUMN={need} needs {need + 1}; channels: {found}",
                            file=src, line=row_lines[0])
@@ -100,11 +133,14 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
         k = int(bad_t[0]) + 1
         raise CaptureError(f"time does not increase ({a[k, 0]:.9g} us after {a[k - 1, 0]:.9g} us)", file=src,
                            line=row_lines[k])
-    r_cols, m_cols = [ref[x] for x in axes], [meas[x] for x in axes]
+    r_cols, m_cols = [ref[x] for x in axes], [second[x] for x in axes]
     t, (r, m), how = on_uniform_grid(t, [a[:, r_cols] * [scale[k] for k in r_cols],
                                          a[:, m_cols] * [scale[k] for k in m_cols]], src, row_lines, resample=resample)
-    meta = {"format": "TNCscope", "commanded": ",".join(f"{x}:col{ref[x]}" for x in axes),
-            "measured": ",".join(f"{x}:col{meas[x]}" for x in axes), **how}
+    mapping = {**{f"{x}_ref": f"col{ref[x]}" for x in axes}, **{x: f"col{meas[x]}" for x in axes if x in meas},
+               **{x + LAG_SUFFIX: f"col{lag[x]} ({lag_names[x]})" for x in axes if x not in meas}}
+    m, lag_meta = with_following_errors(axes, mapping, r, m, float(t[1] - t[0]), src, line=lag_lines,
+                                        expected=LAG_CONVENTION)
+    meta = {"format": "TNCscope", **mapping_meta(axes, mapping), **lag_meta, **how}
     converted = {k: v for k, v in scale.items() if v != 1.0 and k in r_cols + m_cols}
     if converted:
         meta["converted"] = ",".join(f"col{k}x{v:g}" for k, v in sorted(converted.items()))

@@ -31,6 +31,15 @@ Channels are found by ``Name`` (or ``SymbolName``). Without ``--columns``, NC ax
 ``...SetPos`` / ``...ActPos`` (``NcToPlc.SetPos`` / ``NcToPlc.ActPos``, Beckhoff infosys
 ``NCTOPLC_AXIS_REF``) pair up per axis. The commanded and measured channels are taken on the time
 stamps they share (a slower group gives the grid); a time stamp a group repeats holds one sample.
+
+**Lag.** An axis traced with its set position and its lag instead of its actual position
+(``...PosDiff``, "Position difference (lag distance)" in ``NCTOPLC_AXIS_REF``; "Lag distance" /
+"Schleppabstand" in the axis' online view), or mapped as ``x_lag=NAME``, is read with the actual
+position = set position - lag: Beckhoff defines the position lag value as "current set position -
+actual position" (infosys, TF50x0 TwinCAT 3 NC PTP, "Monitoring", Position Lag Monitoring), and the
+sign is checked on the data (:mod:`vcnc.traces.lag`). With both an ``ActPos`` and a ``PosDiff`` of the
+axis, ``ActPos`` is used: it is the measurement, the lag the control's difference of it from the set
+position, and it needs no convention.
 """
 
 from __future__ import annotations
@@ -47,7 +56,9 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
+    LAG_SUFFIX,
     TIME_UNITS,
+    axis_of,
     check_units,
     mapped_axes,
     mapping_meta,
@@ -56,6 +67,7 @@ from vcnc.traces.columns import (
     position_scale,
     read_text,
     unit_named,
+    with_following_errors,
 )
 
 __all__ = ["read_twincat", "looks_like_twincat"]
@@ -63,6 +75,16 @@ __all__ = ["read_twincat", "looks_like_twincat"]
 _FIRST = re.compile(r'^"?Name"?([\t;,: ])')
 _FILETIME_TICK_S = 1e-7
 _NAMES = {"\t": "tab", ";": "semicolon", ",": "comma", ":": "colon", " ": "space"}
+#: How an NC axis' lag is signed, and where Beckhoff says so.
+LAG_CONVENTION = ("set position - actual position (Beckhoff infosys, TF50x0 TwinCAT 3 NC PTP, 'Monitoring': "
+                  "position lag value = current set position - actual position)")
+#: Ends of NC axis channel names (lower case): the set position, the actual position and the lag
+#: (``NcToPlc.SetPos`` / ``ActPos`` / ``PosDiff``, "Position difference (lag distance)", Beckhoff
+#: infosys ``NCTOPLC_AXIS_REF``; the online view's "Set Position" / "Actual Position" / "Lag
+#: Distance", German "Sollposition" / "Istposition" / "Schleppabstand").
+_SET_ENDS = ("setpos", "set position", "sollposition")
+_ACT_ENDS = ("actpos", "actual position", "istposition")
+_LAG_ENDS = ("posdiff", "lag distance", "schleppabstand")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -100,13 +122,14 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
         The export.
     columns : mapping, optional
         ``{"x_ref": NAME, "x": NAME, ...}``: the commanded and measured channel of each axis
-        (``Name`` or ``SymbolName``); default the ``SetPos`` / ``ActPos`` pairs.
+        (``Name`` or ``SymbolName``), or ``x_lag`` for a following error; default the ``SetPos`` /
+        ``ActPos`` (or ``PosDiff``) channels.
     time_unit : {"ms", "s", "us"}, optional
         Unit of the time columns (default ms, as Scope writes; FILETIME ticks are detected).
     unit : {"mm", "um", "m", "in", "deg"}, optional
         Unit of the positions (default mm).
     axes : sequence of str, optional
-        Names of the axes of the ``SetPos`` / ``ActPos`` pairs, in the order of the channels.
+        Names of the axes of the ``SetPos`` channels, in their order.
     resample : bool
         Interpolate time stamps that are not uniform onto the median step (else an error).
 
@@ -149,15 +172,20 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
     units = {key: unit or c.unit for key, c in used.items()}
 
     def scaled(key: str) -> np.ndarray:
-        return on(key) * position_scale([key.removesuffix("_ref")], units[key], src)
+        return on(key) * position_scale([axis_of(key)], units[key], src)
 
-    t, (ref, meas), how = on_uniform_grid(np.round(common - common[0], 9),
-                                          [np.column_stack([scaled(f"{a}_ref") for a in ax]),
-                                           np.column_stack([scaled(a) for a in ax])], src,
-                                          [first[2][k] for k in np.searchsorted(first[0], common)], resample=resample)
+    t, (ref, second), how = on_uniform_grid(np.round(common - common[0], 9),
+                                            [np.column_stack([scaled(f"{a}_ref") for a in ax]),
+                                             np.column_stack([scaled(a if a in mapping else a + LAG_SUFFIX)
+                                                              for a in ax])], src,
+                                            [first[2][k] for k in np.searchsorted(first[0], common)],
+                                            resample=resample)
+    meas, lag = with_following_errors(ax, mapping, ref, second, float(t[1] - t[0]), src, line=names_line,
+                                      expected=LAG_CONVENTION)
     meta = {"format": "TwinCAT Scope CSV", "separator": _NAMES[d],
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
-            "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **how}
+            "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **lag,
+            **how}
     scaling = [f"{c.name} ({c.scaling})" for c in used.values() if c.scaling]
     if scaling:
         meta["scaling"] = (f"{'; '.join(scaling)}: applied by Scope only with 'Scale values before export', "
@@ -322,18 +350,32 @@ def _find(name: str, channels: list[_Channel], found: list[str], src: str, line:
 
 
 def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str, line: int) -> dict[str, str]:
-    """``...SetPos`` / ``...ActPos`` channel pairs, named ``axes`` (default x, y, z...) in order."""
-    by_name = {c.name.lower(): c.name for c in channels}
-    pairs = [(c.name, by_name[c.name[:-6].lower() + "actpos"]) for c in channels
-             if c.name.lower().endswith("setpos") and c.name[:-6].lower() + "actpos" in by_name]
+    """The NC axis channels of each axis (module docstring), named ``axes`` (default x, y, z...) in
+    the order of their set positions: a set position with the actual position of the same prefix
+    (``Axis1.NcToPlc.SetPos`` / ``Axis1.NcToPlc.ActPos``), else with its lag (``...PosDiff``): the
+    actual position is a measurement, the lag the control's difference of the two."""
+    def split(name: str, ends: tuple[str, ...]) -> str | None:
+        low = name.lower().rstrip()
+        return next((low[: -len(e)] for e in ends if low.endswith(e)), None)
+
+    actual = {split(c.name, _ACT_ENDS): c.name for c in reversed(channels) if split(c.name, _ACT_ENDS) is not None}
+    lag = {split(c.name, _LAG_ENDS): c.name for c in reversed(channels) if split(c.name, _LAG_ENDS) is not None}
+    pairs = []
+    for c in channels:
+        prefix = split(c.name, _SET_ENDS)
+        if prefix in actual:
+            pairs.append((c.name, "", actual[prefix]))
+        elif prefix in lag:
+            pairs.append((c.name, LAG_SUFFIX, lag[prefix]))
     if not pairs:
         raise CaptureError("which channels are the commanded and measured positions? give --columns "
-                           f"x_ref=NAME,x=NAME; channels found: {[c.name for c in channels]}", file=src, line=line)
+                           f"x_ref=NAME,x=NAME (or x{LAG_SUFFIX}=NAME for a following error); channels found: "
+                           f"{[c.name for c in channels]}", file=src, line=line)
     names = list(axes) if axes else list(AXIS_NAMES[: len(pairs)])
     if len(names) != len(pairs):
-        raise CaptureError(f"{len(names)} axis name(s) for the {len(pairs)} SetPos/ActPos pairs "
-                           f"{[ref for ref, _ in pairs]}", file=src, line=line)
+        raise CaptureError(f"{len(names)} axis name(s) for the {len(pairs)} NC axis set positions "
+                           f"{[ref for ref, _, _ in pairs]}", file=src, line=line)
     out: dict[str, str] = {}
-    for a, (ref, act) in zip(names, pairs):
-        out[f"{a}_ref"], out[a] = ref, act
+    for a, (ref, suffix, other) in zip(names, pairs):
+        out[f"{a}_ref"], out[a + suffix] = ref, other
     return out
