@@ -327,6 +327,7 @@ class _State:
     feed_per_rev: float | None = None  # the F word under G95 [mm/rev]
     feed_per_rev_word: float | None = None  # the same F as written [deg/rev for a pure rotary move]
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
+    initial_feed_line: int | None = None  # the line whose feed move took the dialect's initial feed
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -512,6 +513,10 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     for line in sorted(st.stops_read):
         notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
                   "jog by the operator is not modelled")
+    if st.initial_feed_line is not None:
+        notes.add(f"feed moves before any F word (from line {st.initial_feed_line}) run at the machine's initial feed "
+                  f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
+                  "LinuxCNC and grbl refuse such a move)")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
@@ -865,7 +870,8 @@ def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None
     """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
     key, w = entry
     name = _DIALECT_G["haas"][key][1]
-    bad = ("no feed rate" if st.feed is None else "in inverse time (G93)" if st.inverse_time else
+    no_feed = st.feed is None and not _initial_feed(st, where)
+    bad = ("no feed rate" if no_feed else "in inverse time (G93)" if st.inverse_time else
            "with cutter compensation on (it implies its own)" if st.comp_side is not None else
            "only in the XY plane (G17)" if st.plane != 2 else
            "under scaling with different X and Y factors" if st.frame is not None
@@ -1512,7 +1518,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
-    if motion != 0 and not st.inverse_time and st.feed is None:
+    if motion != 0 and not st.inverse_time and st.feed is None and not _initial_feed(st, where):
         _no_feed(st, where, code, mcol, mtok)
     if motion != 0 and st.per_rev:
         _per_rev_spindle(st, where, code, mcol, mtok)
@@ -1693,6 +1699,19 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     st.pos = np.array(target, dtype=float)
 
 
+def _initial_feed(st: _State, where: Where) -> bool:
+    """Take the machine's initial feed (:attr:`interpolators.context.Dialect.initial_feed`, Fanuc parameter
+    No. 1411) for a feed move before any F word, and say whether there was one to take: not after an F0, under
+    G95 feed per revolution, or after a G94 that ended G93 (each needs its own F, whatever the setting)."""
+    initial = st.context.dialect.initial_feed
+    if initial is None or st.feed_zero or st.per_rev or st.feed_reset or st.inverse_time:
+        return False
+    st.feed = st.feed_rotary = initial / 60.0
+    if st.initial_feed_line is None:
+        st.initial_feed_line = where.line
+    return True
+
+
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
@@ -1710,7 +1729,8 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
     if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
         why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
-    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
+               expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
 
 
 def _per_rev_spindle(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
@@ -2345,7 +2365,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, 
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
-    if st.feed is None and st.motion != 0:
+    if st.feed is None and st.motion != 0 and not _initial_feed(st, where):
         where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
                    column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
     if st.per_rev and st.motion != 0:

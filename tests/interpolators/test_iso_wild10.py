@@ -1,0 +1,83 @@
+"""ISO programs of the tenth wild round (issue 18): what their own controls run, and how the others are refused."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.core.errors import InputError, MachineError
+from vcnc.engine.machine import builtin_machine_text, load_machine
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
+
+
+def _in_dialect(name: str, **dialect) -> MachineContext:
+    return dataclasses.replace(CTX, dialect=dataclasses.replace(DIALECTS[name], **dialect))
+
+
+def _xy(prog) -> list[list[float]]:
+    return [b.target[:2].tolist() for b in prog.blocks]
+
+
+# A student's Fanuc program, and a subprogram file whose feed comes from its caller: neither writes an F before
+# its first G01. Fanuc parameter No. 1411 (the cutting feed at power-on) gives the feed such moves run at.
+NO_F = "G21 G90 G54\nG0 X0 Y0 Z5\nG1 Z-1\nG2 X10 Y0 R5\nF250\nG1 X20\nM30\n"
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc", "haas", "grbl"])
+def test_a_feed_move_before_any_f_is_refused_and_the_setting_named(name):
+    with pytest.raises(GCodeError, match=r":3:1: G01 feed move without a feed: no F word before it.*expected "
+                                         r"F > 0 \[mm/min\] \(or a machine's initial feed: --initial-feed F, "
+                                         r"\[program\] initial_feed\)"):
+        parse_program(NO_F, context=_in_dialect(name))
+
+
+def test_the_initial_feed_runs_the_moves_before_the_first_f():
+    prog = parse_program(NO_F, context=_in_dialect("fanuc", initial_feed=600.0))
+    feeds = [round(b.feed * 60.0, 9) for b in prog.blocks if b.kind != "rapid"]
+    assert feeds == [600.0, 600.0, 250.0]  # G1 Z-1 and the arc at 600 mm/min, then the program's own F250
+    assert any("initial feed 600 mm/min" in n and "from line 3" in n for n in prog.notes)
+
+
+def test_the_initial_feed_is_noted_only_when_a_move_takes_it():
+    prog = parse_program("G21 G90 G0 X0 Y0\nG1 X5 F100\nM30\n", context=_in_dialect("fanuc", initial_feed=600.0))
+    assert not any("initial feed" in n for n in prog.notes)
+
+
+def test_the_initial_feed_runs_a_drilling_cycle_without_f():
+    prog = parse_program("G21 G90 G54 G0 X0 Y0 Z10\nG81 X5 Y5 Z-2 R2\nG80\nM30\n",
+                         context=_in_dialect("fanuc", initial_feed=120.0))
+    assert [round(b.feed * 60.0, 9) for b in prog.blocks if b.kind == "line"] == [120.0]
+
+
+@pytest.mark.parametrize("text, why", [
+    ("G21 G90 G0 X0 Y0\nF0\nG1 X5\nM30\n", "F0, a zero feed rate"),
+    ("G21 G90 G0 X0 Y0\nG95 S1000 M3\nG1 X5\nM30\n", "G95 feed per revolution: no F word since G95"),
+    ("G21 G90 G0 X0 Y0\nG93 G1 X1 F2\nG94\nG1 X5\nM30\n", "G94 after G93 resets the feed"),
+])
+def test_the_initial_feed_never_stands_for_an_f_the_program_needs(text, why):
+    # an F0, a G95 feed per revolution and the F after G93 are the program's own feeds: no setting replaces them
+    with pytest.raises(GCodeError, match=why):
+        parse_program(text, context=_in_dialect("fanuc", initial_feed=600.0))
+
+
+def test_the_machine_file_sets_the_initial_feed_and_dialect_keeps_it(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ndialect = "fanuc"\ninitial_feed = 450\n')
+    context = load_machine(str(path)).context
+    assert context.dialect.initial_feed == 450.0
+    assert context.with_dialect("haas").dialect.initial_feed == 450.0
+
+
+@pytest.mark.parametrize("value", ["0", "-5", "true", '"fast"'])
+def test_a_bad_initial_feed_is_refused_naming_it(tmp_path, value):
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + f"\n[program]\ninitial_feed = {value}\n")
+    with pytest.raises(MachineError, match=r"'program.initial_feed' \[mm/min\] must be a number > 0"):
+        load_machine(str(path))
+    with pytest.raises(InputError, match=r"initial_feed must be > 0 \[mm/min\]"):
+        dataclasses.replace(DIALECTS["fanuc"], initial_feed=-5.0)
