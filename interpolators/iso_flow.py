@@ -203,7 +203,8 @@ class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
-                 subroutine_path: tuple[str, ...] = (), tape_leader: bool = False) -> None:
+                 subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
+                 abbreviations: bool = False) -> None:
         self.source = source
         self.subroutine_path = subroutine_path
         self.tape_leader = tape_leader
@@ -215,7 +216,7 @@ class _Program:
         self.by_label: dict[str, list[int]] = {}
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
-        self.macro = MacroFlow(max_passes=max_loop_passes)
+        self.macro = MacroFlow(max_passes=max_loop_passes, abbreviations=abbreviations)
         self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
         self.span = 0
         self.plain: set[int] = set()  # lines of plain words only (iso_words.plain_words reads them)
@@ -505,9 +506,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
-                    tape_leader=tape_leader)
     params = Parameters() if params is None else params
+    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
+                    tape_leader=tape_leader, abbreviations=params.abbreviations)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

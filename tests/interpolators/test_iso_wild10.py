@@ -81,3 +81,34 @@ def test_a_bad_initial_feed_is_refused_naming_it(tmp_path, value):
         load_machine(str(path))
     with pytest.raises(InputError, match=r"initial_feed must be > 0 \[mm/min\]"):
         dataclasses.replace(DIALECTS["fanuc"], initial_feed=-5.0)
+
+
+# Fanuc custom macro, "Abbreviations of macro statements" (0i/16i/30i operator's manuals): the first two characters
+# of a macro word stand for it (ROUND -> RO, FIX -> FI); programs written for Fanuc controls write WH [..] DO1.
+ABBREVIATED_LOOP = ("G21 G90 G54 G0 X0 Y0 Z5\n#1 = 0\nWH [#1 LT 3] DO1\nG1 X[#1 * 10] Y[RO[#1 * 1.6]] F100\n"
+                    "#1 = #1 + 1\nEN1\nIF [#1 EQ 3] GO 20\nG0 X99\nN20 G0 Z[SQ[16]]\nIF [#1 GT 0] TH #2 = 7\n"
+                    "G0 Y#2\nM30\n")
+
+
+def test_fanuc_reads_abbreviated_macro_words():
+    prog = parse_program(ABBREVIATED_LOOP, context=_in_dialect("fanuc"))
+    assert _xy(prog) == [[100.0, 50.0], [100.0, 50.0], [110.0, 52.0], [120.0, 53.0], [120.0, 53.0], [120.0, 57.0]]
+    assert prog.blocks[-2].target[2] == -16.0  # Z4 (SQ[16]) plus the G54 offset -20; the GO 20 skipped X99
+
+
+@pytest.mark.parametrize("name", ["haas", "linuxcnc"])
+def test_other_controls_refuse_the_abbreviations_naming_the_word(name):
+    with pytest.raises(GCodeError, match=r":3:1: loop head 'WH' \[..\] DO m: the keyword of a loop is WHILE \(WH is "
+                                         r"Fanuc's abbreviation of it: --dialect fanuc\)"):
+        parse_program(ABBREVIATED_LOOP, context=_in_dialect(name))
+
+
+def test_an_ambiguous_abbreviation_is_refused_naming_the_functions():
+    # EXP and EXISTS (LinuxCNC's, read under every dialect) share their first two characters
+    with pytest.raises(GCodeError, match=r":2:6: EX: an ambiguous abbreviation \(of EXISTS and EXP\)"):
+        parse_program("G21 G90 G0 X0 Y0\n#1 = EX[1]\nM30\n", context=_in_dialect("fanuc"))
+
+
+def test_a_g01_typed_with_the_letter_o_is_not_read_as_go():
+    with pytest.raises(GCodeError, match=r"letter O where the digit 0 was meant"):
+        parse_program("G21 G90 G0 X0 Y0\nGO1 X5 F100\nM30\n", context=_in_dialect("fanuc"))
