@@ -129,6 +129,7 @@ from interpolators.iso_offsets import (
 )
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
@@ -208,11 +209,12 @@ _G_UNSUPPORTED: dict[int, str] = {
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
     283: "G28.3 set machine position (TinyG/g2core)",
     412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
-    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc)",
-    # Fanuc 0i-MD operator's manual (B-64304EN) II-14.2 "Tool position offset (G45 to G48)": one-shot
-    # moves lengthened or shortened by an offset value, from old manual programs
-    450: "G45 tool position offset increase (Fanuc)", 460: "G46 tool position offset decrease (Fanuc)",
-    480: "G48 tool position offset double decrease (Fanuc)", 1070: "G107 cylindrical mapping (Haas)",
+    # G45-G48 tool position offset: read under --dialect fanuc (interpolators.iso_position_offset); Haas's G47
+    # engraves text (Haas mill operator's manual, "G47 Text Engraving")
+    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc; --dialect fanuc)",
+    450: "G45 tool position offset increase (Fanuc; --dialect fanuc)",
+    460: "G46 tool position offset decrease (Fanuc; --dialect fanuc)",
+    480: "G48 tool position offset double decrease (Fanuc; --dialect fanuc)", 1070: "G107 cylindrical mapping (Haas)",
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
@@ -248,6 +250,7 @@ _NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 n
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
+              **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
@@ -724,6 +727,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
+    if "position offset" in gcodes:
+        _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
@@ -763,8 +768,41 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     except PolarError as exc:
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
+    if "position offset" in gcodes:
+        target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _check_position_offset(entry, seen, st: _State, where: Where, other_axes: list[str]) -> None:
+    """Refuse a G45-G48 block :mod:`interpolators.iso_position_offset` does not run, naming the case."""
+    key, w = entry
+    name = POSITION_OFFSET_CODES[key][0]
+    why = ("without D or H (the offset number)" if "D" not in seen and "H" not in seen else
+           "on an arc (Fanuc: quarter and three-quarter circles only): not supported" if st.motion in (20, 30) else
+           "in a canned cycle" if st.motion is not None and st.motion >= 730 else
+           f"with cutter compensation on ({st.comp_code})" if st.comp_side is not None else
+           "in a rotated, scaled or mirrored coordinate system: not supported"
+           if st.rotation or st.frame is not None else
+           f"with axis word {other_axes[0]}: not supported" if other_axes else None)
+    if why is not None:
+        where.fail(f"{name} {why}", column=w.column, text=w.text,
+                   expected=f"{w.text.strip()} X/Y/Z D<n> (or H<n>) on a G00/G01 move, without G41/G42")
+
+
+def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: _State,
+                     notes: _Notes) -> np.ndarray:
+    """The end point of a G45-G48 block (:mod:`interpolators.iso_position_offset`): the offset of its D word (the
+    tool table's radius) or H word (length)."""
+    letter = "D" if "D" in seen else "H"
+    number = int(seen[letter].value)
+    tool = st.tool(number)
+    if tool is None:
+        notes.add(f"{letter}{number} not in the tool table (offset 0)")
+    offset = 0.0 if tool is None else tool.radius if letter == "D" else tool.length
+    notes.add(POSITION_OFFSET_CODES[key][0])
+    axes = {"XYZ".index(a): "-" in seen[a].text for a in axis_words}
+    return offset_travel(key, st.pos, target, axes, offset, incremental=st.incremental)
 
 
 def _pattern_or_pocket(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where,
@@ -1410,6 +1448,8 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
 
 def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
     """H and D words without the compensation that reads them: noted (Fanuc posts write them apart)."""
+    if "position offset" in gcodes:  # G45-G48 read them
+        return
     if "H" in seen and "length compensation" not in gcodes:
         notes.add("H word without G43 (ignored)")
     if "D" in seen and "cutter compensation" not in gcodes:

@@ -7,7 +7,7 @@ import dataclasses
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
 from vcnc.core.errors import InputError, MachineError
 from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError
@@ -112,3 +112,52 @@ def test_an_ambiguous_abbreviation_is_refused_naming_the_functions():
 def test_a_g01_typed_with_the_letter_o_is_not_read_as_go():
     with pytest.raises(GCodeError, match=r"letter O where the digit 0 was meant"):
         parse_program("G21 G90 G0 X0 Y0\nGO1 X5 F100\nM30\n", context=_in_dialect("fanuc"))
+
+
+# Fanuc 0i-MD B-64304EN II-14.2 "Tool position offset (G45 to G48)"; the cases as the Mitsubishi M700V programming
+# manual 12.6 tabulates them (offset l = 10 here: a radius of 10 under D1, a length of 3 under H1)
+TOOLS = {1: Tool(number=1, radius=10.0, length=3.0), 2: Tool(number=2, radius=-10.0)}
+
+
+def _fanuc_tools() -> MachineContext:
+    return dataclasses.replace(_in_dialect("fanuc"), tools=TOOLS, work_offsets={})
+
+
+@pytest.mark.parametrize("block, x", [
+    ("G45 X100. D1", 110.0), ("G45 X-100. D1", -110.0), ("G46 X100. D1", 90.0), ("G46 X-100. D1", -90.0),
+    ("G47 X100. D1", 120.0), ("G48 X100. D1", 80.0), ("G45 X100. D2", 90.0),  # a negative offset reverses G45
+    ("G48 X15. D1", -5.0),  # "the tool will proceed to move in the opposite direction"
+    ("G45 X0 D1", 10.0), ("G45 X-0 D1", -10.0), ("G46 X0 D1", -10.0), ("G46 X-0 D1", 10.0),  # incremental zeros
+])
+def test_fanuc_tool_position_offset_changes_the_travel(block, x):
+    prog = parse_program(f"G21 G91 G0 X0 Y0\n{block} F100\nM30\n", context=dataclasses.replace(
+        _fanuc_tools(), home=(0.0, 0.0, 0.0)))
+    assert prog.blocks[-1].target[0] == x
+
+
+def test_fanuc_tool_position_offset_in_absolute_mode():
+    # under G90 the travel is the end point minus the start point; a zero travel does not move; H takes the length
+    text = "G21 G90 G0 X20. Y0\nG45 G1 X50. Y0 F100 D1\nG46 Z-10. H1\nX0\nM30\n"
+    prog = parse_program(text, context=dataclasses.replace(_fanuc_tools(), home=(0.0, 0.0, 0.0)))
+    assert [b.target.tolist() for b in prog.blocks] == [[20.0, 0.0, 0.0], [60.0, 0.0, 0.0], [60.0, 0.0, -7.0],
+                                                        [0.0, 0.0, -7.0]]  # one-shot: X0 is plain again
+    assert "G45 tool position offset increase" in prog.notes and "G46 tool position offset decrease" in prog.notes
+
+
+@pytest.mark.parametrize("text, why", [
+    ("G45 G1 X10. F100", "without D or H"),
+    ("G45 G2 X10. R5. D1 F100", "on an arc"),
+    ("G41 D1 G1 X10. F100\nG45 X20. D1", r"with cutter compensation on \(G41\)"),
+    ("G45 G1 X10. A5. D1 F100", "with axis word A"),
+])
+def test_fanuc_tool_position_offset_refusals_name_the_case(text, why):
+    ctx = dataclasses.replace(_fanuc_tools(), extra_axes=("a",))
+    with pytest.raises(GCodeError, match=r"G45 tool position offset increase " + why):
+        parse_program(f"G21 G90 G0 X0 Y0\n{text}\nM30\n", context=ctx)
+
+
+@pytest.mark.parametrize("name, what", [("haas", "G47 text engraving"), ("linuxcnc", "G47 text engraving")])
+def test_g47_stays_refused_outside_fanuc(name, what):
+    with pytest.raises(GCodeError, match=what + r" \(Haas\) / tool position offset double increase \(Fanuc; "
+                                                r"--dialect fanuc\): not supported"):
+        parse_program("G21 G90 G0 X0 Y0\nG47 X10. D1\nM30\n", context=_in_dialect(name))
