@@ -8,6 +8,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.core.errors import InputError, MachineError
 from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError
@@ -91,7 +92,7 @@ ABBREVIATED_LOOP = ("G21 G90 G54 G0 X0 Y0 Z5\n#1 = 0\nWH [#1 LT 3] DO1\nG1 X[#1 
 
 
 def test_fanuc_reads_abbreviated_macro_words():
-    prog = parse_program(ABBREVIATED_LOOP, context=_in_dialect("fanuc"))
+    prog = checked_iso(ABBREVIATED_LOOP, _in_dialect("fanuc"))  # and as the reference reads it
     assert _xy(prog) == [[100.0, 50.0], [100.0, 50.0], [110.0, 52.0], [120.0, 53.0], [120.0, 53.0], [120.0, 57.0]]
     assert prog.blocks[-2].target[2] == -16.0  # Z4 (SQ[16]) plus the G54 offset -20; the GO 20 skipped X99
 
@@ -130,15 +131,15 @@ def _fanuc_tools() -> MachineContext:
     ("G45 X0 D1", 10.0), ("G45 X-0 D1", -10.0), ("G46 X0 D1", -10.0), ("G46 X-0 D1", 10.0),  # incremental zeros
 ])
 def test_fanuc_tool_position_offset_changes_the_travel(block, x):
-    prog = parse_program(f"G21 G91 G0 X0 Y0\n{block} F100\nM30\n", context=dataclasses.replace(
-        _fanuc_tools(), home=(0.0, 0.0, 0.0)))
+    prog = checked_iso(f"G21 G91 G0 X0 Y0\n{block} F100\nM30\n", dataclasses.replace(_fanuc_tools(),
+                                                                                      home=(0.0, 0.0, 0.0)))
     assert prog.blocks[-1].target[0] == x
 
 
 def test_fanuc_tool_position_offset_in_absolute_mode():
     # under G90 the travel is the end point minus the start point; a zero travel does not move; H takes the length
     text = "G21 G90 G0 X20. Y0\nG45 G1 X50. Y0 F100 D1\nG46 Z-10. H1\nX0\nM30\n"
-    prog = parse_program(text, context=dataclasses.replace(_fanuc_tools(), home=(0.0, 0.0, 0.0)))
+    prog = checked_iso(text, dataclasses.replace(_fanuc_tools(), home=(0.0, 0.0, 0.0)))
     assert [b.target.tolist() for b in prog.blocks] == [[20.0, 0.0, 0.0], [60.0, 0.0, 0.0], [60.0, 0.0, -7.0],
                                                         [0.0, 0.0, -7.0]]  # one-shot: X0 is plain again
     assert "G45 tool position offset increase" in prog.notes and "G46 tool position offset decrease" in prog.notes
