@@ -269,8 +269,12 @@ class _Program:
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
-                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number",
-                           column=code.index(":") + 1, text=s,
+                # ISO 6983-1 also knows ':' before a block as the alignment function (a "main block" where a
+                # program may restart), which NUM controls and Fusion's NUM post write (": G90 G40 G94", ":T3
+                # M6"); those programs go on in NUM's own forms (I J the arc centre's coordinates): not read here
+                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number "
+                           "(before a block: ISO 6983's main-block mark, as NUM controls write it; NUM programs are "
+                           "not supported)", column=code.index(":") + 1, text=s,
                            expected="':' followed by the program number, e.g. :1234")
             if self.macro.add_line(i, code, self.span, where) is not None:
                 self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro

@@ -162,3 +162,19 @@ def test_g47_stays_refused_outside_fanuc(name, what):
     with pytest.raises(GCodeError, match=what + r" \(Haas\) / tool position offset double increase \(Fanuc; "
                                                 r"--dialect fanuc\): not supported"):
         parse_program("G21 G90 G0 X0 Y0\nG47 X10. D1\nM30\n", context=_in_dialect(name))
+
+
+def test_a_statement_of_another_language_is_named():
+    # a Fusion 360 KinetiC-NC post writes BASIC-like lines ('PRINT "x-offset = ";#100'): no G-code control reads them
+    with pytest.raises(GCodeError, match=r":2:1: malformed number for word P \('PRINT': a statement of another "
+                                         r"control's language"):
+        parse_program('G21 G90\nPRINT "x = ";#100\nM30\n', context=_in_dialect("linuxcnc"))
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc"])
+def test_a_num_main_block_mark_is_named(name):
+    # Fusion's NUM post: ': G90 G40 G94', ISO 6983's main-block mark, in a program whose arcs are NUM's own
+    with pytest.raises(GCodeError, match=r":1:1: ':' .* without a program number \(before a block: ISO 6983's "
+                                         r"main-block mark, as NUM controls write it; NUM programs are not "
+                                         r"supported\)"):
+        parse_program(": G90 G40 G94\nG0 X0 Y0\nM30\n", context=_in_dialect(name))
