@@ -9,6 +9,7 @@ import pytest
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.cli import main
 from vcnc.core.errors import InputError, MachineError
 from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError
@@ -178,3 +179,18 @@ def test_a_num_main_block_mark_is_named(name):
                                          r"main-block mark, as NUM controls write it; NUM programs are not "
                                          r"supported\)"):
         parse_program(": G90 G40 G94\nG0 X0 Y0\nM30\n", context=_in_dialect(name))
+
+
+def test_initial_feed_on_the_command_line(tmp_path, capsys):
+    part = tmp_path / "part.nc"
+    part.write_text(NO_F)
+    blocks, out = tmp_path / "b.csv", tmp_path / "sp.csv"
+    assert main(["interpolate", str(part), "-o", str(out), "--dialect", "fanuc"]) == 2
+    assert "--initial-feed F" in capsys.readouterr().err and not out.exists()
+    assert main(["interpolate", str(part), "-o", str(out), "--dialect", "fanuc", "--initial-feed", "600",
+                 "--blocks", str(blocks)]) == 0
+    assert "initial feed 600 mm/min" in capsys.readouterr().out
+    feeds = [r.split(",")[-1] for r in blocks.read_text().splitlines()[1:]]
+    assert feeds == ["", "600", "600", "250"]  # the rapid, G1 Z-1 and the arc at the initial feed, then F250
+    assert main(["interpolate", str(part), "-o", str(out), "--initial-feed", "0"]) == 2
+    assert "initial_feed must be > 0 [mm/min]" in capsys.readouterr().err
