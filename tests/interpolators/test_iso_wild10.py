@@ -194,3 +194,12 @@ def test_initial_feed_on_the_command_line(tmp_path, capsys):
     assert feeds == ["", "600", "600", "250"]  # the rapid, G1 Z-1 and the arc at the initial feed, then F250
     assert main(["interpolate", str(part), "-o", str(out), "--initial-feed", "0"]) == 2
     assert "initial_feed must be > 0 [mm/min]" in capsys.readouterr().err
+
+
+def test_a_corner_word_may_have_blanks_after_its_comma():
+    # a student's Fanuc program writes "G01 X 92 Y 50, R 15": blanks are read past anywhere in a block, as in "Y 50"
+    text = "G21 G90 G54 G0 X0 Y0 Z0\nG01 X 10 Y 0, R 2 F100\nG01 Y 10\nM30\n"
+    spaced = checked_iso(text, _in_dialect("fanuc"))
+    tight = parse_program(text.replace(", R 2", ",R2"), context=_in_dialect("fanuc"))
+    assert [b.target.tolist() for b in spaced.blocks] == [b.target.tolist() for b in tight.blocks]
+    assert len(spaced.blocks) == 4  # the rapid, the shortened line, the rounding arc, the line on
