@@ -476,7 +476,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
-                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add):
+                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
+                  decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:

@@ -203,3 +203,27 @@ def test_a_corner_word_may_have_blanks_after_its_comma():
     tight = parse_program(text.replace(", R 2", ",R2"), context=_in_dialect("fanuc"))
     assert [b.target.tolist() for b in spaced.blocks] == [b.target.tolist() for b in tight.blocks]
     assert len(spaced.blocks) == 4  # the rapid, the shortened line, the rounding arc, the line on
+
+
+# Fanuc 0i-MD B-64304EN "Custom macro": an argument without a decimal point counts in its address's least input
+# increment, which Fanuc's DPI (No. 3401#0) sets: DPI = 1 (calculator, vcnc's default) reads it as written
+MACRO_CALL = "G21 G90 G54 G0 X0 Y0\nG65 P9001 X10 F800\nM30\nO9001\nG1 X#24 F#9\nM99\n"
+
+
+def test_fanuc_g65_arguments_without_a_decimal_point_under_calculator_input():
+    prog = parse_program(MACRO_CALL, context=_in_dialect("fanuc"))
+    assert prog.blocks[-1].target[0] == 110.0 and round(prog.blocks[-1].feed * 60.0, 9) == 800.0
+    assert "G65 argument X10 without a decimal point read as 10 (calculator-type input, Fanuc DPI=1)" in prog.notes
+
+
+def test_fanuc_g65_arguments_without_a_decimal_point_under_increment_input():
+    ctx = dataclasses.replace(_in_dialect("fanuc"), decimal_point_input="increment")
+    with pytest.raises(GCodeError, match=r":2:11: G65 macro call: argument 'X10' without a decimal point"):
+        parse_program(MACRO_CALL, context=ctx)  # its increment (0.001 mm under IS-B) is not modelled for G65
+    prog = parse_program(MACRO_CALL.replace("X10", "X10."), context=ctx)  # F counts in mm/min either way
+    assert round(prog.blocks[-1].feed * 60.0, 9) == 800.0
+
+
+def test_other_controls_refuse_g65_arguments_without_a_decimal_point():
+    with pytest.raises(GCodeError, match=r"argument 'X10' without a decimal point"):
+        parse_program(MACRO_CALL, context=_in_dialect("haas"))
