@@ -1272,11 +1272,13 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
-    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"`` or None."""
+    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
     words, sets = _words(ln.text, params)
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    if 650 in g:  # Fanuc/Haas G65 macro call: run by iso_reference (the called program, its arguments as locals)
+        return "g65"
     if "t" in words:
         m.selected = int(words["t"][-1])
         dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
@@ -1535,7 +1537,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     fanuc = context.dialect.name == "fanuc"
     lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
-    for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"m0*98p(\d+)", ln.text)} - own):
+    for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
+                         - own):
         other = resolve(target) if resolve is not None else None
         if other is not None:  # a numbered subprogram from its own file (Fanuc: in the control's memory)
             lines += _lines(other.lstrip("\ufeff"), fanuc=fanuc)
@@ -1591,10 +1594,19 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             frames.append({"kind": "m98", "ret": pc + 1, "start": target, "left": count - 1})
             pc = target
             continue
+        if res == "g65":
+            frames.append(_g65_call(ln, pc, st, params))
+            pc = frames[-1]["start"]
+            continue
         if res == "m99":
-            if not frames or frames[-1]["kind"] != "m98":
+            if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
             f = frames[-1]
+            if f["kind"] == "g65":  # back to the caller, its locals #1-#33 as they were
+                frames.pop()
+                params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
+                pc = f["ret"]
+                continue
             if f["left"] > 0:
                 f["left"] -= 1
                 pc = f["start"]
@@ -1605,6 +1617,26 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+#: G65 argument addresses and the locals they set (Fanuc "Argument specification I"; Haas "Local Variables").
+_G65_LOCALS = {"a": 1, "b": 2, "c": 3, "i": 4, "j": 5, "k": 6, "d": 7, "e": 8, "f": 9, "h": 11, "m": 13,
+               **{c: 17 + i for i, c in enumerate("qrstuvwxyz")}}
+
+
+def _g65_call(ln: _Line, pc: int, st: dict, params: _Params) -> dict:
+    """``G65 P<program> <arguments>`` (Fanuc 0i-MD B-64304EN "Simple call (G65)"): the program's frame, the
+    caller's locals #1-#33 kept aside, the arguments set as the called program's (the others vacant)."""
+    words, _ = _words(ln.text, params)
+    if "l" in words or any(len(words[a]) > 1 for a in "ijk" if a in words):
+        raise ReferenceError("G65 with L repeats or several I J K sets")
+    start = _m98_start({"p": words["p"]}, st)
+    saved = {k: v for k, v in params.numbered.items() if 1 <= k <= 33}
+    params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33}
+    for letter, number in _G65_LOCALS.items():
+        if letter in words:
+            params.numbered[number] = words[letter][-1]
+    return {"kind": "g65", "ret": pc + 1, "start": start, "saved": saved}
 
 
 def _m98_start(words: dict, st: dict) -> int:

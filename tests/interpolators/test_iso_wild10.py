@@ -211,7 +211,7 @@ MACRO_CALL = "G21 G90 G54 G0 X0 Y0\nG65 P9001 X10 F800\nM30\nO9001\nG1 X#24 F#9\
 
 
 def test_fanuc_g65_arguments_without_a_decimal_point_under_calculator_input():
-    prog = parse_program(MACRO_CALL, context=_in_dialect("fanuc"))
+    prog = checked_iso(MACRO_CALL, _in_dialect("fanuc"))  # the reference runs the G65 call too
     assert prog.blocks[-1].target[0] == 110.0 and round(prog.blocks[-1].feed * 60.0, 9) == 800.0
     assert "G65 argument X10 without a decimal point read as 10 (calculator-type input, Fanuc DPI=1)" in prog.notes
 
