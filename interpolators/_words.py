@@ -65,8 +65,13 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
     m = NUMBER_RE.match(line, j)
     if m is None:
         zero = j < n and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:])  # "GOO", "X1O": O for 0?
+        # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
+        keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:]) if not zero else None
+        hint = (" (the letter O where the digit 0 was meant?)" if zero else
+                f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)"
+                if keyword else "")
         where.fail(
-            f"malformed number for {what}" + (" (the letter O where the digit 0 was meant?)" if zero else ""),
+            f"malformed number for {what}{hint}",
             column=w0 + 1,
             text=token_at(line, w0),
             expected="a decimal number such as 12, -0.79 or +.5",

@@ -173,6 +173,20 @@ class Dialect:
         ``[RS274NGC] USER_M_PATH`` and ``[DISPLAY] PROGRAM_PREFIX``): a code whose file is there runs as
         an external program the control waits for, moving nothing of the path (noted); without it the
         code is an error. A relative folder starts at the program's.
+    initial_feed : float or None
+        Feed [mm/min] of a feed move (G01, G02, G03, a drilling cycle) that comes before any F word: the
+        control's power-on feed, a machine setting (FANUC parameter No. 1411, "cutting feedrate" at power-on
+        and reset, which "eliminates the need for specifying a cutting feedrate (F code) in the NC program":
+        FANUC 0i-D/0i-F parameter manuals B-64310EN/B-64610EN as issue #18 quotes them, the text itself not
+        found in our search index; Beckhoff TwinCAT CNC channel parameter P-CHAN-00099
+        ``prog_start.feedrate``, "when a feed block (G01/G02/G03) is programmed, the velocity should be 1000
+        mm/min if the F word is missing",
+        https://infosys.beckhoff.com/content/1033/tf5200_channel_parameter/149303051.html; Smoothieware's
+        ``default_feed_rate``, "default rate (mm/minute) for G1/G2/G3 moves"; Marlin's
+        ``DEFAULT_FEEDRATE_MM_M``). None (the default): such a move is an error, as on LinuxCNC ("Cannot do
+        G1 with zero feed rate") and grbl (error 22). When set, it applies under every dialect (a note says
+        so, and that LinuxCNC and grbl refuse the move); it never replaces an F0, a G95 feed per revolution
+        or the F a G94 after G93 needs.
     """
 
     name: str = "linuxcnc"
@@ -184,8 +198,11 @@ class Dialect:
     tap_out_to_r: bool = False
     subroutine_path: tuple[str, ...] = ()
     user_m_path: tuple[str, ...] = ()
+    initial_feed: float | None = None
 
     def __post_init__(self) -> None:
+        if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
+            raise InputError(f"dialect {self.name}: initial_feed must be > 0 [mm/min], got {self.initial_feed!r}")
         if self.arc_rule not in ARC_RULES:
             raise InputError(f"dialect {self.name}: arc_rule must be one of {', '.join(ARC_RULES)}, "
                              f"got {self.arc_rule!r}")
@@ -309,13 +326,14 @@ class MachineContext:
     def with_dialect(self, name: str) -> MachineContext:
         """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
         rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
-        user M paths: a machine file's ``[program]``)."""
+        user M paths, initial feed: a machine file's ``[program]``)."""
         if name not in DIALECTS:
             raise InputError(f"unknown dialect {name!r}: expected one of {', '.join(DIALECTS)}")
         old = self.dialect
         return dataclasses.replace(self, dialect=dataclasses.replace(
             DIALECTS[name], default_units=old.default_units, continuous_path=old.continuous_path,
-            tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path))
+            tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path,
+            initial_feed=old.initial_feed))
 
 
 #: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).

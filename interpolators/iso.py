@@ -129,6 +129,7 @@ from interpolators.iso_offsets import (
 )
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
@@ -208,11 +209,12 @@ _G_UNSUPPORTED: dict[int, str] = {
     310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
     283: "G28.3 set machine position (TinyG/g2core)",
     412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
-    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc)",
-    # Fanuc 0i-MD operator's manual (B-64304EN) II-14.2 "Tool position offset (G45 to G48)": one-shot
-    # moves lengthened or shortened by an offset value, from old manual programs
-    450: "G45 tool position offset increase (Fanuc)", 460: "G46 tool position offset decrease (Fanuc)",
-    480: "G48 tool position offset double decrease (Fanuc)", 1070: "G107 cylindrical mapping (Haas)",
+    # G45-G48 tool position offset: read under --dialect fanuc (interpolators.iso_position_offset); Haas's G47
+    # engraves text (Haas mill operator's manual, "G47 Text Engraving")
+    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc; --dialect fanuc)",
+    450: "G45 tool position offset increase (Fanuc; --dialect fanuc)",
+    460: "G46 tool position offset decrease (Fanuc; --dialect fanuc)",
+    480: "G48 tool position offset double decrease (Fanuc; --dialect fanuc)", 1070: "G107 cylindrical mapping (Haas)",
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
@@ -248,6 +250,7 @@ _NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 n
 _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
+              **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
@@ -327,6 +330,7 @@ class _State:
     feed_per_rev: float | None = None  # the F word under G95 [mm/rev]
     feed_per_rev_word: float | None = None  # the same F as written [deg/rev for a pure rotary move]
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
+    initial_feed_line: int | None = None  # the line whose feed move took the dialect's initial feed
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -467,11 +471,13 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     macro_b = dialect.name in ("fanuc", "haas")
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
+                        abbreviations=dialect.name == "fanuc",
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
-                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add):
+                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
+                  decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None):
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -512,6 +518,10 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     for line in sorted(st.stops_read):
         notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
                   "jog by the operator is not modelled")
+    if st.initial_feed_line is not None:
+        notes.add(f"feed moves before any F word (from line {st.initial_feed_line}) run at the machine's initial feed "
+                  f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
+                  "LinuxCNC and grbl refuse such a move)")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
@@ -718,6 +728,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     axis_words = [w for w in ("X", "Y", "Z") if w in seen]
     arc_words = [w for w in ("I", "J", "K") if w in seen]
     rot_words = [w for w in EXTRA_LETTERS if w in seen]
+    if "position offset" in gcodes:
+        _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
@@ -757,8 +769,41 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     except PolarError as exc:
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
+    if "position offset" in gcodes:
+        target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _check_position_offset(entry, seen, st: _State, where: Where, other_axes: list[str]) -> None:
+    """Refuse a G45-G48 block :mod:`interpolators.iso_position_offset` does not run, naming the case."""
+    key, w = entry
+    name = POSITION_OFFSET_CODES[key][0]
+    why = ("without D or H (the offset number)" if "D" not in seen and "H" not in seen else
+           "on an arc (Fanuc: quarter and three-quarter circles only): not supported" if st.motion in (20, 30) else
+           "in a canned cycle" if st.motion is not None and st.motion >= 730 else
+           f"with cutter compensation on ({st.comp_code})" if st.comp_side is not None else
+           "in a rotated, scaled or mirrored coordinate system: not supported"
+           if st.rotation or st.frame is not None else
+           f"with axis word {other_axes[0]}: not supported" if other_axes else None)
+    if why is not None:
+        where.fail(f"{name} {why}", column=w.column, text=w.text,
+                   expected=f"{w.text.strip()} X/Y/Z D<n> (or H<n>) on a G00/G01 move, without G41/G42")
+
+
+def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: _State,
+                     notes: _Notes) -> np.ndarray:
+    """The end point of a G45-G48 block (:mod:`interpolators.iso_position_offset`): the offset of its D word (the
+    tool table's radius) or H word (length)."""
+    letter = "D" if "D" in seen else "H"
+    number = int(seen[letter].value)
+    tool = st.tool(number)
+    if tool is None:
+        notes.add(f"{letter}{number} not in the tool table (offset 0)")
+    offset = 0.0 if tool is None else tool.radius if letter == "D" else tool.length
+    notes.add(POSITION_OFFSET_CODES[key][0])
+    axes = {"XYZ".index(a): "-" in seen[a].text for a in axis_words}
+    return offset_travel(key, st.pos, target, axes, offset, incremental=st.incremental)
 
 
 def _pattern_or_pocket(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where,
@@ -865,7 +910,8 @@ def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None
     """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
     key, w = entry
     name = _DIALECT_G["haas"][key][1]
-    bad = ("no feed rate" if st.feed is None else "in inverse time (G93)" if st.inverse_time else
+    no_feed = st.feed is None and not _initial_feed(st, where)
+    bad = ("no feed rate" if no_feed else "in inverse time (G93)" if st.inverse_time else
            "with cutter compensation on (it implies its own)" if st.comp_side is not None else
            "only in the XY plane (G17)" if st.plane != 2 else
            "under scaling with different X and Y factors" if st.frame is not None
@@ -1403,6 +1449,8 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
 
 def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
     """H and D words without the compensation that reads them: noted (Fanuc posts write them apart)."""
+    if "position offset" in gcodes:  # G45-G48 read them
+        return
     if "H" in seen and "length compensation" not in gcodes:
         notes.add("H word without G43 (ignored)")
     if "D" in seen and "cutter compensation" not in gcodes:
@@ -1512,7 +1560,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
                    expected="F<1/minutes> on every G1/G2/G3 block under G93")
-    if motion != 0 and not st.inverse_time and st.feed is None:
+    if motion != 0 and not st.inverse_time and st.feed is None and not _initial_feed(st, where):
         _no_feed(st, where, code, mcol, mtok)
     if motion != 0 and st.per_rev:
         _per_rev_spindle(st, where, code, mcol, mtok)
@@ -1693,6 +1741,19 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     st.pos = np.array(target, dtype=float)
 
 
+def _initial_feed(st: _State, where: Where) -> bool:
+    """Take the machine's initial feed (:attr:`interpolators.context.Dialect.initial_feed`, Fanuc parameter
+    No. 1411) for a feed move before any F word, and say whether there was one to take: not after an F0, under
+    G95 feed per revolution, or after a G94 that ended G93 (each needs its own F, whatever the setting)."""
+    initial = st.context.dialect.initial_feed
+    if initial is None or st.feed_zero or st.per_rev or st.feed_reset or st.inverse_time:
+        return False
+    st.feed = st.feed_rotary = initial / 60.0
+    if st.initial_feed_line is None:
+        st.initial_feed_line = where.line
+    return True
+
+
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
@@ -1710,7 +1771,8 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
     if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
         why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
-    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok, expected="F > 0 [mm/min]")
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
+               expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
 
 
 def _per_rev_spindle(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
@@ -2345,7 +2407,7 @@ def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, 
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
-    if st.feed is None and st.motion != 0:
+    if st.feed is None and st.motion != 0 and not _initial_feed(st, where):
         where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
                    column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
     if st.per_rev and st.motion != 0:

@@ -13,8 +13,9 @@ decimal point (Mitsubishi M700V programming manual 5.3 "Decimal Point Input", wh
 same two types: "Command X1 in the 1 um system is equivalent to command X0.001"; values of variables
 are read "the same way in either" type). The scaling factors of ``G51 I J K`` / ``P`` have their own
 rule (:func:`interpolators.iso_transforms.scaling`), and so do the arguments of ``G65``
-(:mod:`interpolators.iso_flow`: an error without a decimal point, whose meaning the manual leaves to
-the machine's configuration); the switches of ``G05.1 Q1`` and ``G08 P1`` are no distances.
+(:mod:`interpolators.iso_flow`: as written under DPI = 1, noted; under DPI = 0 as written for F D H M S T,
+an error for the others, whose increments are not modelled); the switches of ``G05.1 Q1`` and ``G08 P1`` are
+no distances.
 
 Haas, LinuxCNC and grbl read whole units: the setting (``MachineContext.decimal_point_input``)
 only applies under the ``fanuc`` dialect. The default, ``"calculator"``, changes nothing; under

@@ -61,6 +61,7 @@ from collections.abc import Callable, Generator, Iterator
 from pathlib import Path
 
 from interpolators._words import Where, lines_of, program_text
+from interpolators.iso_decimal import DECIMAL_LETTERS, integer_literal
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
@@ -203,7 +204,8 @@ class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
-                 subroutine_path: tuple[str, ...] = (), tape_leader: bool = False) -> None:
+                 subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
+                 abbreviations: bool = False) -> None:
         self.source = source
         self.subroutine_path = subroutine_path
         self.tape_leader = tape_leader
@@ -215,7 +217,7 @@ class _Program:
         self.by_label: dict[str, list[int]] = {}
         self.files: set[str] = set()
         self.first_line: dict[str | None, int] = {}  # index of each file's first line
-        self.macro = MacroFlow(max_passes=max_loop_passes)
+        self.macro = MacroFlow(max_passes=max_loop_passes, abbreviations=abbreviations)
         self.active: dict[int, tuple[str, str]] = {}  # line -> keyword and text of its active comment
         self.span = 0
         self.plain: set[int] = set()  # lines of plain words only (iso_words.plain_words reads them)
@@ -268,8 +270,12 @@ class _Program:
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
-                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number",
-                           column=code.index(":") + 1, text=s,
+                # ISO 6983-1 also knows ':' before a block as the alignment function (a "main block" where a
+                # program may restart), which NUM controls and Fusion's NUM post write (": G90 G40 G94", ":T3
+                # M6"); those programs go on in NUM's own forms (I J the arc centre's coordinates): not read here
+                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number "
+                           "(before a block: ISO 6983's main-block mark, as NUM controls write it; NUM programs are "
+                           "not supported)", column=code.index(":") + 1, text=s,
                            expected="':' followed by the program number, e.g. :1234")
             if self.macro.add_line(i, code, self.span, where) is not None:
                 self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
@@ -486,13 +492,15 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
         on_comment: Callable[[str, str, Where], None] | None = None,
-        on_note: Callable[[str], None] | None = None) -> Iterator[FlowLine]:
+        on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
     backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
     ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
     ``tape_leader``: the text after the first ``%`` of each file, to its line end, is skipped (Fanuc).
+    ``decimal_point_input``: Fanuc's DPI setting (``MachineContext.decimal_point_input``, the ``fanuc`` dialect)
+    for the G65 arguments written without a decimal point (:func:`_plain_argument`); None: they are errors.
     ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
     (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
     comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
@@ -505,9 +513,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     vcnc.GCodeError
         Unmatched O-words, calls of undefined subroutines, runaway loops, bad expressions.
     """
-    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
-                    tape_leader=tape_leader)
     params = Parameters() if params is None else params
+    prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
+                    tape_leader=tape_leader, abbreviations=params.abbreviations)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}
@@ -551,7 +559,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         calls = _calls(words)
         g65 = next((w for w in calls if w.letter == "G"), None)
         if g65 is not None:
-            pc = _macro_call(prog, pc, words, g65, params, frames)
+            pc = _macro_call(prog, pc, words, g65, params, frames, decimal_point_input, on_note)
             continue
         m98 = next((w for w in calls if w.letter == "M" and w.value in (97, 98)), None)
         m99 = next((w for w in calls if w.letter == "M" and w.value == 99), None)
@@ -708,8 +716,30 @@ def _called_program(prog: _Program, words: list[Word], call: Word, where: Where,
     return prog.fanuc[int(p.value)] + 1
 
 
+def _plain_argument(w: Word, where: Where, decimal_point_input: str | None,
+                    on_note: Callable[[str], None] | None) -> None:
+    """A G65 argument written without a decimal point (Fanuc 0i-MD B-64304EN, "Custom macro", argument
+    specification: "The unit of data passed in an argument without a decimal point corresponds to the least
+    input increment of each address ... may vary according to the system configuration of the machine"). The
+    configuration is Fanuc's DPI (No. 3401#0, "when a decimal point is omitted in an address that can include a
+    decimal point", :mod:`interpolators.iso_decimal`): under DPI = 1 (calculator) the value is read as written,
+    noted; under DPI = 0 (increment) F, D, H, M, S and T, which count in their own unit either way, are read as
+    written, and a distance, angle or other address is an error (its increment is not modelled for G65). Other
+    dialects: an error (our reading: the Haas manual says nothing of it)."""
+    calculator = decimal_point_input == "calculator"
+    if calculator or (decimal_point_input == "increment" and w.letter not in DECIMAL_LETTERS and w.letter != "E"):
+        if calculator and on_note is not None:
+            on_note(f"G65 argument {w.text} without a decimal point read as {w.value:g} (calculator-type input, "
+                    "Fanuc DPI=1)")
+        return
+    where.fail(f"G65 macro call: argument {w.text!r} without a decimal point (the control scales it by its "
+               "least input increment, which depends on the machine)", column=w.column, text=w.text,
+               expected=f"{w.letter}{w.text[1:].strip()}. (with a decimal point)")
+
+
 def _macro_call(prog: _Program, pc: int, words: list[Word], g65: Word, params: Parameters,
-                frames: list[_Frame]) -> int:
+                frames: list[_Frame], decimal_point_input: str | None = None,
+                on_note: Callable[[str], None] | None = None) -> int:
     """A G65 block: enter program ``O<P>`` with its arguments as locals; returns the next program counter."""
     where = prog.where(pc)
     start = _called_program(prog, words, g65, where, "G65 macro call")
@@ -728,10 +758,8 @@ def _macro_call(prog: _Program, pc: int, words: list[Word], g65: Word, params: P
         if w.letter not in _G65_ARGUMENTS:
             where.fail(f"G65 macro call: {w.letter} is not an argument address", column=w.column, text=w.text,
                        expected="arguments A-F, H, I-K, M, Q-Z (not G, L, N, O, P)")
-        if re.fullmatch(r"[A-Za-z]\s*[+-]?\d+", w.text):
-            where.fail(f"G65 macro call: argument {w.text!r} without a decimal point (the control scales it by its "
-                       "least input increment, which depends on the machine)", column=w.column, text=w.text,
-                       expected=f"{w.letter}{w.text[1:].strip()}. (with a decimal point)")
+        if integer_literal(w):
+            _plain_argument(w, where, decimal_point_input, on_note)
         if w.letter in seen_ijk:  # argument specification II: the n-th I J K set #(3n+1) .. #(3n+3)
             n = seen_ijk[w.letter]
             seen_ijk[w.letter] += 1

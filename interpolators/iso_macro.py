@@ -17,9 +17,16 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
   (tested at ``WHILE`` on each pass); ``DO m`` without ``WHILE`` repeats without end (left only
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
   closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
-  after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` (``WH [..] DO1``) is an error
-  naming it: the manuals cited write the statement ``WHILE`` in full, and we found no manual that runs
-  an abbreviated one from a program (our reading).
+  after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` is an error naming it.
+* Abbreviations (``fanuc`` dialect only: :attr:`interpolators.iso_params.Parameters.abbreviations`): a Fanuc
+  control takes the first two characters of a macro word for the word (Fanuc 0i/16i/30i operator's manuals,
+  "Custom macro", "Arithmetic and logic operation", "Abbreviations of macro statements": "ROUND -> RO, FIX ->
+  FI"; the text itself was not found in our search index, and that the rule covers the statement words as
+  well as the functions is our reading, which programs written for Fanuc controls bear out: ``WH [..] DO1``).
+  So ``WH [..] DO m`` is ``WHILE``, ``GO n`` ``GOTO n`` (only with nothing but the target after it, so
+  that ``GO1 X5``, a G01 typed with the letter O, stays an error naming the letter), ``EN m`` ``END m`` and
+  ``IF [..] TH`` ``THEN``. The functions' abbreviations are read by :mod:`interpolators.iso_params`. Haas
+  documents no abbreviation: under ``haas`` (and LinuxCNC, grbl) they are errors naming the full word.
 * The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]`` and ``PCLOS`` send text and
   variables to the serial port (Fanuc B-64304EN "External output commands"; Haas mill operator's
   manual, "Formatted Output": "DPRNT[<text> <#nnnn[wf]>...]", "DPRNT must be the only command in the
@@ -61,17 +68,25 @@ _GOTO = re.compile(_PREFIX + r"(GOTO)\s*(?=[\d#\[+])", re.I)
 _OUTPUT = re.compile(_PREFIX + r"(POPEN|PCLOS|[DB]PRNT\s*\[)", re.I)
 _SEQUENCE = re.compile(r"^\s*N\s*(\d+)", re.I)
 _BRANCH = re.compile(r"\s*(GOTO|THEN)", re.I)
+#: Fanuc's abbreviated statement words and the words they stand for.
+ABBREVIATED = {"WH": "WHILE", "GO": "GOTO", "EN": "END", "TH": "THEN"}
+_WHILE_SHORT = re.compile(_PREFIX + r"(WH)\s*\[.*\]\s*DO\s*(\d+)\s*$", re.I)
+_END_SHORT = re.compile(_PREFIX + r"(EN)\s*(\d+)\s*$", re.I)
+_GOTO_SHORT = re.compile(_PREFIX + r"(GO)\s*(?=(?:\d+|#\s*\d+|\[.*\])\s*$)", re.I)
+_BRANCH_SHORT = re.compile(r"\s*(GOTO|THEN|GO|TH)", re.I)
 
 
 @dataclasses.dataclass(frozen=True)
 class Statement:
     """A macro B statement: ``kind`` (if, goto, while, do, end, output), the comment-free ``code`` of its
-    line, ``start`` (0-based column of the keyword) and ``loop`` (``m`` of ``DO m`` / ``END m``)."""
+    line, ``start`` (0-based column of the keyword), ``loop`` (``m`` of ``DO m`` / ``END m``) and ``word``, the
+    keyword as written (``GO`` for an abbreviated ``GOTO``)."""
 
     kind: str
     code: str
     start: int
     loop: int = 0
+    word: str = ""
 
 
 def sequence_number(code: str) -> int | None:
@@ -80,30 +95,35 @@ def sequence_number(code: str) -> int | None:
     return int(m.group(1)) if m else None
 
 
-def read_statement(code: str, where: Where) -> Statement | None:
-    """The macro B statement of a comment-free line, or ``None`` for an ordinary block."""
+def read_statement(code: str, where: Where, *, abbreviations: bool = False) -> Statement | None:
+    """The macro B statement of a comment-free line, or ``None`` for an ordinary block; ``abbreviations``:
+    Fanuc's two-letter statement words (``WH``, ``GO``, ``EN``) are read too."""
     m = _IF.match(code)
     if m:
         return Statement("if", code, m.start(1))
     m = _WHILE.match(code) or _DO.match(code) or _END.match(code)
+    if m is None and abbreviations:
+        m = _WHILE_SHORT.match(code) or _END_SHORT.match(code)
     if m:
         loop = int(m.group(2))
-        word = "END" if m.group(1).upper() == "END" else "DO"
+        word = "END" if m.group(1).upper() in ("END", "EN") else "DO"
         if not 1 <= loop <= MAX_NESTING:
             where.fail(f"{word} {loop}: loop identification number out of range", column=m.start(2) + 1,
                        text=code.strip(), expected=f"{word} 1, 2 or 3 (Fanuc custom macro B)")
-        return Statement(m.group(1).lower(), code, m.start(1), loop)
+        kind = ABBREVIATED.get(m.group(1).upper(), m.group(1)).lower()
+        return Statement(kind, code, m.start(1), loop, word=m.group(1))
     m = _WHILE_START.match(code)
     if m:
         where.fail("WHILE without DO m at the end of its block", column=m.start(1) + 1, text=code.strip(),
                    expected="WHILE [condition] DO m (m = 1, 2 or 3)")
     m = _LOOP_HEAD.match(code)
     if m:
-        where.fail(f"loop head {m.group(1)!r} [..] DO m: the keyword of a loop is WHILE", column=m.start(1) + 1,
-                   text=code.strip(), expected="WHILE [condition] DO m (m = 1, 2 or 3)")
-    m = _GOTO.match(code)
+        short = " (WH is Fanuc's abbreviation of it: --dialect fanuc)" if m.group(1).upper() == "WH" else ""
+        where.fail(f"loop head {m.group(1)!r} [..] DO m: the keyword of a loop is WHILE{short}",
+                   column=m.start(1) + 1, text=code.strip(), expected="WHILE [condition] DO m (m = 1, 2 or 3)")
+    m = _GOTO.match(code) or (_GOTO_SHORT.match(code) if abbreviations else None)
     if m:
-        return Statement("goto", code, m.start(1))
+        return Statement("goto", code, m.start(1), word=m.group(1))
     m = _OUTPUT.match(code)
     if m:
         keyword = m.group(1).rstrip("[ \t").upper()
@@ -135,8 +155,9 @@ class MacroFlow:
     *program* (``span``) is the main program or one ``O`` program after it, or another file.
     """
 
-    def __init__(self, *, max_passes: int = MAX_LOOP_PASSES) -> None:
+    def __init__(self, *, max_passes: int = MAX_LOOP_PASSES, abbreviations: bool = False) -> None:
         self.max_passes = max_passes
+        self.abbreviations = abbreviations  # Fanuc's two-letter statement words (WH, GO, EN, TH)
         self.statements: dict[int, Statement] = {}
         self.span_of: list[int] = []
         self.numbers: dict[int, dict[int, list[int]]] = {}  # span -> sequence number -> lines
@@ -153,7 +174,7 @@ class MacroFlow:
         n = sequence_number(code)
         if n is not None:
             self.numbers.setdefault(span, {}).setdefault(n, []).append(i)
-        stmt = read_statement(code, where)
+        stmt = read_statement(code, where, abbreviations=self.abbreviations)
         if stmt is not None:
             self.statements[i] = stmt
         return stmt
@@ -221,15 +242,15 @@ class MacroFlow:
             self._count(pc, where, f"END {stmt.loop}: the loop DO {stmt.loop} it closes")
             return self.partner[pc]
         if stmt.kind == "goto":
-            return self._goto(pc, stmt.start + len("GOTO"), where, params)
+            return self._goto(pc, stmt.start + len(stmt.word), where, params)
         holds, end = evaluate_condition(code, code.index("[", stmt.start), where, params)
-        m = _BRANCH.match(code, end)
+        m = (_BRANCH_SHORT if self.abbreviations else _BRANCH).match(code, end)
         if m is None:
             where.fail("IF [condition] must be followed by GOTO n or THEN", column=end + 1, text=code.strip(),
                        expected="IF [condition] GOTO n, or IF [condition] THEN #i = expression")
         if not holds:
             return pc + 1
-        if m.group(1).upper() == "GOTO":
+        if m.group(1).upper() in ("GOTO", "GO"):
             return self._goto(pc, m.end(), where, params)
         rest = " " * m.end() + code[m.end():]
         words = read_line(rest, where, params)

@@ -120,11 +120,16 @@ class Parameters:
     set_system : callable, optional
         ``set_system(n, value)`` sets a system parameter the control lets a program write (Fanuc/Haas
         work offsets: :func:`interpolators.iso_system.set_system_parameter`); True when it did.
+    abbreviations : bool
+        Fanuc's abbreviated macro words (the ``fanuc`` dialect; :mod:`interpolators.iso_macro` gives the
+        source): a function written by its first two characters (``RO[#1]`` is ``ROUND[#1]``, ``SQ`` is
+        ``SQRT``); two characters that begin more than one function's name are an error naming them. The
+        statement words (``WH``, ``GO``, ``EN``, ``TH``) are read by :mod:`interpolators.iso_macro`.
     """
 
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
-                 set_system: Callable[[int, float | None], bool] | None = None) -> None:
+                 set_system: Callable[[int, float | None], bool] | None = None, abbreviations: bool = False) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -132,6 +137,7 @@ class Parameters:
         self.unbracketed = 0  # assignments "#1 = #1 + 2" read without macro_b (LinuxCNC wants [#1 + 2])
         self.system = system
         self.set_system = set_system
+        self.abbreviations = abbreviations
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -328,6 +334,9 @@ class _Reader:
             if self.up.startswith(name, p):
                 return self.function(name, p)
         word = re.match(r"[A-Za-z]\w*", self.code[p:])
+        if word and self.params.abbreviations and len(word.group(0)) == 2 \
+                and self.code[self.skip(p + 2):].startswith("["):
+            return self.abbreviated(word.group(0).upper(), p)
         if word and self.code[self.skip(p + word.end()):].startswith("["):
             self.fail(f"malformed value: unknown function {word.group(0)!r}", p,
                       "a function of " + ", ".join(_FUNCTIONS))
@@ -355,8 +364,20 @@ class _Reader:
         what = f"unknown operation '{word.group(0)}'" if word else f"unexpected '{self.code[end]}'"
         self.fail(f"{what} in an expression", end, "an operator (+ - * / ** MOD EQ NE GT LT AND OR XOR) or ']'")
 
-    def function(self, name: str, p: int) -> tuple[float, int]:
-        q = self.skip(p + len(name))
+    def abbreviated(self, short: str, p: int) -> tuple[float, int]:
+        """The function Fanuc's abbreviation ``short`` (its first two characters) names, applied at ``p``."""
+        names = [f for f in _FUNCTIONS if f.startswith(short)]
+        if len(names) > 1:
+            self.fail(f"{short}: an ambiguous abbreviation (of {' and '.join(names)})", p,
+                      f"the function's full name ({' or '.join(names)})")
+        if not names:
+            self.fail(f"malformed value: {short!r} abbreviates no function", p,
+                      "a function, by its name or its first two characters: " + ", ".join(_FUNCTIONS))
+        return self.function(names[0], p, length=2)
+
+    def function(self, name: str, p: int, *, length: int | None = None) -> tuple[float, int]:
+        """``name[arg]`` at ``p``, the name written in ``length`` characters (all of them by default)."""
+        q = self.skip(p + (len(name) if length is None else length))
         if q >= len(self.code) or self.code[q] != "[":
             self.fail(f"function {name} needs its argument in [ ]", p, f"{name}[value]")
         if name == "EXISTS":  # LinuxCNC read_parameter(check_exists): a number exists when 1 <= n < 5602

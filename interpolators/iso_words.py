@@ -50,6 +50,8 @@ PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)"
 #: :func:`interpolators._words.read_number` reads it: spaces or tabs after the letter) and blanks only: most
 #: of CAM output (``N120 G1 X-21.131 Y34.719 F400.``). It matches one way only (a number never ends where
 #: a letter or a blank could start), the way the character-by-character reader reads it.
+#: A Fanuc/Haas corner word's comma and letter (",R", ", C").
+_CORNER = re.compile(r",[ \t]*([RrCc])")
 _PLAIN_LINE = re.compile(r"[ \t\r\f\v]*(?:[A-Za-z][ \t]*" + PLAIN_NUMBER + r"[ \t\r\f\v]*)*")
 #: A word of such a line: (letter, number); the text is the whole match.
 _PLAIN_TOKEN = re.compile(r"([A-Za-z])[ \t]*(" + PLAIN_NUMBER + ")")
@@ -147,9 +149,11 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             i = assignment(i)
             continue
         up = ch.upper()
-        if ch == "," and code[i + 1:i + 2].upper() in ("R", "C"):  # Fanuc/Haas ,R ,C (interpolators.iso_corners)
-            up = "," + code[i + 1].upper()
-            i += 1
+        comma = i
+        corner = _CORNER.match(code, i) if ch == "," else None
+        if corner is not None:  # Fanuc/Haas ,R ,C (interpolators.iso_corners); blanks between, as anywhere in a block
+            up = "," + corner.group(1).upper()
+            i = corner.start(1)
         if ch == "/" and words:
             tok = re.match(r"/[0-9.]*", code[i:]).group(0)
             where.fail(f"'{tok}' after the word {words[-1].text!r}: arithmetic on a word's value needs brackets "
@@ -182,7 +186,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
         else:
             v, end = value(i + 1, up)
         if v is not None:
-            start = i - 1 if up[0] == "," else i
+            start = comma if up[0] == "," else i
             words.append(Word(up, v, start + 1, code[start:end].strip()))
         i = end
     return words

@@ -385,7 +385,23 @@ def _split(text: str) -> list[str]:
     return [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
 
 
-def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
+#: Fanuc's abbreviated function names (custom macro, "Abbreviations of macro statements": a word's first two
+#: characters stand for it, "ROUND -> RO, FIX -> FI").
+_SHORT_FUNCTIONS = {"ab": "abs", "ac": "acos", "as": "asin", "at": "atan", "bc": "bcd", "bi": "bin", "co": "cos",
+                    "fi": "fix", "fu": "fup", "ro": "round", "si": "sin", "sq": "sqrt", "ta": "tan"}
+
+
+def _unabbreviated(s: str) -> str:
+    """A cleaned Fanuc line with its abbreviated macro words written out: WH[..]DO, EN m, GO n (a target alone
+    after it), IF[..]GO / TH, and the functions."""
+    s = re.sub(r"^wh(?=\[)", "while", s)
+    s = re.sub(r"^en(?=\d$)", "end", s)
+    s = re.sub(r"^go(?=(?:\d+|#\d+|\[.*\])$)", "goto", s)
+    s = re.sub(r"^(if\[.*\])(go(?!to)|th(?!en))", lambda m: m.group(1) + ("goto" if m.group(2) == "go" else "then"), s)
+    return re.sub(r"(?<![a-z])(" + "|".join(_SHORT_FUNCTIONS) + r")(?=\[)", lambda m: _SHORT_FUNCTIONS[m.group(1)], s)
+
+
+def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(_split(text), start=1):
         s = clean_line(raw)
@@ -404,6 +420,7 @@ def _lines(text: str, *, grbl: bool = False) -> list[_Line]:
             s = s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
+        s = _unabbreviated(s) if fanuc else s
         seq = int(n.group(1)) if n else None
         if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
             s = "o" + s[1:]
@@ -1034,6 +1051,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         _cycle(m, line, words)
         return
     end = m.to_machine(m.target(words))
+    shift = [c for c in g if c in _POSITION_OFFSET]
+    if shift and m.ctx.dialect.name == "fanuc":
+        end = _position_offset(m, shift[0], words, end)
     m.extra = m.extra_end(words)
     if m.motion in (0, 10, 330):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
@@ -1059,6 +1079,32 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+#: Fanuc G45-G48 tool position offset: the multiple of the offset each adds to an axis' travel.
+_POSITION_OFFSET = {450: 1, 460: -1, 470: 2, 480: -2}
+
+
+def _position_offset(m: _Machine, code: int, words: dict, end: np.ndarray) -> np.ndarray:
+    """Fanuc G45-G48 (Fanuc 0i-MD B-64304EN II-14.2; the Mitsubishi M700V programming manual 12.6 tabulates
+    the cases): each axis word's travel x becomes x + k l sign(x), l the offset of D (a radius) or H (a
+    length); an incremental zero travels k l towards its own sign (X-0: minus); an absolute zero stays."""
+    if m.motion not in (0, 10):
+        raise ReferenceError("G45-G48 off a G00/G01 move")
+    letter = "d" if "d" in words else "h"
+    tool = m.tool(int(words[letter][-1]))
+    offset = 0.0 if tool is None else tool.radius if letter == "d" else tool.length
+    k = _POSITION_OFFSET[code]
+    end = end.copy()
+    for i, a in enumerate("xyz"):
+        if a not in words:
+            continue
+        travel = end[i] - m.pos[i]
+        if travel:
+            end[i] += k * offset * math.copysign(1.0, travel)
+        elif m.incremental:
+            end[i] += k * offset * math.copysign(1.0, words[a][-1])
+    return end
 
 
 def _centre(m: _Machine, words: dict, end: np.ndarray) -> np.ndarray:
@@ -1226,11 +1272,13 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
-    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"`` or None."""
+    """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
     words, sets = _words(ln.text, params)
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    if 650 in g:  # Fanuc/Haas G65 macro call: run by iso_reference (the called program, its arguments as locals)
+        return "g65"
     if "t" in words:
         m.selected = int(words["t"][-1])
         dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
@@ -1486,12 +1534,14 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     ReferenceError
         The program uses a feature this reference does not model.
     """
-    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl")
+    fanuc = context.dialect.name == "fanuc"
+    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
-    for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"m0*98p(\d+)", ln.text)} - own):
+    for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
+                         - own):
         other = resolve(target) if resolve is not None else None
         if other is not None:  # a numbered subprogram from its own file (Fanuc: in the control's memory)
-            lines += _lines(other.lstrip("\ufeff"))
+            lines += _lines(other.lstrip("\ufeff"), fanuc=fanuc)
     st = _structure(lines)
     m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
     frames: list[dict] = []
@@ -1544,10 +1594,19 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             frames.append({"kind": "m98", "ret": pc + 1, "start": target, "left": count - 1})
             pc = target
             continue
+        if res == "g65":
+            frames.append(_g65_call(ln, pc, st, params))
+            pc = frames[-1]["start"]
+            continue
         if res == "m99":
-            if not frames or frames[-1]["kind"] != "m98":
+            if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
             f = frames[-1]
+            if f["kind"] == "g65":  # back to the caller, its locals #1-#33 as they were
+                frames.pop()
+                params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
+                pc = f["ret"]
+                continue
             if f["left"] > 0:
                 f["left"] -= 1
                 pc = f["start"]
@@ -1558,6 +1617,26 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+#: G65 argument addresses and the locals they set (Fanuc "Argument specification I"; Haas "Local Variables").
+_G65_LOCALS = {"a": 1, "b": 2, "c": 3, "i": 4, "j": 5, "k": 6, "d": 7, "e": 8, "f": 9, "h": 11, "m": 13,
+               **{c: 17 + i for i, c in enumerate("qrstuvwxyz")}}
+
+
+def _g65_call(ln: _Line, pc: int, st: dict, params: _Params) -> dict:
+    """``G65 P<program> <arguments>`` (Fanuc 0i-MD B-64304EN "Simple call (G65)"): the program's frame, the
+    caller's locals #1-#33 kept aside, the arguments set as the called program's (the others vacant)."""
+    words, _ = _words(ln.text, params)
+    if "l" in words or any(len(words[a]) > 1 for a in "ijk" if a in words):
+        raise ReferenceError("G65 with L repeats or several I J K sets")
+    start = _m98_start({"p": words["p"]}, st)
+    saved = {k: v for k, v in params.numbered.items() if 1 <= k <= 33}
+    params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33}
+    for letter, number in _G65_LOCALS.items():
+        if letter in words:
+            params.numbered[number] = words[letter][-1]
+    return {"kind": "g65", "ret": pc + 1, "start": start, "saved": saved}
 
 
 def _m98_start(words: dict, st: dict) -> int:

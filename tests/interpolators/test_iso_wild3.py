@@ -58,10 +58,14 @@ def test_fanuc_two_motion_codes_in_a_block_stay_refused():
         parse_program("G21 G90\nG0 G1 X1 F100\n", context=_in_dialect("fanuc"))
 
 
-def test_fanuc_tool_position_offset_is_named_at_its_line():
-    # obirimelvin/machinist 2003.nc "G00 G45 H03 Z2.0": Fanuc's one-shot tool position offset (G45-G48)
-    with pytest.raises(GCodeError, match=r":3:5: G45 tool position offset increase \(Fanuc\): not supported"):
-        parse_program("G20 G90 G54\nG00 X0 Y0\nG00 G45 H03 Z2.0\n", context=_in_dialect("fanuc"))
+def test_tool_position_offset_is_named_at_its_line_outside_fanuc():
+    # obirimelvin/machinist 2003.nc "G00 G45 H03 Z2.0": Fanuc's one-shot tool position offset (G45-G48), which
+    # --dialect fanuc runs (test_iso_wild10)
+    with pytest.raises(GCodeError, match=r":3:5: G45 tool position offset increase \(Fanuc; --dialect fanuc\): not "
+                                         r"supported"):
+        parse_program("G20 G90 G54\nG00 X0 Y0\nG00 G45 H03 Z2.0\n", context=_in_dialect("haas"))
+    prog = parse_program("G20 G90 G54\nG00 X0 Y0\nG00 G45 H03 Z2.0\n", context=_in_dialect("fanuc"))
+    assert "H3 not in the tool table (offset 0)" in prog.notes
 
 
 def test_unknown_g_code_names_the_dialect():

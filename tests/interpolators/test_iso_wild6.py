@@ -17,13 +17,14 @@ def _in_dialect(name: str) -> MachineContext:
     return dataclasses.replace(CTX, dialect=DIALECTS[name])
 
 
-@pytest.mark.parametrize("head", ["WH[#1GT0]DO1", "N10 WHIL [#1 GT 0] DO 1"])
-def test_a_loop_head_that_is_not_while_is_named(head):
-    # a Fanuc 0i-MD macro of the set writes "WH[..]DO1"; the manuals (B-64304EN "Branch and repetition") write
-    # WHILE in full: the message names the keyword instead of an END 1 that closes nothing
-    with pytest.raises(GCodeError, match=r":3:\d+: loop head 'WHI?L?' \[..\] DO m: the keyword of a loop is WHILE "
+@pytest.mark.parametrize("head, dialect", [("WH[#1GT0]DO1", "haas"), ("N10 WHIL [#1 GT 0] DO 1", "fanuc")])
+def test_a_loop_head_that_is_not_while_is_named(head, dialect):
+    # a Fanuc 0i-MD macro of the set writes "WH[..]DO1", Fanuc's abbreviation of WHILE (test_iso_wild10), which
+    # Haas does not document; "WHIL" abbreviates nothing: the message names the keyword instead of an END 1 that
+    # closes nothing
+    with pytest.raises(GCodeError, match=r":3:\d+: loop head 'WHI?L?' \[..\] DO m: the keyword of a loop is WHILE"
                                          r".*expected WHILE \[condition\] DO m"):
-        parse_program(f"O1\n#1=2\n{head}\nG91 G1 X1 F100\n#1=#1-1\nEND1\nM30\n", context=_in_dialect("fanuc"))
+        parse_program(f"O1\n#1=2\n{head}\nG91 G1 X1 F100\n#1=#1-1\nEND1\nM30\n", context=_in_dialect(dialect))
 
 
 def test_grbl_refuses_an_arc_without_an_end_point_in_its_plane():

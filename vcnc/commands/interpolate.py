@@ -42,8 +42,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def add_context_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--dialect``, ``--tool-table``, ``--subroutine-path`` and ``--user-m-path``, shared by the commands
-    that read part programs."""
+    """``--dialect``, ``--tool-table``, ``--subroutine-path``, ``--user-m-path`` and ``--initial-feed``, shared by
+    the commands that read part programs."""
     parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl"),
                         help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas) "
                              "(default: the machine's, else linuxcnc)")
@@ -57,12 +57,16 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--user-m-path", metavar="DIR[:DIR]",
                         help="folders holding the M100-M199 user programs (LinuxCNC INI [RS274NGC] USER_M_PATH; "
                              "before the machine's)")
+    parser.add_argument("--initial-feed", type=float, metavar="F",
+                        help="feed [mm/min] of feed moves before any F word, the control's power-on feed (Fanuc "
+                             "parameter 1411; default: the machine's [program] initial_feed, else such a move is an "
+                             "error, as on LinuxCNC and grbl)")
 
 
 def program_context(args: argparse.Namespace, machine=None):
     """The MachineContext for reading a program: the machine's (without one:
     ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect, --tool-table,
-    --subroutine-path and --user-m-path applied (the paths searched before the machine's)."""
+    --subroutine-path, --user-m-path (the paths searched before the machine's) and --initial-feed applied."""
     import dataclasses
     import os
 
@@ -77,9 +81,11 @@ def program_context(args: argparse.Namespace, machine=None):
     paths = {key: tuple(os.path.abspath(p) for p in getattr(args, key).split(":") if p)  # relative: to the cwd
              for key in ("subroutine_path", "user_m_path")
              if getattr(args, key, None)}
-    if paths:
-        dialect = context.dialect
-        changes["dialect"] = dataclasses.replace(dialect, **{k: v + getattr(dialect, k) for k, v in paths.items()})
+    dialect_changes = {k: v + getattr(context.dialect, k) for k, v in paths.items()}
+    if getattr(args, "initial_feed", None) is not None:
+        dialect_changes["initial_feed"] = args.initial_feed
+    if dialect_changes:
+        changes["dialect"] = dataclasses.replace(context.dialect, **dialect_changes)
     return dataclasses.replace(context, **changes) if changes else context
 
 

@@ -24,6 +24,8 @@ PROGRAM_TABLE_DOC = """
 #                                # X Y offsets), or a Heidenhain TOOL.T (BEGIN TOOL .T MM; T NAME L R DL DR columns)
 # subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)
 # user_m_path = []               # folders holding the M100-M199 user programs, e.g. ["mfiles"] (USER_M_PATH)
+#   initial_feed = 500.0         # optional, unset by default (such a move is then an error): mm/min, the feed of
+#                                # a feed move before any F word (the control's power-on feed, Fanuc No. 1411)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]

@@ -30,6 +30,7 @@ Layout::
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5) or Heidenhain TOOL.T
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
+    initial_feed = 500.0          # optional mm/min: feed of a feed move before any F (Fanuc No. 1411); unset: an error
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
@@ -71,7 +72,7 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
                  "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics", "subroutine_path",
-                 "user_m_path")
+                 "user_m_path", "initial_feed")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -337,6 +338,12 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not (math.isfinite(tol) and tol > 0):
             raise where.error(f"'program.tolerance' [mm] must be a number > 0, got {tol!r}", path + ("tolerance",))
         changes["tolerance"] = float(tol)
+    if "initial_feed" in tab:
+        feed = tab["initial_feed"]
+        if isinstance(feed, bool) or not isinstance(feed, (int, float)) or not (math.isfinite(feed) and feed > 0):
+            raise where.error(f"'program.initial_feed' [mm/min] must be a number > 0 (the feed of a feed move before "
+                              f"any F word, Fanuc parameter No. 1411), got {feed!r}", path + ("initial_feed",))
+        changes["initial_feed"] = float(feed)
     for key in ("subroutine_path", "user_m_path"):
         if key in tab:
             changes[key] = _search_path(tab[key], path + (key,), where, file)
