@@ -511,17 +511,17 @@ class _Run:
         """The blocks of this program, in the order the flow takes them."""
         while self.pc < len(self.blocks):
             blk = self.blocks[self.pc]
-            where = blk.where(self.source)
             self.executed += 1
             if self.executed > self.max_executed:
-                where.fail(f"the program does not end: more than {self.max_executed} blocks run (endless jump or "
-                           "repeat?)", column=blk.column, text=blk.code,
-                           expected="a program that reaches M30 or END PGM")
+                blk.where(self.source).fail(f"the program does not end: more than {self.max_executed} blocks run "
+                                            "(endless jump or repeat?)", column=blk.column, text=blk.code,
+                                            expected="a program that reaches M30 or END PGM")
             self.pc += 1
             if blk.skip:
                 self.m.note("/ skippable blocks run (block skip switched off)")
-            if self.m.plain is not None and self.m.plain.run(blk, where):  # interpolators.heidenhain_fast
+            if self.m.plain is not None and self.m.plain.run(blk):  # interpolators.heidenhain_fast
                 continue
+            where = blk.where(self.source)
             known = self.keywords.get(self.pc - 1)
             if known is None:
                 k = _KEYWORD_RE.match(blk.code)

@@ -145,14 +145,14 @@ class PlainBlocks:
             self.origin = m.origin().tolist()
         return self.ready
 
-    def run(self, blk: SourceBlock, where) -> bool:
-        """Run ``blk`` (at ``where``) if it is a plain block; False (nothing changed) if it is not."""
+    def run(self, blk: SourceBlock) -> bool:
+        """Run ``blk`` if it is a plain block; False (nothing changed) if it is not."""
         words = plain_words(blk.code)
         if words is None or not (self.ready or self.ready is None and self._judge()):
             return False
         if words.keyword == "CC":
             return self._pole(words)
-        return self._move(words, blk, where)
+        return self._move(words, blk)
 
     def _target(self, axes: dict[int, tuple[bool, float]], base: list[float]) -> list[float] | None:
         """The end point [mm] of the axis words from ``base`` (program zero: the judged origin), as the general
@@ -180,7 +180,7 @@ class PlainBlocks:
         m.used.update(axes)
         return True
 
-    def _move(self, words: PlainWords, blk: SourceBlock, where) -> bool:  # noqa: C901
+    def _move(self, words: PlainWords, blk: SourceBlock) -> bool:  # noqa: C901
         """``L``, ``C``, ``CR``: the block the general path's ``_motion`` makes, or False where it would do more."""
         m = self.m
         kw, axes, feed, rapid = words.keyword, words.axes, words.feed, words.rapid
@@ -196,7 +196,7 @@ class PlainBlocks:
         end = np.array(target)
         if tcpm:
             end = machine_point(kin, m.extra, end, m.tool_length)
-            if not np.all(np.isfinite(end)):
+            if not all(map(math.isfinite, end.tolist())):
                 return False
         new_feed = None if feed is None else feed * m.feed_scale
         path_feed = m.feed if feed is None else new_feed
@@ -224,7 +224,7 @@ class PlainBlocks:
         else:
             m.ccw = ccw
             m.used.update(PLANE_AXES[seg.plane])
-        m.blocks.append(Block.plain(line=where.line, number=blk.number, text=where.text, kind=kind, start=pos.copy(),
+        m.blocks.append(Block.plain(line=blk.line, number=blk.number, text=blk.text, kind=kind, start=pos.copy(),
                                     target=end, feed=path_feed, segment=seg, exact_stop=m.exact_stop,
                                     tolerance=m.tolerance))
         m.pos = end.copy()
