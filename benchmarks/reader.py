@@ -78,7 +78,9 @@ def tnc_program(lines: int) -> str:
     out = ["0 BEGIN PGM CAM MM", "1 BLK FORM 0.1 Z X-60 Y-60 Z-20", "2 BLK FORM 0.2 X+60 Y+60 Z+0",
            "3 TOOL CALL 5 Z S12000", "4 L X+0 Y+0 Z+5 R0 FMAX M3", "5 L Z-1 F300 M8"]
     x = y = 0.0
-    for i in range(lines - len(out) - 1):
+    i = 0
+    while len(out) < lines - 1:
+        i += 1
         n = len(out)
         if i % 1000 == 999:
             out.append(f"* - pass {i // 1000}")
