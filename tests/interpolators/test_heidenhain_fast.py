@@ -108,11 +108,13 @@ DECLINED = {
     "TRANS ROTATION": "TRANS ROTATION ROT+90\n",
     "TRANS MIRROR": "TRANS MIRROR AXIS Y\n",
     "a tilted plane": "PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n",
+    "a tilted plane, its rotary axes not positioned": "PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY\n",
     "radius compensation RL": "L X-5 Y-5 RL F100\n",
     "radius compensation RR": "L X-5 Y-5 RR F100\n",
     "RND waiting": "L X-5 Y-5 F100\nL X-5 Y+0\nRND R1\n",
     "CHF waiting": "L X-5 Y-5 F100\nL X-5 Y+0\nCHF 1\n",
     "APPR waiting": "APPR LT X+0 Y+0 LEN5 RL F100\n",
+    "APPR LT waiting, R0": "APPR LT X+0 Y+0 LEN5 R0 F100\n",
     "FK waiting": "FL X+10 Y+0 F100\nFL IAN+90 LEN 5\n",
     "M89 modal cycle call": "CYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-1 ~\n Q206=100 ~\n Q202=1 ~\n Q210=0 ~\n"
                             " Q203=+0 ~\n Q204=10 ~\n Q211=0\nL Z+2 FMAX M89\n",
@@ -214,6 +216,20 @@ def test_odd_blocks_give_the_general_blocks_or_error(body):
 @pytest.mark.parametrize("code", DECLINED_CODES)
 def test_declined_codes_in_a_program_give_the_general_blocks(code):
     assert_same(HEAD + "2 L X+0 Y+0 Z+5 R0 F100\n3 CC X+1 Y+1\n4 Q1 = 2\n5 " + code + "\n" + MOVES + TAIL)
+
+
+def test_an_fk_element_waiting_is_left_to_the_general_path():
+    """An FK line whose length is open: the general path refuses the L after it (the TNC resolves FK elements
+    from the FK blocks that follow them), which the shortcut must not run."""
+    got = assert_same(HEAD + "2 L X+0 Y+0 Z+0 R0 F100\n3 FL AN+0\n4 L X+5 Y+0\n5 FL X+20 Y+0\n" + TAIL)
+    assert got[0].startswith("error") and "FL" in got[0]
+
+
+def test_the_approach_after_a_plain_rapid_starts_as_a_rapid():
+    """APPR LT moves from its start point as the block before it did (a rapid after FMAX): the shortcut keeps
+    the kind of the last plain block for it."""
+    got = assert_same(HEAD + "2 L X+40 Y+10 Z+0 R0 FMAX\n3 APPR LT X+20 Y+20 LEN15 R0 F100\n4 L X+35 Y+35\n" + TAIL)
+    assert " 'rapid' " in got[2]
 
 
 def test_a_called_program_reads_alike(tmp_path):
