@@ -33,6 +33,7 @@ from interpolators._words import program_text
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.heidenhain_fast import PlainWords, plain_words
+from interpolators.heidenhain_words import source_blocks
 from interpolators.program import Block
 from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.errors import GCodeError, InputError
@@ -216,6 +217,24 @@ def test_odd_blocks_give_the_general_blocks_or_error(body):
 @pytest.mark.parametrize("code", DECLINED_CODES)
 def test_declined_codes_in_a_program_give_the_general_blocks(code):
     assert_same(HEAD + "2 L X+0 Y+0 Z+5 R0 F100\n3 CC X+1 Y+1\n4 Q1 = 2\n5 " + code + "\n" + MOVES + TAIL)
+
+
+#: Lines in the forms programs are saved in: the same line with a ``;`` comment after it goes the general way of
+#: :func:`interpolators.heidenhain_words.source_blocks`, without it the one-pattern way where it applies.
+SOURCE_LINES = ["5 L X+1 Y-2 FMAX", "  12   L X+1", "L X+1 R0 F100", "12", "12L X+1", "5 L X+1 *", "5 L X+1*",
+                "/5 L X+1", "5 /L X+1", "5 L X+1,5", "5 L X+1 ~", "\f5 L X+1", "5 \fL X+1", "5 * - a structure block",
+                "5\tL\tX+1", "007 CC X+0 Y+0", "5 CYCL DEF 200 DRILLING", "5 PATTERN DEF", "5 CYCL DEF 7.0 DATUM SHIFT",
+                "5 TOOL CALL 1 Z S3000", "9999999999 L X+1", "\u0665 L X+1", "  ", "", "*", "5 L X+1 \u00a0"]
+
+
+@pytest.mark.parametrize("line", SOURCE_LINES)
+def test_source_lines_read_alike(line):
+    """A line read as one block with one pattern gives the block the general reading gives: its line, number,
+    code, column and skip mark (its text differs by the comment), also before a cycle's parameter line."""
+    for after in ("\nQ200=+2\n", "\n6 L X+2\n", ""):
+        fast = [dataclasses.astuple(b)[:4] + (b.skip,) for b in source_blocks(line + after)]
+        general = [dataclasses.astuple(b)[:4] + (b.skip,) for b in source_blocks(line + " ;" + after)]
+        assert fast == general
 
 
 def test_an_fk_element_waiting_is_left_to_the_general_path():
