@@ -13,7 +13,7 @@ It declines (returns False, having changed nothing) a block that is not one keyw
 ``IY-2`` (an axis X Y Z, ``I`` for incremental, a plain decimal number), ``R0``, ``R+5`` (a radius), ``DR+``,
 ``DR-``, ``F200``, ``FMAX``, ``M3`` -- so every Q parameter, formula, ``RL``/``RR``, ``LN``, ``LP``/``CP``/``CT``,
 ``RND``/``CHF``, FK, ``APPR``/``DEP``, rotary and secondary axes, ``F AUTO``/``FU``/``FZ``, ``MB``, a word left
-empty, a number without an axis letter, a decimal comma's neighbours written with blanks, lower-case text;
+empty, a number without an axis letter, a blank inside a word, lower-case text;
 a word its block does not allow (``DR`` or ``R`` on a line, ``F``/``FMAX`` on ``CC``, ``FMAX`` on an arc), a word
 twice, ``F`` <= 0, a block without an axis word, a move without a feed, an arc without a sense or without its
 ``CC``, an arc the general path would refuse (its error is worded there), a non-finite end point; the M functions
