@@ -1,20 +1,23 @@
-"""Reading throughput of the ISO reader: lines and blocks per second of ``load_program``.
+"""Reading throughput of the ISO and Heidenhain readers: lines and blocks per second of ``load_program``.
 
-Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--largest K] [--repeat R]``
+Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--tnc-lines N] [--largest K] [--repeat R] [FILE ...]``
 
 Programs: the ``K`` largest ISO programs of the G-code corpus (``VCNC_GCODE_CORPUS``, default
 ``../shared/data/gcode-corpus`` beside the repository; skipped with a message when absent), read with the
 context of ``vcnc interpolate`` (``INTERPOLATION_CONTEXT``); a generated CAM program of ``N`` lines (default
 1,000,000: ``N`` numbers, ``G1 X Y Z F`` moves, ``G2``/``G3`` arcs with ``I J``, comments); and two programs of
 the general machinery: a LinuxCNC O-word ``while`` loop with ``#`` parameters and ``[expressions]``, and the
-same moves written with ``#`` parameters on every line. Each is timed as ``load_program`` (file read, lexing,
-execution into blocks), best of ``R`` runs.
+same moves written with ``#`` parameters on every line. Heidenhain TNC programs: the ``K`` largest of the corpus
+(by content, :func:`interpolators.detect_dialect`) and a generated CAM program of ``N`` lines (default 200,000:
+``L X Y Z F`` lines, ``L IX IY``, ``CC`` + ``C .. DR-``, ``CR .. R.. DR+``, ``L .. FMAX``, ``L .. R0``, M functions,
+``;`` comments and ``*`` structure blocks). Any ``FILE`` given is measured too (a wild program kept outside the
+repository). Each is timed as ``load_program`` (file read, lexing, execution into blocks), best of ``R`` runs.
 
 The references, measured in the same run on the same file: reading the text and splitting every line into
 its space-separated tokens with ``str.split`` (no numbers converted, no state): the least a reader that
 looks at every word must spend. The ratio says how many times that the reader takes (for the loop, whose
-7 lines run 60,000 times, it says what a loop costs against its text). And where LinuxCNC's standalone
-interpreter is installed (``rs274``, Debian's ``linuxcnc-uspace``): ``rs274 -g`` on the same file, its
+7 lines run 60,000 times, it says what a loop costs against its text). And for the ISO programs, where LinuxCNC's
+standalone interpreter is installed (``rs274``, Debian's ``linuxcnc-uspace``): ``rs274 -g`` on the same file, its
 canonical calls written to /dev/null, with its own ``HOME`` in a temporary folder (as
 ``benchmarks/linuxcnc_diff.py`` runs it); the ratio says how many times rs274's time vcnc takes, and
 "refused" marks a program rs274 stops at with an error (its time then covers the lines up to it). Times are
@@ -67,6 +70,46 @@ def cam_program(lines: int) -> str:
     return "\n".join(out) + "\n"
 
 
+def tnc_program(lines: int) -> str:
+    """A TNC program as a CAM post writes it, of about ``lines`` lines: a spiral of short ``L`` moves with block
+    numbers and 4-decimal signed coordinates, every 50th block an arc about ``CC`` (``C .. DR-``) and every 50th
+    (25 later) one by radius (``CR .. R.. DR+``), incremental lines, feed changes and M functions now and then, a
+    rapid retract and a structure block every 1,000 lines, a ``;`` comment every 500."""
+    out = ["0 BEGIN PGM CAM MM", "1 BLK FORM 0.1 Z X-60 Y-60 Z-20", "2 BLK FORM 0.2 X+60 Y+60 Z+0",
+           "3 TOOL CALL 5 Z S12000", "4 L X+0 Y+0 Z+5 R0 FMAX M3", "5 L Z-1 F300 M8"]
+    x = y = 0.0
+    i = 0
+    while len(out) < lines - 1:
+        i += 1
+        n = len(out)
+        if i % 1000 == 999:
+            out.append(f"* - pass {i // 1000}")
+            continue
+        if i % 500 == 0:
+            out.append(f"{n} ;finishing pass {i // 500}")
+            continue
+        a = 0.01 * i
+        r = 20.0 + 0.0005 * i
+        if i % 1000 == 998:
+            out.append(f"{n} L Z+5 R0 FMAX")
+        elif i % 50 == 20:  # a half circle about the centre, to the opposite point
+            out.append(f"{n} CC X+0 Y+0")
+            out.append(f"{n + 1} C X{-x:+.4f} Y{-y:+.4f} DR-")
+            x, y = -x, -y
+        elif i % 50 == 45:  # a half circle by radius, over to the opposite point
+            out.append(f"{n} CR X{-x:+.4f} Y{-y:+.4f} R+{math.hypot(x, y) + 0.001:.4f} DR+")
+            x, y = -x, -y
+        elif i % 50 == 10:
+            out.append(f"{n} L IX+0.001 IY-0.001")
+            x, y = x + 0.001, y - 0.001
+        else:
+            x, y = r * math.cos(a), r * math.sin(a)
+            feed = f" F{1200 + i % 11 * 100}" if i % 7 == 0 else ""
+            out.append(f"{n} L X{x:+.4f} Y{y:+.4f} Z{-1 - 0.00001 * i:+.4f}{feed}{' M90' if i % 3 == 0 else ''}")
+    out.append(f"{len(out)} END PGM CAM MM")
+    return "\n".join(out) + "\n"
+
+
 def param_loop_program(passes: int) -> str:
     """A LinuxCNC O-word ``while`` loop of ``passes`` passes: ``#`` parameters, expressions, a feed move each."""
     return (f"G21 G90 G94 F1000\n#1 = 0\no100 while [#1 LT {passes}]\n"
@@ -113,9 +156,9 @@ def rs274_reference(path: Path) -> tuple[float, bool] | None:
     return best, refused
 
 
-def measure(label: str, path: Path, repeat: int) -> None:
-    """Print lines/s, blocks/s of ``load_program`` and the ratios to :func:`reference` and
-    :func:`rs274_reference`."""
+def measure(label: str, path: Path, repeat: int, *, rs274: bool = True) -> None:
+    """Print lines/s, blocks/s of ``load_program`` and the ratios to :func:`reference` and (``rs274``: an ISO
+    program) :func:`rs274_reference`."""
     lines = path.read_bytes().count(b"\n")
     best = math.inf
     for _ in range(repeat):
@@ -123,7 +166,7 @@ def measure(label: str, path: Path, repeat: int) -> None:
         program = load_program(path, context=INTERPOLATION_CONTEXT)
         best = min(best, time.process_time() - t0)
     ref = reference(path)
-    rs274 = rs274_reference(path)
+    rs274 = rs274_reference(path) if rs274 else None
     other = "" if rs274 is None else (f"  x{best / rs274[0]:5.1f} rs274 ({rs274[0]:.2f} s, {lines / rs274[0]:,.0f} "
                                       f"lines/s{', refused' if rs274[1] else ''})")
     print(f"{label:44s} {lines:>9,d} lines {len(program.blocks):>9,d} blocks  {best:7.2f} s  "
@@ -134,15 +177,18 @@ def measure(label: str, path: Path, repeat: int) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lines", type=int, default=1_000_000, help="lines of the generated CAM program")
-    ap.add_argument("--largest", type=int, default=3, help="how many of the corpus' largest ISO programs")
+    ap.add_argument("--tnc-lines", type=int, default=200_000, help="lines of the generated TNC program")
+    ap.add_argument("--largest", type=int, default=3, help="how many of the corpus' largest ISO and TNC programs")
     ap.add_argument("--repeat", type=int, default=1, help="runs per program (the best is shown)")
+    ap.add_argument("files", nargs="*", type=Path, help="further programs to measure")
     args = ap.parse_args()
     if CORPUS.is_dir():
-        iso = [p for p in sorted(CORPUS.iterdir(), key=lambda p: -p.stat().st_size)
-               if p.suffix.lower() not in (".h", ".tsv", ".md")
-               and detect_dialect(p.read_bytes().decode("latin-1")) == "iso"]
-        for p in iso[:args.largest]:
-            measure(f"corpus {p.name[:37]}", p, args.repeat)
+        by_size = [p for p in sorted(CORPUS.iterdir(), key=lambda p: -p.stat().st_size)
+                   if p.suffix.lower() not in (".tsv", ".md")]
+        dialects = {p: detect_dialect(p.read_bytes().decode("latin-1")) for p in by_size}
+        for dialect in ("iso", "heidenhain"):
+            for p in [p for p in by_size if dialects[p] == dialect][:args.largest]:
+                measure(f"corpus {p.name[:37]}", p, args.repeat, rs274=dialect == "iso")
     else:
         print(f"G-code corpus not found at {CORPUS} (set VCNC_GCODE_CORPUS): corpus programs skipped")
     with tempfile.TemporaryDirectory() as tmp:
@@ -152,6 +198,12 @@ def main() -> None:
             path = Path(tmp) / "program.ngc"
             path.write_text(text)
             measure(label, path, args.repeat)
+        path = Path(tmp) / "program.h"
+        path.write_text(tnc_program(args.tnc_lines))
+        measure(f"generated TNC, {args.tnc_lines:,d} lines", path, args.repeat, rs274=False)
+    for path in args.files:
+        measure(path.name[:44], path, args.repeat,
+                rs274=detect_dialect(path.read_bytes().decode("latin-1")) == "iso")
 
 
 if __name__ == "__main__":

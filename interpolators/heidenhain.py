@@ -169,6 +169,7 @@ from interpolators.heidenhain_cycles import (
     scaled_cycle,
     tapping_cycle,
 )
+from interpolators.heidenhain_fast import PlainBlocks
 from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour, read_fk_words
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
@@ -324,6 +325,7 @@ class _Machine:
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
+        self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -429,7 +431,7 @@ class _Machine:
 
 
 def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
-                     max_executed: int = MAX_EXECUTED) -> Program:
+                     max_executed: int = MAX_EXECUTED, shortcuts: bool = True) -> Program:
     """Run a Heidenhain conversational program and return its motion as a :class:`Program`.
 
     Parameters
@@ -444,6 +446,10 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     max_executed : int
         Most blocks the run may execute (jumps and repeats count every pass) before the program
         is judged endless and rejected.
+    shortcuts : bool
+        Plain ``L``/``CC``/``C``/``CR`` blocks in a plain modal state run by :mod:`interpolators.heidenhain_fast`,
+        which makes the general path's blocks; False: every block the general way
+        (``tests/interpolators/test_heidenhain_fast.py``).
 
     Raises
     ------
@@ -451,6 +457,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         With file, line, column, the offending text and what was expected.
     """
     m = _Machine(context, source)
+    m.plain = PlainBlocks(m) if shortcuts else None
     name = _Run(m, source_blocks(text), source, max_executed).run()
     _check_contour_closed(m)
     if m.extra_used:
@@ -504,15 +511,17 @@ class _Run:
         """The blocks of this program, in the order the flow takes them."""
         while self.pc < len(self.blocks):
             blk = self.blocks[self.pc]
-            where = blk.where(self.source)
             self.executed += 1
             if self.executed > self.max_executed:
-                where.fail(f"the program does not end: more than {self.max_executed} blocks run (endless jump or "
-                           "repeat?)", column=blk.column, text=blk.code,
-                           expected="a program that reaches M30 or END PGM")
+                blk.where(self.source).fail(f"the program does not end: more than {self.max_executed} blocks run "
+                                            "(endless jump or repeat?)", column=blk.column, text=blk.code,
+                                            expected="a program that reaches M30 or END PGM")
             self.pc += 1
             if blk.skip:
                 self.m.note("/ skippable blocks run (block skip switched off)")
+            if self.m.plain is not None and self.m.plain.run(blk):  # interpolators.heidenhain_fast
+                continue
+            where = blk.where(self.source)
             known = self.keywords.get(self.pc - 1)
             if known is None:
                 k = _KEYWORD_RE.match(blk.code)
@@ -522,6 +531,8 @@ class _Run:
             k, kw = known
             count, self.m.stop_in_block = len(self.m.blocks), False
             ended = self.block(kw, k, blk, where)
+            if self.m.plain is not None:
+                self.m.plain.reset()  # the state plain blocks read may have changed (a called program's too)
             if self.m.stop_in_block:
                 self.m.stopped_at = blk.line
             elif len(self.m.blocks) > count:

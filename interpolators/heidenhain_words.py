@@ -146,6 +146,11 @@ def decimal_points(code: str) -> str:
     return _DECIMAL_COMMA_RE.sub(lambda m: m.group(0) if m.group(0).startswith('"') else ".", code)
 
 
+#: A line that is one block as it stands (no ``~ ; , / *``, checked apart): its block number and the blanks after
+#: it, as :data:`_HEAD_RE` reads them, before the block's first character (neither a blank, a digit nor ``*``).
+_PLAIN_LINE_RE = re.compile(r"[ \t]*(?:(\d+)[ \t]+)?(?=[^\s\d*])")
+
+
 def source_blocks(text: str) -> list[SourceBlock]:
     """The blocks of a program text (empty lines, comments and ``*`` structure blocks left out)."""
     out: list[SourceBlock] = []
@@ -153,6 +158,15 @@ def source_blocks(text: str) -> list[SourceBlock]:
     i = 0
     while i < len(lines):
         first = i
+        raw = lines[i].rstrip()
+        plain = (None if "~" in raw or ";" in raw or "," in raw or "/" in raw or raw.endswith("*")
+                 else _PLAIN_LINE_RE.match(raw))
+        if plain is not None and (i + 1 == len(lines) or not _continues(raw, lines[i + 1])):
+            # most lines of a CAM program: the block is the line (what the general reading below makes of it)
+            number, pos = plain.group(1), plain.end()
+            out.append(SourceBlock(i + 1, int(number[:9]) if number else None, raw[pos:], pos + 1, raw.lstrip()))
+            i += 1
+            continue
         parts: list[str] = []
         comment = False
         while True:

@@ -41,6 +41,7 @@ names it as unsupported.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Sequence
 
@@ -207,12 +208,11 @@ class RotaryAxis:
     @property
     def unit(self) -> np.ndarray:
         """Unit vector of :attr:`direction` [-]."""
-        sign = -1.0 if self.direction.startswith("-") else 1.0
-        return sign * np.array(_UNIT[self.direction.lstrip("-")])
+        return _unit_of(self.direction)
 
     def turn_part(self, angle: float) -> np.ndarray:
-        """Rotation of the part in the machine at ``angle`` [deg]: the opposite of the tool's turn."""
-        return rotation_about(self.unit, -angle)
+        """Rotation of the part in the machine at ``angle`` [deg]: the opposite of the tool's turn (read-only)."""
+        return _part_turn(self.direction, angle)
 
     def within(self, angle: float) -> float | None:
         """``angle`` [deg] or a turn of 360 deg from it inside :attr:`limits` (the one in (-180, 180]
@@ -223,6 +223,21 @@ class RotaryAxis:
             if self.limits[0] - ANGLE_TOLERANCE <= cand <= self.limits[1] + ANGLE_TOLERANCE:
                 return cand
         return None
+
+
+def _unit_of(direction: str) -> np.ndarray:
+    """Unit vector of an axis direction ``"X"``, ``"-Y"``, ... [-]."""
+    sign = -1.0 if direction.startswith("-") else 1.0
+    return sign * np.array(_UNIT[direction.lstrip("-")])
+
+
+@functools.lru_cache(maxsize=256)
+def _part_turn(direction: str, angle: float) -> np.ndarray:
+    """:meth:`RotaryAxis.turn_part` of an axis along ``direction``, kept: a program on positioned rotary axes
+    (M128, a tilted plane) turns the part by the same few angles at every block. Read-only, as it is shared."""
+    turn = rotation_about(_unit_of(direction), -angle)
+    turn.setflags(write=False)
+    return turn
 
 
 @dataclasses.dataclass(frozen=True)
