@@ -265,10 +265,7 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCur
     cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
     brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
     # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
-    derivatives = (spl.derivative(1), spl.derivative(2), spl.derivative(3))
-    return tuple(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
-                             end=end if i == len(brk) - 2 else None, derivatives=derivatives)
-                 for i in range(len(brk) - 1))
+    return SplineCurve.pieces(spl, brk, start=start, end=end)
 
 
 def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,

@@ -404,25 +404,32 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    for i, rows in _run_rows(g, seg):
-        curve = g.segments[i]
-        s_i = np.minimum(np.maximum(s[rows], 0.0), curve.length)
-        tan, curv = curve.frame(curve.parameter_at(s_i))
-        pos[rows] = curve.point_at(s_i)
+    for run, piece, rows in _run_groups(g, seg):
+        pos[rows], tan, curv = SplineCurve.evaluate_pieces(run.pieces, piece, s[rows])
         vel[rows] = tan * v[rows, None]
         acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
     return pos, vel, acc
 
 
-def _run_rows(g: _Geom, seg: np.ndarray) -> list[tuple[int, slice]]:
-    """The smooth curve pieces among the segments ``seg`` (nondecreasing: samples in time order, junctions in
-    chain order) and the rows on each, as slices found by bisection rather than one scan of ``seg`` per piece."""
+def _run_groups(g: _Geom, seg: np.ndarray) -> list[tuple[MergedRun, np.ndarray, np.ndarray]]:
+    """The merged runs among the segments ``seg`` (nondecreasing: samples in time order, junctions in chain
+    order): for each, the piece (index into ``run.pieces``) and the row of each of its rows, found by bisection
+    rather than one scan of ``seg`` per piece."""
     if not g.runs:
         return []
     pieces = np.array(sorted(g.runs), dtype=np.int64)
-    lo = np.searchsorted(seg, pieces, side="left")
-    hi = np.searchsorted(seg, pieces, side="right")
-    return [(int(i), slice(int(a), int(b))) for i, a, b in zip(pieces, lo, hi) if b > a]
+    lo = np.searchsorted(seg, pieces, side="left").tolist()
+    hi = np.searchsorted(seg, pieces, side="right").tolist()
+    groups: dict[int, tuple[MergedRun, dict[int, int], list, list]] = {}
+    for i, a, b in zip(pieces.tolist(), lo, hi):
+        if b > a:
+            run = g.runs[i]
+            if id(run) not in groups:
+                groups[id(run)] = (run, {id(p): k for k, p in enumerate(run.pieces)}, [], [])
+            _, index, piece, rows = groups[id(run)]
+            piece.append(np.full(b - a, index[id(g.segments[i])]))
+            rows.append(np.arange(a, b))
+    return [(run, np.concatenate(piece), np.concatenate(rows)) for run, _, piece, rows in groups.values()]
 
 
 def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
@@ -677,7 +684,7 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
 def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int, Ts: float,
             profile: str) -> Setpoints:
     """7. The setpoints at every sample time."""
-    all_segs, seg_block = g.segments, g.block
+    seg_block = g.block
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
         ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
     axes = program.axes or ("x",)
@@ -718,8 +725,8 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     vel = vel[:, ax_idx]
     acc = acc[:, ax_idx]
     block = seg_block_a[seg]
-    for i, rows in _run_rows(g, seg):
-        block[rows] = g.runs[i].block_at(all_segs[i].parameter_at(s[rows]))
+    for run, piece, rows in _run_groups(g, seg):
+        block[rows] = run.block_at(SplineCurve.parameters(run.pieces, piece, s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -730,23 +737,58 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
 def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
     """The geometry the samples follow; a smooth curve piece as a polyline of its points within
     :data:`CURVE_PATH_ERROR` of the curve, each line with the block of its middle."""
+    polylines = _curve_polylines(g)
     segs: list = []
     blocks: list[int] = []
     for i, (s_, b) in enumerate(zip(g.segments, g.block)):
         if isinstance(s_, np.ndarray):
             continue
-        if i not in g.runs:
-            segs.append(s_)
-            blocks.append(b)
+        if i in polylines:
+            lines, mid_blocks = polylines[i]
+            segs.extend(lines)
+            blocks.extend(mid_blocks)
             continue
-        kappa = s_.bounds()[0] * CURVE_BOUND_MARGIN
-        n = max(1, int(math.ceil(s_.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
-        s_k = np.linspace(0.0, s_.length, n + 1)
-        pts = s_.point_at(s_k)
-        mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))
-        segs.extend(Line.from_arrays(pts[:-1], pts[1:]))
-        blocks.extend(mid_blocks.tolist())
+        segs.append(s_)
+        blocks.append(b)
     return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
+
+
+def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
+    """For each smooth curve piece (segment index): the lines of its polyline, points
+    ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart, and the block of each line's middle; each run's curve
+    evaluated once for all its pieces."""
+    per_run: dict[int, tuple[MergedRun, dict[int, int], list[tuple[int, np.ndarray]]]] = {}
+    for i in sorted(g.runs):
+        run, piece = g.runs[i], g.segments[i]
+        kappa = piece.bounds()[0] * CURVE_BOUND_MARGIN
+        n = max(1, int(math.ceil(piece.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
+        if id(run) not in per_run:
+            per_run[id(run)] = (run, {id(p): k for k, p in enumerate(run.pieces)}, [])
+        per_run[id(run)][2].append((i, np.linspace(0.0, piece.length, n + 1)))
+    pts, mids, order, counts = [], [], [], []
+    for run, index, items in per_run.values():
+        which = [index[id(g.segments[i])] for i, _ in items]
+        s_k = np.concatenate([s for _, s in items])
+        pts.append(SplineCurve.evaluate_pieces(run.pieces, np.repeat(which, [len(s) for _, s in items]), s_k,
+                                               frame=False)[0])
+        mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for _, s in items])
+        mids.append(run.block_at(SplineCurve.parameters(run.pieces, np.repeat(which, [len(s) - 1 for _, s in items]),
+                                                        mid)))
+        order.extend(i for i, _ in items)
+        counts.extend(len(s) - 1 for _, s in items)
+    if not order:
+        return {}
+    p = np.concatenate(pts)
+    last = np.cumsum(np.add(counts, 1)) - 1  # each piece's last point starts no line
+    starts = np.delete(np.arange(len(p)), last)
+    lines = Line.from_arrays(p[starts], p[starts + 1])
+    mid_blocks = np.concatenate(mids).tolist()
+    out = {}
+    k = 0
+    for i, n in zip(order, counts):
+        out[i] = (lines[k:k + n], mid_blocks[k:k + n])
+        k += n
+    return out
 
 
 def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,
