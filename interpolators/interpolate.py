@@ -24,7 +24,7 @@ from interpolators.kinematics import (
 )
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
-from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
+from interpolators.profiles import PROFILES, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
@@ -404,32 +404,40 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    for run, piece, rows in _run_groups(g, seg):
-        pos[rows], tan, curv = SplineCurve.evaluate_pieces(run.pieces, piece, s[rows])
+    curves, piece, rows = _curve_rows(g, seg)
+    if len(rows):
+        pos[rows], tan, curv = SplineCurve.evaluate_pieces(curves, piece, s[rows])
         vel[rows] = tan * v[rows, None]
         acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
     return pos, vel, acc
 
 
-def _run_groups(g: _Geom, seg: np.ndarray) -> list[tuple[MergedRun, np.ndarray, np.ndarray]]:
-    """The merged runs among the segments ``seg`` (nondecreasing: samples in time order, junctions in chain
-    order): for each, the piece (index into ``run.pieces``) and the row of each of its rows, found by bisection
-    rather than one scan of ``seg`` per piece."""
-    if not g.runs:
-        return []
+def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[SplineCurve], np.ndarray, np.ndarray]:
+    """The smooth curve pieces of ``g`` (in segment order) and, for the rows of ``seg`` (nondecreasing: samples in
+    time order, junctions in chain order) on them, the piece (index into that list) and the row of each, found by
+    bisection rather than one scan of ``seg`` per piece."""
     pieces = np.array(sorted(g.runs), dtype=np.int64)
-    lo = np.searchsorted(seg, pieces, side="left").tolist()
-    hi = np.searchsorted(seg, pieces, side="right").tolist()
-    groups: dict[int, tuple[MergedRun, dict[int, int], list, list]] = {}
-    for i, a, b in zip(pieces.tolist(), lo, hi):
-        if b > a:
-            run = g.runs[i]
-            if id(run) not in groups:
-                groups[id(run)] = (run, {id(p): k for k, p in enumerate(run.pieces)}, [], [])
-            _, index, piece, rows = groups[id(run)]
-            piece.append(np.full(b - a, index[id(g.segments[i])]))
-            rows.append(np.arange(a, b))
-    return [(run, np.concatenate(piece), np.concatenate(rows)) for run, _, piece, rows in groups.values()]
+    lo = np.searchsorted(seg, pieces, side="left")
+    n = np.searchsorted(seg, pieces, side="right") - lo
+    piece = np.repeat(np.arange(len(pieces)), n)
+    rows = np.arange(int(n.sum())) + np.repeat(lo - (np.cumsum(n) - n), n)
+    return [g.segments[i] for i in pieces.tolist()], piece, rows
+
+
+def _curve_blocks(g: _Geom, curves: list[SplineCurve], piece: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block of the chord each point of the curves (piece index into ``curves``, spline parameter ``u``) passes
+    (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
+    run_of = {id(p): run for run in g.runs.values() for p in run.pieces}
+    index: dict[int, int] = {}
+    run_ix = np.array([index.setdefault(id(run_of[id(c)]), len(index)) for c in curves], dtype=np.int64)[piece]
+    runs = {id(run_of[id(c)]): run_of[id(c)] for c in curves}
+    out = np.empty(len(u), dtype=np.int64)
+    order = np.argsort(run_ix, kind="stable")
+    cuts = np.searchsorted(run_ix[order], np.arange(len(index) + 1)).tolist()
+    for k, key in enumerate(index):
+        rows = order[cuts[k]:cuts[k + 1]]
+        out[rows] = runs[key].block_at(u[rows])
+    return out
 
 
 def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
@@ -593,12 +601,13 @@ def _junction_speeds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray,
     multi_chains = np.flatnonzero(c.length > 1)
     if len(multi_chains):
         first = np.concatenate([[0], np.cumsum(c.length)[:-1]])
-        jl_at = dict(zip(c.inner.tolist(), c.junction_limit.tolist()))
-        for k in multi_chains:
-            s0, n = first[k], c.length[k]
+        jl_at = np.zeros(n_seg)
+        jl_at[c.inner] = c.junction_limit
+        for k in multi_chains.tolist():
+            s0, n = int(first[k]), int(c.length[k])
             sl = slice(s0, s0 + n)
-            vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl],
-                                 np.array([jl_at[i] for i in range(s0, s0 + n - 1)]), jerk_limited=jerk_limited)
+            vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl], jl_at[s0:s0 + n - 1],
+                                 jerk_limited=jerk_limited)
             v0[sl], v1[sl] = vj[:-1], vj[1:]
     return v0, v1
 
@@ -725,8 +734,9 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     vel = vel[:, ax_idx]
     acc = acc[:, ax_idx]
     block = seg_block_a[seg]
-    for run, piece, rows in _run_groups(g, seg):
-        block[rows] = run.block_at(SplineCurve.parameters(run.pieces, piece, s[rows]))
+    curves, piece, rows = _curve_rows(g, seg)
+    if len(rows):
+        block[rows] = _curve_blocks(g, curves, piece, SplineCurve.parameters(curves, piece, s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -755,37 +765,27 @@ def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
 
 def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
     """For each smooth curve piece (segment index): the lines of its polyline, points
-    ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart, and the block of each line's middle; each run's curve
-    evaluated once for all its pieces."""
-    per_run: dict[int, tuple[MergedRun, dict[int, int], list[tuple[int, np.ndarray]]]] = {}
-    for i in sorted(g.runs):
-        run, piece = g.runs[i], g.segments[i]
-        kappa = piece.bounds()[0] * CURVE_BOUND_MARGIN
-        n = max(1, int(math.ceil(piece.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
-        if id(run) not in per_run:
-            per_run[id(run)] = (run, {id(p): k for k, p in enumerate(run.pieces)}, [])
-        per_run[id(run)][2].append((i, np.linspace(0.0, piece.length, n + 1)))
-    pts, mids, order, counts = [], [], [], []
-    for run, index, items in per_run.values():
-        which = [index[id(g.segments[i])] for i, _ in items]
-        s_k = np.concatenate([s for _, s in items])
-        pts.append(SplineCurve.evaluate_pieces(run.pieces, np.repeat(which, [len(s) for _, s in items]), s_k,
-                                               frame=False)[0])
-        mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for _, s in items])
-        mids.append(run.block_at(SplineCurve.parameters(run.pieces, np.repeat(which, [len(s) - 1 for _, s in items]),
-                                                        mid)))
-        order.extend(i for i, _ in items)
-        counts.extend(len(s) - 1 for _, s in items)
+    ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart, and the block of each line's middle; all evaluated at once."""
+    order = sorted(g.runs)
     if not order:
         return {}
-    p = np.concatenate(pts)
-    last = np.cumsum(np.add(counts, 1)) - 1  # each piece's last point starts no line
-    starts = np.delete(np.arange(len(p)), last)
+    curves = [g.segments[i] for i in order]
+    s_k = []
+    for piece in curves:
+        kappa = piece.bounds()[0] * CURVE_BOUND_MARGIN
+        n = max(1, int(math.ceil(piece.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
+        s_k.append(np.linspace(0.0, piece.length, n + 1))
+    counts = np.array([len(s) - 1 for s in s_k])
+    which = np.arange(len(curves))
+    p = SplineCurve.evaluate_pieces(curves, np.repeat(which, counts + 1), np.concatenate(s_k), frame=False)[0]
+    mid_piece = np.repeat(which, counts)
+    mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for s in s_k])
+    mid_blocks = _curve_blocks(g, curves, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
+    starts = np.delete(np.arange(len(p)), np.cumsum(counts + 1) - 1)  # each piece's last point starts no line
     lines = Line.from_arrays(p[starts], p[starts + 1])
-    mid_blocks = np.concatenate(mids).tolist()
     out = {}
     k = 0
-    for i, n in zip(order, counts):
+    for i, n in zip(order, counts.tolist()):
         out[i] = (lines[k:k + n], mid_blocks[k:k + n])
         k += n
     return out
@@ -825,9 +825,8 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
             lines = [ch.segments[j] for j in i.tolist()]
             v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3),
                                         np.asarray(ch.feeds)[i], np.asarray(ch.rapid)[i], lim)
-            half = [0.5 * ln.length for ln in lines]
-            reach = np.array([scurve_reach(0.0, h, a_, j_) for h, a_, j_ in zip(half, A_i.tolist(), J_i.tolist())]
-                             if jerk_limited else [trapezoid_reach(0.0, h, a_) for h, a_ in zip(half, A_i.tolist())])
+            half = np.array([0.5 * ln.length for ln in lines])
+            reach = reach_many(np.zeros(len(half)), half, A_i, J_i, jerk_limited=jerk_limited)
             V = np.minimum(V, np.minimum(reach, v_i))
             A, J = np.minimum(A, A_i), np.minimum(J, J_i)
 

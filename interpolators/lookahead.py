@@ -35,7 +35,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from interpolators.profiles import scurve_reach, trapezoid_reach
+from interpolators.profiles import reach_passes
 from toolpaths.geometry import Arc, ClothoidPair, Line
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "CornerBlends", "blend_corners", "junction_speeds"]
@@ -283,16 +283,4 @@ def junction_speeds(
     if n > 1:
         v[1:n] = np.minimum(np.minimum(junction_limit, v_max[:-1]), v_max[1:])
     shrink = 1.0 - 1e-9  # margin against rounding: the profile must fit in the segment
-    Ls = length * shrink
-    vl = v.tolist()
-    if jerk_limited:
-        for k in range(n - 1, 0, -1):
-            vl[k] = min(vl[k], scurve_reach(vl[k + 1], Ls[k], a_max[k], j_max[k]))
-        for k in range(1, n):
-            vl[k] = min(vl[k], scurve_reach(vl[k - 1], Ls[k - 1], a_max[k - 1], j_max[k - 1]))
-    else:
-        for k in range(n - 1, 0, -1):
-            vl[k] = min(vl[k], trapezoid_reach(vl[k + 1], Ls[k], a_max[k]))
-        for k in range(1, n):
-            vl[k] = min(vl[k], trapezoid_reach(vl[k - 1], Ls[k - 1], a_max[k - 1]))
-    return np.asarray(vl) * shrink
+    return reach_passes(v, length * shrink, a_max, j_max, jerk_limited=jerk_limited) * shrink

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 import ruckig
 
@@ -21,6 +22,8 @@ __all__ = [
     "scurve_phases",
     "trapezoid_reach",
     "scurve_reach",
+    "reach_many",
+    "reach_passes",
     "trapezoid_duration",
 ]
 
@@ -130,6 +133,78 @@ def scurve_reach(v: float, length: float, a_max: float, j_max: float) -> float:
         c = 2.0 * v * A * A - 2.0 * length * A * J
         dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
     return v + max(dv, 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _reach(v, length, a_max, j_max, jerk_limited, powers):  # pragma: no cover - compiled
+    """:func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach`, compiled: the same operations in the same
+    order. ``powers`` holds the exponents ``2, 3, 1/3`` as data, so that each power is the C library's ``pow`` as
+    in Python (a constant exponent 2 would be compiled to ``x * x``)."""
+    if not jerk_limited:
+        return math.sqrt(v * v + 2.0 * a_max * length)
+    if length <= 0:
+        return v
+    A, J = a_max, j_max
+    dv_lim = A * A / J
+    p, q = 2.0 * v, -length * math.sqrt(J)
+    disc = (q / 2.0) ** powers[0] + (p / 3.0) ** powers[1]
+    sd = math.sqrt(disc)
+    x = math.copysign(abs(-q / 2.0 + sd) ** powers[2], -q / 2.0 + sd) + math.copysign(
+        abs(-q / 2.0 - sd) ** powers[2], -q / 2.0 - sd
+    )
+    for _ in range(2):
+        x -= (x * x * x + p * x + q) / (3.0 * x * x + p)
+    dv = x * x
+    if dv > dv_lim:
+        b = 2.0 * v * J + A * A
+        c = 2.0 * v * A * A - 2.0 * length * A * J
+        dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
+    return v + (0.0 if 0.0 > dv else dv)  # Python's max(dv, 0.0)
+
+
+_POWERS = np.array([2.0, 3.0, 1.0 / 3.0])
+
+
+@numba.njit(cache=True, nogil=True)
+def _reach_many(v, length, a_max, j_max, jerk_limited, powers, out):  # pragma: no cover - compiled
+    for i in range(v.shape[0]):
+        out[i] = _reach(v[i], length[i], a_max[i], j_max[i], jerk_limited, powers)
+
+
+def reach_many(v: np.ndarray, length: np.ndarray, a_max: np.ndarray, j_max: np.ndarray, *,
+               jerk_limited: bool) -> np.ndarray:
+    """:func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach` of each row, bit for bit (compiled)."""
+    v, length, a_max, j_max = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), np.shape(v)))
+                               for x in (v, length, a_max, j_max))
+    out = np.empty(len(v))
+    _reach_many(v, length, a_max, j_max, bool(jerk_limited), _POWERS, out)
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _passes(v, length, a_max, j_max, jerk_limited, powers):  # pragma: no cover - compiled
+    n = length.shape[0]
+    for k in range(n - 1, 0, -1):
+        r = _reach(v[k + 1], length[k], a_max[k], j_max[k], jerk_limited, powers)
+        if r < v[k]:  # Python's min(v, r)
+            v[k] = r
+    for k in range(1, n):
+        r = _reach(v[k - 1], length[k - 1], a_max[k - 1], j_max[k - 1], jerk_limited, powers)
+        if r < v[k]:
+            v[k] = r
+
+
+def reach_passes(v: np.ndarray, length: np.ndarray, a_max: np.ndarray, j_max: np.ndarray, *,
+                 jerk_limited: bool) -> np.ndarray:
+    """The speeds ``v`` (shape ``(n + 1,)``, at the ends of ``n`` segments) lowered, backwards then forwards, to
+    what each segment can reach from the next (previous) one: ``v[k] = min(v[k], reach(v[k + 1], length[k],
+    ...))`` for ``k = n - 1 .. 1``, then ``v[k] = min(v[k], reach(v[k - 1], length[k - 1], ...))`` for
+    ``k = 1 .. n - 1``, ``reach`` being :func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach`; bit for
+    bit the Python loops (compiled). Returns a new array."""
+    out = np.array(v, dtype=float)
+    _passes(out, np.ascontiguousarray(length, dtype=float), np.ascontiguousarray(a_max, dtype=float),
+            np.ascontiguousarray(j_max, dtype=float), bool(jerk_limited), _POWERS)
+    return out
 
 
 class _Ruckig:

@@ -759,13 +759,12 @@ class SplineCurve:
         offset = np.cumsum([0] + [len(p._s_nodes) for p in pieces[:-1]])
         j = np.empty(len(s), dtype=np.int64)
         order = np.argsort(piece, kind="stable")
-        cuts = np.searchsorted(piece[order], np.arange(len(pieces) + 1))
-        for k, (a, b) in enumerate(zip(cuts[:-1].tolist(), cuts[1:].tolist())):
-            if b > a:
-                nodes = pieces[k]._s_nodes
-                rows = order[a:b]
-                j[rows] = np.minimum(np.maximum(np.searchsorted(nodes, s[rows], side="right") - 1, 0),
-                                     len(nodes) - 2) + offset[k]
+        cuts = np.searchsorted(piece[order], np.arange(len(pieces) + 1)).tolist()
+        for k in np.flatnonzero(np.diff(cuts)).tolist():
+            nodes = pieces[k]._s_nodes
+            rows = order[cuts[k]:cuts[k + 1]]
+            j[rows] = np.minimum(np.maximum(np.searchsorted(nodes, s[rows], side="right") - 1, 0),
+                                 len(nodes) - 2) + offset[k]
         x = s - np.concatenate([p._s_nodes for p in pieces])[j]
         c = np.concatenate([np.hstack([p._u_poly, np.zeros((4, 1))]) for p in pieces], axis=1)[:, j]
         u0 = np.array([p.u0 for p in pieces])[piece]
@@ -776,18 +775,31 @@ class SplineCurve:
     def evaluate_pieces(pieces: Sequence[SplineCurve], piece: np.ndarray, s: np.ndarray, *, frame: bool = True
                         ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
         """Point, unit tangent and curvature vector at arc length ``s[i]`` (clipped to the piece) along
-        ``pieces[piece[i]]`` (pieces of one curve, from :meth:`pieces`): ``point_at``, ``tangent_at`` and
-        ``curvature_at`` of each row, bit for bit, with the curve evaluated once for all rows (``frame=False``:
-        the points only, None for the others)."""
+        ``pieces[piece[i]]``: ``point_at``, ``tangent_at`` and ``curvature_at`` of each row, bit for bit, with
+        each curve (the pieces of one spline) evaluated once for all its rows (``frame=False``: the points
+        only, None for the others)."""
         piece = np.asarray(piece, dtype=np.int64)
-        s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), np.array([p.length for p in pieces])[piece])
-        u = SplineCurve.parameters(pieces, piece, s)
-        first = pieces[0]
-        tan, curv = first.frame(u) if frame else (None, None)
         length = np.array([p.length for p in pieces])[piece]
+        s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), length)
+        u = SplineCurve.parameters(pieces, piece, s)
+        curve_of: dict[int, int] = {}
+        curve = np.array([curve_of.setdefault(id(p.spline), len(curve_of)) for p in pieces], dtype=np.int64)[piece]
+        first_piece = {id(p.spline): p for p in reversed(pieces)}
+        order = np.argsort(curve, kind="stable")
+        cuts = np.searchsorted(curve[order], np.arange(len(curve_of) + 1)).tolist()
+        pts = np.empty((len(s), 3))
+        tan = np.empty((len(s), 3)) if frame else None
+        curv = np.empty((len(s), 3)) if frame else None
+        for k, key in enumerate(curve_of):
+            rows = order[cuts[k]:cuts[k + 1]]
+            if len(rows):
+                p = first_piece[key]
+                pts[rows] = p.spline(u[rows])
+                if frame:
+                    tan[rows], curv[rows] = p.frame(u[rows])
         start = np.array([p.start for p in pieces]).reshape(-1, 3)[piece]
         end = np.array([p.end for p in pieces]).reshape(-1, 3)[piece]
-        pts = np.where((s >= length)[:, None], end, np.where((s <= 0)[:, None], start, first.spline(u)))
+        pts = np.where((s >= length)[:, None], end, np.where((s <= 0)[:, None], start, pts))
         return pts, tan, curv
 
     def frame(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
