@@ -424,13 +424,14 @@ def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[SplineCurve], np.ndarra
     return [g.segments[i] for i in pieces.tolist()], piece, rows
 
 
-def _curve_blocks(g: _Geom, curves: list[SplineCurve], piece: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """The block of the chord each point of the curves (piece index into ``curves``, spline parameter ``u``) passes
+def _curve_blocks(g: _Geom, piece: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block of the chord each point on the curve pieces (index into the pieces of ``g`` in segment order, as
+    from :func:`_curve_rows`; spline parameter ``u``) passes
     (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
-    run_of = {id(p): run for run in g.runs.values() for p in run.pieces}
+    run_of = [g.runs[i] for i in sorted(g.runs)]  # the run of each of the curves
     index: dict[int, int] = {}
-    run_ix = np.array([index.setdefault(id(run_of[id(c)]), len(index)) for c in curves], dtype=np.int64)[piece]
-    runs = {id(run_of[id(c)]): run_of[id(c)] for c in curves}
+    run_ix = np.array([index.setdefault(id(run), len(index)) for run in run_of], dtype=np.int64)[piece]
+    runs = {id(run): run for run in run_of}
     out = np.empty(len(u), dtype=np.int64)
     order = np.argsort(run_ix, kind="stable")
     cuts = np.searchsorted(run_ix[order], np.arange(len(index) + 1)).tolist()
@@ -736,7 +737,7 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     block = seg_block_a[seg]
     curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
-        block[rows] = _curve_blocks(g, curves, piece, SplineCurve.parameters(curves, piece, s[rows]))
+        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -780,7 +781,7 @@ def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
     p = SplineCurve.evaluate_pieces(curves, np.repeat(which, counts + 1), np.concatenate(s_k), frame=False)[0]
     mid_piece = np.repeat(which, counts)
     mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for s in s_k])
-    mid_blocks = _curve_blocks(g, curves, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
+    mid_blocks = _curve_blocks(g, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
     starts = np.delete(np.arange(len(p)), np.cumsum(counts + 1) - 1)  # each piece's last point starts no line
     lines = Line.from_arrays(p[starts], p[starts + 1])
     out = {}
