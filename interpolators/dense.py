@@ -61,6 +61,8 @@ __all__ = [
     "PIECE_LENGTH",
     "CHECK_POINTS",
     "MergedRun",
+    "chord_distance",
+    "cubic_basis",
     "fit_run",
     "merge_dense_runs",
 ]
@@ -107,11 +109,17 @@ class MergedRun:
         return self.blocks[np.minimum(np.maximum(j, 0), len(self.blocks) - 1)]
 
 
+def chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:
+    """Largest distance [mm] of ``curve`` (points at parameters ``u_eval``) from the chords of
+    ``points`` (vertex parameters ``u``, increasing), each point against its own chord and the two beside it
+    (its projection clipped to the chord)."""
+    return float(_chord_distance(*(np.ascontiguousarray(x, dtype=float) for x in (points, u, curve, u_eval))))
+
+
 @numba.njit(cache=True, nogil=True)
 def _chord_distance(points, u, curve, u_eval):  # pragma: no cover - compiled
-    """Largest distance [mm] of ``curve`` (points at parameters ``u_eval``) from the chords of
-    ``points`` (vertex parameters ``u``), each point against its own chord and the two beside it
-    (the projection clipped to the chord), compiled: the arithmetic of the array form it replaced."""
+    """:func:`chord_distance`, compiled: the arithmetic of the array form it replaced (numpy's, operation by
+    operation)."""
     n = points.shape[0] - 1
     worst = -np.inf
     for i in range(u_eval.shape[0]):
@@ -138,11 +146,28 @@ def _chord_distance(points, u, curve, u_eval):  # pragma: no cover - compiled
     return worst
 
 
+def cubic_basis(x: np.ndarray, knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The cubic B-spline design matrix at the points ``x`` (within ``knots[3] .. knots[-4]``) on the clamped
+    ``knots``, row by row: the first nonzero column of each row and its four values.
+
+    The values of :meth:`scipy.interpolate.BSpline.design_matrix` (de Boor's recursion, in the order of scipy's
+    ``_deBoor_D``), bit for bit, without building its sparse matrix (compiled).
+
+    Returns
+    -------
+    first : ndarray of int, shape (n,)
+    values : ndarray, shape (n, 4)
+    """
+    x = np.ascontiguousarray(x, dtype=float)
+    values = np.empty((len(x), 4))
+    first = np.empty(len(x), dtype=np.int64)
+    _design(x, np.ascontiguousarray(knots, dtype=float), first, values)
+    return first, values
+
+
 @numba.njit(cache=True, nogil=True)
 def _design(x, t, first, values):  # pragma: no cover - compiled
-    """Cubic B-spline basis on the clamped knots ``t`` at each ``x`` (within ``t[3] .. t[-4]``): the first
-    column ``first[r]`` and the four values ``values[r]`` of row ``r`` of the design matrix, by de Boor's
-    recursion in the order of scipy's ``BSpline.design_matrix`` (``_deBoor_D``), so the values are its own."""
+    """:func:`cubic_basis` into ``first`` and ``values``."""
     n = t.shape[0] - 4
     hh = np.empty(3)
     ell = 3
@@ -192,9 +217,7 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
     import scipy.linalg
 
     m = len(knots) - 4
-    values = np.empty((len(u), 4))
-    first = np.empty(len(u), dtype=np.int64)
-    _design(u, knots, first, values)
+    first, values = cubic_basis(u, knots)
     c = np.zeros((m, 3))
     c[0], c[-1] = points[0], points[-1]
     dirs = []  # (column, direction): c[column] = its end point + alpha * direction
@@ -288,7 +311,7 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
         c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
         if c is not None:
             spl = BSpline(knots, c, 3)
-            if _chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
+            if chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
                 return spl
         if q <= _MIN_POINTS_PER_KNOT:
             return None
