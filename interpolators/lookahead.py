@@ -83,16 +83,22 @@ class CornerBlends:
     def of(cls, corner: np.ndarray, blends: list[Blend]) -> CornerBlends:
         """Collect the arrays of the ``blends`` at the junctions ``corner``."""
         m = len(blends)
-        kappa, dkappa, length = np.zeros(m), np.zeros(m), np.zeros(m)
+        kappa, dkappa = np.zeros(m), np.zeros(m)
+        length = np.array([b.length for b in blends], dtype=float).reshape(m)
         plane = np.zeros((m, 3), dtype=bool)
-        for i, b in enumerate(blends):
-            length[i] = b.length
-            if isinstance(b, Arc):
-                kappa[i] = 1.0 / b.radius
-                plane[i, list(b.plane_axes)] = True
-            else:
-                kappa[i], dkappa[i] = b.peak_curvature, b.sharpness
-                plane[i] = np.abs(b.normal) < 1.0 - 1e-12  # the axes in the corner plane
+        is_arc = [isinstance(b, Arc) for b in blends]
+        arcs = [b for b, a in zip(blends, is_arc) if a]
+        if arcs:
+            i = np.flatnonzero(is_arc)
+            kappa[i] = 1.0 / np.array([b.radius for b in arcs])
+            axes = np.array([b.plane_axes for b in arcs])
+            plane[i, axes[:, 0]] = plane[i, axes[:, 1]] = True
+        others = [b for b, a in zip(blends, is_arc) if not a]
+        if others:
+            i = np.flatnonzero(np.logical_not(is_arc))
+            kappa[i] = [b.peak_curvature for b in others]
+            dkappa[i] = [b.sharpness for b in others]
+            plane[i] = np.abs(np.array([b.normal for b in others])) < 1.0 - 1e-12  # the axes in the corner plane
         return cls(corner=np.asarray(corner, dtype=np.int64), blends=blends, curvature=kappa, curvature_rate=dkappa,
                    plane=plane, length=length)
 

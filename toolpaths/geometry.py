@@ -35,6 +35,7 @@ import dataclasses
 import math
 from collections.abc import Iterator, Sequence
 
+import numba
 import numpy as np
 
 from vcnc.core.errors import InputError
@@ -140,11 +141,10 @@ class Line:
         """
         start, end = _rows(start, "Line start"), _rows(end, "Line end")
         length, direction = _unit_rows(end - start)
-        out = []
-        for a, b, n, u in zip(start, end, length.tolist(), direction):
-            line = object.__new__(cls)
+        new = object.__new__
+        out = [new(cls) for _ in range(len(length))]
+        for line, a, b, n, u in zip(out, list(start), list(end), length.tolist(), list(direction)):
             line.start, line.end, line.length, line.direction = a, b, n, u
-            out.append(line)
         return out
 
     def point_at(self, s: np.ndarray | float) -> np.ndarray:
@@ -754,18 +754,12 @@ class SplineCurve:
         piece = np.asarray(piece, dtype=np.int64)
         length = np.array([p.length for p in pieces])
         s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), length[piece])
-        # each row's table interval in its own piece's table (one search per piece), then one index into
-        # the pieces' tables laid end to end
-        offset = np.cumsum([0] + [len(p._s_nodes) for p in pieces[:-1]])
+        # each row's table interval in its own piece's table, as an index into the pieces' tables laid end to end
+        size = np.array([len(p._s_nodes) for p in pieces], dtype=np.int64)
+        s_nodes = np.concatenate([p._s_nodes for p in pieces])
         j = np.empty(len(s), dtype=np.int64)
-        order = np.argsort(piece, kind="stable")
-        cuts = np.searchsorted(piece[order], np.arange(len(pieces) + 1)).tolist()
-        for k in np.flatnonzero(np.diff(cuts)).tolist():
-            nodes = pieces[k]._s_nodes
-            rows = order[cuts[k]:cuts[k + 1]]
-            j[rows] = np.minimum(np.maximum(np.searchsorted(nodes, s[rows], side="right") - 1, 0),
-                                 len(nodes) - 2) + offset[k]
-        x = s - np.concatenate([p._s_nodes for p in pieces])[j]
+        _table_intervals(s, piece, np.cumsum(size) - size, size, s_nodes, j)
+        x = s - s_nodes[j]
         c = np.concatenate([np.hstack([p._u_poly, np.zeros((4, 1))]) for p in pieces], axis=1)[:, j]
         u0 = np.array([p.u0 for p in pieces])[piece]
         u1 = np.array([p.u1 for p in pieces])[piece]
@@ -854,6 +848,24 @@ def _quadrature_points(nodes: np.ndarray) -> np.ndarray:
     """Gauss-Legendre points of each table interval, shape ``(len(nodes) - 1, 5)``."""
     h = np.diff(nodes)
     return nodes[:-1, None] + h[:, None] * _GL_X[None, :]
+
+
+@numba.njit(cache=True, nogil=True)
+def _table_intervals(s, piece, offset, size, s_nodes, out):  # pragma: no cover - compiled
+    """``out[i]``: ``offset[k] + j`` with ``j = searchsorted(table, s[i], side="right") - 1`` clipped to
+    ``0 .. size[k] - 2``, ``table = s_nodes[offset[k]:offset[k] + size[k]]`` of the row's piece ``k = piece[i]``
+    (the first table node above ``s[i]``, by bisection)."""
+    for i in range(s.shape[0]):
+        k = piece[i]
+        lo = 0
+        hi = size[k]
+        while lo < hi:
+            mid = (lo + hi) >> 1
+            if s_nodes[offset[k] + mid] <= s[i]:
+                lo = mid + 1
+            else:
+                hi = mid
+        out[i] = offset[k] + min(max(lo - 1, 0), size[k] - 2)
 
 
 def _set_table_bounds(pieces: list[SplineCurve]) -> None:
