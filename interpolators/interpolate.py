@@ -24,7 +24,7 @@ from interpolators.kinematics import (
 )
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
-from interpolators.profiles import PROFILES, reach_many, scurve_phases, trapezoid_phases
+from interpolators.profiles import PROFILES, phase_states, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
@@ -718,22 +718,17 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
         )
     k = np.searchsorted(ph_start, t, side="right") - 1
     np.clip(k, 0, len(ph_start) - 1, out=k)
-    tau = np.clip(t - ph_start[k], 0.0, ph_dur[k])
-    jj, aa, vv = ph_j[k], ph_a[k], ph_v[k]
-    s = ph_p[k] + tau * (vv + tau * (0.5 * aa + tau * (jj / 6.0)))
-    v = vv + tau * (aa + 0.5 * jj * tau)
-    a = aa + jj * tau
+    s, v, a = phase_states(t, k, ph_start, ph_dur, ph_p, ph_v, ph_a, ph_j,
+                           np.where(last_of_seg, length[ph_seg], np.nan))
     seg = ph_seg[k]
-    s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), length[seg], s)
     s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
     v[-1] = a[-1] = 0.0
     pos, vel, acc = _evaluate(g, seg, s, v, a)
     if g.extra is not None:
         pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
     # the last sample of a chain is at rest at its end
-    pos = pos[:, ax_idx]
-    vel = vel[:, ax_idx]
-    acc = acc[:, ax_idx]
+    if ax_idx != list(range(pos.shape[1])):
+        pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
     block = seg_block_a[seg]
     curves, piece, rows = _curve_rows(g, seg)
     if len(rows):

@@ -24,6 +24,7 @@ __all__ = [
     "scurve_reach",
     "reach_many",
     "reach_passes",
+    "phase_states",
     "trapezoid_duration",
 ]
 
@@ -205,6 +206,48 @@ def reach_passes(v: np.ndarray, length: np.ndarray, a_max: np.ndarray, j_max: np
     _passes(out, np.ascontiguousarray(length, dtype=float), np.ascontiguousarray(a_max, dtype=float),
             np.ascontiguousarray(j_max, dtype=float), bool(jerk_limited), _POWERS)
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _phase_states(t, phase, start, duration, p0, v0, a0, jerk, end_at, s, v, a):  # pragma: no cover - compiled
+    for i in range(t.shape[0]):
+        k = phase[i]
+        d = duration[k]
+        tau = t[i] - start[k]
+        tau = tau if tau > 0.0 else 0.0  # np.clip(tau, 0, d): maximum, then minimum
+        tau = tau if tau < d else d
+        jj = jerk[k]
+        aa = a0[k]
+        vv = v0[k]
+        s[i] = p0[k] + tau * (vv + tau * (0.5 * aa + tau * (jj / 6.0)))
+        v[i] = vv + tau * (aa + 0.5 * jj * tau)
+        a[i] = aa + jj * tau
+        if tau >= d and end_at[k] == end_at[k]:
+            s[i] = end_at[k]
+
+
+def phase_states(t: np.ndarray, phase: np.ndarray, start: np.ndarray, duration: np.ndarray, p0: np.ndarray,
+                 v0: np.ndarray, a0: np.ndarray, jerk: np.ndarray, end_at: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Path position, speed and acceleration at the times ``t`` inside their phases (index ``phase``), compiled.
+
+    Each phase has a ``start`` time, a ``duration``, its start state (``p0``, ``v0``, ``a0``) and its ``jerk``;
+    the time into the phase is clipped to ``0 .. duration``. A phase whose ``end_at`` is not NaN ends its segment:
+    at (or past) its end the position is exactly ``end_at`` (the segment's length, no rounding residue).
+
+    Returns
+    -------
+    s, v, a : ndarray, shape (n,)
+        ``p0 + tau (v0 + tau (a0/2 + tau j/6))``, ``v0 + tau (a0 + j tau / 2)``, ``a0 + j tau`` [mm, mm/s, mm/s^2],
+        operation by operation the array expressions of these formulas.
+    """
+    n = len(t)
+    s, v, a = np.empty(n), np.empty(n), np.empty(n)
+    start, duration, p0, v0, a0, jerk, end_at = (np.ascontiguousarray(x, dtype=float)
+                                                 for x in (start, duration, p0, v0, a0, jerk, end_at))
+    _phase_states(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(phase, dtype=np.int64), start, duration,
+                  p0, v0, a0, jerk, end_at, s, v, a)
+    return s, v, a
 
 
 class _Ruckig:
