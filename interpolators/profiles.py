@@ -322,13 +322,19 @@ def scurve_phases(
         _RUCKIG = _Ruckig()
     rk = _RUCKIG
     n = len(length)
-    rows: tuple[list, ...] = ([], [], [], [], [])
-    args = (np.asarray(x, dtype=float).reshape(n).tolist() for x in (length, v0, v1, v_max, a_max, j_max))
-    for L, v_0, v_1, V, A, J in zip(*args):
-        prof = rk.profile(L, v_0, v_1, V, A, J)[1]
-        for out, values in zip(rows, (prof.t, prof.p, prof.v, prof.a, prof.j)):
-            out.append(values[:7])
-    dur, p0, pv, pa, pj = (np.array(r, dtype=float).reshape(n, 7) for r in rows)
+    dur = np.zeros((n, 7))
+    p0 = np.zeros((n, 7))
+    pv = np.zeros((n, 7))
+    pa = np.zeros((n, 7))
+    pj = np.zeros((n, 7))
+    for i in range(n):
+        _, prof = rk.profile(float(length[i]), float(v0[i]), float(v1[i]), float(v_max[i]), float(a_max[i]),
+                             float(j_max[i]))
+        dur[i] = prof.t
+        pj[i] = prof.j
+        p0[i] = prof.p[:7]
+        pv[i] = prof.v[:7]
+        pa[i] = prof.a[:7]
     return dur, p0, pv, pa, pj
 
 
