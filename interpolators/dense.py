@@ -44,6 +44,7 @@ import dataclasses
 import math
 from typing import TYPE_CHECKING
 
+import numba
 import numpy as np
 
 from toolpaths.geometry import Arc, Line, SplineCurve
@@ -60,6 +61,8 @@ __all__ = [
     "PIECE_LENGTH",
     "CHECK_POINTS",
     "MergedRun",
+    "chord_distance",
+    "cubic_basis",
     "fit_run",
     "merge_dense_runs",
 ]
@@ -106,18 +109,90 @@ class MergedRun:
         return self.blocks[np.minimum(np.maximum(j, 0), len(self.blocks) - 1)]
 
 
-def _chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:
+def chord_distance(points: np.ndarray, u: np.ndarray, curve: np.ndarray, u_eval: np.ndarray) -> float:
     """Largest distance [mm] of ``curve`` (points at parameters ``u_eval``) from the chords of
-    ``points`` (vertex parameters ``u``), each point against its own chord and the two beside it."""
-    n = len(points) - 1
-    j = np.clip(np.searchsorted(u, u_eval, side="right") - 1, 0, n - 1)
-    best = np.full(len(u_eval), np.inf)
-    for dj in (-1, 0, 1):
-        k = np.clip(j + dj, 0, n - 1)
-        a, ab = points[k], points[k + 1] - points[k]
-        t = np.clip(np.einsum("ij,ij->i", curve - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
-        best = np.minimum(best, np.linalg.norm(curve - a - t[:, None] * ab, axis=1))
-    return float(best.max())
+    ``points`` (vertex parameters ``u``, increasing), each point against its own chord and the two beside it
+    (its projection clipped to the chord)."""
+    return float(_chord_distance(*(np.ascontiguousarray(x, dtype=float) for x in (points, u, curve, u_eval))))
+
+
+@numba.njit(cache=True, nogil=True)
+def _chord_distance(points, u, curve, u_eval):  # pragma: no cover - compiled
+    """:func:`chord_distance`, compiled: the arithmetic of the array form it replaced (numpy's, operation by
+    operation)."""
+    n = points.shape[0] - 1
+    worst = -np.inf
+    for i in range(u_eval.shape[0]):
+        j = min(max(np.searchsorted(u, u_eval[i], side="right") - 1, 0), n - 1)
+        best = np.inf
+        for dj in range(-1, 2):
+            k = min(max(j + dj, 0), n - 1)
+            ab0 = points[k + 1, 0] - points[k, 0]
+            ab1 = points[k + 1, 1] - points[k, 1]
+            ab2 = points[k + 1, 2] - points[k, 2]
+            d0 = curve[i, 0] - points[k, 0]
+            d1 = curve[i, 1] - points[k, 1]
+            d2 = curve[i, 2] - points[k, 2]
+            # numpy's einsum sums a three-term product as (x0 y0 + x2 y2) + x1 y1
+            num = (d0 * ab0 + d2 * ab2) + d1 * ab1
+            den = (ab0 * ab0 + ab2 * ab2) + ab1 * ab1
+            t = min(max(num / max(den, 1e-300), 0.0), 1.0)
+            sq = 0.0
+            for c in range(3):
+                e = (curve[i, c] - points[k, c]) - t * (points[k + 1, c] - points[k, c])
+                sq += e * e
+            best = min(best, math.sqrt(sq))
+        worst = max(worst, best)
+    return worst
+
+
+def cubic_basis(x: np.ndarray, knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The cubic B-spline design matrix at the points ``x`` (within ``knots[3] .. knots[-4]``) on the clamped
+    ``knots``, row by row: the first nonzero column of each row and its four values.
+
+    The values of :meth:`scipy.interpolate.BSpline.design_matrix` (de Boor's recursion, in the order of scipy's
+    ``_deBoor_D``), bit for bit, without building its sparse matrix (compiled).
+
+    Returns
+    -------
+    first : ndarray of int, shape (n,)
+    values : ndarray, shape (n, 4)
+    """
+    x = np.ascontiguousarray(x, dtype=float)
+    values = np.empty((len(x), 4))
+    first = np.empty(len(x), dtype=np.int64)
+    _design(x, np.ascontiguousarray(knots, dtype=float), first, values)
+    return first, values
+
+
+@numba.njit(cache=True, nogil=True)
+def _design(x, t, first, values):  # pragma: no cover - compiled
+    """:func:`cubic_basis` into ``first`` and ``values``."""
+    n = t.shape[0] - 4
+    hh = np.empty(3)
+    ell = 3
+    for r in range(x.shape[0]):
+        xv = x[r]
+        while ell > 3 and xv < t[ell]:  # the interval t[ell] <= x < t[ell + 1] (the last one up to t[n])
+            ell -= 1
+        while ell < n - 1 and t[ell + 1] <= xv:
+            ell += 1
+        h = values[r]
+        h[0] = 1.0
+        for j in range(1, 4):
+            for i in range(j):
+                hh[i] = h[i]
+            h[0] = 0.0
+            for m in range(1, j + 1):
+                xb = t[ell + m]
+                xa = t[ell + m - j]
+                if xb == xa:
+                    h[m] = 0.0
+                    continue
+                w = hh[m - 1] / (xb - xa)
+                h[m - 1] += w * (xb - xv)
+                h[m] = w * (xv - xa)
+        first[r] = ell - 3
 
 
 def _gram_banded(first: np.ndarray, values: np.ndarray, m: int) -> np.ndarray:
@@ -140,12 +215,9 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
     coordinates): ``G`` is factored once (banded Cholesky) for all right-hand sides and the tangent
     lengths follow from the Schur complement."""
     import scipy.linalg
-    from scipy.interpolate import BSpline
 
-    B = BSpline.design_matrix(u, knots, 3)
-    m = B.shape[1]
-    values = B.data.reshape(-1, 4)
-    first = B.indices[::4].astype(np.int64)
+    m = len(knots) - 4
+    first, values = cubic_basis(u, knots)
     c = np.zeros((m, 3))
     c[0], c[-1] = points[0], points[-1]
     dirs = []  # (column, direction): c[column] = its end point + alpha * direction
@@ -239,7 +311,7 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
         c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
         if c is not None:
             spl = BSpline(knots, c, 3)
-            if _chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
+            if chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
                 return spl
         if q <= _MIN_POINTS_PER_KNOT:
             return None
@@ -265,10 +337,7 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCur
     cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
     brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
     # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
-    derivatives = (spl.derivative(1), spl.derivative(2), spl.derivative(3))
-    return tuple(SplineCurve(spl, brk[i], brk[i + 1], start=start if i == 0 else None,
-                             end=end if i == len(brk) - 2 else None, derivatives=derivatives)
-                 for i in range(len(brk) - 1))
+    return SplineCurve.pieces(spl, brk, start=start, end=end)
 
 
 def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,

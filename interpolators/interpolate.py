@@ -24,7 +24,7 @@ from interpolators.kinematics import (
 )
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
-from interpolators.profiles import PROFILES, scurve_phases, scurve_reach, trapezoid_phases, trapezoid_reach
+from interpolators.profiles import PROFILES, phase_states, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
 from toolpaths.packed import HOLD, PackedSegments
@@ -404,25 +404,41 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    for i, rows in _run_rows(g, seg):
-        curve = g.segments[i]
-        s_i = np.minimum(np.maximum(s[rows], 0.0), curve.length)
-        tan, curv = curve.frame(curve.parameter_at(s_i))
-        pos[rows] = curve.point_at(s_i)
+    curves, piece, rows = _curve_rows(g, seg)
+    if len(rows):
+        pos[rows], tan, curv = SplineCurve.evaluate_pieces(curves, piece, s[rows])
         vel[rows] = tan * v[rows, None]
         acc[rows] = tan * a[rows, None] + curv * (v[rows] ** 2)[:, None]
     return pos, vel, acc
 
 
-def _run_rows(g: _Geom, seg: np.ndarray) -> list[tuple[int, slice]]:
-    """The smooth curve pieces among the segments ``seg`` (nondecreasing: samples in time order, junctions in
-    chain order) and the rows on each, as slices found by bisection rather than one scan of ``seg`` per piece."""
-    if not g.runs:
-        return []
+def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[SplineCurve], np.ndarray, np.ndarray]:
+    """The smooth curve pieces of ``g`` (in segment order) and, for the rows of ``seg`` (nondecreasing: samples in
+    time order, junctions in chain order) on them, the piece (index into that list) and the row of each, found by
+    bisection rather than one scan of ``seg`` per piece."""
     pieces = np.array(sorted(g.runs), dtype=np.int64)
     lo = np.searchsorted(seg, pieces, side="left")
-    hi = np.searchsorted(seg, pieces, side="right")
-    return [(int(i), slice(int(a), int(b))) for i, a, b in zip(pieces, lo, hi) if b > a]
+    n = np.searchsorted(seg, pieces, side="right") - lo
+    piece = np.repeat(np.arange(len(pieces)), n)
+    rows = np.arange(int(n.sum())) + np.repeat(lo - (np.cumsum(n) - n), n)
+    return [g.segments[i] for i in pieces.tolist()], piece, rows
+
+
+def _curve_blocks(g: _Geom, piece: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block of the chord each point on the curve pieces (index into the pieces of ``g`` in segment order, as
+    from :func:`_curve_rows`; spline parameter ``u``) passes
+    (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
+    run_of = [g.runs[i] for i in sorted(g.runs)]  # the run of each of the curves
+    index: dict[int, int] = {}
+    run_ix = np.array([index.setdefault(id(run), len(index)) for run in run_of], dtype=np.int64)[piece]
+    runs = {id(run): run for run in run_of}
+    out = np.empty(len(u), dtype=np.int64)
+    order = np.argsort(run_ix, kind="stable")
+    cuts = np.searchsorted(run_ix[order], np.arange(len(index) + 1)).tolist()
+    for k, key in enumerate(index):
+        rows = order[cuts[k]:cuts[k + 1]]
+        out[rows] = runs[key].block_at(u[rows])
+    return out
 
 
 def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
@@ -586,12 +602,13 @@ def _junction_speeds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray,
     multi_chains = np.flatnonzero(c.length > 1)
     if len(multi_chains):
         first = np.concatenate([[0], np.cumsum(c.length)[:-1]])
-        jl_at = dict(zip(c.inner.tolist(), c.junction_limit.tolist()))
-        for k in multi_chains:
-            s0, n = first[k], c.length[k]
+        jl_at = np.zeros(n_seg)
+        jl_at[c.inner] = c.junction_limit
+        for k in multi_chains.tolist():
+            s0, n = int(first[k]), int(c.length[k])
             sl = slice(s0, s0 + n)
-            vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl],
-                                 np.array([jl_at[i] for i in range(s0, s0 + n - 1)]), jerk_limited=jerk_limited)
+            vj = junction_speeds(L[sl], v_max[sl], a_max[sl], j_max[sl], jl_at[s0:s0 + n - 1],
+                                 jerk_limited=jerk_limited)
             v0[sl], v1[sl] = vj[:-1], vj[1:]
     return v0, v1
 
@@ -677,7 +694,7 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
 def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int, Ts: float,
             profile: str) -> Setpoints:
     """7. The setpoints at every sample time."""
-    all_segs, seg_block = g.segments, g.block
+    seg_block = g.block
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
         ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
     axes = program.axes or ("x",)
@@ -701,25 +718,21 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
         )
     k = np.searchsorted(ph_start, t, side="right") - 1
     np.clip(k, 0, len(ph_start) - 1, out=k)
-    tau = np.clip(t - ph_start[k], 0.0, ph_dur[k])
-    jj, aa, vv = ph_j[k], ph_a[k], ph_v[k]
-    s = ph_p[k] + tau * (vv + tau * (0.5 * aa + tau * (jj / 6.0)))
-    v = vv + tau * (aa + 0.5 * jj * tau)
-    a = aa + jj * tau
+    s, v, a = phase_states(t, k, ph_start, ph_dur, ph_p, ph_v, ph_a, ph_j,
+                           np.where(last_of_seg, length[ph_seg], np.nan))
     seg = ph_seg[k]
-    s = np.where(last_of_seg[k] & (tau >= ph_dur[k]), length[seg], s)
     s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
     v[-1] = a[-1] = 0.0
     pos, vel, acc = _evaluate(g, seg, s, v, a)
     if g.extra is not None:
         pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
     # the last sample of a chain is at rest at its end
-    pos = pos[:, ax_idx]
-    vel = vel[:, ax_idx]
-    acc = acc[:, ax_idx]
+    if ax_idx != list(range(pos.shape[1])):
+        pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
     block = seg_block_a[seg]
-    for i, rows in _run_rows(g, seg):
-        block[rows] = g.runs[i].block_at(all_segs[i].parameter_at(s[rows]))
+    curves, piece, rows = _curve_rows(g, seg)
+    if len(rows):
+        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -730,23 +743,48 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
 def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:
     """The geometry the samples follow; a smooth curve piece as a polyline of its points within
     :data:`CURVE_PATH_ERROR` of the curve, each line with the block of its middle."""
+    polylines = _curve_polylines(g)
     segs: list = []
     blocks: list[int] = []
     for i, (s_, b) in enumerate(zip(g.segments, g.block)):
         if isinstance(s_, np.ndarray):
             continue
-        if i not in g.runs:
-            segs.append(s_)
-            blocks.append(b)
+        if i in polylines:
+            lines, mid_blocks = polylines[i]
+            segs.extend(lines)
+            blocks.extend(mid_blocks)
             continue
-        kappa = s_.bounds()[0] * CURVE_BOUND_MARGIN
-        n = max(1, int(math.ceil(s_.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
-        s_k = np.linspace(0.0, s_.length, n + 1)
-        pts = s_.point_at(s_k)
-        mid_blocks = g.runs[i].block_at(s_.parameter_at(0.5 * (s_k[1:] + s_k[:-1])))
-        segs.extend(Line.from_arrays(pts[:-1], pts[1:]))
-        blocks.extend(mid_blocks.tolist())
+        segs.append(s_)
+        blocks.append(b)
     return Path(segments=tuple(segs), blocks=tuple(blocks), axes=axes)
+
+
+def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
+    """For each smooth curve piece (segment index): the lines of its polyline, points
+    ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart, and the block of each line's middle; all evaluated at once."""
+    order = sorted(g.runs)
+    if not order:
+        return {}
+    curves = [g.segments[i] for i in order]
+    s_k = []
+    for piece in curves:
+        kappa = piece.bounds()[0] * CURVE_BOUND_MARGIN
+        n = max(1, int(math.ceil(piece.length * math.sqrt(kappa / (8.0 * CURVE_PATH_ERROR)))))
+        s_k.append(np.linspace(0.0, piece.length, n + 1))
+    counts = np.array([len(s) - 1 for s in s_k])
+    which = np.arange(len(curves))
+    p = SplineCurve.evaluate_pieces(curves, np.repeat(which, counts + 1), np.concatenate(s_k), frame=False)[0]
+    mid_piece = np.repeat(which, counts)
+    mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for s in s_k])
+    mid_blocks = _curve_blocks(g, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
+    starts = np.delete(np.arange(len(p)), np.cumsum(counts + 1) - 1)  # each piece's last point starts no line
+    lines = Line.from_arrays(p[starts], p[starts + 1])
+    out = {}
+    k = 0
+    for i, n in zip(order, counts.tolist()):
+        out[i] = (lines[k:k + n], mid_blocks[k:k + n])
+        k += n
+    return out
 
 
 def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.ndarray, pos: np.ndarray,
@@ -783,9 +821,8 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
             lines = [ch.segments[j] for j in i.tolist()]
             v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3),
                                         np.asarray(ch.feeds)[i], np.asarray(ch.rapid)[i], lim)
-            half = [0.5 * ln.length for ln in lines]
-            reach = np.array([scurve_reach(0.0, h, a_, j_) for h, a_, j_ in zip(half, A_i.tolist(), J_i.tolist())]
-                             if jerk_limited else [trapezoid_reach(0.0, h, a_) for h, a_ in zip(half, A_i.tolist())])
+            half = np.array([0.5 * ln.length for ln in lines])
+            reach = reach_many(np.zeros(len(half)), half, A_i, J_i, jerk_limited=jerk_limited)
             V = np.minimum(V, np.minimum(reach, v_i))
             A, J = np.minimum(A, A_i), np.minimum(J, J_i)
 

@@ -35,7 +35,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from interpolators.profiles import scurve_reach, trapezoid_reach
+from interpolators.profiles import reach_passes
 from toolpaths.geometry import Arc, ClothoidPair, Line
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "CornerBlends", "blend_corners", "junction_speeds"]
@@ -83,16 +83,22 @@ class CornerBlends:
     def of(cls, corner: np.ndarray, blends: list[Blend]) -> CornerBlends:
         """Collect the arrays of the ``blends`` at the junctions ``corner``."""
         m = len(blends)
-        kappa, dkappa, length = np.zeros(m), np.zeros(m), np.zeros(m)
+        kappa, dkappa = np.zeros(m), np.zeros(m)
+        length = np.array([b.length for b in blends], dtype=float).reshape(m)
         plane = np.zeros((m, 3), dtype=bool)
-        for i, b in enumerate(blends):
-            length[i] = b.length
-            if isinstance(b, Arc):
-                kappa[i] = 1.0 / b.radius
-                plane[i, list(b.plane_axes)] = True
-            else:
-                kappa[i], dkappa[i] = b.peak_curvature, b.sharpness
-                plane[i] = np.abs(b.normal) < 1.0 - 1e-12  # the axes in the corner plane
+        is_arc = [isinstance(b, Arc) for b in blends]
+        arcs = [b for b, a in zip(blends, is_arc) if a]
+        if arcs:
+            i = np.flatnonzero(is_arc)
+            kappa[i] = 1.0 / np.array([b.radius for b in arcs])
+            axes = np.array([b.plane_axes for b in arcs])
+            plane[i, axes[:, 0]] = plane[i, axes[:, 1]] = True
+        others = [b for b, a in zip(blends, is_arc) if not a]
+        if others:
+            i = np.flatnonzero(np.logical_not(is_arc))
+            kappa[i] = [b.peak_curvature for b in others]
+            dkappa[i] = [b.sharpness for b in others]
+            plane[i] = np.abs(np.array([b.normal for b in others])) < 1.0 - 1e-12  # the axes in the corner plane
         return cls(corner=np.asarray(corner, dtype=np.int64), blends=blends, curvature=kappa, curvature_rate=dkappa,
                    plane=plane, length=length)
 
@@ -283,16 +289,4 @@ def junction_speeds(
     if n > 1:
         v[1:n] = np.minimum(np.minimum(junction_limit, v_max[:-1]), v_max[1:])
     shrink = 1.0 - 1e-9  # margin against rounding: the profile must fit in the segment
-    Ls = length * shrink
-    vl = v.tolist()
-    if jerk_limited:
-        for k in range(n - 1, 0, -1):
-            vl[k] = min(vl[k], scurve_reach(vl[k + 1], Ls[k], a_max[k], j_max[k]))
-        for k in range(1, n):
-            vl[k] = min(vl[k], scurve_reach(vl[k - 1], Ls[k - 1], a_max[k - 1], j_max[k - 1]))
-    else:
-        for k in range(n - 1, 0, -1):
-            vl[k] = min(vl[k], trapezoid_reach(vl[k + 1], Ls[k], a_max[k]))
-        for k in range(1, n):
-            vl[k] = min(vl[k], trapezoid_reach(vl[k - 1], Ls[k - 1], a_max[k - 1]))
-    return np.asarray(vl) * shrink
+    return reach_passes(v, length * shrink, a_max, j_max, jerk_limited=jerk_limited) * shrink

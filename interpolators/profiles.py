@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 import ruckig
 
@@ -21,6 +22,9 @@ __all__ = [
     "scurve_phases",
     "trapezoid_reach",
     "scurve_reach",
+    "reach_many",
+    "reach_passes",
+    "phase_states",
     "trapezoid_duration",
 ]
 
@@ -130,6 +134,120 @@ def scurve_reach(v: float, length: float, a_max: float, j_max: float) -> float:
         c = 2.0 * v * A * A - 2.0 * length * A * J
         dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
     return v + max(dv, 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _reach(v, length, a_max, j_max, jerk_limited, powers):  # pragma: no cover - compiled
+    """:func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach`, compiled: the same operations in the same
+    order. ``powers`` holds the exponents ``2, 3, 1/3`` as data, so that each power is the C library's ``pow`` as
+    in Python (a constant exponent 2 would be compiled to ``x * x``)."""
+    if not jerk_limited:
+        return math.sqrt(v * v + 2.0 * a_max * length)
+    if length <= 0:
+        return v
+    A, J = a_max, j_max
+    dv_lim = A * A / J
+    p, q = 2.0 * v, -length * math.sqrt(J)
+    disc = (q / 2.0) ** powers[0] + (p / 3.0) ** powers[1]
+    sd = math.sqrt(disc)
+    x = math.copysign(abs(-q / 2.0 + sd) ** powers[2], -q / 2.0 + sd) + math.copysign(
+        abs(-q / 2.0 - sd) ** powers[2], -q / 2.0 - sd
+    )
+    for _ in range(2):
+        x -= (x * x * x + p * x + q) / (3.0 * x * x + p)
+    dv = x * x
+    if dv > dv_lim:
+        b = 2.0 * v * J + A * A
+        c = 2.0 * v * A * A - 2.0 * length * A * J
+        dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
+    return v + (0.0 if 0.0 > dv else dv)  # Python's max(dv, 0.0)
+
+
+_POWERS = np.array([2.0, 3.0, 1.0 / 3.0])
+
+
+@numba.njit(cache=True, nogil=True)
+def _reach_many(v, length, a_max, j_max, jerk_limited, powers, out):  # pragma: no cover - compiled
+    for i in range(v.shape[0]):
+        out[i] = _reach(v[i], length[i], a_max[i], j_max[i], jerk_limited, powers)
+
+
+def reach_many(v: np.ndarray, length: np.ndarray, a_max: np.ndarray, j_max: np.ndarray, *,
+               jerk_limited: bool) -> np.ndarray:
+    """:func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach` of each row, bit for bit (compiled)."""
+    v, length, a_max, j_max = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), np.shape(v)))
+                               for x in (v, length, a_max, j_max))
+    out = np.empty(len(v))
+    _reach_many(v, length, a_max, j_max, bool(jerk_limited), _POWERS, out)
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _passes(v, length, a_max, j_max, jerk_limited, powers):  # pragma: no cover - compiled
+    n = length.shape[0]
+    for k in range(n - 1, 0, -1):
+        r = _reach(v[k + 1], length[k], a_max[k], j_max[k], jerk_limited, powers)
+        if r < v[k]:  # Python's min(v, r)
+            v[k] = r
+    for k in range(1, n):
+        r = _reach(v[k - 1], length[k - 1], a_max[k - 1], j_max[k - 1], jerk_limited, powers)
+        if r < v[k]:
+            v[k] = r
+
+
+def reach_passes(v: np.ndarray, length: np.ndarray, a_max: np.ndarray, j_max: np.ndarray, *,
+                 jerk_limited: bool) -> np.ndarray:
+    """The speeds ``v`` (shape ``(n + 1,)``, at the ends of ``n`` segments) lowered, backwards then forwards, to
+    what each segment can reach from the next (previous) one: ``v[k] = min(v[k], reach(v[k + 1], length[k],
+    ...))`` for ``k = n - 1 .. 1``, then ``v[k] = min(v[k], reach(v[k - 1], length[k - 1], ...))`` for
+    ``k = 1 .. n - 1``, ``reach`` being :func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach`; bit for
+    bit the Python loops (compiled). Returns a new array."""
+    out = np.array(v, dtype=float)
+    _passes(out, np.ascontiguousarray(length, dtype=float), np.ascontiguousarray(a_max, dtype=float),
+            np.ascontiguousarray(j_max, dtype=float), bool(jerk_limited), _POWERS)
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _phase_states(t, phase, start, duration, p0, v0, a0, jerk, end_at, s, v, a):  # pragma: no cover - compiled
+    for i in range(t.shape[0]):
+        k = phase[i]
+        d = duration[k]
+        tau = t[i] - start[k]
+        tau = tau if tau > 0.0 else 0.0  # np.clip(tau, 0, d): maximum, then minimum
+        tau = tau if tau < d else d
+        jj = jerk[k]
+        aa = a0[k]
+        vv = v0[k]
+        s[i] = p0[k] + tau * (vv + tau * (0.5 * aa + tau * (jj / 6.0)))
+        v[i] = vv + tau * (aa + 0.5 * jj * tau)
+        a[i] = aa + jj * tau
+        if tau >= d and end_at[k] == end_at[k]:
+            s[i] = end_at[k]
+
+
+def phase_states(t: np.ndarray, phase: np.ndarray, start: np.ndarray, duration: np.ndarray, p0: np.ndarray,
+                 v0: np.ndarray, a0: np.ndarray, jerk: np.ndarray, end_at: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Path position, speed and acceleration at the times ``t`` inside their phases (index ``phase``), compiled.
+
+    Each phase has a ``start`` time, a ``duration``, its start state (``p0``, ``v0``, ``a0``) and its ``jerk``;
+    the time into the phase is clipped to ``0 .. duration``. A phase whose ``end_at`` is not NaN ends its segment:
+    at (or past) its end the position is exactly ``end_at`` (the segment's length, no rounding residue).
+
+    Returns
+    -------
+    s, v, a : ndarray, shape (n,)
+        ``p0 + tau (v0 + tau (a0/2 + tau j/6))``, ``v0 + tau (a0 + j tau / 2)``, ``a0 + j tau`` [mm, mm/s, mm/s^2],
+        operation by operation the array expressions of these formulas.
+    """
+    n = len(t)
+    s, v, a = np.empty(n), np.empty(n), np.empty(n)
+    start, duration, p0, v0, a0, jerk, end_at = (np.ascontiguousarray(x, dtype=float)
+                                                 for x in (start, duration, p0, v0, a0, jerk, end_at))
+    _phase_states(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(phase, dtype=np.int64), start, duration,
+                  p0, v0, a0, jerk, end_at, s, v, a)
+    return s, v, a
 
 
 class _Ruckig:

@@ -35,6 +35,7 @@ import dataclasses
 import math
 from collections.abc import Iterator, Sequence
 
+import numba
 import numpy as np
 
 from vcnc.core.errors import InputError
@@ -140,11 +141,10 @@ class Line:
         """
         start, end = _rows(start, "Line start"), _rows(end, "Line end")
         length, direction = _unit_rows(end - start)
-        out = []
-        for a, b, n, u in zip(start, end, length.tolist(), direction):
-            line = object.__new__(cls)
+        new = object.__new__
+        out = [new(cls) for _ in range(len(length))]
+        for line, a, b, n, u in zip(out, list(start), list(end), length.tolist(), list(direction)):
             line.start, line.end, line.length, line.direction = a, b, n, u
-            out.append(line)
         return out
 
     def point_at(self, s: np.ndarray | float) -> np.ndarray:
@@ -676,17 +676,21 @@ class SplineCurve:
                  derivatives: tuple | None = None) -> None:
         if not (math.isfinite(u0) and math.isfinite(u1) and u0 < u1):
             raise InputError(f"SplineCurve needs u0 < u1, got {u0!r}, {u1!r}")
-        self.spline, self.u0, self.u1 = spline, float(u0), float(u1)
-        self._d = derivatives or (spline.derivative(1), spline.derivative(2), spline.derivative(3))
-        t = np.asarray(spline.t, dtype=float)
-        brk = np.unique(np.concatenate([[u0, u1], t[(t > u0) & (t < u1)]]))
-        f = np.linspace(0.0, 1.0, subdivisions + 1)[:-1]
-        nodes = np.append((brk[:-1, None] + np.diff(brk)[:, None] * f[None, :]).ravel(), brk[-1])
+        d = derivatives or (spline.derivative(1), spline.derivative(2), spline.derivative(3))
+        nodes = _table_nodes(spline.t, u0, u1, subdivisions)
+        q = _quadrature_points(nodes)
+        speed = np.linalg.norm(d[0](q.ravel()), axis=1).reshape(q.shape)
+        sigma = np.linalg.norm(d[0](nodes), axis=1)
+        self._fill(spline, u0, u1, d, nodes, speed, sigma, spline(u0) if start is None else start,
+                   spline(u1) if end is None else end)
+
+    def _fill(self, spline, u0: float, u1: float, d: tuple, nodes: np.ndarray, speed: np.ndarray, sigma: np.ndarray,
+              start, end) -> None:
+        """Set the piece from its table ``nodes``, ``|C'|`` at their quadrature points (``speed``, shape
+        ``(len(nodes) - 1, 5)``) and at the nodes (``sigma``), and its end points."""
+        self.spline, self.u0, self.u1, self._d = spline, float(u0), float(u1), d
         h = np.diff(nodes)
-        q = nodes[:-1, None] + h[:, None] * _GL_X[None, :]
-        speed = np.linalg.norm(self._d[0](q.ravel()), axis=1).reshape(q.shape)
         s_nodes = np.concatenate([[0.0], np.cumsum(h * (speed @ _GL_W))])
-        sigma = np.linalg.norm(self._d[0](nodes), axis=1)
         self._nodes = nodes
         # u(s): cubic Hermite on each table interval, as power-form coefficients (highest first) in s - s_j
         du = 1.0 / sigma
@@ -696,9 +700,44 @@ class SplineCurve:
         self._s_nodes = s_nodes
         self._u_poly = np.stack([t / h, (slope - du[:-1]) / h - t, du[:-1], nodes[:-1]])
         self.length = float(s_nodes[-1])
-        self.start = _point(spline(u0) if start is None else start, "SplineCurve start")
-        self.end = _point(spline(u1) if end is None else end, "SplineCurve end")
+        self.start = _point(start, "SplineCurve start")
+        self.end = _point(end, "SplineCurve end")
         self._bounds: tuple[float, float, np.ndarray] | None = None
+
+    @classmethod
+    def pieces(cls, spline, breaks: np.ndarray, *, start: np.ndarray | None = None, end: np.ndarray | None = None,
+               subdivisions: int = 8) -> tuple[SplineCurve, ...]:
+        """The pieces ``breaks[i] <= u <= breaks[i + 1]`` of one curve, the first from ``start`` and the last to
+        ``end`` (default the curve's points), the inner ends ``C(breaks[i])``; their :meth:`bounds` computed.
+
+        The same pieces, bit for bit, as ``SplineCurve(spline, breaks[i], breaks[i + 1], ...)`` one by one (each
+        value is evaluated point by point, by the same expressions), with the curve and its derivatives evaluated
+        once for all the pieces instead of a few times per piece.
+        """
+        brk = np.asarray(breaks, dtype=float)
+        if not (np.all(np.isfinite(brk)) and np.all(brk[1:] > brk[:-1])) or len(brk) < 2:
+            raise InputError(f"SplineCurve.pieces needs increasing finite breaks, got {brk!r}")
+        d = (spline.derivative(1), spline.derivative(2), spline.derivative(3))
+        nodes = [_table_nodes(spline.t, u0, u1, subdivisions) for u0, u1 in zip(brk[:-1], brk[1:])]
+        q = [_quadrature_points(nd) for nd in nodes]
+        speed = np.linalg.norm(d[0](np.concatenate([x.ravel() for x in q])), axis=1)
+        sigma = np.linalg.norm(d[0](np.concatenate(nodes)), axis=1)
+        at = spline(brk)
+        ends = [*at[:-1], at[-1]]
+        if start is not None:
+            ends[0] = start
+        if end is not None:
+            ends[-1] = end
+        out = []
+        iq = i_n = 0
+        for i, (nd, qi) in enumerate(zip(nodes, q)):
+            piece = object.__new__(cls)
+            piece._fill(spline, brk[i], brk[i + 1], d, nd, speed[iq:iq + qi.size].reshape(qi.shape).copy(),
+                        sigma[i_n:i_n + len(nd)], ends[i], ends[i + 1])
+            iq, i_n = iq + qi.size, i_n + len(nd)
+            out.append(piece)
+        _set_table_bounds(out)
+        return tuple(out)
 
     def parameter_at(self, s: np.ndarray | float) -> np.ndarray:
         """Spline parameter ``u`` at arc length ``s`` [mm] (clipped to the piece)."""
@@ -708,6 +747,54 @@ class SplineCurve:
         x = s - self._s_nodes[j]
         c = self._u_poly[:, j]
         return np.minimum(np.maximum(((c[0] * x + c[1]) * x + c[2]) * x + c[3], self.u0), self.u1)
+
+    @staticmethod
+    def parameters(pieces: Sequence[SplineCurve], piece: np.ndarray, s: np.ndarray) -> np.ndarray:
+        """``pieces[piece[i]].parameter_at(s[i])`` for every ``i``, bit for bit, the arithmetic done at once."""
+        piece = np.asarray(piece, dtype=np.int64)
+        length = np.array([p.length for p in pieces])
+        s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), length[piece])
+        # each row's table interval in its own piece's table, as an index into the pieces' tables laid end to end
+        size = np.array([len(p._s_nodes) for p in pieces], dtype=np.int64)
+        s_nodes = np.concatenate([p._s_nodes for p in pieces])
+        j = np.empty(len(s), dtype=np.int64)
+        _table_intervals(s, piece, np.cumsum(size) - size, size, s_nodes, j)
+        x = s - s_nodes[j]
+        c = np.concatenate([np.hstack([p._u_poly, np.zeros((4, 1))]) for p in pieces], axis=1)[:, j]
+        u0 = np.array([p.u0 for p in pieces])[piece]
+        u1 = np.array([p.u1 for p in pieces])[piece]
+        return np.minimum(np.maximum(((c[0] * x + c[1]) * x + c[2]) * x + c[3], u0), u1)
+
+    @staticmethod
+    def evaluate_pieces(pieces: Sequence[SplineCurve], piece: np.ndarray, s: np.ndarray, *, frame: bool = True
+                        ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """Point, unit tangent and curvature vector at arc length ``s[i]`` (clipped to the piece) along
+        ``pieces[piece[i]]``: ``point_at``, ``tangent_at`` and ``curvature_at`` of each row, bit for bit, with
+        each curve (the pieces of one spline) evaluated once for all its rows (``frame=False``: the points
+        only, None for the others)."""
+        piece = np.asarray(piece, dtype=np.int64)
+        length = np.array([p.length for p in pieces])[piece]
+        s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), length)
+        u = SplineCurve.parameters(pieces, piece, s)
+        curve_of: dict[int, int] = {}
+        curve = np.array([curve_of.setdefault(id(p.spline), len(curve_of)) for p in pieces], dtype=np.int64)[piece]
+        first_piece = {id(p.spline): p for p in reversed(pieces)}
+        order = np.argsort(curve, kind="stable")
+        cuts = np.searchsorted(curve[order], np.arange(len(curve_of) + 1)).tolist()
+        pts = np.empty((len(s), 3))
+        tan = np.empty((len(s), 3)) if frame else None
+        curv = np.empty((len(s), 3)) if frame else None
+        for k, key in enumerate(curve_of):
+            rows = order[cuts[k]:cuts[k + 1]]
+            if len(rows):
+                p = first_piece[key]
+                pts[rows] = p.spline(u[rows])
+                if frame:
+                    tan[rows], curv[rows] = p.frame(u[rows])
+        start = np.array([p.start for p in pieces]).reshape(-1, 3)[piece]
+        end = np.array([p.end for p in pieces]).reshape(-1, 3)[piece]
+        pts = np.where((s >= length)[:, None], end, np.where((s <= 0)[:, None], start, pts))
+        return pts, tan, curv
 
     def frame(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangent and curvature vector [1/mm] at the spline parameters ``u``."""
@@ -741,31 +828,71 @@ class SplineCurve:
         Computed once, then kept (the piece does not change).
         """
         if self._bounds is None:
-            self._bounds = self._table_bounds()
+            _set_table_bounds([self])
         kappa, dkappa, t_abs = self._bounds
         return kappa, dkappa, t_abs.copy()
 
-    def _table_bounds(self) -> tuple[float, float, np.ndarray]:
-        eps = 1e-9 * (self.u1 - self.u0)
-        u = np.concatenate([self._nodes[:-1] + eps, self._nodes[1:] - eps])
-        d1, d2, d3 = self._d[0](u), self._d[1](u), self._d[2](u)
-        g11 = np.einsum("ij,ij->i", d1, d1)
-        g12 = np.einsum("ij,ij->i", d1, d2)
-        g22 = np.einsum("ij,ij->i", d2, d2)
-        g13 = np.einsum("ij,ij->i", d1, d3)
-        n = d2 * g11[:, None] - g12[:, None] * d1
-        n_u = d3 * g11[:, None] + g12[:, None] * d2 - (g13 + g22)[:, None] * d1
-        k = n / (g11 * g11)[:, None]
-        k_u = n_u / (g11 * g11)[:, None] - n * (4.0 * g12 / g11**3)[:, None]
-        sigma = np.sqrt(g11)
-        tan = d1 / sigma[:, None]
-        k_s = k_u / sigma[:, None]
-        k_perp = k_s - np.einsum("ij,ij->i", k_s, tan)[:, None] * tan
-        return (float(np.max(np.linalg.norm(k, axis=1))), float(np.max(np.linalg.norm(k_perp, axis=1))),
-                np.max(np.abs(tan), axis=0))
-
     def __repr__(self) -> str:
         return f"SplineCurve(start={self.start.tolist()}, end={self.end.tolist()}, length={self.length:.6g})"
+
+
+def _table_nodes(knots: np.ndarray, u0: float, u1: float, subdivisions: int) -> np.ndarray:
+    """Arc-length table nodes of the piece ``u0 <= u <= u1``: ``subdivisions`` per knot interval."""
+    t = np.asarray(knots, dtype=float)
+    brk = np.unique(np.concatenate([[u0, u1], t[(t > u0) & (t < u1)]]))
+    f = np.linspace(0.0, 1.0, subdivisions + 1)[:-1]
+    return np.append((brk[:-1, None] + np.diff(brk)[:, None] * f[None, :]).ravel(), brk[-1])
+
+
+def _quadrature_points(nodes: np.ndarray) -> np.ndarray:
+    """Gauss-Legendre points of each table interval, shape ``(len(nodes) - 1, 5)``."""
+    h = np.diff(nodes)
+    return nodes[:-1, None] + h[:, None] * _GL_X[None, :]
+
+
+@numba.njit(cache=True, nogil=True)
+def _table_intervals(s, piece, offset, size, s_nodes, out):  # pragma: no cover - compiled
+    """``out[i]``: ``offset[k] + j`` with ``j = searchsorted(table, s[i], side="right") - 1`` clipped to
+    ``0 .. size[k] - 2``, ``table = s_nodes[offset[k]:offset[k] + size[k]]`` of the row's piece ``k = piece[i]``
+    (the first table node above ``s[i]``, by bisection)."""
+    for i in range(s.shape[0]):
+        k = piece[i]
+        lo = 0
+        hi = size[k]
+        while lo < hi:
+            mid = (lo + hi) >> 1
+            if s_nodes[offset[k] + mid] <= s[i]:
+                lo = mid + 1
+            else:
+                hi = mid
+        out[i] = offset[k] + min(max(lo - 1, 0), size[k] - 2)
+
+
+def _set_table_bounds(pieces: list[SplineCurve]) -> None:
+    """:meth:`SplineCurve.bounds` of pieces of one curve, their derivatives evaluated at once (each row by the
+    same expressions as for one piece; the maxima are exact)."""
+    d = pieces[0]._d
+    u = np.concatenate([np.concatenate([p._nodes[:-1] + 1e-9 * (p.u1 - p.u0), p._nodes[1:] - 1e-9 * (p.u1 - p.u0)])
+                        for p in pieces])
+    d1, d2, d3 = d[0](u), d[1](u), d[2](u)
+    g11 = np.einsum("ij,ij->i", d1, d1)
+    g12 = np.einsum("ij,ij->i", d1, d2)
+    g22 = np.einsum("ij,ij->i", d2, d2)
+    g13 = np.einsum("ij,ij->i", d1, d3)
+    n = d2 * g11[:, None] - g12[:, None] * d1
+    n_u = d3 * g11[:, None] + g12[:, None] * d2 - (g13 + g22)[:, None] * d1
+    k = n / (g11 * g11)[:, None]
+    k_u = n_u / (g11 * g11)[:, None] - n * (4.0 * g12 / g11**3)[:, None]
+    sigma = np.sqrt(g11)
+    tan = d1 / sigma[:, None]
+    k_s = k_u / sigma[:, None]
+    k_perp = k_s - np.einsum("ij,ij->i", k_s, tan)[:, None] * tan
+    first = np.cumsum([0] + [2 * (len(p._nodes) - 1) for p in pieces[:-1]])
+    kappa = np.maximum.reduceat(np.linalg.norm(k, axis=1), first)
+    dkappa = np.maximum.reduceat(np.linalg.norm(k_perp, axis=1), first)
+    t_abs = np.maximum.reduceat(np.abs(tan), first, axis=0)
+    for p, a, b, c in zip(pieces, kappa.tolist(), dkappa.tolist(), t_abs):
+        p._bounds = (a, b, c)
 
 
 Segment = Line | Arc | ClothoidPair
