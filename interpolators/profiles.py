@@ -113,34 +113,23 @@ def scurve_reach(v: float, length: float, a_max: float, j_max: float) -> float:
     -------
     float
         [mm/s]
+
+    Notes
+    -----
+    Evaluated by the compiled kernel the look-ahead's passes run (:func:`reach_passes`), so that a speed
+    computed here and one computed there agree to the bit.
     """
-    if length <= 0:
-        return v
-    A, J = a_max, j_max
-    dv_lim = A * A / J
-    # short change: x = sqrt(dv): x^3 + 2 v x - L sqrt(J) = 0 (one positive real root)
-    p, q = 2.0 * v, -length * math.sqrt(J)
-    disc = (q / 2.0) ** 2 + (p / 3.0) ** 3
-    sd = math.sqrt(disc)
-    x = math.copysign(abs(-q / 2.0 + sd) ** (1.0 / 3.0), -q / 2.0 + sd) + math.copysign(
-        abs(-q / 2.0 - sd) ** (1.0 / 3.0), -q / 2.0 - sd
-    )
-    for _ in range(2):  # Newton polish: the Cardano sum loses digits when v is large
-        x -= (x * x * x + p * x + q) / (3.0 * x * x + p)
-    dv = x * x
-    if dv > dv_lim:
-        # long change: J dv^2 + (2 v J + A^2) dv + 2 v A^2 - 2 L A J = 0
-        b = 2.0 * v * J + A * A
-        c = 2.0 * v * A * A - 2.0 * length * A * J
-        dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
-    return v + max(dv, 0.0)
+    return float(_reach(float(v), float(length), float(a_max), float(j_max), True, _POWERS))
 
 
 @numba.njit(cache=True, nogil=True)
 def _reach(v, length, a_max, j_max, jerk_limited, powers):  # pragma: no cover - compiled
-    """:func:`scurve_reach` (``jerk_limited``) or :func:`trapezoid_reach`, compiled: the same operations in the same
-    order. ``powers`` holds the exponents ``2, 3, 1/3`` as data, so that each power is the C library's ``pow`` as
-    in Python (a constant exponent 2 would be compiled to ``x * x``)."""
+    """:func:`scurve_reach` (``jerk_limited``; its closed form: the cubic of a short change ``x^3 + 2 v x - L
+    sqrt(J) = 0`` with ``x = sqrt(dv)``, Cardano's root polished by two Newton steps, and the quadratic ``J dv^2 +
+    (2 v J + A^2) dv + 2 v A^2 - 2 L A J = 0`` of a long change ``dv > A^2/J``) or :func:`trapezoid_reach`,
+    compiled: the operations of the Python form it replaced, in its order (tests/interpolators/test_fast_kernels.py
+    keeps that form). ``powers`` holds the exponents ``2, 3, 1/3`` as data, so that each power is the C library's
+    ``pow`` as in Python (a constant exponent 2 would be compiled to ``x * x``)."""
     if not jerk_limited:
         return math.sqrt(v * v + 2.0 * a_max * length)
     if length <= 0:

@@ -2,12 +2,15 @@
 
 Each kernel replaced a Python loop or a per-object evaluation (interpolation of dense CAM programs); the
 setpoints must not change by one bit, so each is checked here against the form it replaced on hand-made inputs:
-the look-ahead's reach (``scurve_reach``, ``trapezoid_reach``) and its backward/forward passes, the B-spline
+the look-ahead's reach (the Python form of ``scurve_reach`` it replaced, written out here, and ``trapezoid_reach``)
+and its backward/forward passes, the B-spline
 design matrix (scipy's), the fit's chord distance (its numpy form, written out here), and the pieces of a fitted
 curve built and evaluated at once (``SplineCurve`` one piece at a time).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
@@ -17,6 +20,28 @@ from interpolators.dense import chord_distance, cubic_basis, fit_run
 from interpolators.lookahead import junction_speeds
 from interpolators.profiles import reach_many, reach_passes, scurve_reach, trapezoid_reach
 from toolpaths.geometry import SplineCurve
+
+
+def _scurve_reach_python(v: float, length: float, a_max: float, j_max: float) -> float:
+    """``profiles.scurve_reach`` as it was in Python before the compiled kernel replaced it."""
+    if length <= 0:
+        return v
+    A, J = a_max, j_max
+    dv_lim = A * A / J
+    p, q = 2.0 * v, -length * math.sqrt(J)
+    disc = (q / 2.0) ** 2 + (p / 3.0) ** 3
+    sd = math.sqrt(disc)
+    x = math.copysign(abs(-q / 2.0 + sd) ** (1.0 / 3.0), -q / 2.0 + sd) + math.copysign(
+        abs(-q / 2.0 - sd) ** (1.0 / 3.0), -q / 2.0 - sd
+    )
+    for _ in range(2):
+        x -= (x * x * x + p * x + q) / (3.0 * x * x + p)
+    dv = x * x
+    if dv > dv_lim:
+        b = 2.0 * v * J + A * A
+        c = 2.0 * v * A * A - 2.0 * length * A * J
+        dv = (-b + math.sqrt(b * b - 4.0 * J * c)) / (2.0 * J)
+    return v + max(dv, 0.0)
 
 
 def _bits(a) -> np.ndarray:
@@ -38,11 +63,23 @@ def test_reach_many_is_the_scalar_reach(jerk_limited):
     v, length, a, j = _reach_inputs()
     got = reach_many(v, length, a, j, jerk_limited=jerk_limited)
     if jerk_limited:
-        ref = [scurve_reach(*x) for x in zip(v.tolist(), length.tolist(), a.tolist(), j.tolist())]
+        ref = [_scurve_reach_python(*x) for x in zip(v.tolist(), length.tolist(), a.tolist(), j.tolist())]
+        assert np.array_equal(_bits([scurve_reach(*x) for x in zip(v, length, a, j)]), _bits(ref))
     else:
         ref = [trapezoid_reach(*x) for x in zip(v.tolist(), length.tolist(), a.tolist())]
     assert np.array_equal(_bits(got), _bits(ref))
     assert np.all(got >= v)  # a reach never loses speed
+
+
+def test_scurve_reach_covers_the_length():
+    # the reached speed's change dv, with zero end accelerations, takes T = dv/A + A/J (dv >= A^2/J) or
+    # 2 sqrt(dv/J) and covers (v0 + v1) T / 2: that distance is the length given
+    for v, length, a, j in zip(*_reach_inputs()):
+        dv = scurve_reach(v, length, a, j) - v
+        if dv < 1e-6 * v:
+            continue  # a change within v's last digits: the difference does not resolve T
+        T = dv / a + a / j if dv >= a * a / j else 2.0 * math.sqrt(dv / j)
+        assert (2.0 * v + dv) * T / 2.0 == pytest.approx(length, rel=1e-9)
 
 
 def test_scurve_reach_of_zero_length_is_the_start_speed():
@@ -52,7 +89,7 @@ def test_scurve_reach_of_zero_length_is_the_start_speed():
 def _passes_by_loop(v, length, a, j, jerk_limited):
     """The look-ahead's passes as the Python loops they were."""
     vl = list(v)
-    reach = (lambda s, L, a_, j_: scurve_reach(s, L, a_, j_)) if jerk_limited else (
+    reach = (lambda s, L, a_, j_: _scurve_reach_python(s, L, a_, j_)) if jerk_limited else (
         lambda s, L, a_, j_: trapezoid_reach(s, L, a_))
     n = len(length)
     for k in range(n - 1, 0, -1):
