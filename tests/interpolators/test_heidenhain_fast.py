@@ -34,8 +34,8 @@ from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.heidenhain_fast import PlainWords, plain_words
 from interpolators.heidenhain_words import source_blocks
-from interpolators.program import Block
 from interpolators.tilted import Kinematics, RotaryAxis
+from tests.interpolators.block_digest import program_digest
 from vcnc.errors import GCodeError, InputError
 
 #: A B/C trunnion table with its B pivot off the machine zero (M128, PLANE), tools with length and radius.
@@ -148,25 +148,7 @@ def reading(text: str, context: MachineContext, *, shortcuts: bool, source: str 
         prog = parse_heidenhain(text, source=source, context=context, shortcuts=shortcuts)
     except (GCodeError, InputError) as exc:
         return [f"error: {exc}"]
-    out = [repr((prog.axes, prog.notes, prog.messages, prog.name))]
-    for b in prog.blocks:
-        fields = [_exact(getattr(b, f.name)) for f in dataclasses.fields(Block) if f.name != "segment"]
-        seg = b.segment
-        if seg is not None:
-            fields.append(type(seg).__name__)
-            fields.extend(_exact(getattr(seg, s)) for s in type(seg).__slots__)
-        out.append(" ".join(fields))
-    return out
-
-
-def _exact(v) -> str:
-    if isinstance(v, np.ndarray):
-        return v.tobytes().hex()
-    if isinstance(v, float):
-        return v.hex()
-    if isinstance(v, tuple):
-        return "(" + ",".join(_exact(x) for x in v) + ")"
-    return repr(v)
+    return program_digest(prog)
 
 
 def assert_same(text: str, context: MachineContext = CONTEXT) -> list[str]:

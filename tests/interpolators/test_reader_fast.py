@@ -16,7 +16,6 @@ block deletes and errors, under each dialect. The corpus, when present, is read 
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import random
 
@@ -29,7 +28,7 @@ from interpolators._words import program_text
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
 from interpolators.iso_words import plain_words
-from interpolators.program import Block
+from tests.interpolators.block_digest import program_digest
 from vcnc.errors import GCodeError
 
 DIALECTS = ("linuxcnc", "fanuc", "haas", "grbl")
@@ -121,28 +120,7 @@ def reading(text: str, context: MachineContext, *, shortcuts: bool) -> list[str]
         prog = parse_iso(text, source="t.ngc", context=context, shortcuts=shortcuts)
     except GCodeError as exc:
         return [f"error: {exc}"]
-    out = [repr((prog.axes, prog.notes, prog.messages, prog.name))]
-    for b in prog.blocks:
-        fields = []
-        for f in dataclasses.fields(Block):  # every field, also one added later (Block.plain must set it)
-            if f.name != "segment":
-                fields.append(_exact(getattr(b, f.name)))
-        seg = b.segment
-        if seg is not None:
-            fields.append(type(seg).__name__)
-            fields.extend(_exact(getattr(seg, s)) for s in type(seg).__slots__)
-        out.append(" ".join(fields))
-    return out
-
-
-def _exact(v) -> str:
-    if isinstance(v, np.ndarray):
-        return v.tobytes().hex()
-    if isinstance(v, float):
-        return v.hex()
-    if isinstance(v, tuple):
-        return "(" + ",".join(_exact(x) for x in v) + ")"
-    return repr(v)
+    return program_digest(prog)
 
 
 def assert_same(text: str, dialect: str) -> list[str]:
