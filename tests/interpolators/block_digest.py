@@ -1,12 +1,17 @@
 """A program's reading as text, bit for bit: what the readers' shortcuts (``iso_fast``, ``heidenhain_fast``) must
-give exactly as their general paths do."""
+give exactly as their general paths do; and the corpus' programs of one language to compare them on."""
 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterator
 
 import numpy as np
 
+from benchmarks.gcode_corpus import corpus_dir, manifest, origin_context
+from interpolators import detect_dialect
+from interpolators._words import program_text
+from interpolators.context import MachineContext
 from interpolators.program import Block, Program
 
 
@@ -34,3 +39,13 @@ def exact(v) -> str:  # noqa: ANN001
     if isinstance(v, tuple):
         return "(" + ",".join(exact(x) for x in v) + ")"
     return repr(v)
+
+
+def corpus_programs(dialect: str) -> Iterator[tuple[str, str, MachineContext]]:
+    """``(file, text, context of its origin)`` of each corpus program in ``dialect`` (``"iso"`` or
+    ``"heidenhain"``, by content); none when the corpus is absent."""
+    folder = corpus_dir()
+    for row in manifest(folder) if folder is not None else ():
+        text = program_text(str(folder / row["file"]))
+        if detect_dialect(text) == dialect:
+            yield row["file"], text, origin_context(row["origin"])

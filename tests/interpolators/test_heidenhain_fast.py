@@ -27,15 +27,13 @@ import re
 import numpy as np
 import pytest
 
-from benchmarks.gcode_corpus import corpus_dir, manifest, origin_context
-from interpolators import detect_dialect
-from interpolators._words import program_text
+from benchmarks.gcode_corpus import corpus_dir
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.heidenhain_fast import PlainWords, plain_words
 from interpolators.heidenhain_words import source_blocks
 from interpolators.tilted import Kinematics, RotaryAxis
-from tests.interpolators.block_digest import program_digest
+from tests.interpolators.block_digest import corpus_programs, program_digest
 from vcnc.errors import GCodeError, InputError
 
 #: A B/C trunnion table with its B pivot off the machine zero (M128, PLANE), tools with length and radius.
@@ -265,15 +263,10 @@ def test_a_long_cam_program_reads_alike():
 @pytest.mark.skipif(corpus_dir() is None, reason="gcode corpus absent (../shared/data/gcode-corpus)")
 def test_corpus_reads_alike():
     """Every TNC program of the corpus, in the context of its origin: the same reading both ways."""
-    folder = corpus_dir()
     checked = 0
-    for row in manifest(folder):
-        text = program_text(str(folder / row["file"]))
-        if detect_dialect(text) != "heidenhain":
-            continue
-        context = origin_context(row["origin"])
+    for name, text, context in corpus_programs("heidenhain"):
         fast = reading(text, context, shortcuts=True)
-        assert fast == reading(text, context, shortcuts=False), row["file"]
+        assert fast == reading(text, context, shortcuts=False), name
         checked += len(fast)
     assert checked > 20_000
 

@@ -22,13 +22,11 @@ import random
 import numpy as np
 import pytest
 
-from benchmarks.gcode_corpus import corpus_dir, manifest, origin_context
-from interpolators import detect_dialect
-from interpolators._words import program_text
+from benchmarks.gcode_corpus import corpus_dir
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
 from interpolators.iso_words import plain_words
-from tests.interpolators.block_digest import program_digest
+from tests.interpolators.block_digest import corpus_programs, program_digest
 from vcnc.errors import GCodeError
 
 DIALECTS = ("linuxcnc", "fanuc", "haas", "grbl")
@@ -185,18 +183,10 @@ def test_a_long_cam_program_reads_alike():
 @pytest.mark.skipif(corpus_dir() is None, reason="gcode corpus absent (../shared/data/gcode-corpus)")
 def test_corpus_reads_alike():
     """Every ISO program of the corpus, in the dialect of its origin: the same reading both ways."""
-    folder = corpus_dir()
     checked = 0
-    for row in manifest(folder):
-        path = folder / row["file"]
-        if path.suffix.lower() == ".h":
-            continue
-        text = program_text(str(path))
-        if detect_dialect(text) != "iso":
-            continue
-        context = origin_context(row["origin"])
+    for name, text, context in corpus_programs("iso"):
         fast = reading(text, context, shortcuts=True)
-        assert fast == reading(text, context, shortcuts=False), row["file"]
+        assert fast == reading(text, context, shortcuts=False), name
         checked += len(fast)
     assert checked > 300_000
 
