@@ -109,7 +109,7 @@ from interpolators.arcs import (
     radius_arc_tolerance,
 )
 from interpolators.compensation import CompensationError, compensate
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, Dialect, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
@@ -515,6 +515,17 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         _finish_compensation(st, blocks, source)
     if dialect.name == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+    _closing_notes(st, blocks, dialect, notes)
+    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
+    if st.extra_used:
+        blocks = fill_extra(blocks)
+    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
+                   messages=tuple(messages))
+
+
+def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes) -> None:
+    """What the whole program's reading assumed: positions read after a stop, the initial feed taken, the
+    units of a program that states none."""
     for line in sorted(st.stops_read):
         notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
                   "jog by the operator is not modelled")
@@ -524,11 +535,6 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                   "LinuxCNC and grbl refuse such a move)")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
         notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
-    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
-    if st.extra_used:
-        blocks = fill_extra(blocks)
-    return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
-                   messages=tuple(messages))
 
 
 #: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
@@ -734,12 +740,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and st.motion >= 730:
-        if rot_words:
-            w = seen[rot_words[0]]
-            where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
-                       text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
-        if axis_words or polar:
-            _canned_cycle(seen, gcodes, st, blocks, used, where, number, notes)
+        _cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
     if not axis_words and not rot_words and st.motion in (330, 331) and "motion" in gcodes:
@@ -773,6 +774,17 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes, moves: bool,
+                 rot_words: list[str]) -> None:
+    """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused."""
+    if rot_words:
+        w = seen[rot_words[0]]
+        where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
+                   text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
+    if moves:
+        _canned_cycle(seen, gcodes, st, blocks, used, where, number, notes)
 
 
 def _check_position_offset(entry, seen, st: _State, where: Where, other_axes: list[str]) -> None:

@@ -1580,19 +1580,9 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         res = _block(m, params, ln)
         if res == "end":
             break
-        if res == "m98":
-            words, _ = _words(ln.text, params)
-            count = int(words["l"][-1]) if "l" in words else 1
-            start = _m98_start(words, st) if "p" in words else _goto(words["q"][-1], pc, st)
-            frames.append({"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1})
-            pc = start
-            continue
-        if res == "m97":  # Haas "M97 Local Sub-Program Call": N<P> of this program, L times, to its M99
-            words, _ = _words(ln.text, params)
-            target = _goto(words["p"][-1], pc, st)
-            count = int(words["l"][-1]) if "l" in words else 1
-            frames.append({"kind": "m98", "ret": pc + 1, "start": target, "left": count - 1})
-            pc = target
+        if res in ("m98", "m97"):
+            frames.append(_subprogram_call(res, ln, pc, st, params))
+            pc = frames[-1]["start"]
             continue
         if res == "g65":
             frames.append(_g65_call(ln, pc, st, params))
@@ -1617,6 +1607,18 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+def _subprogram_call(res: str, ln, pc: int, st, params) -> dict:  # noqa: ANN001
+    """The frame of an M98 (``P`` a program, or ``Q`` a block of this one) or a Haas M97 ("M97 Local Sub-Program
+    Call": N<P> of this program) call, run L times to its M99."""
+    words, _ = _words(ln.text, params)
+    count = int(words["l"][-1]) if "l" in words else 1
+    if res == "m97":
+        start = _goto(words["p"][-1], pc, st)
+    else:
+        start = _m98_start(words, st) if "p" in words else _goto(words["q"][-1], pc, st)
+    return {"kind": "m98", "ret": pc + 1, "start": start, "left": count - 1}
 
 
 #: G65 argument addresses and the locals they set (Fanuc "Argument specification I"; Haas "Local Variables").

@@ -59,7 +59,7 @@ from typing import Any
 
 import controllers
 import drives
-from interpolators.context import DIALECTS, MachineContext, Tool, read_tool_table, work_offset_code
+from interpolators.context import DIALECTS, Dialect, MachineContext, Tool, read_tool_table, work_offset_code
 from interpolators.limits import AxisLimits
 from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.core.axes import EXTRA_NAMES
@@ -309,15 +309,9 @@ def _xyz_value(value: Any, path: tuple[str, ...], where: _Where) -> list[float]:
     return [float(v) for v in value]
 
 
-def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noqa: C901
-    """The ``[program]`` table: dialect, home and reference positions, work offsets, tool table."""
-    path = ("program",)
-    if not isinstance(tab, dict):
-        raise where.error("'program' must be a table", path)
-    for key in tab:
-        if key not in _PROGRAM_KEYS:
-            raise where.error(f"unknown key 'program.{key}'; expected one of: {', '.join(_PROGRAM_KEYS)}",
-                              path + (key,))
+def _build_dialect(tab: dict, path: tuple, where: _Where, file: str) -> Dialect:
+    """The ``[program]`` table's dialect and the settings that change it (units, path mode and tolerance,
+    initial feed, search paths)."""
     name = tab.get("dialect", "linuxcnc")
     if name not in DIALECTS or name == "heidenhain":
         raise where.error(f"'program.dialect' must be one of linuxcnc, fanuc, haas, grbl, got {name!r}",
@@ -347,7 +341,19 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
     for key in ("subroutine_path", "user_m_path"):
         if key in tab:
             changes[key] = _search_path(tab[key], path + (key,), where, file)
-    dialect = dataclasses.replace(DIALECTS[name], **changes)
+    return dataclasses.replace(DIALECTS[name], **changes)
+
+
+def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noqa: C901
+    """The ``[program]`` table: dialect, home and reference positions, work offsets, tool table."""
+    path = ("program",)
+    if not isinstance(tab, dict):
+        raise where.error("'program' must be a table", path)
+    for key in tab:
+        if key not in _PROGRAM_KEYS:
+            raise where.error(f"unknown key 'program.{key}'; expected one of: {', '.join(_PROGRAM_KEYS)}",
+                              path + (key,))
+    dialect = _build_dialect(tab, path, where, file)
     kwargs: dict[str, Any] = {"dialect": dialect}
     for key in ("home", "reference2"):
         if key in tab:
