@@ -20,6 +20,10 @@ def test_toolpath_then_interpolate(tmp_path, capsys):
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     assert np.allclose(np.diff(data[:, 0]), 0.002)
     assert png.stat().st_size > 1000
+    # the run in one line on stdout: the CSV's length, its sample time and axes
+    n = len(data)
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        f"{prog}: interpolated {(n - 1) * 0.002:.6g} s ({n} samples at Ts = 0.002 s, axes x, y); setpoints {out}")
 
 
 def test_identification_programs(tmp_path, capsys):

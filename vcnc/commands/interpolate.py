@@ -4,12 +4,9 @@ from __future__ import annotations
 
 import argparse
 import io
-import logging
 import sys
 
 HELP = "interpolate a program (ISO or Heidenhain) into setpoints sampled every Ts (CSV)"
-
-log = logging.getLogger(__name__)
 
 #: Samples ``vcnc interpolate`` computes without ``--max-seconds`` (5.6 h at Ts = 1 ms): a longer program is
 #: refused, naming the option, rather than running the machine out of memory (measured peak: 1.06 GB for the
@@ -292,5 +289,6 @@ def run(args: argparse.Namespace) -> int:
     if png is not None:
         with atomic_path(args.plot) as tmp:
             tmp.write_bytes(png)
-    log.info("%d samples, %.6g s, axes %s -> %s", len(sp), sp.duration, ",".join(sp.axes), args.output)
+    print(f"{args.program}: interpolated {sp.duration:.6g} s ({len(sp)} samples at Ts = {sp.sample_time:g} s, "
+          f"axes {', '.join(sp.axes)}); setpoints {args.output}")
     return 0
