@@ -26,7 +26,7 @@ from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, phase_states, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
-from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve
+from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve, rows_by_owner
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import InputError, ProgramTooLongError
@@ -429,15 +429,9 @@ def _curve_blocks(g: _Geom, piece: np.ndarray, u: np.ndarray) -> np.ndarray:
     from :func:`_curve_rows`; spline parameter ``u``) passes
     (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
     run_of = [g.runs[i] for i in sorted(g.runs)]  # the run of each of the curves
-    index: dict[int, int] = {}
-    run_ix = np.array([index.setdefault(id(run), len(index)) for run in run_of], dtype=np.int64)[piece]
-    runs = {id(run): run for run in run_of}
     out = np.empty(len(u), dtype=np.int64)
-    order = np.argsort(run_ix, kind="stable")
-    cuts = np.searchsorted(run_ix[order], np.arange(len(index) + 1)).tolist()
-    for k, key in enumerate(index):
-        rows = order[cuts[k]:cuts[k + 1]]
-        out[rows] = runs[key].block_at(u[rows])
+    for k, rows in rows_by_owner(run_of, piece):
+        out[rows] = run_of[k].block_at(u[rows])
     return out
 
 

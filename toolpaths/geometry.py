@@ -41,7 +41,7 @@ import numpy as np
 from vcnc.core.errors import InputError
 
 __all__ = ["Line", "Arc", "ClothoidPair", "SplineCurve", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS",
-           "euler_spiral"]
+           "euler_spiral", "rows_by_owner"]
 
 #: Axis letters of the three linear axes, in index order.
 AXIS_LETTERS: tuple[str, str, str] = ("x", "y", "z")
@@ -776,21 +776,14 @@ class SplineCurve:
         length = np.array([p.length for p in pieces])[piece]
         s = np.minimum(np.maximum(np.asarray(s, dtype=float), 0.0), length)
         u = SplineCurve.parameters(pieces, piece, s)
-        curve_of: dict[int, int] = {}
-        curve = np.array([curve_of.setdefault(id(p.spline), len(curve_of)) for p in pieces], dtype=np.int64)[piece]
-        first_piece = {id(p.spline): p for p in reversed(pieces)}
-        order = np.argsort(curve, kind="stable")
-        cuts = np.searchsorted(curve[order], np.arange(len(curve_of) + 1)).tolist()
         pts = np.empty((len(s), 3))
         tan = np.empty((len(s), 3)) if frame else None
         curv = np.empty((len(s), 3)) if frame else None
-        for k, key in enumerate(curve_of):
-            rows = order[cuts[k]:cuts[k + 1]]
-            if len(rows):
-                p = first_piece[key]
-                pts[rows] = p.spline(u[rows])
-                if frame:
-                    tan[rows], curv[rows] = p.frame(u[rows])
+        for k, rows in rows_by_owner([p.spline for p in pieces], piece):
+            p = pieces[k]
+            pts[rows] = p.spline(u[rows])
+            if frame:
+                tan[rows], curv[rows] = p.frame(u[rows])
         start = np.array([p.start for p in pieces]).reshape(-1, 3)[piece]
         end = np.array([p.end for p in pieces]).reshape(-1, 3)[piece]
         pts = np.where((s >= length)[:, None], end, np.where((s <= 0)[:, None], start, pts))
@@ -834,6 +827,24 @@ class SplineCurve:
 
     def __repr__(self) -> str:
         return f"SplineCurve(start={self.start.tolist()}, end={self.end.tolist()}, length={self.length:.6g})"
+
+
+def rows_by_owner(owners: Sequence[object], piece: np.ndarray) -> list[tuple[int, np.ndarray]]:
+    """The rows ``i`` grouped by the object ``owners[piece[i]]`` (by identity: the pieces of one spline, or of one
+    merged run, share it), so that each owner is evaluated once for all its rows: ``(k, rows)`` per owner with
+    rows, ``k`` the first index of ``owners`` holding it, in the order the owners first appear, the rows
+    increasing."""
+    group: dict[int, int] = {}
+    first: list[int] = []
+    of = np.empty(len(owners), dtype=np.int64)
+    for k, owner in enumerate(owners):
+        of[k] = g = group.setdefault(id(owner), len(group))
+        if g == len(first):
+            first.append(k)
+    at = of[np.asarray(piece, dtype=np.int64)]
+    order = np.argsort(at, kind="stable")
+    cuts = np.searchsorted(at[order], np.arange(len(first) + 1)).tolist()
+    return [(first[g], order[cuts[g]:cuts[g + 1]]) for g in range(len(first)) if cuts[g + 1] > cuts[g]]
 
 
 def _table_nodes(knots: np.ndarray, u0: float, u1: float, subdivisions: int) -> np.ndarray:
