@@ -219,6 +219,31 @@ def test_rotary_axis_in_degrees(capture, tmp_path, capsys):
     assert "unit 'deg' is for rotary axes" in capsys.readouterr().err
 
 
+def test_positions_logged_in_counts(capture, tmp_path, capsys):
+    """A log of integer increments without a header or time column, as Mitsubishi's sampling output writes it
+    (M700/M800/C70 "Data Output Format": one line per sample, channels separated by ", ", in the channel's output
+    unit: A-E = 10, 1, 0.1, 0.01, 0.001 um): ``--unit 0.1um`` gives the size of one count."""
+    counts = np.round(np.column_stack([capture.reference[:, 0], capture.measured[:, 0]]) / 1e-4).astype(int)
+    f = tmp_path / "sampling.txt"
+    f.write_text("".join(f"{r}, {m}\r\n" for r, m in counts))
+    out = tmp_path / "cap.csv"
+    assert main(["convert", str(f), "-o", str(out), "--columns", "x_ref=1,x=2", "--sample-time", "0.001",
+                 "--unit", "0.1um"]) == 0
+    cap = read_capture(out)
+    np.testing.assert_allclose(cap.reference[:, 0], counts[:, 0] * 1e-4, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(cap.measured[:, 0], counts[:, 1] * 1e-4, rtol=1e-12, atol=0)
+    assert np.max(np.abs(cap.measured[:, 0] - capture.measured[:, 0])) <= 0.5e-4 + 1e-12  # half a count
+    in_nm = read_capture(f, columns={"x_ref": "1", "x": "2"}, sample_time=0.001, unit="100nm")
+    np.testing.assert_allclose(in_nm.measured, cap.measured, rtol=1e-12, atol=0)
+    for bad in ("0um", "0.1 furlong", "-1um", "um0.1"):
+        assert main(["convert", str(f), "-o", str(out), "--columns", "x_ref=1,x=2", "--sample-time", "0.001",
+                     f"--unit={bad}"]) == 2
+        assert f"position unit {bad!r}: expected one of mm, um, nm" in capsys.readouterr().err
+    assert main(["convert", str(f), "-o", str(out), "--columns", "x_ref=1,x=2", "--sample-time", "0.001",
+                 "--unit", "0.001deg"]) == 2
+    assert "unit '0.001deg' is for rotary axes" in capsys.readouterr().err
+
+
 def test_delimited_bad_input(tmp_path, capsys):
     f = tmp_path / "bad.csv"
     f.write_text("time,cmd,act\n0,0,0\n0.002,1,1\n0.001,2,2\n")

@@ -18,8 +18,10 @@ def add_trace_arguments(parser: argparse.ArgumentParser, *, axes: bool = True) -
                             "following error (commanded - actual), the measured position being x_ref - x_lag")
     group.add_argument("--time-unit", choices=("s", "ms", "us"), default=None,
                        help="delimited text: unit of the time column (default s; TwinCAT ms)")
-    group.add_argument("--unit", choices=("mm", "um", "m", "in", "deg"), default=None,
-                       help="delimited text: unit of the positions (default mm; deg for rotary axes a b c)")
+    group.add_argument("--unit", default=None, metavar="UNIT",
+                       help="delimited text: unit of the positions, mm, um, nm, m, in or deg (default mm; deg for "
+                            "rotary axes a b c), or the size of one count of positions logged in increments "
+                            "(0.1um, 0.0001in, 0.001deg)")
     group.add_argument("--sample-time", type=float, default=None, metavar="S",
                        help="delimited text without a time column (LinuxCNC halsampler): the sampling period in s "
                             "(the servo period); with it a t= column counts samples (halsampler -t)")

@@ -29,21 +29,25 @@ from vcnc.traces.lag import subtract_following_error
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
-           "unit_in_name", "unit_named", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
+           "unit_in_name", "unit_named", "length_unit", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
            "with_following_errors"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
 #: Millimetres (or degrees, for "deg") per position unit.
-LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "m": 1000.0, "in": 25.4, "deg": 1.0}
+LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1000.0, "in": 25.4, "deg": 1.0}
 
 #: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
 MAX_SAMPLES = 100_000_000
 
 #: Unit names as headers and channel rows write them, to vcnc's unit names.
 _TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
-_LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "m": "m", "in": "in", "inch": "in", "deg": "deg",
+_LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "nm": "nm", "m": "m", "in": "in", "inch": "in", "deg": "deg",
                  "°": "deg"}
+#: A position unit given as the size of one count (``0.1um``, ``0.0001in``, ``0.001deg``): drives and
+#: controls that log positions in increments of their measuring system (Mitsubishi's sampling output in
+#: units A-E = 10 um ... 0.001 um, encoder counts of a drive's scope).
+_COUNT_UNIT = re.compile(r"\s*((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([^\d\s.][^\s]*)\s*")
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
@@ -173,12 +177,33 @@ def axis_of(key: str) -> str:
     return key
 
 
+def length_unit(unit: str) -> tuple[str, float] | None:
+    """A position unit as (its base unit, a key of :data:`LENGTH_UNITS`; millimetres or degrees per unit):
+    a unit name (``um``, ``µm``, ``inch``) or the size of one count (``0.1um``, ``5e-4mm``); None for
+    anything else (a count size that is not finite and > 0 included)."""
+    base = unit_named(unit, "length")
+    if base is not None:
+        return base, LENGTH_UNITS[base]
+    m = _COUNT_UNIT.fullmatch(unit)
+    base = unit_named(m.group(2), "length") if m else None
+    if base is None:
+        return None
+    size = float(m.group(1))
+    return (base, size * LENGTH_UNITS[base]) if math.isfinite(size) and size > 0 else None
+
+
 def check_units(time_unit: str | None, unit: str | None, src: str) -> None:
-    """CaptureError unless the units are ones of :data:`TIME_UNITS` and :data:`LENGTH_UNITS`."""
+    """CaptureError unless the time unit is one of :data:`TIME_UNITS` and the position unit one of
+    :data:`LENGTH_UNITS` or the size of one count (:func:`length_unit`)."""
     if time_unit is not None and time_unit not in TIME_UNITS:
         raise CaptureError(f"time unit {time_unit!r}: expected one of {', '.join(TIME_UNITS)}", file=src)
-    if unit is not None and unit not in LENGTH_UNITS:
-        raise CaptureError(f"position unit {unit!r}: expected one of {', '.join(LENGTH_UNITS)}", file=src)
+    if unit is not None and length_unit(unit) is None:
+        raise _unknown_length_unit(unit, src)
+
+
+def _unknown_length_unit(unit: str, src: str) -> CaptureError:
+    return CaptureError(f"position unit {unit!r}: expected one of {', '.join(LENGTH_UNITS)}, or the size of one count "
+                        "of positions logged in increments (e.g. 0.1um, 0.0001in, 0.001deg)", file=src)
 
 
 def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
@@ -200,15 +225,20 @@ def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
 
 
 def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
-    """Millimetres (degrees) per unit of the positions of ``axes``; ``deg`` only for rotary axes."""
+    """Millimetres (degrees) per unit of the positions of ``axes`` (a unit of :func:`length_unit`);
+    ``deg`` only for rotary axes."""
     u = unit or "mm"
+    found = length_unit(u)
+    if found is None:
+        raise _unknown_length_unit(u, src)
+    base, scale = found
     linear = [a for a in axes if a not in ROTARY_AXES]
-    if u == "deg" and linear:
-        raise CaptureError(f"unit 'deg' is for rotary axes (a, b, c); axes {linear} are linear", file=src)
-    if u != "deg" and len(linear) < len(axes) and unit is not None:
+    if base == "deg" and linear:
+        raise CaptureError(f"unit {u!r} is for rotary axes (a, b, c); axes {linear} are linear", file=src)
+    if base != "deg" and len(linear) < len(axes) and unit is not None:
         raise CaptureError(f"unit {u!r} given for rotary axes {[a for a in axes if a in ROTARY_AXES]}; "
                            "rotary positions are in deg", file=src)
-    return LENGTH_UNITS[u]
+    return scale
 
 
 def mapping_meta(axes: Sequence[str], columns: Mapping[str, str]) -> dict[str, str]:

@@ -84,8 +84,9 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         ``SetPos`` / ``ActPos`` channels.
     time_unit : {"s", "ms", "us"}, optional
         Unit of the time column (default s; TwinCAT: ms).
-    unit : {"mm", "um", "m", "in", "deg"}, optional
-        Unit of the positions (default mm; "deg" only for rotary axes).
+    unit : {"mm", "um", "nm", "m", "in", "deg"} or a count size ("0.1um"), optional
+        Unit of the positions, or the size of one count of positions logged in increments
+        (:func:`vcnc.traces.columns.length_unit`) (default mm; "deg" only for rotary axes).
     axes : sequence of str, optional
         Names for the joints of a halscope log (joint order) or the pairs of a TwinCAT export.
     resample : bool

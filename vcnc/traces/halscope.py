@@ -93,8 +93,9 @@ def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | 
     columns : mapping, optional
         ``{"x_ref": LABEL, "x": LABEL, ...}`` (``"x_lag": LABEL`` for a following error); default
         the joint position pins, paired (module docstring).
-    unit : {"mm", "um", "m", "in", "deg"}, optional
-        Unit of the positions (default mm: the machine units of a metric configuration).
+    unit : {"mm", "um", "nm", "m", "in", "deg"} or a count size ("0.1um"), optional
+        Unit of the positions, or the size of one count of positions logged in increments
+        (:func:`vcnc.traces.columns.length_unit`) (default mm: the machine units of a metric configuration).
     axes : sequence of str, optional
         Names of the joints, in joint order.
 

@@ -126,8 +126,9 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
         ``ActPos`` (or ``PosDiff``) channels.
     time_unit : {"ms", "s", "us"}, optional
         Unit of the time columns (default ms, as Scope writes; FILETIME ticks are detected).
-    unit : {"mm", "um", "m", "in", "deg"}, optional
-        Unit of the positions (default mm).
+    unit : {"mm", "um", "nm", "m", "in", "deg"} or a count size ("0.1um"), optional
+        Unit of the positions, or the size of one count of positions logged in increments
+        (:func:`vcnc.traces.columns.length_unit`) (default mm).
     axes : sequence of str, optional
         Names of the axes of the ``SetPos`` channels, in their order.
     resample : bool
