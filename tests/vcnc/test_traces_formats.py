@@ -221,8 +221,8 @@ def test_rotary_axis_in_degrees(capture, tmp_path, capsys):
 
 def test_positions_logged_in_counts(capture, tmp_path, capsys):
     """A log of integer increments without a header or time column, as Mitsubishi's sampling output writes it
-    (M700/M800/C70 "Data Output Format": one line per sample, channels separated by ", ", in the channel's output
-    unit: A-E = 10, 1, 0.1, 0.01, 0.001 um): ``--unit 0.1um`` gives the size of one count."""
+    (C70 manual, 2.7.9.4 "Data Output Format": one line per sample, the channels' values in their output unit,
+    e.g. "B(1μm)", separated by commas, CR+LF): ``--unit 0.1um`` gives the size of one count."""
     counts = np.round(np.column_stack([capture.reference[:, 0], capture.measured[:, 0]]) / 1e-4).astype(int)
     f = tmp_path / "sampling.txt"
     f.write_text("".join(f"{r}, {m}\r\n" for r, m in counts))
