@@ -33,6 +33,7 @@ from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
 from identification.capture_checks import check_capture, check_scale
 from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
 from identification.dead_time import FINEST_STEP_S, delay_reference, estimate_delay
+from identification.excitation import excitation
 from identification.filter_signature import shows_filter, signature
 from identification.ga import GAOptions
 from identification.initial_state import centred_statistics, fit_initial_state, starts_in_motion
@@ -197,6 +198,7 @@ def _equation_error_fit(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: floa
         "regressor": dataclasses.asdict(opt),
         "delay": delay_fit,
         "offset": offset.to_dict(),
+        "excitation": excitation(xr, T),
     }
     if centred:
         fit["equation_error"]["integrator_start_free"] = True

@@ -58,6 +58,7 @@ import numpy as np
 
 from interpolators.program import Program
 from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes, plot_plane
+from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
 from vcnc.core.jsonsafe import plain
@@ -645,7 +646,9 @@ def compare(
         notes.append(f"the true machine has measurement noise in its loop: its contour error is the mean of "
                      f"{len(true_runs)} noise realisations (seeds {run.seeds[0]}-{run.seeds[-1]}); plots show the "
                      "first")
-    predicted, descr = _predictions(_models_per_axis(models, run.axes), run, kw, seed=seed, notes=notes)
+    per_axis = _models_per_axis(models, run.axes)
+    predicted, descr = _predictions(per_axis, run, kw, seed=seed, notes=notes)
+    notes.extend(_beyond_range_notes(per_axis, run, true_ce.include))
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=run.toolpath, truth=run.name, setpoints=run.setpoints, true=true_ce,
@@ -756,6 +759,28 @@ def _predictions(per_axis: dict[str, Any], run: _Truth, kw: dict, *, seed: int, 
         predicted[label] = contour_error(run.path, pred, run.axes, **kw)
         descr[label] = {a: _describe(m) + _stand_in(m, a) for a, m in mods.items()}
     return predicted, descr
+
+
+def _beyond_range_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | None) -> list[str]:
+    """A note for each axis whose commanded speed or acceleration on the ``samples`` the metrics cover goes
+    beyond the operating range of the record its model was identified from (``fit['excitation']``,
+    :mod:`identification.excitation`)."""
+    from identification.excitation import beyond_range
+
+    notes = []
+    for i, a in enumerate(run.axes):
+        rec = (getattr(per_axis.get(a), "fit", None) or {}).get("excitation")
+        beyond = beyond_range(rec, run.setpoints.position[:, i], run.sample_time, samples=samples) if rec else {}
+        if beyond:
+            u = axis_unit(a)
+            units = {"speed": f"{u}/s", "acceleration": f"{u}/s^2"}
+            used = " and ".join(f"{k} {v[0]:.4g} {units[k]}" for k, v in beyond.items())
+            seen = " and ".join(f"{v[1]:.4g} {units[k]}" for k, v in beyond.items())
+            notes.append(f"the toolpath commands {a} at {used}, beyond the operating range of the record its model "
+                         f"was identified from ({seen}): the prediction extrapolates the "
+                         "model (identify from a record that reaches them, e.g. the program of `vcnc toolpath "
+                         "identification`)")
+    return notes
 
 
 def _truth_run(machine, sp: Setpoints, seed: int) -> tuple[np.ndarray, np.ndarray | None]:

@@ -78,6 +78,23 @@ def test_thesis_case_predicted_max_contour_error(thesis_results, name, toolpath)
     noisy = any(m.axis(a).noise is not None for a in m.axes)  # the ball-screw bench: encoder steps only
     assert d["true"]["runs"] == (10 if noisy else 1)
     assert abs(d["prediction_error_pct"]["max"]) <= 5.0, d["prediction_error_pct"]
+    # the models' record (200 mm/s random moves) covers the toolpath's speeds: no extrapolation noted
+    assert not any("beyond the operating range" in n for n in d["notes"])
+
+
+def test_a_model_of_a_slow_record_is_noted_beyond_its_range():
+    """A record at 10 mm/s (F600, as CAM programs cut) fixes the model where it ran; the 200 mm/s diamond is
+    beyond that range, and the comparison says so per axis (identification.excitation)."""
+    m = load_machine("fadal-pid")
+    prog = interpolators.parse_program(toolpaths.random_moves(20, 5.0, 600, seed=2, axes=m.axes))
+    cap = m.simulate(interpolators.interpolate(prog, limits=m.limits, sample_time=m.sample_time), seed=1)
+    models = {a: identify(cap, axis=a, diagnose=False) for a in m.axes}
+    assert all(0.5 < mod.fit["excitation"]["speed_mm_s"] <= 10.0 + 1e-9 for mod in models.values())
+    notes = [n for n in compare("fadal-pid", models, "diamond", truth_runs=1).notes if "beyond the operating" in n]
+    assert [n.split()[3] for n in notes] == ["x", "y"]
+    assert all("at speed 14" in n for n in notes)  # 200 mm/s along the diamond's 45 deg sides: 141 mm/s per axis
+    slow = compare("fadal-pid", models, "diamond", feed=5.0, truth_runs=1).notes
+    assert not any("beyond the operating" in n for n in slow)
 
 
 @pytest.mark.slow  # the thesis cases: identification and diagnosis of three machines (minutes)

@@ -136,6 +136,16 @@ def weak_poles_line(model) -> str:
                    "and 4.2, or too little excitation); the model still predicts the capture as reported above")
 
 
+def excitation_line(model) -> str:
+    """The operating range the record covered (``fit['excitation']``, :mod:`identification.excitation`)."""
+    rec = model.fit["excitation"]
+    u = axis_unit(model.axis)
+    return (f"operating range of the record: commanded speed up to {rec['speed_mm_s']:.4g} {u}/s (99 % of its moving "
+            f"time; largest {rec['speed_max_mm_s']:.4g} {u}/s), acceleration up to {rec['acceleration_max_mm_s2']:.4g} "
+            f"{u}/s^2: the model is fitted there, and predicts a faster reference by extrapolation (vcnc compare "
+            "notes it)")
+
+
 def setpoint_filter_lines(model) -> list[str]:
     """What to say of the setpoint filter ``model.setpoint_filter_s`` and its ``fit['setpoint_filter']`` record."""
     rec = model.fit.get("setpoint_filter")
@@ -345,6 +355,8 @@ def run(args: argparse.Namespace) -> int:
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
         out.write(weak_poles_line(model) + "\n")
+    if "excitation" in fit:
+        out.write(excitation_line(model) + "\n")
     if model.validation:
         from identification.diagnosis import format_before_after
 
