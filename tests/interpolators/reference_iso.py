@@ -389,11 +389,11 @@ _FADAL_MOTION = re.compile(r"g0*([0-3]|7[346]|8\d)(?![\d.])")
 def _fadal_text(text: str) -> str:
     """A Fadal line's words as Fanuc reads them (see the module docstring): codes that move nothing gone,
     rigid tapping as G84/G74, ``R0+v`` as ``R+v``, H without G43 as G43 / G49."""
+    text = re.sub(r"r0(?=[-+])", "r", text)
     if re.search(r"g0*51(?![\d.])", text):
         text = re.sub(r"r[-+]?[\d.]+", "", re.sub(r"g0*51(?![\d.])", "", text))
     text = _FADAL_GONE.sub("", text)
     text = re.sub(r"(g0*[78]4)\.1", r"\1", text)
-    text = re.sub(r"r0(?=[-+])", "r", text)
     h = re.search(r"h([\d.]+)", text)
     if h and not re.search(r"g0*4[1-9](?![\d.])", text):
         text += "g49" if float(h.group(1)) == 0 else "g43"
