@@ -11,8 +11,9 @@ word Fadal gives no meaning of its own is read as under ``--dialect fanuc``
 is read.
 
 Sources: Fadal User Manual (April 2003), section 1 NC word summary ("E Fixture offset", "L Subroutine
-definition or call", as quoted in this package since session 20) and section 6 "Fixed Subroutines" (L9101
-probe, L9201 engraving .. L9901: "called by the use of an L word (L9101 - L9901)",
+definition or call", as :mod:`interpolators.iso`'s refusals under the other dialects quote it) and section
+6 "Fixed Subroutines" (L9101 probe, L9201 engraving .. L9901: "called by the use of an L word (L9101 -
+L9901)",
 https://www.scribd.com/document/627180324/Sect-6-Fixed-Subroutines); helmancnc.com "Fadal G Codes M Codes
 Fixed Subroutines" (G4 "P= Time in Milliseconds", G8 "Accelerate (No Feed Ramps)", G9 "Decelerate (Feed
 Ramps) Also: In Position Check", G10 "L02= Fixture .. P= 0, 1-48", G15 "YZ Circular Interpolation with the
@@ -56,6 +57,7 @@ from __future__ import annotations
 import dataclasses
 import re
 from collections.abc import Callable, Iterator
+from typing import Any
 
 from interpolators._words import Where
 from interpolators.context import FADAL_FIXTURES, MachineContext, work_offset_code
@@ -118,7 +120,7 @@ def core_context(context: MachineContext) -> MachineContext:
 
 @dataclasses.dataclass
 class _Reader:
-    st: object  # the ISO executor's state: wcs, motion (read and set here)
+    st: Any  # the ISO executor's state (interpolators.iso): wcs set, motion read here
     note: Callable[[str], None]
     invalidate: Callable[[], None]  # the state's offsets changed: plain moves judge them again
     subs: dict[int, list[FlowLine]] = dataclasses.field(default_factory=dict)
@@ -254,7 +256,7 @@ def _centreless_arc(reader: _Reader, words: list[Word], keys: dict[int, Word]) -
     """A block of axis words in the modal G2/G3 without I, J, K or R: a straight feed move (G1), as shop
     programs rely on after ``G3 I-2. L2`` (``G91 X-2.`` back to the start). Our reading: the manual at hand
     does not say; Fanuc refuses such a block."""
-    if keys.keys() & {0, 10, 20, 30} or getattr(reader.st, "motion", None) not in _ARCS:
+    if keys.keys() & {0, 10, 20, 30} or reader.st.motion not in _ARCS:
         return words
     if any(w.letter in "IJKR" for w in words) or not any(w.letter in "XYZ" for w in words):
         return words
@@ -304,7 +306,7 @@ def _l_word(reader: _Reader, words: list[Word], keys: dict[int, Word],
         return words, None, 1
     w = ls[0]
     motion = next((k for k in keys if k in (0, 10, 20, 30)), None)
-    st_motion = getattr(reader.st, "motion", None)
+    st_motion = reader.st.motion
     arc = motion in _ARCS or motion is None and st_motion in _ARCS and any(x.letter in "IJKR" for x in words)
     rest = [x for x in words if x is not w]
     if arc:

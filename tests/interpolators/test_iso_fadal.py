@@ -210,3 +210,16 @@ def test_command_line_dialect_fadal(tmp_path, capsys):
     assert {3, 4, 8} <= set(lines)  # the subroutines' own lines
     assert re.search(r"interpolated", capsys.readouterr().out)
     assert np.isfinite(np.loadtxt(tmp_path / "sp.csv", delimiter=",", skiprows=1)).all()
+
+
+def test_default_reading_names_dialect_fadal(tmp_path, capsys):
+    """A Fadal program without --dialect: LinuxCNC's reading refuses it and the error names --dialect fadal
+    (Fanuc, Haas and grbl refuse it too); nothing is read as Fadal without being told."""
+    from vcnc.cli import main
+
+    program = tmp_path / "plate.nc"
+    program.write_text(SUBROUTINES)
+    assert main(["interpolate", str(program), "-o", str(tmp_path / "sp.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "--dialect fadal: the program reads as that control's G-code" in err
+    assert not (tmp_path / "sp.csv").exists()

@@ -113,8 +113,10 @@ def read_program(args: argparse.Namespace, machine=None):
         if getattr(args, "dialect", None) or context.dialect.name != "linuxcnc" or not path.is_file() \
                 or path.stat().st_size > HINT_MAX_BYTES:
             raise
-        readers = []
+        readers: list[str] = []
         for name in ("fanuc", "haas", "grbl", "fadal"):
+            if name == "fadal" and readers:  # Fadal reads what Fanuc reads: named only for Fadal's own words
+                break
             try:
                 load_program(path, context=context.with_dialect(name))
             except GCodeError:
