@@ -48,8 +48,10 @@ What the dialect reads:
   ``G84.1``/``G74.1`` (rigid tapping cycles) run as G84/G74. G45-G48 run as Fanuc's tool position offsets,
   which their Fadal names describe (expansion = increase, reduction = decrease of the travel by the offset
   the block's H names). ``G4 P`` is in milliseconds.
+* ``G10 L02 P1``-``P6`` (fixtures E1-E6) and ``L10 P R0`` (tool length) as Fanuc's; ``L12 P R0`` sets a
+  diameter (halved: the tool table keeps radii).
 * Refused naming them: ``G15`` (YZ circular interpolation with the A axis), ``G17.1``/``G17.2`` (A/B word
-  swap), Format 1's ``R1``-``R9`` words.
+  swap), Format 1's ``R1``-``R9`` words, ``G10 L02 P7``-``P48`` and G10's read functions (L13-L15, L100-L109).
 """
 
 from __future__ import annotations
@@ -246,6 +248,8 @@ def _translate(reader: _Reader, fl: FlowLine) -> tuple[list[Word], tuple[int, in
         words.append(w)
     if 510 in keys:  # G51's R0 is the ramp speed
         words = [w for w in words if w.letter != "R"]
+    if 100 in keys:
+        words = _g10(reader, words, where)
     words = _fixture(reader, words, where)
     words = _length(reader, words, keys)
     words = _centreless_arc(reader, words, keys)
@@ -263,6 +267,23 @@ def _centreless_arc(reader: _Reader, words: list[Word], keys: dict[int, Word]) -
     first = next(w for w in words if w.letter in "XYZ")
     reader.note("X/Y/Z in the modal G2/G3 without I, J, K or R: a G1 move (Fadal, our reading)")
     return [Word("G", 1.0, first.column, first.text), *words]
+
+
+def _g10(reader: _Reader, words: list[Word], where: Where) -> list[Word]:
+    """Fadal ``G10`` (helmancnc.com's list): ``L02 P1-6`` (fixtures E1-E6) and ``L10 P R0`` (tool length) as
+    Fanuc's; ``L12 P R0`` is a diameter (Fanuc's L12 a radius: halved); the fixtures E7-E48 and the read
+    functions L13-L15, L100-L109 are refused naming them."""
+    level = next((w for w in words if w.letter == "L"), None)
+    p = next((w for w in words if w.letter == "P"), None)
+    if level is None or level.value in (10.0,) or level.value == 2 and p is not None and p.value <= 6:
+        return words
+    if level.value == 12:
+        reader.note("G10 L12 R: a diameter (Fadal), half of it the radius")
+        return [Word("R", w.value / 2.0, w.column, w.text) if w.letter == "R" else w for w in words]
+    what = ("G10 L02 P7-P48: setting Fadal fixture offsets E7-E48" if level.value == 2 else
+            f"G10 L{level.value:g} (Fadal: reading offsets into R registers, or setting R values)")
+    where.fail(f"{what}: not supported", column=level.column, text=level.text,
+               expected="G10 L02 P1-P6, L10 or L12 (fixtures E1-E6, tool length, diameter)")
 
 
 def _fixture(reader: _Reader, words: list[Word], where: Where) -> list[Word]:

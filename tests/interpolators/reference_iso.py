@@ -82,8 +82,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   them, the main program after it, ``L<nn><rr>`` runs subroutine nn rr times where it stands; ``L<k>`` on a
   ``G2``/``G3`` block runs the arc k times, on a cycle block it is the cycle's count; ``E<n>`` selects
   fixture offset n (E1-E6: G54-G59, E0: none); ``H<n>`` without G43/G44/G49 is ``G43 H<n>`` (``H0``:
-  ``G49``); ``G8``/``G9``/``G50``/``G51 R..``/``G51.2``/``G84.2``/``G74.2`` move nothing, ``G84.1``/``G74.1``
-  are G84/G74; ``R0+v`` is ``R v``; X/Y/Z without a centre in the modal G2/G3 is a G1 move.
+  ``G49``); ``G10 L12 R0`` is a diameter; ``G8``/``G9``/``G50``/``G51 R..``/``G51.2``/``G84.2``/``G74.2``
+  move nothing, ``G84.1``/``G74.1`` are G84/G74; ``R0+v`` is ``R v``; X/Y/Z without a centre in the modal
+  G2/G3 is a G1 move.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
   ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
@@ -393,6 +394,8 @@ def _fadal_text(text: str) -> str:
     if re.search(r"g0*51(?![\d.])", text):
         text = re.sub(r"r[-+]?[\d.]+", "", re.sub(r"g0*51(?![\d.])", "", text))
     text = _FADAL_GONE.sub("", text)
+    if re.search(r"g0*10(?![\d.])", text) and re.search(r"l0*12(?![\d.])", text):  # L12 R0: a diameter
+        text = re.sub(r"r([-+]?[\d.]+)", lambda m: f"r{float(m.group(1)) / 2:.6f}", text)
     text = re.sub(r"(g0*[78]4)\.1", r"\1", text)
     h = re.search(r"h([\d.]+)", text)
     if h and not re.search(r"g0*4[1-9](?![\d.])", text):

@@ -223,3 +223,18 @@ def test_default_reading_names_dialect_fadal(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "--dialect fadal: the program reads as that control's G-code" in err
     assert not (tmp_path / "sp.csv").exists()
+
+
+def test_g10_sets_fixtures_lengths_and_diameters():
+    """helmancnc.com's Fadal list: G10 "L02= Fixture X, Y, Z, A, B, P= 0, 1-48", "L10= Length, P= 1-99, R0=
+    Amount", "L12= Diameter, P= 1-99, R0= Amount" (R0 written with its sign, as the Fusion post writes R0)."""
+    text = ("G21 G90 G10 L02 P2 X10. Y20. Z-5.\nG10 L10 P3 R0+12.5\nG10 L12 P3 R0+8.\nG0 X0 Y0 E2\nH3 Z0\n"
+            "G1 G41 D3 X10. F100.\nG40 X20.\nM30\n")
+    prog = _parse(text)
+    assert prog.blocks[0].target.tolist() == [10.0, 20.0, 100.0]
+    assert prog.blocks[1].target[2] == pytest.approx(-5.0 + 12.5)
+    assert prog.blocks[2].target[1] == pytest.approx(20.0 + 4.0)  # radius 4 (diameter 8), left of the +X travel
+    assert "G10 L12 R: a diameter (Fadal), half of it the radius" in prog.notes
+    assert _reference_matches(text) is None
+    with pytest.raises(GCodeError, match=r"G10 L02 P7-P48: setting Fadal fixture offsets E7-E48: not supported"):
+        _parse("G21 G10 L02 P7 X1.\nM30\n")
