@@ -179,8 +179,10 @@ def _definitions(reader: _Reader, first: FlowLine, lines: Iterator[FlowLine]) ->
                 reader.subs[current].append(dataclasses.replace(fl, words=rest))
             current = None
         elif any(w.value == 30 for w in ms):
-            if current is not None:
-                _where(fl).fail(f"M30 inside subroutine {current} (no M17 closes it)",
+            if current is not None:  # iso_flow.run reads an M99 outside an M98 call as the program's end (M30)
+                m99 = any(re.fullmatch(r"M\s*0*99", w.text, re.I) for w in ms)
+                _where(fl).fail(f"{'M99' if m99 else 'M30'} inside subroutine {current} (no M17 closes it"
+                                f"{'; M99 returns from an M98 subprogram' if m99 else ''})",
                                 expected=f"M17 closing subroutine {current} before the M30")
             reader.note("Fadal subroutines defined before the M30; the main program runs after it")
             return

@@ -131,6 +131,7 @@ def test_subroutines_before_m30_run_where_called():
     ("G21\nL100\nX0\nM17\n", r":2: subroutine definitions from L100 not ended by an M30"),
     ("G21\nL100\nX0\nL200\nM17\nM30\n", r":4: L200 opens subroutine 2 inside subroutine 1"),
     ("G21\nL100\nX0\nM30\n", r":4: M30 inside subroutine 1 \(no M17 closes it\)"),
+    ("G21\nL100\nX0\nM99\nM30\n", r":4: M99 inside subroutine 1 \(no M17 closes it; M99 returns from an M98 "),
     ("G21\nL100\nX0\nM17\nG0 X1.\nL200\nM17\nM30\n", r":5: a block between Fadal subroutine definitions"),
     ("G21\nL100\nG0 X0\nM17\nM30\nL201\nM30\n", r":6:1: L201 calls subroutine 2, which is not defined"),
     ("G21 G0 X0 Z5.\nL9101 R1+1. Z-1.\nM30\n", r"Fadal R1 word .*: not supported"),
