@@ -239,3 +239,13 @@ def test_g10_sets_fixtures_lengths_and_diameters():
     assert _reference_matches(text) is None
     with pytest.raises(GCodeError, match=r"G10 L02 P7-P48: setting Fadal fixture offsets E7-E48: not supported"):
         _parse("G21 G10 L02 P7 X1.\nM30\n")
+
+
+def test_g45_to_g48_change_the_travel_by_the_h_offset():
+    """helmancnc.com's Fadal list: G45 "Tool Length Offset Single Expansion", G46 "Single Reduction" (G47, G48
+    double): Fanuc's tool position offsets (increase, decrease) by the value the H word names, not G43."""
+    text = "G21 G90 G0 X0 Y0 Z0 E1\nG91 G45 X10. H1\nG46 Y10. H1\nG90\nM30\n"
+    prog = _parse(text)
+    assert [b.target[:2].tolist() for b in prog.blocks[1:]] == [[120.0, 50.0], [120.0, 50.0]]  # H1: 10 mm
+    assert not any("H without G43" in n for n in prog.notes)
+    assert _reference_matches(text) is None
