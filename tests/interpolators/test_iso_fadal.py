@@ -22,6 +22,7 @@ from interpolators.context import DIALECTS, MachineContext, Tool, work_offset_co
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
+from vcnc.core.errors import InputError
 from vcnc.engine.machine_file import parse_machine_text
 from vcnc.errors import GCodeError
 
@@ -80,6 +81,11 @@ def test_fixture_offsets_e1_to_e48_and_e0():
     own, E0 no fixture offset: machine coordinates. The offset applies from the block it is on, also to the
     plain moves after it."""
     assert [work_offset_code(c) for c in ("E1", "E6", "E7", "E48")] == ["G54", "G59", "E7", "E48"]
+    for bad in ("E0", "E49"):  # E0 is no offset: nothing to set
+        with pytest.raises(InputError, match="unknown work offset"):
+            work_offset_code(bad)
+    with pytest.raises(InputError, match="given twice"):
+        MachineContext(work_offsets={"E1": (0, 0, 0), "G54": (1, 0, 0)})
     prog = _parse("G21 G90 G0 X1. Y2. Z0 E1\nX1. Y2. E2\nX1. Y2. E7\nX1. Y2.\nE0 X1. Y2.\nX3. Y4.\nM30\n")
     assert [b.target.tolist() for b in prog.blocks] == [
         [101.0, 52.0, -20.0], [301.0, 2.0, -20.0], [201.0, 12.0, -20.0], [201.0, 12.0, -20.0], [1.0, 2.0, -20.0],
