@@ -455,7 +455,7 @@ def _fadal_run(ln: _Line, subs: dict, state: dict, depth: int) -> None:
     state["motion"] = 80 if re.search(r"g0*80(?!\d)", text) else motion
     count = 1
     lw = re.search(r"l([\d.]+)", text)
-    if lw and not _FADAL_CYCLE.search(text) and "g10" not in text:
+    if lw and not _FADAL_CYCLE.search(text) and not re.search(r"g0*(?:10|65)(?![\d.])|m0*9[78](?!\d)", text):
         if motion not in (2, 3):
             raise ReferenceError(f"Fadal L word outside a call, an arc or a cycle: {ln.text}")
         count, text = int(float(lw.group(1))), text[:lw.start()] + text[lw.end():]

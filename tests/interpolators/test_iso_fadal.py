@@ -255,3 +255,12 @@ def test_g45_to_g48_change_the_travel_by_the_h_offset():
     assert [b.target[:2].tolist() for b in prog.blocks[1:]] == [[120.0, 50.0], [120.0, 50.0]]  # H1: 10 mm
     assert not any("H without G43" in n for n in prog.notes)
     assert _reference_matches(text) is None
+
+
+def test_format_2_m98_subprograms_keep_their_l_count():
+    """Format 2 is "Fanuc style" (Fusion Fadal post): an M98 P L call runs its O program L times, its L no
+    Fadal subroutine call."""
+    text = "O0001\nG21 G90 G0 X0 Y0 Z0 E1\nM98 P1000 L2\nG90\nM30\nO1000\nG91 G0 X1.\nM99\n"
+    prog = _parse(text)
+    assert [b.target[0] for b in prog.blocks] == [100.0, 101.0, 102.0]
+    assert _reference_matches(text) is None
