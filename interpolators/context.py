@@ -28,7 +28,8 @@ from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
-           "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code"]
+           "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code",
+           "FADAL_FIXTURES"]
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
@@ -39,6 +40,13 @@ WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.
 EXTENDED_OFFSETS = 300
 
 _EXTENDED = re.compile(r"G0*54\.1\s*P0*(\d+)|G0*154\s*P0*(\d+)|G0*1([12]\d)")
+
+#: Fadal fixture offsets ``E1``-``E48`` (Fadal User Manual, section 1 NC word summary: "E Fixture offset"; G10
+#: L02 P1-48 writes them, helmancnc.com "Fadal G Codes M Codes Fixed Subroutines"): one numbered table, whose
+#: first six entries a Format 2 program may also select as G54-G59 (the Fusion Fadal post writes offset n as
+#: ``E<n>`` or, n <= 6, ``G<53+n>``), so E1-E6 are the keys G54-G59 and E7-E48 are keys of their own.
+FADAL_FIXTURES = 48
+_FADAL = re.compile(r"E0*(\d+)")
 
 
 def extended_offset(n: int) -> str:
@@ -51,7 +59,8 @@ def extended_offset(n: int) -> str:
 def work_offset_code(code: str) -> str:
     """The table key of a work-offset code: one of :data:`WORK_OFFSETS`, or ``"G54.1 P<n>"`` for an
     additional offset written ``G54.1 P<n>`` (Fanuc, n <= 300), ``G154 P<n>`` (Haas, n <= 99) or
-    ``G110``-``G129`` (Haas: G154 P1-P20; Haas "G154 Select Work Coordinates P1-P99").
+    ``G110``-``G129`` (Haas: G154 P1-P20; Haas "G154 Select Work Coordinates P1-P99"), or a Fadal fixture
+    offset ``E1``-``E48`` (``"G54"``-``"G59"`` for E1-E6, ``"E7"``-``"E48"`` beyond: :data:`FADAL_FIXTURES`).
 
     Raises
     ------
@@ -61,6 +70,10 @@ def work_offset_code(code: str) -> str:
     text = str(code).strip().upper()
     if text in WORK_OFFSETS:
         return text
+    m = _FADAL.fullmatch(text)
+    if m is not None and 1 <= int(m.group(1)) <= FADAL_FIXTURES:
+        n = int(m.group(1))
+        return WORK_OFFSETS[n - 1] if n <= 6 else f"E{n}"
     m = _EXTENDED.fullmatch(text)
     if m is not None:
         if m.group(1) is not None:
@@ -72,7 +85,8 @@ def work_offset_code(code: str) -> str:
         if 1 <= n <= EXTENDED_OFFSETS:
             return extended_offset(n)
     raise InputError(f"unknown work offset {code!r}: expected one of {', '.join(WORK_OFFSETS)}, "
-                     f"G54.1 P1 .. G54.1 P{EXTENDED_OFFSETS} (Fanuc), G154 P1 .. G154 P99 or G110 .. G129 (Haas)")
+                     f"G54.1 P1 .. G54.1 P{EXTENDED_OFFSETS} (Fanuc), G154 P1 .. G154 P99 or G110 .. G129 (Haas), "
+                     f"E1 .. E{FADAL_FIXTURES} (Fadal fixture offsets; E1-E6 are G54-G59)")
 
 
 def _xyz(value, name: str) -> np.ndarray:
@@ -145,10 +159,10 @@ class Dialect:
     Attributes
     ----------
     name : str
-        ``"linuxcnc"``, ``"fanuc"``, ``"haas"``, ``"grbl"`` or ``"heidenhain"``.
+        ``"linuxcnc"``, ``"fanuc"``, ``"haas"``, ``"grbl"``, ``"fadal"`` or ``"heidenhain"``.
     dwell_p_unit : {"s", "ms"}
-        Unit of ``G04 P``: seconds in LinuxCNC and grbl, milliseconds (integer P) in Fanuc and
-        Haas.
+        Unit of ``G04 P``: seconds in LinuxCNC and grbl, milliseconds (integer P) in Fanuc, Haas and
+        Fadal ("G4 Dwell P= Time in Milliseconds", helmancnc.com's Fadal list).
     default_units : {"mm", "inch"}
         Units of a program that states neither G20 nor G21 (a warning note is given).
     continuous_path : bool
@@ -223,6 +237,9 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
     "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
     "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl"),
+    # Fadal VMC (interpolators.iso_fadal): Format 2 (Fanuc-like) with Fadal's own words; units and path mode
+    # are machine settings there (G20/G21 only check them), vcnc's defaults (mm, continuous path) apply
+    "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True),
     "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
 })
 
@@ -237,7 +254,8 @@ class MachineContext:
         Work-offset table, keyed by code (``"G54"`` ... ``"G59.3"``, see :data:`WORK_OFFSETS`, and the
         additional offsets ``"G54.1 P1"`` ... ``"G54.1 P300"``; ``"G154 P<n>"`` and ``"G110"``-``"G129"``
         name the same entries, see :func:`work_offset_code`) [mm, machine coordinates]. Missing codes
-        are zero. G54 is active at program start.
+        are zero. G54 is active at program start. Fadal fixture offsets ``"E7"`` ... ``"E48"`` are keys of their
+        own (E1-E6 are G54-G59; ``"E0"``, no fixture offset, is always zero and cannot be set).
     tools : mapping of int to Tool
         Tool table by tool number. A tool missing from it has length and radius 0 (with a note).
     home : ndarray (3,)
@@ -308,9 +326,11 @@ class MachineContext:
             raise InputError(f"kinematics must be an interpolators.tilted.Kinematics, got {self.kinematics!r}")
 
     def offset(self, code: str) -> np.ndarray:
-        """Work offset of ``code`` (``"G54"`` ..., ``"G54.1 P7"``, see :func:`work_offset_code`) [mm]; zero
-        when the table has none."""
+        """Work offset of ``code`` (``"G54"`` ..., ``"G54.1 P7"``, ``"E7"``, see :func:`work_offset_code`) [mm];
+        zero when the table has none, and for Fadal's ``"E0"`` (no fixture offset)."""
         value = self.work_offsets.get(code)
+        if value is None and code == "E0":  # Fadal E0: no fixture offset
+            return np.zeros(3)
         return value if value is not None else self.work_offsets.get(work_offset_code(code), np.zeros(3))
 
     def tool(self, number: int) -> Tool | None:

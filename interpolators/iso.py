@@ -114,6 +114,7 @@ from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, 
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
+from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
@@ -445,6 +446,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         With file, line, column, the offending text and what was expected; an unsupported
         feature is named (``G38 probing: ...``).
     """
+    fadal = context.dialect.name == "fadal"
+    if fadal:  # Fadal's own words first (interpolators.iso_fadal), Fanuc's rules for the rest
+        text, context = fadal_text(text, source), core_context(context)
     dialect = context.dialect
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
@@ -475,9 +479,12 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
-    for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
-                  tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
-                  decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None):
+    lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
+                tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
+                decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None)
+    if fadal:
+        lines = fadal_lines(lines, st, notes.add, plain.reset)
+    for fl in lines:
         if fl.raw.lstrip().startswith("/"):
             notes.add("/ block delete lines run (switch off)")
         if fl.file != source and fl.file not in external:
@@ -1323,7 +1330,7 @@ def _io_words(mcodes, seen, where: Where) -> dict:
             where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
                        column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
         # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
-        fadal = " (E1-E48 select a Fadal fixture offset: not supported)" if 0 <= w.value <= 48 and \
+        fadal = " (E1-E48 select a Fadal fixture offset: use --dialect fadal)" if 0 <= w.value <= 48 and \
             w.value == int(w.value) else ""
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
@@ -1452,7 +1459,7 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
             w = seen[letter]
             # Fadal User Manual section 1: "L Subroutine definition or call" (L<nn>00 opens subroutine nn,
             # M17 ends it; L<nn><count> calls it)
-            fadal = " (a Fadal subroutine definition or call: not supported)" if letter == "L" and \
+            fadal = " (a Fadal subroutine definition or call: use --dialect fadal)" if letter == "L" and \
                 w.value >= 100 and w.value == int(w.value) else ""
             where.fail(f"unknown word {w.text!r} outside a drilling cycle{fadal}", column=w.column, text=w.text,
                        expected=f"{letter} only in drilling cycles (G73, G83)" if letter == "Q" else

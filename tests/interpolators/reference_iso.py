@@ -76,6 +76,15 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Fanuc ``G16`` (Series 16/18-MC operator's manual 9.2 "Polar coordinate command"): under G90 and
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
   cancels.
+  Fadal VMCs (``fadal`` dialect; Fadal User Manual section 1 NC words and section 6 fixed subroutines,
+  helmancnc.com's Fadal G/M code list, the Fusion "Fadal" post processor): read as Fanuc after a pass over
+  the lines in the order they run: ``L<nn>00`` .. ``M17`` subroutines stand before the ``M30`` that ends
+  them, the main program after it, ``L<nn><rr>`` runs subroutine nn rr times where it stands; ``L<k>`` on a
+  ``G2``/``G3`` block runs the arc k times, on a cycle block it is the cycle's count; ``E<n>`` selects
+  fixture offset n (E1-E6: G54-G59, E0: none); ``H<n>`` without G43/G44/G49 is ``G43 H<n>`` (``H0``:
+  ``G49``); ``G10 L12 R0`` is a diameter; ``G8``/``G9``/``G50``/``G51 R..``/``G51.2``/``G84.2``/``G74.2``
+  move nothing, ``G84.1``/``G74.1`` are G84/G74; ``R0+v`` is ``R v``; X/Y/Z without a centre in the modal
+  G2/G3 is a G1 move.
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
   ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
@@ -373,6 +382,86 @@ class _Line:
     macro: tuple[str, str] | None = None  # Fanuc macro B statement: (if|goto|while|do|end, rest)
 
 
+_FADAL_GONE = re.compile(r"g0*(?:8|9|50|51\.2|84\.2|74\.2)(?![\d.])")
+_FADAL_CYCLE = re.compile(r"g0*(?:73|74|76|8[1-9])(?:\.1)?(?![\d])")
+_FADAL_MOTION = re.compile(r"g0*([0-3]|7[346]|8\d)(?![\d.])")
+
+
+def _fadal_text(text: str) -> str:
+    """A Fadal line's words as Fanuc reads them (see the module docstring): codes that move nothing gone,
+    rigid tapping as G84/G74, ``R0+v`` as ``R+v``, H without G43 as G43 / G49."""
+    text = re.sub(r"r0(?=[-+])", "r", text)
+    if re.search(r"g0*51(?![\d.])", text):
+        text = re.sub(r"r[-+]?[\d.]+", "", re.sub(r"g0*51(?![\d.])", "", text))
+    text = _FADAL_GONE.sub("", text)
+    if re.search(r"g0*10(?![\d.])", text) and re.search(r"l0*12(?![\d.])", text):  # L12 R0: a diameter
+        text = re.sub(r"r([-+]?[\d.]+)", lambda m: f"r{float(m.group(1)) / 2:.6f}", text)
+    text = re.sub(r"(g0*[78]4)\.1", r"\1", text)
+    h = re.search(r"h([\d.]+)", text)
+    if h and not re.search(r"g0*4[1-9](?![\d.])", text):
+        text += "g49" if float(h.group(1)) == 0 else "g43"
+    elif h and re.search(r"g0*4[12](?![\d.])", text) and "d" not in text:
+        text = text.replace("h", "d", 1)
+    return text
+
+
+def _fadal_lines(lines: list[_Line]) -> list[_Line]:
+    """The lines of a Fadal program in the order they run: subroutines (``L<nn>00`` .. ``M17`` before the
+    ``M30``) taken out and run where ``L<nn><rr>`` calls them, arcs with ``L`` repeated."""
+    subs: dict[int, list[_Line]] = {}
+    out: list[_Line] = []
+    i, current = 0, None
+    first = next((k for k, ln in enumerate(lines) if re.fullmatch(r"l\d+", ln.text) and int(ln.text[1:]) % 100 == 0),
+                 None)
+    if first is not None:
+        out, i = lines[:first], first
+        while i < len(lines) and not (current is None and re.search(r"m0*30(?!\d)", lines[i].text)):
+            ln = lines[i]
+            if re.fullmatch(r"l\d+", ln.text) and int(ln.text[1:]) % 100 == 0:
+                current = int(ln.text[1:]) // 100
+                subs[current] = []
+            elif current is not None:
+                text = re.sub(r"m0*17(?!\d)", "", ln.text)
+                if text:
+                    subs[current].append(dataclasses.replace(ln, text=text))
+                if text != ln.text:
+                    current = None
+            i += 1
+        i += 1
+    state = {"motion": 0}
+    for ln in out + lines[i:] if first is not None else lines:
+        _fadal_run(ln, subs, state, 0)
+    return state.get("out", [])
+
+
+def _fadal_run(ln: _Line, subs: dict, state: dict, depth: int) -> None:
+    """Append line ``ln`` (or the subroutine it calls) to ``state["out"]`` as it runs."""
+    if depth > 10:
+        raise ReferenceError("Fadal subroutines nested too deep")
+    out = state.setdefault("out", [])
+    text = ln.text
+    call = re.fullmatch(r"l(\d+)", text)
+    if call and int(call.group(1)) % 100:
+        v = int(call.group(1))
+        for _ in range(v % 100):
+            for sub in subs[v // 100]:
+                _fadal_run(sub, subs, state, depth + 1)
+        return
+    text = _fadal_text(text)
+    codes = [int(c) for c in _FADAL_MOTION.findall(text)]
+    motion = codes[-1] if codes else state["motion"]
+    if not codes and motion in (2, 3) and re.search(r"[xyz]", text) and not re.search(r"[ijkr]", text):
+        text, motion = "g1" + text, 1
+    state["motion"] = 80 if re.search(r"g0*80(?!\d)", text) else motion
+    count = 1
+    lw = re.search(r"l([\d.]+)", text)
+    if lw and not _FADAL_CYCLE.search(text) and not re.search(r"g0*(?:10|65)(?![\d.])|m0*9[78](?!\d)", text):
+        if motion not in (2, 3):
+            raise ReferenceError(f"Fadal L word outside a call, an arc or a cycle: {ln.text}")
+        count, text = int(float(lw.group(1))), text[:lw.start()] + text[lw.end():]
+    out.extend([dataclasses.replace(ln, text=text)] * count)
+
+
 _OWORD = re.compile(r"o(<[^>]*>|\d+)(sub|endsub|call|return|if|elseif|else|endif|while|endwhile|do|repeat|"
                     r"endrepeat|break|continue)?(.*)$")
 
@@ -554,6 +643,7 @@ class _Machine:
         self.linear: int | None = self.motion
         self.plane = 17
         self.wcs = "G54"
+        self.fadal = False  # read E words as Fadal fixture offsets
         self.offsets = {code: np.array(context.offset(code), float) for code in _WCS.values()}
         self.rotation = dict.fromkeys(_WCS.values(), 0.0)
         self.g92 = np.zeros(3)
@@ -748,6 +838,10 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.tool_length = words.pop("z")[-1] * m.scale
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
+    if m.fadal and "e" in words:  # Fadal fixture offset E<n>: E1-E6 are G54-G59, E0 none
+        n = int(words.pop("e")[-1])
+        m.wcs = "E0" if n == 0 else _WCS[530 + 10 * n] if n <= 6 else f"E{n}"
+        _use_system(m, m.wcs)
     for code in g:
         if _extended(m, code, g, words):
             pass
@@ -1534,8 +1628,13 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     ReferenceError
         The program uses a feature this reference does not model.
     """
+    fadal = context.dialect.name == "fadal"
+    if fadal:  # Fadal's own words in a pass over the lines (_fadal_lines), Fanuc's rules for the rest
+        context = dataclasses.replace(context, dialect=dataclasses.replace(context.dialect, name="fanuc"))
     fanuc = context.dialect.name == "fanuc"
     lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
+    if fadal:
+        lines = _fadal_lines(lines)
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
     for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
                          - own):
@@ -1544,6 +1643,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             lines += _lines(other.lstrip("\ufeff"), fanuc=fanuc)
     st = _structure(lines)
     m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
+    m.fadal = fadal
     frames: list[dict] = []
     counters: dict[int, int] = {}
     percent = 0

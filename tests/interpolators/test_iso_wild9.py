@@ -95,10 +95,10 @@ def test_a_fagor_drilling_cycle_reads_z_as_the_reference_plane_and_i_as_the_dept
 def test_fadal_fixture_offsets_and_subroutines_are_named():
     # Fadal User Manual section 1: E selects a fixture offset, L<nn>00 opens subroutine nn (M17 ends it)
     with pytest.raises(GCodeError, match=r":2:14: word 'E1' outside M66-M68 \(digital/analog I/O\) \(E1-E48 select "
-                                         r"a Fadal fixture offset: not supported\)"):
+                                         r"a Fadal fixture offset: use --dialect fadal\)"):
         parse_program("G21\nG90 G0 X0 Y0 E1\nM2\n", context=_in_dialect("fanuc"))
     with pytest.raises(GCodeError, match=r":1:4: unknown word 'L100' outside a drilling cycle \(a Fadal subroutine "
-                                         r"definition or call: not supported\)"):
+                                         r"definition or call: use --dialect fadal\)"):
         parse_program("N7 L100\nX0 Y0\nM17\nM30\n", context=_in_dialect("fanuc"))
 
 

@@ -41,8 +41,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def add_context_arguments(parser: argparse.ArgumentParser) -> None:
     """``--dialect``, ``--tool-table``, ``--subroutine-path``, ``--user-m-path`` and ``--initial-feed``, shared by
     the commands that read part programs."""
-    parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl"),
-                        help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas) "
+    parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl", "fadal"),
+                        help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas, fadal) "
                              "(default: the machine's, else linuxcnc)")
     parser.add_argument("--tool-table", metavar="FILE",
                         help="tool table for G43 H, G41/G42 D and TOOL CALL n|\"NAME\": LinuxCNC's "
@@ -113,8 +113,10 @@ def read_program(args: argparse.Namespace, machine=None):
         if getattr(args, "dialect", None) or context.dialect.name != "linuxcnc" or not path.is_file() \
                 or path.stat().st_size > HINT_MAX_BYTES:
             raise
-        readers = []
-        for name in ("fanuc", "haas", "grbl"):
+        readers: list[str] = []
+        for name in ("fanuc", "haas", "grbl", "fadal"):
+            if name == "fadal" and readers:  # Fadal reads what Fanuc reads: named only for Fadal's own words
+                break
             try:
                 load_program(path, context=context.with_dialect(name))
             except GCodeError:

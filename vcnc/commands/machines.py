@@ -12,7 +12,7 @@ HELP = "list built-in machines (--show NAME|FILE prints a definition)"
 PROGRAM_TABLE_DOC = """
 # Machine context of part programs (optional; these defaults change nothing). Uncomment to use.
 # [program]
-# dialect = "linuxcnc"           # linuxcnc | fanuc | haas | grbl: G04 P in s (linuxcnc, grbl) or ms
+# dialect = "linuxcnc"           # linuxcnc | fanuc | haas | grbl | fadal: G04 P in s (linuxcnc, grbl) or ms
 # default_units = "mm"           # units of a program that states neither G20 nor G21 (mm | inch)
 # continuous_path = true         # path mode of a program that states neither G61 nor G64
 # tolerance = 0.01               # mm, path tolerance of that continuous-path mode
@@ -31,6 +31,7 @@ PROGRAM_TABLE_DOC = """
 # G54 = [0.0, 0.0, 0.0]
 # "G54.1 P1" = [0.0, 0.0, 0.0]   # Fanuc additional offsets G54.1 P1 .. P300 (G10 L20 P1 sets it); the Haas
 #                                # G154 P1 .. P99 (G110 .. G129 = G154 P1 .. P20) are the same entries
+# E7 = [0.0, 0.0, 0.0]           # Fadal fixture offsets E7 .. E48 (E1 .. E6 are G54 .. G59; E0: none)
 #
 # [program.tools.1]              # per tool number: G43 H1 applies the length, G41/G42 D1 the radius
 # length = 0.0                   # mm

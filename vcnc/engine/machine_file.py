@@ -19,7 +19,7 @@ Layout::
     ...                           #   resonance position_periodic load drift
 
     [program]                     # optional machine context of part programs (defaults change nothing)
-    dialect = "linuxcnc"          # linuxcnc | fanuc | haas | grbl: unit of G04 P (s | ms)
+    dialect = "linuxcnc"          # linuxcnc | fanuc | haas | grbl | fadal: unit of G04 P (s | ms)
     default_units = "mm"          # units of a program without G20/G21 (mm | inch)
     continuous_path = true        # path mode of a program without G61/G64
     tolerance = 0.01              # mm, path tolerance of that mode (optional)
@@ -31,7 +31,7 @@ Layout::
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
     initial_feed = 500.0          # optional mm/min: feed of a feed move before any F (Fanuc No. 1411); unset: an error
-    [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300"
+    [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300", Fadal E7 .. E48
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
                                   #   name = "MILL_D6" (Heidenhain TOOL CALL "MILL_D6")
@@ -314,7 +314,7 @@ def _build_dialect(tab: dict, path: tuple, where: _Where, file: str) -> Dialect:
     initial feed, search paths)."""
     name = tab.get("dialect", "linuxcnc")
     if name not in DIALECTS or name == "heidenhain":
-        raise where.error(f"'program.dialect' must be one of linuxcnc, fanuc, haas, grbl, got {name!r}",
+        raise where.error(f"'program.dialect' must be one of linuxcnc, fanuc, haas, grbl, fadal, got {name!r}",
                           path + ("dialect",))
     changes: dict[str, Any] = {}
     units = tab.get("default_units")
