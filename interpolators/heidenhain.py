@@ -170,6 +170,7 @@ from interpolators.heidenhain_cycles import (
     tapping_cycle,
 )
 from interpolators.heidenhain_fast import PlainBlocks
+from interpolators.heidenhain_feed_dwell import FeedDwell, split_at_times
 from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour, read_fk_words
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
@@ -331,6 +332,7 @@ class _Machine:
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
         self.per_revolution = False  # M136: F in mm per spindle revolution (until M137)
+        self.feed_dwell: FeedDwell | None = None  # FUNCTION FEED DWELL (interpolators.heidenhain_feed_dwell)
         self.m112: tuple[bool, float | None] | None = None  # M112: the path mode before it (M113 restores it)
         self.look_ahead = False  # M120 LA>0 in a radius-compensated run
         # M94: machine angle minus shown angle of A B C [deg]; absolute angles are shown ones
@@ -430,6 +432,10 @@ class _Machine:
                        "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
         if self.tilt is not None:
             self.check_tilt(target, self.extra if extra is None else extra, where)
+        if (self.feed_dwell is not None and kind in ("line", "arc") and extra is None and segment is not None
+                and math.isfinite(feed) and feed > 0 and segment.length > 0):
+            self.emit_with_dwells(kind, segment, feed, where, number)
+            return
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))
@@ -437,6 +443,19 @@ class _Machine:
         if extra is not None:
             self.extra = np.array(extra, dtype=float)
         self.last_rapid = kind == "rapid"
+
+
+    def emit_with_dwells(self, kind: str, segment, feed: float, where: Where, number) -> None:
+        """A feed move under ``FUNCTION FEED DWELL`` (:mod:`interpolators.heidenhain_feed_dwell`): its pieces, a
+        dwell where the cutting time reaches F-TIME."""
+        active, self.feed_dwell = self.feed_dwell, None
+        try:
+            for piece, dwell in split_at_times(segment, feed, active):
+                self.emit(kind, np.array(piece.end, dtype=float), piece, feed, where, number)
+                if dwell:
+                    self.emit("dwell", self.pos, None, 0.0, where, number, dwell=active.dwell)
+        finally:
+            self.feed_dwell = active
 
 
 def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
@@ -1144,6 +1163,9 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
     when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
     / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
     dwell time: FUNCTION DWELL"), ``FUNCTION TCPM`` an error."""
+    if kw == "FUNCTION" and re.match(r"\s*FEED\s+DWELL\b", blk.code[pos:], re.I):
+        _feed_dwell(blk, pos, m, where)
+        return
     dm = re.match(r"\s*DWELL\s+(TIME|REV)\s*", blk.code[pos:], re.I) if kw == "FUNCTION" else None
     if dm is None:
         if kw == "PLANE" and m.context.kinematics is not None:
@@ -1161,6 +1183,29 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
                        expected="TOOL CALL .. S<rpm> before it")
         value = value * 60.0 / m.spindle
     m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+
+
+_FEED_DWELL_RE = re.compile(r"\s*FEED\s+DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))\s*$", re.I)
+
+
+def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``FUNCTION FEED DWELL RESET`` (TNC 640 user's manual, "Cyclic
+    dwell time"; :mod:`interpolators.heidenhain_feed_dwell`)."""
+    fm = _FEED_DWELL_RE.match(blk.code, pos)
+    if fm is None:
+        where.fail("malformed FUNCTION FEED DWELL", column=blk.column + pos, text=blk.code[pos:].strip(),
+                   expected="FUNCTION FEED DWELL D-TIME<s> F-TIME<s>, or FUNCTION FEED DWELL RESET")
+    if fm.group(1):
+        m.feed_dwell = None
+        return
+    col = blk.column + pos
+    d_time = m.params.evaluate(fm.group(2), where, column=col + fm.start(2))
+    f_time = m.params.evaluate(fm.group(3), where, column=col + fm.start(3))
+    if not (d_time >= 0 and f_time > 0):
+        where.fail("FUNCTION FEED DWELL needs D-TIME >= 0 and F-TIME > 0", column=col, text=blk.code[pos:].strip(),
+                   expected="dwell and cutting times in seconds")
+    m.feed_dwell = FeedDwell(dwell=d_time, cutting=f_time) if d_time > 0 else None
+    m.note("FUNCTION FEED DWELL: a dwell after every F-TIME of feed motion (the cutting time at the programmed feed)")
 
 
 def _rotary_now(m: _Machine) -> Solution:

@@ -21,10 +21,10 @@ M99: cycle calls; M91, M92: machine coordinates; M128, M129: TCPM; M94, M112, M1
 path and feed functions; M140: retract); under M128 (TCPM) an arc. And it declines every block in a modal state it
 does not model: a coordinate transformation (cycles 8, 10, 11, 26), a tilted working plane (PLANE, cycle 19), radius
 compensation RL/RR, an RND/CHF or an APPR waiting for the next element, an FK element waiting, M89's modal cycle call,
-M136's feed per revolution. Units (MM/INCH), the preset and datum shift (cycles 7, 247), the tool axis and tool
-length, a pole in another plane (``CC`` with the tool axis), the path mode (cycle 32) and M128 on positioned rotary
-axes (lines of the tool tip on the turned part, :mod:`interpolators.heidenhain_tcpm`) are modelled as the general path
-has set them.
+M136's feed per revolution, FUNCTION FEED DWELL. Units (MM/INCH), the preset and datum shift (cycles 7, 247), the tool
+axis and tool length, a pole in another plane (``CC`` with the tool axis), the path mode (cycle 32) and M128 on
+positioned rotary axes (lines of the tool tip on the turned part, :mod:`interpolators.heidenhain_tcpm`) are modelled
+as the general path has set them.
 
 The state is judged once after each block the general path ran (:meth:`PlainBlocks.reset`): plain blocks change
 none of what the judgement reads, nor the program zero, which is kept until then. The word forms follow the
@@ -140,7 +140,8 @@ class PlainBlocks:
     def _judge(self) -> bool:
         m = self.m
         self.ready = (m.transform.identity and m.tilt is None and m.comp == "R0" and m.pending is None
-                      and m.approach is None and not m.fk.waiting and not m.modal_call and not m.per_revolution)
+                      and m.approach is None and not m.fk.waiting and not m.modal_call and not m.per_revolution
+                      and m.feed_dwell is None)
         if self.ready:
             self.origin = m.origin().tolist()
         return self.ready

@@ -206,3 +206,27 @@ def test_spline_blocks_follow_their_polynomials():
 ])
 def test_spline_errors(body, words):
     assert words in str(refused(body))
+
+
+# --- FUNCTION FEED DWELL ---------------------------------------------------------------------------
+
+def test_feed_dwell_stops_after_every_f_time_of_feed_motion():
+    """TNC 640 user's manual, "Cyclic dwell time: FUNCTION FEED DWELL": D-TIME 0.5 s after every F-TIME 2 s of feed
+    motion (here 20 mm at 600 mm/min), lines and arcs alike, not during rapids, until RESET."""
+    prog = checked_program(program("L X+0 Y+0 Z+0 R0 F600\nFUNCTION FEED DWELL D-TIME0.5 F-TIME2\nL X+50\n"
+                                   "CC X+25 Y+0\nC X+0 Y+0 DR+\nL Z+10 FMAX\nL Z+0 FMAX\nL X+10 F600\n"
+                                   "FUNCTION FEED DWELL RESET\nL X+50"), CTX, check=False)
+    dwells = [b for b in prog.blocks if b.kind == "dwell"]
+    assert [b.dwell for b in dwells] == [0.5] * 6
+    assert [np.round(b.target[:2], 9).tolist() for b in dwells[:2]] == [[20, 0], [40, 0]]
+    arc = [b.segment for b in prog.blocks if b.kind == "arc"]
+    # 10 mm of the half circle (radius 25) after X50, then every 20 mm of it
+    assert np.allclose([a.length for a in arc], [10.0, 20.0, 20.0, 20.0, 25 * math.pi - 70.0], rtol=0, atol=1e-9)
+    assert np.allclose(dwells[2].target, arc[0].end) and np.allclose(arc[-1].end, [0, 0, 0])
+    # the rapids do not count: 8.54 mm of arc + the 10 mm line stay below 20 mm, no dwell; after RESET none
+    assert [(b.kind, b.target[0]) for b in prog.blocks[-3:]] == [("rapid", 0.0), ("line", 10.0), ("line", 50.0)]
+
+
+def test_feed_dwell_errors():
+    assert "malformed FUNCTION FEED DWELL" in str(refused("FUNCTION FEED DWELL D-TIME0.5"))
+    assert "F-TIME > 0" in str(refused("FUNCTION FEED DWELL D-TIME0.5 F-TIME0"))
