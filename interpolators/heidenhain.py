@@ -53,6 +53,18 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     perpendicular, CT on an arc (CCA, R), LCT line and arc (R);
                                     APPR PLT/PLN/PCT/PLCT, DEP PLCT: PA / PN by PR, PA
     STOP, M0, M1                    program stop: no motion (noted)
+    L X.. M136 F0.05, M137          M136: F in mm per spindle revolution (x TOOL CALL S) until M137
+    L C+180 FMAX M94, M94 C         M94: the rotary display reduced below 360 deg first (_path_m)
+    M112 T0.01 A10 .. M113          contour tolerance as cycle 32 T (TNC 426/430); M118 X.. Y.., M124 T..:
+                                    noted; M120 LA3: look-ahead of RL/RR (the path as without it)
+    SPL X.. Y.. Z.. K3X.. K2X.. K1X.. ..
+                                    spline: the cubic of each axis, t from 1 to 0 (heidenhain_splines)
+    DECLARE STRING QS1 = "A", QS2 = QS1 || TOCHAR(DAT+Q1 DECIMALS2), TOOL CALL QS2, CALL PGM QS3
+                                    string parameters (heidenhain_strings)
+    FUNCTION FEED DWELL D-TIME0.5 F-TIME5 .. RESET
+                                    a dwell after every F-TIME of feed motion (heidenhain_feed_dwell)
+    FN 20: WAIT FOR ..              PLC synchronisation: met at once, noted
+    CYCL CALL PAT F500 / F MAX      the moves between the pattern's points at F (F MAX: rapid)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
     L X+0 M92                       M92: relative to the machine-defined position context.home
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
