@@ -344,6 +344,7 @@ class _Machine:
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
         self.per_revolution = False  # M136: F in mm per spindle revolution (until M137)
+        self.plunge: float | None = None  # M103 F: the plunging feed as a fraction of F (None: off)
         self.feed_dwell: FeedDwell | None = None  # FUNCTION FEED DWELL (interpolators.heidenhain_feed_dwell)
         self.m112: tuple[bool, float | None] | None = None  # M112: the path mode before it (M113 restores it)
         self.look_ahead = False  # M120 LA>0 in a radius-compensated run
@@ -444,6 +445,10 @@ class _Machine:
                        "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
         if self.tilt is not None:
             self.check_tilt(target, self.extra if extra is None else extra, where)
+        if self.plunge is not None and kind in ("line", "arc") and segment is not None and segment.length > 0:
+            down = float(self.pos[self.plane] - np.asarray(target, dtype=float)[self.plane])  # toward the part: -
+            if down > 0:  # M103: the tool-axis speed at most plunge x F
+                feed = min(feed, self.plunge * feed * segment.length / down)
         if (self.feed_dwell is not None and kind in ("line", "arc") and extra is None and segment is not None
                 and math.isfinite(feed) and feed > 0 and segment.length > 0):
             self.emit_with_dwells(kind, segment, feed, where, number)
@@ -2553,7 +2558,7 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
 
 
 #: M functions of the path and the feed with a meaning here (:func:`_path_m`).
-_M_PATH = (94, 112, 113, 118, 120, 124, 136, 137)
+_M_PATH = (94, 103, 112, 113, 118, 120, 124, 136, 137, 138)
 
 
 def _path_m(w: Word, m: _Machine, where: Where) -> None:
@@ -2578,7 +2583,11 @@ def _path_m(w: Word, m: _Machine, where: Where) -> None:
       M120 without LA or a ``CALL PGM``. vcnc compensates as without it (the same path where the tool
       fits); where it would leave out an undercut, the compensation error names M120.
     * ``M136`` / ``M137`` (TNC 640 user's manual, "Feed rate in millimeters per spindle revolution:
-      M136"): F in mm per revolution from the start of the block (:func:`_read_words`)."""
+      M136"): F in mm per revolution from the start of the block (:func:`_read_words`).
+    * ``M103 F..`` (TNC 640 / TNC 410 user's manuals, "Feed rate for plunging: M103"): a move down the tool
+      axis runs at most F percent of the feed along it (the manual's table: F500 M103 F20, ``Y+5 Z-5`` at 141
+      mm/min, ``Z-2.5`` at 100); ``M103`` without F ends it.
+    * ``M138 B C`` (TNC 640 user's manual, "Selecting tilting axes: M138"): noted."""
     args = dict(w.args)
     if w.value == 94:
         letters = [a for a in args if a.lower() in m.context.extra_axes] if args else \
@@ -2606,6 +2615,10 @@ def _path_m(w: Word, m: _Machine, where: Where) -> None:
     elif w.value == 120:
         m.look_ahead = bool(args.get("LA"))
         m.note("M120 LA: look-ahead of the radius-compensated path (the same path where the tool fits)")
+    elif w.value == 103:
+        m.plunge = args["F"] / 100.0 if args.get("F") else None
+    elif w.value == 138:
+        m.note("M138: the rotary axes M128 takes (vcnc's M128 takes the kinematics' axes)")
     elif w.value == 136 and m.inch:
         where.fail("M136 in an inch program (the unit of F per revolution there is not documented)",
                    column=w.column, text=w.text, expected="M136 in a program in MM, or FU")

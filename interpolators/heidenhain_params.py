@@ -96,6 +96,13 @@ FN_CONDITIONS = {
 }
 
 
+#: FN functions that exchange data with the PLC or the outside and move nothing (TNC 640 / iTNC 530 user's
+#: manuals, "Additional functions": FN 19 PLC, FN 29 PLC transfer values to the PLC, FN 37 EXPORT hands local
+#: parameters to the calling program (vcnc's Q parameters are shared by all programs of a run), FN 38 SEND a
+#: text to the log or an external application).
+_FN_NO_MOTION = {19: "values sent to the PLC", 29: "values sent to the PLC", 37: "EXPORT (Q parameters are shared "
+                 "here)", 38: "SEND of a text"}
+
 #: The functions of a Q formula that read QS texts (TONUMB, STRLEN, INSTR, STRCOMP).
 _STRING_FUNCTION_RE = re.compile(r"\s*(TONUMB|STRLEN|INSTR|STRCOMP)\b", re.I)
 
@@ -257,6 +264,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         return None
     if n == 17:
         _syswrite(rest, params, where, col, scale=scale, note=note, tool_write=tool_write)
+        return None
+    if n in _FN_NO_MOTION:
+        note(f"FN {n}: {_FN_NO_MOTION[n]} (no motion)")
         return None
     if n == 20 and re.match(r"\s*WAIT\s+FOR\b", rest, re.I):
         # TNC 640 / iTNC 530 user's manuals, "FN 20: WAIT FOR: NC and PLC synchronization": the program waits for

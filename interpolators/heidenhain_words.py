@@ -264,11 +264,14 @@ SPEED_EXPECTED = "S in a TOOL CALL block (TOOL CALL [n] Z S.., a speed change wi
 
 #: M functions that take parameters after them, and which (TNC 640 / iTNC 530 / TNC 426 user's manuals,
 #: "Miscellaneous functions"): ``M94 C`` (the rotary axis whose display is reduced, a letter alone),
+#: ``M103 F..`` (the plunging feed [%]), ``M138 B C`` (the rotary axes M128 / M114 take, letters alone),
 #: ``M112 T.. A..`` (TNC 426/430, TNC 407: ``E``, ``H``: contour tolerance and limit angle), ``M118 X.. Y..``
 #: (handwheel superimposition limits), ``M120 LA..`` (blocks calculated in advance), ``M124 T..`` (the
 #: least distance of the points M112 takes).
 M_ARGUMENTS = {
     94: frozenset("ABC"),
+    103: frozenset({"F"}),
+    138: frozenset("ABC"),
     112: frozenset({"T", "A", "E", "H"}),
     118: frozenset("XYZABCUVW"),
     120: frozenset({"LA"}),
@@ -289,7 +292,7 @@ def _m_arguments(code: str, pos: int, number: int, where: Where, params: QParame
             break
         letter, after = am.group(1).upper(), am.end()
         has_value = re.match(r"\s*[+-]?\s*[\d.Q(]", code[after:], re.I) is not None
-        if number == 94:
+        if number in (94, 138):
             if has_value or (after < len(code) and not code[after].isspace()):
                 break
             args.append((letter, None))

@@ -179,22 +179,25 @@ _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCU
                    r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
-#: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M112 T.. A.., M118
-#: X.. Y.., M120 LA.., M124 T..; their words are M's, not the block's.
-_M_WITH_WORDS = re.compile(r"\bM(94)((?:\s+[ABC](?![\w+.-]))*)|\bM(112|118|120|124)((?:\s*(?:LA|[TAEHXYZABCUVW])"
-                           r"\s*[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))*)", re.I)
+#: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M103 F.., M112 T.. A..,
+#: M118 X.. Y.., M120 LA.., M124 T.., M138 [axes]; their words are M's, not the block's.
+_M_WITH_WORDS = re.compile(r"\bM(94|138)((?:\s+[ABC](?![\w+.-]))*)"
+                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))*)",
+                           re.I)
 
 
 def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]]]:
-    """``rest`` with the parameters of M94/M112/M118/M120/M124 removed, and those parameters by M number."""
+    """``rest`` with the parameters of M94/M103/M112/M118/M120/M124/M138 removed, and those by M number."""
     found: dict[int, dict[str, float | None]] = {}
 
     def take(mm: re.Match) -> str:
         number = int(mm.group(1) or mm.group(3))
         words = mm.group(2) if mm.group(1) else mm.group(4)
-        found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)} if number == 94 else \
-            {k.upper(): _val(v.replace(" ", ""), q) for k, v in
-             re.findall(r"(LA|[TAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)}
+        if number in (94, 138):  # axis letters alone
+            found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
+        else:
+            found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in
+                             re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)}
         return f"M{number}"
 
     return _M_WITH_WORDS.sub(take, rest), found

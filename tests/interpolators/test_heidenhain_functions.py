@@ -230,3 +230,27 @@ def test_feed_dwell_stops_after_every_f_time_of_feed_motion():
 def test_feed_dwell_errors():
     assert "malformed FUNCTION FEED DWELL" in str(refused("FUNCTION FEED DWELL D-TIME0.5"))
     assert "F-TIME > 0" in str(refused("FUNCTION FEED DWELL D-TIME0.5 F-TIME0"))
+
+
+def test_m103_plunging_feed_follows_the_manuals_table():
+    """TNC 410/426/430 user's manual, "Feed rate for plunging: M103": F500 M103 F20, then the contouring feeds 500,
+    100 (Z-2.5), 141 (Y+5 Z-5), 500, 500 (Z up); M103 without F ends it."""
+    prog = run("L X+0 Y+0 Z+0 R0 F500\nL X+20 Y+20 F500 M103 F20\nL Y+50\nL IZ-2.5\nL IY+5 IZ-5\nL X+50\nL Z+5\nM103\n"
+               "L Z-5")
+    assert [round(b.feed * 60, 3) for b in prog.blocks[1:]] == [500, 500, 100, 141.421, 500, 500, 500]
+
+
+@pytest.mark.parametrize("block, note", [
+    ("FN 19: PLC=+10/+20", "FN 19: values sent to the PLC (no motion)"),
+    ("FN 29: PLC=+1/+2", "FN 29: values sent to the PLC (no motion)"),
+    ("FN 37: EXPORT Q1", "FN 37: EXPORT (Q parameters are shared here) (no motion)"),
+    ('FN 38: SEND /"DONE"', "FN 38: SEND of a text (no motion)"),
+    ("FUNCTION LIFTOFF ANGLE TCS SPB+0 SPC+0", "FUNCTION LIFTOFF: the lift-off of the tool at an NC stop (no motion)"),
+    ("FUNCTION S-PULSE P-TIME10 SCALE5", "FUNCTION S-PULSE: a pulsing spindle speed (no motion)"),
+    ("FUNCTION COUNT INC", "FUNCTION COUNT: the machining counter (no motion)"),
+    ("M138 B C", "M138: the rotary axes M128 takes (vcnc's M128 takes the kinematics' axes)"),
+])
+def test_functions_without_motion_are_noted(block, note):
+    prog = checked_program(program("L X+5 Y+0 Z+0 R0 FMAX\n" + block + "\nL X+6 FMAX"), CTX, check=False)
+    assert ends(prog) == [[5, 0, 0], [6, 0, 0]]
+    assert note in prog.notes
