@@ -196,8 +196,8 @@ def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]
         if number in (94, 138):  # axis letters alone
             found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
         else:
-            found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in
-                             re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)}
+            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
+            found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in pairs}
         return f"M{number}"
 
     return _M_WITH_WORDS.sub(take, rest), found
