@@ -779,6 +779,7 @@ _KNOWN_UNSUPPORTED = {
     "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
     "SQL": "SQL (table access)",
+    "PRESET": "PRESET (the preset table's functions; CYCL DEF 247 selects a preset)",
 }
 
 
