@@ -53,6 +53,20 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     perpendicular, CT on an arc (CCA, R), LCT line and arc (R);
                                     APPR PLT/PLN/PCT/PLCT, DEP PLCT: PA / PN by PR, PA
     STOP, M0, M1                    program stop: no motion (noted)
+    L X.. M136 F0.05, M137          M136: F in mm per spindle revolution (x TOOL CALL S) until M137
+    L C+180 FMAX M94, M94 C         M94: the rotary display reduced below 360 deg first (_path_m)
+    M112 T0.01 A10 .. M113          contour tolerance as cycle 32 T (TNC 426/430); M118 X.. Y.., M124 T..:
+                                    noted; M120 LA3: look-ahead of RL/RR (the path as without it)
+    SPL X.. Y.. Z.. K3X.. K2X.. K1X.. ..
+                                    spline: the cubic of each axis, t from 1 to 0 (heidenhain_splines)
+    DECLARE STRING QS1 = "A", QS2 = QS1 || TOCHAR(DAT+Q1 DECIMALS2), TOOL CALL QS2, CALL PGM QS3
+                                    string parameters (heidenhain_strings)
+    FUNCTION FEED DWELL D-TIME0.5 F-TIME5 .. RESET
+                                    a dwell after every F-TIME of feed motion (heidenhain_feed_dwell)
+    FN 20: WAIT FOR ..              PLC synchronisation: met at once, noted; FN 19/29 PLC, FN 37 EXPORT,
+                                    FN 38 SEND, FUNCTION LIFTOFF/S-PULSE/COUNT: no motion, noted
+    L Z-5 F500 M103 F20             M103: the feed down the tool axis at most F percent (until M103 alone)
+    CYCL CALL PAT F500 / F MAX      the moves between the pattern's points at F (F MAX: rapid)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
     L X+0 M92                       M92: relative to the machine-defined position context.home
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
@@ -170,6 +184,7 @@ from interpolators.heidenhain_cycles import (
     tapping_cycle,
 )
 from interpolators.heidenhain_fast import PlainBlocks
+from interpolators.heidenhain_feed_dwell import FeedDwell, split_at_times
 from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour, read_fk_words
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
@@ -190,6 +205,8 @@ from interpolators.heidenhain_paths import (
     tangential_arc,
 )
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
+from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
+from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
 from interpolators.heidenhain_surfaces import (
     SURFACE_CYCLES,
     RuledSurface,
@@ -214,6 +231,7 @@ from interpolators.heidenhain_transforms import (
 )
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
+from interpolators.iso_splines import SPLINE_TOLERANCE
 from interpolators.program import Block, Program
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import PLANE_AXES, Arc, Line
@@ -226,7 +244,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 #: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
-    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS"
+    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS|SPL|DECLARE\s+STRING|QS\d+\s*="
     r"|LBL|FPOL|FSELECT|FCT|FLT|FC|FL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
@@ -303,6 +321,7 @@ class _Machine:
         self.cycle_items: dict[int, float | dict[str, float]] = {}
         self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
+        self.strings = StringParameters()  # QS (interpolators.heidenhain_strings)
         self.blocks: list[Block] = []
         self.used: set[int] = set()
         self.notes: dict[str, int] = {}
@@ -326,6 +345,13 @@ class _Machine:
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
+        self.per_revolution = False  # M136: F in mm per spindle revolution (until M137)
+        self.plunge: float | None = None  # M103 F: the plunging feed as a fraction of F (None: off)
+        self.feed_dwell: FeedDwell | None = None  # FUNCTION FEED DWELL (interpolators.heidenhain_feed_dwell)
+        self.m112: tuple[bool, float | None] | None = None  # M112: the path mode before it (M113 restores it)
+        self.look_ahead = False  # M120 LA>0 in a radius-compensated run
+        # M94: machine angle minus shown angle of A B C [deg]; absolute angles are shown ones
+        self.rotary_shift = np.zeros(len(EXTRA_LETTERS))
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -421,6 +447,14 @@ class _Machine:
                        "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
         if self.tilt is not None:
             self.check_tilt(target, self.extra if extra is None else extra, where)
+        if self.plunge is not None and kind in ("line", "arc") and segment is not None and segment.length > 0:
+            down = float(self.pos[self.plane] - np.asarray(target, dtype=float)[self.plane])  # toward the part: -
+            if down > 0:  # M103: the tool-axis speed at most plunge x F
+                feed = min(feed, self.plunge * feed * segment.length / down)
+        if (self.feed_dwell is not None and kind in ("line", "arc") and extra is None and segment is not None
+                and math.isfinite(feed) and feed > 0 and segment.length > 0):
+            self.emit_with_dwells(kind, segment, feed, where, number)
+            return
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell, **ends))
@@ -428,6 +462,19 @@ class _Machine:
         if extra is not None:
             self.extra = np.array(extra, dtype=float)
         self.last_rapid = kind == "rapid"
+
+
+    def emit_with_dwells(self, kind: str, segment, feed: float, where: Where, number) -> None:
+        """A feed move under ``FUNCTION FEED DWELL`` (:mod:`interpolators.heidenhain_feed_dwell`): its pieces, a
+        dwell where the cutting time reaches F-TIME."""
+        active, self.feed_dwell = self.feed_dwell, None
+        try:
+            for piece, dwell in split_at_times(segment, feed, active):
+                self.emit(kind, np.array(piece.end, dtype=float), piece, feed, where, number)
+                if dwell:
+                    self.emit("dwell", self.pos, None, 0.0, where, number, dwell=active.dwell)
+        finally:
+            self.feed_dwell = active
 
 
 def parse_heidenhain(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
@@ -556,6 +603,9 @@ class _Run:
         if kw in ("LBL", "CALL LBL") or kw.startswith("FN"):
             self.flow(kw, blk, where)
             return False
+        if kw.startswith(("QS", "DECLARE")):
+            m.strings.assign(blk.code, m.params, where, column=col0)
+            return False
         if kw.endswith("="):
             qn = Q_NAME_RE.match(blk.code).group(0)
             m.params.set(qn, m.params.evaluate(blk.code[k.end():], where, column=col0 + k.end()), where, column=col0)
@@ -605,10 +655,13 @@ class _Run:
         cm = rx.match(blk.code)
         if cm is None:
             where.fail(f"malformed {kw}", column=col0, text=blk.code, expected=f"{kw} name")
+        given = cm.group(1)
+        if given is not None and QS_NAME_RE.fullmatch(given):  # the program name a string parameter holds
+            given = m.strings.get(given, where, column=col0 + cm.start(1))
         if kw == "SEL PGM":
-            m.selected = (cm.group(1), col0 + cm.start(1))
+            m.selected = (given, col0 + cm.start(1))
             return
-        name, col = (cm.group(1), col0 + cm.start(1)) if kw == "CALL PGM" else (m.selected or (None, col0))
+        name, col = (given, col0 + cm.start(1)) if kw == "CALL PGM" else (m.selected or (None, col0))
         if name is None:
             where.fail("CALL SELECTED PGM without SEL PGM", column=col0, text=blk.code,
                        expected="SEL PGM name before CALL SELECTED PGM")
@@ -726,11 +779,9 @@ _FOREIGN_LINES = (
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {
     "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
-    "SPL": "SPL (spline interpolation)",
-    "QS": "QS (string parameters)",
-    "DECLARE": "DECLARE (string parameters)",
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
     "SQL": "SQL (table access)",
+    "PRESET": "PRESET (the preset table's functions; CYCL DEF 247 selects a preset)",
 }
 
 
@@ -762,15 +813,15 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: W
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
     words = _read_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
-    if kind != "POS" and any(w.key in ("F", "FMAX") for w in words):
-        m.note("CYCL CALL F: the positioning feed is not used (vcnc positions between holes at rapid)")
+    if not kind and any(w.key in ("F", "FMAX") for w in words):
+        m.note("CYCL CALL F: no positioning in the block (the cycle runs where the tool is)")
     moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
     ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
         _position_call([w for w in words if w.key in moves], m, where, blk)
     elif kind == "PAT":
-        _pattern_call(m, where, blk)
+        _pattern_call(m, where, blk, _positioning_feed(words, m, where))
     else:
         _cycle_call(m, where, blk)
     return ended
@@ -830,6 +881,11 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
     (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
     tooth) needs the tool's number of teeth, which vcnc's tool table does not hold: an error."""
     words = read_words(code, pos, where, m.params, column0=column0)
+    for w in words:
+        if w.key == "M" and w.value in (136, 137):  # effective at the start of the block
+            m.per_revolution = w.value == 136
+    if m.per_revolution:
+        words = [Word("FU", w.value, w.column, w.text) if w.key == "F" else w for w in words]
     if any(w.key == "EMPTY" for w in words):
         m.note(EMPTY_FIELD_NOTE)
         words = [w for w in words if w.key != "EMPTY"]
@@ -839,8 +895,8 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
                        expected="F <mm/min> or FU <mm/rev>")
         if w.key == "FU":
             if not m.spindle:
-                where.fail("FU (feed per revolution) without a spindle speed", column=w.column, text=w.text,
-                           expected="TOOL CALL .. S<rpm> before FU")
+                where.fail(f"{w.text}: feed per revolution (FU, M136) without a spindle speed", column=w.column,
+                           text=w.text, expected="TOOL CALL .. S<rpm> before FU or M136")
             words[i] = Word("F", w.value * m.spindle, w.column, w.text)
         if w.key == "FAUTO":
             if m.auto_feed is None:
@@ -859,19 +915,23 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     ``F AUTO`` reads."""
     code = blk.code
     rest = code[pos:]
-    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*'|Q[LR]?\d+(?![\d.]))?", rest)  # 12.1: index 1 of tool 12
+    # 12.1: tool 12, index 1; "NAME", QS5: a name; Q11: a number in a Q parameter
+    nm = re.match(r"\s*(\d+(?:\.\d)?|\"[^\"]*\"|'[^']*'|QS\d+(?![\d.])|Q[LR]?\d+(?![\d.]))?", rest)
     number = int(nm.group(1).split(".")[0][:9]) if nm.group(1) and nm.group(1)[0].isdigit() else None
-    if nm.group(1) and nm.group(1)[0] in "qQ":  # TOOL CALL Q11 Z ..: the tool number in a Q parameter
+    name = nm.group(1)[1:-1] if nm.group(1) and nm.group(1)[0] in "\"'" else None
+    if nm.group(1) and QS_NAME_RE.fullmatch(nm.group(1)):  # TOOL CALL QS5: the name the string parameter holds
+        name = m.strings.get(nm.group(1), where, column=blk.column + pos + nm.start(1))
+    elif nm.group(1) and nm.group(1)[0] in "qQ":  # TOOL CALL Q11 Z ..: the tool number in a Q parameter
         number = _whole_number(nm.group(1), m, where, blk.column + pos + nm.start(1), what="tool number")
     if number is not None and "." in nm.group(1):
         m.note(f"indexed tool {nm.group(1)}: length and radius of tool {number} (vcnc's tool table has no indices)")
-    named = bool(nm.group(1)) and number is None  # a tool called by name: the table's NAME column
+    named = name is not None  # a tool called by name: the table's NAME column
     if named:
-        by_name = m.context.tool_named(nm.group(1)[1:-1])
+        by_name = m.context.tool_named(name)
         if by_name is not None:
             number, named = by_name.number, False
         else:
-            m.note(f"tool {nm.group(1)} called by name is not in the tool table: length and radius 0")
+            m.note(f"tool \"{name}\" called by name is not in the tool table: length and radius 0")
     j = pos + nm.end()
     dl = dr = 0.0
     while j < len(code):
@@ -1123,6 +1183,9 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
     when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
     / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
     dwell time: FUNCTION DWELL"), ``FUNCTION TCPM`` an error."""
+    if kw == "FUNCTION" and re.match(r"\s*FEED\s+DWELL\b", blk.code[pos:], re.I):
+        _feed_dwell(blk, pos, m, where)
+        return
     dm = re.match(r"\s*DWELL\s+(TIME|REV)\s*", blk.code[pos:], re.I) if kw == "FUNCTION" else None
     if dm is None:
         if kw == "PLANE" and m.context.kinematics is not None:
@@ -1140,6 +1203,29 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
                        expected="TOOL CALL .. S<rpm> before it")
         value = value * 60.0 / m.spindle
     m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=value)
+
+
+_FEED_DWELL_RE = re.compile(r"\s*FEED\s+DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))\s*$", re.I)
+
+
+def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``FUNCTION FEED DWELL RESET`` (TNC 640 user's manual, "Cyclic
+    dwell time"; :mod:`interpolators.heidenhain_feed_dwell`)."""
+    fm = _FEED_DWELL_RE.match(blk.code, pos)
+    if fm is None:
+        where.fail("malformed FUNCTION FEED DWELL", column=blk.column + pos, text=blk.code[pos:].strip(),
+                   expected="FUNCTION FEED DWELL D-TIME<s> F-TIME<s>, or FUNCTION FEED DWELL RESET")
+    if fm.group(1):
+        m.feed_dwell = None
+        return
+    col = blk.column + pos
+    d_time = m.params.evaluate(fm.group(2), where, column=col + fm.start(2))
+    f_time = m.params.evaluate(fm.group(3), where, column=col + fm.start(3))
+    if not (d_time >= 0 and f_time > 0):
+        where.fail("FUNCTION FEED DWELL needs D-TIME >= 0 and F-TIME > 0", column=col, text=blk.code[pos:].strip(),
+                   expected="dwell and cutting times in seconds")
+    m.feed_dwell = FeedDwell(dwell=d_time, cutting=f_time) if d_time > 0 else None
+    m.note("FUNCTION FEED DWELL: a dwell after every F-TIME of feed motion (the cutting time at the programmed feed)")
 
 
 def _rotary_now(m: _Machine) -> Solution:
@@ -1321,8 +1407,23 @@ def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
 
 
-def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """``CYCL CALL PAT``: the cycle at every position of the last ``PATTERN DEF``."""
+def _positioning_feed(words: list[Word], m: _Machine, where: Where) -> float:
+    """The feed [mm/s] of ``CYCL CALL PAT F..`` between the pattern's points: F, or rapid for F MAX and
+    without F (inf)."""
+    for w in words:
+        if w.key == "F":
+            if not w.value > 0:
+                where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min] or F MAX")
+            return w.value * m.feed_scale
+    return math.inf
+
+
+def _pattern_call(m: _Machine, where: Where, blk: SourceBlock, feed: float = math.inf) -> None:
+    """``CYCL CALL PAT [F..|F MAX]``: the cycle at every position of the last ``PATTERN DEF``, the tool
+    positioned between them at the block's feed (F MAX or none: rapid). The TNC 640 user's manual (cycle
+    programming, "Calling a cycle with CYCL CALL PAT") offers the feed in the block's dialog; no manual
+    page found says which moves it covers: our reading, the moves from hole to hole (up to the clearance
+    height, across in the plane), not those of the cycle."""
     if m.pattern is None:
         where.fail("CYCL CALL PAT without a PATTERN DEF", column=blk.column, text=blk.code,
                    expected="PATTERN DEF POS1 (...) before CYCL CALL PAT")
@@ -1335,7 +1436,7 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock) -> None:
         if "I" + axis in pos:
             where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
                        expected=f"{axis} (absolute) in PATTERN DEF")
-        _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale)
+        _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale, feed=feed)
 
 
 def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
@@ -1391,9 +1492,9 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
 
 
 def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
-                surface_shift: float = 0.0) -> None:
+                surface_shift: float = 0.0, feed: float = math.inf) -> None:
     """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
-    reached at rapid at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
+    reached at ``feed`` [mm/s] (inf: rapid) at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
     CALL`` the cycle is that program (TNC 640 manual, cycle 12 PGM CALL: "the program is called
     like a cycle"), run as ``CALL PGM``, where the tool is."""
     if m.cycle_program is not None:
@@ -1427,12 +1528,13 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
         surface = _surface_level(m, c.surface, surface_shift)
     if hole is not None:
         clear = surface - d * max(c.setup, c.second_setup) if c.surface is not None else m.pos[axis]
+        kind = "rapid" if math.isinf(feed) else "line"
         if d * (m.pos[axis] - clear) > 0:  # below the clearance height
-            _axis_move(m, "rapid", clear, math.inf, where, blk)
+            _axis_move(m, kind, clear, feed, where, blk)
         target = np.array(hole, dtype=float)
         target[axis] = m.pos[axis]
         if not np.array_equal(target, m.pos):
-            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+            m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
     _hole(m, c, surface, where, blk)
 
 
@@ -2373,6 +2475,43 @@ def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, 
         m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
 
 
+# --- splines ---------------------------------------------------------------------------------
+
+def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+    """``SPL X.. Y.. Z.. K3X.. K2X.. K1X.. .. [F..] [M..]`` (:mod:`interpolators.heidenhain_splines`): the curve as
+    chords joined without stops, the last one ending as the path mode says; True at M2/M30."""
+    spl = read_spline(blk.code, pos, where, m.params, column0=blk.column)
+    words = _read_words(spl.rest, pos, where, m, column0=blk.column)
+    seen, ms = _motion_words("SPL", words, m, where)
+    ended = any(_one_m(w, m, where) for w in ms)
+    if "F" in seen:
+        w = seen["F"]
+        if not w.value > 0:
+            where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
+        m.feed = w.value * m.feed_scale
+    if m.feed is None:
+        where.fail("SPL feed move without a feed", column=blk.column, text=where.text, expected="F > 0 [mm/min]")
+    if m.comp != "R0" or m.pending is not None or m.approach is not None or m.tcpm:
+        where.fail("SPL under RL/RR, after RND/CHF/APPR or under M128 is not supported", column=blk.column,
+                   text=where.text, expected="SPL blocks with R0 (the CAM system's tool-centre path)")
+    first, points = spline_points(m.to_program(m.pos), spl, m.scale)
+    gap = float(np.max(np.abs(m.to_machine(first) - m.pos)))  # per axis: the manual's own example is 1.2 um apart
+    if gap > SPLINE_START_TOLERANCE * (1.0 + 1e-6):
+        where.fail(f"SPL starts {gap:.4f} mm (in one axis) from the end of the previous element", column=blk.column,
+                   text=where.text, expected=f"a spline start (t = 1) within {SPLINE_START_TOLERANCE * 1000:g} um of "
+                                             "the previous end point (iTNC 530 user's manual, spline interpolation)")
+    exact_stop, tolerance = m.exact_stop, m.tolerance
+    m.exact_stop, m.tolerance = False, tolerance if tolerance is not None else SPLINE_TOLERANCE
+    for i, point in enumerate(points):
+        if i == len(points) - 1:
+            m.exact_stop, m.tolerance = exact_stop, tolerance
+        target = m.to_machine(point)
+        m.emit("line", target, Line(m.pos, target), m.feed, where, blk.number)
+    m.used.update(spl.end)
+    m.last_axes = []
+    return ended
+
+
 # --- M functions -----------------------------------------------------------------------------
 
 def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
@@ -2400,9 +2539,9 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
 
 
 def _one_m(w: Word, m: _Machine, where: Where) -> bool:
-    if w.value == 136:  # TNC 640 manual, "Feed rate in millimeters per spindle revolution: M136"
-        where.fail("M136 (feed per spindle revolution) is not supported", column=w.column, text=w.text,
-                   expected="feeds in mm/min (M137 or no M136)")
+    if w.value in _M_PATH:
+        _path_m(w, m, where)
+        return False
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
         check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
                       column=w.column, text=w.text)
@@ -2419,6 +2558,73 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False
+
+
+#: M functions of the path and the feed with a meaning here (:func:`_path_m`).
+_M_PATH = (94, 103, 112, 113, 118, 120, 124, 136, 137, 138)
+
+
+def _path_m(w: Word, m: _Machine, where: Where) -> None:
+    """M functions with parameters (:data:`interpolators.heidenhain_words.M_ARGUMENTS`) and the feed per
+    revolution.
+
+    * ``M94 [A|B|C]`` (TNC 426 B/430 user's manual, "Reducing display of a rotary axis to a value less
+      than 360 deg: M94"; TNC 640 the same): at the start of the block the current angle of the axis (of
+      every rotary axis without a letter) is reduced below 360 deg, then the block moves to its programmed
+      value (538 deg, then ``C+180``: a traverse of +2 deg). The axis does not move: vcnc keeps the
+      machine angle and counts later absolute angles from the reduced value (:attr:`_Machine.rotary_shift`).
+    * ``M112 T.. A..`` / ``M113`` (TNC 410/426/430 user's manual, "Insert rounding arc between straight
+      lines: M112": "for reasons of compatibility ... HEIDENHAIN recommends the use of the TOLERANCE
+      cycle"; TNC 407: ``E``, ``H``): the contour transitions within the tolerance T, read as cycle 32
+      ``T`` (without T: the context's path tolerance) until ``M113``; the limit angle A is noted.
+    * ``M124 T..`` (TNC 407 user's manual, "Ignore points for calculating the rounding arc with M112"):
+      points closer than T are left out of M112's rounding arc, not out of the path: noted.
+    * ``M118 X.. Y..`` (TNC 640 user's manual, "Superimposing handwheel positioning during program run:
+      M118"): limits of an operator's handwheel; no motion, noted.
+    * ``M120 LA..`` (TNC 640 user's manual, "Calculating the radius-compensated path in advance (LOOK
+      AHEAD): M120"): the TNC leaves out contour undercuts of a radius-compensated run; until R0, ``LA0``,
+      M120 without LA or a ``CALL PGM``. vcnc compensates as without it (the same path where the tool
+      fits); where it would leave out an undercut, the compensation error names M120.
+    * ``M136`` / ``M137`` (TNC 640 user's manual, "Feed rate in millimeters per spindle revolution:
+      M136"): F in mm per revolution from the start of the block (:func:`_read_words`).
+    * ``M103 F..`` (TNC 640 / TNC 410 user's manuals, "Feed rate for plunging: M103"): a move down the tool
+      axis runs at most F percent of the feed along it (the manual's table: F500 M103 F20, ``Y+5 Z-5`` at 141
+      mm/min, ``Z-2.5`` at 100); ``M103`` without F ends it.
+    * ``M138 B C`` (TNC 640 user's manual, "Selecting tilting axes: M138"): noted."""
+    args = dict(w.args)
+    if w.value == 94:
+        letters = [a for a in args if a.lower() in m.context.extra_axes] if args else \
+            [a for a in ROTARY_LETTERS if a.lower() in m.context.extra_axes]
+        for letter in letters:
+            i = EXTRA_LETTERS.index(letter)
+            shown = m.extra[i] - m.rotary_shift[i]
+            m.rotary_shift[i] = m.extra[i] - shown % 360.0
+        m.note("M94: the rotary axis display reduced below 360 deg (no motion; later absolute angles from there)")
+    elif w.value == 112:
+        if m.m112 is None:
+            m.m112 = (m.exact_stop, m.tolerance)
+        tolerance = args.get("T", args.get("E"))
+        m.exact_stop = False
+        m.tolerance = abs(tolerance) * m.scale if tolerance else m.context.dialect.tolerance
+        m.note("M112: contour transitions within the tolerance T, read as cycle 32 TOLERANCE (limit angle A not "
+               "modelled)")
+    elif w.value == 113 and m.m112 is not None:
+        m.exact_stop, m.tolerance = m.m112
+        m.m112 = None
+    elif w.value == 124:
+        m.note("M124 T: M112's point filter (the path is not changed)")
+    elif w.value == 118:
+        m.note("M118: handwheel superimposition limits (no motion; an operator's handwheel is not modelled)")
+    elif w.value == 120:
+        m.look_ahead = bool(args.get("LA"))
+        m.note("M120 LA: look-ahead of the radius-compensated path (the same path where the tool fits)")
+    elif w.value == 103:
+        m.plunge = args["F"] / 100.0 if args.get("F") else None
+    elif w.value == 138:
+        m.note("M138: the rotary axes M128 takes (vcnc's M128 takes the kinematics' axes)")
+    elif w.value == 136 and m.inch:
+        where.fail("M136 in an inch program (the unit of F per revolution there is not documented)",
+                   column=w.column, text=w.text, expected="M136 in a program in MM, or FU")
 
 
 # --- contour ---------------------------------------------------------------------------------
@@ -2608,6 +2814,7 @@ _ALLOWED_WORDS = {
     "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
     "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
     "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
+    "SPL": frozenset({"F"}),
 }
 
 
@@ -2686,7 +2893,7 @@ def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray 
             continue
         value = w.value if axis in ROTARY_LETTERS else w.value * m.scale
         i = EXTRA_LETTERS.index(axis)
-        target[i] = target[i] + value if key[0] == "I" else value
+        target[i] = target[i] + value if key[0] == "I" else value + m.rotary_shift[i]  # M94's reduced display
         m.used.add(3 + i)
         moved = True
     if not moved:
@@ -3090,6 +3297,7 @@ def _finish_compensation(m: _Machine, *, open_end: bool = False, closed: bool = 
     start, m.comp_start = m.comp_start, None
     side = "left" if m.comp_side == "RL" else "right"
     m.comp = "R0"
+    look_ahead, m.look_ahead = m.look_ahead, False  # R0 ends M120
     run = m.blocks[start:]
     if m.comp_radius == 0.0 or not run:
         return
@@ -3098,7 +3306,8 @@ def _finish_compensation(m: _Machine, *, open_end: bool = False, closed: bool = 
                          open_end=open_end, closed=closed)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
-        Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}", column=1,
+        ahead = " (M120 LA would leave the undercut out: not modelled)" if look_ahead else ""
+        Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}{ahead}", column=1,
                                               text=b.text,
                                               expected="a contour the tool of radius "
                                                        f"{m.comp_radius:g} mm can follow")
@@ -3125,5 +3334,6 @@ _HANDLERS = {
     "PLANE": _tilt,
     "FUNCTION": _tilt,
     "TRANS": _trans,
+    "SPL": _spline_block,
     **{kw: _free_contour for kw in FK_KEYWORDS},
 }

@@ -9,22 +9,22 @@ machine state after it (position, feed, pole, arc sense, the axes used, the axes
 without an axis letter) -- and declines everything else, which then goes the general way.
 
 It declines (returns False, having changed nothing) a block that is not one keyword ``L``, ``CC``, ``C`` or ``CR``
-(upper case) followed by words of this form, each after a blank and written without blanks inside: ``X+1.5``,
-``IY-2`` (an axis X Y Z, ``I`` for incremental, a plain decimal number), ``R0``, ``R+5`` (a radius), ``DR+``,
-``DR-``, ``F200``, ``FMAX``, ``M3`` -- so every Q parameter, formula, ``RL``/``RR``, ``LN``, ``LP``/``CP``/``CT``,
-``RND``/``CHF``, FK, ``APPR``/``DEP``, rotary and secondary axes, ``F AUTO``/``FU``/``FZ``, ``MB``, a word left
-empty, a number without an axis letter, a blank inside a word, lower-case text;
-a word its block does not allow (``DR`` or ``R`` on a line, ``F``/``FMAX`` on ``CC``, ``FMAX`` on an arc), a word
-twice, ``F`` <= 0, a block without an axis word, a move without a feed, an arc without a sense or without its
-``CC``, an arc the general path would refuse (its error is worded there), a non-finite end point; the M functions
-with a meaning (M0, M1, M2, M30: stop and end; M89, M99: cycle calls; M91, M92: machine coordinates; M128,
-M129: TCPM; M136; M140: retract); under M128 (TCPM) an arc. And it declines every block in a modal state it does
-not model: a coordinate transformation (cycles 8, 10, 11, 26), a tilted working plane (PLANE, cycle 19), radius
-compensation RL/RR, an RND/CHF or an APPR waiting for the next element, an FK element waiting, M89's modal cycle
-call. Units (MM/INCH), the preset and datum shift (cycles 7, 247), the tool axis and tool length, a pole in
-another plane (``CC`` with the tool axis), the path mode (cycle 32) and M128 on positioned rotary axes (lines of
-the tool tip on the turned part, :mod:`interpolators.heidenhain_tcpm`) are modelled as the general path has set
-them.
+(upper case) followed by words of this form, each after a blank and written without blanks inside: ``X+1.5``, ``IY-2``
+(an axis X Y Z, ``I`` for incremental, a plain decimal number), ``R0``, ``R+5`` (a radius), ``DR+``, ``DR-``,
+``F200``, ``FMAX``, ``M3`` -- so every Q parameter, formula, ``RL``/``RR``, ``LN``, ``LP``/``CP``/``CT``,
+``RND``/``CHF``, FK, ``APPR``/``DEP``, rotary and secondary axes, ``F AUTO``/``FU``/``FZ``, ``MB``, a word left empty,
+a number without an axis letter, a blank inside a word, lower-case text; a word its block does not allow (``DR`` or
+``R`` on a line, ``F``/``FMAX`` on ``CC``, ``FMAX`` on an arc), a word twice, ``F`` <= 0, a block without an axis
+word, a move without a feed, an arc without a sense or without its ``CC``, an arc the general path would refuse (its
+error is worded there), a non-finite end point; the M functions with a meaning (M0, M1, M2, M30: stop and end; M89,
+M99: cycle calls; M91, M92: machine coordinates; M128, M129: TCPM; M94, M103, M112, M113, M118, M120, M124, M136,
+M137, M138: the path and feed functions; M140: retract); under M128 (TCPM) an arc. And it declines every block in a
+modal state it does not model: a coordinate transformation (cycles 8, 10, 11, 26), a tilted working plane (PLANE,
+cycle 19), radius compensation RL/RR, an RND/CHF or an APPR waiting for the next element, an FK element waiting, M89's
+modal cycle call, M136's feed per revolution, FUNCTION FEED DWELL, M103's plunging feed. Units (MM/INCH), the preset
+and datum shift (cycles 7, 247), the tool axis and tool length, a pole in another plane (``CC`` with the tool axis),
+the path mode (cycle 32) and M128 on positioned rotary axes (lines of the tool tip on the turned part,
+:mod:`interpolators.heidenhain_tcpm`) are modelled as the general path has set them.
 
 The state is judged once after each block the general path ran (:meth:`PlainBlocks.reset`): plain blocks change
 none of what the judgement reads, nor the program zero, which is kept until then. The word forms follow the
@@ -56,7 +56,7 @@ _PLAIN_BLOCK = re.compile(r"(L|CC|CR|C)((?:[ \t]+(?:I?[XYZ]" + PLAIN_NUMBER + r"
                           + r"|DR[+-]|F" + PLAIN_NUMBER + r"|FMAX|M\d+))+)")
 _AXIS = {"X": 0, "Y": 1, "Z": 2}
 #: M functions the general path does more with than note them (see the module text).
-_ACTIVE_M = frozenset({0, 1, 2, 30, 89, 91, 92, 99, 128, 129, 136, 140})
+_ACTIVE_M = frozenset({0, 1, 2, 30, 89, 91, 92, 94, 99, 103, 112, 113, 118, 120, 124, 128, 129, 136, 137, 138, 140})
 #: M functions the general path accepts without a note (spindle, coolant).
 _QUIET_M = frozenset({3, 4, 5, 8, 9})
 
@@ -140,7 +140,8 @@ class PlainBlocks:
     def _judge(self) -> bool:
         m = self.m
         self.ready = (m.transform.identity and m.tilt is None and m.comp == "R0" and m.pending is None
-                      and m.approach is None and not m.fk.waiting and not m.modal_call)
+                      and m.approach is None and not m.fk.waiting and not m.modal_call and not m.per_revolution
+                      and m.feed_dwell is None and m.plunge is None)
         if self.ready:
             self.origin = m.origin().tolist()
         return self.ready

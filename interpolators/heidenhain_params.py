@@ -96,6 +96,17 @@ FN_CONDITIONS = {
 }
 
 
+#: FN functions that exchange data with the PLC or the outside and move nothing (TNC 640 / iTNC 530 user's
+#: manuals, "Additional functions": FN 19 PLC, FN 29 PLC transfer values to the PLC, FN 37 EXPORT hands local
+#: parameters to the calling program (vcnc's Q parameters are shared by all programs of a run), FN 38 SEND a
+#: text to the log or an external application).
+_FN_NO_MOTION = {19: "values sent to the PLC", 29: "values sent to the PLC", 37: "EXPORT (Q parameters are shared "
+                 "here)", 38: "SEND of a text"}
+
+#: The functions of a Q formula that read QS texts (TONUMB, STRLEN, INSTR, STRCOMP).
+_STRING_FUNCTION_RE = re.compile(r"\s*(TONUMB|STRLEN|INSTR|STRCOMP)\b", re.I)
+
+
 class QParameters:
     """The Q-parameter store of one program run and the formula evaluator."""
 
@@ -130,6 +141,12 @@ class QParameters:
                 if text[pos:].strip() == "":
                     break
                 m = _TOKEN_RE.match(text, pos)
+                sm = _STRING_FUNCTION_RE.match(text, pos)
+                if sm is not None:  # TNC 640 user's manual, "String parameters": numbers from texts
+                    where.fail(f"string function {sm.group(1).upper()} in a formula is not supported",
+                               column=column + pos, text=sm.group(1),
+                               expected="a formula of numbers and Q parameters (QS texts: DECLARE STRING, ||, TOCHAR, "
+                                        "SUBSTR)")
                 if m is None:
                     where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
                                expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
@@ -248,9 +265,17 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
     if n == 17:
         _syswrite(rest, params, where, col, scale=scale, note=note, tool_write=tool_write)
         return None
+    if n in _FN_NO_MOTION:
+        note(f"FN {n}: {_FN_NO_MOTION[n]} (no motion)")
+        return None
+    if n == 20 and re.match(r"\s*WAIT\s+FOR\b", rest, re.I):
+        # TNC 640 / iTNC 530 user's manuals, "FN 20: WAIT FOR: NC and PLC synchronization": the program waits for
+        # a PLC condition (or, WAIT FOR SYNC, for the look-ahead); a simulation has no PLC: no motion, no wait
+        note("FN 20: WAIT FOR (PLC synchronisation) read as met at once (no motion)")
+        return None
     where.fail(f"FN {n} is not supported", column=column, text=code[:fm.end()].strip(),
                expected="FN 0-13 (arithmetic, jumps), FN 14 ERROR, FN 15/16 PRINT, FN 17 SYSWRITE, "
-                        "FN 18 SYSREAD ID20/ID50/ID240/ID270")
+                        "FN 18 SYSREAD ID20/ID50/ID240/ID270, FN 20 WAIT FOR")
 
 
 _SYSWRITE_RE = re.compile(r"\s*SYSWRITE\s+ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*=\s*(.*?)\s*$",

@@ -263,6 +263,8 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
         second = words[1].upper() if len(words) > 1 else ""
         if (form, second) in (("RESET", "TCPM"), ("MODE", "MILL")):
             return f"{kw} {form} {second}: no motion"
+        if form in _NO_MOTION_FUNCTIONS:
+            return f"{kw} {form}: {_NO_MOTION_FUNCTIONS[form]} (no motion)"
         where.fail(f"{what} is not supported", column=column0, text=what,
                    expected="3-axis machining or 3+2 (FUNCTION TCPM, simultaneous 5-axis motion, is not modelled)")
     if form == "RESET":
@@ -275,6 +277,14 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
     where.fail(f"{what} (a tilted working plane) is not supported without the machine's kinematics", column=column0,
                text=what, expected=KINEMATICS_HINT)
     raise AssertionError("unreachable")  # pragma: no cover
+
+
+#: FUNCTION blocks that do not move the tool in a program run (TNC 640 user's manual): what they do.
+_NO_MOTION_FUNCTIONS = {
+    "LIFTOFF": "the lift-off of the tool at an NC stop",  # "Lifting off the tool at an NC stop: FUNCTION LIFTOFF"
+    "S-PULSE": "a pulsing spindle speed",  # "Pulsing spindle speed FUNCTION S-PULSE"
+    "COUNT": "the machining counter",  # "Defining a counter: FUNCTION COUNT"
+}
 
 
 #: The value words of each PLANE form (TNC 640 / iTNC 530 user's manuals, "The PLANE function").

@@ -71,6 +71,9 @@ class Word:
     value: object
     column: int
     text: str
+    #: The parameters an M function takes after it (:data:`M_ARGUMENTS`): ``(("LA", 3.0),)`` of ``M120 LA3``,
+    #: ``(("C", None),)`` of ``M94 C``.
+    args: tuple[tuple[str, float | None], ...] = ()
 
 
 #: How a word letter without a value is read. Programs saved by older TNCs (TNC 155/355 era: the
@@ -259,6 +262,49 @@ WORDS_EXPECTED = ("X/Y/Z (I for incremental), PR/PA, R, DR+/DR-, R0/RL/RR, F, F 
 SPEED_EXPECTED = "S in a TOOL CALL block (TOOL CALL [n] Z S.., a speed change without a tool change)"
 
 
+#: M functions that take parameters after them, and which (TNC 640 / iTNC 530 / TNC 426 user's manuals,
+#: "Miscellaneous functions"): ``M94 C`` (the rotary axis whose display is reduced, a letter alone),
+#: ``M103 F..`` (the plunging feed [%]), ``M138 B C`` (the rotary axes M128 / M114 take, letters alone),
+#: ``M112 T.. A..`` (TNC 426/430, TNC 407: ``E``, ``H``: contour tolerance and limit angle), ``M118 X.. Y..``
+#: (handwheel superimposition limits), ``M120 LA..`` (blocks calculated in advance), ``M124 T..`` (the
+#: least distance of the points M112 takes).
+M_ARGUMENTS = {
+    94: frozenset("ABC"),
+    103: frozenset({"F"}),
+    138: frozenset("ABC"),
+    112: frozenset({"T", "A", "E", "H"}),
+    118: frozenset("XYZABCUVW"),
+    120: frozenset({"LA"}),
+    124: frozenset({"T"}),
+}
+_M_ARG_RE = re.compile(r"\s*(LA|[A-Z])", re.I)
+
+
+def _m_arguments(code: str, pos: int, number: int, where: Where, params: QParameters, *,
+                 column0: int) -> tuple[tuple[tuple[str, float | None], ...], int]:
+    """The parameters of M function ``number`` from ``pos`` on (:data:`M_ARGUMENTS`) and the position after
+    them; ``M94``'s axis letter stands alone, the others carry a value (a number, ``Qn`` or a formula)."""
+    allowed = M_ARGUMENTS.get(number)
+    args: list[tuple[str, float | None]] = []
+    while allowed:
+        am = _M_ARG_RE.match(code, pos)
+        if am is None or am.group(1).upper() not in allowed:
+            break
+        letter, after = am.group(1).upper(), am.end()
+        has_value = re.match(r"\s*[+-]?\s*[\d.Q(]", code[after:], re.I) is not None
+        if number in (94, 138):
+            if has_value or (after < len(code) and not code[after].isspace()):
+                break
+            args.append((letter, None))
+            pos = after
+            continue
+        if not has_value:
+            break
+        value, pos = read_value(code, after, where, params, what=f"M{number} {letter}", column0=column0)
+        args.append((letter, value))
+    return tuple(args), pos
+
+
 def read_words(code: str, pos: int, where: Where, params: QParameters, *, column0: int) -> list[Word]:
     """The words of a block from ``pos`` on (see the module text), with values evaluated.
 
@@ -305,7 +351,9 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             if end < n and not code[end].isspace():
                 tok = token_at(code, pos)
                 where.fail(f"malformed M function {tok!r}", column=col, text=tok, expected="M followed by digits")
-            out.append(Word("M", int(mm.group(1)[:9]), col, mm.group(0)))
+            number = int(mm.group(1)[:9])
+            args, end = _m_arguments(code, end, number, where, params, column0=column0)
+            out.append(Word("M", number, col, code[pos:end].strip(), args))
         elif kind == "mb":
             value, end = read_value(code, end, where, params, what="MB", column0=column0)
             out.append(Word("MB", value, col, code[pos:end]))

@@ -179,7 +179,32 @@ _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCU
                    r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
+#: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M103 F.., M112 T.. A..,
+#: M118 X.. Y.., M120 LA.., M124 T.., M138 [axes]; their words are M's, not the block's.
+_M_WITH_WORDS = re.compile(r"\bM(94|138)((?:\s+[ABC](?![\w+.-]))*)"
+                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))*)",
+                           re.I)
+
+
+def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]]]:
+    """``rest`` with the parameters of M94/M103/M112/M118/M120/M124/M138 removed, and those by M number."""
+    found: dict[int, dict[str, float | None]] = {}
+
+    def take(mm: re.Match) -> str:
+        number = int(mm.group(1) or mm.group(3))
+        words = mm.group(2) if mm.group(1) else mm.group(4)
+        if number in (94, 138):  # axis letters alone
+            found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
+        else:
+            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
+            found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in pairs}
+        return f"M{number}"
+
+    return _M_WITH_WORDS.sub(take, rest), found
+
+
 def _words(rest: str, q: dict) -> dict[str, float | str]:
+    rest, margs = _m_words(rest, q)
     # R, F, M standing alone: a field the older TNCs saved empty ("L X+1 R F M"): nothing programmed
     s = re.sub(r"\s+", "", re.sub(r"(?<!\S)[RFM](?=\s*$|\s+(?!MAX|AUTO)[A-PR-Z])", " ", rest.upper()))
     out: dict[str, float | str] = {}
@@ -198,6 +223,8 @@ def _words(rest: str, q: dict) -> dict[str, float | str]:
             out[key] = _val(v, q)
     if pos != len(s):
         raise ReferenceError(f"unread text {s[pos:]!r}")
+    if margs:
+        out["MARGS"] = margs
     return out
 
 
@@ -214,6 +241,8 @@ class _Tnc:
         self.delta = 0.0
         self.auto: float | None = None  # F of the last TOOL CALL
         self.extra = np.zeros(6)  # A, B, C [deg], U, V, W [mm]: machine positions (their preset is 0)
+        self.shown = np.zeros(3)  # M94: machine angle minus displayed angle of A, B, C [deg]
+        self.strings: dict[int, str] = {}  # QS parameters
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
         self.entry = False
@@ -360,10 +389,11 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
     others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
+    _reduce_display(t, w.get("MARGS", {}))
     for k in others:
         i = "ABCUVW".index(k[-1])
         v = w[k] * (1.0 if i < 3 else t.scale)
-        t.extra[i] = t.extra[i] + v if k[0] == "I" else v
+        t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
     kind = "rapid" if "FMAX" in w else "feed"
     if axes or others:
         t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
@@ -379,6 +409,51 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+
+
+def _reduce_display(t: _Tnc, margs: dict) -> None:
+    """M94 [axis] (TNC 426 B/430 user's manual, "Reducing display of a rotary axis to a value less than 360
+    deg: M94"): at the start of the block the named rotary axis (all of them without a name) shows its angle
+    modulo 360; the next absolute angle is reached from there (538 deg, then C+180: +2 deg), the axis not moving."""
+    if 94 not in margs:
+        return
+    for i, a in enumerate("ABC"):
+        if a.lower() in t.ctx.extra_axes and (not margs[94] or a in margs[94]):
+            t.shown[i] = t.extra[i] - math.fmod(math.fmod(t.extra[i] - t.shown[i], 360.0) + 360.0, 360.0)
+
+
+def _string_formula(t: _Tnc, text: str) -> None:
+    """``[DECLARE STRING] QSn = term || term ..`` (TNC 640 user's manual, "String parameters"): quoted texts and
+    QS parameters joined."""
+    m = re.match(r"\s*(?:DECLARE\s+STRING\s+)?QS(\d+)\s*=(.*)$", text, re.I)
+    parts = []
+    for term in m.group(2).split("||"):
+        term = term.strip()
+        if term[:1] in "\"'" and term[-1:] == term[:1]:
+            parts.append(term[1:-1])
+        elif re.fullmatch(r"QS\d+", term, re.I):
+            parts.append(t.strings[int(term[2:])])
+        else:
+            raise ReferenceError(f"string term {term!r}")
+    t.strings[int(m.group(1))] = "".join(parts)
+
+
+def _spline(t: _Tnc, line: int, rest: str) -> None:
+    """``SPL X.. Y.. Z.. K3X.. K2X.. K1X..`` (iTNC 530 user's manual, "Spline interpolation"): X(t) = K3X t^3 +
+    K2X t^2 + K1X t + X with t from 1 to 0, so the block ends at its X, Y, Z; its start (the K's sum added) lies
+    within 1 um of where the tool is, in each axis. The end is checked (the chords between: rows="last")."""
+    ks = {(int(n), a.upper()): float(v.replace(" ", "")) * 10.0 ** int(e or 0) for n, a, v, e in
+          re.findall(r"K([123])([XYZ])\s*([-+]?\s*[\d.]+)(?:\s*E\s*([-+]?\d+))?", rest, re.I)}
+    plain = re.sub(r"K[123][XYZ]\S*(\s*E\S*)?", " ", rest, flags=re.I)  # the end point's words remain
+    ends = dict(re.findall(r"\b([XYZ])\s*([-+]?\s*[\d.]+)", plain, re.I))
+    p, start = t.prog(), t.prog()
+    for a, v in ends.items():
+        i = "XYZ".index(a.upper())
+        p[i] = float(v.replace(" ", "")) * t.scale
+        start[i] = p[i] + sum(ks[(n, a.upper())] for n in (1, 2, 3)) * t.scale
+    if np.max(np.abs(t.machine(start) - t.pos)) > 0.001 + 1e-9:
+        raise ReferenceError("SPL start more than 1 um from the tool")
+    t.emit(line, "feed", t.machine(p), rows="last")
 
 
 def _tcpm_switch(t: _Tnc, ms: list) -> None:
@@ -1599,7 +1674,7 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
-def _pattern_def_call(t: _Tnc, line: int) -> None:
+def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
     kind, cyc = t.cycle
@@ -1608,12 +1683,12 @@ def _pattern_def_call(t: _Tnc, line: int) -> None:
         p = {**cyc, "Q203": cyc["Q203"] + w.get("Z", 0.0)}
         clear = p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0))
         if sgn * (t.prog()[2] / t.scale - clear) > _EPS:
-            _move_z(t, line, "rapid", clear)
+            _move_z(t, line, between, clear)
         here = t.prog()
         for i, a in enumerate("XY"):
             here[i] = w[a] * t.scale if a in w else here[i] + w.get("I" + a, 0.0) * t.scale
         if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
-            t.emit(line, "rapid", t.machine(here))
+            t.emit(line, between, t.machine(here))
         t.cycle = (kind, p)
         _run_cycle(t, line)
     t.cycle = (kind, cyc)
@@ -1891,7 +1966,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
         a, op, b, label = m2.groups()
         if _FN_CMP[op](_val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)):
             return label.strip('"')
-    elif n == 15:
+    elif n == 15 or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # a print; a PLC wait: no motion
         pass
     elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
         ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?\s*=\s*(.*)$",
@@ -2157,8 +2232,10 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif re.match(r"Q\d+\s*=", up):
             q, expr = up.split("=", 1)
             t.q[q.strip()] = _Formula(expr, t.q).value()
-        elif up.startswith("TOOL"):
-            _tool(t, up)
+        elif re.match(r"(DECLARE STRING\s+)?QS\d+\s*=", up):
+            _string_formula(t, b)
+        elif up.startswith("TOOL"):  # TOOL CALL QSn: the name the string parameter holds
+            _tool(t, re.sub(r"^(TOOL CALL\s+)QS(\d+)", lambda qm: f'{qm.group(1)}"{t.strings[int(qm.group(2))]}"', up))
         elif up.startswith("TRANS"):
             _trans(t, up)
         elif up.startswith("PLANE") and t.ctx.kinematics is not None:
@@ -2172,15 +2249,16 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("PATTERN DEF"):
             t.pattern = [_words(inner, t.q) for inner in re.findall(r"POS\d+\s*\(([^)]*)\)", up)]
         elif up.startswith("CYCL CALL PAT"):
-            t.modal = False
-            _pattern_def_call(t, line)
+            t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
+            _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")
         elif up.startswith("CYCL CALL"):
             if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
                 raise ReferenceError(up)
             t.modal = False
             _run_cycle(t, line)
-        elif re.fullmatch(r"(M\d+\s*)+", up):
-            ms = [int(v) for v in re.findall(r"M(\d+)", up)]
+        elif re.fullmatch(r"(M\d+\s*)+", _m_words(up, t.q)[0]):
+            _reduce_display(t, _m_words(up, t.q)[1])
+            ms = [int(v) for v in re.findall(r"M(\d+)", _m_words(up, t.q)[0])]
             _tcpm_switch(t, ms)
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
@@ -2228,7 +2306,9 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         return True
     if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "RND", "CHF"):
         raise ReferenceError("a block after an FK element left open or without FSELECT")
-    if head == "L":
+    if head == "SPL":
+        _spline(t, line, rest)
+    elif head == "L":
         _line_block(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
         w = _words(rest, t.q)

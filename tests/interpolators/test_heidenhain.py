@@ -426,7 +426,7 @@ def test_cycl_call_pos_moves_then_runs_the_cycle_with_z_as_a_datum_shift():
 
 BAD = [
     ("CYCL DEF 18.0 THREAD CUTTING", "cycle 18 THREAD CUTTING (spindle-synchronised"),
-    ("FN 19: PLC=+10/+1", "FN 19 is not supported"),
+    ("FN 26: TABOPEN TNC:\\TABLE.TAB", "FN 26 is not supported"),
     ("L X+1 F100\nAPPR LT X+0 Y+0 LEN5 RL", "without a following contour element"),
     ("L X+1 F100\nAPPR LCT X+0 Y+0 R5 R0\nL X+5", "APPR LCT without radius compensation"),
     ("CALL LBL 7", "label 7 is not defined"),
