@@ -130,6 +130,13 @@ from interpolators.iso_offsets import (
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
+from interpolators.iso_reference import (
+    FANUC_CODES,
+    MILL_CODES,
+    NAMED_CODES,
+    off_reference,
+    stored_intermediate,
+)
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
@@ -197,7 +204,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
-    432: "G43.2 additional tool length offset",
+    432: "G43.2 additional tool length offset (LinuxCNC; --dialect linuxcnc)",
     682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
@@ -218,6 +225,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
+    **NAMED_CODES,  # G09, G22, G23, G27, G29, G60 outside the dialects that run them (interpolators.iso_reference)
 }
 
 #: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``
@@ -236,6 +244,7 @@ _MILL_G: dict[int, tuple[str, str]] = {
     740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
     510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
+    **MILL_CODES,  # G09, G29, G60 (interpolators.iso_reference)
 }
 
 #: Fanuc normal direction control (Fanuc Series 0i-MB operator's manual B-63844EN/02, II-14.9 "Normal
@@ -251,12 +260,16 @@ _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
               **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
+              **FANUC_CODES,  # G22, G23, G27 (interpolators.iso_reference)
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
              **EXTENDED_CODES["haas"]},
 }
+
+#: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).
+_LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset")}
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
 
@@ -348,6 +361,8 @@ class _State:
     comp_number: int = 0  # the D number of the cutter compensation in effect (Fanuc #4107)
     home: np.ndarray | None = None
     reference2: np.ndarray | None = None
+    # the last G28/G30 intermediate point [mm, program], NaN on an axis none named: Fanuc/Haas G29's
+    intermediate: np.ndarray = dataclasses.field(default_factory=lambda: np.full(3, np.nan))
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     # G99; LinuxCNC starts in G99 (interp_setup.cc: retract_mode(RETRACT_MODE::R_PLANE)), Fanuc/Haas in G98
     retract_r: bool = False
@@ -609,7 +624,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
         if w.letter == "G":
             key = _gkey(w, where)
             dialect = st.context.dialect.name
-            mill = _MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G else None
+            mill = (_MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G
+                    else _LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
             if mill is not None:
                 if mill[0] in gcodes:
                     where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
@@ -680,10 +696,26 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
 
 def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,
              notes: _Notes) -> bool:
-    """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
+    """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end.
+
+    A Fanuc/Haas ``G09`` makes the block's motion end in an exact stop, the modal path mode (G61/G64, which
+    the block may set too) unchanged (:mod:`interpolators.iso_reference`)."""
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    if "exact stop check" not in gcodes:
+        return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    notes.add("G09 exact stop (one block)")
+    modal, st.exact_stop = st.exact_stop, True
+    ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    if "path" not in gcodes:
+        st.exact_stop = modal
+    return ended
+
+
+def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: list[Block], used: set[int],
+                   where: Where, notes: _Notes) -> bool:
+    """:func:`_execute` of a block whose words are sorted."""
     seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
@@ -697,7 +729,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     if "normal direction" in gcodes:
         _normal_direction(gcodes["normal direction"], st, where, notes)
-    seen = _io_words(mcodes, seen, where)
+    seen = _io_words(mcodes, seen, st, where)
     _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
@@ -721,6 +753,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
         return ended
     if "pattern" in gcodes or "pocket" in gcodes:
         _pattern_or_pocket(gcodes, seen, st, blocks, used, where, number, notes)
+        return ended
+    if "stroke check" in gcodes:  # Fanuc G22/G23: no motion; G22's X Y Z I J K bound the forbidden area
+        notes.add(f"{FANUC_CODES[gcodes['stroke check'][0]][1]} (no motion; the stroke limits are not checked)")
         return ended
     if st.context.dialect.name == "linuxcnc":
         _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
@@ -1304,8 +1339,12 @@ def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
     return {k: v for k, v in seen.items() if k != "R"}
 
 
-def _io_words(mcodes, seen, where: Where) -> dict:
-    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P); E elsewhere is an error."""
+def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
+    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
+    elsewhere is an error."""
+    if st.context.dialect.name == "linuxcnc" and any(48 <= m <= 53 for m, _ in mcodes):
+        _override_m_codes(mcodes, st, where)
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
     if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation
@@ -1328,6 +1367,19 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
+
+
+def _override_m_codes(mcodes, st: _State, where: Where) -> None:
+    """LinuxCNC M48-M53 (m-code.adoc "M48, M49 Speed and Feed Override Control", "M50 Feed Override Control",
+    "M51 Spindle Speed Override Control", "M52 Adaptive Feed Control", "M53 Feed Stop Control"): ``M50 P1``
+    (or no P) enables, ``P0`` disables (interp_convert.cc convert_m: ``block->p_number != 0`` enables); no
+    motion, the path is unchanged (noted by :func:`_m_codes`). Refused with cutter compensation on, as
+    convert_m does ("Cannot enable overrides with cutter radius compensation on", "Cannot disable ..")."""
+    if st.comp_side is None:
+        return
+    m, w = next((m, w) for m, w in mcodes if 48 <= m <= 53)
+    where.fail(f"M{m}: cannot enable or disable overrides with cutter radius compensation on (LinuxCNC)",
+               column=w.column, text=w.text, expected=f"G40 before M{m}")
 
 
 def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
@@ -2080,6 +2132,9 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         st.tool_length = 0.0
         st.tool_xy = np.zeros(2)
         return
+    if key == 432:
+        _additional_length(seen, st, where, w, notes)
+        return
     if key == 431:
         # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
         # are the offsets (no motion), an axis not named keeps its offset
@@ -2103,6 +2158,37 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     notes.add("G43/G44 tool length from the table")
 
 
+def _additional_length(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+    """LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset"; interp_convert.cc
+    convert_tool_length_offset): ``G43.2 H<n>`` adds tool n's offsets (length, X, Y) to the ones in effect,
+    ``G43.2 X.. Y.. Z..`` adds the words; no motion, the next move of an axis goes to the compensated point.
+    Errors as LinuxCNC's: both H and axis words, neither, and cutter compensation on ("Cannot change tool
+    offset with cutter radius compensation on"); an H not in the table adds 0 (noted, as for G43 here)."""
+    axes = [a for a in ("X", "Y", "Z", *EXTRA_LETTERS) if a in seen]
+    why = ("can not have both H and axis words" if "H" in seen and axes else
+           "no axes specified and H word missing" if "H" not in seen and not axes else
+           "cannot change tool offset with cutter radius compensation on" if st.comp_side is not None else
+           f"axis word {axes[-1]} (an offset of an axis beyond X, Y, Z): not supported"
+           if axes and axes[-1] in EXTRA_LETTERS else None)  # X Y Z come first in axes
+    if why is not None:
+        where.fail(f"G43.2: {why} (LinuxCNC)", column=w.column, text=w.text,
+                   expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
+    add = np.zeros(3)
+    if "H" in seen:
+        number = int(seen.pop("H").value)
+        tool = st.tool(number)
+        if tool is None and number != 0:
+            notes.add(f"H{number} not in the tool table (length 0)")
+        if tool is not None:
+            add = np.array([tool.offset_x, tool.offset_y, tool.length])
+    for i, a in enumerate("XYZ"):
+        if a in seen:
+            add[i] = seen.pop(a).value * st.scale
+    st.tool_xy = st.tool_xy + add[:2]
+    st.tool_length += float(add[2])
+    notes.add("G43.2 additional tool length offset (added to the offsets in effect)")
+
+
 def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, notes: _Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
@@ -2124,6 +2210,9 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     if key in (280, 300):
         _reference_return(key, seen, axis_words, st, blocks, used, where, number)
         notes.add("G28/G30 reference return")
+        return True
+    if key in (270, 290, 600):
+        _mill_positioning(key, seen, axis_words, st, blocks, used, where, number, notes)
         return True
     if key in (281, 301):
         if key == 281:
@@ -2349,6 +2438,8 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
             mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
                                    incremental=st.incremental, scale=st.scale)
         _rapid(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
+        for a in axis_words:  # Fanuc/Haas G29 returns through it (program coordinates)
+            st.intermediate["XYZ".index(a)] = st.to_program(mid)["XYZ".index(a)]
         end = st.pos.copy()
         for a in axis_words:
             end["XYZ".index(a)] = ref["XYZ".index(a)]
@@ -2359,8 +2450,41 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
         _rapid(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
+        st.intermediate = st.to_program(st.pos)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+
+
+def _mill_positioning(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number,
+                      notes: _Notes) -> None:
+    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
+    name = {**MILL_CODES, **FANUC_CODES}[key][1]
+    code = name.split()[0]
+    bad = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "I", "J", "K", "R") if a in seen), None)
+    if not axis_words or bad is not None or st.comp_side is not None:
+        why = (f"with word {bad}: not supported" if bad is not None else
+               f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
+               "needs axis words (the axes it moves)")
+        word = seen[bad] if bad is not None else None
+        where.fail(f"{name} {why}", column=word.column if word else 1, text=word.text if word else where.text,
+                   expected=f"{code} X.. Y.. Z.. (G40 before it)")
+    if key == 290:
+        try:
+            mid = stored_intermediate(st.intermediate, st.to_program(st.pos), axis_words)
+        except KeyError as exc:
+            word = seen[exc.args[0]]
+            where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
+                       column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
+        _rapid(st.to_machine(mid), st, blocks, used, where, number, axis_words)
+    _rapid(_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
+    if key == 270:
+        missed = off_reference(st.pos, st.home, axis_words)
+        notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"
+                               if missed else ""))
+    elif key == 600:
+        notes.add(f"{name} run as a rapid to the end point (the overrun, a machine parameter, is not modelled)")
+    else:
+        notes.add(name)
 
 
 def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:

@@ -560,6 +560,7 @@ class _Machine:
         # G28 / G30 reference positions [machine mm]; G28.1 / G30.1 store the current position (g-code.adoc
         # "G28, G28.1": "G28.1 - stores the current absolute position into parameters 5161-5166")
         self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
+        self.intermediate = np.full(3, np.nan)  # the last G28/G30 intermediate point [program mm]: Fanuc G29's
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
@@ -746,6 +747,15 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code == 431 and "z" in words and not any(a in words for a in "xyabcuvw"):
             # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
             m.tool_length = words.pop("z")[-1] * m.scale
+        elif code == 432 and m.ctx.dialect.name == "linuxcnc":
+            # g-code.adoc "G43.2": H<n> adds tool n's offsets, axis words add themselves (no motion)
+            tool = m.tool(int(words.pop("h")[-1])) if "h" in words else None
+            add = [tool.offset_x, tool.offset_y, tool.length] if tool is not None else [0.0, 0.0, 0.0]
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    add[i] = words.pop(a)[-1] * m.scale
+            m.tool_xy = m.tool_xy + np.array(add[:2])
+            m.tool_length += add[2]
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     for code in g:
@@ -796,6 +806,12 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
             if code != 401 and "c" in m.ctx.extra_axes:
                 raise ReferenceError("G41.1/G42.1 normal direction control with a C axis")
             g.remove(code)
+    if 90 in g:  # G09 exact stop: the block ends at rest, at the same point
+        g.remove(90)
+    if m.ctx.dialect.name == "fanuc" and (220 in g or 230 in g):  # G22 X Y Z I J K: the stroke check's area
+        g[:] = [c for c in g if c not in (220, 230)]
+        for k in "xyzijk":
+            words.pop(k, None)
     for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
         if code in g:
             g.remove(code)
@@ -858,6 +874,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             home = m.home[code]
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
+            m.intermediate[axes] = m.target(words)[axes]  # Fanuc/Haas G29 returns through it
+            if not axes and not extra:
+                m.intermediate = m.to_program(m.pos)
             if axes or extra:
                 m.move(line, "rapid", m.target(words), optional=True, extra=m.extra_end(words))
             end = m.pos.copy()
@@ -866,6 +885,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             for i in extra if axes or extra else range(6):
                 m.extra[i] = 0.0  # the reference position of a, b, c, u, v, w: 0
             m.emit(line, "rapid", end)
+            return True
+        if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):
+            _from_reference(m, line, code, words)
             return True
         if code in (281, 301):
             m.home[code - 1] = m.pos.copy()
@@ -898,6 +920,20 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         elif code == 923:
             raise ReferenceError("G92.3")
     return False
+
+
+def _from_reference(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Fanuc G27 and G60 (Haas G60): a rapid to the point (G60's overrun not modelled: the same end); Fanuc/Haas
+    G29 (Haas "G29 Return From Reference Point": "the axes selected in this block are moved to the G29 reference
+    point saved in G28, and then moved to the location specified"): the named axes to the last G28/G30
+    intermediate point, then to the point (under G91 an increment from the intermediate point)."""
+    if code == 290:
+        mid = m.to_program(m.pos)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                mid[i] = m.intermediate[i]
+        m.move(line, "rapid", mid, optional=True)
+    m.move(line, "rapid", m.target(words), optional=True)
 
 
 def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:

@@ -1,0 +1,147 @@
+"""Codes real Fanuc, Haas and LinuxCNC programs use around the reference position, one-shot stops and tool
+offsets (issue #18): Fanuc/Haas G09, G27, G29, G60, Fanuc G22/G23 (:mod:`interpolators.iso_reference`),
+LinuxCNC G43.2 and M48-M53. End points worked out by hand from the manuals each test names, and each
+program checked against the independent reference (:mod:`tests.interpolators.reference_iso`)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext, Tool
+from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
+
+BASE = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0),
+                      tools={1: Tool(number=1, length=10.0), 2: Tool(number=2, length=3.0, offset_x=0.5)})
+FANUC = dataclasses.replace(BASE, dialect=DIALECTS["fanuc"])
+HAAS = dataclasses.replace(BASE, dialect=DIALECTS["haas"])
+LINUXCNC = dataclasses.replace(BASE, dialect=DIALECTS["linuxcnc"])
+OFF = np.array([100.0, 50.0, -20.0])
+
+
+def _ends(prog) -> list[list[float]]:
+    """End points of the blocks [mm, machine less the G54 offset], rounded to 1 nm."""
+    return [np.round(b.target - OFF, 6).tolist() for b in prog.blocks]
+
+
+# --- G09 exact stop, one block (Fanuc 0i-MD B-64304EN "Exact stop (G09)"; Haas "G09 Exact Stop") -----------
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_g09_stops_its_block_only_and_keeps_the_path_mode(context):
+    prog = checked_iso("G21 G90 G54 G64\nG0 X0. Y0. Z0.\nG1 X10. F600\nG09 X20.\nX30.\nY10.\nM30\n", context)
+    stops = [b.exact_stop for b in prog.blocks[1:]]
+    assert stops == [False, True, False, False]  # only the G09 block ends at rest
+    assert _ends(prog)[2] == [20.0, 0.0, 0.0]
+    assert any("G09" in n for n in prog.notes)
+
+
+def test_g09_is_refused_under_linuxcnc_naming_it():
+    # LinuxCNC has no G9 (g-code.adoc lists none; interp_array.cc gees[]: "Unknown g code used")
+    with pytest.raises(GCodeError, match=r"G09 exact stop for one block \(Fanuc/Haas"):
+        parse_program("G21 G90\nG1 G09 X1 F100\nM2\n", context=LINUXCNC)
+
+
+# --- G27 / G29 with the G28 before them (Fanuc 0i-MD "Reference position"; Haas "G29") --------------------
+
+def test_g29_returns_through_the_g28_intermediate_point_to_the_programmed_point():
+    # G28 X20. Z30.: through X20 Z30 (program) to the reference (machine X0, Z100); G29 X1. Z2.: X and Z to the
+    # intermediate point (X20 Z30), then to X1 Z2; Y, not named, stays. G91 G28 Z0.: the intermediate Z is the
+    # current Z (2.); G91 G29 Z-3.: back to Z2., then 3 mm down from it.
+    text = ("G21 G90 G54\nG0 X5. Y6. Z10.\nG28 X20. Z30.\nG29 X1. Z2.\nG91 G28 Z0.\nG29 Z-3.\nG90\nM30\n")
+    for context in (FANUC, HAAS):
+        ends = _ends(checked_iso(text, context))
+        assert ends[1:] == [[20.0, 6.0, 30.0], [-100.0, 6.0, 120.0], [20.0, 6.0, 30.0], [1.0, 6.0, 2.0],
+                            [1.0, 6.0, 2.0], [1.0, 6.0, 120.0], [1.0, 6.0, 2.0], [1.0, 6.0, -1.0]]
+
+
+def test_g29_follows_a_change_of_work_offset():
+    # Fanuc: the intermediate point is kept in workpiece coordinates: after G55 the tool returns through the
+    # same program point in the new system
+    ctx = dataclasses.replace(FANUC, work_offsets={"G54": (100.0, 50.0, -20.0), "G55": (0.0, 0.0, 0.0)})
+    prog = checked_iso("G21 G90 G54\nG0 X5. Y6. Z10.\nG28 Z30.\nG55\nG29 Z4.\nM30\n", ctx)
+    assert [b.target.tolist() for b in prog.blocks[-2:]] == [[105.0, 56.0, 30.0], [105.0, 56.0, 4.0]]
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G21 G90\nG0 X1. Y1. Z1.\nG29 X0.\nM30\n", "no G28/G30 intermediate point for axis X"),
+    ("G21 G90\nG28 Z10.\nG29 X0.\nM30\n", "no G28/G30 intermediate point for axis X"),
+    ("G21 G90\nG28 Z10.\nG29\nM30\n", "G29 return from the reference position needs axis words"),
+    ("G21 G90\nG28 Z10.\nG29 Z1. R2.\nM30\n", "with word R: not supported"),
+])
+def test_g29_errors_name_the_missing_piece(text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=FANUC)
+
+
+def test_g27_goes_to_the_point_and_notes_an_axis_off_the_reference_position():
+    # G27: a rapid to the point, then the check (alarm PS0092 on the control where an axis is not there):
+    # machine Z100 is the reference; X-100 (program) is machine X0, the reference too
+    prog = checked_iso("G21 G90 G54\nG0 X5. Y6. Z10.\nG27 X-100. Z120.\nG27 Y0.\nM30\n", FANUC)
+    assert _ends(prog)[1:] == [[-100.0, 6.0, 120.0], [-100.0, 0.0, 120.0]]
+    assert "G27 reference position return check: Y not at the reference position (the control alarms: PS0092)" \
+        in prog.notes
+
+
+@pytest.mark.parametrize("code, context, name", [
+    ("G27 X0", HAAS, "G27 reference position return check"), ("G27 X0", LINUXCNC, "G27"),
+    ("G29 X0", LINUXCNC, "G29 return from the reference position"), ("G22 X1 Y1", HAAS, "G22 stored stroke"),
+    ("G60 X1", LINUXCNC, "G60 single direction positioning"), ("G84.2 X0 Y0 Z-5 R2 F1", FANUC, "G84.2 rigid"),
+    ("G84.3 X0 Y0 Z-5 R2 F1", HAAS, "G84.3 left-handed rigid"), ("G43.2 H1", FANUC, "G43.2 additional"),
+])
+def test_codes_a_dialect_lacks_are_named(code, context, name):
+    with pytest.raises(GCodeError, match=name.replace(".", r"\.")):
+        parse_program(f"G21 G90\nG0 X0 Y0 Z0\n{code}\nM30\n", context=context)
+
+
+# --- G60 and G22/G23 -------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_g60_positions_at_rapid_to_the_point_and_leaves_the_motion_mode(context):
+    # Fanuc "Single direction positioning (G60)", Haas "G60 Uni-Directional Positioning": one-shot; the
+    # overrun (a machine parameter) is not modelled: a rapid to the same end point, noted
+    prog = checked_iso("G21 G90 G54\nG1 X1. Y1. Z0. F600\nG60 X10. Y-5.\nX12.\nM30\n", context)
+    assert [b.kind for b in prog.blocks] == ["line", "rapid", "line"]
+    assert _ends(prog) == [[1.0, 1.0, 0.0], [10.0, -5.0, 0.0], [12.0, -5.0, 0.0]]
+    assert any("G60" in n and "overrun" in n for n in prog.notes)
+
+
+def test_g22_words_are_the_forbidden_area_and_move_nothing():
+    # Fanuc "Stored stroke check" G22 X Y Z I J K: the area's corners; G23 turns the check off
+    prog = checked_iso("G21 G90 G54\nG0 X1. Y2. Z3.\nG22 X50. Y50. Z0. I-50. J-50. K-60.\nG1 X4. F300\nG23\nM30\n",
+                       FANUC)
+    assert _ends(prog) == [[1.0, 2.0, 3.0], [4.0, 2.0, 3.0]]
+    assert any("G22 stored stroke check on" in n for n in prog.notes)
+
+
+# --- LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset") and M48-M53 ------------------
+
+def test_g43_2_adds_the_tools_offsets_and_the_axis_words_to_the_ones_in_effect():
+    # G43 H1: Z +10; G43.2 H2: + tool 2's Z 3 and X 0.5; G43.2 Z0.25: + 0.25; G43 H1 replaces them all again
+    text = ("G21 G90 G54\nT1 M6\nG43 H1\nG0 X0 Y0 Z0\nG43.2 H2\nG0 X1 Z0\nG43.2 Z0.25\nG0 Z1\n"
+            "G43 H1\nG0 X1 Z2\nM2\n")
+    prog = checked_iso(text, LINUXCNC)
+    assert _ends(prog) == [[0.0, 0.0, 10.0], [1.5, 0.0, 13.0], [1.5, 0.0, 14.25], [1.0, 0.0, 12.0]]
+    assert any("G43.2" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G43.2 H1 Z1\n", "G43.2: can not have both H and axis words"),
+    ("G43.2\n", "G43.2: no axes specified and H word missing"),
+    ("G41 D1 G1 X5 F100\nG43.2 H1\n", "cannot change tool offset with cutter radius compensation on"),
+])
+def test_g43_2_errors_as_linuxcnc(text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90\nG0 X0 Y0 Z0\n{text}M2\n", context=LINUXCNC)
+
+
+def test_m48_to_m53_with_p_move_nothing_and_are_refused_under_compensation():
+    # m-code.adoc "M50 Feed Override Control" .. "M53 Feed Stop Control": P0 disables, P1 (or none) enables;
+    # interp_convert.cc convert_m refuses them with cutter radius compensation on
+    prog = checked_iso("G21 G90\nG0 X0 Y0 Z0\nM50 P0\nM51 P1\nM52 P0\nM53\nM48\nM49\nG1 X5 F100\nM2\n", LINUXCNC)
+    assert _ends(prog)[-1] == [5.0, 0.0, 0.0]
+    with pytest.raises(GCodeError, match="M50: cannot enable or disable overrides with cutter radius compensation"):
+        parse_program("G21 G90\nG0 X0 Y0 Z0\nG41 D1 G1 X5 F100\nM50 P0\nG40 X9\nM2\n", context=LINUXCNC)
