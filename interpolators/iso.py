@@ -33,7 +33,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           ``G74`` left-hand tapping as G84 (spindle M4)
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
-``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
+``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool);
+``G43.2``                 LinuxCNC: H or axis words added to the offsets in effect
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
                           (Fanuc ``G54.1 P``, Haas ``G154 P``/``G110``-``G129``, their ``G10 L20``:
                           :mod:`interpolators.iso_offsets`)
@@ -60,6 +61,10 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
                           pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
                           pocket milling (:mod:`interpolators.iso_haas`)
+``G09 G29 G60``           exact stop for one block; back through the last G28/G30 intermediate point;
+                          single direction positioning as a rapid (overrun not modelled, noted)
+``G27 G22 G23``           Fanuc only: rapid and reference position check (noted); stroke check
+                          (noted) (:mod:`interpolators.iso_reference`)
 ========================= =======================================================================
 
 grbl (``grbl`` dialect only): ``$`` system-command lines (reports, settings) and the ``?`` status
