@@ -1422,14 +1422,16 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
                 notes.add(f"{w.text.upper()} without P: P1")
     if "path" in gcodes:
         key, w = gcodes["path"]
-        st.exact_stop = key != 640
+        st.exact_stop = key in (610, 611)
+        if key in (620, 630):  # Fanuc G62/G63 (interpolators.iso_reference): continuous, as G64
+            notes.add(f"{FANUC_CODES[key][1]}: continuous path as G64 (the feed override it changes is not modelled)")
         if key == 640 and "P" in seen and "dwell" not in gcodes and seen["P"].value != 0:
             tol = seen["P"]
             if not tol.value > 0:
                 where.fail("G64 path tolerance P must be >= 0", column=tol.column, text=tol.text,
                            expected="P >= 0 [mm] (P0: no tolerance given)")
             st.tolerance = tol.value * scale
-        elif key == 640:
+        elif key in (620, 630, 640):
             st.tolerance = None
         if key == 640 and "Q" in seen:
             notes.add("G64 Q naive-CAM tolerance (segments are blended, not merged)")

@@ -35,6 +35,9 @@ operator's manual "G29 - Return from Reference Point").
   is the same), with a note saying the overrun is not modelled.
 * ``G22 X Y Z I J K`` / ``G23`` (Fanuc): stored stroke check 2 on (the words are the forbidden area's corners,
   no motion) / off: no motion, noted.
+* ``G62`` / ``G63`` (Fanuc, modal group 15 with G61 and G64: "Automatic corner override", "Tapping mode"):
+  blocks are not stopped at their ends (G63 also ignores the feed override; G62 lowers the feed at inner
+  corners under cutter compensation): run as continuous path (G64), noted.
 
 The Fanuc Series 15 format rigid tapping codes ``G84.2``/``G84.3`` are named in the error of every dialect:
 no manual of the controls vcnc reads (Fanuc 0i-MF in its own format, Haas, LinuxCNC) that documents them
@@ -59,6 +62,7 @@ MILL_CODES: dict[int, tuple[str, str]] = {
 FANUC_CODES: dict[int, tuple[str, str]] = {
     270: ("nonmodal", "G27 reference position return check"),
     220: ("stroke check", "G22 stored stroke check on"), 230: ("stroke check", "G23 stored stroke check off"),
+    620: ("path", "G62 automatic corner override"), 630: ("path", "G63 tapping mode"),
 }
 
 #: The same codes (and G84.2/G84.3) named in the error of a dialect that does not run them.
@@ -69,6 +73,9 @@ NAMED_CODES: dict[int, str] = {
     600: "G60 single direction positioning (Fanuc/Haas; --dialect fanuc or haas)",
     220: "G22 stored stroke check on (Fanuc; --dialect fanuc)",
     230: "G23 stored stroke check off (Fanuc; --dialect fanuc)",
+    620: "G62 automatic corner override (Fanuc; --dialect fanuc)", 630: "G63 tapping mode (Fanuc; --dialect fanuc)",
+    53: "G5.3 end of a G5.2 NURBS block", 1360: "G136 automatic work offset centre measurement (Haas probing)",
+    1530: "G153 5-axis high speed peck drilling cycle (Haas)", 110: "G11 parameter input by program cancel (Fanuc)",
     842: "G84.2 rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G84)",
     843: "G84.3 left-handed rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G74)",
 }

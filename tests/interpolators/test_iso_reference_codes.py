@@ -145,3 +145,11 @@ def test_m48_to_m53_with_p_move_nothing_and_are_refused_under_compensation():
     assert _ends(prog)[-1] == [5.0, 0.0, 0.0]
     with pytest.raises(GCodeError, match="M50: cannot enable or disable overrides with cutter radius compensation"):
         parse_program("G21 G90\nG0 X0 Y0 Z0\nG41 D1 G1 X5 F100\nM50 P0\nG40 X9\nM2\n", context=LINUXCNC)
+
+
+def test_g62_and_g63_run_as_continuous_path_and_g61_stops_again():
+    # Fanuc modal group 15 (G61 exact stop, G62 automatic corner override, G63 tapping mode, G64 cutting mode):
+    # G62 and G63 do not stop at block ends
+    prog = checked_iso("G21 G90 G54 G61\nG1 X1. Y0. Z0. F600\nG62\nX2.\nG63\nX3.\nG61\nX4.\nM30\n", FANUC)
+    assert [b.exact_stop for b in prog.blocks] == [True, False, False, True]
+    assert sum("continuous path as G64" in n for n in prog.notes) == 2
