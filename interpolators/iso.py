@@ -19,6 +19,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           the motion mode only
 ``G5 G5.1``               cubic / quadratic spline in XY (I J, P Q control offsets), run as chords
                           within 1 um (:mod:`interpolators.iso_splines`)
+``G5.2 G5.3``             LinuxCNC NURBS block (control points X Y P, order L), run as chords within 1 um
+                          (:mod:`interpolators.iso_nurbs`)
 ``G33 G33.1``             spindle-synchronised feed (K x S) and rigid tapping (there and back)
 ``@ ^``                   LinuxCNC polar distance and angle instead of X Y (:mod:`interpolators.iso_polar`)
 ``G4``                    dwell ``P`` (seconds under LinuxCNC/grbl, milliseconds under Fanuc/Haas)
@@ -83,7 +85,7 @@ Out of scope, each an error naming the feature: an axis the machine lacks (a wor
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
-the mill codes above), NURBS G5.2, polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
+the mill codes above), NURBS G5.2 (Fanuc, Haas), polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
 ``@ ^``), scaling G51 and rotation G68 (LinuxCNC), manual-retract
 boring G88 (and Haas G87), user M codes M100-M199 whose file is not in the dialect's ``user_m_path``.
 
@@ -123,6 +125,7 @@ from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_offsets import (
     EXTENDED_CODES,
     P_SELECT_CODES,
@@ -203,7 +206,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     750: "G75 lathe grooving cycle",
-    52: "G5.2 NURBS", 160: "G16 polar coordinates",
+    52: "G5.2 NURBS block (LinuxCNC; --dialect linuxcnc)", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation",
     870: "G87 back boring cycle (Fanuc) / boring with manual retract (Haas)",
     880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
@@ -274,7 +277,8 @@ _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
 }
 
 #: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).
-_LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset")}
+_LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset"),
+                                           52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end")}
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
 
@@ -350,6 +354,8 @@ class _State:
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     initial_feed_line: int | None = None  # the line whose feed move took the dialect's initial feed
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
+    nurbs: list[tuple[np.ndarray, float]] | None = None  # G5.2 control points [mm, machine] and weights
+    nurbs_order: int = 3  # G5.2 L
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -779,7 +785,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
-    if st.motion is not None and st.motion >= 730:
+    if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         _cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
@@ -818,7 +824,11 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
 
 def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes, moves: bool,
                  rot_words: list[str]) -> None:
-    """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused."""
+    """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused.
+    Under G5.2/G5.3 a NURBS control point or the curve."""
+    if st.motion in (52, 53):
+        _nurbs(seen, gcodes, st, blocks, used, where, number, notes)
+        return
     if rot_words:
         w = seen[rot_words[0]]
         where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
@@ -1467,6 +1477,8 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
     if "motion" in gcodes:
         key = gcodes["motion"][0]
         st.after_g80 = key == 800
+        if key not in (52, 53):  # LinuxCNC convert_nurbs: another motion mode drops the G5.2 control points
+            st.nurbs = None
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
@@ -1487,7 +1499,7 @@ def _check_p_q(seen, gcodes, st: _State, where: Where, mcodes: list) -> None:
     reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
     https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
-    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
+    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
     arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
     if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
@@ -1897,6 +1909,74 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
         blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
                             **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
     st.pos = np.array(target, dtype=float)
+
+
+def _nurbs(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes) -> None:
+    """LinuxCNC G5.2 / G5.3 (:mod:`interpolators.iso_nurbs`; interp_convert.cc convert_nurbs, its errors): a G5.2
+    block starts the control points at the current position (weight P when the block has no axis words, else 1),
+    each block with the plane's two axis words adds one, weight P (> 0; the G5.2 block's own point without P: 1,
+    g-code.adoc's default), L above 3 the order; G5.3 runs the curve to the last point, chords at the modal feed,
+    on its line. The current position stays until G5.3 (incremental words count from it, as LinuxCNC's
+    find_ends); after it no motion mode is set."""
+    w = gcodes["motion"][1] if "motion" in gcodes else None
+    mcol, mtok = (w.column, w.text) if w is not None else (1, where.text)
+    p, q = PLANE_AXES[st.plane]
+    letters = ["XYZ"[p], "XYZ"[q]]
+    stray = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "XYZ"[st.plane], *"IJKQR") if a in seen), None)
+    why = (f"with word {stray}: not supported (control points take the {_PLANE_CODES[st.plane]} plane's "
+           f"{letters[0]} {letters[1]}, P and L)" if stray is not None else
+           f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
+           "under G93 inverse time: not supported" if st.inverse_time else
+           "cannot use G5.3 without G5.2 first" if st.motion == 53 and st.nurbs is None else
+           f"you must specify both {letters[0]} and {letters[1]} coordinates for control points"
+           if (letters[0] in seen) != (letters[1] in seen) else None)
+    if why is not None:
+        bad = seen.get(stray, w) if stray is not None else w
+        where.fail(f"{'G5.3' if st.motion == 53 else 'G5.2'} NURBS {why}", column=bad.column if bad else mcol,
+                   text=bad.text if bad else mtok, expected="G5.2 <P> <L>, lines X- Y- P-, then G5.3 (LinuxCNC)")
+    if st.motion == 53:
+        _nurbs_curve(st, blocks, used, where, number, mcol, mtok)
+        notes.add("G5.2/G5.3 NURBS run as chords within 1 um of the curve")
+        return
+    moves = letters[0] in seen
+    weight = seen["P"].value if "P" in seen else None
+    if st.feed is None and not st.inverse_time and not _initial_feed(st, where):
+        _no_feed(st, where, "G5.2 NURBS", mcol, mtok)  # LinuxCNC: "Cannot make a NURBS with 0 feedrate"
+    if st.nurbs is None:
+        st.nurbs, st.nurbs_order = [(st.pos.copy(), weight if weight and weight > 0 and not moves else 1.0)], 3
+        weight = 1.0 if weight is None and moves else weight
+    elif not moves and weight is not None:
+        where.fail(f"G5.2 NURBS: can specify P without {letters[0]} and {letters[1]} only for the first control "
+                   "point", column=seen["P"].column, text=seen["P"].text, expected=f"{letters[0]}- {letters[1]}- P-")
+    if moves and (weight is None or weight <= 0):
+        bad = seen.get("P", seen[letters[0]])
+        where.fail("G5.2 NURBS: must specify positive weight P for every control point", column=bad.column,
+                   text=bad.text, expected=f"{letters[0]}- {letters[1]}- P<weight > 0>")
+    if "L" in seen and seen["L"].value > 3:
+        st.nurbs_order = int(seen["L"].value)
+    if moves:
+        st.nurbs.append((_target(seen, letters, st, machine=False), float(weight)))
+
+
+def _nurbs_curve(st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+    """G5.3: the NURBS of the G5.2 control points, as feed chords on this line."""
+    points, weights = np.array([c for c, _ in st.nurbs]), np.array([c for _, c in st.nurbs])
+    if len(points) < st.nurbs_order:
+        where.fail(f"G5.3 NURBS: you must specify a number of control points at least equal to the order "
+                   f"L = {st.nurbs_order} (got {len(points)}, the start point included)", column=mcol, text=mtok,
+                   expected=f"at least {st.nurbs_order} control points")
+    chain = [st.pos.copy()]
+    for point in nurbs_chords(points, weights, st.nurbs_order):
+        if np.any(point != chain[-1]):  # coincident control points make chords of no length: left out
+            chain.append(point)
+    used.update(PLANE_AXES[st.plane])
+    for a, b in zip(chain[:-1], chain[1:]):
+        seg = Line(a, b)
+        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
+                            target=np.array(b), feed=_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
+                            tolerance=st.tolerance))
+    st.pos = np.array(chain[-1], dtype=float)
+    st.nurbs, st.motion = None, None
 
 
 def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:

@@ -560,6 +560,7 @@ class _Machine:
         # G28 / G30 reference positions [machine mm]; G28.1 / G30.1 store the current position (g-code.adoc
         # "G28, G28.1": "G28.1 - stores the current absolute position into parameters 5161-5166")
         self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
+        self.nurbs_end: np.ndarray | None = None  # LinuxCNC G5.2: the last control point [machine mm]
         self.intermediate = np.full(3, np.nan)  # the last G28/G30 intermediate point [program mm]: Fanuc G29's
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
@@ -1057,7 +1058,10 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     unmodelled = [c for c in g if c % 10 == 0 and 73 <= c // 10 <= 89 and c // 10 not in (*cycles, 80)]
     if unmodelled:  # G88 boring with manual retract, G76/G87 outside Fanuc/Haas: not modelled here
         raise ReferenceError(f"G{unmodelled[0] // 10} cycle")
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in cycles]
+    nurbs = (52, 53) if m.ctx.dialect.name == "linuxcnc" else ()
+    if 52 in nurbs and 52 in g and m.motion != 52:  # a new G5.2 block: the current position is its first point
+        m.nurbs_end = m.pos.copy()
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
         if code // 10 not in cycles:
@@ -1066,6 +1070,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
             m.motion = m.linear
         elif code // 10 not in cycles:
             m.linear = code
+    if m.motion in (52, 53):
+        _nurbs(m, line, words, axes)
+        return
     if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
@@ -1115,6 +1122,17 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+def _nurbs(m: _Machine, line: int, words: dict, axes: bool) -> None:
+    """LinuxCNC G5.2 / G5.3 (g-code.adoc "G5.2 G5.3 NURBS Block"): the control points' blocks move nothing (the
+    position, from which G91 words count, stays); at G5.3 the curve runs to the last control point (the reader's
+    chords on the G5.3 line: the last row checked)."""
+    if m.motion == 53:
+        m.emit(line, "feed", m.nurbs_end, rows="last")
+        m.motion = None
+    elif axes:
+        m.nurbs_end = m.to_machine(m.target(words))
 
 
 #: Fanuc G45-G48 tool position offset: the multiple of the offset each adds to an axis' travel.

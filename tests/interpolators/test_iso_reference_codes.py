@@ -153,3 +153,53 @@ def test_g62_and_g63_run_as_continuous_path_and_g61_stops_again():
     prog = checked_iso("G21 G90 G54 G61\nG1 X1. Y0. Z0. F600\nG62\nX2.\nG63\nX3.\nG61\nX4.\nM30\n", FANUC)
     assert [b.exact_stop for b in prog.blocks] == [True, False, False, True]
     assert sum("continuous path as G64" in n for n in prog.notes) == 2
+
+
+# --- LinuxCNC G5.2/G5.3 NURBS (g-code.adoc "G5.2 G5.3 NURBS Block"; emccanon.cc NURBS_G5_FEED) -------------
+
+NURBS = "G21 G90 G17 G54\nG0 X0 Y0 Z0\nF600\nG5.2 P1 L3\nX0 Y1 P1\nX2 Y2 P1\nX2 Y0 P1\nX0 Y0 P2\nG5.3\nG0 X0 Y1\nM2\n"
+
+
+def test_nurbs_runs_the_documented_example_as_chords_on_the_g5_3_line():
+    # g-code.adoc's example: five control points (the start included), weights 1 1 1 1 2, order 3; the curve
+    # ends at the last control point (X0 Y0), on the G5.3 line, at the modal feed
+    prog = checked_iso(NURBS, LINUXCNC)
+    curve = [b for b in prog.blocks if b.line == 9]
+    assert len(curve) > 20 and all(b.kind == "line" and b.feed * 60 == pytest.approx(600.0) for b in curve)
+    assert (curve[-1].target - OFF).tolist() == [0.0, 0.0, 0.0]
+    assert not [b for b in prog.blocks if 4 <= b.line <= 8]  # the control points move nothing themselves
+
+
+def test_nurbs_chords_lie_on_the_rational_b_spline():
+    # order 3, knots 0 0 0 1 2 3 3 3 (nurbs_G5_knot_vector_creator): at u = 1.5 the basis is N1 = 1/8, N2 = 3/4,
+    # N3 = 1/8 (Cox-de Boor, worked out by hand), the weights of P1-P3 are 1: the curve passes through
+    # 1/8 (0,1) + 3/4 (2,2) + 1/8 (2,0) = (1.75, 1.625); the chords pass within 1 um of it
+    prog = parse_program(NURBS, context=LINUXCNC)
+    pts = np.array([b.target[:2] - OFF[:2] for b in prog.blocks if b.line == 9])
+    seg_a, seg_b = pts[:-1], pts[1:]
+    d = seg_b - seg_a
+    t = np.clip(np.einsum("ij,ij->i", np.array([1.75, 1.625]) - seg_a, d) / np.einsum("ij,ij->i", d, d), 0, 1)
+    assert np.min(np.linalg.norm(seg_a + t[:, None] * d - [1.75, 1.625], axis=1)) < 1e-3
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G5.3\n", "cannot use G5.3 without G5.2 first"),
+    ("G5.2 X1 Y1\nX2 P1\nG5.3\n", "you must specify both X and Y coordinates"),
+    ("G5.2 X1 Y1\nX2 Y2\nG5.3\n", "must specify positive weight P for every control point"),
+    ("G5.2 L4 X1 Y1\nX2 Y2 P1\nG5.3\n", "at least equal to the order L = 4"),
+    ("G5.2 X1 Y1 P1\nX2 Y2 P1\nG1 X0\nG5.3\n", "cannot use G5.3 without G5.2 first"),
+    ("G5.2 X1 Y1 Z1 P1\n", "with word Z"),
+])
+def test_nurbs_errors_as_linuxcnc(text, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90 G17\nG0 X0 Y0 Z0\nF600\n{text}M2\n", context=LINUXCNC)
+
+
+def test_nurbs_in_g91_counts_from_the_start_point_and_is_refused_outside_linuxcnc():
+    # LinuxCNC's find_ends reads incremental words from the current position, which stays at the curve's start
+    # until G5.3: G91 X2 Y0 is 2 mm from the start, as is the last point X0 Y0 -> the start itself
+    prog = checked_iso("G21 G90 G54\nG0 X1 Y1 Z0\nF600\nG91\nG5.2 X0 Y1 P1\nX2 Y1 P1\nX2 Y0 P1\nG5.3\nG90\nM2\n",
+                       LINUXCNC)
+    assert (prog.blocks[-1].target - OFF).tolist() == [3.0, 1.0, 0.0]
+    with pytest.raises(GCodeError, match=r"G5\.2 NURBS block \(LinuxCNC"):
+        parse_program(NURBS, context=FANUC)
