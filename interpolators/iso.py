@@ -292,6 +292,14 @@ _M_NOTES = {
     **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
 }
 
+#: Haas M codes with a P word (Haas mill operator's manual, M codes "M59 Set Output Relay", "M69 Clear Output
+#: Relay": P the relay number, e.g. M59 P1103): no motion, noted (as other M codes).
+_HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
+
+#: Haas M codes that branch on a machine input (Haas mill operator's manual "M96 Jump If No Input", "M46 Jump If
+#: Pallet Loaded"): which way the program goes is the machine's, errors naming them.
+_HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loaded (Haas)"}
+
 #: Words the I/O M codes read (LinuxCNC M-code reference: M62-M65 P<output>; M66 P|E<input>
 #: L<wait mode> Q<timeout>; M67/M68 E<analog output> Q<value>): theirs, not the motion's.
 _IO_WORDS = ("P", "E", "L", "Q")
@@ -1357,6 +1365,12 @@ def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
 def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
     """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
     elsewhere is an error."""
+    if st.context.dialect.name == "haas" and any(m in _HAAS_P_M or m in _HAAS_JUMP_M for m, _ in mcodes):
+        m, w = next((m, w) for m, w in mcodes if m in _HAAS_P_M or m in _HAAS_JUMP_M)
+        if m in _HAAS_JUMP_M:
+            where.fail(f"{_HAAS_JUMP_M[m]}: not supported (the jump depends on a machine input)", column=w.column,
+                       text=w.text, expected="a program without input-dependent jumps")
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if st.context.dialect.name == "linuxcnc" and any(48 <= m <= 53 for m, _ in mcodes):
         _override_m_codes(mcodes, st, where)
         seen = {k: v for k, v in seen.items() if k != "P"}

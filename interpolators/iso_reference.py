@@ -76,6 +76,14 @@ NAMED_CODES: dict[int, str] = {
     620: "G62 automatic corner override (Fanuc; --dialect fanuc)", 630: "G63 tapping mode (Fanuc; --dialect fanuc)",
     53: "G5.3 end of a G5.2 NURBS block", 1360: "G136 automatic work offset centre measurement (Haas probing)",
     1530: "G153 5-axis high speed peck drilling cycle (Haas)", 110: "G11 parameter input by program cancel (Fanuc)",
+    # named after the Fanuc 0i-MF G code list (B-64604EN "G code list", our reading) and Haas "G37":
+    660: "G66 modal macro call (Fanuc)", 670: "G67 modal macro call cancel (Fanuc)",
+    370: "G37 automatic tool length measurement (Fanuc/Haas probing)",
+    121: "G12.1 polar coordinate interpolation (Fanuc)", 131: "G13.1 polar coordinate interpolation cancel (Fanuc)",
+    71: "G07.1 cylindrical interpolation (Fanuc)", 22: "G02.2 involute interpolation (Fanuc)",
+    32: "G03.2 involute interpolation (Fanuc)", 390: "G39 corner circular interpolation (Fanuc)",
+    721: "G72.1 figure copy, rotary (Fanuc mill) / lathe facing cycle (LinuxCNC)",
+    722: "G72.2 figure copy, linear (Fanuc mill)",
     842: "G84.2 rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G84)",
     843: "G84.3 left-handed rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G74)",
 }

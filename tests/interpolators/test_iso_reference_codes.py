@@ -203,3 +203,26 @@ def test_nurbs_in_g91_counts_from_the_start_point_and_is_refused_outside_linuxcn
     assert (prog.blocks[-1].target - OFF).tolist() == [3.0, 1.0, 0.0]
     with pytest.raises(GCodeError, match=r"G5\.2 NURBS block \(LinuxCNC"):
         parse_program(NURBS, context=FANUC)
+
+
+# --- Haas M codes with P, and codes named in their errors --------------------------------------------------
+
+def test_haas_output_relay_m_codes_take_their_p_and_jumps_on_inputs_are_named():
+    # Haas mill operator's manual "M59 Set Output Relay" / "M69 Clear Output Relay" (P: the relay), "M96 Jump If
+    # No Input" (where the program goes is the machine's)
+    prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nM59 P1103\nG1 X5. F300\nM69 P1103\nM30\n", HAAS)
+    assert _ends(prog) == [[0.0, 0.0, 0.0], [5.0, 0.0, 0.0]]
+    with pytest.raises(GCodeError, match=r"M96 jump if no input \(Haas\): not supported"):
+        parse_program("G21 G90\nM96 P100 Q8\nM30\n", context=HAAS)
+    with pytest.raises(GCodeError, match="word P needs G04"):  # no standard meaning on a Fanuc
+        parse_program("G21 G90\nM59 P1103\nM30\n", context=FANUC)
+
+
+@pytest.mark.parametrize("code, name", [
+    ("G66 P9000", "G66 modal macro call"), ("G37 Z0", "G37 automatic tool length measurement"),
+    ("G12.1", "G12.1 polar coordinate interpolation"), ("G07.1 C10.", "G07.1 cylindrical interpolation"),
+    ("G02.2 X1. Y1.", "G02.2 involute interpolation"), ("G72.1 P1 L2", "G72.1 figure copy, rotary"),
+])
+def test_fanuc_codes_vcnc_does_not_run_are_named(code, name):
+    with pytest.raises(GCodeError, match=name.replace(".", r"\.")):
+        parse_program(f"G21 G90\n{code}\nM30\n", context=FANUC)
