@@ -125,6 +125,7 @@ from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_offsets import (
     EXTENDED_CODES,
@@ -409,6 +410,7 @@ class _State:
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
+    modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -512,11 +514,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     for fl in run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                   tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                   decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None):
-        if fl.raw.lstrip().startswith("/"):
-            notes.add("/ block delete lines run (switch off)")
-        if fl.file != source and fl.file not in external:
-            external.add(fl.file)
-            notes.add(f"subprogram from {Path(fl.file).name}")
+        _line_notes(fl, source, external, notes)
+        if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
+            _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
         while homing and fl.file == source and homing[0] < fl.line:
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
@@ -555,6 +555,28 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes) -> None:
+    """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
+    if fl.raw.lstrip().startswith("/"):
+        notes.add("/ block delete lines run (switch off)")
+    if fl.file != source and fl.file not in external:
+        external.add(fl.file)
+        notes.add(f"subprogram from {Path(fl.file).name}")
+
+
+def _enter_level(st: _State, level: int, plain: PlainMoves, where: Where, notes: _Notes) -> None:
+    """LinuxCNC: the call level of the next line (:mod:`interpolators.iso_modal_state`); a subroutine that saved
+    the modal state with M73 gives it back as it returns."""
+    try:
+        restored = st.modal_states.enter(st, level)
+    except ValueError as exc:
+        where.fail(f"M73 modal state restored at a subroutine's return: {exc}: not supported", expected="G40 "
+                   "before the M73 and before the return, or the same compensation in both")
+    if restored:
+        plain.reset()
+        notes.add("M73 modal state restored at the subroutine's return")
 
 
 def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes) -> None:
@@ -742,7 +764,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
     if "polar" in gcodes or st.fanuc_polar:
         seen = _fanuc_polar(seen, gcodes, st, where, notes)
     _tool_change_under_compensation(mcodes, st, where)
-    ended = _m_codes(mcodes, seen, st, notes)
+    ended = _m_codes(mcodes, seen, st, where, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
@@ -1315,8 +1337,8 @@ def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
                        expected="G40 before the tool change")
 
 
-def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
-    """M codes: tool change and notes; True at program end (M2/M30)."""
+def _m_codes(mcodes, seen, st: _State, where: Where, notes: _Notes) -> bool:
+    """M codes: tool change, LinuxCNC's M70-M73 and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
         if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
@@ -1332,6 +1354,8 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
             if "Q" in seen:
                 st.tool_current = int(seen["Q"].value)
             notes.add(_M_NOTES[m])
+        elif 70 <= m <= 73 and st.context.dialect.name == "linuxcnc":
+            _modal_state(m, st, where, notes)
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
         elif 100 <= m <= 199:
@@ -1341,6 +1365,27 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
         else:
             notes.add(f"M{m} (no motion)")
     return ended
+
+
+def _modal_state(m: int, st: _State, where: Where, notes: _Notes) -> None:
+    """LinuxCNC M70 save, M71 invalidate, M72 restore, M73 save and restore at the return
+    (:mod:`interpolators.iso_modal_state`)."""
+    states = st.modal_states
+    if m in (70, 73):
+        states.save(st, autorestore=m == 73)
+    elif m == 71:
+        states.invalidate()
+    else:
+        try:
+            restored = states.restore(st)
+        except ValueError as exc:
+            where.fail(f"{exc}: not supported", expected="the same cutter compensation at M70 and M72")
+        if not restored:
+            notes.add("M72 with no modal state saved at its level (LinuxCNC refuses it: \"missing M70/M73?\"); "
+                      "nothing restored")
+            return
+    notes.add({70: "M70 modal state saved", 71: "M71 saved modal state invalidated", 72: "M72 modal state restored",
+               73: "M73 modal state saved, restored at the subroutine's return"}[m])
 
 
 def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:

@@ -99,6 +99,7 @@ with the reader's ``--blocks`` rows.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 import re
@@ -560,6 +561,8 @@ class _Machine:
         # G28 / G30 reference positions [machine mm]; G28.1 / G30.1 store the current position (g-code.adoc
         # "G28, G28.1": "G28.1 - stores the current absolute position into parameters 5161-5166")
         self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
+        self.saved_states: dict[int, tuple[dict, bool]] = {}  # LinuxCNC M70/M73 per call level: state, autorestore
+        self.level = 0  # the O-word call level (0: the main program)
         self.nurbs_end: np.ndarray | None = None  # LinuxCNC G5.2: the last control point [machine mm]
         self.intermediate = np.full(3, np.nan)  # the last G28/G30 intermediate point [program mm]: Fanuc G29's
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
@@ -1338,6 +1341,10 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
         if dotted:  # Fagor T<tool>.<offset> (the 8055's T D): G43 / G41 without H / D take that offset
             m.offsets_of[int(dotted.group(1))] = int(dotted.group(2))
+    if m.ctx.dialect.name == "linuxcnc":
+        for code in mc:
+            if code in (700, 710, 720, 730):
+                _modal_state(m, code // 10)
     if 60 in mc:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
@@ -1368,6 +1375,38 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+#: What LinuxCNC's M70 saves (m-code.adoc "M70 Saved state") of what this reference models.
+_SAVED = ("scale", "plane", "incremental", "arc_absolute", "wcs", "tool_length", "tool_xy", "retract", "comp_radius")
+
+
+def _modal_state(m: _Machine, code: int) -> None:
+    """LinuxCNC M70 / M73 save the modal state at the call level, M71 forgets it, M72 restores it (m-code.adoc
+    "M70" - "M73"; M72 with nothing saved: LinuxCNC refuses it, the reader runs on: nothing restored here)."""
+    if code in (70, 73):
+        m.saved_states[m.level] = ({k: copy.copy(getattr(m, k)) for k in _SAVED}, code == 73)
+    elif code == 71:
+        m.saved_states.pop(m.level, None)
+    elif m.level in m.saved_states:
+        _restore(m, m.saved_states[m.level][0])
+
+
+def _restore(m: _Machine, state: dict) -> None:
+    if state["comp_radius"] != m.comp_radius:
+        raise ReferenceError("M72/M73 restoring cutter compensation")
+    for k, v in state.items():
+        setattr(m, k, copy.copy(v))
+
+
+def _call_level(m: _Machine, level: int) -> None:
+    """After an O-word line: a subroutine returned from restores the state its M73 saved (m-code.adoc "M73")."""
+    while m.level > level:
+        state = m.saved_states.pop(m.level, None)
+        if state is not None and state[1]:
+            _restore(m, state[0])
+        m.level -= 1
+    m.level = level
 
 
 def _corner(m: _Machine, n: int) -> None:
@@ -1615,6 +1654,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         if ln.oname is not None:
             pc = _oword(ln, pc, st, params, frames, counters)
+            if context.dialect.name == "linuxcnc":
+                _call_level(m, len(params.frames) - 1)
             if pc < 0:
                 break
             continue

@@ -226,3 +226,36 @@ def test_haas_output_relay_m_codes_take_their_p_and_jumps_on_inputs_are_named():
 def test_fanuc_codes_vcnc_does_not_run_are_named(code, name):
     with pytest.raises(GCodeError, match=name.replace(".", r"\.")):
         parse_program(f"G21 G90\n{code}\nM30\n", context=FANUC)
+
+
+# --- LinuxCNC M70-M73 (m-code.adoc "M70 Save Modal State" .. "M73 Save and Autorestore Modal State") --------
+
+def test_m70_m72_restore_the_distance_mode_and_units_but_not_the_motion_mode():
+    # M70 saves G21 G90 F600; G20 G91 F10 after it; M72 brings back G21 G90 F600: X1 is 1 mm absolute again, in the
+    # G1 mode set after M70 (the motion mode is not restored)
+    text = "G21 G90 G54\nG0 X0 Y0 Z0\nF600\nM70\nG20 G91\nG1 X1 F10\nM72\nX1\nM2\n"
+    prog = checked_iso(text, LINUXCNC)
+    assert _ends(prog) == [[0.0, 0.0, 0.0], [25.4, 0.0, 0.0], [1.0, 0.0, 0.0]]
+    assert [(b.kind, round(b.feed * 60, 6)) for b in prog.blocks[1:]] == [("line", 254.0), ("line", 600.0)]
+
+
+def test_m72_restores_a_zero_feed_as_linuxcnc():
+    # M70 before any F saves no feed: after M72 a G1 has none (LinuxCNC: "Cannot do g1 with zero feed rate")
+    with pytest.raises(GCodeError, match="feed move without a feed"):
+        parse_program("G21 G90\nG0 X0 Y0 Z0\nM70\nG1 X1 F10\nM72\nX2\nM2\n", context=LINUXCNC)
+
+
+def test_m73_restores_the_callers_state_when_the_subroutine_returns():
+    # the subroutine switches to G91 after M73; at endsub the caller's G90 is back: X5 is absolute
+    text = ("o<inc> sub\nM73\nG91\nG0 X1\no<inc> endsub\nG21 G90 G54\nG0 X0 Y0 Z0\no<inc> call\nG0 X5\n"
+            "o<inc> call\nG0 X0\nM2\n")
+    prog = checked_iso(text, LINUXCNC)
+    assert [e[0] for e in _ends(prog)] == [0.0, 1.0, 5.0, 6.0, 0.0]
+    assert any("M73" in n for n in prog.notes)
+
+
+def test_m71_forgets_the_state_and_m72_then_restores_nothing():
+    # LinuxCNC refuses such an M72 ("missing M70/M73?"); vcnc runs on with a note, nothing restored
+    prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nM70\nM71\nG91\nM72\nG0 X1\nG0 X1\nM2\n", LINUXCNC)
+    assert [e[0] for e in _ends(prog)] == [0.0, 1.0, 2.0]
+    assert any("M72 with no modal state saved" in n for n in prog.notes)
