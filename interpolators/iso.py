@@ -410,6 +410,7 @@ class _State:
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
+    parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
 
     def tool(self, number: int) -> Tool | None:
@@ -741,6 +742,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
     A Fanuc/Haas ``G09`` makes the block's motion end in an exact stop, the modal path mode (G61/G64, which
     the block may set too) unchanged (:mod:`interpolators.iso_reference`)."""
+    if st.parameter_input:  # Fanuc "Programmable parameter input (G10 L50)": N<number> [P<axis>] R<value> lines
+        st.parameter_input = not any(w.letter == "G" and w.value == 11 for w in words)  # G11 ends them
+        return False
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
@@ -2353,6 +2357,8 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         target = _target(seen, axis_words, st, machine=True)
         _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True
+    if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923):
+        _reference_p(key, seen, st, where, notes)
     if key in (280, 300):
         _reference_return(key, seen, axis_words, st, blocks, used, where, number)
         notes.add("G28/G30 reference return")
@@ -2417,6 +2423,25 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     return False
 
 
+def _reference_p(key: int, seen, st: _State, where: Where, notes: _Notes) -> None:
+    """A P word on G28, G30, G52, G53 or G92: Fanuc/Haas ``G30 P2``-``P4`` (Fanuc 0i-MD B-64304EN "2nd, 3rd, and
+    4th reference position return": P2 the second, the default; the third and fourth are machine parameters
+    No. 1242/1243 the machine context does not hold: the second is used, noted); elsewhere the P is ignored,
+    noted (LinuxCNC refuses it: "P word with no G2 G3 G4 G10 G64 ... to use it")."""
+    p = seen["P"]
+    code = f"G{key / 10:g}"
+    if key == 300 and st.context.dialect.name in ("fanuc", "haas"):
+        if p.value not in (2, 3, 4):
+            where.fail(f"G30 P{p.value:g}: no such reference position", column=p.column, text=p.text,
+                       expected="G30 P2, P3 or P4 (2nd, 3rd, 4th reference position)")
+        if p.value != 2:
+            notes.add(f"G30 P{p.value:g}: the {('third', 'fourth')[int(p.value) - 3]} reference position is not in the "
+                      "machine context: the second one used")
+        return
+    refused = ' (LinuxCNC refuses it: "P word with no ... to use it")' if st.context.dialect.name == "linuxcnc" else ""
+    notes.add(f"P word on {code} ignored{refused}")
+
+
 def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
     convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
@@ -2445,6 +2470,9 @@ def _g10(seen, st: _State, where: Where, w: Word) -> str:
     it before any T of the run."""
     l_word, p_word = seen.get("L"), seen.get("P")
     fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and l_word.value == 50 and st.context.dialect.name == "fanuc":
+        st.parameter_input = True  # the lines up to G11 are parameter data (_execute)
+        return "G10 L50 parameter input by program (its data lines up to G11 not run: parameters not modelled)"
     if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
             and p_word.value == 0 and "R" in seen:
         return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"

@@ -84,6 +84,7 @@ NAMED_CODES: dict[int, str] = {
     32: "G03.2 involute interpolation (Fanuc)", 390: "G39 corner circular interpolation (Fanuc)",
     721: "G72.1 figure copy, rotary (Fanuc mill) / lathe facing cycle (LinuxCNC)",
     722: "G72.2 figure copy, linear (Fanuc mill)",
+    542: "G54.2 rotary table dynamic fixture offset (Fanuc)",
     842: "G84.2 rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G84)",
     843: "G84.3 left-handed rigid tapping cycle (Fanuc Series 15 program format; Fanuc 0i: M29 S.. then G74)",
 }

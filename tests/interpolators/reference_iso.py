@@ -563,6 +563,7 @@ class _Machine:
         self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
         self.saved_states: dict[int, tuple[dict, bool]] = {}  # LinuxCNC M70/M73 per call level: state, autorestore
         self.level = 0  # the O-word call level (0: the main program)
+        self.parameter_input = False  # Fanuc G10 L50 .. G11
         self.nurbs_end: np.ndarray | None = None  # LinuxCNC G5.2: the last control point [machine mm]
         self.intermediate = np.full(3, np.nan)  # the last G28/G30 intermediate point [program mm]: Fanuc G29's
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
@@ -991,6 +992,9 @@ def _g10(m: _Machine, words: dict) -> None:
     """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
     kind = int(words["l"][-1])
     p = int(words["p"][-1]) if "p" in words else 0
+    if kind == 50 and m.ctx.dialect.name == "fanuc":  # Fanuc programmable parameter input: data lines to G11
+        m.parameter_input = True
+        return
     if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
         _g10_tool(m, kind, p, words)
         return
@@ -1331,6 +1335,9 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
     words, sets = _words(ln.text, params)
+    if m.parameter_input:  # Fanuc G10 L50: N<parameter> R<value> lines up to G11
+        m.parameter_input = 110 not in _codes(words, "g")
+        return None
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")

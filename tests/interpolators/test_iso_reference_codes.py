@@ -259,3 +259,27 @@ def test_m71_forgets_the_state_and_m72_then_restores_nothing():
     prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nM70\nM71\nG91\nM72\nG0 X1\nG0 X1\nM2\n", LINUXCNC)
     assert [e[0] for e in _ends(prog)] == [0.0, 1.0, 2.0]
     assert any("M72 with no modal state saved" in n for n in prog.notes)
+
+
+# --- Fanuc G10 L50 and G30 P (Fanuc 0i-MD B-64304EN "Programmable parameter input", "2nd, 3rd and 4th reference
+# position return") -------------------------------------------------------------------------------------------
+
+def test_g10_l50_data_lines_up_to_g11_are_not_run():
+    prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nG10 L50\nN1420 P1 R10000\nN5440 P1 R-1.\nG11\nG1 X5. F300\nM30\n",
+                       FANUC)
+    assert _ends(prog) == [[0.0, 0.0, 0.0], [5.0, 0.0, 0.0]]
+    assert any("G10 L50" in n for n in prog.notes)
+
+
+def test_g30_p_selects_a_reference_position_p3_p4_noted():
+    # the second reference position is the context's (machine Z 60 here); P3/P4 are machine parameters vcnc lacks
+    ctx = dataclasses.replace(FANUC, reference2=(0.0, 0.0, 60.0))
+    for p in ("P2", "P3"):
+        prog = checked_iso(f"G21 G90 G54\nG0 X0 Y0 Z0\nG91 G30 {p} Z0.\nG90\nM30\n", ctx)
+        assert prog.blocks[-1].target.tolist() == [100.0, 50.0, 60.0]
+    assert any("G30 P3: the third reference position" in n for n in prog.notes)
+    with pytest.raises(GCodeError, match="G30 P5: no such reference position"):
+        parse_program("G21\nG30 P5 Z0.\nM30\n", context=ctx)
+    # LinuxCNC refuses a P on G30 ("P word with no ... to use it"): noted, ignored
+    prog = parse_program("G21\nG30 P3 Z0\nM2\n", context=LINUXCNC)
+    assert any("P word on G30 ignored" in n for n in prog.notes)
