@@ -668,6 +668,9 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
             dialect = st.context.dialect.name
             mill = (_MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G
                     else _LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
+            if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
+                where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
+                           expected=f"milling G codes of the {dialect} dialect")
             if mill is not None:
                 if mill[0] in gcodes:
                     where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
@@ -2285,7 +2288,15 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     if key == 432:
         _additional_length(seen, st, where, w, notes)
         return
-    if key == 431:
+    if key == 431 and st.context.dialect.name == "fanuc":
+        # Fanuc "Tool length compensation in tool axis direction (G43.1)": along the tool axis, Z while the rotary
+        # axes stand at 0 (a 3-axis machine): G43
+        if np.any(st.extra[:3] != 0):
+            where.fail("G43.1 tool length compensation in tool axis direction with a rotary axis turned: not "
+                       "supported", column=w.column, text=w.text, expected="G43.1 H.. with the rotary axes at 0")
+        notes.add("G43.1 tool length compensation in tool axis direction run as G43 (the tool axis is Z)")
+        key = 430
+    elif key == 431:
         # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
         # are the offsets (no motion), an axis not named keeps its offset
         if not any(a in seen for a in "XYZ"):

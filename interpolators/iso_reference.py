@@ -35,6 +35,11 @@ operator's manual "G29 - Return from Reference Point").
   is the same), with a note saying the overrun is not modelled.
 * ``G22 X Y Z I J K`` / ``G23`` (Fanuc): stored stroke check 2 on (the words are the forbidden area's corners,
   no motion) / off: no motion, noted.
+* ``G43.1 H..`` (Fanuc, "Tool length compensation in tool axis direction"): along the tool axis, which is Z
+  while the rotary axes stand at 0: run as ``G43`` (noted); with a rotary axis turned, an error. (LinuxCNC's
+  G43.1 is the dynamic offset of its axis words.)
+* ``G30.1`` (Fanuc "Floating reference position return"): to a position the operator sets on the machine,
+  unknown here: an error (LinuxCNC's G30.1 stores the current position, and runs so under ``linuxcnc``).
 * ``G62`` / ``G63`` (Fanuc, modal group 15 with G61 and G64: "Automatic corner override", "Tapping mode"):
   blocks are not stopped at their ends (G63 also ignores the feed override; G62 lowers the feed at inner
   corners under cutter compensation): run as continuous path (G64), noted.
@@ -56,6 +61,10 @@ MILL_CODES: dict[int, tuple[str, str]] = {
     90: ("exact stop check", "G09 exact stop"),
     290: ("nonmodal", "G29 return from the reference position"),
     600: ("nonmodal", "G60 single direction positioning"),
+    # LinuxCNC's G30.1 stores the position; Fanuc's returns to the floating reference position, a position the
+    # operator sets on the machine (Fanuc 0i-MD "Floating reference position return (G30.1)"): refused
+    301: ("refused", "G30.1 floating reference position return (Fanuc: the floating reference is a machine "
+                     "position vcnc does not know)"),
 }
 
 #: Codes only the ``fanuc`` dialect runs.
@@ -63,6 +72,7 @@ FANUC_CODES: dict[int, tuple[str, str]] = {
     270: ("nonmodal", "G27 reference position return check"),
     220: ("stroke check", "G22 stored stroke check on"), 230: ("stroke check", "G23 stored stroke check off"),
     620: ("path", "G62 automatic corner override"), 630: ("path", "G63 tapping mode"),
+    431: ("length compensation", "G43.1 tool length compensation in tool axis direction"),
 }
 
 #: The same codes (and G84.2/G84.3) named in the error of a dialect that does not run them.

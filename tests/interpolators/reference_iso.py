@@ -740,7 +740,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
-        if code == 430:
+        if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0

@@ -283,3 +283,16 @@ def test_g30_p_selects_a_reference_position_p3_p4_noted():
     # LinuxCNC refuses a P on G30 ("P word with no ... to use it"): noted, ignored
     prog = parse_program("G21\nG30 P3 Z0\nM2\n", context=LINUXCNC)
     assert any("P word on G30 ignored" in n for n in prog.notes)
+
+
+def test_fanuc_g43_1_runs_as_g43_and_g30_1_is_refused():
+    # Fanuc "Tool length compensation in tool axis direction (G43.1)": with the tool axis along Z, as G43 (H1: 10 mm;
+    # the block's Z moves); "Floating reference position return (G30.1)": a machine position vcnc does not know
+    prog = checked_iso("G21 G90 G54\nG0 X0 Y0\nG43.1 H1 Z5.\nG1 Z0. F100\nM30\n", FANUC)
+    assert _ends(prog)[1:] == [[0.0, 0.0, 15.0], [0.0, 0.0, 10.0]]
+    for context in (FANUC, HAAS):
+        with pytest.raises(GCodeError, match="G30.1 floating reference position return"):
+            parse_program("G21\nG91 G30.1 Z0.\nM30\n", context=context)
+    # LinuxCNC: G43.1 Z is the dynamic offset, G30.1 stores the position
+    prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nG43.1 Z5\nG0 Z0\nG30.1\nM2\n", LINUXCNC)
+    assert _ends(prog)[-1] == [0.0, 0.0, 5.0]
