@@ -2368,7 +2368,8 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         target = _target(seen, axis_words, st, machine=True)
         _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True
-    if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923):
+    if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
+            and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's
         _reference_p(key, seen, st, where, notes)
     if key in (280, 300):
         _reference_return(key, seen, axis_words, st, blocks, used, where, number)

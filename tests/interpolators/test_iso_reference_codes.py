@@ -296,3 +296,10 @@ def test_fanuc_g43_1_runs_as_g43_and_g30_1_is_refused():
     # LinuxCNC: G43.1 Z is the dynamic offset, G30.1 stores the position
     prog = checked_iso("G21 G90 G54\nG0 X0 Y0 Z0\nG43.1 Z5\nG0 Z0\nG30.1\nM2\n", LINUXCNC)
     assert _ends(prog)[-1] == [0.0, 0.0, 5.0]
+
+
+def test_a_p_on_a_line_with_g64_is_g64s_not_g92_1s():
+    # "G64 P0.005 .. G92.1" (a LinuxCNC post's header): the P is the path tolerance, nothing to note on G92.1
+    prog = parse_program("G20 G17 G40 G49 G64 P0.005 G80 G90 G92.1 G94\nG0 X1\nM2\n", context=LINUXCNC)
+    assert not any("P word on" in n for n in prog.notes)
+    assert prog.blocks[0].tolerance == pytest.approx(0.005 * 25.4)
