@@ -19,6 +19,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           the motion mode only
 ``G5 G5.1``               cubic / quadratic spline in XY (I J, P Q control offsets), run as chords
                           within 1 um (:mod:`interpolators.iso_splines`)
+``G5.2 G5.3``             LinuxCNC NURBS block (control points X Y P, order L), run as chords within 1 um
+                          (:mod:`interpolators.iso_nurbs`)
 ``G33 G33.1``             spindle-synchronised feed (K x S) and rigid tapping (there and back)
 ``@ ^``                   LinuxCNC polar distance and angle instead of X Y (:mod:`interpolators.iso_polar`)
 ``G4``                    dwell ``P`` (seconds under LinuxCNC/grbl, milliseconds under Fanuc/Haas)
@@ -33,7 +35,8 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           ``G74`` left-hand tapping as G84 (spindle M4)
 ``G40 G41 G42``           cutter radius compensation (D from the tool table, G41.1/G42.1 D diameter),
                           LinuxCNC's entry/exit and corner rules (:mod:`interpolators.compensation`)
-``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool)
+``G43 G43.1 G44 G49``     tool length offset from the tool table (H, default the current tool);
+``G43.2``                 LinuxCNC: H or axis words added to the offsets in effect
 ``G54``-``G59.3``         work offsets; ``G92 G92.1 G92.2 G92.3``, ``G52``; ``G53``; ``G28 G30 G28.1 G30.1``
                           (Fanuc ``G54.1 P``, Haas ``G154 P``/``G110``-``G129``, their ``G10 L20``:
                           :mod:`interpolators.iso_offsets`)
@@ -60,6 +63,10 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
                           pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
                           pocket milling (:mod:`interpolators.iso_haas`)
+``G09 G29 G60``           exact stop for one block; back through the last G28/G30 intermediate point;
+                          single direction positioning as a rapid (overrun not modelled, noted)
+``G27 G22 G23``           Fanuc only: rapid and reference position check (noted); stroke check
+                          (noted) (:mod:`interpolators.iso_reference`)
 ========================= =======================================================================
 
 grbl (``grbl`` dialect only): ``$`` system-command lines (reports, settings) and the ``?`` status
@@ -78,7 +85,7 @@ Out of scope, each an error naming the feature: an axis the machine lacks (a wor
 axis at 0, ``A0``, is accepted with a note), A B C U V W words in cycles, splines, dwells and under
 cutter compensation,
 probing G38.x, threading G76, lathe codes (G7/G8, G70-G72, G75; in the Fanuc/Haas dialects
-the mill codes above), NURBS G5.2, polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
+the mill codes above), NURBS G5.2 (Fanuc, Haas), polar G16 (LinuxCNC, Haas; Fanuc G16 under G90 and G17 runs as
 ``@ ^``), scaling G51 and rotation G68 (LinuxCNC), manual-retract
 boring G88 (and Haas G87), user M codes M100-M199 whose file is not in the dialect's ``user_m_path``.
 
@@ -119,6 +126,8 @@ from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_modal_state import ModalStates
+from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_offsets import (
     EXTENDED_CODES,
     P_SELECT_CODES,
@@ -131,6 +140,13 @@ from interpolators.iso_offsets import (
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
+from interpolators.iso_reference import (
+    FANUC_CODES,
+    MILL_CODES,
+    NAMED_CODES,
+    off_reference,
+    stored_intermediate,
+)
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_splines import SPLINE_TOLERANCE, bezier_chords
@@ -192,13 +208,13 @@ _G_UNSUPPORTED: dict[int, str] = {
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     750: "G75 lathe grooving cycle",
-    52: "G5.2 NURBS", 160: "G16 polar coordinates",
+    52: "G5.2 NURBS block (LinuxCNC; --dialect linuxcnc)", 160: "G16 polar coordinates",
     510: "G51 scaling", 680: "G68 coordinate rotation",
     870: "G87 back boring cycle (Fanuc) / boring with manual retract (Haas)",
     880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
     120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
     171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
-    432: "G43.2 additional tool length offset",
+    432: "G43.2 additional tool length offset (LinuxCNC; --dialect linuxcnc)",
     682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
     434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
@@ -219,6 +235,7 @@ _G_UNSUPPORTED: dict[int, str] = {
     1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
     1500: "G150 general purpose pocket milling (Haas)",
     1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
+    **NAMED_CODES,  # G09, G22, G23, G27, G29, G60 outside the dialects that run them (interpolators.iso_reference)
 }
 
 #: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``
@@ -237,6 +254,7 @@ _MILL_G: dict[int, tuple[str, str]] = {
     740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
     510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
+    **MILL_CODES,  # G09, G29, G60 (interpolators.iso_reference)
 }
 
 #: Fanuc normal direction control (Fanuc Series 0i-MB operator's manual B-63844EN/02, II-14.9 "Normal
@@ -252,12 +270,17 @@ _DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
               **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
+              **FANUC_CODES,  # G22, G23, G27 (interpolators.iso_reference)
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
              **EXTENDED_CODES["haas"]},
 }
+
+#: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).
+_LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset"),
+                                           52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end")}
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
 
@@ -270,6 +293,14 @@ _M_NOTES = {
     70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
     **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
 }
+
+#: Haas M codes with a P word (Haas mill operator's manual, M codes "M59 Set Output Relay", "M69 Clear Output
+#: Relay": P the relay number, e.g. M59 P1103): no motion, noted (as other M codes).
+_HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
+
+#: Haas M codes that branch on a machine input (Haas mill operator's manual "M96 Jump If No Input", "M46 Jump If
+#: Pallet Loaded"): which way the program goes is the machine's, errors naming them.
+_HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loaded (Haas)"}
 
 #: Words the I/O M codes read (LinuxCNC M-code reference: M62-M65 P<output>; M66 P|E<input>
 #: L<wait mode> Q<timeout>; M67/M68 E<analog output> Q<value>): theirs, not the motion's.
@@ -333,6 +364,8 @@ class _State:
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
     initial_feed_line: int | None = None  # the line whose feed move took the dialect's initial feed
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
+    nurbs: list[tuple[np.ndarray, float]] | None = None  # G5.2 control points [mm, machine] and weights
+    nurbs_order: int = 3  # G5.2 L
     wcs: str = "G54"
     g92: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
     g92_saved: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
@@ -349,6 +382,8 @@ class _State:
     comp_number: int = 0  # the D number of the cutter compensation in effect (Fanuc #4107)
     home: np.ndarray | None = None
     reference2: np.ndarray | None = None
+    # the last G28/G30 intermediate point [mm, program], NaN on an axis none named: Fanuc/Haas G29's
+    intermediate: np.ndarray = dataclasses.field(default_factory=lambda: np.full(3, np.nan))
     offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     # G99; LinuxCNC starts in G99 (interp_setup.cc: retract_mode(RETRACT_MODE::R_PLANE)), Fanuc/Haas in G98
     retract_r: bool = False
@@ -376,6 +411,8 @@ class _State:
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
+    parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
+    modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -485,11 +522,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
-        if fl.raw.lstrip().startswith("/"):
-            notes.add("/ block delete lines run (switch off)")
-        if fl.file != source and fl.file not in external:
-            external.add(fl.file)
-            notes.add(f"subprogram from {Path(fl.file).name}")
+        _line_notes(fl, source, external, notes)
+        if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
+            _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
         while homing and fl.file == source and homing[0] < fl.line:
             _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
@@ -528,6 +563,28 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes) -> None:
+    """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
+    if fl.raw.lstrip().startswith("/"):
+        notes.add("/ block delete lines run (switch off)")
+    if fl.file != source and fl.file not in external:
+        external.add(fl.file)
+        notes.add(f"subprogram from {Path(fl.file).name}")
+
+
+def _enter_level(st: _State, level: int, plain: PlainMoves, where: Where, notes: _Notes) -> None:
+    """LinuxCNC: the call level of the next line (:mod:`interpolators.iso_modal_state`); a subroutine that saved
+    the modal state with M73 gives it back as it returns."""
+    try:
+        restored = st.modal_states.enter(st, level)
+    except ValueError as exc:
+        where.fail(f"M73 modal state restored at a subroutine's return: {exc}: not supported", expected="G40 "
+                   "before the M73 and before the return, or the same compensation in both")
+    if restored:
+        plain.reset()
+        notes.add("M73 modal state restored at the subroutine's return")
 
 
 def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes) -> None:
@@ -616,7 +673,11 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
         if w.letter == "G":
             key = _gkey(w, where)
             dialect = st.context.dialect.name
-            mill = _MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G else None
+            mill = (_MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G
+                    else _LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
+            if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
+                where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
+                           expected=f"milling G codes of the {dialect} dialect")
             if mill is not None:
                 if mill[0] in gcodes:
                     where.fail(f"two G codes of the {mill[0]} group in one block", column=w.column, text=w.text,
@@ -687,10 +748,29 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
 
 def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,
              notes: _Notes) -> bool:
-    """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end."""
+    """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end.
+
+    A Fanuc/Haas ``G09`` makes the block's motion end in an exact stop, the modal path mode (G61/G64, which
+    the block may set too) unchanged (:mod:`interpolators.iso_reference`)."""
+    if st.parameter_input:  # Fanuc "Programmable parameter input (G10 L50)": N<number> [P<axis>] R<value> lines
+        st.parameter_input = not any(w.letter == "G" and w.value == 11 for w in words)  # G11 ends them
+        return False
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    if "exact stop check" not in gcodes:
+        return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    notes.add("G09 exact stop (one block)")
+    modal, st.exact_stop = st.exact_stop, True
+    ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    if "path" not in gcodes:
+        st.exact_stop = modal
+    return ended
+
+
+def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: list[Block], used: set[int],
+                   where: Where, notes: _Notes) -> bool:
+    """:func:`_execute` of a block whose words are sorted."""
     seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
@@ -698,13 +778,13 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if "polar" in gcodes or st.fanuc_polar:
         seen = _fanuc_polar(seen, gcodes, st, where, notes)
     _tool_change_under_compensation(mcodes, st, where)
-    ended = _m_codes(mcodes, seen, st, notes)
+    ended = _m_codes(mcodes, seen, st, where, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     if "normal direction" in gcodes:
         _normal_direction(gcodes["normal direction"], st, where, notes)
-    seen = _io_words(mcodes, seen, where)
+    seen = _io_words(mcodes, seen, st, where)
     _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
@@ -729,6 +809,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if "pattern" in gcodes or "pocket" in gcodes:
         _pattern_or_pocket(gcodes, seen, st, blocks, used, where, number, notes)
         return ended
+    if "stroke check" in gcodes:  # Fanuc G22/G23: no motion; G22's X Y Z I J K bound the forbidden area
+        notes.add(f"{FANUC_CODES[gcodes['stroke check'][0]][1]} (no motion; the stroke limits are not checked)")
+        return ended
     if st.context.dialect.name == "linuxcnc":
         _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
                              notes)
@@ -746,7 +829,7 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         _check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
-    if st.motion is not None and st.motion >= 730:
+    if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         _cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended
     axis_words += polar  # "@" and "^" move X and Y
@@ -785,7 +868,11 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
 
 def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes, moves: bool,
                  rot_words: list[str]) -> None:
-    """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused."""
+    """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused.
+    Under G5.2/G5.3 a NURBS control point or the curve."""
+    if st.motion in (52, 53):
+        _nurbs(seen, gcodes, st, blocks, used, where, number, notes)
+        return
     if rot_words:
         w = seen[rot_words[0]]
         where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
@@ -1264,8 +1351,8 @@ def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
                        expected="G40 before the tool change")
 
 
-def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
-    """M codes: tool change and notes; True at program end (M2/M30)."""
+def _m_codes(mcodes, seen, st: _State, where: Where, notes: _Notes) -> bool:
+    """M codes: tool change, LinuxCNC's M70-M73 and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
         if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
@@ -1281,6 +1368,8 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
             if "Q" in seen:
                 st.tool_current = int(seen["Q"].value)
             notes.add(_M_NOTES[m])
+        elif 70 <= m <= 73 and st.context.dialect.name == "linuxcnc":
+            _modal_state(m, st, where, notes)
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
         elif 100 <= m <= 199:
@@ -1290,6 +1379,27 @@ def _m_codes(mcodes, seen, st: _State, notes: _Notes) -> bool:
         else:
             notes.add(f"M{m} (no motion)")
     return ended
+
+
+def _modal_state(m: int, st: _State, where: Where, notes: _Notes) -> None:
+    """LinuxCNC M70 save, M71 invalidate, M72 restore, M73 save and restore at the return
+    (:mod:`interpolators.iso_modal_state`)."""
+    states = st.modal_states
+    if m in (70, 73):
+        states.save(st, autorestore=m == 73)
+    elif m == 71:
+        states.invalidate()
+    else:
+        try:
+            restored = states.restore(st)
+        except ValueError as exc:
+            where.fail(f"{exc}: not supported", expected="the same cutter compensation at M70 and M72")
+        if not restored:
+            notes.add("M72 with no modal state saved at its level (LinuxCNC refuses it: \"missing M70/M73?\"); "
+                      "nothing restored")
+            return
+    notes.add({70: "M70 modal state saved", 71: "M71 saved modal state invalidated", 72: "M72 modal state restored",
+               73: "M73 modal state saved, restored at the subroutine's return"}[m])
 
 
 def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
@@ -1311,8 +1421,18 @@ def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
     return {k: v for k, v in seen.items() if k != "R"}
 
 
-def _io_words(mcodes, seen, where: Where) -> dict:
-    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P); E elsewhere is an error."""
+def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
+    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
+    elsewhere is an error."""
+    if st.context.dialect.name == "haas" and any(m in _HAAS_P_M or m in _HAAS_JUMP_M for m, _ in mcodes):
+        m, w = next((m, w) for m, w in mcodes if m in _HAAS_P_M or m in _HAAS_JUMP_M)
+        if m in _HAAS_JUMP_M:
+            where.fail(f"{_HAAS_JUMP_M[m]}: not supported (the jump depends on a machine input)", column=w.column,
+                       text=w.text, expected="a program without input-dependent jumps")
+        seen = {k: v for k, v in seen.items() if k != "P"}
+    if st.context.dialect.name == "linuxcnc" and any(48 <= m <= 53 for m, _ in mcodes):
+        _override_m_codes(mcodes, st, where)
+        seen = {k: v for k, v in seen.items() if k != "P"}
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
     if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation
@@ -1335,6 +1455,19 @@ def _io_words(mcodes, seen, where: Where) -> dict:
         where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
+
+
+def _override_m_codes(mcodes, st: _State, where: Where) -> None:
+    """LinuxCNC M48-M53 (m-code.adoc "M48, M49 Speed and Feed Override Control", "M50 Feed Override Control",
+    "M51 Spindle Speed Override Control", "M52 Adaptive Feed Control", "M53 Feed Stop Control"): ``M50 P1``
+    (or no P) enables, ``P0`` disables (interp_convert.cc convert_m: ``block->p_number != 0`` enables); no
+    motion, the path is unchanged (noted by :func:`_m_codes`). Refused with cutter compensation on, as
+    convert_m does ("Cannot enable overrides with cutter radius compensation on", "Cannot disable ..")."""
+    if st.comp_side is None:
+        return
+    m, w = next((m, w) for m, w in mcodes if 48 <= m <= 53)
+    where.fail(f"M{m}: cannot enable or disable overrides with cutter radius compensation on (LinuxCNC)",
+               column=w.column, text=w.text, expected=f"G40 before M{m}")
 
 
 def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
@@ -1372,14 +1505,16 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
                 notes.add(f"{w.text.upper()} without P: P1")
     if "path" in gcodes:
         key, w = gcodes["path"]
-        st.exact_stop = key != 640
+        st.exact_stop = key in (610, 611)
+        if key in (620, 630):  # Fanuc G62/G63 (interpolators.iso_reference): continuous, as G64
+            notes.add(f"{FANUC_CODES[key][1]}: continuous path as G64 (the feed override it changes is not modelled)")
         if key == 640 and "P" in seen and "dwell" not in gcodes and seen["P"].value != 0:
             tol = seen["P"]
             if not tol.value > 0:
                 where.fail("G64 path tolerance P must be >= 0", column=tol.column, text=tol.text,
                            expected="P >= 0 [mm] (P0: no tolerance given)")
             st.tolerance = tol.value * scale
-        elif key == 640:
+        elif key in (620, 630, 640):
             st.tolerance = None
         if key == 640 and "Q" in seen:
             notes.add("G64 Q naive-CAM tolerance (segments are blended, not merged)")
@@ -1415,6 +1550,8 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
     if "motion" in gcodes:
         key = gcodes["motion"][0]
         st.after_g80 = key == 800
+        if key not in (52, 53):  # LinuxCNC convert_nurbs: another motion mode drops the G5.2 control points
+            st.nurbs = None
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
@@ -1435,7 +1572,7 @@ def _check_p_q(seen, gcodes, st: _State, where: Where, mcodes: list) -> None:
     reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
     https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
-    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) == 50:  # G5: P Q offset a control point
+    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
     arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
     if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
@@ -1847,6 +1984,74 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
     st.pos = np.array(target, dtype=float)
 
 
+def _nurbs(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes) -> None:
+    """LinuxCNC G5.2 / G5.3 (:mod:`interpolators.iso_nurbs`; interp_convert.cc convert_nurbs, its errors): a G5.2
+    block starts the control points at the current position (weight P when the block has no axis words, else 1),
+    each block with the plane's two axis words adds one, weight P (> 0; the G5.2 block's own point without P: 1,
+    g-code.adoc's default), L above 3 the order; G5.3 runs the curve to the last point, chords at the modal feed,
+    on its line. The current position stays until G5.3 (incremental words count from it, as LinuxCNC's
+    find_ends); after it no motion mode is set."""
+    w = gcodes["motion"][1] if "motion" in gcodes else None
+    mcol, mtok = (w.column, w.text) if w is not None else (1, where.text)
+    p, q = PLANE_AXES[st.plane]
+    letters = ["XYZ"[p], "XYZ"[q]]
+    stray = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "XYZ"[st.plane], *"IJKQR") if a in seen), None)
+    why = (f"with word {stray}: not supported (control points take the {_PLANE_CODES[st.plane]} plane's "
+           f"{letters[0]} {letters[1]}, P and L)" if stray is not None else
+           f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
+           "under G93 inverse time: not supported" if st.inverse_time else
+           "cannot use G5.3 without G5.2 first" if st.motion == 53 and st.nurbs is None else
+           f"you must specify both {letters[0]} and {letters[1]} coordinates for control points"
+           if (letters[0] in seen) != (letters[1] in seen) else None)
+    if why is not None:
+        bad = seen.get(stray, w) if stray is not None else w
+        where.fail(f"{'G5.3' if st.motion == 53 else 'G5.2'} NURBS {why}", column=bad.column if bad else mcol,
+                   text=bad.text if bad else mtok, expected="G5.2 <P> <L>, lines X- Y- P-, then G5.3 (LinuxCNC)")
+    if st.motion == 53:
+        _nurbs_curve(st, blocks, used, where, number, mcol, mtok)
+        notes.add("G5.2/G5.3 NURBS run as chords within 1 um of the curve")
+        return
+    moves = letters[0] in seen
+    weight = seen["P"].value if "P" in seen else None
+    if st.feed is None and not st.inverse_time and not _initial_feed(st, where):
+        _no_feed(st, where, "G5.2 NURBS", mcol, mtok)  # LinuxCNC: "Cannot make a NURBS with 0 feedrate"
+    if st.nurbs is None:
+        st.nurbs, st.nurbs_order = [(st.pos.copy(), weight if weight and weight > 0 and not moves else 1.0)], 3
+        weight = 1.0 if weight is None and moves else weight
+    elif not moves and weight is not None:
+        where.fail(f"G5.2 NURBS: can specify P without {letters[0]} and {letters[1]} only for the first control "
+                   "point", column=seen["P"].column, text=seen["P"].text, expected=f"{letters[0]}- {letters[1]}- P-")
+    if moves and (weight is None or weight <= 0):
+        bad = seen.get("P", seen[letters[0]])
+        where.fail("G5.2 NURBS: must specify positive weight P for every control point", column=bad.column,
+                   text=bad.text, expected=f"{letters[0]}- {letters[1]}- P<weight > 0>")
+    if "L" in seen and seen["L"].value > 3:
+        st.nurbs_order = int(seen["L"].value)
+    if moves:
+        st.nurbs.append((_target(seen, letters, st, machine=False), float(weight)))
+
+
+def _nurbs_curve(st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+    """G5.3: the NURBS of the G5.2 control points, as feed chords on this line."""
+    points, weights = np.array([c for c, _ in st.nurbs]), np.array([c for _, c in st.nurbs])
+    if len(points) < st.nurbs_order:
+        where.fail(f"G5.3 NURBS: you must specify a number of control points at least equal to the order "
+                   f"L = {st.nurbs_order} (got {len(points)}, the start point included)", column=mcol, text=mtok,
+                   expected=f"at least {st.nurbs_order} control points")
+    chain = [st.pos.copy()]
+    for point in nurbs_chords(points, weights, st.nurbs_order):
+        if np.any(point != chain[-1]):  # coincident control points make chords of no length: left out
+            chain.append(point)
+    used.update(PLANE_AXES[st.plane])
+    for a, b in zip(chain[:-1], chain[1:]):
+        seg = Line(a, b)
+        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
+                            target=np.array(b), feed=_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
+                            tolerance=st.tolerance))
+    st.pos = np.array(chain[-1], dtype=float)
+    st.nurbs, st.motion = None, None
+
+
 def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
     time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
@@ -2087,7 +2292,18 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
         st.tool_length = 0.0
         st.tool_xy = np.zeros(2)
         return
-    if key == 431:
+    if key == 432:
+        _additional_length(seen, st, where, w, notes)
+        return
+    if key == 431 and st.context.dialect.name == "fanuc":
+        # Fanuc "Tool length compensation in tool axis direction (G43.1)": along the tool axis, Z while the rotary
+        # axes stand at 0 (a 3-axis machine): G43
+        if np.any(st.extra[:3] != 0):
+            where.fail("G43.1 tool length compensation in tool axis direction with a rotary axis turned: not "
+                       "supported", column=w.column, text=w.text, expected="G43.1 H.. with the rotary axes at 0")
+        notes.add("G43.1 tool length compensation in tool axis direction run as G43 (the tool axis is Z)")
+        key = 430
+    elif key == 431:
         # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
         # are the offsets (no motion), an axis not named keeps its offset
         if not any(a in seen for a in "XYZ"):
@@ -2110,6 +2326,37 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     notes.add("G43/G44 tool length from the table")
 
 
+def _additional_length(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+    """LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset"; interp_convert.cc
+    convert_tool_length_offset): ``G43.2 H<n>`` adds tool n's offsets (length, X, Y) to the ones in effect,
+    ``G43.2 X.. Y.. Z..`` adds the words; no motion, the next move of an axis goes to the compensated point.
+    Errors as LinuxCNC's: both H and axis words, neither, and cutter compensation on ("Cannot change tool
+    offset with cutter radius compensation on"); an H not in the table adds 0 (noted, as for G43 here)."""
+    axes = [a for a in ("X", "Y", "Z", *EXTRA_LETTERS) if a in seen]
+    why = ("can not have both H and axis words" if "H" in seen and axes else
+           "no axes specified and H word missing" if "H" not in seen and not axes else
+           "cannot change tool offset with cutter radius compensation on" if st.comp_side is not None else
+           f"axis word {axes[-1]} (an offset of an axis beyond X, Y, Z): not supported"
+           if axes and axes[-1] in EXTRA_LETTERS else None)  # X Y Z come first in axes
+    if why is not None:
+        where.fail(f"G43.2: {why} (LinuxCNC)", column=w.column, text=w.text,
+                   expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
+    add = np.zeros(3)
+    if "H" in seen:
+        number = int(seen.pop("H").value)
+        tool = st.tool(number)
+        if tool is None and number != 0:
+            notes.add(f"H{number} not in the tool table (length 0)")
+        if tool is not None:
+            add = np.array([tool.offset_x, tool.offset_y, tool.length])
+    for i, a in enumerate("XYZ"):
+        if a in seen:
+            add[i] = seen.pop(a).value * st.scale
+    st.tool_xy = st.tool_xy + add[:2]
+    st.tool_length += float(add[2])
+    notes.add("G43.2 additional tool length offset (added to the offsets in effect)")
+
+
 def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, notes: _Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
@@ -2128,9 +2375,15 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         target = _target(seen, axis_words, st, machine=True)
         _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True
+    if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
+            and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's
+        _reference_p(key, seen, st, where, notes)
     if key in (280, 300):
         _reference_return(key, seen, axis_words, st, blocks, used, where, number)
         notes.add("G28/G30 reference return")
+        return True
+    if key in (270, 290, 600):
+        _mill_positioning(key, seen, axis_words, st, blocks, used, where, number, notes)
         return True
     if key in (281, 301):
         if key == 281:
@@ -2189,6 +2442,25 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     return False
 
 
+def _reference_p(key: int, seen, st: _State, where: Where, notes: _Notes) -> None:
+    """A P word on G28, G30, G52, G53 or G92: Fanuc/Haas ``G30 P2``-``P4`` (Fanuc 0i-MD B-64304EN "2nd, 3rd, and
+    4th reference position return": P2 the second, the default; the third and fourth are machine parameters
+    No. 1242/1243 the machine context does not hold: the second is used, noted); elsewhere the P is ignored,
+    noted (LinuxCNC refuses it: "P word with no G2 G3 G4 G10 G64 ... to use it")."""
+    p = seen["P"]
+    code = f"G{key / 10:g}"
+    if key == 300 and st.context.dialect.name in ("fanuc", "haas"):
+        if p.value not in (2, 3, 4):
+            where.fail(f"G30 P{p.value:g}: no such reference position", column=p.column, text=p.text,
+                       expected="G30 P2, P3 or P4 (2nd, 3rd, 4th reference position)")
+        if p.value != 2:
+            notes.add(f"G30 P{p.value:g}: the {('third', 'fourth')[int(p.value) - 3]} reference position is not in the "
+                      "machine context: the second one used")
+        return
+    refused = ' (LinuxCNC refuses it: "P word with no ... to use it")' if st.context.dialect.name == "linuxcnc" else ""
+    notes.add(f"P word on {code} ignored{refused}")
+
+
 def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
     convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
@@ -2217,6 +2489,9 @@ def _g10(seen, st: _State, where: Where, w: Word) -> str:
     it before any T of the run."""
     l_word, p_word = seen.get("L"), seen.get("P")
     fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and l_word.value == 50 and st.context.dialect.name == "fanuc":
+        st.parameter_input = True  # the lines up to G11 are parameter data (_execute)
+        return "G10 L50 parameter input by program (its data lines up to G11 not run: parameters not modelled)"
     if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
             and p_word.value == 0 and "R" in seen:
         return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"
@@ -2356,6 +2631,8 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
             mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
                                    incremental=st.incremental, scale=st.scale)
         _rapid(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
+        for a in axis_words:  # Fanuc/Haas G29 returns through it (program coordinates)
+            st.intermediate["XYZ".index(a)] = st.to_program(mid)["XYZ".index(a)]
         end = st.pos.copy()
         for a in axis_words:
             end["XYZ".index(a)] = ref["XYZ".index(a)]
@@ -2366,8 +2643,41 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
         _rapid(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
+        st.intermediate = st.to_program(st.pos)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+
+
+def _mill_positioning(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number,
+                      notes: _Notes) -> None:
+    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
+    name = {**MILL_CODES, **FANUC_CODES}[key][1]
+    code = name.split()[0]
+    bad = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "I", "J", "K", "R") if a in seen), None)
+    if not axis_words or bad is not None or st.comp_side is not None:
+        why = (f"with word {bad}: not supported" if bad is not None else
+               f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
+               "needs axis words (the axes it moves)")
+        word = seen[bad] if bad is not None else None
+        where.fail(f"{name} {why}", column=word.column if word else 1, text=word.text if word else where.text,
+                   expected=f"{code} X.. Y.. Z.. (G40 before it)")
+    if key == 290:
+        try:
+            mid = stored_intermediate(st.intermediate, st.to_program(st.pos), axis_words)
+        except KeyError as exc:
+            word = seen[exc.args[0]]
+            where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
+                       column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
+        _rapid(st.to_machine(mid), st, blocks, used, where, number, axis_words)
+    _rapid(_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
+    if key == 270:
+        missed = off_reference(st.pos, st.home, axis_words)
+        notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"
+                               if missed else ""))
+    elif key == 600:
+        notes.add(f"{name} run as a rapid to the end point (the overrun, a machine parameter, is not modelled)")
+    else:
+        notes.add(name)
 
 
 def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:

@@ -108,6 +108,7 @@ with the reader's ``--blocks`` rows.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 import re
@@ -650,6 +651,11 @@ class _Machine:
         # G28 / G30 reference positions [machine mm]; G28.1 / G30.1 store the current position (g-code.adoc
         # "G28, G28.1": "G28.1 - stores the current absolute position into parameters 5161-5166")
         self.home = {280: np.array(context.home, float), 300: np.array(context.reference2, float)}
+        self.saved_states: dict[int, tuple[dict, bool]] = {}  # LinuxCNC M70/M73 per call level: state, autorestore
+        self.level = 0  # the O-word call level (0: the main program)
+        self.parameter_input = False  # Fanuc G10 L50 .. G11
+        self.nurbs_end: np.ndarray | None = None  # LinuxCNC G5.2: the last control point [machine mm]
+        self.intermediate = np.full(3, np.nan)  # the last G28/G30 intermediate point [program mm]: Fanuc G29's
         self.extra = np.zeros(6)  # a, b, c [deg], u, v, w [mm], machine positions
         self.extra_offsets = {code: np.zeros(6) for code in _WCS.values()}
         self.g92_extra = np.zeros(6)
@@ -824,7 +830,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
-        if code == 430:
+        if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
@@ -836,6 +842,15 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code == 431 and "z" in words and not any(a in words for a in "xyabcuvw"):
             # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
             m.tool_length = words.pop("z")[-1] * m.scale
+        elif code == 432 and m.ctx.dialect.name == "linuxcnc":
+            # g-code.adoc "G43.2": H<n> adds tool n's offsets, axis words add themselves (no motion)
+            tool = m.tool(int(words.pop("h")[-1])) if "h" in words else None
+            add = [tool.offset_x, tool.offset_y, tool.length] if tool is not None else [0.0, 0.0, 0.0]
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    add[i] = words.pop(a)[-1] * m.scale
+            m.tool_xy = m.tool_xy + np.array(add[:2])
+            m.tool_length += add[2]
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     if m.fadal and "e" in words:  # Fadal fixture offset E<n>: E1-E6 are G54-G59, E0 none
@@ -890,6 +905,12 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
             if code != 401 and "c" in m.ctx.extra_axes:
                 raise ReferenceError("G41.1/G42.1 normal direction control with a C axis")
             g.remove(code)
+    if 90 in g:  # G09 exact stop: the block ends at rest, at the same point
+        g.remove(90)
+    if m.ctx.dialect.name == "fanuc" and (220 in g or 230 in g):  # G22 X Y Z I J K: the stroke check's area
+        g[:] = [c for c in g if c not in (220, 230)]
+        for k in "xyzijk":
+            words.pop(k, None)
     for code, letters in ((1870, "pe"), (1030, "p"), (51, "qrxyz"), (80, "p"), (50, "p")):
         if code in g:
             g.remove(code)
@@ -952,6 +973,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             home = m.home[code]
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
+            m.intermediate[axes] = m.target(words)[axes]  # Fanuc/Haas G29 returns through it
+            if not axes and not extra:
+                m.intermediate = m.to_program(m.pos)
             if axes or extra:
                 m.move(line, "rapid", m.target(words), optional=True, extra=m.extra_end(words))
             end = m.pos.copy()
@@ -960,6 +984,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             for i in extra if axes or extra else range(6):
                 m.extra[i] = 0.0  # the reference position of a, b, c, u, v, w: 0
             m.emit(line, "rapid", end)
+            return True
+        if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):
+            _from_reference(m, line, code, words)
             return True
         if code in (281, 301):
             m.home[code - 1] = m.pos.copy()
@@ -992,6 +1019,20 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         elif code == 923:
             raise ReferenceError("G92.3")
     return False
+
+
+def _from_reference(m: _Machine, line: int, code: int, words: dict) -> None:
+    """Fanuc G27 and G60 (Haas G60): a rapid to the point (G60's overrun not modelled: the same end); Fanuc/Haas
+    G29 (Haas "G29 Return From Reference Point": "the axes selected in this block are moved to the G29 reference
+    point saved in G28, and then moved to the location specified"): the named axes to the last G28/G30
+    intermediate point, then to the point (under G91 an increment from the intermediate point)."""
+    if code == 290:
+        mid = m.to_program(m.pos)
+        for i, a in enumerate("xyz"):
+            if a in words:
+                mid[i] = m.intermediate[i]
+        m.move(line, "rapid", mid, optional=True)
+    m.move(line, "rapid", m.target(words), optional=True)
 
 
 def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
@@ -1045,6 +1086,9 @@ def _g10(m: _Machine, words: dict) -> None:
     """G10 L2 / L20 P: set a coordinate system (g-code.adoc "G10 L2", "G10 L20"); R rotates it."""
     kind = int(words["l"][-1])
     p = int(words["p"][-1]) if "p" in words else 0
+    if kind == 50 and m.ctx.dialect.name == "fanuc":  # Fanuc programmable parameter input: data lines to G11
+        m.parameter_input = True
+        return
     if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
         _g10_tool(m, kind, p, words)
         return
@@ -1115,7 +1159,10 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     unmodelled = [c for c in g if c % 10 == 0 and 73 <= c // 10 <= 89 and c // 10 not in (*cycles, 80)]
     if unmodelled:  # G88 boring with manual retract, G76/G87 outside Fanuc/Haas: not modelled here
         raise ReferenceError(f"G{unmodelled[0] // 10} cycle")
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800) or c // 10 in cycles]
+    nurbs = (52, 53) if m.ctx.dialect.name == "linuxcnc" else ()
+    if 52 in nurbs and 52 in g and m.motion != 52:  # a new G5.2 block: the current position is its first point
+        m.nurbs_end = m.pos.copy()
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
         if code // 10 not in cycles:
@@ -1124,6 +1171,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
             m.motion = m.linear
         elif code // 10 not in cycles:
             m.linear = code
+    if m.motion in (52, 53):
+        _nurbs(m, line, words, axes)
+        return
     if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
@@ -1173,6 +1223,17 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+def _nurbs(m: _Machine, line: int, words: dict, axes: bool) -> None:
+    """LinuxCNC G5.2 / G5.3 (g-code.adoc "G5.2 G5.3 NURBS Block"): the control points' blocks move nothing (the
+    position, from which G91 words count, stays); at G5.3 the curve runs to the last control point (the reader's
+    chords on the G5.3 line: the last row checked)."""
+    if m.motion == 53:
+        m.emit(line, "feed", m.nurbs_end, rows="last")
+        m.motion = None
+    elif axes:
+        m.nurbs_end = m.to_machine(m.target(words))
 
 
 #: Fanuc G45-G48 tool position offset: the multiple of the offset each adds to an axis' travel.
@@ -1368,6 +1429,9 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
     words, sets = _words(ln.text, params)
+    if m.parameter_input:  # Fanuc G10 L50: N<parameter> R<value> lines up to G11
+        m.parameter_input = 110 not in _codes(words, "g")
+        return None
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
@@ -1378,6 +1442,10 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         dotted = re.search(r"T\s*(\d+)\.(\d+)", ln.text, re.I) if m.ctx.dialect.name == "fanuc" else None
         if dotted:  # Fagor T<tool>.<offset> (the 8055's T D): G43 / G41 without H / D take that offset
             m.offsets_of[int(dotted.group(1))] = int(dotted.group(2))
+    if m.ctx.dialect.name == "linuxcnc":
+        for code in mc:
+            if code in (700, 710, 720, 730):
+                _modal_state(m, code // 10)
     if 60 in mc:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
@@ -1408,6 +1476,38 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+#: What LinuxCNC's M70 saves (m-code.adoc "M70 Saved state") of what this reference models.
+_SAVED = ("scale", "plane", "incremental", "arc_absolute", "wcs", "tool_length", "tool_xy", "retract", "comp_radius")
+
+
+def _modal_state(m: _Machine, code: int) -> None:
+    """LinuxCNC M70 / M73 save the modal state at the call level, M71 forgets it, M72 restores it (m-code.adoc
+    "M70" - "M73"; M72 with nothing saved: LinuxCNC refuses it, the reader runs on: nothing restored here)."""
+    if code in (70, 73):
+        m.saved_states[m.level] = ({k: copy.copy(getattr(m, k)) for k in _SAVED}, code == 73)
+    elif code == 71:
+        m.saved_states.pop(m.level, None)
+    elif m.level in m.saved_states:
+        _restore(m, m.saved_states[m.level][0])
+
+
+def _restore(m: _Machine, state: dict) -> None:
+    if state["comp_radius"] != m.comp_radius:
+        raise ReferenceError("M72/M73 restoring cutter compensation")
+    for k, v in state.items():
+        setattr(m, k, copy.copy(v))
+
+
+def _call_level(m: _Machine, level: int) -> None:
+    """After an O-word line: a subroutine returned from restores the state its M73 saved (m-code.adoc "M73")."""
+    while m.level > level:
+        state = m.saved_states.pop(m.level, None)
+        if state is not None and state[1]:
+            _restore(m, state[0])
+        m.level -= 1
+    m.level = level
 
 
 def _corner(m: _Machine, n: int) -> None:
@@ -1661,6 +1761,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         if ln.oname is not None:
             pc = _oword(ln, pc, st, params, frames, counters)
+            if context.dialect.name == "linuxcnc":
+                _call_level(m, len(params.frames) - 1)
             if pc < 0:
                 break
             continue
