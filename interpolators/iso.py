@@ -492,18 +492,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc")
     notes = _Notes()
-    homing: list[int] = []
     raw_lines = lines_of(text)
-    if dialect.name == "grbl":
-        text, homing = _grbl_lines(text, source, notes)
-    text, directives = simulator_lines(text, dollar=dialect.name != "grbl")
-    for _ in range(directives):
-        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
-    wrapped = False  # the file begins with % and ends at a second one (linuxcnc)
-    if dialect.name == "linuxcnc":
-        text, wrapped = _until_closing_percent(text, notes)
-    if _OUTPUT_COMMAND.search(text):
-        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
+    text, homing, wrapped = _prepared_text(text, source, dialect.name, notes)
     st.subprogram = _ends_with_m99(text)
     blocks: list[Block] = []
     used: set[int] = set()
@@ -557,12 +547,30 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         _finish_compensation(st, blocks, source)
     if dialect.name == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
-    _closing_notes(st, blocks, dialect, notes)
+    _closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
+
+
+def _prepared_text(text: str, source: str | None, dialect: str, notes: _Notes) -> tuple[str, list[int], bool]:
+    """The program text the reader runs, the lines of grbl's ``$H`` homing commands taken out of it, and whether
+    a LinuxCNC file is wrapped in ``%`` lines (read up to the second); notes of what was taken out or is not
+    sent."""
+    homing: list[int] = []
+    if dialect == "grbl":
+        text, homing = _grbl_lines(text, source, notes)
+    text, directives = simulator_lines(text, dollar=dialect != "grbl")
+    for _ in range(directives):
+        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
+    wrapped = False
+    if dialect == "linuxcnc":
+        text, wrapped = _until_closing_percent(text, notes)
+    if _OUTPUT_COMMAND.search(text):
+        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
+    return text, homing, wrapped
 
 
 def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes) -> None:
@@ -587,7 +595,7 @@ def _enter_level(st: _State, level: int, plain: PlainMoves, where: Where, notes:
         notes.add("M73 modal state restored at the subroutine's return")
 
 
-def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes) -> None:
+def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes, *, reading: str) -> None:
     """What the whole program's reading assumed: positions read after a stop, the initial feed taken, the
     units of a program that states none."""
     for line in sorted(st.stops_read):
@@ -598,7 +606,7 @@ def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _No
                   f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
                   "LinuxCNC and grbl refuse such a move)")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
-        notes.add(f"no G20/G21: {dialect.default_units} assumed ({dialect.name} default)")
+        notes.add(f"no G20/G21: {dialect.default_units} assumed ({reading} default)")
 
 
 #: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc

@@ -1793,22 +1793,27 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m99":
             if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
-            f = frames[-1]
-            if f["kind"] == "g65":  # back to the caller, its locals #1-#33 as they were
-                frames.pop()
-                params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
-                pc = f["ret"]
-                continue
-            if f["left"] > 0:
-                f["left"] -= 1
-                pc = f["start"]
-            else:
-                frames.pop()
-                words, _ = _words(ln.text, params)  # M99 P<n>: back to the block N<n> of the caller (Haas, Fanuc)
-                pc = _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
+            pc = _m99_return(ln, frames, st, params)
             continue
         pc += 1
     return m.out
+
+
+def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
+    """The line an M99 goes on at in an M98 or G65 frame: the called program again while repeats are left, else
+    the caller's next line (or its block N<n> for an M99 P<n>, Haas, Fanuc); a G65's locals #1-#33 as they
+    were."""
+    f = frames[-1]
+    if f["kind"] == "g65":
+        frames.pop()
+        params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
+        return f["ret"]
+    if f["left"] > 0:
+        f["left"] -= 1
+        return f["start"]
+    frames.pop()
+    words, _ = _words(ln.text, params)
+    return _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
 
 
 def _subprogram_call(res: str, ln, pc: int, st, params) -> dict:  # noqa: ANN001
