@@ -109,6 +109,21 @@ def _last_row(expected: list, j: int, rows: list[list], i: int) -> int:
     return k
 
 
+def reader_rows(header: list[str], rows: list[list]) -> list[list]:
+    """The ``--blocks`` rows of :func:`vcnc.commands.interpolate.blocks_table` in the layout :func:`match_blocks`
+    compares: the a, b, c, u, v, w columns of the axes the program uses moved behind the feed as all six (the
+    others at 0), where the reference keeps its ``extra`` ends."""
+    extra = header[6:len(header) - 4]
+    at = ["abcuvw".index(a) for a in extra]
+    out = []
+    for r in rows:
+        six = [0.0] * 6
+        for k, i in enumerate(at):
+            six[i] = r[6 + k]
+        out.append(r[:6] + r[6 + len(extra):] + six)
+    return out
+
+
 def match_blocks(expected: list, rows: list[list]) -> Match:
     """Compare expected blocks with the reader's rows, in order."""
     i = exact = within = 0

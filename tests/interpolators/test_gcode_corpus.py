@@ -26,7 +26,7 @@ from interpolators import load_program
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_iso import ReferenceError, clean_line, iso_reference
-from tests.interpolators.reference_match import match_blocks
+from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
 from vcnc.core.text import decode_text
 from vcnc.errors import GCodeError
@@ -94,18 +94,7 @@ def check_program(name: str, context: MachineContext):
         expected = heidenhain_reference(text, context)
     else:
         expected = iso_reference(text, context, resolve=numbered_program)
-    header, rows = blocks_table(prog)
-    # the a, b, c, u, v, w columns of the axes the program uses, moved behind the feed as all six (the
-    # others stay at 0), for reference_match to compare with the reference's ``extra`` ends
-    extra = header[6:len(header) - 4]
-    at = ["abcuvw".index(a) for a in extra]
-    out = []
-    for r in rows:
-        six = [0.0] * 6
-        for k, i in enumerate(at):
-            six[i] = r[6 + k]
-        out.append(r[:6] + r[6 + len(extra):] + six)
-    return match_blocks(expected, out)
+    return match_blocks(expected, reader_rows(*blocks_table(prog)))
 
 
 @pytest.fixture(scope="module")

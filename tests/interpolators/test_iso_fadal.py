@@ -20,7 +20,7 @@ import pytest
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool, work_offset_code
 from tests.interpolators.reference_iso import iso_reference
-from tests.interpolators.reference_match import match_blocks
+from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
 from vcnc.core.errors import InputError
 from vcnc.engine.machine_file import parse_machine_text
@@ -57,16 +57,7 @@ def _parse(text: str, context: MachineContext = CTX):
 
 def _reference_matches(text: str, context: MachineContext = CTX) -> str:
     """The reader's ``--blocks`` rows against the independent reference (tests/interpolators/reference_iso.py)."""
-    header, rows = blocks_table(_parse(text, context))
-    extra = header[6:len(header) - 4]
-    at = ["abcuvw".index(a) for a in extra]
-    out = []
-    for r in rows:
-        six = [0.0] * 6
-        for k, i in enumerate(at):
-            six[i] = r[6 + k]
-        out.append(r[:6] + r[6 + len(extra):] + six)
-    return match_blocks(iso_reference(text, context), out).mismatch
+    return match_blocks(iso_reference(text, context), reader_rows(*blocks_table(_parse(text, context)))).mismatch
 
 
 def test_dialect_reads_g4_p_in_milliseconds():
