@@ -12,7 +12,7 @@ import pytest
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
+from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
@@ -20,24 +20,10 @@ CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(numbe
 ROTARY = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, extra_axes=("a", "c"))
 
 
-def rows_of(prog) -> list[list]:
-    """The ``--blocks`` rows with the a, b, c, u, v, w columns the program uses moved behind the feed as all six,
-    as ``reference_match`` compares them (the layout of test_gcode_corpus)."""
-    header, rows = blocks_table(prog)
-    at = ["abcuvw".index(a) for a in header[6:len(header) - 4]]
-    out = []
-    for r in rows:
-        six = [0.0] * 6
-        for k, i in enumerate(at):
-            six[i] = r[6 + k]
-        out.append(r[:6] + r[6 + len(at):] + six)
-    return out
-
-
 def run(body: str, context: MachineContext = CTX, *, head: str = "0 BEGIN PGM T MM\n"):
     text = head + body + "\nEND PGM T MM\n"
     prog = parse_heidenhain(text, source="t.h", context=context)
-    match = match_blocks(heidenhain_reference(text, context), rows_of(prog))
+    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
     assert match.mismatch is None, match.mismatch
     assert match.exact == len(prog.blocks)
     return prog
@@ -237,7 +223,7 @@ def test_tnc_text_without_begin_pgm_and_block_numbers_is_read_as_conversational(
     # from (1.376, 1.202) about (2.5, 1.202): a half circle counter-clockwise to (3.624, 1.202), at Z -0.2 + 10
     assert ends(prog)[-1] == [3.624, 1.202, 9.8]
     assert round(prog.blocks[-1].feed * 60, 9) == 600
-    match = match_blocks(heidenhain_reference(text, CTX), rows_of(prog))
+    match = match_blocks(heidenhain_reference(text, CTX), reader_rows(*blocks_table(prog)))
     assert match.mismatch is None and match.exact == len(prog.blocks)
 
 

@@ -12,8 +12,8 @@ from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks
-from tests.interpolators.test_heidenhain_wild import rows_of
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 R = math.sqrt(0.5)
@@ -32,7 +32,7 @@ def run(body: str, context: MachineContext = CTX, *, reference: bool = True):
     text = HEAD + body + "\nEND PGM T MM\n"
     prog = parse_heidenhain(text, source="t.h", context=context)
     if reference:
-        match = match_blocks(heidenhain_reference(text, context), rows_of(prog))
+        match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
         assert match.mismatch is None, match.mismatch
         assert match.exact + match.within == len(prog.blocks)
     return prog
