@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line, piece_of
 
 __all__ = ["PathGeometryError", "end_tangent", "on_circle", "round_corner", "round_elements", "chamfer_corner",
            "chamfer_elements"]
@@ -191,11 +191,10 @@ def _foot(element: Line | Arc, centre: np.ndarray, like: np.ndarray, plane: int)
 
 def _part(element: Line | Arc, start: np.ndarray, end: np.ndarray) -> Line | Arc | None:
     """The piece of ``element`` from ``start`` to ``end`` (None when it is not a piece of it)."""
+    piece = piece_of(element, start, end)
     if isinstance(element, Line):
-        piece = Line(start, end)
         inside = float((end - start) @ (element.end - element.start)) >= 0
         return piece if inside and piece.length <= element.length * (1 + 1e-9) + 1e-12 else None
-    piece = Arc(start, end, element.center, ccw=element.ccw, plane=element.plane)
     return piece if abs(piece.sweep) <= abs(element.sweep) * (1 + 1e-9) + 1e-12 else None
 
 

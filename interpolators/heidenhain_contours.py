@@ -39,7 +39,7 @@ from interpolators._words import Where
 from interpolators.compensation import CompensationError, compensate
 from interpolators.corners import PathGeometryError, end_tangent, round_elements
 from interpolators.program import Block
-from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line, piece_of
 from toolpaths.pockets import TOLERANCE, Edge, Region, offset_rings, region, segment_clear
 
 __all__ = ["CONTOUR_CYCLES", "ROUGHING_CYCLES", "ContourTrain", "RoughOut", "SideFinish", "PilotDrill",
@@ -420,9 +420,7 @@ def _split(b: Block) -> tuple[Block, Block]:
     middle = np.asarray(b.segment.point_at(b.segment.length / 2.0), dtype=float)
     halves = []
     for start, end in ((np.array(b.start, dtype=float), middle), (middle, np.array(b.target, dtype=float))):
-        seg = Arc(start, end, b.segment.center, ccw=b.segment.ccw, plane=b.segment.plane) \
-            if isinstance(b.segment, Arc) else Line(start, end)
-        halves.append(dataclasses.replace(b, start=start, target=end, segment=seg))
+        halves.append(dataclasses.replace(b, start=start, target=end, segment=piece_of(b.segment, start, end)))
     return halves[0], halves[1]
 
 

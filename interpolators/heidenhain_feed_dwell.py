@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from toolpaths.geometry import Arc, Line
+from toolpaths.geometry import Arc, Line, piece_of
 
 __all__ = ["FeedDwell", "split_at_times"]
 
@@ -65,6 +65,4 @@ def _piece(segment: Line | Arc, s0: float, s1: float) -> Line | Arc:
     a = np.asarray(segment.point_at(s0), dtype=float).reshape(3) if s0 > 0 else np.array(segment.start)
     b = np.asarray(segment.point_at(s1), dtype=float).reshape(3) if s1 < segment.length - 1e-9 \
         else np.array(segment.end)
-    if isinstance(segment, Line):
-        return Line(a, b)
-    return Arc(a, b, segment.center, ccw=segment.ccw, plane=segment.plane)
+    return piece_of(segment, a, b)

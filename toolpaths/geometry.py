@@ -41,7 +41,7 @@ import numpy as np
 from vcnc.core.errors import InputError
 
 __all__ = ["Line", "Arc", "ClothoidPair", "SplineCurve", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS",
-           "euler_spiral", "rows_by_owner"]
+           "euler_spiral", "rows_by_owner", "piece_of"]
 
 #: Axis letters of the three linear axes, in index order.
 AXIS_LETTERS: tuple[str, str, str] = ("x", "y", "z")
@@ -364,6 +364,15 @@ class Arc:
             f"Arc(start={self.start.tolist()}, end={self.end.tolist()}, center={self.center.tolist()}, "
             f"ccw={self.ccw}, plane={self.plane}, sweep={self.sweep:.6g})"
         )
+
+
+def piece_of(element: Line | Arc, start: Sequence[float] | np.ndarray, end: Sequence[float] | np.ndarray
+             ) -> Line | Arc:
+    """The segment of ``element``'s kind from ``start`` to ``end``: a line, or the arc about the same centre,
+    in the same direction and plane (two of the element's points give a piece of it)."""
+    if isinstance(element, Line):
+        return Line(start, end)
+    return Arc(start, end, element.center, ccw=element.ccw, plane=element.plane)
 
 
 def euler_spiral(phi: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
