@@ -59,6 +59,7 @@ import dataclasses
 import re
 from collections.abc import Callable, Generator, Iterator
 from pathlib import Path
+from typing import NoReturn
 
 from interpolators._words import Where, lines_of, program_text
 from interpolators.iso_decimal import DECIMAL_LETTERS, integer_literal
@@ -129,6 +130,23 @@ def refuse_heidenhain_iso(line: str, where: Where) -> None:
                    "'N99999999 %NAME G71 *'): not supported; vcnc reads Heidenhain conversational and ISO "
                    "G-code of Fanuc/Haas/LinuxCNC/grbl", column=1, text=line,
                    expected="a Heidenhain conversational program (BEGIN PGM ... END PGM) or an ISO G-code program")
+
+
+def _refuse_colon_block(line: str, column: int, where: Where) -> NoReturn:
+    """The error for a line that starts with ':' but is no ISO program number (':1234')."""
+    both = _FANUC_PROGRAM.match(line[1:])
+    if both:
+        # ":O1001": both program-number addresses at once (':' stands for O in ISO code); our reading: no
+        # control's manual shows the pair, so the program number is not guessed from it
+        where.fail("':' and 'O' both before the program number: ':' is ISO code's program-number address, O EIA "
+                   "code's; a program number takes one of them", column=column, text=line,
+                   expected=f"O{both.group(1)} or :{both.group(1)}")
+    # ISO 6983-1 also knows ':' before a block as the alignment function (a "main block" where a program may
+    # restart), which NUM controls and Fusion's NUM post write (": G90 G40 G94", ":T3 M6"); those programs go
+    # on in NUM's own forms (I J the arc centre's coordinates): not read here
+    where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number (before a "
+               "block: ISO 6983's main-block mark, as NUM controls write it; NUM programs are not supported)",
+               column=column, text=line, expected="':' followed by the program number, e.g. :1234")
 
 
 def _refuse_foreign_header(line: str, where: Where) -> None:
@@ -270,13 +288,7 @@ class _Program:
             if s.startswith("/"):
                 code = code.replace("/", " ", 1)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
-                # ISO 6983-1 also knows ':' before a block as the alignment function (a "main block" where a
-                # program may restart), which NUM controls and Fusion's NUM post write (": G90 G40 G94", ":T3
-                # M6"); those programs go on in NUM's own forms (I J the arc centre's coordinates): not read here
-                where.fail("':' (the program-number address of ISO code, O of EIA code) without a program number "
-                           "(before a block: ISO 6983's main-block mark, as NUM controls write it; NUM programs are "
-                           "not supported)", column=code.index(":") + 1, text=s,
-                           expected="':' followed by the program number, e.g. :1234")
+                _refuse_colon_block(s, code.index(":") + 1, where)
             if self.macro.add_line(i, code, self.span, where) is not None:
                 self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
                 continue

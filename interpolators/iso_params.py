@@ -360,9 +360,25 @@ class _Reader:
             self.fail(f"number with an exponent '{number}{tail}': G-code numbers have no exponent notation "
                       "(LinuxCNC: unknown operation name starting with e)", end,
                       "a plain decimal number such as 1000.0, or an operator (+ - * / ** MOD EQ AND ...) or ']'")
+        sign = re.match(r"==|!=|<>|<=|>=|=<|=>|[=<>]", self.code[end:])
+        if sign:
+            self.comparison_sign(sign.group(0), end)
         word = re.match(r"[A-Za-z]\w*", self.code[end:])
         what = f"unknown operation '{word.group(0)}'" if word else f"unexpected '{self.code[end]}'"
         self.fail(f"{what} in an expression", end, "an operator (+ - * / ** MOD EQ NE GT LT AND OR XOR) or ']'")
+
+    def comparison_sign(self, sign: str, at: int) -> NoReturn:
+        """The error for a comparison written with a sign (``[#100 > 5]``, ``L[#1=1]``), as C and some PC
+        controls' readers take it: LinuxCNC's relational operators are the two-letter EQ NE GT GE LT LE
+        (g-code overview, "Binary Operators"; interp_read.cc read_operation knows no sign), and Fanuc's
+        macro B writes them so (0i-MD operator's manual B-64304EN, "Custom macro", "Branch and repetition",
+        the operator table: each operator "consists of two letters", and "the inequality sign cannot be
+        used")."""
+        name = {"=": "EQ", "==": "EQ", "!=": "NE", "<>": "NE", ">": "GT", ">=": "GE", "=>": "GE", "<": "LT",
+                "<=": "LE", "=<": "LE"}[sign]
+        self.fail(f"comparison written '{sign}' in an expression: G-code compares with the two-letter operators "
+                  f"EQ NE GT GE LT LE ('{sign}' is {name}; LinuxCNC and Fanuc macro B read no sign)", at,
+                  f"[a {name} b]")
 
     def abbreviated(self, short: str, p: int) -> tuple[float, int]:
         """The function Fanuc's abbreviation ``short`` (its first two characters) names, applied at ``p``."""

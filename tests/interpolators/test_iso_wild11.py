@@ -1,0 +1,58 @@
+"""ISO programs of the eleventh wild round (issue 18, set /tmp/isowild10): how the ones no target control
+runs are refused."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
+
+
+def _in_dialect(name: str) -> MachineContext:
+    return dataclasses.replace(CTX, dialect=DIALECTS[name])
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc", "haas"])
+@pytest.mark.parametrize("text, column, sign, operator", [
+    # a PC control's sample programs compare with C's signs: a call repeated 'L[#100 = 0]' times, a flag
+    # '#101 = [#100 > 5]'; LinuxCNC ("Binary Operators") and Fanuc macro B write EQ NE GT GE LT LE
+    ("G21 G90\n#100 = 1\nM98 P2 L[#100 = 0]\nM30\nO2\nG0 X1\nM99\n", 15, "=", "EQ"),
+    ("G21 G90\n#100 = 7\n#101 = [#100 > 5]\nG0 X#101\nM30\n", 14, ">", "GT"),
+    ("G21 G90\n#100 = 7\n#101 = [#100 >= 5]\nG0 X#101\nM30\n", 14, ">=", "GE"),
+    ("G21 G90\n#100 = 7\n#101 = [#100 != 5]\nG0 X#101\nM30\n", 14, "!=", "NE"),
+])
+def test_a_comparison_written_with_a_sign_names_the_two_letter_operator(name, text, column, sign, operator):
+    with pytest.raises(GCodeError, match=rf"comparison written '{sign}' in an expression: G-code compares with "
+                                         rf"the two-letter operators EQ NE GT GE LT LE \('{sign}' is {operator}; "
+                                         rf"LinuxCNC and Fanuc macro B read no sign\).*expected \[a {operator} b\]") \
+            as err:
+        parse_program(text, context=_in_dialect(name))
+    assert (err.value.line, err.value.column) == (3, column)
+
+
+def test_the_two_letter_comparisons_still_compute():
+    prog = parse_program("G21 G90\n#100 = 7\n#101 = [#100 GT 5]\n#102 = [#100 EQ 5]\nG0 X#101 Y#102\nM30\n",
+                         context=_in_dialect("linuxcnc"))
+    assert prog.blocks[-1].target[:2].tolist() == [101.0, 50.0]
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc"])
+@pytest.mark.parametrize("head", [":O1001", ": O 1001"])
+def test_colon_and_o_together_before_a_program_number_are_named(name, head):
+    # a handheld router's Fusion post writes '%' then ':O1001': ':' is the program-number address of ISO code
+    # and O that of EIA code; no manual shows the two together, so the number is not guessed
+    with pytest.raises(GCodeError, match=r":2:1: ':' and 'O' both before the program number: ':' is ISO code's "
+                                         r"program-number address, O EIA code's; a program number takes one of them"
+                                         r".*expected O1001 or :1001"):
+        parse_program(f"%\n{head}\nG21 G90 G0 X0 Y0\nM30\n%\n", context=_in_dialect(name))
+
+
+def test_a_colon_program_number_alone_is_still_read():
+    prog = parse_program("%\n:1001\nG21 G90 G0 X5 Y0\nM30\n%\n", context=_in_dialect("fanuc"))
+    assert prog.blocks[-1].target[:2].tolist() == [105.0, 50.0]
