@@ -362,6 +362,7 @@ class _State:
     feed_per_rev: float | None = None  # the F word under G95 [mm/rev]
     feed_per_rev_word: float | None = None  # the same F as written [deg/rev for a pure rotary move]
     subprogram: bool = False  # the file's last block has M99 (a subprogram file, run alone)
+    uncalled_feed: str | None = None  # an F of an M98 line LinuxCNC does not execute, before any feed
     initial_feed_line: int | None = None  # the line whose feed move took the dialect's initial feed
     spline_pq: np.ndarray | None = None  # P Q offset of the last G5 block [mm], for the next one's tangent
     nurbs: list[tuple[np.ndarray, float]] | None = None  # G5.2 control points [mm, machine] and weights
@@ -508,7 +509,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
-                decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None)
+                decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
+                on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None)
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
@@ -1918,6 +1920,15 @@ def _initial_feed(st: _State, where: Where) -> bool:
     return True
 
 
+def _m98_words(words: list[Word], where: Where, *, st: _State, notes: _Notes) -> None:
+    """Words of an M98 line LinuxCNC reads and does not execute (:func:`interpolators.iso_flow.run`)."""
+    notes.add(f"{' '.join(w.text for w in words)} on an M98 line not executed (LinuxCNC runs an M98 block as a "
+              "call only, as o<n> call; Fanuc and Haas would)")
+    feed = next((w for w in words if w.letter == "F"), None)
+    if feed is not None and st.feed is None:
+        st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
+
+
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
@@ -1928,6 +1939,8 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     elif st.per_rev:
         why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
                "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
+    elif st.uncalled_feed:
+        why += f" ({st.uncalled_feed} is not executed: LinuxCNC runs an M98 block as a call only)"
     elif st.subprogram:
         why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
     elif st.feed_reset:

@@ -504,7 +504,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
         on_comment: Callable[[str, str, Where], None] | None = None,
-        on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None) -> Iterator[FlowLine]:
+        on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None,
+        on_call_words: Callable[[list[Word], Where], None] | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
@@ -516,6 +517,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
     (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
     comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
+    ``on_call_words(words, where)``: when given, an M98 block only calls and its other words, read and not
+    executed, go to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -579,10 +582,24 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             yield FlowLine(where.line, where.text, words, where.file)
             pc += 1
             continue
+        if m98 is not None and on_call_words is not None:
+            words = _call_words_only(words, m98, where, on_call_words)
         pc = yield from _call_or_return(prog, pc, words, m98, m99, where, params, frames, on_note)
         if pc < 0:  # M99 in the main program: the run ends there
             return
     _no_return(prog, frames)
+
+
+def _call_words_only(words: list[Word], m98: Word, where: Where,
+                     on_call_words: Callable[[list[Word], Where], None]) -> list[Word]:
+    """The words of an M98 block LinuxCNC executes: the call's own (M98 P L). LinuxCNC reads ``M98 P100`` as
+    "analogous to the traditional o100 call" (o-code.adoc, "Fanuc-Style Numbered Programs") and runs a block
+    with an O-word call as the call alone (rs274ngc_pre.cc ``Interp::execute``: ``convert_control_functions``,
+    not ``execute_block``): ``M98 P81 F100`` sets no feed, as rs274 shows. Fanuc and Haas run such words."""
+    kept = [w for w in words if w is m98 or w.letter in "NPL"]
+    if len(kept) < len(words):
+        on_call_words([w for w in words if not any(w is k for k in kept)], where)
+    return kept
 
 
 def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None, m99: Word | None, where: Where,

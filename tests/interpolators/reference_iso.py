@@ -88,7 +88,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
   ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
-  to its M99, as M97 does. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
+  to its M99, as M97 does. Under LinuxCNC an M98 block runs the call alone ("analogous to the traditional
+  o100 call", o-code.adoc "Fanuc-Style Numbered Programs"): its other words do not run; Fanuc and Haas run
+  them before the call. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
   Return or Loop"), found as a GOTO finds it from the call.
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
@@ -1435,6 +1437,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    if 980 in mc and m.ctx.dialect.name == "linuxcnc":  # an M98 block is the call alone: its F, S, X.. do not run
+        return "m98"
     if 650 in g:  # Fanuc/Haas G65 macro call: run by iso_reference (the called program, its arguments as locals)
         return "g65"
     if "t" in words:

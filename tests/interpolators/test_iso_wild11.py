@@ -9,6 +9,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -20.0)}, home=(0.0, 0.0, 100.0))
@@ -56,3 +57,31 @@ def test_colon_and_o_together_before_a_program_number_are_named(name, head):
 def test_a_colon_program_number_alone_is_still_read():
     prog = parse_program("%\n:1001\nG21 G90 G0 X5 Y0\nM30\n%\n", context=_in_dialect("fanuc"))
     assert prog.blocks[-1].target[:2].tolist() == [105.0, 50.0]
+
+
+# A numbered subprogram called with words of its own on the M98 line. LinuxCNC reads 'M98 P100' as "analogous to
+# the traditional o100 call" (o-code.adoc, "Fanuc-Style Numbered Programs") and runs the call alone, as rs274
+# shows (X5 S1000 here: no move to X5); Fanuc and Haas run the line's other words before the call.
+M98_WORDS = "G21 G90 G0 X0 Y0 Z5\nF200\nN5 M98 P100 L2 X5 S1000\nM30\nO100\nG91 G1 X1\nG90\nM99\n"
+
+
+def test_linuxcnc_runs_an_m98_line_as_the_call_alone():
+    prog = checked_iso(M98_WORDS, _in_dialect("linuxcnc"))
+    assert [b.target[0] for b in prog.blocks] == [100.0, 101.0, 102.0]
+    assert "X5 S1000 on an M98 line not executed (LinuxCNC runs an M98 block as a call only" in " ".join(prog.notes)
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas"])
+def test_fanuc_and_haas_move_before_the_call(name):
+    prog = checked_iso(M98_WORDS, _in_dialect(name))
+    assert [b.target[0] for b in prog.blocks] == [100.0, 105.0, 106.0, 107.0]
+    assert not any("M98 line" in n for n in prog.notes)
+
+
+def test_a_feed_on_an_m98_line_is_named_when_linuxcnc_has_none():
+    # a PC control's sample sets the feed on the call ('M98 P81 F100'); LinuxCNC's subprogram then feeds at zero
+    text = "G21 G90 G0 X0 Y0 Z5\nM98 P81 F100\nM30\nO81\nG1 Z-1\nG0 Z5\nM99\n"
+    with pytest.raises(GCodeError, match=r":5:1: G01 feed move without a feed: no F word before it \(F100 of the "
+                                         r"M98 line 2 is not executed: LinuxCNC runs an M98 block as a call only\)"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+    assert checked_iso(text, _in_dialect("fanuc")).blocks[-2].target[2] == -21.0
