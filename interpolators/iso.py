@@ -2308,6 +2308,12 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
 
 def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
     key, w = entry
+    if st.comp_side is not None and st.context.dialect.name == "linuxcnc":
+        # LinuxCNC interp_convert.cc convert_tool_length_offset, for G43, G43.1, G43.2 and G49 alike: "Cannot
+        # change tool offset with cutter radius compensation on" (G40 on the same line comes first); Fanuc and
+        # Haas change the length under G41/G42
+        where.fail(f"{w.text.upper()}: cannot change tool offset with cutter radius compensation on (LinuxCNC)",
+                   column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
     st.length_code = key / 10
     if key == 490:
         st.tool_length = 0.0

@@ -85,3 +85,29 @@ def test_a_feed_on_an_m98_line_is_named_when_linuxcnc_has_none():
                                          r"M98 line 2 is not executed: LinuxCNC runs an M98 block as a call only\)"):
         parse_program(text, context=_in_dialect("linuxcnc"))
     assert checked_iso(text, _in_dialect("fanuc")).blocks[-2].target[2] == -21.0
+
+
+# A motion card's demo turns the length offset on with the radius compensation already on (D3 G42, then G43 H3).
+# LinuxCNC refuses every length offset change under G41/G42 (interp_convert.cc convert_tool_length_offset);
+# Fanuc and Haas run it.
+G43_UNDER_G42 = ("G21 G90 G0 X-10 Y0 Z5\nG42 D1 G1 X0 Y0 F100\nG43 H1\nG1 X10\nY10\nG40 G49 G0 X20 Y20\n"
+                 "G41 D1 G1 X0 F100\nG40 G0 Z10\nG43 H1\nM30\n")
+
+
+@pytest.mark.parametrize("code", ["G43 H1", "G49", "G43.1 Z2"])
+def test_linuxcnc_refuses_a_length_offset_change_under_radius_compensation(code):
+    text = G43_UNDER_G42.replace("G43 H1\nG1 X10", f"{code}\nG1 X10")
+    word = code.split()[0]
+    with pytest.raises(GCodeError, match=rf":3:1: {word}: cannot change tool offset with cutter radius compensation "
+                                         rf"on \(LinuxCNC\).*expected G40 before {word}"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+
+
+def test_linuxcnc_changes_the_length_offset_after_g40_on_the_same_line():
+    prog = checked_iso(G43_UNDER_G42.replace("G43 H1\nG1 X10", "G1 X10"), _in_dialect("linuxcnc"))
+    assert prog.blocks[-1].target.tolist() == [100.0, 70.0, -10.0]
+
+
+@pytest.mark.parametrize("name", ["fanuc", "haas"])
+def test_fanuc_and_haas_change_the_length_offset_under_radius_compensation(name):
+    assert checked_iso(G43_UNDER_G42, _in_dialect(name)).blocks
