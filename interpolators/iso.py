@@ -1442,7 +1442,13 @@ def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
         seen = {k: v for k, v in seen.items() if k != "P"}
     if st.context.dialect.name == "linuxcnc" and any(48 <= m <= 53 for m, _ in mcodes):
         _override_m_codes(mcodes, st, where)
-        seen = {k: v for k, v in seen.items() if k != "P"}
+        if any(50 <= m <= 53 for m, _ in mcodes):
+            seen = {k: v for k, v in seen.items() if k != "P"}
+        elif "P" in seen:  # interp_check.cc check_other_codes: "P word with no G2 .. M50 M51 M52 M53 .. to use it"
+            m, w = next((m, w) for m, w in mcodes if 48 <= m <= 53)
+            where.fail(f"M{m} P: M48 and M49 take no P (LinuxCNC; M50 P.. and M51 P.. switch the feed and the "
+                       "spindle speed override one by one)", column=seen["P"].column, text=seen["P"].text,
+                       expected=f"M{m} alone, or M50 P0/P1 and M51 P0/P1")
     if any(62 <= m <= 68 for m, _ in mcodes):
         return {k: v for k, v in seen.items() if k not in _IO_WORDS}
     if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation

@@ -111,3 +111,13 @@ def test_linuxcnc_changes_the_length_offset_after_g40_on_the_same_line():
 @pytest.mark.parametrize("name", ["fanuc", "haas"])
 def test_fanuc_and_haas_change_the_length_offset_under_radius_compensation(name):
     assert checked_iso(G43_UNDER_G42, _in_dialect(name)).blocks
+
+
+def test_linuxcnc_m48_m49_take_no_p_word():
+    # a motion card's demo writes 'M49 P1 (Disable FRO)'; LinuxCNC's M48/M49 switch both overrides and read no P
+    # (interp_check.cc check_other_codes: "P word with no ... M50 M51 M52 M53 ... to use it")
+    with pytest.raises(GCodeError, match=r":3:5: M49 P: M48 and M49 take no P \(LinuxCNC; M50 P.. and M51 P.. "
+                                         r"switch the feed and the spindle speed override one by one\)"):
+        parse_program("G21 G90 G0 X0 Y0\nF200\nM49 P1\nG1 X20\nM30\n", context=_in_dialect("linuxcnc"))
+    prog = checked_iso("G21 G90 G0 X0 Y0\nF200\nM49\nM50 P0\nM51 P1\nG1 X20\nM48\nM30\n", _in_dialect("linuxcnc"))
+    assert prog.blocks[-1].target[0] == 120.0
