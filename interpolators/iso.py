@@ -887,6 +887,12 @@ def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, n
         w = seen[rot_words[0]]
         where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                    text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
+    if "K" in seen and st.context.dialect.name == "linuxcnc" and st.motion not in (760, 870):
+        # interp_check.cc check_other_codes: "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"; the
+        # repeat count is L (g-code.adoc "G80-G89"), K Fanuc's
+        w = seen["K"]
+        where.fail(f"word K on the {_G[st.motion][1]}: LinuxCNC repeats a cycle with L and reads no K (K is "
+                   "Fanuc's repeat count)", column=w.column, text=w.text, expected="L<repeats>")
     if moves:
         _canned_cycle(seen, gcodes, st, blocks, used, where, number, notes)
 

@@ -121,3 +121,17 @@ def test_linuxcnc_m48_m49_take_no_p_word():
         parse_program("G21 G90 G0 X0 Y0\nF200\nM49 P1\nG1 X20\nM30\n", context=_in_dialect("linuxcnc"))
     prog = checked_iso("G21 G90 G0 X0 Y0\nF200\nM49\nM50 P0\nM51 P1\nG1 X20\nM48\nM30\n", _in_dialect("linuxcnc"))
     assert prog.blocks[-1].target[0] == 120.0
+
+
+def test_linuxcnc_reads_no_k_on_a_drilling_cycle():
+    # a motion card's G83 sample ends its block with 'K0.05'; LinuxCNC repeats with L and refuses K there
+    # (interp_check.cc check_other_codes: "K word with no G2, G3, G33, G33.1, G76, or G87 to use it")
+    text = "G21 G90 G0 X0 Y0 Z5\nG99 G81 X1 Y1 Z-2 R1 F100 K2\nG80\nM30\n"
+    with pytest.raises(GCodeError, match=r":2:27: word K on the G81 drilling cycle: LinuxCNC repeats a cycle with L "
+                                         r"and reads no K \(K is Fanuc's repeat count\)"):
+        parse_program(text, context=_in_dialect("linuxcnc"))
+    holes = [b for b in checked_iso(text.replace("G90 G0", "G91 G0"), _in_dialect("fanuc")).blocks
+             if b.kind == "line"]
+    assert len(holes) == 2
+    assert len([b for b in checked_iso(text.replace("K2", "L2").replace("G90 G0", "G91 G0"),
+                                       _in_dialect("linuxcnc")).blocks if b.kind == "line"]) == 2
