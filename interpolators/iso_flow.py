@@ -540,7 +540,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         executed += 1
         if executed > max_lines + len(prog.code):
             prog.fail(pc, f"more than {max_lines} lines executed beyond the program's {len(prog.code)}: an endless "
-                      "loop?", "a loop that ends")
+                      "loop? (vcnc's guard against one: repetitions that end, but only beyond it, stop here too)",
+                      f"a loop that ends within {max_lines} lines")
         ow = prog.oword.get(pc)
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
