@@ -25,7 +25,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   PA; a DEP ends RL/RR unless it writes them), ``CR`` (radius arc: R > 0 under 180 degrees), ``CT`` (the arc
   leaving along the last element's direction), ``RND R`` (the arc tangent to the two lines, r tan(theta/2)
   from the corner) and ``CHF`` (the chamfer side length on each line); ``TOOL DEF n`` alone pre-selects.
-- Q parameters: ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``, ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
+- Q parameters (``Q``, ``QL``: a called program's own, ``QR``): ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``,
+  ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
   with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
   LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
   in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` has no
@@ -176,13 +177,13 @@ def _val(text: str, q: dict) -> float:
 
 
 _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
-                   r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
+                   r"([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
 #: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M103 F.., M112 T.. A..,
 #: M118 X.. Y.., M120 LA.., M124 T.., M138 [axes]; their words are M's, not the block's.
 _M_WITH_WORDS = re.compile(r"\bM(94|138)((?:\s+[ABC](?![\w+.-]))*)"
-                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))*)",
+                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))*)",
                            re.I)
 
 
@@ -196,7 +197,7 @@ def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]
         if number in (94, 138):  # axis letters alone
             found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
         else:
-            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
+            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
             found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in pairs}
         return f"M{number}"
 
@@ -681,7 +682,7 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
 
 
 def _last_number(text: str, q: dict) -> float:
-    m = re.findall(r"[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)", text)
+    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+)", text)
     if not m:
         raise ReferenceError(f"no value in {text!r}")
     return _val(m[-1].replace(" ", ""), q)
@@ -731,7 +732,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane (spatial angles; the program positions the rotary axes)
-        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q\d+)", rest)}
+        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q[LR]?\d+)", rest)}
         if any(v != 0 for v in angles.values()):
             _tilt_plane(t, line, _spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0)),
                         positioning="STAY")
@@ -743,12 +744,12 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
             return
         r = rest.upper().replace(" ", "")
-        f, dr = re.search(r"F([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        f, dr = re.search(r"F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
         if f is not None:
             t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
         if dr is not None:
             t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
-        rad = re.search(r"RADIUS([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r)
+        rad = re.search(r"RADIUS([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r)
         if number == 4 and sub == 6:
             t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else 0.0
         elif sub != 5 or number == 4:
@@ -796,7 +797,7 @@ def _transform(t: _Tnc, number: int, rest: str) -> None:
     elif number == 11:
         t.scl = _val(re.fullmatch(r"SCL(.+)", text).group(1), t.q)
     else:
-        for cc, axis, v in re.findall(r"(CC)?([XYZ])([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", text):
+        for cc, axis, v in re.findall(r"(CC)?([XYZ])([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", text):
             i = "XYZ".index(axis)
             if cc:
                 t.centre[i] = _val(v, t.q) * t.scale
@@ -1893,14 +1894,14 @@ def _tool(t: _Tnc, text: str) -> None:
     (the table's tool of that NAME, the lowest number of several; none: length and radius are the DL, DR
     deltas) and
     ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
     if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
         if re.match(r"\s*[XY]\b", rest):
             raise ReferenceError(f"tool axis in {text!r}")
-        f = re.search(r"\bF\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        f = re.search(r"\bF\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest)
         if f:
             t.auto = _val(f.group(1).replace(" ", ""), t.q)
         return
@@ -1911,7 +1912,7 @@ def _tool(t: _Tnc, text: str) -> None:
         number = int(_val(m.group(2), t.q))
 
     def word(name: str) -> float:
-        w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest)
         return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
 
     if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
@@ -1969,7 +1970,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
     elif n == 15 or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # a print; a PLC wait: no motion
         pass
     elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
-        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?\s*=\s*(.*)$",
+        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q[LR]?\d+))?\s*=\s*(.*)$",
                                         rest).groups()
         if ident == "50" and nr in ("1", "2"):
             k = int(_val(idx, t.q))
@@ -1980,7 +1981,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
         elif (ident, nr) == ("20", "1") or (ident == "50" and nr in ("4", "5") and _Formula(expr, t.q).value()):
             raise ReferenceError(f"FN 17 ID{ident} NR{nr}")  # the active tool, DL / DR: data vcnc reads back
     elif n == 18:
-        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
+        m2 = re.match(r"SYSREAD\s*(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q[LR]?\d+))?", rest)
         q, ident, nr, idx = m2.groups()
         if ident == "20" and nr == "1":  # the active tool's number
             t.q[q] = float(t.tool)
@@ -2124,8 +2125,8 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
     ``PLANE RESET ..``."""
-    w = {k: _val(v, t.q) for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q\d+)",
-                                                up)}
+    w = {k: _val(v, t.q)
+         for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q[LR]?\d+)", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
     kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
@@ -2184,6 +2185,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     # label names compared without case (the blocks are read upper-cased)
     labels = {_label_of(b).upper(): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
+    # QL parameters are the program's own (TNC 640 user's manual 34059x-02, 9.1): a called one starts without
+    # the caller's, which are back after it
+    local = {k: t.q.pop(k) for k in [k for k in t.q if k.startswith("QL")]} if called else {}
     outer, t.program = t.program, (blocks, labels)
     outer_raw, t.raw = t.raw, text.lstrip("\ufeff").split("\n")
     counters: dict[int, int] = {}
@@ -2205,7 +2209,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError("CALL PGM without a resolver")
             _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
         elif up.startswith("CALL LBL"):
-            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
+            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q[LR]?\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
             if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
                 stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
@@ -2229,7 +2233,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             label = _fn(t, b)
             if label is not None:
                 nxt = labels[label.upper()] + 1
-        elif re.match(r"Q\d+\s*=", up):
+        elif re.match(r"Q[LR]?\d+\s*=", up):
             q, expr = up.split("=", 1)
             t.q[q.strip()] = _Formula(expr, t.q).value()
         elif re.match(r"(DECLARE STRING\s+)?QS\d+\s*=", up):
@@ -2273,6 +2277,10 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     t.scale = scale
     t.program = outer
     t.raw = outer_raw
+    if called:
+        for k in [k for k in t.q if k.startswith("QL")]:
+            del t.q[k]
+        t.q.update(local)
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
