@@ -257,6 +257,10 @@ class _Tnc:
         self.last_dir: np.ndarray | None = None
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
+        self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
+        self.feed_dwell: tuple[float, float] | None = None  # FUNCTION FEED DWELL: (D-TIME, F-TIME) [s]
+        self.cutting = 0.0  # FUNCTION FEED DWELL: the feed time since the last dwell [s]
+        self.plunging = False  # M103 F.. active (a reduced plunging feed)
         self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54; > 9: None, zero)
         self.pattern: list[dict] = []  # PATTERN DEF positions
         self.resolve = None  # name -> text of a called program
@@ -328,6 +332,8 @@ class _Tnc:
 
     def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1),
              extra: np.ndarray | None = None) -> None:
+        if self.feed_dwell is not None and kind not in ("rapid", "dwell"):
+            raise ReferenceError("a feed move under FUNCTION FEED DWELL other than a line L (an arc, a cycle's)")
         if self.rounding is not None and kind != "dwell":
             _corner(self, end, centre)
         start = self.pos.copy()
@@ -396,7 +402,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
     kind = "rapid" if "FMAX" in w else "feed"
-    if axes or others:
+    if t.feed_dwell is not None and kind == "feed" and (axes or others):
+        _feed_dwell_line(t, line, t.target(w), bool(others))
+    elif axes or others:
         t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
@@ -410,6 +418,37 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+
+
+def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
+    """A line ``L`` under FUNCTION FEED DWELL D-TIME d F-TIME f (TNC 640 user's manual, "Cyclic dwell time: FUNCTION
+    FEED DWELL", as the reader reads it, no manual page found: the feed time of the path's feed moves at the
+    programmed feed counts across blocks; where it reaches f the line is cut and the tool dwells d there)."""
+    if others or t.comp or t.rounding is not None or t.scale != 1.0 or t.plunging or not t.feed > 0:
+        raise ReferenceError("FUNCTION FEED DWELL with other axes, RL/RR, RND/CHF, INCH, M103 or no feed")
+    dwell, cutting = t.feed_dwell
+    start = t.pos.copy()
+    length, speed = float(np.linalg.norm(end - start)), t.feed / 60.0  # [mm], [mm/s]
+    done = 0.0
+    while done + (cutting - t.cutting) * speed < length - 1e-9:
+        done += (cutting - t.cutting) * speed
+        t.feed_dwell = None  # the pieces themselves
+        t.emit(line, "feed", start + (end - start) * done / length)
+        t.feed_dwell = (dwell, cutting)
+        t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one"))
+        t.cutting = 0.0
+    t.cutting += (length - done) / speed
+    t.feed_dwell = None
+    t.emit(line, "feed", end)
+    t.feed_dwell = (dwell, cutting)
+
+
+def _feed_dwell_def(t: _Tnc, up: str) -> None:
+    """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``.. RESET``: the count of feed time starts at 0."""
+    m = re.match(r"FUNCTION FEED DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))", up)
+    dwell = 0.0 if m.group(1) else _val(m.group(2), t.q)
+    t.feed_dwell = (dwell, _val(m.group(3), t.q)) if dwell > 0 else None
+    t.cutting = 0.0
 
 
 def _reduce_display(t: _Tnc, margs: dict) -> None:
@@ -2202,6 +2241,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         nxt = pc + 1
         if up.startswith("END PGM"):
             break
+        _track_feed(t, up)
         if up.startswith("BEGIN PGM"):
             t.scale = 25.4 if up.split()[-1] == "INCH" else 1.0
         elif up.startswith("CALL PGM"):
@@ -2244,6 +2284,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _trans(t, up)
         elif up.startswith("PLANE") and t.ctx.kinematics is not None:
             _plane(t, line, up)
+        elif up.startswith("FUNCTION FEED DWELL"):
+            _feed_dwell_def(t, up)
         elif up.startswith(("PLANE", "FUNCTION")):
             if not (up.startswith(("PLANE RESET", "FUNCTION RESET TCPM", "FUNCTION MODE MILL"))
                     or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
@@ -2281,6 +2323,20 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         for k in [k for k in t.q if k.startswith("QL")]:
             del t.q[k]
         t.q.update(local)
+
+
+def _track_feed(t: _Tnc, up: str) -> None:
+    """The modal feed F of path blocks, and M103 (for FUNCTION FEED DWELL); F AUTO, FU, FZ under it: unmodelled."""
+    if not re.match(r"(L|LP|C|CP|CR|CT|APPR|DEP|RND|CHF|F[LCP]|M\d)\b", up):
+        return
+    rest, margs = _m_words(up, t.q)
+    if 103 in margs:
+        t.plunging = bool(margs[103])
+    f = re.search(r"\bF\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))(?![\w.])", rest)
+    if f:
+        t.feed = _val(f.group(1).replace(" ", ""), t.q)
+    elif t.feed_dwell is not None and re.search(r"\bF\s*(AUTO|[UZ])", rest):
+        raise ReferenceError("FUNCTION FEED DWELL with F AUTO, FU or FZ")
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:
