@@ -29,9 +29,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
   with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
   LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
-  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` has no
-  effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system
-  data: no effect).
+  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` and ``FN 16
+  F-PRINT`` have no effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a
+  ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -2006,7 +2006,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
         a, op, b, label = m2.groups()
         if _FN_CMP[op](_val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)):
             return label.strip('"')
-    elif n == 15 or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # a print; a PLC wait: no motion
+    elif n in (15, 16) or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # prints; a PLC wait: no motion
         pass
     elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
         ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q[LR]?\d+))?\s*=\s*(.*)$",

@@ -31,7 +31,8 @@ def test_a_block_the_control_marked_error_is_named():
 
 def test_ql_and_qr_parameters_move_the_tool_as_q_parameters_do():
     # TNC 640 user's manual (34059x-02), 9.1: QL0-QL499 local, QR0-QR499 remanent, used as Q parameters are
-    # (the reference read Q alone before: 'QR1 = 150' unmodelled in a shop's iTNC 530 program)
+    # (the reference read Q alone before: 'QR1 = 150' unmodelled in a shop's iTNC 530 program); its FN 16 F-PRINT
+    # of the values to a file moves nothing (TNC 640 user's manual, "FN 16: F-PRINT")
     prog = checked("1 QR1 = 150\n2 QL2 = QR1 / 3\n3 FN 1: QL3 = +QL2 + +QR1\n4 L X+QL2 Y+QL3 Z+QR1 R0 FMAX\n"
-                   "5 L IX-QL2 FQR1")
+                   "5 FN 16: F-PRINT TNC:\\mask.a / TNC:\\out.txt\n6 L IX-QL2 FQR1")
     assert np.allclose([b.target for b in prog.blocks], [[50, 200, 150], [0, 200, 150]])
