@@ -52,6 +52,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
   from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- ``FUNCTION FEED DWELL D-TIME d F-TIME f`` (TNC 640 user's manual, "Cyclic dwell time"; our reading of what
+  counts): the feed time of the path's lines and arcs at the modal F, across blocks; where it reaches f the element is
+  cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
 - FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
   6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
@@ -443,6 +446,41 @@ def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
     t.feed_dwell = (dwell, cutting)
 
 
+def _feed_dwell_arc(t: _Tnc, line: int, end: np.ndarray, centre: np.ndarray, ccw: bool, plane: tuple,
+                    turn: float | None) -> None:
+    """An arc ``C`` / ``CP`` (``turn``: its IPA [deg]) under FUNCTION FEED DWELL, as :func:`_feed_dwell_line`:
+    cut where the feed time reaches F-TIME (along the arc, r x angle), a dwell there; a full circle when the
+    end is the start. Helices, arcs of more than a turn, transformations other than shifts: unmodelled."""
+    i, j = plane
+    start = t.pos.copy()
+    if (abs(end[3 - i - j] - start[3 - i - j]) > 1e-9 or (turn is not None and abs(turn) > 360.0 + 1e-9)
+            or t.comp or t.rounding is not None or t.scale != 1.0 or t.plunging or not t.feed > 0
+            or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None):
+        raise ReferenceError("FUNCTION FEED DWELL on a helix, an arc over a turn, or with RL/RR, INCH, M103, "
+                             "a transformation")
+    a0, a1 = (math.atan2(q[j] - centre[j], q[i] - centre[i]) for q in (start, end))
+    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
+    if abs(sweep) < 1e-9:  # back at the start: a full circle
+        sweep = 2 * math.pi if ccw else -2 * math.pi
+    radius = math.hypot(start[i] - centre[i], start[j] - centre[j])
+    length, speed = radius * abs(sweep), t.feed / 60.0
+    dwell, cutting = t.feed_dwell
+    kind = "arc_ccw" if ccw else "arc_cw"
+    done = 0.0
+    t.feed_dwell = None  # the pieces themselves
+    while done + (cutting - t.cutting) * speed < length - 1e-9:
+        done += (cutting - t.cutting) * speed
+        at = start.copy()
+        angle = a0 + sweep * done / length
+        at[i], at[j] = centre[i] + radius * math.cos(angle), centre[j] + radius * math.sin(angle)
+        t.emit(line, kind, at, centre=centre, plane=plane)
+        t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one"))
+        t.cutting = 0.0
+    t.cutting += (length - done) / speed
+    t.emit(line, kind, end, centre=centre, plane=plane)
+    t.feed_dwell = (dwell, cutting)
+
+
 def _feed_dwell_def(t: _Tnc, up: str) -> None:
     """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``.. RESET``: the count of feed time starts at 0."""
     m = re.match(r"FUNCTION FEED DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))", up)
@@ -543,7 +581,10 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     c[n] = t.prog()[n]
     centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
-    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
+    if t.feed_dwell is not None:
+        _feed_dwell_arc(t, line, end, centre, ccw, (i, j), w.get("IPA") if polar else None)
+    else:
+        t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
     _arc_tangent(t, end, centre, ccw, (i, j))
 
 

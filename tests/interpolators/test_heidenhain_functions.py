@@ -215,7 +215,7 @@ def test_feed_dwell_stops_after_every_f_time_of_feed_motion():
     motion (here 20 mm at 600 mm/min), lines and arcs alike, not during rapids, until RESET."""
     prog = checked_program(program("L X+0 Y+0 Z+0 R0 F600\nFUNCTION FEED DWELL D-TIME0.5 F-TIME2\nL X+50\n"
                                    "CC X+25 Y+0\nC X+0 Y+0 DR+\nL Z+10 FMAX\nL Z+0 FMAX\nL X+10 F600\n"
-                                   "FUNCTION FEED DWELL RESET\nL X+50"), CTX, check=False)
+                                   "FUNCTION FEED DWELL RESET\nL X+50"), CTX)
     dwells = [b for b in prog.blocks if b.kind == "dwell"]
     assert [b.dwell for b in dwells] == [0.5] * 6
     assert [np.round(b.target[:2], 9).tolist() for b in dwells[:2]] == [[20, 0], [40, 0]]
