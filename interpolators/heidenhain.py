@@ -648,8 +648,8 @@ class _Run:
 
     def program_call(self, kw: str, blk: SourceBlock, where: Where) -> None:
         """``SEL PGM``, ``CALL PGM``, ``CALL SELECTED PGM`` (:mod:`interpolators.heidenhain_programs`):
-        the called program runs on the same machine state (Q parameters, tool, transformations,
-        position) in its own unit; its blocks report its own file and lines."""
+        the called program runs on the same machine state (Q and QR parameters, tool, transformations,
+        position; QL parameters of its own) in its own unit; its blocks report its own file and lines."""
         m, col0 = self.m, blk.column
         rx = SEL_PGM_RE if kw == "SEL PGM" else CALL_PGM_RE
         cm = rx.match(blk.code)
@@ -690,7 +690,9 @@ class _Run:
         inch, source = m.inch, m.source
         m.source = str(path)
         sub = _Run(m, source_blocks(text), str(path), self.max_executed - self.executed, callers=callers)
+        local = m.params.enter_program()
         sub.run()
+        m.params.leave_program(local)
         self.executed += sub.executed
         m.inch, m.source = inch, source
 
@@ -752,6 +754,10 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
         if pattern.match(blk.code):
             where.fail(f"{what.format(tok=repr(tok))}: not a TNC block", column=blk.column, text=tok,
                        expected=expected)
+    if _ERROR_BLOCK.match(blk.code):
+        where.fail("a block the control marked 'ERROR =' when it read the program in (it could not read the "
+                   "block); the control does not run a program holding one", column=blk.column, text=tok,
+                   expected="the block written out again in TNC syntax")
     head = re.match(r"[A-Z]*", tok.upper()).group(0)  # QS1 = ...: QS
     known = _KNOWN_UNSUPPORTED.get(head)
     if known is not None:
@@ -775,6 +781,12 @@ _FOREIGN_LINES = (
     (re.compile(r"N\d+\s", re.I), "the block number {tok} is ISO (DIN 66025) syntax",
      "a TNC block number without N ('12 L X+10')"),
 )
+
+#: ``ERROR = L XQ102 + Q9``: the TNC keeps a block it cannot read when a program is read in (a file
+#: written elsewhere, transferred or converted), marked ``ERROR =`` before its text, and refuses to run
+#: the program until the block is corrected (our reading: the TNC user's manuals we searched do not
+#: describe the marking; found in a shop's keyway macro among the wild TNC programs).
+_ERROR_BLOCK = re.compile(r"ERROR\s*=", re.I)
 
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {

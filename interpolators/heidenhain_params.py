@@ -3,7 +3,8 @@
 Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q parameters"
 (iTNC 530 / TNC 640 conversational programming; TNC 426/430 manual, section 10):
 
-* ``Q1 = <formula>`` (and ``QL``/``QR`` local and remanent parameters, kept here in one store):
+* ``Q1 = <formula>`` (and ``QL``/``QR`` local and remanent parameters, kept here in one store; a called
+  program's QL apart from its caller's, :meth:`QParameters.enter_program`):
   ``+ - * /``, ``^`` (power), parentheses, and the functions ``SIN COS TAN ASIN ACOS ATAN``
   (angles in degrees), ``SQ`` (square), ``SQRT``, ``LN``, ``LOG`` (base 10), ``EXP``, ``PI``,
   ``NEG``, ``INT`` (truncate), ``ABS``, ``FRAC`` and ``SGN``. A function applies to the operand
@@ -123,6 +124,23 @@ class QParameters:
             where.fail(f"{name.upper()} = {value!r} is out of range", column=column, text=where.text,
                        expected=f"a finite value of magnitude <= {MAX_MAGNITUDE:g}")
         self._values[name.upper()] = float(value)
+
+    def enter_program(self) -> dict[str, float]:
+        """Set the calling program's QL parameters aside for a called program, which starts without
+        them; returns them for :meth:`leave_program`. TNC 640 user's manual (34059x-02, 5/2013), 9.1
+        "Principle and overview of functions": "Local parameters QL are only effective within the
+        respective program, and are not applied as part of program calls or macros" (Q and QR are)."""
+        local = {k: v for k, v in self._values.items() if k.startswith("QL")}
+        for k in local:
+            del self._values[k]
+        return local
+
+    def leave_program(self, local: dict[str, float]) -> None:
+        """Back in the calling program: the called program's QL parameters gone, the caller's
+        (``local``, from :meth:`enter_program`) again."""
+        for k in [k for k in self._values if k.startswith("QL")]:
+            del self._values[k]
+        self._values.update(local)
 
     def evaluate(self, text: str, where: Where, *, column: int = 1) -> float:
         """Value of a formula (or a plain signed number or parameter) [the parameters' units].

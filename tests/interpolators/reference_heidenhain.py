@@ -25,12 +25,13 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   PA; a DEP ends RL/RR unless it writes them), ``CR`` (radius arc: R > 0 under 180 degrees), ``CT`` (the arc
   leaving along the last element's direction), ``RND R`` (the arc tangent to the two lines, r tan(theta/2)
   from the corner) and ``CHF`` (the chamfer side length on each line); ``TOOL DEF n`` alone pre-selects.
-- Q parameters: ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``, ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
+- Q parameters (``Q``, ``QL``: a called program's own, ``QR``): ``FN 0``-``FN 8`` and ``FN 13`` (``SQRT``,
+  ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
   with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
   LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
-  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` has no
-  effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a ``TOOL DEF`` (other system
-  data: no effect).
+  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` and ``FN 16
+  F-PRINT`` have no effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a
+  ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
   times (then the counter is reset); of a label after the call, the subprogram run k + 1 times (the
   reader's reading, no manual found); ``CALL LBL n``: a subprogram up to ``LBL 0``; the main program
@@ -51,6 +52,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
   from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- ``FUNCTION FEED DWELL D-TIME d F-TIME f`` (TNC 640 user's manual, "Cyclic dwell time"; our reading of what
+  counts): the feed time of the path's lines and arcs at the modal F, across blocks; where it reaches f the element is
+  cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
 - FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
   6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
@@ -176,13 +180,13 @@ def _val(text: str, q: dict) -> float:
 
 
 _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
-                   r"([-+]?(?:Q\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
+                   r"([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
 #: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M103 F.., M112 T.. A..,
 #: M118 X.. Y.., M120 LA.., M124 T.., M138 [axes]; their words are M's, not the block's.
 _M_WITH_WORDS = re.compile(r"\bM(94|138)((?:\s+[ABC](?![\w+.-]))*)"
-                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))*)",
+                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))*)",
                            re.I)
 
 
@@ -196,7 +200,7 @@ def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]
         if number in (94, 138):  # axis letters alone
             found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
         else:
-            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
+            pairs = re.findall(r"(LA|[FTAEHXYZABCUVW])\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", words or "", re.I)
             found[number] = {k.upper(): _val(v.replace(" ", ""), q) for k, v in pairs}
         return f"M{number}"
 
@@ -256,6 +260,10 @@ class _Tnc:
         self.last_dir: np.ndarray | None = None
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
+        self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
+        self.feed_dwell: tuple[float, float] | None = None  # FUNCTION FEED DWELL: (D-TIME, F-TIME) [s]
+        self.cutting = 0.0  # FUNCTION FEED DWELL: the feed time since the last dwell [s]
+        self.plunging = False  # M103 F.. active (a reduced plunging feed)
         self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54; > 9: None, zero)
         self.pattern: list[dict] = []  # PATTERN DEF positions
         self.resolve = None  # name -> text of a called program
@@ -327,6 +335,8 @@ class _Tnc:
 
     def emit(self, line: int, kind: str, end: np.ndarray, *, rows: str = "one", centre=None, plane=(0, 1),
              extra: np.ndarray | None = None) -> None:
+        if self.feed_dwell is not None and kind not in ("rapid", "dwell"):
+            raise ReferenceError("a feed move under FUNCTION FEED DWELL other than a line L (an arc, a cycle's)")
         if self.rounding is not None and kind != "dwell":
             _corner(self, end, centre)
         start = self.pos.copy()
@@ -395,7 +405,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
     kind = "rapid" if "FMAX" in w else "feed"
-    if axes or others:
+    if t.feed_dwell is not None and kind == "feed" and (axes or others):
+        _feed_dwell_line(t, line, t.target(w), bool(others))
+    elif axes or others:
         t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
@@ -409,6 +421,72 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+
+
+def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
+    """A line ``L`` under FUNCTION FEED DWELL D-TIME d F-TIME f (TNC 640 user's manual, "Cyclic dwell time: FUNCTION
+    FEED DWELL", as the reader reads it, no manual page found: the feed time of the path's feed moves at the
+    programmed feed counts across blocks; where it reaches f the line is cut and the tool dwells d there)."""
+    if others or t.comp or t.rounding is not None or t.scale != 1.0 or t.plunging or not t.feed > 0:
+        raise ReferenceError("FUNCTION FEED DWELL with other axes, RL/RR, RND/CHF, INCH, M103 or no feed")
+    dwell, cutting = t.feed_dwell
+    start = t.pos.copy()
+    length, speed = float(np.linalg.norm(end - start)), t.feed / 60.0  # [mm], [mm/s]
+    done = 0.0
+    while done + (cutting - t.cutting) * speed < length - 1e-9:
+        done += (cutting - t.cutting) * speed
+        t.feed_dwell = None  # the pieces themselves
+        t.emit(line, "feed", start + (end - start) * done / length)
+        t.feed_dwell = (dwell, cutting)
+        t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one"))
+        t.cutting = 0.0
+    t.cutting += (length - done) / speed
+    t.feed_dwell = None
+    t.emit(line, "feed", end)
+    t.feed_dwell = (dwell, cutting)
+
+
+def _feed_dwell_arc(t: _Tnc, line: int, end: np.ndarray, centre: np.ndarray, ccw: bool, plane: tuple,
+                    turn: float | None) -> None:
+    """An arc ``C`` / ``CP`` (``turn``: its IPA [deg]) under FUNCTION FEED DWELL, as :func:`_feed_dwell_line`:
+    cut where the feed time reaches F-TIME (along the arc, r x angle), a dwell there; a full circle when the
+    end is the start. Helices, arcs of more than a turn, transformations other than shifts: unmodelled."""
+    i, j = plane
+    start = t.pos.copy()
+    if (abs(end[3 - i - j] - start[3 - i - j]) > 1e-9 or (turn is not None and abs(turn) > 360.0 + 1e-9)
+            or t.comp or t.rounding is not None or t.scale != 1.0 or t.plunging or not t.feed > 0
+            or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None):
+        raise ReferenceError("FUNCTION FEED DWELL on a helix, an arc over a turn, or with RL/RR, INCH, M103, "
+                             "a transformation")
+    a0, a1 = (math.atan2(q[j] - centre[j], q[i] - centre[i]) for q in (start, end))
+    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
+    if abs(sweep) < 1e-9:  # back at the start: a full circle
+        sweep = 2 * math.pi if ccw else -2 * math.pi
+    radius = math.hypot(start[i] - centre[i], start[j] - centre[j])
+    length, speed = radius * abs(sweep), t.feed / 60.0
+    dwell, cutting = t.feed_dwell
+    kind = "arc_ccw" if ccw else "arc_cw"
+    done = 0.0
+    t.feed_dwell = None  # the pieces themselves
+    while done + (cutting - t.cutting) * speed < length - 1e-9:
+        done += (cutting - t.cutting) * speed
+        at = start.copy()
+        angle = a0 + sweep * done / length
+        at[i], at[j] = centre[i] + radius * math.cos(angle), centre[j] + radius * math.sin(angle)
+        t.emit(line, kind, at, centre=centre, plane=plane)
+        t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one"))
+        t.cutting = 0.0
+    t.cutting += (length - done) / speed
+    t.emit(line, kind, end, centre=centre, plane=plane)
+    t.feed_dwell = (dwell, cutting)
+
+
+def _feed_dwell_def(t: _Tnc, up: str) -> None:
+    """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``.. RESET``: the count of feed time starts at 0."""
+    m = re.match(r"FUNCTION FEED DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))", up)
+    dwell = 0.0 if m.group(1) else _val(m.group(2), t.q)
+    t.feed_dwell = (dwell, _val(m.group(3), t.q)) if dwell > 0 else None
+    t.cutting = 0.0
 
 
 def _reduce_display(t: _Tnc, margs: dict) -> None:
@@ -503,7 +581,10 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     c[n] = t.prog()[n]
     centre = t.machine(c)
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
-    t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
+    if t.feed_dwell is not None:
+        _feed_dwell_arc(t, line, end, centre, ccw, (i, j), w.get("IPA") if polar else None)
+    else:
+        t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
     _arc_tangent(t, end, centre, ccw, (i, j))
 
 
@@ -681,7 +762,7 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
 
 
 def _last_number(text: str, q: dict) -> float:
-    m = re.findall(r"[-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+)", text)
+    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+)", text)
     if not m:
         raise ReferenceError(f"no value in {text!r}")
     return _val(m[-1].replace(" ", ""), q)
@@ -731,7 +812,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
     elif number == 19:  # a tilted working plane (spatial angles; the program positions the rotary axes)
-        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q\d+)", rest)}
+        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q[LR]?\d+)", rest)}
         if any(v != 0 for v in angles.values()):
             _tilt_plane(t, line, _spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0)),
                         positioning="STAY")
@@ -743,12 +824,12 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
             return
         r = rest.upper().replace(" ", "")
-        f, dr = re.search(r"F([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        f, dr = re.search(r"F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
         if f is not None:
             t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
         if dr is not None:
             t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
-        rad = re.search(r"RADIUS([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", r)
+        rad = re.search(r"RADIUS([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r)
         if number == 4 and sub == 6:
             t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else 0.0
         elif sub != 5 or number == 4:
@@ -796,7 +877,7 @@ def _transform(t: _Tnc, number: int, rest: str) -> None:
     elif number == 11:
         t.scl = _val(re.fullmatch(r"SCL(.+)", text).group(1), t.q)
     else:
-        for cc, axis, v in re.findall(r"(CC)?([XYZ])([-+]?(?:Q\d+|\d+\.?\d*|\.\d+))", text):
+        for cc, axis, v in re.findall(r"(CC)?([XYZ])([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", text):
             i = "XYZ".index(axis)
             if cc:
                 t.centre[i] = _val(v, t.q) * t.scale
@@ -1893,14 +1974,14 @@ def _tool(t: _Tnc, text: str) -> None:
     (the table's tool of that NAME, the lowest number of several; none: length and radius are the DL, DR
     deltas) and
     ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
     if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
         if re.match(r"\s*[XY]\b", rest):
             raise ReferenceError(f"tool axis in {text!r}")
-        f = re.search(r"\bF\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        f = re.search(r"\bF\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest)
         if f:
             t.auto = _val(f.group(1).replace(" ", ""), t.q)
         return
@@ -1911,7 +1992,7 @@ def _tool(t: _Tnc, text: str) -> None:
         number = int(_val(m.group(2), t.q))
 
     def word(name: str) -> float:
-        w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q\d+|\d+\.?\d*|\.\d+))", rest)
+        w = re.search(rf"\b{name}\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest)
         return _val(w.group(1).replace(" ", ""), t.q) if w else 0.0
 
     if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
@@ -1966,10 +2047,10 @@ def _fn(t: _Tnc, text: str) -> str | None:
         a, op, b, label = m2.groups()
         if _FN_CMP[op](_val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)):
             return label.strip('"')
-    elif n == 15 or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # a print; a PLC wait: no motion
+    elif n in (15, 16) or (n == 20 and rest.strip().upper().startswith("WAIT FOR")):  # prints; a PLC wait: no motion
         pass
     elif n == 17:  # SYSWRITE (TNC 426/430 technical manual 7.3.3): ID50 NR1 / NR2 IDXt the length / radius of tool t
-        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?\s*=\s*(.*)$",
+        ident, nr, idx, expr = re.match(r"SYSWRITE\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q[LR]?\d+))?\s*=\s*(.*)$",
                                         rest).groups()
         if ident == "50" and nr in ("1", "2"):
             k = int(_val(idx, t.q))
@@ -1980,7 +2061,7 @@ def _fn(t: _Tnc, text: str) -> str | None:
         elif (ident, nr) == ("20", "1") or (ident == "50" and nr in ("4", "5") and _Formula(expr, t.q).value()):
             raise ReferenceError(f"FN 17 ID{ident} NR{nr}")  # the active tool, DL / DR: data vcnc reads back
     elif n == 18:
-        m2 = re.match(r"SYSREAD\s*(Q\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q\d+))?", rest)
+        m2 = re.match(r"SYSREAD\s*(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s*NR\s*(\d+)\s*(?:IDX\s*(\d+|Q[LR]?\d+))?", rest)
         q, ident, nr, idx = m2.groups()
         if ident == "20" and nr == "1":  # the active tool's number
             t.q[q] = float(t.tool)
@@ -2124,8 +2205,8 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
     ``PLANE RESET ..``."""
-    w = {k: _val(v, t.q) for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q\d+)",
-                                                up)}
+    w = {k: _val(v, t.q)
+         for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q[LR]?\d+)", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
     kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
@@ -2184,6 +2265,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     # label names compared without case (the blocks are read upper-cased)
     labels = {_label_of(b).upper(): i for i, (_, b) in enumerate(blocks) if re.match(r"LBL\s*\S", b.upper())}
     scale = t.scale
+    # QL parameters are the program's own (TNC 640 user's manual 34059x-02, 9.1): a called one starts without
+    # the caller's, which are back after it
+    local = {k: t.q.pop(k) for k in [k for k in t.q if k.startswith("QL")]} if called else {}
     outer, t.program = t.program, (blocks, labels)
     outer_raw, t.raw = t.raw, text.lstrip("\ufeff").split("\n")
     counters: dict[int, int] = {}
@@ -2198,6 +2282,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         nxt = pc + 1
         if up.startswith("END PGM"):
             break
+        _track_feed(t, up)
         if up.startswith("BEGIN PGM"):
             t.scale = 25.4 if up.split()[-1] == "INCH" else 1.0
         elif up.startswith("CALL PGM"):
@@ -2205,7 +2290,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError("CALL PGM without a resolver")
             _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
         elif up.startswith("CALL LBL"):
-            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
+            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q[LR]?\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
             target = labels[m.group(1).strip('"')]
             if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
                 stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
@@ -2229,7 +2314,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             label = _fn(t, b)
             if label is not None:
                 nxt = labels[label.upper()] + 1
-        elif re.match(r"Q\d+\s*=", up):
+        elif re.match(r"Q[LR]?\d+\s*=", up):
             q, expr = up.split("=", 1)
             t.q[q.strip()] = _Formula(expr, t.q).value()
         elif re.match(r"(DECLARE STRING\s+)?QS\d+\s*=", up):
@@ -2240,6 +2325,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _trans(t, up)
         elif up.startswith("PLANE") and t.ctx.kinematics is not None:
             _plane(t, line, up)
+        elif up.startswith("FUNCTION FEED DWELL"):
+            _feed_dwell_def(t, up)
         elif up.startswith(("PLANE", "FUNCTION")):
             if not (up.startswith(("PLANE RESET", "FUNCTION RESET TCPM", "FUNCTION MODE MILL"))
                     or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
@@ -2273,6 +2360,24 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
     t.scale = scale
     t.program = outer
     t.raw = outer_raw
+    if called:
+        for k in [k for k in t.q if k.startswith("QL")]:
+            del t.q[k]
+        t.q.update(local)
+
+
+def _track_feed(t: _Tnc, up: str) -> None:
+    """The modal feed F of path blocks, and M103 (for FUNCTION FEED DWELL); F AUTO, FU, FZ under it: unmodelled."""
+    if not re.match(r"(L|LP|C|CP|CR|CT|APPR|DEP|RND|CHF|F[LCP]|M\d)\b", up):
+        return
+    rest, margs = _m_words(up, t.q)
+    if 103 in margs:
+        t.plunging = bool(margs[103])
+    f = re.search(r"\bF\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))(?![\w.])", rest)
+    if f:
+        t.feed = _val(f.group(1).replace(" ", ""), t.q)
+    elif t.feed_dwell is not None and re.search(r"\bF\s*(AUTO|[UZ])", rest):
+        raise ReferenceError("FUNCTION FEED DWELL with F AUTO, FU or FZ")
 
 
 def _motion(t: _Tnc, line: int, up: str) -> bool | None:

@@ -215,7 +215,7 @@ def test_feed_dwell_stops_after_every_f_time_of_feed_motion():
     motion (here 20 mm at 600 mm/min), lines and arcs alike, not during rapids, until RESET."""
     prog = checked_program(program("L X+0 Y+0 Z+0 R0 F600\nFUNCTION FEED DWELL D-TIME0.5 F-TIME2\nL X+50\n"
                                    "CC X+25 Y+0\nC X+0 Y+0 DR+\nL Z+10 FMAX\nL Z+0 FMAX\nL X+10 F600\n"
-                                   "FUNCTION FEED DWELL RESET\nL X+50"), CTX, check=False)
+                                   "FUNCTION FEED DWELL RESET\nL X+50"), CTX)
     dwells = [b for b in prog.blocks if b.kind == "dwell"]
     assert [b.dwell for b in dwells] == [0.5] * 6
     assert [np.round(b.target[:2], 9).tolist() for b in dwells[:2]] == [[20, 0], [40, 0]]
@@ -225,6 +225,19 @@ def test_feed_dwell_stops_after_every_f_time_of_feed_motion():
     assert np.allclose(dwells[2].target, arc[0].end) and np.allclose(arc[-1].end, [0, 0, 0])
     # the rapids do not count: 8.54 mm of arc + the 10 mm line stay below 20 mm, no dwell; after RESET none
     assert [(b.kind, b.target[0]) for b in prog.blocks[-3:]] == [("rapid", 0.0), ("line", 10.0), ("line", 50.0)]
+
+
+def test_feed_dwell_on_lines_agrees_with_the_reference():
+    """The same reading checked against the reference (lines only, the reference does not split arcs): F-TIME 1.5 s
+    at F1200 (20 mm/s) is 30 mm of feed motion, counted across blocks and over an F change: X+50 is cut at X30, the
+    20 mm left of it and the 10 mm of IY+10 end the count at Y10, then at F600 (10 mm/s) it is 15 mm: Y25, Y40,
+    2 mm before the line ends at Y42; the rapid and the lines after RESET have no dwell."""
+    prog = checked_program(program("L X+0 Y+0 Z+0 R0 F1200\nFUNCTION FEED DWELL D-TIME0.25 F-TIME1.5\nL X+50\n"
+                                   "L IY+10\nL IY+32 F600\nL Z+5 FMAX\nFUNCTION FEED DWELL RESET\nL X+0 F1200"), CTX)
+    dwells = [np.round(b.target, 9).tolist() for b in prog.blocks if b.kind == "dwell"]
+    assert dwells == [[30, 0, 0], [50, 10, 0], [50, 25, 0], [50, 40, 0]]
+    assert all(b.dwell == 0.25 for b in prog.blocks if b.kind == "dwell")
+    assert [b.kind for b in prog.blocks[-2:]] == ["rapid", "line"]
 
 
 def test_feed_dwell_errors():

@@ -50,6 +50,18 @@ def test_call_pgm_shares_q_parameters_and_returns_after_end_pgm(tmp_path):
     assert [b.line for b in prog.blocks] == [2, 2, 5, 2]  # each block reports its own file's line
 
 
+def test_a_called_program_has_ql_parameters_of_its_own(tmp_path):
+    # TNC 640 user's manual (34059x-02, 5/2013), 9.1: "Local parameters QL are only effective within the
+    # respective program, and are not applied as part of program calls"; Q and QR are. SUB sees QL1 = 0 (X0 + 5)
+    # and the QR2 = 3 the caller set; back in main, QL1 is main's 20 again (vcnc shared QL with the called
+    # program before: X+25, then X+25)
+    write(tmp_path, "SUB.h", "1 QL1 = QL1 + 5\n2 QR2 = QR2 + 1\n3 L X+QL1 R0 FMAX")
+    main = write(tmp_path, "main.h", "1 QL1 = 20\n2 QR2 = 3\n3 L X+0 Y+0 Z+10 R0 FMAX\n4 CALL PGM SUB\n"
+                                     "5 L X+QL1 Y+QR2 R0 FMAX")
+    prog = checked(main)
+    assert [tuple(b.target[:2]) for b in prog.blocks] == [(10, 20), (15, 20), (30, 24)]
+
+
 def test_called_program_keeps_its_own_unit_and_paths_are_relative(tmp_path):
     write(tmp_path, "sub/inch.h", "1 L IY+1", unit="INCH")
     main = write(tmp_path, "main.h", "1 L X+0 Y+0 Z+0 R0 F100\n2 CALL PGM sub\\inch.h\n3 L IY+1")
