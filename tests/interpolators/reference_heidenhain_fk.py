@@ -3,29 +3,29 @@
 Test code only, imports nothing of the readers. Written from the iTNC 530 user's manual, section 6.6
 "Path Contours - FK Free Contour Programming" (the data of FL/FLT/FC/FCT, FPOL, relative data ``RX n``
 etc., ``CLSD+``/``CLSD-``, ``PAR n``, auxiliary points ``P1X..`` and ``PDX PDY D``, ``FSELECT n``) and the
-TNC 370 user's manual, section 5.6, as a different formulation from the reader's: every datum of an element
-is an equation in the element's Cartesian unknowns (the end point E of a line; the centre C and end point E
-of an arc), solved numerically (``scipy.optimize.least_squares`` from many seeded random starting points)
-instead of intersecting lines and circles in closed form (the reader's single elements) or walking start
-directions, sizes and sweeps with Newton's method (the reader's open stretches). An element with fewer
-equations than unknowns (a line without its length, an arc without its end) is solved together with
-the FK elements after it, the unknowns of all in one system; the leading elements whose unknowns the null
-space of the Jacobian at a solution leaves untouched are fixed, with one solution per distinct way (several:
-FSELECT picks among them, the rest of the chain waits). Conventions shared with the reader (its docstring):
-the solutions are numbered by the lengths of their elements in turn, equal lengths by the direction they leave
-the start in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its
-start; ``LEN`` of an arc its chord; ``CCA`` its centre angle; ``D`` the distance from the line's extension or
-from the circle; an arc of a joined chain is no full circle unless its data name its end. The working plane is
-XY (the reference runs tool axis Z only).
-"""
+TNC 370 user's manual, section 5.6, as a different formulation from the reader's: every datum of an element is an
+equation in the element's Cartesian unknowns (the end point E of a line; the centre C and end point E of an arc),
+solved numerically (MINPACK's Levenberg-Marquardt, ``scipy.optimize.leastsq``, from seeded random starting points
+until sixty in a row find no new solution) instead of intersecting lines and circles in closed form (the reader's
+single elements) or walking start directions, sizes and sweeps with Newton's method (the reader's open stretches).
+An element with fewer equations than unknowns (a line without its length, an arc without its end) is solved
+together with the FK elements after it, the unknowns of all in one system; the leading elements whose unknowns the
+null space of the Jacobian at a solution leaves untouched are fixed, with one solution per distinct way (several:
+FSELECT picks among them, the rest of the chain waits). Conventions shared with the reader (its docstring): the
+solutions are numbered by the lengths of their elements in turn, equal lengths by the direction they leave the
+start in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its start;
+``LEN`` of an arc its chord; ``CCA`` its centre angle; ``D`` the distance from the line's extension or from the
+circle; an arc of a joined chain is no full circle unless its data name its end. The working plane is XY (the
+reference runs tool axis Z only)."""
 
 from __future__ import annotations
 
 import math
 import re
+import warnings
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, leastsq
 
 from tests.interpolators.reference_iso import ReferenceError
 
@@ -280,17 +280,49 @@ class FkReference:
         rng = np.random.default_rng(7)
         roots: list[np.ndarray] = []
         last_new = 0
-        for i in range(80):
-            if roots and i - last_new > 20:  # twenty starts without a new solution: enough
+
+        def converged(x0, *, rough=False):
+            """The root a start ``x0`` reaches (None if none): MINPACK's Levenberg-Marquardt with its own forward
+            differences (``leastsq``) where the equations are at least as many as the unknowns, else trust-region
+            reflective; ``rough``: a quick first pass whose root is then polished."""
+            tight = {"xtol": 1e-8, "ftol": 1e-8} if rough else {"xtol": 1e-15, "ftol": 1e-15, "gtol": 1e-15}
+            x = None
+            if len(fun(x0)) >= n:
+                with warnings.catch_warnings():  # its warning that a tolerance is not met: the residual decides
+                    warnings.simplefilter("ignore", RuntimeWarning)
+                    try:
+                        x = leastsq(fun, x0, maxfev=60 * (n + 1) if rough else 1000 * (n + 1), **tight)[0]
+                    except ValueError:  # equations whose number changes with x, which leastsq refuses
+                        x = least_squares(fun, x0, method="lm", max_nfev=60 if rough else 1000, **tight).x
+            else:
+                x = least_squares(fun, x0, method="trf", max_nfev=60 if rough else 1000, **tight).x
+            return x if np.max(np.abs(fun(x))) <= (1e-6 if rough else 1e-8) * size else None
+
+        def admissible(x):
+            return all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(x))
+
+        def known(x, within):
+            return any(np.max(np.abs(x[:cut] - r[:cut])) < within * size for r in roots)
+
+        for i in range(240):
+            if roots and i - last_new > 60:  # sixty starts without a new solution: enough
                 break
-            x0 = np.tile(s0, n // 2) + rng.normal(scale=size, size=n)
-            sol = least_squares(fun, x0, method="lm" if len(fun(x0)) >= n else "trf", xtol=1e-15, ftol=1e-15,
-                                gtol=1e-15, max_nfev=1000)
-            if np.max(np.abs(sol.fun)) > 1e-8 * size:
+            x = converged(np.tile(s0, n // 2) + rng.normal(scale=size, size=n), rough=True)
+            if x is None:
                 continue
-            if all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(sol.x)) and \
-                    not any(np.max(np.abs(sol.x[:cut] - r[:cut])) < 1e-6 * size for r in roots):
-                roots.append(sol.x)
+            if known(x, 1e-5):
+                continue
+            x = converged(x)
+            if x is None or known(x, 1e-6):
+                continue
+            for _ in range(10 if cut < n else 0):  # a new head, its open tail the wrong way: the tail again
+                if admissible(x):
+                    break
+                tail = converged(np.concatenate([x[:cut], np.tile(x[cut - 2:cut], (n - cut) // 2)
+                                                 + rng.normal(scale=size, size=n - cut)]))
+                x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-6 * size else x
+            if admissible(x):
+                roots.append(x)
                 last_new = i
                 if len(roots) == first:
                     break
