@@ -24,6 +24,9 @@ def _edge_values(rng, n):
         np.arange(n) * 0.001,
         rng.integers(-10**14, 10**14, size=n).astype(float),
         rng.integers(0, 2**63, size=n, dtype=np.uint64).view(float),
+        # a 16-bit DAC's steps of 10 V / 2**15 (exact ties of the 12th digit are common) at several scales
+        rng.integers(-2**15, 2**15, size=n) * (10.0 / 2**15) * 10.0 ** rng.integers(-6, 8, size=n),
+        rng.integers(-2**40, 2**40, size=n) * 2.0 ** -rng.integers(0, 60, size=n).astype(float),
         # ties of the last digit kept, exact in binary: 0.25, 2.5, 1234567890125 (12 digits + 5), ...
         [-0.0, 0.0, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, np.inf, -np.inf, np.nan,
          0.25, 0.35, 2.5, 3.5, -2.5, 1234567890125.0, 1234567890135.0, 999999999999.5, 9999999999995.0,

@@ -9,9 +9,11 @@ C's ``%.<P>g`` (which Python's ``%`` follows: ISO C 7.21.6.1, "g, G conversion")
 value to ``P`` significant decimal digits, a tie to even. Here ``x * 10**k`` (``k`` = ``P - 1`` minus the
 decimal exponent of ``x``) is formed in double-double arithmetic (Dekker's exact product; ``10**k`` held as
 the sum of two doubles, tabled from exact integers), with an error below 1e-20 of a unit of the last digit.
-Where the part after the last digit lies within :data:`HARD_MARGIN` of one half, the double-double
-cannot promise the rounding, and that number is formatted by Python's ``%`` instead (as are NaN, inf, the
-largest and smallest magnitudes, and ``%d`` beyond 2**62): the text is always Python's.
+Where the part after the last digit lies within :data:`HARD_MARGIN` of one half, and ``10**k`` is a double
+(``0 <= k <= 22``: numbers from 1e-11 to 1e12 at ``P`` = 12), the product is exact and so is the side of the
+tie; exact ties are common (a DAC's control signal, k / 2**n volt, has 13 digits ending in 5). Elsewhere
+within that margin, for NaN, inf, the largest and smallest magnitudes and ``%d`` beyond 2**62, the number is
+formatted by Python's ``%``: the text is always Python's.
 
 Then the C rules for ``%g`` without ``#``: with ``X`` the decimal exponent after rounding, ``%f`` style
 with ``P - 1 - X`` decimals when ``-4 <= X < P``, else ``%e`` style with a sign and at least two exponent
@@ -44,6 +46,9 @@ _MIN_ABS, _MAX_ABS = 1e-280, 1e280
 INT_CODE = 0
 
 _K_MIN, _K_MAX = -290, 300
+
+#: Largest k with 10**k a double (exactly).
+_EXACT_POW = 22
 
 
 def _power_table() -> tuple[np.ndarray, np.ndarray]:
@@ -120,8 +125,14 @@ def _digits(a, prec):  # pragma: no cover - compiled
             X -= 1
             continue
         if abs(r - 0.5) < HARD_MARGIN:
-            return np.uint64(0), 0, False
-        if r > 0.5:
+            if not 0 <= k <= _EXACT_POW:
+                return np.uint64(0), 0, False
+            # 10**k is a double and a * 10**k = p + e exactly: the side of the tie n + 1/2 is exact too
+            # (p - (n + 1/2) is exact by Sterbenz' lemma, and a rounded sum keeps the sign of the exact one)
+            side = (p - (n + 0.5)) + e
+            if side > 0.0 or (side == 0.0 and n - 2.0 * np.floor(0.5 * n) == 1.0):  # a tie goes to the even digit
+                n += 1.0
+        elif r > 0.5:
             n += 1.0
         if n >= top:
             n = _POW_HI[prec - 1 - _K_MIN]
