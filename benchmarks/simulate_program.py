@@ -94,8 +94,9 @@ def one(path: Path, machine_name: str, tmp: Path) -> None:
     t1 = time.perf_counter()
     python_rows(ref_out, data, fmt)
     t2 = time.perf_counter()
+    same = "yes" if mine.getvalue() == ref_out.getvalue() else "NO"
     print(f"  CSV rows ({data.size} numbers): write_rows {t1 - t0:.3f} s, Python % (reference) {t2 - t1:.3f} s: "
-          f"{(t2 - t1) / (t1 - t0):.1f}x faster; same bytes: {'yes' if mine.getvalue() == ref_out.getvalue() else 'NO'}")
+          f"{(t2 - t1) / (t1 - t0):.1f}x faster; same bytes: {same}")
 
 
 def main() -> None:
