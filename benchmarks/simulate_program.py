@@ -55,12 +55,14 @@ class Stages:
     def __init__(self) -> None:
         self.wall: dict[str, float] = {}
         self.cpu: dict[str, float] = {}
+        self.peak: dict[str, float] = {}
 
     def run(self, name: str, fn, *args, **kwargs):  # noqa: ANN001, ANN201
         w, c = time.perf_counter(), time.process_time()
         out = fn(*args, **kwargs)
         self.wall[name] = self.wall.get(name, 0.0) + time.perf_counter() - w
         self.cpu[name] = self.cpu.get(name, 0.0) + time.process_time() - c
+        self.peak[name] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
         return out
 
 
@@ -79,7 +81,7 @@ def one(path: Path, machine_name: str, tmp: Path) -> None:
           f"{summary.get('contour', {}).get('max_um', float('nan')):.4g} um max")
     for name in st.wall:
         print(f"  {name:<22} {st.wall[name]:7.2f} s wall {st.cpu[name]:7.2f} s CPU  {st.wall[name] / ref:6.2f} x "
-              "the simulation")
+              f"the simulation; peak memory so far {st.peak[name]:5.0f} MB")
     total = sum(st.wall.values())
     print(f"  {'total':<22} {total:7.2f} s wall {sum(st.cpu.values()):7.2f} s CPU  {total / ref:6.2f} x the simulation")
     n = min(len(capture), 200_000)  # the CSV writers on the first rows of the capture's columns
