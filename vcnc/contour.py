@@ -42,7 +42,7 @@ import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import PackedSegments
-from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
+from vcnc.contour_kernel import ARC, BLOCK, CLOTHOID, LINE, locate, nearest
 from vcnc.core.errors import InputError
 from vcnc.core.metrics import error_metrics
 
@@ -93,13 +93,15 @@ class _Geometry:
     sphere_r: np.ndarray
     t_start: np.ndarray  # unit tangents at the start and end of each segment
     t_end: np.ndarray
+    block_c: np.ndarray  # balls holding the spheres of each BLOCK segments
+    block_r: np.ndarray
 
     def arrays(self) -> tuple:
         return (self.kind, self.start, self.end, self.direc, self.length, self.center, self.ep, self.eq, self.en,
                 self.radius, self.phi0, self.sweep, self.helix, self.frame, self.sharp)
 
     def search_arrays(self) -> tuple:
-        return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end
+        return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end, self.block_c, self.block_r
 
 
 def _check_projectable(path: Path, present: Sequence[bool]) -> None:
@@ -162,7 +164,7 @@ def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
         out[arc] = (radius[arc, None] * sig * (-np.sin(psi)[:, None] * ep[arc] + np.cos(psi)[:, None] * eq[arc])
                     + (helix[arc] / turn)[:, None] * en[arc]) / scale
     return _Geometry(kind, start, end, direc, length, center, ep, eq, en, radius, phi0, sweep, helix, frame, sharp,
-                     cum, sphere_c, sphere_r, t_start, t_end)
+                     cum, sphere_c, sphere_r, t_start, t_end, *_block_spheres(sphere_c, sphere_r))
 
 
 def _bounding_spheres(line: np.ndarray, clo: np.ndarray, start: np.ndarray, end: np.ndarray, center: np.ndarray,
@@ -185,6 +187,18 @@ def _bounding_spheres(line: np.ndarray, clo: np.ndarray, start: np.ndarray, end:
     sphere_c[clo] = corner[clo]
     sphere_r[clo] = np.linalg.norm(start[clo] - corner[clo], axis=1)
     return sphere_c, sphere_r
+
+
+def _block_spheres(centre: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A ball around the spheres of each :data:`vcnc.contour_kernel.BLOCK` consecutive segments (the last
+    block padded with its last sphere): centred in their bounding box, reaching the farthest sphere."""
+    M = len(radius)
+    n = -(-M // BLOCK) * BLOCK
+    c = np.concatenate([centre, np.repeat(centre[-1:], n - M, axis=0)]).reshape(-1, BLOCK, 3)
+    r = np.concatenate([radius, np.repeat(radius[-1:], n - M)]).reshape(-1, BLOCK)
+    mid = 0.5 * ((c - r[..., None]).min(axis=1) + (c + r[..., None]).max(axis=1))
+    reach = (np.linalg.norm(c - mid[:, None, :], axis=2) + r).max(axis=1)
+    return mid, reach * (1.0 + 1e-12) + 1e-12  # the rounding must not cut into a sphere
 
 
 def _plane_normal(g: _Geometry) -> int | None:
