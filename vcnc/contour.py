@@ -106,6 +106,8 @@ class _Geometry:
 
 def _check_projectable(path: Path, present: Sequence[bool]) -> None:
     """InputError unless every segment of ``path`` projects onto the axes ``present``."""
+    if all(present) and {type(seg) for seg in path.segments} <= {Line, Arc, ClothoidPair}:
+        return  # every segment projects onto x, y, z
     for i, seg in enumerate(path.segments):
         if isinstance(seg, Arc):
             p, q = seg.plane_axes
@@ -208,7 +210,7 @@ def _plane_normal(g: _Geometry) -> int | None:
     pts = np.concatenate([g.start, g.end])
     moving = [bool(np.ptp(pts[:, i]) > 1e-12 * (1.0 + np.abs(pts[:, i]).max())) for i in range(3)]
     arcs = g.kind == ARC
-    normals = {int(np.argmax(row)) for row in g.en[arcs]}
+    normals = set(np.unique(np.argmax(g.en[arcs], axis=1)).tolist())
     if np.any(g.helix[arcs] != 0.0) or len(normals) > 1:
         return None
     if normals:
