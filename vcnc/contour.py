@@ -13,9 +13,11 @@ actual position of sample k is then projected, in closed form (lines, arcs) or b
 iteration (helices), onto the segments the command visited between ``k - back`` and
 ``k + ahead`` samples (``window_s``, default 0.5 s back and 0.05 s ahead: the tool may lag several
 segments behind at corners). Segments whose bounding sphere is farther than the best distance
-found are skipped. Without commanded positions every segment is a candidate (a robust but slower
-global search). Coincident geometry (a circle run twice, a full circle's start and end) is told
-apart by the arc length of the command.
+found are skipped, and so are blocks of 16 segments whose common ball is (a line's sphere stands on
+it as diameter, an arc of at most half a turn's on its chord, by Thales; any ball that holds the
+segment gives the same nearest point, a tighter one spares projections). Without commanded
+positions every segment is a candidate (a robust but slower global search). Coincident geometry
+(a circle run twice, a full circle's start and end) is told apart by the arc length of the command.
 
 Sign
 ----
