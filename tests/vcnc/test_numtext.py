@@ -11,7 +11,7 @@ def _python_text(data, fmt):
 
 
 def _compiled_text(data, fmt, rows=1000):
-    return "".join(format_chunks(data, column_codes(fmt), fmt, ",", rows))
+    return "".join(format_chunks(lambda a, b: data[a:b], len(data), column_codes(fmt), fmt, ",", rows))
 
 
 def _edge_values(rng, n):
@@ -53,6 +53,22 @@ def test_d_is_pythons_text():
     data = np.column_stack([v * 1e-3, v])
     fmt = ["%.9g", "%d"]
     assert _compiled_text(data, fmt) == _python_text(data, fmt)
+
+
+def test_column_blocks_are_written_as_their_table():
+    # write_rows of blocks of columns side by side: the text of the stacked table, for both writers
+    import io
+
+    from vcnc.core.io import write_rows
+
+    rng = np.random.default_rng(4)
+    blocks = [rng.standard_normal((45_001, 1)), rng.standard_normal((45_001, 3)) * 1e3]
+    for fmt in (["%.12g"] * 4, ["%.12g", "%.4f", "%.4f", "%.4f"]):
+        got = io.StringIO()
+        write_rows(got, blocks, fmt)
+        assert got.getvalue() == _python_text(np.hstack(blocks), fmt)
+    with pytest.raises(ValueError):
+        write_rows(io.StringIO(), [blocks[0], blocks[1][:-1]], ["%.12g"] * 4)
 
 
 def test_other_formats_are_not_compiled():

@@ -31,9 +31,6 @@ OPTIONAL_SUFFIXES: dict[str, str] = {"u": "control", "table": "table", "vel": "v
 #: by about 2.4e-5 relative).
 _REL_SAMPLING_TOL = 1e-4
 
-#: Rows of the capture table :meth:`Capture.to_csv` gathers and writes at a time.
-_ROWS_PER_BLOCK = 100_000
-
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class Capture:
@@ -173,9 +170,7 @@ class Capture:
                 if isinstance(value, (str, int, float)) and "\n" not in str(value):
                     out.write(f"# {key}: {value}\n")
             out.write(",".join(header) + "\n")
-            # the table of all columns a block of rows at a time, not all at once (a long run's is 100s of MB)
-            for start in range(0, len(self.t), _ROWS_PER_BLOCK):
-                write_rows(out, np.hstack([c[start : start + _ROWS_PER_BLOCK] for c in cols]), ["%.12g"] * len(header))
+            write_rows(out, cols, ["%.12g"] * len(header))  # the columns side by side, a chunk of rows at a time
 
 
 def read_capture_csv(path: str | os.PathLike[str]) -> Capture:

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from fractions import Fraction
 
 import numba
@@ -253,18 +253,19 @@ def _format(data, codes, delim, buf, hard):  # pragma: no cover - compiled
 _WIDTH = 1 + MAX_PRECISION + 5 + 5 + 1
 
 
-def format_chunks(data: np.ndarray, codes: np.ndarray, fmt: Sequence[str], delimiter: str,
-                  rows: int) -> Iterator[str]:
-    """The text of ``data`` (2-D), ``rows`` rows at a time, one line per row, columns formatted by
-    ``codes`` (:func:`column_codes` of ``fmt``) and joined by the one-character ``delimiter``.
+def format_chunks(table: Callable[[int, int], np.ndarray], n_rows: int, codes: np.ndarray, fmt: Sequence[str],
+                  delimiter: str, rows: int) -> Iterator[str]:
+    """The text of the ``n_rows`` rows of a table, ``rows`` at a time (``table(start, stop)``: those rows,
+    2-D), one line per row, columns formatted by ``codes`` (:func:`column_codes` of ``fmt``) and joined by
+    the one-character ``delimiter``.
 
     One buffer serves every chunk (fresh memory costs a page fault per 4 kB, as much as the formatting)."""
-    n_cols = data.shape[1]
-    n = min(len(data), rows) * n_cols
+    n_cols = len(fmt)
+    n = min(n_rows, rows) * n_cols
     buf = np.empty(max(n * _WIDTH, 1), dtype=np.uint8)
     hard = np.empty((n, 2), dtype=np.int64)
-    for start in range(0, len(data), rows):
-        chunk = np.ascontiguousarray(data[start : start + rows], dtype=np.float64)
+    for start in range(0, n_rows, rows):
+        chunk = np.ascontiguousarray(table(start, min(start + rows, n_rows)), dtype=np.float64)
         end, n_hard = _format(chunk, codes, ord(delimiter), buf, hard)
         if not n_hard:
             yield buf[:end].tobytes().decode("ascii")
