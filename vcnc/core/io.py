@@ -19,7 +19,7 @@ __all__ = ["atomic_path", "atomic_dir", "write_rows"]
 ROWS_PER_CHUNK = 2000
 
 #: Rows per call of the compiled formatter (:mod:`vcnc.core.numtext`): its buffer takes 27 bytes per number.
-COMPILED_ROWS_PER_CHUNK = 20000
+COMPILED_ROWS_PER_CHUNK = 5000
 
 
 @contextlib.contextmanager
