@@ -13,9 +13,11 @@ actual position of sample k is then projected, in closed form (lines, arcs) or b
 iteration (helices), onto the segments the command visited between ``k - back`` and
 ``k + ahead`` samples (``window_s``, default 0.5 s back and 0.05 s ahead: the tool may lag several
 segments behind at corners). Segments whose bounding sphere is farther than the best distance
-found are skipped. Without commanded positions every segment is a candidate (a robust but slower
-global search). Coincident geometry (a circle run twice, a full circle's start and end) is told
-apart by the arc length of the command.
+found are skipped, and so are blocks of 16 segments whose common ball is (a line's sphere stands on
+it as diameter, an arc of at most half a turn's on its chord, by Thales; any ball that holds the
+segment gives the same nearest point, a tighter one spares projections). Without commanded
+positions every segment is a candidate (a robust but slower global search). Coincident geometry
+(a circle run twice, a full circle's start and end) is told apart by the arc length of the command.
 
 Sign
 ----
@@ -42,7 +44,7 @@ import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, ClothoidPair, Line, Path
 from toolpaths.packed import PackedSegments
-from vcnc.contour_kernel import ARC, CLOTHOID, LINE, locate, nearest
+from vcnc.contour_kernel import ARC, BLOCK, CLOTHOID, LINE, locate, nearest
 from vcnc.core.errors import InputError
 from vcnc.core.metrics import error_metrics
 
@@ -93,17 +95,21 @@ class _Geometry:
     sphere_r: np.ndarray
     t_start: np.ndarray  # unit tangents at the start and end of each segment
     t_end: np.ndarray
+    block_c: np.ndarray  # balls holding the spheres of each BLOCK segments
+    block_r: np.ndarray
 
     def arrays(self) -> tuple:
         return (self.kind, self.start, self.end, self.direc, self.length, self.center, self.ep, self.eq, self.en,
                 self.radius, self.phi0, self.sweep, self.helix, self.frame, self.sharp)
 
     def search_arrays(self) -> tuple:
-        return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end
+        return self.cum, self.sphere_c, self.sphere_r, self.t_start, self.t_end, self.block_c, self.block_r
 
 
 def _check_projectable(path: Path, present: Sequence[bool]) -> None:
     """InputError unless every segment of ``path`` projects onto the axes ``present``."""
+    if all(present) and {type(seg) for seg in path.segments} <= {Line, Arc, ClothoidPair}:
+        return  # every segment projects onto x, y, z
     for i, seg in enumerate(path.segments):
         if isinstance(seg, Arc):
             p, q = seg.plane_axes
@@ -138,38 +144,65 @@ def _pack(path: Path, present: Sequence[bool]) -> _Geometry:
     helix = np.where(en @ mask > 0, ps.helix, 0.0)
     frame = ps.frame if ps.frame is not None else np.zeros((M, 4, 3))
     sharp = ps.sharpness if ps.sharpness is not None else np.zeros(M)
+    line, arc, clo = kind == LINE, kind == ARC, kind == CLOTHOID
+    d = end - start
+    # |d| as ``d @ d`` computes it per row (the stacked matmul is the same dot product, bit for bit)
+    span = np.sqrt(np.matmul(d[:, None, :], d[:, :, None])[:, 0, 0])
+    length = np.where(line, span, ps.length)
+    length[arc] = np.hypot(radius[arc] * np.abs(sweep[arc]), helix[arc])
     direc = np.zeros((M, 3))
-    length = ps.length.copy()
+    moves = line & (span > 0)
+    direc[moves] = d[moves] / span[moves, None]
     corner = np.zeros((M, 3))
-    for i, seg in enumerate(path.segments):
-        if kind[i] == LINE:
-            d = end[i] - start[i]
-            L = float(np.sqrt(d @ d))
-            length[i] = L
-            direc[i] = d / L if L > 0 else 0.0
-        elif kind[i] == ARC:
-            length[i] = math.hypot(seg.radius * abs(seg.sweep), helix[i])
-        else:
-            corner[i] = np.asarray(seg.corner) * mask
+    corner[clo] = np.array([path.segments[i].corner for i in np.flatnonzero(clo).tolist()]).reshape(-1, 3) * mask
     cum = np.concatenate([[0.0], np.cumsum(length)])
-    sphere_c = np.where((kind == LINE)[:, None], 0.5 * (start + end), center + 0.5 * helix[:, None] * en)
-    sphere_r = np.where(kind == LINE, 0.5 * length, np.hypot(radius, 0.5 * helix))
-    clo = kind == CLOTHOID  # a blend lies inside the triangle start-corner-end
-    sphere_c[clo] = corner[clo]
-    sphere_r[clo] = np.linalg.norm(start[clo] - corner[clo], axis=1)
+    sphere_c, sphere_r = _bounding_spheres(line, clo, start, end, center, en, radius, sweep, helix, length, corner)
     t_start = direc.copy()
     t_end = direc.copy()
-    for i in np.flatnonzero(clo):
-        t_start[i] = frame[i, 0]
-        t_end[i] = frame[i, 2]
-    for i in np.flatnonzero(kind == ARC):
-        sig = 1.0 if sweep[i] > 0 else -1.0
-        scale = length[i] / abs(sweep[i])
-        for psi, out in ((phi0[i], t_start), (phi0[i] + sweep[i], t_end)):
-            out[i] = (radius[i] * sig * (-math.sin(psi) * ep[i] + math.cos(psi) * eq[i])
-                      + helix[i] / abs(sweep[i]) * en[i]) / scale
+    t_start[clo] = frame[clo, 0]
+    t_end[clo] = frame[clo, 2]
+    sig = np.where(sweep[arc] > 0, 1.0, -1.0)[:, None]
+    turn = np.abs(sweep[arc])
+    scale = (length[arc] / turn)[:, None]
+    for psi, out in ((phi0[arc], t_start), (phi0[arc] + sweep[arc], t_end)):
+        out[arc] = (radius[arc, None] * sig * (-np.sin(psi)[:, None] * ep[arc] + np.cos(psi)[:, None] * eq[arc])
+                    + (helix[arc] / turn)[:, None] * en[arc]) / scale
     return _Geometry(kind, start, end, direc, length, center, ep, eq, en, radius, phi0, sweep, helix, frame, sharp,
-                     cum, sphere_c, sphere_r, t_start, t_end)
+                     cum, sphere_c, sphere_r, t_start, t_end, *_block_spheres(sphere_c, sphere_r))
+
+
+def _bounding_spheres(line: np.ndarray, clo: np.ndarray, start: np.ndarray, end: np.ndarray, center: np.ndarray,
+                      en: np.ndarray, radius: np.ndarray, sweep: np.ndarray, helix: np.ndarray, length: np.ndarray,
+                      corner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Centres and radii of balls that hold each segment, for the search's pruning (a lower bound of the
+    distance to a segment: any valid ball gives the same nearest points, a tighter one fewer projections).
+
+    A line: the ball on it as diameter. An arc of at most half a turn: the ball on its chord as diameter
+    (the arc sees its chord under an angle of at least 90 degrees: Thales), widened by half the helical rise;
+    a longer arc: the ball about its centre. A corner blend: the ball about the corner through the blend's
+    ends (it lies inside the triangle start-corner-end)."""
+    chord = np.linalg.norm(end - start - helix[:, None] * en, axis=1)  # in the arc's plane
+    short = ~line & ~clo & (np.abs(sweep) <= np.pi)
+    sphere_c = np.where(line[:, None], 0.5 * (start + end), center + 0.5 * helix[:, None] * en)
+    sphere_r = np.where(line, 0.5 * length, np.hypot(radius, 0.5 * helix))
+    sphere_c[short] = 0.5 * (start[short] + end[short])
+    # + 1e-12 relative: the rounding of the ball's numbers must not cut into the segment
+    sphere_r[short] = np.hypot(0.5 * chord[short], 0.5 * helix[short]) * (1.0 + 1e-12) + 1e-12
+    sphere_c[clo] = corner[clo]
+    sphere_r[clo] = np.linalg.norm(start[clo] - corner[clo], axis=1)
+    return sphere_c, sphere_r
+
+
+def _block_spheres(centre: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A ball around the spheres of each :data:`vcnc.contour_kernel.BLOCK` consecutive segments (the last
+    block padded with its last sphere): centred in their bounding box, reaching the farthest sphere."""
+    M = len(radius)
+    n = -(-M // BLOCK) * BLOCK
+    c = np.concatenate([centre, np.repeat(centre[-1:], n - M, axis=0)]).reshape(-1, BLOCK, 3)
+    r = np.concatenate([radius, np.repeat(radius[-1:], n - M)]).reshape(-1, BLOCK)
+    mid = 0.5 * ((c - r[..., None]).min(axis=1) + (c + r[..., None]).max(axis=1))
+    reach = (np.linalg.norm(c - mid[:, None, :], axis=2) + r).max(axis=1)
+    return mid, reach * (1.0 + 1e-12) + 1e-12  # the rounding must not cut into a sphere
 
 
 def _plane_normal(g: _Geometry) -> int | None:
@@ -179,7 +212,7 @@ def _plane_normal(g: _Geometry) -> int | None:
     pts = np.concatenate([g.start, g.end])
     moving = [bool(np.ptp(pts[:, i]) > 1e-12 * (1.0 + np.abs(pts[:, i]).max())) for i in range(3)]
     arcs = g.kind == ARC
-    normals = {int(np.argmax(row)) for row in g.en[arcs]}
+    normals = set(np.unique(np.argmax(g.en[arcs], axis=1)).tolist())
     if np.any(g.helix[arcs] != 0.0) or len(normals) > 1:
         return None
     if normals:

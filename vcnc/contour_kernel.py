@@ -22,7 +22,10 @@ import numpy as np
 
 from toolpaths.packed import ARC, CLOTHOID, LINE, euler_spiral_point
 
-__all__ = ["LINE", "ARC", "CLOTHOID", "locate", "nearest", "TIE_MM"]
+__all__ = ["LINE", "ARC", "CLOTHOID", "locate", "nearest", "TIE_MM", "BLOCK"]
+
+#: Segments per block of the search's pruning (:func:`nearest`).
+BLOCK = 16
 
 #: Distances closer than this [mm] count as equal; ties go to the candidate nearest in arc length
 #: to the hint (the commanded position), which separates coincident geometry (a circle run twice).
@@ -304,13 +307,15 @@ def locate(P, cols, kind, start, end, direc, length, center, ep, eq, en, radius,
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def nearest(P, cols, kind, start, end, direc, length, center, ep, eq, en, radius, phi0, sweep, helix, frame,
             sharp, cum,
-            sphere_c, sphere_r, t_start, t_end, cseg, s_cmd, back, ahead, normal, signed):  # pragma: no cover
+            sphere_c, sphere_r, t_start, t_end, block_c, block_r, cseg, s_cmd, back, ahead, normal,
+            signed):  # pragma: no cover
     """Nearest path point of each actual position.
 
     With ``cseg`` (commanded segment per sample, non-decreasing) the candidates of sample k are
     segments ``cseg[k - back] .. cseg[k + ahead]``; with an empty ``cseg`` all segments are
     searched and the previous sample's arc length is the tie hint. Segments whose bounding
-    sphere lies farther than the best distance so far are skipped.
+    sphere lies farther than the best distance so far are skipped, and whole blocks of :data:`BLOCK`
+    segments (``block_c``, ``block_r``: a ball holding the spheres of segments ``BLOCK * b ..``) likewise.
 
     Returns ``(error, segment, s)``: error signed (+ right of the travel, seen from ``normal``)
     when ``signed``, else the distance [mm]; nearest segment; path arc length of the nearest
@@ -345,10 +350,20 @@ def nearest(P, cols, kind, start, end, direc, length, center, ep, eq, en, radius
         bs = 0.0
         bfx = bfy = bfz = 0.0
         btx = bty = btz = 0.0
-        for jj in range(lo - 1, hi + 1):
+        jj = lo - 1
+        while jj <= hi:
             m = first if jj == lo - 1 else jj
-            if jj >= lo and m == first:
+            jj += 1
+            if m == first and jj > lo:
                 continue
+            if jj > lo and (m % BLOCK == 0 or m == lo):  # entering a block: all of it may be out of reach
+                b = m // BLOCK
+                dbx = px - block_c[b, 0]
+                dby = py - block_c[b, 1]
+                dbz = pz - block_c[b, 2]
+                if math.sqrt(dbx * dbx + dby * dby + dbz * dbz) - block_r[b] > best_d + TIE_MM:
+                    jj = (b + 1) * BLOCK
+                    continue
             dsx = px - sphere_c[m, 0]
             dsy = py - sphere_c[m, 1]
             dsz = pz - sphere_c[m, 2]

@@ -100,13 +100,21 @@ def check_program_axes(program: Program, machine: Machine) -> None:
     from toolpaths.geometry import Arc
     from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 
+    # only the axes the machine lacks are looked at (a program of 200,000 blocks on a machine with all of
+    # them costs no per-block work beyond the loop)
+    no_xyz = [i for i, a in enumerate("xyz") if a not in machine.axes]
+    no_extra = [i for i, a in enumerate(EXTRA_NAMES) if a not in machine.axes]
     first, lacking = None, set()
     for b in program.blocks:
-        moved = [a for a, s, e in zip("xyz", b.start, b.target) if s != e]
-        if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
-            moved += ["xyz"[i] for i in b.segment.plane_axes]
-        moved += [a for a, d in zip(EXTRA_NAMES, b.extra_delta) if d != 0]
-        missing = {a for a in moved if a not in machine.axes}
+        missing = set()
+        if no_xyz:
+            moved = [i for i in no_xyz if b.start[i] != b.target[i]]
+            if isinstance(b.segment, Arc):  # a full circle ends where it starts, but moves its plane's axes
+                moved += [i for i in b.segment.plane_axes if i in no_xyz]
+            missing = {"xyz"[i] for i in moved}
+        if no_extra and b.extra_start is not None and b.extra_target is not None:
+            d = b.extra_delta
+            missing |= {EXTRA_NAMES[i] for i in no_extra if d[i] != 0}
         if missing and first is None:
             first = (b, missing)
         lacking |= missing

@@ -285,3 +285,49 @@ def test_bad_input_is_named():
         contour_error(sp.path, sp.position, sp.axes, reference=sp.position + 1.0)
     with pytest.raises(InputError, match="arc"):
         contour_error(sp.path, sp.position[:, :1], ("x",))
+
+
+def _exact_distance(seg, p: np.ndarray) -> float:
+    """Distance [mm] from ``p`` (x, y, z) to a Line or a planar Arc, in closed form (no search, no pruning)."""
+    if isinstance(seg, Line):
+        d = seg.end - seg.start
+        u = min(max(float((p - seg.start) @ d / (d @ d)), 0.0), 1.0)
+        return float(np.linalg.norm(p - (seg.start + u * d)))
+    i, j = seg.plane_axes
+    a, b = p[i] - seg.center[i], p[j] - seg.center[j]
+    off = p[seg.plane] - seg.start[seg.plane]
+    turn = (math.atan2(b, a) - seg.start_angle) % (2 * math.pi)
+    if seg.sweep < 0:
+        turn = (2 * math.pi - turn) % (2 * math.pi)
+    if turn <= abs(seg.sweep):
+        return math.hypot(math.hypot(a, b) - seg.radius, off)
+    return min(float(np.linalg.norm(p - seg.start)), float(np.linalg.norm(p - seg.end)))
+
+
+#: G61 (exact stop: lines and arcs only) programs no other test uses: corners of every angle, arcs of
+#: less and more than half a turn in G17 and G18, a full circle, and a square and a circle run twice.
+EXACT_PATHS = [
+    "G21 G90 G17 G61\nG00 X0 Y0 Z0\nG01 X10 Y0 F3000\nX10 Y10\nX3 Y2\nX12 Y-4\nX-5 Y-4 Z1\nM30\n",
+    "G21 G90 G17 G61\nG00 X0 Y0 Z0\nG03 X10 Y0 I5 J0 F3000\nG02 X10 Y8 I0 J4\nG03 X10 Y-2 I0 J-5\n"
+    "G18 G02 X20 Z0 I5 K0\nG17 G03 X20 Y-2 I-3 J0\nM30\n",
+    "G21 G90 G17 G61\nG00 X0 Y0 Z0\nG01 X8 Y0 F4000\nX8 Y8\nX0 Y8\nX0 Y0\nX8 Y0\nX8 Y8\nX0 Y8\nX0 Y0\n"
+    "G03 X0 Y0 I4 J4\nG03 X0 Y0 I4 J4\nM30\n",
+]
+
+
+@pytest.mark.parametrize("text", EXACT_PATHS)
+def test_distance_is_the_brute_force_minimum_over_every_segment(text):
+    # the windowed, pruned search (with the command) and the global one (without) against the closed-form
+    # distance to every segment of the path, to rounding: lagging, noisy and far-off (2 mm) positions
+    sp = _setpoints(text)
+    rng = np.random.default_rng(11)
+    act = _lag(sp.position, 4) + rng.normal(0.0, 0.02, sp.position.shape)
+    act[::50] += rng.normal(0.0, 2.0, act[::50].shape)
+    want = np.array([min(_exact_distance(seg, p) for seg in sp.path) for p in act])
+    windowed = contour_error(sp.path, act, sp.axes, reference=sp.position, window_s=(5.0, 5.0))
+    glob = contour_error(sp.path, act, sp.axes)
+    np.testing.assert_allclose(np.abs(windowed.error), want, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(np.abs(glob.error), want, rtol=0, atol=1e-12)
+    # and the nearest segment reported is one at that distance
+    for k in range(0, len(act), 7):
+        assert _exact_distance(sp.path[int(windowed.segment[k])], act[k]) == pytest.approx(want[k], abs=1e-12)

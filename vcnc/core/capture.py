@@ -165,13 +165,12 @@ class Capture:
                 if arr is not None:
                     header.append(f"{a}_{suffix}")
                     cols.append(arr[:, i : i + 1])
-        data = np.hstack(cols)
         with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8", newline="\n") as out:
             for key, value in self.meta.items():
                 if isinstance(value, (str, int, float)) and "\n" not in str(value):
                     out.write(f"# {key}: {value}\n")
             out.write(",".join(header) + "\n")
-            write_rows(out, data, ["%.12g"] * data.shape[1])
+            write_rows(out, cols, ["%.12g"] * len(header))  # the columns side by side, a chunk of rows at a time
 
 
 def read_capture_csv(path: str | os.PathLike[str]) -> Capture:
