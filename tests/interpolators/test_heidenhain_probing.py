@@ -12,6 +12,8 @@ import pytest
 from interpolators.context import MachineContext, Tool, TouchProbe
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.core.errors import MachineError
+from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError
 
 HEAD = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S50\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
@@ -98,6 +100,18 @@ def test_touch_probe_table_from_the_context():
     # already over the point: down to Q294 + SET_UP 1 at FMAX 5000, probe at F 50, back, up to Q260
     assert [round(b.feed * 60, 6) for b in prog.blocks if b.line == 4] == [5000, 50, 5000, 5000]
     assert [round(float(b.target[2]), 6) for b in prog.blocks if b.line == 4] == [1, 0, 1, 30]
+
+
+def test_touch_probe_table_from_the_machine_file(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nset_up = 1.5\nfmax = 3000\n")
+    assert load_machine(str(path)).context.touch_probe == TouchProbe(set_up=1.5, fmax=3000.0)
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nspeed = 1\n")
+    with pytest.raises(MachineError, match="unknown key 'program.touch_probe.speed'"):
+        load_machine(str(path))
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nfeed = 0\n")
+    with pytest.raises(MachineError, match="feed must be > 0"):
+        load_machine(str(path))
 
 
 @pytest.mark.parametrize("body, words", [
