@@ -15,6 +15,7 @@ s in machine coordinates. One module per concern:
   (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
 * :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
+* :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 412, 413, 417`` on the nominal workpiece;
 * :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -99,6 +100,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     the part (MOVE), or not (STAY: the program positions them, L A+Q120
                                     C+Q122 FMAX); also PROJECTED, EULER, VECTOR, POINTS, RELATIV, AXIAL,
                                     RESET, and CYCL DEF 19.1 A.. B.. C.. (as STAY)
+    TCH PROBE 417 DATUM IN TS AXIS Q263=.. (412, 413)
+                                    touch probe cycles run on the nominal workpiece (the touch points where
+                                    the data put the surface): the probe's moves at the touch probe table's
+                                    FMAX / F (context.touch_probe), Q160 / Q151-Q153, the datum they set
     CALL PGM name, SEL PGM name, CALL SELECTED PGM
                                     another program file (from the caller's directory), run on the
                                     same machine state in its own unit
