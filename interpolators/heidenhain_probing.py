@@ -24,10 +24,11 @@ Cycle runs (measured = nominal):
   (412) or outside (413) the point where the stylus tip (its radius: :attr:`TouchProbe.tip_radius`) touches
   the circle; the probe probes radially at F and returns to the starting point. Between points: at the
   measuring height (Q301=0) or up to Q260, across and down again (Q301=1), on an arc about the centre
-  (Q365=0) or a straight line (Q365=1). At the end the probe rises to Q260. Results: Q151, Q152 = the centre,
+  (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height between two points of 413
+  may cross the stud: vcnc has no workpiece to collide with). At the end the probe rises to Q260. Results: Q151, Q152 = the centre,
   Q153 = the diameter. The datum: the centre becomes (Q331, Q332). 412 in a hole too small for the starting
   points (radius - tip - clearance < 0): every touch from the centre, without clearance-height moves between
-  them (iTNC 530 manual, cycle 412 note). Q381=1 also probes the touch probe axis at (Q382, Q383) down to
+  them (iTNC 530 manual, cycle 412 note); a tip wider than the hole is an error. Q381=1 also probes the touch probe axis at (Q382, Q383) down to
   Q384 as 417 does, which becomes Q333.
 
 Our reading, where the manuals leave details open: the move back after a touch goes to the starting point at
@@ -227,6 +228,9 @@ def _circle(path: _Path, number: int, q: dict[int, float], scale: float, tip: fl
     radius, gap = q[262] * scale / 2.0, q[320] * scale + path.probe.set_up
     side = -1.0 if number == 412 else 1.0
     touch_r = radius + side * tip
+    if touch_r <= 0:
+        where.fail(f"TCH PROBE 412: the stylus tip (radius {tip:g} mm) does not fit the hole of diameter "
+                   f"{2 * radius:g} mm", column=1, text=where.text, expected="a nominal diameter Q262 above the tip's")
     start_r = max(touch_r + side * gap, 0.0)
     from_centre = start_r == 0.0  # 412 in a small hole: every touch from the centre
     between_high = q[301] == 1 and not from_centre

@@ -120,9 +120,11 @@ def test_touch_probe_table_from_the_machine_file(tmp_path):
     ("TCH PROBE 413 Q321=+0 Q322=+0 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 413 lacks Q262"),
     ("TCH PROBE 417 Q263=+0 Q264=+0 Q294=+0 Q320=+30 Q260=+50", "beyond the touch probe table's DIST"),
     ("TCH PROBE 412 Q321=+0 Q322=+0 Q262=+6 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20 Q423=5", "Q423 = 3 or 4"),
+    ("TOOL DEF 1 L+0 R+4\n4 TOOL CALL 1 Z\n5 TCH PROBE 412 Q321=+0 Q322=+0 Q262=+6 Q325=+0 Q247=+90 Q261=-3 Q320=+2 "
+     "Q260=+20", "does not fit the hole"),
 ])
 def test_errors_name_the_probe_cycle(body, words):
     with pytest.raises(GCodeError) as info:
         parse_heidenhain(HEAD + "3 " + body + "\nEND PGM T MM\n", source="t.h")
     assert words in str(info.value)
-    assert info.value.file == "t.h" and info.value.line == 4
+    assert info.value.file == "t.h" and info.value.line == 3 + body.count("\n") + 1
