@@ -24,12 +24,13 @@ Cycle runs (measured = nominal):
   (412) or outside (413) the point where the stylus tip (its radius: :attr:`TouchProbe.tip_radius`) touches
   the circle; the probe probes radially at F and returns to the starting point. Between points: at the
   measuring height (Q301=0) or up to Q260, across and down again (Q301=1), on an arc about the centre
-  (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height between two points of 413
-  may cross the stud: vcnc has no workpiece to collide with). At the end the probe rises to Q260. Results: Q151, Q152 = the centre,
-  Q153 = the diameter. The datum: the centre becomes (Q331, Q332). 412 in a hole too small for the starting
-  points (radius - tip - clearance < 0): every touch from the centre, without clearance-height moves between
-  them (iTNC 530 manual, cycle 412 note); a tip wider than the hole is an error. Q381=1 also probes the touch probe axis at (Q382, Q383) down to
-  Q384 as 417 does, which becomes Q333.
+  (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height between two points of
+  413 may cross the stud: vcnc has no workpiece to collide with). At the end the probe rises to Q260.
+  Results: Q151, Q152 = the centre, Q153 = the diameter. The datum: the centre becomes (Q331, Q332). 412 in
+  a hole too small for the starting points (radius - tip - clearance < 0): every touch from the centre,
+  without clearance-height moves between them (iTNC 530 manual, cycle 412 note); a tip wider than the hole
+  is an error. Q381=1 also probes the touch probe axis at (Q382, Q383) down to Q384 as 417 does, which
+  becomes Q333.
 
 Our reading, where the manuals leave details open: the move back after a touch goes to the starting point at
 the FMAX column's feed; the datum is set as :class:`ProbeRun` ``datum`` says (the reader applies it: Q305=0
