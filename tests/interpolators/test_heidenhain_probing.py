@@ -86,6 +86,16 @@ def test_412_small_hole_probes_from_the_centre():
     assert all(r[2] == -3 for r in rows[2:-1])  # no clearance-height moves between the touches
 
 
+def test_413_q381_also_probes_the_touch_probe_axis():
+    prog = run("3 TCH PROBE 413 Q321=+0 Q322=+0 Q262=+20 Q325=+0 Q247=+90 Q261=-5 Q320=+1 Q260=+10 Q301=+1 Q305=0 "
+               "Q331=+0 Q332=+0 Q381=+1 Q382=+0 Q383=+0 Q384=+2 Q333=+0\n4 L X+0 Y+0 Z+5 FMAX")
+    rows = moves(prog, 4)
+    # after the fourth touch (start at Y-13): up to Q260, across to (Q382, Q383), down to Q384 + 3, probe to Q384
+    assert rows[-6:] == [(0, -13, 10, 2000), (0, 0, 10, 2000), (0, 0, 5, 2000), (0, 0, 2, 100), (0, 0, 5, 2000),
+                         (0, 0, 10, 2000)]
+    assert np.allclose(prog.blocks[-1].target, np.array(CTX.offset("G54")) + [0, 0, 7])  # Z+2 is Z+0 now
+
+
 def test_q305_row_of_the_preset_table_activated_by_cycle_247():
     prog = run("3 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+10 Q320=+0 Q260=+30 Q305=2 Q333=+0 Q303=1\n"
                "4 L X+0 Y+0 Z+40 FMAX\n5 CYCL DEF 247 DATUM SETTING Q339=2\n6 L X+0 Y+0 Z+40 FMAX")
