@@ -27,7 +27,8 @@ from interpolators.tilted import Kinematics
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
-__all__ = ["Tool", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT", "INTERPOLATION_CONTEXT",
+__all__ = ["Tool", "TouchProbe", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT",
+           "INTERPOLATION_CONTEXT",
            "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code",
            "FADAL_FIXTURES"]
 
@@ -150,6 +151,44 @@ class Tool:
         if not (math.isfinite(self.offset_x) and math.isfinite(self.offset_y)):
             raise InputError(f"tool {self.number}: X/Y offsets must be finite [mm], got "
                              f"{self.offset_x!r}, {self.offset_y!r}")
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class TouchProbe:
+    """The workpiece touch probe's row of a Heidenhain touch probe table (TCHPROBE.TP), which the touch probe
+    cycles ``TCH PROBE 4xx`` read (TNC 320 cycle programming manual 340 55x-04, "Executing touch probe
+    cycles" and the touch probe table's columns; :mod:`interpolators.heidenhain_probing`). The defaults are
+    our reading (typical values of a probe row, not found in the manuals of our search index): a machine's
+    table holds its own.
+
+    Attributes
+    ----------
+    set_up : float
+        Column SET_UP: the safety clearance [mm] the cycles add to their set-up clearance Q320.
+    feed : float
+        Column F: the probing feed [mm/min].
+    fmax : float
+        Column FMAX: the rapid traverse of the cycles' pre-positioning and moves between touch points [mm/min].
+    dist : float
+        Column DIST: the longest probing path [mm]; a touch point farther than it is never reached (an error).
+    tip_radius : float or None
+        Radius of the stylus tip [mm]; None (the default): the active tool's radius (``TOOL CALL`` of the
+        probe, its R in ``TOOL DEF`` or the tool table), as the TNC takes the probe's data from its tool row.
+    """
+
+    set_up: float = 2.0
+    feed: float = 100.0
+    fmax: float = 2000.0
+    dist: float = 20.0
+    tip_radius: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("set_up", "feed", "fmax", "dist"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and (value > 0 or (name == "set_up" and value == 0))):
+                raise InputError(f"touch probe: {name} must be {'>= 0' if name == 'set_up' else '> 0'}, got {value!r}")
+        if self.tip_radius is not None and not (math.isfinite(self.tip_radius) and self.tip_radius >= 0):
+            raise InputError(f"touch probe: tip_radius must be >= 0 [mm], got {self.tip_radius!r}")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -286,6 +325,8 @@ class MachineContext:
     kinematics : Kinematics or None
         The rotary axes that tilt the part for a tilted working plane (Heidenhain ``PLANE``, cycle 19;
         :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
+    touch_probe : TouchProbe
+        The workpiece touch probe's table row (Heidenhain ``TCH PROBE`` cycles).
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -297,6 +338,7 @@ class MachineContext:
     linear_units: str = "mm"
     decimal_point_input: str = "calculator"
     kinematics: Kinematics | None = None
+    touch_probe: TouchProbe = dataclasses.field(default_factory=TouchProbe)
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):

@@ -15,6 +15,7 @@ s in machine coordinates. One module per concern:
   (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
 * :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
+* :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 412, 413, 417`` on the nominal workpiece;
 * :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -99,6 +100,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     the part (MOVE), or not (STAY: the program positions them, L A+Q120
                                     C+Q122 FMAX); also PROJECTED, EULER, VECTOR, POINTS, RELATIV, AXIAL,
                                     RESET, and CYCL DEF 19.1 A.. B.. C.. (as STAY)
+    TCH PROBE 417 DATUM IN TS AXIS Q263=.. (412, 413)
+                                    touch probe cycles run on the nominal workpiece (the touch points where
+                                    the data put the surface): the probe's moves at the touch probe table's
+                                    FMAX / F (context.touch_probe), Q160 / Q151-Q153, the datum they set
     CALL PGM name, SEL PGM name, CALL SELECTED PGM
                                     another program file (from the caller's directory), run on the
                                     same machine state in its own unit
@@ -204,6 +209,7 @@ from interpolators.heidenhain_paths import (
     round_elements,
     tangential_arc,
 )
+from interpolators.heidenhain_probing import PROBE_CYCLES, PROBE_RE, probe_run, refuse_probe
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
@@ -244,7 +250,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain"]
 #: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
-    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|PLANE|FUNCTION|TRANS|SPL|DECLARE\s+STRING|QS\d+\s*="
+    r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|TCH\s*PROBE|PLANE|FUNCTION|TRANS|SPL|DECLARE\s+STRING|QS\d+\s*="
     r"|LBL|FPOL|FSELECT|FCT|FLT|FC|FL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
@@ -307,6 +313,8 @@ class _Machine:
         self.shift = np.zeros(3)
         # the work offset of the context that is the active preset (cycle 247); None: a preset beyond them (zero)
         self.preset: str | None = "G54"
+        # preset table rows a touch probe cycle wrote (interpolators.heidenhain_probing): work offset -> value [mm]
+        self.presets: dict[str | None, np.ndarray] = {}
         self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
@@ -368,10 +376,15 @@ class _Machine:
         if self.tilt is not None:
             o = self.tilt.datum + self.transform.turn(self.shift, self.plane)
         else:
-            preset = self.context.offset(self.preset) if self.preset is not None else np.zeros(3)
-            o = np.add(preset, self.shift, dtype=float)  # a new array
+            o = np.add(self.preset_value(), self.shift, dtype=float)  # a new array
         o[self.plane] += self.tool_length
         return o
+
+    def preset_value(self) -> np.ndarray:
+        """The active preset [mm, machine]: as a touch probe cycle set it, else the context's work offset."""
+        if self.preset in self.presets:
+            return self.presets[self.preset]
+        return self.context.offset(self.preset) if self.preset is not None else np.zeros(3)
 
     def to_machine(self, point: np.ndarray) -> np.ndarray:
         """Machine coordinates [mm] of the program point ``point`` [mm] (cycles 8, 10, 11, 26 applied)."""
@@ -790,7 +803,6 @@ _ERROR_BLOCK = re.compile(r"ERROR\s*=", re.I)
 
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {
-    "TCH": "TCH PROBE (a touch probe cycle: a simulation has no workpiece to probe)",
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
     "SQL": "SQL (table access)",
     "PRESET": "PRESET (the preset table's functions; CYCL DEF 247 selects a preset)",
@@ -1179,6 +1191,56 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
                "zero offset, as a work offset without a table entry")
     else:
         m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
+
+
+def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+    """``TCH PROBE 412 / 413 / 417 .. Qnnn=..``: run on the nominal workpiece (:mod:`interpolators.heidenhain_probing`):
+    the probe's moves, the result parameters, the datum the cycle sets."""
+    pm = PROBE_RE.match(blk.code)
+    if pm is None:
+        where.fail("malformed touch probe cycle", column=blk.column, text=blk.code, expected="TCH PROBE n ...")
+    number = int(pm.group(1))
+    if number not in PROBE_CYCLES:
+        refuse_probe(number, where, blk.column)
+    col = blk.column + pm.start(3)
+    if m.tilt is not None or not m.transform.identity or m.comp != "R0":
+        where.fail(f"TCH PROBE {number} under a tilted plane, mirror, rotation, scaling or radius compensation is "
+                   "not modelled", column=blk.column, text=blk.code,
+                   expected="R0, no cycle 8/10/11/26 or PLANE before the touch probe cycle")
+    q = q_assignments(pm.group(3), where, m.params, column0=col)
+    tip = m.context.touch_probe.tip_radius
+    run = probe_run(number, q, here=m.to_program(m.pos), plane=m.plane,
+                    tip_radius=m.tool_radius if tip is None else tip, scale=m.scale,
+                    probe=m.context.touch_probe, where=where, column=col)
+    for move in run.moves:
+        target = m.to_machine(move.target)
+        if move.centre is None:
+            m.emit("line", target, Line(m.pos, target), move.feed / 60.0, where, blk.number)
+        else:
+            seg = helical_arc(m.pos, m.to_machine(move.centre), move.sweep, plane=m.plane, axis_end=target[m.plane])
+            m.emit("arc", target, seg, move.feed / 60.0, where, blk.number)
+    for n, value in run.results.items():
+        m.params.set(f"Q{n}", value, where, column=col)
+    _probed_datum(run.datum_from, run.datum_to, run.q305, run.q303, m, number)
+    m.note(f"touch probe cycle {number}: run on the nominal workpiece (touch points where the data put the surface)")
+
+
+def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: _Machine,
+                  number: int) -> None:
+    """The datum a probe cycle sets: the program point ``origin_from`` [mm] gets the coordinates ``origin_to``
+    (NaN: an axis not set). Q305=0: the active preset moves so (the display shows the new datum, iTNC 530 cycle
+    manual 15.6, Q305); Q305=n, Q303=1: row n of the preset table (the work offsets, as cycle 247 numbers them)
+    holds the datum, active once cycle 247 selects it; Q303=0 (or -1): row n of the datum table, which vcnc
+    does not model (noted)."""
+    delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
+    if row == 0:
+        m.presets[m.preset] = m.preset_value() + delta
+        return
+    if table != 1 or row > len(WORK_OFFSETS):
+        m.note(f"TCH PROBE {number}: the datum written to row {row} of the "
+               f"{'preset' if table == 1 else 'datum'} table is not modelled (no effect on the following blocks)")
+        return
+    m.presets[WORK_OFFSETS[row - 1]] = m.preset_value() + m.shift + delta
 
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:
@@ -3346,6 +3408,7 @@ _HANDLERS = {
     "PLANE": _tilt,
     "FUNCTION": _tilt,
     "TRANS": _trans,
+    "TCH PROBE": _touch_probe,
     "SPL": _spline_block,
     **{kw: _free_contour for kw in FK_KEYWORDS},
 }

@@ -57,6 +57,9 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
 - FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
   6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
+- ``TCH PROBE 412 / 413 / 417`` on the nominal workpiece (TNC 320 cycle manual 340 55x-04, "Executing touch
+  probe cycles", cycles 412, 413, 417; :func:`_touch_probe`): the touch points where the data put the surface, the
+  datum moved so the probed centre / coordinate gets Q331/Q332 / Q333 (Q305=0), or row Q305 of the presets.
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
@@ -266,6 +269,7 @@ class _Tnc:
         self.plunging = False  # M103 F.. active (a reduced plunging feed)
         self.preset = "G54"  # cycle 247: preset n = the n-th work offset G54 .. G59.3 (0: G54; > 9: None, zero)
         self.pattern: list[dict] = []  # PATTERN DEF positions
+        self.overrides: dict = {}  # presets a touch probe cycle set: work offset -> machine point [mm]
         self.resolve = None  # name -> text of a called program
         self.mirror = np.ones(3)  # cycle 8: -1 on a mirrored axis
         self.rot = 0.0  # cycle 10 [deg]
@@ -287,6 +291,8 @@ class _Tnc:
         self.raw: list[str] = []  # the running program's lines (FK relative data name block numbers)
 
     def preset_point(self) -> np.ndarray:
+        if self.preset in self.overrides:  # written by a touch probe cycle
+            return self.overrides[self.preset].copy()
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
 
     def origin(self) -> np.ndarray:
@@ -852,6 +858,80 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params)
     else:
         raise ReferenceError(f"CYCL DEF {number}")
+
+
+def _touch_probe(t: _Tnc, line: int, up: str) -> None:
+    """``TCH PROBE 412/413/417`` in the XY plane, probe axis Z, the touch probe table of ``context.touch_probe``
+    (SET_UP, F, FMAX, DIST), the tip radius that row's or else the tool radius. Every move is a feed move (FMAX
+    column or F): where below the clearance height Q260 the probe rises to it first, then XY, then Z."""
+    m = re.match(r"TCH\s*PROBE\s*(\d+)", up)
+    number = int(m.group(1))
+    if number not in (412, 413, 417):
+        raise ReferenceError(f"TCH PROBE {number}")
+    p = {"Q301": 1.0, "Q305": 0.0, "Q331": 0.0, "Q332": 0.0, "Q333": 0.0, "Q381": 0.0, "Q423": 4.0, "Q365": 1.0,
+         "Q303": 1.0}
+    for qm in re.finditer(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", up[m.end():]):
+        p[qm.group(1)] = _val(qm.group(2).replace(" ", ""), t.q)
+        t.q[qm.group(1)] = p[qm.group(1)]
+    tp = t.ctx.touch_probe
+    tip = t.radius if tp.tip_radius is None else tp.tip_radius
+    gap = p["Q320"] * t.scale + tp.set_up
+    high = p["Q260"] * t.scale
+
+    def go(prog_xyz, circle=None) -> None:
+        end = t.machine(np.array(prog_xyz, float))
+        if circle is None:
+            if np.any(np.abs(end - t.pos) > 1e-12):
+                t.emit(line, "feed", end)
+        else:
+            t.emit(line, "arc_ccw" if circle[1] > 0 else "arc_cw", end, centre=t.machine(np.array(circle[0], float)))
+
+    def probe_down(x: float, y: float, z: float) -> None:
+        here = t.prog()
+        if here[2] < high:
+            go((here[0], here[1], high))
+        go((x, y, t.prog()[2]))
+        go((x, y, z + gap))
+        go((x, y, z))
+        go((x, y, z + gap))
+
+    if number == 417:
+        probe_down(p["Q263"] * t.scale, p["Q264"] * t.scale, p["Q294"] * t.scale)
+        move = np.array([0.0, 0.0, (p["Q294"] - p["Q333"]) * t.scale])
+    else:
+        cx, cy, zm = (p[k] * t.scale for k in ("Q321", "Q322", "Q261"))
+        r = p["Q262"] * t.scale / 2
+        inside = number == 412
+        r_touch = r - tip if inside else r + tip
+        r_start = max(r_touch - gap, 0.0) if inside else r_touch + gap
+        small = r_start == 0.0
+        for k in range(int(p["Q423"])):
+            a = math.radians(p["Q325"] + k * p["Q247"])
+            sx, sy = cx + r_start * math.cos(a), cy + r_start * math.sin(a)
+            if k == 0:
+                here = t.prog()
+                if here[2] < high:
+                    go((here[0], here[1], high))
+                go((sx, sy, t.prog()[2]))
+                go((sx, sy, zm))
+            elif not small:
+                lvl = high if p["Q301"] == 1 else zm
+                go((*t.prog()[:2], lvl))
+                go((sx, sy, lvl), ((cx, cy, lvl), p["Q247"]) if p["Q365"] == 0 else None)
+                go((sx, sy, zm))
+            go((cx + r_touch * math.cos(a), cy + r_touch * math.sin(a), zm))
+            go((sx, sy, zm))
+        move = np.array([(p["Q321"] - p["Q331"]) * t.scale, (p["Q322"] - p["Q332"]) * t.scale, 0.0])
+        if p["Q381"] == 1:
+            probe_down(p["Q382"] * t.scale, p["Q383"] * t.scale, p["Q384"] * t.scale)
+            move[2] = (p["Q384"] - p["Q333"]) * t.scale
+    go((*t.prog()[:2], high))
+    presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+    row = int(p["Q305"])
+    if row == 0:
+        t.overrides[t.preset] = t.preset_point() + move
+    elif p["Q303"] == 1 and row <= len(presets):
+        t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
 
 
 def _unit(angle: float) -> np.ndarray:
@@ -2333,6 +2413,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)
+        elif re.match(r"TCH\s*PROBE", up):
+            _touch_probe(t, line, up)
         elif up.startswith("PATTERN DEF"):
             t.pattern = [_words(inner, t.q) for inner in re.findall(r"POS\d+\s*\(([^)]*)\)", up)]
         elif up.startswith("CYCL CALL PAT"):

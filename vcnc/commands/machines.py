@@ -40,6 +40,13 @@ PROGRAM_TABLE_DOC = """
 # offset_y = 0.0                 # mm
 # name = ""                      # the tool's name: Heidenhain TOOL CALL "NAME" calls it
 #
+# [program.touch_probe]          # Heidenhain touch probe table row (TCH PROBE 412/413/417 on the nominal workpiece)
+# set_up = 2.0                   # mm, SET_UP: safety clearance added to the cycle's Q320
+# feed = 100.0                   # mm/min, F: probing feed
+# fmax = 2000.0                  # mm/min, FMAX: pre-positioning and moves between the touch points
+# dist = 20.0                    # mm, DIST: longest probing path
+#   tip_radius = 3.0             # optional mm; unset: the radius of the probe's tool (TOOL CALL)
+#
 # Tilted working plane (Heidenhain PLANE / cycle 19, 3+2 machining) on a machine with rotary axes, e.g. [axes.b]
 # and [axes.c]: the rotary axes that tilt the part (a head that tilts is an error for a tilted plane):
 #   [program.kinematics]

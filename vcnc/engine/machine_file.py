@@ -35,6 +35,9 @@ Layout::
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
                                   #   name = "MILL_D6" (Heidenhain TOOL CALL "MILL_D6")
+    [program.touch_probe]         # optional Heidenhain touch probe table row (TCH PROBE cycles), its defaults:
+    set_up = 2.0                  # mm, SET_UP safety clearance; feed = 100.0, fmax = 2000.0 mm/min (F, FMAX);
+                                  #   dist = 20.0 mm (DIST); tip_radius [mm] (unset: the probe tool's radius)
     [program.kinematics]          # optional: the rotary axes that tilt the part (tilted working plane)
     kind = "table"                # table (trunnion) | head (a tilted plane is then an error)
     [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's), or one
@@ -59,7 +62,7 @@ from typing import Any
 
 import controllers
 import drives
-from interpolators.context import DIALECTS, Dialect, MachineContext, Tool, read_tool_table, work_offset_code
+from interpolators.context import DIALECTS, Dialect, MachineContext, Tool, TouchProbe, read_tool_table, work_offset_code
 from interpolators.limits import AxisLimits
 from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.core.axes import EXTRA_NAMES
@@ -72,7 +75,7 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
                  "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics", "subroutine_path",
-                 "user_m_path", "initial_feed")
+                 "user_m_path", "initial_feed", "touch_probe")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -415,10 +418,32 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
     kwargs["tools"] = tools
     if "kinematics" in tab:
         kwargs["kinematics"] = _build_kinematics(tab["kinematics"], path + ("kinematics",), where)
+    if "touch_probe" in tab:
+        kwargs["touch_probe"] = _build_touch_probe(tab["touch_probe"], path + ("touch_probe",), where)
     try:
         return MachineContext(**kwargs)
     except InputError as exc:
         raise where.error(exc.message, path) from None
+
+
+_TOUCH_PROBE_KEYS = {"set_up": "mm", "feed": "mm/min", "fmax": "mm/min", "dist": "mm", "tip_radius": "mm"}
+
+
+def _build_touch_probe(tab: Any, path: tuple[str, ...], where: _Where) -> TouchProbe:
+    """``[program.touch_probe]``: the touch probe table's row (Heidenhain TCH PROBE cycles:
+    :class:`interpolators.context.TouchProbe`)."""
+    if not isinstance(tab, dict):
+        raise where.error("'program.touch_probe' must be a table", path)
+    for key, value in tab.items():
+        if key not in _TOUCH_PROBE_KEYS:
+            raise where.error(f"unknown key 'program.touch_probe.{key}'; expected one of: "
+                              f"{', '.join(f'{k} [{u}]' for k, u in _TOUCH_PROBE_KEYS.items())}", path + (key,))
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise where.error(f"'program.touch_probe.{key}' must be a number [{_TOUCH_PROBE_KEYS[key]}]", path + (key,))
+    try:
+        return TouchProbe(**{k: float(v) for k, v in tab.items()})
+    except InputError as exc:
+        raise where.error(f"program.touch_probe: {exc.message}", path) from None
 
 
 _KINEMATICS_AXIS_KEYS = {"name": "", "direction": "", "pivot": "mm", "limits": "deg"}

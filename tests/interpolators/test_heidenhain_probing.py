@@ -1,0 +1,140 @@
+"""Heidenhain touch probe cycles 412, 413, 417 run on the nominal workpiece: hand-written programs with the touch
+points, the moves between them and their feeds worked out by hand from the TNC 320 cycle programming manual
+(340 55x-04, "Executing touch probe cycles", cycles 412, 413, 417) and the touch probe table of the machine
+context (vcnc's defaults: SET_UP 2 mm, F 100 mm/min, FMAX 2000 mm/min, DIST 20 mm), each also checked against
+the independent reference (``reference_heidenhain``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool, TouchProbe
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.core.errors import MachineError
+from vcnc.engine.machine import builtin_machine_text, load_machine
+from vcnc.errors import GCodeError
+
+HEAD = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S50\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
+CTX = MachineContext(work_offsets={"G54": (100.0, 50.0, -200.0), "G55": (10.0, 10.0, 10.0)})
+
+
+def run(body: str, context: MachineContext = CTX):
+    return checked_program(HEAD + body + "\nEND PGM T MM\n", context)
+
+
+def moves(prog, line: int):
+    """(x, y, z, feed [mm/min]) of the blocks of program line ``line``, in G54's program coordinates."""
+    g54 = np.array(CTX.offset("G54"))
+    return [(*np.round(b.target - g54, 6).tolist(), round(b.feed * 60, 6)) for b in prog.blocks if b.line == line]
+
+
+def test_417_probes_down_to_q294_and_sets_the_datum_there():
+    prog = run("3 TCH PROBE 417 DATUM IN TS AXIS ~\n  Q263=+10 ;1ST POINT 1ST AXIS ~\n  Q264=+5 ;1ST POINT 2ND AXIS ~\n"
+               "  Q294=-2 ~\n  Q320=+3 ~\n  Q260=+50 ~\n  Q305=+0 ~\n  Q333=+0 ~\n  Q303=+1\n"
+               "12 L X+0 Y+0 Z+10 FMAX\n13 FN 0: Q1 = Q160")
+    # above the clearance height 50: across at Z100, down to Q294 + Q320 + SET_UP = -2 + 3 + 2, probe at F to
+    # -2, back at FMAX, up to Q260
+    assert moves(prog, 4) == [(10, 5, 100, 2000), (10, 5, 3, 2000), (10, 5, -2, 100), (10, 5, 3, 2000),
+                              (10, 5, 50, 2000)]
+    # the datum: Z-2 of the old one is Z+0 now, so Z+10 ends 2 mm lower than before the cycle
+    assert np.allclose(prog.blocks[-1].target, CTX.offset("G54") + np.array([0.0, 0.0, 8.0]))
+    assert "touch probe cycle 417: run on the nominal workpiece (touch points where the data put the surface)" \
+        in prog.notes
+
+
+def test_417_below_the_clearance_height_rises_first():
+    prog = run("3 L Z+20 FMAX\n4 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+0 Q320=+0 Q260=+30 Q305=0 Q333=+5")
+    assert moves(prog, 5) == [(0, 0, 30, 2000), (0, 0, 2, 2000), (0, 0, 0, 100), (0, 0, 2, 2000), (0, 0, 30, 2000)]
+
+
+def test_413_outside_circle_four_points_at_clearance_height_between_them():
+    ctx = MachineContext(work_offsets=CTX.work_offsets, tools={1: Tool(number=1, length=0.0, radius=3.0)})
+    prog = run("3 TCH PROBE 413 DATUM OUTSIDE CIRCLE Q321=+20 Q322=+0 Q262=+40 Q325=+0 Q247=+90 Q261=-5 Q320=+3 "
+               "Q260=+50 Q301=+1 Q305=+0 Q331=+0 Q332=+0 Q303=+1 Q423=4 Q365=1\n"
+               "4 L X+0 Y+0 FMAX\n5 FN 0: Q1 = Q151 + 1000 * Q153", context=ctx)
+    # touch: radius 20 + tip 3 = 23 from (20, 0); start 5 mm (Q320 + SET_UP) further out
+    rows = moves(prog, 4)
+    assert rows[:5] == [(48, 0, 100, 2000), (48, 0, -5, 2000), (43, 0, -5, 100), (48, 0, -5, 2000), (48, 0, 50, 2000)]
+    assert rows[5:8] == [(20, 28, 50, 2000), (20, 28, -5, 2000), (20, 23, -5, 100)]
+    # across, down; touch, back; 3 x (up, across, down, touch, back); up
+    assert rows[-1] == (20, -28, 50, 2000) and len(rows) == 2 + 2 + 3 * 5 + 1
+    # the datum: the centre (20, 0) is (Q331, Q332) = (0, 0) now
+    assert np.allclose(prog.blocks[-1].target[:2], np.array(CTX.offset("G54"))[:2] + [20.0, 0.0])
+
+
+def test_412_inside_circle_arcs_at_measuring_height_and_results():
+    prog = run("3 TCH PROBE 412 DATUM INSIDE CIRCLE Q321=+0 Q322=+0 Q262=+30 Q325=+45 Q247=+120 Q261=-3 Q320=+1 "
+               "Q260=+20 Q301=+0 Q305=+0 Q331=+5 Q332=-5 Q423=3 Q365=0\n4 L X+0 Y+0 FMAX")
+    kinds = [b.kind for b in prog.blocks if b.line == 4]
+    assert kinds.count("arc") == 2  # between the three points, at the measuring height
+    assert [round(b.feed * 60, 6) for b in prog.blocks if b.line == 4 and b.kind == "arc"] == [2000, 2000]
+    # touch points on the wall (tip radius 0: the tool has none), 15 mm from the centre at 45, 165, 285 degrees
+    touches = [b.target for b in prog.blocks if b.line == 4 and abs(b.feed * 60 - 100) < 1e-9]
+    g54 = np.array(CTX.offset("G54"))
+    assert np.allclose([np.hypot(*(p - g54)[:2]) for p in touches], 15.0)
+    assert prog.blocks[-1].target[0] == pytest.approx(g54[0] - 5.0)  # the centre is X+5 Y-5 now
+    assert prog.blocks[-1].target[1] == pytest.approx(g54[1] + 5.0)
+
+
+def test_412_small_hole_probes_from_the_centre():
+    prog = run("3 TCH PROBE 412 Q321=+0 Q322=+0 Q262=+6 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20 Q301=+1")
+    rows = moves(prog, 4)
+    probes = [r for r in rows if r[3] == 100]
+    assert probes == [(3, 0, -3, 100), (0, 3, -3, 100), (-3, 0, -3, 100), (0, -3, -3, 100)]
+    assert all(r[2] == -3 for r in rows[2:-1])  # no clearance-height moves between the touches
+
+
+def test_413_q381_also_probes_the_touch_probe_axis():
+    prog = run("3 TCH PROBE 413 Q321=+0 Q322=+0 Q262=+20 Q325=+0 Q247=+90 Q261=-5 Q320=+1 Q260=+10 Q301=+1 Q305=0 "
+               "Q331=+0 Q332=+0 Q381=+1 Q382=+0 Q383=+0 Q384=+2 Q333=+0\n4 L X+0 Y+0 Z+5 FMAX")
+    rows = moves(prog, 4)
+    # after the fourth touch (start at Y-13): up to Q260, across to (Q382, Q383), down to Q384 + 3, probe to Q384
+    assert rows[-6:] == [(0, -13, 10, 2000), (0, 0, 10, 2000), (0, 0, 5, 2000), (0, 0, 2, 100), (0, 0, 5, 2000),
+                         (0, 0, 10, 2000)]
+    assert np.allclose(prog.blocks[-1].target, np.array(CTX.offset("G54")) + [0, 0, 7])  # Z+2 is Z+0 now
+
+
+def test_q305_row_of_the_preset_table_activated_by_cycle_247():
+    prog = run("3 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+10 Q320=+0 Q260=+30 Q305=2 Q333=+0 Q303=1\n"
+               "4 L X+0 Y+0 Z+40 FMAX\n5 CYCL DEF 247 DATUM SETTING Q339=2\n6 L X+0 Y+0 Z+40 FMAX")
+    g54 = np.array(CTX.offset("G54"))
+    assert np.allclose(prog.blocks[-2].target, g54 + [0, 0, 40])  # row 2 written, the active datum kept
+    assert np.allclose(prog.blocks[-1].target, g54 + [0, 0, 50])  # preset 2 (G55) = G54's point Z+10
+
+
+def test_touch_probe_table_from_the_context():
+    ctx = MachineContext(touch_probe=TouchProbe(set_up=1.0, feed=50.0, fmax=5000.0, dist=10.0))
+    prog = checked_program(HEAD + "3 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+0 Q320=+0 Q260=+30\nEND PGM T MM\n", ctx)
+    # already over the point: down to Q294 + SET_UP 1 at FMAX 5000, probe at F 50, back, up to Q260
+    assert [round(b.feed * 60, 6) for b in prog.blocks if b.line == 4] == [5000, 50, 5000, 5000]
+    assert [round(float(b.target[2]), 6) for b in prog.blocks if b.line == 4] == [1, 0, 1, 30]
+
+
+def test_touch_probe_table_from_the_machine_file(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nset_up = 1.5\nfmax = 3000\n")
+    assert load_machine(str(path)).context.touch_probe == TouchProbe(set_up=1.5, fmax=3000.0)
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nspeed = 1\n")
+    with pytest.raises(MachineError, match="unknown key 'program.touch_probe.speed'"):
+        load_machine(str(path))
+    path.write_text(builtin_machine_text("fadal-pid") + "\n[program.touch_probe]\nfeed = 0\n")
+    with pytest.raises(MachineError, match="feed must be > 0"):
+        load_machine(str(path))
+
+
+@pytest.mark.parametrize("body, words", [
+    ("TCH PROBE 420 MEASURE ANGLE Q263=+0", "TCH PROBE 420 is not modelled"),
+    ("TCH PROBE 481 CAL. TOOL LENGTH Q340=1", "the tool setter's position is not known"),
+    ("TCH PROBE 413 Q321=+0 Q322=+0 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 413 lacks Q262"),
+    ("TCH PROBE 417 Q263=+0 Q264=+0 Q294=+0 Q320=+30 Q260=+50", "beyond the touch probe table's DIST"),
+    ("TCH PROBE 412 Q321=+0 Q322=+0 Q262=+6 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20 Q423=5", "Q423 = 3 or 4"),
+    ("TOOL DEF 1 L+0 R+4\n4 TOOL CALL 1 Z\n5 TCH PROBE 412 Q321=+0 Q322=+0 Q262=+6 Q325=+0 Q247=+90 Q261=-3 Q320=+2 "
+     "Q260=+20", "does not fit the hole"),
+])
+def test_errors_name_the_probe_cycle(body, words):
+    with pytest.raises(GCodeError) as info:
+        parse_heidenhain(HEAD + "3 " + body + "\nEND PGM T MM\n", source="t.h")
+    assert words in str(info.value)
+    assert info.value.file == "t.h" and info.value.line == 3 + body.count("\n") + 1
