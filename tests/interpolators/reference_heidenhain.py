@@ -2369,27 +2369,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             if resolve is None:
                 raise ReferenceError("CALL PGM without a resolver")
             _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
-        elif up.startswith("CALL LBL"):
-            m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q[LR]?\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
-            target = labels[m.group(1).strip('"')]
-            if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
-                stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
-                nxt = target + 1
-            else:
-                left = counters.get(pc, int(_val(m.group(2), t.q)))
-                if left > 0:
-                    counters[pc] = left - 1
-                    nxt = target + 1
-                else:
-                    counters.pop(pc, None)
-        elif up.startswith("LBL"):
-            if _label_of(up) == "0" and stack:
-                back, target, runs = stack.pop()
-                if runs > 1:
-                    stack.append((back, target, runs - 1))
-                    nxt = target + 1
-                else:
-                    nxt = back
+        elif up.startswith(("CALL LBL", "LBL")):
+            nxt = _label_block(t, up, pc, labels, counters, stack)
         elif up.startswith("FN"):
             label = _fn(t, b)
             if label is not None:
@@ -2446,6 +2427,30 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         for k in [k for k in t.q if k.startswith("QL")]:
             del t.q[k]
         t.q.update(local)
+
+
+def _label_block(t: _Tnc, up: str, pc: int, labels: dict[str, int], counters: dict[int, int],
+                 stack: list[tuple[int, int, int]]) -> int:
+    """The block after ``CALL LBL`` / ``LBL`` at ``pc``: a subprogram call, a section repeat, or the return from
+    ``LBL 0``; ``counters`` the repeats left per call block, ``stack`` the (return to, label, runs left) calls."""
+    if up.startswith("CALL LBL"):
+        m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q[LR]?\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
+        target = labels[m.group(1).strip('"')]
+        if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
+            stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
+            return target + 1
+        left = counters.get(pc, int(_val(m.group(2), t.q)))
+        if left > 0:
+            counters[pc] = left - 1
+            return target + 1
+        counters.pop(pc, None)
+    elif _label_of(up) == "0" and stack:
+        back, target, runs = stack.pop()
+        if runs > 1:
+            stack.append((back, target, runs - 1))
+            return target + 1
+        return back
+    return pc + 1
 
 
 def _track_feed(t: _Tnc, up: str) -> None:
