@@ -19,6 +19,7 @@ import math
 import re
 from collections.abc import Mapping
 from types import MappingProxyType
+from typing import ClassVar
 
 import numpy as np
 
@@ -175,6 +176,11 @@ class TouchProbe:
         Radius of the stylus tip [mm]; None (the default): the active tool's radius (``TOOL CALL`` of the
         probe, its R in ``TOOL DEF`` or the tool table), as the TNC takes the probe's data from its tool row.
     """
+
+    #: The units of the fields (the machine file's ``[program.touch_probe]`` names them in its errors).
+    UNITS: ClassVar[dict[str, str]] = {"set_up": "mm", "feed": "mm/min", "fmax": "mm/min", "dist": "mm",
+                                       "tip_radius": "mm"}
+    TABLE: ClassVar[str] = "the touch probe table row"
 
     set_up: float = 2.0
     feed: float = 100.0

@@ -419,31 +419,13 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
     if "kinematics" in tab:
         kwargs["kinematics"] = _build_kinematics(tab["kinematics"], path + ("kinematics",), where)
     if "touch_probe" in tab:
-        kwargs["touch_probe"] = _build_touch_probe(tab["touch_probe"], path + ("touch_probe",), where)
+        if not isinstance(tab["touch_probe"], dict):
+            raise where.error("'program.touch_probe' must be a table", path + ("touch_probe",))
+        kwargs["touch_probe"] = _build(TouchProbe, tab["touch_probe"], path + ("touch_probe",), where)
     try:
         return MachineContext(**kwargs)
     except InputError as exc:
         raise where.error(exc.message, path) from None
-
-
-_TOUCH_PROBE_KEYS = {"set_up": "mm", "feed": "mm/min", "fmax": "mm/min", "dist": "mm", "tip_radius": "mm"}
-
-
-def _build_touch_probe(tab: Any, path: tuple[str, ...], where: _Where) -> TouchProbe:
-    """``[program.touch_probe]``: the touch probe table's row (Heidenhain TCH PROBE cycles:
-    :class:`interpolators.context.TouchProbe`)."""
-    if not isinstance(tab, dict):
-        raise where.error("'program.touch_probe' must be a table", path)
-    for key, value in tab.items():
-        if key not in _TOUCH_PROBE_KEYS:
-            raise where.error(f"unknown key 'program.touch_probe.{key}'; expected one of: "
-                              f"{', '.join(f'{k} [{u}]' for k, u in _TOUCH_PROBE_KEYS.items())}", path + (key,))
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise where.error(f"'program.touch_probe.{key}' must be a number [{_TOUCH_PROBE_KEYS[key]}]", path + (key,))
-    try:
-        return TouchProbe(**{k: float(v) for k, v in tab.items()})
-    except InputError as exc:
-        raise where.error(f"program.touch_probe: {exc.message}", path) from None
 
 
 _KINEMATICS_AXIS_KEYS = {"name": "", "direction": "", "pivot": "mm", "limits": "deg"}
