@@ -1183,7 +1183,7 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     if m.tilt is not None:
         where.fail(f"cycle 247 in the tilted working plane of {m.tilt.what}", column=col, text=rest.strip(),
                    expected="PLANE RESET (or CYCL DEF 19.1 without angles) before a new preset")
-    m.preset = WORK_OFFSETS[max(n - 1, 0)] if n <= len(WORK_OFFSETS) else None
+    m.preset = _preset_row(max(n, 1))
     m.shift = np.zeros(3)
     m.transform = Transform()
     if m.preset is None:
@@ -1236,11 +1236,17 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
     if row == 0:
         m.presets[m.preset] = m.preset_value() + delta
         return
-    if table != 1 or row > len(WORK_OFFSETS):
+    if table != 1 or _preset_row(row) is None:
         m.note(f"TCH PROBE {number}: the datum written to row {row} of the "
                f"{'preset' if table == 1 else 'datum'} table is not modelled (no effect on the following blocks)")
         return
-    m.presets[WORK_OFFSETS[row - 1]] = m.preset_value() + m.shift + delta
+    m.presets[_preset_row(row)] = m.preset_value() + m.shift + delta
+
+
+def _preset_row(n: int) -> str | None:
+    """The work offset that stands in for row ``n`` >= 1 of the preset table (:func:`_preset_cycle`: G54 = 1 ..
+    G59.3 = 9); None beyond them."""
+    return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
 
 
 def _datum_shift(values: dict[str, float], m: _Machine) -> None:
