@@ -1,13 +1,14 @@
 """Touch probe cycles of Heidenhain programs (``TCH PROBE 4xx``), run on the nominal workpiece.
 
 A virtual CNC has no workpiece to touch; as CAM simulators do, vcnc runs the cycles on the workpiece the
-cycle's data describe: every touch point lies where the nominal centre, diameter or coordinate puts the
-surface, so the measured values are the nominal ones, the deviations are 0, and the datum a cycle sets is
-the one the nominal workpiece gives. The probe's moves become ordinary blocks (cycle time, path).
+cycle's data describe: every touch point lies where the nominal centre, diameter, side length or coordinate
+puts the surface, so the measured values are the nominal ones, the deviations are 0, and the datum a cycle
+sets is the one the nominal workpiece gives. The probe's moves become ordinary blocks (cycle time, path).
 
 Sources: HEIDENHAIN TNC 320 user's manual "Cycle programming" (340 55x-04), chapter "Touch Probe Cycles:
-Automatic Datum Setting": 15.6 DATUM FROM INSIDE OF CIRCLE (cycle 412), 15.7 DATUM FROM OUTSIDE OF CIRCLE
-(cycle 413), DATUM IN TOUCH PROBE AXIS (cycle 417), and "Executing touch probe cycles"; iTNC 530 cycle
+Automatic Datum Setting": DATUM SLOT CENTER / RIDGE CENTER (cycles 408, 409), DATUM FROM INSIDE / OUTSIDE OF
+RECTANGLE (410, 411), 15.6 DATUM FROM INSIDE OF CIRCLE (412), 15.7 DATUM FROM OUTSIDE OF CIRCLE (413), DATUM
+IN TOUCH PROBE AXIS (417), DATUM IN ONE AXIS (419), and "Executing touch probe cycles"; iTNC 530 cycle
 programming manual, 15.6 (cycle 412: the parameters Q261, Q320, Q260, Q301, Q305, Q331, Q332, Q303, and
 "If you enter Q305=0, the TNC automatically sets the display so that the new datum is at the center").
 
@@ -16,21 +17,37 @@ Cycle runs (measured = nominal):
 * positioning logic ("Executing touch probe cycles"): below the clearance height Q260 the probe first rises
   to it, then moves in the working plane to the first starting point; above it, it moves in the plane at its
   height; then it goes down to the starting point's height. These moves run at the FMAX column's feed;
-* 417: the starting point is touch point 1 (Q263, Q264) the set-up clearance (Q320 + SET_UP) above Q294;
-  the probe moves down its own axis at the probing feed F until its tip touches Q294, returns to the
-  starting point, and rises to Q260. Result: Q160 = Q294. The datum: Q294 becomes Q333;
+* each touch: from its starting point, the set-up clearance (Q320 + SET_UP) before the surface, the probe
+  moves at the probing feed F until the stylus tip (its radius: :attr:`TouchProbe.tip_radius`) touches the
+  surface, and returns to the starting point; after the last touch the probe rises to Q260;
+* 417: touch point 1 (Q263, Q264) probed down the touch probe axis to Q294. Result: Q160 = Q294. The datum:
+  Q294 becomes Q333;
 * 412 / 413: Q423 (4, or 3) touch points at the angles Q325 + k Q247 about the centre (Q321, Q322) on the
-  circle of diameter Q262, at the measuring height Q261. Each starting point lies the set-up clearance inside
-  (412) or outside (413) the point where the stylus tip (its radius: :attr:`TouchProbe.tip_radius`) touches
-  the circle; the probe probes radially at F and returns to the starting point. Between points: at the
-  measuring height (Q301=0) or up to Q260, across and down again (Q301=1), on an arc about the centre
-  (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height between two points of
-  413 may cross the stud: vcnc has no workpiece to collide with). At the end the probe rises to Q260.
-  Results: Q151, Q152 = the centre, Q153 = the diameter. The datum: the centre becomes (Q331, Q332). 412 in
-  a hole too small for the starting points (radius - tip - clearance < 0): every touch from the centre,
-  without clearance-height moves between them (iTNC 530 manual, cycle 412 note); a tip wider than the hole
-  is an error. Q381=1 also probes the touch probe axis at (Q382, Q383) down to Q384 as 417 does, which
-  becomes Q333.
+  circle of diameter Q262, at the measuring height Q261, probed radially outward (412, a hole) or inward (413,
+  a stud). Between points: at the measuring height (Q301=0) or up to Q260, across and down again (Q301=1), on
+  an arc about the centre (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height
+  between two points of 413 may cross the stud: vcnc has no workpiece to collide with). Results: Q151, Q152 =
+  the centre, Q153 = the diameter. The datum: the centre becomes (Q331, Q332);
+* 410 / 411: four touch points on the sides of the rectangle of side lengths Q323 (along the reference axis)
+  and Q324 (the minor axis) about the centre (Q321, Q322), at the measuring height Q261, probed outward (410,
+  a pocket) or inward (411, a stud), in the order of the manual's figure numbers as we read them: 1 on the
+  side at the reference axis' minus end, 2 on the minor axis' minus side, 3 the reference axis' plus side, 4
+  the minor axis' plus side (our reading: no page found states the order; gigacook/tnc426-simulator, a TNC
+  simulator, takes the same). Between points: paraxially at the measuring height (Q301=0: along the one axis
+  to the corner beside the rectangle, then the other) or straight at Q260 (Q301=1). Results: Q151, Q152 =
+  the centre, Q154, Q155 = the side lengths. The datum: as 412;
+* 408 / 409: two touch points on the walls of the slot (408, probed outward) or ridge (409, inward) of width
+  Q311 about the centre (Q321, Q322), across the measuring axis Q272 (1: the reference axis, 2: the minor
+  axis), the minus side first (our reading). 408 moves between them as Q301 says; 409 always at Q260 (it has
+  no Q301: it must pass over the ridge). Results: Q166 = the width, Q157 = the centre line. The datum: the
+  centre line becomes Q405 in the measuring axis;
+* 419: one touch at (Q263, Q264) at the measuring height Q261 in the measuring axis Q272 (1, 2, or 3: the
+  touch probe axis, where the touch point is Q261 itself: our reading) in the direction Q267 (+1 or -1). The
+  datum: the touched coordinate becomes Q333 in that axis;
+* a hole, pocket or slot too small for the starting points (half width - tip - clearance < 0): every touch
+  from the centre, without clearance-height moves between them (iTNC 530 manual, cycles 410, 412 notes); a
+  tip wider than the hole is an error. Q381=1 (408 - 413) also probes the touch probe axis at (Q382, Q383)
+  down to Q384 as 417 does, which becomes Q333.
 
 Our reading, where the manuals leave details open: the move back after a touch goes to the starting point at
 the FMAX column's feed; the datum is set as :class:`ProbeRun` ``datum`` says (the reader applies it: Q305=0
@@ -38,7 +55,7 @@ the active preset, Q305=n with Q303=1 row n of the preset table, with Q303=0 row
 vcnc does not model: noted); a touch point farther from its starting point than the DIST column is an error
 (the TNC reports it unreachable).
 
-Not modelled (an error naming the cycle): the other probe cycles (0, 1, 400-405, 408-411, 414-416, 418-431,
+Not modelled (an error naming the cycle): the other probe cycles (0, 1, 400-405, 414-416, 418, 420-431,
 444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool setter's position is
 not known).
 """
@@ -61,19 +78,22 @@ __all__ = ["PROBE_RE", "ProbeMove", "ProbeRun", "PROBE_CYCLES", "probe_run", "re
 PROBE_RE = re.compile(r"TCH\s*PROBE\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I | re.S)
 
 #: Cycles run here.
-PROBE_CYCLES: tuple[int, ...] = (412, 413, 417)
+PROBE_CYCLES: tuple[int, ...] = (408, 409, 410, 411, 412, 413, 417, 419)
 
 #: Tool measurement with the tool touch probe TT (TNC 320 / TNC 640 touch probe cycles manual, "Touch probe
 #: cycles: automatic tool measurement").
 _TOOL_CYCLES = (30, 31, 32, 33, 480, 481, 482, 483, 484)
 
+_CIRCLE = (321, 322, 262, 325, 247, 261, 320, 260)
+_RECTANGLE = (321, 322, 323, 324, 261, 320, 260)
+_SLOT = (321, 322, 311, 272, 261, 320, 260)
 #: The Q parameters a definition must give (TNC 320 cycle manual, the cycles' parameter lists); the others take
 #: the defaults of :data:`_DEFAULTS`.
-_REQUIRED = {417: (263, 264, 294, 320, 260), 412: (321, 322, 262, 325, 247, 261, 320, 260),
-             413: (321, 322, 262, 325, 247, 261, 320, 260)}
+_REQUIRED = {417: (263, 264, 294, 320, 260), 412: _CIRCLE, 413: _CIRCLE, 410: _RECTANGLE, 411: _RECTANGLE,
+             408: _SLOT, 409: _SLOT, 419: (263, 264, 261, 320, 260, 272, 267)}
 #: Defaults of optional parameters (our reading: the TNC's dialog values): Q301=1 clearance height between
 #: points, Q305=0 the active datum, Q303=1 the preset table, Q423=4 points, Q365=1 straight lines.
-_DEFAULTS = {301: 1.0, 305: 0.0, 331: 0.0, 332: 0.0, 303: 1.0, 333: 0.0, 381: 0.0, 423: 4.0, 365: 1.0}
+_DEFAULTS = {301: 1.0, 305: 0.0, 331: 0.0, 332: 0.0, 303: 1.0, 333: 0.0, 381: 0.0, 423: 4.0, 365: 1.0, 405: 0.0}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -162,34 +182,40 @@ def probe_run(number: int, q: dict[int, float], *, here: np.ndarray, plane: int,
     """The run of touch probe cycle ``number`` with its parameters ``q`` [program units] from the probe's
     program position ``here`` [mm] (its tool point), the touch probe axis ``plane`` (the tool axis, 0 1 2),
     the stylus tip's radius ``tip_radius`` [mm], ``scale`` mm per program unit."""
-    missing = [n for n in _REQUIRED[number] if n not in q]
-    if missing:
-        where.fail(f"TCH PROBE {number} lacks {', '.join(f'Q{n}' for n in missing)}", column=column,
-                   text=where.text, expected=f"Q{' Q'.join(map(str, _REQUIRED[number]))} in the cycle definition")
+    _require(number, q, _REQUIRED[number], "in the cycle definition", where, column)
     q = {**_DEFAULTS, **q}
     path = _Path(here, plane, probe)
-    clearance = q[260] * scale
     datum_from, datum_to = np.full(3, np.nan), np.full(3, np.nan)
+    a, b = PLANE_AXES[plane]
     if number == 417:
         results = {160: q[294]}
-        _axis_touch(path, (q[263], q[264], q[294]), q[320], scale, clearance, where, number)
+        _axis_touch(path, (q[263], q[264], q[294]), q, scale, where, number)
         datum_from[plane], datum_to[plane] = q[294] * scale, q[333] * scale
+    elif number == 419:
+        results = {}
+        axis, nominal = _one_axis(path, q, scale, tip_radius, where, column)
+        datum_from[axis], datum_to[axis] = nominal * scale, q[333] * scale
     else:
-        results = {151: q[321], 152: q[322], 153: q[262]}
-        _circle(path, number, q, scale, tip_radius, clearance, where)
-        a, b = PLANE_AXES[plane]
-        datum_from[[a, b]] = q[321] * scale, q[322] * scale
-        datum_to[[a, b]] = q[331] * scale, q[332] * scale
+        shape = _Shape(path, number, q, scale, tip_radius, where)
+        results = shape.run()
+        for i, nominal, new in shape.datum():
+            datum_from[(a, b)[i]], datum_to[(a, b)[i]] = nominal * scale, new * scale
         if q[381] == 1:
-            for n in (382, 383, 384):
-                if n not in q:
-                    where.fail(f"TCH PROBE {number} with Q381=1 lacks Q{n}", column=column, text=where.text,
-                               expected="Q382, Q383, Q384: the touch point in the touch probe axis")
-            _axis_touch(path, (q[382], q[383], q[384]), q[320], scale, clearance, where, number)
+            _require(number, q, (382, 383, 384), "with Q381=1 (the touch point in the touch probe axis)", where,
+                     column)
+            _axis_touch(path, (q[382], q[383], q[384]), q, scale, where, number)
             datum_from[plane], datum_to[plane] = q[384] * scale, q[333] * scale
-    path.axis(clearance)
+    path.axis(q[260] * scale)
     return ProbeRun(path.moves, results, datum_from, datum_to, _whole(q, 305, where, column),
                     _whole(q, 303, where, column))
+
+
+def _require(number: int, q: dict[int, float], needed: tuple[int, ...], what: str, where: Where,
+             column: int) -> None:
+    missing = [n for n in needed if n not in q]
+    if missing:
+        where.fail(f"TCH PROBE {number} lacks {', '.join(f'Q{n}' for n in missing)}", column=column,
+                   text=where.text, expected=f"Q{' Q'.join(map(str, needed))} {what}")
 
 
 def _whole(q: dict[int, float], n: int, where: Where, column: int) -> int:
@@ -199,65 +225,151 @@ def _whole(q: dict[int, float], n: int, where: Where, column: int) -> int:
     return int(q[n])
 
 
-def _axis_touch(path: _Path, point: tuple[float, float, float], q320: float, scale: float, clearance: float,
-                where: Where, number: int) -> None:
+def _point(plane: int, u: float, v: float, w: float) -> np.ndarray:
+    """The point of reference-axis, minor-axis and touch-probe-axis coordinates ``u``, ``v``, ``w`` [mm]."""
+    a, b = PLANE_AXES[plane]
+    p = np.zeros(3)
+    p[[a, b, plane]] = u, v, w
+    return p
+
+
+def _axis_touch(path: _Path, point: tuple[float, float, float], q: dict[int, float], scale: float, where: Where,
+                number: int) -> None:
     """Probing down the touch probe axis to ``point`` (reference axis, minor axis, probe axis) [program units]:
     cycle 417's run, and the probe-axis touch of Q381=1."""
-    a, b = PLANE_AXES[path.plane]
-    touch = np.zeros(3)
-    touch[[a, b, path.plane]] = np.array(point) * scale
+    touch = _point(path.plane, *(np.array(point) * scale))
     start = touch.copy()
-    start[path.plane] += q320 * scale + path.probe.set_up
-    path.pre_position(start, clearance)
+    start[path.plane] += q[320] * scale + path.probe.set_up
+    path.pre_position(start, q[260] * scale)
     path.touch(start, touch, where, f"TCH PROBE {number}")
 
 
-def _circle(path: _Path, number: int, q: dict[int, float], scale: float, tip: float, clearance: float,
-            where: Where) -> None:
-    """The touch points of cycles 412 (inside: probing outward) and 413 (outside: inward)."""
-    count = int(q[423])
-    if count not in (3, 4) or q[423] != count:
-        where.fail(f"TCH PROBE {number}: Q423={q[423]:g} measuring points", column=1, text=where.text,
-                   expected="Q423 = 3 or 4")
-    if q[262] <= 0 or q[247] == 0:
-        where.fail(f"TCH PROBE {number}: nominal diameter Q262={q[262]:g}, stepping angle Q247={q[247]:g}",
-                   column=1, text=where.text, expected="Q262 > 0 and Q247 != 0")
-    a, b = PLANE_AXES[path.plane]
-    centre = np.zeros(3)
-    centre[[a, b]] = q[321] * scale, q[322] * scale
-    centre[path.plane] = q[261] * scale
-    radius, gap = q[262] * scale / 2.0, q[320] * scale + path.probe.set_up
-    side = -1.0 if number == 412 else 1.0
-    touch_r = radius + side * tip
-    if touch_r <= 0:
-        where.fail(f"TCH PROBE 412: the stylus tip (radius {tip:g} mm) does not fit the hole of diameter "
-                   f"{2 * radius:g} mm", column=1, text=where.text, expected="a nominal diameter Q262 above the tip's")
-    start_r = max(touch_r + side * gap, 0.0)
-    from_centre = start_r == 0.0  # 412 in a small hole: every touch from the centre
-    between_high = q[301] == 1 and not from_centre
-    for k in range(count):
-        angle = math.radians(q[325] + k * q[247])
-        u = np.zeros(3)
-        u[[a, b]] = math.cos(angle), math.sin(angle)
-        start, touch = centre + start_r * u, centre + touch_r * u
-        if k == 0:
-            path.pre_position(start, clearance)
-        elif between_high:
-            path.axis(clearance)
-            _across(path, centre, start, q, clearance)
-            path.axis(start[path.plane])
-        elif not from_centre:
-            _across(path, centre, start, q, start[path.plane])
-        path.touch(start, touch, where, f"TCH PROBE {number} touch point {k + 1}")
+def _one_axis(path: _Path, q: dict[int, float], scale: float, tip: float, where: Where,
+              column: int) -> tuple[int, float]:
+    """Cycle 419's touch; the axis (0 1 2) it measures and the touched coordinate [program units]."""
+    if q[272] not in (1, 2, 3) or q[267] not in (1, -1):
+        where.fail(f"TCH PROBE 419: measuring axis Q272={q[272]:g}, traverse direction Q267={q[267]:g}",
+                   column=column, text=where.text, expected="Q272 = 1, 2 or 3 and Q267 = +1 or -1")
+    k, sign = int(q[272]) - 1, q[267]
+    nominal = (q[263], q[264], q[261])[k]
+    touch = _point(path.plane, q[263] * scale, q[264] * scale, q[261] * scale)
+    offset = np.zeros(3)
+    offset[(*PLANE_AXES[path.plane], path.plane)[k]] = sign
+    touch -= offset * (tip if k < 2 else 0.0)  # in the plane the tip's centre stops a radius short
+    start = touch - offset * (q[320] * scale + path.probe.set_up)
+    path.pre_position(start, q[260] * scale)
+    path.touch(start, touch, where, "TCH PROBE 419")
+    return int(np.flatnonzero(offset)[0]), nominal
 
 
-def _across(path: _Path, centre: np.ndarray, start: np.ndarray, q: dict[int, float], level: float) -> None:
-    """To the next starting point at ``level`` [mm]: an arc about the centre (Q365=0) or a line (Q365=1)."""
-    target = start.copy()
-    target[path.plane] = level
-    if q[365] == 0:
-        pole = centre.copy()
-        pole[path.plane] = level
-        path.arc(pole, target, q[247])
-    else:
+class _Shape:
+    """The touch points of the cycles probing a circle (412, 413), rectangle (410, 411) or slot / ridge (408,
+    409) in the working plane at the measuring height Q261, and their results."""
+
+    def __init__(self, path: _Path, number: int, q: dict[int, float], scale: float, tip: float,
+                 where: Where) -> None:
+        self.path, self.number, self.q, self.scale, self.where = path, number, q, scale, where
+        self.inside = number in (408, 410, 412)
+        self.centre = _point(path.plane, q[321] * scale, q[322] * scale, q[261] * scale)
+        self.gap = q[320] * scale + path.probe.set_up
+        self.tip = tip
+
+    def run(self) -> dict[int, float]:
+        q = self.q
+        if self.number in (412, 413):
+            points = self._circle_points()
+            results = {151: q[321], 152: q[322], 153: q[262]}
+        elif self.number in (410, 411):
+            points = self._rectangle_points()
+            results = {151: q[321], 152: q[322], 154: q[323], 155: q[324]}
+        else:
+            points = self._slot_points()
+            results = {166: q[311], 157: q[320 + int(q[272])]}
+        self._probe(points)
+        return results
+
+    def datum(self) -> list[tuple[int, float, float]]:
+        """(plane axis 0 / 1, nominal coordinate, new coordinate) [program units] of the datum set."""
+        q = self.q
+        if self.number in (408, 409):
+            k = int(q[272]) - 1
+            return [(k, q[321 + k], q[405])]
+        return [(0, q[321], q[331]), (1, q[322], q[332])]
+
+    def _fail(self, message: str, expected: str) -> None:
+        self.where.fail(f"TCH PROBE {self.number}: {message}", column=1, text=self.where.text, expected=expected)
+
+    def _radii(self, half: float) -> tuple[float, float]:
+        """The distances from the centre [mm] of the tip's centre at the touch and of the starting point, across
+        a wall ``half`` [mm] from it; a starting point past the centre: 0 (probed from the centre)."""
+        side = -1.0 if self.inside else 1.0
+        touch = half + side * self.tip
+        if touch <= 0:
+            self._fail(f"the stylus tip (radius {self.tip:g} mm) does not fit the hole (diameter or width "
+                       f"{2 * half:g} mm)", "a nominal size above the tip's diameter")
+        return touch, max(touch + side * self.gap, 0.0)
+
+    def _circle_points(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        q = self.q
+        count = int(q[423])
+        if count not in (3, 4) or q[423] != count:
+            self._fail(f"Q423={q[423]:g} measuring points", "Q423 = 3 or 4")
+        if q[262] <= 0 or q[247] == 0:
+            self._fail(f"nominal diameter Q262={q[262]:g}, stepping angle Q247={q[247]:g}",
+                       "Q262 > 0 and Q247 != 0")
+        touch, start = self._radii(q[262] * self.scale / 2.0)
+        units = [_point(self.path.plane, math.cos(t), math.sin(t), 0.0)
+                 for t in np.radians(q[325] + np.arange(count) * q[247])]
+        return [(self.centre + start * u, self.centre + touch * u) for u in units]
+
+    def _rectangle_points(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        q = self.q
+        if q[323] <= 0 or q[324] <= 0:
+            self._fail(f"side lengths Q323={q[323]:g}, Q324={q[324]:g}", "Q323 > 0 and Q324 > 0")
+        (tu, su), (tv, sv) = (self._radii(q[n] * self.scale / 2.0) for n in (323, 324))
+        if su == 0.0 or sv == 0.0:  # a pocket too small for the starting points: all from the centre
+            su = sv = 0.0
+        plane = self.path.plane
+        return [(self.centre + _point(plane, du * su, dv * sv, 0.0), self.centre + _point(plane, du * tu, dv * tv, 0))
+                for du, dv in ((-1, 0), (0, -1), (1, 0), (0, 1))]
+
+    def _slot_points(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        q = self.q
+        if q[272] not in (1, 2) or q[311] <= 0:
+            self._fail(f"measuring axis Q272={q[272]:g}, width Q311={q[311]:g}", "Q272 = 1 or 2 and Q311 > 0")
+        touch, start = self._radii(q[311] * self.scale / 2.0)
+        unit = _point(self.path.plane, *((1.0, 0.0) if q[272] == 1 else (0.0, 1.0)), 0.0)
+        return [(self.centre + side * start * unit, self.centre + side * touch * unit) for side in (-1.0, 1.0)]
+
+    def _probe(self, points: list[tuple[np.ndarray, np.ndarray]]) -> None:
+        """Probe ``points`` [(starting point, touch point)] in turn; between them at Q260 or at the measuring
+        height as the cycle says; from the centre (a small hole) without moves between them."""
+        path, q = self.path, self.q
+        clearance = q[260] * self.scale
+        from_centre = bool(np.allclose(points[0][0], self.centre))
+        high = not from_centre and (q[301] == 1 or self.number == 409)
+        for k, (start, touch) in enumerate(points):
+            if k == 0:
+                path.pre_position(start, clearance)
+            elif high:
+                path.axis(clearance)
+                self._across(start, clearance)
+                path.axis(start[path.plane])
+            elif not from_centre:
+                self._across(start, start[path.plane])
+            path.touch(start, touch, self.where, f"TCH PROBE {self.number} touch point {k + 1}")
+
+    def _across(self, start: np.ndarray, level: float) -> None:
+        """To the next starting point at ``level`` [mm]: 412 / 413 on an arc about the centre (Q365=0) or a line;
+        410 / 411 at the measuring height paraxially (round the corner), else straight."""
+        path, q = self.path, self.q
+        target = start.copy()
+        target[path.plane] = level
+        if self.number in (412, 413) and q[365] == 0:
+            pole = self.centre.copy()
+            pole[path.plane] = level
+            path.arc(pole, target, q[247])
+            return
+        if self.number in (410, 411) and level == start[path.plane]:
+            path.line(path.pos + target - self.centre, path.probe.fmax)  # the corner beside the rectangle
         path.line(target, path.probe.fmax)

@@ -57,9 +57,10 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
 - FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
   6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
-- ``TCH PROBE 412 / 413 / 417`` on the nominal workpiece (TNC 320 cycle manual 340 55x-04, "Executing touch
-  probe cycles", cycles 412, 413, 417; :func:`_touch_probe`): the touch points where the data put the surface, the
-  datum moved so the probed centre / coordinate gets Q331/Q332 / Q333 (Q305=0), or row Q305 of the presets.
+- ``TCH PROBE 408 - 413 / 417 / 419`` on the nominal workpiece (TNC 320 cycle manual 340 55x-04, "Executing touch
+  probe cycles", cycles 408 - 413, 417, 419; :func:`_touch_probe`): the touch points where the data put the surface,
+  the datum moved so the probed centre / coordinate gets Q331/Q332 / Q405 / Q333 (Q305=0), or row Q305 of the
+  presets.
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
@@ -861,15 +862,16 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
 
 
 def _touch_probe(t: _Tnc, line: int, up: str) -> None:
-    """``TCH PROBE 412/413/417`` in the XY plane, probe axis Z, the touch probe table of ``context.touch_probe``
+    """``TCH PROBE 408-413/417/419`` in the XY plane, probe axis Z, the touch probe table of ``context.touch_probe``
     (SET_UP, F, FMAX, DIST), the tip radius that row's or else the tool radius. Every move is a feed move (FMAX
-    column or F): where below the clearance height Q260 the probe rises to it first, then XY, then Z."""
+    column or F): where below the clearance height Q260 the probe rises to it first, then XY, then Z. The side
+    touch points: 410/411 left, bottom, right, top; 408/409 the minus side first (the reader's reading)."""
     m = re.match(r"TCH\s*PROBE\s*(\d+)", up)
     number = int(m.group(1))
-    if number not in (412, 413, 417):
+    if number not in (408, 409, 410, 411, 412, 413, 417, 419):
         raise ReferenceError(f"TCH PROBE {number}")
     p = {"Q301": 1.0, "Q305": 0.0, "Q331": 0.0, "Q332": 0.0, "Q333": 0.0, "Q381": 0.0, "Q423": 4.0, "Q365": 1.0,
-         "Q303": 1.0}
+         "Q303": 1.0, "Q405": 0.0}
     for qm in re.finditer(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", up[m.end():]):
         p[qm.group(1)] = _val(qm.group(2).replace(" ", ""), t.q)
         t.q[qm.group(1)] = p[qm.group(1)]
@@ -886,42 +888,46 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
         else:
             t.emit(line, "arc_ccw" if circle[1] > 0 else "arc_cw", end, centre=t.machine(np.array(circle[0], float)))
 
-    def probe_down(x: float, y: float, z: float) -> None:
+    def approach(x: float, y: float, z: float) -> None:
         here = t.prog()
         if here[2] < high:
             go((here[0], here[1], high))
         go((x, y, t.prog()[2]))
-        go((x, y, z + gap))
+        go((x, y, z))
+
+    def probe_down(x: float, y: float, z: float) -> None:
+        approach(x, y, z + gap)
         go((x, y, z))
         go((x, y, z + gap))
 
+    move = np.zeros(3)
+    results = {412: ("Q151 Q321", "Q152 Q322", "Q153 Q262"), 410: ("Q151 Q321", "Q152 Q322", "Q154 Q323", "Q155 Q324"),
+               408: ("Q166 Q311", f"Q157 Q{320 + int(p.get('Q272', 1))}"), 417: ("Q160 Q294",)}
+    for pair in results.get(number - (number in (409, 411, 413)), ()):
+        result, nominal = pair.split()
+        t.q[result] = p[nominal]
     if number == 417:
         probe_down(p["Q263"] * t.scale, p["Q264"] * t.scale, p["Q294"] * t.scale)
-        move = np.array([0.0, 0.0, (p["Q294"] - p["Q333"]) * t.scale])
+        move[2] = (p["Q294"] - p["Q333"]) * t.scale
+    elif number == 419:
+        axis, d = int(p["Q272"]) - 1, p["Q267"]
+        pt = np.array([p["Q263"], p["Q264"], p["Q261"]]) * t.scale
+        touch = pt.copy()
+        if axis < 2:
+            touch[axis] -= d * tip
+        start = touch.copy()
+        start[axis] -= d * gap
+        approach(*start)
+        go(touch)
+        go(start)
+        move[axis] = pt[axis] - p["Q333"] * t.scale
     else:
-        cx, cy, zm = (p[k] * t.scale for k in ("Q321", "Q322", "Q261"))
-        r = p["Q262"] * t.scale / 2
-        inside = number == 412
-        r_touch = r - tip if inside else r + tip
-        r_start = max(r_touch - gap, 0.0) if inside else r_touch + gap
-        small = r_start == 0.0
-        for k in range(int(p["Q423"])):
-            a = math.radians(p["Q325"] + k * p["Q247"])
-            sx, sy = cx + r_start * math.cos(a), cy + r_start * math.sin(a)
-            if k == 0:
-                here = t.prog()
-                if here[2] < high:
-                    go((here[0], here[1], high))
-                go((sx, sy, t.prog()[2]))
-                go((sx, sy, zm))
-            elif not small:
-                lvl = high if p["Q301"] == 1 else zm
-                go((*t.prog()[:2], lvl))
-                go((sx, sy, lvl), ((cx, cy, lvl), p["Q247"]) if p["Q365"] == 0 else None)
-                go((sx, sy, zm))
-            go((cx + r_touch * math.cos(a), cy + r_touch * math.sin(a), zm))
-            go((sx, sy, zm))
-        move = np.array([(p["Q321"] - p["Q331"]) * t.scale, (p["Q322"] - p["Q332"]) * t.scale, 0.0])
+        _side_touches(t, p, number, tip, gap, go, approach)
+        if number in (408, 409):
+            axis = int(p["Q272"]) - 1
+            move[axis] = (p[f"Q{321 + axis}"] - p["Q405"]) * t.scale
+        else:
+            move[:2] = (p["Q321"] - p["Q331"]) * t.scale, (p["Q322"] - p["Q332"]) * t.scale
         if p["Q381"] == 1:
             probe_down(p["Q382"] * t.scale, p["Q383"] * t.scale, p["Q384"] * t.scale)
             move[2] = (p["Q384"] - p["Q333"]) * t.scale
@@ -932,6 +938,47 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
         t.overrides[t.preset] = t.preset_point() + move
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
+
+
+def _side_touches(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach) -> None:
+    """The touches in the plane of 408-413 at the measuring height: (direction, wall distance) per point from
+    the centre; the tip's centre stops a tip radius short of the wall, starts ``gap`` before that (inside: at the
+    centre when that is past it, and then every point from there with no moves between)."""
+    cx, cy, zm = (p[k] * t.scale for k in ("Q321", "Q322", "Q261"))
+    inside = number in (408, 410, 412)
+    if number in (412, 413):
+        r = p["Q262"] * t.scale / 2
+        rays = [(_unit(p["Q325"] + k * p["Q247"]), r) for k in range(int(p["Q423"]))]
+    elif number in (410, 411):
+        a, b = p["Q323"] * t.scale / 2, p["Q324"] * t.scale / 2
+        rays = [(np.array([-1.0, 0.0]), a), (np.array([0.0, -1.0]), b), (np.array([1.0, 0.0]), a),
+                (np.array([0.0, 1.0]), b)]
+    else:
+        u = np.array([1.0, 0.0]) if p["Q272"] == 1 else np.array([0.0, 1.0])
+        rays = [(-u, p["Q311"] * t.scale / 2), (u, p["Q311"] * t.scale / 2)]
+    reach = [w - tip if inside else w + tip for _, w in rays]
+    starts = [x - gap if inside else x + gap for x in reach]
+    small = inside and min(starts) <= 0
+    if small:
+        starts = [0.0] * len(starts)
+    lvl = t.scale * p["Q260"] if (p["Q301"] == 1 or number == 409) and not small else zm
+    c = np.array([cx, cy])
+    for k, ((u, _), x, s) in enumerate(zip(rays, reach, starts)):
+        sx, sy = c + s * u
+        if k == 0:
+            approach(sx, sy, zm)
+        elif not small:
+            go((*t.prog()[:2], lvl))
+            circle = None
+            if number in (412, 413) and p["Q365"] == 0:
+                circle = ((cx, cy, lvl), p["Q247"])
+            elif number in (410, 411) and lvl == zm:  # paraxial at the measuring height: round the corner
+                px, py = t.prog()[:2]
+                go((sx if u[0] else px, sy if u[1] else py, lvl))
+            go((sx, sy, lvl), circle)
+            go((sx, sy, zm))
+        go((*(c + x * u), zm))
+        go((sx, sy, zm))
 
 
 def _unit(angle: float) -> np.ndarray:

@@ -142,7 +142,7 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
 @pytest.mark.parametrize("body, words", [
     ("CYCL DEF 204 BACK BORING Q200=2", "cycle 204 lacks Q249, Q250"),
     ("L X+0 Y+0 R0 F100 M136", "feed per revolution (FU, M136) without a spindle speed"),
-    ("TCH PROBE 411 DATUM RECTANG. OUTS. Q321=+50", "TCH PROBE 411 is not modelled"),
+    ("TCH PROBE 414 DATUM OUTSIDE CORNER Q263=+50", "TCH PROBE 414 is not modelled"),
     ("CYCL DEF 253 SLOT MILLING Q215=0", "cycle 253 lacks Q218, Q219"),
     ("CYCL DEF 254 CIRCULAR SLOT Q215=0", "cycle 254 lacks Q219, Q375"),
     ("CYCL DEF 255 UNKNOWN Q215=0", "cycle 255 is not supported"),

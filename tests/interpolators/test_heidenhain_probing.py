@@ -1,6 +1,7 @@
-"""Heidenhain touch probe cycles 412, 413, 417 run on the nominal workpiece: hand-written programs with the touch
-points, the moves between them and their feeds worked out by hand from the TNC 320 cycle programming manual
-(340 55x-04, "Executing touch probe cycles", cycles 412, 413, 417) and the touch probe table of the machine
+"""Heidenhain touch probe cycles 408 - 413, 417, 419 run on the nominal workpiece: hand-written programs with the
+touch points, the moves between them and their feeds worked out by hand from the TNC 320 cycle programming manual
+(340 55x-04, "Executing touch probe cycles", cycles 408 - 413, 417, 419; the order of the four touch points of
+410/411 is our reading, see interpolators.heidenhain_probing) and the touch probe table of the machine
 context (vcnc's defaults: SET_UP 2 mm, F 100 mm/min, FMAX 2000 mm/min, DIST 20 mm), each also checked against
 the independent reference (``reference_heidenhain``)."""
 
@@ -96,6 +97,85 @@ def test_413_q381_also_probes_the_touch_probe_axis():
     assert np.allclose(prog.blocks[-1].target, np.array(CTX.offset("G54")) + [0, 0, 7])  # Z+2 is Z+0 now
 
 
+TOOL3 = MachineContext(work_offsets=CTX.work_offsets, tools={1: Tool(number=1, length=0.0, radius=3.0)})
+
+
+def test_411_outside_rectangle_paraxial_round_the_corners():
+    prog = run("3 TCH PROBE 411 DATUM OUTS. RECTAN. ~\n  Q321=+10 ~\n  Q322=+0 ~\n  Q323=+40 ~\n  Q324=+20 ~\n"
+               "  Q261=-5 ~\n  Q320=+3 ~\n  Q260=+50 ~\n  Q301=+0 ~\n  Q305=+0 ~\n  Q331=+0 ~\n  Q332=+0\n"
+               "17 L X+0 Y+0 FMAX\n18 FN 0: Q1 = Q151 + 1000 * Q152\n19 L X+Q1 Y+Q154 Z+Q155 FMAX", context=TOOL3)
+    # tip 3 + clearance Q320 3 + SET_UP 2: the tip's centre touches 23 / 13 mm from the centre (10, 0), starts
+    # 28 / 18 mm out; points left, bottom, right, top, paraxially round the corners at the measuring height
+    assert moves(prog, 4) == [
+        (-18, 0, 100, 2000), (-18, 0, -5, 2000), (-13, 0, -5, 100), (-18, 0, -5, 2000),
+        (-18, -18, -5, 2000), (10, -18, -5, 2000), (10, -13, -5, 100), (10, -18, -5, 2000),
+        (38, -18, -5, 2000), (38, 0, -5, 2000), (33, 0, -5, 100), (38, 0, -5, 2000),
+        (38, 18, -5, 2000), (10, 18, -5, 2000), (10, 13, -5, 100), (10, 18, -5, 2000), (10, 18, 50, 2000)]
+    g54 = np.array(CTX.offset("G54"))
+    # the centre (10, 0) is X+0 Y+0 now; Q151 = 10, Q152 = 0, Q154 = 40, Q155 = 20
+    assert np.allclose(prog.blocks[-2].target[:2], g54[:2] + [10.0, 0.0])
+    assert np.allclose(prog.blocks[-1].target - prog.blocks[-2].target, [10.0, 40.0, 20.0 - 50.0])
+
+
+def test_410_inside_rectangle_at_clearance_height_between_points():
+    prog = run("3 TCH PROBE 410 DATUM INSIDE RECTAN. Q321=+0 Q322=+0 Q323=+60 Q324=+40 Q261=-3 Q320=+1 Q260=+20 "
+               "Q301=+1 Q305=+0 Q331=+5 Q332=-5 Q303=+1\n4 L X+0 Y+0 FMAX")
+    # no tip radius (the tool has none): touches 30 / 20 mm from the centre, starts 3 mm (Q320 + SET_UP) inside
+    assert moves(prog, 4) == [
+        (-27, 0, 100, 2000), (-27, 0, -3, 2000), (-30, 0, -3, 100), (-27, 0, -3, 2000),
+        (-27, 0, 20, 2000), (0, -17, 20, 2000), (0, -17, -3, 2000), (0, -20, -3, 100), (0, -17, -3, 2000),
+        (0, -17, 20, 2000), (27, 0, 20, 2000), (27, 0, -3, 2000), (30, 0, -3, 100), (27, 0, -3, 2000),
+        (27, 0, 20, 2000), (0, 17, 20, 2000), (0, 17, -3, 2000), (0, 20, -3, 100), (0, 17, -3, 2000),
+        (0, 17, 20, 2000)]
+    g54 = np.array(CTX.offset("G54"))
+    assert np.allclose(prog.blocks[-1].target[:2], g54[:2] + [-5.0, 5.0])  # the centre is X+5 Y-5 now
+
+
+def test_410_small_pocket_probes_from_the_centre():
+    prog = run("3 TCH PROBE 410 Q321=+0 Q322=+0 Q323=+8 Q324=+30 Q261=-3 Q320=+2 Q260=+20 Q301=+1")
+    rows = moves(prog, 4)
+    # 4 mm from the centre to the short sides is less than the 4 mm clearance: all four touches from the centre
+    assert [r for r in rows if r[3] == 100] == [(-4, 0, -3, 100), (0, -15, -3, 100), (4, 0, -3, 100),
+                                               (0, 15, -3, 100)]
+    assert all(r[2] == -3 for r in rows[1:-1]) and rows[-1] == (0, 0, 20, 2000)
+
+
+def test_408_slot_centre_sets_the_datum_in_the_measuring_axis_only():
+    prog = run("3 TCH PROBE 408 SLOT CENTER REF PT Q321=+50 Q322=+20 Q311=+12 Q272=+1 Q261=-4 Q320=+1 Q260=+10 "
+               "Q301=+0 Q305=+0 Q405=+0 Q303=+1\n4 L X+0 Y+0 FMAX\n5 L X+Q157 Y+Q166 FMAX")
+    # touches 6 mm either side of X50, starts 3 mm (Q320 1 + SET_UP 2) inside; Q301=0: across at the measuring height
+    assert moves(prog, 4) == [(47, 20, 100, 2000), (47, 20, -4, 2000), (44, 20, -4, 100), (47, 20, -4, 2000),
+                              (53, 20, -4, 2000), (56, 20, -4, 100), (53, 20, -4, 2000), (53, 20, 10, 2000)]
+    g54 = np.array(CTX.offset("G54"))
+    assert np.allclose(prog.blocks[-2].target[:2], g54[:2] + [50.0, 0.0])  # X50 is X0; Y keeps its datum
+    assert np.allclose(prog.blocks[-1].target[:2], g54[:2] + [100.0, 12.0])  # Q157 = 50, Q166 = 12
+
+
+def test_409_ridge_always_passes_over_at_the_clearance_height():
+    prog = run("3 TCH PROBE 409 RIDGE CENTER REF PT Q321=+0 Q322=+0 Q311=+10 Q272=+2 Q261=-2 Q320=+0 Q260=+15 "
+               "Q305=+0 Q405=+3\n4 L X+0 Y+0 FMAX")
+    assert moves(prog, 4) == [(0, -7, 100, 2000), (0, -7, -2, 2000), (0, -5, -2, 100), (0, -7, -2, 2000),
+                              (0, -7, 15, 2000), (0, 7, 15, 2000), (0, 7, -2, 2000), (0, 5, -2, 100),
+                              (0, 7, -2, 2000), (0, 7, 15, 2000)]
+    assert prog.blocks[-1].target[1] == pytest.approx(CTX.offset("G54")[1] - 3.0)  # Y0 of old is Y+3 now
+
+
+def test_419_datum_in_one_axis():
+    prog = run("3 TCH PROBE 419 DATUM IN ONE AXIS Q263=-55 Q264=+0 Q261=-4 Q320=+2 Q260=+5 Q272=+1 Q267=+1 "
+               "Q305=+0 Q333=-40 Q303=+1\n4 L X-40 Y+0 FMAX", context=TOOL3)
+    # probing in +X: the tip's centre (radius 3) stops at X-58, starts 4 mm (Q320 + SET_UP) before it
+    assert moves(prog, 4) == [(-62, 0, 100, 2000), (-62, 0, -4, 2000), (-58, 0, -4, 100), (-62, 0, -4, 2000),
+                              (-62, 0, 5, 2000)]
+    assert prog.blocks[-1].target[0] == pytest.approx(CTX.offset("G54")[0] - 55.0)  # X-55 reads X-40 now
+
+
+def test_419_in_the_touch_probe_axis_probes_down_to_q261():
+    prog = run("3 TCH PROBE 419 Q263=+5 Q264=+5 Q261=+2 Q320=+0 Q260=+30 Q272=+3 Q267=-1 Q333=+0\n"
+               "4 L Z+10 FMAX")
+    assert moves(prog, 4) == [(5, 5, 100, 2000), (5, 5, 4, 2000), (5, 5, 2, 100), (5, 5, 4, 2000), (5, 5, 30, 2000)]
+    assert prog.blocks[-1].target[2] == pytest.approx(CTX.offset("G54")[2] + 12.0)
+
+
 def test_q305_row_of_the_preset_table_activated_by_cycle_247():
     prog = run("3 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+10 Q320=+0 Q260=+30 Q305=2 Q333=+0 Q303=1\n"
                "4 L X+0 Y+0 Z+40 FMAX\n5 CYCL DEF 247 DATUM SETTING Q339=2\n6 L X+0 Y+0 Z+40 FMAX")
@@ -126,6 +206,12 @@ def test_touch_probe_table_from_the_machine_file(tmp_path):
 
 @pytest.mark.parametrize("body, words", [
     ("TCH PROBE 420 MEASURE ANGLE Q263=+0", "TCH PROBE 420 is not modelled"),
+    ("TCH PROBE 410 Q321=+0 Q322=+0 Q323=+50 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 410 lacks Q324"),
+    ("TCH PROBE 408 Q321=+0 Q322=+0 Q311=+10 Q272=+3 Q261=-3 Q320=+2 Q260=+20", "Q272 = 1 or 2"),
+    ("TCH PROBE 419 Q263=+0 Q264=+0 Q261=-3 Q320=+2 Q260=+20 Q272=+1 Q267=+0", "Q267 = +1 or -1"),
+    ("TCH PROBE 411 Q321=+0 Q322=+0 Q323=+50 Q324=+50 Q261=-3 Q320=+30 Q260=+20", "beyond the touch probe"),
+    ("TCH PROBE 413 Q321=+0 Q322=+0 Q262=+20 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20 Q381=1 Q382=+0",
+     "with Q381=1 (the touch point in the touch probe axis)"),
     ("TCH PROBE 481 CAL. TOOL LENGTH Q340=1", "the tool setter's position is not known"),
     ("TCH PROBE 413 Q321=+0 Q322=+0 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 413 lacks Q262"),
     ("TCH PROBE 417 Q263=+0 Q264=+0 Q294=+0 Q320=+30 Q260=+50", "beyond the touch probe table's DIST"),
