@@ -15,7 +15,8 @@ s in machine coordinates. One module per concern:
   (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
 * :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
-* :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 412, 413, 417`` on the nominal workpiece;
+* :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 400, 408-413, 417, 419-424, 427, 431`` on
+  the nominal workpiece;
 * :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
@@ -100,10 +101,11 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     the part (MOVE), or not (STAY: the program positions them, L A+Q120
                                     C+Q122 FMAX); also PROJECTED, EULER, VECTOR, POINTS, RELATIV, AXIAL,
                                     RESET, and CYCL DEF 19.1 A.. B.. C.. (as STAY)
-    TCH PROBE 417 DATUM IN TS AXIS Q263=.. (412, 413)
+    TCH PROBE 417 DATUM IN TS AXIS Q263=.. (400, 408-413, 419-424, 427, 431)
                                     touch probe cycles run on the nominal workpiece (the touch points where
                                     the data put the surface): the probe's moves at the touch probe table's
-                                    FMAX / F (context.touch_probe), Q160 / Q151-Q153, the datum they set
+                                    FMAX / F (context.touch_probe), the results Q150-Q175 (deviations 0,
+                                    Q180 status), the datum they set
     CALL PGM name, SEL PGM name, CALL SELECTED PGM
                                     another program file (from the caller's directory), run on the
                                     same machine state in its own unit
@@ -1194,8 +1196,8 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
 
 
 def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
-    """``TCH PROBE 412 / 413 / 417 .. Qnnn=..``: run on the nominal workpiece (:mod:`interpolators.heidenhain_probing`):
-    the probe's moves, the result parameters, the datum the cycle sets."""
+    """``TCH PROBE 4xx .. Qnnn=..``: run on the nominal workpiece (:mod:`interpolators.heidenhain_probing`): the
+    probe's moves, the result parameters, the datum the cycle sets."""
     pm = PROBE_RE.match(blk.code)
     if pm is None:
         where.fail("malformed touch probe cycle", column=blk.column, text=blk.code, expected="TCH PROBE n ...")
@@ -1221,8 +1223,11 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
             m.emit("arc", target, seg, move.feed / 60.0, where, blk.number)
     for n, value in run.results.items():
         m.params.set(f"Q{n}", value, where, column=col)
-    _probed_datum(run.datum_from, run.datum_to, run.q305, run.q303, m, number)
+    if not np.all(np.isnan(run.datum_from)):  # a datum cycle (the measuring cycles set none)
+        _probed_datum(run.datum_from, run.datum_to, run.q305, run.q303, m, number)
     m.note(f"touch probe cycle {number}: run on the nominal workpiece (touch points where the data put the surface)")
+    for note in run.notes:
+        m.note(note)
 
 
 def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: _Machine,

@@ -47,7 +47,28 @@ Cycle runs (measured = nominal):
 * a hole, pocket or slot too small for the starting points (half width - tip - clearance < 0): every touch
   from the centre, without clearance-height moves between them (iTNC 530 manual, cycles 410, 412 notes); a
   tip wider than the hole is an error. Q381=1 (408 - 413) also probes the touch probe axis at (Q382, Q383)
-  down to Q384 as 417 does, which becomes Q333.
+  down to Q384 as 417 does, which becomes Q333;
+* 400 BASIC ROTATION: two touches as 419's at (Q263, Q264) and (Q265, Q266), between them straight at the
+  measuring height (Q301=0) or over Q260 (Q301=1). The nominal workpiece lies as the program expects: the
+  misalignment measured is the reference angle Q307 and the basic rotation set is 0 (our reading; noted), so
+  the following blocks are unchanged and the preset row Q305 keeps its datum.
+
+Automatic workpiece inspection (TNC 320 cycle manual, chapter "Touch Probe Cycles: Automatic Workpiece
+Inspection", 16.1 "Measurement results in Q parameters", "Classification of results" and the cycles' result
+tables): the measuring cycles set no datum; their results are the nominal values, the deviations Q161 - Q166
+are 0, and Q180 = 1 (within tolerance; Q181 rework, Q182 scrap only where the nominal itself breaks a limit the
+cycle gives: a hole or pocket too large or a stud too small is scrap, the other way rework, our reading; a limit
+0 is not monitored). The measuring log (Q281) is not written: noted.
+
+* 420 MEASURE ANGLE: touches as 400's; Q150 = the angle of the line through the two points from the reference
+  axis [deg] (0 when Q272=3: both touch at Q261);
+* 421 / 422 MEASURE HOLE / CIRCLE OUTSIDE: as 412 / 413 on the centre Q273, Q274; Q151 - Q153, Q161 - Q163;
+* 423 / 424 MEASURE RECTANGLE INSIDE / OUTSIDE: as 410 / 411 on the centre Q273, Q274 and the sides Q282,
+  Q283; Q151, Q152, Q154, Q155, Q161, Q162, Q164, Q165;
+* 427 MEASURE COORDINATE: one touch as 419's; Q160 = the coordinate (the manual: a stud's dimension);
+* 431 MEASURE PLANE: three touches down the touch probe axis as 417's; Q173 - Q175 = the heights; a plane
+  level with the working plane: the angles Q158, Q159, Q170 - Q172 are 0; a tilted one is an error (its
+  spatial angles are not modelled).
 
 Our reading, where the manuals leave details open: the move back after a touch goes to the starting point at
 the FMAX column's feed; the datum is set as :class:`ProbeRun` ``datum`` says (the reader applies it: Q305=0
@@ -55,7 +76,7 @@ the active preset, Q305=n with Q303=1 row n of the preset table, with Q303=0 row
 vcnc does not model: noted); a touch point farther from its starting point than the DIST column is an error
 (the TNC reports it unreachable).
 
-Not modelled (an error naming the cycle): the other probe cycles (0, 1, 400-405, 414-416, 418, 420-431,
+Not modelled (an error naming the cycle): the other probe cycles (0, 1, 401-405, 414-416, 418, 425, 426, 430,
 444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool setter's position is
 not known).
 """
@@ -78,7 +99,7 @@ __all__ = ["PROBE_RE", "ProbeMove", "ProbeRun", "PROBE_CYCLES", "probe_run", "re
 PROBE_RE = re.compile(r"TCH\s*PROBE\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I | re.S)
 
 #: Cycles run here.
-PROBE_CYCLES: tuple[int, ...] = (408, 409, 410, 411, 412, 413, 417, 419)
+PROBE_CYCLES: tuple[int, ...] = (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 427, 431)
 
 #: Tool measurement with the tool touch probe TT (TNC 320 / TNC 640 touch probe cycles manual, "Touch probe
 #: cycles: automatic tool measurement").
@@ -89,11 +110,21 @@ _RECTANGLE = (321, 322, 323, 324, 261, 320, 260)
 _SLOT = (321, 322, 311, 272, 261, 320, 260)
 #: The Q parameters a definition must give (TNC 320 cycle manual, the cycles' parameter lists); the others take
 #: the defaults of :data:`_DEFAULTS`.
+_ONE_AXIS = (263, 264, 261, 320, 260, 272, 267)
+_TWO_POINTS = (263, 264, 265, 266, 272, 267, 261, 320, 260)
 _REQUIRED = {417: (263, 264, 294, 320, 260), 412: _CIRCLE, 413: _CIRCLE, 410: _RECTANGLE, 411: _RECTANGLE,
-             408: _SLOT, 409: _SLOT, 419: (263, 264, 261, 320, 260, 272, 267)}
+             408: _SLOT, 409: _SLOT, 419: _ONE_AXIS, 427: _ONE_AXIS, 400: _TWO_POINTS, 420: _TWO_POINTS,
+             421: (273, 274, 262, 325, 247, 261, 320, 260), 422: (273, 274, 262, 325, 247, 261, 320, 260),
+             423: (273, 274, 282, 283, 261, 320, 260), 424: (273, 274, 282, 283, 261, 320, 260),
+             431: (263, 264, 294, 265, 266, 295, 296, 297, 298, 320, 260)}
+#: The measuring cycles that probe as a datum cycle does, and their parameters' numbers in that cycle's.
+_INSPECTION = {421: 412, 422: 413, 423: 410, 424: 411}
+_RENAMED = {273: 321, 274: 322, 282: 323, 283: 324}
 #: Defaults of optional parameters (our reading: the TNC's dialog values): Q301=1 clearance height between
-#: points, Q305=0 the active datum, Q303=1 the preset table, Q423=4 points, Q365=1 straight lines.
-_DEFAULTS = {301: 1.0, 305: 0.0, 331: 0.0, 332: 0.0, 303: 1.0, 333: 0.0, 381: 0.0, 423: 4.0, 365: 1.0, 405: 0.0}
+#: points, Q305=0 the active datum, Q303=1 the preset table, Q423=4 points, Q365=1 straight lines; the limits
+#: of the measuring cycles 0 (not monitored: TNC 320 cycle manual 16.1, "Tolerance monitoring").
+_DEFAULTS = {301: 1.0, 305: 0.0, 331: 0.0, 332: 0.0, 303: 1.0, 333: 0.0, 381: 0.0, 423: 4.0, 365: 1.0, 405: 0.0,
+             **dict.fromkeys((275, 276, 277, 278, 284, 285, 286, 287, 288, 289), 0.0)}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -112,7 +143,8 @@ class ProbeMove:
 class ProbeRun:
     """What a probe cycle does: its ``moves``, the ``results`` (Q number -> value [program units]), and the
     datum: the program point ``datum_from`` [mm] (NaN in axes the cycle does not set) gets the program
-    coordinates ``datum_to`` [mm], stored as ``q305`` (0: the active datum) in the table ``q303`` names."""
+    coordinates ``datum_to`` [mm], stored as ``q305`` (0: the active datum) in the table ``q303`` names; ``notes``
+    for the reader to add."""
 
     moves: list[ProbeMove]
     results: dict[int, float]
@@ -120,6 +152,7 @@ class ProbeRun:
     datum_to: np.ndarray
     q305: int
     q303: int
+    notes: tuple[str, ...] = ()
 
 
 class _Path:
@@ -184,30 +217,140 @@ def probe_run(number: int, q: dict[int, float], *, here: np.ndarray, plane: int,
     the stylus tip's radius ``tip_radius`` [mm], ``scale`` mm per program unit."""
     _require(number, q, _REQUIRED[number], "in the cycle definition", where, column)
     q = {**_DEFAULTS, **q}
-    path = _Path(here, plane, probe)
-    datum_from, datum_to = np.full(3, np.nan), np.full(3, np.nan)
-    a, b = PLANE_AXES[plane]
+    out = _Outcome(_Path(here, plane, probe), scale, tip_radius, where, column, number)
     if number == 417:
-        results = {160: q[294]}
-        _axis_touch(path, (q[263], q[264], q[294]), q, scale, where, number)
-        datum_from[plane], datum_to[plane] = q[294] * scale, q[333] * scale
-    elif number == 419:
-        results = {}
-        axis, nominal = _one_axis(path, q, scale, tip_radius, where, column)
-        datum_from[axis], datum_to[axis] = nominal * scale, q[333] * scale
+        out.results[160] = q[294]
+        _axis_touch(out.path, (q[263], q[264], q[294]), q, scale, where, number)
+        out.datum(plane, q[294], q[333])
+    elif number in (419, 427):
+        axis, nominal = out.axis_touches(q, [(q[263], q[264])])
+        if number == 419:
+            out.datum(axis, nominal, q[333])
+        else:
+            out.results[160] = nominal
+            out.status([(nominal, q[288], q[289])], inside=False)
+    elif number in (400, 420):
+        _edge(out, q)
+    elif number == 431:
+        _plane(out, q)
     else:
-        shape = _Shape(path, number, q, scale, tip_radius, where)
-        results = shape.run()
-        for i, nominal, new in shape.datum():
-            datum_from[(a, b)[i]], datum_to[(a, b)[i]] = nominal * scale, new * scale
-        if q[381] == 1:
-            _require(number, q, (382, 383, 384), "with Q381=1 (the touch point in the touch probe axis)", where,
-                     column)
-            _axis_touch(path, (q[382], q[383], q[384]), q, scale, where, number)
-            datum_from[plane], datum_to[plane] = q[384] * scale, q[333] * scale
-    path.axis(q[260] * scale)
-    return ProbeRun(path.moves, results, datum_from, datum_to, _whole(q, 305, where, column),
-                    _whole(q, 303, where, column))
+        _shape_cycle(out, q)
+    out.path.axis(q[260] * scale)
+    if q.get(281, 0) != 0:
+        out.notes.append(f"TCH PROBE {number}: the measuring log (Q281={q[281]:g}) is not written")
+    return ProbeRun(out.path.moves, out.results, out.datum_from, out.datum_to, _whole(q, 305, where, column),
+                    _whole(q, 303, where, column), tuple(out.notes))
+
+
+class _Outcome:
+    """What a run builds up: the probe's path, the results, the datum, notes."""
+
+    def __init__(self, path: _Path, scale: float, tip: float, where: Where, column: int, number: int) -> None:
+        self.path, self.scale, self.tip, self.where, self.column, self.number = path, scale, tip, where, column, number
+        self.results: dict[int, float] = {}
+        self.datum_from, self.datum_to = np.full(3, np.nan), np.full(3, np.nan)
+        self.notes: list[str] = []
+
+    def datum(self, axis: int, nominal: float, new: float) -> None:
+        """The probed coordinate ``nominal`` of ``axis`` (0 1 2) becomes ``new`` [program units]."""
+        self.datum_from[axis], self.datum_to[axis] = nominal * self.scale, new * self.scale
+
+    def fail(self, message: str, expected: str) -> None:
+        self.where.fail(f"TCH PROBE {self.number}: {message}", column=self.column, text=self.where.text,
+                        expected=expected)
+
+    def status(self, checks: list[tuple[float, float, float]], *, inside: bool) -> None:
+        """Q180 - Q182 (TNC 320 cycle manual 16.1 "Classification of results") from (value, maximum, minimum)
+        [program units] each (a limit 0: not monitored): a hole too large or a stud too small is scrap, the other
+        way rework (our reading); measured = nominal, so only limits the nominal itself breaks count."""
+        scrap = any((hi and value > hi and inside) or (lo and value < lo and not inside) for value, hi, lo in checks)
+        rework = not scrap and any((hi and value > hi) or (lo and value < lo) for value, hi, lo in checks)
+        self.results.update({180: float(not (scrap or rework)), 181: float(rework), 182: float(scrap)})
+        if scrap or rework:
+            self.notes.append(f"TCH PROBE {self.number}: the nominal workpiece is outside the cycle's limits "
+                              f"({'scrap' if scrap else 'rework'})")
+
+    def axis_touches(self, q: dict[int, float], points: list[tuple[float, float]]) -> tuple[int, float]:
+        """Touches at ``points`` (reference axis, minor axis) [program units] at the measuring height Q261 along
+        the measuring axis Q272 (1, 2, 3: the touch probe axis, where the touch point is Q261: our reading) in the
+        direction Q267, moving between them at Q260 (Q301=1) or straight at the measuring height; the axis (0 1
+        2) and the nominal coordinate of the last touch [program units]."""
+        if q[272] not in (1, 2, 3) or q[267] not in (1, -1):
+            self.fail(f"measuring axis Q272={q[272]:g}, traverse direction Q267={q[267]:g}",
+                      "Q272 = 1, 2 or 3 and Q267 = +1 or -1")
+        path, scale = self.path, self.scale
+        k = int(q[272]) - 1
+        axis = (*PLANE_AXES[path.plane], path.plane)[k]
+        offset = np.zeros(3)
+        offset[axis] = q[267]
+        nominal = 0.0
+        for n, (u, v) in enumerate(points):
+            nominal = (u, v, q[261])[k]
+            touch = _point(path.plane, u * scale, v * scale, q[261] * scale)
+            touch -= offset * (self.tip if k < 2 else 0.0)  # in the plane the tip's centre stops a radius short
+            start = touch - offset * (q[320] * scale + path.probe.set_up)
+            if n == 0:
+                path.pre_position(start, q[260] * scale)
+            elif q[301] == 1:
+                path.axis(q[260] * scale)
+                path.line(_point(path.plane, *(start[list(PLANE_AXES[path.plane])]), q[260] * scale), path.probe.fmax)
+                path.axis(start[path.plane])
+            else:
+                path.line(start, path.probe.fmax)
+            path.touch(start, touch, self.where, f"TCH PROBE {self.number} touch point {n + 1}")
+        return axis, nominal
+
+
+def _edge(out: _Outcome, q: dict[int, float]) -> None:
+    """400 BASIC ROTATION, 420 MEASURE ANGLE: two touches along the measuring axis at (Q263, Q264) and (Q265,
+    Q266). 420: Q150 = the angle of the line through them from the reference axis [deg] (0 in the touch probe
+    axis, where both touch Q261). 400: the nominal workpiece lies as the program expects, so the misalignment
+    measured is the preset rotation angle Q307 and the basic rotation the cycle sets is 0 (our reading): noted."""
+    out.axis_touches(q, [(q[263], q[264]), (q[265], q[266])])
+    if out.number == 420:
+        flat = q[272] == 3
+        out.results[150] = 0.0 if flat else math.degrees(math.atan2(q[266] - q[264], q[265] - q[263]))
+    else:
+        out.notes.append("TCH PROBE 400: basic rotation 0 (the nominal workpiece is not misaligned)")
+
+
+def _plane(out: _Outcome, q: dict[int, float]) -> None:
+    """431 MEASURE PLANE: three touches down the touch probe axis as 417's; Q173 - Q175 = the probed heights.
+    A plane the three nominal points tilt: its angles Q158, Q159, Q170 - Q172 are not modelled (an error);
+    a level one: all 0."""
+    points = [(q[263], q[264], q[294]), (q[265], q[266], q[295]), (q[296], q[297], q[298])]
+    if len({p[2] for p in points}) > 1:
+        out.fail("a tilted plane (its spatial angles Q170 - Q172) is not modelled",
+                 "Q294 = Q295 = Q298 (a plane square to the touch probe axis)")
+    for point in points:
+        _axis_touch(out.path, point, q, out.scale, out.where, out.number)
+    out.results.update({158: 0.0, 159: 0.0, 170: 0.0, 171: 0.0, 172: 0.0, 173: q[294], 174: q[295], 175: q[298]})
+
+
+def _shape_cycle(out: _Outcome, q: dict[int, float]) -> None:
+    """The cycles probing a circle, rectangle, slot or ridge: 408 - 413 set the datum (and Q381=1 the probe
+    axis's), 421 - 424 measure (their centre Q273/Q274 and sides Q282/Q283 as 410 - 413's Q321/Q322, Q323/Q324):
+    the deviations Q161 - Q165 are 0 and Q180 - Q182 the status."""
+    number, plane = out.number, out.path.plane
+    datum_cycle = _INSPECTION.get(number, number)
+    shape = _Shape(out.path, datum_cycle, {_RENAMED.get(n, n): v for n, v in q.items()}, out.scale, out.tip,
+                   out.where)
+    out.results.update(shape.run())
+    if number in _INSPECTION:
+        out.results.update(dict.fromkeys((161, 162, 163) if datum_cycle > 411 else (161, 162, 164, 165), 0.0))
+        if number in (421, 422):
+            limits = [(q[262], *((q[275], q[276]) if number == 421 else (q[277], q[278])))]
+        else:
+            limits = [(q[282], q[284], q[285]), (q[283], q[286], q[287])]
+        out.status(limits, inside=number in (421, 423))
+        return
+    for i, nominal, new in shape.datum():
+        out.datum(PLANE_AXES[plane][i], nominal, new)
+    if q[381] == 1:
+        _require(number, q, (382, 383, 384), "with Q381=1 (the touch point in the touch probe axis)", out.where,
+                 out.column)
+        _axis_touch(out.path, (q[382], q[383], q[384]), q, out.scale, out.where, number)
+        out.datum(plane, q[384], q[333])
 
 
 def _require(number: int, q: dict[int, float], needed: tuple[int, ...], what: str, where: Where,
@@ -242,24 +385,6 @@ def _axis_touch(path: _Path, point: tuple[float, float, float], q: dict[int, flo
     start[path.plane] += q[320] * scale + path.probe.set_up
     path.pre_position(start, q[260] * scale)
     path.touch(start, touch, where, f"TCH PROBE {number}")
-
-
-def _one_axis(path: _Path, q: dict[int, float], scale: float, tip: float, where: Where,
-              column: int) -> tuple[int, float]:
-    """Cycle 419's touch; the axis (0 1 2) it measures and the touched coordinate [program units]."""
-    if q[272] not in (1, 2, 3) or q[267] not in (1, -1):
-        where.fail(f"TCH PROBE 419: measuring axis Q272={q[272]:g}, traverse direction Q267={q[267]:g}",
-                   column=column, text=where.text, expected="Q272 = 1, 2 or 3 and Q267 = +1 or -1")
-    k, sign = int(q[272]) - 1, q[267]
-    nominal = (q[263], q[264], q[261])[k]
-    touch = _point(path.plane, q[263] * scale, q[264] * scale, q[261] * scale)
-    offset = np.zeros(3)
-    offset[(*PLANE_AXES[path.plane], path.plane)[k]] = sign
-    touch -= offset * (tip if k < 2 else 0.0)  # in the plane the tip's centre stops a radius short
-    start = touch - offset * (q[320] * scale + path.probe.set_up)
-    path.pre_position(start, q[260] * scale)
-    path.touch(start, touch, where, "TCH PROBE 419")
-    return int(np.flatnonzero(offset)[0]), nominal
 
 
 class _Shape:

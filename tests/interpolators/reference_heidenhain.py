@@ -57,10 +57,10 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
 - FK free contour programming (``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT``, iTNC 530 manual section
   6.6): each element's data as equations solved numerically (:mod:`reference_heidenhain_fk`).
-- ``TCH PROBE 408 - 413 / 417 / 419`` on the nominal workpiece (TNC 320 cycle manual 340 55x-04, "Executing touch
-  probe cycles", cycles 408 - 413, 417, 419; :func:`_touch_probe`): the touch points where the data put the surface,
-  the datum moved so the probed centre / coordinate gets Q331/Q332 / Q405 / Q333 (Q305=0), or row Q305 of the
-  presets.
+- ``TCH PROBE 400 / 408 - 413 / 417 / 419 - 424 / 427 / 431`` on the nominal workpiece (TNC 320 cycle manual 340
+  55x-04, "Executing touch probe cycles", the cycles' sections; :func:`_touch_probe`): the touch points where the data
+  put the surface, the datum moved so the probed centre / coordinate gets Q331/Q332 / Q405 / Q333 (Q305=0), or row
+  Q305 of the presets; the results (measured = nominal, deviations 0, Q180 = 1).
 - ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
@@ -862,13 +862,14 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
 
 
 def _touch_probe(t: _Tnc, line: int, up: str) -> None:
-    """``TCH PROBE 408-413/417/419`` in the XY plane, probe axis Z, the touch probe table of ``context.touch_probe``
-    (SET_UP, F, FMAX, DIST), the tip radius that row's or else the tool radius. Every move is a feed move (FMAX
-    column or F): where below the clearance height Q260 the probe rises to it first, then XY, then Z. The side
-    touch points: 410/411 left, bottom, right, top; 408/409 the minus side first (the reader's reading)."""
+    """``TCH PROBE 400/408-413/417/419-424/427/431`` in the XY plane, probe axis Z, the touch probe table of
+    ``context.touch_probe`` (SET_UP, F, FMAX, DIST), the tip radius that row's or else the tool radius. Every move
+    is a feed move (FMAX column or F): where below the clearance height Q260 the probe rises to it first, then XY,
+    then Z. The side touch points: 410/411 left, bottom, right, top; 408/409 the minus side first (the reader's
+    reading). The measuring cycles 421-424 probe as 412/413/410/411 (centre Q273/Q274, sides Q282/Q283)."""
     m = re.match(r"TCH\s*PROBE\s*(\d+)", up)
     number = int(m.group(1))
-    if number not in (408, 409, 410, 411, 412, 413, 417, 419):
+    if number not in (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 427, 431):
         raise ReferenceError(f"TCH PROBE {number}")
     p = {"Q301": 1.0, "Q305": 0.0, "Q331": 0.0, "Q332": 0.0, "Q333": 0.0, "Q381": 0.0, "Q423": 4.0, "Q365": 1.0,
          "Q303": 1.0, "Q405": 0.0}
@@ -900,44 +901,81 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
         go((x, y, z))
         go((x, y, z + gap))
 
-    move = np.zeros(3)
-    results = {412: ("Q151 Q321", "Q152 Q322", "Q153 Q262"), 410: ("Q151 Q321", "Q152 Q322", "Q154 Q323", "Q155 Q324"),
-               408: ("Q166 Q311", f"Q157 Q{320 + int(p.get('Q272', 1))}"), 417: ("Q160 Q294",)}
-    for pair in results.get(number - (number in (409, 411, 413)), ()):
-        result, nominal = pair.split()
-        t.q[result] = p[nominal]
+    move = np.full(3, np.nan)
+    if number in (421, 422, 423, 424):  # as the datum cycles, on their own parameter numbers
+        for mine, theirs in (("Q321", "Q273"), ("Q322", "Q274"), ("Q323", "Q282"), ("Q324", "Q283")):
+            p[mine] = p.get(theirs, 0.0)
+        number = {421: 412, 422: 413, 423: 410, 424: 411}[number]
+        p["Q381"] = 0.0
+        t.q.update({"Q161": 0.0, "Q162": 0.0, "Q163": 0.0, "Q164": 0.0, "Q165": 0.0, "Q180": 1.0, "Q181": 0.0,
+                    "Q182": 0.0})
+        measuring = True
+    else:
+        measuring = False
     if number == 417:
         probe_down(p["Q263"] * t.scale, p["Q264"] * t.scale, p["Q294"] * t.scale)
         move[2] = (p["Q294"] - p["Q333"]) * t.scale
-    elif number == 419:
-        axis, d = int(p["Q272"]) - 1, p["Q267"]
-        pt = np.array([p["Q263"], p["Q264"], p["Q261"]]) * t.scale
-        touch = pt.copy()
-        if axis < 2:
-            touch[axis] -= d * tip
-        start = touch.copy()
-        start[axis] -= d * gap
-        approach(*start)
-        go(touch)
-        go(start)
-        move[axis] = pt[axis] - p["Q333"] * t.scale
+        t.q["Q160"] = p["Q294"]
+    elif number == 431:
+        for k in ((263, 264, 294), (265, 266, 295), (296, 297, 298)):
+            probe_down(*(p[f"Q{n}"] * t.scale for n in k))
+        t.q.update({"Q173": p["Q294"], "Q174": p["Q295"], "Q175": p["Q298"]})
+    elif number in (400, 419, 420, 427):
+        _axis_points(t, p, number, tip, gap, go, approach, move)
     else:
         _side_touches(t, p, number, tip, gap, go, approach)
         if number in (408, 409):
             axis = int(p["Q272"]) - 1
             move[axis] = (p[f"Q{321 + axis}"] - p["Q405"]) * t.scale
+            t.q.update({"Q166": p["Q311"], "Q157": p[f"Q{321 + axis}"]})
         else:
             move[:2] = (p["Q321"] - p["Q331"]) * t.scale, (p["Q322"] - p["Q332"]) * t.scale
+            t.q.update({"Q151": p["Q321"], "Q152": p["Q322"]})
+            t.q.update({"Q153": p["Q262"]} if number in (412, 413) else {"Q154": p["Q323"], "Q155": p["Q324"]})
         if p["Q381"] == 1:
             probe_down(p["Q382"] * t.scale, p["Q383"] * t.scale, p["Q384"] * t.scale)
             move[2] = (p["Q384"] - p["Q333"]) * t.scale
     go((*t.prog()[:2], high))
+    if measuring or np.all(np.isnan(move)):
+        return
+    move = np.nan_to_num(move)
     presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
     row = int(p["Q305"])
     if row == 0:
         t.overrides[t.preset] = t.preset_point() + move
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
+
+
+def _axis_points(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach, move: np.ndarray) -> None:
+    """400/420 (two points Q263/Q264, Q265/Q266), 419/427 (one, Q263/Q264): probed along the axis Q272 (3: Z,
+    touching at Q261) in the direction Q267 at the height Q261; between the two up to Q260 when Q301=1."""
+    pts = [(p["Q263"], p["Q264"])] + ([(p["Q265"], p["Q266"])] if number in (400, 420) else [])
+    axis, d = int(p["Q272"]) - 1, p["Q267"]
+    for k, (x, y) in enumerate(pts):
+        touch = np.array([x, y, p["Q261"]]) * t.scale
+        if axis < 2:
+            touch[axis] -= d * tip
+        start = touch.copy()
+        start[axis] -= d * gap
+        if k == 0:
+            approach(*start)
+        elif p["Q301"] == 1:
+            go((*t.prog()[:2], p["Q260"] * t.scale))
+            go((start[0], start[1], p["Q260"] * t.scale))
+            go(start)
+        else:
+            go(start)
+        go(touch)
+        go(start)
+    value = (pts[-1][0], pts[-1][1], p["Q261"])[axis]
+    if number == 419:
+        move[axis] = (value - p["Q333"]) * t.scale
+    elif number == 427:
+        t.q.update({"Q160": value, "Q180": 1.0, "Q181": 0.0, "Q182": 0.0})
+    elif number == 420:
+        (x1, y1), (x2, y2) = pts
+        t.q["Q150"] = 0.0 if axis == 2 else math.degrees(math.atan2(y2 - y1, x2 - x1))
 
 
 def _side_touches(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach) -> None:

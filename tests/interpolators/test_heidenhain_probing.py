@@ -176,6 +176,75 @@ def test_419_in_the_touch_probe_axis_probes_down_to_q261():
     assert prog.blocks[-1].target[2] == pytest.approx(CTX.offset("G54")[2] + 12.0)
 
 
+def test_421_measure_hole_results_deviations_and_status():
+    prog = run("3 TCH PROBE 421 MEASURE HOLE Q273=+50 Q274=+50 Q262=+75 Q325=+0 Q247=+60 Q261=-5 Q320=+0 Q260=+20 "
+               "Q301=+1 Q275=+75.12 Q276=+74.95 Q279=+0.1 Q280=+0.1 Q281=+1 Q309=+0 Q330=+0 Q423=4 Q365=1\n"
+               "4 L X+Q151 Y+Q152 Z+Q153 FMAX\n5 L X+Q161 Y+Q162 Z+Q163 FMAX\n6 L X+Q180 Y+Q181 Z+Q182 FMAX")
+    touches = [r for r in moves(prog, 4) if r[3] == 100]
+    # four touches on the D75 wall at 0, 60, 120, 180 degrees (no tip radius), probed from 2 mm inside
+    assert [(round(np.hypot(x - 50, y - 50), 6), round(np.degrees(np.arctan2(y - 50, x - 50)), 6), z)
+            for x, y, z, _ in touches] == [(37.5, 0, -5), (37.5, 60, -5), (37.5, 120, -5), (37.5, 180, -5)]
+    g54 = np.array(CTX.offset("G54"))
+    # the datum stays; Q151, Q152 = the centre, Q153 = the diameter, deviations 0, Q180 = 1 (within tolerance)
+    assert [tuple(np.round(b.target - g54, 6)) for b in prog.blocks[-3:]] == [(50, 50, 75), (0, 0, 0), (1, 0, 0)]
+    assert "TCH PROBE 421: the measuring log (Q281=1) is not written" in prog.notes
+
+
+def test_424_measure_rectangle_outside_paraxial_and_results():
+    prog = run("3 TCH PROBE 424 MEAS. RECTAN. OUTS. Q273=+0 Q274=+0 Q282=+60 Q283=+40 Q261=-5 Q320=+2 Q260=+30 "
+               "Q301=+0 Q284=+0 Q285=+0 Q286=+0 Q287=+0 Q279=+0 Q280=+0 Q281=+0\n"
+               "4 L X+Q154 Y+Q155 Z+Q164 FMAX")
+    rows = moves(prog, 4)
+    assert [r for r in rows if r[3] == 100] == [(-30, 0, -5, 100), (0, -20, -5, 100), (30, 0, -5, 100),
+                                               (0, 20, -5, 100)]
+    assert (-34, -24, -5, 2000) in rows and (34, 24, -5, 2000) in rows  # round the stud's corners, 4 mm off
+    assert np.allclose(prog.blocks[-1].target - CTX.offset("G54"), [60.0, 40.0, 0.0])
+
+
+def test_423_nominal_outside_its_own_limits_is_scrap():
+    prog = checked_program(HEAD + "3 TCH PROBE 423 Q273=+0 Q274=+0 Q282=+60 Q283=+40 Q261=-5 Q320=+2 Q260=+30 "
+                           "Q284=+59.9 Q285=+59.8\n4 L X+Q180 Y+Q181 Z+Q182 FMAX\nEND PGM T MM\n", CTX, check=False)
+    # a pocket larger than its maximum: scrap (TNC 320 cycle manual 16.1, "Classification of results")
+    assert np.allclose(prog.blocks[-1].target - CTX.offset("G54"), [0.0, 0.0, 1.0])
+    assert "TCH PROBE 423: the nominal workpiece is outside the cycle's limits (scrap)" in prog.notes
+
+
+def test_427_measure_coordinate():
+    prog = run("3 TCH PROBE 427 MEASURE COORDINATE Q263=+10 Q264=+3.5 Q261=-5 Q320=+0 Q272=+2 Q267=-1 Q260=+20 "
+               "Q281=+0 Q288=+0 Q289=+0 Q309=+0 Q330=+0\n4 L X+Q160 FMAX", context=TOOL3)
+    # probing in -Y onto Y+3.5: the tip's centre (radius 3) stops at Y+6.5, starts SET_UP 2 mm before it
+    assert moves(prog, 4) == [(10, 8.5, 100, 2000), (10, 8.5, -5, 2000), (10, 6.5, -5, 100), (10, 8.5, -5, 2000),
+                              (10, 8.5, 20, 2000)]
+    assert prog.blocks[-1].target[0] == pytest.approx(CTX.offset("G54")[0] + 3.5)  # Q160 = 3.5
+
+
+def test_420_measure_angle_two_touches_at_the_clearance_height_between():
+    prog = run("3 TCH PROBE 420 MEASURE ANGLE Q263=+10 Q264=+10 Q265=+15 Q266=+40 Q272=+1 Q267=-1 Q261=-5 Q320=+0 "
+               "Q260=+10 Q301=+1 Q281=+0\n4 L X+Q150 FMAX")
+    assert moves(prog, 4) == [(12, 10, 100, 2000), (12, 10, -5, 2000), (10, 10, -5, 100), (12, 10, -5, 2000),
+                              (12, 10, 10, 2000), (17, 40, 10, 2000), (17, 40, -5, 2000), (15, 40, -5, 100),
+                              (17, 40, -5, 2000), (17, 40, 10, 2000)]
+    # Q150: the line through (10, 10) and (15, 40) from the reference axis
+    assert prog.blocks[-1].target[0] == pytest.approx(CTX.offset("G54")[0] + np.degrees(np.arctan2(30, 5)))
+
+
+def test_400_basic_rotation_is_zero_and_leaves_the_presets():
+    prog = run("3 TCH PROBE 400 BASIC ROTATION Q263=+20 Q264=+5 Q265=+20 Q266=-5 Q272=+1 Q267=+1 Q261=-3 "
+               "Q320=+2 Q260=+10 Q301=+0 Q307=+0 Q305=+2\n4 CYCL DEF 247 DATUM SETTING Q339=2\n5 L X+0 Y+0 FMAX")
+    assert moves(prog, 4) == [(16, 5, 100, 2000), (16, 5, -3, 2000), (20, 5, -3, 100), (16, 5, -3, 2000),
+                              (16, -5, -3, 2000), (20, -5, -3, 100), (16, -5, -3, 2000), (16, -5, 10, 2000)]
+    assert np.allclose(prog.blocks[-1].target[:2], CTX.offset("G55")[:2])  # row 2 keeps its datum
+    assert "TCH PROBE 400: basic rotation 0 (the nominal workpiece is not misaligned)" in prog.notes
+
+
+def test_431_measure_plane_three_touches_down():
+    prog = run("3 TCH PROBE 431 MEASURE PLANE Q263=+0 Q264=+0 Q294=+0 Q265=+50 Q266=+0 Q295=+0 Q296=+0 Q297=+30 "
+               "Q298=+0 Q320=+0 Q260=+20 Q281=+0\n4 L X+Q170 Y+Q173 Z+Q175 FMAX")
+    assert [r for r in moves(prog, 4) if r[3] == 100] == [(0, 0, 0, 100), (50, 0, 0, 100), (0, 30, 0, 100)]
+    assert moves(prog, 4)[3:6] == [(0, 0, 20, 2000), (50, 0, 20, 2000), (50, 0, 2, 2000)]
+    assert np.allclose(prog.blocks[-1].target, CTX.offset("G54"))
+
+
 def test_q305_row_of_the_preset_table_activated_by_cycle_247():
     prog = run("3 TCH PROBE 417 Q263=+0 Q264=+0 Q294=+10 Q320=+0 Q260=+30 Q305=2 Q333=+0 Q303=1\n"
                "4 L X+0 Y+0 Z+40 FMAX\n5 CYCL DEF 247 DATUM SETTING Q339=2\n6 L X+0 Y+0 Z+40 FMAX")
@@ -205,8 +274,11 @@ def test_touch_probe_table_from_the_machine_file(tmp_path):
 
 
 @pytest.mark.parametrize("body, words", [
-    ("TCH PROBE 420 MEASURE ANGLE Q263=+0", "TCH PROBE 420 is not modelled"),
+    ("TCH PROBE 401 ROT OF 2 HOLES Q268=+0", "TCH PROBE 401 is not modelled"),
     ("TCH PROBE 410 Q321=+0 Q322=+0 Q323=+50 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 410 lacks Q324"),
+    ("TCH PROBE 431 Q263=+0 Q264=+0 Q294=+0 Q265=+50 Q266=+0 Q295=+1 Q296=+0 Q297=+30 Q298=+0 Q320=+0 Q260=+20",
+     "a tilted plane (its spatial angles Q170 - Q172) is not modelled"),
+    ("TCH PROBE 420 Q263=+0 Q264=+0 Q265=+0 Q266=+9 Q272=+4 Q267=+1 Q261=-3 Q320=+2 Q260=+20", "Q272 = 1, 2 or 3"),
     ("TCH PROBE 408 Q321=+0 Q322=+0 Q311=+10 Q272=+3 Q261=-3 Q320=+2 Q260=+20", "Q272 = 1 or 2"),
     ("TCH PROBE 419 Q263=+0 Q264=+0 Q261=-3 Q320=+2 Q260=+20 Q272=+1 Q267=+0", "Q267 = +1 or -1"),
     ("TCH PROBE 411 Q321=+0 Q322=+0 Q323=+50 Q324=+50 Q261=-3 Q320=+30 Q260=+20", "beyond the touch probe"),
