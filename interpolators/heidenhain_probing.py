@@ -65,6 +65,9 @@ cycle gives: a hole or pocket too large or a stud too small is scrap, the other 
 * 421 / 422 MEASURE HOLE / CIRCLE OUTSIDE: as 412 / 413 on the centre Q273, Q274; Q151 - Q153, Q161 - Q163;
 * 423 / 424 MEASURE RECTANGLE INSIDE / OUTSIDE: as 410 / 411 on the centre Q273, Q274 and the sides Q282,
   Q283; Q151, Q152, Q154, Q155, Q161, Q162, Q164, Q165;
+* 426 MEASURE RIDGE WIDTH: touch point 1 (Q263, Q264) probed in the minus direction of the measuring axis Q272
+  ("the first probing is always in the negative direction"), point 2 (Q265, Q266) in the plus direction, over
+  Q260 between them; Q156 = their distance, Q157 = their middle, Q166 = Q156 - Q311;
 * 427 MEASURE COORDINATE: one touch as 419's; Q160 = the coordinate (the manual: a stud's dimension);
 * 431 MEASURE PLANE: three touches down the touch probe axis as 417's; Q173 - Q175 = the heights; a plane
   level with the working plane: the angles Q158, Q159, Q170 - Q172 are 0; a tilted one is an error (its
@@ -76,7 +79,7 @@ the active preset, Q305=n with Q303=1 row n of the preset table, with Q303=0 row
 vcnc does not model: noted); a touch point farther from its starting point than the DIST column is an error
 (the TNC reports it unreachable).
 
-Not modelled (an error naming the cycle): the other probe cycles (0, 1, 401-405, 414-416, 418, 425, 426, 430,
+Not modelled (an error naming the cycle): the other probe cycles (0, 1, 401-405, 414-416, 418, 425, 430,
 444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool setter's position is
 not known).
 """
@@ -99,7 +102,8 @@ __all__ = ["PROBE_RE", "ProbeMove", "ProbeRun", "PROBE_CYCLES", "probe_run", "re
 PROBE_RE = re.compile(r"TCH\s*PROBE\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I | re.S)
 
 #: Cycles run here.
-PROBE_CYCLES: tuple[int, ...] = (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 427, 431)
+PROBE_CYCLES: tuple[int, ...] = (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 426, 427,
+                                 431)
 
 #: Tool measurement with the tool touch probe TT (TNC 320 / TNC 640 touch probe cycles manual, "Touch probe
 #: cycles: automatic tool measurement").
@@ -116,6 +120,7 @@ _REQUIRED = {417: (263, 264, 294, 320, 260), 412: _CIRCLE, 413: _CIRCLE, 410: _R
              408: _SLOT, 409: _SLOT, 419: _ONE_AXIS, 427: _ONE_AXIS, 400: _TWO_POINTS, 420: _TWO_POINTS,
              421: (273, 274, 262, 325, 247, 261, 320, 260), 422: (273, 274, 262, 325, 247, 261, 320, 260),
              423: (273, 274, 282, 283, 261, 320, 260), 424: (273, 274, 282, 283, 261, 320, 260),
+             426: (263, 264, 265, 266, 272, 261, 320, 260, 311),
              431: (263, 264, 294, 265, 266, 295, 296, 297, 298, 320, 260)}
 #: The measuring cycles that probe as a datum cycle does, and their parameters' numbers in that cycle's.
 _INSPECTION = {421: 412, 422: 413, 423: 410, 424: 411}
@@ -231,6 +236,8 @@ def probe_run(number: int, q: dict[int, float], *, here: np.ndarray, plane: int,
             out.status([(nominal, q[288], q[289])], inside=False)
     elif number in (400, 420):
         _edge(out, q)
+    elif number == 426:
+        _ridge(out, q)
     elif number == 431:
         _plane(out, q)
     else:
@@ -270,28 +277,30 @@ class _Outcome:
             self.notes.append(f"TCH PROBE {self.number}: the nominal workpiece is outside the cycle's limits "
                               f"({'scrap' if scrap else 'rework'})")
 
-    def axis_touches(self, q: dict[int, float], points: list[tuple[float, float]]) -> tuple[int, float]:
+    def axis_touches(self, q: dict[int, float], points: list[tuple[float, float]],
+                     signs: tuple[float, ...] | None = None) -> tuple[int, float]:
         """Touches at ``points`` (reference axis, minor axis) [program units] at the measuring height Q261 along
         the measuring axis Q272 (1, 2, 3: the touch probe axis, where the touch point is Q261: our reading) in the
-        direction Q267, moving between them at Q260 (Q301=1) or straight at the measuring height; the axis (0 1
-        2) and the nominal coordinate of the last touch [program units]."""
-        if q[272] not in (1, 2, 3) or q[267] not in (1, -1):
-            self.fail(f"measuring axis Q272={q[272]:g}, traverse direction Q267={q[267]:g}",
+        direction Q267 (or ``signs``, one per point, moving over Q260 between them), moving between them at Q260
+        (Q301=1) or straight at the measuring height; the axis (0 1 2) and the nominal coordinate of the last
+        touch [program units]."""
+        if q[272] not in (1, 2, 3) or (signs is None and q[267] not in (1, -1)):
+            self.fail(f"measuring axis Q272={q[272]:g}, traverse direction Q267={q.get(267, 0):g}",
                       "Q272 = 1, 2 or 3 and Q267 = +1 or -1")
         path, scale = self.path, self.scale
         k = int(q[272]) - 1
         axis = (*PLANE_AXES[path.plane], path.plane)[k]
-        offset = np.zeros(3)
-        offset[axis] = q[267]
         nominal = 0.0
         for n, (u, v) in enumerate(points):
+            offset = np.zeros(3)
+            offset[axis] = q[267] if signs is None else signs[n]
             nominal = (u, v, q[261])[k]
             touch = _point(path.plane, u * scale, v * scale, q[261] * scale)
             touch -= offset * (self.tip if k < 2 else 0.0)  # in the plane the tip's centre stops a radius short
             start = touch - offset * (q[320] * scale + path.probe.set_up)
             if n == 0:
                 path.pre_position(start, q[260] * scale)
-            elif q[301] == 1:
+            elif q[301] == 1 or signs is not None:
                 path.axis(q[260] * scale)
                 path.line(_point(path.plane, *(start[list(PLANE_AXES[path.plane])]), q[260] * scale), path.probe.fmax)
                 path.axis(start[path.plane])
@@ -299,6 +308,20 @@ class _Outcome:
                 path.line(start, path.probe.fmax)
             path.touch(start, touch, self.where, f"TCH PROBE {self.number} touch point {n + 1}")
         return axis, nominal
+
+
+def _ridge(out: _Outcome, q: dict[int, float]) -> None:
+    """426 MEASURE RIDGE WIDTH: touch point 1 (Q263, Q264) probed in the minus direction of the measuring axis
+    Q272, point 2 (Q265, Q266) in the plus direction ("the first probing is always in the negative direction"),
+    over Q260 between them. Q156 = the distance of the two touch points along the axis, Q157 = their middle,
+    Q166 = Q156 - the nominal length Q311 (0 when the points lie Q311 apart, as on the nominal ridge)."""
+    if q[272] not in (1, 2):
+        out.fail(f"measuring axis Q272={q[272]:g}", "Q272 = 1 or 2")
+    out.axis_touches(q, [(q[263], q[264]), (q[265], q[266])], signs=(-1.0, 1.0))
+    first, second = (q[263], q[265]) if q[272] == 1 else (q[264], q[266])
+    width = first - second
+    out.results.update({156: width, 157: (first + second) / 2.0, 166: width - q[311]})
+    out.status([(width, q[288], q[289])], inside=False)
 
 
 def _edge(out: _Outcome, q: dict[int, float]) -> None:

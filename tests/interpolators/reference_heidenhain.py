@@ -869,7 +869,7 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
     reading). The measuring cycles 421-424 probe as 412/413/410/411 (centre Q273/Q274, sides Q282/Q283)."""
     m = re.match(r"TCH\s*PROBE\s*(\d+)", up)
     number = int(m.group(1))
-    if number not in (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 427, 431):
+    if number not in (400, 408, 409, 410, 411, 412, 413, 417, 419, 420, 421, 422, 423, 424, 426, 427, 431):
         raise ReferenceError(f"TCH PROBE {number}")
     p = {"Q301": 1.0, "Q305": 0.0, "Q331": 0.0, "Q332": 0.0, "Q333": 0.0, "Q381": 0.0, "Q423": 4.0, "Q365": 1.0,
          "Q303": 1.0, "Q405": 0.0}
@@ -920,7 +920,7 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
         for k in ((263, 264, 294), (265, 266, 295), (296, 297, 298)):
             probe_down(*(p[f"Q{n}"] * t.scale for n in k))
         t.q.update({"Q173": p["Q294"], "Q174": p["Q295"], "Q175": p["Q298"]})
-    elif number in (400, 419, 420, 427):
+    elif number in (400, 419, 420, 426, 427):
         _axis_points(t, p, number, tip, gap, go, approach, move)
     else:
         _side_touches(t, p, number, tip, gap, go, approach)
@@ -948,11 +948,13 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
 
 
 def _axis_points(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach, move: np.ndarray) -> None:
-    """400/420 (two points Q263/Q264, Q265/Q266), 419/427 (one, Q263/Q264): probed along the axis Q272 (3: Z,
-    touching at Q261) in the direction Q267 at the height Q261; between the two up to Q260 when Q301=1."""
-    pts = [(p["Q263"], p["Q264"])] + ([(p["Q265"], p["Q266"])] if number in (400, 420) else [])
-    axis, d = int(p["Q272"]) - 1, p["Q267"]
+    """400/420/426 (two points Q263/Q264, Q265/Q266), 419/427 (one, Q263/Q264): probed along the axis Q272 (3: Z,
+    touching at Q261) in the direction Q267 (426: -, then +) at the height Q261; between the two up to Q260 when
+    Q301=1 (426: always)."""
+    pts = [(p["Q263"], p["Q264"])] + ([(p["Q265"], p["Q266"])] if number in (400, 420, 426) else [])
+    axis = int(p["Q272"]) - 1
     for k, (x, y) in enumerate(pts):
+        d = (-1.0, 1.0)[k] if number == 426 else p["Q267"]
         touch = np.array([x, y, p["Q261"]]) * t.scale
         if axis < 2:
             touch[axis] -= d * tip
@@ -960,7 +962,7 @@ def _axis_points(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, appr
         start[axis] -= d * gap
         if k == 0:
             approach(*start)
-        elif p["Q301"] == 1:
+        elif p["Q301"] == 1 or number == 426:
             go((*t.prog()[:2], p["Q260"] * t.scale))
             go((start[0], start[1], p["Q260"] * t.scale))
             go(start)
@@ -976,6 +978,10 @@ def _axis_points(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, appr
     elif number == 420:
         (x1, y1), (x2, y2) = pts
         t.q["Q150"] = 0.0 if axis == 2 else math.degrees(math.atan2(y2 - y1, x2 - x1))
+    elif number == 426:
+        a, b = pts[0][axis], pts[1][axis]
+        t.q.update({"Q156": a - b, "Q157": (a + b) / 2, "Q166": a - b - p["Q311"], "Q180": 1.0, "Q181": 0.0,
+                    "Q182": 0.0})
 
 
 def _side_touches(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach) -> None:

@@ -218,6 +218,16 @@ def test_427_measure_coordinate():
     assert prog.blocks[-1].target[0] == pytest.approx(CTX.offset("G54")[0] + 3.5)  # Q160 = 3.5
 
 
+def test_426_ridge_width_first_touch_in_the_minus_direction():
+    prog = run("3 TCH PROBE 426 MEASURE RIDGE WIDTH Q263=+25 Q264=+0 Q265=-25 Q266=+0 Q272=+1 Q261=-5 Q320=+0 "
+               "Q260=+10 Q311=+50 Q288=+0 Q289=+0 Q281=+0\n4 L X+Q156 Y+Q157 Z+Q166 FMAX", context=TOOL3)
+    # the tip's centre (radius 3) stops 3 mm off each face, starts SET_UP 2 mm before it; over Q260 between
+    assert moves(prog, 4) == [(30, 0, 100, 2000), (30, 0, -5, 2000), (28, 0, -5, 100), (30, 0, -5, 2000),
+                              (30, 0, 10, 2000), (-30, 0, 10, 2000), (-30, 0, -5, 2000), (-28, 0, -5, 100),
+                              (-30, 0, -5, 2000), (-30, 0, 10, 2000)]
+    assert np.allclose(prog.blocks[-1].target - CTX.offset("G54"), [50.0, 0.0, 0.0])  # Q156 50, Q157 0, Q166 0
+
+
 def test_420_measure_angle_two_touches_at_the_clearance_height_between():
     prog = run("3 TCH PROBE 420 MEASURE ANGLE Q263=+10 Q264=+10 Q265=+15 Q266=+40 Q272=+1 Q267=-1 Q261=-5 Q320=+0 "
                "Q260=+10 Q301=+1 Q281=+0\n4 L X+Q150 FMAX")
