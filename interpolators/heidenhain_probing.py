@@ -79,9 +79,9 @@ the active preset, Q305=n with Q303=1 row n of the preset table, with Q303=0 row
 vcnc does not model: noted); a touch point farther from its starting point than the DIST column is an error
 (the TNC reports it unreachable).
 
-Not modelled (an error naming the cycle): the other probe cycles (0, 1, 401-405, 414-416, 418, 425, 430,
-444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool setter's position is
-not known).
+Not modelled (an error naming the cycle, and for some why): the other probe cycles (0, 1, 401-405, 414-416,
+418, 425, 430, 444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool
+setter's position is not known).
 """
 
 from __future__ import annotations
@@ -204,13 +204,23 @@ class _Path:
         self.line(start, self.probe.fmax)
 
 
+#: Why some workpiece probe cycles are not run.
+_WHY = {**dict.fromkeys((401, 418, 430), "the holes' diameters are not in its data, so the nominal workpiece gives no "
+                                    "touch points"),
+        **dict.fromkeys((402, 403, 405), "it turns a rotary axis or table to align the workpiece"),
+        404: "it sets a basic rotation (a turned coordinate system)",
+        425: "its data give the starting point, not where the walls lie",
+        **dict.fromkeys((414, 415), "no manual page found for where it touches")}
+
+
 def refuse_probe(number: int, where: Where, column: int) -> None:
     """The error of a probe cycle vcnc does not run."""
     if number in _TOOL_CYCLES:
         where.fail(f"TCH PROBE {number} (tool measurement with the tool touch probe TT) is not modelled: the tool "
                    "setter's position is not known", column=column, text=where.text,
                    expected=f"TCH PROBE {', '.join(map(str, PROBE_CYCLES))} (workpiece probing)")
-    where.fail(f"TCH PROBE {number} is not modelled (vcnc runs the touch probe cycles "
+    why = f": {_WHY[number]}" if number in _WHY else ""
+    where.fail(f"TCH PROBE {number} is not modelled{why} (vcnc runs the touch probe cycles "
                f"{', '.join(map(str, PROBE_CYCLES))} on the nominal workpiece)", column=column, text=where.text,
                expected=f"TCH PROBE {', '.join(map(str, PROBE_CYCLES))}")
 

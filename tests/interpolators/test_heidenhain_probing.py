@@ -284,7 +284,8 @@ def test_touch_probe_table_from_the_machine_file(tmp_path):
 
 
 @pytest.mark.parametrize("body, words", [
-    ("TCH PROBE 401 ROT OF 2 HOLES Q268=+0", "TCH PROBE 401 is not modelled"),
+    ("TCH PROBE 401 ROT OF 2 HOLES Q268=+0", "TCH PROBE 401 is not modelled: the holes' diameters are not in its"),
+    ("TCH PROBE 444 PROBING IN 3-D Q263=+0", "TCH PROBE 444 is not modelled (vcnc runs the touch probe cycles 400,"),
     ("TCH PROBE 410 Q321=+0 Q322=+0 Q323=+50 Q261=-3 Q320=+2 Q260=+20", "TCH PROBE 410 lacks Q324"),
     ("TCH PROBE 431 Q263=+0 Q264=+0 Q294=+0 Q265=+50 Q266=+0 Q295=+1 Q296=+0 Q297=+30 Q298=+0 Q320=+0 Q260=+20",
      "a tilted plane (its spatial angles Q170 - Q172) is not modelled"),
