@@ -28,7 +28,9 @@ arguments").
   argument address (G, L, O, P) in such a block is an error, as the manuals at hand do not say what it does; a
   block of a sequence number alone calls nothing.
 * ``G67`` cancels the modal call specified last (G66 or G66.1; a second G67 the one before it); without one it
-  does nothing (G67 is the power-on state of its group). The rest of its block runs, and calls nothing.
+  does nothing (G67 is the power-on state of its group). The rest of its block runs, and calls nothing. A G67 in
+  a modal call's macro cancels the modal call specified last as anywhere else (our reading: the group's modal
+  state is one for all levels): with one G66, the macro's own, which makes no call after the macro returns.
 * Nesting: modal calls stack. A move (G66) or block (G66.1) of the main program, or of an M98 subprogram or G65
   macro it calls, calls the modal call specified last; a move or block of the macro that modal call runs calls
   the one specified before it, and so on: the oldest modal call's macro calls none (so one G66's macro does not

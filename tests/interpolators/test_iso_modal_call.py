@@ -87,6 +87,12 @@ def test_g66_1_calls_the_macro_for_each_block_with_its_words_as_arguments():
                            [20.0, 5.0, 5.0], [20.0, 5.0, -3.0], [20.0, 5.0, 5.0], [0, 5.0, 5.0]]
 
 
+def test_g67_in_the_macro_cancels_the_modal_call_for_the_moves_after_it():
+    """The macro's G67 cancels its own G66 (the one specified last): X1. calls it, X2. after it does not."""
+    text = START + "G66 P9109\nX1.\nX2.\nM30\nO9109\nG67\nG0 Z5.\nM99\n"
+    assert _ends(text) == [[0, 0, 10.0], [1.0, 0, 10.0], [1.0, 0, 5.0], [2.0, 0, 5.0]]
+
+
 def test_g67_with_a_move_in_its_block_runs_the_move_without_a_call():
     text = START + "G66 P9100 A1. B2.\nG67 X5.\nM30\n" + DRILL
     assert _ends(text) == [[0, 0, 10.0], [5.0, 0, 10.0]]
