@@ -642,11 +642,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         m98 = next((w for w in calls if w.letter == "M" and w.value in (97, 98)), None)
         m99 = next((w for w in calls if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
-            due = None if modal is None or modal_code is not None else modal.due(words, _modal_limit(frames))
-            if due is None or not modal.calls[due].each_block:  # a G66.1 call takes the block's words instead
-                yield FlowLine(where.line, where.text, words, where.file)
-            pc = pc + 1 if due is None else _modal_call(prog, pc, words, modal, due, params, frames,
-                                                        decimal_point_input, on_note)
+            pc = yield from _block(prog, pc, words, where, None if modal_code else modal, params, frames,
+                                   decimal_point_input, on_note)
             continue
         if m98 is not None and on_call_words is not None:
             words = _call_words_only(words, m98, where, on_call_words)
@@ -654,6 +651,19 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if pc < 0:  # M99 in the main program: the run ends there
             return
     _no_return(prog, frames)
+
+
+def _block(prog: _Program, pc: int, words: list[Word], where: Where, modal: ModalCalls | None, params: Parameters,
+           frames: list[_Frame], decimal_point_input: str | None, on_note: Callable[[str], None] | None
+           ) -> Generator[FlowLine, None, int]:
+    """An ordinary block at ``pc`` (:func:`run`): yields it, then makes the G66 call it is due, or makes the G66.1
+    call it is due instead of running (the call takes its words); returns the next line's index."""
+    due = None if modal is None else modal.due(words, _modal_limit(frames))
+    if due is None or not modal.calls[due].each_block:
+        yield FlowLine(where.line, where.text, words, where.file)
+    if due is None:
+        return pc + 1
+    return _modal_call(prog, pc, words, modal, due, params, frames, decimal_point_input, on_note)
 
 
 def _call_words_only(words: list[Word], m98: Word, where: Where,
