@@ -126,6 +126,7 @@ from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_offsets import (
@@ -410,6 +411,7 @@ class _State:
     spindle_ccw: bool = False  # the last start was M4
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
+    modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
@@ -491,7 +493,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     st = _State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
-                motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc")
+                motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc",
+                modal_calls=ModalCalls() if dialect.name == "fanuc" else None)
     notes = _Notes()
     raw_lines = lines_of(text)
     text, homing, wrapped = _prepared_text(text, source, dialect.name, notes)
@@ -503,14 +506,15 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     macro_b = dialect.name in ("fanuc", "haas")
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        abbreviations=dialect.name == "fanuc",
+                        abbreviations=dialect.name == "fanuc", fanuc=dialect.name == "fanuc",
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
-                on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None)
+                on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None,
+                modal_calls=st.modal_calls)
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:

@@ -62,9 +62,10 @@ from pathlib import Path
 from typing import NoReturn
 
 from interpolators._words import Where, lines_of, program_text
-from interpolators.iso_decimal import DECIMAL_LETTERS, integer_literal
 from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
+from interpolators.iso_macro_args import macro_arguments
 from interpolators.iso_messages import active_comment, comment_output, expand
+from interpolators.iso_modal_call import MODAL_CALL_CODES, ModalCall, ModalCalls
 from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
 from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_words, read_words, strip_comments
 from vcnc.core.errors import GCodeError
@@ -93,9 +94,6 @@ _FANUC_PROGRAM = re.compile(r"^\s*(?:[oO]|:)\s*(\d+)\s*$")
 #: File suffixes of part programs searched for a subprogram in another file.
 _PROGRAM_SUFFIXES = frozenset({".nc", ".ngc", ".cnc", ".tap", ".gcode", ".txt", ".iso", ".min", ".mpf", ".spf", ""})
 _NAMED_PROGRAM = re.compile(r"^\s*[oO]\s*(?:\d+[a-zA-Z]\w*|[a-zA-Z]\w*)\s*$")
-#: G65 argument letters (argument specification I) -> local variable number.
-_G65_ARGUMENTS = {"A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11, "M": 13,
-                  **{c: 17 + i for i, c in enumerate("QRSTUVWXYZ")}}
 _KEYWORDS = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do",
              "repeat", "endrepeat", "break", "continue"}
 #: An O-word keyword written with blanks between its letters ("end sub", "else if"): LinuxCNC drops blanks and
@@ -215,7 +213,10 @@ class _Frame:
     return_pc: int
     start_pc: int
     repeats: int
-    kind: str  # "oword" (o-call: parameter frame, endsub returns), "m98" or "g65" (M99 returns)
+    kind: str  # "oword" (o-call: parameter frame, endsub returns), "m98", "g65" or "g66" (M99 returns)
+    #: the modal calls (:mod:`interpolators.iso_modal_call`) the frame's blocks may make: those specified before
+    #: the one with this index (the frame runs its macro, or is called from there); None: all (the main program's)
+    modal: int | None = None
 
 
 class _Program:
@@ -490,14 +491,64 @@ def _condition(prog: _Program, i: int, params: Parameters) -> bool:
 
 
 def _calls(words: list[Word]) -> list[Word]:
-    """The block's words that call or return: G65, M97, M98, M99."""
-    return [w for w in words if w.letter == "G" and w.value == 65 or w.letter == "M" and w.value in (97, 98, 99)]
+    """The block's words that call or return: G65, G66, G66.1, G67, M97, M98, M99."""
+    return [w for w in words if w.letter == "G" and (w.value == 65 or w.value in MODAL_CALL_CODES)
+            or w.letter == "M" and w.value in (97, 98, 99)]
 
 
 def _may_call(code: str, words: list[Word]) -> bool:
     """Whether the block of plain words ``words`` (its text ``code``) calls or returns: only with an M word
-    or a "65" in its text is there one to look for."""
-    return ("M" in code or "m" in code or "65" in code) and bool(_calls(words))
+    or a "65", "66" or "67" in its text is there one to look for."""
+    return ("M" in code or "m" in code or "65" in code or "66" in code or "67" in code) and bool(_calls(words))
+
+
+def _modal_limit(frames: list[_Frame]) -> int | None:
+    """The modal calls the blocks of the innermost frame may make (:attr:`_Frame.modal`)."""
+    return frames[-1].modal if frames else None
+
+
+def _modal_code(prog: _Program, pc: int, words: list[Word], code: Word, modal: ModalCalls, frames: list[_Frame],
+                decimal_point_input: str | None, on_note: Callable[[str], None] | None) -> list[Word]:
+    """A G66 / G66.1 block (specifies a modal call; nothing of it runs) or a G67 block (cancels the modal call
+    specified last); returns the words left to run: a G67 block's others (:mod:`interpolators.iso_modal_call`)."""
+    where = prog.where(pc)
+    others = [w for w in words if w is not code and w.letter == "G" and w.value in MODAL_CALL_CODES]
+    if others:
+        where.fail(f"{code.text} and {others[0].text} in one block (modal macro calls, one group)",
+                   column=others[0].column, text=others[0].text, expected="one of G66, G66.1, G67 per block")
+    if code.value == 67:
+        modal.cancel()
+        return [w for w in words if w is not code]
+    name = "G66.1" if code.value != 66 else "G66"
+    if _modal_limit(frames) is not None:
+        where.fail(f"{name} in a macro that a modal call runs: a modal call specified from inside a modal "
+                   "call's macro is not modelled", column=code.column, text=code.text,
+                   expected=f"{name} in the main program, an M98 subprogram or a G65 macro")
+    start = _called_program(prog, words, code, where, f"{name} modal macro call")
+    arguments, count = macro_arguments(words, where, name, skip=(code,), decimal_point_input=decimal_point_input,
+                                       on_note=on_note)
+    program = int(next(w for w in words if w.letter == "P").value)
+    modal.specify(ModalCall(each_block=code.value != 66, program=program, start=start, arguments=arguments,
+                            repeats=count))
+    return []
+
+
+def _modal_call(prog: _Program, pc: int, words: list[Word], modal: ModalCalls, index: int, params: Parameters,
+                frames: list[_Frame], decimal_point_input: str | None, on_note: Callable[[str], None] | None) -> int:
+    """Make the modal call ``index`` for the block at ``pc`` (its ``words``: a G66.1 call's arguments): enter its
+    program with a new local level; returns the next program counter (the block after ``pc`` if L is 0)."""
+    call = modal.calls[index]
+    arguments = call.arguments
+    if call.each_block:
+        block, _ = macro_arguments(words, prog.where(pc), "G66.1", decimal_point_input=decimal_point_input,
+                                   on_note=on_note, call_block=False)
+        arguments = {**arguments, **block}
+    if call.repeats == 0:
+        return pc + 1
+    params.push_macro(arguments)
+    _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=call.start, repeats=call.repeats - 1, kind="g66",
+                                   modal=index))
+    return call.start
 
 
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
@@ -505,7 +556,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
         on_comment: Callable[[str, str, Where], None] | None = None,
         on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None,
-        on_call_words: Callable[[list[Word], Where], None] | None = None) -> Iterator[FlowLine]:
+        on_call_words: Callable[[list[Word], Where], None] | None = None,
+        modal_calls: ModalCalls | None = None) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
@@ -519,6 +571,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
     ``on_call_words(words, where)``: when given, an M98 block only calls and its other words, read and not
     executed, go to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas).
+    ``modal_calls``: G66, G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`),
+    in force in it; without it they are yielded as words (which the reader refuses).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -534,6 +588,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}
+    modal = modal_calls
     pc = 0
     executed = 0
     while pc < len(prog.code) and (frames or pc < prog.main_end):
@@ -551,7 +606,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             continue
         code = prog.code[pc]
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
-        if words is not None and not _may_call(code, words):  # a line of plain words (most CAM output)
+        if words is not None and not _may_call(code, words) and not (modal and modal.calls):  # most CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
             line.__dict__.update(line=pc - prog.first_line[prog.sources[pc]] + 1, raw=prog.raw[pc].strip(), words=words,
                                  file=prog.sources[pc])
@@ -573,15 +628,22 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc += 1
             continue
         calls = _calls(words)
-        g65 = next((w for w in calls if w.letter == "G"), None)
+        modal_code = next((w for w in calls if w.letter == "G" and w.value != 65), None) if modal else None
+        if modal_code is not None:
+            words = _modal_code(prog, pc, words, modal_code, modal, frames, decimal_point_input, on_note)
+            calls = _calls(words)
+            if not words:
+                pc += 1
+                continue
+        g65 = next((w for w in calls if w.letter == "G" and w.value == 65), None)
         if g65 is not None:
             pc = _macro_call(prog, pc, words, g65, params, frames, decimal_point_input, on_note)
             continue
         m98 = next((w for w in calls if w.letter == "M" and w.value in (97, 98)), None)
         m99 = next((w for w in calls if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
-            yield FlowLine(where.line, where.text, words, where.file)
-            pc += 1
+            pc = yield from _block(prog, pc, words, where, None if modal_code else modal, params, frames,
+                                   decimal_point_input, on_note)
             continue
         if m98 is not None and on_call_words is not None:
             words = _call_words_only(words, m98, where, on_call_words)
@@ -589,6 +651,19 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if pc < 0:  # M99 in the main program: the run ends there
             return
     _no_return(prog, frames)
+
+
+def _block(prog: _Program, pc: int, words: list[Word], where: Where, modal: ModalCalls | None, params: Parameters,
+           frames: list[_Frame], decimal_point_input: str | None, on_note: Callable[[str], None] | None
+           ) -> Generator[FlowLine, None, int]:
+    """An ordinary block at ``pc`` (:func:`run`): yields it, then makes the G66 call it is due, or makes the G66.1
+    call it is due instead of running (the call takes its words); returns the next line's index."""
+    due = None if modal is None else modal.due(words, _modal_limit(frames))
+    if due is None or not modal.calls[due].each_block:
+        yield FlowLine(where.line, where.text, words, where.file)
+    if due is None:
+        return pc + 1
+    return _modal_call(prog, pc, words, modal, due, params, frames, decimal_point_input, on_note)
 
 
 def _call_words_only(words: list[Word], m98: Word, where: Where,
@@ -616,7 +691,8 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
             yield FlowLine(where.line, where.text, rest, where.file)
         if count <= 0:
             return pc + 1
-        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98"))
+        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98",
+                                       modal=_modal_limit(frames)))
         return start
     back_to = next((w for w in words if w.letter == "P"), None) if frames else None
     rest = [w for w in words if w is not m99 and w is not back_to]
@@ -634,7 +710,7 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
         frame.repeats -= 1
         return frame.start_pc
     frames.pop()
-    if frame.kind == "g65":
+    if frame.kind in ("g65", "g66"):
         params.pop()
     return frame.return_pc if back_to is None else _return_to(prog, frame, back_to, where)
 
@@ -658,7 +734,8 @@ def _no_return(prog: _Program, frames: list[_Frame]) -> None:
     the ``M99`` that returns (Haas mill operator's manual, "M98 Subprogram Call": a subprogram ends with
     M99; the call would otherwise end the whole program silently). Named at the innermost call."""
     if frames:
-        call = "G65 macro call" if frames[-1].kind == "g65" else "M98/M97 subprogram call"
+        call = {"g65": "G65 macro call", "g66": "G66/G66.1 modal macro call"}.get(frames[-1].kind,
+                                                                                  "M98/M97 subprogram call")
         prog.fail(frames[-1].return_pc - 1, f"{call}: the called blocks run to the end of the file without the M99 "
                   "that returns", "M99 at the end of the called program (M17 ends a subprogram on Siemens "
                   "and CNCSimulator Pro, not on Fanuc/Haas)")
@@ -746,64 +823,19 @@ def _called_program(prog: _Program, words: list[Word], call: Word, where: Where,
     return prog.fanuc[int(p.value)] + 1
 
 
-def _plain_argument(w: Word, where: Where, decimal_point_input: str | None,
-                    on_note: Callable[[str], None] | None) -> None:
-    """A G65 argument written without a decimal point (Fanuc 0i-MD B-64304EN, "Custom macro", argument
-    specification: "The unit of data passed in an argument without a decimal point corresponds to the least
-    input increment of each address ... may vary according to the system configuration of the machine"). The
-    configuration is Fanuc's DPI (No. 3401#0, "when a decimal point is omitted in an address that can include a
-    decimal point", :mod:`interpolators.iso_decimal`): under DPI = 1 (calculator) the value is read as written,
-    noted; under DPI = 0 (increment) F, D, H, M, S and T, which count in their own unit either way, are read as
-    written, and a distance, angle or other address is an error (its increment is not modelled for G65). Other
-    dialects: an error (our reading: the Haas manual says nothing of it)."""
-    calculator = decimal_point_input == "calculator"
-    if calculator or (decimal_point_input == "increment" and w.letter not in DECIMAL_LETTERS and w.letter != "E"):
-        if calculator and on_note is not None:
-            on_note(f"G65 argument {w.text} without a decimal point read as {w.value:g} (calculator-type input, "
-                    "Fanuc DPI=1)")
-        return
-    where.fail(f"G65 macro call: argument {w.text!r} without a decimal point (the control scales it by its "
-               "least input increment, which depends on the machine)", column=w.column, text=w.text,
-               expected=f"{w.letter}{w.text[1:].strip()}. (with a decimal point)")
-
-
 def _macro_call(prog: _Program, pc: int, words: list[Word], g65: Word, params: Parameters,
                 frames: list[_Frame], decimal_point_input: str | None = None,
                 on_note: Callable[[str], None] | None = None) -> int:
     """A G65 block: enter program ``O<P>`` with its arguments as locals; returns the next program counter."""
     where = prog.where(pc)
     start = _called_program(prog, words, g65, where, "G65 macro call")
-    locals_: dict[int, float] = {}
-    seen_ijk = {"I": 0, "J": 0, "K": 0}
-    count = 1
-    for w in words:
-        if w is g65 or w.letter in "NP":
-            continue
-        if w.letter == "L":
-            if w.value != int(w.value) or w.value < 0:
-                where.fail("G65 macro call: the repeat count L must be a whole number >= 0", column=w.column,
-                           text=w.text, expected="L1, L2, ...")
-            count = int(w.value)
-            continue
-        if w.letter not in _G65_ARGUMENTS:
-            where.fail(f"G65 macro call: {w.letter} is not an argument address", column=w.column, text=w.text,
-                       expected="arguments A-F, H, I-K, M, Q-Z (not G, L, N, O, P)")
-        if integer_literal(w):
-            _plain_argument(w, where, decimal_point_input, on_note)
-        if w.letter in seen_ijk:  # argument specification II: the n-th I J K set #(3n+1) .. #(3n+3)
-            n = seen_ijk[w.letter]
-            seen_ijk[w.letter] += 1
-            number = 4 + 3 * n + "IJK".index(w.letter)
-            if number > 33:
-                where.fail("G65 macro call: more than ten I J K argument sets", column=w.column, text=w.text,
-                           expected="at most ten I, J and K words each")
-        else:
-            number = _G65_ARGUMENTS[w.letter]
-        locals_[number] = w.value
+    locals_, count = macro_arguments(words, where, "G65", skip=(g65,), decimal_point_input=decimal_point_input,
+                                     on_note=on_note)
     if count == 0:
         return pc + 1
     params.push_macro(locals_)
-    _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="g65"))
+    _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="g65",
+                                   modal=_modal_limit(frames)))
     return start
 
 
@@ -836,7 +868,8 @@ def _oword(prog: _Program, pc: int, ow: _OWord, params: Parameters, frames: list
                       f"o{label} sub in the main program, or a named o<name> sub in <name>.ngc")
         args = _args(prog, pc, params)
         params.push(args)
-        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword"))
+        _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start + 1, repeats=0, kind="oword",
+                                       modal=_modal_limit(frames)))
         return start + 1
     if k in ("endsub", "return"):
         values = _args(prog, pc, params)

@@ -38,6 +38,13 @@ manual, "Macros"):
   functions vacant counts 0 (``#1 + 10`` is 10, ``#1 * 5`` is 0); in comparisons ``EQ`` and ``NE``
   tell vacant from 0 (``#1 EQ #0`` holds, ``#1 EQ 0`` does not) while ``GT GE LT LE`` take it as 0;
   a vacant condition is false.
+* ``AND``, ``OR`` and ``XOR`` work bit by bit on the integer parts of their operands under the ``fanuc`` and
+  ``haas`` dialects (Fanuc 0i-MD B-64304EN "Arithmetic and logic operation": "Logical operations are performed
+  on binary numbers bit by bit"; Haas mill operator's manual, "Macros", "Logical operations": "only the integer
+  portion of the floating point number is used"): ``5 OR 3`` is 7, ``5 XOR 3`` is 6; on comparisons (1 or 0)
+  they are the logical ones LinuxCNC has. Their precedence stays LinuxCNC's (below the comparisons; Fanuc ranks
+  AND with ``*`` and OR, XOR with ``+``: a program that leaves out the brackets Fanuc needs around comparisons,
+  ``[#1 EQ 1 AND #2 EQ 2]``, reads as LinuxCNC reads it).
 * under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
   parameters: the modal information ``#4001``.. comes from the reader's state
   (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
@@ -125,11 +132,17 @@ class Parameters:
         source): a function written by its first two characters (``RO[#1]`` is ``ROUND[#1]``, ``SQ`` is
         ``SQRT``); two characters that begin more than one function's name are an error naming them. The
         statement words (``WH``, ``GO``, ``EN``, ``TH``) are read by :mod:`interpolators.iso_macro`.
+    fanuc : bool
+        Fanuc's own function rules (the ``fanuc`` dialect; Fanuc 0i-MD B-64304EN and 0i-MF B-64604EN "Custom
+        macro", "Arithmetic and logic operation"): ``ATAN[y]/[x]`` is 0 to 360 deg (parameter NAT, No. 6004#0,
+        = 0, its default: ``ATAN[-1]/[-1]`` is 225; LinuxCNC's and Haas's atan2 gives -135), and the Series
+        0i-F/30i forms ``ATAN[y,x]`` and ``POW[a,b]`` (a to the power b) read.
     """
 
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
-                 set_system: Callable[[int, float | None], bool] | None = None, abbreviations: bool = False) -> None:
+                 set_system: Callable[[int, float | None], bool] | None = None, abbreviations: bool = False,
+                 fanuc: bool = False) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -138,6 +151,7 @@ class Parameters:
         self.system = system
         self.set_system = set_system
         self.abbreviations = abbreviations
+        self.fanuc = fanuc
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -333,6 +347,8 @@ class _Reader:
         for name in _FUNCTIONS:
             if self.up.startswith(name, p):
                 return self.function(name, p)
+        if self.params.fanuc and self.up.startswith("POW", p):
+            return self.function("POW", p)
         word = re.match(r"[A-Za-z]\w*", self.code[p:])
         if word and self.params.abbreviations and len(word.group(0)) == 2 \
                 and self.code[self.skip(p + 2):].startswith("["):
@@ -406,13 +422,20 @@ class _Reader:
                 self.fail("EXISTS needs one parameter in [ ]", p, "EXISTS[#<name>] or EXISTS[#n]")
             found = self.params.exists(key) if isinstance(key, str) else 1 <= key < _LINUXCNC_PARAMETERS
             return (1.0 if found else 0.0), end + 1
+        if name in ("ATAN", "POW") and self.params.fanuc:
+            pair = self.pair(q)
+            if pair is not None:
+                return (self.binary("**", pair[0], pair[1], p) if name == "POW" else self.atan(pair[0], pair[1]),
+                        pair[2])
+            if name == "POW":
+                self.fail("POW needs two arguments", p, "POW[a,b]")
         arg, end = self.real(q)
         if name == "ATAN":
             s = self.skip(end)
             if self.code[s:s + 1] != "/":
-                self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]")
+                self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]" + (" or ATAN[y,x]" if self.params.fanuc else ""))
             x, end = self.real(s + 1)
-            return math.degrees(math.atan2(arg, x)), end
+            return self.atan(arg, x), end
         if self.params.macro_b and name in ("FIX", "FUP"):  # Fanuc: on the absolute value, sign kept
             magnitude = math.floor(abs(arg)) if name == "FIX" else math.ceil(abs(arg))
             return math.copysign(float(magnitude), arg) if magnitude else 0.0, end
@@ -421,6 +444,23 @@ class _Reader:
         except (ValueError, OverflowError):
             self.fail(f"{name}[{arg:g}] is undefined", p, f"an argument in the domain of {name}")
         raise AssertionError("unreachable")
+
+    def pair(self, q: int) -> tuple[float, float, int] | None:
+        """``[a,b]`` at ``q`` (the ``[``): a, b (vacant counts 0) and the end; None when no comma follows a."""
+        a, end = self.expression(q + 1)
+        end = self.skip(end)
+        if self.code[end:end + 1] != ",":
+            return None
+        b, end = self.expression(end + 1)
+        end = self.skip(end)
+        if self.code[end:end + 1] != "]":
+            self.unclosed(q, end)
+        return (0.0 if a is None else a), (0.0 if b is None else b), end + 1
+
+    def atan(self, y: float, x: float) -> float:
+        """The angle [deg] of the point (x, y): -180 to 180, under :attr:`Parameters.fanuc` 0 to 360."""
+        angle = math.degrees(math.atan2(y, x))
+        return angle + 360.0 if self.params.fanuc and angle < 0 else angle
 
     def expression(self, pos: int, level: int = 0) -> tuple[float | None, int]:
         """Binary expression at precedence ``level`` (0: logic, lowest); ``None`` for a vacant operand alone.
@@ -451,6 +491,9 @@ class _Reader:
         a, b = (0.0 if a is None else a), (0.0 if b is None else b)  # vacant counts 0 in arithmetic
         if op in ("/", "MOD") and b == 0:
             self.fail("division by zero", pos, "a divisor other than 0")
+        if self.params.macro_b and op in ("AND", "OR", "XOR"):  # bit by bit (module docstring)
+            a_int, b_int = math.trunc(a), math.trunc(b)
+            return float(a_int & b_int if op == "AND" else a_int | b_int if op == "OR" else a_int ^ b_int)
         try:
             return _binary(op, a, b)
         except (ValueError, OverflowError, ZeroDivisionError, TypeError):

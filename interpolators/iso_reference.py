@@ -87,7 +87,10 @@ NAMED_CODES: dict[int, str] = {
     53: "G5.3 end of a G5.2 NURBS block", 1360: "G136 automatic work offset centre measurement (Haas probing)",
     1530: "G153 5-axis high speed peck drilling cycle (Haas)", 110: "G11 parameter input by program cancel (Fanuc)",
     # named after the Fanuc 0i-MF G code list (B-64604EN "G code list", our reading) and Haas "G37":
-    660: "G66 modal macro call (Fanuc)", 670: "G67 modal macro call cancel (Fanuc)",
+    # run under --dialect fanuc (interpolators.iso_modal_call); the Haas mill G-code list has G65 but no G66/G67
+    660: "G66 modal macro call (Fanuc; --dialect fanuc; Haas mills have G65 only)",
+    661: "G66.1 modal macro call, each block (Fanuc; --dialect fanuc; Haas mills have G65 only)",
+    670: "G67 modal macro call cancel (Fanuc; --dialect fanuc; Haas mills have G65 only)",
     370: "G37 automatic tool length measurement (Fanuc/Haas probing)",
     121: "G12.1 polar coordinate interpolation (Fanuc)", 131: "G13.1 polar coordinate interpolation cancel (Fanuc)",
     71: "G07.1 cylindrical interpolation (Fanuc)", 22: "G02.2 involute interpolation (Fanuc)",

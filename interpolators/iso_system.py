@@ -35,8 +35,9 @@ both in work coordinates, as ``#5420``.. (the two are the same in a reader that 
 Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
 information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
 17/18/19, ``#4003`` 90/91, ``#4005`` 94/93/95, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4008``
-43/43.1/44/49, ``#4009`` 80 or the cycle, ``#4010`` 98/99, ``#4011`` 50/51 (scaling), ``#4012`` 67
-(vcnc has no G66 modal call), ``#4013`` 97 (no G96 on a mill), ``#4014`` 54-59, ``#4015`` 61/64,
+43/43.1/44/49, ``#4009`` 80 or the cycle, ``#4010`` 98/99, ``#4011`` 50/51 (scaling), ``#4012`` 66/66.1/67
+(:mod:`interpolators.iso_modal_call`, ``fanuc`` only: 67 under ``haas``), ``#4013`` 97 (no G96 on a mill),
+``#4014`` 54-59, ``#4015`` 61/64,
 ``#4016`` 68/69, ``#4022`` 50.1/51.1 (mirror); ``#4107`` the D number of the compensation in effect,
 ``#4109`` F [program units/min], ``#4111`` the H number of the length offset, ``#4119`` S [rev/min],
 ``#4120`` T (the tool in the spindle). The others (``#4004``, ``#4017``.., ``#4102``.., ``#4113``..)
@@ -78,6 +79,7 @@ from interpolators.context import WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_offsets import extended_number, offset_parameter
 
 if TYPE_CHECKING:
+    from interpolators.iso_modal_call import ModalCalls
     from interpolators.iso_transforms import Frame
 
 __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
@@ -127,6 +129,7 @@ class ReaderState(Protocol):
     length_number: int
     comp_number: int
     spindle_speed: float
+    modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
 
     @property
     def scale(self) -> float: ...
@@ -224,7 +227,8 @@ def _fanuc_modal(n: int, st: ReaderState) -> float | None:
              4007: 40.0 if st.comp_side is None else float(st.comp_code[1:3]), 4008: st.length_code,
              4010: 99.0 if st.retract_r else 98.0,
              4011: 51.0 if st.frame is not None and st.frame.factors != (1.0, 1.0, 1.0) else 50.0,
-             4012: 67.0, 4013: 97.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
+             4012: 67.0 if st.modal_calls is None else st.modal_calls.group_code,
+             4013: 97.0, 4014: float(wcs), 4015: 61.0 if st.exact_stop else 64.0,
              4016: 68.0 if st.frame is not None and st.frame.rotation is not None else 69.0,
              4022: 51.1 if st.frame is not None and any(st.frame.mirror) else 50.1,
              4107: float(st.comp_number), 4109: 0.0 if st.feed is None else st.feed * 60.0 / st.scale,

@@ -121,6 +121,29 @@ def test_fanuc_functions_fix_fup_bin_bcd_round_and_atan():
     assert math.isclose(_words("G1 X[SQRT[2] * SQRT[2]]\n")[0][1][1], 2.0)
 
 
+def test_logical_operators_work_bit_by_bit_under_macro_b():
+    """Fanuc 0i-MD "Arithmetic and logic operation" (OR, XOR, AND "performed on binary numbers bit by bit"), Haas
+    "Logical operations" (the integer part): 5 OR 3 = 0b111 = 7, 5 XOR 3 = 0b110 = 6, 12 AND 10 = 0b1000 = 8,
+    5.7 OR 2.2 = 5 OR 2 = 7; on comparisons (1/0) the same as logic. LinuxCNC's are logical: 5 OR 3 = 1."""
+    line = "G1 X[5 OR 3] Y[5 XOR 3] Z[12 AND 10] A[5.7 OR 2.2] B[[1 EQ 1] AND [2 EQ 2]]\n"
+    bitwise = [v for _, v in _words(line, params=Parameters(macro_b=True))[0][1:]]
+    assert bitwise == [7.0, 6.0, 8.0, 7.0, 1.0]
+    assert [v for _, v in _words(line)[0][1:]] == [1.0, 0.0, 1.0, 1.0, 1.0]
+
+
+def test_fanuc_atan_is_0_to_360_and_reads_the_two_argument_forms():
+    """Fanuc ATAN (parameter NAT = 0, its default) gives 0-360 deg: ATAN[-1]/[-1] = 225 (atan2 gives -135, as
+    Haas and LinuxCNC read it); the Series 0i-F/30i forms ATAN[-1,-1] = 225 and POW[2,3] = 2^3 = 8 read under
+    the fanuc dialect only."""
+    text = "G21 F100\nG1 X[ATAN[-1]/[-1]] Y[ATAN[-1,-1]] Z[POW[2,3]]\nM30\n"
+    assert _ends(text) == [[225.0, 225.0, 8.0]]
+    assert _ends("G21 F100\nG1 X[ATAN[-1]/[-1]]\nM30\n", context=HAAS) == [[-135.0, 0, 0]]
+    with pytest.raises(GCodeError, match="unknown function 'POW'"):
+        _ends("G21 F100\nG1 X[POW[2,3]]\nM30\n", context=HAAS)
+    with pytest.raises(GCodeError, match="POW needs two arguments"):
+        _ends("G21 F100\nG1 X[POW[2]]\nM30\n")
+
+
 def test_g65_locals_per_level_and_common_variables():
     """Each G65 level has its own #1-#33 (the caller's #1 is back after M99); #100 and #500 are common."""
     text = ("G21 F100\n#1 = 7.\n#100 = 1.\nG65 P9001 A2.\nG1 X#1 Y#100 Z#500\nM30\nO9001\n#100 = #1 * 10\n"
