@@ -412,6 +412,8 @@ class _State:
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
+    parts_counters: dict[int, float] = dataclasses.field(default_factory=dict)  # Fanuc/Haas #3901, #3902 as set
+    parts_read: bool = False  # the program read #3901/#3902 (a note)
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
@@ -607,6 +609,9 @@ def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _No
     for line in sorted(st.stops_read):
         notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
                   "jog by the operator is not modelled")
+    if st.parts_read:
+        notes.add("parts counters #3901/#3902 read as the program set them, 0 before (the virtual machine's count "
+                  "starts at 0)")
     if st.initial_feed_line is not None:
         notes.add(f"feed moves before any F word (from line {st.initial_feed_line}) run at the machine's initial feed "
                   f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "

@@ -178,8 +178,8 @@ class Parameters:
             where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
                        "alarms, clocks, modal information) is not modelled", column=column, text=text,
                        expected="a common variable #100-#199, #500-#999, or a modelled one (#4001-#4016 "
-                                "and #4022 modal G codes, #4107 D, #4109 F, #4111 H, #4119 S, #4120 T, #5001.. "
-                                "positions)")
+                                "and #4022 modal G codes, #4107 D, #4109 F, #4111 H, #4119 S, #4120 T, "
+                                "#3901/#3902 parts counters, #5001.. positions)")
         if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
                        column=column, text=text,

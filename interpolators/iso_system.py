@@ -56,6 +56,12 @@ wear, read/write, tools 1-200) read and write the tool table (:class:`interpolat
 length = geometry + wear); Fanuc's tool variables depend on its offset memory type and stay errors.
 Haas ``#3026`` ("Tool in spindle", read only) is the tool in the spindle, as ``#4120``.
 
+The parts counters ``#3901`` (number of machined parts) and ``#3902`` (number of required parts) read and write
+under those dialects (Fanuc 0i-MD B-64304EN "System variables": "#3901 Number of machined parts, #3902 Number of
+required parts, read/write"; Haas "Macros": "#3901 M30 count 1, #3902 M30 count 2"). They count finished parts
+and move nothing; the virtual machine's counters are 0 when the program starts (our reading: a machine the
+program is the first to run on), and a program that reads them is noted (:attr:`ReaderState.parts_read`).
+
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
 (Haas 154) and ``#4130`` = the P number while one is selected; ``#5201``-``#5203`` the external offset
@@ -84,6 +90,8 @@ if TYPE_CHECKING:
 
 __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
 
+#: Fanuc/Haas parts counters: machined parts, required parts.
+PARTS_COUNTERS = (3901, 3902)
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
 
@@ -130,6 +138,8 @@ class ReaderState(Protocol):
     comp_number: int
     spindle_speed: float
     modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
+    parts_counters: dict[int, float]  # Fanuc/Haas #3901, #3902 as the program set them
+    parts_read: bool  # the program read a parts counter
 
     @property
     def scale(self) -> float: ...
@@ -250,6 +260,9 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _haas_tool(n, st), ""
     if fanuc and st.context.dialect.name == "haas" and n == 3026:  # Haas "Macros": #3026 tool in spindle
         return float(st.tool_current or 0), ""
+    if fanuc and n in PARTS_COUNTERS:
+        st.parts_read = True
+        return st.parts_counters.get(n, 0.0), ""
     if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z
         return (float(st.external[n - 5201]) / _stored(st) if n <= 5203 else 0.0), ""
     extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
@@ -291,7 +304,11 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
     machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
     value is 0); Haas ``#2001``-``#2800`` set a tool's length / diameter geometry or wear. True when
-    ``#n`` is such a variable (the caller reports the others)."""
+    ``#n`` is such a variable (the caller reports the others). The parts counters ``#3901``/``#3902`` take the
+    value (vacant: 0)."""
+    if n in PARTS_COUNTERS:
+        st.parts_counters[n] = 0.0 if value is None else float(value)
+        return True
     if st.context.dialect.name == "haas" and 2001 <= n <= 2800:
         _set_haas_tool(n, 0.0 if value is None else float(value) * _stored(st), st)
         return True

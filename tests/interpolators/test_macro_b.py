@@ -295,6 +295,21 @@ def test_fanuc_modal_information_of_length_compensation_spindle_and_transformati
         parse_program("G21 G0 X#4004\n", context=FANUC)
 
 
+def test_parts_counters_start_at_zero_and_keep_what_the_program_sets():
+    """Fanuc 0i-MD "System variables": #3901 number of machined parts, #3902 number of required parts, both
+    read/write (Haas "Macros": M30 counts 1 and 2). The virtual machine's counters start at 0 (noted): a
+    program counting its parts and comparing with the required count runs; LinuxCNC reads #3901 as a user
+    parameter."""
+    text = ("G21 G90 F600\n#3901 = #3901 + 1\nG1 X#3901\n#3902 = 4\n#3901 = #3901 + 2\n"
+            "IF [#3901 GE #3902] GOTO 7\nG1 Y#3902\nN7 G1 X[#3902 - #3901] Y#3901\n")
+    prog = parse_program(text, context=FANUC)
+    assert [[round(float(v), 9) + 0.0 for v in b.target] for b in prog.blocks] == [
+        [1.0, 0.0, 0.0], [1.0, 4.0, 0.0], [1.0, 3.0, 0.0]]
+    assert any("parts counters #3901/#3902" in n for n in prog.notes)
+    assert _ends("G21 G90 F600\n#3901 = 5\nG1 X#3901\n", HAAS) == [[5.0, 0.0, 0.0]]
+    assert _ends("G21 G90 F600\n#3901 = #3901 + 2\nG1 X#3901\n", MachineContext()) == [[2.0, 0.0, 0.0]]
+
+
 def test_m99_p_returns_to_a_block_of_the_calling_program():
     """Haas "M99 Subprogram Return or Loop": M99 P30 returns to N30 of the caller, skipping N20."""
     text = "G21 F100\nM98 P100\nN20 G1 X5\nN30 G1 Y7\nM30\nO100\nG1 X1\nM99 P30\n"
