@@ -240,7 +240,7 @@ from interpolators.heidenhain_transforms import (
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
 from interpolators.iso_splines import SPLINE_TOLERANCE
-from interpolators.program import Block, Program
+from interpolators.program import Block, Program, end_at_rest
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from toolpaths.pockets import Region
@@ -350,6 +350,8 @@ class _Machine:
         # machine there; FN 18 SYSREAD of the position notes it (None: no such stop)
         self.stopped_at: int | None = None
         self.stop_in_block = False  # the running block stops the program (STOP, M0, M1)
+        # the running block halts the axes (STOP, M0, a tool change; not M1: the optional stop switch is off)
+        self.at_rest = False
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
@@ -591,10 +593,12 @@ class _Run:
                     _unknown_block(blk, where)
                 known = self.keywords[self.pc - 1] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
             k, kw = known
-            count, self.m.stop_in_block = len(self.m.blocks), False
+            count, self.m.stop_in_block, self.m.at_rest = len(self.m.blocks), False, False
             ended = self.block(kw, k, blk, where)
             if self.m.plain is not None:
                 self.m.plain.reset()  # the state plain blocks read may have changed (a called program's too)
+            if self.m.at_rest:
+                end_at_rest(self.m.blocks)
             if self.m.stop_in_block:
                 self.m.stopped_at = blk.line
             elif len(self.m.blocks) > count:
@@ -857,7 +861,7 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
-        m.stop_in_block = True
+        m.stop_in_block = m.at_rest = True
     words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
     return _m_functions(words, m, where, blk, motion=False)
 
@@ -997,6 +1001,7 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
         m.tool_length = length + dl
         m.tool_radius = radius + dr
         m.tool_delta = dr
+        m.at_rest = m.at_rest or number != m.tool_number
         m.tool_number = number
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
@@ -2640,6 +2645,7 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
     if w.value in _M_STOP:
         m.note(f"M{w.value}: program stop (no motion)")
         m.stop_in_block = True
+        m.at_rest = m.at_rest or w.value == 0
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False

@@ -45,9 +45,10 @@ Accepted words and codes (case-insensitive; spaces inside words allowed):
                           revolution (F [mm/rev] at the spindle speed S: F x S per minute; switching
                           to or from it resets the feed; a feed move with the spindle stopped or S0
                           is an error)
-``T M6``                  tool select / change (no motion; the tool's length applies with G43)
-``S M3 M4 M5 M7 M8 M9``   spindle and coolant (noted); ``M0 M1 M60`` program stops (noted);
-                          ``M2 M30`` end (later lines are not read); other M codes below 100 are noted
+``T M6``                  tool select / change (no motion; the tool's length applies with G43; the path halts)
+``S M3 M4 M5 M7 M8 M9``   spindle and coolant (noted); ``M0 M1 M60`` program stops (noted; M0 and M60
+                          halt the path, M1 not: ``_AT_REST``); ``M2 M30`` end (later lines are not
+                          read); other M codes below 100 are noted
 ========================= =======================================================================
 
 Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its meanings and errors):
@@ -155,7 +156,7 @@ from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
 from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
 from interpolators.iso_words import Word, WordError
-from interpolators.program import MESSAGE_KINDS, Block, Message, Program
+from interpolators.program import MESSAGE_KINDS, Block, Message, Program, end_at_rest
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.core.axes import AXIS_NAMES
 
@@ -284,6 +285,11 @@ _LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 a
                                            52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end")}
 
 _PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
+
+#: M codes after which the machine is at rest (:func:`interpolators.program.end_at_rest`): the program stop M0,
+#: the pallet change stop M60, the tool change M6. M1 stops only with the control's optional stop switch on, which
+#: the virtual machine's is not (LinuxCNC M-codes "M1": "if the optional stop switch is on"; Fanuc M01 likewise).
+_AT_REST = (0.0, 60.0, 6.0)
 
 _M_NOTES = {
     0: "M0/M1 program stop", 1: "M0/M1 program stop", 60: "M60 pallet change stop",
@@ -532,6 +538,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         ended = _execute(fl.words, st, blocks, used, Where(fl.file, fl.line, fl.raw), notes)
         if st.corner is not None or st.corner_word is not None:
             _corner_after_block(st, fl.words, count, blocks, Where(fl.file, fl.line, fl.raw))
+        if any(w.letter == "M" and w.value in _AT_REST for w in fl.words):
+            end_at_rest(blocks)
         if any(w.letter == "M" and w.value in (0.0, 1.0, 60.0) for w in fl.words):
             st.stopped, st.stop_line = True, fl.line  # the operator may jog before the next move
         elif len(blocks) > count:

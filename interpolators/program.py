@@ -10,7 +10,7 @@ from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
 
-__all__ = ["Block", "Message", "Program", "BLOCK_KINDS", "MESSAGE_KINDS"]
+__all__ = ["Block", "Message", "Program", "BLOCK_KINDS", "MESSAGE_KINDS", "end_at_rest"]
 
 #: Kinds of executable blocks.
 BLOCK_KINDS: tuple[str, ...] = ("rapid", "line", "arc", "dwell")
@@ -132,6 +132,21 @@ class Block:
         d = self.extra_delta
         secondary = float(np.linalg.norm(d[3:]))
         return secondary if secondary > 0 else float(np.linalg.norm(d[:3]))
+
+
+def end_at_rest(blocks: list[Block]) -> None:
+    """The machine comes to rest at the end of the last block so far, whatever the path mode: a program stop
+    or a tool change halts the path there, and the look-ahead may not blend through it.
+
+    The program stops: LinuxCNC M-codes "M0, M1 Program Pause" and "M60 Pallet Change Pause" (the program
+    pauses; the motion has come to an end), Fanuc 0i-MD B-64304EN "Miscellaneous function": M00 "Program stop:
+    automatic operation is stopped after a block containing M00 is executed", M00, M01, M02, M30 are "M codes
+    that do not buffer"; HEIDENHAIN TNC 640 user's manual, "STOP": "the program run or programming test is
+    interrupted". A tool change (M6, TOOL CALL n) is made with the axes at rest (our reading: the changer
+    takes the tool from a spindle that has stopped moving along the path).
+    """
+    if blocks and not blocks[-1].exact_stop:
+        blocks[-1] = dataclasses.replace(blocks[-1], exact_stop=True)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
