@@ -140,10 +140,10 @@ def end_at_rest(blocks: list[Block]) -> None:
 
     The program stops: LinuxCNC M-codes "M0, M1 Program Pause" and "M60 Pallet Change Pause" (the program
     pauses; the motion has come to an end), Fanuc 0i-MD B-64304EN "Miscellaneous function": M00 "Program stop:
-    automatic operation is stopped after a block containing M00 is executed", M00, M01, M02, M30 are "M codes
-    that do not buffer"; HEIDENHAIN TNC 640 user's manual, "STOP": "the program run or programming test is
-    interrupted". A tool change (M6, TOOL CALL n) is made with the axes at rest (our reading: the changer
-    takes the tool from a spindle that has stopped moving along the path).
+    automatic operation is stopped after a block containing M00 is executed"; HEIDENHAIN TNC 640 user's manual,
+    "STOP": "the program run or programming test is interrupted". A tool change (M6, TOOL CALL n) is made with
+    the axes at rest (our reading: the changer takes the tool from a spindle that has stopped moving along the
+    path).
     """
     if blocks and not blocks[-1].exact_stop:
         blocks[-1] = dataclasses.replace(blocks[-1], exact_stop=True)
