@@ -90,3 +90,19 @@ def test_a_bare_g71_says_it_is_a_unit_code_elsewhere():
         parse_program("G71 G91.1\nG0 X1\n", context=_in_dialect("linuxcnc"))
     with pytest.raises(GCodeError, match=r"G71 lathe roughing cycle: not supported \(got 'G71'\)"):
         parse_program("G21\nG71 P10 Q20 U0.5 W0.1 D2\n", context=_in_dialect("linuxcnc"))
+
+
+SIEMENS = r"a Siemens SINUMERIK {}; vcnc reads ISO G-code, not SINUMERIK programs"
+
+
+@pytest.mark.parametrize(("line", "what"), [
+    ("TRANS X100 Y2", "'TRANS': " + SIEMENS.format("statement")),  # a programmable frame (Fundamentals 2.12)
+    ("DEF REAL R0=0", "'DEF': " + SIEMENS.format("statement")),
+    ("CYCLE81(10,0,2,-5)", "'CYCLE81': " + SIEMENS.format("statement")),
+    ("G1 X=R0", "'X=': " + SIEMENS.format("address with '='")),
+    ("G2 X10 Y0 CR=5 F100", "'CR=': " + SIEMENS.format("address with '='")),
+    ("PRINT 5", r"'PRINT': a statement of another control's language, such as KinetiC-NC's PRINT\?")])
+def test_a_siemens_statement_is_named_as_siemens(line, what):
+    # an NC interpreter's SINUMERIK examples (.mpf): vcnc reads ISO G-code only, and says whose language it is
+    with pytest.raises(GCodeError, match=f":2:[0-9]+: malformed number for word [A-Z] \\({what}\\)"):
+        parse_program(f"G21 G90 G0 X0 Y0\n{line}\nM30\n", context=_in_dialect("fanuc"))
