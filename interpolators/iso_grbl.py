@@ -44,10 +44,12 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
 * G41/G42 are errors naming them: grbl has no cutter radius compensation (``case 40``: "Not required since
   cutter radius compensation is always disabled. Only here to support G40 commands that often appear in
   g-code program headers"), so the path a compensated run would give is no path the machine makes.
-* G73 and G81-G89 canned cycles run as grblHAL (grbl's successor for 32-bit boards) runs them, with a note
-  that grbl 1.1 refuses them: grblHAL ``gcode.h`` has ``MotionMode_DrillChipBreak = 73``,
-  ``MotionMode_CannedCycle81`` ... ``89``, and starts in G98 ("CCRetractMode_Previous = 0, // G98 (Default:
-  Must be zero)"), as the reader's grbl dialect does.
+* G73 and G81-G89 canned cycles, G43 tool length offsets from the tool table, G95 feed per revolution and G5
+  cubic splines run as grblHAL (grbl's successor for 32-bit boards) runs them, with a note that grbl 1.1
+  refuses them: grblHAL ``gcode.h`` has ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ...
+  ``89``, ``MotionMode_CubicSpline = 5``, ``ToolLengthOffset_Enable`` (G43), ``FeedMode_UnitsPerRev`` (G95),
+  and starts in G98 ("CCRetractMode_Previous = 0, // G98 (Default: Must be zero)"), as the reader's grbl
+  dialect does.
 * A G4 dwell takes its time from P alone: "if (bit_isfalse(value_words,bit(WORD_P))) {
   FAIL(STATUS_GCODE_VALUE_WORD_MISSING); } // [P word missing]" (error 28; an X in the block is an axis word
   of the non-modal command, not a time), so ``G4 X2`` is an error, where the other dialects read X seconds.
@@ -74,12 +76,16 @@ _ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
 
 #: Cutter radius compensation codes (round(10 * G)), which grbl 1.1 refuses (error 20) and vcnc would run.
 _NO_COMPENSATION = {410: "G41", 420: "G42", 411: "G41.1", 421: "G42.1"}
-#: Canned cycles (round(10 * G)): grbl 1.1 refuses them (error 20), grblHAL runs them.
-_CANNED_CYCLES = frozenset({730, 810, 820, 830, 840, 850, 860, 870, 880, 890})
+#: Codes (round(10 * G)) grbl 1.1 refuses (error 20) and grblHAL runs (grblHAL ``gcode.h``: ``MotionMode_CubicSpline
+#: = 5``, ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``ToolLengthOffset_Enable``
+#: G43, ``FeedMode_UnitsPerRev = 2 // G95``).
+_GRBLHAL_ONLY = {50: "G5 cubic spline", 730: "G73 canned cycle", **{k: f"G{k // 10} canned cycle" for k in
+                                                                     range(810, 900, 10)},
+                 430: "G43 tool length offset", 950: "G95 feed per revolution"}
 
 
 def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where) -> list[str]:
-    """Notes for the codes of one block that grbl 1.1 lacks and vcnc runs as grblHAL does (canned cycles).
+    """Notes for the codes of one block that grbl 1.1 lacks and vcnc runs as grblHAL does (:data:`_GRBLHAL_ONLY`).
 
     ``gcodes`` maps each G-code group of the block to its code (round(10 * G)) and word, ``letters`` are the
     block's other word letters.
@@ -98,8 +104,8 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
         if key == 40 and "P" not in letters:
             where.fail("G4 dwell without P: grbl takes the dwell time from P only (gcode.c: '[P word missing]', "
                        "error 28)", column=w.column, text=w.text, expected="G4 P<seconds>")
-        if key in _CANNED_CYCLES:
-            notes.append(f"G{key // 10} canned cycle run as grblHAL runs it (grbl 1.1 refuses it: error 20)")
+        if key in _GRBLHAL_ONLY:
+            notes.append(f"{_GRBLHAL_ONLY[key]} run as grblHAL runs it (grbl 1.1 refuses it: error 20)")
     return notes
 
 

@@ -106,3 +106,11 @@ def test_a_siemens_statement_is_named_as_siemens(line, what):
     # an NC interpreter's SINUMERIK examples (.mpf): vcnc reads ISO G-code only, and says whose language it is
     with pytest.raises(GCodeError, match=f":2:[0-9]+: malformed number for word [A-Z] \\({what}\\)"):
         parse_program(f"G21 G90 G0 X0 Y0\n{line}\nM30\n", context=_in_dialect("fanuc"))
+
+
+@pytest.mark.parametrize(("code", "name"), [("G43 H7 Z10", "G43 tool length offset"),
+                                            ("G95 G1 X1 F0.1 S1000 M3", "G95 feed per revolution")])
+def test_grbl_runs_grblhal_codes_and_says_grbl_1_1_would_not(code, name):
+    # grbl 1.1 gcode.c: G43.1 only, no G95 (error 20); grblHAL gcode.h: ToolLengthOffset_Enable, FeedMode_UnitsPerRev
+    prog = parse_program(f"G21 G90 F100\nM6 T7\n{code}\nM30\n", context=_in_dialect("grbl"))
+    assert f"{name} run as grblHAL runs it (grbl 1.1 refuses it: error 20)" in prog.notes
