@@ -114,3 +114,11 @@ def test_grbl_runs_grblhal_codes_and_says_grbl_1_1_would_not(code, name):
     # grbl 1.1 gcode.c: G43.1 only, no G95 (error 20); grblHAL gcode.h: ToolLengthOffset_Enable, FeedMode_UnitsPerRev
     prog = parse_program(f"G21 G90 F100\nM6 T7\n{code}\nM30\n", context=_in_dialect("grbl"))
     assert f"{name} run as grblHAL runs it (grbl 1.1 refuses it: error 20)" in prog.notes
+
+
+@pytest.mark.parametrize(("text", "what"), [
+    ("N1 G21\nN2 T0*57\n", r":2:6: unknown word '\*57' \(a RepRap/Marlin line checksum"),  # a parser's fixture
+    ("\x01G17 G21\nG0 X1\n", r":1:1: unknown word '\\x01G17' \(control character 0x01")])
+def test_a_checksum_or_a_control_character_is_named(text, what):
+    with pytest.raises(GCodeError, match=what):
+        parse_program(text, context=_in_dialect("grbl"))
