@@ -1756,9 +1756,13 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
         # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
         # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
+        # I, J and K together on a move: the tool-axis vector a 5-axis post writes with each point (Siemens
+        # ORIVECT "A3= B3= C3=", Heidenhain "LN ... TX TY TZ"), which no ISO mill's G00/G01 reads
         w = seen[(arc_words or ["R"])[0]]
+        guess = ("a 5-axis post's tool-axis vector I J K?" if {"I", "J", "K"} <= set(seen) and "R" not in seen
+                 else "a G02/G03 meant?")
         where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
-                   "the Haas manual lists no I J K R for it; a G02/G03 meant?)",
+                   f"the Haas manual lists no I J K R for it; {guess})",
                    column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,

@@ -122,3 +122,12 @@ def test_grbl_runs_grblhal_codes_and_says_grbl_1_1_would_not(code, name):
 def test_a_checksum_or_a_control_character_is_named(text, what):
     with pytest.raises(GCodeError, match=what):
         parse_program(text, context=_in_dialect("grbl"))
+
+
+def test_a_tool_vector_on_a_move_is_named_as_a_5_axis_post_s():
+    # a 5-axis CAM output: every point carries the tool-axis vector as I J K
+    with pytest.raises(GCodeError, match=r":2:22: word I is only allowed on arcs .*a 5-axis post's tool-axis "
+                                         r"vector I J K\?"):
+        parse_program("G21 G90\nG1 X-4.6 Y-43.6 Z137 I-0.11 J-0.81 K-0.57 F71\n", context=_in_dialect("fanuc"))
+    with pytest.raises(GCodeError, match=r"a G02/G03 meant\?"):
+        parse_program("G21 G90\nG1 X10 Y0 I5 J0 F71\n", context=_in_dialect("fanuc"))
