@@ -52,6 +52,37 @@ def checked_float(tok: str, where: Where, *, column: int, what: str) -> float:
     return value
 
 
+#: Statements of Siemens SINUMERIK's NC language, which a G-code reader meets as a letter without a number
+#: (SINUMERIK 840D sl Programming Manual Fundamentals, 6FC5398-2EP40-0BA0, 2.12 "Coordinate transformations
+#: (frames)": TRANS/ATRANS, ROT/AROT, ROTS/AROTS, SCALE/ASCALE, MIRROR/AMIRROR; motion commands CIP, CT,
+#: ASPLINE/BSPLINE/CSPLINE, SUPA; Job Planning: DEF, GOTOF/GOTOB, LOOP/ENDLOOP, FOR/ENDFOR, WHILE/ENDWHILE,
+#: REPEAT/UNTIL, STOPRE, MSG, MCALL, PROC; technology cycles CYCLEnn).
+_SINUMERIK = re.compile(r"(?:DEF|A?TRANS|A?ROTS?|A?SCALE|A?MIRROR|CIP|CT|[ABC]SPLINE|SUPA|GOTO[FBC]|ENDLOOP|"
+                        r"ENDFOR|ENDWHILE|ENDIF|REPEAT|UNTIL|STOPRE|MSG|MCALL|PROC|CYCLE\d+)", re.I)
+#: A SINUMERIK address with '=': "X=R0", "X=IC(5)", circle radius "CR=5", polar "AP=30" "RP=10" (Fundamentals:
+#: "Circular interpolation with radius and end point: G2/G3 X... Y... CR=..."; ISO G-code has no '=' after an
+#: address letter).
+_SINUMERIK_ADDRESS = re.compile(r"(?:[A-Z]|CR|AP|RP|AR|TURN)=", re.I)
+
+
+def _number_hint(line: str, w0: int, j: int) -> str:
+    """Why a word at ``w0`` has no number at ``j``, when the text says: the letter O for the digit 0, a
+    Siemens SINUMERIK statement or ``=`` address, a keyword of another control's language."""
+    if j < len(line) and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:]):  # "GOO", "X1O"
+        return " (the letter O where the digit 0 was meant?)"
+    siemens = re.match(r"[A-Za-z]+\d*(?![A-Za-z0-9_])", line[w0:])
+    if siemens and _SINUMERIK.fullmatch(siemens.group(0)):
+        return f" ({siemens.group(0)!r}: a Siemens SINUMERIK statement; vcnc reads ISO G-code, not SINUMERIK programs)"
+    address = _SINUMERIK_ADDRESS.match(line, w0)
+    if address:
+        return (f" ({address.group(0)!r}: a Siemens SINUMERIK address with '='; vcnc reads ISO G-code, not "
+                "SINUMERIK programs)")
+    # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
+    keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:])
+    return f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)" \
+        if keyword else ""
+
+
 def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int | None = None) -> tuple[float, int]:
     """Read a number at ``pos`` (spaces before it allowed); returns (value, end position).
 
@@ -64,14 +95,8 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
         j += 1
     m = NUMBER_RE.match(line, j)
     if m is None:
-        zero = j < n and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:])  # "GOO", "X1O": O for 0?
-        # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
-        keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:]) if not zero else None
-        hint = (" (the letter O where the digit 0 was meant?)" if zero else
-                f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)"
-                if keyword else "")
         where.fail(
-            f"malformed number for {what}{hint}",
+            f"malformed number for {what}{_number_hint(line, w0, j)}",
             column=w0 + 1,
             text=token_at(line, w0),
             expected="a decimal number such as 12, -0.79 or +.5",

@@ -125,7 +125,7 @@ from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
-from interpolators.iso_grbl import system_lines
+from interpolators.iso_grbl import system_lines, unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
@@ -712,7 +712,7 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                 gcodes[mill[0]] = (key, w)
                 continue
             if key in _G_UNSUPPORTED:
-                where.fail(f"{_G_UNSUPPORTED[key]}: not supported", column=w.column, text=w.text,
+                where.fail(_unsupported_g(key, words), column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in _G:
                 where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
@@ -785,6 +785,9 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    if st.context.dialect.name == "grbl":
+        for note in unsupported_codes(gcodes, seen, where):
+            notes.add(note)
     if "exact stop check" not in gcodes:
         return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
     notes.add("G09 exact stop (one block)")
@@ -1299,6 +1302,20 @@ def _fagor_drilling(seen, st: _State, where: Where, notes: _Notes) -> dict:
     return out
 
 
+#: What a bare G70/G71 is on the controls that read it as units (:func:`_g70_g71_units`), for the dialects that
+#: refuse it (LinuxCNC 2.9 reads G70/G71 as lathe cycles: rs274 "G7x.x requires a Q word").
+_UNITS_HINT = {key: f" (a unit code on Siemens, Fagor and Heidenhain ISO controls: {unit} input; write "
+                    f"{code}, or read the program with --dialect fanuc)"
+               for key, unit, code in ((700, "inch", "G20"), (710, "mm", "G21"))}
+
+
+def _unsupported_g(key: int, words: list[Word]) -> str:
+    """The error of a G code of :data:`_G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
+    block) with :data:`_UNITS_HINT`."""
+    bare = not any(v.letter in "PQUWRIJKL" for v in words)
+    return f"{_G_UNSUPPORTED[key]}: not supported{_UNITS_HINT.get(key, '') if bare else ''}"
+
+
 def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None:
     """G70 / G71 in a Fanuc mill program (``--dialect fanuc``; Haas reads bolt-hole patterns): inch / metric
     input, as Siemens (SINUMERIK programming manual, "Inch or metric dimensions: G70/G700, G71/G710"), Fagor
@@ -1360,16 +1377,24 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
     (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
     USER_M_PATH, and a missing one is an error). The program runs outside the interpreter: nothing of the
     path moves. Its file is looked for in the dialect's ``user_m_path``; an error names the code if none
-    holds it."""
+    holds it, as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's
+    functions (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl
+    1.1 refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20)."""
     name = f"M{m}"
     base = Path(where.file).parent if where.file else Path.cwd()
     if any((base / folder / name).is_file() for folder in st.context.dialect.user_m_path):
         return
     looked = ", ".join(st.context.dialect.user_m_path) or "none given"
-    where.fail(f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
-               f"USER_M_PATH): {name} not found (folders: {looked})", column=w.column, text=w.text,
+    dialect = st.context.dialect.name
+    what = (f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
+            "USER_M_PATH)" if dialect == "linuxcnc" else
+            f"M code {w.text!r} unknown to grbl (gcode.c: M0-M5, M7-M9, M30, M56 only; error 20)"
+            if dialect == "grbl" else
+            f"machine-specific M code {w.text!r} (M100-M199 on a {dialect.capitalize()} control: a function of the "
+            "machine tool builder, no motion known here)")
+    where.fail(f"{what}: {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
-                        "or of --user-m-path")
+                        "or of --user-m-path (the code then runs as a function that moves nothing)")
 
 
 def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
@@ -1748,9 +1773,13 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
         # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
         # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
+        # I, J and K together on a move: the tool-axis vector a 5-axis post writes with each point (Siemens
+        # ORIVECT "A3= B3= C3=", Heidenhain "LN ... TX TY TZ"), which no ISO mill's G00/G01 reads
         w = seen[(arc_words or ["R"])[0]]
+        guess = ("a 5-axis post's tool-axis vector I J K?" if {"I", "J", "K"} <= set(seen) and "R" not in seen
+                 else "a G02/G03 meant?")
         where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
-                   "the Haas manual lists no I J K R for it; a G02/G03 meant?)",
+                   f"the Haas manual lists no I J K R for it; {guess})",
                    column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
     if motion != 0 and st.inverse_time and st.block_f is None:
         where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
@@ -2282,6 +2311,7 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
                    expected="G40 before switching compensation")
     dynamic = key in (411, 421)
     if "D" in seen and not dynamic:
+        _whole_offset_number(w.text.upper(), seen["D"], where)
         st.comp_number = int(seen["D"].value)
     if "D" in seen and dynamic:
         radius = seen["D"].value * st.scale / 2.0
@@ -2303,6 +2333,18 @@ def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Wh
     st.comp_run_side, st.comp_plane = st.comp_side, st.plane
     st.comp_start = len(blocks)
     notes.add("G41/G42 cutter radius compensation")
+
+
+def _whole_offset_number(code: str, d: Word, where: Where) -> None:
+    """G41/G42 D names a tool (LinuxCNC) or an offset register (Fanuc, Haas): a whole number. LinuxCNC's
+    ``convert_cutter_compensation_on`` (interp_convert.cc) refuses another ("G41 requires D word to be a whole
+    number"); Fanuc refuses a decimal point after D (alarm PS0007 "illegal use of decimal point"); Haas, our
+    reading, takes D as the register number only. A post that writes the cutter's radius there (Newfangled
+    Solutions' Mach3 wizards: "M6 T7 (TOOL DIA. 3)" then "G41 D1.5") named no register."""
+    if d.value != int(d.value):
+        where.fail(f"{code} D{d.value:g}: the offset number D must be a whole number (LinuxCNC: \"G41 requires D "
+                   "word to be a whole number\"; Fanuc: decimal point not allowed after D)", column=d.column,
+                   text=d.text, expected=f"{code} D<n>, n a tool or offset number (the tool table gives the radius)")
 
 
 def _rereads_position(words: list[Word], st: _State) -> bool:

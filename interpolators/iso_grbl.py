@@ -35,24 +35,78 @@ G-code: ``$`` system commands (``$$`` settings report, ``$G`` parser state, ``$I
   planner queue to empty"). Such lines move nothing: they become blank lines, with a note (a line
   CNCjs cannot evaluate, such as a ``% vfd enable`` remark, is logged by it and skipped alike). A
   ``%`` alone stays the tape marker it is.
+
+:func:`unsupported_codes` holds a block to grbl 1.1's G-code set (gnea/grbl ``grbl/gcode.c``
+``gc_execute_line``, the ``'G'`` switch: G0-G3, G4, G10, G17-G19, G20/G21, G28, G30, G38.x, G40, G43.1,
+G49, G53, G54-G59, G61, G80, G90/G91, G91.1, G92, G93/G94; "default: FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND)",
+error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherwise, would run more:
+
+* G41/G42 are errors naming them: grbl has no cutter radius compensation (``case 40``: "Not required since
+  cutter radius compensation is always disabled. Only here to support G40 commands that often appear in
+  g-code program headers"), so the path a compensated run would give is no path the machine makes.
+* G73 and G81-G89 canned cycles, G43 tool length offsets from the tool table, G95 feed per revolution and G5
+  cubic splines run as grblHAL (grbl's successor for 32-bit boards) runs them, with a note that grbl 1.1
+  refuses them: grblHAL ``gcode.h`` has ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ...
+  ``89``, ``MotionMode_CubicSpline = 5``, ``ToolLengthOffset_Enable`` (G43), ``FeedMode_UnitsPerRev`` (G95),
+  and starts in G98 ("CCRetractMode_Previous = 0, // G98 (Default: Must be zero)"), as the reader's grbl
+  dialect does.
+* A G4 dwell takes its time from P alone: "if (bit_isfalse(value_words,bit(WORD_P))) {
+  FAIL(STATUS_GCODE_VALUE_WORD_MISSING); } // [P word missing]" (error 28; an X in the block is an axis word
+  of the non-modal command, not a time), so ``G4 X2`` is an error, where the other dialects read X seconds.
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_flow import refuse_heidenhain_iso
-from interpolators.iso_words import comment_spans
+from interpolators.iso_words import Word, comment_spans
 
-__all__ = ["GrblLines", "system_lines"]
+__all__ = ["GrblLines", "system_lines", "unsupported_codes"]
 
 #: ``$`` commands that neither move the tool nor change the program's geometry (grbl ``system.c``).
 _PASSIVE = re.compile(r"\$(?:|\$|#|G|I(?:=.*)?|N(?:\d+=.*)?|X|\d+=[-+]?[\d.]+)")
 #: ``$`` commands that do, by their name in grbl's documentation.
 _ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
            "S": "$SLP sleep"}
+
+
+#: Cutter radius compensation codes (round(10 * G)), which grbl 1.1 refuses (error 20) and vcnc would run.
+_NO_COMPENSATION = {410: "G41", 420: "G42", 411: "G41.1", 421: "G42.1"}
+#: Codes (round(10 * G)) grbl 1.1 refuses (error 20) and grblHAL runs (grblHAL ``gcode.h``: ``MotionMode_CubicSpline
+#: = 5``, ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``ToolLengthOffset_Enable``
+#: G43, ``FeedMode_UnitsPerRev = 2 // G95``).
+_GRBLHAL_ONLY = {50: "G5 cubic spline", 730: "G73 canned cycle", **{k: f"G{k // 10} canned cycle" for k in
+                                                                     range(810, 900, 10)},
+                 430: "G43 tool length offset", 950: "G95 feed per revolution"}
+
+
+def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where) -> list[str]:
+    """Notes for the codes of one block that grbl 1.1 lacks and vcnc runs as grblHAL does (:data:`_GRBLHAL_ONLY`).
+
+    ``gcodes`` maps each G-code group of the block to its code (round(10 * G)) and word, ``letters`` are the
+    block's other word letters.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        G41/G42 cutter radius compensation (grbl has none), or a G4 dwell without P (grbl error 28).
+    """
+    notes = []
+    for key, w in gcodes.values():
+        if key in _NO_COMPENSATION:
+            where.fail(f"{_NO_COMPENSATION[key]} cutter radius compensation: grbl has none (gcode.c supports G40 "
+                       "only; error 20 unsupported command)", column=w.column, text=w.text,
+                       expected="a path already offset by the CAM post (G40 or no compensation code) under grbl")
+        if key == 40 and "P" not in letters:
+            where.fail("G4 dwell without P: grbl takes the dwell time from P only (gcode.c: '[P word missing]', "
+                       "error 28)", column=w.column, text=w.text, expected="G4 P<seconds>")
+        if key in _GRBLHAL_ONLY:
+            notes.append(f"{_GRBLHAL_ONLY[key]} run as grblHAL runs it (grbl 1.1 refuses it: error 20)")
+    return notes
 
 
 class GrblLines(NamedTuple):

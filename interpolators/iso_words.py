@@ -125,6 +125,17 @@ def block_comment(raw: str, where: Where) -> str | None:
     return raw[spans[-1][0] + 1:spans[-1][1] - 1] if spans else None
 
 
+
+def _foreign_hint(tok: str) -> str:
+    """What an unknown word is, when its text says: a RepRap/Marlin line checksum ``*57`` (the serial protocol
+    of 3D printer hosts: "N<line> <command>*<checksum>", RepRap wiki "G-code", "Checking"), which no CNC control
+    reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header."""
+    if re.fullmatch(r"\*\d+", tok):
+        return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
+    if ord(tok[0]) < 32:
+        return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
+    return ""
+
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:
     """The words of a comment-free line, left to right.
@@ -179,7 +190,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             if ch.isdigit() or ch in ".+-":
                 where.fail(f"number {tok!r} without its letter", column=i + 1, text=tok,
                            expected="a word: a letter and its number, such as G21 or X12.5")
-            where.fail(f"unknown word {tok!r}", column=i + 1, text=tok,
+            where.fail(f"unknown word {tok!r}{_foreign_hint(tok)}", column=i + 1, text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
         if value is None:
             v, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)

@@ -132,6 +132,9 @@ def assert_same(text: str, dialect: str) -> list[str]:
 @pytest.mark.parametrize("state", list(MODELLED))
 def test_modelled_states_give_the_general_blocks(state, dialect):
     got = assert_same(MODELLED[state] + "M2\n", dialect)
+    if state == "after compensation off" and dialect == "grbl":  # grbl has no G41/G42 (interpolators.iso_grbl)
+        assert "G41 cutter radius compensation: grbl has none" in got[0]
+        return
     assert len(got) > 5, got[0]
 
 
