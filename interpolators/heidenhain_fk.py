@@ -339,11 +339,16 @@ class FreeContour:
         # elements resolved with several solutions, and the block whose data resolved them (FSELECT follows it)
         self.choices: tuple[list[_Waiting], list[list[FkElement]], _Waiting] | None = None
         self.tol = 1e-6  # [program unit] the run's arc end tolerance, for the closed-form solutions
+        # the solver also met an arc back to its own start (sweep 0 or a full circle the data do not name)
+        self.degenerate = False
+        # the block whose data left one element and such an arc: an FSELECT right after it keeps the one
+        self.lone: _Waiting | None = None
+        self.notes: list[str] = []  # leniencies for the program's notes
 
     @property
     def waiting(self) -> bool:
         """An element is open or waits for FSELECT."""
-        return bool(self.stretch) or self.choices is not None
+        return bool(self.stretch) or self.choices is not None or self.lone is not None
 
     # --- blocks ---------------------------------------------------------------------------------------
     def set_pole(self, data: FkWords, start: np.ndarray, where: Where) -> None:
@@ -360,6 +365,11 @@ class FreeContour:
     def select(self, choice: float, where: Where, column: int, text: str) -> list[Emitted]:
         """``FSELECT n``: the n-th solution of the elements resolved before it; then what the open rest's data
         resolve from its end."""
+        lone, self.lone = self.lone, None
+        if self.choices is None and lone is not None and choice in (1, 2):
+            self.notes.append(f"FSELECT {choice:g} after line {lone.where.line}: its data leave one element and an "
+                              "arc back to its own start, which the TNC counts as a solution: the one element kept")
+            return []
         if self.choices is None:
             where.fail("FSELECT without an FK element of several solutions before it", column=column, text=text,
                        expected="FSELECT n right after the FK element whose solutions it picks from")
@@ -379,6 +389,7 @@ class FreeContour:
                 number: int | None, tol: float) -> list[Emitted]:
         """An FL, FLT, FC or FCT block starting at ``start`` (the preceding element's end, ``tangent`` its unit
         direction there, None when there is none), or after the open stretch: the elements it resolves, in order."""
+        self.lone = None
         if self.choices is not None:
             self.unresolved()
         allowed = _LINE_KEYS if kw in ("FL", "FLT") else _ARC_KEYS
@@ -411,6 +422,7 @@ class FreeContour:
 
     def unresolved(self) -> None:
         """A block other than the next FK element (or the program's end) while one waits: an error naming it."""
+        self.lone = None
         if self.choices is not None:
             elements, solutions, newest = self.choices
             w = elements[-1]
@@ -451,9 +463,12 @@ class FreeContour:
                                                            f"{elements[0].where.line} on"
             newest.where.fail(f"{newest.kw}: no element fits {what} (they contradict each other or the contour so "
                               "far)", column=1, text=newest.where.text, expected="FK data describing one element")
+        lone, self.degenerate = self.degenerate, False
         if len(solutions) > 1:
             self.choices = (elements, solutions, newest)
             return []
+        if lone:
+            self.lone = newest
         return [self._done(w, e) for w, e in zip(elements, solutions[0])]
 
     def _done(self, w: _Waiting, element: FkElement) -> Emitted:
@@ -977,6 +992,7 @@ def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
     stretch, scale = fk.stretch, _scale(fk, fk.stretch)
     base = _generic(stretch, scale, np.random.default_rng(11))
     found: list[list[FkElement]] = []
+    fk.degenerate = False
     since = 0  # converged starts since the last new solution
     for start in _starts(stretch, _determined(fk, stretch), base, scale):
         if found and since >= _ENOUGH:
@@ -986,13 +1002,24 @@ def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
             continue
         since += 1
         walked = _walk(fk, stretch, _normalised(stretch, z))[0][:count]
-        if not all(_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)):
+        admissible = [_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)]
+        if not all(admissible):
+            fk.degenerate |= all(ok or _back_to_start(c) for ok, c in zip(admissible, walked))
             continue
         chain = [c.element for c in walked]
         if not any(_same_chain(chain, other) for other in found):
             found.append(chain)
             since = 0
     return _ordered(found)
+
+
+def _back_to_start(walked: _Walked) -> bool:
+    """An arc that ends where it starts: sweep 0, or a full circle where the data do not name its end. The TNC
+    370 user's manual's "Example 3 for exercise in FK free contour programming" (section 5.6, p. 5-50) writes
+    ``FSELECT 2`` after ``13 FLT PAR9``, which leaves its arc of known circle one end here (the tangent at the
+    other point of the circle parallel to line 9 is the arc's start): our reading, the TNC counts the arc back to
+    its start as the other solution."""
+    return walked.element.centre is not None and (walked.sweep <= 1e-9 or walked.sweep > _TWO_PI - 1e-9)
 
 
 def _normalised(stretch: list[_Waiting], x: np.ndarray) -> np.ndarray:

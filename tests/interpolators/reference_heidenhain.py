@@ -671,6 +671,8 @@ def _corner(t: _Tnc, end: np.ndarray, centre) -> None:
     a, b = t.last_dir[:2], d / np.hypot(*d)
     turn = float(a[0] * b[1] - a[1] * b[0])
     theta = math.acos(max(-1.0, min(1.0, float(a @ b))))
+    if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * t.side > 0:
+        return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     dist = size * math.tan(theta / 2) if kind == "RND" else size
     t1, t2 = p.copy(), p.copy()
     t1[:2], t2[:2] = p[:2] - a * dist, p[:2] + b * dist
