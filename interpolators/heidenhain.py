@@ -2451,17 +2451,22 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
                                                                                 c.finish_infeed or abs(c.depth), d)]
+    def half_circle(u: float, level: float, feed: float) -> None:
+        """The half circle to ``at(u)``; none where the tool is there (213 with Q221 = 0, 215 with Q222 = Q223:
+        no lead, the tool plunges on the contour: our reading)."""
+        if np.hypot(*(at(u) - m.pos)[list(plane)]) > 1e-9:
+            seg = helical_arc(m.pos, (m.pos + at(u)) / 2.0, half, plane=axis, axis_end=level)
+            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
     for level, rounds in levels:
         _axis_move(m, "line", level, c.approach_feed, where, blk)
         for i, (off, feed) in enumerate(rounds):
             a = final[0] + off
             if i == 0:
-                seg = helical_arc(m.pos, (m.pos + at(a)) / 2.0, half, plane=axis, axis_end=level)
-                m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+                half_circle(a, level, feed)
             _rect_path(m, c, _at_level(centre, axis, level), (a, final[1] + off), max(c.corner + grow + off, 0.0),
                        feed, where, blk, ccw=not cw)
-        seg = helical_arc(m.pos, (m.pos + at(start_u)) / 2.0, half, plane=axis, axis_end=level)
-        m.emit("arc", np.array(seg.end), seg, rounds[-1][1], where, blk.number)
+        half_circle(start_u, level, rounds[-1][1])
     m.used.update(range(3))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:

@@ -94,3 +94,22 @@ def test_fselect_after_an_element_of_one_solution_only_is_an_error():
     # FL to a known point has no other solution, not even an arc back to its start
     with pytest.raises(GCodeError, match="FSELECT without an FK element of several solutions"):
         run("2 L X-10 Y+0 Z-5 R0 FMAX\n3 FL X+0 Y+0 F100\n4 FSELECT 2")
+
+
+# cycle 213 STUD FINISHING with the allowance Q221 = 0 (the TNC 370 manual's cycle 213: Q221 the allowance for
+# pre-positioning): the starting point is on the finished contour, so there is no half circle onto it. Stud 40 x 30
+# about (50, 50), corners R2, tool R5: the tool centre runs the rectangle 50 x 40 (x 25 .. 75, y 30 .. 70) with
+# corners R7, from and back to (75, 50)
+STUD = ("2 L Z+50 R0 FMAX M3\n3 CYCL DEF 213 STUD FINISHING ~\n Q200=2 ~\n Q201=-10 ~\n Q206=150 ~\n Q202=10 ~\n"
+        " Q207=500 ~\n Q203=+0 ~\n Q204=50 ~\n Q216=+50 ~\n Q217=+50 ~\n Q218=40 ~\n Q219=30 ~\n Q220=2 ~\n"
+        " Q221=0\n4 CYCL CALL")
+
+
+def test_stud_finishing_without_lead_has_no_half_circle():
+    prog = run(STUD)
+    cut = [b for b in prog.blocks if b.kind != "rapid" and b.target[2] == -10.0]
+    xy = np.array([b.target[:2] for b in cut])
+    assert np.allclose(xy.min(axis=0), [25, 30]) and np.allclose(xy.max(axis=0), [75, 70])
+    assert np.allclose(cut[-1].target[:2], [75, 50])
+    arcs = [b.segment for b in cut if b.kind != "line"]
+    assert len(arcs) == 4 and all(np.isclose(a.radius, 7.0) for a in arcs)
