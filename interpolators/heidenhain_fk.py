@@ -9,9 +9,11 @@ closed contours, "Auxiliary points" on and near a contour (p. 248 of the easyman
 R10 P1X+42.929 P1Y+60.071`` / ``14 FLT AN-70 PDX+50 PDY+53 D10``), relative data); TNC 425/415 B/407
 user's manual section 5.6, "FK functions" table (p. 5-44: "Cartesian coordinates of an auxiliary point at
 distance D from a contour element"); TNC 370 user's manual section 5.6 (pp. 5-39 .. 5-49: the dialogs "DIST
-AUXIL POINT PD X-COORDINATE ?" and "DISTANCE FROM AUXILIARY POINT ?", p. 5-42, and the complete "Example 1"
-and "Example 2 for exercise in FK free contour programming", pp. 5-48 and 5-49, which run here end to end:
-tests/interpolators/test_heidenhain_fk.py). The example blocks of these sections (``FPOL X+20 Y+30``, ``FL
+AUXIL POINT PD X-COORDINATE ?" and "DISTANCE FROM AUXILIARY POINT ?", p. 5-42, and the complete "Example 1",
+"Example 2" and "Example 3 for exercise in FK free contour programming", pp. 5-48 .. 5-50: the FK stretches of 1
+and 2 in tests/interpolators/test_heidenhain_fk.py, the forms of 1 and 3 that needed more in
+tests/interpolators/test_heidenhain_manual_examples.py; Example 1 and 3 run as printed, Example 2 with this
+module's FSELECT numbers, see below). The example blocks of these sections (``FPOL X+20 Y+30``, ``FL
 IX+10 Y+20 RR F100``, ``FCT PR+15 IPA+30 DR+ R15``, ``FC CCX+20 CCY+15 DR+ R15``, ``FC DR+ R15 CCPR+35
 CCPA+40``, ``FC DR- R15 CLSD+ CCX+20 CCY+35``, ``FCT IX+20 DR- R20 CCA+90 RX 13``, ``FL IPR+35 PA+0 RPR 13``,
 ``FL LEN 12.5 PAR 17 DP 12.5`` / ``FSELECT 2``, ``FL IAN+220 RAN 18``, ``FL AN+60 PDX+30 PDY+30 D+10`` /
@@ -64,10 +66,13 @@ stretch's elements resolved together) are numbered by the lengths of their eleme
 lengths (to 1e-6 program units) by the direction they leave their start in, counter- clockwise from +X (the manuals
 show the choice in the graphic but define no order: our reading; the TNC 370 manual's Example 2 picks FSELECT 3, 2,
 3, 2 of 4, 2, 3, 2 solutions found here, where this numbering needs 1, 1, 2, 1 for the lever its dimensions
-describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. An arc of a stretch is no full
-circle unless its data name its end. A stretch still open at a block that is not FK (or at the program's end) is an
-error naming its first element, what of it is open and the data that would fix it; data that fix a stretch but fit
-no contour are an error naming the block that brought them and where the stretch began.
+describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. The TNC also counts an arc back to
+its own start (sweep 0) where the data allow it: Example 3 writes ``FSELECT 2`` after ``13 FLT PAR9``, which leaves
+the arc before it one end and that one; here ``FSELECT 1`` or ``2`` after such a block keeps the one end, with a
+note (:func:`_back_to_start`). An arc of a stretch is no full circle unless its data name its end. A stretch still
+open at a block that is not FK (or at the program's end) is an error naming its first element, what of it is open
+and the data that would fix it; data that fix a stretch but fit no contour are an error naming the block that
+brought them and where the stretch began.
 
 The resolved element is a line ``L`` or an arc ``CC`` + ``C`` to the reader (the FK centre is then the
 pole: the manuals say a CC programmed before is no longer valid after an FK contour), so radius
