@@ -2456,17 +2456,22 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
         levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
                                                                                 c.finish_infeed or abs(c.depth), d)]
+    def half_circle(u: float, level: float, feed: float) -> None:
+        """The half circle to ``at(u)``; none where the tool is there (213 with Q221 = 0, 215 with Q222 = Q223:
+        no lead, the tool plunges on the contour: our reading)."""
+        if np.hypot(*(at(u) - m.pos)[list(plane)]) > 1e-9:
+            seg = helical_arc(m.pos, (m.pos + at(u)) / 2.0, half, plane=axis, axis_end=level)
+            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+
     for level, rounds in levels:
         _axis_move(m, "line", level, c.approach_feed, where, blk)
         for i, (off, feed) in enumerate(rounds):
             a = final[0] + off
             if i == 0:
-                seg = helical_arc(m.pos, (m.pos + at(a)) / 2.0, half, plane=axis, axis_end=level)
-                m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
+                half_circle(a, level, feed)
             _rect_path(m, c, _at_level(centre, axis, level), (a, final[1] + off), max(c.corner + grow + off, 0.0),
                        feed, where, blk, ccw=not cw)
-        seg = helical_arc(m.pos, (m.pos + at(start_u)) / 2.0, half, plane=axis, axis_end=level)
-        m.emit("arc", np.array(seg.end), seg, rounds[-1][1], where, blk.number)
+        half_circle(start_u, level, rounds[-1][1])
     m.used.update(range(3))
     _axis_move(m, "rapid", top, math.inf, where, blk)
     if d * (surface - d * c.second_setup - top) < 0:
@@ -3129,7 +3134,14 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
     prev = m.blocks.pop()
     try:
         if kind == "RND":
-            first, corner_seg, second = round_elements(prev.segment, second, value, plane=m.plane)
+            first, corner_seg, trimmed = round_elements(prev.segment, second, value, plane=m.plane)
+            if _inside_rounding(m, corner_seg):
+                m.blocks.append(prev)
+                m.note(f"RND R{value / m.scale:g} on an inside corner under {m.comp_side} with a tool of radius "
+                       f"{m.comp_radius / m.scale:g}: the corner is cut where the tool centre paths meet (the "
+                       "tool's own radius rounds it)")
+                return second
+            second = trimmed
         else:
             t1, t2 = chamfer_corner(prev.start, prev.target, second.end, value, plane=m.plane)
             first, corner_seg, second = Line(prev.start, t1), Line(t1, t2), Line(t2, second.end)
@@ -3143,6 +3155,21 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
     return second
 
 
+def _inside_rounding(m: _Machine, corner: Arc) -> bool:
+    """An RND arc under RL/RR that turns toward the tool's side (an inside corner) with a radius not above the tool
+    radius: the tool centre's arc would have no radius left. The TNC cuts inside corners where the tool centre
+    paths meet (iTNC 530 user's manual, 5.3 "Radius compensation: Machining corners", "Inside corners"), so the
+    corner is left to compensation, rounded by the tool itself. The manuals' own programs write such roundings:
+    the TNC 370 user's manual's "Example 1/2 for exercise in FK free contour programming" (section 5.6, pp. 5-48,
+    5-49) round the corner at the contour's start with RND R1 (tool R2) and RND R5 (tool R5) right after the
+    block that switches RL/RR on. Our reading: the iTNC 530 manual asks that "the rounding arc must be machinable
+    with the called tool" and names no error for these."""
+    if m.comp_start is None or m.comp_radius <= 0:  # no compensated run (its R0 exit block is still one)
+        return False
+    toward_tool = corner.ccw == (m.comp_side == "RL")
+    return toward_tool and corner.radius <= m.comp_radius + 1e-9
+
+
 # --- FK free contour programming ------------------------------------------------------------------
 
 def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
@@ -3153,6 +3180,9 @@ def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
     if kw == "FSELECT":
         value, _ = read_value(blk.code, pos, where, m.params, what=kw, column0=blk.column)
         done = m.fk.select(value, where, blk.column, blk.code)
+        for text in m.fk.notes:
+            m.note(text)
+        m.fk.notes.clear()
     else:
         data = read_fk_words(blk.code, pos, where, m.params, column0=blk.column, axes=axes)
         if kw == "FPOL":

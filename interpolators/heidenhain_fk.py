@@ -9,9 +9,11 @@ closed contours, "Auxiliary points" on and near a contour (p. 248 of the easyman
 R10 P1X+42.929 P1Y+60.071`` / ``14 FLT AN-70 PDX+50 PDY+53 D10``), relative data); TNC 425/415 B/407
 user's manual section 5.6, "FK functions" table (p. 5-44: "Cartesian coordinates of an auxiliary point at
 distance D from a contour element"); TNC 370 user's manual section 5.6 (pp. 5-39 .. 5-49: the dialogs "DIST
-AUXIL POINT PD X-COORDINATE ?" and "DISTANCE FROM AUXILIARY POINT ?", p. 5-42, and the complete "Example 1"
-and "Example 2 for exercise in FK free contour programming", pp. 5-48 and 5-49, which run here end to end:
-tests/interpolators/test_heidenhain_fk.py). The example blocks of these sections (``FPOL X+20 Y+30``, ``FL
+AUXIL POINT PD X-COORDINATE ?" and "DISTANCE FROM AUXILIARY POINT ?", p. 5-42, and the complete "Example 1",
+"Example 2" and "Example 3 for exercise in FK free contour programming", pp. 5-48 .. 5-50: the FK stretches of 1
+and 2 in tests/interpolators/test_heidenhain_fk.py, the forms of 1 and 3 that needed more in
+tests/interpolators/test_heidenhain_manual_examples.py; Example 1 and 3 run as printed, Example 2 with this
+module's FSELECT numbers, see below). The example blocks of these sections (``FPOL X+20 Y+30``, ``FL
 IX+10 Y+20 RR F100``, ``FCT PR+15 IPA+30 DR+ R15``, ``FC CCX+20 CCY+15 DR+ R15``, ``FC DR+ R15 CCPR+35
 CCPA+40``, ``FC DR- R15 CLSD+ CCX+20 CCY+35``, ``FCT IX+20 DR- R20 CCA+90 RX 13``, ``FL IPR+35 PA+0 RPR 13``,
 ``FL LEN 12.5 PAR 17 DP 12.5`` / ``FSELECT 2``, ``FL IAN+220 RAN 18``, ``FL AN+60 PDX+30 PDY+30 D+10`` /
@@ -64,10 +66,13 @@ stretch's elements resolved together) are numbered by the lengths of their eleme
 lengths (to 1e-6 program units) by the direction they leave their start in, counter- clockwise from +X (the manuals
 show the choice in the graphic but define no order: our reading; the TNC 370 manual's Example 2 picks FSELECT 3, 2,
 3, 2 of 4, 2, 3, 2 solutions found here, where this numbering needs 1, 1, 2, 1 for the lever its dimensions
-describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. An arc of a stretch is no full
-circle unless its data name its end. A stretch still open at a block that is not FK (or at the program's end) is an
-error naming its first element, what of it is open and the data that would fix it; data that fix a stretch but fit
-no contour are an error naming the block that brought them and where the stretch began.
+describe, so the TNC numbers them otherwise), and ``FSELECT n`` picks the n-th. The TNC also counts an arc back to
+its own start (sweep 0) where the data allow it: Example 3 writes ``FSELECT 2`` after ``13 FLT PAR9``, which leaves
+the arc before it one end and that one; here ``FSELECT 1`` or ``2`` after such a block keeps the one end, with a
+note (:func:`_back_to_start`). An arc of a stretch is no full circle unless its data name its end. A stretch still
+open at a block that is not FK (or at the program's end) is an error naming its first element, what of it is open
+and the data that would fix it; data that fix a stretch but fit no contour are an error naming the block that
+brought them and where the stretch began.
 
 The resolved element is a line ``L`` or an arc ``CC`` + ``C`` to the reader (the FK centre is then the
 pole: the manuals say a CC programmed before is no longer valid after an FK contour), so radius
@@ -339,11 +344,16 @@ class FreeContour:
         # elements resolved with several solutions, and the block whose data resolved them (FSELECT follows it)
         self.choices: tuple[list[_Waiting], list[list[FkElement]], _Waiting] | None = None
         self.tol = 1e-6  # [program unit] the run's arc end tolerance, for the closed-form solutions
+        # the solver also met an arc back to its own start (sweep 0 or a full circle the data do not name)
+        self.degenerate = False
+        # the block whose data left one element and such an arc: an FSELECT right after it keeps the one
+        self.lone: _Waiting | None = None
+        self.notes: list[str] = []  # leniencies for the program's notes
 
     @property
     def waiting(self) -> bool:
         """An element is open or waits for FSELECT."""
-        return bool(self.stretch) or self.choices is not None
+        return bool(self.stretch) or self.choices is not None or self.lone is not None
 
     # --- blocks ---------------------------------------------------------------------------------------
     def set_pole(self, data: FkWords, start: np.ndarray, where: Where) -> None:
@@ -360,6 +370,11 @@ class FreeContour:
     def select(self, choice: float, where: Where, column: int, text: str) -> list[Emitted]:
         """``FSELECT n``: the n-th solution of the elements resolved before it; then what the open rest's data
         resolve from its end."""
+        lone, self.lone = self.lone, None
+        if self.choices is None and lone is not None and choice in (1, 2):
+            self.notes.append(f"FSELECT {choice:g} after line {lone.where.line}: its data leave one element and an "
+                              "arc back to its own start, which the TNC counts as a solution: the one element kept")
+            return []
         if self.choices is None:
             where.fail("FSELECT without an FK element of several solutions before it", column=column, text=text,
                        expected="FSELECT n right after the FK element whose solutions it picks from")
@@ -379,6 +394,7 @@ class FreeContour:
                 number: int | None, tol: float) -> list[Emitted]:
         """An FL, FLT, FC or FCT block starting at ``start`` (the preceding element's end, ``tangent`` its unit
         direction there, None when there is none), or after the open stretch: the elements it resolves, in order."""
+        self.lone = None
         if self.choices is not None:
             self.unresolved()
         allowed = _LINE_KEYS if kw in ("FL", "FLT") else _ARC_KEYS
@@ -411,6 +427,7 @@ class FreeContour:
 
     def unresolved(self) -> None:
         """A block other than the next FK element (or the program's end) while one waits: an error naming it."""
+        self.lone = None
         if self.choices is not None:
             elements, solutions, newest = self.choices
             w = elements[-1]
@@ -451,9 +468,12 @@ class FreeContour:
                                                            f"{elements[0].where.line} on"
             newest.where.fail(f"{newest.kw}: no element fits {what} (they contradict each other or the contour so "
                               "far)", column=1, text=newest.where.text, expected="FK data describing one element")
+        lone, self.degenerate = self.degenerate, False
         if len(solutions) > 1:
             self.choices = (elements, solutions, newest)
             return []
+        if lone:
+            self.lone = newest
         return [self._done(w, e) for w, e in zip(elements, solutions[0])]
 
     def _done(self, w: _Waiting, element: FkElement) -> Emitted:
@@ -977,6 +997,7 @@ def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
     stretch, scale = fk.stretch, _scale(fk, fk.stretch)
     base = _generic(stretch, scale, np.random.default_rng(11))
     found: list[list[FkElement]] = []
+    fk.degenerate = False
     since = 0  # converged starts since the last new solution
     for start in _starts(stretch, _determined(fk, stretch), base, scale):
         if found and since >= _ENOUGH:
@@ -986,13 +1007,24 @@ def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
             continue
         since += 1
         walked = _walk(fk, stretch, _normalised(stretch, z))[0][:count]
-        if not all(_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)):
+        admissible = [_admissible(fk, w, c, fk.tol) for w, c in zip(stretch, walked)]
+        if not all(admissible):
+            fk.degenerate |= all(ok or _back_to_start(c) for ok, c in zip(admissible, walked))
             continue
         chain = [c.element for c in walked]
         if not any(_same_chain(chain, other) for other in found):
             found.append(chain)
             since = 0
     return _ordered(found)
+
+
+def _back_to_start(walked: _Walked) -> bool:
+    """An arc that ends where it starts: sweep 0, or a full circle where the data do not name its end. The TNC
+    370 user's manual's "Example 3 for exercise in FK free contour programming" (section 5.6, p. 5-50) writes
+    ``FSELECT 2`` after ``13 FLT PAR9``, which leaves its arc of known circle one end here (the tangent at the
+    other point of the circle parallel to line 9 is the arc's start): our reading, the TNC counts the arc back to
+    its start as the other solution."""
+    return walked.element.centre is not None and (walked.sweep <= 1e-9 or walked.sweep > _TWO_PI - 1e-9)
 
 
 def _normalised(stretch: list[_Waiting], x: np.ndarray) -> np.ndarray:

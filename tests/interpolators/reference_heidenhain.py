@@ -671,6 +671,8 @@ def _corner(t: _Tnc, end: np.ndarray, centre) -> None:
     a, b = t.last_dir[:2], d / np.hypot(*d)
     turn = float(a[0] * b[1] - a[1] * b[0])
     theta = math.acos(max(-1.0, min(1.0, float(a @ b))))
+    if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * t.side > 0:
+        return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     dist = size * math.tan(theta / 2) if kind == "RND" else size
     t1, t2 = p.copy(), p.copy()
     t1[:2], t2[:2] = p[:2] - a * dist, p[:2] + b * dist
@@ -1713,13 +1715,14 @@ def _stud(t: _Tnc, line: int, p: dict) -> None:
         for i, off in enumerate(offs):
             a = a0 + off
             on = np.array([centre[0] + a, centre[1], here[2]])
-            if i == 0:
+            if i == 0 and np.hypot(*(on - here)[:2]) > 1e-9:  # no lead (213 Q221 = 0): no half circle
                 t.emit(line, back, t.machine(on), centre=t.machine((on + here) / 2))
             _rectangle(t, line, {"Q224": 0.0}, np.array([centre[0], centre[1], here[2]]),
                        "arc_ccw" if kind == "arc_ccw" else "arc_cw", (a, b0 + off),
                        max(p.get("Q220", 0.0) * t.scale + side + R + off, 0.0))
         end = np.array([start[0], start[1], here[2]])
-        t.emit(line, back, t.machine(end), centre=t.machine((end + t.prog()) / 2))
+        if np.hypot(*(end - t.prog())[:2]) > 1e-9:
+            t.emit(line, back, t.machine(end), centre=t.machine((end + t.prog()) / 2))
     _move_z(t, line, "rapid", surface - sgn * setup)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
@@ -2120,9 +2123,8 @@ def _ruled_surface(t: _Tnc, line: int, p: dict) -> None:
     for j in range(n + 1):
         f = j / n if n else 0.0
         a, b = pts[0] + (pts[3] - pts[0]) * f, pts[1] + (pts[2] - pts[1]) * f
-        if j:
-            t.emit(line, "feed", t.machine(a))
-        t.emit(line, "feed", t.machine(b))
+        for q in ([a] if j else []) + [b]:  # a line of no length (points 3 and 4 the same) may have no row
+            t.emit(line, "feed", t.machine(q), rows="optional" if np.allclose(t.machine(q), t.pos) else "one")
         if j < n:
             for q in (b + [0, 0, lift], np.array([a[0], a[1], b[2] + lift]), a):
                 t.emit(line, "rapid", t.machine(q), rows="optional" if np.allclose(t.machine(q), t.pos) else "one")

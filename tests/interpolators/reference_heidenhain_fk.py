@@ -436,6 +436,8 @@ class FkReference:
         return out
 
     def select(self, n: int) -> list:
+        if self.waiting is None or self.waiting[3] is None:  # one solution and an arc back to its start (TNC)
+            return []
         chain, _, _, sols = self.waiting
         self.waiting = None
         recs = sols[n - 1]
