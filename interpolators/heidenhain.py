@@ -1006,6 +1006,7 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
         m.tool_number = 0
+        m.at_rest = True  # a tool called by name that the table does not hold: a change all the same
     _tool_parameters(m, where)
 
 

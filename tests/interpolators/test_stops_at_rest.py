@@ -48,3 +48,11 @@ def test_tnc_stop_m0_and_a_tool_change_bring_the_axes_to_rest():
             "11 TOOL CALL 2 Z S1000\n12 L X+60\n13 TOOL CALL Z S2000\n14 L X+70\n15 END PGM S MM\n")
     at_rest, at_speed = 0.0, pytest.approx(SPEED, rel=0.02)
     assert _speed_at(text, (10, 20, 30, 40, 50, 60)) == [at_rest, at_speed, at_speed, at_rest, at_rest, at_speed]
+
+
+def test_tnc_a_tool_called_by_name_brings_the_axes_to_rest():
+    """TOOL CALL "MILL_D10" Z: a tool change by name (not in the tool table: length and radius 0, noted)."""
+    text = ("0 BEGIN PGM N MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+0 R0 F3000\n3 CYCL DEF 32.0 TOLERANCE\n"
+            "4 CYCL DEF 32.1 T0.01\n5 L X+10\n6 TOOL CALL \"MILL_D10\" Z S1000\n7 L X+20\n8 L X+30\n"
+            "9 END PGM N MM\n")
+    assert _speed_at(text, (10, 20)) == [0.0, pytest.approx(SPEED, rel=0.02)]
