@@ -514,7 +514,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     macro_b = dialect.name in ("fanuc", "haas")
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        abbreviations=dialect.name == "fanuc", fanuc=dialect.name == "fanuc",
+                        fanuc=dialect.name == "fanuc",
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
     on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None

@@ -584,7 +584,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     """
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
-                    tape_leader=tape_leader, abbreviations=params.abbreviations)
+                    tape_leader=tape_leader, abbreviations=params.fanuc)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

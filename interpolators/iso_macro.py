@@ -18,7 +18,7 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
   closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
   after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` is an error naming it.
-* Abbreviations (``fanuc`` dialect only: :attr:`interpolators.iso_params.Parameters.abbreviations`): a Fanuc
+* Abbreviations (``fanuc`` dialect only: :attr:`interpolators.iso_params.Parameters.fanuc`): a Fanuc
   control takes the first two characters of a macro word for the word (Fanuc 0i/16i/30i operator's manuals,
   "Custom macro", "Arithmetic and logic operation", "Abbreviations of macro statements": "ROUND -> RO, FIX ->
   FI"; the text itself was not found in our search index, and that the rule covers the statement words as

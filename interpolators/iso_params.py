@@ -127,22 +127,20 @@ class Parameters:
     set_system : callable, optional
         ``set_system(n, value)`` sets a system parameter the control lets a program write (Fanuc/Haas
         work offsets: :func:`interpolators.iso_system.set_system_parameter`); True when it did.
-    abbreviations : bool
-        Fanuc's abbreviated macro words (the ``fanuc`` dialect; :mod:`interpolators.iso_macro` gives the
-        source): a function written by its first two characters (``RO[#1]`` is ``ROUND[#1]``, ``SQ`` is
-        ``SQRT``); two characters that begin more than one function's name are an error naming them. The
-        statement words (``WH``, ``GO``, ``EN``, ``TH``) are read by :mod:`interpolators.iso_macro`.
     fanuc : bool
-        Fanuc's own function rules (the ``fanuc`` dialect; Fanuc 0i-MD B-64304EN and 0i-MF B-64604EN "Custom
-        macro", "Arithmetic and logic operation"): ``ATAN[y]/[x]`` is 0 to 360 deg (parameter NAT, No. 6004#0,
-        = 0, its default: ``ATAN[-1]/[-1]`` is 225; LinuxCNC's and Haas's atan2 gives -135), and the Series
-        0i-F/30i forms ``ATAN[y,x]`` and ``POW[a,b]`` (a to the power b) read.
+        Fanuc's own rules (the ``fanuc`` dialect). Its abbreviated macro words (:mod:`interpolators.iso_macro`
+        gives the source): a function written by its first two characters (``RO[#1]`` is ``ROUND[#1]``, ``SQ``
+        is ``SQRT``); two characters that begin more than one function's name are an error naming them. The
+        statement words (``WH``, ``GO``, ``EN``, ``TH``) are read by :mod:`interpolators.iso_macro`. Its
+        functions (Fanuc 0i-MD B-64304EN and 0i-MF B-64604EN "Custom macro", "Arithmetic and logic operation"):
+        ``ATAN[y]/[x]`` is 0 to 360 deg (parameter NAT, No. 6004#0, = 0, its default: ``ATAN[-1]/[-1]`` is 225;
+        LinuxCNC's and Haas's atan2 gives -135), and the Series 0i-F/30i forms ``ATAN[y,x]`` and ``POW[a,b]``
+        (a to the power b) read.
     """
 
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
-                 set_system: Callable[[int, float | None], bool] | None = None, abbreviations: bool = False,
-                 fanuc: bool = False) -> None:
+                 set_system: Callable[[int, float | None], bool] | None = None, fanuc: bool = False) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -150,7 +148,6 @@ class Parameters:
         self.unbracketed = 0  # assignments "#1 = #1 + 2" read without macro_b (LinuxCNC wants [#1 + 2])
         self.system = system
         self.set_system = set_system
-        self.abbreviations = abbreviations
         self.fanuc = fanuc
 
     def _local_numbered(self, n: int) -> dict[int, float]:
@@ -350,7 +347,7 @@ class _Reader:
         if self.params.fanuc and self.up.startswith("POW", p):
             return self.function("POW", p)
         word = re.match(r"[A-Za-z]\w*", self.code[p:])
-        if word and self.params.abbreviations and len(word.group(0)) == 2 \
+        if word and self.params.fanuc and len(word.group(0)) == 2 \
                 and self.code[self.skip(p + 2):].startswith("["):
             return self.abbreviated(word.group(0).upper(), p)
         if word and self.code[self.skip(p + word.end()):].startswith("["):
