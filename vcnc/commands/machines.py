@@ -40,7 +40,7 @@ PROGRAM_TABLE_DOC = """
 # offset_y = 0.0                 # mm
 # name = ""                      # the tool's name: Heidenhain TOOL CALL "NAME" calls it
 #
-# [program.touch_probe]          # Heidenhain touch probe table row (TCH PROBE 412/413/417 on the nominal workpiece)
+# [program.touch_probe]          # Heidenhain touch probe table row (TCH PROBE 4xx cycles on the nominal workpiece)
 # set_up = 2.0                   # mm, SET_UP: safety clearance added to the cycle's Q320
 # feed = 100.0                   # mm/min, F: probing feed
 # fmax = 2000.0                  # mm/min, FMAX: pre-positioning and moves between the touch points
