@@ -112,10 +112,10 @@ _TOOL_CYCLES = (30, 31, 32, 33, 480, 481, 482, 483, 484)
 _CIRCLE = (321, 322, 262, 325, 247, 261, 320, 260)
 _RECTANGLE = (321, 322, 323, 324, 261, 320, 260)
 _SLOT = (321, 322, 311, 272, 261, 320, 260)
-#: The Q parameters a definition must give (TNC 320 cycle manual, the cycles' parameter lists); the others take
-#: the defaults of :data:`_DEFAULTS`.
 _ONE_AXIS = (263, 264, 261, 320, 260, 272, 267)
 _TWO_POINTS = (263, 264, 265, 266, 272, 267, 261, 320, 260)
+#: The Q parameters a definition must give (TNC 320 cycle manual, the cycles' parameter lists); the others take
+#: the defaults of :data:`_DEFAULTS`.
 _REQUIRED = {417: (263, 264, 294, 320, 260), 412: _CIRCLE, 413: _CIRCLE, 410: _RECTANGLE, 411: _RECTANGLE,
              408: _SLOT, 409: _SLOT, 419: _ONE_AXIS, 427: _ONE_AXIS, 400: _TWO_POINTS, 420: _TWO_POINTS,
              421: (273, 274, 262, 325, 247, 261, 320, 260), 422: (273, 274, 262, 325, 247, 261, 320, 260),
