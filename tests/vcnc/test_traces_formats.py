@@ -195,12 +195,20 @@ def test_logger_csv_with_preamble_semicolons_and_decimal_comma(capture, tmp_path
     rows = [f"{t * 1e3:.0f};{r:.6f};{m:.6f}".replace(".", ",") for t, r, m in zip(capture.t, ref, meas)]
     f.write_text("Logger 3000 export\nChannels: 3\n\nZeit;Soll;Ist\n" + "\n".join(rows) + "\n")
     assert trace_format(f) == "delimited"
-    with pytest.raises(CaptureError, match="give --columns.*columns found: \\['Zeit', 'Soll', 'Ist'\\]"):
+    # the names say which column is which (vcnc.traces.names), but not the units: a time column stepping by 1
+    # is no drive trace in seconds
+    with pytest.raises(CaptureError, match="the time column 'Zeit' \\(read from its name\\) steps by 1 and the file "
+                                           "does not state its unit.*expected --time-unit"):
         read_capture(f)
-    cap = read_capture(f, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"}, time_unit="ms", unit="um")
-    np.testing.assert_allclose(cap.t, capture.t - capture.t[0], rtol=0, atol=1e-12)
-    np.testing.assert_array_equal(cap.reference[:, 0], ref * 1e-3)
-    np.testing.assert_array_equal(cap.measured[:, 0], meas * 1e-3)
+    mapped = read_capture(f, columns={"t": "Zeit", "x_ref": "Soll", "x": "Ist"}, time_unit="ms", unit="um")
+    named = read_capture(f, time_unit="ms", unit="um")
+    for cap in (mapped, named):
+        np.testing.assert_allclose(cap.t, capture.t - capture.t[0], rtol=0, atol=1e-12)
+        np.testing.assert_array_equal(cap.reference[:, 0], ref * 1e-3)
+        np.testing.assert_array_equal(cap.measured[:, 0], meas * 1e-3)
+    assert "columns" not in mapped.meta
+    assert named.meta["columns"] == ("from the header names: t=Zeit, x_ref=Soll, x=Ist (--columns, --time-unit, "
+                                     "--unit set them)")
     with pytest.raises(CaptureError, match="column 'Pos' not found; columns found: \\['Zeit', 'Soll', 'Ist'\\]"):
         read_capture(f, columns={"t": "Zeit", "x_ref": "Pos", "x": "Ist"})
 

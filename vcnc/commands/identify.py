@@ -343,6 +343,8 @@ def run(args: argparse.Namespace) -> int:
         rep.write(args.report)
     p, poles, fit = model.parameters, model.poles, model.fit
     out = sys.stdout
+    if "columns" in capture.meta:  # a delimited trace's mapping read from its header names
+        out.write(f"{args.capture}: columns {capture.meta['columns']}\n")
     out.write(f"axis {axis}: {len(capture)} samples, Ts {model.sample_time:g} s, method {model.method}\n")
     out.write(
         f"poles: omega_n {poles['omega_n_hz']:.4g} Hz, zeta {poles['zeta']:.4g}, p {poles['p_hz']:.4g} Hz\n"

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
@@ -58,6 +59,7 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
+from vcnc.traces.names import columns_from_names
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "TIME_UNITS",
@@ -180,7 +182,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
     header = units_row = None
     for j in range(first - 1, -1, -1):
         if lines[j].strip():
-            cells = [c.strip() for c in _split(lines[j], delimiter)]
+            cells = _header_cells(lines[j], delimiter)
             numeric = sum(_numbers([c], comma) is not None for c in cells if c)
             if len(cells) == width and numeric * 2 > len(cells):  # a data row with a bad cell, not a header
                 bad = next((c for c in cells if _numbers([c], comma) is None), "")
@@ -190,7 +192,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
             if header is not None and is_unit_row(header):  # names above a row of units
                 units_row = header
                 above = next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None)
-                names = [c.strip() for c in _split(lines[above], delimiter)] if above is not None else []
+                names = _header_cells(lines[above], delimiter) if above is not None else []
                 header = names if len(names) == width else None
             break
     rows, row_lines, overruns = [], [], []
@@ -202,6 +204,13 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
         rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
         row_lines.append(i + 1)
     return header, units_row, np.array(rows, dtype=float), row_lines, delimiter, overruns
+
+
+def _header_cells(line: str, delimiter: str) -> list[str]:
+    """The cells of a line above the numbers, also behind a comment mark (``# time x_cmd x_fb``: gnuplot,
+    numpy.savetxt; ``% ...``: MATLAB)."""
+    stripped = line.lstrip()
+    return [c.strip() for c in _split(stripped[1:] if stripped[:1] in ("#", "%") else line, delimiter)]
 
 
 def _column(name: str | int, header: list[str] | None, width: int, src: str, line: int) -> int:
@@ -219,10 +228,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     header, units_row, data, row_lines, delimiter, overruns = _table(text, src)
     hline = row_lines[0] - 1
+    guessed = not columns
     if not columns:
-        raise CaptureError("which columns are time, commanded and measured position? give --columns "
-                           f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'}",
-                           file=src, line=hline)
+        columns, why = columns_from_names(header) if header is not None else (None, "the file has no header line")
+        if columns is None:
+            raise CaptureError("which columns are time, commanded and measured position? give --columns "
+                               f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
+                               f"(not read from the names: {why})", file=src, line=hline)
     _check_time_options(columns, time_unit, sample_time, overruns, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
@@ -233,6 +245,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
+    time_stated = units["t"] is not None
+    units["t"] = units["t"] or "s"
     stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
     if stamped:
         units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
@@ -243,6 +257,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
+    time_known = time_stated or stamped or sample_time is not None
+    if guessed:
+        _check_guessed_time(t, columns["t"], time_known, src, hline)
 
     def scaled(k: str) -> np.ndarray:
         return d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
@@ -257,6 +274,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                  f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
             "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how}
+    if guessed:
+        meta["columns"] = _guessed_note(columns, units, time_known)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
@@ -286,11 +305,33 @@ def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Ma
         by_name = unit_in_name(header[idx[k]], kind) if header is not None else None
         return by_name or (unit_named(units_row[idx[k]].strip("[]() "), kind) if units_row is not None else None)
 
-    out: dict[str, str | None] = {"t": time_unit or (named("t", "time") if "t" in idx else None) or "s"}
+    out: dict[str, str | None] = {"t": time_unit or (named("t", "time") if "t" in idx else None)}
     for k in idx:
         if k != "t":
             out[k] = unit or named(k, "length")
     return out
+
+
+def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], time_known: bool) -> str:
+    """The capture's ``meta["columns"]`` of a mapping read from the header names: the mapping, and the units
+    assumed because the file does not state them (s, mm; deg on a rotary axis)."""
+    assumed = ([f"t in {units['t']}"] if not time_known else []) + [
+        f"{k} in {'deg' if axis_of(k) in ROTARY_AXES else 'mm'}" for k in columns if k != "t" and units[k] is None]
+    return ("from the header names: " + ", ".join(f"{k}={v}" for k, v in columns.items())
+            + (f"; not stated in the file, assumed {', '.join(assumed)}" if assumed else "")
+            + " (--columns, --time-unit, --unit set them)")
+
+
+def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: int) -> None:
+    """A time column read from its name whose unit the file does not state is taken in seconds, unless its
+    step is 0.1 or more: no drive trace is sampled that slowly (servo loops close every 0.05-10 ms; a
+    logging PC every few ms), so such a column counts ms, samples or something else (our reading)."""
+    step = float(np.median(np.diff(t)))
+    if not stated and step >= 0.1:
+        raise CaptureError(f"the time column {name!r} (read from its name) steps by {step:.6g} and the file does not "
+                           "state its unit: seconds would be a sampling far too slow for a drive trace", file=src,
+                           line=line, expected="--time-unit ms|us|s, or --columns t=NAME,... with --sample-time S "
+                                               "when it counts samples")
 
 
 def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:

@@ -1,0 +1,143 @@
+"""Which column of a delimited trace is what, from its header names, when no mapping is given.
+
+Loggers name their channels in their maker's words and language: ``Time [ms]``, ``X Sollposition``,
+``Axis X Actual Position``, ``x_cmd`` / ``x_fb``, ``PosCmd`` / ``PosAct``, ``Lageistwert``,
+``X following error``. :func:`columns_from_names` reads such a header into the mapping that
+``--columns`` would give (``t=..., x_ref=..., x=...`` or ``x_lag=...``), and only when the reading
+is unambiguous:
+
+- each name is split into words (separators, camelCase, a unit in brackets set aside); a name made
+  of time words only (``t``, ``time``, ``Zeit``, ``timestamp``...) is the time column, and there must
+  be exactly one;
+- a name with a word of commanding (``cmd``, ``command``, ``set``, ``ref``, ``soll``, ``nominal``,
+  ``target``, ``demand``...), of measuring (``act``, ``actual``, ``fb``, ``feedback``, ``ist``,
+  ``measured``, ``encoder``...) or of a following error (``lag``, ``ferror``, ``following error``,
+  ``Schleppfehler``, ``deviation``, ``diff``...) is a position of that role; one that names a
+  velocity, current, torque, acceleration, force... or carries a unit that is not a length
+  (``[mm/min]``, ``[A]``, ``[%]``) is not a position at all;
+- its axis is the one axis letter among its words (``X Soll``, ``x_cmd``, ``xact``); a file whose
+  positions name no axis has one axis, x, when it has one pair;
+- each axis needs exactly one commanded and one measured column (or, without a measured one,
+  exactly one following error). Two candidates for one role make the header ambiguous.
+
+Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
+words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
+``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
+``Soll``/``Ist``), not a standard.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from vcnc.core.axes import AXIS_NAMES
+from vcnc.traces.columns import LAG_SUFFIX, unit_in_name
+
+__all__ = ["columns_from_names"]
+
+_TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
+                   "sec", "secs", "seconds", "ms", "msec", "elapsed"})
+_REF = frozenset({"cmd", "command", "commanded", "ref", "reference", "set", "setpoint", "setpos", "soll",
+                  "sollwert", "sollposition", "sollpos", "nominal", "noml", "nom", "target", "demand", "demanded",
+                  "dem", "desired", "consigne", "commande", "sp"})
+_ACT = frozenset({"act", "actual", "actl", "actpos", "ist", "istwert", "istposition", "istpos", "fb", "feedback",
+                  "meas", "measured", "measurement", "enc", "encoder", "real", "reel", "mesure", "pv"})
+_LAG = frozenset({"lag", "ferror", "ferr", "following", "schleppfehler", "schleppabstand", "posdiff", "deviation",
+                  "droop", "diff", "regeldifferenz", "ecart"})
+#: Words that make "error" a following error: "following error", "position error", "f-error".
+_LAG_ERROR = frozenset({"following", "tracking", "position", "pos", "servo", "f", "lag", "contouring"})
+_ERROR = frozenset({"error", "err", "fehler"})
+#: Words of quantities that are not positions.
+_OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "current", "curr", "iq", "id", "torque",
+                    "trq", "moment", "force", "acc", "accel", "acceleration", "jerk", "voltage", "volt", "temp",
+                    "temperature", "power", "load", "strom", "drehzahl", "geschwindigkeit", "beschleunigung",
+                    "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
+                    "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
+                    "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
+                    "zeit", "timestamp"})
+#: German compounds are one word: a commanded "Lagesollwert", a measured "Lageistwert", a velocity
+#: "Drehzahlsollwert".
+_OTHER_PARTS = ("geschw", "drehzahl", "strom", "moment", "beschl", "kraft", "spannung", "velocity", "speed",
+                "current", "torque")
+_WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
+_BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
+_TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
+
+
+def _words(name: str) -> list[str]:
+    """The words of a column name, lower case, without units in brackets (``PosCmd`` -> pos, cmd)."""
+    return [w.lower() for w in _WORD.findall(_BRACKETS.sub(" ", name))]
+
+
+def _role(words: list[str]) -> str | None:
+    """``ref``, ``act``, ``lag`` or None for the words of a name (module docstring)."""
+    if any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in words):
+        return None
+    roles = set()
+    for w in words:
+        if w in _REF or (len(w) > 4 and "soll" in w):
+            roles.add("ref")
+        elif w in _ACT or any(p in w for p in ("istwert", "istpos", "istlage")):
+            roles.add("act")
+        elif w in _LAG or (w in _ERROR and _LAG_ERROR.intersection(words)):
+            roles.add("lag")
+    return roles.pop() if len(roles) == 1 else None
+
+
+def _split_axis(words: list[str]) -> list[str]:
+    """``xcmd`` -> ``x``, ``cmd``: a word that is an axis letter glued to a role word."""
+    out = []
+    for w in words:
+        if len(w) > 1 and w[0] in AXIS_NAMES and _role([w[1:]]) is not None:
+            out += [w[0], w[1:]]
+        else:
+            out.append(w)
+    return out
+
+
+def _position(name: str) -> tuple[str, str | None] | None:
+    """(role, axis or None) of a position column, or None for any other column."""
+    if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None:
+        return None  # a unit that is not a length: mm/min, A, Nm, %, increments
+    words = _split_axis(_words(name))
+    role = _role(words)
+    if role is None:
+        return None
+    axes = {w for w in words if w in AXIS_NAMES}
+    if len(axes) > 1:
+        return None
+    return role, (axes.pop() if axes else None)
+
+
+def columns_from_names(header: Sequence[str]) -> tuple[dict[str, str] | None, str]:
+    """The mapping capture column -> header name read from the names (module docstring), and why
+    not when it is None (``""`` with a mapping)."""
+    if len(set(header)) != len(header):
+        return None, "the header repeats a name"
+    times = [h for h in header if _words(h) and set(_words(h)) <= _TIME]
+    if len(times) != 1:
+        return None, ("no column is named as time" if not times else
+                      f"several columns are named as time: {times}")
+    found = {h: _position(h) for h in header if h not in times}
+    found = {h: p for h, p in found.items() if p is not None}
+    named_axes = {a for _, a in found.values() if a is not None}
+    if not named_axes:
+        found = {h: (role, "x") for h, (role, _) in found.items()}
+    roles: dict[str, dict[str, list[str]]] = {}
+    for h, (role, axis) in found.items():
+        if axis is not None:
+            roles.setdefault(axis, {"ref": [], "act": [], "lag": []})[role].append(h)
+    mapping: dict[str, str] = {"t": times[0]}
+    for axis in [a for a in AXIS_NAMES if a in roles]:
+        r = roles[axis]
+        second = r["act"] or r["lag"]
+        if len(r["ref"]) > 1 or len(second) > 1:
+            many = r["ref"] if len(r["ref"]) > 1 else second
+            return None, f"axis {axis}: several columns could be the same position: {many}"
+        if r["ref"] and second:
+            mapping[f"{axis}_ref"] = r["ref"][0]
+            mapping[axis if r["act"] else axis + LAG_SUFFIX] = second[0]
+    if len(mapping) == 1:
+        return None, "no pair of a commanded and a measured position is named"
+    return mapping, ""
