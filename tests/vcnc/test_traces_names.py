@@ -102,3 +102,14 @@ def test_convert_says_which_columns_it_read_from_the_names(tmp_path, capsys):
     assert ("  columns: from the header names: t=Time [ms], x_ref=X Soll [mm], x=X Ist [mm] (--columns, --time-unit, "
             "--unit set them)\n") in capsys.readouterr().out
     np.testing.assert_allclose(read_capture(out).measured[:, 0], np.round(act, 6), atol=1e-9)
+
+
+def test_a_row_of_numbers_behind_a_comment_mark_is_no_header(tmp_path):
+    # '#' before a header is a comment mark, but a commented-out row amid the numbers stays an error naming it
+    t, ref, act = _rows(20)
+    rows = [f"{a:.3f},{b:.6f},{c:.6f}" for a, b, c in zip(t, ref, act)]
+    rows[10] = "#" + rows[10]
+    f = tmp_path / "log.csv"
+    f.write_text("# time,x_cmd,x_fb\n" + "\n".join(rows) + "\n")
+    with pytest.raises(CaptureError, match=":12:1: not a number \\(the rows below are 3 numbers\\) \\(got '#0.010'\\)"):
+        read_capture(f)

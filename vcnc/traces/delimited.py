@@ -185,9 +185,10 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
             cells = _header_cells(lines[j], delimiter)
             numeric = sum(_numbers([c], comma) is not None for c in cells if c)
             if len(cells) == width and numeric * 2 > len(cells):  # a data row with a bad cell, not a header
-                bad = next((c for c in cells if _numbers([c], comma) is None), "")
+                raw = [c.strip() for c in _split(lines[j], delimiter)]  # '#12;0.5;..': a row behind a comment mark
+                k = next((i for i, c in enumerate(raw) if _numbers([c], comma) is None), 0)
                 raise CaptureError(f"not a number (the rows below are {width} numbers)", file=src, line=j + 1,
-                                   column=cells.index(bad) + 1, text=bad)
+                                   column=k + 1, text=raw[k])
             header = cells if len(cells) == width else None
             if header is not None and is_unit_row(header):  # names above a row of units
                 units_row = header
