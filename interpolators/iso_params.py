@@ -42,9 +42,23 @@ manual, "Macros"):
   ``haas`` dialects (Fanuc 0i-MD B-64304EN "Arithmetic and logic operation": "Logical operations are performed
   on binary numbers bit by bit"; Haas mill operator's manual, "Macros", "Logical operations": "only the integer
   portion of the floating point number is used"): ``5 OR 3`` is 7, ``5 XOR 3`` is 6; on comparisons (1 or 0)
-  they are the logical ones LinuxCNC has. Their precedence stays LinuxCNC's (below the comparisons; Fanuc ranks
-  AND with ``*`` and OR, XOR with ``+``: a program that leaves out the brackets Fanuc needs around comparisons,
-  ``[#1 EQ 1 AND #2 EQ 2]``, reads as LinuxCNC reads it).
+  they are the logical ones LinuxCNC has.
+* precedence under the ``fanuc`` and ``haas`` dialects is Fanuc's (Fanuc 0i-MD B-64304EN "Custom macro",
+  "Arithmetic and logic operation", "Priority of operations": functions first, then the operations of the
+  multiplication group ``* / AND``, then those of the addition group ``+ - OR XOR``; the manual's operator
+  table groups them so, as zappettiniconsulting.com/wiki/macro-arithmetic copies it, its "Priority of
+  operations" text itself is not in our search index; ``MOD`` of the 0i-F/30i ranks with ``*``, our reading):
+  ``2 + 3 AND 1`` is ``2 + [3 AND 1]`` = 3, ``6 OR 1 * 2`` is 6, ``1 + 2 OR 4`` is ``[1 + 2] OR 4`` = 7,
+  left to right within a level. The comparisons ``EQ NE GT GE LT LE`` come last: Fanuc writes one per
+  conditional expression of IF and WHILE ("[<expression> EQ <expression>]"), so two in one bracket
+  (``[#1 EQ 1 AND #2 EQ 2]``, which LinuxCNC reads as two conditions) are an error naming the brackets
+  Fanuc needs; in an assignment (``#1 = [#2 GT 3]``, which Fanuc refuses) a comparison gives 1 or 0 as Haas
+  ("all expressions set a conditional value") and LinuxCNC do. Haas's manual ("Macros", "Operators") states
+  no precedence: our reading is Fanuc's, as Haas reads custom macro B and the macros written for both
+  controls bracket every comparison as Fanuc needs.
+* ``MOD`` is the remainder made non-negative, as LinuxCNC's (Haas "Arithmetic Operators": ``27 MOD 20`` is
+  7; how Fanuc rounds its operands is not in the manuals of our search index: our reading keeps them as
+  they are).
 * under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
   parameters: the modal information ``#4001``.. comes from the reader's state
   (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
@@ -74,12 +88,23 @@ _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "BCD", "BIN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN",
               "SIN", "SQRT", "TAN")
-_BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
-#: The binary operators by their first character, longest first (``**`` before ``*``), with their level.
-_OPERATORS: dict[str, tuple[tuple[str, int], ...]] = {
-    c: tuple(sorted(((op, level) for level, ops in enumerate(_BINARY) for op in ops if op[0] == c),
-                    key=lambda e: -len(e[0])))
-    for c in {op[0] for ops in _BINARY for op in ops}}
+_COMPARISONS = ("EQ", "NE", "GT", "GE", "LT", "LE")
+#: LinuxCNC's binary operators by precedence, lowest first ("Binary Operators").
+_BINARY = [("OR", "XOR", "AND"), _COMPARISONS, ("+", "-"), ("*", "/", "MOD"), ("**",)]
+#: Fanuc custom macro B's, lowest first (module docstring): the comparisons, then ``+ - OR XOR``, then
+#: ``* / AND MOD``; ``**`` (not Fanuc's: ``POW[a,b]``) stays above them.
+_MACRO_B_BINARY = [_COMPARISONS, ("+", "-", "OR", "XOR"), ("*", "/", "AND", "MOD"), ("**",)]
+
+
+def _operator_table(levels: list[tuple[str, ...]]) -> dict[str, tuple[tuple[str, int], ...]]:
+    """The binary operators by their first character, longest first (``**`` before ``*``), with their level."""
+    return {c: tuple(sorted(((op, level) for level, ops in enumerate(levels) for op in ops if op[0] == c),
+                            key=lambda e: -len(e[0])))
+            for c in {op[0] for ops in levels for op in ops}}
+
+
+_OPERATORS = _operator_table(_BINARY)
+_MACRO_B_OPERATORS = _operator_table(_MACRO_B_BINARY)
 #: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
 #: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
 #: #5211-#5219 G92 offsets, ...; Fanuc's #5001-#5028 are positions too): reading one the program has
@@ -469,13 +494,25 @@ class _Reader:
         return self._operations(left, p, level)
 
     def _operations(self, left: float | None, p: int, level: int) -> tuple[float | None, int]:
-        """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``."""
+        """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``.
+
+        Under macro B a second comparison in one bracket is an error: Fanuc compares two values once
+        ("[<expression> EQ <expression>]"), and its precedence makes ``[#1 EQ 1 AND #2 EQ 2]`` compare
+        ``#1 EQ [1 AND #2]`` with 2, which no program means."""
+        table = _MACRO_B_OPERATORS if self.params.macro_b else _OPERATORS
+        compared = None
         while True:
             q = self.skip(p)
-            found = _operator_at(self.up, q)
+            found = _operator_at(self.up, q, table)
             if found is None or found[1] < level:
                 return left, p
             op, op_level = found
+            if self.params.macro_b and op in _COMPARISONS:
+                if compared is not None:
+                    self.fail(f"two comparisons in one bracket ('{compared}' and '{op}'): Fanuc custom macro B "
+                              "ranks AND with * and OR, XOR with +, so they do not join comparisons without "
+                              "brackets", q, "each comparison in its own brackets: [#1 EQ 1] AND [#2 EQ 2]")
+                compared = op
             right, p = self.operand(q + len(op))
             right, p = self._operations(right, p, op_level + 1)
             left = self.binary(op, left, right, q)
@@ -489,7 +526,7 @@ class _Reader:
         if op in ("/", "MOD") and b == 0:
             self.fail("division by zero", pos, "a divisor other than 0")
         if self.params.macro_b and op in ("AND", "OR", "XOR"):  # bit by bit (module docstring)
-            a_int, b_int = math.trunc(a), math.trunc(b)
+            a_int, b_int = _integer_part(a), _integer_part(b)
             return float(a_int & b_int if op == "AND" else a_int | b_int if op == "OR" else a_int ^ b_int)
         try:
             return _binary(op, a, b)
@@ -502,12 +539,22 @@ _COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": fl
             "LE": float.__le__}
 
 
-def _operator_at(up: str, q: int) -> tuple[str, int] | None:
-    """The binary operator at ``q`` of the upper-case line and its precedence level, if one starts there."""
-    for op, level in _OPERATORS.get(up[q:q + 1], ()):
+def _operator_at(up: str, q: int, table: dict[str, tuple[tuple[str, int], ...]] = _OPERATORS
+                 ) -> tuple[str, int] | None:
+    """The binary operator at ``q`` of the upper-case line and its precedence level in ``table`` (LinuxCNC's by
+    default), if one starts there."""
+    for op, level in table.get(up[q:q + 1], ()):
         if up.startswith(op, q):
             return op, level
     return None
+
+
+def _integer_part(x: float) -> int:
+    """The integer part of ``x``, taken after rounding ``x`` to 9 decimals: a value that is a whole number
+    within the precision of macro variables (Fanuc Power Mate i-D/H B-63174EN/03 "Custom macro": "the
+    precision of variable values is about 8 decimal digits") is that number, so ``SIN[30] * 4``,
+    1.9999999999999998 in binary floating point, is 2 for AND, OR and XOR."""
+    return math.trunc(round(x, 9))
 
 
 def _binary(op: str, a: float, b: float) -> float:
