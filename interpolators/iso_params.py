@@ -185,11 +185,11 @@ class Parameters:
         """The value of ``#n``; ``None`` when it is vacant (``#0``, or unset under Fanuc semantics)."""
         if n == 0:
             return None  # Fanuc's null variable: always vacant
+        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL and not (
-                self.macro_b and self.system is not None and self.system(n)[0] is not None):  # Fanuc #7001..
+                self.macro_b and (state is not None or why)):  # Fanuc #7001.., #10001..
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
-        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if state is not None:
             return state
         if why:
@@ -199,9 +199,9 @@ class Parameters:
         if self.macro_b and n in _FANUC_SYSTEM and n not in store:
             where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
                        "alarms, clocks, modal information) is not modelled", column=column, text=text,
-                       expected="a common variable #100-#199, #500-#999, or a modelled one (#4001-#4016 "
-                                "and #4022 modal G codes, #4107 D, #4109 F, #4111 H, #4119 S, #4120 T, "
-                                "#3901/#3902 parts counters, #5001.. positions)")
+                       expected="a common variable #100-#199, #500-#999, or a modelled one (#2001-#2400 tool "
+                                "offsets (Haas #2001-#2800), #4001-#4016 and #4022 modal G codes, #4107 D, #4109 F, "
+                                "#4111 H, #4119 S, #4120 T, #3901/#3902 parts counters, #5001.. positions)")
         if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
                        column=column, text=text,

@@ -6,10 +6,14 @@ Expected values are worked out by hand from the rules the modules cite (Fanuc 0i
 B-64304EN, "Custom macro"; Haas mill operator's manual, "Macros").
 """
 
+import dataclasses
+
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
+from vcnc.core.errors import InputError, MachineError
+from vcnc.engine.machine import builtin_machine_text, load_machine
 from vcnc.errors import GCodeError
 
 FANUC = MachineContext(dialect=DIALECTS["fanuc"])
@@ -57,3 +61,77 @@ def test_mod_is_the_non_negative_remainder():
     assert _ends("G21 G90 G1 F100\nX[27 MOD 20] Y[-7 MOD 3] Z[7.5 MOD 2]\n", HAAS) == [[7.0, 2.0, 1.5]]
     with pytest.raises(GCodeError, match="division by zero"):
         parse_program("#1 = 5 MOD 0\n", context=FANUC)
+
+
+def test_memory_c_variables_and_g10_set_h_and_d_geometry_and_wear_apart():
+    """Fanuc 0i-MD "System variables", memory C (the default): #11000+n H geometry (#2200+n), #10000+n H wear
+    (#2000+n), #13000+n D geometry, #12000+n D wear. Tool 3: H 50 - 0.2 = 49.8 (G43 H3 Z0 at machine Z 49.8);
+    D 5 - 0.1 = 4.9 (G41 D3 along +X: Y 4.9). G10 L10 P4 R30 is #11004 = #2204 = 30; G91 G10 L11 P4 R0.5 twice:
+    #10004 = 1; G10 L12 P4 R2 and L13 R0.25: #13004 = 2, #12004 = 0.25."""
+    text = ("G21 G90\n#11003 = 50.\n#10003 = -0.2\n#13003 = 5.\n#12003 = -0.1\nG43 H3 G0 Z0\n"
+            "G41 D3 G1 X10. Y0 F100\nG40 X20.\nG49 G53 G0 X#2203 Y#2003 Z0\n"
+            "G10 L10 P4 R30.\nG91 G10 L11 P4 R0.5\nG10 L11 P4 R0.5\nG90 G10 L12 P4 R2.\nG10 L13 P4 R0.25\n"
+            "G53 G0 X#11004 Y#2204 Z#10004\nG53 G0 X#13004 Y#12004\n")
+    assert _ends(text) == [[0.0, 0.0, 49.8], [10.0, 4.9, 49.8], [20.0, 0.0, 49.8], [50.0, -0.2, 0.0],
+                           [30.0, 30.0, 1.0], [2.0, 0.25, 1.0]]
+
+
+B = MachineContext(dialect=DIALECTS["fanuc"], tool_offset_memory="B")
+
+
+def test_memory_b_shares_one_geometry_and_wear_between_h_and_d():
+    """Memory B: offset n has one geometry (#11000+n, #2200+n; G10 L10) and one wear (#10000+n, #2000+n; G10
+    L11), which H n and D n both use: #11005 = 6, #10005 = -0.5 -> G43 H5 Z0 at machine Z 5.5 and G41 D5 offset
+    5.5. #13005 (a memory C variable) and G10 L12 are errors naming memory B."""
+    text = ("G21 G90\n#11005 = 6.\n#10005 = -0.5\nG43 H5 G0 Z0\nG41 D5 G1 X10. Y0 F100\nG40 X20.\n"
+            "G49 G53 G0 X#2205 Y#2005 Z#11005\nG10 L10 P6 R7.\nG53 G0 X#11006\n")
+    assert _ends(text, B) == [[0.0, 0.0, 5.5], [10.0, 5.5, 5.5], [20.0, 0.0, 5.5], [6.0, -0.5, 6.0],
+                              [7.0, -0.5, 6.0]]
+    with pytest.raises(GCodeError, match="#13005: a tool offset variable that tool compensation memory B does not"):
+        parse_program("G21\n#1 = #13005\n", context=B)
+    with pytest.raises(GCodeError, match="G10 L12: tool compensation memory B has no such offset"):
+        parse_program("G21\nG10 L12 P5 R3.\n", context=B)
+
+
+def test_memory_b_reads_the_machine_table_when_length_and_radius_agree():
+    """The machine's table keeps a length and a radius per tool: under memory B offset n is one register, read
+    as their common value or the one that is not 0 (tool 8: length 100, radius 0 -> 100); two different values
+    (tool 7: length 100, radius 4) are an error naming both."""
+    tools = {7: Tool(number=7, length=100.0, radius=4.0), 8: Tool(number=8, length=100.0)}
+    context = dataclasses.replace(B, tools=tools)
+    assert _ends("G21 G90\nG53 G0 X#11008 Z#13008\n", dataclasses.replace(context, tool_offset_memory="C")) \
+        == [[100.0, 0.0, 0.0]]
+    assert _ends("G21 G90\nG53 G0 X#11008\n", context) == [[100.0, 0.0, 0.0]]
+    with pytest.raises(GCodeError, match="length 100 and radius 4 mm"):
+        parse_program("G21\n#1 = #11007\n", context=context)
+
+
+def test_memory_a_has_one_value_per_offset():
+    """Memory A: #10000+n (#2000+n) is the whole offset, no wear; G10 L11 (L1) sets it, G10 L10 is an error;
+    #11006 is not a memory A variable. #10006 = 3: G43 H6 Z0 at machine Z 3; G10 L1 P6 R4: #2006 = 4."""
+    a = dataclasses.replace(B, tool_offset_memory="A")
+    text = "G21 G90\n#10006 = 3.\nG43 H6 G0 Z0\nG10 L1 P6 R4.\nG49 G53 G0 X#2006 Z0\n"
+    assert _ends(text, a) == [[0.0, 0.0, 3.0], [4.0, 0.0, 0.0]]
+    with pytest.raises(GCodeError, match="G10 L10: tool compensation memory A has no such offset .its G10: L1 L11"):
+        parse_program("G21\nG10 L10 P6 R4.\n", context=a)
+    with pytest.raises(GCodeError, match="#11006: a tool offset variable that tool compensation memory A"):
+        parse_program("G21\n#1 = #11006\n", context=a)
+
+
+def test_haas_keeps_its_own_tool_variables_and_general_purpose_10000s():
+    """Haas: #2401+n is tool n's diameter geometry whatever the Fanuc memory setting (#2403 = 10: G41 D3 offset
+    5); its #10001.. are general-purpose variables, not tool offsets."""
+    haas_b = dataclasses.replace(HAAS, tool_offset_memory="B")
+    text = "G21 G90\n#2403 = 10.\n#10001 = 7.\nG41 D3 G1 X10. Y0 F100\nG40 X20.\nG0 X#10001 Y#2003\n"
+    assert _ends(text, haas_b) == [[10.0, 5.0, 0.0], [20.0, 0.0, 0.0], [7.0, 0.0, 0.0]]
+
+
+def test_the_memory_type_is_checked_and_read_from_the_machine_file(tmp_path):
+    with pytest.raises(InputError, match="tool_offset_memory must be one of A, B, C"):
+        MachineContext(tool_offset_memory="D")
+    path = tmp_path / "m.toml"
+    path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ndialect = "fanuc"\ntool_offset_memory = "B"\n')
+    assert load_machine(str(path)).context.tool_offset_memory == "B"
+    path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ntool_offset_memory = "c"\n')
+    with pytest.raises(MachineError, match="'program.tool_offset_memory' must be 'A', 'B' or 'C'"):
+        load_machine(str(path))
