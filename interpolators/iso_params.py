@@ -61,7 +61,12 @@ manual, "Macros"):
   they are).
 * under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
   parameters: the modal information ``#4001``.. comes from the reader's state
-  (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
+  (:mod:`interpolators.iso_system`), ``#3000 = n (message)`` is a macro alarm (an error naming the line, n
+  and the message: the comment of its block), ``#3006 = n (message)`` a stop with a message (Fanuc 0i-MD
+  B-64304EN "System variables", "Stop with a message": the blocks before it run, then the program stops with
+  the comment of the block shown until the operator presses cycle start; Haas "Macros", #3006 programmable stop
+  with a message; neither manual's own text is in our search index): it is kept in :attr:`Parameters.stops` for
+  the reader, which ends the path at rest there as at M0,
   other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
   feed-hold switches), and reading an unmodelled one is an error naming it.
 * a G65 macro call's locals are ``#1``-``#33`` per call level (Haas, "Local Variables": "Local
@@ -80,7 +85,7 @@ from collections.abc import Callable
 from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
-from interpolators.iso_words import Word, read_words
+from interpolators.iso_words import Word, block_comment, read_words
 
 __all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
 
@@ -128,6 +133,8 @@ _NAMED_SYSTEM = {**{f"_{a}": 5420 + i for i, a in enumerate("xyzabcuvw")},
 _FANUC_SYSTEM = range(1000, 5000)
 #: Fanuc/Haas macro alarm: setting it stops the program with an alarm.
 _FANUC_ALARM = 3000
+#: Fanuc/Haas stop with a message: setting it stops the program as M0 does (:attr:`Parameters.stops`).
+_FANUC_MESSAGE_STOP = 3006
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -174,6 +181,7 @@ class Parameters:
         self.system = system
         self.set_system = set_system
         self.fanuc = fanuc
+        self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -250,8 +258,15 @@ class Parameters:
                            expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
             if self.macro_b and key == _FANUC_ALARM:
                 # Fanuc/Haas: "#3000 = n (message)" stops the program with macro alarm n (Haas: "Alarms")
-                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}: the program raises an alarm "
-                           "here", column=column, text=where.text, expected="a program that does not reach its alarm")
+                message = block_comment(where.text, where)
+                shown = f" ({message.strip()})" if message and message.strip() else ""
+                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}{shown}: the program raises an "
+                           "alarm here", column=column, text=where.text, expected="a program that does not reach its "
+                           "alarm")
+            if self.macro_b and key == _FANUC_MESSAGE_STOP:
+                message = block_comment(where.text, where)
+                self.stops.append((where.line, message.strip() if message else ""))
+                return
             if self.set_system is not None and self.set_system(key, value):
                 return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")

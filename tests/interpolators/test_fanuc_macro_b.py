@@ -135,3 +135,36 @@ def test_the_memory_type_is_checked_and_read_from_the_machine_file(tmp_path):
     path.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ntool_offset_memory = "c"\n')
     with pytest.raises(MachineError, match="'program.tool_offset_memory' must be 'A', 'B' or 'C'"):
         load_machine(str(path))
+
+
+def test_message_stop_ends_the_path_at_rest_before_it_and_notes_the_message():
+    """#3006 = 1 (TURN PART): the blocks before it run and the program stops as at M0 (the block before it ends
+    at rest under G64), with the block's comment shown; a position read at once after it is the stop's (noted).
+    LinuxCNC reads #3006 as a user parameter: no stop."""
+    text = "G21 G90 G64 G1 F100\nX10.\nX20.\n#3006=1 (TURN PART)\n#1=#5001\nX[#1+5.]\nX30.\nM30\n"
+    prog = parse_program(text, context=FANUC)
+    assert [(b.target[0], b.exact_stop) for b in prog.blocks] == [(10.0, False), (20.0, True), (25.0, False),
+                                                                  (30.0, False)]
+    assert "#3006 message stop at line 4 (TURN PART): the program waits for cycle start" in prog.notes
+    assert "position read after a program stop (line 4): the position where the program stopped; a jog by the " \
+           "operator is not modelled" in prog.notes
+    linuxcnc = parse_program(text.replace("#5001", "#5420"), context=LINUXCNC)
+    assert [b.exact_stop for b in linuxcnc.blocks] == [False] * 4
+
+
+def test_message_stop_in_a_loop_stops_each_pass():
+    """Haas: WHILE [#1 LT 2] with IF [..] THEN #3006 = 1 (CHECK) after each move: both moves end at rest, one note
+    counted twice."""
+    text = ("G21 G90 G64 G1 F100\n#1 = 0\nWHILE [#1 LT 2] DO1\n#1 = #1 + 1\nG1 X[#1 * 10]\n"
+            "IF [#1 GT 0] THEN #3006 = 1 (CHECK)\nEND1\nG1 Y5.\nM30\n")
+    prog = parse_program(text, context=HAAS)
+    assert [b.exact_stop for b in prog.blocks] == [True, True, False]
+    assert "#3006 message stop at line 6 (CHECK): the program waits for cycle start x2" in prog.notes
+
+
+def test_macro_alarm_names_its_number_and_message():
+    """#3000 = 101 (TOOL BROKEN): an error at its line naming the alarm number and the message."""
+    with pytest.raises(GCodeError, match=r"macro alarm #3000 = 101 \(TOOL BROKEN\): the program raises an alarm") \
+            as info:
+        parse_program("G21 G90\nG0 X1.\n#3000 = 101 (TOOL BROKEN)\nG0 X2.\n", context=FANUC)
+    assert info.value.line == 3
