@@ -67,6 +67,16 @@ required parts, read/write"; Haas "Macros": "#3901 M30 count 1, #3902 M30 count 
 and move nothing; the virtual machine's counters are 0 when the program starts (our reading: a machine the
 program is the first to run on), and a program that reads them is noted (:attr:`ReaderState.parts_read`).
 
+The clocks are not read (Fanuc 0i-MD B-64304EN "System variables"; Haas "Macros" #3001 millisecond
+timer, #3002 hour timer; Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
+``#3001`` the milliseconds clock "always runs, can be reset using #3001=0", ``#3002`` the hours clock likewise,
+``#3011`` the date yyyymmdd and ``#3012`` the time hhmmss, which "cannot be reset"). A program writes ``#3001 = 0``
+or ``#3002 = 0`` to start timing: accepted, without effect. Reading one is an error naming it: the clocks count the
+time the machine has run, which depends on the feeds, accelerations and servo lags the interpolation and
+simulation work out after the program is read, and on how long the control takes per macro statement, which no
+manual gives; the value may steer the program (a wait ``WHILE [#3001 LT 2000]``, a tool-life count), so no
+reading of the text alone fixes it. The date and time are those of a run, which a program file does not fix.
+
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
 (Haas 154) and ``#4130`` = the P number while one is selected; ``#5201``-``#5203`` the external offset
@@ -104,6 +114,9 @@ __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
+#: Fanuc/Haas clocks (module docstring): the milliseconds and hours clocks a program may reset, the date and time.
+_CLOCKS = {3001: "the milliseconds clock", 3002: "the hours clock", 3011: "the date", 3012: "the time of day"}
+_RESETTABLE_CLOCKS = (3001, 3002)
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
 
@@ -283,6 +296,12 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _tool_offset(register, st) if register is not None else (None, why)
     if fanuc and st.context.dialect.name == "haas" and n == 3026:  # Haas "Macros": #3026 tool in spindle
         return float(st.tool_current or 0), ""
+    if fanuc and n in _CLOCKS:
+        if n in _RESETTABLE_CLOCKS:
+            return None, (f"{_CLOCKS[n]}, which counts the time the machine has run: that time comes from "
+                          "interpolating the program after it is read, so a program steered by it (a wait "
+                          "WHILE [#3001 LT ..]) cannot be read; G04 waits a given time")
+        return None, f"{_CLOCKS[n]} of a run, which a program file does not fix"
     if fanuc and n in PARTS_COUNTERS:
         st.parts_read = True
         return st.parts_counters.get(n, 0.0), ""
@@ -326,11 +345,14 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
 def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
     machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
-    value is 0); the tool offset variables set a tool's length / radius geometry or wear (module docstring). True when
+    value is 0); the tool offset variables set a tool's length / radius geometry or wear, and a write to the clocks
+    ``#3001``/``#3002`` is taken without effect (module docstring). True when
     ``#n`` is such a variable (the caller reports the others). The parts counters ``#3901``/``#3902`` take the
     value (vacant: 0)."""
     if n in PARTS_COUNTERS:
         st.parts_counters[n] = 0.0 if value is None else float(value)
+        return True
+    if n in _RESETTABLE_CLOCKS:  # a reset that starts a timing: the clock is not read (module docstring)
         return True
     register, _ = _tool_register(n, st)
     if register is not None:

@@ -168,3 +168,17 @@ def test_macro_alarm_names_its_number_and_message():
             as info:
         parse_program("G21 G90\nG0 X1.\n#3000 = 101 (TOOL BROKEN)\nG0 X2.\n", context=FANUC)
     assert info.value.line == 3
+
+
+def test_clocks_may_be_reset_but_not_read():
+    """#3001 = 0 (start a timing) is taken without effect; reading #3001 (a wait on the milliseconds clock) is an
+    error naming the clock and G04, and so is #3012 (the time of day); LinuxCNC reads #3001 as a user parameter."""
+    assert _ends("G21 G90\n#3001 = 0\n#3002 = 0\nG0 X1.\n") == [[1.0, 0.0, 0.0]]
+    with pytest.raises(GCodeError, match=r"parameter #3001: the milliseconds clock, .*G04 waits a given time") as info:
+        parse_program("G21\n#3001 = 0\nWHILE [#3001 LT 2000] DO1\nEND1\nM30\n", context=HAAS)
+    assert info.value.line == 3
+    with pytest.raises(GCodeError, match="#3012: the time of day of a run"):
+        parse_program("#1 = #3012\n", context=FANUC)
+    with pytest.raises(GCodeError, match="#3011 is read-only"):
+        parse_program("#3011 = 0\n", context=FANUC)
+    assert _ends("G21 G90\n#3001 = 4\nG0 X#3001\n", LINUXCNC) == [[4.0, 0.0, 0.0]]
