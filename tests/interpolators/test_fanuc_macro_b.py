@@ -182,3 +182,13 @@ def test_clocks_may_be_reset_but_not_read():
     with pytest.raises(GCodeError, match="#3011 is read-only"):
         parse_program("#3011 = 0\n", context=FANUC)
     assert _ends("G21 G90\n#3001 = 4\nG0 X#3001\n", LINUXCNC) == [[4.0, 0.0, 0.0]]
+
+
+def test_a_wear_update_of_the_tool_in_the_spindle_through_an_indirect_variable():
+    """A shop macro's wear update, #[10000+#4120] = #[10000+#4120] + #100 (memory C: H wear of the tool in the
+    spindle): tool 3 of the machine's table (length 80) gets -0.05 twice, so G43 H3 Z0 is at machine Z 79.9 and
+    #[11000+#4120] (H geometry) still reads 80."""
+    context = dataclasses.replace(FANUC, tools={3: Tool(number=3, length=80.0)})
+    text = ("G21 G90\nT3 M6\n#100 = -0.05\n#[10000+#4120] = #[10000+#4120] + #100\n"
+            "#[10000+#4120] = #[10000+#4120] + #100\nG43 H3 G0 Z0\nG49 G53 G0 X#[11000+#4120] Y#10003\n")
+    assert _ends(text, context) == [[0.0, 0.0, 79.9], [80.0, -0.1, 79.9]]
