@@ -79,101 +79,6 @@ __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset"
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
 
-_LENGTH, _RADIUS, _BOTH = ("length",), ("radius",), ("length", "radius")
-
-#: What ``G10 L<level>`` sets under each Fanuc tool compensation memory: the parts of the tool (H: length,
-#: D: radius) and the kind ("geometry", "wear", or memory A's "value": the whole offset, no wear).
-_G10_REGISTERS: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
-    "A": {1: (_BOTH, "value"), 11: (_BOTH, "value")},
-    "B": {10: (_BOTH, "geometry"), 1: (_BOTH, "wear"), 11: (_BOTH, "wear")},
-    "C": {10: (_LENGTH, "geometry"), 1: (_LENGTH, "wear"), 11: (_LENGTH, "wear"), 12: (_RADIUS, "geometry"),
-          13: (_RADIUS, "wear")},
-})
-
-#: The Fanuc tool offset variables per memory: block k of ``#10001 + 1000 k`` .. (k = 0 also ``#2001``.., k = 1
-#: ``#2201``..) -> (parts, kind).
-_FANUC_VARIABLES: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
-    "A": {0: (_BOTH, "value")},
-    "B": {0: (_BOTH, "wear"), 1: (_BOTH, "geometry")},
-    "C": {0: (_LENGTH, "wear"), 1: (_LENGTH, "geometry"), 2: (_RADIUS, "wear"), 3: (_RADIUS, "geometry")},
-})
-
-#: Haas #2001-#2800 by block of 200: length geometry, length wear, diameter geometry, diameter wear.
-_HAAS_VARIABLES = ((_LENGTH, "geometry"), (_LENGTH, "wear"), (_RADIUS, "geometry"), (_RADIUS, "wear"))
-
-
-@dataclasses.dataclass(frozen=True)
-class ToolRegister:
-    """One tool offset register: tool ``number``'s ``parts`` (``"length"``, ``"radius"``), their ``kind``
-    (``"geometry"``, ``"wear"``, ``"value"``: geometry + wear), a value of the register being ``per_mm`` times the
-    offset in mm (2 for Haas's diameters)."""
-
-    number: int
-    parts: tuple[str, ...]
-    kind: str
-    per_mm: float = 1.0
-
-
-def tool_offset_variable(n: int, dialect: str, memory: str) -> ToolRegister | None:
-    """The register system variable ``#n`` names under ``dialect`` (``"fanuc"``, ``"haas"``) and the Fanuc tool
-    compensation ``memory`` (``"A"``, ``"B"``, ``"C"``), or None (module docstring)."""
-    if dialect == "haas":
-        if not 2001 <= n <= 2800:
-            return None
-        block, number = divmod(n - 2001, 200)
-        parts, kind = _HAAS_VARIABLES[block]
-        return ToolRegister(number + 1, parts, kind, 2.0 if parts == _RADIUS else 1.0)
-    if 2001 <= n <= 2400:
-        block, number = divmod(n - 2001, 200)
-        number += 1
-    elif 10001 <= n <= 13999 and n % 1000:
-        block, number = divmod(n - 10000, 1000)
-    else:
-        return None
-    found = _FANUC_VARIABLES[memory].get(block)
-    return None if found is None else ToolRegister(number, *found)
-
-
-def fanuc_tool_variable(n: int) -> bool:
-    """Whether ``#n`` is a Fanuc tool offset variable of some memory type (``#2001``-``#2400``,
-    ``#10001``-``#13999``)."""
-    return 2001 <= n <= 2400 or (10001 <= n <= 13999 and n % 1000 != 0)
-
-
-def _parts(tool: Tool, part: str) -> tuple[float, float]:
-    """Geometry and wear of ``part`` (``"length"``, ``"radius"``) of ``tool`` [mm]."""
-    total, wear = (tool.length, tool.length_wear) if part == "length" else (tool.radius, tool.radius_wear)
-    return total - wear, wear
-
-
-def tool_offset(tool: Tool | None, register: ToolRegister) -> float | None:
-    """The value ``register`` holds for ``tool`` (None: not in the table, 0), in mm times ``per_mm``; None when it
-    serves H and D (memory A, B) and the table's length and radius differ, neither being 0."""
-    if tool is None:
-        return 0.0
-    values = []
-    for part in register.parts:
-        geometry, wear = _parts(tool, part)
-        values.append({"geometry": geometry, "wear": wear, "value": geometry + wear}[register.kind])
-    found = {v for v in values if v != 0.0} or {0.0}
-    return found.pop() * register.per_mm if len(found) == 1 else None
-
-
-def with_tool_offset(tool: Tool, register: ToolRegister, value: float, *, add: bool = False) -> Tool:
-    """``tool`` with ``register`` set to ``value`` (in mm times ``per_mm``), or moved by it (``add``)."""
-    changes: dict[str, float] = {}
-    for part in register.parts:
-        geometry, wear = _parts(tool, part)
-        amount = value / register.per_mm
-        if register.kind == "value":
-            geometry, wear = (geometry + wear if add else 0.0) + amount, 0.0
-        elif register.kind == "geometry":
-            geometry = (geometry if add else 0.0) + amount
-        else:
-            wear = (wear if add else 0.0) + amount
-        changes[part], changes[f"{part}_wear"] = geometry + wear, wear
-    return dataclasses.replace(tool, **changes)
-
 #: Highest additional offset number per dialect: Fanuc P300 (the option; P48 standard), Haas P99.
 MAX_EXTENDED: Mapping[str, int] = MappingProxyType({"fanuc": 300, "haas": 99})
 
@@ -325,6 +230,102 @@ def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:
     return None
 
 
+_LENGTH, _RADIUS, _BOTH = ("length",), ("radius",), ("length", "radius")
+
+#: What ``G10 L<level>`` sets under each Fanuc tool compensation memory: the parts of the tool (H: length,
+#: D: radius) and the kind ("geometry", "wear", or memory A's "value": the whole offset, no wear).
+_G10_REGISTERS: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
+    "A": {1: (_BOTH, "value"), 11: (_BOTH, "value")},
+    "B": {10: (_BOTH, "geometry"), 1: (_BOTH, "wear"), 11: (_BOTH, "wear")},
+    "C": {10: (_LENGTH, "geometry"), 1: (_LENGTH, "wear"), 11: (_LENGTH, "wear"), 12: (_RADIUS, "geometry"),
+          13: (_RADIUS, "wear")},
+})
+
+#: The Fanuc tool offset variables per memory: block k of ``#10001 + 1000 k`` .. (k = 0 also ``#2001``.., k = 1
+#: ``#2201``..) -> (parts, kind).
+_FANUC_VARIABLES: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
+    "A": {0: (_BOTH, "value")},
+    "B": {0: (_BOTH, "wear"), 1: (_BOTH, "geometry")},
+    "C": {0: (_LENGTH, "wear"), 1: (_LENGTH, "geometry"), 2: (_RADIUS, "wear"), 3: (_RADIUS, "geometry")},
+})
+
+#: Haas #2001-#2800 by block of 200: length geometry, length wear, diameter geometry, diameter wear.
+_HAAS_VARIABLES = ((_LENGTH, "geometry"), (_LENGTH, "wear"), (_RADIUS, "geometry"), (_RADIUS, "wear"))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class ToolRegister:
+    """One tool offset register: tool ``number``'s ``parts`` (``"length"``, ``"radius"``), their ``kind``
+    (``"geometry"``, ``"wear"``, ``"value"``: geometry + wear), a value of the register being ``per_mm`` times the
+    offset in mm (2 for Haas's diameters)."""
+
+    number: int
+    parts: tuple[str, ...]
+    kind: str
+    per_mm: float = 1.0
+
+
+def tool_offset_variable(n: int, dialect: str, memory: str) -> ToolRegister | None:
+    """The register system variable ``#n`` names under ``dialect`` (``"fanuc"``, ``"haas"``) and the Fanuc tool
+    compensation ``memory`` (``"A"``, ``"B"``, ``"C"``), or None (module docstring)."""
+    if dialect == "haas":
+        if not 2001 <= n <= 2800:
+            return None
+        block, number = divmod(n - 2001, 200)
+        parts, kind = _HAAS_VARIABLES[block]
+        return ToolRegister(number=number + 1, parts=parts, kind=kind, per_mm=2.0 if parts == _RADIUS else 1.0)
+    if 2001 <= n <= 2400:
+        block, number = divmod(n - 2001, 200)
+        number += 1
+    elif 10001 <= n <= 13999 and n % 1000:
+        block, number = divmod(n - 10000, 1000)
+    else:
+        return None
+    found = _FANUC_VARIABLES[memory].get(block)
+    return None if found is None else ToolRegister(number=number, parts=found[0], kind=found[1])
+
+
+def fanuc_tool_variable(n: int) -> bool:
+    """Whether ``#n`` is a Fanuc tool offset variable of some memory type (``#2001``-``#2400``,
+    ``#10001``-``#13999``)."""
+    return 2001 <= n <= 2400 or (10001 <= n <= 13999 and n % 1000 != 0)
+
+
+def _parts(tool: Tool, part: str) -> tuple[float, float]:
+    """Geometry and wear of ``part`` (``"length"``, ``"radius"``) of ``tool`` [mm]."""
+    total, wear = (tool.length, tool.length_wear) if part == "length" else (tool.radius, tool.radius_wear)
+    return total - wear, wear
+
+
+def tool_offset(tool: Tool | None, register: ToolRegister) -> float | None:
+    """The value ``register`` holds for ``tool`` (None: not in the table, 0), in mm times ``per_mm``; None when it
+    serves H and D (memory A, B) and the table's length and radius differ, neither being 0."""
+    if tool is None:
+        return 0.0
+    values = []
+    for part in register.parts:
+        geometry, wear = _parts(tool, part)
+        values.append({"geometry": geometry, "wear": wear, "value": geometry + wear}[register.kind])
+    found = {v for v in values if v != 0.0} or {0.0}
+    return found.pop() * register.per_mm if len(found) == 1 else None
+
+
+def with_tool_offset(tool: Tool, register: ToolRegister, value: float, *, add: bool = False) -> Tool:
+    """``tool`` with ``register`` set to ``value`` (in mm times ``per_mm``), or moved by it (``add``)."""
+    changes: dict[str, float] = {}
+    for part in register.parts:
+        geometry, wear = _parts(tool, part)
+        amount = value / register.per_mm
+        if register.kind == "value":
+            geometry, wear = (geometry + wear if add else 0.0) + amount, 0.0
+        elif register.kind == "geometry":
+            geometry = (geometry if add else 0.0) + amount
+        else:
+            wear = (wear if add else 0.0) + amount
+        changes[part], changes[f"{part}_wear"] = geometry + wear, wear
+    return dataclasses.replace(tool, **changes)
+
+
 class ToolState(Protocol):
     """What :func:`set_tool_offset` reads and writes of the ISO executor's state."""
 
@@ -364,7 +365,8 @@ def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: To
                         "the machine's [program] tool_offset_memory)", letter="L",
                         expected=f"G10 {levels.split()[-1]} P{int(p)} R<value>")
     number = int(p)
-    register = ToolRegister(number, *found, per_mm=2.0 if dialect == "haas" and found[0] == _RADIUS else 1.0)
+    register = ToolRegister(number=number, parts=found[0], kind=found[1],
+                            per_mm=2.0 if dialect == "haas" and found[0] == _RADIUS else 1.0)
     new = with_tool_offset(st.tool(number) or Tool(number=number), register, words["R"] * st.scale,
                            add=st.incremental)
     st.tools[number] = new
