@@ -271,8 +271,8 @@ class Parameters:
                 return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
             if state is not None or why:
-                reason = f"it reports {why}" if why else "it reports the machine state"
-                where.fail(f"parameter #{key} is read-only: {reason}", column=column, text=text,
+                what = f"cannot be set: {why}" if why else "is read-only: it reports the machine state"
+                where.fail(f"parameter #{key} {what}", column=column, text=text,
                            expected="a user parameter #1 .. #5000 (set offsets with G10, G92, G43)")
             if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,

@@ -116,6 +116,8 @@ def test_memory_a_has_one_value_per_offset():
         parse_program("G21\nG10 L10 P6 R4.\n", context=a)
     with pytest.raises(GCodeError, match="#11006: a tool offset variable that tool compensation memory A"):
         parse_program("G21\n#1 = #11006\n", context=a)
+    with pytest.raises(GCodeError, match="#13006 cannot be set: a tool offset variable that tool compensation memory"):
+        parse_program("G21\n#13006 = 1.\n", context=a)
 
 
 def test_haas_keeps_its_own_tool_variables_and_general_purpose_10000s():
@@ -179,7 +181,7 @@ def test_clocks_may_be_reset_but_not_read():
     assert info.value.line == 3
     with pytest.raises(GCodeError, match="#3012: the time of day of a run"):
         parse_program("#1 = #3012\n", context=FANUC)
-    with pytest.raises(GCodeError, match="#3011 is read-only"):
+    with pytest.raises(GCodeError, match="#3011 cannot be set: the date of a run"):
         parse_program("#3011 = 0\n", context=FANUC)
     assert _ends("G21 G90\n#3001 = 4\nG0 X#3001\n", LINUXCNC) == [[4.0, 0.0, 0.0]]
 
