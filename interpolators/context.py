@@ -31,7 +31,10 @@ from vcnc.core.errors import InputError
 __all__ = ["Tool", "TouchProbe", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT",
            "INTERPOLATION_CONTEXT",
            "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code",
-           "FADAL_FIXTURES"]
+           "FADAL_FIXTURES", "TOOL_OFFSET_MEMORIES"]
+
+#: Fanuc tool compensation memory types (:attr:`MachineContext.tool_offset_memory`).
+TOOL_OFFSET_MEMORIES: tuple[str, ...] = ("A", "B", "C")
 
 #: Work-offset codes in the order of LinuxCNC's coordinate systems 1-9 (P1-P9 of G10 L2).
 WORK_OFFSETS: tuple[str, ...] = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
@@ -328,6 +331,13 @@ class MachineContext:
         ``X10`` is 10 mm, as Haas, LinuxCNC and grbl read it; a Fanuc program with such words gets a
         note) or ``"increment"`` (DPI = 0, Fanuc's own default: in least input increments of IS-B,
         ``X10`` is 0.010 mm or 0.0010 in). Only the ``fanuc`` dialect reads it.
+    tool_offset_memory : {"A", "B", "C"}
+        A Fanuc control's tool compensation memory (Fanuc 0i-MD B-64304EN "Tool compensation values"; Series
+        0i-MODEL B connection manual B-63833EN-1 "Tool compensation memory"): what ``G10 L10``-``L13`` and the
+        tool offset variables ``#2001``.., ``#10001``.. set and read (:mod:`interpolators.iso_offsets`). ``"C"``
+        (the default here): geometry and wear apart, and apart for H (length) and D (radius), as vcnc's tool
+        table keeps them; ``"B"``: one geometry and one wear per offset number, which H and D share; ``"A"``:
+        one value per offset number. Only the ``fanuc`` dialect reads it (Haas has its own variables).
     kinematics : Kinematics or None
         The rotary axes that tilt the part for a tilted working plane (Heidenhain ``PLANE``, cycle 19;
         :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
@@ -343,6 +353,7 @@ class MachineContext:
     extra_axes: tuple[str, ...] = ()
     linear_units: str = "mm"
     decimal_point_input: str = "calculator"
+    tool_offset_memory: str = "C"
     kinematics: Kinematics | None = None
     touch_probe: TouchProbe = dataclasses.field(default_factory=TouchProbe)
 
@@ -352,6 +363,9 @@ class MachineContext:
         if self.decimal_point_input not in ("calculator", "increment"):
             raise InputError(f"decimal_point_input must be 'calculator' or 'increment' (Fanuc DPI = 1 or 0), got "
                              f"{self.decimal_point_input!r}")
+        if self.tool_offset_memory not in TOOL_OFFSET_MEMORIES:
+            raise InputError(f"tool_offset_memory must be one of {', '.join(TOOL_OFFSET_MEMORIES)} (Fanuc tool "
+                             f"compensation memory A, B, C), got {self.tool_offset_memory!r}")
         offsets = {}
         for code, value in dict(self.work_offsets).items():
             key = work_offset_code(code)

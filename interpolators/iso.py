@@ -526,6 +526,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
+        _message_stops(params, st, blocks, notes)
         _line_notes(fl, source, external, notes)
         if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
             _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
@@ -552,6 +553,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         if ended:
             break
     else:
+        _message_stops(params, st, blocks, notes)
         for line in homing:  # $H lines after the last block
             _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
         if dialect.name == "linuxcnc" and not wrapped:
@@ -587,6 +589,16 @@ def _prepared_text(text: str, source: str | None, dialect: str, notes: _Notes) -
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     return text, homing, wrapped
+
+
+def _message_stops(params: Parameters, st: _State, blocks: list[Block], notes: _Notes) -> None:
+    """Fanuc/Haas ``#3006 = n (message)`` reached since the last line (:attr:`Parameters.stops`): the path comes to
+    rest at the last block before it, as at M0, and the run notes the message shown until cycle start."""
+    for line, message in params.stops:
+        end_at_rest(blocks)
+        st.stopped, st.stop_line = True, line  # the operator may jog before the next move
+        notes.add(f"#3006 message stop at line {line} ({message or 'no message'}): the program waits for cycle start")
+    params.stops.clear()
 
 
 def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes) -> None:

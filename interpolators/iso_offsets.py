@@ -27,15 +27,33 @@ of P1, ``#7021`` of P2 ...) and ``#14001``-``#19988`` (P1-P300, the same layout)
 the NGC control). vcnc reads the first three (X Y Z) and the A B C of each system; the others read 0.
 The modal ``#4014`` reads 54.1 (Fanuc) / 154 (Haas) and ``#4130`` the P number (0 under G54-G59).
 
-Tool offsets (Fanuc 0i-MD "Changing of tool compensation value (G10)", memory C: ``G10 L10 P<n> R..`` tool
-length (H) geometry, ``L11`` its wear, ``L12`` cutter radius (D) geometry, ``L13`` its wear; memory A's
-``G10 L11``/``L1`` set the one register; Haas "G10 Set Offsets": "L10 length offset amount (for H code), L1 or L11
-tool wear offset amount (for H code), L12 diameter offset amount (for D code), L13 diameter wear offset
-amount"): P is the offset number (the tool table's entry: H/D numbers are tool numbers in vcnc), R the value,
-under G90 set, under G91 added. The control applies geometry + wear
+Tool offsets (Fanuc 0i-MD "Changing of tool compensation value (G10)"; Haas "G10 Set Offsets": "L10 length
+offset amount (for H code), L1 or L11 tool wear offset amount (for H code), L12 diameter offset amount (for D
+code), L13 diameter wear offset amount"): ``G10 L<n> P<offset> R<value>``, P the offset number (the tool table's
+entry: H/D numbers are tool numbers in vcnc), R the value, under G90 set, under G91 added. What L sets depends
+on Fanuc's tool compensation memory (:attr:`interpolators.context.MachineContext.tool_offset_memory`; Fanuc
+0i-MD "Tool compensation values"; Fanuc Series 0i-MODEL B connection manual B-63833EN-1 "Tool compensation
+memory"):
+
+- memory C (the default here, and Haas's): geometry and wear apart, and apart for H and D: ``L10`` H geometry,
+  ``L11`` (``L1``, "to provide compatibility with the format of older CNC programs") H wear, ``L12`` D geometry,
+  ``L13`` D wear;
+- memory B: one geometry and one wear per offset number, which H and D both use: ``L10`` geometry, ``L11``
+  wear; the tool's length and radius both take the value;
+- memory A: one value per offset number, for H and D: ``L11`` (``L1``) sets it; no wear.
+
+An L word the memory does not have is an error naming it. The control applies geometry + wear
 (:attr:`interpolators.context.Tool.length_wear`). Haas's D values are diameters (as its manual words them),
 Fanuc's radii (its default; a parameter can make them diameters, not modelled). A change applies at the next
 G43 / G41 / G42, as a table change.
+
+The same registers are system variables (:func:`tool_offset_variable`, read and written by
+:mod:`interpolators.iso_system`). Fanuc 0i-MD B-64304EN "System variables", "Tool compensation values", offset
+number n = 1-999 (the 0i-MD has 400; the #2001.. aliases reach 200): memory A ``#10000+n`` (``#2000+n``) the
+value; memory B ``#11000+n`` (``#2200+n``) geometry, ``#10000+n`` (``#2000+n``) wear; memory C ``#11000+n``
+(``#2200+n``) H geometry, ``#10000+n`` (``#2000+n``) H wear, ``#13000+n`` D geometry, ``#12000+n`` D wear.
+Haas ("Macros", "Tool Offsets", tools 1-200): ``#2000+n`` length geometry, ``#2200+n`` length wear, ``#2400+n``
+diameter geometry, ``#2600+n`` diameter wear (its #10000.. are general-purpose variables).
 
 The table is :attr:`interpolators.context.MachineContext.work_offsets` (keys ``"G54.1 P<n>"``). LinuxCNC
 has none of these codes: under ``--dialect linuxcnc`` G54.1 and G154 stay errors naming them.
@@ -55,7 +73,8 @@ from interpolators.iso_axes import EXTRA_LETTERS, word_values
 from interpolators.iso_words import WordError
 
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset",
-           "extended_number", "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS"]
+           "extended_number", "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS",
+           "ToolRegister", "tool_offset_variable", "fanuc_tool_variable", "tool_offset", "with_tool_offset"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -211,9 +230,106 @@ def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:
     return None
 
 
+_LENGTH, _RADIUS, _BOTH = ("length",), ("radius",), ("length", "radius")
+
+#: What ``G10 L<level>`` sets under each Fanuc tool compensation memory: the parts of the tool (H: length,
+#: D: radius) and the kind ("geometry", "wear", or memory A's "value": the whole offset, no wear).
+_G10_REGISTERS: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
+    "A": {1: (_BOTH, "value"), 11: (_BOTH, "value")},
+    "B": {10: (_BOTH, "geometry"), 1: (_BOTH, "wear"), 11: (_BOTH, "wear")},
+    "C": {10: (_LENGTH, "geometry"), 1: (_LENGTH, "wear"), 11: (_LENGTH, "wear"), 12: (_RADIUS, "geometry"),
+          13: (_RADIUS, "wear")},
+})
+
+#: The Fanuc tool offset variables per memory: block k of ``#10001 + 1000 k`` .. (k = 0 also ``#2001``.., k = 1
+#: ``#2201``..) -> (parts, kind).
+_FANUC_VARIABLES: Mapping[str, Mapping[int, tuple[tuple[str, ...], str]]] = MappingProxyType({
+    "A": {0: (_BOTH, "value")},
+    "B": {0: (_BOTH, "wear"), 1: (_BOTH, "geometry")},
+    "C": {0: (_LENGTH, "wear"), 1: (_LENGTH, "geometry"), 2: (_RADIUS, "wear"), 3: (_RADIUS, "geometry")},
+})
+
+#: Haas #2001-#2800 by block of 200: length geometry, length wear, diameter geometry, diameter wear.
+_HAAS_VARIABLES = ((_LENGTH, "geometry"), (_LENGTH, "wear"), (_RADIUS, "geometry"), (_RADIUS, "wear"))
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class ToolRegister:
+    """One tool offset register: tool ``number``'s ``parts`` (``"length"``, ``"radius"``), their ``kind``
+    (``"geometry"``, ``"wear"``, ``"value"``: geometry + wear), a value of the register being ``per_mm`` times the
+    offset in mm (2 for Haas's diameters)."""
+
+    number: int
+    parts: tuple[str, ...]
+    kind: str
+    per_mm: float = 1.0
+
+
+def tool_offset_variable(n: int, dialect: str, memory: str) -> ToolRegister | None:
+    """The register system variable ``#n`` names under ``dialect`` (``"fanuc"``, ``"haas"``) and the Fanuc tool
+    compensation ``memory`` (``"A"``, ``"B"``, ``"C"``), or None (module docstring)."""
+    if dialect == "haas":
+        if not 2001 <= n <= 2800:
+            return None
+        block, number = divmod(n - 2001, 200)
+        parts, kind = _HAAS_VARIABLES[block]
+        return ToolRegister(number=number + 1, parts=parts, kind=kind, per_mm=2.0 if parts == _RADIUS else 1.0)
+    if 2001 <= n <= 2400:
+        block, number = divmod(n - 2001, 200)
+        number += 1
+    elif 10001 <= n <= 13999 and n % 1000:
+        block, number = divmod(n - 10000, 1000)
+    else:
+        return None
+    found = _FANUC_VARIABLES[memory].get(block)
+    return None if found is None else ToolRegister(number=number, parts=found[0], kind=found[1])
+
+
+def fanuc_tool_variable(n: int) -> bool:
+    """Whether ``#n`` is a Fanuc tool offset variable of some memory type (``#2001``-``#2400``,
+    ``#10001``-``#13999``)."""
+    return 2001 <= n <= 2400 or (10001 <= n <= 13999 and n % 1000 != 0)
+
+
+def _parts(tool: Tool, part: str) -> tuple[float, float]:
+    """Geometry and wear of ``part`` (``"length"``, ``"radius"``) of ``tool`` [mm]."""
+    total, wear = (tool.length, tool.length_wear) if part == "length" else (tool.radius, tool.radius_wear)
+    return total - wear, wear
+
+
+def tool_offset(tool: Tool | None, register: ToolRegister) -> float | None:
+    """The value ``register`` holds for ``tool`` (None: not in the table, 0), in mm times ``per_mm``; None when it
+    serves H and D (memory A, B) and the table's length and radius differ, neither being 0."""
+    if tool is None:
+        return 0.0
+    values = []
+    for part in register.parts:
+        geometry, wear = _parts(tool, part)
+        values.append({"geometry": geometry, "wear": wear, "value": geometry + wear}[register.kind])
+    found = {v for v in values if v != 0.0} or {0.0}
+    return found.pop() * register.per_mm if len(found) == 1 else None
+
+
+def with_tool_offset(tool: Tool, register: ToolRegister, value: float, *, add: bool = False) -> Tool:
+    """``tool`` with ``register`` set to ``value`` (in mm times ``per_mm``), or moved by it (``add``)."""
+    changes: dict[str, float] = {}
+    for part in register.parts:
+        geometry, wear = _parts(tool, part)
+        amount = value / register.per_mm
+        if register.kind == "value":
+            geometry, wear = (geometry + wear if add else 0.0) + amount, 0.0
+        elif register.kind == "geometry":
+            geometry = (geometry if add else 0.0) + amount
+        else:
+            wear = (wear if add else 0.0) + amount
+        changes[part], changes[f"{part}_wear"] = geometry + wear, wear
+    return dataclasses.replace(tool, **changes)
+
+
 class ToolState(Protocol):
     """What :func:`set_tool_offset` reads and writes of the ISO executor's state."""
 
+    context: MachineContext
     tools: dict[int, Tool]  # tool table entries the program wrote
     incremental: bool
 
@@ -224,13 +340,15 @@ class ToolState(Protocol):
 
 
 def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: ToolState, dialect: str) -> Tool:
-    """Fanuc/Haas ``G10 L10/L11/L1/L12/L13 P<n> R<value>``: tool length geometry / wear, radius geometry /
-    wear of offset ``n`` set to R (G90) or moved by R (G91); returns the new table entry.
+    """Fanuc/Haas ``G10 L10/L11/L1/L12/L13 P<n> R<value>``: the register of offset ``n`` that L names under the
+    tool compensation memory (module docstring; Haas: memory C, D in diameters) set to R (G90) or moved by R
+    (G91); returns the new table entry.
 
     Raises
     ------
     WordError
-        P missing or not a whole number >= 0, R missing, or axis words (those are LinuxCNC's G10 L1/L10).
+        P missing or not a whole number >= 0, R missing, axis words (those are LinuxCNC's G10 L1/L10), or an L
+        the memory does not have.
     """
     if p is None or p != int(p) or p < 0:
         raise WordError(f"G10 L{level} needs the offset number P (a whole number >= 0)", letter="P" if p else None,
@@ -239,22 +357,17 @@ def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: To
     if axes or "R" not in words:
         raise WordError(f"G10 L{level} sets offset P{int(p)} from R (Fanuc/Haas tool offsets)",
                         letter=axes[0] if axes else None, expected=f"G10 L{level} P{int(p)} R<value>")
+    memory = "C" if dialect == "haas" else st.context.tool_offset_memory
+    found = _G10_REGISTERS[memory].get(level)
+    if found is None:
+        levels = " ".join(f"L{n}" for n in sorted(_G10_REGISTERS[memory]))
+        raise WordError(f"G10 L{level}: tool compensation memory {memory} has no such offset (its G10: {levels}; "
+                        "the machine's [program] tool_offset_memory)", letter="L",
+                        expected=f"G10 {levels.split()[-1]} P{int(p)} R<value>")
     number = int(p)
-    tool = st.tool(number) or Tool(number=number)
-    value = words["R"] * st.scale
-    if level in (12, 13) and dialect == "haas":
-        value /= 2.0  # Haas: D offsets are diameters ("diameter offset amount")
-    if level in (12, 13):
-        geometry, wear = tool.radius - tool.radius_wear, tool.radius_wear
-    else:
-        geometry, wear = tool.length - tool.length_wear, tool.length_wear
-    if level in (10, 12):
-        geometry = (geometry if st.incremental else 0.0) + value
-    else:
-        wear = (wear if st.incremental else 0.0) + value
-    if level in (12, 13):
-        new = dataclasses.replace(tool, radius=geometry + wear, radius_wear=wear)
-    else:
-        new = dataclasses.replace(tool, length=geometry + wear, length_wear=wear)
+    register = ToolRegister(number=number, parts=found[0], kind=found[1],
+                            per_mm=2.0 if dialect == "haas" and found[0] == _RADIUS else 1.0)
+    new = with_tool_offset(st.tool(number) or Tool(number=number), register, words["R"] * st.scale,
+                           add=st.incremental)
     st.tools[number] = new
     return new

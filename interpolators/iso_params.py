@@ -42,12 +42,31 @@ manual, "Macros"):
   ``haas`` dialects (Fanuc 0i-MD B-64304EN "Arithmetic and logic operation": "Logical operations are performed
   on binary numbers bit by bit"; Haas mill operator's manual, "Macros", "Logical operations": "only the integer
   portion of the floating point number is used"): ``5 OR 3`` is 7, ``5 XOR 3`` is 6; on comparisons (1 or 0)
-  they are the logical ones LinuxCNC has. Their precedence stays LinuxCNC's (below the comparisons; Fanuc ranks
-  AND with ``*`` and OR, XOR with ``+``: a program that leaves out the brackets Fanuc needs around comparisons,
-  ``[#1 EQ 1 AND #2 EQ 2]``, reads as LinuxCNC reads it).
+  they are the logical ones LinuxCNC has.
+* precedence under the ``fanuc`` and ``haas`` dialects is Fanuc's (Fanuc 0i-MD B-64304EN "Custom macro",
+  "Arithmetic and logic operation", "Priority of operations": functions first, then the operations of the
+  multiplication group ``* / AND``, then those of the addition group ``+ - OR XOR``; the manual's operator
+  table groups them so, as zappettiniconsulting.com/wiki/macro-arithmetic copies it, its "Priority of
+  operations" text itself is not in our search index; ``MOD`` of the 0i-F/30i ranks with ``*``, our reading):
+  ``2 + 3 AND 1`` is ``2 + [3 AND 1]`` = 3, ``6 OR 1 * 2`` is 6, ``1 + 2 OR 4`` is ``[1 + 2] OR 4`` = 7,
+  left to right within a level. The comparisons ``EQ NE GT GE LT LE`` come last: Fanuc writes one per
+  conditional expression of IF and WHILE ("[<expression> EQ <expression>]"), so two in one bracket
+  (``[#1 EQ 1 AND #2 EQ 2]``, which LinuxCNC reads as two conditions) are an error naming the brackets
+  Fanuc needs; in an assignment (``#1 = [#2 GT 3]``, which Fanuc refuses) a comparison gives 1 or 0 as Haas
+  ("all expressions set a conditional value") and LinuxCNC do. Haas's manual ("Macros", "Operators") states
+  no precedence: our reading is Fanuc's, as Haas reads custom macro B and the macros written for both
+  controls bracket every comparison as Fanuc needs.
+* ``MOD`` is the remainder made non-negative, as LinuxCNC's (Haas "Arithmetic Operators": ``27 MOD 20`` is
+  7; how Fanuc rounds its operands is not in the manuals of our search index: our reading keeps them as
+  they are).
 * under the ``fanuc`` and ``haas`` dialects ``#1000``-``#4999`` are system variables, not user
   parameters: the modal information ``#4001``.. comes from the reader's state
-  (:mod:`interpolators.iso_system`), ``#3000 = n`` is a macro alarm (an error naming the line),
+  (:mod:`interpolators.iso_system`), ``#3000 = n (message)`` is a macro alarm (an error naming the line, n
+  and the message: the comment of its block), ``#3006 = n (message)`` a stop with a message (Fanuc 0i-MD
+  B-64304EN "System variables", "Stop with a message": the blocks before it run, then the program stops with
+  the comment of the block shown until the operator presses cycle start; Haas "Macros", #3006 programmable stop
+  with a message; neither manual's own text is in our search index): it is kept in :attr:`Parameters.stops` for
+  the reader, which ends the path at rest there as at M0,
   other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
   feed-hold switches), and reading an unmodelled one is an error naming it.
 * a G65 macro call's locals are ``#1``-``#33`` per call level (Haas, "Local Variables": "Local
@@ -66,7 +85,7 @@ from collections.abc import Callable
 from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
-from interpolators.iso_words import Word, read_words
+from interpolators.iso_words import Word, block_comment, read_words
 
 __all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
 
@@ -74,12 +93,23 @@ _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
 _FUNCTIONS = ("ABS", "ACOS", "ASIN", "ATAN", "BCD", "BIN", "COS", "EXISTS", "EXP", "FIX", "FUP", "ROUND", "LN",
               "SIN", "SQRT", "TAN")
-_BINARY = [("OR", "XOR", "AND"), ("EQ", "NE", "GT", "GE", "LT", "LE"), ("+", "-"), ("*", "/", "MOD"), ("**",)]
-#: The binary operators by their first character, longest first (``**`` before ``*``), with their level.
-_OPERATORS: dict[str, tuple[tuple[str, int], ...]] = {
-    c: tuple(sorted(((op, level) for level, ops in enumerate(_BINARY) for op in ops if op[0] == c),
-                    key=lambda e: -len(e[0])))
-    for c in {op[0] for ops in _BINARY for op in ops}}
+_COMPARISONS = ("EQ", "NE", "GT", "GE", "LT", "LE")
+#: LinuxCNC's binary operators by precedence, lowest first ("Binary Operators").
+_BINARY = [("OR", "XOR", "AND"), _COMPARISONS, ("+", "-"), ("*", "/", "MOD"), ("**",)]
+#: Fanuc custom macro B's, lowest first (module docstring): the comparisons, then ``+ - OR XOR``, then
+#: ``* / AND MOD``; ``**`` (not Fanuc's: ``POW[a,b]``) stays above them.
+_MACRO_B_BINARY = [_COMPARISONS, ("+", "-", "OR", "XOR"), ("*", "/", "AND", "MOD"), ("**",)]
+
+
+def _operator_table(levels: list[tuple[str, ...]]) -> dict[str, tuple[tuple[str, int], ...]]:
+    """The binary operators by their first character, longest first (``**`` before ``*``), with their level."""
+    return {c: tuple(sorted(((op, level) for level, ops in enumerate(levels) for op in ops if op[0] == c),
+                            key=lambda e: -len(e[0])))
+            for c in {op[0] for ops in levels for op in ops}}
+
+
+_OPERATORS = _operator_table(_BINARY)
+_MACRO_B_OPERATORS = _operator_table(_MACRO_B_BINARY)
 #: Highest of LinuxCNC's user parameters (#31-#5000, "Numbered Parameters"); above it they hold
 #: machine state (#5021-#5029 machine position, #5061-#5070 probe result, #5161-#5169 G28 home,
 #: #5211-#5219 G92 offsets, ...; Fanuc's #5001-#5028 are positions too): reading one the program has
@@ -103,6 +133,8 @@ _NAMED_SYSTEM = {**{f"_{a}": 5420 + i for i, a in enumerate("xyzabcuvw")},
 _FANUC_SYSTEM = range(1000, 5000)
 #: Fanuc/Haas macro alarm: setting it stops the program with an alarm.
 _FANUC_ALARM = 3000
+#: Fanuc/Haas stop with a message: setting it stops the program as M0 does (:attr:`Parameters.stops`).
+_FANUC_MESSAGE_STOP = 3006
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -149,6 +181,7 @@ class Parameters:
         self.system = system
         self.set_system = set_system
         self.fanuc = fanuc
+        self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -160,11 +193,11 @@ class Parameters:
         """The value of ``#n``; ``None`` when it is vacant (``#0``, or unset under Fanuc semantics)."""
         if n == 0:
             return None  # Fanuc's null variable: always vacant
+        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL and not (
-                self.macro_b and self.system is not None and self.system(n)[0] is not None):  # Fanuc #7001..
+                self.macro_b and (state is not None or why)):  # Fanuc #7001.., #10001..
             where.fail(f"parameter number #{n} out of range", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
-        state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if state is not None:
             return state
         if why:
@@ -174,9 +207,9 @@ class Parameters:
         if self.macro_b and n in _FANUC_SYSTEM and n not in store:
             where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
                        "alarms, clocks, modal information) is not modelled", column=column, text=text,
-                       expected="a common variable #100-#199, #500-#999, or a modelled one (#4001-#4016 "
-                                "and #4022 modal G codes, #4107 D, #4109 F, #4111 H, #4119 S, #4120 T, "
-                                "#3901/#3902 parts counters, #5001.. positions)")
+                       expected="a common variable #100-#199, #500-#999, or a modelled one (#2001-#2400 tool "
+                                "offsets (Haas #2001-#2800), #4001-#4016 and #4022 modal G codes, #4107 D, #4109 F, "
+                                "#4111 H, #4119 S, #4120 T, #3901/#3902 parts counters, #5001.. positions)")
         if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
             where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
                        column=column, text=text,
@@ -225,14 +258,21 @@ class Parameters:
                            expected="a parameter #1 .. #5219 (a macro program is run by its G65 call)")
             if self.macro_b and key == _FANUC_ALARM:
                 # Fanuc/Haas: "#3000 = n (message)" stops the program with macro alarm n (Haas: "Alarms")
-                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}: the program raises an alarm "
-                           "here", column=column, text=where.text, expected="a program that does not reach its alarm")
+                message = block_comment(where.text, where)
+                shown = f" ({message.strip()})" if message and message.strip() else ""
+                where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}{shown}: the program raises an "
+                           "alarm here", column=column, text=where.text, expected="a program that does not reach its "
+                           "alarm")
+            if self.macro_b and key == _FANUC_MESSAGE_STOP:
+                message = block_comment(where.text, where)
+                self.stops.append((where.line, message.strip() if message else ""))
+                return
             if self.set_system is not None and self.set_system(key, value):
                 return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
             if state is not None or why:
-                reason = f"it reports {why}" if why else "it reports the machine state"
-                where.fail(f"parameter #{key} is read-only: {reason}", column=column, text=text,
+                what = f"cannot be set: {why}" if why else "is read-only: it reports the machine state"
+                where.fail(f"parameter #{key} {what}", column=column, text=text,
                            expected="a user parameter #1 .. #5000 (set offsets with G10, G92, G43)")
             if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
                 where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
@@ -469,13 +509,25 @@ class _Reader:
         return self._operations(left, p, level)
 
     def _operations(self, left: float | None, p: int, level: int) -> tuple[float | None, int]:
-        """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``."""
+        """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``.
+
+        Under macro B a second comparison in one bracket is an error: Fanuc compares two values once
+        ("[<expression> EQ <expression>]"), and its precedence makes ``[#1 EQ 1 AND #2 EQ 2]`` compare
+        ``#1 EQ [1 AND #2]`` with 2, which no program means."""
+        table = _MACRO_B_OPERATORS if self.params.macro_b else _OPERATORS
+        compared = None
         while True:
             q = self.skip(p)
-            found = _operator_at(self.up, q)
+            found = _operator_at(self.up, q, table)
             if found is None or found[1] < level:
                 return left, p
             op, op_level = found
+            if self.params.macro_b and op in _COMPARISONS:
+                if compared is not None:
+                    self.fail(f"two comparisons in one bracket ('{compared}' and '{op}'): Fanuc custom macro B "
+                              "ranks AND with * and OR, XOR with +, so they do not join comparisons without "
+                              "brackets", q, "each comparison in its own brackets: [#1 EQ 1] AND [#2 EQ 2]")
+                compared = op
             right, p = self.operand(q + len(op))
             right, p = self._operations(right, p, op_level + 1)
             left = self.binary(op, left, right, q)
@@ -489,7 +541,7 @@ class _Reader:
         if op in ("/", "MOD") and b == 0:
             self.fail("division by zero", pos, "a divisor other than 0")
         if self.params.macro_b and op in ("AND", "OR", "XOR"):  # bit by bit (module docstring)
-            a_int, b_int = math.trunc(a), math.trunc(b)
+            a_int, b_int = _integer_part(a), _integer_part(b)
             return float(a_int & b_int if op == "AND" else a_int | b_int if op == "OR" else a_int ^ b_int)
         try:
             return _binary(op, a, b)
@@ -502,12 +554,22 @@ _COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": fl
             "LE": float.__le__}
 
 
-def _operator_at(up: str, q: int) -> tuple[str, int] | None:
-    """The binary operator at ``q`` of the upper-case line and its precedence level, if one starts there."""
-    for op, level in _OPERATORS.get(up[q:q + 1], ()):
+def _operator_at(up: str, q: int, table: dict[str, tuple[tuple[str, int], ...]] = _OPERATORS
+                 ) -> tuple[str, int] | None:
+    """The binary operator at ``q`` of the upper-case line and its precedence level in ``table`` (LinuxCNC's by
+    default), if one starts there."""
+    for op, level in table.get(up[q:q + 1], ()):
         if up.startswith(op, q):
             return op, level
     return None
+
+
+def _integer_part(x: float) -> int:
+    """The integer part of ``x``, taken after rounding ``x`` to 9 decimals: a value that is a whole number
+    within the precision of macro variables (Fanuc Power Mate i-D/H B-63174EN/03 "Custom macro": "the
+    precision of variable values is about 8 decimal digits") is that number, so ``SIN[30] * 4``,
+    1.9999999999999998 in binary floating point, is 2 for AND, OR and XOR."""
+    return math.trunc(round(x, 9))
 
 
 def _binary(op: str, a: float, b: float) -> float:

@@ -50,10 +50,15 @@ system), the additional ones below; the offset changes at once, as ``G10 L2`` wo
 (:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
 with G10, not the other way round).
 
-Haas tool offsets (Haas macro variables, "Tool Offsets": ``#2001``-``#2200`` tool length geometry,
-``#2201``-``#2400`` length wear, ``#2401``-``#2600`` diameter geometry, ``#2601``-``#2800`` diameter
-wear, read/write, tools 1-200) read and write the tool table (:class:`interpolators.context.Tool`:
-length = geometry + wear); Fanuc's tool variables depend on its offset memory type and stay errors.
+The tool offset variables read and write the tool table (:class:`interpolators.context.Tool`: length = geometry
++ wear), in the machine's length unit: Haas's ``#2001``-``#2800`` (Haas macro variables, "Tool Offsets": length
+geometry, length wear, diameter geometry, diameter wear of tools 1-200), and Fanuc's by its tool compensation
+memory (:attr:`interpolators.context.MachineContext.tool_offset_memory`; memory C: ``#11001``.. / ``#2201``.. H
+geometry, ``#10001``.. / ``#2001``.. H wear, ``#13001``.. D geometry, ``#12001``.. D wear), the registers
+:func:`interpolators.iso_offsets.tool_offset_variable` names and ``G10 L10``-``L13`` sets. Under memory A and B
+one offset number serves H and D: writing it sets the tool's length and radius; reading it gives their common
+value, or the one that is not 0, and is an error naming both when the machine's table holds two different
+ones. A Fanuc variable the memory does not have (``#13001`` under memory B) is an error naming the memory.
 Haas ``#3026`` ("Tool in spindle", read only) is the tool in the spindle, as ``#4120``.
 
 The parts counters ``#3901`` (number of machined parts) and ``#3902`` (number of required parts) read and write
@@ -61,6 +66,16 @@ under those dialects (Fanuc 0i-MD B-64304EN "System variables": "#3901 Number of
 required parts, read/write"; Haas "Macros": "#3901 M30 count 1, #3902 M30 count 2"). They count finished parts
 and move nothing; the virtual machine's counters are 0 when the program starts (our reading: a machine the
 program is the first to run on), and a program that reads them is noted (:attr:`ReaderState.parts_read`).
+
+The clocks are not read (Fanuc 0i-MD B-64304EN "System variables"; Haas "Macros" #3001 millisecond
+timer, #3002 hour timer; Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
+``#3001`` the milliseconds clock "always runs, can be reset using #3001=0", ``#3002`` the hours clock likewise,
+``#3011`` the date yyyymmdd and ``#3012`` the time hhmmss, which "cannot be reset"). A program writes ``#3001 = 0``
+or ``#3002 = 0`` to start timing: accepted, without effect. Reading one is an error naming it: the clocks count the
+time the machine has run, which depends on the feeds, accelerations and servo lags the interpolation and
+simulation work out after the program is read, and on how long the control takes per macro statement, which no
+manual gives; the value may steer the program (a wait ``WHILE [#3001 LT 2000]``, a tool-life count), so no
+reading of the text alone fixes it. The date and time are those of a run, which a program file does not fix.
 
 The additional work offsets of Fanuc (``G54.1 P``: ``#7001``.., ``#14001``..) and Haas (``G154 P``,
 ``G110``-``G129``) read under those dialects (:mod:`interpolators.iso_offsets`), with ``#4014`` = 54.1
@@ -76,13 +91,20 @@ the stop's line (``stops_read``), as the Heidenhain reader does for ``FN 18 SYSR
 
 from __future__ import annotations
 
-import dataclasses
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool
-from interpolators.iso_offsets import extended_number, offset_parameter
+from interpolators.iso_offsets import (
+    ToolRegister,
+    extended_number,
+    fanuc_tool_variable,
+    offset_parameter,
+    tool_offset,
+    tool_offset_variable,
+    with_tool_offset,
+)
 
 if TYPE_CHECKING:
     from interpolators.iso_modal_call import ModalCalls
@@ -92,6 +114,9 @@ __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
+#: Fanuc/Haas clocks (module docstring): the milliseconds and hours clocks a program may reset, the date and time.
+_CLOCKS = {3001: "the milliseconds clock", 3002: "the hours clock", 3011: "the date", 3012: "the time of day"}
+_RESETTABLE_CLOCKS = (3001, 3002)
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
 
@@ -209,15 +234,25 @@ def _tool(n: int, st: ReaderState) -> float | None:
     return None
 
 
-def _haas_tool(n: int, st: ReaderState) -> float:
-    """Haas #2001-#2800: length geometry, length wear, diameter geometry, diameter wear of tools 1-200."""
-    column, number = divmod(n - 2001, 200)
-    tool = st.tool(number + 1)
-    if tool is None:
-        return 0.0
-    value = (tool.length - tool.length_wear, tool.length_wear, 2.0 * (tool.radius - tool.radius_wear),
-             2.0 * tool.radius_wear)[column]
-    return value / _stored(st)
+def _tool_register(n: int, st: ReaderState) -> tuple[ToolRegister | None, str]:
+    """The tool offset register Fanuc/Haas variable ``#n`` names, or None with why (empty: ``#n`` is none)."""
+    dialect, memory = st.context.dialect.name, st.context.tool_offset_memory
+    register = tool_offset_variable(n, dialect, memory)
+    if register is None and dialect == "fanuc" and fanuc_tool_variable(n):
+        return None, (f"a tool offset variable that tool compensation memory {memory} does not have (the machine's "
+                      "[program] tool_offset_memory: A, B or C)")
+    return register, ""
+
+
+def _tool_offset(register: ToolRegister, st: ReaderState) -> tuple[float | None, str]:
+    """The value of a tool offset register in the machine's unit, or None with why."""
+    tool = st.tool(register.number)
+    value = tool_offset(tool, register)
+    if value is None:
+        return None, (f"offset {register.number} is one register for H and D under tool compensation memory "
+                      f"{st.context.tool_offset_memory}, but the tool table holds length {tool.length:g} and radius "
+                      f"{tool.radius:g} mm for it")
+    return value / _stored(st), ""
 
 
 def _fanuc_modal(n: int, st: ReaderState) -> float | None:
@@ -256,10 +291,17 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _position(n, st, fanuc)
     if 4001 <= n <= 4130:
         return (_fanuc_modal(n, st) if fanuc else None), ""
-    if fanuc and st.context.dialect.name == "haas" and 2001 <= n <= 2800:
-        return _haas_tool(n, st), ""
+    register, why = _tool_register(n, st) if fanuc else (None, "")
+    if register is not None or why:
+        return _tool_offset(register, st) if register is not None else (None, why)
     if fanuc and st.context.dialect.name == "haas" and n == 3026:  # Haas "Macros": #3026 tool in spindle
         return float(st.tool_current or 0), ""
+    if fanuc and n in _CLOCKS:
+        if n in _RESETTABLE_CLOCKS:
+            return None, (f"{_CLOCKS[n]}, which counts the time the machine has run: that time comes from "
+                          "interpolating the program after it is read, so a program steered by it (a wait "
+                          "WHILE [#3001 LT ..]) cannot be read; G04 waits a given time")
+        return None, f"{_CLOCKS[n]} of a run, which a program file does not fix"
     if fanuc and n in PARTS_COUNTERS:
         st.parts_read = True
         return st.parts_counters.get(n, 0.0), ""
@@ -303,14 +345,20 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
 def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
     machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
-    value is 0); Haas ``#2001``-``#2800`` set a tool's length / diameter geometry or wear. True when
+    value is 0); the tool offset variables set a tool's length / radius geometry or wear, and a write to the clocks
+    ``#3001``/``#3002`` is taken without effect (module docstring). True when
     ``#n`` is such a variable (the caller reports the others). The parts counters ``#3901``/``#3902`` take the
     value (vacant: 0)."""
     if n in PARTS_COUNTERS:
         st.parts_counters[n] = 0.0 if value is None else float(value)
         return True
-    if st.context.dialect.name == "haas" and 2001 <= n <= 2800:
-        _set_haas_tool(n, 0.0 if value is None else float(value) * _stored(st), st)
+    if n in _RESETTABLE_CLOCKS:  # a reset that starts a timing: the clock is not read (module docstring)
+        return True
+    register, _ = _tool_register(n, st)
+    if register is not None:
+        tool = st.tool(register.number) or Tool(number=register.number)
+        amount = 0.0 if value is None else float(value) * _stored(st)
+        st.tools[register.number] = with_tool_offset(tool, register, amount)
         return True
     target = _offset_variable(n, st)
     if target is None:
@@ -327,21 +375,3 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
         extra[j - 3] = v
         st.extra_offsets[code] = extra
     return True
-
-
-def _set_haas_tool(n: int, value: float, st: ReaderState) -> None:
-    """Haas #2001-#2800 = ``value`` [mm]: one of tool n's length / diameter geometry / wear."""
-    column, number = divmod(n - 2001, 200)
-    tool = st.tool(number + 1) or Tool(number=number + 1)
-    length_geometry, length_wear = tool.length - tool.length_wear, tool.length_wear
-    radius_geometry, radius_wear = tool.radius - tool.radius_wear, tool.radius_wear
-    if column == 0:
-        length_geometry = value
-    elif column == 1:
-        length_wear = value
-    elif column == 2:
-        radius_geometry = value / 2.0
-    else:
-        radius_wear = value / 2.0
-    st.tools[number + 1] = dataclasses.replace(tool, length=length_geometry + length_wear, length_wear=length_wear,
-                                               radius=radius_geometry + radius_wear, radius_wear=radius_wear)

@@ -231,8 +231,10 @@ def test_haas_tool_offset_variables():
             "G41 D2 G1 X10 Y0 F100\nX20\nG40 X30\n#1 = #2002 + #2202\nG49 G53 G0 Z#1\n")
     assert ends(text, HAAS, reference=False) == [(0, 0, 79.8), (10, 4.95, 79.8), (20, 4.95, 79.8), (30, 0, 79.8),
                                                  (30, 0, 79.8)]
-    with pytest.raises(GCodeError, match="#2001: this Fanuc system variable"):  # Fanuc: memory type dependent
-        parse_program("G21\n#1 = #2001\n", context=FANUC)
+    # Fanuc (tool compensation memory C, the default): #2002 is H wear of offset 2, #2402 no tool offset
+    assert ends("G21 G90\n#2002 = 0.5\n#1 = #10002\nG53 G0 X#1\n", FANUC, reference=False) == [(0.5, 0, 0)]
+    with pytest.raises(GCodeError, match="#2402: this Fanuc system variable"):
+        parse_program("G21\n#1 = #2402\n", context=FANUC)
 
 
 def test_fanuc_g10_l2_p0_external_offset_shifts_every_system():

@@ -269,14 +269,14 @@ def test_macro_b_block_ends_match_the_independent_reference(text):
 def test_fanuc_modal_information_alarm_and_system_variables():
     """Fanuc 0i-MD "System variables": #4003 is 90/91 and #4014 the work offset, #4109 the F (a macro
     saves and restores the modes with them: G#1); #3000 = n stops with macro alarm n; an unmodelled
-    system variable such as #2001 (tool offset memory) is an error; LinuxCNC reads #2001 as a user parameter."""
+    system variable such as #1000 (interface signals) is an error; LinuxCNC reads #2001 as a user parameter."""
     text = "G21 G90 F600\nG55 G91 G1 X1\n#1 = #4003\n#2 = #4014\n#3 = #4109\nG90\nG#1 X#2 Y#3\n"
     assert _ends(text) == [[1.0, 0.0, 0.0], [56.0, 600.0, 0.0]]
     with pytest.raises(GCodeError, match="macro alarm #3000 = 1") as info:
         parse_program("G21\nIF [1 EQ 1] THEN #3000 = 1 (NO TOOL)\n", context=HAAS)
     assert info.value.line == 2
-    with pytest.raises(GCodeError, match="#2001: this Fanuc system variable"):
-        parse_program("G21 G0 X#2001\n", context=FANUC)
+    with pytest.raises(GCodeError, match="#1000: this Fanuc system variable"):
+        parse_program("G21 G0 X#1000\n", context=FANUC)
     assert _ends("G21 G0 X#2001\n", MachineContext()) == [[0.0, 0.0, 0.0]]
 
 

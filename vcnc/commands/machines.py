@@ -20,6 +20,9 @@ PROGRAM_TABLE_DOC = """
 # reference2 = [0.0, 0.0, 0.0]   # mm, machine coordinates: G30's position
 # linear_units = "mm"            # mm | inch: unit of the stored offsets a program reads (#5221.., #5401..)
 # decimal_point_input = "calculator"  # fanuc: X10 without a decimal point is 10 mm (DPI=1); "increment": 0.010 mm
+# tool_offset_memory = "C"       # fanuc tool compensation memory: C geometry and wear apart for H and D (G10 L10-L13,
+#                                # #11001.. #10001.. #13001.. #12001..); B one geometry and wear per offset number;
+#                                # A one value per offset number
 # tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length,
 #                                # X Y offsets), or a Heidenhain TOOL.T (BEGIN TOOL .T MM; T NAME L R DL DR columns)
 # subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)

@@ -27,6 +27,7 @@ Layout::
     reference2 = [0.0, 0.0, 0.0]  # mm, machine coordinates: G30
     linear_units = "mm"           # mm | inch: the unit the stored offsets read in (#5221.., LinuxCNC's INI unit)
     decimal_point_input = "calculator"  # calculator | increment: Fanuc DPI (No. 3401#0) = 1 | 0, X10 = 10 | 0.010 mm
+    tool_offset_memory = "C"      # A | B | C: Fanuc tool compensation memory (G10 L10-L13, #2001.., #10001..)
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5) or Heidenhain TOOL.T
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
@@ -62,7 +63,16 @@ from typing import Any
 
 import controllers
 import drives
-from interpolators.context import DIALECTS, Dialect, MachineContext, Tool, TouchProbe, read_tool_table, work_offset_code
+from interpolators.context import (
+    DIALECTS,
+    TOOL_OFFSET_MEMORIES,
+    Dialect,
+    MachineContext,
+    Tool,
+    TouchProbe,
+    read_tool_table,
+    work_offset_code,
+)
 from interpolators.limits import AxisLimits
 from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.core.axes import EXTRA_NAMES
@@ -74,7 +84,8 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools", "linear_units", "decimal_point_input", "kinematics", "subroutine_path",
+                 "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory", "kinematics",
+                 "subroutine_path",
                  "user_m_path", "initial_feed", "touch_probe")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
@@ -370,6 +381,11 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
                           f"'increment' (DPI=0: X10 is 0.010 mm), got {tab['decimal_point_input']!r}",
                           path + ("decimal_point_input",))
     kwargs["decimal_point_input"] = tab.get("decimal_point_input", "calculator")
+    if tab.get("tool_offset_memory", "C") not in TOOL_OFFSET_MEMORIES:
+        raise where.error("'program.tool_offset_memory' must be 'A', 'B' or 'C' (Fanuc tool compensation memory: one "
+                          "value per offset; geometry and wear; geometry and wear apart for H and D), got "
+                          f"{tab['tool_offset_memory']!r}", path + ("tool_offset_memory",))
+    kwargs["tool_offset_memory"] = tab.get("tool_offset_memory", "C")
     offsets = tab.get("work_offsets", {})
     if not isinstance(offsets, dict):
         raise where.error("'program.work_offsets' must be a table of G54 = [x, y, z] ...", path + ("work_offsets",))
