@@ -565,6 +565,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         _finish_compensation(st, blocks, source)
     if dialect.name == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+    for _ in range(params.joined_comparisons):
+        notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
+                  "(Fanuc writes each in its own brackets)")
     _closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:

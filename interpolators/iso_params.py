@@ -50,12 +50,15 @@ manual, "Macros"):
   operations" text itself is not in our search index; ``MOD`` of the 0i-F/30i ranks with ``*``, our reading):
   ``2 + 3 AND 1`` is ``2 + [3 AND 1]`` = 3, ``6 OR 1 * 2`` is 6, ``1 + 2 OR 4`` is ``[1 + 2] OR 4`` = 7,
   left to right within a level. The comparisons ``EQ NE GT GE LT LE`` come last: Fanuc writes one per
-  conditional expression of IF and WHILE ("[<expression> EQ <expression>]"), so two in one bracket
-  (``[#1 EQ 1 AND #2 EQ 2]``, which LinuxCNC reads as two conditions) are an error naming the brackets
-  Fanuc needs; in an assignment (``#1 = [#2 GT 3]``, which Fanuc refuses) a comparison gives 1 or 0 as Haas
-  ("all expressions set a conditional value") and LinuxCNC do. Haas's manual ("Macros", "Operators") states
-  no precedence: our reading is Fanuc's, as Haas reads custom macro B and the macros written for both
-  controls bracket every comparison as Fanuc needs.
+  conditional expression of IF and WHILE ("[<expression> EQ <expression>]") and joins conditions as
+  ``[#1 EQ 1] AND [#2 EQ 2]``. A bracket that joins two comparisons without brackets of their own
+  (``[#1 GT 0 AND #1 LT 9]``) would compare ``#1 GT [0 AND #1]`` with 9, which no program means: it is read in
+  LinuxCNC's precedence instead, the comparisons first (as LinuxCNC reads it, and as CNCSimulator's macro
+  manual shows ``[#4GT#2AND#4GT#3]``), with a note (our reading: Haas's manual only says that conditional
+  expressions "can make use of Boolean operators"); in an assignment (``#1 = [#2 GT 3]``, which Fanuc
+  refuses) a comparison gives 1 or 0 as Haas ("all expressions set a conditional value") and LinuxCNC do.
+  Haas's manual ("Macros", "Operators") states no precedence: our reading is Fanuc's, as Haas reads custom
+  macro B.
 * ``MOD`` is the remainder made non-negative, as LinuxCNC's (Haas "Arithmetic Operators": ``27 MOD 20`` is
   7; how Fanuc rounds its operands is not in the manuals of our search index: our reading keeps them as
   they are).
@@ -182,6 +185,7 @@ class Parameters:
         self.set_system = set_system
         self.fanuc = fanuc
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
+        self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -310,6 +314,10 @@ def has_parameters(code: str) -> bool:
     return "#" in code or "[" in code
 
 
+class _JoinedComparisons(Exception):
+    """A macro B bracket joins two comparisons without brackets of their own (:meth:`_Reader.grouped`)."""
+
+
 class _Reader:
     """Recursive-descent reader of LinuxCNC real values on one comment-free line."""
 
@@ -318,6 +326,7 @@ class _Reader:
         self.up = code.upper()
         self.where = where
         self.params = params
+        self.logical = False  # this bracket joins comparisons: LinuxCNC's precedence (grouped)
 
     def skip(self, pos: int) -> int:
         while pos < len(self.code) and self.code[pos] in " \t\r":
@@ -368,7 +377,7 @@ class _Reader:
             v, end = self.operand(p + 1)
             return (-v if ch == "-" and v is not None else v), end
         if ch == "[":
-            v, end = self.expression(p + 1)
+            v, end = self.grouped(p + 1)
             end = self.skip(end)
             if end >= len(self.code) or self.code[end] != "]":
                 self.unclosed(p, end)
@@ -508,26 +517,42 @@ class _Reader:
         left, p = self.operand(pos)
         return self._operations(left, p, level)
 
+    def grouped(self, pos: int) -> tuple[float | None, int]:
+        """The expression of a bracket (or of a condition or assignment) at ``pos``: in macro B precedence, and
+        when it joins two comparisons (``#1 GT 0 AND #1 LT 9``) in LinuxCNC's, the comparisons first (module
+        docstring), counted for a note."""
+        outer = self.logical
+        self.logical = False
+        try:
+            return self.expression(pos)
+        except _JoinedComparisons:
+            self.logical = True
+            value, end = self.expression(pos)
+            self.params.joined_comparisons += 1
+            return value, end
+        finally:
+            self.logical = outer
+
     def _operations(self, left: float | None, p: int, level: int) -> tuple[float | None, int]:
         """``left`` combined with the operators of precedence ``level`` or higher that follow at ``p``.
 
-        Under macro B a second comparison in one bracket is an error: Fanuc compares two values once
-        ("[<expression> EQ <expression>]"), and its precedence makes ``[#1 EQ 1 AND #2 EQ 2]`` compare
-        ``#1 EQ [1 AND #2]`` with 2, which no program means."""
-        table = _MACRO_B_OPERATORS if self.params.macro_b else _OPERATORS
-        compared = None
+        Under macro B a second comparison in one bracket raises :class:`_JoinedComparisons`: Fanuc compares
+        two values once ("[<expression> EQ <expression>]"), and its precedence would make
+        ``[#1 EQ 1 AND #2 EQ 2]`` compare ``#1 EQ [1 AND #2]`` with 2, which no program means
+        (:meth:`grouped` reads the bracket again)."""
+        macro_b = self.params.macro_b and not self.logical
+        table = _MACRO_B_OPERATORS if macro_b else _OPERATORS
+        compared = False
         while True:
             q = self.skip(p)
             found = _operator_at(self.up, q, table)
             if found is None or found[1] < level:
                 return left, p
             op, op_level = found
-            if self.params.macro_b and op in _COMPARISONS:
-                if compared is not None:
-                    self.fail(f"two comparisons in one bracket ('{compared}' and '{op}'): Fanuc custom macro B "
-                              "ranks AND with * and OR, XOR with +, so they do not join comparisons without "
-                              "brackets", q, "each comparison in its own brackets: [#1 EQ 1] AND [#2 EQ 2]")
-                compared = op
+            if macro_b and op in _COMPARISONS:
+                if compared:
+                    raise _JoinedComparisons
+                compared = True
             right, p = self.operand(q + len(op))
             right, p = self._operations(right, p, op_level + 1)
             left = self.binary(op, left, right, q)
@@ -653,7 +678,7 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
     """A condition starting at ``pos`` (``[#1 EQ 2]``, also ``[a] AND [b]`` as macro B writes it):
     true when its value is not 0; a vacant value is false. Returns (truth, end)."""
     try:
-        value, end = _Reader(code, where, params).expression(pos)
+        value, end = _Reader(code, where, params).grouped(pos)
     except RecursionError:
         _too_deep(where)
     return (value is not None and value != 0.0), end
@@ -674,7 +699,7 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         if code[eq:eq + 1] != "=":
             r.fail("a parameter outside a word must be assigned", i, "#n = value")
         if params.macro_b:
-            value, end = r.expression(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
+            value, end = r.grouped(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
         else:
             # LinuxCNC overview.adoc "Parameter Setting": "# , a real value ..., an equal sign = , and a real
             # value"; a real value is "a number, an expression, a parameter value, or a unary function value",

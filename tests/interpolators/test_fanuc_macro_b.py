@@ -45,14 +45,21 @@ def test_linuxcnc_keeps_its_logical_operators_lowest():
 
 def test_comparisons_come_last_and_join_only_in_their_own_brackets():
     """IF [#1+1 EQ 3] compares the sum (#1 = 2: true); IF [#1 EQ 2] AND [#2 EQ 5] joins two bracketed
-    comparisons (1 AND 1 = 1: true) and GOTO 9 skips X1; IF [#1 EQ 2 OR #2 EQ 5] puts two comparisons in one
-    bracket: an error naming them and the brackets Fanuc needs."""
+    comparisons (1 AND 1 = 1: true) and GOTO 9 skips X1. IF [#1 EQ 3 OR #2 EQ 5 AND #1 GT 1] joins
+    comparisons in one bracket: read comparisons first, [0 OR 1 AND 1] = [[0 OR 1] AND 1] = 1 (LinuxCNC's AND OR
+    XOR: one level, left to right), with a note
+    (Fanuc's precedence would compare #1 EQ [3 OR #2] with [5 AND #1], false), and so are the nested and
+    assigned forms; a bracket inside keeps Fanuc's precedence ([2 + 3 AND 1] = 3)."""
     text = ("G21 G90 G1 F100\n#1=2\n#2=5\nIF [#1+1 EQ 3] THEN #3=4\nX#3\n"
             "IF [#1 EQ 2] AND [#2 EQ 5] GOTO 9\nX1\nN9 Y7\n")
     assert _ends(text) == [[4.0, 0.0, 0.0], [4.0, 7.0, 0.0]]
-    with pytest.raises(GCodeError, match=r"two comparisons in one bracket \('EQ' and 'EQ'\)") as info:
-        parse_program("#1=2\n#2=5\nIF [#1 EQ 2 OR #2 EQ 5] GOTO 9\nN9 M30\n", context=FANUC)
-    assert info.value.line == 3 and "[#1 EQ 1] AND [#2 EQ 2]" in str(info.value)
+    for context in (FANUC, HAAS):
+        prog = parse_program("G21 G90 G1 F100\n#1=2\n#2=5\nIF [#1 EQ 3 OR #2 EQ 5 AND #1 GT 1] GOTO 9\nX1\n"
+                             "N9 #4 = #1 LT 9 AND [2 + 3 AND 1] EQ 3\nY#4 Z[[#1 GT 0 AND #2 GT 6] + 5]\nM30\n",
+                             context=context)
+        assert [[float(v) for v in b.target] for b in prog.blocks] == [[0.0, 1.0, 5.0]]
+        assert ("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
+                "(Fanuc writes each in its own brackets) x3") in prog.notes
 
 
 def test_mod_is_the_non_negative_remainder():
