@@ -635,9 +635,6 @@ class _Run:
         if kw in ("CALL PGM", "CALL SELECTED PGM", "SEL PGM"):
             self.program_call(kw, blk, where)
             return False
-        if kw == "CTP":
-            where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
-                       expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
         words = _read_words(blk.code, k.end(), where, m, column0=col0)
         return _motion(kw, words, m, where, blk)
 
@@ -2784,8 +2781,29 @@ def _program_target(m: _Machine, values: dict[str, float], base: np.ndarray) -> 
     return m.to_machine(prog), written
 
 
+def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where,
+                  blk: SourceBlock) -> np.ndarray:
+    """The machine end point of an ``LP`` or ``CTP`` block: ``PR``/``IPR`` and ``PA``/``IPA`` about the pole in
+    its plane (:func:`_polar_plane`; a word not written keeps the current radius or angle), the tool axis of
+    ``target``. CTP, "circle tangential polar", is the arc CT with its end point in polar coordinates (TNC7 basic
+    user's manual 81762x-19, "Overview of path functions with polar coordinates": "Circular path with tangential
+    connection to the preceding contour element"; TNC 426/430 user's manual 6.5 writes ``CTP PR+30 PA+30``)."""
+    if m.pole is None:
+        where.fail(f"{kw} without a pole", column=blk.column, text=where.text, expected=f"a CC block before {kw}")
+    if kw == "CTP":  # the arc is in the working plane, as CT's
+        _pole_in_working_plane(m, where, kw)
+    plane = _polar_plane(kw, m, where, blk)
+    r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
+    k, t = m.scale * m.lengths(where), m.transform
+    pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
+    pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
+          else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
+    m.used.update(PLANE_AXES[plane])
+    return polar_point(m.pole, pr, pa, plane=plane, base=target)
+
+
 def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
-    """Run a motion block (L, LP, C, CR, CT, CP, CC); True when it ends the program."""
+    """Run a motion block (L, LP, C, CR, CT, CTP, CP, CC); True when it ends the program."""
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
@@ -2819,16 +2837,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
                               or m.comp != "R0", m, where)
     if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
-            if m.pole is None:
-                where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
-            plane = _polar_plane(m, where, blk)
-            r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
-            k, t = m.scale * m.lengths(where), m.transform
-            pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
-            pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
-                  else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
-            target = polar_point(m.pole, pr, pa, plane=plane, base=target)
-            m.used.update(PLANE_AXES[plane])
+            target = _polar_target(kw, seen, target, m, where, blk)
         m.last_axes = sorted(written) if kw == "L" else []
         if not rapid and m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -2841,7 +2850,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         m.tcpm_move = True
         m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
         m.tcpm_move = False
-    elif kw in ("C", "CR", "CT", "CP"):
+    elif kw in ("C", "CR", "CT", "CP", "CTP"):
+        if kw == "CTP":
+            target = _polar_target(kw, seen, target, m, where, blk)
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
                        expected="F > 0 [mm/min]")
@@ -2910,6 +2921,7 @@ _ALLOWED_WORDS = {
     "CR": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"}),
     "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
     "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CTP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
     "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
     "SPL": frozenset({"F"}),
 }
@@ -3044,8 +3056,8 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     m.used.update(written)
 
 
-def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
-    """The plane of an ``LP`` block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
+def _polar_plane(kw: str, m: _Machine, where: Where, blk: SourceBlock) -> int:
+    """The plane of an ``LP`` (or ``CTP``) block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
     axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
     demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
     manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
@@ -3053,9 +3065,9 @@ def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
     plane = m.pole_plane if m.pole_plane is not None else m.plane
     if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
         what = "a coordinate transformation" if m.comp == "R0" else m.comp
-        where.fail(f"LP about a CC outside the working plane under {what}",
+        where.fail(f"{kw} about a CC outside the working plane under {what}",
                    column=blk.column, text=where.text,
-                   expected="R0 and no cycle 8/10/11/26 for a polar line in another plane")
+                   expected=f"R0 and no cycle 8/10/11/26 for {kw} in another plane")
     return plane
 
 
@@ -3080,10 +3092,10 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
     k = m.lengths(where)
     flips = m.transform.flips(plane)
     try:
-        if kw == "CT":
+        if kw in ("CT", "CTP"):
             if not m.blocks or m.blocks[-1].segment is None:
-                where.fail("CT without a preceding contour element", column=blk.column, text=where.text,
-                           expected="an L, C, CR, CT or CP block before CT")
+                where.fail(f"{kw} without a preceding contour element", column=blk.column, text=where.text,
+                           expected=f"an L, C, CR, CT or CP block before {kw}")
             return tangential_arc(m.pos, end_tangent(m.blocks[-1].segment, plane), target, plane=plane)
         if kw == "CP":
             if m.pole is None:

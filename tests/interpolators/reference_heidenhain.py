@@ -627,13 +627,16 @@ def _radius_arc(t: _Tnc, line: int, w: dict) -> None:
     _arc_tangent(t, end, centre, ccw, (0, 1))
 
 
-def _tangent_arc(t: _Tnc, line: int, w: dict) -> None:
+def _tangent_arc(t: _Tnc, line: int, w: dict, *, polar: bool = False) -> None:
     """``CT X.. Y..``: the arc leaving the current point along the last element's direction to the end point
-    (TNC 426/430 manual, "Circular path CT with tangential connection")."""
+    (TNC 426/430 manual, "Circular path CT with tangential connection"); ``CTP PR.. PA..`` (``polar``): the same
+    arc to the end point in polar coordinates about the pole (TNC7 basic manual, "Circular path CTP")."""
     _comp_words(t, w)
     if t.last_dir is None:
         raise ReferenceError("CT without a preceding element's direction")
-    start, end = t.pos.copy(), t.target(w)
+    if polar and tuple(t.pole_axes) != (0, 1):
+        raise ReferenceError("CTP about a pole outside the XY plane")
+    start, end = t.pos.copy(), _polar_end(t, w) if polar else t.target(w)
     chord = (end - start)[:2]
     n = np.array([-t.last_dir[1], t.last_dir[0]])  # left of the direction
     across = float(n @ chord)
@@ -709,15 +712,21 @@ def _polar_line(t: _Tnc, line: int, w: dict) -> None:
     plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
     axis moves it too (under RL/RR: the contour's point). Without transformations only."""
     _comp_words(t, w)
+    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w))
+
+
+def _polar_end(t: _Tnc, w: dict) -> np.ndarray:
+    """The machine end point of ``LP`` / ``CTP`` words: PR (IPR: added to the current radius) from the pole at
+    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations."""
     if t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
-        raise ReferenceError("LP under a transformation")
+        raise ReferenceError("LP/CTP under a transformation")
     p = t.prog()
     i, j = t.pole_axes
     r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
     a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
     r = w["PR"] * t.scale if "PR" in w else r + w.get("IPR", 0.0) * t.scale
     a = w["PA"] if "PA" in w else a + w.get("IPA", 0.0)
-    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(_polar_point(t, p, r, a, w)))
+    return t.machine(_polar_point(t, p, r, a, w))
 
 
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
@@ -2589,7 +2598,7 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     if head in ("FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"):
         _free_contour(t, line, head, rest)
         return True
-    if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "RND", "CHF"):
+    if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "CTP", "RND", "CHF"):
         raise ReferenceError("a block after an FK element left open or without FSELECT")
     if head == "SPL":
         _spline(t, line, rest)
@@ -2609,8 +2618,8 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _polar_line(t, line, _words(rest, t.q))
     elif head == "CR":
         _radius_arc(t, line, _words(rest, t.q))
-    elif head == "CT":
-        _tangent_arc(t, line, _words(rest, t.q))
+    elif head in ("CT", "CTP"):
+        _tangent_arc(t, line, _words(rest, t.q), polar=head == "CTP")
     elif head in ("RND", "CHF"):
         _start_corner(t, line, head, _words(rest if head == "RND" else "LEN" + rest.strip(), t.q))
     elif head in ("APPR", "DEP"):

@@ -1,0 +1,55 @@
+"""Heidenhain programs of an eighth wild set (a TNC simulator's tests built on the TNC 426/430 manual's
+examples, a German shop's probing and tilting program, a face-milling macro calling its cycle program, Chinese
+5-axis CAM output, a TNC 640 tool-check macro): what the reader refused or named unclearly, each as a
+hand-written program checked against the independent reference where it runs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+ZERO = MachineContext()
+
+
+def checked(body: str):
+    """The program read, and its blocks matched against the reference."""
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", ZERO)
+
+
+def test_ctp_is_the_tangential_arc_to_a_polar_end_point():
+    # TNC7 basic user's manual, "Overview of path functions with polar coordinates": CTP, "circular path with
+    # tangential connection to the preceding contour element", its end point by PR/PA about the pole CC (the TNC
+    # 426/430 manual's example writes 'CTP PR+30 PA+30'); it was refused as 'CTP is not supported'.
+    # The line from (0, 35) to the polar point PR 25 PA 120 about (40, 35), then CTP to PR 30 PA 30 = (40 + 30 cos 30,
+    # 35 + 15): the arc leaves along the line's direction
+    prog = checked("1 CC X+40 Y+35\n2 L X+0 Y+35 Z+0 R0 F250\n3 LP PR+25 PA+120\n4 CTP PR+30 PA+30")
+    start, end = prog.blocks[-2].target, prog.blocks[-1].target
+    assert np.allclose(start, [40 - 12.5, 35 + 25 * math.sin(math.radians(120)), 0])
+    assert np.allclose(end, [40 + 30 * math.cos(math.radians(30)), 50, 0])
+    arc = prog.blocks[-1].segment
+    line_dir = (start - np.array([0, 35, 0]))[:2] / np.linalg.norm((start - np.array([0, 35, 0]))[:2])
+    tangent = np.asarray(arc.tangent_at(0.0), float).reshape(3)[:2]
+    assert np.allclose(tangent / np.linalg.norm(tangent), line_dir)
+
+
+def test_ctp_with_incremental_polar_words_and_a_helix_axis():
+    # IPA from the current angle about the pole, IPR added to the current radius; Z ends the arc lower (a helix,
+    # as CT with Z): from (10, 0) along +Y after the line from (10, -10), to PR 10 + 0 = 10 at 0 + 90 = (0, 10)
+    prog = checked("1 CC X+0 Y+0\n2 L X+10 Y-10 Z+0 R0 F100\n3 L Y+0\n4 CTP IPR+0 IPA+90 Z-2")
+    assert np.allclose(prog.blocks[-1].target, [0, 10, -2])
+
+
+def test_ctp_needs_a_pole_and_a_preceding_element():
+    with pytest.raises(GCodeError, match=r"t.h:3:3: CTP without a pole .*expected a CC block before CTP"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 F100\n2 CTP PR+10 PA+0\nEND PGM T MM\n",
+                         source="t.h", context=ZERO)
+    with pytest.raises(GCodeError, match=r"CTP without a preceding contour element"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 CC X+0 Y+0\n2 TOOL CALL 1 Z S100 F100\n3 CTP PR+10 PA+0\nEND PGM T MM\n",
+                         source="t.h", context=ZERO)
