@@ -85,7 +85,7 @@ _EPS = 1e-9
 
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
-    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
+    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` lines after ``PATTERN DEF``, as
     older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
@@ -99,7 +99,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
             if '"' not in code:  # a decimal comma (quoted strings are left alone: no comma is touched)
                 code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
-                (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
+                (re.match(r"(CYCLE? DEF\s*2|TCH PROBE\s*4)\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
             out[-1] = (out[-1][0], out[-1][1] + " " + code)
             continue

@@ -53,3 +53,17 @@ def test_ctp_needs_a_pole_and_a_preceding_element():
     with pytest.raises(GCodeError, match=r"CTP without a preceding contour element"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 CC X+0 Y+0\n2 TOOL CALL 1 Z S100 F100\n3 CTP PR+10 PA+0\nEND PGM T MM\n",
                          source="t.h", context=ZERO)
+
+
+TCH_413 = ("TCH PROBE 413 DATUM OUTSIDE CIRCLE\n Q321=+25\n Q322=+25\n Q262=30\n Q325=+90\n Q247=+45\n Q261=-5\n"
+           " Q320=2\n Q260=+10\n Q301=0\n Q305=0\n Q331=+0\n Q332=+10\n Q303=+0\n Q381=1\n Q382=+25\n Q383=+25\n"
+           " Q384=+25\n Q333=+0\n Q423=4\n Q365=1\n")
+
+
+def test_touch_probe_parameters_on_lines_of_their_own_without_tilde():
+    # the manuals print a touch probe cycle's parameters one per line without '~', as they do a CYCL DEF's (iTNC 530
+    # touch probe cycles manual, example of cycle 412); the reader took them for the cycle's only for CYCL DEF 2xx
+    # and said 'TCH PROBE 413 lacks Q321, ...'. The manual's example of cycle 413 (TNC 426/430 manual 15.13): the
+    # stud's centre (25, 25) reads X0 Y10, its top (Q381 = 1 at Q384 = 25) Z0: X+0 Y+10 Z+0 is machine (25, 25, 25)
+    prog = checked("1 TOOL CALL 1 Z\n2 L Z+50 R0 FMAX\n" + TCH_413 + "3 L X+0 Y+10 Z+0 R0 FMAX")
+    assert np.allclose(prog.blocks[-1].target, [25, 25, 25])
