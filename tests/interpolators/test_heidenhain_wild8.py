@@ -67,3 +67,13 @@ def test_touch_probe_parameters_on_lines_of_their_own_without_tilde():
     # stud's centre (25, 25) reads X0 Y10, its top (Q381 = 1 at Q384 = 25) Z0: X+0 Y+10 Z+0 is machine (25, 25, 25)
     prog = checked("1 TOOL CALL 1 Z\n2 L Z+50 R0 FMAX\n" + TCH_413 + "3 L X+0 Y+10 Z+0 R0 FMAX")
     assert np.allclose(prog.blocks[-1].target, [25, 25, 25])
+
+
+def test_a_division_by_zero_names_the_divisor():
+    # a face-milling cycle program divides by its step 'Q1963 = Q1812 * Q108 * 2', Q108 the tool radius, 0 when the
+    # tool table lacks the tool: before, only "division by zero"
+    text = "0 BEGIN PGM T MM\n1 Q1963 = Q1812 * Q108 * 2\n2 Q1961 = INT ( ( 100 / Q1963 ) + 0.999 )\nEND PGM T MM\n"
+    with pytest.raises(GCodeError, match=r"t.h:3:.*division by zero \(Q1963 is 0\)"):
+        parse_heidenhain(text, source="t.h", context=ZERO)
+    with pytest.raises(GCodeError, match=r"division by zero \(\( Q1 - Q2 \) is 0\)"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 Q3 = 5 / ( Q1 - Q2 )\nEND PGM T MM\n", source="t.h", context=ZERO)
