@@ -352,6 +352,10 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
         m = _Q_RE.match(rest, pos)
         if m is None:
             tok = rest[pos:].split()[0]
+            if re.fullmatch(r"Q\d+", tok, re.I):  # 'Q206 FAUTO': a TNC simulator's test program wrote it so
+                where.fail(f"cycle parameter {tok} without '='", column=column0 + pos,
+                           text=" ".join(rest[pos:].split()[:2]),
+                           expected=f"{tok}=value (a number, a Q parameter, or for a feed FAUTO / FMAX)")
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
         fmax = _FMAX_RE.match(rest, m.end())

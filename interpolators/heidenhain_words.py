@@ -96,6 +96,9 @@ def _strip_comment(line: str) -> str:
 _DEFINITION_RE = re.compile(r"\s*\d*\s*(?:((?:CYCLE?\s+DEF|TCH\s+PROBE)\s*\d{3})|(PATTERN\s+DEF))(?![\d.])", re.I)
 _Q_LINE_RE = re.compile(r"\s*Q\d+\s*=", re.I)
 _POS_LINE_RE = re.compile(r"\s*POS\d+\s*\(", re.I)
+#: ``Q206 FAUTO``: a parameter line missing its ``=`` (a TNC simulator's test program): kept with its definition, so
+#: that the cycle's reader names it (:func:`interpolators.heidenhain_cycles.q_assignments`).
+_Q_WITHOUT_EQUALS_RE = re.compile(r"\s*Q\d+\s+[A-Z+\-\d]", re.I)
 
 
 def _continues(first: str, line: str) -> bool:
@@ -108,7 +111,8 @@ def _continues(first: str, line: str) -> bool:
     m = _DEFINITION_RE.match(first)
     if m is None:
         return False
-    return (_Q_LINE_RE if m.group(1) else _POS_LINE_RE).match(line) is not None
+    return (_Q_LINE_RE.match(line) is not None or _Q_WITHOUT_EQUALS_RE.match(line) is not None if m.group(1)
+            else _POS_LINE_RE.match(line) is not None)
 
 
 def _wrapped_comment(line: str) -> bool:

@@ -77,3 +77,16 @@ def test_a_division_by_zero_names_the_divisor():
         parse_heidenhain(text, source="t.h", context=ZERO)
     with pytest.raises(GCodeError, match=r"division by zero \(\( Q1 - Q2 \) is 0\)"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 Q3 = 5 / ( Q1 - Q2 )\nEND PGM T MM\n", source="t.h", context=ZERO)
+
+
+@pytest.mark.parametrize("tilde", [" ~", ""])
+def test_a_cycle_parameter_without_equals_is_named(tilde):
+    # a TNC simulator's test program writes 'Q206 FAUTO' among the lines of CYCL DEF 200 (the TNC writes
+    # 'Q206=FAUTO'); with '~' the reader said "unexpected 'Q206' in a cycle definition", without it
+    # "cycle 200 lacks Q206, Q203, Q204" on the CYCL DEF line
+    lines = ["Q200=2", "Q201=-10", "Q206 FAUTO", "Q202=5", "Q210=0", "Q203=+0", "Q204=50"]
+    body = "\n".join(("  " + q + (tilde if i < len(lines) - 1 else "")) for i, q in enumerate(lines))
+    text = f"0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000 F100\n2 CYCL DEF 200 DRILLING{tilde}\n{body}\n3 END PGM T MM\n"
+    with pytest.raises(GCodeError, match=r"t.h:3:\d+: cycle parameter Q206 without '=' \(got 'Q206 FAUTO'\); "
+                                         r"expected Q206=value"):
+        parse_heidenhain(text, source="t.h", context=ZERO)
