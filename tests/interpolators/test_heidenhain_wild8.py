@@ -90,3 +90,18 @@ def test_a_cycle_parameter_without_equals_is_named(tilde):
     with pytest.raises(GCodeError, match=r"t.h:3:\d+: cycle parameter Q206 without '=' \(got 'Q206 FAUTO'\); "
                                          r"expected Q206=value"):
         parse_heidenhain(text, source="t.h", context=ZERO)
+
+
+def test_sysread_reads_the_tool_table_columns_of_the_manuals_table_as_0():
+    # a TNC 640 tool-check macro reads 'FN 18: SYSREAD Q2 = ID50 NR19 IDXQ1' (R-OFFS) and NR1 (the length): the
+    # TNC 426/430 technical manual's table of system data numbers group 50 NR1 - NR23 (L, R, R2, DL, DR, DR2, TL,
+    # RT, TIME1, TIME2, CUR. TIME, PLC, LCUTS, ANGLE, CUT, LTOL, RTOL, DIRECT, R-OFFS, L-OFFS, LBREAK, RBREAK, PLC
+    # value); vcnc's tool table holds L and R: the others read 0 with a note. NR19 was refused
+    text = ("0 BEGIN PGM T MM\n1 TOOL DEF 5 L+40 R+3\n2 TOOL CALL 5 Z S1000\n3 FN 18: SYSREAD Q1 = ID20 NR1\n"
+            "4 FN 18: SYSREAD Q2 = ID50 NR19 IDXQ1\n5 FN 18: SYSREAD Q3 = ID50 NR7 IDX5\n"
+            "6 FN 18: SYSREAD Q4 = ID50 NR1 IDXQ1\n7 L X+Q1 Y+Q2 Z+Q4 R0 FMAX\n8 L X+Q3 FMAX\nEND PGM T MM\n")
+    prog = parse_heidenhain(text, source="t.h", context=ZERO)
+    assert np.allclose([b.target for b in prog.blocks], [[5, 0, 40 + 40], [0, 0, 80]])  # Z: program 40 + length 40
+    assert any("ID50 NR19 (R-OFFS)" in n and "0" in n for n in prog.notes)
+    with pytest.raises(GCodeError, match=r"FN 18 SYSREAD 'SYSREAD Q3 = ID50 NR36 IDX5' is not supported"):
+        parse_heidenhain(text.replace("NR7 IDX5", "NR36 IDX5"), source="t.h", context=ZERO)
