@@ -2099,7 +2099,9 @@ def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, bl
     counter-clockwise for climb milling inside (Q351 = +1, M3; clockwise round a stud), and upward when that
     follows the thread (a right-hand thread climb-milled inside, or up-cut outside), else downward. Q355 = 0
     (and 263, 264) turns once, over one pitch ending (upward: starting) at the thread depth; Q355 = 1 runs
-    between the depth and the surface; 265 runs one helix from the surface down to the depth, clockwise for
+    between the depth and the surface; Q355 > 1 (:func:`_thread_passes`) turns once as Q355 = 0 at the depth and
+    again at every Q355 pitches above it while still below the surface, each with its approach and departure,
+    at Q253 along the axis between them; 265 runs one helix from the surface down to the depth, clockwise for
     a right-hand thread. Inside, the approach and the departure are half circles at the helix's end levels
     between the centre and the helix, in the helix's sense (so they join it tangentially). 267 starts on the
     reference axis one pitch outside the helix (the manual: "determined by the thread radius, tool radius and
@@ -2146,11 +2148,6 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
     """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
     ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
     axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    bottom = surface + c.depth
-    upward = (c.right_hand == c.climb) != c.outside
-    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
-    start_level, end_level = (bottom, far) if upward else (far, bottom)
     k = m.lengths(where)
     ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
     out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
@@ -2158,22 +2155,43 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
         start, _ = _program_target(m, {ref: out / k}, centre)
         start[axis] = m.pos[axis]
         m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
-    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
-    here = m.pos.copy()
-    on, _ = _program_target(m, {ref: r / k}, centre)
-    on[axis] = start_level
     turn = -sense if c.outside else sense  # the half circles: against the helix outside
-    seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
-    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    turns = abs(far - bottom) / c.helix_pitch
-    seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense), plane=axis,
-                      axis_end=end_level)
-    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    back = _at_level(centre, axis, end_level)
-    if c.outside:  # out along the radius the helix ended on, to the starting point's distance
-        back = back + (m.pos - back) * (out / r)
-    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
-    m.emit("arc", back, seg, c.feed, where, blk.number)
+    for start_level, end_level in _thread_passes(c, surface):
+        _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+        here = m.pos.copy()
+        on, _ = _program_target(m, {ref: r / k}, centre)
+        on[axis] = start_level
+        seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+        turns = abs(end_level - start_level) / c.helix_pitch
+        seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense),
+                          plane=axis, axis_end=end_level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+        back = _at_level(centre, axis, end_level)
+        if c.outside:  # out along the radius the helix ended on, to the starting point's distance
+            back = back + (m.pos - back) * (out / r)
+        seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
+        m.emit("arc", back, seg, c.feed, where, blk.number)
+
+
+def _thread_passes(c: DrillCycle, surface: float) -> list[tuple[float, float]]:
+    """The (starting, end) levels [mm] of the helices of :func:`_thread_helix`, in the order they run. Upward
+    (a right-hand thread climb-milled inside, ...) a helix starts at the thread depth, downward it ends there.
+    Q355 > 1 (TNC 426/430 user's manual p. 251: "several helical paths with approach and departure; between
+    them, the TNC offsets the tool by Q355, multiplied by the pitch"; our reading of where they lie, which the
+    manual leaves open): one turn as Q355 = 0, and one more at every Q355 pitches above it while the turn still
+    reaches below the surface, each one pitch long; upward from the deepest, downward from the highest."""
+    d = -1.0 if c.depth < 0 else 1.0
+    bottom = surface + c.depth
+    upward = (c.right_hand == c.climb) != c.outside
+    if c.continuous:
+        return [(bottom, surface) if upward else (surface, bottom)]
+    step = c.threads_per_step * c.helix_pitch
+    depths = [abs(c.depth)]  # the deep end of each turn, measured from the surface
+    while step > 0 and depths[-1] - step > 1e-9:
+        depths.append(depths[-1] - step)
+    levels = [(surface + d * u, surface + d * (u - c.helix_pitch)) for u in depths]  # (deep end, far end)
+    return levels if upward else [(far, deep) for deep, far in reversed(levels)]
 
 
 def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,

@@ -1791,21 +1791,33 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
     sgn = -1.0 if depth < 0 else 1.0
     clear = surface - sgn * setup
     _move_z(t, line, "rapid", clear, optional=True)
-    bottom = surface + depth
-    far = surface if p["Q355"] == 1 else bottom - sgn * pitch
-    z0, z1 = (bottom, far) if (p["Q239"] > 0) == ccw else (far, bottom)
-    _move_z(t, line, "feed", z0)
-    centre = t.prog()  # [mm], at the starting plane
-    r = p["Q335"] * t.scale / 2 - t.radius
-    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
     kind = "arc_ccw" if ccw else "arc_cw"
-    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
-    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
-    for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
-                      (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
-        t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    r = p["Q335"] * t.scale / 2 - t.radius
+    for z0, z1 in _thread_turns(surface, depth, pitch, p["Q355"], (p["Q239"] > 0) == ccw):
+        _move_z(t, line, "feed", z0)
+        centre = t.prog()  # [mm], at the starting plane
+        angle = math.radians(360.0 * abs(z1 - z0) / pitch) * (1 if ccw else -1)
+        axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+        helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+        for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
+                          (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
+            t.emit(line, kind, t.machine(end), centre=t.machine(pole))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _thread_turns(surface: float, depth: float, pitch: float, steps: float, up: bool) -> list[tuple[float, float]]:
+    """The (from, to) levels of the helices of 262/267: Q355 = 1 one between the depth and the surface; else one
+    pitch at the depth, and with Q355 = n > 1 one more every n pitches above it while its deep end is below the
+    surface (TNC 426/430 manual p. 251: "several helical paths ... offsets the tool by Q355, multiplied by the
+    pitch"); ``up``: each from its deep end, the deepest first; else each down to it, the highest first."""
+    sgn = -1.0 if depth < 0 else 1.0
+    if steps == 1:
+        return [(surface + depth, surface)] if up else [(surface, surface + depth)]
+    deep = [abs(depth) - k * steps * pitch for k in range(int(abs(depth) // (steps * pitch)) + 2)] if steps > 1 \
+        else [abs(depth)]
+    turns = [(surface + sgn * u, surface + sgn * (u - pitch)) for u in deep if u > 1e-9]
+    return turns if up else [(b, a) for a, b in reversed(turns)]
 
 
 def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
@@ -1820,7 +1832,7 @@ def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
         raise ReferenceError(f"{kind} under a transformation")
     surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
-    clear, bottom, pitch = surface - sgn * setup, surface + depth, abs(p["Q239"])
+    clear, pitch = surface - sgn * setup, abs(p["Q239"])
     outside, right = kind == "267", p["Q239"] > 0
     climb = (p.get("Q351", 1.0) >= 0) if kind != "265" else not right
     ccw = climb != outside
@@ -1851,22 +1863,22 @@ def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
     if front and not after:
         _move_z(t, line, "feed", surface + front)
         circle(abs(p.get("Q359", 0.0)) * t.scale)
-    far = surface if p.get("Q355", 0.0) == 1 or kind == "265" else bottom - sgn * pitch
-    z0, z1 = (bottom, far) if (right == climb) != outside else (far, bottom)
-    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    steps = 1.0 if kind == "265" else p.get("Q355", 0.0) if kind == "267" else 0.0
     half = spin if not outside else ("arc_cw" if ccw else "arc_ccw")
     out = r + pitch * t.scale if outside else 0.0
     if outside:
         t.emit(line, "rapid", t.machine(centre + np.array([out, 0.0, 0.0])))
-    _move_z(t, line, "feed", z0)
-    here = t.prog()
-    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
-    on = np.array([centre[0] + r, centre[1], z0 * t.scale])
-    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
-    back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
-    t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
-    t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
-    t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
+    for z0, z1 in _thread_turns(surface, depth, pitch, steps, (right == climb) != outside):
+        angle = math.radians(360.0 * abs(z1 - z0) / pitch) * (1 if ccw else -1)
+        _move_z(t, line, "feed", z0)
+        here = t.prog()
+        axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+        on = np.array([centre[0] + r, centre[1], z0 * t.scale])
+        helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+        back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
+        t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
+        t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
+        t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
     if front and after:
         _move_z(t, line, "feed", surface + front)
         circle(abs(p.get("Q359", 0.0)) * t.scale)

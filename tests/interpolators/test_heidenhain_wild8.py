@@ -105,3 +105,27 @@ def test_sysread_reads_the_tool_table_columns_of_the_manuals_table_as_0():
     assert any("ID50 NR19 (R-OFFS)" in n and "0" in n for n in prog.notes)
     with pytest.raises(GCodeError, match=r"FN 18 SYSREAD 'SYSREAD Q3 = ID50 NR36 IDX5' is not supported"):
         parse_heidenhain(text.replace("NR7 IDX5", "NR36 IDX5"), source="t.h", context=ZERO)
+
+
+def test_thread_milling_with_several_threads_per_step():
+    # TNC 426/430 user's manual p. 251, cycle 262 Q355: ">1 = several helical paths with approach and departure;
+    # between them, the TNC offsets the tool by Q355, multiplied by the pitch" (refused before). A right-hand
+    # thread milled up-cut runs downward; our reading: one turn ending at the depth -20, and one at every
+    # 3 x 1.5 = 4.5 above it while it still reaches below the surface: ends at -2, -6.5, -11, -15.5, -20, each
+    # one pitch long, the highest first, at Q253 along the axis between them
+    prog = checked("1 TOOL DEF 1 L+0 R+3\n2 TOOL CALL 1 Z S2000\n3 L X+50 Y+50 Z+50 R0 FMAX M3\n"
+                   "4 CYCL DEF 262 THREAD MILLING Q335=16 Q239=+1.5 Q201=-20 Q355=3 Q253=750 Q351=-1 Q200=2 "
+                   "Q203=+0 Q204=50 Q207=500\n5 CYCL CALL")
+    helices = [b for b in prog.blocks if b.kind == "arc" and abs(b.segment.sweep) > math.pi + 0.1]
+    assert [round(float(b.target[2]), 6) for b in helices] == [-2, -6.5, -11, -15.5, -20]
+    assert all(not b.segment.ccw and np.isclose(b.segment.radius, 8 - 3) for b in helices)  # clockwise on R 5
+    moves_in = [round(float(b.target[2]), 6) for b in prog.blocks if b.kind == "line"]
+    assert moves_in == [-0.5, -5, -9.5, -14, -18.5]  # each turn's start, at Q253
+    assert np.allclose(prog.blocks[-1].target, [50, 50, 50])
+    # cycle 267 about a stud alike (Q355=2, pitch 1, depth 6: turns ending at -2, -4, -6, outside on R 8 + 3)
+    stud = checked("1 TOOL DEF 1 L+0 R+3\n2 TOOL CALL 1 Z S2000\n3 L X+50 Y+50 Z+50 R0 FMAX M3\n"
+                   "4 CYCL DEF 267 OUTSIDE THREAD MLLNG Q335=16 Q239=+1 Q201=-6 Q355=2 Q253=750 Q351=+1 Q200=2 "
+                   "Q358=+0 Q359=+0 Q203=+0 Q204=50 Q254=150 Q207=500\n5 CYCL CALL")
+    helices = [b for b in stud.blocks if b.kind == "arc" and abs(b.segment.sweep) > math.pi + 0.1]
+    assert [round(float(b.target[2]), 6) for b in helices] == [-2, -4, -6]
+    assert all(np.isclose(b.segment.radius, 11) for b in helices)
