@@ -1398,9 +1398,8 @@ def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, whe
         where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=where.text,
                    expected="R0 before tilting the working plane")
     base_shift = m.tilt.base_shift if m.tilt is not None else m.shift.copy()
-    preset = m.context.offset(m.preset) if m.preset is not None else np.zeros(3)
-    try:
-        theta, datum = tilted_frame(kin, rotation, angles, np.add(preset, base_shift))
+    try:  # the active preset, also one a touch probe cycle set (it was the context's work offset alone)
+        theta, datum = tilted_frame(kin, rotation, angles, np.add(m.preset_value(), base_shift))
     except TiltError as exc:
         where.fail(exc.message, column=col, text=where.text, expected=exc.expected)
     positions = kin.positions(angles)

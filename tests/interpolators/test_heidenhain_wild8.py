@@ -12,10 +12,13 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 ZERO = MachineContext()
+AC_TABLE = MachineContext(extra_axes=("a", "c"),
+                          kinematics=Kinematics(axes=(RotaryAxis(name="a"), RotaryAxis(name="c"))))
 
 
 def checked(body: str):
@@ -129,3 +132,16 @@ def test_thread_milling_with_several_threads_per_step():
     helices = [b for b in stud.blocks if b.kind == "arc" and abs(b.segment.sweep) > math.pi + 0.1]
     assert [round(float(b.target[2]), 6) for b in helices] == [-2, -4, -6]
     assert all(np.isclose(b.segment.radius, 11) for b in helices)
+
+
+def test_a_tilted_plane_keeps_the_datum_a_touch_probe_cycle_set():
+    # a German shop's program probes, then tilts (PLANE SPATIAL .. TURN) and machines: the tilted plane's zero is
+    # the active preset's, also one TCH PROBE 417 Q305=0 has just set (iTNC 530 cycle manual 15.6: "the TNC
+    # automatically sets the display so that the new datum is on the probed surface"); the reader tilted about the
+    # context's work offset and lost it. Z+20 over the surface probed at Z 5 is machine Z 25, tilted or not
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
+            "3 TCH PROBE 417 DATUM IN TS AXIS Q263=+10 Q264=+10 Q294=+5 Q320=+2 Q260=+50 Q305=+0 Q333=+0 Q303=+1\n"
+            "4 L X+0 Y+0 Z+20 R0 FMAX\n5 PLANE SPATIAL SPA+0 SPB+0 SPC+0 TURN FMAX\n6 L X+0 Y+0 Z+20 R0 FMAX\n"
+            "7 PLANE RESET TURN FMAX\n8 L X+0 Y+0 Z+20 R0 FMAX\nEND PGM T MM\n")
+    prog = checked_program(text, AC_TABLE)
+    assert [float(b.target[2]) for b in prog.blocks if b.number in (4, 6, 8)] == [25.0, 25.0, 25.0]
