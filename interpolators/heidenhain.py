@@ -1208,15 +1208,19 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
     if number not in PROBE_CYCLES:
         refuse_probe(number, where, blk.column)
     col = blk.column + pm.start(3)
-    if m.tilt is not None or not m.transform.identity or m.comp != "R0":
-        where.fail(f"TCH PROBE {number} under a tilted plane, mirror, rotation, scaling or radius compensation is "
-                   "not modelled", column=blk.column, text=blk.code,
-                   expected="R0, no cycle 8/10/11/26 or PLANE before the touch probe cycle")
+    if not dataclasses.replace(m.transform, tilt=0.0).identity or m.comp != "R0":
+        where.fail(f"TCH PROBE {number} under a mirror, rotation, scaling or radius compensation is not modelled",
+                   column=blk.column, text=blk.code, expected="R0, no cycle 8/10/11/26 before the touch probe cycle")
     q = q_assignments(pm.group(3), where, m.params, column0=col)
     tip = m.context.touch_probe.tip_radius
     run = probe_run(number, q, here=m.to_program(m.pos), plane=m.plane,
                     tip_radius=m.tool_radius if tip is None else tip, scale=m.scale,
                     probe=m.context.touch_probe, where=where, column=col)
+    sets_datum = not np.all(np.isnan(run.datum_from))  # a datum cycle (the measuring cycles set none)
+    if sets_datum and m.tilt is not None and run.q305 != 0:
+        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of a table is "
+                   "not modelled", column=blk.column, text=blk.code,
+                   expected="Q305=0 (the active datum) in a tilted plane, or PLANE RESET before the cycle")
     for move in run.moves:
         target = m.to_machine(move.target)
         if move.centre is None:
@@ -1226,7 +1230,7 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
             m.emit("arc", target, seg, move.feed / 60.0, where, blk.number)
     for n, value in run.results.items():
         m.params.set(f"Q{n}", value, where, column=col)
-    if not np.all(np.isnan(run.datum_from)):  # a datum cycle (the measuring cycles set none)
+    if sets_datum:
         _probed_datum(run.datum_from, run.datum_to, run.q305, run.q303, m, number)
     m.note(f"touch probe cycle {number}: run on the nominal workpiece (touch points where the data put the surface)")
     for note in run.notes:
@@ -1237,10 +1241,19 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
                   number: int) -> None:
     """The datum a probe cycle sets: the program point ``origin_from`` [mm] gets the coordinates ``origin_to``
     (NaN: an axis not set). Q305=0: the active preset moves so (the display shows the new datum, iTNC 530 cycle
-    manual 15.6, Q305); Q305=n, Q303=1: row n of the preset table (the work offsets, as cycle 247 numbers them)
+    manual 15.6, Q305); in a tilted plane the program point is one of the tilted plane, and the preset, which
+    stays one of the untilted coordinates, moves by the plane's rotation of it, so that the tilted plane's
+    zero moves by it and PLANE RESET finds the part where the probe put it (our reading: the manual's page on
+    probing in a tilted plane was not found); Q305=n, Q303=1: row n of the preset table (the work offsets, as
+    cycle 247 numbers them)
     holds the datum, active once cycle 247 selects it; Q303=0 (or -1): row n of the datum table, which vcnc
     does not model (noted)."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
+    if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
+        machine = m.to_machine(delta) - m.to_machine(np.zeros(3))
+        m.presets[m.preset] = m.preset_value() + m.tilt.rotation @ delta
+        m.tilt = dataclasses.replace(m.tilt, datum=m.tilt.datum + machine)
+        return
     if row == 0:
         m.presets[m.preset] = m.preset_value() + delta
         return

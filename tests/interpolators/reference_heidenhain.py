@@ -952,8 +952,10 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
     move = np.nan_to_num(move)
     presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
     row = int(p["Q305"])
-    if row == 0:
-        t.overrides[t.preset] = t.preset_point() + move
+    if t.tilt is not None and row != 0:
+        raise ReferenceError("a probed datum written to a table row in a tilted plane")
+    if row == 0:  # in a tilted plane: the move in the plane's axes, the preset in the part's (untilted) ones
+        t.overrides[t.preset] = t.preset_point() + (move if t.tilt is None else t.tilt @ move)
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
 

@@ -145,3 +145,23 @@ def test_a_tilted_plane_keeps_the_datum_a_touch_probe_cycle_set():
             "7 PLANE RESET TURN FMAX\n8 L X+0 Y+0 Z+20 R0 FMAX\nEND PGM T MM\n")
     prog = checked_program(text, AC_TABLE)
     assert [float(b.target[2]) for b in prog.blocks if b.number in (4, 6, 8)] == [25.0, 25.0, 25.0]
+
+
+def test_a_touch_probe_cycle_in_a_tilted_plane_sets_the_datum_of_the_plane():
+    # the German shop's program probes Z (cycle 417, Q305=0) in the plane PLANE SPATIAL SPA-90 .. TURN: refused as
+    # 'under a tilted plane' before. The probe moves in the tilted plane (on an A/C table its Z is the machine's);
+    # the probed face, 5 above the plane's zero, becomes Z0 of the plane; the preset, untilted, moves along the
+    # part's +Y, the direction the tilted Z has on the part (our reading): after PLANE RESET, X0 Y0 is machine Y 5
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
+            "3 PLANE SPATIAL SPA-90 SPB+0 SPC+0 TURN FMAX\n4 L X+0 Y+0 Z+100 R0 FMAX\n"
+            "5 TCH PROBE 417 DATUM IN TS AXIS Q263=+10 Q264=+20 Q294=+5 Q320=+2 Q260=+50 Q305=+0 Q333=+0 Q303=+1\n"
+            "6 L X+10 Y+20 Z+0 R0 FMAX\n7 PLANE RESET TURN FMAX\n8 L X+0 Y+0 Z+50 R0 FMAX\nEND PGM T MM\n")
+    prog = checked_program(text, AC_TABLE)
+    touch = [b for b in prog.blocks if b.number == 5]
+    assert np.allclose([b.target for b in touch], [[10, 20, 100], [10, 20, 9], [10, 20, 5], [10, 20, 9],
+                                                   [10, 20, 50]])
+    assert np.allclose(next(b for b in prog.blocks if b.number == 6).target, [10, 20, 5])
+    assert np.allclose(prog.blocks[-1].target, [0, 5, 50])
+    with pytest.raises(GCodeError, match=r"TCH PROBE 417 in the tilted plane of PLANE SPATIAL .* writing row 3 of a "
+                                         r"table is not modelled"):
+        parse_heidenhain(text.replace("Q305=+0", "Q305=+3"), source="t.h", context=AC_TABLE)
