@@ -2637,8 +2637,23 @@ def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
 
 # --- M functions -----------------------------------------------------------------------------
 
+def _without_m128_feed(words: list[Word], m: _Machine) -> list[Word]:
+    """``words`` without the F word right after M128, which is not the path feed but "another feed rate, at which
+    the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's manual for DIN/ISO
+    programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125 M128 F1000``). vcnc's
+    M128 moves no rotary axis (they are positioned before it): noted, no effect."""
+    out: list[Word] = []
+    for w in words:
+        if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
+            m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
+            continue
+        out.append(w)
+    return out
+
+
 def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
     """Check the M words of a block without motion words; True when the program ends here."""
+    words = _without_m128_feed(words, m)
     ended = False
     for w in words:
         if w.key == "M":
@@ -2959,6 +2974,7 @@ _ALLOWED_WORDS = {
 
 def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
+    words = _without_m128_feed(words, m)
     seen: dict[str, Word] = {}
     ms: list[Word] = []
     bases: set[str] = set()

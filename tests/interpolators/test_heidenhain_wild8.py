@@ -165,3 +165,13 @@ def test_a_touch_probe_cycle_in_a_tilted_plane_sets_the_datum_of_the_plane():
     with pytest.raises(GCodeError, match=r"TCH PROBE 417 in the tilted plane of PLANE SPATIAL .* writing row 3 of a "
                                          r"table is not modelled"):
         parse_heidenhain(text.replace("Q305=+0", "Q305=+3"), source="t.h", context=AC_TABLE)
+
+
+def test_m128_with_the_feed_of_its_compensation_movements():
+    # 'M128 FQ20' (the German shop's program) and 'L .. F125 M128 F1000' (the iTNC 530 manual's example): the F after
+    # M128 is "another feed rate, at which the TNC will carry out the compensation movements in the linear axes"
+    # (TNC 620 DIN/ISO user's manual 34056x-04, M128), not the path feed: F125 stays; it was refused
+    prog = checked_program("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 FN 0: Q20 = 10000\n3 M128 FQ20\n"
+                           "4 L X+0 Y+38.5 Z+5 R0 F125 M128 F1000\n5 L X+10\n6 M129\nEND PGM T MM\n", AC_TABLE)
+    assert [round(b.feed * 60, 6) for b in prog.blocks] == [125, 125]
+    assert any("M128 F1000: the feed of compensation movements" in n for n in prog.notes)
