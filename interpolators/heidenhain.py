@@ -41,7 +41,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L A+90 C+45 FMAX                rotary / secondary axes of the machine (context.extra_axes)
     C X+45 Y+25 DR+                 arc about CC (end = start: full circle; tool-axis coordinate: helix)
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
-    CT X+10 Y+0                     arc tangent to the preceding element
+    CT X+10 Y+0, CTP PR+30 PA+30    arc tangent to the preceding element (CTP: end point polar about CC)
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
                                     polar line / arc about CC (helix with a tool-axis word); about a
                                     CC naming the tool axis (CC Z.. X..) in that plane
@@ -74,7 +74,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
                                     (the machine's limit stands in for the software limit switch)
     L M128 ... M129                 TCPM on rotary axes positioned before it (3+2, tilting table):
-                                    lines of the tool tip on the turned part (heidenhain_tcpm)
+                                    lines of the tool tip on the turned part (heidenhain_tcpm); the F
+                                    right after M128 is its compensation feed (noted)
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
