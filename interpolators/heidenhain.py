@@ -41,7 +41,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L A+90 C+45 FMAX                rotary / secondary axes of the machine (context.extra_axes)
     C X+45 Y+25 DR+                 arc about CC (end = start: full circle; tool-axis coordinate: helix)
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
-    CT X+10 Y+0                     arc tangent to the preceding element
+    CT X+10 Y+0, CTP PR+30 PA+30    arc tangent to the preceding element (CTP: end point polar about CC)
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
                                     polar line / arc about CC (helix with a tool-axis word); about a
                                     CC naming the tool axis (CC Z.. X..) in that plane
@@ -74,7 +74,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
                                     (the machine's limit stands in for the software limit switch)
     L M128 ... M129                 TCPM on rotary axes positioned before it (3+2, tilting table):
-                                    lines of the tool tip on the turned part (heidenhain_tcpm)
+                                    lines of the tool tip on the turned part (heidenhain_tcpm); the F
+                                    right after M128 is its compensation feed (noted)
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
@@ -635,9 +636,6 @@ class _Run:
         if kw in ("CALL PGM", "CALL SELECTED PGM", "SEL PGM"):
             self.program_call(kw, blk, where)
             return False
-        if kw == "CTP":
-            where.fail(f"{kw} is not supported", column=col0, text=blk.code.split()[0],
-                       expected="contours of L, C, CR, CT, CP, LP, RND, CHF (with RL/RR/R0)")
         words = _read_words(blk.code, k.end(), where, m, column0=col0)
         return _motion(kw, words, m, where, blk)
 
@@ -1211,15 +1209,19 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
     if number not in PROBE_CYCLES:
         refuse_probe(number, where, blk.column)
     col = blk.column + pm.start(3)
-    if m.tilt is not None or not m.transform.identity or m.comp != "R0":
-        where.fail(f"TCH PROBE {number} under a tilted plane, mirror, rotation, scaling or radius compensation is "
-                   "not modelled", column=blk.column, text=blk.code,
-                   expected="R0, no cycle 8/10/11/26 or PLANE before the touch probe cycle")
+    if not dataclasses.replace(m.transform, tilt=0.0).identity or m.comp != "R0":
+        where.fail(f"TCH PROBE {number} under a mirror, rotation, scaling or radius compensation is not modelled",
+                   column=blk.column, text=blk.code, expected="R0, no cycle 8/10/11/26 before the touch probe cycle")
     q = q_assignments(pm.group(3), where, m.params, column0=col)
     tip = m.context.touch_probe.tip_radius
     run = probe_run(number, q, here=m.to_program(m.pos), plane=m.plane,
                     tip_radius=m.tool_radius if tip is None else tip, scale=m.scale,
                     probe=m.context.touch_probe, where=where, column=col)
+    sets_datum = not np.all(np.isnan(run.datum_from))  # a datum cycle (the measuring cycles set none)
+    if sets_datum and m.tilt is not None and run.q305 != 0:
+        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of a table is "
+                   "not modelled", column=blk.column, text=blk.code,
+                   expected="Q305=0 (the active datum) in a tilted plane, or PLANE RESET before the cycle")
     for move in run.moves:
         target = m.to_machine(move.target)
         if move.centre is None:
@@ -1229,7 +1231,7 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
             m.emit("arc", target, seg, move.feed / 60.0, where, blk.number)
     for n, value in run.results.items():
         m.params.set(f"Q{n}", value, where, column=col)
-    if not np.all(np.isnan(run.datum_from)):  # a datum cycle (the measuring cycles set none)
+    if sets_datum:
         _probed_datum(run.datum_from, run.datum_to, run.q305, run.q303, m, number)
     m.note(f"touch probe cycle {number}: run on the nominal workpiece (touch points where the data put the surface)")
     for note in run.notes:
@@ -1240,10 +1242,19 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
                   number: int) -> None:
     """The datum a probe cycle sets: the program point ``origin_from`` [mm] gets the coordinates ``origin_to``
     (NaN: an axis not set). Q305=0: the active preset moves so (the display shows the new datum, iTNC 530 cycle
-    manual 15.6, Q305); Q305=n, Q303=1: row n of the preset table (the work offsets, as cycle 247 numbers them)
+    manual 15.6, Q305); in a tilted plane the program point is one of the tilted plane, and the preset, which
+    stays one of the untilted coordinates, moves by the plane's rotation of it, so that the tilted plane's
+    zero moves by it and PLANE RESET finds the part where the probe put it (our reading: the manual's page on
+    probing in a tilted plane was not found); Q305=n, Q303=1: row n of the preset table (the work offsets, as
+    cycle 247 numbers them)
     holds the datum, active once cycle 247 selects it; Q303=0 (or -1): row n of the datum table, which vcnc
     does not model (noted)."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
+    if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
+        machine = m.to_machine(delta) - m.to_machine(np.zeros(3))
+        m.presets[m.preset] = m.preset_value() + m.tilt.rotation @ delta
+        m.tilt = dataclasses.replace(m.tilt, datum=m.tilt.datum + machine)
+        return
     if row == 0:
         m.presets[m.preset] = m.preset_value() + delta
         return
@@ -1401,9 +1412,8 @@ def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, whe
         where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=where.text,
                    expected="R0 before tilting the working plane")
     base_shift = m.tilt.base_shift if m.tilt is not None else m.shift.copy()
-    preset = m.context.offset(m.preset) if m.preset is not None else np.zeros(3)
-    try:
-        theta, datum = tilted_frame(kin, rotation, angles, np.add(preset, base_shift))
+    try:  # the active preset, also one a touch probe cycle set (it was the context's work offset alone)
+        theta, datum = tilted_frame(kin, rotation, angles, np.add(m.preset_value(), base_shift))
     except TiltError as exc:
         where.fail(exc.message, column=col, text=where.text, expected=exc.expected)
     positions = kin.positions(angles)
@@ -2102,7 +2112,9 @@ def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, bl
     counter-clockwise for climb milling inside (Q351 = +1, M3; clockwise round a stud), and upward when that
     follows the thread (a right-hand thread climb-milled inside, or up-cut outside), else downward. Q355 = 0
     (and 263, 264) turns once, over one pitch ending (upward: starting) at the thread depth; Q355 = 1 runs
-    between the depth and the surface; 265 runs one helix from the surface down to the depth, clockwise for
+    between the depth and the surface; Q355 > 1 (:func:`_thread_passes`) turns once as Q355 = 0 at the depth and
+    again at every Q355 pitches above it while still below the surface, each with its approach and departure,
+    at Q253 along the axis between them; 265 runs one helix from the surface down to the depth, clockwise for
     a right-hand thread. Inside, the approach and the departure are half circles at the helix's end levels
     between the centre and the helix, in the helix's sense (so they join it tangentially). 267 starts on the
     reference axis one pitch outside the helix (the manual: "determined by the thread radius, tool radius and
@@ -2149,11 +2161,6 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
     """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
     ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
     axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    bottom = surface + c.depth
-    upward = (c.right_hand == c.climb) != c.outside
-    far = surface if c.continuous else bottom - d * c.helix_pitch  # the helix's end away from the depth
-    start_level, end_level = (bottom, far) if upward else (far, bottom)
     k = m.lengths(where)
     ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
     out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
@@ -2161,22 +2168,43 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
         start, _ = _program_target(m, {ref: out / k}, centre)
         start[axis] = m.pos[axis]
         m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
-    _axis_move(m, "line", start_level, c.approach_feed, where, blk)
-    here = m.pos.copy()
-    on, _ = _program_target(m, {ref: r / k}, centre)
-    on[axis] = start_level
     turn = -sense if c.outside else sense  # the half circles: against the helix outside
-    seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
-    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    turns = abs(far - bottom) / c.helix_pitch
-    seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense), plane=axis,
-                      axis_end=end_level)
-    m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-    back = _at_level(centre, axis, end_level)
-    if c.outside:  # out along the radius the helix ended on, to the starting point's distance
-        back = back + (m.pos - back) * (out / r)
-    seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
-    m.emit("arc", back, seg, c.feed, where, blk.number)
+    for start_level, end_level in _thread_passes(c, surface):
+        _axis_move(m, "line", start_level, c.approach_feed, where, blk)
+        here = m.pos.copy()
+        on, _ = _program_target(m, {ref: r / k}, centre)
+        on[axis] = start_level
+        seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+        turns = abs(end_level - start_level) / c.helix_pitch
+        seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense),
+                          plane=axis, axis_end=end_level)
+        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
+        back = _at_level(centre, axis, end_level)
+        if c.outside:  # out along the radius the helix ended on, to the starting point's distance
+            back = back + (m.pos - back) * (out / r)
+        seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
+        m.emit("arc", back, seg, c.feed, where, blk.number)
+
+
+def _thread_passes(c: DrillCycle, surface: float) -> list[tuple[float, float]]:
+    """The (starting, end) levels [mm] of the helices of :func:`_thread_helix`, in the order they run. Upward
+    (a right-hand thread climb-milled inside, ...) a helix starts at the thread depth, downward it ends there.
+    Q355 > 1 (TNC 426/430 user's manual p. 251: "several helical paths with approach and departure; between
+    them, the TNC offsets the tool by Q355, multiplied by the pitch"; our reading of where they lie, which the
+    manual leaves open): one turn as Q355 = 0, and one more at every Q355 pitches above it while the turn still
+    reaches below the surface, each one pitch long; upward from the deepest, downward from the highest."""
+    d = -1.0 if c.depth < 0 else 1.0
+    bottom = surface + c.depth
+    upward = (c.right_hand == c.climb) != c.outside
+    if c.continuous:
+        return [(bottom, surface) if upward else (surface, bottom)]
+    step = c.threads_per_step * c.helix_pitch
+    depths = [abs(c.depth)]  # the deep end of each turn, measured from the surface
+    while step > 0 and depths[-1] - step > 1e-9:
+        depths.append(depths[-1] - step)
+    levels = [(surface + d * u, surface + d * (u - c.helix_pitch)) for u in depths]  # (deep end, far end)
+    return levels if upward else [(far, deep) for deep, far in reversed(levels)]
 
 
 def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
@@ -2610,8 +2638,23 @@ def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
 
 # --- M functions -----------------------------------------------------------------------------
 
+def _without_m128_feed(words: list[Word], m: _Machine) -> list[Word]:
+    """``words`` without the F word right after M128, which is not the path feed but "another feed rate, at which
+    the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's manual for DIN/ISO
+    programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125 M128 F1000``). vcnc's
+    M128 moves no rotary axis (they are positioned before it): noted, no effect."""
+    out: list[Word] = []
+    for w in words:
+        if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
+            m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
+            continue
+        out.append(w)
+    return out
+
+
 def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
     """Check the M words of a block without motion words; True when the program ends here."""
+    words = _without_m128_feed(words, m)
     ended = False
     for w in words:
         if w.key == "M":
@@ -2784,8 +2827,29 @@ def _program_target(m: _Machine, values: dict[str, float], base: np.ndarray) -> 
     return m.to_machine(prog), written
 
 
+def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where,
+                  blk: SourceBlock) -> np.ndarray:
+    """The machine end point of an ``LP`` or ``CTP`` block: ``PR``/``IPR`` and ``PA``/``IPA`` about the pole in
+    its plane (:func:`_polar_plane`; a word not written keeps the current radius or angle), the tool axis of
+    ``target``. CTP, "circle tangential polar", is the arc CT with its end point in polar coordinates (TNC7 basic
+    user's manual 81762x-19, "Overview of path functions with polar coordinates": "Circular path with tangential
+    connection to the preceding contour element"; TNC 426/430 user's manual 6.5 writes ``CTP PR+30 PA+30``)."""
+    if m.pole is None:
+        where.fail(f"{kw} without a pole", column=blk.column, text=where.text, expected=f"a CC block before {kw}")
+    if kw == "CTP":  # the arc is in the working plane, as CT's
+        _pole_in_working_plane(m, where, kw)
+    plane = _polar_plane(kw, m, where, blk)
+    r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
+    k, t = m.scale * m.lengths(where), m.transform
+    pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
+    pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
+          else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
+    m.used.update(PLANE_AXES[plane])
+    return polar_point(m.pole, pr, pa, plane=plane, base=target)
+
+
 def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
-    """Run a motion block (L, LP, C, CR, CT, CP, CC); True when it ends the program."""
+    """Run a motion block (L, LP, C, CR, CT, CTP, CP, CC); True when it ends the program."""
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
@@ -2819,16 +2883,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
                               or m.comp != "R0", m, where)
     if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
-            if m.pole is None:
-                where.fail("LP without a pole", column=blk.column, text=where.text, expected="a CC block before LP")
-            plane = _polar_plane(m, where, blk)
-            r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
-            k, t = m.scale * m.lengths(where), m.transform
-            pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
-            pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
-                  else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
-            target = polar_point(m.pole, pr, pa, plane=plane, base=target)
-            m.used.update(PLANE_AXES[plane])
+            target = _polar_target(kw, seen, target, m, where, blk)
         m.last_axes = sorted(written) if kw == "L" else []
         if not rapid and m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
@@ -2841,7 +2896,9 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         m.tcpm_move = True
         m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
         m.tcpm_move = False
-    elif kw in ("C", "CR", "CT", "CP"):
+    elif kw in ("C", "CR", "CT", "CP", "CTP"):
+        if kw == "CTP":
+            target = _polar_target(kw, seen, target, m, where, blk)
         if m.feed is None:
             where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
                        expected="F > 0 [mm/min]")
@@ -2910,6 +2967,7 @@ _ALLOWED_WORDS = {
     "CR": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"}),
     "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
     "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
+    "CTP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
     "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
     "SPL": frozenset({"F"}),
 }
@@ -2917,6 +2975,7 @@ _ALLOWED_WORDS = {
 
 def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
+    words = _without_m128_feed(words, m)
     seen: dict[str, Word] = {}
     ms: list[Word] = []
     bases: set[str] = set()
@@ -3044,8 +3103,8 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     m.used.update(written)
 
 
-def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
-    """The plane of an ``LP`` block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
+def _polar_plane(kw: str, m: _Machine, where: Where, blk: SourceBlock) -> int:
+    """The plane of an ``LP`` (or ``CTP``) block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
     axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
     demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
     manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
@@ -3053,9 +3112,9 @@ def _polar_plane(m: _Machine, where: Where, blk: SourceBlock) -> int:
     plane = m.pole_plane if m.pole_plane is not None else m.plane
     if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
         what = "a coordinate transformation" if m.comp == "R0" else m.comp
-        where.fail(f"LP about a CC outside the working plane under {what}",
+        where.fail(f"{kw} about a CC outside the working plane under {what}",
                    column=blk.column, text=where.text,
-                   expected="R0 and no cycle 8/10/11/26 for a polar line in another plane")
+                   expected=f"R0 and no cycle 8/10/11/26 for {kw} in another plane")
     return plane
 
 
@@ -3080,10 +3139,10 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
     k = m.lengths(where)
     flips = m.transform.flips(plane)
     try:
-        if kw == "CT":
+        if kw in ("CT", "CTP"):
             if not m.blocks or m.blocks[-1].segment is None:
-                where.fail("CT without a preceding contour element", column=blk.column, text=where.text,
-                           expected="an L, C, CR, CT or CP block before CT")
+                where.fail(f"{kw} without a preceding contour element", column=blk.column, text=where.text,
+                           expected=f"an L, C, CR, CT or CP block before {kw}")
             return tangential_arc(m.pos, end_tangent(m.blocks[-1].segment, plane), target, plane=plane)
         if kw == "CP":
             if m.pole is None:

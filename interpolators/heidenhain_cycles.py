@@ -209,6 +209,8 @@ class DrillCycle:
         Cycle 262: a right-hand thread (Q239 > 0); with ``climb`` it gives the milling direction.
     continuous : bool
         Cycle 262: Q355 = 1, one helix over the whole thread depth (else Q355 = 0: one 360 degree turn).
+    threads_per_step : int
+        Cycles 262, 267: Q355 > 1, several 360 degree helices offset by Q355 pitches (0: one).
     approach_feed : float
         Cycle 262: Q253, the feed in and out along the tool axis [mm/s]; 252: Q206, the plunging feed.
     side_allowance, floor_allowance : float
@@ -299,6 +301,7 @@ class DrillCycle:
     climb: bool = True
     right_hand: bool = True
     continuous: bool = False
+    threads_per_step: int = 0
     approach_feed: float = 0.0
     side_allowance: float = 0.0
     floor_allowance: float = 0.0
@@ -352,6 +355,10 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
         m = _Q_RE.match(rest, pos)
         if m is None:
             tok = rest[pos:].split()[0]
+            if re.fullmatch(r"Q\d+", tok, re.I):  # 'Q206 FAUTO': a TNC simulator's test program wrote it so
+                where.fail(f"cycle parameter {tok} without '='", column=column0 + pos,
+                           text=" ".join(rest[pos:].split()[:2]),
+                           expected=f"{tok}=value (a number, a Q parameter, or for a feed FAUTO / FMAX)")
             where.fail(f"unexpected {tok!r} in a cycle definition", column=column0 + pos, text=tok,
                        expected="Qnnn=value assignments")
         fmax = _FMAX_RE.match(rest, m.end())
@@ -856,7 +863,8 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
 
     * 262 THREAD MILLING: Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201
       thread depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the
-      thread depth; more: several offset helices, an error here), Q253 feed in and out of the hole, Q351
+      thread depth; more: "several helical paths with approach and departure; between them, the TNC offsets
+      the tool by Q355, multiplied by the pitch", p. 251), Q253 feed in and out of the hole, Q351
       climb (+1) or up-cut (-1) with M3, Q200, Q203, Q204, Q207 milling feed;
     * 263 THREAD MILLING/COUNTERSINKING: as 262 with one 360 degree helix, plus Q356 countersinking depth
       ("distance between tool point and the top surface of the workpiece"), Q357 set-up clearance to the
@@ -867,14 +875,14 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
     * 265 HELICAL BORE/THREAD MILLING: Q335, Q239, Q201, Q253, Q358, Q359, Q360 countersinking at the front
       before (0) or after (1) the thread, Q200, Q203, Q204, Q254, Q207: one continuous helix from the
       surface down to the thread depth, turning with the thread (no Q351);
-    * 267 OUTSIDE THREAD MILLING: as 262 about a stud (Q355 0 or 1); the countersinking at the front
-      (Q358 != 0) is not supported.
+    * 267 OUTSIDE THREAD MILLING: as 262 about a stud; the countersinking at the front (Q358 != 0) is not
+      supported.
     """
     q = {355: 0.0, 351: 1.0, 356: 0.0, 357: 0.0, 358: 0.0, 359: 0.0, 360: 0.0, **q}
     steps = int(q[355])
-    if steps not in (0, 1) or q[355] != steps:
-        where.fail(f"cycle {number}: Q355={q[355]:g} (several helices offset by Q355 pitches) is not supported",
-                   column=column, text=where.text, expected="Q355=0 (one helix) or Q355=1 (continuous)")
+    if steps < 0 or q[355] != steps:
+        where.fail(f"cycle {number}: Q355={q[355]:g} is not a number of threads", column=column, text=where.text,
+                   expected="Q355=0 (one helix), 1 (continuous) or a whole number of threads per step")
     if q[239] == 0 or not q[335] > 0 or not q[253] > 0:
         where.fail(f"cycle {number}: the pitch Q239 must be != 0, the diameter Q335 and the feed Q253 > 0",
                    column=column, text=where.text, expected="Q239 != 0, Q335 > 0, Q253 > 0")
@@ -900,7 +908,8 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
         feed=q[207] * feed_scale, surface=q[203] * scale, second_setup=q[204] * scale,
         bore_diameter=q[335] * scale, helix_pitch=abs(q[239]) * scale,
         climb=(q[351] >= 0) if number != 265 else q[239] < 0, right_hand=q[239] > 0,
-        continuous=steps == 1 or number == 265, approach_feed=q[253] * feed_scale,
+        continuous=steps == 1 or number == 265, threads_per_step=steps if steps > 1 and number in (262, 267) else 0,
+        approach_feed=q[253] * feed_scale,
         sink_depth=sign * abs(q[356]) * scale if number in (263, 264) else 0.0, sink_side=q[357] != 0.0,
         front_depth=sign * abs(q[358]) * scale, front_offset=abs(q[359]) * scale, front_after=q[360] == 1.0,
         sink_feed=sink_feed, outside=number == 267), where, column)

@@ -66,17 +66,19 @@ class _Compiler:
         first, rest = self.power(), []
         while (t := self.peek()) is not None and t[0] == "op" and t[1] in "*/":
             self.i += 1
-            rest.append((t[1] == "/", self.power()))
+            start = self.i
+            operand = self.power()
+            rest.append((t[1] == "/", operand, " ".join(text for _, text in self.tokens[start:self.i])))
         if not rest:
             return first
 
         def run(ctx: FormulaContext) -> float:
             value = first(ctx)
-            for divide, g in rest:
+            for divide, g, text in rest:
                 rhs = g(ctx)
                 if divide:
-                    if rhs == 0:
-                        ctx.fail("division by zero")
+                    if rhs == 0:  # the divisor named: a Q parameter of 0 is often an unset tool or table value
+                        ctx.fail(f"division by zero ({text} is 0)")
                     value = value / rhs
                 else:
                     value = value * rhs

@@ -343,9 +343,13 @@ def _syswrite(rest: str, params: QParameters, where: Where, col: int, *, scale: 
 _SYSREAD_RE = re.compile(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*$",
                          re.I)
 _SYSREAD_EXPECTED = ("SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position), ID20 NR1 (active tool) "
-                     "or ID50 NR1..NR5 IDXt (L, R, R2, DL, DR of tool t)")
-#: The tool-table columns of ``FN 18 SYSREAD ID50 NR3 .. NR5`` (NR1 L and NR2 R are read from the table).
-_ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR"}
+                     "or ID50 NR1..NR23 IDXt (tool t's columns L, R, R2, DL, DR .. TT data)")
+#: The tool-table columns of ``FN 18 SYSREAD ID50 NR3 .. NR23`` (NR1 L and NR2 R are read from the table), as the
+#: TNC 426/430 technical manual's table of system data lists them ("Data from the tool table", group 50).
+_ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR", 6: "DR2", 7: "TL, tool locked", 8: "RT, replacement tool",
+                 9: "TIME1", 10: "TIME2", 11: "CUR. TIME", 12: "PLC status", 13: "LCUTS", 14: "ANGLE",
+                 15: "CUT, TT: teeth", 16: "LTOL", 17: "RTOL", 18: "DIRECT", 19: "R-OFFS", 20: "L-OFFS",
+                 21: "LBREAK", 22: "RBREAK", 23: "PLC value"}
 
 
 def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
@@ -354,10 +358,12 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     """``FN 18: SYSREAD Qn = IDi NRj [IDXk]`` (TNC 640 user's manual, "FN 18: SYSREAD", the table of system
     data): ID240 NR1 / ID270 NR1 IDX1..3 the nominal position in machine / active coordinates (as simulated);
     ID20 NR1 the number of the active tool; ID50 NR1 / NR2 IDXt the length / radius L, R of tool t in the tool
-    table (the program's TOOL DEF stands in for the table's row, as it does at TOOL CALL); ID50 NR3 / NR4 /
-    NR5 its R2, DL, DR (the numbering as a shop's tool-copy macro comments it, Stugo/Heidenhain
-    Tool-copy.h: "ID50 NR3 ; R2", "NR4 ; DL", "NR5 ; DR"; the manual's table was not found in the
-    corpora), 0 with a note: vcnc's tool table (:class:`interpolators.context.Tool`) has no such columns.
+    table (the program's TOOL DEF stands in for the table's row, as it does at TOOL CALL); ID50 NR3 .. NR23 its
+    other columns, R2, DL, DR, DR2, TL, RT, TIME1, TIME2, CUR. TIME, PLC status, LCUTS, ANGLE and the tool touch
+    probe's CUT, LTOL, RTOL, DIRECT, R-OFFS, L-OFFS, LBREAK, RBREAK, PLC value (the numbering of the TNC 426/430
+    technical manual's table of system data, group 50 "Data from the tool table", as a shop's tool-copy macro
+    comments NR3 - NR5: Stugo/Heidenhain Tool-copy.h), 0 with a note: vcnc's tool table
+    (:class:`interpolators.context.Tool`) has no such columns.
     The index may be a Q parameter (``IDXQ11``).
 
     A position read after a program stop with no move since (``stopped_at``): a measuring program stops
@@ -372,7 +378,7 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     if sm is not None and sm.group(4) is not None:
         idx = sm.group(4)
         idx = params.get(idx) if idx[0] in "qQ" else float(idx[:9])
-    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2), (50, 3), (50, 4), (50, 5)}
+    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2), *((50, nr) for nr in _ID50_COLUMNS)}
     if sm is None or (ident, nr) not in known or (idx is None) != (ident == 20) \
             or (ident in (240, 270) and idx not in (1.0, 2.0, 3.0)):
         where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
@@ -383,7 +389,7 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
         if not (idx >= 0 and idx == int(idx)):
             where.fail(f"FN 18 SYSREAD ID50 of tool {idx:g}: not a tool number", column=col, text=rest.strip(),
                        expected="IDX a whole number >= 0 (the tool)")
-        if nr in _ID50_COLUMNS:  # R2, DL, DR: columns the machine context's tool table does not hold
+        if nr in _ID50_COLUMNS:  # R2, DL, DR ..: columns the machine context's tool table does not hold
             note(f"FN 18 SYSREAD ID50 NR{nr} ({_ID50_COLUMNS[nr]}): no such column in the machine context's "
                  "tool table: 0")
             value = 0.0

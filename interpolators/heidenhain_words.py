@@ -93,21 +93,26 @@ def _strip_comment(line: str) -> str:
     return line.split(";", 1)[0]
 
 
-_DEFINITION_RE = re.compile(r"\s*\d*\s*(?:(CYCLE?\s+DEF\s*\d{3})|(PATTERN\s+DEF))(?![\d.])", re.I)
+_DEFINITION_RE = re.compile(r"\s*\d*\s*(?:((?:CYCLE?\s+DEF|TCH\s+PROBE)\s*\d{3})|(PATTERN\s+DEF))(?![\d.])", re.I)
 _Q_LINE_RE = re.compile(r"\s*Q\d+\s*=", re.I)
 _POS_LINE_RE = re.compile(r"\s*POS\d+\s*\(", re.I)
+#: ``Q206 FAUTO``: a parameter line missing its ``=`` (a TNC simulator's test program): kept with its definition, so
+#: that the cycle's reader names it (:func:`interpolators.heidenhain_cycles.q_assignments`).
+_Q_WITHOUT_EQUALS_RE = re.compile(r"\s*Q\d+\s+[A-Z+\-\d]", re.I)
 
 
 def _continues(first: str, line: str) -> bool:
     """True when ``line`` is a parameter line of the definition that ``first`` begins: the
-    ``Qnnn=value ;comment`` lines after ``CYCL DEF 2xx`` and the ``POSn (...)`` lines after
-    ``PATTERN DEF``, written without a block number and without ``~`` as the iTNC 530 and TNC
+    ``Qnnn=value ;comment`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx`` and the ``POSn (...)`` lines
+    after ``PATTERN DEF``, written without a block number and without ``~`` as the iTNC 530 and TNC
     426/430 save them (iTNC 530 user's manual, cycle examples: "11 CYCL DEF 200 DRILLING /
-    Q200=2 ;SET-UP CLEARANCE / ...")."""
+    Q200=2 ;SET-UP CLEARANCE / ..."; the touch probe cycles' examples alike: "5 TCH PROBE 412 DATUM INSIDE
+    CIRCLE / Q321=+50 ;CENTER IN 1ST AXIS / ...", iTNC 530 touch probe cycles manual, example of cycle 412)."""
     m = _DEFINITION_RE.match(first)
     if m is None:
         return False
-    return (_Q_LINE_RE if m.group(1) else _POS_LINE_RE).match(line) is not None
+    return (_Q_LINE_RE.match(line) is not None or _Q_WITHOUT_EQUALS_RE.match(line) is not None if m.group(1)
+            else _POS_LINE_RE.match(line) is not None)
 
 
 def _wrapped_comment(line: str) -> bool:

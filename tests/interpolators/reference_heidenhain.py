@@ -85,7 +85,7 @@ _EPS = 1e-9
 
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
-    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx``, ``POSn (`` lines after ``PATTERN DEF``, as
+    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` lines after ``PATTERN DEF``, as
     older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
@@ -99,7 +99,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
             if '"' not in code:  # a decimal comma (quoted strings are left alone: no comma is touched)
                 code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
-                (re.match(r"CYCLE? DEF\s*2\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
+                (re.match(r"(CYCLE? DEF\s*2|TCH PROBE\s*4)\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
                 or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
             out[-1] = (out[-1][0], out[-1][1] + " " + code)
             continue
@@ -627,13 +627,16 @@ def _radius_arc(t: _Tnc, line: int, w: dict) -> None:
     _arc_tangent(t, end, centre, ccw, (0, 1))
 
 
-def _tangent_arc(t: _Tnc, line: int, w: dict) -> None:
+def _tangent_arc(t: _Tnc, line: int, w: dict, *, polar: bool = False) -> None:
     """``CT X.. Y..``: the arc leaving the current point along the last element's direction to the end point
-    (TNC 426/430 manual, "Circular path CT with tangential connection")."""
+    (TNC 426/430 manual, "Circular path CT with tangential connection"); ``CTP PR.. PA..`` (``polar``): the same
+    arc to the end point in polar coordinates about the pole (TNC7 basic manual, "Circular path CTP")."""
     _comp_words(t, w)
     if t.last_dir is None:
         raise ReferenceError("CT without a preceding element's direction")
-    start, end = t.pos.copy(), t.target(w)
+    if polar and tuple(t.pole_axes) != (0, 1):
+        raise ReferenceError("CTP about a pole outside the XY plane")
+    start, end = t.pos.copy(), _polar_end(t, w) if polar else t.target(w)
     chord = (end - start)[:2]
     n = np.array([-t.last_dir[1], t.last_dir[0]])  # left of the direction
     across = float(n @ chord)
@@ -709,15 +712,21 @@ def _polar_line(t: _Tnc, line: int, w: dict) -> None:
     plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
     axis moves it too (under RL/RR: the contour's point). Without transformations only."""
     _comp_words(t, w)
+    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w))
+
+
+def _polar_end(t: _Tnc, w: dict) -> np.ndarray:
+    """The machine end point of ``LP`` / ``CTP`` words: PR (IPR: added to the current radius) from the pole at
+    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations."""
     if t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
-        raise ReferenceError("LP under a transformation")
+        raise ReferenceError("LP/CTP under a transformation")
     p = t.prog()
     i, j = t.pole_axes
     r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
     a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
     r = w["PR"] * t.scale if "PR" in w else r + w.get("IPR", 0.0) * t.scale
     a = w["PA"] if "PA" in w else a + w.get("IPA", 0.0)
-    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(_polar_point(t, p, r, a, w)))
+    return t.machine(_polar_point(t, p, r, a, w))
 
 
 def _approach(t: _Tnc, line: int, w: dict, form: str) -> None:
@@ -943,8 +952,10 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
     move = np.nan_to_num(move)
     presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
     row = int(p["Q305"])
-    if row == 0:
-        t.overrides[t.preset] = t.preset_point() + move
+    if t.tilt is not None and row != 0:
+        raise ReferenceError("a probed datum written to a table row in a tilted plane")
+    if row == 0:  # in a tilted plane: the move in the plane's axes, the preset in the part's (untilted) ones
+        t.overrides[t.preset] = t.preset_point() + (move if t.tilt is None else t.tilt @ move)
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
 
@@ -1782,21 +1793,33 @@ def _thread_milling(t: _Tnc, line: int, p: dict) -> None:
     sgn = -1.0 if depth < 0 else 1.0
     clear = surface - sgn * setup
     _move_z(t, line, "rapid", clear, optional=True)
-    bottom = surface + depth
-    far = surface if p["Q355"] == 1 else bottom - sgn * pitch
-    z0, z1 = (bottom, far) if (p["Q239"] > 0) == ccw else (far, bottom)
-    _move_z(t, line, "feed", z0)
-    centre = t.prog()  # [mm], at the starting plane
-    r = p["Q335"] * t.scale / 2 - t.radius
-    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
     kind = "arc_ccw" if ccw else "arc_cw"
-    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
-    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
-    for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
-                      (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
-        t.emit(line, kind, t.machine(end), centre=t.machine(pole))
+    r = p["Q335"] * t.scale / 2 - t.radius
+    for z0, z1 in _thread_turns(surface, depth, pitch, p["Q355"], (p["Q239"] > 0) == ccw):
+        _move_z(t, line, "feed", z0)
+        centre = t.prog()  # [mm], at the starting plane
+        angle = math.radians(360.0 * abs(z1 - z0) / pitch) * (1 if ccw else -1)
+        axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+        helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+        for end, pole in ((centre + np.array([r, 0.0, 0.0]), centre + np.array([r / 2, 0.0, 0.0])),
+                          (helix_end, axis_end), (axis_end, (helix_end + axis_end) / 2)):
+            t.emit(line, kind, t.machine(end), centre=t.machine(pole))
     _move_z(t, line, "rapid", clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _thread_turns(surface: float, depth: float, pitch: float, steps: float, up: bool) -> list[tuple[float, float]]:
+    """The (from, to) levels of the helices of 262/267: Q355 = 1 one between the depth and the surface; else one
+    pitch at the depth, and with Q355 = n > 1 one more every n pitches above it while its deep end is below the
+    surface (TNC 426/430 manual p. 251: "several helical paths ... offsets the tool by Q355, multiplied by the
+    pitch"); ``up``: each from its deep end, the deepest first; else each down to it, the highest first."""
+    sgn = -1.0 if depth < 0 else 1.0
+    if steps == 1:
+        return [(surface + depth, surface)] if up else [(surface, surface + depth)]
+    deep = [abs(depth) - k * steps * pitch for k in range(int(abs(depth) // (steps * pitch)) + 2)] if steps > 1 \
+        else [abs(depth)]
+    turns = [(surface + sgn * u, surface + sgn * (u - pitch)) for u in deep if u > 1e-9]
+    return turns if up else [(b, a) for a, b in reversed(turns)]
 
 
 def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
@@ -1811,7 +1834,7 @@ def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
         raise ReferenceError(f"{kind} under a transformation")
     surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
-    clear, bottom, pitch = surface - sgn * setup, surface + depth, abs(p["Q239"])
+    clear, pitch = surface - sgn * setup, abs(p["Q239"])
     outside, right = kind == "267", p["Q239"] > 0
     climb = (p.get("Q351", 1.0) >= 0) if kind != "265" else not right
     ccw = climb != outside
@@ -1842,22 +1865,22 @@ def _thread_family(t: _Tnc, line: int, kind: str, p: dict) -> None:
     if front and not after:
         _move_z(t, line, "feed", surface + front)
         circle(abs(p.get("Q359", 0.0)) * t.scale)
-    far = surface if p.get("Q355", 0.0) == 1 or kind == "265" else bottom - sgn * pitch
-    z0, z1 = (bottom, far) if (right == climb) != outside else (far, bottom)
-    angle = math.radians(360.0 * abs(far - bottom) / pitch) * (1 if ccw else -1)
+    steps = 1.0 if kind == "265" else p.get("Q355", 0.0) if kind == "267" else 0.0
     half = spin if not outside else ("arc_cw" if ccw else "arc_ccw")
     out = r + pitch * t.scale if outside else 0.0
     if outside:
         t.emit(line, "rapid", t.machine(centre + np.array([out, 0.0, 0.0])))
-    _move_z(t, line, "feed", z0)
-    here = t.prog()
-    axis_end = np.array([centre[0], centre[1], z1 * t.scale])
-    on = np.array([centre[0] + r, centre[1], z0 * t.scale])
-    helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
-    back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
-    t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
-    t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
-    t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
+    for z0, z1 in _thread_turns(surface, depth, pitch, steps, (right == climb) != outside):
+        angle = math.radians(360.0 * abs(z1 - z0) / pitch) * (1 if ccw else -1)
+        _move_z(t, line, "feed", z0)
+        here = t.prog()
+        axis_end = np.array([centre[0], centre[1], z1 * t.scale])
+        on = np.array([centre[0] + r, centre[1], z0 * t.scale])
+        helix_end = axis_end + np.array([r * math.cos(angle), r * math.sin(angle), 0.0])
+        back = axis_end + (helix_end - axis_end) * (out / r) if outside else axis_end
+        t.emit(line, half, t.machine(on), centre=t.machine((here + on) / 2))
+        t.emit(line, spin, t.machine(helix_end), centre=t.machine(axis_end))
+        t.emit(line, half, t.machine(back), centre=t.machine((helix_end + back) / 2))
     if front and after:
         _move_z(t, line, "feed", surface + front)
         circle(abs(p.get("Q359", 0.0)) * t.scale)
@@ -2589,7 +2612,7 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
     if head in ("FPOL", "FL", "FLT", "FC", "FCT", "FSELECT"):
         _free_contour(t, line, head, rest)
         return True
-    if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "RND", "CHF"):
+    if t.fk.waiting is not None and head in ("L", "LN", "CC", "C", "CP", "LP", "CR", "CT", "CTP", "RND", "CHF"):
         raise ReferenceError("a block after an FK element left open or without FSELECT")
     if head == "SPL":
         _spline(t, line, rest)
@@ -2609,8 +2632,8 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _polar_line(t, line, _words(rest, t.q))
     elif head == "CR":
         _radius_arc(t, line, _words(rest, t.q))
-    elif head == "CT":
-        _tangent_arc(t, line, _words(rest, t.q))
+    elif head in ("CT", "CTP"):
+        _tangent_arc(t, line, _words(rest, t.q), polar=head == "CTP")
     elif head in ("RND", "CHF"):
         _start_corner(t, line, head, _words(rest if head == "RND" else "LEN" + rest.strip(), t.q))
     elif head in ("APPR", "DEP"):

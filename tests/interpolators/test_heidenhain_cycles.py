@@ -190,8 +190,8 @@ def test_thread_milling_262_continuous_and_downward_helices_stay_in_the_thread()
     for prog in (down, left, run(THREAD.format(q="Q239=+1.25 Q351=+1 Q355=1"))):
         for b in prog.blocks[2:]:  # within the thread: radius 6 less the tool's 4, between the depth and the top
             assert math.hypot(b.target[0] - 10, b.target[1] - 20) <= 2 + 1e-9 and -6 - 1e-9 <= b.target[2]
-    with pytest.raises(GCodeError, match="Q355=2"):
-        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=2"))
+    with pytest.raises(GCodeError, match="Q355=2.5 is not a number of threads"):
+        run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=2.5"))
     with pytest.raises(GCodeError, match="not narrower than the thread"):
         run(THREAD.format(q="Q239=+1.5 Q351=+1 Q355=0").replace("R+4", "R+6"))
 

@@ -93,7 +93,7 @@ MODELLED = {
                                                 "37 C IX+2 DR+\n38 LBL 0\n",
     "a decimal comma": HEAD + re.sub(r"(?<=\d)\.(?=\d)", ",", MOVES),
     "M128 on positioned rotary axes": HEAD + "2 L X+0 Y+0 Z+50 R0 FMAX\n3 L B+30 C+45 FMAX\n4 L M128 F3000\n"
-                                             "5 L X+10 Y+0 Z+0 FMAX\n6 L Z+5\n7 L IY+2 F500\n8 CC X+0 Y+0\n"
+                                             "5 L X+10 Y+0 Z+0 FMAX\n6 L Z+5 F3000\n7 L IY+2 F500\n8 CC X+0 Y+0\n"
                                              "9 L X+1.5 Y-2 Z+1 M8\n10 M129\n11 L X+1 FMAX\n",
 }
 

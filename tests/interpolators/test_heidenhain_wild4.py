@@ -68,8 +68,9 @@ BC_TABLE = MachineContext(extra_axes=("b", "c"), kinematics=Kinematics(axes=(
 
 def test_lines_under_m128_on_positioned_rotary_axes_are_the_tool_tip_on_the_turned_part():
     # the NX post's 3+2 form: rotary axes positioned, M128, straight lines, M129. A table at B+90 turns the part
-    # the other way (ISO 841): its point (10, 0, 0) lies at machine (0, 0, 10), (10, 0, 5) at (-5, 0, 10).
-    prog = run("1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+90 C+0 FMAX\n3 L M128 F3000\n4 L X+10 Y+0 Z+0 FMAX\n5 L Z+5\n"
+    # the other way (ISO 841): its point (10, 0, 0) lies at machine (0, 0, 10), (10, 0, 5) at (-5, 0, 10). The F
+    # after M128 is the feed of its compensation movements, not the path's (TNC 620 DIN/ISO manual, M128).
+    prog = run("1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+90 C+0 FMAX\n3 L M128 F3000\n4 L X+10 Y+0 Z+0 FMAX\n5 L Z+5 F3000\n"
                "6 L IY+2\n7 M129\n8 L X+1 FMAX", BC_TABLE)
     assert ends(prog)[2:] == [[0.0, 0.0, 10.0], [-5.0, 0.0, 10.0], [-5.0, 2.0, 10.0], [1.0, 2.0, 10.0]]
     assert any(n.startswith("M128: TCPM on positioned rotary axes") for n in prog.notes)

@@ -49,7 +49,7 @@ def test_the_cycle_name_is_any_text_in_the_dialog_language(name):
 
 
 def test_an_assignment_without_its_value_is_still_an_error():
-    with pytest.raises(GCodeError, match=r"unexpected 'Q201' in a cycle definition"):
+    with pytest.raises(GCodeError, match=r"cycle parameter Q201 without '=' \(got 'Q201 -5'\); expected Q201=value"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 CYCL DEF 200 DRILLING Q200=2 Q201 -5\nEND PGM T MM\n",
                          source="t.h", context=ZERO)
 
