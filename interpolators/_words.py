@@ -65,6 +65,24 @@ _SINUMERIK = re.compile(r"(?:DEF|A?TRANS|A?ROTS?|A?SCALE|A?MIRROR|CIP|CT|[ABC]SP
 _SINUMERIK_ADDRESS = re.compile(r"(?:[A-Z]|CR|AP|RP|AR|TURN)=", re.I)
 
 
+#: Axis letters, whose word without a number :func:`_bare_axis_hint` names.
+_AXIS_LETTERS = frozenset("XYZABCUVW")
+
+
+def _bare_axis_hint(line: str, w0: int) -> str:
+    """Why an axis letter stands without its number: 3D printer firmware writes axes as flags ("G28 X":
+    Marlin's G-code reference, G28 Auto Home, "X: flag to go back to the X axis origin"; RepRapFirmware
+    likewise), and a generator for such a machine writes them so. An ISO control needs the number (LinuxCNC
+    and grbl refuse the bare letter, "Bad number format"; Fanuc alarm PS0005 "no data after address"), and
+    its G28 moves through the point the axis words name first, so that ``G91 G28 X0`` returns X alone
+    (LinuxCNC G28, Fanuc "Reference position return")."""
+    letter = line[w0].upper()
+    if re.search(r"\bG0*28\b", line[:w0], re.I):
+        return (f" (an axis letter without its number: 'G28 {letter}', home {letter}, as 3D printer firmware such as "
+                f"Marlin writes it; an ISO control needs a number: G91 G28 {letter}0 returns {letter} alone)")
+    return " (an axis letter without its number, as 3D printer firmware such as Marlin takes axis flags)"
+
+
 def _number_hint(line: str, w0: int, j: int) -> str:
     """Why a word at ``w0`` has no number at ``j``, when the text says: the letter O for the digit 0, a
     Siemens SINUMERIK statement or ``=`` address, a keyword of another control's language."""
@@ -77,6 +95,9 @@ def _number_hint(line: str, w0: int, j: int) -> str:
     if address:
         return (f" ({address.group(0)!r}: a Siemens SINUMERIK address with '='; vcnc reads ISO G-code, not "
                 "SINUMERIK programs)")
+    # the letter then blanks, and the end of the block or another word: not a keyword such as ASKBOOL
+    if line[w0:w0 + 1].upper() in _AXIS_LETTERS and (j >= len(line) or j > w0 + 1 and line[j].isalpha()):
+        return _bare_axis_hint(line, w0)
     # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
     keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:])
     return f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)" \

@@ -25,3 +25,21 @@ def test_a_slash_comment_line_is_named_before_its_parentheses(line):
 def test_a_block_delete_line_still_runs():
     prog = checked_iso("G21 G90\n/G0 X1 (skip) Y2\nM30\n", MachineContext())
     assert [b.target.tolist() for b in prog.blocks] == [[1.0, 2.0, 0.0]]
+
+
+@pytest.mark.parametrize(("line", "column", "what"), [
+    ("G28  X         ; home X", 6, r"'G28 X', home X, as 3D printer firmware such as Marlin writes it; an ISO control "
+                                  r"needs a number: G91 G28 X0 returns X alone"),
+    ("G28 X Y", 5, r"'G28 X', home X"),
+    ("G1 Z F100", 4, r"as 3D printer firmware such as Marlin takes axis flags")])
+@pytest.mark.parametrize("dialect", ["linuxcnc", "grbl", "fanuc"])
+def test_an_axis_letter_without_its_number_is_named(line, column, what, dialect):
+    # a panel engraver's output for a Marlin-style router: "G28  X ; home X" (LinuxCNC, grbl: "Bad number format")
+    with pytest.raises(GCodeError, match=f":2:{column}: malformed number for word [XZ] \\(an axis letter without its "
+                                         f"number.*{what}"):
+        parse_program(f"G21 G90 F100\n{line}\nM30\n", context=MachineContext().with_dialect(dialect))
+
+
+def test_a_keyword_is_not_read_as_an_axis_flag():
+    with pytest.raises(GCodeError, match=r"'ASKBOOL': a statement of another control's language"):
+        parse_program("G21\nASKBOOL 5\n", context=MachineContext().with_dialect("fanuc"))
