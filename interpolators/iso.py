@@ -1987,13 +1987,21 @@ def _m98_words(words: list[Word], where: Where, *, st: _State, notes: _Notes) ->
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
 
 
+#: How each control refuses a feed move at F0 (the messages of :func:`_no_feed`'s sources).
+_ZERO_FEED = {"linuxcnc": "LinuxCNC: cannot do G1 with zero feed rate",
+              "grbl": "grbl error 22: feed rate has not yet been set or is undefined",
+              "fanuc": "Fanuc alarm PS0011: feed zero"}
+#: The same for a dialect without a documented message of its own (Haas, Fadal).
+_ZERO_FEED_ANY = "refused by LinuxCNC, grbl (error 22) and Fanuc (alarm PS0011) alike"
+
+
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
     zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
     why = "no F word before it"
     if st.feed_zero:
-        why = "F0, a zero feed rate (LinuxCNC: cannot do G1 with zero feed rate)"
+        why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
     elif st.per_rev:
         why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
                "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")

@@ -43,3 +43,17 @@ def test_an_axis_letter_without_its_number_is_named(line, column, what, dialect)
 def test_a_keyword_is_not_read_as_an_axis_flag():
     with pytest.raises(GCodeError, match=r"'ASKBOOL': a statement of another control's language"):
         parse_program("G21\nASKBOOL 5\n", context=MachineContext().with_dialect("fanuc"))
+
+
+@pytest.mark.parametrize(("dialect", "how"), [
+    ("grbl", r"grbl error 22: feed rate has not yet been set or is undefined"),
+    ("linuxcnc", r"LinuxCNC: cannot do G1 with zero feed rate"),
+    ("fanuc", r"Fanuc alarm PS0011: feed zero"),
+    ("haas", r"refused by LinuxCNC, grbl \(error 22\) and Fanuc \(alarm PS0011\) alike")])
+def test_a_feed_move_at_f0_names_how_its_control_refuses_it(dialect, how):
+    # a laser template's post-processed output: rapids and the plunge written with "F0.000000"
+    text = "G21 G90\nG0 F0.000000 X1.49 Y12 Z4\nG1 F0.000000 X1.49 Y12 Z-5\nM30\n"
+    with pytest.raises(GCodeError, match=f":3:1: G01 feed move without a feed: F0, a zero feed rate \\({how}\\)"):
+        parse_program(text, context=MachineContext().with_dialect(dialect))
+    ends = checked_iso(text.replace("G1 F0.000000", "G1 F1000"), MachineContext().with_dialect(dialect))
+    assert [b.target.tolist() for b in ends.blocks] == [[1.49, 12.0, 4.0], [1.49, 12.0, -5.0]]
