@@ -65,6 +65,19 @@ _SINUMERIK = re.compile(r"(?:DEF|A?TRANS|A?ROTS?|A?SCALE|A?MIRROR|CIP|CT|[ABC]SP
 _SINUMERIK_ADDRESS = re.compile(r"(?:[A-Z]|CR|AP|RP|AR|TURN)=", re.I)
 
 
+#: A line that is a Markdown code fence or its language tag ("```gcode", "gcode"): a program copied out of a
+#: README or a chat answer with its fence (CommonMark 0.31, 4.5 "Fenced code blocks": the opening fence's
+#: "info string", whose first word names the language).
+_FENCE = re.compile(r"[ \t]*(?:```+|~~~+)?[ \t]*(?:g-?code|nc|ngc|cnc|tap)?[ \t]*", re.I)
+
+
+def fence_hint(line: str) -> str:
+    """What a line that is a Markdown code fence or only its language tag is (:data:`_FENCE`); "" otherwise."""
+    if line.strip() and _FENCE.fullmatch(line):
+        return " (a Markdown code fence or its language tag: text copied from a README or a chat answer?)"
+    return ""
+
+
 #: Axis letters, whose word without a number :func:`_bare_axis_hint` names.
 _AXIS_LETTERS = frozenset("XYZABCUVW")
 
@@ -86,6 +99,9 @@ def _bare_axis_hint(line: str, w0: int) -> str:
 def _number_hint(line: str, w0: int, j: int) -> str:
     """Why a word at ``w0`` has no number at ``j``, when the text says: the letter O for the digit 0, a
     Siemens SINUMERIK statement or ``=`` address, a keyword of another control's language."""
+    fence = fence_hint(line)
+    if fence:
+        return fence
     if j < len(line) and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:]):  # "GOO", "X1O"
         return " (the letter O where the digit 0 was meant?)"
     siemens = re.match(r"[A-Za-z]+\d*(?![A-Za-z0-9_])", line[w0:])

@@ -18,7 +18,7 @@ import dataclasses
 import re
 from collections.abc import Callable
 
-from interpolators._words import MAX_MAGNITUDE, Where, read_number, token_at
+from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
            "WORD_LETTERS"]
@@ -151,7 +151,7 @@ def _foreign_hint(tok: str) -> str:
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
         return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
-    return ""
+    return fence_hint(tok)
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:

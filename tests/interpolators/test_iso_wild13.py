@@ -57,3 +57,31 @@ def test_a_feed_move_at_f0_names_how_its_control_refuses_it(dialect, how):
         parse_program(text, context=MachineContext().with_dialect(dialect))
     ends = checked_iso(text.replace("G1 F0.000000", "G1 F1000"), MachineContext().with_dialect(dialect))
     assert [b.target.tolist() for b in ends.blocks] == [[1.49, 12.0, 4.0], [1.49, 12.0, -5.0]]
+
+
+FENCE = r"a Markdown code fence or its language tag: text copied from a README or a chat answer\?"
+
+
+@pytest.mark.parametrize(("text", "where"), [
+    ("gcode\n(Program: EXAMPLE)\nG21 G90\n", r":1:1: malformed number for word G"),  # a chat answer's "```gcode"
+    ("```gcode\nG21 G90\nG0 X1\n```\n", r":1:1: unknown word '```gcode'"),
+    ("G21 G90\nG0 X1\n```\n", r":3:1: unknown word '```'")])
+@pytest.mark.parametrize("dialect", ["linuxcnc", "grbl", "haas"])
+def test_a_markdown_fence_line_is_named(text, where, dialect):
+    with pytest.raises(GCodeError, match=f"{where}.*\\({FENCE}\\)"):
+        parse_program(text, context=MachineContext().with_dialect(dialect))
+
+
+def test_a_tilde_fence_is_named_where_it_is_no_grbl_cycle_start():
+    with pytest.raises(GCodeError, match=f":3:1: unknown word '~~~' \\({FENCE}\\)"):
+        parse_program("G21 G90\nG0 X1\n~~~\n", context=MachineContext().with_dialect("fanuc"))
+    # grbl's receive interrupt takes '~' (cycle start) out of the stream: the line is empty there
+    prog = parse_program("G21 G90\nG0 X1\n~~~\n", context=MachineContext().with_dialect("grbl"))
+    assert [b.target.tolist() for b in prog.blocks] == [[1.0, 0.0, 0.0]]
+
+
+def test_a_word_that_merely_looks_like_a_tag_keeps_its_own_hint():
+    with pytest.raises(GCodeError, match=r"word G \(the letter O where the digit 0 was meant\?\)"):
+        parse_program("G21\nGOO X1\n", context=MachineContext())
+    prog = checked_iso("G21 G90\nN10 G0 X1\nM30\n", MachineContext())
+    assert [b.target.tolist() for b in prog.blocks] == [[1.0, 0.0, 0.0]]
