@@ -1371,6 +1371,13 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
                   "refuses it: \"Bad character used\")")
 
 
+#: M100-M199 codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104
+#: "Set Hotend Temperature", M106 "Set Fan Speed", ...); a laser on such firmware is often driven as its fan.
+_PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures", 106: "M106 set fan speed",
+              107: "M107 fan off", 109: "M109 wait for hotend temperature", 114: "M114 get current position",
+              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
+
+
 def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
     """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
     Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
@@ -1392,6 +1399,9 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
             if dialect == "grbl" else
             f"machine-specific M code {w.text!r} (M100-M199 on a {dialect.capitalize()} control: a function of the "
             "machine tool builder, no motion known here)")
+    printer = _PRINTER_M.get(m)
+    if printer:
+        what += f" (Marlin's {printer}: a 3D printer's code, which laser conversions use for the laser)"
     where.fail(f"{what}: {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
                         "or of --user-m-path (the code then runs as a function that moves nothing)")

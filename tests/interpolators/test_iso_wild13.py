@@ -85,3 +85,21 @@ def test_a_word_that_merely_looks_like_a_tag_keeps_its_own_hint():
         parse_program("G21\nGOO X1\n", context=MachineContext())
     prog = checked_iso("G21 G90\nN10 G0 X1\nM30\n", MachineContext())
     assert [b.target.tolist() for b in prog.blocks] == [[1.0, 0.0, 0.0]]
+
+
+@pytest.mark.parametrize(("dialect", "what"), [
+    ("grbl", r"M code 'M107' unknown to grbl \(gcode\.c: M0-M5, M7-M9, M30, M56 only; error 20\)"),
+    ("linuxcnc", r"user M code 'M107' \(M100-M199 runs the executable file M107 of the user M path"),
+    ("haas", r"machine-specific M code 'M107' \(M100-M199 on a Haas control")])
+def test_a_3d_printer_m_code_is_named_as_marlin_s(dialect, what):
+    # a Marlin laser's file: "M107 S0" (fan off = laser off), "M106 S255" (fan on = laser on)
+    text = "M107 S0\nG90 G21\nG1 F3000 X196.662 Y25.2978\nM106 S255\n"
+    with pytest.raises(GCodeError, match=f":1:1: {what}.* \\(Marlin's M107 fan off: a 3D printer's code, which laser "
+                                         r"conversions use for the laser\): M107 not found"):
+        parse_program(text, context=MachineContext().with_dialect(dialect))
+
+
+def test_a_user_m_code_of_no_printer_meaning_keeps_its_message():
+    with pytest.raises(GCodeError, match=r":1:5: user M code 'M110' \(M100-M199 runs the executable file M110 of "
+                                         r"the user M path, LinuxCNC USER_M_PATH\): M110 not found"):
+        parse_program("G21 M110\nG0 X1\n", context=MachineContext())
