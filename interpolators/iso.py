@@ -2376,7 +2376,13 @@ def _rereads_position(words: list[Word], st: _State) -> bool:
 
 
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
-    """Replace the finished compensated run by the tool-centre path."""
+    """Replace the finished compensated run by the tool-centre path. Under ``--dialect fanuc`` and ``haas`` the
+    start-up is Fanuc's type A (the default, parameter 5003#0 SUP = 0; Fanuc 0i-MF operator's manual, cutter
+    compensation C, "Tool movement in start-up"): the start-up block ends at the offset vector perpendicular
+    to the next block at its start point, whatever its length; Haas's Setting 43 "Cutter Comp Type" offers
+    the same A (our reading: A, its default, as Fanuc's). LinuxCNC's entry ends perpendicular to the entry
+    move itself and must be longer than the radius, which CAM programs for wear-only offsets (a start-up of
+    0.005 mm and a D of a few hundredths) never are."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
     centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
@@ -2385,7 +2391,8 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
         return
     try:
         new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
-                         centers=centers, inch=st.inch, open_end=not closed)
+                         centers=centers, inch=st.inch, open_end=not closed,
+                         entry="perpendicular" if st.context.dialect.name in ("fanuc", "haas") else "linuxcnc")
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

@@ -5,10 +5,11 @@ text is and how that control says it."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import MachineContext
+from interpolators.context import MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
@@ -103,3 +104,36 @@ def test_a_user_m_code_of_no_printer_meaning_keeps_its_message():
     with pytest.raises(GCodeError, match=r":1:5: user M code 'M110' \(M100-M199 runs the executable file M110 of "
                                          r"the user M path, LinuxCNC USER_M_PATH\): M110 not found"):
         parse_program("G21 M110\nG0 X1\n", context=MachineContext())
+
+
+def _with_radius(dialect: str, radius: float) -> MachineContext:
+    return MachineContext(tools={2: Tool(number=2, length=0.0, radius=radius)}).with_dialect(dialect)
+
+
+# A SolidWorks CAM post's profile for wear-only offsets: the path is the tool centre's, D002 holds the wear,
+# and the start-up moves 0.0002 mm (from X-0.2522 to X-0.252) before the contour turns up +Y.
+WEAR_ONLY = ("G21 G90 G17\nM6 T2\nG0 X-0.2522 Y-3.3 Z4\nG1 Z-1 F60\nG41 D002 G1 X-0.252 F60.\nY3.3\nX-5\n"
+             "G40 G1 X-5 Y4\nM30\n")
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_start_up_shorter_than_the_radius_runs_as_fanuc_type_a(dialect):
+    # Fanuc cutter compensation C, start-up type A (parameter 5003#0 SUP = 0): the start-up block ends at the
+    # vector perpendicular to the next block at its start point; Fanuc has no rule on the start-up's length
+    prog = checked_iso(WEAR_ONLY, _with_radius(dialect, 0.02))
+    ends = [b.target.tolist()[:2] for b in prog.blocks if b.kind == "line"]
+    # left of +Y is -X: the start-up ends 0.02 to the left of (-0.252, -3.3); the turn onto -X is an inside
+    # corner, where both offsets meet (-0.272, 3.28); the exit (G40) runs to the programmed (-5, 4)
+    assert np.allclose(ends[1:], [[-0.272, -3.3], [-0.272, 3.28], [-5.0, 3.28], [-5.0, 4.0]], rtol=0, atol=1e-12)
+
+
+def test_linuxcnc_keeps_its_entry_rule():
+    # interp_convert.cc convert_straight_comp1: "Length of cutter compensation entry move is not greater than the
+    # tool radius"
+    with pytest.raises(GCodeError, match=r":5:1: G41 cutter radius compensation: length of cutter compensation "
+                                         r"entry move \(0\.0002 mm\) is not greater than the tool radius \(0\.02 mm\)"):
+        parse_program(WEAR_ONLY, context=_with_radius("linuxcnc", 0.02))
+    long_entry = WEAR_ONLY.replace("Y-3.3 Z4", "Y-4.3 Z4").replace("X-0.252 F60.", "X-0.252 Y-3.3 F60.")  # 1 mm long
+    ends = [b.target.tolist()[:2] for b in checked_iso(long_entry, _with_radius("linuxcnc", 0.02)).blocks
+            if b.kind == "line"]
+    assert ends[1][0] == pytest.approx(-0.252 - 0.02 * 1 / (1 + 0.0002 ** 2) ** 0.5, abs=1e-9)
