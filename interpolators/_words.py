@@ -65,9 +65,43 @@ _SINUMERIK = re.compile(r"(?:DEF|A?TRANS|A?ROTS?|A?SCALE|A?MIRROR|CIP|CT|[ABC]SP
 _SINUMERIK_ADDRESS = re.compile(r"(?:[A-Z]|CR|AP|RP|AR|TURN)=", re.I)
 
 
+#: A line that is a Markdown code fence or its language tag ("```gcode", "gcode"): a program copied out of a
+#: README or a chat answer with its fence (CommonMark 0.31, 4.5 "Fenced code blocks": the opening fence's
+#: "info string", whose first word names the language).
+_FENCE = re.compile(r"[ \t]*(?:```+|~~~+)?[ \t]*(?:g-?code|nc|ngc|cnc|tap)?[ \t]*", re.I)
+
+
+def fence_hint(line: str) -> str:
+    """What a line that is a Markdown code fence or only its language tag is (:data:`_FENCE`); "" otherwise."""
+    if line.strip() and _FENCE.fullmatch(line):
+        return " (a Markdown code fence or its language tag: text copied from a README or a chat answer?)"
+    return ""
+
+
+#: Axis letters, whose word without a number :func:`_bare_axis_hint` names.
+_AXIS_LETTERS = frozenset("XYZABCUVW")
+
+
+def _bare_axis_hint(line: str, w0: int) -> str:
+    """Why an axis letter stands without its number: 3D printer firmware writes axes as flags ("G28 X":
+    Marlin's G-code reference, G28 Auto Home, "X: flag to go back to the X axis origin"; RepRapFirmware
+    likewise), and a generator for such a machine writes them so. An ISO control needs the number (LinuxCNC
+    and grbl refuse the bare letter, "Bad number format"; Fanuc alarm PS0005 "no data after address"), and
+    its G28 moves through the point the axis words name first, so that ``G91 G28 X0`` returns X alone
+    (LinuxCNC G28, Fanuc "Reference position return")."""
+    letter = line[w0].upper()
+    if re.search(r"\bG0*28\b", line[:w0], re.I):
+        return (f" (an axis letter without its number: 'G28 {letter}', home {letter}, as 3D printer firmware such as "
+                f"Marlin writes it; an ISO control needs a number: G91 G28 {letter}0 returns {letter} alone)")
+    return " (an axis letter without its number, as 3D printer firmware such as Marlin takes axis flags)"
+
+
 def _number_hint(line: str, w0: int, j: int) -> str:
     """Why a word at ``w0`` has no number at ``j``, when the text says: the letter O for the digit 0, a
     Siemens SINUMERIK statement or ``=`` address, a keyword of another control's language."""
+    fence = fence_hint(line)
+    if fence:
+        return fence
     if j < len(line) and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:]):  # "GOO", "X1O"
         return " (the letter O where the digit 0 was meant?)"
     siemens = re.match(r"[A-Za-z]+\d*(?![A-Za-z0-9_])", line[w0:])
@@ -77,6 +111,9 @@ def _number_hint(line: str, w0: int, j: int) -> str:
     if address:
         return (f" ({address.group(0)!r}: a Siemens SINUMERIK address with '='; vcnc reads ISO G-code, not "
                 "SINUMERIK programs)")
+    # the letter then blanks, and the end of the block or another word: not a keyword such as ASKBOOL
+    if line[w0:w0 + 1].upper() in _AXIS_LETTERS and (j >= len(line) or j > w0 + 1 and line[j].isalpha()):
+        return _bare_axis_hint(line, w0)
     # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
     keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:])
     return f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)" \

@@ -14,7 +14,8 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   tool radius"). With ``entry="perpendicular"`` the entry ends at the first contour point moved by
   ``r`` perpendicular to the first contour element, as the TNC approaches a contour with RL/RR
   (TNC 640 user's manual, "Tool radius compensation": "the tool is positioned perpendicular to
-  the first contour element at the starting point").
+  the first contour element at the starting point"), as Fanuc's type A start-up does (cutter
+  compensation C: the vector perpendicular to the next block at its start point; no length rule).
 * **Corners** are classified as LinuxCNC does (``convert_straight_comp2`` into a line,
   ``convert_arc_comp2`` into an arc): ``beta`` is the turn away from the tool side, from the
   direction of the programmed corner to the tool to the new element's programmed tangent. A turn
@@ -208,7 +209,7 @@ def compensate(
         Normal-axis index of the compensation plane: 2 XY (G17), 1 ZX (G18), 0 YZ (G19).
     entry : {"linuxcnc", "perpendicular"}
         Where the entry move ends: the programmed point moved perpendicular to the entry move
-        (LinuxCNC) or perpendicular to the first contour element (Heidenhain TNC).
+        (LinuxCNC) or perpendicular to the first contour element (Heidenhain TNC; Fanuc/Haas type A).
     closed : bool
         The run's last block is the exit move after G40 even when it has no motion in the plane (a
         ``G0 Z..`` retract): it runs from the tool position to its programmed point, as LinuxCNC

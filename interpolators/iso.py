@@ -1386,6 +1386,13 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
                   "refuses it: \"Bad character used\")")
 
 
+#: M100-M199 codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104
+#: "Set Hotend Temperature", M106 "Set Fan Speed", ...); a laser on such firmware is often driven as its fan.
+_PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures", 106: "M106 set fan speed",
+              107: "M107 fan off", 109: "M109 wait for hotend temperature", 114: "M114 get current position",
+              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
+
+
 def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
     """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
     Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
@@ -1407,6 +1414,9 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
             if dialect == "grbl" else
             f"machine-specific M code {w.text!r} (M100-M199 on a {dialect.capitalize()} control: a function of the "
             "machine tool builder, no motion known here)")
+    printer = _PRINTER_M.get(m)
+    if printer:
+        what += f" (Marlin's {printer}: a 3D printer's code, which laser conversions use for the laser)"
     where.fail(f"{what}: {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
                         "or of --user-m-path (the code then runs as a function that moves nothing)")
@@ -2002,13 +2012,21 @@ def _m98_words(words: list[Word], where: Where, *, st: _State, notes: _Notes) ->
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
 
 
+#: How each control refuses a feed move at F0 (the messages of :func:`_no_feed`'s sources).
+_ZERO_FEED = {"linuxcnc": "LinuxCNC: cannot do G1 with zero feed rate",
+              "grbl": "grbl error 22: feed rate has not yet been set or is undefined",
+              "fanuc": "Fanuc alarm PS0011: feed zero"}
+#: The same for a dialect without a documented message of its own (Haas, Fadal).
+_ZERO_FEED_ANY = "refused by LinuxCNC, grbl (error 22) and Fanuc (alarm PS0011) alike"
+
+
 def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
     zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
     why = "no F word before it"
     if st.feed_zero:
-        why = "F0, a zero feed rate (LinuxCNC: cannot do G1 with zero feed rate)"
+        why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
     elif st.per_rev:
         why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
                "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
@@ -2373,7 +2391,13 @@ def _rereads_position(words: list[Word], st: _State) -> bool:
 
 
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
-    """Replace the finished compensated run by the tool-centre path."""
+    """Replace the finished compensated run by the tool-centre path. Under ``--dialect fanuc`` and ``haas`` the
+    start-up is Fanuc's type A (the default, parameter 5003#0 SUP = 0; Fanuc 0i-MF operator's manual, cutter
+    compensation C, "Tool movement in start-up"): the start-up block ends at the offset vector perpendicular
+    to the next block at its start point, whatever its length; Haas's Setting 43 "Cutter Comp Type" offers
+    the same A (our reading: A, its default, as Fanuc's). LinuxCNC's entry ends perpendicular to the entry
+    move itself and must be longer than the radius, which CAM programs for wear-only offsets (a start-up of
+    0.005 mm and a D of a few hundredths) never are."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
     centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
@@ -2382,7 +2406,8 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
         return
     try:
         new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
-                         centers=centers, inch=st.inch, open_end=not closed)
+                         centers=centers, inch=st.inch, open_end=not closed,
+                         entry="perpendicular" if st.context.dialect.name in ("fanuc", "haas") else "linuxcnc")
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

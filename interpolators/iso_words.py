@@ -18,7 +18,7 @@ import dataclasses
 import re
 from collections.abc import Callable
 
-from interpolators._words import MAX_MAGNITUDE, Where, read_number, token_at
+from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
            "WORD_LETTERS"]
@@ -68,6 +68,21 @@ class Word:
     text: str
 
 
+def _slash_comment_line(line: str, where: Where, *, second: int | None = None) -> None:
+    """Refuse a line that opens with '//' (after its leading blanks; or, with ``second``, the line whose
+    block-delete '/' was taken and whose words start with another '/' there): a line comment in Syntec/DDCS
+    macro programs and the MillMaster Pro control's files ("//NC FILE - ..."), which no ISO control reads:
+    Fanuc, Haas, LinuxCNC and grbl take the first '/' as block delete (Fanuc '/1'-'/9' a skip level) and
+    then meet a second one. Named before anything else on such a line: its text is prose, whose '(' or ')'
+    would otherwise be reported as an unclosed comment (a MillMaster Pro file's "// Tool is a 3/4" (or
+    whatever ...")."""
+    i = len(line) - len(line.lstrip(" \t")) + 1 if second is None else second  # the second '/', as read_words meets it
+    if second is not None or line.startswith("//", i - 1):
+        where.fail("'//' comment line (Syntec/DDCS macro and MillMaster Pro style): not a comment in ISO "
+                   "G-code, where '/' at a line's start is block delete", column=i + 1,
+                   text=token_at(line, i), expected="a ( ) or ; comment")
+
+
 def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> tuple[list[tuple[int, int]], int]:
     """The ``( ... )`` comments of a line as ``(start, end)`` slices, the parentheses included (nested
     parentheses allowed), and where a ``;`` comment starts (``len(raw)`` without one). An unclosed
@@ -93,11 +108,13 @@ def comment_spans(raw: str, where: Where, *, unclosed_to_end: bool = False) -> t
                     spans.append((i, n))
                     return spans, n
                 if j == 0:
+                    _slash_comment_line(raw, where)
                     where.fail("unclosed comment", column=i + 1, text=raw[i:], expected="')' closing the comment")
             spans.append((i, j))
             i = j
             continue
         if ch == ")":
+            _slash_comment_line(raw, where)
             where.fail("')' without '('", column=i + 1, text=")", expected="a word")
         i += 1
     return spans, n
@@ -134,7 +151,7 @@ def _foreign_hint(tok: str) -> str:
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
         return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
-    return ""
+    return fence_hint(tok)
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:
@@ -176,12 +193,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder?)",
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if ch == "/" and not words:
-            # '//' opens a line comment in Syntec/DDCS macro programs and the MillMaster Pro control's files
-            # ("//NC FILE - ..."); no ISO control reads it: Fanuc, Haas, LinuxCNC and grbl take the first '/'
-            # as block delete (Fanuc '/1'-'/9' a skip level) and then meet a second one
-            where.fail("'//' comment line (Syntec/DDCS macro and MillMaster Pro style): not a comment in ISO "
-                       "G-code, where '/' at a line's start is block delete", column=i + 1,
-                       text=token_at(code, i), expected="a ( ) or ; comment")
+            _slash_comment_line(code, where, second=i)
         if up not in WORD_LETTERS and up not in (",R", ",C"):
             tok = token_at(code, i)
             if set(tok) == {"."}:

@@ -162,10 +162,11 @@ def test_rounding_under_g41_offsets_the_rounded_contour():
     text = ("G21 G90 G17 G54\nG0 X-10. Y-10. Z0\nG41 D1 G1 X0 Y0 F600.\nX50. ,R5.\nY40.\nX0\nG40 G1 X-10. Y-10.\n"
             "M30\n")
     r = rows(text)
-    # line 4 also starts with the compensation's own arc about the programmed corner (0, 0) (its outside
-    # corner from the entry move); the rounding is the counter-clockwise arc after it
-    assert [d["kind"] for d in r if d["line"] == 4] == ["arc_cw", "feed", "arc_ccw"]
-    arc = r[4]
+    # Fanuc's start-up (type A) ends the entry perpendicular to the next block at its start, (0, 2): no corner
+    # arc about (0, 0) as LinuxCNC's rule (perpendicular to the entry move) makes; the rounding follows
+    assert r[1]["end"][:2] == pytest.approx([0, 2], abs=1e-9)
+    assert [d["kind"] for d in r if d["line"] == 4] == ["feed", "arc_ccw"]
+    arc = r[3]
     assert arc["centre"][:2] == pytest.approx([45, 5], abs=1e-6)
     assert arc["end"][:2] == pytest.approx([48, 5], abs=1e-6)
     line_end = [d for d in r if d["line"] == 4 and d["kind"] == "feed"][-1]
