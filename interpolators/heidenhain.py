@@ -224,6 +224,7 @@ from interpolators.heidenhain_surfaces import (
     surface_cycle,
     surface_moves,
 )
+from interpolators.heidenhain_targets import plane_coords, program_target
 from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
@@ -248,7 +249,7 @@ from toolpaths.pockets import Region
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.text import BinaryDataError
 
-__all__ = ["parse_heidenhain", "looks_like_heidenhain"]
+__all__ = ["parse_heidenhain", "looks_like_heidenhain", "Machine"]
 
 #: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
@@ -295,7 +296,7 @@ def looks_like_heidenhain(text: str) -> bool:
     return False
 
 
-class _Machine:
+class Machine:
     """Run-time state of the control while the program runs."""
 
     def __init__(self, context: MachineContext, source: str | None) -> None:
@@ -521,7 +522,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     vcnc.GCodeError
         With file, line, column, the offending text and what was expected.
     """
-    m = _Machine(context, source)
+    m = Machine(context, source)
     m.plain = PlainBlocks(m) if shortcuts else None
     name = _Run(m, source_blocks(text), source, max_executed).run()
     _check_contour_closed(m)
@@ -532,7 +533,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 
-def _check_contour_closed(m: _Machine) -> None:
+def _check_contour_closed(m: Machine) -> None:
     """Nothing left waiting at the end: an FK element, RND/CHF, APPR LT, a radius-compensated run."""
     m.fk.unresolved()
     if m.pending is not None:
@@ -551,7 +552,7 @@ class _Run:
     """The program flow: block by block, with label jumps, section repeats and subprogram calls
     (:mod:`interpolators.heidenhain_labels`); each block's meaning is a function of this module."""
 
-    def __init__(self, m: _Machine, blocks: list[SourceBlock], source: str | None, max_executed: int, *,
+    def __init__(self, m: Machine, blocks: list[SourceBlock], source: str | None, max_executed: int, *,
                  callers: tuple[str, ...] = ()) -> None:
         self.m, self.blocks, self.source, self.max_executed = m, blocks, source, max_executed
         self.callers = callers  # files of the programs that called this one (CALL PGM), outermost first
@@ -748,14 +749,14 @@ class _Run:
 EMPTY_REP_NOTE = "CALL LBL n REP without a count read as CALL LBL n (the REP field left empty)"
 
 
-def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
+def _repeat_count(text: str, m: Machine, where: Where, column: int) -> int:
     """The count of ``REP k``: a number, or a Q parameter holding a whole number >= 0 (``REPQ13``)."""
     if text[0].isdigit():
         return int(text[:6])
     return min(_whole_number(text, m, where, column, what="REP"), 999_999)
 
 
-def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: str) -> int:
+def _whole_number(name: str, m: Machine, where: Where, column: int, *, what: str) -> int:
     """The value of the Q parameter ``name`` as a whole number >= 0 (a count, a tool number); an error
     naming ``what`` otherwise (how the TNC rounds a fraction there the manuals do not say)."""
     value = m.params.get(name)
@@ -813,7 +814,7 @@ _KNOWN_UNSUPPORTED = {
 }
 
 
-def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
+def _begin_pgm(blk: SourceBlock, k: re.Match, m: Machine, where: Where) -> str | None:
     """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
     before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
     it)."""
@@ -826,17 +827,17 @@ def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str 
     return " ".join(parts[:-1] if len(parts) > 1 else parts) or None
 
 
-def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     if kw == "CYCLE DEF":
         m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
     _cycle_def(blk, m, where)
 
 
-def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     m.pattern = pattern_positions(blk.code[pos:], where, m.params, column0=blk.column + pos)
 
 
-def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
@@ -855,7 +856,7 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: W
     return ended
 
 
-def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
@@ -864,13 +865,13 @@ def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     return _m_functions(words, m, where, blk, motion=False)
 
 
-def _ignore(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _ignore(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """BLK FORM: the workpiece blank for the control's graphics, no motion."""
 
 
 # --- tools -----------------------------------------------------------------------------------
 
-def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TOOL DEF n L.. R..``: the tool's data in the program; ``TOOL DEF n`` (or a quoted name)
     alone pre-selects the next tool for the tool changer (TNC 640 user's manual, "Tool
     pre-selection with TOOL DEF"): no data, no motion."""
@@ -903,7 +904,7 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
     m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
 
 
-def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int) -> list[Word]:
+def _read_words(code: str, pos: int, where: Where, m: Machine, *, column0: int) -> list[Word]:
     """The words of a block, ``F AUTO`` read as the feed of the last ``TOOL CALL .. F`` (TNC 640
     user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block") and ``FU``
     (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
@@ -934,7 +935,7 @@ def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int)
     return words
 
 
-def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TOOL CALL n|"name" [X|Y|Z] [S..] [F..] [DL..] [DR..]``: the tool (length and radius), the
     working plane, the spindle speed and the feed. ``F`` is the feed of the following moves until a
     block programs another (iTNC 530 / TNC 640 user's manuals, "Calling tool data": "Feed rate F ...
@@ -1008,7 +1009,7 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     _tool_parameters(m, where)
 
 
-def _tool_parameters(m: _Machine, where: Where) -> None:
+def _tool_parameters(m: Machine, where: Where) -> None:
     """The preassigned Q parameters of the called tool (TNC 640 user's manual, "Preassigned Q
     parameters"): Q108 the active tool radius (table or TOOL DEF, plus DR), Q109 the tool axis
     (0 X, 1 Y, 2 Z), Q113 the unit of the program (0 mm, 1 inch), Q114 the active tool length, in
@@ -1022,7 +1023,7 @@ def _tool_parameters(m: _Machine, where: Where) -> None:
 
 # --- cycles ----------------------------------------------------------------------------------
 
-def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
+def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
     cm = CYCLE_RE.match(blk.code)
     if cm is None:
         where.fail("malformed cycle definition", column=blk.column, text=blk.code, expected="CYCL DEF n[.m] ...")
@@ -1108,7 +1109,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     _value_line(number, sub, rest, m, where, blk, col)
 
 
-def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+def _value_line(number: int, sub: int, rest: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """Line ``number.sub`` of an old cycle whose lines each hold one value: 9.1 dwell (runs at once), 13.1
     orientation angle, 32.1 tolerance, and the items of 1 PECKING, 2 TAPPING, 17 RIGID TAPPING (the cycle is
     defined by its last line)."""
@@ -1138,7 +1139,7 @@ def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk
                                     column=blk.column, spindle=m.spindle)
 
 
-def _sl_cycle_def(number: int, sub: int | None, rest: str, m: _Machine, where: Where, col: int) -> None:
+def _sl_cycle_def(number: int, sub: int | None, rest: str, m: Machine, where: Where, col: int) -> None:
     """The SL cycles (:mod:`interpolators.heidenhain_contours`): 14 CONTOUR GEOMETRY and 20 CONTOUR DATA
     are DEF-active, 21-24 (pilot drilling, rough-out, floor and side finishing) and 25 CONTOUR TRAIN called."""
     if number == 14:
@@ -1166,7 +1167,7 @@ _SETTING_CYCLES = {
 }
 
 
-def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+def _preset_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
     """``CYCL DEF 247 DATUM SETTING Q339=n`` activates row n of the preset table (TNC 640 cycle
     manual, "DATUM SETTING (Cycle 247)"). The machine context's work offsets stand in for that
     table in the order of :data:`interpolators.context.WORK_OFFSETS`, as the CAM posts number them
@@ -1199,7 +1200,7 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
         m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
 
 
-def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TCH PROBE 4xx .. Qnnn=..``: run on the nominal workpiece (:mod:`interpolators.heidenhain_probing`): the
     probe's moves, the result parameters, the datum the cycle sets."""
     pm = PROBE_RE.match(blk.code)
@@ -1238,7 +1239,7 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
         m.note(note)
 
 
-def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: _Machine,
+def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: Machine,
                   number: int) -> None:
     """The datum a probe cycle sets: the program point ``origin_from`` [mm] gets the coordinates ``origin_to``
     (NaN: an axis not set). Q305=0: the active preset moves so (the display shows the new datum, iTNC 530 cycle
@@ -1271,7 +1272,7 @@ def _preset_row(n: int) -> str | None:
     return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
 
 
-def _datum_shift(values: dict[str, float], m: _Machine) -> None:
+def _datum_shift(values: dict[str, float], m: Machine) -> None:
     """Cycle 7 / TRANS DATUM: ``X`` shifts from the preset, ``IX`` from the last shift [program units]."""
     if m.tilt is not None:  # a shift in the tilted plane: the one in force after PLANE RESET (:func:`_untilt`)
         m.tilt = dataclasses.replace(m.tilt, shifted=True)
@@ -1280,7 +1281,7 @@ def _datum_shift(values: dict[str, float], m: _Machine) -> None:
         m.shift[i] = (m.shift[i] if key.startswith("I") else 0.0) + value * m.scale
 
 
-def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tilt(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``PLANE``: the tilted working plane on a machine with kinematics (:func:`_plane`), else no motion
     when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
     / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
@@ -1310,7 +1311,7 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
 _FEED_DWELL_RE = re.compile(r"\s*FEED\s+DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))\s*$", re.I)
 
 
-def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _feed_dwell(blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``FUNCTION FEED DWELL RESET`` (TNC 640 user's manual, "Cyclic
     dwell time"; :mod:`interpolators.heidenhain_feed_dwell`)."""
     fm = _FEED_DWELL_RE.match(blk.code, pos)
@@ -1330,12 +1331,12 @@ def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     m.note("FUNCTION FEED DWELL: a dwell after every F-TIME of feed motion (the cutting time at the programmed feed)")
 
 
-def _rotary_now(m: _Machine) -> Solution:
+def _rotary_now(m: Machine) -> Solution:
     """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]."""
     return m.context.kinematics.solution_at(m.extra)
 
 
-def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """``PLANE <form> .. MOVE|TURN|STAY``, ``PLANE RESET``: tilt the working plane on the machine's tilting
     table (:mod:`interpolators.tilted`, :func:`interpolators.heidenhain_transforms.read_plane`).
 
@@ -1373,7 +1374,7 @@ def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> 
         _position_rotary(pb, current, angles, m, where, blk)
 
 
-def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _retract(pb: PlaneBlock, m: Machine, where: Where, blk: SourceBlock) -> None:
     """PLANE .. MB: the retraction along the tool axis before the rotary axes turn (TNC 640 user's manual,
     PLANE positioning behaviour "MB": MB MAX to the machine's limit, here ``context.home``'s level)."""
     if pb.retract is None or pb.positioning not in ("MOVE", "TURN"):
@@ -1388,7 +1389,7 @@ def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> Non
         m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
-def _untilt(m: _Machine) -> None:
+def _untilt(m: Machine) -> None:
     """Cancel the tilted plane. The datum shift of before it is back (TNC cycle manual, cycle 19: reset the
     tilt, then the datum shift, the reverse of activating them), unless one was programmed in the plane: the
     TNC keeps one datum shift, and CAM posts (hyperMILL, PowerMILL) reset it with ``CYCL DEF 7.1 X0 ..`` just
@@ -1399,7 +1400,7 @@ def _untilt(m: _Machine) -> None:
     m.transform = dataclasses.replace(m.transform, tilt=0.0)
 
 
-def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, where: Where, col: int) -> None:
+def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: Machine, where: Where, col: int) -> None:
     """Make the plane ``rotation`` at the rotary positions ``angles`` [deg] the active one. The datum
     shift active before the first tilt moves the plane's zero (in the untilted coordinates); cycle 7 in
     the tilted plane shifts in it, from its zero (TNC cycle manual, cycle 19 WORKING PLANE, "Combining
@@ -1425,7 +1426,7 @@ def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, whe
         m.params.set(f"Q{120 + 'abc'.index(name)}", value, where)
 
 
-def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, where: Where,
+def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: Machine, where: Where,
                      blk: SourceBlock) -> None:
     """PLANE .. TURN: the rotary axes to ``new`` [deg], the linear axes stay; MOVE: with the linear axes,
     so that the point ``DIST`` above the tool tip keeps its place on the part (one block here)."""
@@ -1449,7 +1450,7 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, 
            extra=extra)
 
 
-def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _trans(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TRANS DATUM|MIRROR|ROTATION|SCALE``: the transformations of cycles 7, 8, 10, 11."""
     col = blk.column + pos
     t, shift = trans_block(blk.code[pos:], m.transform, where, m.params, column0=col, scale=m.scale)
@@ -1461,13 +1462,13 @@ def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> No
         _set_transform(t, "TRANS", m, where, col, blk.code[pos:])
 
 
-def _transform_cycle(number: int, rest: str, m: _Machine, where: Where, col: int) -> None:
+def _transform_cycle(number: int, rest: str, m: Machine, where: Where, col: int) -> None:
     """Item ``.1`` of cycles 8, 10, 11, 26 (:mod:`interpolators.heidenhain_transforms`)."""
     t = transform_item(number, rest, m.transform, where, m.params, column0=col, scale=m.scale)
     _set_transform(t, f"cycle {number}", m, where, col, rest)
 
 
-def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int, text: str) -> None:
+def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, text: str) -> None:
     if t.mirror[m.plane]:
         where.fail(f"MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=text.strip(),
                    expected="mirrored axes of the working plane (the TNC cannot mirror the tool axis)")
@@ -1477,7 +1478,7 @@ def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int,
     m.transform = t
 
 
-def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+def _tilt_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
     """``CYCL DEF 19.1 A.. B.. C.. [F..] [DIST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
     manual, "WORKING PLANE (Cycle 19, software option)"). Without angles, or with all 0, it cancels the
     tilt (no motion). Other angles need the machine's kinematics; they are spatial angles (as PLANE
@@ -1508,7 +1509,7 @@ def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
 
 
-def _positioning_feed(words: list[Word], m: _Machine, where: Where) -> float:
+def _positioning_feed(words: list[Word], m: Machine, where: Where) -> float:
     """The feed [mm/s] of ``CYCL CALL PAT F..`` between the pattern's points: F, or rapid for F MAX and
     without F (inf)."""
     for w in words:
@@ -1519,7 +1520,7 @@ def _positioning_feed(words: list[Word], m: _Machine, where: Where) -> float:
     return math.inf
 
 
-def _pattern_call(m: _Machine, where: Where, blk: SourceBlock, feed: float = math.inf) -> None:
+def _pattern_call(m: Machine, where: Where, blk: SourceBlock, feed: float = math.inf) -> None:
     """``CYCL CALL PAT [F..|F MAX]``: the cycle at every position of the last ``PATTERN DEF``, the tool
     positioned between them at the block's feed (F MAX or none: rapid). The TNC 640 user's manual (cycle
     programming, "Calling a cycle with CYCL CALL PAT") offers the feed in the block's dialog; no manual
@@ -1532,7 +1533,7 @@ def _pattern_call(m: _Machine, where: Where, blk: SourceBlock, feed: float = mat
     point = m.pos.copy()
     for pos in m.pattern:
         values = {k: v * m.scale for k, v in pos.items() if k[-1] in ("XYZ"[p], "XYZ"[q])}
-        point, _ = _program_target(m, values, point)
+        point, _ = program_target(m, values, point)
         axis = "XYZ"[m.plane]
         if "I" + axis in pos:
             where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
@@ -1547,7 +1548,7 @@ def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
                text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
 
 
-def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _position_call(words: list[Word], m: Machine, where: Where, blk: SourceBlock) -> None:
     """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
 
     TNC 640 user's manual (cycle programming, "Calling a cycle with CYCL CALL POS"): all three
@@ -1573,7 +1574,7 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     feed = seen["F"].value * m.feed_scale if "F" in seen else (math.inf if "FMAX" in seen else m.feed)
     if feed is None:
         where.fail("CYCL CALL POS without a feed", column=blk.column, text=blk.code, expected="F or F MAX")
-    target, _ = _plane_coords(seen, m, where, m9x=None)
+    target, _ = plane_coords(seen, m, where, m9x=None)
     axis, c = m.plane, _active_cycle(m)
     shift = target[axis] - m.origin()[axis] if m.transform.identity else m.to_program(target)[axis]
     d = -1.0 if c.depth < 0 else 1.0
@@ -1592,7 +1593,7 @@ def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBloc
     _cycle_call(m, where, blk, surface_shift=shift)
 
 
-def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
+def _cycle_call(m: Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
                 surface_shift: float = 0.0, feed: float = math.inf) -> None:
     """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
     reached at ``feed`` [mm/s] (inf: rapid) at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
@@ -1639,7 +1640,7 @@ def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray
     _hole(m, c, surface, where, blk)
 
 
-def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _no_contour_train(m: Machine, where: Where, blk: SourceBlock) -> None:
     """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
     multipass-milling cycle (230-232: placed by their own points; 233: the tool-axis coordinate of a position
     would shift Q227, which no manual found describes)."""
@@ -1654,7 +1655,7 @@ def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
                    text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
 
 
-def _trace_contour(m: _Machine, label: str, radius: float, start: np.ndarray, feed: float, where: Where,
+def _trace_contour(m: Machine, label: str, radius: float, start: np.ndarray, feed: float, where: Where,
                    blk: SourceBlock) -> tuple[list[Block], str]:
     """The blocks of the contour subprogram ``LBL label`` run from ``start`` [mm, machine] with the tool
     radius ``radius`` [mm] and the feed ``feed`` [mm/s] where it gives none (its RL/RR compensation
@@ -1694,7 +1695,7 @@ def _trace_contour(m: _Machine, label: str, radius: float, start: np.ndarray, fe
     return path, side
 
 
-def _sl_checks(m: _Machine, number: int, where: Where, blk: SourceBlock) -> str:
+def _sl_checks(m: Machine, number: int, where: Where, blk: SourceBlock) -> str:
     """The contour label of an SL cycle call, after the checks all of them share."""
     if not m.contour:
         where.fail(f"cycle {number} without a contour (CYCL DEF 14)", column=blk.column, text=blk.code,
@@ -1706,7 +1707,7 @@ def _sl_checks(m: _Machine, number: int, where: Where, blk: SourceBlock) -> str:
     return m.contour[0]
 
 
-def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
+def _rough_out(m: Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
     """Cycle 22 ROUGH-OUT of a pocket with no islands (TNC 426/430 user's manual, "ROUGH-OUT (Cycle 22)": "the
     tool mills the contour from the inside outward", at each plunging depth, leaving the allowances Q3 and
     Q4; then to the clearance height). The manual leaves the path to the control; our reading, kept inside
@@ -1756,7 +1757,7 @@ def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None
     _axis_move(m, "rapid", clear, math.inf, where, blk)
 
 
-def _rough_out_heights(m: _Machine, c: RoughOut, number: int, where: Where,
+def _rough_out_heights(m: Machine, c: RoughOut, number: int, where: Where,
                        blk: SourceBlock) -> tuple[float, float, float, float, float]:
     """The tool-axis frame of cycle ``number`` from cycle 20's data: the working direction (+-1, the sign of Q1),
     the depth less the floor allowance Q4 (> 0, else an error), the surface Q5, the clearance height Q7 and the
@@ -1770,7 +1771,7 @@ def _rough_out_heights(m: _Machine, c: RoughOut, number: int, where: Where,
     return d, bottom, surface, m.origin()[m.plane] + c.clearance, surface - d * c.setup
 
 
-def _pocket_rings_of(m: _Machine, c: RoughOut, radius: float, where: Where, blk: SourceBlock) -> list[list[Block]]:
+def _pocket_rings_of(m: Machine, c: RoughOut, radius: float, where: Where, blk: SourceBlock) -> list[list[Block]]:
     """The rings of cycle 22 in the one pocket of cycle 14 for a tool of ``radius`` [mm], the innermost first
     (:func:`interpolators.heidenhain_contours.pocket_rings`)."""
     label = m.contour[0]
@@ -1791,14 +1792,14 @@ def _pocket_rings_of(m: _Machine, c: RoughOut, radius: float, where: Where, blk:
     return rings
 
 
-def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Region:
+def _sl_region(m: Machine, feed: float, where: Where, blk: SourceBlock) -> Region:
     """The region of cycle 14's contours (:func:`interpolators.heidenhain_contours.superimposed_region`)."""
     contours = [_trace_contour(m, label, 0.0, m.pos, feed, where, blk) for label in m.contour]
     return superimposed_region([(path[1:], side) for path, side in contours], plane=m.plane, where=where,
                                column=blk.column)
 
 
-def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
+def _region_rings(m: Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
                   blk: SourceBlock, rounding: float = 0.0) -> list[tuple[np.ndarray, bool]]:
     """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named (``rounding``: cycle 20's
     Q8, 22's rings only)."""
@@ -1813,7 +1814,7 @@ def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: 
     return rings
 
 
-def _plane_point(m: _Machine, xy: np.ndarray, level: float) -> np.ndarray:
+def _plane_point(m: Machine, xy: np.ndarray, level: float) -> np.ndarray:
     """The machine point (plane coordinates ``xy``, tool axis at ``level``), the other axes where they are."""
     p, q = PLANE_AXES[m.plane]
     out = m.pos.copy()
@@ -1821,7 +1822,7 @@ def _plane_point(m: _Machine, xy: np.ndarray, level: float) -> np.ndarray:
     return out
 
 
-def _side_finish(m: _Machine, c: SideFinish, where: Where, blk: SourceBlock) -> None:
+def _side_finish(m: Machine, c: SideFinish, where: Where, blk: SourceBlock) -> None:
     """Cycle 24 SIDE FINISHING (:func:`interpolators.heidenhain_contours.side_finishing_cycle`) of every wall of
     the region of cycle 14 (pocket walls and islands): the manual has the tool approach each partial contour on a
     tangential arc and finish it at each infeed; our reading: each ring R + Q14 from the contours (the whole
@@ -1852,7 +1853,7 @@ def _side_finish(m: _Machine, c: SideFinish, where: Where, blk: SourceBlock) -> 
     _axis_move(m, "rapid", clear, math.inf, where, blk)
 
 
-def _pilot_drill(m: _Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> None:
+def _pilot_drill(m: Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> None:
     """Cycle 21 PILOT DRILLING (:func:`interpolators.heidenhain_contours.pilot_drilling_cycle`): a hole, pecked as
     cycle 1 PECKING does (Q10 infeeds at Q11, out to the set-up clearance Q6 between them), at each point where
     cycle 22 plunges with the rough-out tool Q13 (its radius from TOOL DEF or the tool table; the same rings as
@@ -1886,7 +1887,7 @@ def _pilot_drill(m: _Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> 
     _axis_move(m, "rapid", clear, math.inf, where, blk)
 
 
-def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
+def _rough_out_region(m: Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
     """Cycle 22 ROUGH-OUT of the superimposed contours of cycle 14 (pockets less islands,
     :func:`interpolators.heidenhain_contours.superimposed_region`; TNC 426/430 user's manual, "ROUGH-OUT (Cycle
     22)": the tool mills the contour from the inside outward, the islands cleared with an approach toward the
@@ -1935,7 +1936,7 @@ def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) 
     _axis_move(m, "rapid", clear, math.inf, where, blk)
 
 
-def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock) -> None:
+def _contour_train(m: Machine, c: ContourTrain, where: Where, blk: SourceBlock) -> None:
     """Cycle 25 CONTOUR TRAIN (:func:`interpolators.heidenhain_contours.contour_train_cycle`) along the first
     label of cycle 14. The manual gives the parameters, not the moves; our reading: at FMAX to the clearance
     height Q7, in the plane to the contour's compensated starting point (its first point moved the tool
@@ -1979,7 +1980,7 @@ def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock)
     m.last_rapid = True
 
 
-def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
+def _surface(m: Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
     """Cycle 230, 231, 232 or 233 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
     its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
     transformations."""
@@ -1994,7 +1995,7 @@ def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: Sou
     except ValueError as exc:
         where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
     for mv in moves:
-        target, _ = _program_target(m, {"XYZ"[i]: v for i, v in zip((p, q, axis), mv.point) if v is not None}, m.pos)
+        target, _ = program_target(m, {"XYZ"[i]: v for i, v in zip((p, q, axis), mv.point) if v is not None}, m.pos)
         if np.allclose(target, m.pos, rtol=0.0, atol=1e-12):
             continue
         kind = "rapid" if math.isinf(mv.feed) else "line"
@@ -2002,7 +2003,7 @@ def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: Sou
     m.used.update(range(3))
 
 
-def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _hole(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """The moves of cycle ``c`` at the current position in the plane (210, 212-215: about their centre Q216, Q217,
     reached at the clearance height first), ``surface`` [mm, machine]."""
     axis = m.plane
@@ -2037,7 +2038,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
         if mv.kind == "dwell":
             m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
         elif mv.kind == "plane":
-            target, _ = _program_target(m, {"I" + "XYZ"[p]: mv.offset[0], "I" + "XYZ"[q]: mv.offset[1]}, centre)
+            target, _ = program_target(m, {"I" + "XYZ"[p]: mv.offset[0], "I" + "XYZ"[q]: mv.offset[1]}, centre)
             target[axis] = m.pos[axis]
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
         else:
@@ -2045,7 +2046,7 @@ def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceB
     m.used.add(axis)
 
 
-def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _to_centre(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """Cycles 210, 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
     over the centre Q216, Q217 (TNC 370 user's manual p. 8-20, cycle 213: "The TNC moves the tool in the Z axis
     to the setup clearance, or - if this has been specified - to the 2nd setup clearance and subsequently to the
@@ -2053,12 +2054,12 @@ def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: So
     p, q = PLANE_AXES[m.plane]
     d = -1.0 if c.depth < 0 else 1.0
     _axis_move(m, "rapid", surface - d * max(c.setup, c.second_setup), math.inf, where, blk)
-    target, _ = _program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
+    target, _ = program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
     if not np.array_equal(target, m.pos):
         m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
-def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _bore_milling(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """Cycle 208 BORE MILLING at the current position (TNC 320 user's manual for cycle programming,
     "BORE MILLING (Cycle 208)", cycle run: to the set-up clearance at FMAX, to the circumference,
     a helix at the feed Q206 to the depth, a full circle there, back to the centre, out at FMAX to
@@ -2083,7 +2084,7 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
         _axis_move(m, "line", bottom, c.feed, where, blk)
     else:
         k = m.lengths(where)
-        start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
+        start, _ = program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
         m.emit("line", start, Line(m.pos, start), c.feed, where, blk.number)
         turns = abs(bottom - top) / c.helix_pitch
         sweep = m.transform.sweep(360.0 * turns * (1.0 if c.climb else -1.0), axis)
@@ -2099,7 +2100,7 @@ def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk:
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
 
 
-def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _thread_milling(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """The thread-milling cycles 262-267 at the current position (TNC 426/430 user's manual, "Cycles for
     drilling, tapping and thread milling"; TNC 320 user's manual 340 55x-03), in the manuals' order: FMAX to
     the set-up clearance; 264: drill the hole (as cycle 205); 263: the countersinking; the countersinking at
@@ -2156,7 +2157,7 @@ def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, bl
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
 
 
-def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
+def _thread_helix(m: Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
                   where: Where, blk: SourceBlock) -> None:
     """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
     ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
@@ -2165,14 +2166,14 @@ def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float
     ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
     out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
     if c.outside:
-        start, _ = _program_target(m, {ref: out / k}, centre)
+        start, _ = program_target(m, {ref: out / k}, centre)
         start[axis] = m.pos[axis]
         m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
     turn = -sense if c.outside else sense  # the half circles: against the helix outside
     for start_level, end_level in _thread_passes(c, surface):
         _axis_move(m, "line", start_level, c.approach_feed, where, blk)
         here = m.pos.copy()
-        on, _ = _program_target(m, {ref: r / k}, centre)
+        on, _ = program_target(m, {ref: r / k}, centre)
         on[axis] = start_level
         seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
         m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
@@ -2207,7 +2208,7 @@ def _thread_passes(c: DrillCycle, surface: float) -> list[tuple[float, float]]:
     return levels if upward else [(far, deep) for deep, far in reversed(levels)]
 
 
-def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
+def _plunge(m: Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
             blk: SourceBlock) -> None:
     """The roughing infeed of cycles 251-253 from over the ``centre`` down to ``level`` [mm] at the plunging
     feed Q206, by Q366 (TNC 640 user's manual for cycle programming, cycles 251-253, Q366 "Plunging
@@ -2236,7 +2237,7 @@ def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: 
     cos, sin = (math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))) if c.plunge_type == 2 else (1, 0)
 
     def at(u: float, z: float) -> np.ndarray:
-        pt, _ = _program_target(m, {"I" + "XYZ"[p]: u * cos / k, "I" + "XYZ"[q]: u * sin / k}, here)
+        pt, _ = program_target(m, {"I" + "XYZ"[p]: u * cos / k, "I" + "XYZ"[q]: u * sin / k}, here)
         pt[axis] = z
         return pt
 
@@ -2253,18 +2254,18 @@ def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: 
     m.emit("line", back, Line(m.pos, back), c.approach_feed, where, blk.number)
 
 
-def _slot_point(m: _Machine, c: DrillCycle, angle: float, radius: float) -> np.ndarray:
+def _slot_point(m: Machine, c: DrillCycle, angle: float, radius: float) -> np.ndarray:
     """Machine point at ``radius`` [mm] and ``angle`` [deg] about cycle 254's pitch-circle centre, at the tool's
     tool-axis position."""
     p, q = PLANE_AXES[m.plane]
     a = math.radians(angle)
-    pt, _ = _program_target(m, {"XYZ"[p]: c.slot[0] + radius * math.cos(a), "XYZ"[q]: c.slot[1] + radius * math.sin(a)},
+    pt, _ = program_target(m, {"XYZ"[p]: c.slot[0] + radius * math.cos(a), "XYZ"[q]: c.slot[1] + radius * math.sin(a)},
                             m.pos)
     pt[m.plane] = m.pos[m.plane]
     return pt
 
 
-def _slot_ring(m: _Machine, c: DrillCycle, h: float, sense: float, feed: float, where: Where,
+def _slot_ring(m: Machine, c: DrillCycle, h: float, sense: float, feed: float, where: Where,
                blk: SourceBlock) -> None:
     """Once round cycle 254's slot at ``h`` [mm] from its centre line (the tool centre's path), from the outer
     side of its first end: a line out along the radius there, then counter-clockwise (``sense`` > 0) the outer
@@ -2282,7 +2283,7 @@ def _slot_ring(m: _Machine, c: DrillCycle, h: float, sense: float, feed: float, 
         m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
 
 
-def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
+def _circle_out_and_back(m: Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
                          blk: SourceBlock) -> None:
     """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
     circle, a half circle back to the centre, turning by ``sense``, at ``feed`` [mm/s] (the countersinking of
@@ -2291,13 +2292,13 @@ def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: 
         return
     axis = m.plane
     here = _at_level(centre, axis, m.pos[axis])
-    on, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: radius / m.lengths(where)}, here)
+    on, _ = program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: radius / m.lengths(where)}, here)
     for pole, sweep, end in (((here + on) / 2.0, 180.0, on), (here, 360.0, on), ((on + here) / 2.0, 180.0, here)):
         seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=m.pos[axis])
         m.emit("arc", np.array(end), seg, feed, where, blk.number)
 
 
-def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _circular_pocket(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """Cycle 252 CIRCULAR POCKET about the current position (TNC 640 user's manual for cycle programming,
     "CIRCULAR POCKET (Cycle 252)", cycle run: FMAX to the set-up clearance, plunge in the centre to each
     plunging depth, rough out from the inside, leaving the allowances Q368/Q369, then up by the set-up
@@ -2358,7 +2359,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
                 m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
                 continue
             k = m.lengths(where)
-            start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
+            start, _ = program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
             here = m.pos.copy()
             for pole, sweep in (((here + start) / 2.0, 180.0), (here, 360.0), (None, 180.0)):
                 pole = (m.pos + here) / 2.0 if pole is None else pole
@@ -2374,7 +2375,7 @@ def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, b
         _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
 
 
-def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
+def _rect_rings(m: Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
                 where: Where, blk: SourceBlock) -> None:
     """Cycle 251's roughing (or floor finishing) at the tool's level: rounded rectangles about ``centre``, the
     outer one the pocket less ``allowance`` and the tool radius, the inner ones offset inward by equal steps of
@@ -2391,7 +2392,7 @@ def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float
         _rect_path(m, c, centre, (half[0] - off, half[1] - off), max(corner - off, 0.0), feed, where, blk)
 
 
-def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, where: Where, blk: SourceBlock) -> None:
+def _rect_wall(m: Machine, c: DrillCycle, centre: np.ndarray, sense: float, where: Where, blk: SourceBlock) -> None:
     """Cycle 251's wall finishing at the tool's level: out from the centre, round the pocket less the tool
     radius, back to the centre."""
     half = (c.sides[0] / 2.0 - m.tool_radius, c.sides[1] / 2.0 - m.tool_radius)
@@ -2401,7 +2402,7 @@ def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, whe
     m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
 
 
-def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
+def _rect_path(m: Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
                feed: float, where: Where, blk: SourceBlock, *, ccw: bool | None = None) -> None:
     """From the tool's position a line to the middle of the rectangle's side on the reference axis, then
     once round the rectangle of half sides ``half`` [mm] with corners rounded by ``corner`` [mm] about
@@ -2419,7 +2420,7 @@ def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float
 
     def at(u: float, v: float) -> np.ndarray:
         v *= s
-        pt, _ = _program_target(m, {"I" + "XYZ"[p]: (u * cos - v * sin) / k, "I" + "XYZ"[q]: (u * sin + v * cos) / k},
+        pt, _ = program_target(m, {"I" + "XYZ"[p]: (u * cos - v * sin) / k, "I" + "XYZ"[q]: (u * sin + v * cos) / k},
                                 level)
         return pt
 
@@ -2439,7 +2440,7 @@ def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float
     line(a, 0.0)
 
 
-def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+def _rectangular_stud(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
     """Cycle 256 RECTANGULAR STUD about the current position (TNC 640 user's manual for cycle programming
     34059x-01, "RECTANGULAR STUD (Cycle 256)", cycle run: from the stud's centre along +X to the starting
     position 2 mm right of the blank Q424; FMAX to the set-up clearance, at Q206 to the plunging depth; a
@@ -2470,7 +2471,7 @@ def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, 
     plane = PLANE_AXES[axis]
 
     def at(u: float) -> np.ndarray:
-        pt, _ = _program_target(m, {"I" + "XYZ"[plane[0]]: u * cos / k, "I" + "XYZ"[plane[1]]: u * sin / k}, centre)
+        pt, _ = program_target(m, {"I" + "XYZ"[plane[0]]: u * cos / k, "I" + "XYZ"[plane[1]]: u * sin / k}, centre)
         pt[axis] = m.pos[axis]
         return pt
 
@@ -2520,7 +2521,7 @@ def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]
     return [surface + d * min(step * (i + 1), abs(bottom - surface)) for i in range(n)]
 
 
-def _pocket_rings(m: _Machine, centre: np.ndarray, radius: float, step: float, sense: float, feed: float,
+def _pocket_rings(m: Machine, centre: np.ndarray, radius: float, step: float, sense: float, feed: float,
                   where: Where, blk: SourceBlock) -> None:
     """Full circles about ``centre`` (at the tool's level), ``step`` apart out to ``radius`` [mm], each reached
     by a straight step outward along the program's reference axis at ``feed`` [mm/s]."""
@@ -2531,13 +2532,13 @@ def _pocket_rings(m: _Machine, centre: np.ndarray, radius: float, step: float, s
     r = 0.0
     while r < radius - 1e-9:
         r = min(r + step, radius)
-        out, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: r / k}, pole)
+        out, _ = program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: r / k}, pole)
         m.emit("line", out, Line(m.pos, out), feed, where, blk.number)
         seg = helical_arc(m.pos, pole, math.copysign(360.0, sense), plane=axis, axis_end=m.pos[axis])
         m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
 
 
-def _back_to_centre(m: _Machine, centre: np.ndarray, level: float, where: Where, blk: SourceBlock) -> None:
+def _back_to_centre(m: Machine, centre: np.ndarray, level: float, where: Where, blk: SourceBlock) -> None:
     """At FMAX up to ``level`` [mm], then over the pocket's ``centre``."""
     _axis_move(m, "rapid", level, math.inf, where, blk)
     target = centre.copy()
@@ -2546,7 +2547,7 @@ def _back_to_centre(m: _Machine, centre: np.ndarray, level: float, where: Where,
         m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
-def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBlock) -> None:
     """Cycle 220/221 runs the last machining cycle at each of its positions (TNC 320 cycle manual,
     cycle 220 "Cycle run": at rapid to the 2nd set-up clearance, to the first position in the
     plane, the machining cycle from the set-up clearance; to the next positions at the set-up
@@ -2568,7 +2569,7 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
     surface = _surface_level(m, scaled.surface, 0.0)
     _axis_move(m, "rapid", surface - d * max(scaled.setup, scaled.second_setup), math.inf, where, blk)
     for k, (u, v) in enumerate(pat.points):
-        target, _ = _program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
+        target, _ = program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
         target[axis] = m.pos[axis]
         if not np.array_equal(target, m.pos):
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
@@ -2576,7 +2577,7 @@ def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: Source
         _hole(m, scaled if pat.high or last else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
 
 
-def _active_cycle(m: _Machine) -> DrillCycle:
+def _active_cycle(m: Machine) -> DrillCycle:
     """The defined machining cycle with its tool-axis lengths scaled by cycles 11/26 ("the scaling
     factor also affects the dimensions in cycles")."""
     if m.transform.identity:
@@ -2584,7 +2585,7 @@ def _active_cycle(m: _Machine) -> DrillCycle:
     return scaled_cycle(m.cycle, m.transform.axis_factor(m.plane))
 
 
-def _surface_level(m: _Machine, surface: float, shift: float) -> float:
+def _surface_level(m: Machine, surface: float, shift: float) -> float:
     """Machine tool-axis coordinate [mm] of a cycle's surface (Q203) [mm] plus an extra ``shift``
     (a pattern position's or CYCL CALL POS's tool-axis coordinate) [mm]."""
     if m.transform.identity:
@@ -2592,7 +2593,7 @@ def _surface_level(m: _Machine, surface: float, shift: float) -> float:
     return m.axis_level(surface + shift)
 
 
-def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, blk: SourceBlock) -> None:
+def _axis_move(m: Machine, kind: str, level: float, feed: float, where: Where, blk: SourceBlock) -> None:
     if level != m.pos[m.plane]:
         target = m.pos.copy()
         target[m.plane] = level
@@ -2601,7 +2602,7 @@ def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, 
 
 # --- splines ---------------------------------------------------------------------------------
 
-def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _spline_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``SPL X.. Y.. Z.. K3X.. K2X.. K1X.. .. [F..] [M..]`` (:mod:`interpolators.heidenhain_splines`): the curve as
     chords joined without stops, the last one ending as the path mode says; True at M2/M30."""
     spl = read_spline(blk.code, pos, where, m.params, column0=blk.column)
@@ -2638,7 +2639,7 @@ def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
 
 # --- M functions -----------------------------------------------------------------------------
 
-def _without_m128_feed(words: list[Word], m: _Machine) -> list[Word]:
+def _without_m128_feed(words: list[Word], m: Machine) -> list[Word]:
     """``words`` without the F word right after M128, which is not the path feed but "another feed rate, at which
     the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's manual for DIN/ISO
     programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125 M128 F1000``). vcnc's
@@ -2652,7 +2653,7 @@ def _without_m128_feed(words: list[Word], m: _Machine) -> list[Word]:
     return out
 
 
-def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
+def _m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
     """Check the M words of a block without motion words; True when the program ends here."""
     words = _without_m128_feed(words, m)
     ended = False
@@ -2677,7 +2678,7 @@ def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock,
     return ended
 
 
-def _one_m(w: Word, m: _Machine, where: Where) -> bool:
+def _one_m(w: Word, m: Machine, where: Where) -> bool:
     if w.value in _M_PATH:
         _path_m(w, m, where)
         return False
@@ -2704,7 +2705,7 @@ def _one_m(w: Word, m: _Machine, where: Where) -> bool:
 _M_PATH = (94, 103, 112, 113, 118, 120, 124, 136, 137, 138)
 
 
-def _path_m(w: Word, m: _Machine, where: Where) -> None:
+def _path_m(w: Word, m: Machine, where: Where) -> None:
     """M functions with parameters (:data:`interpolators.heidenhain_words.M_ARGUMENTS`) and the feed per
     revolution.
 
@@ -2712,7 +2713,7 @@ def _path_m(w: Word, m: _Machine, where: Where) -> None:
       than 360 deg: M94"; TNC 640 the same): at the start of the block the current angle of the axis (of
       every rotary axis without a letter) is reduced below 360 deg, then the block moves to its programmed
       value (538 deg, then ``C+180``: a traverse of +2 deg). The axis does not move: vcnc keeps the
-      machine angle and counts later absolute angles from the reduced value (:attr:`_Machine.rotary_shift`).
+      machine angle and counts later absolute angles from the reduced value (:attr:`Machine.rotary_shift`).
     * ``M112 T.. A..`` / ``M113`` (TNC 410/426/430 user's manual, "Insert rounding arc between straight
       lines: M112": "for reasons of compatibility ... HEIDENHAIN recommends the use of the TOLERANCE
       cycle"; TNC 407: ``E``, ``H``): the contour transitions within the tolerance T, read as cycle 32
@@ -2769,7 +2770,7 @@ def _path_m(w: Word, m: _Machine, where: Where) -> None:
 
 # --- contour ---------------------------------------------------------------------------------
 
-def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _corner_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     code = blk.code
     rm = re.compile(r"\s*R(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, pos) if kw == "RND" else None
     j = rm.end() if rm else pos
@@ -2793,41 +2794,7 @@ def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) 
     m.pending = (kw, value * m.scale * m.lengths(where), feed, where)
 
 
-def _plane_coords(seen: dict[str, Word], m: _Machine, where: Where, *, m9x: int | None) -> tuple[np.ndarray, set]:
-    """Machine end point [mm] of the axis words of a block, and the axes written (M91: machine
-    coordinates, M92: from ``context.home``; neither transformed)."""
-    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
-    if m9x is None:
-        return _program_target(m, values, m.pos)
-    origin = np.zeros(3) if m9x == 91 else np.array(m.context.home, dtype=float)
-    return _absolute_target(values, m.pos, origin)
-
-
-def _absolute_target(values: dict[str, float], base: np.ndarray, origin: np.ndarray) -> tuple[np.ndarray, set]:
-    """``base`` with the axes of ``values`` [mm] set: absolute from ``origin``, ``I`` from ``base``."""
-    target = np.array(base, dtype=float)
-    written = set()
-    for i, a in enumerate("XYZ"):
-        if a in values:
-            target[i] = origin[i] + values[a]
-            written.add(i)
-        elif "I" + a in values:
-            target[i] = base[i] + values["I" + a]
-            written.add(i)
-    return target, written
-
-
-def _program_target(m: _Machine, values: dict[str, float], base: np.ndarray) -> tuple[np.ndarray, set]:
-    """Machine point [mm] of program axis values [mm] (``"X"`` absolute, ``"IX"`` incremental) from the
-    machine point ``base``, through the active transformations; an axis not written keeps its program
-    coordinate (with none active: its machine coordinate, exactly)."""
-    if m.transform.identity:
-        return _absolute_target(values, base, m.origin())
-    prog, written = _absolute_target(values, m.to_program(base), np.zeros(3))
-    return m.to_machine(prog), written
-
-
-def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where,
+def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine, where: Where,
                   blk: SourceBlock) -> np.ndarray:
     """The machine end point of an ``LP`` or ``CTP`` block: ``PR``/``IPR`` and ``PA``/``IPA`` about the pole in
     its plane (:func:`_polar_plane`; a word not written keeps the current radius or angle), the tool axis of
@@ -2848,7 +2815,7 @@ def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machin
     return polar_point(m.pole, pr, pa, plane=plane, base=target)
 
 
-def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
+def _motion(kw: str, words: list[Word], m: Machine, where: Where, blk: SourceBlock) -> bool:
     """Run a motion block (L, LP, C, CR, CT, CTP, CP, CC); True when it ends the program."""
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
@@ -2872,7 +2839,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
         if 140 not in mvals:
             w = seen.get("MBMAX") or seen["MB"]
             where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
-    target, written = _plane_coords(seen, m, where, m9x=m9x)
+    target, written = plane_coords(seen, m, where, m9x=m9x)
     if normal:
         target = target + _normal_offset(seen, m, where, blk)
     m.used.update(written)
@@ -2921,7 +2888,7 @@ def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBl
     return ended
 
 
-def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, where: Where, blk: SourceBlock, *,
+def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, where: Where, blk: SourceBlock, *,
                       positioned: bool) -> None:
     """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle, and so
     does every positioning block (an L or LP with coordinates) from ``M89`` on, until ``M99`` or
@@ -2973,7 +2940,7 @@ _ALLOWED_WORDS = {
 }
 
 
-def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
+def _motion_words(kw: str, words: list[Word], m: Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
     words = _without_m128_feed(words, m)
     seen: dict[str, Word] = {}
@@ -3005,7 +2972,7 @@ def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tupl
     return seen, ms
 
 
-def _normal_offset(seen: dict[str, Word], m: _Machine, where: Where, blk: SourceBlock) -> np.ndarray:
+def _normal_offset(seen: dict[str, Word], m: Machine, where: Where, blk: SourceBlock) -> np.ndarray:
     """``LN X.. Y.. Z.. NX.. NY.. NZ.. [TX.. TY.. TZ..]``, a straight line with 3-D tool compensation: X, Y,
     Z are the end point the CAM system computed for the tool as defined, and "the TNC displaces the tool in
     the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
@@ -3025,7 +2992,7 @@ def _normal_offset(seen: dict[str, Word], m: _Machine, where: Where, blk: Source
     return m.tool_delta * normal / np.linalg.norm(normal)
 
 
-def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray | None:
+def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray | None:
     """End positions ``(a, b, c, u, v, w)`` [deg, mm] of an L block's words of the axes beyond X, Y, Z,
     or None when it has none. ``A+90`` is the position, ``IA+90`` an increment (TNC 640 user's manual,
     "Straight line L": the block may contain "up to 5 axes" including rotary axes); A, B, C in degrees,
@@ -3058,7 +3025,7 @@ def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray 
     return target
 
 
-def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: _Machine,
+def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: Machine,
                  where: Where) -> np.ndarray:
     """The machine end point [mm] of a line under M128 (:mod:`interpolators.heidenhain_tcpm`): the program
     point on the part with every rotary axis at 0, carried where the table holds it. ``other``: the block is
@@ -3071,11 +3038,11 @@ def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other
                    column=1, text=where.text, expected=TCPM_EXPECTED)
     kin = m.context.kinematics
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
-    part, _ = _program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
+    part, _ = program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
     return machine_point(kin, m.extra, part, m.tool_length)
 
 
-def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:
+def _pole(seen: dict[str, Word], m: Machine, where: Where, m9x: int | None) -> None:
     """``CC``: the circle centre and pole. Its plane is the working plane, or, when CC names the
     tool axis and one axis of the working plane (``CC X+37.6 Z+3.3`` with tool axis Z), the plane
     of those two axes (ZX, YZ, XY with the reference axes Z, Y, X and DR+ turning from the first to
@@ -3087,7 +3054,7 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     of CC's axes ends where the next line starts, tangentially, so that is how the controls it posts
     for run it. Radius compensation and the coordinate transformations act in the working plane only,
     so such an arc under RL/RR or a transformation is an error."""
-    target, written = _plane_coords(seen, m, where, m9x=m9x)
+    target, written = plane_coords(seen, m, where, m9x=m9x)
     p, q = PLANE_AXES[m.plane]
     plane = m.plane
     off = [i for i in written if i not in (p, q)]
@@ -3103,7 +3070,7 @@ def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> 
     m.used.update(written)
 
 
-def _polar_plane(kw: str, m: _Machine, where: Where, blk: SourceBlock) -> int:
+def _polar_plane(kw: str, m: Machine, where: Where, blk: SourceBlock) -> int:
     """The plane of an ``LP`` (or ``CTP``) block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
     axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
     demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
@@ -3118,14 +3085,14 @@ def _polar_plane(kw: str, m: _Machine, where: Where, blk: SourceBlock) -> int:
     return plane
 
 
-def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:
+def _pole_in_working_plane(m: Machine, where: Where, what: str) -> None:
     """Polar coordinates (LP, APPR P..) are in the working plane: an error after a CC in another plane."""
     if m.pole_plane is not None and m.pole_plane != m.plane:
         where.fail(f"{what} about a pole outside the working plane", column=1, text=where.text,
                    expected="a CC in the working plane before polar coordinates")
 
 
-def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
+def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine, where: Where, blk: SourceBlock) -> Arc:
     """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
     the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
     CP run in the plane of the pole (:func:`_pole`)."""
@@ -3186,7 +3153,7 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where:
         where.fail(exc.message, column=col, text=tok, expected=exc.expected)
 
 
-def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc:
+def _resolve_corner(m: Machine, second: Line | Arc, where: Where) -> Line | Arc:
     """Trim the previous element and insert the RND arc / CHF line before ``second`` (the next
     element, starting at the corner); returns ``second`` trimmed to start where the corner ends."""
     kind, value, feed, pw = m.pending
@@ -3215,7 +3182,7 @@ def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc
     return second
 
 
-def _inside_rounding(m: _Machine, corner: Arc) -> bool:
+def _inside_rounding(m: Machine, corner: Arc) -> bool:
     """An RND arc under RL/RR that turns toward the tool's side (an inside corner) with a radius not above the tool
     radius: the tool centre's arc would have no radius left. The TNC cuts inside corners where the tool centre
     paths meet (iTNC 530 user's manual, 5.3 "Radius compensation: Machining corners", "Inside corners"), so the
@@ -3232,7 +3199,7 @@ def _inside_rounding(m: _Machine, corner: Arc) -> bool:
 
 # --- FK free contour programming ------------------------------------------------------------------
 
-def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _free_contour(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT`` (:mod:`interpolators.heidenhain_fk`): the
     elements resolved run as ``L`` and ``CC`` + ``C`` blocks in program coordinates of the working plane."""
     axes = "".join("XYZ"[i] for i in PLANE_AXES[m.plane])  # the working plane's first and second axis
@@ -3267,7 +3234,7 @@ def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where
     return ended
 
 
-def _fk_tangent(m: _Machine) -> np.ndarray | None:
+def _fk_tangent(m: Machine) -> np.ndarray | None:
     """Unit direction [program XY] at the end of the preceding element (FLT, FCT, IAN); None without one."""
     if not m.blocks or m.blocks[-1].segment is None:
         return None
@@ -3283,7 +3250,7 @@ def _fk_tangent(m: _Machine) -> np.ndarray | None:
 
 # --- approach and departure ----------------------------------------------------------------------
 
-def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``APPR LT|LN|CT`` / ``DEP LT|LN|CT`` (TNC 640 user's manual 1/2015, "Approaching and departing
     a contour", p. 213; TNC7 manual "APPR LT", "APPR LN", "APPR CT"): the approach through the
     auxiliary point PH (LT: ``LEN`` before the first contour point PA along the first element; LN:
@@ -3352,7 +3319,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
         m.feed = seen["F"].value * m.feed_scale
     if m.feed is None:
         where.fail(f"{what} without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
-    target, written = _plane_coords(seen, m, where, m9x=None)
+    target, written = plane_coords(seen, m, where, m9x=None)
     if polar:
         target = polar_point(m.pole, seen["PR"].value * k, m.transform.angle(seen["PA"].value, m.plane),
                              plane=m.plane, base=target)
@@ -3375,7 +3342,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Wh
     return ended
 
 
-def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine, where: Where,
+def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: Machine, where: Where,
             blk: SourceBlock) -> None:
     """The departure move of DEP LT/LN/CT from the end of the last contour element."""
     if not m.blocks or m.blocks[-1].segment is None:
@@ -3396,7 +3363,7 @@ def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine,
         m.emit("line" if isinstance(seg, Line) else "arc", np.array(seg.end), seg, m.feed, where, blk.number)
 
 
-def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
+def _resolve_approach(m: Machine, direction: np.ndarray, where: Where) -> None:
     """Emit PS -> PH -> (depth) -> PA of a pending APPR, PH from the first element's ``direction`` at PA."""
     a = m.approach
     m.approach = None
@@ -3444,7 +3411,7 @@ def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
 
 # --- radius compensation -------------------------------------------------------------------------
 
-def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
+def _set_compensation(word: Word, m: Machine, where: Where) -> bool:
     """Switch RL/RR/R0 at a motion block; True when this block is the exit move of a run.
 
     The block with RL/RR is the entry move of a compensated run and the first block with R0 its
@@ -3467,7 +3434,7 @@ def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
     return False
 
 
-def _finish_compensation(m: _Machine, *, open_end: bool = False, closed: bool = False) -> None:
+def _finish_compensation(m: Machine, *, open_end: bool = False, closed: bool = False) -> None:
     """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
     block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move.
     ``closed``: the run's last block is the R0 block, which positions the tool at its programmed point
