@@ -143,8 +143,8 @@ import numpy as np
 
 from interpolators._words import INCH, Where, program_text
 from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
-from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.heidenhain_compensation import finish_compensation, set_compensation
 from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
     ROUGHING_CYCLES,
@@ -545,7 +545,7 @@ def _check_contour_closed(m: Machine) -> None:
         pw.fail(f"APPR {form} without a following contour element", column=1, text=pw.text,
                 expected=f"an L or arc block after APPR {form}")
     if m.comp != "R0":
-        _finish_compensation(m)
+        finish_compensation(m)
 
 
 class _Run:
@@ -1680,7 +1680,7 @@ def _trace_contour(m: Machine, label: str, radius: float, start: np.ndarray, fee
                    column=blk.column, text=blk.code, expected="a contour element after RND, CHF and APPR")
     side = m.comp_side if m.comp != "R0" else "R0"
     if m.comp != "R0":
-        _finish_compensation(m, open_end=True)
+        finish_compensation(m, open_end=True)
     path = m.blocks[first:]
     del m.blocks[first:]
     m.pos, m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid = saved
@@ -2825,7 +2825,7 @@ def _motion(kw: str, words: list[Word], m: Machine, where: Where, blk: SourceBlo
         _pole(seen, m, where, m9x)
         return ended
     normal, kw = kw == "LN", "L" if kw == "LN" else kw  # LN: a line to a point displaced along the normal
-    exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
+    exit_run = "RCOMP" in seen and set_compensation(seen["RCOMP"], m, where)
     rapid = "FMAX" in seen
     if "F" in seen:
         w = seen["F"]
@@ -2883,7 +2883,7 @@ def _motion(kw: str, words: list[Word], m: Machine, where: Where, blk: SourceBlo
             _resolve_approach(m, np.array([t[p], t[q]]), where)
         m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
     if exit_run:  # the R0 block ends the run at its programmed point, also with only the tool axis in it
-        _finish_compensation(m, closed=True)
+        finish_compensation(m, closed=True)
     _retract_and_call(seen, mvals, m, where, blk, positioned=kw in ("L", "LP") and bool(written))
     return ended
 
@@ -3302,7 +3302,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Whe
     exit_run = False
     for comp in ("R0", "RL", "RR"):
         if comp in seen:
-            exit_run = _set_compensation(seen[comp], m, where)
+            exit_run = set_compensation(seen[comp], m, where)
     if kw == "DEP" and was != "R0" and not any(c in seen for c in ("R0", "RL", "RR")):
         # TNC 410 user's manual, "Contour approach and departure": "The TNC automatically cancels the
         # radius compensation in a DEP block" (RL/RR written again keep it)
@@ -3334,7 +3334,7 @@ def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Whe
         sizes["length"] += m.comp_radius
     _depart(form, sizes, target, m, where, blk)
     if exit_run:  # DEP CT under RL/RR: the arc is a compensated element, the run has no exit line
-        _finish_compensation(m, open_end=form == "CT")
+        finish_compensation(m, open_end=form == "CT")
     if target[m.plane] != m.pos[m.plane]:
         up = m.pos.copy()
         up[m.plane] = target[m.plane]
@@ -3407,60 +3407,6 @@ def _resolve_approach(m: Machine, direction: np.ndarray, where: Where) -> None:
         m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])
     else:
         m.emit("arc", pa, Arc(m.pos, pa, arc.center, ccw=arc.ccw, plane=m.plane), m.feed, pw, a["number"])
-
-
-# --- radius compensation -------------------------------------------------------------------------
-
-def _set_compensation(word: Word, m: Machine, where: Where) -> bool:
-    """Switch RL/RR/R0 at a motion block; True when this block is the exit move of a run.
-
-    The block with RL/RR is the entry move of a compensated run and the first block with R0 its
-    exit move (TNC 640 user's manual, "Tool radius compensation": RL/RR take effect in the
-    block that programs them; R0 cancels it), as in :func:`interpolators.compensation.compensate`.
-    """
-    comp = word.key
-    if comp == m.comp:
-        return False
-    if comp != "R0" and m.comp != "R0":
-        where.fail(f"{comp} while {m.comp} is active", column=word.column, text=word.text,
-                   expected="R0 between RL and RR")
-    m.comp = comp
-    if comp == "R0":
-        return True
-    m.comp_start = len(m.blocks)
-    # a mirrored contour has its left side on the right (TNC: "the machining direction is reversed")
-    m.comp_side = {"RL": "RR", "RR": "RL"}[comp] if m.transform.flips(m.plane) else comp
-    m.comp_radius = m.tool_radius
-    return False
-
-
-def _finish_compensation(m: Machine, *, open_end: bool = False, closed: bool = False) -> None:
-    """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
-    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move.
-    ``closed``: the run's last block is the R0 block, which positions the tool at its programmed point
-    even when it names only the tool axis (iTNC 530 / TNC 620 ISO user's manuals, "Tool radius
-    compensation": "In the first block in which radius compensation is ... canceled with G40 the TNC
-    always positions the tool perpendicular to the programmed starting or end position"; R0: "The tool
-    center moves ... to the programmed coordinates"), as :func:`compensate`'s ``closed``."""
-    start, m.comp_start = m.comp_start, None
-    side = "left" if m.comp_side == "RL" else "right"
-    m.comp = "R0"
-    look_ahead, m.look_ahead = m.look_ahead, False  # R0 ends M120
-    run = m.blocks[start:]
-    if m.comp_radius == 0.0 or not run:
-        return
-    try:
-        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
-                         open_end=open_end, closed=closed)
-    except CompensationError as exc:
-        b = run[min(exc.index, len(run) - 1)]
-        ahead = " (M120 LA would leave the undercut out: not modelled)" if look_ahead else ""
-        Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}{ahead}", column=1,
-                                              text=b.text,
-                                              expected="a contour the tool of radius "
-                                                       f"{m.comp_radius:g} mm can follow")
-    m.blocks[start:] = new
-    m.pos = np.array(new[-1].target, dtype=float)
 
 
 #: What each keyword block does (the flow keywords and motions are handled by :class:`_Run`);
