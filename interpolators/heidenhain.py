@@ -148,9 +148,7 @@ from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
     ROUGHING_CYCLES,
     ContourTrain,
-    PilotDrill,
     RoughOut,
-    SideFinish,
     contour_data,
     contour_labels,
     contour_train_cycle,
@@ -159,14 +157,8 @@ from interpolators.heidenhain_contours import (
     rough_out_cycle,
     side_finishing_cycle,
 )
-from interpolators.heidenhain_cycle_moves import (
-    active_cycle,
-    axis_move,
-    pattern_cycle_run,
-    run_hole,
-    run_surface,
-    surface_level,
-)
+from interpolators.heidenhain_cycle_calls import cycle_call, pattern_call, position_call, positioning_feed
+from interpolators.heidenhain_cycle_moves import pattern_cycle_run
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
     LEGACY_CYCLES,
@@ -207,10 +199,9 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_probing import PROBE_CYCLES, PROBE_RE, probe_run, refuse_probe
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
-from interpolators.heidenhain_sl import contour_train, pilot_drill, rough_out, side_finish
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
-from interpolators.heidenhain_surfaces import SURFACE_CYCLES, RuledSurface, SurfaceCycle, surface_cycle
+from interpolators.heidenhain_surfaces import SURFACE_CYCLES, surface_cycle
 from interpolators.heidenhain_targets import plane_coords, program_target
 from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
 from interpolators.heidenhain_transforms import (
@@ -839,11 +830,11 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Wh
     ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
-        _position_call([w for w in words if w.key in moves], m, where, blk)
+        position_call([w for w in words if w.key in moves], m, where, blk)
     elif kind == "PAT":
-        _pattern_call(m, where, blk, _positioning_feed(words, m, where))
+        pattern_call(m, where, blk, positioning_feed(words, m, where))
     else:
-        _cycle_call(m, where, blk)
+        cycle_call(m, where, blk)
     return ended
 
 
@@ -1500,152 +1491,6 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
     _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
 
 
-def _positioning_feed(words: list[Word], m: Machine, where: Where) -> float:
-    """The feed [mm/s] of ``CYCL CALL PAT F..`` between the pattern's points: F, or rapid for F MAX and
-    without F (inf)."""
-    for w in words:
-        if w.key == "F":
-            if not w.value > 0:
-                where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min] or F MAX")
-            return w.value * m.feed_scale
-    return math.inf
-
-
-def _pattern_call(m: Machine, where: Where, blk: SourceBlock, feed: float = math.inf) -> None:
-    """``CYCL CALL PAT [F..|F MAX]``: the cycle at every position of the last ``PATTERN DEF``, the tool
-    positioned between them at the block's feed (F MAX or none: rapid). The TNC 640 user's manual (cycle
-    programming, "Calling a cycle with CYCL CALL PAT") offers the feed in the block's dialog; no manual
-    page found says which moves it covers: our reading, the moves from hole to hole (up to the clearance
-    height, across in the plane), not those of the cycle."""
-    if m.pattern is None:
-        where.fail("CYCL CALL PAT without a PATTERN DEF", column=blk.column, text=blk.code,
-                   expected="PATTERN DEF POS1 (...) before CYCL CALL PAT")
-    p, q = PLANE_AXES[m.plane]
-    point = m.pos.copy()
-    for pos in m.pattern:
-        values = {k: v * m.scale for k, v in pos.items() if k[-1] in ("XYZ"[p], "XYZ"[q])}
-        point, _ = program_target(m, values, point)
-        axis = "XYZ"[m.plane]
-        if "I" + axis in pos:
-            where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
-                       expected=f"{axis} (absolute) in PATTERN DEF")
-        _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale, feed=feed)
-
-
-def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
-    """Cycle 12 PGM CALL called at a pattern's points or by CYCL CALL POS: an error (no manual found says
-    where the called program starts from there)."""
-    where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
-               text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
-
-
-def _position_call(words: list[Word], m: Machine, where: Where, blk: SourceBlock) -> None:
-    """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
-
-    TNC 640 user's manual (cycle programming, "Calling a cycle with CYCL CALL POS"): all three
-    coordinates are programmed; the tool-axis coordinate is the starting position and an
-    additional datum shift of the cycle's surface; the TNC moves without radius compensation, at
-    the feed of the block (F MAX: rapid), first in the working plane and then in the tool axis
-    when the tool is above the surface (Q203), else first in the tool axis to the clearance
-    height, then in the plane, then in the tool axis.
-    """
-    if m.cycle_program is not None:
-        _program_cycle_elsewhere(where, blk)
-    if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
-    _no_contour_train(m, where, blk)
-    seen = {w.key: w for w in words}
-    for a in "XYZ":
-        if a not in seen and "I" + a not in seen:
-            where.fail(f"CYCL CALL POS without {a}", column=blk.column, text=blk.code,
-                       expected="CYCL CALL POS X.. Y.. Z.. (all three coordinates)")
-    if "F" in seen and not seen["F"].value > 0:
-        where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
-    feed = seen["F"].value * m.feed_scale if "F" in seen else (math.inf if "FMAX" in seen else m.feed)
-    if feed is None:
-        where.fail("CYCL CALL POS without a feed", column=blk.column, text=blk.code, expected="F or F MAX")
-    target, _ = plane_coords(seen, m, where, m9x=None)
-    axis, c = m.plane, active_cycle(m)
-    shift = target[axis] - m.origin()[axis] if m.transform.identity else m.to_program(target)[axis]
-    d = -1.0 if c.depth < 0 else 1.0
-    surface = m.pos[axis] + d * c.setup if c.surface is None else surface_level(m, c.surface, shift)
-    kind = "rapid" if math.isinf(feed) else "line"
-    in_plane = target.copy()
-    if d * (m.pos[axis] - surface) < 0:  # above the surface: plane first, then the tool axis
-        in_plane[axis] = m.pos[axis]
-    else:  # at or below it: up to the clearance height first
-        axis_move(m, kind, surface - d * max(c.setup, c.second_setup), feed, where, blk)
-        in_plane[axis] = m.pos[axis]
-    if not np.array_equal(in_plane, m.pos):
-        m.emit(kind, in_plane, Line(m.pos, in_plane), feed, where, blk.number)
-    axis_move(m, kind, target[axis], feed, where, blk)
-    m.used.update(range(3))
-    _cycle_call(m, where, blk, surface_shift=shift)
-
-
-def _cycle_call(m: Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
-                surface_shift: float = 0.0, feed: float = math.inf) -> None:
-    """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
-    reached at ``feed`` [mm/s] (inf: rapid) at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
-    CALL`` the cycle is that program (TNC 640 manual, cycle 12 PGM CALL: "the program is called
-    like a cycle"), run as ``CALL PGM``, where the tool is."""
-    if m.cycle_program is not None:
-        if hole is not None or surface_shift:
-            _program_cycle_elsewhere(where, blk)
-        m.runner.run_program(*m.cycle_program, where)
-        return
-    if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle, RuledSurface)):
-        if hole is not None or surface_shift:
-            _no_contour_train(m, where, blk)
-        if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
-            run_surface(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, RoughOut):
-            rough_out(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, SideFinish):
-            side_finish(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, PilotDrill):
-            pilot_drill(m, m.cycle, where, blk)
-        else:
-            contour_train(m, m.cycle, where, blk)
-        return
-    c = active_cycle(m)
-    axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    if c.surface is None:
-        surface = m.pos[axis] + d * c.setup
-    else:
-        surface = surface_level(m, c.surface, surface_shift)
-    if hole is not None:
-        clear = surface - d * max(c.setup, c.second_setup) if c.surface is not None else m.pos[axis]
-        kind = "rapid" if math.isinf(feed) else "line"
-        if d * (m.pos[axis] - clear) > 0:  # below the clearance height
-            axis_move(m, kind, clear, feed, where, blk)
-        target = np.array(hole, dtype=float)
-        target[axis] = m.pos[axis]
-        if not np.array_equal(target, m.pos):
-            m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
-    run_hole(m, c, surface, where, blk)
-
-
-def _no_contour_train(m: Machine, where: Where, blk: SourceBlock) -> None:
-    """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
-    multipass-milling cycle (230-232: placed by their own points; 233: the tool-axis coordinate of a position
-    would shift Q227, which no manual found describes)."""
-    if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
-        where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 (233: at the surface's corner; the others: their own "
-                                           "points Q225.. place them)")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
-        number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
-        name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
-        where.fail(f"cycle {name} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
-
-
 # --- splines ---------------------------------------------------------------------------------
 
 def _spline_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
@@ -1709,7 +1554,7 @@ def _m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, 
             if w.value in (89, 91, 92, 99, 140) and not motion:
                 if w.value == 99:
                     m.modal_call = False
-                    _cycle_call(m, where, blk)
+                    cycle_call(m, where, blk)
                 elif w.value == 89:
                     m.modal_call = True
                 elif w.value == 140:
@@ -1960,9 +1805,9 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, whe
         m.modal_call = True
     if 99 in mvals:
         m.modal_call = False
-        _cycle_call(m, where, blk)
+        cycle_call(m, where, blk)
     elif m.modal_call and positioned:
-        _cycle_call(m, where, blk)
+        cycle_call(m, where, blk)
 
 
 #: A word's key -> the axis or setting it gives (one per block): IX and X both give X, RL and R0 the compensation.
