@@ -17,7 +17,16 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
 * :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 400, 408-413, 417, 419-424, 427, 431`` on
   the nominal workpiece;
-* :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks.
+* :mod:`interpolators.heidenhain_fk`: FK free contour programming, resolved into ``L`` / ``CC`` + ``C`` blocks;
+* :mod:`interpolators.heidenhain_motion`: the motion blocks (``L`` .. ``CP``, ``SPL``, FK, ``APPR`` / ``DEP``), the
+  words of a block and its M functions, on :mod:`interpolators.heidenhain_targets` (program words to machine points)
+  and :mod:`interpolators.heidenhain_compensation` (``RL`` / ``RR`` runs);
+* :mod:`interpolators.heidenhain_cycle_calls`: ``M99``, ``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``; the
+  moves of the cycles they run: :mod:`interpolators.heidenhain_cycle_moves` (drilling .. studs, slots, the
+  surfaces 230-233, the patterns 220/221) and :mod:`interpolators.heidenhain_sl` (the SL cycles 21-25).
+
+This module keeps the machine state (:class:`Machine`), the program flow and the blocks' dispatch, tools,
+``CYCL DEF``, presets, touch probe blocks and the tilted plane.
 
 Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
 
@@ -56,7 +65,7 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     APPR PLT/PLN/PCT/PLCT, DEP PLCT: PA / PN by PR, PA
     STOP, M0, M1                    program stop: no motion (noted)
     L X.. M136 F0.05, M137          M136: F in mm per spindle revolution (x TOOL CALL S) until M137
-    L C+180 FMAX M94, M94 C         M94: the rotary display reduced below 360 deg first (_path_m)
+    L C+180 FMAX M94, M94 C         M94: the rotary display reduced below 360 deg first (heidenhain_motion)
     M112 T0.01 A10 .. M113          contour tolerance as cycle 32 T (TNC 426/430); M118 X.. Y.., M124 T..:
                                     noted; M120 LA3: look-ahead of RL/RR (the path as without it)
     SPL X.. Y.. Z.. K3X.. K2X.. K1X.. ..
@@ -134,7 +143,6 @@ SolidWorks TNC post writes for ``CYCL DEF``, is read as such.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 import re
 from pathlib import Path
@@ -142,45 +150,31 @@ from pathlib import Path
 import numpy as np
 
 from interpolators._words import INCH, Where, program_text
-from interpolators.arcs import ArcWordError, arc_from_center, arc_from_radius
-from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.heidenhain_compensation import finish_compensation
 from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
     ROUGHING_CYCLES,
     ContourTrain,
-    PilotDrill,
     RoughOut,
-    SideFinish,
-    clearing_rings,
-    closed_pocket,
     contour_data,
     contour_labels,
     contour_train_cycle,
     floor_finishing_cycle,
-    path_at_level,
     pilot_drilling_cycle,
-    pocket_rings,
-    rest_pieces,
-    reversed_path,
     rough_out_cycle,
-    rounded_ring,
     side_finishing_cycle,
-    superimposed_region,
-    train_levels,
 )
+from interpolators.heidenhain_cycle_calls import cycle_call, pattern_call, position_call, positioning_feed
+from interpolators.heidenhain_cycle_moves import pattern_cycle_run
 from interpolators.heidenhain_cycles import (
     CYCLE_RE,
     LEGACY_CYCLES,
     MACHINING_CYCLES,
     PATTERN_CYCLES,
     REFUSED_CYCLES,
-    THREAD_CYCLES,
     DrillCycle,
-    PatternCycle,
-    back_boring_moves,
     drill_cycle,
-    hole_moves,
     legacy_value,
     old_pocket,
     pattern_cycle,
@@ -188,43 +182,28 @@ from interpolators.heidenhain_cycles import (
     pecking_cycle,
     pocket_item,
     q_assignments,
-    scaled_cycle,
     tapping_cycle,
 )
 from interpolators.heidenhain_fast import PlainBlocks
 from interpolators.heidenhain_feed_dwell import FeedDwell, split_at_times
-from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour, read_fk_words
+from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
-from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
-from interpolators.heidenhain_paths import (
-    PathGeometryError,
-    approach_lct,
-    approach_start,
-    arc_end_tolerance,
-    chamfer_corner,
-    contour_arc_radius,
-    departure_element,
-    departure_lct,
-    end_tangent,
-    helical_arc,
-    polar_angle,
-    polar_point,
-    round_elements,
-    tangential_arc,
+from interpolators.heidenhain_motion import (
+    approach_depart,
+    block_words,
+    corner_def,
+    free_contour,
+    m_functions,
+    motion_block,
+    spline_block,
 )
+from interpolators.heidenhain_params import Q_NAME_RE, QParameters, run_function
+from interpolators.heidenhain_paths import helical_arc
 from interpolators.heidenhain_probing import PROBE_CYCLES, PROBE_RE, probe_run, refuse_probe
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
-from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
-from interpolators.heidenhain_surfaces import (
-    SURFACE_CYCLES,
-    RuledSurface,
-    SurfaceCycle,
-    ruled_surface_moves,
-    surface_cycle,
-    surface_moves,
-)
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
+from interpolators.heidenhain_surfaces import SURFACE_CYCLES, surface_cycle
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -238,17 +217,15 @@ from interpolators.heidenhain_transforms import (
     trans_block,
     transform_item,
 )
-from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words, source_blocks
-from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra
-from interpolators.iso_splines import SPLINE_TOLERANCE
+from interpolators.heidenhain_words import SourceBlock, read_value, source_blocks
+from interpolators.iso_axes import EXTRA_LETTERS, fill_extra
 from interpolators.program import Block, Program, end_at_rest
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
-from toolpaths.geometry import PLANE_AXES, Arc, Line
-from toolpaths.pockets import Region
+from toolpaths.geometry import Line
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.text import BinaryDataError
 
-__all__ = ["parse_heidenhain", "looks_like_heidenhain"]
+__all__ = ["parse_heidenhain", "looks_like_heidenhain", "Machine"]
 
 #: A block's keyword; "FN 0:Q2=5" and "Q1=Q2" (hyperMILL's TNC post) may go on without a blank.
 _KEYWORD_RE = re.compile(
@@ -259,9 +236,6 @@ _KEYWORD_RE = re.compile(
 )
 _BLANKS_RE = re.compile(r"\s+")
 _PLANE_OF_TOOL_AXIS = {"Z": 2, "Y": 1, "X": 0}
-#: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
-_M_END = (2, 30)
-_M_STOP = (0, 1)
 _DETECT_RE = re.compile(
     r"\d+\s*(L|LP|CC|CR|CT|CP|C|TOOL\s+CALL|TOOL\s+DEF|BLK\s+FORM|END\s+PGM|CYCL\s+DEF|LBL|FN\s*\d+\s*:)(?:(?<=:)|(?![A-Z]))",
     re.I,
@@ -295,7 +269,7 @@ def looks_like_heidenhain(text: str) -> bool:
     return False
 
 
-class _Machine:
+class Machine:
     """Run-time state of the control while the program runs."""
 
     def __init__(self, context: MachineContext, source: str | None) -> None:
@@ -521,7 +495,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     vcnc.GCodeError
         With file, line, column, the offending text and what was expected.
     """
-    m = _Machine(context, source)
+    m = Machine(context, source)
     m.plain = PlainBlocks(m) if shortcuts else None
     name = _Run(m, source_blocks(text), source, max_executed).run()
     _check_contour_closed(m)
@@ -532,7 +506,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 
-def _check_contour_closed(m: _Machine) -> None:
+def _check_contour_closed(m: Machine) -> None:
     """Nothing left waiting at the end: an FK element, RND/CHF, APPR LT, a radius-compensated run."""
     m.fk.unresolved()
     if m.pending is not None:
@@ -544,14 +518,14 @@ def _check_contour_closed(m: _Machine) -> None:
         pw.fail(f"APPR {form} without a following contour element", column=1, text=pw.text,
                 expected=f"an L or arc block after APPR {form}")
     if m.comp != "R0":
-        _finish_compensation(m)
+        finish_compensation(m)
 
 
 class _Run:
     """The program flow: block by block, with label jumps, section repeats and subprogram calls
     (:mod:`interpolators.heidenhain_labels`); each block's meaning is a function of this module."""
 
-    def __init__(self, m: _Machine, blocks: list[SourceBlock], source: str | None, max_executed: int, *,
+    def __init__(self, m: Machine, blocks: list[SourceBlock], source: str | None, max_executed: int, *,
                  callers: tuple[str, ...] = ()) -> None:
         self.m, self.blocks, self.source, self.max_executed = m, blocks, source, max_executed
         self.callers = callers  # files of the programs that called this one (CALL PGM), outermost first
@@ -571,6 +545,11 @@ class _Run:
         finally:
             self.m.runner = caller
         return self.name
+
+    def fork(self) -> _Run:
+        """A flow of its own over this program's blocks, allowed the blocks this one has left to run (the
+        contour subprogram of an SL cycle, :mod:`interpolators.heidenhain_sl`)."""
+        return _Run(self.m, self.blocks, self.source, self.max_executed - self.executed, callers=self.callers)
 
     def steps(self) -> None:
         """The blocks of this program, in the order the flow takes them."""
@@ -636,8 +615,8 @@ class _Run:
         if kw in ("CALL PGM", "CALL SELECTED PGM", "SEL PGM"):
             self.program_call(kw, blk, where)
             return False
-        words = _read_words(blk.code, k.end(), where, m, column0=col0)
-        return _motion(kw, words, m, where, blk)
+        words = block_words(blk.code, k.end(), where, m, column0=col0)
+        return motion_block(kw, words, m, where, blk)
 
     def flow(self, kw: str, blk: SourceBlock, where: Where) -> None:
         """LBL (the end of a called subprogram at LBL 0), CALL LBL, FN (jumps)."""
@@ -748,14 +727,14 @@ class _Run:
 EMPTY_REP_NOTE = "CALL LBL n REP without a count read as CALL LBL n (the REP field left empty)"
 
 
-def _repeat_count(text: str, m: _Machine, where: Where, column: int) -> int:
+def _repeat_count(text: str, m: Machine, where: Where, column: int) -> int:
     """The count of ``REP k``: a number, or a Q parameter holding a whole number >= 0 (``REPQ13``)."""
     if text[0].isdigit():
         return int(text[:6])
     return min(_whole_number(text, m, where, column, what="REP"), 999_999)
 
 
-def _whole_number(name: str, m: _Machine, where: Where, column: int, *, what: str) -> int:
+def _whole_number(name: str, m: Machine, where: Where, column: int, *, what: str) -> int:
     """The value of the Q parameter ``name`` as a whole number >= 0 (a count, a tool number); an error
     naming ``what`` otherwise (how the TNC rounds a fraction there the manuals do not say)."""
     value = m.params.get(name)
@@ -813,7 +792,7 @@ _KNOWN_UNSUPPORTED = {
 }
 
 
-def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str | None:
+def _begin_pgm(blk: SourceBlock, k: re.Match, m: Machine, where: Where) -> str | None:
     """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
     before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
     it)."""
@@ -826,51 +805,51 @@ def _begin_pgm(blk: SourceBlock, k: re.Match, m: _Machine, where: Where) -> str 
     return " ".join(parts[:-1] if len(parts) > 1 else parts) or None
 
 
-def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     if kw == "CYCLE DEF":
         m.note("'CYCLE DEF' read as CYCL DEF (the spelling of the SolidWorks post)")
     _cycle_def(blk, m, where)
 
 
-def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     m.pattern = pattern_positions(blk.code[pos:], where, m.params, column0=blk.column + pos)
 
 
-def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
-    words = _read_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
+    words = block_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
     if not kind and any(w.key in ("F", "FMAX") for w in words):
         m.note("CYCL CALL F: no positioning in the block (the cycle runs where the tool is)")
     moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
-    ended = _m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
+    ended = m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
-        _position_call([w for w in words if w.key in moves], m, where, blk)
+        position_call([w for w in words if w.key in moves], m, where, blk)
     elif kind == "PAT":
-        _pattern_call(m, where, blk, _positioning_feed(words, m, where))
+        pattern_call(m, where, blk, positioning_feed(words, m, where))
     else:
-        _cycle_call(m, where, blk)
+        cycle_call(m, where, blk)
     return ended
 
 
-def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
+def _stop_or_m(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
     """``STOP`` (noted, no motion) or a block of M functions; True at M2/M30."""
     if kw == "STOP":
         m.note("STOP: program stop (no motion)")
         m.stop_in_block = m.at_rest = True
-    words = _read_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
-    return _m_functions(words, m, where, blk, motion=False)
+    words = block_words(blk.code, pos if kw == "STOP" else 0, where, m, column0=blk.column)
+    return m_functions(words, m, where, blk, motion=False)
 
 
-def _ignore(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _ignore(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """BLK FORM: the workpiece blank for the control's graphics, no motion."""
 
 
 # --- tools -----------------------------------------------------------------------------------
 
-def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TOOL DEF n L.. R..``: the tool's data in the program; ``TOOL DEF n`` (or a quoted name)
     alone pre-selects the next tool for the tool changer (TNC 640 user's manual, "Tool
     pre-selection with TOOL DEF"): no data, no motion."""
@@ -903,38 +882,7 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) ->
     m.tool_defs[int(tm.group(1)[:9])] = (length * m.scale, radius * m.scale)
 
 
-def _read_words(code: str, pos: int, where: Where, m: _Machine, *, column0: int) -> list[Word]:
-    """The words of a block, ``F AUTO`` read as the feed of the last ``TOOL CALL .. F`` (TNC 640
-    user's manual, "Feed rate F": "F AUTO: the feed rate defined in the TOOL CALL block") and ``FU``
-    (feed per spindle revolution [mm/rev]) as ``F`` = FU x the TOOL CALL's S [mm/min]; ``FZ`` (per
-    tooth) needs the tool's number of teeth, which vcnc's tool table does not hold: an error."""
-    words = read_words(code, pos, where, m.params, column0=column0)
-    for w in words:
-        if w.key == "M" and w.value in (136, 137):  # effective at the start of the block
-            m.per_revolution = w.value == 136
-    if m.per_revolution:
-        words = [Word("FU", w.value, w.column, w.text) if w.key == "F" else w for w in words]
-    if any(w.key == "EMPTY" for w in words):
-        m.note(EMPTY_FIELD_NOTE)
-        words = [w for w in words if w.key != "EMPTY"]
-    for i, w in enumerate(words):
-        if w.key == "FZ":
-            where.fail("FZ (feed per tooth) needs the tool's number of teeth", column=w.column, text=w.text,
-                       expected="F <mm/min> or FU <mm/rev>")
-        if w.key == "FU":
-            if not m.spindle:
-                where.fail(f"{w.text}: feed per revolution (FU, M136) without a spindle speed", column=w.column,
-                           text=w.text, expected="TOOL CALL .. S<rpm> before FU or M136")
-            words[i] = Word("F", w.value * m.spindle, w.column, w.text)
-        if w.key == "FAUTO":
-            if m.auto_feed is None:
-                where.fail("F AUTO without a feed in the TOOL CALL", column=w.column, text=w.text,
-                           expected="TOOL CALL n Z S.. F<mm/min> before F AUTO, or F <mm/min>")
-            words[i] = Word("F", m.auto_feed, w.column, w.text)
-    return words
-
-
-def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TOOL CALL n|"name" [X|Y|Z] [S..] [F..] [DL..] [DR..]``: the tool (length and radius), the
     working plane, the spindle speed and the feed. ``F`` is the feed of the following moves until a
     block programs another (iTNC 530 / TNC 640 user's manuals, "Calling tool data": "Feed rate F ...
@@ -1008,7 +956,7 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -
     _tool_parameters(m, where)
 
 
-def _tool_parameters(m: _Machine, where: Where) -> None:
+def _tool_parameters(m: Machine, where: Where) -> None:
     """The preassigned Q parameters of the called tool (TNC 640 user's manual, "Preassigned Q
     parameters"): Q108 the active tool radius (table or TOOL DEF, plus DR), Q109 the tool axis
     (0 X, 1 Y, 2 Z), Q113 the unit of the program (0 mm, 1 inch), Q114 the active tool length, in
@@ -1022,7 +970,7 @@ def _tool_parameters(m: _Machine, where: Where) -> None:
 
 # --- cycles ----------------------------------------------------------------------------------
 
-def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
+def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
     cm = CYCLE_RE.match(blk.code)
     if cm is None:
         where.fail("malformed cycle definition", column=blk.column, text=blk.code, expected="CYCL DEF n[.m] ...")
@@ -1064,7 +1012,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         if number in PATTERN_CYCLES:
             if q.get(365, 0.0):
                 m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
-            _pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
+            pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
                                blk)
             return
         m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
@@ -1085,7 +1033,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
         if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
             where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
                        column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
-        words = _read_words(rest, 0, where, m, column0=col)
+        words = block_words(rest, 0, where, m, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
                 where.fail(f"word {w.text!r} in a datum shift", column=w.column, text=w.text,
@@ -1108,7 +1056,7 @@ def _cycle_def(blk: SourceBlock, m: _Machine, where: Where) -> None:
     _value_line(number, sub, rest, m, where, blk, col)
 
 
-def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+def _value_line(number: int, sub: int, rest: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """Line ``number.sub`` of an old cycle whose lines each hold one value: 9.1 dwell (runs at once), 13.1
     orientation angle, 32.1 tolerance, and the items of 1 PECKING, 2 TAPPING, 17 RIGID TAPPING (the cycle is
     defined by its last line)."""
@@ -1138,7 +1086,7 @@ def _value_line(number: int, sub: int, rest: str, m: _Machine, where: Where, blk
                                     column=blk.column, spindle=m.spindle)
 
 
-def _sl_cycle_def(number: int, sub: int | None, rest: str, m: _Machine, where: Where, col: int) -> None:
+def _sl_cycle_def(number: int, sub: int | None, rest: str, m: Machine, where: Where, col: int) -> None:
     """The SL cycles (:mod:`interpolators.heidenhain_contours`): 14 CONTOUR GEOMETRY and 20 CONTOUR DATA
     are DEF-active, 21-24 (pilot drilling, rough-out, floor and side finishing) and 25 CONTOUR TRAIN called."""
     if number == 14:
@@ -1166,7 +1114,7 @@ _SETTING_CYCLES = {
 }
 
 
-def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+def _preset_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
     """``CYCL DEF 247 DATUM SETTING Q339=n`` activates row n of the preset table (TNC 640 cycle
     manual, "DATUM SETTING (Cycle 247)"). The machine context's work offsets stand in for that
     table in the order of :data:`interpolators.context.WORK_OFFSETS`, as the CAM posts number them
@@ -1199,7 +1147,7 @@ def _preset_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
         m.note(f"CYCL DEF 247 Q339={n}: preset {n} is the work offset {m.preset}")
 
 
-def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TCH PROBE 4xx .. Qnnn=..``: run on the nominal workpiece (:mod:`interpolators.heidenhain_probing`): the
     probe's moves, the result parameters, the datum the cycle sets."""
     pm = PROBE_RE.match(blk.code)
@@ -1238,7 +1186,7 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where)
         m.note(note)
 
 
-def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: _Machine,
+def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, table: int, m: Machine,
                   number: int) -> None:
     """The datum a probe cycle sets: the program point ``origin_from`` [mm] gets the coordinates ``origin_to``
     (NaN: an axis not set). Q305=0: the active preset moves so (the display shows the new datum, iTNC 530 cycle
@@ -1271,7 +1219,7 @@ def _preset_row(n: int) -> str | None:
     return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
 
 
-def _datum_shift(values: dict[str, float], m: _Machine) -> None:
+def _datum_shift(values: dict[str, float], m: Machine) -> None:
     """Cycle 7 / TRANS DATUM: ``X`` shifts from the preset, ``IX`` from the last shift [program units]."""
     if m.tilt is not None:  # a shift in the tilted plane: the one in force after PLANE RESET (:func:`_untilt`)
         m.tilt = dataclasses.replace(m.tilt, shifted=True)
@@ -1280,7 +1228,7 @@ def _datum_shift(values: dict[str, float], m: _Machine) -> None:
         m.shift[i] = (m.shift[i] if key.startswith("I") else 0.0) + value * m.scale
 
 
-def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _tilt(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``PLANE``: the tilted working plane on a machine with kinematics (:func:`_plane`), else no motion
     when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
     / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
@@ -1310,7 +1258,7 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> Non
 _FEED_DWELL_RE = re.compile(r"\s*FEED\s+DWELL\s+(?:(RESET)|D-TIME\s*(\S+)\s+F-TIME\s*(\S+))\s*$", re.I)
 
 
-def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _feed_dwell(blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``FUNCTION FEED DWELL D-TIME d F-TIME f`` / ``FUNCTION FEED DWELL RESET`` (TNC 640 user's manual, "Cyclic
     dwell time"; :mod:`interpolators.heidenhain_feed_dwell`)."""
     fm = _FEED_DWELL_RE.match(blk.code, pos)
@@ -1330,12 +1278,12 @@ def _feed_dwell(blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
     m.note("FUNCTION FEED DWELL: a dwell after every F-TIME of feed motion (the cutting time at the programmed feed)")
 
 
-def _rotary_now(m: _Machine) -> Solution:
+def _rotary_now(m: Machine) -> Solution:
     """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]."""
     return m.context.kinematics.solution_at(m.extra)
 
 
-def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> None:
+def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """``PLANE <form> .. MOVE|TURN|STAY``, ``PLANE RESET``: tilt the working plane on the machine's tilting
     table (:mod:`interpolators.tilted`, :func:`interpolators.heidenhain_transforms.read_plane`).
 
@@ -1373,7 +1321,7 @@ def _plane(text: str, m: _Machine, where: Where, blk: SourceBlock, col: int) -> 
         _position_rotary(pb, current, angles, m, where, blk)
 
 
-def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> None:
+def _retract(pb: PlaneBlock, m: Machine, where: Where, blk: SourceBlock) -> None:
     """PLANE .. MB: the retraction along the tool axis before the rotary axes turn (TNC 640 user's manual,
     PLANE positioning behaviour "MB": MB MAX to the machine's limit, here ``context.home``'s level)."""
     if pb.retract is None or pb.positioning not in ("MOVE", "TURN"):
@@ -1388,7 +1336,7 @@ def _retract(pb: PlaneBlock, m: _Machine, where: Where, blk: SourceBlock) -> Non
         m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 
 
-def _untilt(m: _Machine) -> None:
+def _untilt(m: Machine) -> None:
     """Cancel the tilted plane. The datum shift of before it is back (TNC cycle manual, cycle 19: reset the
     tilt, then the datum shift, the reverse of activating them), unless one was programmed in the plane: the
     TNC keeps one datum shift, and CAM posts (hyperMILL, PowerMILL) reset it with ``CYCL DEF 7.1 X0 ..`` just
@@ -1399,7 +1347,7 @@ def _untilt(m: _Machine) -> None:
     m.transform = dataclasses.replace(m.transform, tilt=0.0)
 
 
-def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, where: Where, col: int) -> None:
+def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: Machine, where: Where, col: int) -> None:
     """Make the plane ``rotation`` at the rotary positions ``angles`` [deg] the active one. The datum
     shift active before the first tilt moves the plane's zero (in the untilted coordinates); cycle 7 in
     the tilted plane shifts in it, from its zero (TNC cycle manual, cycle 19 WORKING PLANE, "Combining
@@ -1425,7 +1373,7 @@ def _tilt_to(rotation: np.ndarray, angles: Solution, what: str, m: _Machine, whe
         m.params.set(f"Q{120 + 'abc'.index(name)}", value, where)
 
 
-def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, where: Where,
+def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: Machine, where: Where,
                      blk: SourceBlock) -> None:
     """PLANE .. TURN: the rotary axes to ``new`` [deg], the linear axes stay; MOVE: with the linear axes,
     so that the point ``DIST`` above the tool tip keeps its place on the part (one block here)."""
@@ -1449,7 +1397,7 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: _Machine, 
            extra=extra)
 
 
-def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
+def _trans(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TRANS DATUM|MIRROR|ROTATION|SCALE``: the transformations of cycles 7, 8, 10, 11."""
     col = blk.column + pos
     t, shift = trans_block(blk.code[pos:], m.transform, where, m.params, column0=col, scale=m.scale)
@@ -1461,13 +1409,13 @@ def _trans(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> No
         _set_transform(t, "TRANS", m, where, col, blk.code[pos:])
 
 
-def _transform_cycle(number: int, rest: str, m: _Machine, where: Where, col: int) -> None:
+def _transform_cycle(number: int, rest: str, m: Machine, where: Where, col: int) -> None:
     """Item ``.1`` of cycles 8, 10, 11, 26 (:mod:`interpolators.heidenhain_transforms`)."""
     t = transform_item(number, rest, m.transform, where, m.params, column0=col, scale=m.scale)
     _set_transform(t, f"cycle {number}", m, where, col, rest)
 
 
-def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int, text: str) -> None:
+def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, text: str) -> None:
     if t.mirror[m.plane]:
         where.fail(f"MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=text.strip(),
                    expected="mirrored axes of the working plane (the TNC cannot mirror the tool axis)")
@@ -1477,7 +1425,7 @@ def _set_transform(t: Transform, what: str, m: _Machine, where: Where, col: int,
     m.transform = t
 
 
-def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
+def _tilt_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
     """``CYCL DEF 19.1 A.. B.. C.. [F..] [DIST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
     manual, "WORKING PLANE (Cycle 19, software option)"). Without angles, or with all 0, it cancels the
     tilt (no motion). Other angles need the machine's kinematics; they are spatial angles (as PLANE
@@ -1508,1994 +1456,6 @@ def _tilt_cycle(rest: str, m: _Machine, where: Where, col: int) -> None:
     _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
 
 
-def _positioning_feed(words: list[Word], m: _Machine, where: Where) -> float:
-    """The feed [mm/s] of ``CYCL CALL PAT F..`` between the pattern's points: F, or rapid for F MAX and
-    without F (inf)."""
-    for w in words:
-        if w.key == "F":
-            if not w.value > 0:
-                where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min] or F MAX")
-            return w.value * m.feed_scale
-    return math.inf
-
-
-def _pattern_call(m: _Machine, where: Where, blk: SourceBlock, feed: float = math.inf) -> None:
-    """``CYCL CALL PAT [F..|F MAX]``: the cycle at every position of the last ``PATTERN DEF``, the tool
-    positioned between them at the block's feed (F MAX or none: rapid). The TNC 640 user's manual (cycle
-    programming, "Calling a cycle with CYCL CALL PAT") offers the feed in the block's dialog; no manual
-    page found says which moves it covers: our reading, the moves from hole to hole (up to the clearance
-    height, across in the plane), not those of the cycle."""
-    if m.pattern is None:
-        where.fail("CYCL CALL PAT without a PATTERN DEF", column=blk.column, text=blk.code,
-                   expected="PATTERN DEF POS1 (...) before CYCL CALL PAT")
-    p, q = PLANE_AXES[m.plane]
-    point = m.pos.copy()
-    for pos in m.pattern:
-        values = {k: v * m.scale for k, v in pos.items() if k[-1] in ("XYZ"[p], "XYZ"[q])}
-        point, _ = _program_target(m, values, point)
-        axis = "XYZ"[m.plane]
-        if "I" + axis in pos:
-            where.fail("incremental surface in a pattern position", column=blk.column, text=blk.code,
-                       expected=f"{axis} (absolute) in PATTERN DEF")
-        _cycle_call(m, where, blk, hole=point.copy(), surface_shift=pos.get(axis, 0.0) * m.scale, feed=feed)
-
-
-def _program_cycle_elsewhere(where: Where, blk: SourceBlock) -> None:
-    """Cycle 12 PGM CALL called at a pattern's points or by CYCL CALL POS: an error (no manual found says
-    where the called program starts from there)."""
-    where.fail("cycle 12 PGM CALL by a pattern or CYCL CALL POS is not supported", column=blk.column,
-               text=blk.code, expected="M99 or CYCL CALL after CYCL DEF 12")
-
-
-def _position_call(words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """``CYCL CALL POS X.. Y.. Z.. F..``: move to the position, then run the cycle there.
-
-    TNC 640 user's manual (cycle programming, "Calling a cycle with CYCL CALL POS"): all three
-    coordinates are programmed; the tool-axis coordinate is the starting position and an
-    additional datum shift of the cycle's surface; the TNC moves without radius compensation, at
-    the feed of the block (F MAX: rapid), first in the working plane and then in the tool axis
-    when the tool is above the surface (Q203), else first in the tool axis to the clearance
-    height, then in the plane, then in the tool axis.
-    """
-    if m.cycle_program is not None:
-        _program_cycle_elsewhere(where, blk)
-    if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
-    _no_contour_train(m, where, blk)
-    seen = {w.key: w for w in words}
-    for a in "XYZ":
-        if a not in seen and "I" + a not in seen:
-            where.fail(f"CYCL CALL POS without {a}", column=blk.column, text=blk.code,
-                       expected="CYCL CALL POS X.. Y.. Z.. (all three coordinates)")
-    if "F" in seen and not seen["F"].value > 0:
-        where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
-    feed = seen["F"].value * m.feed_scale if "F" in seen else (math.inf if "FMAX" in seen else m.feed)
-    if feed is None:
-        where.fail("CYCL CALL POS without a feed", column=blk.column, text=blk.code, expected="F or F MAX")
-    target, _ = _plane_coords(seen, m, where, m9x=None)
-    axis, c = m.plane, _active_cycle(m)
-    shift = target[axis] - m.origin()[axis] if m.transform.identity else m.to_program(target)[axis]
-    d = -1.0 if c.depth < 0 else 1.0
-    surface = m.pos[axis] + d * c.setup if c.surface is None else _surface_level(m, c.surface, shift)
-    kind = "rapid" if math.isinf(feed) else "line"
-    in_plane = target.copy()
-    if d * (m.pos[axis] - surface) < 0:  # above the surface: plane first, then the tool axis
-        in_plane[axis] = m.pos[axis]
-    else:  # at or below it: up to the clearance height first
-        _axis_move(m, kind, surface - d * max(c.setup, c.second_setup), feed, where, blk)
-        in_plane[axis] = m.pos[axis]
-    if not np.array_equal(in_plane, m.pos):
-        m.emit(kind, in_plane, Line(m.pos, in_plane), feed, where, blk.number)
-    _axis_move(m, kind, target[axis], feed, where, blk)
-    m.used.update(range(3))
-    _cycle_call(m, where, blk, surface_shift=shift)
-
-
-def _cycle_call(m: _Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray | None = None,
-                surface_shift: float = 0.0, feed: float = math.inf) -> None:
-    """Run the last machining cycle at the current position, or at ``hole`` (CYCL CALL PAT:
-    reached at ``feed`` [mm/s] (inf: rapid) at the clearance height, the 2nd set-up clearance). After ``CYCL DEF 12 PGM
-    CALL`` the cycle is that program (TNC 640 manual, cycle 12 PGM CALL: "the program is called
-    like a cycle"), run as ``CALL PGM``, where the tool is."""
-    if m.cycle_program is not None:
-        if hole is not None or surface_shift:
-            _program_cycle_elsewhere(where, blk)
-        m.runner.run_program(*m.cycle_program, where)
-        return
-    if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle, RuledSurface)):
-        if hole is not None or surface_shift:
-            _no_contour_train(m, where, blk)
-        if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
-            _surface(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, RoughOut):
-            _rough_out(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, SideFinish):
-            _side_finish(m, m.cycle, where, blk)
-        elif isinstance(m.cycle, PilotDrill):
-            _pilot_drill(m, m.cycle, where, blk)
-        else:
-            _contour_train(m, m.cycle, where, blk)
-        return
-    c = _active_cycle(m)
-    axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    if c.surface is None:
-        surface = m.pos[axis] + d * c.setup
-    else:
-        surface = _surface_level(m, c.surface, surface_shift)
-    if hole is not None:
-        clear = surface - d * max(c.setup, c.second_setup) if c.surface is not None else m.pos[axis]
-        kind = "rapid" if math.isinf(feed) else "line"
-        if d * (m.pos[axis] - clear) > 0:  # below the clearance height
-            _axis_move(m, kind, clear, feed, where, blk)
-        target = np.array(hole, dtype=float)
-        target[axis] = m.pos[axis]
-        if not np.array_equal(target, m.pos):
-            m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
-    _hole(m, c, surface, where, blk)
-
-
-def _no_contour_train(m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """An error when the cycle to run at positions (CYCL CALL POS / PAT) is an SL cycle (22, 25) or a
-    multipass-milling cycle (230-232: placed by their own points; 233: the tool-axis coordinate of a position
-    would shift Q227, which no manual found describes)."""
-    if isinstance(m.cycle, (SurfaceCycle, RuledSurface)):
-        where.fail(f"cycle {m.cycle.number} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 (233: at the surface's corner; the others: their own "
-                                           "points Q225.. place them)")
-    if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill)):
-        number = {ContourTrain: 25, SideFinish: 24, PilotDrill: 21}.get(type(m.cycle)) or m.cycle.number
-        name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
-        where.fail(f"cycle {name} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
-                   text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
-
-
-def _trace_contour(m: _Machine, label: str, radius: float, start: np.ndarray, feed: float, where: Where,
-                   blk: SourceBlock) -> tuple[list[Block], str]:
-    """The blocks of the contour subprogram ``LBL label`` run from ``start`` [mm, machine] with the tool
-    radius ``radius`` [mm] and the feed ``feed`` [mm/s] where it gives none (its RL/RR compensation
-    applied, the last element kept as a contour element),
-    taken out of the program's blocks, and the compensation it used (``RL``, ``RR`` or ``R0``). The
-    machine's position, feed and tool radius are as before."""
-    runner = m.runner
-    saved = (m.pos.copy(), m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid)
-    first = len(m.blocks)
-    m.pos, m.tool_radius, m.feed = np.array(start, dtype=float), radius, feed
-    sub = _Run(m, runner.blocks, runner.source, runner.max_executed - runner.executed, callers=runner.callers)
-    target = sub.labels.find(label, where, column=blk.column, text=blk.code)
-    sub.stack.append(Frame(return_to=len(runner.blocks), label=label, runs_left=1))
-    sub.pc = target + 1
-    sub.steps()
-    runner.executed += sub.executed
-    if sub.stack:
-        where.fail(f"cycle 25: the contour LBL {label} ends without LBL 0", column=blk.column, text=blk.code,
-                   expected=f"LBL {label} .. LBL 0 (the contour subprogram)")
-    if m.pending is not None or m.approach is not None:
-        where.fail(f"cycle 25: the contour LBL {label} ends with a RND/CHF or APPR waiting for an element",
-                   column=blk.column, text=blk.code, expected="a contour element after RND, CHF and APPR")
-    side = m.comp_side if m.comp != "R0" else "R0"
-    if m.comp != "R0":
-        _finish_compensation(m, open_end=True)
-    path = m.blocks[first:]
-    del m.blocks[first:]
-    m.pos, m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid = saved
-    for b in path:
-        if b.segment is None or b.start[m.plane] != b.target[m.plane]:
-            Where(m.source, b.line, b.text).fail(
-                f"cycle 25: the contour LBL {label} moves along the tool axis or dwells", column=1, text=b.text,
-                expected="contour elements in the working plane (cycle 25 sets the depth)")
-    if len(path) < 2:
-        where.fail(f"cycle 25: the contour LBL {label} has no element after its starting point", column=blk.column,
-                   text=blk.code, expected="a starting point and at least one contour element")
-    return path, side
-
-
-def _sl_checks(m: _Machine, number: int, where: Where, blk: SourceBlock) -> str:
-    """The contour label of an SL cycle call, after the checks all of them share."""
-    if not m.contour:
-        where.fail(f"cycle {number} without a contour (CYCL DEF 14)", column=blk.column, text=blk.code,
-                   expected="CYCL DEF 14.0 CONTOUR / 14.1 CONTOUR LABEL n before the cycle call")
-    if not m.transform.identity or m.comp != "R0":
-        where.fail(f"cycle {number} under a coordinate transformation (cycles 8, 10, 11, 26) or with RL/RR active "
-                   "is not supported", column=blk.column, text=blk.code,
-                   expected="R0 and no mirror, rotation or scaling")
-    return m.contour[0]
-
-
-def _rough_out(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
-    """Cycle 22 ROUGH-OUT of a pocket with no islands (TNC 426/430 user's manual, "ROUGH-OUT (Cycle 22)": "the
-    tool mills the contour from the inside outward", at each plunging depth, leaving the allowances Q3 and
-    Q4; then to the clearance height). The manual leaves the path to the control; our reading, kept inside
-    the pocket: rings parallel to the contour (:func:`interpolators.heidenhain_contours.pocket_rings`), the
-    outermost R + Q3 from it, each next one Q2 x R farther in, as long as one fits, run from the innermost
-    out in the sense Q9, joined square to the contour at the middle of its first element; per depth: at
-    FMAX to Q7 (first), over the innermost ring's start, to Q6 above Q5, at Q11 down, the rings at Q12, up
-    at Q208 to Q6. The contour's own RL/RR is ignored, as the SL cycles do; Q8 rounds the rings' inside corners
-    (:func:`interpolators.heidenhain_contours.rounded_ring`). Several labels in cycle 14 (pockets and islands):
-    :func:`_rough_out_region` (Q8 there by :func:`interpolators.heidenhain_contours.rounded_region_ring`; not
-    applied to rest machining, noted).
-    Cycle 23 FLOOR FINISHING runs as this in one infeed to Q1 (:func:`interpolators.heidenhain_contours.
-    floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
-    _sl_checks(m, c.number, where, blk)
-    if m.tool_radius <= 0:
-        where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart)", column=blk.column,
-                   text=blk.code, expected="a TOOL CALL of a tool with a radius")
-    if len(m.contour) > 1 or c.coarse_tool:
-        if c.rounding and c.coarse_tool:
-            m.note("cycle 20 Q8 (rounding radius of the path's inside corners) not applied to rest machining (Q18): "
-                   "the corners are sharp")
-        _rough_out_region(m, c, where, blk)
-        return
-    axis = m.plane
-    rings = _pocket_rings_of(m, c, m.tool_radius, where, blk)
-    if c.rounding:
-        rings = [rounded_ring(ring, c.rounding, plane=axis, ccw=c.ccw) for ring in rings]
-    d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
-    m.used.update((*PLANE_AXES[axis], axis))
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-    for level in train_levels(surface, d * bottom, c.plunge):
-        over = _at_level(rings[0][0].start, axis, m.pos[axis])
-        if not np.array_equal(over, m.pos):
-            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
-        _axis_move(m, "rapid", above, math.inf, where, blk)
-        _axis_move(m, "line", level, c.plunge_feed, where, blk)
-        for ring in rings:
-            begin = _at_level(ring[0].start, axis, level)
-            if not np.array_equal(begin, m.pos):
-                m.emit("line", begin, Line(m.pos, begin), c.feed, where, blk.number)
-            for b in path_at_level(ring, axis, level):
-                m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
-                                                    start=m.pos.copy()))
-                m.pos = np.array(b.target, dtype=float)
-        _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
-                   math.inf if c.retract_feed is None else c.retract_feed, where, blk)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-
-
-def _rough_out_heights(m: _Machine, c: RoughOut, number: int, where: Where,
-                       blk: SourceBlock) -> tuple[float, float, float, float, float]:
-    """The tool-axis frame of cycle ``number`` from cycle 20's data: the working direction (+-1, the sign of Q1),
-    the depth less the floor allowance Q4 (> 0, else an error), the surface Q5, the clearance height Q7 and the
-    set-up height Q6 above Q5 [mm, machine]."""
-    bottom = abs(c.depth) - c.floor_allowance
-    if bottom <= 0:
-        where.fail(f"cycle {number}: the floor allowance Q4 is not smaller than the depth Q1", column=blk.column,
-                   text=blk.code, expected="|Q4| < |Q1|")
-    d = -1.0 if c.depth < 0 else 1.0
-    surface = m.origin()[m.plane] + c.surface
-    return d, bottom, surface, m.origin()[m.plane] + c.clearance, surface - d * c.setup
-
-
-def _pocket_rings_of(m: _Machine, c: RoughOut, radius: float, where: Where, blk: SourceBlock) -> list[list[Block]]:
-    """The rings of cycle 22 in the one pocket of cycle 14 for a tool of ``radius`` [mm], the innermost first
-    (:func:`interpolators.heidenhain_contours.pocket_rings`)."""
-    label = m.contour[0]
-    path, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
-    pocket = closed_pocket(path[1:], ccw=c.ccw, plane=m.plane)
-    if pocket is None:
-        where.fail(f"cycle {c.number}: the contour LBL {label} is not closed or encloses no area",
-                   column=blk.column, text=blk.code, expected="a closed pocket contour (its last point its first)")
-    loop, polygon = pocket
-    first = radius + c.side_allowance
-    span = float(np.max(np.ptp(polygon, axis=0)))
-    step = c.overlap * radius
-    radii = [first + k * step for k in range(min(10_000, int(span / step) + 2))]
-    rings = pocket_rings(loop, polygon, radii=radii, plane=m.plane, ccw=c.ccw)[::-1]
-    if not rings:
-        where.fail(f"cycle {c.number}: the tool (radius {radius:g} mm) plus the allowance Q3 does not fit the "
-                   f"pocket LBL {label}", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
-    return rings
-
-
-def _sl_region(m: _Machine, feed: float, where: Where, blk: SourceBlock) -> Region:
-    """The region of cycle 14's contours (:func:`interpolators.heidenhain_contours.superimposed_region`)."""
-    contours = [_trace_contour(m, label, 0.0, m.pos, feed, where, blk) for label in m.contour]
-    return superimposed_region([(path[1:], side) for path, side in contours], plane=m.plane, where=where,
-                               column=blk.column)
-
-
-def _region_rings(m: _Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,
-                  blk: SourceBlock, rounding: float = 0.0) -> list[tuple[np.ndarray, bool]]:
-    """:func:`interpolators.heidenhain_contours.clearing_rings` with the errors named (``rounding``: cycle 20's
-    Q8, 22's rings only)."""
-    try:  # from the lower left (the same rings whatever the tool's position: cycle 21 drills where 22 plunges)
-        rings = clearing_rings(area, first=first, step=step, ccw=ccw, start=area.bounds()[0], rounding=rounding)
-    except ValueError as exc:
-        where.fail(f"cycle {number}: {exc}", column=blk.column, text=blk.code,
-                   expected="contours whose offsets the tool can follow")
-    if not rings:
-        where.fail(f"cycle {number}: the tool (radius {m.tool_radius:g} mm) plus the allowance fits nowhere in the "
-                   "contours of cycle 14", column=blk.column, text=blk.code, expected="a pocket wider than the tool")
-    return rings
-
-
-def _plane_point(m: _Machine, xy: np.ndarray, level: float) -> np.ndarray:
-    """The machine point (plane coordinates ``xy``, tool axis at ``level``), the other axes where they are."""
-    p, q = PLANE_AXES[m.plane]
-    out = m.pos.copy()
-    out[p], out[q], out[m.plane] = xy[0], xy[1], level
-    return out
-
-
-def _side_finish(m: _Machine, c: SideFinish, where: Where, blk: SourceBlock) -> None:
-    """Cycle 24 SIDE FINISHING (:func:`interpolators.heidenhain_contours.side_finishing_cycle`) of every wall of
-    the region of cycle 14 (pocket walls and islands): the manual has the tool approach each partial contour on a
-    tangential arc and finish it at each infeed; our reading: each ring R + Q14 from the contours (the whole
-    boundary's offset, within 1 um), the nearest next, from Q7 at FMAX over its start, to Q6 above Q5, then per
-    infeed Q10 to the depth Q1: down at Q11, the ring at Q12 in the sense Q9; up to Q7 between rings."""
-    _sl_checks(m, 24, where, blk)
-    radius = m.tool_radius + c.allowance
-    if not radius > 0:
-        where.fail("cycle 24: the tool radius plus Q14 is not > 0", column=blk.column, text=blk.code,
-                   expected="a tool with a radius")
-    area = _sl_region(m, c.feed, where, blk)
-    rings = _region_rings(m, area, first=radius, step=math.inf, ccw=c.ccw, number=24, where=where, blk=blk)
-    axis, d = m.plane, -1.0 if c.depth < 0 else 1.0
-    surface = m.origin()[axis] + c.surface
-    clear, above = m.origin()[axis] + c.clearance, surface - d * c.setup
-    m.used.update((*PLANE_AXES[axis], axis))
-    for ring, _ in rings:
-        _axis_move(m, "rapid", clear, math.inf, where, blk)
-        over = _plane_point(m, ring[0], clear)
-        if not np.array_equal(over, m.pos):
-            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
-        _axis_move(m, "rapid", above, math.inf, where, blk)
-        for level in train_levels(surface, c.depth, c.plunge):
-            _axis_move(m, "line", level, c.plunge_feed, where, blk)
-            for xy in ring[1:]:
-                target = _plane_point(m, xy, level)
-                m.emit("line", target, Line(m.pos, target), c.feed, where, blk.number)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-
-
-def _pilot_drill(m: _Machine, c: PilotDrill, where: Where, blk: SourceBlock) -> None:
-    """Cycle 21 PILOT DRILLING (:func:`interpolators.heidenhain_contours.pilot_drilling_cycle`): a hole, pecked as
-    cycle 1 PECKING does (Q10 infeeds at Q11, out to the set-up clearance Q6 between them), at each point where
-    cycle 22 plunges with the rough-out tool Q13 (its radius from TOOL DEF or the tool table; the same rings as
-    22 computes), down to Q1 less the floor allowance Q4; from Q7 at FMAX over each point; Q7 at the end."""
-    _sl_checks(m, 21, where, blk)
-    data = m.tool_data(c.tool)
-    if data is None or not data[1] > 0:
-        where.fail(f"cycle 21: the rough-out tool Q13 = {c.tool} has no radius", column=blk.column, text=blk.code,
-                   expected="Q13 a tool of TOOL DEF or the tool table with a radius > 0")
-    r, rough = data[1], c.rough_out
-    axis = m.plane
-    p, q = PLANE_AXES[axis]
-    if len(m.contour) == 1:
-        points = [np.array(_pocket_rings_of(m, rough, r, where, blk)[0][0].start, dtype=float)[[p, q]]]
-    else:
-        area = _sl_region(m, c.feed, where, blk)
-        rings = _region_rings(m, area, first=r + rough.side_allowance, step=rough.overlap * r, ccw=rough.ccw,
-                              number=21, where=where, blk=blk)
-        points = [ring[0] for k, (ring, linked) in enumerate(rings) if k == 0 or not linked]
-    d, bottom, surface, clear, above = _rough_out_heights(m, rough, 21, where, blk)
-    drill = pecking_cycle({1: rough.setup, 2: d * bottom, 3: c.plunge, 4: 0.0, 5: c.feed}, feed_scale=1.0,
-                          scale=1.0, where=where, column=blk.column)
-    m.used.update((p, q, axis))
-    for point in points:
-        _axis_move(m, "rapid", clear, math.inf, where, blk)
-        over = _plane_point(m, point, clear)
-        if not np.array_equal(over, m.pos):
-            m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
-        _axis_move(m, "rapid", above, math.inf, where, blk)
-        _hole(m, drill, surface, where, blk)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-
-
-def _rough_out_region(m: _Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
-    """Cycle 22 ROUGH-OUT of the superimposed contours of cycle 14 (pockets less islands,
-    :func:`interpolators.heidenhain_contours.superimposed_region`; TNC 426/430 user's manual, "ROUGH-OUT (Cycle
-    22)": the tool mills the contour from the inside outward, the islands cleared with an approach toward the
-    pocket contour, leaving Q3 and Q4). Our reading of the path the manual leaves to the control: the offsets of
-    the whole boundary (pocket walls and islands alike) R + Q3, R + Q3 + Q2 R, .. (each ring within
-    :data:`toolpaths.pockets.TOLERANCE` = 1 um, never nearer the contours than its offset), run from the
-    innermost level outward in the sense Q9, joined by straight feed moves where they keep R + Q3 from every
-    contour, else by a retraction to Q7 and a new plunge (separate regions); cycle 20's Q8 rounds the rings'
-    inside corners (:func:`interpolators.heidenhain_contours.rounded_region_ring`; not after a coarse tool Q18).
-    Per depth as for one pocket."""
-    axis = m.plane
-    area = _sl_region(m, c.feed, where, blk)
-    rings = _region_rings(m, area, first=m.tool_radius + c.side_allowance, step=c.overlap * m.tool_radius,
-                          ccw=c.ccw, number=c.number, where=where, blk=blk,
-                          rounding=0.0 if c.coarse_tool else c.rounding)
-    if c.coarse_tool:
-        coarse = m.tool_data(c.coarse_tool)
-        if coarse is None or not coarse[1] > m.tool_radius:
-            where.fail(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} has no radius larger than this "
-                       f"tool's ({m.tool_radius:g} mm)", column=blk.column, text=blk.code,
-                       expected="Q18 a tool of TOOL DEF or the tool table, larger than the rest-machining tool")
-        rings = rest_pieces(area, rings, coarse=coarse[1], radius=m.tool_radius, allowance=c.side_allowance)
-        if not rings:
-            m.note(f"cycle 22: the coarse tool {c.coarse_tool} left nothing this tool reaches")
-            return
-    d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
-    m.used.update((*PLANE_AXES[axis], axis))
-    point = functools.partial(_plane_point, m)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-    for level in train_levels(surface, d * bottom, c.plunge):
-        for k, (ring, linked) in enumerate(rings):
-            if k == 0 or not linked:
-                if k:
-                    _axis_move(m, "rapid", clear, math.inf, where, blk)
-                over = point(ring[0], m.pos[axis])
-                if not np.array_equal(over, m.pos):
-                    m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
-                _axis_move(m, "rapid", above, math.inf, where, blk)
-                _axis_move(m, "line", level, c.plunge_feed, where, blk)
-            for xy in ring[0 if linked else 1:]:
-                target = point(xy, level)
-                if not np.array_equal(target, m.pos):
-                    m.emit("line", target, Line(m.pos, target), c.feed, where, blk.number)
-        _axis_move(m, "rapid" if c.retract_feed is None else "line", above,
-                   math.inf if c.retract_feed is None else c.retract_feed, where, blk)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-
-
-def _contour_train(m: _Machine, c: ContourTrain, where: Where, blk: SourceBlock) -> None:
-    """Cycle 25 CONTOUR TRAIN (:func:`interpolators.heidenhain_contours.contour_train_cycle`) along the first
-    label of cycle 14. The manual gives the parameters, not the moves; our reading: at FMAX to the clearance
-    height Q7, in the plane to the contour's compensated starting point (its first point moved the tool
-    radius plus Q3 off the first element, to the side of the RL/RR of the subprogram, as the TNC starts a
-    compensated contour), at Q11 down to the first infeed level (Q10 below the surface Q5), the contour at
-    Q12 with the tool radius plus Q3 (its last element offset as the others), at FMAX up to Q7, and so on
-    to the depth Q1; the tool ends at Q7 over the contour's end. Q15 = +1 (climb milling with M3: the tool
-    left of its path) runs an RR contour backwards, Q15 = -1 an RL contour; Q15 = 0 runs the contour as
-    programmed, then backwards at the next depth from where it ended (plunging there at Q11), and so on. An
-    R0 contour runs as programmed (the tool centre on it, Q3 not applied)."""
-    label = _sl_checks(m, 25, where, blk)
-    axis = m.plane
-    radius = m.tool_radius + c.allowance
-    if radius < 0:
-        where.fail(f"cycle 25: the allowance Q3 ({c.allowance:g} mm) is below minus the tool radius",
-                   column=blk.column, text=blk.code, expected="Q3 >= -R")
-    programmed, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
-    first, tangent = np.array(programmed[0].target), np.array(programmed[1].segment.tangent_at(0.0), dtype=float)
-    tangent[axis] = 0.0
-    lead = first - tangent / (np.linalg.norm(tangent) or 1.0) * 2.0 * (radius + 1.0)
-    traced, side = _trace_contour(m, label, radius, lead, c.feed, where, blk)
-    contour = traced[1:]
-    surface = m.origin()[axis] + c.surface
-    clear = m.origin()[axis] + c.clearance
-    p, q = PLANE_AXES[axis]
-    m.used.update((p, q, axis))
-    for k, level in enumerate(train_levels(surface, c.depth, c.plunge)):
-        backwards = k % 2 == 1 if c.climb == 0 else side != "R0" and (c.climb > 0) != (side == "RL")
-        run = path_at_level(reversed_path(contour) if backwards else contour, axis, level)
-        if k == 0 or c.climb != 0:
-            _axis_move(m, "rapid", clear, math.inf, where, blk)
-            over = _at_level(run[0].start, axis, clear)
-            if not np.array_equal(over, m.pos):
-                m.emit("rapid", over, Line(m.pos, over), math.inf, where, blk.number)
-        _axis_move(m, "line", level, c.plunge_feed, where, blk)
-        for b in run:
-            m.blocks.append(dataclasses.replace(b, kind="arc" if b.kind == "arc" else "line", feed=c.feed,
-                                                start=m.pos.copy()))
-            m.pos = np.array(b.target, dtype=float)
-    _axis_move(m, "rapid", clear, math.inf, where, blk)
-    m.last_rapid = True
-
-
-def _surface(m: _Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: SourceBlock) -> None:
-    """Cycle 230, 231, 232 or 233 (:func:`interpolators.heidenhain_surfaces.surface_moves`, ``ruled_surface_moves``):
-    its moves, given in program coordinates of the working plane's axes and the tool axis, through the active
-    transformations."""
-    axis = m.plane
-    p, q = PLANE_AXES[axis]
-    if c.number in (232, 233) and not m.tool_radius > 0:
-        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
-                   column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
-    try:
-        moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
-            surface_moves(c, radius=m.tool_radius, position=tuple(float(m.to_program(m.pos)[i]) for i in (p, q, axis)))
-    except ValueError as exc:
-        where.fail(f"cycle {c.number}: {exc}", column=blk.column, text=blk.code, expected="a larger Q370 or tool")
-    for mv in moves:
-        target, _ = _program_target(m, {"XYZ"[i]: v for i, v in zip((p, q, axis), mv.point) if v is not None}, m.pos)
-        if np.allclose(target, m.pos, rtol=0.0, atol=1e-12):
-            continue
-        kind = "rapid" if math.isinf(mv.feed) else "line"
-        m.emit(kind, target, Line(m.pos, target), mv.feed, where, blk.number)
-    m.used.update(range(3))
-
-
-def _hole(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """The moves of cycle ``c`` at the current position in the plane (210, 212-215: about their centre Q216, Q217,
-    reached at the clearance height first), ``surface`` [mm, machine]."""
-    axis = m.plane
-    if c.number == 208:
-        _bore_milling(m, c, surface, where, blk)
-        return
-    if c.number in THREAD_CYCLES:
-        _thread_milling(m, c, surface, where, blk)
-        return
-    if c.place is not None:
-        _to_centre(m, c, surface, where, blk)
-    if c.shape in (251, 252, 253):
-        _circular_pocket(m, c, surface, where, blk)
-        return
-    if c.shape == 254:  # Q377 slots, Q378 apart on the pitch circle, one after the other
-        if not m.transform.identity:
-            where.fail("cycle 254 under a coordinate transformation (cycles 8, 10, 11, 26) is not supported",
-                       column=blk.column, text=blk.code, expected="CIRCULAR SLOT without mirror, rotation or scaling")
-        for k in range(c.repeats):
-            _circular_pocket(m, dataclasses.replace(c, angle=c.angle + k * c.slot[4]), surface, where, blk)
-        return
-    if c.shape in (256, 257):
-        _rectangular_stud(m, c, surface, where, blk)
-        if c.place is not None:  # 213, 215: the end position is over the centre
-            _to_centre(m, c, surface, where, blk)
-        return
-    centre = m.pos.copy()
-    p, q = PLANE_AXES[axis]
-    moves = back_boring_moves(c, surface=surface) if c.number == 204 else hole_moves(c, start=m.pos[axis],
-                                                                                       surface=surface)
-    for mv in moves:
-        if mv.kind == "dwell":
-            m.emit("dwell", m.pos, None, 0.0, where, blk.number, dwell=mv.dwell)
-        elif mv.kind == "plane":
-            target, _ = _program_target(m, {"I" + "XYZ"[p]: mv.offset[0], "I" + "XYZ"[q]: mv.offset[1]}, centre)
-            target[axis] = m.pos[axis]
-            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
-        else:
-            _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
-    m.used.add(axis)
-
-
-def _to_centre(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycles 210, 212-215: at FMAX along the tool axis to the set-up clearance, or the 2nd one when higher, then
-    over the centre Q216, Q217 (TNC 370 user's manual p. 8-20, cycle 213: "The TNC moves the tool in the Z axis
-    to the setup clearance, or - if this has been specified - to the 2nd setup clearance and subsequently to the
-    center")."""
-    p, q = PLANE_AXES[m.plane]
-    d = -1.0 if c.depth < 0 else 1.0
-    _axis_move(m, "rapid", surface - d * max(c.setup, c.second_setup), math.inf, where, blk)
-    target, _ = _program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
-    if not np.array_equal(target, m.pos):
-        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
-
-
-def _bore_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 208 BORE MILLING at the current position (TNC 320 user's manual for cycle programming,
-    "BORE MILLING (Cycle 208)", cycle run: to the set-up clearance at FMAX, to the circumference,
-    a helix at the feed Q206 to the depth, a full circle there, back to the centre, out at FMAX to
-    the set-up clearance and the 2nd one). The helix runs on the diameter Q335 less the tool
-    diameter, from the set-up clearance down by Q334 per turn; it starts on the reference axis
-    side, reached on a straight line at the feed (the TNC rounds that approach: our reading).
-    A tool as wide as the hole drills straight down ("bores directly to the entered depth").
-    """
-    axis = m.plane
-    p, q = PLANE_AXES[axis]
-    d = -1.0 if c.depth < 0 else 1.0
-    top, bottom = surface - d * c.setup, surface + c.depth
-    r = c.bore_diameter / 2.0 - m.tool_radius
-    if r < -1e-9:
-        where.fail(f"cycle 208: the tool (radius {m.tool_radius:g} mm) is wider than the hole "
-                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
-                   expected="a tool radius of at most Q335 / 2")
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    centre = m.pos.copy()
-    m.used.add(axis)
-    if r <= 1e-9:
-        _axis_move(m, "line", bottom, c.feed, where, blk)
-    else:
-        k = m.lengths(where)
-        start, _ = _program_target(m, {"I" + "XYZ"[p]: r / k}, centre)
-        m.emit("line", start, Line(m.pos, start), c.feed, where, blk.number)
-        turns = abs(bottom - top) / c.helix_pitch
-        sweep = m.transform.sweep(360.0 * turns * (1.0 if c.climb else -1.0), axis)
-        for turn in (sweep, math.copysign(360.0, sweep)):  # the helix, then a full circle at the depth
-            seg = helical_arc(m.pos, centre, turn, plane=axis, axis_end=bottom)
-            m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-        back = centre.copy()
-        back[axis] = bottom
-        m.emit("line", back, Line(m.pos, back), c.feed, where, blk.number)
-        m.used.update((p, q))
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
-
-
-def _thread_milling(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """The thread-milling cycles 262-267 at the current position (TNC 426/430 user's manual, "Cycles for
-    drilling, tapping and thread milling"; TNC 320 user's manual 340 55x-03), in the manuals' order: FMAX to
-    the set-up clearance; 264: drill the hole (as cycle 205); 263: the countersinking; the countersinking at
-    the front (265 with Q360 = 1: after the thread); the thread: at the pre-positioning feed Q253 to the
-    starting plane, a tangential approach, the helix, a tangential departure back to the starting point in
-    the plane; FMAX out to the set-up clearance and the 2nd set-up clearance.
-
-    The manuals leave the paths' sizes to the control; our reading, kept inside the thread (267: outside the
-    stud): the helix runs on the diameter Q335 less the tool diameter (267: plus) at the feed Q207,
-    counter-clockwise for climb milling inside (Q351 = +1, M3; clockwise round a stud), and upward when that
-    follows the thread (a right-hand thread climb-milled inside, or up-cut outside), else downward. Q355 = 0
-    (and 263, 264) turns once, over one pitch ending (upward: starting) at the thread depth; Q355 = 1 runs
-    between the depth and the surface; Q355 > 1 (:func:`_thread_passes`) turns once as Q355 = 0 at the depth and
-    again at every Q355 pitches above it while still below the surface, each with its approach and departure,
-    at Q253 along the axis between them; 265 runs one helix from the surface down to the depth, clockwise for
-    a right-hand thread. Inside, the approach and the departure are half circles at the helix's end levels
-    between the centre and the helix, in the helix's sense (so they join it tangentially). 267 starts on the
-    reference axis one pitch outside the helix (the manual: "determined by the thread radius, tool radius and
-    pitch"), and the half circles run against the helix's sense between that distance and the helix.
-    """
-    axis = m.plane
-    p, q = PLANE_AXES[axis]
-    d = -1.0 if c.depth < 0 else 1.0
-    top = surface - d * c.setup
-    r = c.bore_diameter / 2.0 + (m.tool_radius if c.outside else -m.tool_radius)
-    if r <= 1e-9:
-        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) is not narrower than the thread "
-                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
-                   expected="a tool radius below Q335 / 2")
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    centre = m.pos.copy()
-    sense = m.transform.sweep(1.0 if c.climb != c.outside else -1.0, axis)
-    if c.number == 264:
-        drill = dataclasses.replace(c, number=205, depth=c.sink_depth, feed=c.drill_feed, second_setup=0.0)
-        for mv in hole_moves(drill, start=m.pos[axis], surface=surface):
-            _axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
-    if c.number == 263 and c.sink_depth:
-        level = surface + c.sink_depth
-        if not c.sink_side:
-            _axis_move(m, "line", level - d * c.setup, c.approach_feed, where, blk)
-        _axis_move(m, "line", level, c.sink_feed if not c.sink_side else c.approach_feed, where, blk)
-        _circle_out_and_back(m, centre, r, sense, c.sink_feed, where, blk)
-    if c.front_depth and not c.front_after:
-        _axis_move(m, "line", surface + c.front_depth, c.sink_feed if c.number == 265 else c.approach_feed, where,
-                   blk)
-        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
-    _thread_helix(m, c, centre, surface, r, sense, where, blk)
-    if c.front_depth and c.front_after:
-        _axis_move(m, "line", surface + c.front_depth, c.approach_feed, where, blk)
-        _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
-    m.used.update((p, q, axis))
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
-
-
-def _thread_helix(m: _Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
-                  where: Where, blk: SourceBlock) -> None:
-    """The thread of :func:`_thread_milling`: to the starting plane at Q253, the approach, the helix of radius
-    ``r`` [mm] about ``centre`` turning by ``sense`` (+1 counter-clockwise), the departure."""
-    axis = m.plane
-    k = m.lengths(where)
-    ref = "I" + "XYZ"[PLANE_AXES[axis][0]]
-    out = r + c.helix_pitch if c.outside else 0.0  # 267: the starting point's distance from the centre
-    if c.outside:
-        start, _ = _program_target(m, {ref: out / k}, centre)
-        start[axis] = m.pos[axis]
-        m.emit("rapid", start, Line(m.pos, start), math.inf, where, blk.number)
-    turn = -sense if c.outside else sense  # the half circles: against the helix outside
-    for start_level, end_level in _thread_passes(c, surface):
-        _axis_move(m, "line", start_level, c.approach_feed, where, blk)
-        here = m.pos.copy()
-        on, _ = _program_target(m, {ref: r / k}, centre)
-        on[axis] = start_level
-        seg = helical_arc(m.pos, (here + on) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=start_level)
-        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-        turns = abs(end_level - start_level) / c.helix_pitch
-        seg = helical_arc(m.pos, _at_level(centre, axis, start_level), math.copysign(360.0 * turns, sense),
-                          plane=axis, axis_end=end_level)
-        m.emit("arc", np.array(seg.end), seg, c.feed, where, blk.number)
-        back = _at_level(centre, axis, end_level)
-        if c.outside:  # out along the radius the helix ended on, to the starting point's distance
-            back = back + (m.pos - back) * (out / r)
-        seg = helical_arc(m.pos, (m.pos + back) / 2.0, math.copysign(180.0, turn), plane=axis, axis_end=end_level)
-        m.emit("arc", back, seg, c.feed, where, blk.number)
-
-
-def _thread_passes(c: DrillCycle, surface: float) -> list[tuple[float, float]]:
-    """The (starting, end) levels [mm] of the helices of :func:`_thread_helix`, in the order they run. Upward
-    (a right-hand thread climb-milled inside, ...) a helix starts at the thread depth, downward it ends there.
-    Q355 > 1 (TNC 426/430 user's manual p. 251: "several helical paths with approach and departure; between
-    them, the TNC offsets the tool by Q355, multiplied by the pitch"; our reading of where they lie, which the
-    manual leaves open): one turn as Q355 = 0, and one more at every Q355 pitches above it while the turn still
-    reaches below the surface, each one pitch long; upward from the deepest, downward from the highest."""
-    d = -1.0 if c.depth < 0 else 1.0
-    bottom = surface + c.depth
-    upward = (c.right_hand == c.climb) != c.outside
-    if c.continuous:
-        return [(bottom, surface) if upward else (surface, bottom)]
-    step = c.threads_per_step * c.helix_pitch
-    depths = [abs(c.depth)]  # the deep end of each turn, measured from the surface
-    while step > 0 and depths[-1] - step > 1e-9:
-        depths.append(depths[-1] - step)
-    levels = [(surface + d * u, surface + d * (u - c.helix_pitch)) for u in depths]  # (deep end, far end)
-    return levels if upward else [(far, deep) for deep, far in reversed(levels)]
-
-
-def _plunge(m: _Machine, c: DrillCycle, centre: np.ndarray, level: float, room: float, sense: float, where: Where,
-            blk: SourceBlock) -> None:
-    """The roughing infeed of cycles 251-253 from over the ``centre`` down to ``level`` [mm] at the plunging
-    feed Q206, by Q366 (TNC 640 user's manual for cycle programming, cycles 251-253, Q366 "Plunging
-    strategy": 0 vertical; 1 helical; 2 reciprocating, 251/253 only). The control sets the helix and the
-    reciprocating path from the plunging angle ANGLE of its tool table, which vcnc's tool table does not
-    hold; our reading, kept inside the pocket: the helix turns once, in the milling sense, on the tool
-    radius (at most ``room`` [mm], the roughing radius left for the tool centre) about the centre, out from
-    and back to the centre along the reference axis; the reciprocating plunge runs along the pocket's
-    (turned) reference axis from the centre out to the room on that side, to the room on the other side
-    halfway down and back to the first end at the level, then to the centre. Without room: vertical."""
-    axis = m.plane
-    if c.plunge_type == 0:
-        _axis_move(m, "line", level, c.approach_feed, where, blk)
-        return
-    p, q = PLANE_AXES[axis]
-    here = _at_level(centre, axis, m.pos[axis])
-    k = m.lengths(where)
-    if c.plunge_type == 1:
-        reach, ways = min(m.tool_radius or room, room), ((1.0, level),)
-    else:
-        reach = (c.sides[0] / 2.0 - c.side_allowance - m.tool_radius) if c.shape in (251, 253) else room
-        ways = ((-1.0, (m.pos[axis] + level) / 2.0), (1.0, level))
-    if reach <= 1e-9:
-        _axis_move(m, "line", level, c.approach_feed, where, blk)
-        return
-    cos, sin = (math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))) if c.plunge_type == 2 else (1, 0)
-
-    def at(u: float, z: float) -> np.ndarray:
-        pt, _ = _program_target(m, {"I" + "XYZ"[p]: u * cos / k, "I" + "XYZ"[q]: u * sin / k}, here)
-        pt[axis] = z
-        return pt
-
-    out = at(reach, m.pos[axis])
-    m.emit("line", out, Line(m.pos, out), c.approach_feed, where, blk.number)
-    if c.plunge_type == 1:
-        seg = helical_arc(m.pos, here, math.copysign(360.0, sense), plane=axis, axis_end=level)
-        m.emit("arc", np.array(seg.end), seg, c.approach_feed, where, blk.number)
-    else:
-        for side, z in ways:
-            end = at(side * reach, z)
-            m.emit("line", end, Line(m.pos, end), c.approach_feed, where, blk.number)
-    back = _at_level(centre, axis, level)
-    m.emit("line", back, Line(m.pos, back), c.approach_feed, where, blk.number)
-
-
-def _slot_point(m: _Machine, c: DrillCycle, angle: float, radius: float) -> np.ndarray:
-    """Machine point at ``radius`` [mm] and ``angle`` [deg] about cycle 254's pitch-circle centre, at the tool's
-    tool-axis position."""
-    p, q = PLANE_AXES[m.plane]
-    a = math.radians(angle)
-    pt, _ = _program_target(m, {"XYZ"[p]: c.slot[0] + radius * math.cos(a), "XYZ"[q]: c.slot[1] + radius * math.sin(a)},
-                            m.pos)
-    pt[m.plane] = m.pos[m.plane]
-    return pt
-
-
-def _slot_ring(m: _Machine, c: DrillCycle, h: float, sense: float, feed: float, where: Where,
-               blk: SourceBlock) -> None:
-    """Once round cycle 254's slot at ``h`` [mm] from its centre line (the tool centre's path), from the outer
-    side of its first end: a line out along the radius there, then counter-clockwise (``sense`` > 0) the outer
-    arc, the half circle round the far end, the inner arc back and the half circle round the first end;
-    clockwise the same path reversed."""
-    axis, a0, rp, sweep = m.plane, c.angle, c.slot[2], c.slot[3]
-    start = _slot_point(m, c, a0, rp + h)
-    m.emit("line", start, Line(m.pos, start), feed, where, blk.number)
-    centre, first, last = (_slot_point(m, c, a0, 0.0), _slot_point(m, c, a0, rp), _slot_point(m, c, a0 + sweep, rp))
-    legs = [(centre, sweep), (last, 180.0), (centre, -sweep), (first, 180.0)]
-    if sense < 0:
-        legs = [(first, -180.0), (centre, sweep), (last, -180.0), (centre, -sweep)]
-    for pole, turn in legs:
-        seg = helical_arc(m.pos, pole, turn, plane=axis, axis_end=m.pos[axis])
-        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
-
-
-def _circle_out_and_back(m: _Machine, centre: np.ndarray, radius: float, sense: float, feed: float, where: Where,
-                         blk: SourceBlock) -> None:
-    """At the tool's level: a half circle from ``centre`` out to ``radius`` [mm] on the reference axis, a full
-    circle, a half circle back to the centre, turning by ``sense``, at ``feed`` [mm/s] (the countersinking of
-    cycles 263-265; nothing for a radius 0)."""
-    if radius <= 1e-12:
-        return
-    axis = m.plane
-    here = _at_level(centre, axis, m.pos[axis])
-    on, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: radius / m.lengths(where)}, here)
-    for pole, sweep, end in (((here + on) / 2.0, 180.0, on), (here, 360.0, on), ((on + here) / 2.0, 180.0, here)):
-        seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=m.pos[axis])
-        m.emit("arc", np.array(end), seg, feed, where, blk.number)
-
-
-def _circular_pocket(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 252 CIRCULAR POCKET about the current position (TNC 640 user's manual for cycle programming,
-    "CIRCULAR POCKET (Cycle 252)", cycle run: FMAX to the set-up clearance, plunge in the centre to each
-    plunging depth, rough out from the inside, leaving the allowances Q368/Q369, then up by the set-up
-    clearance and at FMAX back to the centre; then finish the wall (in infeeds of Q338) approached
-    tangentially, then the floor from the inside out; FMAX to the set-up clearance and the 2nd one).
-
-    The manual leaves the roughing path to the control; our reading, kept inside the pocket: at each
-    depth (plunged vertically at Q206) full circles about the centre, Q370 x the tool radius apart, out to
-    the pocket radius less the allowance and the tool radius, each reached by a straight step outward
-    along the reference axis, at the milling feed Q207, counter-clockwise for climb milling (Q351 = +1).
-    The wall is finished at Q385 by a half circle out from the centre, a full circle and a half circle back
-    (as cycle 262); the floor by the roughing's circles at the depth out to the wall. Q215 = 0 finishes
-    only what has an allowance; Q215 = 2 finishes wall and floor (the old 212/214: the wall only).
-    """
-    axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    top, bottom = surface - d * c.setup, surface + c.depth
-    wall = c.bore_diameter / 2.0 - m.tool_radius
-    rough = wall - c.side_allowance
-    if rough <= 1e-9:
-        what = {5: ("radius 5.4", "5.4 RADIUS"), 4: ("sides 4.4, 4.5", "half the shorter side")}.get(
-            c.number, ("allowance Q368", "Q223 / 2 less Q368"))
-        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the {what[0]} fill the pocket "
-                   f"({c.bore_diameter:g} mm)", column=blk.column, text=blk.code,
-                   expected=f"a tool radius below {what[1]}")
-    step = c.stepover * m.tool_radius or wall
-    sense = m.transform.sweep(1.0 if c.climb else -1.0, axis)
-    if c.shape == 254:  # at FMAX over the slot's first end (the pitch circle at the starting angle), then down
-        first = _slot_point(m, c, c.angle, c.slot[2])
-        m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    centre = m.pos.copy()
-
-    def rings(allowance: float, feed: float) -> None:
-        if c.shape in (251, 253):
-            _rect_rings(m, c, centre, allowance, step, feed, where, blk)
-        elif c.shape == 254:
-            h = 0.0
-            while h < wall - allowance - 1e-9:
-                h = min(h + step, wall - allowance)
-                _slot_ring(m, c, h, sense, feed, where, blk)
-        else:
-            _pocket_rings(m, centre, wall - allowance, step, sense, feed, where, blk)
-    if c.operation in (0, 1):
-        for level in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d):
-            _plunge(m, c, centre, level, rough, sense, where, blk)
-            rings(c.side_allowance, c.feed)
-            _back_to_centre(m, centre, level - d * c.setup, where, blk)
-    if c.operation == 2 or (c.operation == 0 and (c.side_allowance > 0 or c.wall_only)):
-        for level in _depths(surface, bottom, c.finish_infeed or abs(c.depth), d):
-            _axis_move(m, "line", level, c.approach_feed, where, blk)
-            if c.shape in (251, 253):
-                _rect_wall(m, c, centre, sense, where, blk)
-                continue
-            if c.shape == 254:
-                _slot_ring(m, c, wall, sense, c.finish_feed, where, blk)
-                back = _at_level(centre, axis, level)
-                m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
-                continue
-            k = m.lengths(where)
-            start, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: wall / k}, m.pos)
-            here = m.pos.copy()
-            for pole, sweep in (((here + start) / 2.0, 180.0), (here, 360.0), (None, 180.0)):
-                pole = (m.pos + here) / 2.0 if pole is None else pole
-                seg = helical_arc(m.pos, pole, math.copysign(sweep, sense), plane=axis, axis_end=level)
-                m.emit("arc", np.array(seg.end), seg, c.finish_feed, where, blk.number)
-    if (c.operation == 2 and not c.wall_only) or (c.operation == 0 and c.floor_allowance > 0):
-        _axis_move(m, "line", bottom, c.approach_feed, where, blk)
-        rings(0.0, c.finish_feed)
-        _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
-    m.used.update(range(3))
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
-
-
-def _rect_rings(m: _Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
-                where: Where, blk: SourceBlock) -> None:
-    """Cycle 251's roughing (or floor finishing) at the tool's level: rounded rectangles about ``centre``, the
-    outer one the pocket less ``allowance`` and the tool radius, the inner ones offset inward by equal steps of
-    at most ``step`` [mm]; each entered from the centre side along the pocket's reference axis."""
-    half = (c.sides[0] / 2.0 - allowance - m.tool_radius, c.sides[1] / 2.0 - allowance - m.tool_radius)
-    if min(half) <= 1e-9:
-        where.fail(f"cycle {c.number}: the tool (radius {m.tool_radius:g} mm) and the allowance Q368 fill the pocket",
-                   column=blk.column, text=blk.code, expected="a tool radius plus Q368 below Q218 / 2 and Q219 / 2")
-    n = max(1, math.ceil(min(half) / step - 1e-9))
-    inset = min(half) / n
-    corner = max(c.corner - allowance - m.tool_radius, 0.0)
-    for j in range(n - 1, -1, -1):
-        off = j * inset
-        _rect_path(m, c, centre, (half[0] - off, half[1] - off), max(corner - off, 0.0), feed, where, blk)
-
-
-def _rect_wall(m: _Machine, c: DrillCycle, centre: np.ndarray, sense: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 251's wall finishing at the tool's level: out from the centre, round the pocket less the tool
-    radius, back to the centre."""
-    half = (c.sides[0] / 2.0 - m.tool_radius, c.sides[1] / 2.0 - m.tool_radius)
-    _rect_path(m, c, centre, half, max(c.corner - m.tool_radius, 0.0), c.finish_feed, where, blk)
-    back = centre.copy()
-    back[m.plane] = m.pos[m.plane]
-    m.emit("line", back, Line(m.pos, back), c.finish_feed, where, blk.number)
-
-
-def _rect_path(m: _Machine, c: DrillCycle, centre: np.ndarray, half: tuple[float, float], corner: float,
-               feed: float, where: Where, blk: SourceBlock, *, ccw: bool | None = None) -> None:
-    """From the tool's position a line to the middle of the rectangle's side on the reference axis, then
-    once round the rectangle of half sides ``half`` [mm] with corners rounded by ``corner`` [mm] about
-    ``centre`` turned by the cycle's angle, counter-clockwise for climb milling (or as ``ccw`` says), at
-    ``feed`` [mm/s]."""
-    axis = m.plane
-    p, q = PLANE_AXES[axis]
-    k = m.lengths(where)
-    a, b = half
-    corner = min(corner, a, b)
-    s = 1.0 if (c.climb if ccw is None else ccw) else -1.0  # clockwise: mirrored across the reference axis
-    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
-    level = centre.copy()
-    level[axis] = m.pos[axis]
-
-    def at(u: float, v: float) -> np.ndarray:
-        v *= s
-        pt, _ = _program_target(m, {"I" + "XYZ"[p]: (u * cos - v * sin) / k, "I" + "XYZ"[q]: (u * sin + v * cos) / k},
-                                level)
-        return pt
-
-    def line(u: float, v: float) -> None:
-        pt = at(u, v)
-        if np.linalg.norm(pt - m.pos) > 1e-12:
-            m.emit("line", pt, Line(m.pos, pt), feed, where, blk.number)
-
-    line(a, 0.0)
-    r = corner
-    for (u0, v0), (cu, cv) in (((a, b - r), (a - r, b - r)), ((-a + r, b), (-a + r, b - r)),
-                               ((-a, -b + r), (-a + r, -b + r)), ((a - r, -b), (a - r, -b + r))):
-        line(u0, v0)
-        if corner > 1e-12:
-            seg = helical_arc(m.pos, at(cu, cv), m.transform.sweep(90.0 * s, axis), plane=axis, axis_end=m.pos[axis])
-            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
-    line(a, 0.0)
-
-
-def _rectangular_stud(m: _Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
-    """Cycle 256 RECTANGULAR STUD about the current position (TNC 640 user's manual for cycle programming
-    34059x-01, "RECTANGULAR STUD (Cycle 256)", cycle run: from the stud's centre along +X to the starting
-    position 2 mm right of the blank Q424; FMAX to the set-up clearance, at Q206 to the plunging depth; a
-    half circle tangentially onto the contour, one revolution; stepovers until the finished size; a half
-    circle tangentially off back to the starting position; the next plunging depth; FMAX out).
-
-    Our reading where the manual leaves it open: the revolutions run the rounded rectangle (Q218 x Q219,
-    corners Q220, turned by Q224) grown by Q368 and the tool radius, and at equal stepovers of at most Q370
-    x the tool radius from the blank Q424 x Q425, clockwise for climb milling (Q351 = +1, M3), each reached
-    by a straight stepover along the reference axis; the half circles run the other way. The tool stops at
-    the depth less Q369. Q215 = 0/2 with an allowance: one more revolution at the finished size (Q385) at
-    each depth of Q338, as roughing; Q215 = 2 runs that finishing alone (Q215: 0 roughing and finishing,
-    1 roughing only, 2 finishing only). The tool ends over the starting position. The starting position lies the
-    cycle's ``lead`` beyond the blank (256/257: the manual's 2 mm; 213/215: :func:`finishing_cycle`).
-    """
-    axis = m.plane
-    d = -1.0 if c.depth < 0 else 1.0
-    top, bottom = surface - d * c.setup, surface + c.depth
-    grow = c.side_allowance + m.tool_radius
-    final = (c.sides[0] / 2.0 + grow, c.sides[1] / 2.0 + grow)
-    blank = (c.blank[0] / 2.0 + m.tool_radius, c.blank[1] / 2.0 + m.tool_radius)
-    span = max(blank[0] - final[0], blank[1] - final[1], 0.0)
-    n = max(1, math.ceil(span / (c.stepover * m.tool_radius or span or 1.0) - 1e-9))
-    cw = c.climb
-    k = m.lengths(where)
-    cos, sin = math.cos(math.radians(c.angle)), math.sin(math.radians(c.angle))
-    centre = m.pos.copy()
-    plane = PLANE_AXES[axis]
-
-    def at(u: float) -> np.ndarray:
-        pt, _ = _program_target(m, {"I" + "XYZ"[plane[0]]: u * cos / k, "I" + "XYZ"[plane[1]]: u * sin / k}, centre)
-        pt[axis] = m.pos[axis]
-        return pt
-
-    start_u = c.blank[0] / 2.0 + c.lead + m.tool_radius
-    first = at(start_u)
-    m.emit("rapid", first, Line(m.pos, first), math.inf, where, blk.number)
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    half = m.transform.sweep(180.0 if cw else -180.0, axis)  # the half circles: against the revolutions
-    passes = [(j * span / n, c.feed) for j in range(n - 1, -1, -1)]
-    levels = [(z, passes) for z in _depths(surface, bottom - d * c.floor_allowance, c.plunge, d)
-              if c.operation in (0, 1)]  # Q215 = 2: finishing only
-    if c.operation == 2 or (c.operation == 0 and c.side_allowance > 0):
-        levels += [(z, [(-c.side_allowance, c.finish_feed)]) for z in _depths(surface, bottom,
-                                                                                c.finish_infeed or abs(c.depth), d)]
-    def half_circle(u: float, level: float, feed: float) -> None:
-        """The half circle to ``at(u)``; none where the tool is there (213 with Q221 = 0, 215 with Q222 = Q223:
-        no lead, the tool plunges on the contour: our reading)."""
-        if np.hypot(*(at(u) - m.pos)[list(plane)]) > 1e-9:
-            seg = helical_arc(m.pos, (m.pos + at(u)) / 2.0, half, plane=axis, axis_end=level)
-            m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
-
-    for level, rounds in levels:
-        _axis_move(m, "line", level, c.approach_feed, where, blk)
-        for i, (off, feed) in enumerate(rounds):
-            a = final[0] + off
-            if i == 0:
-                half_circle(a, level, feed)
-            _rect_path(m, c, _at_level(centre, axis, level), (a, final[1] + off), max(c.corner + grow + off, 0.0),
-                       feed, where, blk, ccw=not cw)
-        half_circle(start_u, level, rounds[-1][1])
-    m.used.update(range(3))
-    _axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        _axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
-
-
-def _at_level(point: np.ndarray, axis: int, level: float) -> np.ndarray:
-    """``point`` with its ``axis`` coordinate ``level``."""
-    out = point.copy()
-    out[axis] = level
-    return out
-
-
-def _depths(surface: float, bottom: float, step: float, d: float) -> list[float]:
-    """The levels from ``surface`` in steps of ``step`` toward ``bottom`` (the last one ``bottom``) [mm]."""
-    n = max(1, math.ceil(abs(bottom - surface) / step - 1e-9))
-    return [surface + d * min(step * (i + 1), abs(bottom - surface)) for i in range(n)]
-
-
-def _pocket_rings(m: _Machine, centre: np.ndarray, radius: float, step: float, sense: float, feed: float,
-                  where: Where, blk: SourceBlock) -> None:
-    """Full circles about ``centre`` (at the tool's level), ``step`` apart out to ``radius`` [mm], each reached
-    by a straight step outward along the program's reference axis at ``feed`` [mm/s]."""
-    axis = m.plane
-    pole = centre.copy()
-    pole[axis] = m.pos[axis]
-    k = m.lengths(where)
-    r = 0.0
-    while r < radius - 1e-9:
-        r = min(r + step, radius)
-        out, _ = _program_target(m, {"I" + "XYZ"[PLANE_AXES[axis][0]]: r / k}, pole)
-        m.emit("line", out, Line(m.pos, out), feed, where, blk.number)
-        seg = helical_arc(m.pos, pole, math.copysign(360.0, sense), plane=axis, axis_end=m.pos[axis])
-        m.emit("arc", np.array(seg.end), seg, feed, where, blk.number)
-
-
-def _back_to_centre(m: _Machine, centre: np.ndarray, level: float, where: Where, blk: SourceBlock) -> None:
-    """At FMAX up to ``level`` [mm], then over the pocket's ``centre``."""
-    _axis_move(m, "rapid", level, math.inf, where, blk)
-    target = centre.copy()
-    target[m.plane] = level
-    if not np.array_equal(target, m.pos):
-        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
-
-
-def _pattern_cycle_run(pat: PatternCycle, m: _Machine, where: Where, blk: SourceBlock) -> None:
-    """Cycle 220/221 runs the last machining cycle at each of its positions (TNC 320 cycle manual,
-    cycle 220 "Cycle run": at rapid to the 2nd set-up clearance, to the first position in the
-    plane, the machining cycle from the set-up clearance; to the next positions at the set-up
-    clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
-    machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
-    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
-                                               RuledSurface)) or m.cycle.surface is None:
-        # which of the other cycles a pattern runs, and from where, no manual page found says (the
-        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
-        number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
-        what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
-                else "with an SL cycle")
-        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here",
-                   column=blk.column, text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
-    base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
-    scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))
-    axis, p, q = m.plane, *PLANE_AXES[m.plane]
-    d = -1.0 if scaled.depth < 0 else 1.0
-    surface = _surface_level(m, scaled.surface, 0.0)
-    _axis_move(m, "rapid", surface - d * max(scaled.setup, scaled.second_setup), math.inf, where, blk)
-    for k, (u, v) in enumerate(pat.points):
-        target, _ = _program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
-        target[axis] = m.pos[axis]
-        if not np.array_equal(target, m.pos):
-            m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
-        last = k == len(pat.points) - 1
-        _hole(m, scaled if pat.high or last else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
-
-
-def _active_cycle(m: _Machine) -> DrillCycle:
-    """The defined machining cycle with its tool-axis lengths scaled by cycles 11/26 ("the scaling
-    factor also affects the dimensions in cycles")."""
-    if m.transform.identity:
-        return m.cycle
-    return scaled_cycle(m.cycle, m.transform.axis_factor(m.plane))
-
-
-def _surface_level(m: _Machine, surface: float, shift: float) -> float:
-    """Machine tool-axis coordinate [mm] of a cycle's surface (Q203) [mm] plus an extra ``shift``
-    (a pattern position's or CYCL CALL POS's tool-axis coordinate) [mm]."""
-    if m.transform.identity:
-        return m.origin()[m.plane] + surface + shift
-    return m.axis_level(surface + shift)
-
-
-def _axis_move(m: _Machine, kind: str, level: float, feed: float, where: Where, blk: SourceBlock) -> None:
-    if level != m.pos[m.plane]:
-        target = m.pos.copy()
-        target[m.plane] = level
-        m.emit(kind, target, Line(m.pos, target), feed, where, blk.number)
-
-
-# --- splines ---------------------------------------------------------------------------------
-
-def _spline_block(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
-    """``SPL X.. Y.. Z.. K3X.. K2X.. K1X.. .. [F..] [M..]`` (:mod:`interpolators.heidenhain_splines`): the curve as
-    chords joined without stops, the last one ending as the path mode says; True at M2/M30."""
-    spl = read_spline(blk.code, pos, where, m.params, column0=blk.column)
-    words = _read_words(spl.rest, pos, where, m, column0=blk.column)
-    seen, ms = _motion_words("SPL", words, m, where)
-    ended = any(_one_m(w, m, where) for w in ms)
-    if "F" in seen:
-        w = seen["F"]
-        if not w.value > 0:
-            where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
-        m.feed = w.value * m.feed_scale
-    if m.feed is None:
-        where.fail("SPL feed move without a feed", column=blk.column, text=where.text, expected="F > 0 [mm/min]")
-    if m.comp != "R0" or m.pending is not None or m.approach is not None or m.tcpm:
-        where.fail("SPL under RL/RR, after RND/CHF/APPR or under M128 is not supported", column=blk.column,
-                   text=where.text, expected="SPL blocks with R0 (the CAM system's tool-centre path)")
-    first, points = spline_points(m.to_program(m.pos), spl, m.scale)
-    gap = float(np.max(np.abs(m.to_machine(first) - m.pos)))  # per axis: the manual's own example is 1.2 um apart
-    if gap > SPLINE_START_TOLERANCE * (1.0 + 1e-6):
-        where.fail(f"SPL starts {gap:.4f} mm (in one axis) from the end of the previous element", column=blk.column,
-                   text=where.text, expected=f"a spline start (t = 1) within {SPLINE_START_TOLERANCE * 1000:g} um of "
-                                             "the previous end point (iTNC 530 user's manual, spline interpolation)")
-    exact_stop, tolerance = m.exact_stop, m.tolerance
-    m.exact_stop, m.tolerance = False, tolerance if tolerance is not None else SPLINE_TOLERANCE
-    for i, point in enumerate(points):
-        if i == len(points) - 1:
-            m.exact_stop, m.tolerance = exact_stop, tolerance
-        target = m.to_machine(point)
-        m.emit("line", target, Line(m.pos, target), m.feed, where, blk.number)
-    m.used.update(spl.end)
-    m.last_axes = []
-    return ended
-
-
-# --- M functions -----------------------------------------------------------------------------
-
-def _without_m128_feed(words: list[Word], m: _Machine) -> list[Word]:
-    """``words`` without the F word right after M128, which is not the path feed but "another feed rate, at which
-    the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's manual for DIN/ISO
-    programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125 M128 F1000``). vcnc's
-    M128 moves no rotary axis (they are positioned before it): noted, no effect."""
-    out: list[Word] = []
-    for w in words:
-        if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
-            m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
-            continue
-        out.append(w)
-    return out
-
-
-def _m_functions(words: list[Word], m: _Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
-    """Check the M words of a block without motion words; True when the program ends here."""
-    words = _without_m128_feed(words, m)
-    ended = False
-    for w in words:
-        if w.key == "M":
-            ended = _one_m(w, m, where) or ended
-            if w.value in (89, 91, 92, 99, 140) and not motion:
-                if w.value == 99:
-                    m.modal_call = False
-                    _cycle_call(m, where, blk)
-                elif w.value == 89:
-                    m.modal_call = True
-                elif w.value == 140:
-                    continue
-                else:
-                    m.note(f"M{w.value} in a block without coordinates has no effect")
-        elif w.key == "MBMAX" or w.key == "MB":
-            continue
-        elif not motion:
-            where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
-                       expected="M functions")
-    return ended
-
-
-def _one_m(w: Word, m: _Machine, where: Where) -> bool:
-    if w.value in _M_PATH:
-        _path_m(w, m, where)
-        return False
-    if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
-                      column=w.column, text=w.text)
-        m.tcpm = True
-        m.note("M128: TCPM on positioned rotary axes (lines of the tool tip on the turned part)")
-        return False
-    if w.value == 129:
-        m.tcpm = False
-    if w.value in _M_END:
-        return True
-    if w.value in _M_STOP:
-        m.note(f"M{w.value}: program stop (no motion)")
-        m.stop_in_block = True
-        m.at_rest = m.at_rest or w.value == 0
-    elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
-        m.note(f"M{w.value} ignored (no motion)")
-    return False
-
-
-#: M functions of the path and the feed with a meaning here (:func:`_path_m`).
-_M_PATH = (94, 103, 112, 113, 118, 120, 124, 136, 137, 138)
-
-
-def _path_m(w: Word, m: _Machine, where: Where) -> None:
-    """M functions with parameters (:data:`interpolators.heidenhain_words.M_ARGUMENTS`) and the feed per
-    revolution.
-
-    * ``M94 [A|B|C]`` (TNC 426 B/430 user's manual, "Reducing display of a rotary axis to a value less
-      than 360 deg: M94"; TNC 640 the same): at the start of the block the current angle of the axis (of
-      every rotary axis without a letter) is reduced below 360 deg, then the block moves to its programmed
-      value (538 deg, then ``C+180``: a traverse of +2 deg). The axis does not move: vcnc keeps the
-      machine angle and counts later absolute angles from the reduced value (:attr:`_Machine.rotary_shift`).
-    * ``M112 T.. A..`` / ``M113`` (TNC 410/426/430 user's manual, "Insert rounding arc between straight
-      lines: M112": "for reasons of compatibility ... HEIDENHAIN recommends the use of the TOLERANCE
-      cycle"; TNC 407: ``E``, ``H``): the contour transitions within the tolerance T, read as cycle 32
-      ``T`` (without T: the context's path tolerance) until ``M113``; the limit angle A is noted.
-    * ``M124 T..`` (TNC 407 user's manual, "Ignore points for calculating the rounding arc with M112"):
-      points closer than T are left out of M112's rounding arc, not out of the path: noted.
-    * ``M118 X.. Y..`` (TNC 640 user's manual, "Superimposing handwheel positioning during program run:
-      M118"): limits of an operator's handwheel; no motion, noted.
-    * ``M120 LA..`` (TNC 640 user's manual, "Calculating the radius-compensated path in advance (LOOK
-      AHEAD): M120"): the TNC leaves out contour undercuts of a radius-compensated run; until R0, ``LA0``,
-      M120 without LA or a ``CALL PGM``. vcnc compensates as without it (the same path where the tool
-      fits); where it would leave out an undercut, the compensation error names M120.
-    * ``M136`` / ``M137`` (TNC 640 user's manual, "Feed rate in millimeters per spindle revolution:
-      M136"): F in mm per revolution from the start of the block (:func:`_read_words`).
-    * ``M103 F..`` (TNC 640 / TNC 410 user's manuals, "Feed rate for plunging: M103"): a move down the tool
-      axis runs at most F percent of the feed along it (the manual's table: F500 M103 F20, ``Y+5 Z-5`` at 141
-      mm/min, ``Z-2.5`` at 100); ``M103`` without F ends it.
-    * ``M138 B C`` (TNC 640 user's manual, "Selecting tilting axes: M138"): noted."""
-    args = dict(w.args)
-    if w.value == 94:
-        letters = [a for a in args if a.lower() in m.context.extra_axes] if args else \
-            [a for a in ROTARY_LETTERS if a.lower() in m.context.extra_axes]
-        for letter in letters:
-            i = EXTRA_LETTERS.index(letter)
-            shown = m.extra[i] - m.rotary_shift[i]
-            m.rotary_shift[i] = m.extra[i] - shown % 360.0
-        m.note("M94: the rotary axis display reduced below 360 deg (no motion; later absolute angles from there)")
-    elif w.value == 112:
-        if m.m112 is None:
-            m.m112 = (m.exact_stop, m.tolerance)
-        tolerance = args.get("T", args.get("E"))
-        m.exact_stop = False
-        m.tolerance = abs(tolerance) * m.scale if tolerance else m.context.dialect.tolerance
-        m.note("M112: contour transitions within the tolerance T, read as cycle 32 TOLERANCE (limit angle A not "
-               "modelled)")
-    elif w.value == 113 and m.m112 is not None:
-        m.exact_stop, m.tolerance = m.m112
-        m.m112 = None
-    elif w.value == 124:
-        m.note("M124 T: M112's point filter (the path is not changed)")
-    elif w.value == 118:
-        m.note("M118: handwheel superimposition limits (no motion; an operator's handwheel is not modelled)")
-    elif w.value == 120:
-        m.look_ahead = bool(args.get("LA"))
-        m.note("M120 LA: look-ahead of the radius-compensated path (the same path where the tool fits)")
-    elif w.value == 103:
-        m.plunge = args["F"] / 100.0 if args.get("F") else None
-    elif w.value == 138:
-        m.note("M138: the rotary axes M128 takes (vcnc's M128 takes the kinematics' axes)")
-    elif w.value == 136 and m.inch:
-        where.fail("M136 in an inch program (the unit of F per revolution there is not documented)",
-                   column=w.column, text=w.text, expected="M136 in a program in MM, or FU")
-
-
-# --- contour ---------------------------------------------------------------------------------
-
-def _corner_def(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> None:
-    code = blk.code
-    rm = re.compile(r"\s*R(?=\s*[+-]?\s*[\d.Q(])", re.I).match(code, pos) if kw == "RND" else None
-    j = rm.end() if rm else pos
-    value, j = read_value(code, j, where, m.params, what=kw, column0=blk.column)
-    words = _read_words(code, j, where, m, column0=blk.column)
-    feed = None
-    for w in words:
-        if w.key == "F":
-            if not w.value > 0:
-                where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
-            feed = w.value * m.feed_scale
-        elif w.key != "M":
-            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text, expected="F or M")
-    last = m.blocks[-1] if m.blocks else None
-    # TNC 620 manual: CHF joins two straight lines; RND any two contour elements
-    kinds = ("line",) if kw == "CHF" else ("line", "arc")
-    if last is None or last.kind not in kinds or m.pending is not None:
-        what = "a straight line L" if kw == "CHF" else "a line or an arc"
-        where.fail(f"{kw} must follow {what}", column=blk.column, text=code.split()[0],
-                   expected=f"L ... then {kw} then L ..." if kw == "CHF" else "L/C/CR/CT/CP, then RND, then L/C/...")
-    m.pending = (kw, value * m.scale * m.lengths(where), feed, where)
-
-
-def _plane_coords(seen: dict[str, Word], m: _Machine, where: Where, *, m9x: int | None) -> tuple[np.ndarray, set]:
-    """Machine end point [mm] of the axis words of a block, and the axes written (M91: machine
-    coordinates, M92: from ``context.home``; neither transformed)."""
-    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
-    if m9x is None:
-        return _program_target(m, values, m.pos)
-    origin = np.zeros(3) if m9x == 91 else np.array(m.context.home, dtype=float)
-    return _absolute_target(values, m.pos, origin)
-
-
-def _absolute_target(values: dict[str, float], base: np.ndarray, origin: np.ndarray) -> tuple[np.ndarray, set]:
-    """``base`` with the axes of ``values`` [mm] set: absolute from ``origin``, ``I`` from ``base``."""
-    target = np.array(base, dtype=float)
-    written = set()
-    for i, a in enumerate("XYZ"):
-        if a in values:
-            target[i] = origin[i] + values[a]
-            written.add(i)
-        elif "I" + a in values:
-            target[i] = base[i] + values["I" + a]
-            written.add(i)
-    return target, written
-
-
-def _program_target(m: _Machine, values: dict[str, float], base: np.ndarray) -> tuple[np.ndarray, set]:
-    """Machine point [mm] of program axis values [mm] (``"X"`` absolute, ``"IX"`` incremental) from the
-    machine point ``base``, through the active transformations; an axis not written keeps its program
-    coordinate (with none active: its machine coordinate, exactly)."""
-    if m.transform.identity:
-        return _absolute_target(values, base, m.origin())
-    prog, written = _absolute_target(values, m.to_program(base), np.zeros(3))
-    return m.to_machine(prog), written
-
-
-def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where,
-                  blk: SourceBlock) -> np.ndarray:
-    """The machine end point of an ``LP`` or ``CTP`` block: ``PR``/``IPR`` and ``PA``/``IPA`` about the pole in
-    its plane (:func:`_polar_plane`; a word not written keeps the current radius or angle), the tool axis of
-    ``target``. CTP, "circle tangential polar", is the arc CT with its end point in polar coordinates (TNC7 basic
-    user's manual 81762x-19, "Overview of path functions with polar coordinates": "Circular path with tangential
-    connection to the preceding contour element"; TNC 426/430 user's manual 6.5 writes ``CTP PR+30 PA+30``)."""
-    if m.pole is None:
-        where.fail(f"{kw} without a pole", column=blk.column, text=where.text, expected=f"a CC block before {kw}")
-    if kw == "CTP":  # the arc is in the working plane, as CT's
-        _pole_in_working_plane(m, where, kw)
-    plane = _polar_plane(kw, m, where, blk)
-    r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
-    k, t = m.scale * m.lengths(where), m.transform
-    pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
-    pa = (t.angle(seen["PA"].value, plane) if "PA" in seen
-          else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
-    m.used.update(PLANE_AXES[plane])
-    return polar_point(m.pole, pr, pa, plane=plane, base=target)
-
-
-def _motion(kw: str, words: list[Word], m: _Machine, where: Where, blk: SourceBlock) -> bool:
-    """Run a motion block (L, LP, C, CR, CT, CTP, CP, CC); True when it ends the program."""
-    seen, ms = _motion_words(kw, words, m, where)
-    mvals = [w.value for w in ms]
-    m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
-    ended = any(_one_m(w, m, where) for w in ms)
-    if kw == "CC":
-        _pole(seen, m, where, m9x)
-        return ended
-    normal, kw = kw == "LN", "L" if kw == "LN" else kw  # LN: a line to a point displaced along the normal
-    exit_run = "RCOMP" in seen and _set_compensation(seen["RCOMP"], m, where)
-    rapid = "FMAX" in seen
-    if "F" in seen:
-        w = seen["F"]
-        if not w.value > 0:
-            where.fail("feed F must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
-        m.feed = w.value * m.feed_scale
-    if rapid and kw not in ("L", "LP"):
-        w = seen["FMAX"]
-        where.fail("F MAX is not allowed on arcs", column=w.column, text=w.text, expected="a feed F [mm/min]")
-    if "MBMAX" in seen or "MB" in seen:
-        if 140 not in mvals:
-            w = seen.get("MBMAX") or seen["MB"]
-            where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
-    target, written = _plane_coords(seen, m, where, m9x=m9x)
-    if normal:
-        target = target + _normal_offset(seen, m, where, blk)
-    m.used.update(written)
-    feed = math.inf if rapid else m.feed
-    extra = _extra_axes(seen, m, where) if kw == "L" else None
-    if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
-        target = _tcpm_target(kw, seen, extra, normal or m.pending is not None or m.approach is not None
-                              or m.comp != "R0", m, where)
-    if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
-        if kw == "LP":
-            target = _polar_target(kw, seen, target, m, where, blk)
-        m.last_axes = sorted(written) if kw == "L" else []
-        if not rapid and m.feed is None:
-            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
-                       expected="F > 0 [mm/min] or F MAX")
-        if m.pending is not None:
-            _resolve_corner(m, Line(m.pos, target), where)
-        if m.approach is not None:
-            p, q = PLANE_AXES[m.plane]
-            _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
-        m.tcpm_move = True
-        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
-        m.tcpm_move = False
-    elif kw in ("C", "CR", "CT", "CP", "CTP"):
-        if kw == "CTP":
-            target = _polar_target(kw, seen, target, m, where, blk)
-        if m.feed is None:
-            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
-                       expected="F > 0 [mm/min]")
-        if m.pending is not None and m.pending[0] == "CHF":
-            pw = m.pending[3]
-            pw.fail("CHF before an arc: a chamfer joins two straight lines", column=1, text=pw.text,
-                    expected="a line after CHF (RND rounds a corner with an arc)")
-        seg = _arc(kw, seen, target, m, where, blk)
-        if m.pending is not None:
-            seg = _resolve_corner(m, seg, where)
-        m.used.update(PLANE_AXES[seg.plane])
-        if m.approach is not None:
-            p, q = PLANE_AXES[m.plane]
-            t = np.asarray(seg.tangent_at(0.0), dtype=float).reshape(3)
-            _resolve_approach(m, np.array([t[p], t[q]]), where)
-        m.emit("arc", np.array(seg.end), seg, m.feed, where, blk.number)
-    if exit_run:  # the R0 block ends the run at its programmed point, also with only the tool axis in it
-        _finish_compensation(m, closed=True)
-    _retract_and_call(seen, mvals, m, where, blk, positioned=kw in ("L", "LP") and bool(written))
-    return ended
-
-
-def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: _Machine, where: Where, blk: SourceBlock, *,
-                      positioned: bool) -> None:
-    """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle, and so
-    does every positioning block (an L or LP with coordinates) from ``M89`` on, until ``M99`` or
-    ``CYCL CALL`` (TNC 406/306 technical manual, "M-function M89": "for every following
-    positioning block there will be a call of the last-programmed machining cycle. M89 is canceled
-    by M99 or a CYCL CALL block"; the M89 block itself calls at its end)."""
-    if 140 in mvals:
-        if "MBMAX" in seen:
-            retract = m.pos.copy()
-            retract[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
-        elif "MB" in seen:
-            retract = m.pos.copy()
-            retract[m.plane] += abs(seen["MB"].value) * m.scale
-        else:
-            retract = None
-            m.note("M140 without MB: no retraction")
-        if retract is not None and retract[m.plane] != m.pos[m.plane]:
-            m.used.add(m.plane)
-            m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
-            m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
-            m.tcpm_move = False
-    if 89 in mvals:
-        m.modal_call = True
-    if 99 in mvals:
-        m.modal_call = False
-        _cycle_call(m, where, blk)
-    elif m.modal_call and positioned:
-        _cycle_call(m, where, blk)
-
-
-#: A word's key -> the axis or setting it gives (one per block): IX and X both give X, RL and R0 the compensation.
-_BASE_KEY = {"IX": "X", "IY": "Y", "IZ": "Z", "IA": "A", "IB": "B", "IC": "C", "IU": "U", "IV": "V", "IW": "W",
-             "IPA": "PA", "IPR": "PR", "FMAX": "F", "R0": "RCOMP", "RL": "RCOMP",
-             "RR": "RCOMP", "MBMAX": "MB", "BARE": "X"}
-#: The words each motion block allows (by key; RCOMP stands for R0/RL/RR).
-_ALLOWED_WORDS = {
-    "L": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "FMAX", "RCOMP", "R0", "RL", "RR", "MB", "MBMAX",
-                    *EXTRA_LETTERS, *("I" + a for a in EXTRA_LETTERS)}),
-    "LN": frozenset({"X", "Y", "Z", "NX", "NY", "NZ", "TX", "TY", "TZ", "F", "FMAX", "RCOMP", "R0"}),
-    "LP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "X", "Y", "IX", "IY", "F", "FMAX", "RCOMP", "R0", "RL",
-                     "RR"}),
-    "C": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
-    "CR": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "DR", "R", "F", "RCOMP", "R0", "RL", "RR"}),
-    "CT": frozenset({"X", "Y", "Z", "IX", "IY", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
-    "CP": frozenset({"PA", "IPA", "X", "Y", "Z", "IX", "IY", "IZ", "DR", "F", "RCOMP", "R0", "RL", "RR"}),
-    "CTP": frozenset({"PR", "PA", "IPR", "IPA", "Z", "IZ", "F", "RCOMP", "R0", "RL", "RR"}),
-    "CC": frozenset({"X", "Y", "Z", "IX", "IY", "IZ"}),
-    "SPL": frozenset({"F"}),
-}
-
-
-def _motion_words(kw: str, words: list[Word], m: _Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
-    """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
-    words = _without_m128_feed(words, m)
-    seen: dict[str, Word] = {}
-    ms: list[Word] = []
-    bases: set[str] = set()
-    for w in words:
-        if w.key == "M":
-            ms.append(w)
-            continue
-        base = _BASE_KEY.get(w.key, w.key)
-        if base in bases or (w.key == "BARE" and bases & {"X", "Y", "Z"}) or (base in "XYZ" and "BARE" in seen):
-            where.fail(f"word {w.text!r} repeats an axis or setting of this block", column=w.column, text=w.text,
-                       expected="each word at most once per block")
-        bases.add(base)
-        seen[w.key] = w
-        if base == "RCOMP":
-            seen["RCOMP"] = w
-    if "BARE" in seen:
-        w = seen.pop("BARE")
-        if kw != "L" or len(m.last_axes) != 1:
-            where.fail("coordinate without an axis letter", column=w.column, text=w.text,
-                       expected="an axis letter (X, Y or Z) before the number")
-        seen["XYZ"[m.last_axes[0]]] = w
-    allowed = _ALLOWED_WORDS[kw]
-    for key, w in seen.items():
-        if key not in allowed:
-            where.fail(f"word {w.text!r} not allowed in {kw}", column=w.column, text=w.text,
-                       expected=f"{kw} with " + ", ".join(sorted(k for k in allowed if k != 'RCOMP')))
-    return seen, ms
-
-
-def _normal_offset(seen: dict[str, Word], m: _Machine, where: Where, blk: SourceBlock) -> np.ndarray:
-    """``LN X.. Y.. Z.. NX.. NY.. NZ.. [TX.. TY.. TZ..]``, a straight line with 3-D tool compensation: X, Y,
-    Z are the end point the CAM system computed for the tool as defined, and "the TNC displaces the tool in
-    the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
-    without M128 / FUNCTION TCPM "the TNC ignores the direction vector T" (iTNC 530 user's manual
-    60642x-03 p. 519, "3-D compensation without tool orientation"). vcnc's tool table holds no delta
-    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine]."""
-    missing = [k for k in ("NX", "NY", "NZ") if k not in seen]
-    normal = np.array([seen[k].value for k in ("NX", "NY", "NZ") if k in seen], dtype=float)
-    if missing or not np.linalg.norm(normal) > 0:
-        where.fail("LN without a surface-normal vector", column=blk.column, text=where.text,
-                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length)")
-    if not m.transform.identity:
-        where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
-                   text=where.text, expected="LN without mirror, rotation or scaling")
-    if "TX" in seen or "TY" in seen or "TZ" in seen:
-        m.note("LN TX/TY/TZ: the tool orientation is ignored without M128 (no tilting axes move)")
-    return m.tool_delta * normal / np.linalg.norm(normal)
-
-
-def _extra_axes(seen: dict[str, Word], m: _Machine, where: Where) -> np.ndarray | None:
-    """End positions ``(a, b, c, u, v, w)`` [deg, mm] of an L block's words of the axes beyond X, Y, Z,
-    or None when it has none. ``A+90`` is the position, ``IA+90`` an increment (TNC 640 user's manual,
-    "Straight line L": the block may contain "up to 5 axes" including rotary axes); A, B, C in degrees,
-    U, V, W in the program's unit; the preset of these axes is the machine's zero (the context's
-    work offsets hold X, Y, Z only), so an absolute word is the machine position, as with M91/M92. A
-    machine (``MachineContext.extra_axes``) without the axis: an error naming it, but for a word of
-    value 0 (posts write ``L A0 C0 R0 FMAX`` on 3-axis work), which is noted and ignored."""
-    letters = [k for k in seen if len(k) <= 2 and k[-1] in EXTRA_LETTERS and k[:-1] in ("", "I")]
-    if not letters:
-        return None
-    target = m.extra.copy()
-    moved = False
-    for key in letters:
-        w = seen[key]
-        axis = key[-1]
-        if axis.lower() not in m.context.extra_axes:
-            if w.value != 0.0:
-                where.fail(f"axis {axis!r} is not an axis of this machine", column=w.column, text=w.text,
-                           expected="X, Y, Z" + "".join(f", {a.upper()}" for a in m.context.extra_axes))
-            m.note(f"{w.text}: no {axis} axis on this machine (ignored)")
-            continue
-        value = w.value if axis in ROTARY_LETTERS else w.value * m.scale
-        i = EXTRA_LETTERS.index(axis)
-        target[i] = target[i] + value if key[0] == "I" else value + m.rotary_shift[i]  # M94's reduced display
-        m.used.add(3 + i)
-        moved = True
-    if not moved:
-        return None
-    m.extra_used = True
-    return target
-
-
-def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: _Machine,
-                 where: Where) -> np.ndarray:
-    """The machine end point [mm] of a line under M128 (:mod:`interpolators.heidenhain_tcpm`): the program
-    point on the part with every rotary axis at 0, carried where the table holds it. ``other``: the block is
-    an LN, or a corner, approach or radius compensation waits for it (errors)."""
-    if kw != "L" or other:
-        where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
-                   column=1, text=where.text, expected=TCPM_EXPECTED)
-    if extra is not None and np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9):
-        where.fail("a rotary axis moving under M128 (simultaneous 5-axis: the tool tip's path) is not supported",
-                   column=1, text=where.text, expected=TCPM_EXPECTED)
-    kin = m.context.kinematics
-    values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
-    part, _ = _program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
-    return machine_point(kin, m.extra, part, m.tool_length)
-
-
-def _pole(seen: dict[str, Word], m: _Machine, where: Where, m9x: int | None) -> None:
-    """``CC``: the circle centre and pole. Its plane is the working plane, or, when CC names the
-    tool axis and one axis of the working plane (``CC X+37.6 Z+3.3`` with tool axis Z), the plane
-    of those two axes (ZX, YZ, XY with the reference axes Z, Y, X and DR+ turning from the first to
-    the second: TNC 426 manual, "Circle Center and Pole: CC", table of the reference axes): the arcs
-    ``C`` and ``CP`` about it then run in that plane. This is our reading: the TNC 426/407 manuals
-    assign a circle to the main plane of the TOOL CALL and name no other plane; Fusion 360's TNC post
-    writes its vertical lead-in and lead-out arcs as ``CC Y-31.628 Z-1.6`` / ``CP IPA+90 DR+`` /
-    ``L Y-31.48 Z-3`` (the third coordinate of CC is the current one), and only the arc in the plane
-    of CC's axes ends where the next line starts, tangentially, so that is how the controls it posts
-    for run it. Radius compensation and the coordinate transformations act in the working plane only,
-    so such an arc under RL/RR or a transformation is an error."""
-    target, written = _plane_coords(seen, m, where, m9x=m9x)
-    p, q = PLANE_AXES[m.plane]
-    plane = m.plane
-    off = [i for i in written if i not in (p, q)]
-    if off:
-        w = seen.get("XYZ"[off[0]]) or seen["I" + "XYZ"[off[0]]]
-        if len(written) != 2 or m.comp != "R0" or not m.transform.identity:
-            where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
-                       expected=f"CC {'XYZ'[p]} {'XYZ'[q]}, or CC with the tool axis and one other axis (a circle in "
-                                "that plane, without RL/RR and coordinate transformations)")
-        plane = 3 - sum(written)  # the axis CC does not name is the circle's normal
-    m.pole = target
-    m.pole_plane = plane if off else None
-    m.used.update(written)
-
-
-def _polar_plane(kw: str, m: _Machine, where: Where, blk: SourceBlock) -> int:
-    """The plane of an ``LP`` (or ``CTP``) block: the plane of the pole (:func:`_pole`). After ``CC Z.. X..`` (tool
-    axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
-    demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
-    manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
-    counted from the plane's reference axis). As for those arcs, R0 and no coordinate transformation."""
-    plane = m.pole_plane if m.pole_plane is not None else m.plane
-    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
-        what = "a coordinate transformation" if m.comp == "R0" else m.comp
-        where.fail(f"{kw} about a CC outside the working plane under {what}",
-                   column=blk.column, text=where.text,
-                   expected=f"R0 and no cycle 8/10/11/26 for {kw} in another plane")
-    return plane
-
-
-def _pole_in_working_plane(m: _Machine, where: Where, what: str) -> None:
-    """Polar coordinates (LP, APPR P..) are in the working plane: an error after a CC in another plane."""
-    if m.pole_plane is not None and m.pole_plane != m.plane:
-        where.fail(f"{what} about a pole outside the working plane", column=1, text=where.text,
-                   expected="a CC in the working plane before polar coordinates")
-
-
-def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: _Machine, where: Where, blk: SourceBlock) -> Arc:
-    """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
-    the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
-    CP run in the plane of the pole (:func:`_pole`)."""
-    plane = m.pole_plane if kw in ("C", "CP") and m.pole_plane is not None else m.plane
-    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
-        where.fail(f"{kw} about a CC outside the working plane under {m.comp} or a coordinate transformation",
-                   column=blk.column, text=where.text,
-                   expected="R0 and no cycle 8/10/11/26 for a circle in another plane")
-    dr = seen.get("DR")
-    ccw = (dr.value == "+") if dr is not None else m.ccw
-    k = m.lengths(where)
-    flips = m.transform.flips(plane)
-    try:
-        if kw in ("CT", "CTP"):
-            if not m.blocks or m.blocks[-1].segment is None:
-                where.fail(f"{kw} without a preceding contour element", column=blk.column, text=where.text,
-                           expected=f"an L, C, CR, CT or CP block before {kw}")
-            return tangential_arc(m.pos, end_tangent(m.blocks[-1].segment, plane), target, plane=plane)
-        if kw == "CP":
-            if m.pole is None:
-                where.fail("CP without a pole", column=blk.column, text=where.text, expected="a CC block before CP")
-            _, a0 = polar_angle(m.pos, m.pole, plane=plane)
-            if "IPA" in seen:
-                sweep = seen["IPA"].value
-                if dr is not None and (sweep > 0) != ccw:
-                    w = seen["IPA"]
-                    where.fail("IPA and DR have different signs", column=w.column, text=w.text,
-                               expected="the same sign for IPA and DR (manual: 'enter the same sign')")
-                m.ccw = sweep > 0
-                sweep = m.transform.sweep(sweep, plane)
-            elif "PA" in seen:
-                if ccw is None:
-                    where.fail("CP arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
-                # [0, 360): the counter-clockwise angle to the end
-                delta = (m.transform.angle(seen["PA"].value, plane) - a0) % 360.0
-                if delta <= 1e-9 or delta >= 360.0 - 1e-9:
-                    delta = 0.0  # the end is the start: a full circle
-                m.ccw = ccw
-                sweep = (delta or 360.0) if ccw != flips else -((360.0 - delta) if delta else 360.0)
-            else:
-                where.fail("CP without an angle", column=blk.column, text=where.text, expected="PA or IPA")
-            return helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])
-        if ccw is None:
-            where.fail(f"{kw} arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
-        m.ccw = ccw
-        if kw == "C":
-            if m.pole is None:
-                where.fail("C arc without a circle centre", column=blk.column, text=where.text,
-                           expected="a CC block before C")
-            return arc_from_center(m.pos, target, m.pole, ccw=ccw != flips, plane=plane,
-                                   tolerance=arc_end_tolerance(m.inch))
-        if "R" not in seen:
-            where.fail("CR arc without radius", column=blk.column, text=where.text, expected="R+ or R- [mm]")
-        return arc_from_radius(m.pos, target, seen["R"].value * m.scale * k, ccw=ccw != flips, plane=plane)
-    except (ArcWordError, PathGeometryError) as exc:
-        w = seen.get("R") or seen.get("IPA") or seen.get("PA")
-        col, tok = (w.column, w.text) if w is not None else (blk.column, where.text)
-        where.fail(exc.message, column=col, text=tok, expected=exc.expected)
-
-
-def _resolve_corner(m: _Machine, second: Line | Arc, where: Where) -> Line | Arc:
-    """Trim the previous element and insert the RND arc / CHF line before ``second`` (the next
-    element, starting at the corner); returns ``second`` trimmed to start where the corner ends."""
-    kind, value, feed, pw = m.pending
-    m.pending = None
-    prev = m.blocks.pop()
-    try:
-        if kind == "RND":
-            first, corner_seg, trimmed = round_elements(prev.segment, second, value, plane=m.plane)
-            if _inside_rounding(m, corner_seg):
-                m.blocks.append(prev)
-                m.note(f"RND R{value / m.scale:g} on an inside corner under {m.comp_side} with a tool of radius "
-                       f"{m.comp_radius / m.scale:g}: the corner is cut where the tool centre paths meet (the "
-                       "tool's own radius rounds it)")
-                return second
-            second = trimmed
-        else:
-            t1, t2 = chamfer_corner(prev.start, prev.target, second.end, value, plane=m.plane)
-            first, corner_seg, second = Line(prev.start, t1), Line(t1, t2), Line(t2, second.end)
-    except PathGeometryError as exc:
-        pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
-    m.pos = np.array(prev.start, dtype=float)
-    m.blocks.append(dataclasses.replace(prev, target=np.array(first.end), segment=first))
-    m.pos = np.array(first.end)
-    m.emit("arc" if kind == "RND" else "line", np.array(corner_seg.end), corner_seg,
-           feed if feed is not None else prev.feed, pw, None)
-    return second
-
-
-def _inside_rounding(m: _Machine, corner: Arc) -> bool:
-    """An RND arc under RL/RR that turns toward the tool's side (an inside corner) with a radius not above the tool
-    radius: the tool centre's arc would have no radius left. The TNC cuts inside corners where the tool centre
-    paths meet (iTNC 530 user's manual, 5.3 "Radius compensation: Machining corners", "Inside corners"), so the
-    corner is left to compensation, rounded by the tool itself. The manuals' own programs write such roundings:
-    the TNC 370 user's manual's "Example 1/2 for exercise in FK free contour programming" (section 5.6, pp. 5-48,
-    5-49) round the corner at the contour's start with RND R1 (tool R2) and RND R5 (tool R5) right after the
-    block that switches RL/RR on. Our reading: the iTNC 530 manual asks that "the rounding arc must be machinable
-    with the called tool" and names no error for these."""
-    if m.comp_start is None or m.comp_radius <= 0:  # no compensated run (its R0 exit block is still one)
-        return False
-    toward_tool = corner.ccw == (m.comp_side == "RL")
-    return toward_tool and corner.radius <= m.comp_radius + 1e-9
-
-
-# --- FK free contour programming ------------------------------------------------------------------
-
-def _free_contour(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
-    """``FPOL``, ``FL``, ``FLT``, ``FC``, ``FCT``, ``FSELECT`` (:mod:`interpolators.heidenhain_fk`): the
-    elements resolved run as ``L`` and ``CC`` + ``C`` blocks in program coordinates of the working plane."""
-    axes = "".join("XYZ"[i] for i in PLANE_AXES[m.plane])  # the working plane's first and second axis
-    start = m.to_program(m.pos)[list(PLANE_AXES[m.plane])] / m.scale
-    if kw == "FSELECT":
-        value, _ = read_value(blk.code, pos, where, m.params, what=kw, column0=blk.column)
-        done = m.fk.select(value, where, blk.column, blk.code)
-        for text in m.fk.notes:
-            m.note(text)
-        m.fk.notes.clear()
-    else:
-        data = read_fk_words(blk.code, pos, where, m.params, column0=blk.column, axes=axes)
-        if kw == "FPOL":
-            m.fk.set_pole(data, start, where)
-            return False
-        if m.feed is None and "F" not in data.words:
-            where.fail(f"{kw} feed move without a feed", column=blk.column, text=where.text,
-                       expected="F > 0 [mm/min] in this or an earlier block")
-        done = m.fk.element(kw, data, start, _fk_tangent(m), where, blk.number,
-                            arc_end_tolerance(m.inch) / m.scale)
-    ended = False
-    for element, data, ew, number in done:
-        words = [Word(a, float(v), 1, a) for a, v in zip(axes, element.end)]
-        words += [data.words[k] for k in ("RCOMP", "F") if k in data.words] + list(data.ms)
-        source = SourceBlock(line=ew.line, number=number, code=ew.text, column=1, text=ew.text)
-        if element.centre is None:
-            ended = _motion("L", words, m, ew, source) or ended
-            continue
-        _pole({a: Word("CC" + a, float(v), 1, "CC" + a) for a, v in zip(axes, element.centre)}, m, ew, None)
-        words.append(Word("DR", "+" if element.ccw else "-", 1, "DR"))
-        ended = _motion("C", words, m, ew, source) or ended
-    return ended
-
-
-def _fk_tangent(m: _Machine) -> np.ndarray | None:
-    """Unit direction [program XY] at the end of the preceding element (FLT, FCT, IAN); None without one."""
-    if not m.blocks or m.blocks[-1].segment is None:
-        return None
-    try:
-        t = end_tangent(m.blocks[-1].segment, m.plane)
-    except PathGeometryError:
-        return None
-    step = np.zeros(3)
-    step[list(PLANE_AXES[m.plane])] = t
-    d = (m.to_program(m.pos + step) - m.to_program(m.pos))[list(PLANE_AXES[m.plane])]
-    return d / np.hypot(*d)
-
-
-# --- approach and departure ----------------------------------------------------------------------
-
-def _approach_depart(kw: str, blk: SourceBlock, pos: int, m: _Machine, where: Where) -> bool:
-    """``APPR LT|LN|CT`` / ``DEP LT|LN|CT`` (TNC 640 user's manual 1/2015, "Approaching and departing
-    a contour", p. 213; TNC7 manual "APPR LT", "APPR LN", "APPR CT"): the approach through the
-    auxiliary point PH (LT: ``LEN`` before the first contour point PA along the first element; LN:
-    ``LEN`` off it, perpendicular, on the tool's side; CT: the start of the arc of radius ``R``
-    through the centre angle ``CCA`` that ends tangentially at PA) and the departure from the last
-    contour point (LT: ``LEN`` on along the last element; LN: ``LEN`` off it, perpendicular; CT: the
-    arc leaving it tangentially). PS to PH runs at the last programmed feed (rapid if the last move
-    was rapid); a tool-axis coordinate is reached after PH (APPR) or after PN (DEP). LN, CT and LCT
-    need RL or RR (the tool's side; R's sign and the side give the arc's sense); the R of a CT/LCT arc
-    is the radius of the tool's path (:func:`interpolators.heidenhain_paths.contour_arc_radius`). A DEP
-    without R0/RL/RR cancels the compensation (TNC 410 user's manual: "The TNC automatically cancels
-    the radius compensation in a DEP block"). The polar forms APPR PLT/PLN/PCT/PLCT and DEP PLCT take
-    PA from PR and PA about the pole CC."""
-    code = blk.code
-    fm = re.compile(r"\s*(P?L?[A-Z]{1,3})(?![A-Z])", re.I).match(code, pos)
-    form = fm.group(1).upper() if fm else ""
-    what = f"{kw} {form}"
-    polar = form in ("PLT", "PLN", "PCT", "PLCT") and (kw == "APPR" or form == "PLCT")  # PR, PA about CC
-    form = form[1:] if polar else form
-    if form not in ("LT", "LN", "CT", "LCT"):
-        where.fail(f"{what} is not supported", column=blk.column, text=what,
-                   expected=f"{kw} LT, LN, CT or LCT (polar: APPR PLT, PLN, PCT, PLCT, DEP PLCT)")
-    words = _read_words(code, fm.end(), where, m, column0=blk.column)
-    keys = {"CT": ("CCA", "R"), "LCT": ("R",)}.get(form, ("LEN",))
-    axes = ("PR", "PA", "Z", "IZ") if polar else ("X", "Y", "Z", "IX", "IY", "IZ")
-    seen = {}
-    for w in words:
-        if w.key not in (*axes, "R0", "RL", "RR", "F", "FMAX", "M", *keys):
-            where.fail(f"word {w.text!r} not allowed in {what}", column=w.column, text=w.text,
-                       expected=f"{', '.join(axes)}, {', '.join(keys)}, R0/RL/RR, F, M")
-        if w.key != "M":
-            seen[w.key] = w
-    if polar and (m.pole is None or "PR" not in seen or "PA" not in seen):
-        where.fail(f"{what} needs a pole CC, PR and PA", column=blk.column, text=code,
-                   expected=f"CC X.. Y.. before {what} PR.. PA..")
-    if polar:
-        _pole_in_working_plane(m, where, what)
-    ended = any(_one_m(w, m, where) for w in words if w.key == "M")
-    for key in keys:
-        w = seen.get(key)
-        if w is None or (key == "LEN" and not w.value > 0):
-            where.fail(f"{what} needs {key}" + (" > 0" if key == "LEN" else ""), column=w.column if w else blk.column,
-                       text=w.text if w else code, expected=f"{key} [mm]" if key != "CCA" else "CCA [deg]")
-    k = m.scale * m.lengths(where)
-    sizes = {"length": seen["LEN"].value * k if "LEN" in seen else 0.0,
-             "radius": seen["R"].value * k if "R" in seen else 0.0,
-             "angle": seen["CCA"].value if "CCA" in seen else 0.0}
-    was = m.comp
-    exit_run = False
-    for comp in ("R0", "RL", "RR"):
-        if comp in seen:
-            exit_run = _set_compensation(seen[comp], m, where)
-    if kw == "DEP" and was != "R0" and not any(c in seen for c in ("R0", "RL", "RR")):
-        # TNC 410 user's manual, "Contour approach and departure": "The TNC automatically cancels the
-        # radius compensation in a DEP block" (RL/RR written again keep it)
-        m.comp, exit_run = "R0", True
-    active = m.comp if kw == "APPR" else was
-    if form != "LT" and active == "R0":
-        where.fail(f"{what} without radius compensation", column=blk.column, text=code,
-                   expected=f"{what} with RL or RR (the tool's side)")
-    sizes["side"] = 1.0 if m.comp_side == "RL" else -1.0
-    prev_feed = m.feed
-    if "F" in seen:
-        if not seen["F"].value > 0:
-            where.fail("feed F must be > 0", column=seen["F"].column, text=seen["F"].text, expected="F > 0 [mm/min]")
-        m.feed = seen["F"].value * m.feed_scale
-    if m.feed is None:
-        where.fail(f"{what} without a feed", column=blk.column, text=code, expected="F > 0 [mm/min]")
-    target, written = _plane_coords(seen, m, where, m9x=None)
-    if polar:
-        target = polar_point(m.pole, seen["PR"].value * k, m.transform.angle(seen["PA"].value, m.plane),
-                             plane=m.plane, base=target)
-        written |= set(PLANE_AXES[m.plane])
-    m.used.update(written)
-    if kw == "APPR":
-        m.approach = {"ps": m.pos.copy(), "form": form, **sizes, "rapid": m.last_rapid,
-                      "feed": prev_feed or m.feed, "where": where, "number": blk.number}
-        m.pos = target  # the first contour point PA: where the next element starts
-        return ended
-    if form == "LN":  # TNC 640 manual: "PN is separated from PE by the distance LEN plus the tool radius"
-        sizes["length"] += m.comp_radius
-    _depart(form, sizes, target, m, where, blk)
-    if exit_run:  # DEP CT under RL/RR: the arc is a compensated element, the run has no exit line
-        _finish_compensation(m, open_end=form == "CT")
-    if target[m.plane] != m.pos[m.plane]:
-        up = m.pos.copy()
-        up[m.plane] = target[m.plane]
-        m.emit("line", up, Line(m.pos, up), m.feed, where, blk.number)
-    return ended
-
-
-def _depart(form: str, sizes: dict[str, float], target: np.ndarray, m: _Machine, where: Where,
-            blk: SourceBlock) -> None:
-    """The departure move of DEP LT/LN/CT from the end of the last contour element."""
-    if not m.blocks or m.blocks[-1].segment is None:
-        where.fail(f"DEP {form} without a preceding contour element", column=blk.column, text=blk.code,
-                   expected=f"a contour element before DEP {form}")
-    try:
-        t = end_tangent(m.blocks[-1].segment, m.plane)
-        if form in ("CT", "LCT"):  # R is the tool path's radius: the contour arc's is R +- the tool radius
-            sizes = {**sizes, "radius": contour_arc_radius(f"DEP {form}", sizes["radius"], m.comp_radius)}
-        if form == "LCT":
-            segs = departure_lct(m.pos, target, t, radius=sizes["radius"], side=sizes["side"], plane=m.plane,
-                                 tool_radius=m.comp_radius)
-        else:
-            segs = (departure_element(form, m.pos, t, plane=m.plane, **sizes),)
-    except PathGeometryError as exc:
-        where.fail(exc.message, column=blk.column, text=blk.code, expected=exc.expected)
-    for seg in segs:
-        m.emit("line" if isinstance(seg, Line) else "arc", np.array(seg.end), seg, m.feed, where, blk.number)
-
-
-def _resolve_approach(m: _Machine, direction: np.ndarray, where: Where) -> None:
-    """Emit PS -> PH -> (depth) -> PA of a pending APPR, PH from the first element's ``direction`` at PA."""
-    a = m.approach
-    m.approach = None
-    n = float(np.hypot(*direction))
-    pw = a["where"]
-    if n <= 1e-12:
-        pw.fail(f"the first contour element after APPR {a['form']} has no direction in the working plane", column=1,
-                text=pw.text, expected="a first contour element in the working plane")
-    pa = m.pos.copy()
-    p, q = PLANE_AXES[m.plane]
-    arc = None
-    if a["form"] == "LT":
-        ph = np.array(a["ps"], dtype=float)
-        ph[p] = pa[p] - a["length"] * direction[0] / n
-        ph[q] = pa[q] - a["length"] * direction[1] / n
-    else:
-        if a["form"] == "LN":  # "PH is separated from PA by the distance LEN plus the tool radius"
-            a["length"] += m.comp_radius
-        try:
-            if a["form"] in ("CT", "LCT"):  # R is the tool path's radius (heidenhain_paths.contour_arc_radius)
-                a["radius"] = contour_arc_radius(f"APPR {a['form']}", a["radius"], m.comp_radius)
-            if a["form"] == "LCT":
-                ph, arc = approach_lct(a["ps"], pa, direction / n, radius=a["radius"], side=a["side"], plane=m.plane,
-                                       tool_radius=m.comp_radius)
-            else:
-                ph, arc = approach_start(a["form"], pa, direction / n, length=a["length"], radius=a["radius"],
-                                         angle=a["angle"], side=a["side"], plane=m.plane)
-        except PathGeometryError as exc:
-            pw.fail(exc.message, column=1, text=pw.text, expected=exc.expected)
-        ph[m.plane] = a["ps"][m.plane]
-    m.pos = np.array(a["ps"], dtype=float)
-    m.emit("rapid" if a["rapid"] else "line", ph, Line(m.pos, ph), math.inf if a["rapid"] else a["feed"], pw,
-           a["number"])
-    if ph[m.plane] != pa[m.plane]:
-        down = ph.copy()
-        down[m.plane] = pa[m.plane]
-        m.emit("line", down, Line(m.pos, down), m.feed, pw, a["number"])
-    if arc is None:
-        if a["form"] == "LN" and m.comp_start is not None:
-            m.comp_start = len(m.blocks)  # PH -> PA is the entry move: it ends at PA, off by the radius
-        m.emit("line", pa, Line(m.pos, pa), m.feed, pw, a["number"])
-    else:
-        m.emit("arc", pa, Arc(m.pos, pa, arc.center, ccw=arc.ccw, plane=m.plane), m.feed, pw, a["number"])
-
-
-# --- radius compensation -------------------------------------------------------------------------
-
-def _set_compensation(word: Word, m: _Machine, where: Where) -> bool:
-    """Switch RL/RR/R0 at a motion block; True when this block is the exit move of a run.
-
-    The block with RL/RR is the entry move of a compensated run and the first block with R0 its
-    exit move (TNC 640 user's manual, "Tool radius compensation": RL/RR take effect in the
-    block that programs them; R0 cancels it), as in :func:`interpolators.compensation.compensate`.
-    """
-    comp = word.key
-    if comp == m.comp:
-        return False
-    if comp != "R0" and m.comp != "R0":
-        where.fail(f"{comp} while {m.comp} is active", column=word.column, text=word.text,
-                   expected="R0 between RL and RR")
-    m.comp = comp
-    if comp == "R0":
-        return True
-    m.comp_start = len(m.blocks)
-    # a mirrored contour has its left side on the right (TNC: "the machining direction is reversed")
-    m.comp_side = {"RL": "RR", "RR": "RL"}[comp] if m.transform.flips(m.plane) else comp
-    m.comp_radius = m.tool_radius
-    return False
-
-
-def _finish_compensation(m: _Machine, *, open_end: bool = False, closed: bool = False) -> None:
-    """Replace the blocks of the finished run by the tool-centre path. ``open_end``: the run's last
-    block is a contour element (the arc of DEP CT/LCT), offset as the others, not a straight exit move.
-    ``closed``: the run's last block is the R0 block, which positions the tool at its programmed point
-    even when it names only the tool axis (iTNC 530 / TNC 620 ISO user's manuals, "Tool radius
-    compensation": "In the first block in which radius compensation is ... canceled with G40 the TNC
-    always positions the tool perpendicular to the programmed starting or end position"; R0: "The tool
-    center moves ... to the programmed coordinates"), as :func:`compensate`'s ``closed``."""
-    start, m.comp_start = m.comp_start, None
-    side = "left" if m.comp_side == "RL" else "right"
-    m.comp = "R0"
-    look_ahead, m.look_ahead = m.look_ahead, False  # R0 ends M120
-    run = m.blocks[start:]
-    if m.comp_radius == 0.0 or not run:
-        return
-    try:
-        new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
-                         open_end=open_end, closed=closed)
-    except CompensationError as exc:
-        b = run[min(exc.index, len(run) - 1)]
-        ahead = " (M120 LA would leave the undercut out: not modelled)" if look_ahead else ""
-        Where(m.source, b.line, b.text).fail(f"radius compensation {m.comp_side}: {exc.message}{ahead}", column=1,
-                                              text=b.text,
-                                              expected="a contour the tool of radius "
-                                                       f"{m.comp_radius:g} mm can follow")
-    m.blocks[start:] = new
-    m.pos = np.array(new[-1].target, dtype=float)
-
-
 #: What each keyword block does (the flow keywords and motions are handled by :class:`_Run`);
 #: a handler returns True when the program ends at the block (M2/M30).
 _HANDLERS = {
@@ -3506,16 +1466,16 @@ _HANDLERS = {
     "CYCLE DEF": _cycle_def_block,
     "PATTERN DEF": _pattern_def,
     "CYCL CALL": _cycle_call_block,
-    "APPR": _approach_depart,
-    "DEP": _approach_depart,
+    "APPR": approach_depart,
+    "DEP": approach_depart,
     "STOP": _stop_or_m,
     "M": _stop_or_m,
-    "RND": _corner_def,
-    "CHF": _corner_def,
+    "RND": corner_def,
+    "CHF": corner_def,
     "PLANE": _tilt,
     "FUNCTION": _tilt,
     "TRANS": _trans,
     "TCH PROBE": _touch_probe,
-    "SPL": _spline_block,
-    **{kw: _free_contour for kw in FK_KEYWORDS},
+    "SPL": spline_block,
+    **{kw: free_contour for kw in FK_KEYWORDS},
 }

@@ -13,7 +13,7 @@ programming, the same cycles.
                           allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
 ``CYCL DEF 25``           CONTOUR TRAIN, called: the first label of cycle 14 followed at the depths
-                          (:func:`contour_train_cycle`; the moves are the reader's ``_contour_train``)
+                          (:func:`contour_train_cycle`; the moves: :func:`interpolators.heidenhain_sl.contour_train`)
 ``CYCL DEF 22``           ROUGH-OUT, called, with cycle 20's data: one pocket by the rings of
                           :func:`pocket_rings`; pockets with islands by the offset rings of the
                           region (:func:`clearing_rings`, :mod:`toolpaths.pockets`: within 1 um);

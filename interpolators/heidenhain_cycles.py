@@ -562,7 +562,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
       the bottom;
     * 240 CENTERING: feed to the depth Q201 (Q343 = 0), dwell Q211, rapid back;
     * 241 SINGLE-LIP DEEP-HOLE DRILLING: :func:`single_lip_cycle`;
-    * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (the reader's
+    * 208 BORE MILLING: a helix of Q334 per turn on the diameter Q335 (heidenhain_cycle_moves'
       ``_bore_milling``), Q351 = +1 climb (with M3: counter-clockwise), -1 up-cut.
     """
     required_q(number, q, where, column)
@@ -859,7 +859,7 @@ def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float
     drilling, tapping and thread milling": 262's parameters p. 251, https://www.easymanua.ls/heidenhain/
     tnc-430/manual?p=277; 264's p. 244, ?p=270; 265's p. 247, ?p=273; TNC 320 user's manual 340 55x-03 p. 246,
     https://azmanual.top/manuals/798411/heidenhain-tnc-320-340-55x-03.html?page=246: 263's). The moves are
-    the reader's ``_thread_milling``.
+    heidenhain_cycle_moves' ``_thread_milling``.
 
     * 262 THREAD MILLING: Q335 nominal diameter, Q239 pitch (its sign: right-hand +, left-hand -), Q201
       thread depth, Q355 threads per step (0: one 360 degree helix, 1: one continuous helix over the
@@ -921,16 +921,17 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     "CIRCULAR POCKET (Cycle 252)"): Q215 machining operation, Q223 diameter, Q368 side and Q369 floor
     finishing allowances, Q207 milling feed, Q351 climb (+1) / up-cut (-1), Q201 depth, Q202 plunging
     depth, Q206 plunging feed, Q338 finishing infeed, Q200, Q203, Q204, Q370 path overlap (default 1),
-    Q366 plunging (0 or absent vertical, 1 helical; 251 and 253 also 2 reciprocating: the reader's
-    ``_plunge``), Q385 finishing feed (default Q207). The moves are the reader's ``_circular_pocket``.
+    Q366 plunging (0 or absent vertical, 1 helical; 251 and 253 also 2 reciprocating:
+    heidenhain_cycle_moves' ``_plunge``), Q385 finishing feed (default Q207). The moves are
+    heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
     side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
-    over the pocket's centre). The moves are the reader's ``_rectangular_pocket``.
+    over the pocket's centre). The moves are heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
-    Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are the
-    reader's ``_rectangular_stud``.
+    Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are
+    heidenhain_cycle_moves' ``_rectangular_stud``.
 
     ``number`` = 253: SLOT MILLING (TNC 640 manual, "SLOT MILLING (Cycle 253)"): Q218 slot length, Q219 slot
     width, Q374 angle of rotation, Q367 slot position (0: the tool over the slot's centre; the others an

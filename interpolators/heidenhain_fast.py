@@ -3,7 +3,8 @@
 Most blocks of a TNC program written by a CAM post are ``L X+1.5 Y-2 Z+0.1 [R0] [F200|FMAX] [M..]``, ``CC X.. Y..``,
 ``C X.. Y.. DR+`` and ``CR X.. Y.. R+5 DR-``: plain numbers in the modal state a post leaves alone for thousands of
 blocks. :class:`PlainBlocks` runs such a block itself and makes what the general reader
-(:mod:`interpolators.heidenhain`, ``_motion``) makes of it -- the same :class:`interpolators.program.Block` (kind,
+(:mod:`interpolators.heidenhain_motion`, ``motion_block``) makes of it -- the same
+:class:`interpolators.program.Block` (kind,
 end point, segment, feed, line, number and text, bit for bit), the same notes in the same order, and the same
 machine state after it (position, feed, pole, arc sense, the axes used, the axes of the last ``L`` for a number
 without an axis letter) -- and declines everything else, which then goes the general way.
@@ -29,7 +30,7 @@ the path mode (cycle 32) and M128 on positioned rotary axes (lines of the tool t
 The state is judged once after each block the general path ran (:meth:`PlainBlocks.reset`): plain blocks change
 none of what the judgement reads, nor the program zero, which is kept until then. The word forms follow the
 general reader's (:mod:`interpolators.heidenhain_words`, which cites the TNC 640 / iTNC 530 user's manuals); the
-M functions theirs (``_one_m``, ``_retract_and_call``).
+M functions theirs (heidenhain_motion's ``_one_m``, ``_retract_and_call``).
 """
 
 from __future__ import annotations
@@ -125,7 +126,7 @@ class PlainBlocks:
     Parameters
     ----------
     m
-        The reader's run-time state (``interpolators.heidenhain._Machine``): its blocks, notes and modal state.
+        The reader's run-time state (``interpolators.heidenhain.Machine``): its blocks, notes and modal state.
     """
 
     def __init__(self, m) -> None:
@@ -157,7 +158,7 @@ class PlainBlocks:
 
     def _target(self, axes: dict[int, tuple[bool, float]], base: list[float]) -> list[float] | None:
         """The end point [mm] of the axis words from ``base`` (program zero: the judged origin), as the general
-        path's ``_absolute_target``; None when not finite."""
+        path's ``program_target`` (heidenhain_targets); None when not finite."""
         scale = self.m.scale
         origin = self.origin
         target = list(base)
@@ -182,7 +183,8 @@ class PlainBlocks:
         return True
 
     def _move(self, words: PlainWords, blk: SourceBlock) -> bool:  # noqa: C901
-        """``L``, ``C``, ``CR``: the block the general path's ``_motion`` makes, or False where it would do more."""
+        """``L``, ``C``, ``CR``: the block the general path's ``motion_block`` makes, or False where it would do
+        more."""
         m = self.m
         kw, axes, feed, rapid = words.keyword, words.axes, words.feed, words.rapid
         pos = m.pos

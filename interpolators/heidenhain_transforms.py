@@ -21,7 +21,7 @@ SCALING"):
   enlarged or reduced by the same factor"); a factor 1 cancels it for its axis.
 
 The TNC keeps each transformation apart and applies them in the order of their cycle numbers,
-from the datum outwards: shift (cycle 7, :class:`interpolators.heidenhain._Machine` keeps it),
+from the datum outwards: shift (cycle 7, :class:`interpolators.heidenhain.Machine` keeps it),
 mirror, rotation, scaling. A program point ``p`` [mm, relative to the datum] lies at
 ``mirror(rotate(scale(p)))`` from the datum in machine axes, so that a mirrored program is the
 exact mirror image of the unmirrored one, rotations included (our reading of that order).
