@@ -2397,17 +2397,19 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     to the next block at its start point, whatever its length; Haas's Setting 43 "Cutter Comp Type" offers
     the same A (our reading: A, its default, as Fanuc's). LinuxCNC's entry ends perpendicular to the entry
     move itself and must be longer than the radius, which CAM programs for wear-only offsets (a start-up of
-    0.005 mm and a D of a few hundredths) never are."""
+    0.005 mm and a D of a few hundredths) never are. Their outside corners are Fanuc's too (intersections, at
+    an acute corner two vectors: :mod:`interpolators.compensation`), not LinuxCNC's arcs."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
     centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
     run = blocks[start:]
     if not run:
         return
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
     try:
         new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
                          centers=centers, inch=st.inch, open_end=not closed,
-                         entry="perpendicular" if st.context.dialect.name in ("fanuc", "haas") else "linuxcnc")
+                         entry="perpendicular" if fanuc else "linuxcnc", corner="fanuc" if fanuc else "linuxcnc")
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(
