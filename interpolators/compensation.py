@@ -474,7 +474,7 @@ def _fanuc_corner(el_a: _Offset, el_b: _Offset, corner: np.ndarray, beta: float,
         el_b.a = p2
     else:
         pieces.append((None, p2, el_b.a.copy()))
-    return pieces
+    return [piece for piece in pieces if math.hypot(*(piece[2] - piece[1])) > _EPS]
 
 
 def _angle(v: np.ndarray) -> float:

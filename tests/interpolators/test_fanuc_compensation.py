@@ -17,6 +17,7 @@ import math
 
 import pytest
 
+import interpolators.iso as iso
 from interpolators import parse_program
 from interpolators.compensation import compensate
 from interpolators.context import DIALECTS, MachineContext, Tool
@@ -135,3 +136,36 @@ def test_a_small_outside_turn_meets_too(context):
 def test_compensate_names_the_corner_rules():
     with pytest.raises(InputError, match=r"corner rule must be one of \('linuxcnc', 'fanuc'\), got 'yasnac'"):
         compensate([], side="left", radius=1.0, plane=2, corner="yasnac")
+
+
+@pytest.mark.parametrize("context", CONTROLS, ids=["fanuc", "haas"])
+def test_offsets_that_do_not_meet_take_the_acute_rule(context):
+    # our reading: a right-angle turn into a clockwise arc of R3 about (23, 0) with the tool (G42) inside it:
+    # the offset line y = -2 misses the offset circle (radius 1), so the vectors are joined as at an acute
+    # corner: the line on to (22, -2) (= P + 2 n2 - 2 t2 too: no piece), up to the arc's offset start (22, 0);
+    # out of the arc at (24, 0) the same way down to (24, -2)
+    text = ("G21 G90 G17 G54\nG0 X-10. Y-10. Z0\nG42 D1 G1 X0 Y0 F100.\nX20.\nG2 X26. Y0 I3. J0\nG1 X40.\n"
+            "G40 X50. Y-10.\nM30\n")
+    check(rows(text, context), [(3, "feed", 0, -2), (4, "feed", 22, -2), (5, "feed", 22, 0), (5, "arc_cw", 24, 0),
+                                (6, "feed", 24, -2), (6, "feed", 40, -2), (7, "feed", 50, -10)])
+
+
+def test_rapid_pieces_at_an_acute_corner_stay_rapids():
+    # the triangle's second side as a G0: the straight pieces before it are traverses, as the G0 itself
+    text = TRIANGLE.format(side="G41").replace("X40. Y0\n", "G0 X40. Y0\nG1 ")
+    out = rows(text, CONTROLS[0])
+    assert [(r[0], r[1]) for r in out[1:5]] == [(4, "feed"), (5, "rapid"), (5, "rapid"), (6, "feed")]
+    assert out[3][2:] == pytest.approx((40 + 6 / S5, -2 / S5), abs=1e-9)
+
+
+def test_the_reference_tells_linuxcnc_corners_from_fanuc_ones(monkeypatch):
+    # the reference predicts Fanuc's corner points, not only one radius from the element: the same program
+    # with LinuxCNC's corner arcs under --dialect fanuc is caught at the first outside corner (line 4)
+    original = iso.compensate
+    monkeypatch.setattr(iso, "compensate", lambda *a, **k: original(*a, **{**k, "corner": "linuxcnc"}))
+    text = SQUARE.format(side="G41")
+    context = CONTROLS[0]
+    _, table = blocks_table(parse_program(text, context=context))
+    match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in table])
+    assert match.mismatch.startswith("end point differs: expected #2 line 4")
+    assert "Fanuc corner [-2.0, 22.0, 0.0]" in match.mismatch
