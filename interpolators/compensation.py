@@ -65,8 +65,10 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   "Cutter Compensation" (Haas mill operator's manual, settings list): vcnc models FANUC (our reading:
   the factory setting; YASNAC's rules are not in the sources at hand). The TNC (RL/RR, the Heidenhain
   reader) keeps the corner arc: "the TNC moves the tool around outside corners on a transitional arc"
-  (TNC 640 user's manual, "Radius compensation: Machining corners"). G39 (Fanuc's corner arc on request) is not
-  read (:mod:`interpolators.iso_reference` lists it as known, not supported).
+  (TNC 640 user's manual, "Radius compensation: Machining corners"). Fanuc's G39 (corner circular
+  interpolation, ``rounded``) asks for that arc at one corner: "the tool moves along the arc from the
+  point of the old vector toward that of the new vector" (Series 16/18-MC operator's manual, "Corner
+  offset circular interpolation (G39)"); at an inside corner it changes nothing (our reading).
 * **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
   than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
   comp".
@@ -85,7 +87,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -222,7 +224,7 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
     centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
-    corner: str = "linuxcnc",
+    corner: str = "linuxcnc", rounded: Collection[int] = (),
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -266,6 +268,10 @@ def compensate(
         Outside corners: an arc about the programmed corner (LinuxCNC, the TNC) or Fanuc's cutter
         compensation C (Fanuc/Haas): the intersection of the offset paths, at an acute corner the two
         vectors joined by straight lines (see the module notes).
+    rounded : collection of int
+        Fanuc's G39 (corner circular interpolation): indices into ``blocks`` before which it came; the
+        outside corner before the next motion in the plane gets the arc about the corner, as under
+        ``corner="linuxcnc"``.
 
     Returns
     -------
@@ -309,7 +315,7 @@ def compensate(
     else:
         ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
     chain = [ent, *offsets]
-    corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner)
+    corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded)
     _check_gouges(chain, ent, blocks, radius, inch=inch)
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
@@ -411,11 +417,12 @@ def _entry_arc(eb: Block, first: int, *, s: float, radius: float, plane: int,
 
 
 def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius: float, plane: int,
-                  rule: str) -> dict[int, list[tuple]]:
+                  rule: str, rounded: Collection[int]) -> dict[int, list[tuple]]:
     """Trim the elements at inside corners and return the outside corners' arcs (or straight pieces): index
     of the following block -> [(centre or None, from, to), ...]. LinuxCNC's ``convert_straight_comp2`` /
     ``convert_arc_comp2`` decide the corner (:func:`_corner_kind`) and :func:`_concave_point` where the
-    elements meet inside; under ``rule="fanuc"`` :func:`_fanuc_corner` turns outside corners."""
+    elements meet inside; under ``rule="fanuc"`` :func:`_fanuc_corner` turns outside corners, except where
+    G39 came (``rounded``)."""
     corners: dict[int, list[tuple]] = {}
     for el_a, el_b in zip(chain[:-1], chain[1:]):
         if math.hypot(*(el_a.b - el_b.a)) <= 1e-7:
@@ -427,7 +434,8 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius
             x = _concave_point(el_a, el_b, corner, theta, beta, s=s, radius=radius)
             el_a.b, el_b.a = x.copy(), x.copy()
             continue
-        pieces = _fanuc_corner(el_a, el_b, corner, beta, radius=radius) if rule == "fanuc" else None
+        g39 = any(el_a.index < k <= el_b.index for k in rounded)
+        pieces = _fanuc_corner(el_a, el_b, corner, beta, radius=radius) if rule == "fanuc" and not g39 else None
         if pieces is not None:
             if pieces:
                 corners[el_b.index] = pieces

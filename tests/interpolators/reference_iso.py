@@ -682,6 +682,7 @@ class _Machine:
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_side = "left"
+        self.g39 = False  # Fanuc/Haas G39 came: the next corner is an arc about it (no corner point)
         self.comp_closed = 0.0  # the radius of a run G40 closed, until the next move (its exit move)
         self.reread = 0.0  # LinuxCNC M6/M61 after such a G40: the next move starts at the offset point
         self.arc_absolute = False
@@ -797,8 +798,10 @@ class _Machine:
                                      element=element, entry=self.comp_entry, extra=self.extra.copy(),
                                      side=self.comp_side, ccw=kind == "arc_ccw"))
             self.comp_entry = False
-            if self.ctx.dialect.name in ("fanuc", "haas"):
+            if self.ctx.dialect.name in ("fanuc", "haas") and not self.g39:
                 fanuc_corner(self.out, self.comp_radius)
+            if np.any((end - self.pos)[list(plane)]) or centre is not None:
+                self.g39 = False  # G39's arc is LinuxCNC's corner arc: the block before ends one radius off
         else:
             # after G40 and an M6/M61 (LinuxCNC), a move that names no X Y stays at the run's last offset
             # point, one radius from the programmed one (rs274ngc_pre.cc read_inputs: refresh_actual_position)
@@ -923,6 +926,11 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
             g.remove(code)
     if 90 in g:  # G09 exact stop: the block ends at rest, at the same point
         g.remove(90)
+    if 390 in g:  # G39 corner circular interpolation (Fanuc 16/18-MC "Corner offset circular interpolation")
+        if m.comp_radius is None or set(words) & set("xyzijkr"):
+            raise ReferenceError("G39 outside compensation or with a vector")
+        g.remove(390)
+        m.g39 = True
     if m.ctx.dialect.name == "fanuc" and (220 in g or 230 in g):  # G22 X Y Z I J K: the stroke check's area
         g[:] = [c for c in g if c not in (220, 230)]
         for k in "xyzijk":

@@ -25,6 +25,7 @@ from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
 from vcnc.core.errors import InputError
+from vcnc.errors import GCodeError
 
 BASE = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, home=(0.0, 0.0, 100.0),
                       tools={1: Tool(number=1, radius=2.0, length=0.0)})
@@ -169,3 +170,33 @@ def test_the_reference_tells_linuxcnc_corners_from_fanuc_ones(monkeypatch):
     match = match_blocks(iso_reference(text, context), [r + [0.0] * 6 for r in table])
     assert match.mismatch.startswith("end point differs: expected #2 line 4")
     assert "Fanuc corner [-2.0, 22.0, 0.0]" in match.mismatch
+
+
+@pytest.mark.parametrize("context", CONTROLS, ids=["fanuc", "haas"])
+def test_g39_asks_for_the_corner_arc_at_one_corner(context):
+    # G39 between Y20 and X20: line 4 ends at its perpendicular vector (-2, 20), an arc of radius 2 about the
+    # corner (0, 20) to the next block's vector (0, 22) (carried by that block, as corner arcs are); the other
+    # corners stay intersections
+    text = SQUARE.format(side="G41").replace("Y20.\n", "Y20.\nG39\n")
+    out = rows(text, context)
+    check(out, [(3, "feed", -2, 0), (4, "feed", -2, 20), (6, "arc_cw", 0, 22), (6, "feed", 22, 22),
+                (7, "feed", 22, -2), (8, "feed", 0, -2), (9, "feed", -10, -10)])
+    _, table = blocks_table(parse_program(text, context=context))
+    assert table[3][6:8] == pytest.approx([0, 20], abs=1e-9)
+
+
+@pytest.mark.parametrize("block, message", [
+    ("G39\nG41 D1 G1 X0 Y0 F100.\n", r"3:1: G39 corner circular interpolation outside offset mode"),
+    ("G41 D1 G1 X0 Y0 F100.\nG39 I5.\n", r"4:5: word I on G39: a corner vector given by X Y or I J K is not "
+                                          r"supported.*G39 alone"),
+])
+def test_g39_errors(block, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21 G90 G17 G54\nG0 X-10. Y0 Z0\n{block}Y20.\nX20.\nG40 X30. Y30.\nM30\n",
+                      context=CONTROLS[0])
+
+
+def test_g39_is_not_linuxcnc():
+    with pytest.raises(GCodeError, match=r"G39 corner circular interpolation \(Fanuc/Haas; --dialect fanuc or haas\)"):
+        parse_program("G21 G90 G17\nG0 X-10. Y0 Z0\nG41 D1 G1 X0 Y0 F100.\nY20.\nG39\nX20.\nM30\n",
+                      context=dataclasses.replace(BASE, dialect=DIALECTS["linuxcnc"]))
