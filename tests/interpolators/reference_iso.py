@@ -35,7 +35,10 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - G33 (g-code.adoc "G33 Spindle Synchronized Motion"): a feed move to the end point; G33.1 ("G33.1
   Rigid Tapping"): a feed move to the end point and one back to where it started.
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
-- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. After G40 with
+- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. Under
+  ``fanuc``/``haas`` an outside corner's end point is Fanuc's (:func:`fanuc_corner`: the offsets'
+  intersection, at an acute corner the vectors lengthened by the radius); after ``G39`` the corner
+  is an arc about it, checked one radius off. After G40 with
   no exit move, LinuxCNC's M6/M61 makes the last offset point the current one (``read_inputs``:
   ``refresh_actual_position``): the next move is checked within the radius.
 - The axes beyond X, Y, Z (g-code.adoc "G0", overview.adoc "Feed Rate", coordinates.adoc): A, B, C
