@@ -5,7 +5,7 @@ programmed contour, seen in the direction of travel with the plane normal pointi
 The rules are LinuxCNC's (G-code reference, "G41, G42 Cutter Compensation" and "Cutter
 Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.html; source
 ``src/emc/rs274ngc/interp_convert.cc``, ``convert_straight_comp1`` / ``convert_straight_comp2`` /
-``convert_arc_comp2``):
+``convert_arc_comp2``), except at outside corners under ``corner="fanuc"`` (Fanuc's, below):
 
 * **Entry move** (the first move with motion in the plane after G41/G42): a straight line from
   the uncompensated position to the programmed end point moved by ``r`` perpendicular to the
@@ -20,11 +20,12 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   ``convert_arc_comp2`` into an arc): ``beta`` is the turn away from the tool side, from the
   direction of the programmed corner to the tool to the new element's programmed tangent. A turn
   of more than ``small`` (:data:`CONVEX_TOLERANCE`, LinuxCNC's TOLERANCE_CONCAVE_CORNER) and at most
-  ``pi + small`` is an **outside corner**: an arc of radius ``r`` about the programmed corner point
-  joins the two offset elements (into a G0, which has no arc traverse, a straight rapid instead); it
-  carries the ``line``/``text`` and the feed of the block it leads into (of the last feed move
-  before it when that block is a rapid). A smaller turn has no corner: a line starts where the tool
-  is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a short bridging line.
+  ``pi + small`` is an **outside corner**: with ``corner="linuxcnc"`` an arc of radius ``r`` about
+  the programmed corner point joins the two offset elements (into a G0, which has no arc traverse, a
+  straight rapid instead); it carries the ``line``/``text`` and the feed of the block it leads into
+  (of the last feed move before it when that block is a rapid). A smaller turn has no corner: a line
+  starts where the tool is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a
+  short bridging line.
 * **Inside corners** (``beta < -small`` or ``beta > pi + small``, and the near reversals of the
   "h" and "m" shapes: ``beta`` within ``small`` of ``pi`` onto a line after an arc, or into an arc,
   the tool is outside of): both offset elements end where they meet, by LinuxCNC's formulas (after
@@ -37,6 +38,37 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line that now runs against its
   programmed direction ("Straight feed in concave corner cannot be reached by the tool without
   gouging"), an arc whose sweep grew by more than 0.0254 rad (mm programs) or 0.001 rad (inch).
+* **Fanuc/Haas outside corners** (``corner="fanuc"``, the ISO reader under ``--dialect fanuc|haas``): no
+  corner arc. Fanuc's cutter compensation C (Fanuc 0i-MF / 0i-MD operator's manual, B-64604EN /
+  B-64304EN, "Cutter compensation C", "Tool movement in offset mode"; the Series 15i-MA manual 14.4.3
+  and the 16/18-MC manual 15.4 draw the same cases) names the corner by its angle ``alpha`` on the
+  workpiece side, ``alpha = 180 deg - beta`` at an outside corner:
+
+  - ``180 > alpha >= 90`` ("going around the outside of a corner at an obtuse angle"), line-line,
+    line-arc, arc-line and arc-arc alike: both elements end at the intersection of their offset paths
+    (an offset line, an offset circle about the arc's centre), of two the one nearest the corner. A
+    line grows, an arc may sweep more than programmed: that is no gouge.
+  - ``alpha < 90`` ("at an acute angle"): two vectors of length ``r``, perpendicular to each element at
+    the corner, each lengthened by ``r`` along its element's tangent: the tool goes on ``r`` along the
+    first element's end tangent (a line is lengthened; after an arc a straight piece), straight to the
+    point ``r`` before the second element's start along its tangent, and on (a line starts there;
+    before an arc a straight piece to its offset start). The straight pieces carry the next block's
+    line and feed, as the corner arcs do.
+  - Our reading where the manual's figures say nothing: a turn of at most 90 degrees whose offsets do
+    not meet (an arc too small for the line to reach) takes the acute rule; a turn of at most
+    ``small`` without a meeting point (parallel lines, an arc tangent to the line) keeps LinuxCNC's
+    handling below; a turn within ``small`` of 180 degrees next to an arc is classified as LinuxCNC
+    does (the "h" and "m" shapes are inside corners).
+
+  Inside corners are the intersection under both rules (Fanuc, "going around the inside of a corner
+  (alpha >= 180)"), found by LinuxCNC's formulas. Haas mills offer FANUC or YASNAC by Setting 58
+  "Cutter Compensation" (Haas mill operator's manual, settings list): vcnc models FANUC (our reading:
+  the factory setting; YASNAC's rules are not in the sources at hand). The TNC (RL/RR, the Heidenhain
+  reader) keeps the corner arc: "the TNC moves the tool around outside corners on a transitional arc"
+  (TNC 640 user's manual, "Radius compensation: Machining corners"). Fanuc's G39 (corner circular
+  interpolation, ``rounded``) asks for that arc at one corner: "the tool moves along the arc from the
+  point of the old vector toward that of the new vector" (Series 16/18-MC operator's manual, "Corner
+  offset circular interpolation (G39)"); at an inside corner it changes nothing (our reading).
 * **Arcs** keep their centre; their radius grows or shrinks by ``r``. A tool radius not smaller
   than an arc on the inside raises "Tool radius not less than arc radius with cutter radius
   comp".
@@ -55,7 +87,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -63,13 +95,16 @@ from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 from vcnc.core.errors import InputError
 
-__all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES", "CONVEX_TOLERANCE"]
+__all__ = ["CompensationError", "compensate", "SIDES", "ENTRY_RULES", "CORNER_RULES", "CONVEX_TOLERANCE"]
 
 #: Compensation sides: G41/RL is "left", G42/RR is "right".
 SIDES: tuple[str, str] = ("left", "right")
 
 #: Entry rules: LinuxCNC's (perpendicular to the entry move) or the TNC's (perpendicular to the first contour element).
 ENTRY_RULES: tuple[str, str] = ("linuxcnc", "perpendicular")
+
+#: Outside-corner rules: LinuxCNC's (and the TNC's) arc about the corner, or Fanuc's intersection and vectors.
+CORNER_RULES: tuple[str, str] = ("linuxcnc", "fanuc")
 
 #: Convex corners of at most this turn [rad] join a line without a corner arc (LinuxCNC TOLERANCE_CONCAVE_CORNER).
 CONVEX_TOLERANCE = 0.05
@@ -112,6 +147,7 @@ class _Offset:
     b0: np.ndarray | None = None  # untrimmed end
     pc: np.ndarray | None = None  # programmed arc centre (2,) [mm], LinuxCNC's for the inside corners
     pr: float = 0.0  # offset radius about ``pc`` at the programmed end [mm]
+    grown: float = 0.0  # sweep [rad] an arc gained at Fanuc outside corners (no gouge)
 
     def tangent(self, point: np.ndarray) -> np.ndarray:
         """Unit tangent at ``point`` (a point of the element)."""
@@ -188,6 +224,7 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
     centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
+    corner: str = "linuxcnc", rounded: Collection[int] = (),
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -227,6 +264,14 @@ def compensate(
         The run has no exit move: the program ends with G41/G42 on, or with G40 and no motion after it.
         Its last block is compensated as the others, as LinuxCNC's interpreter flushes the queued moves
         as they are at the program end (tests/ccomp/mill-line-arc-entry).
+    corner : {"linuxcnc", "fanuc"}
+        Outside corners: an arc about the programmed corner (LinuxCNC, the TNC) or Fanuc's cutter
+        compensation C (Fanuc/Haas): the intersection of the offset paths, at an acute corner the two
+        vectors joined by straight lines (see the module notes).
+    rounded : collection of int
+        Fanuc's G39 (corner circular interpolation): indices into ``blocks`` before which it came; the
+        outside corner before the next motion in the plane gets the arc about the corner, as under
+        ``corner="linuxcnc"``.
 
     Returns
     -------
@@ -242,6 +287,8 @@ def compensate(
         tool radius, an arc exit move (or entry move under the TNC rule); ``index`` names the block.
     """
     _check_arguments(side, entry, plane, radius)
+    if corner not in CORNER_RULES:
+        raise InputError(f"compensation corner rule must be one of {CORNER_RULES}, got {corner!r}")
     blocks = list(blocks)
     if radius == 0.0:
         return blocks
@@ -268,7 +315,7 @@ def compensate(
     else:
         ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
     chain = [ent, *offsets]
-    corners = _join_corners(chain, blocks, side=side, s=s, radius=radius, plane=plane)
+    corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded)
     _check_gouges(chain, ent, blocks, radius, inch=inch)
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
@@ -369,13 +416,14 @@ def _entry_arc(eb: Block, first: int, *, s: float, radius: float, plane: int,
     return el
 
 
-def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: float, radius: float,
-                  plane: int) -> dict[int, tuple]:
-    """Trim the elements at inside corners and return the outside corners' arcs (or bridging lines): index
-    of the following block -> (centre or None, from, to). LinuxCNC's ``convert_straight_comp2`` /
+def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius: float, plane: int,
+                  rule: str, rounded: Collection[int]) -> dict[int, list[tuple]]:
+    """Trim the elements at inside corners and return the outside corners' arcs (or straight pieces): index
+    of the following block -> [(centre or None, from, to), ...]. LinuxCNC's ``convert_straight_comp2`` /
     ``convert_arc_comp2`` decide the corner (:func:`_corner_kind`) and :func:`_concave_point` where the
-    elements meet inside."""
-    corners: dict[int, tuple] = {}
+    elements meet inside; under ``rule="fanuc"`` :func:`_fanuc_corner` turns outside corners, except where
+    G39 came (``rounded``)."""
+    corners: dict[int, list[tuple]] = {}
     for el_a, el_b in zip(chain[:-1], chain[1:]):
         if math.hypot(*(el_a.b - el_b.a)) <= 1e-7:
             el_b.a = el_a.b.copy()
@@ -385,14 +433,56 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, side: str, s: fl
         if kind == "concave":
             x = _concave_point(el_a, el_b, corner, theta, beta, s=s, radius=radius)
             el_a.b, el_b.a = x.copy(), x.copy()
+            continue
+        g39 = any(el_a.index < k <= el_b.index for k in rounded)
+        pieces = _fanuc_corner(el_a, el_b, corner, beta, radius=radius) if rule == "fanuc" and not g39 else None
+        if pieces is not None:
+            if pieces:
+                corners[el_b.index] = pieces
         elif kind == "arc":
             rapid = el_b.kind == "line" and blocks[el_b.index].kind == "rapid"  # G0: a traverse, no arc
-            corners[el_b.index] = (None if rapid else corner, el_a.b.copy(), el_b.a.copy())
+            corners[el_b.index] = [(None if rapid else corner, el_a.b.copy(), el_b.a.copy())]
         elif el_b.kind == "line":  # LinuxCNC's "convex, one arc needed": the line starts where the tool is
             el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()
         else:  # LinuxCNC starts the arc where the tool is (a spiral); vcnc bridges the gap by a line
-            corners[el_b.index] = (None, el_a.b.copy(), el_b.a.copy())
+            corners[el_b.index] = [(None, el_a.b.copy(), el_b.a.copy())]
     return corners
+
+
+def _fanuc_corner(el_a: _Offset, el_b: _Offset, corner: np.ndarray, beta: float, *,
+                  radius: float) -> list[tuple] | None:
+    """An outside corner under Fanuc's cutter compensation C ("Tool movement in offset mode"): for a turn
+    ``beta`` of at most 90 degrees (the corner's angle ``alpha = 180 - beta`` on the workpiece side at least
+    90) both elements end at the intersection of their offsets, the one nearest the corner; for a sharper
+    turn the tool goes on ``r`` along the first element's end tangent, straight to ``r`` before the second
+    element's start along its tangent, and on (a line is lengthened, an arc keeps its end and a straight
+    piece is added). Returns the pieces to insert before ``el_b`` ([] for none), or None for a turn of at
+    most :data:`CONVEX_TOLERANCE` whose offsets do not meet (parallel lines, a tangent arc), left to the
+    LinuxCNC rule."""
+    if beta <= math.pi / 2.0:
+        cands = _intersections(el_a, el_b)
+        if cands:
+            x = min(cands, key=lambda c: math.hypot(*(c - corner)))
+            for el, old in ((el_a, el_a.b), (el_b, el_b.a)):
+                if el.kind == "arc":
+                    el.grown += abs((_angle(x - el.c) - _angle(old - el.c) + math.pi) % (2.0 * math.pi) - math.pi)
+            el_a.b, el_b.a = x.copy(), x.copy()
+            return []
+        if beta <= CONVEX_TOLERANCE:
+            return None
+    p1 = el_a.b + radius * el_a.tangent(el_a.b)
+    p2 = el_b.a - radius * el_b.tangent(el_b.a)
+    pieces = []
+    if el_a.kind == "line":
+        el_a.b = p1
+    else:
+        pieces.append((None, el_a.b.copy(), p1))
+    pieces.append((None, p1, p2))
+    if el_b.kind == "line":
+        el_b.a = p2
+    else:
+        pieces.append((None, p2, el_b.a.copy()))
+    return [piece for piece in pieces if math.hypot(*(piece[2] - piece[1])) > _EPS]
 
 
 def _angle(v: np.ndarray) -> float:
@@ -508,7 +598,7 @@ def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radiu
     """CompensationError where a trimmed element gouges, by ``move_endpoint_and_flush`` (interp_queue.cc):
     a line that now runs against its programmed direction (the entry: against its offset direction), or
     an arc whose sweep grew by more than 0.0254 (mm programs) or 0.001 (inch programs) [rad] over the
-    programmed sweep."""
+    programmed sweep and what Fanuc's outside corners added."""
     grow = 0.001 if inch else 0.0254
     for el in chain:
         if el.kind == "line":
@@ -518,15 +608,16 @@ def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radiu
             what = "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed"
         else:
             sweep = _sweep(el, el.a, el.b)
-            if sweep <= (_sweep(el, el.a0, el.b0) if el is ent else abs(blocks[el.index].segment.sweep)) + grow:
+            programmed = _sweep(el, el.a0, el.b0) if el is ent else abs(blocks[el.index].segment.sweep)
+            if sweep <= programmed + el.grown + grow:
                 continue
             what = "Arc move"
         raise CompensationError(f"{what} in concave corner cannot be reached by the tool without gouging "
                                 f"(tool radius {radius:g} mm)", el.index)
 
 
-def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, tuple], *, first: int, last: int | None,
-              side: str, plane: int) -> list[Block]:
+def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, list[tuple]], *, first: int,
+              last: int | None, side: str, plane: int) -> list[Block]:
     """The compensated blocks: the run's blocks on the tool-centre path, corner arcs inserted."""
     p, q = PLANE_AXES[plane]
     ent = chain[0]
@@ -555,8 +646,7 @@ def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, tupl
             out.append(dataclasses.replace(b, start=st, target=tg, segment=seg))
             continue
         z0 = float(b.start[plane])
-        if i in corners:
-            centre, frm, to = corners[i]
+        for centre, frm, to in corners.get(i, ()):
             cs, ce = point3(b.start, frm, z0), point3(b.start, to, z0)
             if centre is None:
                 seg, kind = Line(cs, ce), ("rapid" if b.kind == "rapid" else "line")

@@ -256,6 +256,7 @@ _MILL_G: dict[int, tuple[str, str]] = {
     740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
     510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
     511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
+    390: ("corner circular", "G39 corner circular interpolation"),
     **MILL_CODES,  # G09, G29, G60 (interpolators.iso_reference)
 }
 
@@ -404,6 +405,7 @@ class _State:
     comp_start: int | None = None  # index of the run's first block
     comp_close_at: int | None = None  # number of blocks when G40 came: the next motion is the exit
     comp_centers: dict[int, np.ndarray] = dataclasses.field(default_factory=dict)  # programmed arc centres
+    comp_rounded: set[int] = dataclasses.field(default_factory=set)  # G39: number of blocks when it came
     arc_center: np.ndarray | None = None  # programmed centre (start + I/J/K) of the last arc read [mm]
 
     rotations: dict[str, float] = dataclasses.field(default_factory=dict)  # G10 R per work offset [deg]
@@ -856,6 +858,9 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
         return ended
     if "stroke check" in gcodes:  # Fanuc G22/G23: no motion; G22's X Y Z I J K bound the forbidden area
         notes.add(f"{FANUC_CODES[gcodes['stroke check'][0]][1]} (no motion; the stroke limits are not checked)")
+        return ended
+    if "corner circular" in gcodes:
+        _g39(gcodes["corner circular"][1], seen, st, len(blocks), where, notes)
         return ended
     if st.context.dialect.name == "linuxcnc":
         _linuxcnc_leniencies(seen, gcodes, st, bool(polar) or any(w in seen for w in ("X", "Y", "Z", *EXTRA_LETTERS)),
@@ -2390,6 +2395,27 @@ def _rereads_position(words: list[Word], st: _State) -> bool:
     return st.context.dialect.name == "linuxcnc" and any(w.letter == "M" and w.value in (6.0, 61.0) for w in words)
 
 
+def _g39(w: Word, seen, st: _State, count: int, where: Where, notes: _Notes) -> None:
+    """Fanuc/Haas G39 corner circular interpolation (Fanuc Series 16/18-MC operator's manual, "Corner offset
+    circular interpolation (G39)"; Fanuc 0i-MF, cutter compensation C): in offset mode, an arc of the tool
+    radius about the corner from the vector perpendicular to the block before to the new vector, which
+    without I J K (or X Y) is perpendicular to the next block at its start: LinuxCNC's corner arc at that
+    one corner (:func:`interpolators.compensation.compensate`, ``rounded``); the arc carries the next block's
+    line, as every corner arc does (our reading: the G39 block has no motion of its own to carry). A new
+    vector given by X Y or I J K is not read."""
+    if st.comp_side is None or st.comp_start is None or count == st.comp_start:
+        where.fail("G39 corner circular interpolation outside offset mode", column=w.column, text=w.text,
+                   expected="G39 under G41/G42 after the start-up move")
+    for letter in ("X", "Y", "Z", "I", "J", "K", "R"):
+        if letter in seen:
+            v = seen[letter]
+            where.fail(f"word {letter} on G39: a corner vector given by X Y or I J K is not supported",
+                       column=v.column, text=v.text,
+                       expected="G39 alone (the arc ends perpendicular to the next block)")
+    st.comp_rounded.add(count)
+    notes.add("G39 corner circular interpolation")
+
+
 def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
     """Replace the finished compensated run by the tool-centre path. Under ``--dialect fanuc`` and ``haas`` the
     start-up is Fanuc's type A (the default, parameter 5003#0 SUP = 0; Fanuc 0i-MF operator's manual, cutter
@@ -2397,17 +2423,21 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     to the next block at its start point, whatever its length; Haas's Setting 43 "Cutter Comp Type" offers
     the same A (our reading: A, its default, as Fanuc's). LinuxCNC's entry ends perpendicular to the entry
     move itself and must be longer than the radius, which CAM programs for wear-only offsets (a start-up of
-    0.005 mm and a D of a few hundredths) never are."""
+    0.005 mm and a D of a few hundredths) never are. Their outside corners are Fanuc's too (intersections, at
+    an acute corner two vectors: :mod:`interpolators.compensation`), not LinuxCNC's arcs."""
     closed = st.comp_close_at is not None and len(blocks) > st.comp_close_at  # a motion came after G40
     start, st.comp_start, st.comp_close_at = st.comp_start, None, None
     centers, st.comp_centers = {i - start: c for i, c in st.comp_centers.items()}, {}
+    rounded, st.comp_rounded = {i - start for i in st.comp_rounded}, set()
     run = blocks[start:]
     if not run:
         return
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
     try:
         new = compensate(run, side=st.comp_run_side, radius=st.comp_radius, plane=st.comp_plane, closed=closed,
                          centers=centers, inch=st.inch, open_end=not closed,
-                         entry="perpendicular" if st.context.dialect.name in ("fanuc", "haas") else "linuxcnc")
+                         entry="perpendicular" if fanuc else "linuxcnc", corner="fanuc" if fanuc else "linuxcnc",
+                         rounded=rounded)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         Where(source, b.line, b.text).fail(

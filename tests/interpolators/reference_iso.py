@@ -35,7 +35,10 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - G33 (g-code.adoc "G33 Spindle Synchronized Motion"): a feed move to the end point; G33.1 ("G33.1
   Rigid Tapping"): a feed move to the end point and one back to where it started.
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
-- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. After G40 with
+- G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. Under
+  ``fanuc``/``haas`` an outside corner's end point is Fanuc's (:func:`fanuc_corner`: the offsets'
+  intersection, at an acute corner the vectors lengthened by the radius); after ``G39`` the corner
+  is an arc about it, checked one radius off. After G40 with
   no exit move, LinuxCNC's M6/M61 makes the last offset point the current one (``read_inputs``:
   ``refresh_actual_position``): the next move is checked within the radius.
 - The axes beyond X, Y, Z (g-code.adoc "G0", overview.adoc "Feed Rate", coordinates.adoc): A, B, C
@@ -176,6 +179,12 @@ class Expected:
         The first move under G41/G42 (LinuxCNC's entry move, from the uncompensated point).
     extra : ndarray (6,) or None
         End of the axes a, b, c [deg], u, v, w [mm] in machine positions; checked exactly.
+    side, ccw : str or None, bool
+        Under G41/G42: the tool's side (``"left"``, ``"right"``) and, for an arc, its direction.
+    corner : ndarray (3,) or None
+        Under G41/G42 with ``--dialect fanuc``/``haas``: where the block ends at an outside corner by Fanuc's
+        cutter compensation C (:func:`fanuc_corner`), checked within ``corner_tolerance`` [mm] instead of
+        one radius from ``element``.
     """
 
     line: int
@@ -189,6 +198,10 @@ class Expected:
     element: tuple | None = None
     entry: bool = False
     extra: np.ndarray | None = None
+    side: str | None = None
+    ccw: bool = False
+    corner: np.ndarray | None = None
+    corner_tolerance: float = 0.0
 
 
 # ----------------------------------------------------------------------------------------------
@@ -671,6 +684,8 @@ class _Machine:
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.comp_radius: float | None = None
         self.comp_entry = False
+        self.comp_side = "left"
+        self.g39 = False  # Fanuc/Haas G39 came: the next corner is an arc about it (no corner point)
         self.comp_closed = 0.0  # the radius of a run G40 closed, until the next move (its exit move)
         self.reread = 0.0  # LinuxCNC M6/M61 after such a G40: the next move starts at the offset point
         self.arc_absolute = False
@@ -783,8 +798,13 @@ class _Machine:
                 slack = max(centre_tolerance - 1e-6, 0.0) + abs(rs - re_)
                 element = ("arc", centre, re_, plane, self.pos.copy(), slack)
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
-                                     element=element, entry=self.comp_entry, extra=self.extra.copy()))
+                                     element=element, entry=self.comp_entry, extra=self.extra.copy(),
+                                     side=self.comp_side, ccw=kind == "arc_ccw"))
             self.comp_entry = False
+            if self.ctx.dialect.name in ("fanuc", "haas") and not self.g39:
+                fanuc_corner(self.out, self.comp_radius)
+            if np.any((end - self.pos)[list(plane)]) or centre is not None:
+                self.g39 = False  # G39's arc is LinuxCNC's corner arc: the block before ends one radius off
         else:
             # after G40 and an M6/M61 (LinuxCNC), a move that names no X Y stays at the run's last offset
             # point, one radius from the programmed one (rs274ngc_pre.cc read_inputs: refresh_actual_position)
@@ -828,7 +848,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             number = int(words["d"][-1]) if "d" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
             m.comp_radius = tool.radius if tool is not None and tool.radius > 0 else None
-            m.comp_entry = True
+            m.comp_entry, m.comp_side = True, "left" if code == 410 else "right"
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
@@ -909,6 +929,11 @@ def _mill_codes(m: _Machine, g: list[int], words: dict) -> None:
             g.remove(code)
     if 90 in g:  # G09 exact stop: the block ends at rest, at the same point
         g.remove(90)
+    if 390 in g:  # G39 corner circular interpolation (Fanuc 16/18-MC "Corner offset circular interpolation")
+        if m.comp_radius is None or set(words) & set("xyzijkr"):
+            raise ReferenceError("G39 outside compensation or with a vector")
+        g.remove(390)
+        m.g39 = True
     if m.ctx.dialect.name == "fanuc" and (220 in g or 230 in g):  # G22 X Y Z I J K: the stroke check's area
         g[:] = [c for c in g if c not in (220, 230)]
         for k in "xyzijk":
@@ -1693,6 +1718,77 @@ def _chord_point(el: tuple, corner: np.ndarray, c: float) -> np.ndarray:
         if _on(el, p):
             return p
     raise ReferenceError("no chamfer of that length fits")
+
+
+#: A Fanuc outside corner of at most this turn [rad] whose offsets do not meet (a tangent arc off by rounding) keeps
+#: the one-radius check: vcnc leaves it to LinuxCNC's rule (our reading; Fanuc's own small-vector limits are
+#: parameters of the machine).
+_TANGENT_TURN = 0.05
+
+
+def fanuc_corner(out: list[Expected], r: float) -> None:
+    """Fanuc's cutter compensation C ("Tool movement in offset mode", Fanuc 0i-MF/0i-MD operator's manual) at
+    the corner the last compensated block of ``out`` makes with the one before it (rows along the plane's
+    normal only in between stand where that one ends). With ``t1``, ``t2`` the tangents at the corner ``P``
+    and ``n1``, ``n2`` the vectors of length ``r`` to the tool side perpendicular to them: an inside corner
+    keeps the one-radius check; an outside corner turned by at most 90 degrees (``alpha >= 90``) ends where
+    the two offset paths (lines through ``P + n``, circles about the arc centres) cross, the crossing nearest
+    ``P``; a sharper one (``alpha < 90``) ends a line at ``P + n1 + r t1`` (an arc at ``P + n1``, checked by
+    the radius), as do obtuse ones whose offsets do not cross. A reversal next to an arc (within
+    :data:`_TANGENT_TURN` of 180 degrees) is inside or outside by the arc's curvature, not the tangents: it
+    keeps the one-radius check."""
+    b, k = out[-1], len(out) - 2
+    i, j = b.plane
+
+    def flat(e: Expected) -> bool:
+        return e.element[0] == "line" and not np.any(e.element[2][[i, j]] - e.element[1][[i, j]])
+
+    if flat(b):
+        return
+    between = []
+    while k >= 0 and out[k].element is not None and flat(out[k]) and not out[k].entry:
+        between.append(k)
+        k -= 1
+    if k < 0 or out[k].element is None or out[k].entry or out[k].side != b.side or out[k].plane != b.plane:
+        return
+    a, p = out[k], out[k].end[[i, j]]
+    t1, t2 = _comp_tangent(a, p), _comp_tangent(b, p)
+    sgn = 1.0 if a.side == "left" else -1.0
+    cross, dot = float(t1[0] * t2[1] - t1[1] * t2[0]), float(t1 @ t2)
+    if not (sgn * cross < -1e-12 or abs(cross) <= 1e-12 and dot < 0):
+        return  # an inside corner or no turn
+    if dot < 0 and abs(cross) < math.sin(_TANGENT_TURN) and "arc" in (a.element[0], b.element[0]):
+        return  # a reversal next to an arc: inside or outside by the curvature ("h", "m" shapes): one radius
+    q1 = p + r * sgn * np.array([-t1[1], t1[0]])
+    q2 = p + r * sgn * np.array([-t2[1], t2[0]])
+    slack = sum(e.element[5] for e in (a, b) if e.element[0] == "arc")
+    x, tol = None, 1e-6 + 2.0 * slack / max(abs(cross), 0.05)
+    if dot >= 0:
+        offsets = [("l", q, t) if e.element[0] == "line" else ("c", e.element[1][[i, j]],
+                                                               float(np.linalg.norm(q - e.element[1][[i, j]])))
+                   for e, q, t in ((a, q1, t1), (b, q2, t2))]
+        meets = _meet(*offsets)
+        if meets:
+            x = min(meets, key=lambda c: float(np.linalg.norm(c - p)))
+        elif math.acos(min(dot, 1.0)) <= _TANGENT_TURN:
+            return
+    if x is None:
+        if a.element[0] == "arc":
+            return
+        x = q1 + r * t1
+    for m in (k, *between):
+        out[m] = dataclasses.replace(out[m], corner=_lift(out[m].end, x, (i, j)), corner_tolerance=tol)
+
+
+def _comp_tangent(e: Expected, p: np.ndarray) -> np.ndarray:
+    """Unit tangent of a compensated block's programmed element at its point ``p`` (in its plane)."""
+    i, j = e.plane
+    if e.element[0] == "line":
+        d = (e.element[2] - e.element[1])[[i, j]]
+        return d / np.linalg.norm(d)
+    v = p - e.element[1][[i, j]]
+    t = np.array([-v[1], v[0]]) if e.ccw else np.array([v[1], -v[0]])
+    return t / np.linalg.norm(t)
 
 
 def _fanuc_polar(m: _Machine, g: list[int], words: dict) -> None:

@@ -65,6 +65,8 @@ def _element_distance(point: np.ndarray, element: tuple) -> float:
 
 
 def _comp_ok(got: np.ndarray, e) -> bool:
+    if getattr(e, "corner", None) is not None:  # a Fanuc outside corner (reference_iso.fanuc_corner)
+        return _close(got, e.corner, e.corner_tolerance)
     if e.element[0] == "arc":
         normal = 3 - sum(e.element[3])
         rise = abs(e.end[normal] - e.element[4][normal])
@@ -97,7 +99,12 @@ def _failure(why: str, rows: list[list], i: int, e, j: int, exact: int, within: 
     return Match(rows=len(rows), exact=exact, within=within,
                  mismatch=f"{why}: expected #{j} line {e.line} {e.kind} {np.round(e.end, 6).tolist()}"
                           f"{'' if getattr(e, 'extra', None) is None else ' ' + str(np.round(e.extra, 6).tolist())}"
-                          f" (tol {e.tolerance:g}), reader row {got}")
+                          f" (tol {e.tolerance:g}{_corner_note(e)}), reader row {got}")
+
+
+def _corner_note(e) -> str:
+    corner = getattr(e, "corner", None)
+    return "" if corner is None else f"; Fanuc corner {np.round(corner, 6).tolist()}"
 
 
 def _last_row(expected: list, j: int, rows: list[list], i: int) -> int:
