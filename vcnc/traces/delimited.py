@@ -40,6 +40,7 @@ from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
+    COUNT_UNITS,
     LAG_SUFFIX,
     LENGTH_UNITS,
     TIME_UNITS,
@@ -59,7 +60,8 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import columns_from_names, counted, is_sample_number
+from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "TIME_UNITS",
@@ -149,11 +151,12 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
         return None
 
 
-def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
-    """``(first, width, decimal_comma)`` of the numeric rows at the end of ``lines`` (first = -1
-    when there are none). With a tab or ``;`` delimiter a comma in a number is a decimal comma."""
+def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, bool]:
+    """``(first, last, width, decimal_comma)`` of the last block of numeric rows in ``lines`` (first = -1
+    when there are none); lines after it that are not rows of numbers are a trailer (module docstring).
+    With a tab or ``;`` delimiter a comma in a number is a decimal comma."""
     comma = delimiter != ","
-    first, width = -1, 0
+    first, last, width = -1, -1, 0
     for i in range(len(lines) - 1, -1, -1):
         s = lines[i].strip()
         if not s:  # blank lines between the rows of numbers are skipped, as in _table
@@ -161,13 +164,25 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
         if (s.upper() == "EOF" and first < 0) or s.lower() == _OVERRUN:
             continue
         cells = _split(lines[i], delimiter)
-        if len(cells) < 2 or (width and len(cells) != width):
-            break
-        vals = _numbers(cells, comma)
+        vals = _numbers(cells, comma) if len(cells) >= 2 and (not width or len(cells) == width) else None
         if vals is None or all(v != v for v in vals):
+            if first < 0:
+                continue  # a trailer line below the rows
             break
         first, width = i, len(cells)
-    return first, width, comma
+        last = i if last < 0 else last
+    return first, last, width, comma
+
+
+def _bad_row(line: str, delimiter: str, comma: bool, width: int) -> int | None:
+    """The 0-based column of the cell that is not a number in a line that is a row of ``width`` cells,
+    mostly numbers (a data row with a bad cell, not a header or a trailer), else None."""
+    cells = _header_cells(line, delimiter)
+    numeric = sum(_numbers([c], comma) is not None for c in cells if c)
+    if len(cells) != width or numeric * 2 <= len(cells):
+        return None
+    raw = [c.strip() for c in _split(line, delimiter)]  # '#12;0.5;..': a row behind a comment mark
+    return next((i for i, c in enumerate(raw) if _numbers([c], comma) is None), 0)
 
 
 def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str, list[int]]:
@@ -176,19 +191,19 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
     lines = text.splitlines()
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
     # the delimiter that makes the longest block of numeric rows (then the widest)
-    delimiter, first, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[2] >= 2, -b[1], b[2]))
+    delimiter, first, last, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1], b[3]))
     if first < 0 or width < 2:
         raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src)
+    for j in [k for k in range(last + 1, len(lines)) if lines[k].strip()] + [
+            next((k for k in range(first - 1, -1, -1) if lines[k].strip()), -1)]:
+        bad = _bad_row(lines[j], delimiter, comma, width) if j >= 0 else None
+        if bad is not None:
+            raise CaptureError(f"not a number (the rows {'below' if j < first else 'above'} are {width} numbers)",
+                               file=src, line=j + 1, column=bad + 1, text=_split(lines[j], delimiter)[bad].strip())
     header = units_row = None
     for j in range(first - 1, -1, -1):
         if lines[j].strip():
             cells = _header_cells(lines[j], delimiter)
-            numeric = sum(_numbers([c], comma) is not None for c in cells if c)
-            if len(cells) == width and numeric * 2 > len(cells):  # a data row with a bad cell, not a header
-                raw = [c.strip() for c in _split(lines[j], delimiter)]  # '#12;0.5;..': a row behind a comment mark
-                k = next((i for i, c in enumerate(raw) if _numbers([c], comma) is None), 0)
-                raise CaptureError(f"not a number (the rows below are {width} numbers)", file=src, line=j + 1,
-                                   column=k + 1, text=raw[k])
             header = cells if len(cells) == width else None
             if header is not None and is_unit_row(header):  # names above a row of units
                 units_row = header
@@ -197,7 +212,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
                 header = names if len(names) == width else None
             break
     rows, row_lines, overruns = [], [], []
-    for i in range(first, len(lines)):
+    for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
             overruns.append(i + 1)
         if not lines[i].strip() or lines[i].strip().upper() in ("EOF", _OVERRUN.upper()):
@@ -229,16 +244,24 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     header, units_row, data, row_lines, delimiter, overruns = _table(text, src)
     hline = row_lines[0] - 1
+    above = text.splitlines()[:hline]
+    period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
-        columns, why = columns_from_names(header) if header is not None else (None, "the file has no header line")
+        known = period is not None or sample_time is not None
+        columns, why = (columns_from_names(header, period_known=known) if header is not None
+                        else (None, "the file has no header line"))
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
                                f"(not read from the names: {why})", file=src, line=hline)
-    _check_time_options(columns, time_unit, sample_time, overruns, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
+    stated: dict[str, str] = {}
+    if period is not None and ("t" not in idx or (header is not None and is_sample_number(header[idx["t"]]))):
+        sample_time = float(period.value)
+        stated["sampling"] = f"{sample_time:.9g} s, stated in line {period.line} ({period.text!r})"
+    _check_time_options(columns, time_unit, sample_time, overruns, src)
     used = data[:, list(idx.values())]
     keep = ~np.isnan(used).any(axis=1)
     if keep.sum() < 2:
@@ -246,9 +269,15 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
+    stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
+    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
+    if units["t"] is None and period is not None and sample_time is None and not stamped:
+        units["t"] = _unit_of_step(d[:, idx["t"]], float(period.value))
+        if units["t"] is not None:
+            stated["time_unit_from_period"] = (f"{units['t']}: the step of {columns['t']!r} is the sampling period "
+                                               f"stated in line {period.line} ({period.text!r})")
     time_stated = units["t"] is not None
     units["t"] = units["t"] or "s"
-    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
     if stamped:
         units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
     if sample_time is None:
@@ -259,7 +288,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
     time_known = time_stated or stamped or sample_time is not None
-    if guessed:
+    if guessed and "t" in columns:
         _check_guessed_time(t, columns["t"], time_known, src, hline)
 
     def scaled(k: str) -> np.ndarray:
@@ -274,10 +303,46 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     time_meta = ("time stamps" if stamped else units["t"] if sample_time is None else
                  f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
-            "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how}
+            "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how, **stated}
     if guessed:
         meta["columns"] = _guessed_note(columns, units, time_known)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
+
+
+def _unit_of_step(t: np.ndarray, period: float) -> str | None:
+    """The time unit (of :data:`TIME_UNITS`) in which the median step of a time column is the stated sampling
+    ``period`` [s] (to 0.1 %), or None."""
+    step = float(np.median(np.diff(t))) if t.size > 1 else 0.0
+    return next((u for u, scale in TIME_UNITS.items() if abs(step * scale - period) <= 1e-3 * period), None)
+
+
+def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_row: list[str] | None,
+                 idx: Mapping[str, int], above: list[str], columns: Mapping[str, str], src: str,
+                 line: int) -> dict[str, str]:
+    """Positions logged in counts (:func:`vcnc.traces.names.counted`, or a count unit in the units row) without
+    a unit given: scaled by the size of one count the preamble states (:mod:`vcnc.traces.preamble`), set in
+    ``units``, and the ``meta["count_size"]`` note; without one an error asking for ``--unit``."""
+    counts = {}
+    for k in idx:
+        if k == "t" or units[k] is not None:
+            continue
+        cell = units_row[idx[k]].strip("[]() ").lower() if units_row is not None else ""
+        c = (counted(header[idx[k]]) if header is not None else None) or (cell if cell in COUNT_UNITS else None)
+        if c is not None:
+            counts[k] = c
+    if not counts:
+        return {}
+    size = stated_count_size(above)
+    if size is None:
+        k, c = next(iter(counts.items()))
+        raise CaptureError(f"{k}={columns[k]!r} is logged in increments ({c!r}) and the file does not state their "
+                           "size",
+                           file=src, line=line, expected="--unit with the size of one count (e.g. --unit 0.1um, "
+                                                         "0.0001in, 0.001deg)")
+    for k in counts:
+        units[k] = str(size.value)
+    return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
+                          f"({size.text!r})"}
 
 
 def _check_time_options(columns: Mapping[str, str], time_unit: str | None, sample_time: float | None,
