@@ -107,6 +107,11 @@ def test_sample_number_names(name, sample):
     (["Time[ms]", "Motor speed[r/min]", "Cumulative command pulses[pulse]", "Cumulative feedback pulses[pulse]",
       "Droop pulses[pulse]"],
      {"t": "Time[ms]", "x_ref": "Cumulative command pulses[pulse]", "x": "Cumulative feedback pulses[pulse]"}),
+    # the measured position named as its command without the command's word (HEBI logs: position, positionCmd)
+    (["time", "position", "positionCmd", "velocity", "velocityCmd"],
+     {"t": "time", "x_ref": "positionCmd", "x": "position"}),
+    (["t", "X", "X Soll", "Y", "Y Soll"], {"t": "t", "x_ref": "X Soll", "x": "X", "y_ref": "Y Soll", "y": "Y"}),
+    (["time", "x_cmd", "x_fb", "x"], {"t": "time", "x_ref": "x_cmd", "x": "x_fb"}),  # a named measurement first
 ])
 def test_drive_tool_channel_names(header, mapping):
     assert columns_from_names(header) == (mapping, "")
@@ -241,3 +246,15 @@ def test_a_bad_row_below_the_data_is_named(tmp_path):
     with pytest.raises(CaptureError, match=r"log.csv:22:3: not a number \(the rows above are 3 numbers\) "
                                            r"\(got 'x'\)"):
         read_capture(f)
+
+
+def test_the_size_of_one_count_in_the_header(tmp_path):
+    # a header giving the size of one count in brackets ("motor_pos [0.1 deg]", Mitsubishi's "B(1μm)")
+    t, ref, act = _motion(20)
+    f = tmp_path / "log.csv"
+    f.write_text("time [ms];b_cmd [0.1 deg];b_act [0.1 deg]\n"
+                 + "".join(f"{a * 1e3:.0f};{round(b * 10)};{round(c * 10)}\n" for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f)
+    assert cap.axes == ("b",)
+    np.testing.assert_allclose(cap.reference[:, 0], np.round(ref * 10) / 10, atol=1e-12)
+    assert cap.meta["unit"] == "0.1deg"

@@ -98,9 +98,15 @@ def parse_number(cell: str, decimal_comma: bool = False) -> float:
 
 def unit_in_name(name: str, kind: str) -> str | None:
     """The unit a column name ends with, ``[ms]`` or ``(µm)``: a key of :data:`TIME_UNITS`
-    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), or for a length the size of one count
+    as :func:`length_unit` reads it (``motor_pos [0.1 deg]`` -> ``"0.1deg"``, Mitsubishi's ``B(1μm)``), else None."""
     m = _UNIT.search(name)
-    return unit_named(m.group(1), kind) if m else None
+    if not m:
+        return None
+    named = unit_named(m.group(1), kind)
+    if named is None and kind == "length" and length_unit(m.group(1)) is not None:
+        return m.group(1).replace(" ", "").replace("\u03bc", "\u00b5")
+    return named
 
 
 def unit_named(text: str, kind: str) -> str | None:

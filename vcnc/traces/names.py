@@ -26,7 +26,10 @@ name, as Mitsubishi's "Cumulative feedback pulses") are positions whose size the
 (:func:`counted`; the reader then asks for ``--unit``); Kollmorgen AKD's ``VL.``/``IL.`` parameters (velocity
 and current loop, AKD User Guide) are not positions; without a time column, a column of sample numbers
 (``Sample #``, ``No.``, ``Index``: MEI Motion Scope's export starts with ``Sample #``) or none is the time
-when the sampling period is known (``period_known``: stated in the file's preamble or given).
+when the sampling period is known (``period_known``: stated in the file's preamble or given); a
+commanded position without a measured one takes as measured the column named as it without the word of
+commanding (``position`` beside ``positionCmd``, ``x`` beside ``x_cmd``; our reading of loggers that name
+the feedback plainly and mark the command).
 
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
@@ -159,6 +162,7 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
         mapping["t"] = times[0]
     found = {h: _position(h) for h in header if h not in times}
     found = {h: p for h, p in found.items() if p is not None}
+    found.update(_bare_counterparts(header, times, found))
     named_axes = {a for _, a in found.values() if a is not None}
     if not named_axes:
         found = {h: (role, "x") for h, (role, _) in found.items()}
@@ -178,6 +182,24 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     if len(mapping) == len(times):
         return None, _no_pair(header, times, found)
     return mapping, ""
+
+
+def _bare_counterparts(header: Sequence[str], times: Sequence[str],
+                       found: dict[str, tuple[str, str | None]]) -> dict[str, tuple[str, str | None]]:
+    """The measured position named as its command without the command's word (``position`` beside
+    ``positionCmd``, ``x`` beside ``x_cmd``: HEBI's and many loggers' logs), for a commanded position whose
+    axis has no measured position or following error named (module docstring)."""
+    out: dict[str, tuple[str, str | None]] = {}
+    for h, (role, axis) in found.items():
+        if role != "ref" or any(r != "ref" and a == axis for r, a in found.values()):
+            continue
+        key = [w for w in _split_axis(_words(h)) if _role([w]) is None]
+        bare = [b for b in header if b not in found and b not in times and key and _split_axis(_words(b)) == key
+                and not (_TRAILING_UNIT.search(b) and unit_in_name(b, "length") is None and counted(b) is None)
+                and not any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in key)]
+        if len(bare) == 1:
+            out[bare[0]] = ("act", axis)
+    return out
 
 
 def _no_pair(header: Sequence[str], times: Sequence[str], found: dict[str, tuple[str, str]]) -> str:
