@@ -258,3 +258,24 @@ def test_the_size_of_one_count_in_the_header(tmp_path):
     assert cap.axes == ("b",)
     np.testing.assert_allclose(cap.reference[:, 0], np.round(ref * 10) / 10, atol=1e-12)
     assert cap.meta["unit"] == "0.1deg"
+
+
+@pytest.mark.parametrize(("names", "ending"), [("Time [s];X Soll [mm];X Ist [mm]", ";"),  # rows end with ';'
+                                               ("Time [s];X Soll [mm];X Ist [mm];", "")])  # the names do
+def test_a_delimiter_ending_the_rows_or_the_names(tmp_path, names, ending):
+    t, ref, act = _motion(20)
+    f = tmp_path / "log.csv"
+    f.write_text(names + "\n" + "".join(f"{a:.3f};{b:.6f};{c:.6f}{ending}\n" for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f)
+    np.testing.assert_allclose(cap.measured[:, 0], np.round(act, 6), atol=1e-12)
+    assert cap.meta["commanded"] == "x:X Soll [mm]"
+
+
+def test_a_file_without_a_table_names_its_first_line(tmp_path):
+    # EPICS camonitor writes one channel per line (name, time stamp, value): not a table
+    f = tmp_path / "camonitor.log"
+    f.write_text("IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563\n"
+                 "IOC:Axis1-PosSet 2020-12-09 15:05:40.306118 19.5\n")
+    with pytest.raises(CaptureError, match=r"camonitor.log:1: no rows of numbers separated by tab, ';', ',' or spaces "
+                                           r"\(got 'IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563'\)"):
+        read_capture(f)

@@ -193,24 +193,15 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
     # the delimiter that makes the longest block of numeric rows (then the widest)
     delimiter, first, last, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1], b[3]))
     if first < 0 or width < 2:
-        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src)
+        k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
+        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src,
+                           line=k + 1 if k is not None else None, text=lines[k].strip()[:80] if k is not None else None)
     for j in [k for k in range(last + 1, len(lines)) if lines[k].strip()] + [
             next((k for k in range(first - 1, -1, -1) if lines[k].strip()), -1)]:
         bad = _bad_row(lines[j], delimiter, comma, width) if j >= 0 else None
         if bad is not None:
             raise CaptureError(f"not a number (the rows {'below' if j < first else 'above'} are {width} numbers)",
                                file=src, line=j + 1, column=bad + 1, text=_split(lines[j], delimiter)[bad].strip())
-    header = units_row = None
-    for j in range(first - 1, -1, -1):
-        if lines[j].strip():
-            cells = _header_cells(lines[j], delimiter)
-            header = cells if len(cells) == width else None
-            if header is not None and is_unit_row(header):  # names above a row of units
-                units_row = header
-                above = next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None)
-                names = _header_cells(lines[above], delimiter) if above is not None else []
-                header = names if len(names) == width else None
-            break
     rows, row_lines, overruns = [], [], []
     for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
@@ -219,7 +210,26 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
             continue
         rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
         row_lines.append(i + 1)
-    return header, units_row, np.array(rows, dtype=float), row_lines, delimiter, overruns
+    data = np.array(rows, dtype=float)
+    # a delimiter ending every row ('0;1;2;') but not the names, or the names but not the rows
+    trailing = bool(np.isnan(data[:, -1]).all())
+
+    def names_at(j: int | None) -> list[str] | None:
+        cells = _header_cells(lines[j], delimiter) if j is not None else []
+        if len(cells) == width + 1 and not cells[-1]:
+            cells = cells[:-1]
+        if len(cells) == width - 1 and trailing:
+            cells = [*cells, ""]
+        return cells if len(cells) == width else None
+
+    header = units_row = None
+    j = next((k for k in range(first - 1, -1, -1) if lines[k].strip()), None)
+    if j is not None:
+        header = names_at(j)
+        if header is not None and is_unit_row(header):  # names above a row of units
+            units_row = header
+            header = names_at(next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None))
+    return header, units_row, data, row_lines, delimiter, overruns
 
 
 def _header_cells(line: str, delimiter: str) -> list[str]:
