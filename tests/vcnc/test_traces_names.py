@@ -120,5 +120,6 @@ def test_a_row_of_numbers_behind_a_comment_mark_is_no_header(tmp_path):
     rows[10] = "#" + rows[10]
     f = tmp_path / "log.csv"
     f.write_text("# time,x_cmd,x_fb\n" + "\n".join(rows) + "\n")
-    with pytest.raises(CaptureError, match=":12:1: not a number \\(the rows below are 3 numbers\\) \\(got '#0.010'\\)"):
+    with pytest.raises(CaptureError, match=":12:1: not a number in column 1 \\('time', used as t\\) "
+                                           "\\(got '#0.010'\\)"):
         read_capture(f)

@@ -238,12 +238,12 @@ def test_a_trailer_after_the_data_is_skipped(tmp_path):
 
 
 def test_a_bad_row_below_the_data_is_named(tmp_path):
-    # a row of the table's width, mostly numbers, below the data is a bad row, not a trailer
+    # a row of the table's width, mostly numbers, below the data is a row with a bad cell, not a trailer
     t, ref, act = _motion(20)
     f = tmp_path / "log.csv"
     f.write_text("time,x_cmd,x_fb\n" + "".join(f"{a:.3f},{b:.6f},{c:.6f}\n" for a, b, c in zip(t, ref, act))
                  + "0.020,1.5,x\n")
-    with pytest.raises(CaptureError, match=r"log.csv:22:3: not a number \(the rows above are 3 numbers\) "
+    with pytest.raises(CaptureError, match=r"log.csv:22:3: not a number in column 3 \('x_fb', used as x\) "
                                            r"\(got 'x'\)"):
         read_capture(f)
 
@@ -279,3 +279,21 @@ def test_a_file_without_a_table_names_its_first_line(tmp_path):
     with pytest.raises(CaptureError, match=r"camonitor.log:1: no rows of numbers separated by tab, ';', ',' or spaces "
                                            r"\(got 'IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563'\)"):
         read_capture(f)
+
+
+def test_a_column_of_text_is_read_around(tmp_path):
+    # the University of Michigan CNC mill data set (Kaggle "CNC Mill Tool Wear"): the machining step in words in
+    # each row, no time column (sampled every 100 ms); text in a column mapped is an error naming it
+    t, ref, act = _motion(20, dt=0.1)
+    f = tmp_path / "experiment_01.csv"
+    f.write_text("X_ActualPosition,X_ActualVelocity,X_SetPosition,X_CurrentFeedback,M_sequence_number,"
+                 "Machining_Process\n"
+                 + "".join(f"{c:.3f},0,{b:.3f},0.18,{k},{'Prep' if k < 5 else 'Layer 1 Up'}\n"
+                           for k, (b, c) in enumerate(zip(ref, act))))
+    cap = read_capture(f, sample_time=0.1)
+    np.testing.assert_allclose(cap.t, t, atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], np.round(act, 3), atol=1e-12)
+    assert cap.meta["commanded"] == "x:X_SetPosition"
+    with pytest.raises(CaptureError, match=r"experiment_01.csv:2:6: not a number in column 6 \('Machining_Process', "
+                                           r"used as x\) \(got 'Prep'\)"):
+        read_capture(f, columns={"x_ref": "X_SetPosition", "x": "Machining_Process"}, sample_time=0.1)

@@ -33,6 +33,7 @@ import csv
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -151,12 +152,26 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
         return None
 
 
-def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, bool]:
-    """``(first, last, width, decimal_comma)`` of the last block of numeric rows in ``lines`` (first = -1
-    when there are none); lines after it that are not rows of numbers are a trailer (module docstring).
-    With a tab or ``;`` delimiter a comma in a number is a decimal comma."""
+def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int]] | None:
+    """A row of the table: its cells as numbers (NaN for empty and text cells) and the places of its text
+    cells; None for a line that is no row (no number, or text cells as many as the numbers: a header)."""
+    vals, text = [], []
+    for i, c in enumerate(cells):
+        try:
+            vals.append(_value(c, comma))
+        except ValueError:
+            vals.append(float("nan"))
+            text.append(i)
+    n = sum(v == v for v in vals)
+    return (vals, text) if n and (not text or (n >= 2 and len(text) < n)) else None
+
+
+def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, bool, int]:
+    """``(first, last, width, decimal_comma, text cells)`` of the last block of rows in ``lines`` (first = -1
+    when there are none); lines after it that are no rows are a trailer (module docstring). With a tab or
+    ``;`` delimiter a comma in a number is a decimal comma."""
     comma = delimiter != ","
-    first, last, width = -1, -1, 0
+    first, last, width, texts = -1, -1, 0, 0
     for i in range(len(lines) - 1, -1, -1):
         s = lines[i].strip()
         if not s:  # blank lines between the rows of numbers are skipped, as in _table
@@ -164,55 +179,54 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, boo
         if (s.upper() == "EOF" and first < 0) or s.lower() == _OVERRUN:
             continue
         cells = _split(lines[i], delimiter)
-        vals = _numbers(cells, comma) if len(cells) >= 2 and (not width or len(cells) == width) else None
-        if vals is None or all(v != v for v in vals):
+        row = _row(cells, comma) if len(cells) >= 2 and (not width or len(cells) == width) else None
+        if row is None:
             if first < 0:
                 continue  # a trailer line below the rows
             break
-        first, width = i, len(cells)
+        first, width, texts = i, len(cells), texts + len(row[1])
         last = i if last < 0 else last
-    return first, last, width, comma
+    return first, last, width, comma, texts
 
 
-def _bad_row(line: str, delimiter: str, comma: bool, width: int) -> int | None:
-    """The 0-based column of the cell that is not a number in a line that is a row of ``width`` cells,
-    mostly numbers (a data row with a bad cell, not a header or a trailer), else None."""
-    cells = _header_cells(line, delimiter)
-    numeric = sum(_numbers([c], comma) is not None for c in cells if c)
-    if len(cells) != width or numeric * 2 <= len(cells):
-        return None
-    raw = [c.strip() for c in _split(line, delimiter)]  # '#12;0.5;..': a row behind a comment mark
-    return next((i for i, c in enumerate(raw) if _numbers([c], comma) is None), 0)
+class _Table(NamedTuple):
+    """The table of a delimited trace."""
+
+    header: list[str] | None  #: the names above the rows, or None
+    units_row: list[str] | None  #: a row of units under the names, or None
+    data: np.ndarray  #: rows x columns, NaN for empty and text cells
+    row_lines: list[int]  #: the file line of each row
+    delimiter: str
+    overruns: list[int]  #: file lines of halsampler's overrun marks
+    text: dict[int, tuple[int, str]]  #: column -> (file line, cell) of its first text cell
 
 
-def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str, list[int]]:
-    """``(header names or None, the row of units under them or None, data (rows x columns, NaN
-    for empty), file line of each row, delimiter, file lines of halsampler's overrun marks)``."""
+def _table(text: str, src: str) -> _Table:
+    """The header, units and rows of the last block of rows in ``text`` (module docstring)."""
     lines = text.splitlines()
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
-    # the delimiter that makes the longest block of numeric rows (then the widest)
-    delimiter, first, last, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1], b[3]))
+    # the delimiter that makes the longest block of rows (then the one with fewest text cells, then the widest)
+    delimiter, first, last, width, comma, _ = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1],
+                                                                           -b[5], b[3]))
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
         raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src,
                            line=k + 1 if k is not None else None, text=lines[k].strip()[:80] if k is not None else None)
-    for j in [k for k in range(last + 1, len(lines)) if lines[k].strip()] + [
-            next((k for k in range(first - 1, -1, -1) if lines[k].strip()), -1)]:
-        bad = _bad_row(lines[j], delimiter, comma, width) if j >= 0 else None
-        if bad is not None:
-            raise CaptureError(f"not a number (the rows {'below' if j < first else 'above'} are {width} numbers)",
-                               file=src, line=j + 1, column=bad + 1, text=_split(lines[j], delimiter)[bad].strip())
-    rows, row_lines, overruns = [], [], []
+    rows, row_lines, overruns, text_cells = [], [], [], {}
     for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
             overruns.append(i + 1)
         if not lines[i].strip() or lines[i].strip().upper() in ("EOF", _OVERRUN.upper()):
             continue
-        rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
+        cells = _split(lines[i], delimiter)
+        vals, where = _row(cells, comma) or ([float("nan")] * width, [])
+        for k in where:
+            text_cells.setdefault(k, (i + 1, cells[k].strip()))
+        rows.append(vals)
         row_lines.append(i + 1)
     data = np.array(rows, dtype=float)
     # a delimiter ending every row ('0;1;2;') but not the names, or the names but not the rows
-    trailing = bool(np.isnan(data[:, -1]).all())
+    trailing = bool(np.isnan(data[:, -1]).all()) and width - 1 not in text_cells
 
     def names_at(j: int | None) -> list[str] | None:
         cells = _header_cells(lines[j], delimiter) if j is not None else []
@@ -229,7 +243,7 @@ def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.
         if header is not None and is_unit_row(header):  # names above a row of units
             units_row = header
             header = names_at(next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None))
-    return header, units_row, data, row_lines, delimiter, overruns
+    return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells)
 
 
 def _header_cells(line: str, delimiter: str) -> list[str]:
@@ -252,7 +266,8 @@ def _column(name: str | int, header: list[str] | None, width: int, src: str, lin
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
-    header, units_row, data, row_lines, delimiter, overruns = _table(text, src)
+    table = _table(text, src)
+    header, units_row, data, row_lines, delimiter, overruns = table[:6]
     hline = row_lines[0] - 1
     above = text.splitlines()[:hline]
     period = stated_period(above) if sample_time is None and time_unit is None else None
@@ -267,6 +282,11 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                                f"(not read from the names: {why})", file=src, line=hline)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
+    for k, c in idx.items():
+        if c in table.text:  # a column of text ('Starting', 'Layer 1 Up') is only an error when used
+            line, cell = table.text[c]
+            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})", file=src, line=line,
+                               column=c + 1, text=cell)
     stated: dict[str, str] = {}
     if period is not None and ("t" not in idx or (header is not None and is_sample_number(header[idx["t"]]))):
         sample_time = float(period.value)
