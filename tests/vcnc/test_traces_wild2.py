@@ -297,3 +297,27 @@ def test_a_column_of_text_is_read_around(tmp_path):
     with pytest.raises(CaptureError, match=r"experiment_01.csv:2:6: not a number in column 6 \('Machining_Process', "
                                            r"used as x\) \(got 'Prep'\)"):
         read_capture(f, columns={"x_ref": "X_SetPosition", "x": "Machining_Process"}, sample_time=0.1)
+
+
+def test_time_stamps_rounded_to_their_printed_digits(tmp_path):
+    # MATLAB's %g prints five significant digits: the steps of 1/157 s differ by more than the timing check allows,
+    # but every stamp is within the rounding of its last digit, so the step is uniform (a headerless EC-Master log)
+    step = 1 / 157
+    t, ref, act = _motion(200, dt=step)
+    f = tmp_path / "test_trj.txt"
+    f.write_text("".join(f"{a:.5g},{b:.5g},{c:.5g}\n" for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f, columns={"t": "1", "x_ref": "2", "x": "3"})
+    np.testing.assert_allclose(np.diff(cap.t), step, rtol=1e-6)
+    assert cap.meta["time_rounded"].startswith("time stamps printed to 5 digits, read as a uniform step of 0.006369")
+    # a lost sample is no rounding: still the timing error naming it
+    f.write_text("".join(f"{a:.5g},{b:.5g},{c:.5g}\n" for k, (a, b, c) in enumerate(zip(t, ref, act)) if k != 50))
+    with pytest.raises(CaptureError, match=r"test_trj.txt:51: 1 sample\(s\) missing in 1 gap\(s\)"):
+        read_capture(f, columns={"t": "1", "x_ref": "2", "x": "3"})
+
+
+def test_a_headerless_file_names_no_line_zero(tmp_path):
+    f = tmp_path / "gather.txt"
+    f.write_text("".join(f"{k} {k}\n" for k in range(10)))
+    with pytest.raises(CaptureError) as exc:
+        read_capture(f)
+    assert str(exc.value).startswith(f"{f}: which columns are time, commanded and measured position?")

@@ -46,6 +46,7 @@ from vcnc.traces.columns import (
     LENGTH_UNITS,
     TIME_UNITS,
     axis_of,
+    check_timing,
     check_units,
     is_unit_row,
     mapped_axes,
@@ -268,8 +269,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
-    hline = row_lines[0] - 1
-    above = text.splitlines()[:hline]
+    above = text.splitlines()[:row_lines[0] - 1]
+    hline = len(above) or None  # the header's line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
@@ -317,6 +318,10 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
+    if sample_time is None and not stamped:
+        cells = [_split(text.splitlines()[n - 1], delimiter)[idx["t"]] for n in lines_kept]
+        t, rounded = _rounded_stamps(t, cells, TIME_UNITS[units["t"]], src)
+        stated.update(rounded)
     time_known = time_stated or stamped or sample_time is not None
     if guessed and "t" in columns:
         _check_guessed_time(t, columns["t"], time_known, src, hline)
@@ -337,6 +342,39 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if guessed:
         meta["columns"] = _guessed_note(columns, units, time_known)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
+
+
+def _rounded_stamps(t: np.ndarray, cells: list[str], scale: float, src: str) -> tuple[np.ndarray, dict[str, str]]:
+    """Time [s] on a uniform step when its stamps are one rounded to the digits printed (``0.0063694``,
+    ``0.012739``: MATLAB's five significant digits; the steps then differ by more than the timing check
+    allows) and the ``meta["time_rounded"]`` note; else ``t`` as it is. Our reading: a uniform step fitted by
+    least squares weighted by the printed resolution, every stamp within the rounding of its last digit
+    (twice it, for the fit)."""
+    try:
+        check_timing(t - t[0], src)
+        return t, {}
+    except CaptureError:
+        pass
+    k = np.arange(t.size)
+    half = np.array([_half_digit(c) for c in cells]) * scale
+    step, start = np.polyfit(k, t, 1, w=1.0 / half)  # the stamps printed with more digits weigh more
+    grid = start + k * step
+    if not step > 0 or not np.all(np.abs(t - grid) <= 2 * half):
+        return t, {}
+    return grid, {"time_rounded": f"time stamps printed to {_digits(cells)} digits, read as a uniform step of "
+                                  f"{step:.9g} s (they are within the rounding of their last digit)"}
+
+
+def _half_digit(cell: str) -> float:
+    """Half a unit of the last digit of a printed number (``0.012739`` -> 5e-7; ``1.27e-2`` -> 5e-5)."""
+    mantissa, _, exponent = cell.strip().lower().replace(",", ".").partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+
+
+def _digits(cells: list[str]) -> int:
+    """The most significant digits printed in the cells (for the note)."""
+    return max(len(c.strip().lower().partition("e")[0].replace(".", "").replace(",", "").lstrip("-+0")) for c in cells)
 
 
 def _unit_of_step(t: np.ndarray, period: float) -> str | None:
