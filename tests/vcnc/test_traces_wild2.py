@@ -10,6 +10,7 @@ import pytest
 from vcnc.capture import read_capture
 from vcnc.cli import main
 from vcnc.errors import CaptureError
+from vcnc.traces.columns import unit_in_name
 from vcnc.traces.names import columns_from_names, counted, is_sample_number
 from vcnc.traces.preamble import stated_count_size, stated_period
 
@@ -77,6 +78,20 @@ def test_counted_names(name, unit):
     assert counted(name) == unit
 
 
+@pytest.mark.parametrize(("name", "kind", "unit"), [
+    ("Zeit in ms", "time", "ms"), ("Zeit/ms", "time", "ms"), ("time_us", "time", "us"), ("rel_time_s", "time", "s"),
+    ("X Ist in mm", "length", "mm"), ("x_cmd_um", "length", "um"), ("Position in inch", "length", "in"),
+    ("x_in", "length", None),  # an input, not inches
+    ("x_fb", "length", None), ("speed_mm/min", "length", None),
+])
+def test_units_after_the_name(name, kind, unit):
+    assert unit_in_name(name, kind) == unit
+
+
+def test_counted_cjk_names():
+    assert counted("溜りパルス") == "溜りパルス"  # Mitsubishi's droop pulses
+
+
 @pytest.mark.parametrize(("name", "sample"), [
     ("Sample #", True), ("No.", True), ("Index", True), ("Nr.", True), ("Sample Number", True), ("#", True),
     ("Time", False), ("Sample time", False), ("X Soll", False),
@@ -112,6 +127,16 @@ def test_sample_number_names(name, sample):
      {"t": "time", "x_ref": "positionCmd", "x": "position"}),
     (["t", "X", "X Soll", "Y", "Y Soll"], {"t": "t", "x_ref": "X Soll", "x": "X", "y_ref": "Y Soll", "y": "Y"}),
     (["time", "x_cmd", "x_fb", "x"], {"t": "time", "x_ref": "x_cmd", "x": "x_fb"}),  # a named measurement first
+    # units after the names without brackets: DIN 1313's 'Zeit/ms', 'Zeit in ms', and loggers' 'rel_time_s'
+    (["Zeit in ms", "X Soll in mm", "X Ist in mm"], {"t": "Zeit in ms", "x_ref": "X Soll in mm", "x": "X Ist in mm"}),
+    (["rel_time_s", "cmd_position", "actual_position"],
+     {"t": "rel_time_s", "x_ref": "cmd_position", "x": "actual_position"}),
+    (["Zeit/ms", "Soll/mm", "Ist/mm"], {"t": "Zeit/ms", "x_ref": "Soll/mm", "x": "Ist/mm"}),
+    # Japanese and Chinese exports (MR Configurator2, MINAS, Chinese drive tools): compounds read by their parts
+    (["時間[ms]", "指令位置[mm]", "フィードバック位置[mm]", "モータ速度[r/min]"],
+     {"t": "時間[ms]", "x_ref": "指令位置[mm]", "x": "フィードバック位置[mm]"}),
+    (["时间(ms)", "X轴指令位置(mm)", "X轴实际位置(mm)", "X轴速度"],
+     {"t": "时间(ms)", "x_ref": "X轴指令位置(mm)", "x": "X轴实际位置(mm)"}),
 ])
 def test_drive_tool_channel_names(header, mapping):
     assert columns_from_names(header) == (mapping, "")

@@ -56,6 +56,9 @@ COUNT_UNITS = frozenset({"inc", "incr", "increment", "increments", "count", "cou
 #: units A-E = 10 um ... 0.001 um, encoder counts of a drive's scope).
 _COUNT_UNIT = re.compile(r"\s*((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([^\d\s.][^\s]*)\s*")
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
+#: A unit after the name without brackets: ``Zeit in ms``, ``Zeit/ms`` (DIN 1313's quantity/unit), ``time_ms``,
+#: ``rel_time_s`` (loggers written in code); never "in" itself after "_" or "/" (an input).
+_SUFFIX_UNIT = re.compile(r"(?:\s+in\s+|\s*/\s*|_)([^\s/_\d\[\]()][^\s/_\[\]()]*)\s*$", re.IGNORECASE)
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
 #: Suffix of a mapping's following-error column (``x_lag``): commanded - actual position, the
@@ -97,11 +100,15 @@ def parse_number(cell: str, decimal_comma: bool = False) -> float:
 
 
 def unit_in_name(name: str, kind: str) -> str | None:
-    """The unit a column name ends with, ``[ms]`` or ``(µm)``: a key of :data:`TIME_UNITS`
+    """The unit a column name ends with, ``[ms]`` or ``(µm)`` (or, without brackets, ``Zeit in ms``,
+    ``Zeit/ms``, ``time_ms``): a key of :data:`TIME_UNITS`
     (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), or for a length the size of one count
     as :func:`length_unit` reads it (``motor_pos [0.1 deg]`` -> ``"0.1deg"``, Mitsubishi's ``B(1μm)``), else None."""
     m = _UNIT.search(name)
     if not m:
+        suffix = _SUFFIX_UNIT.search(name)
+        if suffix and not (suffix.group(1).lower() == "in" and not suffix.group(0).strip().lower().startswith("in")):
+            return unit_named(suffix.group(1), kind)
         return None
     named = unit_named(m.group(1), kind)
     if named is None and kind == "length" and length_unit(m.group(1)) is not None:

@@ -48,7 +48,8 @@ from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
 __all__ = ["columns_from_names", "counted", "is_sample_number"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
-                   "sec", "secs", "seconds", "ms", "msec", "elapsed"})
+                   "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
+                   "\u6642\u9593", "\u65f6\u95f4"})  # 時間 (Japanese), 时间 (Chinese)
 _REF = frozenset({"cmd", "command", "commanded", "ref", "reference", "set", "setpoint", "setpos", "soll",
                   "sollwert", "sollposition", "sollpos", "nominal", "noml", "nom", "target", "demand", "demanded",
                   "dem", "desired", "consigne", "commande", "sp"})
@@ -74,7 +75,18 @@ _COUNT_WORDS = frozenset({"pulse", "pulses", "counts", "increments", "inc", "inc
 #: German compounds are one word: a commanded "Lagesollwert", a measured "Lageistwert", a velocity
 #: "Drehzahlsollwert".
 _OTHER_PARTS = ("geschw", "drehzahl", "strom", "moment", "beschl", "kraft", "spannung", "velocity", "speed",
-                "current", "torque")
+                "current", "torque", "\u901f\u5ea6", "\u30c8\u30eb\u30af", "\u96fb\u6d41", "\u7535\u6d41",
+                "\u8f6c\u77e9", "\u626d\u77e9", "\u96fb\u5727", "\u7535\u538b", "\u8f6c\u901f")
+#: Japanese and Chinese compounds (one word without spaces) by their parts: 指令 command, 目标 target, 给定 setpoint;
+#: フィードバック / 帰還 / 反馈 feedback, 実際 / 实际 actual, 現在 / 当前 present (Fanuc's 現在位置); 溜り (droop, of
+#: Mitsubishi's 溜りパルス), 偏差 deviation, 误差 error, 跟随 following. Other parts: 速度 speed, トルク / 转矩 / 扭矩
+#: torque, 電流 / 电流 current, 電圧 / 电压 voltage, 转速 rotational speed.
+_CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5b9a"),
+              "act": ("\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af", "\u5e30\u9084", "\u53cd\u9988",
+                      "\u5b9e\u9645", "\u5b9f\u969b", "\u73fe\u5728", "\u5f53\u524d"),
+              "lag": ("\u6e9c\u308a", "\u504f\u5dee", "\u8bef\u5dee", "\u8ddf\u968f")}
+#: パルス / 脉冲: pulse.
+_CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
 _WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
 _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
 _TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
@@ -97,6 +109,7 @@ def _role(words: list[str]) -> str | None:
             roles.add("act")
         elif w in _LAG or (w in _ERROR and _LAG_ERROR.intersection(words)):
             roles.add("lag")
+        roles.update(r for r, parts in _CJK_PARTS.items() if any(p in w for p in parts))
     return roles.pop() if len(roles) == 1 else None
 
 
@@ -111,6 +124,15 @@ def _split_axis(words: list[str]) -> list[str]:
     return out
 
 
+def _is_time(name: str) -> bool:
+    """A name made of time words only, its unit aside (``Zeit [ms]``, ``Zeit in ms``, ``rel_time_s``)."""
+    words = _words(name)
+    if unit_in_name(name, "time") is not None and not _TRAILING_UNIT.search(name):
+        words = words[:-1]  # the unit after the name: 'in ms', '/ms', '_s'
+    words = [w for w in words if w != "in"]
+    return bool(words) and set(words) <= _TIME
+
+
 def counted(name: str) -> str | None:
     """The count unit of a column logged in increments (``inc`` of ``Pos [inc]``, ``pulses`` of ``Droop
     pulses``, module docstring), else None."""
@@ -118,7 +140,7 @@ def counted(name: str) -> str | None:
     unit = m.group(0).strip()[1:-1].strip().lower() if m else ""
     if unit in COUNT_UNITS:
         return unit
-    return next((w for w in _words(name) if w in _COUNT_WORDS), None)
+    return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
 
 
 def is_sample_number(name: str) -> bool:
@@ -148,7 +170,7 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     if len(set(header)) != len(header):
         return None, "the header repeats a name"
     mapping: dict[str, str] = {}
-    times = [h for h in header if _words(h) and set(_words(h)) <= _TIME]
+    times = [h for h in header if _is_time(h)]
     if not times and period_known:
         times = [h for h in header if is_sample_number(h)]
         if len(times) > 1:
