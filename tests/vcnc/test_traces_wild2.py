@@ -142,6 +142,14 @@ def test_drive_tool_channel_names(header, mapping):
     assert columns_from_names(header) == (mapping, "")
 
 
+def test_time_words_with_other_words_are_named_not_guessed():
+    # a logger's two clocks (EPFL's EPOS telemetry: sensor_time and motor_time): the user picks one
+    assert columns_from_names(["sensor_time [ms]", "motor_position [inc]", "motor_position_demand [inc]",
+                               "motor_time [ms]"]) == (
+        None, "no column is named as time (only names with more than time words: ['sensor_time [ms]', "
+              "'motor_time [ms]']; give --columns t=NAME,...)")
+
+
 def test_sample_numbers_or_no_time_column_with_a_known_period():
     # MEI Motion Scope's export starts with "Sample #"; halsampler and MTX recordings have no time column at all
     assert columns_from_names(["Sample #", "Ax 0 Cmd Pos", "Ax 0 Act Pos"], period_known=True) == (

@@ -159,7 +159,8 @@ def parse_time_stamp(cell: str) -> float:
 
 #: Further unit symbols a units row holds (velocities, currents, ...), lower case.
 _OTHER_UNITS = {"v", "a", "ma", "nm", "n", "rpm", "1/min", "mm/min", "m/min", "mm/s", "m/s", "mm/s^2", "m/s^2",
-                "deg/s", "\u00b0/s", "rad", "rad/s", "%", "-", "hz", "bar", "\u00b0c", "r/min"} | COUNT_UNITS
+                "deg/s", "\u00b0/s", "rad", "rad/s", "%", "-", "hz", "bar", "\u00b0c", "r/min", "min-1", "min^-1",
+                "rev/min", "1/s", "inc/s", "n\u00b7m", "kw", "w"} | COUNT_UNITS
 
 
 def is_unit_row(cells: Sequence[str]) -> bool:

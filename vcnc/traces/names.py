@@ -177,8 +177,10 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
             return None, f"several columns are named as sample numbers: {times}"
     elif len(times) != 1:
         samples = [h for h in header if is_sample_number(h)]
+        timed = [h for h in header if _TIME.intersection(_words(h)) - {"us", "ms", "sec"}]  # 'motor_time [ms]'
         return None, (f"several columns are named as time: {times}" if times else "no column is named as time" + (
             f" ({samples[0]!r} counts samples: give --sample-time S, the sampling period)" if len(samples) == 1
+            else f" (only names with more than time words: {timed}; give --columns t=NAME,...)" if timed
             else " (a file without one needs --sample-time S, the sampling period)"))
     if times:
         mapping["t"] = times[0]
