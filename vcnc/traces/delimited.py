@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import csv
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import NamedTuple
 
@@ -319,8 +319,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
     if sample_time is None and not stamped:
-        cells = [_split(text.splitlines()[n - 1], delimiter)[idx["t"]] for n in lines_kept]
-        t, rounded = _rounded_stamps(t, cells, TIME_UNITS[units["t"]], src)
+        lines = text.splitlines()
+        t, rounded = _rounded_stamps(t, lambda: [_split(lines[n - 1], delimiter)[idx["t"]] for n in lines_kept],
+                                     TIME_UNITS[units["t"]], src)
         stated.update(rounded)
     time_known = time_stated or stamped or sample_time is not None
     if guessed and "t" in columns:
@@ -344,7 +345,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
-def _rounded_stamps(t: np.ndarray, cells: list[str], scale: float, src: str) -> tuple[np.ndarray, dict[str, str]]:
+def _rounded_stamps(t: np.ndarray, stamps: Callable[[], list[str]], scale: float,
+                    src: str) -> tuple[np.ndarray, dict[str, str]]:
     """Time [s] on a uniform step when its stamps are one rounded to the digits printed (``0.0063694``,
     ``0.012739``: MATLAB's five significant digits; the steps then differ by more than the timing check
     allows) and the ``meta["time_rounded"]`` note; else ``t`` as it is. Our reading: a uniform step fitted by
@@ -355,6 +357,7 @@ def _rounded_stamps(t: np.ndarray, cells: list[str], scale: float, src: str) -> 
         return t, {}
     except CaptureError:
         pass
+    cells = stamps()  # the printed stamps, read only when the timing check fails
     k = np.arange(t.size)
     half = np.array([_half_digit(c) for c in cells]) * scale
     step, start = np.polyfit(k, t, 1, w=1.0 / half)  # the stamps printed with more digits weigh more
