@@ -354,3 +354,20 @@ def test_a_headerless_file_names_no_line_zero(tmp_path):
     with pytest.raises(CaptureError) as exc:
         read_capture(f)
     assert str(exc.value).startswith(f"{f}: which columns are time, commanded and measured position?")
+
+
+def test_twincat_plc_variables_named_ambiguously_still_ask(tmp_path):
+    # a TwinCAT Scope export of PLC variables: read from the names when they leave no doubt, else the question
+    # with the reason (here two commanded candidates)
+    def row(*cells):
+        return "\t".join(cells)
+
+    lines = ["Name\ttrace", "", row("Name", "MAIN.fSollPos", "Name", "MAIN.fSollPosFilt", "Name", "MAIN.fIstPos"),
+             row("SampleTime[ms]", "1", "SampleTime[ms]", "1", "SampleTime[ms]", "1"), ""]
+    lines += [row(*(f"{v:g}" for v in (k, k * 0.1, k, k * 0.1, k, k * 0.1))) for k in range(20)]
+    f = tmp_path / "scope.csv"
+    f.write_text("\n".join(lines) + "\n")
+    with pytest.raises(CaptureError, match=r"channels found: \['MAIN.fSollPos', 'MAIN.fSollPosFilt', "
+                                           r"'MAIN.fIstPos'\] \(not read from the names: axis x: several columns "
+                                           r"could be the same position"):
+        read_capture(f)
