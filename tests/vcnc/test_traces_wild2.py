@@ -371,3 +371,20 @@ def test_twincat_plc_variables_named_ambiguously_still_ask(tmp_path):
                                            r"'MAIN.fIstPos'\] \(not read from the names: axis x: several columns "
                                            r"could be the same position"):
         read_capture(f)
+
+
+def test_halscope_pid_pins_read_from_their_names(tmp_path):
+    # a PID tuning session scopes the pid component's command and feedback pins, not the joint's
+    t, ref, act = _motion(50)
+    f = tmp_path / "scope.log"
+    f.write_text("# Sampling period is 1000000 ns\npid.x.command;pid.x.feedback;pid.x.output\n"
+                 + "".join(f"{b:.14f};{c:.14f};0.5\n" for b, c in zip(ref, act)))
+    cap = read_capture(f)
+    np.testing.assert_allclose(cap.measured[:, 0], act, atol=1e-13)
+    assert cap.meta["columns"] == "from the channel names: x_ref=pid.x.command, x=pid.x.feedback"
+    f.write_text("# Sampling period is 1000000 ns\npid.x.command;pid.y.command;pid.x.output\n"
+                 + "".join(f"{b:.14f};{c:.14f};0.5\n" for b, c in zip(ref, act)))
+    with pytest.raises(CaptureError, match=r"channels found: \['pid.x.command', 'pid.y.command', 'pid.x.output'\] "
+                                           r"\(not read from the names: no pair of a commanded and a measured "
+                                           r"position is named \(positions found"):
+        read_capture(f)
