@@ -25,6 +25,18 @@ MATLAB's ``save -ascii`` do. A file without a time column is read with ``sample_
 (``--sample-time``); with it, a mapped ``t`` column counts samples (``halsampler -t``), so that the
 timing check names the samples an ``overrun`` lost. Without a sample-number column an ``overrun``
 line is an error naming it: how many samples were lost is not known.
+
+**Drive tools' layouts** (tracewild2, session 24). A sampling period stated above the table
+(:mod:`vcnc.traces.preamble`: ``Sampling time: 0.5 ms``, SINAMICS' ``Trace cycle``) times a column of
+sample numbers (``Sample #``, ``No.``) or a file without a time column, and gives a time column without a
+unit its unit when its step is that period; positions in increments (``[inc]``, ``(counts)``, ``[pulse]``,
+``(PUU)``, ``[LU]``, in the names or a units row; :func:`vcnc.traces.names.counted`) are read only with the
+size of one count, given (``--unit 0.1um``) or stated (``Resolution: 0.1 um``), else an error asking for it
+(counts are never read as millimetres); the table is the last block of rows, lines after it (Rexroth MTX's
+``[Statistics]``) a trailer; a column of text in the rows (a machining step's name) is read around and an
+error naming its cell only when mapped; a delimiter ending every row but not the names is no extra column;
+time stamps rounded to the digits printed (MATLAB's five) are the uniform step they round (each within half
+a unit of its last digit, our reading).
 """
 
 from __future__ import annotations
