@@ -388,3 +388,16 @@ def test_halscope_pid_pins_read_from_their_names(tmp_path):
                                            r"\(not read from the names: no pair of a commanded and a measured "
                                            r"position is named \(positions found"):
         read_capture(f)
+
+
+def test_names_grouped_under_merged_cells(tmp_path):
+    # a spreadsheet's merged cells: the axis over its two columns, Soll/Ist repeated under it
+    t, ref, act = _motion(20)
+    f = tmp_path / "messung.csv"
+    f.write_text("Messung 3\n;X;;Y;\nZeit [ms];Soll [mm];Ist [mm];Soll [mm];Ist [mm]\n"
+                 + "".join(f"{a * 1e3:.0f};{b:.6f};{c:.6f};{b + 1:.6f};{c + 1:.6f}\n".replace(".", ",")
+                           for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f)
+    assert cap.axes == ("x", "y")
+    np.testing.assert_allclose(cap.measured[:, 1], np.round(act, 6) + 1, atol=1e-9)
+    assert cap.meta["commanded"] == "x:X Soll [mm],y:Y Soll [mm]"

@@ -249,14 +249,33 @@ def _table(text: str, src: str) -> _Table:
             cells = [*cells, ""]
         return cells if len(cells) == width else None
 
+    def above(j: int | None) -> int | None:
+        return next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None) if j is not None else None
+
     header = units_row = None
-    j = next((k for k in range(first - 1, -1, -1) if lines[k].strip()), None)
+    j = above(first)
     if j is not None:
         header = names_at(j)
         if header is not None and is_unit_row(header):  # names above a row of units
             units_row = header
-            header = names_at(next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None))
+            j = above(j)
+            header = names_at(j)
+        if header is not None and len(set(header)) < len(header):
+            header = _grouped_names(names_at(above(j)), header)
     return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells)
+
+
+def _grouped_names(groups: list[str] | None, names: list[str]) -> list[str]:
+    """Names that repeat under a row of group names (``X;;Y;`` over ``Soll;Ist;Soll;Ist``, a spreadsheet's
+    merged cells) joined with their group (``X Soll``), empty groups filled from the left; the names as
+    they are without such a row, or when joining leaves them repeated."""
+    if groups is None or is_unit_row(groups):
+        return names
+    filled = []
+    for g in groups:
+        filled.append(g or (filled[-1] if filled else ""))
+    joined = [f"{g} {n}".strip() for g, n in zip(filled, names)]
+    return joined if len(set(joined)) == len(joined) else names
 
 
 def _header_cells(line: str, delimiter: str) -> list[str]:
