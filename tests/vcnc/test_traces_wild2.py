@@ -10,6 +10,7 @@ import pytest
 from vcnc.capture import read_capture
 from vcnc.cli import main
 from vcnc.errors import CaptureError
+from vcnc.traces import trace_format
 from vcnc.traces.columns import unit_in_name
 from vcnc.traces.names import columns_from_names, counted, is_sample_number
 from vcnc.traces.preamble import stated_count_size, stated_period
@@ -305,12 +306,60 @@ def test_a_delimiter_ending_the_rows_or_the_names(tmp_path, names, ending):
 
 
 def test_a_file_without_a_table_names_its_first_line(tmp_path):
-    # EPICS camonitor writes one channel per line (name, time stamp, value): not a table
-    f = tmp_path / "camonitor.log"
-    f.write_text("IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563\n"
-                 "IOC:Axis1-PosSet 2020-12-09 15:05:40.306118 19.5\n")
-    with pytest.raises(CaptureError, match=r"camonitor.log:1: no rows of numbers separated by tab, ';', ',' or spaces "
-                                           r"\(got 'IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563'\)"):
+    f = tmp_path / "notes.txt"
+    f.write_text("Axis 1 moved to 19.5 at 15:05\nno trace recorded\n")
+    with pytest.raises(CaptureError, match=r"notes.txt:1: no rows of numbers separated by tab, ';', ',' or spaces "
+                                           r"\(got 'Axis 1 moved to 19.5 at 15:05'\)"):
+        read_capture(f)
+
+
+def _camonitor(path, dt_act: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An ecmc axis monitored with camonitor: PosSet and PosAct every 10 ms (PosAct ``dt_act`` s later)."""
+    t, ref, act = _motion(60, dt=0.01)
+    lines = []
+    for a, b, c in zip(t, ref, act):
+        for pv, when, v in (("IOC:Axis1-PosSet", a, b), ("IOC:Axis1-PosAct", a + dt_act, c)):
+            sec = 40 + when
+            lines.append(f"{pv} 2020-12-09 15:05:{sec:09.6f} {v:.8f}")
+    lines[-1] += " HIHI MAJOR"  # an alarm status and severity after the value
+    path.write_text("\n".join(lines) + "\n")
+    return t, ref, act
+
+
+def test_camonitor_log_of_an_ecmc_axis(tmp_path):
+    f = tmp_path / "axis1.log"
+    t, ref, act = _camonitor(f)
+    assert trace_format(f) == "camonitor"
+    cap = read_capture(f)  # time stamps every 10 ms to the microsecond: uniform
+    np.testing.assert_allclose(cap.t, t, atol=1e-9)
+    np.testing.assert_allclose(cap.reference[:, 0], np.round(ref, 8), atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], np.round(act, 8), atol=1e-12)
+    assert cap.meta["columns"] == "from the PV names: x_ref=IOC:Axis1-PosSet, x=IOC:Axis1-PosAct"
+    with pytest.raises(CaptureError, match="--sample-time applies to delimited text"):
+        read_capture(f, sample_time=0.01)
+
+
+def test_camonitor_updates_at_other_times_are_held_and_resampled(tmp_path):
+    # PosAct reported 3 ms after PosSet: each PV holds its last value; the union of stamps is not uniform
+    f = tmp_path / "axis1.log"
+    t, ref, act = _camonitor(f, dt_act=0.003)
+    with pytest.raises(CaptureError, match="sampling is not uniform.*--resample"):
+        read_capture(f)
+    cap = read_capture(f, resample=True)
+    assert cap.meta["resampled"] == "linear, onto a 0.005 s step from 119 samples with steps of 0.003 to 0.007 s"
+    np.testing.assert_allclose(cap.reference[::2, 0], np.round(ref, 8)[: cap.t[::2].size], atol=1e-12)
+
+
+def test_camonitor_errors_name_the_line(tmp_path):
+    f = tmp_path / "axis1.log"
+    f.write_text("IOC:Axis1-PosSet 2020-12-09 15:05:40.300000 0\nIOC:Axis1-PosAct 2020-12-09 15:05:40.300000 0\n"
+                 "IOC:Axis1-PosAct 2020-12-09 15:05:40.310000 <undefined>\n")
+    with pytest.raises(CaptureError, match=r"axis1.log:3: the value of IOC:Axis1-PosAct is not a number "
+                                           r"\(got '<undefined>'\)"):
+        read_capture(f)
+    f.write_text("IOC:A-PosAct 2020-12-09 15:05:40.3 0\nIOC:B-PosAct 2020-12-09 15:05:40.3 0\n")
+    with pytest.raises(CaptureError, match=r"which PVs are the commanded and measured positions\? give --columns "
+                                           r"x_ref=PV,x=PV; PVs found: \['IOC:A-PosAct', 'IOC:B-PosAct'\]"):
         read_capture(f)
 
 

@@ -1,5 +1,6 @@
 """Delimited text traces: logger CSVs, and the dispatch to the TwinCAT Scope CSV
-(:mod:`vcnc.traces.twincat`) and halscope log (:mod:`vcnc.traces.halscope`) readers.
+(:mod:`vcnc.traces.twincat`), halscope log (:mod:`vcnc.traces.halscope`) and EPICS camonitor log
+(:mod:`vcnc.traces.camonitor`) readers.
 
 **Generic delimited text.** The delimiter (tab, ``;`` or ``,``) and a decimal comma are detected
 from the data; lines before the header (the line of column names just above the numeric rows)
@@ -52,6 +53,7 @@ import numpy as np
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
+from vcnc.traces.camonitor import looks_like_camonitor, read_camonitor
 from vcnc.traces.columns import (
     COUNT_UNITS,
     LAG_SUFFIX,
@@ -78,8 +80,8 @@ from vcnc.traces.names import columns_from_names, counted, is_sample_number
 from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
-__all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "TIME_UNITS",
-           "LENGTH_UNITS"]
+__all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
+           "TIME_UNITS", "LENGTH_UNITS"]
 
 _DELIMITERS = ("\t", ";", ",", " ")  # " ": runs of spaces (halsampler), tried last
 _NAMES = {",": "comma", ";": "semicolon", "\t": "tab", " ": "spaces"}
@@ -123,9 +125,14 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     src = str(Path(path))
     check_units(time_unit, unit, src)
     text = read_text(path, src)
-    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])):
-        raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log or "
-                           "a TwinCAT export (they record their own)", file=src)
+    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])
+                                    or looks_like_camonitor(text[:4000])):
+        raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log, "
+                           "a TwinCAT export or a camonitor log (they record their own)", file=src)
+    if looks_like_camonitor(text[:4000]):
+        if time_unit is not None:
+            raise CaptureError("--time-unit applies to delimited text, not to a camonitor log (time stamps)", file=src)
+        return read_camonitor(path, columns=columns, unit=unit, resample=resample)
     if looks_like_halscope(text[:2000]):
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if looks_like_twincat(text[:20000]):
