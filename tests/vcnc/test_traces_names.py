@@ -27,6 +27,8 @@ from vcnc.traces.names import columns_from_names
     # velocities, currents and columns with a unit that is not a length are not positions
     (["Time [s]", "X Soll [mm]", "X Ist [mm]", "X Drehzahlsollwert", "X Soll [mm/min]", "X current cmd [A]"],
      {"t": "Time [s]", "x_ref": "X Soll [mm]", "x": "X Ist [mm]"}),
+    # positions in counts are positions (the reader asks for their size)
+    (["time", "x_cmd [counts]", "x_fb [counts]"], {"t": "time", "x_ref": "x_cmd [counts]", "x": "x_fb [counts]"}),
     # an axis with only a commanded position is left out
     (["time", "x_cmd", "x_fb", "c_cmd"], {"t": "time", "x_ref": "x_cmd", "x": "x_fb"}),
 ])
@@ -40,9 +42,16 @@ def test_mapping_read_from_names(header, mapping):
     (["time", "x_cmd", "x_cmd_filtered", "x_fb"],
      "axis x: several columns could be the same position: ['x_cmd', 'x_cmd_filtered']"),
     (["t", "time", "x_cmd", "x_fb"], "several columns are named as time: ['t', 'time']"),
-    (["x_cmd", "x_fb"], "no column is named as time"),
+    (["x_cmd", "x_fb"], "no column is named as time (a file without one needs --sample-time S, the sampling period)"),
+    (["Sample #", "x_cmd", "x_fb"], "no column is named as time ('Sample #' counts samples: give --sample-time S, "
+                                    "the sampling period)"),
     (["time", "channel 1", "channel 2"], "no pair of a commanded and a measured position is named"),
-    (["time", "x_cmd [counts]", "x_fb [counts]"], "no pair of a commanded and a measured position is named"),
+    # a trace of speeds and currents only (Yaskawa's and Kollmorgen's velocity/current loop channels)
+    (["time", "current [A]", "speed [rpm]", "VL.CMD"], "no pair of a commanded and a measured position is named "
+     "(other quantities: ['current [A]', 'speed [rpm]', 'VL.CMD']); a position trace needs a commanded and a measured "
+     "position"),
+    (["time", "x_cmd [mm]", "x_speed"], "no pair of a commanded and a measured position is named (positions found: "
+     "['x_cmd [mm]']; other quantities: ['x_speed'])"),
     (["time", "x_cmd", "x_cmd"], "the header repeats a name"),
 ])
 def test_ambiguous_or_unnamed_headers_are_not_guessed(header, why):
@@ -111,5 +120,6 @@ def test_a_row_of_numbers_behind_a_comment_mark_is_no_header(tmp_path):
     rows[10] = "#" + rows[10]
     f = tmp_path / "log.csv"
     f.write_text("# time,x_cmd,x_fb\n" + "\n".join(rows) + "\n")
-    with pytest.raises(CaptureError, match=":12:1: not a number \\(the rows below are 3 numbers\\) \\(got '#0.010'\\)"):
+    with pytest.raises(CaptureError, match=":12:1: not a number in column 1 \\('time', used as t\\) "
+                                           "\\(got '#0.010'\\)"):
         read_capture(f)

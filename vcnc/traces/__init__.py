@@ -5,6 +5,7 @@
 - the capture CSV of ARCHITECTURE.md (header ``t,<axis>_ref,<axis>,...``);
 - Heidenhain TNCscope text export (:mod:`vcnc.traces.tncscope`);
 - Siemens SINUMERIK trace XML (:mod:`vcnc.traces.sinumerik`);
+- EPICS camonitor logs (:mod:`vcnc.traces.camonitor`);
 - LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
   halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
 - the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`).
@@ -20,7 +21,13 @@ from pathlib import Path
 from vcnc.core.capture import Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
 from vcnc.traces import emps, sinumerik, tncscope
-from vcnc.traces.delimited import looks_like_halscope, looks_like_twincat, parse_columns, read_delimited
+from vcnc.traces.delimited import (
+    looks_like_camonitor,
+    looks_like_halscope,
+    looks_like_twincat,
+    parse_columns,
+    read_delimited,
+)
 from vcnc.traces.emps import read_emps_mat
 from vcnc.traces.sinumerik import read_sinumerik
 from vcnc.traces.tncscope import read_tncscope
@@ -31,7 +38,7 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
-    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"capture-csv"``, ``"delimited"``, or
+    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"capture-csv"``, ``"delimited"``, or
     ``"xml"`` for other XML (which no reader takes)."""
     src = str(path)
     try:
@@ -52,6 +59,8 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "halscope"
     if looks_like_twincat(text):
         return "twincat"
+    if looks_like_camonitor(text[:4000]):
+        return "camonitor"
     for line in text.splitlines():
         s = line.strip().lstrip("\ufeff")
         if s and not s.startswith("#"):

@@ -30,7 +30,7 @@ from vcnc.traces.lag import subtract_following_error
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
            "unit_in_name", "unit_named", "length_unit", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
-           "with_following_errors"]
+           "with_following_errors", "COUNT_UNITS"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -44,11 +44,21 @@ MAX_SAMPLES = 100_000_000
 _TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
 _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "nm": "nm", "m": "m", "in": "in", "inch": "in", "deg": "deg",
                  "°": "deg"}
+#: Unit symbols of positions logged in increments whose size the symbol does not say (lower case): encoder
+#: increments and counts, pulses (Mitsubishi's droop pulses, Panasonic's command pulses), Delta's PUU ("pulse of
+#: user unit", ASDA-A2 manual section 6.2) and the LU of SINAMICS EPOS ("length unit", the neutral unit its
+#: position setpoints and actual values are traced in), Yaskawa's "reference unit" (the unit of position
+#: references after the electronic gear) and a "user unit". Their size is given with ``--unit`` (``0.1um``).
+COUNT_UNITS = frozenset({"inc", "incr", "increment", "increments", "count", "counts", "cnt", "cnts", "pulse",
+                         "pulses", "pls", "puu", "lu", "reference unit", "reference units", "user unit", "user units"})
 #: A position unit given as the size of one count (``0.1um``, ``0.0001in``, ``0.001deg``): drives and
 #: controls that log positions in increments of their measuring system (Mitsubishi's sampling output in
 #: units A-E = 10 um ... 0.001 um, encoder counts of a drive's scope).
 _COUNT_UNIT = re.compile(r"\s*((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([^\d\s.][^\s]*)\s*")
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
+#: A unit after the name without brackets: ``Zeit in ms``, ``Zeit/ms`` (DIN 1313's quantity/unit), ``time_ms``,
+#: ``rel_time_s`` (loggers written in code); never "in" itself after "_" or "/" (an input).
+_SUFFIX_UNIT = re.compile(r"(?:\s+in\s+|\s*/\s*|_)([^\s/_\d\[\]()][^\s/_\[\]()]*)\s*$", re.IGNORECASE)
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
 #: Suffix of a mapping's following-error column (``x_lag``): commanded - actual position, the
@@ -90,10 +100,20 @@ def parse_number(cell: str, decimal_comma: bool = False) -> float:
 
 
 def unit_in_name(name: str, kind: str) -> str | None:
-    """The unit a column name ends with, ``[ms]`` or ``(µm)``: a key of :data:`TIME_UNITS`
-    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), else None."""
+    """The unit a column name ends with, ``[ms]`` or ``(µm)`` (or, without brackets, ``Zeit in ms``,
+    ``Zeit/ms``, ``time_ms``): a key of :data:`TIME_UNITS`
+    (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), or for a length the size of one count
+    as :func:`length_unit` reads it (``motor_pos [0.1 deg]`` -> ``"0.1deg"``, Mitsubishi's ``B(1μm)``), else None."""
     m = _UNIT.search(name)
-    return unit_named(m.group(1), kind) if m else None
+    if not m:
+        suffix = _SUFFIX_UNIT.search(name)
+        if suffix and not (suffix.group(1).lower() == "in" and not suffix.group(0).strip().lower().startswith("in")):
+            return unit_named(suffix.group(1), kind)
+        return None
+    named = unit_named(m.group(1), kind)
+    if named is None and kind == "length" and length_unit(m.group(1)) is not None:
+        return m.group(1).replace(" ", "").replace("\u03bc", "\u00b5")
+    return named
 
 
 def unit_named(text: str, kind: str) -> str | None:
@@ -139,7 +159,8 @@ def parse_time_stamp(cell: str) -> float:
 
 #: Further unit symbols a units row holds (velocities, currents, ...), lower case.
 _OTHER_UNITS = {"v", "a", "ma", "nm", "n", "rpm", "1/min", "mm/min", "m/min", "mm/s", "m/s", "mm/s^2", "m/s^2",
-                "deg/s", "\u00b0/s", "rad", "rad/s", "inc", "%", "-", "hz", "bar", "\u00b0c"}
+                "deg/s", "\u00b0/s", "rad", "rad/s", "%", "-", "hz", "bar", "\u00b0c", "r/min", "min-1", "min^-1",
+                "rev/min", "1/s", "inc/s", "n\u00b7m", "kw", "w"} | COUNT_UNITS
 
 
 def is_unit_row(cells: Sequence[str]) -> bool:

@@ -1,5 +1,6 @@
 """Delimited text traces: logger CSVs, and the dispatch to the TwinCAT Scope CSV
-(:mod:`vcnc.traces.twincat`) and halscope log (:mod:`vcnc.traces.halscope`) readers.
+(:mod:`vcnc.traces.twincat`), halscope log (:mod:`vcnc.traces.halscope`) and EPICS camonitor log
+(:mod:`vcnc.traces.camonitor`) readers.
 
 **Generic delimited text.** The delimiter (tab, ``;`` or ``,``) and a decimal comma are detected
 from the data; lines before the header (the line of column names just above the numeric rows)
@@ -25,25 +26,41 @@ MATLAB's ``save -ascii`` do. A file without a time column is read with ``sample_
 (``--sample-time``); with it, a mapped ``t`` column counts samples (``halsampler -t``), so that the
 timing check names the samples an ``overrun`` lost. Without a sample-number column an ``overrun``
 line is an error naming it: how many samples were lost is not known.
+
+**Drive tools' layouts** (tracewild2, session 24). A sampling period stated above the table
+(:mod:`vcnc.traces.preamble`: ``Sampling time: 0.5 ms``, SINAMICS' ``Trace cycle``) times a column of
+sample numbers (``Sample #``, ``No.``) or a file without a time column, and gives a time column without a
+unit its unit when its step is that period; positions in increments (``[inc]``, ``(counts)``, ``[pulse]``,
+``(PUU)``, ``[LU]``, in the names or a units row; :func:`vcnc.traces.names.counted`) are read only with the
+size of one count, given (``--unit 0.1um``) or stated (``Resolution: 0.1 um``), else an error asking for it
+(counts are never read as millimetres); the table is the last block of rows, lines after it (Rexroth MTX's
+``[Statistics]``) a trailer; a column of text in the rows (a machining step's name) is read around and an
+error naming its cell only when mapped; a delimiter ending every row but not the names is no extra column;
+time stamps rounded to the digits printed (MATLAB's five) are the uniform step they round (each within half
+a unit of its last digit, our reading).
 """
 
 from __future__ import annotations
 
 import csv
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
+from vcnc.traces.camonitor import looks_like_camonitor, read_camonitor
 from vcnc.traces.columns import (
+    COUNT_UNITS,
     LAG_SUFFIX,
     LENGTH_UNITS,
     TIME_UNITS,
     axis_of,
+    check_timing,
     check_units,
     is_unit_row,
     mapped_axes,
@@ -59,11 +76,12 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import columns_from_names, counted, is_sample_number
+from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
-__all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "TIME_UNITS",
-           "LENGTH_UNITS"]
+__all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
+           "TIME_UNITS", "LENGTH_UNITS"]
 
 _DELIMITERS = ("\t", ";", ",", " ")  # " ": runs of spaces (halsampler), tried last
 _NAMES = {",": "comma", ";": "semicolon", "\t": "tab", " ": "spaces"}
@@ -107,9 +125,14 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     src = str(Path(path))
     check_units(time_unit, unit, src)
     text = read_text(path, src)
-    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])):
-        raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log or "
-                           "a TwinCAT export (they record their own)", file=src)
+    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])
+                                    or looks_like_camonitor(text[:4000])):
+        raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log, "
+                           "a TwinCAT export or a camonitor log (they record their own)", file=src)
+    if looks_like_camonitor(text[:4000]):
+        if time_unit is not None:
+            raise CaptureError("--time-unit applies to delimited text, not to a camonitor log (time stamps)", file=src)
+        return read_camonitor(path, columns=columns, unit=unit, resample=resample)
     if looks_like_halscope(text[:2000]):
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if looks_like_twincat(text[:20000]):
@@ -149,11 +172,26 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
         return None
 
 
-def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
-    """``(first, width, decimal_comma)`` of the numeric rows at the end of ``lines`` (first = -1
-    when there are none). With a tab or ``;`` delimiter a comma in a number is a decimal comma."""
+def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int]] | None:
+    """A row of the table: its cells as numbers (NaN for empty and text cells) and the places of its text
+    cells; None for a line that is no row (no number, or text cells as many as the numbers: a header)."""
+    vals, text = [], []
+    for i, c in enumerate(cells):
+        try:
+            vals.append(_value(c, comma))
+        except ValueError:
+            vals.append(float("nan"))
+            text.append(i)
+    n = sum(v == v for v in vals)
+    return (vals, text) if n and (not text or (n >= 2 and len(text) < n)) else None
+
+
+def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, bool, int]:
+    """``(first, last, width, decimal_comma, text cells)`` of the last block of rows in ``lines`` (first = -1
+    when there are none); lines after it that are no rows are a trailer (module docstring). With a tab or
+    ``;`` delimiter a comma in a number is a decimal comma."""
     comma = delimiter != ","
-    first, width = -1, 0
+    first, last, width, texts = -1, -1, 0, 0
     for i in range(len(lines) - 1, -1, -1):
         s = lines[i].strip()
         if not s:  # blank lines between the rows of numbers are skipped, as in _table
@@ -161,50 +199,90 @@ def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, bool]:
         if (s.upper() == "EOF" and first < 0) or s.lower() == _OVERRUN:
             continue
         cells = _split(lines[i], delimiter)
-        if len(cells) < 2 or (width and len(cells) != width):
+        row = _row(cells, comma) if len(cells) >= 2 and (not width or len(cells) == width) else None
+        if row is None:
+            if first < 0:
+                continue  # a trailer line below the rows
             break
-        vals = _numbers(cells, comma)
-        if vals is None or all(v != v for v in vals):
-            break
-        first, width = i, len(cells)
-    return first, width, comma
+        first, width, texts = i, len(cells), texts + len(row[1])
+        last = i if last < 0 else last
+    return first, last, width, comma, texts
 
 
-def _table(text: str, src: str) -> tuple[list[str] | None, list[str] | None, np.ndarray, list[int], str, list[int]]:
-    """``(header names or None, the row of units under them or None, data (rows x columns, NaN
-    for empty), file line of each row, delimiter, file lines of halsampler's overrun marks)``."""
+class _Table(NamedTuple):
+    """The table of a delimited trace."""
+
+    header: list[str] | None  #: the names above the rows, or None
+    units_row: list[str] | None  #: a row of units under the names, or None
+    data: np.ndarray  #: rows x columns, NaN for empty and text cells
+    row_lines: list[int]  #: the file line of each row
+    delimiter: str
+    overruns: list[int]  #: file lines of halsampler's overrun marks
+    text: dict[int, tuple[int, str]]  #: column -> (file line, cell) of its first text cell
+
+
+def _table(text: str, src: str) -> _Table:
+    """The header, units and rows of the last block of rows in ``text`` (module docstring)."""
     lines = text.splitlines()
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
-    # the delimiter that makes the longest block of numeric rows (then the widest)
-    delimiter, first, width, comma = max(blocks, key=lambda b: (b[1] >= 0 and b[2] >= 2, -b[1], b[2]))
+    # the delimiter that makes the longest block of rows (then the one with fewest text cells, then the widest)
+    delimiter, first, last, width, comma, _ = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1],
+                                                                           -b[5], b[3]))
     if first < 0 or width < 2:
-        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src)
-    header = units_row = None
-    for j in range(first - 1, -1, -1):
-        if lines[j].strip():
-            cells = _header_cells(lines[j], delimiter)
-            numeric = sum(_numbers([c], comma) is not None for c in cells if c)
-            if len(cells) == width and numeric * 2 > len(cells):  # a data row with a bad cell, not a header
-                raw = [c.strip() for c in _split(lines[j], delimiter)]  # '#12;0.5;..': a row behind a comment mark
-                k = next((i for i, c in enumerate(raw) if _numbers([c], comma) is None), 0)
-                raise CaptureError(f"not a number (the rows below are {width} numbers)", file=src, line=j + 1,
-                                   column=k + 1, text=raw[k])
-            header = cells if len(cells) == width else None
-            if header is not None and is_unit_row(header):  # names above a row of units
-                units_row = header
-                above = next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None)
-                names = _header_cells(lines[above], delimiter) if above is not None else []
-                header = names if len(names) == width else None
-            break
-    rows, row_lines, overruns = [], [], []
-    for i in range(first, len(lines)):
+        k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
+        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src,
+                           line=k + 1 if k is not None else None, text=lines[k].strip()[:80] if k is not None else None)
+    rows, row_lines, overruns, text_cells = [], [], [], {}
+    for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
             overruns.append(i + 1)
         if not lines[i].strip() or lines[i].strip().upper() in ("EOF", _OVERRUN.upper()):
             continue
-        rows.append([_value(c, comma) for c in _split(lines[i], delimiter)])
+        cells = _split(lines[i], delimiter)
+        vals, where = _row(cells, comma) or ([float("nan")] * width, [])
+        for k in where:
+            text_cells.setdefault(k, (i + 1, cells[k].strip()))
+        rows.append(vals)
         row_lines.append(i + 1)
-    return header, units_row, np.array(rows, dtype=float), row_lines, delimiter, overruns
+    data = np.array(rows, dtype=float)
+    # a delimiter ending every row ('0;1;2;') but not the names, or the names but not the rows
+    trailing = bool(np.isnan(data[:, -1]).all()) and width - 1 not in text_cells
+
+    def names_at(j: int | None) -> list[str] | None:
+        cells = _header_cells(lines[j], delimiter) if j is not None else []
+        if len(cells) == width + 1 and not cells[-1]:
+            cells = cells[:-1]
+        if len(cells) == width - 1 and trailing:
+            cells = [*cells, ""]
+        return cells if len(cells) == width else None
+
+    def above(j: int | None) -> int | None:
+        return next((k for k in range(j - 1, -1, -1) if lines[k].strip()), None) if j is not None else None
+
+    header = units_row = None
+    j = above(first)
+    if j is not None:
+        header = names_at(j)
+        if header is not None and is_unit_row(header):  # names above a row of units
+            units_row = header
+            j = above(j)
+            header = names_at(j)
+        if header is not None and len(set(header)) < len(header):
+            header = _grouped_names(names_at(above(j)), header)
+    return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells)
+
+
+def _grouped_names(groups: list[str] | None, names: list[str]) -> list[str]:
+    """Names that repeat under a row of group names (``X;;Y;`` over ``Soll;Ist;Soll;Ist``, a spreadsheet's
+    merged cells) joined with their group (``X Soll``), empty groups filled from the left; the names as
+    they are without such a row, or when joining leaves them repeated."""
+    if groups is None or is_unit_row(groups):
+        return names
+    filled = []
+    for g in groups:
+        filled.append(g or (filled[-1] if filled else ""))
+    joined = [f"{g} {n}".strip() for g, n in zip(filled, names)]
+    return joined if len(set(joined)) == len(joined) else names
 
 
 def _header_cells(line: str, delimiter: str) -> list[str]:
@@ -227,18 +305,32 @@ def _column(name: str | int, header: list[str] | None, width: int, src: str, lin
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
-    header, units_row, data, row_lines, delimiter, overruns = _table(text, src)
-    hline = row_lines[0] - 1
+    table = _table(text, src)
+    header, units_row, data, row_lines, delimiter, overruns = table[:6]
+    above = text.splitlines()[:row_lines[0] - 1]
+    hline = len(above) or None  # the header's line; None without a header above the first row
+    period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
-        columns, why = columns_from_names(header) if header is not None else (None, "the file has no header line")
+        known = period is not None or sample_time is not None
+        columns, why = (columns_from_names(header, period_known=known) if header is not None
+                        else (None, "the file has no header line"))
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
                                f"(not read from the names: {why})", file=src, line=hline)
-    _check_time_options(columns, time_unit, sample_time, overruns, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
+    for k, c in idx.items():
+        if c in table.text:  # a column of text ('Starting', 'Layer 1 Up') is only an error when used
+            line, cell = table.text[c]
+            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})", file=src, line=line,
+                               column=c + 1, text=cell)
+    stated: dict[str, str] = {}
+    if period is not None and ("t" not in idx or (header is not None and is_sample_number(header[idx["t"]]))):
+        sample_time = float(period.value)
+        stated["sampling"] = f"{sample_time:.9g} s, stated in line {period.line} ({period.text!r})"
+    _check_time_options(columns, time_unit, sample_time, overruns, src)
     used = data[:, list(idx.values())]
     keep = ~np.isnan(used).any(axis=1)
     if keep.sum() < 2:
@@ -246,9 +338,15 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
+    stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
+    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
+    if units["t"] is None and period is not None and sample_time is None and not stamped:
+        units["t"] = _unit_of_step(d[:, idx["t"]], float(period.value))
+        if units["t"] is not None:
+            stated["time_unit_from_period"] = (f"{units['t']}: the step of {columns['t']!r} is the sampling period "
+                                               f"stated in line {period.line} ({period.text!r})")
     time_stated = units["t"] is not None
     units["t"] = units["t"] or "s"
-    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
     if stamped:
         units["t"] = "s"  # time stamps are read as seconds, whatever the unit given
     if sample_time is None:
@@ -258,8 +356,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
+    if sample_time is None and not stamped:
+        lines = text.splitlines()
+        t, rounded = _rounded_stamps(t, lambda: [_split(lines[n - 1], delimiter)[idx["t"]] for n in lines_kept],
+                                     TIME_UNITS[units["t"]], src)
+        stated.update(rounded)
     time_known = time_stated or stamped or sample_time is not None
-    if guessed:
+    if guessed and "t" in columns:
         _check_guessed_time(t, columns["t"], time_known, src, hline)
 
     def scaled(k: str) -> np.ndarray:
@@ -274,10 +377,81 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     time_meta = ("time stamps" if stamped else units["t"] if sample_time is None else
                  f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
-            "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how}
+            "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how, **stated}
     if guessed:
         meta["columns"] = _guessed_note(columns, units, time_known)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
+
+
+def _rounded_stamps(t: np.ndarray, stamps: Callable[[], list[str]], scale: float,
+                    src: str) -> tuple[np.ndarray, dict[str, str]]:
+    """Time [s] on a uniform step when its stamps are one rounded to the digits printed (``0.0063694``,
+    ``0.012739``: MATLAB's five significant digits; the steps then differ by more than the timing check
+    allows) and the ``meta["time_rounded"]`` note; else ``t`` as it is. Our reading: a uniform step fitted by
+    least squares weighted by the printed resolution, every stamp within the rounding of its last digit
+    (twice it, for the fit)."""
+    try:
+        check_timing(t - t[0], src)
+        return t, {}
+    except CaptureError:
+        pass
+    cells = stamps()  # the printed stamps, read only when the timing check fails
+    k = np.arange(t.size)
+    half = np.array([_half_digit(c) for c in cells]) * scale
+    step, start = np.polyfit(k, t, 1, w=1.0 / half)  # the stamps printed with more digits weigh more
+    grid = start + k * step
+    if not step > 0 or not np.all(np.abs(t - grid) <= 2 * half):
+        return t, {}
+    return grid, {"time_rounded": f"time stamps printed to {_digits(cells)} digits, read as a uniform step of "
+                                  f"{step:.9g} s (they are within the rounding of their last digit)"}
+
+
+def _half_digit(cell: str) -> float:
+    """Half a unit of the last digit of a printed number (``0.012739`` -> 5e-7; ``1.27e-2`` -> 5e-5)."""
+    mantissa, _, exponent = cell.strip().lower().replace(",", ".").partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+
+
+def _digits(cells: list[str]) -> int:
+    """The most significant digits printed in the cells (for the note)."""
+    return max(len(c.strip().lower().partition("e")[0].replace(".", "").replace(",", "").lstrip("-+0")) for c in cells)
+
+
+def _unit_of_step(t: np.ndarray, period: float) -> str | None:
+    """The time unit (of :data:`TIME_UNITS`) in which the median step of a time column is the stated sampling
+    ``period`` [s] (to 0.1 %), or None."""
+    step = float(np.median(np.diff(t))) if t.size > 1 else 0.0
+    return next((u for u, scale in TIME_UNITS.items() if abs(step * scale - period) <= 1e-3 * period), None)
+
+
+def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_row: list[str] | None,
+                 idx: Mapping[str, int], above: list[str], columns: Mapping[str, str], src: str,
+                 line: int) -> dict[str, str]:
+    """Positions logged in counts (:func:`vcnc.traces.names.counted`, or a count unit in the units row) without
+    a unit given: scaled by the size of one count the preamble states (:mod:`vcnc.traces.preamble`), set in
+    ``units``, and the ``meta["count_size"]`` note; without one an error asking for ``--unit``."""
+    counts = {}
+    for k in idx:
+        if k == "t" or units[k] is not None:
+            continue
+        cell = units_row[idx[k]].strip("[]() ").lower() if units_row is not None else ""
+        c = (counted(header[idx[k]]) if header is not None else None) or (cell if cell in COUNT_UNITS else None)
+        if c is not None:
+            counts[k] = c
+    if not counts:
+        return {}
+    size = stated_count_size(above)
+    if size is None:
+        k, c = next(iter(counts.items()))
+        raise CaptureError(f"{k}={columns[k]!r} is logged in increments ({c!r}) and the file does not state their "
+                           "size",
+                           file=src, line=line, expected="--unit with the size of one count (e.g. --unit 0.1um, "
+                                                         "0.0001in, 0.001deg)")
+    for k in counts:
+        units[k] = str(size.value)
+    return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
+                          f"({size.text!r})"}
 
 
 def _check_time_options(columns: Mapping[str, str], time_unit: str | None, sample_time: float | None,

@@ -64,6 +64,7 @@ from vcnc.traces.columns import (
     read_text,
     with_following_errors,
 )
+from vcnc.traces.names import columns_from_names
 
 __all__ = ["read_halscope", "looks_like_halscope"]
 
@@ -123,7 +124,9 @@ def read_halscope(path: str | os.PathLike[str], *, columns: Mapping[str, str] | 
         rows, row_lines = rows[:-1], row_lines[:-1]
     if len(rows) < 2:
         raise CaptureError(f"fewer than two samples after 'Sampling period is ... ns'; channels: {labels}", file=src)
-    mapping = {k: v for k, v in columns.items() if k != "t"} if columns else _joint_pairs(labels, axes, src)
+    mapping, note = ({k: v for k, v in columns.items() if k != "t"}, "") if columns else _joint_pairs(labels, axes, src)
+    if note:
+        meta["columns"] = note
     ax = mapped_axes(mapping, src)
     missing = [v for v in mapping.values() if v not in labels]
     if missing:
@@ -208,8 +211,11 @@ def _pairs(body: list[tuple[int, str]], src: str) -> tuple[list[str], list[list[
     return labels, rows, row_lines
 
 
-def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dict[str, str]:
-    """Commanded/feedback pins of each joint (module docstring), named ``axes`` in joint order."""
+def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> tuple[dict[str, str], str]:
+    """Commanded/feedback pins of each joint (module docstring), named ``axes`` in joint order; without
+    joint or axis pins, channels whose names leave no doubt (``pid.x.command`` / ``pid.x.feedback``, the
+    PID component's pins a tuning session scopes; :func:`vcnc.traces.names.columns_from_names`, no
+    following error: its sign convention is the pins'), with the note for ``meta["columns"]``."""
     pins: dict[tuple[int, str], dict[str, str]] = {}
     letters: dict[str, dict[str, str]] = {}
     ferrors: dict[int, str] = {}
@@ -238,7 +244,7 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dic
             rank = "0" if "0" in cmd and "0" in fb else "1"
             out[f"{a}_ref"] = cmd.get(rank) or next(iter(cmd.values()))
             out[a] = fb.get(rank) or next(iter(fb.values()))
-        return out
+        return out, ""
     for a in AXIS_NAMES:
         if {"cmd", "fb"} <= letters.get(a, {}).keys():
             out[f"{a}_ref"], out[a] = letters[a]["cmd"], letters[a]["fb"]
@@ -248,6 +254,10 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> dic
             others = [n for n in labels if "pos" in n.lower() and n not in alone]
             raise CaptureError(f"{alone[0]} has no -fb pin: give --columns x_ref={alone[0]},x=FEEDBACK; channels "
                                f"found: {labels}; other position channels: {others}", file=src)
+        named, why = columns_from_names(labels, period_known=True)
+        if named is not None and "t" not in named and not any(k.endswith(LAG_SUFFIX) for k in named):
+            return named, "from the channel names: " + ", ".join(f"{k}={v}" for k, v in named.items())
         raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
-                           f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels}", file=src)
-    return out
+                           f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels} (not read from "
+                           f"the names: {why or 'a following error or time channel'})", file=src)
+    return out, ""

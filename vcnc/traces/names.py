@@ -20,6 +20,17 @@ is unambiguous:
 - each axis needs exactly one commanded and one measured column (or, without a measured one,
   exactly one following error). Two candidates for one role make the header ambiguous.
 
+vcnc addition (tracewild2, drive tools' exports): positions logged in increments (a unit ``[inc]``,
+``(counts)``, ``[pulse]``, Delta's ``(PUU)``, SINAMICS' ``[LU]``, or a word ``pulses``/``counts`` in the
+name, as Mitsubishi's "Cumulative feedback pulses") are positions whose size the file may not state
+(:func:`counted`; the reader then asks for ``--unit``); Kollmorgen AKD's ``VL.``/``IL.`` parameters (velocity
+and current loop, AKD User Guide) are not positions; without a time column, a column of sample numbers
+(``Sample #``, ``No.``, ``Index``: MEI Motion Scope's export starts with ``Sample #``) or none is the time
+when the sampling period is known (``period_known``: stated in the file's preamble or given); a
+commanded position without a measured one takes as measured the column named as it without the word of
+commanding (``position`` beside ``positionCmd``, ``x`` beside ``x_cmd``; our reading of loggers that name
+the feedback plainly and mark the command).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
@@ -32,12 +43,13 @@ import re
 from collections.abc import Sequence
 
 from vcnc.core.axes import AXIS_NAMES
-from vcnc.traces.columns import LAG_SUFFIX, unit_in_name
+from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
 
-__all__ = ["columns_from_names"]
+__all__ = ["columns_from_names", "counted", "is_sample_number"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
-                   "sec", "secs", "seconds", "ms", "msec", "elapsed"})
+                   "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
+                   "\u6642\u9593", "\u65f6\u95f4"})  # 時間 (Japanese), 时间 (Chinese)
 _REF = frozenset({"cmd", "command", "commanded", "ref", "reference", "set", "setpoint", "setpos", "soll",
                   "sollwert", "sollposition", "sollpos", "nominal", "noml", "nom", "target", "demand", "demanded",
                   "dem", "desired", "consigne", "commande", "sp"})
@@ -55,11 +67,26 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
-                    "zeit", "timestamp"})
+                    "zeit", "timestamp", "vl", "il"})
+#: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``).
+_SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num"})
+#: Words of a name that say its values are counts (Mitsubishi's "Cumulative feedback pulses").
+_COUNT_WORDS = frozenset({"pulse", "pulses", "counts", "increments", "inc", "incr", "cnt", "cnts"})
 #: German compounds are one word: a commanded "Lagesollwert", a measured "Lageistwert", a velocity
 #: "Drehzahlsollwert".
 _OTHER_PARTS = ("geschw", "drehzahl", "strom", "moment", "beschl", "kraft", "spannung", "velocity", "speed",
-                "current", "torque")
+                "current", "torque", "\u901f\u5ea6", "\u30c8\u30eb\u30af", "\u96fb\u6d41", "\u7535\u6d41",
+                "\u8f6c\u77e9", "\u626d\u77e9", "\u96fb\u5727", "\u7535\u538b", "\u8f6c\u901f")
+#: Japanese and Chinese compounds (one word without spaces) by their parts: 指令 command, 目标 target, 给定 setpoint;
+#: フィードバック / 帰還 / 反馈 feedback, 実際 / 实际 actual, 現在 / 当前 present (Fanuc's 現在位置); 溜り (droop, of
+#: Mitsubishi's 溜りパルス), 偏差 deviation, 误差 error, 跟随 following. Other parts: 速度 speed, トルク / 转矩 / 扭矩
+#: torque, 電流 / 电流 current, 電圧 / 电压 voltage, 转速 rotational speed.
+_CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5b9a"),
+              "act": ("\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af", "\u5e30\u9084", "\u53cd\u9988",
+                      "\u5b9e\u9645", "\u5b9f\u969b", "\u73fe\u5728", "\u5f53\u524d"),
+              "lag": ("\u6e9c\u308a", "\u504f\u5dee", "\u8bef\u5dee", "\u8ddf\u968f")}
+#: パルス / 脉冲: pulse.
+_CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
 _WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
 _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
 _TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
@@ -82,6 +109,7 @@ def _role(words: list[str]) -> str | None:
             roles.add("act")
         elif w in _LAG or (w in _ERROR and _LAG_ERROR.intersection(words)):
             roles.add("lag")
+        roles.update(r for r, parts in _CJK_PARTS.items() if any(p in w for p in parts))
     return roles.pop() if len(roles) == 1 else None
 
 
@@ -96,10 +124,35 @@ def _split_axis(words: list[str]) -> list[str]:
     return out
 
 
+def _is_time(name: str) -> bool:
+    """A name made of time words only, its unit aside (``Zeit [ms]``, ``Zeit in ms``, ``rel_time_s``)."""
+    words = _words(name)
+    if unit_in_name(name, "time") is not None and not _TRAILING_UNIT.search(name):
+        words = words[:-1]  # the unit after the name: 'in ms', '/ms', '_s'
+    words = [w for w in words if w != "in"]
+    return bool(words) and set(words) <= _TIME
+
+
+def counted(name: str) -> str | None:
+    """The count unit of a column logged in increments (``inc`` of ``Pos [inc]``, ``pulses`` of ``Droop
+    pulses``, module docstring), else None."""
+    m = _TRAILING_UNIT.search(name)
+    unit = m.group(0).strip()[1:-1].strip().lower() if m else ""
+    if unit in COUNT_UNITS:
+        return unit
+    return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
+
+
+def is_sample_number(name: str) -> bool:
+    """True for a name of a column of sample numbers (``Sample #``, ``No.``, ``Index``)."""
+    words = _words(name)
+    return bool(words) and set(words) <= _SAMPLE or name.strip() == "#"
+
+
 def _position(name: str) -> tuple[str, str | None] | None:
     """(role, axis or None) of a position column, or None for any other column."""
-    if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None:
-        return None  # a unit that is not a length: mm/min, A, Nm, %, increments
+    if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None and counted(name) is None:
+        return None  # a unit that is neither a length nor counts: mm/min, A, Nm, %
     words = _split_axis(_words(name))
     role = _role(words)
     if role is None:
@@ -110,17 +163,30 @@ def _position(name: str) -> tuple[str, str | None] | None:
     return role, (axes.pop() if axes else None)
 
 
-def columns_from_names(header: Sequence[str]) -> tuple[dict[str, str] | None, str]:
+def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> tuple[dict[str, str] | None, str]:
     """The mapping capture column -> header name read from the names (module docstring), and why
-    not when it is None (``""`` with a mapping)."""
+    not when it is None (``""`` with a mapping). With ``period_known`` (the sampling period is stated or
+    given) a header without a time column maps a column of sample numbers, or none, as ``t``."""
     if len(set(header)) != len(header):
         return None, "the header repeats a name"
-    times = [h for h in header if _words(h) and set(_words(h)) <= _TIME]
-    if len(times) != 1:
-        return None, ("no column is named as time" if not times else
-                      f"several columns are named as time: {times}")
+    mapping: dict[str, str] = {}
+    times = [h for h in header if _is_time(h)]
+    if not times and period_known:
+        times = [h for h in header if is_sample_number(h)]
+        if len(times) > 1:
+            return None, f"several columns are named as sample numbers: {times}"
+    elif len(times) != 1:
+        samples = [h for h in header if is_sample_number(h)]
+        timed = [h for h in header if _TIME.intersection(_words(h)) - {"us", "ms", "sec"}]  # 'motor_time [ms]'
+        return None, (f"several columns are named as time: {times}" if times else "no column is named as time" + (
+            f" ({samples[0]!r} counts samples: give --sample-time S, the sampling period)" if len(samples) == 1
+            else f" (only names with more than time words: {timed}; give --columns t=NAME,...)" if timed
+            else " (a file without one needs --sample-time S, the sampling period)"))
+    if times:
+        mapping["t"] = times[0]
     found = {h: _position(h) for h in header if h not in times}
     found = {h: p for h, p in found.items() if p is not None}
+    found.update(_bare_counterparts(header, times, found))
     named_axes = {a for _, a in found.values() if a is not None}
     if not named_axes:
         found = {h: (role, "x") for h, (role, _) in found.items()}
@@ -128,7 +194,6 @@ def columns_from_names(header: Sequence[str]) -> tuple[dict[str, str] | None, st
     for h, (role, axis) in found.items():
         if axis is not None:
             roles.setdefault(axis, {"ref": [], "act": [], "lag": []})[role].append(h)
-    mapping: dict[str, str] = {"t": times[0]}
     for axis in [a for a in AXIS_NAMES if a in roles]:
         r = roles[axis]
         second = r["act"] or r["lag"]
@@ -138,6 +203,34 @@ def columns_from_names(header: Sequence[str]) -> tuple[dict[str, str] | None, st
         if r["ref"] and second:
             mapping[f"{axis}_ref"] = r["ref"][0]
             mapping[axis if r["act"] else axis + LAG_SUFFIX] = second[0]
-    if len(mapping) == 1:
-        return None, "no pair of a commanded and a measured position is named"
+    if len(mapping) == len(times):
+        return None, _no_pair(header, times, found)
     return mapping, ""
+
+
+def _bare_counterparts(header: Sequence[str], times: Sequence[str],
+                       found: dict[str, tuple[str, str | None]]) -> dict[str, tuple[str, str | None]]:
+    """The measured position named as its command without the command's word (``position`` beside
+    ``positionCmd``, ``x`` beside ``x_cmd``: HEBI's and many loggers' logs), for a commanded position whose
+    axis has no measured position or following error named (module docstring)."""
+    out: dict[str, tuple[str, str | None]] = {}
+    for h, (role, axis) in found.items():
+        if role != "ref" or any(r != "ref" and a == axis for r, a in found.values()):
+            continue
+        key = [w for w in _split_axis(_words(h)) if _role([w]) is None]
+        bare = [b for b in header if b not in found and b not in times and key and _split_axis(_words(b)) == key
+                and not (_TRAILING_UNIT.search(b) and unit_in_name(b, "length") is None and counted(b) is None)
+                and not any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in key)]
+        if len(bare) == 1:
+            out[bare[0]] = ("act", axis)
+    return out
+
+
+def _no_pair(header: Sequence[str], times: Sequence[str], found: dict[str, tuple[str, str]]) -> str:
+    """Why no pair was read: the positions named and the other quantities (a trace of speeds, currents or
+    torques only cannot be read as positions)."""
+    other = [h for h in header if h not in times and h not in found and any(
+        w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h)) and not is_sample_number(h)]
+    seen = ([f"positions found: {sorted(found)}"] if found else []) + ([f"other quantities: {other}"] if other else [])
+    return ("no pair of a commanded and a measured position is named" + (f" ({'; '.join(seen)})" if seen else "")
+            + ("" if found else "; a position trace needs a commanded and a measured position" if other else ""))

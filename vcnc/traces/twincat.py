@@ -69,6 +69,7 @@ from vcnc.traces.columns import (
     unit_named,
     with_following_errors,
 )
+from vcnc.traces.names import columns_from_names
 
 __all__ = ["read_twincat", "looks_like_twincat"]
 
@@ -150,7 +151,8 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
     d = m.group(1)
     channels, data_start, names_line = _channel_rows(lines, d, src)
     found = [c.name for c in channels]
-    mapping = {k: v for k, v in columns.items() if k != "t"} if columns else _nc_pairs(channels, axes, src, names_line)
+    mapping, note = (({k: v for k, v in columns.items() if k != "t"}, "") if columns
+                     else _nc_pairs(channels, axes, src, names_line))
     ax = mapped_axes(mapping, src)
     rows, row_lines = _rows(lines, data_start, d, max(c.column for c in channels) + 1, src)
     used = {key: _find(name, channels, found, src, names_line) for key, name in mapping.items()}
@@ -187,6 +189,8 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
             "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **lag,
             **how}
+    if note:
+        meta["columns"] = note
     scaling = [f"{c.name} ({c.scaling})" for c in used.values() if c.scaling]
     if scaling:
         meta["scaling"] = (f"{'; '.join(scaling)}: applied by Scope only with 'Scale values before export', "
@@ -350,11 +354,14 @@ def _find(name: str, channels: list[_Channel], found: list[str], src: str, line:
     return hits[0]
 
 
-def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str, line: int) -> dict[str, str]:
+def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
+              line: int) -> tuple[dict[str, str], str]:
     """The NC axis channels of each axis (module docstring), named ``axes`` (default x, y, z...) in
     the order of their set positions: a set position with the actual position of the same prefix
     (``Axis1.NcToPlc.SetPos`` / ``Axis1.NcToPlc.ActPos``), else with its lag (``...PosDiff``): the
-    actual position is a measurement, the lag the control's difference of the two."""
+    actual position is a measurement, the lag the control's difference of the two. Without NC axis
+    channels, PLC variables whose names leave no doubt (``MAIN.fSollPos`` / ``MAIN.fIstPos``,
+    :func:`vcnc.traces.names.columns_from_names`; tracewild2), with the note for ``meta["columns"]``."""
     def split(name: str, ends: tuple[str, ...]) -> str | None:
         low = name.lower().rstrip()
         return next((low[: -len(e)] for e in ends if low.endswith(e)), None)
@@ -369,9 +376,13 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str, li
         elif prefix in lag:
             pairs.append((c.name, LAG_SUFFIX, lag[prefix]))
     if not pairs:
+        named, why = columns_from_names([c.name for c in channels], period_known=True)
+        if named is not None and "t" not in named:
+            return named, "from the channel names: " + ", ".join(f"{k}={v}" for k, v in named.items())
         raise CaptureError("which channels are the commanded and measured positions? give --columns "
                            f"x_ref=NAME,x=NAME (or x{LAG_SUFFIX}=NAME for a following error); channels found: "
-                           f"{[c.name for c in channels]}", file=src, line=line)
+                           f"{[c.name for c in channels]} (not read from the names: "
+                           f"{why or 'a channel is named as time'})", file=src, line=line)
     names = list(axes) if axes else list(AXIS_NAMES[: len(pairs)])
     if len(names) != len(pairs):
         raise CaptureError(f"{len(names)} axis name(s) for the {len(pairs)} NC axis set positions "
@@ -379,4 +390,4 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str, li
     out: dict[str, str] = {}
     for a, (ref, suffix, other) in zip(names, pairs):
         out[f"{a}_ref"], out[a + suffix] = ref, other
-    return out
+    return out, ""

@@ -1,0 +1,115 @@
+"""EPICS ``camonitor`` logs: one channel update per line, as EPICS motion users (the ecmc EtherCAT motion
+controller's ``Axis1-PosSet`` / ``Axis1-PosAct`` / ``Axis1-PosErr`` records) record an axis.
+
+Each line is ``<PV name> <date> <time> <value>`` with an optional alarm status and severity after the
+value (EPICS Base, Channel Access reference manual, "camonitor": "the PV name, the time stamp and the
+value"), e.g. ``IOC:Axis1-PosAct 2020-12-09 15:05:40.306118 19.49976563``. A monitor reports a channel
+when it changes, so the channels are held at their last value (sample and hold) on the union of the
+time stamps of the channels used, from the first time stamp at which every one has a value; those
+time stamps come from the IOC's clock and are not uniform, so the capture needs ``--resample``
+(:func:`vcnc.traces.columns.on_uniform_grid`), without which the timing error says so.
+
+Which channel is what is read from the PV names (:func:`vcnc.traces.names.columns_from_names`: ``PosSet``
+the commanded, ``PosAct`` the measured position, a following error ``PosErr``) or given as
+``columns={"x_ref": PV, "x": PV}``. Our reading of the documented output, tracewild2 (a real ecmc log).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from vcnc.core.capture import Capture
+from vcnc.core.errors import CaptureError
+from vcnc.traces.columns import (
+    LAG_SUFFIX,
+    axis_of,
+    mapped_axes,
+    mapping_meta,
+    on_uniform_grid,
+    parse_number,
+    parse_time_stamp,
+    position_scale,
+    read_text,
+    with_following_errors,
+)
+from vcnc.traces.names import columns_from_names
+
+__all__ = ["read_camonitor", "looks_like_camonitor"]
+
+_LINE = re.compile(r"^\s*(?P<pv>\S+)\s+(?P<stamp>\d{4}-\d{2}-\d{2}\s+\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)\s+"
+                   r"(?P<value>\S+)(?:\s+\S+){0,2}\s*$")
+#: The following error of ecmc (and of the EPICS motor record) is setpoint - actual position.
+LAG_CONVENTION = "setpoint - actual position (ecmc's PosErr)"
+
+
+def looks_like_camonitor(text: str) -> bool:
+    """True when the first ten non-blank lines are camonitor lines (module docstring)."""
+    lines = [s for s in text.splitlines() if s.strip()][:10]
+    return len(lines) >= 2 and all(_LINE.match(s) for s in lines)
+
+
+def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
+                   unit: str | None = None, resample: bool = False) -> Capture:
+    """Read a camonitor log (module docstring) into a capture.
+
+    Raises
+    ------
+    CaptureError
+        A line that is not a camonitor line or whose value is not a number (naming the line), a PV of
+        the mapping not found, channels whose names leave the mapping in doubt, non-uniform time
+        stamps without ``resample``.
+    """
+    src = str(Path(path))
+    updates: dict[str, list[tuple[float, float, int]]] = {}
+    for i, line in enumerate(read_text(path, src).splitlines(), start=1):
+        if not line.strip():
+            continue
+        m = _LINE.match(line)
+        if not m:
+            raise CaptureError("not a camonitor line (PV name, date, time, value)", file=src, line=i,
+                               text=line.strip()[:80])
+        try:
+            value = parse_number(m["value"])
+        except ValueError:
+            raise CaptureError(f"the value of {m['pv']} is not a number", file=src, line=i,
+                               text=m["value"]) from None
+        updates.setdefault(m["pv"], []).append((parse_time_stamp(" ".join(m["stamp"].split())), value, i))
+    found = list(updates)
+    if columns:
+        mapping = {k: v for k, v in columns.items() if k != "t"}
+    else:
+        mapping, why = columns_from_names(found, period_known=True)
+        if mapping is None or "t" in mapping:
+            raise CaptureError("which PVs are the commanded and measured positions? give --columns x_ref=PV,x=PV; "
+                               f"PVs found: {found} (not read from the names: {why or 'a PV is named as time'})",
+                               file=src)
+    axes = mapped_axes(mapping, src)
+    missing = [v for v in mapping.values() if v not in updates]
+    if missing:
+        raise CaptureError(f"PV(s) {missing} not found; PVs found: {found}", file=src)
+    series = {k: np.array(updates[v], dtype=float) for k, v in mapping.items()}
+    start = max(s[0, 0] for s in series.values())
+    stamps = np.unique(np.concatenate([s[:, 0] for s in series.values()]))
+    stamps = stamps[stamps >= start]
+    if stamps.size < 2:
+        raise CaptureError(f"PVs {list(mapping.values())} have fewer than two time stamps in common", file=src)
+
+    def held(k: str) -> np.ndarray:  # each PV's last value at every time stamp (a monitor reports changes)
+        s = series[k][np.argsort(series[k][:, 0], kind="stable")]
+        return s[np.searchsorted(s[:, 0], stamps, side="right") - 1, 1] * position_scale([axis_of(k)], unit, src)
+
+    t, (ref, second), how = on_uniform_grid(
+        np.round(stamps - stamps[0], 6), [np.column_stack([held(f"{a}_ref") for a in axes]),
+                                          np.column_stack([held(a if a in mapping else a + LAG_SUFFIX)
+                                                           for a in axes])], src, resample=resample)
+    meas, lag = with_following_errors(axes, mapping, ref, second, float(t[1] - t[0]), src, expected=LAG_CONVENTION)
+    meta = {"format": "EPICS camonitor log", "time_unit": "time stamps (sample and hold per PV)", "unit": unit or "mm",
+            **mapping_meta(axes, mapping), **lag, **how}
+    if not columns:
+        meta["columns"] = "from the PV names: " + ", ".join(f"{k}={v}" for k, v in mapping.items())
+    return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)

@@ -1,0 +1,105 @@
+"""What the lines above a delimited trace's table state: its sampling period and the size of one count.
+
+Drive and logger tools write a few lines of settings before the column names: TwinCAT Scope
+``SampleTime[ms] 1``, Panasonic's trace "obtaining interval", tuning tools' ``Sampling time: 0.5 ms`` or
+``Sampling cycle = 250 us``, German ones ``Abtastzeit: 1 ms``; and with positions in increments
+``Resolution: 0.1 um`` or ``Encoder resolution = 10000 inc/mm``. A file whose table has no time column,
+or counts samples (``Sample #``), is timed by the period so stated, and positions logged in counts are
+scaled by the stated size of one count, each named in the capture's ``meta``.
+
+Our reading, no standard: a line whose words before the value are a sampling word (``sampling``,
+``sample``, ``trace``, ``recording``; German ``Abtast-``, ``Aufzeichnungs-``) with ``time``/``period``/
+``interval``/``cycle``/``clock``/``rate`` (``-zeit``, ``-takt``...: ``Abtastzeit``; SINAMICS' trace states its
+"Trace cycle" in ms, a multiple of the device cycle, CPU 317T Technology Functions manual, section 8), then a
+number with a time unit (``s``, ``ms``, ``us``, ``µs``) or a rate (``Hz``, ``kHz``),
+the unit also in brackets after the key (``Sample time [ms]: 0.5``). A resolution line is ``resolution``,
+``Auflösung`` or ``count size`` / ``increment size``, then a length per count (``0.1 um``, ``0.0001 mm/inc``)
+or counts per length (``10000 inc/mm``). A value without a unit, or two lines that disagree, state nothing.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from vcnc.traces.columns import COUNT_UNITS, LENGTH_UNITS, TIME_UNITS, unit_named
+
+__all__ = ["Stated", "stated_period", "stated_count_size"]
+
+_NUM = r"([+-]?(?:\d+[.,]?\d*|[.,]\d+)(?:[eE][+-]?\d+)?)"
+_KEY_UNIT = r"(?:\s*[\[(]\s*([^\[\]()]+?)\s*[\])])?"
+_SEP = r"\s*[:=;,\t]?\s*"
+_PERIOD = re.compile(r"^\s*[#%;]?\s*(?:(?:sampl(?:e|ing)|trace|record(?:ing)?)[\s_-]*(?:time|period|interval|cycle|"
+                     r"clock|rate)|(?:abtast|aufzeichnungs)[\s_-]*(?:zeit|rate|intervall|periode|zyklus|takt)|"
+                     r"trace[\s_-]*takt)" + _KEY_UNIT + _SEP + _NUM + _SEP + r"([^\s\d;,]*)\s*[;,\t]*\s*$",
+                     re.IGNORECASE)
+_RESOLUTION = re.compile(r"^\s*[#%;]?\s*(?:(?:encoder|position|measuring system|geber)?[\s_-]*(?:resolution|aufl"
+                         r"\u00f6sung)|(?:count|increment)[\s_-]*size)" + _KEY_UNIT + _SEP + _NUM +
+                         _SEP + r"([^\s;,]*)\s*[;,\t]*\s*$", re.IGNORECASE)
+_RATES = {"hz": 1.0, "khz": 1e3}
+
+
+@dataclass(frozen=True, kw_only=True)
+class Stated:
+    """A value the preamble states: ``value`` (a period [s], or a count size as ``--unit`` takes it,
+    ``"0.0001mm"``), the 1-based file ``line`` and its ``text``."""
+
+    value: float | str
+    line: int
+    text: str
+
+
+def _number(text: str) -> float:
+    return float(text.replace(",", "."))
+
+
+def _period(m: re.Match[str]) -> float | None:
+    """Seconds of a matched sampling line, or None when its unit is not a time or a rate."""
+    unit = (m.group(3) or m.group(1) or "").strip().lower().replace("\u03bc", "\u00b5")
+    value = _number(m.group(2))
+    if not value > 0:
+        return None
+    if unit in _RATES:
+        return 1.0 / (value * _RATES[unit])
+    name = unit_named(unit, "time")
+    return value * TIME_UNITS[name] if name is not None else None
+
+
+def _count_size(m: re.Match[str]) -> str | None:
+    """A matched resolution line as a ``--unit`` count size (``"0.0001mm"``), or None."""
+    unit = (m.group(3) or m.group(1) or "").strip().lower().replace("\u03bc", "\u00b5")
+    value = _number(m.group(2))
+    top, _, bottom = unit.partition("/")
+    if not value > 0:
+        return None
+    if bottom and top in COUNT_UNITS:  # counts per length: 10000 inc/mm
+        base = unit_named(bottom, "length")
+        return f"{LENGTH_UNITS[base] / value:.12g}{'deg' if base == 'deg' else 'mm'}" if base else None
+    if bottom and bottom not in COUNT_UNITS:
+        return None
+    base = unit_named(top, "length")
+    return f"{value:.12g}{base}" if base else None
+
+
+def _stated(lines: Sequence[str], pattern: re.Pattern[str],
+            read: Callable[[re.Match[str]], float | str | None]) -> Stated | None:
+    found = []
+    for i, line in enumerate(lines):
+        m = pattern.match(line.replace('"', ""))  # '"Sampling Time","125.0us"': quoted cells
+        value = read(m) if m else None
+        if value is not None:
+            found.append(Stated(value=value, line=i + 1, text=line.strip()))
+    if not found or any(f.value != found[0].value for f in found):
+        return None
+    return found[0]
+
+
+def stated_period(lines: Sequence[str]) -> Stated | None:
+    """The sampling period [s] the lines above a table state (module docstring), or None."""
+    return _stated(lines, _PERIOD, _period)
+
+
+def stated_count_size(lines: Sequence[str]) -> Stated | None:
+    """The size of one position count the lines above a table state, as ``--unit`` takes it, or None."""
+    return _stated(lines, _RESOLUTION, _count_size)
