@@ -565,11 +565,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         _finish_compensation(st, blocks, source)
-    if dialect.name == "linuxcnc":
-        _linuxcnc_refusals(text, params, notes)
-    for _ in range(params.joined_comparisons):
-        notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
-                  "(Fanuc writes each in its own brackets)")
+    _expression_notes(text, params, dialect.name, notes)
     _closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:
@@ -1379,6 +1375,16 @@ def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list
     for _ in range(grbl.sender):
         notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
     return grbl.text, list(grbl.homing)
+
+
+def _expression_notes(text: str, params: Parameters, dialect: str, notes: _Notes) -> None:
+    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
+    brackets that join comparisons (``iso_params`` reads them comparisons first)."""
+    if dialect == "linuxcnc":
+        _linuxcnc_refusals(text, params, notes)
+    for _ in range(params.joined_comparisons):
+        notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
+                  "(Fanuc writes each in its own brackets)")
 
 
 def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
