@@ -7,7 +7,8 @@ import argparse
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.axes import axis_unit
 
-HELP = "convert a trace export (TNCscope, SINUMERIK XML, TwinCAT, halscope, delimited text) into the capture CSV"
+HELP = ("convert a trace export (TNCscope, SINUMERIK XML, TwinCAT, halscope, EPICS camonitor, delimited text) into "
+        "the capture CSV")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
