@@ -21,8 +21,8 @@ HELP = "identify the reduced closed-loop model of an axis from a capture (CSV, c
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("capture", metavar="CAPTURE",
-                        help="capture CSV, control trace (TNCscope, SINUMERIK XML, TwinCAT, halscope, camonitor, delimited "
-                             "text) or EMPS .mat file, detected by content")
+                        help="capture CSV, control trace (TNCscope, SINUMERIK XML, TwinCAT, halscope, camonitor, "
+                             "delimited text) or EMPS .mat file, detected by content")
     parser.add_argument("--axis", default=None, help="axis to identify (default: x, or the only axis)")
     parser.add_argument("--method", choices=("exact", "ga", "kkt"), default="exact", help="constrained solver")
     parser.add_argument(
