@@ -74,6 +74,7 @@ from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
 from vcnc.core.jsonsafe import plain
+from vcnc.core.metrics import error_metrics
 
 __all__ = [
     "report_figure",
@@ -431,13 +432,16 @@ def refit(model: AugmentedAxisModel, data: Data, samples: int | np.ndarray, *, m
 
 def _errors(model: ReducedAxisModel, data: Data, mask: np.ndarray) -> tuple[float, float]:
     """(RMS, max) [um] of the simulation error of ``model`` on the samples ``mask``."""
-    y = model.simulate(data.xr)
-    e = (data.x - y)[mask]
-    if not e.size:
-        return math.nan, math.nan
-    if not np.all(np.isfinite(e)):
+    return _rms_max_um((data.x - model.simulate(data.xr))[mask])
+
+
+def _rms_max_um(error_mm: np.ndarray) -> tuple[float, float]:
+    """(RMS, max) [um] of a simulation error [mm] (:func:`vcnc.core.metrics.error_metrics`): NaN when it
+    is empty, inf when the simulation diverged (any value not finite), so that such a fit ranks last."""
+    if error_mm.size and not np.all(np.isfinite(error_mm)):
         return math.inf, math.inf
-    return float(np.sqrt(np.mean(e * e)) * 1e3), float(np.max(np.abs(e)) * 1e3)
+    m = error_metrics(error_mm)
+    return m["rms_um"], m["max_um"]
 
 
 @dataclasses.dataclass(eq=False)
@@ -512,12 +516,7 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
             if np.all(np.isfinite(e)) and float(e @ e) < c0:
                 best_y = yi
                 break
-        e = (data.x - best_y)[held]
-        if not e.size:
-            return math.nan, math.nan
-        if not np.all(np.isfinite(e)):
-            return math.inf, math.inf
-        return float(np.sqrt(np.mean(e * e)) * 1e3), float(np.max(np.abs(e)) * 1e3)
+        return _rms_max_um((data.x - best_y)[held])
 
     per_fold = thread_map(held_out, range(len(plan.folds)))
     fr = [f[0] for f in per_fold]
