@@ -50,14 +50,10 @@ def equation_error(model: ReducedAxisModel, reference: np.ndarray, measured: np.
     theta = np.array([p["a3"], p["a1"], 1.0, p["b2"], p["b1"], p["b0"], p["d0"], p["d1"]]) / a2
     pred = phi @ theta
     rows = np.arange(opt.half_width, opt.half_width + y.size)
-    elements = getattr(model, "elements", ())
-    if elements:
-        from identification.searches import w_of
+    if getattr(model, "elements", ()):
+        from identification.searches import disturbance_offset
 
-        v, t = -phi[:, 1], rows * sample_time
-        for e in elements:
-            if e.KIND == "disturbance":
-                pred = pred - w_of(e, v, y, t) / a2
+        pred = pred + disturbance_offset(model, -phi[:, 1], y, rows * sample_time)
     return rows, y - pred
 
 

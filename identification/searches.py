@@ -50,7 +50,7 @@ from identification.solve import solve_statistics
 
 log = logging.getLogger(__name__)
 
-__all__ = ["Data", "Candidate", "SearchContext", "SEARCHES", "w_of"]
+__all__ = ["Data", "Candidate", "SearchContext", "SEARCHES", "w_of", "disturbance_offset"]
 
 #: derivative filter for the split-form regressions (Savitzky-Golay, centred: no delay)
 _SG_WINDOW, _SG_ORDER = 9, 3
@@ -124,6 +124,18 @@ def w_of(e: Effect, v, x, t) -> np.ndarray:
     raise TypeError(e)
 
 
+def disturbance_offset(model: AugmentedAxisModel, v: np.ndarray, x: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The disturbance effects' part of the equation error's output Y [mm] at velocity ``v``, position ``x``
+    and time ``t`` of each row: ``-w / a2`` summed over them (:func:`w_of`); the searches take it as a fixed
+    offset of the Eq. (3.11) regression."""
+    a2 = model.parameters["a2"]
+    off = np.zeros(len(v))
+    for e in model.elements:
+        if e.KIND == "disturbance":
+            off -= w_of(e, v, x, t) / a2
+    return off
+
+
 class SearchContext:
     """The current model and what every search needs (training rows only, except where said)."""
 
@@ -144,12 +156,7 @@ class SearchContext:
         self.train_fit = d.train[:self.horizon]
         # equation-error base: Eq. 3.11 columns plus the current disturbance terms as fixed offsets
         tr = d.tr_rows
-        vv, xx, tt = d.v[tr], d.y[tr], d.t[d.rows[tr]]
-        off = np.zeros(int(tr.sum()))
-        a2 = model.parameters["a2"]
-        for e in model.elements:
-            if e.KIND == "disturbance":
-                off -= w_of(e, vv, xx, tt) / a2
+        off = disturbance_offset(model, d.v[tr], d.y[tr], d.t[d.rows[tr]])
         self._ee_y = d.y[tr] - off
         self._ee_base = d.phi[tr]
         self._base_sc = np.linalg.norm(self._ee_base, axis=0)
@@ -244,12 +251,7 @@ class SearchContext:
         else:
             theta = solve_qr(np.hstack([self._ee_base, cols_tr]), self._ee_y)
         va = d.va_rows
-        a2 = self.model.parameters["a2"]
-        vv, xx, tt = d.v[va], d.y[va], d.t[d.rows[va]]
-        off = np.zeros(int(va.sum()))
-        for e in self.model.elements:
-            if e.KIND == "disturbance":
-                off -= w_of(e, vv, xx, tt) / a2
+        off = disturbance_offset(self.model, d.v[va], d.y[va], d.t[d.rows[va]])
         res = d.y[va] - off - np.hstack([d.phi[va], cols_va]) @ theta
         return float(res @ res)
 
@@ -284,12 +286,7 @@ class SearchContext:
         cs, ss, cr, qc = windowed_fourier_moments(np.sin(ph), np.cos(ph), e.envelope_weights(t_tr)[0],
                                                   self._ee_r, self._q_t, top)
         va = d.va_rows
-        a2 = self.model.parameters["a2"]
-        vv, xx = d.v[va], d.y[va]
-        off = np.zeros(int(va.sum()))
-        for el in self.model.elements:
-            if el.KIND == "disturbance":
-                off -= w_of(el, vv, xx, t_va) / a2
+        off = disturbance_offset(self.model, d.v[va], d.y[va], t_va)
         phi_va = d.phi[va] / self._base_sc
         a = d.y[va] - off - phi_va @ theta0
         ph = 2.0 * np.pi * t_va / period
@@ -352,13 +349,8 @@ class SearchContext:
         d = self.data
         rows = d.active[d.rows]
         theta = solve_qr(self._ee_base, self._ee_y)
-        a2 = self.model.parameters["a2"]
-        vv, xx, tt = d.v[rows], d.y[rows], d.t[d.rows[rows]]
-        off = np.zeros(int(rows.sum()))
-        for e in self.model.elements:
-            if e.KIND == "disturbance":
-                off -= w_of(e, vv, xx, tt) / a2
-        return tt, d.y[rows] - off - d.phi[rows] @ theta
+        tt = d.t[d.rows[rows]]
+        return tt, d.y[rows] - disturbance_offset(self.model, d.v[rows], d.y[rows], tt) - d.phi[rows] @ theta
 
     # ---------------------------------------------------------------- simulation screen
     def fit_output(self, model: AugmentedAxisModel) -> np.ndarray:
