@@ -116,6 +116,34 @@ def _normal_pair(state: np.ndarray) -> tuple[float, float]:
 
 
 @numba.njit(cache=True)
+def _dry_friction(dirn, v, fcp, fcn, fsp, fsn, bp, bn, vs):
+    """(dry friction level [V], viscous rate beta [1/s]) of a mass moving in direction ``dirn`` (+1/-1) at
+    velocity ``v`` [mm/s]: the Coulomb level, raised towards the static one below the Stribeck velocity
+    ``vs`` (``fc + (fs - fc) exp(-(v/vs)^2)``), and beta, both of that direction."""
+    if dirn > 0.0:
+        fc, fs, beta = fcp, fsp, bp
+    else:
+        fc, fs, beta = fcn, fsn, bn
+    level = fc
+    if vs > 0.0:
+        r = v / vs
+        level = fc + (fs - fc) * math.exp(-r * r)
+    return level, beta
+
+
+@numba.njit(cache=True)
+def _load(t, xm, load_c, load_a, load_w, load_phase, pp_f, pp_period, pp_phase):
+    """The load [V] on the motor at time ``t`` [s] and motor position ``xm`` [mm]: constant, time-periodic
+    and position-periodic parts."""
+    d = load_c
+    if load_a != 0.0:
+        d += load_a * math.sin(load_w * t + load_phase)
+    if pp_f != 0.0:
+        d += pp_f * math.sin(_TWO_PI * xm / pp_period + pp_phase)
+    return d
+
+
+@numba.njit(cache=True)
 def _rigid_step(x, v, force, h, g, bp, bn, fcp, fcn, fsp, fsn, vs, ep, p1p, p2p, en, p1n, p2n):
     """Advance x' = v, v' = g (F - friction) - beta v over h; returns (x, v, dry friction [V])."""
     if v == 0.0:
@@ -130,14 +158,7 @@ def _rigid_step(x, v, force, h, g, bp, bn, fcp, fcn, fsp, fsn, vs, ep, p1p, p2p,
     remaining = h
     fric = 0.0
     for seg in range(3):
-        if dirn > 0.0:
-            fc, fs, beta = fcp, fsp, bp
-        else:
-            fc, fs, beta = fcn, fsn, bn
-        level = fc
-        if vs > 0.0:
-            r = v / vs
-            level = fc + (fs - fc) * math.exp(-r * r)
+        level, beta = _dry_friction(dirn, v, fcp, fcn, fsp, fsn, bp, bn, vs)
         a = g * (force - dirn * level)
         if seg == 0:
             fric = dirn * level
@@ -426,11 +447,7 @@ def simulate_axis(
         fric_out = 0.0
         if plant == 0:
             for j in range(nsub):
-                d = load_c
-                if load_a != 0.0:
-                    d += load_a * math.sin(load_w * (t + j * h) + load_phase)
-                if pp_f != 0.0:
-                    d += pp_f * math.sin(_TWO_PI * xm / pp_period + pp_phase)
+                d = _load(t + j * h, xm, load_c, load_a, load_w, load_phase, pp_f, pp_period, pp_phase)
                 xm, vm, fr = _rigid_step(
                     xm, vm, u - d, h, g, bp, bn, fcp, fcn, fsp, fsn, vs, ep, p1p, p2p, en, p1n, p2n
                 )
@@ -438,11 +455,7 @@ def simulate_axis(
                     fric_out = fr
         elif plant == 1:
             for j in range(nsub):
-                d = load_c
-                if load_a != 0.0:
-                    d += load_a * math.sin(load_w * (t + j * h) + load_phase)
-                if pp_f != 0.0:
-                    d += pp_f * math.sin(_TWO_PI * xm / pp_period + pp_phase)
+                d = _load(t + j * h, xm, load_c, load_a, load_w, load_phase, pp_f, pp_period, pp_phase)
                 fsp_ = kspring * (xm - xt2) + cdamp * (vm - vt2)
                 vm += h * (u - fsp_) / m1
                 xm += h * vm
@@ -459,14 +472,7 @@ def simulate_axis(
                 else:
                     dirn = 1.0 if vt2 > 0.0 else -1.0
                 if dirn != 0.0:
-                    if dirn > 0.0:
-                        fc, fs, beta = fcp, fsp, bp
-                    else:
-                        fc, fs, beta = fcn, fsn, bn
-                    level = fc
-                    if vs > 0.0:
-                        rr = vt2 / vs
-                        level = fc + (fs - fc) * math.exp(-rr * rr)
+                    level, beta = _dry_friction(dirn, vt2, fcp, fcn, fsp, fsn, bp, bn, vs)
                     fr = dirn * level
                     vnew = vt2 + h * ((net - fr) / m2 - beta * vt2)
                     if vt2 != 0.0 and vnew * vt2 < 0.0:
