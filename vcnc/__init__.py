@@ -18,18 +18,8 @@ import importlib
 from typing import Any
 
 from vcnc.capture import Capture, read_capture
-from vcnc.errors import (
-    CaptureError,
-    ExportError,
-    GCodeError,
-    IdentificationError,
-    InputError,
-    MachineError,
-    ModelFileError,
-    ProgramTooLongError,
-    SimulationError,
-    VcncError,
-)
+from vcnc.errors import *  # noqa: F403 - every exception type, listed once in vcnc.core.errors
+from vcnc.errors import __all__ as _ERRORS
 from vcnc.setpoints import Setpoints
 
 __version__ = "0.1.0"
@@ -56,16 +46,7 @@ __all__ = [
     "Capture",
     "Setpoints",
     "read_capture",
-    "VcncError",
-    "InputError",
-    "GCodeError",
-    "ProgramTooLongError",
-    "CaptureError",
-    "MachineError",
-    "ModelFileError",
-    "IdentificationError",
-    "SimulationError",
-    "ExportError",
+    *_ERRORS,
     *_LAZY,
 ]
 
