@@ -258,6 +258,21 @@ def _on_contour(point: np.ndarray, centre: np.ndarray, factor: float, plane: int
     return out
 
 
+def _lct_touch(point: np.ndarray, other: np.ndarray, tangent: np.ndarray, radius: float, side: float, plane: int,
+               tool_radius: float, *, leaving: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The construction ``APPR LCT`` and ``DEP LCT`` share: the arc of ``radius`` [mm] through ``point`` (PA or
+    PE) tangent to the contour there (:func:`_lct_centre`), and PH, where the line from or to ``other`` (PS or
+    PN, taken at ``point``'s tool-axis coordinate) touches the tool's path, ``tool_radius`` [mm] inside the arc,
+    moved out onto the arc. Returns (centre, ``other`` at that coordinate, PH)."""
+    centre = _lct_centre(point, tangent, radius, side, plane)
+    free = np.array(other, dtype=float)
+    free[plane] = point[plane]
+    path = radius - tool_radius
+    ph = _on_contour(_tangent_point(centre, path, free, ccw=side > 0, leaving=leaving, plane=plane), centre,
+                     radius / path, plane)
+    return centre, free, ph
+
+
 def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
                  plane: int, tool_radius: float = 0.0) -> tuple[np.ndarray, Arc]:
     """``APPR LCT`` (TNC7 user's manual, "APPR LCT"): the line from PS touches at PH the arc of
@@ -267,14 +282,8 @@ def approach_lct(ps: np.ndarray, pa: np.ndarray, tangent: np.ndarray, *, radius:
     Returns PH (PA's tool-axis coordinate) and the arc PH -> PA."""
     if not radius > tool_radius:
         raise PathGeometryError("APPR LCT needs R > 0", "R+.. [mm]")
-    ccw = side > 0
-    centre = _lct_centre(pa, tangent, radius, side, plane)
-    start = np.array(ps, dtype=float)
-    start[plane] = pa[plane]
-    path = radius - tool_radius
-    ph = _on_contour(_tangent_point(centre, path, start, ccw=ccw, leaving=False, plane=plane), centre,
-                     radius / path, plane)
-    return ph, Arc(ph, np.array(pa, dtype=float), centre, ccw=ccw, plane=plane)
+    centre, _, ph = _lct_touch(pa, ps, tangent, radius, side, plane, tool_radius, leaving=False)
+    return ph, Arc(ph, np.array(pa, dtype=float), centre, ccw=side > 0, plane=plane)
 
 
 def departure_lct(pe: np.ndarray, pn: np.ndarray, tangent: np.ndarray, *, radius: float, side: float,
@@ -285,11 +294,5 @@ def departure_lct(pe: np.ndarray, pn: np.ndarray, tangent: np.ndarray, *, radius
     :func:`approach_lct`)."""
     if not radius > tool_radius:
         raise PathGeometryError("DEP LCT needs R > 0", "R+.. [mm]")
-    ccw = side > 0
-    centre = _lct_centre(pe, tangent, radius, side, plane)
-    end = np.array(pn, dtype=float)
-    end[plane] = pe[plane]
-    path = radius - tool_radius
-    ph = _on_contour(_tangent_point(centre, path, end, ccw=ccw, leaving=True, plane=plane), centre,
-                     radius / path, plane)
-    return Arc(np.array(pe, dtype=float), ph, centre, ccw=ccw, plane=plane), Line(ph, end)
+    centre, end, ph = _lct_touch(pe, pn, tangent, radius, side, plane, tool_radius, leaving=True)
+    return Arc(np.array(pe, dtype=float), ph, centre, ccw=side > 0, plane=plane), Line(ph, end)
