@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +31,8 @@ OPTIONAL_SUFFIXES: dict[str, str] = {"u": "control", "table": "table", "vel": "v
 #: Relative jitter of the time step accepted as uniform (float32 time stamps, as in EMPS, jitter
 #: by about 2.4e-5 relative).
 _REL_SAMPLING_TOL = 1e-4
+#: The fields of a capture with one column per axis, shape (N, n_axes).
+_AXIS_ARRAYS = ("reference", "measured", "control", "table", "velocity", "friction")
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -80,7 +83,7 @@ class Capture:
 
     def __post_init__(self) -> None:
         n, k = len(self.t), len(self.axes)
-        for name in ("reference", "measured", "control", "table", "velocity", "friction"):
+        for name in _AXIS_ARRAYS:
             arr = getattr(self, name)
             if arr is not None and arr.shape != (n, k):
                 raise CaptureError(f"Capture.{name} has shape {arr.shape}, expected ({n}, {k})", file=self.source)
@@ -118,37 +121,24 @@ class Capture:
         """The capture of ``axes`` only, in that order (CaptureError naming the axes present)."""
         return self._columns(tuple(axes), [self.axis_index(a) for a in axes])
 
-    def _columns(self, axes: tuple[str, ...], cols: slice | list[int]) -> Capture:
-        def col(a: np.ndarray | None) -> np.ndarray | None:
-            return None if a is None else a[:, cols]
+    def _axis_arrays(self, f: Callable[[np.ndarray], np.ndarray]) -> dict[str, np.ndarray | None]:
+        """``f`` applied to each field with one column per axis (absent ones stay None)."""
+        return {name: None if (a := getattr(self, name)) is None else f(a) for name in _AXIS_ARRAYS}
 
+    def _columns(self, axes: tuple[str, ...], cols: slice | list[int]) -> Capture:
         return dataclasses.replace(
             self,
             axes=axes,
-            reference=col(self.reference),
-            measured=col(self.measured),
-            control=col(self.control),
-            table=col(self.table),
-            velocity=col(self.velocity),
-            friction=col(self.friction),
-            aux={k: col(v) if np.ndim(v) == 2 else v for k, v in self.aux.items()},
+            **self._axis_arrays(lambda a: a[:, cols]),
+            aux={k: v[:, cols] if np.ndim(v) == 2 else v for k, v in self.aux.items()},
         )
 
     def slice(self, start: int, stop: int) -> Capture:
         """Samples ``start:stop`` (time kept as recorded)."""
-
-        def cut(a: np.ndarray | None) -> np.ndarray | None:
-            return None if a is None else a[start:stop]
-
         return dataclasses.replace(
             self,
             t=self.t[start:stop],
-            reference=cut(self.reference),
-            measured=cut(self.measured),
-            control=cut(self.control),
-            table=cut(self.table),
-            velocity=cut(self.velocity),
-            friction=cut(self.friction),
+            **self._axis_arrays(lambda a: a[start:stop]),
             aux={k: v[start:stop] for k, v in self.aux.items()},
         )
 
