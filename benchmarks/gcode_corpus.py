@@ -98,6 +98,15 @@ def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_00
     return {"programs": out, "samples": samples, "interpolation_s": t_interp}
 
 
+def _accepted_by(progs: list[dict], key: str) -> list[tuple[str, tuple[int, int]]]:
+    """(value of ``key``, (programs accepted, programs)) for each value, sorted."""
+    counts: dict[str, list[int]] = collections.defaultdict(lambda: [0, 0])
+    for p in progs:
+        counts[p[key]][0] += p["ok"]
+        counts[p[key]][1] += 1
+    return [(k, (a, n)) for k, (a, n) in sorted(counts.items())]
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--parse-only", action="store_true", help="do not interpolate")
@@ -117,19 +126,11 @@ def main() -> int:
     mok = sum(p["ok"] for p in milling)
     print(f"milling programs (rejections naming lathe/probing/remap features excluded): "
           f"{mok} of {len(milling)} run = {100 * mok / len(milling):.1f} %")
-    by_origin = collections.defaultdict(lambda: [0, 0])
-    for p in progs:
-        by_origin[p["origin"]][0] += p["ok"]
-        by_origin[p["origin"]][1] += 1
     print("\nby origin:")
-    for o, (a, n) in sorted(by_origin.items()):
+    for o, (a, n) in _accepted_by(progs, "origin"):
         print(f"  {o:<34} {a:>3} / {n:<3}")
-    by_dialect = collections.defaultdict(lambda: [0, 0])
-    for p in progs:
-        by_dialect[p["dialect"]][0] += p["ok"]
-        by_dialect[p["dialect"]][1] += 1
     print("\nby dialect (of the text, also for the rejected programs):")
-    for o, (a, n) in sorted(by_dialect.items()):
+    for o, (a, n) in _accepted_by(progs, "dialect"):
         print(f"  {o:<34} {a:>3} / {n:<3} = {100 * a / n:.1f} %")
     reasons = collections.Counter(p["reason"] for p in progs if not p["ok"])
     print("\nrejections by feature:")
