@@ -3,14 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
 from controllers._base import N_PARAMS, Controller, DiscreteLaw
-
-if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
-    pass
 
 __all__ = ["PDF"]
 
