@@ -119,6 +119,19 @@ from interpolators.arcs import (
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, Dialect, MachineContext, Tool
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
+from interpolators.iso_codes import (
+    DIALECT_G,
+    G_CODES,
+    G_UNSUPPORTED,
+    LAST_ONE_VALID,
+    LINUXCNC_G,
+    LINUXCNC_M,
+    MILL_G,
+    NORMAL_DIRECTION,
+    PLANE_CODES,
+    PLANE_OF,
+    UNITS_HINT,
+)
 from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
@@ -131,7 +144,6 @@ from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_offsets import (
-    EXTENDED_CODES,
     P_SELECT_CODES,
     TOOL_LEVELS,
     g54_takes_p,
@@ -145,7 +157,6 @@ from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_trav
 from interpolators.iso_reference import (
     FANUC_CODES,
     MILL_CODES,
-    NAMED_CODES,
     off_reference,
     stored_intermediate,
 )
@@ -162,83 +173,6 @@ from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_iso"]
 
-#: G codes the reader runs, keyed by round(10 * code): (modal group, name).
-_G: dict[int, tuple[str, str]] = {
-    **{k: ("motion", n) for k, n in ((0, "rapid"), (10, "linear feed"), (20, "clockwise arc"),
-                                       (30, "counter-clockwise arc"), (800, "cycle cancel"),
-                                       (50, "G5 cubic spline"), (51, "G5.1 quadratic spline"),
-                                       (330, "G33 spindle-synchronised motion"), (331, "G33.1 rigid tapping"))},
-    **{k * 10: ("motion", n) for k, n in ((73, "G73 peck drilling cycle"), (81, "G81 drilling cycle"),
-                                          (82, "G82 drilling cycle with dwell"),
-                                          (83, "G83 peck drilling cycle"), (84, "G84 tapping cycle"),
-                                          (85, "G85 boring cycle"), (86, "G86 boring cycle"),
-                                          (89, "G89 boring cycle with dwell"), (74, "G74 left-hand tapping cycle"),
-                                          (76, "G76 fine boring cycle"), (87, "G87 back boring cycle"),
-                                          (77, "G77 back boring cycle"))},
-    40: ("dwell", "dwell"),
-    100: ("nonmodal", "G10 set offsets"), 280: ("nonmodal", "G28 return home"),
-    281: ("nonmodal", "G28.1 store home"), 300: ("nonmodal", "G30 second reference"),
-    301: ("nonmodal", "G30.1 store reference"), 530: ("nonmodal", "G53 machine coordinates"),
-    520: ("nonmodal", "G52 local offset"), 920: ("nonmodal", "G92 offset"), 921: ("nonmodal", "G92.1 offset reset"),
-    922: ("nonmodal", "G92.2 offset suspend"), 923: ("nonmodal", "G92.3 offset restore"),
-    170: ("plane", "XY"), 180: ("plane", "ZX"), 190: ("plane", "YZ"),
-    200: ("units", "inch"), 210: ("units", "mm"),
-    900: ("distance", "absolute"), 910: ("distance", "incremental"),
-    901: ("arc distance", "absolute"), 911: ("arc distance", "incremental"),
-    930: ("feed mode", "inverse time"), 940: ("feed mode", "per minute"), 950: ("feed mode", "per revolution"),
-    400: ("cutter compensation", "off"), 410: ("cutter compensation", "left"),
-    420: ("cutter compensation", "right"), 411: ("cutter compensation", "left"),
-    421: ("cutter compensation", "right"),
-    430: ("length compensation", "G43"), 431: ("length compensation", "G43.1"),
-    440: ("length compensation", "G44"), 490: ("length compensation", "G49"),
-    980: ("return mode", "G98"), 990: ("return mode", "G99"),
-    610: ("path", "exact stop"), 611: ("path", "exact stop"), 640: ("path", "continuous"),
-    960: ("spindle mode", "constant surface speed"), 970: ("spindle mode", "rpm"),
-    690: ("rotation", "cancel"), 500: ("scaling", "cancel"), 150: ("polar", "cancel"),
-    **{round(float(c[1:]) * 10): ("coordinate system", c) for c in WORK_OFFSETS},
-}
-
-#: Modal groups of which Fanuc takes the last G code when a block has two (the motion group, whose
-#: cycle codes interact with G80, and the one-shot codes stay one per block).
-_LAST_ONE_VALID = frozenset({"plane", "units", "distance", "arc distance", "feed mode", "cutter compensation",
-                             "length compensation", "return mode", "path", "spindle mode", "coordinate system"})
-
-#: G codes named in an error (round(10 * code) -> feature).
-_G_UNSUPPORTED: dict[int, str] = {
-    **{k: "G38 probing" for k in (382, 383, 384, 385)},
-    760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
-    700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
-    711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
-    750: "G75 lathe grooving cycle",
-    52: "G5.2 NURBS block (LinuxCNC; --dialect linuxcnc)", 160: "G16 polar coordinates",
-    510: "G51 scaling", 680: "G68 coordinate rotation",
-    870: "G87 back boring cycle (Fanuc) / boring with manual retract (Haas)",
-    880: "G88 boring cycle with manual retract", 770: "G77 back boring cycle (Haas mill)",
-    120: "G12 circular pocket (Haas)", 130: "G13 circular pocket (Haas)",
-    171: "G17.1 UV plane", 181: "G18.1 WU plane", 191: "G19.1 VW plane",
-    432: "G43.2 additional tool length offset (LinuxCNC; --dialect linuxcnc)",
-    682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
-    684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
-    434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
-    2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
-    541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
-    401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
-    1540: "G154 P additional work offsets (Haas; --dialect haas)",
-    # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
-    310: "G31 skip function (probing)", 282: "G28.2 homing cycle (TinyG/g2core)",
-    283: "G28.3 set machine position (TinyG/g2core)",
-    412: "G41.2 3-D cutter compensation (5-axis)", 422: "G42.2 3-D cutter compensation (5-axis)",
-    # G45-G48 tool position offset: read under --dialect fanuc (interpolators.iso_position_offset); Haas's G47
-    # engraves text (Haas mill operator's manual, "G47 Text Engraving")
-    470: "G47 text engraving (Haas) / tool position offset double increase (Fanuc; --dialect fanuc)",
-    450: "G45 tool position offset increase (Fanuc; --dialect fanuc)",
-    460: "G46 tool position offset decrease (Fanuc; --dialect fanuc)",
-    480: "G48 tool position offset double decrease (Fanuc; --dialect fanuc)", 1070: "G107 cylindrical mapping (Haas)",
-    1410: "G141 3-D+ cutter compensation (Haas)", 1430: "G143 5-axis tool length compensation (Haas)",
-    1500: "G150 general purpose pocket milling (Haas)",
-    1740: "G174 non-vertical rigid tapping (Haas)", 1840: "G184 non-vertical rigid tapping (Haas)",
-    **NAMED_CODES,  # G09, G22, G23, G27, G29, G60 outside the dialects that run them (interpolators.iso_reference)
-}
 
 #: Motion mode (round(10 * G)) at power-on, by dialect: G00 on grbl (gnea/grbl ``gcode.c`` ``gc_init``
 #: zeroes the parser state, and ``MOTION_MODE_SEEK`` 0 is G0), on Fanuc mills (parameter 3402#0 G01 = 0,
@@ -247,45 +181,6 @@ _G_UNSUPPORTED: dict[int, str] = {
 #: (``rs274ngc_pre.cc`` ``init``: ``motion_mode = G_80``): there they are an error.
 _POWER_ON_MOTION = {"grbl": 0, "fanuc": 0, "haas": 0}
 
-#: Codes the ``fanuc`` and ``haas`` dialects read as a Fanuc/Haas mill does, before :data:`_G` and
-#: :data:`_G_UNSUPPORTED` (where LinuxCNC's meaning, or an error, stays).
-_MILL_G: dict[int, tuple[str, str]] = {
-    **{k: ("smoothing", n) for k, n in SMOOTHING_CODES.items()},
-    680: ("rotation", "G68 coordinate rotation"),
-    682: ("tilted plane", "G68.2 tilted working plane"), 531: ("tool axis", "G53.1 tool axis direction control"),
-    740: ("motion", "G74 counter tapping cycle"), 760: ("motion", "G76 fine boring cycle"),
-    510: ("scaling", "G51 scaling"), 500: ("scaling", "G50 scaling cancel"),
-    511: ("mirror", "G51.1 programmable mirror image"), 501: ("mirror", "G50.1 mirror image cancel"),
-    390: ("corner circular", "G39 corner circular interpolation"),
-    **MILL_CODES,  # G09, G29, G60 (interpolators.iso_reference)
-}
-
-#: Fanuc normal direction control (Fanuc Series 0i-MB operator's manual B-63844EN/02, II-14.9 "Normal
-#: direction control (G40.1, G41.1, G42.1 or G150, G151, G152)"; Mitsubishi M700V programming manual 13.14
-#: "Normal line control; G40.1/G41.1/G42.1"): the rotary C axis is turned to stay normal to the XY path.
-#: In LinuxCNC G41.1/G42.1 are dynamic cutter compensation (:data:`_G`); G40.1 is no LinuxCNC code.
-_NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 normal direction control left",
-                     421: "G42.1 normal direction control right"}
-
-#: Codes only one of the two mill dialects reads so: Fanuc's G87 back boring is Haas's G77 (Haas G87
-#: bores with a manual retract).
-_DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
-    "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
-              **{k: ("normal direction", n) for k, n in _NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
-              **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
-              **FANUC_CODES,  # G22, G23, G27 (interpolators.iso_reference)
-              700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see _g70_g71_units
-    "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
-             120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
-             1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
-             **EXTENDED_CODES["haas"]},
-}
-
-#: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).
-_LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset"),
-                                           52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end")}
-
-_PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}
 
 #: M codes after which the machine is at rest (:func:`interpolators.program.end_at_rest`): the program stop M0,
 #: the pallet change stop M60, the tool change M6. M1 stops only with the control's optional stop switch on, which
@@ -315,7 +210,7 @@ _HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loade
 _IO_WORDS = ("P", "E", "L", "Q")
 
 
-class _Notes:
+class Notes:
     """What a run ignored or assumed, counted: ``Program.notes`` lines."""
 
     def __init__(self) -> None:
@@ -328,16 +223,8 @@ class _Notes:
         return tuple(f"{k} x{v}" if v > 1 else k for k, v in self.counts.items())
 
 
-#: The M codes below 100 LinuxCNC knows (interp_array.cc ems[], and M98/M99 subprograms); it refuses others.
-_LINUXCNC_M = frozenset({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 19, 30, 48, 49, 50, 51, 52, 53, 60, 61, 62, 63, 64, 65, 66,
-                         67, 68, 70, 71, 72, 73, 98, 99})
-
-#: The plane-selecting code of each plane (by its normal-axis index).
-_PLANE_CODES = {2: "G17", 1: "G18", 0: "G19"}
-
-
 @dataclasses.dataclass
-class _State:
+class State:
     """Modal state of the interpreter (positions are machine coordinates [mm])."""
 
     context: MachineContext
@@ -500,12 +387,12 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if fadal:  # Fadal's own words first (interpolators.iso_fadal), Fanuc's rules for the rest
         text, context = fadal_text(text, source), core_context(context)
     dialect = context.dialect
-    st = _State(context=context, pos=np.array(context.home, dtype=float),
+    st = State(context=context, pos=np.array(context.home, dtype=float),
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc",
                 modal_calls=ModalCalls() if dialect.name == "fanuc" else None)
-    notes = _Notes()
+    notes = Notes()
     raw_lines = lines_of(text)
     text, homing, wrapped = _prepared_text(text, source, dialect.name, notes)
     st.subprogram = _ends_with_m99(text)
@@ -574,7 +461,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                    messages=tuple(messages))
 
 
-def _prepared_text(text: str, source: str | None, dialect: str, notes: _Notes) -> tuple[str, list[int], bool]:
+def _prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> tuple[str, list[int], bool]:
     """The program text the reader runs, the lines of grbl's ``$H`` homing commands taken out of it, and whether
     a LinuxCNC file is wrapped in ``%`` lines (read up to the second); notes of what was taken out or is not
     sent."""
@@ -592,7 +479,7 @@ def _prepared_text(text: str, source: str | None, dialect: str, notes: _Notes) -
     return text, homing, wrapped
 
 
-def _message_stops(params: Parameters, st: _State, blocks: list[Block], notes: _Notes) -> None:
+def _message_stops(params: Parameters, st: State, blocks: list[Block], notes: Notes) -> None:
     """Fanuc/Haas ``#3006 = n (message)`` reached since the last line (:attr:`Parameters.stops`): the path comes to
     rest at the last block before it, as at M0, and the run notes the message shown until cycle start."""
     for line, message in params.stops:
@@ -602,7 +489,7 @@ def _message_stops(params: Parameters, st: _State, blocks: list[Block], notes: _
     params.stops.clear()
 
 
-def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes) -> None:
+def _line_notes(fl, source: str | None, external: set[str | None], notes: Notes) -> None:
     """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
     if fl.raw.lstrip().startswith("/"):
         notes.add("/ block delete lines run (switch off)")
@@ -611,7 +498,7 @@ def _line_notes(fl, source: str | None, external: set[str | None], notes: _Notes
         notes.add(f"subprogram from {Path(fl.file).name}")
 
 
-def _enter_level(st: _State, level: int, plain: PlainMoves, where: Where, notes: _Notes) -> None:
+def _enter_level(st: State, level: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
     """LinuxCNC: the call level of the next line (:mod:`interpolators.iso_modal_state`); a subroutine that saved
     the modal state with M73 gives it back as it returns."""
     try:
@@ -624,7 +511,7 @@ def _enter_level(st: _State, level: int, plain: PlainMoves, where: Where, notes:
         notes.add("M73 modal state restored at the subroutine's return")
 
 
-def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _Notes, *, reading: str) -> None:
+def _closing_notes(st: State, blocks: list[Block], dialect: Dialect, notes: Notes, *, reading: str) -> None:
     """What the whole program's reading assumed: positions read after a stop, the initial feed taken, the
     units of a program that states none."""
     for line in sorted(st.stops_read):
@@ -646,7 +533,7 @@ def _closing_notes(st: _State, blocks: list[Block], dialect: Dialect, notes: _No
 _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 
 
-def _until_closing_percent(text: str, notes: _Notes) -> tuple[str, bool]:
+def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
     """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
     that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
     line once the file began with one; rs274 2.9.0~pre1 runs nothing after it); and whether it had both."""
@@ -667,7 +554,7 @@ def _until_closing_percent(text: str, notes: _Notes) -> tuple[str, bool]:
     return text, False
 
 
-def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: _Notes) -> None:
+def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: Notes) -> None:
     """A LinuxCNC active comment the run reached (:mod:`interpolators.iso_messages`): a message, or a note
     for the log file vcnc does not write and the Python code it does not run."""
     if keyword in MESSAGE_KINDS:
@@ -704,7 +591,7 @@ def _gkey(w: Word, where: Where) -> int:
     return key
 
 
-def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
+def _collect(words: list[Word], where: Where, notes: Notes, st: State):
     """Sort a block's words: G codes by group, M codes, the other words by letter."""
     seen: dict[str, Word] = {}
     gcodes: dict[str, tuple[int, Word]] = {}
@@ -713,8 +600,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
         if w.letter == "G":
             key = _gkey(w, where)
             dialect = st.context.dialect.name
-            mill = (_MILL_G.get(key, _DIALECT_G[dialect].get(key)) if dialect in _DIALECT_G
-                    else _LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
+            mill = (MILL_G.get(key, DIALECT_G[dialect].get(key)) if dialect in DIALECT_G
+                    else LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
             if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
                 where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
                            expected=f"milling G codes of the {dialect} dialect")
@@ -724,19 +611,19 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
                                expected=f"one {mill[0]} code per block")
                 gcodes[mill[0]] = (key, w)
                 continue
-            if key in _G_UNSUPPORTED:
+            if key in G_UNSUPPORTED:
                 where.fail(_unsupported_g(key, words), column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
-            if key not in _G:
+            if key not in G_CODES:
                 where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
                            expected=f"a G code of the {dialect} milling set vcnc reads")
-            grp = _G[key][0]
+            grp = G_CODES[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
                     "motion", (0,))[0] == 800:
                 # "G80 G00": Fanuc posts cancel the cycle and set the motion in one block
                 if key == 800:
                     continue
-            elif grp in gcodes and dialect == "fanuc" and grp in _LAST_ONE_VALID:
+            elif grp in gcodes and dialect == "fanuc" and grp in LAST_ONE_VALID:
                 # Fanuc 0i-MD operator's manual (B-64304EN) II-3 "Preparatory function": "If two or more
                 # G codes that belong to the same group are specified, only the last G code specified
                 # is valid" ("G91 G28 X0 Y0 Z100. G90" runs the G28 under G90)
@@ -786,8 +673,8 @@ def _collect(words: list[Word], where: Where, notes: _Notes, st: _State):
     return seen, gcodes, mcodes
 
 
-def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int], where: Where,
-             notes: _Notes) -> bool:
+def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], where: Where,
+             notes: Notes) -> bool:
     """Apply one block's words in LinuxCNC's order of execution; append its motion. True at program end.
 
     A Fanuc/Haas ``G09`` makes the block's motion end in an exact stop, the modal path mode (G61/G64, which
@@ -811,8 +698,8 @@ def _execute(words: list[Word], st: _State, blocks: list[Block], used: set[int],
     return ended
 
 
-def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: list[Block], used: set[int],
-                   where: Where, notes: _Notes) -> bool:
+def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: list[Block], used: set[int],
+                   where: Where, notes: Notes) -> bool:
     """:func:`_execute` of a block whose words are sorted."""
     seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
     number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
@@ -881,7 +768,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
     axis_words += polar  # "@" and "^" move X and Y
     if not axis_words and not rot_words and st.motion in (330, 331) and "motion" in gcodes:
         w = gcodes["motion"][1]
-        where.fail(f"{_G[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
+        where.fail(f"{G_CODES[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
     if not axis_words and not rot_words and not arc_words and "R" not in seen:
         _arc_code_alone(gcodes, st, where)
@@ -912,7 +799,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: _State, blocks: 
     return ended
 
 
-def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes, moves: bool,
+def _cycle_block(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes, moves: bool,
                  rot_words: list[str]) -> None:
     """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused.
     Under G5.2/G5.3 a NURBS control point or the curve."""
@@ -921,19 +808,19 @@ def _cycle_block(seen, gcodes, st: _State, blocks, used, where: Where, number, n
         return
     if rot_words:
         w = seen[rot_words[0]]
-        where.fail(f"{_G[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
+        where.fail(f"{G_CODES[st.motion][1]} with axis word {w.letter}: not supported", column=w.column,
                    text=w.text, expected="X, Y, Z, R, Q, P, L words on a canned cycle")
     if "K" in seen and st.context.dialect.name == "linuxcnc" and st.motion not in (760, 870):
         # interp_check.cc check_other_codes: "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"; the
         # repeat count is L (g-code.adoc "G80-G89"), K Fanuc's
         w = seen["K"]
-        where.fail(f"word K on the {_G[st.motion][1]}: LinuxCNC repeats a cycle with L and reads no K (K is "
+        where.fail(f"word K on the {G_CODES[st.motion][1]}: LinuxCNC repeats a cycle with L and reads no K (K is "
                    "Fanuc's repeat count)", column=w.column, text=w.text, expected="L<repeats>")
     if moves:
         _canned_cycle(seen, gcodes, st, blocks, used, where, number, notes)
 
 
-def _check_position_offset(entry, seen, st: _State, where: Where, other_axes: list[str]) -> None:
+def _check_position_offset(entry, seen, st: State, where: Where, other_axes: list[str]) -> None:
     """Refuse a G45-G48 block :mod:`interpolators.iso_position_offset` does not run, naming the case."""
     key, w = entry
     name = POSITION_OFFSET_CODES[key][0]
@@ -949,8 +836,8 @@ def _check_position_offset(entry, seen, st: _State, where: Where, other_axes: li
                    expected=f"{w.text.strip()} X/Y/Z D<n> (or H<n>) on a G00/G01 move, without G41/G42")
 
 
-def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: _State,
-                     notes: _Notes) -> np.ndarray:
+def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: State,
+                     notes: Notes) -> np.ndarray:
     """The end point of a G45-G48 block (:mod:`interpolators.iso_position_offset`): the offset of its D word (the
     tool table's radius) or H word (length)."""
     letter = "D" if "D" in seen else "H"
@@ -964,8 +851,8 @@ def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, 
     return offset_travel(key, st.pos, target, axes, offset, incremental=st.incremental)
 
 
-def _pattern_or_pocket(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where,
-                       number: int | None, notes: _Notes) -> None:
+def _pattern_or_pocket(gcodes, seen, st: State, blocks: list[Block], used: set[int], where: Where,
+                       number: int | None, notes: Notes) -> None:
     """A block of the Haas bolt-hole patterns (G70-G72) or the G12/G13 circular pocket: its moves, noted."""
     if "pattern" in gcodes:
         _bolt_holes(gcodes["pattern"], seen, st, blocks, used, where, number)
@@ -975,7 +862,7 @@ def _pattern_or_pocket(gcodes, seen, st: _State, blocks: list[Block], used: set[
         notes.add("G12/G13 circular pocket milling")
 
 
-def _arc_code_alone(gcodes, st: _State, where: Where) -> None:
+def _arc_code_alone(gcodes, st: State, where: Where) -> None:
     """A G2/G3 block with no axis, centre or radius word: LinuxCNC refuses it (interp_arc.cc convert_arc: "The
     block has neither an r value nor any i,j,k values: NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", checked also on a
     block without axis words: rs274 refuses "G3 F360"); the other dialects take the motion mode from it (grbl
@@ -990,7 +877,7 @@ def _arc_code_alone(gcodes, st: _State, where: Where) -> None:
                "that moves")
 
 
-def _decimal_point(words: list[Word], st: _State, notes: _Notes) -> list[Word]:
+def _decimal_point(words: list[Word], st: State, notes: Notes) -> list[Word]:
     """Fanuc decimal-point input (:mod:`interpolators.iso_decimal`): under ``increment`` (DPI = 0) the
     distances, angles and times written without a decimal point in least input increments; under
     ``calculator`` (DPI = 1) unchanged, with a note the first time."""
@@ -1004,7 +891,7 @@ def _decimal_point(words: list[Word], st: _State, notes: _Notes) -> list[Word]:
     return out
 
 
-def _fanuc_system_codes(gcodes, seen, st: _State, where: Where) -> None:
+def _fanuc_system_codes(gcodes, seen, st: State, where: Where) -> None:
     """Fanuc, before the modal settings: the codes a G51.1 mirror forbids are errors
     (:func:`interpolators.iso_transforms.mirror_forbids`), and ``G54 P<n>`` is ``G54.1 P<n>``
     (:func:`interpolators.iso_offsets.g54_takes_p`; ``gcodes`` is changed)."""
@@ -1020,14 +907,14 @@ def _fanuc_system_codes(gcodes, seen, st: _State, where: Where) -> None:
         gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
 
 
-def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]) -> None:
+def _check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
     as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
     (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
     cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
         or any(st.frame.mirror) and st.motion in (760, 870, 770))
-    what = ("polar coordinates @ ^" if polar else _G[st.motion][1] if st.motion is not None and st.motion >= 50
+    what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
@@ -1037,13 +924,13 @@ def _check_rotated(st: _State, polar: list[str], where: Where, words: list[Word]
                    column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
 
 
-def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+def _bolt_holes(entry, seen, st: State, blocks, used, where: Where, number) -> None:
     """Haas G70/G71/G72 (:mod:`interpolators.iso_haas`): the active canned cycle at every hole."""
     key, w = entry
     name = PATTERN_CODES[key]
     lathe = [k for k in ("P", "Q", "U", "W", "D", "R") if k in seen]
     if lathe:  # "G70 P10 Q20": a Haas lathe program's finishing cycle, not the mill's bolt-hole pattern
-        where.fail(f"{_G_UNSUPPORTED[key]}: not supported (word {lathe[0]}: the lathe form; the mill's {name} "
+        where.fail(f"{G_UNSUPPORTED[key]}: not supported (word {lathe[0]}: the lathe form; the mill's {name} "
                    "takes I J K L)", column=w.column, text=w.text, expected="milling G codes (see vcnc's ISO reader)")
     if st.motion is None or st.motion < 730 or st.rotation:
         where.fail(f"{name} without an active canned cycle" if not st.rotation else
@@ -1064,10 +951,10 @@ def _bolt_holes(entry, seen, st: _State, blocks, used, where: Where, number) -> 
         _canned_cycle(words, {}, st, blocks, used, where, number)
 
 
-def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None:
+def _pocket(entry, seen, st: State, blocks, used, where: Where, number) -> None:
     """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
     key, w = entry
-    name = _DIALECT_G["haas"][key][1]
+    name = DIALECT_G["haas"][key][1]
     no_feed = st.feed is None and not _initial_feed(st, where)
     bad = ("no feed rate" if no_feed else "in inverse time (G93)" if st.inverse_time else
            "with cutter compensation on (it implies its own)" if st.comp_side is not None else
@@ -1105,7 +992,7 @@ def _pocket(entry, seen, st: _State, blocks, used, where: Where, number) -> None
         st.pos = target
 
 
-def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+def _g68(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
     """G68: rotate the following blocks' coordinates (:mod:`interpolators.iso_transforms`); the block's
     own words are the centre and the angle, nothing moves."""
     other = [k for k in seen if k not in ("X", "Y", "Z", "R", "N", "F", "S", "T", "H", "D")]
@@ -1126,8 +1013,8 @@ def _g68(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
     notes.add("G68 coordinate rotation")
 
 
-def _g68_2_g53_1(gcodes, seen, st: _State, blocks: list[Block], used: set[int], where: Where, number,
-                 notes: _Notes) -> None:
+def _g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], where: Where, number,
+                 notes: Notes) -> None:
     """G68.2 X Y Z I J K: the tilted working plane on the machine's tilting table; G53.1: the rotary axes
     turned to it at rapid, the linear axes staying (:mod:`interpolators.iso_tilt`)."""
     if "tilted plane" in gcodes:
@@ -1162,15 +1049,15 @@ def _g68_2_g53_1(gcodes, seen, st: _State, blocks: list[Block], used: set[int], 
         st.extra, st.extra_used = turned, True
 
 
-def _set_frame(st: _State, frame: Frame) -> None:
+def _set_frame(st: State, frame: Frame) -> None:
     st.frame = None if frame.identity else frame
 
 
-def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> None:
+def _scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None:
     """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
     words are the centre / mirror lines, nothing moves."""
     key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
-    name = _MILL_G[key][1] if key in _MILL_G else _DIALECT_G["haas"][key][1]
+    name = MILL_G[key][1] if key in MILL_G else DIALECT_G["haas"][key][1]
     other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
     if other or st.comp_side is not None:
         bad = seen[other[0]] if other else w
@@ -1194,7 +1081,7 @@ def _scaling_mirror(gcodes, seen, st: _State, where: Where, notes: _Notes) -> No
     notes.add(name)
 
 
-def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
+def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
     """Feed mode, units, plane, distance modes, F, S and T: they apply to this block's own words."""
     if "feed mode" in gcodes:
         # LinuxCNC convert_feed_mode: G93 inverse time; G94 resets the feed rate to 0 (an F must follow)
@@ -1214,7 +1101,7 @@ def _modes(seen, gcodes, st: _State, where: Where, notes: _Notes) -> None:
         st.inch = key in (200, 700)
         st.units_stated = True
     if "plane" in gcodes:
-        st.plane = _PLANE_OF[_G[gcodes["plane"][0]][1]]
+        st.plane = PLANE_OF[G_CODES[gcodes["plane"][0]][1]]
     if "distance" in gcodes:
         st.incremental = gcodes["distance"][0] == 910
     if "arc distance" in gcodes:
@@ -1266,7 +1153,7 @@ def _fail_words(where: Where, name: str, exc: WordError, seen: dict, word) -> No
     bad = seen.get(exc.letter, word) if exc.letter else word
     where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
 
-def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
+def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
     """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
     tolerance; returns ``seen`` without the words it reads."""
     key, w = entry
@@ -1282,7 +1169,7 @@ def _smoothing(entry, seen, st: _State, where: Where, notes: _Notes) -> dict:
     return {k: v for k, v in seen.items() if k not in sm.consumed}
 
 
-def _fagor_tool(w: Word, m: re.Match, st: _State, notes: _Notes) -> Word:
+def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     """``T<tool>.<offset>`` under ``--dialect fanuc``: Fagor's 8025/8030 form of the 8055's ``T<tool> D<offset>``
     (Fagor 8055 programming manual, 5.6 "Tool number (T) and tool offset (D)": "T5 D18 selects tool 5 and
     assumes the dimensions of tool offset 18"; the dotted form is our reading of the older controls' programs,
@@ -1295,7 +1182,7 @@ def _fagor_tool(w: Word, m: re.Match, st: _State, notes: _Notes) -> Word:
     return Word("T", float(tool), w.column, w.text)
 
 
-def _fagor_drilling(seen, st: _State, where: Where, notes: _Notes) -> dict:
+def _fagor_drilling(seen, st: State, where: Where, notes: Notes) -> dict:
     """A G81 series whose first block has I and no R under ``--dialect fanuc``: the Fagor 8055 form
     (programming manual 9.7 "G81. Drilling canned cycle": "G81 G98/G99 X Y Z I K" -- "Z Reference plane ...
     I Drilling depth ... K Dwell, in hundredths of a second"), which Fanuc's G81 (R plane, Z bottom, K
@@ -1318,21 +1205,14 @@ def _fagor_drilling(seen, st: _State, where: Where, notes: _Notes) -> dict:
     return out
 
 
-#: What a bare G70/G71 is on the controls that read it as units (:func:`_g70_g71_units`), for the dialects that
-#: refuse it (LinuxCNC 2.9 reads G70/G71 as lathe cycles: rs274 "G7x.x requires a Q word").
-_UNITS_HINT = {key: f" (a unit code on Siemens, Fagor and Heidenhain ISO controls: {unit} input; write "
-                    f"{code}, or read the program with --dialect fanuc)"
-               for key, unit, code in ((700, "inch", "G20"), (710, "mm", "G21"))}
-
-
 def _unsupported_g(key: int, words: list[Word]) -> str:
-    """The error of a G code of :data:`_G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
-    block) with :data:`_UNITS_HINT`."""
+    """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
+    block) with :data:`UNITS_HINT`."""
     bare = not any(v.letter in "PQUWRIJKL" for v in words)
-    return f"{_G_UNSUPPORTED[key]}: not supported{_UNITS_HINT.get(key, '') if bare else ''}"
+    return f"{G_UNSUPPORTED[key]}: not supported{UNITS_HINT.get(key, '') if bare else ''}"
 
 
-def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None:
+def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: Notes) -> None:
     """G70 / G71 in a Fanuc mill program (``--dialect fanuc``; Haas reads bolt-hole patterns): inch / metric
     input, as Siemens (SINUMERIK programming manual, "Inch or metric dimensions: G70/G700, G71/G710"), Fagor
     8055 ("G70/G71 programming units") and Heidenhain ISO (TNC ISO programming manual: "G70 inch, G71 mm")
@@ -1349,20 +1229,20 @@ def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: _Notes) -> None
               "not a Fanuc mill code)")
 
 
-def _normal_direction(entry, st: _State, where: Where, notes: _Notes) -> None:
-    """Fanuc G40.1/G41.1/G42.1 (:data:`_NORMAL_DIRECTION`): the control turns the C axis normal to the XY
+def _normal_direction(entry, st: State, where: Where, notes: Notes) -> None:
+    """Fanuc G40.1/G41.1/G42.1 (:data:`NORMAL_DIRECTION`): the control turns the C axis normal to the XY
     path and leaves the path itself as programmed. A machine without a C axis has nothing to turn: the
     codes are a note (CAM safety lines write ``G40.1`` among G40 G49 G80). With a C axis the turning
     would be motion vcnc does not make: refused."""
     key, w = entry
     if key != 401 and "c" in st.context.extra_axes:
-        where.fail(f"{_NORMAL_DIRECTION[key]} (turning the C axis normal to the path): not supported",
+        where.fail(f"{NORMAL_DIRECTION[key]} (turning the C axis normal to the path): not supported",
                    column=w.column, text=w.text, expected="G40.1, or C moves programmed in the blocks")
-    notes.add(_NORMAL_DIRECTION[key] if key == 401 else "G41.1/G42.1 normal direction control: this machine has "
+    notes.add(NORMAL_DIRECTION[key] if key == 401 else "G41.1/G42.1 normal direction control: this machine has "
               "no C axis to turn, the path is as programmed")
 
 
-def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list[int]]:
+def _grbl_lines(text: str, source: str | None, notes: Notes) -> tuple[str, list[int]]:
     """The text with grbl's system-command lines and the sender's lines blanked
     (:func:`interpolators.iso_grbl.system_lines`), each kind noted, and the lines of its ``$H`` homing cycles."""
     grbl = system_lines(text, source)
@@ -1377,7 +1257,7 @@ def _grbl_lines(text: str, source: str | None, notes: _Notes) -> tuple[str, list
     return grbl.text, list(grbl.homing)
 
 
-def _expression_notes(text: str, params: Parameters, dialect: str, notes: _Notes) -> None:
+def _expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) -> None:
     """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
     brackets that join comparisons (``iso_params`` reads them comparisons first)."""
     if dialect == "linuxcnc":
@@ -1387,7 +1267,7 @@ def _expression_notes(text: str, params: Parameters, dialect: str, notes: _Notes
                   "(Fanuc writes each in its own brackets)")
 
 
-def _linuxcnc_refusals(text: str, params: Parameters, notes: _Notes) -> None:
+def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: comments with a '(' inside, and
     parameter assignments with an operation outside [ ] (:func:`interpolators.iso_params.read_line`)."""
     if _NESTED_COMMENT.search(text):
@@ -1404,7 +1284,7 @@ _PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures
               117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
 
 
-def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
+def _user_m_file(w: Word, m: int, st: State, where: Where) -> None:
     """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
     Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
     (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
@@ -1433,7 +1313,7 @@ def _user_m_file(w: Word, m: int, st: _State, where: Where) -> None:
                         "or of --user-m-path (the code then runs as a function that moves nothing)")
 
 
-def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
+def _tool_change_under_compensation(mcodes, st: State, where: Where) -> None:
     """LinuxCNC refuses a tool change (M6) while G41/G42 is on (interp_convert.cc ``convert_tool_change``:
     "Cannot change tools with cutter radius compensation on")."""
     if st.comp_side is None or st.context.dialect.name != "linuxcnc":
@@ -1445,7 +1325,7 @@ def _tool_change_under_compensation(mcodes, st: _State, where: Where) -> None:
                        expected="G40 before the tool change")
 
 
-def _m_codes(mcodes, seen, st: _State, where: Where, notes: _Notes) -> bool:
+def _m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
     """M codes: tool change, LinuxCNC's M70-M73 and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
@@ -1468,14 +1348,14 @@ def _m_codes(mcodes, seen, st: _State, where: Where, notes: _Notes) -> bool:
             notes.add(_M_NOTES[m])
         elif 100 <= m <= 199:
             notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
-        elif st.context.dialect.name == "linuxcnc" and m not in _LINUXCNC_M:
+        elif st.context.dialect.name == "linuxcnc" and m not in LINUXCNC_M:
             notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
         else:
             notes.add(f"M{m} (no motion)")
     return ended
 
 
-def _modal_state(m: int, st: _State, where: Where, notes: _Notes) -> None:
+def _modal_state(m: int, st: State, where: Where, notes: Notes) -> None:
     """LinuxCNC M70 save, M71 invalidate, M72 restore, M73 save and restore at the return
     (:mod:`interpolators.iso_modal_state`)."""
     states = st.modal_states
@@ -1496,7 +1376,7 @@ def _modal_state(m: int, st: _State, where: Where, notes: _Notes) -> None:
                73: "M73 modal state saved, restored at the subroutine's return"}[m])
 
 
-def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
+def _planner_word(seen, gcodes, mcodes, where: Where, notes: Notes) -> dict:
     """``seen`` without the R of ``G64 P.. R..``: LinuxCNC 2.10's trajectory planner selection.
 
     LinuxCNC g-code.adoc "G64 R: planner selection": R0 (or negative) selects the trapezoidal
@@ -1515,7 +1395,7 @@ def _planner_word(seen, gcodes, mcodes, where: Where, notes: _Notes) -> dict:
     return {k: v for k, v in seen.items() if k != "R"}
 
 
-def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
+def _io_words(mcodes, seen, st: State, where: Where) -> dict:
     """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
     elsewhere is an error."""
     if st.context.dialect.name == "haas" and any(m in _HAAS_P_M or m in _HAAS_JUMP_M for m, _ in mcodes):
@@ -1557,7 +1437,7 @@ def _io_words(mcodes, seen, st: _State, where: Where) -> dict:
     return seen
 
 
-def _override_m_codes(mcodes, st: _State, where: Where) -> None:
+def _override_m_codes(mcodes, st: State, where: Where) -> None:
     """LinuxCNC M48-M53 (m-code.adoc "M48, M49 Speed and Feed Override Control", "M50 Feed Override Control",
     "M51 Spindle Speed Override Control", "M52 Adaptive Feed Control", "M53 Feed Stop Control"): ``M50 P1``
     (or no P) enables, ``P0`` disables (interp_convert.cc convert_m: ``block->p_number != 0`` enables); no
@@ -1570,7 +1450,7 @@ def _override_m_codes(mcodes, st: _State, where: Where) -> None:
                column=w.column, text=w.text, expected=f"G40 before M{m}")
 
 
-def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
+def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
     """Compensation, length offsets, work offsets, path mode and return level."""
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
@@ -1593,8 +1473,8 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
             where.fail(f"{w.text.upper()}: cannot change coordinate systems with cutter radius compensation on "
                        "(LinuxCNC)", column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
-        if key in _G:
-            st.wcs = _G[key][1]
+        if key in G_CODES:
+            st.wcs = G_CODES[key][1]
         else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)
             try:
                 p = seen["P"].value if "P" in seen else None
@@ -1622,14 +1502,14 @@ def _modal_settings(seen, gcodes, st: _State, blocks: list[Block], where: Where,
         st.retract_r = gcodes["return mode"][0] == 990
 
 
-def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -> None:
+def _linuxcnc_leniencies(seen, gcodes, st: State, moves: bool, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect runs although LinuxCNC refuses it (``moves``: the block has axis
     words)."""
     if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None:
         # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
         # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
         # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
-        notes.add(f"axis words after G80 run as {_G[st.motion][1]}, the motion before the cycle "
+        notes.add(f"axis words after G80 run as {G_CODES[st.motion][1]}, the motion before the cycle "
                   "(LinuxCNC refuses them: G80 leaves no motion mode)")
     if "nonmodal" in gcodes and gcodes["nonmodal"][0] in (100, 280, 300, 520, 920) and "motion" in gcodes \
             and gcodes["motion"][0] != 800:  # interp_internal.cc check_g_codes: mode_zero_covets_axes
@@ -1642,10 +1522,10 @@ def _linuxcnc_leniencies(seen, gcodes, st: _State, moves: bool, notes: _Notes) -
     if normal in seen and seen[normal].value == 0.0 and (gcodes["motion"][0] if "motion" in gcodes
                                                          else st.motion) in (20, 30):
         # LinuxCNC refuses it (interp_convert.cc convert_arc: "K word given for arc in xy plane", and I, J alike)
-        notes.add(f"{normal}0 on {_PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
+        notes.add(f"{normal}0 on {PLANE_CODES[st.plane]} arcs ignored (LinuxCNC refuses a {normal} word there)")
 
 
-def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
+def _motion_mode(gcodes, words: list[Word], st: State) -> None:
     """The modal motion; a drilling cycle remembers the motion before its series (G80 restores it)."""
     if "motion" in gcodes:
         key = gcodes["motion"][0]
@@ -1667,7 +1547,7 @@ def _motion_mode(gcodes, words: list[Word], st: _State) -> None:
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
 
 
-def _check_p_q(seen, gcodes, st: _State, where: Where, mcodes: list) -> None:
+def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     """P, Q and L only where a code reads them. ``M3 P100`` is named: the Snapmaker 2.0 firmware (Marlin-based)
     reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
     https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
@@ -1703,7 +1583,7 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
                        f"{letter} only in drilling cycles or G10")
 
 
-def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
+def _unused_words(seen, gcodes, st: State, notes: Notes) -> None:
     """H and D words without the compensation that reads them: noted (Fanuc posts write them apart)."""
     if "position offset" in gcodes:  # G45-G48 read them
         return
@@ -1713,7 +1593,7 @@ def _unused_words(seen, gcodes, st: _State, notes: _Notes) -> None:
         notes.add("D word without G41/G42 (ignored)")
 
 
-def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
+def _target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
     if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
@@ -1748,7 +1628,7 @@ def _target(seen, axis_words, st: _State, *, machine: bool) -> np.ndarray:
     return target
 
 
-def _fanuc_polar(seen: dict, gcodes, st: _State, where: Where, notes: _Notes) -> dict:
+def _fanuc_polar(seen: dict, gcodes, st: State, where: Where, notes: Notes) -> dict:
     """Fanuc G16 / G15 (``fanuc`` dialect): under G16 the X and Y words of a motion block are the radius
     and the angle [deg, counter-clockwise from +X] about the work (or G52 local) zero, read as
     LinuxCNC's ``@ ^`` under G90 (Fanuc Series 16/18-MC operator's manual, 9.2 "Polar coordinate
@@ -1777,7 +1657,7 @@ def _fanuc_polar(seen: dict, gcodes, st: _State, where: Where, notes: _Notes) ->
             for k, v in seen.items()}
 
 
-def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:
+def _check_polar(seen, gcodes, st: State, where: Where, w: Word) -> None:
     """Polar words only on motion in the XY plane, without X or Y (LinuxCNC interp_internal.cc)."""
     if "nonmodal" in gcodes:
         where.fail("polar coordinates @ ^ can only be used for motion", column=w.column, text=w.text,
@@ -1791,7 +1671,7 @@ def _check_polar(seen, gcodes, st: _State, where: Where, w: Word) -> None:
                        text=seen[letter].text, expected="either X/Y or @/^")
 
 
-def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, used, where: Where, number, *,
+def _motion(seen, gcodes, axis_words, arc_words, target, st: State, blocks, used, where: Where, number, *,
             machine: bool = False) -> None:
     motion = st.motion
     mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
@@ -1867,7 +1747,7 @@ def _motion(seen, gcodes, axis_words, arc_words, target, st: _State, blocks, use
         st.extra = rot
 
 
-def _corner(st: _State, blocks: list[Block], blk: Block, motion: int, where: Where) -> Block:
+def _corner(st: State, blocks: list[Block], blk: Block, motion: int, where: Where) -> Block:
     """Fanuc/Haas ``,R`` / ``,C`` (:mod:`interpolators.iso_corners`): the corner a previous block asked
     for goes in before ``blk`` (trimmed and returned); a word on this block waits for the next move."""
     if st.corner is not None:
@@ -1889,7 +1769,7 @@ def _corner(st: _State, blocks: list[Block], blk: Block, motion: int, where: Whe
     return blk
 
 
-def _corner_after_block(st: _State, words: list[Word], count: int, blocks: list[Block], where: Where) -> None:
+def _corner_after_block(st: State, words: list[Word], count: int, blocks: list[Block], where: Where) -> None:
     """After each block: a ``,R`` / ``,C`` its block did not take (not a move of G01-G03) or a pending
     corner the block did not take (no move, or other blocks made) is an error."""
     if st.corner_word is not None:
@@ -1910,7 +1790,7 @@ def _corner_after_block(st: _State, words: list[Word], count: int, blocks: list[
         corner_not_followed(st.corner, where, "this block has no move")
 
 
-def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+def _synchronised(seen, target, st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
     """G33 spindle-synchronised motion and G33.1 rigid tapping as feed moves.
 
     LinuxCNC g-code.adoc "G33 Spindle Synchronized Motion" and "G33.1 Rigid Tapping",
@@ -1921,7 +1801,7 @@ def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, 
     word, the spindle not turning (M3/M4); also S0 (no speed to follow). The overrun while the spindle
     reverses at the bottom is not modelled: the moves end at the programmed point and the start.
     """
-    name = _G[st.motion][1]
+    name = G_CODES[st.motion][1]
     if "K" not in seen:
         where.fail(f"{name} without a K word", column=mcol, text=mtok,
                    expected="K<distance per spindle revolution> > 0 [mm/rev]")
@@ -1956,12 +1836,12 @@ def _synchronised(seen, target, st: _State, blocks, used, where: Where, number, 
         st.pos = target.copy()
 
 
-def _off_plane(st: _State) -> bool:
+def _off_plane(st: State) -> bool:
     """True when a G68 rotation turns the arc plane out of the axis planes (a rotation in another plane)."""
     return st.frame is not None and st.frame.rotation is not None and st.frame.rotation.plane != st.plane
 
 
-def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
+def _extra_words(seen, motion: int, st: State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
     """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
     None without such words; splines and cutter compensation do not take them."""
     letters = [w for w in EXTRA_LETTERS if w in seen]
@@ -1980,7 +1860,7 @@ def _extra_words(seen, motion: int, st: _State, where: Where, used: set[int], *,
                         scale=st.scale, machine=machine)
 
 
-def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Where, common: dict, code: str,
+def _rotated_arc_chords(seen, arc_words, target, st: State, blocks, where: Where, common: dict, code: str,
                         mcol: int, mtok: str) -> None:
     """A G18/G19 arc in a coordinate system rotated about Z (G10 R): built in program coordinates,
     where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
@@ -2001,7 +1881,7 @@ def _rotated_arc_chords(seen, arc_words, target, st: _State, blocks, where: Wher
     st.pos = np.array(target, dtype=float)
 
 
-def _initial_feed(st: _State, where: Where) -> bool:
+def _initial_feed(st: State, where: Where) -> bool:
     """Take the machine's initial feed (:attr:`interpolators.context.Dialect.initial_feed`, Fanuc parameter
     No. 1411) for a feed move before any F word, and say whether there was one to take: not after an F0, under
     G95 feed per revolution, or after a G94 that ended G93 (each needs its own F, whatever the setting)."""
@@ -2014,7 +1894,7 @@ def _initial_feed(st: _State, where: Where) -> bool:
     return True
 
 
-def _m98_words(words: list[Word], where: Where, *, st: _State, notes: _Notes) -> None:
+def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> None:
     """Words of an M98 line LinuxCNC reads and does not execute (:func:`interpolators.iso_flow.run`)."""
     notes.add(f"{' '.join(w.text for w in words)} on an M98 line not executed (LinuxCNC runs an M98 block as a "
               "call only, as o<n> call; Fanuc and Haas would)")
@@ -2031,7 +1911,7 @@ _ZERO_FEED = {"linuxcnc": "LinuxCNC: cannot do G1 with zero feed rate",
 _ZERO_FEED_ANY = "refused by LinuxCNC, grbl (error 22) and Fanuc (alarm PS0011) alike"
 
 
-def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
     rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
     zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
@@ -2054,7 +1934,7 @@ def _no_feed(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
                expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
 
 
-def _per_rev_spindle(st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+def _per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """A feed move under G95 with the spindle stopped: it would wait for revolutions that never come
     (LinuxCNC synchronises it to the spindle's speed feedback), so it is refused."""
     if not st.spindle_turning:
@@ -2062,7 +1942,7 @@ def _per_rev_spindle(st: _State, where: Where, code: str, mcol: int, mtok: str) 
                    expected="M3 or M4 (and S > 0) before a feed move under G95")
 
 
-def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
+def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
     """G5 / G5.1 (LinuxCNC G-code reference): a Bezier curve in XY as chord blocks
     (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental."""
     code = "G5" if st.motion == 50 else "G5.1"
@@ -2107,7 +1987,7 @@ def _spline(seen, target, st: _State, blocks, where: Where, common: dict, mcol: 
     st.pos = np.array(target, dtype=float)
 
 
-def _nurbs(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes) -> None:
+def _nurbs(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes) -> None:
     """LinuxCNC G5.2 / G5.3 (:mod:`interpolators.iso_nurbs`; interp_convert.cc convert_nurbs, its errors): a G5.2
     block starts the control points at the current position (weight P when the block has no axis words, else 1),
     each block with the plane's two axis words adds one, weight P (> 0; the G5.2 block's own point without P: 1,
@@ -2119,7 +1999,7 @@ def _nurbs(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: 
     p, q = PLANE_AXES[st.plane]
     letters = ["XYZ"[p], "XYZ"[q]]
     stray = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "XYZ"[st.plane], *"IJKQR") if a in seen), None)
-    why = (f"with word {stray}: not supported (control points take the {_PLANE_CODES[st.plane]} plane's "
+    why = (f"with word {stray}: not supported (control points take the {PLANE_CODES[st.plane]} plane's "
            f"{letters[0]} {letters[1]}, P and L)" if stray is not None else
            f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
            "under G93 inverse time: not supported" if st.inverse_time else
@@ -2154,7 +2034,7 @@ def _nurbs(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: 
         st.nurbs.append((_target(seen, letters, st, machine=False), float(weight)))
 
 
-def _nurbs_curve(st: _State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
     """G5.3: the NURBS of the G5.2 control points, as feed chords on this line."""
     points, weights = np.array([c for c, _ in st.nurbs]), np.array([c for _, c in st.nurbs])
     if len(points) < st.nurbs_order:
@@ -2175,7 +2055,7 @@ def _nurbs_curve(st: _State, blocks, used, where: Where, number, mcol: int, mtok
     st.nurbs, st.motion = None, None
 
 
-def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
+def _feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
     time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
     0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
@@ -2192,7 +2072,7 @@ def _feed(st: _State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
 
 
-def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
+def _arc_turns(arc: Arc, p: Word, st: State, where: Where, code: str) -> Arc:
     """LinuxCNC ``G2``/``G3`` ``P``: the number of turns (g-code.adoc "G2, G3 Arc Move": "For each P
     increment above 1 an extra full circle is added to the programmed arc"; interp_check.cc: "P value
     not an integer with M19 G2 or G3", "P value should be 1 or greater with G2 or G3"). Refused under
@@ -2209,7 +2089,7 @@ def _arc_turns(arc: Arc, p: Word, st: _State, where: Where, code: str) -> Arc:
     return Arc(arc.start, arc.end, arc.center, ccw=arc.ccw, plane=arc.plane, turns=turns - 1)
 
 
-def _grbl_arc_end(seen, st: _State, where: Where, code: str, mcol: int, mtok: str) -> None:
+def _grbl_arc_end(seen, st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     """grbl refuses an arc without an end-point word in its plane, the full circle of ``G2 I5`` that LinuxCNC
     and Fanuc run (gnea/grbl ``grbl/gcode.c``, the arc checks: "[No axis words]" STATUS_GCODE_NO_AXIS_WORDS,
     error 26; "[No axis words in plane]" STATUS_GCODE_NO_AXIS_WORDS_IN_PLANE, error 32)."""
@@ -2221,7 +2101,7 @@ def _grbl_arc_end(seen, st: _State, where: Where, code: str, mcol: int, mtok: st
                    expected=f"{axes[0]} and/or {axes[1]} with {code} in {plane_g}")
 
 
-def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int, mtok: str):
+def _arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: int, mtok: str):
     if st.context.dialect.arc_rule == "grbl":
         _grbl_arc_end(seen, st, where, code, mcol, mtok)
     p, q = PLANE_AXES[st.plane]
@@ -2279,7 +2159,7 @@ def _arc(seen, arc_words, target, st: _State, where: Where, code: str, mcol: int
     raise AssertionError("unreachable")
 
 
-def _centre(st: _State, seen, in_plane: list[str], *, incremental: bool) -> np.ndarray:
+def _centre(st: State, seen, in_plane: list[str], *, incremental: bool) -> np.ndarray:
     """An arc's centre [mm, machine] from its I/J/K: offsets from the start (G91.1) or program coordinates
     (G90.1)."""
     center = st.pos.copy()
@@ -2290,7 +2170,7 @@ def _centre(st: _State, seen, in_plane: list[str], *, incremental: bool) -> np.n
     return center
 
 
-def _other_centre_mode(st: _State, seen, in_plane: list[str], target: np.ndarray) -> str:
+def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray) -> str:
     """A hint for an arc whose end is off its circle: whether its I/J/K read in the other arc-centre mode put
     both ends on one circle, as in programs for a control that reads arc centres as absolute coordinates
     (LinuxCNC g-code.adoc "G90.1, G91.1": "G90.1 - absolute distance mode for I, J & K offsets"; G91.1, the
@@ -2313,7 +2193,7 @@ def _other_centre_mode(st: _State, seen, in_plane: list[str], target: np.ndarray
     return "; I/J/K as offsets from the start (G91.1) would fit"
 
 
-def _dwell(gcodes, seen, st: _State, blocks, where: Where, number, notes: _Notes) -> bool:
+def _dwell(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
         w = gcodes["motion"][1]
@@ -2341,7 +2221,7 @@ def _dwell(gcodes, seen, st: _State, blocks, where: Where, number, notes: _Notes
     return False
 
 
-def _cutter_compensation(entry, seen, st: _State, blocks: list[Block], where: Where, notes: _Notes) -> None:
+def _cutter_compensation(entry, seen, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
     """G40/G41/G42 (LinuxCNC "G41, G42 Cutter Compensation"): the run of blocks from the entry move to
     the exit move after G40 is offset by :func:`interpolators.compensation.compensate`."""
     key, w = entry
@@ -2391,7 +2271,7 @@ def _whole_offset_number(code: str, d: Word, where: Where) -> None:
                    text=d.text, expected=f"{code} D<n>, n a tool or offset number (the tool table gives the radius)")
 
 
-def _rereads_position(words: list[Word], st: _State) -> bool:
+def _rereads_position(words: list[Word], st: State) -> bool:
     """Whether LinuxCNC takes the current position from the motion queue after this block: M6 and M61 set
     ``toolchange_flag`` (interp_convert.cc ``convert_tool_change``, ``convert_m``), and the next read
     (rs274ngc_pre.cc ``read_inputs``) calls ``refresh_actual_position``. After a G40 with no exit move yet,
@@ -2401,7 +2281,7 @@ def _rereads_position(words: list[Word], st: _State) -> bool:
     return st.context.dialect.name == "linuxcnc" and any(w.letter == "M" and w.value in (6.0, 61.0) for w in words)
 
 
-def _g39(w: Word, seen, st: _State, count: int, where: Where, notes: _Notes) -> None:
+def _g39(w: Word, seen, st: State, count: int, where: Where, notes: Notes) -> None:
     """Fanuc/Haas G39 corner circular interpolation (Fanuc Series 16/18-MC operator's manual, "Corner offset
     circular interpolation (G39)"; Fanuc 0i-MF, cutter compensation C): in offset mode, an arc of the tool
     radius about the corner from the vector perpendicular to the block before to the new vector, which
@@ -2422,7 +2302,7 @@ def _g39(w: Word, seen, st: _State, count: int, where: Where, notes: _Notes) -> 
     notes.add("G39 corner circular interpolation")
 
 
-def _finish_compensation(st: _State, blocks: list[Block], source: str | None) -> None:
+def _finish_compensation(st: State, blocks: list[Block], source: str | None) -> None:
     """Replace the finished compensated run by the tool-centre path. Under ``--dialect fanuc`` and ``haas`` the
     start-up is Fanuc's type A (the default, parameter 5003#0 SUP = 0; Fanuc 0i-MF operator's manual, cutter
     compensation C, "Tool movement in start-up"): the start-up block ends at the offset vector perpendicular
@@ -2453,7 +2333,7 @@ def _finish_compensation(st: _State, blocks: list[Block], source: str | None) ->
     st.pos = np.array(new[-1].target, dtype=float)
 
 
-def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -> None:
+def _length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> None:
     key, w = entry
     if st.comp_side is not None and st.context.dialect.name == "linuxcnc":
         # LinuxCNC interp_convert.cc convert_tool_length_offset, for G43, G43.1, G43.2 and G49 alike: "Cannot
@@ -2500,7 +2380,7 @@ def _length_compensation(entry, seen, st: _State, where: Where, notes: _Notes) -
     notes.add("G43/G44 tool length from the table")
 
 
-def _additional_length(seen, st: _State, where: Where, w: Word, notes: _Notes) -> None:
+def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
     """LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset"; interp_convert.cc
     convert_tool_length_offset): ``G43.2 H<n>`` adds tool n's offsets (length, X, Y) to the ones in effect,
     ``G43.2 X.. Y.. Z..`` adds the words; no motion, the next move of an axis goes to the compensated point.
@@ -2531,7 +2411,7 @@ def _additional_length(seen, st: _State, where: Where, w: Word, notes: _Notes) -
     notes.add("G43.2 additional tool length offset (added to the offsets in effect)")
 
 
-def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, notes: _Notes) -> bool:  # noqa: C901
+def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes: Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
     axis_words = [a for a in ("X", "Y", "Z") if a in seen]
@@ -2539,7 +2419,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
         motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
         if motion not in (0, 10):
             mode = ("no motion mode is set yet" if motion is None
-                    else f"the motion mode is {_G.get(motion, (None, f'G{motion / 10:g}'))[1]}")
+                    else f"the motion mode is {G_CODES.get(motion, (None, f'G{motion / 10:g}'))[1]}")
             where.fail(f"G53 needs G0 or G1 ({mode})", column=w.column, text=w.text,
                        expected="G53 G0/G1 with axis words")
         if "motion" in gcodes:
@@ -2616,7 +2496,7 @@ def _nonmodal(gcodes, seen, st: _State, blocks, used, where: Where, number, note
     return False
 
 
-def _reference_p(key: int, seen, st: _State, where: Where, notes: _Notes) -> None:
+def _reference_p(key: int, seen, st: State, where: Where, notes: Notes) -> None:
     """A P word on G28, G30, G52, G53 or G92: Fanuc/Haas ``G30 P2``-``P4`` (Fanuc 0i-MD B-64304EN "2nd, 3rd, and
     4th reference position return": P2 the second, the default; the third and fourth are machine parameters
     No. 1242/1243 the machine context does not hold: the second is used, noted); elsewhere the P is ignored,
@@ -2635,7 +2515,7 @@ def _reference_p(key: int, seen, st: _State, where: Where, notes: _Notes) -> Non
     notes.add(f"P word on {code} ignored{refused}")
 
 
-def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
+def _local_offset(seen, axis_words, st: State, where: Where, w: Word) -> None:
     """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
     convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
     G92.1 and suspended by G92.2. Fanuc and Haas keep the local system apart from the G92 shift (Fanuc
@@ -2655,7 +2535,7 @@ def _local_offset(seen, axis_words, st: _State, where: Where, w: Word) -> None:
     st.g92_applied = True
 
 
-def _g10(seen, st: _State, where: Where, w: Word) -> str:
+def _g10(seen, st: State, where: Where, w: Word) -> str:
     """G10: set a work or tool offset; returns the note of the run. A Fanuc/Haas tool offset P0 is left
     alone with a note: "the offset amount corresponding to H00 always means 0, and it is not possible to set
     the offset amount corresponding to H00" (Fanuc 0i-MD B-64304EN "Tool length compensation (G43, G44,
@@ -2716,7 +2596,7 @@ def _g10(seen, st: _State, where: Where, w: Word) -> str:
     return "G10 offsets set"
 
 
-def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
+def _g10_tool(level: int, seen, st: State, where: Where, w: Word) -> None:
     """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
     "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the offsets X Y Z and the radius R
     directly; L10 sets them so that the current position, in the current coordinate system without
@@ -2755,7 +2635,7 @@ def _g10_tool(level: int, seen, st: _State, where: Where, w: Word) -> None:
                                            offset_x=float(xy[0]), offset_y=float(xy[1]))
 
 
-def _here_without_tool(st: _State, *, fixture: bool) -> tuple[np.ndarray, float]:
+def _here_without_tool(st: State, *, fixture: bool) -> tuple[np.ndarray, float]:
     """The current position [mm] in the current system (``fixture``: in G59.3, without the G92 offset)
     as if no tool offset were applied (the machine position less the work and G92 offsets only), and
     that system's rotation [deg] (LinuxCNC interp_find.cc find_current_in_system_without_tlo)."""
@@ -2770,7 +2650,7 @@ def _here_without_tool(st: _State, *, fixture: bool) -> tuple[np.ndarray, float]
     return np.array([c * m[0] + s * m[1], -s * m[0] + c * m[1], m[2]]) - g92, rotation
 
 
-def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.ndarray:
+def _l20_offset(seen, st: State, offset: np.ndarray, rotation: float) -> np.ndarray:
     """G10 L20: the offset of a system (rotated by ``rotation`` [deg]) that makes the current position
     read the programmed values there (LinuxCNC interp_convert.cc convert_setup: the old and the desired
     position are rotated into the unrotated frame; an axis not named keeps its current coordinate).
@@ -2790,7 +2670,7 @@ def _l20_offset(seen, st: _State, offset: np.ndarray, rotation: float) -> np.nda
     return new
 
 
-def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number) -> None:
+def _reference_return(key: int, seen, axis_words, st: State, blocks, used, where: Where, number) -> None:
     """G28/G30: through the programmed intermediate point to the reference, only the axes named
     (A-W words too); without axis words every axis, A-W to their reference positions."""
     ref = st.home if key == 280 else st.reference2
@@ -2822,8 +2702,8 @@ def _reference_return(key: int, seen, axis_words, st: _State, blocks, used, wher
         _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
 
 
-def _mill_positioning(key: int, seen, axis_words, st: _State, blocks, used, where: Where, number,
-                      notes: _Notes) -> None:
+def _mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where: Where, number,
+                      notes: Notes) -> None:
     """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
     name = {**MILL_CODES, **FANUC_CODES}[key][1]
     code = name.split()[0]
@@ -2854,7 +2734,7 @@ def _mill_positioning(key: int, seen, axis_words, st: _State, blocks, used, wher
         notes.add(name)
 
 
-def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:
+def _grbl_homing(st: State, blocks, used, where: Where, notes: Notes) -> None:
     """grbl ``$H`` (:mod:`interpolators.iso_grbl`): Z to the machine's home, then X and Y, as rapids
     [mm, machine]; offsets and modes stay."""
     home = np.array(st.context.home, dtype=float)
@@ -2866,7 +2746,7 @@ def _grbl_homing(st: _State, blocks, used, where: Where, notes: _Notes) -> None:
     notes.add("grbl $H homing run as rapids to home (Z, then X Y)")
 
 
-def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
+def _rapid(target, st: State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
     """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the extra axes to ``rot`` [deg, mm]."""
     for a in axis_words:
         used.add("XYZ".index(a))
@@ -2879,7 +2759,7 @@ def _rapid(target, st: _State, blocks, used, where: Where, number, axis_words, *
         st.extra = np.array(rot, dtype=float)
 
 
-def _framed_initial(st: _State, *, to_program: bool) -> None:
+def _framed_initial(st: State, *, to_program: bool) -> None:
     """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
     between blocks, so that it stays where the tool was when the series began while the transformation
     changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
@@ -2897,12 +2777,12 @@ def _framed_initial(st: _State, *, to_program: bool) -> None:
         st.cycle.initial = float(st.to_machine(point)[axis])
 
 
-def _canned_cycle(seen, gcodes, st: _State, blocks, used, where: Where, number, notes: _Notes | None = None) -> None:
+def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     if st.motion == 810 and st.context.dialect.name == "fanuc" and notes is not None and (
             st.cycle.fagor or st.cycle.r is None and "I" in seen and "R" not in seen):
         seen = _fagor_drilling(seen, st, where, notes)
-    name = _G[st.motion][1]
+    name = G_CODES[st.motion][1]
     if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
         notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "
                   "(Fanuc/Haas reading; LinuxCNC refuses it)")

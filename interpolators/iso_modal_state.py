@@ -23,7 +23,7 @@ import copy
 
 __all__ = ["SAVED_FIELDS", "ModalStates"]
 
-#: The reader state's fields M70 saves (interpolators.iso ``_State``).
+#: The reader state's fields M70 saves (interpolators.iso ``State``).
 SAVED_FIELDS = ("inch", "plane", "incremental", "arc_incremental", "inverse_time", "per_rev", "feed_reset", "wcs",
                 "tool_length", "tool_xy", "length_code", "length_number", "retract_r", "exact_stop", "tolerance",
                 "feed", "feed_rotary", "feed_zero", "feed_per_rev", "feed_per_rev_word", "spindle_speed",

@@ -35,7 +35,7 @@ no documented meaning).
 
 When they are combined, Fanuc applies the mirror first, then the scaling, then the rotation: a
 program point ``p`` lies at ``rotate(scale(mirror(p)))`` in the untransformed program coordinates;
-the reader adds its offsets after that (:meth:`interpolators.iso._State.to_machine`).
+the reader adds its offsets after that (:meth:`interpolators.iso.State.to_machine`).
 """
 
 from __future__ import annotations
