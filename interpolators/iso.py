@@ -114,7 +114,7 @@ from interpolators.arcs import (
 )
 from interpolators.compensation import CompensationError, compensate
 from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, Dialect, MachineContext, Tool
-from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
+from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
 from interpolators.iso_codes import (
     DIALECT_G,
@@ -129,7 +129,7 @@ from interpolators.iso_codes import (
     PLANE_OF,
     UNITS_HINT,
 )
-from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word, finish_corner, start_corner
+from interpolators.iso_corners import PendingCorner, corner_not_followed, corner_word
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
@@ -139,7 +139,17 @@ from interpolators.iso_grbl import system_lines, unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
-from interpolators.iso_nurbs import nurbs_chords
+from interpolators.iso_motion import (
+    block_target,
+    check_polar,
+    dwell_block,
+    fanuc_polar,
+    initial_feed,
+    motion_block,
+    nurbs_block,
+    per_rev_spindle,
+    rapid_move,
+)
 from interpolators.iso_offsets import (
     P_SELECT_CODES,
     TOOL_LEVELS,
@@ -149,7 +159,7 @@ from interpolators.iso_offsets import (
     set_work_offset,
 )
 from interpolators.iso_params import Parameters
-from interpolators.iso_polar import POLAR_LETTERS, PolarError, polar_xy
+from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_reference import (
     FANUC_CODES,
@@ -159,13 +169,12 @@ from interpolators.iso_reference import (
 )
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
-from interpolators.iso_splines import bezier_chords
 from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
 from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
 from interpolators.iso_words import Word, WordError
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program, end_at_rest
-from toolpaths.geometry import PLANE_AXES, Arc, Line
+from toolpaths.geometry import PLANE_AXES, Line
 from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_iso"]
@@ -703,7 +712,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
     if "polar" in gcodes or st.fanuc_polar:
-        seen = _fanuc_polar(seen, gcodes, st, where, notes)
+        seen = fanuc_polar(seen, gcodes, st, where, notes)
     _tool_change_under_compensation(mcodes, st, where)
     ended = _m_codes(mcodes, seen, st, where, notes)
     seen = _planner_word(seen, gcodes, mcodes, where, notes)
@@ -717,13 +726,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
         seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
-        _dwell(gcodes, seen, st, blocks, where, number, notes)
+        dwell_block(gcodes, seen, st, blocks, where, number, notes)
         if "motion" not in gcodes:
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
     polar = [w for w in POLAR_LETTERS if w in seen]
     if polar:
-        _check_polar(seen, gcodes, st, where, seen[polar[0]])
+        check_polar(seen, gcodes, st, where, seen[polar[0]])
     if gcodes.get("rotation", (0,))[0] == 680:
         _g68(seen, st, where, gcodes["rotation"][1], notes)
         return ended
@@ -786,13 +795,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
     try:
-        target = _target(seen, axis_words, st, machine=False)
+        target = block_target(seen, axis_words, st, machine=False)
     except PolarError as exc:
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     if "position offset" in gcodes:
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
-    _motion(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
+    motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
 
 
@@ -801,7 +810,7 @@ def _cycle_block(seen, gcodes, st: State, blocks, used, where: Where, number, no
     """A block in a canned cycle's modal state: a hole where it has X/Y/Z (or polar) words; rotary words refused.
     Under G5.2/G5.3 a NURBS control point or the curve."""
     if st.motion in (52, 53):
-        _nurbs(seen, gcodes, st, blocks, used, where, number, notes)
+        nurbs_block(seen, gcodes, st, blocks, used, where, number, notes)
         return
     if rot_words:
         w = seen[rot_words[0]]
@@ -952,7 +961,7 @@ def _pocket(entry, seen, st: State, blocks, used, where: Where, number) -> None:
     """Haas G12/G13 (:mod:`interpolators.iso_haas`): the pocket's feed moves from its centre."""
     key, w = entry
     name = DIALECT_G["haas"][key][1]
-    no_feed = st.feed is None and not _initial_feed(st, where)
+    no_feed = st.feed is None and not initial_feed(st, where)
     bad = ("no feed rate" if no_feed else "in inverse time (G93)" if st.inverse_time else
            "with cutter compensation on (it implies its own)" if st.comp_side is not None else
            "only in the XY plane (G17)" if st.plane != 2 else
@@ -967,7 +976,7 @@ def _pocket(entry, seen, st: State, blocks, used, where: Where, number) -> None:
         for a in xy:
             i = "XY".index(a)
             here[i] = here[i] + seen[a].value * st.scale if st.incremental else seen[a].value * st.scale
-        _rapid(st.to_machine(here), st, blocks, used, where, number, xy)
+        rapid_move(st.to_machine(here), st, blocks, used, where, number, xy)
     try:
         moves = circular_pocket(key == 130, {k: v.value for k, v in seen.items()}, centre=tuple(here),
                                 scale=st.scale, incremental=st.incremental,
@@ -1590,182 +1599,6 @@ def _unused_words(seen, gcodes, st: State, notes: Notes) -> None:
         notes.add("D word without G41/G42 (ignored)")
 
 
-def _target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
-    """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
-    or its polar words ``@ ^`` with Z."""
-    if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
-        prog = st.to_program(st.pos)
-        for letter in axis_words:
-            i = "XYZ".index(letter)
-            prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
-        target = st.pos.copy()  # axes without words stay exactly where they are
-        if "X" in axis_words or "Y" in axis_words:
-            target[:2] = st.to_machine(prog)[:2]
-        if "Z" in axis_words:
-            target[2] = st.to_machine(prog)[2]
-        return target
-    target = st.pos.copy()
-    off = st.offset()
-    for letter in axis_words:
-        if letter in POLAR_LETTERS:
-            continue
-        i = "XYZ".index(letter)
-        v = seen[letter].value * st.scale
-        if machine:
-            target[i] = v
-        elif st.incremental:
-            target[i] = st.pos[i] + v
-        else:
-            target[i] = v + off[i]
-    if "@" in seen or "^" in seen:
-        x, y = polar_xy(st.pos[0] - off[0], st.pos[1] - off[1], incremental=st.incremental,
-                        distance=seen["@"].value * st.scale if "@" in seen else None,
-                        angle_deg=seen["^"].value if "^" in seen else None)
-        target[0], target[1] = x + off[0], y + off[1]
-    return target
-
-
-def _fanuc_polar(seen: dict, gcodes, st: State, where: Where, notes: Notes) -> dict:
-    """Fanuc G16 / G15 (``fanuc`` dialect): under G16 the X and Y words of a motion block are the radius
-    and the angle [deg, counter-clockwise from +X] about the work (or G52 local) zero, read as
-    LinuxCNC's ``@ ^`` under G90 (Fanuc Series 16/18-MC operator's manual, 9.2 "Polar coordinate
-    command (G15, G16)": "G90 specifies the zero point of the work coordinate system as the origin of
-    the polar coordinate system"; a radius left out is the current distance, an angle left out the
-    current angle). G91 ("the current position as the origin") and the G18/G19 planes are refused,
-    naming them; G10, G52, G92, G53, G68 and G51 blocks take X Y as coordinates."""
-    code = gcodes.get("polar", (None,))[0]
-    if code is not None:
-        st.fanuc_polar = code == 160
-        if st.fanuc_polar:
-            notes.add("G16 polar coordinates (X radius, Y angle)")
-    if not st.fanuc_polar or not ("X" in seen or "Y" in seen):
-        return seen
-    if any(g in gcodes for g in ("nonmodal", "rotation", "scaling", "mirror")):
-        return seen
-    w = seen["X"] if "X" in seen else seen["Y"]
-    if st.plane != 2:
-        where.fail("G16 polar coordinates outside the XY plane (G18/G19): not supported", column=w.column,
-                   text=w.text, expected="G17 with G16")
-    if st.incremental:
-        where.fail("G16 polar coordinates under G91 (the current position as the pole): not supported",
-                   column=w.column, text=w.text, expected="G90 with G16")
-    renamed = {"X": "@", "Y": "^"}
-    return {renamed.get(k, k): dataclasses.replace(v, letter=renamed[k]) if k in renamed else v
-            for k, v in seen.items()}
-
-
-def _check_polar(seen, gcodes, st: State, where: Where, w: Word) -> None:
-    """Polar words only on motion in the XY plane, without X or Y (LinuxCNC interp_internal.cc)."""
-    if "nonmodal" in gcodes:
-        where.fail("polar coordinates @ ^ can only be used for motion", column=w.column, text=w.text,
-                   expected="@ and ^ on G0, G1, G2, G3 or a canned cycle")
-    if st.plane != 2:
-        where.fail("polar coordinates @ ^ are only in the XY plane (G17)", column=w.column, text=w.text,
-                   expected="G17 before polar words")
-    for letter in ("X", "Y"):
-        if letter in seen:
-            where.fail(f"polar coordinates @ ^ and {letter} in one block", column=seen[letter].column,
-                       text=seen[letter].text, expected="either X/Y or @/^")
-
-
-def _motion(seen, gcodes, axis_words, arc_words, target, st: State, blocks, used, where: Where, number, *,
-            machine: bool = False) -> None:
-    motion = st.motion
-    mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
-    mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
-    code = f"G{motion // 10:02d}"
-    if motion in (330, 331):
-        _synchronised(seen, target, st, blocks, used, where, number, mcol, mtok)
-        return
-    rot = _extra_words(seen, motion, st, where, used, machine=machine)
-    if motion == 10 and "R" in seen and not arc_words and st.context.dialect.name in ("fanuc", "haas"):
-        w = seen["R"]  # Fanuc T series "Chamfering and corner R" (lathe): G01 X.. R..; a mill writes ",R"
-        where.fail("word R on G01: the lathe form of corner rounding ('G01 X.. R..'); a mill takes ',R'",
-                   column=w.column, text=w.text, expected=f",{w.text.strip()} (Fanuc/Haas corner rounding)")
-    if motion in (0, 10) and (arc_words or "R" in seen):
-        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
-        # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
-        # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
-        # I, J and K together on a move: the tool-axis vector a 5-axis post writes with each point (Siemens
-        # ORIVECT "A3= B3= C3=", Heidenhain "LN ... TX TY TZ"), which no ISO mill's G00/G01 reads
-        w = seen[(arc_words or ["R"])[0]]
-        guess = ("a 5-axis post's tool-axis vector I J K?" if {"I", "J", "K"} <= set(seen) and "R" not in seen
-                 else "a G02/G03 meant?")
-        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
-                   f"the Haas manual lists no I J K R for it; {guess})",
-                   column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
-    if motion != 0 and st.inverse_time and st.block_f is None:
-        where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
-                   expected="F<1/minutes> on every G1/G2/G3 block under G93")
-    if motion != 0 and not st.inverse_time and st.feed is None and not _initial_feed(st, where):
-        _no_feed(st, where, code, mcol, mtok)
-    if motion != 0 and st.per_rev:
-        _per_rev_spindle(st, where, code, mcol, mtok)
-    for letter in axis_words:
-        used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
-    common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
-                  exact_stop=st.exact_stop, tolerance=st.tolerance)
-    if rot is not None:
-        common.update(extra_start=st.extra.copy(), extra_target=rot)
-    if motion in (50, 51):
-        used.update((0, 1))
-        _spline(seen, target, st, blocks, where, common, mcol, mtok)
-        return
-    st.spline_pq = None
-    turn = np.zeros(6) if rot is None else rot - st.extra
-    if motion in (0, 10):
-        seg = Line(st.pos, target)
-        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
-                    segment=seg, **common)
-    else:
-        if st.rotation and st.plane != 2 or off_plane(st):
-            # a G18/G19 arc of a system rotated about Z lies in no axis plane
-            if rot is not None:
-                w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
-                where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
-                           "not supported", column=w.column, text=w.text, expected="no A, B, C, U, V, W on this arc")
-            used.update((0, 1, 2))
-            rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
-            return
-        seg = read_arc(seen, arc_words, target, st, where, code, mcol, mtok)
-        if "P" in seen:
-            seg = arc_turns(seg, seen["P"], st, where, code)
-        if st.comp_start is not None and st.arc_center is not None:
-            st.comp_centers[len(blocks)] = st.arc_center
-        p, q = PLANE_AXES[st.plane]
-        used.update((p, q))
-        target = np.array(seg.end)
-        common["target"] = target
-        blk = Block(kind="arc", feed=_feed(st, seg, turn), segment=seg, **common)
-    blk = _corner(st, blocks, blk, motion, where)
-    blocks.append(blk)
-    st.pos = target
-    if rot is not None:
-        st.extra = rot
-
-
-def _corner(st: State, blocks: list[Block], blk: Block, motion: int, where: Where) -> Block:
-    """Fanuc/Haas ``,R`` / ``,C`` (:mod:`interpolators.iso_corners`): the corner a previous block asked
-    for goes in before ``blk`` (trimmed and returned); a word on this block waits for the next move."""
-    if st.corner is not None:
-        n = len(blocks)
-        blk = finish_corner(st.corner, blocks, blk, dialect=st.context.dialect.name, plane=st.plane, where=where)
-        if n in st.comp_centers:  # the programmed centre of this arc: it now comes after the corner block
-            st.comp_centers[n + 1] = st.comp_centers.pop(n)
-        st.corner = None
-    if st.corner_word is not None:
-        w, st.corner_word = st.corner_word, None
-        factor = st.frame.length_factor(st.plane) if st.frame is not None and not off_plane(st) else 1.0
-        if factor is None:
-            where.fail(f"{w.text!r} under G51 scaling with different factors in the plane: not supported",
-                       column=w.column, text=w.text, expected="equal scaling factors in the plane")
-        st.corner = start_corner(w, blk, index=len(blocks), dialect=st.context.dialect.name, motion=motion,
-                                 plane=st.plane, size=w.value * st.scale * factor, inverse_time=st.inverse_time,
-                                 where=where)
-        st.corner_fresh = True
-    return blk
-
-
 def _corner_after_block(st: State, words: list[Word], count: int, blocks: list[Block], where: Where) -> None:
     """After each block: a ``,R`` / ``,C`` its block did not take (not a move of G01-G03) or a pending
     corner the block did not take (no move, or other blocks made) is an error."""
@@ -1787,84 +1620,6 @@ def _corner_after_block(st: State, words: list[Word], count: int, blocks: list[B
         corner_not_followed(st.corner, where, "this block has no move")
 
 
-def _synchronised(seen, target, st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
-    """G33 spindle-synchronised motion and G33.1 rigid tapping as feed moves.
-
-    LinuxCNC g-code.adoc "G33 Spindle Synchronized Motion" and "G33.1 Rigid Tapping",
-    interp_convert.cc ``convert_straight`` and interp_check.cc ``check_other_codes``: the axes move
-    K [mm/rev, in/rev under G20] along the drive line per spindle revolution, so the path feed is
-    K x S [rev/min] / 60 [mm/s]; G33.1 then goes back to its start, its spindle (and so its feed)
-    sped up by I (I < 1 counts as 1), and ends where it began. Errors as LinuxCNC's: no K word, an F
-    word, the spindle not turning (M3/M4); also S0 (no speed to follow). The overrun while the spindle
-    reverses at the bottom is not modelled: the moves end at the programmed point and the start.
-    """
-    name = G_CODES[st.motion][1]
-    if "K" not in seen:
-        where.fail(f"{name} without a K word", column=mcol, text=mtok,
-                   expected="K<distance per spindle revolution> > 0 [mm/rev]")
-    k = seen["K"]
-    if not k.value > 0:
-        where.fail(f"{name}: K must be > 0", column=k.column, text=k.text, expected="K > 0 [mm/rev]")
-    bad = [w for w in ("F", "J", "R", *EXTRA_LETTERS, *(("I",) if st.motion == 330 else ())) if w in seen]
-    if bad:
-        w = seen[bad[0]]
-        why = " (the feed follows from K and the spindle speed)" if w.letter == "F" else ""
-        where.fail(f"{name} with word {w.letter}{why}: not allowed", column=w.column, text=w.text,
-                   expected="X, Y, Z, K" + (" and I" if st.motion == 331 else ""))
-    if not st.spindle_turning:
-        where.fail(f"{name} with the spindle not turning", column=mcol, text=mtok, expected="M3 or M4 before it")
-    if not st.spindle_speed > 0:
-        where.fail(f"{name} with spindle speed S0", column=mcol, text=mtok, expected="S > 0 [rev/min] before it")
-    if st.comp_side is not None:
-        where.fail(f"{name} under cutter compensation ({st.comp_code}): not supported", column=mcol, text=mtok,
-                   expected="G40 before it")
-    feed = k.value * st.scale * st.spindle_speed / 60.0
-    start = st.pos.copy()
-    used.update(i for i in range(3) if target[i] != start[i])
-    common = dict(line=where.line, number=number, text=where.text, tolerance=st.tolerance)
-    tap = st.motion == 331
-    blocks.append(Block(kind="line", feed=feed, segment=Line(start, target), start=start, target=target.copy(),
-                        exact_stop=st.exact_stop or tap, **common))
-    if tap:
-        back = feed * max(seen["I"].value, 1.0) if "I" in seen else feed
-        blocks.append(Block(kind="line", feed=back, segment=Line(target, start), start=target.copy(),
-                            target=start, exact_stop=True, **common))
-    else:
-        st.pos = target.copy()
-
-
-def _extra_words(seen, motion: int, st: State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
-    """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
-    None without such words; splines and cutter compensation do not take them."""
-    letters = [w for w in EXTRA_LETTERS if w in seen]
-    if not letters:
-        return None
-    w = seen[letters[0]]
-    if motion in (50, 51):
-        where.fail(f"G5 spline with axis word {w.letter}: not supported", column=w.column, text=w.text,
-                   expected="X and Y on a spline")
-    if st.comp_side is not None:
-        where.fail(f"axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
-                   column=w.column, text=w.text, expected="G40 before A, B, C, U, V, W motion")
-    st.extra_used = True
-    used.update(3 + EXTRA_LETTERS.index(letter) for letter in letters)
-    return extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(), incremental=st.incremental,
-                        scale=st.scale, machine=machine)
-
-
-def _initial_feed(st: State, where: Where) -> bool:
-    """Take the machine's initial feed (:attr:`interpolators.context.Dialect.initial_feed`, Fanuc parameter
-    No. 1411) for a feed move before any F word, and say whether there was one to take: not after an F0, under
-    G95 feed per revolution, or after a G94 that ended G93 (each needs its own F, whatever the setting)."""
-    initial = st.context.dialect.initial_feed
-    if initial is None or st.feed_zero or st.per_rev or st.feed_reset or st.inverse_time:
-        return False
-    st.feed = st.feed_rotary = initial / 60.0
-    if st.initial_feed_line is None:
-        st.initial_feed_line = where.line
-    return True
-
-
 def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> None:
     """Words of an M98 line LinuxCNC reads and does not execute (:func:`interpolators.iso_flow.run`)."""
     notes.add(f"{' '.join(w.text for w in words)} on an M98 line not executed (LinuxCNC runs an M98 block as a "
@@ -1872,203 +1627,6 @@ def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> N
     feed = next((w for w in words if w.letter == "F"), None)
     if feed is not None and st.feed is None:
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
-
-
-#: How each control refuses a feed move at F0 (the messages of :func:`_no_feed`'s sources).
-_ZERO_FEED = {"linuxcnc": "LinuxCNC: cannot do G1 with zero feed rate",
-              "grbl": "grbl error 22: feed rate has not yet been set or is undefined",
-              "fanuc": "Fanuc alarm PS0011: feed zero"}
-#: The same for a dialect without a documented message of its own (Haas, Fadal).
-_ZERO_FEED_ANY = "refused by LinuxCNC, grbl (error 22) and Fanuc (alarm PS0011) alike"
-
-
-def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
-    """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
-    rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
-    zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
-    why = "no F word before it"
-    if st.feed_zero:
-        why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
-    elif st.per_rev:
-        why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
-               "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
-    elif st.uncalled_feed:
-        why += f" ({st.uncalled_feed} is not executed: LinuxCNC runs an M98 block as a call only)"
-    elif st.subprogram:
-        why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
-    elif st.feed_reset:
-        why = "G94 after G93 resets the feed; no F word since"
-    vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
-    if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
-        why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
-    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
-               expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
-
-
-def _per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
-    """A feed move under G95 with the spindle stopped: it would wait for revolutions that never come
-    (LinuxCNC synchronises it to the spindle's speed feedback), so it is refused."""
-    if not st.spindle_turning:
-        where.fail(f"{code} under G95 feed per revolution with the spindle stopped", column=mcol, text=mtok,
-                   expected="M3 or M4 (and S > 0) before a feed move under G95")
-
-
-def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
-    """G5 / G5.1 (LinuxCNC G-code reference): a Bezier curve in XY as chord blocks
-    (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental."""
-    code = "G5" if st.motion == 50 else "G5.1"
-    if st.plane != 2:
-        where.fail(f"{code} spline: only in the XY plane (G17)", column=mcol, text=mtok, expected="G17")
-    if "Z" in seen:
-        w = seen["Z"]
-        where.fail(f"{code} spline: only X and Y move", column=w.column, text=w.text, expected="X and Y words")
-    s = st.scale
-    p0 = st.pos.copy()
-    if st.motion == 51:
-        ij = np.array([seen["I"].value if "I" in seen else 0.0, seen["J"].value if "J" in seen else 0.0, 0.0])
-        if not ij.any():
-            where.fail("G5.1 spline: I and J both unspecified or zero", column=mcol, text=mtok,
-                       expected="I and/or J: the control point's offset from the start")
-        control = [p0, p0 + ij * s, target]
-    else:
-        if "P" not in seen or "Q" not in seen:
-            where.fail("G5 spline: P and Q must both be given", column=mcol, text=mtok,
-                       expected="P and Q: the second control point's offset from the end point")
-        if ("I" in seen) != ("J" in seen):
-            where.fail("G5 spline: I and J must be given together", column=mcol, text=mtok, expected="I and J")
-        if "I" in seen:
-            ij = np.array([seen["I"].value, seen["J"].value, 0.0]) * s
-        elif st.spline_pq is not None:
-            ij = -st.spline_pq  # the tangent of the previous G5 continues
-        else:
-            where.fail("G5 spline: I and J are needed on the first G5 of a series", column=mcol, text=mtok,
-                       expected="I and J")
-        pq = np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
-        control = [p0, p0 + ij, target + pq, target]
-        st.spline_pq = pq
-    if st.motion == 51:
-        st.spline_pq = None
-    points = [p0, *bezier_chords(control)]
-    segs = [Line(a, b) for a, b in zip(points[:-1], points[1:])]
-    # under G93 the whole spline takes the block's 1/F minutes: one speed along all its chords
-    speed = sum(g.length for g in segs) * st.block_f / 60.0 if st.inverse_time else None
-    for seg in segs:
-        blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
-                            **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
-    st.pos = np.array(target, dtype=float)
-
-
-def _nurbs(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes) -> None:
-    """LinuxCNC G5.2 / G5.3 (:mod:`interpolators.iso_nurbs`; interp_convert.cc convert_nurbs, its errors): a G5.2
-    block starts the control points at the current position (weight P when the block has no axis words, else 1),
-    each block with the plane's two axis words adds one, weight P (> 0; the G5.2 block's own point without P: 1,
-    g-code.adoc's default), L above 3 the order; G5.3 runs the curve to the last point, chords at the modal feed,
-    on its line. The current position stays until G5.3 (incremental words count from it, as LinuxCNC's
-    find_ends); after it no motion mode is set."""
-    w = gcodes["motion"][1] if "motion" in gcodes else None
-    mcol, mtok = (w.column, w.text) if w is not None else (1, where.text)
-    p, q = PLANE_AXES[st.plane]
-    letters = ["XYZ"[p], "XYZ"[q]]
-    stray = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "XYZ"[st.plane], *"IJKQR") if a in seen), None)
-    why = (f"with word {stray}: not supported (control points take the {PLANE_CODES[st.plane]} plane's "
-           f"{letters[0]} {letters[1]}, P and L)" if stray is not None else
-           f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
-           "under G93 inverse time: not supported" if st.inverse_time else
-           "cannot use G5.3 without G5.2 first" if st.motion == 53 and st.nurbs is None else
-           f"you must specify both {letters[0]} and {letters[1]} coordinates for control points"
-           if (letters[0] in seen) != (letters[1] in seen) else None)
-    if why is not None:
-        bad = seen.get(stray, w) if stray is not None else w
-        where.fail(f"{'G5.3' if st.motion == 53 else 'G5.2'} NURBS {why}", column=bad.column if bad else mcol,
-                   text=bad.text if bad else mtok, expected="G5.2 <P> <L>, lines X- Y- P-, then G5.3 (LinuxCNC)")
-    if st.motion == 53:
-        _nurbs_curve(st, blocks, used, where, number, mcol, mtok)
-        notes.add("G5.2/G5.3 NURBS run as chords within 1 um of the curve")
-        return
-    moves = letters[0] in seen
-    weight = seen["P"].value if "P" in seen else None
-    if st.feed is None and not st.inverse_time and not _initial_feed(st, where):
-        _no_feed(st, where, "G5.2 NURBS", mcol, mtok)  # LinuxCNC: "Cannot make a NURBS with 0 feedrate"
-    if st.nurbs is None:
-        st.nurbs, st.nurbs_order = [(st.pos.copy(), weight if weight and weight > 0 and not moves else 1.0)], 3
-        weight = 1.0 if weight is None and moves else weight
-    elif not moves and weight is not None:
-        where.fail(f"G5.2 NURBS: can specify P without {letters[0]} and {letters[1]} only for the first control "
-                   "point", column=seen["P"].column, text=seen["P"].text, expected=f"{letters[0]}- {letters[1]}- P-")
-    if moves and (weight is None or weight <= 0):
-        bad = seen.get("P", seen[letters[0]])
-        where.fail("G5.2 NURBS: must specify positive weight P for every control point", column=bad.column,
-                   text=bad.text, expected=f"{letters[0]}- {letters[1]}- P<weight > 0>")
-    if "L" in seen and seen["L"].value > 3:
-        st.nurbs_order = int(seen["L"].value)
-    if moves:
-        st.nurbs.append((_target(seen, letters, st, machine=False), float(weight)))
-
-
-def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
-    """G5.3: the NURBS of the G5.2 control points, as feed chords on this line."""
-    points, weights = np.array([c for c, _ in st.nurbs]), np.array([c for _, c in st.nurbs])
-    if len(points) < st.nurbs_order:
-        where.fail(f"G5.3 NURBS: you must specify a number of control points at least equal to the order "
-                   f"L = {st.nurbs_order} (got {len(points)}, the start point included)", column=mcol, text=mtok,
-                   expected=f"at least {st.nurbs_order} control points")
-    chain = [st.pos.copy()]
-    for point in nurbs_chords(points, weights, st.nurbs_order):
-        if np.any(point != chain[-1]):  # coincident control points make chords of no length: left out
-            chain.append(point)
-    used.update(PLANE_AXES[st.plane])
-    for a, b in zip(chain[:-1], chain[1:]):
-        seg = Line(a, b)
-        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
-                            target=np.array(b), feed=_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
-                            tolerance=st.tolerance))
-    st.pos = np.array(chain[-1], dtype=float)
-    st.nurbs, st.motion = None, None
-
-
-def _feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
-    """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
-    time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
-    0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
-    [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
-    Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`)."""
-    if seg.length == 0 and turn is not None and np.any(turn != 0):
-        linear = bool(np.any(turn[3:] != 0))
-        length = float(np.linalg.norm(turn[3:] if linear else turn[:3]))
-        if st.inverse_time:
-            return length * st.block_f / 60.0
-        return st.feed if linear else st.feed_rotary
-    if not st.inverse_time:
-        return st.feed
-    return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
-
-
-def _dwell(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
-    key, gw = gcodes["dwell"]
-    if "motion" in gcodes and "P" not in seen:
-        w = gcodes["motion"][1]
-        where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
-                   expected="G04 P<time> G01 X..")
-    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen]
-    if bad:
-        w = seen[bad[0]]
-        where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
-                   expected="G04 P<time> or G04 X<s>")
-    unit = st.context.dialect.dwell_p_unit
-    if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
-        seen = {k: v for k, v in seen.items() if k != "X"}
-    if ("P" in seen) == ("X" in seen):
-        where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
-                   expected=f"G04 P<{unit}> or G04 X<s>")
-    w = seen["P"] if "P" in seen else seen["X"]
-    seconds = w.value / 1000.0 if ("P" in seen and unit == "ms") else w.value
-    if "X" in seen and st.context.dialect.name == "linuxcnc":  # g-code.adoc "G4 Dwell": "G4 P-"; rs274 refuses X
-        notes.add("G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")")
-    if seconds < 0:
-        where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
-    blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
-                        target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True, tolerance=st.tolerance))
-    return False
 
 
 def _cutter_compensation(entry, seen, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
@@ -2276,8 +1834,8 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
-        target = _target(seen, axis_words, st, machine=True)
-        _motion(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
+        target = block_target(seen, axis_words, st, machine=True)
+        motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's
@@ -2527,14 +2085,14 @@ def _reference_return(key: int, seen, axis_words, st: State, blocks, used, where
     ref_rot = st.home_extra if key == 280 else st.reference2_extra
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if axis_words or rot_words:
-        mid = _target(seen, axis_words, st, machine=False)
+        mid = block_target(seen, axis_words, st, machine=False)
         mid_rot = None
         if rot_words:
             st.extra_used = True
             used.update(3 + EXTRA_LETTERS.index(a) for a in rot_words)
             mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
                                    incremental=st.incremental, scale=st.scale)
-        _rapid(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
+        rapid_move(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
         for a in axis_words:  # Fanuc/Haas G29 returns through it (program coordinates)
             st.intermediate["XYZ".index(a)] = st.to_program(mid)["XYZ".index(a)]
         end = st.pos.copy()
@@ -2545,11 +2103,11 @@ def _reference_return(key: int, seen, axis_words, st: State, blocks, used, where
             end_rot = st.extra.copy()
             for a in rot_words:
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
-        _rapid(end, st, blocks, used, where, number, axis_words, rot=end_rot)
+        rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
         st.intermediate = st.to_program(st.pos)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
-        _rapid(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
+        rapid_move(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
 
 
 def _mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where: Where, number,
@@ -2572,8 +2130,8 @@ def _mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where
             word = seen[exc.args[0]]
             where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
                        column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
-        _rapid(st.to_machine(mid), st, blocks, used, where, number, axis_words)
-    _rapid(_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
+        rapid_move(st.to_machine(mid), st, blocks, used, where, number, axis_words)
+    rapid_move(block_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
     if key == 270:
         missed = off_reference(st.pos, st.home, axis_words)
         notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"
@@ -2590,23 +2148,10 @@ def _grbl_homing(st: State, blocks, used, where: Where, notes: Notes) -> None:
     home = np.array(st.context.home, dtype=float)
     up = st.pos.copy()
     up[2] = home[2]
-    _rapid(up, st, blocks, used, where, None, ["Z"])
-    _rapid(home, st, blocks, used, where, None, ["X", "Y"])
+    rapid_move(up, st, blocks, used, where, None, ["Z"])
+    rapid_move(home, st, blocks, used, where, None, ["X", "Y"])
     st.stopped = False
     notes.add("grbl $H homing run as rapids to home (Z, then X Y)")
-
-
-def _rapid(target, st: State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
-    """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the extra axes to ``rot`` [deg, mm]."""
-    for a in axis_words:
-        used.add("XYZ".index(a))
-    extra = {} if rot is None else {"extra_start": st.extra.copy(), "extra_target": np.array(rot, dtype=float)}
-    blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid", start=st.pos.copy(),
-                        target=target.copy(), feed=np.inf, segment=Line(st.pos, target), exact_stop=st.exact_stop,
-                        tolerance=st.tolerance, **extra))
-    st.pos = target.copy()
-    if rot is not None:
-        st.extra = np.array(rot, dtype=float)
 
 
 def _framed_initial(st: State, *, to_program: bool) -> None:
@@ -2640,11 +2185,11 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
-    if st.feed is None and st.motion != 0 and not _initial_feed(st, where):
+    if st.feed is None and st.motion != 0 and not initial_feed(st, where):
         where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
                    column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
     if st.per_rev and st.motion != 0:
-        _per_rev_spindle(st, where, name, mw.column, mw.text)
+        per_rev_spindle(st, where, name, mw.column, mw.text)
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
     if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])

@@ -1,0 +1,497 @@
+"""The ISO reader's motion blocks (:mod:`interpolators.iso`): a block's end point (X Y Z, LinuxCNC's polar
+``@ ^``, Fanuc G16), G0/G1/G2/G3 with their feed (G93/G94/G95, the dialect's initial feed, LinuxCNC's zero-feed
+refusal), the A-W words that move with them, a Fanuc/Haas ,R/,C corner's start, G33/G33.1, G5/G5.1 splines, the
+G5.2/G5.3 NURBS block, rapids of the reader's own moves and the G4 dwell. LinuxCNC G-code reference (G0-G5.3, G33,
+G4, G93-G95), Fanuc 0i-MF operator's manual where the dialects differ (each function says its source)."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from interpolators._words import Where
+from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
+from interpolators.iso_axes import EXTRA_LETTERS, extra_target
+from interpolators.iso_codes import G_CODES, PLANE_CODES
+from interpolators.iso_corners import finish_corner, start_corner
+from interpolators.iso_nurbs import nurbs_chords
+from interpolators.iso_polar import POLAR_LETTERS, polar_xy
+from interpolators.iso_splines import bezier_chords
+from interpolators.iso_words import Word
+from interpolators.program import Block
+from toolpaths.geometry import PLANE_AXES, Arc, Line
+
+if TYPE_CHECKING:
+    from interpolators.iso import Notes, State
+
+__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "initial_feed", "per_rev_spindle",
+           "nurbs_block", "rapid_move", "dwell_block"]
+
+
+def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
+    """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
+    or its polar words ``@ ^`` with Z."""
+    if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
+        prog = st.to_program(st.pos)
+        for letter in axis_words:
+            i = "XYZ".index(letter)
+            prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
+        target = st.pos.copy()  # axes without words stay exactly where they are
+        if "X" in axis_words or "Y" in axis_words:
+            target[:2] = st.to_machine(prog)[:2]
+        if "Z" in axis_words:
+            target[2] = st.to_machine(prog)[2]
+        return target
+    target = st.pos.copy()
+    off = st.offset()
+    for letter in axis_words:
+        if letter in POLAR_LETTERS:
+            continue
+        i = "XYZ".index(letter)
+        v = seen[letter].value * st.scale
+        if machine:
+            target[i] = v
+        elif st.incremental:
+            target[i] = st.pos[i] + v
+        else:
+            target[i] = v + off[i]
+    if "@" in seen or "^" in seen:
+        x, y = polar_xy(st.pos[0] - off[0], st.pos[1] - off[1], incremental=st.incremental,
+                        distance=seen["@"].value * st.scale if "@" in seen else None,
+                        angle_deg=seen["^"].value if "^" in seen else None)
+        target[0], target[1] = x + off[0], y + off[1]
+    return target
+
+
+def fanuc_polar(seen: dict, gcodes, st: State, where: Where, notes: Notes) -> dict:
+    """Fanuc G16 / G15 (``fanuc`` dialect): under G16 the X and Y words of a motion block are the radius
+    and the angle [deg, counter-clockwise from +X] about the work (or G52 local) zero, read as
+    LinuxCNC's ``@ ^`` under G90 (Fanuc Series 16/18-MC operator's manual, 9.2 "Polar coordinate
+    command (G15, G16)": "G90 specifies the zero point of the work coordinate system as the origin of
+    the polar coordinate system"; a radius left out is the current distance, an angle left out the
+    current angle). G91 ("the current position as the origin") and the G18/G19 planes are refused,
+    naming them; G10, G52, G92, G53, G68 and G51 blocks take X Y as coordinates."""
+    code = gcodes.get("polar", (None,))[0]
+    if code is not None:
+        st.fanuc_polar = code == 160
+        if st.fanuc_polar:
+            notes.add("G16 polar coordinates (X radius, Y angle)")
+    if not st.fanuc_polar or not ("X" in seen or "Y" in seen):
+        return seen
+    if any(g in gcodes for g in ("nonmodal", "rotation", "scaling", "mirror")):
+        return seen
+    w = seen["X"] if "X" in seen else seen["Y"]
+    if st.plane != 2:
+        where.fail("G16 polar coordinates outside the XY plane (G18/G19): not supported", column=w.column,
+                   text=w.text, expected="G17 with G16")
+    if st.incremental:
+        where.fail("G16 polar coordinates under G91 (the current position as the pole): not supported",
+                   column=w.column, text=w.text, expected="G90 with G16")
+    renamed = {"X": "@", "Y": "^"}
+    return {renamed.get(k, k): dataclasses.replace(v, letter=renamed[k]) if k in renamed else v
+            for k, v in seen.items()}
+
+
+def check_polar(seen, gcodes, st: State, where: Where, w: Word) -> None:
+    """Polar words only on motion in the XY plane, without X or Y (LinuxCNC interp_internal.cc)."""
+    if "nonmodal" in gcodes:
+        where.fail("polar coordinates @ ^ can only be used for motion", column=w.column, text=w.text,
+                   expected="@ and ^ on G0, G1, G2, G3 or a canned cycle")
+    if st.plane != 2:
+        where.fail("polar coordinates @ ^ are only in the XY plane (G17)", column=w.column, text=w.text,
+                   expected="G17 before polar words")
+    for letter in ("X", "Y"):
+        if letter in seen:
+            where.fail(f"polar coordinates @ ^ and {letter} in one block", column=seen[letter].column,
+                       text=seen[letter].text, expected="either X/Y or @/^")
+
+
+def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks, used, where: Where, number, *,
+            machine: bool = False) -> None:
+    motion = st.motion
+    mw = gcodes["motion"][1] if "motion" in gcodes else seen[axis_words[0]] if axis_words else None
+    mcol, mtok = (mw.column, mw.text) if mw is not None else (1, where.text)
+    code = f"G{motion // 10:02d}"
+    if motion in (330, 331):
+        _synchronised(seen, target, st, blocks, used, where, number, mcol, mtok)
+        return
+    rot = _extra_words(seen, motion, st, where, used, machine=machine)
+    if motion == 10 and "R" in seen and not arc_words and st.context.dialect.name in ("fanuc", "haas"):
+        w = seen["R"]  # Fanuc T series "Chamfering and corner R" (lathe): G01 X.. R..; a mill writes ",R"
+        where.fail("word R on G01: the lathe form of corner rounding ('G01 X.. R..'); a mill takes ',R'",
+                   column=w.column, text=w.text, expected=f",{w.text.strip()} (Fanuc/Haas corner rounding)")
+    if motion in (0, 10) and (arc_words or "R" in seen):
+        # LinuxCNC interp_check.cc: "I word with no G2, G3, ... to use it"; grbl error 36 "unused value words";
+        # the Haas mill manual lists X Y Z A B C for G00 and X Y Z A B C F ,R ,C for G01 (no I J K), and no
+        # Fanuc manual found says a control ignores them: refused on every dialect (a typo for G02/G03?)
+        # I, J and K together on a move: the tool-axis vector a 5-axis post writes with each point (Siemens
+        # ORIVECT "A3= B3= C3=", Heidenhain "LN ... TX TY TZ"), which no ISO mill's G00/G01 reads
+        w = seen[(arc_words or ["R"])[0]]
+        guess = ("a 5-axis post's tool-axis vector I J K?" if {"I", "J", "K"} <= set(seen) and "R" not in seen
+                 else "a G02/G03 meant?")
+        where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
+                   f"the Haas manual lists no I J K R for it; {guess})",
+                   column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")
+    if motion != 0 and st.inverse_time and st.block_f is None:
+        where.fail(f"{code} in inverse time (G93) without an F word on the block", column=mcol, text=mtok,
+                   expected="F<1/minutes> on every G1/G2/G3 block under G93")
+    if motion != 0 and not st.inverse_time and st.feed is None and not initial_feed(st, where):
+        _no_feed(st, where, code, mcol, mtok)
+    if motion != 0 and st.per_rev:
+        per_rev_spindle(st, where, code, mcol, mtok)
+    for letter in axis_words:
+        used.update((0, 1) if letter in POLAR_LETTERS else ("XYZ".index(letter),))
+    common = dict(line=where.line, number=number, text=where.text, start=st.pos.copy(), target=target,
+                  exact_stop=st.exact_stop, tolerance=st.tolerance)
+    if rot is not None:
+        common.update(extra_start=st.extra.copy(), extra_target=rot)
+    if motion in (50, 51):
+        used.update((0, 1))
+        _spline(seen, target, st, blocks, where, common, mcol, mtok)
+        return
+    st.spline_pq = None
+    turn = np.zeros(6) if rot is None else rot - st.extra
+    if motion in (0, 10):
+        seg = Line(st.pos, target)
+        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
+                    segment=seg, **common)
+    else:
+        if st.rotation and st.plane != 2 or off_plane(st):
+            # a G18/G19 arc of a system rotated about Z lies in no axis plane
+            if rot is not None:
+                w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
+                where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
+                           "not supported", column=w.column, text=w.text, expected="no A, B, C, U, V, W on this arc")
+            used.update((0, 1, 2))
+            rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
+            return
+        seg = read_arc(seen, arc_words, target, st, where, code, mcol, mtok)
+        if "P" in seen:
+            seg = arc_turns(seg, seen["P"], st, where, code)
+        if st.comp_start is not None and st.arc_center is not None:
+            st.comp_centers[len(blocks)] = st.arc_center
+        p, q = PLANE_AXES[st.plane]
+        used.update((p, q))
+        target = np.array(seg.end)
+        common["target"] = target
+        blk = Block(kind="arc", feed=_feed(st, seg, turn), segment=seg, **common)
+    blk = _corner(st, blocks, blk, motion, where)
+    blocks.append(blk)
+    st.pos = target
+    if rot is not None:
+        st.extra = rot
+
+
+def _corner(st: State, blocks: list[Block], blk: Block, motion: int, where: Where) -> Block:
+    """Fanuc/Haas ``,R`` / ``,C`` (:mod:`interpolators.iso_corners`): the corner a previous block asked
+    for goes in before ``blk`` (trimmed and returned); a word on this block waits for the next move."""
+    if st.corner is not None:
+        n = len(blocks)
+        blk = finish_corner(st.corner, blocks, blk, dialect=st.context.dialect.name, plane=st.plane, where=where)
+        if n in st.comp_centers:  # the programmed centre of this arc: it now comes after the corner block
+            st.comp_centers[n + 1] = st.comp_centers.pop(n)
+        st.corner = None
+    if st.corner_word is not None:
+        w, st.corner_word = st.corner_word, None
+        factor = st.frame.length_factor(st.plane) if st.frame is not None and not off_plane(st) else 1.0
+        if factor is None:
+            where.fail(f"{w.text!r} under G51 scaling with different factors in the plane: not supported",
+                       column=w.column, text=w.text, expected="equal scaling factors in the plane")
+        st.corner = start_corner(w, blk, index=len(blocks), dialect=st.context.dialect.name, motion=motion,
+                                 plane=st.plane, size=w.value * st.scale * factor, inverse_time=st.inverse_time,
+                                 where=where)
+        st.corner_fresh = True
+    return blk
+
+
+def _synchronised(seen, target, st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+    """G33 spindle-synchronised motion and G33.1 rigid tapping as feed moves.
+
+    LinuxCNC g-code.adoc "G33 Spindle Synchronized Motion" and "G33.1 Rigid Tapping",
+    interp_convert.cc ``convert_straight`` and interp_check.cc ``check_other_codes``: the axes move
+    K [mm/rev, in/rev under G20] along the drive line per spindle revolution, so the path feed is
+    K x S [rev/min] / 60 [mm/s]; G33.1 then goes back to its start, its spindle (and so its feed)
+    sped up by I (I < 1 counts as 1), and ends where it began. Errors as LinuxCNC's: no K word, an F
+    word, the spindle not turning (M3/M4); also S0 (no speed to follow). The overrun while the spindle
+    reverses at the bottom is not modelled: the moves end at the programmed point and the start.
+    """
+    name = G_CODES[st.motion][1]
+    if "K" not in seen:
+        where.fail(f"{name} without a K word", column=mcol, text=mtok,
+                   expected="K<distance per spindle revolution> > 0 [mm/rev]")
+    k = seen["K"]
+    if not k.value > 0:
+        where.fail(f"{name}: K must be > 0", column=k.column, text=k.text, expected="K > 0 [mm/rev]")
+    bad = [w for w in ("F", "J", "R", *EXTRA_LETTERS, *(("I",) if st.motion == 330 else ())) if w in seen]
+    if bad:
+        w = seen[bad[0]]
+        why = " (the feed follows from K and the spindle speed)" if w.letter == "F" else ""
+        where.fail(f"{name} with word {w.letter}{why}: not allowed", column=w.column, text=w.text,
+                   expected="X, Y, Z, K" + (" and I" if st.motion == 331 else ""))
+    if not st.spindle_turning:
+        where.fail(f"{name} with the spindle not turning", column=mcol, text=mtok, expected="M3 or M4 before it")
+    if not st.spindle_speed > 0:
+        where.fail(f"{name} with spindle speed S0", column=mcol, text=mtok, expected="S > 0 [rev/min] before it")
+    if st.comp_side is not None:
+        where.fail(f"{name} under cutter compensation ({st.comp_code}): not supported", column=mcol, text=mtok,
+                   expected="G40 before it")
+    feed = k.value * st.scale * st.spindle_speed / 60.0
+    start = st.pos.copy()
+    used.update(i for i in range(3) if target[i] != start[i])
+    common = dict(line=where.line, number=number, text=where.text, tolerance=st.tolerance)
+    tap = st.motion == 331
+    blocks.append(Block(kind="line", feed=feed, segment=Line(start, target), start=start, target=target.copy(),
+                        exact_stop=st.exact_stop or tap, **common))
+    if tap:
+        back = feed * max(seen["I"].value, 1.0) if "I" in seen else feed
+        blocks.append(Block(kind="line", feed=back, segment=Line(target, start), start=target.copy(),
+                            target=start, exact_stop=True, **common))
+    else:
+        st.pos = target.copy()
+
+
+def _extra_words(seen, motion: int, st: State, where: Where, used: set[int], *, machine: bool) -> np.ndarray | None:
+    """End positions of the block's A B C U V W words [deg, mm] (:mod:`interpolators.iso_axes`), or
+    None without such words; splines and cutter compensation do not take them."""
+    letters = [w for w in EXTRA_LETTERS if w in seen]
+    if not letters:
+        return None
+    w = seen[letters[0]]
+    if motion in (50, 51):
+        where.fail(f"G5 spline with axis word {w.letter}: not supported", column=w.column, text=w.text,
+                   expected="X and Y on a spline")
+    if st.comp_side is not None:
+        where.fail(f"axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
+                   column=w.column, text=w.text, expected="G40 before A, B, C, U, V, W motion")
+    st.extra_used = True
+    used.update(3 + EXTRA_LETTERS.index(letter) for letter in letters)
+    return extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(), incremental=st.incremental,
+                        scale=st.scale, machine=machine)
+
+
+def initial_feed(st: State, where: Where) -> bool:
+    """Take the machine's initial feed (:attr:`interpolators.context.Dialect.initial_feed`, Fanuc parameter
+    No. 1411) for a feed move before any F word, and say whether there was one to take: not after an F0, under
+    G95 feed per revolution, or after a G94 that ended G93 (each needs its own F, whatever the setting)."""
+    initial = st.context.dialect.initial_feed
+    if initial is None or st.feed_zero or st.per_rev or st.feed_reset or st.inverse_time:
+        return False
+    st.feed = st.feed_rotary = initial / 60.0
+    if st.initial_feed_line is None:
+        st.initial_feed_line = where.line
+    return True
+
+
+#: How each control refuses a feed move at F0 (the messages of :func:`_no_feed`'s sources).
+_ZERO_FEED = {"linuxcnc": "LinuxCNC: cannot do G1 with zero feed rate",
+              "grbl": "grbl error 22: feed rate has not yet been set or is undefined",
+              "fanuc": "Fanuc alarm PS0011: feed zero"}
+
+
+#: The same for a dialect without a documented message of its own (Haas, Fadal).
+_ZERO_FEED_ANY = "refused by LinuxCNC, grbl (error 22) and Fanuc (alarm PS0011) alike"
+
+
+def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move before any F: an error on every control (LinuxCNC "Cannot do G1 with zero feed
+    rate"; grbl error 22 "Feed rate has not yet been set or is undefined"; Fanuc alarm PS0011 "feed
+    zero"). A file that ends with M99 is a subprogram: the program that calls it sets the feed."""
+    why = "no F word before it"
+    if st.feed_zero:
+        why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
+    elif st.per_rev:
+        why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
+               "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
+    elif st.uncalled_feed:
+        why += f" ({st.uncalled_feed} is not executed: LinuxCNC runs an M98 block as a call only)"
+    elif st.subprogram:
+        why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
+    elif st.feed_reset:
+        why = "G94 after G93 resets the feed; no F word since"
+    vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
+    if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
+        why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
+    where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
+               expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
+
+
+def per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
+    """A feed move under G95 with the spindle stopped: it would wait for revolutions that never come
+    (LinuxCNC synchronises it to the spindle's speed feedback), so it is refused."""
+    if not st.spindle_turning:
+        where.fail(f"{code} under G95 feed per revolution with the spindle stopped", column=mcol, text=mtok,
+                   expected="M3 or M4 (and S > 0) before a feed move under G95")
+
+
+def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
+    """G5 / G5.1 (LinuxCNC G-code reference): a Bezier curve in XY as chord blocks
+    (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental."""
+    code = "G5" if st.motion == 50 else "G5.1"
+    if st.plane != 2:
+        where.fail(f"{code} spline: only in the XY plane (G17)", column=mcol, text=mtok, expected="G17")
+    if "Z" in seen:
+        w = seen["Z"]
+        where.fail(f"{code} spline: only X and Y move", column=w.column, text=w.text, expected="X and Y words")
+    s = st.scale
+    p0 = st.pos.copy()
+    if st.motion == 51:
+        ij = np.array([seen["I"].value if "I" in seen else 0.0, seen["J"].value if "J" in seen else 0.0, 0.0])
+        if not ij.any():
+            where.fail("G5.1 spline: I and J both unspecified or zero", column=mcol, text=mtok,
+                       expected="I and/or J: the control point's offset from the start")
+        control = [p0, p0 + ij * s, target]
+    else:
+        if "P" not in seen or "Q" not in seen:
+            where.fail("G5 spline: P and Q must both be given", column=mcol, text=mtok,
+                       expected="P and Q: the second control point's offset from the end point")
+        if ("I" in seen) != ("J" in seen):
+            where.fail("G5 spline: I and J must be given together", column=mcol, text=mtok, expected="I and J")
+        if "I" in seen:
+            ij = np.array([seen["I"].value, seen["J"].value, 0.0]) * s
+        elif st.spline_pq is not None:
+            ij = -st.spline_pq  # the tangent of the previous G5 continues
+        else:
+            where.fail("G5 spline: I and J are needed on the first G5 of a series", column=mcol, text=mtok,
+                       expected="I and J")
+        pq = np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
+        control = [p0, p0 + ij, target + pq, target]
+        st.spline_pq = pq
+    if st.motion == 51:
+        st.spline_pq = None
+    points = [p0, *bezier_chords(control)]
+    segs = [Line(a, b) for a, b in zip(points[:-1], points[1:])]
+    # under G93 the whole spline takes the block's 1/F minutes: one speed along all its chords
+    speed = sum(g.length for g in segs) * st.block_f / 60.0 if st.inverse_time else None
+    for seg in segs:
+        blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
+                            **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
+    st.pos = np.array(target, dtype=float)
+
+
+def nurbs_block(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes) -> None:
+    """LinuxCNC G5.2 / G5.3 (:mod:`interpolators.iso_nurbs`; interp_convert.cc convert_nurbs, its errors): a G5.2
+    block starts the control points at the current position (weight P when the block has no axis words, else 1),
+    each block with the plane's two axis words adds one, weight P (> 0; the G5.2 block's own point without P: 1,
+    g-code.adoc's default), L above 3 the order; G5.3 runs the curve to the last point, chords at the modal feed,
+    on its line. The current position stays until G5.3 (incremental words count from it, as LinuxCNC's
+    find_ends); after it no motion mode is set."""
+    w = gcodes["motion"][1] if "motion" in gcodes else None
+    mcol, mtok = (w.column, w.text) if w is not None else (1, where.text)
+    p, q = PLANE_AXES[st.plane]
+    letters = ["XYZ"[p], "XYZ"[q]]
+    stray = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "XYZ"[st.plane], *"IJKQR") if a in seen), None)
+    why = (f"with word {stray}: not supported (control points take the {PLANE_CODES[st.plane]} plane's "
+           f"{letters[0]} {letters[1]}, P and L)" if stray is not None else
+           f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
+           "under G93 inverse time: not supported" if st.inverse_time else
+           "cannot use G5.3 without G5.2 first" if st.motion == 53 and st.nurbs is None else
+           f"you must specify both {letters[0]} and {letters[1]} coordinates for control points"
+           if (letters[0] in seen) != (letters[1] in seen) else None)
+    if why is not None:
+        bad = seen.get(stray, w) if stray is not None else w
+        where.fail(f"{'G5.3' if st.motion == 53 else 'G5.2'} NURBS {why}", column=bad.column if bad else mcol,
+                   text=bad.text if bad else mtok, expected="G5.2 <P> <L>, lines X- Y- P-, then G5.3 (LinuxCNC)")
+    if st.motion == 53:
+        _nurbs_curve(st, blocks, used, where, number, mcol, mtok)
+        notes.add("G5.2/G5.3 NURBS run as chords within 1 um of the curve")
+        return
+    moves = letters[0] in seen
+    weight = seen["P"].value if "P" in seen else None
+    if st.feed is None and not st.inverse_time and not initial_feed(st, where):
+        _no_feed(st, where, "G5.2 NURBS", mcol, mtok)  # LinuxCNC: "Cannot make a NURBS with 0 feedrate"
+    if st.nurbs is None:
+        st.nurbs, st.nurbs_order = [(st.pos.copy(), weight if weight and weight > 0 and not moves else 1.0)], 3
+        weight = 1.0 if weight is None and moves else weight
+    elif not moves and weight is not None:
+        where.fail(f"G5.2 NURBS: can specify P without {letters[0]} and {letters[1]} only for the first control "
+                   "point", column=seen["P"].column, text=seen["P"].text, expected=f"{letters[0]}- {letters[1]}- P-")
+    if moves and (weight is None or weight <= 0):
+        bad = seen.get("P", seen[letters[0]])
+        where.fail("G5.2 NURBS: must specify positive weight P for every control point", column=bad.column,
+                   text=bad.text, expected=f"{letters[0]}- {letters[1]}- P<weight > 0>")
+    if "L" in seen and seen["L"].value > 3:
+        st.nurbs_order = int(seen["L"].value)
+    if moves:
+        st.nurbs.append((block_target(seen, letters, st, machine=False), float(weight)))
+
+
+def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok: str) -> None:
+    """G5.3: the NURBS of the G5.2 control points, as feed chords on this line."""
+    points, weights = np.array([c for c, _ in st.nurbs]), np.array([c for _, c in st.nurbs])
+    if len(points) < st.nurbs_order:
+        where.fail(f"G5.3 NURBS: you must specify a number of control points at least equal to the order "
+                   f"L = {st.nurbs_order} (got {len(points)}, the start point included)", column=mcol, text=mtok,
+                   expected=f"at least {st.nurbs_order} control points")
+    chain = [st.pos.copy()]
+    for point in nurbs_chords(points, weights, st.nurbs_order):
+        if np.any(point != chain[-1]):  # coincident control points make chords of no length: left out
+            chain.append(point)
+    used.update(PLANE_AXES[st.plane])
+    for a, b in zip(chain[:-1], chain[1:]):
+        seg = Line(a, b)
+        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
+                            target=np.array(b), feed=_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
+                            tolerance=st.tolerance))
+    st.pos = np.array(chain[-1], dtype=float)
+    st.nurbs, st.motion = None, None
+
+
+def _feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
+    """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
+    time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
+    0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
+    [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
+    Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`)."""
+    if seg.length == 0 and turn is not None and np.any(turn != 0):
+        linear = bool(np.any(turn[3:] != 0))
+        length = float(np.linalg.norm(turn[3:] if linear else turn[:3]))
+        if st.inverse_time:
+            return length * st.block_f / 60.0
+        return st.feed if linear else st.feed_rotary
+    if not st.inverse_time:
+        return st.feed
+    return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
+
+
+def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
+    key, gw = gcodes["dwell"]
+    if "motion" in gcodes and "P" not in seen:
+        w = gcodes["motion"][1]
+        where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
+                   expected="G04 P<time> G01 X..")
+    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen]
+    if bad:
+        w = seen[bad[0]]
+        where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
+                   expected="G04 P<time> or G04 X<s>")
+    unit = st.context.dialect.dwell_p_unit
+    if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
+        seen = {k: v for k, v in seen.items() if k != "X"}
+    if ("P" in seen) == ("X" in seen):
+        where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
+                   expected=f"G04 P<{unit}> or G04 X<s>")
+    w = seen["P"] if "P" in seen else seen["X"]
+    seconds = w.value / 1000.0 if ("P" in seen and unit == "ms") else w.value
+    if "X" in seen and st.context.dialect.name == "linuxcnc":  # g-code.adoc "G4 Dwell": "G4 P-"; rs274 refuses X
+        notes.add("G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")")
+    if seconds < 0:
+        where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
+    blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
+                        target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True, tolerance=st.tolerance))
+    return False
+
+
+def rapid_move(target, st: State, blocks, used, where: Where, number, axis_words, *, rot=None) -> None:
+    """A rapid to ``target`` [mm, machine] and, when ``rot`` is given, the extra axes to ``rot`` [deg, mm]."""
+    for a in axis_words:
+        used.add("XYZ".index(a))
+    extra = {} if rot is None else {"extra_start": st.extra.copy(), "extra_target": np.array(rot, dtype=float)}
+    blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid", start=st.pos.copy(),
+                        target=target.copy(), feed=np.inf, segment=Line(st.pos, target), exact_stop=st.exact_stop,
+                        tolerance=st.tolerance, **extra))
+    st.pos = target.copy()
+    if rot is not None:
+        st.extra = np.array(rot, dtype=float)
