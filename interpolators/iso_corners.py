@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -54,8 +55,11 @@ from interpolators.iso_words import Word
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
+if TYPE_CHECKING:
+    from interpolators.iso import State
+
 __all__ = ["CORNER_LETTERS", "CORNER_DIALECTS", "PendingCorner", "corner_word", "start_corner", "finish_corner",
-           "corner_not_followed"]
+           "corner_not_followed", "corner_after_block"]
 
 #: The lexer's letters of the two words (``,R`` rounding, ``,C`` chamfer).
 CORNER_LETTERS: tuple[str, ...] = (",R", ",C")
@@ -188,3 +192,24 @@ def finish_corner(corner: PendingCorner, blocks: list[Block], block: Block, *, d
     blocks.append(dataclasses.replace(first, kind=kind, start=np.array(middle.start, float),
                                       target=np.array(middle.end, float), segment=middle))
     return dataclasses.replace(block, start=np.array(tail.start, float), segment=tail)
+
+
+def corner_after_block(st: State, words: list[Word], count: int, blocks: list[Block], where: Where) -> None:
+    """After each block: a ``,R`` / ``,C`` its block did not take (not a move of G01-G03) or a pending
+    corner the block did not take (no move, or other blocks made) is an error."""
+    if st.corner_word is not None:
+        w, st.corner_word = st.corner_word, None
+        where.fail(f"{w.text!r} {'corner rounding' if w.letter == ',R' else 'chamfering'} on a block without a "
+                   "G01/G02/G03 move", column=w.column, text=w.text, expected="the word on a move block")
+    if st.corner is None:
+        return
+    if st.corner_fresh:
+        st.corner_fresh = False
+        if len(blocks) == st.corner.index + 1:
+            return
+        corner_not_followed(st.corner, where, "its own block made more than one move")
+    if len(blocks) > count:
+        corner_not_followed(st.corner, where, f"this block makes a {blocks[-1].kind} that is not a G01/G02/G03 "
+                            "move")
+    if any(w.letter != "N" for w in words):
+        corner_not_followed(st.corner, where, "this block has no move")

@@ -17,7 +17,7 @@ import math
 
 import pytest
 
-import interpolators.iso as iso
+import interpolators.iso_compensation as iso_compensation
 from interpolators import parse_program
 from interpolators.compensation import compensate
 from interpolators.context import DIALECTS, MachineContext, Tool
@@ -162,8 +162,8 @@ def test_rapid_pieces_at_an_acute_corner_stay_rapids():
 def test_the_reference_tells_linuxcnc_corners_from_fanuc_ones(monkeypatch):
     # the reference predicts Fanuc's corner points, not only one radius from the element: the same program
     # with LinuxCNC's corner arcs under --dialect fanuc is caught at the first outside corner (line 4)
-    original = iso.compensate
-    monkeypatch.setattr(iso, "compensate", lambda *a, **k: original(*a, **{**k, "corner": "linuxcnc"}))
+    original = iso_compensation.compensate
+    monkeypatch.setattr(iso_compensation, "compensate", lambda *a, **k: original(*a, **{**k, "corner": "linuxcnc"}))
     text = SQUARE.format(side="G41")
     context = CONTROLS[0]
     _, table = blocks_table(parse_program(text, context=context))
