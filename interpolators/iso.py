@@ -102,7 +102,6 @@ from __future__ import annotations
 import collections
 import dataclasses
 import functools
-import math
 import re
 from pathlib import Path
 
@@ -112,9 +111,9 @@ from interpolators._words import INCH, Where, lines_of
 from interpolators.arcs import (
     arc_from_center,
 )
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, Dialect, MachineContext, Tool
+from interpolators.context import DEFAULT_CONTEXT, Dialect, MachineContext, Tool
 from interpolators.iso_arcs import off_plane
-from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, extra_target, fill_extra, word_values
+from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
 from interpolators.iso_codes import (
     DIALECT_G,
     G_CODES,
@@ -143,6 +142,7 @@ from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines, unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
+from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -158,27 +158,25 @@ from interpolators.iso_motion import (
 )
 from interpolators.iso_offsets import (
     P_SELECT_CODES,
-    TOOL_LEVELS,
+    g10,
     g54_takes_p,
+    length_compensation,
+    local_offset,
+    reference_p,
     selected_offset,
-    set_tool_offset,
-    set_work_offset,
 )
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_reference import (
     FANUC_CODES,
-    MILL_CODES,
-    off_reference,
-    stored_intermediate,
 )
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
 from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
-from interpolators.iso_words import Word, WordError
+from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program, end_at_rest
 from toolpaths.geometry import PLANE_AXES, Line
 from vcnc.core.axes import AXIS_NAMES
@@ -432,7 +430,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
             _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
         while homing and fl.file == source and homing[0] < fl.line:
-            _grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
+            grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
             continue
         plain.reset()
@@ -456,7 +454,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     else:
         _message_stops(params, st, blocks, notes)
         for line in homing:  # $H lines after the last block
-            _grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
+            grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
         if dialect.name == "linuxcnc" and not wrapped:
             # rs274 refuses it at the end: "File ended with no percent sign or program end" (interp_read.cc)
             notes.add("no M2/M30 (nor % at the start and end): read to the end of the file (LinuxCNC refuses it)")
@@ -955,7 +953,7 @@ def _bolt_holes(entry, seen, st: State, blocks, used, where: Where, number) -> N
     try:
         holes = bolt_holes(key, {k: v.value for k, v in seen.items()}, centre=(here[0], here[1]), scale=st.scale)
     except WordError as exc:
-        _fail_words(where, name, exc, seen, w)
+        fail_words(where, name, exc, seen, w)
     for x, y in holes:
         cur = st.to_program(st.pos)
         xy = (x - cur[0], y - cur[1]) if st.incremental else (x, y)
@@ -988,7 +986,7 @@ def _pocket(entry, seen, st: State, blocks, used, where: Where, number) -> None:
                                 scale=st.scale, incremental=st.incremental,
                                 tool_radius=0.0 if tool is None else tool.radius)
     except WordError as exc:
-        _fail_words(where, name, exc, seen, w)
+        fail_words(where, name, exc, seen, w)
     flip = st.frame is not None and st.frame.flips(2)
     used.update((0, 1, 2))
     for mv in moves:
@@ -1088,7 +1086,7 @@ def _scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None
         else:
             frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
     except WordError as exc:
-        _fail_words(where, name, exc, seen, w)
+        fail_words(where, name, exc, seen, w)
     _set_frame(st, frame)
     notes.add(name)
 
@@ -1160,11 +1158,6 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
 
 
-def _fail_words(where: Where, name: str, exc: WordError, seen: dict, word) -> None:
-    """Report ``exc`` of the feature ``name`` at the word it names (else at ``word``, the G code)."""
-    bad = seen.get(exc.letter, word) if exc.letter else word
-    where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
-
 def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
     """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
     tolerance; returns ``seen`` without the words it reads."""
@@ -1172,7 +1165,7 @@ def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
     try:
         sm = smoothing(key, {k: v.value for k, v in seen.items()})
     except WordError as exc:
-        _fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
+        fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
     if sm.tolerance is not None:
         st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
     elif sm.reset:
@@ -1467,7 +1460,7 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
     if "length compensation" in gcodes:
-        _length_compensation(gcodes["length compensation"], seen, st, where, notes)
+        length_compensation(gcodes["length compensation"], seen, st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
@@ -1480,7 +1473,7 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
                 p = seen["P"].value if "P" in seen else None
                 st.wcs, assumed = selected_offset(key, p, st.context.dialect.name)
             except WordError as exc:
-                _fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
+                fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
             if assumed:
                 notes.add(f"{w.text.upper()} without P: P1")
     if "path" in gcodes:
@@ -1602,84 +1595,6 @@ def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> N
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
 
 
-def _length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> None:
-    key, w = entry
-    if st.comp_side is not None and st.context.dialect.name == "linuxcnc":
-        # LinuxCNC interp_convert.cc convert_tool_length_offset, for G43, G43.1, G43.2 and G49 alike: "Cannot
-        # change tool offset with cutter radius compensation on" (G40 on the same line comes first); Fanuc and
-        # Haas change the length under G41/G42
-        where.fail(f"{w.text.upper()}: cannot change tool offset with cutter radius compensation on (LinuxCNC)",
-                   column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
-    st.length_code = key / 10
-    if key == 490:
-        st.tool_length = 0.0
-        st.tool_xy = np.zeros(2)
-        return
-    if key == 432:
-        _additional_length(seen, st, where, w, notes)
-        return
-    if key == 431 and st.context.dialect.name == "fanuc":
-        # Fanuc "Tool length compensation in tool axis direction (G43.1)": along the tool axis, Z while the rotary
-        # axes stand at 0 (a 3-axis machine): G43
-        if np.any(st.extra[:3] != 0):
-            where.fail("G43.1 tool length compensation in tool axis direction with a rotary axis turned: not "
-                       "supported", column=w.column, text=w.text, expected="G43.1 H.. with the rotary axes at 0")
-        notes.add("G43.1 tool length compensation in tool axis direction run as G43 (the tool axis is Z)")
-        key = 430
-    elif key == 431:
-        # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
-        # are the offsets (no motion), an axis not named keeps its offset
-        if not any(a in seen for a in "XYZ"):
-            where.fail("G43.1 needs the tool offsets as axis words", column=w.column, text=w.text,
-                       expected="G43.1 Z<length> (and X, Y)")
-        old = [st.tool_xy[0], st.tool_xy[1], st.tool_length]
-        xyz = [seen.pop(a).value * st.scale if a in seen else old[i] for i, a in enumerate("XYZ")]
-        st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
-        return
-    h = seen.pop("H", None)
-    number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
-    st.length_number = number or 0
-    tool = st.tool(number) if number is not None else None
-    length = 0.0 if tool is None else tool.length
-    if tool is None and number not in (None, 0):
-        notes.add(f"H{number} not in the tool table (length 0)")
-    sign = -1.0 if key == 440 else 1.0
-    st.tool_length = sign * length
-    st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
-    notes.add("G43/G44 tool length from the table")
-
-
-def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
-    """LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset"; interp_convert.cc
-    convert_tool_length_offset): ``G43.2 H<n>`` adds tool n's offsets (length, X, Y) to the ones in effect,
-    ``G43.2 X.. Y.. Z..`` adds the words; no motion, the next move of an axis goes to the compensated point.
-    Errors as LinuxCNC's: both H and axis words, neither, and cutter compensation on ("Cannot change tool
-    offset with cutter radius compensation on"); an H not in the table adds 0 (noted, as for G43 here)."""
-    axes = [a for a in ("X", "Y", "Z", *EXTRA_LETTERS) if a in seen]
-    why = ("can not have both H and axis words" if "H" in seen and axes else
-           "no axes specified and H word missing" if "H" not in seen and not axes else
-           "cannot change tool offset with cutter radius compensation on" if st.comp_side is not None else
-           f"axis word {axes[-1]} (an offset of an axis beyond X, Y, Z): not supported"
-           if axes and axes[-1] in EXTRA_LETTERS else None)  # X Y Z come first in axes
-    if why is not None:
-        where.fail(f"G43.2: {why} (LinuxCNC)", column=w.column, text=w.text,
-                   expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
-    add = np.zeros(3)
-    if "H" in seen:
-        number = int(seen.pop("H").value)
-        tool = st.tool(number)
-        if tool is None and number != 0:
-            notes.add(f"H{number} not in the tool table (length 0)")
-        if tool is not None:
-            add = np.array([tool.offset_x, tool.offset_y, tool.length])
-    for i, a in enumerate("XYZ"):
-        if a in seen:
-            add[i] = seen.pop(a).value * st.scale
-    st.tool_xy = st.tool_xy + add[:2]
-    st.tool_length += float(add[2])
-    notes.add("G43.2 additional tool length offset (added to the offsets in effect)")
-
-
 def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes: Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
@@ -1700,13 +1615,13 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's
-        _reference_p(key, seen, st, where, notes)
+        reference_p(key, seen, st, where, notes)
     if key in (280, 300):
-        _reference_return(key, seen, axis_words, st, blocks, used, where, number)
+        reference_return(key, seen, axis_words, st, blocks, used, where, number)
         notes.add("G28/G30 reference return")
         return True
     if key in (270, 290, 600):
-        _mill_positioning(key, seen, axis_words, st, blocks, used, where, number, notes)
+        mill_positioning(key, seen, axis_words, st, blocks, used, where, number, notes)
         return True
     if key in (281, 301):
         if key == 281:
@@ -1715,7 +1630,7 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
         return True
     if key == 520:
-        _local_offset(seen, axis_words, st, where, w)
+        local_offset(seen, axis_words, st, where, w)
         notes.add("G52 local offset")
         return True
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
@@ -1760,259 +1675,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                            text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
-        notes.add(_g10(seen, st, where, w))
+        notes.add(g10(seen, st, where, w))
         return True
     return False
-
-
-def _reference_p(key: int, seen, st: State, where: Where, notes: Notes) -> None:
-    """A P word on G28, G30, G52, G53 or G92: Fanuc/Haas ``G30 P2``-``P4`` (Fanuc 0i-MD B-64304EN "2nd, 3rd, and
-    4th reference position return": P2 the second, the default; the third and fourth are machine parameters
-    No. 1242/1243 the machine context does not hold: the second is used, noted); elsewhere the P is ignored,
-    noted (LinuxCNC refuses it: "P word with no G2 G3 G4 G10 G64 ... to use it")."""
-    p = seen["P"]
-    code = f"G{key / 10:g}"
-    if key == 300 and st.context.dialect.name in ("fanuc", "haas"):
-        if p.value not in (2, 3, 4):
-            where.fail(f"G30 P{p.value:g}: no such reference position", column=p.column, text=p.text,
-                       expected="G30 P2, P3 or P4 (2nd, 3rd, 4th reference position)")
-        if p.value != 2:
-            notes.add(f"G30 P{p.value:g}: the {('third', 'fourth')[int(p.value) - 3]} reference position is not in the "
-                      "machine context: the second one used")
-        return
-    refused = ' (LinuxCNC refuses it: "P word with no ... to use it")' if st.context.dialect.name == "linuxcnc" else ""
-    notes.add(f"P word on {code} ignored{refused}")
-
-
-def _local_offset(seen, axis_words, st: State, where: Where, w: Word) -> None:
-    """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
-    convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
-    G92.1 and suspended by G92.2. Fanuc and Haas keep the local system apart from the G92 shift (Fanuc
-    0i-MD "Local coordinate system": G52 sets it in every workpiece system, G52 X0 cancels it, a G92
-    cancels it on the axes it names): there the value replaces the local part of the offset only."""
-    if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
-        where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
-    fanuc = st.context.dialect.name in ("fanuc", "haas")
-    for a in axis_words:
-        i, value = "XYZ".index(a), seen[a].value * st.scale
-        st.g92[i] = st.g92[i] - st.local[i] + value if fanuc else value
-        st.local[i] = value if fanuc else 0.0
-    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
-    given = ~np.isnan(v)
-    st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
-    st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
-    st.g92_applied = True
-
-
-def _g10(seen, st: State, where: Where, w: Word) -> str:
-    """G10: set a work or tool offset; returns the note of the run. A Fanuc/Haas tool offset P0 is left
-    alone with a note: "the offset amount corresponding to H00 always means 0, and it is not possible to set
-    the offset amount corresponding to H00" (Fanuc 0i-MD B-64304EN "Tool length compensation (G43, G44,
-    G49)", offset number; the same wording in its copies), as a ``P#4120`` (the tool in the spindle) writes
-    it before any T of the run."""
-    l_word, p_word = seen.get("L"), seen.get("P")
-    fanuc = st.context.dialect.name in ("fanuc", "haas")
-    if l_word is not None and l_word.value == 50 and st.context.dialect.name == "fanuc":
-        st.parameter_input = True  # the lines up to G11 are parameter data (_execute)
-        return "G10 L50 parameter input by program (its data lines up to G11 not run: parameters not modelled)"
-    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
-            and p_word.value == 0 and "R" in seen:
-        return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"
-    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
-        try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
-            set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
-                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
-        except WordError as exc:
-            _fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
-        return "G10 offsets set"
-    if l_word is not None and int(l_word.value) in (1, 10, 11):
-        _g10_tool(int(l_word.value), seen, st, where, w)
-        return "G10 offsets set"
-    if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
-        try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
-            set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
-                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
-        except WordError as exc:
-            _fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
-        return "G10 offsets set"
-    if l_word is None or int(l_word.value) not in (2, 20):
-        where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
-                   text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
-    r_word = seen.get("R")
-    p = int(p_word.value) if p_word is not None else 0
-    code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
-    if int(l_word.value) == 20 and r_word is not None:  # LinuxCNC convert_setup: "R not allowed in G10 L20"
-        where.fail("R not allowed in G10 L20", column=r_word.column, text=r_word.text,
-                   expected="G10 L2 P<n> R<angle> to rotate a coordinate system")
-    if code is None:
-        where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
-                   expected="P0 (current) .. P9")
-    current = st.offsets.get(code, st.context.offset(code)).copy()
-    if int(l_word.value) == 20:
-        current = _l20_offset(seen, st, current, st.rotations.get(code, 0.0))
-    for a in ("X", "Y", "Z"):
-        if a in seen and int(l_word.value) == 2:
-            current["XYZ".index(a)] = seen[a].value * st.scale
-    st.offsets[code] = current
-    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
-    given = ~np.isnan(v)
-    if np.any(given):  # L2: the offset is the value; L20: the offset that makes the current position the value
-        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
-        extra[given] = (v if int(l_word.value) == 2 else st.extra - st.g92_extra - v)[given]
-        st.extra_offsets[code] = extra
-    if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
-        st.rotations[code] = r_word.value
-    return "G10 offsets set"
-
-
-def _g10_tool(level: int, seen, st: State, where: Where, w: Word) -> None:
-    """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
-    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the offsets X Y Z and the radius R
-    directly; L10 sets them so that the current position, in the current coordinate system without
-    tool offsets, reads the programmed values; L11 the same in G59.3 without the G92 offset. X and Y
-    are rotated with the system's rotation (G10 L2 R); an L10/L11 with only one of them keeps the
-    old offset's part along the other rotated axis. The change applies at the next G43 (the offset in
-    effect is not changed)."""
-    p_word = seen.get("P")
-    if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
-        where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
-                   text=w.text, expected=f"G10 L{level} P<tool> X.. Y.. Z.. R..")
-    if not any(k in seen for k in ("X", "Y", "Z", "R")):
-        where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
-                   expected=f"G10 L{level} P<tool> with X, Y, Z and/or R")
-    number = int(p_word.value)
-    tool = st.tool(number) or Tool(number=number)
-    value = {a: seen[a].value * st.scale for a in "XYZ" if a in seen}
-    xy, length = np.array([tool.offset_x, tool.offset_y]), tool.length
-    if level == 1:
-        xy = np.array([value.get("X", xy[0]), value.get("Y", xy[1])])
-        length = value.get("Z", length)
-    else:
-        here, rotation = _here_without_tool(st, fixture=level == 11)
-        a = math.radians(rotation)
-        c, s = math.cos(a), math.sin(a)
-        if "X" in value or "Y" in value:
-            # the old offset's part along the rotated axis not named is kept
-            old_u, old_v = c * xy[0] + s * xy[1], -s * xy[0] + c * xy[1]
-            u = here[0] - value["X"] if "X" in value else old_u
-            v = here[1] - value["Y"] if "Y" in value else old_v
-            xy = np.array([c * u - s * v, s * u + c * v])
-        if "Z" in value:
-            length = here[2] - value["Z"]
-    radius = seen["R"].value * st.scale if "R" in seen else tool.radius
-    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius),
-                                           offset_x=float(xy[0]), offset_y=float(xy[1]))
-
-
-def _here_without_tool(st: State, *, fixture: bool) -> tuple[np.ndarray, float]:
-    """The current position [mm] in the current system (``fixture``: in G59.3, without the G92 offset)
-    as if no tool offset were applied (the machine position less the work and G92 offsets only), and
-    that system's rotation [deg] (LinuxCNC interp_find.cc find_current_in_system_without_tlo)."""
-    wcs = "G59.3" if fixture else st.wcs
-    work = st.offsets.get(wcs)
-    work = st.context.offset(wcs) if work is None else work
-    rotation = st.rotations.get(wcs, 0.0)
-    g92 = np.zeros(3) if fixture else st.g92
-    m = st.pos - work
-    a = math.radians(rotation)
-    c, s = math.cos(a), math.sin(a)
-    return np.array([c * m[0] + s * m[1], -s * m[0] + c * m[1], m[2]]) - g92, rotation
-
-
-def _l20_offset(seen, st: State, offset: np.ndarray, rotation: float) -> np.ndarray:
-    """G10 L20: the offset of a system (rotated by ``rotation`` [deg]) that makes the current position
-    read the programmed values there (LinuxCNC interp_convert.cc convert_setup: the old and the desired
-    position are rotated into the unrotated frame; an axis not named keeps its current coordinate).
-    Machine = R (program + G92) + offset, so offset = machine - R (desired + G92)."""
-    a = math.radians(rotation)
-    c, s = math.cos(a), math.sin(a)
-    px, py = st.pos[0] - st.tool_xy[0], st.pos[1] - st.tool_xy[1]  # without the tool's X Y offsets
-    dx, dy = px - offset[0], py - offset[1]
-    here = np.array([c * dx + s * dy - st.g92[0], -s * dx + c * dy - st.g92[1]])  # current X Y in that system
-    new = offset.copy()
-    if "X" in seen or "Y" in seen:
-        want = np.array([seen[k].value * st.scale if k in seen else here[i] for i, k in enumerate("XY")]) + st.g92[:2]
-        new[0] = px - (c * want[0] - s * want[1])
-        new[1] = py - (s * want[0] + c * want[1])
-    if "Z" in seen:
-        new[2] = st.pos[2] - st.g92[2] - st.tool_length - seen["Z"].value * st.scale
-    return new
-
-
-def _reference_return(key: int, seen, axis_words, st: State, blocks, used, where: Where, number) -> None:
-    """G28/G30: through the programmed intermediate point to the reference, only the axes named
-    (A-W words too); without axis words every axis, A-W to their reference positions."""
-    ref = st.home if key == 280 else st.reference2
-    ref_rot = st.home_extra if key == 280 else st.reference2_extra
-    rot_words = [a for a in EXTRA_LETTERS if a in seen]
-    if axis_words or rot_words:
-        mid = block_target(seen, axis_words, st, machine=False)
-        mid_rot = None
-        if rot_words:
-            st.extra_used = True
-            used.update(3 + EXTRA_LETTERS.index(a) for a in rot_words)
-            mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
-                                   incremental=st.incremental, scale=st.scale)
-        rapid_move(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
-        for a in axis_words:  # Fanuc/Haas G29 returns through it (program coordinates)
-            st.intermediate["XYZ".index(a)] = st.to_program(mid)["XYZ".index(a)]
-        end = st.pos.copy()
-        for a in axis_words:
-            end["XYZ".index(a)] = ref["XYZ".index(a)]
-        end_rot = None
-        if rot_words:
-            end_rot = st.extra.copy()
-            for a in rot_words:
-                end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
-        rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
-    else:
-        st.intermediate = st.to_program(st.pos)
-        back = st.extra_used and bool(np.any(st.extra != ref_rot))
-        rapid_move(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
-
-
-def _mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where: Where, number,
-                      notes: Notes) -> None:
-    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
-    name = {**MILL_CODES, **FANUC_CODES}[key][1]
-    code = name.split()[0]
-    bad = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "I", "J", "K", "R") if a in seen), None)
-    if not axis_words or bad is not None or st.comp_side is not None:
-        why = (f"with word {bad}: not supported" if bad is not None else
-               f"with cutter compensation on ({st.comp_code}): not supported" if st.comp_side is not None else
-               "needs axis words (the axes it moves)")
-        word = seen[bad] if bad is not None else None
-        where.fail(f"{name} {why}", column=word.column if word else 1, text=word.text if word else where.text,
-                   expected=f"{code} X.. Y.. Z.. (G40 before it)")
-    if key == 290:
-        try:
-            mid = stored_intermediate(st.intermediate, st.to_program(st.pos), axis_words)
-        except KeyError as exc:
-            word = seen[exc.args[0]]
-            where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
-                       column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
-        rapid_move(st.to_machine(mid), st, blocks, used, where, number, axis_words)
-    rapid_move(block_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
-    if key == 270:
-        missed = off_reference(st.pos, st.home, axis_words)
-        notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"
-                               if missed else ""))
-    elif key == 600:
-        notes.add(f"{name} run as a rapid to the end point (the overrun, a machine parameter, is not modelled)")
-    else:
-        notes.add(name)
-
-
-def _grbl_homing(st: State, blocks, used, where: Where, notes: Notes) -> None:
-    """grbl ``$H`` (:mod:`interpolators.iso_grbl`): Z to the machine's home, then X and Y, as rapids
-    [mm, machine]; offsets and modes stay."""
-    home = np.array(st.context.home, dtype=float)
-    up = st.pos.copy()
-    up[2] = home[2]
-    rapid_move(up, st, blocks, used, where, None, ["Z"])
-    rapid_move(home, st, blocks, used, where, None, ["X", "Y"])
-    st.stopped = False
-    notes.add("grbl $H homing run as rapids to home (Z, then X Y)")
 
 
 def _framed_initial(st: State, *, to_program: bool) -> None:
@@ -2071,7 +1736,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             haas=st.context.dialect.name == "haas",
                             fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
-        _fail_words(where, name, exc, seen, mw)
+        fail_words(where, name, exc, seen, mw)
     _framed_initial(st, to_program=False)
     if st.frame is not None:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]

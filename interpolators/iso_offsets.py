@@ -57,24 +57,35 @@ diameter geometry, ``#2600+n`` diameter wear (its #10000.. are general-purpose v
 
 The table is :attr:`interpolators.context.MachineContext.work_offsets` (keys ``"G54.1 P<n>"``). LinuxCNC
 has none of these codes: under ``--dialect linuxcnc`` G54.1 and G154 stay errors naming them.
+
+The ISO reader's offset blocks in every dialect live here too, on its state (:class:`interpolators.iso.State`):
+:func:`g10` (LinuxCNC G10 L1/L10/L11/L2/L20, the Fanuc/Haas forms above), :func:`local_offset` (G52),
+:func:`reference_p` (a P word on G28, G30, G52, G53, G92) and :func:`length_compensation` (G43, G43.1, G44, G49,
+LinuxCNC G43.2).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
+from interpolators._words import Where
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool, extended_offset
 from interpolators.iso_axes import EXTRA_LETTERS, word_values
-from interpolators.iso_words import WordError
+from interpolators.iso_words import Word, WordError, fail_words
 
-__all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset",
-           "extended_number", "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS",
-           "ToolRegister", "tool_offset_variable", "fanuc_tool_variable", "tool_offset", "with_tool_offset"]
+if TYPE_CHECKING:
+    from interpolators.iso import Notes, State
+
+__all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
+           "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
+           "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "reference_p",
+           "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -370,4 +381,256 @@ def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: To
     new = with_tool_offset(st.tool(number) or Tool(number=number), register, words["R"] * st.scale,
                            add=st.incremental)
     st.tools[number] = new
+    return new
+
+
+def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> None:
+    key, w = entry
+    if st.comp_side is not None and st.context.dialect.name == "linuxcnc":
+        # LinuxCNC interp_convert.cc convert_tool_length_offset, for G43, G43.1, G43.2 and G49 alike: "Cannot
+        # change tool offset with cutter radius compensation on" (G40 on the same line comes first); Fanuc and
+        # Haas change the length under G41/G42
+        where.fail(f"{w.text.upper()}: cannot change tool offset with cutter radius compensation on (LinuxCNC)",
+                   column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
+    st.length_code = key / 10
+    if key == 490:
+        st.tool_length = 0.0
+        st.tool_xy = np.zeros(2)
+        return
+    if key == 432:
+        _additional_length(seen, st, where, w, notes)
+        return
+    if key == 431 and st.context.dialect.name == "fanuc":
+        # Fanuc "Tool length compensation in tool axis direction (G43.1)": along the tool axis, Z while the rotary
+        # axes stand at 0 (a 3-axis machine): G43
+        if np.any(st.extra[:3] != 0):
+            where.fail("G43.1 tool length compensation in tool axis direction with a rotary axis turned: not "
+                       "supported", column=w.column, text=w.text, expected="G43.1 H.. with the rotary axes at 0")
+        notes.add("G43.1 tool length compensation in tool axis direction run as G43 (the tool axis is Z)")
+        key = 430
+    elif key == 431:
+        # LinuxCNC g-code.adoc "G43.1"; interp_convert.cc convert_tool_length_offset: the axis words
+        # are the offsets (no motion), an axis not named keeps its offset
+        if not any(a in seen for a in "XYZ"):
+            where.fail("G43.1 needs the tool offsets as axis words", column=w.column, text=w.text,
+                       expected="G43.1 Z<length> (and X, Y)")
+        old = [st.tool_xy[0], st.tool_xy[1], st.tool_length]
+        xyz = [seen.pop(a).value * st.scale if a in seen else old[i] for i, a in enumerate("XYZ")]
+        st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
+        return
+    h = seen.pop("H", None)
+    number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
+    st.length_number = number or 0
+    tool = st.tool(number) if number is not None else None
+    length = 0.0 if tool is None else tool.length
+    if tool is None and number not in (None, 0):
+        notes.add(f"H{number} not in the tool table (length 0)")
+    sign = -1.0 if key == 440 else 1.0
+    st.tool_length = sign * length
+    st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
+    notes.add("G43/G44 tool length from the table")
+
+
+def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
+    """LinuxCNC G43.2 (g-code.adoc "G43.2 Apply additional Tool Length Offset"; interp_convert.cc
+    convert_tool_length_offset): ``G43.2 H<n>`` adds tool n's offsets (length, X, Y) to the ones in effect,
+    ``G43.2 X.. Y.. Z..`` adds the words; no motion, the next move of an axis goes to the compensated point.
+    Errors as LinuxCNC's: both H and axis words, neither, and cutter compensation on ("Cannot change tool
+    offset with cutter radius compensation on"); an H not in the table adds 0 (noted, as for G43 here)."""
+    axes = [a for a in ("X", "Y", "Z", *EXTRA_LETTERS) if a in seen]
+    why = ("can not have both H and axis words" if "H" in seen and axes else
+           "no axes specified and H word missing" if "H" not in seen and not axes else
+           "cannot change tool offset with cutter radius compensation on" if st.comp_side is not None else
+           f"axis word {axes[-1]} (an offset of an axis beyond X, Y, Z): not supported"
+           if axes and axes[-1] in EXTRA_LETTERS else None)  # X Y Z come first in axes
+    if why is not None:
+        where.fail(f"G43.2: {why} (LinuxCNC)", column=w.column, text=w.text,
+                   expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
+    add = np.zeros(3)
+    if "H" in seen:
+        number = int(seen.pop("H").value)
+        tool = st.tool(number)
+        if tool is None and number != 0:
+            notes.add(f"H{number} not in the tool table (length 0)")
+        if tool is not None:
+            add = np.array([tool.offset_x, tool.offset_y, tool.length])
+    for i, a in enumerate("XYZ"):
+        if a in seen:
+            add[i] = seen.pop(a).value * st.scale
+    st.tool_xy = st.tool_xy + add[:2]
+    st.tool_length += float(add[2])
+    notes.add("G43.2 additional tool length offset (added to the offsets in effect)")
+
+
+def reference_p(key: int, seen, st: State, where: Where, notes: Notes) -> None:
+    """A P word on G28, G30, G52, G53 or G92: Fanuc/Haas ``G30 P2``-``P4`` (Fanuc 0i-MD B-64304EN "2nd, 3rd, and
+    4th reference position return": P2 the second, the default; the third and fourth are machine parameters
+    No. 1242/1243 the machine context does not hold: the second is used, noted); elsewhere the P is ignored,
+    noted (LinuxCNC refuses it: "P word with no G2 G3 G4 G10 G64 ... to use it")."""
+    p = seen["P"]
+    code = f"G{key / 10:g}"
+    if key == 300 and st.context.dialect.name in ("fanuc", "haas"):
+        if p.value not in (2, 3, 4):
+            where.fail(f"G30 P{p.value:g}: no such reference position", column=p.column, text=p.text,
+                       expected="G30 P2, P3 or P4 (2nd, 3rd, 4th reference position)")
+        if p.value != 2:
+            notes.add(f"G30 P{p.value:g}: the {('third', 'fourth')[int(p.value) - 3]} reference position is not in the "
+                      "machine context: the second one used")
+        return
+    refused = ' (LinuxCNC refuses it: "P word with no ... to use it")' if st.context.dialect.name == "linuxcnc" else ""
+    notes.add(f"P word on {code} ignored{refused}")
+
+
+def local_offset(seen, axis_words, st: State, where: Where, w: Word) -> None:
+    """G52 X.. Y.. Z..: the named axes' offset becomes the value (LinuxCNC interp_convert.cc
+    convert_axis_offsets, G_52: axis_offset = value); it is the offset G92 sets too (#5211..), cleared by
+    G92.1 and suspended by G92.2. Fanuc and Haas keep the local system apart from the G92 shift (Fanuc
+    0i-MD "Local coordinate system": G52 sets it in every workpiece system, G52 X0 cancels it, a G92
+    cancels it on the axes it names): there the value replaces the local part of the offset only."""
+    if st.comp_side is not None:  # LinuxCNC NCE_CANNOT_CHANGE_AXIS_OFFSETS_WITH_CUTTER_RADIUS_COMP
+        where.fail("G52 with cutter radius compensation on", column=w.column, text=w.text, expected="G40 before G52")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
+    for a in axis_words:
+        i, value = "XYZ".index(a), seen[a].value * st.scale
+        st.g92[i] = st.g92[i] - st.local[i] + value if fanuc else value
+        st.local[i] = value if fanuc else 0.0
+    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
+    given = ~np.isnan(v)
+    st.g92_extra[given] = v[given]  # A-W as X-Z: the offset is the value
+    st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
+    st.g92_applied = True
+
+
+def g10(seen, st: State, where: Where, w: Word) -> str:
+    """G10: set a work or tool offset; returns the note of the run. A Fanuc/Haas tool offset P0 is left
+    alone with a note: "the offset amount corresponding to H00 always means 0, and it is not possible to set
+    the offset amount corresponding to H00" (Fanuc 0i-MD B-64304EN "Tool length compensation (G43, G44,
+    G49)", offset number; the same wording in its copies), as a ``P#4120`` (the tool in the spindle) writes
+    it before any T of the run."""
+    l_word, p_word = seen.get("L"), seen.get("P")
+    fanuc = st.context.dialect.name in ("fanuc", "haas")
+    if l_word is not None and l_word.value == 50 and st.context.dialect.name == "fanuc":
+        st.parameter_input = True  # the lines up to G11 are parameter data (_execute)
+        return "G10 L50 parameter input by program (its data lines up to G11 not run: parameters not modelled)"
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
+            and p_word.value == 0 and "R" in seen:
+        return f"G10 L{int(l_word.value)} P0: offset 0 (H00/D00) always means 0 and cannot be set: ignored"
+    if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc:
+        try:  # Fanuc/Haas tool offsets: L10 L11 (L1) length geometry / wear, L12 L13 radius (interpolators.iso_offsets)
+            set_tool_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            fail_words(where, f"G10 L{int(l_word.value)} tool offset", exc, seen, w)
+        return "G10 offsets set"
+    if l_word is not None and int(l_word.value) in (1, 10, 11):
+        _g10_tool(int(l_word.value), seen, st, where, w)
+        return "G10 offsets set"
+    if l_word is not None and int(l_word.value) in (2, 20) and fanuc:
+        try:  # Fanuc/Haas: L2 G54-G59, L20 G54.1 P / G154 P, G91 adds (interpolators.iso_offsets)
+            set_work_offset(int(l_word.value), None if p_word is None else p_word.value,
+                            {k: v.value for k, v in seen.items()}, st, st.context.dialect.name)
+        except WordError as exc:
+            fail_words(where, f"G10 L{int(l_word.value)} work offset", exc, seen, w)
+        return "G10 offsets set"
+    if l_word is None or int(l_word.value) not in (2, 20):
+        where.fail("G10: only L1, L10, L11 (tool table) and L2, L20 (work offsets) are supported", column=w.column,
+                   text=w.text, expected="G10 L2 P<n> X.. Y.. Z.., G10 L20 P<n> ... or G10 L1 P<tool> Z.. R..")
+    r_word = seen.get("R")
+    p = int(p_word.value) if p_word is not None else 0
+    code = st.wcs if p == 0 else (WORK_OFFSETS[p - 1] if 1 <= p <= 9 else None)
+    if int(l_word.value) == 20 and r_word is not None:  # LinuxCNC convert_setup: "R not allowed in G10 L20"
+        where.fail("R not allowed in G10 L20", column=r_word.column, text=r_word.text,
+                   expected="G10 L2 P<n> R<angle> to rotate a coordinate system")
+    if code is None:
+        where.fail(f"G10 P{p}: coordinate system number must be 0-9", column=p_word.column, text=p_word.text,
+                   expected="P0 (current) .. P9")
+    current = st.offsets.get(code, st.context.offset(code)).copy()
+    if int(l_word.value) == 20:
+        current = _l20_offset(seen, st, current, st.rotations.get(code, 0.0))
+    for a in ("X", "Y", "Z"):
+        if a in seen and int(l_word.value) == 2:
+            current["XYZ".index(a)] = seen[a].value * st.scale
+    st.offsets[code] = current
+    v = word_values({a: seen[a].value for a in EXTRA_LETTERS if a in seen}, scale=st.scale)
+    given = ~np.isnan(v)
+    if np.any(given):  # L2: the offset is the value; L20: the offset that makes the current position the value
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[given] = (v if int(l_word.value) == 2 else st.extra - st.g92_extra - v)[given]
+        st.extra_offsets[code] = extra
+    if r_word is not None:  # LinuxCNC G10 L2 R: the system's rotation about Z [deg] (#5210 + 20 n)
+        st.rotations[code] = r_word.value
+    return "G10 offsets set"
+
+
+def _g10_tool(level: int, seen, st: State, where: Where, w: Word) -> None:
+    """G10 L1 / L10 / L11 P<tool>: write the tool table (LinuxCNC G-code reference "G10 L1", "G10 L10",
+    "G10 L11"; interp_convert.cc convert_setup_tool). L1 sets the offsets X Y Z and the radius R
+    directly; L10 sets them so that the current position, in the current coordinate system without
+    tool offsets, reads the programmed values; L11 the same in G59.3 without the G92 offset. X and Y
+    are rotated with the system's rotation (G10 L2 R); an L10/L11 with only one of them keeps the
+    old offset's part along the other rotated axis. The change applies at the next G43 (the offset in
+    effect is not changed)."""
+    p_word = seen.get("P")
+    if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
+        where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
+                   text=w.text, expected=f"G10 L{level} P<tool> X.. Y.. Z.. R..")
+    if not any(k in seen for k in ("X", "Y", "Z", "R")):
+        where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
+                   expected=f"G10 L{level} P<tool> with X, Y, Z and/or R")
+    number = int(p_word.value)
+    tool = st.tool(number) or Tool(number=number)
+    value = {a: seen[a].value * st.scale for a in "XYZ" if a in seen}
+    xy, length = np.array([tool.offset_x, tool.offset_y]), tool.length
+    if level == 1:
+        xy = np.array([value.get("X", xy[0]), value.get("Y", xy[1])])
+        length = value.get("Z", length)
+    else:
+        here, rotation = _here_without_tool(st, fixture=level == 11)
+        a = math.radians(rotation)
+        c, s = math.cos(a), math.sin(a)
+        if "X" in value or "Y" in value:
+            # the old offset's part along the rotated axis not named is kept
+            old_u, old_v = c * xy[0] + s * xy[1], -s * xy[0] + c * xy[1]
+            u = here[0] - value["X"] if "X" in value else old_u
+            v = here[1] - value["Y"] if "Y" in value else old_v
+            xy = np.array([c * u - s * v, s * u + c * v])
+        if "Z" in value:
+            length = here[2] - value["Z"]
+    radius = seen["R"].value * st.scale if "R" in seen else tool.radius
+    st.tools[number] = dataclasses.replace(tool, length=float(length), radius=float(radius),
+                                           offset_x=float(xy[0]), offset_y=float(xy[1]))
+
+
+def _here_without_tool(st: State, *, fixture: bool) -> tuple[np.ndarray, float]:
+    """The current position [mm] in the current system (``fixture``: in G59.3, without the G92 offset)
+    as if no tool offset were applied (the machine position less the work and G92 offsets only), and
+    that system's rotation [deg] (LinuxCNC interp_find.cc find_current_in_system_without_tlo)."""
+    wcs = "G59.3" if fixture else st.wcs
+    work = st.offsets.get(wcs)
+    work = st.context.offset(wcs) if work is None else work
+    rotation = st.rotations.get(wcs, 0.0)
+    g92 = np.zeros(3) if fixture else st.g92
+    m = st.pos - work
+    a = math.radians(rotation)
+    c, s = math.cos(a), math.sin(a)
+    return np.array([c * m[0] + s * m[1], -s * m[0] + c * m[1], m[2]]) - g92, rotation
+
+
+def _l20_offset(seen, st: State, offset: np.ndarray, rotation: float) -> np.ndarray:
+    """G10 L20: the offset of a system (rotated by ``rotation`` [deg]) that makes the current position
+    read the programmed values there (LinuxCNC interp_convert.cc convert_setup: the old and the desired
+    position are rotated into the unrotated frame; an axis not named keeps its current coordinate).
+    Machine = R (program + G92) + offset, so offset = machine - R (desired + G92)."""
+    a = math.radians(rotation)
+    c, s = math.cos(a), math.sin(a)
+    px, py = st.pos[0] - st.tool_xy[0], st.pos[1] - st.tool_xy[1]  # without the tool's X Y offsets
+    dx, dy = px - offset[0], py - offset[1]
+    here = np.array([c * dx + s * dy - st.g92[0], -s * dx + c * dy - st.g92[1]])  # current X Y in that system
+    new = offset.copy()
+    if "X" in seen or "Y" in seen:
+        want = np.array([seen[k].value * st.scale if k in seen else here[i] for i, k in enumerate("XY")]) + st.g92[:2]
+        new[0] = px - (c * want[0] - s * want[1])
+        new[1] = py - (s * want[0] + c * want[1])
+    if "Z" in seen:
+        new[2] = st.pos[2] - st.g92[2] - st.tool_length - seen["Z"].value * st.scale
     return new

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
-           "WORD_LETTERS"]
+           "WORD_LETTERS", "fail_words"]
 
 
 class WordError(ValueError):
@@ -237,3 +237,9 @@ def plain_words(code: str, *, checked: bool = False) -> list[Word] | None:
         d["letter"], d["value"], d["column"], d["text"] = letter.upper(), v, m.start() + 1, m.group()
         words.append(w)
     return words
+
+
+def fail_words(where: Where, name: str, exc: WordError, seen: dict, word) -> None:
+    """Report ``exc`` of the feature ``name`` at the word it names (else at ``word``, the G code)."""
+    bad = seen.get(exc.letter, word) if exc.letter else word
+    where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
