@@ -120,7 +120,6 @@ from interpolators.iso_codes import (
     G_UNSUPPORTED,
     LAST_ONE_VALID,
     LINUXCNC_G,
-    LINUXCNC_M,
     MILL_G,
     NORMAL_DIRECTION,
     PLANE_CODES,
@@ -143,6 +142,7 @@ from interpolators.iso_flow import run
 from interpolators.iso_grbl import system_lines, unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
+from interpolators.iso_mcodes import io_words, m_codes, planner_word, user_m_file
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -196,28 +196,6 @@ _POWER_ON_MOTION = {"grbl": 0, "fanuc": 0, "haas": 0}
 #: the pallet change stop M60, the tool change M6. M1 stops only with the control's optional stop switch on, which
 #: the virtual machine's is not (LinuxCNC M-codes "M1": "if the optional stop switch is on"; Fanuc M01 likewise).
 _AT_REST = (0.0, 60.0, 6.0)
-
-_M_NOTES = {
-    0: "M0/M1 program stop", 1: "M0/M1 program stop", 60: "M60 pallet change stop",
-    3: "S/M3-M5 spindle", 4: "S/M3-M5 spindle", 5: "S/M3-M5 spindle", 19: "M19 spindle orient",
-    6: "T/M6 tool change", 7: "M7-M9 coolant", 8: "M7-M9 coolant", 9: "M7-M9 coolant",
-    48: "M48-M53 overrides", 49: "M48-M53 overrides", 50: "M48-M53 overrides", 51: "M48-M53 overrides",
-    52: "M48-M53 overrides", 53: "M48-M53 overrides", 61: "M61 set tool number",
-    70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
-    **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
-}
-
-#: Haas M codes with a P word (Haas mill operator's manual, M codes "M59 Set Output Relay", "M69 Clear Output
-#: Relay": P the relay number, e.g. M59 P1103): no motion, noted (as other M codes).
-_HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
-
-#: Haas M codes that branch on a machine input (Haas mill operator's manual "M96 Jump If No Input", "M46 Jump If
-#: Pallet Loaded"): which way the program goes is the machine's, errors naming them.
-_HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loaded (Haas)"}
-
-#: Words the I/O M codes read (LinuxCNC M-code reference: M62-M65 P<output>; M66 P|E<input>
-#: L<wait mode> Q<timeout>; M67/M68 E<analog output> Q<value>): theirs, not the motion's.
-_IO_WORDS = ("P", "E", "L", "Q")
 
 
 class Notes:
@@ -655,7 +633,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
             if 100 <= m <= 199:
-                _user_m_file(w, m, st, where)
+                user_m_file(w, m, st, where)
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
@@ -718,13 +696,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     if "polar" in gcodes or st.fanuc_polar:
         seen = fanuc_polar(seen, gcodes, st, where, notes)
     tool_change_under_compensation(mcodes, st, where)
-    ended = _m_codes(mcodes, seen, st, where, notes)
-    seen = _planner_word(seen, gcodes, mcodes, where, notes)
+    ended = m_codes(mcodes, seen, st, where, notes)
+    seen = planner_word(seen, gcodes, mcodes, where, notes)
     if "smoothing" in gcodes:
         seen = _smoothing(gcodes["smoothing"], seen, st, where, notes)
     if "normal direction" in gcodes:
         _normal_direction(gcodes["normal direction"], st, where, notes)
-    seen = _io_words(mcodes, seen, st, where)
+    seen = io_words(mcodes, seen, st, where)
     _fanuc_system_codes(gcodes, seen, st, where)
     _modal_settings(seen, gcodes, st, blocks, where, notes)
     if gcodes.get("coordinate system", (0,))[0] in P_SELECT_CODES:  # its P names the offset
@@ -1280,167 +1258,6 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
     for _ in range(params.unbracketed):
         notes.add("parameter assignment with an operation outside [ ], read as Fanuc macro B does (LinuxCNC "
                   "refuses it: \"Bad character used\")")
-
-
-#: M100-M199 codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104
-#: "Set Hotend Temperature", M106 "Set Fan Speed", ...); a laser on such firmware is often driven as its fan.
-_PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures", 106: "M106 set fan speed",
-              107: "M107 fan off", 109: "M109 wait for hotend temperature", 114: "M114 get current position",
-              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
-
-
-def _user_m_file(w: Word, m: int, st: State, where: Where) -> None:
-    """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
-    Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
-    (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
-    USER_M_PATH, and a missing one is an error). The program runs outside the interpreter: nothing of the
-    path moves. Its file is looked for in the dialect's ``user_m_path``; an error names the code if none
-    holds it, as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's
-    functions (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl
-    1.1 refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20)."""
-    name = f"M{m}"
-    base = Path(where.file).parent if where.file else Path.cwd()
-    if any((base / folder / name).is_file() for folder in st.context.dialect.user_m_path):
-        return
-    looked = ", ".join(st.context.dialect.user_m_path) or "none given"
-    dialect = st.context.dialect.name
-    what = (f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
-            "USER_M_PATH)" if dialect == "linuxcnc" else
-            f"M code {w.text!r} unknown to grbl (gcode.c: M0-M5, M7-M9, M30, M56 only; error 20)"
-            if dialect == "grbl" else
-            f"machine-specific M code {w.text!r} (M100-M199 on a {dialect.capitalize()} control: a function of the "
-            "machine tool builder, no motion known here)")
-    printer = _PRINTER_M.get(m)
-    if printer:
-        what += f" (Marlin's {printer}: a 3D printer's code, which laser conversions use for the laser)"
-    where.fail(f"{what}: {name} not found (folders: {looked})", column=w.column, text=w.text,
-               expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "
-                        "or of --user-m-path (the code then runs as a function that moves nothing)")
-
-
-def _m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
-    """M codes: tool change, LinuxCNC's M70-M73 and notes; True at program end (M2/M30)."""
-    ended = False
-    for m, _ in mcodes:
-        if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
-            st.spindle_turning = m in (3, 4)
-            st.spindle_ccw = m == 4
-        if m in (2, 30):
-            ended = True
-            st.spindle_turning = False
-        elif m == 6:
-            st.tool_current = st.tool_selected
-            notes.add("T/M6 tool change")
-        elif m == 61:
-            if "Q" in seen:
-                st.tool_current = int(seen["Q"].value)
-            notes.add(_M_NOTES[m])
-        elif 70 <= m <= 73 and st.context.dialect.name == "linuxcnc":
-            _modal_state(m, st, where, notes)
-        elif m in _M_NOTES:
-            notes.add(_M_NOTES[m])
-        elif 100 <= m <= 199:
-            notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
-        elif st.context.dialect.name == "linuxcnc" and m not in LINUXCNC_M:
-            notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
-        else:
-            notes.add(f"M{m} (no motion)")
-    return ended
-
-
-def _modal_state(m: int, st: State, where: Where, notes: Notes) -> None:
-    """LinuxCNC M70 save, M71 invalidate, M72 restore, M73 save and restore at the return
-    (:mod:`interpolators.iso_modal_state`)."""
-    states = st.modal_states
-    if m in (70, 73):
-        states.save(st, autorestore=m == 73)
-    elif m == 71:
-        states.invalidate()
-    else:
-        try:
-            restored = states.restore(st)
-        except ValueError as exc:
-            where.fail(f"{exc}: not supported", expected="the same cutter compensation at M70 and M72")
-        if not restored:
-            notes.add("M72 with no modal state saved at its level (LinuxCNC refuses it: \"missing M70/M73?\"); "
-                      "nothing restored")
-            return
-    notes.add({70: "M70 modal state saved", 71: "M71 saved modal state invalidated", 72: "M72 modal state restored",
-               73: "M73 modal state saved, restored at the subroutine's return"}[m])
-
-
-def _planner_word(seen, gcodes, mcodes, where: Where, notes: Notes) -> dict:
-    """``seen`` without the R of ``G64 P.. R..``: LinuxCNC 2.10's trajectory planner selection.
-
-    LinuxCNC g-code.adoc "G64 R: planner selection": R0 (or negative) selects the trapezoidal
-    planner, R0.1..R1 (clamped) the jerk-limited one and its cornering aggressiveness; it changes
-    neither the path nor the end points, so it is accepted with a note (vcnc's look-ahead is its own).
-    An R on a line with M19 as well is an error (ambiguous, as LinuxCNC says); an R on G61 is left to
-    the other words' checks (an R without a code to use it).
-    """
-    if "R" not in seen or gcodes.get("path", (0,))[0] != 640:
-        return seen
-    w = seen["R"]
-    if any(m == 19 for m, _ in mcodes):
-        where.fail("word R on a line with both G64 and M19 is ambiguous (G64 planner or M19 angle)",
-                   column=w.column, text=w.text, expected="G64 R and M19 R on separate lines")
-    notes.add("G64 R planner selection (the path is unchanged)")
-    return {k: v for k, v in seen.items() if k != "R"}
-
-
-def _io_words(mcodes, seen, st: State, where: Where) -> dict:
-    """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
-    elsewhere is an error."""
-    if st.context.dialect.name == "haas" and any(m in _HAAS_P_M or m in _HAAS_JUMP_M for m, _ in mcodes):
-        m, w = next((m, w) for m, w in mcodes if m in _HAAS_P_M or m in _HAAS_JUMP_M)
-        if m in _HAAS_JUMP_M:
-            where.fail(f"{_HAAS_JUMP_M[m]}: not supported (the jump depends on a machine input)", column=w.column,
-                       text=w.text, expected="a program without input-dependent jumps")
-        seen = {k: v for k, v in seen.items() if k != "P"}
-    if st.context.dialect.name == "linuxcnc" and any(48 <= m <= 53 for m, _ in mcodes):
-        _override_m_codes(mcodes, st, where)
-        if any(50 <= m <= 53 for m, _ in mcodes):
-            seen = {k: v for k, v in seen.items() if k != "P"}
-        elif "P" in seen:  # interp_check.cc check_other_codes: "P word with no G2 .. M50 M51 M52 M53 .. to use it"
-            m, w = next((m, w) for m, w in mcodes if 48 <= m <= 53)
-            where.fail(f"M{m} P: M48 and M49 take no P (LinuxCNC; M50 P.. and M51 P.. switch the feed and the "
-                       "spindle speed override one by one)", column=seen["P"].column, text=seen["P"].text,
-                       expected=f"M{m} alone, or M50 P0/P1 and M51 P0/P1")
-    if any(62 <= m <= 68 for m, _ in mcodes):
-        return {k: v for k, v in seen.items() if k not in _IO_WORDS}
-    if any(m == 19 for m, _ in mcodes):  # LinuxCNC M19 R<angle> Q<timeout> P<direction>: spindle orientation
-        seen = {k: v for k, v in seen.items() if k not in "RQP"}
-    if any(m == 61 for m, _ in mcodes):  # M61 Q<tool>: the Q is the tool number, read by _m_codes
-        seen = {k: v for k, v in seen.items() if k != "Q"}
-    if any(100 <= m <= 199 for m, _ in mcodes):  # user M codes: P and Q are the external program's arguments
-        seen = {k: v for k, v in seen.items() if k not in "PQ"}
-    if "E" in seen:
-        w = seen["E"]
-        lead = re.search(r"[-+]?[\d.]+$", where.text[:w.column - 1])
-        if lead and ("." in lead.group(0) or re.fullmatch(r"[eE][-+]\d+", w.text)):
-            # "J -8.775e-05", printed by a script: G-code numbers have no exponent (overview.adoc "Numbers")
-            number = lead.group(0) + w.text
-            where.fail(f"number {number!r} in exponent notation: G-code numbers are plain decimals",
-                       column=w.column, text=w.text, expected="a plain decimal number such as -0.0000878")
-        # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
-        fadal = " (E1-E48 select a Fadal fixture offset: use --dialect fadal)" if 0 <= w.value <= 48 and \
-            w.value == int(w.value) else ""
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
-                   expected="E only with M66, M67 or M68")
-    return seen
-
-
-def _override_m_codes(mcodes, st: State, where: Where) -> None:
-    """LinuxCNC M48-M53 (m-code.adoc "M48, M49 Speed and Feed Override Control", "M50 Feed Override Control",
-    "M51 Spindle Speed Override Control", "M52 Adaptive Feed Control", "M53 Feed Stop Control"): ``M50 P1``
-    (or no P) enables, ``P0`` disables (interp_convert.cc convert_m: ``block->p_number != 0`` enables); no
-    motion, the path is unchanged (noted by :func:`_m_codes`). Refused with cutter compensation on, as
-    convert_m does ("Cannot enable overrides with cutter radius compensation on", "Cannot disable ..")."""
-    if st.comp_side is None:
-        return
-    m, w = next((m, w) for m, w in mcodes if 48 <= m <= 53)
-    where.fail(f"M{m}: cannot enable or disable overrides with cutter radius compensation on (LinuxCNC)",
-               column=w.column, text=w.text, expected=f"G40 before M{m}")
 
 
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
