@@ -134,11 +134,12 @@ from interpolators.iso_compensation import (
     tool_change_under_compensation,
 )
 from interpolators.iso_corners import PendingCorner, corner_after_block, corner_not_followed, corner_word
-from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES, CycleWords, cycle_moves, tap_spindle_error
+from interpolators.iso_cycles import CycleWords, cycle_moves, tap_spindle_error
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
+from interpolators.iso_frames import check_rotated, framed_initial, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import system_lines, unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
@@ -174,11 +175,10 @@ from interpolators.iso_reference import (
 from interpolators.iso_simulator import simulator_lines
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
-from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
-from interpolators.iso_transforms import Frame, g68_rotation, mirror, mirror_forbids, scaling
+from interpolators.iso_transforms import Frame, mirror_forbids
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import MESSAGE_KINDS, Block, Message, Program, end_at_rest
-from toolpaths.geometry import PLANE_AXES, Line
+from toolpaths.geometry import Line
 from vcnc.core.axes import AXIS_NAMES
 
 __all__ = ["parse_iso"]
@@ -716,13 +716,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     if polar:
         check_polar(seen, gcodes, st, where, seen[polar[0]])
     if gcodes.get("rotation", (0,))[0] == 680:
-        _g68(seen, st, where, gcodes["rotation"][1], notes)
+        g68(seen, st, where, gcodes["rotation"][1], notes)
         return ended
     if "tilted plane" in gcodes or "tool axis" in gcodes:  # G68.2, G53.1 (interpolators.iso_tilt)
-        _g68_2_g53_1(gcodes, seen, st, blocks, used, where, number, notes)
+        g68_2_g53_1(gcodes, seen, st, blocks, used, where, number, notes)
         return ended
     if gcodes.get("scaling", (0,))[0] == 510 or "mirror" in gcodes:
-        _scaling_mirror(gcodes, seen, st, where, notes)
+        scaling_mirror(gcodes, seen, st, where, notes)
         return ended
     if "pattern" in gcodes or "pocket" in gcodes:
         _pattern_or_pocket(gcodes, seen, st, blocks, used, where, number, notes)
@@ -748,7 +748,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     if "position offset" in gcodes:
         _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
-        _check_rotated(st, polar, where, words)
+        check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
     if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         _cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
@@ -895,23 +895,6 @@ def _fanuc_system_codes(gcodes, seen, st: State, where: Where) -> None:
         gcodes["coordinate system"] = (541, gcodes["coordinate system"][1])
 
 
-def _check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) -> None:
-    """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
-    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
-    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
-    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
-        st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
-        or any(st.frame.mirror) and st.motion in (760, 870, 770))
-    what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
-            and st.motion not in (800,) and not cycle_ok else None)
-    if what is not None:
-        w = words[0]
-        how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \
-            "G51.1 mirror image" if st.frame.rotation is None else f"G68 R {st.frame.rotation.angle:g}"
-        where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
-                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
-
-
 def _bolt_holes(entry, seen, st: State, blocks, used, where: Where, number) -> None:
     """Haas G70/G71/G72 (:mod:`interpolators.iso_haas`): the active canned cycle at every hole."""
     key, w = entry
@@ -978,95 +961,6 @@ def _pocket(entry, seen, st: State, blocks, used, where: Where, number) -> None:
             arc = arc_from_center(st.pos, target, centre, ccw=mv.ccw != flip, plane=2)
             blocks.append(Block(kind="arc", segment=arc, **common))
         st.pos = target
-
-
-def _g68(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
-    """G68: rotate the following blocks' coordinates (:mod:`interpolators.iso_transforms`); the block's
-    own words are the centre and the angle, nothing moves."""
-    other = [k for k in seen if k not in ("X", "Y", "Z", "R", "N", "F", "S", "T", "H", "D")]
-    if other or st.comp_side is not None:
-        bad = seen[other[0]] if other else w
-        where.fail("G68 coordinate rotation: only the centre (axis words of the plane) and R, without cutter "
-                   "compensation", column=bad.column, text=bad.text, expected="G68 X.. Y.. R<angle> with G40")
-    axes = [a for a in ("X", "Y", "Z") if a in seen and "XYZ".index(a) not in PLANE_AXES[st.plane]]
-    if axes:
-        bad = seen[axes[0]]
-        where.fail(f"G68 coordinate rotation: {bad.letter} is not an axis of the plane of rotation",
-                   column=bad.column, text=bad.text, expected="the centre's two axes of the active plane and R")
-    base = st.frame or Frame()
-    st.frame = dataclasses.replace(base, rotation=None)
-    rotation = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
-                            scale=st.scale)
-    _set_frame(st, dataclasses.replace(base, rotation=rotation))
-    notes.add("G68 coordinate rotation")
-
-
-def _g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], where: Where, number,
-                 notes: Notes) -> None:
-    """G68.2 X Y Z I J K: the tilted working plane on the machine's tilting table; G53.1: the rotary axes
-    turned to it at rapid, the linear axes staying (:mod:`interpolators.iso_tilt`)."""
-    if "tilted plane" in gcodes:
-        w = gcodes["tilted plane"][1]
-        other = [k for k in seen if k not in ("X", "Y", "Z", "I", "J", "K", "N")]
-        if other or st.comp_side is not None or st.frame is not None or st.rotation:
-            bad = seen[other[0]] if other else w
-            where.fail("G68.2 tilted working plane: only X Y Z (its zero) and I J K (Euler angles), without cutter "
-                       "compensation, G68/G51/G51.1 or a G10 R rotation", column=bad.column, text=bad.text,
-                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
-        zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
-        try:
-            rot = g68_2_rotation({k: v.value for k, v in seen.items()}, context=st.context, work_zero=zero,
-                                 extra=st.extra, scale=st.scale)
-        except TiltError as exc:
-            where.fail(exc.message, column=w.column, text=w.text, expected=exc.expected)
-        _set_frame(st, Frame(rotation=rot))
-        notes.add("G68.2 tilted working plane")
-    if "tool axis" in gcodes:
-        w = gcodes["tool axis"][1]
-        rot = st.frame.rotation if st.frame is not None else None
-        if not isinstance(rot, TiltedRotation):
-            where.fail("G53.1 without a G68.2 tilted working plane", column=w.column, text=w.text,
-                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. before G53.1")
-        turned = st.extra.copy()
-        for name, angle in rot.positions.items():
-            turned[EXTRA_LETTERS.index(name.upper())] = angle
-            used.add(3 + EXTRA_LETTERS.index(name.upper()))
-        blocks.append(Block(kind="rapid", feed=np.inf, segment=Line(st.pos, st.pos), line=where.line, number=number,
-                            text=where.text, start=st.pos.copy(), target=st.pos.copy(), exact_stop=st.exact_stop,
-                            tolerance=st.tolerance, extra_start=st.extra.copy(), extra_target=turned))
-        st.extra, st.extra_used = turned, True
-
-
-def _set_frame(st: State, frame: Frame) -> None:
-    st.frame = None if frame.identity else frame
-
-
-def _scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None:
-    """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
-    words are the centre / mirror lines, nothing moves."""
-    key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
-    name = MILL_G[key][1] if key in MILL_G else DIALECT_G["haas"][key][1]
-    other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
-    if other or st.comp_side is not None:
-        bad = seen[other[0]] if other else w
-        where.fail(f"{name}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
-                   "compensation", column=bad.column, text=bad.text, expected=f"{w.text.upper()} X.. Y.. with G40")
-    values = {k: v.value for k, v in seen.items()}
-    if key in (1000, 1010):  # Haas: "mirror image will reflect programmed motion around your work coordinate
-        values = {k: 0.0 for k in values}  # zero point"; the axis words only name the axes
-    base = st.frame or Frame()
-    try:
-        if key == 510:
-            here = (dataclasses.replace(st, frame=dataclasses.replace(base, factors=(1.0, 1.0, 1.0)))
-                    .to_program(st.pos))
-            frame = scaling(base, values, {k: v.text for k, v in seen.items()}, current=here, scale=st.scale,
-                            thousandths=st.context.dialect.name == "fanuc")
-        else:
-            frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
-    except WordError as exc:
-        fail_words(where, name, exc, seen, w)
-    _set_frame(st, frame)
-    notes.add(name)
 
 
 def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
@@ -1270,9 +1164,9 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
             refused = "; LinuxCNC refuses it: \"Unknown g code used\"" if st.context.dialect.name == "linuxcnc" else ""
             notes.add(f"{gcodes[grp][1].text.upper()} cancel{refused}")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
-        _set_frame(st, dataclasses.replace(st.frame, rotation=None))
+        set_frame(st, dataclasses.replace(st.frame, rotation=None))
     if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:
-        _set_frame(st, dataclasses.replace(st.frame, factors=(1.0, 1.0, 1.0)))
+        set_frame(st, dataclasses.replace(st.frame, factors=(1.0, 1.0, 1.0)))
     scale = st.scale
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
@@ -1497,24 +1391,6 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
     return False
 
 
-def _framed_initial(st: State, *, to_program: bool) -> None:
-    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
-    between blocks, so that it stays where the tool was when the series began while the transformation
-    changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
-    and back."""
-    if st.frame is None or st.cycle.initial is None:
-        return
-    axis = CYCLE_AXES[st.plane][2]
-    if to_program:
-        point = st.pos.copy()
-        point[axis] = st.cycle.initial
-        st.cycle.initial = float(st.to_program(point)[axis])
-    else:
-        point = st.to_program(st.pos)
-        point[axis] = st.cycle.initial
-        st.cycle.initial = float(st.to_machine(point)[axis])
-
-
 def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     if st.motion == 810 and st.context.dialect.name == "fanuc" and notes is not None and (
@@ -1543,7 +1419,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
         where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
                    "series is then undefined)", column=mw.column, text=mw.text, expected="G80 before G51 / G50")
     st.cycle.factors = factors
-    _framed_initial(st, to_program=True)
+    framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
         moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
@@ -1554,7 +1430,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)
-    _framed_initial(st, to_program=False)
+    framed_initial(st, to_program=False)
     if st.frame is not None:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:

@@ -1,0 +1,150 @@
+"""The ISO reader's frame blocks (:mod:`interpolators.iso`), Fanuc/Haas only: G68 coordinate rotation, G51 scaling
+and G51.1/G50.1 (Haas G101/G100) mirror image, whose frames :mod:`interpolators.iso_transforms` computes, G68.2 and
+G53.1 (the tilted working plane, :mod:`interpolators.iso_tilt`), the moves a rotated system supports and a canned
+cycle's initial level under a frame."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from interpolators._words import Where
+from interpolators.iso_axes import EXTRA_LETTERS
+from interpolators.iso_codes import DIALECT_G, G_CODES, MILL_G
+from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES
+from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
+from interpolators.iso_transforms import Frame, g68_rotation, mirror, scaling
+from interpolators.iso_words import Word, WordError, fail_words
+from interpolators.program import Block
+from toolpaths.geometry import PLANE_AXES, Line
+
+if TYPE_CHECKING:
+    from interpolators.iso import Notes, State
+
+__all__ = ["check_rotated", "g68", "g68_2_g53_1", "set_frame", "scaling_mirror", "framed_initial"]
+
+
+def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) -> None:
+    """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
+    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
+    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
+    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
+        st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
+        or any(st.frame.mirror) and st.motion in (760, 870, 770))
+    what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
+            and st.motion not in (800,) and not cycle_ok else None)
+    if what is not None:
+        w = words[0]
+        how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \
+            "G51.1 mirror image" if st.frame.rotation is None else f"G68 R {st.frame.rotation.angle:g}"
+        where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
+                   column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
+
+
+def g68(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
+    """G68: rotate the following blocks' coordinates (:mod:`interpolators.iso_transforms`); the block's
+    own words are the centre and the angle, nothing moves."""
+    other = [k for k in seen if k not in ("X", "Y", "Z", "R", "N", "F", "S", "T", "H", "D")]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail("G68 coordinate rotation: only the centre (axis words of the plane) and R, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected="G68 X.. Y.. R<angle> with G40")
+    axes = [a for a in ("X", "Y", "Z") if a in seen and "XYZ".index(a) not in PLANE_AXES[st.plane]]
+    if axes:
+        bad = seen[axes[0]]
+        where.fail(f"G68 coordinate rotation: {bad.letter} is not an axis of the plane of rotation",
+                   column=bad.column, text=bad.text, expected="the centre's two axes of the active plane and R")
+    base = st.frame or Frame()
+    st.frame = dataclasses.replace(base, rotation=None)
+    rotation = g68_rotation({k: v.value for k, v in seen.items()}, plane=st.plane, current=st.to_program(st.pos),
+                            scale=st.scale)
+    set_frame(st, dataclasses.replace(base, rotation=rotation))
+    notes.add("G68 coordinate rotation")
+
+
+def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], where: Where, number,
+                 notes: Notes) -> None:
+    """G68.2 X Y Z I J K: the tilted working plane on the machine's tilting table; G53.1: the rotary axes
+    turned to it at rapid, the linear axes staying (:mod:`interpolators.iso_tilt`)."""
+    if "tilted plane" in gcodes:
+        w = gcodes["tilted plane"][1]
+        other = [k for k in seen if k not in ("X", "Y", "Z", "I", "J", "K", "N")]
+        if other or st.comp_side is not None or st.frame is not None or st.rotation:
+            bad = seen[other[0]] if other else w
+            where.fail("G68.2 tilted working plane: only X Y Z (its zero) and I J K (Euler angles), without cutter "
+                       "compensation, G68/G51/G51.1 or a G10 R rotation", column=bad.column, text=bad.text,
+                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
+        zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
+        try:
+            rot = g68_2_rotation({k: v.value for k, v in seen.items()}, context=st.context, work_zero=zero,
+                                 extra=st.extra, scale=st.scale)
+        except TiltError as exc:
+            where.fail(exc.message, column=w.column, text=w.text, expected=exc.expected)
+        set_frame(st, Frame(rotation=rot))
+        notes.add("G68.2 tilted working plane")
+    if "tool axis" in gcodes:
+        w = gcodes["tool axis"][1]
+        rot = st.frame.rotation if st.frame is not None else None
+        if not isinstance(rot, TiltedRotation):
+            where.fail("G53.1 without a G68.2 tilted working plane", column=w.column, text=w.text,
+                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. before G53.1")
+        turned = st.extra.copy()
+        for name, angle in rot.positions.items():
+            turned[EXTRA_LETTERS.index(name.upper())] = angle
+            used.add(3 + EXTRA_LETTERS.index(name.upper()))
+        blocks.append(Block(kind="rapid", feed=np.inf, segment=Line(st.pos, st.pos), line=where.line, number=number,
+                            text=where.text, start=st.pos.copy(), target=st.pos.copy(), exact_stop=st.exact_stop,
+                            tolerance=st.tolerance, extra_start=st.extra.copy(), extra_target=turned))
+        st.extra, st.extra_used = turned, True
+
+
+def set_frame(st: State, frame: Frame) -> None:
+    st.frame = None if frame.identity else frame
+
+
+def scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None:
+    """G51 scaling, G51.1 / G50.1 mirror image (:mod:`interpolators.iso_transforms`): the block's axis
+    words are the centre / mirror lines, nothing moves."""
+    key, w = gcodes["mirror"] if "mirror" in gcodes else gcodes["scaling"]
+    name = MILL_G[key][1] if key in MILL_G else DIALECT_G["haas"][key][1]
+    other = [k for k in seen if k not in ("X", "Y", "Z", "N", *(("P", "I", "J", "K") if key == 510 else ()))]
+    if other or st.comp_side is not None:
+        bad = seen[other[0]] if other else w
+        where.fail(f"{name}: only axis words{' and P or I J K' if key == 510 else ''}, without cutter "
+                   "compensation", column=bad.column, text=bad.text, expected=f"{w.text.upper()} X.. Y.. with G40")
+    values = {k: v.value for k, v in seen.items()}
+    if key in (1000, 1010):  # Haas: "mirror image will reflect programmed motion around your work coordinate
+        values = {k: 0.0 for k in values}  # zero point"; the axis words only name the axes
+    base = st.frame or Frame()
+    try:
+        if key == 510:
+            here = (dataclasses.replace(st, frame=dataclasses.replace(base, factors=(1.0, 1.0, 1.0)))
+                    .to_program(st.pos))
+            frame = scaling(base, values, {k: v.text for k, v in seen.items()}, current=here, scale=st.scale,
+                            thousandths=st.context.dialect.name == "fanuc")
+        else:
+            frame = mirror(base, values, on=key in (511, 1010), scale=st.scale)
+    except WordError as exc:
+        fail_words(where, name, exc, seen, w)
+    set_frame(st, frame)
+    notes.add(name)
+
+
+def framed_initial(st: State, *, to_program: bool) -> None:
+    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
+    between blocks, so that it stays where the tool was when the series began while the transformation
+    changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
+    and back."""
+    if st.frame is None or st.cycle.initial is None:
+        return
+    axis = CYCLE_AXES[st.plane][2]
+    if to_program:
+        point = st.pos.copy()
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_program(point)[axis])
+    else:
+        point = st.to_program(st.pos)
+        point[axis] = st.cycle.initial
+        st.cycle.initial = float(st.to_machine(point)[axis])
