@@ -103,15 +103,12 @@ import collections
 import dataclasses
 import functools
 import re
-from pathlib import Path
 
 import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
-from interpolators.arcs import (
-    arc_from_center,
-)
-from interpolators.context import DEFAULT_CONTEXT, Dialect, MachineContext, Tool
+from interpolators.arcs import arc_from_center
+from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
 from interpolators.iso_codes import (
@@ -140,7 +137,7 @@ from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, framed_initial, g68, g68_2_g53_1, scaling_mirror, set_frame
-from interpolators.iso_grbl import system_lines, unsupported_codes
+from interpolators.iso_grbl import unsupported_codes
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
 from interpolators.iso_mcodes import io_words, m_codes, planner_word, user_m_file
@@ -169,15 +166,22 @@ from interpolators.iso_offsets import (
 from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
-from interpolators.iso_reference import (
-    FANUC_CODES,
-)
-from interpolators.iso_simulator import simulator_lines
+from interpolators.iso_reference import FANUC_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_text import (
+    closing_notes,
+    ends_with_m99,
+    expression_notes,
+    line_notes,
+    message_stops,
+    note_comment,
+    prepared_text,
+    program_name,
+)
 from interpolators.iso_transforms import Frame, mirror_forbids
 from interpolators.iso_words import Word, WordError, fail_words
-from interpolators.program import MESSAGE_KINDS, Block, Message, Program, end_at_rest
+from interpolators.program import Block, Message, Program, end_at_rest
 from toolpaths.geometry import Line
 from vcnc.core.axes import AXIS_NAMES
 
@@ -382,11 +386,11 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 modal_calls=ModalCalls() if dialect.name == "fanuc" else None)
     notes = Notes()
     raw_lines = lines_of(text)
-    text, homing, wrapped = _prepared_text(text, source, dialect.name, notes)
-    st.subprogram = _ends_with_m99(text)
+    text, homing, wrapped = prepared_text(text, source, dialect.name, notes)
+    st.subprogram = ends_with_m99(text)
     blocks: list[Block] = []
     used: set[int] = set()
-    name = _program_name(text)
+    name = program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
     macro_b = dialect.name in ("fanuc", "haas")
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
@@ -394,7 +398,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                         fanuc=dialect.name == "fanuc",
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
     messages: list[Message] = []
-    on_comment = functools.partial(_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
+    on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
@@ -403,8 +407,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
-        _message_stops(params, st, blocks, notes)
-        _line_notes(fl, source, external, notes)
+        message_stops(params, st, blocks, notes)
+        line_notes(fl, source, external, notes)
         if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
             _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
         while homing and fl.file == source and homing[0] < fl.line:
@@ -430,7 +434,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         if ended:
             break
     else:
-        _message_stops(params, st, blocks, notes)
+        message_stops(params, st, blocks, notes)
         for line in homing:  # $H lines after the last block
             grbl_homing(st, blocks, used, Where(source, line, raw_lines[line - 1]), notes)
         if dialect.name == "linuxcnc" and not wrapped:
@@ -440,50 +444,13 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         finish_compensation(st, blocks, source)
-    _expression_notes(text, params, dialect.name, notes)
-    _closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
+    expression_notes(text, params, dialect.name, notes)
+    closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
     if st.extra_used:
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages))
-
-
-def _prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> tuple[str, list[int], bool]:
-    """The program text the reader runs, the lines of grbl's ``$H`` homing commands taken out of it, and whether
-    a LinuxCNC file is wrapped in ``%`` lines (read up to the second); notes of what was taken out or is not
-    sent."""
-    homing: list[int] = []
-    if dialect == "grbl":
-        text, homing = _grbl_lines(text, source, notes)
-    text, directives = simulator_lines(text, dollar=dialect != "grbl")
-    for _ in range(directives):
-        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
-    wrapped = False
-    if dialect == "linuxcnc":
-        text, wrapped = _until_closing_percent(text, notes)
-    if _OUTPUT_COMMAND.search(text):
-        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
-    return text, homing, wrapped
-
-
-def _message_stops(params: Parameters, st: State, blocks: list[Block], notes: Notes) -> None:
-    """Fanuc/Haas ``#3006 = n (message)`` reached since the last line (:attr:`Parameters.stops`): the path comes to
-    rest at the last block before it, as at M0, and the run notes the message shown until cycle start."""
-    for line, message in params.stops:
-        end_at_rest(blocks)
-        st.stopped, st.stop_line = True, line  # the operator may jog before the next move
-        notes.add(f"#3006 message stop at line {line} ({message or 'no message'}): the program waits for cycle start")
-    params.stops.clear()
-
-
-def _line_notes(fl, source: str | None, external: set[str | None], notes: Notes) -> None:
-    """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
-    if fl.raw.lstrip().startswith("/"):
-        notes.add("/ block delete lines run (switch off)")
-    if fl.file != source and fl.file not in external:
-        external.add(fl.file)
-        notes.add(f"subprogram from {Path(fl.file).name}")
 
 
 def _enter_level(st: State, level: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
@@ -497,79 +464,6 @@ def _enter_level(st: State, level: int, plain: PlainMoves, where: Where, notes: 
     if restored:
         plain.reset()
         notes.add("M73 modal state restored at the subroutine's return")
-
-
-def _closing_notes(st: State, blocks: list[Block], dialect: Dialect, notes: Notes, *, reading: str) -> None:
-    """What the whole program's reading assumed: positions read after a stop, the initial feed taken, the
-    units of a program that states none."""
-    for line in sorted(st.stops_read):
-        notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
-                  "jog by the operator is not modelled")
-    if st.parts_read:
-        notes.add("parts counters #3901/#3902 read as the program set them, 0 before (the virtual machine's count "
-                  "starts at 0)")
-    if st.initial_feed_line is not None:
-        notes.add(f"feed moves before any F word (from line {st.initial_feed_line}) run at the machine's initial feed "
-                  f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
-                  "LinuxCNC and grbl refuse such a move)")
-    if not st.units_stated and any(b.kind != "dwell" for b in blocks):
-        notes.add(f"no G20/G21: {dialect.default_units} assumed ({reading} default)")
-
-
-#: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
-#: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
-_NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
-
-
-def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
-    """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
-    that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
-    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it); and whether it had both."""
-    lines = text.split("\n")
-    filled = [i for i, raw in enumerate(lines) if raw.strip()]
-    opened = bool(filled) and lines[filled[0]].strip() == "%"
-    stray = [i for i in filled[1 if opened else 0:] if lines[i].strip().startswith("%") and lines[i].strip() != "%"
-             or lines[i].strip() == "%" and not opened]
-    if stray:  # "% ; start flag", or a % after comment lines: rs274 stops there ("Bad character '%' used")
-        notes.add("'%' lines LinuxCNC refuses (not the file's first line, or with a comment) skipped")
-    if not opened:
-        return text, False
-    for i in filled[1:]:
-        if lines[i].strip() == "%":
-            if any(raw.strip() for raw in lines[i + 1:]):
-                notes.add("lines after the closing % not run (LinuxCNC ends the program there)")
-            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1)), True
-    return text, False
-
-
-def _comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: Notes) -> None:
-    """A LinuxCNC active comment the run reached (:mod:`interpolators.iso_messages`): a message, or a note
-    for the log file vcnc does not write and the Python code it does not run."""
-    if keyword in MESSAGE_KINDS:
-        messages.append(Message(line=where.line, kind=keyword, text=text, file=where.file))
-    if keyword in ("log", "logopen", "logappend", "logclose"):
-        notes.add("(LOG...) comments: no log file written")
-    elif keyword.startswith("py"):
-        notes.add(f"({keyword.upper()},...) Python comment not run")
-
-
-#: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
-_OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
-
-
-def _ends_with_m99(text: str) -> bool:
-    """True when the last block of the text (comments, ``%`` and blank lines aside) has M99."""
-    for raw in reversed(text.splitlines()):
-        code = re.sub(r"\([^)]*\)|;.*", "", raw).strip()
-        if code and code != "%":
-            return re.search(r"M\s*0*99(?![0-9.])", code, re.I) is not None
-    return False
-
-
-def _program_name(text: str) -> str | None:
-    """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
-    m = re.search(r"^[ \t]*(?:%[ \t]*)?(?:[oO]|:)[ \t]*(\d+)\b(?![ \t]*[a-zA-Z])", text, re.M)
-    return f"O{int(m.group(1))}" if m else None
 
 
 def _gkey(w: Word, where: Where) -> int:
@@ -1117,41 +1011,6 @@ def _normal_direction(entry, st: State, where: Where, notes: Notes) -> None:
                    column=w.column, text=w.text, expected="G40.1, or C moves programmed in the blocks")
     notes.add(NORMAL_DIRECTION[key] if key == 401 else "G41.1/G42.1 normal direction control: this machine has "
               "no C axis to turn, the path is as programmed")
-
-
-def _grbl_lines(text: str, source: str | None, notes: Notes) -> tuple[str, list[int]]:
-    """The text with grbl's system-command lines and the sender's lines blanked
-    (:func:`interpolators.iso_grbl.system_lines`), each kind noted, and the lines of its ``$H`` homing cycles."""
-    grbl = system_lines(text, source)
-    for _ in range(grbl.blanked):
-        notes.add("grbl $ system commands (reports, settings) not run")
-    for _ in range(grbl.closed):
-        notes.add("unclosed ( comments read to the end of the line (grbl)")
-    for _ in range(grbl.resumes):
-        notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
-    for _ in range(grbl.sender):
-        notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
-    return grbl.text, list(grbl.homing)
-
-
-def _expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) -> None:
-    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
-    brackets that join comparisons (``iso_params`` reads them comparisons first)."""
-    if dialect == "linuxcnc":
-        _linuxcnc_refusals(text, params, notes)
-    for _ in range(params.joined_comparisons):
-        notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
-                  "(Fanuc writes each in its own brackets)")
-
-
-def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
-    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: comments with a '(' inside, and
-    parameter assignments with an operation outside [ ] (:func:`interpolators.iso_params.read_line`)."""
-    if _NESTED_COMMENT.search(text):
-        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
-    for _ in range(params.unbracketed):
-        notes.add("parameter assignment with an operation outside [ ], read as Fanuc macro B does (LinuxCNC "
-                  "refuses it: \"Bad character used\")")
 
 
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:

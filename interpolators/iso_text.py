@@ -1,0 +1,170 @@
+"""The ISO program's text before the reader runs it and the notes around the run (:mod:`interpolators.iso`): grbl's
+``$`` lines and ``$H`` taken out (:mod:`interpolators.iso_grbl`), CNCSimulator Pro directives
+(:mod:`interpolators.iso_simulator`), LinuxCNC's ``%``-wrapped file read up to its second ``%`` line, the notes of
+external output commands and of expressions LinuxCNC refuses, a subprogram file (last block M99) and its program
+number, LinuxCNC active comments as messages, Fanuc/Haas ``#3006`` message stops, and the notes a line and the
+whole reading leave."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from interpolators._words import Where
+from interpolators.context import Dialect
+from interpolators.iso_grbl import system_lines
+from interpolators.iso_params import Parameters
+from interpolators.iso_simulator import simulator_lines
+from interpolators.program import MESSAGE_KINDS, Block, Message, end_at_rest
+
+if TYPE_CHECKING:
+    from interpolators.iso import Notes, State
+
+__all__ = ["prepared_text", "expression_notes", "ends_with_m99", "program_name", "note_comment", "message_stops",
+           "line_notes", "closing_notes"]
+
+
+def prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> tuple[str, list[int], bool]:
+    """The program text the reader runs, the lines of grbl's ``$H`` homing commands taken out of it, and whether
+    a LinuxCNC file is wrapped in ``%`` lines (read up to the second); notes of what was taken out or is not
+    sent."""
+    homing: list[int] = []
+    if dialect == "grbl":
+        text, homing = _grbl_lines(text, source, notes)
+    text, directives = simulator_lines(text, dollar=dialect != "grbl")
+    for _ in range(directives):
+        notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
+    wrapped = False
+    if dialect == "linuxcnc":
+        text, wrapped = _until_closing_percent(text, notes)
+    if _OUTPUT_COMMAND.search(text):
+        notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
+    return text, homing, wrapped
+
+
+def message_stops(params: Parameters, st: State, blocks: list[Block], notes: Notes) -> None:
+    """Fanuc/Haas ``#3006 = n (message)`` reached since the last line (:attr:`Parameters.stops`): the path comes to
+    rest at the last block before it, as at M0, and the run notes the message shown until cycle start."""
+    for line, message in params.stops:
+        end_at_rest(blocks)
+        st.stopped, st.stop_line = True, line  # the operator may jog before the next move
+        notes.add(f"#3006 message stop at line {line} ({message or 'no message'}): the program waits for cycle start")
+    params.stops.clear()
+
+
+def line_notes(fl, source: str | None, external: set[str | None], notes: Notes) -> None:
+    """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
+    if fl.raw.lstrip().startswith("/"):
+        notes.add("/ block delete lines run (switch off)")
+    if fl.file != source and fl.file not in external:
+        external.add(fl.file)
+        notes.add(f"subprogram from {Path(fl.file).name}")
+
+
+def closing_notes(st: State, blocks: list[Block], dialect: Dialect, notes: Notes, *, reading: str) -> None:
+    """What the whole program's reading assumed: positions read after a stop, the initial feed taken, the
+    units of a program that states none."""
+    for line in sorted(st.stops_read):
+        notes.add(f"position read after a program stop (line {line}): the position where the program stopped; a "
+                  "jog by the operator is not modelled")
+    if st.parts_read:
+        notes.add("parts counters #3901/#3902 read as the program set them, 0 before (the virtual machine's count "
+                  "starts at 0)")
+    if st.initial_feed_line is not None:
+        notes.add(f"feed moves before any F word (from line {st.initial_feed_line}) run at the machine's initial feed "
+                  f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
+                  "LinuxCNC and grbl refuse such a move)")
+    if not st.units_stated and any(b.kind != "dwell" for b in blocks):
+        notes.add(f"no G20/G21: {dialect.default_units} assumed ({reading} default)")
+
+
+#: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
+#: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
+_NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
+
+
+def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
+    """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
+    that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
+    line once the file began with one; rs274 2.9.0~pre1 runs nothing after it); and whether it had both."""
+    lines = text.split("\n")
+    filled = [i for i, raw in enumerate(lines) if raw.strip()]
+    opened = bool(filled) and lines[filled[0]].strip() == "%"
+    stray = [i for i in filled[1 if opened else 0:] if lines[i].strip().startswith("%") and lines[i].strip() != "%"
+             or lines[i].strip() == "%" and not opened]
+    if stray:  # "% ; start flag", or a % after comment lines: rs274 stops there ("Bad character '%' used")
+        notes.add("'%' lines LinuxCNC refuses (not the file's first line, or with a comment) skipped")
+    if not opened:
+        return text, False
+    for i in filled[1:]:
+        if lines[i].strip() == "%":
+            if any(raw.strip() for raw in lines[i + 1:]):
+                notes.add("lines after the closing % not run (LinuxCNC ends the program there)")
+            return "\n".join(lines[:i + 1] + [""] * (len(lines) - i - 1)), True
+    return text, False
+
+
+def note_comment(keyword: str, text: str, where: Where, *, messages: list[Message], notes: Notes) -> None:
+    """A LinuxCNC active comment the run reached (:mod:`interpolators.iso_messages`): a message, or a note
+    for the log file vcnc does not write and the Python code it does not run."""
+    if keyword in MESSAGE_KINDS:
+        messages.append(Message(line=where.line, kind=keyword, text=text, file=where.file))
+    if keyword in ("log", "logopen", "logappend", "logclose"):
+        notes.add("(LOG...) comments: no log file written")
+    elif keyword.startswith("py"):
+        notes.add(f"({keyword.upper()},...) Python comment not run")
+
+
+#: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
+_OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
+
+
+def ends_with_m99(text: str) -> bool:
+    """True when the last block of the text (comments, ``%`` and blank lines aside) has M99."""
+    for raw in reversed(text.splitlines()):
+        code = re.sub(r"\([^)]*\)|;.*", "", raw).strip()
+        if code and code != "%":
+            return re.search(r"M\s*0*99(?![0-9.])", code, re.I) is not None
+    return False
+
+
+def program_name(text: str) -> str | None:
+    """``O<number>`` of the first program-number line (``O1234`` or ``:1234``), if any."""
+    m = re.search(r"^[ \t]*(?:%[ \t]*)?(?:[oO]|:)[ \t]*(\d+)\b(?![ \t]*[a-zA-Z])", text, re.M)
+    return f"O{int(m.group(1))}" if m else None
+
+
+def _grbl_lines(text: str, source: str | None, notes: Notes) -> tuple[str, list[int]]:
+    """The text with grbl's system-command lines and the sender's lines blanked
+    (:func:`interpolators.iso_grbl.system_lines`), each kind noted, and the lines of its ``$H`` homing cycles."""
+    grbl = system_lines(text, source)
+    for _ in range(grbl.blanked):
+        notes.add("grbl $ system commands (reports, settings) not run")
+    for _ in range(grbl.closed):
+        notes.add("unclosed ( comments read to the end of the line (grbl)")
+    for _ in range(grbl.resumes):
+        notes.add("grbl ~ cycle start (resumes a hold or M0 pause) dropped")
+    for _ in range(grbl.sender):
+        notes.add("CNCjs % macro lines (%wait, variables) not run (the sender evaluates them)")
+    return grbl.text, list(grbl.homing)
+
+
+def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) -> None:
+    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
+    brackets that join comparisons (``iso_params`` reads them comparisons first)."""
+    if dialect == "linuxcnc":
+        _linuxcnc_refusals(text, params, notes)
+    for _ in range(params.joined_comparisons):
+        notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
+                  "(Fanuc writes each in its own brackets)")
+
+
+def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: comments with a '(' inside, and
+    parameter assignments with an operation outside [ ] (:func:`interpolators.iso_params.read_line`)."""
+    if _NESTED_COMMENT.search(text):
+        notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
+    for _ in range(params.unbracketed):
+        notes.add("parameter assignment with an operation outside [ ], read as Fanuc macro B does (LinuxCNC "
+                  "refuses it: \"Bad character used\")")
