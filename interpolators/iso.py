@@ -95,6 +95,15 @@ LinuxCNC's active comments ``(MSG, ..)``, ``(DEBUG, ..)``, ``(PRINT, ..)``, ``(L
 Fanuc ``G65`` macro calls: :mod:`interpolators.iso_flow`; Fanuc/Haas macro B ``IF``/``GOTO``/
 ``WHILE``: :mod:`interpolators.iso_macro`; system parameters (``#5021``.., read from this
 reader's state): :mod:`interpolators.iso_system`.
+
+This module keeps the reader's state (:class:`State`), the line loop (:func:`parse_iso`) and the dispatch of a
+block's words by modal group; the blocks themselves, by concern: :mod:`interpolators.iso_codes` (the tables of G
+and M codes), :mod:`interpolators.iso_text` (the text before the run, the notes around it),
+:mod:`interpolators.iso_motion` (end points, G0-G3 and their feeds, G33, G5, G5.2, G4) and
+:mod:`interpolators.iso_arcs`, :mod:`interpolators.iso_compensation` (G40-G42, G39),
+:mod:`interpolators.iso_offsets` (G10, G52, G43/G44/G49), :mod:`interpolators.iso_home` (G28/G30, G27/G29/G60,
+grbl ``$H``), :mod:`interpolators.iso_mcodes` (M codes), :mod:`interpolators.iso_frames` (G68, G51, G51.1,
+G68.2/G53.1) and :mod:`interpolators.iso_cycle_blocks` (canned-cycle blocks, Haas patterns and pocket).
 """
 
 from __future__ import annotations
@@ -711,7 +720,7 @@ def _arc_code_alone(gcodes, st: State, where: Where) -> None:
     block has neither an r value nor any i,j,k values: NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", checked also on a
     block without axis words: rs274 refuses "G3 F360"); the other dialects take the motion mode from it (grbl
     gcode.c sets the modal motion of a block without axis words). An arc with axis words and no centre is
-    refused by :func:`read_arc`."""
+    refused by :func:`interpolators.iso_arcs.read_arc`."""
     if st.context.dialect.name != "linuxcnc" or gcodes.get("motion", (0,))[0] not in (20, 30):
         return
     w = gcodes["motion"][1]

@@ -510,7 +510,7 @@ def g10(seen, st: State, where: Where, w: Word) -> str:
     l_word, p_word = seen.get("L"), seen.get("P")
     fanuc = st.context.dialect.name in ("fanuc", "haas")
     if l_word is not None and l_word.value == 50 and st.context.dialect.name == "fanuc":
-        st.parameter_input = True  # the lines up to G11 are parameter data (_execute)
+        st.parameter_input = True  # the lines up to G11 are parameter data (interpolators.iso ``_execute``)
         return "G10 L50 parameter input by program (its data lines up to G11 not run: parameters not modelled)"
     if l_word is not None and int(l_word.value) in TOOL_LEVELS and fanuc and p_word is not None \
             and p_word.value == 0 and "R" in seen:
