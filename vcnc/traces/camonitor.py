@@ -37,7 +37,7 @@ from vcnc.traces.columns import (
     read_text,
     with_following_errors,
 )
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import channels_from_names, mapping_note
 
 __all__ = ["read_camonitor", "looks_like_camonitor"]
 
@@ -83,11 +83,11 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if columns:
         mapping = {k: v for k, v in columns.items() if k != "t"}
     else:
-        mapping, why = columns_from_names(found, period_known=True)
-        if mapping is None or "t" in mapping:
+        named, why = channels_from_names(found, "PV")
+        if named is None:
             raise CaptureError("which PVs are the commanded and measured positions? give --columns x_ref=PV,x=PV; "
-                               f"PVs found: {found} (not read from the names: {why or 'a PV is named as time'})",
-                               file=src)
+                               f"PVs found: {found} (not read from the names: {why})", file=src)
+        mapping = named
     axes = mapped_axes(mapping, src)
     missing = [v for v in mapping.values() if v not in updates]
     if missing:
@@ -111,5 +111,5 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     meta = {"format": "EPICS camonitor log", "time_unit": "time stamps (sample and hold per PV)", "unit": unit or "mm",
             **mapping_meta(axes, mapping), **lag, **how}
     if not columns:
-        meta["columns"] = "from the PV names: " + ", ".join(f"{k}={v}" for k, v in mapping.items())
+        meta["columns"] = mapping_note("PV", mapping)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)

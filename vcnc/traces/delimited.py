@@ -76,7 +76,7 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names, counted, is_sample_number
+from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note
 from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
@@ -492,7 +492,7 @@ def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], t
     assumed because the file does not state them (s, mm; deg on a rotary axis)."""
     assumed = ([f"t in {units['t']}"] if not time_known else []) + [
         f"{k} in {'deg' if axis_of(k) in ROTARY_AXES else 'mm'}" for k in columns if k != "t" and units[k] is None]
-    return ("from the header names: " + ", ".join(f"{k}={v}" for k, v in columns.items())
+    return (mapping_note("header", columns)
             + (f"; not stated in the file, assumed {', '.join(assumed)}" if assumed else "")
             + " (--columns, --time-unit, --unit set them)")
 

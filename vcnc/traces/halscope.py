@@ -64,7 +64,7 @@ from vcnc.traces.columns import (
     read_text,
     with_following_errors,
 )
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import channels_from_names, mapping_note
 
 __all__ = ["read_halscope", "looks_like_halscope"]
 
@@ -254,10 +254,10 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> tup
             others = [n for n in labels if "pos" in n.lower() and n not in alone]
             raise CaptureError(f"{alone[0]} has no -fb pin: give --columns x_ref={alone[0]},x=FEEDBACK; channels "
                                f"found: {labels}; other position channels: {others}", file=src)
-        named, why = columns_from_names(labels, period_known=True)
-        if named is not None and "t" not in named and not any(k.endswith(LAG_SUFFIX) for k in named):
-            return named, "from the channel names: " + ", ".join(f"{k}={v}" for k, v in named.items())
+        named, why = channels_from_names(labels, "channel")
+        if named is not None and not any(k.endswith(LAG_SUFFIX) for k in named):
+            return named, mapping_note("channel", named)
         raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
                            f"signals); give --columns x_ref=LABEL,x=LABEL; channels found: {labels} (not read from "
-                           f"the names: {why or 'a following error or time channel'})", file=src)
+                           f"the names: {why or 'a following error channel'})", file=src)
     return out, ""

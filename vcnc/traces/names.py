@@ -40,12 +40,12 @@ words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, Linu
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
 
-__all__ = ["columns_from_names", "counted", "is_sample_number"]
+__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -206,6 +206,20 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     if len(mapping) == len(times):
         return None, _no_pair(header, times, found)
     return mapping, ""
+
+
+def channels_from_names(names: Sequence[str], what: str) -> tuple[dict[str, str] | None, str]:
+    """:func:`columns_from_names` for a reader that records its own time (TwinCAT Scope, halscope, camonitor): the
+    channels' mapping without ``t``, or None and why not (also when a channel, a ``what``, is named as time)."""
+    named, why = columns_from_names(names, period_known=True)
+    if named is not None and "t" in named:
+        return None, f"a {what} is named as time"
+    return named, why
+
+
+def mapping_note(what: str, mapping: Mapping[str, str]) -> str:
+    """``meta["columns"]`` of a mapping read from the ``what`` names (``"from the channel names: x_ref=.., x=.."``)."""
+    return f"from the {what} names: " + ", ".join(f"{k}={v}" for k, v in mapping.items())
 
 
 def _bare_counterparts(header: Sequence[str], times: Sequence[str],

@@ -69,7 +69,7 @@ from vcnc.traces.columns import (
     unit_named,
     with_following_errors,
 )
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import channels_from_names, mapping_note
 
 __all__ = ["read_twincat", "looks_like_twincat"]
 
@@ -376,13 +376,12 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
         elif prefix in lag:
             pairs.append((c.name, LAG_SUFFIX, lag[prefix]))
     if not pairs:
-        named, why = columns_from_names([c.name for c in channels], period_known=True)
-        if named is not None and "t" not in named:
-            return named, "from the channel names: " + ", ".join(f"{k}={v}" for k, v in named.items())
+        named, why = channels_from_names([c.name for c in channels], "channel")
+        if named is not None:
+            return named, mapping_note("channel", named)
         raise CaptureError("which channels are the commanded and measured positions? give --columns "
                            f"x_ref=NAME,x=NAME (or x{LAG_SUFFIX}=NAME for a following error); channels found: "
-                           f"{[c.name for c in channels]} (not read from the names: "
-                           f"{why or 'a channel is named as time'})", file=src, line=line)
+                           f"{[c.name for c in channels]} (not read from the names: {why})", file=src, line=line)
     names = list(axes) if axes else list(AXIS_NAMES[: len(pairs)])
     if len(names) != len(pairs):
         raise CaptureError(f"{len(names)} axis name(s) for the {len(pairs)} NC axis set positions "
