@@ -125,17 +125,18 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     src = str(Path(path))
     check_units(time_unit, unit, src)
     text = read_text(path, src)
-    if sample_time is not None and (looks_like_halscope(text[:2000]) or looks_like_twincat(text[:20000])
-                                    or looks_like_camonitor(text[:4000])):
+    kind = ("camonitor" if looks_like_camonitor(text[:4000]) else "halscope" if looks_like_halscope(text[:2000])
+            else "twincat" if looks_like_twincat(text[:20000]) else None)
+    if sample_time is not None and kind is not None:
         raise CaptureError("--sample-time applies to delimited text without a time column, not to a halscope log, "
                            "a TwinCAT export or a camonitor log (they record their own)", file=src)
-    if looks_like_camonitor(text[:4000]):
+    if kind == "camonitor":
         if time_unit is not None:
             raise CaptureError("--time-unit applies to delimited text, not to a camonitor log (time stamps)", file=src)
         return read_camonitor(path, columns=columns, unit=unit, resample=resample)
-    if looks_like_halscope(text[:2000]):
+    if kind == "halscope":
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
-    if looks_like_twincat(text[:20000]):
+    if kind == "twincat":
         return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
     return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample, sample_time=sample_time)
@@ -219,6 +220,7 @@ class _Table(NamedTuple):
     delimiter: str
     overruns: list[int]  #: file lines of halsampler's overrun marks
     text: dict[int, tuple[int, str]]  #: column -> (file line, cell) of its first text cell
+    lines: list[str]  #: the file's lines
 
 
 def _table(text: str, src: str) -> _Table:
@@ -269,7 +271,7 @@ def _table(text: str, src: str) -> _Table:
             header = names_at(j)
         if header is not None and len(set(header)) < len(header):
             header = _grouped_names(names_at(above(j)), header)
-    return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells)
+    return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells, lines)
 
 
 def _grouped_names(groups: list[str] | None, names: list[str]) -> list[str]:
@@ -307,7 +309,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
-    above = text.splitlines()[:row_lines[0] - 1]
+    lines = table.lines
+    above = lines[:row_lines[0] - 1]
     hline = len(above) or None  # the header's line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
@@ -339,7 +342,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
-    stamped = "t" in idx and ":" in _split(text.splitlines()[lines_kept[0] - 1], delimiter)[idx["t"]]
+    stamped = "t" in idx and ":" in _split(lines[lines_kept[0] - 1], delimiter)[idx["t"]]
     if units["t"] is None and period is not None and sample_time is None and not stamped:
         units["t"] = _unit_of_step(d[:, idx["t"]], float(period.value))
         if units["t"] is not None:
@@ -357,7 +360,6 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         t = np.round(t - t[0], 6)
     _increasing(t, src, lines_kept)
     if sample_time is None and not stamped:
-        lines = text.splitlines()
         t, rounded = _rounded_stamps(t, lambda: [_split(lines[n - 1], delimiter)[idx["t"]] for n in lines_kept],
                                      TIME_UNITS[units["t"]], src)
         stated.update(rounded)
