@@ -298,8 +298,8 @@ def tool_offset_variable(n: int, dialect: str, memory: str) -> ToolRegister | No
 
 def fanuc_tool_variable(n: int) -> bool:
     """Whether ``#n`` is a Fanuc tool offset variable of some memory type (``#2001``-``#2400``,
-    ``#10001``-``#13999``)."""
-    return 2001 <= n <= 2400 or (10001 <= n <= 13999 and n % 1000 != 0)
+    ``#10001``-``#13999``): memory C, which has every block of them, names it."""
+    return tool_offset_variable(n, "fanuc", "C") is not None
 
 
 def _parts(tool: Tool, part: str) -> tuple[float, float]:
