@@ -521,6 +521,8 @@ class _Reader:
         """The expression of a bracket (or of a condition or assignment) at ``pos``: in macro B precedence, and
         when it joins two comparisons (``#1 GT 0 AND #1 LT 9``) in LinuxCNC's, the comparisons first (module
         docstring), counted for a note."""
+        if not self.params.macro_b:  # LinuxCNC's precedence already reads comparisons first
+            return self.expression(pos)
         outer = self.logical
         self.logical = False
         try:
