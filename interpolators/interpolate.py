@@ -52,6 +52,10 @@ CURVE_PATH_ERROR: float = 1e-4
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
 
+#: Samples evaluated at once: the temporaries of one chunk (phase states, per-segment geometry) stay a
+#: few hundred MB at most, whatever the program's length; only the setpoints themselves grow with it.
+SAMPLE_CHUNK: int = 1 << 19
+
 
 class _Chain:
     """Consecutive items planned together, starting and ending at rest."""
@@ -687,17 +691,12 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
 
 def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int, Ts: float,
             profile: str) -> Setpoints:
-    """7. The setpoints at every sample time."""
-    seg_block = g.block
-    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, last_of_seg = (
-        ph[k] for k in ("seg", "dur", "p", "v", "a", "j", "start", "last"))
+    """7. The setpoints at every sample time, evaluated :data:`SAMPLE_CHUNK` samples at a time."""
     axes = program.axes or ("x",)
     ax_idx = [AXIS_NAMES.index(a) for a in axes]
     linear = tuple(a for a in axes if a in AXIS_LETTERS) or AXIS_LETTERS
-    length = g.profile_length
     t = np.arange(total_N + 1) * Ts
-    seg_block_a = np.asarray(seg_block, dtype=np.int64)
-    if len(ph_seg) == 0:
+    if len(ph["seg"]) == 0:
         first = program.blocks[0] if program.blocks else None
         start = np.zeros(len(AXIS_NAMES))
         if first is not None:
@@ -710,28 +709,43 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
             block=np.full(1, 0 if program.blocks else -1, dtype=np.int64), sample_time=Ts,
             path=program.path(), meta=_meta(program, profile, Ts, 0.0),
         )
-    k = np.searchsorted(ph_start, t, side="right") - 1
-    np.clip(k, 0, len(ph_start) - 1, out=k)
-    s, v, a = phase_states(t, k, ph_start, ph_dur, ph_p, ph_v, ph_a, ph_j,
-                           np.where(last_of_seg, length[ph_seg], np.nan))
-    seg = ph_seg[k]
-    s[-1] = length[seg[-1]]  # the program ends at rest exactly on its end point
-    v[-1] = a[-1] = 0.0
-    pos, vel, acc = _evaluate(g, seg, s, v, a)
-    if g.extra is not None:
-        pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
-    # the last sample of a chain is at rest at its end
-    if ax_idx != list(range(pos.shape[1])):
-        pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
-    block = seg_block_a[seg]
-    curves, piece, rows = _curve_rows(g, seg)
-    if len(rows):
-        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
+    n_ax = len(axes)
+    pos, vel, acc = (np.empty((len(t), n_ax)) for _ in range(3))
+    block = np.empty(len(t), dtype=np.int64)
+    for lo in range(0, len(t), SAMPLE_CHUNK):
+        hi = min(len(t), lo + SAMPLE_CHUNK)
+        pos[lo:hi], vel[lo:hi], acc[lo:hi], block[lo:hi] = _sample_chunk(g, ph, t[lo:hi], ax_idx,
+                                                                         last=hi == len(t))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
     return Setpoints(t=t, axes=axes, position=pos, velocity=vel, acceleration=acc, block=block,
                      sample_time=Ts, path=_sampled_path(g, linear), meta=meta)
+
+
+def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], t: np.ndarray, ax_idx: list[int], *, last: bool
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Position, velocity, acceleration (of the axes ``ax_idx``) and block at the sample times ``t``; ``last``:
+    ``t`` ends the program, whose last sample is at rest exactly on its end point."""
+    ph_seg, ph_start = ph["seg"], ph["start"]
+    k = np.searchsorted(ph_start, t, side="right") - 1
+    np.clip(k, 0, len(ph_start) - 1, out=k)
+    s, v, a = phase_states(t, k, ph_start, ph["dur"], ph["p"], ph["v"], ph["a"], ph["j"],
+                           np.where(ph["last"], g.profile_length[ph_seg], np.nan))
+    seg = ph_seg[k]
+    if last:
+        s[-1] = g.profile_length[seg[-1]]
+        v[-1] = a[-1] = 0.0
+    pos, vel, acc = _evaluate(g, seg, s, v, a)
+    if g.extra is not None:
+        pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
+    if ax_idx != list(range(pos.shape[1])):
+        pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
+    block = np.asarray(g.block, dtype=np.int64)[seg]
+    curves, piece, rows = _curve_rows(g, seg)
+    if len(rows):
+        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
+    return pos, vel, acc, block
 
 
 def _sampled_path(g: _Geom, axes: tuple[str, ...]) -> Path:

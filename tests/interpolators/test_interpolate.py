@@ -225,3 +225,26 @@ def test_bad_arguments():
         interpolate(prog, limits={"x": AxisLimits(velocity=1, acceleration=1)}, profile="scurve")
     with pytest.raises(GCodeError, match="max_samples"):
         interpolate(parse_program("G01 X1000 F1\n"), max_samples=10_000)
+
+
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_setpoints_sampled_in_chunks_are_the_same(profile, monkeypatch):
+    """The samples are evaluated SAMPLE_CHUNK at a time (memory): chunks of 997 samples, which cut phases, blends,
+    a dense-line curve, a dwell and a rotary move anywhere, give exactly the setpoints of one chunk."""
+    import importlib
+
+    from interpolators.context import MachineContext
+
+    module = importlib.import_module("interpolators.interpolate")
+    chords = "\n".join(f"G1 X{20 + 5 * math.cos(i / 40):.4f} Y{5 * math.sin(i / 40):.4f}" for i in range(1, 250))
+    prog = parse_program("G21 G90 G64 P0.01\nG1 X10 F1200\nG1 Y5\nG2 X15 Y0 I0 J-5\nG1 X25\n" + chords +
+                         "\nG4 P0.05\nG1 A30 F3600\nG0 X0 Y0\nM30\n",
+                         context=MachineContext(extra_axes=("a",)))
+    monkeypatch.setattr(module, "SAMPLE_CHUNK", 1 << 40)
+    whole = interpolate(prog, profile=profile)
+    monkeypatch.setattr(module, "SAMPLE_CHUNK", 997)
+    chunked = interpolate(prog, profile=profile)
+    assert len(whole.t) > 4 * 997
+    for name in ("t", "position", "velocity", "acceleration", "block"):
+        assert np.array_equal(getattr(whole, name), getattr(chunked, name)), name
+    assert chunked.axes == ("x", "y", "a") and chunked.position[-1].tolist() == [0.0, 0.0, 30.0]
