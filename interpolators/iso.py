@@ -173,6 +173,7 @@ from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_trav
 from interpolators.iso_reference import FANUC_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_tcp import tcp_block, tcp_switch
 from interpolators.iso_text import (
     closing_notes,
     ends_with_m99,
@@ -308,6 +309,7 @@ class State:
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
+    tcp: bool = False  # Fanuc G43.4 / Haas G234 tool centre point control (interpolators.iso_tcp)
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -647,6 +649,9 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
+    if st.tcp and (axis_words or polar or rot_words):  # G43.4 / G234 (interpolators.iso_tcp)
+        tcp_block(seen, gcodes, axis_words + polar, st, blocks, used, where, number)
+        return ended
     if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended
@@ -910,7 +915,10 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
     if "length compensation" in gcodes:
-        length_compensation(gcodes["length compensation"], seen, st, where, notes)
+        key, w = gcodes["length compensation"]
+        tcp_switch((key, w), st, where, notes)  # G43.4 / G234: the length as G43 (interpolators.iso_tcp)
+        length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
+        st.length_code = key / 10
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system

@@ -680,6 +680,7 @@ class _Machine:
         self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
+        self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
         self.selected = self.loaded = 0
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.comp_radius: float | None = None
@@ -824,6 +825,44 @@ class _Machine:
         self.emit(line, kind, end, rows=rows)
 
 
+def _table(m: _Machine, point: np.ndarray, extra: np.ndarray, *, back: bool = False) -> np.ndarray:
+    """Where the machine's tilting table at the rotary positions ``extra`` carries the part point that is at
+    ``point`` with every rotary axis at 0 (``back``: the reverse). Each axis turns the part by minus its angle
+    about its direction (ISO 841: a table axis turns the other way) round its pivot; the outer axis carries the
+    inner one, so the inner turn comes first."""
+    axes = list(m.ctx.kinematics.axes)
+    steps = []
+    for ax in reversed(axes):  # inner first
+        angle = -math.radians(extra["abc".index(ax.name)]) * (-1.0 if ax.direction.startswith("-") else 1.0)
+        c, s = math.cos(angle), math.sin(angle)
+        k = "XYZ".index(ax.direction[-1])
+        i, j = (k + 1) % 3, (k + 2) % 3
+        rot = np.eye(3)
+        rot[i, i], rot[i, j], rot[j, i], rot[j, j] = c, -s, s, c
+        steps.append((rot, np.asarray(ax.pivot, float)))
+    q = np.asarray(point, float)
+    for rot, pivot in (reversed(steps) if back else steps):
+        q = pivot + (rot.T if back else rot) @ (q - pivot)
+    return q
+
+
+def _tcp_move(m: _Machine, line: int, words: dict) -> None:
+    """G0 / G1 under G43.4 / G234 (Fanuc 30i "Tool center point control for 5-axis machining" A-79348E 1.1: X Y Z
+    the tool tip in the workpiece system fixed on the table; Haas "G234 TCPC"): the programmed point where the
+    table at the block's rotary positions carries it; a block whose rotary axes turn is the reader's chords,
+    the last one's end checked."""
+    length = np.array([0.0, 0.0, m.tool_length])
+    here = m.pos
+    m.pos = _table(m, here - length, m.extra, back=True) + length  # where the tip is on the part
+    prog = m.target(words)
+    m.pos = here
+    extra = m.extra_end(words)
+    end = _table(m, m.to_machine(prog) - length, extra) + length
+    turning = not np.allclose(extra[:3], m.extra[:3], rtol=0.0, atol=1e-12)
+    m.extra = extra
+    m.emit(line, "rapid" if m.motion == 0 else "feed", end, rows="last" if turning else "one")
+
+
 def _codes(words: dict, letter: str) -> list[int]:
     """G or M codes of a line as integers x10 (``G59.1`` -> 591, ``G1`` -> 10)."""
     return [int(round(v * 10)) for v in words.get(letter, [])]
@@ -852,6 +891,11 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
+        if code in (430, 431, 432, 440, 490):
+            m.tcp = False
+        if (code, m.ctx.dialect.name) in ((434, "fanuc"), (2340, "haas")):
+            code = 430  # G43.4 / G234: the tool length as G43, X Y Z the tip on the part (_tcp_move)
+            m.tcp = True
         if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
@@ -1220,6 +1264,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         return
     if m.motion // 10 in cycles:
         _cycle(m, line, words)
+        return
+    if m.tcp and m.motion in (0, 10):
+        _tcp_move(m, line, words)
         return
     end = m.to_machine(m.target(words))
     shift = [c for c in g if c in _POSITION_OFFSET]
