@@ -118,7 +118,7 @@ def tcpm_line(m: Machine, part: np.ndarray, extra: np.ndarray, *, rapid: bool, w
     duration = None if rapid else block_time(start, part, extra - m.extra, feed=m.feed, rotary_feed=m.feed)
     try:
         chords = tcp_chords(kin, start=start, end=part, start_extra=m.extra, end_extra=extra, length=m.tool_length,
-                            tolerance=tolerance, duration=duration, position=m.pos)
+                            tolerance=tolerance, duration=duration, position=m.pos, feed=m.feed)
     except ChordsError as exc:
         where.fail(f"L under M128 (TCPM): {exc}", column=1, text=where.text,
                    expected="a smaller rotary move per block, or a larger tolerance (cycle 32 T)")

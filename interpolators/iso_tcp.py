@@ -87,6 +87,9 @@ def _refuse(seen, gcodes, axis_words: list[str], st: State, where: Where) -> Non
     if why is not None:
         where.fail(f"{why} under tool centre point control (G43.4 / G234): not supported", column=col, text=tok,
                    expected=_EXPECTED)
+    if st.motion == 10 and st.inverse_time and not (st.block_f or 0.0) > 0:
+        where.fail("G01 under tool centre point control in inverse time (G93) without an F > 0 on the block",
+                   column=col, text=tok, expected="F<1/minutes> > 0 on every G01 block under G93")
     if st.motion == 10 and not st.inverse_time and st.feed is None and not initial_feed(st, where):
         where.fail("G01 under tool centre point control without a feed", column=col, text=tok,
                    expected="F<feed of the tool tip on the part>")
@@ -118,7 +121,8 @@ def tcp_block(seen, gcodes, axis_words: list[str], st: State, blocks: list[Block
                 block_time(start, end, turn, feed=st.feed, rotary_feed=st.feed_rotary))
     try:
         chords = tcp_chords(kin, start=start, end=end, start_extra=st.extra, end_extra=st.extra + turn,
-                            length=st.tool_length, tolerance=st.tolerance, duration=duration, position=st.pos)
+                            length=st.tool_length, tolerance=st.tolerance, duration=duration, position=st.pos,
+                            feed=np.inf if rapid else 0.0 if st.inverse_time else st.feed)
     except ChordsError as exc:
         where.fail(f"G0{1 - rapid} under tool centre point control: {exc}", column=1, text=where.text,
                    expected="a smaller rotary move per block, or a larger tolerance (G64 P)")

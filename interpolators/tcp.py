@@ -120,7 +120,7 @@ class TcpChords:
 
 def tcp_chords(kinematics: Kinematics, *, start: np.ndarray, end: np.ndarray, start_extra: np.ndarray,
                end_extra: np.ndarray, length: float, tolerance: float | None, duration: float | None,
-               position: np.ndarray) -> TcpChords:
+               position: np.ndarray, feed: float = math.inf) -> TcpChords:
     """The chords of a block under TCP from part point ``start`` to ``end`` [mm] (:func:`part_point`) while the
     axes beyond X, Y, Z go from ``start_extra`` to ``end_extra`` [deg, mm].
 
@@ -137,6 +137,8 @@ def tcp_chords(kinematics: Kinematics, *, start: np.ndarray, end: np.ndarray, st
         The block's time [s] (:func:`block_time`, or 1/F min under G93); None for a rapid.
     position : ndarray (3,)
         The machine position where the block starts [mm] (the first chord's start).
+    feed : float
+        The feed of a block in which nothing moves (its time 0) [mm/s]: the programmed one.
 
     Raises
     ------
@@ -165,8 +167,8 @@ def tcp_chords(kinematics: Kinematics, *, start: np.ndarray, end: np.ndarray, st
     still = np.linalg.norm(steps, axis=1) < _STILL
     for k in np.flatnonzero(still):
         points[k + 1] = points[k]  # X, Y, Z still: a rotary move whose path is the rotary distance
-    if duration is None:
-        feeds = np.full(n, math.inf)
+    if duration is None or not duration > 0:
+        feeds = np.full(n, math.inf if duration is None else feed)
     else:
         turns = np.diff(extras, axis=0)
         paths = np.where(still, _extra_lengths(turns), np.linalg.norm(np.diff(points, axis=0), axis=1))

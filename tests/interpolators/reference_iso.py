@@ -15,6 +15,10 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool offsets (length
   along Z, the table's X Y offsets: g-code.adoc "G43") (``coordinates.adoc``; LinuxCNC applies the
   XY rotation of ``G10 L2 R`` about the coordinate system origin).
+- Fanuc G43.4 / Haas G234 (``--dialect fanuc`` / ``haas``) on the context's tilting table: the tool length
+  as G43, X Y Z the tool tip in the work system the table carries (FANUC 30i "Tool center point control for
+  5-axis machining" A-79348E 1.1; Haas "G234 TCPC"): a G0/G1 ends where the table at the block's rotary
+  positions carries the programmed tip (its own map: elementary rotations about each axis' pivot).
 - G28/G30: with axis words a rapid to that point (program coordinates, with offsets), then a rapid
   of the named axes to the home / second reference position; without axis words, every axis to it
   (g-code.adoc "G28, G28.1"); G28.1 / G30.1 make the current position that reference. G53: the named

@@ -183,11 +183,13 @@ def test_g43_4_line_with_a_and_c_moving_keeps_the_tip_on_the_line():
 def test_g43_4_plain_moves_on_turned_axes_and_the_fast_path():
     # rotary axes positioned before G43.4: X Y Z are the tip on the part the table carries (a straight machine
     # line); the shortcut for plain moves declines under TCP, so both readings agree
-    text = "G21 G90 G54\nG0 A-30. C90.\nG43.4 H1\nG1 X10. Y0 Z0 F300.\nG1 Y10.\nG49\nM30\n"
+    text = "G21 G90 G54\nG0 A-30. C90.\nG43.4 H1\nG1 X10. Y0 Z0 F300.\nG1 Y10.\nG1 Y10. A-30.\nG49\nM30\n"
     prog = iso(text)
     at = Solution(-30.0, 90.0)
-    assert prog.blocks[-2].target == pytest.approx(machine(AC, [20.0, 5.0, 0.0], at))
-    assert prog.blocks[-1].target == pytest.approx(machine(AC, [20.0, 15.0, 0.0], at))
+    assert prog.blocks[-3].target == pytest.approx(machine(AC, [20.0, 5.0, 0.0], at))
+    assert prog.blocks[-2].target == pytest.approx(machine(AC, [20.0, 15.0, 0.0], at))
+    # a block that moves nothing: one block where it is, at the programmed feed (5 mm/s)
+    assert prog.blocks[-1].target.tolist() == prog.blocks[-2].target.tolist() and prog.blocks[-1].feed == 5.0
     slow = parse_iso(text, source="t.nc", context=FANUC, shortcuts=False)
     assert [b.target.tolist() for b in slow.blocks] == [b.target.tolist() for b in prog.blocks]
 
@@ -220,6 +222,7 @@ def test_g234_on_haas_and_g49_ends_it():
     ("G43.4 H1\nG41 D1 G1 X10. Y0 F100.\n", FANUC, "cutter compensation"),
     ("G68.2 X0 Y0 Z0 I0 J30. K0\nG53.1\nG43.4 H1\n", FANUC, "tilted plane"),
     ("G43.4 H1\nG81 X0 Y0 Z-5. R2. F100.\n", FANUC, "motion other than G00/G01"),
+    ("G43.4 H1\nG93 G1 X10. A5. F100.\nG1 X20. A10.\n", FANUC, "inverse time \\(G93\\) without an F > 0"),
 ])
 def test_what_g43_4_does_not_read_is_named(text, context, message):
     with pytest.raises(GCodeError, match=message):
