@@ -227,3 +227,22 @@ def test_g234_on_haas_and_g49_ends_it():
 def test_what_g43_4_does_not_read_is_named(text, context, message):
     with pytest.raises(GCodeError, match=message):
         parse_iso("G21 G90 G54 G0 X0 Y0 Z50.\n" + text, source="t.nc", context=context)
+
+
+def test_incremental_words_under_tcp_start_from_the_tip_on_the_part():
+    # IX+10 / G91 X10.: ten millimetres along the part's X from where the tip is on it, while the axes turn
+    prog = tnc("3 M128\n4 L X+10 Y+0 Z+0 B+10 C+20 F500\n5 L IX+10 B+20 C+40")
+    assert prog.blocks[-1].target == pytest.approx(machine(BC, [30.0, 5.0, 0.0], Solution(20.0, 40.0)), abs=1e-9)
+    prog = iso("G21 G90 G54\nG43.4 H1 X0 Y0 Z0 A10. C20.\nG91 G1 X10. A10. C20. F500.\nG90 G49\nM30\n")
+    end = [b for b in prog.blocks if b.line == 3][-1]
+    assert end.target == pytest.approx(machine(AC, [20.0, 5.0, 0.0], Solution(20.0, 40.0)), abs=1e-9)
+
+
+def test_g43_4_on_a_single_tilting_axis():
+    # a 4-axis table: A alone tilts the part about X round (0, 0, -80)
+    kin = Kinematics(axes=(RotaryAxis(name="a", pivot=(0.0, 0.0, -80.0)),))
+    context = dataclasses.replace(FANUC, kinematics=kin, extra_axes=("a",))
+    prog = iso("G21 G90 G54\nG43.4 H1 X0 Y0 Z0\nG1 Y30. A45. F1000.\nG49\nM30\n", context)
+    rows = [i for i, b in enumerate(prog.blocks) if b.line == 3]
+    assert prog.blocks[rows[-1]].target == pytest.approx(machine(kin, [10.0, 35.0, 0.0], Solution(45.0, 0.0)))
+    assert distance_to_line(tips(prog, kin, rows), [10.0, 5.0, 0.0], [10.0, 35.0, 0.0]).max() <= 0.01 * 1.001
