@@ -30,6 +30,12 @@ its scale's 0); our reading is that the table-fixed system is the workpiece syst
 by their angles, which is what Haas and HEIDENHAIN say and what CAM posts write (the tip in the setup's
 coordinates, the rotary axes positioned before G43.4 / M128).
 
+LinuxCNC does the same with a kinematics module rather than a G code (LinuxCNC/linuxcnc
+``docs/src/motion/5-axis-kinematics.adoc``, "Table Rotary/Tilting 5-Axis Configurations": the world coordinates
+of its xyzac-trt / xyzbc-trt kinematics are "the cutter tip position ... relative to the workpiece coordinate
+system", the joints those of the pivot); its planner moves the world coordinates X Y Z A C linearly together,
+with the feed along X Y Z, else along the rotary axes (RS274/NGC 3, Sec. 2.1.2.5): the model here.
+
 A block under TCP whose rotary axes move: the tip runs on the straight line from its start to its programmed
 end on the part while the rotary axes move in proportion (linearly with the tip's travel: Fanuc type 1,
 HEIDENHAIN PATHCTRL AXIS); in machine coordinates that is a curve. :func:`tcp_chords` cuts it into chords,

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import interpolators.tcp
-from interpolators import interpolate
+from interpolators import AxisLimits, interpolate
 from interpolators.context import DIALECTS, MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.iso import parse_iso
@@ -59,9 +59,9 @@ def machine(kin: Kinematics, part, angles: Solution) -> np.ndarray:
     return kin.place(np.asarray(part, dtype=float), angles) + [0.0, 0.0, LENGTH]
 
 
-def tips(prog, kin: Kinematics, rows: list[int]) -> np.ndarray:
+def tips(prog, kin: Kinematics, rows: list[int], **options) -> np.ndarray:
     """The tool tip on the part (rotary axes at 0) at every setpoint of blocks ``rows``."""
-    sp = interpolate(prog)
+    sp = interpolate(prog, **options)
     col = {a: i for i, a in enumerate(sp.axes)}
     names = kin.names
     out = []
@@ -98,6 +98,18 @@ def test_m128_line_with_b_and_c_moving_keeps_the_tip_on_the_line():
     assert off.max() > DEFAULT_TOLERANCE / 20  # the chords use the tolerance, they do not waste blocks
     # F600 is the tip's feed on the part: the block takes its length over 10 mm/s
     assert block_seconds(chords) == pytest.approx(np.linalg.norm(end - start) / 10.0, rel=1e-9)
+
+
+def test_the_tip_moves_at_f_on_the_part():
+    # with axes far faster than the feed asks, the setpoints show the tip at 10 mm/s (F600) on the part for
+    # the block's length over F, while the machine's X Y Z run faster or slower along the chords
+    prog = tnc("3 M128\n4 L X+10 Y+0 Z+0 FMAX\n5 L X+40 Y+10 Z+5 B+30 C+45 F600")
+    rows = [i for i, b in enumerate(prog.blocks) if b.number == 5]
+    fast = {a: AxisLimits(velocity=1e4, acceleration=1e7, jerk=1e10) for a in "xyzbc"}
+    tip = tips(prog, BC, rows, limits=fast, sample_time=5e-4)
+    assert len(tip) * 5e-4 == pytest.approx(np.linalg.norm([30.0, 10.0, 5.0]) / 10.0, abs=1e-3)
+    speed = np.linalg.norm(np.diff(tip, axis=0), axis=1) / 5e-4
+    assert np.median(speed) == pytest.approx(10.0, rel=1e-3) and speed.max() < 10.5
 
 
 def test_cycle_32_tolerance_sets_the_chords():
