@@ -528,6 +528,9 @@ def _tcpm_target(kw: str, seen: dict[str, Word], other: bool, m: Machine, where:
     if kw != "L" or other:
         where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
                    column=1, text=where.text, expected=TCPM_EXPECTED)
+    if m.tilt is not None:  # a PLANE .. STAY after M128
+        where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
+                   expected=TCPM_EXPECTED)
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
     part, _ = program_target(m, values, part_point(m.context.kinematics, m.extra, m.pos, m.tool_length))
     return part
