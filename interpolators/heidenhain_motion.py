@@ -334,8 +334,10 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     extra = _extra_axes(seen, m, where) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
-        target = _tcpm_target(kw, seen, normal or m.pending is not None or m.approach is not None
-                              or m.comp != "R0", m, where)
+        waiting = ("LN (3-D compensation; with TX TY TZ the tool-vector form)" if normal else "RND/CHF"
+                   if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
+                   if m.comp != "R0" else None)
+        target = _tcpm_target(kw, seen, waiting, m, where)
         turning = extra is not None and bool(np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9))
         if not turning:
             target = machine_point(m.context.kinematics, m.extra, target, m.tool_length)
@@ -521,13 +523,13 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
     return target
 
 
-def _tcpm_target(kw: str, seen: dict[str, Word], other: bool, m: Machine, where: Where) -> np.ndarray:
+def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine, where: Where) -> np.ndarray:
     """The end point of a line under M128 (:mod:`interpolators.heidenhain_tcpm`) on the part with every rotary
-    axis at 0 [mm, machine, tool length included]. ``other``: the block is an LN, or a corner, approach or radius
-    compensation waits for it (errors)."""
-    if kw != "L" or other:
-        where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
-                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    axis at 0 [mm, machine, tool length included]. ``waiting``: what the block is or what waits for it (an LN, a
+    corner, an approach, radius compensation: errors)."""
+    if kw != "L" or waiting is not None:
+        where.fail(f"{waiting or kw} under M128 is not supported", column=1, text=where.text,
+                   expected=TCPM_EXPECTED)
     if m.tilt is not None:  # a PLANE .. STAY after M128
         where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)

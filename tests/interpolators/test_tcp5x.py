@@ -158,6 +158,7 @@ def test_a_rapid_under_m128_with_rotary_words_is_chords_of_rapids():
     ("3 FUNCTION RESET TCPM NOW", "malformed FUNCTION RESET TCPM"),
     ("3 M128\n4 PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY\n5 L X+5 B+30 F100", "under M128 in a tilted working plane"),
     ("3 M128\n4 L X+5 Y+0 RL F500", "RL/RR under M128"),
+    ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0.5 TZ+0.866 F500", r"LN \(3-D compensation; with TX TY TZ"),
     ("3 M128\n4 CC X+0 Y+0\n5 C X+0 Y+10 B+5 DR+ F500", "not allowed in C|C under M128"),
 ])
 def test_what_tcpm_does_not_read_is_named(body, message):
