@@ -60,6 +60,8 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
                           Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
 ``G68.2 G53.1``           tilted working plane X Y Z I J K (Euler) and the rotary axes turned to it, on a
                           machine with a tilting table (``MachineContext.kinematics``; :mod:`interpolators.iso_tilt`)
+``G43.4 G234 G49``        tool centre point control (Fanuc, Haas): X Y Z the tool tip on the part the tilting table
+                          carries, rotary words moving with it (:mod:`interpolators.iso_tcp`, :mod:`interpolators.tcp`)
 ``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``); Haas G73/G83
                           pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
@@ -103,7 +105,8 @@ and M codes), :mod:`interpolators.iso_text` (the text before the run, the notes 
 :mod:`interpolators.iso_arcs`, :mod:`interpolators.iso_compensation` (G40-G42, G39),
 :mod:`interpolators.iso_offsets` (G10, G52, G43/G44/G49), :mod:`interpolators.iso_home` (G28/G30, G27/G29/G60,
 grbl ``$H``), :mod:`interpolators.iso_mcodes` (M codes), :mod:`interpolators.iso_frames` (G68, G51, G51.1,
-G68.2/G53.1) and :mod:`interpolators.iso_cycle_blocks` (canned-cycle blocks, Haas patterns and pocket).
+G68.2/G53.1), :mod:`interpolators.iso_tcp` (G43.4, G234) and :mod:`interpolators.iso_cycle_blocks` (canned-cycle
+blocks, Haas patterns and pocket).
 """
 
 from __future__ import annotations
