@@ -37,7 +37,7 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_targets import plane_coords, program_target
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tool_vector
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
@@ -327,17 +327,19 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
             w = seen.get("MBMAX") or seen["MB"]
             where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
     target, written = plane_coords(seen, m, where, m9x=m9x)
-    if normal:
-        target = target + _normal_offset(seen, m, where, blk)
+    shift = _normal_offset(seen, m, where, blk) if normal else None
+    if shift is not None:
+        target = target + shift
     m.used.update(written)
     feed = math.inf if rapid else m.feed
     extra = _extra_axes(seen, m, where) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
-        waiting = ("LN (3-D compensation; with TX TY TZ the tool-vector form)" if normal else "RND/CHF"
-                   if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
+        waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
                    if m.comp != "R0" else None)
         target = _tcpm_target(kw, seen, waiting, m, where)
+        if normal:  # LN: N displaces the part point, T turns the rotary axes (heidenhain_tcpm.tool_vector)
+            target, extra = target + shift, tool_vector(seen, m, where)
         turning = extra is not None and bool(np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9))
         if not turning:
             target = machine_point(m.context.kinematics, m.extra, target, m.tool_length)
@@ -485,7 +487,7 @@ def _normal_offset(seen: dict[str, Word], m: Machine, where: Where, blk: SourceB
     if not m.transform.identity:
         where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
                    text=where.text, expected="LN without mirror, rotation or scaling")
-    if "TX" in seen or "TY" in seen or "TZ" in seen:
+    if ("TX" in seen or "TY" in seen or "TZ" in seen) and not m.tcpm:
         m.note("LN TX/TY/TZ: the tool orientation is ignored without M128 (no tilting axes move)")
     return m.tool_delta * normal / np.linalg.norm(normal)
 

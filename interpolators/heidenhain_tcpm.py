@@ -21,8 +21,10 @@ the default), the feed F that of the tip relative to the part (:func:`interpolat
 M128's feed (iTNC 530 user's manual 340 49x-04, M128: "M128 executes compensation movements that must not
 change the feed rate of the tool relative to the workpiece"; the F after M128, the feed of those compensation
 movements, is noted and ignored) and ``FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS`` (:func:`function_tcpm`).
-An arc, a polar, approach or compensated block, a cycle, a tilted plane, a head-tilting machine or a tool axis
-other than Z are errors naming them.
+``LN X Y Z NX NY NZ TX TY TZ`` under it is the tool-vector form (:func:`tool_vector`): the rotary axes turn to
+make T the spindle's axis, moving linearly to it, the part point displaced along N by the delta values. An arc,
+a polar, approach or compensated block, a cycle, a tilted plane, a head-tilting machine or a tool axis other
+than Z are errors naming them.
 """
 
 from __future__ import annotations
@@ -33,14 +35,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords
-from interpolators.tilted import Kinematics
+from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords, tool_vector_extra
+from interpolators.tilted import Kinematics, TiltError
 from toolpaths.geometry import Line
 
 if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
 
-__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line"]
+__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line", "tool_vector"]
 
 #: What M128 / FUNCTION TCPM need here.
 TCPM_EXPECTED = ("M128 or FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS on a machine whose rotary axes turn the part "
@@ -107,6 +109,34 @@ def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
                   text="FUNCTION TCPM")
     m.tcpm = True
     m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)")
+
+
+def tool_vector(seen: dict, m: Machine, where: Where) -> np.ndarray | None:
+    """``LN .. TX TY TZ`` under M128 / FUNCTION TCPM: the rotary positions [deg] (``m.extra`` changed) that turn the
+    tool orientation T onto the spindle, None without T (the axes stay).
+
+    iTNC 530 user's manual 60642x-04, 12.7 "Three-dimensional tool compensation", "Face milling: 3-D compensation
+    with and without tool orientation": with M128 "the TNC positions the rotary axes so that the tool reaches
+    the defined tool orientation" given by TX, TY, TZ; without M128 it ignores them. Our reading: T points from
+    the tip to the spindle, in the workpiece coordinates; the solution nearest the present positions within the
+    limits is taken (as PLANE without SEQ), the axes moving linearly to it (PATHCTRL AXIS)."""
+    keys = [k for k in ("TX", "TY", "TZ") if k in seen]
+    if not keys:
+        return None
+    if len(keys) < 3:
+        w = seen[keys[0]]
+        where.fail("LN with only part of the tool orientation TX TY TZ", column=w.column, text=w.text,
+                   expected="LN .. TX.. TY.. TZ.. (all three components)")
+    kin = m.context.kinematics
+    try:
+        extra = tool_vector_extra(kin, [seen[k].value for k in ("TX", "TY", "TZ")], m.extra)
+    except TiltError as exc:
+        w = seen["TX"]
+        where.fail(f"LN tool orientation TX TY TZ under M128: {exc.message}", column=w.column, text=w.text,
+                   expected=exc.expected)
+    m.extra_used = True
+    m.used.update(3 + "abc".index(name) for name in kin.names)
+    return extra
 
 
 def tcpm_line(m: Machine, part: np.ndarray, extra: np.ndarray, *, rapid: bool, where: Where, number) -> None:

@@ -57,9 +57,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from interpolators.lookahead import DEFAULT_TOLERANCE
-from interpolators.tilted import Kinematics
+from interpolators.tilted import Kinematics, vector
 
-__all__ = ["MAX_CHORDS", "ChordsError", "TcpChords", "part_point", "machine_point", "tcp_chords", "block_time"]
+__all__ = ["MAX_CHORDS", "ChordsError", "TcpChords", "part_point", "machine_point", "tcp_chords", "block_time",
+           "tool_vector_extra"]
 
 #: The most chords one block under TCP is cut into; a block that needs more is an error (:class:`ChordsError`).
 MAX_CHORDS = 5000
@@ -88,6 +89,26 @@ def machine_point(kinematics: Kinematics, extra: Sequence[float], point: Sequenc
     """The inverse of :func:`part_point`: the machine position [mm] of the part point ``point``."""
     angles = kinematics.solution_at(extra)
     return kinematics.place(np.asarray(point, dtype=float) - _tool(length), angles) + _tool(length)
+
+
+def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra: np.ndarray) -> np.ndarray:
+    """The positions of a, b, c, u, v, w [deg, mm] that turn the tool direction ``direction`` (a vector in the
+    workpiece coordinates, from the tip towards the spindle) onto the spindle axis: ``extra`` with the kinematics'
+    axes at the solution nearest their present positions within their limits
+    (:meth:`interpolators.tilted.Kinematics.choose`).
+
+    Raises
+    ------
+    interpolators.tilted.TiltError
+        No solution within the limits, or a zero vector.
+    """
+    d = np.asarray(direction, dtype=float)
+    base = np.eye(3)[int(np.argmin(np.abs(d)))]  # any direction not along d: only the tool axis matters here
+    angles = kinematics.choose(vector(base, d), kinematics.solution_at(extra))
+    out = np.array(extra, dtype=float)
+    for name, value in kinematics.positions(angles).items():
+        out["abc".index(name)] = value
+    return out
 
 
 def block_time(start: Sequence[float], end: Sequence[float], turn: Sequence[float], *, feed: float,

@@ -558,6 +558,27 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
         t.tcpm = False
 
 
+def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
+    """``LN X Y Z NX NY NZ [TX TY TZ]`` under M128 (iTNC 530 user's manual, "Face milling: 3-D compensation with
+    and without tool orientation"): the part point displaced along N by the delta values; with T the rotary axes
+    turned so that T (workpiece coordinates) is the spindle's axis, the solution nearest where they are
+    (:func:`_solve`), the table carrying the point there; the reader's chords, the last one's end checked."""
+    if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None:
+        raise ReferenceError("LN under M128 with RL/RR, a transformation or a tilted plane")
+    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    p = t.prog()  # where the tip is on the part, before the axes turn
+    for i, a in enumerate("XYZ"):
+        if a in w:
+            p[i] = w[a] * t.scale
+    if "TX" in w:
+        tool = np.array([w["TX"], w["TY"], w["TZ"]], float)
+        for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool / np.linalg.norm(tool)]),
+                                  0).items():
+            t.extra["ABC".index(name.upper())] = value
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n / np.linalg.norm(n)),
+           extra=t.extra.copy(), rows="last")
+
+
 def _function_tcpm(t: _Tnc, up: str) -> None:
     """FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS [REFPNT TIP-TIP] (TNC 620 user's manual, "FUNCTION TCPM": the
     feed of the tip on the part, rotary words as positions, the tip on a straight line): as M128; FUNCTION RESET
@@ -2639,6 +2660,8 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _spline(t, line, rest)
     elif head == "L":
         _line_block(t, line, _words(rest, t.q))
+    elif head == "LN" and t.tcpm:
+        _tool_vector_line(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
         w = _words(rest, t.q)
         n = np.array([w["NX"], w["NY"], w["NZ"]], float)

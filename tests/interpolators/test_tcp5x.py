@@ -133,6 +133,17 @@ def test_a_turn_about_the_tip_keeps_the_tip_still():
     assert block_seconds(chords) == pytest.approx(math.hypot(40.0, 60.0) / 20.0, rel=1e-9)
 
 
+def test_ln_with_a_tool_orientation_under_m128_turns_the_rotary_axes():
+    # T = (sin 30, 0, cos 30) in the part: B+30 C+0 makes it the spindle's axis (B-30 C+180 too, farther from
+    # B0 C0); DR+0.5 in the TOOL CALL displaces the part point along N = (0, 0, 1) by 0.5
+    prog = tnc("3 TOOL CALL 1 Z S1000 DR+0.5\n4 L X+0 Y+0 Z+50 R0 FMAX\n5 M128\n6 L X+10 Y+0 Z+0 FMAX\n"
+               "7 LN X+30 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0.5 TY+0 TZ+0.8660254 F600")
+    chords = [b for b in prog.blocks if b.number == 7]
+    assert len(chords) > 1 and chords[-1].extra_target[1:3] == pytest.approx([30.0, 0.0], abs=1e-6)
+    assert chords[-1].target == pytest.approx(machine(BC, [40.0, 5.0, 0.5], Solution(30.0, 0.0)), abs=1e-6)
+    assert not any("ignored without M128" in n for n in prog.notes)
+
+
 def test_function_tcpm_reads_as_m128_and_reset_ends_it():
     m128 = tnc("3 M128\n4 L X+10 Y+0 Z+0 FMAX\n5 L X+40 Y+10 Z+5 B+30 C+45 F600\n6 M129\n7 L X+0 FMAX")
     tcpm = tnc("3 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS REFPNT TIP-TIP\n4 L X+10 Y+0 Z+0 FMAX\n"
@@ -158,7 +169,8 @@ def test_a_rapid_under_m128_with_rotary_words_is_chords_of_rapids():
     ("3 FUNCTION RESET TCPM NOW", "malformed FUNCTION RESET TCPM"),
     ("3 M128\n4 PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY\n5 L X+5 B+30 F100", "under M128 in a tilted working plane"),
     ("3 M128\n4 L X+5 Y+0 RL F500", "RL/RR under M128"),
-    ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0.5 TZ+0.866 F500", r"LN \(3-D compensation; with TX TY TZ"),
+    ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0.5 F500", "only part of the tool orientation"),
+    ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0 TZ-1 F500", "cannot tilt the part"),
     ("3 M128\n4 CC X+0 Y+0\n5 C X+0 Y+10 B+5 DR+ F500", "not allowed in C|C under M128"),
 ])
 def test_what_tcpm_does_not_read_is_named(body, message):
