@@ -75,7 +75,7 @@ G_UNSUPPORTED: dict[int, str] = {
     682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
     434: "G43.4 tool centre point control (5-axis; --dialect fanuc)",
-    435: "G43.5 tool centre point control type 2 (the tool vector I J K; vcnc reads type 1, G43.4)",
+    435: "G43.5 tool centre point control type 2 (5-axis; --dialect fanuc)",
     2340: "G234 tool centre point control (Haas 5-axis; --dialect haas)",
     2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
@@ -125,6 +125,7 @@ NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 no
 DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               434: ("length compensation", "G43.4 tool centre point control"),  # interpolators.iso_tcp
+              435: ("length compensation", "G43.5 tool centre point control type 2"),
               **{k: ("normal direction", n) for k, n in NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
               **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
               **FANUC_CODES,  # G22, G23, G27 (interpolators.iso_reference)

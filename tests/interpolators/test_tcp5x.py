@@ -231,6 +231,19 @@ def test_g43_4_turn_about_the_tip_and_g93_inverse_time():
     assert inverse[-1].target == pytest.approx(machine(AC, [10.0, 5.0, 0.0], Solution(0.0, 0.0)), abs=1e-9)
 
 
+def test_g43_5_turns_the_rotary_axes_to_the_tool_direction():
+    # I J K (0, -0.5, 0.866) in the part: A+30 C0 (A-30 C180 is farther from A0 C0); then (0.5, 0, 0.866): A+30
+    # C+90 (A-30 C-90 is farther from A30 C0)
+    prog = iso("G21 G90 G54\nG0 G43.5 H1 X0 Y0 Z0 I0 J0 K1.\nG1 X20. I0 J-0.5 K0.8660254 F600.\n"
+               "G1 Y10. I0.5 J0 K0.8660254\nG49\nM30\n")
+    first = [b for b in prog.blocks if b.line == 3]
+    second = [b for b in prog.blocks if b.line == 4]
+    assert first[-1].extra_target[[0, 2]] == pytest.approx([30.0, 0.0], abs=1e-6)
+    assert second[-1].extra_target[[0, 2]] == pytest.approx([30.0, 90.0], abs=1e-6)
+    assert second[-1].target == pytest.approx(machine(AC, [30.0, 15.0, 0.0], Solution(30.0, 90.0)), abs=1e-6)
+    assert prog.axes == ("x", "y", "z", "a", "c")
+
+
 def test_g234_on_haas_and_g49_ends_it():
     prog = iso("G21 G90 G54\nG0 A0 C0\nG234 H1 X0 Y0 Z20.\nG1 X10. A15. C30. F500.\nG49\nG0 Z100.\nM30\n", HAAS)
     chords = [b for b in prog.blocks if b.line == 4]
@@ -243,7 +256,11 @@ def test_g234_on_haas_and_g49_ends_it():
     ("G43.4 H1\n", dataclasses.replace(FANUC, kinematics=None), "G43.4 tool centre point control needs the machine's"),
     ("G43.4 H1\n", dataclasses.replace(FANUC, kinematics=Kinematics(kind="head", axes=AC.axes)), "head-tilting"),
     ("G43.4 H1\n", dataclasses.replace(FANUC, dialect=DIALECTS["linuxcnc"]), "G43.4 tool centre point control"),
-    ("G43.5 H1 X0 Y0 Z0 I0 J0 K1\n", FANUC, "G43.5 tool centre point control type 2"),
+    ("G43.5 H1 X0 Y0 Z0 I0 J0 K1\n", HAAS, "G43.5 tool centre point control type 2"),
+    ("G43.5 H1\nG1 X10. A5. F100.\n", FANUC, "word A under G43.5: not allowed"),
+    ("G43.4 H1\nG1 X10. I0 J0 K1. F100.\n", FANUC, "word I under G43.4: not allowed"),
+    ("G43.5 H1\nG1 X10. I0 J1. F100.\n", FANUC, "only part of the tool direction"),
+    ("G43.5 H1\nG1 X10. I0 J0 K-1. F100.\n", FANUC, "cannot tilt the part"),
     ("G43.4 H1\nG2 X10. Y0 I5. J0 F100.\n", FANUC, "motion other than G00/G01"),
     ("G43.4 H1\nG41 D1 G1 X10. Y0 F100.\n", FANUC, "cutter compensation"),
     ("G68.2 X0 Y0 Z0 I0 J30. K0\nG53.1\nG43.4 H1\n", FANUC, "tilted plane"),
