@@ -645,17 +645,14 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
             return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
-    axis_words = [w for w in ("X", "Y", "Z") if w in seen]
-    arc_words = [w for w in ("I", "J", "K") if w in seen]
-    rot_words = [w for w in EXTRA_LETTERS if w in seen]
+    axis_words, arc_words, rot_words = ([w for w in g if w in seen] for g in ("XYZ", "IJK", EXTRA_LETTERS))
     if "position offset" in gcodes:
         _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
-    if st.tcp and (axis_words or polar or rot_words or st.tcp == 435 and arc_words):  # interpolators.iso_tcp
-        tcp_block(seen, gcodes, axis_words + polar, st, blocks, used, where, number)
-        return ended
+    if st.tcp and tcp_block(seen, gcodes, axis_words + polar, rot_words + arc_words, st, blocks, used, where, number):
+        return ended  # G43.4 / G43.5 / G234 (interpolators.iso_tcp)
     if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended

@@ -128,10 +128,14 @@ def _tool_direction(seen, st: State, where: Where) -> np.ndarray:
     return rot
 
 
-def tcp_block(seen, gcodes, axis_words: list[str], st: State, blocks: list[Block], used: set[int], where: Where,
-              number: int | None) -> None:
-    """A G00 / G01 block under TCP: the tip's straight line on the part to the programmed X Y Z, the rotary
-    axes to their words, as chords (:func:`interpolators.tcp.tcp_chords`)."""
+def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: State, blocks: list[Block],
+              used: set[int], where: Where, number: int | None) -> bool:
+    """A block under TCP with axis words ``axis_words`` (X Y Z, polar) or ``other_words`` (A-W, I J K): the tip's
+    straight line on the part to the programmed X Y Z, the rotary axes to their words or G43.5's tool direction,
+    as chords (:func:`interpolators.tcp.tcp_chords`); True when it ran the block, False for a block without
+    them (the reader's general path takes it: a motion code alone, a word without motion)."""
+    if not axis_words and not [k for k in other_words if k not in "IJK" or st.tcp == 435]:
+        return False
     _refuse(seen, gcodes, axis_words, st, where)
     kin = st.context.kinematics
     start = part_point(kin, st.extra, st.pos, st.tool_length)
@@ -171,3 +175,4 @@ def tcp_block(seen, gcodes, axis_words: list[str], st: State, blocks: list[Block
                             exact_stop=st.exact_stop if k == last else False, tolerance=st.tolerance, **extra))
         st.pos = target.copy()
         st.extra = ends.copy()
+    return True
