@@ -19,7 +19,9 @@ controls that define it, and what vcnc reads of each:
   ... becomes the programming coordinate system. Thereafter, the programming coordinate system rotates as the
   table turns"; Haas mill operator's manual, "G234 Tool Center Point Control (TCPC)": "TCPC makes sure that
   this coordinate system remains fixed relative to the table; when the rotary axes rotate, the linear
-  coordinate system rotates with them"): :mod:`interpolators.iso_tcp`.
+  coordinate system rotates with them"): :mod:`interpolators.iso_tcp`; Fanuc's type 2, ``G43.5``, and
+  HEIDENHAIN's ``LN .. TX TY TZ`` give the tool direction instead of the rotary positions
+  (:func:`tool_vector_extra`).
 
 The map. On a table machine the spindle stays along Z; the part point ``p`` (where the tool reference would be,
 tool length ``L`` along Z included, with the tip on that part point and every rotary axis at 0) is at the
