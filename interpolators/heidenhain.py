@@ -12,8 +12,8 @@ s in machine coordinates. One module per concern:
 * :mod:`interpolators.heidenhain_cycles`: ``CYCL DEF`` 1, 2, 4, 5, 7, 9, 12, 17, 32, 200-209, 240, 241, 251-253,
   254, 256, 257, 262-265, 267 and the pattern cycles 220, 221;
 * :mod:`interpolators.heidenhain_transforms`: cycles 8, 10, 11, 26, ``TRANS``, and the ``PLANE`` blocks
-  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table; ``FUNCTION TCPM``: an error);
-* :mod:`interpolators.heidenhain_tcpm`: ``M128`` on positioned rotary axes of a tilting table (3+2);
+  (with :mod:`interpolators.tilted`: the tilted working plane on a tilting table);
+* :mod:`interpolators.heidenhain_tcpm`: ``M128`` / ``FUNCTION TCPM`` on a tilting table (:mod:`interpolators.tcp`);
 * :mod:`interpolators.heidenhain_programs`: ``CALL PGM``, ``SEL PGM``, ``CALL SELECTED PGM``;
 * :mod:`interpolators.heidenhain_probing`: touch probe cycles ``TCH PROBE 400, 408-413, 417, 419-424, 427, 431`` on
   the nominal workpiece;
@@ -82,9 +82,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L X+0 M92                       M92: relative to the machine-defined position context.home
     L M140 MB MAX                   retract along the tool axis to context.home's coordinate
                                     (the machine's limit stands in for the software limit switch)
-    L M128 ... M129                 TCPM on rotary axes positioned before it (3+2, tilting table):
-                                    lines of the tool tip on the turned part (heidenhain_tcpm); the F
-                                    right after M128 is its compensation feed (noted)
+    L M128 ... M129                 TCPM on a tilting table: lines of the tool tip on the turned part,
+    FUNCTION TCPM F TCP AXIS POS    their rotary words moving too (chords within the tolerance, F the
+      PATHCTRL AXIS .. RESET TCPM   tip's feed on the part: heidenhain_tcpm, tcp); the F right after
+                                    M128 is its compensation feed (noted)
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
@@ -203,7 +204,7 @@ from interpolators.heidenhain_probing import PROBE_CYCLES, PROBE_RE, probe_run, 
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
 from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
 from interpolators.heidenhain_surfaces import SURFACE_CYCLES, surface_cycle
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, function_tcpm
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -1232,9 +1233,13 @@ def _tilt(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None
     """``PLANE``: the tilted working plane on a machine with kinematics (:func:`_plane`), else no motion
     when nothing tilts and an error naming the function otherwise; ``FUNCTION``: ``FUNCTION DWELL TIME t``
     / ``REV r`` is a dwell of t [s] or of r spindle revolutions (TNC 640 user's manual, "Defining a
-    dwell time: FUNCTION DWELL"), ``FUNCTION TCPM`` an error."""
+    dwell time: FUNCTION DWELL"), ``FUNCTION TCPM`` / ``FUNCTION RESET TCPM`` TCPM on and off
+    (:func:`interpolators.heidenhain_tcpm.function_tcpm`)."""
     if kw == "FUNCTION" and re.match(r"\s*FEED\s+DWELL\b", blk.code[pos:], re.I):
         _feed_dwell(blk, pos, m, where)
+        return
+    if kw == "FUNCTION" and re.match(r"\s*(RESET\s+)?TCPM\b", blk.code[pos:], re.I):
+        function_tcpm(blk.code[pos:], m, where, column=blk.column + pos)
         return
     dm = re.match(r"\s*DWELL\s+(TIME|REV)\s*", blk.code[pos:], re.I) if kw == "FUNCTION" else None
     if dm is None:

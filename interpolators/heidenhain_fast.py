@@ -43,10 +43,10 @@ import numpy as np
 
 from interpolators.arcs import arc_from_center, arc_from_radius
 from interpolators.heidenhain_paths import arc_end_tolerance
-from interpolators.heidenhain_tcpm import machine_point, part_point
 from interpolators.heidenhain_words import SourceBlock
 from interpolators.iso_words import PLAIN_NUMBER
 from interpolators.program import Block
+from interpolators.tcp import machine_point, part_point
 from toolpaths.geometry import PLANE_AXES, Line
 
 __all__ = ["PlainBlocks", "PlainWords", "plain_words"]

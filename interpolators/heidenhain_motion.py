@@ -37,10 +37,11 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_targets import plane_coords, program_target
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, machine_point, part_point
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tool_vector
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
+from interpolators.tcp import machine_point, part_point
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 if TYPE_CHECKING:
@@ -172,7 +173,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
                       column=w.column, text=w.text)
         m.tcpm = True
-        m.note("M128: TCPM on positioned rotary axes (lines of the tool tip on the turned part)")
+        m.note("M128: TCPM (lines of the tool tip on the turned part)")
         return False
     if w.value == 129:
         m.tcpm = False
@@ -326,14 +327,22 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
             w = seen.get("MBMAX") or seen["MB"]
             where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
     target, written = plane_coords(seen, m, where, m9x=m9x)
-    if normal:
-        target = target + _normal_offset(seen, m, where, blk)
+    shift = _normal_offset(seen, m, where, blk) if normal else None
+    if shift is not None:
+        target = target + shift
     m.used.update(written)
     feed = math.inf if rapid else m.feed
     extra = _extra_axes(seen, m, where) if kw == "L" else None
+    turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
-        target = _tcpm_target(kw, seen, extra, normal or m.pending is not None or m.approach is not None
-                              or m.comp != "R0", m, where)
+        waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
+                   if m.comp != "R0" else None)
+        target = _tcpm_target(kw, seen, waiting, m, where)
+        if normal:  # LN: N displaces the part point, T turns the rotary axes (heidenhain_tcpm.tool_vector)
+            target, extra = target + shift, tool_vector(seen, m, where)
+        turning = extra is not None and bool(np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9))
+        if not turning:
+            target = machine_point(m.context.kinematics, m.extra, target, m.tool_length)
     if kw in ("L", "LP") and (written or kw == "LP" or extra is not None):
         if kw == "LP":
             target = _polar_target(kw, seen, target, m, where, blk)
@@ -346,9 +355,12 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
         if m.approach is not None:
             p, q = PLANE_AXES[m.plane]
             _resolve_approach(m, np.array([target[p] - m.pos[p], target[q] - m.pos[q]]), where)
-        m.tcpm_move = True
-        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
-        m.tcpm_move = False
+        if turning:
+            tcpm_line(m, target, extra, rapid=rapid, where=where, number=blk.number)
+        else:
+            m.tcpm_move = True
+            m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
+            m.tcpm_move = False
     elif kw in ("C", "CR", "CT", "CP", "CTP"):
         if kw == "CTP":
             target = _polar_target(kw, seen, target, m, where, blk)
@@ -475,7 +487,7 @@ def _normal_offset(seen: dict[str, Word], m: Machine, where: Where, blk: SourceB
     if not m.transform.identity:
         where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
                    text=where.text, expected="LN without mirror, rotation or scaling")
-    if "TX" in seen or "TY" in seen or "TZ" in seen:
+    if ("TX" in seen or "TY" in seen or "TZ" in seen) and not m.tcpm:
         m.note("LN TX/TY/TZ: the tool orientation is ignored without M128 (no tilting axes move)")
     return m.tool_delta * normal / np.linalg.norm(normal)
 
@@ -513,21 +525,19 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
     return target
 
 
-def _tcpm_target(kw: str, seen: dict[str, Word], extra: np.ndarray | None, other: bool, m: Machine,
-                 where: Where) -> np.ndarray:
-    """The machine end point [mm] of a line under M128 (:mod:`interpolators.heidenhain_tcpm`): the program
-    point on the part with every rotary axis at 0, carried where the table holds it. ``other``: the block is
-    an LN, or a corner, approach or radius compensation waits for it (errors)."""
-    if kw != "L" or other:
-        where.fail(f"{'LN, RND/CHF, APPR/DEP or RL/RR' if kw == 'L' else kw} under M128 is not supported",
-                   column=1, text=where.text, expected=TCPM_EXPECTED)
-    if extra is not None and np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9):
-        where.fail("a rotary axis moving under M128 (simultaneous 5-axis: the tool tip's path) is not supported",
-                   column=1, text=where.text, expected=TCPM_EXPECTED)
-    kin = m.context.kinematics
+def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine, where: Where) -> np.ndarray:
+    """The end point of a line under M128 (:mod:`interpolators.heidenhain_tcpm`) on the part with every rotary
+    axis at 0 [mm, machine, tool length included]. ``waiting``: what the block is or what waits for it (an LN, a
+    corner, an approach, radius compensation: errors)."""
+    if kw != "L" or waiting is not None:
+        where.fail(f"{waiting or kw} under M128 is not supported", column=1, text=where.text,
+                   expected=TCPM_EXPECTED)
+    if m.tilt is not None:  # a PLANE .. STAY after M128
+        where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
+                   expected=TCPM_EXPECTED)
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
-    part, _ = program_target(m, values, part_point(kin, m.extra, m.pos, m.tool_length))
-    return machine_point(kin, m.extra, part, m.tool_length)
+    part, _ = program_target(m, values, part_point(m.context.kinematics, m.extra, m.pos, m.tool_length))
+    return part
 
 
 def _pole(seen: dict[str, Word], m: Machine, where: Where, m9x: int | None) -> None:

@@ -1,4 +1,5 @@
-"""``M128`` (TCPM, tool centre point management) of Heidenhain conversational programs, on positioned rotary axes.
+"""``M128`` and ``FUNCTION TCPM`` (TCPM, tool centre point management) of Heidenhain conversational programs on a
+tilting table; the geometry is :mod:`interpolators.tcp`'s.
 
 HEIDENHAIN TNC7 user's manual (German, 81762x-17, content.heidenhain.de/doku/tnc_guide/pdf_files/TNC7/81762x-17),
 M128: "Wenn sich im NC-Programm die Position einer gesteuerten Drehachse ändert, kompensiert die Steuerung mit
@@ -8,59 +9,154 @@ TNC 640 manual's "Retaining the position of the tool tip when positioning tiltin
 programmed X, Y, Z are the tool tip on the workpiece; M129 cancels it. On a machine whose rotary axes turn
 the part (a trunnion table, :class:`interpolators.tilted.Kinematics` ``kind = "table"``) the spindle stays
 along Z, so the tip of a workpiece point ``p`` (where it is with every rotary axis at 0, tool length included
-along Z) is where the table carries it: ``machine = place(p - L, angles) + L``.
+along Z) is where the table carries it: ``machine = place(p - L, angles) + L``
+(:func:`interpolators.tcp.machine_point`).
 
-What vcnc reads (the "3+2" use of M128 that CAM posts write, NX: ``L B76.323 C-150.677 FMAX``, ``L M128
-F3000.``, then straight lines): the rotary axes stay where they are while M128 is on, and the blocks are
-straight lines ``L`` (and ``M140`` retracts along the spindle). Then every line maps to a straight line of the
-machine (a rigid motion of the table) and its end points are exact. A rotary axis moving under M128
-(simultaneous 5-axis: the tip path is no straight line of the machine), an arc, a polar, approach or
-compensated block, a cycle, a tilted plane, a head-tilting machine or a tool axis other than Z are errors
-naming them.
+What vcnc reads: straight lines ``L`` (and ``M140`` retracts along the spindle) whose rotary words A, B, C may
+change. With the rotary axes still (the "3+2" use NX posts write: ``L B76.323 C-150.677 FMAX``, ``L M128
+F3000.``, then lines) a line maps to a straight machine line; with them moving (simultaneous 5-axis, the
+Fusion 360 and NX TNC posts' ``L X.. Y.. Z.. B.. C.. F..``) the tip runs on the straight line to its programmed
+end while the rotary axes move in proportion, emitted as chords within the path tolerance (cycle 32 T, else
+the default), the feed F that of the tip relative to the part (:func:`interpolators.tcp.tcp_chords`). That is
+M128's feed (iTNC 530 user's manual 340 49x-04, M128: "M128 executes compensation movements that must not
+change the feed rate of the tool relative to the workpiece"; the F after M128, the feed of those compensation
+movements, is noted and ignored) and ``FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS`` (:func:`function_tcpm`).
+``LN X Y Z NX NY NZ TX TY TZ`` under it is the tool-vector form (:func:`tool_vector`): the rotary axes turn to
+make T the spindle's axis, moving linearly to it, the part point displaced along N by the delta values. An arc,
+a polar, approach or compensated block, a cycle, a tilted plane, a head-tilting machine or a tool axis other
+than Z are errors naming them.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import re
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.tilted import Kinematics
+from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords, tool_vector_extra
+from interpolators.tilted import Kinematics, TiltError
+from toolpaths.geometry import Line
 
-__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "part_point", "machine_point"]
+if TYPE_CHECKING:
+    from interpolators.heidenhain import Machine
 
-#: What M128 needs here.
-TCPM_EXPECTED = ("M128 on a machine whose rotary axes turn the part ([program.kinematics] kind = \"table\"), tool "
-                 "axis Z, no tilted plane, the rotary axes positioned before M128 and straight lines L until M129")
+__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line", "tool_vector"]
+
+#: What M128 / FUNCTION TCPM need here.
+TCPM_EXPECTED = ("M128 or FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS on a machine whose rotary axes turn the part "
+                 "([program.kinematics] kind = \"table\"), tool axis Z, no tilted plane, straight lines L until "
+                 "M129 / FUNCTION RESET TCPM")
+
+#: The words of FUNCTION TCPM and what vcnc reads of each (None: read as M128 does).
+_TCPM_WORDS = {
+    "F TCP": None, "AXIS POS": None, "PATHCTRL AXIS": None, "REFPNT TIP-TIP": None,
+    "F CONT": "F CONT (the feed as the contouring feed of the programmed axes) is not modelled",
+    "AXIS SPAT": "AXIS SPAT (rotary words as spatial angles) is not modelled",
+    "PATHCTRL VECTOR": "PATHCTRL VECTOR (the tool vector interpolated in a plane) is not modelled",
+    "REFPNT TIP-CENTER": "REFPNT TIP-CENTER (the tool's centre as the point of rotation) is not modelled",
+    "REFPNT CENTER-CENTER": "REFPNT CENTER-CENTER (the tool's centre as the programmed point) is not modelled",
+}
+_TCPM_WORD_RE = re.compile(r"\s*(F\s+(?:TCP|CONT)|AXIS\s+(?:POS|SPAT)|PATHCTRL\s+(?:AXIS|VECTOR)|"
+                           r"REFPNT\s+(?:TIP-TIP|TIP-CENTER|CENTER-CENTER))\b", re.I)
 
 
 def check_tcpm_on(kinematics: Kinematics | None, *, tool_axis: int, tilted: bool, where: Where, column: int,
                   text: str) -> None:
     """An error at ``where`` unless M128 can be read on this machine in this state (see the module text)."""
     if kinematics is None:
-        where.fail("M128 (TCPM, tool centre point management) needs the machine's kinematics", column=column,
-                   text=text, expected=TCPM_EXPECTED)
+        where.fail(f"{text.upper()} (TCPM, tool centre point management) needs the machine's kinematics",
+                   column=column, text=text, expected=TCPM_EXPECTED)
     if kinematics.kind != "table":
-        where.fail("M128 (TCPM) on a head-tilting machine is not supported", column=column, text=text,
+        where.fail(f"{text.upper()} (TCPM) on a head-tilting machine is not supported", column=column, text=text,
                    expected=TCPM_EXPECTED)
     if tool_axis != 2 or tilted:
-        where.fail("M128 (TCPM) with a tilted working plane or a tool axis other than Z is not supported",
+        where.fail(f"{text.upper()} (TCPM) with a tilted working plane or a tool axis other than Z is not supported",
                    column=column, text=text, expected=TCPM_EXPECTED)
 
 
-def _tool(length: float) -> np.ndarray:
-    return np.array([0.0, 0.0, length])
+def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
+    """``FUNCTION TCPM F TCP|F CONT AXIS POS|AXIS SPAT PATHCTRL AXIS|PATHCTRL VECTOR [REFPNT ..]``, ``FUNCTION
+    RESET TCPM`` (``rest``: the text after FUNCTION).
+
+    iTNC 530 user's manual 60642x-04, 12.4 "TCPM FUNCTION"; TNC 620 user's manual 10/2017, "FUNCTION TCPM":
+    F TCP "the programmed feed rate is interpreted as the actual relative velocity between the tool point
+    (tool center point) and the workpiece", AXIS POS "the programmed coordinates of rotary axes as the nominal
+    position of the respective axis", PATHCTRL AXIS "the tool tip moves on a straight line between the starting
+    and end position of the respective NC block"; REFPNT TIP-TIP (TNC 640) the tool tip as the programmed point
+    and the point of rotation. That is what vcnc reads (as M128); F CONT, AXIS SPAT, PATHCTRL VECTOR and the
+    other REFPNT are errors naming them. A word left out is read as M128 acts (our reading: the manuals show
+    the three groups always given)."""
+    if re.match(r"\s*RESET\s+TCPM\s*$", rest, re.I):
+        m.tcpm = False
+        return
+    tm = re.match(r"\s*TCPM\b", rest, re.I)
+    if tm is None:
+        where.fail("malformed FUNCTION RESET TCPM", column=column, text=rest.strip(), expected="FUNCTION RESET TCPM")
+    pos = tm.end()
+    while rest[pos:].strip():
+        wm = _TCPM_WORD_RE.match(rest, pos)
+        if wm is None:
+            tok = rest[pos:].split()[0]
+            where.fail(f"unexpected {tok!r} in FUNCTION TCPM", column=column + pos, text=tok, expected=TCPM_EXPECTED)
+        word = re.sub(r"\s+", " ", wm.group(1).upper())
+        if _TCPM_WORDS[word] is not None:
+            where.fail(f"FUNCTION TCPM {word}: {_TCPM_WORDS[word]}", column=column + wm.start(1), text=wm.group(1),
+                       expected=TCPM_EXPECTED)
+        pos = wm.end()
+    check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where, column=column,
+                  text="FUNCTION TCPM")
+    m.tcpm = True
+    m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)")
 
 
-def part_point(kinematics: Kinematics, extra: Sequence[float], position: Sequence[float], length: float) -> np.ndarray:
-    """Where the tool tip at machine ``position`` [mm] is on the part with every rotary axis at 0 [mm, machine,
-    tool length ``length`` along Z included], the rotary axes at ``extra`` (a, b, c first) [deg]."""
-    angles = kinematics.solution_at(extra)
-    return kinematics.unplace(np.asarray(position, dtype=float) - _tool(length), angles) + _tool(length)
+def tool_vector(seen: dict, m: Machine, where: Where) -> np.ndarray | None:
+    """``LN .. TX TY TZ`` under M128 / FUNCTION TCPM: the rotary positions [deg] (``m.extra`` changed) that turn the
+    tool orientation T onto the spindle, None without T (the axes stay).
+
+    iTNC 530 user's manual 60642x-04, 12.7 "Three-dimensional tool compensation", "Face milling: 3-D compensation
+    with and without tool orientation": with M128 "the TNC positions the rotary axes so that the tool reaches
+    the defined tool orientation" given by TX, TY, TZ; without M128 it ignores them. Our reading: T points from
+    the tip to the spindle, in the workpiece coordinates; the solution nearest the present positions within the
+    limits is taken (as PLANE without SEQ), the axes moving linearly to it (PATHCTRL AXIS)."""
+    keys = [k for k in ("TX", "TY", "TZ") if k in seen]
+    if not keys:
+        return None
+    if len(keys) < 3:
+        w = seen[keys[0]]
+        where.fail("LN with only part of the tool orientation TX TY TZ", column=w.column, text=w.text,
+                   expected="LN .. TX.. TY.. TZ.. (all three components)")
+    kin = m.context.kinematics
+    try:
+        extra = tool_vector_extra(kin, [seen[k].value for k in ("TX", "TY", "TZ")], m.extra)
+    except TiltError as exc:
+        w = seen["TX"]
+        where.fail(f"LN tool orientation TX TY TZ under M128: {exc.message}", column=w.column, text=w.text,
+                   expected=exc.expected)
+    m.extra_used = True
+    m.used.update(3 + "abc".index(name) for name in kin.names)
+    return extra
 
 
-def machine_point(kinematics: Kinematics, extra: Sequence[float], point: Sequence[float], length: float) -> np.ndarray:
-    """The inverse of :func:`part_point`: the machine position [mm] of the part point ``point``."""
-    angles = kinematics.solution_at(extra)
-    return kinematics.place(np.asarray(point, dtype=float) - _tool(length), angles) + _tool(length)
+def tcpm_line(m: Machine, part: np.ndarray, extra: np.ndarray, *, rapid: bool, where: Where, number) -> None:
+    """A line ``L`` under TCPM to the part point ``part`` [mm] whose rotary axes move to ``extra`` [deg]: its chords
+    (:func:`interpolators.tcp.tcp_chords`), joined without stops, the last ending as the path mode says."""
+    kin = m.context.kinematics
+    start = part_point(kin, m.extra, m.pos, m.tool_length)
+    tolerance = m.tolerance if m.tolerance is not None else m.context.dialect.tolerance
+    duration = None if rapid else block_time(start, part, extra - m.extra, feed=m.feed, rotary_feed=m.feed)
+    try:
+        chords = tcp_chords(kin, start=start, end=part, start_extra=m.extra, end_extra=extra, length=m.tool_length,
+                            tolerance=tolerance, duration=duration, position=m.pos, feed=m.feed)
+    except ChordsError as exc:
+        where.fail(f"L under M128 (TCPM): {exc}", column=1, text=where.text,
+                   expected="a smaller rotary move per block, or a larger tolerance (cycle 32 T)")
+    exact_stop = m.exact_stop
+    last = len(chords.feeds) - 1
+    m.tcpm_move = True
+    for k, (target, ends, feed) in enumerate(zip(chords.targets, chords.extras, chords.feeds, strict=True)):
+        m.exact_stop = exact_stop if k == last else False
+        m.emit("rapid" if rapid else "line", target, Line(m.pos, target), float(feed), where, number, extra=ends)
+    m.tcpm_move = False
+    m.exact_stop = exact_stop

@@ -60,6 +60,9 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
                           Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
 ``G68.2 G53.1``           tilted working plane X Y Z I J K (Euler) and the rotary axes turned to it, on a
                           machine with a tilting table (``MachineContext.kinematics``; :mod:`interpolators.iso_tilt`)
+``G43.4 G43.5 G234``      tool centre point control (Fanuc, Haas): X Y Z the tool tip on the part the tilting table
+                          carries, rotary words (G43.5: the tool direction I J K) moving with it, G49 ends it
+                          (:mod:`interpolators.iso_tcp`, :mod:`interpolators.tcp`)
 ``G74 G76 G87``           counter tapping, fine boring, back boring (Haas: ``G77``); Haas G73/G83
                           pecks from I J K (:mod:`interpolators.iso_cycles`)
 ``G70 G71 G72 G12 G13``   Haas only: bolt-hole circle, arc, line with the active cycle; circular
@@ -103,7 +106,8 @@ and M codes), :mod:`interpolators.iso_text` (the text before the run, the notes 
 :mod:`interpolators.iso_arcs`, :mod:`interpolators.iso_compensation` (G40-G42, G39),
 :mod:`interpolators.iso_offsets` (G10, G52, G43/G44/G49), :mod:`interpolators.iso_home` (G28/G30, G27/G29/G60,
 grbl ``$H``), :mod:`interpolators.iso_mcodes` (M codes), :mod:`interpolators.iso_frames` (G68, G51, G51.1,
-G68.2/G53.1) and :mod:`interpolators.iso_cycle_blocks` (canned-cycle blocks, Haas patterns and pocket).
+G68.2/G53.1), :mod:`interpolators.iso_tcp` (G43.4, G43.5, G234) and :mod:`interpolators.iso_cycle_blocks` (canned-cycle
+blocks, Haas patterns and pocket).
 """
 
 from __future__ import annotations
@@ -173,6 +177,7 @@ from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_trav
 from interpolators.iso_reference import FANUC_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_tcp import tcp_block, tcp_switch
 from interpolators.iso_text import (
     closing_notes,
     ends_with_m99,
@@ -308,6 +313,7 @@ class State:
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
+    tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -639,14 +645,14 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
             return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
-    axis_words = [w for w in ("X", "Y", "Z") if w in seen]
-    arc_words = [w for w in ("I", "J", "K") if w in seen]
-    rot_words = [w for w in EXTRA_LETTERS if w in seen]
+    axis_words, arc_words, rot_words = ([w for w in g if w in seen] for g in ("XYZ", "IJK", EXTRA_LETTERS))
     if "position offset" in gcodes:
         _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
     if (st.rotation or st.frame is not None) and (axis_words or polar):
         check_rotated(st, polar, where, words)
     _unused_words(seen, gcodes, st, notes)
+    if st.tcp and tcp_block(seen, gcodes, axis_words + polar, rot_words + arc_words, st, blocks, used, where, number):
+        return ended  # G43.4 / G43.5 / G234 (interpolators.iso_tcp)
     if st.motion is not None and (st.motion >= 730 or st.motion in (52, 53)):
         cycle_block(seen, gcodes, st, blocks, used, where, number, notes, bool(axis_words or polar), rot_words)
         return ended
@@ -910,7 +916,10 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
     if "length compensation" in gcodes:
-        length_compensation(gcodes["length compensation"], seen, st, where, notes)
+        key, w = gcodes["length compensation"]
+        tcp_switch((key, w), st, where, notes)  # G43.4 / G43.5 / G234: the length as G43 (interpolators.iso_tcp)
+        length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
+        st.length_code = key / 10
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system

@@ -74,8 +74,10 @@ G_UNSUPPORTED: dict[int, str] = {
     432: "G43.2 additional tool length offset (LinuxCNC; --dialect linuxcnc)",
     682: "G68.2 tilted working plane (5-axis)", 683: "G68.3 tilted working plane (5-axis)",
     684: "G68.4 tilted working plane (5-axis)", 531: "G53.1 tool axis direction control (5-axis)",
-    434: "G43.4 tool centre point control (5-axis)", 435: "G43.5 tool centre point control (5-axis)",
-    2340: "G234 tool centre point control (Haas 5-axis)", 2680: "G268 feature coordinate system (Haas 5-axis)",
+    434: "G43.4 tool centre point control (5-axis; --dialect fanuc)",
+    435: "G43.5 tool centre point control type 2 (5-axis; --dialect fanuc)",
+    2340: "G234 tool centre point control (Haas 5-axis; --dialect haas)",
+    2680: "G268 feature coordinate system (Haas 5-axis)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
@@ -122,11 +124,14 @@ NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 no
 #: bores with a manual retract).
 DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
+              434: ("length compensation", "G43.4 tool centre point control"),  # interpolators.iso_tcp
+              435: ("length compensation", "G43.5 tool centre point control type 2"),
               **{k: ("normal direction", n) for k, n in NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
               **{k: ("position offset", n) for k, (n, _) in POSITION_OFFSET_CODES.items()},
               **FANUC_CODES,  # G22, G23, G27 (interpolators.iso_reference)
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see interpolators.iso ``_g70_g71_units``
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
+             2340: ("length compensation", "G234 tool centre point control"),  # interpolators.iso_tcp
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
              **EXTENDED_CODES["haas"]},

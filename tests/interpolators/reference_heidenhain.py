@@ -370,8 +370,9 @@ class _Tnc:
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
         self.pos = end.copy()
 
-    def target(self, w: dict) -> np.ndarray:
-        """Machine end point of the axis words (M91/M92 and I words)."""
+    def target(self, w: dict, base: np.ndarray | None = None) -> np.ndarray:
+        """Machine end point of the axis words (M91/M92 and I words); ``base``: the program point the words
+        change (default: the present one)."""
         ms = w.get("M", [])
         if 91 in ms or 92 in ms:
             base = np.zeros(3) if 91 in ms else np.array(self.ctx.home, float)
@@ -380,7 +381,7 @@ class _Tnc:
                 if a in w:
                     end[i] = base[i] + w[a] * self.scale
             return end
-        p = self.prog()
+        p = self.prog() if base is None else base.copy()
         for i, a in enumerate("XYZ"):
             if a in w:
                 p[i] = w[a] * self.scale
@@ -407,6 +408,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     # program's unit), I words incremental; others of value 0 are ignored
     others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
     _reduce_display(t, w.get("MARGS", {}))
+    # M128 with the rotary axes moving: the tip's program point from where it is before they turn, carried to
+    # where the table holds it at their new positions; the reader's chords, the last one's end checked
+    base = t.prog() if t.tcpm and any(k[-1] in "ABC" for k in others) else None
     for k in others:
         i = "ABCUVW".index(k[-1])
         v = w[k] * (1.0 if i < 3 else t.scale)
@@ -415,7 +419,8 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     if t.feed_dwell is not None and kind == "feed" and (axes or others):
         _feed_dwell_line(t, line, t.target(w), bool(others))
     elif axes or others:
-        t.emit(line, kind, t.target(w), extra=t.extra.copy() if others else None)
+        t.emit(line, kind, t.target(w, base), extra=t.extra.copy() if others else None,
+               rows="one" if base is None else "last")
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
     if "MB" in w:
@@ -543,13 +548,48 @@ def _spline(t: _Tnc, line: int, rest: str) -> None:
 
 def _tcpm_switch(t: _Tnc, ms: list) -> None:
     """M128 (TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes (TCPM)")
-    on a table machine, M129 off; modelled with the rotary axes standing still."""
+    on a table machine, M129 off; a block whose rotary axes move ends where the table at their new positions
+    carries the programmed tip (:func:`_line_block`)."""
     if 128 in ms:
         if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
             raise ReferenceError("M128 without a tilting table")
         t.tcpm = True
     if 129 in ms:
         t.tcpm = False
+
+
+def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
+    """``LN X Y Z NX NY NZ [TX TY TZ]`` under M128 (iTNC 530 user's manual, "Face milling: 3-D compensation with
+    and without tool orientation"): the part point displaced along N by the delta values; with T the rotary axes
+    turned so that T (workpiece coordinates) is the spindle's axis, the solution nearest where they are
+    (:func:`_solve`), the table carrying the point there; the reader's chords, the last one's end checked."""
+    if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None:
+        raise ReferenceError("LN under M128 with RL/RR, a transformation or a tilted plane")
+    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    p = t.prog()  # where the tip is on the part, before the axes turn
+    for i, a in enumerate("XYZ"):
+        if a in w:
+            p[i] = w[a] * t.scale
+    if "TX" in w:
+        tool = np.array([w["TX"], w["TY"], w["TZ"]], float)
+        for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool / np.linalg.norm(tool)]),
+                                  0).items():
+            t.extra["ABC".index(name.upper())] = value
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n / np.linalg.norm(n)),
+           extra=t.extra.copy(), rows="last")
+
+
+def _function_tcpm(t: _Tnc, up: str) -> None:
+    """FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS [REFPNT TIP-TIP] (TNC 620 user's manual, "FUNCTION TCPM": the
+    feed of the tip on the part, rotary words as positions, the tip on a straight line): as M128; FUNCTION RESET
+    TCPM ends it. Any other choice is not modelled here."""
+    if up.startswith("FUNCTION RESET TCPM"):
+        t.tcpm = False
+        return
+    if re.sub(r"\s+", " ", up[len("FUNCTION TCPM"):]).strip() not in (
+            "F TCP AXIS POS PATHCTRL AXIS", "F TCP AXIS POS PATHCTRL AXIS REFPNT TIP-TIP"):
+        raise ReferenceError(up)
+    _tcpm_switch(t, [128])
 
 
 def _pole(t: _Tnc, w: dict) -> None:
@@ -2504,8 +2544,10 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _plane(t, line, up)
         elif up.startswith("FUNCTION FEED DWELL"):
             _feed_dwell_def(t, up)
+        elif up.startswith("FUNCTION TCPM") or up.startswith("FUNCTION RESET TCPM"):
+            _function_tcpm(t, up)
         elif up.startswith(("PLANE", "FUNCTION")):
-            if not (up.startswith(("PLANE RESET", "FUNCTION RESET TCPM", "FUNCTION MODE MILL"))
+            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL"))
                     or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
                 raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
@@ -2618,6 +2660,8 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _spline(t, line, rest)
     elif head == "L":
         _line_block(t, line, _words(rest, t.q))
+    elif head == "LN" and t.tcpm:
+        _tool_vector_line(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
         w = _words(rest, t.q)
         n = np.array([w["NX"], w["NY"], w["NZ"]], float)

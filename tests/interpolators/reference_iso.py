@@ -15,6 +15,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool offsets (length
   along Z, the table's X Y offsets: g-code.adoc "G43") (``coordinates.adoc``; LinuxCNC applies the
   XY rotation of ``G10 L2 R`` about the coordinate system origin).
+- Fanuc G43.4 / G43.5 / Haas G234 (``--dialect fanuc`` / ``haas``) on the context's tilting table: the tool
+  length as G43, X Y Z the tool tip in the work system the table carries (G43.5: I J K the tool direction
+  there) (FANUC 30i "Tool center point control for 5-axis machining" A-79348E 1.1; Haas "G234 TCPC"): a G0/G1
+  ends where the table at the block's rotary positions carries the programmed tip (its own map: elementary
+  rotations about each axis' pivot).
 - G28/G30: with axis words a rapid to that point (program coordinates, with offsets), then a rapid
   of the named axes to the home / second reference position; without axis words, every axis to it
   (g-code.adoc "G28, G28.1"); G28.1 / G30.1 make the current position that reference. G53: the named
@@ -680,6 +685,8 @@ class _Machine:
         self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
+        self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
+        self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
         self.selected = self.loaded = 0
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.comp_radius: float | None = None
@@ -824,6 +831,85 @@ class _Machine:
         self.emit(line, kind, end, rows=rows)
 
 
+def _table(m: _Machine, point: np.ndarray, extra: np.ndarray, *, back: bool = False) -> np.ndarray:
+    """Where the machine's tilting table at the rotary positions ``extra`` carries the part point that is at
+    ``point`` with every rotary axis at 0 (``back``: the reverse). Each axis turns the part by minus its angle
+    about its direction (ISO 841: a table axis turns the other way) round its pivot; the outer axis carries the
+    inner one, so the inner turn comes first."""
+    axes = list(m.ctx.kinematics.axes)
+    steps = []
+    for ax in reversed(axes):  # inner first
+        angle = -math.radians(extra["abc".index(ax.name)]) * (-1.0 if ax.direction.startswith("-") else 1.0)
+        c, s = math.cos(angle), math.sin(angle)
+        k = "XYZ".index(ax.direction[-1])
+        i, j = (k + 1) % 3, (k + 2) % 3
+        rot = np.eye(3)
+        rot[i, i], rot[i, j], rot[j, i], rot[j, j] = c, -s, s, c
+        steps.append((rot, np.asarray(ax.pivot, float)))
+    q = np.asarray(point, float)
+    for rot, pivot in (reversed(steps) if back else steps):
+        q = pivot + (rot.T if back else rot) @ (q - pivot)
+    return q
+
+
+def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
+    """The rotary positions of an A/C or B/C table (or one A or B axis) that make ``tool`` (part coordinates) the
+    spindle's axis, nearest the present ones within the limits. The tool's direction in the part at angles
+    (o, i): Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A), Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
+    cos B); one axis: (0, -sin A, cos A), (sin B, 0, cos B)."""
+    axes = m.ctx.kinematics.axes
+    n = tool / np.linalg.norm(tool)
+    if any(ax.direction not in ("X", "Y", "Z") for ax in axes) or axes[0].direction == "Z" or (
+            len(axes) == 2 and axes[1].direction != "Z"):
+        raise ReferenceError("kinematics other than an A/C or B/C table")
+    x = axes[0].direction == "X"
+    if len(axes) == 1:
+        pairs = [(math.degrees(math.atan2(-n[1], n[2]) if x else math.atan2(n[0], n[2])), 0.0)]
+    else:
+        tilt = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
+        pairs = []
+        for o in (tilt, -tilt):
+            so = math.sin(math.radians(o))
+            i = m.extra["abc".index(axes[1].name)] if abs(so) < 1e-9 else math.degrees(
+                math.atan2(n[0] / so, -n[1] / so) if x else math.atan2(n[1] / so, n[0] / so))
+            pairs.append((o, i))
+    now = [m.extra["abc".index(ax.name)] for ax in axes]
+    best = None
+    for pair in pairs:
+        fit = []
+        for ax, v in zip(axes, pair, strict=False):
+            w = next((c for c in (v, v + 360.0, v - 360.0) if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6), None)
+            fit.append(w)
+        if None not in fit:
+            key = (sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0])
+            best = min(best, (key, fit)) if best is not None else (key, fit)
+    if best is None:
+        raise ReferenceError("a tool direction the rotary axes do not reach")
+    out = m.extra.copy()
+    for ax, v in zip(axes, best[1], strict=True):
+        out["abc".index(ax.name)] = v
+    return out
+
+
+def _tcp_move(m: _Machine, line: int, words: dict) -> None:
+    """G0 / G1 under G43.4 / G234 (Fanuc 30i "Tool center point control for 5-axis machining" A-79348E 1.1: X Y Z
+    the tool tip in the workpiece system fixed on the table; Haas "G234 TCPC"): the programmed point where the
+    table at the block's rotary positions carries it; a block whose rotary axes turn is the reader's chords,
+    the last one's end checked."""
+    length = np.array([0.0, 0.0, m.tool_length])
+    here = m.pos
+    m.pos = _table(m, here - length, m.extra, back=True) + length  # where the tip is on the part
+    prog = m.target(words)
+    m.pos = here
+    extra = m.extra_end(words)
+    if m.tcp_vector and "i" in words:
+        extra = _tool_angles(m, np.array([words[k][-1] for k in "ijk"], float))
+    end = _table(m, m.to_machine(prog) - length, extra) + length
+    turning = not np.allclose(extra[:3], m.extra[:3], rtol=0.0, atol=1e-12)
+    m.extra = extra
+    m.emit(line, "rapid" if m.motion == 0 else "feed", end, rows="last" if turning else "one")
+
+
 def _codes(words: dict, letter: str) -> list[int]:
     """G or M codes of a line as integers x10 (``G59.1`` -> 591, ``G1`` -> 10)."""
     return [int(round(v * 10)) for v in words.get(letter, [])]
@@ -852,6 +938,11 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     for code in g:
+        if code in (430, 431, 432, 440, 490):
+            m.tcp = False
+        if (code, m.ctx.dialect.name) in ((434, "fanuc"), (435, "fanuc"), (2340, "haas")):
+            m.tcp, m.tcp_vector = True, code == 435  # the tool length as G43, X Y Z the tip on the part (_tcp_move)
+            code = 430
         if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             tool = m.tool(number)
@@ -1220,6 +1311,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         return
     if m.motion // 10 in cycles:
         _cycle(m, line, words)
+        return
+    if m.tcp and m.motion in (0, 10):
+        _tcp_move(m, line, words)
         return
     end = m.to_machine(m.target(words))
     shift = [c for c in g if c in _POSITION_OFFSET]

@@ -139,7 +139,7 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
 @pytest.mark.parametrize("body, words", [
     ("PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN FMAX", "PLANE SPATIAL (a tilted working plane) is not supported"),
     ("PLANE VECTOR BX+1 BY+0 BZ+0 NX+0 NY+0 NZ+1 STAY", "PLANE VECTOR"),
-    ("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS", "FUNCTION TCPM is not supported"),
+    ("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS", "FUNCTION TCPM (TCPM, tool centre point management) needs"),
     ("L X+0 Y+0 R0 FMAX M128", "M128 (TCPM"),
     ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM without an axis value"),
     ("CYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 Z", "MIRROR IMAGE of the tool axis Z"),

@@ -73,7 +73,7 @@ def test_lines_under_m128_on_positioned_rotary_axes_are_the_tool_tip_on_the_turn
     prog = run("1 L X+0 Y+0 Z+50 R0 FMAX\n2 L B+90 C+0 FMAX\n3 L M128 F3000\n4 L X+10 Y+0 Z+0 FMAX\n5 L Z+5 F3000\n"
                "6 L IY+2\n7 M129\n8 L X+1 FMAX", BC_TABLE)
     assert ends(prog)[2:] == [[0.0, 0.0, 10.0], [-5.0, 0.0, 10.0], [-5.0, 2.0, 10.0], [1.0, 2.0, 10.0]]
-    assert any(n.startswith("M128: TCPM on positioned rotary axes") for n in prog.notes)
+    assert any(n.startswith("M128: TCPM (lines of the tool tip") for n in prog.notes)
 
 
 def test_a_turned_c_axis_carries_the_part_point_round():
@@ -83,7 +83,6 @@ def test_a_turned_c_axis_carries_the_part_point_round():
 
 
 @pytest.mark.parametrize(("body", "message"), [
-    ("3 L X+5 B+10 F500", "a rotary axis moving under M128"),
     ("3 CC X+0 Y+0\n4 C X+0 Y+10 DR+ F500", "C under M128 is not supported"),
     ("3 CYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-5 ~\n Q206=100 ~\n Q202=5 ~\n Q210=0 ~\n Q203=0 ~\n Q204=5 ~\n"
      " Q211=0\n4 L X+5 Y+5 FMAX M99", "a move under M128 other than a straight line"),
