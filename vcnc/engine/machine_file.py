@@ -39,7 +39,7 @@ Layout::
     [program.touch_probe]         # optional Heidenhain touch probe table row (TCH PROBE cycles), its defaults:
     set_up = 2.0                  # mm, SET_UP safety clearance; feed = 100.0, fmax = 2000.0 mm/min (F, FMAX);
                                   #   dist = 20.0 mm (DIST); tip_radius [mm] (unset: the probe tool's radius)
-    [program.kinematics]          # optional: the rotary axes that tilt the part (tilted working plane)
+    [program.kinematics]          # optional: the rotary axes that tilt the part (tilted plane, TCP)
     kind = "table"                # table (trunnion) | head (a tilted plane is then an error)
     [[program.kinematics.axes]]   # the outer (tilting) axis first, then the one it carries (the part's), or one
     name = "b"                    # a | b | c: one of this file's [axes.a] .. [axes.c]
