@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -89,7 +89,7 @@ def _chains(program: Program) -> list[_Chain]:
             continue
         seg = b.segment
         if b.extra_start is not None and np.any(b.extra_delta != 0):
-            cur = _extra_block(chains, cur, i, b)
+            cur = _extra_block(chains, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
@@ -106,19 +106,26 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
-def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b) -> _Chain | None:
+def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b, blocks: Sequence) -> _Chain | None:
     """Add a block that moves an axis beyond X, Y, Z; returns the chain the next block may join.
 
     A feed move with X, Y or Z moving joins the chain of the previous such block when that one
-    did not end in exact stop (G64): look-ahead passes their junction at speed, bounded for every
-    axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains are neither
-    blended nor merged, the axes follow the programmed segments. Any other such block (a rapid, a
-    move with X, Y, Z still: a hold at its XYZ position whose profile runs along
-    ``Block.extra_length``) is a chain of its own, at rest at both ends.
+    did not end in exact stop (G64) and was no rapid: look-ahead passes their junction at speed, bounded for
+    every axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains are neither
+    blended nor merged, the axes follow the programmed segments. A rapid joins only the rapid before it from
+    the same source line that did not end in exact stop: the chords of one rapid under tool centre point
+    control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord.
+    Any other such block (a rapid, a move with X, Y, Z still: a hold at its XYZ position whose profile runs
+    along ``Block.extra_length``) is a chain of its own, at rest at both ends.
     """
     seg = b.segment
     moves_xyz = seg is not None and seg.length > 0
-    joins = moves_xyz and b.kind != "rapid"
+    rapid = b.kind == "rapid"
+    after_rapid = cur is not None and cur.extra and cur.rapid[-1]
+    if rapid:
+        joins = moves_xyz and after_rapid and blocks[cur.blocks[-1]].line == b.line
+    else:
+        joins = moves_xyz and not after_rapid
     if not (joins and cur is not None and cur.extra):
         cur = _Chain()
         cur.extra = True
@@ -128,7 +135,7 @@ def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b) -> _Chain 
     cur.feeds.append(b.feed)
     cur.rapid.append(b.kind == "rapid")
     cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
-    return cur if joins and not b.exact_stop else None
+    return cur if moves_xyz and not b.exact_stop else None
 
 
 def _resolve_limits(limits: Mapping[str, AxisLimits] | None) -> dict[str, AxisLimits]:
@@ -196,7 +203,8 @@ def interpolate(
       of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
       G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
       velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
-      see ``_extra_block``); other blocks moving them start and end at rest. Setpoint columns
+      see ``_extra_block``); the chords of one rapid under tool centre point control likewise; other blocks
+      moving them start and end at rest. Setpoint columns
       ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).

@@ -160,6 +160,26 @@ def test_a_rapid_under_m128_with_rotary_words_is_chords_of_rapids():
     assert chords[-1].target == pytest.approx(machine(BC, [10.0, 5.0, 30.0], Solution(-20.0, 90.0)), abs=1e-9)
 
 
+def test_the_chords_of_a_rapid_under_tcp_are_one_move():
+    """The chords of one rapid form one chain (interpolate's _extra_block), whose junctions the look-ahead passes
+    at speed where their kinks allow (here a slow rapid: B turns 3 degrees over 60 mm), rather than a stop at
+    every chord end; a rapid of another line, and the feed block after it, start chains of their own."""
+    prog = tnc("3 M128\n4 L X+60 Y+0 Z+30 B-3 FMAX\n5 L X+0 FMAX\n6 L X+20 B+0 F600")
+    rapid = [i for i, b in enumerate(prog.blocks) if b.number == 4]
+    assert len(rapid) > 2
+    slow = {**{a: AxisLimits(velocity=250.0, acceleration=2000.0, jerk=5e4, rapid=30.0) for a in "xyz"},
+            **{a: AxisLimits(velocity=180.0, acceleration=1800.0, jerk=3.6e4, rapid=360.0) for a in "bc"}}
+    sp = interpolate(prog, limits=slow)
+    inside = np.flatnonzero(np.isin(sp.block, rapid))
+    speed = np.linalg.norm(sp.velocity[inside][:, :3], axis=1)
+    assert np.all(speed[1:-1] > 0.0)
+    assert 0.99 * 30.0 < np.abs(sp.velocity[inside][:, :3]).max() <= 30.0 + 1e-9  # X near its rapid rate
+    # at rest where the rapid ends (the next line's rapid is its own move)
+    assert np.allclose(sp.velocity[inside[-1] + 1], 0.0, atol=1e-9)
+    stops = np.flatnonzero(np.all(np.abs(sp.velocity) < 1e-9, axis=1))
+    assert not np.any((stops > inside[0]) & (stops < inside[-1]))
+
+
 @pytest.mark.parametrize(("body", "message"), [
     ("3 FUNCTION TCPM F CONT AXIS POS PATHCTRL AXIS", "F CONT"),
     ("3 FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS", "AXIS SPAT"),
