@@ -310,6 +310,10 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
+    if data.shape[0] < 2:  # MATLAB's and numpy's savetxt write a vector as one row
+        raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a "
+                           "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
+                           file=src, line=row_lines[0])
     above = lines[:row_lines[0] - 1]
     hline = len(above) or None  # the header's line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
@@ -507,8 +511,7 @@ def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: 
     if not stated and step >= 0.1:
         raise CaptureError(f"the time column {name!r} (read from its name) steps by {step:.6g} and the file does not "
                            "state its unit: seconds would be a sampling far too slow for a drive trace", file=src,
-                           line=line, expected="--time-unit ms|us|s, or --columns t=NAME,... with --sample-time S "
-                                               "when it counts samples")
+                           line=line, expected="--time-unit ms|us|s, or --sample-time S when it counts samples")
 
 
 def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:

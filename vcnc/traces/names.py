@@ -31,6 +31,11 @@ commanded position without a measured one takes as measured the column named as 
 commanding (``position`` beside ``positionCmd``, ``x`` beside ``x_cmd``; our reading of loggers that name
 the feedback plainly and mark the command).
 
+vcnc addition (tracewild3, recorders' signal paths): a channel named by its path (``BoosterMotorEncosTest/t``,
+``MAIN.Axis.Time``) whose last element is ``t``, ``time``, ``timestamp`` or ``Zeit`` is a time column; a
+controller's gains (``kp``, ``ki``, ``kd``, ``kv``, ``gain``) and ``tor`` (torque, as in ``MotorCmdTor``) are not
+positions (a recorder of a joint's command words logs ``MotorCmdKp``, ``MotorCmdPos``, ``MotorCmdTor`` side by side).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
@@ -67,7 +72,7 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
-                    "zeit", "timestamp", "vl", "il"})
+                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
 #: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``).
 _SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num"})
 #: Words of a name that say its values are counts (Mitsubishi's "Cumulative feedback pulses").
@@ -87,6 +92,9 @@ _CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5
               "lag": ("\u6e9c\u308a", "\u504f\u5dee", "\u8bef\u5dee", "\u8ddf\u968f")}
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
+#: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
+_TIME_LEAVES = frozenset({"t", "time", "timestamp", "zeit"})
+_PATH = re.compile(r"[/.]?(?:[\w#\[\]-]+[/.])+([\w#\[\]-]+)")
 _WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
 _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
 _TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
@@ -130,7 +138,14 @@ def _is_time(name: str) -> bool:
     if unit_in_name(name, "time") is not None and not _TRAILING_UNIT.search(name):
         words = words[:-1]  # the unit after the name: 'in ms', '/ms', '_s'
     words = [w for w in words if w != "in"]
-    return bool(words) and set(words) <= _TIME
+    return bool(words) and set(words) <= _TIME or _time_leaf(name)
+
+
+def _time_leaf(name: str) -> bool:
+    """A signal path whose last element is a time word alone (``BoosterMotorEncosTest/t``: recorders that name
+    each channel by its block path, as Simulink's signal logging and ROS topics do; our reading)."""
+    m = _PATH.fullmatch(name.strip())
+    return m is not None and m.group(1).lower() in _TIME_LEAVES
 
 
 def counted(name: str) -> str | None:
