@@ -38,8 +38,9 @@ TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
 LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1000.0, "in": 25.4, "deg": 1.0,
                                   "rad": math.degrees(1.0), "rev": 360.0}
 #: Units of rotary positions (axes a, b, c): degrees, radians and turns (revolutions). Drives and their tools
-#: log a motor's position in turns (ODrive's ``pos_estimate`` and ``input_pos`` are in [turn], ODrive
-#: documentation "Parameters & Commands") or radians (ROS joint states, REP 103).
+#: log a motor's position in turns (ODrive firmware 0.5 CHANGELOG: "input_pos, input_vel, pos_estimate_linear ... are
+#: now in units of [turns]"; ``odrive-interface.yaml``: ``unit: turn``) or radians (SimpleFOC, "Units in the
+#: library": positions in radians; ROS joint states, REP 103).
 ANGLE_UNITS = frozenset({"deg", "rad", "rev"})
 
 #: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
