@@ -127,3 +127,47 @@ def test_a_row_vector_is_refused(tmp_path):
                                            r"row per sample and a column per channel \(a saved row vector\? "
                                            r"transpose it\)"):
         read_capture(f)
+
+
+def _gather_rows(n: int = 200) -> list[tuple[int, float, float]]:
+    """Sample number, desired and actual position [counts] of a PMAC gather."""
+    t, ref, act = _motion(n)
+    return [(k, r * 1e4, a * 1e4) for k, (r, a) in enumerate(zip(ref, act))]
+
+
+@pytest.mark.parametrize("header", [
+    # dls-pmac-control's Turbo PMAC save (gather.py) and its Power PMAC save (ppmacgather.py), whose header spreads
+    # each channel over three cells
+    "point,CH0 Axis1 Motor present desired position,CH1 Axis1 Motor present actual position,",
+    "point,CH0, Axis 1, Motor present desired position, CH1, Axis 1, Motor present actual position, ",
+])
+def test_pmac_gather_saves(tmp_path, header):
+    f = tmp_path / "gather.csv"
+    f.write_text(header + "\n" + "".join(f"{k},{r:f},{a:f},\n" for k, r, a in _gather_rows()))
+    with pytest.raises(CaptureError, match=r"gather.csv:1: which columns .*\(not read from the names: no column is "
+                                           r"named as time \('point' counts samples: give --sample-time S"):
+        read_capture(f)
+    with pytest.raises(CaptureError, match=r"gather.csv:1: x_ref='CH0 Axis ?1 Motor present desired position' is "
+                                           r"logged in increments \('counts'\) and the file does not state their size"):
+        read_capture(f, sample_time=0.000442)
+    cap = read_capture(f, sample_time=0.000442, unit="0.0001mm")
+    rows = _gather_rows()
+    np.testing.assert_allclose(cap.t, [0.000442 * k for k, _, _ in rows], atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 0], [round(r, 6) * 1e-4 for _, r, _ in rows], atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], [round(a, 6) * 1e-4 for _, _, a in rows], atol=1e-12)
+    assert cap.meta["commanded"].startswith("x:CH0 Axis") and cap.meta["measured"].endswith("actual position")
+
+
+@pytest.mark.parametrize(("header", "result"), [
+    (["point", "CH0 Axis 1 Motor present actual position", "CH1 Axis 4 Motor present actual position"],
+     (None, "the positions belong to axes [1, 4], none with both a commanded and a measured position: "
+            "['CH0 Axis 1 Motor present actual position', 'CH1 Axis 4 Motor present actual position']")),
+    (["point", "CH0 Axis 1 Motor present desired position", "CH1 Axis 4 Motor present actual position",
+      "CH2 Axis 4 Motor present desired position"],
+     ({"t": "point", "x_ref": "CH2 Axis 4 Motor present desired position",
+       "x": "CH1 Axis 4 Motor present actual position"}, "")),
+    (["time", "joint 1 cmd", "joint 1 fb", "joint 2 cmd", "joint 2 fb"],
+     (None, "axes [1, 2] each have a commanded and a measured position: give --columns for one")),
+])
+def test_numbered_axes_pair_within_their_number(header, result):
+    assert columns_from_names(header, period_known=True) == result

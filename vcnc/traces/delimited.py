@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import csv
 import os
+import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import NamedTuple
@@ -252,6 +253,7 @@ def _table(text: str, src: str) -> _Table:
 
     def names_at(j: int | None) -> list[str] | None:
         cells = _header_cells(lines[j], delimiter) if j is not None else []
+        cells = _channel_groups(cells, width - trailing) or cells
         if len(cells) == width + 1 and not cells[-1]:
             cells = cells[:-1]
         if len(cells) == width - 1 and trailing:
@@ -272,6 +274,25 @@ def _table(text: str, src: str) -> _Table:
         if header is not None and len(set(header)) < len(header):
             header = _grouped_names(names_at(above(j)), header)
     return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+
+
+_CHANNEL = re.compile(r"CH\d+", re.IGNORECASE)
+
+
+def _channel_groups(cells: list[str], width: int) -> list[str] | None:
+    """A header that spreads each channel's name over several cells, ``point,CH0, Axis 1, Motor present desired
+    position, CH1, ...`` above rows of one value per channel, as dls-pmac-control's Power PMAC gather export writes it
+    (``ppmacgather.py``: ``f"CH{i}, Axis {axisNo}, {desc}, "`` per channel): the names joined per channel
+    (``CH0 Axis 1 Motor present desired position``), the first cell kept; None for any other header."""
+    cells = cells[:-1] if cells and not cells[-1] else cells
+    n = width - 1
+    if n < 1 or len(cells) <= width or (len(cells) - 1) % n:
+        return None
+    size = (len(cells) - 1) // n
+    groups = [cells[1 + k * size:1 + (k + 1) * size] for k in range(n)]
+    if not all(_CHANNEL.fullmatch(g[0]) for g in groups):
+        return None
+    return [cells[0], *(" ".join(g) for g in groups)]
 
 
 def _grouped_names(groups: list[str] | None, names: list[str]) -> list[str]:

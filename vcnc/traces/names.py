@@ -34,7 +34,11 @@ the feedback plainly and mark the command).
 vcnc addition (tracewild3, recorders' signal paths): a channel named by its path (``BoosterMotorEncosTest/t``,
 ``MAIN.Axis.Time``) whose last element is ``t``, ``time``, ``timestamp`` or ``Zeit`` is a time column; a
 controller's gains (``kp``, ``ki``, ``kd``, ``kv``, ``gain``) and ``tor`` (torque, as in ``MotorCmdTor``) are not
-positions (a recorder of a joint's command words logs ``MotorCmdKp``, ``MotorCmdPos``, ``MotorCmdTor`` side by side).
+positions (a recorder of a joint's command words logs ``MotorCmdKp``, ``MotorCmdPos``, ``MotorCmdTor`` side by side);
+positions that name no axis letter but number their axis, joint or motor (``CH0 Axis1 ...``, ``joint 2 cmd``) pair
+only within one number, and the one number with a pair is axis x (several such numbers are a question); PMAC's motor
+registers as gather tools name them (``Motor present desired position``, ``... actual position``, ``Motor following
+error``) are in counts (:func:`counted`).
 
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
@@ -90,6 +94,10 @@ _CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5
               "act": ("\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af", "\u5e30\u9084", "\u53cd\u9988",
                       "\u5b9e\u9645", "\u5b9f\u969b", "\u73fe\u5728", "\u5f53\u524d"),
               "lag": ("\u6e9c\u308a", "\u504f\u5dee", "\u8bef\u5dee", "\u8ddf\u968f")}
+#: PMAC's motor registers as gather tools name them, logged in counts (dls-pmac-control ``gatherchannel.py``:
+#: "Motor present desired position", "Motor present actual position", "Motor following error", unit ``[cts]``,
+#: scaled by 1/(Ix08*32), the Turbo PMAC's position scale factor), though the export writes no unit.
+_PMAC_COUNTS = ("motor present desired position", "motor present actual position", "motor following error")
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
 #: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
@@ -155,6 +163,8 @@ def counted(name: str) -> str | None:
     unit = m.group(0).strip()[1:-1].strip().lower() if m else ""
     if unit in COUNT_UNITS:
         return unit
+    if any(p in name.lower() for p in _PMAC_COUNTS):
+        return "counts"
     return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
 
 
@@ -204,7 +214,9 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     found.update(_bare_counterparts(header, times, found))
     named_axes = {a for _, a in found.values() if a is not None}
     if not named_axes:
-        found = {h: (role, "x") for h, (role, _) in found.items()}
+        found, why = _numbered_axis(found)
+        if why:
+            return None, why
     roles: dict[str, dict[str, list[str]]] = {}
     for h, (role, axis) in found.items():
         if axis is not None:
@@ -235,6 +247,35 @@ def channels_from_names(names: Sequence[str], what: str) -> tuple[dict[str, str]
 def mapping_note(what: str, mapping: Mapping[str, str]) -> str:
     """``meta["columns"]`` of a mapping read from the ``what`` names (``"from the channel names: x_ref=.., x=.."``)."""
     return f"from the {what} names: " + ", ".join(f"{k}={v}" for k, v in mapping.items())
+
+
+#: Words before an axis' or motor's number in a channel name (``CH0 Axis1 ...``, ``joint 2 position``).
+_NUMBERED = frozenset({"axis", "joint", "motor", "drive", "achse", "antrieb", "axe", "eje"})
+
+
+def _axis_number(name: str) -> int | None:
+    """The number of the axis, joint or motor a name belongs to (``1`` of ``CH0 Axis1 Motor present actual
+    position``), else None."""
+    words = _words(name)
+    return next((int(b) for a, b in zip(words, words[1:]) if a in _NUMBERED and b.isdigit()), None)
+
+
+def _numbered_axis(found: dict[str, tuple[str, str | None]]) -> tuple[dict[str, tuple[str, str | None]], str]:
+    """Positions that name no axis letter, as axis x: when they number several axes or motors (a PMAC gather of
+    motors 1 and 4), only those of the one number that has both a commanded and a measured position; a reason
+    instead when none or several have (our reading: positions of different motors are never one pair)."""
+    numbers = {h: _axis_number(h) for h in found}
+    distinct = sorted({n for n in numbers.values() if n is not None})
+    if len(distinct) < 2 or None in numbers.values():
+        return {h: (role, "x") for h, (role, _) in found.items()}, ""
+    roles = {n: {r for h, (r, _) in found.items() if numbers[h] == n} for n in distinct}
+    paired = [n for n in distinct if "ref" in roles[n] and roles[n] & {"act", "lag"}]
+    if len(paired) == 1:
+        return {h: (role, "x") for h, (role, _) in found.items() if numbers[h] == paired[0]}, ""
+    if paired:
+        return {}, f"axes {paired} each have a commanded and a measured position: give --columns for one"
+    return {}, (f"the positions belong to axes {distinct}, none with both a commanded and a measured position: "
+                f"{sorted(found)}")
 
 
 def _bare_counterparts(header: Sequence[str], times: Sequence[str],
