@@ -12,7 +12,7 @@ import pytest
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
 from vcnc.traces.columns import length_unit, position_scale, unit_in_name
-from vcnc.traces.names import columns_from_names
+from vcnc.traces.names import columns_from_names, no_positions
 from vcnc.traces.preamble import stated_count_size
 
 
@@ -171,3 +171,20 @@ def test_pmac_gather_saves(tmp_path, header):
 ])
 def test_numbered_axes_pair_within_their_number(header, result):
     assert columns_from_names(header, period_known=True) == result
+
+
+@pytest.mark.parametrize(("header", "none"), [
+    (["timestamp_ms", "setpoint_rpm", "actual_rpm"], True),  # a speed loop's step response
+    (["Tiempo (s)", "PWM", "Voltaje (V)", "Velocidad (rad/s)"], True),
+    (["time", "odrive0.axis0.encoder.gear_vel_estimate", "odrive0.axis0.encoder.vel_estimate"], True),
+    (["time", "pitch_position", "pitch_velocity"], False),  # a position, without its command
+    (["Time (s)", "Thrust (kgf)", "Debug 0"], False),  # names that could be positions
+])
+def test_files_without_positions(tmp_path, header, none):
+    assert no_positions(header) is none
+    f = tmp_path / "log.csv"
+    f.write_text(",".join(header) + "\n" + "".join(f"{k * 0.01:.2f}" + ",1" * (len(header) - 1) + "\n"
+                                                    for k in range(20)))
+    lead = r"no position in the file: its columns" if none else r"which columns are time, commanded and measured"
+    with pytest.raises(CaptureError, match=rf"log.csv:1: {lead}"):
+        read_capture(f)

@@ -77,7 +77,7 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note
+from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
 from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
@@ -343,6 +343,11 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         known = period is not None or sample_time is not None
         columns, why = (columns_from_names(header, period_known=known) if header is not None
                         else (None, "the file has no header line"))
+        if columns is None and header is not None and no_positions(header):
+            raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
+                               "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
+                               "identifies a drive from a trace of its commanded and its measured position",
+                               file=src, line=hline)
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "

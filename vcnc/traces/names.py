@@ -54,7 +54,7 @@ from collections.abc import Mapping, Sequence
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
 
-__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number"]
+__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -233,6 +233,18 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     if len(mapping) == len(times):
         return None, _no_pair(header, times, found)
     return mapping, ""
+
+
+def no_positions(header: Sequence[str]) -> bool:
+    """True when no column of ``header`` can be a position: each is named as time or sample numbers, or as another
+    quantity by a word (``setpoint_rpm``, ``Velocidad``, ``PWM``) or a unit that is neither a length nor counts
+    (``Voltaje (V)``); a name without either (``Ch1``, ``Debug 0``) could be a position, and is not such a column."""
+    def other(h: str) -> bool:
+        unit = _TRAILING_UNIT.search(h) and unit_in_name(h, "length") is None and counted(h) is None
+        return bool(unit) or any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h))
+
+    named = [h for h in header if h.strip()]
+    return bool(named) and all(_is_time(h) or is_sample_number(h) or other(h) for h in named)
 
 
 def channels_from_names(names: Sequence[str], what: str) -> tuple[dict[str, str] | None, str]:
