@@ -188,3 +188,20 @@ def test_files_without_positions(tmp_path, header, none):
     lead = r"no position in the file: its columns" if none else r"which columns are time, commanded and measured"
     with pytest.raises(CaptureError, match=rf"log.csv:1: {lead}"):
         read_capture(f)
+
+
+def test_labelled_header_rows(tmp_path):
+    # a recorder's text file whose header rows are labelled ("SIGNAL", "VERT_UNITS"), a cell wider than the rows,
+    # with a "DATA" line between them and the numbers (Hioki memory recorders' layout)
+    t, ref, act = _motion()
+    f = tmp_path / "mem.csv"
+    f.write_text('"COMMENT","MEM DATA"\n"NUM_SIGS", 3\n"INTERVAL", 1.000E-03\n"VERT_UNITS", "ms", "um", "um"\n'
+                 '"SIGNAL","TIME", "X Soll", "X Ist"\n"DATA"\n'
+                 + "".join(f"{a * 1e3:+.6E}, {b * 1e3:+.6E}, {c * 1e3:+.6E}\n" for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f)
+    np.testing.assert_allclose(cap.t, t, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 0], ref, rtol=1e-6, atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], act, rtol=1e-6, atol=1e-12)
+    assert cap.meta["columns"] == "from the header names: t=TIME, x_ref=X Soll, x=X Ist (--columns, --time-unit, " \
+                                  "--unit set them)"
+    assert cap.meta["unit"] == "um"

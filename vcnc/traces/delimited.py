@@ -38,6 +38,13 @@ size of one count, given (``--unit 0.1um``) or stated (``Resolution: 0.1 um``), 
 error naming its cell only when mapped; a delimiter ending every row but not the names is no extra column;
 time stamps rounded to the digits printed (MATLAB's five) are the uniform step they round (each within half
 a unit of its last digit, our reading).
+
+**Recorders' layouts** (tracewild3, session 25). Header rows labelled in their first cell, a cell wider than the
+rows (Hioki's ``"SIGNAL","TIME","CH1"`` and ``"VERT_UNITS","S","V"`` above a ``"DATA"`` line; Panasonic's "Data name"
+and "Unit" rows) give the names and units (:func:`_keyed_rows`); a header that spreads each channel over ``CHn``,
+``Axis n``, description cells (dls-pmac-control's Power PMAC gather save) is joined per channel; a file of one row of
+numbers (a saved row vector) and a header of time and other quantities only (speeds, currents: no position at all)
+are refused as such, naming what was found.
 """
 
 from __future__ import annotations
@@ -273,7 +280,35 @@ def _table(text: str, src: str) -> _Table:
             header = names_at(j)
         if header is not None and len(set(header)) < len(header):
             header = _grouped_names(names_at(above(j)), header)
+    if header is None:
+        header, units_row = _keyed_rows(lines[:first], delimiter, width, units_row)
     return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+
+
+#: First cells of the header rows of recorders that label each row (Hioki memory recorders' text files: ``"SIGNAL",
+#: "TIME", "ACH1"`` and ``"VERT_UNITS", "S", "V"``, instruction manual 8841/8807, "Text File Internal Format";
+#: Panasonic's data logging CSV: "Data name", "Unit" rows, FPWIN Pro7 help "CSV format").
+_NAME_KEYS = frozenset({"signal", "signals", "name", "names", "data name", "channel", "channels", "label", "labels"})
+_UNIT_KEYS = frozenset({"vert_units", "vertunits", "unit", "units"})
+
+
+def _keyed_rows(above: list[str], delimiter: str, width: int,
+                units_row: list[str] | None) -> tuple[list[str] | None, list[str] | None]:
+    """The names and units of a table from labelled rows above it (``"SIGNAL","TIME","ACH1"`` over rows of two
+    numbers: the label is a cell more than the rows have), the nearest of each; (None, ``units_row``) without a
+    labelled row of names."""
+    names = None
+    for line in reversed(above):
+        cells = _header_cells(line, delimiter)
+        cells = cells[:-1] if cells and not cells[-1] else cells
+        key = cells[0].strip().strip('"').lower() if cells else ""
+        if len(cells) != width + 1:
+            continue
+        if key in _NAME_KEYS and names is None:
+            names = [c.strip().strip('"') for c in cells[1:]]
+        elif key in _UNIT_KEYS and units_row is None:
+            units_row = [c.strip().strip('"') for c in cells[1:]]
+    return (names, units_row) if names is not None else (None, units_row)
 
 
 _CHANNEL = re.compile(r"CH\d+", re.IGNORECASE)
