@@ -251,10 +251,12 @@ def test_speeds_and_torques_only_are_no_position_trace(tmp_path):
     f = tmp_path / "trace.csv"
     f.write_text('"Sampling Time","125.0us"\n"No.","Torque Reference [%]","Motor Speed [min-1]",'
                  '"Position Reference Speed [min-1]"\n' + "".join(f"{k},0,{k},{k}\n" for k in range(20)))
-    with pytest.raises(CaptureError, match=r"no pair of a commanded and a measured position is named \(other "
-                                           r"quantities: \['Torque Reference \[%\]', 'Motor Speed \[min-1\]', "
-                                           r"'Position Reference Speed \[min-1\]'\]\); a position trace needs a "
-                                           r"commanded and a measured position"):
+    # (tracewild3: the error leads with what the file is, not with a question of which columns to map)
+    with pytest.raises(CaptureError, match=r"trace.csv:2: no position in the file: its columns \['No.', 'Torque "
+                                           r"Reference \[%\]', 'Motor Speed \[min-1\]', 'Position Reference Speed "
+                                           r"\[min-1\]'\] are time, sample numbers or other quantities \(speeds, "
+                                           r"currents, voltages, torques... by their names or units\); vcnc identifies "
+                                           r"a drive from a trace of its commanded and its measured position"):
         read_capture(f)
 
 

@@ -30,12 +30,18 @@ from vcnc.traces.lag import subtract_following_error
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
            "unit_in_name", "unit_named", "length_unit", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
-           "with_following_errors", "COUNT_UNITS"]
+           "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
-#: Millimetres (or degrees, for "deg") per position unit.
-LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1000.0, "in": 25.4, "deg": 1.0}
+#: Millimetres (or degrees, for the units of :data:`ANGLE_UNITS`) per position unit.
+LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1000.0, "in": 25.4, "deg": 1.0,
+                                  "rad": math.degrees(1.0), "rev": 360.0}
+#: Units of rotary positions (axes a, b, c): degrees, radians and turns (revolutions). Drives and their tools
+#: log a motor's position in turns (ODrive firmware 0.5 CHANGELOG: "input_pos, input_vel, pos_estimate_linear ... are
+#: now in units of [turns]"; ``odrive-interface.yaml``: ``unit: turn``) or radians (SimpleFOC, "Units in the
+#: library": positions in radians; ROS joint states, REP 103).
+ANGLE_UNITS = frozenset({"deg", "rad", "rev"})
 
 #: Most samples a resampled capture may have (a stray time stamp must not allocate without bound).
 MAX_SAMPLES = 100_000_000
@@ -43,7 +49,8 @@ MAX_SAMPLES = 100_000_000
 #: Unit names as headers and channel rows write them, to vcnc's unit names.
 _TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
 _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "nm": "nm", "m": "m", "in": "in", "inch": "in", "deg": "deg",
-                 "°": "deg"}
+                 "°": "deg", "rad": "rad", "rev": "rev", "revs": "rev", "turn": "rev", "turns": "rev",
+                 "revolution": "rev", "revolutions": "rev"}
 #: Unit symbols of positions logged in increments whose size the symbol does not say (lower case): encoder
 #: increments and counts, pulses (Mitsubishi's droop pulses, Panasonic's command pulses), Delta's PUU ("pulse of
 #: user unit", ASDA-A2 manual section 6.2) and the LU of SINAMICS EPOS ("length unit", the neutral unit its
@@ -247,18 +254,25 @@ def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
 
 def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
     """Millimetres (degrees) per unit of the positions of ``axes`` (a unit of :func:`length_unit`);
-    ``deg`` only for rotary axes."""
+    the units of :data:`ANGLE_UNITS` only for rotary axes. A linear axis logged in turns or radians of its motor
+    takes the travel of one turn (radian) as its unit (``--unit 5mm``: a screw of 5 mm lead), our reading of
+    what the file cannot say."""
     u = unit or "mm"
     found = length_unit(u)
     if found is None:
         raise _unknown_length_unit(u, src)
     base, scale = found
     linear = [a for a in axes if a not in ROTARY_AXES]
-    if base == "deg" and linear:
-        raise CaptureError(f"unit {u!r} is for rotary axes (a, b, c); axes {linear} are linear", file=src)
-    if base != "deg" and len(linear) < len(axes) and unit is not None:
+    if base in ANGLE_UNITS and linear:
+        lead = {"rev": "; a linear axis logged in turns of its motor takes the travel of one turn as its unit "
+                       "(--unit 5mm for a screw of 5 mm lead)",
+                "rad": "; a linear axis logged in radians of its motor takes the travel of one radian as its unit "
+                       "(the lead over 2 pi: --unit 0.7958mm for a screw of 5 mm lead)"}.get(base, "")
+        raise CaptureError(f"unit {u!r} is for rotary axes (a, b, c: --columns a_ref=..,a=..); axes {linear} are "
+                           f"linear{lead}", file=src)
+    if base not in ANGLE_UNITS and len(linear) < len(axes) and unit is not None:
         raise CaptureError(f"unit {u!r} given for rotary axes {[a for a in axes if a in ROTARY_AXES]}; "
-                           "rotary positions are in deg", file=src)
+                           "rotary positions are in deg, rad or rev", file=src)
     return scale
 
 

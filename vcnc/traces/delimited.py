@@ -38,12 +38,20 @@ size of one count, given (``--unit 0.1um``) or stated (``Resolution: 0.1 um``), 
 error naming its cell only when mapped; a delimiter ending every row but not the names is no extra column;
 time stamps rounded to the digits printed (MATLAB's five) are the uniform step they round (each within half
 a unit of its last digit, our reading).
+
+**Recorders' layouts** (tracewild3, session 25). Header rows labelled in their first cell, a cell wider than the
+rows (Hioki's ``"SIGNAL","TIME","CH1"`` and ``"VERT_UNITS","S","V"`` above a ``"DATA"`` line; Panasonic's "Data name"
+and "Unit" rows) give the names and units (:func:`_keyed_rows`); a header that spreads each channel over ``CHn``,
+``Axis n``, description cells (dls-pmac-control's Power PMAC gather save) is joined per channel; a file of one row of
+numbers (a saved row vector) and a header of time and other quantities only (speeds, currents: no position at all)
+are refused as such, naming what was found.
 """
 
 from __future__ import annotations
 
 import csv
 import os
+import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import NamedTuple
@@ -76,7 +84,7 @@ from vcnc.traces.columns import (
     with_following_errors,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note
+from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
 from vcnc.traces.preamble import stated_count_size, stated_period
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
@@ -252,6 +260,7 @@ def _table(text: str, src: str) -> _Table:
 
     def names_at(j: int | None) -> list[str] | None:
         cells = _header_cells(lines[j], delimiter) if j is not None else []
+        cells = _channel_groups(cells, width - trailing) or cells
         if len(cells) == width + 1 and not cells[-1]:
             cells = cells[:-1]
         if len(cells) == width - 1 and trailing:
@@ -271,7 +280,54 @@ def _table(text: str, src: str) -> _Table:
             header = names_at(j)
         if header is not None and len(set(header)) < len(header):
             header = _grouped_names(names_at(above(j)), header)
+    if header is None:
+        header, units_row = _keyed_rows(lines[:first], delimiter, width, units_row)
     return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+
+
+#: First cells of the header rows of recorders that label each row (Hioki memory recorders' text files: ``"SIGNAL",
+#: "TIME", "ACH1"`` and ``"VERT_UNITS", "S", "V"``, instruction manual 8841/8807, "Text File Internal Format";
+#: Panasonic's data logging CSV: "Data name", "Unit" rows, FPWIN Pro7 help "CSV format").
+_NAME_KEYS = frozenset({"signal", "signals", "name", "names", "data name", "channel", "channels", "label", "labels"})
+_UNIT_KEYS = frozenset({"vert_units", "vertunits", "unit", "units"})
+
+
+def _keyed_rows(above: list[str], delimiter: str, width: int,
+                units_row: list[str] | None) -> tuple[list[str] | None, list[str] | None]:
+    """The names and units of a table from labelled rows above it (``"SIGNAL","TIME","ACH1"`` over rows of two
+    numbers: the label is a cell more than the rows have), the nearest of each; (None, ``units_row``) without a
+    labelled row of names."""
+    names = None
+    for line in reversed(above):
+        cells = _header_cells(line, delimiter)
+        cells = cells[:-1] if cells and not cells[-1] else cells
+        key = cells[0].strip().strip('"').lower() if cells else ""
+        if len(cells) != width + 1:
+            continue
+        if key in _NAME_KEYS and names is None:
+            names = [c.strip().strip('"') for c in cells[1:]]
+        elif key in _UNIT_KEYS and units_row is None:
+            units_row = [c.strip().strip('"') for c in cells[1:]]
+    return (names, units_row) if names is not None else (None, units_row)
+
+
+_CHANNEL = re.compile(r"CH\d+", re.IGNORECASE)
+
+
+def _channel_groups(cells: list[str], width: int) -> list[str] | None:
+    """A header that spreads each channel's name over several cells, ``point,CH0, Axis 1, Motor present desired
+    position, CH1, ...`` above rows of one value per channel, as dls-pmac-control's Power PMAC gather export writes it
+    (``ppmacgather.py``: ``f"CH{i}, Axis {axisNo}, {desc}, "`` per channel): the names joined per channel
+    (``CH0 Axis 1 Motor present desired position``), the first cell kept; None for any other header."""
+    cells = cells[:-1] if cells and not cells[-1] else cells
+    n = width - 1
+    if n < 1 or len(cells) <= width or (len(cells) - 1) % n:
+        return None
+    size = (len(cells) - 1) // n
+    groups = [cells[1 + k * size:1 + (k + 1) * size] for k in range(n)]
+    if not all(_CHANNEL.fullmatch(g[0]) for g in groups):
+        return None
+    return [cells[0], *(" ".join(g) for g in groups)]
 
 
 def _grouped_names(groups: list[str] | None, names: list[str]) -> list[str]:
@@ -310,6 +366,10 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
+    if data.shape[0] < 2:  # MATLAB's and numpy's savetxt write a vector as one row
+        raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a "
+                           "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
+                           file=src, line=row_lines[0])
     above = lines[:row_lines[0] - 1]
     hline = len(above) or None  # the header's line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
@@ -318,6 +378,11 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         known = period is not None or sample_time is not None
         columns, why = (columns_from_names(header, period_known=known) if header is not None
                         else (None, "the file has no header line"))
+        if columns is None and header is not None and no_positions(header):
+            raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
+                               "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
+                               "identifies a drive from a trace of its commanded and its measured position",
+                               file=src, line=hline)
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
@@ -507,8 +572,7 @@ def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: 
     if not stated and step >= 0.1:
         raise CaptureError(f"the time column {name!r} (read from its name) steps by {step:.6g} and the file does not "
                            "state its unit: seconds would be a sampling far too slow for a drive trace", file=src,
-                           line=line, expected="--time-unit ms|us|s, or --columns t=NAME,... with --sample-time S "
-                                               "when it counts samples")
+                           line=line, expected="--time-unit ms|us|s, or --sample-time S when it counts samples")
 
 
 def _increasing(t: np.ndarray, src: str, row_lines: list[int]) -> None:

@@ -31,6 +31,15 @@ commanded position without a measured one takes as measured the column named as 
 commanding (``position`` beside ``positionCmd``, ``x`` beside ``x_cmd``; our reading of loggers that name
 the feedback plainly and mark the command).
 
+vcnc addition (tracewild3, recorders' signal paths): a channel named by its path (``BoosterMotorEncosTest/t``,
+``MAIN.Axis.Time``) whose last element is ``t``, ``time``, ``timestamp`` or ``Zeit`` is a time column; a
+controller's gains (``kp``, ``ki``, ``kd``, ``kv``, ``gain``) and ``tor`` (torque, as in ``MotorCmdTor``) are not
+positions (a recorder of a joint's command words logs ``MotorCmdKp``, ``MotorCmdPos``, ``MotorCmdTor`` side by side);
+positions that name no axis letter but number their axis, joint or motor (``CH0 Axis1 ...``, ``joint 2 cmd``) pair
+only within one number, and the one number with a pair is axis x (several such numbers are a question); PMAC's motor
+registers as gather tools name them (``Motor present desired position``, ``... actual position``, ``Motor following
+error``) are in counts (:func:`counted`).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
@@ -45,7 +54,7 @@ from collections.abc import Mapping, Sequence
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
 
-__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number"]
+__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -67,7 +76,7 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
-                    "zeit", "timestamp", "vl", "il"})
+                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
 #: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``).
 _SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num"})
 #: Words of a name that say its values are counts (Mitsubishi's "Cumulative feedback pulses").
@@ -85,8 +94,15 @@ _CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5
               "act": ("\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af", "\u5e30\u9084", "\u53cd\u9988",
                       "\u5b9e\u9645", "\u5b9f\u969b", "\u73fe\u5728", "\u5f53\u524d"),
               "lag": ("\u6e9c\u308a", "\u504f\u5dee", "\u8bef\u5dee", "\u8ddf\u968f")}
+#: PMAC's motor registers as gather tools name them, logged in counts (dls-pmac-control ``gatherchannel.py``:
+#: "Motor present desired position", "Motor present actual position", "Motor following error", unit ``[cts]``,
+#: scaled by 1/(Ix08*32), the Turbo PMAC's position scale factor), though the export writes no unit.
+_PMAC_COUNTS = ("motor present desired position", "motor present actual position", "motor following error")
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
+#: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
+_TIME_LEAVES = frozenset({"t", "time", "timestamp", "zeit"})
+_PATH = re.compile(r"[/.]?(?:[\w#\[\]-]+[/.])+([\w#\[\]-]+)")
 _WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
 _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
 _TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
@@ -130,7 +146,14 @@ def _is_time(name: str) -> bool:
     if unit_in_name(name, "time") is not None and not _TRAILING_UNIT.search(name):
         words = words[:-1]  # the unit after the name: 'in ms', '/ms', '_s'
     words = [w for w in words if w != "in"]
-    return bool(words) and set(words) <= _TIME
+    return bool(words) and set(words) <= _TIME or _time_leaf(name)
+
+
+def _time_leaf(name: str) -> bool:
+    """A signal path whose last element is a time word alone (``BoosterMotorEncosTest/t``: recorders that name
+    each channel by its block path, as Simulink's signal logging and ROS topics do; our reading)."""
+    m = _PATH.fullmatch(name.strip())
+    return m is not None and m.group(1).lower() in _TIME_LEAVES
 
 
 def counted(name: str) -> str | None:
@@ -140,6 +163,8 @@ def counted(name: str) -> str | None:
     unit = m.group(0).strip()[1:-1].strip().lower() if m else ""
     if unit in COUNT_UNITS:
         return unit
+    if any(p in name.lower() for p in _PMAC_COUNTS):
+        return "counts"
     return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
 
 
@@ -189,7 +214,9 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     found.update(_bare_counterparts(header, times, found))
     named_axes = {a for _, a in found.values() if a is not None}
     if not named_axes:
-        found = {h: (role, "x") for h, (role, _) in found.items()}
+        found, why = _numbered_axis(found)
+        if why:
+            return None, why
     roles: dict[str, dict[str, list[str]]] = {}
     for h, (role, axis) in found.items():
         if axis is not None:
@@ -208,6 +235,18 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     return mapping, ""
 
 
+def no_positions(header: Sequence[str]) -> bool:
+    """True when no column of ``header`` can be a position: each is named as time or sample numbers, or as another
+    quantity by a word (``setpoint_rpm``, ``Velocidad``, ``PWM``) or a unit that is neither a length nor counts
+    (``Voltaje (V)``); a name without either (``Ch1``, ``Debug 0``) could be a position, and is not such a column."""
+    def other(h: str) -> bool:
+        unit = _TRAILING_UNIT.search(h) and unit_in_name(h, "length") is None and counted(h) is None
+        return bool(unit) or any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h))
+
+    named = [h for h in header if h.strip()]
+    return bool(named) and all(_is_time(h) or is_sample_number(h) or other(h) for h in named)
+
+
 def channels_from_names(names: Sequence[str], what: str) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` for a reader that records its own time (TwinCAT Scope, halscope, camonitor): the
     channels' mapping without ``t``, or None and why not (also when a channel, a ``what``, is named as time)."""
@@ -220,6 +259,35 @@ def channels_from_names(names: Sequence[str], what: str) -> tuple[dict[str, str]
 def mapping_note(what: str, mapping: Mapping[str, str]) -> str:
     """``meta["columns"]`` of a mapping read from the ``what`` names (``"from the channel names: x_ref=.., x=.."``)."""
     return f"from the {what} names: " + ", ".join(f"{k}={v}" for k, v in mapping.items())
+
+
+#: Words before an axis' or motor's number in a channel name (``CH0 Axis1 ...``, ``joint 2 position``).
+_NUMBERED = frozenset({"axis", "joint", "motor", "drive", "achse", "antrieb", "axe", "eje"})
+
+
+def _axis_number(name: str) -> int | None:
+    """The number of the axis, joint or motor a name belongs to (``1`` of ``CH0 Axis1 Motor present actual
+    position``), else None."""
+    words = _words(name)
+    return next((int(b) for a, b in zip(words, words[1:]) if a in _NUMBERED and b.isdigit()), None)
+
+
+def _numbered_axis(found: dict[str, tuple[str, str | None]]) -> tuple[dict[str, tuple[str, str | None]], str]:
+    """Positions that name no axis letter, as axis x: when they number several axes or motors (a PMAC gather of
+    motors 1 and 4), only those of the one number that has both a commanded and a measured position; a reason
+    instead when none or several have (our reading: positions of different motors are never one pair)."""
+    numbers = {h: _axis_number(h) for h in found}
+    distinct = sorted({n for n in numbers.values() if n is not None})
+    if len(distinct) < 2 or None in numbers.values():
+        return {h: (role, "x") for h, (role, _) in found.items()}, ""
+    roles = {n: {r for h, (r, _) in found.items() if numbers[h] == n} for n in distinct}
+    paired = [n for n in distinct if "ref" in roles[n] and roles[n] & {"act", "lag"}]
+    if len(paired) == 1:
+        return {h: (role, "x") for h, (role, _) in found.items() if numbers[h] == paired[0]}, ""
+    if paired:
+        return {}, f"axes {paired} each have a commanded and a measured position: give --columns for one"
+    return {}, (f"the positions belong to axes {distinct}, none with both a commanded and a measured position: "
+                f"{sorted(found)}")
 
 
 def _bare_counterparts(header: Sequence[str], times: Sequence[str],

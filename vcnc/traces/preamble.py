@@ -23,7 +23,7 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from vcnc.traces.columns import COUNT_UNITS, LENGTH_UNITS, TIME_UNITS, unit_named
+from vcnc.traces.columns import ANGLE_UNITS, COUNT_UNITS, LENGTH_UNITS, TIME_UNITS, unit_named
 
 __all__ = ["Stated", "stated_period", "stated_count_size"]
 
@@ -38,6 +38,9 @@ _RESOLUTION = re.compile(r"^\s*[#%;]?\s*(?:(?:encoder|position|measuring system|
                          r"\u00f6sung)|(?:count|increment)[\s_-]*size)" + _KEY_UNIT + _SEP + _NUM +
                          _SEP + r"([^\s;,]*)\s*[;,\t]*\s*$", re.IGNORECASE)
 _RATES = {"hz": 1.0, "khz": 1e3}
+#: Units a stated resolution may be in: lengths and degrees; counts per turn or radian of a motor state nothing of
+#: the axis' travel (a linear axis needs its lead), our reading.
+_SIZES = frozenset(LENGTH_UNITS) - ANGLE_UNITS | {"deg"}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -75,11 +78,11 @@ def _count_size(m: re.Match[str]) -> str | None:
         return None
     if bottom and top in COUNT_UNITS:  # counts per length: 10000 inc/mm
         base = unit_named(bottom, "length")
-        return f"{LENGTH_UNITS[base] / value:.12g}{'deg' if base == 'deg' else 'mm'}" if base else None
+        return f"{LENGTH_UNITS[base] / value:.12g}{'deg' if base == 'deg' else 'mm'}" if base in _SIZES else None
     if bottom and bottom not in COUNT_UNITS:
         return None
     base = unit_named(top, "length")
-    return f"{value:.12g}{base}" if base else None
+    return f"{value:.12g}{base}" if base in _SIZES else None
 
 
 def _stated(lines: Sequence[str], pattern: re.Pattern[str],
