@@ -85,6 +85,16 @@ def _grbl_arc_end(seen, st: State, where: Where, code: str, mcol: int, mtok: str
                    expected=f"{axes[0]} and/or {axes[1]} with {code} in {plane_g}")
 
 
+def _lathe_hint(st: State, seen, arc_words) -> str:
+    """Why an arc has K in G17: I and K without J or Y, a ZX arc as a lathe program writes it without a plane
+    word, a lathe working in G18 from the start (LinuxCNC "Lathe User Information", default plane: "A normal
+    lathe only uses the XZ plane (G18)", set by RS274NGC_STARTUP_CODE = G18); "" otherwise."""
+    if st.plane == 2 and "K" in arc_words and "J" not in arc_words and "Y" not in seen:
+        return (" (I and K without J: a ZX arc as a lathe program writes it, a lathe starting in G18; a mill "
+                "program selects G18 before it)")
+    return ""
+
+
 def read_arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: int, mtok: str):
     if st.context.dialect.arc_rule == "grbl":
         _grbl_arc_end(seen, st, where, code, mcol, mtok)
@@ -103,7 +113,8 @@ def read_arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: 
     for letter in arc_words:
         w = seen[letter]
         if letter not in allowed and w.value != 0.0:
-            where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
+            where.fail(f"word {letter} is outside the arc plane ({plane_g}){_lathe_hint(st, seen, arc_words)}",
+                       column=w.column, text=w.text,
                        expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
     in_plane = [w for w in arc_words if w in allowed]
     rule = st.context.dialect.arc_rule

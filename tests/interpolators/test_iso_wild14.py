@@ -9,6 +9,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import MachineContext
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 PLACEHOLDER = r"a template's placeholder '\({}\)' where the number goes: a generator fills it in, so the file is a " \
@@ -32,3 +33,27 @@ def test_a_comment_of_prose_after_a_bare_axis_letter_is_no_placeholder():
         with pytest.raises(GCodeError, match=r":2:4: malformed number for word X \(an axis letter without its "
                                              r"number, as 3D printer firmware such as Marlin takes axis flags\)"):
             parse_program(f"G21 G90\n{line}\nM2\n", context=MachineContext())
+
+
+LATHE = r"\(I and K without J: a ZX arc as a lathe program writes it, a lathe starting in G18; a mill program " \
+        r"selects G18 before it\)"
+
+
+@pytest.mark.parametrize("dialect", ["linuxcnc", "fanuc", "haas"])
+def test_a_lathe_arc_in_g17_is_named(dialect):
+    # a turning program (T01M06, G97, X diameters and Z) from a plotter's samples: its G03 with I and K
+    text = "G21 G90 F100\nG0 X191.735 Z1.\nG1 Z0. X192.735\nG03 X193.84 Z-.366 I0. K-.6\nM30\n"
+    with pytest.raises(GCodeError, match=f":4:24: word K is outside the arc plane \\(G17\\) {LATHE}"):
+        parse_program(text, context=MachineContext().with_dialect(dialect))
+    # (its X are diameters: the arc lies on its circle only so.) A ZX quarter circle with the plane named runs,
+    # checked by the reference: from (0, 0, 0) about (0, 0, -0.6) to (0.6, 0, -0.6)
+    prog = checked_iso("G18 G21 G90 F100\nG0 X0 Z1\nG1 Z0\nG03 X.6 Z-.6 I0 K-.6\nM30\n",
+                       MachineContext().with_dialect(dialect))
+    assert prog.blocks[-1].target.tolist() == pytest.approx([0.6, 0.0, -0.6])
+
+
+def test_a_j_word_or_a_y_move_gets_no_lathe_hint():
+    for arc in ("G03 X1 Y1 I0 J1 K2", "G03 X1 Y1 Z-1 I0 K2"):
+        with pytest.raises(GCodeError, match=r"outside the arc plane \(G17\) \(got") as err:
+            parse_program(f"G21 G90 F100\n{arc}\nM30\n", context=MachineContext())
+        assert "lathe" not in str(err.value)
