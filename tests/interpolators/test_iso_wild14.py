@@ -57,3 +57,23 @@ def test_a_j_word_or_a_y_move_gets_no_lathe_hint():
         with pytest.raises(GCodeError, match=r"outside the arc plane \(G17\) \(got") as err:
             parse_program(f"G21 G90 F100\n{arc}\nM30\n", context=MachineContext())
         assert "lathe" not in str(err.value)
+
+
+BEYOND = r"\(#901200: beyond the Fanuc/Haas variables vcnc models, locals #1-#33, common #100-#199 and #500-#999, " \
+         r"Haas #10000-#10999, system variables below #100000; the larger common-variable ranges that some controls " \
+         r"add as an option are not modelled\)"
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_variable_beyond_the_modelled_ones_is_named_under_macro_b(dialect):
+    # a mould shop's subprogram keeps the work offset in #901200 ("#901200=#4012")
+    ctx = MachineContext().with_dialect(dialect)
+    with pytest.raises(GCodeError, match=f":2:1: parameter #901200: system parameters cannot be set {BEYOND}"):
+        parse_program("G21 G90 G54\n#901200=#4012\nM30\n", context=ctx)
+    with pytest.raises(GCodeError, match=f":2:5: parameter number #901200 out of range {BEYOND}"):
+        parse_program("G21 G90\nG0 X#901200\nM30\n", context=ctx)
+
+
+def test_linuxcnc_keeps_its_own_message_for_such_a_number():
+    with pytest.raises(GCodeError, match=r":1:1: parameter #901200: system parameters cannot be set \(got"):
+        parse_program("#901200=1\n", context=MachineContext())
