@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from interpolators import parse_program
+from interpolators import load_program, parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
@@ -77,3 +77,25 @@ def test_a_variable_beyond_the_modelled_ones_is_named_under_macro_b(dialect):
 def test_linuxcnc_keeps_its_own_message_for_such_a_number():
     with pytest.raises(GCodeError, match=r":1:1: parameter #901200: system parameters cannot be set \(got"):
         parse_program("#901200=1\n", context=MachineContext())
+
+
+SUB = "o<drill_here> sub\n\tM101 (enable Z)\n\tG0 X#1 Y#2\n\tG1 Z#3 F10\n\tG0 Z0.5\no<drill_here> endsub\nM2\n"
+
+
+def test_a_user_m_code_beside_the_program_runs_under_linuxcnc(tmp_path):
+    """LinuxCNC INI [DISPLAY] PROGRAM_PREFIX: "the location for user-defined M-codes ... searched for the file
+    name before the subroutine path and user M path". A knee mill's programs call subroutine files that switch
+    its Z on with M101 (a halcmd script in nc_files): the script beside them is found as the subroutine is."""
+    (tmp_path / "drill_here.ngc").write_text(SUB)
+    (tmp_path / "M101").write_text("#!/bin/bash\nhalcmd sets z-override True\nexit 0\n")
+    (tmp_path / "part.ngc").write_text("G20\nG10 L1 P1 Z0 R.125\nT1 M6\nG54\no<drill_here> call [1][2][-.3]\n"
+                                       "o<drill_here> call [3][2][-.3]\nM2\n")
+    prog = load_program(tmp_path / "part.ngc", context=MachineContext())
+    inch = 25.4
+    ends = [[x * inch, 2 * inch, z * inch] for x, z in ((1, 0), (1, -0.3), (1, 0.5), (3, 0.5), (3, -0.3), (3, 0.5))]
+    assert [b.target.tolist() for b in prog.blocks] == [pytest.approx(e) for e in ends]
+    # the same file beside a program read in a Fanuc dialect: the builder's M code, refused as before
+    (tmp_path / "part.nc").write_text("G20 G90\nM101\nG0 X1\nM30\n")
+    with pytest.raises(GCodeError, match=r":2:1: machine-specific M code 'M101' .*: M101 not found "
+                                         r"\(folders: none given\)"):
+        load_program(tmp_path / "part.nc", context=MachineContext().with_dialect("fanuc"))
