@@ -1119,6 +1119,9 @@ def _g10(m: _Machine, words: dict) -> None:
     if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
         _g10_tool(m, kind, p, words)
         return
+    if kind == 1 and not ("x" in words or "y" in words):  # LinuxCNC G10 L1: the tool table's Z and R
+        _g10_l1(m, p, words)
+        return
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
     if m.ctx.dialect.name in ("fanuc", "haas") and kind == 2 and p == 0:  # the external offset: every system
@@ -1178,6 +1181,16 @@ def _g10_tool(m: _Machine, kind: int, p: int, words: dict) -> None:
     else:
         wear = (wear if m.incremental else 0.0) + v
     table[p] = (geometry, wear)
+
+
+def _g10_l1(m: _Machine, p: int, words: dict) -> None:
+    """LinuxCNC ``G10 L1 P<tool> Z.. R..`` (g-code.adoc "G10 L1 Set Tool Table": "P - tool number", "R - radius
+    of tool", the axis words the tool's offsets): the table's length and radius of tool P become the values, in
+    the current units; a G43 or G41 after it reads them (tool() looks the table up there)."""
+    if "z" in words:
+        m.tool_lengths[p] = (words["z"][-1] * m.scale, 0.0)
+    if "r" in words:
+        m.tool_radii[p] = (words["r"][-1] * m.scale, 0.0)
 
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:

@@ -99,3 +99,15 @@ def test_a_user_m_code_beside_the_program_runs_under_linuxcnc(tmp_path):
     with pytest.raises(GCodeError, match=r":2:1: machine-specific M code 'M101' .*: M101 not found "
                                          r"\(folders: none given\)"):
         load_program(tmp_path / "part.nc", context=MachineContext().with_dialect("fanuc"))
+
+
+def test_g10_l1_sets_the_radius_g41_then_uses():
+    # the knee mill's header "G10 L1 P1 Z0.0 R.125 ; set tool": a 1/4 in end mill, then a compensated square
+    text = ("G20 G90 G17 G40\nG10 L1 P1 Z0.0 R.125\nT1 M6\nG0 X-1 Y-1\nG41 D1 G1 X0 Y0 F10\nX2\nY2\nX0\nY0\n"
+            "G40 G0 X-1 Y-1\nM2\n")
+    prog = checked_iso(text, MachineContext())
+    inch = 25.4
+    # the square's edges run 0.125 in inside it: its first corners at (1.875, 0.125) and (1.875, 1.875) in
+    corners = [b.target.tolist() for b in prog.blocks[3:5]]
+    assert corners[0] == pytest.approx([1.875 * inch, 0.125 * inch, 0.0])
+    assert corners[1] == pytest.approx([1.875 * inch, 1.875 * inch, 0.0])
