@@ -74,7 +74,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   every system. G52 is the local system on top of the G92
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
-  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
+  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear. LinuxCNC
+  ``G10 L1 P<tool> Z R`` sets the tool table's length and radius (X/Y tool offsets are not modelled).
   The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
   Fanuc ``G16`` (Series 16/18-MC operator's manual 9.2 "Polar coordinate command"): under G90 and
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
