@@ -50,6 +50,10 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
   ``89``, ``MotionMode_CubicSpline = 5``, ``ToolLengthOffset_Enable`` (G43), ``FeedMode_UnitsPerRev`` (G95),
   and starts in G98 ("CCRetractMode_Previous = 0, // G98 (Default: Must be zero)"), as the reader's grbl
   dialect does.
+* G90.1 (arc centres I J K as absolute coordinates) is an error naming it: "if ((mantissa != 10) || (int_value ==
+  90)) { FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND); } // [G90.1 not supported]" ... "Otherwise, arc IJK incremental
+  mode is default. G91.1 does nothing." (grblHAL's ``gcode.c`` alike), so grbl reads I J K as offsets from the
+  arc's start whatever the program meant.
 * A G4 dwell takes its time from P alone: "if (bit_isfalse(value_words,bit(WORD_P))) {
   FAIL(STATUS_GCODE_VALUE_WORD_MISSING); } // [P word missing]" (error 28; an X in the block is an axis word
   of the non-modal command, not a time), so ``G4 X2`` is an error, where the other dialects read X seconds.
@@ -76,6 +80,8 @@ _ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
 
 #: Cutter radius compensation codes (round(10 * G)), which grbl 1.1 refuses (error 20) and vcnc would run.
 _NO_COMPENSATION = {410: "G41", 420: "G42", 411: "G41.1", 421: "G42.1"}
+#: G90.1, absolute arc centres (round(10 * G)), which grbl 1.1 and grblHAL refuse (error 20) and vcnc would run.
+_ABSOLUTE_CENTRES = 901
 #: Codes (round(10 * G)) grbl 1.1 refuses (error 20) and grblHAL runs (grblHAL ``gcode.h``: ``MotionMode_CubicSpline
 #: = 5``, ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``ToolLengthOffset_Enable``
 #: G43, ``FeedMode_UnitsPerRev = 2 // G95``).
@@ -93,7 +99,8 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
     Raises
     ------
     vcnc.GCodeError
-        G41/G42 cutter radius compensation (grbl has none), or a G4 dwell without P (grbl error 28).
+        G41/G42 cutter radius compensation (grbl has none), G90.1 absolute arc centres (neither has it), or a G4
+        dwell without P (grbl error 28).
     """
     notes = []
     for key, w in gcodes.values():
@@ -101,6 +108,11 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
             where.fail(f"{_NO_COMPENSATION[key]} cutter radius compensation: grbl has none (gcode.c supports G40 "
                        "only; error 20 unsupported command)", column=w.column, text=w.text,
                        expected="a path already offset by the CAM post (G40 or no compensation code) under grbl")
+        if key == _ABSOLUTE_CENTRES:
+            where.fail("G90.1 absolute arc centres: grbl has none (gcode.c: '[G90.1 not supported]', error 20 "
+                       "unsupported command; its I J K are always offsets from the arc's start)", column=w.column,
+                       text=w.text, expected="I J K as offsets from the arc's start (G91.1 or no arc-centre code) "
+                                             "under grbl")
         if key == 40 and "P" not in letters:
             where.fail("G4 dwell without P: grbl takes the dwell time from P only (gcode.c: '[P word missing]', "
                        "error 28)", column=w.column, text=w.text, expected="G4 P<seconds>")

@@ -122,3 +122,23 @@ def test_break_and_continue_with_comments_after_their_words():
             "    o3 continue (next)\n  o4 endif\n  #3 = [#3 + 1]\no3 endwhile\nG0 Y#2 Z#3\nM2\n")
     prog = checked_iso(text, MachineContext())
     assert [b.target.tolist() for b in prog.blocks] == [[5.0, 0.0, 0.0], [5.0, 5.0, 4.0]]
+
+
+ABSOLUTE = "G21 G90\nG90.1\nG0 X-22.135 Y-4.495\nG2 X-26.513 Y4.495 I-24.273 J0.025 F244.3\nM30\n"
+
+
+def test_g90_1_is_refused_under_grbl_and_runs_where_the_control_has_it():
+    """grbl 1.1 gcode.c: "if ((mantissa != 10) || (int_value == 90)) { FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND); }
+    // [G90.1 not supported]" (grblHAL alike): its I J K are offsets from the start, so a program written for
+    absolute centres (a plotter's samples: 'G2X-26.513Y4.495Z1.977I-24.273J0.025') cannot run there."""
+    with pytest.raises(GCodeError, match=r":2:1: G90.1 absolute arc centres: grbl has none \(gcode.c: '\[G90.1 not "
+                                         r"supported\]', error 20 unsupported command; its I J K are always offsets "
+                                         r"from the arc's start\)"):
+        parse_program(ABSOLUTE, context=MachineContext().with_dialect("grbl"))
+    # LinuxCNC G90.1: the centre (-24.273, 0.025), radius 5 at both ends; checked by the reference
+    prog = checked_iso(ABSOLUTE, MachineContext())
+    assert prog.blocks[-1].target.tolist() == pytest.approx([-26.513, 4.495, 0.0])
+    # G91.1 is grbl's own mode ("G91.1 does nothing"): the same arc written as offsets runs
+    prog = checked_iso(ABSOLUTE.replace("G90.1", "G91.1").replace("I-24.273 J0.025", "I-2.138 J4.52"),
+                       MachineContext().with_dialect("grbl"))
+    assert prog.blocks[-1].target.tolist() == pytest.approx([-26.513, 4.495, 0.0])
