@@ -169,9 +169,9 @@ def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray)
     """A hint for an arc whose end is off its circle: whether its I/J/K read in the other arc-centre mode put
     both ends on one circle, as in programs for a control that reads arc centres as absolute coordinates
     (LinuxCNC g-code.adoc "G90.1, G91.1": "G90.1 - absolute distance mode for I, J & K offsets"; G91.1, the
-    power-on mode, incremental; Fanuc reads I J K incremental always), or the other way round. "" if not, for
-    a centre on the start (no circle to be off) and for absolute centres missing a plane word (G90.1 needs
-    both: "I and J both must be specified")."""
+    power-on mode, incremental; Fanuc reads I J K incremental always; grbl has no G90.1), or the other way round.
+    "" if not, for a centre on the start (no circle to be off) and for absolute centres missing a plane word
+    (G90.1 needs both: "I and J both must be specified")."""
     plane = list(PLANE_AXES[st.plane])
     here = _centre(st, seen, in_plane, incremental=st.arc_incremental)
     if np.allclose(here[plane], st.pos[plane]) or (st.arc_incremental and len(in_plane) < 2):
@@ -183,6 +183,9 @@ def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray)
                                                        rule=st.context.dialect.arc_rule))
     except ArcWordError:
         return ""
+    if st.arc_incremental and st.context.dialect.name == "grbl":  # interpolators.iso_grbl: no G90.1 there
+        return "; I/J/K as absolute centre coordinates would fit: a program for a control with LinuxCNC's G90.1, " \
+               "which grbl lacks"
     if st.arc_incremental:
         return "; I/J/K as absolute centre coordinates (LinuxCNC G90.1) would fit"
     return "; I/J/K as offsets from the start (G91.1) would fit"

@@ -142,3 +142,14 @@ def test_g90_1_is_refused_under_grbl_and_runs_where_the_control_has_it():
     prog = checked_iso(ABSOLUTE.replace("G90.1", "G91.1").replace("I-24.273 J0.025", "I-2.138 J4.52"),
                        MachineContext().with_dialect("grbl"))
     assert prog.blocks[-1].target.tolist() == pytest.approx([-26.513, 4.495, 0.0])
+
+
+def test_the_absolute_centre_hint_says_grbl_lacks_g90_1():
+    # the plotter sample's arc without G90.1: off its circle as offsets, on it as absolute centres
+    text = ABSOLUTE.replace("G90.1\n", "")
+    with pytest.raises(GCodeError, match=r":3:20: arc end point is not on the circle.*; I/J/K as absolute centre "
+                                         r"coordinates would fit: a program for a control with LinuxCNC's G90.1, "
+                                         r"which grbl lacks \(got 'I-24.273'\)"):
+        parse_program(text, context=MachineContext().with_dialect("grbl"))
+    with pytest.raises(GCodeError, match=r"; I/J/K as absolute centre coordinates \(LinuxCNC G90.1\) would fit"):
+        parse_program(text, context=MachineContext().with_dialect("fanuc"))
