@@ -153,3 +153,20 @@ def test_the_absolute_centre_hint_says_grbl_lacks_g90_1():
         parse_program(text, context=MachineContext().with_dialect("grbl"))
     with pytest.raises(GCodeError, match=r"; I/J/K as absolute centre coordinates \(LinuxCNC G90.1\) would fit"):
         parse_program(text, context=MachineContext().with_dialect("fanuc"))
+
+
+@pytest.mark.parametrize(("line", "note"), [
+    ("G64 P0.01", "G64 path blending"),  # UGS's test files of a ShapeOko (pcb and CAM outputs)
+    ("G98", "G98 canned cycle retract to the initial level"),
+    ("G59.1", "G59.1 work offset"),
+    ("G92.2", "G92.2 G92 offset suspended"),
+    ("T1 M6", "M6 tool change"),  # gSender's and UGS's examples, a Fusion MPCNC post
+    ("M62 P1", "M62 digital output"),  # FluidNC's user_io test, the MPCNC post's relays
+    ("M48", "M48 overrides enabled")])
+def test_codes_grbl_refuses_and_grblhal_runs_are_noted(line, note):
+    """grbl 1.1 gcode.c refuses them (error 20: "default: FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND)"); grblHAL's
+    gcode.c runs them (G64 when built with path blending, M6 per its tool change mode, M62 on a board with
+    outputs): they run as there, with a note; the moves are those of the reference."""
+    prog = checked_iso(f"G21 G90\nG0 X1 Y2\n{line}\nG1 X3 F100\nM30\n", MachineContext().with_dialect("grbl"))
+    assert f"{note} run as grblHAL runs it (grbl 1.1 refuses it: error 20)" in prog.notes
+    assert prog.blocks[-1].target.tolist() == [3.0, 2.0, 0.0]
