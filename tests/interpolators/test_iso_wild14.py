@@ -158,7 +158,7 @@ def test_the_absolute_centre_hint_says_grbl_lacks_g90_1():
 @pytest.mark.parametrize(("line", "note"), [
     ("G64 P0.01", "G64 path blending"),  # UGS's test files of a ShapeOko (pcb and CAM outputs)
     ("G98", "G98 canned cycle retract to the initial level"),
-    ("G59.1", "G59.1 work offset"),
+    ("G59.1", "G59.1 work offset run as grblHAL runs it (grbl 1.1 refuses it: error 23)"),  # "value not integer"
     ("G92.2", "G92.2 G92 offset suspended"),
     ("T1 M6", "M6 tool change"),  # gSender's and UGS's examples, a Fusion MPCNC post
     ("M62 P1", "M62 digital output"),  # FluidNC's user_io test, the MPCNC post's relays
@@ -168,5 +168,15 @@ def test_codes_grbl_refuses_and_grblhal_runs_are_noted(line, note):
     gcode.c runs them (G64 when built with path blending, M6 per its tool change mode, M62 on a board with
     outputs): they run as there, with a note; the moves are those of the reference."""
     prog = checked_iso(f"G21 G90\nG0 X1 Y2\n{line}\nG1 X3 F100\nM30\n", MachineContext().with_dialect("grbl"))
-    assert f"{note} run as grblHAL runs it (grbl 1.1 refuses it: error 20)" in prog.notes
+    assert (note if "error" in note else f"{note} run as grblHAL runs it (grbl 1.1 refuses it: error 20)") \
+        in prog.notes
     assert prog.blocks[-1].target.tolist() == [3.0, 2.0, 0.0]
+
+
+def test_g61_1_is_refused_under_grbl():
+    # FluidNC's parser test streams "G61.1" among the codes it checks: grbl 1.1 answers error 20
+    with pytest.raises(GCodeError, match=r":2:1: G61.1 exact stop mode: grbl has none \(gcode.c: '\[G61.1 not "
+                                         r"supported\]', error 20 unsupported command; G61 is its only path mode\)"):
+        parse_program("G21 G90\nG61.1\nG0 X1\n", context=MachineContext().with_dialect("grbl"))
+    prog = checked_iso("G21 G90\nG61\nG0 X1\nM30\n", MachineContext().with_dialect("grbl"))
+    assert prog.blocks[-1].target.tolist() == [1.0, 0.0, 0.0]
