@@ -96,12 +96,33 @@ def _bare_axis_hint(line: str, w0: int) -> str:
     return " (an axis letter without its number, as 3D printer firmware such as Marlin takes axis flags)"
 
 
-def _number_hint(line: str, w0: int, j: int) -> str:
-    """Why a word at ``w0`` has no number at ``j``, when the text says: the letter O for the digit 0, a
-    Siemens SINUMERIK statement or ``=`` address, a keyword of another control's language."""
+#: A comment that is one identifier of capitals joined by underscores, "(GCODE_OP_SAFEZ)", right after a word's
+#: letter: a generator's template, whose placeholders the generator replaces with numbers (ncEFI's
+#: "ncPRG_start.nc": "F(GCODE_OP_BFEED)", "G00 Z(GCODE_OP_SAFEZ)").
+_PLACEHOLDER = re.compile(r"[ \t]*\([ \t]*([A-Z][A-Z0-9]*(?:_[A-Z0-9]+)+)[ \t]*\)")
+
+
+def _placeholder_hint(letter: str, raw: str) -> str:
+    """The hint for a word whose number is a template's placeholder comment (:data:`_PLACEHOLDER`) in the
+    source line ``raw``; "" when there is none."""
+    for m in re.finditer(re.escape(letter), raw, re.I):
+        hole = _PLACEHOLDER.match(raw, m.end())
+        if hole:
+            return (f" (a template's placeholder '({hole.group(1)})' where the number goes: a generator fills "
+                    "it in, so the file is a template, not a program)")
+    return ""
+
+
+def _number_hint(line: str, w0: int, j: int, raw: str = "") -> str:
+    """Why a word at ``w0`` has no number at ``j``, when the text says: a template's placeholder comment in the
+    source line ``raw``, the letter O for the digit 0, a Siemens SINUMERIK statement or ``=`` address, a keyword
+    of another control's language."""
     fence = fence_hint(line)
     if fence:
         return fence
+    placeholder = _placeholder_hint(line[w0], raw) if raw and (j >= len(line) or line[j] in " \t") else ""
+    if placeholder:
+        return placeholder
     if j < len(line) and line[j] in "oO" and re.match(r"[oO0-9.]+(?![A-Za-z])", line[j:]):  # "GOO", "X1O"
         return " (the letter O where the digit 0 was meant?)"
     siemens = re.match(r"[A-Za-z]+\d*(?![A-Za-z0-9_])", line[w0:])
@@ -133,7 +154,7 @@ def read_number(line: str, pos: int, where: Where, *, what: str, word_start: int
     m = NUMBER_RE.match(line, j)
     if m is None:
         where.fail(
-            f"malformed number for {what}{_number_hint(line, w0, j)}",
+            f"malformed number for {what}{_number_hint(line, w0, j, where.text)}",
             column=w0 + 1,
             text=token_at(line, w0),
             expected="a decimal number such as 12, -0.79 or +.5",

@@ -577,7 +577,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
     if st.context.dialect.name == "grbl":
-        for note in unsupported_codes(gcodes, seen, where):
+        for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
     if "exact stop check" not in gcodes:
         return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)

@@ -85,6 +85,16 @@ def _grbl_arc_end(seen, st: State, where: Where, code: str, mcol: int, mtok: str
                    expected=f"{axes[0]} and/or {axes[1]} with {code} in {plane_g}")
 
 
+def _lathe_hint(st: State, seen, arc_words) -> str:
+    """Why an arc has K in G17: I and K without J or Y, a ZX arc as a lathe program writes it without a plane
+    word, a lathe working in G18 from the start (LinuxCNC "Lathe User Information", default plane: "A normal
+    lathe only uses the XZ plane (G18)", set by RS274NGC_STARTUP_CODE = G18); "" otherwise."""
+    if st.plane == 2 and "K" in arc_words and "J" not in arc_words and "Y" not in seen:
+        return (" (I and K without J: a ZX arc as a lathe program writes it, a lathe starting in G18; a mill "
+                "program selects G18 before it)")
+    return ""
+
+
 def read_arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: int, mtok: str):
     if st.context.dialect.arc_rule == "grbl":
         _grbl_arc_end(seen, st, where, code, mcol, mtok)
@@ -103,7 +113,8 @@ def read_arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: 
     for letter in arc_words:
         w = seen[letter]
         if letter not in allowed and w.value != 0.0:
-            where.fail(f"word {letter} is outside the arc plane ({plane_g})", column=w.column, text=w.text,
+            where.fail(f"word {letter} is outside the arc plane ({plane_g}){_lathe_hint(st, seen, arc_words)}",
+                       column=w.column, text=w.text,
                        expected=f"centre words {'IJK'[p]} and {'IJK'[q]} in {plane_g} (others only as 0)")
     in_plane = [w for w in arc_words if w in allowed]
     rule = st.context.dialect.arc_rule
@@ -158,9 +169,9 @@ def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray)
     """A hint for an arc whose end is off its circle: whether its I/J/K read in the other arc-centre mode put
     both ends on one circle, as in programs for a control that reads arc centres as absolute coordinates
     (LinuxCNC g-code.adoc "G90.1, G91.1": "G90.1 - absolute distance mode for I, J & K offsets"; G91.1, the
-    power-on mode, incremental; Fanuc reads I J K incremental always), or the other way round. "" if not, for
-    a centre on the start (no circle to be off) and for absolute centres missing a plane word (G90.1 needs
-    both: "I and J both must be specified")."""
+    power-on mode, incremental; Fanuc reads I J K incremental always; grbl has no G90.1), or the other way round.
+    "" if not, for a centre on the start (no circle to be off) and for absolute centres missing a plane word
+    (G90.1 needs both: "I and J both must be specified")."""
     plane = list(PLANE_AXES[st.plane])
     here = _centre(st, seen, in_plane, incremental=st.arc_incremental)
     if np.allclose(here[plane], st.pos[plane]) or (st.arc_incremental and len(in_plane) < 2):
@@ -172,6 +183,9 @@ def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray)
                                                        rule=st.context.dialect.arc_rule))
     except ArcWordError:
         return ""
+    if st.arc_incremental and st.context.dialect.name == "grbl":  # interpolators.iso_grbl: no G90.1 there
+        return "; I/J/K as absolute centre coordinates would fit: a program for a control with LinuxCNC's G90.1, " \
+               "which grbl lacks"
     if st.arc_incremental:
         return "; I/J/K as absolute centre coordinates (LinuxCNC G90.1) would fit"
     return "; I/J/K as offsets from the start (G91.1) would fit"

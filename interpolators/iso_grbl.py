@@ -44,12 +44,18 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
 * G41/G42 are errors naming them: grbl has no cutter radius compensation (``case 40``: "Not required since
   cutter radius compensation is always disabled. Only here to support G40 commands that often appear in
   g-code program headers"), so the path a compensated run would give is no path the machine makes.
-* G73 and G81-G89 canned cycles, G43 tool length offsets from the tool table, G95 feed per revolution and G5
-  cubic splines run as grblHAL (grbl's successor for 32-bit boards) runs them, with a note that grbl 1.1
-  refuses them: grblHAL ``gcode.h`` has ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ...
-  ``89``, ``MotionMode_CubicSpline = 5``, ``ToolLengthOffset_Enable`` (G43), ``FeedMode_UnitsPerRev`` (G95),
-  and starts in G98 ("CCRetractMode_Previous = 0, // G98 (Default: Must be zero)"), as the reader's grbl
-  dialect does.
+* G73 and G81-G89 canned cycles, G43 tool length offsets from the tool table, G95 feed per revolution, G5
+  cubic splines, G64 path blending, G98/G99, G59.1-G59.3, G92.2/G92.3 and the M codes M6, M48-M51, M62-M66
+  run as grblHAL (grbl's successor for 32-bit boards) runs them, with a note that grbl 1.1 refuses them
+  (:data:`_GRBLHAL_ONLY`, :data:`_GRBLHAL_ONLY_M` give grblHAL's code for each): grblHAL ``gcode.h`` has
+  ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``MotionMode_CubicSpline = 5``,
+  ``ToolLengthOffset_Enable`` (G43), ``FeedMode_UnitsPerRev`` (G95), and starts in G98 ("CCRetractMode_Previous
+  = 0, // G98 (Default: Must be zero)"), as the reader's grbl dialect does.
+* G90.1 (arc centres I J K as absolute coordinates) is an error naming it: "if ((mantissa != 10) || (int_value ==
+  90)) { FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND); } // [G90.1 not supported]" ... "Otherwise, arc IJK incremental
+  mode is default. G91.1 does nothing." (grblHAL's ``gcode.c`` alike), so grbl reads I J K as offsets from the
+  arc's start whatever the program meant.
+* G61.1 (exact stop mode) is an error naming it (``case 61``: "[G61.1 not supported]").
 * A G4 dwell takes its time from P alone: "if (bit_isfalse(value_words,bit(WORD_P))) {
   FAIL(STATUS_GCODE_VALUE_WORD_MISSING); } // [P word missing]" (error 28; an X in the block is an axis word
   of the non-modal command, not a time), so ``G4 X2`` is an error, where the other dialects read X seconds.
@@ -76,24 +82,50 @@ _ACTIVE = {"J": "$J= jog", "C": "$C check g-code mode", "R": "$RST= restore",
 
 #: Cutter radius compensation codes (round(10 * G)), which grbl 1.1 refuses (error 20) and vcnc would run.
 _NO_COMPENSATION = {410: "G41", 420: "G42", 411: "G41.1", 421: "G42.1"}
+#: G90.1, absolute arc centres (round(10 * G)), which grbl 1.1 and grblHAL refuse (error 20) and vcnc would run.
+_ABSOLUTE_CENTRES = 901
+#: G61.1, exact stop mode: grbl 1.1 ``case 61``: "if (mantissa != 0) { FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND); } //
+#: [G61.1 not supported]"; grblHAL the same without path blending (and its path-blending build's test, "mantissa != 0
+#: || mantissa != 10", refuses every G61).
+_EXACT_STOP_MODE = 611
 #: Codes (round(10 * G)) grbl 1.1 refuses (error 20) and grblHAL runs (grblHAL ``gcode.h``: ``MotionMode_CubicSpline
 #: = 5``, ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``ToolLengthOffset_Enable``
-#: G43, ``FeedMode_UnitsPerRev = 2 // G95``).
+#: G43, ``FeedMode_UnitsPerRev = 2 // G95``; grblHAL ``gcode.c`` ``gc_execute_block``, the ``'G'`` switch: ``case 64``
+#: path blending when built with ENABLE_PATH_BLENDING, ``case 98: case 99`` the canned cycles' retract mode,
+#: ``case 59`` with ``mantissa`` 10-30 when it has 9 work coordinate systems, ``case 92`` with ``mantissa`` 20 or 30).
 _GRBLHAL_ONLY = {50: "G5 cubic spline", 730: "G73 canned cycle", **{k: f"G{k // 10} canned cycle" for k in
                                                                      range(810, 900, 10)},
-                 430: "G43 tool length offset", 950: "G95 feed per revolution"}
+                 430: "G43 tool length offset", 950: "G95 feed per revolution", 640: "G64 path blending",
+                 980: "G98 canned cycle retract to the initial level", 990: "G99 canned cycle retract to R",
+                 **{k: f"G59.{k % 10} work offset" for k in (591, 592, 593)},
+                 922: "G92.2 G92 offset suspended", 923: "G92.3 G92 offset restored"}
+#: grbl 1.1's error for those of :data:`_GRBLHAL_ONLY` it does not refuse with error 20: G59.1-G59.3 pass its
+#: ``case 59`` ("NOTE: G59.x are not supported.") and fail on the fraction left, "if (mantissa > 0) {
+#: FAIL(STATUS_GCODE_COMMAND_VALUE_NOT_INTEGER); }" (error 23).
+_GRBL_ERROR = {591: 23, 592: 23, 593: 23}
+#: M codes grbl 1.1 refuses (its ``'M'`` switch: M0-M5, M7-M9, M30, M56, "default:
+#: FAIL(STATUS_GCODE_UNSUPPORTED_COMMAND); // [Unsupported M command]", error 20) and grblHAL runs (its ``'M'``
+#: switch: ``case 6`` a tool change, taken when a tool change mode or an ATC is set and otherwise accepted and
+#: ignored; ``case 48: case 49: case 50: case 51`` override control; ``case 62`` ... ``case 65`` digital outputs and
+#: ``case 66`` wait on input, on a board with such ports).
+_GRBLHAL_ONLY_M = {6: "M6 tool change", 48: "M48 overrides enabled", 49: "M49 overrides disabled",
+                   50: "M50 feed override control", 51: "M51 spindle override control",
+                   **{m: f"M{m} digital output" for m in (62, 63, 64, 65)}, 66: "M66 wait on input"}
 
 
-def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where) -> list[str]:
-    """Notes for the codes of one block that grbl 1.1 lacks and vcnc runs as grblHAL does (:data:`_GRBLHAL_ONLY`).
+def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where,
+                      mcodes: Iterable[tuple[int, Word]] = ()) -> list[str]:
+    """Notes for the codes of one block that grbl 1.1 lacks and vcnc runs as grblHAL does (:data:`_GRBLHAL_ONLY`,
+    :data:`_GRBLHAL_ONLY_M`).
 
     ``gcodes`` maps each G-code group of the block to its code (round(10 * G)) and word, ``letters`` are the
-    block's other word letters.
+    block's other word letters, ``mcodes`` its M codes and their words.
 
     Raises
     ------
     vcnc.GCodeError
-        G41/G42 cutter radius compensation (grbl has none), or a G4 dwell without P (grbl error 28).
+        G41/G42 cutter radius compensation (grbl has none), G90.1 absolute arc centres and G61.1 exact stop mode
+        (neither has them), or a G4 dwell without P (grbl error 28).
     """
     notes = []
     for key, w in gcodes.values():
@@ -101,11 +133,23 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
             where.fail(f"{_NO_COMPENSATION[key]} cutter radius compensation: grbl has none (gcode.c supports G40 "
                        "only; error 20 unsupported command)", column=w.column, text=w.text,
                        expected="a path already offset by the CAM post (G40 or no compensation code) under grbl")
+        if key == _ABSOLUTE_CENTRES:
+            where.fail("G90.1 absolute arc centres: grbl has none (gcode.c: '[G90.1 not supported]', error 20 "
+                       "unsupported command; its I J K are always offsets from the arc's start)", column=w.column,
+                       text=w.text, expected="I J K as offsets from the arc's start (G91.1 or no arc-centre code) "
+                                             "under grbl")
+        if key == _EXACT_STOP_MODE:
+            where.fail("G61.1 exact stop mode: grbl has none (gcode.c: '[G61.1 not supported]', error 20 unsupported "
+                       "command; G61 is its only path mode)", column=w.column, text=w.text,
+                       expected="G61 or no path-mode code under grbl")
         if key == 40 and "P" not in letters:
             where.fail("G4 dwell without P: grbl takes the dwell time from P only (gcode.c: '[P word missing]', "
                        "error 28)", column=w.column, text=w.text, expected="G4 P<seconds>")
         if key in _GRBLHAL_ONLY:
-            notes.append(f"{_GRBLHAL_ONLY[key]} run as grblHAL runs it (grbl 1.1 refuses it: error 20)")
+            notes.append(f"{_GRBLHAL_ONLY[key]} run as grblHAL runs it (grbl 1.1 refuses it: error "
+                         f"{_GRBL_ERROR.get(key, 20)})")
+    notes += [f"{_GRBLHAL_ONLY_M[m]} run as grblHAL runs it (grbl 1.1 refuses it: error 20)"
+              for m, _ in mcodes if m in _GRBLHAL_ONLY_M]
     return notes
 
 

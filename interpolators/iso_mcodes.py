@@ -58,15 +58,21 @@ def user_m_file(w: Word, m: int, st: State, where: Where) -> None:
     Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
     (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
     USER_M_PATH, and a missing one is an error). The program runs outside the interpreter: nothing of the
-    path moves. Its file is looked for in the dialect's ``user_m_path``; an error names the code if none
-    holds it, as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's
-    functions (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl
-    1.1 refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20)."""
+    path moves. Its file is looked for in the dialect's ``user_m_path`` and, under ``linuxcnc``, in the folder
+    of the file that holds the code (a program read from a file), as vcnc takes the program's folder for
+    PROGRAM_PREFIX ("The default location for g-code files and the location for user-defined M-codes. This
+    location is searched for the file name before the subroutine path and user M path", INI configuration,
+    [DISPLAY]; vcnc looks for o<name> subroutine files there too). An error names the code if none holds it,
+    as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's functions
+    (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl 1.1
+    refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20)."""
     name = f"M{m}"
     base = Path(where.file).parent if where.file else Path.cwd()
-    if any((base / folder / name).is_file() for folder in st.context.dialect.user_m_path):
+    own = st.context.dialect.name == "linuxcnc" and where.file is not None
+    folders = ((".",) if own else ()) + tuple(st.context.dialect.user_m_path)
+    if any((base / folder / name).is_file() for folder in folders):
         return
-    looked = ", ".join(st.context.dialect.user_m_path) or "none given"
+    looked = ", ".join(("its own folder",) * own + tuple(st.context.dialect.user_m_path)) or "none given"
     dialect = st.context.dialect.name
     what = (f"user M code {w.text!r} (M100-M199 runs the executable file {name} of the user M path, LinuxCNC "
             "USER_M_PATH)" if dialect == "linuxcnc" else

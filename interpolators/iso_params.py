@@ -200,7 +200,7 @@ class Parameters:
         state, why = self.system(n) if self.system is not None and self._is_system(n) else (None, "")
         if (n < 1 or n >= _LINUXCNC_PARAMETERS) and n not in _HAAS_GENERAL and not (
                 self.macro_b and (state is not None or why)):  # Fanuc #7001.., #10001..
-            where.fail(f"parameter number #{n} out of range", column=column, text=text,
+            where.fail(f"parameter number #{n} out of range{self._beyond_macro_b(n)}", column=column, text=text,
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
         if state is not None:
             return state
@@ -223,6 +223,17 @@ class Parameters:
                                                and n <= MACRO_LOCALS)):
             return None
         return store.get(n, 0.0)
+
+    def _beyond_macro_b(self, n: int) -> str:
+        """Under macro B, what a variable numbered 100000 or more is: beyond every variable vcnc models (the
+        ranges this module names). Our reading, no manual at hand: one of the further common variables some
+        controls add as an option, as a mould shop's Fanuc programs keep their settings in #900000-#901999;
+        "" otherwise."""
+        if not self.macro_b or n < 100000:
+            return ""
+        return (f" (#{n}: beyond the Fanuc/Haas variables vcnc models, locals #1-#33, common #100-#199 and "
+                "#500-#999, Haas #10000-#10999, system variables below #100000; the larger common-variable ranges "
+                "that some controls add as an option are not modelled)")
 
     def _is_system(self, n: int) -> bool:
         """Whether ``#n`` may report machine state: above #5000, and under macro B #1000-#4999 too."""
@@ -279,7 +290,8 @@ class Parameters:
                 where.fail(f"parameter #{key} {what}", column=column, text=text,
                            expected="a user parameter #1 .. #5000 (set offsets with G10, G92, G43)")
             if (key < 1 or key > _MAX_USER_PARAMETER) and key not in _WRITABLE_SYSTEM and key not in _HAAS_GENERAL:
-                where.fail(f"parameter #{key}: system parameters cannot be set", column=column, text=text,
+                where.fail(f"parameter #{key}: system parameters cannot be set{self._beyond_macro_b(key)}",
+                           column=column, text=text,
                            expected="a parameter #1 .. #5219 (or #5599, the DEBUG output switch)")
             store = self._local_numbered(key)
             if value is None:

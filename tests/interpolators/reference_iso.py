@@ -79,7 +79,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   every system. G52 is the local system on top of the G92
   shift (Fanuc "Local coordinate system": G52 X0 cancels it; G92 cancels it on the axes it names).
   Fanuc/Haas ``G10 L10 P R`` sets tool length geometry, ``L11``/``L1`` its wear, ``L12`` radius geometry
-  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear.
+  (Haas: a diameter), ``L13`` its wear (G91: added); G43 H / G41 D use geometry + wear. LinuxCNC
+  ``G10 L1 P<tool> Z R`` sets the tool table's length and radius (X/Y tool offsets are not modelled).
   The external output commands ``POPEN``, ``DPRNT[..]``, ``BPRNT[..]``, ``PCLOS`` move nothing.
   Fanuc ``G16`` (Series 16/18-MC operator's manual 9.2 "Polar coordinate command"): under G90 and
   G17 the X and Y of a motion block are the radius and angle about the work zero, as ``@ ^``; G15
@@ -1210,6 +1211,9 @@ def _g10(m: _Machine, words: dict) -> None:
     if kind in (1, 10, 11, 12, 13) and m.ctx.dialect.name in ("fanuc", "haas"):
         _g10_tool(m, kind, p, words)
         return
+    if kind == 1 and not ("x" in words or "y" in words):  # LinuxCNC G10 L1: the tool table's Z and R
+        _g10_l1(m, p, words)
+        return
     if kind not in (2, 20):
         raise ReferenceError(f"G10 L{kind}")
     if m.ctx.dialect.name in ("fanuc", "haas") and kind == 2 and p == 0:  # the external offset: every system
@@ -1269,6 +1273,16 @@ def _g10_tool(m: _Machine, kind: int, p: int, words: dict) -> None:
     else:
         wear = (wear if m.incremental else 0.0) + v
     table[p] = (geometry, wear)
+
+
+def _g10_l1(m: _Machine, p: int, words: dict) -> None:
+    """LinuxCNC ``G10 L1 P<tool> Z.. R..`` (g-code.adoc "G10 L1 Set Tool Table": "P - tool number", "R - radius
+    of tool", the axis words the tool's offsets): the table's length and radius of tool P become the values, in
+    the current units; a G43 or G41 after it reads them (tool() looks the table up there)."""
+    if "z" in words:
+        m.tool_lengths[p] = (words["z"][-1] * m.scale, 0.0)
+    if "r" in words:
+        m.tool_radii[p] = (words["r"][-1] * m.scale, 0.0)
 
 
 def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> None:

@@ -67,10 +67,11 @@ def test_a_user_m_code_runs_when_its_program_is_in_the_user_m_path(tmp_path):
     assert [b.target.tolist() for b in prog.blocks] == [[101, 0, 100], [102, 0, 100]]
     assert "user M code M101 (an external program of the user M path: no motion)" in prog.notes
     # no such file there (M102), or no user M path at all: the code is refused, naming the file
-    with pytest.raises(GCodeError, match=r":3:1: user M code 'M102' .*: M102 not found \(folders: mfiles\)"):
+    with pytest.raises(GCodeError, match=r":3:1: user M code 'M102' .*: M102 not found \(folders: its own folder, "
+                                         r"mfiles\)"):
         parse_program(text.replace("M101", "M102"), source=str(tmp_path / "part.ngc"), context=ctx)
-    with pytest.raises(GCodeError, match=r"M101 not found \(folders: none given\).*expected M codes below 100, or "
-                                         r"the file M101 in a folder of the machine's \[program\] user_m_path"):
+    with pytest.raises(GCodeError, match=r"M101 not found \(folders: its own folder\).*expected M codes below 100, "
+                                         r"or the file M101 in a folder of the machine's \[program\] user_m_path"):
         parse_program(text, source=str(tmp_path / "part.ngc"), context=_in_dialect("linuxcnc"))
 
 
