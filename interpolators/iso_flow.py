@@ -71,7 +71,7 @@ from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_wor
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
-__all__ = ["FlowLine", "run", "one_line_end", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
+__all__ = ["FlowLine", "run", "one_line_end", "sinumerik_construct", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
@@ -111,6 +111,43 @@ _FOREIGN_HEADERS = ((re.compile(r"%_N_", re.I), "Siemens SINUMERIK 840D program 
                     (re.compile(r"%\s*[MS]PF\b", re.I), "Siemens SINUMERIK main/subprogram header"),
                     (re.compile(r"%\s*PM\b", re.I), "Philips/MillPlus program header"),
                     (re.compile(r"\$[^\s%]+\.(?:MIN|SUB|SSB|SDF|MSB|LIB)%", re.I), "Okuma OSP program file header"))
+
+
+#: Constructs of SINUMERIK's own language that no ISO G-code control reads, each with what it is. Siemens,
+#: SINUMERIK 840D "Manual, 5-axis machining", 7.1 "Overview of higher-order functions" ("commands that go beyond
+#: the requirements laid down in DIN 66025": CIP, CT, TURN=, CR=, AP=, RP=, AR=, I1= ...), and the SINUMERIK
+#: programming manuals' "Fundamentals" (T="name", X=AC(..)/IC(..), R parameters, DEF, GOTOF/GOTOB, frames TRANS
+#: ... AMIRROR, MSG("..")) and "Job planning" (CYCLE81(..) ... cycle calls, MCALL, EXTCALL). Read on a line
+#: without its ';' comment and its ISO '(..)' comments (a '(' right after a name is a call, kept).
+_SINUMERIK = ((re.compile(r'\bT\s*=\s*"'), 'T="..." (a tool called by its name)'),
+              (re.compile(r"\b[A-Z]{1,2}\d*\s*=\s*(?:AC|IC|DC|ACP|ACN)\s*\("),
+               "X=AC(..)/IC(..) (absolute or incremental per word)"),
+              (re.compile(r"(?<![\w#])(?:CR|AR|AP|RP|TURN|I1|J1|K1)\s*="), "CR=/AR=/AP=/RP=/TURN= (arc radius, "
+               "opening angle, polar words)"),
+              (re.compile(r"(?<![\w#<])R\d+\s*=(?!=)"), "R1=.. (an R parameter set)"),
+              (re.compile(r"\b[A-Z]\s*=\s*-?R\d+\b"), "X=R1 (an axis word from an R parameter)"),
+              (re.compile(r"\b(?:CYCLE\d{2,3}|POCKET\d|SLOT\d|LONGHOLE|HOLES\d|MCALL|EXTCALL|WORKPIECE)\s*\("),
+               "a cycle call NAME(..)"),
+              (re.compile(r'\bMSG\s*\(\s*"'), 'MSG("..") (a message)'),
+              (re.compile(r"\bDEF\s+(?:REAL|INT|BOOL|STRING|CHAR|AXIS|FRAME)\b"), "DEF (a variable definition)"),
+              (re.compile(r"\b(?:GOTOF|GOTOB|GOTOC|ENDWHILE|ENDLOOP|ENDFOR|TRAORI|TRAFOOF|G500|G64[1-5]|FFWON|FFWOF|"
+                          r"SUPA|DIAMON|DIAMOF|SPOS|ATRANS|AROT|ASCALE|AMIRROR)\b"), "a SINUMERIK keyword"),
+              (re.compile(r"^\s*(?:N\d+\s+)?(?:TRANS|ROT|SCALE|MIRROR)\b"), "TRANS/ROT/SCALE/MIRROR (a programmable "
+               "frame)"))
+_ISO_COMMENT = re.compile(r"(?<![A-Za-z0-9_])\([^()]*\)")
+
+
+def sinumerik_construct(text: str) -> str | None:
+    """Where ``text`` (a program) first uses a construct of SINUMERIK's language (:data:`_SINUMERIK`): "line N
+    'code': <what>", or None. Said with an ISO reader's error, so that a Siemens program is named for what it is
+    rather than by the first word ISO G-code reads otherwise."""
+    for number, line in enumerate(text.splitlines()[:2000], start=1):
+        code = _ISO_COMMENT.sub("", line.split(";", 1)[0])
+        for pattern, what in _SINUMERIK:
+            if pattern.search(code):
+                shown = code.strip() if len(code.strip()) <= 60 else code.strip()[:57] + "..."
+                return f"line {number} {shown!r}: {what}"
+    return None
 
 
 #: The first block of a Heidenhain TNC program in DIN/ISO: '%', the program name and the unit, G71 (mm) or G70

@@ -9,7 +9,7 @@ from interpolators._words import program_text
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.heidenhain import looks_like_heidenhain, parse_heidenhain
 from interpolators.iso import parse_iso
-from interpolators.iso_flow import one_line_end
+from interpolators.iso_flow import one_line_end, sinumerik_construct
 from interpolators.program import Program
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
@@ -51,7 +51,15 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
     text = one_line_end(text)  # CR, LF and CR LF alike, for both readers
     if detect_dialect(text) == "heidenhain":
         return parse_heidenhain(text, source=source, context=context)
-    prog = parse_iso(text, source=source, context=context)
+    try:
+        prog = parse_iso(text, source=source, context=context)
+    except GCodeError as exc:
+        siemens = sinumerik_construct(text) if type(exc) is GCodeError else None
+        if siemens is None:
+            raise
+        raise GCodeError(f"{exc.message} (this looks like a Siemens SINUMERIK program, whose own language vcnc does "
+                         f"not read: {siemens})", file=exc.file, line=exc.line, column=exc.column, text=exc.text,
+                         expected=exc.expected) from None
     if bare_cr and context.dialect.name == "linuxcnc":
         prog = dataclasses.replace(prog, notes=(*prog.notes, _BARE_CR_NOTE))
     return prog
