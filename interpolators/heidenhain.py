@@ -94,7 +94,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     machine coordinates; ID270: active coordinates) reads the
                                     simulated position (after a STOP, M0 or M1 with no move
                                     since: where the program stopped, noted; an operator's jog
-                                    is not modelled); ID20 NR1: the active tool's number; ID50
+                                    is not modelled); ID20 NR1: the active tool's number,
+                                    NR2 .. NR4 the prepared tool, tool axis, spindle speed;
+                                    ID10 NR1 inch = 1; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
                                     NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
@@ -287,6 +289,7 @@ class Machine:
         self.tool_length = 0.0
         self.tool_radius = 0.0
         self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
+        self.prepared_tool = 0  # the tool a TOOL DEF n pre-selected (FN 18 SYSREAD ID20 NR2); 0: none
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         # the work offset of the context that is the active preset (cycle 247); None: a preset beyond them (zero)
@@ -406,6 +409,15 @@ class Machine:
             return self.tool_defs[number]
         tool = self.context.tool(number)
         return None if tool is None else (tool.length, tool.radius)
+
+    def system_datum(self, ident: int, nr: int) -> float:
+        """The machine status ``FN 18 SYSREAD IDi NRj`` reads (iTNC 530 technical manual 07/2013, 9.5.4 "Data
+        transfer NC > NC program (FN18: SYSREAD)", and the TNC 426/430 technical manual 12/2001, 7.3.4): ID10
+        NR1 mm = 0, inch = 1; ID20 NR2 the prepared tool number (of the last ``TOOL DEF n``: 0 before one, our
+        reading), NR3 the active tool axis 0 = X, 1 = Y, 2 = Z, NR4 the programmed spindle speed [rpm] (0 before
+        a ``TOOL CALL .. S``, our reading)."""
+        return {(10, 1): float(self.inch), (20, 2): float(self.prepared_tool), (20, 3): float(self.plane),
+                (20, 4): self.spindle or 0.0}[ident, nr]
 
     def write_tool(self, number: int, column: int, value: float) -> None:
         """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
@@ -625,7 +637,7 @@ class _Run:
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
                                 scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at,
-                                tool_write=m.write_tool)
+                                tool_write=m.write_tool, system=m.system_datum)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -863,6 +875,8 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> 
             tok = code[pos + tm.end():].split()[0]
             where.fail(f"unknown word {tok!r} after a tool name in TOOL DEF", column=blk.column + pos + tm.end(),
                        text=tok, expected="TOOL DEF \"name\" (a pre-selection)")
+        if tm.group(1)[0].isdigit():
+            m.prepared_tool = int(tm.group(1)[:9])
         m.note("TOOL DEF pre-selection: no motion")
         return
     length = radius = 0.0

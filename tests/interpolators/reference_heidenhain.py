@@ -29,7 +29,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
   with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
   LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
-  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` and ``FN 16
+  in the active system), ``ID240 NR1 IDXn`` (position in the machine system), ``ID20 NR1 .. NR4`` (active and
+  prepared tool, tool axis, spindle speed) and ``ID10 NR1`` (inch); ``FN 15 PRINT`` and ``FN 16
   F-PRINT`` have no effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a
   ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
@@ -256,6 +257,8 @@ class _Tnc:
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool = 0  # the active tool number (FN 18 ID20 NR1)
+        self.prepared = 0  # the tool a TOOL DEF n alone pre-selected (FN 18 ID20 NR2)
+        self.speed = 0.0  # S of the last TOOL CALL [rpm] (FN 18 ID20 NR4)
         self.pole = np.zeros(3)  # program coordinates [mm]
         self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
@@ -2214,6 +2217,9 @@ def _tool(t: _Tnc, text: str) -> None:
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
+    s = re.search(r"\bS\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest) if m.group(1) == "CALL" else None
+    if s:
+        t.speed = _val(s.group(1).replace(" ", ""), t.q)
     if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
         if re.match(r"\s*[XY]\b", rest):
             raise ReferenceError(f"tool axis in {text!r}")
@@ -2234,6 +2240,8 @@ def _tool(t: _Tnc, text: str) -> None:
     if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
         if re.search(r"\b[LR]\s*[-+]?\s*[\dQ.]", rest):  # TOOL DEF n alone pre-selects the next tool (TNC 640
             t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)  # manual): the table's L and R stay
+        elif not m.group(2).startswith('"'):
+            t.prepared = number
         return
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
@@ -2301,6 +2309,10 @@ def _fn(t: _Tnc, text: str) -> str | None:
         q, ident, nr, idx = m2.groups()
         if ident == "20" and nr == "1":  # the active tool's number
             t.q[q] = float(t.tool)
+        elif (ident, nr) in (("20", "2"), ("20", "3"), ("20", "4"), ("10", "1")):
+            # iTNC 530 technical manual 07/2013, 9.5.4 (FN18: SYSREAD): ID20 NR2 the prepared tool, NR3 the tool
+            # axis (0 = X, 1 = Y, 2 = Z: only Z here), NR4 the programmed spindle speed; ID10 NR1 inch = 1
+            t.q[q] = {"2": float(t.prepared), "3": 2.0, "4": t.speed}[nr] if ident == "20" else float(t.scale != 1.0)
         elif ident == "50" and nr in ("1", "2"):  # L / R of tool IDX: the program's TOOL DEF, else the table
             n = int(_val(idx, t.q))
             tool = t.ctx.tool(n)

@@ -1,0 +1,88 @@
+"""Heidenhain programs of a ninth wild set (German shop and training programs of an iTNC 530 / TNC 640, a
+Polish-dialogue drilling program, Fusion 360 and hyperMILL posts, a TNC simulator's German demo programs, a
+hand-written pseudo-Klartext warm-up): what the reader named unclearly, and the forms the set leans on that no
+earlier test held, each as a hand-written program checked against the independent reference where it runs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+ZERO = MachineContext()
+
+
+def checked(body: str):
+    """The program read, and its blocks matched against the reference."""
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", ZERO)
+
+
+def test_r_letter_o_is_named_as_the_radius_compensation_r0():
+    # a hand-written warm-up program wrote 'L Z+0 RO FMAX': the letter O where the TNC's R0 has the digit zero
+    # (TNC 640 user's manual, "Radius compensation": R0, RL, RR); it was a bare 'unknown word'
+    with pytest.raises(GCodeError, match=r"t.h:2:9: unknown word 'RO': no radius compensation is written with "
+                                         r"the letter O; expected R0 \(with the digit zero\), RL or RR"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L Z+0 RO FMAX\nEND PGM T MM\n", source="t.h", context=ZERO)
+    with pytest.raises(GCodeError, match=r"unknown word 'RX'; expected X/Y/Z"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L Z+0 RX FMAX\nEND PGM T MM\n", source="t.h", context=ZERO)
+
+
+def test_polar_arc_about_a_pole_in_the_yz_plane():
+    # the Fusion 360 TNC post leads into a contour on a quarter arc in the plane of the tool axis: 'CC Y.. Z..'
+    # sets the pole in Y/Z, 'CP IPA-90 DR-' turns about it (TNC 426/430 user's manual, "Circular path C around
+    # circle centre CC": the CC's two coordinates choose the plane). From (-1.2, 88.6, -23.5) about
+    # (Y 87.4, Z -23.5), radius 1.2, a quarter turn clockwise seen from +X ends at (-1.2, 87.4, -24.7)
+    prog = checked("1 L X-1.2 Y+88.6 Z-23.5 R0 F200\n2 CC Y+87.4 Z-23.5\n3 CP IPA-90 DR- F600\n"
+                   "4 L Y+86.2 Z-24.7\n5 CC X+0 Y+86.2\n6 CP IPA+90 DR+")
+    assert np.allclose(prog.blocks[1].target, [-1.2, 87.4, -24.7])
+    assert np.allclose(prog.blocks[2].target, [-1.2, 86.2, -24.7])
+    # then about (0, 86.2) in X/Y, a quarter turn counterclockwise from angle 180 deg to 270 deg
+    assert np.allclose(prog.blocks[-1].target, [0.0, 86.2 - 1.2, -24.7])
+
+
+def test_german_old_pocket_cycles_and_polish_cycle_200():
+    # an iTNC 530 training program in German dialogue: CYCL DEF 5 KREISTASCHE (5.1 ABST, 5.2 TIEFE, 5.3 ZUSTLG
+    # .. F, 5.4 RADIUS, 5.5 F DR-) called where the tool is; a Polish program's cycle 200 'WIERCENIE' with
+    # Q395=+0 (depth to the tip). The circular pocket's plunge goes to the depth below the start's set-up
+    # clearance, and the drill's bottom is Q203 + Q201
+    prog = checked("1 TOOL CALL 1 Z S2000 F200\n2 L X+60 Y+45 Z+1 R0 FMAX\n3 CYCL DEF 5.0 KREISTASCHE\n"
+                   "4 CYCL DEF 5.1 ABST 1\n5 CYCL DEF 5.2 TIEFE -5.5\n6 CYCL DEF 5.3 ZUSTLG 5.5 F100\n"
+                   "7 CYCL DEF 5.4 RADIUS 10\n8 CYCL DEF 5.5 F200 DR-\n9 CYCL CALL\n"
+                   "10 CYCL DEF 200 WIERCENIE ~\n Q200=+1 ;BEZPIECZNA WYSOKOSC ~\n Q201=-8 ;GLEBOKOSC ~\n"
+                   " Q206=+100 ;WARTOSC POSUWU WGL. ~\n Q202=+8 ;GLEBOKOSC DOSUWU ~\n Q210=+0 ;PRZER. CZAS.NA GORZE ~\n"
+                   " Q203=+0 ;WSPOLRZEDNE POWIERZ. ~\n Q204=+50 ;2-GA BEZPIECZNA WYS. ~\n"
+                   " Q211=+0 ;PRZERWA CZAS. DNIE ~\n"
+                   " Q395=+0 ;REFERENCJA GLEB.\n11 L X+21 Y-15 R0 FMAX M99")
+    zs = [b.target[2] for b in prog.blocks]
+    assert math.isclose(min(zs), -8.0)
+    assert any(math.isclose(z, 1.0 - 1.0 - 5.5) for z in zs)  # the pocket's floor: start 1, clearance 1, depth 5.5
+    assert np.allclose(prog.blocks[-1].target, [21, -15, 50])
+
+
+def test_sysread_of_the_machine_status():
+    # a simulator's tool-change macro compares 'FN 18: SYSREAD Q1000 = ID20 NR2' (the prepared tool) with ID20 NR1
+    # (the active tool); it was refused. iTNC 530 technical manual 07/2013, 9.5.4 "Data transfer NC > NC program
+    # (FN18: SYSREAD)": ID10 NR1 mm = 0, inch = 1; ID20 NR1 active tool number, NR2 prepared tool number, NR3
+    # active tool axis (0 = X, 1 = Y, 2 = Z), NR4 programmed spindle speed. The values end up in the end point
+    prog = checked("1 TOOL DEF 7\n2 TOOL CALL 3 Z S1200 F300\n3 FN 18: SYSREAD Q1 = ID20 NR1\n"
+                   "4 FN 18: SYSREAD Q2 = ID20 NR2\n5 FN 18: SYSREAD Q3 = ID20 NR3\n6 FN 18: SYSREAD Q4 = ID20 NR4\n"
+                   "7 FN 18: SYSREAD Q5 = ID10 NR1\n8 L X+Q1 Y+Q2 Z+Q3 R0 FMAX\n9 L X+Q4 Y+Q5 FMAX")
+    assert np.allclose(prog.blocks[0].target, [3, 7, 2])
+    assert np.allclose(prog.blocks[1].target, [1200, 0, 2])
+    # before any TOOL DEF or S: 0 (our reading: no manual page gives the value before one)
+    prog = checked("1 FN 18: SYSREAD Q2 = ID20 NR2\n2 FN 18: SYSREAD Q4 = ID20 NR4\n3 L X+Q2 Y+Q4 Z+0 R0 FMAX")
+    assert np.allclose(prog.blocks[0].target, [0, 0, 0])
+    # the machine status has no index; other numbers stay an error naming what is read
+    with pytest.raises(GCodeError, match=r"FN 18 SYSREAD 'SYSREAD Q1 = ID20 NR5' is not supported; expected .*"
+                                         r"NR2..NR4 \(prepared tool, tool axis, spindle speed\)"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 FN 18: SYSREAD Q1 = ID20 NR5\nEND PGM T MM\n", source="t.h",
+                         context=ZERO)
+    with pytest.raises(GCodeError, match=r"ID10 NR1 IDX1' is not supported"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 FN 18: SYSREAD Q1 = ID10 NR1 IDX1\nEND PGM T MM\n", source="t.h",
+                         context=ZERO)
