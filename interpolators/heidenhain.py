@@ -305,6 +305,9 @@ class Machine:
         self.exact_stop = True
         self.tolerance: float | None = None
         self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
+        # the 200-series definition the cycle was built from: its number, Q parameters and the cycle built
+        # (refresh_cycle rebuilds it when a call finds the parameters changed)
+        self.cycle_source: tuple[int, dict[int, float], DrillCycle] | None = None
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float | dict[str, float]] = {}
@@ -418,6 +421,27 @@ class Machine:
         a ``TOOL CALL .. S``, our reading)."""
         return {(10, 1): float(self.inch), (20, 2): float(self.prepared_tool), (20, 3): float(self.plane),
                 (20, 4): self.spindle or 0.0}[ident, nr]
+
+    def refresh_cycle(self, where: Where, column: int) -> None:
+        """The machining cycle of a 200-series definition with the values its Q parameters hold now.
+
+        The cycle parameters are Q parameters (TNC 640 ISO programming manual 34059x-01, 8.1: "Q200 to
+        Q1199: parameters that are primarily used for cycles; they are globally effective"); a definition
+        assigns them, and the pattern cycles 220/221 assign their Q200, Q203, Q204, which then "are
+        effective" for the machining cycle they call (TNC 320 cycle manual, cycle 220). Our reading: a cycle
+        reads its Q parameters when it is called, so an assignment between the definition and a call
+        (``Q201=-18`` before the next ``CYCL CALL``, as an iTNC 530 training program in wild set 9 deepens
+        its holes for a second drill) is the call's. A feed given as MAX keeps its value (the parameter
+        store holds finite values only)."""
+        if self.cycle_source is None or self.cycle is not self.cycle_source[2]:
+            return
+        number, q, _ = self.cycle_source
+        now = {k: v if math.isinf(v) else self.params.get(f"Q{k}") for k, v in q.items()}
+        if now == q:
+            return
+        self.cycle = drill_cycle(number, now, feed_scale=self.feed_scale, scale=self.scale, where=where,
+                                 column=column, spindle=self.spindle)
+        self.cycle_source = (number, now, self.cycle)
 
     def write_tool(self, number: int, column: int, value: float) -> None:
         """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
@@ -1027,11 +1051,13 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         if number in PATTERN_CYCLES:
             if q.get(365, 0.0):
                 m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
+            m.refresh_cycle(where, blk.column)
             pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
                                blk)
             return
         m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
                               spindle=m.spindle)
+        m.cycle_source = (number, q, m.cycle)
         return
     if sub in (None, 0):
         if number in LEGACY_CYCLES:

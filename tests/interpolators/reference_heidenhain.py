@@ -1195,10 +1195,23 @@ def _old_cycle(t: _Tnc, line: int, kind: str, p: dict, start: float) -> None:
         _move_z(t, line, "feed", start)
 
 
-def _run_cycle(t: _Tnc, line: int) -> None:
-    """The defined machining cycle at the current position."""
+def _called(t: _Tnc) -> None:
+    """A 200-series machining cycle (not the surface cycles 230-233) with its Q parameters' current values: a
+    cycle reads them when it is called (our reading of the TNC 640 ISO manual 34059x-01, 8.1, Q200-Q1199
+    "primarily used for cycles; globally effective", and of cycle 220, whose Q200/Q203/Q204 are effective for
+    the cycle it calls); a MAX feed stays."""
+    if t.cycle is not None and t.cycle[0].isdigit() and int(t.cycle[0]) >= 200 \
+            and t.cycle[0] not in ("230", "231", "232", "233"):
+        t.cycle = (t.cycle[0], {k: v if math.isinf(v) else t.q.get(k, v) for k, v in t.cycle[1].items()})
+
+
+def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
+    """The defined machining cycle at the current position (``fresh``: with its Q parameters as they are now;
+    a pattern passes its own)."""
     if t.cycle is None:
         raise ReferenceError("cycle call without a machining cycle")
+    if fresh:
+        _called(t)
     kind, p = t.cycle
     if kind == "12":
         _execute(t, t.resolve(p), t.resolve, called=True)
@@ -1998,6 +2011,7 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
 def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
+    _called(t)
     kind, cyc = t.cycle
     sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     for w in t.pattern:
@@ -2011,7 +2025,7 @@ def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
         if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
             t.emit(line, between, t.machine(here))
         t.cycle = (kind, p)
-        _run_cycle(t, line)
+        _run_cycle(t, line, fresh=False)
     t.cycle = (kind, cyc)
 
 
@@ -2032,6 +2046,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
                 for i in range(int(p["Q242"]))]
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
+    _called(t)
     kind, cyc = t.cycle
     sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
@@ -2042,7 +2057,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         last = k == len(points) - 1
         second = p["Q204"] if last or p.get("Q301", 0) else 0.0
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
-        _run_cycle(t, line)
+        _run_cycle(t, line, fresh=False)
     t.cycle = (kind, cyc)
 
 

@@ -86,3 +86,32 @@ def test_sysread_of_the_machine_status():
     with pytest.raises(GCodeError, match=r"ID10 NR1 IDX1' is not supported"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 FN 18: SYSREAD Q1 = ID10 NR1 IDX1\nEND PGM T MM\n", source="t.h",
                          context=ZERO)
+
+
+_DRILL = ("CYCL DEF 200 BOHREN ~\n Q200=+1 ;SICHERHEITS-ABST. ~\n Q201=-10 ;TIEFE ~\n Q206=100 ;VORSCHUB TIEFENZ. ~\n"
+          " Q202=+10 ;ZUSTELL-TIEFE ~\n Q210=0 ;VERWEILZEIT OBEN ~\n Q203=+0 ;KOOR. OBERFLAECHE ~\n"
+          " Q204=+5 ;2. SICHERHEITS-ABST. ~\n Q211=0 ;VERWEILZEIT UNTEN")
+
+
+def test_a_cycle_reads_its_q_parameters_when_called():
+    # an iTNC 530 training program defines cycle 200 (Q201=-10), runs it through a pattern in a label, then for
+    # the next drill writes 'Q201=-18' and calls the label again: the cycle parameters are Q parameters (TNC 640
+    # ISO manual, Q200-Q1199 "used for cycles"), read when the cycle is called (our reading); vcnc kept the
+    # definition's values. Three calls: Q201 -10; then -18 (two infeeds of Q202 = 10); then Q202 = 5 as well
+    prog = checked(f"1 TOOL CALL 1 Z S1000 F200\n2 L X+50 Y+50 Z+10 R0 FMAX\n3 {_DRILL}\n4 CYCL CALL\n5 Q201=-18\n"
+                   "6 CYCL CALL\n7 FN 0: Q202=+5\n8 L X+60 Y+50 R0 FMAX M99")
+    bottoms = [b.target[2] for b in prog.blocks if b.kind in ("line", "feed")]
+    assert np.allclose(bottoms, [-10, -10, -18, -5, -10, -15, -18])
+    assert np.allclose(prog.blocks[-1].target, [60, 50, 5])
+
+
+def test_a_pattern_in_a_label_called_again_with_a_deeper_hole():
+    # the program's form: CYCL DEF 200, then LBL 1 / CYCL DEF 220 (two holes on a circle) / LBL 0, then Q201=-18 and
+    # CALL LBL 1: the second run of the pattern drills to -18 at both positions
+    prog = checked(f"1 TOOL CALL 1 Z S1000 F200\n2 L X+60 Y+45 Z+1 R0 FMAX\n3 {_DRILL}\n4 LBL 1\n"
+                   "5 CYCL DEF 220 MUSTER KREIS ~\n Q216=+60 ~\n Q217=+45 ~\n Q244=+48 ~\n Q245=+0 ~\n Q246=+180 ~\n"
+                   " Q247=+180 ~\n Q241=+2 ~\n Q200=+1 ~\n Q203=+0 ~\n Q204=+1 ~\n Q301=+1 ~\n Q365=+0\n6 LBL 0\n"
+                   "7 Q201=-18\n8 CALL LBL 1")
+    feeds = [b for b in prog.blocks if b.kind in ("line", "feed")]
+    assert [round(float(b.target[2]), 6) for b in feeds] == [-10, -10, -10, -18, -10, -18]
+    assert np.allclose([b.target[0] for b in feeds][-2:], [36, 36])
