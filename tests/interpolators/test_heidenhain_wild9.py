@@ -115,3 +115,16 @@ def test_a_pattern_in_a_label_called_again_with_a_deeper_hole():
     feeds = [b for b in prog.blocks if b.kind in ("line", "feed")]
     assert [round(float(b.target[2]), 6) for b in feeds] == [-10, -10, -10, -18, -10, -18]
     assert np.allclose([b.target[0] for b in feeds][-2:], [36, 36])
+
+
+def test_bore_milling_without_an_infeed_per_helix_names_what_is_missing():
+    # a TNC simulator's German demo chamfers a hole with 'CYCL DEF 208 ;Bohrfraesen' and Q334=+0: the TNC 640 cycle
+    # manual allows 0 for Q334 but describes no run without an infeed per helix; the message said "must be > 0"
+    body = ("1 TOOL CALL 5 Z S1800 F1000\n2 CYCL DEF 208 ~\n Q200=+2 ~\n Q201=-1 ~\n Q206=+150 ~\n Q334=+0 ~\n"
+            " Q203=+20 ~\n Q204=+50 ~\n Q335=+8 ~\n Q342=+7.999 ~\n Q351=+1\n3 L X+0 Y+0 R0 FMAX M99")
+    with pytest.raises(GCodeError, match=r"t.h:3:3: cycle 208 with Q334=0 \(no infeed per helix\) is not modelled: "
+                                         r"no manual page found .*expected Q334 > 0 \[mm\]"):
+        parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", source="t.h", context=ZERO)
+    with pytest.raises(GCodeError, match=r"cycle 208: Q334 \(infeed per helix\) and Q335 \(diameter\) must be > 0"):
+        parse_heidenhain("0 BEGIN PGM T MM\n" + body.replace("Q334=+0", "Q334=-2") + "\nEND PGM T MM\n",
+                         source="t.h", context=ZERO)
