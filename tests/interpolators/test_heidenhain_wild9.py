@@ -128,3 +128,23 @@ def test_bore_milling_without_an_infeed_per_helix_names_what_is_missing():
     with pytest.raises(GCodeError, match=r"cycle 208: Q334 \(infeed per helix\) and Q335 \(diameter\) must be > 0"):
         parse_heidenhain("0 BEGIN PGM T MM\n" + body.replace("Q334=+0", "Q334=-2") + "\nEND PGM T MM\n",
                          source="t.h", context=ZERO)
+
+
+def test_a_negative_tool_radius_is_named_not_a_crash_or_a_hang():
+    # a TNC simulator's demo finishes a ramp with 'TOOL CALL 2 Z S2000 F5000 DL-0.536 DR-2' and 'L .. FMAX RL': with
+    # tool 2 not in the context's table, R + DR = -2; compensate() raised a bare InputError (no file, no line)
+    with pytest.raises(GCodeError, match=r"t.h:4:23: RL with a negative tool radius -2 mm \(the tool's radius R plus "
+                                         r"DR of its TOOL CALL\) is not modelled .*expected R \+ DR >= 0"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL CALL 2 Z S2000 F5000 DR-2\n2 L X+0 Y-10 Z+10 FMAX R0\n"
+                         "3 L X+0 Y-10 Z+9 FMAX RL\n4 L Y+60\n5 L Z+40 FMAX R0\nEND PGM T MM\n", source="t.h",
+                         context=ZERO)
+    # a pocket cycle stepped its rings by Q370 x R: with R < 0 inward for ever (the run hung)
+    pocket = ("1 TOOL CALL 2 Z S2000 F500 DR-2\n2 L X+0 Y+0 Z+10 R0 FMAX\n3 CYCL DEF 252 CIRCULAR POCKET ~\n"
+              " Q215=+0 ~\n Q223=+40 ~\n Q368=+0 ~\n Q207=+500 ~\n Q351=+1 ~\n Q201=-5 ~\n Q202=+5 ~\n Q369=+0 ~\n"
+              " Q206=+150 ~\n"
+              " Q338=+0 ~\n Q200=+2 ~\n Q203=+0 ~\n Q204=+50 ~\n Q370=+1 ~\n Q366=+0 ~\n Q385=+500\n4 CYCL CALL")
+    with pytest.raises(GCodeError, match=r"cycle 252 with a negative tool radius -2 mm .* is not modelled"):
+        parse_heidenhain("0 BEGIN PGM T MM\n" + pocket + "\nEND PGM T MM\n", source="t.h", context=ZERO)
+    # the same pocket with R + DR = 0 still runs: the plunge to -5 at the centre
+    prog = checked(pocket.replace("DR-2", "DR+0").replace("Q223=+40", "Q223=+10"))
+    assert any(math.isclose(b.target[2], -5.0) for b in prog.blocks)
