@@ -806,13 +806,16 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
 #: with ``;``, TNC 640 user's manual, "Programming fundamentals: NC blocks", "Inserting comments"):
 #: ``($Message("..."))``, the message command of the CNC Simulator program that its "Heidenhain" examples
 #: start with; a parenthesised ISO comment (the setup-sheet header ``( Einrichtblatt`` of a DNC export);
-#: an ISO block number ``N10`` before the block.
+#: an ISO block number ``N10`` before the block; an ISO G function (``G1 X10 Y26``: a training program's contour
+#: between APPR and DEP written in ISO, which a TNC runs only as a separate DIN/ISO program).
 _FOREIGN_LINES = (
     (re.compile(r"\(\s*\$MESSAGE\b", re.I), "'($Message(...))' is a command of the CNC Simulator program",
      "TNC conversational blocks (a message: FN 16 F-PRINT or a ';' comment)"),
     (re.compile(r"\("), "a '(...)' comment is ISO (DIN 66025) syntax", "a comment after ';'"),
     (re.compile(r"N\d+\s", re.I), "the block number {tok} is ISO (DIN 66025) syntax",
      "a TNC block number without N ('12 L X+10')"),
+    (re.compile(r"G\d+(?:\.\d+)?(?![\w.])", re.I), "the G function {tok} is ISO (DIN 66025) syntax",
+     "a conversational block (L for G0/G1, C or CR for G2/G3)"),
 )
 
 #: ``ERROR = L XQ102 + Q9``: the TNC keeps a block it cannot read when a program is read in (a file

@@ -148,3 +148,13 @@ def test_a_negative_tool_radius_is_named_not_a_crash_or_a_hang():
     # the same pocket with R + DR = 0 still runs: the plunge to -5 at the centre
     prog = checked(pocket.replace("DR-2", "DR+0").replace("Q223=+40", "Q223=+10"))
     assert any(math.isclose(b.target[2], -5.0) for b in prog.blocks)
+
+
+def test_iso_g_lines_in_a_conversational_program_are_named():
+    # a training program writes its contour between APPR LCT and DEP LCT as ISO lines (' G1 X10 Y26.045',
+    # ' G3 X51.908 Y70.652 I1.908 J9.816'): a TNC runs ISO only as a separate DIN/ISO program; the message said
+    # "unknown or unsupported block 'G1'"
+    with pytest.raises(GCodeError, match=r"t.h:3:2: the G function 'G1' is ISO \(DIN 66025\) syntax: not a TNC block; "
+                                         r"expected a conversational block \(L for G0/G1, C or CR for G2/G3\)"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L X-15 Y-15 Z1 R0 FMAX\n G1 X10 Y26.045\nEND PGM T MM\n",
+                         source="t.h", context=ZERO)
