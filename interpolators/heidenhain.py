@@ -576,12 +576,25 @@ class _Run:
 
     def run(self) -> str | None:
         """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
+        self.read_keywords()
         caller, self.m.runner = self.m.runner, self  # cycle 12 runs programs through the running program
         try:
             self.steps()
         finally:
             self.m.runner = caller
         return self.name
+
+    def read_keywords(self) -> None:
+        """Every block's keyword, before the first block runs: a block of no TNC language is an error even
+        where the flow never takes it (a simulator's tool-change macro jumps over its '##LANGUAGE AC' lines).
+        Our reading of the ``ERROR =`` marking: a TNC checks every block when it reads a program in and does
+        not run a program holding one it could not read."""
+        for i, blk in enumerate(self.blocks):
+            if i not in self.keywords:
+                k = _KEYWORD_RE.match(blk.code)
+                if k is None:
+                    _unknown_block(blk, blk.where(self.source))
+                self.keywords[i] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
 
     def fork(self) -> _Run:
         """A flow of its own over this program's blocks, allowed the blocks this one has left to run (the

@@ -158,3 +158,22 @@ def test_iso_g_lines_in_a_conversational_program_are_named():
                                          r"expected a conversational block \(L for G0/G1, C or CR for G2/G3\)"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 L X-15 Y-15 Z1 R0 FMAX\n G1 X10 Y26.045\nEND PGM T MM\n",
                          source="t.h", context=ZERO)
+
+
+def test_a_block_of_no_tnc_language_is_an_error_even_where_the_flow_never_goes():
+    # a simulator's tool-change macro jumps over its '##LANGUAGE AC' section when the prepared tool is the active
+    # one (FN 9 on ID20 NR2 = NR1); vcnc ran it with no error because it checks a block only when it runs it. Our
+    # reading of the control's 'ERROR =' marking: a TNC checks every block when it reads a program in
+    text = ("0 BEGIN PGM T MM\n1 FN 18: SYSREAD Q1000 = ID20 NR2\n2 FN 18: SYSREAD Q1001 = ID20 NR1\n"
+            "3 FN 9: IF +Q1000 EQU +Q1001 GOTO LBL \"NO_TOOLCHANGE\"\n##LANGUAGE AC\n4 LBL \"NO_TOOLCHANGE\"\n"
+            "5 L X+1 Y+2 Z+3 R0 FMAX\nEND PGM T MM\n")
+    with pytest.raises(GCodeError, match=r"t.h:5:1: unknown or unsupported block '##LANGUAGE'"):
+        parse_heidenhain(text, source="t.h", context=ZERO)
+    # without the foreign line the jump is taken: the one move
+    prog = checked(text.replace("##LANGUAGE AC\n", "").removeprefix("0 BEGIN PGM T MM\n").removesuffix(
+        "END PGM T MM\n"))
+    assert np.allclose([b.target for b in prog.blocks], [[1, 2, 3]])
+    # an ERROR = block after M30 (in the subprograms' part) is refused as well
+    with pytest.raises(GCodeError, match=r"t.h:4:3: a block the control marked 'ERROR ='"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L X+1 R0 FMAX\n2 M30\n3 ERROR = L XQ102\nEND PGM T MM\n", source="t.h",
+                         context=ZERO)
