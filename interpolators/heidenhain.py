@@ -94,7 +94,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
                                     machine coordinates; ID270: active coordinates) reads the
                                     simulated position (after a STOP, M0 or M1 with no move
                                     since: where the program stopped, noted; an operator's jog
-                                    is not modelled); ID20 NR1: the active tool's number; ID50
+                                    is not modelled); ID20 NR1: the active tool's number,
+                                    NR2 .. NR4 the prepared tool, tool axis, spindle speed;
+                                    ID10 NR1 inch = 1; ID50
                                     NR1/NR2 IDXt: L / R of tool t (TOOL DEF, else the tool table);
                                     NR3..NR5 (R2, DL, DR): 0, noted
     LBL 1 ... CALL LBL 1 REP 3      labels, subprograms, section repeats (REPQ5: the count in Q5)
@@ -287,6 +289,7 @@ class Machine:
         self.tool_length = 0.0
         self.tool_radius = 0.0
         self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
+        self.prepared_tool = 0  # the tool a TOOL DEF n pre-selected (FN 18 SYSREAD ID20 NR2); 0: none
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.shift = np.zeros(3)
         # the work offset of the context that is the active preset (cycle 247); None: a preset beyond them (zero)
@@ -302,6 +305,9 @@ class Machine:
         self.exact_stop = True
         self.tolerance: float | None = None
         self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
+        # the 200-series definition the cycle was built from: its number, Q parameters and the cycle built
+        # (refresh_cycle rebuilds it when a call finds the parameters changed)
+        self.cycle_source: tuple[int, dict[int, float], DrillCycle] | None = None
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float | dict[str, float]] = {}
@@ -406,6 +412,36 @@ class Machine:
             return self.tool_defs[number]
         tool = self.context.tool(number)
         return None if tool is None else (tool.length, tool.radius)
+
+    def system_datum(self, ident: int, nr: int) -> float:
+        """The machine status ``FN 18 SYSREAD IDi NRj`` reads (iTNC 530 technical manual 07/2013, 9.5.4 "Data
+        transfer NC > NC program (FN18: SYSREAD)", and the TNC 426/430 technical manual 12/2001, 7.3.4): ID10
+        NR1 mm = 0, inch = 1; ID20 NR2 the prepared tool number (of the last ``TOOL DEF n``: 0 before one, our
+        reading), NR3 the active tool axis 0 = X, 1 = Y, 2 = Z, NR4 the programmed spindle speed [rpm] (0 before
+        a ``TOOL CALL .. S``, our reading)."""
+        return {(10, 1): float(self.inch), (20, 2): float(self.prepared_tool), (20, 3): float(self.plane),
+                (20, 4): self.spindle or 0.0}[ident, nr]
+
+    def refresh_cycle(self, where: Where, column: int) -> None:
+        """The machining cycle of a 200-series definition with the values its Q parameters hold now.
+
+        The cycle parameters are Q parameters (TNC 640 ISO programming manual 34059x-01, 8.1: "Q200 to
+        Q1199: parameters that are primarily used for cycles; they are globally effective"); a definition
+        assigns them, and the pattern cycles 220/221 assign their Q200, Q203, Q204, which then "are
+        effective" for the machining cycle they call (TNC 320 cycle manual, cycle 220). Our reading: a cycle
+        reads its Q parameters when it is called, so an assignment between the definition and a call
+        (``Q201=-18`` before the next ``CYCL CALL``, as an iTNC 530 training program in wild set 9 deepens
+        its holes for a second drill) is the call's. A feed given as MAX keeps its value (the parameter
+        store holds finite values only)."""
+        if self.cycle_source is None or self.cycle is not self.cycle_source[2]:
+            return
+        number, q, _ = self.cycle_source
+        now = {k: v if math.isinf(v) else self.params.get(f"Q{k}") for k, v in q.items()}
+        if now == q:
+            return
+        self.cycle = drill_cycle(number, now, feed_scale=self.feed_scale, scale=self.scale, where=where,
+                                 column=column, spindle=self.spindle)
+        self.cycle_source = (number, now, self.cycle)
 
     def write_tool(self, number: int, column: int, value: float) -> None:
         """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
@@ -540,12 +576,25 @@ class _Run:
 
     def run(self) -> str | None:
         """Run to END PGM, M2/M30 or the last block; returns the program name of BEGIN PGM."""
+        self.read_keywords()
         caller, self.m.runner = self.m.runner, self  # cycle 12 runs programs through the running program
         try:
             self.steps()
         finally:
             self.m.runner = caller
         return self.name
+
+    def read_keywords(self) -> None:
+        """Every block's keyword, before the first block runs: a block of no TNC language is an error even
+        where the flow never takes it (a simulator's tool-change macro jumps over its '##LANGUAGE AC' lines).
+        Our reading of the ``ERROR =`` marking: a TNC checks every block when it reads a program in and does
+        not run a program holding one it could not read."""
+        for i, blk in enumerate(self.blocks):
+            if i not in self.keywords:
+                k = _KEYWORD_RE.match(blk.code)
+                if k is None:
+                    _unknown_block(blk, blk.where(self.source))
+                self.keywords[i] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
 
     def fork(self) -> _Run:
         """A flow of its own over this program's blocks, allowed the blocks this one has left to run (the
@@ -625,7 +674,7 @@ class _Run:
         if kw.startswith("FN"):
             jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
                                 scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at,
-                                tool_write=m.write_tool)
+                                tool_write=m.write_tool, system=m.system_datum)
             if jump is not None:
                 self.pc = self.labels.find(jump, where, column=col0, text=blk.code) + 1
         elif kw == "LBL":
@@ -770,13 +819,16 @@ def _unknown_block(blk: SourceBlock, where: Where) -> None:
 #: with ``;``, TNC 640 user's manual, "Programming fundamentals: NC blocks", "Inserting comments"):
 #: ``($Message("..."))``, the message command of the CNC Simulator program that its "Heidenhain" examples
 #: start with; a parenthesised ISO comment (the setup-sheet header ``( Einrichtblatt`` of a DNC export);
-#: an ISO block number ``N10`` before the block.
+#: an ISO block number ``N10`` before the block; an ISO G function (``G1 X10 Y26``: a training program's contour
+#: between APPR and DEP written in ISO, which a TNC runs only as a separate DIN/ISO program).
 _FOREIGN_LINES = (
     (re.compile(r"\(\s*\$MESSAGE\b", re.I), "'($Message(...))' is a command of the CNC Simulator program",
      "TNC conversational blocks (a message: FN 16 F-PRINT or a ';' comment)"),
     (re.compile(r"\("), "a '(...)' comment is ISO (DIN 66025) syntax", "a comment after ';'"),
     (re.compile(r"N\d+\s", re.I), "the block number {tok} is ISO (DIN 66025) syntax",
      "a TNC block number without N ('12 L X+10')"),
+    (re.compile(r"G\d+(?:\.\d+)?(?![\w.])", re.I), "the G function {tok} is ISO (DIN 66025) syntax",
+     "a conversational block (L for G0/G1, C or CR for G2/G3)"),
 )
 
 #: ``ERROR = L XQ102 + Q9``: the TNC keeps a block it cannot read when a program is read in (a file
@@ -863,6 +915,8 @@ def _tool_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> 
             tok = code[pos + tm.end():].split()[0]
             where.fail(f"unknown word {tok!r} after a tool name in TOOL DEF", column=blk.column + pos + tm.end(),
                        text=tok, expected="TOOL DEF \"name\" (a pre-selection)")
+        if tm.group(1)[0].isdigit():
+            m.prepared_tool = int(tm.group(1)[:9])
         m.note("TOOL DEF pre-selection: no motion")
         return
     length = radius = 0.0
@@ -1013,11 +1067,13 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         if number in PATTERN_CYCLES:
             if q.get(365, 0.0):
                 m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
+            m.refresh_cycle(where, blk.column)
             pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
                                blk)
             return
         m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
                               spindle=m.spindle)
+        m.cycle_source = (number, q, m.cycle)
         return
     if sub in (None, 0):
         if number in LEGACY_CYCLES:

@@ -31,6 +31,12 @@ def set_compensation(word: Word, m: Machine, where: Where) -> bool:
     if comp != "R0" and m.comp != "R0":
         where.fail(f"{comp} while {m.comp} is active", column=word.column, text=word.text,
                    expected="R0 between RL and RR")
+    if comp != "R0" and m.tool_radius < 0:
+        # R + DR below zero (a TNC simulator's demo: DR-2 on a tool the context's table does not hold, radius
+        # 0); no manual page found says which side, if any, the control then compensates on
+        where.fail(f"{comp} with a negative tool radius {m.tool_radius:g} mm (the tool's radius R plus DR of its "
+                   "TOOL CALL) is not modelled", column=word.column, text=word.text,
+                   expected="R + DR >= 0: the tool in the machine context's tool table or a TOOL DEF n L.. R..")
     m.comp = comp
     if comp == "R0":
         return True

@@ -77,6 +77,7 @@ def position_call(words: list[Word], m: Machine, where: Where, blk: SourceBlock)
     """
     if m.cycle_program is not None:
         _program_cycle_elsewhere(where, blk)
+    m.refresh_cycle(where, blk.column)
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
@@ -121,6 +122,7 @@ def cycle_call(m: Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray |
             _program_cycle_elsewhere(where, blk)
         m.runner.run_program(*m.cycle_program, where)
         return
+    m.refresh_cycle(where, blk.column)
     if m.cycle is None:
         where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
                    expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")

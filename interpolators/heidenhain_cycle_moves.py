@@ -61,6 +61,11 @@ def run_hole(m: Machine, c: DrillCycle, surface: float, where: Where, blk: Sourc
     """The moves of cycle ``c`` at the current position in the plane (210, 212-215: about their centre Q216, Q217,
     reached at the clearance height first), ``surface`` [mm, machine]."""
     axis = m.plane
+    if m.tool_radius < 0 and (c.number == 208 or c.number in THREAD_CYCLES or c.shape >= 251):
+        # a cycle milling about the tool's radius with R + DR below zero: its rings would step inward for ever
+        where.fail(f"cycle {c.number} with a negative tool radius {m.tool_radius:g} mm (the tool's radius R plus DR "
+                   "of its TOOL CALL) is not modelled", column=blk.column, text=blk.code,
+                   expected="R + DR >= 0: the tool in the machine context's tool table or a TOOL DEF n L.. R..")
     if c.number == 208:
         _bore_milling(m, c, surface, where, blk)
         return

@@ -619,6 +619,12 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
     if number == 240:
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, **base), where, column)
     if number == 208:
+        if q[334] == 0 and q[335] > 0:
+            # the TNC 640 cycle manual gives Q334 the input range 0 .. 99999.9999 but no run without an infeed
+            # per helix (a TNC simulator's demo program chamfers with Q334=0 and a 1 mm depth)
+            where.fail("cycle 208 with Q334=0 (no infeed per helix) is not modelled: no manual page found says how "
+                       "the control reaches the depth then", column=column, text=where.text,
+                       expected="Q334 > 0 [mm] (the depth per helix turn)")
         if not q[334] > 0 or not q[335] > 0:
             where.fail("cycle 208: Q334 (infeed per helix) and Q335 (diameter) must be > 0", column=column,
                        text=where.text, expected="Q334 > 0 and Q335 > 0 [mm]")

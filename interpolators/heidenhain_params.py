@@ -19,7 +19,9 @@ Semantics follow the HEIDENHAIN TNC user's manuals, chapter "Programming: Q para
   ``FN 18: SYSREAD Qn = ID240 NR1 IDXi`` (nominal position, machine coordinates) and
   ``ID270 NR1 IDXi`` (position in the active coordinate system) read the simulated position:
   a simulation has no operator jogging the axes at a ``STOP``, so programs that measure
-  positions set by hand read the position where the program left the tool.
+  positions set by hand read the position where the program left the tool. The machine status
+  ``ID10 NR1`` (inch), ``ID20 NR1 .. NR4`` (active and prepared tool, tool axis, spindle speed) is the
+  reader's (:data:`MACHINE_STATUS`).
 * ``FN 17: SYSWRITE IDi NRj [IDXk] = value`` writes system data: the tool table's length and radius
   (ID50 NR1, NR2) as a ``TOOL DEF`` does; other data vcnc does not hold are noted and not written
   (:func:`run_function`).
@@ -39,7 +41,7 @@ from interpolators._words import MAX_MAGNITUDE, Where
 from interpolators.heidenhain_formulas import Compiled, FormulaSyntaxError, compile_formula
 from interpolators.heidenhain_labels import LABEL_RE, label_key
 
-__all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "Q_NAME_RE", "run_function"]
+__all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "MACHINE_STATUS", "Q_NAME_RE", "run_function"]
 
 #: A parameter name: ``Q12``, ``QL3``, ``QR7``.
 Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
@@ -202,7 +204,8 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
                  origin: np.ndarray, scale: float, note: Callable[[str], None],
                  tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None),
                  stopped_at: int | None = None,
-                 tool_write: Callable[[int, int, float], None] | None = None) -> str | None:
+                 tool_write: Callable[[int, int, float], None] | None = None,
+                 system: Callable[[int, int], float] | None = None) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 
     Parameters
@@ -222,6 +225,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
     tool_write : callable or None
         For ``FN 17 SYSWRITE ID50 NR1`` / ``NR2``: receives the tool number, 1 (length) or 2 (radius) and
         the value [mm]; None: such a write is an error.
+    system : callable or None
+        For ``FN 18 SYSREAD`` of the machine status (:data:`MACHINE_STATUS`): the value of ``(ID, NR)``;
+        None: such a read is an error.
 
     Returns
     -------
@@ -278,7 +284,7 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
                    expected="a program run without FN 14")
     if n == 18:
         _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool,
-                 stopped_at=stopped_at)
+                 stopped_at=stopped_at, system=system)
         return None
     if n == 17:
         _syswrite(rest, params, where, col, scale=scale, note=note, tool_write=tool_write)
@@ -342,7 +348,12 @@ def _syswrite(rest: str, params: QParameters, where: Where, col: int, *, scale: 
 
 _SYSREAD_RE = re.compile(r"\s*SYSREAD\s+(Q[LR]?\d+)\s*=\s*ID\s*(\d+)\s+NR\s*(\d+)(?:\s+IDX\s*(\d+|Q[LR]?\d+))?\s*$",
                          re.I)
+#: The machine status ``FN 18 SYSREAD IDi NRj`` reads (no index): (ID, NR) -> what it is (iTNC 530 technical manual
+#: 07/2013, 9.5.4, groups 10 "Program information" and 20 "Machine status"; ID20 NR1 the active tool apart).
+MACHINE_STATUS = {(10, 1): "mm = 0, inch = 1", (20, 2): "prepared tool number", (20, 3): "active tool axis",
+                  (20, 4): "programmed spindle speed"}
 _SYSREAD_EXPECTED = ("SYSREAD Qn = ID240 NR1 IDX1..3 or ID270 NR1 IDX1..3 (nominal position), ID20 NR1 (active tool) "
+                     "NR2..NR4 (prepared tool, tool axis, spindle speed), ID10 NR1 (inch) "
                      "or ID50 NR1..NR23 IDXt (tool t's columns L, R, R2, DL, DR .. TT data)")
 #: The tool-table columns of ``FN 18 SYSREAD ID50 NR3 .. NR23`` (NR1 L and NR2 R are read from the table), as the
 #: TNC 426/430 technical manual's table of system data lists them ("Data from the tool table", group 50).
@@ -354,7 +365,8 @@ _ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR", 6: "DR2", 7: "TL, tool locked", 8: "
 
 def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
              scale: float, note: Callable[[str], None],
-             tool: tuple[int, Callable[[int], tuple[float, float] | None]], stopped_at: int | None) -> None:
+             tool: tuple[int, Callable[[int], tuple[float, float] | None]], stopped_at: int | None,
+             system: Callable[[int, int], float] | None = None) -> None:
     """``FN 18: SYSREAD Qn = IDi NRj [IDXk]`` (TNC 640 user's manual, "FN 18: SYSREAD", the table of system
     data): ID240 NR1 / ID270 NR1 IDX1..3 the nominal position in machine / active coordinates (as simulated);
     ID20 NR1 the number of the active tool; ID50 NR1 / NR2 IDXt the length / radius L, R of tool t in the tool
@@ -364,6 +376,7 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     technical manual's table of system data, group 50 "Data from the tool table", as a shop's tool-copy macro
     comments NR3 - NR5: Stugo/Heidenhain Tool-copy.h), 0 with a note: vcnc's tool table
     (:class:`interpolators.context.Tool`) has no such columns.
+    The machine status of :data:`MACHINE_STATUS` (ID10 NR1, ID20 NR2 .. NR4) is what ``system`` gives.
     The index may be a Q parameter (``IDXQ11``).
 
     A position read after a program stop with no move since (``stopped_at``): a measuring program stops
@@ -378,12 +391,15 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     if sm is not None and sm.group(4) is not None:
         idx = sm.group(4)
         idx = params.get(idx) if idx[0] in "qQ" else float(idx[:9])
-    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2), *((50, nr) for nr in _ID50_COLUMNS)}
-    if sm is None or (ident, nr) not in known or (idx is None) != (ident == 20) \
+    known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2), *((50, nr) for nr in _ID50_COLUMNS),
+             *(MACHINE_STATUS if system is not None else ())}
+    if sm is None or (ident, nr) not in known or (idx is None) != (ident in (10, 20)) \
             or (ident in (240, 270) and idx not in (1.0, 2.0, 3.0)):
         where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),
                    expected=_SYSREAD_EXPECTED)
-    if ident == 20:
+    if (ident, nr) in MACHINE_STATUS:
+        value = system(ident, nr)
+    elif ident == 20:
         value = float(tool[0])
     elif ident == 50:
         if not (idx >= 0 and idx == int(idx)):
@@ -407,7 +423,7 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
                  "a jog by the operator is not modelled")
         else:
             note("FN 18 SYSREAD: positions read as simulated")
-    params.set(sm.group(1), value / scale if ident != 20 else value, where, column=col)
+    params.set(sm.group(1), value / scale if ident in (50, 240, 270) else value, where, column=col)
 
 
 def _two_operands(body: str, op: str, params: QParameters, where: Where, column: int) -> tuple[float, float]:

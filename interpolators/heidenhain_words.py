@@ -331,7 +331,7 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             if re.fullmatch(r"S\s*[+-]?[\d.]+", tok, re.I):  # an ISO post's spindle speed on a positioning block
                 where.fail(f"spindle speed {tok!r} in a positioning block", column=col, text=tok,
                            expected=SPEED_EXPECTED)
-            where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
+            _unknown_word(tok, col, where)
         kind = m.lastgroup
         tok = m.group(0)
         end = m.end()
@@ -368,7 +368,16 @@ def read_words(code: str, pos: int, where: Where, params: QParameters, *, column
             value, end = read_value(code, end, where, params, what=key, column0=column0)
             out.append(Word(key, value, col, code[pos:end].strip()))
         if end < n and code[end] not in " \t":
-            tok = token_at(code, pos)
-            where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
+            _unknown_word(token_at(code, pos), col, where)
         pos = end
     return out
+
+
+def _unknown_word(tok: str, col: int, where: Where) -> None:
+    """Fail on the word ``tok`` the block cannot hold. ``RO`` (the letter O: a hand-written warm-up
+    program in a wild set wrote it) is named as the radius compensation R0 (digit zero) it stands for
+    (TNC 640 user's manual, "Radius compensation": R0, RL, RR)."""
+    if tok.upper() == "RO":
+        where.fail(f"unknown word {tok!r}: no radius compensation is written with the letter O", column=col,
+                   text=tok, expected="R0 (with the digit zero), RL or RR")
+    where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)

@@ -29,7 +29,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   ``SIN``, ``COS``, ``LEN``, ``ANG``), formulas
   with ``+ - * / ^``, parentheses and the functions ``SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT NEG FRAC
   LN LOG EXP``; ``FN 9``-``FN 12`` (``EQU NE GT LT``) jumps; ``FN 18 SYSREAD ID270 NR1 IDXn`` (position
-  in the active system) and ``ID240 NR1 IDXn`` (position in the machine system); ``FN 15 PRINT`` and ``FN 16
+  in the active system), ``ID240 NR1 IDXn`` (position in the machine system), ``ID20 NR1 .. NR4`` (active and
+  prepared tool, tool axis, spindle speed) and ``ID10 NR1`` (inch); ``FN 15 PRINT`` and ``FN 16
   F-PRINT`` have no effect; ``FN 17 SYSWRITE ID50 NR1/NR2 IDXt`` sets tool t's length / radius as a
   ``TOOL DEF`` (other system data: no effect).
 - Labels: ``CALL LBL n REP k`` (``REPQ13``: k in a Q parameter): the section from ``LBL n`` repeated k
@@ -256,6 +257,8 @@ class _Tnc:
         self.entry = False
         self.tool_defs: dict[int, tuple[float, float]] = {}
         self.tool = 0  # the active tool number (FN 18 ID20 NR1)
+        self.prepared = 0  # the tool a TOOL DEF n alone pre-selected (FN 18 ID20 NR2)
+        self.speed = 0.0  # S of the last TOOL CALL [rpm] (FN 18 ID20 NR4)
         self.pole = np.zeros(3)  # program coordinates [mm]
         self.pole_axes = (0, 1)  # the circle's plane (reference axis, second axis): XY, or ZX / YZ after CC X Z / Y Z
         self.q: dict[str, float] = {}
@@ -1192,10 +1195,23 @@ def _old_cycle(t: _Tnc, line: int, kind: str, p: dict, start: float) -> None:
         _move_z(t, line, "feed", start)
 
 
-def _run_cycle(t: _Tnc, line: int) -> None:
-    """The defined machining cycle at the current position."""
+def _called(t: _Tnc) -> None:
+    """A 200-series machining cycle (not the surface cycles 230-233) with its Q parameters' current values: a
+    cycle reads them when it is called (our reading of the TNC 640 ISO manual 34059x-01, 8.1, Q200-Q1199
+    "primarily used for cycles; globally effective", and of cycle 220, whose Q200/Q203/Q204 are effective for
+    the cycle it calls); a MAX feed stays."""
+    if t.cycle is not None and t.cycle[0].isdigit() and int(t.cycle[0]) >= 200 \
+            and t.cycle[0] not in ("230", "231", "232", "233"):
+        t.cycle = (t.cycle[0], {k: v if math.isinf(v) else t.q.get(k, v) for k, v in t.cycle[1].items()})
+
+
+def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
+    """The defined machining cycle at the current position (``fresh``: with its Q parameters as they are now;
+    a pattern passes its own)."""
     if t.cycle is None:
         raise ReferenceError("cycle call without a machining cycle")
+    if fresh:
+        _called(t)
     kind, p = t.cycle
     if kind == "12":
         _execute(t, t.resolve(p), t.resolve, called=True)
@@ -1995,6 +2011,7 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
 def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
+    _called(t)
     kind, cyc = t.cycle
     sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     for w in t.pattern:
@@ -2008,7 +2025,7 @@ def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
         if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
             t.emit(line, between, t.machine(here))
         t.cycle = (kind, p)
-        _run_cycle(t, line)
+        _run_cycle(t, line, fresh=False)
     t.cycle = (kind, cyc)
 
 
@@ -2029,6 +2046,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
                 for i in range(int(p["Q242"]))]
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
+    _called(t)
     kind, cyc = t.cycle
     sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
@@ -2039,7 +2057,7 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
         last = k == len(points) - 1
         second = p["Q204"] if last or p.get("Q301", 0) else 0.0
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
-        _run_cycle(t, line)
+        _run_cycle(t, line, fresh=False)
     t.cycle = (kind, cyc)
 
 
@@ -2214,6 +2232,9 @@ def _tool(t: _Tnc, text: str) -> None:
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
+    s = re.search(r"\bS\s*([-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", rest) if m.group(1) == "CALL" else None
+    if s:
+        t.speed = _val(s.group(1).replace(" ", ""), t.q)
     if m.group(2) is None:  # TOOL CALL Z S..: the tool axis (only Z here), speed and feed
         if re.match(r"\s*[XY]\b", rest):
             raise ReferenceError(f"tool axis in {text!r}")
@@ -2234,6 +2255,8 @@ def _tool(t: _Tnc, text: str) -> None:
     if m.group(1) == "DEF":  # in the program's unit (an INCH program's TOOL DEF in inches)
         if re.search(r"\b[LR]\s*[-+]?\s*[\dQ.]", rest):  # TOOL DEF n alone pre-selects the next tool (TNC 640
             t.tool_defs[number] = (word("L") * t.scale, word("R") * t.scale)  # manual): the table's L and R stay
+        elif not m.group(2).startswith('"'):
+            t.prepared = number
         return
     axis = re.match(r"\s*([XYZ])\b", rest)
     if axis and axis.group(1) != "Z":
@@ -2301,6 +2324,10 @@ def _fn(t: _Tnc, text: str) -> str | None:
         q, ident, nr, idx = m2.groups()
         if ident == "20" and nr == "1":  # the active tool's number
             t.q[q] = float(t.tool)
+        elif (ident, nr) in (("20", "2"), ("20", "3"), ("20", "4"), ("10", "1")):
+            # iTNC 530 technical manual 07/2013, 9.5.4 (FN18: SYSREAD): ID20 NR2 the prepared tool, NR3 the tool
+            # axis (0 = X, 1 = Y, 2 = Z: only Z here), NR4 the programmed spindle speed; ID10 NR1 inch = 1
+            t.q[q] = {"2": float(t.prepared), "3": 2.0, "4": t.speed}[nr] if ident == "20" else float(t.scale != 1.0)
         elif ident == "50" and nr in ("1", "2"):  # L / R of tool IDX: the program's TOOL DEF, else the table
             n = int(_val(idx, t.q))
             tool = t.ctx.tool(n)
