@@ -206,7 +206,7 @@ from interpolators.heidenhain_probing import PROBE_CYCLES, PROBE_RE, probe_run, 
 from interpolators.heidenhain_programs import CALL_PGM_RE, SEL_PGM_RE, find_program
 from interpolators.heidenhain_strings import QS_NAME_RE, StringParameters
 from interpolators.heidenhain_surfaces import SURFACE_CYCLES, surface_cycle
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, function_tcpm
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, function_tcpm, tilt_turns
 from interpolators.heidenhain_transforms import (
     KINEMATICS_HINT,
     TRANSFORM_CYCLES,
@@ -474,7 +474,7 @@ class Machine:
         if self.tcpm and not self.tcpm_move:
             where.fail("a move under M128 other than a straight line L (an arc, a cycle, an approach) is not "
                        "supported", column=1, text=where.text, expected=TCPM_EXPECTED)
-        if self.tilt is not None:
+        if self.tilt is not None and not (self.tcpm and not tilt_turns(self.tilt)):
             self.check_tilt(target, self.extra if extra is None else extra, where)
         if self.plunge is not None and kind in ("line", "arc") and segment is not None and segment.length > 0:
             down = float(self.pos[self.plane] - np.asarray(target, dtype=float)[self.plane])  # toward the part: -

@@ -37,7 +37,7 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_targets import plane_coords, program_target
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tool_vector
+from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tilt_turns, tool_vector
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
@@ -170,7 +170,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         _path_m(w, m, where)
         return False
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where,
+        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where,
                       column=w.column, text=w.text)
         m.tcpm = True
         m.note("M128: TCPM (lines of the tool tip on the turned part)")
@@ -532,7 +532,7 @@ def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine
     if kw != "L" or waiting is not None:
         where.fail(f"{waiting or kw} under M128 is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)
-    if m.tilt is not None:  # a PLANE .. STAY after M128
+    if tilt_turns(m.tilt):  # a PLANE .. STAY after M128
         where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}

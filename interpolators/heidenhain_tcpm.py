@@ -23,12 +23,13 @@ change the feed rate of the tool relative to the workpiece"; the F after M128, t
 movements, is noted and ignored) and ``FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS`` (:func:`function_tcpm`).
 ``LN X Y Z NX NY NZ TX TY TZ`` under it is the tool-vector form (:func:`tool_vector`): the rotary axes turn to
 make T the spindle's axis, moving linearly to it, the part point displaced along N by the delta values. An arc,
-a polar, approach or compensated block, a cycle, a tilted plane, a head-tilting machine or a tool axis other
-than Z are errors naming them.
+a polar, approach or compensated block, a cycle, a tilted plane that turns (:func:`tilt_turns`), a head-tilting
+machine or a tool axis other than Z are errors naming them.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from typing import TYPE_CHECKING
 
@@ -41,13 +42,14 @@ from toolpaths.geometry import Line
 
 if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
+    from interpolators.heidenhain_transforms import TiltedPlane
 
-__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line", "tool_vector"]
+__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line", "tilt_turns", "tool_vector"]
 
 #: What M128 / FUNCTION TCPM need here.
 TCPM_EXPECTED = ("M128 or FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS on a machine whose rotary axes turn the part "
-                 "([program.kinematics] kind = \"table\"), tool axis Z, no tilted plane, straight lines L until "
-                 "M129 / FUNCTION RESET TCPM")
+                 "([program.kinematics] kind = \"table\"), tool axis Z, no tilted plane that turns the "
+                 "workpiece coordinates, straight lines L until M129 / FUNCTION RESET TCPM")
 
 #: The words of FUNCTION TCPM and what vcnc reads of each (None: read as M128 does).
 _TCPM_WORDS = {
@@ -60,6 +62,21 @@ _TCPM_WORDS = {
 }
 _TCPM_WORD_RE = re.compile(r"\s*(F\s+(?:TCP|CONT)|AXIS\s+(?:POS|SPAT)|PATHCTRL\s+(?:AXIS|VECTOR)|"
                            r"REFPNT\s+(?:TIP-TIP|TIP-CENTER|CENTER-CENTER))\b", re.I)
+
+
+def tilt_turns(tilt: TiltedPlane | None) -> bool:
+    """True when the tilted working plane ``tilt`` turns the workpiece coordinates: a rotation other than the
+    identity, or rotary positions other than 0 (a whole turn apart is 0).
+
+    Our reading: a PLANE whose working plane is the untilted one at rotary positions 0 (``PLANE VECTOR BX1 BY0
+    BZ0 NX0 NY0 NZ1 STAY .. TABLE ROT``, which a CAM post of wild set 5x writes before every operation, then
+    ``L Z40 R0 F30000 M128``) leaves the tilted coordinates those of the workpiece, so M128 reads its lines as
+    with no plane; a plane that turns them (TNC 640 user's manual, "Inclined-tool machining in a tilted plane":
+    M128 in a tilted plane) is not modelled."""
+    if tilt is None:
+        return False
+    return (not np.allclose(tilt.rotation, np.eye(3), atol=1e-12)
+            or any(abs(math.remainder(a, 360.0)) > 1e-9 for a in tilt.angles.values()))
 
 
 def check_tcpm_on(kinematics: Kinematics | None, *, tool_axis: int, tilted: bool, where: Where, column: int,
@@ -105,7 +122,7 @@ def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
             where.fail(f"FUNCTION TCPM {word}: {_TCPM_WORDS[word]}", column=column + wm.start(1), text=wm.group(1),
                        expected=TCPM_EXPECTED)
         pos = wm.end()
-    check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=m.tilt is not None, where=where, column=column,
+    check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where, column=column,
                   text="FUNCTION TCPM")
     m.tcpm = True
     m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)")

@@ -191,17 +191,19 @@ _WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCU
 #: M functions with parameters after them (TNC 640 / TNC 426 user's manuals): M94 [axis], M103 F.., M112 T.. A..,
 #: M118 X.. Y.., M120 LA.., M124 T.., M138 [axes]; their words are M's, not the block's.
 _M_WITH_WORDS = re.compile(r"\bM(94|138)((?:\s+[ABC](?![\w+.-]))*)"
-                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))*)",
+                           r"|\bM(103|112|118|120|124)((?:\s*(?:LA|[FTAEHXYZABCUVW])\s*[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))*)"
+                           r"|\bM(128)(\s*F\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))",
                            re.I)
 
 
 def _m_words(rest: str, q: dict) -> tuple[str, dict[int, dict[str, float | None]]]:
-    """``rest`` with the parameters of M94/M103/M112/M118/M120/M124/M138 removed, and those by M number."""
+    """``rest`` with the parameters of M94/M103/M112/M118/M120/M124/M138 and the F of M128 (the feed of its
+    compensation movements, TNC 640 manual, M128) removed, and those by M number."""
     found: dict[int, dict[str, float | None]] = {}
 
     def take(mm: re.Match) -> str:
-        number = int(mm.group(1) or mm.group(3))
-        words = mm.group(2) if mm.group(1) else mm.group(4)
+        number = int(mm.group(1) or mm.group(3) or mm.group(5))
+        words = mm.group(2) if mm.group(1) else mm.group(4) if mm.group(3) else mm.group(6)
         if number in (94, 138):  # axis letters alone
             found[number] = {a.upper(): None for a in re.findall(r"[ABC]", words or "", re.I)}
         else:
@@ -300,9 +302,10 @@ class _Tnc:
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
 
     def origin(self) -> np.ndarray:
-        if self.tilt is not None:  # the tilted zero on the tilted table (cycle 7 shifts within the plane)
-            return self.machine(np.zeros(3))
-        o = self.preset_point() + self.shift
+        if self.tilt is not None and not self.tcpm:  # the tilted zero on the tilted table (cycle 7 shifts within
+            return self.machine(np.zeros(3))     # the plane)
+        # under M128 in a plane that does not turn (_tcpm_switch): its zero on the part, as the untilted one
+        o = self.preset_point() + (self.base + self.tilt @ self.shift if self.tilt is not None else self.shift)
         o[2] += self.length
         return o
 
@@ -556,6 +559,9 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
     if 128 in ms:
         if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
             raise ReferenceError("M128 without a tilting table")
+        if t.tilt is not None and (not np.allclose(t.tilt, np.eye(3))
+                                   or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in t.tilt_angles.values())):
+            raise ReferenceError("M128 in a tilted plane that turns the workpiece coordinates")
         t.tcpm = True
     if 129 in ms:
         t.tcpm = False
