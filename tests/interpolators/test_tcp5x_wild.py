@@ -16,10 +16,12 @@ START, END = np.array([20.0, 5.0, 0.0]), np.array([50.0, 15.0, 5.0])
 MOVE = "L X+10 Y+0 Z+0 F600\n{m128}\nL X+40 Y+10 Z+5 B+30 C+45"
 
 
-def test_the_f_of_an_m128_block_is_not_the_path_feed():
-    # 'M128 FQ20' (a German CAM post): the F is the feed of M128's compensation movements (TNC 640 manual,
-    # M128), so the line after it keeps F600: 10 mm/s of the tip on the part
-    prog = tnc("FN 0: Q20 = +10000\n" + MOVE.format(m128="M128 FQ20"))
+@pytest.mark.parametrize("m128", ["M128 FQ20", "L Z+0 F600 M128 F5000"])
+def test_the_f_of_an_m128_block_is_not_the_path_feed(m128):
+    # 'M128 FQ20' (a German CAM post), 'L .. M128 F..' (the iTNC 530 manual's example): the F after M128 is the
+    # feed of its compensation movements (TNC 640 manual, M128), so the line after it keeps F600: 10 mm/s of
+    # the tip on the part
+    prog = tnc("FN 0: Q20 = +10000\n" + MOVE.format(m128=m128))
     chords = [b for b in prog.blocks if b.extra_target is not None and b.extra_target[2] != 0.0]
     assert chords[-1].target == pytest.approx(machine(BC, END, Solution(30.0, 45.0)), abs=1e-9)
     assert block_seconds(chords) == pytest.approx(np.linalg.norm(END - START) / 10.0, rel=1e-9)
