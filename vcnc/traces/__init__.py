@@ -21,6 +21,7 @@ from pathlib import Path
 from vcnc.core.capture import Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
 from vcnc.traces import emps, sinumerik, tncscope
+from vcnc.traces.columns import within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
     looks_like_halscope,
@@ -130,12 +131,21 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
                            "<traceDataRoot>); export the trace from SINUMERIK Operate's trace, or give a text export",
                            file=str(p))
     if fmt == "emps-mat":
-        return read_emps_mat(p)
-    if fmt == "tncscope":
-        return read_tncscope(p, resample=resample)
-    if fmt == "sinumerik":
-        return read_sinumerik(p, axes=tuple(axes) if axes else None)
-    if fmt == "capture-csv" and not delimited_options:
-        return read_capture_csv(p)
-    return read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample,
-                          sample_time=sample_time)
+        cap = read_emps_mat(p)
+    elif fmt == "tncscope":
+        cap = read_tncscope(p, resample=resample)
+    elif fmt == "sinumerik":
+        cap = read_sinumerik(p, axes=tuple(axes) if axes else None)
+    elif fmt == "capture-csv" and not delimited_options:
+        cap = read_capture_csv(p)
+    else:
+        cap = read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample,
+                             sample_time=sample_time)
+    # every reader's numbers, whatever its format: finite and within a machine's reach (the delimited reader
+    # names the file's line; this names the sample)
+    within_reach(cap.t, "time", "s", str(p))
+    for name in ("reference", "measured"):
+        values = getattr(cap, name)
+        for j, axis in enumerate(cap.axes):
+            within_reach(values[:, j], f"the {name} position of axis {axis}", "mm or deg", str(p))
+    return cap

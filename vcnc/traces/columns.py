@@ -30,7 +30,7 @@ from vcnc.traces.lag import subtract_following_error
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
            "unit_in_name", "unit_named", "length_unit", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
-           "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS"]
+           "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS", "REACH", "within_reach"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -366,3 +366,22 @@ def on_uniform_grid(t: np.ndarray, values: Sequence[np.ndarray], src: str, row_l
     how = (f"linear, onto a {ts:.6g} s step from {t.size} samples with steps of {float(dt.min()):.6g} to "
            f"{float(dt.max()):.6g} s")
     return grid, out, {"resampled": how}
+
+
+#: Largest magnitude of a position [mm, deg] or time [s] a trace may hold: far beyond any machine's travel or
+#: recording, and far below where the squares and sums of the lag and identification overflow (1e154).
+REACH = 1e15
+
+
+def within_reach(values: np.ndarray, what: str, unit: str, src: str | None, row_lines: Sequence[int] | None = None
+                 ) -> None:
+    """CaptureError naming the first row (its file line, from ``row_lines``; else the sample) whose value (after
+    its unit's scaling) is not finite or beyond :data:`REACH`: a number no trace of a machine holds (a corrupted
+    cell, or a unit far off)."""
+    bad = np.flatnonzero(~(np.abs(values) <= REACH))
+    if bad.size:
+        k = int(bad[0])
+        where = "in this row" if row_lines is not None else f"at sample {k}"
+        raise CaptureError(f"{what} is {values[k]:.6g} {unit} {where}, beyond any machine's travel or recording "
+                           f"({REACH:g}): a corrupted number, or a unit far off", file=src,
+                           line=None if row_lines is None else row_lines[k])

@@ -82,6 +82,7 @@ from vcnc.traces.columns import (
     unit_in_name,
     unit_named,
     with_following_errors,
+    within_reach,
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
@@ -422,7 +423,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     else:  # a column of sample numbers, or none: the row's place
         t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
-        t = np.round(t - t[0], 6)
+        with np.errstate(over="ignore", invalid="ignore"):
+            t = np.round(t - t[0], 6)
+    within_reach(t, f"time {columns.get('t', 'row number')!r}", "s", src, lines_kept)
     _increasing(t, src, lines_kept)
     if sample_time is None and not stamped:
         t, rounded = _rounded_stamps(t, lambda: [_split(lines[n - 1], delimiter)[idx["t"]] for n in lines_kept],
@@ -433,7 +436,10 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         _check_guessed_time(t, columns["t"], time_known, src, hline)
 
     def scaled(k: str) -> np.ndarray:
-        return d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
+        with np.errstate(over="ignore"):
+            values = d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
+        within_reach(values, f"{columns[k]!r} ({units[k] or 'mm'})", "mm or deg", src, lines_kept)
+        return values
 
     t, (ref, second), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
                                                np.column_stack([scaled(a if a in idx else a + LAG_SUFFIX)
