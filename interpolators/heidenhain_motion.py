@@ -307,8 +307,11 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
-    ended = any(_one_m(w, m, where) for w in ms)
+    # M129 ends M128 at the end of its block (TNC 426/430 ISO manual, M128: "M128 becomes effective at the start
+    # of block, M129 at the end of block"): a line with M129 is still one of the tip on the turned part
+    ended = any(_one_m(w, m, where) for w in ms if w.value != 129)
     if kw == "CC":
+        m.tcpm = m.tcpm and 129 not in mvals
         _pole(seen, m, where, m9x)
         return ended
     normal, kw = kw == "LN", "L" if kw == "LN" else kw  # LN: a line to a point displaced along the normal
@@ -383,6 +386,7 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     if exit_run:  # the R0 block ends the run at its programmed point, also with only the tool axis in it
         finish_compensation(m, closed=True)
     _retract_and_call(seen, mvals, m, where, blk, positioned=kw in ("L", "LP") and bool(written))
+    m.tcpm = m.tcpm and 129 not in mvals
     return ended
 
 

@@ -408,7 +408,7 @@ def _comp_words(t: _Tnc, w: dict) -> None:
 def _line_block(t: _Tnc, line: int, w: dict) -> None:
     """``L``: a line (rapid with FMAX), M140 MB MAX retract, M99 cycle call."""
     _comp_words(t, w)
-    _tcpm_switch(t, w.get("M", []))
+    _tcpm_switch(t, [v for v in w.get("M", []) if v != 129])  # M129 at the block's end (TNC 426/430 manual, M128)
     axes = any(k in w for k in ("X", "Y", "Z", "IX", "IY", "IZ"))
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
@@ -439,6 +439,7 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+    _tcpm_switch(t, [129] if 129 in ms else [])
 
 
 def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
