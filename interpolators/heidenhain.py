@@ -588,13 +588,17 @@ class _Run:
         """Every block's keyword, before the first block runs: a block of no TNC language is an error even
         where the flow never takes it (a simulator's tool-change macro jumps over its '##LANGUAGE AC' lines).
         Our reading of the ``ERROR =`` marking: a TNC checks every block when it reads a program in and does
-        not run a program holding one it could not read."""
+        not run a program holding one it could not read. The program ends at its ``END PGM`` ("The last block
+        of a program is identified by END PGM", TNC 640 user's manual, "Program structure"): what a file holds
+        after it (a DOS transfer's Ctrl-Z, a '%') is not read, as the run does not read it."""
         for i, blk in enumerate(self.blocks):
             if i not in self.keywords:
                 k = _KEYWORD_RE.match(blk.code)
                 if k is None:
                     _unknown_block(blk, blk.where(self.source))
                 self.keywords[i] = (k, _BLANKS_RE.sub(" ", k.group(1).upper()))
+            if self.keywords[i][1] == "END PGM":
+                break
 
     def fork(self) -> _Run:
         """A flow of its own over this program's blocks, allowed the blocks this one has left to run (the

@@ -5,8 +5,14 @@ from __future__ import annotations
 
 import pytest
 
+from interpolators.context import DEFAULT_CONTEXT
+from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Solution
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
 from tests.interpolators.test_tcp5x import BC, distance_to_line, machine, tips, tnc
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
 
 
 def test_m129_ends_m128_at_the_end_of_its_block():
@@ -20,3 +26,15 @@ def test_m129_ends_m128_at_the_end_of_its_block():
     # after M129 X+50 is the machine's X (preset 10 + 50), Z where the table left the tip
     assert prog.blocks[-1].target == pytest.approx([60.0, end[1], end[2]], abs=1e-9)
     assert prog.blocks[-1].extra_target[1:3] == pytest.approx([30.0, 20.0])
+
+
+@pytest.mark.parametrize("after", ["\x1a", "%\n", "3 not a block\n"])
+def test_what_follows_end_pgm_is_not_read(after):
+    # the program ends at END PGM (TNC 640 user's manual, "Program structure"): a DOS transfer's Ctrl-Z or a
+    # '%' after it is not a block of the program; a block of no TNC language before it still is an error
+    text = "0 BEGIN PGM T MM\n1 L X+10 Y+5 Z+2 R0 FMAX\n2 END PGM T MM\n" + after
+    prog = parse_heidenhain(text, source="t.h")
+    assert [b.target.tolist() for b in prog.blocks] == [[10.0, 5.0, 2.0]]
+    assert match_blocks(heidenhain_reference(text, DEFAULT_CONTEXT), reader_rows(*blocks_table(prog))).mismatch is None
+    with pytest.raises(GCodeError, match=r"t\.h:3:3: unknown or unsupported block 'not'"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 M30\n2 not a block\n3 END PGM T MM\n", source="t.h")
