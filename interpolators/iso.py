@@ -177,7 +177,7 @@ from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_trav
 from interpolators.iso_reference import FANUC_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
-from interpolators.iso_tcp import tcp_block, tcp_switch
+from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
 from interpolators.iso_text import (
     closing_notes,
     ends_with_m99,
@@ -1098,8 +1098,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
             where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
                        expected="G92 X.. Y.. Z..")
-        # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame
-        current = st.to_program(st.pos)
+        # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame; under
+        # tool centre point control the current point is the tip on the part (iso_tcp.tip_point), our reading
+        current = st.to_program(tip_point(st))
         for a in axis_words:
             i = "XYZ".index(a)
             st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale

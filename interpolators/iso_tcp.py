@@ -42,7 +42,7 @@ from toolpaths.geometry import Line
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["TCP_CODES", "tcp_switch", "tcp_block"]
+__all__ = ["TCP_CODES", "tcp_switch", "tcp_block", "tip_point"]
 
 #: round(10 x G) of the codes that start tool centre point control, with their names.
 TCP_CODES = {434: "G43.4 tool centre point control", 435: "G43.5 tool centre point control type 2",
@@ -50,6 +50,15 @@ TCP_CODES = {434: "G43.4 tool centre point control", 435: "G43.5 tool centre poi
 
 _EXPECTED = ("G43.4 H.. (--dialect fanuc) or G234 H.. (--dialect haas) on a machine whose rotary axes turn the part "
              "([program.kinematics] kind = \"table\"), then G00/G01 X Y Z A B C, G49 to end it")
+
+
+def tip_point(st: State) -> np.ndarray:
+    """Where the program's current point is, in machine coordinates at rotary 0 (tool length along Z included):
+    under TCP the tool tip on the part (:func:`interpolators.tcp.part_point`), else the machine position. What
+    the program's X Y Z are measured from: a block's start, G92's current position."""
+    if not st.tcp:
+        return st.pos
+    return part_point(st.context.kinematics, st.extra, st.pos, st.tool_length)
 
 
 def tcp_switch(entry: tuple[int, object], st: State, where: Where, notes: Notes) -> None:
@@ -138,7 +147,7 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
         return False
     _refuse(seen, gcodes, axis_words, st, where)
     kin = st.context.kinematics
-    start = part_point(kin, st.extra, st.pos, st.tool_length)
+    start = tip_point(st)
     here, st.pos = st.pos, start  # the program's X Y Z are the tip's on the part: the end from its start there
     try:
         end = block_target(seen, axis_words, st, machine=False)

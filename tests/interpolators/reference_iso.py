@@ -1123,8 +1123,10 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
                     m.g92[i] = m.g92[i] - m.local[i] + v if fanuc else v
                     m.local[i] = v if fanuc else 0.0
             return True
-        if code == 920:
-            prog_no_g92 = m.to_program(m.pos) + m.g92
+        if code == 920:  # under G43.4 / G234 the current point is the tip on the part (as _tcp_move reads it)
+            length = np.array([0.0, 0.0, m.tool_length])
+            here = _table(m, m.pos - length, m.extra, back=True) + length if m.tcp else m.pos
+            prog_no_g92 = m.to_program(here) + m.g92
             for i, a in enumerate("xyz"):
                 if a in words:
                     m.g92[i] = prog_no_g92[i] - words[a][-1] * m.scale

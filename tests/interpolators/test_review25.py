@@ -10,7 +10,7 @@ from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Solution
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
-from tests.interpolators.test_tcp5x import BC, distance_to_line, machine, tips, tnc
+from tests.interpolators.test_tcp5x import AC, BC, distance_to_line, iso, machine, tips, tnc
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
@@ -38,3 +38,12 @@ def test_what_follows_end_pgm_is_not_read(after):
     assert match_blocks(heidenhain_reference(text, DEFAULT_CONTEXT), reader_rows(*blocks_table(prog))).mismatch is None
     with pytest.raises(GCodeError, match=r"t\.h:3:3: unknown or unsupported block 'not'"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 M30\n2 not a block\n3 END PGM T MM\n", source="t.h")
+
+
+def test_g92_under_g43_4_sets_the_tip_position():
+    # G92 X0 Y0 Z0 under TCP with the table at A10: the tip's point on the part becomes the program's zero, so
+    # Y10. moves the tip 10 mm along the part's Y (it took the machine position, 23.6 mm off on the part)
+    text = "G21 G90 G54\nG43.4 H1 X0 Y0 Z0 A10.\nG92 X0 Y0 Z0\nG1 Y10. F100.\nG49\nM30\n"
+    prog = iso(text)
+    end = [b for b in prog.blocks if b.line == 4][-1]
+    assert end.target == pytest.approx(machine(AC, [10.0, 15.0, 0.0], Solution(10.0, 0.0)), abs=1e-9)
