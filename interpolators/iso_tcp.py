@@ -20,9 +20,10 @@ G94 or G93 (inverse time: the block takes 1/F minutes): each a straight line of 
 chords (:func:`interpolators.tcp.tcp_chords`; G64 P / the dialect's tolerance, else the default). Not read,
 each an error naming it: G43.4 without kinematics, on a head-tilting machine, with a tilted plane (G68.2),
 rotation, scaling or mirror image, or cutter compensation (G41/G42); arcs, canned cycles, polar coordinates,
-G95 and the corner words ,R ,C under it; I J K under type 1, rotary words under type 2. G43.5's I J K turn the
-rotary axes to the solution nearest their positions (:func:`interpolators.tcp.tool_vector_extra`), moving
-linearly to it (our reading: the manual does not say how type 2 interpolates the direction).
+G95 and the corner words ,R ,C under it; I J K under type 1, rotary words under type 2. G43.5's I J K (one left
+out is 0) turn the rotary axes to the solution nearest their positions
+(:func:`interpolators.tcp.tool_vector_extra`), moving linearly to it (our reading: the manual does not say how
+type 2 interpolates the direction).
 """
 
 from __future__ import annotations
@@ -109,10 +110,6 @@ def _refuse(seen, gcodes, axis_words: list[str], st: State, where: Where) -> Non
         where.fail(f"word {w.letter} under {TCP_CODES[st.tcp].split()[0]}: not allowed", column=w.column, text=w.text,
                    expected="G43.4 / G234 (type 1): X Y Z and the rotary words; G43.5 (type 2): X Y Z and the tool "
                             "direction I J K")
-    if vector and len(vector) < 3:
-        w = seen[vector[0]]
-        where.fail("G43.5 with only part of the tool direction I J K", column=w.column, text=w.text,
-                   expected="I.. J.. K.. (all three components)")
     if st.motion == 10 and st.inverse_time and not (st.block_f or 0.0) > 0:
         where.fail("G01 under tool centre point control in inverse time (G93) without an F > 0 on the block",
                    column=col, text=tok, expected="F<1/minutes> > 0 on every G01 block under G93")
@@ -126,12 +123,14 @@ def _tool_direction(seen, st: State, where: Where) -> np.ndarray:
     table-fixed programming coordinates) the spindle's axis, the solution nearest the present one within the
     limits (FANUC 30i A-79348E 1.1, type 2: "the tool direction seen from the coordinate system that is fixed on
     the table is specified by I, J, K"; Mazak's G43.5 I J K: "direction of tool axis (position vector from tip
-    point to center of rotation of the tool)"). Our reading: the axes move linearly to it, as under type 1."""
+    point to center of rotation of the tool)"). A component left out is 0 (FANUC Series 15i/150i-MODEL A
+    connection manual B-63323EN-1/03, 10.4.10, type 2 format, note 3: "When any of I, J, and K is omitted, the
+    omitted I, J, or K is assumed to be 0"). Our reading: the axes move linearly to it, as under type 1."""
     kin = st.context.kinematics
     try:
-        rot = tool_vector_extra(kin, [seen[k].value for k in ("I", "J", "K")], st.extra)
+        rot = tool_vector_extra(kin, [seen[k].value if k in seen else 0.0 for k in ("I", "J", "K")], st.extra)
     except TiltError as exc:
-        w = seen["I"]
+        w = next(seen[k] for k in ("I", "J", "K") if k in seen)
         where.fail(f"G43.5 tool direction I J K: {exc.message}", column=w.column, text=w.text, expected=exc.expected)
     st.extra_used = True
     return rot
@@ -155,7 +154,7 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
         st.pos = here
     letters = [k for k in EXTRA_LETTERS if k in seen]
     rot = None
-    if "I" in seen:
+    if any(k in seen for k in ("I", "J", "K")):
         rot = _tool_direction(seen, st, where)
     if letters:
         rot = extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(),

@@ -903,8 +903,8 @@ def _tcp_move(m: _Machine, line: int, words: dict) -> None:
     prog = m.target(words)
     m.pos = here
     extra = m.extra_end(words)
-    if m.tcp_vector and "i" in words:
-        extra = _tool_angles(m, np.array([words[k][-1] for k in "ijk"], float))
+    if m.tcp_vector and any(k in words for k in "ijk"):  # a component left out is 0 (Fanuc 15i B-63323EN-1/03)
+        extra = _tool_angles(m, np.array([words[k][-1] if k in words else 0.0 for k in "ijk"], float))
     end = _table(m, m.to_machine(prog) - length, extra) + length
     turning = not np.allclose(extra[:3], m.extra[:3], rtol=0.0, atol=1e-12)
     m.extra = extra

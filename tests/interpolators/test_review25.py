@@ -47,3 +47,13 @@ def test_g92_under_g43_4_sets_the_tip_position():
     prog = iso(text)
     end = [b for b in prog.blocks if b.line == 4][-1]
     assert end.target == pytest.approx(machine(AC, [10.0, 15.0, 0.0], Solution(10.0, 0.0)), abs=1e-9)
+
+
+def test_g43_5_reads_a_component_left_out_as_zero():
+    # Fanuc 15i B-63323EN-1/03, 10.4.10, type 2: "When any of I, J, and K is omitted, the omitted I, J, or K is
+    # assumed to be 0": 'I0.5 K0.8660254' is the direction (0.5, 0, 0.866), A+30 C+90 from A+30 C0 (it was an error)
+    prog = iso("G21 G90 G54\nG0 G43.5 H1 X0 Y0 Z0 I0 J0 K1.\nG1 X20. I0 J-0.5 K0.8660254 F600.\n"
+               "G1 Y10. I0.5 K0.8660254\nG49\nM30\n")
+    second = [b for b in prog.blocks if b.line == 4]
+    assert second[-1].extra_target[[0, 2]] == pytest.approx([30.0, 90.0], abs=1e-6)
+    assert second[-1].target == pytest.approx(machine(AC, [30.0, 15.0, 0.0], Solution(30.0, 90.0)), abs=1e-6)

@@ -279,7 +279,6 @@ def test_g234_on_haas_and_g49_ends_it():
     ("G43.5 H1 X0 Y0 Z0 I0 J0 K1\n", HAAS, "G43.5 tool centre point control type 2"),
     ("G43.5 H1\nG1 X10. A5. F100.\n", FANUC, "word A under G43.5: not allowed"),
     ("G43.4 H1\nG1 X10. I0 J0 K1. F100.\n", FANUC, "word I under G43.4: not allowed"),
-    ("G43.5 H1\nG1 X10. I0 J1. F100.\n", FANUC, "only part of the tool direction"),
     ("G43.5 H1\nG1 X10. I0 J0 K-1. F100.\n", FANUC, "cannot tilt the part"),
     ("G43.4 H1\nG2 X10. Y0 I5. J0 F100.\n", FANUC, "motion other than G00/G01"),
     ("G43.4 H1\nG41 D1 G1 X10. Y0 F100.\n", FANUC, "cutter compensation"),
