@@ -539,6 +539,9 @@ def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine
     if tilt_turns(m.tilt):  # a PLANE .. STAY after M128
         where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)
+    if m.plane != 2:  # a TOOL CALL .. X / Y after M128 (M128 itself checks the tool axis: check_tcpm_on)
+        where.fail(f"a line under M128 with tool axis {'XYZ'[m.plane]} is not supported", column=1, text=where.text,
+                   expected=TCPM_EXPECTED)
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
     part, _ = program_target(m, values, part_point(m.context.kinematics, m.extra, m.pos, m.tool_length))
     return part

@@ -57,3 +57,10 @@ def test_g43_5_reads_a_component_left_out_as_zero():
     second = [b for b in prog.blocks if b.line == 4]
     assert second[-1].extra_target[[0, 2]] == pytest.approx([30.0, 90.0], abs=1e-6)
     assert second[-1].target == pytest.approx(machine(AC, [30.0, 15.0, 0.0], Solution(30.0, 90.0)), abs=1e-6)
+
+
+def test_a_line_under_m128_after_a_tool_call_in_y_is_an_error():
+    # M128 reads only tool axis Z (heidenhain_tcpm.check_tcpm_on at M128); a TOOL CALL .. Y after it made the
+    # next line a TCP line on a Z spindle
+    with pytest.raises(GCodeError, match=r"t\.h:6:1: a line under M128 with tool axis Y is not supported"):
+        tnc("3 M128\n4 TOOL CALL 1 Y S100\n5 L X+1 Y+0 Z+0 B+30 F100")
