@@ -189,7 +189,7 @@ class PlainBlocks:
         kw, axes, feed, rapid = words.keyword, words.axes, words.feed, words.rapid
         pos = m.pos
         tcpm = m.tcpm
-        if tcpm and kw != "L":
+        if tcpm and (kw != "L" or m.plane != 2):  # under M128 a line in tool axis Z only (motion's _tcpm_target)
             return False
         kin = m.context.kinematics
         base = part_point(kin, m.extra, pos, m.tool_length).tolist() if tcpm else pos.tolist()

@@ -10,7 +10,7 @@ from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Solution
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
-from tests.interpolators.test_tcp5x import AC, BC, distance_to_line, iso, machine, tips, tnc
+from tests.interpolators.test_tcp5x import AC, BC, HEAD, TNC, distance_to_line, iso, machine, tips, tnc
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
@@ -64,3 +64,7 @@ def test_a_line_under_m128_after_a_tool_call_in_y_is_an_error():
     # next line a TCP line on a Z spindle
     with pytest.raises(GCodeError, match=r"t\.h:6:1: a line under M128 with tool axis Y is not supported"):
         tnc("3 M128\n4 TOOL CALL 1 Y S100\n5 L X+1 Y+0 Z+0 B+30 F100")
+    for shortcuts in (True, False):  # a plain line too, which the shortcut for plain blocks would take
+        with pytest.raises(GCodeError, match=r"t\.h:7:1: a line under M128 with tool axis Y is not supported"):
+            parse_heidenhain(HEAD + "3 L B+30 FMAX\n4 M128\n5 TOOL CALL 1 Y S100\n6 L X+1 F100\nEND PGM T MM\n",
+                             source="t.h", context=TNC, shortcuts=shortcuts)
