@@ -46,12 +46,12 @@ CASES = {
     # a cell of 1e307 m overflows to inf mm; 1e300 mm is finite but no machine's (squares overflow in the lag check)
     "overflow_in_m.csv": ("t,cmd,act\n" + "".join(f"{k * 0.001:.3f},{1e307 if k == 4 else k},{k}\n" for k in range(10)),
                           {"columns": {"t": "t", "x_ref": "cmd", "x": "act"}, "unit": "m"},
-                          r"overflow_in_m.csv:6: 'cmd' \(m\) is inf mm or deg in this row, beyond any machine's"),
+                          r"overflow_in_m.csv:6: 'cmd' \(m\) is inf mm in this row, beyond any machine's"),
     "far_position.csv": ("t,cmd,act\n" + "".join(f"{k * 0.001:.3f},{k},{1e300 if k == 2 else k}\n" for k in range(10)),
                          {"columns": {"t": "t", "x_ref": "cmd", "x": "act"}},
                          r"far_position.csv:4: 'act' \(mm\) is 1e\+300"),
     "far_capture.csv": ("t,x_ref,x\n" + "".join(f"{k * 0.001:.3f},{k},{-1e300 if k == 7 else k}\n" for k in range(10)),
-                        {}, r"the measured position of axis x is -1e\+300 mm or deg at sample 7"),
+                        {}, r"the measured position of axis x is -1e\+300 mm at sample 7"),
     "binary.dat": ("\x00\x01\x02MATLAB\x00" * 20, {}, r"binary file"),
 }
 

@@ -18,6 +18,7 @@ import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
 from vcnc.traces import emps, sinumerik, tncscope
@@ -147,5 +148,6 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     for name in ("reference", "measured"):
         values = getattr(cap, name)
         for j, axis in enumerate(cap.axes):
-            within_reach(values[:, j], f"the {name} position of axis {axis}", "mm or deg", str(p))
+            within_reach(values[:, j], f"the {name} position of axis {axis}", "deg" if axis in ROTARY_AXES else "mm",
+                         str(p))
     return cap

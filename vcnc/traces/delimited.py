@@ -438,7 +438,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     def scaled(k: str) -> np.ndarray:
         with np.errstate(over="ignore"):
             values = d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
-        within_reach(values, f"{columns[k]!r} ({units[k] or 'mm'})", "mm or deg", src, lines_kept)
+        within_reach(values, f"{columns[k]!r} ({units[k] or 'mm'})", "deg" if axis_of(k) in ROTARY_AXES else "mm", src,
+                     lines_kept)
         return values
 
     t, (ref, second), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
