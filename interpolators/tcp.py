@@ -96,8 +96,11 @@ def machine_point(kinematics: Kinematics, extra: Sequence[float], point: Sequenc
 def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra: np.ndarray) -> np.ndarray:
     """The positions of a, b, c, u, v, w [deg, mm] that turn the tool direction ``direction`` (a vector in the
     workpiece coordinates, from the tip towards the spindle) onto the spindle axis: ``extra`` with the kinematics'
-    axes at the solution nearest their present positions within their limits
-    (:meth:`interpolators.tilted.Kinematics.choose`).
+    axes at the solution nearest their present positions within their limits, each axis at the turn of 360 deg
+    nearest its position (:meth:`interpolators.tilted.Kinematics.choose` with ``nearest``; FANUC Series
+    15i/150i-MODEL A connection manual B-63323EN-1/03, 10.4.10, type 2, note 4: "Movement of the rotation axes
+    is controlled by a shortcut control so that the amount of movement does not exceed 180°"; our reading for
+    HEIDENHAIN's ``LN .. TX TY TZ`` too).
 
     Raises
     ------
@@ -106,7 +109,7 @@ def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra:
     """
     d = np.asarray(direction, dtype=float)
     base = np.eye(3)[int(np.argmin(np.abs(d)))]  # any direction not along d: only the tool axis matters here
-    angles = kinematics.choose(vector(base, d), kinematics.solution_at(extra))
+    angles = kinematics.choose(vector(base, d), kinematics.solution_at(extra), nearest=True)
     out = np.array(extra, dtype=float)
     for name, value in kinematics.positions(angles).items():
         out["abc".index(name)] = value

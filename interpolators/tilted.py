@@ -214,9 +214,15 @@ class RotaryAxis:
         """Rotation of the part in the machine at ``angle`` [deg]: the opposite of the tool's turn (read-only)."""
         return _part_turn(self.direction, angle)
 
-    def within(self, angle: float) -> float | None:
+    def within(self, angle: float, near: float | None = None) -> float | None:
         """``angle`` [deg] or a turn of 360 deg from it inside :attr:`limits` (the one in (-180, 180]
-        first), else None."""
+        first; with ``near`` [deg], the one nearest it), else None."""
+        if near is not None:
+            k = round((near - angle) / 360.0)
+            fits = [c for c in (angle + 360.0 * (k + j) for j in (0, -1, 1))
+                    if self.limits[0] - ANGLE_TOLERANCE <= c <= self.limits[1] + ANGLE_TOLERANCE]
+            if fits:
+                return min(fits, key=lambda c: abs(c - near))
         a = math.remainder(angle, 360.0)
         a = 180.0 if a == -180.0 else a
         for cand in (a, a + 360.0, a - 360.0):
@@ -368,7 +374,8 @@ class Kinematics:
             out.append(Solution(outer=_wrap(to), inner=_wrap(ti)))
         return out
 
-    def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0, table_rot: bool = False) -> Solution:
+    def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0, table_rot: bool = False,
+               nearest: bool = False) -> Solution:
         """The solution the control takes: within the limits, the outer (master) axis' angle of the sign
         ``sequence`` (+1 SEQ+/SYM+, -1 SEQ-/SYM-), else (0) the one nearest ``current`` [deg] (the sum of
         both axes' travel; a tie goes to the positive master angle). When the tilted tool axis is the
@@ -383,6 +390,8 @@ class Kinematics:
         rotary table C, PLANE SPATIAL SPB+45: A+45 C+90 from A+0 C+0, A-45 C-90 from A+0 C-105, an error
         for SEQ+ with -90 < A < +10) is what this returns. The master axis is here the outer axis, the
         one that tilts; SYM (TNC 640: the side of the master axis' symmetry point, at 0) is read as SEQ.
+        With ``nearest`` each axis takes the turn of 360 deg of its angle nearest its ``current`` one (a tool
+        direction under TCP: :func:`interpolators.tcp.tool_vector_extra`), else the one in (-180, 180] first.
 
         Raises
         ------
@@ -392,12 +401,13 @@ class Kinematics:
         outer, inner = self.axes[0], self.axes[-1]
         found = []
         for s in self.solutions(plane):
+            near_o, near_i = (current.outer, current.inner) if nearest else (None, None)
             if len(self.axes) == 1:
-                o = outer.within(s.outer)
+                o = outer.within(s.outer, near_o)
                 found += [] if o is None else [Solution(outer=o, inner=0.0)]
                 continue
             free = self._square_inner(plane, s.outer) if table_rot else current.inner
-            o, i = outer.within(s.outer), inner.within(free if math.isnan(s.inner) else s.inner)
+            o, i = outer.within(s.outer, near_o), inner.within(free if math.isnan(s.inner) else s.inner, near_i)
             if o is not None and i is not None:
                 found.append(Solution(outer=o, inner=i))
         if sequence:

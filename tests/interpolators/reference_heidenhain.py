@@ -583,7 +583,7 @@ def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
     if "TX" in w:
         tool = np.array([w["TX"], w["TY"], w["TZ"]], float)
         for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool / np.linalg.norm(tool)]),
-                                  0).items():
+                                  0, nearest=True).items():
             t.extra["ABC".index(name.upper())] = value
     t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n / np.linalg.norm(n)),
            extra=t.extra.copy(), rows="last")
@@ -2396,25 +2396,30 @@ def _spatial(a: float, b: float, c: float) -> np.ndarray:
     return _turn("Z", c) @ _turn("Y", b) @ _turn("X", a)
 
 
-def _in_limits(ax, deg: float) -> float | None:
+def _in_limits(ax, deg: float, near: float | None = None) -> float | None:
+    """``deg`` or a turn of 360 from it within the axis' limits: the one in (-180, 180] first, or nearest ``near``."""
     d = (deg + 180.0) % 360.0 - 180.0
     d = 180.0 if abs(d + 180.0) < 1e-9 else d
-    for v in (d, d + 360.0, d - 360.0):
+    turns = (d, d + 360.0, d - 360.0) if near is None else sorted((d + 360.0 * k for k in range(-4, 5)),
+                                                                     key=lambda v: abs(v - near))
+    for v in turns:
         if ax.limits[0] - 1e-6 <= v <= ax.limits[1] + 1e-6:
             return v
     return None
 
 
-def _solve(t: _Tnc, plane: np.ndarray, seq: int) -> dict[str, float]:
+def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False) -> dict[str, float]:
     """The rotary positions for ``plane`` of an A/C or B/C table (closed form): the tool's direction in the
     part, Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A) or Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
-    cos B), equal to the plane's Z."""
+    cos B), equal to the plane's Z. ``nearest``: each axis at the turn of 360 nearest its position (a tool
+    direction under M128), else in (-180, 180] first."""
     n = plane[:, 2]
     if len(t.ctx.kinematics.axes) == 1:  # one axis: Rx(A) e_z = (0, -sin A, cos A), Ry(B) e_z = (sin B, 0, cos B)
         ax = t.ctx.kinematics.axes[0]
         if ax.direction not in ("X", "Y") or abs(n["XY".index(ax.direction)]) > 1e-9:
             raise ReferenceError("a plane one axis does not reach")
-        v = _in_limits(ax, math.degrees(math.atan2(-n[1], n[2]) if ax.direction == "X" else math.atan2(n[0], n[2])))
+        v = _in_limits(ax, math.degrees(math.atan2(-n[1], n[2]) if ax.direction == "X" else math.atan2(n[0], n[2])),
+                       t.extra["ABC".index(ax.name.upper())] if nearest else None)
         if v is None:
             raise ReferenceError("no rotary position within the limits")
         return {ax.name: v}
@@ -2432,7 +2437,8 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int) -> dict[str, float]:
             rot = math.degrees(math.atan2(n[0] / st, -n[1] / st))
         else:
             rot = math.degrees(math.atan2(n[1] / st, n[0] / st))
-        o, i = _in_limits(outer, tilt), _in_limits(inner, rot)
+        o, i = (_in_limits(outer, tilt, now[0] if nearest else None),
+                _in_limits(inner, rot, now[1] if nearest else None))
         if o is not None and i is not None and (seq == 0 or o * seq >= -1e-9):
             found.append((abs(o - now[0]) + abs(i - now[1]), -o, o, i))
     if not found:

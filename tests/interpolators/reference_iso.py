@@ -879,7 +879,9 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
     for pair in pairs:
         fit = []
         for ax, v in zip(axes, pair, strict=False):
-            w = next((c for c in (v, v + 360.0, v - 360.0) if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6), None)
+            now_ax = m.extra["abc".index(ax.name)]  # the turn of 360 deg nearest the axis' position (Fanuc 15i)
+            turns = sorted((v + 360.0 * k for k in range(-4, 5)), key=lambda c: abs(c - now_ax))
+            w = next((c for c in turns if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6), None)
             fit.append(w)
         if None not in fit:
             key = (sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0])

@@ -3,6 +3,7 @@ each with a hand-written program that failed before its fix."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators.context import DEFAULT_CONTEXT
@@ -68,3 +69,17 @@ def test_a_line_under_m128_after_a_tool_call_in_y_is_an_error():
         with pytest.raises(GCodeError, match=r"t\.h:7:1: a line under M128 with tool axis Y is not supported"):
             parse_heidenhain(HEAD + "3 L B+30 FMAX\n4 M128\n5 TOOL CALL 1 Y S100\n6 L X+1 F100\nEND PGM T MM\n",
                              source="t.h", context=TNC, shortcuts=shortcuts)
+
+
+def test_a_tool_direction_turns_the_rotary_axes_the_short_way():
+    # Fanuc 15i B-63323EN-1/03, 10.4.10, type 2, note 4: the rotary axes move by a shortcut, never more than 180
+    # deg. From C+170 the direction (sin 30 cos 190, sin 30 sin 190, cos 30) is A+30 C+190 (it was C-170: -340 deg)
+    i, j = 0.5 * np.sin(np.radians(190.0)), -0.5 * np.cos(np.radians(190.0))
+    prog = iso(f"G21 G90 G54\nG0 A30. C170.\nG0 G43.5 H1 X0 Y0 Z0\nG1 X10. I{i:.7f} J{j:.7f} K0.8660254 F600.\nG49\n"
+               "M30\n")
+    assert [b for b in prog.blocks if b.line == 4][-1].extra_target[[0, 2]] == pytest.approx([30.0, 190.0], abs=1e-5)
+    # LN .. TX TY TZ under M128 likewise (our reading): from C+170 to C+190 with B+30
+    tx, ty = 0.5 * np.cos(np.radians(190.0)), 0.5 * np.sin(np.radians(190.0))
+    prog = tnc(f"3 L B+30 C+170 FMAX\n4 M128\n"
+               f"5 LN X+10 Y+0 Z+0 NX+0 NY+0 NZ+1 TX{tx:+.7f} TY{ty:+.7f} TZ+0.8660254 F600")
+    assert [b for b in prog.blocks if b.number == 5][-1].extra_target[1:3] == pytest.approx([30.0, 190.0], abs=1e-5)
