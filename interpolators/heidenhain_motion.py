@@ -162,6 +162,8 @@ def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *
         elif not motion:
             where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
                        expected="M functions")
+    if any(w.key == "M" and w.value == 129 for w in words):  # at the end of the block, after an M128 in it too
+        m.tcpm = False
     return ended
 
 

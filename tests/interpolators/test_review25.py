@@ -83,3 +83,12 @@ def test_a_tool_direction_turns_the_rotary_axes_the_short_way():
     prog = tnc(f"3 L B+30 C+170 FMAX\n4 M128\n"
                f"5 LN X+10 Y+0 Z+0 NX+0 NY+0 NZ+1 TX{tx:+.7f} TY{ty:+.7f} TZ+0.8660254 F600")
     assert [b for b in prog.blocks if b.number == 5][-1].extra_target[1:3] == pytest.approx([30.0, 190.0], abs=1e-5)
+
+
+def test_m129_with_m128_in_one_block_ends_tcpm():
+    # M128 acts at the block's start, M129 at its end (TNC 426/430 ISO manual, M128), in either order: after
+    # 'M129 M128' the line is a machine line, as after M129
+    both = tnc("3 L B+30 FMAX\n4 M128\n5 M129 M128\n6 L X+10 Y+0 Z+0 F100")
+    after = tnc("3 L B+30 FMAX\n4 M128\n5 M129\n6 L X+10 Y+0 Z+0 F100")
+    assert after.blocks[-1].target == pytest.approx([20.0, 5.0, 20.0])
+    assert both.blocks[-1].target == pytest.approx([20.0, 5.0, 20.0])
