@@ -154,7 +154,7 @@ def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *
                 elif w.value == 89:
                     m.modal_call = True
                 elif w.value == 140:
-                    continue
+                    continue  # retracts at the block's end, below
                 else:
                     m.note(f"M{w.value} in a block without coordinates has no effect")
         elif w.key == "MBMAX" or w.key == "MB":
@@ -162,6 +162,9 @@ def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *
         elif not motion:
             where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
                        expected="M functions")
+    if not motion and any(w.key == "M" and w.value == 140 for w in words):
+        # M140 MB in a block of M functions ("7475 M140 MB MAX", a CAM post's retract): as in a line, at its end
+        _retract({w.key: w for w in words if w.key in ("MB", "MBMAX")}, m, where, blk)
     if any(w.key == "M" and w.value == 129 for w in words):  # at the end of the block, after an M128 in it too
         m.tcpm = False
     return ended
@@ -400,20 +403,7 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, whe
     positioning block there will be a call of the last-programmed machining cycle. M89 is canceled
     by M99 or a CYCL CALL block"; the M89 block itself calls at its end)."""
     if 140 in mvals:
-        if "MBMAX" in seen:
-            retract = m.pos.copy()
-            retract[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
-        elif "MB" in seen:
-            retract = m.pos.copy()
-            retract[m.plane] += abs(seen["MB"].value) * m.scale
-        else:
-            retract = None
-            m.note("M140 without MB: no retraction")
-        if retract is not None and retract[m.plane] != m.pos[m.plane]:
-            m.used.add(m.plane)
-            m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
-            m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
-            m.tcpm_move = False
+        _retract(seen, m, where, blk)
     if 89 in mvals:
         m.modal_call = True
     if 99 in mvals:
@@ -421,6 +411,26 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, whe
         cycle_call(m, where, blk)
     elif m.modal_call and positioned:
         cycle_call(m, where, blk)
+
+
+def _retract(seen: dict[str, Word], m: Machine, where: Where, blk: SourceBlock) -> None:
+    """``M140 MB MAX`` / ``MB n``: a rapid along the tool axis, up to the limit (home stands in for it) or by n
+    (TNC 640 user's manual, "Retraction in the tool axis: M140": effective at the end of its block); ``M140``
+    without MB retracts nothing (noted)."""
+    if "MBMAX" in seen:
+        retract = m.pos.copy()
+        retract[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
+    elif "MB" in seen:
+        retract = m.pos.copy()
+        retract[m.plane] += abs(seen["MB"].value) * m.scale
+    else:
+        m.note("M140 without MB: no retraction")
+        return
+    if retract[m.plane] != m.pos[m.plane]:
+        m.used.add(m.plane)
+        m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
+        m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+        m.tcpm_move = False
 
 
 #: A word's key -> the axis or setting it gives (one per block): IX and X both give X, RL and R0 the compensation.

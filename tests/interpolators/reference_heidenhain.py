@@ -2604,13 +2604,17 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError(up)
             t.modal = False
             _run_cycle(t, line)
-        elif re.fullmatch(r"(M\d+\s*)+", _m_words(up, t.q)[0]):
+        elif re.fullmatch(r"(M\d+\s*)+(MB\s*MAX\s*)?(M\d+\s*)*", _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
             ms = [int(v) for v in re.findall(r"M(\d+)", _m_words(up, t.q)[0])]
             _tcpm_switch(t, ms)
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)
+            if 140 in ms and "MB" in up:  # M140 MB MAX alone: the retract of a line's M140, at the block's end
+                end = t.pos.copy()
+                end[2] = max(t.ctx.home[2], t.pos[2])
+                t.emit(line, "rapid", end, rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):

@@ -55,6 +55,25 @@ def test_m91_m92_m140_and_datum_shift():
                           [111, 5, 400], [111, 5, 420]]
 
 
+def test_m140_in_a_block_of_m_functions_retracts_as_in_a_line():
+    # "7475 M140 MB MAX" alone, as a CAM post writes it between operations (TNC 640 user's manual, "Retraction in the
+    # tool axis: M140", effective at the end of its block): up to the limit (home z 400 here), then MB 20 above it
+    from tests.interpolators.reference_heidenhain import heidenhain_reference
+    from tests.interpolators.reference_match import match_blocks, reader_rows
+    from vcnc.commands.interpolate import blocks_table
+
+    ctx = MachineContext(tools={1: Tool(number=1, length=0.0)}, home=(0, 0, 400))
+    text = ("0 BEGIN PGM R MM\n1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z-5 R0 FMAX\n3 M5 M140 MB MAX M9\n4 L X+10 FMAX\n"
+            "5 M140 MB+20\n6 M140\n7 END PGM R MM\n")
+    prog = parse_heidenhain(text, context=ctx)
+    assert ends(prog) == [[0, 0, -5], [0, 0, 400], [10, 0, 400], [10, 0, 420]]
+    assert [b.line for b in prog.blocks] == [3, 4, 5, 6]
+    assert "M140 without MB: no retraction" in prog.notes
+    text = text.replace("5 M140 MB+20\n", "")  # the reference reads MB MAX only
+    assert match_blocks(heidenhain_reference(text, ctx), reader_rows(*blocks_table(parse_heidenhain(text, context=ctx)))
+                        ).mismatch is None
+
+
 def test_q_parameter_arithmetic_fn0_to_fn13():
     prog = run("FN 0: Q1 = +6\nFN 1: Q2 = +Q1 + +4\nFN 2: Q3 = +Q2 - -2\nFN 3: Q4 = +Q3 * -Q1\nFN 4: Q5 = +Q4 DIV +8\n"
                "FN 5: Q6 = SQRT +Q4 * -1\nFN 8: Q7 = +3 LEN +4\nFN 13: Q8 = +0 ANG +2\nFN 6: Q9 = SIN +30\n"
