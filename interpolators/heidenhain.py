@@ -356,6 +356,14 @@ class Machine:
     def feed_scale(self) -> float:
         return (INCH / 10.0 if self.inch else 1.0) / 60.0
 
+    @property
+    def rotary_feed(self) -> float | None:
+        """The feed of rotary axes moving with X, Y, Z still [deg/s]: F in degrees/min in mm and inch programs
+        alike (iTNC 530 user's manual 60642x-03, 12.5 "Miscellaneous functions for rotary axes", M116, "Standard
+        behavior": "The TNC interprets the programmed feed rate of a rotary axis in degrees/min (in mm programs and
+        also in inch programs)"), where :attr:`feed` holds F read in the program's unit (1/10 inch/min in INCH)."""
+        return None if self.feed is None else self.feed / (self.feed_scale * 60.0)
+
     def origin(self) -> np.ndarray:
         """Program zero in machine coordinates [mm]; in a tilted plane its zero on the tilted table plus
         cycle 7's shift in the plane."""

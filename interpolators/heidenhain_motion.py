@@ -366,6 +366,9 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
         if turning:
             tcpm_line(m, target, extra, rapid=rapid, where=where, number=blk.number)
         else:
+            if (extra is not None and not rapid and not np.any(target != m.pos) and not np.any(extra[3:] != m.extra[3:])
+                    and np.any(extra[:3] != m.extra[:3])):
+                feed = m.rotary_feed  # a rotary axis alone: F in degrees/min, also in an INCH program
             m.tcpm_move = True
             m.emit("rapid" if rapid else "line", target, Line(m.pos, target), feed, where, blk.number, extra=extra)
             m.tcpm_move = False

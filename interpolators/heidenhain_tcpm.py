@@ -162,7 +162,7 @@ def tcpm_line(m: Machine, part: np.ndarray, extra: np.ndarray, *, rapid: bool, w
     kin = m.context.kinematics
     start = part_point(kin, m.extra, m.pos, m.tool_length)
     tolerance = m.tolerance if m.tolerance is not None else m.context.dialect.tolerance
-    duration = None if rapid else block_time(start, part, extra - m.extra, feed=m.feed, rotary_feed=m.feed)
+    duration = None if rapid else block_time(start, part, extra - m.extra, feed=m.feed, rotary_feed=m.rotary_feed)
     try:
         chords = tcp_chords(kin, start=start, end=part, start_extra=m.extra, end_extra=extra, length=m.tool_length,
                             tolerance=tolerance, duration=duration, position=m.pos, feed=m.feed)

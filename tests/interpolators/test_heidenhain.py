@@ -74,6 +74,18 @@ def test_m140_in_a_block_of_m_functions_retracts_as_in_a_line():
                         ).mismatch is None
 
 
+def test_a_rotary_axis_alone_moves_in_degrees_per_minute_also_in_an_inch_program():
+    # iTNC 530 user's manual 60642x-03, 12.5 "Miscellaneous functions for rotary axes", M116 "Standard behavior": "in
+    # degrees/min (in mm programs and also in inch programs)"; with X moving, F is the path's (1/10 inch/min in INCH)
+    ctx = MachineContext(extra_axes=("c",))
+    for unit, path_feed in (("MM", 100 / 60), ("INCH", 100 * 2.54 / 60)):
+        prog = parse_heidenhain(f"0 BEGIN PGM R {unit}\n1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+1 R0 FMAX\n3 L C+90 F3600\n"
+                                f"4 L X+1 C+100 F100\n5 END PGM R {unit}\n", context=ctx)
+        rotary, line = prog.blocks[1], prog.blocks[2]
+        assert rotary.extra_target[2] == 90.0 and rotary.feed == pytest.approx(60.0)  # 3600 deg/min
+        assert line.feed == pytest.approx(path_feed)
+
+
 def test_q_parameter_arithmetic_fn0_to_fn13():
     prog = run("FN 0: Q1 = +6\nFN 1: Q2 = +Q1 + +4\nFN 2: Q3 = +Q2 - -2\nFN 3: Q4 = +Q3 * -Q1\nFN 4: Q5 = +Q4 DIV +8\n"
                "FN 5: Q6 = SQRT +Q4 * -1\nFN 8: Q7 = +3 LEN +4\nFN 13: Q8 = +0 ANG +2\nFN 6: Q9 = SIN +30\n"
