@@ -40,6 +40,7 @@ CASES = {
     "tnc_no_rows.sco": (_tnc(rows=[]), {}, r"0 data row\(s\) after %\[DATA\]"),
     "sinumerik_infinite_interval.xml": (_sinumerik(interval="inf"), {}, r"interval > 0 \[s\]"),
     "sinumerik_far_time.xml": (_sinumerik(last="1e12"), {}, r"more than 1e\+08 samples"),
+    "sinumerik_farthest_time.xml": (_sinumerik(last="1e308"), {}, r"more than 1e\+08 samples"),
     "twincat_tick_not_whole.csv": (_ticks("4.5"), {"columns": {"x_ref": "cmd", "x": "act"}},
                                    r"expected a FILETIME stamp"),
     "empty.csv": ("", {}, r"no rows of numbers"),
@@ -57,6 +58,7 @@ CASES = {
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.filterwarnings("error::RuntimeWarning")  # no numpy warning on the way to the error either
 def test_bad_input_is_a_clean_error(tmp_path, capsys, name):
     text, options, message = CASES[name]
     f = tmp_path / name

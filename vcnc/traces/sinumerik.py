@@ -157,7 +157,8 @@ def read_sinumerik(path: str | os.PathLike[str], *, axes: tuple[str, ...] | None
     # on the coarse signal's own sampling instants, from the first time every signal has a value
     late = max(s.times[0] for s in used) - coarse.times[0]
     start = coarse.times[0] + interval * np.ceil(late / interval - 1e-6)
-    span = (end - start) / interval
+    with np.errstate(over="ignore", invalid="ignore"):  # a corrupted time: inf or nan, refused just below
+        span = (end - start) / interval
     if not span < MAX_SAMPLES:
         raise CaptureError(f"the rows span {end - start:.6g} s at {interval:.6g} s: more than "
                            f"{MAX_SAMPLES:.0e} samples", file=src)
