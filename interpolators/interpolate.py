@@ -720,10 +720,13 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
     n_ax = len(axes)
     pos, vel, acc = (np.empty((len(t), n_ax)) for _ in range(3))
     block = np.empty(len(t), dtype=np.int64)
+    # per phase and per segment, shared by the chunks: where a segment's last phase must end, each segment's block
+    phase_end = np.where(ph["last"], g.profile_length[ph["seg"]], np.nan)
+    seg_block = np.asarray(g.block, dtype=np.int64)
     for lo in range(0, len(t), SAMPLE_CHUNK):
         hi = min(len(t), lo + SAMPLE_CHUNK)
-        pos[lo:hi], vel[lo:hi], acc[lo:hi], block[lo:hi] = _sample_chunk(g, ph, t[lo:hi], ax_idx,
-                                                                         last=hi == len(t))
+        pos[lo:hi], vel[lo:hi], acc[lo:hi], block[lo:hi] = _sample_chunk(g, ph, phase_end, seg_block, t[lo:hi],
+                                                                         ax_idx, last=hi == len(t))
     meta = _meta(program, profile, Ts, float(t[-1]))
     if g.blended:
         meta["programmed_path"] = program.path()
@@ -731,15 +734,15 @@ def _sample(program: Program, g: _Geom, ph: dict[str, np.ndarray], total_N: int,
                      sample_time=Ts, path=_sampled_path(g, linear), meta=meta)
 
 
-def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], t: np.ndarray, ax_idx: list[int], *, last: bool
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], phase_end: np.ndarray, seg_block: np.ndarray, t: np.ndarray,
+                  ax_idx: list[int], *, last: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Position, velocity, acceleration (of the axes ``ax_idx``) and block at the sample times ``t``; ``last``:
-    ``t`` ends the program, whose last sample is at rest exactly on its end point."""
+    ``t`` ends the program, whose last sample is at rest exactly on its end point. ``phase_end``: the path
+    parameter a segment's last phase ends on (NaN for the others); ``seg_block``: each segment's block."""
     ph_seg, ph_start = ph["seg"], ph["start"]
     k = np.searchsorted(ph_start, t, side="right") - 1
     np.clip(k, 0, len(ph_start) - 1, out=k)
-    s, v, a = phase_states(t, k, ph_start, ph["dur"], ph["p"], ph["v"], ph["a"], ph["j"],
-                           np.where(ph["last"], g.profile_length[ph_seg], np.nan))
+    s, v, a = phase_states(t, k, ph_start, ph["dur"], ph["p"], ph["v"], ph["a"], ph["j"], phase_end)
     seg = ph_seg[k]
     if last:
         s[-1] = g.profile_length[seg[-1]]
@@ -749,7 +752,7 @@ def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], t: np.ndarray, ax_idx: li
         pos, vel, acc = _with_extra(g.extra, seg, s, v, a, pos, vel, acc)
     if ax_idx != list(range(pos.shape[1])):
         pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
-    block = np.asarray(g.block, dtype=np.int64)[seg]
+    block = seg_block[seg]
     curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
         block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
