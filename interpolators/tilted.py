@@ -400,8 +400,8 @@ class Kinematics:
         """
         outer, inner = self.axes[0], self.axes[-1]
         found = []
+        near_o, near_i = (current.outer, current.inner) if nearest else (None, None)
         for s in self.solutions(plane):
-            near_o, near_i = (current.outer, current.inner) if nearest else (None, None)
             if len(self.axes) == 1:
                 o = outer.within(s.outer, near_o)
                 found += [] if o is None else [Solution(outer=o, inner=0.0)]
