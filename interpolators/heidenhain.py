@@ -223,6 +223,7 @@ from interpolators.heidenhain_transforms import (
 from interpolators.heidenhain_words import SourceBlock, read_value, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, fill_extra
 from interpolators.program import Block, Program, end_at_rest
+from interpolators.tcp import part_point
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import Line
 from vcnc.core.axes import AXIS_NAMES
@@ -406,12 +407,13 @@ class Machine:
         except TransformError as exc:
             where.fail(exc.message, column=1, text=where.text, expected=exc.expected)
 
-    def active_origin(self) -> np.ndarray:
-        """The machine position minus its program coordinates (the program zero without rotation,
-        mirror or scaling) [mm]: what ``FN 18 SYSREAD ID270`` subtracts."""
-        if self.transform.identity:
-            return self.origin()
-        return self.pos - self.to_program(self.pos)
+    def active_position(self) -> np.ndarray:
+        """The position in the active coordinate system [mm] that ``FN 18 SYSREAD ID270`` reads: the program
+        coordinates of the machine position, under M128 / FUNCTION TCPM those of the tool tip on the turned part
+        (:func:`interpolators.tcp.part_point`). Our reading: under TCPM the program's X Y Z are the tip's, so a
+        position read back and programmed again (``L X+Q1``) stays where it is, as G92 under G43.4 takes the tip."""
+        point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if self.tcpm else self.pos
+        return self.to_program(point)
 
     def tool_data(self, number: int) -> tuple[float, float] | None:
         """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` takes them (the program's ``TOOL DEF``,
@@ -684,7 +686,7 @@ class _Run:
         """LBL (the end of a called subprogram at LBL 0), CALL LBL, FN (jumps)."""
         m, col0 = self.m, blk.column
         if kw.startswith("FN"):
-            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, origin=m.active_origin(),
+            jump = run_function(blk.code, m.params, where, column=col0, position=m.pos, active=m.active_position(),
                                 scale=m.scale, note=m.note, tool=(m.tool_number, m.tool_data), stopped_at=m.stopped_at,
                                 tool_write=m.write_tool, system=m.system_datum)
             if jump is not None:

@@ -201,7 +201,7 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 
 
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
-                 origin: np.ndarray, scale: float, note: Callable[[str], None],
+                 active: np.ndarray, scale: float, note: Callable[[str], None],
                  tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None),
                  stopped_at: int | None = None,
                  tool_write: Callable[[int, int, float], None] | None = None,
@@ -210,8 +210,9 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
 
     Parameters
     ----------
-    position, origin : ndarray (3,)
-        Tool position and program zero [mm, machine] for ``FN 18 SYSREAD``.
+    position, active : ndarray (3,)
+        For ``FN 18 SYSREAD``: the tool position in machine coordinates (ID240) and in the active coordinate
+        system (ID270) [mm].
     scale : float
         mm per program unit (25.4 in INCH programs).
     note : callable
@@ -283,7 +284,7 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         where.fail(f"the program raised FN 14: ERROR ({rest.strip()})", column=col, text=rest.strip(),
                    expected="a program run without FN 14")
     if n == 18:
-        _sysread(rest, params, where, col, position=position, origin=origin, scale=scale, note=note, tool=tool,
+        _sysread(rest, params, where, col, position=position, active=active, scale=scale, note=note, tool=tool,
                  stopped_at=stopped_at, system=system)
         return None
     if n == 17:
@@ -363,7 +364,7 @@ _ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR", 6: "DR2", 7: "TL, tool locked", 8: "
                  21: "LBREAK", 22: "RBREAK", 23: "PLC value"}
 
 
-def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, origin: np.ndarray,
+def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, active: np.ndarray,
              scale: float, note: Callable[[str], None],
              tool: tuple[int, Callable[[int], tuple[float, float] | None]], stopped_at: int | None,
              system: Callable[[int, int], float] | None = None) -> None:
@@ -417,7 +418,7 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
             value = data[nr - 1]
     else:
         axis = int(idx) - 1
-        value = position[axis] if ident == 240 else position[axis] - origin[axis]
+        value = position[axis] if ident == 240 else active[axis]
         if stopped_at is not None:
             note(f"FN 18 ID{ident} after STOP (line {stopped_at}): the position where the program stopped; "
                  "a jog by the operator is not modelled")

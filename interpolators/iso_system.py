@@ -105,6 +105,7 @@ from interpolators.iso_offsets import (
     tool_offset_variable,
     with_tool_offset,
 )
+from interpolators.tcp import part_point
 
 if TYPE_CHECKING:
     from interpolators.iso_modal_call import ModalCalls
@@ -165,6 +166,7 @@ class ReaderState(Protocol):
     modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
     parts_counters: dict[int, float]  # Fanuc/Haas #3901, #3902 as the program set them
     parts_read: bool  # the program read a parts counter
+    tcp: int  # tool centre point control in force (iso_tcp), 0 off
 
     @property
     def scale(self) -> float: ...
@@ -197,7 +199,12 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
         return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
     if st.comp_side is not None:
         return None, "the current position cannot be read with cutter radius compensation on (LinuxCNC)"
-    values = _nine(st.to_program(st.pos), st.extra - st.extra_offset(), st.scale)
+    # under tool centre point control the program's X Y Z are the tip's on the part (iso_tcp.tip_point), so the
+    # end point and the current position in work coordinates are the tip's: a position read back and programmed
+    # again does not move (our reading; FANUC 30i A-79348E 1.1: in G43.4 "the tool center point ... is
+    # specified" by the program)
+    point = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length) if st.tcp else st.pos
+    values = _nine(st.to_program(point), st.extra - st.extra_offset(), st.scale)
     return values[n - base], ""
 
 

@@ -308,3 +308,34 @@ def test_g43_4_on_a_single_tilting_axis():
     rows = [i for i, b in enumerate(prog.blocks) if b.line == 3]
     assert prog.blocks[rows[-1]].target == pytest.approx(machine(kin, [10.0, 35.0, 0.0], Solution(45.0, 0.0)))
     assert distance_to_line(tips(prog, kin, rows), [10.0, 5.0, 0.0], [10.0, 35.0, 0.0]).max() <= 0.01 * 1.001
+
+
+def test_positions_read_under_tcp_are_the_tip_on_the_part():
+    # Fanuc #5001-#5003 (end point) and #5041-#5043 (current position, work coordinates) under G43.4: the tip
+    # on the part as programmed, so a point read back and programmed again does not move, and Z+1 moves the tip
+    # 1 mm along the part's Z (the table tilted by A30 turns the part by -30 deg about X: machine (0, sin 30, cos 30))
+    text = ("G21 G90 G54\nG0 A0 C0\nG43.4 H1 X0 Y0 Z50.\nG1 X10. Y0 Z10. A30. C20. F500.\n"
+            "#1=#5001 #2=#5002 #3=#5003\n#11=#5041 #12=#5042 #13=#5043\nG1 X#1 Y#2 Z#3\nG1 X#11 Y#12 Z[#13+1.]\n"
+            "G49\nM30\n")
+    prog = parse_iso(text, source="t.nc", context=FANUC)
+    at = Solution(30.0, 20.0)
+    tip = machine(AC, [20.0, 5.0, 10.0], at)
+    last = {b.line: b for b in prog.blocks}
+    assert last[4].target == pytest.approx(tip, abs=1e-9)
+    assert last[7].target == pytest.approx(tip, abs=1e-9)  # #5001-#5003: X10 Y0 Z10
+    assert last[8].target == pytest.approx(machine(AC, [20.0, 5.0, 11.0], at), abs=1e-9)
+    assert last[8].target - tip == pytest.approx([0.0, 0.5, math.sqrt(3.0) / 2.0], abs=1e-9)
+
+
+def test_fn18_id270_under_m128_reads_the_tip_on_the_part():
+    # ID270 (the position in the active coordinate system) under M128: the tip's X Y Z as programmed, not the
+    # machine axes' (which the table's turn moved): L X+Q1 Y+Q2 Z+Q3 stays where it is; ID240 stays the machine
+    prog = tnc("3 M128\n4 L X+10 Y+0 Z+10 B+20 C+10 F500\n5 FN 18: SYSREAD Q1 = ID270 NR1 IDX1\n"
+               "6 FN 18: SYSREAD Q2 = ID270 NR1 IDX2\n7 FN 18: SYSREAD Q3 = ID270 NR1 IDX3\n"
+               "8 FN 18: SYSREAD Q4 = ID240 NR1 IDX1\n9 L X+Q1 Y+Q2 Z+Q3\n10 M129\n11 L X+Q4 Y+Q2 Z+Q3 B+0 C+0")
+    tip = machine(BC, [20.0, 5.0, 10.0], Solution(20.0, 10.0))
+    at = {b.number: b for b in prog.blocks}
+    assert at[4].target == pytest.approx(tip, abs=1e-9)
+    assert at[9].target == pytest.approx(tip, abs=1e-9)
+    # after M129, X+Q4 is the machine X read by ID240 (from the preset: machine X = 10 + Q4)
+    assert at[11].target[0] == pytest.approx(10.0 + tip[0], abs=1e-9)
