@@ -167,7 +167,8 @@ def test_pmac_gather_saves(tmp_path, header):
      ({"t": "point", "x_ref": "CH2 Axis 4 Motor present desired position",
        "x": "CH1 Axis 4 Motor present actual position"}, "")),
     (["time", "joint 1 cmd", "joint 1 fb", "joint 2 cmd", "joint 2 fb"],
-     (None, "axes [1, 2] each have a commanded and a measured position: give --columns for one")),
+     (None, "axes [1, 2] each have a commanded and a measured position (['joint 1 cmd', 'joint 1 fb', 'joint 2 cmd', "
+               "'joint 2 fb']): give --columns for one")),
 ])
 def test_numbered_axes_pair_within_their_number(header, result):
     assert columns_from_names(header, period_known=True) == result

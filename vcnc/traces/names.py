@@ -98,6 +98,10 @@ _CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5
 #: "Motor present desired position", "Motor present actual position", "Motor following error", unit ``[cts]``,
 #: scaled by 1/(Ix08*32), the Turbo PMAC's position scale factor), though the export writes no unit.
 _PMAC_COUNTS = ("motor present desired position", "motor present actual position", "motor following error")
+#: PA (Power Automation) CNC's axis variables, logged in the control's internal increments (PaDataAnalyze.py,
+#: yangxiaosheng27/PA_Data_Analysize: "SSetPos, CommandedMachinePosCorr, SActMachinePos  Unit: internal increment
+#: ... defaults to 1um"); the trace writes no unit and the increment is the machine's setting.
+_PA_COUNTS = ("ssetpos", "commandedmachinepos", "sactmachinepos")
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
 #: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
@@ -105,7 +109,12 @@ _TIME_LEAVES = frozenset({"t", "time", "timestamp", "zeit"})
 _PATH = re.compile(r"[/.]?(?:[\w#\[\]-]+[/.])+([\w#\[\]-]+)")
 _WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+|\d+|[^\W\d_]+", re.UNICODE)
 _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
-_TRAILING_UNIT = re.compile(r"[\[(]\s*[^\[\]()]+?\s*[\])]\s*$")
+#: A unit in brackets at the end of a name; an integer in brackets is an index, not a unit (``SSetPos[2]``).
+_TRAILING_UNIT = re.compile(r"[\[(](?!\s*\d+\s*[\])])\s*[^\[\]()]+?\s*[\])]\s*$")
+#: An array index at the end of a name: the axis' number in a control's variable (``SActMachinePos[2]``).
+_INDEX = re.compile(r"\[\s*(\d+)\s*\]\s*$")
+#: A first word shared by every name of a header (``EXP_`` of ``EXP_Time``, ``EXP_PosRef``), before its separator.
+_PREFIX = re.compile(r"\s*([A-Za-z]+)[\s_.:/-]+(?=\S)")
 
 
 def _words(name: str) -> list[str]:
@@ -165,6 +174,8 @@ def counted(name: str) -> str | None:
         return unit
     if any(p in name.lower() for p in _PMAC_COUNTS):
         return "counts"
+    if any(p in name.lower() for p in _PA_COUNTS):
+        return "internal increments"
     return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
 
 
@@ -192,6 +203,15 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     """The mapping capture column -> header name read from the names (module docstring), and why
     not when it is None (``""`` with a mapping). With ``period_known`` (the sampling period is stated or
     given) a header without a time column maps a column of sample numbers, or none, as ``t``."""
+    bare = _without_prefix(header)
+    mapping = _columns(bare, period_known)[0] if bare is not None else None
+    if bare is not None and mapping is not None:
+        return {k: header[bare.index(v)] for k, v in mapping.items()}, ""
+    return _columns(header, period_known)
+
+
+def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
+    """:func:`columns_from_names` of the names as they are."""
     if len(set(header)) != len(header):
         return None, "the header repeats a name"
     mapping: dict[str, str] = {}
@@ -235,6 +255,22 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     return mapping, ""
 
 
+def _without_prefix(header: Sequence[str]) -> list[str] | None:
+    """The names without the first word they all share (``EXP_Time``, ``EXP_PosRef``, ``Exp_Current`` -> ``Time``,
+    ``PosRef``, ``Current``: a logger's tag for its experiment or block), or None when they share none. A shared
+    axis letter or a word of time, role, quantity or numbering (``X_cmd``, ``X_act``; ``Motor_1``) stays: it means
+    something. Our reading of loggers that prefix every channel (ivliev123/Electro-Hydraulic-Actuator's exports)."""
+    found = [_PREFIX.match(h) for h in header]
+    if len(header) < 2 or not all(found):
+        return None
+    words = {m.group(1).lower() for m in found if m}
+    word = words.pop() if len(words) == 1 else None
+    if word is None or word in AXIS_NAMES or _role([word]) is not None or word in _TIME | _OTHER | _NUMBERED | _SAMPLE:
+        return None
+    bare = [h[m.end():] for h, m in zip(header, found) if m]
+    return bare if len(set(bare)) == len(bare) else None
+
+
 def no_positions(header: Sequence[str]) -> bool:
     """True when no column of ``header`` can be a position: each is named as time or sample numbers, or as another
     quantity by a word (``setpoint_rpm``, ``Velocidad``, ``PWM``) or a unit that is neither a length nor counts
@@ -267,9 +303,11 @@ _NUMBERED = frozenset({"axis", "joint", "motor", "drive", "achse", "antrieb", "a
 
 def _axis_number(name: str) -> int | None:
     """The number of the axis, joint or motor a name belongs to (``1`` of ``CH0 Axis1 Motor present actual
-    position``), else None."""
+    position``; ``2`` of ``SActMachinePos[2]``, an array index), else None."""
     words = _words(name)
-    return next((int(b) for a, b in zip(words, words[1:]) if a in _NUMBERED and b.isdigit()), None)
+    index = _INDEX.search(name)
+    return next((int(b) for a, b in zip(words, words[1:]) if a in _NUMBERED and b.isdigit()),
+                int(index.group(1)) if index else None)
 
 
 def _numbered_axis(found: dict[str, tuple[str, str | None]]) -> tuple[dict[str, tuple[str, str | None]], str]:
@@ -285,7 +323,8 @@ def _numbered_axis(found: dict[str, tuple[str, str | None]]) -> tuple[dict[str, 
     if len(paired) == 1:
         return {h: (role, "x") for h, (role, _) in found.items() if numbers[h] == paired[0]}, ""
     if paired:
-        return {}, f"axes {paired} each have a commanded and a measured position: give --columns for one"
+        return {}, (f"axes {paired} each have a commanded and a measured position ({sorted(found)}): give --columns "
+                    "for one")
     return {}, (f"the positions belong to axes {distinct}, none with both a commanded and a measured position: "
                 f"{sorted(found)}")
 
