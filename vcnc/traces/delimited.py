@@ -241,8 +241,9 @@ def _table(text: str, src: str) -> _Table:
                                                                            -b[5], b[3]))
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
-        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces", file=src,
-                           line=k + 1 if k is not None else None, text=lines[k].strip()[:80] if k is not None else None)
+        first_text = lines[k].strip() if k is not None else ""
+        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces" + _hex_dump(first_text), file=src,
+                           line=k + 1 if k is not None else None, text=first_text[:80] if k is not None else None)
     rows, row_lines, overruns, text_cells = [], [], [], {}
     for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
@@ -283,7 +284,32 @@ def _table(text: str, src: str) -> _Table:
             header = _grouped_names(names_at(above(j)), header)
     if header is None:
         header, units_row = _keyed_rows(lines[:first], delimiter, width, units_row)
-    return _Table(header, units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+    return _Table(_time_named(header, units_row), units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+
+
+_HEX = re.compile(r"[0-9A-Fa-f]{4,16}")
+
+
+def _hex_dump(line: str) -> str:
+    """What a file of one hexadecimal number per line is: Mitsubishi's CNC sampling output with "#6 OUTPUT FORM" 1
+    writes each channel's sample as 8 hexadecimal digits on a line of its own ("Data Output Format", M700/M800 and C70
+    instruction manuals, "Sampling"), which no column layout can read; its decimal output (form 0) is a table."""
+    if not (_HEX.fullmatch(line) and not line.isdigit()):
+        return ""
+    return (f": lines of one hexadecimal number each ({line}) are a hexadecimal dump (Mitsubishi's CNC sampling with "
+            "output form 1 writes one channel's sample per line); save the sampling in decimal (output form 0), a row "
+            "per sample")
+
+
+def _time_named(header: list[str] | None, units_row: list[str] | None) -> list[str] | None:
+    """The header with its one blank name over a time unit named ``time``: maxon EPOS Studio's data recorder
+    export leaves the time column's name blank and writes ``ms`` under it (``;Velocity actual value averaged``
+    over ``ms;rpm;%``; our reading of its exports)."""
+    if header is None or units_row is None or "time" in header:
+        return header
+    blank = [i for i, (h, u) in enumerate(zip(header, units_row))
+             if not h.strip() and unit_named(u.strip("[]() "), "time") is not None]
+    return [("time" if i == blank[0] else h) for i, h in enumerate(header)] if len(blank) == 1 else header
 
 
 #: First cells of the header rows of recorders that label each row (Hioki memory recorders' text files: ``"SIGNAL",
