@@ -11,6 +11,7 @@ import pytest
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
 from vcnc.traces.names import columns_from_names, counted
+from vcnc.traces.preamble import stated_turn_travel
 
 
 def _motion(n: int = 300, dt: float = 1e-3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -134,3 +135,38 @@ def test_hexadecimal_sampling_output_is_named(tmp_path):
     with pytest.raises(CaptureError, match=r"sampling.txt:1: no rows of numbers separated by tab, ';', ',' or spaces: "
                                            r"lines of one hexadecimal number each \(00030D40\) are a hexadecimal dump"):
         read_capture(f)
+
+
+@pytest.mark.parametrize(("lines", "travel"), [
+    (["Screw lead: 5 mm"], 5.0),
+    (["Spindelsteigung [mm/U]; 10"], 10.0),
+    (["lead = 0.2 in/rev", "Gear ratio: 3:1"], 0.2 * 25.4 / 3),
+    (["# Screw lead: 5 mm", "# \u00dcbersetzung: 2"], 2.5),
+    (["pitch: 0.5 rad"], None),  # an angle, no lead
+    (["Lead: 5 deg"], None),
+    (["Gear ratio: 3"], None),  # a ratio without a lead states no travel
+    (["Screw lead: 5 mm", "Screw lead: 10 mm"], None),  # two leads that disagree state nothing
+])
+def test_stated_travel_of_a_motor_turn(lines, travel):
+    found = stated_turn_travel(lines)
+    assert (found[0] if found else None) == (pytest.approx(travel, rel=1e-12) if travel is not None else None)
+
+
+@pytest.mark.parametrize(("unit", "per_unit"), [("turns", 2.5), ("rad", 2.5 / (2 * np.pi))])
+def test_motor_turns_on_a_linear_axis_with_a_stated_lead(tmp_path, unit, per_unit):
+    # a drive's log of its motor in turns (or radians) above which the screw's lead and the gear ratio are stated
+    t, ref, act = _motion(50)
+    f = tmp_path / "drive.csv"
+    f.write_text("# Screw lead: 5 mm\n# Gear ratio: 2:1\n"
+                 f"time [s],input_pos [{unit}],pos_estimate [{unit}]\n"
+                 + "".join(f"{a:.3f},{b:.6f},{c:.6f}\n" for a, b, c in zip(t, ref, act)))
+    cap = read_capture(f, columns={"t": "time [s]", "x_ref": f"input_pos [{unit}]", "x": f"pos_estimate [{unit}]"})
+    np.testing.assert_allclose(cap.reference[:, 0], np.round(ref, 6) * per_unit, atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 0], np.round(act, 6) * per_unit, atol=1e-9)
+    assert cap.meta["turn_travel"] == ("2.5 mm per motor turn for x_ref, x (lead stated in line 1 ('# Screw lead: 5 "
+                                       "mm'), gear ratio in line 2 ('# Gear ratio: 2:1'))")
+    # on a rotary axis turns stay turns, whatever the lead
+    cap = read_capture(f, columns={"t": "time [s]", "a_ref": f"input_pos [{unit}]", "a": f"pos_estimate [{unit}]"})
+    np.testing.assert_allclose(cap.reference[:, 0], np.round(ref, 6) * (360.0 if unit == "turns" else 180 / np.pi),
+                               atol=1e-9)
+    assert "turn_travel" not in cap.meta

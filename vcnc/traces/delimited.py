@@ -45,11 +45,17 @@ and "Unit" rows) give the names and units (:func:`_keyed_rows`); a header that s
 ``Axis n``, description cells (dls-pmac-control's Power PMAC gather save) is joined per channel; a file of one row of
 numbers (a saved row vector) and a header of time and other quantities only (speeds, currents: no position at all)
 are refused as such, naming what was found.
+
+**tracewild4** (session 26). A blank name over a time unit in the units row is the time column (maxon EPOS Studio's
+data recorder export); positions of a linear axis in a motor's turns or radians are scaled by the lead (over a gear
+ratio) stated above the table (:func:`vcnc.traces.preamble.stated_turn_travel`); a file of one hexadecimal number
+per line is named as a hexadecimal dump (Mitsubishi's CNC sampling output form 1).
 """
 
 from __future__ import annotations
 
 import csv
+import math
 import os
 import re
 from collections.abc import Callable, Mapping, Sequence
@@ -71,6 +77,7 @@ from vcnc.traces.columns import (
     check_timing,
     check_units,
     is_unit_row,
+    length_unit,
     mapped_axes,
     mapping_meta,
     on_uniform_grid,
@@ -86,7 +93,7 @@ from vcnc.traces.columns import (
 )
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
-from vcnc.traces.preamble import stated_count_size, stated_period
+from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
@@ -434,6 +441,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
+    stated.update(_turn_travel(units, above))
     stamped = "t" in idx and ":" in _split(lines[lines_kept[0] - 1], delimiter)[idx["t"]]
     if units["t"] is None and period is not None and sample_time is None and not stamped:
         units["t"] = _unit_of_step(d[:, idx["t"]], float(period.value))
@@ -552,6 +560,22 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _turn_travel(units: dict[str, str | None], above: list[str]) -> dict[str, str]:
+    """Positions of a linear axis in turns or radians of its motor (``[turns]``) scaled by the travel of one turn the
+    lines above the table state (a screw's lead, over a gear ratio: :func:`vcnc.traces.preamble.stated_turn_travel`),
+    set in ``units``, and the ``meta["turn_travel"]`` note; without a lead nothing (the unit's error asks for it)."""
+    turning = [k for k, u in units.items() if k != "t" and axis_of(k) not in ROTARY_AXES and u is not None
+               and (length_unit(u) or ("", 0.0))[0] in ("rev", "rad")]
+    travel = stated_turn_travel(above) if turning else None
+    if travel is None:
+        return {}
+    mm, said = travel
+    for k in turning:
+        per_unit = mm if length_unit(str(units[k]))[0] == "rev" else mm / (2 * math.pi)
+        units[k] = f"{per_unit:.12g}mm"
+    return {"turn_travel": f"{mm:.9g} mm per motor turn for {', '.join(turning)} ({said})"}
 
 
 def _check_time_options(columns: Mapping[str, str], time_unit: str | None, sample_time: float | None,

@@ -15,6 +15,11 @@ number with a time unit (``s``, ``ms``, ``us``, ``µs``) or a rate (``Hz``, ``kH
 the unit also in brackets after the key (``Sample time [ms]: 0.5``). A resolution line is ``resolution``,
 ``Auflösung`` or ``count size`` / ``increment size``, then a length per count (``0.1 um``, ``0.0001 mm/inc``)
 or counts per length (``10000 inc/mm``). A value without a unit, or two lines that disagree, state nothing.
+
+vcnc addition (tracewild4): a screw's lead (``Screw lead: 5 mm``, ``Lead = 0.2 in/rev``, German ``Spindelsteigung``,
+a length or a length per turn) and a gear ratio (``Gear ratio: 3``, ``3:1``, ``Übersetzung``: motor turns per screw
+turn) state the travel of one motor turn, which scales a linear axis' positions logged in turns or radians
+(:func:`stated_turn_travel`).
 """
 
 from __future__ import annotations
@@ -25,7 +30,7 @@ from dataclasses import dataclass
 
 from vcnc.traces.columns import ANGLE_UNITS, COUNT_UNITS, LENGTH_UNITS, TIME_UNITS, unit_named
 
-__all__ = ["Stated", "stated_period", "stated_count_size"]
+__all__ = ["Stated", "stated_period", "stated_count_size", "stated_turn_travel"]
 
 _NUM = r"([+-]?(?:\d+[.,]?\d*|[.,]\d+)(?:[eE][+-]?\d+)?)"
 _KEY_UNIT = r"(?:\s*[\[(]\s*([^\[\]()]+?)\s*[\])])?"
@@ -37,6 +42,12 @@ _PERIOD = re.compile(r"^\s*[#%;]?\s*(?:(?:sampl(?:e|ing)|trace|record(?:ing)?)[\
 _RESOLUTION = re.compile(r"^\s*[#%;]?\s*(?:(?:encoder|position|measuring system|geber)?[\s_-]*(?:resolution|aufl"
                          r"\u00f6sung)|(?:count|increment)[\s_-]*size)" + _KEY_UNIT + _SEP + _NUM +
                          _SEP + r"([^\s;,]*)\s*[;,\t]*\s*$", re.IGNORECASE)
+_LEAD = re.compile(r"^\s*[#%;]?\s*(?:(?:ball[\s_-]*)?screw[\s_-]*(?:lead|pitch)|lead|(?:spindel|gewinde)?steigung)"
+                   + _KEY_UNIT + _SEP + _NUM + _SEP + r"([^\s;,]*)\s*[;,\t]*\s*$", re.IGNORECASE)
+_GEAR = re.compile(r"^\s*[#%;]?\s*(?:(?:gear(?:box)?|transmission|reduction)[\s_-]*ratio|(?:getriebe)?"
+                   r"\u00fcbersetzung)" + _SEP + _NUM + r"(?:\s*:\s*" + _NUM + r")?\s*[;,\t]*\s*$", re.IGNORECASE)
+#: Units after a lead's value: a length, or a length per turn.
+_PER_TURN = ("", "rev", "turn", "u", "r", "rot", "revolution")
 _RATES = {"hz": 1.0, "khz": 1e3}
 #: Units a stated resolution may be in: lengths and degrees; counts per turn or radian of a motor state nothing of
 #: the axis' travel (a linear axis needs its lead), our reading.
@@ -101,6 +112,37 @@ def _stated(lines: Sequence[str], pattern: re.Pattern[str],
 def stated_period(lines: Sequence[str]) -> Stated | None:
     """The sampling period [s] the lines above a table state (module docstring), or None."""
     return _stated(lines, _PERIOD, _period)
+
+
+def _lead(m: re.Match[str]) -> float | None:
+    """Millimetres per turn of a matched lead line (``Screw lead: 5 mm``, ``Spindelsteigung [mm/U] 10``), or None."""
+    top, _, per = (m.group(3) or m.group(1) or "").strip().lower().replace("\u03bc", "\u00b5").partition("/")
+    base = unit_named(top, "length")
+    value = _number(m.group(2))
+    if base is None or base in ANGLE_UNITS or per not in _PER_TURN or not value > 0:
+        return None
+    return value * LENGTH_UNITS[base]
+
+
+def _gear(m: re.Match[str]) -> float | None:
+    """Motor turns per screw turn of a matched gear ratio line (``Gear ratio: 3``, ``3:1``), or None."""
+    a, b = _number(m.group(1)), _number(m.group(2)) if m.group(2) else 1.0
+    return a / b if a > 0 and b > 0 else None
+
+
+def stated_turn_travel(lines: Sequence[str]) -> tuple[float, str] | None:
+    """The travel [mm] of one motor turn and what states it, from a screw's lead above a table (``Screw lead: 5 mm``,
+    ``Spindelsteigung: 10 mm/U``) divided by a gear ratio when one is stated too (motor turns per screw turn:
+    ``Gear ratio: 3``, ``3:1``); None without a lead. Our reading of loggers that record a motor's turns: the turns
+    are the motor's, the ratio the gear's i = n_motor / n_screw (DIN 868)."""
+    lead = _stated(lines, _LEAD, _lead)
+    if lead is None:
+        return None
+    gear = _stated(lines, _GEAR, _gear)
+    ratio = float(gear.value) if gear is not None else 1.0
+    said = f"lead stated in line {lead.line} ({lead.text!r})" + (
+        f", gear ratio in line {gear.line} ({gear.text!r})" if gear is not None else "")
+    return float(lead.value) / ratio, said
 
 
 def stated_count_size(lines: Sequence[str]) -> Stated | None:
