@@ -170,3 +170,27 @@ def test_motor_turns_on_a_linear_axis_with_a_stated_lead(tmp_path, unit, per_uni
     np.testing.assert_allclose(cap.reference[:, 0], np.round(ref, 6) * (360.0 if unit == "turns" else 180 / np.pi),
                                atol=1e-9)
     assert "turn_travel" not in cap.meta
+
+
+@pytest.mark.parametrize(("header", "mapping"), [
+    # Heidenhain scope channel types: "I ist" is a current, "v ist" a velocity (two axis letters), "s ist" the position
+    (["x_s_soll", "x_s_ist", "x_s_diff", "x_v_ist", "x_i_ist"], {"x_ref": "x_s_soll", "x": "x_s_ist"}),
+    (["s soll X", "s ist X", "v ist X", "I ist X"], {"x_ref": "s soll X", "x": "s ist X"}),
+    # a PLC's Hungarian "i" (an integer) before act/set stays a position
+    (["iSetPos", "iActPos"], {"x_ref": "iSetPos", "x": "iActPos"}),
+])
+def test_heidenhain_channel_types_in_names(header, mapping):
+    assert columns_from_names(header, period_known=True) == (mapping, "")
+
+
+def test_pylsv2_scope_csv(tmp_path):
+    # pyLSV2's scope2csv.py: signal_channel names, values scaled to mm, no time column (its -i interval in us)
+    t, ref, act = _motion()
+    f = tmp_path / "scope.csv"
+    f.write_text("x_s_soll,x_s_ist,x_v_ist,x_i_ist\n"
+                 + "".join(f"{b:.6f},{c:.6f},1200.0,1.25\n" for b, c in zip(ref, act)))
+    cap = read_capture(f, sample_time=0.003)
+    np.testing.assert_allclose(cap.t, 3 * t, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 0], ref, atol=1e-6)
+    np.testing.assert_allclose(cap.measured[:, 0], act, atol=1e-6)
+    assert cap.meta["time_unit"] == "rows every 0.003 s"

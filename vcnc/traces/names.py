@@ -98,6 +98,11 @@ _CJK_PARTS = {"ref": ("\u6307\u4ee4", "\u76ee\u6807", "\u7ed9\u5b9a", "\u7d66\u5
 #: "Motor present desired position", "Motor present actual position", "Motor following error", unit ``[cts]``,
 #: scaled by 1/(Ix08*32), the Turbo PMAC's position scale factor), though the export writes no unit.
 _PMAC_COUNTS = ("motor present desired position", "motor present actual position", "motor following error")
+#: Heidenhain's scope channel types name their quantity by a letter before the role (TNCscope's ``s ist`` position,
+#: ``v ist`` velocity, ``I ist`` current, as in its ``.sco`` files' ``%CHANNELTYPE``; pyLSV2's ``scope2csv.py`` writes
+#: them as ``x_s_ist``, ``x_i_ist``): ``I`` before one of these role words is a current, not a position. (``v`` and
+#: ``a`` are axis letters: beside the axis' own letter the name names two axes and is no position already.)
+_TNC_ROLES = frozenset({"ist", "soll", "noml", "actl", "nom", "nominal"})
 #: PA (Power Automation) CNC's axis variables, logged in the control's internal increments (PaDataAnalyze.py,
 #: yangxiaosheng27/PA_Data_Analysize: "SSetPos, CommandedMachinePosCorr, SActMachinePos  Unit: internal increment
 #: ... defaults to 1um"); the trace writes no unit and the increment is the machine's setting.
@@ -191,7 +196,7 @@ def _position(name: str) -> tuple[str, str | None] | None:
         return None  # a unit that is neither a length nor counts: mm/min, A, Nm, %
     words = _split_axis(_words(name))
     role = _role(words)
-    if role is None:
+    if role is None or any(a == "i" and b in _TNC_ROLES for a, b in zip(words, words[1:])):
         return None
     axes = {w for w in words if w in AXIS_NAMES}
     if len(axes) > 1:
