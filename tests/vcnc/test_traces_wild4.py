@@ -36,6 +36,13 @@ _EHA = ["EXP_Time", "EXP_PosRef", "EXP_PosFb", "EXP_Pressure_A", "EXP_Pressure_B
     (["Set_time", "Set_x", "Set_y"],
      (None, "no column is named as time (only names with more than time words: ['Set_time']; give --columns "
             "t=NAME,...)")),
+    # a shared quantity is no tag: velocities are not read as positions
+    (["Geschw_Zeit", "Geschw_Soll", "Geschw_Ist"],
+     (None, "no column is named as time (only names with more than time words: ['Geschw_Zeit']; give --columns "
+            "t=NAME,...)")),
+    (["Vel_time", "Vel_cmd", "Vel_act"],
+     (None, "no column is named as time (only names with more than time words: ['Vel_time']; give --columns "
+            "t=NAME,...)")),
     # a prefix on some names only is no shared tag
     (["EXP_Time", "PosRef", "EXP_PosFb"],
      (None, "no column is named as time (only names with more than time words: ['EXP_Time']; give --columns "

@@ -270,7 +270,8 @@ def _without_prefix(header: Sequence[str]) -> list[str] | None:
         return None
     words = {m.group(1).lower() for m in found if m}
     word = words.pop() if len(words) == 1 else None
-    if word is None or word in AXIS_NAMES or _role([word]) is not None or word in _TIME | _OTHER | _NUMBERED | _SAMPLE:
+    if (word is None or word in AXIS_NAMES or _role([word]) is not None or word in _TIME | _OTHER | _NUMBERED | _SAMPLE
+            or any(p in word for p in _OTHER_PARTS)):
         return None
     bare = [h[m.end():] for h, m in zip(header, found) if m]
     return bare if len(set(bare)) == len(bare) else None
