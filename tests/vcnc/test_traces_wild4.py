@@ -201,3 +201,32 @@ def test_pylsv2_scope_csv(tmp_path):
     np.testing.assert_allclose(cap.reference[:, 0], ref, atol=1e-6)
     np.testing.assert_allclose(cap.measured[:, 0], act, atol=1e-6)
     assert cap.meta["time_unit"] == "rows every 0.003 s"
+
+
+def _camonitor_log(path, prefix: str, records: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A camonitor log of the PVs ``prefix:record`` every 10 ms: the first record the command, the others the
+    measured position."""
+    t, ref, act = _motion(60, dt=0.01)
+    lines = []
+    for a, b, c in zip(t, ref, act):
+        for k, record in enumerate(records):
+            lines.append(f"{prefix}:{record} 2022-05-05 14:26:{11 + a:09.6f} {(b if k == 0 else c):.8f}")
+    path.write_text("\n".join(lines) + "\n")
+    return t, ref, act
+
+
+def test_camonitor_pvs_are_read_by_their_record_names(tmp_path):
+    # the device prefix TARGET_DU (ESS's target) names no command: X-PosCmd / X-PosAct read from the records
+    f = tmp_path / "x.log"
+    t, ref, act = _camonitor_log(f, "TARGET_DU", ("X-PosCmd", "X-PosAct", "X-LimitMax"))
+    cap = read_capture(f)
+    np.testing.assert_allclose(cap.reference[:, 0], np.round(ref, 8), atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], np.round(act, 8), atol=1e-12)
+    assert cap.meta["columns"] == "from the PV names: x_ref=TARGET_DU:X-PosCmd, x=TARGET_DU:X-PosAct"
+    g = tmp_path / "rot.log"
+    _camonitor_log(g, "TARGET_DU", ("Rotation-VelLastSectorAct", "Rotation-PosAct"))
+    with pytest.raises(CaptureError, match=r"rot.log: which PVs are the commanded and measured positions\? .*by their "
+                                           r"record names \['Rotation-VelLastSectorAct', 'Rotation-PosAct'\]: no pair "
+                                           r"of a commanded and a measured position is named \(positions found: "
+                                           r"\['Rotation-PosAct'\]"):
+        read_capture(g)

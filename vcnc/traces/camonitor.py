@@ -53,6 +53,21 @@ def looks_like_camonitor(text: str) -> bool:
     return len(lines) >= 2 and all(_LINE.match(s) for s in lines)
 
 
+def _channels_from_records(pvs: list[str]) -> tuple[dict[str, str] | None, str]:
+    """:func:`vcnc.traces.names.channels_from_names` of the PVs' record names, the part after the last ``:``
+    (``X-PosCmd`` of ``TARGET_DU:X-PosCmd``), mapped back to the PVs; of the whole names when that reads nothing
+    (the records' reason). The prefix names the IOC or device (ESS's ``TARGET_DU``, ``IOC_TEST``), whose words (a
+    "target") say nothing of the signal: our reading of the ecmc logs seen (tracewild4)."""
+    records = [pv.rsplit(":", 1)[-1] for pv in pvs]
+    if len(set(records)) < len(records):
+        return channels_from_names(pvs, "PV")
+    named, why = channels_from_names(records, "PV")
+    if named is not None:
+        return {k: pvs[records.index(v)] for k, v in named.items()}, ""
+    whole, _ = channels_from_names(pvs, "PV")
+    return (whole, "") if whole is not None else (None, f"by their record names {records}: {why}")
+
+
 def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                    unit: str | None = None, resample: bool = False) -> Capture:
     """Read a camonitor log (module docstring) into a capture.
@@ -83,7 +98,7 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if columns:
         mapping = {k: v for k, v in columns.items() if k != "t"}
     else:
-        named, why = channels_from_names(found, "PV")
+        named, why = _channels_from_records(found)
         if named is None:
             raise CaptureError("which PVs are the commanded and measured positions? give --columns x_ref=PV,x=PV; "
                                f"PVs found: {found} (not read from the names: {why})", file=src)
