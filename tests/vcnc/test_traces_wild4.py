@@ -115,7 +115,7 @@ def test_epos_studio_recorder_export(tmp_path):
     f = tmp_path / "epos.csv"
     f.write_text(_EPOS_PREAMBLE + ";Position demand value;Position actual value\nms;qc;qc\n"
                  + "".join(f"{a * 1e3:.3f};{round(b * 2000)};{round(c * 2000)}\n" for a, b, c in zip(t, ref, act)))
-    with pytest.raises(CaptureError, match=r"epos.csv:10: x_ref='Position demand value' is logged in increments "
+    with pytest.raises(CaptureError, match=r"epos.csv:9: x_ref='Position demand value' is logged in increments "
                                            r"\('qc'\) and the file does not state their size"):
         read_capture(f)
     cap = read_capture(f, unit="0.0005mm")
@@ -130,7 +130,7 @@ def test_epos_studio_speeds_and_torques_only(tmp_path):
     f = tmp_path / "200.csv"
     f.write_text(_EPOS_PREAMBLE + ";Velocity actual value averaged;Torque actual value averaged\nms;rpm;%\n"
                  + "".join(f"{k * 40:.3f};{k};0.5\n" for k in range(50)))
-    with pytest.raises(CaptureError, match=r"200.csv:10: no position in the file: its columns \['time', 'Velocity "
+    with pytest.raises(CaptureError, match=r"200.csv:9: no position in the file: its columns \['time', 'Velocity "
                                            r"actual value averaged', 'Torque actual value averaged'\] are time"):
         read_capture(f)
 

@@ -237,6 +237,7 @@ class _Table(NamedTuple):
     overruns: list[int]  #: file lines of halsampler's overrun marks
     text: dict[int, tuple[int, str]]  #: column -> (file line, cell) of its first text cell
     lines: list[str]  #: the file's lines
+    header_line: int | None = None  #: the 1-based line of the names (above a row of units), when found above the rows
 
 
 def _table(text: str, src: str) -> _Table:
@@ -289,9 +290,11 @@ def _table(text: str, src: str) -> _Table:
             header = names_at(j)
         if header is not None and len(set(header)) < len(header):
             header = _grouped_names(names_at(above(j)), header)
+    header_line = j + 1 if header is not None and j is not None else None
     if header is None:
         header, units_row = _keyed_rows(lines[:first], delimiter, width, units_row)
-    return _Table(_time_named(header, units_row), units_row, data, row_lines, delimiter, overruns, text_cells, lines)
+    return _Table(_time_named(header, units_row), units_row, data, row_lines, delimiter, overruns, text_cells, lines,
+                  header_line)
 
 
 _HEX = re.compile(r"[0-9A-Fa-f]{4,16}")
@@ -405,7 +408,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                            "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
                            file=src, line=row_lines[0])
     above = lines[:row_lines[0] - 1]
-    hline = len(above) or None  # the header's line; None without a header above the first row
+    hline = table.header_line or len(above) or None  # the names' line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
