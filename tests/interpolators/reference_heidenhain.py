@@ -628,7 +628,8 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     if polar:
         r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
         a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
-        a = a + w["IPA"] if "IPA" in w else w["PA"]
+        # no PA: the end angle is the start's, a full circle (the arc's end is its start)
+        a = a + w["IPA"] if "IPA" in w else w.get("PA", a)
         if "PR" in w or "IPR" in w:
             raise ReferenceError("CP with a radius word")
         end = t.machine(_polar_point(t, p, r, a, w))
@@ -762,13 +763,15 @@ def _polar_line(t: _Tnc, line: int, w: dict) -> None:
     plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
     axis moves it too (under RL/RR: the contour's point). Without transformations only."""
     _comp_words(t, w)
-    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w))
+    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w, line=True))
 
 
-def _polar_end(t: _Tnc, w: dict) -> np.ndarray:
+def _polar_end(t: _Tnc, w: dict, *, line: bool = False) -> np.ndarray:
     """The machine end point of ``LP`` / ``CTP`` words: PR (IPR: added to the current radius) from the pole at
-    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations."""
-    if t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations,
+    except for a line (``line``): its end point is the program point mapped as any other (the TNC 640 manual's
+    example "Sphere" moves so about ``CC X+0 Y+0`` and ``CC Z+0 X+Q108`` under cycle 10)."""
+    if not line and (t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any()):
         raise ReferenceError("LP/CTP under a transformation")
     p = t.prog()
     i, j = t.pole_axes
@@ -2302,9 +2305,11 @@ def _fn(t: _Tnc, text: str) -> str | None:
             a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV|LEN|ANG)\s*([-+]?\s*[\w.]+)\s*$",
                             expr.upper()).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
-            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees
-            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb, 8: math.sqrt(va * va + vb * vb),
-                     13: math.degrees(math.atan2(vb, va)) % 360.0}[n]  # TNC 370 manual: 0 < angle < 360
+            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees (each
+            # worked out only for its own n: FN 1 with a second value 0 is no division)
+            value = {1: lambda: va + vb, 2: lambda: va - vb, 3: lambda: va * vb, 4: lambda: va / vb,
+                     8: lambda: math.sqrt(va * va + vb * vb),
+                     13: lambda: math.degrees(math.atan2(vb, va)) % 360.0}[n]()  # TNC 370 manual: 0 < angle < 360
         else:
             value = _Formula(expr, t.q).value()
         t.q[q.strip().upper()] = value
