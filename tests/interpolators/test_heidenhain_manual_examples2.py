@@ -10,10 +10,10 @@ import math
 import numpy as np
 import pytest
 
-from interpolators.context import MachineContext
+from interpolators.context import MachineContext, Tool, read_tool_table
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
-from vcnc.errors import GCodeError
+from vcnc.errors import GCodeError, InputError
 
 ZERO = MachineContext()
 
@@ -73,3 +73,85 @@ def test_arc_about_a_pole_in_zx_under_a_rotation_stays_an_error():
                                          r"transformation"):
         checked(SPHERE + "9 CP IPA+90 DR+")
 
+
+# the TNC 640 cycle manual's NC blocks of cycle 205 write 'Q379=7.5 ;STARTING POINT' and 'Q253=750 ;F
+# PRE-POSITIONING': at Q253 from the set-up clearance above the surface to the set-up clearance above the deepened
+# starting point, the infeeds from there. Surface 0, Q200 2, Q379 7.5, Q202 5, depth -20: FMAX to 2, at F750 to
+# -5.5, infeeds to -12.5, -17.5, -20 with the re-entries Q258 0.5 above the last depth
+PECK = ("1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 CYCL DEF 205 UNIVERSAL PECKING ~\n Q200=2 ~\n Q201=-20 ~\n"
+        " Q206=150 ~\n Q202=5 ~\n Q203=+0 ~\n Q204=50 ~\n Q212=0 ~\n Q205=0 ~\n Q258=0.5 ~\n Q259=0.5 ~\n Q257=0 ~\n"
+        " Q256=0.2 ~\n Q211=0 ~\n Q379={start} ~\n Q253={feed}\n4 L X+10 Y+10 R0 FMAX M99")
+
+
+def test_universal_pecking_from_a_deepened_starting_point():
+    prog = checked(PECK.format(start="7.5", feed="750"))
+    moves = [(b.kind, round(float(b.target[2]), 6), round(b.feed * 60, 6)) for b in prog.blocks[2:]]
+    assert moves == [("rapid", 2, math.inf), ("line", -5.5, 750), ("line", -12.5, 150), ("rapid", 2, math.inf),
+                     ("rapid", -12, math.inf), ("line", -17.5, 150), ("rapid", 2, math.inf), ("rapid", -17, math.inf),
+                     ("line", -20, 150), ("rapid", 2, math.inf), ("rapid", 50, math.inf)]
+    fast = checked(PECK.format(start="7.5", feed="MAX"))  # Q253 FMAX: rapid down to the deepened start
+    assert [b.kind for b in fast.blocks[3:5]] == ["rapid", "line"] and fast.blocks[3].target[2] == -5.5
+
+
+@pytest.mark.parametrize("start, feed, words", [
+    ("20", "750", r"cycle 205: the deepened starting point Q379 must lie within the depth Q201"),
+    ("7.5", "0", r"cycle 205: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0"),
+])
+def test_universal_pecking_deepened_start_errors(start, feed, words):
+    with pytest.raises(GCodeError, match=words):
+        checked(PECK.format(start=start, feed=feed))
+
+
+# T-ANGLE, the tool table's point angle (iTNC 530 technical manual 9.5.4, ID50 NR32): cycle 240 with Q343=1
+# centres to the diameter Q344, cycles 200/203/205 with Q395=1 measure the depth to the full diameter. Tool 1: a
+# 90 deg centre drill, length 0; tool 2: a 118 deg drill of radius 3
+TANGLE = MachineContext(tools={1: Tool(number=1, radius=5.0, point_angle=90.0),
+                               2: Tool(number=2, radius=3.0, point_angle=118.0), 3: Tool(number=3, radius=3.0)})
+CENTER = ("1 TOOL CALL {t} Z S3000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 CYCL DEF 240 CENTERING ~\n Q200=2 ~\n Q343=1 ~\n"
+          " Q201=+0 ~\n Q344=-9 ~\n Q206=250 ~\n Q211=0 ~\n Q203=+20 ~\n Q204=100\n4 L X+30 Y+20 R0 FMAX M99")
+DRILL = ("1 TOOL CALL {t} Z S3000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 CYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-15 ~\n"
+         " Q206=250 ~\n Q202=20 ~\n Q210=0 ~\n Q203=+0 ~\n Q204=50 ~\n Q211=0 ~\n Q395={ref}\n"
+         "4 L X+10 Y+10 R0 FMAX M99")
+
+
+def tanged(body: str):
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", TANGLE)
+
+
+def test_centering_to_a_diameter_takes_the_point_angle():
+    # diameter 9 with a 90 deg point: 4.5 deep, from the surface 20 to 15.5
+    prog = tanged(CENTER.format(t=1))
+    assert min(float(b.target[2]) for b in prog.blocks) == pytest.approx(15.5)
+
+
+def test_depth_to_the_full_diameter_takes_the_point_angle():
+    # Q395=1: the cylindrical part at -15, the tip 3 / tan(59 deg) = 1.8026 mm deeper
+    tip = -15 - 3 / math.tan(math.radians(59))
+    assert min(float(b.target[2]) for b in tanged(DRILL.format(t=2, ref=1)).blocks) == pytest.approx(tip)
+    assert min(float(b.target[2]) for b in tanged(DRILL.format(t=2, ref=0)).blocks) == pytest.approx(-15)
+
+
+def test_the_point_angle_is_the_called_tools_at_the_call():
+    # the cycle is defined with the 118 deg drill, a 90 deg tool of radius 5 is called before the call: its cone
+    prog = tanged(DRILL.format(t=2, ref=1) + "\n5 TOOL CALL 1 Z S3000\n6 L X+40 Y+10 R0 FMAX M99")
+    assert float(prog.blocks[-3].target[2]) == pytest.approx(-20)  # -15 - 5 / tan(45 deg)
+
+
+@pytest.mark.parametrize("body, words", [
+    (CENTER.format(t=3), r"cycle 240: Q343=1 \(centering to the diameter Q344\) needs the tool's point angle, and "
+                         r"the called tool has none .*expected a point angle in the tool table \(T-ANGLE"),
+    (DRILL.format(t=3, ref=1), r"cycle 200: Q395=1 \(depth to the full diameter\) needs the tool's point angle"),
+])
+def test_no_point_angle_is_an_error_naming_the_column(body, words):
+    with pytest.raises(GCodeError, match=words):
+        tanged(body)
+
+
+def test_tool_tables_carry_the_point_angle(tmp_path):
+    path = tmp_path / "tool.t"
+    path.write_text("BEGIN TOOL     .T     MM\nT    NAME             L           R           T-ANGLE\n"
+                    "2    DRILL_D6         +120        +3          +118\n3    MILL             +80         +5\n[END]\n")
+    tools = read_tool_table(str(path))
+    assert tools[2].point_angle == 118.0 and tools[3].point_angle == 0.0
+    with pytest.raises(InputError, match=r"tool 4: point angle must lie in \(0, 180\)"):
+        Tool(number=4, point_angle=180.0)
