@@ -155,3 +155,25 @@ def test_tool_tables_carry_the_point_angle(tmp_path):
     assert tools[2].point_angle == 118.0 and tools[3].point_angle == 0.0
     with pytest.raises(InputError, match=r"tool 4: point angle must lie in \(0, 180\)"):
         Tool(number=4, point_angle=180.0)
+
+
+# the manuals' SL example "Overlapping contours" writes its islands one side short of their first point (the square
+# 'L X+27 Y+50 RL' / 'L Y+58' / 'L X+43' / 'L Y+42' / 'L X+27'): the SL cycles close such a contour with a line back
+# to its first point, so the program runs as the one that writes the closing line
+SL = ("1 TOOL DEF 1 L+0 R+3\n2 TOOL CALL 1 Z S2000\n3 L X+0 Y+0 Z+50 R0 FMAX\n4 CYCL DEF 14.0 CONTOUR\n"
+      "5 CYCL DEF 14.1 CONTOUR LABEL1/2\n6 CYCL DEF 20 CONTOUR DATA ~\n Q1=-10 ~\n Q2=1 ~\n Q3=+0 ~\n Q4=+0 ~\n"
+      " Q5=+0 ~\n Q6=2 ~\n Q7=+50 ~\n Q8=0 ~\n Q9=-1\n7 CYCL DEF 22 ROUGH-OUT ~\n Q10=10 ~\n Q11=100 ~\n Q12=350 ~\n"
+      " Q18=0 ~\n Q19=150\n8 CYCL CALL M3\n9 L Z+50 R0 FMAX M2\n10 LBL 1\n11 CC X+35 Y+50\n12 L X+10 Y+50 RR\n"
+      "13 C X+10 DR-\n14 LBL 0\n15 LBL 2\n16 L X+27 Y+50 RL\n17 L Y+58\n18 L X+43\n19 L Y+42\n20 L X+27\n{close}"
+      "21 LBL 0")
+
+
+def test_an_sl_island_one_side_short_is_closed():
+    short = checked(SL.format(close=""), exact=False)
+    closed = checked(SL.format(close="20 L Y+50\n"), exact=False)
+    assert len(short.blocks) == len(closed.blocks) > 50
+    assert all(np.allclose(a.target, b.target) for a, b in zip(short.blocks, closed.blocks, strict=True))
+    # the island's square 27..43 x 42..58 stays uncut: no feed move at the depth ends inside it
+    floor = [b for b in short.blocks if b.kind != "rapid" and b.target[2] == -10]
+    assert len(floor) > 20
+    assert not [b for b in floor if 27 < b.target[0] < 43 and 42 < b.target[1] < 58]
