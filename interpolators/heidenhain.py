@@ -52,8 +52,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0, CTP PR+30 PA+30    arc tangent to the preceding element (CTP: end point polar about CC)
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
-                                    polar line / arc about CC (helix with a tool-axis word); about a
-                                    CC naming the tool axis (CC Z.. X..) in that plane
+                                    polar line / arc about CC (helix with a tool-axis word; CP DR+
+                                    without PA: a full circle); about a CC naming the tool axis
+                                    (CC Z.. X..) in that plane (LP there also under cycles 7-11/26)
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     FPOL X+20 Y+30, FL IX+10 Y+20 RR F100, FLT AN+45, FCT DR- R15 CCA+90 RX 13, FC CCX+20 CCY+15 DR+
     R15, FSELECT 2                  FK free contour programming in the working plane (heidenhain_fk):

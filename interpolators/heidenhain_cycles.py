@@ -20,14 +20,15 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 7.0 DATUM ..`` 7.1 X, 7.2 Y, 7.3 Z: datum shift (``IX``: added to the last shift)
 ``CYCL DEF 9.0 DWELL ..`` 9.1 DWELL (or TIME) t [s]: a dwell right away
 ``CYCL DEF 32.0 TOL..``   32.1 T [mm] (empty: the machine's default); 32.2 ignored
-``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211 (Q395 must be 0: depth at the tip)
+``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211, Q395 = 1 the depth to the full diameter
+                          (the tool's point angle T-ANGLE, :func:`point_depth`; also 203, 205)
 ``CYCL DEF 203``          as 200, plus Q212 decrement, Q213 breaks, Q205 minimum plunge, Q208
                           retraction feed, Q256 chip-break retraction
 ``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
-                          advanced stop distances
+                          advanced stop distances, Q379 deepened starting point at Q253
 ``CYCL DEF 204``          back boring: Q249 Q250 Q251 Q252 Q253 Q254 Q255 Q214 (:func:`back_boring_cycle`)
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
-``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
+``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240 (Q343 = 1: to the diameter Q344)
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
 ``CYCL DEF 241``          single-lip deep-hole drilling in one infeed, Q379 deepened starting point at
                           Q253, Q435 dwell depth, Q401 feed factor (:func:`single_lip_cycle`)
