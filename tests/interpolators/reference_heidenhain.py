@@ -2805,4 +2805,6 @@ def _free_contour(t: _Tnc, line: int, head: str, rest: str) -> None:
             t.pole[:2] = centre
             t.pole_axes = (0, 1)
             t.emit(el.line, "arc_ccw" if ccw != t.turns_over() else "arc_cw", t.machine(q), centre=t.machine(t.pole))
+            # the arc's direction at its end, for a DEP after it (the TNC 640 manual's FK examples end so)
+            _arc_tangent(t, t.machine(q), t.machine(t.pole), ccw != t.turns_over(), (0, 1))
         t.fk_end = len(t.out)
