@@ -130,6 +130,10 @@ class Tool:
         The wear part of ``length`` and ``radius`` [mm] (Fanuc/Haas offset tables keep geometry and wear
         apart and apply their sum: ``G10 L11``/``L13`` set the wear, ``L10``/``L12`` the geometry =
         ``length - length_wear``, ``radius - radius_wear``); 0 for a LinuxCNC tool table.
+    point_angle : float
+        The point angle of a drill or countersink [deg], in (0, 180); 0: none. A Heidenhain tool table's
+        T-ANGLE column ("Point angle for DRILL and CSINK T-ANGLE", iTNC 530 technical manual 07/2013, 9.5.4,
+        FN 18 ID50 NR32): cycles 200/203/205 with Q395 = 1 and 240 with Q343 = 1 take their depth from it.
     """
 
     number: int
@@ -141,10 +145,14 @@ class Tool:
     length_wear: float = 0.0
     radius_wear: float = 0.0
     name: str = ""
+    point_angle: float = 0.0
 
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
             raise InputError(f"tool number must be an integer >= 0, got {self.number!r}")
+        if not (self.point_angle == 0.0 or 0.0 < self.point_angle < 180.0):
+            raise InputError(f"tool {self.number}: point angle must lie in (0, 180) [deg] (0: none), got "
+                             f"{self.point_angle!r}")
         if not math.isfinite(self.length):
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
         if not math.isfinite(self.radius):
@@ -490,7 +498,8 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
     and ``[END]``. Following the TNC7 user's manual "Tool table tool.t" (HEIDENHAIN 81762x-17): ``T`` the
     tool number (an index after the period: ``5.1`` is index 1 of tool 5), ``NAME`` the tool name (up
     to 32 characters, may hold spaces), ``L`` the length and ``R`` the radius, ``DL`` and ``DR`` their
-    oversizes ("is added to the parameter L"), ``DOC`` a comment. The other columns (R2, tool life,
+    oversizes ("is added to the parameter L"), ``DOC`` a comment, ``T-ANGLE`` the point angle of a drill
+    (:attr:`Tool.point_angle`). The other columns (R2, tool life,
     kinematics, ...) are read past. Indexed rows are left out: vcnc's tool table has no indices, and
     ``TOOL CALL 5.1`` takes tool 5's data with a note.
 
@@ -532,5 +541,6 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
             continue
         n = int(t.split(".")[0])
         tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
-                        length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale)
+                        length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale,
+                        point_angle=number("T-ANGLE"))
     return tools

@@ -52,8 +52,9 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CR X+5 Y+5 R+20 DR-             arc by radius (R- for more than 180 degrees)
     CT X+10 Y+0, CTP PR+30 PA+30    arc tangent to the preceding element (CTP: end point polar about CC)
     LP PR+20 PA+45, CP IPA+720 IZ-5 DR+
-                                    polar line / arc about CC (helix with a tool-axis word); about a
-                                    CC naming the tool axis (CC Z.. X..) in that plane
+                                    polar line / arc about CC (helix with a tool-axis word; CP DR+
+                                    without PA: a full circle); about a CC naming the tool axis
+                                    (CC Z.. X..) in that plane (LP there also under cycles 7-11/26)
     RND R5, CHF 2                   rounding / chamfer of the corner between two lines
     FPOL X+20 Y+30, FL IX+10 Y+20 RR F100, FLT AN+45, FCT DR- R15 CCA+90 RX 13, FC CCX+20 CCY+15 DR+
     R15, FSELECT 2                  FK free contour programming in the working plane (heidenhain_fk):
@@ -185,6 +186,7 @@ from interpolators.heidenhain_cycles import (
     pecking_cycle,
     pocket_item,
     q_assignments,
+    takes_point_angle,
     tapping_cycle,
 )
 from interpolators.heidenhain_fast import PlainBlocks
@@ -292,6 +294,7 @@ class Machine:
         self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
         self.prepared_tool = 0  # the tool a TOOL DEF n pre-selected (FN 18 SYSREAD ID20 NR2); 0: none
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
+        self.point_angle = 0.0  # the called tool's T-ANGLE [deg] (context Tool.point_angle); 0: none
         self.shift = np.zeros(3)
         # the work offset of the context that is the active preset (cycle 247); None: a preset beyond them (zero)
         self.preset: str | None = "G54"
@@ -306,9 +309,9 @@ class Machine:
         self.exact_stop = True
         self.tolerance: float | None = None
         self.cycle: DrillCycle | ContourTrain | RoughOut | None = None
-        # the 200-series definition the cycle was built from: its number, Q parameters and the cycle built
-        # (refresh_cycle rebuilds it when a call finds the parameters changed)
-        self.cycle_source: tuple[int, dict[int, float], DrillCycle] | None = None
+        # the 200-series definition the cycle was built from: its number, Q parameters, the cycle built and the
+        # tool's radius and point angle then (refresh_cycle rebuilds it when a call finds one of them changed)
+        self.cycle_source: tuple[int, dict[int, float], DrillCycle, tuple[float, float]] | None = None
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float | dict[str, float]] = {}
@@ -442,16 +445,21 @@ class Machine:
         reads its Q parameters when it is called, so an assignment between the definition and a call
         (``Q201=-18`` before the next ``CYCL CALL``, as an iTNC 530 training program in wild set 9 deepens
         its holes for a second drill) is the call's. A feed given as MAX keeps its value (the parameter
-        store holds finite values only)."""
+        store holds finite values only). The called tool's radius and point angle are the call's too (a
+        depth to the drill's full diameter, Q395=1, takes them: :func:`drill_cycle`)."""
         if self.cycle_source is None or self.cycle is not self.cycle_source[2]:
             return
-        number, q, _ = self.cycle_source
+        number, q, _, tool = self.cycle_source
         now = {k: v if math.isinf(v) else self.params.get(f"Q{k}") for k, v in q.items()}
-        if now == q:
+        if now == q and (tool == self.drill_tool() or not takes_point_angle(number, q)):
             return
         self.cycle = drill_cycle(number, now, feed_scale=self.feed_scale, scale=self.scale, where=where,
-                                 column=column, spindle=self.spindle)
-        self.cycle_source = (number, now, self.cycle)
+                                 column=column, spindle=self.spindle, tool=self.drill_tool())
+        self.cycle_source = (number, now, self.cycle, self.drill_tool())
+
+    def drill_tool(self) -> tuple[float, float]:
+        """The called tool's radius [mm] and point angle [deg] (0: none), as :func:`drill_cycle` takes them."""
+        return self.tool_radius, self.point_angle
 
     def write_tool(self, number: int, column: int, value: float) -> None:
         """``FN 17 SYSWRITE ID50``: tool ``number``'s length (``column`` 1) or radius (2) [mm] is ``value`` from
@@ -1013,6 +1021,8 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) ->
                 length = radius = 0.0
             else:
                 length, radius = tool.length, tool.radius
+        table = m.context.tool(number)  # T-ANGLE is the table's (TOOL DEF sets L and R only)
+        m.point_angle = table.point_angle if table is not None else 0.0
         m.tool_length = length + dl
         m.tool_radius = radius + dr
         m.tool_delta = dr
@@ -1020,7 +1030,7 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) ->
         m.tool_number = number
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
-        m.tool_number = 0
+        m.tool_number, m.point_angle = 0, 0.0
         m.at_rest = True  # a tool called by name that the table does not hold: a change all the same
     _tool_parameters(m, where)
 
@@ -1086,8 +1096,8 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
                                blk)
             return
         m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
-                              spindle=m.spindle)
-        m.cycle_source = (number, q, m.cycle)
+                              spindle=m.spindle, tool=m.drill_tool())
+        m.cycle_source = (number, q, m.cycle, m.drill_tool())
         return
     if sub in (None, 0):
         if number in LEGACY_CYCLES:

@@ -20,14 +20,15 @@ as one block of ``Qnnn=value`` assignments, possibly continued over lines with `
 ``CYCL DEF 7.0 DATUM ..`` 7.1 X, 7.2 Y, 7.3 Z: datum shift (``IX``: added to the last shift)
 ``CYCL DEF 9.0 DWELL ..`` 9.1 DWELL (or TIME) t [s]: a dwell right away
 ``CYCL DEF 32.0 TOL..``   32.1 T [mm] (empty: the machine's default); 32.2 ignored
-``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211 (Q395 must be 0: depth at the tip)
+``CYCL DEF 200``          Q200 Q201 Q206 Q202 Q210 Q203 Q204 Q211, Q395 = 1 the depth to the full diameter
+                          (the tool's point angle T-ANGLE, :func:`point_depth`; also 203, 205)
 ``CYCL DEF 203``          as 200, plus Q212 decrement, Q213 breaks, Q205 minimum plunge, Q208
                           retraction feed, Q256 chip-break retraction
 ``CYCL DEF 205``          as 203 (Q212, Q205, Q256, Q257 chip breaking within an infeed), Q258/Q259
-                          advanced stop distances
+                          advanced stop distances, Q379 deepened starting point at Q253
 ``CYCL DEF 204``          back boring: Q249 Q250 Q251 Q252 Q253 Q254 Q255 Q214 (:func:`back_boring_cycle`)
 ``CYCL DEF 2 / 17``       old tapping, item by item (:func:`tapping_cycle`)
-``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240
+``CYCL DEF 201 .. 209``   reaming, boring, tapping, bore milling, centering 240 (Q343 = 1: to the diameter Q344)
                           (:func:`drill_cycle`, TNC 320 cycle programming manual 9/2016)
 ``CYCL DEF 241``          single-lip deep-hole drilling in one infeed, Q379 deepened starting point at
                           Q253, Q435 dwell depth, Q401 feed factor (:func:`single_lip_cycle`)
@@ -66,7 +67,8 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "pattern_cycle",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
-           "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES"]
+           "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES", "takes_point_angle",
+           "point_depth"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -140,8 +142,9 @@ _REQUIRED = {
 }
 
 #: (cycle, Q) whose value may be ``MAX`` (rapid): 204's pre-positioning feed, the retraction feed of
-#: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203).
-_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253)})
+#: 201/202/203 (the Fusion 360 TNC post writes ``Q208=MAX`` in cycle 203), 241's and 205's feed to the deepened
+#: starting point (TNC 640 cycle manual, cycle 205: Q253 "alternatively FMAX").
+_MAX_ALLOWED = frozenset({(204, 253), (201, 208), (202, 208), (203, 208), (241, 208), (241, 253), (205, 253)})
 _Q_RE = re.compile(r"\s*Q(\d+)\s*=\s*", re.I)
 
 #: The cycle's name after its number, as the TNC saves it in the language of its dialogs: ``DRILLING``,
@@ -212,7 +215,8 @@ class DrillCycle:
     threads_per_step : int
         Cycles 262, 267: Q355 > 1, several 360 degree helices offset by Q355 pitches (0: one).
     approach_feed : float
-        Cycle 262: Q253, the feed in and out along the tool axis [mm/s]; 252: Q206, the plunging feed.
+        Cycle 262: Q253, the feed in and out along the tool axis [mm/s]; 252: Q206, the plunging feed; 241 and
+        205: Q253, the feed down to the deepened starting point.
     side_allowance, floor_allowance : float
         Cycle 252: Q368, Q369, the finishing allowances on the wall and the floor [mm].
     stepover : float
@@ -263,7 +267,7 @@ class DrillCycle:
     repeats : int
         Cycle 254: Q377, the number of slots on the pitch circle.
     start_depth : float
-        Cycle 241: Q379, the deepened starting point below the surface [mm] (0: none).
+        Cycles 241, 205: Q379, the deepened starting point below the surface [mm] (0: none).
     dwell_depth : float
         Cycle 241: Q435, the depth below the surface where the tool dwells Q211 on its way down [mm] (0: none).
     reduced_feed : float or None
@@ -543,8 +547,49 @@ def required_q(number: int, q: dict[int, float], where: Where, column: int) -> N
                    expected="the cycle's Q parameters: " + " ".join(f"Q{k}" for k in _REQUIRED[number]))
 
 
+def takes_point_angle(number: int, q: dict[int, float]) -> bool:
+    """True when cycle ``number`` with the parameters ``q`` takes its depth from the tool's point angle: 200, 203,
+    205 with Q395 = 1, 240 with Q343 = 1 (:func:`point_depth`)."""
+    return bool(number in (200, 203, 205) and q.get(395, 0.0) or number == 240 and q.get(343, 0.0))
+
+
+def point_depth(number: int, q: dict[int, float], *, scale: float, tool: tuple[float, float], where: Where,
+                column: int) -> float:
+    """The depth of the tool tip below the surface [mm, signed as Q201] of cycle ``number``; ``tool`` is the called
+    tool's radius [mm] and point angle [deg] (0: none).
+
+    The TNC 640 user's manual for cycle programming names the point angle in the tool table's T-ANGLE column
+    for two parameters: cycles 200, 203, 205 "Q395 Depth reference": 0 the depth Q201 to the tool tip, 1 to the
+    cylindrical part of the tool; cycle 240 "Q343 Select diameter/depth (1/0)": 1 centering to the diameter
+    Q344 (its sign the working direction) instead of the depth Q201 (iTNC 530 technical manual 07/2013, 9.5.4,
+    ID50 NR32 "Point angle for DRILL and CSINK T-ANGLE"). Our reading of the geometry: a cone of that point angle
+    ends r / tan(angle / 2) below where it reaches the radius r, so Q395 = 1 drills the tip that much deeper
+    (r the tool radius) and Q343 = 1 centres to the depth that gives the diameter Q344 (r = |Q344| / 2). Without
+    a point angle in the tool table the TNC cannot work either out: an error naming the column."""
+    if not takes_point_angle(number, q):
+        return q[201] * scale
+    radius, angle = tool
+    what = "Q343=1 (centering to the diameter Q344)" if number == 240 else "Q395=1 (depth to the full diameter)"
+    if not 0.0 < angle < 180.0:
+        where.fail(f"cycle {number}: {what} needs the tool's point angle, and the called tool has none",
+                   column=column, text=where.text,
+                   expected="a point angle in the tool table (T-ANGLE, [program.tools.n] point_angle) or "
+                            + ("Q343=0 (depth Q201)" if number == 240 else "Q395=0 (depth to the tool tip)"))
+    slope = math.tan(math.radians(angle) / 2.0)
+    if number == 240:
+        if q.get(344, 0.0) == 0.0:
+            where.fail("cycle 240: Q343=1 centres to the diameter Q344, which is 0", column=column, text=where.text,
+                       expected="Q344 < 0 [mm] (the diameter, its sign the working direction)")
+        return math.copysign(abs(q[344]) * scale / 2.0 / slope, q[344])
+    if radius <= 0.0:
+        where.fail(f"cycle {number}: {what} needs the tool radius, and the called tool has none", column=column,
+                   text=where.text, expected="a tool with a radius > 0, or Q395=0 (depth to the tool tip)")
+    depth = q[201] * scale
+    return math.copysign(abs(depth) + radius / slope, depth) if depth else 0.0
+
+
 def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
-                column: int, spindle: float | None = None) -> DrillCycle:
+                column: int, spindle: float | None = None, tool: tuple[float, float] = (0.0, 0.0)) -> DrillCycle:
     """A 200-series machining cycle from its Q parameters (TNC 320 cycle programming manual 9/2016,
     "Fixed cycles: drilling" and "tapping"; ``spindle`` [rpm] is the speed of the last TOOL CALL,
     whose product with the pitch Q239 is the feed of 207 and 209):
@@ -583,16 +628,13 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
                                      number=number)
     if number == 241:
         return single_lip_cycle(q, feed_scale=feed_scale, scale=scale, where=where, column=column)
-    if q.get(379, 0.0) != 0.0:
+    if q.get(379, 0.0) != 0.0 and number != 205:
         where.fail(f"cycle {number}: a deepened starting point Q379 is not supported", column=column,
                    text=where.text, expected="Q379=0 (drilling from the set-up clearance above the surface)")
-    if q.get(395, 0.0) != 0.0:
-        where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) needs the tool's point angle",
-                   column=column, text=where.text, expected="Q395=0 (depth to the tool tip)")
-    if number == 240 and q.get(343, 0.0) != 0.0:
-        where.fail("cycle 240: Q343=1 (centering to a diameter) needs the tool's point angle", column=column,
-                   text=where.text, expected="Q343=0 (depth Q201)")
-    depth = q[201] * scale
+    if q.get(395, 0.0) != 0.0 and number not in (200, 203, 205):
+        where.fail(f"cycle {number}: Q395=1 (depth to the full diameter) is not supported here", column=column,
+                   text=where.text, expected="Q395=0 (depth to the tool tip)")
+    depth = point_depth(number, q, scale=scale, tool=tool, where=where, column=column)
     base = dict(number=number, setup=abs(q[200]) * scale, depth=depth, surface=q[203] * scale,
                 second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0))
     if number in (207, 209):
@@ -631,6 +673,7 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, bore_diameter=q[335] * scale,
                                    helix_pitch=q[334] * scale, climb=q.get(351, 1.0) >= 0, **base), where, column)
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
+    start = _deepened_start(q, feed_scale=feed_scale, scale=scale, where=where, column=column) if number == 205 else {}
     # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
     retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
     return _checked(DrillCycle(
@@ -640,7 +683,27 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         retract_feed=retract * feed_scale if 0 < retract < math.inf else None,  # Q208=MAX: rapid
         advance=abs(q.get(258, 0.2)) * scale if number == 205 else None,
         advance_last=abs(q[259]) * scale if number == 205 and 259 in q else None,
-        chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **base), where, column)
+        chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **start, **base), where, column)
+
+
+def _deepened_start(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+                    column: int) -> dict[str, float]:
+    """Cycle 205's deepened starting point Q379 as :class:`DrillCycle` fields (TNC 640 user's manual for cycle
+    programming, "UNIVERSAL PECKING (Cycle 205)", cycle run: "If you enter a deepened starting point, the TNC
+    moves at the defined positioning feed rate to the set-up clearance above the deepened starting point";
+    Q379 incremental from the surface, Q253 the feed for pre-positioning, MAX rapid). The infeeds then count
+    from the deepened starting point (our reading: the manual's "first plunging depth" follows that move);
+    between infeeds the tool retracts to the set-up clearance above the surface as without Q379."""
+    start = abs(q.get(379, 0.0)) * scale
+    if not start:
+        return {}
+    if start >= abs(q[201]) * scale:
+        where.fail("cycle 205: the deepened starting point Q379 must lie within the depth Q201", column=column,
+                   text=where.text, expected="|Q379| < |Q201|")
+    if not q.get(253, 0.0) > 0:
+        where.fail("cycle 205: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
+                   column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
+    return {"start_depth": start, "approach_feed": q[253] * feed_scale}
 
 
 def finishing_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -1181,7 +1244,7 @@ class AxisMove:
 
 def _infeeds(cycle: DrillCycle) -> int:
     """How many infeeds drill ``cycle``'s hole (plunges shrinking by the decrement)."""
-    done, plunge, n = 0.0, cycle.plunge, 0
+    done, plunge, n = cycle.start_depth, cycle.plunge, 0
     while done < abs(cycle.depth) - 1e-12:
         done += min(plunge, abs(cycle.depth) - done)
         n += 1
@@ -1240,13 +1303,17 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
         advance = cycle.setup if cycle.advance is None else cycle.advance
         out.append(AxisMove("rapid", top))
     retract_kind, retract_feed = ("line", cycle.retract_feed) if cycle.retract_feed else ("rapid", math.inf)
-    done = 0.0
+    done = cycle.start_depth  # 205 Q379: from the set-up clearance above the deepened starting point
+    if done:
+        entry = surface + d * (done - cycle.setup)
+        out.append(AxisMove("line", entry, cycle.approach_feed) if math.isfinite(cycle.approach_feed)
+                   else AxisMove("rapid", entry))
     plunge = cycle.plunge
     breaks = 0
     at_top = True
     reentries = 0
     while done < total - 1e-12:
-        if done > 0.0 and at_top:
+        if done > cycle.start_depth and at_top:
             if cycle.dwell_top > 0:
                 out.append(AxisMove("dwell", top, 0.0, cycle.dwell_top))
             reentries += 1

@@ -298,6 +298,8 @@ def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine
     if kw == "CTP":  # the arc is in the working plane, as CT's
         _pole_in_working_plane(m, where, kw)
     plane = _polar_plane(kw, m, where, blk)
+    if plane != m.plane and not m.transform.identity:  # LP about a pole outside the working plane, transformed
+        return _transformed_polar(seen, target, plane, m, where)
     r0, a0 = polar_angle(m.pos, m.pole, plane=plane)
     k, t = m.scale * m.lengths(where), m.transform
     pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
@@ -305,6 +307,20 @@ def _polar_target(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine
           else a0 + (t.sweep(seen["IPA"].value, plane) if "IPA" in seen else 0.0))
     m.used.update(PLANE_AXES[plane])
     return polar_point(m.pole, pr, pa, plane=plane, base=target)
+
+
+def _transformed_polar(seen: dict[str, Word], target: np.ndarray, plane: int, m: Machine, where: Where) -> np.ndarray:
+    """The end point of an ``LP`` about a pole outside the working plane under a coordinate transformation: the
+    polar point about the pole in program coordinates (PR, PA and the current radius and angle there), then
+    transformed as any program point; a line's end point is all it needs (our reading of the TNC 640 manual's
+    example "Sphere", whose LP blocks about ``CC Z+0 X+Q108`` run under cycle 10 ROTATION)."""
+    pole, here = m.to_program(m.pole), m.to_program(m.pos)
+    r0, a0 = polar_angle(here, pole, plane=plane)
+    k = m.scale
+    pr = seen["PR"].value * k if "PR" in seen else r0 + (seen["IPR"].value * k if "IPR" in seen else 0.0)
+    pa = seen["PA"].value if "PA" in seen else a0 + (seen["IPA"].value if "IPA" in seen else 0.0)
+    m.used.update(PLANE_AXES[plane])
+    return m.to_machine(polar_point(pole, pr, pa, plane=plane, base=m.to_program(target)))
 
 
 def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: SourceBlock) -> bool:
@@ -572,18 +588,20 @@ def _pole(seen: dict[str, Word], m: Machine, where: Where, m9x: int | None) -> N
     writes its vertical lead-in and lead-out arcs as ``CC Y-31.628 Z-1.6`` / ``CP IPA+90 DR+`` /
     ``L Y-31.48 Z-3`` (the third coordinate of CC is the current one), and only the arc in the plane
     of CC's axes ends where the next line starts, tangentially, so that is how the controls it posts
-    for run it. Radius compensation and the coordinate transformations act in the working plane only,
-    so such an arc under RL/RR or a transformation is an error."""
+    for run it. Radius compensation acts in the working plane only, so such a pole under RL/RR is an
+    error; under a coordinate transformation the pole is set (the TNC 640 manual's Q parameter example
+    "Sphere" sets ``CC Z+0 X+Q108`` under cycle 10 ROTATION and moves about it with LP only, see
+    :func:`_polar_plane`), an arc about it stays an error (:func:`_arc`)."""
     target, written = plane_coords(seen, m, where, m9x=m9x)
     p, q = PLANE_AXES[m.plane]
     plane = m.plane
     off = [i for i in written if i not in (p, q)]
     if off:
         w = seen.get("XYZ"[off[0]]) or seen["I" + "XYZ"[off[0]]]
-        if len(written) != 2 or m.comp != "R0" or not m.transform.identity:
+        if len(written) != 2 or m.comp != "R0":
             where.fail(f"CC coordinate {w.text!r} is not in the working plane", column=w.column, text=w.text,
                        expected=f"CC {'XYZ'[p]} {'XYZ'[q]}, or CC with the tool axis and one other axis (a circle in "
-                                "that plane, without RL/RR and coordinate transformations)")
+                                "that plane, without RL/RR)")
         plane = 3 - sum(written)  # the axis CC does not name is the circle's normal
     m.pole = target
     m.pole_plane = plane if off else None
@@ -595,9 +613,12 @@ def _polar_plane(kw: str, m: Machine, where: Where, blk: SourceBlock) -> int:
     axis Z) the polar line runs in ZX with the angle from +Z, as the arcs about that pole do: HEIDENHAIN's
     demonstration program 7025 writes ``CC Z+Q4 X+Q7`` / ``LP PR+Q6 PA-90 R0`` / ``CP IPA+Q12 DR+`` (TNC 426
     manual, "Polar coordinates": the pole CC may lie in any of the three main planes, the angle PA
-    counted from the plane's reference axis). As for those arcs, R0 and no coordinate transformation."""
+    counted from the plane's reference axis). As for those arcs, R0; an LP line may run under a coordinate
+    transformation (its end point worked out in program coordinates and transformed, :func:`_polar_target`), as the
+    TNC 640 manual's Q parameter example "Sphere" moves about ``CC Z+0 X+Q108`` under cycle 10 ROTATION; CTP is an
+    arc and stays an error there."""
     plane = m.pole_plane if m.pole_plane is not None else m.plane
-    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
+    if plane != m.plane and (m.comp != "R0" or (kw != "LP" and not m.transform.identity)):
         what = "a coordinate transformation" if m.comp == "R0" else m.comp
         where.fail(f"{kw} about a CC outside the working plane under {what}",
                    column=blk.column, text=where.text,
@@ -652,8 +673,11 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine, where: 
                     delta = 0.0  # the end is the start: a full circle
                 m.ccw = ccw
                 sweep = (delta or 360.0) if ccw != flips else -((360.0 - delta) if delta else 360.0)
-            else:
-                where.fail("CP without an angle", column=blk.column, text=where.text, expected="PA or IPA")
+            else:  # no PA: the angle stays the current one, the end is the start, a full circle
+                if ccw is None:
+                    where.fail("CP arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")
+                m.ccw = ccw
+                sweep = 360.0 if ccw != flips else -360.0
             return helical_arc(m.pos, m.pole, sweep, plane=plane, axis_end=target[plane])
         if ccw is None:
             where.fail(f"{kw} arc without direction", column=blk.column, text=where.text, expected="DR+ or DR-")

@@ -84,6 +84,24 @@ def _trace_contour(m: Machine, label: str, radius: float, start: np.ndarray, fee
     return path, side
 
 
+def _sl_contour(m: Machine, label: str, feed: float, where: Where, blk: SourceBlock) -> tuple[list[Block], str]:
+    """The contour ``LBL label`` of cycle 14 as the SL cycles 21-24 take it (:func:`_trace_contour` with the tool
+    radius 0), closed by a straight line from its last point back to its first where it ends elsewhere. Our
+    reading of the manuals' own example "Overlapping contours" (TNC 426/430 and iTNC 530 user's manuals, SL
+    cycles): its square island ``L X+27 Y+50 RL`` / ``L Y+58`` / ``L X+43`` / ``L Y+42`` / ``L X+27`` and its
+    triangle ``L X+65 Y+42 RL`` / ``L X+57`` / ``L X+65 Y+58`` / ``L X+73 Y+42`` each end one side short of their
+    first point. Cycle 25 runs its contour open."""
+    path, side = _trace_contour(m, label, 0.0, m.pos, feed, where, blk)
+    p, q = PLANE_AXES[m.plane]
+    first, last = np.asarray(path[0].target, dtype=float), path[-1]
+    if np.hypot(*(first - np.asarray(last.target, dtype=float))[[p, q]]) > 1e-6:
+        end = np.array(last.target, dtype=float)
+        end[[p, q]] = first[[p, q]]
+        path.append(dataclasses.replace(last, kind="line", start=np.array(last.target, dtype=float), target=end,
+                                        segment=Line(np.array(last.target, dtype=float), end)))
+    return path, side
+
+
 def _sl_checks(m: Machine, number: int, where: Where, blk: SourceBlock) -> str:
     """The contour label of an SL cycle call, after the checks all of them share."""
     if not m.contour:
@@ -164,7 +182,7 @@ def _pocket_rings_of(m: Machine, c: RoughOut, radius: float, where: Where, blk: 
     """The rings of cycle 22 in the one pocket of cycle 14 for a tool of ``radius`` [mm], the innermost first
     (:func:`interpolators.heidenhain_contours.pocket_rings`)."""
     label = m.contour[0]
-    path, _ = _trace_contour(m, label, 0.0, m.pos, c.feed, where, blk)
+    path, _ = _sl_contour(m, label, c.feed, where, blk)
     pocket = closed_pocket(path[1:], ccw=c.ccw, plane=m.plane)
     if pocket is None:
         where.fail(f"cycle {c.number}: the contour LBL {label} is not closed or encloses no area",
@@ -183,7 +201,7 @@ def _pocket_rings_of(m: Machine, c: RoughOut, radius: float, where: Where, blk: 
 
 def _sl_region(m: Machine, feed: float, where: Where, blk: SourceBlock) -> Region:
     """The region of cycle 14's contours (:func:`interpolators.heidenhain_contours.superimposed_region`)."""
-    contours = [_trace_contour(m, label, 0.0, m.pos, feed, where, blk) for label in m.contour]
+    contours = [_sl_contour(m, label, feed, where, blk) for label in m.contour]
     return superimposed_region([(path[1:], side) for path, side in contours], plane=m.plane, where=where,
                                column=blk.column)
 

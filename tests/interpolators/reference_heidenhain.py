@@ -628,7 +628,8 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
     if polar:
         r = math.hypot(p[i] - t.pole[i], p[j] - t.pole[j])
         a = math.degrees(math.atan2(p[j] - t.pole[j], p[i] - t.pole[i]))
-        a = a + w["IPA"] if "IPA" in w else w["PA"]
+        # no PA: the end angle is the start's, a full circle (the arc's end is its start)
+        a = a + w["IPA"] if "IPA" in w else w.get("PA", a)
         if "PR" in w or "IPR" in w:
             raise ReferenceError("CP with a radius word")
         end = t.machine(_polar_point(t, p, r, a, w))
@@ -762,13 +763,15 @@ def _polar_line(t: _Tnc, line: int, w: dict) -> None:
     plane (IPR / IPA: added to the current radius / angle about the pole); a word of the plane's normal
     axis moves it too (under RL/RR: the contour's point). Without transformations only."""
     _comp_words(t, w)
-    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w))
+    t.emit(line, "rapid" if "FMAX" in w else "feed", _polar_end(t, w, line=True))
 
 
-def _polar_end(t: _Tnc, w: dict) -> np.ndarray:
+def _polar_end(t: _Tnc, w: dict, *, line: bool = False) -> np.ndarray:
     """The machine end point of ``LP`` / ``CTP`` words: PR (IPR: added to the current radius) from the pole at
-    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations."""
-    if t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
+    PA (IPA: added to the current angle) from the reference axis of the pole's plane. Without transformations,
+    except for a line (``line``): its end point is the program point mapped as any other (the TNC 640 manual's
+    example "Sphere" moves so about ``CC X+0 Y+0`` and ``CC Z+0 X+Q108`` under cycle 10)."""
+    if not line and (t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any()):
         raise ReferenceError("LP/CTP under a transformation")
     p = t.prog()
     i, j = t.pole_axes
@@ -1227,6 +1230,8 @@ def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
     if kind in ("1", "2", "4", "5", "17"):
         _old_cycle(t, line, kind, p, start)
         return
+    if kind in ("200", "203", "205", "240"):
+        p = _point_depth(t, kind, p)
     # the cycles one function runs: of (t, line, p), or of (t, line, kind, p)
     runs = {"208": _bore_milling, "230": _face_milling, "232": _face_milling, "231": _ruled_surface,
             "233": _face_milling_233, "25": _contour_train, "262": _thread_milling, "251": _circular_pocket,
@@ -1538,6 +1543,21 @@ def _bore_milling(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _point_depth(t: _Tnc, kind: str, p: dict) -> dict:
+    """The parameters with Q201 the tip's depth: 200/203/205 with Q395 = 1 measure Q201 to the drill's full
+    diameter, the tip lies R / tan(T-ANGLE / 2) deeper; 240 with Q343 = 1 centres to the diameter Q344 (its sign
+    the direction), to the depth |Q344| / 2 / tan(T-ANGLE / 2). T-ANGLE from the context's tool table."""
+    if not (p.get("Q343", 0.0) if kind == "240" else p.get("Q395", 0.0)):
+        return p
+    tool = t.ctx.tool(t.tool)
+    if tool is None or not tool.point_angle:
+        raise ReferenceError("a depth from the point angle of a tool without one")
+    tan = math.tan(math.radians(tool.point_angle) / 2)
+    if kind == "240":
+        return {**p, "Q201": math.copysign(abs(p["Q344"]) / 2 / tan, p["Q344"])}
+    return {**p, "Q201": math.copysign(abs(p["Q201"]) + t.radius / t.scale / tan, p["Q201"])}
+
+
 def _peck_depths(total: float, peck: float, decrement: float, smallest: float) -> list[float]:
     """The depths [mm, from the surface] reached by the pecks of 203/205."""
     out, z = [], 0.0
@@ -1553,7 +1573,8 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     """203/205: pecks of Q202 shrinking by Q212 to at least Q205; between pecks out to the set-up clearance
     (203: at Q208, 0: Q206; 205: rapid), dwell Q210, rapid back to the set-up clearance (205: Q258) above
     the last depth; 203: Q213 chip breaks (back Q256) before each full retraction; 205: a chip break (back
-    Q256 at rapid) after every Q257 within a peck; dwell Q211 at the bottom, out, then to Q204."""
+    Q256 at rapid) after every Q257 within a peck; dwell Q211 at the bottom, out, then to Q204. 205 with a deepened
+    starting point Q379: at Q253 (MAX: rapid) to Q200 above it, the pecks from there on."""
     surface, setup, depth, second = p["Q203"], p["Q200"], p["Q201"], p.get("Q204", 0.0)
     sgn = -1.0 if depth < 0 else 1.0
     clear, bottom = surface - sgn * setup, surface + depth
@@ -1562,12 +1583,15 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     chip, every = abs(p.get("Q256", 0.2)), abs(p.get("Q257", 0.0)) if kind == "205" else 0.0
     breaks = int(p.get("Q213", 0)) if kind == "203" else 0
     _move_z(t, line, "rapid", clear, optional=True)
-    peck, z, n = abs(p["Q202"]) or abs(depth), surface, 0
-    depths = _peck_depths(abs(depth), peck, abs(p.get("Q212", 0.0)), abs(p.get("Q205", 0.0)))
+    start = abs(p.get("Q379", 0.0)) if kind == "205" else 0.0
+    if start:
+        _move_z(t, line, "rapid" if math.isinf(p["Q253"]) else "feed", surface + sgn * (start - setup))
+    peck, z, n = abs(p["Q202"]) or abs(depth), surface + sgn * start, 0
+    depths = _peck_depths(abs(depth) - start, peck, abs(p.get("Q212", 0.0)), abs(p.get("Q205", 0.0)))
     last = abs(p["Q259"]) if kind == "205" and "Q259" in p else advance
     entry = 0
     while (bottom - z) * sgn > _EPS:
-        if n == 0 and z != surface:
+        if n == 0 and z != surface + sgn * start:
             _dwell(t, line, p.get("Q210", 0.0))
             # 205: Q258 at the first re-entry to Q259 at the last, in equal steps
             step = advance + (last - advance) * entry / (len(depths) - 2) if len(depths) > 2 else advance
@@ -2302,9 +2326,11 @@ def _fn(t: _Tnc, text: str) -> str | None:
             a, b = re.match(r"\s*([-+]?\s*[\w.]+)\s*(?:[-+*/]|DIV|LEN|ANG)\s*([-+]?\s*[\w.]+)\s*$",
                             expr.upper()).groups()
             va, vb = _val(a.replace(" ", ""), t.q), _val(b.replace(" ", ""), t.q)
-            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees
-            value = {1: va + vb, 2: va - vb, 3: va * vb, 4: va / vb, 8: math.sqrt(va * va + vb * vb),
-                     13: math.degrees(math.atan2(vb, va)) % 360.0}[n]  # TNC 370 manual: 0 < angle < 360
+            # FN 8 LEN: root sum of squares; FN 13 ANG: the angle of (a, b) from the arc tangent, in degrees (each
+            # worked out only for its own n: FN 1 with a second value 0 is no division)
+            value = {1: lambda: va + vb, 2: lambda: va - vb, 3: lambda: va * vb, 4: lambda: va / vb,
+                     8: lambda: math.sqrt(va * va + vb * vb),
+                     13: lambda: math.degrees(math.atan2(vb, va)) % 360.0}[n]()  # TNC 370 manual: 0 < angle < 360
         else:
             value = _Formula(expr, t.q).value()
         t.q[q.strip().upper()] = value
@@ -2779,4 +2805,6 @@ def _free_contour(t: _Tnc, line: int, head: str, rest: str) -> None:
             t.pole[:2] = centre
             t.pole_axes = (0, 1)
             t.emit(el.line, "arc_ccw" if ccw != t.turns_over() else "arc_cw", t.machine(q), centre=t.machine(t.pole))
+            # the arc's direction at its end, for a DEP after it (the TNC 640 manual's FK examples end so)
+            _arc_tangent(t, t.machine(q), t.machine(t.pole), ccw != t.turns_over(), (0, 1))
         t.fk_end = len(t.out)

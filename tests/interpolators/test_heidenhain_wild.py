@@ -148,11 +148,17 @@ def test_a_polar_line_about_a_pole_that_names_the_tool_axis_runs_in_that_plane()
     assert ends(prog)[4] == pytest.approx([0.0, 10.0, 15.0])
 
 
-def test_a_polar_line_in_another_plane_under_a_rotation_is_an_error():
-    with pytest.raises(GCodeError, match="LP about a CC outside the working plane under a coordinate transf"):
+def test_a_polar_line_in_another_plane_under_a_rotation_runs_and_an_arc_there_is_an_error():
+    # the polar point about the pole (Z 0, X 0) in program coordinates, then turned by ROT+30 as any program
+    # point: PA+90 from +Z is X 5 in the program, (5 cos 30, 5 sin 30) on the machine, Z 0 + the tool length 10
+    # (the TNC 640 manual's Q parameter example "Sphere" moves so; test_heidenhain_manual_examples2 has its form)
+    prog = run("1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 CC Z+0 X+0\n4 CYCL DEF 10.0 ROTATION\n"
+               "5 CYCL DEF 10.1 ROT+30\n6 LP PR+5 PA+90")
+    assert ends(prog)[-1] == pytest.approx([5 * math.cos(math.radians(30)), 2.5, 10.0])
+    with pytest.raises(GCodeError, match="CP about a CC outside the working plane under R0 or a coordinate transf"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z\n2 L X+0 Y+0 Z+0 R0 F100\n3 CC Z+0 X+0\n"
-                         "4 CYCL DEF 10.0 ROTATION\n5 CYCL DEF 10.1 ROT+30\n6 LP PR+5 PA+0\n7 END PGM T MM\n",
-                         source="t.h", context=CTX)
+                         "4 CYCL DEF 10.0 ROTATION\n5 CYCL DEF 10.1 ROT+30\n6 LP PR+5 PA+0\n7 CP IPA+90 DR+\n"
+                         "8 END PGM T MM\n", source="t.h", context=CTX)
 
 
 def test_a_section_repeat_counted_by_a_q_parameter():

@@ -161,6 +161,16 @@ def test_machine_file_tools_may_carry_a_name(tmp_path) -> None:
     assert ctx.tool_named("engraver") is None
 
 
+def test_machine_file_tools_may_carry_a_point_angle(tmp_path) -> None:
+    """[program.tools.N] point_angle: a drill's T-ANGLE (TNC cycles 200/203/205 Q395=1, 240 Q343=1)."""
+    f = tmp_path / "m.toml"
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.2]\nradius = 3.0\npoint_angle = 118.0\n")
+    assert load_machine(f).context.tool(2).point_angle == 118.0
+    f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.2]\npoint_angle = 200.0\n")
+    with pytest.raises(InputError, match=r"program.tools.2: tool 2: point angle must lie in \(0, 180\)"):
+        load_machine(f)
+
+
 def test_machine_file_subroutine_path_finds_a_library_subroutine(tmp_path) -> None:
     """[program] subroutine_path (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH): a program in parts/ calls
     o<peck> from the shop's library lib/, named relative to the machine file. The subroutine feeds Z to

@@ -35,7 +35,8 @@ Layout::
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300", Fadal E7 .. E48
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
-                                  #   name = "MILL_D6" (Heidenhain TOOL CALL "MILL_D6")
+                                  #   name = "MILL_D6" (Heidenhain TOOL CALL "MILL_D6"), point_angle = 118.0
+                                  #   (deg, a drill's T-ANGLE: TNC cycles 200/203/205 Q395=1, 240 Q343=1)
     [program.touch_probe]         # optional Heidenhain touch probe table row (TCH PROBE cycles), its defaults:
     set_up = 2.0                  # mm, SET_UP safety clearance; feed = 100.0, fmax = 2000.0 mm/min (F, FMAX);
                                   #   dist = 20.0 mm (DIST); tip_radius [mm] (unset: the probe tool's radius)
@@ -420,15 +421,16 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
         if not number.isdigit() or not isinstance(entry, dict):
             raise where.error(f"'program.tools.{number}' must be a table named by a tool number", tpath)
         for key in entry:
-            if key not in ("length", "radius", "offset_x", "offset_y", "comment", "name"):
+            if key not in ("length", "radius", "offset_x", "offset_y", "comment", "name", "point_angle"):
                 raise where.error(f"unknown key 'program.tools.{number}.{key}'; expected length [mm], radius [mm], "
-                                  "offset_x [mm], offset_y [mm], comment, name", tpath + (key,))
+                                  "offset_x [mm], offset_y [mm], comment, name, point_angle [deg]", tpath + (key,))
         try:
             tools[int(number)] = Tool(number=int(number), length=float(entry.get("length", 0.0)),
                                       radius=float(entry.get("radius", 0.0)),
                                       offset_x=float(entry.get("offset_x", 0.0)),
                                       offset_y=float(entry.get("offset_y", 0.0)), comment=str(entry.get("comment", "")),
-                                      name=str(entry.get("name", "")))
+                                      name=str(entry.get("name", "")),
+                                      point_angle=float(entry.get("point_angle", 0.0)))
         except (InputError, TypeError, ValueError) as exc:
             raise where.error(f"program.tools.{number}: {getattr(exc, 'message', exc)}", tpath) from None
     kwargs["tools"] = tools
