@@ -1008,6 +1008,8 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     if (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
+    if cycle and st.context.dialect.name == "linuxcnc":
+        _linuxcnc_cycle_p_q(seen, gcodes, gcodes["motion"][0] if "motion" in gcodes else st.motion, where, mcodes)
     arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
     if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
                                                                                or off_plane(st)):
@@ -1021,6 +1023,30 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
         where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
                    column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
     _check_q_l(seen, gcodes, cycle, where)
+
+
+#: LinuxCNC's drilling cycles that read P (the dwell at the bottom) and Q (the peck): rs274ngc interp_check.cc
+#: check_other_codes ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it",
+#: which lets G74 and G84 through too; "Q word with no G5, G6, G10, G64, G73, G76, G83, M19, M66, M67, M68 or
+#: user M code that uses it"); g-code.adoc: G81 "G81 (X- Y- Z-) R- L-", G83 "G83 (X- Y- Z-) R- L- Q-".
+LINUXCNC_CYCLE_WORDS = {"P": (740, 820, 840, 860, 880, 890), "Q": (730, 830)}
+
+
+def _linuxcnc_cycle_p_q(seen, gcodes, code: int | None, where: Where, mcodes: list) -> None:
+    """Under ``linuxcnc`` a P or Q in a drilling cycle that does not read it is LinuxCNC's error (a Fanuc or Haas
+    post's ``G83 ... P500 Q2``, ``G81 ... Q1``), not a word vcnc drops: see :data:`LINUXCNC_CYCLE_WORDS`."""
+    if code is None or code not in G_CODES or not 730 <= code <= 890 or code == 800 or "nonmodal" in gcodes \
+            or "path" in gcodes:
+        return
+    io = any(m in (50, 51, 52, 53, 62, 63, 64, 65, 66) for m, _ in mcodes)
+    for letter, readers in LINUXCNC_CYCLE_WORDS.items():
+        if letter in seen and code not in readers and not (letter == "P" and io):
+            w = seen[letter]
+            uses = ("the dwell at the bottom: G82, G86, G88, G89 or the tapping cycles G74/G84" if letter == "P" else
+                    "the peck depth: G73 and G83 only")
+            where.fail(f"word {letter} in a {G_CODES[code][1]}: LinuxCNC refuses it ('{letter} word with no G code "
+                       f"to use it'; {letter} is {uses})", column=w.column, text=w.text,
+                       expected=f"the cycle without {letter} (or --dialect fanuc/haas for a post written for them)")
 
 
 def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:

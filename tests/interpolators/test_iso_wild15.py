@@ -10,8 +10,10 @@ import math
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext().with_dialect("linuxcnc")
 
@@ -26,3 +28,26 @@ def test_i_j_alone_in_the_modal_g02_is_a_full_circle_under_linuxcnc():
     assert (circle.kind, circle.line, circle.target.tolist()) == ("arc", 4, [10, 0, -1])
     assert circle.segment.center.tolist() == [5, 0, -1]
     assert circle.segment.sweep == pytest.approx(-2 * math.pi)
+
+
+@pytest.mark.parametrize(("cycle", "column", "letter", "name"), [
+    ("G83 X10 Y0 Z-5 R2 P500 Q2", 19, "P", "G83 peck drilling cycle"),  # a Fanuc/Haas post's dwell (isowild14)
+    ("G81 X10 Y0 Z-5 R2 P0.5", 19, "P", "G81 drilling cycle"),
+    ("G85 X10 Y0 Z-5 R2 P1", 19, "P", "G85 boring cycle"),
+    ("G81 X10 Y0 Z-5 R2 Q1", 19, "Q", "G81 drilling cycle")])
+def test_a_cycle_word_linuxcnc_does_not_read_is_refused(cycle, column, letter, name):
+    # rs274 2.9.0~pre1: "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 ... to use it", "Q word with
+    # no G5, G10, G64, G73, G76, G83, ... that uses it" (interp_check.cc check_other_codes)
+    text = f"G21 G90 G17 F100\nG0 X0 Y0 Z5\nS500 M3\n{cycle}\nG80\nM2\n"
+    with pytest.raises(GCodeError, match=f":4:{column}: word {letter} in a {name}: LinuxCNC refuses it"):
+        parse_program(text, context=LINUXCNC)
+    assert parse_program(text, context=MachineContext().with_dialect("haas")).blocks  # Haas posts write them
+
+
+@pytest.mark.parametrize("cycle", ["G82 X10 Y0 Z-5 R2 P0.5", "G83 X10 Y0 Z-5 R2 Q2", "G73 X10 Y0 Z-5 R2 Q2",
+                                   "G84 X10 Y0 Z-5 R2 P0.5", "G86 X10 Y0 Z-5 R2 P0.5", "G89 X10 Y0 Z-5 R2 P0.5"])
+def test_the_cycles_that_read_p_or_q_run_under_linuxcnc(cycle):
+    # rs274 2.9.0~pre1 runs each: the hole at X10 Y0 down to Z-5, out to the R plane Z2 (its startup retract mode)
+    prog = checked_iso(f"G21 G90 G17 F100\nG0 X0 Y0 Z5\nS500 M3\n{cycle}\nG80\nM2\n", LINUXCNC)
+    assert min(float(b.target[2]) for b in prog.blocks) == pytest.approx(-5.0)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 0.0, 2.0])
