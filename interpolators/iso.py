@@ -1093,6 +1093,10 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                     else f"the motion mode is {G_CODES.get(motion, (None, f'G{motion / 10:g}'))[1]}")
             where.fail(f"G53 needs G0 or G1 ({mode})", column=w.column, text=w.text,
                        expected="G53 G0/G1 with axis words")
+        if st.incremental and st.context.dialect.name == "linuxcnc":  # rs274ngc interp_check.cc check_g_codes
+            where.fail("G53 in incremental distance mode (G91): LinuxCNC refuses it (\"Cannot use G53 incremental\")",
+                       column=w.column, text=w.text, expected="G90 before G53 (its words are absolute machine "
+                       "coordinates), or --dialect fanuc/haas for a post written for them")
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):

@@ -51,3 +51,15 @@ def test_the_cycles_that_read_p_or_q_run_under_linuxcnc(cycle):
     prog = checked_iso(f"G21 G90 G17 F100\nG0 X0 Y0 Z5\nS500 M3\n{cycle}\nG80\nM2\n", LINUXCNC)
     assert min(float(b.target[2]) for b in prog.blocks) == pytest.approx(-5.0)
     assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 0.0, 2.0])
+
+
+def test_g53_in_incremental_mode_is_refused_under_linuxcnc():
+    # a student Haas program (isowild12): "N1775 G53 G49 Z0." after G91 moves. rs274: "Cannot use g53 incremental"
+    # (interp_check.cc check_g_codes), with or without axis words
+    for block in ("G53 G0 Z0", "G53 G49"):
+        with pytest.raises(GCodeError, match=r":4:1: G53 in incremental distance mode \(G91\): LinuxCNC refuses "
+                                             r"it \(\"Cannot use G53 incremental\"\)"):
+            parse_program(f"G21 G90\nG0 X1 Y1 Z1\nG91 X1\n{block}\nM2\n", context=LINUXCNC)
+    # with G90 in the block it is absolute again: the machine's Z0
+    prog = parse_program("G21 G90\nG0 X1 Y1 Z1\nG91 X1\nG90 G53 G0 Z0\nM2\n", context=LINUXCNC)
+    assert prog.blocks[-1].target.tolist() == [2, 1, 0]
