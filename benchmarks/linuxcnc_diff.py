@@ -64,7 +64,9 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Cannot do g1 with zero feed rate": "G1 alone", "Bad character '\\357'": "byte-order mark",
          "Bad character '+' used": "outside [ ]", "Bad character '-' used": "outside [ ]",
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
-         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR"}
+         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
+         "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
+         "Unknown word where unary operation could be": "macro B"}
 #: A G5/G5.1 spline block (vcnc reads it as chords) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[12])?(?![\d.])", re.I)
 MOTION = re.compile(r"G0*[0-3](?![\d.])|G0*80|G0*8[1-9]|G0*7[36]|G0*33", re.I)

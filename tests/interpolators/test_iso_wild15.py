@@ -63,3 +63,16 @@ def test_g53_in_incremental_mode_is_refused_under_linuxcnc():
     # with G90 in the block it is absolute again: the machine's Z0
     prog = parse_program("G21 G90\nG0 X1 Y1 Z1\nG91 X1\nG90 G53 G0 Z0\nM2\n", context=LINUXCNC)
     assert prog.blocks[-1].target.tolist() == [2, 1, 0]
+
+
+def test_macro_b_statements_under_linuxcnc_are_noted():
+    # a mould shop's Fanuc subprogram (isowild14 O220001.nc) read with the default dialect: rs274 refuses its
+    # "IF[#01EQ#0]GOTO8000" ("Unknown word starting with f"); vcnc runs it as Fanuc does and says so
+    text = "G21 G90\n#1=0\nIF[#1EQ#0]GOTO100\nG0 X1\nN100 G0 X5\nM2\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert [b.target.tolist() for b in prog.blocks] == [[1, 0, 0], [5, 0, 0]]
+    assert any("macro B statements" in n and "LinuxCNC refuses" in n for n in prog.notes)
+    plain = parse_program("G21 G90\n#1=0\nG0 X1\nM2\n", context=LINUXCNC)
+    assert not any("macro B" in n for n in plain.notes)
+    fanuc = parse_program(text, context=MachineContext().with_dialect("fanuc"))
+    assert not any("macro B" in n for n in fanuc.notes)
