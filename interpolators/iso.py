@@ -536,7 +536,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
             if 100 <= m <= 199:
-                user_m_file(w, m, st, where)
+                user_m_file(w, m, st, where, with_p=any(v.letter == "P" for v in words))
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"

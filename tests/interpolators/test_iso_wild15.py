@@ -7,10 +7,11 @@ refuses it as rs274 does, or says so in a note; what rs274 runs, it runs."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
-from interpolators import parse_program
+from interpolators import load_program, parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
@@ -76,3 +77,23 @@ def test_macro_b_statements_under_linuxcnc_are_noted():
     assert not any("macro B" in n for n in plain.notes)
     fanuc = parse_program(text, context=MachineContext().with_dialect("fanuc"))
     assert not any("macro B" in n for n in fanuc.notes)
+
+
+def test_a_hal_pin_read_is_named():
+    # QtPlasmaC's sample programs: "F#<_hal[plasmac.cut-feed-rate]>" (LinuxCNC overview.adoc, "#<_hal[HAL item]>")
+    with pytest.raises(GCodeError, match=r":2:2: named parameter #<_hal\[plasmac.cut-feed-rate\]>: a HAL pin's "
+                                         r"value, read from the running machine \(LinuxCNC HAL_PIN_VARS\), which "
+                                         r"vcnc does not have"):
+        parse_program("G21 G90\nF#<_hal[plasmac.cut-feed-rate]>\nG1 X1\nM2\n", context=LINUXCNC)
+
+
+def test_qtplasmac_material_change_is_named(tmp_path: Path):
+    # QtPlasmaC's "M190 P1" (qtplasmac.adoc, Automatic Material Handling), not Marlin's bed temperature
+    path = tmp_path / "cut.ngc"
+    path.write_text("G21 G90\nM190 P1\nM66 P3 L3 Q1\nG0 X1\nM2\n")
+    with pytest.raises(GCodeError, match=r"\(QtPlasmaC's M190 Pn material change") as err:
+        load_program(path, context=LINUXCNC)
+    assert "Marlin" not in str(err.value)
+    path.write_text("G21 G90\nM190 S60\nG0 X1\nM2\n")  # a printer's start code keeps its Marlin name
+    with pytest.raises(GCodeError, match=r"\(Marlin's M190 wait for bed temperature"):
+        load_program(path, context=LINUXCNC)
