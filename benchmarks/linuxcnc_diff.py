@@ -75,6 +75,7 @@ ARC = re.compile(r"G0*[23](?![\d.])", re.I)
 #: within the arc end-point tolerance it accepts (LinuxCNC's programs are checked to 0.0005 inch or 0.1 %) [mm].
 CENTRE_TOLERANCE = 0.015
 NO_END = "File ended with no percent sign or program end"
+G64 = re.compile(r"G0*64(?![\d.])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -329,10 +330,40 @@ def _tiny(moves: list[Move], k: int, unit: float) -> bool:
         moves[k].xyz, moves[k - 1].xyz, atol=1.5e-4 * unit, rtol=0.0))
 
 
-def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False) -> str:
+def naive_cam_tolerance(text: str) -> float:
+    """The largest tolerance of LinuxCNC's "Naive CAM Detector" the program's G64 blocks set [mm], 0 without: rs274
+    joins straight feed moves at the same feed that are less than it away from collinear into one (g-code.adoc
+    G64: "If you set Q to a non-zero value it turns on the 'Naive CAM Detector' [...] If Q is not specified then it
+    will have the same behavior as before and use the value of P-"), where vcnc keeps each programmed point. In
+    inch after a G20 before the G64 line (our reading of a program's units; no program seen switches back)."""
+    tol, inch = 0.0, False
+    for line in text.splitlines():
+        code = re.sub(r"\([^)]*\)|;.*", "", line)
+        inch = inch or bool(re.search(r"G0*20(?![\d.])", code, re.I))
+        if not G64.search(code):
+            continue
+        words = {m.group(1).upper(): float(m.group(2)) for m in re.finditer(r"([PQ])\s*([-+]?(?:\d+\.?\d*|\.\d+))",
+                                                                          code, re.I)}
+        tol = max(tol, words.get("Q", words.get("P", 0.0)) * (INCH if inch else 1.0))
+    return tol
+
+
+def _merged(want: list[Move], i: int, g: Move, tolerance: float) -> bool:
+    """Whether vcnc's straight feed ``g`` ends within ``tolerance`` of rs274's straight feed ``want[i]``, which
+    rs274's naive CAM detector made of it and the moves around it (:func:`naive_cam_tolerance`)."""
+    if not tolerance or i == 0 or g.kind != "line" or want[i].kind != "line" or want[i - 1].kind == "spline":
+        return False
+    a, b = want[i - 1].xyz, want[i].xyz
+    d = b - a
+    t = float(np.clip(np.dot(g.xyz - a, d) / max(float(np.dot(d, d)), 1e-30), 0.0, 1.0))
+    return bool(np.linalg.norm(a + t * d - g.xyz) <= tolerance + 1e-4 * want[i].unit)
+
+
+def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False, merge: float = 0.0) -> str:
     """"" if vcnc's moves (``got``) are rs274's (``want``), else the first that differs and how. A straight move
     shorter than a printed digit on one side only is passed over (rs274 rounds it to a zero-length call, dropped).
-    With ``prefix``, vcnc may have more moves (rs274 stopped at an error)."""
+    With ``prefix``, vcnc may have more moves (rs274 stopped at an error). ``merge``: the naive CAM tolerance
+    [mm]; vcnc's straight feeds that end on rs274's joined one within it are passed over (:func:`_merged`)."""
     i = k = 0
     while i < len(want) and k < len(got):
         diff = _move_difference(want[i], got[k], want[i - 1] if i else None)
@@ -346,6 +377,8 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False)
             k += 1
         elif skip_want:
             i += 1
+        elif _merged(want, i, got[k], merge):
+            k += 1
         else:
             return f"move {i + 1} (vcnc line {got[k].line}): {diff}"
     if (i < len(want) or k < len(got)) and not (prefix and i == len(want)):
@@ -372,7 +405,8 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
         return {"outcome": "both refuse", "detail": f"rs274: {rs.error} || vcnc: {verror}"}
     if verror:
         return {"outcome": "rs274 only", "detail": verror}
-    diff = first_difference(want, got, prefix=bool(rs.error))
+    diff = first_difference(want, got, prefix=bool(rs.error),
+                            merge=naive_cam_tolerance(program.read_text(encoding="latin-1")))
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
         key = next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)

@@ -9,8 +9,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+from benchmarks.linuxcnc_diff import Move, first_difference, naive_cam_tolerance
 from interpolators import load_program, parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
@@ -97,3 +99,21 @@ def test_qtplasmac_material_change_is_named(tmp_path: Path):
     path.write_text("G21 G90\nM190 S60\nG0 X1\nM2\n")  # a printer's start code keeps its Marlin name
     with pytest.raises(GCodeError, match=r"\(Marlin's M190 wait for bed temperature"):
         load_program(path, context=LINUXCNC)
+
+
+def test_the_naive_cam_tolerance_of_a_program():
+    # g-code.adoc G64: Q is the naive CAM tolerance, P when Q is not given; in the program's units
+    assert naive_cam_tolerance("G21\nG64 P0.05\nG1 X1\n") == pytest.approx(0.05)
+    assert naive_cam_tolerance("G21\nG64 P0.05 Q0.01\n") == pytest.approx(0.01)
+    assert naive_cam_tolerance("G20 F6\nG64 P0.001 (blend)\n") == pytest.approx(0.0254)
+    assert naive_cam_tolerance("G21\nG61\n(G64 P1 in a comment)\n") == 0.0
+
+
+def test_moves_rs274_joined_are_passed_over_within_the_tolerance():
+    # rs274 joined (0,0)-(1,0.004)-(2,0) into one feed; vcnc keeps the middle point, 0.004 mm off the line
+    def line(x, y):
+        return Move(kind="line", xyz=np.array([x, y, 0.0]), abc=np.zeros(3))
+    want = [line(0, 0), line(2, 0)]
+    got = [line(0, 0), line(1, 0.004), line(2, 0)]
+    assert first_difference(want, got, merge=0.005) == ""
+    assert first_difference(want, got, merge=0.001).startswith("move 2 (vcnc line 0): end [1.0, 0.004, 0.0] mm")
