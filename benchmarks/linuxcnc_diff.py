@@ -67,8 +67,9 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
          "Unknown word where unary operation could be": "macro B"}
-#: A G5/G5.1 spline block (vcnc reads it as chords) and a block that names another motion mode.
-SPLINE = re.compile(r"G0*5(?:\.[12])?(?![\d.])", re.I)
+#: A G5/G5.1 spline block or a G5.2 .. G5.3 NURBS (vcnc reads them as chords; a NURBS's chords are the G5.3
+#: block's) and a block that names another motion mode.
+SPLINE = re.compile(r"G0*5(?:\.[123])?(?![\d.])", re.I)
 MOTION = re.compile(r"G0*[0-3](?![\d.])|G0*80|G0*8[1-9]|G0*7[36]|G0*33", re.I)
 ARC = re.compile(r"G0*[23](?![\d.])", re.I)
 #: How far vcnc's arc centre may be from rs274's: vcnc moves the centre so that both ends are on the circle,

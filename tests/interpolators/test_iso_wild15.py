@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from benchmarks.linuxcnc_diff import Move, first_difference, naive_cam_tolerance
+from benchmarks.linuxcnc_diff import SPLINE, Move, first_difference, naive_cam_tolerance
 from interpolators import load_program, parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
@@ -117,3 +117,9 @@ def test_moves_rs274_joined_are_passed_over_within_the_tolerance():
     got = [line(0, 0), line(1, 0.004), line(2, 0)]
     assert first_difference(want, got, merge=0.005) == ""
     assert first_difference(want, got, merge=0.001).startswith("move 2 (vcnc line 0): end [1.0, 0.004, 0.0] mm")
+
+
+def test_a_nurbs_end_block_holds_the_spline():
+    # LinuxCNC's butterfly.ngc: G5.2 .. G5.3 NURBS; vcnc's chords are the G5.3 block's, rs274 prints NURBS_FEED
+    assert all(SPLINE.search(t) for t in ("G5.3", "g5.2 X3.53 Y-1.50 P2", "G5 X1 Y1 I1 J0 P0 Q1", "G5.1 X1 I1 J1"))
+    assert not any(SPLINE.search(t) for t in ("G53 G0 Z0", "G5.4", "G54"))
