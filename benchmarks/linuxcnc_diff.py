@@ -67,6 +67,8 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
          "Unknown word where unary operation could be": "macro B"}
+#: rs274's refusal of a reused O-word label, which vcnc notes (its message begins with the line number).
+DUPLICATE_LABEL = re.compile(r"\d+: duplicate O-word label")
 #: A G5/G5.1 spline block or a G5.2 .. G5.3 NURBS (vcnc reads them as chords; a NURBS's chords are the G5.3
 #: block's) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[123])?(?![\d.])", re.I)
@@ -410,7 +412,8 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
                             merge=naive_cam_tolerance(program.read_text(encoding="latin-1")))
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
-        key = next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
+        key = "O-word label" if DUPLICATE_LABEL.match(rs.error) else \
+            next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
         noted = [n for n in notes if "LinuxCNC refuses" in n and key is not None and key in n]
         if noted:
             return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}

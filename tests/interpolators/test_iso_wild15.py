@@ -123,3 +123,18 @@ def test_a_nurbs_end_block_holds_the_spline():
     # LinuxCNC's butterfly.ngc: G5.2 .. G5.3 NURBS; vcnc's chords are the G5.3 block's, rs274 prints NURBS_FEED
     assert all(SPLINE.search(t) for t in ("G5.3", "g5.2 X3.53 Y-1.50 P2", "G5 X1 Y1 I1 J0 P0 Q1", "G5.1 X1 I1 J1"))
     assert not any(SPLINE.search(t) for t in ("G53 G0 Z0", "G5.4", "G54"))
+
+
+def test_a_reused_o_word_label_is_noted_under_linuxcnc():
+    # FluidNC's flow control test suite (isowild14) opens every verbose check with "o999 if": each runs in its place,
+    # rs274 refuses the second ("5: duplicate O-word label - already defined in line 2")
+    text = "G21\no9 if [0]\nG0 X1\no9 endif\no9 if [1]\nG0 X2\no9 endif\nM2\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert [b.target.tolist() for b in prog.blocks] == [[2, 0, 0]]
+    assert any(n.startswith("O-word label o9 opens 2 if blocks") and "LinuxCNC refuses" in n for n in prog.notes)
+    # in two subroutines the same label is no duplicate (rs274 runs both: its offsets are per call frame)
+    subs = ("G21\no<a> sub\no9 if [1]\nG0 X1\no9 endif\no<a> endsub\no<b> sub\no9 if [1]\nG0 X2\no9 endif\n"
+            "o<b> endsub\no<a> call\no<b> call\nM2\n")
+    prog = parse_program(subs, context=LINUXCNC)
+    assert [b.target.tolist() for b in prog.blocks] == [[1, 0, 0], [2, 0, 0]]
+    assert not any("O-word label" in n for n in prog.notes)
