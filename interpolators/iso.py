@@ -128,6 +128,7 @@ from interpolators.iso_codes import (
     G_CODES,
     G_UNSUPPORTED,
     LAST_ONE_VALID,
+    LINUXCNC_ALLOCATED_G,
     LINUXCNC_G,
     MILL_G,
     NORMAL_DIRECTION,
@@ -502,11 +503,14 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                                expected=f"one {mill[0]} code per block")
                 gcodes[mill[0]] = (key, w)
                 continue
+            remap = (f" (not a LinuxCNC code: it runs where a configuration remaps it, REMAP=G{key / 10:g} in its "
+                     "INI, which vcnc does not read)") if dialect == "linuxcnc" and key not in LINUXCNC_ALLOCATED_G \
+                else ""
             if key in G_UNSUPPORTED:
-                where.fail(_unsupported_g(key, words), column=w.column, text=w.text,
+                where.fail(_unsupported_g(key, words) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
-                where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
+                where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
                            expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = G_CODES[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(

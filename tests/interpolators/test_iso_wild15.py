@@ -138,3 +138,20 @@ def test_a_reused_o_word_label_is_noted_under_linuxcnc():
     prog = parse_program(subs, context=LINUXCNC)
     assert [b.target.tolist() for b in prog.blocks] == [[1, 0, 0], [2, 0, 0]]
     assert not any("O-word label" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize(("code", "message"), [
+    ("g84.2 x1 y2 z3 q5 r1", r"G84.2 rigid tapping cycle .*: not supported \(not a LinuxCNC code: it runs where a "
+                             r"configuration remaps it, REMAP=G84.2 in its INI, which vcnc does not read\)"),
+    ("G88.3 X1", r"unknown G code 'G88.3' \(not a LinuxCNC code: it runs where a configuration remaps it, "
+                 r"REMAP=G88.3 in its INI")])
+def test_a_code_linuxcnc_runs_only_remapped_is_named(code, message):
+    # a LinuxCNC fork's remap examples (configs/sim/axis/remap/cycle: "g84.2 x1 y2 z3 q5 r1"); rs274 without the
+    # configuration: "Unknown g code used"
+    with pytest.raises(GCodeError, match=f":2:1: {message}"):
+        parse_program(f"G21 F100\n{code}\nM2\n", context=LINUXCNC)
+    # LinuxCNC's own codes vcnc does not run get no remap hint; other dialects neither
+    for text, context in (("G38.2 Z-1", LINUXCNC), (code, MachineContext().with_dialect("fanuc"))):
+        with pytest.raises(GCodeError) as err:
+            parse_program(f"G21 F100\n{text}\nM2\n", context=context)
+        assert "REMAP" not in str(err.value)
