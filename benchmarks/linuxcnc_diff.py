@@ -19,6 +19,14 @@ both accept and match / both accept and differ (the first differing move) / rs27
 (vcnc's message) / vcnc accepts and rs274 refuses, with a note of vcnc that says so (``NOTED``: a documented
 leniency) or without (rs274's message; the motion before rs274's error is compared too) / both refuse.
 
+Known differences that are rs274's, not LinuxCNC's: after a tool change (M6) the interpreter takes its position
+from the canon (interp_execute.cc, ``toolchange_flag``), and the standalone canon returns the last programmed point
+without the offsets (saicanon.cc ``GET_EXTERNAL_POSITION_Z``: ``_program_position_z``) where the machine's removes
+them (emccanon.cc ``GET_EXTERNAL_POSITION``: ``unoffset_and_unrotate_pos``); so rs274 moves Z by a tool length
+offset taken with or after the M6 on the next move without a Z word ("T1 M6 G43 H1" then "G0 X1 Y1"), where
+LinuxCNC and vcnc keep the tool still. Also: user M codes (M100-M199) beside a program are not run by rs274, whose
+standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder.
+
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively). Runs only when ``rs274`` is on PATH (LinuxCNC's
 ``linuxcnc-uspace`` package); otherwise it says so and exits 0. rs274 runs with its own ``HOME`` in a temporary
