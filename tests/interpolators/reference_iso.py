@@ -948,6 +948,8 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             code = 430
         if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
+            if number == 0 and m.ctx.dialect.name == "linuxcnc":  # LinuxCNC find_tool_index: H0 is the spindle's
+                number = m.loaded
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length

@@ -14,7 +14,7 @@ import pytest
 
 from benchmarks.linuxcnc_diff import SPLINE, Move, first_difference, naive_cam_tolerance
 from interpolators import load_program, parse_program
-from interpolators.context import MachineContext
+from interpolators.context import MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
@@ -155,3 +155,15 @@ def test_a_code_linuxcnc_runs_only_remapped_is_named(code, message):
         with pytest.raises(GCodeError) as err:
             parse_program(f"G21 F100\n{text}\nM2\n", context=context)
         assert "REMAP" not in str(err.value)
+
+
+def test_g43_h0_is_the_loaded_tool_under_linuxcnc():
+    # a Mastercam post's "N3 T212 M6 ... N5 G43 H0 Z10." (corpus): LinuxCNC's find_tool_index takes tool 0 as
+    # index 0, the spindle's tool, so the offset is T212's (rs274 2.9.0~pre1: USE_TOOL_LENGTH_OFFSET of T5 below,
+    # Z10 + 3.81 in machine coordinates). Fanuc's H0 is the zero offset. Checked by the reference.
+    tools = {5: Tool(number=5, length=3.81, radius=1.0)}
+    text = "G21 G90\nT5 M6\nG43 H0\nG0 X1 Z10\nM2\n"
+    prog = checked_iso(text, MachineContext(tools=tools).with_dialect("linuxcnc"))
+    assert prog.blocks[-1].target.tolist() == pytest.approx([1.0, 0.0, 13.81])
+    fanuc = parse_program(text, context=MachineContext(tools=tools).with_dialect("fanuc"))
+    assert fanuc.blocks[-1].target.tolist() == pytest.approx([1.0, 0.0, 10.0])
