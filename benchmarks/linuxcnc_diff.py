@@ -4,8 +4,8 @@ Each program runs through both: LinuxCNC's standalone interpreter (``rs274 -g``,
 a G-code error, printed on stderr with a non-zero exit, is its refusal; a time limit per program) and vcnc's
 ``load_program`` with the context of rs274's standalone machine (``linuxcnc`` dialect, an inch machine: its tool
 table and stored offsets are in inch, programs without G20/G21 in mm; axes X Y Z A B C, as rs274 without an INI
-[TRAJ] refuses U V W). Both get the same tool table (``--tool-table``, default: a generated table of tools 0 to
-200 with lengths and diameters that differ per tool) and the same subroutine folders (the program's own, then
+[TRAJ] refuses U V W). Both get the same tool table (``--tool-table``, default: a generated table of tools 1 to
+999 with lengths and diameters that differ per tool) and the same subroutine folders (the program's own, then
 ``--subroutine-path``). For programs both accept it compares the motion: the end points of STRAIGHT_TRAVERSE,
 STRAIGHT_FEED, ARC_FEED (and RIGID_TAP: there and back) mapped to machine coordinates as LinuxCNC's canon does
 (``emccanon.cc`` ``rotate_and_offset_pos``: X Y plus the G92 offset rotated by the G10 R rotation, plus the work
@@ -398,8 +398,9 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False,
 
 
 def default_tool_table(path: Path) -> Path:
-    """Write a LinuxCNC tool table (inch) of tools 1 to 200: length 0.1 + 0.01 T, diameter 0.01 + 0.0001 T."""
-    path.write_text("".join(f"T{t} P{t} D{0.01 + 0.0001 * t:.4f} Z+{0.1 + 0.01 * t:.4f}\n" for t in range(1, 201)))
+    """Write a LinuxCNC tool table (inch) of tools 1 to 999 (pockets as many, below emctool.h CANON_POCKETS_MAX
+    1001; CAM posts number tools 212 and up): length 0.1 + 0.01 T, diameter 0.01 + 0.0001 T."""
+    path.write_text("".join(f"T{t} P{t} D{0.01 + 0.0001 * t:.4f} Z+{0.1 + 0.01 * t:.4f}\n" for t in range(1, 1000)))
     return path
 
 
@@ -449,7 +450,7 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("programs", nargs="*", help="program files or directories")
     ap.add_argument("--files-from", help="a file naming one program per line")
-    ap.add_argument("--tool-table", help="LinuxCNC tool table in inch (default: tools 1-200, generated)")
+    ap.add_argument("--tool-table", help="LinuxCNC tool table in inch (default: tools 1-999, generated)")
     ap.add_argument("--subroutine-path", default="", help="folders searched for o<name> files, ':'-separated")
     ap.add_argument("--timeout", type=float, default=30.0, help="time limit per program and side [s]")
     ap.add_argument("--list", action="store_true", help="print every program, not only the differing ones")
