@@ -669,9 +669,8 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         _arc_code_alone(gcodes, st, where)
     # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
     # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
-    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix).
-    # LinuxCNC likewise (rs274ngc interp_internal.cc enhance_block: "a block like simply "i1" which should
-    # be accepted if we're in arc mode" takes the modal G2/G3; an R alone stays unused)
+    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix); LinuxCNC
+    # too (interp_internal.cc enhance_block: "a block like simply "i1" [..] accepted if we're in arc mode")
     modal_circle = st.context.dialect.name in ("fanuc", "linuxcnc") and "R" not in seen
     if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words
                                                  and ("motion" in gcodes or modal_circle)):
