@@ -4,8 +4,8 @@ Each program runs through both: LinuxCNC's standalone interpreter (``rs274 -g``,
 a G-code error, printed on stderr with a non-zero exit, is its refusal; a time limit per program) and vcnc's
 ``load_program`` with the context of rs274's standalone machine (``linuxcnc`` dialect, an inch machine: its tool
 table and stored offsets are in inch, programs without G20/G21 in mm; axes X Y Z A B C, as rs274 without an INI
-[TRAJ] refuses U V W). Both get the same tool table (``--tool-table``, default: a generated table of tools 0 to
-200 with lengths and diameters that differ per tool) and the same subroutine folders (the program's own, then
+[TRAJ] refuses U V W). Both get the same tool table (``--tool-table``, default: a generated table of tools 1 to
+999 with lengths and diameters that differ per tool) and the same subroutine folders (the program's own, then
 ``--subroutine-path``). For programs both accept it compares the motion: the end points of STRAIGHT_TRAVERSE,
 STRAIGHT_FEED, ARC_FEED (and RIGID_TAP: there and back) mapped to machine coordinates as LinuxCNC's canon does
 (``emccanon.cc`` ``rotate_and_offset_pos``: X Y plus the G92 offset rotated by the G10 R rotation, plus the work
@@ -18,6 +18,14 @@ Prints one row per program (``--list``: all, else the differing ones) and a tabl
 both accept and match / both accept and differ (the first differing move) / rs274 accepts and vcnc refuses
 (vcnc's message) / vcnc accepts and rs274 refuses, with a note of vcnc that says so (``NOTED``: a documented
 leniency) or without (rs274's message; the motion before rs274's error is compared too) / both refuse.
+
+Known differences that are rs274's, not LinuxCNC's: after a tool change (M6) the interpreter takes its position
+from the canon (interp_execute.cc, ``toolchange_flag``), and the standalone canon returns the last programmed point
+without the offsets (saicanon.cc ``GET_EXTERNAL_POSITION_Z``: ``_program_position_z``) where the machine's removes
+them (emccanon.cc ``GET_EXTERNAL_POSITION``: ``unoffset_and_unrotate_pos``); so rs274 moves Z by a tool length
+offset taken with or after the M6 on the next move without a Z word ("T1 M6 G43 H1" then "G0 X1 Y1"), where
+LinuxCNC and vcnc keep the tool still. Also: user M codes (M100-M199) beside a program are not run by rs274, whose
+standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively). Runs only when ``rs274`` is on PATH (LinuxCNC's
@@ -64,15 +72,21 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Cannot do g1 with zero feed rate": "G1 alone", "Bad character '\\357'": "byte-order mark",
          "Bad character '+' used": "outside [ ]", "Bad character '-' used": "outside [ ]",
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
-         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR"}
-#: A G5/G5.1 spline block (vcnc reads it as chords) and a block that names another motion mode.
-SPLINE = re.compile(r"G0*5(?:\.[12])?(?![\d.])", re.I)
+         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
+         "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
+         "Unknown word where unary operation could be": "macro B"}
+#: rs274's refusal of a reused O-word label, which vcnc notes (its message begins with the line number).
+DUPLICATE_LABEL = re.compile(r"\d+: duplicate O-word label")
+#: A G5/G5.1 spline block or a G5.2 .. G5.3 NURBS (vcnc reads them as chords; a NURBS's chords are the G5.3
+#: block's) and a block that names another motion mode.
+SPLINE = re.compile(r"G0*5(?:\.[123])?(?![\d.])", re.I)
 MOTION = re.compile(r"G0*[0-3](?![\d.])|G0*80|G0*8[1-9]|G0*7[36]|G0*33", re.I)
 ARC = re.compile(r"G0*[23](?![\d.])", re.I)
 #: How far vcnc's arc centre may be from rs274's: vcnc moves the centre so that both ends are on the circle,
 #: within the arc end-point tolerance it accepts (LinuxCNC's programs are checked to 0.0005 inch or 0.1 %) [mm].
 CENTRE_TOLERANCE = 0.015
 NO_END = "File ended with no percent sign or program end"
+G64 = re.compile(r"G0*64(?![\d.])", re.I)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -327,10 +341,40 @@ def _tiny(moves: list[Move], k: int, unit: float) -> bool:
         moves[k].xyz, moves[k - 1].xyz, atol=1.5e-4 * unit, rtol=0.0))
 
 
-def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False) -> str:
+def naive_cam_tolerance(text: str) -> float:
+    """The largest tolerance of LinuxCNC's "Naive CAM Detector" the program's G64 blocks set [mm], 0 without: rs274
+    joins straight feed moves at the same feed that are less than it away from collinear into one (g-code.adoc
+    G64: "If you set Q to a non-zero value it turns on the 'Naive CAM Detector' [...] If Q is not specified then it
+    will have the same behavior as before and use the value of P-"), where vcnc keeps each programmed point. In
+    inch after a G20 before the G64 line (our reading of a program's units; no program seen switches back)."""
+    tol, inch = 0.0, False
+    for line in text.splitlines():
+        code = re.sub(r"\([^)]*\)|;.*", "", line)
+        inch = inch or bool(re.search(r"G0*20(?![\d.])", code, re.I))
+        if not G64.search(code):
+            continue
+        words = {m.group(1).upper(): float(m.group(2)) for m in re.finditer(r"([PQ])\s*([-+]?(?:\d+\.?\d*|\.\d+))",
+                                                                          code, re.I)}
+        tol = max(tol, words.get("Q", words.get("P", 0.0)) * (INCH if inch else 1.0))
+    return tol
+
+
+def _merged(want: list[Move], i: int, g: Move, tolerance: float) -> bool:
+    """Whether vcnc's straight feed ``g`` ends within ``tolerance`` of rs274's straight feed ``want[i]``, which
+    rs274's naive CAM detector made of it and the moves around it (:func:`naive_cam_tolerance`)."""
+    if not tolerance or i == 0 or g.kind != "line" or want[i].kind != "line" or want[i - 1].kind == "spline":
+        return False
+    a, b = want[i - 1].xyz, want[i].xyz
+    d = b - a
+    t = float(np.clip(np.dot(g.xyz - a, d) / max(float(np.dot(d, d)), 1e-30), 0.0, 1.0))
+    return bool(np.linalg.norm(a + t * d - g.xyz) <= tolerance + 1e-4 * want[i].unit)
+
+
+def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False, merge: float = 0.0) -> str:
     """"" if vcnc's moves (``got``) are rs274's (``want``), else the first that differs and how. A straight move
     shorter than a printed digit on one side only is passed over (rs274 rounds it to a zero-length call, dropped).
-    With ``prefix``, vcnc may have more moves (rs274 stopped at an error)."""
+    With ``prefix``, vcnc may have more moves (rs274 stopped at an error). ``merge``: the naive CAM tolerance
+    [mm]; vcnc's straight feeds that end on rs274's joined one within it are passed over (:func:`_merged`)."""
     i = k = 0
     while i < len(want) and k < len(got):
         diff = _move_difference(want[i], got[k], want[i - 1] if i else None)
@@ -344,6 +388,8 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False)
             k += 1
         elif skip_want:
             i += 1
+        elif _merged(want, i, got[k], merge):
+            k += 1
         else:
             return f"move {i + 1} (vcnc line {got[k].line}): {diff}"
     if (i < len(want) or k < len(got)) and not (prefix and i == len(want)):
@@ -352,8 +398,9 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False)
 
 
 def default_tool_table(path: Path) -> Path:
-    """Write a LinuxCNC tool table (inch) of tools 1 to 200: length 0.1 + 0.01 T, diameter 0.01 + 0.0001 T."""
-    path.write_text("".join(f"T{t} P{t} D{0.01 + 0.0001 * t:.4f} Z+{0.1 + 0.01 * t:.4f}\n" for t in range(1, 201)))
+    """Write a LinuxCNC tool table (inch) of tools 1 to 999 (pockets as many, below emctool.h CANON_POCKETS_MAX
+    1001; CAM posts number tools 212 and up): length 0.1 + 0.01 T, diameter 0.01 + 0.0001 T."""
+    path.write_text("".join(f"T{t} P{t} D{0.01 + 0.0001 * t:.4f} Z+{0.1 + 0.01 * t:.4f}\n" for t in range(1, 1000)))
     return path
 
 
@@ -370,10 +417,12 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
         return {"outcome": "both refuse", "detail": f"rs274: {rs.error} || vcnc: {verror}"}
     if verror:
         return {"outcome": "rs274 only", "detail": verror}
-    diff = first_difference(want, got, prefix=bool(rs.error))
+    diff = first_difference(want, got, prefix=bool(rs.error),
+                            merge=naive_cam_tolerance(program.read_text(encoding="latin-1")))
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
-        key = next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
+        key = "O-word label" if DUPLICATE_LABEL.match(rs.error) else \
+            next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
         noted = [n for n in notes if "LinuxCNC refuses" in n and key is not None and key in n]
         if noted:
             return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}
@@ -401,7 +450,7 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("programs", nargs="*", help="program files or directories")
     ap.add_argument("--files-from", help="a file naming one program per line")
-    ap.add_argument("--tool-table", help="LinuxCNC tool table in inch (default: tools 1-200, generated)")
+    ap.add_argument("--tool-table", help="LinuxCNC tool table in inch (default: tools 1-999, generated)")
     ap.add_argument("--subroutine-path", default="", help="folders searched for o<name> files, ':'-separated")
     ap.add_argument("--timeout", type=float, default=30.0, help="time limit per program and side [s]")
     ap.add_argument("--list", action="store_true", help="print every program, not only the differing ones")

@@ -128,6 +128,7 @@ from interpolators.iso_codes import (
     G_CODES,
     G_UNSUPPORTED,
     LAST_ONE_VALID,
+    LINUXCNC_ALLOCATED_G,
     LINUXCNC_G,
     MILL_G,
     NORMAL_DIRECTION,
@@ -502,11 +503,14 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                                expected=f"one {mill[0]} code per block")
                 gcodes[mill[0]] = (key, w)
                 continue
+            remap = (f" (not a LinuxCNC code: it runs where a configuration remaps it, REMAP=G{key / 10:g} in its "
+                     "INI, which vcnc does not read)") if dialect == "linuxcnc" and key not in LINUXCNC_ALLOCATED_G \
+                else ""
             if key in G_UNSUPPORTED:
-                where.fail(_unsupported_g(key, words), column=w.column, text=w.text,
+                where.fail(_unsupported_g(key, words) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
-                where.fail(f"unknown G code {w.text!r}", column=w.column, text=w.text,
+                where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
                            expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = G_CODES[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
@@ -536,7 +540,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
             if 100 <= m <= 199:
-                user_m_file(w, m, st, where)
+                user_m_file(w, m, st, where, with_p=any(v.letter == "P" for v in words))
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
@@ -665,8 +669,9 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         _arc_code_alone(gcodes, st, where)
     # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
     # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
-    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix)
-    modal_circle = st.context.dialect.name == "fanuc" and "R" not in seen
+    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix); LinuxCNC
+    # too (interp_internal.cc enhance_block: "a block like simply "i1" [..] accepted if we're in arc mode")
+    modal_circle = st.context.dialect.name in ("fanuc", "linuxcnc") and "R" not in seen
     if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words
                                                  and ("motion" in gcodes or modal_circle)):
         for letter in ("I", "J", "K", "R"):
@@ -1006,6 +1011,8 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     if (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
+    if cycle and st.context.dialect.name == "linuxcnc":
+        _linuxcnc_cycle_p_q(seen, gcodes, gcodes["motion"][0] if "motion" in gcodes else st.motion, where, mcodes)
     arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
     if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
                                                                                or off_plane(st)):
@@ -1019,6 +1026,30 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
         where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
                    column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
     _check_q_l(seen, gcodes, cycle, where)
+
+
+#: LinuxCNC's drilling cycles that read P (the dwell at the bottom) and Q (the peck): rs274ngc interp_check.cc
+#: check_other_codes ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it",
+#: which lets G74 and G84 through too; "Q word with no G5, G6, G10, G64, G73, G76, G83, M19, M66, M67, M68 or
+#: user M code that uses it"); g-code.adoc: G81 "G81 (X- Y- Z-) R- L-", G83 "G83 (X- Y- Z-) R- L- Q-".
+LINUXCNC_CYCLE_WORDS = {"P": (740, 820, 840, 860, 880, 890), "Q": (730, 830)}
+
+
+def _linuxcnc_cycle_p_q(seen, gcodes, code: int | None, where: Where, mcodes: list) -> None:
+    """Under ``linuxcnc`` a P or Q in a drilling cycle that does not read it is LinuxCNC's error (a Fanuc or Haas
+    post's ``G83 ... P500 Q2``, ``G81 ... Q1``), not a word vcnc drops: see :data:`LINUXCNC_CYCLE_WORDS`."""
+    if code is None or code not in G_CODES or not 730 <= code <= 890 or code == 800 or "nonmodal" in gcodes \
+            or "path" in gcodes:
+        return
+    io = any(m in (50, 51, 52, 53, 62, 63, 64, 65, 66) for m, _ in mcodes)
+    for letter, readers in LINUXCNC_CYCLE_WORDS.items():
+        if letter in seen and code not in readers and not (letter == "P" and io):
+            w = seen[letter]
+            uses = ("the dwell at the bottom: G82, G86, G88, G89 or the tapping cycles G74/G84" if letter == "P" else
+                    "the peck depth: G73 and G83 only")
+            where.fail(f"word {letter} in a {G_CODES[code][1]}: LinuxCNC refuses it ('{letter} word with no G code "
+                       f"to use it'; {letter} is {uses})", column=w.column, text=w.text,
+                       expected=f"the cycle without {letter} (or --dialect fanuc/haas for a post written for them)")
 
 
 def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
@@ -1065,6 +1096,10 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                     else f"the motion mode is {G_CODES.get(motion, (None, f'G{motion / 10:g}'))[1]}")
             where.fail(f"G53 needs G0 or G1 ({mode})", column=w.column, text=w.text,
                        expected="G53 G0/G1 with axis words")
+        if st.incremental and st.context.dialect.name == "linuxcnc":  # rs274ngc interp_check.cc check_g_codes
+            where.fail("G53 in incremental distance mode (G91): LinuxCNC refuses it (\"Cannot use G53 incremental\")",
+                       column=w.column, text=w.text, expected="G90 before G53 (its words are absolute machine "
+                       "coordinates), or --dialect fanuc/haas for a post written for them")
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):

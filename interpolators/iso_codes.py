@@ -12,7 +12,7 @@ from interpolators.iso_reference import FANUC_CODES, MILL_CODES, NAMED_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES
 
 __all__ = ["G_CODES", "LAST_ONE_VALID", "G_UNSUPPORTED", "MILL_G", "NORMAL_DIRECTION", "DIALECT_G", "LINUXCNC_G",
-           "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "LINUXCNC_M"]
+           "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "LINUXCNC_M", "LINUXCNC_ALLOCATED_G"]
 
 
 #: G codes the reader runs, keyed by round(10 * code): (modal group, name).
@@ -57,6 +57,15 @@ G_CODES: dict[int, tuple[str, str]] = {
 LAST_ONE_VALID = frozenset({"plane", "units", "distance", "arc distance", "feed mode", "cutter compensation",
                              "length compensation", "return mode", "path", "spindle mode", "coordinate system"})
 
+
+#: The G codes LinuxCNC defines (round(10 * code)): remap.adoc "Currently unallocated G-codes" (its tables of
+#: allocated codes), with G33, G33.1, G38.2-G38.5, G43.2, G49, G52, G73 and G74 of g-code.adoc that those tables
+#: leave out. Any other G code runs on LinuxCNC only where a configuration remaps it (REMAP= in its INI).
+LINUXCNC_ALLOCATED_G = frozenset({
+    0, 10, 20, 30, 40, 50, 51, 52, 53, 70, 80, 100, 170, 171, 180, 181, 190, 191, 200, 210, 280, 281, 300, 301, 330,
+    331, 382, 383, 384, 385, 400, 410, 411, 420, 421, 430, 431, 432, 490, 520, 530, 540, 550, 560, 570, 580, 590,
+    591, 592, 593, 600, 610, 611, 640, 700, 710, 711, 712, 720, 721, 722, 730, 740, 760, 800, 810, 820, 830, 840,
+    850, 860, 870, 880, 890, 900, 901, 910, 911, 920, 921, 922, 923, 930, 940, 950, 960, 970, 980, 990})
 
 #: G codes named in an error (round(10 * code) -> feature).
 G_UNSUPPORTED: dict[int, str] = {

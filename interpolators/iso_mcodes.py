@@ -53,7 +53,13 @@ _PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures
               117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
 
 
-def user_m_file(w: Word, m: int, st: State, where: Where) -> None:
+#: M100-M199 codes of LinuxCNC's QtPlasmaC configurations, written with a P word (qtplasmac.adoc, "Automatic
+#: Material Handling": "M190 Pn - Changes the currently displayed material to material number n").
+_PLASMAC_M = {190: "QtPlasmaC's M190 Pn material change (LinuxCNC plasma: a user M file of its configuration, "
+                   "paired with M66 P3 L3 Q1 and F#<_hal[plasmac.cut-feed-rate]>)"}
+
+
+def user_m_file(w: Word, m: int, st: State, where: Where, *, with_p: bool = False) -> None:
     """M100-M199: LinuxCNC runs the executable file ``M1nn`` (no extension, a capital M) with the block's P and
     Q as its two arguments, and "Execution of the G-code file pauses until the external program exits"
     (m-code.adoc "M100 to M199"; the file is looked for in [DISPLAY] PROGRAM_PREFIX and [RS274NGC]
@@ -65,7 +71,8 @@ def user_m_file(w: Word, m: int, st: State, where: Where) -> None:
     [DISPLAY]; vcnc looks for o<name> subroutine files there too). An error names the code if none holds it,
     as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's functions
     (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl 1.1
-    refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20)."""
+    refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20). ``with_p``:
+    the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`)."""
     name = f"M{m}"
     base = Path(where.file).parent if where.file else Path.cwd()
     own = st.context.dialect.name == "linuxcnc" and where.file is not None
@@ -80,8 +87,11 @@ def user_m_file(w: Word, m: int, st: State, where: Where) -> None:
             if dialect == "grbl" else
             f"machine-specific M code {w.text!r} (M100-M199 on a {dialect.capitalize()} control: a function of the "
             "machine tool builder, no motion known here)")
+    plasmac = _PLASMAC_M.get(m) if with_p and dialect == "linuxcnc" else None
     printer = _PRINTER_M.get(m)
-    if printer:
+    if plasmac:
+        what += f" ({plasmac})"
+    elif printer:
         what += f" (Marlin's {printer}: a 3D printer's code, which laser conversions use for the laser)"
     where.fail(f"{what}: {name} not found (folders: {looked})", column=w.column, text=w.text,
                expected=f"M codes below 100, or the file {name} in a folder of the machine's [program] user_m_path "

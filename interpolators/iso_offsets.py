@@ -420,6 +420,11 @@ def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> N
         return
     h = seen.pop("H", None)
     number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
+    if number == 0 and st.context.dialect.name == "linuxcnc":
+        # LinuxCNC interp_find.cc find_tool_index: tool 0 is index 0, the spindle's (the loaded) tool, whose offset
+        # convert_tool_length_offset then takes: "T212 M6" then "G43 H0" (a Mastercam post) is T212's length, as
+        # rs274 2.9.0~pre1 runs it; Fanuc's and Haas's H0/H00 stay the zero offset
+        number = st.tool_current
     st.length_number = number or 0
     tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length

@@ -244,6 +244,12 @@ class Parameters:
         if key.startswith("_ini["):
             where.fail(f"named parameter #<{name}>: INI file values are not available (vcnc reads no INI file)",
                        column=column, text=text, expected="a parameter the program sets")
+        if key.startswith("_hal["):
+            # LinuxCNC overview.adoc "Named Parameters": "#<_hal[HAL item]> Allows G-code programs to read the values
+            # of HAL pins" ([RS274NGC] HAL_PIN_VARS); QtPlasmaC's programs take their cut feed so
+            where.fail(f"named parameter #<{name}>: a HAL pin's value, read from the running machine (LinuxCNC "
+                       "HAL_PIN_VARS), which vcnc does not have (no HAL)", column=column, text=text,
+                       expected="a number, or a parameter the program sets, in place of the HAL pin")
         if key == "_line":
             return float(where.line)
         if key == "_task":

@@ -7,6 +7,7 @@ whole reading leave."""
 
 from __future__ import annotations
 
+import collections
 import re
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -82,6 +83,18 @@ def closing_notes(st: State, blocks: list[Block], dialect: Dialect, notes: Notes
 #: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc
 #: close_and_downcase: "Nested comment found"); vcnc reads the comment as nested (:mod:`interpolators.iso_words`).
 _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
+#: A Fanuc/Haas custom macro B statement opening a line (``IF [..] GOTO n``, ``WHILE [..] DO m``, ``GOTO n``,
+#: ``END m``; :mod:`interpolators.iso_macro`): LinuxCNC has no such words, its flow control is O-words (rs274:
+#: "Unknown word starting with f" for IF, "Bad character 'w' used" for WHILE, "Unknown word where unary operation
+#: could be" for GOTO and END).
+_MACRO_B_STATEMENT = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?(?:IF[ \t]*\[|WHILE[ \t]*\[|GOTO[ \t]*[\d#\[]|"
+                                r"END[ \t]*[123](?![\d.]))", re.M | re.I)
+#: An O-word opening an if or repeat block; LinuxCNC keeps one line per label and refuses a second block of the
+#: same label when it runs (interp_o_word.cc convert_control_functions, O_if / O_repeat: "duplicate O-word label").
+#: Its offsets are kept per call frame, so the same label in two subroutines is no duplicate (rs274 2.9.0~pre1 runs
+#: that; sub and endsub lines bound a body here).
+_OPENING_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*(IF|REPEAT|SUB|ENDSUB)\b",
+                            re.M | re.I)
 
 
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
@@ -161,8 +174,25 @@ def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) 
 
 
 def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
-    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: comments with a '(' inside, and
-    parameter assignments with an operation outside [ ] (:func:`interpolators.iso_params.read_line`)."""
+    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
+    a '(' inside, and parameter assignments with an operation outside [ ]
+    (:func:`interpolators.iso_params.read_line`)."""
+    if _MACRO_B_STATEMENT.search(text):
+        notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
+                  "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
+    opened: collections.Counter = collections.Counter()
+    body = ""
+    for m in _OPENING_OWORD.finditer(text):
+        label, keyword = m.group(1).lower().replace(" ", ""), m.group(2).lower()
+        if keyword in ("sub", "endsub"):
+            body = label if keyword == "sub" else ""
+        else:
+            opened[body, label, keyword] += 1
+    for (_, label, keyword), count in sorted(opened.items()):
+        if count > 1:
+            notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
+                      "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
+                      "reuses labels)")
     if _NESTED_COMMENT.search(text):
         notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
     for _ in range(params.unbracketed):

@@ -948,6 +948,8 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             code = 430
         if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
+            if number == 0 and m.ctx.dialect.name == "linuxcnc":  # LinuxCNC find_tool_index: H0 is the spindle's
+                number = m.loaded
             tool = m.tool(number)
             length = tool.length if tool is not None else 0.0
             m.tool_length = length
@@ -1322,8 +1324,8 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
     # Fanuc 0i "Circular interpolation": X, Y, Z all omitted with I J K -> a 360 deg circle, in the modal
-    # G02/G03 too (a block of I J alone)
-    arc_alone = arc_alone or (m.ctx.dialect.name == "fanuc" and m.motion in (20, 30) and "r" not in words
+    # G02/G03 too (a block of I J alone); LinuxCNC too (rs274ngc enhance_block: a block of "i1" in arc mode)
+    arc_alone = arc_alone or (m.ctx.dialect.name in ("fanuc", "linuxcnc") and m.motion in (20, 30) and "r" not in words
                               and any(k in words for k in "ijk"))
     if not (axes or arc_alone) or m.motion is None:
         return
