@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
 __all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "initial_feed", "per_rev_spindle",
-           "nurbs_block", "rapid_move", "dwell_block"]
+           "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P"]
 
 
 def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
@@ -456,6 +456,21 @@ def _feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
 
 
+#: A whole-number G04 P of this many seconds or more, under a dialect that reads P in seconds, gets a note [s]:
+#: such dwells are rare in LinuxCNC and grbl programs and common as milliseconds in Fanuc and Haas posts.
+LONG_DWELL_P = 60.0
+
+
+def long_dwell_note(seconds: float, st: State, notes: Notes | None) -> None:
+    """Note a dwell P of :data:`LONG_DWELL_P` whole seconds or more read in seconds (G04 P, a cycle's P): a Fanuc/Haas
+    post's ``G04 P500`` (500 ms: Fanuc 0i / Haas mill manuals, P in ms without a decimal point) dwells 500 s where P
+    is seconds (LinuxCNC g-code.adoc G4, grbl), and the note shows where such a cycle time comes from."""
+    if notes is not None and st.context.dialect.dwell_p_unit == "s" and seconds >= LONG_DWELL_P \
+            and float(seconds).is_integer():
+        notes.add(f"dwell P of {LONG_DWELL_P:g} or more read as seconds, as {st.context.dialect.name} does (a "
+                  "Fanuc/Haas post's P is milliseconds: --dialect fanuc or haas)")
+
+
 def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
@@ -479,6 +494,8 @@ def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: No
         notes.add("G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")")
     if seconds < 0:
         where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
+    if "P" in seen:
+        long_dwell_note(seconds, st, notes)
     blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
                         target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True, tolerance=st.tolerance))
     return False

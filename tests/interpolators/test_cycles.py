@@ -49,6 +49,23 @@ def test_g82_dwells_at_the_bottom_in_seconds_or_milliseconds():
     assert _moves(82, {"X": 0.0, "Y": 0.0, "Z": -1.0, "R": 1.0, "P": 500.0}, p_ms=True) == expected
 
 
+@pytest.mark.parametrize(("dialect", "noted"), [("linuxcnc", True), ("grbl", True), ("fanuc", False), ("haas", False)])
+def test_long_whole_second_dwells_are_noted_where_p_is_seconds(dialect, noted):
+    # G04 P500 and G82 P500 from a Fanuc/Haas post (500 ms) dwell 500 s where P is seconds (LinuxCNC g-code.adoc
+    # G4 "P- seconds"): read so, with a note naming the dialects that read P in ms; P0.5 and P59 get none
+    text = "G21 G90 G54 F100\nG0 X0 Y0 Z5\nG4 P500\nG82 X1 Y1 Z-1 R1 P500\nG80\nM30\n"
+    if dialect == "grbl":
+        text = text.replace("G82 X1 Y1 Z-1 R1 P500\nG80\n", "")
+    prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+    dwells = [b.dwell for b in prog.blocks if b.kind == "dwell"]
+    assert dwells == ([500.0] * len(dwells) if dialect in ("linuxcnc", "grbl") else [0.5] * len(dwells))
+    assert any("dwell P of 60 or more read as seconds" in n for n in prog.notes) == noted
+    short = parse_program("G21 G90 G54\nG4 P0.5\nG4 P59\nM30\n", context=MachineContext())
+    assert [b.dwell for b in short.blocks] == [0.5, 59.0] and not any("dwell P" in n for n in short.notes)
+    odd = parse_program("G21 G90 G54\nG4 P60.5\nM30\n", context=MachineContext())
+    assert not any("dwell P" in n for n in odd.notes)  # a decimal point: written as seconds
+
+
 def test_g83_full_retract_pecks():
     assert _moves(83, {"X": 0.0, "Y": 0.0, "Z": -2.5, "R": 1.0, "Q": 1.0}, pos=(0.0, 0.0, 5.0), feed=1.0) == [
         ("rapid", 0, 0, 1, INF, 0),
