@@ -52,9 +52,9 @@ CURVE_PATH_ERROR: float = 1e-4
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
 
-#: Samples evaluated at once: the temporaries of one chunk (phase states, per-segment geometry) stay a
-#: few hundred MB at most, whatever the program's length; only the setpoints themselves grow with it.
-SAMPLE_CHUNK: int = 1 << 19
+#: Samples evaluated at once: the temporaries of one chunk (phase states, per-segment geometry, about 250 B per
+#: sample) stay about 35 MB, whatever the program's length; only the setpoints themselves grow with it.
+SAMPLE_CHUNK: int = 1 << 17
 
 
 class _Items:
@@ -284,6 +284,7 @@ def interpolate(
     lim = _axis_limits(chains, limits, jerk_limited)
     g = _geometry(chains, lim, jerk_limited, program)
     c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
+    del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
         v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
@@ -465,7 +466,7 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    curves, piece, rows = _curve_rows(g, seg)
+    _, curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
         pos[rows], tan, curv = SplineCurve.evaluate_pieces(curves, piece, s[rows])
         vel[rows] = tan * v[rows, None]
@@ -473,23 +474,26 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     return pos, vel, acc
 
 
-def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[SplineCurve], np.ndarray, np.ndarray]:
-    """The smooth curve pieces of ``g`` (in segment order) and, for the rows of ``seg`` (nondecreasing: samples in
-    time order, junctions in chain order) on them, the piece (index into that list) and the row of each, found by
-    bisection rather than one scan of ``seg`` per piece."""
+def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[int], list[SplineCurve], np.ndarray, np.ndarray]:
+    """The smooth curve pieces of ``g`` that rows of ``seg`` (nondecreasing: samples in time order, junctions in
+    chain order) are on (their segment indices and the pieces, in segment order) and, for those rows, the piece
+    (index into that list) and the row of each, found by bisection rather than one scan of ``seg`` per piece. Only
+    the pieces a chunk of samples is on: the work per chunk does not grow with the program's pieces."""
     pieces = np.array(sorted(g.runs), dtype=np.int64)
     lo = np.searchsorted(seg, pieces, side="left")
     n = np.searchsorted(seg, pieces, side="right") - lo
-    piece = np.repeat(np.arange(len(pieces)), n)
+    on = np.flatnonzero(n)
+    ids, lo, n = pieces[on].tolist(), lo[on], n[on]
+    piece = np.repeat(np.arange(len(ids)), n)
     rows = np.arange(int(n.sum())) + np.repeat(lo - (np.cumsum(n) - n), n)
-    return [g.segments[i] for i in pieces.tolist()], piece, rows
+    return ids, [g.segments[i] for i in ids], piece, rows
 
 
-def _curve_blocks(g: _Geom, piece: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """The block of the chord each point on the curve pieces (index into the pieces of ``g`` in segment order, as
-    from :func:`_curve_rows`; spline parameter ``u``) passes
+def _curve_blocks(g: _Geom, ids: list[int], piece: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block of the chord each point on the curve pieces (index into ``ids``, the segment indices of pieces of
+    ``g``, as from :func:`_curve_rows`; spline parameter ``u``) passes
     (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
-    run_of = [g.runs[i] for i in sorted(g.runs)]  # the run of each of the curves
+    run_of = [g.runs[i] for i in ids]  # the run of each of the curves
     out = np.empty(len(u), dtype=np.int64)
     for k, rows in rows_by_owner(run_of, piece):
         out[rows] = run_of[k].block_at(u[rows])
@@ -802,9 +806,9 @@ def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], phase_end: np.ndarray, se
     if ax_idx != list(range(pos.shape[1])):
         pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
     block = seg_block[seg]
-    curves, piece, rows = _curve_rows(g, seg)
+    ids, curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
-        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
+        block[rows] = _curve_blocks(g, ids, piece, SplineCurve.parameters(curves, piece, s[rows]))
     return pos, vel, acc, block
 
 
@@ -844,7 +848,7 @@ def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
     p = SplineCurve.evaluate_pieces(curves, np.repeat(which, counts + 1), np.concatenate(s_k), frame=False)[0]
     mid_piece = np.repeat(which, counts)
     mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for s in s_k])
-    mid_blocks = _curve_blocks(g, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
+    mid_blocks = _curve_blocks(g, order, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
     starts = np.delete(np.arange(len(p)), np.cumsum(counts + 1) - 1)  # each piece's last point starts no line
     lines = Line.from_arrays(p[starts], p[starts + 1])
     out = {}
