@@ -17,6 +17,13 @@ processes of its own, so that one does not count the memory another left:
 The references, measured in the same run on the same program: the bytes of the program's text per block (what
 the file costs), and the bytes of the setpoints per block (``t``, position, velocity, acceleration and block of
 every sample: what ``interpolate`` must hold anyway; the planning peak includes them).
+
+Measured (200,000 lines, 2 shared cores), before (main ae25e37) -> after the slotted blocks sharing their position
+arrays, the planner's flat chain records and the smaller sample chunks, the same setpoints bit for bit:
+ISO G64 reading 1401 -> 609 B/block live, planning peak 1358 -> 646 B/block (356 of it the setpoints), max RSS
+after planning 701 -> 451 MB; ISO G61 planning 2647 -> 1875 B/block (1322 the setpoints), 970 -> 713 MB; TNC
+reading 1448 -> 656 B/block live (peak 2010 -> 1218); corpus 0274 (102,308 blocks, corner blends) reading
+1426 -> 634 B/block, planning 4100 -> 3304 B/block (1068 the setpoints), 719 -> 614 MB.
 """
 
 from __future__ import annotations
