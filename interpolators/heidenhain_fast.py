@@ -208,6 +208,7 @@ class PlainBlocks:
                 path_feed = math.inf
             elif path_feed is None:
                 return False
+            end.setflags(write=False)
             kind, seg = "rapid" if rapid else "line", Line.from_points(pos, end)
         else:
             ccw = m.ccw if words.ccw is None else words.ccw
@@ -216,7 +217,7 @@ class PlainBlocks:
             seg = self._arc(kw, end, words.radius, ccw)
             if seg is None:
                 return False
-            kind, end = "arc", np.array(seg.end)
+            kind, end = "arc", seg.end
         # committed: the state as the general path leaves it
         self._notes(words.m)
         if feed is not None:
@@ -227,10 +228,10 @@ class PlainBlocks:
         else:
             m.ccw = ccw
             m.used.update(PLANE_AXES[seg.plane])
-        m.blocks.append(Block.plain(line=blk.line, number=blk.number, text=blk.text, kind=kind, start=pos.copy(),
+        m.blocks.append(Block.plain(line=blk.line, number=blk.number, text=blk.text, kind=kind, start=seg.start,
                                     target=end, feed=path_feed, segment=seg, exact_stop=m.exact_stop,
                                     tolerance=m.tolerance))
-        m.pos = end.copy()
+        m.pos = end  # read-only: the next block's start, shared (interpolators.program.Block)
         m.last_rapid = rapid
         m.stopped_at = None  # a move since a program stop
         return True

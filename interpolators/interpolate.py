@@ -52,61 +52,111 @@ CURVE_PATH_ERROR: float = 1e-4
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
 
-#: Samples evaluated at once: the temporaries of one chunk (phase states, per-segment geometry) stay a
-#: few hundred MB at most, whatever the program's length; only the setpoints themselves grow with it.
-SAMPLE_CHUNK: int = 1 << 19
+#: Samples evaluated at once: the temporaries of one chunk (phase states, per-segment geometry, about 250 B per
+#: sample) stay about 35 MB, whatever the program's length; only the setpoints themselves grow with it.
+SAMPLE_CHUNK: int = 1 << 17
 
 
-class _Chain:
-    """Consecutive items planned together, starting and ending at rest."""
+class _Items:
+    """The items the planner takes (one per block that takes time), in program order: one flat list per field, of
+    which each chain is a range (a program of a million exact-stop blocks has a million chains: lists of their
+    own would cost about half a kB per chain)."""
 
-    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances", "dwell", "extra")
+    __slots__ = ("segments", "blocks", "feeds", "rapid", "tolerances")
 
     def __init__(self) -> None:
-        self.segments: list[Line | Arc | np.ndarray] = []
+        self.segments: list[Line | Arc | np.ndarray] = []  # an array: a hold (dwell, or X Y Z still)
         self.blocks: list[int] = []
         self.feeds: list[float] = []
         self.rapid: list[bool] = []
         self.tolerances: list[float] = []
+
+
+class _Chain:
+    """Consecutive items planned together, starting and ending at rest: the items ``lo`` to ``hi`` (excluded)
+    of ``items``; their fields as lists by the properties of the same names."""
+
+    __slots__ = ("items", "lo", "hi", "dwell", "extra")
+
+    def __init__(self, items: _Items) -> None:
+        self.items = items
+        self.lo = self.hi = len(items.segments)
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
         self.extra = False  # blocks moving an axis beyond X, Y, Z (and only such blocks): see _extra_block
 
+    @classmethod
+    def of(cls, segments: list, blocks: list[int], feeds: list[float], rapid: list[bool],
+           tolerances: list[float]) -> _Chain:
+        """A chain of these items, in items of its own."""
+        items = _Items()
+        items.segments, items.blocks, items.feeds, items.rapid, items.tolerances = (
+            segments, blocks, feeds, rapid, tolerances)
+        ch = cls(items)
+        ch.lo, ch.hi = 0, len(segments)
+        return ch
+
+    def add(self, segment: Line | Arc | np.ndarray, block: int, feed: float, rapid: bool, tolerance: float) -> None:
+        """Append an item: the chain is the last one of its items."""
+        it = self.items
+        it.segments.append(segment)
+        it.blocks.append(block)
+        it.feeds.append(feed)
+        it.rapid.append(rapid)
+        it.tolerances.append(tolerance)
+        self.hi += 1
+
+    @property
+    def segments(self) -> list:
+        return self.items.segments[self.lo:self.hi]
+
+    @property
+    def blocks(self) -> list[int]:
+        return self.items.blocks[self.lo:self.hi]
+
+    @property
+    def feeds(self) -> list[float]:
+        return self.items.feeds[self.lo:self.hi]
+
+    @property
+    def rapid(self) -> list[bool]:
+        return self.items.rapid[self.lo:self.hi]
+
+    @property
+    def tolerances(self) -> list[float]:
+        """The path tolerance after each item (a dwell's is never used)."""
+        return self.items.tolerances[self.lo:self.hi]
+
 
 def _chains(program: Program) -> list[_Chain]:
+    items = _Items()
     chains: list[_Chain] = []
     cur: _Chain | None = None
     for i, b in enumerate(program.blocks):
         if b.kind == "dwell":
             cur = None
             if b.dwell > 0:
-                ch = _Chain()
-                ch.segments.append(np.array(b.start, dtype=float))
-                ch.blocks.append(i)
-                ch.feeds.append(0.0)
-                ch.rapid.append(False)
+                ch = _Chain(items)
+                ch.add(b.start, i, 0.0, False, DEFAULT_TOLERANCE)
                 ch.dwell = b.dwell
                 chains.append(ch)
             continue
         seg = b.segment
         if b.extra_start is not None and np.any(b.extra_delta != 0):
-            cur = _extra_block(chains, cur, i, b, program.blocks)
+            cur = _extra_block(chains, items, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
         if cur is None or cur.extra:
-            cur = _Chain()
+            cur = _Chain(items)
             chains.append(cur)
-        cur.segments.append(seg)
-        cur.blocks.append(i)
-        cur.feeds.append(b.feed)
-        cur.rapid.append(b.kind == "rapid")
-        cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+        cur.add(seg, i, b.feed, b.kind == "rapid", DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
         if b.exact_stop:
             cur = None
     return chains
 
 
-def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b, blocks: Sequence) -> _Chain | None:
+def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int, b, blocks: Sequence
+                 ) -> _Chain | None:
     """Add a block that moves an axis beyond X, Y, Z; returns the chain the next block may join.
 
     A feed move with X, Y or Z moving joins the chain of the previous such block when that one
@@ -121,20 +171,16 @@ def _extra_block(chains: list[_Chain], cur: _Chain | None, i: int, b, blocks: Se
     seg = b.segment
     moves_xyz = seg is not None and seg.length > 0
     rapid = b.kind == "rapid"
-    after_rapid = cur is not None and cur.extra and cur.rapid[-1]
+    after_rapid = cur is not None and cur.extra and items.rapid[cur.hi - 1]
     if rapid:
-        joins = moves_xyz and after_rapid and blocks[cur.blocks[-1]].line == b.line
+        joins = moves_xyz and after_rapid and blocks[items.blocks[cur.hi - 1]].line == b.line
     else:
         joins = moves_xyz and not after_rapid
     if not (joins and cur is not None and cur.extra):
-        cur = _Chain()
+        cur = _Chain(items)
         cur.extra = True
         chains.append(cur)
-    cur.segments.append(seg if moves_xyz else np.array(b.start, dtype=float))
-    cur.blocks.append(i)
-    cur.feeds.append(b.feed)
-    cur.rapid.append(b.kind == "rapid")
-    cur.tolerances.append(DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+    cur.add(seg if moves_xyz else b.start, i, b.feed, rapid, DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
     return cur if moves_xyz and not b.exact_stop else None
 
 
@@ -238,6 +284,7 @@ def interpolate(
     lim = _axis_limits(chains, limits, jerk_limited)
     g = _geometry(chains, lim, jerk_limited, program)
     c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
+    del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
         v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
@@ -293,7 +340,7 @@ class _Chains:
 def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
                  jerk_limited: bool) -> AxisLimitArrays:
     """The limits of the axes the chains move (finite jerks for the S-curve)."""
-    segs = [seg for ch in chains for seg in ch.segments if isinstance(seg, (Line, Arc))]
+    segs = [seg for seg in (chains[0].items.segments if chains else ()) if isinstance(seg, (Line, Arc))]
     ends = np.array([(seg.start, seg.end) for seg in segs]).reshape(-1, 2, 3)
     moving = {int(i) for i in np.flatnonzero(np.any(ends[:, 1] != ends[:, 0], axis=0))}
     moving.update(i for seg in segs if isinstance(seg, Arc) for i in seg.plane_axes)
@@ -309,19 +356,24 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     """1. The geometry of each chain, its G64 corners blended."""
     all_segs: list[Line | Arc | np.ndarray] = []
     seg_block: list[int] = []
-    seg_chain: list[int] = []
+    chain_len: list[int] = []  # segments of each chain, blended
     seg_feed: list[float] = []
     seg_rapid: list[bool] = []
     blended = False
     runs: dict[int, MergedRun] = {}
-    for c, ch in enumerate(chains):
-        segs, blks = ch.segments, ch.blocks
-        run_of: dict[int, MergedRun] = {}
-        if len(segs) > 1 and not ch.extra:
-            ch, run_of = _merged(ch)
-            segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
-                                       worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
-            blended = blended or len(segs) != len(ch.segments) or bool(run_of)
+    for ch in chains:
+        if ch.hi - ch.lo == 1 or ch.extra:  # no corner to blend: the chain's own items
+            it, lo, hi = ch.items, ch.lo, ch.hi
+            all_segs += it.segments[lo:hi]
+            seg_block += it.blocks[lo:hi]
+            seg_feed += it.feeds[lo:hi]
+            seg_rapid += it.rapid[lo:hi]
+            chain_len.append(hi - lo)
+            continue
+        ch, run_of = _merged(ch)
+        segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
+                                   worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
+        blended = blended or len(segs) != len(ch.segments) or bool(run_of)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))
         for s, b in zip(segs, blks):
@@ -329,24 +381,25 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
                 runs[len(all_segs)] = run_of[id(s)]
             all_segs.append(s)
             seg_block.append(b)
-            seg_chain.append(c)
             seg_feed.append(feed_of[b])
             seg_rapid.append(rapid_of[b])
+        chain_len.append(len(segs))
     # a curve piece is packed as the chord of its end points with the curve's length; _evaluate and
     # _limits give its own geometry and bounds
     packed = PackedSegments.from_segments([Line(s.start, s.end) if isinstance(s, SplineCurve) else s
                                            for s in all_segs])
     for i in runs:
         packed.length[i] = all_segs[i].length
+    seg_chain = np.repeat(np.arange(len(chains), dtype=np.int64), chain_len)
     extra = None
     if any(b.extra_start is not None for b in program.blocks):
         extra = _extra_geometry(chains, seg_block, seg_chain, program, packed)
-    return _Geom(segments=all_segs, block=seg_block, chain=np.asarray(seg_chain, dtype=np.int64),
+    return _Geom(segments=all_segs, block=seg_block, chain=seg_chain,
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
                  packed=packed, blended=blended, runs=runs, extra=extra)
 
 
-def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[int], program: Program,
+def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.ndarray, program: Program,
                      packed: PackedSegments) -> _Extra:
     """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's segments
     (one per block) move them."""
@@ -355,7 +408,7 @@ def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: list[
     delta = np.zeros((n, len(EXTRA_NAMES)))
     length = np.array(packed.length, dtype=float)
     pure = np.zeros(n, dtype=bool)
-    for k, (b, c) in enumerate(zip(seg_block, seg_chain)):
+    for k, (b, c) in enumerate(zip(seg_block, seg_chain.tolist())):
         blk = program.blocks[b]
         if blk.extra_start is not None:
             start[k] = blk.extra_start
@@ -398,16 +451,13 @@ def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_
 def _merged(ch: _Chain) -> tuple[_Chain, dict[int, MergedRun]]:
     """The chain with its runs of dense short lines merged into smooth curves
     (:func:`interpolators.dense.merge_dense_runs`), and the run of each curve piece (by ``id``)."""
-    segs, first, runs = merge_dense_runs(ch.segments, ch.blocks, ch.feeds, ch.rapid, ch.tolerances)
+    blocks, feeds, rapid, tolerances = ch.blocks, ch.feeds, ch.rapid, ch.tolerances
+    segs, first, runs = merge_dense_runs(ch.segments, blocks, feeds, rapid, tolerances)
     if not runs:
         return ch, {}
-    out = _Chain()
-    out.segments = segs
-    out.blocks = [ch.blocks[i] for i in first]
-    out.feeds = [ch.feeds[i] for i in first]
-    out.rapid = [ch.rapid[i] for i in first]
-    last = [*(f - 1 for f in first[1:]), len(ch.segments) - 1]
-    out.tolerances = [ch.tolerances[i] for i in last]
+    last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
+    out = _Chain.of(segs, [blocks[i] for i in first], [feeds[i] for i in first], [rapid[i] for i in first],
+                    [tolerances[i] for i in last])
     return out, {id(segs[k]): run for k, run in runs.items()}
 
 
@@ -416,7 +466,7 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     """Position, velocity and acceleration on the segments ``seg`` (nondecreasing) at arc lengths ``s``
     (:meth:`PackedSegments.evaluate`, smooth curve pieces evaluated on their curve)."""
     pos, vel, acc = g.packed.evaluate(seg, s, v, a)
-    curves, piece, rows = _curve_rows(g, seg)
+    _, curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
         pos[rows], tan, curv = SplineCurve.evaluate_pieces(curves, piece, s[rows])
         vel[rows] = tan * v[rows, None]
@@ -424,23 +474,26 @@ def _evaluate(g: _Geom, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.nda
     return pos, vel, acc
 
 
-def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[SplineCurve], np.ndarray, np.ndarray]:
-    """The smooth curve pieces of ``g`` (in segment order) and, for the rows of ``seg`` (nondecreasing: samples in
-    time order, junctions in chain order) on them, the piece (index into that list) and the row of each, found by
-    bisection rather than one scan of ``seg`` per piece."""
+def _curve_rows(g: _Geom, seg: np.ndarray) -> tuple[list[int], list[SplineCurve], np.ndarray, np.ndarray]:
+    """The smooth curve pieces of ``g`` that rows of ``seg`` (nondecreasing: samples in time order, junctions in
+    chain order) are on (their segment indices and the pieces, in segment order) and, for those rows, the piece
+    (index into that list) and the row of each, found by bisection rather than one scan of ``seg`` per piece. Only
+    the pieces a chunk of samples is on: the work per chunk does not grow with the program's pieces."""
     pieces = np.array(sorted(g.runs), dtype=np.int64)
     lo = np.searchsorted(seg, pieces, side="left")
     n = np.searchsorted(seg, pieces, side="right") - lo
-    piece = np.repeat(np.arange(len(pieces)), n)
+    on = np.flatnonzero(n)
+    ids, lo, n = pieces[on].tolist(), lo[on], n[on]
+    piece = np.repeat(np.arange(len(ids)), n)
     rows = np.arange(int(n.sum())) + np.repeat(lo - (np.cumsum(n) - n), n)
-    return [g.segments[i] for i in pieces.tolist()], piece, rows
+    return ids, [g.segments[i] for i in ids], piece, rows
 
 
-def _curve_blocks(g: _Geom, piece: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """The block of the chord each point on the curve pieces (index into the pieces of ``g`` in segment order, as
-    from :func:`_curve_rows`; spline parameter ``u``) passes
+def _curve_blocks(g: _Geom, ids: list[int], piece: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The block of the chord each point on the curve pieces (index into ``ids``, the segment indices of pieces of
+    ``g``, as from :func:`_curve_rows`; spline parameter ``u``) passes
     (:meth:`interpolators.dense.MergedRun.block_at`), each run's rows at once."""
-    run_of = [g.runs[i] for i in sorted(g.runs)]  # the run of each of the curves
+    run_of = [g.runs[i] for i in ids]  # the run of each of the curves
     out = np.empty(len(u), dtype=np.int64)
     for k, rows in rows_by_owner(run_of, piece):
         out[rows] = run_of[k].block_at(u[rows])
@@ -753,9 +806,9 @@ def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], phase_end: np.ndarray, se
     if ax_idx != list(range(pos.shape[1])):
         pos, vel, acc = pos[:, ax_idx], vel[:, ax_idx], acc[:, ax_idx]
     block = seg_block[seg]
-    curves, piece, rows = _curve_rows(g, seg)
+    ids, curves, piece, rows = _curve_rows(g, seg)
     if len(rows):
-        block[rows] = _curve_blocks(g, piece, SplineCurve.parameters(curves, piece, s[rows]))
+        block[rows] = _curve_blocks(g, ids, piece, SplineCurve.parameters(curves, piece, s[rows]))
     return pos, vel, acc, block
 
 
@@ -795,7 +848,7 @@ def _curve_polylines(g: _Geom) -> dict[int, tuple[list[Line], list[int]]]:
     p = SplineCurve.evaluate_pieces(curves, np.repeat(which, counts + 1), np.concatenate(s_k), frame=False)[0]
     mid_piece = np.repeat(which, counts)
     mid = np.concatenate([0.5 * (s[1:] + s[:-1]) for s in s_k])
-    mid_blocks = _curve_blocks(g, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
+    mid_blocks = _curve_blocks(g, order, mid_piece, SplineCurve.parameters(curves, mid_piece, mid)).tolist()
     starts = np.delete(np.arange(len(p)), np.cumsum(counts + 1) - 1)  # each piece's last point starts no line
     lines = Line.from_arrays(p[starts], p[starts + 1])
     out = {}
@@ -829,6 +882,7 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
     The predicate judges all the corners of the chain at once (:class:`interpolators.lookahead.CornerBlends`).
     """
     share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
+    segments, feeds, rapid = ch.segments, np.asarray(ch.feeds), np.asarray(ch.rapid)
 
     def worth(blends: CornerBlends) -> np.ndarray:
         k = blends.corner
@@ -837,9 +891,9 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
         v_b = curved_speed_bound(blends.curvature, blends.curvature_rate, A_b, J_b, jerk_limited=jerk_limited)
         V, A, J = np.full(len(k), np.inf), np.full(len(k), np.inf), np.full(len(k), np.inf)
         for i in (k, k + 1):
-            lines = [ch.segments[j] for j in i.tolist()]
-            v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3),
-                                        np.asarray(ch.feeds)[i], np.asarray(ch.rapid)[i], lim)
+            lines = [segments[j] for j in i.tolist()]
+            v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3), feeds[i], rapid[i],
+                                        lim)
             half = np.array([0.5 * ln.length for ln in lines])
             reach = reach_many(np.zeros(len(half)), half, A_i, J_i, jerk_limited=jerk_limited)
             V = np.minimum(V, np.minimum(reach, v_i))

@@ -139,18 +139,19 @@ class PlainMoves:
         if motion == 0:
             if centre:
                 return False
-            seg, path_feed = Line.from_points(pos, target), _INF
+            path_feed = _INF
         elif path_feed is None:
             return False
-        elif motion == 10:
-            if centre:
-                return False
+        elif motion == 10 and centre:
+            return False
+        if motion <= 10:
+            target.setflags(write=False)
             seg = Line.from_points(pos, target)
         else:
             seg = self._arc(motion, axes, centre, target, scale)
             if seg is None:
                 return False
-            target = np.array(seg.end)
+            target = seg.end
         # committed: the modal state as the general path leaves it
         if feed is not None:
             st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
@@ -164,10 +165,10 @@ class PlainMoves:
             self.used.update(PLANE_AXES[st.plane])
         if number is not None:
             number = int(number.value) if number.value == int(number.value) else None
-        self.blocks.append(Block.plain(line=line, number=number, text=text, kind=_KIND[motion], start=pos.copy(),
+        self.blocks.append(Block.plain(line=line, number=number, text=text, kind=_KIND[motion], start=seg.start,
                                        target=target, feed=path_feed, segment=seg, exact_stop=st.exact_stop,
                                        tolerance=st.tolerance))
-        st.pos = target
+        st.pos = target  # read-only: the next block's start, shared (interpolators.program.Block)
         st.stopped = False  # a move since a program stop: positions read are the program's again
         return True
 

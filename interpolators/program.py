@@ -47,7 +47,7 @@ class Message:
             raise InputError(f"message kind must be one of {', '.join(MESSAGE_KINDS)}, got {self.kind!r}")
 
 
-@dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
+@dataclasses.dataclass(frozen=True, kw_only=True, eq=False, slots=True)
 class Block:
     """One executable block (a motion or a dwell).
 
@@ -63,7 +63,8 @@ class Block:
         ``"rapid"`` (G00 / FMAX: a straight line at the machine's rapid rate), ``"line"`` (G01 / L),
         ``"arc"`` (G02 / G03 / C / CR, possibly helical) or ``"dwell"`` (G04).
     start, target : ndarray, shape (3,)
-        Position before and after the block, ``(x, y, z)`` [mm].
+        Position before and after the block, ``(x, y, z)`` [mm]. Read-only: a block's ``start`` may be the
+        very array of the previous block's ``target`` and of its segment's end points (see :meth:`plain`).
     feed : float
         Programmed path feed [mm/s]; ``inf`` for rapids (the machine's rapid rate applies) and
         ``0`` for dwells. On a move with X, Y, Z still (see :attr:`extra_length`) it is the feed
@@ -82,7 +83,13 @@ class Block:
         Positions of the axes beyond X, Y, Z (``vcnc.core.axes.EXTRA_NAMES``: the rotary axes
         ``a, b, c`` [deg], then the secondary linear axes ``u, v, w`` [mm]) before and after the
         block; ``None`` in a program that moves none of them. They move in proportion to the path
-        (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path).
+        (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path). Read-only.
+
+    Notes
+    -----
+    A block holds its fields in slots, not in a ``__dict__`` (a CAM program has millions of blocks); the arrays
+    given are made read-only in place, not copied, so that blocks, their segments and the readers' positions may
+    share them.
     """
 
     line: int
@@ -99,16 +106,32 @@ class Block:
     extra_start: np.ndarray | None = None
     extra_target: np.ndarray | None = None
 
+    def __post_init__(self) -> None:
+        for arr in (self.start, self.target, self.extra_start, self.extra_target):
+            if isinstance(arr, np.ndarray):
+                arr.setflags(write=False)
+
     @classmethod
     def plain(cls, *, line: int, number: int | None, text: str, kind: str, start: np.ndarray, target: np.ndarray,
               feed: float, segment: Line | Arc, exact_stop: bool, tolerance: float | None) -> Block:
         """A motion block without the axes beyond X, Y, Z: the same as ``Block(...)`` with these fields, made
-        without the frozen dataclass's per-field ``object.__setattr__`` (the ISO reader makes one per line,
-        :mod:`interpolators.iso_fast`)."""
+        without the frozen dataclass's ``__init__`` (the readers make one per line, :mod:`interpolators.iso_fast`,
+        :mod:`interpolators.heidenhain_fast`). ``start`` and ``target`` must be read-only already: they are kept
+        as given (a reader passes the previous block's target as the start)."""
         blk = object.__new__(cls)
-        blk.__dict__.update(line=line, number=number, text=text, kind=kind, start=start, target=target, feed=feed,
-                            segment=segment, dwell=0.0, exact_stop=exact_stop, tolerance=tolerance,
-                            extra_start=None, extra_target=None)
+        _set_line(blk, line)
+        _set_number(blk, number)
+        _set_text(blk, text)
+        _set_kind(blk, kind)
+        _set_start(blk, start)
+        _set_target(blk, target)
+        _set_feed(blk, feed)
+        _set_segment(blk, segment)
+        _set_dwell(blk, 0.0)
+        _set_exact_stop(blk, exact_stop)
+        _set_tolerance(blk, tolerance)
+        _set_extra_start(blk, None)
+        _set_extra_target(blk, None)
         return blk
 
     @property
@@ -132,6 +155,12 @@ class Block:
         d = self.extra_delta
         secondary = float(np.linalg.norm(d[3:]))
         return secondary if secondary > 0 else float(np.linalg.norm(d[:3]))
+
+
+# the slots' own setters: what the frozen dataclass's __init__ does, without its per-field object.__setattr__
+(_set_line, _set_number, _set_text, _set_kind, _set_start, _set_target, _set_feed, _set_segment, _set_dwell,
+ _set_exact_stop, _set_tolerance, _set_extra_start, _set_extra_target) = (
+    vars(Block)[f.name].__set__ for f in dataclasses.fields(Block))
 
 
 def end_at_rest(blocks: list[Block]) -> None:

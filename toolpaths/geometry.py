@@ -70,6 +70,14 @@ def _rows(value: np.ndarray, name: str) -> np.ndarray:
     return arr
 
 
+def _read_only(arr: np.ndarray) -> np.ndarray:
+    """``arr`` itself if it is read-only, else a read-only copy."""
+    if arr.flags.writeable:
+        arr = arr.copy()
+        arr.setflags(write=False)
+    return arr
+
+
 def _unit_rows(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Row norms of ``d`` and the unit rows (zero rows where the norm is 0), read-only."""
     norm = np.sqrt(np.einsum("ij,ij->i", d, d))
@@ -112,12 +120,11 @@ class Line:
     @classmethod
     def from_points(cls, start: np.ndarray, end: np.ndarray) -> Line:
         """``Line(start, end)`` for two float arrays of shape (3,) that are known to be finite (a reader's
-        positions): the same line, made without the checks (the points are copied)."""
+        positions): the same line, made without the checks. A read-only point is kept as it is, shared with the
+        caller (a reader's block and the next line start on the same array); a writeable one is copied."""
         line = object.__new__(cls)
-        line.start = a = start.copy()
-        line.end = b = end.copy()
-        a.setflags(write=False)
-        b.setflags(write=False)
+        line.start = a = _read_only(start)
+        line.end = b = _read_only(end)
         d = b - a
         line.length = n = math.sqrt(d.dot(d))
         u = d / n if n > 0 else np.zeros(3)
