@@ -204,6 +204,26 @@ def _refuse_folder_line(line: str, where: Where) -> None:
                expected="one program (O<number> ... M30), e.g. the one to run cut out of the backup")
 
 
+_SKIP_LEVEL = re.compile(r"[ \t]*/([1-9])")
+
+
+def _block_delete(code: str, where: Where, *, levels: bool) -> str:
+    """A line opened by '/' (block delete), the '/' blanked: the line runs, as with its switch off. With
+    ``levels`` (Fanuc) '/1'-'/9' opens it as well: the optional block skip of level n, '/1' the same as '/'
+    (FANUC 0i-MF operator's manual, "Optional block skip", the additional optional block skip option;
+    ISG kernel "Extended skipping (skip levels)": '/1'-'/10', '/' and '/1' one switch); its switch off too.
+    Without (LinuxCNC, Haas, grbl, whose manuals give only '/') the level is named, with the dialect that
+    reads it: a Mazak program of Keycult's writes "/1 #[#22 + 1] = 0" per level."""
+    m = _SKIP_LEVEL.match(code)
+    if m is None:
+        return code.replace("/", " ", 1)
+    if not levels:
+        where.fail(f"'/{m.group(1)}': optional block skip level {m.group(1)} (Fanuc's additional optional block "
+                   "skip /2-/9), which this dialect does not have (--dialect fanuc reads it)",
+                   column=m.start(1), text=f"/{m.group(1)}", expected="'/' block delete")
+    return " " * m.end() + code[m.end():]
+
+
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
     """The keyword of the O-word line ``code`` (``m`` its :data:`_O_LINE` match, None if it is none), the
     text after it and that text's 1-based column; a keyword spelt with blanks ("end sub") is joined."""
@@ -261,8 +281,9 @@ class _Program:
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
                  subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-                 abbreviations: bool = False) -> None:
+                 abbreviations: bool = False, skip_levels: bool = False) -> None:
         self.source = source
+        self.skip_levels = skip_levels
         self.subroutine_path = subroutine_path
         self.tape_leader = tape_leader
         self.raw: list[str] = []
@@ -324,7 +345,7 @@ class _Program:
                 where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
                            expected="'%' alone")
             if s.startswith("/"):
-                code = code.replace("/", " ", 1)
+                code = _block_delete(code, where, levels=self.skip_levels)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
                 _refuse_colon_block(s, code.index(":") + 1, where)
             if self.macro.add_line(i, code, self.span, where) is not None:
@@ -621,7 +642,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     """
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
-                    tape_leader=tape_leader, abbreviations=params.fanuc)
+                    tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

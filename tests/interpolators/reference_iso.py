@@ -528,7 +528,9 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]
             # guide, 6.3 "$-commands and regions"): no G-code of any control; the simulator alone reads them
             s = ""
         if s.startswith("/"):
-            s = s[1:]
+            # '/' block delete, switch off; Fanuc's optional block skip levels '/1'-'/9' (the additional optional
+            # block skip option) alike, '/1' the same as '/'
+            s = s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
         s = _unabbreviated(s) if fanuc else s
