@@ -870,12 +870,24 @@ def _start_block(prog: _Program, start: int, q: Word, where: Where) -> int:
     return target
 
 
+def _probing_macro(number: float) -> str:
+    """What a called O9810-O9834 is: the Renishaw Inspection Plus probing macros a machine with a spindle probe
+    keeps in its control (Renishaw Inspection Plus programming manual H-2000-6222: O9810 protected positioning,
+    O9811-O9823 measuring cycles, O9832/O9833 probe on/off; Haas WIPS calls the same numbers), which a program
+    only calls; they measure the part, which vcnc has not."""
+    if not 9810 <= number <= 9834:
+        return ""
+    return (" (a Renishaw Inspection Plus probing macro stored in the machine's control: it measures the part, "
+            "which vcnc cannot; a copy of the macro beside the program would run as written)")
+
+
 def _called_program(prog: _Program, words: list[Word], call: Word, where: Where, what: str) -> int:
     """First line of the program ``O<P>`` that an M98 or G65 block calls."""
     p = next((w for w in words if w.letter == "P"), None)
     if p is None or p.value != int(p.value) or prog.external_fanuc(int(p.value)) is None:
         target = "no P word" if p is None else (f"program O{p.value:g} is neither in this file nor in a "
-                                                "program file of its folder" + prog.unnumbered(p.value))
+                                                "program file of its folder" + prog.unnumbered(p.value)
+                                                + _probing_macro(p.value))
         where.fail(f"{what}: {target}", column=call.column, text=call.text,
                    expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder")
     return prog.fanuc[int(p.value)] + 1

@@ -30,6 +30,9 @@ if TYPE_CHECKING:
 __all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "initial_feed", "per_rev_spindle",
            "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P"]
 
+#: an M98 subprogram call in a line (a word M98, not M980)
+_M98 = re.compile(r"(?<![A-Z])M0*98(?![0-9.])", re.IGNORECASE)
+
 
 def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
@@ -132,6 +135,8 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
         w = seen[(arc_words or ["R"])[0]]
         guess = ("a 5-axis post's tool-axis vector I J K?" if {"I", "J", "K"} <= set(seen) and "R" not in seen
                  else "a G02/G03 meant?")
+        if _M98.search(where.text):  # Fanuc/Haas: M98 P L calls without arguments; G65 P passes A-Z as #1-#26
+            guess = "M98 passes no arguments to its subprogram: a call with arguments is G65 P<program> (macro B)"
         where.fail(f"word {w.letter} is only allowed on arcs (G02/G03), not on {code} (LinuxCNC and grbl refuse it; "
                    f"the Haas manual lists no I J K R for it; {guess})",
                    column=w.column, text=w.text, expected="X, Y, Z and F on G00/G01")

@@ -40,3 +40,27 @@ def test_block_delete_alone_still_runs_on_every_dialect():
     for context in (FANUC, HAAS, LINUXCNC):
         prog = checked_iso("G21 G90 G17\n/G1 X10. F100.\n/ G1 Y5.\nM30\n", context)
         assert prog.blocks[-1].target.tolist()[:2] == [10.0, 5.0]
+
+
+def test_a_missing_renishaw_probing_macro_is_named():
+    # a Haas shop's WCS alignment macro: "G65 P9832" (probe on), "G65 P9810 Z.." (protected positioning), whose
+    # programs stay in the control (Renishaw Inspection Plus, H-2000-6222)
+    text = "G20 G90 G17\nG0 X0 Y0\nG65 P9832\nG65 P9810 Z1.0 F50.\nM30\n"
+    with pytest.raises(GCodeError, match=r":3:1: G65 macro call: program O9832 is neither in this file nor in a "
+                                         r"program file of its folder \(a Renishaw Inspection Plus probing macro "
+                                         r"stored in the machine's control"):
+        parse_program(text, context=HAAS)
+    with pytest.raises(GCodeError, match=r"program O1234 is neither in this file nor in a program file of its "
+                                         r"folder \(got"):
+        parse_program(text.replace("P9832", "P1234"), context=HAAS)
+
+
+def test_m98_with_macro_arguments_is_named_as_needing_g65():
+    # a Haas shop's thread milling main program: "M98 P9998 I10. D2.0 Z-1.0 T10 V.1 F40. R1.5 X1.0 Y2.0", whose
+    # O9998 reads #4, #7, #26 ... as G65 arguments; M98 passes none and runs the words first, where I is refused
+    text = "G20 G90 G17\nG0 X0 Y0 Z1.\nM98 P9998 I10. D2.0 Z-1.0 F40. R1.5 X1.0 Y2.0\nM30\nO9998\nG1 X2. F10.\nM99\n"
+    with pytest.raises(GCodeError, match=r":3:11: word I is only allowed on arcs .*M98 passes no arguments to its "
+                                         r"subprogram: a call with arguments is G65 P<program> \(macro B\)"):
+        parse_program(text, context=HAAS)
+    with pytest.raises(GCodeError, match=r"a G02/G03 meant\?"):
+        parse_program("G20 G90 G17\nG0 X1. I10.\nM30\n", context=HAAS)
