@@ -130,6 +130,9 @@ def note_comment(keyword: str, text: str, where: Where, *, messages: list[Messag
 
 
 #: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
+#: A Haas M97 word (a local subprogram call, :func:`interpolators.iso_flow.run`), which LinuxCNC does not have (rs274:
+#: "Unknown m code used: M97").
+_M97 = re.compile(r"(?<![A-Z\d.])M0*97(?![\d.])", re.I)
 _OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
 
 
@@ -173,6 +176,12 @@ def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) 
                   "(Fanuc writes each in its own brackets)")
 
 
+def _in_code(text: str, at: int) -> bool:
+    """Whether ``text[at]`` is outside the comments of its line: no ';' before it, no '(' left open."""
+    before = text[text.rfind("\n", 0, at) + 1:at]
+    return ";" not in before and before.count("(") <= before.count(")")
+
+
 def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
     a '(' inside, and parameter assignments with an operation outside [ ]
@@ -193,6 +202,9 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
             notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
                       "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
                       "reuses labels)")
+    if any(_in_code(text, m.start()) for m in _M97.finditer(text)):
+        notes.add("M97 local subprogram calls run as Haas runs them (LinuxCNC refuses them: \"Unknown m code used\"; "
+                  "--dialect haas)")
     if _NESTED_COMMENT.search(text):
         notes.add("comments with '(' inside read as nested (LinuxCNC refuses them: \"Nested comment found\")")
     for _ in range(params.unbracketed):

@@ -64,3 +64,16 @@ def test_m98_with_macro_arguments_is_named_as_needing_g65():
         parse_program(text, context=HAAS)
     with pytest.raises(GCodeError, match=r"a G02/G03 meant\?"):
         parse_program("G20 G90 G17\nG0 X1. I10.\nM30\n", context=HAAS)
+
+
+def test_m97_under_linuxcnc_runs_as_haas_runs_it_with_a_note():
+    # a shop's macro B program (isowild16): "M97 P5 L#5" repeats the local subprogram N5 at six angles; read with
+    # the default dialect it runs as a Haas runs it, and the note says LinuxCNC refuses M97 (rs274 2.9.0~pre1:
+    # "Unknown m code used: M97")
+    text = "G21 G90 G17\nG0 X0 Y0 Z5\nM97 P5 L2 (two passes)\nM30\nN5 G91 G1 X1. F100.\nG90\nM99\n"
+    prog = checked_iso(text, LINUXCNC)
+    assert [b.target.tolist()[0] for b in prog.blocks[1:]] == [1.0, 2.0]
+    assert any('LinuxCNC refuses them: "Unknown m code used"; --dialect haas' in n for n in prog.notes)
+    assert not any("M97" in n for n in checked_iso(text, HAAS).notes)
+    commented = checked_iso("G21 G90\n(M97 P5 is not used)\nG1 X1. F100. ; M97\nM30\n", LINUXCNC)
+    assert not any("M97" in n for n in commented.notes)
