@@ -208,6 +208,10 @@ class Parameters:
             where.fail(f"parameter #{n}: {why}", column=column, text=text,
                        expected="a parameter whose value the program determines")
         store = self._local_numbered(n)
+        if self.macro_b and n == _FANUC_ALARM and n not in store:
+            where.fail("#3000 read: it is the macro alarm, which a program writes to stop with an alarm (#3000 = n "
+                       "(message)); what reading it gives is not modelled (no Fanuc or Haas manual found says)",
+                       column=column, text=text, expected="#3000 only written, as '#3000 = n (message)'")
         if self.macro_b and n in _FANUC_SYSTEM and n not in store:
             where.fail(f"#{n}: this Fanuc system variable (#1000-#4999: interface signals, tool offsets, "
                        "alarms, clocks, modal information) is not modelled", column=column, text=text,
@@ -225,12 +229,17 @@ class Parameters:
         return store.get(n, 0.0)
 
     def _beyond_macro_b(self, n: int) -> str:
-        """Under macro B, what a variable numbered 100000 or more is: beyond every variable vcnc models (the
-        ranges this module names). Our reading, no manual at hand: one of the further common variables some
-        controls add as an option, as a mould shop's Fanuc programs keep their settings in #900000-#901999;
-        "" otherwise."""
-        if not self.macro_b or n < 100000:
+        """Under macro B, what a variable numbered 5602 or more that vcnc does not model is: below 100000 a
+        system variable of the machine (our reading: Fanuc and Haas number their system variables from #5000 up
+        and machine makers add their own, as a Mazak HCN shop's pallet macro reads #51998); from 100000 beyond
+        every variable vcnc models (the ranges this module names; our reading, no manual at hand: one of the further
+        common variables some controls add as an option, as a mould shop's Fanuc programs keep their settings in
+        #900000-#901999); "" otherwise."""
+        if not self.macro_b or n < _LINUXCNC_PARAMETERS:
             return ""
+        if n < 100000:  # our reading: a numbered system variable of the machine (a Mazak HCN shop's #51998)
+            return (f" (#{n}: a system variable of the machine's control, which vcnc does not model: Fanuc and Haas "
+                    "controls keep positions, offsets and their maker's variables from #5000 up)")
         return (f" (#{n}: beyond the Fanuc/Haas variables vcnc models, locals #1-#33, common #100-#199 and "
                 "#500-#999, Haas #10000-#10999, system variables below #100000; the larger common-variable ranges "
                 "that some controls add as an option are not modelled)")

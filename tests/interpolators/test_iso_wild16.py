@@ -77,3 +77,23 @@ def test_m97_under_linuxcnc_runs_as_haas_runs_it_with_a_note():
     assert not any("M97" in n for n in checked_iso(text, HAAS).notes)
     commented = checked_iso("G21 G90\n(M97 P5 is not used)\nG1 X1. F100. ; M97\nM30\n", LINUXCNC)
     assert not any("M97" in n for n in commented.notes)
+
+
+def test_a_machine_variable_below_100000_is_named_as_the_machines():
+    # a Mazak HCN shop's pallet macro (SWAP_PALLET.EIA): "IF [#51998 EQ 1.] THEN M912"
+    with pytest.raises(GCodeError, match=r"#51998 out of range \(#51998: a system variable of the machine's "
+                                         r"control, which vcnc does not model"):
+        parse_program("G21 G90\nIF [#51998 EQ 1.] THEN #100 = 1\nG1 X1. F100.\nM30\n", context=FANUC)
+    with pytest.raises(GCodeError, match=r"#51998 out of range \(got"):
+        parse_program("G21 G90\n#100 = #51998\nG1 X1. F100.\nM30\n", context=LINUXCNC)
+
+
+def test_reading_the_macro_alarm_variable_is_named():
+    # a Haas shop's thread milling macro: "IF [#20 EQ 0] THEN #3000 = 4 (...)" per argument, then
+    # "IF [#3000 NE 0] GOTO 9999": #3000 is written to raise an alarm; what a read gives no manual says
+    text = "G20 G90\n#20 = 10.\nIF [#20 EQ 0] THEN #3000 = 4 (TOOL MISSING)\nIF [#3000 NE 0] GOTO 9\nN9 M30\n"
+    with pytest.raises(GCodeError, match=r":4:5: #3000 read: it is the macro alarm, which a program writes to stop "
+                                         r"with an alarm"):
+        parse_program(text, context=HAAS)
+    with pytest.raises(GCodeError, match=r":3:.*macro alarm #3000 = 4"):
+        parse_program(text.replace("#20 = 10.", "#20 = 0"), context=HAAS)
