@@ -1061,6 +1061,9 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
             # M17 ends it; L<nn><count> calls it)
             fadal = " (a Fadal subroutine definition or call: use --dialect fadal)" if letter == "L" and \
                 w.value >= 100 and w.value == int(w.value) else ""
+            if letter == "Q" and gcodes.get("motion", (None,))[0] == 51:  # Fanuc 0i-MF "AI contour control"
+                fadal = (" (G05.1 Q1 / Q0 is Fanuc's AI contour control, look-ahead on / off: --dialect fanuc; "
+                         "LinuxCNC's G5.1 is a quadratic spline through I J)")
             where.fail(f"unknown word {w.text!r} outside a drilling cycle{fadal}", column=w.column, text=w.text,
                        expected=f"{letter} only in drilling cycles (G73, G83)" if letter == "Q" else
                        f"{letter} only in drilling cycles or G10")

@@ -97,3 +97,18 @@ def test_reading_the_macro_alarm_variable_is_named():
         parse_program(text, context=HAAS)
     with pytest.raises(GCodeError, match=r":3:.*macro alarm #3000 = 4"):
         parse_program(text.replace("#20 = 10.", "#20 = 0"), context=HAAS)
+
+
+@pytest.mark.parametrize(("code", "column", "message"), [
+    ("G05.1 Q1 R5", 7, r"unknown word 'Q1' outside a drilling cycle \(G05.1 Q1 / Q0 is Fanuc's AI contour control, "
+                       r"look-ahead on / off: --dialect fanuc; LinuxCNC's G5.1 is a quadratic spline through I J\)"),
+    ("G08 P1", 1, r"G8 lathe radius mode \(a mill's G08 P1 is Fanuc's AI advanced preview control: --dialect "
+                  r"fanuc\): not supported")])
+def test_fanuc_look_ahead_codes_are_named_under_linuxcnc(code, column, message):
+    # high-speed options of a Fanuc post read with the default dialect, where G5.1 is a spline and G8 lathe radius
+    # mode; the fanuc dialect reads them as look-ahead, which changes no point of the path
+    text = f"G21 G90 G17\n{code}\nG0 X0 Y0 Z5\nG1 X10. F1000.\nM30\n"
+    with pytest.raises(GCodeError, match=f":2:{column}: {message}"):
+        parse_program(text, context=LINUXCNC)
+    prog = checked_iso(text, FANUC)
+    assert prog.blocks[-1].target.tolist() == [10.0, 0.0, 5.0]
