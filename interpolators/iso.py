@@ -869,8 +869,12 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
 
 def _unsupported_g(key: int, words: list[Word]) -> str:
     """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
-    block) with :data:`UNITS_HINT`."""
+    block) with :data:`UNITS_HINT`; a G8 with P named as Fanuc's look-ahead (Fanuc 0i-MF "AI advanced preview
+    control", :mod:`interpolators.iso_smoothing`)."""
     bare = not any(v.letter in "PQUWRIJKL" for v in words)
+    if key == 80 and any(v.letter == "P" for v in words):  # LinuxCNC's G8 takes no P; Fanuc's G08 P1 / P0 does
+        return (f"{G_UNSUPPORTED[key]}: not supported (G08 P1 / P0 with a P is Fanuc's AI advanced preview "
+                "control, a mill's look-ahead: --dialect fanuc)")
     return f"{G_UNSUPPORTED[key]}: not supported{UNITS_HINT.get(key, '') if bare else ''}"
 
 

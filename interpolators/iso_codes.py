@@ -70,8 +70,7 @@ LINUXCNC_ALLOCATED_G = frozenset({
 #: G codes named in an error (round(10 * code) -> feature).
 G_UNSUPPORTED: dict[int, str] = {
     **{k: "G38 probing" for k in (382, 383, 384, 385)},
-    760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode",
-    80: "G8 lathe radius mode (a mill's G08 P1 is Fanuc's AI advanced preview control: --dialect fanuc)",
+    760: "G76 threading cycle (lathe)", 70: "G7 lathe diameter mode", 80: "G8 lathe radius mode",
     700: "G70 lathe finishing cycle", 710: "G71 lathe roughing cycle", 720: "G72 lathe facing cycle",
     711: "G71.1 lathe roughing cycle", 721: "G72.1 lathe facing cycle",
     750: "G75 lathe grooving cycle",

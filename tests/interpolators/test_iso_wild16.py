@@ -102,8 +102,8 @@ def test_reading_the_macro_alarm_variable_is_named():
 @pytest.mark.parametrize(("code", "column", "message"), [
     ("G05.1 Q1 R5", 7, r"unknown word 'Q1' outside a drilling cycle \(G05.1 Q1 / Q0 is Fanuc's AI contour control, "
                        r"look-ahead on / off: --dialect fanuc; LinuxCNC's G5.1 is a quadratic spline through I J\)"),
-    ("G08 P1", 1, r"G8 lathe radius mode \(a mill's G08 P1 is Fanuc's AI advanced preview control: --dialect "
-                  r"fanuc\): not supported")])
+    ("G08 P1", 1, r"G8 lathe radius mode: not supported \(G08 P1 / P0 with a P is Fanuc's AI advanced preview "
+                  r"control, a mill's look-ahead: --dialect fanuc\)")])
 def test_fanuc_look_ahead_codes_are_named_under_linuxcnc(code, column, message):
     # high-speed options of a Fanuc post read with the default dialect, where G5.1 is a spline and G8 lathe radius
     # mode; the fanuc dialect reads them as look-ahead, which changes no point of the path
@@ -112,3 +112,6 @@ def test_fanuc_look_ahead_codes_are_named_under_linuxcnc(code, column, message):
         parse_program(text, context=LINUXCNC)
     prog = checked_iso(text, FANUC)
     assert prog.blocks[-1].target.tolist() == [10.0, 0.0, 5.0]
+    if code.startswith("G08"):  # a lathe program's G8 (LinuxCNC lathe radius mode) is not given the hint
+        with pytest.raises(GCodeError, match=r":2:1: G8 lathe radius mode: not supported \(got 'G8'\)"):
+            parse_program(text.replace("G08 P1", "G8"), context=LINUXCNC)
