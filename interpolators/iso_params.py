@@ -185,6 +185,7 @@ class Parameters:
         self.set_system = set_system
         self.fanuc = fanuc
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
+        self.plain_alarms: list[tuple[int, int]] = []  # without macro B: #3000 / #3006 set at line, as parameters
         self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
 
     def _local_numbered(self, n: int) -> dict[int, float]:
@@ -293,6 +294,8 @@ class Parameters:
                 where.fail(f"macro alarm #3000 = {value if value is not None else 0:g}{shown}: the program raises an "
                            "alarm here", column=column, text=where.text, expected="a program that does not reach its "
                            "alarm")
+            if not self.macro_b and key in (_FANUC_ALARM, _FANUC_MESSAGE_STOP):
+                self.plain_alarms.append((where.line, key))  # LinuxCNC: parameters like any other below #5000
             if self.macro_b and key == _FANUC_MESSAGE_STOP:
                 message = block_comment(where.text, where)
                 self.stops.append((where.line, message.strip() if message else ""))

@@ -171,6 +171,10 @@ def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) 
     brackets that join comparisons (``iso_params`` reads them comparisons first)."""
     if dialect == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+    for line, n in params.plain_alarms:  # Fanuc 0i-MF / Haas macros: #3000 alarm, #3006 stop with a message
+        what = "raises macro alarm n there and stops" if n == 3000 else "stops there with its message"
+        notes.add(f"#{n} set at line {line} as a plain parameter (a Fanuc or Haas control {what}: --dialect fanuc "
+                  "or haas)")
     for _ in range(params.joined_comparisons):
         notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
                   "(Fanuc writes each in its own brackets)")

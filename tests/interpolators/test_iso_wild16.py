@@ -115,3 +115,16 @@ def test_fanuc_look_ahead_codes_are_named_under_linuxcnc(code, column, message):
     if code.startswith("G08"):  # a lathe program's G8 (LinuxCNC lathe radius mode) is not given the hint
         with pytest.raises(GCodeError, match=r":2:1: G8 lathe radius mode: not supported \(got 'G8'\)"):
             parse_program(text.replace("G08 P1", "G8"), context=LINUXCNC)
+
+
+def test_the_macro_alarm_and_message_stop_set_under_linuxcnc_are_noted():
+    # a Haas shop's macro read with the default dialect: LinuxCNC takes #3000 and #3006 as parameters like any other
+    # (the program runs on), where a Haas raises macro alarm 4 at line 3 and stops
+    text = "G21 G90\n#20 = 0\nIF [#20 EQ 0] THEN #3000 = 4 (TOOL MISSING)\n#3006 = 1 (CHECK)\nG1 X1. F100.\nM30\n"
+    prog = checked_iso(text, LINUXCNC)
+    assert prog.blocks[-1].target.tolist() == [1.0, 0.0, 0.0]
+    assert "#3000 set at line 3 as a plain parameter (a Fanuc or Haas control raises macro alarm n there and stops: " \
+           "--dialect fanuc or haas)" in prog.notes
+    assert any(n.startswith("#3006 set at line 4 as a plain parameter") for n in prog.notes)
+    with pytest.raises(GCodeError, match=r":3:20: macro alarm #3000 = 4 \(TOOL MISSING\)"):
+        parse_program(text, context=HAAS)
