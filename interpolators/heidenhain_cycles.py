@@ -565,18 +565,24 @@ def point_depth(number: int, q: dict[int, float], *, scale: float, tool: tuple[f
     ID50 NR32 "Point angle for DRILL and CSINK T-ANGLE"). Our reading of the geometry: a cone of that point angle
     ends r / tan(angle / 2) below where it reaches the radius r, so Q395 = 1 drills the tip that much deeper
     (r the tool radius) and Q343 = 1 centres to the depth that gives the diameter Q344 (r = |Q344| / 2). Without
-    a point angle in the tool table the TNC cannot work either out: an error naming the column."""
+    a point angle in the tool table the TNC cannot work either out: an error naming the column. A point angle of
+    180 deg is a flat end (:attr:`interpolators.context.Tool.point_angle`): Q395 = 1 drills to Q201 as 0 does, and
+    Q343 = 1 has no depth that gives a diameter (an error)."""
     if not takes_point_angle(number, q):
         return q[201] * scale
     radius, angle = tool
     what = "Q343=1 (centering to the diameter Q344)" if number == 240 else "Q395=1 (depth to the full diameter)"
-    if not 0.0 < angle < 180.0:
+    if not 0.0 < angle <= 180.0:
         where.fail(f"cycle {number}: {what} needs the tool's point angle, and the called tool has none",
                    column=column, text=where.text,
                    expected="a point angle in the tool table (T-ANGLE, [program.tools.n] point_angle) or "
                             + ("Q343=0 (depth Q201)" if number == 240 else "Q395=0 (depth to the tool tip)"))
     slope = math.tan(math.radians(angle) / 2.0)
     if number == 240:
+        if angle == 180.0:
+            where.fail(f"cycle 240: {what} needs a pointed tool, and the called tool's point angle is 180 deg (a flat "
+                       "end, no depth gives a diameter)", column=column, text=where.text,
+                       expected="a centering tool with a point angle below 180 deg (T-ANGLE), or Q343=0 (depth Q201)")
         if q.get(344, 0.0) == 0.0:
             where.fail("cycle 240: Q343=1 centres to the diameter Q344, which is 0", column=column, text=where.text,
                        expected="Q344 < 0 [mm] (the diameter, its sign the working direction)")
@@ -585,7 +591,9 @@ def point_depth(number: int, q: dict[int, float], *, scale: float, tool: tuple[f
         where.fail(f"cycle {number}: {what} needs the tool radius, and the called tool has none", column=column,
                    text=where.text, expected="a tool with a radius > 0, or Q395=0 (depth to the tool tip)")
     depth = q[201] * scale
-    return math.copysign(abs(depth) + radius / slope, depth) if depth else 0.0
+    if angle == 180.0 or not depth:  # a flat end is at its full diameter at the tip
+        return depth
+    return math.copysign(abs(depth) + radius / slope, depth)
 
 
 def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,

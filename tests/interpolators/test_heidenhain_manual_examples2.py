@@ -153,8 +153,8 @@ def test_tool_tables_carry_the_point_angle(tmp_path):
                     "2    DRILL_D6         +120        +3          +118\n3    MILL             +80         +5\n[END]\n")
     tools = read_tool_table(str(path))
     assert tools[2].point_angle == 118.0 and tools[3].point_angle == 0.0
-    with pytest.raises(InputError, match=r"tool 4: point angle must lie in \(0, 180\)"):
-        Tool(number=4, point_angle=180.0)
+    with pytest.raises(InputError, match=r"tool 4: point angle must lie in \[0, 180\]"):
+        Tool(number=4, point_angle=181.0)
 
 
 # the manuals' SL example "Overlapping contours" writes its islands one side short of their first point (the square

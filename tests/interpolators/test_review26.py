@@ -1,0 +1,42 @@
+"""Review of session 26's work: defects found by hand, each with the program that showed it."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from interpolators.context import MachineContext, Tool, read_tool_table
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+# a tool table may hold T-ANGLE 180 (a flat end); it was refused as a whole ('point angle must lie in (0, 180)')
+FLAT = MachineContext(tools={4: Tool(number=4, radius=4.0, point_angle=180.0)})
+DRILL = ("0 BEGIN PGM T MM\n1 TOOL CALL 4 Z S3000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 CYCL DEF 200 DRILLING ~\n Q200=2 ~\n"
+         " Q201=-15 ~\n Q206=250 ~\n Q202=20 ~\n Q210=0 ~\n Q203=+0 ~\n Q204=50 ~\n Q211=0 ~\n Q395={ref}\n"
+         "4 L X+10 Y+10 R0 FMAX M99\nEND PGM T MM\n")
+CENTER = ("0 BEGIN PGM T MM\n1 TOOL CALL 4 Z S3000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 CYCL DEF 240 CENTERING ~\n"
+          " Q200=2 ~\n Q343=1 ~\n Q201=+0 ~\n Q344=-9 ~\n Q206=250 ~\n Q211=0 ~\n Q203=+20 ~\n Q204=100\n"
+          "4 L X+30 Y+20 R0 FMAX M99\nEND PGM T MM\n")
+
+
+def test_a_tool_table_may_hold_a_flat_point_angle(tmp_path):
+    path = tmp_path / "tool.t"
+    path.write_text("BEGIN TOOL     .T     MM\nT    NAME             L           R           T-ANGLE\n"
+                    "4    MILL_D8          +80         +4          +180\n[END]\n")
+    assert read_tool_table(str(path))[4].point_angle == 180.0
+
+
+def test_depth_to_the_full_diameter_of_a_flat_end_is_the_depth():
+    # Q395=1 with a flat end (T-ANGLE 180): the full diameter is at the tip, the hole as deep as with Q395=0
+    deepest = [min(float(b.target[2]) for b in checked_program(DRILL.format(ref=ref), FLAT).blocks) for ref in (0, 1)]
+    assert deepest == [-15.0, -15.0]
+
+
+def test_centering_to_a_diameter_with_a_flat_end_is_an_error():
+    with pytest.raises(GCodeError, match=r"cycle 240: Q343=1 \(centering to the diameter Q344\) needs a pointed tool, "
+                                         r"and the called tool's point angle is 180 deg"):
+        checked_program(CENTER, FLAT, check=False)
+    pointed = MachineContext(tools={4: Tool(number=4, radius=4.0, point_angle=90.0)})
+    assert min(float(b.target[2]) for b in checked_program(CENTER, pointed).blocks) == pytest.approx(
+        20 - 4.5 / math.tan(math.radians(45)))
