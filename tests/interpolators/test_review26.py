@@ -7,6 +7,7 @@ import math
 import pytest
 
 from interpolators.context import MachineContext, Tool, read_tool_table
+from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
@@ -40,3 +41,12 @@ def test_centering_to_a_diameter_with_a_flat_end_is_an_error():
     pointed = MachineContext(tools={4: Tool(number=4, radius=4.0, point_angle=90.0)})
     assert min(float(b.target[2]) for b in checked_program(CENTER, pointed).blocks) == pytest.approx(
         20 - 4.5 / math.tan(math.radians(45)))
+
+
+def test_g43_2_h0_adds_the_loaded_tools_offsets_under_linuxcnc():
+    # rs274 2.9.0~pre1 with T5 Z2.5 and T7 Z1.0 (inch) in its tool table: 'T5 M6 / G43 H7 / G43.2 H0' offsets Z by
+    # 88.9 mm, T7's and T5's lengths (find_tool_index: H0 is the spindle's tool), as G43 H0 takes T5's; it added 0
+    tools = {5: Tool(number=5, length=2.5), 7: Tool(number=7, length=1.0)}
+    text = "G21 G90\nT5 M6\nG43 H7\nG43.2 H0\nG0 X0 Y0 Z10\nM2\n"
+    prog = checked_iso(text, MachineContext(tools=tools).with_dialect("linuxcnc"))
+    assert [float(v) for v in prog.blocks[-1].target] == [0.0, 0.0, 13.5]
