@@ -10,7 +10,8 @@ time stamps come from the IOC's clock and are not uniform, so the capture needs 
 (:func:`vcnc.traces.columns.on_uniform_grid`), without which the timing error says so.
 
 Which channel is what is read from the PV names (:func:`vcnc.traces.names.columns_from_names`: ``PosSet``
-the commanded, ``PosAct`` the measured position, a following error ``PosErr``) or given as
+the commanded, ``PosAct`` the measured position, a following error ``PosErr``; the record names after the last
+``:`` first, the whole names where those read nothing or name the axis too: :func:`_channels_from_records`) or given as
 ``columns={"x_ref": PV, "x": PV}``. Our reading of the documented output, tracewild2 (a real ecmc log).
 """
 
