@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import MachineContext, Tool, read_tool_table
 from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.reference_heidenhain import checked_program
@@ -50,3 +51,11 @@ def test_g43_2_h0_adds_the_loaded_tools_offsets_under_linuxcnc():
     text = "G21 G90\nT5 M6\nG43 H7\nG43.2 H0\nG0 X0 Y0 Z10\nM2\n"
     prog = checked_iso(text, MachineContext(tools=tools).with_dialect("linuxcnc"))
     assert [float(v) for v in prog.blocks[-1].target] == [0.0, 0.0, 13.5]
+
+
+def test_g43_h0_note_names_the_h_word_the_program_wrote():
+    # 'T5 M6 / G43 H0' with T5 not in the table: the note named 'H5', a word the program does not hold
+    linuxcnc = MachineContext().with_dialect("linuxcnc")
+    notes = parse_program("G21 G90\nT5 M6\nG43 H0\nG0 Z10\nM2\n", context=linuxcnc).notes
+    assert "H0 (the loaded tool T5) not in the tool table (length 0)" in notes
+    assert not [n for n in notes if n.startswith("H5")]
