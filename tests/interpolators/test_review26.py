@@ -59,3 +59,19 @@ def test_g43_h0_note_names_the_h_word_the_program_wrote():
     notes = parse_program("G21 G90\nT5 M6\nG43 H0\nG0 Z10\nM2\n", context=linuxcnc).notes
     assert "H0 (the loaded tool T5) not in the tool table (length 0)" in notes
     assert not [n for n in notes if n.startswith("H5")]
+
+
+# a machining cycle is call-active: CYCL DEF 200 with Q395=1 before the TOOL CALL of the drill whose point angle it
+# takes was refused at the definition ('the called tool has none')
+DEFINED_FIRST = ("0 BEGIN PGM T MM\n1 CYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-15 ~\n Q206=250 ~\n Q202=20 ~\n"
+                 " Q210=0 ~\n Q203=+0 ~\n Q204=50 ~\n Q211=0 ~\n Q395=1\n2 TOOL CALL {t} Z S3000\n"
+                 "3 L X+0 Y+0 Z+100 R0 FMAX\n4 L X+10 Y+10 R0 FMAX M99\nEND PGM T MM\n")
+DRILLS = MachineContext(tools={2: Tool(number=2, radius=3.0, point_angle=118.0), 3: Tool(number=3, radius=3.0)})
+
+
+def test_a_cycle_defined_before_the_tool_call_takes_the_called_tools_point_angle():
+    prog = checked_program(DEFINED_FIRST.format(t=2), DRILLS)
+    assert min(float(b.target[2]) for b in prog.blocks) == pytest.approx(-15 - 3 / math.tan(math.radians(59)))
+    with pytest.raises(GCodeError, match=r"t.h:14:3: cycle 200: Q395=1 \(depth to the full diameter\) needs the tool's "
+                                         r"point angle, and the called tool has none \(got '4 L X\+10"):
+        checked_program(DEFINED_FIRST.format(t=3), DRILLS, check=False)
