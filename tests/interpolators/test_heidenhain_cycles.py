@@ -149,7 +149,8 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 lacks Q218, Q219"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
-    ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20", "Q343=1"),
+    ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20\nL X+0 Y+0 FMAX M99",
+     "Q343=1"),  # at the call: the point angle is the called tool's
     ("CYCL DEF 220 POLAR PATTERN Q216=+50 Q217=+50 Q244=20 Q245=+0 Q246=+360 Q247=+0 Q241=4 Q200=2 Q203=+1 "
      "Q204=30", "cycle 220 without a machining cycle"),
 ])
