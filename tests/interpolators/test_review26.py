@@ -75,3 +75,20 @@ def test_a_cycle_defined_before_the_tool_call_takes_the_called_tools_point_angle
     with pytest.raises(GCodeError, match=r"t.h:14:3: cycle 200: Q395=1 \(depth to the full diameter\) needs the tool's "
                                          r"point angle, and the called tool has none \(got '4 L X\+10"):
         checked_program(DEFINED_FIRST.format(t=3), DRILLS, check=False)
+
+
+# an SL contour that ends away from its first point is closed by a line back to it (b6dce84); the closing was silent,
+# so a contour left open by a mistake ran as a different pocket without a word
+POCKET = ("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+3\n2 TOOL CALL 1 Z S2000\n3 L X+0 Y+0 Z+50 R0 FMAX\n"
+          "4 CYCL DEF 14.0 CONTOUR\n5 CYCL DEF 14.1 CONTOUR LABEL1\n6 CYCL DEF 20 CONTOUR DATA ~\n Q1=-5 ~\n Q2=1 ~\n"
+          " Q3=+0 ~\n Q4=+0 ~\n Q5=+0 ~\n Q6=2 ~\n Q7=+50 ~\n Q8=0 ~\n Q9=+1\n7 CYCL DEF 22 ROUGH-OUT ~\n Q10=5 ~\n"
+          " Q11=100 ~\n Q12=350 ~\n Q18=0 ~\n Q19=150\n8 CYCL CALL M3\n9 L Z+50 R0 FMAX M2\n10 LBL 1\n"
+          "11 L X+0 Y+0 RL\n12 L X+40\n13 L Y+32\n14 L X+0\n{close}15 LBL 0\nEND PGM T MM\n")
+
+
+def test_an_sl_contour_closed_by_the_reader_is_noted():
+    note = "SL contour LBL 1 (cycle 14) ends away from its first point: closed by a line back to it"
+    short = checked_program(POCKET.format(close=""), MachineContext(), exact=False)
+    closed = checked_program(POCKET.format(close="14 L Y+0\n"), MachineContext(), exact=False)
+    assert note in short.notes and note not in closed.notes
+    assert [b.target.tolist() for b in short.blocks] == [b.target.tolist() for b in closed.blocks]
