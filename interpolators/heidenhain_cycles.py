@@ -681,7 +681,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, bore_diameter=q[335] * scale,
                                    helix_pitch=q[334] * scale, climb=q.get(351, 1.0) >= 0, **base), where, column)
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
-    start = _deepened_start(q, feed_scale=feed_scale, scale=scale, where=where, column=column) if number == 205 else {}
+    start = _deepened_start(205, q, feed_scale=feed_scale, scale=scale, where=where, column=column) \
+        if number == 205 else {}
     # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
     retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
     return _checked(DrillCycle(
@@ -694,22 +695,23 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **start, **base), where, column)
 
 
-def _deepened_start(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+def _deepened_start(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
                     column: int) -> dict[str, float]:
-    """Cycle 205's deepened starting point Q379 as :class:`DrillCycle` fields (TNC 640 user's manual for cycle
-    programming, "UNIVERSAL PECKING (Cycle 205)", cycle run: "If you enter a deepened starting point, the TNC
-    moves at the defined positioning feed rate to the set-up clearance above the deepened starting point";
-    Q379 incremental from the surface, Q253 the feed for pre-positioning, MAX rapid). The infeeds then count
+    """The deepened starting point Q379 of cycle 205 or 241 (:func:`single_lip_cycle`) as :class:`DrillCycle`
+    fields, checked. Cycle 205 (TNC 640 user's manual for cycle programming, "UNIVERSAL PECKING (Cycle 205)", cycle
+    run: "If you enter a deepened starting point, the TNC moves at the defined positioning feed rate to the set-up
+    clearance above the deepened starting point"; Q379 incremental from the surface, Q253 the feed for
+    pre-positioning, MAX rapid). The infeeds then count
     from the deepened starting point (our reading: the manual's "first plunging depth" follows that move);
     between infeeds the tool retracts to the set-up clearance above the surface as without Q379."""
     start = abs(q.get(379, 0.0)) * scale
     if not start:
         return {}
     if start >= abs(q[201]) * scale:
-        where.fail("cycle 205: the deepened starting point Q379 must lie within the depth Q201", column=column,
+        where.fail(f"cycle {number}: the deepened starting point Q379 must lie within the depth Q201", column=column,
                    text=where.text, expected="|Q379| < |Q201|")
     if not q.get(253, 0.0) > 0:
-        where.fail("cycle 205: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
+        where.fail(f"cycle {number}: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
                    column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
     return {"start_depth": start, "approach_feed": q[253] * feed_scale}
 
@@ -875,17 +877,14 @@ def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, wh
     than the depth (the newer versions' pecking with Q212/Q205) are an error, as a Q379 deeper than the
     hole or a Q435 outside it."""
     depth = q[201] * scale
-    start = abs(q.get(379, 0.0)) * scale
     dwell_at = abs(q.get(435, 0.0)) * scale
     if 0.0 < abs(q.get(202, 0.0)) < abs(q[201]):
         where.fail("cycle 241: infeeds Q202 shorter than the depth are not supported", column=column,
                    text=where.text, expected="Q202=0 or at least the depth Q201")
-    if start >= abs(depth) or dwell_at >= abs(depth):
-        where.fail("cycle 241: the deepened starting point Q379 and the dwell depth Q435 must lie within the "
-                   "depth Q201", column=column, text=where.text, expected="|Q379| < |Q201| and |Q435| < |Q201|")
-    if start and not q.get(253, 0.0) > 0:
-        where.fail("cycle 241: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
-                   column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
+    start = _deepened_start(241, q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if dwell_at >= abs(depth):
+        where.fail("cycle 241: the dwell depth Q435 must lie within the depth Q201", column=column, text=where.text,
+                   expected="|Q435| < |Q201|")
     factor = q.get(401, 100.0)
     if not 0 < factor <= 100:
         where.fail("cycle 241: the feed factor Q401 must lie in (0, 100] %", column=column, text=where.text,
@@ -894,8 +893,7 @@ def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, wh
     return _checked(DrillCycle(
         number=241, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth), feed=q[206] * feed_scale,
         surface=q[203] * scale, second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0),
-        retract_feed=None if math.isinf(back) else back, start_depth=start,
-        approach_feed=q.get(253, 0.0) * feed_scale if start else 0.0, dwell_depth=dwell_at,
+        retract_feed=None if math.isinf(back) else back, **start, dwell_depth=dwell_at,
         reduced_feed=q[206] * feed_scale * factor / 100.0 if dwell_at and factor != 100 else None), where, column)
 
 

@@ -395,9 +395,10 @@ def test_single_lip_241_dwells_at_the_dwell_depth_and_drills_on_at_the_reduced_f
                            ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
 
 
-@pytest.mark.parametrize(("change", "match"), [("Q379=50", "Q379 and the dwell depth Q435 must lie"),
-                                                ("Q435=40", "must lie within the depth"),
-                                                ("Q379=10 ~\n Q202=5", "infeeds Q202 shorter")])
+@pytest.mark.parametrize(("change", "match"), [
+    ("Q379=50", "cycle 241: the deepened starting point Q379 must lie within the depth Q201"),
+    ("Q435=40", "cycle 241: the dwell depth Q435 must lie within the depth Q201"),
+    ("Q379=10 ~\n Q202=5", "infeeds Q202 shorter")])
 def test_single_lip_241_refuses_what_it_cannot_run_naming_the_parameter(change, match):
     with pytest.raises(GCodeError, match=match):
         run(GUN_DRILL.format(q379=0).replace("Q379=0", change) if "Q379" in change
