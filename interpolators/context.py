@@ -541,7 +541,11 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
         if "." in t and int(t.split(".")[1]) != 0:
             continue
         n = int(t.split(".")[0])
-        tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
-                        length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale,
-                        point_angle=number("T-ANGLE"))
+        try:
+            tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
+                            length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale,
+                            point_angle=number("T-ANGLE"))
+        except InputError as exc:  # a T-ANGLE outside [0, 180]: named where it is
+            raise InputError(f"{path}:{lineno}: {exc.message}; expected the TOOL.T columns under the header's "
+                             "names") from None
     return tools

@@ -10,7 +10,7 @@ from interpolators import parse_program
 from interpolators.context import MachineContext, Tool, read_tool_table
 from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.reference_heidenhain import checked_program
-from vcnc.errors import GCodeError
+from vcnc.errors import GCodeError, InputError
 
 # a tool table may hold T-ANGLE 180 (a flat end); it was refused as a whole ('point angle must lie in (0, 180)')
 FLAT = MachineContext(tools={4: Tool(number=4, radius=4.0, point_angle=180.0)})
@@ -92,3 +92,12 @@ def test_an_sl_contour_closed_by_the_reader_is_noted():
     closed = checked_program(POCKET.format(close="14 L Y+0\n"), MachineContext(), exact=False)
     assert note in short.notes and note not in closed.notes
     assert [b.target.tolist() for b in short.blocks] == [b.target.tolist() for b in closed.blocks]
+
+
+def test_a_tool_tables_point_angle_out_of_range_names_the_file_and_line(tmp_path):
+    path = tmp_path / "tool.t"
+    path.write_text("BEGIN TOOL     .T     MM\nT    NAME             L           R           T-ANGLE\n"
+                    "2    DRILL_D6         +120        +3          +200\n[END]\n")
+    with pytest.raises(InputError, match=r"tool.t:3: tool 2: point angle must lie in \[0, 180\] \[deg\] \(0: none\), "
+                                         r"got 200.0"):
+        read_tool_table(str(path))
