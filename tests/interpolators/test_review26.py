@@ -101,3 +101,16 @@ def test_a_tool_tables_point_angle_out_of_range_names_the_file_and_line(tmp_path
     with pytest.raises(InputError, match=r"tool.t:3: tool 2: point angle must lie in \[0, 180\] \[deg\] \(0: none\), "
                                          r"got 200.0"):
         read_tool_table(str(path))
+
+
+def test_a_while_label_opened_twice_is_noted_and_do_loops_are_not():
+    # rs274 2.9.0~pre1 refuses the second 'o100 while' ("duplicate O-word label") and runs two 'o100 do' loops, each
+    # closed by its 'o100 while'; the note knew if and repeat only
+    loop = "#1=0\no100 {open}\nG0 X#1\n#1=[#1+1]\no100 {close}\n"
+    whiles = "G21 G90\n" + 2 * loop.format(open="while [#1 LT 2]", close="endwhile") + "M2\n"
+    dos = "G21 G90\n" + 2 * loop.format(open="do", close="while [#1 LT 2]") + "M2\n"
+    linuxcnc = MachineContext().with_dialect("linuxcnc")
+    notes = parse_program(whiles, context=linuxcnc).notes
+    assert any(n.startswith("O-word label o100 opens 2 while blocks") for n in notes)
+    prog = parse_program(dos, context=linuxcnc)
+    assert not [n for n in prog.notes if n.startswith("O-word label")] and len(prog.blocks) == 4
