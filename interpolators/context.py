@@ -131,7 +131,8 @@ class Tool:
         apart and apply their sum: ``G10 L11``/``L13`` set the wear, ``L10``/``L12`` the geometry =
         ``length - length_wear``, ``radius - radius_wear``); 0 for a LinuxCNC tool table.
     point_angle : float
-        The point angle of a drill or countersink [deg], in (0, 180); 0: none. A Heidenhain tool table's
+        The point angle of a drill or countersink [deg], in (0, 180]; 0: none; 180: a flat end (a tool table may
+        hold it for any tool: our reading, the end reaches the full diameter at the tip). A Heidenhain tool table's
         T-ANGLE column ("Point angle for DRILL and CSINK T-ANGLE", iTNC 530 technical manual 07/2013, 9.5.4,
         FN 18 ID50 NR32): cycles 200/203/205 with Q395 = 1 and 240 with Q343 = 1 take their depth from it.
     """
@@ -150,8 +151,8 @@ class Tool:
     def __post_init__(self) -> None:
         if int(self.number) != self.number or self.number < 0:
             raise InputError(f"tool number must be an integer >= 0, got {self.number!r}")
-        if not (self.point_angle == 0.0 or 0.0 < self.point_angle < 180.0):
-            raise InputError(f"tool {self.number}: point angle must lie in (0, 180) [deg] (0: none), got "
+        if not 0.0 <= self.point_angle <= 180.0:
+            raise InputError(f"tool {self.number}: point angle must lie in [0, 180] [deg] (0: none), got "
                              f"{self.point_angle!r}")
         if not math.isfinite(self.length):
             raise InputError(f"tool {self.number}: length must be finite [mm], got {self.length!r}")
@@ -540,7 +541,11 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
         if "." in t and int(t.split(".")[1]) != 0:
             continue
         n = int(t.split(".")[0])
-        tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
-                        length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale,
-                        point_angle=number("T-ANGLE"))
+        try:
+            tools[n] = Tool(number=n, name=fields.get("NAME", ""), comment=fields.get("DOC", ""),
+                            length=(number("L") + number("DL")) * scale, radius=(number("R") + number("DR")) * scale,
+                            point_angle=number("T-ANGLE"))
+        except InputError as exc:  # a T-ANGLE outside [0, 180]: named where it is
+            raise InputError(f"{path}:{lineno}: {exc.message}; expected the TOOL.T columns under the header's "
+                             "names") from None
     return tools

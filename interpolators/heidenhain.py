@@ -457,6 +457,19 @@ class Machine:
                                  column=column, spindle=self.spindle, tool=self.drill_tool())
         self.cycle_source = (number, now, self.cycle, self.drill_tool())
 
+    def define_drill_cycle(self, number: int, q: dict[int, float], where: Where, column: int) -> None:
+        """``CYCL DEF`` of a 200-series machining cycle (:func:`drill_cycle`). A machining cycle is call-active: one
+        whose depth takes the tool's point angle (Q395=1, Q343=1) takes the tool called at its call, which may come
+        after the definition (``CYCL DEF 200 .. Q395=1`` / ``TOOL CALL 2`` / ``M99``), so it is built with a stand-in
+        tool here, its parameters checked, and rebuilt with the called tool at its first call (:meth:`refresh_cycle`).
+        Our reading of the TNC 640 cycle manual, "Calling cycles": the cycle is defined, and a CYCL CALL or M99
+        runs it."""
+        pending = takes_point_angle(number, q)
+        tool = (1.0, 90.0) if pending else self.drill_tool()
+        self.cycle = drill_cycle(number, q, feed_scale=self.feed_scale, scale=self.scale, where=where, column=column,
+                                 spindle=self.spindle, tool=tool)
+        self.cycle_source = (number, q, self.cycle, (math.nan, math.nan) if pending else tool)
+
     def drill_tool(self) -> tuple[float, float]:
         """The called tool's radius [mm] and point angle [deg] (0: none), as :func:`drill_cycle` takes them."""
         return self.tool_radius, self.point_angle
@@ -1095,9 +1108,7 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
             pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
                                blk)
             return
-        m.cycle = drill_cycle(number, q, feed_scale=m.feed_scale, scale=m.scale, where=where, column=blk.column,
-                              spindle=m.spindle, tool=m.drill_tool())
-        m.cycle_source = (number, q, m.cycle, m.drill_tool())
+        m.define_drill_cycle(number, q, where, blk.column)
         return
     if sub in (None, 0):
         if number in LEGACY_CYCLES:

@@ -565,18 +565,24 @@ def point_depth(number: int, q: dict[int, float], *, scale: float, tool: tuple[f
     ID50 NR32 "Point angle for DRILL and CSINK T-ANGLE"). Our reading of the geometry: a cone of that point angle
     ends r / tan(angle / 2) below where it reaches the radius r, so Q395 = 1 drills the tip that much deeper
     (r the tool radius) and Q343 = 1 centres to the depth that gives the diameter Q344 (r = |Q344| / 2). Without
-    a point angle in the tool table the TNC cannot work either out: an error naming the column."""
+    a point angle in the tool table the TNC cannot work either out: an error naming the column. A point angle of
+    180 deg is a flat end (:attr:`interpolators.context.Tool.point_angle`): Q395 = 1 drills to Q201 as 0 does, and
+    Q343 = 1 has no depth that gives a diameter (an error)."""
     if not takes_point_angle(number, q):
         return q[201] * scale
     radius, angle = tool
     what = "Q343=1 (centering to the diameter Q344)" if number == 240 else "Q395=1 (depth to the full diameter)"
-    if not 0.0 < angle < 180.0:
+    if not 0.0 < angle <= 180.0:
         where.fail(f"cycle {number}: {what} needs the tool's point angle, and the called tool has none",
                    column=column, text=where.text,
                    expected="a point angle in the tool table (T-ANGLE, [program.tools.n] point_angle) or "
                             + ("Q343=0 (depth Q201)" if number == 240 else "Q395=0 (depth to the tool tip)"))
     slope = math.tan(math.radians(angle) / 2.0)
     if number == 240:
+        if angle == 180.0:
+            where.fail(f"cycle 240: {what} needs a pointed tool, and the called tool's point angle is 180 deg (a flat "
+                       "end, no depth gives a diameter)", column=column, text=where.text,
+                       expected="a centering tool with a point angle below 180 deg (T-ANGLE), or Q343=0 (depth Q201)")
         if q.get(344, 0.0) == 0.0:
             where.fail("cycle 240: Q343=1 centres to the diameter Q344, which is 0", column=column, text=where.text,
                        expected="Q344 < 0 [mm] (the diameter, its sign the working direction)")
@@ -585,7 +591,9 @@ def point_depth(number: int, q: dict[int, float], *, scale: float, tool: tuple[f
         where.fail(f"cycle {number}: {what} needs the tool radius, and the called tool has none", column=column,
                    text=where.text, expected="a tool with a radius > 0, or Q395=0 (depth to the tool tip)")
     depth = q[201] * scale
-    return math.copysign(abs(depth) + radius / slope, depth) if depth else 0.0
+    if angle == 180.0 or not depth:  # a flat end is at its full diameter at the tip
+        return depth
+    return math.copysign(abs(depth) + radius / slope, depth)
 
 
 def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -673,7 +681,8 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         return _checked(DrillCycle(plunge=abs(depth), feed=feed, bore_diameter=q[335] * scale,
                                    helix_pitch=q[334] * scale, climb=q.get(351, 1.0) >= 0, **base), where, column)
     plunge = abs(q.get(202, 0.0)) * scale or abs(depth)
-    start = _deepened_start(q, feed_scale=feed_scale, scale=scale, where=where, column=column) if number == 205 else {}
+    start = _deepened_start(205, q, feed_scale=feed_scale, scale=scale, where=where, column=column) \
+        if number == 205 else {}
     # 203: Q208 = 0 retracts at the drilling feed Q206 (TNC 426/430 manual, cycle 203)
     retract = (q.get(208, 0.0) or q[206]) if number == 203 else 0.0
     return _checked(DrillCycle(
@@ -686,22 +695,23 @@ def drill_cycle(number: int, q: dict[int, float], *, feed_scale: float, scale: f
         chip_depth=abs(q.get(257, 0.0)) * scale if number == 205 else 0.0, **start, **base), where, column)
 
 
-def _deepened_start(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
+def _deepened_start(number: int, q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
                     column: int) -> dict[str, float]:
-    """Cycle 205's deepened starting point Q379 as :class:`DrillCycle` fields (TNC 640 user's manual for cycle
-    programming, "UNIVERSAL PECKING (Cycle 205)", cycle run: "If you enter a deepened starting point, the TNC
-    moves at the defined positioning feed rate to the set-up clearance above the deepened starting point";
-    Q379 incremental from the surface, Q253 the feed for pre-positioning, MAX rapid). The infeeds then count
+    """The deepened starting point Q379 of cycle 205 or 241 (:func:`single_lip_cycle`) as :class:`DrillCycle`
+    fields, checked. Cycle 205 (TNC 640 user's manual for cycle programming, "UNIVERSAL PECKING (Cycle 205)", cycle
+    run: "If you enter a deepened starting point, the TNC moves at the defined positioning feed rate to the set-up
+    clearance above the deepened starting point"; Q379 incremental from the surface, Q253 the feed for
+    pre-positioning, MAX rapid). The infeeds then count
     from the deepened starting point (our reading: the manual's "first plunging depth" follows that move);
     between infeeds the tool retracts to the set-up clearance above the surface as without Q379."""
     start = abs(q.get(379, 0.0)) * scale
     if not start:
         return {}
     if start >= abs(q[201]) * scale:
-        where.fail("cycle 205: the deepened starting point Q379 must lie within the depth Q201", column=column,
+        where.fail(f"cycle {number}: the deepened starting point Q379 must lie within the depth Q201", column=column,
                    text=where.text, expected="|Q379| < |Q201|")
     if not q.get(253, 0.0) > 0:
-        where.fail("cycle 205: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
+        where.fail(f"cycle {number}: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
                    column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
     return {"start_depth": start, "approach_feed": q[253] * feed_scale}
 
@@ -867,17 +877,14 @@ def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, wh
     than the depth (the newer versions' pecking with Q212/Q205) are an error, as a Q379 deeper than the
     hole or a Q435 outside it."""
     depth = q[201] * scale
-    start = abs(q.get(379, 0.0)) * scale
     dwell_at = abs(q.get(435, 0.0)) * scale
     if 0.0 < abs(q.get(202, 0.0)) < abs(q[201]):
         where.fail("cycle 241: infeeds Q202 shorter than the depth are not supported", column=column,
                    text=where.text, expected="Q202=0 or at least the depth Q201")
-    if start >= abs(depth) or dwell_at >= abs(depth):
-        where.fail("cycle 241: the deepened starting point Q379 and the dwell depth Q435 must lie within the "
-                   "depth Q201", column=column, text=where.text, expected="|Q379| < |Q201| and |Q435| < |Q201|")
-    if start and not q.get(253, 0.0) > 0:
-        where.fail("cycle 241: a deepened starting point Q379 needs the pre-positioning feed Q253 > 0",
-                   column=column, text=where.text, expected="Q253 > 0 [mm/min] or MAX")
+    start = _deepened_start(241, q, feed_scale=feed_scale, scale=scale, where=where, column=column)
+    if dwell_at >= abs(depth):
+        where.fail("cycle 241: the dwell depth Q435 must lie within the depth Q201", column=column, text=where.text,
+                   expected="|Q435| < |Q201|")
     factor = q.get(401, 100.0)
     if not 0 < factor <= 100:
         where.fail("cycle 241: the feed factor Q401 must lie in (0, 100] %", column=column, text=where.text,
@@ -886,8 +893,7 @@ def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, wh
     return _checked(DrillCycle(
         number=241, setup=abs(q[200]) * scale, depth=depth, plunge=abs(depth), feed=q[206] * feed_scale,
         surface=q[203] * scale, second_setup=q[204] * scale, dwell_bottom=q.get(211, 0.0),
-        retract_feed=None if math.isinf(back) else back, start_depth=start,
-        approach_feed=q.get(253, 0.0) * feed_scale if start else 0.0, dwell_depth=dwell_at,
+        retract_feed=None if math.isinf(back) else back, **start, dwell_depth=dwell_at,
         reduced_feed=q[206] * feed_scale * factor / 100.0 if dwell_at and factor != 100 else None), where, column)
 
 

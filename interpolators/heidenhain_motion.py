@@ -616,13 +616,15 @@ def _polar_plane(kw: str, m: Machine, where: Where, blk: SourceBlock) -> int:
     counted from the plane's reference axis). As for those arcs, R0; an LP line may run under a coordinate
     transformation (its end point worked out in program coordinates and transformed, :func:`_polar_target`), as the
     TNC 640 manual's Q parameter example "Sphere" moves about ``CC Z+0 X+Q108`` under cycle 10 ROTATION; CTP is an
-    arc and stays an error there."""
+    arc and stays an error there, as are C and CP (:func:`_arc`). The error names what is in force: RL/RR, or (under
+    R0) the transformation."""
     plane = m.pole_plane if m.pole_plane is not None else m.plane
     if plane != m.plane and (m.comp != "R0" or (kw != "LP" and not m.transform.identity)):
         what = "a coordinate transformation" if m.comp == "R0" else m.comp
         where.fail(f"{kw} about a CC outside the working plane under {what}",
                    column=blk.column, text=where.text,
-                   expected=f"R0 and no cycle 8/10/11/26 for {kw} in another plane")
+                   expected="R0 for LP in another plane" if kw == "LP" else
+                   f"R0 and no cycle 8/10/11/26 for {kw} in another plane")
     return plane
 
 
@@ -637,11 +639,7 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine, where: 
     """The arc of a C, CR, CT or CP block in machine coordinates. ``DR`` and ``IPA`` are senses of
     the program; with one axis of the plane mirrored (cycle 8) the arc turns the other way. C and
     CP run in the plane of the pole (:func:`_pole`)."""
-    plane = m.pole_plane if kw in ("C", "CP") and m.pole_plane is not None else m.plane
-    if plane != m.plane and (m.comp != "R0" or not m.transform.identity):
-        where.fail(f"{kw} about a CC outside the working plane under {m.comp} or a coordinate transformation",
-                   column=blk.column, text=where.text,
-                   expected="R0 and no cycle 8/10/11/26 for a circle in another plane")
+    plane = _polar_plane(kw, m, where, blk) if kw in ("C", "CP") else m.plane
     dr = seen.get("DR")
     ccw = (dr.value == "+") if dr is not None else m.ccw
     k = m.lengths(where)

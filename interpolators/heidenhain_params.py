@@ -203,8 +203,7 @@ _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)
 def run_function(code: str, params: QParameters, where: Where, *, column: int, position: np.ndarray,
                  active: np.ndarray, scale: float, note: Callable[[str], None],
                  tool: tuple[int, Callable[[int], tuple[float, float] | None]] = (0, lambda n: None),
-                 stopped_at: int | None = None,
-                 tool_write: Callable[[int, int, float], None] | None = None,
+                 stopped_at: int | None = None, tool_write: Callable[[int, int, float], None] | None = None,
                  system: Callable[[int, int], float] | None = None) -> str | None:
     """Run an ``FN n: ...`` block (``code`` from ``FN`` on, at 1-based ``column``).
 

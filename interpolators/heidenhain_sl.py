@@ -90,7 +90,8 @@ def _sl_contour(m: Machine, label: str, feed: float, where: Where, blk: SourceBl
     reading of the manuals' own example "Overlapping contours" (TNC 426/430 and iTNC 530 user's manuals, SL
     cycles): its square island ``L X+27 Y+50 RL`` / ``L Y+58`` / ``L X+43`` / ``L Y+42`` / ``L X+27`` and its
     triangle ``L X+65 Y+42 RL`` / ``L X+57`` / ``L X+65 Y+58`` / ``L X+73 Y+42`` each end one side short of their
-    first point. Cycle 25 runs its contour open."""
+    first point. Cycle 25 runs its contour open. A note names the contour closed so: a contour that ends away by a
+    mistake in the program shows there too."""
     path, side = _trace_contour(m, label, 0.0, m.pos, feed, where, blk)
     p, q = PLANE_AXES[m.plane]
     first, last = np.asarray(path[0].target, dtype=float), path[-1]
@@ -99,6 +100,7 @@ def _sl_contour(m: Machine, label: str, feed: float, where: Where, blk: SourceBl
         end[[p, q]] = first[[p, q]]
         path.append(dataclasses.replace(last, kind="line", start=np.array(last.target, dtype=float), target=end,
                                         segment=Line(np.array(last.target, dtype=float), end)))
+        m.note(f"SL contour LBL {label} (cycle 14) ends away from its first point: closed by a line back to it")
     return path, side
 
 

@@ -419,21 +419,29 @@ def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> N
         st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
-    number = int(h.value) if h is not None else st.tool_offsets.get(st.tool_current, st.tool_current)
-    if number == 0 and st.context.dialect.name == "linuxcnc":
-        # LinuxCNC interp_find.cc find_tool_index: tool 0 is index 0, the spindle's (the loaded) tool, whose offset
-        # convert_tool_length_offset then takes: "T212 M6" then "G43 H0" (a Mastercam post) is T212's length, as
-        # rs274 2.9.0~pre1 runs it; Fanuc's and Haas's H0/H00 stay the zero offset
-        number = st.tool_current
+    number, tool = _h_tool(int(h.value) if h is not None else None, st, notes)
     st.length_number = number or 0
-    tool = st.tool(number) if number is not None else None
     length = 0.0 if tool is None else tool.length
-    if tool is None and number not in (None, 0):
-        notes.add(f"H{number} not in the tool table (length 0)")
     sign = -1.0 if key == 440 else 1.0
     st.tool_length = sign * length
     st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
     notes.add("G43/G44 tool length from the table")
+
+
+def _h_tool(h: int | None, st: State, notes: Notes) -> tuple[int | None, Tool | None]:
+    """The number and the tool whose offsets ``H<h>`` of G43 / G43.2 takes (``h`` None: G43 without H, the loaded
+    tool's offset number), noted when the table lacks it. LinuxCNC interp_find.cc find_tool_index: tool 0 is index 0,
+    the spindle's (the loaded) tool, whose offsets convert_tool_length_offset then takes: "T212 M6" then "G43 H0" (a
+    Mastercam post) is T212's length, and "G43.2 H0" adds it, as rs274 2.9.0~pre1 runs them; Fanuc's and Haas's
+    H0/H00 stay the zero offset."""
+    loaded = h == 0 and st.context.dialect.name == "linuxcnc"
+    number = (st.tool_offsets.get(st.tool_current, st.tool_current) if h is None else
+              st.tool_current if loaded else h)
+    tool = st.tool(number) if number is not None else None
+    if tool is None and number not in (None, 0):
+        notes.add(f"H0 (the loaded tool T{number}) not in the tool table (length 0)" if loaded else
+                  f"H{number} not in the tool table (length 0)")
+    return number, tool
 
 
 def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
@@ -453,10 +461,7 @@ def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> 
                    expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
     add = np.zeros(3)
     if "H" in seen:
-        number = int(seen.pop("H").value)
-        tool = st.tool(number)
-        if tool is None and number != 0:
-            notes.add(f"H{number} not in the tool table (length 0)")
+        _, tool = _h_tool(int(seen.pop("H").value), st, notes)
         if tool is not None:
             add = np.array([tool.offset_x, tool.offset_y, tool.length])
     for i, a in enumerate("XYZ"):

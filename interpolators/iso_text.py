@@ -89,12 +89,14 @@ _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 #: could be" for GOTO and END).
 _MACRO_B_STATEMENT = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?(?:IF[ \t]*\[|WHILE[ \t]*\[|GOTO[ \t]*[\d#\[]|"
                                 r"END[ \t]*[123](?![\d.]))", re.M | re.I)
-#: An O-word opening an if or repeat block; LinuxCNC keeps one line per label and refuses a second block of the
-#: same label when it runs (interp_o_word.cc convert_control_functions, O_if / O_repeat: "duplicate O-word label").
+#: An O-word opening an if, while or repeat block; LinuxCNC keeps one line per label and refuses a second block of
+#: the same label when it runs (interp_o_word.cc convert_control_functions, O_if / O_while / O_repeat: "duplicate
+#: O-word label"; rs274 2.9.0~pre1 refuses a second 'o100 while' so, and runs a second 'o100 do' loop, whose
+#: 'o100 while' closes it).
 #: Its offsets are kept per call frame, so the same label in two subroutines is no duplicate (rs274 2.9.0~pre1 runs
 #: that; sub and endsub lines bound a body here).
-_OPENING_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*(IF|REPEAT|SUB|ENDSUB)\b",
-                            re.M | re.I)
+_OPENING_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
+                            r"(IF|WHILE|DO|REPEAT|SUB|ENDSUB)\b", re.M | re.I)
 
 
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
@@ -194,11 +196,15 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
         notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
                   "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
     opened: collections.Counter = collections.Counter()
-    body = ""
+    body, doing = "", set()  # doing: the labels of do loops open, whose while closes them
     for m in _OPENING_OWORD.finditer(text):
         label, keyword = m.group(1).lower().replace(" ", ""), m.group(2).lower()
         if keyword in ("sub", "endsub"):
             body = label if keyword == "sub" else ""
+        elif keyword == "do":
+            doing.add((body, label))
+        elif keyword == "while" and (body, label) in doing:
+            doing.discard((body, label))
         else:
             opened[body, label, keyword] += 1
     for (_, label, keyword), count in sorted(opened.items()):

@@ -1482,6 +1482,10 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
     elements, _ = _contour_elements(t)
     if any(k not in ("feed", "rapid") for _, k, _, _, _ in elements):
         raise ReferenceError("22 with arcs")
+    if elements and not np.allclose(elements[-1][3][:2], elements[0][2][:2]):  # SL contours close (b6dce84)
+        end = elements[-1][3].copy()
+        end[:2] = elements[0][2][:2]
+        elements.append((elements[-1][0], "feed", elements[-1][3], end, None))
     corners, lines = [a[:2] for _, _, a, _, _ in elements], [ln for ln, _, _, _, _ in elements]
     area = sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(corners, corners[1:] + corners[:1]))
     ccw = p["Q9"] >= 0
@@ -1506,6 +1510,8 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
             t.emit(line, "feed", np.array([*(start * flip), zm]), rows="optional" if np.allclose(
                 start * flip, t.pos[:2]) else "one")
             for k, end in enumerate(ends):
+                if k + 1 < len(ends) and lines[(k + 1) % len(lines)] == lines[k % len(lines)]:
+                    continue  # the closing line is its last block's: one row "last" covers both edges
                 t.out.append(Expected(line=lines[k % len(lines)], kind=None, end=np.array([*(end * flip), zm]),
                                       rows="last"))
             t.pos = np.array([*(start * flip), zm])

@@ -963,8 +963,10 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             # g-code.adoc "G43.1": dynamic tool length offset, the Z word is the offset (no motion)
             m.tool_length = words.pop("z")[-1] * m.scale
         elif code == 432 and m.ctx.dialect.name == "linuxcnc":
-            # g-code.adoc "G43.2": H<n> adds tool n's offsets, axis words add themselves (no motion)
-            tool = m.tool(int(words.pop("h")[-1])) if "h" in words else None
+            # g-code.adoc "G43.2": H<n> adds tool n's offsets (H0 the spindle's tool's, find_tool_index), axis words
+            # add themselves (no motion)
+            number = int(words.pop("h")[-1]) if "h" in words else None
+            tool = m.tool(m.loaded if number == 0 else number) if number is not None else None
             add = [tool.offset_x, tool.offset_y, tool.length] if tool is not None else [0.0, 0.0, 0.0]
             for i, a in enumerate("xyz"):
                 if a in words:

@@ -149,7 +149,8 @@ def test_parameter_lines_without_tilde_as_older_tncs_save_them():
     ("CYCL DEF 251 RECTANGULAR POCKET Q215=0", "cycle 251 lacks Q218, Q219"),
     ("CYCL DEF 201 REAMING Q200=2 Q201=-10 Q206=100", "cycle 201 lacks Q203, Q204"),
     ("TOOL CALL 2 Z\nCYCL DEF 207 RIGID TAPPING Q200=2 Q201=-8 Q239=+1 Q203=+0 Q204=5", "no speed is known"),
-    ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20", "Q343=1"),
+    ("CYCL DEF 240 CENTERING Q200=2 Q343=1 Q201=-2 Q344=-9 Q206=100 Q211=0 Q203=+0 Q204=20\nL X+0 Y+0 FMAX M99",
+     "Q343=1"),  # at the call: the point angle is the called tool's
     ("CYCL DEF 220 POLAR PATTERN Q216=+50 Q217=+50 Q244=20 Q245=+0 Q246=+360 Q247=+0 Q241=4 Q200=2 Q203=+1 "
      "Q204=30", "cycle 220 without a machining cycle"),
 ])
@@ -394,9 +395,10 @@ def test_single_lip_241_dwells_at_the_dwell_depth_and_drills_on_at_the_reduced_f
                            ("line", 0, 0, 3, 1000), ("rapid", 0, 0, 30, math.inf)]
 
 
-@pytest.mark.parametrize(("change", "match"), [("Q379=50", "Q379 and the dwell depth Q435 must lie"),
-                                                ("Q435=40", "must lie within the depth"),
-                                                ("Q379=10 ~\n Q202=5", "infeeds Q202 shorter")])
+@pytest.mark.parametrize(("change", "match"), [
+    ("Q379=50", "cycle 241: the deepened starting point Q379 must lie within the depth Q201"),
+    ("Q435=40", "cycle 241: the dwell depth Q435 must lie within the depth Q201"),
+    ("Q379=10 ~\n Q202=5", "infeeds Q202 shorter")])
 def test_single_lip_241_refuses_what_it_cannot_run_naming_the_parameter(change, match):
     with pytest.raises(GCodeError, match=match):
         run(GUN_DRILL.format(q379=0).replace("Q379=0", change) if "Q379" in change

@@ -69,8 +69,8 @@ def test_polar_line_about_a_pole_in_zx_under_a_rotation():
 
 def test_arc_about_a_pole_in_zx_under_a_rotation_stays_an_error():
     # an arc in a plane turned out of the machine's axes is not modelled; the CC itself is read
-    with pytest.raises(GCodeError, match=r"CP about a CC outside the working plane under R0 or a coordinate "
-                                         r"transformation"):
+    with pytest.raises(GCodeError, match=r"CP about a CC outside the working plane under a coordinate "
+                                         r"transformation .*expected R0 and no cycle 8/10/11/26 for CP"):
         checked(SPHERE + "9 CP IPA+90 DR+")
 
 
@@ -153,8 +153,8 @@ def test_tool_tables_carry_the_point_angle(tmp_path):
                     "2    DRILL_D6         +120        +3          +118\n3    MILL             +80         +5\n[END]\n")
     tools = read_tool_table(str(path))
     assert tools[2].point_angle == 118.0 and tools[3].point_angle == 0.0
-    with pytest.raises(InputError, match=r"tool 4: point angle must lie in \(0, 180\)"):
-        Tool(number=4, point_angle=180.0)
+    with pytest.raises(InputError, match=r"tool 4: point angle must lie in \[0, 180\]"):
+        Tool(number=4, point_angle=181.0)
 
 
 # the manuals' SL example "Overlapping contours" writes its islands one side short of their first point (the square

@@ -167,7 +167,7 @@ def test_machine_file_tools_may_carry_a_point_angle(tmp_path) -> None:
     f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.2]\nradius = 3.0\npoint_angle = 118.0\n")
     assert load_machine(f).context.tool(2).point_angle == 118.0
     f.write_text(builtin_machine_text("fadal-pid") + "\n[program.tools.2]\npoint_angle = 200.0\n")
-    with pytest.raises(InputError, match=r"program.tools.2: tool 2: point angle must lie in \(0, 180\)"):
+    with pytest.raises(InputError, match=r"program.tools.2: tool 2: point angle must lie in \[0, 180\]"):
         load_machine(f)
 
 

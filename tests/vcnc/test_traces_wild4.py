@@ -153,6 +153,8 @@ def test_hexadecimal_sampling_output_is_named(tmp_path):
     (["Lead: 5 deg"], None),
     (["Gear ratio: 3"], None),  # a ratio without a lead states no travel
     (["Screw lead: 5 mm", "Screw lead: 10 mm"], None),  # two leads that disagree state nothing
+    (["Screw lead: 5 mm", "Gear ratio: 3:0"], None),  # a ratio stated unreadably: the lead alone would be a guess
+    (["Screw lead: 5 mm", "Gear ratio: 2", "Gear ratio: 3"], None),  # two ratios that disagree
 ])
 def test_stated_travel_of_a_motor_turn(lines, travel):
     found = stated_turn_travel(lines)

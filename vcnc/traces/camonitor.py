@@ -10,7 +10,8 @@ time stamps come from the IOC's clock and are not uniform, so the capture needs 
 (:func:`vcnc.traces.columns.on_uniform_grid`), without which the timing error says so.
 
 Which channel is what is read from the PV names (:func:`vcnc.traces.names.columns_from_names`: ``PosSet``
-the commanded, ``PosAct`` the measured position, a following error ``PosErr``) or given as
+the commanded, ``PosAct`` the measured position, a following error ``PosErr``; the record names after the last
+``:`` first, the whole names where those read nothing or name the axis too: :func:`_channels_from_records`) or given as
 ``columns={"x_ref": PV, "x": PV}``. Our reading of the documented output, tracewild2 (a real ecmc log).
 """
 
@@ -56,15 +57,18 @@ def looks_like_camonitor(text: str) -> bool:
 def _channels_from_records(pvs: list[str]) -> tuple[dict[str, str] | None, str]:
     """:func:`vcnc.traces.names.channels_from_names` of the PVs' record names, the part after the last ``:``
     (``X-PosCmd`` of ``TARGET_DU:X-PosCmd``), mapped back to the PVs; of the whole names when that reads nothing
-    (the records' reason). The prefix names the IOC or device (ESS's ``TARGET_DU``, ``IOC_TEST``), whose words (a
-    "target") say nothing of the signal: our reading of the ecmc logs seen (tracewild4)."""
+    (the records' reason), or when the whole names map the same PVs in the same roles (an axis letter in the
+    prefix, ``IOC:Z:PosSet``, is the axis). The prefix names the IOC or device (ESS's ``TARGET_DU``, ``IOC_TEST``),
+    whose words (a "target") say nothing of the signal: our reading of the ecmc logs seen (tracewild4)."""
     records = [pv.rsplit(":", 1)[-1] for pv in pvs]
     if len(set(records)) < len(records):
         return channels_from_names(pvs, "PV")
     named, why = channels_from_names(records, "PV")
-    if named is not None:
-        return {k: pvs[records.index(v)] for k, v in named.items()}, ""
     whole, _ = channels_from_names(pvs, "PV")
+    if named is not None:
+        mapped = {k: pvs[records.index(v)] for k, v in named.items()}
+        same = whole is not None and {(k[1:], v) for k, v in whole.items()} == {(k[1:], v) for k, v in mapped.items()}
+        return (whole if same else mapped), ""
     return (whole, "") if whole is not None else (None, f"by their record names {records}: {why}")
 
 

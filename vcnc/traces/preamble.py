@@ -139,6 +139,8 @@ def stated_turn_travel(lines: Sequence[str]) -> tuple[float, str] | None:
     if lead is None:
         return None
     gear = _stated(lines, _GEAR, _gear)
+    if gear is None and any(_GEAR.match(line.replace('"', "")) for line in lines):
+        return None  # a gear ratio stated unreadably (3:0) or twice differently: the lead alone would be a guess
     ratio = float(gear.value) if gear is not None else 1.0
     said = f"lead stated in line {lead.line} ({lead.text!r})" + (
         f", gear ratio in line {gear.line} ({gear.text!r})" if gear is not None else "")
