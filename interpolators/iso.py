@@ -1013,8 +1013,11 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
     https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
     cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
-    if (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (50, 52):  # G5 P Q, G5.2 P L: theirs
+    motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
+    if motion in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
+    if st.context.dialect.name == "linuxcnc":  # rs274: the block's own motion; G80 or G0 after a cycle reads none
+        cycle = motion is not None and motion >= 730 and motion != 800
     if cycle and st.context.dialect.name == "linuxcnc":
         _linuxcnc_cycle_p_q(seen, gcodes, gcodes["motion"][0] if "motion" in gcodes else st.motion, where, mcodes)
     arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
@@ -1041,11 +1044,22 @@ LINUXCNC_CYCLE_WORDS = {"P": (740, 820, 840, 860, 880, 890), "Q": (730, 830)}
 
 def _linuxcnc_cycle_p_q(seen, gcodes, code: int | None, where: Where, mcodes: list) -> None:
     """Under ``linuxcnc`` a P or Q in a drilling cycle that does not read it is LinuxCNC's error (a Fanuc or Haas
-    post's ``G83 ... P500 Q2``, ``G81 ... Q1``), not a word vcnc drops: see :data:`LINUXCNC_CYCLE_WORDS`."""
+    post's ``G83 ... P500 Q2``, ``G81 ... Q1``), not a word vcnc drops: see :data:`LINUXCNC_CYCLE_WORDS`; so is a P
+    or Q in a block of a modal cycle that names no G code (rs274 2.9.0~pre1 refuses "P2" after "G82 ... P1" and
+    "Q0.3" after "G83 ... Q0.5": check_other_codes looks at the block's own G codes)."""
     if code is None or code not in G_CODES or not 730 <= code <= 890 or code == 800 or "nonmodal" in gcodes \
             or "path" in gcodes:
         return
     io = any(m in (50, 51, 52, 53, 62, 63, 64, 65, 66) for m, _ in mcodes)
+    if "motion" not in gcodes:  # rs274 check_other_codes reads the block's G codes: a modal cycle's block has none
+        for letter in ("P", "Q"):
+            if letter in seen and not (letter == "P" and io):
+                w = seen[letter]
+                where.fail(f"word {letter} in a block of the modal {G_CODES[code][1]} that does not name it: LinuxCNC "
+                           f"refuses it ('{letter} word with no G code to use it'; a cycle's {letter} goes in the "
+                           "block that names the cycle)", column=w.column, text=w.text,
+                           expected=f"{G_CODES[code][1].split()[0]} ... {letter}.. again, or the block without "
+                                    f"{letter} (or --dialect fanuc/haas for a post written for them)")
     for letter, readers in LINUXCNC_CYCLE_WORDS.items():
         if letter in seen and code not in readers and not (letter == "P" and io):
             w = seen[letter]

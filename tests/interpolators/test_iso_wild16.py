@@ -128,3 +128,19 @@ def test_the_macro_alarm_and_message_stop_set_under_linuxcnc_are_noted():
     assert any(n.startswith("#3006 set at line 4 as a plain parameter") for n in prog.notes)
     with pytest.raises(GCodeError, match=r":3:20: macro alarm #3000 = 4 \(TOOL MISSING\)"):
         parse_program(text, context=HAAS)
+
+
+@pytest.mark.parametrize(("block", "column", "message"), [
+    ("G82 X1. Y1. Z-1. R1. P1. F100.\nP2.", 1, r"word P in a block of the modal G82 drilling cycle with dwell that "
+                                                r"does not name it: LinuxCNC refuses it"),
+    ("G83 X1. Y1. Z-1. R1. Q0.5 F100.\nQ0.3", 1, r"word Q in a block of the modal G83 peck drilling cycle that does "
+                                                  r"not name it: LinuxCNC refuses it"),
+    ("G81 X1. Y1. Z-1. R1. F100.\nG80 P1.", 5, r"word P needs G04 \(dwell\)"),
+    ("G73 X1. Y1. Z-1. R1. Q0.5 F100.\nG0 X0 Q1.", 7, r"unknown word 'Q1.' outside a drilling cycle")])
+def test_p_and_q_outside_the_block_that_names_their_cycle_are_refused_under_linuxcnc(block, column, message):
+    # review26's reproducers: rs274 2.9.0~pre1 refuses each ("P word with no G2 G3 G4 G10 G64 ... G82 G86 G88 G89
+    # ... to use it", "Q word with no G5, G10, G64, G73, G76, G83 ... that uses it": interp_check.cc
+    # check_other_codes reads the G codes of the block itself); Fanuc and Haas read the modal cycle's new P or Q
+    text = f"G21 G90 G17\nG0 X0 Y0 Z5.\n{block}\nG80\nM2\n"
+    with pytest.raises(GCodeError, match=f":4:{column}: {message}"):
+        parse_program(text, context=LINUXCNC)
