@@ -54,7 +54,7 @@ def _angle(v) -> float:
 # relative singular values of a Jacobian: at most _ZERO is none (a degenerate direction: ~1e-10 or below, the central
 # differences' own error), at least _NONZERO is one; between, the rank is ambiguous and the caller tries another
 # solution or fails naming the value (never a silent flip on a rounding difference)
-_ZERO, _NONZERO = 1e-9, 1e-5
+_ZERO, _NONZERO = 1e-9, 1e-6
 _STARTS = 128  # every solve tries them all: 64 of a Halton sequence, 64 seeded random
 
 
@@ -361,27 +361,30 @@ class FkReference:
         def admissible(x):
             return all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(x))
 
+        def good(x):  # admissible; with an open tail, at a point where the Jacobian clearly fixes the head
+            return admissible(x) and (cut == n or (self._fixed_count(chain, fun, x) or 0) >= head)
+
         for i, start in enumerate(_starts(n, size, np.tile(s0, n // 2))):
             x = converged(start, rough=True)
             if x is None or any(np.max(np.abs(x[:cut] - r[:cut])) < 1e-5 * size for r in roots):
                 continue
             x = converged(x)
-            if x is None or not _distinct(x[:cut], [r[:cut] for r in roots], size, chain[0].line):
+            if x is None:
                 continue
-            residual = np.max(np.abs(fun(x)))
-            if _residual_root(residual, size) is None:
-                if not admissible(x):  # no solution either way (as an element shrunk to nothing, where it stalls)
-                    continue
-                raise ReferenceError(f"FK element of line {chain[0].line}: a new point of residual {residual:.1e} "
-                                     f"(size {size:g}), between a root (1e-8 size) and none (1e-6 size)")
             tails = np.random.default_rng([7, i])  # the tail's own starts: the same whatever came before
-            for _ in range(10 if cut < n else 0):  # a new head, its open tail the wrong way: the tail again
-                if admissible(x):
+            for _ in range(10 if cut < n else 0):  # the open tail the wrong way, or where it leaves the head ill-fixed
+                if good(x):  # (an open line of almost no length or a huge one): the tail again, from a fresh start
                     break
                 tail = converged(np.concatenate([x[:cut], np.tile(x[cut - 2:cut], (n - cut) // 2)
                                                  + tails.normal(scale=size, size=n - cut)]))
-                x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-6 * size else x
-            if admissible(x):
+                x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-4 * size else x
+            if not _distinct(x[:cut], [r[:cut] for r in roots], size, chain[0].line):
+                continue
+            residual = np.max(np.abs(fun(x)))
+            if _residual_root(residual, size) is None and good(x):
+                raise ReferenceError(f"FK element of line {chain[0].line}: a new point of residual {residual:.1e} "
+                                     f"(size {size:g}), between a root (1e-8 size) and none (1e-6 size)")
+            if _residual_root(residual, size) and good(x):
                 roots.append(x)
                 if len(roots) == first:
                     break
@@ -395,7 +398,7 @@ class FkReference:
 
     def _at_solutions(self, chain: list[_Element], s, t, tol: float, sols: list, decide):
         """``decide(z)`` (a value, or None where the singular values leave it ambiguous) at the first solution of
-        ``chain`` that decides it (up to three; a solution on the edge of a degenerate case, as a line of almost no
+        ``chain`` that decides it (up to six; a solution on the edge of a degenerate case, as a line of almost no
         length, may not), or at a seeded random point when there is none; an error naming the margin if none
         decides; ``sols``: the first solution (``solve(.., first=1)``)."""
         def flat(recs):
@@ -407,7 +410,7 @@ class FkReference:
                 yield np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
                 return
             yield flat(sols[0])
-            for recs in self.solve(chain, s, t, tol, first=3)[1:]:  # the same first, then two more
+            for recs in self.solve(chain, s, t, tol, first=6)[1:]:  # the same first, then five more
                 yield flat(recs)
 
         for z in points():

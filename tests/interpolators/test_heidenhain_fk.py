@@ -12,6 +12,7 @@ import pytest
 
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators import reference_heidenhain_fk
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
@@ -379,3 +380,25 @@ def test_fk_contour_in_an_sl_contour_train():
     prog = parse_heidenhain(text, source="t.h", context=ctx)
     cut = [np.round(b.target, 6).tolist() for b in prog.blocks if b.kind != "rapid" and b.feed * 60 > 300]
     assert cut == [[x, y, z] for z in (5, 0) for x, y in ((40, 3), (47, 10), (47, 30))]
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_reference_decisions_stand_a_rounding_difference(monkeypatch, seed):
+    # every starting point and residual vector the reference's solver (MINPACK's leastsq) sees off by 1e-13
+    # relative (as a BLAS thread count or memory alignment may make them): the same solutions, numbered alike. The
+    # chains of several solutions (the line of LEN 5 parallel to block 2 either way) and of an arc of known circle
+    # whose end the FLT PAR after it fixes (its open FLT of any length, as short as the solver lands)
+    rng = np.random.default_rng(seed)
+
+    def noisy(a):
+        a = np.asarray(a, float)
+        return a * (1.0 + 1e-13 * rng.standard_normal(a.shape))
+
+    solver = reference_heidenhain_fk.leastsq
+    monkeypatch.setattr(reference_heidenhain_fk, "leastsq",
+                        lambda fun, x0, *a, **k: solver(lambda z: noisy(fun(z)), noisy(x0), *a, **k))
+    back = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 2")
+    assert ends(back) == [[10, 0], [10, 5], [5, 5]]
+    arc = run("2 FL X-10 Y+0\n3 FL X+0 Y+0\n4 FC DR+ R10 CCX+0 CCY+10\n5 FLT PAR3\n6 FSELECT 2\n"
+              "7 FL X-10 Y+30 AN+90")
+    assert ends(arc) == [[-10, 0], [0, 0], [0, 20], [-10, 20], [-10, 30]] and centre(arc.blocks[3]) == [0, 10]
