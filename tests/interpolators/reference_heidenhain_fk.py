@@ -397,23 +397,28 @@ class FkReference:
         return out
 
     def _at_solutions(self, chain: list[_Element], s, t, tol: float, sols: list, decide):
-        """``decide(z)`` (a value, or None where the singular values leave it ambiguous) at the first solution of
-        ``chain`` that decides it (up to six; a solution on the edge of a degenerate case, as a line of almost no
-        length, may not), or at a seeded random point when there is none; an error naming the margin if none
-        decides; ``sols``: the first solution (``solve(.., first=1)``)."""
+        """``decide(z)`` (a value, or None where the singular values leave it ambiguous) at a solution of ``chain``
+        where its Jacobian is well conditioned: the first solution if its smallest nonzero singular value is at least
+        1e-2 (relative), else the best conditioned of up to six that decides (a solution on the edge of a degenerate
+        case, as an open line of almost no length or a huge one, leaves the null space blurred); at a seeded random
+        point when there is none; an error naming the margin if none decides. ``sols``: ``solve(.., first=1)``."""
+        _, fun, n = self._system(chain, s, t)
+
         def flat(recs):
             return np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None else r[1] for r in recs])
 
-        def points():
-            if not sols:
-                n = sum(el.n for el in chain)
-                yield np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
-                return
-            yield flat(sols[0])
-            for recs in self.solve(chain, s, t, tol, first=6)[1:]:  # the same first, then five more
-                yield flat(recs)
+        def conditioning(z):
+            sv = np.linalg.svd(_jacobian(fun, z), compute_uv=False)
+            rel = sv / max(1.0, sv.max(initial=0.0))
+            return rel[rel > _ZERO].min(initial=0.0)
 
-        for z in points():
+        if not sols:
+            points = [np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)]
+        else:
+            points = [flat(sols[0])]
+            if conditioning(points[0]) < 1e-2:
+                points += [flat(recs) for recs in self.solve(chain, s, t, tol, first=6)[1:]]  # the same first
+        for z in sorted(points, key=lambda z: -conditioning(z)) if len(points) > 1 else points:
             got = decide(z)
             if got is not None:
                 return got
@@ -487,9 +492,11 @@ class FkReference:
 
     def order_chains(self, solutions: list[list[tuple]]) -> list[list[tuple]]:
         """By the elements in turn: shortest first; equal lengths by the direction they leave the start in,
-        counter-clockwise from +X."""
+        counter-clockwise from +X (rounded to 1e-6 degrees, and 360 is 0: a line along +X a rounding below it,
+        at -1e-10 degrees, is the first, not the last)."""
         return sorted(solutions, key=lambda recs: [(round(self.length(rec), 6),
-                                                    _angle(self._direction(rec, at_end=False)) % 360.0)
+                                                    round(_angle(self._direction(rec, at_end=False)) % 360.0, 6)
+                                                    % 360.0)
                                                    for rec in recs])
 
     def element(self, kw: str, words: dict, refs: dict, line: int, number, s, t, tol: float) -> list:
