@@ -378,13 +378,13 @@ class FkReference:
                 tail = converged(np.concatenate([x[:cut], np.tile(x[cut - 2:cut], (n - cut) // 2)
                                                  + tails.normal(scale=size, size=n - cut)]))
                 x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-4 * size else x
-            if not _distinct(x[:cut], [r[:cut] for r in roots], size, chain[0].line):
+            if not good(x) or not _distinct(x[:cut], [r[:cut] for r in roots], size, chain[0].line):
                 continue
             residual = np.max(np.abs(fun(x)))
-            if _residual_root(residual, size) is None and good(x):
+            if _residual_root(residual, size) is None:
                 raise ReferenceError(f"FK element of line {chain[0].line}: a new point of residual {residual:.1e} "
                                      f"(size {size:g}), between a root (1e-8 size) and none (1e-6 size)")
-            if _residual_root(residual, size) and good(x):
+            if _residual_root(residual, size):
                 roots.append(x)
                 if len(roots) == first:
                     break
