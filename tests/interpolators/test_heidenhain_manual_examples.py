@@ -79,7 +79,11 @@ FK = ("2 L X-10 Y+0 Z-5 R0 FMAX\n3 FL X+0 Y+0 F100\n4 FC DR+ R10 CCX+0 CCY+10\n5
 
 
 def test_fselect_after_one_solution_and_the_arc_back_to_its_start():
-    prog = run(FK.format(n=2))
+    # checked against the end points worked out above, not the reference: its numerical FK solver (random starts,
+    # a rank decided from singular values) sits on the edge of its thresholds in this degenerate case (an arc ending
+    # where it started) and once, in a full CI run of session 25, found the chain undetermined; alone it agrees
+    text = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n" + FK.format(n=2) + "\n99 END PGM T MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=CTX)
     assert feed_ends(prog) == [[0, 0], [0, 20], [-10, 20], [-10, 30]]
     assert np.allclose(prog.blocks[2].segment.center[:2], [0, 10])
     assert any(n.startswith("FSELECT 2 after line 6: its data leave one element") for n in prog.notes)
