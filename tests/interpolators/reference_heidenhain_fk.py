@@ -52,10 +52,9 @@ def _angle(v) -> float:
 
 
 # relative singular values of a Jacobian: at most _ZERO is none (a degenerate direction: ~1e-10 or below, the central
-# differences' own error, up to ~1e-8 where it passes a root accepted at a residual of 1e-8 size), at least _NONZERO
-# is one; between, the rank is ambiguous and the caller tries another
+# differences' own error), at least _NONZERO is one; between, the rank is ambiguous and the caller tries another
 # solution or fails naming the value (never a silent flip on a rounding difference)
-_ZERO, _NONZERO = 1e-7, 1e-5
+_ZERO, _NONZERO = 1e-9, 1e-6
 _STARTS = 128  # every solve tries them all: 64 of a Halton sequence, 64 seeded random
 
 
