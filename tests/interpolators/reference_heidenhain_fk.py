@@ -5,13 +5,16 @@ Test code only, imports nothing of the readers. Written from the iTNC 530 user's
 etc., ``CLSD+``/``CLSD-``, ``PAR n``, auxiliary points ``P1X..`` and ``PDX PDY D``, ``FSELECT n``) and the
 TNC 370 user's manual, section 5.6, as a different formulation from the reader's: every datum of an element is an
 equation in the element's Cartesian unknowns (the end point E of a line; the centre C and end point E of an arc),
-solved numerically (MINPACK's Levenberg-Marquardt, ``scipy.optimize.leastsq``, from seeded random starting points
-until sixty in a row find no new solution) instead of intersecting lines and circles in closed form (the reader's
+solved numerically (MINPACK's Levenberg-Marquardt, ``scipy.optimize.leastsq``, from a fixed list of starting
+points: a Halton sequence and seeded random ones) instead of intersecting lines and circles in closed form (the reader's
 single elements) or walking start directions, sizes and sweeps with Newton's method (the reader's open stretches).
 An element with fewer equations than unknowns (a line without its length, an arc without its end) is solved
 together with the FK elements after it, the unknowns of all in one system; the leading elements whose unknowns the
 null space of the Jacobian at a solution leaves untouched are fixed, with one solution per distinct way (several:
-FSELECT picks among them, the rest of the chain waits). Conventions shared with the reader (its docstring): the
+FSELECT picks among them, the rest of the chain waits). Every such decision (the rank, the null space, a residual a
+root, two roots one) is taken on a clear gap between two thresholds, never on one: a value between fails with an
+error naming it (so a rounding difference, as of BLAS threads or memory alignment, cannot flip a result unseen).
+Conventions shared with the reader (its docstring): the
 solutions are numbered by the lengths of their elements in turn, equal lengths by the direction they leave the
 start in (counter-clockwise from +X); ``DR+`` is counter-clockwise; ``AN`` of an arc is the tangent at its start;
 ``LEN`` of an arc its chord; ``CCA`` its centre angle; ``D`` the distance from the line's extension or from the
@@ -26,6 +29,7 @@ import warnings
 
 import numpy as np
 from scipy.optimize import least_squares, leastsq
+from scipy.stats import norm, qmc
 
 from tests.interpolators.reference_iso import ReferenceError
 
@@ -45,6 +49,54 @@ def _cross(a, b) -> float:
 
 def _angle(v) -> float:
     return math.degrees(math.atan2(v[1], v[0]))
+
+
+# relative singular values of a Jacobian: at most _ZERO is none (a degenerate direction: ~1e-10 or below, the central
+# differences' own error), at least _NONZERO is one; between, the rank is ambiguous and the caller tries another
+# solution or fails naming the value (never a silent flip on a rounding difference)
+_ZERO, _NONZERO = 1e-9, 1e-6
+_STARTS = 128  # every solve tries them all: 64 of a Halton sequence, 64 seeded random
+
+
+def _starts(n: int, size: float, centre: np.ndarray) -> np.ndarray:
+    """The starting points of a solve: normal about ``centre`` (scale ``size``), the first half from the (unscrambled)
+    Halton sequence through the normal quantile, the second half seeded random: the same list on every run."""
+    halton = qmc.Halton(d=n, scramble=False)
+    halton.fast_forward(1)  # its first point is 0, the quantile of which is infinite
+    grid = norm.ppf(halton.random(_STARTS // 2))
+    rand = np.random.default_rng(7).normal(size=(_STARTS - _STARTS // 2, n))
+    return centre + size * np.vstack([grid, rand])
+
+
+def _residual_root(residual: float, size: float) -> bool | None:
+    """A polished point is a root where its largest residual is at most 1e-8 ``size``, none where at least 1e-6
+    ``size`` (a local minimum of the squares, or a start stopped short), None between: the caller fails naming it
+    where it would be a new root (at a known root it is one more start reaching that root)."""
+    if residual <= 1e-8 * size:
+        return True
+    return False if residual >= 1e-6 * size else None
+
+
+def _distinct(x: np.ndarray, roots: list, size: float, line: int) -> bool:
+    """``x`` is a new root: farther than 1e-4 ``size`` from every known root (at most 1e-6 ``size`` is a known one;
+    between, an error naming the distance)."""
+    d = min((float(np.max(np.abs(x - r))) for r in roots), default=math.inf)
+    if d <= 1e-6 * size:
+        return False
+    if d >= 1e-4 * size:
+        return True
+    raise ReferenceError(f"FK element of line {line}: two roots {d:.1e} apart (size {size:g}), between one root "
+                         "(1e-6 size) and two (1e-4 size)")
+
+
+def _rank(jac: np.ndarray) -> tuple[int | None, np.ndarray]:
+    """(rank, V^T) of ``jac`` by its singular values relative to the largest (or 1): those of at least _NONZERO
+    count, those of at most _ZERO do not; rank None where one lies between."""
+    _, sv, vt = np.linalg.svd(jac)
+    rel = sv / max(1.0, sv.max(initial=0.0))
+    if np.any((rel > _ZERO) & (rel < _NONZERO)):
+        return None, vt
+    return int(np.sum(rel >= _NONZERO)), vt
 
 
 def _jacobian(fun, z) -> np.ndarray:
@@ -273,57 +325,67 @@ class FkReference:
 
     def solve(self, chain: list[_Element], s0, t0, tol: float, *, first: int = 0, head: int = 0) -> list[list[tuple]]:
         """The solutions of the elements ``chain`` (joined), each a list of (start, end, centre, ccw) per element;
-        ``first``: only that many; ``head``: those differing in the first ``head`` elements (the rest left open)."""
+        ``first``: only that many; ``head``: those differing in the first ``head`` elements (the rest left open).
+        Every one of a fixed list of starts is tried (no stop that depends on which start found the last root), a new
+        root told from a known one by a clear gap (:func:`_distinct`)."""
         walk, fun, n = self._system(chain, s0, t0)
         cut = sum(el.n for el in chain[:head]) if head else n
         size = 1.0 + max([abs(x) for el in chain for x in el.v.values() if isinstance(x, float)] + [*np.abs(s0)])
-        rng = np.random.default_rng(7)
         roots: list[np.ndarray] = []
-        last_new = 0
 
         def converged(x0, *, rough=False):
             """The root a start ``x0`` reaches (None if none): MINPACK's Levenberg-Marquardt with its own forward
             differences (``leastsq``) where the equations are at least as many as the unknowns, else trust-region
-            reflective; ``rough``: a quick first pass whose root is then polished."""
+            reflective; ``rough``: a quick first pass whose root is then polished (:func:`_residual_root`; one
+            of the band between is returned, for the caller to decide)."""
+            x = minimise(x0, rough)
+            if rough:
+                return x if np.max(np.abs(fun(x))) <= 1e-6 * size else None
+            return x if _residual_root(np.max(np.abs(fun(x))), size) is not False else None
+
+        def minimise(x0, rough):
             tight = {"xtol": 1e-8, "ftol": 1e-8} if rough else {"xtol": 1e-15, "ftol": 1e-15, "gtol": 1e-15}
-            x = None
             if len(fun(x0)) >= n:
                 with warnings.catch_warnings():  # its warning that a tolerance is not met: the residual decides
                     warnings.simplefilter("ignore", RuntimeWarning)
                     try:
-                        x = leastsq(fun, x0, maxfev=60 * (n + 1) if rough else 1000 * (n + 1), **tight)[0]
+                        return leastsq(fun, x0, maxfev=60 * (n + 1) if rough else 1000 * (n + 1), **tight)[0]
                     except ValueError:  # equations whose number changes with x, which leastsq refuses
-                        x = least_squares(fun, x0, method="lm", max_nfev=60 if rough else 1000, **tight).x
-            else:
-                x = least_squares(fun, x0, method="trf", max_nfev=60 if rough else 1000, **tight).x
-            return x if np.max(np.abs(fun(x))) <= (1e-6 if rough else 1e-8) * size else None
+                        pass
+                    try:
+                        return least_squares(fun, x0, method="lm", max_nfev=60 if rough else 1000, **tight).x
+                    except ValueError:  # so also here (an element shrunk to nothing on the way): no root from x0
+                        return x0
+            return least_squares(fun, x0, method="trf", max_nfev=60 if rough else 1000, **tight).x
 
         def admissible(x):
             return all(self.admissible(el, s, t, zz, tol) for el, s, t, zz in walk(x))
 
-        def known(x, within):
-            return any(np.max(np.abs(x[:cut] - r[:cut])) < within * size for r in roots)
+        def good(x):  # admissible; with an open tail, at a point where the Jacobian clearly fixes the head
+            return admissible(x) and (cut == n or (self._fixed_count(chain, fun, x) or 0) >= head)
 
-        for i in range(240):
-            if roots and i - last_new > 60:  # sixty starts without a new solution: enough
-                break
-            x = converged(np.tile(s0, n // 2) + rng.normal(scale=size, size=n), rough=True)
-            if x is None:
-                continue
-            if known(x, 1e-5):
+        for i, start in enumerate(_starts(n, size, np.tile(s0, n // 2))):
+            x = converged(start, rough=True)
+            if x is None or any(np.max(np.abs(x[:cut] - r[:cut])) < 1e-5 * size for r in roots):
                 continue
             x = converged(x)
-            if x is None or known(x, 1e-6):
+            if x is None:
                 continue
-            for _ in range(10 if cut < n else 0):  # a new head, its open tail the wrong way: the tail again
-                if admissible(x):
+            tails = np.random.default_rng([7, i])  # the tail's own starts: the same whatever came before
+            for _ in range(10 if cut < n else 0):  # the open tail the wrong way, or where it leaves the head ill-fixed
+                if good(x):  # (an open line of almost no length or a huge one): the tail again, from a fresh start
                     break
                 tail = converged(np.concatenate([x[:cut], np.tile(x[cut - 2:cut], (n - cut) // 2)
-                                                 + rng.normal(scale=size, size=n - cut)]))
-                x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-6 * size else x
-            if admissible(x):
+                                                 + tails.normal(scale=size, size=n - cut)]))
+                x = tail if tail is not None and np.max(np.abs(tail[:cut] - x[:cut])) < 1e-4 * size else x
+            if not good(x) or not _distinct(x[:cut], [r[:cut] for r in roots], size, chain[0].line):
+                continue
+            residual = np.max(np.abs(fun(x)))
+            if _residual_root(residual, size) is None:
+                raise ReferenceError(f"FK element of line {chain[0].line}: a new point of residual {residual:.1e} "
+                                     f"(size {size:g}), between a root (1e-8 size) and none (1e-6 size)")
+            if _residual_root(residual, size):
                 roots.append(x)
-                last_new = i
                 if len(roots) == first:
                     break
         out = []
@@ -334,28 +396,69 @@ class FkReference:
             out.append(recs)
         return out
 
+    def _at_solutions(self, chain: list[_Element], s, t, tol: float, sols: list, decide):
+        """``decide(z)`` (a value, or None where the singular values leave it ambiguous) at a solution of ``chain``
+        where its Jacobian is well conditioned: the first solution if its smallest nonzero singular value is at least
+        1e-2 (relative), else the best conditioned of up to six that decides (a solution on the edge of a degenerate
+        case, as an open line of almost no length or a huge one, leaves the null space blurred); at a seeded random
+        point when there is none; an error naming the margin if none decides. ``sols``: ``solve(.., first=1)``."""
+        _, fun, n = self._system(chain, s, t)
+
+        def flat(recs):
+            return np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None else r[1] for r in recs])
+
+        def conditioning(z):
+            sv = np.linalg.svd(_jacobian(fun, z), compute_uv=False)
+            rel = sv / max(1.0, sv.max(initial=0.0))
+            return rel[rel > _ZERO].min(initial=0.0)
+
+        if not sols:
+            points = [np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)]
+        else:
+            points = [flat(sols[0])]
+            if conditioning(points[0]) < 1e-2:
+                points += [flat(recs) for recs in self.solve(chain, s, t, tol, first=6)[1:]]  # the same first
+        for z in sorted(points, key=lambda z: -conditioning(z)) if len(points) > 1 else points:
+            got = decide(z)
+            if got is not None:
+                return got
+        raise ReferenceError(f"FK elements of lines {chain[0].line}..{chain[-1].line}: at every point tried a "
+                             f"singular value of the Jacobian lies between {_ZERO:g} and {_NONZERO:g} (relative), "
+                             "or a component of its null space between 1e-6 and 1e-3")
+
     def determined(self, chain: list[_Element], s, t, tol: float) -> bool:
         """The elements' data fix their unknowns: the Jacobian of the joined equations (central differences) has full
         rank at a solution, or at a seeded random point when there is none (two data naming the same direction, as
         FLT with AN, count once; a point at a distance D from a line of known direction fixes nothing of it, which
-        only a solution shows)."""
+        only a solution shows). The rank by the gap in the singular values (:func:`_rank`)."""
         t = t if t is not None else np.array([1.0, 0.0])
         _, fun, n = self._system(chain, s, t)
-        one = self.solve(chain, s, t, tol, first=1)
-        z = np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None else r[1] for r in one[0]]) if one \
-            else np.tile(s, n // 2) + np.random.default_rng(3).normal(scale=10.0, size=n)
-        jac = _jacobian(fun, z)
-        return jac.size > 0 and np.linalg.matrix_rank(jac, tol=1e-6 * max(1.0, np.abs(jac).max())) >= n
+
+        def full(z):
+            jac = _jacobian(fun, z)
+            rank = _rank(jac)[0] if jac.size else 0
+            return None if rank is None else rank >= n
+
+        return self._at_solutions(chain, s, t, tol, self.solve(chain, s, t, tol, first=1), full)
 
     @staticmethod
-    def _fixed_count(chain: list[_Element], fun, z) -> int:
+    def _fixed_count(chain: list[_Element], fun, z) -> int | None:
         """How many leading elements of ``chain`` (not its last) the equations fix at ``z``: their unknowns take
-        no part in the null space of the Jacobian there."""
+        no part in the null space of the Jacobian there (a component below 1e-6 is none, above 1e-3 is one; None
+        where a component or a singular value lies between)."""
         jac = _jacobian(fun, z)
         n = len(z)
-        _, sv, vt = np.linalg.svd(jac) if jac.size else (None, np.zeros(0), np.eye(n))
-        free = np.vstack([vt[len(sv):], vt[:len(sv)][sv < 1e-7 * max(1.0, sv.max(initial=0.0))]])
-        fixed = np.all(np.abs(free) < 1e-6, axis=0) if len(free) else np.ones(n, bool)
+        if jac.size:
+            rank, vt = _rank(jac)
+            if rank is None:
+                return None
+            free = vt[rank:]
+        else:
+            free = np.eye(n)
+        big = np.max(np.abs(free), axis=0) if len(free) else np.zeros(n)
+        if np.any((big >= 1e-6) & (big <= 1e-3)):
+            return None
+        fixed = big < 1e-6
         k, at = 0, 0
         for el in chain[:-1]:
             if not fixed[at:at + el.n].all():
@@ -372,16 +475,11 @@ class FkReference:
         one = self.solve(chain, s, t, tol, first=1)
         if not one:
             return []
-        k = self._fixed_count(chain, fun, np.concatenate([np.concatenate([r[2], r[1]]) if r[2] is not None
-                                                          else r[1] for r in one[0]]))
+        k = self._at_solutions(chain, s, t, tol, one, lambda z: self._fixed_count(chain, fun, z))
         if k == 0:
             return []
-        heads: dict[tuple, list[tuple]] = {}
-        for recs in self.solve(chain, s, t, tol, head=k):
-            key = tuple(np.round(np.concatenate([np.concatenate([r[1], r[2] if r[2] is not None else []])
-                                                 for r in recs[:k]]), 6))
-            heads.setdefault(key, recs[:k])
-        return self.order_chains(list(heads.values()))
+        # the solve keeps one solution per head, told apart by a clear gap (no rounding of the heads here)
+        return self.order_chains([recs[:k] for recs in self.solve(chain, s, t, tol, head=k)])
 
     @staticmethod
     def length(rec) -> float:
@@ -394,9 +492,11 @@ class FkReference:
 
     def order_chains(self, solutions: list[list[tuple]]) -> list[list[tuple]]:
         """By the elements in turn: shortest first; equal lengths by the direction they leave the start in,
-        counter-clockwise from +X."""
+        counter-clockwise from +X (rounded to 1e-6 degrees, and 360 is 0: a line along +X a rounding below it,
+        at -1e-10 degrees, is the first, not the last)."""
         return sorted(solutions, key=lambda recs: [(round(self.length(rec), 6),
-                                                    _angle(self._direction(rec, at_end=False)) % 360.0)
+                                                    round(_angle(self._direction(rec, at_end=False)) % 360.0, 6)
+                                                    % 360.0)
                                                    for rec in recs])
 
     def element(self, kw: str, words: dict, refs: dict, line: int, number, s, t, tol: float) -> list:

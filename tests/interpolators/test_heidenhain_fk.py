@@ -12,6 +12,7 @@ import pytest
 
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators import reference_heidenhain_fk
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks
 from vcnc.commands.interpolate import blocks_table
@@ -379,3 +380,22 @@ def test_fk_contour_in_an_sl_contour_train():
     prog = parse_heidenhain(text, source="t.h", context=ctx)
     cut = [np.round(b.target, 6).tolist() for b in prog.blocks if b.kind != "rapid" and b.feed * 60 > 300]
     assert cut == [[x, y, z] for z in (5, 0) for x, y in ((40, 3), (47, 10), (47, 30))]
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_reference_decisions_stand_a_rounding_difference(monkeypatch, seed):
+    # every starting point and residual vector the reference's solver (MINPACK's leastsq) sees off by 1e-13
+    # relative and 1e-16 absolute (as a BLAS thread count or memory alignment may make them; a line along +X then
+    # leaves at -1e-10 degrees, which must still number it first): the same solutions, numbered alike
+    rng = np.random.default_rng(seed)
+
+    def noisy(a):
+        a = np.asarray(a, float)
+        return a * (1.0 + 1e-13 * rng.standard_normal(a.shape)) + 1e-16 * rng.standard_normal(a.shape)
+
+    solver = reference_heidenhain_fk.leastsq
+    monkeypatch.setattr(reference_heidenhain_fk, "leastsq",
+                        lambda fun, x0, *a, **k: solver(lambda z: noisy(fun(z)), noisy(x0), *a, **k))
+    first = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 1")
+    back = run("2 FL X+10 Y+0\n3 FL IAN+90 LEN 5\n4 FL LEN 5 PAR 2\n5 FSELECT 2")
+    assert ends(first) == [[10, 0], [10, 5], [15, 5]] and ends(back) == [[10, 0], [10, 5], [5, 5]]
