@@ -451,11 +451,12 @@ class Machine:
             return
         number, q, _, tool = self.cycle_source
         now = {k: v if math.isinf(v) else self.params.get(f"Q{k}") for k, v in q.items()}
-        if now == q and (tool == self.drill_tool() or not takes_point_angle(number, q)):
+        called = self.drill_tool()
+        if now == q and (tool == called or not takes_point_angle(number, q)):
             return
         self.cycle = drill_cycle(number, now, feed_scale=self.feed_scale, scale=self.scale, where=where,
-                                 column=column, spindle=self.spindle, tool=self.drill_tool())
-        self.cycle_source = (number, now, self.cycle, self.drill_tool())
+                                 column=column, spindle=self.spindle, tool=called)
+        self.cycle_source = (number, now, self.cycle, called)
 
     def define_drill_cycle(self, number: int, q: dict[int, float], where: Where, column: int) -> None:
         """``CYCL DEF`` of a 200-series machining cycle (:func:`drill_cycle`). A machining cycle is call-active: one
@@ -1024,18 +1025,16 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) ->
             m.auto_feed = v
             m.feed = v * m.feed_scale
     if number is not None:
+        table = m.context.tool(number)
         if number in m.tool_defs:
             length, radius = m.tool_defs[number]
+        elif table is None:
+            if number != 0:
+                m.note(f"tool {number} is not in the tool table: length and radius 0")
+            length = radius = 0.0
         else:
-            tool = m.context.tool(number)
-            if tool is None:
-                if number != 0:
-                    m.note(f"tool {number} is not in the tool table: length and radius 0")
-                length = radius = 0.0
-            else:
-                length, radius = tool.length, tool.radius
-        table = m.context.tool(number)  # T-ANGLE is the table's (TOOL DEF sets L and R only)
-        m.point_angle = table.point_angle if table is not None else 0.0
+            length, radius = table.length, table.radius
+        m.point_angle = table.point_angle if table is not None else 0.0  # the table's: TOOL DEF sets L and R only
         m.tool_length = length + dl
         m.tool_radius = radius + dr
         m.tool_delta = dr

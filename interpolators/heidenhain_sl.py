@@ -95,11 +95,11 @@ def _sl_contour(m: Machine, label: str, feed: float, where: Where, blk: SourceBl
     path, side = _trace_contour(m, label, 0.0, m.pos, feed, where, blk)
     p, q = PLANE_AXES[m.plane]
     first, last = np.asarray(path[0].target, dtype=float), path[-1]
-    if np.hypot(*(first - np.asarray(last.target, dtype=float))[[p, q]]) > 1e-6:
-        end = np.array(last.target, dtype=float)
+    here = np.array(last.target, dtype=float)
+    if np.hypot(*(first - here)[[p, q]]) > 1e-6:
+        end = here.copy()
         end[[p, q]] = first[[p, q]]
-        path.append(dataclasses.replace(last, kind="line", start=np.array(last.target, dtype=float), target=end,
-                                        segment=Line(np.array(last.target, dtype=float), end)))
+        path.append(dataclasses.replace(last, kind="line", start=here, target=end, segment=Line(here, end)))
         m.note(f"SL contour LBL {label} (cycle 14) ends away from its first point: closed by a line back to it")
     return path, side
 

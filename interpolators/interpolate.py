@@ -340,6 +340,7 @@ class _Chains:
 def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
                  jerk_limited: bool) -> AxisLimitArrays:
     """The limits of the axes the chains move (finite jerks for the S-curve)."""
+    # the chains of _chains are ranges of one _Items: its segments are all of theirs, in order
     segs = [seg for seg in (chains[0].items.segments if chains else ()) if isinstance(seg, (Line, Arc))]
     ends = np.array([(seg.start, seg.end) for seg in segs]).reshape(-1, 2, 3)
     moving = {int(i) for i in np.flatnonzero(np.any(ends[:, 1] != ends[:, 0], axis=0))}

@@ -1012,17 +1012,17 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     """P, Q and L only where a code reads them. ``M3 P100`` is named: the Snapmaker 2.0 firmware (Marlin-based)
     reads P as the spindle power in percent ("M3 [P] | 50 < percentage <= 100", Snapmaker's gcode_reference.md,
     https://github.com/Snapmaker/snapmaker_cnc_post_process), a word none of these dialects has."""
-    cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
     motion = gcodes["motion"][0] if "motion" in gcodes else st.motion
     if motion in (50, 52):  # G5 P Q, G5.2 P L: theirs
         return
-    if st.context.dialect.name == "linuxcnc":  # rs274: the block's own motion; G80 or G0 after a cycle reads none
+    linuxcnc = st.context.dialect.name == "linuxcnc"
+    if linuxcnc:  # rs274: the block's own motion; G80 or G0 after a cycle reads none
         cycle = motion is not None and motion >= 730 and motion != 800
-    if cycle and st.context.dialect.name == "linuxcnc":
-        _linuxcnc_cycle_p_q(seen, gcodes, gcodes["motion"][0] if "motion" in gcodes else st.motion, where, mcodes)
-    arc = (gcodes["motion"][0] if "motion" in gcodes else st.motion) in (20, 30)
-    if "P" in seen and arc and st.context.dialect.name == "linuxcnc" and not (st.rotation and st.plane != 2
-                                                                               or off_plane(st)):
+        if cycle:
+            _linuxcnc_cycle_p_q(seen, gcodes, motion, where, mcodes)
+    else:
+        cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
+    if "P" in seen and motion in (20, 30) and linuxcnc and not (st.rotation and st.plane != 2 or off_plane(st)):
         return _check_q_l(seen, gcodes, cycle, where)  # G2/G3 P: the number of turns (arc_turns)
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
