@@ -18,7 +18,7 @@ or counts per length (``10000 inc/mm``). A value without a unit, or two lines th
 
 vcnc addition (tracewild4): a screw's lead (``Screw lead: 5 mm``, ``Lead = 0.2 in/rev``, German ``Spindelsteigung``,
 a length or a length per turn) and a gear ratio (``Gear ratio: 3``, ``3:1``, ``Übersetzung``: motor turns per screw
-turn) state the travel of one motor turn, which scales a linear axis' positions logged in turns or radians
+turn) state the travel of one motor turn, which scales a linear axis' positions logged in turns, radians or degrees
 (:func:`stated_turn_travel`).
 """
 
@@ -134,7 +134,8 @@ def stated_turn_travel(lines: Sequence[str]) -> tuple[float, str] | None:
     """The travel [mm] of one motor turn and what states it, from a screw's lead above a table (``Screw lead: 5 mm``,
     ``Spindelsteigung: 10 mm/U``) divided by a gear ratio when one is stated too (motor turns per screw turn:
     ``Gear ratio: 3``, ``3:1``); None without a lead. Our reading of loggers that record a motor's turns: the turns
-    are the motor's, the ratio the gear's i = n_motor / n_screw (DIN 868)."""
+    are the motor's, the ratio the gear's i = n_motor / n_screw (DIN 868); a ratio below 1 (a step-up gear, rare
+    on a feed drive, or the ratio written the other way round) is kept and named as such in the note."""
     lead = _stated(lines, _LEAD, _lead)
     if lead is None:
         return None
@@ -143,7 +144,9 @@ def stated_turn_travel(lines: Sequence[str]) -> tuple[float, str] | None:
         return None  # a gear ratio stated unreadably (3:0) or twice differently: the lead alone would be a guess
     ratio = float(gear.value) if gear is not None else 1.0
     said = f"lead stated in line {lead.line} ({lead.text!r})" + (
-        f", gear ratio in line {gear.line} ({gear.text!r})" if gear is not None else "")
+        f", gear ratio in line {gear.line} ({gear.text!r})" if gear is not None else "") + (
+        "; a ratio below 1 (the motor slower than the screw) is read as motor turns per screw turn all the same: if "
+        "the file means screw turns per motor turn, give --unit with the travel of one turn" if ratio < 1 else "")
     return float(lead.value) / ratio, said
 
 
