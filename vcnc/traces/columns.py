@@ -257,9 +257,9 @@ def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
 
 def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
     """Millimetres (degrees) per unit of the positions of ``axes`` (a unit of :func:`length_unit`);
-    the units of :data:`ANGLE_UNITS` only for rotary axes. A linear axis logged in turns or radians of its motor
-    takes the travel of one turn (radian) as its unit (``--unit 5mm``: a screw of 5 mm lead), our reading of
-    what the file cannot say."""
+    the units of :data:`ANGLE_UNITS` only for rotary axes. A linear axis logged in turns, radians or degrees of its
+    motor takes the travel of one turn (radian, degree) as its unit (``--unit 5mm``: a screw of 5 mm lead), our
+    reading of what the file cannot say."""
     u = unit or "mm"
     found = length_unit(u)
     if found is None:
@@ -270,7 +270,9 @@ def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
         lead = {"rev": "; a linear axis logged in turns of its motor takes the travel of one turn as its unit "
                        "(--unit 5mm for a screw of 5 mm lead)",
                 "rad": "; a linear axis logged in radians of its motor takes the travel of one radian as its unit "
-                       "(the lead over 2 pi: --unit 0.7958mm for a screw of 5 mm lead)"}.get(base, "")
+                       "(the lead over 2 pi: --unit 0.7958mm for a screw of 5 mm lead)",
+                "deg": "; a linear axis logged in degrees of its motor takes the travel of one degree as its unit "
+                       "(the lead over 360: --unit 0.013889mm for a screw of 5 mm lead)"}.get(base, "")
         raise CaptureError(f"unit {u!r} is for rotary axes (a, b, c: --columns a_ref=..,a=..); axes {linear} are "
                            f"linear{lead}", file=src)
     if base not in ANGLE_UNITS and len(linear) < len(axes) and unit is not None:
