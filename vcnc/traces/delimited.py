@@ -47,9 +47,15 @@ numbers (a saved row vector) and a header of time and other quantities only (spe
 are refused as such, naming what was found.
 
 **tracewild4** (session 26). A blank name over a time unit in the units row is the time column (maxon EPOS Studio's
-data recorder export); positions of a linear axis in a motor's turns or radians are scaled by the lead (over a gear
-ratio) stated above the table (:func:`vcnc.traces.preamble.stated_turn_travel`); a file of one hexadecimal number
+data recorder export); positions of a linear axis in a motor's turns, radians or degrees are scaled by the lead (over a
+gear ratio) stated above the table (:func:`vcnc.traces.preamble.stated_turn_travel`); a file of one hexadecimal number
 per line is named as a hexadecimal dump (Mitsubishi's CNC sampling output form 1).
+
+**tracewild5** (session 27). A cell ``NaN`` before a column's first number or after its last is a missing value, as
+an empty cell (the ODrive GUI's export fills a channel not yet received with it), and one between its numbers a lost
+value, an error when the column is used; a headerless file without a sampling period names the servo period a
+LinuxCNC INI beside it states (:mod:`vcnc.traces.companion`); a linear axis logged in degrees of its motor is scaled
+by a stated lead as turns and radians are.
 """
 
 from __future__ import annotations
@@ -91,6 +97,7 @@ from vcnc.traces.columns import (
     with_following_errors,
     within_reach,
 )
+from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
@@ -189,18 +196,36 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
         return None
 
 
-def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int]] | None:
-    """A row of the table: its cells as numbers (NaN for empty and text cells) and the places of its text
-    cells; None for a line that is no row (no number, or text cells as many as the numbers: a header)."""
-    vals, text = [], []
+#: Cells that hold no value, as numpy, pandas and MATLAB write a missing number.
+_NAN_WORDS = frozenset({"nan", "-nan", "+nan"})
+
+
+def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int], list[int]] | None:
+    """A row of the table: its cells as numbers (NaN for empty, ``NaN`` and text cells), the places of its text
+    cells and of its ``NaN`` cells; None for a line that is no row (no number, or text cells as many as the numbers:
+    a header). A ``NaN`` cell is a missing value, not text (:func:`_nan_cells`)."""
+    vals, text, missing = [], [], []
     for i, c in enumerate(cells):
         try:
             vals.append(_value(c, comma))
         except ValueError:
             vals.append(float("nan"))
-            text.append(i)
+            (missing if c.strip().lower() in _NAN_WORDS else text).append(i)
     n = sum(v == v for v in vals)
-    return (vals, text) if n and (not text or (n >= 2 and len(text) < n)) else None
+    return (vals, text, missing) if n and (not text or (n >= 2 and len(text) < n)) else None
+
+
+def _nan_cells(data: np.ndarray, found: dict[int, list[tuple[int, int, str]]],
+               text_cells: dict[int, tuple[int, str]]) -> None:
+    """The ``NaN`` cells of each column (``found``: column -> (row, file line, cell)) that lie between two of its
+    numbers, added to ``text_cells`` as a value lost in the middle of a recording (an error when the column is used);
+    those before its first number or after its last are a channel not yet, or no longer, recorded, as the ODrive
+    GUI's export writes it, and their rows are skipped like rows with an empty cell (our reading)."""
+    for c, cells in found.items():
+        numbers = np.flatnonzero(~np.isnan(data[:, c]))
+        inside = [(line, cell) for row, line, cell in cells if numbers.size and numbers[0] < row < numbers[-1]]
+        if inside and c not in text_cells:
+            text_cells[c] = inside[0]
 
 
 def _numeric_block(lines: list[str], delimiter: str) -> tuple[int, int, int, bool, int]:
@@ -250,21 +275,25 @@ def _table(text: str, src: str) -> _Table:
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
         first_text = lines[k].strip() if k is not None else ""
-        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces" + _hex_dump(first_text), file=src,
+        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces" + _hex_dump(lines), file=src,
                            line=k + 1 if k is not None else None, text=first_text[:80] if k is not None else None)
     rows, row_lines, overruns, text_cells = [], [], [], {}
+    nan_cells: dict[int, list[tuple[int, int, str]]] = {}
     for i in range(first, last + 1):
         if lines[i].strip().lower() == _OVERRUN:
             overruns.append(i + 1)
         if not lines[i].strip() or lines[i].strip().upper() in ("EOF", _OVERRUN.upper()):
             continue
         cells = _split(lines[i], delimiter)
-        vals, where = _row(cells, comma) or ([float("nan")] * width, [])
+        vals, where, missing = _row(cells, comma) or ([float("nan")] * width, [], [])
         for k in where:
             text_cells.setdefault(k, (i + 1, cells[k].strip()))
+        for k in missing:
+            nan_cells.setdefault(k, []).append((len(rows), i + 1, cells[k].strip()))
         rows.append(vals)
         row_lines.append(i + 1)
     data = np.array(rows, dtype=float)
+    _nan_cells(data, nan_cells, text_cells)
     # a delimiter ending every row ('0;1;2;') but not the names, or the names but not the rows
     trailing = bool(np.isnan(data[:, -1]).all()) and width - 1 not in text_cells
 
@@ -300,15 +329,19 @@ def _table(text: str, src: str) -> _Table:
 _HEX = re.compile(r"[0-9A-Fa-f]{4,16}")
 
 
-def _hex_dump(line: str) -> str:
+def _hex_dump(lines: list[str]) -> str:
     """What a file of one hexadecimal number per line is: Mitsubishi's CNC sampling output with "#6 OUTPUT FORM" 1
     writes each channel's sample as 8 hexadecimal digits on a line of its own ("Data Output Format", M700/M800 and C70
-    instruction manuals, "Sampling"), which no column layout can read; its decimal output (form 0) is a table."""
-    if not (_HEX.fullmatch(line) and not line.isdigit()):
+    instruction manuals, "Sampling"), which no column layout can read; its decimal output (form 0) is a table. Our
+    reading, so that a word of hex letters (``Added``, ``DEADBEEF``) is no dump: the first lines (up to 8) are all
+    such numbers of one width, and one of them holds a digit and one a letter."""
+    first = [s for s in (line.strip() for line in lines[:200]) if s][:8]
+    if (len(first) < 2 or not all(_HEX.fullmatch(s) and len(s) == len(first[0]) for s in first)
+            or not any(c.isdigit() for s in first for c in s) or all(s.isdigit() for s in first)):
         return ""
-    return (f": lines of one hexadecimal number each ({line}) are a hexadecimal dump (Mitsubishi's CNC sampling with "
-            "output form 1 writes one channel's sample per line); save the sampling in decimal (output form 0), a row "
-            "per sample")
+    return (f": lines of one hexadecimal number each ({first[0]}) are a hexadecimal dump (Mitsubishi's CNC sampling "
+            "with output form 1 writes one channel's sample per line); save the sampling in decimal (output form 0), "
+            "a row per sample")
 
 
 def _time_named(header: list[str] | None, units_row: list[str] | None) -> list[str] | None:
@@ -423,7 +456,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
-                               f"(not read from the names: {why})", file=src, line=hline)
+                               f"(not read from the names: {why})"
+                               + (servo_period_hint(src) if header is None and not known else ""), file=src,
+                               line=hline)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
     for k, c in idx.items():
@@ -565,18 +600,23 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
                           f"({size.text!r})"}
 
 
+#: Motor angle units per turn, for a linear axis logged in its motor's angle (:func:`_turn_travel`).
+_PER_TURN = {"rev": 1.0, "rad": 2 * math.pi, "deg": 360.0}
+
+
 def _turn_travel(units: dict[str, str | None], above: list[str]) -> dict[str, str]:
-    """Positions of a linear axis in turns or radians of its motor (``[turns]``) scaled by the travel of one turn the
-    lines above the table state (a screw's lead, over a gear ratio: :func:`vcnc.traces.preamble.stated_turn_travel`),
-    set in ``units``, and the ``meta["turn_travel"]`` note; without a lead nothing (the unit's error asks for it)."""
+    """Positions of a linear axis in turns, radians or degrees of its motor (``[turns]``, ``[deg]``) scaled by the
+    travel of one turn the lines above the table state (a screw's lead, over a gear ratio:
+    :func:`vcnc.traces.preamble.stated_turn_travel`), set in ``units``, and the ``meta["turn_travel"]`` note; without
+    a lead nothing (the unit's error asks for it)."""
     turning = [k for k, u in units.items() if k != "t" and axis_of(k) not in ROTARY_AXES and u is not None
-               and (length_unit(u) or ("", 0.0))[0] in ("rev", "rad")]
+               and (length_unit(u) or ("", 0.0))[0] in _PER_TURN]
     travel = stated_turn_travel(above) if turning else None
     if travel is None:
         return {}
     mm, said = travel
     for k in turning:
-        per_unit = mm if length_unit(str(units[k]))[0] == "rev" else mm / (2 * math.pi)
+        per_unit = mm / _PER_TURN[length_unit(str(units[k]))[0]]
         units[k] = f"{per_unit:.12g}mm"
     return {"turn_travel": f"{mm:.9g} mm per motor turn for {', '.join(turning)} ({said})"}
 
@@ -589,7 +629,7 @@ def _check_time_options(columns: Mapping[str, str], time_unit: str | None, sampl
         raise CaptureError(f"--sample-time must be > 0 s, not {sample_time!r}", file=src)
     if "t" not in columns and sample_time is None:
         raise CaptureError("--columns needs t=NAME (the time column), or --sample-time S for a file without one "
-                           "(halsampler)", file=src)
+                           "(halsampler)" + servo_period_hint(src), file=src)
     if sample_time is not None and time_unit is not None:
         raise CaptureError("--time-unit and --sample-time: with --sample-time the t column counts samples; give one",
                            file=src)
