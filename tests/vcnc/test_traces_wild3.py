@@ -46,8 +46,9 @@ def test_signal_path_names(header, mapping):
      "no column is named as time (only names with more than time words: ['MAIN.fTime']; give --columns t=NAME,...)"),
     # ROS topics in a PlotJuggler export: positions without a command
     (["__time", "/psm/roll/position", "/psm/roll/velocity"],
-     "no pair of a commanded and a measured position is named (other quantities: ['/psm/roll/velocity']); a "
-     "position trace needs a commanded and a measured position"),
+     "no pair of a commanded and a measured position is named (positions that name neither a command nor a "
+     "measurement: ['/psm/roll/position']; other quantities: ['/psm/roll/velocity']); a position trace needs a "
+     "commanded and a measured position"),
     # two encoders of an ODrive GUI export: a question, not a guess
     (["time", "odrive0.axis0.encoder.pos_abs", "odrive0.axis0.encoder.second_pos_abs"],
      "axis x: several columns could be the same position: ['odrive0.axis0.encoder.pos_abs', "

@@ -358,6 +358,15 @@ def _no_pair(header: Sequence[str], times: Sequence[str], found: dict[str, tuple
     torques only cannot be read as positions)."""
     other = [h for h in header if h not in times and h not in found and any(
         w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h)) and not is_sample_number(h)]
-    seen = ([f"positions found: {sorted(found)}"] if found else []) + ([f"other quantities: {other}"] if other else [])
+    plain = [h for h in header if h not in times and h not in found and h not in other
+             and _POSITION_WORDS.intersection(_words(h))]
+    seen = ([f"positions found: {sorted(found)}"] if found else []) + (
+        [f"positions that name neither a command nor a measurement: {plain}"] if plain else []) + (
+        [f"other quantities: {other}"] if other else [])
     return ("no pair of a commanded and a measured position is named" + (f" ({'; '.join(seen)})" if seen else "")
-            + ("" if found else "; a position trace needs a commanded and a measured position" if other else ""))
+            + ("" if found else "; a position trace needs a commanded and a measured position" if other or plain
+               else ""))
+
+
+#: Words that name a position without its role (the ODrive GUI's "ODrive 0 Position"), for :func:`_no_pair`'s reason.
+_POSITION_WORDS = frozenset({"position", "pos", "positions", "lage"})
