@@ -9,6 +9,9 @@
 - LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
   halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
 - the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`).
+
+MTConnect data (an agent's streams XML, an adapter's SHDR lines) is recognised and refused, naming the positions it
+holds (:mod:`vcnc.traces.mtconnect`).
 """
 
 from __future__ import annotations
@@ -21,7 +24,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, sinumerik, tncscope
+from vcnc.traces import emps, mtconnect, sinumerik, tncscope
 from vcnc.traces.columns import within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -41,7 +44,7 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
     ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"capture-csv"``, ``"delimited"``, or
-    ``"xml"`` for other XML (which no reader takes)."""
+    ``"xml"`` for other XML and ``"shdr"`` for an MTConnect adapter's stream (which no reader takes)."""
     src = str(path)
     try:
         with Path(path).open("rb") as f:
@@ -63,6 +66,8 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "twincat"
     if looks_like_camonitor(text[:4000]):
         return "camonitor"
+    if mtconnect.looks_like_shdr(text):
+        return "shdr"
     for line in text.splitlines():
         s = line.strip().lstrip("\ufeff")
         if s and not s.startswith("#"):
@@ -127,6 +132,10 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
         raise CaptureError(f"--columns/--time-unit/--unit/--sample-time apply to delimited text, not to a {fmt} file",
                            file=str(p))
+    if fmt == "xml" and _xml_root(p) == "MTConnectStreams":
+        raise CaptureError(mtconnect.streams_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
+    if fmt == "shdr":
+        raise CaptureError(mtconnect.shdr_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
     if fmt == "xml":
         raise CaptureError(f"an XML file with root <{_xml_root(p)}>, not a SINUMERIK trace (<traceSession> or "
                            "<traceDataRoot>); export the trace from SINUMERIK Operate's trace, or give a text export",
