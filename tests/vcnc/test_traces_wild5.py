@@ -88,8 +88,10 @@ def test_mtconnect_streams_document_is_named_with_its_positions(tmp_path):
 
 def test_mtconnect_streams_with_commanded_positions_is_still_no_trace(tmp_path):
     f = tmp_path / "sample.xml"
-    f.write_text(_STREAMS.format(samples="\n".join(_position(n, s, k) for k in range(2)
-                                                    for n, s in (("Xcom", "COMMANDED"), ("Xact", "ACTUAL")))))
+    text = _STREAMS.format(samples="\n".join(_position(n, s, k) for k in range(2)
+                                             for n, s in (("Xcom", "COMMANDED"), ("Xact", "ACTUAL"))))
+    f.write_text(text.replace("<MTConnectStreams", "<m:MTConnectStreams").replace("</MTConnectStreams",
+                                                                                  "</m:MTConnectStreams"))
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     msg = str(err.value)

@@ -132,7 +132,7 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
         raise CaptureError(f"--columns/--time-unit/--unit/--sample-time apply to delimited text, not to a {fmt} file",
                            file=str(p))
-    if fmt == "xml" and _xml_root(p) == "MTConnectStreams":
+    if fmt == "xml" and _xml_root(p).rpartition(":")[2] == "MTConnectStreams":  # also with a prefix (m:)
         raise CaptureError(mtconnect.streams_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
     if fmt == "shdr":
         raise CaptureError(mtconnect.shdr_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
