@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
 FANUC = MachineContext().with_dialect("fanuc")
 HAAS = MachineContext().with_dialect("haas")
@@ -38,3 +40,34 @@ def test_a_dwell_p_without_a_literal_decimal_point_is_not_noted(dwell):
     prog = checked_iso(f"G21 G90\n{dwell}\nM30\n", FANUC)
     assert len([b for b in prog.blocks if b.kind == "dwell"]) == 1
     assert not any("decimal point read in milliseconds" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize(("text", "column", "what"), [
+    # an Acorn router's defines file and a CNC12 M-code macro
+    ("; Centroid defines\nDEFINE <ACTIVE_TOOL> #4120\nM30\n", "2:2", r"DEFINE <name> #n, a statement of Centroid "
+                                                                  r"CNC12's macro language"),
+    ("IF #4201 || #4202 THEN GOTO 1000\nN1000\nM30\n", "1:2", r"IF #n THEN \.\.\., a statement of Centroid CNC12's "
+                                                             r"macro language"),
+    # an Okuma OSP user task
+    ("VFST=#81H\nM02\n", "1:2", r"V<name>=, a variable of Okuma OSP's user task language"),
+])
+@pytest.mark.parametrize("context", [FANUC, LINUXCNC])
+def test_statements_of_centroid_and_okuma_macros_are_named(text, column, what, context):
+    with pytest.raises(GCodeError, match=rf":{column}: malformed value: '\w+' is neither a number, a parameter nor "
+                                         rf"a function \({what}; vcnc reads ISO G-code with Fanuc macro B or "
+                                         r"LinuxCNC O-codes\)"):
+        parse_program(text, context=context)
+
+
+def test_a_name_left_in_brackets_keeps_the_placeholder_hint():
+    with pytest.raises(GCodeError, match=r"'PX' is neither a number, a parameter nor a function \(text left in "
+                                         r"brackets, such as a template's placeholder\?\)"):
+        parse_program("G21\nG1 X[PX] F100\nM30\n", context=FANUC)
+
+
+@pytest.mark.parametrize("line", ['G65 "\\cncm\\defines.cnc"', 'G65 "c:\\cncm\\tool_set.cnc" ; an Acorn router macro'])
+def test_a_quoted_text_of_a_centroid_macro_is_named(line):
+    with pytest.raises(GCodeError, match=r":2:\d+: unknown word '\"[^']*' \(a quoted text, as Centroid CNC12 macros "
+                                         r"write a prompt, M225 #100 \"text\", or a macro file, G65 \"file\"; vcnc "
+                                         r"reads ISO G-code with Fanuc macro B or LinuxCNC O-codes\)"):
+        parse_program(f"G20 G90\n{line}\nM30\n", context=FANUC)
