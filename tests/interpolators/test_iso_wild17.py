@@ -71,3 +71,11 @@ def test_a_quoted_text_of_a_centroid_macro_is_named(line):
                                          r"write a prompt, M225 #100 \"text\", or a macro file, G65 \"file\"; vcnc "
                                          r"reads ISO G-code with Fanuc macro B or LinuxCNC O-codes\)"):
         parse_program(f"G20 G90\n{line}\nM30\n", context=FANUC)
+
+
+@pytest.mark.parametrize("context", [FANUC, LINUXCNC])
+def test_an_okuma_subprogram_call_is_named(context):
+    # an Okuma OSP user task (SET-MASTER-XY.MIN): a call of the OSP subprogram OO30 with its named arguments
+    with pytest.raises(GCodeError, match=r":1:1: malformed number for word C \('CALL O<name>': Okuma OSP's subprogram "
+                                         r"call; vcnc reads ISO G-code, not OSP programs\)"):
+        parse_program("CALL OO30 PAXI=3\nM2\n", context=context)
