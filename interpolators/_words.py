@@ -135,6 +135,10 @@ def _number_hint(line: str, w0: int, j: int, raw: str = "") -> str:
     # the letter then blanks, and the end of the block or another word: not a keyword such as ASKBOOL
     if line[w0:w0 + 1].upper() in _AXIS_LETTERS and (j >= len(line) or j > w0 + 1 and line[j].isalpha()):
         return _bare_axis_hint(line, w0)
+    # "CALL OO30": Okuma OSP's subprogram call (the Autodesk OKUMA OSP-P300 post's "CALL OO88" for 3+2
+    # machining; Okuma user tasks are called "with the word CALL xxxx", as MachinistFTW/OkumaMacros' README says)
+    if re.match(r"CALL\s*O\w", line[w0:], re.I):
+        return " ('CALL O<name>': Okuma OSP's subprogram call; vcnc reads ISO G-code, not OSP programs)"
     # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
     keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:])
     return f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)" \

@@ -17,7 +17,14 @@ from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED
 from interpolators.iso_cycles import cycle_moves, tap_spindle_error
 from interpolators.iso_frames import framed_initial
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
-from interpolators.iso_motion import initial_feed, long_dwell_note, nurbs_block, per_rev_spindle, rapid_move
+from interpolators.iso_motion import (
+    dwell_p_point_note,
+    initial_feed,
+    long_dwell_note,
+    nurbs_block,
+    per_rev_spindle,
+    rapid_move,
+)
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import Block
 from toolpaths.geometry import Line
@@ -199,6 +206,8 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                       target=mv.target.copy(), exact_stop=True, tolerance=st.tolerance)
         if mv.kind == "dwell":
             long_dwell_note(mv.dwell, st, notes)
+            if "P" in seen:
+                dwell_p_point_note(seen["P"], st, notes)
             blocks.append(Block(kind="dwell", feed=0.0, dwell=mv.dwell, **common))
         else:
             blocks.append(Block(kind=mv.kind, feed=mv.feed, segment=Line(st.pos, mv.target), **common))

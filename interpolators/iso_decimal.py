@@ -30,7 +30,8 @@ import re
 
 from interpolators.iso_words import Word
 
-__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "integer_literal", "decimal_point_words", "decimal_point_note"]
+__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "integer_literal", "decimal_literal", "decimal_point_words",
+           "decimal_point_note"]
 
 #: Values of ``MachineContext.decimal_point_input``: Fanuc DPI = 1 and DPI = 0.
 DECIMAL_POINT_INPUTS: tuple[str, ...] = ("calculator", "increment")
@@ -48,6 +49,11 @@ _OWN_RULES = {65, 51, 5, 5.1, 8}
 def integer_literal(word: Word) -> bool:
     """True when the word is written as a plain number without a decimal point (``X10``, ``Y-5``)."""
     return re.fullmatch(r"[A-Za-z]\s*[+-]?\s*\d+", word.text) is not None
+
+
+def decimal_literal(word: Word) -> bool:
+    """True when the word is written as a plain number with a decimal point (``P2.0``, ``P.5``, ``P3.``)."""
+    return re.fullmatch(r"[A-Za-z]\s*[+-]?\s*(\d+\.\d*|\.\d+)", word.text) is not None
 
 
 def _scaled(words: list[Word], *, cycle: bool) -> list[Word]:

@@ -17,6 +17,7 @@ from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_c
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target
 from interpolators.iso_codes import G_CODES, PLANE_CODES
 from interpolators.iso_corners import finish_corner, start_corner
+from interpolators.iso_decimal import decimal_literal
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_polar import POLAR_LETTERS, polar_xy
 from interpolators.iso_splines import bezier_chords
@@ -476,6 +477,18 @@ def long_dwell_note(seconds: float, st: State, notes: Notes | None) -> None:
                   "Fanuc/Haas post's P is milliseconds: --dialect fanuc or haas)")
 
 
+def dwell_p_point_note(word: Word, st: State, notes: Notes | None) -> None:
+    """Note a dwell P written with a decimal point (``G04 P2.0``) read in milliseconds: the Fanuc 0i and Haas mill
+    manuals write P in ms without a decimal point (``G04 P500``, see :func:`long_dwell_note`), and the decimal
+    point is the mark of a post written for a control whose P is seconds (LinuxCNC g-code.adoc G4 "G4 P0.5";
+    grbl; our reading of the Centroid CNC12 posts of the wild set 17, ``G4 P3.00 ; pause for dwell``), where the
+    dwell is a thousand times longer. The reading stays the dialect's; the note shows where a short cycle time
+    may come from."""
+    if notes is not None and st.context.dialect.dwell_p_unit == "ms" and decimal_literal(word) and word.value > 0:
+        notes.add(f"dwell P with a decimal point read in milliseconds, as {st.context.dialect.name} reads P "
+                  "(where P is seconds, as on LinuxCNC and grbl: --dialect linuxcnc, it dwells 1000 times longer)")
+
+
 def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
@@ -501,6 +514,7 @@ def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: No
         where.fail("dwell time must be >= 0", column=w.column, text=w.text, expected="a dwell time >= 0")
     if "P" in seen:
         long_dwell_note(seconds, st, notes)
+        dwell_p_point_note(w, st, notes)
     blocks.append(Block(line=where.line, number=number, text=where.text, kind="dwell", start=st.pos.copy(),
                         target=st.pos.copy(), feed=0.0, dwell=seconds, exact_stop=True, tolerance=st.tolerance))
     return False

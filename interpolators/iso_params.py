@@ -143,6 +143,29 @@ OWORD_LOCALS = 30
 MACRO_LOCALS = 33
 
 
+
+#: Statements of controls whose macro language is not Fanuc's or LinuxCNC's, read as an address letter and a
+#: name: Centroid CNC12's ``DEFINE <name> #n`` and ``IF #n THEN GOTO n`` (our reading of CNC12 macros, e.g.
+#: Centroid's stock ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it, "IF #50010 ;Prevent lookahead from
+#: parsing past here", "IF #4201 || #4202 THEN GOTO 1000", "Please see TB300 for tips on writing custom macros"),
+#: and Okuma OSP's variables written ``V<name>=`` (our reading of OSP user tasks, ``VFST=#81H``).
+_FOREIGN_STATEMENTS = (
+    (re.compile(r"DEFINE\b", re.I), "DEFINE <name> #n, a statement of Centroid CNC12's macro language"),
+    (re.compile(r"IF\s*#[^\[]*(THEN|$)", re.I), "IF #n THEN ..., a statement of Centroid CNC12's macro language"),
+    (re.compile(r"V[A-Z]{2,}\s*=", re.I), "V<name>=, a variable of Okuma OSP's user task language"),
+)
+
+
+def _foreign_statement(code: str, p: int) -> str:
+    """Why the name at ``p`` of ``code`` is no value, when the address letter before it starts a statement of
+    another control's language (:data:`_FOREIGN_STATEMENTS`); else the placeholder hint."""
+    start = p - 1 if p > 0 and code[p - 1].isalpha() else p
+    for pattern, what in _FOREIGN_STATEMENTS:
+        if start < p and pattern.match(code, start):
+            return f" ({what}; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)"
+    return " (text left in brackets, such as a template's placeholder?)"
+
+
 class Parameters:
     """Parameter store: global numbered and named parameters and a stack of call frames.
 
@@ -433,8 +456,8 @@ class _Reader:
             self.fail(f"malformed value: unknown function {word.group(0)!r}", p,
                       "a function of " + ", ".join(_FUNCTIONS))
         if word:
-            self.fail(f"malformed value: '{word.group(0)}' is neither a number, a parameter nor a function (text "
-                      "left in brackets, such as a template's placeholder?)", p,
+            self.fail(f"malformed value: '{word.group(0)}' is neither a number, a parameter nor a function"
+                      f"{_foreign_statement(self.code, p)}", p,
                       "a number, #parameter, [expression] or function such as SIN[30]")
         self.fail("malformed value", p, "a number, #parameter, [expression] or function such as SIN[30]")
         raise AssertionError("unreachable")

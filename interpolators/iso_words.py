@@ -146,11 +146,17 @@ def block_comment(raw: str, where: Where) -> str | None:
 def _foreign_hint(tok: str) -> str:
     """What an unknown word is, when its text says: a RepRap/Marlin line checksum ``*57`` (the serial protocol
     of 3D printer hosts: "N<line> <command>*<checksum>", RepRap wiki "G-code", "Checking"), which no CNC control
-    reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header."""
+    reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header; a quoted
+    text, as Centroid CNC12 macros write a prompt, ``M225 #100 "This is an example macro ..."`` (Centroid's stock
+    ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it), and, our reading of an Acorn router's macros, a macro
+    file to run, ``G65 "\\cncm\\defines.cnc"``."""
     if re.fullmatch(r"\*\d+", tok):
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
         return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
+    if tok.startswith('"'):
+        return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
+                "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")
     return fence_hint(tok)
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
