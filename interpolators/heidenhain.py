@@ -885,8 +885,13 @@ _KNOWN_UNSUPPORTED = {
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: Machine, where: Where) -> str | None:
     """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
     before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
-    it)."""
+    it). A lone ``MM`` or ``INCH`` is the unit of a program without a name (FreeCAD's heidenhain post writes
+    ``BEGIN PGM MM``, or ``BEGIN PGM INCH`` with its UNITS INCH: our reading, the unit being the last word)."""
     parts = blk.code[k.end():].split()
+    if len(parts) == 1 and parts[0].upper() in ("MM", "INCH"):
+        m.note(f"BEGIN PGM {parts[0]} without a program name: {parts[0].upper()} read as the unit")
+        m.inch = parts[0].upper() == "INCH"
+        return None
     unit = parts[-1].upper() if len(parts) > 1 else "MM"
     if unit not in ("MM", "INCH"):
         col = blk.code.upper().rfind(parts[-1].upper()) + blk.column

@@ -137,3 +137,14 @@ def test_m140_retract_at_its_own_feed():
                     ("line", 0, 38.5, 150, 750), ("line", 30, 38.5, 150, 125)]
     with pytest.raises(GCodeError, match=r"t.h:2:13: feed F of M140 must be > 0"):
         parse_heidenhain("0 BEGIN PGM T MM\nM140 MB MAX F0\nEND PGM T MM\n", source="t.h", context=home)
+
+
+def test_begin_pgm_with_the_unit_alone_is_a_program_without_a_name():
+    # FreeCAD's heidenhain post writes 'BEGIN PGM MM', or with its UNITS INCH 'BEGIN PGM INCH': the lone word is
+    # the unit (it was taken as the name, and the INCH program silently read in millimetres)
+    inch = checked_program("0 BEGIN PGM INCH\n1 TOOL CALL 1 Z S1000\n2 L X1.000 Y1.000 Z0.500 R0 F100 M3\n"
+                           "3 END PGM INCH\n", ZERO)
+    assert np.asarray(inch.blocks[0].target) == pytest.approx([25.4, 25.4, 12.7])
+    assert inch.blocks[0].feed * 60 == pytest.approx(2540.0 / 10)
+    mm = checked_program("0 BEGIN PGM MM\n1 L X1.000 Y1.000 Z0.500 R0 F100\n2 END PGM MM\n", ZERO)
+    assert np.asarray(mm.blocks[0].target) == pytest.approx([1.0, 1.0, 0.5])
