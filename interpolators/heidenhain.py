@@ -341,6 +341,7 @@ class Machine:
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
+        self.retract_feed = math.inf  # the feed of the block's M140 retraction (the F after MB) [mm/s]
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
         self.per_revolution = False  # M136: F in mm per spindle revolution (until M137)
@@ -884,8 +885,13 @@ _KNOWN_UNSUPPORTED = {
 def _begin_pgm(blk: SourceBlock, k: re.Match, m: Machine, where: Where) -> str | None:
     """``BEGIN PGM name MM|INCH``: the program's unit, the last word; returns its name, the words
     before it (a file name with blanks, ``BEGIN PGM CHANFRO EXT RETO MM``, as a shop's iTNC 530 saved
-    it)."""
+    it). A lone ``MM`` or ``INCH`` is the unit of a program without a name (FreeCAD's heidenhain post writes
+    ``BEGIN PGM MM``, or ``BEGIN PGM INCH`` with its UNITS INCH: our reading, the unit being the last word)."""
     parts = blk.code[k.end():].split()
+    if len(parts) == 1 and parts[0].upper() in ("MM", "INCH"):
+        m.note(f"BEGIN PGM {parts[0]} without a program name: {parts[0].upper()} read as the unit")
+        m.inch = parts[0].upper() == "INCH"
+        return None
     unit = parts[-1].upper() if len(parts) > 1 else "MM"
     if unit not in ("MM", "INCH"):
         col = blk.code.upper().rfind(parts[-1].upper()) + blk.column
@@ -1118,7 +1124,7 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
             _transform_cycle(number, rest, m, where, col)
         return
     if number == 19:
-        _tilt_cycle(rest, m, where, col)
+        _tilt_cycle(rest, m, where, col, blk)
         return
     if number == 7:
         if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
@@ -1520,16 +1526,22 @@ def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, 
     m.transform = t
 
 
-def _tilt_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
-    """``CYCL DEF 19.1 A.. B.. C.. [F..] [DIST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
+def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock) -> None:
+    """``CYCL DEF 19.1 A.. B.. C.. [F..] [ABST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
     manual, "WORKING PLANE (Cycle 19, software option)"). Without angles, or with all 0, it cancels the
     tilt (no motion). Other angles need the machine's kinematics; they are spatial angles (as PLANE
     SPATIAL: "the function corresponds to Cycle 19, if the entries in Cycle 19 are set to space angles",
-    iTNC 530 user's manual, PLANE SPATIAL), and the program positions the rotary axes itself (the manual's
-    "manual positioning": ``L B+Q121 C+Q122 R0 F..`` before or after the cycle): as PLANE .. STAY."""
+    iTNC 530 user's manual, PLANE SPATIAL). Without F the program positions the rotary axes itself (the
+    manual's "manual positioning": ``L B+Q121 C+Q122 R0 F..`` before or after the cycle): as PLANE .. STAY.
+    With F the control positions them (the cycle's "Feed rate? F=" and "Set-up clearance?" ABST, asked on
+    machines that position the rotary axes automatically): as PLANE .. MOVE DIST<ABST> F<F>, the point ABST
+    ahead of the tool tip keeping its place on the part (our reading of the cycle's set-up clearance)."""
     angles: dict[str, float] = {}
     for am in re.finditer(r"(?<![A-Z])([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
         angles[am.group(1).upper()] = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)[0]
+    auto = {word.upper(): read_value(rest, wm.end(), where, m.params, what=word, column0=col)[0]
+            for wm in re.finditer(r"(?<![A-Z])(F|ABST)(?=\s*[+-]?\s*[\d.Q(])", rest, re.I)
+            for word in [wm.group(1)]}
     tilted = any(v != 0.0 for v in angles.values())
     kin = m.context.kinematics
     if kin is None:
@@ -1538,17 +1550,24 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int) -> None:
                        "kinematics", column=col, text=rest.strip(), expected=KINEMATICS_HINT)
         m.note("CYCL DEF 19 with angles 0: no tilted working plane (no motion)")
         return
-    if not tilted:
+    current = _rotary_now(m)
+    rotation, solution = None, Solution(0.0, 0.0)
+    if tilted or "F" in auto:
+        try:
+            kin.require_table()
+            if tilted:
+                rotation = spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0))
+                solution = kin.choose(rotation, current)
+        except TiltError as exc:
+            where.fail(f"cycle 19: {exc.message}", column=col, text=rest.strip(), expected=exc.expected)
+    if tilted:
+        _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
+    else:
         _untilt(m)
         m.note("CYCL DEF 19 without angles: the tilted working plane is cancelled (no motion)")
-        return
-    try:
-        kin.require_table()
-        rotation = spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0))
-        solution = kin.choose(rotation, _rotary_now(m))
-    except TiltError as exc:
-        where.fail(f"cycle 19: {exc.message}", column=col, text=rest.strip(), expected=exc.expected)
-    _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
+    if "F" in auto:
+        pb = PlaneBlock(form="SPATIAL", values={}, positioning="MOVE", dist=auto.get("ABST", 0.0), feed=auto["F"])
+        _position_rotary(pb, current, solution, m, where, blk)
 
 
 #: What each keyword block does (the flow keywords and motions are handled by :class:`_Run`);

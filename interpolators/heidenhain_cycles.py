@@ -384,8 +384,10 @@ def q_assignments(rest: str, where: Where, params: QParameters, *, column0: int,
 
 def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, what: str) -> float | None:
     """The value of an old-style cycle line (``DIST27.5``, ``SET UP 2``, ``F 500``, ``T0.05``,
-    ``DWELL 1.5``, ``5``): the number (or Q parameter) after the item's name; None when empty."""
-    m = re.match(r"\s*([A-Z][A-Z\-. ]*?)?\s*(?=[+-]?\s*(?:\d|\.\d|Q))", rest, re.I)  # V.ZEIT: German TNCs
+    ``DWELL 1.5``, ``5``): the number (or Q parameter) after the item's name; None when empty. A dot right
+    after a letter ends the name (``V.ZEIT``, the Polish ``CZAS ZWL.0.5``: dwell 0.5 s), as the TNC writes
+    a number with its leading digit (``T0.05``; our reading of the saved dialog texts)."""
+    m = re.match(r"\s*([A-Z][A-Z\-. ]*?)?\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q))", rest, re.I)
     if m is None:
         if rest.strip() == "":
             return None

@@ -126,15 +126,24 @@ def spline_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) 
 
 # --- M functions -----------------------------------------------------------------------------
 
-def _without_m128_feed(words: list[Word], m: Machine) -> list[Word]:
-    """``words`` without the F word right after M128, which is not the path feed but "another feed rate, at which
-    the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's manual for DIN/ISO
-    programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125 M128 F1000``). vcnc's
-    M128 moves no rotary axis (they are positioned before it): noted, no effect."""
+def _without_m_feeds(words: list[Word], m: Machine, where: Where) -> list[Word]:
+    """``words`` without the feeds of M functions. The F word right after M128 is not the path feed but "another
+    feed rate, at which the TNC will carry out the compensation movements in the linear axes" (TNC 620 user's
+    manual for DIN/ISO programming 34056x-04, M128; the iTNC 530 manual's example ``L X+0 Y+38.5 IB-15 RL F125
+    M128 F1000``). vcnc's M128 moves no rotary axis (they are positioned before it): noted, no effect. An F (or
+    FMAX) after ``M140 MB ..`` is the feed of the retraction (TNC 640 user's manual, "Retraction in the tool
+    axis: M140": after the path "you can also enter a feed rate", else it is at rapid traverse; its example
+    ``L X+0 Y+38.5 F125 M140 MB 50 F750``): kept in ``m.retract_feed`` [mm/s, inf for FMAX], not the path's."""
     out: list[Word] = []
+    m.retract_feed = math.inf
     for w in words:
         if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
             m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
+            continue
+        if w.key in ("F", "FMAX") and out and out[-1].key in ("MB", "MBMAX"):
+            if w.key == "F" and not w.value > 0:
+                where.fail("feed F of M140 must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
+            m.retract_feed = math.inf if w.key == "FMAX" else w.value * m.feed_scale
             continue
         out.append(w)
     return out
@@ -142,7 +151,7 @@ def _without_m128_feed(words: list[Word], m: Machine) -> list[Word]:
 
 def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
     """Check the M words of a block without motion words; True when the program ends here."""
-    words = _without_m128_feed(words, m)
+    words = _without_m_feeds(words, m, where)
     ended = False
     for w in words:
         if w.key == "M":
@@ -433,9 +442,9 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, whe
 
 
 def _retract(seen: dict[str, Word], m: Machine, where: Where, blk: SourceBlock) -> None:
-    """``M140 MB MAX`` / ``MB n``: a rapid along the tool axis, up to the limit (home stands in for it) or by n
-    (TNC 640 user's manual, "Retraction in the tool axis: M140": effective at the end of its block); ``M140``
-    without MB retracts nothing (noted)."""
+    """``M140 MB MAX`` / ``MB n``: a rapid (or a line at the F after MB) along the tool axis, up to the limit
+    (home stands in for it) or by n (TNC 640 user's manual, "Retraction in the tool axis: M140": effective at
+    the end of its block); ``M140`` without MB retracts nothing (noted)."""
     if "MBMAX" in seen:
         retract = m.pos.copy()
         retract[m.plane] = max(m.context.home[m.plane], m.pos[m.plane])
@@ -448,7 +457,8 @@ def _retract(seen: dict[str, Word], m: Machine, where: Where, blk: SourceBlock) 
     if retract[m.plane] != m.pos[m.plane]:
         m.used.add(m.plane)
         m.tcpm_move = True  # along the spindle, also under M128 (the tool axis of a table machine)
-        m.emit("rapid", retract, Line(m.pos, retract), math.inf, where, blk.number)
+        feed = m.retract_feed
+        m.emit("rapid" if math.isinf(feed) else "line", retract, Line(m.pos, retract), feed, where, blk.number)
         m.tcpm_move = False
 
 
@@ -477,7 +487,7 @@ _ALLOWED_WORDS = {
 
 def _motion_words(kw: str, words: list[Word], m: Machine, where: Where) -> tuple[dict[str, Word], list[Word]]:
     """The words of a motion block by key (each axis or setting once, allowed in ``kw``), and its M words."""
-    words = _without_m128_feed(words, m)
+    words = _without_m_feeds(words, m, where)
     seen: dict[str, Word] = {}
     ms: list[Word] = []
     bases: set[str] = set()

@@ -219,13 +219,16 @@ def _words(rest: str, q: dict) -> dict[str, float | str]:
     # R, F, M standing alone: a field the older TNCs saved empty ("L X+1 R F M"): nothing programmed
     s = re.sub(r"\s+", "", re.sub(r"(?<!\S)[RFM](?=\s*$|\s+(?!MAX|AUTO)[A-PR-Z])", " ", rest.upper()))
     out: dict[str, float | str] = {}
-    pos = 0
+    pos, last = 0, None
     for m in _WORD.finditer(s):
         if m.start() != pos:
             raise ReferenceError(f"unread text {s[pos:m.start()]!r}")
         pos = m.end()
         key, v = m.group(1), m.group(2)
-        if key == "M":
+        key, last = ("MBF" if key in ("F", "FMAX") and last == "MB" else key), key  # M140 MB .. F: its own feed
+        if key == "MBF":
+            out[key] = "MAX" if m.group(1) == "FMAX" else _val(v, q)
+        elif key == "M":
             out.setdefault("M", [])
             out["M"].append(int(v))
         elif key in ("DR", "RL", "RR", "R0", "FMAX") or v in ("", "+", "-", "MAX", "AUTO"):  # F AUTO: a feed
@@ -430,11 +433,12 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
     if "MB" in w:
-        if w["MB"] != "MAX":
-            raise ReferenceError("M140 MB with a distance")
         end = t.pos.copy()
-        end[2] = max(t.ctx.home[2], t.pos[2])  # a retract: never down (home stands in for the limit)
-        t.emit(line, "rapid", end, rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
+        # a retract: never down (home stands in for the limit); MB n: n up; at the F after MB, else rapid
+        end[2] = max(t.ctx.home[2], t.pos[2]) if w["MB"] == "MAX" else t.pos[2] + abs(w["MB"]) * t.scale
+        retract_feed = w.get("MBF", "MAX")
+        t.emit(line, "rapid" if retract_feed == "MAX" else "feed", end,
+               rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
     ms = w.get("M", [])
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
@@ -882,13 +886,17 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), params if number == 25 else {**t.data, **params})
     elif number == 392:  # ATC, DMG MORI's dynamics tuning of its TNC 640 machines: no motion, its Q set
         t.q.update({k: _val(v.replace(" ", ""), t.q) for k, v in re.findall(r"(Q\d\d\d)\s*=\s*([-+]?\s*[\w.]+)", rest)})
-    elif number == 19:  # a tilted working plane (spatial angles; the program positions the rotary axes)
-        angles = {k: _val(v, t.q) for k, v in re.findall(r"([ABC])\s*([-+]?\s*[\d.]+|[-+]?Q[LR]?\d+)", rest)}
+    elif number == 19:  # a tilted working plane (spatial angles; the program positions the rotary axes,
+        # unless 19.1 has F: then the control does, as PLANE MOVE with ABST as DIST)
+        words = {k.upper(): _val(v, t.q)
+                 for k, v in re.findall(r"(?<![A-Z])(ABST|[ABCF])\s*([-+]?\s*[\d.]+|[-+]?Q[LR]?\d+)", rest.upper())}
+        auto = dict(positioning="MOVE", feed="feed", dist=words.get("ABST", 0.0)) if "F" in words else {}
+        angles = {k: v for k, v in words.items() if k in "ABC"}
         if any(v != 0 for v in angles.values()):
             _tilt_plane(t, line, _spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0)),
-                        positioning="STAY")
+                        **(auto or dict(positioning="STAY")))
         elif t.ctx.kinematics is not None and sub == 1:
-            _tilt_plane(t, line, None, positioning="STAY")
+            _tilt_plane(t, line, None, **(auto or dict(positioning="STAY")))
     elif number in (4, 5):  # POCKET MILLING 4.1 SET UP, 4.2 DEPTH, 4.3 PECKG .. F, 4.4 X, 4.5 Y, 4.6 F DR RADIUS;
         # CIRCULAR POCKET 5.1 SET UP, 5.2 DEPTH, 5.3 PECKG .. F, 5.4 RADIUS, 5.5 F .. DR+/-
         if sub == 0:
@@ -901,8 +909,10 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
         if dr is not None:
             t.cycle[1]["DR"] = 1.0 if dr.group(1) == "+" else -1.0
         rad = re.search(r"RADIUS([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r)
-        if number == 4 and sub == 6:
-            t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else 0.0
+        if number == 4 and sub == 6:  # the radius's name in the control's language (PROMIEN: Polish)
+            tail = r[dr.end():] if dr is not None else ""
+            t.cycle[1][6] = abs(_val(rad.group(1), t.q)) if rad else (
+                abs(_last_number(tail, t.q)) if re.search(r"\d|Q", tail) else 0.0)
         elif sub != 5 or number == 4:
             t.cycle[1][sub] = _last_number(r[:f.start()] if f is not None else r, t.q)
     elif number in (1, 2, 17):
@@ -2514,7 +2524,7 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
     ``PLANE RESET ..``."""
     w = {k: _val(v, t.q)
-         for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*[\d.]+|Q[LR]?\d+)", up)}
+         for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
     kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
@@ -2636,17 +2646,21 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError(up)
             t.modal = False
             _run_cycle(t, line)
-        elif re.fullmatch(r"(M\d+\s*)+(MB\s*MAX\s*)?(M\d+\s*)*", _m_words(up, t.q)[0]):
+        elif re.fullmatch(r"(M\d+\s*)+(MB\s*(MAX|\d+\.?\d*)\s*(F\s*(MAX|\d+\.?\d*)\s*)?)?(M\d+\s*)*",
+                          _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
             ms = [int(v) for v in re.findall(r"M(\d+)", _m_words(up, t.q)[0])]
             _tcpm_switch(t, ms)
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)
-            if 140 in ms and "MB" in up:  # M140 MB MAX alone: the retract of a line's M140, at the block's end
+            mb = re.search(r"MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
+            if 140 in ms and mb:  # M140 MB alone: the retract of a line's M140, at the block's end
                 end = t.pos.copy()
-                end[2] = max(t.ctx.home[2], t.pos[2])
-                t.emit(line, "rapid", end, rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
+                up_by = float(mb.group(1)) * t.scale if mb.group(1) != "MAX" else 0.0
+                end[2] = max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else t.pos[2] + up_by
+                t.emit(line, "rapid" if mb.group(2) in (None, "MAX") else "feed", end,
+                       rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):
