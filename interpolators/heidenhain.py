@@ -198,6 +198,7 @@ from interpolators.heidenhain_motion import (
     block_words,
     corner_def,
     free_contour,
+    is_retract_feed,
     m_functions,
     motion_block,
     spline_block,
@@ -915,15 +916,17 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Wh
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
     words = block_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
-    if not kind and any(w.key in ("F", "FMAX") for w in words):
+    # the positioning words; an F after M140 MB is the retraction's feed, left with the M functions
+    moving = [w for i, w in enumerate(words) if w.key in ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
+              and not is_retract_feed(words, i)]
+    if not kind and any(w.key in ("F", "FMAX") for w in moving):
         m.note("CYCL CALL F: no positioning in the block (the cycle runs where the tool is)")
-    moves = ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
-    ended = m_functions([w for w in words if w.key not in moves], m, where, blk, motion=False)
+    ended = m_functions([w for w in words if all(w is not v for v in moving)], m, where, blk, motion=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
-        position_call([w for w in words if w.key in moves], m, where, blk)
+        position_call(moving, m, where, blk)
     elif kind == "PAT":
-        pattern_call(m, where, blk, positioning_feed(words, m, where))
+        pattern_call(m, where, blk, positioning_feed(moving, m, where))
     else:
         cycle_call(m, where, blk)
     return ended

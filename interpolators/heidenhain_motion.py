@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
 
 __all__ = ["block_words", "spline_block", "m_functions", "corner_def", "motion_block", "free_contour",
-           "approach_depart"]
+           "approach_depart", "is_retract_feed"]
 
 
 #: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
@@ -140,13 +140,19 @@ def _without_m_feeds(words: list[Word], m: Machine, where: Where) -> list[Word]:
         if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
             m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
             continue
-        if w.key in ("F", "FMAX") and out and out[-1].key in ("MB", "MBMAX"):
+        if is_retract_feed(out + [w], len(out)):
             if w.key == "F" and not w.value > 0:
                 where.fail("feed F of M140 must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
             m.retract_feed = math.inf if w.key == "FMAX" else w.value * m.feed_scale
             continue
         out.append(w)
     return out
+
+
+def is_retract_feed(words: list[Word], i: int) -> bool:
+    """True when ``words[i]`` is the feed of M140's retraction, an F or FMAX right after ``MB ..`` (TNC 640 user's
+    manual, "Retraction in the tool axis: M140"), not the block's path or positioning feed."""
+    return words[i].key in ("F", "FMAX") and i > 0 and words[i - 1].key in ("MB", "MBMAX")
 
 
 def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
