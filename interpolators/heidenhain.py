@@ -1542,9 +1542,13 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock)
     angles: dict[str, float] = {}
     for am in re.finditer(r"(?<![A-Z])([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
         angles[am.group(1).upper()] = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)[0]
-    auto = {word.upper(): read_value(rest, wm.end(), where, m.params, what=word, column0=col)[0]
-            for wm in re.finditer(r"(?<![A-Z])(F|ABST)(?=\s*[+-]?\s*[\d.Q(])", rest, re.I)
-            for word in [wm.group(1)]}
+    auto: dict[str, float] = {}
+    for wm in re.finditer(r"(?<![A-Z])(F|ABST)(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
+        word = wm.group(1).upper()
+        auto[word], end = read_value(rest, wm.end(), where, m.params, what=word, column0=col)
+        if word == "F" and not auto[word] > 0:
+            where.fail("cycle 19: the feed F of the rotary axes must be > 0", column=col + wm.start(),
+                       text=rest[wm.start():end].strip(), expected="F > 0 [mm/min] (the cycle's 'Feed rate? F=')")
     tilted = any(v != 0.0 for v in angles.values())
     kin = m.context.kinematics
     if kin is None:
@@ -1567,7 +1571,8 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock)
         _tilt_to(rotation, solution, f"CYCL DEF 19 (line {where.line})", m, where, col)
     else:
         _untilt(m)
-        m.note("CYCL DEF 19 without angles: the tilted working plane is cancelled (no motion)")
+        m.note("CYCL DEF 19 without angles: the tilted working plane is cancelled"
+               + (" (the rotary axes turn to 0 at its F)" if "F" in auto else " (no motion)"))
     if "F" in auto:
         pb = PlaneBlock(form="SPATIAL", values={}, positioning="MOVE", dist=auto.get("ABST", 0.0), feed=auto["F"])
         _position_rotary(pb, current, solution, m, where, blk)

@@ -379,6 +379,9 @@ def read_plane(rest: str, where: Where, params: QParameters, *, column0: int) ->
         else:
             value, pos = read_value(rest, pos, where, params, what=word, column0=column0)
             key = {"ABST": "dist", "DIST": "dist", "MB": "retract", "F": "feed"}.get(word)
+            if key == "feed" and not value > 0:
+                where.fail(f"feed F of PLANE {form} must be > 0", column=column0 + wm.start(1),
+                           text=rest[wm.start(1):pos].strip(), expected="F > 0 [mm/min] or FMAX")
             if key is not None:
                 out[key] = abs(value) if key == "retract" else value
             elif word in PLANE_FORMS[form]:

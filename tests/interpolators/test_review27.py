@@ -7,8 +7,14 @@ import pytest
 
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis
+from vcnc.errors import GCodeError
 
 ZERO = MachineContext()
+#: A B/C tilting table, B about Y with its pivot 50 mm below the part's zero, C about Z.
+TILT = MachineContext(home=(0.0, 0.0, 300.0), extra_axes=("b", "c"),
+                      kinematics=Kinematics(axes=(RotaryAxis(name="b", pivot=(0.0, 0.0, -50.0),
+                                                             limits=(-120.0, 120.0)), RotaryAxis(name="c"))))
 DRILL = ("CYCL DEF 200 DRILLING Q200=2 Q201=-5 Q206=150 Q202=5 Q210=0 Q203=+0 Q204=20 Q211=0\n")
 
 
@@ -32,3 +38,25 @@ def test_cycle_call_with_an_m140_retract_feed_is_no_positioning_feed():
     assert (first.kind, first.feed * 60) == ("line", pytest.approx(700.0))
     assert np.asarray(first.target) == pytest.approx([0.0, 0.0, 40.0])
     assert not any("CYCL CALL F" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize("block, column, got", [
+    ("CYCL DEF 19.1 B+10 C+90 F0", 25, "F0"),
+    ("CYCL DEF 19.1 B+10 C+90 FQ12", 25, "FQ12"),
+    ("PLANE SPATIAL SPA+0 SPB+10 SPC+90 MOVE F0", 40, "F0"),
+])
+def test_a_rotary_positioning_feed_of_zero_is_named(block, column, got):
+    # the positioning line at F0 failed later as "axis limits leave no admissible path speed", without a line
+    with pytest.raises(GCodeError, match=rf"t.h:5:{column}: .*must be > 0 \(got '{got}'\)"):
+        heidenhain(f"TOOL CALL 1 Z S2000\nFN 0: Q12 = +0\nL Z+100 R0 FMAX M91\n{block}\nL X+10 R0 FMAX", TILT)
+
+
+def test_cycle_19_without_angles_but_with_f_says_that_the_axes_turn_back():
+    # the note said "(no motion)" over the line that turns B and C back to 0 at F1000
+    prog = heidenhain("TOOL CALL 1 Z S2000\nL Z+100 R0 FMAX M91\nL B+5 C+5 R0 FMAX\nCYCL DEF 19.0 WORKING PLANE\n"
+                      "CYCL DEF 19.1 F1000", TILT)
+    turn = prog.blocks[-1]
+    assert (turn.kind, turn.feed * 60) == ("line", pytest.approx(1000.0))
+    assert turn.extra_target[1:3] == pytest.approx([0.0, 0.0])
+    assert ("CYCL DEF 19 without angles: the tilted working plane is cancelled (the rotary axes turn to 0 at its F)"
+            in prog.notes)
