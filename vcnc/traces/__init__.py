@@ -25,7 +25,7 @@ from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
 from vcnc.traces import emps, mtconnect, sinumerik, tncscope
-from vcnc.traces.columns import within_reach
+from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
     looks_like_halscope,
@@ -133,9 +133,9 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         raise CaptureError(f"--columns/--time-unit/--unit/--sample-time apply to delimited text, not to a {fmt} file",
                            file=str(p))
     if fmt == "xml" and _xml_root(p).rpartition(":")[2] == "MTConnectStreams":  # also with a prefix (m:)
-        raise CaptureError(mtconnect.streams_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
+        raise CaptureError(mtconnect.streams_reason(read_text(p, str(p))), file=str(p))
     if fmt == "shdr":
-        raise CaptureError(mtconnect.shdr_reason(p.read_text(encoding="utf-8", errors="replace")), file=str(p))
+        raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
         raise CaptureError(f"an XML file with root <{_xml_root(p)}>, not a SINUMERIK trace (<traceSession> or "
                            "<traceDataRoot>); export the trace from SINUMERIK Operate's trace, or give a text export",

@@ -22,7 +22,8 @@ from collections import Counter
 
 __all__ = ["looks_like_shdr", "streams_reason", "shdr_reason"]
 
-_SAMPLE = re.compile(r"<(Position|PathPosition)\b([^>]*)>")
+#: A position sample, also with a namespace prefix (``<m:Position ..>``, as the root ``<m:MTConnectStreams>``).
+_SAMPLE = re.compile(r"<(?:[A-Za-z_][\w.-]*:)?(Position|PathPosition)\b([^>]*)>")
 _ATTR = re.compile(r'\b(name|dataItemId|subType)="([^"]*)"')
 #: An SHDR line: an optional time stamp, then ``|key|value`` pairs.
 _SHDR = re.compile(r"^(?:\d{4}-\d\d-\d\dT[\d:.]+Z?|TIME)?\|[A-Za-z_][\w.:-]*\|[^|]*(?:\|[^|]*)*$")
