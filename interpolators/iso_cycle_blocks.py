@@ -19,6 +19,7 @@ from interpolators.iso_frames import framed_initial
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
 from interpolators.iso_motion import (
     dwell_p_point_note,
+    dwell_p_seconds,
     initial_feed,
     long_dwell_note,
     nurbs_block,
@@ -189,7 +190,10 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87
-        moves = cycle_moves(code, {k: v.value for k, v in seen.items()}, cycle=st.cycle, pos=pos,
+        values = {k: v.value for k, v in seen.items()}
+        if "P" in seen and st.context.dialect.dwell_p_unit == "ms" and dwell_p_seconds(seen["P"], st):
+            values["P"] *= 1000.0  # Haas's P0.5 is seconds: kept as the series' P in the dialect's milliseconds
+        moves = cycle_moves(code, values, cycle=st.cycle, pos=pos,
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,

@@ -29,7 +29,8 @@ if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
 __all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "initial_feed", "per_rev_spindle",
-           "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P"]
+           "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P", "dwell_p_point_note",
+           "dwell_p_seconds"]
 
 #: an M98 subprogram call in a line (a word M98, not M980)
 _M98 = re.compile(r"(?<![A-Z])M0*98(?![0-9.])", re.IGNORECASE)
@@ -477,14 +478,23 @@ def long_dwell_note(seconds: float, st: State, notes: Notes | None) -> None:
                   "Fanuc/Haas post's P is milliseconds: --dialect fanuc or haas)")
 
 
+def dwell_p_seconds(word: Word, st: State) -> bool:
+    """True when a dwell P (G04's, a canned cycle's) is read in seconds: under a dialect whose P is seconds, and
+    under Haas a P written with a decimal point (Haas mill operator's manual, G04 Dwell: "G04 P10. is a dwell of
+    10 seconds", "G04 P10 is a dwell of 10 milliseconds"; our reading: a cycle's P as G04's, the manual's cycle
+    examples write it in seconds with a decimal point)."""
+    dialect = st.context.dialect
+    return dialect.dwell_p_unit == "s" or (dialect.name == "haas" and decimal_literal(word))
+
+
 def dwell_p_point_note(word: Word, st: State, notes: Notes | None) -> None:
-    """Note a dwell P written with a decimal point (``G04 P2.0``) read in milliseconds: the Fanuc 0i and Haas mill
-    manuals write P in ms without a decimal point (``G04 P500``, see :func:`long_dwell_note`), and the decimal
-    point is the mark of a post written for a control whose P is seconds (LinuxCNC g-code.adoc G4 "G4 P0.5";
-    grbl; our reading of the Centroid CNC12 posts of the wild set 17, ``G4 P3.00 ; pause for dwell``), where the
-    dwell is a thousand times longer. The reading stays the dialect's; the note shows where a short cycle time
-    may come from."""
-    if notes is not None and st.context.dialect.dwell_p_unit == "ms" and decimal_literal(word) and word.value > 0:
+    """Note a dwell P written with a decimal point (``G04 P2.0``) read in milliseconds: the Fanuc 0i manual writes
+    P in ms without a decimal point (``G04 P500``, see :func:`long_dwell_note`), and the decimal point is the mark
+    of a post written for a control whose P is seconds (LinuxCNC g-code.adoc G4 "G4 P0.5"; grbl; Haas, see
+    :func:`dwell_p_seconds`; our reading of the Centroid CNC12 posts of the wild set 17, ``G4 P3.00 ; pause for
+    dwell``), where the dwell is a thousand times longer. The reading stays the dialect's; the note shows where a
+    short cycle time may come from."""
+    if notes is not None and not dwell_p_seconds(word, st) and decimal_literal(word) and word.value > 0:
         notes.add(f"dwell P with a decimal point read in milliseconds, as {st.context.dialect.name} reads P "
                   "(where P is seconds, as on LinuxCNC and grbl: --dialect linuxcnc, it dwells 1000 times longer)")
 
@@ -507,7 +517,7 @@ def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: No
         where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
                    expected=f"G04 P<{unit}> or G04 X<s>")
     w = seen["P"] if "P" in seen else seen["X"]
-    seconds = w.value / 1000.0 if ("P" in seen and unit == "ms") else w.value
+    seconds = w.value / 1000.0 if ("P" in seen and not dwell_p_seconds(w, st)) else w.value
     if "X" in seen and st.context.dialect.name == "linuxcnc":  # g-code.adoc "G4 Dwell": "G4 P-"; rs274 refuses X
         notes.add("G04 X<s> dwell read as Fanuc does (LinuxCNC refuses it: \"Dwell time missing with g4\")")
     if seconds < 0:

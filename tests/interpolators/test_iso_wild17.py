@@ -22,15 +22,16 @@ POINT_NOTE = ("dwell P with a decimal point read in milliseconds, as {} reads P 
               "and grbl: --dialect linuxcnc, it dwells 1000 times longer)")
 
 
-@pytest.mark.parametrize("context", [FANUC, HAAS])
-def test_a_dwell_p_with_a_decimal_point_read_in_milliseconds_is_noted(context):
-    prog = checked_iso(INTERCON, context)
+def test_a_dwell_p_with_a_decimal_point_read_in_milliseconds_is_noted():
+    prog = checked_iso(INTERCON, FANUC)
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == pytest.approx([0.003, 0.0005])
-    assert POINT_NOTE.format(context.dialect.name) + " x2" in prog.notes  # the G4 and the G82
+    assert POINT_NOTE.format("fanuc") + " x2" in prog.notes  # the G4 and the G82
 
 
-def test_the_same_dwells_read_in_seconds_where_p_is_seconds():
-    prog = checked_iso(INTERCON, LINUXCNC)
+@pytest.mark.parametrize("context", [LINUXCNC, HAAS])
+def test_the_same_dwells_read_in_seconds_where_p_is_seconds(context):
+    # Haas: a P with a decimal point is seconds (Haas mill operator's manual, G04: "G04 P10. is a dwell of 10 s")
+    prog = checked_iso(INTERCON, context)
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == pytest.approx([3.0, 0.5])
     assert not any("decimal point read in milliseconds" in n for n in prog.notes)
 

@@ -8,6 +8,7 @@ import pytest
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 ZERO = MachineContext()
@@ -60,3 +61,13 @@ def test_cycle_19_without_angles_but_with_f_says_that_the_axes_turn_back():
     assert turn.extra_target[1:3] == pytest.approx([0.0, 0.0])
     assert ("CYCL DEF 19 without angles: the tilted working plane is cancelled (the rotary axes turn to 0 at its F)"
             in prog.notes)
+
+
+def test_a_haas_dwell_p_with_a_decimal_point_is_seconds():
+    # Haas mill operator's manual, G04 Dwell: "G04 P10. is a dwell of 10 seconds", "G04 P10 is a dwell of 10
+    # milliseconds"; --dialect haas read both in ms (and noted P10. as a seconds post's). A cycle's P0.5 is
+    # seconds too, also for the next hole of the series (P sticky), and P500 stays 500 ms
+    prog = checked_iso("G20 G90 G17\nG04 P10\nG04 P10.\nG0 X1. Y1. Z0.1\nG82 X1. Y1. Z-0.2 R0.1 P0.5 F10.\n"
+                       "X2.\nG82 X3. Z-0.2 R0.1 P500\nG80\nM30\n", MachineContext().with_dialect("haas"))
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == pytest.approx([0.01, 10.0, 0.5, 0.5, 0.5])
+    assert not any("decimal point" in n for n in prog.notes)

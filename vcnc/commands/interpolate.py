@@ -42,7 +42,8 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
     """``--dialect``, ``--tool-table``, ``--subroutine-path``, ``--user-m-path`` and ``--initial-feed``, shared by
     the commands that read part programs."""
     parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl", "fadal"),
-                        help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, haas, fadal) "
+                        help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, fadal, haas "
+                             "without a decimal point) "
                              "(default: the machine's, else linuxcnc)")
     parser.add_argument("--tool-table", metavar="FILE",
                         help="tool table for G43 H, G41/G42 D and TOOL CALL n|\"NAME\": LinuxCNC's "
