@@ -790,6 +790,20 @@ def _poles_on_bounds(model: ReducedAxisModel, data: Data) -> list[str]:
     return out
 
 
+def bound_advice(on_bounds: list[str]) -> str:
+    """What to do about poles on the box (:func:`_poles_on_bounds`): widening helps a slow pole p of a loop
+    without integral action; a damping or frequency on its bound is not cured by p -> 0 (our reading: a 100 ms
+    CNC log put zeta on 0.2 and was advised to widen p), so the advice names the bound that binds."""
+    advice = []
+    if any(b.startswith("p_hz") for b in on_bounds):
+        advice.append("widen the bounds if the loop has no integral action (p -> 0)")
+    if any(not b.startswith("p_hz") for b in on_bounds):
+        advice.append("move a zeta or omega_n bound only where the loop is known to lie beyond it; otherwise the "
+                      "record does not show the loop's dynamics the reduced model needs (too slow a sample time, "
+                      "too little excitation) and its poles are not the loop's")
+    return "; ".join(advice)
+
+
 def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOptions, data: Data,
                  rounds: list[dict], plan: FoldPlan, counts: list[int]) -> ReducedAxisModel:
     T = data.T
@@ -831,7 +845,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
         drift = drift_left_in(model.fit)
         advice = (f"a drift of the measured channel against the commanded one ({drift['rate_um_min']:.4g} "
                   "um/min, fit.drift) holds them there: remove it (identify(..., drift='remove'), vcnc identify "
-                  "--drift remove)" if drift else "widen the bounds if the loop has no integral action (p -> 0)")
+                  "--drift remove)" if drift else bound_advice(on_bounds))
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
                                  "structure or the bounds do not fit these data; " + advice)
         log.warning("diagnosis: %s", validation["warning"])
@@ -883,6 +897,21 @@ _DRIFT_ADVICE = ("; a trend in time is a drift of the measured channel against t
                  "that the fit's slow pole imitates: vcnc identify --drift remove takes it out before the fit")
 
 
+def drift_advice(fit: dict) -> str:
+    """:data:`_DRIFT_ADVICE`, unless the fit already took the drift out or tried to (``fit['drift']``,
+    :func:`identification.measured_drift.fit_with_drift`): advising ``--drift remove`` after it predicted worse
+    sends the user in a circle (our reading; a hydraulic rig's record: drift out predicts 474 -> 527 um)."""
+    rec = fit.get("drift") or {}
+    if rec.get("removed"):
+        return ("; a trend in time remains after the measured channel's drift was taken out before the fit: the "
+                "model does not explain it")
+    if "rms_removed_um" in rec:
+        return (f"; the measured channel's drift was tried out of the fit and predicts {rec['rms_kept_um']:.4g} -> "
+                f"{rec['rms_removed_um']:.4g} um, not twice better: this trend in time is not a drift the fit can be "
+                "freed of, and the model does not explain it")
+    return _DRIFT_ADVICE
+
+
 def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: bool) -> dict[str, Any]:
     """Evidence on the final residual (:func:`identification.residual.residual_evidence`) and a statement."""
     from identification.residual import residual_evidence
@@ -897,7 +926,7 @@ def _unexplained(model: ReducedAxisModel, data: Data, plan: FoldPlan, stopped: b
         head = ("no effect of the vocabulary explains the remaining residual" if stopped
                 else "the remaining residual (effects stopped at max_effects)")
         ev["statement"] = f"{head}: RMS {ev['rms_um']:.3g} um, explained by {what}; spectral peaks {peaks}" + (
-            _DRIFT_ADVICE if "time" in hits else "")
+            drift_advice(model.fit) if "time" in hits else "")
     else:
         ev["statement"] = (f"the remaining residual (RMS {ev['rms_um']:.3g} um) shows no dependence on position, "
                            f"velocity, direction, acceleration or time; spectral peaks {peaks}")
