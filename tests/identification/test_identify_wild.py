@@ -20,7 +20,7 @@ from identification.diagnosis import bound_advice, drift_advice
 from identification.reduced_model import ReducedAxisModel
 from identification.segments import settled_start
 from identification.synthetic import FADAL_PID_X, synthetic_capture
-from vcnc.commands.identify import baseline_lines, closed_loop_poles_line, delay_lines
+from vcnc.commands.identify import baseline_lines, bound_lines, closed_loop_poles_line, delay_lines
 from vcnc.core.capture import Capture
 
 T = 1e-3
@@ -148,3 +148,16 @@ def test_an_unused_shift_names_the_models_it_compared():
         "um with the shift; not used: the exact-solver model fitted on the shifted reference predicts 1296 for 513 "
         "without the shift, not twice better (both before the output-error refinement; the final prediction is the "
         "one above))"]
+
+
+def test_p_on_the_widened_bound_is_a_loop_without_integral_action():
+    # EMPS, a LinuxCNC halscope trace: p on the 1 mHz bound the fit opened was a warning to move the bound
+    box = {"p_hz": (0.001, 500.0), "omega_n_hz": (0.2, 500.0), "zeta": (0.2, 2.0)}
+    model = dataclasses.replace(_model({}), poles={"omega_n_hz": 20.32, "zeta": 0.3874, "p_hz": 0.001}, bounds=box)
+    assert bound_lines(model) == ["p 0.001 Hz sits on the widened lower bound of its box: the loop shows no integral "
+                                  "action (p -> 0, a proportional position loop such as EMPS'; the slow pole is slower "
+                                  "than this record can tell and the model predicts as reported)"]
+    thesis = dataclasses.replace(model, poles={"omega_n_hz": 20.32, "zeta": 0.3874, "p_hz": 0.2},
+                                 bounds={**box, "p_hz": (0.2, 500.0)})
+    assert bound_lines(thesis) == ["warning: p 0.2 Hz sits on the lower bound of its box: the box, not the data, "
+                                   "placed it there (move the bound with --p-min-hz)"]

@@ -207,7 +207,12 @@ def bound_lines(model) -> list[str]:
     did not place it there, the box did; at the record's Nyquist frequency the loop may be faster than the record
     resolves (thesis Sec. 4.3: the box reaches the Nyquist frequency). A slow pole on its lower bound beside a
     drift the fit did not remove (:func:`drift_lines`) is the drift's doing: the line says so instead of advising
-    ``--p-min-hz``."""
+    ``--p-min-hz``. On the widened bound (:data:`identification.bounds.WIDE_P_MIN_HZ`, which the fit only opens when
+    the data put p on 0.2 Hz) p is a loop without integral action, as the diagnosis reads it too
+    (:func:`identification.diagnosis.diagnose` leaves it out of its bound warning): a note, not a warning to move the
+    bound (EMPS, a LinuxCNC halscope trace and a 100 ms CNC log were all told "the box, not the data, placed it
+    there")."""
+    from identification.bounds import WIDE_P_MIN_HZ
     from identification.measured_drift import drift_left_in
 
     drifting = drift_left_in(model.fit) is not None
@@ -224,6 +229,10 @@ def bound_lines(model) -> list[str]:
         elif drifting and key == "p_hz":
             out.append(f"warning: {what}: the measured channel's drift (above) holds it there; fit again with "
                        "--drift remove")
+        elif key == "p_hz" and side == 0 and model.bounds["p_hz"][0] <= WIDE_P_MIN_HZ:
+            out.append(f"p {shown} sits on the widened lower bound of its box: the loop shows no integral action "
+                       "(p -> 0, a proportional position loop such as EMPS'; the slow pole is slower than this record "
+                       "can tell and the model predicts as reported)")
         else:
             option = _BOUND_OPTIONS.get((key, side))
             out.append(f"warning: {what}: the box, not the data, placed it there"
