@@ -72,7 +72,7 @@ def test_a_model_worse_than_the_following_error_on_held_out_folds_is_called_so()
     model = dataclasses.replace(model, effects=[])
     lines = baseline_lines(_capture(xr, x), model, "x")
     assert lines[0] == ("naive predictions of the capture: the commanded position itself rms 141.4 um (the following "
-                        "error), delayed by 0 samples (0 s) rms 141.4 um; the model predicts 1.41 times better")
+                        "error), and no whole-sample delay of it predicts better; the model predicts 1.41 times better")
     assert lines[1] == ("warning: on its held-out folds the model predicts worse (180 um rms) than the commanded "
                         "position itself (141.4 um): what it fitted does not carry over to motion it was not fitted "
                         "on; do not take its poles as the loop's")

@@ -260,7 +260,8 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
     fe, pd, k = base["following_error_rms_um"], base["pure_delay_rms_um"], base["pure_delay_samples"]
     naive = min(fe, pd)
     line = (f"naive predictions of the capture: the commanded position itself rms {fe:.4g} {u} (the following "
-            f"error), delayed by {k} samples ({base['pure_delay_s']:.4g} s) rms {pd:.4g} {u}")
+            "error), " + (f"delayed by {k} samples ({base['pure_delay_s']:.4g} s) rms {pd:.4g} {u}" if k else
+                          "and no whole-sample delay of it predicts better"))
     if naive > 0.0 and rms > 0.0:
         line += f"; the model predicts {naive / rms:.3g} times better"
     out = [line]
