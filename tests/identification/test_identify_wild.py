@@ -16,7 +16,7 @@ import numpy as np
 
 from identification import identify
 from identification.dead_time import pure_delay_baseline
-from identification.diagnosis import bound_advice, drift_advice
+from identification.diagnosis import bound_advice, drift_advice, in_sample_warnings
 from identification.reduced_model import ReducedAxisModel
 from identification.segments import settled_start
 from identification.synthetic import FADAL_PID_X, synthetic_capture
@@ -161,3 +161,14 @@ def test_p_on_the_widened_bound_is_a_loop_without_integral_action():
                                  bounds={**box, "p_hz": (0.2, 500.0)})
     assert bound_lines(thesis) == ["warning: p 0.2 Hz sits on the lower bound of its box: the box, not the data, "
                                    "placed it there (move the bound with --p-min-hz)"]
+
+
+def test_in_sample_folds_are_named():
+    # EMPS and a TNCscope trace: every fold fell back to the full fit, its "held-out" RMS equal to the identification's
+    assert in_sample_warnings([], None) == []
+    assert in_sample_warnings([0, 1, 2, 3], None) == [
+        "the reduced model's held-out error on folds 1, 2, 3, 4 is its identification error there: no step fitted on "
+        "the other folds lowered their error, so it is no out-of-sample check"]
+    assert in_sample_warnings([], [2]) == [
+        "the final model's held-out error on fold 3 is its identification error there: no step fitted on the other "
+        "folds lowered their error, so it is no out-of-sample check"]
