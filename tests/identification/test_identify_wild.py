@@ -13,8 +13,10 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+import pytest
 
 from identification import identify
+from identification.capture_checks import check_jumps
 from identification.dead_time import pure_delay_baseline
 from identification.diagnosis import bound_advice, drift_advice, in_sample_warnings
 from identification.reduced_model import ReducedAxisModel
@@ -22,6 +24,7 @@ from identification.segments import settled_start
 from identification.synthetic import FADAL_PID_X, synthetic_capture
 from vcnc.commands.identify import baseline_lines, bound_lines, closed_loop_poles_line, delay_lines
 from vcnc.core.capture import Capture
+from vcnc.errors import IdentificationError
 
 T = 1e-3
 KEYS = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
@@ -172,3 +175,17 @@ def test_in_sample_folds_are_named():
     assert in_sample_warnings([], [2]) == [
         "the final model's held-out error on fold 3 is its identification error there: no step fitted on the other "
         "folds lowered their error, so it is no out-of-sample check"]
+
+
+def test_a_burst_of_vibration_is_no_jump_but_a_lasting_step_is():
+    # a SINUMERIK emergency-braking trace: +-10 um per 2 ms sample at 105 mm/s for 50 ms, refused as a 12 um jump
+    xr = 50.0 * (1.0 - np.cos(2.0 * np.pi * np.arange(2400) * T / 2.4))  # up to 131 mm/s, smooth
+    x = np.concatenate([np.zeros(6), xr[:-6]])
+    burst = x.copy()
+    burst[1200:1206] += np.array([0.0, -0.012, 0.002, -0.010, 0.001, 0.0])  # the position dips and comes back
+    check_jumps(xr, burst, T, "x", "trace.xml")
+    lasting = x.copy()
+    lasting[1200:] -= 0.012  # a glitch that shifts the position for good (less its neighbours' median step)
+    with pytest.raises(IdentificationError, match=r"trace.xml: axis 'x': the measured position jumps by -0.01166 mm "
+                                                  r"at sample 1200"):
+        check_jumps(xr, lasting, T, "x", "trace.xml")
