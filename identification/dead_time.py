@@ -36,7 +36,7 @@ import numpy as np
 
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 
-__all__ = ["delay_reference", "estimate_delay", "follow_lag", "DelayEstimate", "MAX_DELAY_S",
+__all__ = ["delay_reference", "estimate_delay", "follow_lag", "pure_delay_baseline", "DelayEstimate", "MAX_DELAY_S",
            "MIN_DELAY_SAMPLES", "FINEST_STEP_S", "LAG_STEP_S", "MAX_LEAD_SHARE"]
 
 #: Default half-width of the scan [s].
@@ -121,6 +121,39 @@ def delay_reference(reference: np.ndarray, samples: float) -> np.ndarray:
         return xr.copy()
     k = np.arange(xr.size, dtype=float) - float(samples)
     return np.interp(k, np.arange(xr.size, dtype=float), xr)
+
+
+#: Longest shift :func:`pure_delay_baseline` tries [s] (the hydraulic rig eha-1-1 lags 0.25 s, a TNCscope
+#: trace's reference leads by 0.11-0.14 s), and at most this share of the record.
+BASELINE_MAX_SHIFT_S = 1.0
+BASELINE_MAX_SHARE = 1.0 / 6.0
+
+
+def pure_delay_baseline(reference: np.ndarray, measured: np.ndarray, sample_time: float) -> dict:
+    """The two naive predictions of the measured position a model must beat: the commanded position itself
+    (its error is the following error ``x_ref - x``) and the commanded position delayed by the best whole number
+    of samples (a pure delay, :func:`delay_reference`; > 0 when the measured position lags).
+
+    Returns ``{"following_error_rms_um", "pure_delay_rms_um", "pure_delay_samples", "pure_delay_s"}``, RMS over the
+    whole record. Our reading: an engineer judges a model of the loop by how much of the error of these two it
+    explains; a model that predicts no better than a pure delay has learnt nothing of the loop's dynamics from
+    this record (a record sampled far slower than the loop responds, or a measured channel that is not the
+    loop's), whatever its poles. The shift is tried up to :data:`BASELINE_MAX_SHIFT_S` either way, at most
+    :data:`BASELINE_MAX_SHARE` of the record.
+    """
+    xr = np.asarray(reference, dtype=float)
+    x = np.asarray(measured, dtype=float)
+    n = x.size
+    rms0 = float(np.sqrt(np.mean((x - xr) ** 2)))
+    best, shift = rms0, 0
+    most = int(min(BASELINE_MAX_SHIFT_S / sample_time, n * BASELINE_MAX_SHARE))
+    for k in range(1, most + 1):
+        for s in (k, -k):
+            rms = float(np.sqrt(np.mean((x - delay_reference(xr, s)) ** 2)))
+            if rms < best:
+                best, shift = rms, s
+    return {"following_error_rms_um": rms0 * 1e3, "pure_delay_rms_um": best * 1e3, "pure_delay_samples": shift,
+            "pure_delay_s": shift * sample_time}
 
 
 @dataclasses.dataclass(frozen=True)

@@ -500,8 +500,10 @@ def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = 
 def _ee_candidate(ctx: SearchContext, effect: Effect, cols_tr: np.ndarray, evidence: dict) -> Candidate | None:
     """Candidate of a disturbance effect from its EE columns: the better of two starts."""
     rss, beta = ctx.ee_partial(-cols_tr)
-    a2 = ctx.model.parameters["a2"]
-    starts = [augment(ctx.model, list(ctx.model.elements) + [_with_basis_coef(effect, beta * a2)])]
+    with np.errstate(over="ignore", invalid="ignore"):  # an ill-posed column's coefficient: no start from it
+        coef = beta * ctx.model.parameters["a2"]
+    starts = ([augment(ctx.model, list(ctx.model.elements) + [_with_basis_coef(effect, coef)])]
+              if np.all(np.isfinite(coef)) else [])
     cs = ctx.ee_constrained_start(effect, -cols_tr, lambda c: _with_basis_coef(effect, c))
     if cs is not None:
         starts.append(cs)

@@ -162,7 +162,20 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     at_rest[0] |= abs(e[0]) <= tol
     ok = still & (dx <= SETTLED_SHARE * big) & at_rest
     hits = np.flatnonzero(ok)
+    if hits.size and hits[0] > 0:
+        hits = hits[hits < _last_two_way_start(xr, REST_STEP_SHARE * big)]
     return int(hits[0]) if hits.size and hits[0] <= MAX_DROPPED_SHARE * xr.size else None
+
+
+def _last_two_way_start(xr: np.ndarray, step: float) -> int:
+    """The last sample after which the reference still moves both ways (steps over ``step`` up and down), -1 if
+    none. Our reading: a cut at a rest after which the reference moves one way only, or not at all, leaves a record
+    the regression cannot use (its friction switch columns are zero, Eq. 3.11; a TNCscope trace cropped in motion
+    rested 60 % of its length after its last move, a halscope trace cropped in motion rested once between its
+    last two, opposite moves): :func:`settled_start` keeps only rests before it."""
+    d = np.diff(xr)
+    up, down = np.flatnonzero(d > step), np.flatnonzero(d < -step)
+    return int(min(up[-1], down[-1])) if up.size and down.size else -1
 
 
 def motion_segments(mask: np.ndarray) -> list[tuple[int, int]]:
