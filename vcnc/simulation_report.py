@@ -18,6 +18,10 @@ __all__ = ["summarize", "build_report", "moving_axes", "saturation_note", "resul
 
 log = logging.getLogger(__name__)
 
+#: What a summary records of the run (``Capture.meta`` of ``vcnc simulate``): a summary read alone says which
+#: program ran on which machine, with which feed profile and noise seed, and whether all of it ran.
+SIMULATED_KEYS = ("program", "machine", "profile", "seed", "truncated")
+
 
 def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
     """Axes whose commanded position changes by more than ``tol`` [mm]."""
@@ -25,7 +29,10 @@ def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
 
 
 def summarize(capture: Capture) -> dict[str, Any]:
-    """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``.
+    """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``, and what was
+    simulated, from the capture's ``meta`` where it records it: ``"program"`` (file name), ``"machine"``,
+    ``"profile"``, ``"seed"`` and, for a program cut by ``--max-seconds``, ``"truncated"`` (the note saying
+    where; without it the whole program ran).
 
     Tracking error e = x_r - x of the measured position, in 1/1000 of the axis unit: um on a linear
     axis, mdeg on a rotary one (the keys keep the ``_um`` of the summary contract). "contour" comes from
@@ -37,6 +44,7 @@ def summarize(capture: Capture) -> dict[str, Any]:
         "samples": len(capture),
         "sample_time": float(capture.meta.get("sample_time") or capture.sample_time),
         "axes": list(capture.axes),
+        **{k: capture.meta[k] for k in SIMULATED_KEYS if capture.meta.get(k) is not None},
         "tracking": {
             a: error_metrics(e[:, i]) for i, a in enumerate(capture.axes)
         },
@@ -130,7 +138,8 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     rep.table(
         ["axis", "max tracking error", "rms tracking error", "unit"],
         [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],
-        caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, seed {capture.meta.get('seed')}",
+        caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, "
+                f"{capture.meta.get('profile', 'trapezoid')} profile, seed {capture.meta.get('seed')}",
     )
     n = len(capture.axes)
     rows = 2 if capture.control is not None else 1

@@ -9,7 +9,14 @@ import json
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, read_program
+from vcnc.commands.interpolate import (
+    HINT_MAX_BYTES,
+    add_context_arguments,
+    interpolate_within,
+    print_program_notes,
+    program_context,
+    read_program,
+)
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
@@ -47,6 +54,39 @@ def run(args: argparse.Namespace) -> int:
             gc.enable()
 
 
+def read_for_machine(args: argparse.Namespace, machine):
+    """The program ``args.program`` read for ``machine`` (:func:`vcnc.commands.interpolate.read_program`).
+
+    The machine's context takes the words of its own axes only (``A180`` is an error on a machine without
+    an A axis), and the reader's error says which word, not how to run the program. When the program reads
+    with every axis letter (A B C U V W, as ``vcnc interpolate`` without a machine reads it), the error is
+    :func:`vcnc.facade.check_program_axes`'s instead: the line of the first move of the axis the machine
+    lacks, its axes, and how to add it (a built-in NAME+z, or an ``[axes.a]`` section in a machine file).
+    Otherwise, or for a program above ``HINT_MAX_BYTES`` (read once more only when it is small), the
+    reader's error stands."""
+    import dataclasses
+
+    from interpolators import load_program
+    from vcnc.core.axes import EXTRA_NAMES
+    from vcnc.core.errors import GCodeError
+    from vcnc.facade import check_program_axes
+
+    try:
+        return read_program(args, machine)
+    except GCodeError as exc:
+        path = Path(args.program)
+        context = program_context(args, machine)
+        if set(EXTRA_NAMES) <= set(context.extra_axes) or not path.is_file() \
+                or path.stat().st_size > HINT_MAX_BYTES:
+            raise
+        try:
+            wider = load_program(path, context=dataclasses.replace(context, extra_axes=EXTRA_NAMES))
+        except GCodeError:
+            raise exc from None
+        check_program_axes(wider, machine)
+        raise
+
+
 def _run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
@@ -55,7 +95,7 @@ def _run(args: argparse.Namespace) -> int:
     from vcnc.simulation_report import build_report, result_line, saturation_note, summarize
 
     machine = load_machine(args.machine)
-    program = read_program(args, machine)
+    program = read_for_machine(args, machine)
     print_program_notes(program, args.program)
     setpoints = interpolate_within(program, machine, args, command="simulate", max_samples=MAX_SAMPLES)
     if len(setpoints) < 2:  # a capture holds at least two samples
