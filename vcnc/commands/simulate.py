@@ -92,7 +92,7 @@ def _run(args: argparse.Namespace) -> int:
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
     from vcnc.facade import program_meta
-    from vcnc.simulation_report import build_report, result_line, saturation_note, summarize
+    from vcnc.simulation_report import build_report, feed_contour_line, result_line, saturation_note, summarize
 
     machine = load_machine(args.machine)
     program = read_for_machine(args, machine)
@@ -112,10 +112,10 @@ def _run(args: argparse.Namespace) -> int:
         # search are compiled loops that release the GIL (the pool is left, waiting for the writer, before
         # the temporary names are renamed or removed)
         writing = stack.enter_context(ThreadPoolExecutor(max_workers=1)).submit(capture.to_csv, cap_tmp)
-        summary = summarize(capture)
-        note = saturation_note(summary)
-        if note:
-            print(f"{args.program}: {note}")
+        summary = summarize(capture, program)
+        for line in (saturation_note(summary), feed_contour_line(summary)):
+            if line:
+                print(f"{args.program}: {line}")
         report = build_report(capture, summary) if args.report else None
         if report is not None:
             report.write(args.report)
