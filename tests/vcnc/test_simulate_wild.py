@@ -149,3 +149,33 @@ def test_no_feed_contour_entry_without_both_rapids_and_feed_moves(tmp_path, caps
     s = json.loads(js.read_text())
     assert s["contour"]["max_um"] > 0 and "contour_feed" not in s
     assert "feed moves" not in capsys.readouterr().out
+
+
+def test_a_dense_raster_colours_its_path_by_the_contour_error_a_short_path_magnifies_it(tmp_path):
+    # 1201 feed moves of a 0.2 mm stepover raster (a CAM finish pass): the error drawn x100 would cover it
+    raster = "G21 G90 G64\nG0 X0 Y0\nF3000\n" + "".join(
+        f"G1 X{20 * ((i + 1) // 2 % 2)} Y{0.2 * (i // 2):.1f}\n" for i in range(1, 1202)) + "M30\n"
+    for name, text, caption in [("raster.nc", raster, "its points coloured by the contour error"),
+                                ("plate.nc", "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 X0 Y0\nM30\n",
+                                 "with the contour error magnified")]:
+        prog = write(tmp_path, text, name=name)
+        rep = tmp_path / f"rep_{name}"
+        assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv"),
+                     "--report", str(rep)]) == 0
+        assert caption in (rep / "index.html").read_text() and (rep / "path.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(("option", "target", "said"), [
+    ("-o", "folder", "-o {}: a folder of that name exists; expected a file name for the capture file (CSV)"),
+    ("--json", "folder", "--json {}: a folder of that name exists; expected a file name for the summary file"),
+    ("--report", "file", "--report {}: a file of that name exists; expected a folder for the report (made if absent)"),
+])
+def test_an_output_that_cannot_be_written_is_refused_before_the_run(tmp_path, capsys, option, target, said):
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nM30\n")
+    there = tmp_path / "there"
+    there.mkdir() if target == "folder" else there.write_text("keep\n")
+    args = {"-o": str(tmp_path / "c.csv"), "--json": None, "--report": None, option: str(there)}
+    argv = ["simulate", str(prog), "--machine", "fadal-pid", *[x for k, v in args.items() if v for x in (k, v)]]
+    assert main(argv) == 2
+    assert capsys.readouterr().err == f"error: {said.format(there)}\n"
+    assert not (tmp_path / "c.csv").exists() and (target == "folder" or there.read_text() == "keep\n")
