@@ -54,6 +54,21 @@ def run(args: argparse.Namespace) -> int:
             gc.enable()
 
 
+def check_outputs(args: argparse.Namespace) -> None:
+    """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked: ``-o`` or
+    ``--json`` naming a folder, ``--report`` naming a file (a long program would otherwise run to its end and
+    fail on the rename, with an internal error)."""
+    from vcnc.core.errors import InputError
+
+    for option, name, what in (("-o", args.output, "the capture file (CSV)"),
+                               ("--json", args.json, "the summary file")):
+        if name and Path(name).is_dir():
+            raise InputError(f"{option} {name}: a folder of that name exists; expected a file name for {what}")
+    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
+        raise InputError(f"--report {args.report}: a file of that name exists; expected a folder for the report "
+                         "(made if absent)")
+
+
 def read_for_machine(args: argparse.Namespace, machine):
     """The program ``args.program`` read for ``machine`` (:func:`vcnc.commands.interpolate.read_program`).
 
@@ -94,6 +109,7 @@ def _run(args: argparse.Namespace) -> int:
     from vcnc.facade import program_meta
     from vcnc.simulation_report import build_report, feed_contour_line, result_line, saturation_note, summarize
 
+    check_outputs(args)
     machine = load_machine(args.machine)
     program = read_for_machine(args, machine)
     print_program_notes(program, args.program)
