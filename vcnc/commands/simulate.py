@@ -74,11 +74,11 @@ def read_for_machine(args: argparse.Namespace, machine):
 
     The machine's context takes the words of its own axes only (``A180`` is an error on a machine without
     an A axis), and the reader's error says which word, not how to run the program. When the program reads
-    with every axis letter (A B C U V W, as ``vcnc interpolate`` without a machine reads it), the error is
-    :func:`vcnc.facade.check_program_axes`'s instead: the line of the first move of the axis the machine
-    lacks, its axes, and how to add it (a built-in NAME+z, or an ``[axes.a]`` section in a machine file).
-    Otherwise, or for a program above ``HINT_MAX_BYTES`` (read once more only when it is small), the
-    reader's error stands."""
+    with every axis letter (A B C U V W, as ``vcnc interpolate`` without a machine reads it) and
+    :func:`vcnc.facade.check_program_axes` then finds a move of an axis the machine lacks, the reader's error
+    is kept and its "expected" names that check's way forward too: a machine with the axis (a built-in
+    NAME+z, or an ``[axes.a]`` section in a machine file). Otherwise, or for a program above
+    ``HINT_MAX_BYTES`` (read once more only when it is small), the reader's error stands as it is."""
     import dataclasses
 
     from interpolators import load_program
@@ -98,7 +98,11 @@ def read_for_machine(args: argparse.Namespace, machine):
             wider = load_program(path, context=dataclasses.replace(context, extra_axes=EXTRA_NAMES))
         except GCodeError:
             raise exc from None
-        check_program_axes(wider, machine)
+        try:
+            check_program_axes(wider, machine)
+        except GCodeError as lacking:
+            exc.expected = f"{exc.expected}, or {lacking.expected}" if exc.expected else lacking.expected
+            exc.args = (str(exc),)
         raise
 
 
