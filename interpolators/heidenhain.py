@@ -225,11 +225,10 @@ from interpolators.heidenhain_transforms import (
 )
 from interpolators.heidenhain_words import SourceBlock, read_value, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, fill_extra
-from interpolators.program import Block, Program, end_at_rest
+from interpolators.program import Block, Program, end_at_rest, program_axes
 from interpolators.tcp import part_point
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import Line
-from vcnc.core.axes import AXIS_NAMES
 from vcnc.core.text import BinaryDataError
 
 __all__ = ["parse_heidenhain", "looks_like_heidenhain", "Machine"]
@@ -573,7 +572,7 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
     if m.extra_used:
         m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
-    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in m.used)  # x y z, then a b c u v w (3 + i)
+    axes = program_axes(m.used, m.blocks)
     return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
 
 

@@ -191,8 +191,7 @@ from interpolators.iso_text import (
 )
 from interpolators.iso_transforms import Frame, mirror_forbids
 from interpolators.iso_words import Word, WordError, fail_words
-from interpolators.program import Block, Message, Program, end_at_rest
-from vcnc.core.axes import AXIS_NAMES
+from interpolators.program import Block, Message, Program, end_at_rest, program_axes
 
 __all__ = ["parse_iso"]
 
@@ -456,7 +455,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
-    axes = tuple(a for i, a in enumerate(AXIS_NAMES) if i in used)
+    axes = program_axes(used, blocks)
     if st.extra_used:
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),

@@ -7,10 +7,10 @@ import dataclasses
 import numpy as np
 
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path
-from vcnc.core.axes import EXTRA_NAMES
+from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import InputError
 
-__all__ = ["Block", "Message", "Program", "BLOCK_KINDS", "MESSAGE_KINDS", "end_at_rest"]
+__all__ = ["Block", "Message", "Program", "BLOCK_KINDS", "MESSAGE_KINDS", "end_at_rest", "program_axes"]
 
 #: Kinds of executable blocks.
 BLOCK_KINDS: tuple[str, ...] = ("rapid", "line", "arc", "dwell")
@@ -176,6 +176,22 @@ def end_at_rest(blocks: list[Block]) -> None:
     """
     if blocks and not blocks[-1].exact_stop:
         blocks[-1] = dataclasses.replace(blocks[-1], exact_stop=True)
+
+
+def program_axes(used: set[int], blocks: list[Block]) -> tuple[str, ...]:
+    """The axes a program uses, canonical order (``vcnc.core.axes.AXIS_NAMES``): those its words wrote (``used``,
+    indices into ``AXIS_NAMES``) and any of X, Y, Z that a block moves all the same. A reader adds an axis where a
+    word writes it; a move the reader makes itself (a cycle's pattern points, a probing cycle's approach) could
+    leave one out, and a simulation of the program would then drop that axis' motion without a word (a Heidenhain
+    CYCL CALL PAT drilled at its X Y points on a Z-only machine). A full circle ends where it starts: its plane's
+    axes count by its segment. Only the linear axes not already named are looked for, so a program that names X, Y
+    and Z costs nothing."""
+    moved = set(used)
+    for i in range(3):
+        if i not in moved and any(b.target[i] != b.start[i] or isinstance(b.segment, Arc) and i in b.segment.plane_axes
+                                  for b in blocks):
+            moved.add(i)
+    return tuple(a for i, a in enumerate(AXIS_NAMES) if i in moved)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)

@@ -14,9 +14,13 @@ from vcnc.core.metrics import error_metrics, true_runs
 if TYPE_CHECKING:
     from vcnc.report import Report
 
-__all__ = ["summarize", "build_report", "moving_axes", "saturation_note", "result_line"]
+__all__ = ["summarize", "build_report", "moving_axes", "saturation_note", "result_line", "feed_contour_line"]
 
 log = logging.getLogger(__name__)
+
+#: What a summary records of the run (``Capture.meta`` of ``vcnc simulate``): a summary read alone says which
+#: program ran on which machine, with which feed profile and noise seed, and whether all of it ran.
+SIMULATED_KEYS = ("program", "machine", "profile", "seed", "truncated")
 
 
 def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
@@ -24,19 +28,29 @@ def moving_axes(capture: Capture, *, tol: float = 1e-9) -> list[str]:
     return [a for i, a in enumerate(capture.axes) if np.ptp(capture.reference[:, i]) > tol]
 
 
-def summarize(capture: Capture) -> dict[str, Any]:
-    """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``.
+def summarize(capture: Capture, program: Any = None) -> dict[str, Any]:
+    """``{"samples", "sample_time", "axes", "tracking": {a: {"max_um", "rms_um"}}, "contour"?}``, and what was
+    simulated, from the capture's ``meta`` where it records it: ``"program"`` (file name), ``"machine"``,
+    ``"profile"``, ``"seed"`` and, for a program cut by ``--max-seconds``, ``"truncated"`` (the note saying
+    where; without it the whole program ran).
 
     Tracking error e = x_r - x of the measured position, in 1/1000 of the axis unit: um on a linear
     axis, mdeg on a rotary one (the keys keep the ``_um`` of the summary contract). "contour" comes from
     ``vcnc.contour.contour_metrics(capture)`` for two or more moving axes; it is left out (and the
-    reason logged) when that module is not available or the capture has no programmed path.
+    reason logged) when that module is not available or the capture has no programmed path. With the
+    ``program`` the capture was simulated from (an :class:`interpolators.Program`), "contour_feed" is the
+    same error over the samples of its feed moves only (G1/G2/G3, TNC L/C/CR at F: the cutting; rapids, G0
+    and FMAX, left out), as ``vcnc compare`` measures it (``vcnc.contour.feed_segments``); left out when the
+    program has no rapid (it equals "contour") or no feed move. Our reading: the thesis' contouring tests
+    are feed moves, and a rapid's deviation, often the largest of a program (a PID loop lags most at the
+    rapid rate), says nothing of the part.
     """
     e = capture.reference - capture.measured
     out: dict[str, Any] = {
         "samples": len(capture),
         "sample_time": float(capture.meta.get("sample_time") or capture.sample_time),
         "axes": list(capture.axes),
+        **{k: capture.meta[k] for k in SIMULATED_KEYS if capture.meta.get(k) is not None},
         "tracking": {
             a: error_metrics(e[:, i]) for i, a in enumerate(capture.axes)
         },
@@ -47,12 +61,36 @@ def summarize(capture: Capture) -> dict[str, Any]:
     if len(moving_axes(capture)) >= 2:
         from vcnc.contour import contour_metrics
 
-        c = contour_metrics(capture)
+        c = contour_metrics(capture) if program is None else None
+        feed = _feed_contour(capture, program) if program is not None else None
+        if feed is not None:
+            c, fc = feed
+            if fc is not None:
+                out["contour_feed"] = fc
         if c is None:
             log.warning("contour error left out of the summary: the setpoints carry no programmed path")
         else:
             out["contour"] = {"max_um": float(c["max_um"]), "rms_um": float(c["rms_um"])}
     return out
+
+
+def _feed_contour(capture: Capture, program: Any) -> tuple[dict[str, float], dict[str, float] | None] | None:
+    """The contour error's metrics over every sample and over those of ``program``'s feed moves (None when the
+    program has no feed move or no rapid), from one contour search; None without a path or two moving linear
+    axes (:func:`vcnc.contour.contour_metrics`)."""
+    from vcnc.contour import contour_error, feed_segments
+    from vcnc.contour import moving_axes as moving_linear
+
+    if capture.path is None or len(moving_linear(capture.reference, capture.axes)) < 2:
+        return None
+    flags = feed_segments(capture.path, program)
+    ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference, t=capture.t,
+                       include_segments=flags)
+    every = error_metrics(ce.error)
+    if flags is None or flags.all() or ce.include is None or not ce.include.any():
+        return every, None
+    fm = error_metrics(ce.error[ce.include])
+    return every, {"max_um": float(fm["max_um"]), "rms_um": float(fm["rms_um"])}
 
 
 def _saturation(capture: Capture) -> dict[str, dict[str, float]]:
@@ -109,6 +147,16 @@ def result_line(summary: dict[str, Any]) -> str:
     return "; ".join(parts)
 
 
+def feed_contour_line(summary: dict[str, Any]) -> str | None:
+    """The contour error of the feed moves (``summary["contour_feed"]``) in words, beside that of every move,
+    or None when the summary has no such entry (no rapid, or no feed move)."""
+    fc, c = summary.get("contour_feed"), summary.get("contour")
+    if not fc or not c:
+        return None
+    return (f"contour error on the feed moves (rapids left out): max {fc['max_um']:.3g} um, rms {fc['rms_um']:.3g} um "
+            f"(every move: max {c['max_um']:.3g} um)")
+
+
 def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     """A :class:`vcnc.report.Report` of a simulation: the summary table, ``tracking.png`` (error
     [um] and control [V] per axis) and, for two or more moving axes, ``path.png`` (commanded path
@@ -124,13 +172,14 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     rep.summary = summary
     if capture.meta.get("truncated"):
         rep.text(f"{capture.meta.get('program', 'the program')}: {capture.meta['truncated']}")
-    note = saturation_note(summary)
-    if note:
-        rep.text(note)
+    for line in (saturation_note(summary), feed_contour_line(summary)):
+        if line:
+            rep.text(line)
     rep.table(
         ["axis", "max tracking error", "rms tracking error", "unit"],
         [[a, s["max_um"], s["rms_um"], axis_unit(a, small=True)] for a, s in summary["tracking"].items()],
-        caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, seed {capture.meta.get('seed')}",
+        caption=f"{summary['samples']} samples at Ts = {summary['sample_time']:g} s, "
+                f"{capture.meta.get('profile', 'trapezoid')} profile, seed {capture.meta.get('seed')}",
     )
     n = len(capture.axes)
     rows = 2 if capture.control is not None else 1
@@ -153,10 +202,53 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     fig.tight_layout()
     rep.figure("tracking", fig, caption="tracking error and control signal per axis")
     mov = [a for a in moving_axes(capture) if a not in ROTARY_AXES]  # the path of the linear axes
-    if len(mov) >= 2:
+    if len(mov) >= 2 and summary.get("contour") and len(capture.path) > DENSE_SEGMENTS:
+        rep.figure("path", _dense_path_figure(capture, summary, mov),
+                   caption=f"path of axes {mov[0]}, {mov[1]}, its points coloured by the contour error")
+    elif len(mov) >= 2:
         fig, gain, what = _path_figure(capture, summary, mov)
         rep.figure("path", fig, caption=f"path of axes {mov[0]}, {mov[1]} with the {what} magnified {gain:g} times")
     return rep
+
+
+#: Segments of a programmed path above which ``path.png`` colours the path by its contour error instead of
+#: drawing the magnified deviation beside it: a CAM raster's passes lie closer than the magnified error
+#: (corpus 0274, wild w022: 0.2-0.5 mm stepover, the error drawn x100 is 5 mm), which then covers the path
+#: in one block of colour (our reading of the figure, seen on a 4000 s program).
+DENSE_SEGMENTS = 1000
+
+#: Points drawn in the coloured path: the samples in as many stretches, the largest error of each.
+DENSE_POINTS = 200_000
+
+
+def _dense_path_figure(capture: Capture, summary: dict[str, Any], mov: list[str]) -> Any:
+    """The commanded path in the first two moving linear axes, grey, with its samples coloured by the contour
+    error [um] (the largest of each of at most :data:`DENSE_POINTS` stretches of samples, so that no peak is
+    lost), largest drawn last."""
+    import matplotlib.pyplot as plt
+
+    from vcnc.contour import contour_error
+
+    i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
+    r = capture.reference[:, [i, j]]
+    ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference, t=capture.t)
+    err = np.abs(ce.error) * 1e3
+    k = -(-len(err) // DENSE_POINTS)
+    pad = np.concatenate([err, np.full(-len(err) % k, -1.0)]).reshape(-1, k)
+    idx = np.arange(pad.shape[0]) * k + np.argmax(pad, axis=1)
+    idx = idx[np.argsort(err[idx], kind="stable")]
+    fig, ax = plt.subplots(figsize=(7, 6))
+    ax.plot(r[:, 0], r[:, 1], lw=0.3, color="0.75", label="commanded")
+    dots = ax.scatter(r[idx, 0], r[idx, 1], c=err[idx], s=1.5, cmap="viridis", rasterized=True)
+    fig.colorbar(dots, ax=ax, label="contour error [um]")
+    ax.set_xlabel(f"{mov[0]} [mm]")
+    ax.set_ylabel(f"{mov[1]} [mm]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.set_title(f"path in {mov[0]}, {mov[1]} coloured by the contour error in {', '.join(mov)} "
+                 f"(max {summary['contour']['max_um']:.2f} um)", fontsize=9)
+    fig.tight_layout()
+    return fig
 
 
 def _path_figure(capture: Capture, summary: dict[str, Any], mov: list[str]) -> tuple[Any, float, str]:

@@ -9,7 +9,14 @@ import json
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from vcnc.commands.interpolate import add_context_arguments, interpolate_within, print_program_notes, read_program
+from vcnc.commands.interpolate import (
+    HINT_MAX_BYTES,
+    add_context_arguments,
+    interpolate_within,
+    print_program_notes,
+    program_context,
+    read_program,
+)
 
 HELP = "simulate a part program on a virtual machine (capture CSV, summary JSON, report)"
 
@@ -47,15 +54,68 @@ def run(args: argparse.Namespace) -> int:
             gc.enable()
 
 
+def check_outputs(args: argparse.Namespace) -> None:
+    """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked: ``-o`` or
+    ``--json`` naming a folder, ``--report`` naming a file (a long program would otherwise run to its end and
+    fail on the rename, with an internal error)."""
+    from vcnc.core.errors import InputError
+
+    for option, name, what in (("-o", args.output, "the capture file (CSV)"),
+                               ("--json", args.json, "the summary file")):
+        if name and Path(name).is_dir():
+            raise InputError(f"{option} {name}: a folder of that name exists; expected a file name for {what}")
+    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
+        raise InputError(f"--report {args.report}: a file of that name exists; expected a folder for the report "
+                         "(made if absent)")
+
+
+def read_for_machine(args: argparse.Namespace, machine):
+    """The program ``args.program`` read for ``machine`` (:func:`vcnc.commands.interpolate.read_program`).
+
+    The machine's context takes the words of its own axes only (``A180`` is an error on a machine without
+    an A axis), and the reader's error says which word, not how to run the program. When the program reads
+    with every axis letter (A B C U V W, as ``vcnc interpolate`` without a machine reads it) and
+    :func:`vcnc.facade.check_program_axes` then finds a move of an axis the machine lacks, the reader's error
+    is kept and its "expected" names that check's way forward too: a machine with the axis (a built-in
+    NAME+z, or an ``[axes.a]`` section in a machine file). Otherwise, or for a program above
+    ``HINT_MAX_BYTES`` (read once more only when it is small), the reader's error stands as it is."""
+    import dataclasses
+
+    from interpolators import load_program
+    from vcnc.core.axes import EXTRA_NAMES
+    from vcnc.core.errors import GCodeError
+    from vcnc.facade import check_program_axes
+
+    try:
+        return read_program(args, machine)
+    except GCodeError as exc:
+        path = Path(args.program)
+        context = program_context(args, machine)
+        if set(EXTRA_NAMES) <= set(context.extra_axes) or not path.is_file() \
+                or path.stat().st_size > HINT_MAX_BYTES:
+            raise
+        try:
+            wider = load_program(path, context=dataclasses.replace(context, extra_axes=EXTRA_NAMES))
+        except GCodeError:
+            raise exc from None
+        try:
+            check_program_axes(wider, machine)
+        except GCodeError as lacking:
+            exc.expected = f"{exc.expected}, or {lacking.expected}" if exc.expected else lacking.expected
+            exc.args = (str(exc),)
+        raise
+
+
 def _run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
     from vcnc.engine.machine import load_machine
     from vcnc.facade import program_meta
-    from vcnc.simulation_report import build_report, result_line, saturation_note, summarize
+    from vcnc.simulation_report import build_report, feed_contour_line, result_line, saturation_note, summarize
 
+    check_outputs(args)
     machine = load_machine(args.machine)
-    program = read_program(args, machine)
+    program = read_for_machine(args, machine)
     print_program_notes(program, args.program)
     setpoints = interpolate_within(program, machine, args, command="simulate", max_samples=MAX_SAMPLES)
     if len(setpoints) < 2:  # a capture holds at least two samples
@@ -72,10 +132,10 @@ def _run(args: argparse.Namespace) -> int:
         # search are compiled loops that release the GIL (the pool is left, waiting for the writer, before
         # the temporary names are renamed or removed)
         writing = stack.enter_context(ThreadPoolExecutor(max_workers=1)).submit(capture.to_csv, cap_tmp)
-        summary = summarize(capture)
-        note = saturation_note(summary)
-        if note:
-            print(f"{args.program}: {note}")
+        summary = summarize(capture, program)
+        for line in (saturation_note(summary), feed_contour_line(summary)):
+            if line:
+                print(f"{args.program}: {line}")
         report = build_report(capture, summary) if args.report else None
         if report is not None:
             report.write(args.report)
