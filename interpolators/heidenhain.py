@@ -1528,6 +1528,10 @@ def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, 
     m.transform = t
 
 
+#: A word of ``CYCL DEF 19.1``: an angle, the feed or the set-up clearance, each followed by its value.
+_TILT_WORD = re.compile(r"\s*(ABST|[ABCF])(?=\s*[+-]?\s*[\d.Q(])", re.I)
+
+
 def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock) -> None:
     """``CYCL DEF 19.1 A.. B.. C.. [F..] [ABST..]``: cycle 19 WORKING PLANE (TNC 640 cycle programming
     manual, "WORKING PLANE (Cycle 19, software option)"). Without angles, or with all 0, it cancels the
@@ -1539,15 +1543,20 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock)
     machines that position the rotary axes automatically): as PLANE .. MOVE DIST<ABST> F<F>, the point ABST
     ahead of the tool tip keeping its place on the part (our reading of the cycle's set-up clearance)."""
     angles: dict[str, float] = {}
-    for am in re.finditer(r"(?<![A-Z])([ABC])(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
-        angles[am.group(1).upper()] = read_value(rest, am.end(), where, m.params, what=am.group(1), column0=col)[0]
     auto: dict[str, float] = {}
-    for wm in re.finditer(r"(?<![A-Z])(F|ABST)(?=\s*[+-]?\s*[\d.Q(])", rest, re.I):
+    pos = 0
+    while rest[pos:].strip():
+        wm = _TILT_WORD.match(rest, pos)
+        if wm is None:  # a word the cycle has not (F MAX, MB): named here, not as the next move's error
+            at = len(rest) - len(rest[pos:].lstrip())
+            where.fail(f"{rest[at:].split()[0]!r} is no word of CYCL DEF 19.1", column=col + at,
+                       text=rest[at:].split()[0], expected="CYCL DEF 19.1 A.. B.. C.. [F<feed>] [ABST<clearance>]")
         word = wm.group(1).upper()
-        auto[word], end = read_value(rest, wm.end(), where, m.params, what=word, column0=col)
-        if word == "F" and not auto[word] > 0:
-            where.fail("cycle 19: the feed F of the rotary axes must be > 0", column=col + wm.start(),
-                       text=rest[wm.start():end].strip(), expected="F > 0 [mm/min] (the cycle's 'Feed rate? F=')")
+        value, pos = read_value(rest, wm.end(), where, m.params, what=word, column0=col)
+        (angles if word in "ABC" else auto)[word] = value
+        if word == "F" and not value > 0:
+            where.fail("cycle 19: the feed F of the rotary axes must be > 0", column=col + wm.start(1),
+                       text=rest[wm.start(1):pos].strip(), expected="F > 0 [mm/min] (the cycle's 'Feed rate? F=')")
     tilted = any(v != 0.0 for v in angles.values())
     kin = m.context.kinematics
     if kin is None:

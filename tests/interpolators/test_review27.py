@@ -71,3 +71,14 @@ def test_a_haas_dwell_p_with_a_decimal_point_is_seconds():
                        "X2.\nG82 X3. Z-0.2 R0.1 P500\nG80\nM30\n", MachineContext().with_dialect("haas"))
     assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == pytest.approx([0.01, 10.0, 0.5, 0.5, 0.5])
     assert not any("decimal point" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize("words, column, got", [("B+10 C+90 F MAX", 25, "F"), ("B+10 C+90 FMAX", 25, "FMAX"),
+                                                ("B+10 C+90 F1000 MB 50", 31, "MB")])
+def test_a_word_cycle_19_has_not_is_named_at_the_cycle(words, column, got):
+    # 'F MAX' (the cycle's feed takes a number) was skipped, the rotary axes left where they were, and the error
+    # blamed the next move ('while the rotary axes are not at its positions'); 'MB 50' was dropped without a word
+    with pytest.raises(GCodeError, match=rf"t.h:5:{column}: '{got}' is no word of CYCL DEF 19.1; expected CYCL DEF "
+                                         r"19.1 A.. B.. C.. \[F<feed>\] \[ABST<clearance>\]"):
+        heidenhain(f"TOOL CALL 1 Z S2000\nL Z+100 R0 FMAX M91\nCYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 {words}\n"
+                   "L X+10 Y+10 R0 FMAX", TILT)
