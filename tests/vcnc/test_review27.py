@@ -26,3 +26,15 @@ def test_mtconnect_samples_with_a_namespace_prefix_are_named(tmp_path, encoding,
         read_capture(f)
     msg = str(err.value)
     assert "its position samples: Xact (ACTUAL) x1, Xcmd (COMMANDED) x1. vcnc identifies" in msg
+
+
+@pytest.mark.parametrize("root, what", [("MTConnectDevices", "devices document (an agent's /probe answer"),
+                                        ("m:MTConnectError", "error document (an agent's answer to a request it")])
+def test_an_mtconnect_probe_or_error_document_is_named(tmp_path, root, what):
+    # an agent's /probe answer was refused as "an XML file with root <MTConnectDevices>, not a SINUMERIK trace"
+    f = tmp_path / "probe.xml"
+    f.write_text(f'<?xml version="1.0"?>\n<{root} xmlns:m="urn:mtconnect.org:{root[-7:]}:1.3"><Header/></{root}>\n')
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert str(err.value).startswith(f"{f}: an MTConnect {what}")
+    assert "SINUMERIK trace (<traceSession>" not in str(err.value)

@@ -12,7 +12,8 @@ rate (tens to hundreds of ms; an Okuma agent's streams seen in tracewild5 hold `
 200 ms apart), not at the control's servo rate, and a commanded position is rarely among them. vcnc names the
 document and the positions it holds instead of reading it (our reading: a wrong reading of such data as a trace
 would be worse than a question); a trace of the control's own (TNCscope, SINUMERIK trace, a drive's scope) is
-what identification needs.
+what identification needs. The agent's other response documents, ``MTConnectDevices`` (``/probe``),
+``MTConnectAssets`` and ``MTConnectError``, hold no observation and are named as what they are too.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from __future__ import annotations
 import re
 from collections import Counter
 
-__all__ = ["looks_like_shdr", "streams_reason", "shdr_reason"]
+__all__ = ["looks_like_shdr", "streams_reason", "shdr_reason", "document_reason"]
 
 #: A position sample, also with a namespace prefix (``<m:Position ..>``, as the root ``<m:MTConnectStreams>``).
 _SAMPLE = re.compile(r"<(?:[A-Za-z_][\w.-]*:)?(Position|PathPosition)\b([^>]*)>")
@@ -67,3 +68,24 @@ def shdr_reason(text: str) -> str:
             "on change at the adapter's rate, not a trace sampled at the control's servo rate; keys: "
             f"{list(keys)[:20]}. vcnc identifies a drive from its control's or drive's own trace of a commanded and a "
             "measured position")
+
+
+#: The agent's other answers (MTConnect Standard, Part 1 "Overview and Fundamentals", the response documents):
+#: none holds an observation.
+_DOCUMENTS = {
+    "MTConnectDevices": "an agent's /probe answer: the machine's components and data items, no observations",
+    "MTConnectAssets": "an agent's /assets answer: tools, programs or fixtures, no observations",
+    "MTConnectError": "an agent's answer to a request it refused, no observations",
+}
+
+
+def document_reason(root: str) -> str | None:
+    """Why an MTConnect response document other than streams is not read (``root``: its root element, without a
+    namespace prefix), or None for another root."""
+    what = _DOCUMENTS.get(root)
+    if what is None:
+        return None
+    return (f"an MTConnect {root[len('MTConnect'):].lower()} document ({what}); an agent's /sample answer (a streams "
+            "document) holds the observations, taken on change at the agent's rate, which is no servo trace either. "
+            "vcnc identifies a drive from its control's or drive's own trace (TNCscope, SINUMERIK trace, a drive's "
+            "scope) of a commanded and a measured position")
