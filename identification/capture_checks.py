@@ -431,12 +431,43 @@ def check_jumps(reference: np.ndarray, measured: np.ndarray, sample_time: float,
     resolution = float(np.min(dx[dx > 0])) if np.any(dx > 0) else 0.0
     noise = 1.4826 * float(np.median(np.abs(np.diff(x, 3)))) / math.sqrt(20.0)  # white noise's third difference
     scale = max(float(np.max(np.abs(np.diff(xr, 2)))), 10.0 * noise, 3.0 * resolution)
-    lasting = _lasting(jx)  # the largest lasting step: a larger burst elsewhere, which passes, must not hide it
+    d2 = np.abs(np.diff(x, 2))  # d2[i] about sample i + 1
+    # the largest lasting step among quiet neighbours: a larger burst elsewhere, which passes, must not hide it, and a
+    # step within a burst is the burst's
+    lasting = _lasting(jx) & (sx > JUMP_FACTOR * scale) if scale > 0 else np.zeros(sx.size, bool)
+    lasting[lasting] = [_quiet(d2, k - 1, k + 1, 0.25 * sx[k]) for k in np.flatnonzero(lasting)]
     k = int(np.argmax(np.where(lasting, sx, 0.0)))
-    if scale > 0 and sx[k] > JUMP_FACTOR * scale and lasting[k]:
+    if lasting[k]:
         raise IdentificationError(_jump_message(axis, "measured", float(jx[k]), k, sample_time) + (
             f" (its velocity steps {sx[k] / scale:.3g} times as far in one sample as the commanded one's "
             "ever does)"), file=src)
+    spike = _lone_spike(d2, jx, JUMP_FACTOR * scale) if scale > 0 else None
+    if spike is not None:
+        raise IdentificationError(
+            f"axis {axis!r}: the measured position leaves its path by {abs(float(jx[spike])):.4g} mm at sample "
+            f"{spike + 1} (t = {(spike + 1) * sample_time:.6g} s from the record's start) and is back at the next "
+            "sample, its neighbours quiet: a glitch of the trace (a corrupted or misplaced sample), which no loop "
+            "model explains; replace that sample by its neighbours' mean, or cut the record there", file=src)
+
+
+def _quiet(d2: np.ndarray, lo: int, hi: int, level: float) -> bool:
+    """Whether the position's second difference ``d2`` (``d2[i]`` about sample ``i + 1``) stays under ``level``
+    within ``LASTING_SAMPLES`` before ``lo`` and after ``hi`` (``d2[lo:hi]`` is the event's own)."""
+    around = np.concatenate((d2[max(0, lo - LASTING_SAMPLES):max(0, lo)], d2[hi:hi + LASTING_SAMPLES]))
+    return not np.any(around >= level)
+
+
+def _lone_spike(d2: np.ndarray, steps: np.ndarray, threshold: float) -> int | None:
+    """The step into a lone spike of the measured position (its sample is the next), if any: a step departing beyond
+    ``threshold`` [mm] (``steps``: :func:`_velocity_steps`) answered by an opposite one at the next sample (they
+    cancel to within a quarter), the position's second difference ``d2`` quiet around it (:func:`_quiet`, a quarter
+    of the step). Our reading: a single corrupted sample; a burst of vibration or sampling jitter moves its
+    neighbours too and passes."""
+    for k in np.flatnonzero(np.abs(steps[:-1]) > threshold):
+        a, b = float(steps[k]), float(steps[k + 1])
+        if a * b < 0 and abs(a + b) <= 0.25 * abs(a) and _quiet(d2, k - 1, k + 2, 0.25 * abs(a)):
+            return int(k)
+    return None
 
 
 #: Samples either side of a measured step over which :func:`_lasting` sums its velocity's departures [-].

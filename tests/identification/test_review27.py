@@ -41,3 +41,21 @@ def test_pure_delay_baseline_equals_the_best_delayed_reference():
         assert base["pure_delay_samples"] == s == round(lag / T)
         assert base["pure_delay_rms_um"] == pytest.approx(rms[s] * 1e3, rel=1e-12)
         assert base["following_error_rms_um"] == pytest.approx(rms[0] * 1e3, rel=1e-12)
+
+
+def test_a_lone_spike_is_named_and_a_burst_passes():
+    # identwild's lasting rule let a single corrupted sample pass (it departs and comes back in one sample, as a burst
+    # of vibration does); a lone spike, its neighbours quiet, is refused again, naming its sample; the burst of the
+    # first test, and a spike within it, still pass
+    t = np.arange(10000) * T
+    xr = 10.0 * np.sin(2.0 * np.pi * 0.5 * t)
+    x = np.interp(t - 0.01, t, xr)
+    spiked = x.copy()
+    spiked[5000] += 0.05
+    with pytest.raises(IdentificationError, match=r"log.csv: axis 'x': the measured position leaves its path by "
+                                                  r"0.05 mm at sample 5000 .* and is back at the next sample"):
+        check_jumps(xr, spiked, T, "x", "log.csv")
+    burst = x.copy()
+    burst[3000:3050] += 0.01 * (-1.0) ** np.arange(50)
+    burst[3020] += 0.02
+    check_jumps(xr, burst, T, "x", "log.csv")
