@@ -261,7 +261,8 @@ def interpolate(
       the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
       (:func:`interpolators.kinematics.curvature_step_speed_limit`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
-      the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
+      the tolerance (:mod:`interpolators.dense`; under the S-curve also the chords of tight curves,
+      :func:`interpolators.dense.curve_junctions`), planned with the curve's curvature bounds; the
       samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
       polyline (within :data:`CURVE_PATH_ERROR`).
 
