@@ -11,7 +11,8 @@ within ``Q`` into one line, and its trajectory planner looks ahead over many seg
 (``tpRunOptimization`` in ``src/emc/tp/tp.c``, blend arcs in ``src/emc/tp/blendmath.c``).
 
 Here a run of consecutive short feed lines (:data:`DENSE_MAX_LENGTH`, at least
-:data:`DENSE_MIN_SEGMENTS`, junction turns up to :data:`DENSE_MAX_TURN`, same feed and
+:data:`DENSE_MIN_SEGMENTS`, junction turns up to :data:`DENSE_MAX_TURN`, under the S-curve up to
+:data:`DENSE_MAX_CURVE_TURN` on tight curves (:func:`curve_junctions`), same feed and
 tolerance) whose junctions are dense against the tolerance (turn ``theta`` and shorter line
 ``L`` with ``theta L < 2 tolerance``: the sagitta ``theta L / 8`` of a curve through the points
 is below a quarter of the tolerance, and a tangent arc blend within the tolerance, of radius
@@ -54,6 +55,8 @@ if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without 
 
 __all__ = [
     "DENSE_MAX_LENGTH",
+    "CURVE_TURN_SHARE",
+    "DENSE_MAX_CURVE_TURN",
     "DENSE_MAX_TURN",
     "DENSE_MIN_SEGMENTS",
     "FIT_SHARE",
@@ -63,6 +66,7 @@ __all__ = [
     "MergedRun",
     "chord_distance",
     "cubic_basis",
+    "curve_junctions",
     "fit_run",
     "merge_dense_runs",
 ]
@@ -71,6 +75,10 @@ __all__ = [
 DENSE_MAX_LENGTH: float = 1.0
 #: Largest turn [rad] at a junction inside a run (sharper corners end the run and stay corners).
 DENSE_MAX_TURN: float = 0.2
+#: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
+DENSE_MAX_CURVE_TURN: float = 0.5
+#: Share of a junction's turn each neighbouring junction turns at least for it to be on a tight curve.
+CURVE_TURN_SHARE: float = 0.5
 #: Fewest lines merged into one curve.
 DENSE_MIN_SEGMENTS: int = 8
 #: Share of the path tolerance the fitted curve may deviate from the chords.
@@ -365,12 +373,39 @@ def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float
             + _merge(segments, k, hi, blocks, tolerance, (None, after), turns))
 
 
+def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndarray:
+    """Which junctions of a chain (their ``turns`` [rad], NaN next to an arc) may lie inside a run.
+
+    A junction turning by up to :data:`DENSE_MAX_TURN` may; a sharper one is a corner and ends the run. With
+    ``curvature_continuous`` (the S-curve) a junction turning by up to :data:`DENSE_MAX_CURVE_TURN` may too when
+    both neighbouring junctions turn by at least :data:`CURVE_TURN_SHARE` of its turn (a chain's first and last
+    junctions have one neighbour and keep the cap): every chord of a tight curve turns alike (chords of 50 um on
+    a radius of 0.24 mm turn by 0.21 rad each, a helical entry as CAM writes it), where a corner is one sharp
+    turn between gentle ones.
+
+    Our reading (no control documents its look-ahead's thresholds): the per-junction blend of such chords is a
+    clothoid pair within half of each chord, whose curvature rises from zero to about ``2 theta / L`` over
+    ``L / 2``: its jerk at speed ``v`` is about ``4 v^3 theta / L^2``, ``4 / theta`` times the ``v^3 / r^2 =
+    v^3 theta^2 / L^2`` of the curve through the points, so per-junction blends pass a tight curve at about
+    ``(theta / 4)^(1/3)`` of its speed wherever the jerk limit binds (0.37 at 0.2 rad). Under the trapezoid the
+    tangent arc blend of each junction has about the curve's radius and passes as fast (module docstring), so
+    its runs stay as they were.
+    """
+    inside = turns <= DENSE_MAX_TURN
+    if curvature_continuous and len(turns) > 2:
+        with np.errstate(invalid="ignore"):
+            shared = np.minimum(turns[:-2], turns[2:]) >= CURVE_TURN_SHARE * turns[1:-1]
+            inside[1:-1] |= (turns[1:-1] <= DENSE_MAX_CURVE_TURN) & shared
+    return inside
+
+
 def _is_dense(seg, feed: float, rapid: bool) -> bool:
     return isinstance(seg, Line) and not rapid and 0 < seg.length <= DENSE_MAX_LENGTH and feed > 0
 
 
 def merge_dense_runs(
-    segments: list, blocks: list[int], feeds: list[float], rapid: list[bool], tolerances: list[float]
+    segments: list, blocks: list[int], feeds: list[float], rapid: list[bool], tolerances: list[float], *,
+    curvature_continuous: bool = False,
 ) -> tuple[list, list[int], dict[int, MergedRun]]:
     """Replace runs of dense short lines of one G64 chain by fitted smooth curves.
 
@@ -382,6 +417,9 @@ def merge_dense_runs(
         Per segment: program block, feed [mm/s], rapid flag.
     tolerances : list of float
         Path tolerance [mm] of each junction ``k`` (between segment ``k`` and ``k + 1``).
+    curvature_continuous : bool
+        The S-curve (its corners would be blended by clothoid pairs): junctions on a tight curve may
+        turn by more than :data:`DENSE_MAX_TURN` inside a run (:func:`curve_junctions`).
 
     Returns
     -------
@@ -399,6 +437,7 @@ def merge_dense_runs(
     # turn [rad] at each junction between two lines
     d = np.array([s.direction if isinstance(s, Line) else np.full(3, np.nan) for s in segments])
     turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
+    inside = curve_junctions(turns, curvature_continuous=curvature_continuous)
     spans: list[tuple[int, int, MergedRun | None]] = []
     k = 0
     while k < n:
@@ -409,7 +448,7 @@ def merge_dense_runs(
         e = k + 1
         # dense junctions only (module docstring): coarser chords are blended per junction
         while (e < n and dense[e] and feeds[e] == feeds[k] and tolerances[e - 1] == tolerances[k]
-               and tolerances[e - 1] > 0 and turns[e - 1] <= DENSE_MAX_TURN
+               and tolerances[e - 1] > 0 and inside[e - 1]
                and turns[e - 1] * min(segments[e - 1].length, segments[e].length) < 2.0 * tolerances[e - 1]):
             e += 1
         before = segments[k - 1] if k > 0 and isinstance(segments[k - 1], (Line, Arc)) else None

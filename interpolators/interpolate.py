@@ -261,7 +261,8 @@ def interpolate(
       the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
       (:func:`interpolators.kinematics.curvature_step_speed_limit`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
-      the tolerance (:mod:`interpolators.dense`), planned with the curve's curvature bounds; the
+      the tolerance (:mod:`interpolators.dense`; under the S-curve also the chords of tight curves,
+      :func:`interpolators.dense.curve_junctions`), planned with the curve's curvature bounds; the
       samples on it carry the block of the chord they pass, and ``path`` holds the curve as a fine
       polyline (within :data:`CURVE_PATH_ERROR`).
 
@@ -371,7 +372,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             seg_rapid += it.rapid[lo:hi]
             chain_len.append(hi - lo)
             continue
-        ch, run_of = _merged(ch)
+        ch, run_of = _merged(ch, jerk_limited)
         segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
                                    worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
         blended = blended or len(segs) != len(ch.segments) or bool(run_of)
@@ -449,11 +450,13 @@ def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_
     return v_max, a_max, j_max
 
 
-def _merged(ch: _Chain) -> tuple[_Chain, dict[int, MergedRun]]:
+def _merged(ch: _Chain, jerk_limited: bool) -> tuple[_Chain, dict[int, MergedRun]]:
     """The chain with its runs of dense short lines merged into smooth curves
-    (:func:`interpolators.dense.merge_dense_runs`), and the run of each curve piece (by ``id``)."""
+    (:func:`interpolators.dense.merge_dense_runs`; ``jerk_limited``: tight curves too), and the run of each curve
+    piece (by ``id``)."""
     blocks, feeds, rapid, tolerances = ch.blocks, ch.feeds, ch.rapid, ch.tolerances
-    segs, first, runs = merge_dense_runs(ch.segments, blocks, feeds, rapid, tolerances)
+    segs, first, runs = merge_dense_runs(ch.segments, blocks, feeds, rapid, tolerances,
+                                         curvature_continuous=jerk_limited)
     if not runs:
         return ch, {}
     last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
