@@ -152,8 +152,10 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:
         raise IdentificationError(
-            f"positions on axis {axis!r} look like metres, not mm: the reference spans {span:.4g} mm at a peak "
-            f"speed of {vmax:.4g} mm/s; convert the capture to mm (a test this small could not be identified anyway)",
+            f"positions on axis {axis!r} look like metres, not mm (or radians of a rotary joint, not deg): the "
+            f"reference spans {span:.4g} mm at a peak speed of {vmax:.4g} mm/s; convert the capture to mm (a "
+            "logger's metres: --unit m; radians: --unit rad with the axis named a, b or c; a test this small could "
+            "not be identified anyway)",
             file=src,
         )
     if np.array_equal(xr, x):

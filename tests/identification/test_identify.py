@@ -53,7 +53,9 @@ def test_identify_small_capture(small_capture):
         (lambda c: _cap(np.abs(c.reference[:, 0]) + 0 * np.maximum.accumulate(c.reference[:, 0]),
                         np.maximum.accumulate(c.measured[:, 0])), IdentificationError, "one direction only"),
         (lambda c: _cap(c.reference[:, 0], c.reference[:, 0]), IdentificationError, "identical to the reference"),
-        (lambda c: _cap(c.reference[:, 0] / 1000, c.measured[:, 0] / 1000), IdentificationError, "look like metres"),
+        (lambda c: _cap(c.reference[:, 0] / 1000, c.measured[:, 0] / 1000), IdentificationError,
+         r"look like metres, not mm \(or radians of a rotary joint, not deg\).*--unit m; radians: --unit rad with the "
+         r"axis named a, b or c"),
     ],
 )
 def test_bad_captures_are_rejected_with_the_reason(small_capture, make, error, match):
