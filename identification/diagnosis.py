@@ -870,13 +870,10 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
         "samples": {"identification": int(plan.active.sum()), "validation": int(sum(counts))},
         "rounds": plain(rounds),
     }
-    if plan.warnings:
-        validation["warnings"] = list(plan.warnings)
-    validation.setdefault("warnings", []).extend(in_sample_warnings(stages[0].in_sample_folds,
-                                                                    stages[-1].in_sample_folds if len(stages) > 1
-                                                                    else None))
-    if not validation["warnings"]:
-        del validation["warnings"]
+    warnings = list(plan.warnings) + in_sample_warnings(stages[0].in_sample_folds,
+                                                        stages[-1].in_sample_folds if len(stages) > 1 else None)
+    if warnings:
+        validation["warnings"] = warnings
     final_model = stages[-1].full_model if len(stages) > 1 else model
     stopped = not rounds or rounds[-1].get("accepted") is None
     validation["unexplained"] = _unexplained(final_model, data, plan, stopped)

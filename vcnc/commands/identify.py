@@ -278,7 +278,7 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
     return out
 
 
-def _report(capture, model, axis: str):
+def _report(capture, model, axis: str, baseline: list[str]):
     import numpy as np
     from matplotlib.figure import Figure
 
@@ -321,7 +321,7 @@ def _report(capture, model, axis: str):
     )
     rep.heading("Fit")
     for line in (delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model)
-                 + baseline_lines(capture, model, axis)):
+                 + baseline):
         rep.text(line)
     rep.table(
         ["prediction of the capture", f"RMS [{u}]", f"max [{u}]"],
@@ -401,7 +401,8 @@ def run(args: argparse.Namespace) -> int:
         from identification.measured_drift import without_drift
 
         capture = without_drift(capture, axis, model.fit["drift"]["polynomial_mm"])
-    rep = _report(capture, model, axis) if args.report else None
+    baseline = baseline_lines(capture, model, axis)
+    rep = _report(capture, model, axis, baseline) if args.report else None
     if args.json:
         model.to_json(args.json)
     if rep is not None:
@@ -429,6 +430,6 @@ def run(args: argparse.Namespace) -> int:
         from identification.diagnosis import format_before_after
 
         out.write(format_before_after(model).rstrip("\n") + "\n")
-    for line in baseline_lines(capture, model, axis):
+    for line in baseline:
         out.write(line + "\n")
     return 0
