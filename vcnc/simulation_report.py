@@ -59,14 +59,9 @@ def summarize(capture: Capture, program: Any = None) -> dict[str, Any]:
     if saturated:
         out["saturated"] = saturated
     if len(moving_axes(capture)) >= 2:
-        from vcnc.contour import contour_metrics
-
-        c = contour_metrics(capture) if program is None else None
-        feed = _feed_contour(capture, program) if program is not None else None
-        if feed is not None:
-            c, fc = feed
-            if fc is not None:
-                out["contour_feed"] = fc
+        c, fc = _contour_entries(capture, program)
+        if fc is not None:
+            out["contour_feed"] = fc
         if c is None:
             log.warning("contour error left out of the summary: the setpoints carry no programmed path")
         else:
@@ -74,23 +69,22 @@ def summarize(capture: Capture, program: Any = None) -> dict[str, Any]:
     return out
 
 
-def _feed_contour(capture: Capture, program: Any) -> tuple[dict[str, float], dict[str, float] | None] | None:
-    """The contour error's metrics over every sample and over those of ``program``'s feed moves (None when the
-    program has no feed move or no rapid), from one contour search; None without a path or two moving linear
-    axes (:func:`vcnc.contour.contour_metrics`)."""
+def _contour_entries(capture: Capture, program: Any) -> tuple[dict[str, float] | None, dict[str, float] | None]:
+    """The contour error's metrics over every sample and, with the ``program``, over those of its feed moves (None
+    when it has no feed move or no rapid), from one contour search; (None, None) without a path or two moving
+    linear axes (as :func:`vcnc.contour.contour_metrics`)."""
     from vcnc.contour import contour_error, feed_segments
     from vcnc.contour import moving_axes as moving_linear
 
     if capture.path is None or len(moving_linear(capture.reference, capture.axes)) < 2:
-        return None
-    flags = feed_segments(capture.path, program)
+        return None, None
+    flags = feed_segments(capture.path, program) if program is not None else None
     ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference, t=capture.t,
                        include_segments=flags)
     every = error_metrics(ce.error)
     if flags is None or flags.all() or ce.include is None or not ce.include.any():
         return every, None
-    fm = error_metrics(ce.error[ce.include])
-    return every, {"max_um": float(fm["max_um"]), "rms_um": float(fm["rms_um"])}
+    return every, error_metrics(ce.error[ce.include])
 
 
 def _saturation(capture: Capture) -> dict[str, dict[str, float]]:
