@@ -132,16 +132,17 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt in ("emps-mat", "tncscope", "sinumerik") and delimited_options:
         raise CaptureError(f"--columns/--time-unit/--unit/--sample-time apply to delimited text, not to a {fmt} file",
                            file=str(p))
-    root = _xml_root(p).rpartition(":")[2] if fmt == "xml" else ""  # also with a prefix (m:MTConnectStreams)
-    if root == "MTConnectStreams":
-        raise CaptureError(mtconnect.streams_reason(read_text(p, str(p))), file=str(p))
-    reason = mtconnect.document_reason(root)
-    if reason is not None:
-        raise CaptureError(reason, file=str(p))
     if fmt == "shdr":
         raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
-        raise CaptureError(f"an XML file with root <{_xml_root(p)}>, not a SINUMERIK trace (<traceSession> or "
+        root = _xml_root(p)
+        local = root.rpartition(":")[2]  # also with a prefix (m:MTConnectStreams)
+        if local == "MTConnectStreams":
+            raise CaptureError(mtconnect.streams_reason(read_text(p, str(p))), file=str(p))
+        reason = mtconnect.document_reason(local)
+        if reason is not None:
+            raise CaptureError(reason, file=str(p))
+        raise CaptureError(f"an XML file with root <{root}>, not a SINUMERIK trace (<traceSession> or "
                            "<traceDataRoot>); export the trace from SINUMERIK Operate's trace, or give a text export",
                            file=str(p))
     if fmt == "emps-mat":

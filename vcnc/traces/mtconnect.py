@@ -30,6 +30,11 @@ _ATTR = re.compile(r'\b(name|dataItemId|subType)="([^"]*)"')
 _SHDR = re.compile(r"^(?:\d{4}-\d\d-\d\dT[\d:.]+Z?|TIME)?\|[A-Za-z_][\w.:-]*\|[^|]*(?:\|[^|]*)*$")
 
 
+#: What identification needs instead, ending each reason.
+_NEEDED = (". vcnc identifies a drive from its control's or drive's own trace (TNCscope, SINUMERIK trace, a drive's "
+           "scope) of a commanded and a measured position")
+
+
 def looks_like_shdr(text: str) -> bool:
     """True when most of the first non-blank lines (up to 20, at least 2) are SHDR lines (module docstring)."""
     lines = [s for s in (line.strip() for line in text.splitlines()[:200]) if s and not s.startswith(("*", "#"))][:20]
@@ -53,9 +58,7 @@ def streams_reason(text: str) -> str:
     commanded = any("(COMMANDED)" in k for k in found)
     return ("an MTConnect streams document (an agent's /sample or /current answer): observations taken on change at "
             f"the agent's rate, each with its own time stamp, not a trace sampled at the control's servo rate; its "
-            f"position samples: {held}" + ("" if commanded else "; no COMMANDED position among them")
-            + ". vcnc identifies a drive from its control's or drive's own trace (TNCscope, SINUMERIK trace, a "
-            "drive's scope) of a commanded and a measured position")
+            f"position samples: {held}" + ("" if commanded else "; no COMMANDED position among them") + _NEEDED)
 
 
 def shdr_reason(text: str) -> str:
@@ -66,8 +69,7 @@ def shdr_reason(text: str) -> str:
             keys.update(dict.fromkeys(k.strip() for k in line.strip().split("|")[1::2]))
     return ("an MTConnect SHDR adapter stream (timestamp|key|value lines, cppagent wiki 'SHDR 2.0'): observations sent "
             "on change at the adapter's rate, not a trace sampled at the control's servo rate; keys: "
-            f"{list(keys)[:20]}. vcnc identifies a drive from its control's or drive's own trace of a commanded and a "
-            "measured position")
+            f"{list(keys)[:20]}" + _NEEDED)
 
 
 #: The agent's other answers (MTConnect Standard, Part 1 "Overview and Fundamentals", the response documents):
@@ -86,6 +88,5 @@ def document_reason(root: str) -> str | None:
     if what is None:
         return None
     return (f"an MTConnect {root[len('MTConnect'):].lower()} document ({what}); an agent's /sample answer (a streams "
-            "document) holds the observations, taken on change at the agent's rate, which is no servo trace either. "
-            "vcnc identifies a drive from its control's or drive's own trace (TNCscope, SINUMERIK trace, a drive's "
-            "scope) of a commanded and a measured position")
+            "document) holds the observations, taken on change at the agent's rate, which is no servo trace either"
+            + _NEEDED)
