@@ -916,11 +916,12 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Wh
     kind = pat.group(1).upper() if pat else ""
     words = block_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
     # the positioning words; an F after M140 MB is the retraction's feed, left with the M functions
-    moving = [w for i, w in enumerate(words) if w.key in ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ")
-              and not is_retract_feed(words, i)]
+    positioning = [w.key in ("F", "FMAX", "X", "Y", "Z", "IX", "IY", "IZ") and not is_retract_feed(words, i)
+                   for i, w in enumerate(words)]
+    moving = [w for w, p in zip(words, positioning) if p]
     if not kind and any(w.key in ("F", "FMAX") for w in moving):
         m.note("CYCL CALL F: no positioning in the block (the cycle runs where the tool is)")
-    ended = m_functions([w for w in words if all(w is not v for v in moving)], m, where, blk, motion=False)
+    ended = m_functions([w for w, p in zip(words, positioning) if not p], m, where, blk, motion=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
         position_call(moving, m, where, blk)

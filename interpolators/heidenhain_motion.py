@@ -136,11 +136,11 @@ def _without_m_feeds(words: list[Word], m: Machine, where: Where) -> list[Word]:
     ``L X+0 Y+38.5 F125 M140 MB 50 F750``): kept in ``m.retract_feed`` [mm/s, inf for FMAX], not the path's."""
     out: list[Word] = []
     m.retract_feed = math.inf
-    for w in words:
+    for i, w in enumerate(words):
         if w.key == "F" and out and out[-1].key == "M" and out[-1].value == 128:
             m.note(f"M128 {w.text}: the feed of compensation movements (no rotary axis moves under M128 here)")
             continue
-        if is_retract_feed(out + [w], len(out)):
+        if is_retract_feed(words, i):
             if w.key == "F" and not w.value > 0:
                 where.fail("feed F of M140 must be > 0", column=w.column, text=w.text, expected="F > 0 [mm/min]")
             m.retract_feed = math.inf if w.key == "FMAX" else w.value * m.feed_scale

@@ -143,7 +143,6 @@ OWORD_LOCALS = 30
 MACRO_LOCALS = 33
 
 
-
 #: Statements of controls whose macro language is not Fanuc's or LinuxCNC's, read as an address letter and a
 #: name: Centroid CNC12's ``DEFINE <name> #n`` and ``IF #n THEN GOTO n`` (our reading of CNC12 macros, e.g.
 #: Centroid's stock ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it, "IF #50010 ;Prevent lookahead from
