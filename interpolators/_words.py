@@ -120,6 +120,11 @@ def _number_hint(line: str, w0: int, j: int, raw: str = "") -> str:
     fence = fence_hint(line)
     if fence:
         return fence
+    # "M3 I": Marlin's inline laser power mode ("M3 [I<mode>] [O<power>] [S<power>]", "[I<mode>] Inline mode
+    # ON / OFF", marlinfw.org/docs/gcode/M003.html), as Marlin laser programs start
+    if line[w0:w0 + 1] in "iI" and re.search(r"M0*[34][ \t]*$", line[:w0], re.I):
+        return (" (M3 I / M4 I: Marlin's inline laser power mode, 'M3 [I<mode>]', which a Marlin laser program "
+                "sets; no ISO control reads it: M3 S<power> is the form the grbl dialect reads)")
     placeholder = _placeholder_hint(line[w0], raw) if raw and (j >= len(line) or line[j] in " \t") else ""
     if placeholder:
         return placeholder

@@ -114,7 +114,9 @@ def read_statement(code: str, where: Where, *, abbreviations: bool = False) -> S
         return Statement(kind, code, m.start(1), loop, word=m.group(1))
     m = _WHILE_START.match(code)
     if m:
-        where.fail("WHILE without DO m at the end of its block", column=m.start(1) + 1, text=code.strip(),
+        ddcs = (" (a condition without brackets, as the DDCS controllers write 'WHILE #18<#3 DO2': Fanuc macro B "
+                "brackets it)") if re.match(r"\s*WHILE\s*[^\s\[]", code, re.I) else ""
+        where.fail(f"WHILE without DO m at the end of its block{ddcs}", column=m.start(1) + 1, text=code.strip(),
                    expected="WHILE [condition] DO m (m = 1, 2 or 3)")
     m = _LOOP_HEAD.match(code)
     if m:

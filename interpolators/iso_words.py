@@ -149,11 +149,15 @@ def _foreign_hint(tok: str) -> str:
     reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header; a quoted
     text, as Centroid CNC12 macros write a prompt, ``M225 #100 "This is an example macro ..."`` (Centroid's stock
     ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it), and, our reading of an Acorn router's macros, a macro
-    file to run, ``G65 "\\cncm\\defines.cnc"``."""
+    file to run, ``G65 "\\cncm\\defines.cnc"``; a grbl ``$`` line (grbl wiki "Grbl v1.1 Configuration": "$x=val",
+    "$H"), which only the grbl dialect reads (:mod:`interpolators.iso_grbl`)."""
     if re.fullmatch(r"\*\d+", tok):
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
         return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
+    if tok.startswith("$"):
+        return (" (a grbl setting or system command, such as $32=1 (laser mode) or $H (homing), which grbl reads "
+                "on a line of its own: read the program with --dialect grbl)")
     if tok.startswith('"'):
         return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
                 "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")
@@ -196,7 +200,8 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
         if ch == "[":
             close = code.find("]", i)
             tok = code[i:close + 1] if close > i else token_at(code, i)
-            where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder?)",
+            where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder, or an "
+                       "expression the CNCjs sender evaluates, as a CNCjs macro writes 'G0 X[xmin]'?)",
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if ch == "/" and not words:
             _slash_comment_line(code, where, second=i)

@@ -688,8 +688,9 @@ def test_cncjs_macro_lines_are_the_sender_s_and_move_nothing():
     assert [b.target.tolist() for b in prog.blocks] == [[101, 52, 100], [104, 52, 100]]
     assert [b.line for b in prog.blocks] == [3, 7]
     assert "CNCjs % macro lines (%wait, variables) not run (the sender evaluates them) x3" in prog.notes
-    # LinuxCNC has no sender of its own: a '%' with text after it is no line it reads
-    with pytest.raises(GCodeError, match=r":4:1: '%' must stand alone on its line \(got '%wait'\)"):
+    # LinuxCNC has no sender of its own: a '%' with text after it is no line it reads; the message names CNCjs
+    with pytest.raises(GCodeError, match=r":4:1: '%' must stand alone on its line \(a macro line of the CNCjs "
+                                         r"sender, .*--dialect grbl.*\) \(got '%wait'\)"):
         parse_program(text, context=_in_dialect("linuxcnc"))
 
 
