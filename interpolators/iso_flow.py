@@ -342,7 +342,10 @@ class _Program:
             if s.startswith("%"):
                 _refuse_foreign_header(s, where)
                 mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
-                if not mixed and re.match(r"%[ \t]*[A-Za-z_]", s):  # iso_grbl: CNCjs's "%wait", "%x0=posx"
+                if not mixed and re.match(r"%[ \t]*[Oo]\d", s):  # "%O1200(TOKARKA)": a Fanuc tape's first line
+                    mixed = (" (a Fanuc tape's first line, whose text after the '%' a Fanuc control skips: "
+                             "--dialect fanuc reads it)")
+                elif not mixed and re.match(r"%[ \t]*[A-Za-z_]", s):  # iso_grbl: CNCjs's "%wait", "%x0=posx"
                     mixed = (" (a macro line of the CNCjs sender, which evaluates it and streams the rest to "
                              "grbl: --dialect grbl reads the file as CNCjs streams it)")
                 where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,

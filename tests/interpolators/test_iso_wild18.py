@@ -131,3 +131,17 @@ def test_an_nx_legacy_post_names_g71_under_linuxcnc():
                                          r"Fagor and Heidenhain ISO controls: mm input; write G21, or read the "
                                          r"program with --dialect fanuc\)"):
         parse_program(NX, context=LINUXCNC)
+
+
+# a Fanuc lathe program of GCodeWorkShop's examples opens "%O1200(TOKARKA)"
+@pytest.mark.parametrize("context", [LINUXCNC, HAAS])
+def test_a_fanuc_tape_leader_with_the_program_number_names_fanuc(context):
+    with pytest.raises(GCodeError, match=r":1:1: '%' must stand alone on its line \(a Fanuc tape's first line, whose "
+                                         r"text after the '%' a Fanuc control skips: --dialect fanuc reads it\) "
+                                         r"\(got '%O1200'\)"):
+        parse_program("%O1200(TOKARKA)\nG21 G90 G0 X1\nM30\n%\n", context=context)
+
+
+def test_the_fanuc_dialect_skips_the_text_of_the_first_percent_line():
+    prog = checked_iso("%O1200(TOKARKA)\nG21 G90 G0 X1\nM30\n%\n", FANUC)
+    assert [b.target[0] for b in prog.blocks if b.kind == "rapid"] == [1.0]
