@@ -907,6 +907,13 @@ def _normal_direction(entry, st: State, where: Where, notes: Notes) -> None:
               "no C axis to turn, the path is as programmed")
 
 
+#: G50 with an S word: on a Fanuc lathe (G code system A) the maximum spindle speed setting ("G50 Coordinate
+#: system setting, maximum spindle speed setting", FANUC Series 0i-TF G code list), on a mill the scaling cancel
+#: and a spindle speed, as vcnc reads it; noted, the program being a lathe's most likely.
+LATHE_G50 = ("G50 S read as the mill's scaling cancel and a spindle speed (on a Fanuc lathe G50 S is the maximum "
+             "spindle speed: a lathe program, whose X is a diameter?)")
+
+
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
     """Compensation, length offsets, work offsets, path mode and return level."""
     if "spindle mode" in gcodes:
@@ -916,6 +923,8 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
             # G69, G50, G15 are no LinuxCNC codes (interp_array.cc gees[]: -1)
             refused = "; LinuxCNC refuses it: \"Unknown g code used\"" if st.context.dialect.name == "linuxcnc" else ""
             notes.add(f"{gcodes[grp][1].text.upper()} cancel{refused}")
+    if gcodes.get("scaling", (0,))[0] == 500 and "S" in seen:  # "N01G50S0600" (a Fanuc 0T program)
+        notes.add(LATHE_G50)
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         set_frame(st, dataclasses.replace(st.frame, rotation=None))
     if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:

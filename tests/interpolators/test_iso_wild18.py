@@ -145,3 +145,16 @@ def test_a_fanuc_tape_leader_with_the_program_number_names_fanuc(context):
 def test_the_fanuc_dialect_skips_the_text_of_the_first_percent_line():
     prog = checked_iso("%O1200(TOKARKA)\nG21 G90 G0 X1\nM30\n%\n", FANUC)
     assert [b.target[0] for b in prog.blocks if b.kind == "rapid"] == [1.0]
+
+
+def test_a_lathe_programs_g50_s_is_noted_under_fanuc():
+    # GCodeWorkShop's Fanuc 0T example: "N01G50S0600" (the lathe's spindle speed clamp), then X as a diameter
+    prog = checked_iso("O0358\nN01G50S0600\nG00X86.Z0.25\nG01X118.F0.3\nM30\n", FANUC)
+    assert [b.target[0] for b in prog.blocks if b.kind in ("rapid", "line")] == [86.0, 118.0]
+    assert ("G50 S read as the mill's scaling cancel and a spindle speed (on a Fanuc lathe G50 S is the maximum "
+            "spindle speed: a lathe program, whose X is a diameter?)") in prog.notes
+
+
+def test_a_mill_programs_g50_alone_is_not_called_a_lathes():
+    prog = checked_iso("G21 G90\nG51 X0 Y0 P2000\nG0 X1\nG50\nG0 X2\nM30\n", FANUC)
+    assert not any("lathe" in n for n in prog.notes)
