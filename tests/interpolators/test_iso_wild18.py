@@ -82,6 +82,13 @@ def test_ddcs_conditions_are_named(text, column, what, context):
         parse_program(text, context=context)
 
 
+@pytest.mark.parametrize("context", [FANUC, LINUXCNC])
+def test_a_condition_with_then_stays_centroids(context):
+    with pytest.raises(GCodeError, match=r":2:2: .*\(IF #n THEN \.\.\., a statement of Centroid CNC12's macro "
+                                         r"language;"):
+        parse_program("#100=1\nIF #100 == 1 THEN GOTO 10\nN10\nM30\n", context=context)
+
+
 @pytest.mark.parametrize("context", [FANUC, HAAS])
 def test_a_ddcs_loop_without_brackets_is_named(context):
     with pytest.raises(GCodeError, match=r":2:1: WHILE without DO m at the end of its block \(a condition without "
