@@ -148,13 +148,14 @@ MACRO_LOCALS = 33
 #: Centroid's stock ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it, "IF #50010 ;Prevent lookahead from
 #: parsing past here", "IF #4201 || #4202 THEN GOTO 1000", "Please see TB300 for tips on writing custom macros"),
 #: Okuma OSP's variables written ``V<name>=`` (our reading of OSP user tasks, ``VFST=#81H``), and the DDCS
-#: (Digital Dream) controllers' ``IF #1505==0 GOTO999``, whose conditions compare with C's ``==`` and ``!=`` and
-#: jump without CNC12's THEN (our
+#: (Digital Dream) controllers' ``IF #1505==0 GOTO999`` and ``IF #569<#792 GOTO1``, whose conditions compare as C
+#: does (``==``, ``!=``, ``<``) and jump without CNC12's THEN (our
 #: reading of the DDCS Expert M350 macros github.com/fchabot-dxf/DDCS-Studio keeps: "IF #1505==0 GOTO999",
 #: "WHILE #18<#3 DO2", "//" comments; no DDCS manual at hand).
 _FOREIGN_STATEMENTS = (
-    (re.compile(r"IF\s*#[^\[]*?(==|!=)(?![^\[]*THEN)", re.I),
-     "IF #n==v GOTO n, a statement of the DDCS controllers' macro language (C-style == and !=)"),
+    (re.compile(r"IF\s*#(?:(?!THEN)[^\[])*?(==|!=|<|>)(?:(?!THEN)[^\[])*GOTO", re.I),
+     "IF #n==v GOTO n, a statement of the DDCS controllers' macro language (a C-style condition such as "
+     "#1==0 or #1<#2, without brackets and without THEN)"),
     (re.compile(r"DEFINE\b", re.I), "DEFINE <name> #n, a statement of Centroid CNC12's macro language"),
     (re.compile(r"IF\s*#[^\[]*(THEN|$)", re.I), "IF #n THEN ..., a statement of Centroid CNC12's macro language"),
     (re.compile(r"V[A-Z]{2,}\s*=", re.I), "V<name>=, a variable of Okuma OSP's user task language"),

@@ -67,12 +67,15 @@ def test_an_i_word_without_its_number_elsewhere_is_not_called_marlins():
     assert "Marlin" not in str(err.value)
 
 
+DDCS_IF = (r"IF #n==v GOTO n, a statement of the DDCS controllers' macro language \(a C-style condition such as "
+           r"#1==0 or #1<#2, without brackets and without THEN\)")
+
+
 @pytest.mark.parametrize(("text", "column", "what"), [
     # DDCS Expert macros: C's == in a condition, a prompt variable #1505
-    ("#1505=1\nIF #1505==0 GOTO999\nG0 X1\nN999\nM30\n", "2:2", r"IF #n==v GOTO n, a statement of the DDCS "
-                                                                r"controllers' macro language \(C-style == and !=\)"),
-    ("#1=2\nIF #1!=2 GOTO9\nN9\nM30\n", "2:2", r"IF #n==v GOTO n, a statement of the DDCS controllers' macro "
-                                               r"language \(C-style == and !=\)"),
+    ("#1505=1\nIF #1505==0 GOTO999\nG0 X1\nN999\nM30\n", "2:2", DDCS_IF),
+    ("#1=2\nIF #1!=2 GOTO9\nN9\nM30\n", "2:2", DDCS_IF),
+    ("#569=5\n#792=9\nIF #569<#792 GOTO1\nG0 Z#569\nN1\nM30\n", "3:2", DDCS_IF),
 ])
 @pytest.mark.parametrize("context", [FANUC, LINUXCNC])
 def test_ddcs_conditions_are_named(text, column, what, context):
