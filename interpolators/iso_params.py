@@ -151,11 +151,15 @@ MACRO_LOCALS = 33
 #: (Digital Dream) controllers' ``IF #1505==0 GOTO999`` and ``IF #569<#792 GOTO1``, whose conditions compare as C
 #: does (``==``, ``!=``, ``<``) and jump without CNC12's THEN (our
 #: reading of the DDCS Expert M350 macros github.com/fchabot-dxf/DDCS-Studio keeps: "IF #1505==0 GOTO999",
-#: "WHILE #18<#3 DO2", "//" comments; no DDCS manual at hand).
+#: "WHILE #18<#3 DO2", "//" comments; no DDCS manual at hand). A Fanuc condition left without its brackets,
+#: ``IF #1 GT 0 GOTO 10``, is named as such (FANUC 0i-MF operator's manual, custom macro, "Conditional branch":
+#: "IF [<conditional expression>] GOTO n").
 _FOREIGN_STATEMENTS = (
     (re.compile(r"IF\s*#(?:(?!THEN)[^\[])*?(==|!=|<|>)(?:(?!THEN)[^\[])*GOTO", re.I),
      "IF #n==v GOTO n, a statement of the DDCS controllers' macro language (a C-style condition such as "
      "#1==0 or #1<#2, without brackets and without THEN)"),
+    (re.compile(r"IF\s*#(?:(?!THEN)[^\[])*\b(EQ|NE|GT|GE|LT|LE)\b", re.I),
+     "IF #n GT v GOTO n: a condition without its brackets, which Fanuc macro B writes IF [#1 GT 0] GOTO n"),
     (re.compile(r"DEFINE\b", re.I), "DEFINE <name> #n, a statement of Centroid CNC12's macro language"),
     (re.compile(r"IF\s*#[^\[]*(THEN|$)", re.I), "IF #n THEN ..., a statement of Centroid CNC12's macro language"),
     (re.compile(r"V[A-Z]{2,}\s*=", re.I), "V<name>=, a variable of Okuma OSP's user task language"),

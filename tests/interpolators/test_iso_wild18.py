@@ -93,6 +93,13 @@ def test_a_condition_with_then_stays_centroids(context):
 
 
 @pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_a_fanuc_condition_without_brackets_is_named(context):
+    with pytest.raises(GCodeError, match=r":2:2: .*\(IF #n GT v GOTO n: a condition without its brackets, which "
+                                         r"Fanuc macro B writes IF \[#1 GT 0\] GOTO n;"):
+        parse_program("#1=1\nIF #1 GT 0 GOTO 10\nN10\nM30\n", context=context)
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
 def test_a_ddcs_loop_without_brackets_is_named(context):
     with pytest.raises(GCodeError, match=r":2:1: WHILE without DO m at the end of its block \(a condition without "
                                          r"brackets, as the DDCS controllers write 'WHILE #18<#3 DO2': Fanuc macro B "
