@@ -253,7 +253,9 @@ class Parameters:
                                 "offsets (Haas #2001-#2800), #4001-#4016 and #4022 modal G codes, #4107 D, #4109 F, "
                                 "#4111 H, #4119 S, #4120 T, #3901/#3902 parts counters, #5001.. positions)")
         if (n > _MAX_USER_PARAMETER or (n > _LAST_USER_PARAMETER and n not in store)) and n not in _HAAS_GENERAL:
-            where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled",
+            fanuc = (" (#5201-#5206: the external work offset of Fanuc and Haas, which --dialect fanuc or haas "
+                     "reads)") if 5201 <= n <= 5206 else ""
+            where.fail(f"parameter #{n}: this system parameter (machine state above #5000) is not modelled{fanuc}",
                        column=column, text=text,
                        expected="a parameter #1 .. #5000, one the program has set, or a modelled system parameter "
                                 "(#5161-#5169, #5181-#5189, #5211-#5219, #5220-#5389, #5400-#5409, #5420-#5428)")

@@ -175,3 +175,18 @@ def test_a_lathe_programs_g50_s_is_noted_under_fanuc():
 def test_a_mill_programs_g50_alone_is_not_called_a_lathes():
     prog = checked_iso("G21 G90\nG51 X0 Y0 P2000\nG0 X1\nG50\nG0 X2\nM30\n", FANUC)
     assert not any("lathe" in n for n in prog.notes)
+
+
+# Brown Industries' O9250 (dynamic work offset rotation) reads the external work offset #5201 onwards
+def test_the_external_work_offset_names_the_fanuc_dialect_under_linuxcnc():
+    with pytest.raises(GCodeError, match=r":1:4: parameter #5201: this system parameter \(machine state above #5000\) "
+                                         r"is not modelled \(#5201-#5206: the external work offset of Fanuc and Haas, "
+                                         r"which --dialect fanuc or haas reads\)"):
+        parse_program("#1=#5201\nG0 X#1\nM30\n", context=LINUXCNC)
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_the_external_work_offset_reads_under_fanuc_and_haas(context):
+    # the reference reader leaves #5201 out (the machine's state): the value is checked here
+    prog = parse_program("G21 G90\nG10 L2 P0 X5.\nG54\n#1=#5201\nG0 X#1\nM30\n", context=context)
+    assert [b.target[0] for b in prog.blocks if b.kind == "rapid"] == [10.0]  # X5 in G54 shifted by EXT X5
