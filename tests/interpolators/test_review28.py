@@ -28,3 +28,20 @@ def test_a_while_without_brackets_and_without_do_names_both():
     with pytest.raises(GCodeError, match=r":2:1: WHILE without DO m at the end of its block \(a condition without "
                                          r"brackets, as the DDCS controllers write"):
         parse_program("#1=0\nWHILE #1<3\n#1=#1+1\nEND1\nM30\n", context=HAAS)
+
+
+@pytest.mark.parametrize("context", [GRBL, FANUC])
+def test_a_grbl_command_inside_a_block_is_named_without_sending_to_the_grbl_dialect(context):
+    # grbl reads '$H' only as a line of its own (grbl protocol.c: a line whose first character is '$' goes to
+    # system_execute_line, any other to the G-code parser; grbl wiki "Grbl v1.1 Commands", "$H"); inside a block
+    # the grbl dialect refuses it too, so "read the program with --dialect grbl" was wrong advice there
+    with pytest.raises(GCodeError, match=r":2:7: unknown word '\$H' \(a grbl setting or system command, .* which grbl "
+                                         r"reads only on a line of its own, not inside a block\)") as err:
+        parse_program("G21 G90\nG0 X1 $H\nM30\n", context=context)
+    assert "--dialect grbl" not in str(err.value)
+
+
+def test_a_grbl_command_on_its_own_line_still_sends_to_the_grbl_dialect():
+    with pytest.raises(GCodeError, match=r":2:3: unknown word '\$H' .*: read the program with --dialect grbl\)"):
+        parse_program("G21 G90\n  $H\nG0 X1\nM30\n", context=LINUXCNC)
+    assert parse_program("G21 G90\n  $H\nG0 X1\nM30\n", context=GRBL).blocks[-1].target[0] == 1.0
