@@ -45,3 +45,19 @@ def test_a_grbl_command_on_its_own_line_still_sends_to_the_grbl_dialect():
     with pytest.raises(GCodeError, match=r":2:3: unknown word '\$H' .*: read the program with --dialect grbl\)"):
         parse_program("G21 G90\n  $H\nG0 X1\nM30\n", context=LINUXCNC)
     assert parse_program("G21 G90\n  $H\nG0 X1\nM30\n", context=GRBL).blocks[-1].target[0] == 1.0
+
+
+@pytest.mark.parametrize("context", [GRBL, LINUXCNC])
+def test_a_cncjs_expression_in_a_word_names_cncjs(context):
+    # CNCjs User Guide, "Macro": the sender replaces '[xmin]' in 'G0 X[xmin]' before grbl reads the line. The
+    # word-start form named CNCjs with this very example, the example itself only "a template's placeholder"
+    with pytest.raises(GCodeError, match=r":2:6: malformed value: 'xmin' is neither .*an expression the CNCjs sender "
+                                         r"evaluates before grbl reads the line, as a CNCjs macro writes "
+                                         r"'G0 X\[xmin\]'\?\)"):
+        parse_program("G21\nG0 X[xmin]\nM30\n", context=context)
+
+
+def test_a_name_later_in_an_expression_keeps_the_placeholder_hint():
+    with pytest.raises(GCodeError, match=r"'xmin' is neither a number, a parameter nor a function \(text left in "
+                                         r"brackets, such as a template's placeholder\?\)"):
+        parse_program("G21\nG0 X[1+xmin]\nM30\n", context=LINUXCNC)
