@@ -668,7 +668,7 @@ def compare(
     per_axis = _models_per_axis(models, run.axes)
     predicted, descr = _predictions(per_axis, run, kw, seed=seed, notes=notes)
     notes.extend(_beyond_range_notes(per_axis, run, true_ce.include))
-    notes.extend(_model_notes(per_axis, run))
+    notes.extend(_model_notes(per_axis, run, true_ce.include))
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=run.toolpath, truth=run.name, setpoints=run.setpoints, true=true_ce,
@@ -737,11 +737,14 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
             # forward; an axis the program only names (G0 Z0 at Z0) is left out of the setpoints
             check_program_axes(program, machine)
             axes = tuple(a for a in axes if a in machine.axes)
-        machine = _expand_machine(machine, axes, notes)
         limits = _limits(machine, axes, acceleration, feed)
         sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
+        if len(machine.axes) == 1:  # its axis is copied for each axis the program moves (not those it only names)
+            pos = sp.position
+            axes = tuple(a for i, a in enumerate(sp.axes) if len(pos) and float(np.ptp(pos[:, i])) > 0) or axes
         if tuple(sp.axes) != axes:
             sp = sp.select_axes(axes)
+        machine = _expand_machine(machine, axes, notes)
         if sp.path is not None and not sp.path.segments:
             raise InputError("the program moves no axis (it only dwells or switches): there is no contour to "
                              "compare", file=program.source, expected="a program with a feed move (G1, G2, G3, L, C)")
@@ -822,7 +825,7 @@ def _beyond_range_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarr
     return notes
 
 
-def _model_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
+def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | None) -> list[str]:
     """What the numbers rest on beyond the models' parameters (our reading of what a process planner must be told):
 
     - a model identified from a record sampled more coarsely than the toolpath runs (a 100 ms log applied to 1 ms
@@ -830,8 +833,8 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
       ``identification.discretize``), but the record held nothing above its Nyquist frequency 1 / (2 Ts): the
       model's response there is extrapolation;
     - models whose reference dead times (``delay_s``) differ shift the axes' commands against each other by the
-      difference, which alone bends the path by up to the toolpath's top speed times it (a circle at 167 mm/s with
-      0.11 s between x and y: millimetres);
+      difference, which alone bends the path by up to the toolpath's top speed (over the ``samples`` the metrics
+      cover: its feed moves) times it (a circle at 167 mm/s with 0.11 s between x and y: millimetres);
     - a rotary axis (A, B, C) does not enter the contour error, measured on X, Y, Z in mm; its tracking error is in
       mdeg (the summary's ``_um`` keys, as ``vcnc simulate``'s)."""
     from vcnc.core.axes import ROTARY_AXES
@@ -848,6 +851,8 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
     if spread > run.sample_time:
         linear = [i for i, a in enumerate(run.axes) if a not in ROTARY_AXES]
         speed = np.linalg.norm(np.diff(run.setpoints.position[:, linear], axis=0), axis=1)
+        if samples is not None:
+            speed = speed[samples[1:]]
         top = float(np.max(speed, initial=0.0)) / run.sample_time
         each = ", ".join(f"{a} {d:.4g} s" for a, d in delays.items())
         notes.append(f"the models' reference dead times differ ({each}): the axes' commands are shifted against "
