@@ -498,10 +498,12 @@ def _shape_program(name: str, feed_mm_s: float) -> str:
 
     f = feed_mm_s * 60.0
     text = toolpaths.circle(SHAPES["circle"], f) if name == "circle" else toolpaths.diamond(SHAPES["diamond"], f)
-    # a dwell after the rapid: the contour starts from rest, as in the thesis' tests
+    # a dwell after the rapid: the contour starts from rest, as in the thesis' tests. G4 P is in seconds in the
+    # LinuxCNC G-code the program is read as (LinuxCNC G-code reference, "G4 Dwell": "P - seconds to dwell"); a
+    # P in milliseconds (Fanuc's reading) made it 200 s
     lines = text.splitlines()
     i = next(k for k, line in enumerate(lines) if "G00" in line)
-    lines.insert(i + 1, f"G04 P{SETTLE_S * 1000:g}")
+    lines.insert(i + 1, f"G04 P{SETTLE_S:g}")
     return "\n".join(lines) + "\n"
 
 

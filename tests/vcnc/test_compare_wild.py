@@ -191,3 +191,18 @@ def interpolators_program(text: str):
     import interpolators
 
     return interpolators.parse_program(text, source="named_z.nc")
+
+
+def test_the_built_in_toolpaths_dwell_settle_s_after_the_rapid_not_a_thousand_times_more():
+    """G4 P is seconds in LinuxCNC G-code (the reader's default): the circle's dwell is 0.2 s, not P200 = 200 s."""
+    from vcnc.contour_compare import SETTLE_S
+
+    rep = compare("fadal-pid", models_of(), "circle", truth_runs=1)
+    sp = rep.setpoints
+    # rapid to (20, 0), dwell 0.2 s, the circle (125.7 mm at up to 200 mm/s), the final settle 0.2 s: about 1.5 s
+    assert 1.0 < sp.t[-1] < 2.5
+    assert len(sp) == 1470
+    # the steps at rest: the first stretch is the dwell after the rapid, SETTLE_S at Ts = 1 ms
+    rest = np.flatnonzero(np.all(np.diff(sp.position, axis=0) == 0, axis=1))
+    first = rest[: np.flatnonzero(np.diff(rest) > 1)[0] + 1]
+    assert len(first) == round(SETTLE_S / 0.001) == 200
