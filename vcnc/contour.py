@@ -461,6 +461,37 @@ def plot_plane(ce: ContourError) -> tuple[int, int]:
     return (idx + [1, 0])[:2] if len(idx) < 2 else (idx[0], idx[1])
 
 
+#: Segments of a programmed path above which a report colours the path by its contour error instead of drawing
+#: the magnified deviation beside it (``vcnc simulate``'s ``path.png``, ``vcnc compare``'s ``contour.png``): a CAM
+#: raster's passes lie closer than the magnified error (corpus 0274, wild w022: 0.2-0.5 mm stepover, the error
+#: drawn x100 is 5 mm), which then covers the path in one block of colour (our reading of the figure, seen on a
+#: 4000 s program).
+DENSE_SEGMENTS = 1000
+
+#: Points drawn in a coloured path: the samples in as many stretches, the largest error of each.
+DENSE_POINTS = 200_000
+
+
+def plot_error_colours(ax, xy: np.ndarray, error_um: np.ndarray, *, vmax: float | None = None,
+                       label: str = "commanded"):  # noqa: ANN001, ANN201 - matplotlib Axes and PathCollection
+    """Draw the path ``xy`` [mm] (N x 2) grey with its samples coloured by ``error_um`` [um] (NaN: not drawn):
+    the largest of each of at most :data:`DENSE_POINTS` stretches of samples, so that no peak is lost, largest
+    drawn last; ``vmax`` the top of the colour scale (shared by several panels). Returns the scatter's
+    collection (for a colour bar)."""
+    err = np.where(np.isnan(error_um), -1.0, error_um)
+    k = -(-len(err) // DENSE_POINTS)
+    pad = np.concatenate([err, np.full(-len(err) % k, -1.0)]).reshape(-1, k)
+    idx = np.arange(pad.shape[0]) * k + np.argmax(pad, axis=1)
+    idx = idx[err[idx] >= 0]
+    idx = idx[np.argsort(err[idx], kind="stable")]
+    ax.plot(xy[:, 0], xy[:, 1], lw=0.3, color="0.75", label=label)
+    dots = ax.scatter(xy[idx, 0], xy[idx, 1], c=err[idx], s=1.5, cmap="viridis", rasterized=True, vmin=0.0,
+                      vmax=vmax)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    return dots
+
+
 #: :func:`feature_points` of the paths measured lately, by path (identity; dropped with the path).
 _FEATURES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 

@@ -57,7 +57,17 @@ from typing import Any, Protocol
 import numpy as np
 
 from interpolators.program import Program
-from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes, plot_plane
+from toolpaths.geometry import AXIS_LETTERS
+from vcnc.contour import (
+    DENSE_SEGMENTS,
+    ContourError,
+    auto_magnification,
+    contour_error,
+    feed_segments,
+    moving_axes,
+    plot_error_colours,
+    plot_plane,
+)
 from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
@@ -350,6 +360,29 @@ class ContourReport:
             return ax
         return self.plot_contour(ax)
 
+    def _dense_contour_figure(self):  # -> matplotlib Figure
+        """The commanded path in its plane twice, coloured by the true and the predicted contour error [um] of the
+        samples the metrics cover (:func:`vcnc.contour.plot_error_colours`), one colour scale."""
+        from matplotlib.figure import Figure
+
+        a, b = plot_plane(self.true)
+        sp = self.setpoints
+        xy = np.column_stack([sp.position[:, sp.axis_index(AXIS_LETTERS[i])] if AXIS_LETTERS[i] in sp.axes
+                              else np.zeros(len(sp)) for i in (a, b)])
+        runs = [("true", self.true), (self.main_label, self.predicted[self.main_label])]
+        errs = [np.where(ce._covered(), np.abs(ce.error) * 1e3, np.nan) for _, ce in runs]
+        top = max(float(np.nanmax(e, initial=0.0)) for e in errs) or None
+        fig = Figure(figsize=(13, 6))
+        axs = fig.subplots(1, 2)
+        for ax, (label, _), err in zip(axs, runs, errs):
+            dots = plot_error_colours(ax, xy, err, vmax=top)
+            ax.set_title(f"{self._legend(label)}: max {np.nanmax(err, initial=0.0):.4g} um", fontsize=9)
+            ax.set_xlabel(f"{AXIS_LETTERS[a]} [mm]")
+        axs[0].set_ylabel(f"{AXIS_LETTERS[b]} [mm]")
+        fig.colorbar(dots, ax=list(axs), label="contour error [um]")
+        fig.suptitle(f"{self.toolpath} on {self.truth}: contour error along the path")
+        return fig
+
     def report(self):  # -> vcnc.report.Report
         """An HTML report (:class:`vcnc.report.Report`): metrics table, both figures, summary."""
         from matplotlib.figure import Figure
@@ -392,9 +425,15 @@ class ContourReport:
                       [[lab, a, desc] for lab, per in self.models.items() for a, desc in per.items()])
         for note in self.notes:
             rep.text(note)
-        fig = Figure(figsize=(7, 7))
-        self.plot_contour(fig.subplots())
-        rep.figure("contour", fig, caption="Programmed path (grey) and the contours, errors magnified")
+        if len(self.true.path) > DENSE_SEGMENTS:
+            rep.figure("contour", self._dense_contour_figure(),
+                       caption="Programmed path (grey), its feed moves' samples coloured by the contour error: the "
+                       f"true machine and the {self.main_label} models on one colour scale (a path of "
+                       f"{len(self.true.path)} segments: the magnified errors would cover it)")
+        else:
+            fig = Figure(figsize=(7, 7))
+            self.plot_contour(fig.subplots())
+            rep.figure("contour", fig, caption="Programmed path (grey) and the contours, errors magnified")
         fig = Figure(figsize=(10, 4.5))
         self.plot_error(fig.subplots())
         rep.figure("contour_error", fig, caption="Contour error along the path, true and predicted")

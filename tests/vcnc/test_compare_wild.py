@@ -206,3 +206,19 @@ def test_the_built_in_toolpaths_dwell_settle_s_after_the_rapid_not_a_thousand_ti
     rest = np.flatnonzero(np.all(np.diff(sp.position, axis=0) == 0, axis=1))
     first = rest[: np.flatnonzero(np.diff(rest) > 1)[0] + 1]
     assert len(first) == round(SETTLE_S / 0.001) == 200
+
+
+def test_the_report_of_a_dense_program_colours_the_path_by_the_contour_error(tmp_path):
+    """A CAM raster of over vcnc.contour.DENSE_SEGMENTS moves: the magnified errors would cover its passes, so
+    contour.png colours the path by the true and the predicted contour error (as vcnc simulate's path.png)."""
+    from vcnc.contour import DENSE_SEGMENTS
+
+    moves = "\n".join(f"G1 X{(i % 2) * 5} Y{i * 0.05:.2f}" for i in range(1, DENSE_SEGMENTS + 2))
+    prog = write(tmp_path, f"G21 G90 G17\nG0 X0 Y0\nF3000\n{moves}\nM2\n", "raster.nc")
+    rep = compare("fadal-pid", models_of(), str(prog), truth_runs=1)
+    assert len(rep.true.path) > DENSE_SEGMENTS
+    rep.report().write(tmp_path / "rep")
+    html = (tmp_path / "rep" / "index.html").read_text()
+    assert ("samples coloured by the contour error: the true machine and the identified models on one colour scale "
+            f"(a path of {len(rep.true.path)} segments") in html
+    assert (tmp_path / "rep" / "contour.png").stat().st_size > 0
