@@ -37,6 +37,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
+import weakref
 from collections.abc import Sequence
 from typing import Any
 
@@ -346,26 +347,21 @@ class ContourError:
         if self.signed:
             out["max_outside_um"] = float(max(0.0, e.max()) * 1e3) if e.size else float("nan")
             out["max_inside_um"] = float(max(0.0, -e.min()) * 1e3) if e.size else float("nan")
-        feats = path_features(self.path)
+        feats = feature_points(self.path)
         # samples sorted by arc length: each feature's window is one slice (a long program has tens
         # of thousands of corners and millions of samples)
         order = np.argsort(self.arc_length[cov], kind="stable")
         s, abs_e = self.arc_length[cov][order], np.abs(e[order])
-        cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in self.path.segments])])
         for key, name in (("corners", "corner_max_um"), ("quadrants", "quadrant_max_um")):
             items = []
-            s0s = np.asarray(feats[key], dtype=float)
+            s0s, points = feats[key]
             lo = np.searchsorted(s, s0s - window_mm, side="left")
             hi = np.searchsorted(s, s0s + window_mm, side="right")
-            for s0, i, j in zip(s0s, lo, hi):
+            for s0, pos, i, j in zip(s0s, points, lo, hi):
                 if j <= i:
                     continue
-                pos = _point_at(self.path, float(s0), cum)
-                items.append({
-                    "arc_length_mm": float(s0),
-                    "position_mm": [float(v) for v in pos],
-                    "max_um": float(np.max(abs_e[i:j]) * 1e3),
-                })
+                items.append({"arc_length_mm": float(s0), "position_mm": pos,
+                              "max_um": float(np.max(abs_e[i:j]) * 1e3)})
             out[key] = items
             out[name] = max((it["max_um"] for it in items), default=float("nan"))
         if self.tracking is not None:
@@ -463,6 +459,59 @@ def plot_plane(ce: ContourError) -> tuple[int, int]:
         return (p, q) if p < q else (q, p)
     idx = [AXIS_LETTERS.index(a) for a in ce.axes if a in AXIS_LETTERS]
     return (idx + [1, 0])[:2] if len(idx) < 2 else (idx[0], idx[1])
+
+
+#: Segments of a programmed path above which a report colours the path by its contour error instead of drawing
+#: the magnified deviation beside it (``vcnc simulate``'s ``path.png``, ``vcnc compare``'s ``contour.png``): a CAM
+#: raster's passes lie closer than the magnified error (corpus 0274, wild w022: 0.2-0.5 mm stepover, the error
+#: drawn x100 is 5 mm), which then covers the path in one block of colour (our reading of the figure, seen on a
+#: 4000 s program).
+DENSE_SEGMENTS = 1000
+
+#: Points drawn in a coloured path: the samples in as many stretches, the largest error of each.
+DENSE_POINTS = 200_000
+
+
+def plot_error_colours(ax, xy: np.ndarray, error_um: np.ndarray, *, vmax: float | None = None,
+                       label: str = "commanded"):  # noqa: ANN001, ANN201 - matplotlib Axes and PathCollection
+    """Draw the path ``xy`` [mm] (N x 2) grey with its samples coloured by ``error_um`` [um] (NaN: not drawn):
+    the largest of each of at most :data:`DENSE_POINTS` stretches of samples, so that no peak is lost, largest
+    drawn last; ``vmax`` the top of the colour scale (shared by several panels). Returns the scatter's
+    collection (for a colour bar)."""
+    err = np.where(np.isnan(error_um), -1.0, error_um)
+    k = -(-len(err) // DENSE_POINTS)
+    pad = np.concatenate([err, np.full(-len(err) % k, -1.0)]).reshape(-1, k)
+    idx = np.arange(pad.shape[0]) * k + np.argmax(pad, axis=1)
+    idx = idx[err[idx] >= 0]
+    idx = idx[np.argsort(err[idx], kind="stable")]
+    ax.plot(xy[:, 0], xy[:, 1], lw=0.3, color="0.75", label=label)
+    dots = ax.scatter(xy[idx, 0], xy[idx, 1], c=err[idx], s=1.5, cmap="viridis", rasterized=True, vmin=0.0,
+                      vmax=vmax)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    return dots
+
+
+#: :func:`feature_points` of the paths measured lately, by path (identity; dropped with the path).
+_FEATURES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def feature_points(path: Path) -> dict[str, tuple[np.ndarray, list[list[float]]]]:
+    """``{"corners", "quadrants"}``: the arc lengths [mm] of :func:`path_features` and the points [mm] there.
+
+    Computed once per path: the metrics of every run of one toolpath (``vcnc compare``'s noise realisations and
+    models, 27 on a noisy truth) share them (3D_Chips, 4,700 blocks: 0.67 s of features and 1 s of points each
+    time, 45 s of a 60 s compare; ``benchmarks/compare_program.py``)."""
+    got = _FEATURES.get(path)
+    if got is None:
+        feats = path_features(path)
+        cum = np.concatenate([[0.0], np.cumsum([seg.length for seg in path.segments])])
+        got = {}
+        for key in ("corners", "quadrants"):
+            s0s = np.asarray(feats[key], dtype=float)
+            got[key] = (s0s, [[float(v) for v in _point_at(path, float(s0), cum)] for s0 in s0s])
+        _FEATURES[path] = got
+    return got
 
 
 def _point_at(path: Path, s: float, cum: np.ndarray) -> np.ndarray:

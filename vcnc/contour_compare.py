@@ -57,7 +57,17 @@ from typing import Any, Protocol
 import numpy as np
 
 from interpolators.program import Program
-from vcnc.contour import ContourError, auto_magnification, contour_error, feed_segments, moving_axes, plot_plane
+from toolpaths.geometry import AXIS_LETTERS
+from vcnc.contour import (
+    DENSE_SEGMENTS,
+    ContourError,
+    auto_magnification,
+    contour_error,
+    feed_segments,
+    moving_axes,
+    plot_error_colours,
+    plot_plane,
+)
 from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError
@@ -102,20 +112,27 @@ def _pct_of(t: Mapping[str, Any], p: Mapping[str, Any]) -> dict[str, float]:
 
 
 def _mean_tree(items: list) -> Any:
-    """Element-wise mean of metrics of the same layout (dicts, lists, numbers; NaN where all are)."""
+    """Element-wise mean of metrics of the same layout (dicts, lists, numbers; NaN where all are).
+
+    Lists of different lengths (a corner whose window no sample of one run reached) are the first run's: their
+    items would not pair up. Plain Python on the scalars: a long program's metrics hold tens of thousands of
+    corners, and numpy's per-call overhead on ten numbers was 15 s of a compare (3D_Chips)."""
     first = items[0]
     if isinstance(first, Mapping):
         return {k: _mean_tree([it[k] for it in items]) for k in first}
     if isinstance(first, (list, tuple)):
+        if any(len(it) != len(first) for it in items):
+            return first
         return [_mean_tree([it[i] for it in items]) for i in range(len(first))]
     if isinstance(first, bool) or not isinstance(first, (int, float, np.number)):
         return first
-    vals = np.array([float(v) for v in items])
-    if np.all(np.isnan(vals)):
+    vals = [float(v) for v in items]
+    finite = [v for v in vals if not math.isnan(v)]
+    if not finite:
         return float("nan")
-    if isinstance(first, (int, np.integer)) and np.all(vals == vals[0]):
+    if isinstance(first, (int, np.integer)) and all(v == vals[0] for v in vals):
         return int(first)
-    return float(np.nanmean(vals))
+    return math.fsum(finite) / len(finite)
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -162,6 +179,9 @@ class ContourReport:
     true_runs: list = dataclasses.field(default_factory=list)
     true_as_measured_runs: list = dataclasses.field(default_factory=list)
     seeds: list = dataclasses.field(default_factory=list)
+    #: metrics computed once per label (a noisy truth's mean over its runs, each prediction's): the summary, the
+    #: prediction errors and the report ask for them many times
+    _memo: dict = dataclasses.field(default_factory=dict, init=False, repr=False)
 
     @property
     def runs(self) -> int:
@@ -179,30 +199,39 @@ class ContourReport:
         out = {"true": self._true_metrics()}
         if self.true_as_measured is not None:
             out["true_as_measured"] = self._true_metrics(as_measured=True)
-        out.update({k: v.metrics() for k, v in self.predicted.items()})
+        out.update({k: self._predicted_metrics(k) for k in self.predicted})
         return out
 
     def _true_metrics(self, *, as_measured: bool = False) -> dict[str, Any]:
-        runs = self.true_as_measured_runs if as_measured else self.true_runs
-        return _mean_tree(runs) if runs else (self.true_as_measured if as_measured else self.true).metrics()
+        key = "true_as_measured" if as_measured else "true"
+        if key not in self._memo:
+            runs = self.true_as_measured_runs if as_measured else self.true_runs
+            self._memo[key] = _mean_tree(runs) if runs else (self.true_as_measured if as_measured
+                                                             else self.true).metrics()
+        return self._memo[key]
+
+    def _predicted_metrics(self, label: str) -> dict[str, Any]:
+        if ("predicted", label) not in self._memo:
+            self._memo["predicted", label] = self.predicted[label].metrics()
+        return self._memo["predicted", label]
 
     def prediction_error_pct(self, label: str | None = None) -> dict[str, float]:
         """``{"max", "rms"}``: 100 (predicted - true) / true of the contour error [%], against the
         mean of the truth's noise realisations."""
-        return _pct_of(self._true_metrics(), self.predicted[label or self.main_label].metrics())
+        return _pct_of(self._true_metrics(), self._predicted_metrics(label or self.main_label))
 
     def prediction_error_as_measured_pct(self, label: str | None = None) -> dict[str, float] | None:
         """As :meth:`prediction_error_pct`, against :attr:`true_as_measured` (None without it)."""
         if self.true_as_measured is None:
             return None
-        return _pct_of(self._true_metrics(as_measured=True), self.predicted[label or self.main_label].metrics())
+        return _pct_of(self._true_metrics(as_measured=True), self._predicted_metrics(label or self.main_label))
 
     def prediction_error_range_pct(self, label: str | None = None) -> dict[str, list[float]] | None:
         """``{"max": [lo, hi], "rms": [lo, hi]}``: the prediction error [%] against each single
         noise realisation of the truth (None for a single run)."""
         if not self.true_runs:
             return None
-        p = self.predicted[label or self.main_label].metrics()
+        p = self._predicted_metrics(label or self.main_label)
         per = [_pct_of(t, p) for t in self.true_runs]
         return {k: [min(x[k] for x in per), max(x[k] for x in per)] for k in ("max", "rms")}
 
@@ -331,6 +360,29 @@ class ContourReport:
             return ax
         return self.plot_contour(ax)
 
+    def _dense_contour_figure(self):  # -> matplotlib Figure
+        """The commanded path in its plane twice, coloured by the true and the predicted contour error [um] of the
+        samples the metrics cover (:func:`vcnc.contour.plot_error_colours`), one colour scale."""
+        from matplotlib.figure import Figure
+
+        a, b = plot_plane(self.true)
+        sp = self.setpoints
+        xy = np.column_stack([sp.position[:, sp.axis_index(AXIS_LETTERS[i])] if AXIS_LETTERS[i] in sp.axes
+                              else np.zeros(len(sp)) for i in (a, b)])
+        runs = [("true", self.true), (self.main_label, self.predicted[self.main_label])]
+        errs = [np.where(ce._covered(), np.abs(ce.error) * 1e3, np.nan) for _, ce in runs]
+        top = max(float(np.nanmax(e, initial=0.0)) for e in errs) or None
+        fig = Figure(figsize=(13, 6))
+        axs = fig.subplots(1, 2)
+        for ax, (label, _), err in zip(axs, runs, errs):
+            dots = plot_error_colours(ax, xy, err, vmax=top)
+            ax.set_title(f"{self._legend(label)}: max {np.nanmax(err, initial=0.0):.4g} um", fontsize=9)
+            ax.set_xlabel(f"{AXIS_LETTERS[a]} [mm]")
+        axs[0].set_ylabel(f"{AXIS_LETTERS[b]} [mm]")
+        fig.colorbar(dots, ax=list(axs), label="contour error [um]")
+        fig.suptitle(f"{self.toolpath} on {self.truth}: contour error along the path")
+        return fig
+
     def report(self):  # -> vcnc.report.Report
         """An HTML report (:class:`vcnc.report.Report`): metrics table, both figures, summary."""
         from matplotlib.figure import Figure
@@ -365,17 +417,23 @@ class ContourReport:
         trows = []
         for label, _ in self._runs():
             for a, v in m[label].get("tracking", {}).items():
-                trows.append([label, a, v["max_um"], v["rms_um"]])
+                trows.append([label, a, v["max_um"], v["rms_um"], axis_unit(a, small=True)])
         if trows:
-            rep.table(["run", "axis", "tracking max [um]", "tracking RMS [um]"], trows)
+            rep.table(["run", "axis", "tracking max", "tracking RMS", "unit"], trows)
         if self.models:
             rep.table(["model", "axis", "description"],
                       [[lab, a, desc] for lab, per in self.models.items() for a, desc in per.items()])
         for note in self.notes:
             rep.text(note)
-        fig = Figure(figsize=(7, 7))
-        self.plot_contour(fig.subplots())
-        rep.figure("contour", fig, caption="Programmed path (grey) and the contours, errors magnified")
+        if len(self.true.path) > DENSE_SEGMENTS:
+            rep.figure("contour", self._dense_contour_figure(),
+                       caption="Programmed path (grey), its feed moves' samples coloured by the contour error: the "
+                       f"true machine and the {self.main_label} models on one colour scale (a path of "
+                       f"{len(self.true.path)} segments: the magnified errors would cover it)")
+        else:
+            fig = Figure(figsize=(7, 7))
+            self.plot_contour(fig.subplots())
+            rep.figure("contour", fig, caption="Programmed path (grey) and the contours, errors magnified")
         fig = Figure(figsize=(10, 4.5))
         self.plot_error(fig.subplots())
         rep.figure("contour_error", fig, caption="Contour error along the path, true and predicted")
@@ -479,10 +537,12 @@ def _shape_program(name: str, feed_mm_s: float) -> str:
 
     f = feed_mm_s * 60.0
     text = toolpaths.circle(SHAPES["circle"], f) if name == "circle" else toolpaths.diamond(SHAPES["diamond"], f)
-    # a dwell after the rapid: the contour starts from rest, as in the thesis' tests
+    # a dwell after the rapid: the contour starts from rest, as in the thesis' tests. G4 P is in seconds in the
+    # LinuxCNC G-code the program is read as (LinuxCNC G-code reference, "G4 Dwell": "P - seconds to dwell"); a
+    # P in milliseconds (Fanuc's reading) made it 200 s
     lines = text.splitlines()
     i = next(k for k, line in enumerate(lines) if "G00" in line)
-    lines.insert(i + 1, f"G04 P{SETTLE_S * 1000:g}")
+    lines.insert(i + 1, f"G04 P{SETTLE_S:g}")
     return "\n".join(lines) + "\n"
 
 
@@ -649,6 +709,7 @@ def compare(
     per_axis = _models_per_axis(models, run.axes)
     predicted, descr = _predictions(per_axis, run, kw, seed=seed, notes=notes)
     notes.extend(_beyond_range_notes(per_axis, run, true_ce.include))
+    notes.extend(_model_notes(per_axis, run, true_ce.include))
     if include is not None:
         notes.append("metrics cover feed moves only; rapid (G00 / FMAX) moves are excluded")
     return ContourReport(toolpath=run.toolpath, truth=run.name, setpoints=run.setpoints, true=true_ce,
@@ -677,6 +738,14 @@ class _Truth:
 def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program | Setpoints | None) -> _Truth:
     """A real run: its commanded positions are the setpoints, its measured ones the truth."""
     program = None
+    moving = moving_axes(capture.reference, capture.axes)
+    if len(moving) < 2:
+        # a control's trace of one axis (TNCscope, halscope, a SINUMERIK trace of one drive): no contour to compare
+        raise InputError(
+            f"the capture's commanded positions move {len(moving)} linear axis ({', '.join(moving) or 'none'} of "
+            f"{', '.join(capture.axes)}): a contour error needs two or more axes recorded on one time base",
+            file=capture.source, expected="a trace of the axes that made the contour (X and Y), or a built-in machine "
+            "or machine file as --truth; the model of one axis is checked against its own record by vcnc identify")
     if toolpath is not None and not (isinstance(toolpath, str) and toolpath in SHAPES):
         program, _, tp_name = _program(toolpath, None)
     else:
@@ -697,15 +766,29 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
                      truth_runs: int | None) -> _Truth:
     """The true machine run on the toolpath, lazily, one noise seed at a time."""
     import interpolators
+    from vcnc.facade import check_program_axes
 
     notes: list[str] = []
     machine = _truth_machine(truth)
     program, sp, tp_name = _program(toolpath, feed)
     if sp is None:
-        axes = program.axes or ("x",)
-        machine = _expand_machine(machine, tuple(axes), notes)
-        limits = _limits(machine, tuple(axes), acceleration, feed)
+        axes = tuple(program.axes or ("x",))
+        if len(machine.axes) > 1:
+            # as vcnc simulate: a move of an axis the machine lacks is refused naming its line and the way
+            # forward; an axis the program only names (G0 Z0 at Z0) is left out of the setpoints
+            check_program_axes(program, machine)
+            axes = tuple(a for a in axes if a in machine.axes)
+        limits = _limits(machine, axes, acceleration, feed)
         sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
+        if len(machine.axes) == 1:  # its axis is copied for each axis the program moves (not those it only names)
+            pos = sp.position
+            axes = tuple(a for i, a in enumerate(sp.axes) if len(pos) and float(np.ptp(pos[:, i])) > 0) or axes
+        if tuple(sp.axes) != axes:
+            sp = sp.select_axes(axes)
+        machine = _expand_machine(machine, axes, notes)
+        if sp.path is not None and not sp.path.segments:
+            raise InputError("the program moves no axis (it only dwells or switches): there is no contour to "
+                             "compare", file=program.source, expected="a program with a feed move (G1, G2, G3, L, C)")
     else:
         machine = _expand_machine(machine, tuple(sp.axes), notes)
     sp = _with_settle(sp, settle_s)
@@ -780,6 +863,47 @@ def _beyond_range_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarr
                          f"was identified from ({seen}): the prediction extrapolates the "
                          "model (identify from a record that reaches them, e.g. the program of `vcnc toolpath "
                          "identification`)")
+    return notes
+
+
+def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | None) -> list[str]:
+    """What the numbers rest on beyond the models' parameters (our reading of what a process planner must be told):
+
+    - a model identified from a record sampled more coarsely than the toolpath runs (a 100 ms log applied to 1 ms
+      setpoints) is simulated at the toolpath's step (its continuous-time parameters discretised there,
+      ``identification.discretize``), but the record held nothing above its Nyquist frequency 1 / (2 Ts): the
+      model's response there is extrapolation;
+    - models whose reference dead times (``delay_s``) differ shift the axes' commands against each other by the
+      difference, which alone bends the path by up to the toolpath's top speed (over the ``samples`` the metrics
+      cover: its feed moves) times it (a circle at 167 mm/s with 0.11 s between x and y: millimetres);
+    - a rotary axis (A, B, C) does not enter the contour error, measured on X, Y, Z in mm; its tracking error is in
+      mdeg (the summary's ``_um`` keys, as ``vcnc simulate``'s)."""
+    from vcnc.core.axes import ROTARY_AXES
+
+    notes = []
+    for a in run.axes:
+        ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
+        if ts > run.sample_time * (1 + 1e-9):
+            notes.append(f"the model of {a} was identified from a record sampled every {ts:g} s (content up to its "
+                         f"Nyquist frequency {0.5 / ts:.4g} Hz); it runs here at the toolpath's {run.sample_time:g} s: "
+                         f"its response above {0.5 / ts:.4g} Hz is extrapolated, not identified")
+    delays = {a: float(getattr(per_axis[a], "delay_s", 0.0) or 0.0) for a in run.axes}
+    spread = max(delays.values()) - min(delays.values())
+    if spread > run.sample_time:
+        linear = [i for i, a in enumerate(run.axes) if a not in ROTARY_AXES]
+        speed = np.linalg.norm(np.diff(run.setpoints.position[:, linear], axis=0), axis=1)
+        if samples is not None:
+            speed = speed[samples[1:]]
+        top = float(np.max(speed, initial=0.0)) / run.sample_time
+        each = ", ".join(f"{a} {d:.4g} s" for a, d in delays.items())
+        notes.append(f"the models' reference dead times differ ({each}): the axes' commands are shifted against "
+                     f"each other by up to {spread:.4g} s, which alone bends the path by up to {top * spread:.4g} "
+                     f"mm at the toolpath's top speed {top:.4g} mm/s")
+    pos = run.setpoints.position
+    rotary = [a for i, a in enumerate(run.axes) if a in ROTARY_AXES and len(pos) and float(np.ptp(pos[:, i])) > 0]
+    if rotary:
+        notes.append(f"rotary axis {', '.join(rotary)} does not enter the contour error (measured on X, Y, Z in mm); "
+                     "its tracking error is in mdeg")
     return notes
 
 

@@ -160,6 +160,7 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from vcnc.contour import DENSE_SEGMENTS
     from vcnc.report import Report
 
     rep = Report(f"vcnc simulate: {capture.meta.get('program', '')} on {capture.meta.get('machine', '')}")
@@ -205,40 +206,21 @@ def build_report(capture: Capture, summary: dict[str, Any]) -> Report:
     return rep
 
 
-#: Segments of a programmed path above which ``path.png`` colours the path by its contour error instead of
-#: drawing the magnified deviation beside it: a CAM raster's passes lie closer than the magnified error
-#: (corpus 0274, wild w022: 0.2-0.5 mm stepover, the error drawn x100 is 5 mm), which then covers the path
-#: in one block of colour (our reading of the figure, seen on a 4000 s program).
-DENSE_SEGMENTS = 1000
-
-#: Points drawn in the coloured path: the samples in as many stretches, the largest error of each.
-DENSE_POINTS = 200_000
-
-
 def _dense_path_figure(capture: Capture, summary: dict[str, Any], mov: list[str]) -> Any:
     """The commanded path in the first two moving linear axes, grey, with its samples coloured by the contour
-    error [um] (the largest of each of at most :data:`DENSE_POINTS` stretches of samples, so that no peak is
-    lost), largest drawn last."""
+    error [um] (:func:`vcnc.contour.plot_error_colours`)."""
     import matplotlib.pyplot as plt
 
-    from vcnc.contour import contour_error
+    from vcnc.contour import contour_error, plot_error_colours
 
     i, j = capture.axis_index(mov[0]), capture.axis_index(mov[1])
     r = capture.reference[:, [i, j]]
     ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference, t=capture.t)
-    err = np.abs(ce.error) * 1e3
-    k = -(-len(err) // DENSE_POINTS)
-    pad = np.concatenate([err, np.full(-len(err) % k, -1.0)]).reshape(-1, k)
-    idx = np.arange(pad.shape[0]) * k + np.argmax(pad, axis=1)
-    idx = idx[np.argsort(err[idx], kind="stable")]
     fig, ax = plt.subplots(figsize=(7, 6))
-    ax.plot(r[:, 0], r[:, 1], lw=0.3, color="0.75", label="commanded")
-    dots = ax.scatter(r[idx, 0], r[idx, 1], c=err[idx], s=1.5, cmap="viridis", rasterized=True)
+    dots = plot_error_colours(ax, r, np.abs(ce.error) * 1e3)
     fig.colorbar(dots, ax=ax, label="contour error [um]")
     ax.set_xlabel(f"{mov[0]} [mm]")
     ax.set_ylabel(f"{mov[1]} [mm]")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.grid(alpha=0.3)
     ax.set_title(f"path in {mov[0]}, {mov[1]} coloured by the contour error in {', '.join(mov)} "
                  f"(max {summary['contour']['max_um']:.2f} um)", fontsize=9)
     fig.tight_layout()

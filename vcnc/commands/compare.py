@@ -4,6 +4,11 @@
 X/Y cases when one axis was identified) or once per axis as ``AXIS=FILE``
 (``--model x=mx.json --model y=my.json``). The two forms do not mix. Everything is computed
 before anything is written; a failure leaves no file behind.
+
+A program file run on a simulated truth is read as ``vcnc simulate`` reads it
+(:func:`vcnc.commands.simulate.read_for_machine`): in the true machine's context (its rotary axes, its
+dialect and tool table, ``--dialect`` and the other reader options), its notes printed, a move of an axis the
+machine lacks refused naming the line and the way forward (``NAME+z``, an ``[axes.a]`` section).
 """
 
 from __future__ import annotations
@@ -11,6 +16,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from vcnc.commands.interpolate import add_context_arguments, print_program_notes
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.errors import InputError
 
@@ -37,6 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", metavar="F", help="write the summary JSON")
     parser.add_argument("--report", metavar="DIR", help="write an HTML report with figures into DIR")
     add_trace_arguments(parser)
+    add_context_arguments(parser)
 
 
 def parse_models(values: list[str]) -> str | dict[str, str]:
@@ -78,13 +85,37 @@ def _truth(args: argparse.Namespace):
     return args.truth
 
 
+def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tuple:
+    """(truth, toolpath): for a simulated truth and a program file, the machine loaded and the program read
+    for it as ``vcnc simulate`` reads it (its notes printed); else both as given."""
+    from pathlib import Path
+
+    from vcnc.commands.simulate import read_for_machine
+    from vcnc.contour_compare import SHAPES
+    from vcnc.engine.machine import load_machine
+
+    if not isinstance(truth, str) or toolpath in SHAPES or not Path(toolpath).is_file() or args.feed is not None:
+        return truth, toolpath  # (compare refuses --feed with a program, naming it)
+    machine = load_machine(truth)
+    program = read_for_machine(argparse.Namespace(**{**vars(args), "program": toolpath}), machine)
+    print_program_notes(program, toolpath)
+    return machine, program
+
+
 def run(args: argparse.Namespace) -> int:
     from vcnc.contour_compare import compare
 
     models = parse_models(args.model)
-    truth = _truth(args)
-    result = compare(truth, models, args.toolpath, feed=args.feed, acceleration=args.acceleration,
-                     profile=args.profile, seed=args.seed, truth_runs=args.truth_runs)
+    try:
+        truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
+        result = compare(truth, models, toolpath, feed=args.feed, acceleration=args.acceleration,
+                         profile=args.profile, seed=args.seed, truth_runs=args.truth_runs)
+    except InputError as exc:
+        # the way forward the program checks name is vcnc simulate's --machine NAME+z; here the machine is --truth
+        if exc.expected and "`--machine " in exc.expected:
+            exc.expected = exc.expected.replace("`--machine ", "`--truth ")
+            exc.args = (str(exc),)
+        raise
     summary = result.to_dict()
     rep = result.report() if args.report else None
     if args.json:
