@@ -1,0 +1,89 @@
+"""Heidenhain programs of a twelfth wild set (Fusion posts for a Mikron VCP1000 / TNC 426, a Spinner U1530 /
+TNC 620 and a Mikron WF41C / TNC 355, a DMU 60eVo shop's TNC 640 utilities, a C# engraving generator,
+school programs in Czech, Polish, Italian, Spanish, Slovenian and German dialog, identification runs) and
+the four open questions settled from the manuals: M140 at the end of its block (after the block's cycle),
+M91 without tool length, 'DWELL.5', F9998. Each a hand-written program, checked against the independent
+reference where it runs."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+ZERO = MachineContext()
+HOME = MachineContext(home=(0.0, 0.0, 300.0))
+DRILL = ("CYCL DEF 200 DRILLING ~\n Q200=+2 ;SET-UP CLEARANCE ~\n Q201=-10 ;DEPTH ~\n Q206=+150 ;FEED ~\n"
+         " Q202=+10 ;PLUNGING DEPTH ~\n Q210=+0 ;DWELL TOP ~\n Q203=+0 ;SURFACE ~\n Q204=+15 ;2ND SET-UP ~\n"
+         " Q211=+0 ;DWELL BOTTOM\n")
+
+
+def checked(body: str, context: MachineContext = ZERO):
+    """The program read, and its blocks matched against the reference."""
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", context)
+
+
+def rows(prog, line: int) -> list[tuple[str, list[float]]]:
+    return [(b.kind, np.round(b.target, 6).tolist()) for b in prog.blocks if b.line == line]
+
+
+def test_m91_positions_without_the_tool_length_and_keeps_radius_compensation():
+    # TNC 310 user's manual, 7.3 "Miscellaneous functions for coordinate data" (M91/M92): "Radius compensation
+    # remains the same in blocks that are programmed with M91 or M92. The tool length, however, is not
+    # compensated." A 100 mm tool: 'L Z-5 M91' puts the machine's Z (no length) at -5; a program Z+10 at 110;
+    # 'L X+40 Y+0 RL M91' keeps the tool 5 mm left of its path
+    tools = MachineContext(home=(0.0, 0.0, 300.0), tools={1: Tool(number=1, length=100.0, radius=5.0)})
+    prog = parse_heidenhain("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL X+0 Y+0 R0 FMAX\nL Z+10 R0 FMAX\n"
+                            "L Z-5 R0 FMAX M91\nL Z+10 R0 FMAX\nL X+20 Y+0 RL F500\nL X+40 Y+0 RL M91\n"
+                            "L X+60 Y+0 R0\nEND PGM T MM\n", source="t.h", context=tools)
+    assert rows(prog, 5) == [("rapid", [0.0, 0.0, -5.0])]
+    assert rows(prog, 6) == [("rapid", [0.0, 0.0, 110.0])]
+    assert rows(prog, 8) == [("line", [40.0, 5.0, 110.0])]
+
+
+@pytest.mark.parametrize(("item", "seconds"), [("DWELL.5", 0.5), ("DWELL .5", 0.5), ("DWELL 5", 5.0),
+                                                ("DWELL5", 5.0), ("V.ZEIT2", 2.0), ("CZAS ZWL.0.5", 0.5)])
+def test_dwell_written_without_a_blank(item, seconds):
+    # 'CYCL DEF 9.1 DWELL.5': the TNC's English item name DWELL has no dot of its own, so the dot is the
+    # number's (0.5 s, our reading); it read 5 s. An abbreviated name's dot (German V.ZEIT, Polish CZAS ZWL.)
+    # still ends the name
+    prog = checked(f"TOOL CALL 1 Z S1000\nL Z+10 R0 FMAX\nCYCL DEF 9.0 DWELL TIME\nCYCL DEF 9.1 {item}")
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(seconds)]
+
+
+def test_old_pecking_cycle_item_with_its_decimal_point_after_the_name():
+    # 'CYCL DEF 1.4 DWELL.5' in the old pecking cycle (TNC 355 form): half a second at the bottom, not 5
+    prog = parse_heidenhain("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL X+0 Y+0 Z+2 R0 FMAX\nCYCL DEF 1.0 PECKING\n"
+                            "CYCL DEF 1.1 SET UP 2\nCYCL DEF 1.2 DEPTH -6\nCYCL DEF 1.3 PECKG 6\n"
+                            "CYCL DEF 1.4 DWELL.5\nCYCL DEF 1.5 F100\nCYCL CALL\nEND PGM T MM\n", source="t.h",
+                            context=ZERO)
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(0.5)]
+
+
+def test_tnc355_post_f9998_is_a_feed_of_9998_mm_per_min():
+    # the Fusion 'TNC 355' post (Mikron WF41C) writes its rapids as 'L .. R0 F9998': no TNC manual we could
+    # search gives F9998/F9999 a meaning of its own; the control runs a line at the feed, limited by the
+    # machine's maximum (our reading; FMAX is the TNC's rapid). A line at 9998 mm/min, not a rapid
+    prog = checked("TOOL CALL 5 Z S630\nL X+20 Y+20 R0 F9998\nL Z+5 R0 F9999\nL Z-2 F80")
+    moves = [(b.kind, round(b.feed * 60, 6)) for b in prog.blocks if b.kind != "dwell"]
+    assert moves == [("line", 9998.0), ("line", 9999.0), ("line", 80.0)]
+
+
+def test_empty_cycle_32_tolerance_item_resets_the_tolerance():
+    # the Mikron VCP1000 (TNC 426) post cancels its tolerance with 'CYCL DEF 32.1' and no T (TNC 426 user's
+    # manual, cycle 32 TOLERANCE: "cancel by ... entering tolerance 0"): no error, no motion
+    prog = checked("TOOL CALL 3 Z S4000\nCYCL DEF 32.0 TOLERANCE\nCYCL DEF 32.1 T0.013\nL X+10 Y+0 Z+5 R0 FMAX\n"
+                   "L X+20 F800\nCYCL DEF 32.0 TOLERANCE\nCYCL DEF 32.1\nL X+30")
+    assert [b.target[0] for b in prog.blocks] == [pytest.approx(10.0), pytest.approx(20.0), pytest.approx(30.0)]
+
+
+def test_f_auto_in_an_engraving_fragment_without_a_tool_call_names_the_missing_feed():
+    # a C# engraving generator's letter files ('L Z-0.2 FAUTO') have no TOOL CALL: the control has no feed
+    # for F AUTO; the error names what is missing
+    with pytest.raises(GCodeError, match=r"t\.h:4:\d+: F AUTO without a feed in the TOOL CALL"):
+        parse_heidenhain("0 BEGIN PGM T MM\nL X1.5 Y6.5 FMAX\nL Z2.0 FMAX\nL Z-0.2 FAUTO\nEND PGM T MM\n",
+                         source="t.h", context=ZERO)
