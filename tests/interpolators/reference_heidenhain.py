@@ -432,18 +432,21 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
                rows="one" if base is None else "last")
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
-    if "MB" in w:
-        end = t.pos.copy()
-        # a retract: never down (home stands in for the limit); MB n: n up; at the F after MB, else rapid
-        end[2] = max(t.ctx.home[2], t.pos[2]) if w["MB"] == "MAX" else t.pos[2] + abs(w["MB"]) * t.scale
-        retract_feed = w.get("MBF", "MAX")
-        t.emit(line, "rapid" if retract_feed == "MAX" else "feed", end,
-               rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
     ms = w.get("M", [])
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+    if "MB" in w:  # M140 at the block's end, after the block's cycle
+        _retract(t, line, w["MB"], w.get("MBF", "MAX"))
     _tcpm_switch(t, [129] if 129 in ms else [])
+
+
+def _retract(t: _Tnc, line: int, mb: float | str, feed: float | str) -> None:
+    """M140 MB MAX / MB n: never down (home stands in for the limit); MB n: n up; at the F after MB, else rapid."""
+    end = t.pos.copy()
+    end[2] = max(t.ctx.home[2], t.pos[2]) if mb == "MAX" else t.pos[2] + abs(float(mb)) * t.scale
+    t.emit(line, "rapid" if feed == "MAX" else "feed", end,
+           rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
 
 
 def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
@@ -2646,6 +2649,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 raise ReferenceError(up)
             t.modal = False
             _run_cycle(t, line)
+            mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
+            if mb:  # M140 at the block's end, after the cycle
+                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
         elif re.fullmatch(r"(M\d+\s*)+(MB\s*(MAX|\d+\.?\d*)\s*(F\s*(MAX|\d+\.?\d*)\s*)?)?(M\d+\s*)*",
                           _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
@@ -2656,11 +2662,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 _run_cycle(t, line)
             mb = re.search(r"MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
             if 140 in ms and mb:  # M140 MB alone: the retract of a line's M140, at the block's end
-                end = t.pos.copy()
-                up_by = float(mb.group(1)) * t.scale if mb.group(1) != "MAX" else 0.0
-                end[2] = max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else t.pos[2] + up_by
-                t.emit(line, "rapid" if mb.group(2) in (None, "MAX") else "feed", end,
-                       rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
+                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):

@@ -31,6 +31,30 @@ def rows(prog, line: int) -> list[tuple[str, list[float]]]:
     return [(b.kind, np.round(b.target, 6).tolist()) for b in prog.blocks if b.line == line]
 
 
+def test_m140_in_a_cycle_call_block_retracts_after_the_cycle():
+    # TNC 640 user's manual, "Retraction in the tool axis: M140": M140 is effective at the end of its block; a
+    # Spinner U1530 (TNC 620) post writes 'CYCL CALL M140 MB MAX': the hole is drilled where the tool stands,
+    # then the tool leaves upward (home z 300 stands in for the limit). vcnc retracted first and drilled from
+    # nowhere near the part's clearance plane (the cycle's first move went down from z 300)
+    prog = checked("TOOL CALL 12 Z S3000\nL X+20 Y+20 R0 FMAX\nL Z+15 R0 FMAX\n" + DRILL
+                   + "L X+60 Y+20 R0 FMAX\nCYCL CALL M140 MB MAX", HOME)
+    moves = rows(prog, 15)  # the CYCL CALL block (the cycle's lines 5-13 continued with '~')
+    assert moves[0] == ("rapid", [60.0, 20.0, 2.0])
+    assert ("line", [60.0, 20.0, -10.0]) in moves
+    assert moves[-2:] == [("rapid", [60.0, 20.0, 15.0]), ("rapid", [60.0, 20.0, 300.0])]
+
+
+def test_m140_beside_m99_retracts_after_the_called_cycle():
+    # 'L X.. Y.. FMAX M99 M140 MB 50': both act at the block's end; the cycle is the block's machining, the
+    # retract from it comes after (our reading: the manual orders no two functions of a block's end)
+    prog = checked("TOOL CALL 12 Z S3000\nL X+20 Y+20 R0 FMAX\nL Z+15 R0 FMAX\n" + DRILL
+                   + "L X+60 Y+20 R0 FMAX M99 M140 MB 50")
+    moves = rows(prog, 14)
+    assert moves[0] == ("rapid", [60.0, 20.0, 15.0])
+    assert ("line", [60.0, 20.0, -10.0]) in moves
+    assert moves[-1] == ("rapid", [60.0, 20.0, 65.0])
+
+
 def test_m91_positions_without_the_tool_length_and_keeps_radius_compensation():
     # TNC 310 user's manual, 7.3 "Miscellaneous functions for coordinate data" (M91/M92): "Radius compensation
     # remains the same in blocks that are programmed with M91 or M92. The tool length, however, is not
