@@ -2541,9 +2541,13 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         b = np.array([w.get("BX", 0.0), w.get("BY", 0.0), w.get("BZ", 0.0)])
         x = (b - (b @ n) * n) / np.linalg.norm(b - (b @ n) * n)
         plane = np.column_stack([x, np.cross(n, x), n])
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")) or "MB" in up.replace(
-            "MB MAX", "MB"):
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")):
         raise ReferenceError(up)
+    mb = re.search(r"\bMB\s*(MAX|\+?\d+\.?\d*)", up)
+    up_to = None if not mb else max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else \
+        t.pos[2] + float(mb.group(1)) * t.scale
+    if up_to is not None and up_to > t.pos[2] + _EPS and pos and pos.group(1) in ("MOVE", "TURN"):
+        _retract(t, line, mb.group(1), "MAX")  # MB: up the tool axis (machine Z on a table) before the turn
     _tilt_plane(t, line, plane, positioning=pos.group(1) if pos else "STAY",
                 seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0))
 

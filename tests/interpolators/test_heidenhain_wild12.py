@@ -12,11 +12,16 @@ import pytest
 
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 ZERO = MachineContext()
 HOME = MachineContext(home=(0.0, 0.0, 300.0))
+#: A B/C tilting table, B about Y with its pivot 50 mm below the part's zero, C about Z.
+TILT = MachineContext(home=(0.0, 0.0, 300.0), extra_axes=("b", "c"),
+                      kinematics=Kinematics(axes=(RotaryAxis(name="b", pivot=(0.0, 0.0, -50.0),
+                                                             limits=(-120.0, 120.0)), RotaryAxis(name="c"))))
 DRILL = ("CYCL DEF 200 DRILLING ~\n Q200=+2 ;SET-UP CLEARANCE ~\n Q201=-10 ;DEPTH ~\n Q206=+150 ;FEED ~\n"
          " Q202=+10 ;PLUNGING DEPTH ~\n Q210=+0 ;DWELL TOP ~\n Q203=+0 ;SURFACE ~\n Q204=+15 ;2ND SET-UP ~\n"
          " Q211=+0 ;DWELL BOTTOM\n")
@@ -111,3 +116,17 @@ def test_f_auto_in_an_engraving_fragment_without_a_tool_call_names_the_missing_f
     with pytest.raises(GCodeError, match=r"t\.h:4:\d+: F AUTO without a feed in the TOOL CALL"):
         parse_heidenhain("0 BEGIN PGM T MM\nL X1.5 Y6.5 FMAX\nL Z2.0 FMAX\nL Z-0.2 FAUTO\nEND PGM T MM\n",
                          source="t.h", context=ZERO)
+
+
+@pytest.mark.parametrize(("mb", "z"), [("MB 50", 150.0), ("MB MAX", 300.0)])
+def test_plane_turn_retracts_by_mb_before_the_table_turns(mb, z):
+    # a Fusion post with useM140 writes 'PLANE SPATIAL .. TURN MB MAX FMAX' (TNC 640 user's manual, PLANE
+    # positioning behaviour: MB retracts along the tool axis before the rotary axes turn); the reference now
+    # holds it too: first the retract, then B to 30 with X, Y, Z standing
+    prog = checked(f"TOOL CALL 3 Z S6000\nL X+0 Y+0 Z+100 R0 FMAX\nPLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN {mb} FMAX\n"
+                   "L X-20 Y+0 R0 FMAX\nPLANE RESET TURN FMAX", TILT)
+    turn = [b for b in prog.blocks if b.line == 4]
+    assert [(b.kind, np.round(b.target, 6).tolist()) for b in turn] == [("rapid", [0.0, 0.0, z]),
+                                                                        ("rapid", [0.0, 0.0, z])]
+    assert turn[0].extra_target[1] == pytest.approx(0.0)
+    assert turn[1].extra_target[1] == pytest.approx(30.0)
