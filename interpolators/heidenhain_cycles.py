@@ -440,8 +440,10 @@ def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, sc
                     where, column)
 
 
+#: A word of a pocket line: F, DR+/-, or an item's name; as in :func:`legacy_value` a dot right after a letter is the
+#: name's, not the number's (the Czech 'BEZP.VZD. 2': set-up clearance 2; it read '.VZD.' as the number).
 _POCKET_ITEM_RE = re.compile(r"\s*(?:(F)\s*(?=[+-]?\s*[\d.Q(])|(DR)\s*([+-])(?![\d.Q(])"
-                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*[\d.Q(]))", re.I)
+                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q|\()))", re.I)
 
 
 _POCKET_LINES = {4: "4.1 SET UP d, 4.2 DEPTH d, 4.3 PECKG d F f, 4.4 X l1, 4.5 Y l2, 4.6 F f DR+|DR- RADIUS r",

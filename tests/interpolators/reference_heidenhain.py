@@ -840,7 +840,8 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
 
 
 def _last_number(text: str, q: dict) -> float:
-    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+)", text)
+    # a dot right after a letter is the name's (V.ZEIT, the Czech BEZP.VZD.), not a number's
+    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|(?<![A-Za-z])\.\d+)", text)
     if not m:
         raise ReferenceError(f"no value in {text!r}")
     return _val(m[-1].replace(" ", ""), q)
@@ -906,7 +907,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
             return
         r = rest.upper().replace(" ", "")
-        f, dr = re.search(r"F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        # F the feed, not the end of an item's name (the Italian 4.2 PROF: depth)
+        f, dr = re.search(r"(?<![A-Z])F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
         if f is not None:
             t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
         if dr is not None:

@@ -130,3 +130,25 @@ def test_plane_turn_retracts_by_mb_before_the_table_turns(mb, z):
                                                                         ("rapid", [0.0, 0.0, z])]
     assert turn[0].extra_target[1] == pytest.approx(0.0)
     assert turn[1].extra_target[1] == pytest.approx(30.0)
+
+
+def test_old_circular_pocket_item_name_with_dots():
+    # a Czech school program: 'CYCL DEF 5.1 BEZP.VZD. 2' (the dialog's abbreviated name for the set-up clearance);
+    # the dots are the name's (as 'V.ZEIT' in cycle 9): clearance 2, first peck 5 down from the surface at z 0.
+    # It was 'malformed number .VZD.'
+    prog = checked("TOOL DEF 1 L+0 R+5\nTOOL CALL 1 Z S1500\nL X+50 Y+50 R0 FMAX\nL Z+2 R0 FMAX\n"
+                   "CYCL DEF 5.0 KRUHOVA KAPSA\nCYCL DEF 5.1 BEZP.VZD. 2\nCYCL DEF 5.2 HLOUBKA -10\n"
+                   "CYCL DEF 5.3 PRISUV 5 F100\nCYCL DEF 5.4 RADIUS 20\nCYCL DEF 5.5 F300 DR+\nCYCL CALL")
+    plunges = [b.target[2] for b in prog.blocks if b.line == 12 and b.kind == "line" and b.target[0] == 50.0
+               and b.target[1] == 50.0]
+    assert plunges[:2] == [pytest.approx(-5.0), pytest.approx(-10.0)]
+
+
+def test_italian_pocket_depth_prof_is_no_feed():
+    # 'CYCL DEF 4.2 PROF -8' (Italian dialog): PROF names the depth; its F is no feed word. The reader took it
+    # so; the reference read F-8 as a feed and refused
+    prog = checked("TOOL DEF 1 L+0 R+4\nTOOL CALL 1 Z S2000\nL X+50 Y+50 R0 FMAX\nL Z+2 R0 FMAX\n"
+                   "CYCL DEF 4.0 FRESATURA TASCA\nCYCL DEF 4.1 DIST 2\nCYCL DEF 4.2 PROF -8\n"
+                   "CYCL DEF 4.3 INCR 4 F80\nCYCL DEF 4.4 X+40\nCYCL DEF 4.5 Y+30\nCYCL DEF 4.6 F250 DR- RAGGIO 5\n"
+                   "CYCL CALL")
+    assert min(b.target[2] for b in prog.blocks) == pytest.approx(-8.0)
