@@ -357,8 +357,10 @@ class _Tnc:
             _corner(self, end, centre)
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
+            # an arc whose written end lies off its circle by a rounding (Y+62.679 for 62.6795): that much slack
+            rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end)) if centre is not None else (0, 0)
             element = ("line", start, end.copy()) if centre is None else \
-                ("arc", centre, float(np.hypot(*(end - centre)[:2])), (0, 1), start, 0.0)
+                ("arc", centre, re_, (0, 1), start, abs(rs - re_))
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.radius, rows="last",
                                      element=element, entry=self.entry))
             self.entry = False

@@ -27,9 +27,10 @@ DRILL = ("CYCL DEF 200 DRILLING ~\n Q200=+2 ;SET-UP CLEARANCE ~\n Q201=-10 ;DEPT
          " Q211=+0 ;DWELL BOTTOM\n")
 
 
-def checked(body: str, context: MachineContext = ZERO):
-    """The program read, and its blocks matched against the reference."""
-    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", context)
+def checked(body: str, context: MachineContext = ZERO, *, exact: bool = True):
+    """The program read, and its blocks matched against the reference (``exact=False``: radius-compensated rows
+    within the tool radius)."""
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", context, exact=exact)
 
 
 def rows(prog, line: int) -> list[tuple[str, list[float]]]:
@@ -152,3 +153,13 @@ def test_italian_pocket_depth_prof_is_no_feed():
                    "CYCL DEF 4.3 INCR 4 F80\nCYCL DEF 4.4 X+40\nCYCL DEF 4.5 Y+30\nCYCL DEF 4.6 F250 DR- RAGGIO 5\n"
                    "CYCL CALL")
     assert min(b.target[2] for b in prog.blocks) == pytest.approx(-8.0)
+
+
+def test_compensated_arc_with_a_rounded_end_point_is_checked_with_that_slack():
+    # an old TNC 355 style contour: 'C X+90 Y+62.679 DR- R F M' (62.6795 rounded) under RL with a 5 mm tool, then
+    # down the line X+90: the inside corner is where the offset circle (radius 25) meets X+95, at Y+60. The
+    # reference allowed no difference between the arc's start and end radii under RL and refused the 1.4e-5 mm
+    prog = checked("TOOL DEF 1 L+0 R+5\nTOOL CALL 1 Z S1000\nL X+40 Y+60 Z-5 R0 FMAX\nL X+60 Y+80 RL F300\n"
+                   "CC X+80 Y+80\nC X+90 Y+62.679 DR- R F M\nL Y+10 R F M\nL X+120 Y+10 R0", exact=False)
+    corner = [b.target for b in prog.blocks if b.line == 7]
+    assert corner[-1][:2] == pytest.approx([95.0, 60.0], abs=1e-3)
