@@ -2083,6 +2083,29 @@ def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     t.cycle = (kind, cyc)
 
 
+def _position_call(t: _Tnc, line: int, w: dict) -> None:
+    """CYCL CALL POS X Y Z [F|FMAX]: (TNC 640 cycle programming manual, "Calling a cycle with CYCL CALL POS") to the
+    point, then the cycle there; Z is the starting position and an additional shift of the surface Q203. Above the
+    surface: the plane first, then Z; else first up to the clearance max(Q200, Q204) above it."""
+    _called(t)
+    kind, cyc = t.cycle
+    if not all(a in w for a in "XYZ") or "Q203" not in cyc or "MB" in w:
+        raise ReferenceError("CYCL CALL POS without X, Y and Z, with incremental words, of a cycle without Q203")
+    move = "rapid" if w.get("F") == "MAX" or "FMAX" in w else "feed"
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
+    p = {**cyc, "Q203": cyc["Q203"] + w["Z"]}
+    if sgn * (t.prog()[2] / t.scale - p["Q203"]) > -_EPS:  # at or below the surface: up first
+        _move_z(t, line, move, p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0)))
+    here = t.prog()
+    here[:2] = [w["X"] * t.scale, w["Y"] * t.scale]
+    if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
+        t.emit(line, move, t.machine(here))
+    _move_z(t, line, move, w["Z"], optional=True)
+    t.cycle = (kind, p)
+    _run_cycle(t, line, fresh=False)
+    t.cycle = (kind, cyc)
+
+
 def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
     """Cycle 220 (positions on a pitch circle) or 221 (a grid, meandering, turned by Q224 about its
     start): at each, the last machining cycle with the pattern's Q200/Q203/Q204, first reached over
@@ -2652,6 +2675,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")
+        elif up.startswith("CYCL CALL POS"):
+            t.modal = False
+            _position_call(t, line, _words(up[len("CYCL CALL POS"):], t.q))
         elif up.startswith("CYCL CALL"):
             if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
                 raise ReferenceError(up)

@@ -163,3 +163,16 @@ def test_compensated_arc_with_a_rounded_end_point_is_checked_with_that_slack():
                    "CC X+80 Y+80\nC X+90 Y+62.679 DR- R F M\nL Y+10 R F M\nL X+120 Y+10 R0", exact=False)
     corner = [b.target for b in prog.blocks if b.line == 7]
     assert corner[-1][:2] == pytest.approx([95.0, 60.0], abs=1e-3)
+
+
+def test_cycle_call_pos_checked_from_above_and_below_the_surface():
+    # a Polish school program's 'CYCL CALL POS X+50 Y+50 Z+0 FMAX M3' now runs through the reference too (TNC 640
+    # cycle programming manual, "Calling a cycle with CYCL CALL POS": Z the starting position and an additional
+    # shift of Q203). From above (Z+100): over the point, then down to Z; from below (Z-5, after the first hole):
+    # up to the 2nd set-up clearance 15 above the shifted surface 5 first, then over, then to Z+5
+    prog = checked("TOOL CALL 12 Z S3000\nL X+0 Y+0 Z+100 R0 FMAX\n" + DRILL
+                   + "CYCL CALL POS X+50 Y+50 Z+0 FMAX\nL Z-5 F100\nCYCL CALL POS X+20 Y+10 Z+5 F500")
+    first, second = rows(prog, 13), rows(prog, 15)
+    assert first[:2] == [("rapid", [50.0, 50.0, 100.0]), ("rapid", [50.0, 50.0, 0.0])]
+    assert second[:3] == [("line", [50.0, 50.0, 20.0]), ("line", [20.0, 10.0, 20.0]), ("line", [20.0, 10.0, 5.0])]
+    assert ("line", [20.0, 10.0, -5.0]) in second
