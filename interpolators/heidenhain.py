@@ -195,6 +195,7 @@ from interpolators.heidenhain_fk import FK_KEYWORDS, FreeContour
 from interpolators.heidenhain_labels import CALL_RE, LABEL_RE, MAX_EXECUTED, MAX_NESTING, Frame, LabelTable, label_key
 from interpolators.heidenhain_motion import (
     approach_depart,
+    block_end_retract,
     block_words,
     corner_def,
     free_contour,
@@ -911,7 +912,9 @@ def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) 
 
 
 def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
-    """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30."""
+    """``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``, with M functions; True at M2/M30. An ``M140 MB`` in
+    the block retracts after the cycle (M140 is effective at the end of its block, TNC 640 user's manual,
+    "Retraction in the tool axis: M140")."""
     pat = re.match(r"\s*(PAT|POS)(?![A-Z])", blk.code[pos:], re.I)
     kind = pat.group(1).upper() if pat else ""
     words = block_words(blk.code, pos + (pat.end() if pat else 0), where, m, column0=blk.column)
@@ -921,7 +924,8 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Wh
     moving = [w for w, p in zip(words, positioning) if p]
     if not kind and any(w.key in ("F", "FMAX") for w in moving):
         m.note("CYCL CALL F: no positioning in the block (the cycle runs where the tool is)")
-    ended = m_functions([w for w, p in zip(words, positioning) if not p], m, where, blk, motion=False)
+    m_words = [w for w, p in zip(words, positioning) if not p]
+    ended = m_functions(m_words, m, where, blk, motion=False, retract=False)
     m.modal_call = False  # a CYCL CALL ends M89
     if kind == "POS":
         position_call(moving, m, where, blk)
@@ -929,6 +933,7 @@ def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Wh
         pattern_call(m, where, blk, positioning_feed(moving, m, where))
     else:
         cycle_call(m, where, blk)
+    block_end_retract(m_words, m, where, blk)  # M140 at the block's end, after the cycle
     return ended
 
 

@@ -386,8 +386,13 @@ def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, 
     """The value of an old-style cycle line (``DIST27.5``, ``SET UP 2``, ``F 500``, ``T0.05``,
     ``DWELL 1.5``, ``5``): the number (or Q parameter) after the item's name; None when empty. A dot right
     after a letter ends the name (``V.ZEIT``, the Polish ``CZAS ZWL.0.5``: dwell 0.5 s), as the TNC writes
-    a number with its leading digit (``T0.05``; our reading of the saved dialog texts)."""
-    m = re.match(r"\s*([A-Z][A-Z\-. ]*?)?\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q))", rest, re.I)
+    a number with its leading digit (``T0.05``; our reading of the saved dialog texts). The English names
+    of the TNC's own dialog (``DWELL``, ``SET UP``, ``DEPTH`` .., :data:`_ENGLISH_ITEMS`) have no dot of
+    their own: after one of them a dot is the number's decimal point, ``DWELL.5`` 0.5 s (our reading; a
+    post writing the number without its leading zero and blank; the TNC 355 post of Fusion writes
+    ``DWELL 0.5``)."""
+    m = _ENGLISH_ITEM_RE.match(rest) or \
+        re.match(r"\s*([A-Z][A-Z\-. ]*?)?\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q))", rest, re.I)
     if m is None:
         if rest.strip() == "":
             return None
@@ -398,6 +403,12 @@ def legacy_value(rest: str, where: Where, params: QParameters, *, column0: int, 
         tok = rest[end:].strip()
         where.fail(f"unexpected {tok!r} after {what}", column=column0 + end, text=tok, expected="one value")
     return value
+
+
+#: The English item names of the old cycles' dialog (TNC 355 / 426 user's manuals: 1 PECKING, 2 TAPPING, 4 / 5
+#: POCKET, 9 DWELL TIME, 17 RIGID TAPPING, 32 TOLERANCE), none with a dot of its own.
+_ENGLISH_ITEMS = ("SET UP", "SETUP", "DIST", "DEPTH", "PECKG", "PLNGNG", "DWELL", "TIME", "PITCH", "RADIUS")
+_ENGLISH_ITEM_RE = re.compile(r"\s*(" + "|".join(_ENGLISH_ITEMS) + r")\s*(?=[+-]?\s*\.\d)", re.I)
 
 
 #: The old cycles defined item by item (``CYCL DEF n.1`` ...): number -> the item that completes the definition.
@@ -429,8 +440,10 @@ def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, sc
                     where, column)
 
 
+#: A word of a pocket line: F, DR+/-, or an item's name; as in :func:`legacy_value` a dot right after a letter is the
+#: name's, not the number's (the Czech 'BEZP.VZD. 2': set-up clearance 2; it read '.VZD.' as the number).
 _POCKET_ITEM_RE = re.compile(r"\s*(?:(F)\s*(?=[+-]?\s*[\d.Q(])|(DR)\s*([+-])(?![\d.Q(])"
-                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*[\d.Q(]))", re.I)
+                             r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q|\()))", re.I)
 
 
 _POCKET_LINES = {4: "4.1 SET UP d, 4.2 DEPTH d, 4.3 PECKG d F f, 4.4 X l1, 4.5 Y l2, 4.6 F f DR+|DR- RADIUS r",

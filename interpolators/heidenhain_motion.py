@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
 
 __all__ = ["block_words", "spline_block", "m_functions", "corner_def", "motion_block", "free_contour",
-           "approach_depart", "is_retract_feed"]
+           "approach_depart", "is_retract_feed", "block_end_retract"]
 
 
 #: M functions with a meaning here; any other M (spindle, coolant, clamping, ...) is noted and ignored.
@@ -155,8 +155,11 @@ def is_retract_feed(words: list[Word], i: int) -> bool:
     return words[i].key in ("F", "FMAX") and i > 0 and words[i - 1].key in ("MB", "MBMAX")
 
 
-def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *, motion: bool) -> bool:
-    """Check the M words of a block without motion words; True when the program ends here."""
+def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *, motion: bool,
+                retract: bool = True) -> bool:
+    """Check the M words of a block without motion words; True when the program ends here. ``retract=False``
+    leaves an ``M140 MB`` to :func:`block_end_retract`, for a block whose own action (a ``CYCL CALL``'s cycle)
+    comes first."""
     words = _without_m_feeds(words, m, where)
     ended = False
     for w in words:
@@ -177,12 +180,20 @@ def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *
         elif not motion:
             where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
                        expected="M functions")
-    if not motion and any(w.key == "M" and w.value == 140 for w in words):
+    if not motion and retract:
         # M140 MB in a block of M functions ("7475 M140 MB MAX", a CAM post's retract): as in a line, at its end
-        _retract({w.key: w for w in words if w.key in ("MB", "MBMAX")}, m, where, blk)
+        block_end_retract(words, m, where, blk)
     if any(w.key == "M" and w.value == 129 for w in words):  # at the end of the block, after an M128 in it too
         m.tcpm = False
     return ended
+
+
+def block_end_retract(words: list[Word], m: Machine, where: Where, blk: SourceBlock) -> None:
+    """The ``M140 MB ..`` of a block without motion words, at the block's end (TNC 640 user's manual, "Retraction
+    in the tool axis: M140": effective at the end of its block; in a ``CYCL CALL`` block after the cycle, and
+    at the F after MB that :func:`m_functions` read into ``m.retract_feed``)."""
+    if any(w.key == "M" and w.value == 140 for w in words):
+        _retract({w.key: w for w in words if w.key in ("MB", "MBMAX")}, m, where, blk)
 
 
 def _one_m(w: Word, m: Machine, where: Where) -> bool:
@@ -431,13 +442,12 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
 
 def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, where: Where, blk: SourceBlock, *,
                       positioned: bool) -> None:
-    """After the motion: ``M140 MB`` retracts along the tool axis, ``M99`` calls the cycle, and so
-    does every positioning block (an L or LP with coordinates) from ``M89`` on, until ``M99`` or
-    ``CYCL CALL`` (TNC 406/306 technical manual, "M-function M89": "for every following
-    positioning block there will be a call of the last-programmed machining cycle. M89 is canceled
-    by M99 or a CYCL CALL block"; the M89 block itself calls at its end)."""
-    if 140 in mvals:
-        _retract(seen, m, where, blk)
+    """After the motion: ``M99`` calls the cycle, and so does every positioning block (an L or LP with
+    coordinates) from ``M89`` on, until ``M99`` or ``CYCL CALL`` (TNC 406/306 technical manual, "M-function
+    M89": "for every following positioning block there will be a call of the last-programmed machining
+    cycle. M89 is canceled by M99 or a CYCL CALL block"; the M89 block itself calls at its end); then
+    ``M140 MB`` retracts along the tool axis (effective at the end of its block: after the block's cycle too,
+    our reading where the manual orders no two functions of a block's end)."""
     if 89 in mvals:
         m.modal_call = True
     if 99 in mvals:
@@ -445,6 +455,8 @@ def _retract_and_call(seen: dict[str, Word], mvals: list[float], m: Machine, whe
         cycle_call(m, where, blk)
     elif m.modal_call and positioned:
         cycle_call(m, where, blk)
+    if 140 in mvals:
+        _retract(seen, m, where, blk)
 
 
 def _retract(seen: dict[str, Word], m: Machine, where: Where, blk: SourceBlock) -> None:

@@ -357,8 +357,10 @@ class _Tnc:
             _corner(self, end, centre)
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
+            # an arc whose written end lies off its circle by a rounding (Y+62.679 for 62.6795): that much slack
+            rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end)) if centre is not None else (0, 0)
             element = ("line", start, end.copy()) if centre is None else \
-                ("arc", centre, float(np.hypot(*(end - centre)[:2])), (0, 1), start, 0.0)
+                ("arc", centre, re_, (0, 1), start, abs(rs - re_))
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.radius, rows="last",
                                      element=element, entry=self.entry))
             self.entry = False
@@ -432,18 +434,21 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
                rows="one" if base is None else "last")
     elif "MB" not in w and 99 in w.get("M", []):
         t.out.append(Expected(line=line, kind=None, end=t.pos.copy(), rows="optional"))
-    if "MB" in w:
-        end = t.pos.copy()
-        # a retract: never down (home stands in for the limit); MB n: n up; at the F after MB, else rapid
-        end[2] = max(t.ctx.home[2], t.pos[2]) if w["MB"] == "MAX" else t.pos[2] + abs(w["MB"]) * t.scale
-        retract_feed = w.get("MBF", "MAX")
-        t.emit(line, "rapid" if retract_feed == "MAX" else "feed", end,
-               rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
     ms = w.get("M", [])
     t.modal = (t.modal or 89 in ms) and 99 not in ms  # M89: modal cycle call, ended by M99 / CYCL CALL
     if 99 in ms or (t.modal and axes):
         _run_cycle(t, line)
+    if "MB" in w:  # M140 at the block's end, after the block's cycle
+        _retract(t, line, w["MB"], w.get("MBF", "MAX"))
     _tcpm_switch(t, [129] if 129 in ms else [])
+
+
+def _retract(t: _Tnc, line: int, mb: float | str, feed: float | str) -> None:
+    """M140 MB MAX / MB n: never down (home stands in for the limit); MB n: n up; at the F after MB, else rapid."""
+    end = t.pos.copy()
+    end[2] = max(t.ctx.home[2], t.pos[2]) if mb == "MAX" else t.pos[2] + abs(float(mb)) * t.scale
+    t.emit(line, "rapid" if feed == "MAX" else "feed", end,
+           rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
 
 
 def _feed_dwell_line(t: _Tnc, line: int, end: np.ndarray, others: bool) -> None:
@@ -837,7 +842,8 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
 
 
 def _last_number(text: str, q: dict) -> float:
-    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|\.\d+)", text)
+    # a dot right after a letter is the name's (V.ZEIT, the Czech BEZP.VZD.), not a number's
+    m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|(?<![A-Za-z])\.\d+)", text)
     if not m:
         raise ReferenceError(f"no value in {text!r}")
     return _val(m[-1].replace(" ", ""), q)
@@ -903,7 +909,8 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
             t.cycle = (str(number), {})
             return
         r = rest.upper().replace(" ", "")
-        f, dr = re.search(r"F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
+        # F the feed, not the end of an item's name (the Italian 4.2 PROF: depth)
+        f, dr = re.search(r"(?<![A-Z])F([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+))", r), re.search(r"DR([-+])", r)
         if f is not None:
             t.cycle[1][f"F{sub}"] = _val(f.group(1), t.q)
         if dr is not None:
@@ -2076,6 +2083,29 @@ def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     t.cycle = (kind, cyc)
 
 
+def _position_call(t: _Tnc, line: int, w: dict) -> None:
+    """CYCL CALL POS X Y Z [F|FMAX]: (TNC 640 cycle programming manual, "Calling a cycle with CYCL CALL POS") to the
+    point, then the cycle there; Z is the starting position and an additional shift of the surface Q203. Above the
+    surface: the plane first, then Z; else first up to the clearance max(Q200, Q204) above it."""
+    _called(t)
+    kind, cyc = t.cycle
+    if not all(a in w for a in "XYZ") or "Q203" not in cyc or "MB" in w:
+        raise ReferenceError("CYCL CALL POS without X, Y and Z, with incremental words, of a cycle without Q203")
+    move = "rapid" if w.get("F") == "MAX" or "FMAX" in w else "feed"
+    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
+    p = {**cyc, "Q203": cyc["Q203"] + w["Z"]}
+    if sgn * (t.prog()[2] / t.scale - p["Q203"]) > -_EPS:  # at or below the surface: up first
+        _move_z(t, line, move, p["Q203"] - sgn * max(p["Q200"], p.get("Q204", 0.0)))
+    here = t.prog()
+    here[:2] = [w["X"] * t.scale, w["Y"] * t.scale]
+    if not np.allclose(t.machine(here), t.pos, rtol=0, atol=1e-12):
+        t.emit(line, move, t.machine(here))
+    _move_z(t, line, move, w["Z"], optional=True)
+    t.cycle = (kind, p)
+    _run_cycle(t, line, fresh=False)
+    t.cycle = (kind, cyc)
+
+
 def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
     """Cycle 220 (positions on a pitch circle) or 221 (a grid, meandering, turned by Q224 about its
     start): at each, the last machining cycle with the pattern's Q200/Q203/Q204, first reached over
@@ -2538,9 +2568,13 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         b = np.array([w.get("BX", 0.0), w.get("BY", 0.0), w.get("BZ", 0.0)])
         x = (b - (b @ n) * n) / np.linalg.norm(b - (b @ n) * n)
         plane = np.column_stack([x, np.cross(n, x), n])
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")) or "MB" in up.replace(
-            "MB MAX", "MB"):
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")):
         raise ReferenceError(up)
+    mb = re.search(r"\bMB\s*(MAX|\+?\d+\.?\d*)", up)
+    up_to = None if not mb else max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else \
+        t.pos[2] + float(mb.group(1)) * t.scale
+    if up_to is not None and up_to > t.pos[2] + _EPS and pos and pos.group(1) in ("MOVE", "TURN"):
+        _retract(t, line, mb.group(1), "MAX")  # MB: up the tool axis (machine Z on a table) before the turn
     _tilt_plane(t, line, plane, positioning=pos.group(1) if pos else "STAY",
                 seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0))
 
@@ -2641,11 +2675,17 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")
+        elif up.startswith("CYCL CALL POS"):
+            t.modal = False
+            _position_call(t, line, _words(up[len("CYCL CALL POS"):], t.q))
         elif up.startswith("CYCL CALL"):
             if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
                 raise ReferenceError(up)
             t.modal = False
             _run_cycle(t, line)
+            mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
+            if mb:  # M140 at the block's end, after the cycle
+                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
         elif re.fullmatch(r"(M\d+\s*)+(MB\s*(MAX|\d+\.?\d*)\s*(F\s*(MAX|\d+\.?\d*)\s*)?)?(M\d+\s*)*",
                           _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
@@ -2656,11 +2696,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
                 _run_cycle(t, line)
             mb = re.search(r"MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
             if 140 in ms and mb:  # M140 MB alone: the retract of a line's M140, at the block's end
-                end = t.pos.copy()
-                up_by = float(mb.group(1)) * t.scale if mb.group(1) != "MAX" else 0.0
-                end[2] = max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else t.pos[2] + up_by
-                t.emit(line, "rapid" if mb.group(2) in (None, "MAX") else "feed", end,
-                       rows="optional" if abs(end[2] - t.pos[2]) <= _EPS else "one")
+                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
         elif _motion(t, line, up) is None and not re.match(r"(BLK FORM|STOP|M\d)", up):
             raise ReferenceError(f"block {b!r}")
         if re.search(r"\bM0*(2|30)\b", up) and not up.startswith(("FN", "Q")):

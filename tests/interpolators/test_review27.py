@@ -28,16 +28,17 @@ def test_cycle_call_pos_keeps_its_positioning_feed_beside_an_m140_retract_feed()
     # user's manual, M140: "you can also enter a feed rate" after MB); the positioning ran at F700
     prog = heidenhain("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+10 R0 F500\n" + DRILL
                       + "CYCL CALL POS X+20 Y+0 Z+0 F300 M140 MB 30 F700")
+    # M140 is effective at the block's end: the retract 30 up from the cycle's 2nd set-up clearance comes last
     moves = [(b.kind, round(b.feed * 60, 6), list(np.round(b.target, 6))) for b in prog.blocks if b.line == 5]
-    assert moves[:3] == [("line", 700.0, [0.0, 0.0, 40.0]), ("line", 300.0, [20.0, 0.0, 40.0]),
-                         ("line", 300.0, [20.0, 0.0, 0.0])]
+    assert moves[:2] == [("line", 300.0, [20.0, 0.0, 10.0]), ("line", 300.0, [20.0, 0.0, 0.0])]
+    assert moves[-1] == ("line", 700.0, [20.0, 0.0, 50.0])
 
 
 def test_cycle_call_with_an_m140_retract_feed_is_no_positioning_feed():
     prog = heidenhain("TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+10 R0 F500\n" + DRILL + "CYCL CALL M140 MB 30 F700")
-    first = prog.blocks[1]
-    assert (first.kind, first.feed * 60) == ("line", pytest.approx(700.0))
-    assert np.asarray(first.target) == pytest.approx([0.0, 0.0, 40.0])
+    last = prog.blocks[-1]  # the retract after the cycle (M140 at the block's end), at its own F700
+    assert (last.kind, last.feed * 60) == ("line", pytest.approx(700.0))
+    assert np.asarray(last.target) == pytest.approx([0.0, 0.0, 50.0])
     assert not any("CYCL CALL F" in n for n in prog.notes)
 
 
