@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
 from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
 from vcnc.errors import GCodeError
 
 FANUC = MachineContext().with_dialect("fanuc")
@@ -61,3 +63,22 @@ def test_a_name_later_in_an_expression_keeps_the_placeholder_hint():
     with pytest.raises(GCodeError, match=r"'xmin' is neither a number, a parameter nor a function \(text left in "
                                          r"brackets, such as a template's placeholder\?\)"):
         parse_program("G21\nG0 X[1+xmin]\nM30\n", context=LINUXCNC)
+
+
+def _circular_pocket(set_up: str, depth: str, peck: str) -> list[tuple[str, list[float]]]:
+    prog = parse_heidenhain("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL X+50 Y+50 Z+10 R0 FMAX\n"
+                            f"CYCL DEF 5.0 CIRCULAR POCKET\nCYCL DEF 5.1 {set_up}\nCYCL DEF 5.2 {depth}\n"
+                            f"CYCL DEF 5.3 {peck} F100\nCYCL DEF 5.4 RADIUS 10\nCYCL DEF 5.5 F200 DR+\nCYCL CALL\n"
+                            "END PGM T MM\n", source="t.h", context=MachineContext())
+    return [(b.kind, np.round(b.target, 9).tolist()) for b in prog.blocks]
+
+
+@pytest.mark.parametrize(("written", "plain"), [(("SET UP.5", "DEPTH -4", "PECKG 2"), ("SET UP 0.5", "DEPTH -4",
+                                                                                         "PECKG 2")),
+                                                (("SET UP 2", "DEPTH-2", "PECKG.5"), ("SET UP 2", "DEPTH -2",
+                                                                                       "PECKG 0.5"))])
+def test_an_english_pocket_item_with_its_decimal_point_after_the_name(written, plain):
+    # 'CYCL DEF 5.1 SET UP.5': the English name of the TNC's dialog has no dot of its own, so the dot is the
+    # number's, as tnc12 made 'DWELL.5' 0.5 s in the value lines (heidenhain_cycles._ENGLISH_ITEMS, our reading);
+    # the pocket lines' own reader took 'SET UP.' for the name and 5 for the set-up clearance
+    assert _circular_pocket(*written) == _circular_pocket(*plain)
