@@ -7,7 +7,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import MachineContext
-from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 FANUC = MachineContext().with_dialect("fanuc")
@@ -66,10 +66,11 @@ def test_a_name_later_in_an_expression_keeps_the_placeholder_hint():
 
 
 def _circular_pocket(set_up: str, depth: str, peck: str) -> list[tuple[str, list[float]]]:
-    prog = parse_heidenhain("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL X+50 Y+50 Z+10 R0 FMAX\n"
-                            f"CYCL DEF 5.0 CIRCULAR POCKET\nCYCL DEF 5.1 {set_up}\nCYCL DEF 5.2 {depth}\n"
-                            f"CYCL DEF 5.3 {peck} F100\nCYCL DEF 5.4 RADIUS 10\nCYCL DEF 5.5 F200 DR+\nCYCL CALL\n"
-                            "END PGM T MM\n", source="t.h", context=MachineContext())
+    # read, and matched against the independent reference (tests/interpolators/reference_heidenhain.py)
+    prog = checked_program("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL X+50 Y+50 Z+10 R0 FMAX\n"
+                           f"CYCL DEF 5.0 CIRCULAR POCKET\nCYCL DEF 5.1 {set_up}\nCYCL DEF 5.2 {depth}\n"
+                           f"CYCL DEF 5.3 {peck} F100\nCYCL DEF 5.4 RADIUS 10\nCYCL DEF 5.5 F200 DR+\nCYCL CALL\n"
+                           "END PGM T MM\n", MachineContext())
     return [(b.kind, np.round(b.target, 9).tolist()) for b in prog.blocks]
 
 
@@ -80,5 +81,7 @@ def _circular_pocket(set_up: str, depth: str, peck: str) -> list[tuple[str, list
 def test_an_english_pocket_item_with_its_decimal_point_after_the_name(written, plain):
     # 'CYCL DEF 5.1 SET UP.5': the English name of the TNC's dialog has no dot of its own, so the dot is the
     # number's, as tnc12 made 'DWELL.5' 0.5 s in the value lines (heidenhain_cycles._ENGLISH_ITEMS, our reading);
-    # the pocket lines' own reader took 'SET UP.' for the name and 5 for the set-up clearance
+    # the pocket lines' own reader took 'SET UP.' for the name and 5 for the set-up clearance, and so did the
+    # reference
     assert _circular_pocket(*written) == _circular_pocket(*plain)
+
