@@ -7,7 +7,9 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program
+from tests.interpolators.test_heidenhain_wild12 import DRILL
 from vcnc.errors import GCodeError
 
 FANUC = MachineContext().with_dialect("fanuc")
@@ -85,3 +87,13 @@ def test_an_english_pocket_item_with_its_decimal_point_after_the_name(written, p
     # reference
     assert _circular_pocket(*written) == _circular_pocket(*plain)
 
+
+
+@pytest.mark.parametrize("block", ["CYCL CALL MB 10", "CYCL CALL MB MAX", "M3 MB 10"])
+def test_mb_without_m140_in_a_cycle_call_or_a_block_of_m_functions_is_refused(block):
+    # MB is M140's retraction path (TNC 640 user's manual, "Retraction in the tool axis: M140": "M140 MB MAX");
+    # 'L X+10 FMAX MB 10' was refused ("MB without M140"), the same MB in a CYCL CALL or beside other M functions
+    # dropped silently: the retract the program wrote did not happen
+    with pytest.raises(GCodeError, match=r"t\.h:13:\d+: MB without M140 \(got 'MB ?(10|MAX)'\); expected M140 MB MAX"):
+        parse_heidenhain("0 BEGIN PGM T MM\nTOOL CALL 1 Z S1000\nL Z+15 R0 FMAX\n" + DRILL + f"{block}\nEND PGM T MM\n",
+                         source="t.h", context=MachineContext())
