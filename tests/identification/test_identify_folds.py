@@ -9,16 +9,27 @@ simulated velocity then falls to rounding level at every held sample, where the 
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from identification import identify
 from identification.augmented import augment
-from identification.diagnosis import HELD_OUT_DIFF_STEP, diagnose_report
+from identification.dead_time import pure_delay_baseline
+from identification.diagnosis import (
+    HELD_OUT_DIFF_STEP,
+    before_after_rows,
+    diagnose_report,
+    format_before_after,
+    samples_note,
+)
+from identification.effects import PositionPeriodic
 from identification.least_squares import damped_steps
 from identification.reduced_model import ReducedAxisModel
 from identification.synthetic import FADAL_PID_X, random_moves_reference
 from vcnc.capture import Capture
+from vcnc.commands.identify import baseline_lines
 
 T = 0.01
 
@@ -97,3 +108,72 @@ def test_damped_steps_run_from_gauss_newton_to_a_short_steepest_descent():
     sd = b / sc ** 2
     assert far / np.linalg.norm(far) == pytest.approx(sd / np.linalg.norm(sd), abs=1e-5)
     assert np.linalg.norm(far * sc) < 1e-5 * np.linalg.norm(gn * sc)
+
+
+# ------------------------------------------------------------------------------ which samples each number covers
+
+
+def test_the_table_says_which_samples_each_number_covers():
+    rep, cap = _report(2)
+    model = rep.model
+    v = model.validation
+    n, active = len(cap), v["samples"]["identification"]
+    assert v["samples"] == {"identification": active, "validation": active, "record": n}
+    rows = before_after_rows(model)
+    # the reduced model's row: its error on the active samples (the diagnosis' simulation), not the fit's
+    # prediction of the capture on all samples and sub-steps, which the row showed before
+    assert rows[0]["identification_rms_um"] == pytest.approx(rep.stages[0].identification_rms_um, rel=1e-12)
+    y = rep.reduced.simulate(cap.reference[:, 0])
+    assert rows[0]["record_rms_um"] == pytest.approx(1e3 * np.sqrt(np.mean((cap.measured[:, 0] - y) ** 2)), rel=1e-9)
+    text = format_before_after(model)
+    assert text.splitlines()[0].split()[:4] == ["model", "all", "RMS", "ident"]
+    assert (f"samples: 'all' the record's {n}; 'ident' and 'valid' its {active} active ones (idle stretches, where an "
+            "axis at rest is predicted for free, trimmed with a 0.2 s margin), 'valid' each fold's predicted by the "
+            "model refitted on the others; all simulated on the record's sample grid (the fit's prediction of the "
+            f"capture, {model.fit['rms_um']:.4g} over all samples, on 10 sub-steps a sample)") in text
+    assert samples_note(rep.reduced) == ""  # an undiagnosed model has no table
+
+
+def test_the_naive_predictions_of_the_active_samples_judge_the_held_out_error():
+    rep, cap = _report(2)
+    naive = rep.model.validation["naive_active"]
+    xr, x = cap.reference[:, 0], cap.measured[:, 0]
+    mask = np.zeros(len(cap), bool)
+    mask[100:600] = True
+    whole = pure_delay_baseline(xr[100:600], x[100:600], T)
+    part = pure_delay_baseline(xr, x, T, mask=mask)
+    # inside the stretch the shifted reference is the record's own, not the stretch's first value held
+    assert part["following_error_rms_um"] == pytest.approx(whole["following_error_rms_um"], rel=1e-12)
+    assert part["pure_delay_samples"] == whole["pure_delay_samples"]
+    assert pure_delay_baseline(xr, x, T, mask=np.ones(len(cap), bool)) == pure_delay_baseline(xr, x, T)
+    held = rep.model.validation["rms_after_um"]
+    assert held < naive["pure_delay_rms_um"]
+    lines = baseline_lines(cap, rep.model, "x")
+    assert not any(line.startswith("warning:") for line in lines)
+    assert lines[0].endswith(f"; on the {rep.model.validation['samples']['identification']} active samples the "
+                             f"held-out errors cover: following error {naive['following_error_rms_um']:.4g} um, best "
+                             f"pure delay {naive['pure_delay_rms_um']:.4g} um, the model held out {held:.4g} um")
+    worse = dataclasses.replace(rep.model, validation=dict(rep.model.validation, naive_active=dict(
+        naive, following_error_rms_um=0.5 * held, pure_delay_rms_um=0.9 * held)))
+    line = [s for s in baseline_lines(cap, worse, "x") if s.startswith("warning:")]
+    assert line == [f"warning: on its held-out folds the model predicts worse ({held:.4g} um rms) than the commanded "
+                    f"position itself ({0.5 * held:.4g} um on the same active samples): what it fitted does not carry "
+                    "over to motion it was not fitted on; do not take its poles as the loop's"]
+
+
+def test_a_load_at_the_rest_position_wakes_coulomb_levels_that_act_as_a_constant_load():
+    # why the diagnosis also refuses an effect that raises the error on the whole record (idle stretches
+    # included): a SINUMERIK trace's reduced fit had d0 ~ d1 ~ 3e5 mm/s^2 (the same sign: a load, not a friction),
+    # harmless while the model rests exactly (v == 0: the Coulomb level is off), and its position-periodic load of
+    # 1177 mm/s^2 at the starting position made the model chatter by 0.75 mm before the first move
+    xr = np.concatenate([np.zeros(400), random_moves_reference(moves=4, span=10.0, feed=100.0, acceleration=1000.0,
+                                                               sample_time=T, seed=3)])
+    params = dict(FADAL_PID_X, d0=3e5, d1=3e5)
+    reduced = augment(ReducedAxisModel(parameters=params, sample_time=T), [])
+    loaded = augment(reduced, [PositionPeriodic(period=12.4, coefficients=((0.0, 1177.0),))])
+    assert np.max(np.abs(reduced.simulate(xr)[:400])) == 0.0
+    assert np.max(np.abs(loaded.simulate(xr)[:400])) == pytest.approx(7.4147, rel=1e-3)  # mm, before the first move
+    # the same load on a model whose Coulomb levels are a friction's (opposite signs) stays within micrometres
+    mild = augment(augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=T), []),
+                   [PositionPeriodic(period=12.4, coefficients=((0.0, 1177.0),))])
+    assert np.max(np.abs(mild.simulate(xr)[:400])) == pytest.approx(0.02978, rel=1e-3)
