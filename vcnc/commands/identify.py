@@ -271,8 +271,10 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
     if naive > 0.0 and rms > 0.0:
         line += f"; the model predicts {naive / rms:.3g} times better"
     if active and math.isfinite(held):
-        line += (f"; on the {model.validation['samples']['identification']} active samples the held-out errors cover: "
-                 f"following error {active['following_error_rms_um']:.4g} {u}, best pure delay "
+        frame = (" (the reference as the loop sees it, after the dead time and setpoint filter above)"
+                 if getattr(model, "delay_s", 0.0) or getattr(model, "setpoint_filter_s", 0.0) else "")
+        line += (f"; on the {model.validation['samples']['identification']} active samples the held-out errors cover"
+                 f"{frame}: following error {active['following_error_rms_um']:.4g} {u}, best pure delay "
                  f"{active['pure_delay_rms_um']:.4g} {u}, the model held out {held:.4g} {u}")
     out = [line]
     if not rms < naive:
