@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from vcnc.commands.interpolate import add_context_arguments, print_program_notes, read_program
+from vcnc.commands.interpolate import add_context_arguments, print_program_notes
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.errors import InputError
 
@@ -86,26 +86,20 @@ def _truth(args: argparse.Namespace):
 
 
 def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tuple:
-    """(truth, toolpath): for a program file, the program read with the reader options (``--dialect`` ..., its
-    notes printed): for a simulated truth the machine loaded and the program read for it as ``vcnc simulate``
-    reads it, for a captured truth as ``vcnc interpolate`` reads it (the capture's commanded positions are the
-    setpoints, the program gives its path); else both as given."""
+    """(truth, toolpath): for a simulated truth and a program file, the machine loaded and the program read
+    for it as ``vcnc simulate`` reads it (its notes printed); else both as given."""
     from pathlib import Path
 
     from vcnc.commands.simulate import read_for_machine
     from vcnc.contour_compare import SHAPES
     from vcnc.engine.machine import load_machine
 
-    if toolpath in SHAPES or not Path(toolpath).is_file() or args.feed is not None:
+    if not isinstance(truth, str) or toolpath in SHAPES or not Path(toolpath).is_file() or args.feed is not None:
         return truth, toolpath  # (compare refuses --feed with a program, naming it)
-    program_args = argparse.Namespace(**{**vars(args), "program": toolpath})
-    if isinstance(truth, str):
-        truth = load_machine(truth)
-        program = read_for_machine(program_args, truth)
-    else:
-        program = read_program(program_args)
+    machine = load_machine(truth)
+    program = read_for_machine(argparse.Namespace(**{**vars(args), "program": toolpath}), machine)
     print_program_notes(program, toolpath)
-    return truth, program
+    return machine, program
 
 
 def run(args: argparse.Namespace) -> int:
