@@ -1134,7 +1134,8 @@ def samples_note(model: ReducedAxisModel) -> str:
     if not n:
         return ""
     margin = (v.get("active") or {}).get("margin_s")
-    note = (f"samples: 'all' the record's {n.get('record', '?')}; 'ident' and 'valid' its {n.get('identification')} "
+    record = f"'all' the record's {n['record']}; " if "record" in n else ""  # (a model file written before 'all')
+    note = (f"samples: {record}'ident' and 'valid' its {n.get('identification')} "
             f"active ones (idle stretches, where an axis at rest is predicted for free, trimmed"
             + (f" with a {margin:g} s margin" if margin is not None else "") + "), 'valid' each fold's predicted by "
             "the model refitted on the others; all simulated on the record's sample grid")

@@ -132,6 +132,9 @@ def test_the_table_says_which_samples_each_number_covers():
             "model refitted on the others; all simulated on the record's sample grid (the fit's prediction of the "
             f"capture, {model.fit['rms_um']:.4g} over all samples, on 10 sub-steps a sample)") in text
     assert samples_note(rep.reduced) == ""  # an undiagnosed model has no table
+    # a model file written before the 'all' column names no record count (it printed "the record's ?")
+    old = dataclasses.replace(model, validation={**v, "samples": {"identification": active, "validation": active}})
+    assert samples_note(old).startswith(f"samples: 'ident' and 'valid' its {active} active ones")
 
 
 def test_the_naive_predictions_of_the_active_samples_judge_the_held_out_error():
