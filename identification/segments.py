@@ -312,4 +312,13 @@ def folds(reference: np.ndarray, active: np.ndarray, k: int = 4, *, min_share: f
             missing = "negative" if f.negative < f.positive else "positive"
             warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) has no {missing} motion: "
                             "direction-dependent effects are not validated there")
+    for i, f in enumerate(fl):  # the folds a held-out fold's refit trains on (identification.diagnosis)
+        pos = sum(g.positive for j, g in enumerate(fl) if j != i)
+        neg = sum(g.negative for j, g in enumerate(fl) if j != i)
+        act = sum(g.active for j, g in enumerate(fl) if j != i)
+        if f.positive + f.negative > 0 and act > 0 and min(pos, neg) < min_share * act:
+            missing = "negative" if neg < pos else "positive"
+            warnings.append(f"the folds other than fold {i + 1}, which its refit is trained on, have no {missing} "
+                            f"motion: fold {i + 1}'s held-out error extrapolates what depends on the direction "
+                            "(friction) from the other direction")
     return FoldPlan(folds=tuple(fl), active=active, warnings=tuple(warnings))

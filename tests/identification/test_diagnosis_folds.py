@@ -95,6 +95,23 @@ def test_a_capture_that_never_moves_is_an_error_and_one_way_motion_a_warning():
     assert any("no negative motion" in w for w in plan.warnings), plan.warnings
 
 
+def test_a_fold_whose_refit_trains_on_one_direction_only_is_named():
+    """Two folds, one of which moves one way only (review28's reproducer was a G3 full circle's x on fadal-pid):
+    the other fold's refit, trained on it alone, fits the missing direction's friction on nothing; that fold's
+    held-out error extrapolates, and a warning says so. Here the cut falls at the first reversal: fold 1 moves
+    only down (x 10 -> -10), fold 2 up and down."""
+    T = 1e-3
+    t = np.arange(1400) * T
+    x = 10.0 * np.cos(2 * np.pi * t / 1.4)  # 10 -> -10 -> 10 over one period
+    ref = np.concatenate([np.full(300, 10.0), x, x[:700], np.full(300, x[699])])
+    ref[1700:1760] = ref[1700]  # a rest after the first period, where the folds are cut
+    plan = folds(ref, active_mask(ref, ref, T), 2)
+    assert len(plan.folds) == 2 and plan.folds[0].positive == 0 and plan.folds[1].positive > 0
+    lacking = [w for w in plan.warnings if w.startswith("the folds other than")]
+    assert lacking == ["the folds other than fold 2, which its refit is trained on, have no positive motion: fold 2's "
+                       "held-out error extrapolates what depends on the direction (friction) from the other direction"]
+
+
 # ------------------------------------------------------------------------------ diagnosis
 
 
