@@ -219,7 +219,10 @@ def test_default_reading_names_dialect_fadal(tmp_path, capsys):
     program.write_text(SUBROUTINES)
     assert main(["interpolate", str(program), "-o", str(tmp_path / "sp.csv")]) == 2
     err = capsys.readouterr().err
-    assert "--dialect fadal: the program reads as that control's G-code" in err
+    # the reader's own message names it ("a Fadal subroutine definition or call: use --dialect fadal"), and the
+    # command adds no second hint (it adds "--dialect fadal: the program reads as that control's G-code" only to a
+    # message naming no dialect)
+    assert "use --dialect fadal" in err and err.count("--dialect") == 1
     assert not (tmp_path / "sp.csv").exists()
 
 
