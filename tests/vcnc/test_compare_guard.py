@@ -1,0 +1,97 @@
+"""``vcnc compare``'s memory guard and ``--max-seconds`` (shared with ``vcnc simulate`` and ``vcnc interpolate``:
+``vcnc.commands.interpolate.sample_guard``) and the summary's ``truncated``. Hand-written programs; the exact reduced
+models of fadal-pid."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import vcnc.commands.compare as compare_command
+from identification import ReducedAxisModel
+from vcnc.cli import main
+from vcnc.contour_compare import compare
+from vcnc.engine.machine import load_machine
+from vcnc.errors import InputError
+
+#: A 10 mm square at F600 (10 mm/s): four sides of about 1.1 s each (2000 mm/s^2 to and from 10 mm/s at the
+#: exact stops of G61).
+SQUARE = "G21 G90 G61\nG0 X0 Y0\nG1 X10 Y0 F600\nG1 X10 Y10\nG1 X0 Y10\nG1 X0 Y0\nM30\n"
+
+
+def write(tmp_path: Path, text: str, name: str = "square.nc") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def model_file(tmp_path: Path, axis: str, name: str) -> str:
+    """The exact reduced model of fadal-pid's ``axis``, written to ``name``."""
+    m = load_machine("fadal-pid")
+    model = ReducedAxisModel(parameters=m.axis(axis).reduced_parameters(), sample_time=m.sample_time, axis=axis)
+    path = tmp_path / name
+    model.to_json(path)
+    return str(path)
+
+
+def models(tmp_path: Path) -> list[str]:
+    return ["--model", f"x={model_file(tmp_path, 'x', 'mx.json')}",
+            "--model", f"y={model_file(tmp_path, 'y', 'my.json')}"]
+
+
+def test_max_seconds_compares_the_first_seconds_and_the_summary_says_where_it_was_cut(tmp_path, capsys):
+    prog = write(tmp_path, SQUARE)
+    out = tmp_path / "c.json"
+    assert main(["compare", "--truth", "fadal-pid", *models(tmp_path), "--toolpath", str(prog), "--truth-runs", "1",
+                 "--max-seconds", "1.5", "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    # 1.5 s at Ts = 1 ms: samples 0..1500, then the 0.2 s the axes settle at the last position
+    assert d["samples"] == 1501 + 200
+    cut = d["truncated"]
+    # at least the four sides' 10 mm at 10 mm/s; the rapid (line 2, no motion) and the first side are complete
+    assert cut == ("only the first 1.5 s of at least 4 s compared (budget 1.5 s): 2 of 5 blocks complete, cut in the "
+                   "block at line 4; the rest is not run")
+    assert d["notes"][0] == f"{prog}: {cut}"
+    assert f"note: {prog}: {cut}\n" in capsys.readouterr().out
+
+
+def test_a_program_that_runs_whole_within_max_seconds_is_not_truncated(tmp_path):
+    prog = write(tmp_path, SQUARE)
+    out = tmp_path / "c.json"
+    assert main(["compare", "--truth", "fadal-pid", *models(tmp_path), "--toolpath", str(prog), "--truth-runs", "1",
+                 "--max-seconds", "60", "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert "truncated" not in d
+    assert not any("only the first" in n for n in d["notes"])
+
+
+def test_beyond_the_sample_limit_compare_is_refused_naming_the_program_and_max_seconds(tmp_path, capsys,
+                                                                                       monkeypatch):
+    monkeypatch.setattr(compare_command, "MAX_SAMPLES", 1000)
+    prog = write(tmp_path, SQUARE)
+    out = tmp_path / "c.json"
+    assert main(["compare", "--truth", "fadal-pid", *models(tmp_path), "--toolpath", str(prog), "--truth-runs", "1",
+                 "--json", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {prog}: the program needs ")
+    assert "more than the 1000 vcnc compare holds in memory; expected --max-seconds S to compare its first S seconds" \
+        in err
+    assert not out.exists()
+    # within --max-seconds the limit is not asked: the cut bounds the samples
+    assert main(["compare", "--truth", "fadal-pid", *models(tmp_path), "--toolpath", str(prog), "--truth-runs", "1",
+                 "--max-seconds", "0.5", "--json", str(out)]) == 0
+    assert json.loads(out.read_text())["samples"] == 501 + 200
+
+
+def test_max_duration_is_refused_for_a_capture_truth_and_for_given_setpoints(tmp_path):
+    machine = load_machine("fadal-pid")
+    exact = {a: ReducedAxisModel(parameters=machine.axis(a).reduced_parameters(), sample_time=machine.sample_time,
+                                 axis=a) for a in machine.axes}
+    run = compare(machine, exact, "diamond", truth_runs=1)
+    cap = machine.simulate(run.setpoints)
+    with pytest.raises(InputError, match="max_duration applies to a toolpath run on a simulated truth"):
+        compare(cap, exact, "diamond", max_duration=1.0)
+    with pytest.raises(InputError, match="max_duration applies to a program or built-in toolpath"):
+        compare(machine, exact, run.setpoints, max_duration=1.0)
