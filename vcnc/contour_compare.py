@@ -503,6 +503,24 @@ def _models_per_axis(models: Any, axes: tuple[str, ...]) -> dict[str, Any]:
     return {a: one for a in axes}
 
 
+def _other_axis_notes(models: Any, per_axis: dict[str, Any]) -> list[str]:
+    """A note per axis given its own model (``{axis: model}``) that names another axis as the one it was identified
+    on: ``model y.json (identified on axis y) used for x``. The report's model table says it too, but a planner who
+    mixed the files up reads the command's notes (our reading; one model for all axes, the thesis' Sec. 3.4.2 case,
+    is said by :func:`_models_per_axis`'s warning instead)."""
+    if not isinstance(models, Mapping):
+        return []
+    notes = []
+    for a, model in per_axis.items():
+        own = getattr(model, "axis", None)
+        if own not in (None, a):
+            given = models[a]
+            name = str(given) if isinstance(given, (str, os.PathLike)) else f"{type(model).__name__} object"
+            notes.append(f"model {name} (identified on axis {own}) used for {a}: the prediction assumes {a}'s drive "
+                         f"is like {own}'s (a model identified on {a}, --model {a}=FILE, if there is one)")
+    return notes
+
+
 def _identified_part(model: Any):
     """The model without its diagnosis effects (the reduced linear model of Eq. 3.3).
 
@@ -731,6 +749,7 @@ def compare(
                      f"{len(true_runs)} noise realisations (seeds {run.seeds[0]}-{run.seeds[-1]}); plots show the "
                      "first")
     per_axis = _models_per_axis(models, run.axes)
+    notes.extend(_other_axis_notes(models, per_axis))
     predicted, descr = _predictions(per_axis, run, kw, seed=seed, notes=notes)
     notes.extend(_beyond_range_notes(per_axis, run, true_ce.include))
     notes.extend(_model_notes(per_axis, run, true_ce.include))

@@ -1,9 +1,10 @@
 """``vcnc compare``'s memory guard and ``--max-seconds`` (shared with ``vcnc simulate`` and ``vcnc interpolate``:
-``vcnc.commands.interpolate.sample_guard``) and the summary's ``truncated``. Hand-written programs; the exact reduced
-models of fadal-pid."""
+``vcnc.commands.interpolate.sample_guard``), the summary's ``truncated``, and the note on a model identified on
+another axis than the one it is used for. Hand-written programs; the exact reduced models of fadal-pid."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -95,3 +96,25 @@ def test_max_duration_is_refused_for_a_capture_truth_and_for_given_setpoints(tmp
         compare(cap, exact, "diamond", max_duration=1.0)
     with pytest.raises(InputError, match="max_duration applies to a program or built-in toolpath"):
         compare(machine, exact, run.setpoints, max_duration=1.0)
+
+
+def test_a_model_identified_on_another_axis_is_named_on_the_command_line(tmp_path, capsys):
+    my = model_file(tmp_path, "y", "y.json")
+    out = tmp_path / "c.json"
+    assert main(["compare", "--truth", "fadal-pid", "--model", f"x={my}", "--model", f"y={my}", "--toolpath",
+                 "diamond", "--truth-runs", "1", "--json", str(out)]) == 0
+    note = (f"model {my} (identified on axis y) used for x: the prediction assumes x's drive is like y's (a model "
+            "identified on x, --model x=FILE, if there is one)")
+    stdout = capsys.readouterr().out
+    assert f"note: {note}\n" in stdout
+    assert "used for y" not in stdout
+    assert note in json.loads(out.read_text())["notes"]
+
+
+def test_a_model_object_on_another_axis_is_named_by_its_type():
+    machine = load_machine("fadal-pid")
+    y = ReducedAxisModel(parameters=machine.axis("y").reduced_parameters(), sample_time=machine.sample_time, axis="y")
+    rep = compare(machine, {"x": y, "y": dataclasses.replace(y)}, "circle", truth_runs=1)
+    assert [n for n in rep.notes if "used for" in n] == [
+        "model ReducedAxisModel object (identified on axis y) used for x: the prediction assumes x's drive is like "
+        "y's (a model identified on x, --model x=FILE, if there is one)"]
