@@ -62,6 +62,7 @@ from vcnc.contour import (
     DENSE_SEGMENTS,
     ContourError,
     auto_magnification,
+    commanded_points,
     contour_error,
     feed_segments,
     moving_axes,
@@ -741,7 +742,8 @@ def compare(
                      "deviation from a straight line")
     include = None if run.program is None else feed_segments(run.path, run.program)
     kw = {"reference": run.setpoints.position, "t": run.setpoints.t, "sample_time": run.sample_time,
-          "include_segments": include}
+          "include_segments": include,
+          "commanded": commanded_points(run.path, run.setpoints.position, run.axes)}  # one for all runs
     true_ce, true_sensor, true_runs, sensor_runs = _true_contours(run, kw)
     several = len(true_runs) > 1
     if several:

@@ -8,11 +8,14 @@ import dataclasses
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+import interpolators
 import vcnc.commands.compare as compare_command
 from identification import ReducedAxisModel
 from vcnc.cli import main
+from vcnc.contour import commanded_points, contour_error
 from vcnc.contour_compare import compare
 from vcnc.engine.machine import load_machine
 from vcnc.errors import InputError
@@ -118,3 +121,36 @@ def test_a_model_object_on_another_axis_is_named_by_its_type():
     assert [n for n in rep.notes if "used for" in n] == [
         "model ReducedAxisModel object (identified on axis y) used for x: the prediction assumes x's drive is like "
         "y's (a model identified on x, --model x=FILE, if there is one)"]
+
+
+def test_commanded_points_computed_once_give_the_contour_error_of_each_run():
+    """compare finds where the command is on the path once for its runs (vcnc.contour.commanded_points)."""
+    machine = load_machine("fadal-pid")
+    run = compare(machine, {a: ReducedAxisModel(parameters=machine.axis(a).reduced_parameters(),
+                                                sample_time=machine.sample_time, axis=a) for a in machine.axes},
+                  "diamond", truth_runs=1)
+    sp = run.setpoints
+    measured = machine.simulate(sp, seed=3).measured
+    alone = contour_error(sp.path, measured, sp.axes, reference=sp.position, t=sp.t)
+    shared = contour_error(sp.path, measured, sp.axes, reference=sp.position, t=sp.t,
+                           commanded=commanded_points(sp.path, sp.position, sp.axes))
+    assert shared.error.tolist() == alone.error.tolist()
+    assert shared.commanded_arc_length.tolist() == alone.commanded_arc_length.tolist()
+    assert json.dumps(shared.metrics()) == json.dumps(alone.metrics())  # (NaN quadrant maxima: none on a diamond)
+    with pytest.raises(InputError, match="commanded holds 10 points but positions have"):
+        contour_error(sp.path, measured, sp.axes, reference=sp.position, commanded=(np.zeros(10, int), np.zeros(10)))
+
+
+def test_the_corner_maxima_are_the_largest_error_within_the_window_of_each_corner():
+    """ContourError.metrics takes each corner's window maximum in one reduceat: the same numbers as a slice each."""
+    machine = load_machine("fadal-pid")
+    prog = interpolators.parse_program("G21 G90 G64\nG0 X0 Y0\nG1 X10 Y0 F6000\nG1 X10 Y10\nG1 X0 Y10\nG1 X0 Y0\n"
+                                       "M30\n")
+    sp = interpolators.interpolate(prog, limits=machine.limits, sample_time=machine.sample_time)
+    ce = contour_error(sp.path, machine.simulate(sp).measured, sp.axes, reference=sp.position, t=sp.t)
+    m = ce.metrics(window_mm=1.0)
+    s, e = ce.arc_length, np.abs(ce.error)
+    want = [float(np.max(e[(s >= s0 - 1.0) & (s <= s0 + 1.0)]) * 1e3) for s0 in (10.0, 20.0, 30.0)]
+    assert [c["arc_length_mm"] for c in m["corners"]] == [10.0, 20.0, 30.0]
+    assert [c["max_um"] for c in m["corners"]] == want
+    assert m["corner_max_um"] == max(want)
