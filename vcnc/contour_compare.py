@@ -116,13 +116,15 @@ def _mean_tree(items: list) -> Any:
     """Element-wise mean of metrics of the same layout (dicts, lists, numbers; NaN where all are).
 
     Lists of different lengths (a corner whose window no sample of one run reached) are the first run's: their
-    items would not pair up. Plain Python on the scalars: a long program's metrics hold tens of thousands of
-    corners, and numpy's per-call overhead on ten numbers was 15 s of a compare (3D_Chips)."""
+    items would not pair up; so is one list object that every run holds. Plain Python on the scalars: a long
+    program's metrics hold tens of thousands of corners, and numpy's per-call overhead on ten numbers was 15 s of a
+    compare (3D_Chips)."""
     first = items[0]
     if isinstance(first, Mapping):
         return {k: _mean_tree([it[k] for it in items]) for k in first}
     if isinstance(first, (list, tuple)):
-        if any(len(it) != len(first) for it in items):
+        # one object in every run (a corner's position_mm, vcnc.contour.feature_points'): nothing to average
+        if all(it is first for it in items) or any(len(it) != len(first) for it in items):
             return first
         return [_mean_tree([it[i] for it in items]) for i in range(len(first))]
     if isinstance(first, bool) or not isinstance(first, (int, float, np.number)):

@@ -154,3 +154,17 @@ def test_the_corner_maxima_are_the_largest_error_within_the_window_of_each_corne
     assert [c["arc_length_mm"] for c in m["corners"]] == [10.0, 20.0, 30.0]
     assert [c["max_um"] for c in m["corners"]] == want
     assert m["corner_max_um"] == max(want)
+
+
+def test_the_truth_s_corners_are_the_path_s_corners_with_the_mean_of_the_runs_maxima(tmp_path):
+    """The mean over noise runs averages each corner's maximum; its position, the same in every run, is kept."""
+    machine = load_machine("fadal-pid")
+    exact = {a: ReducedAxisModel(parameters=machine.axis(a).reduced_parameters(), sample_time=machine.sample_time,
+                                 axis=a) for a in machine.axes}
+    rep = compare(machine, exact, str(write(tmp_path, SQUARE)), truth_runs=3)
+    corners = rep.metrics()["true"]["corners"]
+    assert [c["position_mm"] for c in corners] == [[10.0, 0.0, 0.0], [10.0, 10.0, 0.0], [0.0, 10.0, 0.0]]
+    for k, c in enumerate(corners):
+        runs = [r["corners"][k]["max_um"] for r in rep.true_runs]
+        assert len(set(runs)) > 1  # the noise moves them
+        assert c["max_um"] == pytest.approx(sum(runs) / 3, rel=1e-12)
