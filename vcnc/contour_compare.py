@@ -730,8 +730,8 @@ def compare(
         raise InputError(f"truth_runs must be an integer in [1, 1000], got {truth_runs!r}")
     if isinstance(truth, Capture):
         if max_duration is not None:
-            raise InputError("max_duration applies to a toolpath run on a simulated truth; a capture is compared "
-                             "as recorded", file=truth.source)
+            raise InputError("max_duration (--max-seconds) applies to a toolpath run on a simulated truth; a "
+                             "capture is compared as recorded", file=truth.source)
         run = _captured_truth(truth, toolpath)
     else:
         run = _simulated_truth(truth, toolpath, feed=feed, acceleration=acceleration, profile=profile, seed=seed,
@@ -838,8 +838,8 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
                              "compare", file=program.source, expected="a program with a feed move (G1, G2, G3, L, C)")
     else:
         if guard["max_duration"] is not None:
-            raise InputError("max_duration applies to a program or built-in toolpath; the setpoints given are "
-                             "compared as they are")
+            raise InputError("max_duration (--max-seconds) applies to a program or built-in toolpath; the "
+                             "setpoints given are compared as they are")
         machine = _expand_machine(machine, tuple(sp.axes), notes)
     cut = truncation_note(sp, done="compared")
     if cut:  # first: every number below is of the first seconds only

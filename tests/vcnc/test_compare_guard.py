@@ -95,9 +95,9 @@ def test_max_duration_is_refused_for_a_capture_truth_and_for_given_setpoints(tmp
                                  axis=a) for a in machine.axes}
     run = compare(machine, exact, "diamond", truth_runs=1)
     cap = machine.simulate(run.setpoints)
-    with pytest.raises(InputError, match="max_duration applies to a toolpath run on a simulated truth"):
+    with pytest.raises(InputError, match=r"\(--max-seconds\) applies to a toolpath run on a simulated truth"):
         compare(cap, exact, "diamond", max_duration=1.0)
-    with pytest.raises(InputError, match="max_duration applies to a program or built-in toolpath"):
+    with pytest.raises(InputError, match=r"max_duration \(--max-seconds\) applies to a program or built-in toolpath"):
         compare(machine, exact, run.setpoints, max_duration=1.0)
 
 

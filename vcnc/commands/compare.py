@@ -9,6 +9,11 @@ A program file run on a simulated truth is read as ``vcnc simulate`` reads it
 (:func:`vcnc.commands.simulate.read_for_machine`): in the true machine's context (its rotary axes, its
 dialect and tool table, ``--dialect`` and the other reader options), its notes printed, a move of an axis the
 machine lacks refused naming the line and the way forward (``NAME+z``, an ``[axes.a]`` section).
+
+``--max-seconds S`` compares the blocks that run within the first S seconds, cut as ``vcnc simulate`` cuts them
+(:func:`vcnc.facade.interpolate`; a note and the summary's ``truncated`` say where); without it a program needing
+more than :data:`MAX_SAMPLES` samples is refused naming the option (the guard of ``vcnc simulate`` and ``vcnc
+interpolate``, :func:`vcnc.commands.interpolate.sample_guard`).
 """
 
 from __future__ import annotations
@@ -24,9 +29,9 @@ HELP = "compare the contour error of a toolpath on a true machine with that pred
 
 #: Samples ``vcnc compare`` runs without ``--max-seconds`` (25 min at Ts = 1 ms): a longer program is refused, naming
 #: the option, rather than running the machine out of memory. It keeps the setpoints, the true and sensed contour of the
-#: first noise run and the two predictions' contours while it simulates the next run: measured peak 0.75 GB at 0.6
-#: and 1.82 GB at 1.8 million samples of four axes (a 4-axis program, XYZA on a machine file, ten noise runs; the
-#: report adds nothing to the peak), so 0.22 GB + 0.89 kB a sample, about 1.56 GB here.
+#: first noise run and the two predictions' contours while it simulates the next run: measured peak (/usr/bin/time -v)
+#: 0.75 GB at 0.6 and 1.80 GB at 1.8 million samples of four axes (a 4-axis program, XYZA on a machine file, ten noise
+#: runs; the report adds nothing to the peak), so 0.23 GB + 0.88 kB a sample, about 1.55 GB here.
 MAX_SAMPLES = 1_500_000
 
 
