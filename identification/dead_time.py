@@ -129,33 +129,38 @@ BASELINE_MAX_SHIFT_S = 1.0
 BASELINE_MAX_SHARE = 1.0 / 6.0
 
 
-def pure_delay_baseline(reference: np.ndarray, measured: np.ndarray, sample_time: float) -> dict:
+def pure_delay_baseline(reference: np.ndarray, measured: np.ndarray, sample_time: float, *,
+                        mask: np.ndarray | None = None) -> dict:
     """The two naive predictions of the measured position a model must beat: the commanded position itself
     (its error is the following error ``x_ref - x``) and the commanded position delayed by the best whole number
     of samples (a pure delay, :func:`delay_reference`; > 0 when the measured position lags).
 
     Returns ``{"following_error_rms_um", "pure_delay_rms_um", "pure_delay_samples", "pure_delay_s"}``, RMS over the
-    whole record. Our reading: an engineer judges a model of the loop by how much of the error of these two it
-    explains; a model that predicts no better than a pure delay has learnt nothing of the loop's dynamics from
-    this record (a record sampled far slower than the loop responds, or a measured channel that is not the
-    loop's), whatever its poles. The shift is tried up to :data:`BASELINE_MAX_SHIFT_S` either way, at most
-    :data:`BASELINE_MAX_SHARE` of the record.
+    whole record, or over the samples ``mask`` (the diagnosis' active samples, which its held-out errors cover: a
+    held-out error is compared with the naive predictions of the same samples). Our reading: an engineer judges a
+    model of the loop by how much of the error of these two it explains; a model that predicts no better than a
+    pure delay has learnt nothing of the loop's dynamics from this record (a record sampled far slower than the
+    loop responds, or a measured channel that is not the loop's), whatever its poles. The shift is tried up to
+    :data:`BASELINE_MAX_SHIFT_S` either way, at most :data:`BASELINE_MAX_SHARE` of the record.
     """
     xr = np.asarray(reference, dtype=float)
     x = np.asarray(measured, dtype=float)
     n = x.size
-    rms0 = float(np.sqrt(np.mean((x - xr) ** 2)))
+    w = np.ones(n) if mask is None else np.asarray(mask, dtype=float)
+    count = float(w.sum())
+    rms0 = float(np.sqrt(np.sum(w * (x - xr) ** 2) / count))
     best, shift = rms0, 0
     most = int(min(BASELINE_MAX_SHIFT_S / sample_time, n * BASELINE_MAX_SHARE))
     # delay_reference(xr, s) for a whole s, without its interpolation: the first (last) value held over the s
     # samples before (after) the record, and the rest the reference shifted (the same values, a sum of squares
     # instead of a mean: O(n) per shift with no temporaries beyond one difference)
-    held_first, held_last = np.cumsum((x - xr[0]) ** 2), np.cumsum(((x - xr[-1]) ** 2)[::-1])
+    held_first, held_last = np.cumsum(w * (x - xr[0]) ** 2), np.cumsum((w * (x - xr[-1]) ** 2)[::-1])
     for k in range(1, most + 1):
         for s in (k, -k):
             d = x[k:] - xr[:-k] if s > 0 else x[:-k] - xr[k:]
+            ws = w[k:] if s > 0 else w[:-k]
             held = held_first[k - 1] if s > 0 else held_last[k - 1]
-            rms = math.sqrt((float(np.einsum("i,i->", d, d)) + float(held)) / n)
+            rms = math.sqrt((float(np.einsum("i,i,i->", d, d, ws)) + float(held)) / count)
             if rms < best:
                 best, shift = rms, s
     return {"following_error_rms_um": rms0 * 1e3, "pure_delay_rms_um": best * 1e3, "pure_delay_samples": shift,

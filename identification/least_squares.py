@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-__all__ = ["solve_qr", "solve_scaled", "solve_gram", "truncated_step"]
+__all__ = ["solve_qr", "solve_scaled", "solve_gram", "damped_steps"]
 
 #: Largest condition number of the scaled Gram matrix solved through it (cond(A)^2 <= 1e10).
 MAX_GRAM_CONDITION = 1e10
@@ -75,18 +75,29 @@ def solve_gram(G: np.ndarray, b: np.ndarray) -> np.ndarray | None:
     return (V @ ((V.T @ (b / sc)) / w)) / sc
 
 
-def truncated_step(A: np.ndarray, y: np.ndarray, relative: float = 1e-3) -> np.ndarray:
-    """Truncated-SVD least-squares solution of ``A x = y`` with the columns scaled to unit norm.
+def damped_steps(G: np.ndarray, b: np.ndarray, damping: tuple[float, ...], relative: float = 1e-3
+                 ) -> list[np.ndarray]:
+    """Levenberg-Marquardt steps ``x`` minimising ``|A x - y|^2 + lam |S x|^2`` from the Gram matrix ``G = A'A``
+    and ``b = A'y``, one per ``lam`` of ``damping`` (relative to the largest eigenvalue of the scaled Gram matrix;
+    ``S`` the column norms, Marquardt's scaling), all from one eigen-decomposition.
 
-    Directions whose singular value is below ``relative`` times the largest are left out. Computed
-    from the eigen-decomposition of the scaled Gram matrix (singular values squared): exact up to
-    rounding relative to the largest eigenvalue, ~1e-16, far below the cut at ``relative^2``.
+    Directions whose singular value (of ``A`` with its columns scaled to unit norm) is below ``relative`` times the
+    largest are left out: with no damping the step is the truncated-SVD least-squares solution. The scaled Gram
+    matrix' eigenvalues are the singular values squared, exact up to rounding relative to the largest, ~1e-16,
+    far below the cut at ``relative^2``.
+
+    Notes
+    -----
+    Marquardt, "An algorithm for least-squares estimation of nonlinear parameters", J. SIAM 11 (1963): the
+    damping turns the Gauss-Newton step towards the scaled steepest descent and shortens it.
     """
-    As, sc = _scaled(np.asarray(A, float))
-    if As.shape[1] == 0:
-        return np.zeros(0)
-    w, V = np.linalg.eigh(As.T @ As)
-    top = w[-1] if w.size else 0.0
+    sc = np.sqrt(np.maximum(np.diag(G), 0.0))
+    sc[sc == 0] = 1.0
+    if G.shape[0] == 0:
+        return [np.zeros(0) for _ in damping]
+    w, V = np.linalg.eigh(G / np.outer(sc, sc))
+    top = w[-1]
     keep = w > (relative * relative) * top if top > 0 else np.zeros(w.size, bool)
-    Vk = V[:, keep]
-    return (Vk @ ((Vk.T @ (As.T @ y)) / w[keep])) / sc
+    Vk, wk = V[:, keep], w[keep]
+    c = Vk.T @ (b / sc)
+    return [(Vk @ (c / (wk + lam * top))) / sc for lam in damping]

@@ -441,8 +441,10 @@ def tapping_cycle(number: int, items: dict[int, float], *, feed_scale: float, sc
 
 
 #: A word of a pocket line: F, DR+/-, or an item's name; as in :func:`legacy_value` a dot right after a letter is the
-#: name's, not the number's (the Czech 'BEZP.VZD. 2': set-up clearance 2; it read '.VZD.' as the number).
+#: name's, not the number's (the Czech 'BEZP.VZD. 2': set-up clearance 2; it read '.VZD.' as the number), except
+#: after an English name of the TNC's dialog (:data:`_ENGLISH_ITEMS`): 'SET UP.5' is 0.5, as 'DWELL.5' is.
 _POCKET_ITEM_RE = re.compile(r"\s*(?:(F)\s*(?=[+-]?\s*[\d.Q(])|(DR)\s*([+-])(?![\d.Q(])"
+                             r"|(?:" + "|".join(_ENGLISH_ITEMS) + r")\s*(?=[+-]?\s*\.\d)"  # 'SET UP.5': 0.5
                              r"|([A-Z][A-Z\-. ]*?)\s*(?=[+-]?\s*(?:\d|(?<![A-Z])\.\d|Q|\()))", re.I)
 
 

@@ -176,7 +176,8 @@ def m_functions(words: list[Word], m: Machine, where: Where, blk: SourceBlock, *
                 else:
                     m.note(f"M{w.value} in a block without coordinates has no effect")
         elif w.key == "MBMAX" or w.key == "MB":
-            continue
+            if not any(v.key == "M" and v.value == 140 for v in words):  # as in a motion block (motion_block)
+                where.fail("MB without M140", column=w.column, text=w.text, expected="M140 MB MAX")
         elif not motion:
             where.fail(f"word {w.text!r} in a block without motion", column=w.column, text=w.text,
                        expected="M functions")

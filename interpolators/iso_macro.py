@@ -114,10 +114,14 @@ def read_statement(code: str, where: Where, *, abbreviations: bool = False) -> S
         return Statement(kind, code, m.start(1), loop, word=m.group(1))
     m = _WHILE_START.match(code)
     if m:
-        ddcs = (" (a condition without brackets, as the DDCS controllers write 'WHILE #18<#3 DO2': Fanuc macro B "
-                "brackets it)") if re.match(r"\s*WHILE\s*[^\s\[]", code, re.I) else ""
-        where.fail(f"WHILE without DO m at the end of its block{ddcs}", column=m.start(1) + 1, text=code.strip(),
-                   expected="WHILE [condition] DO m (m = 1, 2 or 3)")
+        bare = re.match(r"\s*[^\s\[]", code[m.end(1):])  # after "N10 WHILE" too
+        ddcs = " as the DDCS controllers write 'WHILE #18<#3 DO2': Fanuc macro B brackets it"
+        if bare and re.search(r"(?<![A-Z])DO\s*\d+\s*$", code, re.I):  # its DO is there: the brackets are not
+            what = f"WHILE condition without its brackets ({ddcs.strip()})"
+        else:
+            what = "WHILE without DO m at the end of its block" + (f" (a condition without brackets,{ddcs})"
+                                                                    if bare else "")
+        where.fail(what, column=m.start(1) + 1, text=code.strip(), expected="WHILE [condition] DO m (m = 1, 2 or 3)")
     m = _LOOP_HEAD.match(code)
     if m:
         short = " (WH is Fanuc's abbreviation of it: --dialect fanuc)" if m.group(1).upper() == "WH" else ""

@@ -173,6 +173,9 @@ def _foreign_statement(code: str, p: int) -> str:
     for pattern, what in _FOREIGN_STATEMENTS:
         if start < p and pattern.match(code, start):
             return f" ({what}; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)"
+    if code[:p].rstrip().endswith("["):  # "G0 X[xmin]": a CNCjs macro's expression (iso_words.read_words)
+        return (" (text left in brackets, such as a template's placeholder, or an expression the CNCjs sender "
+                "evaluates before grbl reads the line, as a CNCjs macro writes 'G0 X[xmin]'?)")
     return " (text left in brackets, such as a template's placeholder?)"
 
 

@@ -142,19 +142,22 @@ def block_comment(raw: str, where: Where) -> str | None:
     return raw[spans[-1][0] + 1:spans[-1][1] - 1] if spans else None
 
 
-
-def _foreign_hint(tok: str) -> str:
+def _foreign_hint(tok: str, *, first: bool = True) -> str:
     """What an unknown word is, when its text says: a RepRap/Marlin line checksum ``*57`` (the serial protocol
     of 3D printer hosts: "N<line> <command>*<checksum>", RepRap wiki "G-code", "Checking"), which no CNC control
     reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header; a quoted
     text, as Centroid CNC12 macros write a prompt, ``M225 #100 "This is an example macro ..."`` (Centroid's stock
     ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it), and, our reading of an Acorn router's macros, a macro
     file to run, ``G65 "\\cncm\\defines.cnc"``; a grbl ``$`` line (grbl wiki "Grbl v1.1 Configuration": "$x=val",
-    "$H"), which only the grbl dialect reads (:mod:`interpolators.iso_grbl`)."""
+    "$H"), which only the grbl dialect reads (:mod:`interpolators.iso_grbl`), on a line of its own (``first``: the
+    token starts its line; inside a block grbl reads none)."""
     if re.fullmatch(r"\*\d+", tok):
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
         return f" (control character 0x{ord(tok[0]):02X}: a damaged file or a binary header?)"
+    if tok.startswith("$") and not first:  # the grbl dialect too comes here with one inside a block
+        return (" (a grbl setting or system command, such as $32=1 (laser mode) or $H (homing), which grbl reads "
+                "only on a line of its own, not inside a block)")
     if tok.startswith("$"):
         return (" (a grbl setting or system command, such as $32=1 (laser mode) or $H (homing), which grbl reads "
                 "on a line of its own: read the program with --dialect grbl)")
@@ -162,6 +165,7 @@ def _foreign_hint(tok: str) -> str:
         return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
                 "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")
     return fence_hint(tok)
+
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
                assignment: Callable[[int], int] | None = None) -> list[Word]:
@@ -213,7 +217,8 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             if ch.isdigit() or ch in ".+-":
                 where.fail(f"number {tok!r} without its letter", column=i + 1, text=tok,
                            expected="a word: a letter and its number, such as G21 or X12.5")
-            where.fail(f"unknown word {tok!r}{_foreign_hint(tok)}", column=i + 1, text=tok,
+            where.fail(f"unknown word {tok!r}{_foreign_hint(tok, first=not code[:i].strip())}", column=i + 1,
+                       text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
         if value is None:
             v, end = read_number(code, i + 1, where, what=f"word {up}", word_start=i)

@@ -170,10 +170,10 @@ def test_in_sample_folds_are_named():
     # EMPS and a TNCscope trace: every fold fell back to the full fit, its "held-out" RMS equal to the identification's
     assert in_sample_warnings([], None) == []
     assert in_sample_warnings([0, 1, 2, 3], None) == [
-        "the reduced model's held-out error on folds 1, 2, 3, 4 is its identification error there: no step fitted on "
-        "the other folds lowered their error, so it is no out-of-sample check"]
+        "the reduced model's held-out error on folds 1, 2, 3, 4 is its identification error there: no refit on the "
+        "other folds lowered their error, so it is no out-of-sample check"]
     assert in_sample_warnings([], [2]) == [
-        "the final model's held-out error on fold 3 is its identification error there: no step fitted on the other "
+        "the final model's held-out error on fold 3 is its identification error there: no refit on the other "
         "folds lowered their error, so it is no out-of-sample check"]
 
 

@@ -841,8 +841,15 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
         t.comp = False
 
 
+#: The English item names of the old cycles' dialog (TNC 355 / 426 user's manuals), blanks removed: none has a dot
+#: of its own, so a dot right after one is the number's ('DWELL.5': 0.5 s, 'SET UP.5': 0.5 mm; our reading).
+_ENGLISH_ITEM = re.compile(r"(SETUP|DIST|DEPTH|PECKG|PLNGNG|DWELL|TIME|PITCH|RADIUS)(?=[-+]?\.\d)", re.I)
+
+
 def _last_number(text: str, q: dict) -> float:
-    # a dot right after a letter is the name's (V.ZEIT, the Czech BEZP.VZD.), not a number's
+    # a dot right after a letter is the name's (V.ZEIT, the Czech BEZP.VZD.), not a number's, except after an
+    # English name (_ENGLISH_ITEM)
+    text = _ENGLISH_ITEM.sub(r"\1 ", text.replace("SET UP", "SETUP"))
     m = re.findall(r"[-+]?\s*(?:Q[LR]?\d+|\d+\.?\d*|(?<![A-Za-z])\.\d+)", text)
     if not m:
         raise ReferenceError(f"no value in {text!r}")

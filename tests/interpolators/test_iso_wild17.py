@@ -62,7 +62,8 @@ def test_statements_of_centroid_and_okuma_macros_are_named(text, column, what, c
 
 def test_a_name_left_in_brackets_keeps_the_placeholder_hint():
     with pytest.raises(GCodeError, match=r"'PX' is neither a number, a parameter nor a function \(text left in "
-                                         r"brackets, such as a template's placeholder\?\)"):
+                                         r"brackets, such as a template's placeholder, or an expression the "
+                                         r"CNCjs sender evaluates"):
         parse_program("G21\nG1 X[PX] F100\nM30\n", context=FANUC)
 
 

@@ -101,9 +101,8 @@ def test_a_fanuc_condition_without_brackets_is_named(context):
 
 @pytest.mark.parametrize("context", [FANUC, HAAS])
 def test_a_ddcs_loop_without_brackets_is_named(context):
-    with pytest.raises(GCodeError, match=r":2:1: WHILE without DO m at the end of its block \(a condition without "
-                                         r"brackets, as the DDCS controllers write 'WHILE #18<#3 DO2': Fanuc macro B "
-                                         r"brackets it\)"):
+    with pytest.raises(GCodeError, match=r":2:1: WHILE condition without its brackets \(as the DDCS controllers "
+                                         r"write 'WHILE #18<#3 DO2': Fanuc macro B brackets it\)"):
         parse_program("#1=0\nWHILE #1<3 DO1\n#1=#1+1\nEND1\nM30\n", context=context)
 
 

@@ -123,3 +123,10 @@ def test_default_dialect_error_names_the_dialect_that_reads_the_program(tmp_path
     bad.write_text("G01 X10 F100\nG01 X5 Q3\n")
     assert main(["interpolate", str(bad), "-o", str(out)]) == 2
     assert "--dialect" not in capsys.readouterr().err
+    # a message of the reader that names the dialects itself gets no second hint (review28: ',R' said both
+    # "(or --dialect fanuc / haas)" and ", or --dialect fanuc or haas: ...")
+    corner = tmp_path / "corner.nc"
+    corner.write_text("G21 G90 G17\nG0 X0 Y0\nG1 X10 Y0 ,R2 F3000\nG1 X10 Y10\nM30\n")
+    assert main(["interpolate", str(corner), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "(or --dialect fanuc / haas)" in err and err.count("--dialect") == 1

@@ -15,11 +15,12 @@ import numpy as np
 import pytest
 
 from identification import ReducedAxisModel
+from tests.vcnc.test_simulate_wild import machine_with_a, write
 from vcnc.capture import Capture
 from vcnc.cli import main
 from vcnc.contour import feature_points, path_features
 from vcnc.contour_compare import compare
-from vcnc.engine.machine import Machine, builtin_machine_text, load_machine
+from vcnc.engine.machine import Machine, load_machine
 from vcnc.errors import InputError
 
 #: An inch program that names Z at Z0 in every block without moving it (as corpus 0085, a dodecagon, does).
@@ -29,12 +30,6 @@ NAMED_Z = ("G61 G90 G20\nG0 X-.1 Y0 Z0\nG1 X0 Y0 Z0 F20\nG64\nG1 X0.0866 Y-0.05 
 HELIX = "G21 G90 G17\nG0 X10 Y0 Z0\nG1 X10 Y0 F600\nG3 X10 Y0 Z-1 I-10 J0\nM30\n"
 #: A 4-axis finish pass as CAM posts it: X Y feed moves, the table turned by A.
 ROTARY = "G21 G90\nG0 X0 Y0\nG1 X10 Y5 F600\nG1 A90 F3600\nG1 X0 Y0 A0 F600\nM30\n"
-
-
-def write(tmp_path: Path, text: str, name: str = "part.nc") -> Path:
-    p = tmp_path / name
-    p.write_text(text)
-    return p
 
 
 def models_of(machine: str = "fadal-pid", **changes) -> dict[str, ReducedAxisModel]:
@@ -53,20 +48,6 @@ def model_files(tmp_path: Path, models: dict[str, ReducedAxisModel]) -> list[str
         m.to_json(tmp_path / f"m{a}.json")
         args += ["--model", f"{a}={tmp_path / f'm{a}.json'}"]
     return args
-
-
-def machine_with_a(tmp_path: Path) -> Path:
-    """fadal-pid's file with an ``[axes.a]`` whose tables are those of its X axis (positions in degrees through the
-    same drive: our reading for the test, as tests/vcnc/test_simulate_wild.py)."""
-    text = builtin_machine_text("fadal-pid")
-    lines = text.splitlines()
-    heads = [i for i, ln in enumerate(lines) if ln.startswith("[")]
-    x = [ln for i in heads if lines[i] == "[axes.x]" or lines[i].startswith("[axes.x.")
-         for ln in lines[i:next((j for j in heads if j > i), len(lines))]]
-    f = tmp_path / "xya.toml"
-    f.write_text(text.replace('name = "fadal-pid"', 'name = "xya"') + "\n"
-                 + "\n".join(ln.replace("[axes.x", "[axes.a") for ln in x) + "\n")
-    return f
 
 
 def test_a_program_moving_z_on_a_two_axis_truth_names_the_line_and_truth_plus_z(tmp_path, capsys):

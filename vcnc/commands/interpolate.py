@@ -124,7 +124,7 @@ def read_program(args: argparse.Namespace, machine=None):
             except GCodeError:
                 continue
             readers.append(name)
-        if readers:
+        if readers and "--dialect" not in str(exc):  # (the reader's own message may name the dialects already)
             hint = (f"--dialect {' or '.join(readers)}: the program reads as that control's G-code (vcnc reads "
                     "LinuxCNC's unless told)")
             exc.expected = f"{exc.expected}, or {hint}" if exc.expected else hint
