@@ -8,7 +8,8 @@ before anything is written; a failure leaves no file behind.
 A program file run on a simulated truth is read as ``vcnc simulate`` reads it
 (:func:`vcnc.commands.simulate.read_for_machine`): in the true machine's context (its rotary axes, its
 dialect and tool table, ``--dialect`` and the other reader options), its notes printed, a move of an axis the
-machine lacks refused naming the line and the way forward (``NAME+z``, an ``[axes.a]`` section).
+machine lacks refused naming the line and the way forward (``NAME+z``, an ``[axes.a]`` section). With a captured
+truth the program is read as ``vcnc interpolate`` reads it (the reader options, its notes printed).
 
 ``--max-seconds S`` compares the blocks that run within the first S seconds, cut as ``vcnc simulate`` cuts them
 (:func:`vcnc.facade.interpolate`; a note and the summary's ``truncated`` say where); without it a program needing
@@ -21,7 +22,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from vcnc.commands.interpolate import add_context_arguments, print_program_notes, sample_guard
+from vcnc.commands.interpolate import add_context_arguments, print_program_notes, read_program, sample_guard
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.errors import InputError
 
@@ -102,20 +103,26 @@ def _truth(args: argparse.Namespace):
 
 
 def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tuple:
-    """(truth, toolpath): for a simulated truth and a program file, the machine loaded and the program read
-    for it as ``vcnc simulate`` reads it (its notes printed); else both as given."""
+    """(truth, toolpath): for a program file, the program read with the reader options (``--dialect`` ..., its
+    notes printed): for a simulated truth the machine loaded and the program read for it as ``vcnc simulate``
+    reads it, for a captured truth as ``vcnc interpolate`` reads it (the capture's commanded positions are the
+    setpoints, the program gives its path); else both as given."""
     from pathlib import Path
 
     from vcnc.commands.simulate import read_for_machine
     from vcnc.contour_compare import SHAPES
     from vcnc.engine.machine import load_machine
 
-    if not isinstance(truth, str) or toolpath in SHAPES or not Path(toolpath).is_file() or args.feed is not None:
+    if toolpath in SHAPES or not Path(toolpath).is_file() or args.feed is not None:
         return truth, toolpath  # (compare refuses --feed with a program, naming it)
-    machine = load_machine(truth)
-    program = read_for_machine(argparse.Namespace(**{**vars(args), "program": toolpath}), machine)
+    program_args = argparse.Namespace(**{**vars(args), "program": toolpath})
+    if isinstance(truth, str):
+        truth = load_machine(truth)
+        program = read_for_machine(program_args, truth)
+    else:
+        program = read_program(program_args)
     print_program_notes(program, toolpath)
-    return machine, program
+    return truth, program
 
 
 def run(args: argparse.Namespace) -> int:
