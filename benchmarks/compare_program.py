@@ -16,6 +16,15 @@ Measured (comparewild, session 28; 2 cores shared with five other jobs, so CPU t
 and their points again, and the noise realisations' mean through numpy on every corner's numbers) and 3.1 s on
 this branch (ratio 41, 3.4 per simulation run: ``vcnc.contour.feature_points`` once per path, each label's
 metrics once, the mean in plain Python). The main figure from this script with ``sys.path`` on /work/main.
+
+Measured (compareguard, session 28, same conditions), main c44e16d -> this branch: 3D_Chips 3.01 -> 1.88 s CPU (ratio
+39 -> 24, 3.25 -> 2.03 per simulation run); corpus 0274_BackFastening_2_OutCut.nc (1,241,431 samples, 196,180
+segments) 47.6 -> 29.9 s CPU (ratio 30 -> 15, 2.52 -> 1.26 per simulation run): the path packed
+(``vcnc.contour._pack``) and the command located on it (``vcnc.contour.commanded_points``) once instead of 22 times,
+each corner's window maximum in one ``np.maximum.reduceat`` instead of a numpy call per corner (134,647 corners), a
+corner's position, the same object in every run, not averaged. What is left is the work itself: per simulation run
+one machine simulation and two nearest-point searches (true position and sensor reading), where simulate's summary
+does one search.
 """
 
 from __future__ import annotations

@@ -62,6 +62,7 @@ from vcnc.contour import (
     DENSE_SEGMENTS,
     ContourError,
     auto_magnification,
+    commanded_points,
     contour_error,
     feed_segments,
     moving_axes,
@@ -115,13 +116,15 @@ def _mean_tree(items: list) -> Any:
     """Element-wise mean of metrics of the same layout (dicts, lists, numbers; NaN where all are).
 
     Lists of different lengths (a corner whose window no sample of one run reached) are the first run's: their
-    items would not pair up. Plain Python on the scalars: a long program's metrics hold tens of thousands of
-    corners, and numpy's per-call overhead on ten numbers was 15 s of a compare (3D_Chips)."""
+    items would not pair up; so is one list object that every run holds. Plain Python on the scalars: a long
+    program's metrics hold tens of thousands of corners, and numpy's per-call overhead on ten numbers was 15 s of a
+    compare (3D_Chips)."""
     first = items[0]
     if isinstance(first, Mapping):
         return {k: _mean_tree([it[k] for it in items]) for k in first}
     if isinstance(first, (list, tuple)):
-        if any(len(it) != len(first) for it in items):
+        # one object in every run (a corner's position_mm, vcnc.contour.feature_points'): nothing to average
+        if all(it is first for it in items) or any(len(it) != len(first) for it in items):
             return first
         return [_mean_tree([it[i] for it in items]) for i in range(len(first))]
     if isinstance(first, bool) or not isinstance(first, (int, float, np.number)):
@@ -182,6 +185,14 @@ class ContourReport:
     #: metrics computed once per label (a noisy truth's mean over its runs, each prediction's): the summary, the
     #: prediction errors and the report ask for them many times
     _memo: dict = dataclasses.field(default_factory=dict, init=False, repr=False)
+
+    @property
+    def truncated(self) -> str | None:
+        """Where the toolpath was cut to its first seconds (``compare(max_duration=...)``,
+        :func:`vcnc.facade.truncation_note`), or None when it ran whole."""
+        from vcnc.facade import truncation_note
+
+        return truncation_note(self.setpoints, done="compared")
 
     @property
     def runs(self) -> int:
@@ -290,6 +301,9 @@ class ContourReport:
         d["sample_time"] = self.setpoints.sample_time
         d["metrics_cover"] = int(m["true"]["samples"])
         d["signed"] = self.true.signed
+        cut = self.truncated
+        if cut:
+            d["truncated"] = cut
         if self.notes:
             d["notes"] = list(self.notes)
         return d
@@ -492,6 +506,24 @@ def _models_per_axis(models: Any, axes: tuple[str, ...]) -> dict[str, Any]:
     return {a: one for a in axes}
 
 
+def _other_axis_notes(models: Any, per_axis: dict[str, Any]) -> list[str]:
+    """A note per axis given its own model (``{axis: model}``) that names another axis as the one it was identified
+    on: ``model y.json (identified on axis y) used for x``. The report's model table says it too, but a planner who
+    mixed the files up reads the command's notes (our reading; one model for all axes, the thesis' Sec. 3.4.2 case,
+    is said by :func:`_models_per_axis`'s warning instead)."""
+    if not isinstance(models, Mapping):
+        return []
+    notes = []
+    for a, model in per_axis.items():
+        own = getattr(model, "axis", None)
+        if own not in (None, a):
+            given = models[a]
+            name = str(given) if isinstance(given, (str, os.PathLike)) else f"{type(model).__name__} object"
+            notes.append(f"model {name} (identified on axis {own}) used for {a}: the prediction assumes {a}'s drive "
+                         f"is like {own}'s (a model identified on {a}, --model {a}=FILE, if there is one)")
+    return notes
+
+
 def _identified_part(model: Any):
     """The model without its diagnosis effects (the reduced linear model of Eq. 3.3).
 
@@ -644,6 +676,8 @@ def compare(
     seed: int = 0,
     settle_s: float = SETTLE_S,
     truth_runs: int | None = None,
+    max_duration: float | None = None,
+    max_samples: int | None = None,
 ) -> ContourReport:
     """Contour error of a toolpath on the true machine and as predicted by axis models.
 
@@ -673,6 +707,13 @@ def compare(
         Noise realisations of a simulated truth, seeds ``seed .. seed + truth_runs - 1`` (module
         notes); default :data:`TRUTH_RUNS` when an axis of the true machine has measurement noise,
         else 1.
+    max_duration : float, optional
+        Compare only the first ``max_duration`` seconds of a program or built-in toolpath run on a simulated truth
+        (:func:`vcnc.facade.interpolate`: cut after the last block that ends within it; the report's
+        ``truncated`` and a note say where). Without it the whole program runs.
+    max_samples : int, optional
+        Without ``max_duration``: refuse (:class:`vcnc.ProgramTooLongError`) a program that needs more samples
+        (default: the interpolator's guard). ``vcnc compare`` passes its ``MAX_SAMPLES``.
 
     Returns
     -------
@@ -688,10 +729,14 @@ def compare(
                                        and 1 <= truth_runs <= 1000):
         raise InputError(f"truth_runs must be an integer in [1, 1000], got {truth_runs!r}")
     if isinstance(truth, Capture):
+        if max_duration is not None:
+            raise InputError("max_duration (--max-seconds) applies to a toolpath run on a simulated truth; a "
+                             "capture is compared as recorded", file=truth.source)
         run = _captured_truth(truth, toolpath)
     else:
         run = _simulated_truth(truth, toolpath, feed=feed, acceleration=acceleration, profile=profile, seed=seed,
-                               settle_s=settle_s, truth_runs=truth_runs)
+                               settle_s=settle_s, truth_runs=truth_runs,
+                               guard={"max_duration": max_duration, "max_samples": max_samples})
     notes = run.notes
     moving = moving_axes(run.setpoints.position, run.axes)
     if len(moving) < 2:
@@ -699,7 +744,8 @@ def compare(
                      "deviation from a straight line")
     include = None if run.program is None else feed_segments(run.path, run.program)
     kw = {"reference": run.setpoints.position, "t": run.setpoints.t, "sample_time": run.sample_time,
-          "include_segments": include}
+          "include_segments": include,
+          "commanded": commanded_points(run.path, run.setpoints.position, run.axes)}  # one for all runs
     true_ce, true_sensor, true_runs, sensor_runs = _true_contours(run, kw)
     several = len(true_runs) > 1
     if several:
@@ -707,6 +753,7 @@ def compare(
                      f"{len(true_runs)} noise realisations (seeds {run.seeds[0]}-{run.seeds[-1]}); plots show the "
                      "first")
     per_axis = _models_per_axis(models, run.axes)
+    notes.extend(_other_axis_notes(models, per_axis))
     predicted, descr = _predictions(per_axis, run, kw, seed=seed, notes=notes)
     notes.extend(_beyond_range_notes(per_axis, run, true_ce.include))
     notes.extend(_model_notes(per_axis, run, true_ce.include))
@@ -763,10 +810,10 @@ def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program
 
 def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed: float | None,
                      acceleration: float | None, profile: str, seed: int, settle_s: float,
-                     truth_runs: int | None) -> _Truth:
-    """The true machine run on the toolpath, lazily, one noise seed at a time."""
-    import interpolators
-    from vcnc.facade import check_program_axes
+                     truth_runs: int | None, guard: dict) -> _Truth:
+    """The true machine run on the toolpath, lazily, one noise seed at a time; ``guard``: the ``max_duration``
+    and ``max_samples`` of :func:`vcnc.facade.interpolate`."""
+    from vcnc.facade import check_program_axes, interpolate, truncation_note
 
     notes: list[str] = []
     machine = _truth_machine(truth)
@@ -779,7 +826,7 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
             check_program_axes(program, machine)
             axes = tuple(a for a in axes if a in machine.axes)
         limits = _limits(machine, axes, acceleration, feed)
-        sp = interpolators.interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile)
+        sp = interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile, **guard)
         if len(machine.axes) == 1:  # its axis is copied for each axis the program moves (not those it only names)
             pos = sp.position
             axes = tuple(a for i, a in enumerate(sp.axes) if len(pos) and float(np.ptp(pos[:, i])) > 0) or axes
@@ -790,7 +837,13 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
             raise InputError("the program moves no axis (it only dwells or switches): there is no contour to "
                              "compare", file=program.source, expected="a program with a feed move (G1, G2, G3, L, C)")
     else:
+        if guard["max_duration"] is not None:
+            raise InputError("max_duration (--max-seconds) applies to a program or built-in toolpath; the "
+                             "setpoints given are compared as they are")
         machine = _expand_machine(machine, tuple(sp.axes), notes)
+    cut = truncation_note(sp, done="compared")
+    if cut:  # first: every number below is of the first seconds only
+        notes.insert(0, f"{tp_name}: {cut}")
     sp = _with_settle(sp, settle_s)
     axes = tuple(sp.axes)
     n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
@@ -813,6 +866,9 @@ def _true_contours(run: _Truth, kw: dict) -> tuple[ContourError, ContourError | 
         true_runs.append(ce.metrics())
         if ce_sensor is not None:
             sensor_runs.append(ce_sensor.metrics())
+        # a run's positions and contours go before the next run is simulated: held over it, they were a quarter of
+        # the peak memory (2.1 GB for 1.8 million samples of four axes)
+        del pos, sensor, ce, ce_sensor
     return true_ce, true_sensor, true_runs, sensor_runs
 
 

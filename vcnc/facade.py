@@ -13,7 +13,9 @@ from vcnc.core.errors import GCodeError, InputError, ProgramTooLongError
 from vcnc.core.setpoints import Setpoints
 
 if TYPE_CHECKING:  # pragma: no cover
-    from interpolators import Program
+    from collections.abc import Mapping
+
+    from interpolators import AxisLimits, Program
     from vcnc.engine.machine import Machine
 
 __all__ = ["interpolate", "check_program_axes", "truncation_note", "program_meta"]
@@ -27,6 +29,7 @@ def interpolate(
     sample_time: float | None = None,
     max_duration: float | None = None,
     max_samples: int | None = None,
+    limits: Mapping[str, AxisLimits] | None = None,
 ) -> Setpoints:
     """Interpolate a part program with a machine's axis limits and sample time.
 
@@ -49,6 +52,9 @@ def interpolate(
     max_samples : int, optional
         Without ``max_duration``: refuse (:class:`vcnc.ProgramTooLongError`) a program that needs
         more samples (default: the interpolator's guard, ``interpolators.interpolate``).
+    limits : mapping of axis name to interpolators.AxisLimits, optional
+        Axis limits used instead of the machine's (without a machine: instead of the interpolator's
+        defaults), e.g. ``vcnc compare``'s ``--acceleration``.
 
     Notes
     -----
@@ -63,7 +69,6 @@ def interpolate(
 
     if not hasattr(program, "blocks"):
         program = interpolators.load_program(program)
-    limits = None
     ts = sample_time
     if machine is not None:
         if isinstance(machine, (str, os.PathLike)):
@@ -71,7 +76,7 @@ def interpolate(
 
             machine = load_machine(machine)
         check_program_axes(program, machine)
-        limits = machine.limits
+        limits = machine.limits if limits is None else limits
         ts = machine.sample_time if ts is None else ts
     ts = 1e-3 if ts is None else ts
     if max_duration is None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import io
 import sys
 
@@ -131,25 +132,35 @@ def read_program(args: argparse.Namespace, machine=None):
         raise
 
 
-def interpolate_within(program, machine, args: argparse.Namespace, *, command: str, max_samples: int,
-                       sample_time: float | None = None):
-    """The setpoints of ``program`` on ``machine`` (None: the interpolator's default limits) for a command
-    with ``--profile`` and ``--max-seconds``: the first ``args.max_seconds`` seconds (a note on stdout says
-    where the program was cut), or the whole program when it needs at most ``max_samples`` samples; beyond
-    them a :class:`vcnc.GCodeError` naming the program and ``--max-seconds`` (the command's memory guard)."""
+@contextlib.contextmanager
+def sample_guard(*, command: str, max_samples: int):
+    """The memory guard of a command with ``--max-seconds``: a :class:`vcnc.ProgramTooLongError` raised within
+    (an interpolation refused beyond ``max_samples`` samples) becomes a :class:`vcnc.GCodeError` naming the
+    program, the samples it needs, the ``max_samples`` vcnc ``command`` holds and ``--max-seconds``."""
     from vcnc.core.errors import GCodeError, ProgramTooLongError
-    from vcnc.facade import interpolate, truncation_note
 
     try:
-        sp = interpolate(program, machine, profile=args.profile, sample_time=sample_time,
-                         max_duration=args.max_seconds, max_samples=None if args.max_seconds else max_samples)
+        yield
     except ProgramTooLongError as exc:
         raise GCodeError(
             f"the program needs {'at least ' if exc.at_least else ''}{exc.samples} samples "
             f"({exc.samples * exc.sample_time / 3600:.3g} h at Ts = {exc.sample_time:g} s), more than the "
             f"{max_samples} vcnc {command} holds in memory",
-            file=program.source, expected=f"--max-seconds S to {command} its first S seconds",
+            file=exc.file, expected=f"--max-seconds S to {command} its first S seconds",
         ) from None
+
+
+def interpolate_within(program, machine, args: argparse.Namespace, *, command: str, max_samples: int,
+                       sample_time: float | None = None):
+    """The setpoints of ``program`` on ``machine`` (None: the interpolator's default limits) for a command
+    with ``--profile`` and ``--max-seconds``: the first ``args.max_seconds`` seconds (a note on stdout says
+    where the program was cut), or the whole program when it needs at most ``max_samples`` samples; beyond
+    them a :class:`vcnc.GCodeError` naming the program and ``--max-seconds`` (:func:`sample_guard`)."""
+    from vcnc.facade import interpolate, truncation_note
+
+    with sample_guard(command=command, max_samples=max_samples):
+        sp = interpolate(program, machine, profile=args.profile, sample_time=sample_time,
+                         max_duration=args.max_seconds, max_samples=None if args.max_seconds else max_samples)
     note = truncation_note(sp, done=f"{command}d")
     if note:
         print(f"{program.source}: {note}")
