@@ -594,6 +594,22 @@ def commanded_points(path: Path, reference: np.ndarray, axes: Sequence[str]) -> 
     return _commanded_points(R, cols, _pack(path, [c >= 0 for c in cols]))
 
 
+def _command_on_path(reference, P: np.ndarray, cols, g, commanded) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(tracking error, commanded segment, commanded arc length) of :func:`contour_error`'s ``reference``: its
+    points on the path as given (``commanded``, checked against the samples) or searched."""
+    N = P.shape[0]
+    R = _as_positions("reference", reference, N)
+    if R.shape[1] != P.shape[1]:
+        raise InputError(f"reference has {R.shape[1]} columns but positions have {P.shape[1]}")
+    if commanded is None:
+        cseg, s_cmd = _commanded_points(R, cols, g)
+    elif len(commanded[0]) == N and len(commanded[1]) == N:
+        cseg, s_cmd = commanded
+    else:
+        raise InputError(f"commanded holds {len(commanded[0])} points but positions have {N} samples")
+    return R - P, cseg, s_cmd
+
+
 def contour_error(
     path: Path,
     positions: np.ndarray,
@@ -650,7 +666,6 @@ def contour_error(
     if len(path) == 0:
         raise InputError("the path has no segments: there is no contour to measure an error from")
     P = _as_positions("positions", positions)
-    N = P.shape[0]
     cols = _columns(axes, P.shape[1])
     present = [c >= 0 for c in cols]
     g = _pack(path, present)
@@ -666,16 +681,7 @@ def contour_error(
     ahead = int(math.ceil(window_s[1] / sample_time))
     tracking = cseg = s_cmd = None
     if reference is not None:
-        R = _as_positions("reference", reference, N)
-        if R.shape[1] != P.shape[1]:
-            raise InputError(f"reference has {R.shape[1]} columns but positions have {P.shape[1]}")
-        if commanded is None:
-            cseg, s_cmd = _commanded_points(R, cols, g)
-        elif len(commanded[0]) == N and len(commanded[1]) == N:
-            cseg, s_cmd = commanded
-        else:
-            raise InputError(f"commanded holds {len(commanded[0])} points but positions have {N} samples")
-        tracking = R - P
+        tracking, cseg, s_cmd = _command_on_path(reference, P, cols, g, commanded)
     # without a command every segment is searched (empty hints)
     hint_seg = cseg if cseg is not None else np.zeros(0, dtype=np.int64)
     hint_s = s_cmd if s_cmd is not None else np.zeros(0)
