@@ -755,6 +755,42 @@ class SplineCurve:
         _set_table_bounds(out)
         return tuple(out)
 
+    @classmethod
+    def hermite(cls, start: np.ndarray, tangent_in: np.ndarray, curvature_in: np.ndarray, end: np.ndarray,
+                tangent_out: np.ndarray, curvature_out: np.ndarray, *, stretch: float = 1.0, subdivisions: int = 32
+                ) -> SplineCurve:
+        """The quintic from ``start`` to ``end`` with the given unit tangents and curvature vectors [1/mm] at its
+        ends (a G2 Hermite curve, one Bezier piece on ``0 <= u <= 1``): ``C'(0) = c t_in``, ``C''(0) = c^2 k_in``
+        and likewise at ``u = 1``, ``c`` the chord ``|end - start|`` times ``stretch``, so that position, tangent
+        and curvature match the curves it joins (the Bezier control points follow from the end derivatives of a quintic,
+        ``B1 = B0 + C'(0) / 5``, ``B2 = 2 B1 - B0 + C''(0) / 20``). ``subdivisions`` table nodes per piece: the
+        bounds (:meth:`bounds`) are sampled there (a quintic's curvature derivative is not linear)."""
+        from scipy.interpolate import BSpline
+
+        p0, p1 = _point(start, "hermite start"), _point(end, "hermite end")
+        c = float(np.linalg.norm(p1 - p0)) * stretch
+        b1 = p0 + c * np.asarray(tangent_in, dtype=float) / 5.0
+        b2 = 2.0 * b1 - p0 + c * c * np.asarray(curvature_in, dtype=float) / 20.0
+        b4 = p1 - c * np.asarray(tangent_out, dtype=float) / 5.0
+        b3 = 2.0 * b4 - p1 + c * c * np.asarray(curvature_out, dtype=float) / 20.0
+        spline = BSpline(np.r_[np.zeros(6), np.ones(6)], np.array([p0, b1, b2, b3, b4, p1]), 5)
+        return cls(spline, 0.0, 1.0, start=p0, end=p1, subdivisions=subdivisions)
+
+    def trimmed(self, s0: float, s1: float, *, start: np.ndarray | None = None, end: np.ndarray | None = None
+                ) -> SplineCurve:
+        """The part ``s0 <= s <= s1`` [mm] of the piece (arc lengths along it), on the same spline; its ends
+        ``start``, ``end`` when given (default the points at ``s0``, ``s1``; the piece's own end points where
+        ``s0 = 0`` or ``s1 = length``)."""
+        u0 = self.u0 if s0 <= 0.0 else float(self.parameter_at(s0))
+        u1 = self.u1 if s1 >= self.length else float(self.parameter_at(s1))
+        if start is None:
+            start = self.start if s0 <= 0.0 else self.spline(u0)
+        if end is None:
+            end = self.end if s1 >= self.length else self.spline(u1)
+        sub = max(1, (len(self._nodes) - 1) // max(1, int(np.count_nonzero((self.spline.t > self.u0)
+                                                                          & (self.spline.t < self.u1))) + 1))
+        return SplineCurve(self.spline, u0, u1, start=start, end=end, subdivisions=sub, derivatives=self._d)
+
     def parameter_at(self, s: np.ndarray | float) -> np.ndarray:
         """Spline parameter ``u`` at arc length ``s`` [mm] (clipped to the piece)."""
         # np.minimum/np.maximum: np.clip's own overhead dominates on the few samples of a piece
