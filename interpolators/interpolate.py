@@ -389,10 +389,11 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             if id(s) in run_of:
                 runs[len(all_segs)] = run_of[id(s)]
             elif isinstance(s, SplineCurve):  # a piece cut by a kink blend, or the blend
+                nxt = segs[j + 1]
                 runs[len(all_segs)] = run_of_spline.get(id(s.spline)) or _blend_run(
-                    s, _end_block(all_segs[-1], b, runs.get(len(all_segs) - 1)),
-                    _end_block(segs[j + 1], blks[j + 1], run_of_spline.get(id(getattr(segs[j + 1], "spline", None))),
-                               at_start=True))
+                    _chords_beside(all_segs[-1], b, runs.get(len(all_segs) - 1), at_start=False),
+                    _chords_beside(nxt, blks[j + 1], run_of_spline.get(id(getattr(nxt, "spline", None))),
+                                   at_start=True), s)
             all_segs.append(s)
             seg_block.append(b)
             seg_feed.append(feed_of[b])
@@ -413,22 +414,37 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
                  packed=packed, blended=blended, runs=runs, extra=extra)
 
 
-def _end_block(segment, block: int, run: MergedRun | None, *, at_start: bool = False) -> int:
-    """The block where ``segment`` (of the chain block ``block``) ends (``at_start``: starts): the block of the
-    chord there on a merged curve piece (its ``run``)."""
+def _chords_beside(segment, block: int, run: MergedRun | None, *, at_start: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The programmed chords a kink blend replaces beside ``segment`` (of the chain block ``block``; ``at_start``:
+    the blend ends where ``segment`` starts, else it starts where ``segment`` ends): their blocks, in path order,
+    and the share of the replaced part (its curve parameter range between the cut and the original piece's end)
+    at which each ends. A line or arc is one block; a merged curve piece (of ``run``) its chords there."""
     if run is None:
-        return block
-    return int(run.block_at(np.array([segment.u0 if at_start else segment.u1]))[0])
+        return np.array([block]), np.array([1.0])
+    cut = segment.u0 if at_start else segment.u1
+    ends = np.array([p.u0 if at_start else p.u1 for p in run.pieces])
+    # the original piece's end beside the blend: the nearest piece break beyond the cut
+    beyond = ends[ends < cut] if at_start else ends[ends > cut]
+    end = (beyond.max() if at_start else beyond.min()) if len(beyond) else cut
+    lo, hi = min(cut, end), max(cut, end)
+    inner = run.vertex_u[(run.vertex_u > lo) & (run.vertex_u < hi)]
+    edges = np.concatenate([[lo], inner, [hi]])
+    blocks = run.block_at(0.5 * (edges[:-1] + edges[1:]))
+    return blocks, ((edges[1:] - lo) / (hi - lo) if hi > lo else np.ones(len(blocks)))
 
 
-def _blend_run(blend: SplineCurve, block_in: int, block_out: int) -> MergedRun:
-    """A kink blend as a run of one piece: its samples carry ``block_in`` (where the incoming segment ends) up to
-    the middle of its parameter range and ``block_out`` (where the outgoing one starts) after it, as the samples
-    of a merged curve carry the chord they pass, so that each lies near its block's programmed segment
+def _blend_run(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray],
+               blend: SplineCurve) -> MergedRun:
+    """A kink blend as a run of one piece whose samples carry the blocks of the programmed chords it replaces:
+    ``before`` (the incoming segment's, :func:`_chords_beside`) over the first half of its parameter range,
+    ``after`` (the outgoing one's) over the second, each in proportion to the replaced length, as the samples of
+    a merged curve carry the chord they pass; so each sample lies near its block's programmed segment
     (:func:`interpolators.lookahead.blend_corners` gives the blend the incoming block)."""
     mid = 0.5 * (blend.u0 + blend.u1)
-    return MergedRun(pieces=(blend,), vertex_u=np.array([blend.u0, mid, blend.u1]),
-                     blocks=np.array([block_in, block_out]))
+    first = blend.u0 + (mid - blend.u0) * before[1][:-1]
+    second = mid + (blend.u1 - mid) * after[1][:-1]
+    return MergedRun(pieces=(blend,), vertex_u=np.concatenate([[blend.u0], first, [mid], second, [blend.u1]]),
+                     blocks=np.concatenate([before[0], after[0]]).astype(np.int64))
 
 
 def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.ndarray, program: Program,

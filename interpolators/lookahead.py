@@ -45,10 +45,12 @@ import dataclasses
 import math
 from collections.abc import Callable
 
+import numba
 import numpy as np
 
+from interpolators.dense import FIT_SHARE
 from interpolators.profiles import reach_passes
-from toolpaths.geometry import Arc, ClothoidPair, Line, SplineCurve, piece_of
+from toolpaths.geometry import Arc, ClothoidPair, Line, SplineCurve, curve_frame_rates, piece_of
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "CornerBlends", "blend_corners", "junction_speeds"]
 
@@ -211,6 +213,8 @@ def _frame(seg: Line | Arc | SplineCurve, s: float) -> tuple[np.ndarray, np.ndar
     """Point, unit tangent and curvature vector [1/mm] of ``seg`` at arc length ``s`` [mm]."""
     if isinstance(seg, Line):
         return seg.point_at(s), seg.direction, np.zeros(3)
+    if isinstance(seg, SplineCurve):
+        return (seg.point_at(s), *seg.frame(seg.parameter_at(s)))
     return seg.point_at(s), seg.tangent_at(s), seg.curvature_at(s)
 
 
@@ -221,24 +225,49 @@ def _kinkable(seg: object) -> bool:
     return isinstance(seg, (Line, SplineCurve)) and seg.length > 0
 
 
-def _path_distance(points: np.ndarray, path: np.ndarray) -> np.ndarray:
+@numba.njit(cache=True, nogil=True)
+def _path_distance(points, path):  # pragma: no cover - compiled
     """Distance [mm] of each of ``points`` (m, 3) from the polyline ``path`` (n, 3)."""
-    a, ab = path[:-1], np.diff(path, axis=0)
-    ab2 = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300)
-    rel = points[:, None, :] - a[None, :, :]
-    t = np.clip(np.einsum("mij,ij->mi", rel, ab) / ab2, 0.0, 1.0)
-    gap = rel - t[..., None] * ab[None, :, :]
-    return np.sqrt(np.einsum("mij,mij->mi", gap, gap).min(axis=1))
+    out = np.empty(points.shape[0])
+    for i in range(points.shape[0]):
+        best = np.inf
+        for j in range(path.shape[0] - 1):
+            ab0, ab1, ab2 = path[j + 1, 0] - path[j, 0], path[j + 1, 1] - path[j, 1], path[j + 1, 2] - path[j, 2]
+            r0, r1, r2 = points[i, 0] - path[j, 0], points[i, 1] - path[j, 1], points[i, 2] - path[j, 2]
+            n2 = ab0 * ab0 + ab1 * ab1 + ab2 * ab2
+            t = (r0 * ab0 + r1 * ab1 + r2 * ab2) / n2 if n2 > 0.0 else 0.0
+            t = min(max(t, 0.0), 1.0)
+            g0, g1, g2 = r0 - t * ab0, r1 - t * ab1, r2 - t * ab2
+            best = min(best, g0 * g0 + g1 * g1 + g2 * g2)
+        out[i] = math.sqrt(best)
+    return out
 
 
-def _blend_deviation(blend: SplineCurve, path: np.ndarray) -> float:
-    """Largest distance [mm] of ``blend`` from the polyline ``path``: at :data:`_KINK_CHECK_POINTS` points along
-    it, then as many again between the two neighbours of the farthest one."""
-    s = np.linspace(0.0, blend.length, _KINK_CHECK_POINTS)
-    dist = _path_distance(blend.point_at(s), path)
+#: Power-basis coefficients of a quintic Bezier curve from its six control points: ``C(u) = sum_j u^j (M @ B)_j``.
+_QUINTIC_POWER = np.array([[math.comb(5, j) * math.comb(j, i) * (-1.0) ** (j - i) if i <= j else 0.0
+                            for i in range(6)] for j in range(6)])
+
+
+def _quintic_basis(u: np.ndarray, order: int = 0) -> np.ndarray:
+    """The matrix (len(u), 6) that maps a quintic Bezier curve's control points to its ``order``-th parameter
+    derivative at ``u``."""
+    j = np.arange(6)
+    fall = np.array([math.perm(int(k), order) for k in j], dtype=float)  # j! / (j - order)!
+    return np.where(j >= order, fall * np.power(u[:, None], np.maximum(j - order, 0)), 0.0) @ _QUINTIC_POWER
+
+
+#: :func:`_quintic_basis` of the check parameters, for the curve and its first three derivatives.
+_CHECK_BASIS = tuple(_quintic_basis(np.linspace(0.0, 1.0, _KINK_CHECK_POINTS), r) for r in range(4))
+
+
+def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
+    """Largest distance [mm] of the quintic of ``controls`` from the polyline ``path``: at
+    :data:`_KINK_CHECK_POINTS` parameters, then as many again between the two neighbours of the farthest one."""
+    dist = _path_distance(_CHECK_BASIS[0] @ controls, path)
     i = int(np.argmax(dist))
-    fine = np.linspace(s[max(i - 1, 0)], s[min(i + 1, len(s) - 1)], _KINK_CHECK_POINTS)
-    return float(max(dist[i], _path_distance(blend.point_at(fine), path).max()))
+    h = 1.0 / (_KINK_CHECK_POINTS - 1)
+    fine = np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h, _KINK_CHECK_POINTS)
+    return float(max(dist[i], _path_distance(_quintic_basis(fine) @ controls, path).max()))
 
 
 def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolerance: float,
@@ -253,9 +282,10 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     same turn and is rescaled by ``tolerance`` over the deviation measured (the largest fitting ``d`` kept); of
     these the blend with the highest speed bound under the path limits ``limits = (A, J)`` is taken (the smaller
     of ``(A / k)^(1/2)`` and ``(J / |dk/ds|)^(1/3)``, :func:`interpolators.kinematics.curved_speed_bound` without
-    its coupling term). LinuxCNC sizes its line/arc and arc/arc blend arcs alike, the largest the tolerance and
-    the segment lengths allow (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). None where the turn lies
-    outside ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)`` or no blend fits."""
+    its coupling term, ``k`` and ``dk/ds`` at :data:`_KINK_CHECK_POINTS` parameters). LinuxCNC sizes its line/arc
+    and arc/arc blend arcs alike, the largest the tolerance and the segment lengths allow
+    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). None where the turn lies outside
+    ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)`` or no blend fits."""
     la, lb = a.length, b.length
     t_a, t_b = _frame(a, la)[1], _frame(b, 0.0)[1]
     theta = math.atan2(float(np.linalg.norm(np.cross(t_a, t_b))), float(t_a @ t_b))
@@ -271,31 +301,38 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
         for _ in range(_KINK_TRIES):
             if d <= 1e-9:
                 break
-            blend = SplineCurve.hermite(*_frame(a, la - d), *_frame(b, d), stretch=stretch)
+            ends = (*_frame(a, la - d), *_frame(b, d))
+            controls = SplineCurve.hermite_controls(*ends, stretch=stretch)
             path = np.concatenate([a.point_at(la - min(2.0 * d, la) * (1.0 - u)), b.point_at(min(2.0 * d, lb) * u)])
-            deviation = _blend_deviation(blend, path) / _KINK_FIT_SHARE
-            if deviation <= tolerance and (fit is None or d > fit[1]):
-                fit = (blend, d)
+            deviation = _blend_deviation(controls, path) / _KINK_FIT_SHARE
+            if deviation <= tolerance and (fit is None or d > fit[2]):
+                fit = (ends, controls, d)
             if deviation <= tolerance and (deviation >= 0.8 * tolerance or d >= d_max):
                 break
             d = min(d * 0.95 * tolerance / max(deviation, 1e-3 * tolerance), d_max)
         if fit is not None:
-            kappa, dkappa, _ = fit[0].bounds()
-            with np.errstate(divide="ignore"):
-                v = min(math.sqrt(limits[0] / kappa) if kappa > 0 else math.inf,
-                        (limits[1] / dkappa) ** (1.0 / 3.0) if dkappa > 0 else math.inf)
+            k, k_s, _ = curve_frame_rates(*(basis @ fit[1] for basis in _CHECK_BASIS[1:]))
+            kappa, dkappa = float(np.linalg.norm(k, axis=1).max()), float(np.linalg.norm(k_s, axis=1).max())
+            v = min(math.sqrt(limits[0] / kappa) if kappa > 0 else math.inf,
+                    (limits[1] / dkappa) ** (1.0 / 3.0) if dkappa > 0 else math.inf)
             if best is None or v > best_v:
-                best, best_v = fit, v
-    return best
+                best, best_v = (fit[0], stretch, fit[2]), v
+    if best is None:
+        return None
+    return SplineCurve.hermite(*best[0], stretch=best[1]), best[2]
 
 
 def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float]
                  ) -> tuple[list[int], list[SplineCurve], list[float]]:
     """The kink blends (:func:`_kink_blend`) of the junctions ``candidates`` (``k``: between segment ``k`` and
-    ``k + 1``, both :func:`_kinkable`): the junctions blended, their blends and legs."""
+    ``k + 1``, both :func:`_kinkable`): the junctions blended, their blends and legs. Beside a merged curve, which
+    may itself lie :data:`interpolators.dense.FIT_SHARE` of the tolerance off the programmed chords, the blend
+    keeps within the rest of it, so that the path stays within the tolerance of the program."""
     corners, blends, legs = [], [], []
     for k in candidates:
-        made = _kink_blend(segments[k], segments[k + 1], float(tolerances[k]), limits)
+        curve = isinstance(segments[k], SplineCurve) or isinstance(segments[k + 1], SplineCurve)
+        tolerance = float(tolerances[k]) * ((1.0 - FIT_SHARE) if curve else 1.0)
+        made = _kink_blend(segments[k], segments[k + 1], tolerance, limits)
         if made is not None:
             corners.append(k)
             blends.append(made[0])
