@@ -96,7 +96,7 @@ def _helix_programs(radius: float, chord: float, decimals: int = 3, turns: int =
     down ``pitch`` [mm] per turn from Z1, at ``feed`` [mm/min]."""
     n_turn = round(2 * math.pi * radius / chord)
     a = 2 * np.pi * np.arange(1, turns * n_turn + 1) / n_turn
-    pts = np.c_[radius * np.cos(a), radius * np.sin(a), 1.0 - pitch * a / (2 * np.pi)]
+    pts = np.c_[radius * np.cos(a), -radius * np.sin(a), 1.0 - pitch * a / (2 * np.pi)]  # clockwise, as the G2
     head = f"G21 G90 G17 G64\nG0 X{radius} Y0 Z1\n"
     arc = head + f"G2 X{radius} Y0 I{-radius} J0 Z{1.0 - turns * pitch:.4f} P{turns} F{feed:g}\nM2\n"
     f = f"{{:.{decimals}f}}"
