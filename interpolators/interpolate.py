@@ -259,7 +259,11 @@ def interpolate(
       at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve:
       tangent junctions with a curvature jump (line/arc, arc/arc, line/merged curve) are passed at
       the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
-      (:func:`interpolators.kinematics.curvature_step_speed_limit`).
+      (:func:`interpolators.kinematics.curvature_step_speed_limit`); the kinks (tangent steps) of
+      line/arc, arc/arc, line or arc/merged-curve and curve/curve junctions are blended within ``P``
+      by a G2 quintic (:func:`interpolators.lookahead.blend_corners`) where passing it is faster than
+      stopping and than the kink's own junction bound; its samples carry the block where the incoming
+      segment ends up to the blend's middle, then the block where the outgoing one starts.
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`; under the S-curve also the chords of tight curves,
       :func:`interpolators.dense.curve_junctions`), planned with the curve's curvature bounds; the
@@ -283,7 +287,7 @@ def interpolate(
     jerk_limited = profile == "scurve"
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
-    g = _geometry(chains, lim, jerk_limited, program)
+    g = _geometry(chains, lim, jerk_limited, program, Ts)
     c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
     del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
@@ -354,8 +358,9 @@ def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
     return lim
 
 
-def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, program: Program) -> _Geom:
-    """1. The geometry of each chain, its G64 corners blended."""
+def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, program: Program, Ts: float) -> _Geom:
+    """1. The geometry of each chain, its G64 corners blended (``Ts``: the sample time the kinks' junction bounds
+    are judged at, :func:`_blend_worth`)."""
     all_segs: list[Line | Arc | np.ndarray] = []
     seg_block: list[int] = []
     chain_len: list[int] = []  # segments of each chain, blended
@@ -374,13 +379,21 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             continue
         ch, run_of = _merged(ch, jerk_limited)
         segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
-                                   worth=_blend_worth(ch, lim, jerk_limited), curvature_continuous=jerk_limited)
+                                   worth=_blend_worth(ch, lim, jerk_limited, Ts), curvature_continuous=jerk_limited,
+                                   kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))))
         blended = blended or len(segs) != len(ch.segments) or bool(run_of)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))
-        for s, b in zip(segs, blks):
+        run_of_spline = {id(r.pieces[0].spline): r for r in run_of.values()}
+        for j, (s, b) in enumerate(zip(segs, blks)):
             if id(s) in run_of:
                 runs[len(all_segs)] = run_of[id(s)]
+            elif isinstance(s, SplineCurve):  # a piece cut by a kink blend, or the blend
+                nxt = segs[j + 1]
+                runs[len(all_segs)] = run_of_spline.get(id(s.spline)) or _blend_run(
+                    _chords_beside(all_segs[-1], b, runs.get(len(all_segs) - 1), at_start=False),
+                    _chords_beside(nxt, blks[j + 1], run_of_spline.get(id(getattr(nxt, "spline", None))),
+                                   at_start=True), s)
             all_segs.append(s)
             seg_block.append(b)
             seg_feed.append(feed_of[b])
@@ -399,6 +412,39 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     return _Geom(segments=all_segs, block=seg_block, chain=seg_chain,
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
                  packed=packed, blended=blended, runs=runs, extra=extra)
+
+
+def _chords_beside(segment, block: int, run: MergedRun | None, *, at_start: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The programmed chords a kink blend replaces beside ``segment`` (of the chain block ``block``; ``at_start``:
+    the blend ends where ``segment`` starts, else it starts where ``segment`` ends): their blocks, in path order,
+    and the share of the replaced part (its curve parameter range between the cut and the original piece's end)
+    at which each ends. A line or arc is one block; a merged curve piece (of ``run``) its chords there."""
+    if run is None:
+        return np.array([block]), np.array([1.0])
+    cut = segment.u0 if at_start else segment.u1
+    ends = np.array([p.u0 if at_start else p.u1 for p in run.pieces])
+    # the original piece's end beside the blend: the nearest piece break beyond the cut
+    beyond = ends[ends < cut] if at_start else ends[ends > cut]
+    end = (beyond.max() if at_start else beyond.min()) if len(beyond) else cut
+    lo, hi = min(cut, end), max(cut, end)
+    inner = run.vertex_u[(run.vertex_u > lo) & (run.vertex_u < hi)]
+    edges = np.concatenate([[lo], inner, [hi]])
+    blocks = run.block_at(0.5 * (edges[:-1] + edges[1:]))
+    return blocks, ((edges[1:] - lo) / (hi - lo) if hi > lo else np.ones(len(blocks)))
+
+
+def _blend_run(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray],
+               blend: SplineCurve) -> MergedRun:
+    """A kink blend as a run of one piece whose samples carry the blocks of the programmed chords it replaces:
+    ``before`` (the incoming segment's, :func:`_chords_beside`) over the first half of its parameter range,
+    ``after`` (the outgoing one's) over the second, each in proportion to the replaced length, as the samples of
+    a merged curve carry the chord they pass; so each sample lies near its block's programmed segment
+    (:func:`interpolators.lookahead.blend_corners` gives the blend the incoming block)."""
+    mid = 0.5 * (blend.u0 + blend.u1)
+    first = blend.u0 + (mid - blend.u0) * before[1][:-1]
+    second = mid + (blend.u1 - mid) * after[1][:-1]
+    return MergedRun(pieces=(blend,), vertex_u=np.concatenate([[blend.u0], first, [mid], second, [blend.u1]]),
+                     blocks=np.concatenate([before[0], after[0]]).astype(np.int64))
 
 
 def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.ndarray, program: Program,
@@ -874,7 +920,7 @@ def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.
     return (np.hstack([pos, rot]), np.hstack([vel, per_s * v[:, None]]), np.hstack([acc, per_s * a[:, None]]))
 
 
-def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
+def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float):
     """Predicate: is passing each corner through its blend faster than stopping at it?
 
     Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can
@@ -884,6 +930,10 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
     ``dv`` with zero end accelerations takes ``dv/A + A/J`` or ``2 sqrt(dv/J)`` (``dv/A``
     without jerk limit). This keeps G64 from crawling through sharp corners a stop passes faster.
     The predicate judges all the corners of the chain at once (:class:`interpolators.lookahead.CornerBlends`).
+    A kink blend (a :class:`toolpaths.geometry.SplineCurve`: a line/arc, arc/arc or curve junction) must also be
+    faster than the kink passed as a junction at the bound of its tangent step (one sample at JUNCTION_SHARE of
+    the accelerations, :func:`interpolators.kinematics.junction_speed_limit`, at the sample time ``Ts``): a
+    rounding-level kink stays a junction on the programmed path.
     """
     share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
     segments, feeds, rapid = ch.segments, np.asarray(ch.feeds), np.asarray(ch.rapid)
@@ -894,10 +944,10 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
         J_b = share * np.where(blends.plane, lim.jerk, np.inf).min(axis=1)
         v_b = curved_speed_bound(blends.curvature, blends.curvature_rate, A_b, J_b, jerk_limited=jerk_limited)
         V, A, J = np.full(len(k), np.inf), np.full(len(k), np.inf), np.full(len(k), np.inf)
-        for i in (k, k + 1):
+        for i, at in ((k, "end"), (k + 1, "start")):
             lines = [segments[j] for j in i.tolist()]
-            v_i, A_i, J_i = line_limits(np.array([ln.direction for ln in lines]).reshape(-1, 3), feeds[i], rapid[i],
-                                        lim)
+            v_i, A_i, J_i = line_limits(np.array([_corner_direction(ln, at) for ln in lines]).reshape(-1, 3),
+                                        feeds[i], rapid[i], lim)
             half = np.array([0.5 * ln.length for ln in lines])
             reach = reach_many(np.zeros(len(half)), half, A_i, J_i, jerk_limited=jerk_limited)
             V = np.minimum(V, np.minimum(reach, v_i))
@@ -912,9 +962,24 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool):
             t_stop, t_pass = 2.0 * change(V), 2.0 * change(V - v_b) + blends.length / v_b
             d_stop, d_pass = V * change(V), (V + v_b) * change(V - v_b) + blends.length
             passes = t_pass + np.maximum(d_stop - d_pass, 0.0) / V <= t_stop + np.maximum(d_pass - d_stop, 0.0) / V
-        return (v_b >= V) | passes
+        faster = (v_b >= V) | passes
+        kink = np.array([isinstance(b, SplineCurve) for b in blends.blends], dtype=bool)
+        if kink.any():
+            step = np.array([_corner_direction(segments[i + 1], "start") - _corner_direction(segments[i], "end")
+                             for i in k[kink].tolist()]).reshape(-1, 3)
+            faster[kink] &= v_b[kink] > junction_speed_limit(step, np.zeros_like(step), lim, sample_time=Ts,
+                                                             share=JUNCTION_SHARE, jerk_limited=False)
+        return faster
 
     return worth
+
+
+def _corner_direction(seg: Line | Arc | SplineCurve, at: str) -> np.ndarray:
+    """The direction of ``seg`` at its ``at`` ("start" or "end") end: a line's direction, a curve's tangent there
+    (:func:`_blend_worth` bounds the speed beside a corner as on a line in that direction)."""
+    if isinstance(seg, Line):
+        return seg.direction
+    return seg.tangent_at(0.0 if at == "start" else seg.length)
 
 
 def _meta(program: Program, profile: str, Ts: float, duration: float) -> dict:

@@ -15,11 +15,23 @@ either line:
   trapezoidal profile (acceleration steps are allowed) and whose peak curvature is half the
   clothoid pair's, so the corner is passed faster.
 
+Under the S-curve (``curvature_continuous``) the kinks (tangent steps) of line/arc, arc/line, arc/arc,
+line or arc/merged-curve and curve/curve junctions are blended too, by a G2 quintic (:func:`_kink_blend`) from a
+point on the incoming segment to a point on the outgoing one, matching position, tangent and curvature there,
+within the tolerance of the programmed path and using just under half of either segment at most (arcs and merged
+curve pieces are cut there); the samples on it carry the incoming segment's block up to its middle and the
+outgoing one's after (``interpolators.interpolate``). LinuxCNC's planner blends these junctions too, with
+tangent arcs sized to the tolerance and the segment lengths (``tpCreateLineArcBlend``, ``tpCreateArcLineBlend``,
+``tpCreateArcArcBlend`` in ``src/emc/tp/tp.c``, ``blendComputeParameters`` in ``src/emc/tp/blendmath.c``); a
+tangent arc would leave a curvature step at both of its ends, which the S-curve's jerk limit forbids at speed,
+hence the quintic (our
+reading). The blend's shape (end-tangent stretch) is the one of a few with the highest speed bound.
+
 The path then stays tangent-continuous (and, with clothoids, curvature-continuous), and the
 blend's own speed bound (centripetal acceleration and, for the S-curve, jerk including the
 curvature derivative; see :mod:`interpolators.kinematics`) sets the corner speed.
 
-Junctions that remain discontinuous (line/arc and arc/arc corners, reversals, curvature steps of
+Junctions that remain discontinuous (line/arc and arc/arc corners not blended, reversals, curvature steps of
 tangent-continuous line/arc and arc/arc junctions) are passed at a speed that keeps the step within one sample: see
 :func:`interpolators.kinematics.junction_speed_limit` and, for the curvature steps of tangent junctions under the
 S-curve, :func:`interpolators.kinematics.curvature_step_speed_limit` (each axis' own jerk budget). A backward
@@ -33,10 +45,12 @@ import dataclasses
 import math
 from collections.abc import Callable
 
+import numba
 import numpy as np
 
+from interpolators.dense import FIT_SHARE
 from interpolators.profiles import reach_passes
-from toolpaths.geometry import Arc, ClothoidPair, Line
+from toolpaths.geometry import Arc, ClothoidPair, Line, SplineCurve, curve_frame_rates, piece_of
 
 __all__ = ["DEFAULT_TOLERANCE", "JUNCTION_SHARE", "CornerBlends", "blend_corners", "junction_speeds"]
 
@@ -51,7 +65,16 @@ _MIN_BLEND_ANGLE = 1e-7
 _MAX_BLEND_ANGLE = math.pi - 1e-3
 
 
-Blend = Arc | ClothoidPair
+Blend = Arc | ClothoidPair | SplineCurve
+#: Blend lengths tried per kink and stretch, each scaled to the tolerance by the deviation measured on the previous.
+_KINK_TRIES = 6
+#: End-tangent stretches of the kink blends tried (times the chord; :meth:`toolpaths.geometry.SplineCurve.hermite`):
+#: longer end tangents keep a longer blend within the tolerance, with a lower curvature derivative, up to a point.
+_KINK_STRETCHES = (1.0, 1.15, 1.3)
+#: Points of a kink blend, and of each programmed piece beside it, at which its deviation is measured.
+_KINK_CHECK_POINTS = 64
+#: Share of the tolerance a kink blend may use as measured (the rest covers the chords of the measurement).
+_KINK_FIT_SHARE = 0.98
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
@@ -93,12 +116,16 @@ class CornerBlends:
             kappa[i] = 1.0 / np.array([b.radius for b in arcs])
             axes = np.array([b.plane_axes for b in arcs])
             plane[i, axes[:, 0]] = plane[i, axes[:, 1]] = True
-        others = [b for b, a in zip(blends, is_arc) if not a]
+        is_pair = [isinstance(b, ClothoidPair) for b in blends]
+        others = [b for b, a in zip(blends, is_pair) if a]
         if others:
-            i = np.flatnonzero(np.logical_not(is_arc))
+            i = np.flatnonzero(is_pair)
             kappa[i] = [b.peak_curvature for b in others]
             dkappa[i] = [b.sharpness for b in others]
             plane[i] = np.abs(np.array([b.normal for b in others])) < 1.0 - 1e-12  # the axes in the corner plane
+        for i in np.flatnonzero([isinstance(b, SplineCurve) for b in blends]).tolist():
+            kappa[i], dkappa[i], t_abs = blends[i].bounds()
+            plane[i] = t_abs > 0  # the axes the blend moves
         return cls(corner=np.asarray(corner, dtype=np.int64), blends=blends, curvature=kappa, curvature_rate=dkappa,
                    plane=plane, length=length)
 
@@ -182,6 +209,137 @@ def _corner_blends(incoming: list[Line], outgoing: list[Line], tolerance: np.nda
     return blends
 
 
+def _frame(seg: Line | Arc | SplineCurve, s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Point, unit tangent and curvature vector [1/mm] of ``seg`` at arc length ``s`` [mm]."""
+    if isinstance(seg, Line):
+        return seg.point_at(s), seg.direction, np.zeros(3)
+    if isinstance(seg, SplineCurve):
+        return (seg.point_at(s), *seg.frame(seg.parameter_at(s)))
+    return seg.point_at(s), seg.tangent_at(s), seg.curvature_at(s)
+
+
+def _kinkable(seg: object) -> bool:
+    """A segment whose ends a kink blend may take: a line, an arc of at most one turn, or a curve piece."""
+    if isinstance(seg, Arc):
+        return abs(seg.sweep) <= 2.0 * math.pi and seg.length > 0
+    return isinstance(seg, (Line, SplineCurve)) and seg.length > 0
+
+
+@numba.njit(cache=True, nogil=True)
+def _path_distance(points, path):  # pragma: no cover - compiled
+    """Distance [mm] of each of ``points`` (m, 3) from the polyline ``path`` (n, 3)."""
+    out = np.empty(points.shape[0])
+    for i in range(points.shape[0]):
+        best = np.inf
+        for j in range(path.shape[0] - 1):
+            ab0, ab1, ab2 = path[j + 1, 0] - path[j, 0], path[j + 1, 1] - path[j, 1], path[j + 1, 2] - path[j, 2]
+            r0, r1, r2 = points[i, 0] - path[j, 0], points[i, 1] - path[j, 1], points[i, 2] - path[j, 2]
+            n2 = ab0 * ab0 + ab1 * ab1 + ab2 * ab2
+            t = (r0 * ab0 + r1 * ab1 + r2 * ab2) / n2 if n2 > 0.0 else 0.0
+            t = min(max(t, 0.0), 1.0)
+            g0, g1, g2 = r0 - t * ab0, r1 - t * ab1, r2 - t * ab2
+            best = min(best, g0 * g0 + g1 * g1 + g2 * g2)
+        out[i] = math.sqrt(best)
+    return out
+
+
+#: Power-basis coefficients of a quintic Bezier curve from its six control points: ``C(u) = sum_j u^j (M @ B)_j``.
+_QUINTIC_POWER = np.array([[math.comb(5, j) * math.comb(j, i) * (-1.0) ** (j - i) if i <= j else 0.0
+                            for i in range(6)] for j in range(6)])
+
+
+def _quintic_basis(u: np.ndarray, order: int = 0) -> np.ndarray:
+    """The matrix (len(u), 6) that maps a quintic Bezier curve's control points to its ``order``-th parameter
+    derivative at ``u``."""
+    j = np.arange(6)
+    fall = np.array([math.perm(int(k), order) for k in j], dtype=float)  # j! / (j - order)!
+    return np.where(j >= order, fall * np.power(u[:, None], np.maximum(j - order, 0)), 0.0) @ _QUINTIC_POWER
+
+
+#: :func:`_quintic_basis` of the check parameters, for the curve and its first three derivatives.
+_CHECK_BASIS = tuple(_quintic_basis(np.linspace(0.0, 1.0, _KINK_CHECK_POINTS), r) for r in range(4))
+
+
+def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
+    """Largest distance [mm] of the quintic of ``controls`` from the polyline ``path``: at
+    :data:`_KINK_CHECK_POINTS` parameters, then as many again between the two neighbours of the farthest one."""
+    dist = _path_distance(_CHECK_BASIS[0] @ controls, path)
+    i = int(np.argmax(dist))
+    h = 1.0 / (_KINK_CHECK_POINTS - 1)
+    fine = np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h, _KINK_CHECK_POINTS)
+    return float(max(dist[i], _path_distance(_quintic_basis(fine) @ controls, path).max()))
+
+
+def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolerance: float,
+                limits: tuple[float, float]) -> tuple[SplineCurve, float] | None:
+    """The G2 blend of the kink where ``a`` ends and ``b`` starts, and its leg ``d`` [mm]: a quintic
+    (:meth:`toolpaths.geometry.SplineCurve.hermite`) from the point ``d`` before the end of ``a`` to the point ``d``
+    after the start of ``b``, matching position, tangent and curvature there, that lies within ``tolerance`` [mm]
+    of the programmed path (measured against the polyline of both pieces, :func:`_blend_deviation`, within
+    :data:`_KINK_FIT_SHARE` of it), ``d`` just under half of either at most.
+
+    For each end-tangent stretch of :data:`_KINK_STRETCHES`, ``d`` starts from the clothoid pair's leg for the
+    same turn and is rescaled by ``tolerance`` over the deviation measured (the largest fitting ``d`` kept); of
+    these the blend with the highest speed bound under the path limits ``limits = (A, J)`` is taken (the smaller
+    of ``(A / k)^(1/2)`` and ``(J / |dk/ds|)^(1/3)``, :func:`interpolators.kinematics.curved_speed_bound` without
+    its coupling term, ``k`` and ``dk/ds`` at :data:`_KINK_CHECK_POINTS` parameters). LinuxCNC sizes its line/arc
+    and arc/arc blend arcs alike, the largest the tolerance and the segment lengths allow
+    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). None where the turn lies outside
+    ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)`` or no blend fits."""
+    la, lb = a.length, b.length
+    t_a, t_b = _frame(a, la)[1], _frame(b, 0.0)[1]
+    theta = math.atan2(float(np.linalg.norm(np.cross(t_a, t_b))), float(t_a @ t_b))
+    if not (_MIN_BLEND_ANGLE < theta < _MAX_BLEND_ANGLE) or tolerance <= 0:
+        return None
+    d_max = 0.49 * min(la, lb)  # under half: an arc or curve piece blended at both ends keeps a piece
+    leg_f, dev_f = ClothoidPair.shape_factors(theta)
+    d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
+    u = np.linspace(0.0, 1.0, _KINK_CHECK_POINTS)
+    best, best_v = None, 0.0
+    for stretch in _KINK_STRETCHES:
+        d, fit = d_start, None
+        for _ in range(_KINK_TRIES):
+            if d <= 1e-9:
+                break
+            ends = (*_frame(a, la - d), *_frame(b, d))
+            controls = SplineCurve.hermite_controls(*ends, stretch=stretch)
+            path = np.concatenate([a.point_at(la - min(2.0 * d, la) * (1.0 - u)), b.point_at(min(2.0 * d, lb) * u)])
+            deviation = _blend_deviation(controls, path) / _KINK_FIT_SHARE
+            if deviation <= tolerance and (fit is None or d > fit[2]):
+                fit = (ends, controls, d)
+            if deviation <= tolerance and (deviation >= 0.8 * tolerance or d >= d_max):
+                break
+            d = min(d * 0.95 * tolerance / max(deviation, 1e-3 * tolerance), d_max)
+        if fit is not None:
+            k, k_s, _ = curve_frame_rates(*(basis @ fit[1] for basis in _CHECK_BASIS[1:]))
+            kappa, dkappa = float(np.linalg.norm(k, axis=1).max()), float(np.linalg.norm(k_s, axis=1).max())
+            v = min(math.sqrt(limits[0] / kappa) if kappa > 0 else math.inf,
+                    (limits[1] / dkappa) ** (1.0 / 3.0) if dkappa > 0 else math.inf)
+            if best is None or v > best_v:
+                best, best_v = (fit[0], stretch, fit[2]), v
+    if best is None:
+        return None
+    return SplineCurve.hermite(*best[0], stretch=best[1]), best[2]
+
+
+def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float]
+                 ) -> tuple[list[int], list[SplineCurve], list[float]]:
+    """The kink blends (:func:`_kink_blend`) of the junctions ``candidates`` (``k``: between segment ``k`` and
+    ``k + 1``, both :func:`_kinkable`): the junctions blended, their blends and legs. Beside a merged curve, which
+    may itself lie :data:`interpolators.dense.FIT_SHARE` of the tolerance off the programmed chords, the blend
+    keeps within the rest of it, so that the path stays within the tolerance of the program."""
+    corners, blends, legs = [], [], []
+    for k in candidates:
+        curve = isinstance(segments[k], SplineCurve) or isinstance(segments[k + 1], SplineCurve)
+        tolerance = float(tolerances[k]) * ((1.0 - FIT_SHARE) if curve else 1.0)
+        made = _kink_blend(segments[k], segments[k + 1], tolerance, limits)
+        if made is not None:
+            corners.append(k)
+            blends.append(made[0])
+            legs.append(made[1])
+    return corners, blends, legs
+
+
 def blend_corners(
     segments: list[Line | Arc],
     blocks: list[int],
@@ -189,8 +347,9 @@ def blend_corners(
     *,
     worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
-) -> tuple[list[Line | Arc | ClothoidPair], list[int]]:
-    """Blend line/line corners of a continuous chain.
+    kink_limits: tuple[float, float] = (1.0, 25.0),
+) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
+    """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
 
     Parameters
     ----------
@@ -206,18 +365,24 @@ def blend_corners(
         corner stays sharp.
     curvature_continuous : bool
         Blend every corner with a clothoid pair (G2); otherwise with a circular arc where the
-        corner lies in a principal plane and with a clothoid pair elsewhere.
+        corner lies in a principal plane and with a clothoid pair elsewhere. With it, the kinks
+        (tangent steps) of line/arc, arc/line, arc/arc, line or arc/merged-curve and curve/curve junctions
+        are blended too, by a G2 quintic (:func:`_kink_blend`) that shortens both neighbours; ``worth`` judges them
+        as well.
+    kink_limits : tuple of float
+        Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
+        for (only their ratio matters).
 
     Returns
     -------
     segments, blocks : list
-        The chain with blend arcs inserted (a blend belongs to the block of the incoming line)
-        and the lines shortened accordingly; zero-length leftovers are dropped.
+        The chain with blends inserted (a blend belongs to the block of the incoming segment)
+        and the segments shortened accordingly; zero-length leftover lines are dropped.
 
     Notes
     -----
-    Each corner is blended on its own: its blend takes at most half of either programmed line, so the
-    blends of consecutive corners never overlap, and all of a chain's corners are computed at once.
+    Each corner is blended on its own: its blend takes at most half of either programmed segment, so the
+    blends of consecutive corners never overlap, and all of a chain's line/line corners are computed at once.
     """
     is_line = np.array([isinstance(sg, Line) and sg.length > 0 for sg in segments], dtype=bool)
     cand = np.flatnonzero(is_line[:-1] & is_line[1:]).tolist()
@@ -231,18 +396,38 @@ def blend_corners(
             accepted = [True] * len(blends) if worth is None else np.asarray(
                 worth(CornerBlends.of(np.array(corners), blends)), dtype=bool).tolist()
             blend_at = {k: b for k, b, ok in zip(corners, blends, accepted) if ok}
-    return _assemble(segments, blocks, blend_at)
+    legs: dict[int, float] = {}
+    if curvature_continuous:
+        kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
+        cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
+        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits)
+        if kinks:
+            accepted = [True] * len(kinks) if worth is None else np.asarray(
+                worth(CornerBlends.of(np.array(corners), kinks)), dtype=bool).tolist()
+            for k, b, d, ok in zip(corners, kinks, leg, accepted):
+                if ok:
+                    blend_at[k], legs[k] = b, d
+    return _assemble(segments, blocks, blend_at, legs)
 
 
-def _assemble(segments: list, blocks: list[int], blend_at: dict[int, Blend]
-              ) -> tuple[list[Line | Arc | ClothoidPair], list[int]]:
-    """The chain with the blends ``blend_at`` (junction -> blend) inserted and the lines shortened to
-    them (a line shorter than 1e-12 mm between two blends, or before the last one, is dropped)."""
+def _assemble(segments: list, blocks: list[int], blend_at: dict[int, Blend], legs: dict[int, float]
+              ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
+    """The chain with the blends ``blend_at`` (junction -> blend) inserted and the segments shortened to
+    them (a line shorter than 1e-12 mm between two blends, or before the last one, is dropped); ``legs``: the
+    length [mm] a kink blend takes of either segment (arcs and curve pieces are cut there)."""
     n = len(segments)
     cut = sorted({k for k in blend_at} | {k + 1 for k in blend_at})
     starts = np.array([blend_at[k - 1].end if k - 1 in blend_at else segments[k].start for k in cut]).reshape(-1, 3)
     ends = np.array([blend_at[k].start if k in blend_at else segments[k].end for k in cut]).reshape(-1, 3)
-    shortened = dict(zip(cut, Line.from_arrays(starts, ends)))
+    lines = [i for i, k in enumerate(cut) if isinstance(segments[k], Line)]
+    shortened = dict(zip([cut[i] for i in lines], Line.from_arrays(starts[lines], ends[lines])))
+    for i, k in enumerate(cut):
+        seg = segments[k]
+        if isinstance(seg, Arc):
+            shortened[k] = piece_of(seg, starts[i], ends[i])
+        elif isinstance(seg, SplineCurve):
+            shortened[k] = seg.trimmed(legs.get(k - 1, 0.0), seg.length - legs.get(k, 0.0), start=starts[i],
+                                       end=ends[i])
     out: list[Line | Arc | ClothoidPair] = []
     out_blocks: list[int] = []
     for k in range(n):

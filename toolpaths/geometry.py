@@ -41,7 +41,7 @@ import numpy as np
 from vcnc.core.errors import InputError
 
 __all__ = ["Line", "Arc", "ClothoidPair", "SplineCurve", "Path", "Segment", "PLANE_AXES", "AXIS_LETTERS",
-           "euler_spiral", "rows_by_owner", "piece_of"]
+           "euler_spiral", "rows_by_owner", "piece_of", "curve_frame_rates"]
 
 #: Axis letters of the three linear axes, in index order.
 AXIS_LETTERS: tuple[str, str, str] = ("x", "y", "z")
@@ -755,6 +755,55 @@ class SplineCurve:
         _set_table_bounds(out)
         return tuple(out)
 
+    @classmethod
+    def hermite(cls, start: np.ndarray, tangent_in: np.ndarray, curvature_in: np.ndarray, end: np.ndarray,
+                tangent_out: np.ndarray, curvature_out: np.ndarray, *, stretch: float = 1.0, subdivisions: int = 32
+                ) -> SplineCurve:
+        """The quintic from ``start`` to ``end`` with the given unit tangents and curvature vectors [1/mm] at its
+        ends (a G2 Hermite curve, one Bezier piece on ``0 <= u <= 1``): ``C'(0) = c t_in``, ``C''(0) = c^2 k_in``
+        and likewise at ``u = 1``, ``c`` the chord ``|end - start|`` times ``stretch``, so that position, tangent
+        and curvature match the curves it joins (the Bezier control points follow from the end derivatives of a quintic,
+        ``B1 = B0 + C'(0) / 5``, ``B2 = 2 B1 - B0 + C''(0) / 20``). ``subdivisions`` table nodes per piece: the
+        bounds (:meth:`bounds`) are sampled there (a quintic's curvature derivative is not linear)."""
+        from scipy.interpolate import BSpline
+
+        controls = cls.hermite_controls(start, tangent_in, curvature_in, end, tangent_out, curvature_out,
+                                        stretch=stretch)
+        # a Bezier piece: its derivatives are Bezier pieces of the control points' scaled differences
+        steps = [controls]
+        for k in (5, 4, 3):
+            steps.append(k * np.diff(steps[-1], axis=0))
+        spline, *d = (BSpline(np.r_[np.zeros(6 - r), np.ones(6 - r)], c, 5 - r) for r, c in enumerate(steps))
+        return cls(spline, 0.0, 1.0, start=controls[0], end=controls[-1], subdivisions=subdivisions,
+                   derivatives=tuple(d))
+
+    @staticmethod
+    def hermite_controls(start: np.ndarray, tangent_in: np.ndarray, curvature_in: np.ndarray, end: np.ndarray,
+                         tangent_out: np.ndarray, curvature_out: np.ndarray, *, stretch: float = 1.0) -> np.ndarray:
+        """The six Bezier control points [mm] of :meth:`hermite`'s quintic, shape (6, 3)."""
+        p0, p1 = _point(start, "hermite start"), _point(end, "hermite end")
+        c = float(np.linalg.norm(p1 - p0)) * stretch
+        b1 = p0 + c * np.asarray(tangent_in, dtype=float) / 5.0
+        b2 = 2.0 * b1 - p0 + c * c * np.asarray(curvature_in, dtype=float) / 20.0
+        b4 = p1 - c * np.asarray(tangent_out, dtype=float) / 5.0
+        b3 = 2.0 * b4 - p1 + c * c * np.asarray(curvature_out, dtype=float) / 20.0
+        return np.array([p0, b1, b2, b3, b4, p1])
+
+    def trimmed(self, s0: float, s1: float, *, start: np.ndarray | None = None, end: np.ndarray | None = None
+                ) -> SplineCurve:
+        """The part ``s0 <= s <= s1`` [mm] of the piece (arc lengths along it), on the same spline; its ends
+        ``start``, ``end`` when given (default the points at ``s0``, ``s1``; the piece's own end points where
+        ``s0 = 0`` or ``s1 = length``)."""
+        u0 = self.u0 if s0 <= 0.0 else float(self.parameter_at(s0))
+        u1 = self.u1 if s1 >= self.length else float(self.parameter_at(s1))
+        if start is None:
+            start = self.start if s0 <= 0.0 else self.spline(u0)
+        if end is None:
+            end = self.end if s1 >= self.length else self.spline(u1)
+        sub = max(1, (len(self._nodes) - 1) // max(1, int(np.count_nonzero((self.spline.t > self.u0)
+                                                                          & (self.spline.t < self.u1))) + 1))
+        return SplineCurve(self.spline, u0, u1, start=start, end=end, subdivisions=sub, derivatives=self._d)
+
     def parameter_at(self, s: np.ndarray | float) -> np.ndarray:
         """Spline parameter ``u`` at arc length ``s`` [mm] (clipped to the piece)."""
         # np.minimum/np.maximum: np.clip's own overhead dominates on the few samples of a piece
@@ -895,13 +944,10 @@ def _table_intervals(s, piece, offset, size, s_nodes, out):  # pragma: no cover 
         out[i] = offset[k] + min(max(lo - 1, 0), size[k] - 2)
 
 
-def _set_table_bounds(pieces: list[SplineCurve]) -> None:
-    """:meth:`SplineCurve.bounds` of pieces of one curve, their derivatives evaluated at once (each row by the
-    same expressions as for one piece; the maxima are exact)."""
-    d = pieces[0]._d
-    u = np.concatenate([np.concatenate([p._nodes[:-1] + 1e-9 * (p.u1 - p.u0), p._nodes[1:] - 1e-9 * (p.u1 - p.u0)])
-                        for p in pieces])
-    d1, d2, d3 = d[0](u), d[1](u), d[2](u)
+def curve_frame_rates(d1: np.ndarray, d2: np.ndarray, d3: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Curvature vector [1/mm], its arc-length derivative normal to the tangent [1/mm^2] and the unit tangent of
+    a curve at points where its first three parameter derivatives are ``d1``, ``d2``, ``d3`` (rows), as
+    :meth:`SplineCurve.bounds` states them."""
     g11 = np.einsum("ij,ij->i", d1, d1)
     g12 = np.einsum("ij,ij->i", d1, d2)
     g22 = np.einsum("ij,ij->i", d2, d2)
@@ -913,7 +959,16 @@ def _set_table_bounds(pieces: list[SplineCurve]) -> None:
     sigma = np.sqrt(g11)
     tan = d1 / sigma[:, None]
     k_s = k_u / sigma[:, None]
-    k_perp = k_s - np.einsum("ij,ij->i", k_s, tan)[:, None] * tan
+    return k, k_s - np.einsum("ij,ij->i", k_s, tan)[:, None] * tan, tan
+
+
+def _set_table_bounds(pieces: list[SplineCurve]) -> None:
+    """:meth:`SplineCurve.bounds` of pieces of one curve, their derivatives evaluated at once (each row by the
+    same expressions as for one piece; the maxima are exact)."""
+    d = pieces[0]._d
+    u = np.concatenate([np.concatenate([p._nodes[:-1] + 1e-9 * (p.u1 - p.u0), p._nodes[1:] - 1e-9 * (p.u1 - p.u0)])
+                        for p in pieces])
+    k, k_perp, tan = curve_frame_rates(d[0](u), d[1](u), d[2](u))
     first = np.cumsum([0] + [2 * (len(p._nodes) - 1) for p in pieces[:-1]])
     kappa = np.maximum.reduceat(np.linalg.norm(k, axis=1), first)
     dkappa = np.maximum.reduceat(np.linalg.norm(k_perp, axis=1), first)

@@ -1,0 +1,79 @@
+"""Kinks at line/arc and arc/arc junctions under G64: S-curve time against trapezoid time.
+
+Run: ``.venv/bin/python benchmarks/arc_kinks.py [--feed F --tolerance P]`` (default: F1200 P0.01, then F600 P0.05)
+
+A 5 mm line into a full G3 circle of radius 1 mm, then a 5 mm line out of it, each junction turning by the kink
+angle; and a G2 half circle of radius 5 mm into a G3 arc of radius 4 mm turned 0.4 rad. Prints, for each program,
+the motion duration under the trapezoid and under the S-curve (default limits, measured in the same run), their
+ratio and the lowest S-curve path speed within ``tolerance + 0.01`` mm of the kink point.
+
+Under the S-curve such a kink used to be passed at about ``0.1 J Ts^2 / turn`` (a stop); it is now blended by a
+G2 quintic within the tolerance where that is faster than the stop (:func:`interpolators.lookahead.blend_corners`,
+judged by ``interpolators.interpolate``'s blend model). S-curve times before -> after (trapezoid unchanged):
+
+=====================  ===============  ===============
+program                F1200 P0.01      F600 P0.05
+=====================  ===============  ===============
+line/arc/line 0.1 rad  1.132 -> 1.039   1.870 -> 1.806
+line/arc/line 0.3 rad  1.130 -> 1.108   1.866 -> 1.800
+line/arc/line 1.0 rad  1.106 -> 1.106   1.844 -> 1.826
+arc/arc 0.4 rad        1.183 -> 1.183   2.238 -> 2.203
+=====================  ===============  ===============
+
+At F1200 P0.01 the 0.3 rad line/arc kink, the 1.0 rad kinks and the arc/arc kink stay stops: a blend within
+0.01 mm is so tight that its speed bound makes it slower than stopping.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import numpy as np  # noqa: E402
+
+from interpolators import interpolate, parse_program  # noqa: E402
+
+
+def line_arc_line(turn: float, feed: float, tolerance: float) -> str:
+    """Line, full circle of radius 1 mm at (1, 0) (tangent +Y there), line; both junctions turn by ``turn``."""
+    dx, dy = math.sin(turn), math.cos(turn)
+    return (f"G21 G90 G17 G64 P{tolerance}\nG0 X{1 - 5 * dx:.6f} Y{-5 * dy:.6f}\nF{feed:.0f}\nG1 X1 Y0\n"
+            f"G3 X1 Y0 I-1 J0\nG1 X{1 + 5 * dx:.6f} Y{5 * dy:.6f}\nM30\n")
+
+
+def arc_arc(feed: float, tolerance: float) -> str:
+    """G2 half circle of radius 5 mm ending at (10, 0) along -Y, then a G3 of radius 4 mm turned 0.4 rad."""
+    c = (4.0 * math.cos(0.4), 4.0 * math.sin(0.4))
+    end = math.pi + 0.4 + 1.5
+    return (f"G21 G90 G17 G64 P{tolerance}\nG0 X0 Y0\nF{feed:.0f}\nG2 X10 Y0 I5 J0\n"
+            f"G3 X{10 + c[0] + 4 * math.cos(end):.6f} Y{c[1] + 4 * math.sin(end):.6f} I{c[0]:.6f} J{c[1]:.6f}\nM30\n")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--feed", type=float, help="feed [mm/min]")
+    ap.add_argument("--tolerance", type=float, help="G64 P [mm]")
+    args = ap.parse_args()
+    settings = [(1200.0, 0.01), (600.0, 0.05)]
+    if args.feed is not None or args.tolerance is not None:
+        settings = [(args.feed or 1200.0, args.tolerance or 0.01)]
+    for feed, tolerance in settings:
+        cases = [(f"line/arc/line, kinks {t} rad", line_arc_line(t, feed, tolerance), (1.0, 0.0))
+                 for t in (0.1, 0.3, 1.0)]
+        cases.append(("arc/arc, kink 0.4 rad", arc_arc(feed, tolerance), (10.0, 0.0)))
+        for name, text, kink in cases:
+            prog = parse_program(text)
+            trap, scurve = (interpolate(prog, profile=p) for p in ("trapezoid", "scurve"))
+            near = np.linalg.norm(scurve.position[:, :2] - np.asarray(kink), axis=1) <= tolerance + 0.01
+            v = float(np.linalg.norm(scurve.velocity[near][:, :2], axis=1).min()) if near.any() else math.nan
+            print(f"{name:30s} F{feed:.0f} P{tolerance}: trapezoid {trap.duration:.3f} s, S-curve "
+                  f"{scurve.duration:.3f} s, S-curve / trapezoid {scurve.duration / trap.duration:.3f}; "
+                  f"S-curve speed at the kink {v:.2f} mm/s")
+
+
+if __name__ == "__main__":
+    main()
