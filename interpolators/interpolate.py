@@ -256,14 +256,10 @@ def interpolate(
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
-      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve:
-      tangent junctions with a curvature jump (line/arc, arc/arc, line/merged curve) are passed at
-      the speed where each axis' acceleration step fits in one sample beside the profile's own jerk
-      (:func:`interpolators.kinematics.curvature_step_speed_limit`); the kinks (tangent steps) of
-      line/arc, arc/arc, line or arc/merged-curve and curve/curve junctions are blended within ``P``
-      by a G2 quintic (:func:`interpolators.lookahead.blend_corners`) where passing it is faster than
-      stopping and than the kink's own junction bound; its samples carry the block where the incoming
-      segment ends up to the blend's middle, then the block where the outgoing one starts.
+      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve: tangent
+      curvature jumps are passed where each axis' acceleration step fits in one sample
+      (:func:`interpolators.kinematics.curvature_step_speed_limit`); kinks beside arcs and merged curves
+      are blended within ``P`` by a G2 quintic where that pays (:func:`interpolators.lookahead.blend_corners`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`; under the S-curve also the chords of tight curves,
       :func:`interpolators.dense.curve_junctions`), planned with the curve's curvature bounds; the
