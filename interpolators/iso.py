@@ -922,9 +922,8 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
         if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
             # G69, G50, G15 are no LinuxCNC codes (interp_array.cc gees[]: -1)
             refused = "; LinuxCNC refuses it: \"Unknown g code used\"" if st.context.dialect.name == "linuxcnc" else ""
-            notes.add(f"{gcodes[grp][1].text.upper()} cancel{refused}")
-    if gcodes.get("scaling", (0,))[0] == 500 and "S" in seen:  # "N01G50S0600" (a Fanuc 0T program)
-        notes.add(LATHE_G50)
+            lathe = grp == "scaling" and gcodes[grp][0] == 500 and "S" in seen  # "N01G50S0600" (a Fanuc 0T program)
+            notes.add(f"{LATHE_G50}{refused}" if lathe else f"{gcodes[grp][1].text.upper()} cancel{refused}")
     if gcodes.get("rotation", (0,))[0] == 690 and st.frame is not None:
         set_frame(st, dataclasses.replace(st.frame, rotation=None))
     if gcodes.get("scaling", (0,))[0] == 500 and st.frame is not None:

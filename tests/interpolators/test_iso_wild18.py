@@ -169,6 +169,7 @@ def test_a_lathe_programs_g50_s_is_noted_under_fanuc():
     assert [b.target[0] for b in prog.blocks if b.kind in ("rapid", "line")] == [86.0, 118.0]
     assert ("G50 S read as the mill's scaling cancel and a spindle speed (on a Fanuc lathe G50 S is the maximum "
             "spindle speed: a lathe program, whose X is a diameter?)") in prog.notes
+    assert "G50 cancel" not in prog.notes  # the lathe note says it (review28: both were given)
 
 
 def test_a_mill_programs_g50_alone_is_not_called_a_lathes():
