@@ -823,7 +823,7 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
         if len(machine.axes) > 1:
             # as vcnc simulate: a move of an axis the machine lacks is refused naming its line and the way
             # forward; an axis the program only names (G0 Z0 at Z0) is left out of the setpoints
-            check_program_axes(program, machine)
+            check_program_axes(program, machine, option="--truth")
             axes = tuple(a for a in axes if a in machine.axes)
         limits = _limits(machine, axes, acceleration, feed)
         sp = interpolate(program, limits=limits, sample_time=machine.sample_time, profile=profile, **guard)

@@ -96,12 +96,13 @@ def _machine_axes(setpoints: Setpoints, axes: tuple[str, ...]) -> Setpoints:
     return setpoints if len(keep) == len(setpoints.axes) else setpoints.select_axes(keep)
 
 
-def check_program_axes(program: Program, machine: Machine) -> None:
+def check_program_axes(program: Program, machine: Machine, *, option: str = "--machine") -> None:
     """:class:`vcnc.GCodeError` naming the program, the line of the first move of an axis that
     ``machine`` lacks, the machine's axes and how to add one; nothing when all axes are there.
 
     An axis the program only names without moving it (``G0 Z0`` from Z0) is no obstacle: the
-    interpolator needs limits only for the axes that move."""
+    interpolator needs limits only for the axes that move. ``option``: the command's option that names the
+    machine, in the way forward (``vcnc compare``'s is ``--truth``)."""
     from toolpaths.geometry import Arc
     from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 
@@ -132,13 +133,13 @@ def check_program_axes(program: Program, machine: Machine) -> None:
             f"{', '.join(a.upper() for a in machine.axes)})",
             file=program.source,
             line=b.line,
-            expected=f"a machine with axis {names}: {_add_axis_hint(machine, lacking)}write `vcnc machines "
+            expected=f"a machine with axis {names}: {_add_axis_hint(machine, lacking, option)}write `vcnc machines "
             f"--show {machine.name}` to a TOML file and add an [axes.{missing[0]}] section",
         )
 
 
-def _add_axis_hint(machine: Machine, lacking: set[str]) -> str:
-    """``--machine NAME+z runs ... or `` when a built-in machine's name can add the axes the program moves and it
+def _add_axis_hint(machine: Machine, lacking: set[str], option: str) -> str:
+    """``OPTION NAME+z runs ... or `` when a built-in machine's name can add the axes the program moves and it
     ``lacking``, else ''."""
     from vcnc.engine.machine import ADDABLE_AXES
 
@@ -147,7 +148,7 @@ def _add_axis_hint(machine: Machine, lacking: set[str]) -> str:
     added = machine.name.partition("+")[2] + "".join(lacking)
     name = machine.name.partition("+")[0] + "+" + "".join(a for a in ADDABLE_AXES if a in added)
     axes = " and ".join(a.upper() for a in ADDABLE_AXES if a in lacking)
-    return f"`--machine {name}` runs {axes} on a copy of its X drive (an assumption), or "
+    return f"`{option} {name}` runs {axes} on a copy of its X drive (an assumption), or "
 
 
 def truncation_note(setpoints: Setpoints, *, done: str = "simulated") -> str | None:

@@ -118,7 +118,7 @@ def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tupl
     program_args = argparse.Namespace(**{**vars(args), "program": toolpath})
     if isinstance(truth, str):
         truth = load_machine(truth)
-        program = read_for_machine(program_args, truth)
+        program = read_for_machine(program_args, truth, option="--truth")
     else:
         program = read_program(program_args)
     print_program_notes(program, toolpath)
@@ -129,18 +129,11 @@ def run(args: argparse.Namespace) -> int:
     from vcnc.contour_compare import compare
 
     models = parse_models(args.model)
-    try:
-        truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
-        with sample_guard(command="compare", max_samples=MAX_SAMPLES):
-            result = compare(truth, models, toolpath, feed=args.feed, acceleration=args.acceleration,
-                             profile=args.profile, seed=args.seed, truth_runs=args.truth_runs,
-                             max_duration=args.max_seconds, max_samples=None if args.max_seconds else MAX_SAMPLES)
-    except InputError as exc:
-        # the way forward the program checks name is vcnc simulate's --machine NAME+z; here the machine is --truth
-        if exc.expected and "`--machine " in exc.expected:
-            exc.expected = exc.expected.replace("`--machine ", "`--truth ")
-            exc.args = (str(exc),)
-        raise
+    truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
+    with sample_guard(command="compare", max_samples=MAX_SAMPLES):
+        result = compare(truth, models, toolpath, feed=args.feed, acceleration=args.acceleration,
+                         profile=args.profile, seed=args.seed, truth_runs=args.truth_runs,
+                         max_duration=args.max_seconds, max_samples=None if args.max_seconds else MAX_SAMPLES)
     summary = result.to_dict()
     rep = result.report() if args.report else None
     if args.json:

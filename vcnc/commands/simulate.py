@@ -69,7 +69,7 @@ def check_outputs(args: argparse.Namespace) -> None:
                          "(made if absent)")
 
 
-def read_for_machine(args: argparse.Namespace, machine):
+def read_for_machine(args: argparse.Namespace, machine, *, option: str = "--machine"):
     """The program ``args.program`` read for ``machine`` (:func:`vcnc.commands.interpolate.read_program`).
 
     The machine's context takes the words of its own axes only (``A180`` is an error on a machine without
@@ -78,7 +78,8 @@ def read_for_machine(args: argparse.Namespace, machine):
     :func:`vcnc.facade.check_program_axes` then finds a move of an axis the machine lacks, the reader's error
     is kept and its "expected" names that check's way forward too: a machine with the axis (a built-in
     NAME+z, or an ``[axes.a]`` section in a machine file). Otherwise, or for a program above
-    ``HINT_MAX_BYTES`` (read once more only when it is small), the reader's error stands as it is."""
+    ``HINT_MAX_BYTES`` (read once more only when it is small), the reader's error stands as it is. ``option``
+    names the machine in that way forward (:func:`vcnc.facade.check_program_axes`)."""
     import dataclasses
 
     from interpolators import load_program
@@ -99,7 +100,7 @@ def read_for_machine(args: argparse.Namespace, machine):
         except GCodeError:
             raise exc from None
         try:
-            check_program_axes(wider, machine)
+            check_program_axes(wider, machine, option=option)
         except GCodeError as lacking:
             exc.expected = f"{exc.expected}, or {lacking.expected}" if exc.expected else lacking.expected
             exc.args = (str(exc),)
