@@ -332,7 +332,8 @@ class ContourError:
         """Unsigned contour error [mm]."""
         return np.abs(self.error)
 
-    def _covered(self) -> np.ndarray:
+    def covered(self) -> np.ndarray:
+        """Boolean mask of the samples the metrics cover (``include``; all samples without it)."""
         return np.ones(len(self.error), dtype=bool) if self.include is None else self.include
 
     def metrics(self, *, window_mm: float = FEATURE_WINDOW_MM) -> dict[str, Any]:
@@ -354,7 +355,7 @@ class ContourError:
             there are none); ``tracking``: per axis ``{"max_um", "rms_um"}`` when known;
             ``samples``: samples covered.
         """
-        cov = self._covered()
+        cov = self.covered()
         e = self.error[cov]
         out: dict[str, Any] = {**error_metrics(e), "samples": int(cov.sum())}
         if self.signed:
@@ -416,7 +417,7 @@ class ContourError:
         i, j = plot_plane(self)
         pts = self.path.points(step=max(self.path.length / 2000, 1e-3))
         ax.plot(pts[:, i], pts[:, j], color="0.6", lw=1.0, label="programmed")
-        cov = self._covered()
+        cov = self.covered()
         mag = self.magnified(magnification)
         mag = np.where(cov[:, None], mag, np.nan)
         ax.plot(mag[:, i], mag[:, j], label=f"{label} (error x{magnification:g})", **kwargs)
@@ -432,7 +433,7 @@ class ContourError:
             import matplotlib.pyplot as plt
 
             _, ax = plt.subplots()
-        cov = self._covered()
+        cov = self.covered()
         s = np.where(cov, self.arc_length, np.nan)
         e = self.error * 1e3
         # Break the line where the nearest point jumps along the path (the seam of a closed
@@ -747,5 +748,5 @@ def contour_metrics(capture: Any, *, include_segments: np.ndarray | None = None)
         return None
     ce = contour_error(capture.path, capture.measured, capture.axes, reference=capture.reference,
                        t=capture.t, include_segments=include_segments)
-    m = error_metrics(ce.error[ce._covered()])  # the corners and quadrants of ce.metrics() are not asked for
+    m = error_metrics(ce.error[ce.covered()])  # the corners and quadrants of ce.metrics() are not asked for
     return {"max_um": m["max_um"], "rms_um": m["rms_um"]}

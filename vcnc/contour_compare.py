@@ -333,7 +333,7 @@ class ContourReport:
 
             _, ax = plt.subplots(figsize=(6, 6))
         if magnification is None:
-            worst = max(float(np.max(np.abs(ce.error[ce._covered()]), initial=0.0)) for _, ce in self._runs())
+            worst = max(float(np.max(np.abs(ce.error[ce.covered()]), initial=0.0)) for _, ce in self._runs())
             magnification = auto_magnification(self.true.path, worst)
         styles = {"true": {"color": "k", "lw": 1.4}, "identified": {"color": "C0", "ls": "--"},
                   "augmented": {"color": "C3", "ls": ":"}}
@@ -341,7 +341,7 @@ class ContourReport:
             if i == 0:
                 ce.plot(ax, magnification=magnification, label=self._legend(label), **styles[label])
             else:
-                mag = np.where(ce._covered()[:, None], ce.magnified(magnification), np.nan)
+                mag = np.where(ce.covered()[:, None], ce.magnified(magnification), np.nan)
                 a, b = plot_plane(self.true)
                 ax.plot(mag[:, a], mag[:, b], label=f"{label} (error x{magnification:g})", **styles[label])
         ax.legend(loc="best", fontsize="small")
@@ -384,7 +384,7 @@ class ContourReport:
         xy = np.column_stack([sp.position[:, sp.axis_index(AXIS_LETTERS[i])] if AXIS_LETTERS[i] in sp.axes
                               else np.zeros(len(sp)) for i in (a, b)])
         runs = [("true", self.true), (self.main_label, self.predicted[self.main_label])]
-        errs = [np.where(ce._covered(), np.abs(ce.error) * 1e3, np.nan) for _, ce in runs]
+        errs = [np.where(ce.covered(), np.abs(ce.error) * 1e3, np.nan) for _, ce in runs]
         top = max(float(np.nanmax(e, initial=0.0)) for e in errs) or None
         fig = Figure(figsize=(13, 6))
         axs = fig.subplots(1, 2)
