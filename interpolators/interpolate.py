@@ -384,12 +384,15 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
         for j, (s, b) in enumerate(zip(segs, blks)):
             if id(s) in run_of:
                 runs[len(all_segs)] = run_of[id(s)]
-            elif isinstance(s, SplineCurve):  # a piece cut by a kink blend, or the blend
-                nxt = segs[j + 1]
-                runs[len(all_segs)] = run_of_spline.get(id(s.spline)) or _blend_run(
-                    _chords_beside(all_segs[-1], b, runs.get(len(all_segs) - 1), at_start=False),
-                    _chords_beside(nxt, blks[j + 1], run_of_spline.get(id(getattr(nxt, "spline", None))),
-                                   at_start=True), s)
+            elif isinstance(s, SplineCurve):  # a piece cut by a kink blend (of its run), or the blend
+                run = run_of_spline.get(id(s.spline))
+                if run is None:  # the blend, always between two segments (a cut piece may end the chain)
+                    nxt = segs[j + 1]
+                    run = _blend_run(
+                        _chords_beside(all_segs[-1], b, runs.get(len(all_segs) - 1), at_start=False),
+                        _chords_beside(nxt, blks[j + 1], run_of_spline.get(id(getattr(nxt, "spline", None))),
+                                       at_start=True), s)
+                runs[len(all_segs)] = run
             all_segs.append(s)
             seg_block.append(b)
             seg_feed.append(feed_of[b])

@@ -154,6 +154,23 @@ def test_line_into_merged_chords_with_a_kink():
     assert np.all(np.diff(sp.block) >= 0)
 
 
+def test_a_kink_into_merged_chords_that_end_the_program():
+    """A line, then a 0.3 rad kink into ten 0.04 mm chords of a 2 mm radius (merged into a curve of one piece)
+    that end the chain: the blend trims that piece, which is then the chain's last segment; its samples carry
+    the run's chords (the lead's review: it raised IndexError looking for a segment after it)."""
+    chords, x, y, ang = [], 0.0, 0.0, 0.3
+    for _ in range(10):
+        ang += 0.04 / 2.0
+        x, y = x + 0.04 * math.cos(ang), y + 0.04 * math.sin(ang)
+        chords.append(f"G1 X{x:.4f} Y{y:.4f}")
+    prog = parse_program("G21 G90 G17 G64 P0.1\nG0 X-5 Y0\nF600\nG1 X0 Y0\n" + "\n".join(chords) + "\nM30\n")
+    sp = interpolate(prog, profile="scurve", limits=LIMITS)
+    check_limits(sp, prog, LIMITS, jerk=True, feed=True)
+    assert _distance_from_program(sp, prog).max() <= 0.1 * (1 + 1e-6)
+    assert np.all(np.diff(sp.block) >= 0) and sp.block[-1] == len(prog.blocks) - 1
+    assert sp.position[-1, :2] == pytest.approx([round(x, 4), round(y, 4)], abs=1e-9)
+
+
 @pytest.mark.parametrize("stretch", [1.0, 1.3])
 def test_hermite_quintic_matches_both_ends_and_trims(stretch):
     t_in, k_in = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.5, 0.0])
