@@ -98,6 +98,7 @@ from vcnc.traces.columns import (
     within_reach,
 )
 from vcnc.traces.companion import servo_period_hint
+from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
@@ -161,8 +162,40 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         return read_halscope(path, columns=columns, unit=unit, axes=axes)
     if kind == "twincat":
         return read_twincat(path, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample)
-    return _generic(text.lstrip("\ufeff"), src, columns=columns, time_unit=time_unit, unit=unit,
+    gcs = gcs_array_header(text[:40000].lstrip("\ufeff"))
+    if gcs is not None:
+        return _gcs_array(text.lstrip("\ufeff"), src, gcs, columns=columns, time_unit=time_unit, unit=unit,
+                          resample=resample, sample_time=sample_time)
+    return _generic(_matrix_literal(text.lstrip("\ufeff")), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample, sample_time=sample_time)
+
+
+def _gcs_array(text: str, src: str, gcs: GcsArrayHeader, *, columns: Mapping[str, str] | None,
+               time_unit: str | None, unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    """A PI GCS array (:mod:`vcnc.traces.gcsarray`): its rows under its tables' names, a row every ``SAMPLE_TIME``
+    seconds (or ``sample_time`` given), positions in the unit given: the file states none."""
+    if time_unit is not None:
+        raise CaptureError("--time-unit applies to a time column; a PI GCS array has none (SAMPLE_TIME times its "
+                           "rows)", file=src)
+    period = sample_time if sample_time is not None else gcs.sample_time
+    if period is None:
+        raise CaptureError("the PI GCS array does not state its SAMPLE_TIME as a number of seconds", file=src,
+                           line=gcs.sample_line or gcs.end_line, expected="--sample-time S, the recording period")
+    lines = text.splitlines()
+    lines[gcs.end_line - 1] = "\t".join(gcs.names)  # the tables' names over their rows
+    named = columns or columns_from_names(gcs.names, period_known=True)[0]
+    if unit is None and named is not None:
+        raise CaptureError(f"the PI GCS array (data recorder tables {gcs.names}; read as "
+                           f"{', '.join(f'{k}={v}' for k, v in named.items())}) does not state the axis' unit: a PI "
+                           "axis records in its physical unit, the controller's PUN? answer (mm on most motorised "
+                           "stages, um on piezo stages, deg on rotation stages)", file=src, line=gcs.end_line,
+                           expected="--unit mm, um or deg (the axis' unit)")
+    capture = _generic("\n".join(lines), src, columns=columns, time_unit=None, unit=unit, resample=resample,
+                       sample_time=period)
+    capture.meta["format"] = "PI GCS array (data recorder)"
+    capture.meta["sampling"] = (f"{period:.9g} s, stated in line {gcs.sample_line} (SAMPLE_TIME)" if sample_time is None
+                                else f"{period:.9g} s, given")
+    return capture
 
 
 def _split(line: str, delimiter: str) -> list[str]:
@@ -299,6 +332,9 @@ def _table(text: str, src: str) -> _Table:
 
     def names_at(j: int | None) -> list[str] | None:
         cells = _header_cells(lines[j], delimiter) if j is not None else []
+        if delimiter == " " and j is not None and len(cells) != width:
+            spaced = _spaced_names(lines[j])
+            cells = spaced if len(spaced) == width else cells
         cells = _channel_groups(cells, width - trailing) or cells
         if len(cells) == width + 1 and not cells[-1]:
             cells = cells[:-1]
@@ -324,6 +360,39 @@ def _table(text: str, src: str) -> _Table:
         header, units_row = _keyed_rows(lines[:first], delimiter, width, units_row)
     return _Table(_time_named(header, units_row), units_row, data, row_lines, delimiter, overruns, text_cells, lines,
                   header_line)
+
+
+#: A MATLAB matrix literal's opening bracket before the first row's numbers, and what ends a row: ``;``, or ``]``
+#: (``];``) after the last.
+_MATRIX_OPEN = re.compile(r"^\s*\[\s*(?=[-+.\d])")
+_MATRIX_END = re.compile(r"\]\s*;?\s*$")
+_MATRIX_ROW_END = re.compile(r"\s*(?:\]\s*;?|;)\s*$")
+
+
+def _matrix_literal(text: str) -> str:
+    """The rows of a table written as a MATLAB matrix literal (``[0 0.000 1000 0;`` ... ``676 5.985 0 7]``: rows
+    separated by ``;`` between brackets, MATLAB documentation "Creating, Concatenating, and Expanding Matrices") without
+    its brackets and semicolons, so that they read as rows of numbers; ECP Executive's "Export Raw Data" (Educational
+    Control Products' servo plants, Model 210/220/205) writes its table so under a line of names (our reading of its
+    exports). Only one line may open the matrix, and a later one must close it; any other text is returned as it is."""
+    lines = text.splitlines()
+    opens = [i for i, line in enumerate(lines) if _MATRIX_OPEN.match(line)]
+    if len(opens) != 1:
+        return text
+    end = next((i for i in range(opens[0], len(lines)) if _MATRIX_END.search(lines[i])), None)
+    if end is None:
+        return text
+    for i in range(opens[0], end + 1):
+        lines[i] = _MATRIX_ROW_END.sub("", _MATRIX_OPEN.sub("", lines[i]))
+    return "\n".join(lines)
+
+
+def _spaced_names(line: str) -> list[str]:
+    """The names of a header line whose names hold single spaces and are set apart by runs of spaces (ECP
+    Executive's ``Sample   Time     Commanded Pos   Encoder 1 Pos``), for rows of numbers separated by spaces."""
+    stripped = line.strip()
+    stripped = stripped[1:].strip() if stripped[:1] in ("#", "%") else stripped
+    return [c for c in re.split(r"\s{2,}|\t", stripped) if c]
 
 
 _HEX = re.compile(r"[0-9A-Fa-f]{4,16}")

@@ -107,6 +107,10 @@ _TNC_ROLES = frozenset({"ist", "soll", "noml", "actl", "nom", "nominal"})
 #: yangxiaosheng27/PA_Data_Analysize: "SSetPos, CommandedMachinePosCorr, SActMachinePos  Unit: internal increment
 #: ... defaults to 1um"); the trace writes no unit and the increment is the machine's setting.
 _PA_COUNTS = ("ssetpos", "commandedmachinepos", "sactmachinepos")
+#: ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``, beside ``Commanded Pos``), in encoder counts
+#: though its "Export Raw Data" writes no unit (our reading of its exports: integer positions, and the users' scripts
+#: that scale them by the plant's counts per cm).
+_ENCODER_COUNTS = re.compile(r"encoder\s*\d+\s*pos", re.IGNORECASE)
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
 #: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
@@ -181,6 +185,8 @@ def counted(name: str) -> str | None:
         return "counts"
     if any(p in name.lower() for p in _PA_COUNTS):
         return "internal increments"
+    if _ENCODER_COUNTS.fullmatch(name.strip()):
+        return "counts"
     return next((w for w in _words(name) if w in _COUNT_WORDS or any(p in w for p in _CJK_COUNTS)), None)
 
 

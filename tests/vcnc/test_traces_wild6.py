@@ -1,0 +1,150 @@
+"""Traces in the layouts seen in tracewild6: ECP Executive's "Export Raw Data" (a MATLAB matrix literal under names
+set apart by runs of spaces, positions in encoder counts), a PI controller's data recorder saved as a GCS array
+(``# KEY = value`` header, no time column, no unit) and a TwinCAT 2 Scope View export. Each file is a few lines
+written here after a real export's layout or the tool's documentation, not the export itself."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vcnc.capture import read_capture
+from vcnc.errors import CaptureError
+from vcnc.traces.delimited import read_delimited
+from vcnc.traces.gcsarray import gcs_array_header
+
+_ECP_NAMES = " Sample   Time     Commanded Pos   Encoder 1 Pos   Encoder 2 Pos   Control Effort\n\n"
+
+
+def _ecp_rows(cmd: list[int], enc1: list[int], enc2: list[int] | None = None) -> str:
+    """Rows as ECP Executive writes them: ``[`` before the first, ``;`` after each but the last, ``]`` after it;
+    sample number, time [s] to 3 decimals at 8.84 ms, positions in counts, the control effort last."""
+    out = []
+    for k, (c, e) in enumerate(zip(cmd, enc1)):
+        cells = [f"{k:6d}", f"{k * 0.00884:8.3f}", f"{c:15d}", f"{e:15d}"]
+        cells += [f"{enc2[k]:15d}"] if enc2 is not None else []
+        cells.append(f"{0.25 - 0.001 * k:15.4f}")
+        end = "]" if k == len(cmd) - 1 else ";"
+        out.append(("[" if k == 0 else " ") + "".join(cells) + end + "\n")
+    return "".join(out)
+
+
+def _ecp_motion(n: int = 12) -> tuple[list[int], list[int]]:
+    cmd = [min(100 * k, 600) for k in range(n)]
+    return cmd, [max(c - 40, 0) for c in cmd]
+
+
+def test_ecp_export_reads_its_names_rows_and_counts(tmp_path):
+    cmd, enc = _ecp_motion()
+    f = tmp_path / "closed_loop.csv"
+    f.write_text(" Sample   Time     Commanded Pos   Encoder 1 Pos   Control Effort\n\n" + _ecp_rows(cmd, enc))
+    with pytest.raises(CaptureError) as err:  # counts are never read as mm
+        read_capture(f)
+    assert ("closed_loop.csv:1: x='Encoder 1 Pos' is logged in increments ('counts') and the file does not state "
+            "their size; expected --unit with the size of one count") in str(err.value)
+    cap = read_capture(f, unit="0.005mm")
+    assert cap.t.size == 12  # the first row, after '[', and the last, before ']', are read too
+    assert cap.meta["commanded"] == "x:Commanded Pos" and cap.meta["measured"] == "x:Encoder 1 Pos"
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(cmd) * 0.005, atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(enc) * 0.005, atol=1e-12)
+    assert cap.t[-1] == pytest.approx(11 * 0.00884, abs=6e-4)  # three decimals printed: a uniform step within them
+
+
+def test_ecp_export_with_two_encoders_asks_which(tmp_path):
+    cmd, enc = _ecp_motion()
+    f = tmp_path / "two.csv"
+    f.write_text(_ECP_NAMES + _ecp_rows(cmd, enc, [e // 2 for e in enc]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    msg = str(err.value)
+    assert ("columns found: ['Sample', 'Time', 'Commanded Pos', 'Encoder 1 Pos', 'Encoder 2 Pos', 'Control Effort'] "
+            "(not read from the names: axis x: several columns could be the same position: ['Encoder 1 Pos', "
+            "'Encoder 2 Pos'])") in msg
+    cap = read_capture(f, columns={"t": "Time", "x_ref": "Commanded Pos", "x": "Encoder 2 Pos"}, unit="1um")
+    np.testing.assert_allclose(cap.measured[:, 0], np.array([e // 2 for e in enc]) * 1e-3, atol=1e-12)
+
+
+def test_a_bracket_or_semicolon_elsewhere_is_no_matrix(tmp_path):
+    # a ';'-separated log whose rows end with the delimiter stays a ';' table (no MATLAB matrix: no '[' opens it)
+    f = tmp_path / "semi.csv"
+    f.write_text("Zeit [s];Soll [mm];Ist [mm];\n" + "".join(f"{0.001 * k:.3f};{0.1 * k:.2f};{0.1 * k - 0.01:.3f};\n"
+                                                           for k in range(20)))
+    cap = read_capture(f)
+    assert cap.meta["format"] == "delimited text (semicolon)"
+    assert cap.reference[5, 0] == pytest.approx(0.5)
+
+
+def _gcs(names: list[str], rows: list[list[float]], *, sep: str = " ", sample: str = "0.0005") -> str:
+    head = ["# REM C-884.4DC", "#", "# TYPE = 1", f"# SEPARATOR = {ord(sep)}", f"# DIM = {len(names)}",
+            f"# SAMPLE_TIME = {sample}", f"# NDATA = {len(rows)}", "#"]
+    head += [f"# NAME{k} = {n}" for k, n in enumerate(names)] + ["#", "# END_HEADER"]
+    return "\n".join(head + [sep.join(f"{v:.6f}" for v in r) for r in rows]) + "\n"
+
+
+def test_gcs_array_header_is_read():
+    text = _gcs(["Commanded Position of axis 1", "Actual Position of axis 1"], [[0.0, 0.0]] * 3)
+    header = gcs_array_header(text)
+    assert header is not None
+    assert header.names == ["Commanded Position of axis 1", "Actual Position of axis 1"]
+    assert (header.sample_time, header.sample_line, header.end_line, header.separator) == (0.0005, 6, 12, " ")
+    assert gcs_array_header("# DIM = 2\n# NAME0 = a\n# END_HEADER\n1 2\n") is None  # NAME1 missing: not one
+    assert gcs_array_header("time,x_ref,x\n0,0,0\n") is None
+
+
+def test_gcs_array_asks_for_the_axis_unit_then_reads_on_its_sample_time(tmp_path):
+    ref = [0.0, 0.0, 0.1, 0.3, 0.6, 0.8, 0.9, 1.0, 1.0, 1.0]
+    act = [0.0, 0.0, 0.05, 0.2, 0.45, 0.7, 0.85, 0.95, 1.0, 1.0]
+    f = tmp_path / "drr.dat"
+    f.write_text(_gcs(["Commanded Position of axis 1", "Actual Position of axis 1"], [list(p) for p in zip(ref, act)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("drr.dat:12: the PI GCS array (data recorder tables ['Commanded Position of axis 1', 'Actual Position of "
+            "axis 1']; read as x_ref=Commanded Position of axis 1, x=Actual Position of axis 1) does not state the "
+            "axis' unit") in str(err.value)
+    cap = read_capture(f, unit="um")
+    np.testing.assert_allclose(cap.t, np.arange(10) * 0.0005, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(ref) * 1e-3, atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(act) * 1e-3, atol=1e-12)
+    assert cap.meta["format"] == "PI GCS array (data recorder)"
+    assert cap.meta["sampling"] == "0.0005 s, stated in line 6 (SAMPLE_TIME)"
+
+
+def test_gcs_array_tab_separated_with_a_position_error(tmp_path):
+    # PIPython's documented example: SEPARATOR 9, "Real Position" before "Target Position"
+    rows = [[0.01 * k - 0.001, 0.01 * k, 0.001] for k in range(8)]
+    f = tmp_path / "testfile.dat"
+    f.write_text(_gcs(["Real Position", "Target Position", "Position Error"], rows, sep="\t", sample="9.999999e-05"))
+    cap = read_delimited(f, unit="mm")
+    assert cap.meta["commanded"] == "x:Target Position" and cap.meta["measured"] == "x:Real Position"
+    np.testing.assert_allclose(cap.measured[:, 0], [r[0] for r in rows], atol=1e-12)
+    assert cap.t[1] == pytest.approx(9.999999e-05, rel=1e-9)
+    with pytest.raises(CaptureError, match="--time-unit applies to a time column; a PI GCS array has none"):
+        read_delimited(f, unit="mm", time_unit="ms")
+
+
+def test_gcs_array_without_a_sample_time_asks_for_it(tmp_path):
+    f = tmp_path / "nosample.dat"
+    f.write_text(_gcs(["Target Position", "Real Position"], [[0.0, 0.0]] * 5, sample="?"))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, unit="mm")
+    assert "does not state its SAMPLE_TIME as a number of seconds; expected --sample-time S" in str(err.value)
+    cap = read_capture(f, unit="mm", sample_time=0.001)
+    assert cap.meta["sampling"] == "0.001 s, given" and cap.t[-1] == pytest.approx(0.004)
+
+
+def test_twincat2_scope_view_export_reads_as_twincat(tmp_path):
+    # TcScope2 "Export to CSV" (Beckhoff infosys): a header block, the channel rows, then time [ms] and value per
+    # channel, decimal comma
+    head = ["Name\tScope01", "File\t", "StartRecord\t128783093223690000\tDonnerstag, 5. Februar 2009\t13:08:42",
+            "EndRecord\t128783093339880000\tDonnerstag, 5. Februar 2009\t13:08:53", ""]
+    keys = [("Name", "Axis_X.NcToPlc.SetPos", "Axis_X.NcToPlc.ActPos"), ("SampleTime[ms]", "1", "1"),
+            ("SymbolName", "Axis_X.NcToPlc.SetPos", "Axis_X.NcToPlc.ActPos"),
+            ("Data-Type", "ADST_REAL64", "ADST_REAL64")]
+    head += [f"{k}\t{a}\t{k}\t{b}" for k, a, b in keys]
+    rows = [f"{k}\t{0.5 * k:.1f}\t{k}\t{0.5 * k - 0.1:.1f}".replace(".", ",") for k in range(10)]
+    f = tmp_path / "scope2.csv"
+    f.write_text("\n".join(head + rows) + "\n")
+    cap = read_capture(f)
+    assert cap.meta["format"] == "TwinCAT Scope CSV"
+    np.testing.assert_allclose(cap.t, np.arange(10) * 1e-3, atol=1e-12)
+    np.testing.assert_allclose(cap.measured[:, 0], 0.5 * np.arange(10) - 0.1, atol=1e-12)
