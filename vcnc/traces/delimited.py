@@ -56,6 +56,12 @@ an empty cell (the ODrive GUI's export fills a channel not yet received with it)
 value, an error when the column is used; a headerless file without a sampling period names the servo period a
 LinuxCNC INI beside it states (:mod:`vcnc.traces.companion`); a linear axis logged in degrees of its motor is scaled
 by a stated lead as turns and radians are.
+
+**tracewild6** (session 29). A table written as a MATLAB matrix literal (``[`` before the first row, ``;`` after each,
+``]`` after the last: ECP Executive's "Export Raw Data") is read without its brackets (:func:`_matrix_literal`); names
+that hold single spaces and are set apart by runs of spaces (``Commanded Pos   Encoder 1 Pos``) are the header of rows
+separated by spaces when they number the columns (:func:`_spaced_names`); a PI GCS array (:mod:`vcnc.traces.gcsarray`)
+is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
 """
 
 from __future__ import annotations

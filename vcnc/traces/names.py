@@ -40,6 +40,10 @@ only within one number, and the one number with a pair is axis x (several such n
 registers as gather tools name them (``Motor present desired position``, ``... actual position``, ``Motor following
 error``) are in counts (:func:`counted`).
 
+vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``) are in counts
+(:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
+collocated or the far one, the file does not say).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
