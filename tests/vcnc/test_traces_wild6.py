@@ -148,3 +148,36 @@ def test_twincat2_scope_view_export_reads_as_twincat(tmp_path):
     assert cap.meta["format"] == "TwinCAT Scope CSV"
     np.testing.assert_allclose(cap.t, np.arange(10) * 1e-3, atol=1e-12)
     np.testing.assert_allclose(cap.measured[:, 0], 0.5 * np.arange(10) - 0.1, atol=1e-12)
+
+
+def test_nc_axes_are_named_by_the_letter_their_names_carry(tmp_path):
+    # an NC axis a machine calls Y is axis y (before: x, the first pair); without a letter (MAIN.Axis1) x, y... stay
+    head = ["Name\tY.NcToPlc.SetPos\tName\tY.NcToPlc.PosDiff\tName\tAxis_Z.NcToPlc.SetPos\tName\tAxis_Z.NcToPlc.ActPos"]
+    rows = [f"{k}\t{0.5 * k}\t{k}\t0.1\t{k}\t{-0.2 * k}\t{k}\t{-0.2 * k + 0.05}" for k in range(12)]
+    f = tmp_path / "yz.csv"
+    f.write_text("\n".join(head + rows) + "\n")
+    cap = read_capture(f)
+    assert cap.axes == ("y", "z")
+    assert cap.meta["commanded"] == "y:Y.NcToPlc.SetPos,z:Axis_Z.NcToPlc.SetPos"
+    np.testing.assert_allclose(cap.measured[:, 0], 0.5 * np.arange(12) - 0.1, atol=1e-12)  # set - lag
+    np.testing.assert_allclose(cap.measured[:, 1], -0.2 * np.arange(12) + 0.05, atol=1e-12)
+    g = tmp_path / "main.csv"
+    g.write_text("Name\tMAIN.Axis1.NcToPlc.SetPos\tName\tMAIN.Axis1.NcToPlc.ActPos\n"
+                 + "".join(f"{k}\t{0.1 * k}\t{k}\t{0.1 * k - 0.01}\n" for k in range(12)))
+    assert read_capture(g).axes == ("x",)
+
+
+def test_gcs_array_of_two_axes_asks_which_without_a_time_column(tmp_path):
+    names = ["Commanded Position of axis 1", "Actual Position of axis 1", "Commanded Position of axis 2",
+             "Actual Position of axis 2"]
+    f = tmp_path / "two.dat"
+    f.write_text(_gcs(names, [[0.1 * k, 0.1 * k - 0.01, -0.2 * k, -0.2 * k + 0.02] for k in range(10)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("two.dat:14: which tables of the PI GCS array are the commanded and measured positions? give --columns "
+            "x_ref=NAME,x=NAME (SAMPLE_TIME times its rows); tables: ['Commanded Position of axis 1', 'Actual Position "
+            "of axis 1', 'Commanded Position of axis 2', 'Actual Position of axis 2'] (not read from the names: axes "
+            "[1, 2] each have a commanded and a measured position") in str(err.value)
+    cap = read_capture(f, columns={"y_ref": names[2], "y": names[3]}, unit="mm")
+    assert cap.axes == ("y",)
+    np.testing.assert_allclose(cap.measured[:, 0], -0.2 * np.arange(10) + 0.02, atol=1e-12)

@@ -189,7 +189,11 @@ def _gcs_array(text: str, src: str, gcs: GcsArrayHeader, *, columns: Mapping[str
                            line=gcs.sample_line or gcs.end_line, expected="--sample-time S, the recording period")
     lines = text.splitlines()
     lines[gcs.end_line - 1] = "\t".join(gcs.names)  # the tables' names over their rows
-    named = columns or columns_from_names(gcs.names, period_known=True)[0]
+    named, why = (columns, "") if columns else columns_from_names(gcs.names, period_known=True)
+    if named is None:
+        raise CaptureError("which tables of the PI GCS array are the commanded and measured positions? give --columns "
+                           f"x_ref=NAME,x=NAME (SAMPLE_TIME times its rows); tables: {gcs.names} (not read from the "
+                           f"names: {why})", file=src, line=gcs.end_line)
     if unit is None and named is not None:
         raise CaptureError(f"the PI GCS array (data recorder tables {gcs.names}; read as "
                            f"{', '.join(f'{k}={v}' for k, v in named.items())}) does not state the axis' unit: a PI "

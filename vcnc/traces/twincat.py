@@ -29,7 +29,8 @@ or not, double time stamps excluded or not):
 
 Channels are found by ``Name`` (or ``SymbolName``). Without ``--columns``, NC axis channels
 ``...SetPos`` / ``...ActPos`` (``NcToPlc.SetPos`` / ``NcToPlc.ActPos``, Beckhoff infosys
-``NCTOPLC_AXIS_REF``) pair up per axis. The commanded and measured channels are taken on the time
+``NCTOPLC_AXIS_REF``) pair up per axis, named by the axis letter their names carry (``Axis_Y.NcToPlc.SetPos``: y;
+tracewild6), else x, y, z... in their order. The commanded and measured channels are taken on the time
 stamps they share (a slower group gives the grid); a time stamp a group repeats holds one sample.
 
 **Lag.** An axis traced with its set position and its lag instead of its actual position
@@ -354,13 +355,26 @@ def _find(name: str, channels: list[_Channel], found: list[str], src: str, line:
     return hits[0]
 
 
+def _axis_letters(prefixes: list[str]) -> list[str] | None:
+    """The axis letters the NC axes' names carry (``Axis_Y.NcToPlc.`` -> y, ``MAIN.Z.NcToPlc.`` -> z): each prefix's
+    one word that is an axis letter, all different; None otherwise (``MAIN.Axis1.``: then x, y, z... in order). Our
+    reading: an axis a machine names Y is axis y to its user (``vcnc identify --axis y``)."""
+    letters = []
+    for prefix in prefixes:
+        words = {w for w in re.findall(r"[a-z]+", prefix.lower()) if w in AXIS_NAMES}
+        if len(words) != 1:
+            return None
+        letters.append(words.pop())
+    return letters if len(set(letters)) == len(letters) else None
+
+
 def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
               line: int) -> tuple[dict[str, str], str]:
-    """The NC axis channels of each axis (module docstring), named ``axes`` (default x, y, z...) in
-    the order of their set positions: a set position with the actual position of the same prefix
-    (``Axis1.NcToPlc.SetPos`` / ``Axis1.NcToPlc.ActPos``), else with its lag (``...PosDiff``): the
-    actual position is a measurement, the lag the control's difference of the two. Without NC axis
-    channels, PLC variables whose names leave no doubt (``MAIN.fSollPos`` / ``MAIN.fIstPos``,
+    """The NC axis channels of each axis (module docstring), named ``axes`` (default the axis letters their names
+    carry, :func:`_axis_letters`, else x, y, z... in the order of their set positions): a set position with the
+    actual position of the same prefix (``Axis1.NcToPlc.SetPos`` / ``Axis1.NcToPlc.ActPos``), else with its lag
+    (``...PosDiff``): the actual position is a measurement, the lag the control's difference of the two. Without NC
+    axis channels, PLC variables whose names leave no doubt (``MAIN.fSollPos`` / ``MAIN.fIstPos``,
     :func:`vcnc.traces.names.columns_from_names`; tracewild2), with the note for ``meta["columns"]``."""
     def split(name: str, ends: tuple[str, ...]) -> str | None:
         low = name.lower().rstrip()
@@ -368,13 +382,15 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
 
     actual = {split(c.name, _ACT_ENDS): c.name for c in reversed(channels) if split(c.name, _ACT_ENDS) is not None}
     lag = {split(c.name, _LAG_ENDS): c.name for c in reversed(channels) if split(c.name, _LAG_ENDS) is not None}
-    pairs = []
+    pairs, prefixes = [], []
     for c in channels:
         prefix = split(c.name, _SET_ENDS)
         if prefix in actual:
             pairs.append((c.name, "", actual[prefix]))
         elif prefix in lag:
             pairs.append((c.name, LAG_SUFFIX, lag[prefix]))
+        if prefix in actual or prefix in lag:
+            prefixes.append(str(prefix))
     if not pairs:
         named, why = channels_from_names([c.name for c in channels], "channel")
         if named is not None:
@@ -382,7 +398,7 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
         raise CaptureError("which channels are the commanded and measured positions? give --columns "
                            f"x_ref=NAME,x=NAME (or x{LAG_SUFFIX}=NAME for a following error); channels found: "
                            f"{[c.name for c in channels]} (not read from the names: {why})", file=src, line=line)
-    names = list(axes) if axes else list(AXIS_NAMES[: len(pairs)])
+    names = list(axes) if axes else _axis_letters(prefixes) or list(AXIS_NAMES[: len(pairs)])
     if len(names) != len(pairs):
         raise CaptureError(f"{len(names)} axis name(s) for the {len(pairs)} NC axis set positions "
                            f"{[ref for ref, _, _ in pairs]}", file=src, line=line)
