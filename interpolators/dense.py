@@ -87,7 +87,7 @@ DENSE_MAX_LENGTH: float = 1.0
 DENSE_MAX_TURN: float = 0.2
 #: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
 DENSE_MAX_CURVE_TURN: float = 0.5
-#: Share of a junction's turn each neighbouring junction turns at least for it to be on a tight curve.
+#: Share of a junction's turn its two neighbouring junctions turn together at least for it to be on a tight curve.
 CURVE_TURN_SHARE: float = 0.5
 #: Fewest lines merged into one curve.
 DENSE_MIN_SEGMENTS: int = 8
@@ -429,10 +429,14 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
 
     A junction turning by up to :data:`DENSE_MAX_TURN` may; a sharper one is a corner and ends the run. With
     ``curvature_continuous`` (the S-curve) a junction turning by up to :data:`DENSE_MAX_CURVE_TURN` may too when
-    both neighbouring junctions turn by at least :data:`CURVE_TURN_SHARE` of its turn (a chain's first and last
-    junctions have one neighbour and keep the cap): every chord of a tight curve turns alike (chords of 50 um on
-    a radius of 0.24 mm turn by 0.21 rad each, a helical entry as CAM writes it), where a corner is one sharp
-    turn between gentle ones.
+    its two neighbouring junctions together turn by at least :data:`CURVE_TURN_SHARE` of its turn (a chain's
+    first and last junctions have one neighbour and keep the cap): the chords of a tight curve all turn (chords
+    of 50 um on a radius of 0.24 mm turn by 0.21 rad each, a helical entry as CAM writes it), where a corner is
+    one sharp turn between gentle ones. The sum, not each neighbour, because the rounded end points of chords
+    of 10-50 um (3 decimals, as FreeCAD writes the fillets of a profile of radius 0.05-0.1 mm) make their turns
+    alternate, 0.11, 0.23, 0.22, 0.19, 0.33: each neighbour alone would cut such a fillet into runs too short to
+    merge, left to per-junction clothoid blends at a third of the speed (our reading; the fit's tolerance check
+    keeps the path within the tolerance whatever joins a run).
 
     Our reading (no control documents its look-ahead's thresholds): the per-junction blend of such chords is a
     clothoid pair within half of each chord, whose curvature rises from zero to about ``2 theta / L`` over
@@ -445,7 +449,7 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
     inside = turns <= DENSE_MAX_TURN
     if curvature_continuous and len(turns) > 2:
         with np.errstate(invalid="ignore"):
-            shared = np.minimum(turns[:-2], turns[2:]) >= CURVE_TURN_SHARE * turns[1:-1]
+            shared = turns[:-2] + turns[2:] >= CURVE_TURN_SHARE * turns[1:-1]
             inside[1:-1] |= (turns[1:-1] <= DENSE_MAX_CURVE_TURN) & shared
     return inside
 
