@@ -371,7 +371,7 @@ def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray, *, by_bound: bool)
 
 def _bound_breaks(spl: BSpline, knots: np.ndarray, approx: np.ndarray) -> np.ndarray:
     """The knots where a piece's speed bound would change by more than :data:`BOUND_STEP`: the jerk-limited
-    speed ``(k^2 + |dk/ds|)^(-1/3)`` (:func:`interpolators.kinematics.curved_speed_bound`, up to the limits) of
+    speed ``|(k^2, dk/ds)|^(-1/3)`` (:func:`interpolators.kinematics.curved_speed_bound`, up to the limits) of
     each knot interval, from :data:`_BOUND_SAMPLES` points of it, is compared with the range of the piece so
     far; a piece also ends once it holds :data:`PIECE_LENGTH` (the fixed cuts of :func:`_pieces`).
 
@@ -385,7 +385,7 @@ def _bound_breaks(spl: BSpline, knots: np.ndarray, approx: np.ndarray) -> np.nda
     f = (np.arange(_BOUND_SAMPLES) + 0.5) / _BOUND_SAMPLES
     u = (knots[:-1, None] + np.diff(knots)[:, None] * f[None, :]).ravel()
     k, k_s, _ = curve_frame_rates(spl(u, 1), spl(u, 2), spl(u, 3))
-    load = (np.einsum("ij,ij->i", k, k) + np.linalg.norm(k_s, axis=1)).reshape(-1, _BOUND_SAMPLES).max(axis=1)
+    load = np.hypot(np.einsum("ij,ij->i", k, k), np.linalg.norm(k_s, axis=1)).reshape(-1, _BOUND_SAMPLES).max(axis=1)
     speed = np.cbrt(1.0 / np.maximum(load, 1e-12))
     out = []
     lo = hi = speed[0]
