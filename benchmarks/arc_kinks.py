@@ -22,6 +22,10 @@ arc/arc 0.4 rad        1.183 -> 1.183   2.238 -> 2.203
 
 At F1200 P0.01 the 0.3 rad line/arc kink, the 1.0 rad kinks and the arc/arc kink stay stops: a blend within
 0.01 mm is so tight that its speed bound makes it slower than stopping.
+
+With the norm of the jerk vector in the curve bounds (:func:`interpolators.kinematics.curved_speed_bound`; the
+path jerk what the norm leaves) the S-curve times are, in the order of the table, 1.017, 1.104, 1.103, 1.169 at
+F1200 P0.01 and 1.806, 1.800, 1.800, 2.199 at F600 P0.05.
 """
 
 from __future__ import annotations

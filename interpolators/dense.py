@@ -39,8 +39,9 @@ the G3 arc; merged 1.02). Our reading: no control documents this threshold; the 
   lies within :data:`FIT_SHARE` of the path tolerance from the chords; otherwise the knot
   spacing is halved, and a run that no spacing fits is split at its sharpest junction.
 
-The curve is cut at knots into pieces of about :data:`PIECE_LENGTH`, each a segment of the chain
-with its own speed bound from its largest curvature and curvature derivative
+The curve is cut at knots into pieces of about :data:`PIECE_LENGTH` (under the S-curve also where the jerk bound
+of the speed changes by more than :data:`BOUND_STEP` between knot intervals, :func:`_bound_breaks`), each a
+segment of the chain with its own speed bound from its largest curvature and curvature derivative
 (:func:`interpolators.kinematics.curve_limits`); the pieces join with continuous curvature.
 Programs without such runs (every G61 program, lines longer than :data:`DENSE_MAX_LENGTH`) are
 planned exactly as before.
@@ -55,7 +56,7 @@ from typing import TYPE_CHECKING
 import numba
 import numpy as np
 
-from toolpaths.geometry import Arc, Line, SplineCurve
+from toolpaths.geometry import Arc, Line, SplineCurve, curve_frame_rates
 
 if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without dense runs starts 0.5 s sooner
     from scipy.interpolate import BSpline
@@ -86,7 +87,7 @@ DENSE_MAX_LENGTH: float = 1.0
 DENSE_MAX_TURN: float = 0.2
 #: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
 DENSE_MAX_CURVE_TURN: float = 0.5
-#: Share of a junction's turn each neighbouring junction turns at least for it to be on a tight curve.
+#: Share of a junction's turn its two neighbouring junctions turn together at least for it to be on a tight curve.
 CURVE_TURN_SHARE: float = 0.5
 #: Fewest lines merged into one curve.
 DENSE_MIN_SEGMENTS: int = 8
@@ -100,6 +101,10 @@ CURVE_DENSITY: float = 8.0 * FIT_SHARE
 MAX_KNOT_SPACING: float = 4.0
 #: Target length of the pieces a fitted curve is cut into [mm].
 PIECE_LENGTH: float = 0.5
+#: Largest ratio of the jerk-limited speed bounds of two knot intervals inside one piece (:func:`_bound_breaks`).
+BOUND_STEP: float = 1.25
+#: Points per knot interval at which :func:`_bound_breaks` evaluates the curvature.
+_BOUND_SAMPLES = 4
 #: Points per chord at which the fitted curve's distance from the chords is checked.
 CHECK_POINTS: int = 8
 #: Fewest programmed points per knot interval.
@@ -350,19 +355,52 @@ def _end_tangent(seg, at_start: bool) -> np.ndarray:
     return np.asarray(seg.tangent_at(0.0 if at_start else seg.length), dtype=float)
 
 
-def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray) -> tuple[SplineCurve, ...]:
-    """The curve cut at knots into pieces of about PIECE_LENGTH (at least two, so that no piece is closed)."""
+def _pieces(spl: BSpline, start: np.ndarray, end: np.ndarray, *, by_bound: bool) -> tuple[SplineCurve, ...]:
+    """The curve cut at knots into pieces of about PIECE_LENGTH (at least two, so that no piece is closed); with
+    ``by_bound`` (the S-curve) also where the jerk bound of the speed changes along it (:func:`_bound_breaks`)."""
     knots = np.unique(spl.t)
     approx = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(spl(knots), axis=0), axis=1))])
     n_p = max(2, int(round(approx[-1] / PIECE_LENGTH))) if len(knots) > 2 else 1
     cut = np.unique(knots[np.searchsorted(approx, np.linspace(0, approx[-1], n_p + 1)[1:-1])])
+    if by_bound and len(knots) > 2:
+        cut = np.union1d(cut, _bound_breaks(spl, knots, approx))
     brk = np.concatenate([[knots[0]], cut[(cut > knots[0]) & (cut < knots[-1])], [knots[-1]]])
     # inner ends are C(u) evaluated alike on both sides: neighbouring pieces meet bit for bit
     return SplineCurve.pieces(spl, brk, start=start, end=end)
 
 
+def _bound_breaks(spl: BSpline, knots: np.ndarray, approx: np.ndarray) -> np.ndarray:
+    """The knots where a piece's speed bound would change by more than :data:`BOUND_STEP`: the jerk-limited
+    speed ``|(k^2, dk/ds)|^(-1/3)`` (:func:`interpolators.kinematics.curved_speed_bound`, up to the limits) of
+    each knot interval, from :data:`_BOUND_SAMPLES` points of it, is compared with the range of the piece so
+    far; a piece also ends once it holds :data:`PIECE_LENGTH` (the fixed cuts of :func:`_pieces`).
+
+    A piece's bound is its largest curvature and curvature derivative (:meth:`SplineCurve.bounds`), so a 0.5 mm
+    piece holding a tight fillet of CAM code (radius 0.1 mm between straight chords) ran wholly at the fillet's
+    speed; cut at the fillet, only the fillet does, the rest slowing down to it and back within the jerk limit
+    (the look-ahead's reach, :func:`interpolators.profiles.reach_passes`). Our reading: a controller's look-ahead
+    bounds the feed per interpolation step from the local curvature (Erkorkmaz & Altintas, "High speed CNC
+    system design. Part I", Int. J. Mach. Tools Manuf. 41 (2001): feed scheduled along a quintic spline from its
+    local curvature); the knot intervals are the curve's own steps here."""
+    f = (np.arange(_BOUND_SAMPLES) + 0.5) / _BOUND_SAMPLES
+    u = (knots[:-1, None] + np.diff(knots)[:, None] * f[None, :]).ravel()
+    k, k_s, _ = curve_frame_rates(spl(u, 1), spl(u, 2), spl(u, 3))
+    load = np.hypot(np.einsum("ij,ij->i", k, k), np.linalg.norm(k_s, axis=1)).reshape(-1, _BOUND_SAMPLES).max(axis=1)
+    speed = np.cbrt(1.0 / np.maximum(load, 1e-12))
+    out = []
+    lo = hi = speed[0]
+    s0 = 0.0
+    for i in range(1, len(speed)):
+        lo, hi = min(lo, speed[i]), max(hi, speed[i])
+        if hi > BOUND_STEP * lo or approx[i] - s0 >= PIECE_LENGTH:
+            out.append(knots[i])
+            lo = hi = speed[i]
+            s0 = approx[i]
+    return np.asarray(out, dtype=float)
+
+
 def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float, neighbours: tuple,
-           turns: np.ndarray) -> list[tuple[int, int, MergedRun | None]]:
+           turns: np.ndarray, *, by_bound: bool) -> list[tuple[int, int, MergedRun | None]]:
     """Fit lines ``lo..hi-1``; split at the sharpest junction when no curve fits."""
     if hi - lo < DENSE_MIN_SEGMENTS:
         return [(k, k + 1, None) for k in range(lo, hi)]
@@ -378,12 +416,12 @@ def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float
         spl = fit_run(points, tolerance)
     if spl is not None:
         u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-        run = MergedRun(pieces=_pieces(spl, points[0], points[-1]), vertex_u=u,
+        run = MergedRun(pieces=_pieces(spl, points[0], points[-1], by_bound=by_bound), vertex_u=u,
                         blocks=np.asarray(blocks[lo:hi], dtype=np.int64))
         return [(lo, hi, run)]
     k = lo + 1 + int(np.argmax(turns[lo:hi - 1]))
-    return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns)
-            + _merge(segments, k, hi, blocks, tolerance, (None, after), turns))
+    return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns, by_bound=by_bound)
+            + _merge(segments, k, hi, blocks, tolerance, (None, after), turns, by_bound=by_bound))
 
 
 def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndarray:
@@ -391,10 +429,14 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
 
     A junction turning by up to :data:`DENSE_MAX_TURN` may; a sharper one is a corner and ends the run. With
     ``curvature_continuous`` (the S-curve) a junction turning by up to :data:`DENSE_MAX_CURVE_TURN` may too when
-    both neighbouring junctions turn by at least :data:`CURVE_TURN_SHARE` of its turn (a chain's first and last
-    junctions have one neighbour and keep the cap): every chord of a tight curve turns alike (chords of 50 um on
-    a radius of 0.24 mm turn by 0.21 rad each, a helical entry as CAM writes it), where a corner is one sharp
-    turn between gentle ones.
+    its two neighbouring junctions together turn by at least :data:`CURVE_TURN_SHARE` of its turn (a chain's
+    first and last junctions have one neighbour and keep the cap): the chords of a tight curve all turn (chords
+    of 50 um on a radius of 0.24 mm turn by 0.21 rad each, a helical entry as CAM writes it), where a corner is
+    one sharp turn between gentle ones. The sum, not each neighbour, because the rounded end points of chords
+    of 10-50 um (3 decimals, as FreeCAD writes the fillets of a profile of radius 0.05-0.1 mm) make their turns
+    alternate, 0.11, 0.23, 0.22, 0.19, 0.33: each neighbour alone would cut such a fillet into runs too short to
+    merge, left to per-junction clothoid blends at a third of the speed (our reading; the fit's tolerance check
+    keeps the path within the tolerance whatever joins a run).
 
     Our reading (no control documents its look-ahead's thresholds): the per-junction blend of such chords is a
     clothoid pair within half of each chord, whose curvature rises from zero to about ``2 theta / L`` over
@@ -407,7 +449,7 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
     inside = turns <= DENSE_MAX_TURN
     if curvature_continuous and len(turns) > 2:
         with np.errstate(invalid="ignore"):
-            shared = np.minimum(turns[:-2], turns[2:]) >= CURVE_TURN_SHARE * turns[1:-1]
+            shared = turns[:-2] + turns[2:] >= CURVE_TURN_SHARE * turns[1:-1]
             inside[1:-1] |= (turns[1:-1] <= DENSE_MAX_CURVE_TURN) & shared
     return inside
 
@@ -469,7 +511,8 @@ def merge_dense_runs(
         before = segments[k - 1] if k > 0 and isinstance(segments[k - 1], (Line, Arc)) else None
         after = segments[e] if e < n and isinstance(segments[e], (Line, Arc)) else None
         tol = tolerances[k] if e - k > 1 else 0.0
-        spans.extend(_merge(segments, k, e, blocks, tol, (before, after), turns) if tol > 0
+        spans.extend(_merge(segments, k, e, blocks, tol, (before, after), turns, by_bound=curvature_continuous)
+                     if tol > 0
                      else [(i, i + 1, None) for i in range(k, e)])
         k = e
     out: list = []

@@ -15,7 +15,10 @@ limits of the two in-plane axes:
 * centripetal share: ``v_p^2 / R <= CENTRIPETAL_SHARE * A`` (this caps the feed on small arcs);
 * tangential: ``sqrt(a_p^2 + (v_max,p^2/R)^2) <= A``;
 * jerk (S-curve only): ``v_p^3/R^2 <= JERK_SPEED_SHARE * J``,
-  ``3 v_p a_p / R <= JERK_ACCEL_SHARE * J``, and ``j_p`` takes what is left of ``J``.
+  ``3 v_p a_p / R <= JERK_ACCEL_SHARE * J``, and ``j_p`` takes what is left of ``J``: the norm of the jerk
+  vector, whose tangential and normal parts are orthogonal, ``(|j_p| + v_p^3/R^2)^2 + (3 v_p a_p / R)^2 <=
+  J^2``, so ``|j_p| <= sqrt(J^2 - (3 v_p a_p / R)^2) - v_p^3/R^2`` (the sum of the parts' magnitudes, which
+  the bound used before, left ``j_p`` less).
 
 The helix axis sees ``v sin(alpha)``, ``a sin(alpha)``, ``j sin(alpha)`` and is bounded like a
 line. The bounds are therefore sufficient (not necessary): no axis can exceed its limit
@@ -24,7 +27,9 @@ anywhere on the arc, whatever the orientation of the arc.
 Clothoid blends (:class:`toolpaths.ClothoidPair`, curvature ``k`` up to ``k_max`` and
 ``|dk/ds| = c``) lie in one plane of any orientation: the axis share of that plane is
 ``m_i = |(u_in_i, w_in_i)|``, the jerk vector ``(j - k^2 v^3) t + (3 k v a + c v^3) n``, and the
-same shares apply with ``v^3 (k_max^2 + c) <= JERK_SPEED_SHARE * J``; the velocity bound uses
+same shares apply with ``v^3 |(k_max^2, c)| <= JERK_SPEED_SHARE * J`` (the tangential ``k^2 v^3`` and the
+normal ``c v^3`` are orthogonal: the norm, not their sum; our reading of the vector bound above), ``j`` within
+``sqrt(J^2 - (3 k v a + c v^3)^2) - k^2 v^3``; the velocity bound uses
 the largest ``|t_i|`` over the turn.
 
 The axes beyond X, Y, Z, rotary a, b, c and secondary linear u, v, w (:func:`extra_path_bounds`),
@@ -280,14 +285,15 @@ def curved_speed_bound(
 ) -> np.ndarray:
     """Largest in-plane speed [mm/s] on a curve of curvature ``kappa`` [1/mm] and ``|dk/ds|`` [1/mm^2].
 
-    ``v^2 kappa <= CENTRIPETAL_SHARE A`` and, jerk limited, ``v^3 (kappa^2 + dkappa) <=
-    JERK_SPEED_SHARE J`` (``A``, ``J``: in-plane acceleration [mm/s^2] and jerk [mm/s^3] bounds).
+    ``v^2 kappa <= CENTRIPETAL_SHARE A`` and, jerk limited, ``v^3 |(kappa^2, dkappa)| <=
+    JERK_SPEED_SHARE J`` (``A``, ``J``: in-plane acceleration [mm/s^2] and jerk [mm/s^3] bounds): at constant
+    speed the jerk vector is ``-k^2 v^3 t + (dk/ds)_perp v^3 n``, two orthogonal parts, so its norm.
     """
     kappa, dkappa = np.asarray(kappa, float), np.asarray(dkappa, float)
     with np.errstate(divide="ignore"):
         v = np.sqrt(CENTRIPETAL_SHARE * np.asarray(A, float) / kappa)
         if jerk_limited:
-            v = np.minimum(v, np.cbrt(JERK_SPEED_SHARE * np.asarray(J, float) / (kappa * kappa + dkappa)))
+            v = np.minimum(v, np.cbrt(JERK_SPEED_SHARE * np.asarray(J, float) / np.hypot(kappa * kappa, dkappa)))
     return v
 
 
@@ -296,7 +302,8 @@ def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool):
 
     In the tangent/normal frame the in-plane acceleration is ``(a_p, k v_p^2)`` and the jerk
     ``(j_p - k^2 v_p^3, 3 k v_p a_p + k' v_p^3)``; each in-plane axis component is bounded by the
-    norm, so the bounds hold whatever the orientation of the plane (module docstring).
+    norm, so the bounds hold whatever the orientation of the plane (module docstring): ``j_p`` is what keeps
+    ``(|j_p| + k^2 v_p^3)^2 + (3 k v_p a_p + k' v_p^3)^2 <= J_p^2`` at the bounds ``v``, ``a``.
     """
     v = np.minimum(v, curved_speed_bound(kappa, dkappa, A_p, J_p, jerk_limited=jerk_limited) / cos_a)
     vp = v * cos_a
@@ -304,7 +311,8 @@ def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool):
     a = np.sqrt(np.maximum(A_p * A_p - a_n * a_n, 0.0)) / cos_a
     if jerk_limited:
         a = np.minimum(a, JERK_ACCEL_SHARE * J_p / (3.0 * vp * kappa * cos_a))
-        j_left = J_p - vp**3 * (kappa * kappa + dkappa) - 3.0 * vp * (a * cos_a) * kappa
+        normal = 3.0 * vp * (a * cos_a) * kappa + dkappa * vp**3
+        j_left = np.sqrt(np.maximum(J_p * J_p - normal * normal, 0.0)) - vp**3 * kappa * kappa
         j = np.maximum(j_left, 0.0) / cos_a
     else:
         j = np.full(len(v), np.inf)

@@ -187,7 +187,7 @@ def test_dense_arc_between_tangent_lines_runs_like_the_arc(profile):
     arc = head + "G3 X30 Y10 I0 J10\nG1 X30 Y30\n"
     sp = interpolate(parse_program(dense), profile=profile)
     sp_arc = interpolate(parse_program(arc), profile=profile)
-    assert sp.duration <= 1.02 * sp_arc.duration  # measured 1.006 (trapezoid), 1.008 (S-curve)
+    assert sp.duration <= 1.02 * sp_arc.duration  # measured 1.006 (trapezoid), 1.011 (S-curve)
     assert _distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
 

@@ -123,15 +123,15 @@ def test_small_radius_helix_trapezoid_is_unchanged():
 
 def test_curve_junctions_keep_isolated_corners():
     """A junction sharper than DENSE_MAX_TURN stays inside a run only on a tight curve (its neighbours turn
-    alike) and only under the S-curve; an isolated corner, one sharper than DENSE_MAX_CURVE_TURN and one next
-    to an arc (NaN) end the run."""
+    alike: both neighbours together turn at least CURVE_TURN_SHARE of it) and only under the S-curve; an isolated
+    corner, one sharper than DENSE_MAX_CURVE_TURN and one next to an arc (NaN) end the run."""
     turns = np.array([0.01, 0.01, 0.3, 0.01, 0.21, 0.25, 0.19, 0.23, 0.6, 0.6, 0.6, 0.2, np.nan, 0.3, 0.3])
     want_trapezoid = turns <= DENSE_MAX_TURN
     assert np.array_equal(curve_junctions(turns, curvature_continuous=False), want_trapezoid)
     got = curve_junctions(turns, curvature_continuous=True)
-    # 0.3 between 0.01s: a corner; 0.21 after a 0.01: the curve's first junction stays out (its neighbours must
-    # both turn alike); 0.6: sharper than DENSE_MAX_CURVE_TURN; 0.3 next to an arc or at the chain's end
-    assert got.tolist() == [True, True, False, True, False, True, True, True, False, False, False, True, False,
+    # 0.3 between 0.01s: a corner (0.02 < 0.15); 0.21 after a 0.01, before 0.25: the curve's first junction
+    # (0.26 >= 0.105); 0.6: sharper than DENSE_MAX_CURVE_TURN; 0.3 next to an arc or at the chain's end
+    assert got.tolist() == [True, True, False, True, True, True, True, True, False, False, False, True, False,
                             False, False]
 
 
