@@ -38,9 +38,9 @@ def test_mapping_read_from_names(header, mapping):
 
 @pytest.mark.parametrize(("header", "why"), [
     (["Zeit", "Soll 1", "Ist 1", "Soll 2", "Ist 2"],
-     "axis x: several columns could be the same position: ['Soll 1', 'Soll 2']"),
+     "axis x: several columns could be the commanded position: ['Soll 1', 'Soll 2']"),
     (["time", "x_cmd", "x_cmd_filtered", "x_fb"],
-     "axis x: several columns could be the same position: ['x_cmd', 'x_cmd_filtered']"),
+     "axis x: several columns could be the commanded position: ['x_cmd', 'x_cmd_filtered']"),
     (["t", "time", "x_cmd", "x_fb"], "several columns are named as time: ['t', 'time']"),
     (["x_cmd", "x_fb"], "no column is named as time (a file without one needs --sample-time S, the sampling period)"),
     (["Sample #", "x_cmd", "x_fb"], "no column is named as time ('Sample #' counts samples: give --sample-time S, "
@@ -96,7 +96,7 @@ def test_unreadable_header_asks_for_the_mapping_and_says_why(tmp_path):
     f.write_text("Zeit [ms];Soll 1;Ist 1;Soll 2;Ist 2\n"
                  + "".join(f"{a * 1e3:.0f};{b:.6f};{c:.6f};{b:.6f};{c:.6f}\n" for a, b, c in zip(t, ref, act)))
     with pytest.raises(CaptureError, match="give --columns t=NAME,x_ref=NAME,x=NAME; columns found: .*\\(not read "
-                                           "from the names: axis x: several columns could be the same position"):
+                                           "from the names: axis x: several columns could be the commanded position"):
         read_capture(f)
     cap = read_capture(f, columns={"t": "Zeit [ms]", "x_ref": "Soll 2", "x": "Ist 2"})
     np.testing.assert_allclose(cap.t, t, atol=1e-12)

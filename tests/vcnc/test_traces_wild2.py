@@ -420,7 +420,7 @@ def test_twincat_plc_variables_named_ambiguously_still_ask(tmp_path):
     f.write_text("\n".join(lines) + "\n")
     with pytest.raises(CaptureError, match=r"channels found: \['MAIN.fSollPos', 'MAIN.fSollPosFilt', "
                                            r"'MAIN.fIstPos'\] \(not read from the names: axis x: several columns "
-                                           r"could be the same position"):
+                                           r"could be the commanded position"):
         read_capture(f)
 
 

@@ -51,8 +51,9 @@ def test_signal_path_names(header, mapping):
      "commanded and a measured position"),
     # two encoders of an ODrive GUI export: a question, not a guess
     (["time", "odrive0.axis0.encoder.pos_abs", "odrive0.axis0.encoder.second_pos_abs"],
-     "axis x: several columns could be the same position: ['odrive0.axis0.encoder.pos_abs', "
-     "'odrive0.axis0.encoder.second_pos_abs']"),
+     "axis x: several columns could be the measured position: ['odrive0.axis0.encoder.pos_abs', "
+     "'odrive0.axis0.encoder.second_pos_abs']; none is named as the commanded position, which identification "
+     "needs beside the measured one"),
     (["timestamp_ms", "setpoint_rpm", "actual_rpm"],
      "no pair of a commanded and a measured position is named (other quantities: ['setpoint_rpm', 'actual_rpm']); "
      "a position trace needs a commanded and a measured position"),

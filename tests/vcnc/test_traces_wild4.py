@@ -79,7 +79,7 @@ def test_an_array_index_is_no_unit_and_numbers_the_axis():
               "'CommandedMachinePosCorr[2]', 'SActMachinePos[1]', 'SActMachinePos[2]', 'SSetPos[1]', 'SSetPos[2]']): "
               "give --columns for one")
     assert columns_from_names(_PA[:3], period_known=True) == (
-        None, "axis x: several columns could be the same position: ['SSetPos[1]', 'CommandedMachinePosCorr[1]']")
+        None, "axis x: several columns could be the commanded position: ['SSetPos[1]', 'CommandedMachinePosCorr[1]']")
     assert columns_from_names(["SSetPos[3]", "SActMachinePos[3]", "PathVelocity"], period_known=True) == (
         {"x_ref": "SSetPos[3]", "x": "SActMachinePos[3]"}, "")
 

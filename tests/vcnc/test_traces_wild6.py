@@ -58,7 +58,7 @@ def test_ecp_export_with_two_encoders_asks_which(tmp_path):
         read_capture(f)
     msg = str(err.value)
     assert ("columns found: ['Sample', 'Time', 'Commanded Pos', 'Encoder 1 Pos', 'Encoder 2 Pos', 'Control Effort'] "
-            "(not read from the names: axis x: several columns could be the same position: ['Encoder 1 Pos', "
+            "(not read from the names: axis x: several columns could be the measured position: ['Encoder 1 Pos', "
             "'Encoder 2 Pos'])") in msg
     cap = read_capture(f, columns={"t": "Time", "x_ref": "Commanded Pos", "x": "Encoder 2 Pos"}, unit="1um")
     np.testing.assert_allclose(cap.measured[:, 0], np.array([e // 2 for e in enc]) * 1e-3, atol=1e-12)

@@ -260,14 +260,29 @@ def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] 
         r = roles[axis]
         second = r["act"] or r["lag"]
         if len(r["ref"]) > 1 or len(second) > 1:
-            many = r["ref"] if len(r["ref"]) > 1 else second
-            return None, f"axis {axis}: several columns could be the same position: {many}"
+            return None, _several(axis, r)
         if r["ref"] and second:
             mapping[f"{axis}_ref"] = r["ref"][0]
             mapping[axis if r["act"] else axis + LAG_SUFFIX] = second[0]
     if len(mapping) == len(times):
         return None, _no_pair(header, times, found)
     return mapping, ""
+
+
+def _several(axis: str, roles: dict[str, list[str]]) -> str:
+    """Why an axis with several candidates for one role is a question: which role, and a role no column
+    is named as (two encoders and no command are no pair to choose from)."""
+    if len(roles["ref"]) > 1:
+        many, role = roles["ref"], "the commanded position"
+    else:
+        many = roles["act"] or roles["lag"]
+        role = "the measured position" if roles["act"] else "the following error"
+    why = f"axis {axis}: several columns could be {role}: {many}"
+    if not roles["ref"]:
+        why += "; none is named as the commanded position, which identification needs beside the measured one"
+    elif not (roles["act"] or roles["lag"]):
+        why += "; none is named as the measured position"
+    return why
 
 
 def _without_prefix(header: Sequence[str]) -> list[str] | None:
