@@ -165,6 +165,8 @@ class _Gen:
             self.emit(self.r.choice(["L M140 MB MAX", "L Z+5 R0 FMAX M140 MB 50", "L M140 MB+20 F500"]))
         else:
             self.emit(f"L Z{_n(self.r.choice([-5, 0, 20]))} R0 FMAX {m}")
+        if self.r.random() < 0.5:  # on from where it left the tool: incremental
+            self.emit(f"L IX{_n(self.r.choice([5, -8]))} IY+2 R0 FMAX")
         self.known = False
 
     def datum(self) -> None:
@@ -174,6 +176,8 @@ class _Gen:
         self.emit("CYCL DEF 7.0 DATUM SHIFT")
         self.emit(f"CYCL DEF 7.1 {p}X{_n(dx)}")
         self.emit(f"CYCL DEF 7.2 {p}Y{_n(dy)}")
+        if self.r.random() < 0.3:
+            self.emit(f"CYCL DEF 7.3 {p}Z{_n(self.r.choice([-2, 5]))}")
         self.known = False  # the shift's absolute total is the reader's and the reference's to work out
         self.cc = None  # a pole set before the shift is set again after it (which datum an older pole keeps:
         # no manual says, see the report)
@@ -290,7 +294,12 @@ class _Gen:
         if r.random() < 0.4:
             sweep = round(sweep, 4)
             iz = f" IZ{_n(r.choice([-1, -2]))}" if helix and r.random() < 0.3 else ""
-            self.emit(f"CP IPA{_n(sweep)}{iz} {dr}{self.feed()}")
+            if r.random() < 0.3 and not iz:  # the end angle absolute: PA (the arc runs to it in the sense DR)
+                pa = round(math.degrees(a0) + sweep, 4)
+                self.emit(f"CP PA{_n(pa)} {dr}{self.feed()}")
+                sweep = pa - math.degrees(a0)
+            else:
+                self.emit(f"CP IPA{_n(sweep)}{iz} {dr}{self.feed()}")
             if iz:
                 self.pos[2] += float(iz.strip()[2:])
             rad = 25 * k
@@ -389,6 +398,7 @@ class _Gen:
             self.lbl += 1
             self.emit(f"LBL {n}")
             self.emit(f"L IZ-{r.choice([1, 1.5])} R0{self.feed()}")
+            self.cc = None  # a pole set in the section is another at its next run's start
         else:
             self.emit(f"L Z{_n(depth)} R0{self.feed()}")
         self.pos, self.known, self.heading = [pre[0], pre[1], depth or 0.0], True, None
@@ -505,6 +515,20 @@ class _Gen:
         self.emit(f"CALL LBL {n} REP{r.choice([1, 2, 3])}")
         self.known = False
 
+    def counted_loop(self) -> None:
+        """A loop by a counter and a conditional jump (``FN 12: IF +Q60 LT +3 GOTO LBL n``, or FN 9/11)."""
+        r = self.r
+        n, k, times = self.lbl, r.choice([60, 61]), r.choice([2, 3])
+        self.lbl += 1
+        self.emit(f"FN 0: Q{k} = +0")
+        self.emit(f"LBL {n}")
+        self.emit(f"L IX{_n(r.choice([2, -3]))} IY{_n(r.choice([0, 1.5]))} R0{self.feed()}")
+        self.emit(f"FN 1: Q{k} = +Q{k} + +1")
+        jump = r.choice([f"FN 12: IF +Q{k} LT +{times} GOTO LBL {n}", f"FN 11: IF +{times} GT +Q{k} GOTO LBL {n}",
+                         f"FN 10: IF +Q{k} NE +{times} GOTO LBL {n}"])
+        self.emit(jump)
+        self.known = False
+
     def subprogram_call(self) -> None:
         n = 90 + len(self.subs)
         self.subs.append([[f"LBL {n}"], [f"L IX{_n(self.r.choice([3, -4]))} R0 F300"],
@@ -530,8 +554,10 @@ def generate(seed: int) -> str:
             g.drilling()
         elif k < 0.52:
             g.repeated()
-        elif k < 0.58:
+        elif k < 0.55:
             g.subprogram_call()
+        elif k < 0.58:
+            g.counted_loop()
         elif k < 0.66:
             g.datum()
         elif k < 0.72:
