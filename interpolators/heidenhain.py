@@ -316,6 +316,7 @@ class Machine:
         self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float | dict[str, float]] = {}
+        self.incomplete_cycle: int | None = None  # an old cycle whose CYCL DEF n.0 came, its last line not yet
         self.pattern: list[dict[str, float]] | None = None
         self.params = QParameters()
         self.strings = StringParameters()  # QS (interpolators.heidenhain_strings)
@@ -1125,7 +1126,10 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         return
     if sub in (None, 0):
         if number in LEGACY_CYCLES:
-            m.cycle_items = {}
+            # a new machining cycle replaces the last from its first line; it is defined by its last line, so
+            # until then a call has none (not the one before, our reading: the TNC's editor writes every line)
+            m.cycle_items, m.cycle, m.cycle_source, m.cycle_program = {}, None, None, None
+            m.incomplete_cycle = number
         return
     if number in TRANSFORM_CYCLES:
         if sub == 1:
@@ -1155,6 +1159,7 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
     if number in (4, 5):  # POCKET MILLING, CIRCULAR POCKET: lines with a feed and a direction besides the value
         m.cycle_items[sub] = pocket_item(number, sub, rest, where, m.params, column0=col)
         if sub == last:
+            m.incomplete_cycle = None
             m.cycle = old_pocket(number, m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                  column=blk.column)
         return
@@ -1183,6 +1188,8 @@ def _value_line(number: int, sub: int, rest: str, m: Machine, where: Where, blk:
         if value is None:
             where.fail(f"cycle {number}.{sub} without a value", column=col, text=blk.code, expected="a number")
         m.cycle_items[sub] = value
+        if sub == LEGACY_CYCLES[number]:
+            m.incomplete_cycle = None
         if sub == LEGACY_CYCLES[number] and number == 1:
             m.cycle = pecking_cycle(m.cycle_items, feed_scale=m.feed_scale, scale=m.scale, where=where,
                                     column=blk.column)

@@ -13,7 +13,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.heidenhain_contours import ROUGHING_CYCLES, ContourTrain, PilotDrill, RoughOut, SideFinish
 from interpolators.heidenhain_cycle_moves import active_cycle, axis_move, run_hole, run_surface, surface_level
-from interpolators.heidenhain_cycles import MACHINING_CYCLES
+from interpolators.heidenhain_cycles import LEGACY_CYCLES, MACHINING_CYCLES
 from interpolators.heidenhain_sl import contour_train, pilot_drill, rough_out, side_finish
 from interpolators.heidenhain_surfaces import RuledSurface, SurfaceCycle
 from interpolators.heidenhain_targets import plane_coords, program_target
@@ -79,8 +79,7 @@ def position_call(words: list[Word], m: Machine, where: Where, blk: SourceBlock)
         _program_cycle_elsewhere(where, blk)
     m.refresh_cycle(where, blk.column)
     if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before CYCL CALL POS")
+        _no_cycle(m, where, blk, "CYCL CALL POS")
     _no_contour_train(m, where, blk)
     seen = {w.key: w for w in words}
     for a in "XYZ":
@@ -124,8 +123,7 @@ def cycle_call(m: Machine, where: Where, blk: SourceBlock, *, hole: np.ndarray |
         return
     m.refresh_cycle(where, blk.column)
     if m.cycle is None:
-        where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
-                   expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before M99 / CYCL CALL")
+        _no_cycle(m, where, blk, "M99 / CYCL CALL")
     if isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle, RuledSurface)):
         if hole is not None or surface_shift:
             _no_contour_train(m, where, blk)
@@ -172,3 +170,14 @@ def _no_contour_train(m: Machine, where: Where, blk: SourceBlock) -> None:
         name = f"{number} {ROUGHING_CYCLES.get(number, 'CONTOUR TRAIN')}"
         where.fail(f"cycle {name} at positions (CYCL CALL POS / PAT) is not supported", column=blk.column,
                    text=blk.code, expected="CYCL CALL or M99 after the SL cycle (the contour gives the positions)")
+
+
+def _no_cycle(m: Machine, where: Where, blk: SourceBlock, call: str) -> None:
+    """The error of a cycle call without a machining cycle, naming an old cycle whose definition stopped short."""
+    n = m.incomplete_cycle
+    if n is not None:
+        last = LEGACY_CYCLES[n]
+        where.fail(f"cycle call after an incomplete CYCL DEF {n} (its lines {n}.1 .. {n}.{last} not all given)",
+                   column=blk.column, text=blk.code, expected=f"CYCL DEF {n}.0 .. {n}.{last} before {call}")
+    where.fail("cycle call without a machining cycle", column=blk.column, text=blk.code,
+               expected=f"a CYCL DEF {', '.join(map(str, MACHINING_CYCLES))} before {call}")

@@ -354,7 +354,7 @@ class _Tnc:
         if self.feed_dwell is not None and kind not in ("rapid", "dwell"):
             raise ReferenceError("a feed move under FUNCTION FEED DWELL other than a line L (an arc, a cycle's)")
         if self.rounding is not None and kind != "dwell":
-            _corner(self, end, centre)
+            _corner(self, end, centre, kind == "arc_ccw")
         start = self.pos.copy()
         if self.comp and self.radius > 0 and kind != "dwell":
             # an arc whose written end lies off its circle by a rounding (Y+62.679 for 62.6795): that much slack
@@ -668,10 +668,10 @@ def _radius_arc(t: _Tnc, line: int, w: dict) -> None:
     """``CR X.. Y.. R.. DR..``: the arc of radius |R| to the end point; R > 0 the one under 180 degrees, R < 0
     the one over (TNC 426/430 manual, "Circular path CR with defined radius"); DR+ counter-clockwise."""
     _comp_words(t, w)
-    if t.scl != 1 or (t.factors != 1).any():
-        raise ReferenceError("CR under scaling")
+    if t.factors[0] != t.factors[1]:
+        raise ReferenceError("CR under an unequal scaling of the plane")
     start, end = t.pos.copy(), t.target(w)
-    r = abs(w["R"]) * t.scale
+    r = abs(w["R"]) * t.scale * t.scl * float(t.factors[0])  # cycle 11/26 scale the circle with its ends
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
     chord = (end - start)[:2]
     c = float(np.hypot(*chord))
@@ -715,40 +715,116 @@ def _start_corner(t: _Tnc, line: int, kind: str, w: dict) -> None:
     if t.last_dir is None or not t.out or t.rounding is not None:
         raise ReferenceError(f"{kind} without a preceding line")
     size = w["R"] if kind == "RND" else w["LEN"]
-    t.rounding = (kind, abs(size) * t.scale, line, len(t.out) - 1)
+    if t.factors[0] != t.factors[1]:
+        raise ReferenceError(f"{kind} under an unequal scaling of the plane")
+    t.rounding = (kind, abs(size) * t.scale * t.scl * float(t.factors[0]), line, len(t.out) - 1)
 
 
-def _corner(t: _Tnc, end: np.ndarray, centre) -> None:
-    """Cut the waiting corner between the last line (direction a) and the next element from the corner P
-    to ``end`` (a line, direction b): RND the arc of radius r tangent to both, r tan(theta/2) from P on
-    each; CHF the line between the points ``size`` from P on each (TNC 426/430 manual, "Rounding corners
-    RND", "Chamfer CHF": the chamfer side length)."""
+def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
+    """Cut the waiting corner between the last element (direction a at the corner P) and the next element
+    from P to ``end`` (a line, or an arc about ``centre``): RND the arc of radius r tangent to both, its centre
+    where the two elements offset by r into the corner meet nearest P (for two lines r tan(theta/2) from P on
+    each); CHF the line between the points ``size`` from P on each line (TNC 426/430 manual, "Rounding corners
+    RND": "The rounding arc is tangential to the preceding and following contour elements", "Chamfer CHF": the
+    chamfer side length, between two straight lines)."""
     kind, size, line, row = t.rounding
     t.rounding = None
     prev = t.out[row]
     p = t.pos.copy()
     d = (end - p)[:2]
-    if centre is not None or not np.hypot(*d) > 0 or not np.allclose(prev.end, p) or prev.centre is not None \
-            or (prev.element is not None and prev.element[0] != "line"):
+    prev_centre = prev.centre if prev.centre is not None else (
+        prev.element[1] if prev.element is not None and prev.element[0] == "arc" else None)
+    if not np.hypot(*d) > 0 or not np.allclose(prev.end, p) or abs(end[2] - p[2]) > 1e-12 \
+            or (kind == "CHF" and (centre is not None or prev_centre is not None)):
         raise ReferenceError(f"{kind} next to an arc or a move out of the plane")
-    a, b = t.last_dir[:2], d / np.hypot(*d)
+    a = t.last_dir[:2]
+    if centre is None:
+        b = d / np.hypot(*d)
+    else:
+        v = (p - centre)[:2]
+        b = (np.array([-v[1], v[0]]) if ccw_next else np.array([v[1], -v[0]])) / np.hypot(*v)
     turn = float(a[0] * b[1] - a[1] * b[0])
-    theta = math.acos(max(-1.0, min(1.0, float(a @ b))))
-    if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * t.side > 0:
+    side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes (a mirror swaps RL/RR)
+    if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
         return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
-    dist = size * math.tan(theta / 2) if kind == "RND" else size
-    t1, t2 = p.copy(), p.copy()
-    t1[:2], t2[:2] = p[:2] - a * dist, p[:2] + b * dist
+    if kind == "CHF":
+        t1, t2 = p.copy(), p.copy()
+        t1[:2], t2[:2] = p[:2] - a * size, p[:2] + b * size
+    else:
+        if abs(turn) < 1e-9:
+            raise ReferenceError("RND where the elements meet tangentially")
+        t1, t2, fc = _fillet(p[:2], a, prev_centre, b, centre, size, 1.0 if turn > 0 else -1.0)
+        t1, t2 = np.array([*t1, p[2]]), np.array([*t2, p[2]])
     t.out[row] = dataclasses.replace(prev, end=t1, element=None if prev.element is None else
-                                     ("line", prev.element[1], t1.copy()))
+                                     ("line", prev.element[1], t1.copy()) if prev.element[0] == "line"
+                                     else prev.element)
     t.pos = t1
     if kind == "CHF":
         t.emit(line, "feed", t2)
         return
-    ccw = turn > 0
-    c = t1.copy()
-    c[:2] = t1[:2] + size * (np.array([-a[1], a[0]]) if ccw else np.array([a[1], -a[0]]))
-    t.emit(line, "arc_ccw" if ccw else "arc_cw", t2, centre=c)
+    t.emit(line, "arc_ccw" if turn > 0 else "arc_cw", t2, centre=np.array([*fc, p[2]]))
+
+
+def _offset_curve(p: np.ndarray, tangent: np.ndarray, centre, s: float, r: float) -> tuple:
+    """The element through ``p`` (tangent there), offset by r to the side ``s`` (+1 left): ('line', point,
+    direction) or ('circle', centre, radius)."""
+    left = np.array([-tangent[1], tangent[0]])
+    if centre is None:
+        return "line", p + s * r * left, tangent
+    c = np.asarray(centre, float)[:2]
+    radius = float(np.hypot(*(p - c)))
+    inward = float(left @ (c - p)) > 0  # the left side faces the centre (counter-clockwise)
+    return "circle", c, radius - s * r if inward else radius + s * r
+
+
+def _meet(e1: tuple, e2: tuple) -> list[np.ndarray]:
+    """The points where two offset curves (:func:`_offset_curve`) meet."""
+    if e1[0] == "circle" and e2[0] == "line":
+        e1, e2 = e2, e1
+    if e1[0] == "line" and e2[0] == "line":
+        (_, p1, d1), (_, p2, d2) = e1, e2
+        den = d1[0] * d2[1] - d1[1] * d2[0]
+        if abs(den) < 1e-12:
+            return []
+        u = ((p2[0] - p1[0]) * d2[1] - (p2[1] - p1[1]) * d2[0]) / den
+        return [p1 + u * d1]
+    if e1[0] == "line":
+        (_, p1, d1), (_, c, r) = e1, e2
+        f = p1 - c
+        bq, cq = float(f @ d1), float(f @ f) - r * r
+        disc = bq * bq - cq
+        return [] if disc < 0 else [p1 + (-bq + k * math.sqrt(disc)) * d1 for k in (-1.0, 1.0)]
+    (_, c1, r1), (_, c2, r2) = e1, e2
+    dv = c2 - c1
+    dist = float(np.hypot(*dv))
+    if not dist > 0:
+        return []
+    x = (dist * dist + r1 * r1 - r2 * r2) / (2 * dist)
+    h2 = r1 * r1 - x * x
+    if h2 < 0:
+        return []
+    u = dv / dist
+    base, n = c1 + x * u, np.array([-u[1], u[0]])
+    return [base + k * math.sqrt(h2) * n for k in (-1.0, 1.0)]
+
+
+def _foot(q: np.ndarray, p: np.ndarray, tangent: np.ndarray, centre) -> np.ndarray:
+    """The point of the element through ``p`` nearest ``q`` (its touch point with the fillet about q)."""
+    if centre is None:
+        return p + float((q - p) @ tangent) * tangent
+    c = np.asarray(centre, float)[:2]
+    radius = float(np.hypot(*(p - c)))
+    return c + radius * (q - c) / np.hypot(*(q - c))
+
+
+def _fillet(p: np.ndarray, a: np.ndarray, c1, b: np.ndarray, c2, r: float, s: float) -> tuple:
+    """Touch points on the element before and after the corner ``p`` and the centre of the fillet of radius r
+    inside the corner (side ``s``: +1 the contour turns left)."""
+    near = _meet(_offset_curve(p, a, c1, s, r), _offset_curve(p, b, c2, s, r))
+    if not near:
+        raise ReferenceError("RND radius does not fit between the elements")
+    fc = min(near, key=lambda q: float(np.hypot(*(q - p))))
+    return _foot(fc, p, a, c1), _foot(fc, p, b, c2), fc
 
 
 def _polar_point(t: _Tnc, p: np.ndarray, r: float, a: float, w: dict) -> np.ndarray:
@@ -809,26 +885,27 @@ def _depart(t: _Tnc, line: int, w: dict, form: str = "LT") -> None:
     tangent to the last element, turning counter-clockwise for RL with R > 0 or RR with R < 0, through
     CCA (R is the radius of the tool's path: iTNC 530 manual, APPR LCT, "the radius then suffices to
     completely define the tool path")."""
-    if t.last_dir is None or t.scl != 1 or not np.all(t.factors == 1):
-        raise ReferenceError("DEP without a preceding line (or under scaling)")
+    if t.last_dir is None or t.factors[0] != t.factors[1]:
+        raise ReferenceError("DEP without a preceding line (or under an unequal scaling of the plane)")
+    k = t.scale * t.scl * float(t.factors[0])  # LEN and R scale with the contour (cycles 11/26); the tool does not
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes
     left = np.array([-t.last_dir[1], t.last_dir[0], 0.0])
     comp = t.comp and t.radius > 0
     if form == "LT":
-        end = t.pos + t.last_dir * w["LEN"] * t.scale
+        end = t.pos + t.last_dir * w["LEN"] * k
     elif form == "LN":  # PN is LEN plus the tool radius off the last contour point
-        end = t.pos + side * left * (w["LEN"] * t.scale + (t.radius if t.comp else 0.0))
+        end = t.pos + side * left * (w["LEN"] * k + (t.radius if t.comp else 0.0))
     else:  # the circle of the tool centre, from the tool beside the last contour point
         turn = 1.0 if (side > 0) == (w["R"] > 0) else -1.0
         tool = t.pos + (side * t.radius * left if comp else 0.0)
-        centre = tool + turn * abs(w["R"]) * t.scale * left
+        centre = tool + turn * abs(w["R"]) * k * left
         a = math.radians(turn * w["CCA"])
         v = tool - centre
         tool_end = centre + np.array([v[0] * math.cos(a) - v[1] * math.sin(a), v[0] * math.sin(a) + v[1] * math.cos(a),
                                       0])
         # the contour point whose offset is the tool's end: the tool inside the arc when it turns to its side
         out = 1.0 if (side > 0) == (turn > 0) else -1.0
-        end = centre + (tool_end - centre) * (1.0 + out * t.radius / (abs(w["R"]) * t.scale)) if comp else tool_end
+        end = centre + (tool_end - centre) * (1.0 + out * t.radius / (abs(w["R"]) * k)) if comp else tool_end
     if not _keeps_comp(w) and form != "CT":
         t.comp = False
     if form != "CT":
@@ -1195,8 +1272,11 @@ def _old_cycle(t: _Tnc, line: int, kind: str, p: dict, start: float) -> None:
         sgn = -1.0 if depth < 0 else 1.0
         surface = start + sgn * setup
         bottom = surface + depth
-        advance = 0.6 if abs(depth) * t.scale <= 30 else min(abs(depth) * t.scale / 50, 7.0)
-        advance /= t.scale
+        # the advanced stop distance is the control's own clearance in mm of the machine, not a programmed
+        # dimension: cycle 11/26 scaling leaves it (and the 30 mm rule's depth is the scaled one), our reading
+        k = t.scale * t.scl * float(t.factors[2])
+        advance = 0.6 if abs(depth) * k <= 30 else min(abs(depth) * k / 50, 7.0)
+        advance /= k
         levels = _levels(surface, bottom, sgn, plunge)
         for k, z in enumerate(levels):
             if k:

@@ -1,0 +1,588 @@
+"""Seeded random HEIDENHAIN TNC conversational programs, for checking the reader against the reference.
+
+Test code only. :func:`generate` writes a valid program of what real TNC programs mix: ``BEGIN PGM .. MM|INCH``,
+``BLK FORM``, ``TOOL DEF``/``TOOL CALL`` (DL/DR, S, F), ``L`` with absolute and incremental words, RL/RR
+compensated contours entered and left by ``L`` or ``APPR``/``DEP``, ``F``/``FMAX``/``F AUTO``, ``CC`` (absolute,
+incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/IPA), ``RND``/``CHF``, Q parameters
+(``FN 0``-``FN 4``, formulas) in coordinates and feeds, ``LBL``/``CALL LBL REP`` (nested, and a subprogram after
+``M30``), cycles 7 (absolute and incremental), 9, 32, drilling 1/200/203/205 called by ``CYCL CALL``, ``M99``,
+``CYCL CALL POS`` and ``CYCL CALL PAT``, ``M91``/``M92`` and ``M140 MB``.
+
+The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
+Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC``, a ``CR`` chord shorter
+than the diameter, corners of 25-155 degrees for ``RND``/``CHF``, elements of at least 8 units beside a tool
+radius of at most 3, ``IPA``/``IPR`` only after a polar block about the same pole.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+__all__ = ["generate"]
+
+
+#: Whole vectors of length 25 in all directions (C arc ends exactly on their circle).
+_RADII = sorted({(sx * u, sy * v) for u, v in ((0, 25), (7, 24), (15, 20), (20, 15), (24, 7), (25, 0))
+                 for sx in (-1, 1) for sy in (-1, 1)})
+
+
+def _n(v: float) -> str:
+    """A signed TNC number with at most 4 decimals."""
+    s = f"{v:+.4f}".rstrip("0").rstrip(".")
+    return "+0" if s in ("+", "-", "-0", "+0") else s
+
+
+class _Gen:
+    def __init__(self, seed: int):
+        self.r = random.Random(seed)
+        self.blocks: list[list[str]] = []
+        self.pos = [0.0, 0.0, 50.0]  # program coordinates, known after the first absolute XYZ move
+        self.known = False
+        self.exact = True  # the current point is a 4-decimal one the program states
+        self.q: dict[int, float] = {}
+        self.words = 0  # coordinates written through a Q parameter
+        self.cc: tuple[float, float] | None = None
+        self.polar_ok = False  # the last block was a polar move about the current pole
+        self.heading: float | None = None  # direction [deg] of the last contour element's end tangent
+        self.lbl = 1
+        self.subs: list[list[list[str]]] = []
+        self.feed_set = False
+        self.tool_feed = False
+        self.appr = False
+        self.comp = "R0"
+
+    # -- output --------------------------------------------------------------------------------
+    def emit(self, *lines: str) -> None:
+        self.blocks.append(list(lines))
+
+    def coord(self, axis: str, value: float, *, incremental: bool = False, q_ok: bool = True) -> str:
+        """``X+12.5`` or ``IX-3``, sometimes through a Q parameter set just before."""
+        pre = ("I" if incremental else "") + axis
+        if q_ok and self.r.random() < 0.15:
+            self.words += 1
+            k = 30 + self.words % 20  # a fresh number for each word of a block
+            self.emit(f"FN 0: Q{k} = {_n(round(value, 4))}")
+            self.q[k] = round(value, 4)
+            return f"{pre}+Q{k}"
+        return f"{pre}{_n(value)}"
+
+    def feed(self) -> str:
+        x = self.r.random()
+        if x < 0.5 and self.feed_set:
+            return ""
+        self.feed_set = True
+        if x < 0.6 and self.tool_feed:
+            return " F AUTO"
+        if x < 0.7 and self.q:
+            k = self.r.choice(sorted(self.q))
+            if self.q[k] > 1:
+                return f" FQ{k}"
+        return f" F{self.r.choice([100, 250, 500, 800, 1200])}"
+
+    # -- blocks --------------------------------------------------------------------------------
+    def header(self, unit: str) -> None:
+        radii = [0, 0.04, 0.1] if unit == "INCH" else [0, 1, 2.5, 3]
+        self.emit("BLK FORM 0.1 Z X+0 Y+0 Z-20")
+        self.emit("BLK FORM 0.2 X+100 Y+100 Z+0")
+        for t in (1, 2):
+            if self.r.random() < 0.7:
+                self.emit(f"TOOL DEF {t} L{_n(self.r.choice([0, 10, 35.5]))} R{_n(self.r.choice(radii))}")
+        self.tool_call()
+
+    def tool_call(self) -> None:
+        t = self.r.choice([1, 2])
+        words = f"TOOL CALL {t} Z S{self.r.choice([1000, 2500, 8000])}"
+        if self.r.random() < 0.4:
+            words += f" DL{_n(self.r.choice([-0.5, 0.2, 1]))}"
+        if self.r.random() < 0.3:
+            words += f" DR{_n(self.r.choice([0.01, 0.05]))}"
+        self.tool_feed = self.r.random() < 0.5
+        if self.tool_feed:
+            words += f" F{self.r.choice([300, 600])}"
+        self.emit(words)
+        self.feed_set = self.tool_feed
+        self.known = False
+
+    def q_params(self) -> None:
+        for _ in range(self.r.randint(1, 3)):
+            k = self.r.randint(1, 20)
+            kind = self.r.random()
+            a, b = self.r.choice([2, 5, 7.5, 10]), self.r.choice([1, 3, 4, 8])
+            if kind < 0.2:
+                self.emit(f"FN 0: Q{k} = {_n(a)}")
+                v = a
+            elif kind < 0.35:
+                self.emit(f"FN 1: Q{k} = {_n(a)} + {_n(b)}")
+                v = a + b
+            elif kind < 0.5:
+                self.emit(f"FN 2: Q{k} = {_n(a)} - {_n(b)}")
+                v = a - b
+            elif kind < 0.65:
+                self.emit(f"FN 3: Q{k} = {_n(a)} * {_n(b)}")
+                v = a * b
+            elif kind < 0.8:
+                self.emit(f"FN 4: Q{k} = {_n(a)} DIV {_n(b)}")
+                v = a / b
+            elif kind < 0.9 or not self.q:
+                self.emit(f"Q{k} = ({_n(a)} + {_n(b)}) * 2 - SQRT 16")
+                v = (a + b) * 2 - 4
+            else:  # from another parameter
+                j = self.r.choice(sorted(self.q))
+                if self.r.random() < 0.5:
+                    self.emit(f"FN 1: Q{k} = +Q{j} + {_n(b)}")
+                    v = self.q[j] + b
+                else:
+                    self.emit(f"Q{k} = ABS (Q{j} * 2) + {_n(b)} / 4")
+                    v = abs(self.q[j] * 2) + b / 4
+            self.q[k] = v
+
+    def move(self, *, rapid: bool | None = None) -> None:
+        """A plain R0 positioning or feed move, absolute or incremental, sometimes with Z."""
+        r = self.r
+        x, y = round(r.uniform(-40, 140), 4), round(r.uniform(-40, 140), 4)
+        z = r.choice([2, 5, 10, 50]) if (r.random() < 0.4 or not self.known) else self.pos[2]
+        words = []
+        for axis, v, i in (("X", x, 0), ("Y", y, 1), ("Z", z, 2)):
+            if not self.known or r.random() < 0.8:
+                inc = self.known and self.exact and r.random() < 0.3
+                words.append(self.coord(axis, v - self.pos[i] if inc else v, incremental=inc))
+        if not words:
+            words.append(self.coord("X", x))
+            y, z = self.pos[1], self.pos[2]
+        fast = r.random() < 0.5 if rapid is None else rapid
+        self.emit("L " + " ".join(words) + " R0" + (" FMAX" if fast else self.feed()))
+        self.pos = [x if any(w.lstrip("I").startswith("X") for w in words) else self.pos[0],
+                    y if any(w.lstrip("I").startswith("Y") for w in words) else self.pos[1],
+                    z if any(w.lstrip("I").startswith("Z") for w in words) else self.pos[2]]
+        self.known = True
+        self.exact = self.exact or len(words) == 3
+        self.heading = None
+
+    def machine_move(self) -> None:
+        m = self.r.choice(["M91", "M92", "M140"])
+        if m == "M140":
+            self.emit(self.r.choice(["L M140 MB MAX", "L Z+5 R0 FMAX M140 MB 50", "L M140 MB+20 F500"]))
+        else:
+            self.emit(f"L Z{_n(self.r.choice([-5, 0, 20]))} R0 FMAX {m}")
+        if self.r.random() < 0.5:  # on from where it left the tool: incremental
+            self.emit(f"L IX{_n(self.r.choice([5, -8]))} IY+2 R0 FMAX")
+        self.known = False
+
+    def datum(self) -> None:
+        inc = self.r.random() < 0.4
+        dx, dy = self.r.choice([5, 10, -7.5, 20]), self.r.choice([0, 3, -12])
+        p = "I" if inc else ""
+        self.emit("CYCL DEF 7.0 DATUM SHIFT")
+        self.emit(f"CYCL DEF 7.1 {p}X{_n(dx)}")
+        self.emit(f"CYCL DEF 7.2 {p}Y{_n(dy)}")
+        if self.r.random() < 0.3:
+            self.emit(f"CYCL DEF 7.3 {p}Z{_n(self.r.choice([-2, 5]))}")
+        self.known = False  # the shift's absolute total is the reader's and the reference's to work out
+        self.cc = None  # a pole set before the shift is set again after it (which datum an older pole keeps:
+        # no manual says, see the report)
+
+    def other_cycle(self) -> None:
+        if self.r.random() < 0.5:
+            self.emit("CYCL DEF 9.0 DWELL TIME")
+            self.emit(f"CYCL DEF 9.1 DWELL {self.r.choice(['0.5', '1', '2'])}")
+        else:
+            self.emit("CYCL DEF 32.0 TOLERANCE")
+            self.emit(f"CYCL DEF 32.1 T{self.r.choice(['0.01', '0.05'])}")
+
+    # -- drilling ------------------------------------------------------------------------------
+    def drilling(self) -> None:
+        r = self.r
+        self.emit(f"L X{_n(r.uniform(0, 100))} Y{_n(r.uniform(0, 100))} Z+20 R0 FMAX")
+        kind = r.choice([1, 200, 203, 205])
+        depth = -r.choice([3, 6, 10, 14])
+        if kind == 1:
+            self.emit("CYCL DEF 1.0 PECKING")
+            self.emit("CYCL DEF 1.1 SET UP 2")
+            self.emit(f"CYCL DEF 1.2 DEPTH {_n(depth)}")
+            self.emit(f"CYCL DEF 1.3 PECKG {r.choice([2, 4, 20])}")
+            self.emit(f"CYCL DEF 1.4 DWELL {r.choice([0, 0.5])}")
+            self.emit(f"CYCL DEF 1.5 F{r.choice([100, 300])}")
+            self.emit("L Z+2 R0 FMAX")
+            self.emit(r.choice(["CYCL CALL", "L Z+2 R0 FMAX M99", "CYCL CALL M3"]))
+            self.known = False
+            return
+        q = {200: "DRILLING", 203: "UNIVERSAL DRILLING", 205: "UNIVERSAL PECKING"}[kind]
+        lines = [f"CYCL DEF {kind} {q} ~", "  Q200=+2 ;SET-UP CLEARANCE ~", f"  Q201={_n(depth)} ;DEPTH ~",
+                 f"  Q206=+{r.choice([100, 150])} ;FEED RATE FOR PLNGNG ~",
+                 f"  Q202=+{r.choice([2, 3, 5, 20])} ;PLUNGING DEPTH ~"]
+        if kind in (200, 203):
+            lines.append(f"  Q210=+{r.choice([0, 0.5])} ;DWELL TIME AT TOP ~")
+        lines += [f"  Q203={_n(r.choice([0, -1, 2]))} ;SURFACE COORDINATE ~",
+                  f"  Q204=+{r.choice([10, 50])} ;2ND SET-UP CLEARANCE ~"]
+        if kind in (203, 205):
+            lines += [f"  Q212=+{r.choice([0, 0.5])} ;DECREMENT ~", "  Q205=+1 ;MIN. PLUNGING DEPTH ~"]
+        if kind == 203:
+            lines += [f"  Q213=+{r.choice([0, 2])} ;BREAKS ~", "  Q208=+500 ;RETRACTION FEED RATE ~"]
+        if kind == 205:
+            lines += ["  Q258=+0.2 ;UPPER ADV STOP DIST ~", "  Q259=+0.2 ;LOWER ADV STOP DIST ~",
+                      f"  Q257=+{r.choice([0, 2])} ;DEPTH FOR CHIP BRKNG ~", "  Q256=+0.2 ;DIST FOR CHIP BRKNG ~"]
+        lines.append(f"  Q211=+{r.choice([0, 0.2])} ;DWELL TIME AT DEPTH")
+        self.emit(*lines)
+        for _ in range(r.randint(1, 3)):
+            call = r.random()
+            x, y = _n(r.uniform(0, 100)), _n(r.uniform(0, 100))
+            if call < 0.3:
+                self.emit(f"L X{x} Y{y} R0 FMAX M99")
+            elif call < 0.5:
+                self.emit(f"L X{x} Y{y} R0 FMAX")
+                self.emit("CYCL CALL")
+            elif call < 0.75:
+                self.emit(f"CYCL CALL POS X{x} Y{y} Z{_n(r.choice([0, 2]))} FMAX")
+            else:
+                self.emit("PATTERN DEF ~", f"POS1 (X{x} Y{y} Z+0) ~", f"POS2 (IX+{r.choice([5, 12])} Y{y} Z+0)")
+                self.emit("CYCL CALL PAT FMAX")
+        self.known = False
+
+    # -- contours ------------------------------------------------------------------------------
+    def step(self, length: float, turn: float) -> tuple[float, float]:
+        """The point ``length`` away along the heading turned by ``turn`` degrees."""
+        h = (self.heading if self.heading is not None else self.r.uniform(0, 360)) + turn
+        return (self.pos[0] + length * math.cos(math.radians(h)), self.pos[1] + length * math.sin(math.radians(h)))
+
+    def turn(self) -> float:
+        return self.r.choice([-1, 1]) * self.r.uniform(25, 155)
+
+    def line(self, end: tuple[float, float]) -> None:
+        inc = self.r.random() < 0.4
+        w = [self.coord(a, end[i] - self.pos[i] if inc else end[i], incremental=inc) for i, a in ((0, "X"), (1, "Y"))]
+        self.emit("L " + " ".join(w) + self.feed())
+        end = self.typed(end, inc)
+        self.heading = math.degrees(math.atan2(end[1] - self.pos[1], end[0] - self.pos[0]))
+        self.pos[:2] = end
+        self.polar_ok = False
+
+    def typed(self, end: tuple[float, float], inc: bool) -> tuple[float, float]:
+        """The end the program states: its 4 decimals, absolute or from the current point (and whether the
+        current point is then known exactly: after LP/CP it is a computed point)."""
+        if inc:
+            return tuple(self.pos[i] + round(end[i] - self.pos[i], 4) for i in (0, 1))
+        self.exact = True
+        return round(end[0], 4), round(end[1], 4)
+
+    def set_pole(self, centre: tuple[float, float]) -> None:
+        inc = self.r.random() < 0.5 or not self.exact
+        if inc:
+            self.emit(f"CC IX{_n(centre[0] - self.pos[0])} IY{_n(centre[1] - self.pos[1])}")
+        else:
+            self.emit(f"CC X{_n(centre[0])} Y{_n(centre[1])}")
+        self.cc = tuple(self.pos[i] + round(centre[i] - self.pos[i], 4) for i in (0, 1)) if inc else \
+            (round(centre[0], 4), round(centre[1], 4))
+        self.polar_ok = False
+
+    def arc_c(self, *, helix: bool = True) -> None:
+        """A pole, then ``C`` to a point on its circle (or ``CP IPA``, a helix with ``IZ``). The pole and the end
+        are the start plus vectors of length 25 x k with whole components (7, 24), (15, 20), ..., so that the
+        written end lies exactly on the circle."""
+        r = self.r
+        k = r.choice([0.4, 0.8, 1.2])
+        ccw = r.random() < 0.5
+        v1 = r.choice([v for v in _RADII if self.smooth(-v[1], v[0]) if ccw] or
+                      [v for v in _RADII if self.smooth(v[1], -v[0])])
+        v2 = r.choice([v for v in _RADII if abs(v[0] * v1[0] + v[1] * v1[1]) < 480])  # 40 to 140 degrees apart
+        self.set_pole((self.pos[0] - k * v1[0], self.pos[1] - k * v1[1]))
+        cc = self.cc
+        a0, a1 = math.atan2(v1[1], v1[0]), math.atan2(v2[1], v2[0])
+        sweep = math.degrees(a1 - a0) % 360.0
+        sweep = sweep if ccw else sweep - 360.0
+        dr = "DR+" if ccw else "DR-"
+        if r.random() < 0.4:
+            sweep = round(sweep, 4)
+            iz = f" IZ{_n(r.choice([-1, -2]))}" if helix and r.random() < 0.3 else ""
+            if r.random() < 0.3 and not iz:  # the end angle absolute: PA (the arc runs to it in the sense DR)
+                pa = round(math.degrees(a0) + sweep, 4)
+                self.emit(f"CP PA{_n(pa)} {dr}{self.feed()}")
+                sweep = pa - math.degrees(a0)
+            else:
+                self.emit(f"CP IPA{_n(sweep)}{iz} {dr}{self.feed()}")
+            if iz:
+                self.pos[2] += float(iz.strip()[2:])
+            rad = 25 * k
+            end = (cc[0] + rad * math.cos(a0 + math.radians(sweep)), cc[1] + rad * math.sin(a0 + math.radians(sweep)))
+            self.polar_ok, self.exact = True, False
+        else:
+            end = (cc[0] + k * v2[0], cc[1] + k * v2[1])
+            inc = r.random() < 0.3 or not self.exact
+            w = " ".join(self.coord(a, end[i] - self.pos[i] if inc else end[i], incremental=inc, q_ok=False)
+                         for i, a in ((0, "X"), (1, "Y")))
+            end = self.typed(end, inc)
+            self.emit(f"C {w} {dr}{self.feed()}")
+            self.polar_ok = False
+        ea = math.atan2(end[1] - cc[1], end[0] - cc[0])
+        self.heading = math.degrees(ea) + (90 if ccw else -90)
+        self.pos[:2] = end
+
+    def smooth(self, dx: float, dy: float) -> bool:
+        """Whether the next element may leave in the direction (dx, dy): a corner of 4 to 110 degrees (a
+        sharper one makes the compensated tool gouge, which the reader rightly refuses)."""
+        if self.heading is None:
+            return True
+        h = math.radians(self.heading)
+        c = (dx * math.cos(h) + dy * math.sin(h)) / math.hypot(dx, dy)
+        # nor a corner under 4 degrees: the compensation joins a convex turn of at most 0.05 rad without its
+        # transition arc (interpolators.compensation.CONVEX_TOLERANCE, LinuxCNC's), a few um off the reference
+        return math.cos(math.radians(110)) < c < math.cos(math.radians(4))
+
+    def arc_cr(self) -> None:
+        r = self.r
+        for _ in range(30):
+            end = self.step(r.uniform(8, 30), self.turn())
+            ex, ey = round(end[0], 4), round(end[1], 4)
+            half = math.hypot(ex - self.pos[0], ey - self.pos[1]) / 2
+            rr = round(half * r.uniform(1.05, 3), 4)
+            big, ccw = r.random() < 0.3, r.random() < 0.5
+            # the centre: on the chord's bisector, left of start->end for a small counter-clockwise arc
+            mx, my = (self.pos[0] + ex) / 2, (self.pos[1] + ey) / 2
+            d = math.sqrt(max(rr * rr - half * half, 0.0))
+            ux, uy = (ex - self.pos[0]) / (2 * half), (ey - self.pos[1]) / (2 * half)
+            s = 1 if ccw != big else -1
+            cx, cy = mx - s * uy * d, my + s * ux * d
+            vx, vy = self.pos[0] - cx, self.pos[1] - cy
+            if self.smooth(-vy, vx) if ccw else self.smooth(vy, -vx):
+                break
+        self.emit(f"CR X{_n(ex)} Y{_n(ey)} R{'-' if big else '+'}{_n(rr)[1:]} {'DR+' if ccw else 'DR-'}" + self.feed())
+        ea = math.atan2(ey - cy, ex - cx)
+        self.heading = math.degrees(ea) + (90 if ccw else -90)
+        self.pos[:2] = (ex, ey)
+        self.polar_ok, self.exact = False, True
+
+    def arc_ct(self) -> None:
+        end = self.step(self.r.uniform(10, 30), self.r.choice([-1, 1]) * self.r.uniform(20, 70))
+        end = (round(end[0], 4), round(end[1], 4))
+        self.emit(f"CT X{_n(end[0])} Y{_n(end[1])}" + self.feed())
+        # tangent arc: the end tangent is the start tangent mirrored about the chord
+        chord = math.degrees(math.atan2(end[1] - self.pos[1], end[0] - self.pos[0]))
+        self.heading = 2 * chord - self.heading
+        self.pos[:2] = end
+        self.polar_ok, self.exact = False, True
+
+    def polar_line(self) -> None:
+        r = self.r
+        cc = self.cc
+        pr = math.hypot(self.pos[0] - cc[0], self.pos[1] - cc[1])
+        pa = math.degrees(math.atan2(self.pos[1] - cc[1], self.pos[0] - cc[0]))
+        for _ in range(30):
+            npr, npa = max(pr + r.uniform(-5, 10), 8.0), pa + r.choice([-1, 1]) * r.uniform(25, 120)
+            if self.smooth(cc[0] + npr * math.cos(math.radians(npa)) - self.pos[0],
+                           cc[1] + npr * math.sin(math.radians(npa)) - self.pos[1]):
+                break
+        if self.polar_ok and r.random() < 0.5:
+            text = f"LP IPR{_n(round(npr - pr, 4))} IPA{_n(round(npa - pa, 4))}"
+            npr, npa = pr + round(npr - pr, 4), pa + round(npa - pa, 4)
+        else:
+            npr, npa = round(npr, 4), round(npa, 4)
+            text = f"LP PR{_n(npr)} PA{_n(npa)}"
+        end = (cc[0] + npr * math.cos(math.radians(npa)), cc[1] + npr * math.sin(math.radians(npa)))
+        self.emit(text + self.feed())
+        self.heading = math.degrees(math.atan2(end[1] - self.pos[1], end[0] - self.pos[0]))
+        self.pos[:2] = end
+        self.polar_ok, self.exact = True, False
+
+    def contour(self, depth: float | None) -> None:
+        """An RL/RR (or R0) contour: entered by L or APPR (LT, LN, CT, LCT), elements, left by L R0 or DEP (LT,
+        LN, CT, LCT). ``depth`` None: the contour of a repeated section (``LBL``: ``L IZ`` down each time, then
+        back to its first point, repeated by ``CALL LBL n REP``)."""
+        r = self.r
+        comp = r.choice(["RL", "RR", "R0"])
+        start = (round(r.uniform(10, 90), 4), round(r.uniform(10, 90), 4))
+        pre = (round(start[0] - 15, 4), round(start[1] - 15, 4))
+        self.emit(f"L X{_n(pre[0])} Y{_n(pre[1])} R0 FMAX")
+        if depth is None:
+            self.emit(f"L Z+{r.choice([1, 2])} R0 FMAX")
+            n = self.lbl
+            self.lbl += 1
+            self.emit(f"LBL {n}")
+            self.emit(f"L IZ-{r.choice([1, 1.5])} R0{self.feed()}")
+            self.cc = None  # a pole set in the section is another at its next run's start
+        else:
+            self.emit(f"L Z{_n(depth)} R0{self.feed()}")
+        self.pos, self.known, self.heading = [pre[0], pre[1], depth or 0.0], True, None
+        self.exact = True
+        self.comp = comp
+        self.enter(comp, start)
+        self.elements()
+        self.leave(comp)
+        if depth is None:
+            self.emit(f"L X{_n(pre[0])} Y{_n(pre[1])} R0 FMAX")
+            self.emit(f"CALL LBL {n} REP{r.choice([1, 2, 3])}")
+            self.known = False
+        self.emit("L Z+20 R0 FMAX")
+        self.pos[2] = 20.0
+        self.heading = None
+
+    def enter(self, comp: str, start: tuple[float, float]) -> None:
+        r = self.r
+        self.appr = comp != "R0" and r.random() < 0.4
+        xy = f"X{_n(start[0])} Y{_n(start[1])}"
+        if self.appr:
+            form = r.choice(["LT", "LN", "CT", "LCT"])
+            extra = {"LT": f" LEN{r.choice([5, 8])}", "LN": f" LEN{r.choice([5, 8])}",
+                     "CT": f" CCA{r.choice([45, 90, 180])} R{r.choice(['+', '-'])}{r.choice([5, 8])}",
+                     "LCT": f" R{r.choice([3, 5])}"}[form]
+            self.emit(f"APPR {form} {xy}{extra} {comp}{self.feed()}")
+            self.heading = None
+        else:
+            self.emit(f"L {xy} {comp}{self.feed()}")
+            self.heading = 45.0
+        self.pos[:2] = list(start)
+
+    def elements(self) -> None:
+        r = self.r
+        corner = None
+        for n in range(r.randint(2, 7)):
+            k = r.random()
+            if n == 0 and self.appr:
+                self.line(self.step(r.uniform(10, 30), r.uniform(0, 360)))
+            elif corner == "CHF" or k < 0.35:  # a chamfer joins two straight lines (TNC 640 manual, "Chamfer CHF")
+                self.line(self.step(r.uniform(8, 30), self.turn()))
+            elif k < 0.55:
+                # RND between elements in the working plane; a helix under RL/RR cut short by an inside corner
+                # leaves the rest of its depth to the next element, which the reference does not follow
+                self.arc_c(helix=corner is None and self.comp == "R0")
+            elif k < 0.7:
+                self.arc_cr()
+            elif k < 0.8 and self.heading is not None and corner is None:
+                self.arc_ct()
+            elif self.cc is not None and k < 0.9:
+                self.polar_line()
+            else:
+                self.line(self.step(r.uniform(8, 30), self.turn()))
+            corner = None
+            if r.random() < 0.25 and " IZ" not in self.blocks[-1][0]:  # RND in the working plane only
+                corner = "CHF" if self.blocks[-1][0].startswith("L ") and r.random() < 0.4 else "RND"
+                self.emit(f"{'CHF ' if corner == 'CHF' else 'RND R'}{r.choice([1, 2, 3])}")
+        if corner is not None:
+            self.line(self.step(r.uniform(8, 30), self.turn()))
+
+    def leave(self, comp: str) -> None:
+        r = self.r
+        if comp != "R0" and (self.appr or r.random() < 0.3):
+            form = r.choice(["LT", "LN", "CT", "LCT"])
+            if form == "LCT":
+                end = self.step(30, r.choice([-60, 60]))
+                extra = f" X{_n(end[0])} Y{_n(end[1])} R{r.choice([3, 5])}"
+            else:
+                extra = {"LT": f" LEN{r.choice([5, 10])}", "LN": f" LEN{r.choice([5, 10])}",
+                         "CT": f" CCA{r.choice([45, 90, 180])} R{r.choice(['+', '-'])}{r.choice([5, 8])}"}[form]
+            self.emit(f"DEP {form}{extra} R0 F{r.choice([500, 1000])}")
+            self.known = False
+
+    def transform(self) -> None:
+        """Cycles 10 ROTATION, 8 MIRROR IMAGE, 11 SCALING set, or all reset."""
+        r = self.r
+        k = r.random()
+        if k < 0.35:
+            self.emit("CYCL DEF 10.0 ROTATION")
+            self.emit(f"CYCL DEF 10.1 ROT{_n(r.choice([0, 30, -45, 90, 12.5]))}")
+        elif k < 0.6:
+            self.emit("CYCL DEF 8.0 MIRROR IMAGE")
+            self.emit(f"CYCL DEF 8.1 {r.choice(['X', 'Y', 'X Y', ''])}".rstrip())
+        elif k < 0.8:
+            self.emit("CYCL DEF 11.0 SCALING")
+            self.emit(f"CYCL DEF 11.1 SCL{r.choice(['0.5', '1', '2'])}")
+        else:
+            self.emit("CYCL DEF 10.0 ROTATION")
+            self.emit("CYCL DEF 10.1 ROT+0")
+            self.emit("CYCL DEF 8.0 MIRROR IMAGE")
+            self.emit("CYCL DEF 8.1")
+            self.emit("CYCL DEF 11.0 SCALING")
+            self.emit("CYCL DEF 11.1 SCL1")
+        self.known = False
+        self.cc = None
+
+    # -- labels --------------------------------------------------------------------------------
+    def repeated(self) -> None:
+        """``LBL n`` .. ``CALL LBL n REP k`` of incremental moves, sometimes a nested repeat."""
+        r = self.r
+        n = self.lbl
+        self.lbl += 1
+        self.emit(f"LBL {n}")
+        self.emit(f"L IX{_n(r.choice([2, 5, -3]))} IY{_n(r.choice([0, 4]))} R0{self.feed()}")
+        if r.random() < 0.4:
+            m = self.lbl
+            self.lbl += 1
+            self.emit(f"LBL {m}")
+            self.emit(f"L IZ{_n(r.choice([-1, 1]))} R0 FMAX")
+            self.emit(f"CALL LBL {m} REP{r.choice([1, 2])}")
+        if r.random() < 0.5 and self.q:
+            k = r.choice(sorted(self.q))
+            self.emit(f"L IX+Q{k} R0{self.feed()}" if abs(self.q[k]) < 50 else "L IY+1 R0")
+        self.emit(f"CALL LBL {n} REP{r.choice([1, 2, 3])}")
+        self.known = False
+
+    def counted_loop(self) -> None:
+        """A loop by a counter and a conditional jump (``FN 12: IF +Q60 LT +3 GOTO LBL n``, or FN 9/11)."""
+        r = self.r
+        n, k, times = self.lbl, r.choice([60, 61]), r.choice([2, 3])
+        self.lbl += 1
+        self.emit(f"FN 0: Q{k} = +0")
+        self.emit(f"LBL {n}")
+        self.emit(f"L IX{_n(r.choice([2, -3]))} IY{_n(r.choice([0, 1.5]))} R0{self.feed()}")
+        self.emit(f"FN 1: Q{k} = +Q{k} + +1")
+        jump = r.choice([f"FN 12: IF +Q{k} LT +{times} GOTO LBL {n}", f"FN 11: IF +{times} GT +Q{k} GOTO LBL {n}",
+                         f"FN 10: IF +Q{k} NE +{times} GOTO LBL {n}"])
+        self.emit(jump)
+        self.known = False
+
+    def subprogram_call(self) -> None:
+        n = 90 + len(self.subs)
+        self.subs.append([[f"LBL {n}"], [f"L IX{_n(self.r.choice([3, -4]))} R0 F300"],
+                          [f"L IY{_n(self.r.choice([2, 6]))} R0"], ["LBL 0"]])
+        self.emit(f"CALL LBL {n}")
+        self.known = False
+
+
+def generate(seed: int) -> str:
+    """A random valid TNC conversational program (text with block numbers) for ``seed``."""
+    g = _Gen(seed)
+    unit = "INCH" if g.r.random() < 0.15 else "MM"
+    g.header(unit)
+    g.q_params()
+    g.move(rapid=True)
+    for _ in range(g.r.randint(3, 9)):
+        k = g.r.random()
+        if not g.known:
+            g.move(rapid=True)
+        if k < 0.3:
+            g.contour(g.r.choice([-2, -5, 0, None]))
+        elif k < 0.42:
+            g.drilling()
+        elif k < 0.52:
+            g.repeated()
+        elif k < 0.55:
+            g.subprogram_call()
+        elif k < 0.58:
+            g.counted_loop()
+        elif k < 0.66:
+            g.datum()
+        elif k < 0.72:
+            g.machine_move()
+        elif k < 0.75:
+            g.other_cycle()
+        elif k < 0.78:
+            g.transform()
+        elif k < 0.84:
+            g.q_params()
+        elif k < 0.9:
+            g.emit("L Z+50 R0 FMAX")
+            g.tool_call()
+        else:
+            g.move()
+    g.emit("L Z+50 R0 FMAX M30" if not g.subs else "L Z+50 R0 FMAX")
+    if g.subs:
+        g.emit("M30")
+    for sub in g.subs:
+        g.blocks.extend(sub)
+    out = [f"0 BEGIN PGM FUZZ{seed} {unit}"]
+    for block in g.blocks:
+        if not block or not block[0]:
+            continue
+        out.append(f"{len(out)} {block[0]}")
+        out.extend(block[1:])
+    out.append(f"{len(out)} END PGM FUZZ{seed} {unit}")
+    return "\n".join(out) + "\n"
