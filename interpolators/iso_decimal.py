@@ -12,7 +12,8 @@ integers. Numbers that come from a variable or an expression (``X#1``, ``X[10]``
 decimal point (Mitsubishi M700V programming manual 5.3 "Decimal Point Input", which describes the
 same two types: "Command X1 in the 1 um system is equivalent to command X0.001"; values of variables
 are read "the same way in either" type). The scaling factors of ``G51 I J K`` / ``P`` have their own
-rule (:func:`interpolators.iso_transforms.scaling`), and so do the arguments of ``G65``
+rule (:func:`interpolators.iso_transforms.scaling`; its centre ``X Y Z`` is a position like any other: 0i-MF
+"Scaling", "absolute command for center coordinate value"), and so do the arguments of ``G65``
 (:mod:`interpolators.iso_flow`: as written under DPI = 1, noted; under DPI = 0 as written for F D H M S T,
 an error for the others, whose increments are not modelled); the switches of ``G05.1 Q1`` and ``G08 P1`` are
 no distances.
@@ -59,8 +60,10 @@ def decimal_literal(word: Word) -> bool:
 def _scaled(words: list[Word], *, cycle: bool) -> list[Word]:
     """The words of a block a least input increment applies to (see the module docstring)."""
     codes = {round(w.value, 1) for w in words if w.letter == "G"}
-    if codes & _OWN_RULES:
+    if codes & _OWN_RULES - {51}:
         return []
+    if 51 in codes:  # G51's centre X Y Z is a position (0i-MF "Scaling": "absolute command for center coordinate")
+        return [w for w in words if w.letter in "XYZ" and integer_literal(w)]
     cycle = cycle or bool(codes & _CYCLE_CODES)
     return [w for w in words if w.letter in DECIMAL_LETTERS and integer_literal(w) and not (w.letter == "K" and cycle)]
 

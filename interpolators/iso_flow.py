@@ -748,6 +748,8 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
     """The line at ``pc`` with its M97/M98 call ``m98`` or its M99 return ``m99`` (:func:`run`): yields its other
     words, pushes or pops the frame; returns the next line's index, -1 when an M99 ends the main program."""
     if m98 is not None:
+        if params.fanuc:
+            words = _fanuc_packed_count(prog, words, m98)
         start, q = _subprogram_start(prog, pc, words, m98, where, on_note)
         count = next((int(w.value) for w in words if w.letter in "LK"), 1)
         rest = [w for w in words if w is not m98 and w is not q and w.letter not in "PLK"]
@@ -885,6 +887,23 @@ def _probing_macro(number: float) -> str:
         return ""
     return (" (a Renishaw Inspection Plus probing macro stored in the machine's control: it measures the part, "
             "which vcnc cannot; a copy of the macro beside the program would run as written)")
+
+
+def _fanuc_packed_count(prog: _Program, words: list[Word], m98: Word) -> list[Word]:
+    """Fanuc's ``M98 P<count><program>``: the last four digits of P are the program, those before them the
+    number of calls (FANUC Series 0i-MC operator's manual B-64124EN 12.3 "Subprogram": "M98 P51002 ... Call the
+    subprogram (number 1002) five times in succession"), read so when the block has no L and the file holds no
+    program ``O<P>`` but one ``O<last four digits>`` (a program number beyond four digits, 30i's eight-digit O
+    numbers, is taken as written: our reading)."""
+    p = next((w for w in words if w.letter == "P"), None)
+    if m98.value != 98 or p is None or p.value != int(p.value) or p.value < 10000 or \
+            any(w.letter in "LKQ" for w in words) or prog.external_fanuc(int(p.value)) is not None:
+        return words
+    count, number = divmod(int(p.value), 10000)
+    if prog.external_fanuc(number) is None:
+        return words
+    return [Word("P", float(number), w.column, w.text) if w is p else w for w in words] + \
+        [Word("L", float(count), p.column, p.text)]
 
 
 def _called_program(prog: _Program, words: list[Word], call: Word, where: Where, what: str) -> int:
