@@ -27,7 +27,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - Canned cycles G73, G81-G89 (g-code.adoc "G80-G89 Canned Cycles", "G73", "G83", "G98, G99"):
   preliminary rapid to R when below it (once), per repeat a rapid in XY, a rapid to R, the feed
   to the bottom (pecks of Q for G73/G83 with the 0.254 mm / 0.010 in clearance, G83 back to R
-  between pecks), dwell for G82/G89, the feed out for G85/G89, and the retract to clear Z
+  between pecks), dwell for G82/G89, the feed out for G85/G89 (under fanuc/haas to R, then the rapid to
+  clear Z: FANUC 30i operator's manual B-63944EN-2 5.1.9), and the retract to clear Z
   (G98: the Z before the series if above R, else R; G99: R). In G91, X/Y/R are increments from
   the current position and Z from R; polar ``@ ^`` repeats add to the polar position.
 - Parameters ``#n``, ``#<local>``, ``#<_global>``, expressions in ``[ ]`` with the documented
@@ -42,7 +43,8 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - G5 / G5.1 splines: the end point only (the reader writes chords; their last one must end there).
 - G41/G42: the compensated end points are not the programmed ones; see :class:`Expected`. Under
   ``fanuc``/``haas`` an outside corner's end point is Fanuc's (:func:`fanuc_corner`: the offsets'
-  intersection, at an acute corner the vectors lengthened by the radius); after ``G39`` the corner
+  intersection, at an acute corner the vectors lengthened by the radius; under a mirror of one plane axis the
+  side is the other one in the machine, Fanuc 0i-MF "Programmable mirror image"); after ``G39`` the corner
   is an arc about it, checked one radius off. After G40 with
   no exit move, LinuxCNC's M6/M61 makes the last offset point the current one (``read_inputs``:
   ``refresh_actual_position``): the next move is checked within the radius.
@@ -94,6 +96,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   ``G49``); ``G10 L12 R0`` is a diameter; ``G8``/``G9``/``G50``/``G51 R..``/``G51.2``/``G84.2``/``G74.2``
   move nothing, ``G84.1``/``G74.1`` are G84/G74; ``R0+v`` is ``R v``; X/Y/Z without a centre in the modal
   G2/G3 is a G1 move.
+  Fanuc ``M98 P<count><program>`` (0i-MC B-64124EN 12.3 "Subprogram": ``M98 P51002`` calls O1002 five times)
+  when there is no L and no program O<P>. Fanuc DPI = 0 (``MachineContext.decimal_point_input`` "increment"):
+  distances without a decimal point in least input increments (:func:`_least_increments`).
   Haas ``M97 P<n> L<k>`` ("M97 Local Sub-Program Call") runs the blocks from ``N<n>`` of the same
   program to its ``M99`` k times; ``M98 P<p> Q<n>`` (Mitsubishi, Mach4) runs ``O<p>`` from its
   ``N<n>``; ``M98 Q<n>`` without P (Mitsubishi: P "own program if omitted") runs this program's ``N<n>``
@@ -807,9 +812,14 @@ class _Machine:
                 re_ = float(np.hypot(*(end - centre)[list(plane)]))
                 slack = max(centre_tolerance - 1e-6, 0.0) + abs(rs - re_)
                 element = ("arc", centre, re_, plane, self.pos.copy(), slack)
+            # one plane axis mirrored (Fanuc 0i-MF "Programmable mirror image": "the offset direction is reversed";
+            # Haas "G101"): the tool keeps its side of the programmed contour, the other side of the machine's
+            signs = np.where(self.mirror, -1.0, 1.0) * self.factors
+            side = self.comp_side if signs[plane[0]] * signs[plane[1]] > 0 else \
+                {"left": "right", "right": "left"}[self.comp_side]
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.comp_radius, rows="last",
                                      element=element, entry=self.comp_entry, extra=self.extra.copy(),
-                                     side=self.comp_side, ccw=kind == "arc_ccw"))
+                                     side=side, ccw=kind == "arc_ccw"))
             self.comp_entry = False
             if self.ctx.dialect.name in ("fanuc", "haas") and not self.g39:
                 fanuc_corner(self.out, self.comp_radius)
@@ -1536,7 +1546,9 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         m.move(line, "rapid", at(clear), optional=True)
     elif code in (74, 84):  # LinuxCNC: "Move the Z-axis at the current feed rate to clear Z"
         m.move(line, "feed", at(clear))
-    elif code == 85:
+    elif code == 85 or code == 89 and m.ctx.dialect.name in ("fanuc", "haas"):
+        # Fanuc G85/G89 (30i operator's manual B-63944EN-2 5.1.9, 0i-MF "Boring cycle"; Haas "G89"): a feed
+        # back to R, under G98 a rapid on to the initial level
         m.move(line, "feed", at(r))
         m.move(line, "rapid", at(clear), optional=True)
     elif code == 89:
@@ -1601,6 +1613,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
         if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);
             words.pop("x", None)  # with a motion code ("G4 P.001 G0 X1") X is that motion's
+    if m.ctx.dialect.name == "fanuc" and m.ctx.decimal_point_input == "increment":
+        _least_increments(m, g, words, ln.text)
     _modes(m, g, words, ln.text)
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
@@ -1623,6 +1637,36 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None:
+    """Fanuc DPI = 0 (0i-MF operator's manual B-64604EN "Decimal point programming", parameter No. 3401#0): a
+    distance or angle written without a decimal point counts least input increments of IS-B, 0.001 mm / deg or
+    0.0001 in (X Y Z U V W A B C I J K Q R; ``G04 X`` 0.001 s; K of a cycle block is its repeat count); in a G51
+    block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments without a decimal point are not
+    modelled (ReferenceError)."""
+    letters = "xyz" if 510 in g else "xyzuvwabcijkqr"  # G51: the centre; its factors have their own rule
+    if 650 in g:
+        if re.search(r"(?<![a-z#])[xyzuvwabcijkqr][+-]?\d+(?![\d.])", text):
+            raise ReferenceError("G65 arguments without a decimal point under DPI = 0")
+        return
+    inch = 200 in g or 210 not in g and m.scale != 1.0
+    cycle = any(c is not None and c % 10 == 0 and c // 10 in _CYCLES + _MILL_CYCLES for c in [m.motion, *g])
+    seen: dict[str, int] = {}
+    depth = 0
+    for k, ch in enumerate(text):
+        depth += (ch == "[") - (ch == "]")
+        if not ch.isalpha() or depth:
+            continue
+        letter = ch
+        index = seen.get(letter, 0)
+        seen[letter] = index + 1
+        literal = re.match(r"[+-]?\d+(?![\d.#\[])", text[k + 1:])
+        if letter not in letters or literal is None or (k and text[k - 1].isalpha()) or \
+                letter == "k" and cycle or letter not in words or index >= len(words[letter]):
+            continue
+        unit = 0.001 if letter in "abc" or not inch or (40 in g and letter == "x") else 0.0001
+        words[letter][index] *= unit
 
 
 #: What LinuxCNC's M70 saves (m-code.adoc "M70 Saved state") of what this reference models.
@@ -2001,7 +2045,7 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "end":
             break
         if res in ("m98", "m97"):
-            frames.append(_subprogram_call(res, ln, pc, st, params))
+            frames.append(_subprogram_call(res, ln, pc, st, params, fanuc=fanuc))
             pc = frames[-1]["start"]
             continue
         if res == "g65":
@@ -2034,11 +2078,16 @@ def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
     return _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
 
 
-def _subprogram_call(res: str, ln, pc: int, st, params) -> dict:  # noqa: ANN001
+def _subprogram_call(res: str, ln, pc: int, st, params, *, fanuc: bool = False) -> dict:  # noqa: ANN001
     """The frame of an M98 (``P`` a program, or ``Q`` a block of this one) or a Haas M97 ("M97 Local Sub-Program
-    Call": N<P> of this program) call, run L times to its M99."""
+    Call": N<P> of this program) call, run L times to its M99. Fanuc ``M98 P51002`` without L and without an
+    ``O51002`` calls ``O1002`` five times (0i-MC operator's manual B-64124EN 12.3 "Subprogram")."""
     words, _ = _words(ln.text, params)
     count = int(words["l"][-1]) if "l" in words else 1
+    p = int(words["p"][-1]) if res == "m98" and "p" in words else 0
+    if fanuc and p >= 10000 and not {"l", "q"} & set(words) and str(p) not in st["fanuc"] \
+            and str(p % 10000) in st["fanuc"]:
+        count, words["p"] = p // 10000, [float(p % 10000)]
     if res == "m97":
         start = _goto(words["p"][-1], pc, st)
     else:

@@ -1,0 +1,573 @@
+"""Seeded random Fanuc / Haas mill programs, for checking the ISO reader's ``fanuc`` and ``haas`` dialects.
+
+Test code only. :func:`generate` writes a valid program as shops and CAM posts write them: ``%``, an ``O`` number
+and comment, ``G20``/``G21``, a safe-start line, ``T.. M06`` after ``G91 G28 Z0.``, ``G43 H..`` / ``G49``, work
+offsets ``G54``-``G59``, ``G54.1 P..`` (Fanuc) or ``G154 P..`` / ``G110``-``G129`` (Haas), ``G52``, ``G92``,
+``G10 L2``/``L20 P..``, ``G53``, ``G28`` through an intermediate point, ``G0``/``G1`` in ``G90`` and ``G91``,
+``G2``/``G3`` in ``G17``-``G19`` by ``I J K`` and ``R`` (negative over 180 degrees), full circles and helices,
+``G41``/``G42 D..`` contours with lines and arcs (inside and outside corners) entered and left by straight
+moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``P``, repeats (Fanuc ``K``, Haas
+``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
+(``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation, ``G51`` scaling
+and mirror (Fanuc ``G51.1``, Haas ``G101``).
+
+Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
+"G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
+("M98 Subprogram Call": ``P`` the program, ``L`` the count); FANUC Series 0i-MF operator's manual B-64604EN
+("Circular interpolation", "Cutter compensation C", "Canned cycle for drilling": ``K`` the repeat count,
+"Subprogram": ``M98 P<count 4 digits><program 4 digits>``, "Custom macro", "Coordinate system rotation",
+"Scaling", "Programmable mirror image", "Local coordinate system").
+
+Every section starts from an absolute ``G90 G0`` move, so the generator knows the program position after it;
+arc ends sit exactly on their circle (whole Pythagorean vectors), compensated elements are much longer than the
+tool radius, a cycle's R plane is above its bottom and below the initial level, scaling is uniform.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import random
+
+from interpolators.context import DIALECTS, MachineContext, Tool
+
+__all__ = ["generate", "context", "FEATURES"]
+
+#: Whole vectors of length 5, 10, 25 (arc ends exactly on their circle).
+_VECTORS = sorted({(sx * u * k, sy * v * k) for u, v in ((0, 5), (3, 4), (4, 3), (5, 0)) for k in (1, 2, 5)
+                   for sx in (-1, 1) for sy in (-1, 1)})
+
+#: The sections a program is made of, by name (the report counts programs per feature).
+FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "macro", "g65",
+            "rotation", "scaling", "mirror", "g52", "g92", "g10", "extended_offset", "g28_g53", "dwell",
+            "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
+            "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar")
+
+
+def context(seed: int, dialect: str) -> MachineContext:
+    """The machine the generated program of ``seed`` runs on: offsets for G54-G59 and the first extended ones,
+    tools 1-6 (length 10n mm, radius 0.5 + 0.25n mm)."""
+    offsets = {f"G5{k}": (-300.0 + 10 * k, -200.0 + 5 * k, -400.0 + k) for k in range(4, 10)}
+    offsets.update({f"G54.1 P{k}": (-250.0 + k, -150.0 - k, -350.0) for k in range(1, 21)})
+    tools = {n: Tool(number=n, length=10.0 * n, radius=0.5 + 0.25 * n) for n in range(1, 7)}
+    return MachineContext(work_offsets=offsets, tools=tools, home=(0.0, 0.0, 0.0), dialect=DIALECTS[dialect],
+                          decimal_point_input="increment" if _increments(seed, dialect) else "calculator")
+
+
+def _increments(seed: int, dialect: str) -> bool:
+    """A Fanuc with DPI = 0 (parameter No. 3401#0; :mod:`interpolators.iso_decimal`) for about a third of the
+    seeds: its programs write some distances as integers of least input increments (``X12500`` for 12.5 mm)."""
+    return dialect == "fanuc" and random.Random(f"{seed}:dpi").random() < 0.3
+
+
+def _num(v: float) -> str:
+    """A number as CAM posts write it: always a decimal point (``10.``, ``-2.5``, ``0.``), at most 4 decimals."""
+    s = f"{v:.4f}".rstrip("0")
+    return "0." if s in ("0.", "-0.") else s
+
+
+@dataclasses.dataclass
+class _Gen:
+    r: random.Random
+    dialect: str
+    unit: float  # one grid step in program units (mm: 1, inch: 0.05)
+    lines: list[str] = dataclasses.field(default_factory=list)
+    subs: list[list[str]] = dataclasses.field(default_factory=list)
+    used: set = dataclasses.field(default_factory=set)
+    n: int = 0
+    pos: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0, 0.0])  # grid units
+    tool: int = 0
+    label: int = 9000
+    dpi0: bool = False
+
+    @property
+    def fanuc(self) -> bool:
+        return self.dialect == "fanuc"
+
+    def emit(self, text: str, *, number: int | None = None) -> None:
+        self.n += 5
+        if number is None and self.r.random() < 0.5:
+            number = self.n
+        self.lines.append(f"N{number} {text}" if number is not None else text)
+
+    def v(self, grid: float, *, plain: bool = True) -> str:
+        """A distance of ``grid`` steps; under DPI = 0 sometimes as an integer of least input increments."""
+        if plain and self.dpi0 and self.r.random() < 0.5:
+            count = grid * self.unit * (1000 if self.unit == 1.0 else 10000)
+            if abs(count - round(count)) < 1e-9:
+                return str(round(count))
+        return _num(grid * self.unit)
+
+    def xyz(self, x=None, y=None, z=None, *, inc: bool = False) -> str:
+        out = []
+        for letter, val, k in (("X", x, 0), ("Y", y, 1), ("Z", z, 2)):
+            if val is not None:
+                out.append(letter + self.v(val - self.pos[k] if inc else val))
+                self.pos[k] = val
+        return " ".join(out)
+
+    def feed(self) -> str:
+        return f"F{self.r.choice((100, 250, 500, 1200)) * (0.04 if self.unit < 1 else 1):g}"
+
+    def start(self, z: float = 10.0) -> None:
+        """Every section begins known: an absolute rapid over a grid point, then down to ``z``."""
+        x, y = self.r.randint(-8, 8) * 5, self.r.randint(-8, 8) * 5
+        self.emit(f"G90 G0 {self.xyz(x, y)}")
+        self.emit(f"G0 {self.xyz(z=z)}")
+
+    # -- sections ------------------------------------------------------------------------------------
+    def lines_section(self) -> None:
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        for _ in range(self.r.randint(2, 5)):
+            x, y = self.pos[0] + self.r.randint(-6, 6) * 2.5, self.pos[1] + self.r.randint(-6, 6) * 2.5
+            if self.r.random() < 0.4:
+                self.emit(f"G91 G1 {self.xyz(x, y, inc=True)}")
+                self.emit("G90")
+            else:
+                self.emit(f"{self.r.choice(('G1 ', ''))}{self.xyz(x, y)}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def arc(self, code: str, *, plane=(0, 1), helix: float | None = None, full: bool = False) -> str:
+        """One arc from the current point: ``I J`` (or ``I K``, ``J K``) or ``R`` words."""
+        i, j = plane
+        letters = "IJK"
+        c = self.r.choice(_VECTORS)
+        centre = (self.pos[i] + c[0], self.pos[j] + c[1])
+        if full:
+            end = (self.pos[i], self.pos[j])
+        else:
+            while True:
+                e = self.r.choice(_VECTORS)
+                if (e[0] ** 2 + e[1] ** 2) == c[0] ** 2 + c[1] ** 2 and e != (-c[0], -c[1]) and e != c:
+                    break
+            end = (centre[0] + e[0], centre[1] + e[1])
+        words = {i: end[0], j: end[1]}
+        if helix is not None:
+            words[3 - i - j] = helix
+        target = [words.get(k) for k in range(3)]
+        radius = (c[0] ** 2 + c[1] ** 2) ** 0.5
+        use_r = not full and self.r.random() < 0.4
+        if use_r:
+            s = (self.pos[i] - centre[0], self.pos[j] - centre[1])
+            e = (end[0] - centre[0], end[1] - centre[1])
+            cross = s[0] * e[1] - s[1] * e[0]
+            ccw = code == "G3"
+            large = (cross < 0) if ccw else (cross > 0)
+            centre_words = "R" + self.v(-radius if large else radius)
+        else:
+            centre_words = f"{letters[i]}{self.v(c[0])} {letters[j]}{self.v(c[1])}"
+        return f"{code} {self.xyz(*target)} {centre_words}"
+
+    def arcs_section(self) -> None:
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        for _ in range(self.r.randint(1, 4)):
+            self.emit(self.arc(self.r.choice(("G2", "G3")), full=self.r.random() < 0.2))
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def helix_section(self) -> None:
+        self.start(2)
+        self.emit(f"G1 {self.xyz(z=0)} {self.feed()}")
+        for k in range(self.r.randint(1, 3)):
+            self.emit(self.arc(self.r.choice(("G2", "G3")), helix=-(k + 1) * 0.5, full=self.r.random() < 0.5))
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def planes_section(self) -> None:
+        self.start(20)
+        code, plane = self.r.choice((("G18", (2, 0)), ("G19", (1, 2))))
+        self.emit(code)
+        self.emit(f"G1 {self.xyz(z=15)} {self.feed()}")
+        for _ in range(self.r.randint(1, 3)):
+            self.emit(self.arc(self.r.choice(("G2", "G3")), plane=plane, full=self.r.random() < 0.2))
+        self.emit("G17")
+        self.emit(f"G0 {self.xyz(z=40)}")
+
+    def comp_section(self) -> None:
+        """A rectangle (sharp or rounded corners) climb- or conventional-cut inside or outside."""
+        if not self.tool:
+            self.tool_change()
+        x0, y0 = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
+        w, h = self.r.choice((20, 30, 40)), self.r.choice((20, 30))
+        rc = self.r.choice((0, 0, 5))
+        ccw = self.r.random() < 0.5
+        side = self.r.choice(("G41", "G42"))
+        d = self.r.randint(1, 6)
+        self.emit(f"G90 G0 {self.xyz(x0 + w / 2, y0 - 15)}")
+        self.emit(f"G0 {self.xyz(z=5)}")
+        self.emit(f"G1 {self.xyz(z=-2)} {self.feed()}")
+        self.emit(f"{side} D{d} G1 {self.xyz(y=y0)}")
+        pts = [(x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h), (x0, y0), (x0 + w / 2, y0)]
+        if not ccw:
+            pts = [(x0, y0), (x0, y0 + h), (x0 + w, y0 + h), (x0 + w, y0), (x0 + w / 2, y0)]
+        for k, (px, py) in enumerate(pts[:-1]):
+            if rc:
+                nx, ny = pts[k + 1] if k + 1 < 4 else pts[0]
+                # stop rc before the corner, then round it with an arc of radius rc
+                dx, dy = (px - self.pos[0], py - self.pos[1])
+                ln = max(abs(dx), abs(dy))
+                bx, by = px - dx / ln * rc, py - dy / ln * rc
+                self.emit(f"G1 {self.xyz(bx, by)}")
+                ex, ey = (nx - px), (ny - py)
+                el = max(abs(ex), abs(ey))
+                ax, ay = px + ex / el * rc, py + ey / el * rc
+                code = "G3" if ccw else "G2"
+                if self.r.random() < 0.5:
+                    self.emit(f"{code} {self.xyz(ax, ay)} R{self.v(rc)}")
+                else:
+                    ci, cj = bx + ex / el * rc - self.pos[0], by + ey / el * rc - self.pos[1]
+                    self.emit(f"{code} {self.xyz(ax, ay)} I{self.v(ci)} J{self.v(cj)}")
+            else:
+                self.emit(f"G1 {self.xyz(px, py)}")
+        self.emit(f"G1 {self.xyz(*pts[-1])}")
+        self.emit(f"G40 G1 {self.xyz(y=y0 - 15)}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def cycles_section(self, incremental: bool = False) -> None:
+        code = self.r.choice(("G73", "G81", "G82", "G83", "G84", "G85", "G86", "G89"))
+        ret = self.r.choice(("G98", "G99"))
+        self.start(self.r.choice((10, 20)))
+        initial = self.pos[2]
+        rplane, bottom = self.r.choice((2, 5)), -self.r.choice((5, 8, 12))
+        words = ""
+        if code in ("G73", "G83"):
+            words += f" Q{self.v(self.r.choice((1.5, 2, 3)))}"
+        if code in ("G82", "G89", "G86") and self.r.random() < 0.7 or code == "G84" and self.r.random() < 0.3:
+            words += f" P{self.r.choice((200, 500, 1000))}"
+        feed = "F50." if code == "G84" else self.feed()
+        x, y = self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + self.r.randint(-3, 3) * 5
+        rep = self.r.random() < 0.3
+        if incremental:
+            dx, dy = self.r.choice(((5, 0), (0, 5), (-5, 5), (10, -5)))
+            count = self.r.randint(1, 4) if rep else 1
+            kw = (f" K{count}" if self.fanuc else f" L{count}") if rep else ""
+            self.emit(f"G91 {ret} {code} X{self.v(dx)} Y{self.v(dy)} Z{self.v(bottom - rplane)} "
+                      f"R{self.v(rplane - initial)}{words}{kw} {feed}")
+            self.pos[0] += dx * count
+            self.pos[1] += dy * count
+            for _ in range(self.r.randint(0, 2)):
+                self.emit(f"X{self.v(dx)} Y{self.v(dy)}")
+                self.pos[0] += dx
+                self.pos[1] += dy
+            self.emit("G80 G90")
+        else:
+            self.emit(f"G90 {ret} {code} {self.xyz(x, y)} Z{self.v(bottom)} R{self.v(rplane)}{words} {feed}")
+            for _ in range(self.r.randint(0, 3)):
+                self.emit(self.xyz(self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + 5))
+            self.emit("G80")
+        self.pos[2] = initial if ret == "G98" else rplane
+        self.emit(f"G0 {self.xyz(z=20)}")
+
+    def subprogram_section(self) -> None:
+        prog = 1000 + len(self.subs) * 10
+        count = self.r.randint(1, 3)
+        body = [f"O{prog} (SUB)", f"G91 G1 X{self.v(5)} {self.feed()}", f"Y{self.v(5)}", "G90", "M99"]
+        if self.r.random() < 0.5:
+            body[1:4] = [f"G91 G0 X{self.v(10)}", f"G1 Z{self.v(-3)} {self.feed()}", f"G0 Z{self.v(3)}", "G90"]
+        self.subs.append(body)
+        self.start()
+        if self.fanuc and self.r.random() < 0.6:
+            self.emit(f"M98 P{count:04d}{prog:04d}" if count > 1 else f"M98 P{prog}")
+        else:
+            self.emit(f"M98 P{prog}" + (f" L{count}" if count > 1 else ""))
+
+    def macro_section(self) -> None:
+        self.start()
+        self.label += 10
+        a, b = self.r.randint(2, 4), self.r.choice((2.5, 5))
+        self.emit(f"#101={a}")
+        self.emit(f"#102={_num(b * self.unit)}")
+        self.emit(f"#103={self.v(self.pos[0], plain=False)}")
+        self.emit(f"G1 Z{self.v(-1)} {self.feed()}")
+        if self.r.random() < 0.5:
+            self.emit("WHILE [#101 GT 0] DO1")
+            self.emit("#103=#103+#102")
+            self.emit("G1 X#103")
+            self.emit("#101=#101-1")
+            self.emit("END1")
+        else:
+            lab = self.label
+            self.emit("#103=#103+#102", number=lab)
+            self.emit("G1 X#103 Y[#103*0.5]")
+            self.emit("#101=#101-1")
+            self.emit(f"IF [#101 GT 0] GOTO{lab}")
+        if self.r.random() < 0.5:
+            self.emit(f"IF [#102 LT 0] THEN #104={self.v(3, plain=False)}")
+        self.emit(f"G0 Z{self.v(10)}")
+
+    def g65_section(self) -> None:
+        prog = 9010 + len(self.subs)
+        self.subs.append([f"O{prog} (BOLT CIRCLE)", "#10=0", "WHILE [#10 LT #11] DO1",
+                          "#12=#24+#18*COS[#1+#10*360/#11]", "#13=#25+#18*SIN[#1+#10*360/#11]",
+                          "G90 G0 X#12 Y#13", "G1 Z#26 F#9", "G0 Z#17", "#10=#10+1", "END1", "M99"])
+        self.start()
+        self.emit(f"G65 P{prog} X{self.v(self.pos[0], plain=False)} Y{self.v(self.pos[1], plain=False)} "
+                  f"R{self.v(10, plain=False)} A{self.r.choice((0, 15, 30))}. H{self.r.randint(2, 5)}. "
+                  f"Z{self.v(-2, plain=False)} Q{self.v(5, plain=False)} "
+                  f"F{_num(100 * (0.04 if self.unit < 1 else 1))}")
+        self.emit(f"G90 G0 {self.xyz(z=10)}")
+
+    def transform_section(self, kind: str) -> None:
+        self.start()
+        cx, cy = self.pos[0], self.pos[1]
+        if kind == "rotation":
+            self.emit(f"G68 X{self.v(cx)} Y{self.v(cy)} R{self.r.choice((15, 30, 45, 90, -30))}.")
+        elif kind == "scaling":
+            s = self.r.choice((0.5, 2.0, 1.5))
+            centre = f"X{self.v(cx)} Y{self.v(cy)}"
+            self.emit(f"G51 {centre} P{s * 1000:.0f}" if self.fanuc and self.r.random() < 0.5
+                      else f"G51 {centre} P{_num(s)}")
+        elif self.fanuc:
+            self.emit(f"G51.1 X{self.v(cx)}")
+        else:
+            self.emit("G101 X0.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
+        self.emit(self.arc(self.r.choice(("G2", "G3"))))
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit({"rotation": "G69", "scaling": "G50"}.get(kind, "G50.1 X0." if self.fanuc else "G100 X0."))
+
+    def g52_section(self) -> None:
+        self.emit(f"G52 X{self.v(self.r.randint(-4, 4) * 5)} Y{self.v(self.r.randint(-4, 4) * 5)}")
+        self.lines_section()
+        self.emit("G52 X0. Y0.")
+
+    def g92_section(self) -> None:
+        self.start()
+        px, py = self.pos[0], self.pos[1]
+        self.emit("G92 X0. Y0.")
+        self.pos[0] = self.pos[1] = 0.0
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(10, 5)}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit(f"G92 X{self.v(self.pos[0] + px)} Y{self.v(self.pos[1] + py)}")
+
+    def g10_section(self) -> None:
+        p = self.r.randint(1, 6)
+        vals = " ".join(f"{a}{_num(self.r.randint(-40, 40) * 5.0 * self.unit)}" for a in "XYZ")
+        if self.r.random() < 0.5:
+            self.emit(f"G90 G10 L2 P{p} {vals}")
+        else:
+            self.emit(f"G90 G10 L20 P{p} {vals}")
+            p = 0
+        self.emit(f"G{53 + p}" if p else self.extended_code(1))
+        self.lines_section()
+
+    def extended_code(self, k: int) -> str:
+        if self.fanuc:
+            return f"G54.1 P{k}"
+        return self.r.choice((f"G154 P{k}", f"G{109 + k}"))
+
+    def extended_section(self) -> None:
+        self.emit(self.extended_code(self.r.randint(1, 20)))
+        self.lines_section()
+        self.emit(f"G5{self.r.randint(4, 9)}")
+
+    def g28_g53_section(self) -> None:
+        self.start()
+        if self.r.random() < 0.5:
+            self.emit(f"G28 {self.xyz(z=self.pos[2] + 5)}")
+        else:
+            self.emit("G91 G28 Z0.")
+            self.emit("G90")
+        if self.r.random() < 0.5:
+            self.emit("G91 G28 X0. Y0.")
+            self.emit("G90")
+        self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10, 50)) * 1.0 * self.unit)}")
+
+    def dwell_section(self) -> None:
+        self.start()
+        if self.fanuc:
+            self.emit(self.r.choice(("G04 X1.5", "G04 P1500", "G4 X0.5")))
+        else:
+            self.emit(self.r.choice(("G04 P1.5", "G04 P500", "G4 P0.5")))
+
+    def g91_arcs_section(self) -> None:
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit("G91")
+        for _ in range(self.r.randint(1, 3)):
+            before, dpi0 = list(self.pos), self.dpi0
+            self.dpi0 = False  # the absolute words are read back below
+            text = self.arc(self.r.choice(("G2", "G3")), full=self.r.random() < 0.2)
+            self.dpi0 = dpi0
+            code, rest = text.split(" ", 1)
+            words = []
+            for w in rest.split():
+                k = "XYZ".find(w[0])
+                if k >= 0:
+                    w = w[0] + self.v(float(w[1:]) / self.unit - before[k])
+                words.append(w)
+            self.emit(f"{code} {' '.join(words)}")
+        self.emit("G90")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def comp_rotated_section(self) -> None:
+        kind = self.r.choice(("G68", "mirror", "G52"))
+        cx, cy = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
+        if kind == "G68":
+            self.emit(f"G68 X{self.v(cx)} Y{self.v(cy)} R{self.r.choice((30, 45, 90, -60))}.")
+        elif kind == "G52":
+            self.emit(f"G52 X{self.v(cx)} Y{self.v(cy)}")
+        else:
+            self.emit(f"G51.1 X{self.v(cx)}" if self.fanuc else "G101 X0.")
+        self.comp_section()
+        self.emit({"G68": "G69", "G52": "G52 X0. Y0."}.get(kind, "G50.1 X0." if self.fanuc else "G100 X0."))
+
+    def cycles_rotated_section(self) -> None:
+        self.start(20)
+        self.emit(f"G68 X{self.v(self.pos[0])} Y{self.v(self.pos[1])} R{self.r.choice((30, 45, 90))}.")
+        self.cycles_section(self.r.random() < 0.5)
+        self.emit("G69")
+
+    def boring_section(self) -> None:
+        """G76 fine boring (shift Q, Haas also I J) and G87 back boring (Haas G77): Fanuc 0i-MF "Fine boring
+        cycle", "Back boring cycle"; Haas "G76", "G77"."""
+        self.start(20)
+        shift = f"Q{self.v(0.5)}" if self.fanuc or self.r.random() < 0.5 else f"I{self.v(0.5)} J0."
+        if self.r.random() < 0.5:
+            self.emit(f"G90 {self.r.choice(('G98', 'G99'))} G76 {self.xyz(self.pos[0] + 5, self.pos[1])} "
+                      f"Z{self.v(-10)} R{self.v(2)} {shift} P500 {self.feed()}")
+        else:
+            self.emit(f"G90 G98 {'G87' if self.fanuc else 'G77'} {self.xyz(self.pos[0] + 5, self.pos[1])} "
+                      f"Z{self.v(-2)} R{self.v(-12)} {shift} {self.feed()}")
+        self.emit(f"{self.xyz(self.pos[0] + 10, self.pos[1])}")
+        self.emit("G80")
+        self.pos[2] = 20
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def corner_words_section(self) -> None:
+        """``,R`` / ``,C`` between G01 moves (Fanuc 0i-MF "Optional chamfering and corner R"; Haas "G01 Corner
+        Rounding and Chamfering")."""
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        x, y = self.pos[0], self.pos[1]
+        pts = [(x + 20, y), (x + 20, y + 20), (x, y + 20), (x, y)]
+        for k, (px, py) in enumerate(pts):
+            size = self.v(self.r.choice((1, 2, 3)), plain=False)
+            word = "" if k == len(pts) - 1 else f" ,{self.r.choice('RC')}{size}"
+            self.emit(f"G1 {self.xyz(px, py)}{word}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def nested_sub_section(self) -> None:
+        inner = 2000 + len(self.subs) * 10
+        outer = inner + 5
+        self.subs.append([f"O{inner} (INNER)", f"G91 G1 Y{self.v(2)} {self.feed()}", "G90", "M99"])
+        self.subs.append([f"O{outer} (OUTER)", f"G91 G1 X{self.v(3)} {self.feed()}", "G90", f"M98 P{inner}",
+                          "M99"])
+        self.start()
+        self.emit(f"M98 P{outer}" + (f" L{self.r.randint(2, 3)}" if self.r.random() < 0.5 else ""))
+
+    def tool_length_section(self) -> None:
+        """A second G43 H without G49 (Fanuc: the new offset replaces the old), H of another tool."""
+        self.start(30)
+        self.emit(f"G43 H{self.r.randint(1, 6)} {self.xyz(z=25)}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()}")
+        self.emit(f"G43 H{self.tool or 1} {self.xyz(z=30)}")
+
+    def haas_pattern_section(self) -> None:
+        """Haas G70 bolt hole circle, G71 bolt hole arc, G72 holes along an angle, with G81 active."""
+        if self.fanuc:
+            return self.cycles_section()
+        self.start(20)
+        self.emit(f"G90 G99 G81 Z{self.v(-5)} R{self.v(2)} L0 {self.feed()}")
+        code = self.r.choice(("G70", "G71", "G72"))
+        n = self.r.randint(2, 6)
+        words = f"I{self.v(10)} J{self.r.choice((0, 15, 30))}. L{n}"
+        if code == "G71":
+            words += f" K{self.r.choice((20, 30))}."
+        self.emit(f"{code} {words} X{self.v(self.pos[0])} Y{self.v(self.pos[1])}")
+        self.emit("G80")
+        self.pos[2] = 2
+        self.emit(f"G0 {self.xyz(z=20)}")
+
+    def haas_pocket_section(self) -> None:
+        """Haas G12 / G13 circular pocket milling (Haas mill operator's manual "G12/G13")."""
+        if self.fanuc:
+            return self.arcs_section()
+        if not self.tool:
+            self.tool_change()
+        self.start(2)
+        extra = f" Q{self.v(3)} K{self.v(15)}" if self.r.random() < 0.5 else ""
+        self.emit(f"{self.r.choice(('G12', 'G13'))} I{self.v(6)}{extra} D{self.tool} Z{self.v(-2)} {self.feed()}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def haas_peck_section(self) -> None:
+        """Haas G83 with I (first peck) J (less each time) K (at least): Haas "G83 Normal Peck Drilling"."""
+        if self.fanuc:
+            return self.cycles_section()
+        self.start(20)
+        self.emit(f"G90 G98 G83 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-12)} R{self.v(2)} "
+                  f"I{self.v(4)} J{self.v(1)} K{self.v(1.5)} {self.feed()}")
+        self.emit("G80")
+        self.pos[2] = 20
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def m97_section(self) -> None:
+        """Haas M97 P<n> L<k>: the blocks from N<n> of this program to M99."""
+        if self.fanuc:
+            return self.subprogram_section()
+        n = 8000 + len(self.subs) * 10
+        self.subs.insert(0, [f"N{n} G91 G1 X{self.v(4)} {self.feed()}", "G90", "M99"])
+        self.start()
+        self.emit(f"M97 P{n}" + (f" L{self.r.randint(2, 3)}" if self.r.random() < 0.5 else ""))
+
+    def polar_section(self) -> None:
+        """Fanuc G16 polar coordinates (X the radius, Y the angle about the work zero); G15 cancels."""
+        if not self.fanuc:
+            return self.lines_section()
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit("G16")
+        for _ in range(self.r.randint(1, 3)):
+            self.emit(f"G1 X{self.v(self.r.choice((10, 20, 25)))} Y{self.r.choice((0, 30, 45, 120, -60))}.")
+        self.emit("G15")
+        self.emit(f"G90 G0 {self.xyz(z=10)}")
+
+    def tool_change(self) -> None:
+        self.tool = self.r.randint(1, 6)
+        self.emit("G91 G28 Z0.")
+        self.emit("G90 G49")
+        self.emit(f"T{self.tool} M06")
+        x, y = self.r.randint(-8, 8) * 5, self.r.randint(-8, 8) * 5
+        self.emit(f"G0 G90 G5{self.r.randint(4, 9)} {self.xyz(x, y)} S{self.r.choice((1200, 3000, 8000))} M03")
+        self.emit(f"G43 H{self.tool} {self.xyz(z=50)} M08")
+
+
+def generate(seed: int, dialect: str = "fanuc") -> str:
+    """A valid ``fanuc`` or ``haas`` mill program, the same for the same seed."""
+    r = random.Random(f"{dialect}:{seed}")
+    inch = r.random() < 0.25
+    chosen = features(seed, dialect)
+    g = _Gen(r, dialect, 0.05 if inch else 1.0, dpi0=_increments(seed, dialect))
+    g.lines.append("%")
+    g.lines.append(f"O{1000 + seed % 8000:04d} (FUZZ {seed})")
+    g.emit(f"{'G20' if inch else 'G21'} G17 G40 G49 G80 G90")
+    g.tool_change()
+    table = {"lines": g.lines_section, "arcs": g.arcs_section, "helix": g.helix_section,
+             "planes": g.planes_section, "comp": g.comp_section, "cycles": g.cycles_section,
+             "cycles_g91": lambda: g.cycles_section(True), "subprogram": g.subprogram_section,
+             "macro": g.macro_section, "g65": g.g65_section, "rotation": lambda: g.transform_section("rotation"),
+             "scaling": lambda: g.transform_section("scaling"), "mirror": lambda: g.transform_section("mirror"),
+             "g52": g.g52_section, "g92": g.g92_section, "g10": g.g10_section,
+             "extended_offset": g.extended_section, "g28_g53": g.g28_g53_section, "dwell": g.dwell_section,
+             "tool_change": g.tool_change, "g91_arcs": g.g91_arcs_section, "comp_rotated": g.comp_rotated_section,
+             "cycles_rotated": g.cycles_rotated_section, "boring": g.boring_section,
+             "corner_words": g.corner_words_section, "nested_sub": g.nested_sub_section,
+             "tool_length": g.tool_length_section, "haas_pattern": g.haas_pattern_section,
+             "haas_pocket": g.haas_pocket_section, "haas_peck": g.haas_peck_section, "m97": g.m97_section,
+             "polar": g.polar_section}
+    for name in chosen:
+        table[name]()
+    g.emit("G91 G28 Z0.")
+    g.emit("G90 G49 M05")
+    g.emit("M30")
+    for body in g.subs:
+        g.lines.extend(body)
+    g.lines.append("%")
+    return "\n".join(g.lines) + "\n"
+
+
+def features(seed: int, dialect: str = "fanuc") -> list[str]:
+    """The sections :func:`generate` chose for ``seed`` (for counting programs per feature)."""
+    r = random.Random(f"{dialect}:{seed}:features")
+    return [r.choice(FEATURES) for _ in range(r.randint(3, 7))]
