@@ -234,7 +234,8 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     # LinuxCNC's loop runs in program units: a Q that divides R - Z makes the pecks its rounding makes
     r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
     bottom_p = r_p + cycle.z if incremental else cycle.z
-    depths = [d * scale + offset[2] for d in _peck_depths(cycle, r_p, bottom_p, haas=haas)] if g in (73, 83) else []
+    levels = _peck_depths(cycle, r_p, bottom_p, haas=haas, decimal=fanuc_rules) if g in (73, 83) else []
+    depths = [d * scale + offset[2] for d in levels]
     pecks = len(depths) + 1
     if repeats * (pecks + 3) > MAX_CYCLE_MOVES:  # L99999999 or Q0.0000001 would run for hours, filling the memory
         raise CycleError(f"{repeats} holes of {pecks} pecks each exceed {MAX_CYCLE_MOVES} cycle moves",
@@ -254,13 +255,17 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
 
     # levels and approach as LinuxCNC's convert_cycle_xy and CYCLE_MACRO (interp_internal.hh)
     old = cycle.initial
-    if old < r:  # the initial level is below R: straight up to R first
-        go("rapid", cur[0], cur[1], r)
+    if old < r:  # the initial level is below R: straight up to R first (LinuxCNC; Fanuc, Haas: see below)
+        if not fanuc_rules:
+            go("rapid", cur[0], cur[1], r)
         old = r
     clear = r if retract_r else old
     for k in range(repeats):
         x, y = _hole(words, cur, offset=offset, scale=scale, incremental=incremental)
-        if k == 0 and cur[2] > r:  # over at the current height, then down to R
+        # over at the current height, then down to R; Fanuc and Haas also from below R (0i-MF "Canned cycle for
+        # drilling": "Operation 1 Positioning of axes X and Y", "Operation 2 Rapid traverse up to point R level"),
+        # as when a G98 block follows G99 holes under a higher R
+        if k == 0 and (cur[2] > r or fanuc_rules):
             go("rapid", x, y, cur[2])
         else:  # the tool is at the clear level (or below it): over at the clear level
             go("rapid", x, y, clear)
@@ -287,16 +292,19 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     return out
 
 
-def _peck_depths(cycle: CycleWords, r: float, bottom: float, *, haas: bool) -> list[float]:
+def _peck_depths(cycle: CycleWords, r: float, bottom: float, *, haas: bool, decimal: bool = False) -> list[float]:
     """The depths of the pecks above the bottom, in program units and coordinates as ``r`` and
     ``bottom``: every Q from R (LinuxCNC's loop, interp_cycles.cc convert_cycle_g83, run in program
     units so that a Q that divides R - Z makes the pecks its rounding makes), or under Haas with I the
-    pecks I, I - J, ... not below K; at most :data:`MAX_CYCLE_MOVES` + 1 of them."""
+    pecks I, I - J, ... not below K; at most :data:`MAX_CYCLE_MOVES` + 1 of them. ``decimal`` (Fanuc, Haas):
+    a peck within binary rounding of the bottom is the bottom, as in the controls' decimal arithmetic (R0.15
+    Z-0.45 Q0.1 is six pecks, the last at Z-0.45; our reading: LinuxCNC's doubles add a seventh)."""
     variable = haas and bool(cycle.i)
     step = cycle.i if variable else cycle.q
     out: list[float] = []
     depth = r - step
-    while depth > bottom and len(out) <= MAX_CYCLE_MOVES:
+    slack = 1e-9 * max(1.0, abs(bottom)) if decimal else 0.0
+    while depth > bottom + slack and len(out) <= MAX_CYCLE_MOVES:
         out.append(depth)
         if variable:
             step = max(step - (cycle.j or 0.0), cycle.k or 0.0)

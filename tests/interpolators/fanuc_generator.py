@@ -40,7 +40,8 @@ _VECTORS = sorted({(sx * u * k, sy * v * k) for u, v in ((0, 5), (3, 4), (4, 3),
 FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "macro", "g65",
             "rotation", "scaling", "mirror", "g52", "g92", "g10", "extended_offset", "g28_g53", "dwell",
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
-            "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar")
+            "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
+            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -87,7 +88,9 @@ class _Gen:
         self.n += 5
         if number is None and self.r.random() < 0.5:
             number = self.n
-        self.lines.append(f"N{number} {text}" if number is not None else text)
+        skip = "/" if text.startswith("/") else ""  # the block delete slash at the head of the block
+        text = text.removeprefix("/")
+        self.lines.append(f"{skip}N{number} {text}" if number is not None else skip + text)
 
     def v(self, grid: float, *, plain: bool = True) -> str:
         """A distance of ``grid`` steps; under DPI = 0 sometimes as an integer of least input increments."""
@@ -523,6 +526,128 @@ class _Gen:
         self.emit("G15")
         self.emit(f"G90 G0 {self.xyz(z=10)}")
 
+    def comp_arcs_section(self) -> None:
+        """A G41/G42 slot: two lines joined by half circles (outside or inside by the side), or a line, a quarter
+        arc and a line meeting at a tangent or a corner."""
+        if not self.tool:
+            self.tool_change()
+        x0, y0 = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
+        side = self.r.choice(("G41", "G42"))
+        self.emit(f"G90 G0 {self.xyz(x0 - 15, y0)}")
+        self.emit(f"G0 {self.xyz(z=5)}")
+        self.emit(f"G1 {self.xyz(z=-2)} {self.feed()}")
+        self.emit(f"{side} D{self.r.randint(1, 6)} G1 {self.xyz(x0)}")
+        if self.r.random() < 0.5:  # a slot of width 20: half circles of radius 10 at both ends
+            self.emit(f"G1 {self.xyz(x0 + 30)}")
+            self.emit(f"G3 {self.xyz(y=y0 + 20)} " + (f"R{self.v(10)}" if self.r.random() < 0.5 else
+                                                      f"I0. J{self.v(10)}"))
+            self.emit(f"G1 {self.xyz(x0)}")
+            self.emit(f"G3 {self.xyz(y=y0)} " + (f"R{self.v(10)}" if self.r.random() < 0.5 else f"J{self.v(-10)}"))
+            self.emit(f"G1 {self.xyz(x0 + 10)}")
+        else:  # a line, a quarter arc (tangent or turned), a line
+            code = self.r.choice(("G2", "G3"))
+            sy = 1 if code == "G3" else -1
+            self.emit(f"G1 {self.xyz(x0 + 20)}")
+            if self.r.random() < 0.5:
+                self.emit(f"{code} {self.xyz(x0 + 30, y0 + 10 * sy)} J{self.v(10 * sy)}")
+            else:  # the arc leaves the line at a corner: centre straight ahead
+                self.emit(f"{code} {self.xyz(x0 + 40, y0)} I{self.v(10)} J0.")
+            self.emit(f"G1 {self.xyz(y=self.pos[1] + 20 * sy)}")
+        self.emit(f"G40 G1 {self.xyz(self.pos[0] + 15)}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def macro_system_section(self) -> None:
+        """Macro B functions and loops (Fanuc 0i-MF "Custom macro": ROUND, FIX, FUP, ABS, SQRT, ATAN, nested
+        WHILE, AND in IF)."""
+        self.start()
+        self.emit(f"#110={self.v(self.pos[0], plain=False)}+{self.v(5, plain=False)}")
+        self.emit(f"#111={self.v(self.pos[1], plain=False)}")
+        self.emit(f"G1 Z{self.v(-1)} {self.feed()}")
+        self.emit("#120=1")
+        self.emit("WHILE [#120 LE 2] DO1")
+        self.emit("#121=1")
+        self.emit("WHILE [#121 LE 2] DO2")
+        self.emit(f"G1 X[#110+#121*{self.v(2, plain=False)}] Y[#111+#120*{self.v(3, plain=False)}]")
+        self.emit("#121=#121+1")
+        self.emit("END2")
+        self.emit("#120=#120+1")
+        self.emit("END1")
+        self.emit(f"IF [[#121 EQ 3] AND [#120 GT 2]] THEN #122=ROUND[{self.v(7.6, plain=False)}]")
+        self.emit(f"#123=FIX[{self.v(2.7, plain=False)}]+FUP[{self.v(1.2, plain=False)}]+ABS[-1]+SQRT[16]")
+        self.emit("#124=ATAN[1]/[1]")
+        self.emit("G1 X[#110+#122] Y[#111+#123+#124/45]")
+        x, y = self.pos[0], self.pos[1]
+        self.emit(f"G0 Z{self.v(10)}")
+        self.emit(f"G90 G0 {self.xyz(x, y)}")
+
+    def cycle_modal_section(self) -> None:
+        """A drilling series whose later blocks change Z and R, and G99 to G98 under a higher R (a work offset
+        switched within the series is left out: where the initial level then lies no manual says)."""
+        code = self.r.choice(("G81", "G82", "G83", "G73"))
+        self.start(20)
+        q = f" Q{self.v(2)}" if code in ("G73", "G83") else ""
+        p = " P300" if code == "G82" else ""
+        self.emit(f"G90 G99 {code} {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-6)} R{self.v(3)}{q}{p} "
+                  f"{self.feed()}")
+        self.emit(f"{self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-9)}")
+        self.emit(f"G98 {self.xyz(self.pos[0], self.pos[1] + 5)} R{self.v(5)}")
+        self.emit("G80")
+        self.pos[2] = 20
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def g28_shifted_section(self) -> None:
+        """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
+        position return": the intermediate point in the workpiece system)."""
+        self.emit(f"G52 X{self.v(10)} Y{self.v(-5)}")
+        self.start(20)
+        self.emit(f"G28 {self.xyz(self.pos[0] + 5, self.pos[1], 30)}")
+        self.emit("G52 X0. Y0.")
+        if self.r.random() < 0.5:
+            self.emit(f"G91 G30 Z{self.v(5)}")
+            self.emit("G90")
+
+    def depth_passes_section(self) -> None:
+        """A contour subprogram stepping down in G91 and repeated (M98 P L / Fanuc P<count><program>)."""
+        prog = 3000 + len(self.subs) * 10
+        self.subs.append([f"O{prog} (PASS)", f"G91 G1 Z{self.v(-1)} {self.feed()}", f"X{self.v(10)}",
+                          f"Y{self.v(10)}", f"X{self.v(-10)}", f"Y{self.v(-10)}", "G90", "M99"])
+        self.start(1)
+        n = self.r.randint(2, 4)
+        self.emit(f"M98 P{n}{prog:04d}" if self.fanuc and self.r.random() < 0.5 else f"M98 P{prog} L{n}")
+        self.emit(f"G90 G0 {self.xyz(z=10)}")
+
+    def scaling_ijk_section(self) -> None:
+        """Fanuc G51 I J K per-axis factors (0i-MF "Scaling": "I_J_K_ scaling magnification for X, Y, Z"), on
+        straight moves only (an arc under unequal factors is not a circle); Haas scales all axes alike."""
+        if not self.fanuc:
+            return self.transform_section("scaling")
+        self.start()
+        i, j = self.r.choice((("1.5", "0.5"), ("2.", "-1."), ("-1.", "1.")))
+        self.emit(f"G51 X{self.v(self.pos[0])} Y{self.v(self.pos[1])} I{i} J{j} K1.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        for _ in range(2):
+            self.emit(f"G1 {self.xyz(self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + 5)}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G50")
+
+    def block_delete_section(self) -> None:
+        """``/`` block delete (off: the blocks run), comments with odd characters, blocks with only N."""
+        self.start()
+        self.emit(f"/G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()} (SKIP; IF ON)")
+        self.emit("(OP 2 - FACE / 5.0MM, \"FINISH\")")
+        self.emit(f"G1 {self.xyz(self.pos[0], self.pos[1] + 5)} {self.feed()}")
+
+    def corner_arc_section(self) -> None:
+        """Fanuc ``,R`` between a line and an arc (0i-MF "Optional chamfering and corner R": also between a
+        line and an arc)."""
+        if not self.fanuc:
+            return self.corner_words_section()
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 20, self.pos[1])} ,R{self.v(2, plain=False)}")
+        self.emit(f"G3 {self.xyz(self.pos[0] + 10, self.pos[1] - 10)} I{self.v(10)} J0.")  # turning 90 deg
+        self.emit(f"G0 {self.xyz(z=10)}")
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -555,7 +680,10 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "corner_words": g.corner_words_section, "nested_sub": g.nested_sub_section,
              "tool_length": g.tool_length_section, "haas_pattern": g.haas_pattern_section,
              "haas_pocket": g.haas_pocket_section, "haas_peck": g.haas_peck_section, "m97": g.m97_section,
-             "polar": g.polar_section}
+             "polar": g.polar_section, "comp_arcs": g.comp_arcs_section, "macro_system": g.macro_system_section,
+             "cycle_modal": g.cycle_modal_section, "g28_shifted": g.g28_shifted_section,
+             "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
+             "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")

@@ -25,9 +25,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   (g-code.adoc "G28, G28.1"); G28.1 / G30.1 make the current position that reference. G53: the named
   axes go to machine coordinates.
 - Canned cycles G73, G81-G89 (g-code.adoc "G80-G89 Canned Cycles", "G73", "G83", "G98, G99"):
-  preliminary rapid to R when below it (once), per repeat a rapid in XY, a rapid to R, the feed
-  to the bottom (pecks of Q for G73/G83 with the 0.254 mm / 0.010 in clearance, G83 back to R
-  between pecks), dwell for G82/G89, the feed out for G85/G89 (under fanuc/haas to R, then the rapid to
+  preliminary rapid to R when below it (once; Fanuc/Haas: X Y first, 0i-MF "Canned cycle for drilling"), per
+  repeat a rapid in XY, a rapid to R, the feed to the bottom (pecks of Q for G73/G83 with the 0.254 mm /
+  0.010 in clearance, G83 back to R between pecks), dwell for G82/G89, the feed out for G85/G89 (under fanuc/haas to R, then the rapid to
   clear Z: FANUC 30i operator's manual B-63944EN-2 5.1.9), and the retract to clear Z
   (G98: the Z before the series if above R, else R; G99: R). In G91, X/Y/R are increments from
   the current position and Z from R; polar ``@ ^`` repeats add to the polar position.
@@ -368,6 +368,8 @@ class _Params:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
+        if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 1000 <= key < 5000:
+            raise ReferenceError(f"system variable #{key} (signals, modal information: the control's state)")
         if isinstance(key, int):
             return self.numbered.get(key, self.unset)
         if key.startswith("_"):
@@ -1493,7 +1495,9 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
         return
-    if cur[2] < r - _EPS * max(1.0, abs(r)):
+    if cur[2] < r - _EPS * max(1.0, abs(r)) and (m.ctx.dialect.name not in ("fanuc", "haas") or m.fadal):
+        # LinuxCNC: below R, straight up to R first; Fanuc/Haas position X Y where the tool is, then rapid to R
+        # (0i-MF "Canned cycle for drilling", operations 1 and 2)
         cur[2] = r
         m.move(line, "rapid", prog(cur))
     xy = cur[:2].copy()

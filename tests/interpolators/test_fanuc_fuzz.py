@@ -108,3 +108,23 @@ def test_cutter_compensation_under_a_one_axis_mirror_keeps_its_side_of_the_conto
     got = [e[2][:2] for e in ends(text, context)][3:]
     assert got == [[-10.0, 2.0], [-18.0, 2.0], [-18.0, 18.0], [-2.0, 18.0], [-2.0, 2.0], [-10.0, 2.0],
                    [-10.0, -10.0]]
+
+
+def test_g98_block_after_g99_holes_positions_where_the_tool_is_then_rapids_up_to_a_higher_r():
+    # Fanuc 0i-MF "Canned cycle for drilling": operation 1 positions X Y, operation 2 rapids to point R. After a
+    # G99 hole the tool waits at R3; a G98 block with R5 moves over at Z3, rises to R5, drills and returns to
+    # the initial level Z20. vcnc rose diagonally to Z20 over the new hole and came down to R5
+    text = "G90 G54 G0 X0 Y0 Z20.\nG99 G81 X10. Z-6. R3. F100.\nG98 Y5. R5.\nG80\nM30\n"
+    assert [e for e in ends(text, FANUC) if e[0] == 3] == [
+        (3, "rapid", [10.0, 5.0, 3.0]), (3, "rapid", [10.0, 5.0, 5.0]), (3, "line", [10.0, 5.0, -6.0]),
+        (3, "rapid", [10.0, 5.0, 20.0])]
+
+
+def test_pecks_that_divide_the_depth_end_at_the_bottom():
+    # G73 from R0.15 to Z-0.45 in Q0.1 steps: six pecks, the sixth at the bottom, then the retract (Fanuc 0i-MF
+    # "High-speed peck drilling cycle"; the control's decimal arithmetic). vcnc's doubles left the sixth peck
+    # a hair above -0.45 and added a seventh: a 0.010 in retract and a feed back to the same depth
+    text = "G20 G90 G54 G0 X0 Y0 Z1.\nG99 G73 Z-0.45 R0.15 Q0.1 F10.\nG80\nM30\n"
+    feeds = [round(e[2][2] / 25.4, 6) for e in ends(text, FANUC) if e[1] == "line"]
+    assert feeds == [0.05, -0.05, -0.15, -0.25, -0.35, -0.45]
+    assert ends(text, FANUC)[-1] == (2, "rapid", [0.0, 0.0, 3.81])
