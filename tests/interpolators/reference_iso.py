@@ -27,8 +27,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
 - Canned cycles G73, G81-G89 (g-code.adoc "G80-G89 Canned Cycles", "G73", "G83", "G98, G99"):
   preliminary rapid to R when below it (once; Fanuc/Haas: X Y first, 0i-MF "Canned cycle for drilling"), per
   repeat a rapid in XY, a rapid to R, the feed to the bottom (pecks of Q for G73/G83 with the 0.254 mm /
-  0.010 in clearance, G83 back to R between pecks), dwell for G82/G89, the feed out for G85/G89 (under fanuc/haas to R, then the rapid to
-  clear Z: FANUC 30i operator's manual B-63944EN-2 5.1.9), and the retract to clear Z
+  0.010 in clearance, G83 back to R between pecks), dwell for G82/G89, the feed out for G85/G89 (under
+  fanuc/haas to R, then the rapid to clear Z: FANUC 30i operator's manual B-63944EN-2 5.1.9), and the retract
+  to clear Z
   (G98: the Z before the series if above R, else R; G99: R). In G91, X/Y/R are increments from
   the current position and Z from R; polar ``@ ^`` repeats add to the polar position.
 - Parameters ``#n``, ``#<local>``, ``#<_global>``, expressions in ``[ ]`` with the documented
