@@ -78,9 +78,13 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
          "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
-         "Unknown word where unary operation could be": "macro B"}
+         "Unknown word where unary operation could be": "macro B",
+         "Cannot restore context from invalid stack frame": "M72 with no modal state saved",
+         "no matching while/do label": "in a repeat loop"}
 #: rs274's refusal of a reused O-word label, which vcnc notes (its message begins with the line number).
 DUPLICATE_LABEL = re.compile(r"\d+: duplicate O-word label")
+#: The line number before rs274's O-word messages ("4: no matching while/do label").
+LINE_PREFIX = re.compile(r"^\d+: ")
 #: A G5/G5.1 spline block or a G5.2 .. G5.3 NURBS (vcnc reads them as chords; a NURBS's chords are the G5.3
 #: block's) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[123])?(?![\d.])", re.I)
@@ -293,7 +297,7 @@ def without_repeats(moves: list[Move], *, printed: bool = True) -> list[Move]:
     out: list[Move] = []
     last = Move(kind="rapid", xyz=np.zeros(3), abc=np.zeros(3))
     for m in moves:
-        tol = 6e-5 * m.unit + 1e-6 if printed else 1e-9
+        tol = 6e-5 * m.unit + 1e-6 + m.slack + last.slack if printed else 1e-9
         same = np.allclose(last.xyz, m.xyz, atol=tol, rtol=0.0) and np.allclose(last.abc, m.abc, atol=1e-3, rtol=0.0)
         if m.kind in ("rapid", "line") and same:
             continue
@@ -389,7 +393,8 @@ def _at_spline_end(want: list[Move], i: int, got: list[Move], k: int) -> bool:
     :func:`without_repeats` cannot drop, rs274 printing no spline end."""
     return (i > 0 and k > 0 and want[i - 1].kind == "spline" and got[k - 1].kind == "spline"
             and want[i].kind in ("rapid", "line") and bool(np.allclose(want[i].xyz, got[k - 1].xyz,
-                                                                       atol=1.5e-4 * want[i].unit, rtol=0.0)))
+                                                                       atol=1.5e-4 * want[i].unit + want[i].slack,
+                                                                       rtol=0.0)))
 
 
 def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False, merge: float = 0.0) -> str:
@@ -448,7 +453,7 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
         key = "O-word label" if DUPLICATE_LABEL.match(rs.error) else \
-            next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
+            next((v for k, v in NOTED.items() if LINE_PREFIX.sub("", rs.error).startswith(k)), None)
         noted = [n for n in notes if "LinuxCNC refuses" in n and key is not None and key in n]
         if noted:
             return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}

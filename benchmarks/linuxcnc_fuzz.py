@@ -35,7 +35,9 @@ class _Writer:
         self.incremental = False
         self.pos = [0.0, 0.0, 0.0]
         self.inverse_time = False
-        self.offset_in_units = True
+        self.tool_offset = False
+        self.m61 = False
+        self.labels = 100
 
     def num(self, mm: float) -> str:
         """A length [mm] as a word value in the units in force (4 decimals in inch, 3 in mm)."""
@@ -48,10 +50,17 @@ class _Writer:
         self.lines.append(text)
 
     def units(self) -> None:
-        """Sometimes switch units (G20/G21) at a chunk's start."""
+        """Sometimes switch units (G20/G21) at a chunk's start; with a tool length offset in force, G49 first.
+
+        LinuxCNC reads the offset back in the new units after G20 / G21 (interp_convert.cc
+        ``convert_length_units``: ``GET_EXTERNAL_TOOL_LENGTH_ZOFFSET``; emccanon.cc ``TO_PROG_LEN``), rs274's
+        standalone canon returns the number as it was set (saicanon.cc), so that rs274 takes a length set in mm
+        as inch (or back) at the next G43.2, G53 or change of the offset in G91."""
         if self.rng.random() < 0.35:
+            if self.tool_offset:
+                self.emit("G49")
+                self.tool_offset = False
             self.inch = not self.inch
-            self.offset_in_units = False
             self.emit("G20" if self.inch else "G21")
 
     def start(self, x: float, y: float, z: float, *, distance: str | None = None, units: bool = True) -> None:
@@ -111,7 +120,8 @@ def _arc(w: _Writer, plane: int, *, allow_r: bool = True, helix: bool = True) ->
     by_r = allow_r and not full and rng.random() < 0.4
     words = w.axes(end)
     if by_r:
-        r = radius * (1 if sweep <= math.pi else -1)
+        digit = 0.0001 * INCH if w.inch else 0.001  # R rounded up: at least half the chord as printed
+        r = (radius + digit) * (1 if sweep <= math.pi else -1)
         w.emit(f"{code} {words} R{w.num(r)}{' ' + w.feed() if w.inverse_time else ''}")
         return
     absolute = rng.random() < 0.3
@@ -179,26 +189,22 @@ def chunk_tools(w: _Writer) -> None:
     (task/taskclass.cc ``emcToolSetNumber``: ``load_tool``), which G43 without H reads (interp_convert.cc
     ``convert_tool_length_offset``: index 0), but rs274's standalone canon does not (saicanon.cc
     ``CHANGE_TOOL_NUMBER`` sets the slot only), so rs274 applies the tool before M61; vcnc does as LinuxCNC.
-    A G49 first when the offset in force was set in other units: LinuxCNC reads the offset back in the new units
-    after G20 / G21 (interp_convert.cc ``convert_length_units``: ``GET_EXTERNAL_TOOL_LENGTH_ZOFFSET``, emccanon.cc
-    ``TO_PROG_LEN``), rs274's standalone canon returns the number as it was set (saicanon.cc), so rs274 adds
-    G43.2's offset to a length in the old units and shifts the current point by it at the next change (wrong
-    G91 moves after it)."""
+    The same holds for G41/G42 without D (the tool's own diameter), :func:`chunk_compensation`."""
     rng = w.rng
     w.units()
     tool = rng.randint(1, 30)
-    m61 = rng.random() < 0.4
-    w.emit(f"M61 Q{tool}" if m61 else f"T{tool} M6")
-    if not w.offset_in_units:
-        w.emit("G49")
-        w.offset_in_units = True
+    w.m61 = rng.random() < 0.4
+    w.emit(f"M61 Q{tool}" if w.m61 else f"T{tool} M6")
     w.start(w.coord(), w.coord(), w.coord(5, 30), units=False)
+    w.tool_offset = True
     for _ in range(rng.randint(1, 3)):
         offset = rng.choice([f"G43 H{rng.randint(1, 30)}", f"G43.1 Z{w.num(w.coord(-5, 5))}", "G49",
-                             f"G43.2 H{rng.randint(1, 30)}", *([] if m61 else ["G43"])])
+                             f"G43.2 H{rng.randint(1, 30)}", *([] if w.m61 else ["G43"])])
         target = [w.coord(), w.coord(), w.coord(0, 30)]
-        w.emit(f"{offset} G0 {w.axes(target)}" if rng.random() < 0.5 and offset[:6] not in ("G43.2 ", "G43.1 ") else offset)
-        if not offset.startswith("G43 G0") and rng.random() < 0.7:
+        # G43.2 H takes no axis words, G43.1's Z is the offset: a move only with G43 H, G43, G49
+        with_move = rng.random() < 0.5 and not offset.startswith(("G43.1", "G43.2"))
+        w.emit(f"{offset} G0 {w.axes(target)}" if with_move else offset)
+        if not with_move and rng.random() < 0.7:
             w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.coord(0, 30)])} {w.feed()}")
     w.emit("G90")
 
@@ -262,13 +268,14 @@ def chunk_compensation(w: _Writer) -> None:
     w.units()
     if rng.random() < 0.5:
         w.emit(f"T{rng.randint(1, 40)} M6")
+        w.m61 = False
     w.emit("G17 G90 G40")
     w.incremental = False
     w.pos = [w.coord(-80, -60), w.coord(-80, -60), w.coord(0, 5)]
     w.emit(f"G0 X{w.num(w.pos[0])} Y{w.num(w.pos[1])} Z{w.num(w.pos[2])}")
     w.emit(f"G1 {w.feed()}")
     side = rng.choice(["G41", "G42"])
-    how = rng.choice(["", f" D{rng.randint(1, 40)}", f".1 D{w.num(rng.uniform(0.5, 4.0))}"])
+    how = rng.choice([*([] if w.m61 else [""]), f" D{rng.randint(1, 40)}", f".1 D{w.num(rng.uniform(0.5, 4.0))}"])
     w.emit(f"{side}{how}")
     contour = _contour(w)
     for kind, end, r in contour:
@@ -393,7 +400,8 @@ def chunk_owords(w: _Writer, subs: list[str]) -> None:
     and continue, do-while, repeat."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 10), distance="G90")
-    label = rng.randint(100, 999)
+    w.labels += 10
+    label = w.labels  # labels label .. label + 9, new in each chunk (LinuxCNC: one O-word label per block)
     kind = rng.choice(["call", "if", "while", "do", "repeat"])
     if kind == "call" and subs:
         name = rng.choice(subs)
@@ -411,14 +419,17 @@ def chunk_owords(w: _Writer, subs: list[str]) -> None:
         w.emit("#<i> = 0")
         w.emit(f"o{label} while [#<i> LT {rng.randint(1, 5)}]")
         w.emit("#<i> = [#<i> + 1]")
-        w.emit(f"o{label} if [#<i> EQ 2]")
+        w.emit(f"o{label + 1} if [#<i> EQ 2]")
         w.emit(f"G0 Z[{w.num(5)} + #<i>]")
-        w.emit(f"o{label} endif")
-        w.emit(f"o{label} if [#<i> GT 3]")
+        w.emit(f"o{label} continue")
+        w.emit(f"o{label + 1} endif")
+        w.emit(f"o{label + 2} if [#<i> GT 3]")
         w.emit(f"o{label} break")
-        w.emit(f"o{label} endif")
+        w.emit(f"o{label + 2} endif")
         w.emit(f"G1 X[#<i> * {w.num(3)}] Y[#<i> * {w.num(-2)}] {w.feed()}")
         w.emit(f"o{label} endwhile")
+        w.emit(f"o{label + 3} do")  # clears LinuxCNC's break flag, which would end the next do loop after one pass
+        w.emit(f"o{label + 3} while [0]")
     elif kind == "do":
         w.emit("#<i> = 0")
         w.emit(f"o{label} do")
@@ -444,16 +455,31 @@ def subroutines() -> tuple[list[str], list[str]]:
 
 
 def chunk_mcodes(w: _Writer) -> None:
-    """M codes and G codes that do not move: spindle, coolant, overrides, digital outputs, dwell, M70-M73 modal
-    state, between straight moves."""
+    """M codes and G codes that do not move (spindle, coolant, overrides, digital outputs, dwell, path mode)
+    between straight moves; sometimes the modal state saved by M70, units and distance mode changed, and restored
+    by M72 (m-code.adoc "M70 Save Modal State", "M72 Restore Modal State")."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 10))
     codes = ["M3 S1200", "M4 S800", "M5", "M7", "M8", "M9", "M48", "M49", "M50 P1", "M51 P0", "M52 P1", "M53 P0",
-             "M62 P1", "M63 P1", "M64 P2", "M65 P2", "G4 P0.2", "M1", "M70", "M72", "M71", "G40", "G61",
-             "G64", "G17"]
+             "M62 P1", "M63 P1", "M64 P2", "M65 P2", "G4 P0.2", "M1", "G40", "G61", "G64", "G17", "distance",
+             *([] if w.tool_offset else ["units"])]
+    saved = (w.inch, w.incremental) if rng.random() < 0.5 else None
+    if saved:
+        w.emit(f"{w.feed()} M70")
     for _ in range(rng.randint(2, 5)):
-        w.emit(rng.choice(codes))
+        code = rng.choice(codes)
+        if code == "units":
+            w.inch = not w.inch
+            code = "G20" if w.inch else "G21"
+        elif code == "distance":
+            w.incremental = not w.incremental
+            code = "G91" if w.incremental else "G90"
+        w.emit(code)
         w.emit(f"G1 {w.axes([w.pos[0] + w.coord(-8, 8), w.pos[1] + w.coord(-8, 8), w.pos[2]], 'XY')} {w.feed()}")
+    if saved:
+        w.emit("M72")
+        w.inch, w.incremental = saved
+        w.emit(f"G1 {w.axes([w.pos[0] + w.coord(-8, 8), w.pos[1] + w.coord(-8, 8), w.pos[2]], 'XY')}")
     w.emit("G90")
     w.incremental = False
 

@@ -6,6 +6,8 @@ written out (STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED end points, G21: mm), 
 
 from __future__ import annotations
 
+import numpy as np
+
 from benchmarks.linuxcnc_fuzz import FEATURES, generate
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
@@ -46,3 +48,55 @@ def test_the_generator_is_reproducible_and_vcnc_reads_its_programs():
         text, used = generate(100 + k, features=(group,))
         assert set(used) == {group}
         assert parse_program(text, context=LINUXCNC).blocks
+
+
+def test_an_inside_corner_after_a_nearly_straight_one_is_on_the_programmed_offset_line():
+    """G41.1: a turn of 0.048 rad at X2.519 (under LinuxCNC's 0.05, no corner arc: the next line starts where the
+    tool is, a little off its programmed direction), then an inside corner at X17.878. LinuxCNC backs off from
+    the tool's offset end along the programmed direction by r / tan(half the corner) (interp_convert.cc
+    ``convert_straight_comp2``, line -> line), which puts the corner on the programmed offset line. rs274
+    2.9.0~pre1: STRAIGHT_FEED(2.5528, -24.4539), STRAIGHT_FEED(16.4725, -24.1179), STRAIGHT_FEED(16.4725,
+    -1.5340); vcnc had -24.1180 (the intersection with the line the tool runs)."""
+    prog = parse_program("G21 G17 G90\nG0 X-20 Y-30 Z0\nG1 F250\nG41.1 D2.811\nG1 X-12.841 Y-25.49\n"
+                         "G1 X2.519 Y-25.859\nG1 X17.878 Y-25.49\nG1 X17.878 Y-1.534\nG40\nG0 X30 Y-40\nM2\n",
+                         context=LINUXCNC)
+    ends = _ends(prog)
+    assert ends[0] == ("rapid", -20.0, -30.0, 0.0) and ends[1] == ("line", -13.5902, -24.3008, 0.0)
+    assert ends[2][0].startswith("arc") and ends[2][1:] == (-12.8072, -24.0849, 0.0)
+    assert ends[3:] == [("line", 2.5528, -24.4539, 0.0), ("line", 16.4725, -24.1179, 0.0),
+                        ("line", 16.4725, -1.534, 0.0), ("rapid", 30.0, -40.0, 0.0)]
+
+
+def test_a_spline_under_a_g10_rotation_turns_with_the_coordinate_system():
+    """G5.1 under ``G10 L2 P1 R90``: LinuxCNC builds the spline in program coordinates and turns the arcs it
+    makes of it (emccanon.cc ``NURBS_FEED``: ``biarc`` -> ARC_FEED, rotated as every move); vcnc refused it.
+    The quadratic Bezier from (0, 0) over (0, 10) to (10, 0), turned by 90 degrees: from (0, 0) over (-10, 0)
+    to (0, 10); its point at t = 1/2, (2.5, 5) turned, is (-5, 2.5). rs274 2.9.0~pre1 ends it at the
+    programmed end: the next move, ``G1 X12``, is STRAIGHT_FEED(12.0000, 0.0000, ...), (0, 12) in machine X Y."""
+    prog = parse_program("G21 G17 G90\nG10 L2 P1 X0 Y0 R90\nG54\nG0 X0 Y0 Z0\nG1 F100\nG5.1 I0 J10 X10 Y0\n"
+                         "G1 X12\nM2\n", context=LINUXCNC)
+    chords = np.array([b.target[:2] for b in prog.blocks if b.line == 6])
+    assert np.allclose(chords[-1], [0.0, 10.0], atol=1e-9)
+    t = np.linspace(0.0, 1.0, 200_001)[:, None]
+    curve = 2 * (1 - t) * t * np.array([-10.0, 0.0]) + t**2 * np.array([0.0, 10.0])
+    assert np.min(np.linalg.norm(curve - [-5.0, 2.5], axis=1)) < 1e-9
+    assert max(np.min(np.linalg.norm(curve - c, axis=1)) for c in chords) < 0.002
+    assert _ends(prog)[-1] == ("line", 0.0, 12.0, 0.0)
+
+
+def test_loops_linuxcnc_runs_otherwise_are_noted():
+    """A ``break`` on a ``repeat`` loop's label: rs274 2.9.0~pre1 refuses it ("4: no matching while/do label",
+    interp_o_word.cc; o-code.adoc lists it among the errors), vcnc leaves the loop and says so. A ``do`` loop
+    after a ``break`` out of a ``while`` loop: rs274 runs its body once (the break flag ``doing_break`` stays set
+    until a do loop's closing while) where o-code.adoc has it loop while the condition holds: vcnc runs it twice
+    (X2, X4) and says so."""
+    repeat = parse_program("G21\no10 repeat [3]\nG91 G1 X1 F100\no10 break\no10 endrepeat\nM2\n", context=LINUXCNC)
+    assert _ends(repeat) == [("line", 1.0, 0.0, 0.0)]
+    assert any("o10 break in a repeat loop" in n and "LinuxCNC refuses" in n for n in repeat.notes)
+    after = parse_program("G21\n#<i> = 0\no1 while [#<i> LT 2]\no1 break\no1 endwhile\no2 do\nG91 G1 X2 F100\n"
+                          "#<i> = [#<i> + 1]\no2 while [#<i> LT 2]\nM2\n", context=LINUXCNC)
+    assert _ends(after) == [("line", 2.0, 0.0, 0.0), ("line", 4.0, 0.0, 0.0)]
+    assert any("o2 do loop after a break" in n for n in after.notes)
+    plain = parse_program("G21\n#<i> = 0\no2 do\nG91 G1 X2 F100\n#<i> = [#<i> + 1]\no2 while [#<i> LT 2]\nM2\n",
+                          context=LINUXCNC)
+    assert _ends(plain) == _ends(after) and not any("O-word" in n for n in plain.notes)
