@@ -30,10 +30,12 @@ def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) 
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
     as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
     (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled); under G10 R alone the G5 / G5.1 splines (LinuxCNC
-    builds them in program coordinates and turns the arcs it makes of them, emccanon.cc ``NURBS_FEED``)."""
+    builds them in program coordinates and turns the arcs it makes of them, emccanon.cc ``NURBS_FEED``) and
+    G33 / G33.1, straight moves to a rotated point (emccanon.cc ``STRAIGHT_FEED``, ``RIGID_TAP``:
+    ``rotate_and_offset_pos``)."""
     cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
-        or any(st.frame.mirror) and st.motion in (760, 870, 770)) or st.frame is None and st.motion in (50, 51)
+        or any(st.frame.mirror) and st.motion in (760, 870, 770)) or st.frame is None and st.motion in (50, 51, 330, 331)
     what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:

@@ -100,3 +100,32 @@ def test_loops_linuxcnc_runs_otherwise_are_noted():
     plain = parse_program("G21\n#<i> = 0\no2 do\nG91 G1 X2 F100\n#<i> = [#<i> + 1]\no2 while [#<i> LT 2]\nM2\n",
                           context=LINUXCNC)
     assert _ends(plain) == _ends(after) and not any("O-word" in n for n in plain.notes)
+
+
+def test_turns_of_a_g19_arc_under_a_g10_rotation():
+    """``G3 J1 K0.5 P2`` in G19 under ``G10 L2 P1 R30``: LinuxCNC runs two full turns (rs274 2.9.0~pre1:
+    ARC_FEED(1.0000, 0.0000, 2.0000, 0.5000, 2, 1.0000, ...)), then ``G3 Y3 Z0 X2 J1 K0 P3`` half a turn and two
+    more along X to Y3 (ARC_FEED(3.0000, 0.0000, 2.0000, 0.0000, 3, 2.0000, ...)); vcnc, which runs such arcs as
+    chords in program coordinates, refused their P ("word P needs G04 ..."). The chords' lengths: 2 turns of
+    radius sqrt(1.25), 2.5 turns of radius 1 rising 1 along X."""
+    prog = parse_program("G21 G90\nG10 L2 P1 X3 Y2 R30\nG54\nG0 X1 Y1 Z0\nG1 F100\nG19\nG3 J1 K0.5 P2\n"
+                         "G3 Y3 Z0 X2 J1 K0 P3\nG17\nG1 X0 Y0\nM2\n", context=LINUXCNC)
+    lengths = [sum(b.segment.length for b in prog.blocks if b.line == n) for n in (7, 8)]
+    assert np.allclose(lengths, [4 * np.pi * np.sqrt(1.25), np.hypot(5 * np.pi, 1.0)], rtol=1e-3)
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    end = [b for b in prog.blocks if b.line == 8][-1].target
+    assert np.allclose(end, [3 + 2 * c - 3 * s, 2 + 2 * s + 3 * c, 0.0], atol=1e-9)
+
+
+def test_rigid_tapping_under_a_g10_rotation():
+    """``G33.1`` under ``G10 L2 P1 X5 Y2 Z1 R30``: rs274 2.9.0~pre1 taps (RIGID_TAP(4.0000, 3.0000, -3.0000),
+    then RIGID_TAP(6.0000, 1.0000, -2.0000)) in program coordinates, which LinuxCNC's canon turns and offsets as
+    every move (emccanon.cc ``rotate_and_offset_pos``); vcnc refused G33.1 in a rotated coordinate system. Each
+    tap goes to its point and back to where it began."""
+    prog = parse_program("G21 G17 G90\nG10 L2 P1 X5 Y2 Z1 R30\nG54\nG0 X4 Y3 Z5\nM3 S500\nG33.1 Z-3 K1\n"
+                         "G33.1 X6 Y1 Z-2 K1.25\nG0 Z10\nM2\n", context=LINUXCNC)
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    top = (round(4 * c - 3 * s + 5, 4), round(4 * s + 3 * c + 2, 4))
+    side = (round(6 * c - s + 5, 4), round(6 * s + c + 2, 4))
+    assert _ends(prog) == [("rapid", *top, 6.0), ("line", *top, -2.0), ("line", *top, 6.0), ("line", *side, -1.0),
+                           ("line", *top, 6.0), ("rapid", *top, 11.0)]
