@@ -35,7 +35,8 @@ def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) 
     ``rotate_and_offset_pos``)."""
     cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
-        or any(st.frame.mirror) and st.motion in (760, 870, 770)) or st.frame is None and st.motion in (50, 51, 330, 331)
+        or any(st.frame.mirror) and st.motion in (760, 870, 770)) or (
+        st.frame is None and st.motion in (50, 51, 330, 331))
     what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
