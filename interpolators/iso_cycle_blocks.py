@@ -180,8 +180,10 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
     if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
-    # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
-    pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
+    # under G68 or G10 R the cycle runs in the rotated program coordinates, its moves mapped to the machine's
+    # (LinuxCNC: interp_cycles.cc works in program coordinates, emccanon.cc rotate_and_offset_pos turns each move)
+    turned = st.frame is not None or bool(st.rotation)
+    pos, off = (st.to_program(st.pos), np.zeros(3)) if turned else (st.pos, st.offset())
     factors = (1.0, 1.0, 1.0) if st.frame is None else st.frame.factors
     if st.cycle.initial is not None and st.cycle.factors != factors:  # where is the initial level now?
         where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
@@ -202,7 +204,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)
     framed_initial(st, to_program=False)
-    if st.frame is not None:
+    if turned:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:
         used.update(i for i in range(3) if mv.target[i] != st.pos[i])

@@ -28,14 +28,14 @@ __all__ = ["check_rotated", "g68", "g68_2_g53_1", "set_frame", "scaling_mirror",
 
 def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
-    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
-    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled); under G10 R alone the G5 / G5.1 splines (LinuxCNC
-    builds them in program coordinates and turns the arcs it makes of them, emccanon.cc ``NURBS_FEED``) and
-    G33 / G33.1, straight moves to a rotated point (emccanon.cc ``STRAIGHT_FEED``, ``RIGID_TAP``:
-    ``rotate_and_offset_pos``)."""
-    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
+    as chords); canned cycles (run in program coordinates, :func:`framed_initial`), under G51 scaling those
+    without a peck or shift Q (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled); under G10 R alone the G5 /
+    G5.1 splines (LinuxCNC builds them in program coordinates and turns the arcs it makes of them, emccanon.cc
+    ``NURBS_FEED``) and G33 / G33.1, straight moves to a rotated point (emccanon.cc ``STRAIGHT_FEED``,
+    ``RIGID_TAP``: ``rotate_and_offset_pos``)."""
+    cycle_ok = st.motion is not None and st.motion >= 730 and (st.frame is None or not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
-        or any(st.frame.mirror) and st.motion in (760, 870, 770)) or (
+        or any(st.frame.mirror) and st.motion in (760, 870, 770))) or (
         st.frame is None and st.motion in (50, 51, 330, 331))
     what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
             and st.motion not in (800,) and not cycle_ok else None)
@@ -137,11 +137,11 @@ def scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None:
 
 
 def framed_initial(st: State, *, to_program: bool) -> None:
-    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
+    """Under G68/G51/G51.1 or G10 R the cycle runs in program coordinates: its initial level (a machine position
     between blocks, so that it stays where the tool was when the series began while the transformation
     changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
     and back."""
-    if st.frame is None or st.cycle.initial is None:
+    if st.frame is None and not st.rotation or st.cycle.initial is None:
         return
     axis = CYCLE_AXES[st.plane][2]
     if to_program:

@@ -129,3 +129,25 @@ def test_rigid_tapping_under_a_g10_rotation():
     side = (round(6 * c - s + 5, 4), round(6 * s + c + 2, 4))
     assert _ends(prog) == [("rapid", *top, 6.0), ("line", *top, -2.0), ("line", *top, 6.0), ("line", *side, -1.0),
                            ("line", *top, 6.0), ("rapid", *top, 11.0)]
+
+
+def test_a_drilling_cycle_under_a_g10_rotation():
+    """``G81`` under ``G10 L2 P1 X5 Y2 Z1 R30``, then two more holes by ``G91 X2 Y2 L2``: LinuxCNC runs the cycle
+    in program coordinates (interp_cycles.cc) and its canon turns each move (emccanon.cc
+    ``rotate_and_offset_pos``); vcnc refused cycles under G10 R. rs274 2.9.0~pre1 (program coordinates):
+    STRAIGHT_TRAVERSE(10, 3, 5), (10, 3, 2), STRAIGHT_FEED(10, 3, -3), STRAIGHT_TRAVERSE(10, 3, 5); under G91 the
+    sticky R2 Z-3 are increments (R at 7, the bottom at 4): STRAIGHT_TRAVERSE(10, 3, 7), (12, 5, 7),
+    STRAIGHT_FEED(12, 5, 4), STRAIGHT_TRAVERSE(12, 5, 7), (14, 7, 7), STRAIGHT_FEED(14, 7, 4),
+    STRAIGHT_TRAVERSE(14, 7, 7)."""
+    prog = parse_program("G21 G17 G90\nG10 L2 P1 X5 Y2 Z1 R30\nG54\nG0 X4 Y3 Z5\nG98 G81 X10 Y3 R2 Z-3 F100\n"
+                         "G91 X2 Y2 L2\nG90 G80\nM2\n", context=LINUXCNC)
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+
+    def machine(kind, x, y, z):
+        return kind, round(x * c - y * s + 5, 4), round(x * s + y * c + 2, 4), z + 1.0
+
+    want = [machine("rapid", 4, 3, 5), machine("rapid", 10, 3, 5), machine("rapid", 10, 3, 2),
+            machine("line", 10, 3, -3), machine("rapid", 10, 3, 5), machine("rapid", 10, 3, 7)]
+    for x, y in ((12, 5), (14, 7)):
+        want += [machine("rapid", x, y, 7), machine("line", x, y, 4), machine("rapid", x, y, 7)]
+    assert _ends(prog) == want
