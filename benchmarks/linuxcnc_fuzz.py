@@ -288,17 +288,22 @@ def chunk_compensation(w: _Writer) -> None:
 
 
 def chunk_cycles(w: _Writer) -> None:
-    """Canned cycles G73, G81-G86, G89 with G98/G99, R above and below the start, L repeats in G91, then G80.
+    """Canned cycles G73, G81-G86, G89 in G17, G18 or G19 (drilling along Z, Y or X) with G98/G99, R above and
+    below the start, L repeats in G91, then G80.
 
     Not G87 / G88: LinuxCNC's G-code reference lists them as "not yet implemented" (g-code.adoc, table of G
-    codes), though rs274 runs them; vcnc refuses them."""
+    codes), though rs274 runs them; vcnc refuses them. G84 in G17 only: LinuxCNC feeds a G18/G19 G84 to the
+    hole's coordinates in another order (interp_cycles.cc ``convert_cycle_g74_g84``), vcnc taps as documented
+    and notes it."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(5, 20), distance="G90")
-    w.emit("G17 M3 S1000")
-    code = rng.choice(["G73", "G81", "G82", "G83", "G84", "G85", "G86", "G89"])
+    plane = rng.choice(["G17", "G17", "G18", "G19"])
+    first, second, drill = {"G17": "XYZ", "G18": "ZXY", "G19": "YZX"}[plane]
+    w.emit(f"{plane} M3 S1000")
+    code = rng.choice(["G73", "G81", "G82", "G83", "G85", "G86", "G89", *(["G84"] if plane == "G17" else [])])
     retract = rng.choice(["G98", "G99"])
     incremental = rng.random() < 0.4
-    z0 = w.pos[2]
+    z0 = w.pos["XYZ".index(drill)]
     r_level = z0 + rng.uniform(-4, 4)
     depth = rng.uniform(2, 10)
     extra = ""
@@ -310,17 +315,17 @@ def chunk_cycles(w: _Writer) -> None:
     if incremental:
         w.emit("G91")
         repeats = f" L{rng.randint(2, 4)}" if rng.random() < 0.6 else ""
-        w.emit(f"{retract} {code} X{w.num(w.coord(-8, 8))} Y{w.num(w.coord(-8, 8))} R{w.num(r_level - z0)} "
-               f"Z{w.num(-depth)}{extra}{repeats} {feed}")
+        w.emit(f"{retract} {code} {first}{w.num(w.coord(-8, 8))} {second}{w.num(w.coord(-8, 8))} "
+               f"R{w.num(r_level - z0)} {drill}{w.num(-depth)}{extra}{repeats} {feed}")
     else:
-        w.emit(f"{retract} {code} X{w.num(w.coord())} Y{w.num(w.coord())} R{w.num(r_level)} "
-               f"Z{w.num(r_level - depth)}{extra} {feed}")
+        w.emit(f"{retract} {code} {first}{w.num(w.coord())} {second}{w.num(w.coord())} R{w.num(r_level)} "
+               f"{drill}{w.num(r_level - depth)}{extra} {feed}")
     for _ in range(rng.randint(0, 3)):
-        words = f"X{w.num(w.coord(-8, 8) if incremental else w.coord())}"
+        words = f"{first}{w.num(w.coord(-8, 8) if incremental else w.coord())}"
         if rng.random() < 0.4:
-            words += f" Y{w.num(w.coord(-8, 8) if incremental else w.coord())}"
+            words += f" {second}{w.num(w.coord(-8, 8) if incremental else w.coord())}"
         w.emit(words)
-    w.emit("G80 G90")
+    w.emit("G80 G90 G17")
 
 
 def chunk_tapping(w: _Writer) -> None:
@@ -393,6 +398,9 @@ def chunk_parameters(w: _Writer) -> None:
     w.emit(f"G1 X{x} Y{y} F[{w.num(200)} * 2]")
     w.emit("G1 X[ROUND[#<len>] MOD 7] Y[SQRT[#<len> ** 2] / 2] Z[FIX[2.7] + FUP[0.2]]")
     w.emit("G0 X[ATAN[1]/[1] / 10] Y[EXP[1] + LN[2]] Z[#<len> GT 5]")
+    # the current position (#5420-#5422: in the work frame, units in force) and the G92 offset read back
+    w.emit(f"G1 X[#5420 + {w.num(2)}] Y[#5421 - {w.num(1)}] Z[#5422 + #5213 * 0]")
+    w.emit("G1 X[#<_x> + 1] Y[#<_y>]")
 
 
 def chunk_owords(w: _Writer, subs: list[str]) -> None:

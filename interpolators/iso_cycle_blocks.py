@@ -13,7 +13,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.arcs import arc_from_center
-from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED
+from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED, PLANE_CODES
 from interpolators.iso_cycles import cycle_moves, tap_spindle_error
 from interpolators.iso_frames import framed_initial
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
@@ -168,6 +168,11 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
         notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "
                   "(Fanuc/Haas reading; LinuxCNC refuses it)")
+    if notes is not None and st.motion in (740, 840) and st.plane != 2 and st.context.dialect.name == "linuxcnc":
+        # interp_cycles.cc convert_cycle_g74_g84 passes the plane's coordinates to cycle_feed in another order
+        # for YZ and XZ than every other cycle (LinuxCNC 2.9 and master)
+        notes.add(f"{name} in {PLANE_CODES[st.plane]}: tapped along the plane's drilling axis at the hole, as "
+                  "g-code.adoc describes (LinuxCNC's interpreter feeds to the hole's coordinates in another order)")
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,

@@ -151,3 +151,16 @@ def test_a_drilling_cycle_under_a_g10_rotation():
     for x, y in ((12, 5), (14, 7)):
         want += [machine("rapid", x, y, 7), machine("line", x, y, 4), machine("rapid", x, y, 7)]
     assert _ends(prog) == want
+
+
+def test_g84_in_g18_taps_along_y_and_notes_linuxcnc_s_order():
+    """``G99 G84 Z1 X2 R5 Y0`` in G18 taps along Y at X2 Z1 (g-code.adoc "G84": the cycles in G18 drill along Y).
+    rs274 2.9.0~pre1 rapids there, STRAIGHT_TRAVERSE(2, 10, 1), (2, 5, 1), then feeds to STRAIGHT_FEED(0, 1, 2)
+    and (5, 1, 2): interp_cycles.cc ``convert_cycle_g74_g84`` hands the plane's coordinates to ``cycle_feed`` in
+    another order than every other cycle (LinuxCNC 2.9 and master). vcnc taps as documented and says so."""
+    prog = parse_program("G21 G18 G90\nM3 S500\nG0 X0 Y10 Z0\nG99 G84 Z1 X2 R5 Y0 F100\nG80\nM2\n", context=LINUXCNC)
+    assert _ends(prog) == [("rapid", 0.0, 10.0, 0.0), ("rapid", 2.0, 10.0, 1.0), ("rapid", 2.0, 5.0, 1.0),
+                           ("line", 2.0, 0.0, 1.0), ("line", 2.0, 5.0, 1.0)]
+    assert any(n.startswith("G84 tapping cycle in G18: tapped along") for n in prog.notes)
+    g17 = parse_program("G21 G17 G90\nM3 S500\nG0 X0 Y0 Z10\nG99 G84 X2 Y1 R5 Z0 F100\nG80\nM2\n", context=LINUXCNC)
+    assert not any("G84" in n for n in g17.notes)
