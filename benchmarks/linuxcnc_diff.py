@@ -208,9 +208,11 @@ def canonical_moves(output: str) -> list[Move]:
             rotation, abc = int(nums[4]), np.array(nums[6:9])
             center = _to_machine(cen, state)
         else:
-            end, abc = np.array(nums[:3]), np.array(nums[3:6]) if name != "RIGID_TAP" else np.zeros(3)
+            end, abc = np.array(nums[:3]), np.array(nums[3:6])
         kind = {"STRAIGHT_TRAVERSE": "rapid", "ARC_FEED": "arc"}.get(name, "line")
         start = moves[-1] if moves else None
+        if name == "RIGID_TAP":  # prints no A B C: they stay where they are
+            abc = (start.abc if start else np.zeros(3)) - abc_offset
         slack = sum(state[f"{k}_slack"] for k in ("g5x", "g92", "tool") if np.any(state[k]))
         moves.append(Move(kind=kind, xyz=_to_machine(end, state), abc=abc + abc_offset, center=center,
                           normal=normal, rotation=rotation, unit=state["unit"], slack=slack))

@@ -492,11 +492,51 @@ def chunk_mcodes(w: _Writer) -> None:
     w.incremental = False
 
 
+def chunk_polar(w: _Writer) -> None:
+    """Polar coordinates (g-code.adoc "Polar Coordinates": ``@`` distance and ``^`` angle in G17, from the
+    origin under G90, from the current point under G91) for straight moves."""
+    rng = w.rng
+    w.start(w.coord(), w.coord(), w.coord(0, 10))
+    w.emit(f"G17 G1 {w.feed()}")
+    for _ in range(rng.randint(1, 4)):
+        w.emit(f"G{rng.choice([0, 1])} @{w.num(rng.uniform(1, 30))} ^{rng.randint(-180, 360)}")
+    w.emit("G90")
+    w.incremental = False
+
+
+def chunk_rotary(w: _Writer) -> None:
+    """Rotary axes A B C in rapids and feeds, alone and with X Y Z, absolute and incremental."""
+    rng = w.rng
+    w.start(w.coord(), w.coord(), w.coord(0, 10))
+    for _ in range(rng.randint(1, 4)):
+        words = " ".join(f"{a}{rng.randint(-360, 360)}" for a in rng.sample("ABC", rng.randint(1, 3)))
+        xyz = w.axes([w.coord(), w.coord(), w.pos[2]]) if rng.random() < 0.5 else ""
+        w.emit(f"G{rng.choice([0, 1])} {xyz} {words} {w.feed()}".replace("  ", " "))
+    w.emit("G90")
+
+
+def chunk_tool_table(w: _Writer) -> None:
+    """The tool table set by the program (g-code.adoc "G10 L1 Set Tool Table"), then the tool loaded and its
+    length and radius used (G43, G41)."""
+    rng = w.rng
+    w.units()
+    tool = rng.randint(40, 60)
+    w.emit(f"G10 L1 P{tool} Z{w.num(rng.uniform(-5, 30))} R{w.num(rng.uniform(0.2, 3))}")
+    w.emit(f"T{tool} M6")
+    w.m61 = False
+    w.start(w.coord(), w.coord(), w.coord(5, 30), units=False)
+    w.emit(f"G43 G0 {w.axes([w.coord(), w.coord(), w.coord(0, 30)])}")
+    w.tool_offset = True
+    w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.coord(0, 30)])} {w.feed()}")
+    w.emit("G90")
+
+
 #: Feature groups and the chunk that writes one.
 FEATURES = {"arcs": chunk_arcs, "offsets": chunk_offsets, "tools": chunk_tools, "home": chunk_home,
             "compensation": chunk_compensation, "cycles": chunk_cycles, "tapping": chunk_tapping,
             "splines": chunk_splines, "blending": chunk_blending, "inverse_time": chunk_inverse_time,
-            "parameters": chunk_parameters, "owords": chunk_owords, "mcodes": chunk_mcodes}
+            "parameters": chunk_parameters, "owords": chunk_owords, "mcodes": chunk_mcodes, "polar": chunk_polar,
+            "rotary": chunk_rotary, "tool_table": chunk_tool_table}
 
 
 def generate(seed: int, *, features: tuple[str, ...] = tuple(FEATURES), chunks: tuple[int, int] = (3, 8)
