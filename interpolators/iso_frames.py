@@ -137,11 +137,12 @@ def scaling_mirror(gcodes, seen, st: State, where: Where, notes: Notes) -> None:
 
 
 def framed_initial(st: State, *, to_program: bool) -> None:
-    """Under G68/G51/G51.1 or G10 R the cycle runs in program coordinates: its initial level (a machine position
+    """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
     between blocks, so that it stays where the tool was when the series began while the transformation
     changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
-    and back."""
-    if st.frame is None and not st.rotation or st.cycle.initial is None:
+    and back. Under G10 R alone it stays in program coordinates, as LinuxCNC keeps it (interp_cycles.cc
+    ``cycle_il``, a program coordinate; on a G18/G19 drilling axis X or Y a machine level would mix both)."""
+    if st.frame is None or st.cycle.initial is None:
         return
     axis = CYCLE_AXES[st.plane][2]
     if to_program:

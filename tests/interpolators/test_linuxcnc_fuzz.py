@@ -164,3 +164,23 @@ def test_g84_in_g18_taps_along_y_and_notes_linuxcnc_s_order():
     assert any(n.startswith("G84 tapping cycle in G18: tapped along") for n in prog.notes)
     g17 = parse_program("G21 G17 G90\nM3 S500\nG0 X0 Y0 Z10\nG99 G84 X2 Y1 R5 Z0 F100\nG80\nM2\n", context=LINUXCNC)
     assert not any("G84" in n for n in g17.notes)
+
+
+def test_a_g19_cycle_series_under_a_g10_rotation_keeps_its_initial_level_in_program_x():
+    """G19 drills along X; under ``G10 L2 P1 R-45`` program X is no machine axis. LinuxCNC keeps the series'
+    initial level in program coordinates (interp_cycles.cc ``cycle_il``): rs274 2.9.0~pre1 prints, in program
+    coordinates, STRAIGHT_TRAVERSE(5, 1, 2), (3, 1, 2), STRAIGHT_FEED(-2, 1, 2), STRAIGHT_TRAVERSE(5, 1, 2),
+    then for ``Y2 Z4`` (5, 2, 4), (3, 2, 4), STRAIGHT_FEED(-2, 2, 4), STRAIGHT_TRAVERSE(5, 2, 4); vcnc kept the
+    level as a machine X and retracted the second hole elsewhere."""
+    prog = parse_program("G21 G90\nG10 L2 P1 R-45\nG54 G19\nG0 X5 Y0 Z0\nG98 G81 Y1 Z2 R3 X-2 F100\nY2 Z4\nG80\nM2\n",
+                         context=LINUXCNC)
+    c, s = np.cos(np.radians(-45)), np.sin(np.radians(-45))
+
+    def machine(kind, x, y, z):
+        return kind, round(x * c - y * s, 4) + 0.0, round(x * s + y * c, 4) + 0.0, float(z)
+
+    want = [machine("rapid", 5, 0, 0)]
+    for y, z in ((1, 2), (2, 4)):
+        want += [machine("rapid", 5, y, z), machine("rapid", 3, y, z), machine("line", -2, y, z),
+                 machine("rapid", 5, y, z)]
+    assert _ends(prog) == want
