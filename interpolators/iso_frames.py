@@ -32,13 +32,15 @@ def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) 
     without a peck or shift Q (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled); under G10 R alone the G5 /
     G5.1 splines (LinuxCNC builds them in program coordinates and turns the arcs it makes of them, emccanon.cc
     ``NURBS_FEED``) and G33 / G33.1, straight moves to a rotated point (emccanon.cc ``STRAIGHT_FEED``,
-    ``RIGID_TAP``: ``rotate_and_offset_pos``)."""
+    ``RIGID_TAP``: ``rotate_and_offset_pos``) and polar ``@ ^`` (interp_find.cc ``find_ends``: in program
+    coordinates)."""
     cycle_ok = st.motion is not None and st.motion >= 730 and (st.frame is None or not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
         or any(st.frame.mirror) and st.motion in (760, 870, 770))) or (
         st.frame is None and st.motion in (50, 51, 330, 331))
-    what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
-            and st.motion not in (800,) and not cycle_ok else None)
+    polar_ok = st.frame is None and st.motion in (0, 10, 20, 30)
+    what = ("polar coordinates @ ^" if polar and not polar_ok else G_CODES[st.motion][1] if st.motion is not None
+            and st.motion >= 50 and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
         how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \

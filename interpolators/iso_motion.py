@@ -43,10 +43,16 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
     if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
         prog = st.to_program(st.pos)
         for letter in axis_words:
+            if letter in POLAR_LETTERS:
+                continue
             i = "XYZ".index(letter)
             prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
+        if "@" in seen or "^" in seen:  # LinuxCNC find_ends: polar in the (rotated) program coordinates
+            prog[0], prog[1] = polar_xy(prog[0], prog[1], incremental=st.incremental,
+                                        distance=seen["@"].value * st.scale if "@" in seen else None,
+                                        angle_deg=seen["^"].value if "^" in seen else None)
         target = st.pos.copy()  # axes without words stay exactly where they are
-        if "X" in axis_words or "Y" in axis_words:
+        if any(a in seen for a in ("X", "Y", *POLAR_LETTERS)):
             target[:2] = st.to_machine(prog)[:2]
         if "Z" in axis_words:
             target[2] = st.to_machine(prog)[2]

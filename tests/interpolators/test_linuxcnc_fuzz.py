@@ -184,3 +184,22 @@ def test_a_g19_cycle_series_under_a_g10_rotation_keeps_its_initial_level_in_prog
         want += [machine("rapid", 5, y, z), machine("rapid", 3, y, z), machine("line", -2, y, z),
                  machine("rapid", 5, y, z)]
     assert _ends(prog) == want
+
+
+def test_polar_words_under_a_g10_rotation():
+    """``@ ^`` under ``G10 L2 P1 X5 Y2 R30``: LinuxCNC reads them in the (rotated) program coordinates
+    (interp_find.cc ``find_ends``) and its canon turns the point; vcnc refused them. rs274 2.9.0~pre1 (program
+    coordinates): STRAIGHT_FEED(7.0711, 7.0711, 5), (3.1058, 11.5911, 5) for ``G91 @2 ^30``, a rapid to
+    (11.5911, -3.1058, 5) for ``^-90``, STRAIGHT_FEED(4.8296, -1.2941, 2) for ``G90 @5 Z2``."""
+    prog = parse_program("G21 G17 G90\nG10 L2 P1 X5 Y2 R30\nG54\nG0 X4 Y3 Z5\nG1 @10 ^45 F100\nG91 G1 @2 ^30\n"
+                         "G0 ^-90\nG90 G1 @5 Z2\nM2\n", context=LINUXCNC)
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+
+    def machine(kind, x, y, z):
+        return kind, round(x * c - y * s + 5, 4), round(x * s + y * c + 2, 4), float(z)
+
+    got = _ends(prog)
+    want = [machine("rapid", 4, 3, 5), machine("line", 7.0711, 7.0711, 5), machine("line", 3.1058, 11.5911, 5),
+            machine("rapid", 11.5911, -3.1058, 5), machine("line", 4.8296, -1.2941, 2)]
+    assert [g[0] for g in got] == [w[0] for w in want]
+    assert np.allclose([g[1:] for g in got], [w[1:] for w in want], atol=2e-4)
