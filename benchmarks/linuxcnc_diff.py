@@ -25,7 +25,13 @@ without the offsets (saicanon.cc ``GET_EXTERNAL_POSITION_Z``: ``_program_positio
 them (emccanon.cc ``GET_EXTERNAL_POSITION``: ``unoffset_and_unrotate_pos``); so rs274 moves Z by a tool length
 offset taken with or after the M6 on the next move without a Z word ("T1 M6 G43 H1" then "G0 X1 Y1"), where
 LinuxCNC and vcnc keep the tool still. Also: user M codes (M100-M199) beside a program are not run by rs274, whose
-standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder.
+standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder. M61 does not put
+the tool into the spindle's entry of rs274's tool table (saicanon.cc ``CHANGE_TOOL_NUMBER`` sets the slot only, where
+LinuxCNC's task loads it, task/taskclass.cc ``emcToolSetNumber``), so G43 without H and G41/G42 without D after M61
+take the tool before it in rs274. A tool length offset in force at G20/G21 is read back unconverted
+(saicanon.cc ``GET_EXTERNAL_TOOL_LENGTH_ZOFFSET``; emccanon.cc converts it, ``TO_PROG_LEN``), so rs274 takes a length
+set in mm as inch (or back) at the next G43.2, G53 or change of offset under G91. The generated programs
+(``--generate``) avoid these three.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively), or with generated programs instead

@@ -14,6 +14,13 @@ LinuxCNC 2.9): arc end points on the circle, R at least half the chord, canned-c
 compensation entries longer than the tool radius, subroutines defined before their calls. A program rs274 still
 refuses is reported by the differential test as such ("both refuse" or "vcnc only"), not hidden.
 
+The programs keep clear of what LinuxCNC's standalone ``rs274`` does otherwise than LinuxCNC (the differential
+test's docstring names them): a G49 before a change of units while a tool length offset is in force, no G43
+without H and no G41/G42 without D after M61, no move without a Z word after M6 (each chunk starts with a rapid in
+X Y Z). Where LinuxCNC's interpreter does otherwise than its documentation and vcnc follows the documentation
+with a note (G84 in G18/G19, a do loop after a break out of a while loop, a G5 without I J after G5.1), the
+programs avoid it too.
+
 The same seed gives the same program (``random.Random(seed)``); ``features`` restricts the chunks to some groups.
 """
 
