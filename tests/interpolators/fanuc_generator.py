@@ -405,22 +405,29 @@ class _Gen:
         self.emit(f"G0 {self.xyz(z=10)}")
 
     def comp_rotated_section(self) -> None:
-        kind = self.r.choice(("G68", "mirror", "G52"))
+        kind = self.r.choice(("G68", "mirror", "G52", "G51"))
         cx, cy = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
         if kind == "G68":
             self.emit(f"G68 X{self.v(cx)} Y{self.v(cy)} R{self.r.choice((30, 45, 90, -60))}.")
+        elif kind == "G51":  # the contour scaled, the tool radius not (0i-MF "Scaling": not to offsets)
+            self.emit(f"G51 X{self.v(cx)} Y{self.v(cy)} P{self.r.choice(('2.', '1.5', '0.8'))}")
         elif kind == "G52":
             self.emit(f"G52 X{self.v(cx)} Y{self.v(cy)}")
         else:
             self.emit(f"G51.1 X{self.v(cx)}" if self.fanuc else "G101 X0.")
         self.comp_section()
-        self.emit({"G68": "G69", "G52": "G52 X0. Y0."}.get(kind, "G50.1 X0." if self.fanuc else "G100 X0."))
+        self.emit({"G68": "G69", "G52": "G52 X0. Y0.", "G51": "G50"}.get(kind, "G50.1 X0." if self.fanuc else
+                                                                           "G100 X0."))
 
     def cycles_rotated_section(self) -> None:
         self.start(20)
-        self.emit(f"G68 X{self.v(self.pos[0])} Y{self.v(self.pos[1])} R{self.r.choice((30, 45, 90))}.")
+        mirror = self.r.random() < 0.4
+        if mirror:
+            self.emit(f"G51.1 X{self.v(self.pos[0] + 5)}" if self.fanuc else "G101 X0. Y0.")
+        else:
+            self.emit(f"G68 X{self.v(self.pos[0])} Y{self.v(self.pos[1])} R{self.r.choice((30, 45, 90))}.")
         self.cycles_section(self.r.random() < 0.5)
-        self.emit("G69")
+        self.emit(("G50.1 X0." if self.fanuc else "G100 X0. Y0.") if mirror else "G69")
 
     def boring_section(self) -> None:
         """G76 fine boring (shift Q, Haas also I J) and G87 back boring (Haas G77): Fanuc 0i-MF "Fine boring
