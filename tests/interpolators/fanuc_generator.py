@@ -41,7 +41,7 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "rotation", "scaling", "mirror", "g52", "g92", "g10", "extended_offset", "g28_g53", "dwell",
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
-            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc")
+            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -185,8 +185,9 @@ class _Gen:
         self.emit("G17")
         self.emit(f"G0 {self.xyz(z=40)}")
 
-    def comp_section(self) -> None:
-        """A rectangle (sharp or rounded corners) climb- or conventional-cut inside or outside."""
+    def comp_section(self, d: int | None = None) -> None:
+        """A rectangle (sharp or rounded corners) climb- or conventional-cut inside or outside, with offset ``D<d>``
+        (else a random one)."""
         if not self.tool:
             self.tool_change()
         x0, y0 = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
@@ -194,7 +195,7 @@ class _Gen:
         rc = self.r.choice((0, 0, 5))
         ccw = self.r.random() < 0.5
         side = self.r.choice(("G41", "G42"))
-        d = self.r.randint(1, 6)
+        d = self.r.randint(1, 6) if d is None else d
         self.emit(f"G90 G0 {self.xyz(x0 + w / 2, y0 - 15)}")
         self.emit(f"G0 {self.xyz(z=5)}")
         self.emit(f"G1 {self.xyz(z=-2)} {self.feed()}")
@@ -655,6 +656,22 @@ class _Gen:
         self.emit(f"G3 {self.xyz(self.pos[0] + 10, self.pos[1] - 10)} I{self.v(10)} J0.")  # turning 90 deg
         self.emit(f"G0 {self.xyz(z=10)}")
 
+    def g10_tools_section(self) -> None:
+        """Offsets set by the program, then used: ``G10 L10 P R`` tool length, ``L12`` radius (Haas: diameter),
+        ``L11``/``L13`` their wear (Fanuc 0i-MF "Changing of tool offset value (programmable data input)",
+        memory C; Haas "G10 Set Offsets": L10 length, L1/L11 length wear, L12 diameter, L13 diameter wear)."""
+        t = self.r.randint(1, 6)
+        self.emit(f"G90 G10 L10 P{t} R{self.v(self.r.choice((40, 55.5, 80)), plain=False)}")
+        radius = self.r.choice((1.5, 2, 3))
+        self.emit(f"G10 L12 P{t} R{self.v(radius if self.fanuc else 2 * radius, plain=False)}")
+        if self.r.random() < 0.5:
+            self.emit(f"G10 L{self.r.choice((11, 13))} P{t} R{self.v(-0.1, plain=False)}")
+        self.tool = t
+        self.emit(f"T{t} M06")
+        self.emit(f"G90 G0 {self.xyz(0, 0)}")
+        self.emit(f"G43 H{t} {self.xyz(z=50)}")
+        self.comp_section(t)
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -690,7 +707,8 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "polar": g.polar_section, "comp_arcs": g.comp_arcs_section, "macro_system": g.macro_system_section,
              "cycle_modal": g.cycle_modal_section, "g28_shifted": g.g28_shifted_section,
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
-             "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section}
+             "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
+             "g10_tools": g.g10_tools_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
