@@ -36,10 +36,11 @@ def ends(text: str, context: MachineContext) -> list[tuple[int, str, list[float]
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
 def test_generated_programs_are_read_as_the_reference_reads_them_or_refused_cleanly(dialect):
     # 120 seeded programs per dialect mixing G20/G21, G54-G59, G54.1 P / G154 P / G110-G129, G52, G92, G10 L2/L20,
-    # G28 through a point, G53, G43 H, T M06, G0/G1 in G90/G91, G2/G3 by I J K and R in G17-G19, full circles,
-    # helices, G41/G42 rectangles (also under G68, G51.1/G101, G52), drilling, boring and Haas pattern / pocket
-    # cycles in G90 and G91 with K/L repeats, M98/M97/M99, Macro B loops, G65, G68, G51, G16, ,R / ,C, G04, and
-    # for a third of the Fanuc seeds DPI = 0 with distances as integers of least input increments
+    # G10 L10-L13, G28 through a point, G53, G43 H, T M06, G0/G1 in G90/G91, G2/G3 by I J K and R in G17-G19, full
+    # circles, helices, G41/G42 rectangles and slots (also under G68, G51, G51.1/G101, G52), drilling, boring and
+    # Haas pattern / pocket cycles in G90 and G91 with K/L repeats (also under G68 and a mirror), M98/M97/M99,
+    # Macro B loops and functions, G65, G68, G51 (P, I J K), G16, ,R / ,C, G04, block delete, and for a third of
+    # the Fanuc seeds DPI = 0 with distances as integers of least input increments
     accepted = 0
     for seed in range(120):
         text, ctx = generate(seed, dialect), context(seed, dialect)
