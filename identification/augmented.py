@@ -70,6 +70,7 @@ import scipy.linalg
 
 from identification.kernels import run_exact, run_split
 from identification.reduced_model import ReducedAxisModel, discretize
+from identification.substeps import SubstepReference
 from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "two_mass_matrices", "augment",
@@ -199,8 +200,15 @@ def simulate_augmented(
     *,
     return_velocity: bool = False,
     substeps: int = SUBSTEPS,
+    held: SubstepReference | None = None,
 ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
     """Predicted measurement [mm] of the augmented model (module docstring) for ``reference`` [mm].
+
+    ``held``, the record's reference on its sub-step grid (:mod:`identification.substeps`, of which
+    ``reference`` is the first samples), predicts a model without an element as the fit predicts a
+    record slower than 1 ms: the exact loop run at the sub-steps on the spline between the samples,
+    the known disturbance ``spec.wext`` held over each sample, the output taken at the samples. The
+    split form keeps the record's step (its controller is a sampled law at it).
 
     Returns NaN from the sample where the simulation diverges (an unstable candidate), never raises
     for that, so that searches can score it.
@@ -225,6 +233,15 @@ def simulate_augmented(
                   int(spec.delay), float(spec.saturation), bool(spec.anti_windup),
                   float(spec.integral_lead), float(spec.backlash), res, tm,
                   pos, vel)
+    elif held is not None and held.substeps > 1:
+        m = held.substeps
+        fine = held.fine[:(xr.size - 1) * m + 1]
+        dm = discretize(p, T / m)
+        fpos, fvel = np.empty_like(fine), np.empty_like(fine)
+        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, fine,
+                  np.ascontiguousarray(np.repeat(wext, m)[:fine.size]), st, float(spec.asym), float(spec.pp_period),
+                  pp_coef, fpos, fvel)
+        pos, vel = fpos[::m].copy(), fvel[::m].copy()
     else:
         dm = discretize(p, T)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,

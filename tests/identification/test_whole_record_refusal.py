@@ -1,0 +1,59 @@
+"""An effect that the held-out folds accept and the whole record refuses (diagnosis._worse_on_the_record).
+
+The SINUMERIK trace of session 28 in small: a reduced model with large Coulomb levels (d0, d1 = +-4000 mm/s^2,
+switched on the sign of the simulated velocity) whose axis rests 4 s before its first move. The truth adds a
+position-periodic load of 1500 mm/s^2 (period 2 mm) that is zero at the rest position, so the truth rests. The
+refitted load is not exactly zero there: it pushes the model at rest, the Coulomb levels switch on and the model
+chatters through the idle stretch, which the held-out folds trim. The held-out error falls by 62 % and the error over
+all samples more than doubles: the effect is refused, and the report says so instead of "no effect lowers the
+held-out error".
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from identification.augmented import augment
+from identification.diagnosis import diagnose_report, format_before_after
+from identification.effects import PositionPeriodic
+from identification.reduced_model import ReducedAxisModel
+from identification.synthetic import FADAL_PID_X, random_moves_reference
+from vcnc.capture import Capture
+
+T = 0.002
+
+
+def _capture_and_model() -> tuple[Capture, ReducedAxisModel]:
+    moves = random_moves_reference(moves=12, span=10.0, feed=100.0, acceleration=1000.0, sample_time=T, dwell=0.3,
+                                   seed=3)
+    idle = int(4.0 / T)
+    xr = np.concatenate([np.full(idle, moves[0]), moves])
+    reduced = ReducedAxisModel(parameters=dict(FADAL_PID_X, d0=4000.0, d1=-4000.0), sample_time=T)
+    phase = 2 * np.pi * xr[0] / 2.0
+    load = PositionPeriodic(period=2.0, coefficients=((1500.0 * np.cos(phase), -1500.0 * np.sin(phase)),))
+    x = augment(reduced, [load]).simulate(xr)
+    assert np.ptp(x[:idle]) == 0.0  # the truth rests: its load is zero at the rest position
+    x = x + np.random.default_rng(1).normal(0.0, 0.3e-3, x.size)
+    cap = Capture(t=np.arange(xr.size) * T, axes=("x",), reference=xr[:, None], measured=x[:, None],
+                  meta={"source": "test"})
+    return cap, reduced
+
+
+def test_an_effect_that_moves_the_model_at_rest_is_refused_and_the_report_says_why():
+    cap, reduced = _capture_and_model()
+    rep = diagnose_report(cap, reduced, axis="x")
+    assert rep.model.effects == []
+    first = rep.rounds[0]
+    assert first["best"] == "position_periodic" and first["accepted"] is None
+    assert first["gain_pct"] == pytest.approx(61.8, abs=2.0)  # the held-out test alone would take it
+    before, after = first["worse_on_the_record_um"]["position_periodic"]
+    assert before == pytest.approx(15.11, rel=0.02)
+    assert after == pytest.approx(34.57, rel=0.05)
+    held = first["refitted"]["position_periodic"]["validation_rms_um"]
+    text = format_before_after(rep.model)
+    assert "diagnosis: no effect is kept; the reduced model stands" in text
+    assert "no effect lowers the held-out error significantly" not in text
+    assert (f"refused: position_periodic lowers the held-out error {first['current_validation_rms_um']:.4g} -> "
+            f"{held:.4g} um, but raises the RMS over all the record's samples {before:.4g} -> {after:.4g} um: it "
+            "moves the model where the axis rests (the idle stretches the held-out folds trim)") in text
