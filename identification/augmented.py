@@ -70,11 +70,11 @@ import scipy.linalg
 
 from identification.kernels import run_exact, run_split
 from identification.reduced_model import ReducedAxisModel, discretize
-from identification.substeps import SubstepReference
+from identification.substeps import SubstepReference, substep_count, substep_reference
 from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "two_mass_matrices", "augment",
-           "from_model"]
+           "from_model", "predict_record"]
 
 #: Integration steps per sample of the split (element) form.
 SUBSTEPS = 10
@@ -350,6 +350,28 @@ def augment(
     base.update(changes)
     vr = viscous_rate if viscous_rate is not None else getattr(model, "viscous_rate", 0.0)
     return AugmentedAxisModel(**base, elements=tuple(elements), viscous_rate=float(vr))
+
+
+def predict_record(model: ReducedAxisModel, reference: np.ndarray, *, held: SubstepReference | None = None
+                   ) -> np.ndarray:
+    """``model``'s prediction [mm] of a record of ``reference`` [mm] logged at its sample time, as the fit predicted
+    it: a record slower than 1 ms at sub-steps (:mod:`identification.substeps`; the reference delayed and filtered
+    on the sub-step grid), a model with an element (the split form) and a faster record by ``model.simulate``.
+
+    ``held`` is the record's reference on the sub-step grid when already built (the diagnosis keeps it; its model
+    has no dead time or setpoint filter of its own then), of which ``reference`` is the first samples.
+    """
+    xr = np.asarray(reference, dtype=float)
+    T = model.sample_time
+    m = model if isinstance(model, AugmentedAxisModel) else augment(model, [])
+    if substep_count(T) == 1 or m.structured:
+        return model.simulate(xr)
+    if held is None:
+        held = substep_reference(xr, T).delayed(model.delay_s / T).filtered(model.setpoint_filter_s / T)
+    elif model.delay_s or model.setpoint_filter_s:
+        raise InputError("predict_record: a model with a dead time or setpoint filter takes the recorded reference, "
+                         "not a sub-step reference built without them")
+    return simulate_augmented(m.parameters, xr, m.spec(xr.size), held=held)
 
 
 def from_model(model: ReducedAxisModel) -> ReducedAxisModel:

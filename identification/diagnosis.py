@@ -1089,8 +1089,10 @@ def report_figure(capture: Capture, model: ReducedAxisModel, *, axis: str, ax=No
 
     xr, x, T = check_capture(capture, axis)
     red = (model.fit or {}).get("reduced_model")
+    # the reduced model with the final model's dead time and setpoint filter: it predicts the same recorded reference
     before = model if not red else ReducedAxisModel(parameters=red["parameters"], sample_time=model.sample_time,
-                                                    axis=model.axis)
+                                                    axis=model.axis, delay_s=model.delay_s,
+                                                    setpoint_filter_s=model.setpoint_filter_s)
     return plot_before_after(xr, x, T, before, model, ax=ax)
 
 

@@ -29,7 +29,7 @@ import numpy as np
 import scipy.linalg
 import scipy.signal
 
-from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
+from identification.augmented import AugmentedAxisModel, augment, predict_record, simulate_augmented
 from identification.effects import (
     Backlash,
     Delay,
@@ -108,13 +108,12 @@ class Data:
 
     def predict(self, model: ReducedAxisModel, samples: int | None = None) -> np.ndarray:
         """``model``'s prediction [mm] of the first ``samples`` (all by default), simulated as the fit
-        simulated it (:func:`identification.augmented.simulate_augmented` with :attr:`held`): one model,
+        simulated it (:func:`identification.augmented.predict_record` with :attr:`held`): one model,
         one error, whether the fit or the diagnosis states it."""
         xr = self.xr[:samples]
         if self.held is None or model.delay_s or model.setpoint_filter_s:
             return model.simulate(xr)
-        m = model if isinstance(model, AugmentedAxisModel) else augment(model, [])
-        return simulate_augmented(m.parameters, xr, m.spec(xr.size), held=self.held)
+        return predict_record(model, xr, held=self.held)
 
 
 @dataclasses.dataclass(eq=False)

@@ -15,6 +15,7 @@ import pytest
 from identification import identify
 from identification.capture_checks import through_changes
 from identification.diagnosis import before_after_rows, format_before_after
+from identification.residual import analyse
 from identification.substeps import simulate_record
 from identification.synthetic import FADAL_PID_X, random_moves_reference
 from vcnc.capture import Capture
@@ -58,6 +59,9 @@ def test_an_ipo_rate_record_is_fitted_near_its_floor_and_its_report_states_one_e
     assert rows[0]["record_rms_um"] == pytest.approx(model.fit["rms_um"], rel=1e-6)
     assert model.effects == []
     assert "all simulated as the fit predicts the record, on 4 sub-steps a sample" in format_before_after(model)
+    # and the report figure's residual (identification.residual.analyse) is the same prediction
+    residual = analyse(model, cap.reference[:, 0], cap.measured[:, 0], 0.004)
+    assert residual.metrics()["simulation"]["rms_um"] == pytest.approx(model.fit["rms_um"], rel=1e-6)
 
 
 def test_an_8_ms_record_is_fitted_at_8_sub_steps():
