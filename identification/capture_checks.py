@@ -332,28 +332,26 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
     return ""
 
 
-#: A commanded span within this many of the measured position's steps (its encoder's resolution, or its noise when
-#: larger) is too small a motion to tell whether the measured channel follows [-]: the exact model of Table 3.4
-#: moved over 5 um and recorded with a 1 um encoder and 0.5 um noise correlates 0.20 (our reading of a "barely
-#: moving" axis; 10 mm: 0.99).
+#: A commanded span within this many of the measured position's resolution (its smallest step) is too small a
+#: motion to tell whether the measured channel follows [-]: the exact model of Table 3.4 moved over 7 um and recorded
+#: with a 1 um encoder and 0.5 um noise correlates 0.20 (our reading of a "barely moving" axis; 10 mm: 0.99). The
+#: noise is no such unit: a measured channel of 1 mm white noise beside an 18 mm move is another signal.
 BARELY_MOVES_STEPS = 50
 
 
 def _barely_moves(xr: np.ndarray, x: np.ndarray, axis: str, corr: float) -> str:
     """The message for an axis whose commanded motion spans fewer than :data:`BARELY_MOVES_STEPS` of the measured
-    position's steps, "" otherwise: its velocity is the encoder's steps and the noise, and the "does not follow"
+    position's resolution, "" otherwise: its velocity is the encoder's steps and the noise, and the "does not follow"
     of :func:`_unrelated` (another axis', a velocity?) would send the user to the wrong remedy."""
     dx = np.abs(np.diff(x))
     step = float(np.min(dx[dx > 0])) if np.any(dx > 0) else 0.0
-    noise = 1.4826 * float(np.median(np.abs(np.diff(x, 3)))) / math.sqrt(20.0)  # white noise's third difference
-    unit = max(step, noise)
     span = float(np.ptp(xr))
-    if unit <= 0 or span >= BARELY_MOVES_STEPS * unit:
+    if step <= 0 or span >= BARELY_MOVES_STEPS * step:
         return ""
     u = axis_unit(axis, small=True)
     return (f"{_head(axis, corr)}: the axis barely moves: its commanded position spans {span * 1e3:.4g} {u}, "
-            f"{span / unit:.3g} times the measured position's step ({unit * 1e3:.3g} {u}, its resolution or noise), "
-            f"which its velocity is made of; record a test that moves it over at least {BARELY_MOVES_STEPS} steps "
+            f"{span / step:.3g} times the measured position's resolution ({step * 1e3:.3g} {u}), which its velocity "
+            f"is made of; record a test that moves it over at least {BARELY_MOVES_STEPS} steps "
             "(`vcnc toolpath identification` writes one)")
 
 
