@@ -142,21 +142,24 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     check_sampling(t, src or "<capture>")
     T = capture.sample_time  # the nominal period (time stamps as decimals give 0.0010000000000000009)
     span = float(np.ptp(xr))
+    u = axis_unit(axis)  # mm, or deg on a rotary axis
     if span == 0.0 and float(np.ptp(x)) == 0.0:
         raise IdentificationError(
-            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} mm", file=src
+            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} {u}", file=src
         )
     if span == 0.0:
         raise IdentificationError(
-            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} mm", file=src
+            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} {u}", file=src
         )
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:
+        look = ("radians, not deg" if u == "deg" else
+                "metres, not mm (or radians of a rotary joint, not deg)")
+        how = ("deg (radians: --unit rad" if u == "deg" else
+               "mm (a logger's metres: --unit m; radians: --unit rad with the axis named a, b or c")
         raise IdentificationError(
-            f"positions on axis {axis!r} look like metres, not mm (or radians of a rotary joint, not deg): the "
-            f"reference spans {span:.4g} mm at a peak speed of {vmax:.4g} mm/s; convert the capture to mm (a "
-            "logger's metres: --unit m; radians: --unit rad with the axis named a, b or c; a test this small could "
-            "not be identified anyway)",
+            f"positions on axis {axis!r} look like {look}: the reference spans {span:.4g} {u} at a peak speed of "
+            f"{vmax:.4g} {u}/s; convert the capture to {how}; a test this small could not be identified anyway)",
             file=src,
         )
     if np.array_equal(xr, x):
