@@ -1,0 +1,90 @@
+"""The pole CC under coordinate transformations and TOOL CALL: hand-written TNC programs, each checked against the
+independent reference (tests/interpolators/reference_heidenhain.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+HOME = MachineContext(home=(0.0, 0.0, 300.0))
+START = "L X+0 Y+0 Z+0 R0 F100\nCC X+10 Y+0\n"
+
+
+def checked(body: str, *, exact: bool = True):
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", HOME, exact=exact)
+
+
+def rows(prog, line: int) -> list[tuple[str, list[float]]]:
+    return [(b.kind, np.round(b.target, 6).tolist()) for b in prog.blocks if b.line == line]
+
+
+# --- the pole keeps its program coordinates --------------------------------------------------------------------
+
+def test_pole_set_before_a_datum_shift_is_measured_from_the_new_datum():
+    # TNC 426 pilot, "Circle Center and Pole: CC": "An absolutely defined circle center or pole is always measured
+    # from the workpiece datum"; cycle 7 moves that datum by +20: the pole X+10 is at machine 30, PR 5 at 35
+    prog = checked(START + "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+20\nLP PR+5 PA+0")
+    assert rows(prog, 6) == [("line", [35.0, 0.0, 0.0])]
+
+
+def test_pole_set_before_a_rotation_turns_with_it():
+    # ROT+90 about the datum: the pole (10, 0) is at (0, 10), PA+0 along the turned X axis (+Y): (0, 15)
+    prog = checked(START + "CYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 ROT+90\nLP PR+5 PA+0")
+    assert rows(prog, 6) == [("line", [0.0, 15.0, 0.0])]
+
+
+def test_pole_set_before_a_mirror_or_a_scaling_is_mapped_as_the_points_are():
+    prog = checked(START + "CYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 X\nLP PR+5 PA+0")
+    assert rows(prog, 6) == [("line", [-15.0, 0.0, 0.0])]
+    prog = checked(START + "CYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL2\nLP PR+5 PA+0")
+    assert rows(prog, 6) == [("line", [30.0, 0.0, 0.0])]
+
+
+def test_an_arc_about_a_pole_set_before_a_shift_runs_about_its_shifted_point():
+    # the tool at machine 20 (program 0 after the shift): C about the pole, machine 30, to program 20 (machine 40)
+    prog = checked(START + "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+20\nL X+0 Y+0\nC X+20 Y+0 DR+")
+    arc = next(b for b in prog.blocks if b.line == 7)
+    assert np.round(arc.target, 6).tolist() == [40.0, 0.0, 0.0]
+    assert np.round(arc.segment.center, 6).tolist()[:2] == [30.0, 0.0]
+    # from where the tool stands (machine 0) the same end is off that circle: refused, naming both radii
+    with pytest.raises(GCodeError, match=r"t.h:6:1: arc end point is not on the circle: start radius 30 mm, end "
+                                         r"radius 10 mm"):
+        parse_heidenhain("0 BEGIN PGM T MM\n" + START + "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+20\n"
+                         "C X+20 Y+0 DR+\nEND PGM T MM\n", source="t.h", context=HOME)
+
+
+def test_incremental_pole_after_a_shift_is_from_the_last_position_in_the_new_system():
+    # TNC 310 pilot: "An incrementally defined circle center or pole is always measured from the last programmed
+    # position"; the tool at machine 5 is at program -15 after the shift, the pole IX+5 at program -10 (machine 10)
+    prog = checked("L X+5 Y+0 Z+0 R0 F100\nCYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X+20\nCC IX+5 IY+0\nLP PR+5 PA+90")
+    assert rows(prog, 6) == [("line", [10.0, 5.0, 0.0])]
+
+
+def test_cc_without_coordinates_is_the_last_programmed_position():
+    # TNC 425/415 B/407 manual, "Circle Center CC": "You can define the last programmed position as circle center
+    # by entering an empty CC block"
+    prog = checked("L X+5 Y+0 Z+0 R0 F100\nCC\nL X+15\nLP PR+5 PA+90")
+    assert rows(prog, 5) == [("line", [5.0, 5.0, 0.0])]
+
+
+def test_lp_without_any_cc_is_refused():
+    with pytest.raises(GCodeError, match=r"t.h:3:1: LP without a pole .*expected a CC block before LP"):
+        parse_heidenhain("0 BEGIN PGM T MM\nL X+0 Y+0 Z+0 R0 F100\nLP PR+5 PA+90\nEND PGM T MM\n", source="t.h",
+                         context=HOME)
+
+
+def test_pole_is_a_point_of_the_part_across_a_tool_call():
+    # a pole in ZX at the part's Z 0 set with a tool of length 0; after TOOL CALL of a tool 10 longer, the tip
+    # still turns about the part's Z 0: PA+90 (from +Z towards +X) to X 15, Z 0, the spindle 10 higher
+    tools = "TOOL DEF 1 L+0 R+2\nTOOL DEF 2 L+10 R+2\nTOOL CALL 1 Z S100\n"
+    prog = checked(tools + "L X+0 Y+0 Z+0 R0 F100\nCC Z+0 X+10\nTOOL CALL 2 Z S100\nL X+0 Y+0 Z+0 R0 F100\n"
+                           "LP PR+5 PA+90")
+    assert rows(prog, 9) == [("line", [15.0, 0.0, 10.0])]
+    prog = checked(tools + "L X+0 Y+0 Z+0 R0 F100\nCC X+10 Y+0\nTOOL CALL 2 Z S100\nL X+0 Y+0 Z+0 R0 F100\n"
+                           "LP PR+5 PA+90")
+    assert rows(prog, 9) == [("line", [10.0, 5.0, 10.0])]
