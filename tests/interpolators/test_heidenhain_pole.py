@@ -1,15 +1,21 @@
-"""The pole CC under coordinate transformations and TOOL CALL: hand-written TNC programs, each checked against the
-independent reference (tests/interpolators/reference_heidenhain.py)."""
+"""The pole CC under coordinate transformations and TOOL CALL, the transition arc at every outside corner under
+RL/RR: hand-written TNC programs, each checked against the independent reference
+(tests/interpolators/reference_heidenhain.py)."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
 
+from interpolators.compensation import compensate
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.program import Block
 from tests.interpolators.reference_heidenhain import checked_program
-from vcnc.errors import GCodeError
+from toolpaths.geometry import Line
+from vcnc.errors import GCodeError, InputError
 
 HOME = MachineContext(home=(0.0, 0.0, 300.0))
 START = "L X+0 Y+0 Z+0 R0 F100\nCC X+10 Y+0\n"
@@ -88,3 +94,42 @@ def test_pole_is_a_point_of_the_part_across_a_tool_call():
     prog = checked(tools + "L X+0 Y+0 Z+0 R0 F100\nCC X+10 Y+0\nTOOL CALL 2 Z S100\nL X+0 Y+0 Z+0 R0 F100\n"
                            "LP PR+5 PA+90")
     assert rows(prog, 9) == [("line", [10.0, 5.0, 10.0])]
+
+
+# --- a transition arc at every outside corner -------------------------------------------------------------------
+
+TOOL = "TOOL DEF 1 L+0 R+5\nTOOL CALL 1 Z S100\nL X-10 Y+10 Z+0 R0 F100\n"
+
+
+def test_small_outside_corner_gets_its_transition_arc():
+    # TNC 640 ISO manual 34059x-05, 5.3 "Radius compensation: Machining corners": "the TNC moves the tool around
+    # outside corners on a transitional arc" - also a turn of atan(0.5 / 20) = 0.025 rad, which LinuxCNC's
+    # 0.05 rad tolerance joins straight: the arc of radius 5 about (20, 0) from (20, 5) to 5 along the normal of
+    # the next line; the inside corner after it at the offsets' intersection ("The TNC calculates the
+    # intersection of the tool center paths at inside corners")
+    prog = checked(TOOL + "L X+0 Y+0 RL\nL X+20 Y+0\nL X+40 Y-0.5\nL X+60 Y-0.5\nL X+70 Y+20 R0", exact=False)
+    n = np.array([0.5, 20.0]) / math.hypot(0.5, 20.0)
+    corner = [b for b in prog.blocks if b.line == 7]
+    assert [b.kind for b in corner] == ["arc", "line"]
+    assert np.round(corner[0].start, 6).tolist() == [20.0, 5.0, 0.0]
+    assert np.round(corner[0].target, 6).tolist() == np.round([20.0 + 5.0 * n[0], 5.0 * n[1], 0.0], 6).tolist()
+    assert np.round(corner[0].segment.center, 6).tolist()[:2] == [20.0, 0.0]
+    x = 20.0 + 5.0 * n[0] + (5.0 * n[1] - 4.5) * 40.0  # the second line's offset down to y = 4.5 (slope -1/40)
+    assert np.round(corner[1].target, 6).tolist() == np.round([x, 4.5, 0.0], 6).tolist()
+
+
+def test_convex_tolerance_is_the_dialects_parameter():
+    # the ISO readers keep LinuxCNC's rule (no arc for a turn of at most 0.05 rad); the TNC passes its own
+    def blocks(points):
+        out = []
+        for i, (a, b) in enumerate(zip(points[:-1], points[1:])):
+            a3, b3 = np.array([*a, 0.0]), np.array([*b, 0.0])
+            out.append(Block(kind="line", target=b3, start=a3, segment=Line(a3, b3), feed=10.0, line=i + 1))
+        return out
+
+    path = blocks([[-10, 0], [0, 0], [10, 0], [20, -0.2], [30, -10]])
+    assert [b.kind for b in compensate(path, side="left", radius=2.0, plane=2)] == ["line"] * 4
+    kinds = [b.kind for b in compensate(path, side="left", radius=2.0, plane=2, convex_tolerance=1e-9)]
+    assert kinds == ["line", "line", "arc", "line", "line"]
+    with pytest.raises(InputError, match="convex_tolerance must be > 0 and < pi/2 rad, got 0.0"):
+        compensate(path, side="left", radius=2.0, plane=2, convex_tolerance=0.0)
