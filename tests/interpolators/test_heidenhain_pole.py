@@ -1,6 +1,6 @@
 """The pole CC under coordinate transformations and TOOL CALL, the transition arc at every outside corner under
-RL/RR: hand-written TNC programs, each checked against the independent reference
-(tests/interpolators/reference_heidenhain.py)."""
+RL/RR, and the tangent after a ``C`` arc whose written end misses the pole's circle by its rounding: hand-written
+TNC programs, each checked against the independent reference (tests/interpolators/reference_heidenhain.py)."""
 
 from __future__ import annotations
 
@@ -133,3 +133,44 @@ def test_convex_tolerance_is_the_dialects_parameter():
     assert kinds == ["line", "line", "arc", "line", "line"]
     with pytest.raises(InputError, match="convex_tolerance must be > 0 and < pi/2 rad, got 0.0"):
         compensate(path, side="left", radius=2.0, plane=2, convex_tolerance=0.0)
+
+
+# --- a C end rounded off its circle -----------------------------------------------------------------------------
+
+ROUNDED = "L X+20 Y-10 Z+0 R0 F100\nL X+10 Y+0\nCC X+0 Y+0\nC X+7.0711 Y+7.0711 DR+\n"
+
+
+def run_centre() -> np.ndarray:
+    """The centre of the circle through (10, 0) and (7.0711, 7.0711) nearest CC (0, 0): on the chord's bisector."""
+    a, b = np.array([10.0, 0.0]), np.array([7.0711, 7.0711])
+    u = (b - a) / np.hypot(*(b - a))
+    m = (a + b) / 2.0
+    return -u * float(-m @ u)  # CC less its component along the chord, measured from the chord's middle
+
+
+def test_dep_lt_leaves_along_the_arc_the_control_runs():
+    # C X+7.0711 Y+7.0711 about (0, 0) from (10, 0): radius 10.00002 at the end, within the input tolerance
+    # (TNC 410 manual, "Circular path C": "Input tolerance: up to 0.016 mm"); the arc runs on the circle through
+    # both ends nearest the pole, and DEP LT leaves along that arc's end tangent (our reading: no kink)
+    prog = checked("TOOL DEF 1 L+0 R+2\nTOOL CALL 1 Z S100\n" + ROUNDED.replace("L X+10 Y+0\n", "L X+10 Y+0 RL\n")
+                   + "DEP LT LEN5 R0 F500", exact=False)
+    c = run_centre()
+    end = np.array([7.0711, 7.0711])
+    radial = (end - c) / np.hypot(*(end - c))
+    tangent = np.array([-radial[1], radial[0]])
+    want = end + 5.0 * tangent  # DEP LT ... R0: P_N is LEN from the last contour point on its extension
+    got = [b for b in prog.blocks if b.line == 8][-1].target
+    assert np.round(got[:2], 6).tolist() == np.round(want, 6).tolist()
+    assert abs(float(np.hypot(*c))) > 1e-6  # the run centre is not CC: the case the rounding makes
+
+
+def test_ct_and_rnd_after_a_rounded_c_join_its_end_tangent():
+    prog = checked(ROUNDED + "CT X+0 Y+20")
+    ct = next(b for b in prog.blocks if b.line == 6)
+    c, end = run_centre(), np.array([7.0711, 7.0711])
+    radial = (end - c) / np.hypot(*(end - c))
+    # the CT arc's centre lies on the C arc's end radius (the two arcs tangent at the end point)
+    v = np.asarray(ct.segment.center[:2]) - end
+    assert abs(float(v[0] * radial[1] - v[1] * radial[0])) < 1e-9
+    checked(ROUNDED + "RND R2\nL X+0 Y+20")
+    checked(ROUNDED + "RND R2\nC X+0 Y+10")
